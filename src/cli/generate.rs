@@ -1,0 +1,118 @@
+//! `gen` and `generate`: include files on stdout, in a file, or for the whole catalogue.
+
+use crate::codecs::Spec;
+use crate::emit::{DEFAULT_PREFIX, Lang, render};
+use crate::quality::{self, ErrorStats};
+use anyhow::{Context, Result, bail};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Samples behind the error figures printed in doc comments. Fewer than the accuracy
+/// tests use (2^20), so that generating everything stays well under a second.
+pub const DOC_SAMPLES: usize = 1 << 16;
+
+/// Error statistics of every spec, measured in parallel (deterministic: fixed seed).
+pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(specs.len().max(1));
+    let mut out = vec![None; specs.len()];
+    std::thread::scope(|s| {
+        let chunks: Vec<_> = out
+            .chunks_mut(specs.len().div_ceil(threads).max(1))
+            .zip(specs.chunks(specs.len().div_ceil(threads).max(1)))
+            .map(|(o, sp)| {
+                s.spawn(move || {
+                    for (o, spec) in o.iter_mut().zip(sp) {
+                        *o = quality::measure(spec, DOC_SAMPLES);
+                    }
+                })
+            })
+            .collect();
+        for c in chunks {
+            c.join().expect("measurement thread");
+        }
+    });
+    out
+}
+
+pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {
+    let stats = stats_for(specs);
+    let ids: Vec<String> = specs.iter().map(|s| s.display_name()).collect();
+    let prefix_arg = if prefix == DEFAULT_PREFIX { String::new() } else { format!(" --prefix {prefix}") };
+    let cmd = format!("unitpack gen {} --lang {lang}{prefix_arg}", ids.join(" "));
+    let pairs: Vec<_> = specs.iter().cloned().zip(stats).collect();
+    render(&pairs, lang, prefix, &cmd)
+}
+
+/// Writes through a temporary file in the same directory and renames it over `path`, so
+/// readers never see a half-written file and a failure leaves the old file intact.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("cannot write {}: cannot create a file in {}", path.display(), dir.display()))?;
+    tmp.write_all(bytes).with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.persist(path).map_err(|e| e.error).with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
+}
+
+/// Every generated file: relative path → contents.
+pub fn catalogue_files() -> Vec<(PathBuf, String)> {
+    let specs = Spec::all();
+    let stats = stats_for(&specs);
+    let mut files = Vec::new();
+    for lang in Lang::ALL {
+        for (spec, st) in specs.iter().zip(&stats) {
+            let cmd = format!("unitpack generate  (or: unitpack gen {} --lang {lang})", spec.display_name());
+            let text = render(&[(spec.clone(), *st)], lang, DEFAULT_PREFIX, &cmd);
+            files.push((PathBuf::from(lang.ext()).join(format!("{}.{}", spec.id(), lang.ext())), text));
+        }
+    }
+    files
+}
+
+pub fn generate(out: &Path, check: bool) -> Result<i32> {
+    let files = catalogue_files();
+    if check {
+        let mut stale = Vec::new();
+        for (rel, text) in &files {
+            let p = out.join(rel);
+            match std::fs::read_to_string(&p) {
+                Ok(cur) if cur == *text => {}
+                Ok(_) => stale.push(format!("changed: {}", p.display())),
+                Err(_) => stale.push(format!("missing: {}", p.display())),
+            }
+        }
+        for lang in Lang::ALL {
+            let Ok(rd) = std::fs::read_dir(out.join(lang.ext())) else { continue };
+            for e in rd.flatten() {
+                let rel = PathBuf::from(lang.ext()).join(e.file_name());
+                if !files.iter().any(|(r, _)| *r == rel) {
+                    stale.push(format!("extra: {}", out.join(rel).display()));
+                }
+            }
+        }
+        if stale.is_empty() {
+            println!("{} files in {} are up to date", files.len(), out.display());
+            return Ok(0);
+        }
+        for s in &stale {
+            println!("{s}");
+        }
+        println!("{} of {} generated files are out of date; run `unitpack generate`", stale.len(), files.len());
+        return Ok(1);
+    }
+    for lang in Lang::ALL {
+        let d = out.join(lang.ext());
+        std::fs::create_dir_all(&d).with_context(|| format!("cannot create {}", d.display()))?;
+    }
+    for (rel, text) in &files {
+        write_atomic(&out.join(rel), text.as_bytes())?;
+    }
+    if files.is_empty() {
+        bail!("nothing to generate");
+    }
+    println!("wrote {} files to {}", files.len(), out.display());
+    Ok(0)
+}

@@ -1,0 +1,182 @@
+//! What a codec is, and the generic pipeline every codec shares: quantization, the
+//! precise (integer candidate) search and bit packing are written once, here.
+
+use super::quant::{Code, Quant, field_offsets};
+use crate::model::trace::Value;
+use crate::model::{Bool, Float, Uint, V2, V3};
+
+/// Which directions a codec represents.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Domain {
+    Sphere,
+    /// The +Z hemisphere; input below the horizon is first projected onto it (`z ← max(z, 0)`).
+    Hemisphere,
+}
+
+impl Domain {
+    pub fn name(self) -> &'static str {
+        match self {
+            Domain::Sphere => "sphere",
+            Domain::Hemisphere => "hemisphere",
+        }
+    }
+}
+
+/// The parameter vector a codec stores: `V2` or `V3` of floats.
+pub trait Params<F: Float>: Value {
+    const N: usize;
+    fn lane(&self, i: usize) -> F;
+    /// Builds the vector from lanes, recorded as one vector operation.
+    fn build(f: impl FnMut(usize) -> F) -> Self;
+    /// Names the vector in emitted code.
+    fn named_p(self, name: &'static str) -> Self;
+}
+
+impl<F: Float> Params<F> for V2<F> {
+    const N: usize = 2;
+    fn lane(&self, i: usize) -> F {
+        self.to_array()[i]
+    }
+    fn build(mut f: impl FnMut(usize) -> F) -> Self {
+        let a = [f(0), f(1)];
+        V2::from_array(F::fuse(a))
+    }
+    fn named_p(self, name: &'static str) -> Self {
+        self.named(name)
+    }
+}
+
+impl<F: Float> Params<F> for V3<F> {
+    const N: usize = 3;
+    fn lane(&self, i: usize) -> F {
+        self.to_array()[i]
+    }
+    fn build(mut f: impl FnMut(usize) -> F) -> Self {
+        let a = [f(0), f(1), f(2)];
+        V3::from_array(F::fuse(a))
+    }
+    fn named_p(self, name: &'static str) -> Self {
+        self.named(name)
+    }
+}
+
+/// One codec: a map from directions to parameters and back, plus how the parameters are
+/// stored. Written once, generically: evaluated with `f32` it is the CPU reference,
+/// traced it is the shader source.
+pub trait Codec: Send + Sync {
+    type P<F: Float>: Params<F>;
+    type C<F: Float>: Code<F>;
+    /// Storage of each parameter, in texel order.
+    fn quants(&self) -> Vec<Quant>;
+    fn domain(&self) -> Domain;
+    /// The unit vector the encoder aims at for any input (normalized, projected onto the
+    /// domain, and a fixed direction for zero, NaN or infinite input). Precise encoders
+    /// measure candidates against it.
+    fn target<F: Float>(&self, v: V3<F>) -> V3<F> {
+        unit_or_z(match self.domain() {
+            Domain::Sphere => v,
+            Domain::Hemisphere => V3::new(v.x, v.y, F::sel(v.z.gt(F::c(0.0)), v.z, F::c(0.0))),
+        })
+    }
+    /// Direction → parameters in storage range, before quantization.
+    fn to_params<F: Float>(&self, v: V3<F>) -> Self::P<F>;
+    /// Parameters in storage range → direction.
+    fn from_params<F: Float>(&self, p: Self::P<F>) -> V3<F>;
+    /// Integer codes chosen by the precise encoder: [`precise_search`] through this
+    /// codec's own `decode_float`.
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
+        precise_search(self, v, "decode_float")
+    }
+}
+
+/// Searches the 2^N codes around the exact parameters (floor or floor+1 per parameter)
+/// and keeps the one whose decoded direction is nearest the target by squared distance,
+/// the first one on ties. Candidates are integer codes and are decoded exactly as the
+/// decoder will (through the helper `decode_name`), so encoder and decoder agree on
+/// what "nearest" means; a cosine in f32 could not tell 32-bit candidates apart.
+pub fn precise_search<F: Float, C: Codec + ?Sized>(
+    codec: &C,
+    v: V3<F>,
+    decode_name: &'static str,
+) -> C::P<F> {
+    let q = codec.quants();
+    let u = codec.target(v).named("dir");
+    let p = codec.to_params(u);
+    let base = C::P::<F>::build(|i| q[i].floor_code(p.lane(i))).named_p("base");
+    let decode = |c: C::P<F>| {
+        let params = dequantize(&q, c);
+        F::call(decode_name, params, |p| codec.from_params(p))
+    };
+    let mut best = base;
+    let mut best_d = distance2(decode(base), u).named("best_d");
+    for k in 1..(1usize << C::P::<F>::N) {
+        let cand = C::P::<F>::build(|i| {
+            let step = if k >> i & 1 == 1 { base.lane(i) + F::c(1.0) } else { base.lane(i) };
+            q[i].clamp_code(step)
+        })
+        .named_p("cand");
+        let d = distance2(decode(cand), u).named("d");
+        let better = d.lt(best_d);
+        best = C::P::<F>::build(|i| F::sel(better, cand.lane(i), best.lane(i))).named_p("best");
+        best_d = F::sel(better, d, best_d).named("best_d");
+    }
+    best
+}
+
+fn distance2<F: Float>(a: V3<F>, b: V3<F>) -> F {
+    (a - b).length_squared()
+}
+
+/// `x ≥ 0 ? 1 : -1`: −0 counts as positive (never `sign()`, which is 0 at 0).
+pub fn sign_not_zero<F: Float>(v: V2<F>) -> V2<F> {
+    v.map(|x| F::sel(x.ge(F::c(0.0)), F::c(1.0), F::c(-1.0)))
+}
+
+/// Normalizes `v`; zero, NaN and infinite input become +Z. Scaling by the largest
+/// component first keeps huge and denormal inputs from overflowing or vanishing.
+pub fn unit_or_z<F: Float>(v: V3<F>) -> V3<F> {
+    let a = v.abs();
+    let m = F::sel(a.x.ge(a.y), a.x, a.y);
+    let m = F::sel(m.ge(a.z), m, a.z).named("largest");
+    let ok = m.gt(F::c(0.0)).and(m.le(F::c(f32::MAX)));
+    let s = F::sel(ok, m, F::c(1.0));
+    let w = V3::sel_all(ok, v / s, V3::new(F::c(0.0), F::c(0.0), F::c(1.0))).named("scaled");
+    let len = w.length_squared().sqrt().named("len");
+    (w / len).named("unit")
+}
+
+pub fn quantize<F: Float, P: Params<F>>(q: &[Quant], p: P) -> P {
+    P::build(|i| q[i].quantize(p.lane(i)))
+}
+
+pub fn dequantize<F: Float, P: Params<F>>(q: &[Quant], c: P) -> P {
+    P::build(|i| q[i].dequantize(c.lane(i)))
+}
+
+/// Packs integer codes into the texel's bits: first field lowest, little-endian.
+pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
+    let offs = field_offsets(q);
+    let mut words: [Option<F::U>; 2] = [None, None];
+    for (i, quant) in q.iter().enumerate() {
+        let f = quant.to_field(c.lane(i));
+        let (w, sh) = ((offs[i] / 32) as usize, offs[i] % 32);
+        let f = if sh == 0 { f } else { f.shl(sh) };
+        words[w] = Some(match words[w] {
+            None => f,
+            Some(acc) => acc | f,
+        });
+    }
+    C::from_words([words[0].unwrap(), words[1].unwrap_or_else(|| F::U::c(0))])
+}
+
+/// Unpacks integer codes; bits outside the fields are ignored.
+pub fn unpack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], code: C) -> P {
+    let offs = field_offsets(q);
+    P::build(|i| {
+        let (w, sh) = ((offs[i] / 32) as usize, offs[i] % 32);
+        let word = code.word(w);
+        let shifted = if sh == 0 { word } else { word.shr(sh) };
+        let field = if sh + q[i].bits() == 32 { shifted } else { shifted & F::U::c(q[i].mask()) };
+        q[i].from_field(field)
+    })
+}

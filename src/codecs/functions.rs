@@ -1,0 +1,238 @@
+//! The shader functions a spec emits, each with its `f32` evaluation on raw bits (what
+//! the GPU output is compared against) and the inputs it is verified on.
+
+use super::catalogue::{Layout, Spec};
+use super::codec::{Codec, Params, dequantize, pack, quantize, unpack};
+use super::hemioct::HemiOct;
+use super::lambert::Lambert;
+use super::oct::Oct;
+use super::pack12::{self, Oct24Rgb8};
+use super::quant::Quant;
+use super::snorm3::{OneWord, Snorm3, TwoWords};
+use super::spherical::Spherical;
+use super::stereo::StereoScaled;
+use super::xy::Xy;
+use crate::model::Float;
+use crate::model::trace::{Module, Tf, define, trace_module};
+use crate::model::{V2, V3};
+use std::sync::Arc;
+
+/// Values that cross the verification boundary as raw 32-bit words.
+pub trait Bits: Sized {
+    const WORDS: usize;
+    fn read(w: &[u32]) -> Self;
+    fn write(self, w: &mut [u32]);
+}
+impl Bits for f32 {
+    const WORDS: usize = 1;
+    fn read(w: &[u32]) -> Self {
+        f32::from_bits(w[0])
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self.to_bits();
+    }
+}
+impl Bits for u32 {
+    const WORDS: usize = 1;
+    fn read(w: &[u32]) -> Self {
+        w[0]
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self;
+    }
+}
+impl<T: Bits + crate::model::Lane> Bits for V2<T> {
+    const WORDS: usize = 2;
+    fn read(w: &[u32]) -> Self {
+        V2::new(T::read(&w[0..]), T::read(&w[1..]))
+    }
+    fn write(self, w: &mut [u32]) {
+        self.x.write(&mut w[0..]);
+        self.y.write(&mut w[1..]);
+    }
+}
+impl<T: Bits + crate::model::Lane> Bits for V3<T> {
+    const WORDS: usize = 3;
+    fn read(w: &[u32]) -> Self {
+        V3::new(T::read(&w[0..]), T::read(&w[1..]), T::read(&w[2..]))
+    }
+    fn write(self, w: &mut [u32]) {
+        self.x.write(&mut w[0..]);
+        self.y.write(&mut w[1..]);
+        self.z.write(&mut w[2..]);
+    }
+}
+
+/// What a function is verified on.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Inputs {
+    /// Seeded random unit vectors plus every edge case (3 words each).
+    Vectors,
+    /// Packed codes with the given fields: all of them up to 24 bits, else seeded random ones.
+    Codes(Vec<Quant>),
+    /// Float parameters as a texture fetch delivers them (`c/M`), for the same codes.
+    FloatCodes(Vec<Quant>),
+}
+
+/// What a function does, for its doc comment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    Encode,
+    Decode,
+    EncodeFloat,
+    DecodeFloat,
+    Pack,
+    Unpack,
+}
+
+/// One emitted function.
+#[derive(Clone)]
+pub struct Function {
+    /// Local name; the emitted name is `{prefix}{namespace}_{name}`.
+    pub name: &'static str,
+    pub role: Role,
+    pub inputs: Inputs,
+    pub in_words: usize,
+    pub out_words: usize,
+    /// The `f32` model on raw bits: one item of `in_words` in, `out_words` out.
+    pub eval: Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>,
+}
+
+fn function<A: Bits + 'static, R: Bits + 'static>(
+    name: &'static str,
+    role: Role,
+    inputs: Inputs,
+    f: impl Fn(A) -> R + Send + Sync + 'static,
+) -> Function {
+    Function {
+        name,
+        role,
+        inputs,
+        in_words: A::WORDS,
+        out_words: R::WORDS,
+        eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
+    }
+}
+
+/// The traced module and the public functions of one spec.
+pub struct Emitted {
+    pub module: Module,
+    pub functions: Vec<Function>,
+    /// Prefix for every function name of the spec (its id, or empty for helpers-only specs).
+    pub namespace: String,
+}
+
+impl Spec {
+    /// Traces the spec and lists its public functions.
+    pub fn emitted(&self) -> Emitted {
+        let s = self.clone();
+        match (self.codec.name, self.bits) {
+            ("oct", 24) if self.layout == Layout::Rgb8 => s.codec_fns(Oct24Rgb8),
+            ("oct", b) => s.codec_fns(Oct { bits: b }),
+            ("hemioct", b) => s.codec_fns(HemiOct { bits: b }),
+            ("snorm3", 48) => s.codec_fns(Snorm3::<TwoWords>::new(16)),
+            ("snorm3", b) => s.codec_fns(Snorm3::<OneWord>::new(b / 3)),
+            ("spherical", b) => s.codec_fns(Spherical { bits: b }),
+            ("lambert", b) => s.codec_fns(Lambert { bits: b }),
+            ("stereo_scaled", b) => s.codec_fns(StereoScaled { bits: b, scale: self.scale }),
+            ("xy", b) => s.codec_fns(Xy { bits: b }),
+            ("snorm12x2", _) => pack12_fns(),
+            (n, _) => unreachable!("catalogue codec {n} has no implementation"),
+        }
+    }
+
+    fn codec_fns<C: Codec + Clone + 'static>(&self, c: C) -> Emitted
+    where
+        C::P<f32>: Bits,
+        C::C<f32>: Bits,
+    {
+        let q = c.quants();
+        let precise = self.precise;
+        let module = trace_module(|| trace_codec(&c, precise));
+        let (c1, c2, c3, c4) = (c.clone(), c.clone(), c.clone(), c.clone());
+        let (q1, q2) = (q.clone(), q.clone());
+        let functions = vec![
+            function("decode_float", Role::DecodeFloat, Inputs::FloatCodes(q.clone()), move |p| {
+                c1.from_params(p)
+            }),
+            function("decode", Role::Decode, Inputs::Codes(q.clone()), move |code: C::C<f32>| {
+                c2.from_params(dequantize(&q1, unpack::<f32, C::P<f32>, _>(&q1, code)))
+            }),
+            function("encode_float", Role::EncodeFloat, Inputs::Vectors, move |v: V3<f32>| {
+                encode_float(&c3, precise, v)
+            }),
+            function("encode", Role::Encode, Inputs::Vectors, move |v: V3<f32>| {
+                pack::<f32, _, C::C<f32>>(&q2, encode_codes(&c4, precise, v))
+            }),
+        ];
+        Emitted { module, functions, namespace: self.id() }
+    }
+}
+
+/// Integer codes of an encoder: nearest codes (fast) or the precise search.
+pub fn encode_codes<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
+    if precise { c.precise_codes(v) } else { quantize(&c.quants(), c.to_params(v)) }
+}
+
+/// Float-form encoder output: the exact parameters for the hardware to round (fast), or
+/// the chosen codes' values (precise), which the hardware's rounding keeps.
+pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
+    if precise { dequantize(&c.quants(), c.precise_codes(v)) } else { c.to_params(v) }
+}
+
+/// Traces the four public functions, decoders first so that encoders calling them find
+/// them with their parameter names.
+fn trace_codec<C: Codec>(c: &C, precise: bool) {
+    let q = c.quants();
+    define("decode_float", &["params"], |p: C::P<Tf>| c.from_params(p));
+    define("decode", &["code"], |code: C::C<Tf>| {
+        let codes: C::P<_> = unpack(&q, code);
+        let p = dequantize(&q, codes).named_p("params");
+        Tf::call("decode_float", p, |p| c.from_params(p))
+    });
+    if precise {
+        define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
+        define("encode_float", &["v"], |v: V3<Tf>| {
+            let codes = Tf::call("encode_codes", v, |v| c.precise_codes(v));
+            dequantize(&q, codes)
+        });
+        define("encode", &["v"], |v: V3<Tf>| {
+            let codes = Tf::call("encode_codes", v, |v| c.precise_codes(v));
+            pack::<_, _, C::C<_>>(&q, codes)
+        });
+    } else {
+        define("encode_float", &["v"], |v: V3<Tf>| c.to_params(v));
+        define("encode", &["v"], |v: V3<Tf>| {
+            let p = Tf::call("encode_float", v, |v| c.to_params(v));
+            let codes = quantize(&q, p).named_p("codes");
+            pack::<_, _, C::C<_>>(&q, codes)
+        });
+    }
+}
+
+fn pack12_fns() -> Emitted {
+    let module = trace_module(|| {
+        define("snorm12x2_to_unorm8x3", &["f"], |f: V2<Tf>| pack12::to_unorm8x3(f));
+        define("snorm12x2_to_unorm8x3_int", &["f"], |f: V2<Tf>| pack12::to_unorm8x3_int(f));
+        define("unorm8x3_to_snorm12x2", &["u"], |u: V3<Tf>| pack12::from_unorm8x3(u));
+        define("unorm8x3_to_snorm12x2_int", &["u"], |u: V3<Tf>| pack12::from_unorm8x3_int(u));
+    });
+    let s12 = vec![Quant::Snorm(12); 2];
+    let u8s = vec![Quant::Unorm(8); 3];
+    let functions = vec![
+        function("snorm12x2_to_unorm8x3", Role::Pack, Inputs::FloatCodes(s12.clone()), |f: V2<f32>| {
+            pack12::to_unorm8x3(f)
+        }),
+        function("snorm12x2_to_unorm8x3_int", Role::Pack, Inputs::FloatCodes(s12), |f: V2<f32>| {
+            pack12::to_unorm8x3_int(f)
+        }),
+        function("unorm8x3_to_snorm12x2", Role::Unpack, Inputs::FloatCodes(u8s.clone()), |u: V3<f32>| {
+            pack12::from_unorm8x3(u)
+        }),
+        function("unorm8x3_to_snorm12x2_int", Role::Unpack, Inputs::FloatCodes(u8s), |u: V3<f32>| {
+            pack12::from_unorm8x3_int(u)
+        }),
+    ];
+    Emitted { module, functions, namespace: String::new() }
+}
+

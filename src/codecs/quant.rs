@@ -1,0 +1,142 @@
+//! Scalar quantization (survey eqs. 1–2) and bit-field packing of integer codes.
+//!
+//! Codes are carried as integral `f32` values: every code of up to 24 bits is exact in
+//! f32, so the model never needs signed integers, and two's complement fields come from
+//! one select (`c < 0 ? c + 2^b : c`).
+
+use crate::model::{Float, Uint, V2};
+
+/// How one parameter is stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Quant {
+    /// `c = round(clamp(x,-1,1)·M)`, `x = max(c·(1/M), -1)`, `M = 2^(b-1)-1`; two's complement field.
+    Snorm(u32),
+    /// `c = round(clamp(x,0,1)·M)`, `x = c·(1/M)`, `M = 2^b-1`.
+    Unorm(u32),
+}
+
+impl Quant {
+    pub fn bits(self) -> u32 {
+        match self {
+            Quant::Snorm(b) | Quant::Unorm(b) => b,
+        }
+    }
+    /// The largest code, `M`.
+    pub fn max_code(self) -> f32 {
+        match self {
+            Quant::Snorm(b) => ((1u32 << (b - 1)) - 1) as f32,
+            Quant::Unorm(b) => ((1u64 << b) - 1) as f32,
+        }
+    }
+    pub fn min_code(self) -> f32 {
+        match self {
+            Quant::Snorm(_) => -self.max_code(),
+            Quant::Unorm(_) => 0.0,
+        }
+    }
+    fn lo(self) -> f32 {
+        match self {
+            Quant::Snorm(_) => -1.0,
+            Quant::Unorm(_) => 0.0,
+        }
+    }
+    pub fn name(self) -> String {
+        match self {
+            Quant::Snorm(b) => format!("snorm{b}"),
+            Quant::Unorm(b) => format!("unorm{b}"),
+        }
+    }
+    /// Clamps to the storage range; NaN goes to the low end (comparisons with NaN are false).
+    pub fn clamp<F: Float>(self, x: F) -> F {
+        let lo = F::c(self.lo());
+        let x = F::sel(x.ge(lo), x, lo);
+        F::sel(x.le(F::c(1.0)), x, F::c(1.0))
+    }
+    /// The code nearest to `x`, ties to even.
+    pub fn quantize<F: Float>(self, x: F) -> F {
+        (self.clamp(x) * F::c(self.max_code())).round()
+    }
+    /// The code at or below `x`: where a precise search starts.
+    pub fn floor_code<F: Float>(self, x: F) -> F {
+        (self.clamp(x) * F::c(self.max_code())).floor()
+    }
+    /// Clamps a candidate code to the valid codes.
+    pub fn clamp_code<F: Float>(self, c: F) -> F {
+        let hi = F::c(self.max_code());
+        F::sel(c.le(hi), c, hi)
+    }
+    pub fn dequantize<F: Float>(self, c: F) -> F {
+        let x = c * F::c(1.0 / self.max_code());
+        match self {
+            Quant::Snorm(_) => F::sel(x.ge(F::c(-1.0)), x, F::c(-1.0)),
+            Quant::Unorm(_) => x,
+        }
+    }
+    /// The unsigned bit field of a code.
+    pub fn to_field<F: Float>(self, c: F) -> F::U {
+        match self {
+            Quant::Snorm(b) => {
+                let wrapped = c + F::c((1u64 << b) as f32);
+                F::sel(c.lt(F::c(0.0)), wrapped, c).to_u()
+            }
+            Quant::Unorm(_) => c.to_u(),
+        }
+    }
+    /// The code held in an unsigned bit field (already masked to `bits`).
+    pub fn from_field<F: Float>(self, u: F::U) -> F {
+        let c = u.to_f();
+        match self {
+            Quant::Snorm(b) => {
+                let wrapped = c - F::c((1u64 << b) as f32);
+                F::sel(c.gt(F::c(self.max_code())), wrapped, c)
+            }
+            Quant::Unorm(_) => c,
+        }
+    }
+    pub fn mask(self) -> u32 {
+        ((1u64 << self.bits()) - 1) as u32
+    }
+}
+
+/// A packed code: one `u32`, or two for layouts wider than 32 bits (snorm16×3).
+pub trait Code<F: Float>: crate::model::trace::Value {
+    const WORDS: usize;
+    fn word(self, i: usize) -> F::U;
+    fn from_words(w: [F::U; 2]) -> Self;
+}
+
+impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for U {
+    const WORDS: usize = 1;
+    fn word(self, _: usize) -> U {
+        self
+    }
+    fn from_words(w: [U; 2]) -> Self {
+        w[0]
+    }
+}
+
+impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V2<U> {
+    const WORDS: usize = 2;
+    fn word(self, i: usize) -> U {
+        if i == 0 { self.x } else { self.y }
+    }
+    fn from_words(w: [U; 2]) -> Self {
+        V2::new(w[0], w[1])
+    }
+}
+
+/// Bit offset of each field, first field in the lowest bits, no field straddling a word.
+pub fn field_offsets(quants: &[Quant]) -> Vec<u32> {
+    let mut off = 0;
+    quants
+        .iter()
+        .map(|q| {
+            if off / 32 != (off + q.bits() - 1) / 32 {
+                off = (off / 32 + 1) * 32;
+            }
+            let o = off;
+            off += q.bits();
+            o
+        })
+        .collect()
+}

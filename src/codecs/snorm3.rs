@@ -1,0 +1,61 @@
+//! snorm×3: the vector's components stored directly (survey; the first seed's baseline).
+//! Most codes are not unit length, so decode re-normalizes.
+
+use super::codec::{Codec, Domain, unit_or_z};
+use super::quant::{Code, Quant};
+use crate::model::{Float, V2, V3};
+use std::marker::PhantomData;
+
+/// How many 32-bit words the packed code takes: the packed type is part of the
+/// emitted signature, so it is fixed per codec type.
+pub trait Words: Send + Sync + 'static {
+    type C<F: Float>: Code<F>;
+}
+/// One `u32` (snorm8×3 in an RGBA8_SNORM texel, snorm10×3 in A2B10G10R10_SNORM).
+#[derive(Clone, Copy, Debug)]
+pub struct OneWord;
+/// Two `u32`s (snorm16×3 in the low 48 bits of an RGBA16_SNORM texel).
+#[derive(Clone, Copy, Debug)]
+pub struct TwoWords;
+impl Words for OneWord {
+    type C<F: Float> = F::U;
+}
+impl Words for TwoWords {
+    type C<F: Float> = V2<F::U>;
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Snorm3<W> {
+    /// Bits per component: 8, 10 or 16.
+    pub bits: u32,
+    pub words: PhantomData<W>,
+}
+
+impl<W> Snorm3<W> {
+    pub fn new(bits: u32) -> Self {
+        Snorm3 { bits, words: PhantomData }
+    }
+}
+
+impl<W: Words> Codec for Snorm3<W> {
+    type P<F: Float> = V3<F>;
+    type C<F: Float> = W::C<F>;
+    fn quants(&self) -> Vec<Quant> {
+        vec![Quant::Snorm(self.bits); 3]
+    }
+    fn domain(&self) -> Domain {
+        Domain::Sphere
+    }
+    fn to_params<F: Float>(&self, v: V3<F>) -> V3<F> {
+        unit_or_z(v)
+    }
+    /// The all-zero code, the only one with no direction, decodes as +Z.
+    fn from_params<F: Float>(&self, p: V3<F>) -> V3<F> {
+        let len2 = p.length_squared().named("len2");
+        let ok = len2.gt(F::c(0.0));
+        let safe = F::sel(ok, len2, F::c(1.0));
+        let v = p / safe.sqrt();
+        V3::sel_all(ok, v, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
+    }
+}
+

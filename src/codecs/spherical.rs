@@ -1,0 +1,38 @@
+//! Spherical coordinates (survey §2): θ ∈ [0, π] and φ ∈ [-π, π] stored as snorm×2,
+//! `(θ/π·2 - 1, φ/π)`. Trigonometry comes from [`super::trig`].
+//! θ is computed as `atan2(|xy|, z)` rather than `acos(z)`: same angle, but well
+//! conditioned near the poles, where acos loses half its digits.
+
+use super::codec::{Codec, Domain};
+use super::quant::Quant;
+use super::trig::{atan2_pi, sincos_pi};
+use crate::model::{Float, V2, V3};
+
+#[derive(Clone, Copy, Debug)]
+pub struct Spherical {
+    pub bits: u32,
+}
+
+impl Codec for Spherical {
+    type P<F: Float> = V2<F>;
+    type C<F: Float> = F::U;
+    fn quants(&self) -> Vec<Quant> {
+        vec![Quant::Snorm(self.bits / 2); 2]
+    }
+    fn domain(&self) -> Domain {
+        Domain::Sphere
+    }
+    fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let u = self.target(v);
+        let rho = u.xy().length_squared().sqrt().named("rho");
+        let theta = F::call("atan2_pi", (rho, u.z), |(y, x)| atan2_pi(y, x)).named("theta");
+        let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
+        V2::new(theta * F::c(2.0) - F::c(1.0), phi)
+    }
+    fn from_params<F: Float>(&self, p: V2<F>) -> V3<F> {
+        let theta = ((p.x + F::c(1.0)) * F::c(0.5)).named("theta");
+        let st = F::call("sincos_pi", theta, sincos_pi).named("st");
+        let sp = F::call("sincos_pi", p.y, sincos_pi).named("sp");
+        V3::new(sp.y * st.x, sp.x * st.x, st.y)
+    }
+}

@@ -1,0 +1,76 @@
+//! The model's own trigonometry. Shader `atan2`, `sin`, `cos` and `acos` differ between
+//! drivers and from Rust by up to thousands of ULP (DESIGN §2), so codecs that need angles
+//! use these polynomial versions, built only from exact operations: both sides then
+//! compute the same bits. Angles are in units of π (half turns), which keeps the range
+//! reductions exact. `tests/trig.rs` measures the error against f64 over the whole range:
+//! [`atan2_pi`] within [`ATAN2_PI_MAX_ERROR`], [`sincos_pi`] within [`SINCOS_PI_MAX_ERROR`].
+
+use crate::model::{Float, V2};
+use std::f64::consts::PI;
+
+/// Largest absolute error of [`atan2_pi`] in half turns, as tested (about 0.05°·10⁻³).
+pub const ATAN2_PI_MAX_ERROR: f64 = 2.0e-7;
+/// Largest absolute error of each lane of [`sincos_pi`], as tested.
+pub const SINCOS_PI_MAX_ERROR: f64 = 2.5e-7;
+
+/// `c[0] + z·(c[1] + z·(...))`, evaluated as written.
+fn horner<F: Float>(z: F, coeffs: &[f64]) -> F {
+    let mut acc = F::c(*coeffs.last().unwrap() as f32);
+    for c in coeffs.iter().rev().skip(1) {
+        acc = acc * z + F::c(*c as f32);
+    }
+    acc
+}
+
+/// atan(z) for |z| ≤ tan(π/8), by its Taylor series through z^19 (truncation < 3·10⁻⁹).
+fn atan_small<F: Float>(z: F) -> F {
+    let coeffs: Vec<f64> =
+        (0..10).map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64).collect();
+    let z2 = (z * z).named("z2");
+    z * horner(z2, &coeffs)
+}
+
+/// atan2(y, x) / π in [-1, 1]. Signed zeros count as positive (`atan2_pi(+0, -0) = 0`,
+/// `atan2_pi(-0, -1) = 1`); `atan2_pi(0, 0) = 0`.
+pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
+    let ax = x.abs();
+    let ay = y.abs();
+    let y_major = ay.gt(ax);
+    let hi = F::sel(y_major, ay, ax);
+    let lo = F::sel(y_major, ax, ay);
+    let t = (lo / F::sel(hi.gt(F::c(0.0)), hi, F::c(1.0))).named("t");
+    // atan(t) = π/4 + atan((t-1)/(t+1)) keeps the series argument below tan(π/8).
+    let far = t.gt(F::c((PI / 8.0).tan() as f32));
+    let z = F::sel(far, (t - F::c(1.0)) / (t + F::c(1.0)), t);
+    let r = atan_small(z).named("r");
+    let r = F::sel(far, r + F::c((PI / 4.0) as f32), r);
+    let r = F::sel(y_major, F::c((PI / 2.0) as f32) - r, r);
+    let r = F::sel(x.lt(F::c(0.0)), F::c(PI as f32) - r, r);
+    let r = F::sel(y.lt(F::c(0.0)), -r, r);
+    r * F::c((1.0 / PI) as f32)
+}
+
+/// (sin(π·t), cos(π·t)) for t in [-1, 1], by range reduction to [0, 1/4] and Taylor
+/// polynomials in t (through t^9 for sine, t^10 for cosine).
+pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
+    let a = t.abs();
+    // cos(π(1-a)) = -cos(πa), sin(π(1-a)) = sin(πa)
+    let back = a.gt(F::c(0.5));
+    let b = F::sel(back, F::c(1.0) - a, a);
+    // sin(π(1/2-b)) = cos(πb)
+    let swap = b.gt(F::c(0.25));
+    let c = F::sel(swap, F::c(0.5) - b, b).named("c");
+    let c2 = (c * c).named("c2");
+    let fact = |n: i32| (1..=n).map(|k| k as f64).product::<f64>();
+    let sin_coeffs: Vec<f64> =
+        (0..5).map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / fact(2 * k + 1)).collect();
+    let cos_coeffs: Vec<f64> =
+        (0..6).map(|k| (-1f64).powi(k) * PI.powi(2 * k) / fact(2 * k)).collect();
+    let s = (c * horner(c2, &sin_coeffs)).named("s");
+    let co = horner(c2, &cos_coeffs).named("co");
+    let sb = F::sel(swap, co, s);
+    let cb = F::sel(swap, s, co);
+    let cos = F::sel(back, -cb, cb);
+    let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
+    V2::new(sin, cos)
+}

@@ -1,0 +1,9 @@
+//! The model: the numeric vocabulary codecs are written in, small vectors over it, and
+//! the tracer that turns a codec into an expression graph.
+
+pub mod num;
+pub mod trace;
+pub mod vec;
+
+pub use num::{Bool, Float, Kind, Lane, Uint};
+pub use vec::{V2, V3};

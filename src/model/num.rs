@@ -1,0 +1,204 @@
+//! The numeric vocabulary every codec is written in.
+//!
+//! A codec is generic over [`Float`]. Instantiated with `f32` it *is* the CPU reference;
+//! instantiated with [`crate::model::trace::T`] it records the expression graph that the
+//! printers turn into shader code. The vocabulary holds exactly the operations that the
+//! canonical arithmetic rules (DESIGN §2) allow: there is no `fma`, no `sign`, no `min`/`max`,
+//! no transcendental and no pack builtin, so a codec that needs one does not compile.
+//! Literal division and constant expressions are refused by the tracer at record time.
+
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
+
+/// The scalar kinds a traced value can have.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    F32,
+    U32,
+    Bool,
+}
+
+/// Everything that can sit in one lane of a vector. The two hooks are identities when
+/// evaluating; the tracer uses them to turn componentwise work back into vector syntax
+/// and to give intermediates readable names.
+pub trait Lane: Copy + 'static + crate::model::trace::Value {
+    const KIND: Kind;
+    /// Called by the vector helpers on the lanes of every componentwise result.
+    #[inline(always)]
+    fn fuse<const L: usize>(lanes: [Self; L]) -> [Self; L] {
+        lanes
+    }
+    /// Names the intermediate in emitted code (`let len1 = ...`).
+    #[inline(always)]
+    fn named(self, _name: &'static str) -> Self {
+        self
+    }
+    /// Names the vector made of `lanes` in emitted code.
+    #[inline(always)]
+    fn named_lanes<const L: usize>(lanes: [Self; L], _name: &'static str) -> [Self; L] {
+        lanes
+    }
+}
+
+/// Boolean masks produced by comparisons.
+pub trait Bool: Lane {
+    fn and(self, o: Self) -> Self;
+    fn or(self, o: Self) -> Self;
+    fn not(self) -> Self;
+}
+
+/// 32-bit unsigned integers: the packed code and the bit fields inside it.
+pub trait Uint:
+    Lane + Add<Output = Self> + Sub<Output = Self> + BitAnd<Output = Self> + BitOr<Output = Self>
+{
+    type F: Float<U = Self, B = Self::B>;
+    type B: Bool;
+    fn c(v: u32) -> Self;
+    fn shl(self, n: u32) -> Self;
+    fn shr(self, n: u32) -> Self;
+    /// Exact conversion for values below 2^24 (all the model ever converts).
+    fn to_f(self) -> Self::F;
+    fn sel(m: Self::B, if_true: Self, if_false: Self) -> Self;
+}
+
+/// 32-bit IEEE floats with round-to-nearest-even arithmetic.
+pub trait Float:
+    Lane
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    type U: Uint<F = Self, B = Self::B>;
+    type B: Bool;
+    /// A literal. Compute constants in Rust (`F::c(1.0 / 2047.0)`) so the shader
+    /// receives the exact f32 the model uses.
+    fn c(v: f32) -> Self;
+    fn abs(self) -> Self;
+    fn sqrt(self) -> Self;
+    fn floor(self) -> Self;
+    /// Round half to even, which is what `round` compiles to on every target.
+    fn round(self) -> Self;
+    fn lt(self, o: Self) -> Self::B;
+    fn le(self, o: Self) -> Self::B;
+    fn gt(self, o: Self) -> Self::B;
+    fn ge(self, o: Self) -> Self::B;
+    fn eq(self, o: Self) -> Self::B;
+    /// `m ? if_true : if_false` without branching and without any ±0/NaN surprise.
+    fn sel(m: Self::B, if_true: Self, if_false: Self) -> Self;
+    /// Exact conversion of a non-negative integral value below 2^32.
+    fn to_u(self) -> Self::U;
+    /// Calls a helper function. Evaluating, that is just `f(a)`; tracing, the helper is
+    /// traced once into its own shader function and the call site prints a call.
+    #[inline(always)]
+    fn call<A: crate::model::trace::Value, R: crate::model::trace::Value>(
+        _name: &'static str,
+        a: A,
+        f: impl FnOnce(A) -> R,
+    ) -> R {
+        f(a)
+    }
+}
+
+impl Lane for f32 {
+    const KIND: Kind = Kind::F32;
+}
+impl Lane for u32 {
+    const KIND: Kind = Kind::U32;
+}
+impl Lane for bool {
+    const KIND: Kind = Kind::Bool;
+}
+
+impl Bool for bool {
+    #[inline(always)]
+    fn and(self, o: Self) -> Self {
+        self & o
+    }
+    #[inline(always)]
+    fn or(self, o: Self) -> Self {
+        self | o
+    }
+    #[inline(always)]
+    fn not(self) -> Self {
+        !self
+    }
+}
+
+impl Uint for u32 {
+    type F = f32;
+    type B = bool;
+    #[inline(always)]
+    fn c(v: u32) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn shl(self, n: u32) -> Self {
+        self << n
+    }
+    #[inline(always)]
+    fn shr(self, n: u32) -> Self {
+        self >> n
+    }
+    #[inline(always)]
+    fn to_f(self) -> f32 {
+        self as f32
+    }
+    #[inline(always)]
+    fn sel(m: bool, t: Self, f: Self) -> Self {
+        if m { t } else { f }
+    }
+}
+
+impl Float for f32 {
+    type U = u32;
+    type B = bool;
+    #[inline(always)]
+    fn c(v: f32) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f32::abs(self)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        f32::floor(self)
+    }
+    #[inline(always)]
+    fn round(self) -> Self {
+        f32::round_ties_even(self)
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> bool {
+        self < o
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> bool {
+        self <= o
+    }
+    #[inline(always)]
+    fn gt(self, o: Self) -> bool {
+        self > o
+    }
+    #[inline(always)]
+    fn ge(self, o: Self) -> bool {
+        self >= o
+    }
+    #[inline(always)]
+    fn eq(self, o: Self) -> bool {
+        self == o
+    }
+    #[inline(always)]
+    fn sel(m: bool, t: Self, f: Self) -> Self {
+        if m { t } else { f }
+    }
+    #[inline(always)]
+    fn to_u(self) -> u32 {
+        self as u32
+    }
+}

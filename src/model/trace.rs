@@ -1,0 +1,580 @@
+//! Tracing: a [`Float`] implementation that records every operation into a typed SSA graph.
+//!
+//! Codecs are plain generic Rust; running them with [`T`] instead of `f32` yields a
+//! [`Module`] of [`Func`]s that the printers in `crate::emit` turn into WGSL, GLSL and HLSL.
+//! The graph keeps the model's evaluation order and never reassociates, so the printed
+//! code computes the same bits as the `f32` evaluation. The recorder refuses what the
+//! canonical arithmetic rules forbid and what the vocabulary cannot prevent by itself:
+//! dividing by a literal (HLSL optimisers turn it into a reciprocal multiply) and
+//! operations on literals only (WGSL folds those in f64).
+
+use super::num::{Bool, Float, Kind, Lane, Uint};
+use super::vec::{V2, V3};
+use std::cell::RefCell;
+use std::marker::PhantomData;
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
+
+/// The type of a graph value: a scalar kind and 1, 2 or 3 lanes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Ty {
+    pub kind: Kind,
+    pub lanes: u8,
+}
+
+impl Ty {
+    pub const fn scalar(kind: Kind) -> Ty {
+        Ty { kind, lanes: 1 }
+    }
+}
+
+/// A reference to a node's value, or to one lane of a vector node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Ref {
+    pub node: u32,
+    pub lane: Option<u8>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum UnOp {
+    Neg,
+    Abs,
+    Sqrt,
+    Floor,
+    Round,
+    Not,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    And,
+    Or,
+    BitAnd,
+    BitOr,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Eq,
+}
+
+impl BinOp {
+    /// Arithmetic accepts a scalar operand beside a vector in every target language.
+    pub fn broadcasts(self) -> bool {
+        matches!(self, BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div)
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Op {
+    Param(usize),
+    ConstF(f32),
+    ConstU(u32),
+    Un(UnOp),
+    Bin(BinOp),
+    /// Shift by a fixed amount.
+    Shl(u32),
+    Shr(u32),
+    /// args: mask, if_true, if_false
+    Select,
+    /// Value conversion to the node's kind.
+    Convert,
+    /// Builds a vector from scalars (one arg: splat).
+    Construct,
+    /// args[0] is a vector; picks the given lanes.
+    Swizzle(Vec<u8>),
+    Call(String),
+}
+
+#[derive(Clone, Debug)]
+pub struct Node {
+    pub op: Op,
+    pub args: Vec<Ref>,
+    pub ty: Ty,
+    pub name: Option<&'static str>,
+}
+
+/// One traced function: parameters, body in evaluation order, and the returned value.
+#[derive(Clone, Debug)]
+pub struct Func {
+    pub name: String,
+    pub params: Vec<(String, Ty)>,
+    pub nodes: Vec<Node>,
+    pub ret: Ref,
+    pub ret_ty: Ty,
+}
+
+impl Func {
+    pub fn ty_of(&self, r: Ref) -> Ty {
+        let t = self.nodes[r.node as usize].ty;
+        match r.lane {
+            Some(_) => Ty::scalar(t.kind),
+            None => t,
+        }
+    }
+}
+
+/// Every function a trace produced, callees before callers.
+#[derive(Clone, Debug, Default)]
+pub struct Module {
+    pub funcs: Vec<Func>,
+}
+
+impl Module {
+    pub fn func(&self, name: &str) -> Option<&Func> {
+        self.funcs.iter().find(|f| f.name == name)
+    }
+}
+
+#[derive(Default)]
+struct Recorder {
+    module: Module,
+    stack: Vec<Vec<Node>>,
+    /// Vector nodes already built from a list of lanes, so shared lanes fuse once.
+    memo: std::collections::HashMap<Vec<Ref>, Ref>,
+    memo_stack: Vec<std::collections::HashMap<Vec<Ref>, Ref>>,
+}
+
+thread_local! {
+    static REC: RefCell<Option<Recorder>> = const { RefCell::new(None) };
+}
+
+fn with<R>(f: impl FnOnce(&mut Recorder) -> R) -> R {
+    REC.with(|r| {
+        let mut r = r.borrow_mut();
+        let rec = r
+            .as_mut()
+            .expect("traced values exist only inside unitpack::model::trace::trace_module");
+        f(rec)
+    })
+}
+
+impl Recorder {
+    fn nodes(&mut self) -> &mut Vec<Node> {
+        self.stack.last_mut().expect("no function is being traced")
+    }
+    fn ty(&mut self, r: Ref) -> Ty {
+        let t = self.nodes()[r.node as usize].ty;
+        match r.lane {
+            Some(_) => Ty::scalar(t.kind),
+            None => t,
+        }
+    }
+    fn push(&mut self, op: Op, args: Vec<Ref>, ty: Ty) -> Ref {
+        let nodes = self.nodes();
+        nodes.push(Node { op, args, ty, name: None });
+        Ref { node: nodes.len() as u32 - 1, lane: None }
+    }
+    fn is_const(&mut self, r: Ref) -> bool {
+        matches!(self.nodes()[r.node as usize].op, Op::ConstF(_) | Op::ConstU(_))
+    }
+    fn record(&mut self, op: Op, args: Vec<Ref>, kind: Kind) -> Ref {
+        if !args.is_empty() && args.iter().all(|a| self.is_const(*a)) {
+            panic!(
+                "constant expression {op:?} on literals only: compute the value in Rust and pass one literal (WGSL would fold it in f64)"
+            );
+        }
+        if op == Op::Bin(BinOp::Div) && self.is_const(args[1]) {
+            panic!(
+                "division by a literal: multiply by the reciprocal computed in Rust (HLSL optimisers rewrite x/c as x*(1/c))"
+            );
+        }
+        self.push(op, args, Ty::scalar(kind))
+    }
+
+    /// Turns the lanes of one operand position into a single operand.
+    fn operand(&mut self, lanes: &[Ref], broadcast_ok: bool) -> Ref {
+        let first = lanes[0];
+        let same = |r: &mut Self, l: &Ref| {
+            *l == first || {
+                let a = r.nodes()[l.node as usize].op.clone();
+                let b = r.nodes()[first.node as usize].op.clone();
+                l.lane.is_none()
+                    && match (&a, &b) {
+                        (Op::ConstF(x), Op::ConstF(y)) => x.to_bits() == y.to_bits(),
+                        (Op::ConstU(x), Op::ConstU(y)) => x == y,
+                        _ => false,
+                    }
+            }
+        };
+        if lanes.iter().all(|l| same(self, l)) && first.lane.is_none() && self.ty(first).lanes == 1 {
+            if broadcast_ok {
+                return first;
+            }
+            let ty = Ty { kind: self.ty(first).kind, lanes: lanes.len() as u8 };
+            return self.push(Op::Construct, vec![first], ty);
+        }
+        self.vector_of(lanes)
+    }
+
+    /// Whether the lanes are distinct scalar results of one and the same operation, so
+    /// that a single vector operation can compute them all.
+    fn fusable(&mut self, lanes: &[Ref]) -> bool {
+        if lanes.iter().any(|r| r.lane.is_some()) {
+            return false;
+        }
+        for (i, a) in lanes.iter().enumerate() {
+            if lanes[..i].contains(a) {
+                return false;
+            }
+        }
+        let n0 = self.nodes()[lanes[0].node as usize].clone();
+        let vectorizable = matches!(
+            n0.op,
+            Op::Un(_) | Op::Bin(_) | Op::Shl(_) | Op::Shr(_) | Op::Select | Op::Convert
+        );
+        vectorizable
+            && n0.ty.lanes == 1
+            && lanes.iter().all(|r| {
+                let n = &self.nodes()[r.node as usize];
+                n.op == n0.op && n.ty == n0.ty
+            })
+    }
+
+    /// A vector whose lanes equal `lanes`. Lanes computed by the same operation become one
+    /// vector operation, recursively through their operands, so code written lane by lane
+    /// prints as vector code; anything else becomes a swizzle or a constructor.
+    fn vector_of(&mut self, lanes: &[Ref]) -> Ref {
+        let l = lanes.len() as u8;
+        let first = lanes[0];
+        if first.lane == Some(0)
+            && lanes.iter().enumerate().all(|(i, r)| r.node == first.node && r.lane == Some(i as u8))
+            && self.ty(Ref { node: first.node, lane: None }).lanes == l
+        {
+            return Ref { node: first.node, lane: None };
+        }
+        if let Some(v) = self.memo.get(lanes) {
+            return *v;
+        }
+        if !self.fusable(lanes) {
+            let g = self.gather(lanes);
+            self.memo.insert(lanes.to_vec(), g);
+            return g;
+        }
+        let proto = self.nodes()[first.node as usize].clone();
+        let arity = proto.args.len();
+        let mut args = Vec::with_capacity(arity);
+        for j in 0..arity {
+            let col: Vec<Ref> = lanes.iter().map(|r| self.nodes()[r.node as usize].args[j]).collect();
+            let broadcast_ok = match proto.op {
+                Op::Bin(b) => b.broadcasts(),
+                Op::Select => j == 0,
+                _ => false,
+            };
+            args.push(self.operand(&col, broadcast_ok));
+        }
+        // Arithmetic on broadcast scalars only would yield a scalar: splat one side.
+        if args.iter().all(|a| self.ty(*a).lanes == 1) {
+            let ty = Ty { kind: self.ty(args[arity - 1]).kind, lanes: l };
+            args[arity - 1] = self.push(Op::Construct, vec![args[arity - 1]], ty);
+        }
+        let ty = Ty { kind: proto.ty.kind, lanes: l };
+        let v = self.push(proto.op, args, ty);
+        self.memo.insert(lanes.to_vec(), v);
+        v
+    }
+
+    /// A vector made of the given lanes: a swizzle of one vector, or a constructor.
+    fn gather(&mut self, lanes: &[Ref]) -> Ref {
+        let first = lanes[0];
+        let kind = self.ty(first).kind;
+        let ty = Ty { kind, lanes: lanes.len() as u8 };
+        if first.lane.is_some() && lanes.iter().all(|l| l.node == first.node && l.lane.is_some()) {
+            let src = Ref { node: first.node, lane: None };
+            let order: Vec<u8> = lanes.iter().map(|l| l.lane.unwrap()).collect();
+            return self.push(Op::Swizzle(order), vec![src], ty);
+        }
+        self.push(Op::Construct, lanes.to_vec(), ty)
+    }
+
+    fn fuse(&mut self, lanes: &[Ref]) -> Vec<Ref> {
+        let v = self.vector_of(lanes);
+        (0..lanes.len() as u8).map(|i| Ref { node: v.node, lane: Some(i) }).collect()
+    }
+
+    fn name(&mut self, r: Ref, name: &'static str) {
+        self.nodes()[r.node as usize].name = Some(name);
+    }
+}
+
+/// Kind markers for [`T`].
+#[derive(Clone, Copy, Debug)]
+pub struct FK;
+#[derive(Clone, Copy, Debug)]
+pub struct UK;
+#[derive(Clone, Copy, Debug)]
+pub struct BK;
+
+/// A traced value of kind `K`: a reference into the graph being recorded.
+#[derive(Clone, Copy, Debug)]
+pub struct T<K = FK>(Ref, PhantomData<K>);
+
+pub type Tf = T<FK>;
+pub type Tu = T<UK>;
+pub type Tb = T<BK>;
+
+impl<K> T<K> {
+    fn new(r: Ref) -> Self {
+        T(r, PhantomData)
+    }
+}
+
+fn rec<K>(op: Op, args: &[Ref], kind: Kind) -> T<K> {
+    T::new(with(|r| r.record(op, args.to_vec(), kind)))
+}
+
+macro_rules! lane_impl {
+    ($K:ty, $kind:expr) => {
+        impl Lane for T<$K> {
+            const KIND: Kind = $kind;
+            fn fuse<const L: usize>(lanes: [Self; L]) -> [Self; L] {
+                let refs: Vec<Ref> = lanes.iter().map(|t| t.0).collect();
+                let out = with(|r| r.fuse(&refs));
+                std::array::from_fn(|i| T::new(out[i]))
+            }
+            fn named(self, name: &'static str) -> Self {
+                // A lane of a vector has no statement of its own to name.
+                if self.0.lane.is_none() {
+                    with(|r| r.name(self.0, name));
+                }
+                self
+            }
+            fn named_lanes<const L: usize>(lanes: [Self; L], name: &'static str) -> [Self; L] {
+                let v = Self::fuse(lanes);
+                with(|r| r.name(Ref { node: v[0].0.node, lane: None }, name));
+                v
+            }
+        }
+        impl Value for T<$K> {
+            fn tys() -> Vec<Ty> {
+                vec![Ty::scalar($kind)]
+            }
+            fn refs(self) -> Vec<Ref> {
+                vec![self.0]
+            }
+            fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self {
+                T::new(r.next().unwrap())
+            }
+        }
+    };
+}
+lane_impl!(FK, Kind::F32);
+lane_impl!(UK, Kind::U32);
+lane_impl!(BK, Kind::Bool);
+
+macro_rules! bin_impl {
+    ($K:ty, $kind:expr, $Tr:ident, $m:ident, $op:expr) => {
+        impl $Tr for T<$K> {
+            type Output = Self;
+            fn $m(self, o: Self) -> Self {
+                rec(Op::Bin($op), &[self.0, o.0], $kind)
+            }
+        }
+    };
+}
+bin_impl!(FK, Kind::F32, Add, add, BinOp::Add);
+bin_impl!(FK, Kind::F32, Sub, sub, BinOp::Sub);
+bin_impl!(FK, Kind::F32, Mul, mul, BinOp::Mul);
+bin_impl!(FK, Kind::F32, Div, div, BinOp::Div);
+bin_impl!(UK, Kind::U32, Add, add, BinOp::Add);
+bin_impl!(UK, Kind::U32, Sub, sub, BinOp::Sub);
+bin_impl!(UK, Kind::U32, BitAnd, bitand, BinOp::BitAnd);
+bin_impl!(UK, Kind::U32, BitOr, bitor, BinOp::BitOr);
+
+impl Neg for Tf {
+    type Output = Self;
+    fn neg(self) -> Self {
+        rec(Op::Un(UnOp::Neg), &[self.0], Kind::F32)
+    }
+}
+
+impl Bool for Tb {
+    fn and(self, o: Self) -> Self {
+        rec(Op::Bin(BinOp::And), &[self.0, o.0], Kind::Bool)
+    }
+    fn or(self, o: Self) -> Self {
+        rec(Op::Bin(BinOp::Or), &[self.0, o.0], Kind::Bool)
+    }
+    fn not(self) -> Self {
+        rec(Op::Un(UnOp::Not), &[self.0], Kind::Bool)
+    }
+}
+
+impl Uint for Tu {
+    type F = Tf;
+    type B = Tb;
+    fn c(v: u32) -> Self {
+        T::new(with(|r| r.push(Op::ConstU(v), vec![], Ty::scalar(Kind::U32))))
+    }
+    fn shl(self, n: u32) -> Self {
+        rec(Op::Shl(n), &[self.0], Kind::U32)
+    }
+    fn shr(self, n: u32) -> Self {
+        rec(Op::Shr(n), &[self.0], Kind::U32)
+    }
+    fn to_f(self) -> Tf {
+        rec(Op::Convert, &[self.0], Kind::F32)
+    }
+    fn sel(m: Tb, t: Self, f: Self) -> Self {
+        rec(Op::Select, &[m.0, t.0, f.0], Kind::U32)
+    }
+}
+
+impl Float for Tf {
+    type U = Tu;
+    type B = Tb;
+    fn c(v: f32) -> Self {
+        T::new(with(|r| r.push(Op::ConstF(v), vec![], Ty::scalar(Kind::F32))))
+    }
+    fn abs(self) -> Self {
+        rec(Op::Un(UnOp::Abs), &[self.0], Kind::F32)
+    }
+    fn sqrt(self) -> Self {
+        rec(Op::Un(UnOp::Sqrt), &[self.0], Kind::F32)
+    }
+    fn floor(self) -> Self {
+        rec(Op::Un(UnOp::Floor), &[self.0], Kind::F32)
+    }
+    fn round(self) -> Self {
+        rec(Op::Un(UnOp::Round), &[self.0], Kind::F32)
+    }
+    fn lt(self, o: Self) -> Tb {
+        rec(Op::Bin(BinOp::Lt), &[self.0, o.0], Kind::Bool)
+    }
+    fn le(self, o: Self) -> Tb {
+        rec(Op::Bin(BinOp::Le), &[self.0, o.0], Kind::Bool)
+    }
+    fn gt(self, o: Self) -> Tb {
+        rec(Op::Bin(BinOp::Gt), &[self.0, o.0], Kind::Bool)
+    }
+    fn ge(self, o: Self) -> Tb {
+        rec(Op::Bin(BinOp::Ge), &[self.0, o.0], Kind::Bool)
+    }
+    fn eq(self, o: Self) -> Tb {
+        rec(Op::Bin(BinOp::Eq), &[self.0, o.0], Kind::Bool)
+    }
+    fn sel(m: Tb, t: Self, f: Self) -> Self {
+        rec(Op::Select, &[m.0, t.0, f.0], Kind::F32)
+    }
+    fn to_u(self) -> Tu {
+        rec(Op::Convert, &[self.0], Kind::U32)
+    }
+    fn call<A: Value, R: Value>(name: &'static str, a: A, f: impl FnOnce(A) -> R) -> R {
+        define(name, &[], f);
+        let args = a.refs();
+        let rty = R::tys();
+        assert_eq!(rty.len(), 1, "helpers return one value");
+        let r = with(|r| r.push(Op::Call(name.to_string()), args, rty[0]));
+        R::from_refs(&mut std::iter::once(r))
+    }
+}
+
+/// Values that can be function parameters and results: traced scalars, vectors of them,
+/// and tuples of those (parameters only).
+pub trait Value: Copy {
+    fn tys() -> Vec<Ty>;
+    fn refs(self) -> Vec<Ref>;
+    fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self;
+}
+
+macro_rules! value_eval {
+    ($($t:ty),*) => {$(
+        /// Evaluated values never cross a traced call boundary; `call` runs the closure.
+        impl Value for $t {
+            fn tys() -> Vec<Ty> { vec![Ty::scalar(<$t as Lane>::KIND)] }
+            fn refs(self) -> Vec<Ref> { unreachable!("evaluated values are not traced") }
+            fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self { unreachable!("evaluated values are not traced") }
+        }
+    )*};
+}
+value_eval!(f32, u32, bool);
+
+macro_rules! value_vec {
+    ($V:ident, $n:literal) => {
+        impl<X: Lane + Value> Value for $V<X> {
+            fn tys() -> Vec<Ty> {
+                vec![Ty { kind: X::KIND, lanes: $n }]
+            }
+            fn refs(self) -> Vec<Ref> {
+                let lanes = X::fuse(self.to_array());
+                let r = lanes[0].refs()[0];
+                vec![Ref { node: r.node, lane: None }]
+            }
+            fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self {
+                let v = r.next().unwrap();
+                $V::from_array(std::array::from_fn(|i| {
+                    X::from_refs(&mut std::iter::once(Ref { node: v.node, lane: Some(i as u8) }))
+                }))
+            }
+        }
+    };
+}
+value_vec!(V2, 2);
+value_vec!(V3, 3);
+
+impl<A: Value, B: Value> Value for (A, B) {
+    fn tys() -> Vec<Ty> {
+        let mut t = A::tys();
+        t.extend(B::tys());
+        t
+    }
+    fn refs(self) -> Vec<Ref> {
+        let mut r = self.0.refs();
+        r.extend(self.1.refs());
+        r
+    }
+    fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self {
+        let a = A::from_refs(r);
+        (a, B::from_refs(r))
+    }
+}
+
+/// Traces `f` into a function called `name` (once per module; later calls are no-ops).
+/// `param_names` name the parameters in order; missing names default to `a0`, `a1`, ...
+pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOnce(A) -> R) {
+    if with(|r| r.module.func(name).is_some()) {
+        return;
+    }
+    let tys = A::tys();
+    let params: Vec<(String, Ty)> = tys
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (param_names.get(i).map_or_else(|| format!("a{i}"), |s| s.to_string()), *t))
+        .collect();
+    let param_refs: Vec<Ref> = with(|r| {
+        r.stack.push(Vec::new());
+        r.memo_stack.push(std::mem::take(&mut r.memo));
+        tys.iter().enumerate().map(|(i, t)| r.push(Op::Param(i), vec![], *t)).collect()
+    });
+    let a = A::from_refs(&mut param_refs.into_iter());
+    let out = f(a);
+    let ret = out.refs();
+    assert_eq!(ret.len(), 1, "functions return one value");
+    with(|r| {
+        let ret_ty = r.ty(ret[0]);
+        let nodes = r.stack.pop().unwrap();
+        r.memo = r.memo_stack.pop().unwrap();
+        r.module.funcs.push(Func { name: name.to_string(), params, nodes, ret: ret[0], ret_ty });
+    });
+}
+
+/// Runs `build` with a fresh recorder and returns every function it defined.
+pub fn trace_module(build: impl FnOnce()) -> Module {
+    REC.with(|r| {
+        let prev = r.borrow_mut().replace(Recorder::default());
+        assert!(prev.is_none(), "trace_module does not nest");
+    });
+    struct Reset;
+    impl Drop for Reset {
+        fn drop(&mut self) {
+            REC.with(|r| r.borrow_mut().take());
+        }
+    }
+    let _reset = Reset;
+    build();
+    REC.with(|r| r.borrow_mut().as_mut().map(|rec| std::mem::take(&mut rec.module)))
+        .unwrap_or_default()
+}

@@ -1,0 +1,184 @@
+//! Small vectors over any [`Lane`]. Every componentwise operation computes its lanes and
+//! hands them to [`Lane::fuse`], which is free when evaluating and lets the tracer print
+//! one vector statement (`let p = v.xy * r;`) instead of one statement per lane.
+
+use super::num::{Float, Lane, Uint};
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct V2<T> {
+    pub x: T,
+    pub y: T,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct V3<T> {
+    pub x: T,
+    pub y: T,
+    pub z: T,
+}
+
+macro_rules! vector {
+    ($V:ident, $n:literal, $($f:ident : $i:literal),+) => {
+        impl<T: Lane> $V<T> {
+            #[inline(always)]
+            pub fn new($($f: T),+) -> Self {
+                Self { $($f),+ }
+            }
+            #[inline(always)]
+            pub fn splat(v: T) -> Self {
+                Self { $($f: v),+ }
+            }
+            #[inline(always)]
+            pub fn to_array(self) -> [T; $n] {
+                [$(self.$f),+]
+            }
+            #[inline(always)]
+            pub fn from_array(a: [T; $n]) -> Self {
+                Self { $($f: a[$i]),+ }
+            }
+            /// Applies `f` to every lane and records the result as one vector operation.
+            #[inline(always)]
+            pub fn map<R: Lane>(self, f: impl Fn(T) -> R) -> $V<R> {
+                $V::from_array(R::fuse([$(f(self.$f)),+]))
+            }
+            /// Combines two vectors lane by lane as one vector operation.
+            #[inline(always)]
+            pub fn zip<O: Lane, R: Lane>(self, o: $V<O>, f: impl Fn(T, O) -> R) -> $V<R> {
+                $V::from_array(R::fuse([$(f(self.$f, o.$f)),+]))
+            }
+            /// Names the vector in emitted code.
+            #[inline(always)]
+            pub fn named(self, name: &'static str) -> Self {
+                Self::from_array(T::named_lanes(self.to_array(), name))
+            }
+        }
+
+        impl<F: Float> $V<F> {
+            #[inline(always)]
+            pub fn abs(self) -> Self { self.map(F::abs) }
+            #[inline(always)]
+            pub fn floor(self) -> Self { self.map(F::floor) }
+            #[inline(always)]
+            pub fn round(self) -> Self { self.map(F::round) }
+            #[inline(always)]
+            pub fn lt(self, o: Self) -> $V<F::B> { self.zip(o, F::lt) }
+            #[inline(always)]
+            pub fn le(self, o: Self) -> $V<F::B> { self.zip(o, F::le) }
+            #[inline(always)]
+            pub fn gt(self, o: Self) -> $V<F::B> { self.zip(o, F::gt) }
+            #[inline(always)]
+            pub fn ge(self, o: Self) -> $V<F::B> { self.zip(o, F::ge) }
+            /// Lane-wise select with a vector mask.
+            #[inline(always)]
+            pub fn sel(m: $V<F::B>, t: Self, f: Self) -> Self {
+                $V::from_array(F::fuse([$(F::sel(m.$f, t.$f, f.$f)),+]))
+            }
+            /// Select of whole vectors with one scalar mask.
+            #[inline(always)]
+            pub fn sel_all(m: F::B, t: Self, f: Self) -> Self {
+                $V::from_array(F::fuse([$(F::sel(m, t.$f, f.$f)),+]))
+            }
+            #[inline(always)]
+            pub fn to_u(self) -> $V<F::U> { self.map(F::to_u) }
+            /// Sum of squares, evaluated left to right: `((x*x) + (y*y)) + ...`.
+            #[inline(always)]
+            pub fn length_squared(self) -> F {
+                let s = self.zip(self, |a, b| a * b);
+                let a = s.to_array();
+                let mut acc = a[0];
+                for v in &a[1..] {
+                    acc = acc + *v;
+                }
+                acc
+            }
+        }
+
+        impl<U: Uint> $V<U> {
+            #[inline(always)]
+            pub fn to_f(self) -> $V<U::F> { self.map(U::to_f) }
+            #[inline(always)]
+            pub fn shl(self, n: u32) -> Self { self.map(|v| v.shl(n)) }
+            #[inline(always)]
+            pub fn shr(self, n: u32) -> Self { self.map(|v| v.shr(n)) }
+        }
+
+        impl<T: Lane + Add<Output = T>> Add for $V<T> {
+            type Output = Self;
+            #[inline(always)]
+            fn add(self, o: Self) -> Self { self.zip(o, |a, b| a + b) }
+        }
+        impl<T: Lane + Sub<Output = T>> Sub for $V<T> {
+            type Output = Self;
+            #[inline(always)]
+            fn sub(self, o: Self) -> Self { self.zip(o, |a, b| a - b) }
+        }
+        impl<T: Lane + Mul<Output = T>> Mul for $V<T> {
+            type Output = Self;
+            #[inline(always)]
+            fn mul(self, o: Self) -> Self { self.zip(o, |a, b| a * b) }
+        }
+        impl<T: Lane + Div<Output = T>> Div for $V<T> {
+            type Output = Self;
+            #[inline(always)]
+            fn div(self, o: Self) -> Self { self.zip(o, |a, b| a / b) }
+        }
+        impl<T: Lane + BitAnd<Output = T>> BitAnd for $V<T> {
+            type Output = Self;
+            #[inline(always)]
+            fn bitand(self, o: Self) -> Self { self.zip(o, |a, b| a & b) }
+        }
+        impl<T: Lane + BitOr<Output = T>> BitOr for $V<T> {
+            type Output = Self;
+            #[inline(always)]
+            fn bitor(self, o: Self) -> Self { self.zip(o, |a, b| a | b) }
+        }
+        impl<T: Lane + Neg<Output = T>> Neg for $V<T> {
+            type Output = Self;
+            #[inline(always)]
+            fn neg(self) -> Self { self.map(|a| -a) }
+        }
+        /// Vector-by-scalar products print as `v * s`, as in hand-written shaders.
+        impl<F: Float> Mul<F> for $V<F> {
+            type Output = Self;
+            #[inline(always)]
+            fn mul(self, s: F) -> Self { self.map(|a| a * s) }
+        }
+        impl<F: Float> Div<F> for $V<F> {
+            type Output = Self;
+            #[inline(always)]
+            fn div(self, s: F) -> Self { self.map(|a| a / s) }
+        }
+        impl<F: Float> Add<F> for $V<F> {
+            type Output = Self;
+            #[inline(always)]
+            fn add(self, s: F) -> Self { self.map(|a| a + s) }
+        }
+        impl<F: Float> Sub<F> for $V<F> {
+            type Output = Self;
+            #[inline(always)]
+            fn sub(self, s: F) -> Self { self.map(|a| a - s) }
+        }
+    };
+}
+
+vector!(V2, 2, x: 0, y: 1);
+vector!(V3, 3, x: 0, y: 1, z: 2);
+
+impl<T: Lane> V2<T> {
+    #[inline(always)]
+    pub fn yx(self) -> Self {
+        V2::from_array(T::fuse([self.y, self.x]))
+    }
+}
+
+impl<T: Lane> V3<T> {
+    #[inline(always)]
+    pub fn xy(self) -> V2<T> {
+        V2::from_array(T::fuse([self.x, self.y]))
+    }
+    #[inline(always)]
+    pub fn from_xy(xy: V2<T>, z: T) -> Self {
+        V3::from_array(T::fuse([xy.x, xy.y, z]))
+    }
+}

@@ -1,0 +1,85 @@
+//! Error methodology (DESIGN §5, survey §4.1): seeded random unit vectors from normalized
+//! Gaussian triples, codec arithmetic in f32, angular error in f64 after normalizing both
+//! vectors, `|acos(dot)|` in degrees.
+
+use crate::codecs::Spec;
+use crate::codecs::codec::Domain;
+use crate::codecs::functions::{Emitted, Role};
+use rand_core::Rng;
+use rand_pcg::Pcg64Mcg;
+
+/// Seeds are fixed so that every run, and every file generated, is identical.
+pub const VECTOR_SEED: u128 = 0x756e_6974_7061_636b_5f76_6563_746f_7273;
+
+fn uniform(rng: &mut Pcg64Mcg) -> f64 {
+    // 53 random bits in (0, 1].
+    ((rng.next_u64() >> 11) + 1) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// `n` seeded random unit vectors, normalized in f64 and rounded to f32; on the +Z
+/// hemisphere (`z = |z|`) when asked.
+pub fn random_unit_vectors(seed: u128, n: usize, hemisphere: bool) -> Vec<[f32; 3]> {
+    let mut rng = Pcg64Mcg::new(seed);
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let mut g = [0f64; 3];
+        for pair in [0, 2] {
+            // Box–Muller: two Gaussians from two uniforms.
+            let (u1, u2) = (uniform(&mut rng), uniform(&mut rng));
+            let r = (-2.0 * u1.ln()).sqrt();
+            let t = std::f64::consts::TAU * u2;
+            g[pair] = r * t.cos();
+            if pair == 0 {
+                g[1] = r * t.sin();
+            }
+        }
+        let len = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+        if len < 1e-9 {
+            continue;
+        }
+        let z = if hemisphere { g[2].abs() } else { g[2] };
+        out.push([(g[0] / len) as f32, (g[1] / len) as f32, (z / len) as f32]);
+    }
+    out
+}
+
+/// Angle between two vectors in degrees, both normalized in f64.
+pub fn angle_deg(a: [f32; 3], b: [f32; 3]) -> f64 {
+    let a = a.map(f64::from);
+    let b = b.map(f64::from);
+    let la = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    let lb = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt();
+    let d = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb);
+    d.clamp(-1.0, 1.0).acos().abs().to_degrees()
+}
+
+/// Mean and max round-trip error of a spec's packed encode → decode, in degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorStats {
+    pub mean: f64,
+    pub max: f64,
+    pub samples: usize,
+}
+
+pub fn measure(spec: &Spec, samples: usize) -> Option<ErrorStats> {
+    let domain = spec.codec.domain?;
+    let e = spec.emitted();
+    Some(measure_emitted(&e, domain, samples))
+}
+
+pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStats {
+    let find = |r: Role| e.functions.iter().find(|f| f.role == r).expect("codec function");
+    let (enc, dec) = (find(Role::Encode), find(Role::Decode));
+    let vs = random_unit_vectors(VECTOR_SEED, samples, domain == Domain::Hemisphere);
+    let mut code = vec![0u32; enc.out_words];
+    let mut out = [0u32; 3];
+    let (mut sum, mut max) = (0f64, 0f64);
+    for v in &vs {
+        (enc.eval)(&v.map(f32::to_bits), &mut code);
+        (dec.eval)(&code, &mut out);
+        let a = angle_deg(*v, out.map(f32::from_bits));
+        sum += a;
+        max = max.max(a);
+    }
+    ErrorStats { mean: sum / samples as f64, max, samples }
+}
