@@ -108,7 +108,7 @@ pub fn function_doc(
         Role::Encode => vec![
             format!("{}: {codec}, {enc}.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
-            format!("Out: the packed code, {} ({layout}).", p.ret_ty.trim_start_matches("highp ")),
+            format!("Out: the packed code, {} ({layout}).", p.ret_ty),
         ],
         Role::Decode => vec![
             format!("{}: {codec}, decoder.", p.name),

@@ -40,14 +40,6 @@ pub fn ty(lang: Lang, t: Ty) -> String {
     }
 }
 
-/// A declaration type: GLSL ES has no default float precision in fragment shaders and
-/// bit-exactness needs full precision, so GLSL spells `highp` (a no-op on desktop).
-pub fn decl_ty(lang: Lang, t: Ty) -> String {
-    match (lang, t.kind) {
-        (Lang::Glsl, Kind::F32 | Kind::U32) => format!("highp {}", ty(lang, t)),
-        _ => ty(lang, t),
-    }
-}
 
 /// The shortest decimal that reads back as exactly `v`, both directly and through f64
 /// (compilers that parse literals as double and then narrow must land on the same f32).
@@ -270,15 +262,15 @@ pub fn print(lang: Lang, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed 
         let e = ctx.expr(id);
         body.push(match lang {
             Lang::Wgsl => format!("let {name} = {e};"),
-            _ => format!("{} {name} = {e};", decl_ty(lang, node.ty)),
+            _ => format!("{} {name} = {e};", ty(lang, node.ty)),
         });
         ctx.names[id] = Some(name);
     }
     body.push(format!("return {};", ctx.r(f.ret)));
     Printed {
         name: fn_name(&f.name),
-        params: f.params.iter().map(|(n, t)| (n.clone(), decl_ty(lang, *t))).collect(),
-        ret_ty: decl_ty(lang, f.ret_ty),
+        params: f.params.iter().map(|(n, t)| (n.clone(), ty(lang, *t))).collect(),
+        ret_ty: ty(lang, f.ret_ty),
         body,
     }
 }

@@ -1,1 +1,557 @@
-//! placeholder until the GPU harness lands
+//! SKELETONS_PLACEHOLDER
+
+use std::borrow::Cow;
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::Duration;
+
+use anyhow::{Context, anyhow, bail};
+
+/// Workgroup size every kernel must declare (`@workgroup_size(64)`, `local_size_x = 64`,
+/// `[numthreads(64, 1, 1)]`); [`Gpu::run`] dispatches `ceil(items / 64)` workgroups per chunk.
+pub const WORKGROUP_SIZE: u32 = 64;
+
+/// Upper bound on the number of items per dispatch. Inputs larger than this are split into
+/// several dispatches, so `pub` lets tests pick an item count that is guaranteed to exercise
+/// chunking. The effective chunk can be smaller when items are so wide that a chunk's buffer
+/// would exceed the device's storage-binding limit (see [`Gpu::chunk_items`]).
+pub const MAX_CHUNK_ITEMS: usize = 1 << 20;
+
+/// How long one chunk may run before [`Gpu::run`] gives up. A kernel that never terminates
+/// (or a wedged driver) must surface as an error rather than hang the test process forever.
+/// Generous, because lavapipe on a small CI machine shared by parallel tests is slow.
+pub const CHUNK_TIMEOUT: Duration = Duration::from_secs(600);
+
+/// Which way a compute shader reaches the driver.
+///
+/// All three use the same binding layout (see the module docs), so one kernel body can be
+/// wrapped for each path and the outputs compared bit for bit.
+#[derive(Debug, Clone, Copy)]
+pub enum Shader<'a> {
+    /// WGSL source, compiled by naga inside wgpu (WGSL -> naga IR -> SPIR-V).
+    Wgsl(&'a str),
+    /// A GLSL 450 compute shader compiled by naga's GLSL frontend inside wgpu
+    /// (`ShaderSource::Glsl`, stage compute), i.e. GLSL -> naga IR -> SPIR-V.
+    GlslNaga(&'a str),
+    /// SPIR-V words (e.g. from glslang), handed to the Vulkan driver untouched via
+    /// `Device::create_shader_module_passthrough` (needs `Features::PASSTHROUGH_SHADERS`),
+    /// so that what runs is exactly what glslang produced, with no naga round trip.
+    SpirV(&'a [u32]),
+}
+
+impl Shader<'_> {
+    fn kind(&self) -> &'static str {
+        match self {
+            Shader::Wgsl(_) => "WGSL (naga)",
+            Shader::GlslNaga(_) => "GLSL (naga)",
+            Shader::SpirV(_) => "SPIR-V (passthrough)",
+        }
+    }
+}
+
+/// A wgpu device on the Vulkan CPU adapter (lavapipe), plus the fixed binding layout that
+/// every verification kernel uses.
+///
+/// `Gpu` is `Send + Sync`; one instance may be shared by many threads (wgpu error scopes
+/// are thread-local, so concurrent [`Gpu::run`] calls do not see each other's errors), and
+/// creating several instances in one process is fine too.
+pub struct Gpu {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    adapter_name: String,
+    driver: String,
+    passthrough: bool,
+    /// Largest storage-buffer binding the device accepts, in bytes.
+    max_binding_bytes: u64,
+    bind_group_layout: wgpu::BindGroupLayout,
+    pipeline_layout: wgpu::PipelineLayout,
+    /// Set by the device-lost callback, so later calls fail with the reason instead of hanging.
+    lost: Arc<Mutex<Option<String>>>,
+}
+
+impl std::fmt::Debug for Gpu {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Gpu")
+            .field("adapter_name", &self.adapter_name)
+            .field("driver", &self.driver)
+            .field("passthrough", &self.passthrough)
+            .field("max_binding_bytes", &self.max_binding_bytes)
+            .finish_non_exhaustive()
+    }
+}
+
+const NO_ADAPTER: &str = "no Vulkan adapter found; install the Debian package \
+`mesa-vulkan-drivers` (lavapipe, the Vulkan CPU driver)";
+
+impl Gpu {
+    /// Opens the Vulkan CPU adapter (lavapipe).
+    ///
+    /// The CPU adapter is preferred because it is deterministic and available on any CI
+    /// machine; if there is none, the first Vulkan adapter is used. If no Vulkan adapter
+    /// exists at all, the error tells the user to install `mesa-vulkan-drivers`.
+    pub fn new() -> anyhow::Result<Gpu> {
+        pollster::block_on(Self::new_async())
+    }
+
+    /// A process-wide `Gpu`, created on first use. Tests running in parallel threads can
+    /// share it instead of each opening a device (which costs lavapipe a few threads and
+    /// some memory each). The creation error, if any, is remembered and returned every time.
+    pub fn shared() -> anyhow::Result<&'static Gpu> {
+        static SHARED: OnceLock<Result<Gpu, String>> = OnceLock::new();
+        SHARED
+            .get_or_init(|| Gpu::new().map_err(|e| format!("{e:#}")))
+            .as_ref()
+            .map_err(|e| anyhow!("{e}"))
+    }
+
+    async fn new_async() -> anyhow::Result<Gpu> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::VULKAN;
+        desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
+        let instance = wgpu::Instance::new(desc);
+
+        let adapters = instance.enumerate_adapters(wgpu::Backends::VULKAN).await;
+        let adapter = match adapters
+            .iter()
+            .position(|a| a.get_info().device_type == wgpu::DeviceType::Cpu)
+        {
+            Some(i) => adapters.into_iter().nth(i),
+            None => adapters.into_iter().next(),
+        }
+        .ok_or_else(|| anyhow!(NO_ADAPTER))?;
+        let info = adapter.get_info();
+
+        // Passthrough is only needed for `Shader::SpirV`; without it the other paths still work.
+        let passthrough = adapter
+            .features()
+            .contains(wgpu::Features::PASSTHROUGH_SHADERS);
+        let required_features = if passthrough {
+            wgpu::Features::PASSTHROUGH_SHADERS
+        } else {
+            wgpu::Features::empty()
+        };
+
+        // WebGPU default limits, except that buffer sizes are raised to what the adapter
+        // offers: everything else staying at the defaults keeps the kernels honest for real
+        // GPUs, while large bindings only change how many items fit in one chunk.
+        let adapter_limits = adapter.limits();
+        let required_limits = wgpu::Limits {
+            max_storage_buffer_binding_size: adapter_limits.max_storage_buffer_binding_size,
+            max_buffer_size: adapter_limits.max_buffer_size,
+            ..wgpu::Limits::default()
+        };
+
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("unitpack verify"),
+                required_features,
+                required_limits,
+                experimental_features: wgpu::ExperimentalFeatures::disabled(),
+                memory_hints: wgpu::MemoryHints::Performance,
+                trace: wgpu::Trace::Off,
+            })
+            .await
+            .with_context(|| {
+                format!(
+                    "requesting a device from Vulkan adapter {:?} (driver {:?})",
+                    info.name, info.driver
+                )
+            })?;
+
+        // By default wgpu panics on errors that no error scope caught. Every operation in
+        // `run` is wrapped in scopes, so anything reaching this handler is unexpected; print
+        // it instead of aborting a whole test binary from a wgpu-internal thread.
+        device.on_uncaptured_error(Arc::new(|e: wgpu::Error| {
+            eprintln!("unitpack::verify::gpu: uncaptured wgpu error: {e}");
+        }));
+        let lost = Arc::new(Mutex::new(None));
+        {
+            let lost = Arc::clone(&lost);
+            device.set_device_lost_callback(move |reason, message| {
+                if let Ok(mut l) = lost.lock() {
+                    *l = Some(format!("{reason:?}: {message}"));
+                }
+            });
+        }
+
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("unitpack verify: input/output"),
+            entries: &[storage(0, true), storage(1, false)],
+        });
+        // Explicit layout for every shader kind: passthrough SPIR-V has no reflection, and
+        // using the same layout everywhere means all paths are bound identically.
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("unitpack verify"),
+            bind_group_layouts: &[Some(&bind_group_layout)],
+            immediate_size: 0,
+        });
+
+        let max_binding_bytes = device
+            .limits()
+            .max_storage_buffer_binding_size
+            .min(device.limits().max_buffer_size);
+
+        Ok(Gpu {
+            device,
+            queue,
+            adapter_name: info.name,
+            driver: if info.driver_info.is_empty() {
+                info.driver
+            } else {
+                format!("{} ({})", info.driver, info.driver_info)
+            },
+            passthrough,
+            max_binding_bytes,
+            bind_group_layout,
+            pipeline_layout,
+            lost,
+        })
+    }
+
+    /// Adapter name, e.g. `"llvmpipe (LLVM 15.0.6, 256 bits)"`, for reports.
+    pub fn adapter_name(&self) -> &str {
+        &self.adapter_name
+    }
+
+    /// Driver name and driver info, e.g. `"llvmpipe (Mesa 22.3.6 (LLVM 15.0.6))"`, for reports.
+    pub fn driver(&self) -> &str {
+        &self.driver
+    }
+
+    /// Items per dispatch for a kernel with the given item widths: [`MAX_CHUNK_ITEMS`], or
+    /// fewer if a chunk's input or output buffer would exceed the storage-binding limit.
+    pub fn chunk_items(&self, in_words: usize, out_words: usize) -> usize {
+        let widest = in_words.max(out_words).max(1) as u64 * 4;
+        let fit = (self.max_binding_bytes / widest) as usize;
+        // Keep whole workgroups in all but the last chunk.
+        let fit = (fit / WORKGROUP_SIZE as usize * WORKGROUP_SIZE as usize).max(1);
+        fit.min(MAX_CHUNK_ITEMS)
+    }
+
+    fn check_lost(&self) -> anyhow::Result<()> {
+        match self.lost.lock().ok().and_then(|l| l.clone()) {
+            Some(reason) => bail!("the wgpu device was lost ({reason})"),
+            None => Ok(()),
+        }
+    }
+
+    /// Runs `shader` (entry point `main`, workgroup size 64) over `input`, which holds `n`
+    /// items of `in_words` u32 each, and returns `n` items of `out_words` u32 each.
+    ///
+    /// Binding layout (group 0): binding 0 = read-only storage buffer of u32 (input), binding
+    /// 1 = read-write storage buffer of u32 (output). Large inputs are split into chunks of
+    /// [`Gpu::chunk_items`] items; each chunk dispatches `ceil(items / 64)` workgroups along x
+    /// and binds buffers of exactly `items * words` u32, so the kernel's own bounds check
+    /// `id.x < arrayLength(output) / out_words` is right for every chunk. The pipeline is
+    /// created once per call and reused for all chunks.
+    ///
+    /// Compilation, validation and pipeline-creation errors are caught with error scopes
+    /// and returned as errors carrying wgpu's/naga's message.
+    pub fn run(
+        &self,
+        shader: &Shader,
+        input: &[u32],
+        in_words: usize,
+        out_words: usize,
+    ) -> anyhow::Result<Vec<u32>> {
+        if in_words == 0 || out_words == 0 {
+            bail!("in_words ({in_words}) and out_words ({out_words}) must both be at least 1");
+        }
+        if input.len() % in_words != 0 {
+            bail!(
+                "input holds {} u32, which is not a whole number of {in_words}-word items",
+                input.len()
+            );
+        }
+        self.check_lost()?;
+        let n = input.len() / in_words;
+        let pipeline = self
+            .pipeline(shader)
+            .with_context(|| format!("creating the {} compute pipeline", shader.kind()))?;
+        let chunk = self.chunk_items(in_words, out_words);
+
+        let mut out = Vec::with_capacity(n * out_words);
+        if n == 0 {
+            return Ok(out);
+        }
+        // Buffers sized for one full chunk, reused for every chunk; the last (short) chunk
+        // binds only a prefix so arrayLength() still reports that chunk's size.
+        let first = n.min(chunk);
+        let bytes = |items: usize, words: usize| (items * words * 4) as u64;
+        let scopes = ErrorScopes::push(&self.device);
+        let input_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("unitpack verify: input"),
+            size: bytes(first, in_words),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let output_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("unitpack verify: output"),
+            size: bytes(first, out_words),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let readback = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("unitpack verify: readback"),
+            size: bytes(first, out_words),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        scopes.check().context("allocating buffers")?;
+
+        for (index, items) in input.chunks(chunk * in_words).enumerate() {
+            let items_here = items.len() / in_words;
+            let start = index * chunk;
+            self.run_chunk(
+                &pipeline,
+                items,
+                items_here,
+                out_words,
+                [&input_buf, &output_buf, &readback],
+                &mut out,
+            )
+            .with_context(|| {
+                format!(
+                    "{} kernel, items {start}..{} of {n}",
+                    shader.kind(),
+                    start + items_here
+                )
+            })?;
+        }
+        Ok(out)
+    }
+
+    fn run_chunk(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        input: &[u32],
+        items: usize,
+        out_words: usize,
+        [input_buf, output_buf, readback]: [&wgpu::Buffer; 3],
+        out: &mut Vec<u32>,
+    ) -> anyhow::Result<()> {
+        let in_bytes = std::mem::size_of_val(input) as u64;
+        let out_bytes = (items * out_words * 4) as u64;
+        let scopes = ErrorScopes::push(&self.device);
+
+        self.queue
+            .write_buffer(input_buf, 0, bytemuck::cast_slice(input));
+        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("unitpack verify"),
+            layout: &self.bind_group_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: input_buf,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(in_bytes),
+                    }),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: output_buf,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(out_bytes),
+                    }),
+                },
+            ],
+        });
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("unitpack verify"),
+            });
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("unitpack verify"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            let groups = items.div_ceil(WORKGROUP_SIZE as usize) as u32;
+            pass.dispatch_workgroups(groups, 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(output_buf, 0, readback, 0, out_bytes);
+        let submission = self.queue.submit([encoder.finish()]);
+
+        let (tx, rx) = mpsc::channel();
+        readback
+            .slice(..out_bytes)
+            .map_async(wgpu::MapMode::Read, move |r| {
+                let _ = tx.send(r);
+            });
+        // Validation errors in the recorded work are known now; don't wait on a broken submit.
+        scopes.check().context("recording the dispatch")?;
+
+        let polled = self.device.poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: Some(CHUNK_TIMEOUT),
+        });
+        self.check_lost()?;
+        polled.map_err(|e| anyhow!("waiting for the dispatch to finish: {e}"))?;
+        // The submission is done, so the map callback has run (poll fires callbacks); a
+        // short timeout only guards against a wgpu bug turning into a hang.
+        let mapped = rx
+            .recv_timeout(Duration::from_secs(60))
+            .map_err(|_| anyhow!("the readback buffer was never mapped"))?;
+        mapped.map_err(|e| anyhow!("mapping the readback buffer: {e}"))?;
+        {
+            let view = readback
+                .get_mapped_range(..out_bytes)
+                .map_err(|e| anyhow!("reading the mapped readback buffer: {e}"))?;
+            out.extend_from_slice(bytemuck::cast_slice(&view));
+        }
+        readback.unmap();
+        Ok(())
+    }
+
+    /// Creates the shader module and pipeline, turning any compilation / validation /
+    /// pipeline-creation error into an `Err` with the message.
+    fn pipeline(&self, shader: &Shader) -> anyhow::Result<wgpu::ComputePipeline> {
+        let scopes = ErrorScopes::push(&self.device);
+        let module = match *shader {
+            Shader::Wgsl(src) => self
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("unitpack verify (WGSL)"),
+                    source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(src)),
+                }),
+            Shader::GlslNaga(src) => {
+                self.device
+                    .create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some("unitpack verify (GLSL)"),
+                        source: wgpu::ShaderSource::Glsl {
+                            shader: Cow::Borrowed(src),
+                            stage: wgpu::naga::ShaderStage::Compute,
+                            defines: &[],
+                        },
+                    })
+            }
+            Shader::SpirV(words) => {
+                if !self.passthrough {
+                    bail!(
+                        "the adapter {:?} does not support Features::PASSTHROUGH_SHADERS, \
+                         so raw SPIR-V cannot be run",
+                        self.adapter_name
+                    );
+                }
+                // The driver would get these words unchecked; reject obvious garbage here.
+                if words.len() < 5 || words[0] != 0x0723_0203 {
+                    bail!(
+                        "not a SPIR-V module (length {} words, first word {:#010x?})",
+                        words.len(),
+                        words.first()
+                    );
+                }
+                let entry = [wgpu::PassthroughShaderEntryPoint {
+                    name: Cow::Borrowed("main"),
+                    workgroup_size: (WORKGROUP_SIZE, 1, 1),
+                }];
+                // SAFETY: wgpu hands the words to vkCreateShaderModule without validating
+                // them. Callers are expected to have run `spirv-val` (see
+                // `verify::tools::spirv_val`) on glslang output; the binding layout is the
+                // one documented for kernels, which the explicit pipeline layout matches.
+                unsafe {
+                    self.device.create_shader_module_passthrough(
+                        wgpu::ShaderModuleDescriptorPassthrough {
+                            label: Some("unitpack verify (SPIR-V)"),
+                            entry_points: Cow::Borrowed(&entry),
+                            spirv: Some(Cow::Borrowed(words)),
+                            ..Default::default()
+                        },
+                    )
+                }
+            }
+        };
+        // Check the module on its own first: a broken module makes pipeline creation fail
+        // too, and its message (naga's diagnostic) is the useful one.
+        scopes.check().context("compiling the shader module")?;
+
+        let scopes = ErrorScopes::push(&self.device);
+        let pipeline = self
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("unitpack verify"),
+                layout: Some(&self.pipeline_layout),
+                module: &module,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        scopes.check().context("creating the compute pipeline")?;
+        Ok(pipeline)
+    }
+}
+
+/// Validation, out-of-memory and internal error scopes pushed together, popped in reverse.
+struct ErrorScopes {
+    // Innermost last.
+    guards: Vec<(&'static str, wgpu::ErrorScopeGuard)>,
+}
+
+/// wgpu panics if scopes are popped out of order, and a `Vec` drops its elements front to
+/// back, so an early return (`?`) between push and `check` must pop innermost first.
+impl Drop for ErrorScopes {
+    fn drop(&mut self) {
+        while let Some(guard) = self.guards.pop() {
+            drop(guard);
+        }
+    }
+}
+
+impl ErrorScopes {
+    fn push(device: &wgpu::Device) -> Self {
+        let guards = [
+            ("internal", wgpu::ErrorFilter::Internal),
+            ("out of memory", wgpu::ErrorFilter::OutOfMemory),
+            ("validation", wgpu::ErrorFilter::Validation),
+        ]
+        .into_iter()
+        .map(|(name, filter)| (name, device.push_error_scope(filter)))
+        .collect();
+        ErrorScopes { guards }
+    }
+
+    /// Pops all scopes; returns the errors they caught, if any, as one error.
+    fn check(mut self) -> anyhow::Result<()> {
+        let mut errors = Vec::new();
+        while let Some((name, guard)) = self.guards.pop() {
+            if let Some(e) = pollster::block_on(guard.pop()) {
+                errors.push(format!("wgpu {name} error: {}", describe(&e)));
+            }
+        }
+        if errors.is_empty() {
+            Ok(())
+        } else {
+            Err(anyhow!(errors.join("\n")))
+        }
+    }
+}
+
+/// The error's description followed by its source chain (wgpu puts naga's rendered
+/// diagnostic, with the offending source line, in the description or the sources).
+fn describe(e: &wgpu::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = std::error::Error::source(e);
+    while let Some(s) = source {
+        let s_text = s.to_string();
+        if !text.contains(&s_text) {
+            text.push_str("\n  caused by: ");
+            text.push_str(&s_text);
+        }
+        source = s.source();
+    }
+    text
+}

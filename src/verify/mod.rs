@@ -1,21 +1,283 @@
-//! Verification: static checks and execution on lavapipe, compared as raw bits.
+//! Verification (DESIGN §4): every emitted function, on every path to the driver, run on
+//! lavapipe over storage-buffer inputs and compared as raw bits with the `f32` model.
+//! Static checks ride along: naga validates WGSL and GLSL, glslang compiles GLSL (also as
+//! `#version 330` and `#version 300 es`) and HLSL (`-Od` and default), spirv-val checks
+//! every SPIR-V module.
 
 pub mod gpu;
+pub mod inputs;
+pub mod kernel;
 pub mod tools;
 
 use crate::codecs::Spec;
-use crate::emit::Lang;
+use crate::codecs::functions::Function;
+use crate::emit::{DEFAULT_PREFIX, Lang, render};
+use crate::model::trace::Func;
+use anyhow::Result;
+use gpu::{Gpu, Shader};
+use std::fmt;
+use tools::{GlslangInput, HlslOpt};
 
-pub struct Report;
-impl Report {
-    pub fn table(&self) -> String {
-        String::new()
-    }
-    pub fn all_passed(&self) -> bool {
-        false
+/// One way emitted code reaches the driver.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Path {
+    WgslNaga,
+    GlslNaga,
+    GlslGlslang,
+    HlslGlslangOd,
+    HlslGlslangDefault,
+}
+
+impl Path {
+    pub const ALL: [Path; 5] =
+        [Path::WgslNaga, Path::GlslNaga, Path::GlslGlslang, Path::HlslGlslangOd, Path::HlslGlslangDefault];
+    pub fn lang(self) -> Lang {
+        match self {
+            Path::WgslNaga => Lang::Wgsl,
+            Path::GlslNaga | Path::GlslGlslang => Lang::Glsl,
+            Path::HlslGlslangOd | Path::HlslGlslangDefault => Lang::Hlsl,
+        }
     }
 }
 
-pub fn run(_specs: &[Spec], _langs: &[Lang], _progress: bool) -> anyhow::Result<Report> {
-    anyhow::bail!("not yet")
+impl fmt::Display for Path {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Path::WgslNaga => "wgsl/naga",
+            Path::GlslNaga => "glsl/naga",
+            Path::GlslGlslang => "glsl/glslang",
+            Path::HlslGlslangOd => "hlsl/glslang -Od",
+            Path::HlslGlslangDefault => "hlsl/glslang",
+        })
+    }
+}
+
+/// One mismatching item: its input words, expected and actual output words.
+#[derive(Clone, Debug)]
+pub struct Mismatch {
+    pub input: Vec<u32>,
+    pub expected: Vec<u32>,
+    pub actual: Vec<u32>,
+}
+
+/// One row of the report.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub spec: String,
+    pub function: String,
+    pub path: String,
+    pub tested: usize,
+    pub mismatches: usize,
+    pub first: Vec<Mismatch>,
+    /// Compilation or validation failure, if any.
+    pub error: Option<String>,
+}
+
+impl Row {
+    pub fn passed(&self) -> bool {
+        self.error.is_none() && self.mismatches == 0
+    }
+}
+
+pub struct Report {
+    pub adapter: String,
+    pub driver: String,
+    pub rows: Vec<Row>,
+}
+
+fn words_hex(w: &[u32], as_float: bool) -> String {
+    w.iter()
+        .map(|b| if as_float { format!("{:?} (0x{b:08x})", f32::from_bits(*b)) } else { format!("0x{b:08x}") })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl Report {
+    pub fn all_passed(&self) -> bool {
+        self.rows.iter().all(Row::passed)
+    }
+
+    pub fn table(&self) -> String {
+        let mut s = format!("adapter: {} — driver: {}\n", self.adapter, self.driver);
+        s.push_str(&format!(
+            "{:<22} {:<28} {:<18} {:>10} {:>10}\n",
+            "spec", "function", "path", "tested", "mismatches"
+        ));
+        for r in &self.rows {
+            let mm = if r.error.is_some() { "ERROR".to_string() } else { r.mismatches.to_string() };
+            s.push_str(&format!("{:<22} {:<28} {:<18} {:>10} {:>10}\n", r.spec, r.function, r.path, r.tested, mm));
+        }
+        let failed: Vec<&Row> = self.rows.iter().filter(|r| !r.passed()).collect();
+        for r in &failed {
+            s.push_str(&format!("\nFAILED {} {} on {}:\n", r.spec, r.function, r.path));
+            if let Some(e) = &r.error {
+                s.push_str(&format!("  {e}\n"));
+            }
+            for m in &r.first {
+                s.push_str(&format!(
+                    "  input [{}]\n    expected [{}]\n    actual   [{}]\n",
+                    words_hex(&m.input, true),
+                    words_hex(&m.expected, true),
+                    words_hex(&m.actual, true)
+                ));
+            }
+        }
+        let total: usize = self.rows.iter().map(|r| r.tested).sum();
+        s.push_str(&format!(
+            "\n{} checks, {} items, {} failed\n",
+            self.rows.len(),
+            total,
+            failed.len()
+        ));
+        s
+    }
+}
+
+/// Expected outputs of the model, computed on all cores.
+fn expected(f: &Function, input: &[u32]) -> Vec<u32> {
+    let n = input.len() / f.in_words;
+    let mut out = vec![0u32; n * f.out_words];
+    let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
+    let per = n.div_ceil(threads).max(1);
+    std::thread::scope(|s| {
+        for (o, i) in out.chunks_mut(per * f.out_words).zip(input.chunks(per * f.in_words)) {
+            s.spawn(move || {
+                for (o, i) in o.chunks_mut(f.out_words).zip(i.chunks(f.in_words)) {
+                    (f.eval)(i, o);
+                }
+            });
+        }
+    });
+    out
+}
+
+fn compare(f: &Function, input: &[u32], want: &[u32], got: &[u32]) -> (usize, Vec<Mismatch>) {
+    let mut count = 0;
+    let mut first = Vec::new();
+    for (k, (w, g)) in want.chunks(f.out_words).zip(got.chunks(f.out_words)).enumerate() {
+        if w != g {
+            count += 1;
+            if first.len() < 5 {
+                first.push(Mismatch {
+                    input: input[k * f.in_words..(k + 1) * f.in_words].to_vec(),
+                    expected: w.to_vec(),
+                    actual: g.to_vec(),
+                });
+            }
+        }
+    }
+    (count, first)
+}
+
+/// Compiles the kernel for `path`, running the static checks on the way.
+fn compile(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
+    Ok(match path {
+        Path::WgslNaga => {
+            tools::naga_wgsl(kernel)?;
+            None
+        }
+        Path::GlslNaga => {
+            tools::naga_glsl(kernel)?;
+            None
+        }
+        Path::GlslGlslang => {
+            let spv = tools::glslang_spirv(kernel, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)?;
+            tools::spirv_val(&spv)?;
+            Some(spv)
+        }
+        Path::HlslGlslangOd | Path::HlslGlslangDefault => {
+            let opt = if path == Path::HlslGlslangOd { HlslOpt::Od } else { HlslOpt::Default };
+            let spv = tools::glslang_spirv(kernel, GlslangInput::Hlsl { stage: "comp", entry: "main" }, opt)?;
+            tools::spirv_val(&spv)?;
+            Some(spv)
+        }
+    })
+}
+
+/// The include must also compile as a GLSL 330 and a GLSL ES 300 fragment shader.
+fn glsl_versions(include: &str) -> Vec<(String, Result<()>)> {
+    let v330 = format!("#version 330\n{include}\nout vec4 color;\nvoid main() {{ color = vec4(0.0); }}\n");
+    let es = format!(
+        "#version 300 es\n{include}\nout highp vec4 color;\nvoid main() {{ color = vec4(0.0); }}\n"
+    );
+    vec![
+        ("glsl 330/glslang".to_string(), tools::glslang_check(&v330, "frag")),
+        ("glsl es 300/glslang".to_string(), tools::glslang_check(&es, "frag")),
+    ]
+}
+
+fn func_types(f: &Func) -> (crate::model::trace::Ty, crate::model::trace::Ty) {
+    (f.params[0].1, f.ret_ty)
+}
+
+/// Verifies `specs` on every path of `langs`, with a progress bar when `progress`.
+pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
+    let gpu = Gpu::shared()?;
+    let paths: Vec<Path> = Path::ALL.into_iter().filter(|p| langs.contains(&p.lang())).collect();
+    let emitted: Vec<_> = specs.iter().map(|s| s.emitted()).collect();
+    let total: usize = emitted.iter().map(|e| e.functions.len() * paths.len()).sum();
+    let bar = if progress { indicatif::ProgressBar::new(total as u64) } else { indicatif::ProgressBar::hidden() };
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} [{elapsed}]")
+            .expect("progress template"),
+    );
+    let mut rows = Vec::new();
+    for (spec, e) in specs.iter().zip(&emitted) {
+        let includes: Vec<(Lang, String)> = langs
+            .iter()
+            .map(|l| (*l, render(&[(spec.clone(), None)], *l, DEFAULT_PREFIX, "unitpack verify")))
+            .collect();
+        let include = |l: Lang| &includes.iter().find(|(x, _)| *x == l).expect("lang").1;
+        if langs.contains(&Lang::Glsl) {
+            for (path, r) in glsl_versions(include(Lang::Glsl)) {
+                rows.push(Row {
+                    spec: spec.display_name(),
+                    function: "(whole include)".into(),
+                    path,
+                    tested: 0,
+                    mismatches: 0,
+                    first: vec![],
+                    error: r.err().map(|e| format!("{e:#}")),
+                });
+            }
+        }
+        let ns = if e.namespace.is_empty() { String::new() } else { format!("{}_", e.namespace) };
+        for f in &e.functions {
+            bar.set_message(format!("{} {}", spec.display_name(), f.name));
+            let traced = e.module.func(f.name).expect("traced function");
+            let (param, ret) = func_types(traced);
+            let input = inputs::generate(&f.inputs, f.in_words);
+            let want = expected(f, &input);
+            for &path in &paths {
+                let lang = path.lang();
+                let name = format!("{DEFAULT_PREFIX}{ns}{}", f.name);
+                let kernel = kernel::wrap(lang, include(lang), &name, param, ret);
+                let result = compile(path, &kernel).and_then(|spv| {
+                    let shader = match (&spv, lang) {
+                        (Some(words), _) => Shader::SpirV(words),
+                        (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
+                        (None, _) => Shader::GlslNaga(&kernel),
+                    };
+                    gpu.run(&shader, &input, f.in_words, f.out_words)
+                });
+                let mut row = Row {
+                    spec: spec.display_name(),
+                    function: f.name.to_string(),
+                    path: path.to_string(),
+                    tested: input.len() / f.in_words,
+                    mismatches: 0,
+                    first: vec![],
+                    error: None,
+                };
+                match result {
+                    Ok(got) => (row.mismatches, row.first) = compare(f, &input, &want, &got),
+                    Err(err) => row.error = Some(format!("{err:#}")),
+                }
+                rows.push(row);
+                bar.inc(1);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    Ok(Report { adapter: gpu.adapter_name().to_string(), driver: gpu.driver().to_string(), rows })
 }

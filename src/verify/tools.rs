@@ -1,1 +1,221 @@
-//! placeholder until the tool wrappers land
+//! Thin, well-errored wrappers over the external shader tools (`glslangValidator`,
+//! `spirv-val`) and over naga's WGSL / GLSL frontends plus validator.
+//!
+//! Every failure carries the tool's complete output (or naga's rendered diagnostic, which
+//! quotes the offending source line), because these errors are read by a person trying to
+//! fix an emitted shader. A missing binary names the Debian package that provides it.
+
+use std::io::{ErrorKind, Write};
+use std::path::Path;
+use std::process::{Command, Output};
+
+use anyhow::{Context, anyhow, bail};
+
+/// What glslang is asked to compile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GlslangInput {
+    /// GLSL; `stage` is glslang's stage name and file extension (`"comp"`, `"frag"`, ...).
+    Glsl { stage: &'static str },
+    /// HLSL (`-D`); `stage` as for GLSL, `entry` the entry-point function (`-e`).
+    Hlsl {
+        stage: &'static str,
+        entry: &'static str,
+    },
+}
+
+/// Optimisation setting for HLSL compiles. glslang's HLSL frontend runs its own legalisation
+/// and optimisation passes by default; `-Od` turns them off. Both are verified because a
+/// shader author might ship either, and an optimiser may change floating-point results.
+/// (Ignored for GLSL: glslang does not optimise GLSL without `-Os`.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HlslOpt {
+    /// `-Od`: no optimisation.
+    Od,
+    /// glslang's default.
+    Default,
+}
+
+const GLSLANG: &str = "glslangValidator";
+const SPIRV_VAL: &str = "spirv-val";
+
+/// Runs a tool, mapping "binary not found" to an error naming the Debian package.
+fn run_tool(cmd: &mut Command, tool: &str, package: &str) -> anyhow::Result<Output> {
+    match cmd.output() {
+        Ok(out) => Ok(out),
+        Err(e) if e.kind() == ErrorKind::NotFound => Err(anyhow!(
+            "`{tool}` not found on PATH; install the Debian package `{package}`"
+        )),
+        Err(e) => Err(anyhow!(e).context(format!("running `{tool}`"))),
+    }
+}
+
+/// The tool's stdout and stderr, labelled, for error messages. glslang prints its
+/// diagnostics on stdout, spirv-val on stderr, so both are always included.
+fn tool_output(out: &Output) -> String {
+    let mut text = String::new();
+    for (name, bytes) in [("stdout", &out.stdout), ("stderr", &out.stderr)] {
+        let s = String::from_utf8_lossy(bytes);
+        let s = s.trim_end();
+        if !s.is_empty() {
+            text.push_str(&format!("--- {name} ---\n{s}\n"));
+        }
+    }
+    if text.is_empty() {
+        text.push_str("(no output)\n");
+    }
+    text
+}
+
+/// Writes `contents` to a fresh temporary file whose name ends in `.{ext}`.
+fn temp_file(ext: &str, contents: &[u8]) -> anyhow::Result<tempfile::NamedTempFile> {
+    let mut file = tempfile::Builder::new()
+        .prefix("unitpack-")
+        .suffix(&format!(".{ext}"))
+        .tempfile()
+        .context("creating a temporary file")?;
+    file.write_all(contents)
+        .and_then(|()| file.flush())
+        .context("writing a temporary file")?;
+    Ok(file)
+}
+
+/// Compiles with `glslangValidator -V` (Vulkan SPIR-V) and returns the SPIR-V words.
+///
+/// GLSL is compiled as `glslangValidator -V -S <stage> file.<stage>`; HLSL as
+/// `glslangValidator -V -D -e <entry> -S <stage> file.hlsl`, plus `-Od` for [`HlslOpt::Od`].
+/// On failure the error holds glslang's full stdout/stderr. If the binary is missing the
+/// error says to install the Debian package `glslang-tools`.
+pub fn glslang_spirv(source: &str, input: GlslangInput, opt: HlslOpt) -> anyhow::Result<Vec<u32>> {
+    let (ext, stage) = match input {
+        GlslangInput::Glsl { stage } => (stage, stage),
+        GlslangInput::Hlsl { stage, .. } => ("hlsl", stage),
+    };
+    let src = temp_file(ext, source.as_bytes())?;
+    let dir = tempfile::tempdir().context("creating a temporary directory")?;
+    let spv = dir.path().join("out.spv");
+
+    let mut cmd = Command::new(GLSLANG);
+    cmd.arg("-V");
+    if let GlslangInput::Hlsl { entry, .. } = input {
+        cmd.args(["-D", "-e", entry]);
+        if opt == HlslOpt::Od {
+            cmd.arg("-Od");
+        }
+    }
+    cmd.args(["-S", stage]).arg("-o").arg(&spv).arg(src.path());
+    let out = run_tool(&mut cmd, GLSLANG, "glslang-tools")?;
+    if !out.status.success() {
+        bail!(
+            "{} failed ({}):\n{}",
+            describe_cmd(&cmd),
+            out.status,
+            tool_output(&out)
+        );
+    }
+    let words = read_spirv(&spv).with_context(|| {
+        format!(
+            "{} succeeded but its SPIR-V is unusable; its output:\n{}",
+            describe_cmd(&cmd),
+            tool_output(&out)
+        )
+    })?;
+    Ok(words)
+}
+
+fn read_spirv(path: &Path) -> anyhow::Result<Vec<u32>> {
+    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+    if bytes.len() % 4 != 0 || bytes.len() < 20 {
+        bail!("{} is {} bytes, not a SPIR-V module", path.display(), bytes.len());
+    }
+    let words: Vec<u32> = bytes
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
+    if words[0] != 0x0723_0203 {
+        bail!(
+            "{} does not start with the SPIR-V magic number (found {:#010x})",
+            path.display(),
+            words[0]
+        );
+    }
+    Ok(words)
+}
+
+fn describe_cmd(cmd: &Command) -> String {
+    let mut s = cmd.get_program().to_string_lossy().into_owned();
+    for a in cmd.get_args() {
+        s.push(' ');
+        s.push_str(&a.to_string_lossy());
+    }
+    format!("`{s}`")
+}
+
+/// Validates GLSL with glslangValidator without producing Vulkan SPIR-V
+/// (`glslangValidator -S <stage> file.<stage>`), e.g. to check that an include also compiles
+/// as `#version 330` or `#version 300 es`. `source` must contain its own `#version` line.
+pub fn glslang_check(source: &str, stage: &'static str) -> anyhow::Result<()> {
+    let src = temp_file(stage, source.as_bytes())?;
+    let mut cmd = Command::new(GLSLANG);
+    cmd.args(["-S", stage]).arg(src.path());
+    let out = run_tool(&mut cmd, GLSLANG, "glslang-tools")?;
+    if !out.status.success() {
+        bail!(
+            "{} failed ({}):\n{}",
+            describe_cmd(&cmd),
+            out.status,
+            tool_output(&out)
+        );
+    }
+    Ok(())
+}
+
+/// Runs `spirv-val` on the words. If the binary is missing the error names the Debian
+/// package `spirv-tools`.
+pub fn spirv_val(words: &[u32]) -> anyhow::Result<()> {
+    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    let file = temp_file("spv", &bytes)?;
+    let mut cmd = Command::new(SPIRV_VAL);
+    cmd.arg(file.path());
+    let out = run_tool(&mut cmd, SPIRV_VAL, "spirv-tools")?;
+    if !out.status.success() {
+        bail!(
+            "{} rejected the module ({}):\n{}",
+            describe_cmd(&cmd),
+            out.status,
+            tool_output(&out)
+        );
+    }
+    Ok(())
+}
+
+/// naga's validator with every check on. `Capabilities::all()` because this is a syntax and
+/// typing gate for emitted code, not a portability check: the kernels only use core features,
+/// and a capability error would hide the real diagnostics behind an unrelated one. (wgpu
+/// itself validates against the device's real capabilities when the shader is run.)
+fn validate(module: &naga::Module) -> Result<(), naga::WithSpan<naga::valid::ValidationError>> {
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(module)
+    .map(drop)
+}
+
+/// naga: parses and validates WGSL. The error is naga's rendered diagnostic, which quotes
+/// the source around the problem.
+pub fn naga_wgsl(source: &str) -> anyhow::Result<()> {
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| anyhow!("naga WGSL parse error:\n{}", e.emit_to_string(source)))?;
+    validate(&module)
+        .map_err(|e| anyhow!("naga WGSL validation error:\n{}", e.emit_to_string(source)))
+}
+
+/// naga: parses GLSL as a compute shader and validates it.
+pub fn naga_glsl(source: &str) -> anyhow::Result<()> {
+    let options = naga::front::glsl::Options::from(naga::ShaderStage::Compute);
+    let module = naga::front::glsl::Frontend::default()
+        .parse(&options, source)
+        .map_err(|e| anyhow!("naga GLSL parse error:\n{}", e.emit_to_string(source)))?;
+    validate(&module)
+        .map_err(|e| anyhow!("naga GLSL validation error:\n{}", e.emit_to_string(source)))
+}

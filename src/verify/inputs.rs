@@ -1,0 +1,100 @@
+//! The inputs every function is verified on (DESIGN §4): every code up to 24 bits, seeded
+//! random codes above; seeded random unit vectors plus every edge case for encoders.
+
+use crate::codecs::functions::Inputs;
+use crate::codecs::quant::{Quant, field_offsets};
+use crate::quality::random_unit_vectors;
+use rand_core::Rng;
+use rand_pcg::Pcg64Mcg;
+
+/// Random items for budgets above 24 bits and for encoders.
+pub const RANDOM_ITEMS: usize = 1 << 20;
+const CODE_SEED: u128 = 0x636f_6465_735f_7365_6564_5f75_6e69_7470;
+
+/// Encoder edge cases: axes and signed zeros, octant and seam boundaries, denormals,
+/// zero, NaN, infinities, non-unit lengths.
+pub fn edge_vectors() -> Vec<[f32; 3]> {
+    let specials = [
+        0.0, -0.0, 1.0, -1.0, 0.5, -0.5, f32::MIN_POSITIVE, -f32::MIN_POSITIVE, 1e-45, -1e-45,
+        f32::NAN, f32::INFINITY, f32::NEG_INFINITY, f32::MAX, -f32::MAX, 1e-30, 1e30, 3.0,
+        std::f32::consts::FRAC_1_SQRT_2, -std::f32::consts::FRAC_1_SQRT_2, 1.0 / 3.0,
+    ];
+    let mut out = Vec::new();
+    for &x in &specials {
+        for &y in &specials {
+            for &z in &specials {
+                out.push([x, y, z]);
+            }
+        }
+    }
+    // Seams and fold lines of the square: |x| + |y| = 1 on the equator, x = ±y.
+    for i in 0..=64 {
+        let t = i as f32 / 64.0;
+        for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+            out.push([sx * t, sy * (1.0 - t), 0.0]);
+            out.push([sx * t, sy * (1.0 - t), -0.0]);
+            out.push([sx * t, sy * t, 1.0 - t]);
+            out.push([sx * t, sy * t, t - 1.0]);
+        }
+    }
+    out
+}
+
+/// Every code of the fields, or seeded random ones above 24 bits, as packed words.
+fn codes(q: &[Quant], words: usize) -> Vec<u32> {
+    let total: u32 = q.iter().map(|q| q.bits()).sum();
+    let mut out = Vec::new();
+    if total <= 24 {
+        out.extend(0..1u32 << total);
+        // The same codes with garbage in the unused high bits, which decoders ignore.
+        let mut rng = Pcg64Mcg::new(CODE_SEED);
+        out.extend((0..4096).map(|_| rng.next_u32() | (u32::MAX << total)));
+        return out;
+    }
+    let mut rng = Pcg64Mcg::new(CODE_SEED);
+    for _ in 0..RANDOM_ITEMS {
+        for _ in 0..words {
+            out.push(rng.next_u32());
+        }
+    }
+    out
+}
+
+/// The value a texture fetch returns for code `c`: `c/M`, correctly rounded, clamped at -1.
+fn fetched(q: Quant, c: f32) -> f32 {
+    (c / q.max_code()).max(-1.0)
+}
+
+/// Float parameters for every code (or random codes), as a fetch delivers them.
+fn float_codes(q: &[Quant]) -> Vec<u32> {
+    let total: u32 = q.iter().map(|q| q.bits()).sum();
+    let offs = field_offsets(q);
+    let mut rng = Pcg64Mcg::new(CODE_SEED);
+    let n: u64 = if total <= 24 { 1 << total } else { RANDOM_ITEMS as u64 };
+    let mut out = Vec::with_capacity(n as usize * q.len());
+    for k in 0..n {
+        let bits: u64 = if total <= 24 { k } else { rng.next_u64() };
+        for (quant, off) in q.iter().zip(&offs) {
+            let field = ((bits >> off) & u64::from(quant.mask())) as f32;
+            let c = match quant {
+                Quant::Snorm(b) if field > quant.max_code() => field - (1u64 << b) as f32,
+                _ => field,
+            };
+            out.push(fetched(*quant, c).to_bits());
+        }
+    }
+    out
+}
+
+/// Input words for a function, `in_words` per item.
+pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
+    match inputs {
+        Inputs::Vectors => {
+            let mut v = edge_vectors();
+            v.extend(random_unit_vectors(CODE_SEED, RANDOM_ITEMS, false));
+            v.iter().flat_map(|a| a.map(f32::to_bits)).collect()
+        }
+        Inputs::Codes(q) => codes(q, in_words),
+        Inputs::FloatCodes(q) => float_codes(q),
+    }
+}
