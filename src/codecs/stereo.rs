@@ -28,16 +28,22 @@ impl Codec for StereoScaled {
     fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = self.target(v);
         let d = (u.z + F::c(1.0)).named("d");
-        let enc = (u.xy() / d * F::c(1.0 / self.scale)).named("proj");
-        let enc = enc * F::c(0.5) + F::c(0.5);
+        // `/ scale * 0.5` as one literal: drivers fold literal multiply chains anyway.
+        let enc = u.xy() / d * F::c(0.5 / self.scale) + F::c(0.5);
         // Clamp to the square (NaN from the pole, where d = 0, goes to 0).
         let enc = V2::sel(enc.ge(V2::splat(F::c(0.0))), enc, V2::splat(F::c(0.0)));
         V2::sel(enc.le(V2::splat(F::c(1.0))), enc, V2::splat(F::c(1.0)))
     }
+    /// The seed's `g = 2 / dot(nn, nn)` divides a literal, which drivers turn into a
+    /// multiply by an approximate reciprocal; `(p + p) / d` and `(1 - q) / d` are the same
+    /// map with both numerators computed, so every target divides exactly. `enc·2s - s` is
+    /// written `(enc - 0.5)·2s`: after the packed decoder's `c·(1/M)` a second literal
+    /// multiply would be folded into one by the driver.
     fn from_params<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let s = self.scale;
-        let nn = V3::from_xy(enc * F::c(2.0 * s) + F::c(-s), F::c(1.0)).named("nn");
-        let g = (F::c(2.0) / nn.length_squared()).named("g");
-        V3::from_xy(nn.xy() * g, g - F::c(1.0))
+        let p = ((enc - F::c(0.5)) * F::c(2.0 * s)).named("p");
+        let q = p.length_squared().named("q");
+        let d = (q + F::c(1.0)).named("d");
+        V3::from_xy((p + p) / d, (F::c(1.0) - q) / d)
     }
 }

@@ -182,6 +182,16 @@ impl Recorder {
                 "division by a literal: multiply by the reciprocal computed in Rust (HLSL optimisers rewrite x/c as x*(1/c))"
             );
         }
+        if op == Op::Bin(BinOp::Div) && self.is_const(args[0]) {
+            panic!("a literal divided by a value: drivers compute c/x as c*rcp(x); compute the numerator");
+        }
+        if op == Op::Bin(BinOp::Mul) && args.iter().any(|a| self.is_const(*a)) {
+            let other = if self.is_const(args[0]) { args[1] } else { args[0] };
+            let n = self.nodes()[other.node as usize].clone();
+            if n.op == Op::Bin(BinOp::Mul) && n.args.iter().any(|a| self.is_const(*a)) {
+                panic!("a literal multiply of a literal multiply: drivers fold (x*a)*b into x*(a*b)");
+            }
+        }
         self.push(op, args, Ty::scalar(kind))
     }
 

@@ -1,4 +1,124 @@
-//! SKELETONS_PLACEHOLDER
+//! Running compute kernels on the Vulkan CPU adapter (lavapipe) through wgpu, so emitted
+//! shader functions can be compared bit for bit with the Rust model.
+//!
+//! # Binding contract
+//!
+//! Every kernel has entry point `main`, workgroup size 64×1×1, and two bindings in
+//! descriptor set / bind group 0:
+//!
+//! * binding 0: read-only storage buffer, a runtime-sized array of `u32` (the input: `n` items
+//!   of `IN_WORDS` words each, floats passed as their bits);
+//! * binding 1: read-write storage buffer, a runtime-sized array of `u32` (the output: `n`
+//!   items of `OUT_WORDS` words each).
+//!
+//! [`Gpu::run`] dispatches `ceil(items / 64)` workgroups per chunk and binds buffers of exactly
+//! the chunk's size, so each kernel bounds-checks itself with
+//! `global_invocation_id.x < arrayLength(output) / OUT_WORDS`.
+//!
+//! # Kernel skeletons
+//!
+//! Minimal kernels for each path, verified by `tests/gpu_smoke.rs`. Replace `IN_WORDS`,
+//! `OUT_WORDS` and the `// body` part; everything else is the required shape.
+//!
+//! ## 1. WGSL, compiled by naga inside wgpu ([`Shader::Wgsl`])
+//!
+//! ```text
+//! @group(0) @binding(0) var<storage, read> input_words: array<u32>;
+//! @group(0) @binding(1) var<storage, read_write> output_words: array<u32>;
+//!
+//! const IN_WORDS: u32 = 2u;
+//! const OUT_WORDS: u32 = 3u;
+//!
+//! @compute @workgroup_size(64)
+//! fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+//!     let i = id.x;
+//!     if (i >= arrayLength(&output_words) / OUT_WORDS) {
+//!         return;
+//!     }
+//!     let a = bitcast<f32>(input_words[i * IN_WORDS + 0u]);
+//!     let b = bitcast<f32>(input_words[i * IN_WORDS + 1u]);
+//!     // body
+//!     output_words[i * OUT_WORDS + 0u] = bitcast<u32>(a / sqrt(b));
+//! }
+//! ```
+//!
+//! ## 2. GLSL 450 compute, compiled by naga's GLSL frontend inside wgpu ([`Shader::GlslNaga`])
+//!
+//! ## 3. The same GLSL through `glslangValidator -V`, run as SPIR-V passthrough ([`Shader::SpirV`])
+//!
+//! One source serves both paths (naga accepts anonymous blocks, `std430` and `.length()`;
+//! as GLSL requires, `#version 450` comes before anything else, so an include goes after it):
+//!
+//! ```text
+//! #version 450
+//! layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+//!
+//! layout(set = 0, binding = 0, std430) readonly buffer InputWords { uint input_words[]; };
+//! layout(set = 0, binding = 1, std430) buffer OutputWords { uint output_words[]; };
+//!
+//! const uint IN_WORDS = 2u;
+//! const uint OUT_WORDS = 3u;
+//!
+//! void main() {
+//!     uint i = gl_GlobalInvocationID.x;
+//!     if (i >= uint(output_words.length()) / OUT_WORDS) {
+//!         return;
+//!     }
+//!     float a = uintBitsToFloat(input_words[i * IN_WORDS + 0u]);
+//!     float b = uintBitsToFloat(input_words[i * IN_WORDS + 1u]);
+//!     // body
+//!     output_words[i * OUT_WORDS + 0u] = floatBitsToUint(a / sqrt(b));
+//! }
+//! ```
+//!
+//! glslang: `tools::glslang_spirv(src, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)`.
+//!
+//! ## 4. HLSL compute through `glslangValidator -D -V` (`-Od` and default), SPIR-V passthrough
+//!
+//! `[[vk::binding(binding, set)]]` pins the Vulkan binding (glslang would otherwise derive it
+//! from `register()`); `StructuredBuffer<uint>` becomes a read-only (`NonWritable`) storage
+//! block and `RWStructuredBuffer<uint>` a writable one. No counter buffer is generated as long
+//! as `IncrementCounter`/`Append` are not used. `GetDimensions(count, stride)` on a structured
+//! buffer compiles to `OpArrayLength`, i.e. the element count of the bound range. The entry
+//! point keeps the name given with `-e` (`main`). `static const` is required for constants.
+//!
+//! ```text
+//! [[vk::binding(0, 0)]] StructuredBuffer<uint> input_words;
+//! [[vk::binding(1, 0)]] RWStructuredBuffer<uint> output_words;
+//!
+//! static const uint IN_WORDS = 2u;
+//! static const uint OUT_WORDS = 3u;
+//!
+//! [numthreads(64, 1, 1)]
+//! void main(uint3 id : SV_DispatchThreadID)
+//! {
+//!     uint out_len, out_stride;
+//!     output_words.GetDimensions(out_len, out_stride);
+//!     uint i = id.x;
+//!     if (i >= out_len / OUT_WORDS) {
+//!         return;
+//!     }
+//!     float a = asfloat(input_words[i * IN_WORDS + 0u]);
+//!     float b = asfloat(input_words[i * IN_WORDS + 1u]);
+//!     // body
+//!     output_words[i * OUT_WORDS + 0u] = asuint(a / sqrt(b));
+//! }
+//! ```
+//!
+//! glslang: `tools::glslang_spirv(src, GlslangInput::Hlsl { stage: "comp", entry: "main" },
+//! HlslOpt::Od)` (or `HlslOpt::Default`); run `tools::spirv_val` on the words before
+//! [`Gpu::run`], since passthrough SPIR-V reaches the driver unvalidated.
+//!
+//! # Notes on the driver (lavapipe, Mesa 22.3.6, LLVM 15)
+//!
+//! On this driver `a * b + c` is not contracted into an FMA, denormals are neither flushed
+//! on input nor on output, and `/`, `sqrt`, `inverseSqrt`, `length`, `normalize`, `dot`,
+//! WGSL `round` / GLSL `roundEven` / HLSL `round` (all ties-to-even here; GLSL's plain `round`
+//! leaves ties implementation-defined, so emit `roundEven`), `fract`, float<->int conversions
+//! match correctly rounded Rust f32 arithmetic on every path; `cos`, `atan2` and other transcendentals do not (they are
+//! approximations, as the Vulkan spec allows). Real GPUs are looser than lavapipe (e.g.
+//! `inverseSqrt`, division and FMA contraction), so bit-exactness proven here is a property of
+//! the emitted code on a correctly rounded implementation, not of every GPU.
 
 use std::borrow::Cow;
 use std::sync::mpsc;
@@ -68,6 +188,12 @@ pub struct Gpu {
     /// Set by the device-lost callback, so later calls fail with the reason instead of hanging.
     lost: Arc<Mutex<Option<String>>>,
 }
+
+// Tests share one `Gpu` across threads; keep that guaranteed.
+const _: fn() = || {
+    fn assert_send_sync<T: Send + Sync>() {}
+    assert_send_sync::<Gpu>();
+};
 
 impl std::fmt::Debug for Gpu {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -267,7 +393,7 @@ impl Gpu {
         if in_words == 0 || out_words == 0 {
             bail!("in_words ({in_words}) and out_words ({out_words}) must both be at least 1");
         }
-        if input.len() % in_words != 0 {
+        if !input.len().is_multiple_of(in_words) {
             bail!(
                 "input holds {} u32, which is not a whole number of {in_words}-word items",
                 input.len()

@@ -125,7 +125,11 @@ pub fn glslang_spirv(source: &str, input: GlslangInput, opt: HlslOpt) -> anyhow:
 fn read_spirv(path: &Path) -> anyhow::Result<Vec<u32>> {
     let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
     if bytes.len() % 4 != 0 || bytes.len() < 20 {
-        bail!("{} is {} bytes, not a SPIR-V module", path.display(), bytes.len());
+        bail!(
+            "{} is {} bytes, not a SPIR-V module",
+            path.display(),
+            bytes.len()
+        );
     }
     let words: Vec<u32> = bytes
         .chunks_exact(4)
@@ -192,13 +196,19 @@ pub fn spirv_val(words: &[u32]) -> anyhow::Result<()> {
 /// typing gate for emitted code, not a portability check: the kernels only use core features,
 /// and a capability error would hide the real diagnostics behind an unrelated one. (wgpu
 /// itself validates against the device's real capabilities when the shader is run.)
-fn validate(module: &naga::Module) -> Result<(), naga::WithSpan<naga::valid::ValidationError>> {
+fn validate(module: &naga::Module, language: &str, source: &str) -> anyhow::Result<()> {
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::all(),
     )
     .validate(module)
     .map(drop)
+    .map_err(|e| {
+        anyhow!(
+            "naga {language} validation error:\n{}",
+            e.emit_to_string(source)
+        )
+    })
 }
 
 /// naga: parses and validates WGSL. The error is naga's rendered diagnostic, which quotes
@@ -206,8 +216,7 @@ fn validate(module: &naga::Module) -> Result<(), naga::WithSpan<naga::valid::Val
 pub fn naga_wgsl(source: &str) -> anyhow::Result<()> {
     let module = naga::front::wgsl::parse_str(source)
         .map_err(|e| anyhow!("naga WGSL parse error:\n{}", e.emit_to_string(source)))?;
-    validate(&module)
-        .map_err(|e| anyhow!("naga WGSL validation error:\n{}", e.emit_to_string(source)))
+    validate(&module, "WGSL", source)
 }
 
 /// naga: parses GLSL as a compute shader and validates it.
@@ -216,6 +225,5 @@ pub fn naga_glsl(source: &str) -> anyhow::Result<()> {
     let module = naga::front::glsl::Frontend::default()
         .parse(&options, source)
         .map_err(|e| anyhow!("naga GLSL parse error:\n{}", e.emit_to_string(source)))?;
-    validate(&module)
-        .map_err(|e| anyhow!("naga GLSL validation error:\n{}", e.emit_to_string(source)))
+    validate(&module, "GLSL", source)
 }
