@@ -133,16 +133,19 @@ pub fn sign_not_zero<F: Float>(v: V2<F>) -> V2<F> {
 }
 
 /// Normalizes `v`; zero, NaN and infinite input become +Z. Scaling by the largest
-/// component first keeps huge and denormal inputs from overflowing or vanishing.
+/// component first keeps huge and denormal inputs from overflowing or vanishing; after
+/// it the squared length is at least 1 for every valid input and NaN or below 1 for
+/// every invalid one (a NaN lane can hide from the select-based maximum, not from it).
 pub fn unit_or_z<F: Float>(v: V3<F>) -> V3<F> {
     let a = v.abs();
     let m = F::sel(a.x.ge(a.y), a.x, a.y);
     let m = F::sel(m.ge(a.z), m, a.z).named("largest");
     let ok = m.gt(F::c(0.0)).and(m.le(F::c(f32::MAX)));
-    let s = F::sel(ok, m, F::c(1.0));
-    let w = V3::sel_all(ok, v / s, V3::new(F::c(0.0), F::c(0.0), F::c(1.0))).named("scaled");
-    let len = w.length_squared().sqrt().named("len");
-    (w / len).named("unit")
+    let w = (v / F::sel(ok, m, F::c(1.0))).named("scaled");
+    let len2 = w.length_squared().named("len2");
+    let good = ok.and(len2.ge(F::c(1.0)));
+    let unit = w / len2.sqrt();
+    V3::sel_all(good, unit, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
 }
 
 pub fn quantize<F: Float, P: Params<F>>(q: &[Quant], p: P) -> P {
