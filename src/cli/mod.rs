@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
-pub use generate::{write_atomic, generate};
+pub use generate::{gen_text, generate, write_atomic};
 
 #[derive(Parser)]
 #[command(name = "unitpack", version, about = "Compact unit-vector (normal) codecs for WGSL, GLSL and HLSL, bit-exact with a Rust model")]

@@ -1,7 +1,7 @@
 //! What a codec is, and the generic pipeline every codec shares: quantization, the
 //! precise (integer candidate) search and bit packing are written once, here.
 
-use super::quant::{Code, Quant, field_offsets};
+use super::quant::{Code, Quant, Quants, field_offsets};
 use crate::model::trace::Value;
 use crate::model::{Bool, Float, Uint, V2, V3};
 
@@ -67,7 +67,7 @@ pub trait Codec: Send + Sync {
     type P<F: Float>: Params<F>;
     type C<F: Float>: Code<F>;
     /// Storage of each parameter, in texel order.
-    fn quants(&self) -> Vec<Quant>;
+    fn quants(&self) -> Quants;
     fn domain(&self) -> Domain;
     /// The unit vector the encoder aims at for any input (normalized, projected onto the
     /// domain, and a fixed direction for zero, NaN or infinite input). Precise encoders

@@ -150,12 +150,12 @@ impl Spec {
         let precise = self.precise;
         let module = trace_module(|| trace_codec(&c, precise));
         let (c1, c2, c3, c4) = (c.clone(), c.clone(), c.clone(), c.clone());
-        let (q1, q2) = (q.clone(), q.clone());
+        let (q1, q2) = (q, q);
         let functions = vec![
-            function("decode_float", Role::DecodeFloat, Inputs::FloatCodes(q.clone()), move |p| {
+            function("decode_float", Role::DecodeFloat, Inputs::FloatCodes(q.to_vec()), move |p| {
                 c1.from_params(p)
             }),
-            function("decode", Role::Decode, Inputs::Codes(q.clone()), move |code: C::C<f32>| {
+            function("decode", Role::Decode, Inputs::Codes(q.to_vec()), move |code: C::C<f32>| {
                 c2.from_params(dequantize(&q1, unpack::<f32, C::P<f32>, _>(&q1, code)))
             }),
             function("encode_float", Role::EncodeFloat, Inputs::Vectors, move |v: V3<f32>| {

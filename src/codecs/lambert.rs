@@ -3,7 +3,7 @@
 //! own erratum); this one normalizes first.
 
 use super::codec::{Codec, Domain};
-use super::quant::Quant;
+use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 
 #[derive(Clone, Copy, Debug)]
@@ -14,8 +14,8 @@ pub struct Lambert {
 impl Codec for Lambert {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
-    fn quants(&self) -> Vec<Quant> {
-        vec![Quant::Unorm(self.bits / 2); 2]
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Unorm(self.bits / 2); 2])
     }
     fn domain(&self) -> Domain {
         Domain::Sphere

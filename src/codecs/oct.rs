@@ -2,7 +2,7 @@
 //! with the L1 norm, unfold the lower half over the diagonals, store snorm×2.
 
 use super::codec::{Codec, Domain, sign_not_zero};
-use super::quant::Quant;
+use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, V2, V3};
 
 #[derive(Clone, Copy, Debug)]
@@ -38,8 +38,8 @@ pub fn oct_direction<F: Float>(e: V2<F>) -> V3<F> {
 impl Codec for Oct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
-    fn quants(&self) -> Vec<Quant> {
-        vec![Quant::Snorm(self.bits / 2); 2]
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Snorm(self.bits / 2); 2])
     }
     fn domain(&self) -> Domain {
         Domain::Sphere

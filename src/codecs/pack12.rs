@@ -7,7 +7,7 @@
 
 use super::codec::{Codec, Domain, precise_search};
 use super::oct::{Oct, oct_direction, oct_params};
-use super::quant::Quant;
+use super::quant::{Quant, Quants};
 use crate::model::{Float, Uint, V2, V3};
 
 const BIAS: f32 = 2047.0;
@@ -74,8 +74,8 @@ pub struct Oct24Rgb8;
 impl Codec for Oct24Rgb8 {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
-    fn quants(&self) -> Vec<Quant> {
-        vec![Quant::Unorm(8); 3]
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Unorm(8); 3])
     }
     fn domain(&self) -> Domain {
         Domain::Sphere

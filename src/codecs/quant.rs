@@ -98,6 +98,28 @@ impl Quant {
     }
 }
 
+/// The fields of a codec, without a heap allocation per encoded vector.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Quants {
+    q: [Quant; 3],
+    n: usize,
+}
+
+impl Quants {
+    pub fn new(fields: &[Quant]) -> Quants {
+        let mut q = [fields[0]; 3];
+        q[..fields.len()].copy_from_slice(fields);
+        Quants { q, n: fields.len() }
+    }
+}
+
+impl std::ops::Deref for Quants {
+    type Target = [Quant];
+    fn deref(&self) -> &[Quant] {
+        &self.q[..self.n]
+    }
+}
+
 /// A packed code: one `u32`, or two for layouts wider than 32 bits (snorm16×3).
 pub trait Code<F: Float>: crate::model::trace::Value {
     const WORDS: usize;

@@ -2,7 +2,7 @@
 //! Most codes are not unit length, so decode re-normalizes.
 
 use super::codec::{Codec, Domain, unit_or_z};
-use super::quant::{Code, Quant};
+use super::quant::{Code, Quant, Quants};
 use crate::model::{Float, V2, V3};
 use std::marker::PhantomData;
 
@@ -40,8 +40,8 @@ impl<W> Snorm3<W> {
 impl<W: Words> Codec for Snorm3<W> {
     type P<F: Float> = V3<F>;
     type C<F: Float> = W::C<F>;
-    fn quants(&self) -> Vec<Quant> {
-        vec![Quant::Snorm(self.bits); 3]
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Snorm(self.bits); 3])
     }
     fn domain(&self) -> Domain {
         Domain::Sphere

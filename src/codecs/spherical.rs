@@ -4,7 +4,7 @@
 //! conditioned near the poles, where acos loses half its digits.
 
 use super::codec::{Codec, Domain};
-use super::quant::Quant;
+use super::quant::{Quant, Quants};
 use super::trig::{atan2_pi, sincos_pi};
 use crate::model::{Float, V2, V3};
 
@@ -16,8 +16,8 @@ pub struct Spherical {
 impl Codec for Spherical {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
-    fn quants(&self) -> Vec<Quant> {
-        vec![Quant::Snorm(self.bits / 2); 2]
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Snorm(self.bits / 2); 2])
     }
     fn domain(&self) -> Domain {
         Domain::Sphere

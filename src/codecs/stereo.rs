@@ -5,7 +5,7 @@
 //! square's edge, so this codec is lossy there by design.
 
 use super::codec::{Codec, Domain};
-use super::quant::Quant;
+use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 
 #[derive(Clone, Copy, Debug)]
@@ -19,8 +19,8 @@ pub const DEFAULT_SCALE: f32 = 1.7777;
 impl Codec for StereoScaled {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
-    fn quants(&self) -> Vec<Quant> {
-        vec![Quant::Unorm(self.bits / 2); 2]
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Unorm(self.bits / 2); 2])
     }
     fn domain(&self) -> Domain {
         Domain::Sphere

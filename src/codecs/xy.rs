@@ -2,7 +2,7 @@
 //! `z = sqrt(1 - saturate(x² + y²))`, +Z hemisphere, snorm×2.
 
 use super::codec::{Codec, Domain};
-use super::quant::Quant;
+use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 
 #[derive(Clone, Copy, Debug)]
@@ -13,8 +13,8 @@ pub struct Xy {
 impl Codec for Xy {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
-    fn quants(&self) -> Vec<Quant> {
-        vec![Quant::Snorm(self.bits / 2); 2]
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Snorm(self.bits / 2); 2])
     }
     fn domain(&self) -> Domain {
         Domain::Hemisphere
