@@ -49,8 +49,18 @@ fn main() {
     });
     println!("baseline (normalize) {:.1} M vectors/s", base / 1e6);
     for bits in [16, 24, 32] {
-        bench(&format!("oct{bits}"), Oct::new(bits).unwrap().fast(), &vs, base);
-        bench(&format!("oct{bits}p"), Oct::new(bits).unwrap().precise(), &vs, base);
+        bench(
+            &format!("oct{bits}"),
+            Oct::new(bits).unwrap().fast(),
+            &vs,
+            base,
+        );
+        bench(
+            &format!("oct{bits}p"),
+            Oct::new(bits).unwrap().precise(),
+            &vs,
+            base,
+        );
     }
     bench("hemioct24", HemiOct::new(24).unwrap().fast(), &vs, base);
 }

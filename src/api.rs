@@ -39,11 +39,17 @@ pub struct Encoder<C> {
 pub trait CpuCodec: Codec + Sized {
     /// The nearest-code encoder.
     fn fast(self) -> Encoder<Self> {
-        Encoder { codec: self, precise: false }
+        Encoder {
+            codec: self,
+            precise: false,
+        }
     }
     /// The precise encoder: the candidate code whose decode is nearest the input.
     fn precise(self) -> Encoder<Self> {
-        Encoder { codec: self, precise: true }
+        Encoder {
+            codec: self,
+            precise: true,
+        }
     }
 }
 impl<C: Codec> CpuCodec for C {}
@@ -53,24 +59,37 @@ impl<C: Codec> Encoder<C> {
     #[inline]
     pub fn encode(&self, v: [f32; 3]) -> C::C<f32> {
         let q = self.codec.quants();
-        pack::<f32, _, C::C<f32>>(&q, encode_codes(&self.codec, self.precise, V3::from_array(v)))
+        pack::<f32, _, C::C<f32>>(
+            &q,
+            encode_codes(&self.codec, self.precise, V3::from_array(v)),
+        )
     }
     /// The direction a packed code stands for.
     #[inline]
     pub fn decode(&self, code: C::C<f32>) -> [f32; 3] {
         let q = self.codec.quants();
-        self.codec.from_params(dequantize(&q, unpack::<f32, C::P<f32>, _>(&q, code))).to_array()
+        self.codec
+            .direction(dequantize(&q, unpack::<f32, C::P<f32>, _>(&q, code)))
+            .to_array()
     }
     /// Encodes `input` into `out` (same length).
     pub fn encode_slice(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
-        assert_eq!(input.len(), out.len(), "encode_slice: input and output lengths differ");
+        assert_eq!(
+            input.len(),
+            out.len(),
+            "encode_slice: input and output lengths differ"
+        );
         for (o, v) in out.iter_mut().zip(input) {
             *o = self.encode(*v);
         }
     }
     /// Decodes `input` into `out` (same length).
     pub fn decode_slice(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
-        assert_eq!(input.len(), out.len(), "decode_slice: input and output lengths differ");
+        assert_eq!(
+            input.len(),
+            out.len(),
+            "decode_slice: input and output lengths differ"
+        );
         for (o, c) in out.iter_mut().zip(input) {
             *o = self.decode(*c);
         }
@@ -78,7 +97,10 @@ impl<C: Codec> Encoder<C> {
 }
 
 fn checked(name: &'static str, bits: u32) -> Result<u32, SpecError> {
-    let c = CATALOGUE.iter().find(|c| c.name == name).expect("catalogue name");
+    let c = CATALOGUE
+        .iter()
+        .find(|c| c.name == name)
+        .expect("catalogue name");
     if c.bits.contains(&bits) {
         Ok(bits)
     } else {
@@ -96,7 +118,9 @@ macro_rules! constructor {
             /// A codec with the given total bit budget; an invalid size is an error listing
             /// the allowed ones.
             pub fn new(bits: u32) -> Result<$T, SpecError> {
-                Ok($T { bits: checked($name, bits)? })
+                Ok($T {
+                    bits: checked($name, bits)?,
+                })
             }
         }
     };
@@ -110,7 +134,10 @@ constructor!(Xy, "xy");
 impl StereoScaled {
     /// Scaled stereographic with the seed's default scale (1.7777); see [`StereoScaled::with_scale`].
     pub fn new(bits: u32) -> Result<StereoScaled, SpecError> {
-        Ok(StereoScaled { bits: checked("stereo_scaled", bits)?, scale: crate::codecs::stereo::DEFAULT_SCALE })
+        Ok(StereoScaled {
+            bits: checked("stereo_scaled", bits)?,
+            scale: crate::codecs::stereo::DEFAULT_SCALE,
+        })
     }
     pub fn with_scale(self, scale: f32) -> StereoScaled {
         StereoScaled { scale, ..self }

@@ -1,5 +1,4 @@
-//! unitpack: compact unit-vector codecs, defined once in Rust, emitted as WGSL, GLSL and
-//! HLSL, and proven to compute the same bits as the Rust model.
+#![doc = include_str!("../README.md")]
 
 pub mod api;
 pub mod cli;

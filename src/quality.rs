@@ -68,7 +68,12 @@ pub fn measure(spec: &Spec, samples: usize) -> Option<ErrorStats> {
 }
 
 pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStats {
-    let find = |r: Role| e.functions.iter().find(|f| f.role == r).expect("codec function");
+    let find = |r: Role| {
+        e.functions
+            .iter()
+            .find(|f| f.role == r)
+            .expect("codec function")
+    };
     let (enc, dec) = (find(Role::Encode), find(Role::Decode));
     let vs = random_unit_vectors(VECTOR_SEED, samples, domain == Domain::Hemisphere);
     let mut code = vec![0u32; enc.out_words];
@@ -81,5 +86,9 @@ pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStat
         sum += a;
         max = max.max(a);
     }
-    ErrorStats { mean: sum / samples as f64, max, samples }
+    ErrorStats {
+        mean: sum / samples as f64,
+        max,
+        samples,
+    }
 }

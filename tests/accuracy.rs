@@ -9,9 +9,20 @@ const SAMPLES: usize = 1 << 20;
 fn check(spec: &str, mean: f64, max: f64) {
     let s: Spec = spec.parse().unwrap();
     let st = measure(&s, SAMPLES).unwrap();
-    println!("{spec}: mean {:.5}° (table {mean}), max {:.5}° (table {max})", st.mean, st.max);
-    assert!((st.mean - mean).abs() <= 0.02 * mean, "{spec}: mean {:.5}° vs table {mean}°", st.mean);
-    assert!((st.max - max).abs() <= 0.05 * max, "{spec}: max {:.5}° vs table {max}°", st.max);
+    println!(
+        "{spec}: mean {:.5}° (table {mean}), max {:.5}° (table {max})",
+        st.mean, st.max
+    );
+    assert!(
+        (st.mean - mean).abs() <= 0.02 * mean,
+        "{spec}: mean {:.5}° vs table {mean}°",
+        st.mean
+    );
+    assert!(
+        (st.max - max).abs() <= 0.05 * max,
+        "{spec}: max {:.5}° vs table {max}°",
+        st.max
+    );
 }
 
 #[test]

@@ -13,7 +13,10 @@ fn role(e: &Emitted, r: Role) -> &Function {
 }
 
 fn codecs() -> Vec<Spec> {
-    Spec::all().into_iter().filter(|s| s.codec.domain.is_some()).collect()
+    Spec::all()
+        .into_iter()
+        .filter(|s| s.codec.domain.is_some())
+        .collect()
 }
 
 #[test]
@@ -59,7 +62,10 @@ fn degenerate_input_encodes_to_the_documented_code() {
         ] {
             let mut code = vec![0u32; enc.out_words];
             (enc.eval)(&bad.map(f32::to_bits), &mut code);
-            assert_eq!(code, plus_z, "{spec}: {bad:?} must encode as +Z ({plus_z:x?}), got {code:x?}");
+            assert_eq!(
+                code, plus_z,
+                "{spec}: {bad:?} must encode as +Z ({plus_z:x?}), got {code:x?}"
+            );
         }
     }
 }
@@ -70,7 +76,11 @@ fn non_unit_input_encodes_like_its_direction() {
         let e = spec.emitted();
         let (enc, dec) = (role(&e, Role::Encode), role(&e, Role::Decode));
         let hemi = spec.codec.domain == Some(unitpack::codecs::codec::Domain::Hemisphere);
-        let dir = if hemi { [0.36f32, 0.48, 0.8] } else { [0.36f32, -0.48, -0.8] };
+        let dir = if hemi {
+            [0.36f32, 0.48, 0.8]
+        } else {
+            [0.36f32, -0.48, -0.8]
+        };
         let mut want = vec![0u32; enc.out_words];
         (enc.eval)(&dir.map(f32::to_bits), &mut want);
         for scale in [1e-30f32, 1e-3, 7.0, 1e30] {
@@ -82,7 +92,10 @@ fn non_unit_input_encodes_like_its_direction() {
             (dec.eval)(&want, &mut b);
             let (a, b) = (a.map(f32::from_bits), b.map(f32::from_bits));
             let angle = unitpack::quality::angle_deg(a, b);
-            assert!(angle < 1.5, "{spec}: scale {scale} decodes {angle}° away from the unit input");
+            assert!(
+                angle < 1.5,
+                "{spec}: scale {scale} decodes {angle}° away from the unit input"
+            );
         }
     }
 }
@@ -92,13 +105,20 @@ fn every_encoder_output_is_a_valid_code_and_every_code_decodes_finite() {
     let edges = inputs::edge_vectors();
     for spec in codecs() {
         let e = spec.emitted();
-        let (enc, dec, encf) = (role(&e, Role::Encode), role(&e, Role::Decode), role(&e, Role::EncodeFloat));
+        let (enc, dec, encf) = (
+            role(&e, Role::Encode),
+            role(&e, Role::Decode),
+            role(&e, Role::EncodeFloat),
+        );
         let mut out = [0u32; 3];
         for v in &edges {
             let mut code = vec![0u32; enc.out_words];
             (enc.eval)(&v.map(f32::to_bits), &mut code);
             (dec.eval)(&code, &mut out);
-            assert!(out.iter().all(|b| f32::from_bits(*b).is_finite()), "{spec}: {v:?} → {code:x?} decodes non-finite");
+            assert!(
+                out.iter().all(|b| f32::from_bits(*b).is_finite()),
+                "{spec}: {v:?} → {code:x?} decodes non-finite"
+            );
             let mut p = vec![0u32; encf.out_words];
             (encf.eval)(&v.map(f32::to_bits), &mut p);
             assert!(
@@ -111,7 +131,10 @@ fn every_encoder_output_is_a_valid_code_and_every_code_decodes_finite() {
         for c in codes.chunks(dec.in_words) {
             (dec.eval)(c, &mut out);
             let v = out.map(f32::from_bits);
-            assert!(v.iter().all(|x| x.is_finite()), "{spec}: code {c:x?} decodes to {v:?}");
+            assert!(
+                v.iter().all(|x| x.is_finite()),
+                "{spec}: code {c:x?} decodes to {v:?}"
+            );
         }
     }
 }
@@ -126,6 +149,12 @@ fn trace_refuses_non_portable_arithmetic() {
     assert!(refused(|x| x / Tf::c(3.0)), "division by a literal");
     assert!(refused(|x| Tf::c(2.0) / x), "literal numerator");
     assert!(refused(|_| Tf::c(2.0) * Tf::c(3.0)), "constant expression");
-    assert!(refused(|x| x * Tf::c(3.0) * Tf::c(5.0)), "literal multiply chain");
-    assert!(!refused(|x| x * Tf::c(1.0 / 3.0)), "reciprocal multiply is the allowed form");
+    assert!(
+        refused(|x| x * Tf::c(3.0) * Tf::c(5.0)),
+        "literal multiply chain"
+    );
+    assert!(
+        !refused(|x| x * Tf::c(1.0 / 3.0)),
+        "reciprocal multiply is the allowed form"
+    );
 }

@@ -7,7 +7,9 @@ use unitpack::model::{V2, V3};
 #[test]
 fn unpack_forms_agree_on_every_rgb8_texel() {
     for t in 0u32..1 << 24 {
-        let u = V3::new(t & 255, (t >> 8) & 255, t >> 16).to_array().map(|b| b as f32 / 255.0);
+        let u = V3::new(t & 255, (t >> 8) & 255, t >> 16)
+            .to_array()
+            .map(|b| b as f32 / 255.0);
         let u = V3::from_array(u);
         let (a, b) = (from_unorm8x3(u), from_unorm8x3_int(u));
         assert_eq!(
@@ -25,7 +27,11 @@ fn pack_forms_agree_on_every_snorm12_pair() {
         for y in -2048..2048 {
             let f = V2::new(val(x), val(y));
             let (a, b) = (to_unorm8x3(f), to_unorm8x3_int(f));
-            assert_eq!(a.to_array().map(f32::to_bits), b.to_array().map(f32::to_bits), "codes ({x}, {y})");
+            assert_eq!(
+                a.to_array().map(f32::to_bits),
+                b.to_array().map(f32::to_bits),
+                "codes ({x}, {y})"
+            );
         }
     }
 }
@@ -35,7 +41,9 @@ fn pack_then_unpack_is_identity_on_codes() {
     for x in (-2047..=2047).step_by(7) {
         for y in (-2047..=2047).step_by(5) {
             let f = V2::new(x as f32 / 2047.0, y as f32 / 2047.0);
-            let u = to_unorm8x3_int(f).to_array().map(|b| (b * 255.0).round() / 255.0);
+            let u = to_unorm8x3_int(f)
+                .to_array()
+                .map(|b| (b * 255.0).round() / 255.0);
             let back = from_unorm8x3(V3::from_array(u));
             assert_eq!((back.x * 2047.0).round() as i32, x);
             assert_eq!((back.y * 2047.0).round() as i32, y);

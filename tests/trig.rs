@@ -17,7 +17,10 @@ fn atan2_pi_error_is_within_the_stated_bound() {
         }
     }
     println!("atan2_pi max error {worst:e}");
-    assert!(worst <= ATAN2_PI_MAX_ERROR, "atan2_pi max error {worst:e} > {ATAN2_PI_MAX_ERROR:e}");
+    assert!(
+        worst <= ATAN2_PI_MAX_ERROR,
+        "atan2_pi max error {worst:e} > {ATAN2_PI_MAX_ERROR:e}"
+    );
     assert_eq!(atan2_pi(0.0f32, 0.0), 0.0);
     assert_eq!(atan2_pi(0.0f32, -1.0), 1.0);
 }
@@ -29,8 +32,13 @@ fn sincos_pi_error_is_within_the_stated_bound() {
         let t = (i as f32 / 100_000.0) - 1.0;
         let sc = sincos_pi(t);
         let a = t as f64 * PI;
-        worst = worst.max((sc.x as f64 - a.sin()).abs()).max((sc.y as f64 - a.cos()).abs());
+        worst = worst
+            .max((sc.x as f64 - a.sin()).abs())
+            .max((sc.y as f64 - a.cos()).abs());
     }
     println!("sincos_pi max error {worst:e}");
-    assert!(worst <= SINCOS_PI_MAX_ERROR, "sincos_pi max error {worst:e} > {SINCOS_PI_MAX_ERROR:e}");
+    assert!(
+        worst <= SINCOS_PI_MAX_ERROR,
+        "sincos_pi max error {worst:e} > {SINCOS_PI_MAX_ERROR:e}"
+    );
 }

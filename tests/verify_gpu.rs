@@ -12,8 +12,14 @@ fn every_function_is_bit_exact_on_every_path() {
         .unwrap_or_else(|e| panic!("cannot verify: {e:#}"));
     let table = report.table();
     println!("{table}");
-    assert!(report.rows.len() > 1000, "every spec × function × path is checked");
-    assert!(report.all_passed(), "mismatches or compile errors:\n{table}");
+    assert!(
+        report.rows.len() > 1000,
+        "every spec × function × path is checked"
+    );
+    assert!(
+        report.all_passed(),
+        "mismatches or compile errors:\n{table}"
+    );
 }
 
 /// The CPU library is the model the GPU was compared with.

@@ -13,7 +13,9 @@ pub const DOC_SAMPLES: usize = 1 << 16;
 
 /// Error statistics of every spec, measured in parallel (deterministic: fixed seed).
 pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(specs.len().max(1));
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(specs.len().max(1));
     let mut out = vec![None; specs.len()];
     std::thread::scope(|s| {
         let chunks: Vec<_> = out
@@ -34,10 +36,22 @@ pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
     out
 }
 
+/// The include for `specs` (duplicates dropped: one name, one definition).
 pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {
+    let mut unique: Vec<Spec> = Vec::new();
+    for s in specs {
+        if !unique.iter().any(|u| u.id() == s.id()) {
+            unique.push(s.clone());
+        }
+    }
+    let specs = &unique[..];
     let stats = stats_for(specs);
     let ids: Vec<String> = specs.iter().map(|s| s.display_name()).collect();
-    let prefix_arg = if prefix == DEFAULT_PREFIX { String::new() } else { format!(" --prefix {prefix}") };
+    let prefix_arg = if prefix == DEFAULT_PREFIX {
+        String::new()
+    } else {
+        format!(" --prefix {prefix}")
+    };
     let cmd = format!("unitpack gen {} --lang {lang}{prefix_arg}", ids.join(" "));
     let pairs: Vec<_> = specs.iter().cloned().zip(stats).collect();
     render(&pairs, lang, prefix, &cmd)
@@ -50,10 +64,28 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot write {}: cannot create a file in {}", path.display(), dir.display()))?;
-    tmp.write_all(bytes).with_context(|| format!("cannot write {}", path.display()))?;
-    tmp.persist(path).map_err(|e| e.error).with_context(|| format!("cannot write {}", path.display()))?;
+    let mut tmp = tempfile::NamedTempFile::new_in(dir).with_context(|| {
+        format!(
+            "cannot write {}: cannot create a file in {}",
+            path.display(),
+            dir.display()
+        )
+    })?;
+    tmp.write_all(bytes)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    // Temporary files are private (0600); give the result the old file's mode, or the
+    // usual 0644 for a new one.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode() & 0o7777);
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(mode))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    tmp.persist(path)
+        .map_err(|e| e.error)
+        .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }
 
@@ -64,9 +96,15 @@ pub fn catalogue_files() -> Vec<(PathBuf, String)> {
     let mut files = Vec::new();
     for lang in Lang::ALL {
         for (spec, st) in specs.iter().zip(&stats) {
-            let cmd = format!("unitpack generate  (or: unitpack gen {} --lang {lang})", spec.display_name());
+            let cmd = format!(
+                "unitpack generate  (or: unitpack gen {} --lang {lang})",
+                spec.display_name()
+            );
             let text = render(&[(spec.clone(), *st)], lang, DEFAULT_PREFIX, &cmd);
-            files.push((PathBuf::from(lang.ext()).join(format!("{}.{}", spec.id(), lang.ext())), text));
+            files.push((
+                PathBuf::from(lang.ext()).join(format!("{}.{}", spec.id(), lang.ext())),
+                text,
+            ));
         }
     }
     files
@@ -81,11 +119,16 @@ pub fn generate(out: &Path, check: bool) -> Result<i32> {
             match std::fs::read_to_string(&p) {
                 Ok(cur) if cur == *text => {}
                 Ok(_) => stale.push(format!("changed: {}", p.display())),
-                Err(_) => stale.push(format!("missing: {}", p.display())),
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                    stale.push(format!("missing: {}", p.display()))
+                }
+                Err(e) => stale.push(format!("unreadable: {} ({e})", p.display())),
             }
         }
         for lang in Lang::ALL {
-            let Ok(rd) = std::fs::read_dir(out.join(lang.ext())) else { continue };
+            let Ok(rd) = std::fs::read_dir(out.join(lang.ext())) else {
+                continue;
+            };
             for e in rd.flatten() {
                 let rel = PathBuf::from(lang.ext()).join(e.file_name());
                 if !files.iter().any(|(r, _)| *r == rel) {
@@ -100,7 +143,11 @@ pub fn generate(out: &Path, check: bool) -> Result<i32> {
         for s in &stale {
             println!("{s}");
         }
-        println!("{} of {} generated files are out of date; run `unitpack generate`", stale.len(), files.len());
+        println!(
+            "{} of {} generated files are out of date; run `unitpack generate`",
+            stale.len(),
+            files.len()
+        );
         return Ok(1);
     }
     for lang in Lang::ALL {

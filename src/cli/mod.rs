@@ -12,7 +12,11 @@ use std::path::PathBuf;
 pub use generate::{gen_text, generate, write_atomic};
 
 #[derive(Parser)]
-#[command(name = "unitpack", version, about = "Compact unit-vector (normal) codecs for WGSL, GLSL and HLSL, bit-exact with a Rust model")]
+#[command(
+    name = "unitpack",
+    version,
+    about = "Compact unit-vector (normal) codecs for WGSL, GLSL and HLSL, bit-exact with a Rust model"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -47,13 +51,9 @@ pub enum Command {
         check: bool,
     },
     /// Encode vectors read from stdin (`x y z` per line) to hex codes, one per line.
-    Encode {
-        spec: String,
-    },
+    Encode { spec: String },
     /// Decode hex codes read from stdin (one per line) to `x y z` lines.
-    Decode {
-        spec: String,
-    },
+    Decode { spec: String },
     /// Prove emitted code bit-exact: static checks (naga, glslang, spirv-val) and
     /// execution on the Vulkan CPU adapter (lavapipe), compared as raw bits with the model.
     Verify {
@@ -66,7 +66,10 @@ pub enum Command {
 }
 
 pub fn parse_specs(specs: &[String]) -> Result<Vec<Spec>> {
-    specs.iter().map(|s| s.parse::<Spec>().map_err(anyhow::Error::from)).collect()
+    specs
+        .iter()
+        .map(|s| s.parse::<Spec>().map_err(anyhow::Error::from))
+        .collect()
 }
 
 pub fn run(cli: Cli) -> Result<i32> {
@@ -75,7 +78,12 @@ pub fn run(cli: Cli) -> Result<i32> {
             print!("{}", list_text());
             Ok(0)
         }
-        Command::Gen { specs, lang, prefix, out } => {
+        Command::Gen {
+            specs,
+            lang,
+            prefix,
+            out,
+        } => {
             validate_prefix(&prefix).map_err(anyhow::Error::msg)?;
             let specs = parse_specs(&specs)?;
             let text = generate::gen_text(&specs, lang, &prefix);
@@ -95,9 +103,18 @@ pub fn run(cli: Cli) -> Result<i32> {
             stream::run(&spec, false)
         }
         Command::Verify { specs, lang } => {
-            let specs = if specs.is_empty() { Spec::all() } else { parse_specs(&specs)? };
-            let langs = if lang.is_empty() { Lang::ALL.to_vec() } else { lang };
-            let report = crate::verify::run(&specs, &langs, true).context("verification could not run")?;
+            let specs = if specs.is_empty() {
+                Spec::all()
+            } else {
+                parse_specs(&specs)?
+            };
+            let langs = if lang.is_empty() {
+                Lang::ALL.to_vec()
+            } else {
+                lang
+            };
+            let report =
+                crate::verify::run(&specs, &langs, true).context("verification could not run")?;
             print!("{}", report.table());
             Ok(if report.all_passed() { 0 } else { 1 })
         }
@@ -106,18 +123,26 @@ pub fn run(cli: Cli) -> Result<i32> {
 
 /// The `list` table.
 pub fn list_text() -> String {
-    let mut s = format!("{:<14} {:<18} {:<11} {:<8} {}\n", "codec", "bits", "domain", "precise", "source");
+    let mut s = format!(
+        "{:<14} {:<18} {:<11} {:<8} {}\n",
+        "codec", "bits", "domain", "precise", "source"
+    );
     for c in CATALOGUE {
         let bits = if c.bits.is_empty() {
             "-".to_string()
-        } else if c.name == "snorm3" {
-            "24, 30, 48".to_string()
         } else {
-            c.bits.iter().map(|b| b.to_string()).collect::<Vec<_>>().join(", ")
+            c.bits
+                .iter()
+                .map(|b| b.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
         };
         let domain = c.domain.map_or("-", |d| d.name());
         let precise = if c.precise { "yes" } else { "no" };
-        s.push_str(&format!("{:<14} {:<18} {:<11} {:<8} {}\n", c.name, bits, domain, precise, c.source));
+        s.push_str(&format!(
+            "{:<14} {:<18} {:<11} {:<8} {}\n",
+            c.name, bits, domain, precise, c.source
+        ));
         s.push_str(&format!("{:<14} {}\n", "", c.title));
         if !c.options.is_empty() {
             s.push_str(&format!("{:<14} options: {}\n", "", c.options));

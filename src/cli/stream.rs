@@ -14,12 +14,16 @@ fn parse_vector(line: &str) -> Option<[f32; 3]> {
 
 fn parse_code(line: &str, words: usize) -> Option<Vec<u32>> {
     let t = line.trim();
-    let t = t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")).unwrap_or(t);
+    let t = t
+        .strip_prefix("0x")
+        .or_else(|| t.strip_prefix("0X"))
+        .unwrap_or(t);
     let v = u64::from_str_radix(t, 16).ok()?;
     if words == 1 {
         Some(vec![u32::try_from(v).ok()?])
     } else {
-        Some(vec![v as u32, (v >> 32) as u32])
+        // Two-word codes hold 48 bits (snorm16×3).
+        (v >> 48 == 0).then(|| vec![v as u32, (v >> 32) as u32])
     }
 }
 
@@ -34,11 +38,18 @@ fn format_code(w: &[u32]) -> String {
 /// Runs the codec over `input`, returning all output lines or the first bad line's error.
 pub fn transform(spec: &Spec, encode: bool, input: &str) -> Result<String> {
     if spec.codec.domain.is_none() {
-        bail!("{} is a packing helper, not a codec: it has no encode/decode", spec.id());
+        bail!(
+            "{} is a packing helper, not a codec: it has no encode/decode",
+            spec.id()
+        );
     }
     let e = spec.emitted();
     let role = if encode { Role::Encode } else { Role::Decode };
-    let f: &Function = e.functions.iter().find(|f| f.role == role).expect("codec function");
+    let f: &Function = e
+        .functions
+        .iter()
+        .find(|f| f.role == role)
+        .expect("codec function");
     let mut out = String::new();
     let mut res = vec![0u32; f.out_words];
     for (n, line) in input.lines().enumerate() {
@@ -47,17 +58,26 @@ pub fn transform(spec: &Spec, encode: bool, input: &str) -> Result<String> {
         }
         if encode {
             let Some(v) = parse_vector(line) else {
-                bail!("line {}: expected three numbers `x y z`, got {line:?}", n + 1);
+                bail!(
+                    "line {}: expected three numbers `x y z`, got {line:?}",
+                    n + 1
+                );
             };
             (f.eval)(&v.map(f32::to_bits), &mut res);
             out.push_str(&format_code(&res));
         } else {
             let Some(code) = parse_code(line, f.in_words) else {
-                let max = if f.in_words == 1 { "8" } else { "16" };
-                bail!("line {}: expected a hex code of at most {max} digits, got {line:?}", n + 1);
+                let max = if f.in_words == 1 { "8" } else { "12" };
+                bail!(
+                    "line {}: expected a hex code of at most {max} digits, got {line:?}",
+                    n + 1
+                );
             };
             (f.eval)(&code, &mut res);
-            let v = res.iter().map(|b| format!("{:?}", f32::from_bits(*b))).collect::<Vec<_>>();
+            let v = res
+                .iter()
+                .map(|b| format!("{:?}", f32::from_bits(*b)))
+                .collect::<Vec<_>>();
             out.push_str(&v.join(" "));
         }
         out.push('\n');

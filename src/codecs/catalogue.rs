@@ -136,15 +136,35 @@ pub struct Spec {
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SpecError {
     #[error("unknown codec '{given}'; did you mean {}? Valid codecs: {}", .nearest.join(" or "), .valid.join(", "))]
-    UnknownCodec { given: String, nearest: Vec<String>, valid: Vec<String> },
+    UnknownCodec {
+        given: String,
+        nearest: Vec<String>,
+        valid: Vec<String>,
+    },
     #[error("{codec} has no {bits}-bit form; allowed sizes: {}", fmt_list(.allowed))]
-    InvalidBits { codec: &'static str, bits: String, allowed: Vec<String> },
+    InvalidBits {
+        codec: &'static str,
+        bits: String,
+        allowed: Vec<String>,
+    },
+    #[error(
+        "snorm3 is spelled by component size: snorm8x3, snorm10x3 or snorm16x3 (got '{given}')"
+    )]
+    Snorm3Size { given: String },
     #[error("{codec} has no precise encoder")]
     NoPrecise { codec: &'static str },
     #[error("{codec} takes no option '{key}'; options: {options}")]
-    UnknownOption { codec: &'static str, key: String, options: &'static str },
+    UnknownOption {
+        codec: &'static str,
+        key: String,
+        options: &'static str,
+    },
     #[error("bad value '{value}' for {key}: {why}")]
-    BadValue { key: String, value: String, why: &'static str },
+    BadValue {
+        key: String,
+        value: String,
+        why: &'static str,
+    },
 }
 
 fn fmt_list(v: &[String]) -> String {
@@ -170,7 +190,10 @@ impl Spec {
                 }
                 if c.name == "oct" && b == 24 {
                     for precise in [false, true] {
-                        out.push(Spec { layout: Layout::Rgb8, ..Spec::new(c, b, precise) });
+                        out.push(Spec {
+                            layout: Layout::Rgb8,
+                            ..Spec::new(c, b, precise)
+                        });
                     }
                 }
             }
@@ -179,7 +202,13 @@ impl Spec {
     }
 
     fn new(codec: &'static CodecDesc, bits: u32, precise: bool) -> Spec {
-        Spec { codec, bits, precise, layout: Layout::Snorm, scale: DEFAULT_SCALE }
+        Spec {
+            codec,
+            bits,
+            precise,
+            layout: Layout::Snorm,
+            scale: DEFAULT_SCALE,
+        }
     }
 
     /// The identifier used in file and function names, e.g. `oct24p_rgb8`.
@@ -190,8 +219,18 @@ impl Spec {
             n => format!("{n}{}", self.bits),
         };
         let p = if self.precise { "p" } else { "" };
-        let layout = if self.layout == Layout::Rgb8 { "_rgb8" } else { "" };
-        format!("{base}{p}{layout}")
+        let layout = if self.layout == Layout::Rgb8 {
+            "_rgb8"
+        } else {
+            ""
+        };
+        // A non-default scale is part of the name, so two scales can share one include.
+        let scale = if self.codec.name == "stereo_scaled" && self.scale != DEFAULT_SCALE {
+            format!("_scale{}", self.scale.to_string().replace(['.', '-'], "_"))
+        } else {
+            String::new()
+        };
+        format!("{base}{p}{layout}{scale}")
     }
 
     /// The id plus any non-default option, for display.
@@ -207,7 +246,8 @@ impl Spec {
 impl PartialEq for Spec {
     fn eq(&self, o: &Spec) -> bool {
         std::ptr::eq(self.codec, o.codec)
-            && (self.bits, self.precise, self.layout, self.scale) == (o.bits, o.precise, o.layout, o.scale)
+            && (self.bits, self.precise, self.layout, self.scale)
+                == (o.bits, o.precise, o.layout, o.scale)
     }
 }
 
@@ -219,7 +259,11 @@ impl fmt::Display for Spec {
 
 /// Every spelling a user can type for a codec name, for suggestions.
 fn valid_names() -> Vec<String> {
-    let mut v: Vec<String> = CATALOGUE.iter().map(|c| c.name.to_string()).collect();
+    let mut v: Vec<String> = CATALOGUE
+        .iter()
+        .filter(|c| c.name != "snorm3")
+        .map(|c| c.name.to_string())
+        .collect();
     v.extend(["snorm8x3", "snorm10x3", "snorm16x3"].map(String::from));
     v
 }
@@ -233,12 +277,20 @@ impl std::str::FromStr for Spec {
         };
         let head_lc = head.to_ascii_lowercase();
         let mut spec = parse_head(&head_lc)?;
-        for kv in opts.into_iter().flat_map(|o| o.split(',')).filter(|kv| !kv.is_empty()) {
+        for kv in opts
+            .into_iter()
+            .flat_map(|o| o.split(','))
+            .filter(|kv| !kv.is_empty())
+        {
             let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
             let unknown = || SpecError::UnknownOption {
                 codec: spec.codec.name,
                 key: k.to_string(),
-                options: if spec.codec.options.is_empty() { "none" } else { spec.codec.options },
+                options: if spec.codec.options.is_empty() {
+                    "none"
+                } else {
+                    spec.codec.options
+                },
             };
             match (spec.codec.name, k) {
                 ("stereo_scaled", "scale") => {
@@ -284,41 +336,58 @@ impl std::str::FromStr for Spec {
 }
 
 fn parse_head(head: &str) -> Result<Spec, SpecError> {
+    let (body, precise) = match head.strip_suffix('p') {
+        Some(b) if b.ends_with(|c: char| c.is_ascii_digit()) => (b, true),
+        _ => (head, false),
+    };
     // snorm3 is spelled by component size, as in the survey: snorm8x3.
-    if let Some(rest) = head.strip_prefix("snorm")
-        && let Some(b) = rest.strip_suffix("x3")
-    {
+    if body == "snorm3" || (body.starts_with("snorm") && body.ends_with("x3")) {
         let c = desc("snorm3");
-        return match b.parse::<u32>() {
-            Ok(n) if c.bits.contains(&(n * 3)) => Ok(Spec::new(c, n * 3, false)),
-            _ => Err(SpecError::InvalidBits {
-                codec: "snorm3",
-                bits: format!("{b} per component"),
-                allowed: vec!["snorm8x3".into(), "snorm10x3".into(), "snorm16x3".into()],
+        let per = body
+            .strip_prefix("snorm")
+            .and_then(|r| r.strip_suffix("x3"));
+        return match per.and_then(|b| b.parse::<u32>().ok()) {
+            Some(n) if c.bits.contains(&(n * 3)) && !precise => Ok(Spec::new(c, n * 3, false)),
+            Some(n) if c.bits.contains(&(n * 3)) => Err(SpecError::NoPrecise { codec: c.name }),
+            _ => Err(SpecError::Snorm3Size {
+                given: head.to_string(),
             }),
         };
     }
-    let name_end = head.find(|c: char| c.is_ascii_digit()).unwrap_or(head.len());
-    let (name, rest) = head.split_at(name_end);
-    let name = if name == "snorm" && rest == "12x2" { "snorm12x2" } else { name };
-    let Some(c) = CATALOGUE.iter().find(|c| c.name == name) else {
-        return Err(unknown_codec(head));
-    };
-    if c.bits.is_empty() {
-        return Ok(Spec::new(c, 0, false));
+    if body == "snorm12x2" {
+        let c = desc("snorm12x2");
+        return if precise {
+            Err(SpecError::NoPrecise { codec: c.name })
+        } else {
+            Ok(Spec::new(c, 0, false))
+        };
     }
-    let (digits, precise) = match rest.strip_suffix('p') {
-        Some(d) => (d, true),
-        None => (rest, false),
+    let name_end = body
+        .find(|c: char| c.is_ascii_digit())
+        .unwrap_or(body.len());
+    let (name, digits) = body.split_at(name_end);
+    let Some(c) = CATALOGUE
+        .iter()
+        .find(|c| c.name == name && !c.bits.is_empty())
+    else {
+        return Err(unknown_codec(head));
     };
     let allowed = || c.bits.iter().map(|b| b.to_string()).collect::<Vec<_>>();
     let bits: u32 = digits.parse().map_err(|_| SpecError::InvalidBits {
         codec: c.name,
-        bits: if digits.is_empty() { "unspecified".into() } else { digits.into() },
+        bits: if digits.is_empty() {
+            "unspecified".into()
+        } else {
+            digits.into()
+        },
         allowed: allowed(),
     })?;
     if !c.bits.contains(&bits) {
-        return Err(SpecError::InvalidBits { codec: c.name, bits: bits.to_string(), allowed: allowed() });
+        return Err(SpecError::InvalidBits {
+            codec: c.name,
+            bits: bits.to_string(),
+            allowed: allowed(),
+        });
     }
     if precise && !c.precise {
         return Err(SpecError::NoPrecise { codec: c.name });
@@ -326,15 +395,32 @@ fn parse_head(head: &str) -> Result<Spec, SpecError> {
     Ok(Spec::new(c, bits, precise))
 }
 
+/// Suggestions: names sharing a prefix with what was typed first, then by edit distance.
 fn unknown_codec(given: &str) -> SpecError {
     let name: String = given.chars().take_while(|c| !c.is_ascii_digit()).collect();
+    let key = |v: &String| {
+        let related =
+            v.starts_with(name.as_str()) || (!name.is_empty() && name.starts_with(v.as_str()));
+        (!related, strsim::levenshtein(&name, v))
+    };
     let mut valid = valid_names();
-    valid.sort_by_key(|v| (strsim::levenshtein(&name, v), v.clone()));
-    let best = strsim::levenshtein(&name, &valid[0]);
-    let nearest = valid.iter().take_while(|v| strsim::levenshtein(&name, v) == best).cloned().collect();
-    SpecError::UnknownCodec { given: given.to_string(), nearest, valid }
+    valid.sort_by_key(|v| (key(v), v.clone()));
+    let best = key(&valid[0]);
+    let nearest = valid
+        .iter()
+        .take_while(|v| key(v) == best)
+        .cloned()
+        .collect();
+    SpecError::UnknownCodec {
+        given: given.to_string(),
+        nearest,
+        valid,
+    }
 }
 
 pub fn desc(name: &str) -> &'static CodecDesc {
-    CATALOGUE.iter().find(|c| c.name == name).expect("catalogue name")
+    CATALOGUE
+        .iter()
+        .find(|c| c.name == name)
+        .expect("catalogue name")
 }

@@ -79,9 +79,9 @@ pub trait Codec: Send + Sync {
         })
     }
     /// Direction → parameters in storage range, before quantization.
-    fn to_params<F: Float>(&self, v: V3<F>) -> Self::P<F>;
+    fn params<F: Float>(&self, v: V3<F>) -> Self::P<F>;
     /// Parameters in storage range → direction.
-    fn from_params<F: Float>(&self, p: Self::P<F>) -> V3<F>;
+    fn direction<F: Float>(&self, p: Self::P<F>) -> V3<F>;
     /// Integer codes chosen by the precise encoder: [`precise_search`] through this
     /// codec's own `decode_float`.
     fn precise_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
@@ -101,17 +101,21 @@ pub fn precise_search<F: Float, C: Codec + ?Sized>(
 ) -> C::P<F> {
     let q = codec.quants();
     let u = codec.target(v).named("dir");
-    let p = codec.to_params(u);
+    let p = codec.params(u);
     let base = C::P::<F>::build(|i| q[i].floor_code(p.lane(i))).named_p("base");
     let decode = |c: C::P<F>| {
         let params = dequantize(&q, c);
-        F::call(decode_name, params, |p| codec.from_params(p))
+        F::call(decode_name, params, |p| codec.direction(p))
     };
     let mut best = base;
     let mut best_d = distance2(decode(base), u).named("best_d");
     for k in 1..(1usize << C::P::<F>::N) {
         let cand = C::P::<F>::build(|i| {
-            let step = if k >> i & 1 == 1 { base.lane(i) + F::c(1.0) } else { base.lane(i) };
+            let step = if k >> i & 1 == 1 {
+                base.lane(i) + F::c(1.0)
+            } else {
+                base.lane(i)
+            };
             q[i].clamp_code(step)
         })
         .named_p("cand");
@@ -179,7 +183,11 @@ pub fn unpack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], code: C) -> P {
         let (w, sh) = ((offs[i] / 32) as usize, offs[i] % 32);
         let word = code.word(w);
         let shifted = if sh == 0 { word } else { word.shr(sh) };
-        let field = if sh + q[i].bits() == 32 { shifted } else { shifted & F::U::c(q[i].mask()) };
+        let field = if sh + q[i].bits() == 32 {
+            shifted
+        } else {
+            shifted & F::U::c(q[i].mask())
+        };
         q[i].from_field(field)
     })
 }

@@ -85,6 +85,9 @@ pub enum Role {
     Unpack,
 }
 
+/// The `f32` model of a function on raw words: one item in, one item out.
+pub type Eval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
+
 /// One emitted function.
 #[derive(Clone)]
 pub struct Function {
@@ -95,7 +98,7 @@ pub struct Function {
     pub in_words: usize,
     pub out_words: usize,
     /// The `f32` model on raw bits: one item of `in_words` in, `out_words` out.
-    pub eval: Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>,
+    pub eval: Eval,
 }
 
 fn function<A: Bits + 'static, R: Bits + 'static>(
@@ -134,7 +137,10 @@ impl Spec {
             ("snorm3", b) => s.codec_fns(Snorm3::<OneWord>::new(b / 3)),
             ("spherical", b) => s.codec_fns(Spherical { bits: b }),
             ("lambert", b) => s.codec_fns(Lambert { bits: b }),
-            ("stereo_scaled", b) => s.codec_fns(StereoScaled { bits: b, scale: self.scale }),
+            ("stereo_scaled", b) => s.codec_fns(StereoScaled {
+                bits: b,
+                scale: self.scale,
+            }),
             ("xy", b) => s.codec_fns(Xy { bits: b }),
             ("snorm12x2", _) => pack12_fns(),
             (n, _) => unreachable!("catalogue codec {n} has no implementation"),
@@ -152,43 +158,69 @@ impl Spec {
         let (c1, c2, c3, c4) = (c.clone(), c.clone(), c.clone(), c.clone());
         let (q1, q2) = (q, q);
         let functions = vec![
-            function("decode_float", Role::DecodeFloat, Inputs::FloatCodes(q.to_vec()), move |p| {
-                c1.from_params(p)
-            }),
-            function("decode", Role::Decode, Inputs::Codes(q.to_vec()), move |code: C::C<f32>| {
-                c2.from_params(dequantize(&q1, unpack::<f32, C::P<f32>, _>(&q1, code)))
-            }),
-            function("encode_float", Role::EncodeFloat, Inputs::Vectors, move |v: V3<f32>| {
-                encode_float(&c3, precise, v)
-            }),
-            function("encode", Role::Encode, Inputs::Vectors, move |v: V3<f32>| {
-                pack::<f32, _, C::C<f32>>(&q2, encode_codes(&c4, precise, v))
-            }),
+            function(
+                "decode_float",
+                Role::DecodeFloat,
+                Inputs::FloatCodes(q.to_vec()),
+                move |p| c1.direction(p),
+            ),
+            function(
+                "decode",
+                Role::Decode,
+                Inputs::Codes(q.to_vec()),
+                move |code: C::C<f32>| {
+                    c2.direction(dequantize(&q1, unpack::<f32, C::P<f32>, _>(&q1, code)))
+                },
+            ),
+            function(
+                "encode_float",
+                Role::EncodeFloat,
+                Inputs::Vectors,
+                move |v: V3<f32>| encode_float(&c3, precise, v),
+            ),
+            function(
+                "encode",
+                Role::Encode,
+                Inputs::Vectors,
+                move |v: V3<f32>| pack::<f32, _, C::C<f32>>(&q2, encode_codes(&c4, precise, v)),
+            ),
         ];
-        Emitted { module, functions, namespace: self.id() }
+        Emitted {
+            module,
+            functions,
+            namespace: self.id(),
+        }
     }
 }
 
 /// Integer codes of an encoder: nearest codes (fast) or the precise search.
 pub fn encode_codes<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
-    if precise { c.precise_codes(v) } else { quantize(&c.quants(), c.to_params(v)) }
+    if precise {
+        c.precise_codes(v)
+    } else {
+        quantize(&c.quants(), c.params(v))
+    }
 }
 
 /// Float-form encoder output: the exact parameters for the hardware to round (fast), or
 /// the chosen codes' values (precise), which the hardware's rounding keeps.
 pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
-    if precise { dequantize(&c.quants(), c.precise_codes(v)) } else { c.to_params(v) }
+    if precise {
+        dequantize(&c.quants(), c.precise_codes(v))
+    } else {
+        c.params(v)
+    }
 }
 
 /// Traces the four public functions, decoders first so that encoders calling them find
 /// them with their parameter names.
 fn trace_codec<C: Codec>(c: &C, precise: bool) {
     let q = c.quants();
-    define("decode_float", &["params"], |p: C::P<Tf>| c.from_params(p));
+    define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
     define("decode", &["code"], |code: C::C<Tf>| {
         let codes: C::P<_> = unpack(&q, code);
         let p = dequantize(&q, codes).named_p("params");
-        Tf::call("decode_float", p, |p| c.from_params(p))
+        Tf::call("decode_float", p, |p| c.direction(p))
     });
     if precise {
         define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
@@ -201,9 +233,9 @@ fn trace_codec<C: Codec>(c: &C, precise: bool) {
             pack::<_, _, C::C<_>>(&q, codes)
         });
     } else {
-        define("encode_float", &["v"], |v: V3<Tf>| c.to_params(v));
+        define("encode_float", &["v"], |v: V3<Tf>| c.params(v));
         define("encode", &["v"], |v: V3<Tf>| {
-            let p = Tf::call("encode_float", v, |v| c.to_params(v));
+            let p = Tf::call("encode_float", v, |v| c.params(v));
             let codes = quantize(&q, p).named_p("codes");
             pack::<_, _, C::C<_>>(&q, codes)
         });
@@ -212,27 +244,50 @@ fn trace_codec<C: Codec>(c: &C, precise: bool) {
 
 fn pack12_fns() -> Emitted {
     let module = trace_module(|| {
-        define("snorm12x2_to_unorm8x3", &["f"], |f: V2<Tf>| pack12::to_unorm8x3(f));
-        define("snorm12x2_to_unorm8x3_int", &["f"], |f: V2<Tf>| pack12::to_unorm8x3_int(f));
-        define("unorm8x3_to_snorm12x2", &["u"], |u: V3<Tf>| pack12::from_unorm8x3(u));
-        define("unorm8x3_to_snorm12x2_int", &["u"], |u: V3<Tf>| pack12::from_unorm8x3_int(u));
+        define("snorm12x2_to_unorm8x3", &["f"], |f: V2<Tf>| {
+            pack12::to_unorm8x3(f)
+        });
+        define("snorm12x2_to_unorm8x3_int", &["f"], |f: V2<Tf>| {
+            pack12::to_unorm8x3_int(f)
+        });
+        define("unorm8x3_to_snorm12x2", &["u"], |u: V3<Tf>| {
+            pack12::from_unorm8x3(u)
+        });
+        define("unorm8x3_to_snorm12x2_int", &["u"], |u: V3<Tf>| {
+            pack12::from_unorm8x3_int(u)
+        });
     });
     let s12 = vec![Quant::Snorm(12); 2];
     let u8s = vec![Quant::Unorm(8); 3];
     let functions = vec![
-        function("snorm12x2_to_unorm8x3", Role::Pack, Inputs::FloatCodes(s12.clone()), |f: V2<f32>| {
-            pack12::to_unorm8x3(f)
-        }),
-        function("snorm12x2_to_unorm8x3_int", Role::Pack, Inputs::FloatCodes(s12), |f: V2<f32>| {
-            pack12::to_unorm8x3_int(f)
-        }),
-        function("unorm8x3_to_snorm12x2", Role::Unpack, Inputs::FloatCodes(u8s.clone()), |u: V3<f32>| {
-            pack12::from_unorm8x3(u)
-        }),
-        function("unorm8x3_to_snorm12x2_int", Role::Unpack, Inputs::FloatCodes(u8s), |u: V3<f32>| {
-            pack12::from_unorm8x3_int(u)
-        }),
+        function(
+            "snorm12x2_to_unorm8x3",
+            Role::Pack,
+            Inputs::FloatCodes(s12.clone()),
+            |f: V2<f32>| pack12::to_unorm8x3(f),
+        ),
+        function(
+            "snorm12x2_to_unorm8x3_int",
+            Role::Pack,
+            Inputs::FloatCodes(s12),
+            |f: V2<f32>| pack12::to_unorm8x3_int(f),
+        ),
+        function(
+            "unorm8x3_to_snorm12x2",
+            Role::Unpack,
+            Inputs::FloatCodes(u8s.clone()),
+            |u: V3<f32>| pack12::from_unorm8x3(u),
+        ),
+        function(
+            "unorm8x3_to_snorm12x2_int",
+            Role::Unpack,
+            Inputs::FloatCodes(u8s),
+            |u: V3<f32>| pack12::from_unorm8x3_int(u),
+        ),
     ];
-    Emitted { module, functions, namespace: String::new() }
+    Emitted {
+        module,
+        functions,
+        namespace: String::new(),
+    }
 }
-

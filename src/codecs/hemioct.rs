@@ -21,7 +21,7 @@ impl Codec for HemiOct {
     }
     /// Input below the horizon is projected onto it (`z ← max(z, +0)`); zero, NaN or
     /// infinite input encodes as +Z.
-    fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let z = F::sel(v.z.gt(F::c(0.0)), v.z, F::c(0.0));
         let l1 = (v.x.abs() + v.y.abs() + z).named("l1");
         let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX)));
@@ -29,7 +29,7 @@ impl Codec for HemiOct {
         let e = V2::new(p.x + p.y, p.x - p.y);
         V2::sel_all(ok, e, V2::splat(F::c(0.0)))
     }
-    fn from_params<F: Float>(&self, e: V2<F>) -> V3<F> {
+    fn direction<F: Float>(&self, e: V2<F>) -> V3<F> {
         let t = (V2::new(e.x + e.y, e.x - e.y) * F::c(0.5)).named("t");
         let a = t.abs();
         let v = V3::from_xy(t, F::c(1.0) - a.x - a.y).named("v");

@@ -21,7 +21,7 @@ impl Codec for Lambert {
         Domain::Sphere
     }
     /// -Z, which the projection maps onto the whole rim, encodes as (1, 0.5).
-    fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = self.target(v);
         let f = (u.z * F::c(8.0) + F::c(8.0)).sqrt().named("f");
         let enc = u.xy() / f + F::c(0.5);
@@ -29,7 +29,7 @@ impl Codec for Lambert {
     }
     /// Codes outside the disk (the square's corners) decode as -Z; every decode is unit
     /// length up to rounding.
-    fn from_params<F: Float>(&self, enc: V2<F>) -> V3<F> {
+    fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let fenc = (enc * F::c(4.0) - F::c(2.0)).named("fenc");
         let f = fenc.length_squared();
         let f = F::sel(f.le(F::c(4.0)), f, F::c(4.0)).named("f");

@@ -44,10 +44,10 @@ impl Codec for Oct {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
-    fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         oct_params(v)
     }
-    fn from_params<F: Float>(&self, p: V2<F>) -> V3<F> {
+    fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         oct_direction(p)
     }
 }

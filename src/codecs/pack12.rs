@@ -80,11 +80,11 @@ impl Codec for Oct24Rgb8 {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
-    fn to_params<F: Float>(&self, v: V3<F>) -> V3<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let e = oct_params(v).named("e");
         F::call("snorm12x2_to_unorm8x3", e, to_unorm8x3)
     }
-    fn from_params<F: Float>(&self, u: V3<F>) -> V3<F> {
+    fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
         let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
         oct_direction(e)
     }

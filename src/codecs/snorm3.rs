@@ -33,7 +33,10 @@ pub struct Snorm3<W> {
 
 impl<W> Snorm3<W> {
     pub fn new(bits: u32) -> Self {
-        Snorm3 { bits, words: PhantomData }
+        Snorm3 {
+            bits,
+            words: PhantomData,
+        }
     }
 }
 
@@ -46,11 +49,11 @@ impl<W: Words> Codec for Snorm3<W> {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
-    fn to_params<F: Float>(&self, v: V3<F>) -> V3<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         unit_or_z(v)
     }
     /// The all-zero code, the only one with no direction, decodes as +Z.
-    fn from_params<F: Float>(&self, p: V3<F>) -> V3<F> {
+    fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
         let len2 = p.length_squared().named("len2");
         let ok = len2.gt(F::c(0.0));
         let safe = F::sel(ok, len2, F::c(1.0));
@@ -58,4 +61,3 @@ impl<W: Words> Codec for Snorm3<W> {
         V3::sel_all(ok, v, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
     }
 }
-

@@ -22,14 +22,14 @@ impl Codec for Spherical {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
-    fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = self.target(v);
         let rho = u.xy().length_squared().sqrt().named("rho");
         let theta = F::call("atan2_pi", (rho, u.z), |(y, x)| atan2_pi(y, x)).named("theta");
         let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
         V2::new(theta * F::c(2.0) - F::c(1.0), phi)
     }
-    fn from_params<F: Float>(&self, p: V2<F>) -> V3<F> {
+    fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let theta = ((p.x + F::c(1.0)) * F::c(0.5)).named("theta");
         let st = F::call("sincos_pi", theta, sincos_pi).named("st");
         let sp = F::call("sincos_pi", p.y, sincos_pi).named("sp");

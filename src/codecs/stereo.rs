@@ -25,7 +25,7 @@ impl Codec for StereoScaled {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
-    fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = self.target(v);
         let d = (u.z + F::c(1.0)).named("d");
         // `/ scale * 0.5` as one literal: drivers fold literal multiply chains anyway.
@@ -39,7 +39,7 @@ impl Codec for StereoScaled {
     /// map with both numerators computed, so every target divides exactly. `enc·2s - s` is
     /// written `(enc - 0.5)·2s`: after the packed decoder's `c·(1/M)` a second literal
     /// multiply would be folded into one by the driver.
-    fn from_params<F: Float>(&self, enc: V2<F>) -> V3<F> {
+    fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let s = self.scale;
         let p = ((enc - F::c(0.5)) * F::c(2.0 * s)).named("p");
         let q = p.length_squared().named("q");

@@ -24,8 +24,9 @@ fn horner<F: Float>(z: F, coeffs: &[f64]) -> F {
 
 /// atan(z) for |z| ≤ tan(π/8), by its Taylor series through z^19 (truncation < 3·10⁻⁹).
 fn atan_small<F: Float>(z: F) -> F {
-    let coeffs: Vec<f64> =
-        (0..10).map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64).collect();
+    let coeffs: Vec<f64> = (0..10)
+        .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
+        .collect();
     let z2 = (z * z).named("z2");
     z * horner(z2, &coeffs)
 }
@@ -62,10 +63,12 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let c = F::sel(swap, F::c(0.5) - b, b).named("c");
     let c2 = (c * c).named("c2");
     let fact = |n: i32| (1..=n).map(|k| k as f64).product::<f64>();
-    let sin_coeffs: Vec<f64> =
-        (0..5).map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / fact(2 * k + 1)).collect();
-    let cos_coeffs: Vec<f64> =
-        (0..6).map(|k| (-1f64).powi(k) * PI.powi(2 * k) / fact(2 * k)).collect();
+    let sin_coeffs: Vec<f64> = (0..5)
+        .map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / fact(2 * k + 1))
+        .collect();
+    let cos_coeffs: Vec<f64> = (0..6)
+        .map(|k| (-1f64).powi(k) * PI.powi(2 * k) / fact(2 * k))
+        .collect();
     let s = (c * horner(c2, &sin_coeffs)).named("s");
     let co = horner(c2, &cos_coeffs).named("co");
     let sb = F::sel(swap, co, s);

@@ -19,11 +19,11 @@ impl Codec for Xy {
     fn domain(&self) -> Domain {
         Domain::Hemisphere
     }
-    fn to_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.target(v).xy()
     }
     /// Codes outside the unit disk decode to `(x, y, 0)`, which is longer than 1.
-    fn from_params<F: Float>(&self, p: V2<F>) -> V3<F> {
+    fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let d = p.length_squared();
         let d = F::sel(d.lt(F::c(1.0)), d, F::c(1.0)).named("d");
         V3::from_xy(p, (F::c(1.0) - d).sqrt())

@@ -75,7 +75,11 @@ struct HlslFile<'a> {
 /// One spec's functions in `lang`, named `{prefix}{namespace}_{name}`.
 pub fn spec_view(spec: &Spec, lang: Lang, prefix: &str, stats: Option<ErrorStats>) -> SpecView {
     let e = spec.emitted();
-    let ns = if e.namespace.is_empty() { String::new() } else { format!("{}_", e.namespace) };
+    let ns = if e.namespace.is_empty() {
+        String::new()
+    } else {
+        format!("{}_", e.namespace)
+    };
     let full = |local: &str| format!("{prefix}{ns}{local}");
     let functions = e
         .module
@@ -101,13 +105,33 @@ pub fn spec_view(spec: &Spec, lang: Lang, prefix: &str, stats: Option<ErrorStats
 }
 
 /// A complete include file for the given specs.
-pub fn render(specs: &[(Spec, Option<ErrorStats>)], lang: Lang, prefix: &str, command: &str) -> String {
-    let views: Vec<SpecView> = specs.iter().map(|(s, st)| spec_view(s, lang, prefix, *st)).collect();
+pub fn render(
+    specs: &[(Spec, Option<ErrorStats>)],
+    lang: Lang,
+    prefix: &str,
+    command: &str,
+) -> String {
+    let views: Vec<SpecView> = specs
+        .iter()
+        .map(|(s, st)| spec_view(s, lang, prefix, *st))
+        .collect();
     let header = docs::file_header(command);
     let r = match lang {
-        Lang::Wgsl => WgslFile { header: &header, specs: &views }.render(),
-        Lang::Glsl => GlslFile { header: &header, specs: &views }.render(),
-        Lang::Hlsl => HlslFile { header: &header, specs: &views }.render(),
+        Lang::Wgsl => WgslFile {
+            header: &header,
+            specs: &views,
+        }
+        .render(),
+        Lang::Glsl => GlslFile {
+            header: &header,
+            specs: &views,
+        }
+        .render(),
+        Lang::Hlsl => HlslFile {
+            header: &header,
+            specs: &views,
+        }
+        .render(),
     };
     let mut s = r.expect("templates render");
     if !s.ends_with('\n') {
@@ -120,12 +144,13 @@ pub fn render(specs: &[(Spec, Option<ErrorStats>)], lang: Lang, prefix: &str, co
 pub fn validate_prefix(p: &str) -> Result<(), String> {
     let ok = p.chars().next().is_none_or(|c| c.is_ascii_alphabetic())
         && p.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-        && !p.contains("__");
+        && !p.contains("__")
+        && !p.to_ascii_lowercase().starts_with("gl_");
     if ok {
         Ok(())
     } else {
         Err(format!(
-            "invalid prefix '{p}': use ASCII letters, digits and single underscores, starting with a letter (GLSL reserves '__')"
+            "invalid prefix '{p}': use ASCII letters, digits and single underscores, starting with a letter (GLSL reserves '__' and 'gl_')"
         ))
     }
 }

@@ -40,18 +40,23 @@ pub fn ty(lang: Lang, t: Ty) -> String {
     }
 }
 
-
 /// The shortest decimal that reads back as exactly `v`, both directly and through f64
 /// (compilers that parse literals as double and then narrow must land on the same f32).
 pub fn f32_literal(lang: Lang, v: f32) -> String {
-    assert!(v.is_finite(), "non-finite literal {v}: compare against f32::MAX instead");
+    assert!(
+        v.is_finite(),
+        "non-finite literal {v}: compare against f32::MAX instead"
+    );
     let exact = |s: &str| {
         s.parse::<f32>().map(f32::to_bits) == Ok(v.to_bits())
             && s.parse::<f64>().map(|d| (d as f32).to_bits()) == Ok(v.to_bits())
     };
     let mut s = format!("{v:?}");
     if !exact(&s) {
-        s = (9..=17).map(|p| format!("{:.*e}", p - 1, v)).find(|s| exact(s)).expect("f32 round trip");
+        s = (9..=17)
+            .map(|p| format!("{:.*e}", p - 1, v))
+            .find(|s| exact(s))
+            .expect("f32 round trip");
     }
     if !s.contains(['.', 'e']) {
         s.push_str(".0");
@@ -79,7 +84,10 @@ impl Ctx<'_> {
         match &n.op {
             Op::ConstF(_) | Op::ConstU(_) | Op::Param(_) | Op::Swizzle(_) => true,
             Op::Construct => n.args.iter().all(|a| {
-                matches!(self.f.nodes[a.node as usize].op, Op::ConstF(_) | Op::ConstU(_))
+                matches!(
+                    self.f.nodes[a.node as usize].op,
+                    Op::ConstF(_) | Op::ConstU(_)
+                )
             }),
             _ => false,
         }
@@ -120,7 +128,11 @@ impl Ctx<'_> {
                     let src = self.value(a.node as usize);
                     let lanes: Vec<u8> = (l0..l0 + (j - i) as u8).collect();
                     let whole = l0 == 0 && self.f.nodes[a.node as usize].ty.lanes as usize == j - i;
-                    out.push(if whole { src } else { format!("{src}.{}", lanes_str(&lanes)) });
+                    out.push(if whole {
+                        src
+                    } else {
+                        format!("{src}.{}", lanes_str(&lanes))
+                    });
                     i = j;
                     continue;
                 }
@@ -163,7 +175,9 @@ impl Ctx<'_> {
                         BinOp::Ge => Some("greaterThanEqual"),
                         BinOp::Eq => Some("equal"),
                         BinOp::And | BinOp::Or => {
-                            panic!("GLSL has no componentwise boolean operator; combine scalar masks")
+                            panic!(
+                                "GLSL has no componentwise boolean operator; combine scalar masks"
+                            )
                         }
                         _ => None,
                     };
@@ -187,7 +201,13 @@ impl Ctx<'_> {
                     BinOp::Eq => "==",
                 };
                 // `x - -1.0` reads badly and `x--1` does not parse: parenthesize.
-                let paren = |s: String| if s.starts_with('-') { format!("({s})") } else { s };
+                let paren = |s: String| {
+                    if s.starts_with('-') {
+                        format!("({s})")
+                    } else {
+                        s
+                    }
+                };
                 format!("{} {op} {}", paren(a(0)), paren(a(1)))
             }
             Op::Shl(s) => format!("{} << {s}u", a(0)),
@@ -203,7 +223,17 @@ impl Ctx<'_> {
             Op::Convert => format!("{}({})", ty(lang, n.ty), a(0)),
             Op::Construct => {
                 let t = ty(lang, n.ty);
-                if n.args.len() == 1 && is_vec {
+                let same_literal = n.args.len() > 1
+                    && n.args.iter().all(|r| {
+                        r.lane.is_none()
+                            && matches!(
+                                self.f.nodes[r.node as usize].op,
+                                Op::ConstF(_) | Op::ConstU(_)
+                            )
+                            && self.f.nodes[r.node as usize].op
+                                == self.f.nodes[n.args[0].node as usize].op
+                    });
+                if (n.args.len() == 1 || same_literal) && is_vec {
                     let x = a(0);
                     match lang {
                         Lang::Hlsl => format!("{t}({})", vec![x; n.ty.lanes as usize].join(", ")),
@@ -237,15 +267,19 @@ fn live(f: &Func) -> Vec<bool> {
 
 pub fn print(lang: Lang, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed {
     let live = live(f);
-    let mut ctx = Ctx { lang, f, names: vec![None; f.nodes.len()], fn_name };
+    let mut ctx = Ctx {
+        lang,
+        f,
+        names: vec![None; f.nodes.len()],
+        fn_name,
+    };
     let mut used: HashSet<String> = f.params.iter().map(|p| p.0.clone()).collect();
     let mut body = Vec::new();
     let mut temp = 0;
-    for id in 0..f.nodes.len() {
+    for (id, node) in f.nodes.iter().enumerate() {
         if !live[id] || ctx.inline(id) {
             continue;
         }
-        let node = &f.nodes[id];
         let base = match node.name {
             Some(n) => n.to_string(),
             None => {
@@ -269,7 +303,11 @@ pub fn print(lang: Lang, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed 
     body.push(format!("return {};", ctx.r(f.ret)));
     Printed {
         name: fn_name(&f.name),
-        params: f.params.iter().map(|(n, t)| (n.clone(), ty(lang, *t))).collect(),
+        params: f
+            .params
+            .iter()
+            .map(|(n, t)| (n.clone(), ty(lang, *t)))
+            .collect(),
         ret_ty: ty(lang, f.ret_ty),
         body,
     }

@@ -165,11 +165,22 @@ impl Recorder {
     }
     fn push(&mut self, op: Op, args: Vec<Ref>, ty: Ty) -> Ref {
         let nodes = self.nodes();
-        nodes.push(Node { op, args, ty, name: None });
-        Ref { node: nodes.len() as u32 - 1, lane: None }
+        nodes.push(Node {
+            op,
+            args,
+            ty,
+            name: None,
+        });
+        Ref {
+            node: nodes.len() as u32 - 1,
+            lane: None,
+        }
     }
     fn is_const(&mut self, r: Ref) -> bool {
-        matches!(self.nodes()[r.node as usize].op, Op::ConstF(_) | Op::ConstU(_))
+        matches!(
+            self.nodes()[r.node as usize].op,
+            Op::ConstF(_) | Op::ConstU(_)
+        )
     }
     fn record(&mut self, op: Op, args: Vec<Ref>, kind: Kind) -> Ref {
         if !args.is_empty() && args.iter().all(|a| self.is_const(*a)) {
@@ -183,13 +194,21 @@ impl Recorder {
             );
         }
         if op == Op::Bin(BinOp::Div) && self.is_const(args[0]) {
-            panic!("a literal divided by a value: drivers compute c/x as c*rcp(x); compute the numerator");
+            panic!(
+                "a literal divided by a value: drivers compute c/x as c*rcp(x); compute the numerator"
+            );
         }
         if op == Op::Bin(BinOp::Mul) && args.iter().any(|a| self.is_const(*a)) {
-            let other = if self.is_const(args[0]) { args[1] } else { args[0] };
+            let other = if self.is_const(args[0]) {
+                args[1]
+            } else {
+                args[0]
+            };
             let n = self.nodes()[other.node as usize].clone();
             if n.op == Op::Bin(BinOp::Mul) && n.args.iter().any(|a| self.is_const(*a)) {
-                panic!("a literal multiply of a literal multiply: drivers fold (x*a)*b into x*(a*b)");
+                panic!(
+                    "a literal multiply of a literal multiply: drivers fold (x*a)*b into x*(a*b)"
+                );
             }
         }
         self.push(op, args, Ty::scalar(kind))
@@ -210,11 +229,15 @@ impl Recorder {
                     }
             }
         };
-        if lanes.iter().all(|l| same(self, l)) && first.lane.is_none() && self.ty(first).lanes == 1 {
+        if lanes.iter().all(|l| same(self, l)) && first.lane.is_none() && self.ty(first).lanes == 1
+        {
             if broadcast_ok {
                 return first;
             }
-            let ty = Ty { kind: self.ty(first).kind, lanes: lanes.len() as u8 };
+            let ty = Ty {
+                kind: self.ty(first).kind,
+                lanes: lanes.len() as u8,
+            };
             return self.push(Op::Construct, vec![first], ty);
         }
         self.vector_of(lanes)
@@ -251,10 +274,22 @@ impl Recorder {
         let l = lanes.len() as u8;
         let first = lanes[0];
         if first.lane == Some(0)
-            && lanes.iter().enumerate().all(|(i, r)| r.node == first.node && r.lane == Some(i as u8))
-            && self.ty(Ref { node: first.node, lane: None }).lanes == l
+            && lanes
+                .iter()
+                .enumerate()
+                .all(|(i, r)| r.node == first.node && r.lane == Some(i as u8))
+            && self
+                .ty(Ref {
+                    node: first.node,
+                    lane: None,
+                })
+                .lanes
+                == l
         {
-            return Ref { node: first.node, lane: None };
+            return Ref {
+                node: first.node,
+                lane: None,
+            };
         }
         if let Some(v) = self.memo.get(lanes) {
             return *v;
@@ -268,7 +303,10 @@ impl Recorder {
         let arity = proto.args.len();
         let mut args = Vec::with_capacity(arity);
         for j in 0..arity {
-            let col: Vec<Ref> = lanes.iter().map(|r| self.nodes()[r.node as usize].args[j]).collect();
+            let col: Vec<Ref> = lanes
+                .iter()
+                .map(|r| self.nodes()[r.node as usize].args[j])
+                .collect();
             let broadcast_ok = match proto.op {
                 Op::Bin(b) => b.broadcasts(),
                 Op::Select => j == 0,
@@ -278,10 +316,16 @@ impl Recorder {
         }
         // Arithmetic on broadcast scalars only would yield a scalar: splat one side.
         if args.iter().all(|a| self.ty(*a).lanes == 1) {
-            let ty = Ty { kind: self.ty(args[arity - 1]).kind, lanes: l };
+            let ty = Ty {
+                kind: self.ty(args[arity - 1]).kind,
+                lanes: l,
+            };
             args[arity - 1] = self.push(Op::Construct, vec![args[arity - 1]], ty);
         }
-        let ty = Ty { kind: proto.ty.kind, lanes: l };
+        let ty = Ty {
+            kind: proto.ty.kind,
+            lanes: l,
+        };
         let v = self.push(proto.op, args, ty);
         self.memo.insert(lanes.to_vec(), v);
         v
@@ -291,9 +335,19 @@ impl Recorder {
     fn gather(&mut self, lanes: &[Ref]) -> Ref {
         let first = lanes[0];
         let kind = self.ty(first).kind;
-        let ty = Ty { kind, lanes: lanes.len() as u8 };
-        if first.lane.is_some() && lanes.iter().all(|l| l.node == first.node && l.lane.is_some()) {
-            let src = Ref { node: first.node, lane: None };
+        let ty = Ty {
+            kind,
+            lanes: lanes.len() as u8,
+        };
+        if first.lane.is_some()
+            && lanes
+                .iter()
+                .all(|l| l.node == first.node && l.lane.is_some())
+        {
+            let src = Ref {
+                node: first.node,
+                lane: None,
+            };
             let order: Vec<u8> = lanes.iter().map(|l| l.lane.unwrap()).collect();
             return self.push(Op::Swizzle(order), vec![src], ty);
         }
@@ -302,7 +356,12 @@ impl Recorder {
 
     fn fuse(&mut self, lanes: &[Ref]) -> Vec<Ref> {
         let v = self.vector_of(lanes);
-        (0..lanes.len() as u8).map(|i| Ref { node: v.node, lane: Some(i) }).collect()
+        (0..lanes.len() as u8)
+            .map(|i| Ref {
+                node: v.node,
+                lane: Some(i),
+            })
+            .collect()
     }
 
     fn name(&mut self, r: Ref, name: &'static str) {
@@ -354,7 +413,15 @@ macro_rules! lane_impl {
             }
             fn named_lanes<const L: usize>(lanes: [Self; L], name: &'static str) -> [Self; L] {
                 let v = Self::fuse(lanes);
-                with(|r| r.name(Ref { node: v[0].0.node, lane: None }, name));
+                with(|r| {
+                    r.name(
+                        Ref {
+                            node: v[0].0.node,
+                            lane: None,
+                        },
+                        name,
+                    )
+                });
                 v
             }
         }
@@ -417,7 +484,9 @@ impl Uint for Tu {
     type F = Tf;
     type B = Tb;
     fn c(v: u32) -> Self {
-        T::new(with(|r| r.push(Op::ConstU(v), vec![], Ty::scalar(Kind::U32))))
+        T::new(with(|r| {
+            r.push(Op::ConstU(v), vec![], Ty::scalar(Kind::U32))
+        }))
     }
     fn shl(self, n: u32) -> Self {
         rec(Op::Shl(n), &[self.0], Kind::U32)
@@ -437,7 +506,9 @@ impl Float for Tf {
     type U = Tu;
     type B = Tb;
     fn c(v: f32) -> Self {
-        T::new(with(|r| r.push(Op::ConstF(v), vec![], Ty::scalar(Kind::F32))))
+        T::new(with(|r| {
+            r.push(Op::ConstF(v), vec![], Ty::scalar(Kind::F32))
+        }))
     }
     fn abs(self) -> Self {
         rec(Op::Un(UnOp::Abs), &[self.0], Kind::F32)
@@ -506,17 +577,26 @@ macro_rules! value_vec {
     ($V:ident, $n:literal) => {
         impl<X: Lane + Value> Value for $V<X> {
             fn tys() -> Vec<Ty> {
-                vec![Ty { kind: X::KIND, lanes: $n }]
+                vec![Ty {
+                    kind: X::KIND,
+                    lanes: $n,
+                }]
             }
             fn refs(self) -> Vec<Ref> {
                 let lanes = X::fuse(self.to_array());
                 let r = lanes[0].refs()[0];
-                vec![Ref { node: r.node, lane: None }]
+                vec![Ref {
+                    node: r.node,
+                    lane: None,
+                }]
             }
             fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self {
                 let v = r.next().unwrap();
                 $V::from_array(std::array::from_fn(|i| {
-                    X::from_refs(&mut std::iter::once(Ref { node: v.node, lane: Some(i as u8) }))
+                    X::from_refs(&mut std::iter::once(Ref {
+                        node: v.node,
+                        lane: Some(i as u8),
+                    }))
                 }))
             }
         }
@@ -552,12 +632,22 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
     let params: Vec<(String, Ty)> = tys
         .iter()
         .enumerate()
-        .map(|(i, t)| (param_names.get(i).map_or_else(|| format!("a{i}"), |s| s.to_string()), *t))
+        .map(|(i, t)| {
+            (
+                param_names
+                    .get(i)
+                    .map_or_else(|| format!("a{i}"), |s| s.to_string()),
+                *t,
+            )
+        })
         .collect();
     let param_refs: Vec<Ref> = with(|r| {
         r.stack.push(Vec::new());
         r.memo_stack.push(std::mem::take(&mut r.memo));
-        tys.iter().enumerate().map(|(i, t)| r.push(Op::Param(i), vec![], *t)).collect()
+        tys.iter()
+            .enumerate()
+            .map(|(i, t)| r.push(Op::Param(i), vec![], *t))
+            .collect()
     });
     let a = A::from_refs(&mut param_refs.into_iter());
     let out = f(a);
@@ -567,7 +657,13 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
         let ret_ty = r.ty(ret[0]);
         let nodes = r.stack.pop().unwrap();
         r.memo = r.memo_stack.pop().unwrap();
-        r.module.funcs.push(Func { name: name.to_string(), params, nodes, ret: ret[0], ret_ty });
+        r.module.funcs.push(Func {
+            name: name.to_string(),
+            params,
+            nodes,
+            ret: ret[0],
+            ret_ty,
+        });
     });
 }
 
@@ -585,6 +681,10 @@ pub fn trace_module(build: impl FnOnce()) -> Module {
     }
     let _reset = Reset;
     build();
-    REC.with(|r| r.borrow_mut().as_mut().map(|rec| std::mem::take(&mut rec.module)))
-        .unwrap_or_default()
+    REC.with(|r| {
+        r.borrow_mut()
+            .as_mut()
+            .map(|rec| std::mem::take(&mut rec.module))
+    })
+    .unwrap_or_default()
 }

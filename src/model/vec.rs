@@ -97,10 +97,6 @@ macro_rules! vector {
         impl<U: Uint> $V<U> {
             #[inline(always)]
             pub fn to_f(self) -> $V<U::F> { self.map(U::to_f) }
-            #[inline(always)]
-            pub fn shl(self, n: u32) -> Self { self.map(|v| v.shl(n)) }
-            #[inline(always)]
-            pub fn shr(self, n: u32) -> Self { self.map(|v| v.shr(n)) }
         }
 
         impl<T: Lane + Add<Output = T>> Add for $V<T> {

@@ -15,9 +15,27 @@ const CODE_SEED: u128 = 0x636f_6465_735f_7365_6564_5f75_6e69_7470;
 /// zero, NaN, infinities, non-unit lengths.
 pub fn edge_vectors() -> Vec<[f32; 3]> {
     let specials = [
-        0.0, -0.0, 1.0, -1.0, 0.5, -0.5, f32::MIN_POSITIVE, -f32::MIN_POSITIVE, 1e-45, -1e-45,
-        f32::NAN, f32::INFINITY, f32::NEG_INFINITY, f32::MAX, -f32::MAX, 1e-30, 1e30, 3.0,
-        std::f32::consts::FRAC_1_SQRT_2, -std::f32::consts::FRAC_1_SQRT_2, 1.0 / 3.0,
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.5,
+        -0.5,
+        f32::MIN_POSITIVE,
+        -f32::MIN_POSITIVE,
+        1e-45,
+        -1e-45,
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::MAX,
+        -f32::MAX,
+        1e-30,
+        1e30,
+        3.0,
+        std::f32::consts::FRAC_1_SQRT_2,
+        -std::f32::consts::FRAC_1_SQRT_2,
+        1.0 / 3.0,
     ];
     let mut out = Vec::new();
     for &x in &specials {
@@ -70,7 +88,11 @@ fn float_codes(q: &[Quant]) -> Vec<u32> {
     let total: u32 = q.iter().map(|q| q.bits()).sum();
     let offs = field_offsets(q);
     let mut rng = Pcg64Mcg::new(CODE_SEED);
-    let n: u64 = if total <= 24 { 1 << total } else { RANDOM_ITEMS as u64 };
+    let n: u64 = if total <= 24 {
+        1 << total
+    } else {
+        RANDOM_ITEMS as u64
+    };
     let mut out = Vec::with_capacity(n as usize * q.len());
     for k in 0..n {
         let bits: u64 = if total <= 24 { k } else { rng.next_u64() };

@@ -21,7 +21,17 @@ fn load(lang: Lang, t: Ty, stride: usize) -> String {
     let u = if t.lanes == 1 {
         words[0].clone()
     } else {
-        format!("{}({})", ty(lang, Ty { kind: Kind::U32, lanes: t.lanes }), words.join(", "))
+        format!(
+            "{}({})",
+            ty(
+                lang,
+                Ty {
+                    kind: Kind::U32,
+                    lanes: t.lanes
+                }
+            ),
+            words.join(", ")
+        )
     };
     match (t.kind, lang) {
         (Kind::U32, _) => u,
@@ -36,18 +46,40 @@ fn load(lang: Lang, t: Ty, stride: usize) -> String {
 fn store(lang: Lang, t: Ty, stride: usize) -> Vec<String> {
     let bits = match (t.kind, lang) {
         (Kind::U32, _) => "r".to_string(),
-        (Kind::F32, Lang::Wgsl) => format!("bitcast<{}>(r)", ty(lang, Ty { kind: Kind::U32, lanes: t.lanes })),
+        (Kind::F32, Lang::Wgsl) => format!(
+            "bitcast<{}>(r)",
+            ty(
+                lang,
+                Ty {
+                    kind: Kind::U32,
+                    lanes: t.lanes
+                }
+            )
+        ),
         (Kind::F32, Lang::Glsl) => "floatBitsToUint(r)".to_string(),
         (Kind::F32, Lang::Hlsl) => "asuint(r)".to_string(),
         (Kind::Bool, _) => unreachable!(),
     };
     let decl = match lang {
         Lang::Wgsl => format!("let rb = {bits};"),
-        _ => format!("{} rb = {bits};", ty(lang, Ty { kind: Kind::U32, lanes: t.lanes })),
+        _ => format!(
+            "{} rb = {bits};",
+            ty(
+                lang,
+                Ty {
+                    kind: Kind::U32,
+                    lanes: t.lanes
+                }
+            )
+        ),
     };
     let mut out = vec![decl];
-    for k in 0..t.lanes as usize {
-        let lane = if t.lanes == 1 { String::new() } else { format!(".{}", LANES[k]) };
+    for (k, l) in LANES.iter().enumerate().take(t.lanes as usize) {
+        let lane = if t.lanes == 1 {
+            String::new()
+        } else {
+            format!(".{l}")
+        };
         out.push(format!("output_words[i * {stride}u + {k}u] = rb{lane};"));
     }
     out
@@ -62,7 +94,10 @@ pub fn wrap(lang: Lang, include: &str, func: &str, param: Ty, ret: Ty) -> String
         Lang::Wgsl => format!("let r = {func}({});", load(lang, param, inw)),
         _ => format!("{} r = {func}({});", ty(lang, ret), load(lang, param, inw)),
     };
-    let body = std::iter::once(call).chain(store(lang, ret, outw)).collect::<Vec<_>>().join("\n    ");
+    let body = std::iter::once(call)
+        .chain(store(lang, ret, outw))
+        .collect::<Vec<_>>()
+        .join("\n    ");
     match lang {
         Lang::Wgsl => format!(
             "{include}

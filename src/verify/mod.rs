@@ -12,7 +12,8 @@ pub mod tools;
 use crate::codecs::Spec;
 use crate::codecs::functions::Function;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
-use crate::model::trace::Func;
+use crate::model::Kind;
+use crate::model::trace::{Func, Ty};
 use anyhow::Result;
 use gpu::{Gpu, Shader};
 use std::fmt;
@@ -29,8 +30,13 @@ pub enum Path {
 }
 
 impl Path {
-    pub const ALL: [Path; 5] =
-        [Path::WgslNaga, Path::GlslNaga, Path::GlslGlslang, Path::HlslGlslangOd, Path::HlslGlslangDefault];
+    pub const ALL: [Path; 5] = [
+        Path::WgslNaga,
+        Path::GlslNaga,
+        Path::GlslGlslang,
+        Path::HlslGlslangOd,
+        Path::HlslGlslangDefault,
+    ];
     pub fn lang(self) -> Lang {
         match self {
             Path::WgslNaga => Lang::Wgsl,
@@ -52,12 +58,15 @@ impl fmt::Display for Path {
     }
 }
 
-/// One mismatching item: its input words, expected and actual output words.
+/// One mismatching item: its input words, expected and actual output words, and whether
+/// the input and output words are floats (printed as value and hex) or codes (hex).
 #[derive(Clone, Debug)]
 pub struct Mismatch {
     pub input: Vec<u32>,
     pub expected: Vec<u32>,
     pub actual: Vec<u32>,
+    pub input_float: bool,
+    pub output_float: bool,
 }
 
 /// One row of the report.
@@ -87,7 +96,13 @@ pub struct Report {
 
 fn words_hex(w: &[u32], as_float: bool) -> String {
     w.iter()
-        .map(|b| if as_float { format!("{:?} (0x{b:08x})", f32::from_bits(*b)) } else { format!("0x{b:08x}") })
+        .map(|b| {
+            if as_float {
+                format!("{:?} (0x{b:08x})", f32::from_bits(*b))
+            } else {
+                format!("0x{b:08x}")
+            }
+        })
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -104,21 +119,31 @@ impl Report {
             "spec", "function", "path", "tested", "mismatches"
         ));
         for r in &self.rows {
-            let mm = if r.error.is_some() { "ERROR".to_string() } else { r.mismatches.to_string() };
-            s.push_str(&format!("{:<22} {:<28} {:<18} {:>10} {:>10}\n", r.spec, r.function, r.path, r.tested, mm));
+            let mm = if r.error.is_some() {
+                "ERROR".to_string()
+            } else {
+                r.mismatches.to_string()
+            };
+            s.push_str(&format!(
+                "{:<22} {:<28} {:<18} {:>10} {:>10}\n",
+                r.spec, r.function, r.path, r.tested, mm
+            ));
         }
         let failed: Vec<&Row> = self.rows.iter().filter(|r| !r.passed()).collect();
         for r in &failed {
-            s.push_str(&format!("\nFAILED {} {} on {}:\n", r.spec, r.function, r.path));
+            s.push_str(&format!(
+                "\nFAILED {} {} on {}:\n",
+                r.spec, r.function, r.path
+            ));
             if let Some(e) = &r.error {
                 s.push_str(&format!("  {e}\n"));
             }
             for m in &r.first {
                 s.push_str(&format!(
                     "  input [{}]\n    expected [{}]\n    actual   [{}]\n",
-                    words_hex(&m.input, true),
-                    words_hex(&m.expected, true),
-                    words_hex(&m.actual, true)
+                    words_hex(&m.input, m.input_float),
+                    words_hex(&m.expected, m.output_float),
+                    words_hex(&m.actual, m.output_float)
                 ));
             }
         }
@@ -140,7 +165,10 @@ fn expected(f: &Function, input: &[u32]) -> Vec<u32> {
     let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
     let per = n.div_ceil(threads).max(1);
     std::thread::scope(|s| {
-        for (o, i) in out.chunks_mut(per * f.out_words).zip(input.chunks(per * f.in_words)) {
+        for (o, i) in out
+            .chunks_mut(per * f.out_words)
+            .zip(input.chunks(per * f.in_words))
+        {
             s.spawn(move || {
                 for (o, i) in o.chunks_mut(f.out_words).zip(i.chunks(f.in_words)) {
                     (f.eval)(i, o);
@@ -151,10 +179,20 @@ fn expected(f: &Function, input: &[u32]) -> Vec<u32> {
     out
 }
 
-fn compare(f: &Function, input: &[u32], want: &[u32], got: &[u32]) -> (usize, Vec<Mismatch>) {
+fn compare(
+    f: &Function,
+    types: (Ty, Ty),
+    input: &[u32],
+    want: &[u32],
+    got: &[u32],
+) -> (usize, Vec<Mismatch>) {
     let mut count = 0;
     let mut first = Vec::new();
-    for (k, (w, g)) in want.chunks(f.out_words).zip(got.chunks(f.out_words)).enumerate() {
+    for (k, (w, g)) in want
+        .chunks(f.out_words)
+        .zip(got.chunks(f.out_words))
+        .enumerate()
+    {
         if w != g {
             count += 1;
             if first.len() < 5 {
@@ -162,6 +200,8 @@ fn compare(f: &Function, input: &[u32], want: &[u32], got: &[u32]) -> (usize, Ve
                     input: input[k * f.in_words..(k + 1) * f.in_words].to_vec(),
                     expected: w.to_vec(),
                     actual: g.to_vec(),
+                    input_float: types.0.kind == Kind::F32,
+                    output_float: types.1.kind == Kind::F32,
                 });
             }
         }
@@ -181,13 +221,28 @@ fn compile(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             None
         }
         Path::GlslGlslang => {
-            let spv = tools::glslang_spirv(kernel, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)?;
+            let spv = tools::glslang_spirv(
+                kernel,
+                GlslangInput::Glsl { stage: "comp" },
+                HlslOpt::Default,
+            )?;
             tools::spirv_val(&spv)?;
             Some(spv)
         }
         Path::HlslGlslangOd | Path::HlslGlslangDefault => {
-            let opt = if path == Path::HlslGlslangOd { HlslOpt::Od } else { HlslOpt::Default };
-            let spv = tools::glslang_spirv(kernel, GlslangInput::Hlsl { stage: "comp", entry: "main" }, opt)?;
+            let opt = if path == Path::HlslGlslangOd {
+                HlslOpt::Od
+            } else {
+                HlslOpt::Default
+            };
+            let spv = tools::glslang_spirv(
+                kernel,
+                GlslangInput::Hlsl {
+                    stage: "comp",
+                    entry: "main",
+                },
+                opt,
+            )?;
             tools::spirv_val(&spv)?;
             Some(spv)
         }
@@ -196,27 +251,44 @@ fn compile(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
 
 /// The include must also compile as a GLSL 330 and a GLSL ES 300 fragment shader.
 fn glsl_versions(include: &str) -> Vec<(String, Result<()>)> {
-    let v330 = format!("#version 330\n{include}\nout vec4 color;\nvoid main() {{ color = vec4(0.0); }}\n");
+    let v330 =
+        format!("#version 330\n{include}\nout vec4 color;\nvoid main() {{ color = vec4(0.0); }}\n");
     let es = format!(
         "#version 300 es\n{include}\nout highp vec4 color;\nvoid main() {{ color = vec4(0.0); }}\n"
     );
     vec![
-        ("glsl 330/glslang".to_string(), tools::glslang_check(&v330, "frag")),
-        ("glsl es 300/glslang".to_string(), tools::glslang_check(&es, "frag")),
+        (
+            "glsl 330/glslang".to_string(),
+            tools::glslang_check(&v330, "frag"),
+        ),
+        (
+            "glsl es 300/glslang".to_string(),
+            tools::glslang_check(&es, "frag"),
+        ),
     ]
 }
 
-fn func_types(f: &Func) -> (crate::model::trace::Ty, crate::model::trace::Ty) {
+fn func_types(f: &Func) -> (Ty, Ty) {
     (f.params[0].1, f.ret_ty)
 }
 
 /// Verifies `specs` on every path of `langs`, with a progress bar when `progress`.
 pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
     let gpu = Gpu::shared()?;
-    let paths: Vec<Path> = Path::ALL.into_iter().filter(|p| langs.contains(&p.lang())).collect();
+    let paths: Vec<Path> = Path::ALL
+        .into_iter()
+        .filter(|p| langs.contains(&p.lang()))
+        .collect();
     let emitted: Vec<_> = specs.iter().map(|s| s.emitted()).collect();
-    let total: usize = emitted.iter().map(|e| e.functions.len() * paths.len()).sum();
-    let bar = if progress { indicatif::ProgressBar::new(total as u64) } else { indicatif::ProgressBar::hidden() };
+    let total: usize = emitted
+        .iter()
+        .map(|e| e.functions.len() * paths.len())
+        .sum();
+    let bar = if progress {
+        indicatif::ProgressBar::new(total as u64)
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} [{elapsed}]")
             .expect("progress template"),
@@ -225,7 +297,17 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
     for (spec, e) in specs.iter().zip(&emitted) {
         let includes: Vec<(Lang, String)> = langs
             .iter()
-            .map(|l| (*l, render(&[(spec.clone(), None)], *l, DEFAULT_PREFIX, "unitpack verify")))
+            .map(|l| {
+                (
+                    *l,
+                    render(
+                        &[(spec.clone(), None)],
+                        *l,
+                        DEFAULT_PREFIX,
+                        "unitpack verify",
+                    ),
+                )
+            })
             .collect();
         let include = |l: Lang| &includes.iter().find(|(x, _)| *x == l).expect("lang").1;
         if langs.contains(&Lang::Glsl) {
@@ -241,7 +323,11 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
                 });
             }
         }
-        let ns = if e.namespace.is_empty() { String::new() } else { format!("{}_", e.namespace) };
+        let ns = if e.namespace.is_empty() {
+            String::new()
+        } else {
+            format!("{}_", e.namespace)
+        };
         for f in &e.functions {
             bar.set_message(format!("{} {}", spec.display_name(), f.name));
             let traced = e.module.func(f.name).expect("traced function");
@@ -270,7 +356,9 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
                     error: None,
                 };
                 match result {
-                    Ok(got) => (row.mismatches, row.first) = compare(f, &input, &want, &got),
+                    Ok(got) => {
+                        (row.mismatches, row.first) = compare(f, (param, ret), &input, &want, &got)
+                    }
                     Err(err) => row.error = Some(format!("{err:#}")),
                 }
                 rows.push(row);
@@ -279,5 +367,9 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
         }
     }
     bar.finish_and_clear();
-    Ok(Report { adapter: gpu.adapter_name().to_string(), driver: gpu.driver().to_string(), rows })
+    Ok(Report {
+        adapter: gpu.adapter_name().to_string(),
+        driver: gpu.driver().to_string(),
+        rows,
+    })
 }
