@@ -609,13 +609,18 @@ fn unknown_codec_suggests_the_nearest_and_lists_all() {
         .nth(1)
         .unwrap_or_else(|| panic!("no list of codecs: {err}"));
     let valid: BTreeSet<&str> = valid.trim().split(", ").collect();
-    for c in CATALOGUE {
+    // snorm3 is spelled by component size (snorm8x3...), so its family name is not a spec.
+    for c in CATALOGUE.iter().filter(|c| c.name != "snorm3") {
         assert!(
             valid.contains(c.name),
             "valid codecs lack {}: {err}",
             c.name
         );
     }
+    assert!(
+        !valid.contains("snorm3"),
+        "snorm3 alone does not parse: {err}"
+    );
     for id in ["snorm8x3", "snorm10x3", "snorm16x3"] {
         assert!(valid.contains(id), "valid codecs lack {id}: {err}");
     }

@@ -211,8 +211,24 @@ impl Spec {
         }
     }
 
-    /// The identifier used in file and function names, e.g. `oct24p_rgb8`.
+    /// The identifier used in file and function names, e.g. `oct24p_rgb8`,
+    /// `stereo_scaled16_scale2` (a non-default scale is part of the name, so two scales
+    /// can share one include).
     pub fn id(&self) -> String {
+        let scale = if self.scale_is_set() {
+            format!("_scale{}", self.scale.to_string().replace(['.', '-'], "_"))
+        } else {
+            String::new()
+        };
+        format!("{}{scale}", self.base_id())
+    }
+
+    fn scale_is_set(&self) -> bool {
+        self.codec.name == "stereo_scaled" && self.scale != DEFAULT_SCALE
+    }
+
+    /// The id without options.
+    fn base_id(&self) -> String {
         let base = match self.codec.name {
             "snorm3" => snorm3_id(self.bits),
             "snorm12x2" => "snorm12x2".to_string(),
@@ -224,19 +240,13 @@ impl Spec {
         } else {
             ""
         };
-        // A non-default scale is part of the name, so two scales can share one include.
-        let scale = if self.codec.name == "stereo_scaled" && self.scale != DEFAULT_SCALE {
-            format!("_scale{}", self.scale.to_string().replace(['.', '-'], "_"))
-        } else {
-            String::new()
-        };
-        format!("{base}{p}{layout}{scale}")
+        format!("{base}{p}{layout}")
     }
 
     /// The id plus any non-default option, for display.
     pub fn display_name(&self) -> String {
-        let mut s = self.id();
-        if self.codec.name == "stereo_scaled" && self.scale != DEFAULT_SCALE {
+        let mut s = self.base_id();
+        if self.scale_is_set() {
             s.push_str(&format!(":scale={}", self.scale));
         }
         s

@@ -312,3 +312,34 @@ pub fn print(lang: Lang, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed 
         body,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every literal reads back as the same f32, directly and through f64, in every language.
+    #[test]
+    fn literals_round_trip_exactly() {
+        let mut x: u32 = 0x1234_5678;
+        for i in 0..200_000u32 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let v = f32::from_bits(if i < 1000 { i } else { x });
+            if !v.is_finite() {
+                continue;
+            }
+            for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl] {
+                let s = f32_literal(lang, v);
+                let t = s.trim_end_matches('f');
+                assert!(t.contains(['.', 'e']), "{s} is not a float literal");
+                assert_eq!(t.parse::<f32>().unwrap().to_bits(), v.to_bits(), "{s}");
+                assert_eq!(
+                    (t.parse::<f64>().unwrap() as f32).to_bits(),
+                    v.to_bits(),
+                    "{s} via f64"
+                );
+            }
+        }
+    }
+}

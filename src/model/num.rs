@@ -6,6 +6,26 @@
 //! canonical arithmetic rules (DESIGN §2) allow: there is no `fma`, no `sign`, no `min`/`max`,
 //! no transcendental and no pack builtin, so a codec that needs one does not compile.
 //! Literal division and constant expressions are refused by the tracer at record time.
+//!
+//! A codec cannot reach a forbidden builtin, even though `f32` itself has them:
+//!
+//! ```compile_fail
+//! fn fused<F: unitpack::model::Float>(a: F, b: F, c: F) -> F { a.mul_add(b, c) }
+//! ```
+//! ```compile_fail
+//! fn trig<F: unitpack::model::Float>(a: F) -> F { a.sin() }
+//! ```
+//! ```compile_fail
+//! fn sign<F: unitpack::model::Float>(a: F) -> F { a.signum() }
+//! ```
+//! ```compile_fail
+//! fn minimum<F: unitpack::model::Float>(a: F, b: F) -> F { a.min(b) }
+//! ```
+//! The same code written with the vocabulary compiles:
+//! ```
+//! fn fused<F: unitpack::model::Float>(a: F, b: F, c: F) -> F { a * b + c }
+//! assert_eq!(fused(2.0f32, 3.0, 1.0), 7.0);
+//! ```
 
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
 
