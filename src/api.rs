@@ -17,8 +17,8 @@
 //! assert!(codes.iter().all(|&c| c == codes[0]));
 //! ```
 
-use crate::codecs::codec::{Codec, dequantize, pack, unpack};
-use crate::codecs::functions::encode_codes;
+use crate::codecs::codec::Codec;
+use crate::codecs::functions::{decode_packed, encode_packed};
 pub use crate::codecs::hemioct::HemiOct;
 pub use crate::codecs::lambert::Lambert;
 pub use crate::codecs::oct::Oct;
@@ -58,19 +58,12 @@ impl<C: Codec> Encoder<C> {
     /// The packed code of `v` (any vector; see the codec's zero/NaN policy).
     #[inline]
     pub fn encode(&self, v: [f32; 3]) -> C::C<f32> {
-        let q = self.codec.quants();
-        pack::<f32, _, C::C<f32>>(
-            &q,
-            encode_codes(&self.codec, self.precise, V3::from_array(v)),
-        )
+        encode_packed(&self.codec, self.precise, V3::from_array(v))
     }
     /// The direction a packed code stands for.
     #[inline]
     pub fn decode(&self, code: C::C<f32>) -> [f32; 3] {
-        let q = self.codec.quants();
-        self.codec
-            .direction(dequantize(&q, unpack::<f32, C::P<f32>, _>(&q, code)))
-            .to_array()
+        decode_packed(&self.codec, code).to_array()
     }
     /// Encodes `input` into `out` (same length).
     pub fn encode_slice(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {

@@ -1,4 +1,4 @@
-//! Error methodology (DESIGN §5, survey §4.1): seeded random unit vectors from normalized
+//! Error methodology (survey §4.1): seeded random unit vectors from normalized
 //! Gaussian triples, codec arithmetic in f32, angular error in f64 after normalizing both
 //! vectors, `|acos(dot)|` in degrees.
 

@@ -1,4 +1,4 @@
-//! Survey Table 1 (Cigolle et al. 2014) reproduced with 2^20 seeded vectors (DESIGN §5):
+//! Survey Table 1 (Cigolle et al. 2014) reproduced with 2^20 seeded vectors (the survey's method, `src/quality.rs`):
 //! mean error within 2 %, max error within 5 % of the published figures.
 
 use unitpack::codecs::Spec;

@@ -1,4 +1,4 @@
-//! DESIGN §3 conventions, for every codec: sign at zero, oct fold sides, a defined valid
+//! The conventions every codec states (README, "Conventions"), for every codec: sign at zero, oct fold sides, a defined valid
 //! code for zero / NaN / ±inf / non-unit input, every code decodes to a finite vector.
 
 use unitpack::codecs::Spec;

@@ -17,6 +17,7 @@ precision highp int;
 // In: parameters in [-1, 1], as a snorm12 fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
 vec3 unitpack_hemioct24p_decode_float(vec2 params) {
     float t1 = params.x + params.y;
     float t2 = params.x - params.y;
@@ -38,7 +39,7 @@ vec3 unitpack_hemioct24p_decode_float(vec2 params) {
 // In: a packed code (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
 vec3 unitpack_hemioct24p_decode(uint code) {
     uint t1 = code >> 12u;
     uvec2 t2 = uvec2(code, t1);
@@ -155,6 +156,7 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
 vec2 unitpack_hemioct24p_encode_float(vec3 v) {
     vec2 t1 = unitpack_hemioct24p_encode_codes(v);
     vec2 t2 = t1 * 0.0004885198;
@@ -167,7 +169,7 @@ vec2 unitpack_hemioct24p_encode_float(vec3 v) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
 uint unitpack_hemioct24p_encode(vec3 v) {
     vec2 t1 = unitpack_hemioct24p_encode_codes(v);
     float t2 = t1.x + 4096.0;

@@ -56,6 +56,7 @@ vec2 unitpack_spherical32_sincos_pi(float a0) {
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Source: Cigolle et al. 2014 §2.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 vec3 unitpack_spherical32_decode_float(vec2 params) {
     float t1 = params.x + 1.0;
     float theta = t1 * 0.5;
@@ -71,7 +72,7 @@ vec3 unitpack_spherical32_decode_float(vec2 params) {
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)); other bits are ignored.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 vec3 unitpack_spherical32_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -140,6 +141,7 @@ float unitpack_spherical32_atan2_pi(float a0, float a1) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Source: Cigolle et al. 2014 §2.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 vec2 unitpack_spherical32_encode_float(vec3 v) {
     vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -174,7 +176,7 @@ vec2 unitpack_spherical32_encode_float(vec3 v) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 uint unitpack_spherical32_encode(vec3 v) {
     vec2 t1 = unitpack_spherical32_encode_float(v);
     bvec2 t2 = greaterThanEqual(t1, vec2(-1.0));

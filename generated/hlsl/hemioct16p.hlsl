@@ -12,6 +12,7 @@
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.23889°, max 0.54445°.
 float3 unitpack_hemioct16p_decode_float(float2 params) {
     float t1 = params.x + params.y;
     float t2 = params.x - params.y;
@@ -33,7 +34,7 @@ float3 unitpack_hemioct16p_decode_float(float2 params) {
 // In: a packed code (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error over 65536 seeded unit vectors: mean 0.23889°, max 0.54445°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.23889°, max 0.54445°.
 float3 unitpack_hemioct16p_decode(uint code) {
     uint t1 = code >> 8u;
     uint2 t2 = uint2(code, t1);
@@ -150,6 +151,7 @@ float2 unitpack_hemioct16p_encode_codes(float3 v) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.23889°, max 0.54445°.
 float2 unitpack_hemioct16p_encode_float(float3 v) {
     float2 t1 = unitpack_hemioct16p_encode_codes(v);
     float2 t2 = t1 * 0.007874016;
@@ -162,7 +164,7 @@ float2 unitpack_hemioct16p_encode_float(float3 v) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error over 65536 seeded unit vectors: mean 0.23889°, max 0.54445°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.23889°, max 0.54445°.
 uint unitpack_hemioct16p_encode(float3 v) {
     float2 t1 = unitpack_hemioct16p_encode_codes(v);
     float t2 = t1.x + 256.0;

@@ -12,6 +12,7 @@
 // In: parameters in [-1, 1], as a snorm12 fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02081°, max 0.05780°.
 float3 unitpack_oct24_decode_float(float2 params) {
     float2 t1 = abs(params);
     float t2 = 1.0 - t1.x;
@@ -36,7 +37,7 @@ float3 unitpack_oct24_decode_float(float2 params) {
 // In: a packed code (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error over 65536 seeded unit vectors: mean 0.02081°, max 0.05780°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02081°, max 0.05780°.
 float3 unitpack_oct24_decode(uint code) {
     uint t1 = code >> 12u;
     uint2 t2 = uint2(code, t1);
@@ -56,6 +57,7 @@ float3 unitpack_oct24_decode(uint code) {
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02081°, max 0.05780°.
 float2 unitpack_oct24_encode_float(float3 v) {
     float3 t1 = abs(v);
     float t2 = t1.x + t1.y;
@@ -79,7 +81,7 @@ float2 unitpack_oct24_encode_float(float3 v) {
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error over 65536 seeded unit vectors: mean 0.02081°, max 0.05780°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02081°, max 0.05780°.
 uint unitpack_oct24_encode(float3 v) {
     float2 t1 = unitpack_oct24_encode_float(v);
     bool2 t2 = t1 >= float2(-1.0, -1.0);

@@ -48,6 +48,7 @@ fn unitpack_spherical32_sincos_pi(a0: f32) -> vec2<f32> {
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Source: Cigolle et al. 2014 §2.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 fn unitpack_spherical32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params.x + 1.0f;
     let theta = t1 * 0.5f;
@@ -63,7 +64,7 @@ fn unitpack_spherical32_decode_float(params: vec2<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)); other bits are ignored.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 fn unitpack_spherical32_decode(code: u32) -> vec3<f32> {
     let t1 = code & 65535u;
     let t2 = code >> 16u;
@@ -132,6 +133,7 @@ fn unitpack_spherical32_atan2_pi(a0: f32, a1: f32) -> f32 {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Source: Cigolle et al. 2014 §2.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 fn unitpack_spherical32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x >= t1.y;
@@ -166,7 +168,7 @@ fn unitpack_spherical32_encode_float(v: vec3<f32>) -> vec2<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00139°, max 0.00304°.
 fn unitpack_spherical32_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_spherical32_encode_float(v);
     let t2 = t1 >= vec2<f32>(-1.0f);

@@ -156,7 +156,6 @@ impl Spec {
         let precise = self.precise;
         let module = trace_module(|| trace_codec(&c, precise));
         let (c1, c2, c3, c4) = (c.clone(), c.clone(), c.clone(), c.clone());
-        let (q1, q2) = (q, q);
         let functions = vec![
             function(
                 "decode_float",
@@ -168,9 +167,7 @@ impl Spec {
                 "decode",
                 Role::Decode,
                 Inputs::Codes(q.to_vec()),
-                move |code: C::C<f32>| {
-                    c2.direction(dequantize(&q1, unpack::<f32, C::P<f32>, _>(&q1, code)))
-                },
+                move |code: C::C<f32>| decode_packed(&c2, code),
             ),
             function(
                 "encode_float",
@@ -182,7 +179,7 @@ impl Spec {
                 "encode",
                 Role::Encode,
                 Inputs::Vectors,
-                move |v: V3<f32>| pack::<f32, _, C::C<f32>>(&q2, encode_codes(&c4, precise, v)),
+                move |v: V3<f32>| encode_packed(&c4, precise, v),
             ),
         ];
         Emitted {
@@ -193,53 +190,55 @@ impl Spec {
     }
 }
 
-/// Integer codes of an encoder: nearest codes (fast) or the precise search.
-pub fn encode_codes<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
+/// The packed decoder: unpack, dequantize, then the `decode_float` helper.
+pub fn decode_packed<F: Float, C: Codec>(c: &C, code: C::C<F>) -> V3<F> {
+    let q = c.quants();
+    let codes: C::P<F> = unpack(&q, code);
+    let p = dequantize(&q, codes).named_p("params");
+    F::call("decode_float", p, |p| c.direction(p))
+}
+
+/// Integer codes of an encoder: the precise search (through the `encode_codes` helper),
+/// or the nearest codes of the `encode_float` helper's parameters.
+fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
-        c.precise_codes(v)
+        F::call("encode_codes", v, |v| c.precise_codes(v))
     } else {
-        quantize(&c.quants(), c.params(v))
+        let p = F::call("encode_float", v, |v| c.params(v));
+        quantize(&c.quants(), p).named_p("codes")
     }
+}
+
+/// The packed encoder.
+pub fn encode_packed<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::C<F> {
+    pack(&c.quants(), codes_of(c, precise, v))
 }
 
 /// Float-form encoder output: the exact parameters for the hardware to round (fast), or
 /// the chosen codes' values (precise), which the hardware's rounding keeps.
 pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
-        dequantize(&c.quants(), c.precise_codes(v))
+        dequantize(
+            &c.quants(),
+            F::call("encode_codes", v, |v| c.precise_codes(v)),
+        )
     } else {
         c.params(v)
     }
 }
 
-/// Traces the four public functions, decoders first so that encoders calling them find
-/// them with their parameter names.
+/// Traces the public functions, decoders first so that encoders calling them find them
+/// with their parameter names. Each is the same generic function the `f32` reference runs.
 fn trace_codec<C: Codec>(c: &C, precise: bool) {
-    let q = c.quants();
     define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
-    define("decode", &["code"], |code: C::C<Tf>| {
-        let codes: C::P<_> = unpack(&q, code);
-        let p = dequantize(&q, codes).named_p("params");
-        Tf::call("decode_float", p, |p| c.direction(p))
-    });
+    define("decode", &["code"], |code: C::C<Tf>| decode_packed(c, code));
     if precise {
         define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
-        define("encode_float", &["v"], |v: V3<Tf>| {
-            let codes = Tf::call("encode_codes", v, |v| c.precise_codes(v));
-            dequantize(&q, codes)
-        });
-        define("encode", &["v"], |v: V3<Tf>| {
-            let codes = Tf::call("encode_codes", v, |v| c.precise_codes(v));
-            pack::<_, _, C::C<_>>(&q, codes)
-        });
-    } else {
-        define("encode_float", &["v"], |v: V3<Tf>| c.params(v));
-        define("encode", &["v"], |v: V3<Tf>| {
-            let p = Tf::call("encode_float", v, |v| c.params(v));
-            let codes = quantize(&q, p).named_p("codes");
-            pack::<_, _, C::C<_>>(&q, codes)
-        });
     }
+    define("encode_float", &["v"], |v: V3<Tf>| {
+        encode_float(c, precise, v)
+    });
+    define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
 }
 
 fn pack12_fns() -> Emitted {

@@ -148,17 +148,16 @@ impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V2<U> {
 }
 
 /// Bit offset of each field, first field in the lowest bits, no field straddling a word.
-pub fn field_offsets(quants: &[Quant]) -> Vec<u32> {
+/// A fixed array (unused entries 0): this runs once per encoded vector on the CPU.
+pub fn field_offsets(quants: &[Quant]) -> [u32; 3] {
+    let mut offs = [0; 3];
     let mut off = 0;
-    quants
-        .iter()
-        .map(|q| {
-            if off / 32 != (off + q.bits() - 1) / 32 {
-                off = (off / 32 + 1) * 32;
-            }
-            let o = off;
-            off += q.bits();
-            o
-        })
-        .collect()
+    for (o, q) in offs.iter_mut().zip(quants) {
+        if off / 32 != (off + q.bits() - 1) / 32 {
+            off = (off / 32 + 1) * 32;
+        }
+        *o = off;
+        off += q.bits();
+    }
+    offs
 }

@@ -1,6 +1,6 @@
 //! The model's own trigonometry. Shader `atan2`, `sin`, `cos` and `acos` differ between
-//! drivers and from Rust by up to thousands of ULP (DESIGN §2), so codecs that need angles
-//! use these polynomial versions, built only from exact operations: both sides then
+//! drivers, and from Rust by up to thousands of ULP even on lavapipe, so codecs that need
+//! angles use these polynomial versions, built only from exact operations: both sides then
 //! compute the same bits. Angles are in units of π (half turns), which keeps the range
 //! reductions exact. `tests/trig.rs` measures the error against f64 over the whole range:
 //! [`atan2_pi`] within [`ATAN2_PI_MAX_ERROR`], [`sincos_pi`] within [`SINCOS_PI_MAX_ERROR`].

@@ -129,7 +129,7 @@ pub fn function_doc(
     let range = param_range(q);
     let error = stats.map(|s| {
         format!(
-            "Round-trip error over {} seeded unit vectors: mean {:.5}°, max {:.5}°.",
+            "Round-trip error (encode, store, decode) over {} seeded unit vectors: mean {:.5}°, max {:.5}°.",
             s.samples, s.mean, s.max
         )
     });
@@ -170,8 +170,6 @@ pub fn function_doc(
         Role::Pack | Role::Unpack => unreachable!(),
     };
     d.push(format!("Source: {}.", c.source));
-    if matches!(role, Role::Encode | Role::Decode) {
-        d.extend(error);
-    }
+    d.extend(error);
     d
 }

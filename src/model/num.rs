@@ -2,9 +2,10 @@
 //!
 //! A codec is generic over [`Float`]. Instantiated with `f32` it *is* the CPU reference;
 //! instantiated with [`crate::model::trace::T`] it records the expression graph that the
-//! printers turn into shader code. The vocabulary holds exactly the operations that the
-//! canonical arithmetic rules (DESIGN §2) allow: there is no `fma`, no `sign`, no `min`/`max`,
-//! no transcendental and no pack builtin, so a codec that needs one does not compile.
+//! printers turn into shader code. The vocabulary holds exactly the operations that agree
+//! bit for bit between Rust and the drivers (README, "Why the emitted code is bit-exact"):
+//! there is no `fma`, no `sign`, no `min`/`max`, no transcendental and no pack builtin, so a
+//! codec that needs one does not compile.
 //! Literal division and constant expressions are refused by the tracer at record time.
 //!
 //! A codec cannot reach a forbidden builtin, even though `f32` itself has them:

@@ -1,4 +1,4 @@
-//! The inputs every function is verified on (DESIGN §4): every code up to 24 bits, seeded
+//! The inputs every function is verified on: every code up to 24 bits, seeded
 //! random codes above; seeded random unit vectors plus every edge case for encoders.
 
 use crate::codecs::functions::Inputs;

@@ -1,4 +1,4 @@
-//! Verification (DESIGN §4): every emitted function, on every path to the driver, run on
+//! Verification: every emitted function, on every path to the driver, run on
 //! lavapipe over storage-buffer inputs and compared as raw bits with the `f32` model.
 //! Static checks ride along: naga validates WGSL and GLSL, glslang compiles GLSL (also as
 //! `#version 330` and `#version 300 es`) and HLSL (`-Od` and default), spirv-val checks

@@ -49,6 +49,20 @@ fn run_tool(cmd: &mut Command, tool: &str, package: &str) -> anyhow::Result<Outp
     }
 }
 
+/// Runs the tool and fails, with its full output, unless it succeeds.
+fn run_ok(cmd: &mut Command, tool: &str, package: &str) -> anyhow::Result<Output> {
+    let out = run_tool(cmd, tool, package)?;
+    if !out.status.success() {
+        bail!(
+            "{} failed ({}):\n{}",
+            describe_cmd(cmd),
+            out.status,
+            tool_output(&out)
+        );
+    }
+    Ok(out)
+}
+
 /// The tool's stdout and stderr, labelled, for error messages. glslang prints its
 /// diagnostics on stdout, spirv-val on stderr, so both are always included.
 fn tool_output(out: &Output) -> String {
@@ -103,15 +117,7 @@ pub fn glslang_spirv(source: &str, input: GlslangInput, opt: HlslOpt) -> anyhow:
         }
     }
     cmd.args(["-S", stage]).arg("-o").arg(&spv).arg(src.path());
-    let out = run_tool(&mut cmd, GLSLANG, "glslang-tools")?;
-    if !out.status.success() {
-        bail!(
-            "{} failed ({}):\n{}",
-            describe_cmd(&cmd),
-            out.status,
-            tool_output(&out)
-        );
-    }
+    let out = run_ok(&mut cmd, GLSLANG, "glslang-tools")?;
     let words = read_spirv(&spv).with_context(|| {
         format!(
             "{} succeeded but its SPIR-V is unusable; its output:\n{}",
@@ -161,15 +167,7 @@ pub fn glslang_check(source: &str, stage: &'static str) -> anyhow::Result<()> {
     let src = temp_file(stage, source.as_bytes())?;
     let mut cmd = Command::new(GLSLANG);
     cmd.args(["-S", stage]).arg(src.path());
-    let out = run_tool(&mut cmd, GLSLANG, "glslang-tools")?;
-    if !out.status.success() {
-        bail!(
-            "{} failed ({}):\n{}",
-            describe_cmd(&cmd),
-            out.status,
-            tool_output(&out)
-        );
-    }
+    run_ok(&mut cmd, GLSLANG, "glslang-tools")?;
     Ok(())
 }
 
@@ -180,15 +178,7 @@ pub fn spirv_val(words: &[u32]) -> anyhow::Result<()> {
     let file = temp_file("spv", &bytes)?;
     let mut cmd = Command::new(SPIRV_VAL);
     cmd.arg(file.path());
-    let out = run_tool(&mut cmd, SPIRV_VAL, "spirv-tools")?;
-    if !out.status.success() {
-        bail!(
-            "{} rejected the module ({}):\n{}",
-            describe_cmd(&cmd),
-            out.status,
-            tool_output(&out)
-        );
-    }
+    run_ok(&mut cmd, SPIRV_VAL, "spirv-tools")?;
     Ok(())
 }
 
