@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen hemioct32p --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- hemioct32p: hemi-octahedral, snorm×2, 32 bits, precise encoder ----
 #ifndef UNITPACK_HEMIOCT32P_HLSL
@@ -42,10 +52,10 @@ float3 unitpack_hemioct32p_decode(uint code) {
     float2 t4 = float2(t3);
     bool2 t5 = t4 > float2(32767.0, 32767.0);
     float2 t6 = t4 - 65536.0;
-    float2 t7 = t5 ? t6 : t4;
+    float2 t7 = UNITPACK_SELECT(t5, t6, t4);
     float2 t8 = t7 * 3.051851e-5;
     bool2 t9 = t8 >= float2(-1.0, -1.0);
-    float2 params = t9 ? t8 : float2(-1.0, -1.0);
+    float2 params = UNITPACK_SELECT(t9, t8, float2(-1.0, -1.0));
     float3 t10 = unitpack_hemioct32p_decode_float(params);
     return t10;
 }
@@ -88,14 +98,14 @@ float2 unitpack_hemioct32p_encode_codes(float3 v) {
     float2 t28 = float2(t26, t27);
     float2 t29 = t25 ? t28 : float2(0.0, 0.0);
     bool2 t30 = t29 >= float2(-1.0, -1.0);
-    float2 t31 = t30 ? t29 : float2(-1.0, -1.0);
+    float2 t31 = UNITPACK_SELECT(t30, t29, float2(-1.0, -1.0));
     bool2 t32 = t31 <= float2(1.0, 1.0);
-    float2 t33 = t32 ? t31 : float2(1.0, 1.0);
+    float2 t33 = UNITPACK_SELECT(t32, t31, float2(1.0, 1.0));
     float2 t34 = t33 * 32767.0;
     float2 base = floor(t34);
     float2 t35 = base * 3.051851e-5;
     bool2 t36 = t35 >= float2(-1.0, -1.0);
-    float2 t37 = t36 ? t35 : float2(-1.0, -1.0);
+    float2 t37 = UNITPACK_SELECT(t36, t35, float2(-1.0, -1.0));
     float3 t38 = unitpack_hemioct32p_decode_float(t37);
     float3 t39 = t38 - dir;
     float3 t40 = t39 * t39;
@@ -104,10 +114,10 @@ float2 unitpack_hemioct32p_encode_codes(float3 v) {
     float t42 = base.x + 1.0;
     float2 t43 = float2(t42, base.y);
     bool2 t44 = t43 <= float2(32767.0, 32767.0);
-    float2 cand = t44 ? t43 : float2(32767.0, 32767.0);
+    float2 cand = UNITPACK_SELECT(t44, t43, float2(32767.0, 32767.0));
     float2 t45 = cand * 3.051851e-5;
     bool2 t46 = t45 >= float2(-1.0, -1.0);
-    float2 t47 = t46 ? t45 : float2(-1.0, -1.0);
+    float2 t47 = UNITPACK_SELECT(t46, t45, float2(-1.0, -1.0));
     float3 t48 = unitpack_hemioct32p_decode_float(t47);
     float3 t49 = t48 - dir;
     float3 t50 = t49 * t49;
@@ -119,10 +129,10 @@ float2 unitpack_hemioct32p_encode_codes(float3 v) {
     float t53 = base.y + 1.0;
     float2 t54 = float2(base.x, t53);
     bool2 t55 = t54 <= float2(32767.0, 32767.0);
-    float2 cand2 = t55 ? t54 : float2(32767.0, 32767.0);
+    float2 cand2 = UNITPACK_SELECT(t55, t54, float2(32767.0, 32767.0));
     float2 t56 = cand2 * 3.051851e-5;
     bool2 t57 = t56 >= float2(-1.0, -1.0);
-    float2 t58 = t57 ? t56 : float2(-1.0, -1.0);
+    float2 t58 = UNITPACK_SELECT(t57, t56, float2(-1.0, -1.0));
     float3 t59 = unitpack_hemioct32p_decode_float(t58);
     float3 t60 = t59 - dir;
     float3 t61 = t60 * t60;
@@ -133,10 +143,10 @@ float2 unitpack_hemioct32p_encode_codes(float3 v) {
     float best_d3 = t63 ? d2 : best_d2;
     float2 t64 = base + 1.0;
     bool2 t65 = t64 <= float2(32767.0, 32767.0);
-    float2 cand3 = t65 ? t64 : float2(32767.0, 32767.0);
+    float2 cand3 = UNITPACK_SELECT(t65, t64, float2(32767.0, 32767.0));
     float2 t66 = cand3 * 3.051851e-5;
     bool2 t67 = t66 >= float2(-1.0, -1.0);
-    float2 t68 = t67 ? t66 : float2(-1.0, -1.0);
+    float2 t68 = UNITPACK_SELECT(t67, t66, float2(-1.0, -1.0));
     float3 t69 = unitpack_hemioct32p_decode_float(t68);
     float3 t70 = t69 - dir;
     float3 t71 = t70 * t70;
@@ -156,7 +166,7 @@ float2 unitpack_hemioct32p_encode_float(float3 v) {
     float2 t1 = unitpack_hemioct32p_encode_codes(v);
     float2 t2 = t1 * 3.051851e-5;
     bool2 t3 = t2 >= float2(-1.0, -1.0);
-    float2 t4 = t3 ? t2 : float2(-1.0, -1.0);
+    float2 t4 = UNITPACK_SELECT(t3, t2, float2(-1.0, -1.0));
     return t4;
 }
 

@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen lambert24p --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- lambert24p: Lambert azimuthal equal-area, unorm×2, 24 bits, precise encoder ----
 #ifndef UNITPACK_LAMBERT24P_HLSL
@@ -91,9 +101,9 @@ float2 unitpack_lambert24p_encode_codes(float3 v) {
     bool t34 = f > 0.0;
     float2 t35 = t34 ? t33 : float2(1.0, 0.5);
     bool2 t36 = t35 >= float2(0.0, 0.0);
-    float2 t37 = t36 ? t35 : float2(0.0, 0.0);
+    float2 t37 = UNITPACK_SELECT(t36, t35, float2(0.0, 0.0));
     bool2 t38 = t37 <= float2(1.0, 1.0);
-    float2 t39 = t38 ? t37 : float2(1.0, 1.0);
+    float2 t39 = UNITPACK_SELECT(t38, t37, float2(1.0, 1.0));
     float2 t40 = t39 * 4095.0;
     float2 base = floor(t40);
     float2 t41 = base * 0.00024420026;
@@ -105,7 +115,7 @@ float2 unitpack_lambert24p_encode_codes(float3 v) {
     float t46 = base.x + 1.0;
     float2 t47 = float2(t46, base.y);
     bool2 t48 = t47 <= float2(4095.0, 4095.0);
-    float2 cand = t48 ? t47 : float2(4095.0, 4095.0);
+    float2 cand = UNITPACK_SELECT(t48, t47, float2(4095.0, 4095.0));
     float2 t49 = cand * 0.00024420026;
     float3 t50 = unitpack_lambert24p_decode_float(t49);
     float3 t51 = t50 - dir;
@@ -118,7 +128,7 @@ float2 unitpack_lambert24p_encode_codes(float3 v) {
     float t55 = base.y + 1.0;
     float2 t56 = float2(base.x, t55);
     bool2 t57 = t56 <= float2(4095.0, 4095.0);
-    float2 cand2 = t57 ? t56 : float2(4095.0, 4095.0);
+    float2 cand2 = UNITPACK_SELECT(t57, t56, float2(4095.0, 4095.0));
     float2 t58 = cand2 * 0.00024420026;
     float3 t59 = unitpack_lambert24p_decode_float(t58);
     float3 t60 = t59 - dir;
@@ -130,7 +140,7 @@ float2 unitpack_lambert24p_encode_codes(float3 v) {
     float best_d3 = t63 ? d2 : best_d2;
     float2 t64 = base + 1.0;
     bool2 t65 = t64 <= float2(4095.0, 4095.0);
-    float2 cand3 = t65 ? t64 : float2(4095.0, 4095.0);
+    float2 cand3 = UNITPACK_SELECT(t65, t64, float2(4095.0, 4095.0));
     float2 t66 = cand3 * 0.00024420026;
     float3 t67 = unitpack_lambert24p_decode_float(t66);
     float3 t68 = t67 - dir;

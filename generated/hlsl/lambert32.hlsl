@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen lambert32 --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- lambert32: Lambert azimuthal equal-area, unorm×2, 32 bits ----
 #ifndef UNITPACK_LAMBERT32_HLSL
@@ -87,9 +97,9 @@ float2 unitpack_lambert32_encode_float(float3 v) {
 uint unitpack_lambert32_encode(float3 v) {
     float2 t1 = unitpack_lambert32_encode_float(v);
     bool2 t2 = t1 >= float2(0.0, 0.0);
-    float2 t3 = t2 ? t1 : float2(0.0, 0.0);
+    float2 t3 = UNITPACK_SELECT(t2, t1, float2(0.0, 0.0));
     bool2 t4 = t3 <= float2(1.0, 1.0);
-    float2 t5 = t4 ? t3 : float2(1.0, 1.0);
+    float2 t5 = UNITPACK_SELECT(t4, t3, float2(1.0, 1.0));
     float2 t6 = t5 * 65535.0;
     float2 codes = round(t6);
     uint t7 = uint(codes.x);

@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen oct22p --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- oct22p: octahedral, snorm×2, 22 bits, precise encoder ----
 #ifndef UNITPACK_OCT22P_HLSL
@@ -21,7 +31,7 @@ float3 unitpack_oct22p_decode_float(float2 params) {
     float2 t4 = abs(params.yx);
     float2 t5 = 1.0 - t4;
     bool2 t6 = params >= float2(0.0, 0.0);
-    float2 t7 = t6 ? float2(1.0, 1.0) : float2(-1.0, -1.0);
+    float2 t7 = UNITPACK_SELECT(t6, float2(1.0, 1.0), float2(-1.0, -1.0));
     float2 t8 = t5 * t7;
     float2 t9 = t3 ? t8 : params;
     float3 v = float3(t9, z);
@@ -45,10 +55,10 @@ float3 unitpack_oct22p_decode(uint code) {
     float2 t4 = float2(t3);
     bool2 t5 = t4 > float2(1023.0, 1023.0);
     float2 t6 = t4 - 2048.0;
-    float2 t7 = t5 ? t6 : t4;
+    float2 t7 = UNITPACK_SELECT(t5, t6, t4);
     float2 t8 = t7 * 0.0009775171;
     bool2 t9 = t8 >= float2(-1.0, -1.0);
-    float2 params = t9 ? t8 : float2(-1.0, -1.0);
+    float2 params = UNITPACK_SELECT(t9, t8, float2(-1.0, -1.0));
     float3 t10 = unitpack_oct22p_decode_float(params);
     return t10;
 }
@@ -84,19 +94,19 @@ float2 unitpack_oct22p_encode_codes(float3 v) {
     float2 t21 = abs(p.yx);
     float2 t22 = 1.0 - t21;
     bool2 t23 = p >= float2(0.0, 0.0);
-    float2 t24 = t23 ? float2(1.0, 1.0) : float2(-1.0, -1.0);
+    float2 t24 = UNITPACK_SELECT(t23, float2(1.0, 1.0), float2(-1.0, -1.0));
     float2 t25 = t22 * t24;
     float2 t26 = t20 ? t25 : p;
     float2 t27 = t19 ? t26 : float2(0.0, 0.0);
     bool2 t28 = t27 >= float2(-1.0, -1.0);
-    float2 t29 = t28 ? t27 : float2(-1.0, -1.0);
+    float2 t29 = UNITPACK_SELECT(t28, t27, float2(-1.0, -1.0));
     bool2 t30 = t29 <= float2(1.0, 1.0);
-    float2 t31 = t30 ? t29 : float2(1.0, 1.0);
+    float2 t31 = UNITPACK_SELECT(t30, t29, float2(1.0, 1.0));
     float2 t32 = t31 * 1023.0;
     float2 base = floor(t32);
     float2 t33 = base * 0.0009775171;
     bool2 t34 = t33 >= float2(-1.0, -1.0);
-    float2 t35 = t34 ? t33 : float2(-1.0, -1.0);
+    float2 t35 = UNITPACK_SELECT(t34, t33, float2(-1.0, -1.0));
     float3 t36 = unitpack_oct22p_decode_float(t35);
     float3 t37 = t36 - dir;
     float3 t38 = t37 * t37;
@@ -105,10 +115,10 @@ float2 unitpack_oct22p_encode_codes(float3 v) {
     float t40 = base.x + 1.0;
     float2 t41 = float2(t40, base.y);
     bool2 t42 = t41 <= float2(1023.0, 1023.0);
-    float2 cand = t42 ? t41 : float2(1023.0, 1023.0);
+    float2 cand = UNITPACK_SELECT(t42, t41, float2(1023.0, 1023.0));
     float2 t43 = cand * 0.0009775171;
     bool2 t44 = t43 >= float2(-1.0, -1.0);
-    float2 t45 = t44 ? t43 : float2(-1.0, -1.0);
+    float2 t45 = UNITPACK_SELECT(t44, t43, float2(-1.0, -1.0));
     float3 t46 = unitpack_oct22p_decode_float(t45);
     float3 t47 = t46 - dir;
     float3 t48 = t47 * t47;
@@ -120,10 +130,10 @@ float2 unitpack_oct22p_encode_codes(float3 v) {
     float t51 = base.y + 1.0;
     float2 t52 = float2(base.x, t51);
     bool2 t53 = t52 <= float2(1023.0, 1023.0);
-    float2 cand2 = t53 ? t52 : float2(1023.0, 1023.0);
+    float2 cand2 = UNITPACK_SELECT(t53, t52, float2(1023.0, 1023.0));
     float2 t54 = cand2 * 0.0009775171;
     bool2 t55 = t54 >= float2(-1.0, -1.0);
-    float2 t56 = t55 ? t54 : float2(-1.0, -1.0);
+    float2 t56 = UNITPACK_SELECT(t55, t54, float2(-1.0, -1.0));
     float3 t57 = unitpack_oct22p_decode_float(t56);
     float3 t58 = t57 - dir;
     float3 t59 = t58 * t58;
@@ -134,10 +144,10 @@ float2 unitpack_oct22p_encode_codes(float3 v) {
     float best_d3 = t61 ? d2 : best_d2;
     float2 t62 = base + 1.0;
     bool2 t63 = t62 <= float2(1023.0, 1023.0);
-    float2 cand3 = t63 ? t62 : float2(1023.0, 1023.0);
+    float2 cand3 = UNITPACK_SELECT(t63, t62, float2(1023.0, 1023.0));
     float2 t64 = cand3 * 0.0009775171;
     bool2 t65 = t64 >= float2(-1.0, -1.0);
-    float2 t66 = t65 ? t64 : float2(-1.0, -1.0);
+    float2 t66 = UNITPACK_SELECT(t65, t64, float2(-1.0, -1.0));
     float3 t67 = unitpack_oct22p_decode_float(t66);
     float3 t68 = t67 - dir;
     float3 t69 = t68 * t68;
@@ -157,7 +167,7 @@ float2 unitpack_oct22p_encode_float(float3 v) {
     float2 t1 = unitpack_oct22p_encode_codes(v);
     float2 t2 = t1 * 0.0009775171;
     bool2 t3 = t2 >= float2(-1.0, -1.0);
-    float2 t4 = t3 ? t2 : float2(-1.0, -1.0);
+    float2 t4 = UNITPACK_SELECT(t3, t2, float2(-1.0, -1.0));
     return t4;
 }
 

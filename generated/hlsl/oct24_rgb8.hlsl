@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen oct24_rgb8 --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- oct24_rgb8: octahedral, snorm×2, 24 bits ----
 #ifndef UNITPACK_OCT24_RGB8_HLSL
@@ -22,7 +32,7 @@ float2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(float3 a0) {
     float2 t7 = t6 - 2047.0;
     float2 t8 = t7 * 0.0004885198;
     bool2 t9 = t8 <= float2(1.0, 1.0);
-    float2 t10 = t9 ? t8 : float2(1.0, 1.0);
+    float2 t10 = UNITPACK_SELECT(t9, t8, float2(1.0, 1.0));
     return t10;
 }
 
@@ -40,7 +50,7 @@ float3 unitpack_oct24_rgb8_decode_float(float3 params) {
     float2 t4 = abs(e.yx);
     float2 t5 = 1.0 - t4;
     bool2 t6 = e >= float2(0.0, 0.0);
-    float2 t7 = t6 ? float2(1.0, 1.0) : float2(-1.0, -1.0);
+    float2 t7 = UNITPACK_SELECT(t6, float2(1.0, 1.0), float2(-1.0, -1.0));
     float2 t8 = t5 * t7;
     float2 t9 = t3 ? t8 : e;
     float3 v = float3(t9, z);
@@ -71,9 +81,9 @@ float3 unitpack_oct24_rgb8_decode(uint code) {
 // Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
 float3 unitpack_oct24_rgb8_snorm12x2_to_unorm8x3(float2 a0) {
     bool2 t1 = a0 >= float2(-1.0, -1.0);
-    float2 t2 = t1 ? a0 : float2(-1.0, -1.0);
+    float2 t2 = UNITPACK_SELECT(t1, a0, float2(-1.0, -1.0));
     bool2 t3 = t2 <= float2(1.0, 1.0);
-    float2 t4 = t3 ? t2 : float2(1.0, 1.0);
+    float2 t4 = UNITPACK_SELECT(t3, t2, float2(1.0, 1.0));
     float2 t5 = t4 * 2047.0;
     float2 t6 = t5 + 2047.0;
     float2 u = round(t6);
@@ -108,7 +118,7 @@ float3 unitpack_oct24_rgb8_encode_float(float3 v) {
     float2 t7 = abs(p.yx);
     float2 t8 = 1.0 - t7;
     bool2 t9 = p >= float2(0.0, 0.0);
-    float2 t10 = t9 ? float2(1.0, 1.0) : float2(-1.0, -1.0);
+    float2 t10 = UNITPACK_SELECT(t9, float2(1.0, 1.0), float2(-1.0, -1.0));
     float2 t11 = t8 * t10;
     float2 t12 = t6 ? t11 : p;
     float2 e = t5 ? t12 : float2(0.0, 0.0);
@@ -124,9 +134,9 @@ float3 unitpack_oct24_rgb8_encode_float(float3 v) {
 uint unitpack_oct24_rgb8_encode(float3 v) {
     float3 t1 = unitpack_oct24_rgb8_encode_float(v);
     bool3 t2 = t1 >= float3(0.0, 0.0, 0.0);
-    float3 t3 = t2 ? t1 : float3(0.0, 0.0, 0.0);
+    float3 t3 = UNITPACK_SELECT(t2, t1, float3(0.0, 0.0, 0.0));
     bool3 t4 = t3 <= float3(1.0, 1.0, 1.0);
-    float3 t5 = t4 ? t3 : float3(1.0, 1.0, 1.0);
+    float3 t5 = UNITPACK_SELECT(t4, t3, float3(1.0, 1.0, 1.0));
     float3 t6 = t5 * 255.0;
     float3 codes = round(t6);
     uint t7 = uint(codes.x);

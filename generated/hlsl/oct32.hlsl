@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen oct32 --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- oct32: octahedral, snorm×2, 32 bits ----
 #ifndef UNITPACK_OCT32_HLSL
@@ -21,7 +31,7 @@ float3 unitpack_oct32_decode_float(float2 params) {
     float2 t4 = abs(params.yx);
     float2 t5 = 1.0 - t4;
     bool2 t6 = params >= float2(0.0, 0.0);
-    float2 t7 = t6 ? float2(1.0, 1.0) : float2(-1.0, -1.0);
+    float2 t7 = UNITPACK_SELECT(t6, float2(1.0, 1.0), float2(-1.0, -1.0));
     float2 t8 = t5 * t7;
     float2 t9 = t3 ? t8 : params;
     float3 v = float3(t9, z);
@@ -45,10 +55,10 @@ float3 unitpack_oct32_decode(uint code) {
     float2 t4 = float2(t3);
     bool2 t5 = t4 > float2(32767.0, 32767.0);
     float2 t6 = t4 - 65536.0;
-    float2 t7 = t5 ? t6 : t4;
+    float2 t7 = UNITPACK_SELECT(t5, t6, t4);
     float2 t8 = t7 * 3.051851e-5;
     bool2 t9 = t8 >= float2(-1.0, -1.0);
-    float2 params = t9 ? t8 : float2(-1.0, -1.0);
+    float2 params = UNITPACK_SELECT(t9, t8, float2(-1.0, -1.0));
     float3 t10 = unitpack_oct32_decode_float(params);
     return t10;
 }
@@ -70,7 +80,7 @@ float2 unitpack_oct32_encode_float(float3 v) {
     float2 t7 = abs(p.yx);
     float2 t8 = 1.0 - t7;
     bool2 t9 = p >= float2(0.0, 0.0);
-    float2 t10 = t9 ? float2(1.0, 1.0) : float2(-1.0, -1.0);
+    float2 t10 = UNITPACK_SELECT(t9, float2(1.0, 1.0), float2(-1.0, -1.0));
     float2 t11 = t8 * t10;
     float2 t12 = t6 ? t11 : p;
     float2 t13 = t5 ? t12 : float2(0.0, 0.0);
@@ -85,9 +95,9 @@ float2 unitpack_oct32_encode_float(float3 v) {
 uint unitpack_oct32_encode(float3 v) {
     float2 t1 = unitpack_oct32_encode_float(v);
     bool2 t2 = t1 >= float2(-1.0, -1.0);
-    float2 t3 = t2 ? t1 : float2(-1.0, -1.0);
+    float2 t3 = UNITPACK_SELECT(t2, t1, float2(-1.0, -1.0));
     bool2 t4 = t3 <= float2(1.0, 1.0);
-    float2 t5 = t4 ? t3 : float2(1.0, 1.0);
+    float2 t5 = UNITPACK_SELECT(t4, t3, float2(1.0, 1.0));
     float2 t6 = t5 * 32767.0;
     float2 codes = round(t6);
     float t7 = codes.x + 65536.0;

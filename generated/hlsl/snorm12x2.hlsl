@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen snorm12x2 --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms ----
 #ifndef UNITPACK_SNORM12X2_HLSL
@@ -11,9 +21,9 @@
 // Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
 float3 unitpack_snorm12x2_to_unorm8x3(float2 f) {
     bool2 t1 = f >= float2(-1.0, -1.0);
-    float2 t2 = t1 ? f : float2(-1.0, -1.0);
+    float2 t2 = UNITPACK_SELECT(t1, f, float2(-1.0, -1.0));
     bool2 t3 = t2 <= float2(1.0, 1.0);
-    float2 t4 = t3 ? t2 : float2(1.0, 1.0);
+    float2 t4 = UNITPACK_SELECT(t3, t2, float2(1.0, 1.0));
     float2 t5 = t4 * 2047.0;
     float2 t6 = t5 + 2047.0;
     float2 u = round(t6);
@@ -34,9 +44,9 @@ float3 unitpack_snorm12x2_to_unorm8x3(float2 f) {
 // Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input.
 float3 unitpack_snorm12x2_to_unorm8x3_int(float2 f) {
     bool2 t1 = f >= float2(-1.0, -1.0);
-    float2 t2 = t1 ? f : float2(-1.0, -1.0);
+    float2 t2 = UNITPACK_SELECT(t1, f, float2(-1.0, -1.0));
     bool2 t3 = t2 <= float2(1.0, 1.0);
-    float2 t4 = t3 ? t2 : float2(1.0, 1.0);
+    float2 t4 = UNITPACK_SELECT(t3, t2, float2(1.0, 1.0));
     float2 t5 = t4 * 2047.0;
     float2 t6 = t5 + 2047.0;
     float2 u = round(t6);
@@ -67,7 +77,7 @@ float2 unitpack_unorm8x3_to_snorm12x2(float3 u) {
     float2 t7 = t6 - 2047.0;
     float2 t8 = t7 * 0.0004885198;
     bool2 t9 = t8 <= float2(1.0, 1.0);
-    float2 t10 = t9 ? t8 : float2(1.0, 1.0);
+    float2 t10 = UNITPACK_SELECT(t9, t8, float2(1.0, 1.0));
     return t10;
 }
 
@@ -87,7 +97,7 @@ float2 unitpack_unorm8x3_to_snorm12x2_int(float3 u) {
     float2 t11 = t10 - 2047.0;
     float2 t12 = t11 * 0.0004885198;
     bool2 t13 = t12 <= float2(1.0, 1.0);
-    float2 t14 = t13 ? t12 : float2(1.0, 1.0);
+    float2 t14 = UNITPACK_SELECT(t13, t12, float2(1.0, 1.0));
     return t14;
 }
 

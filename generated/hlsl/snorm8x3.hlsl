@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen snorm8x3 --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- snorm8x3: components as snorm×3 (ids snorm8x3, snorm10x3, snorm16x3), 24 bits ----
 #ifndef UNITPACK_SNORM8X3_HLSL
@@ -38,10 +48,10 @@ float3 unitpack_snorm8x3_decode(uint code) {
     float3 t5 = float3(t4);
     bool3 t6 = t5 > float3(127.0, 127.0, 127.0);
     float3 t7 = t5 - 256.0;
-    float3 t8 = t6 ? t7 : t5;
+    float3 t8 = UNITPACK_SELECT(t6, t7, t5);
     float3 t9 = t8 * 0.007874016;
     bool3 t10 = t9 >= float3(-1.0, -1.0, -1.0);
-    float3 params = t10 ? t9 : float3(-1.0, -1.0, -1.0);
+    float3 params = UNITPACK_SELECT(t10, t9, float3(-1.0, -1.0, -1.0));
     float3 t11 = unitpack_snorm8x3_decode_float(params);
     return t11;
 }
@@ -81,9 +91,9 @@ float3 unitpack_snorm8x3_encode_float(float3 v) {
 uint unitpack_snorm8x3_encode(float3 v) {
     float3 t1 = unitpack_snorm8x3_encode_float(v);
     bool3 t2 = t1 >= float3(-1.0, -1.0, -1.0);
-    float3 t3 = t2 ? t1 : float3(-1.0, -1.0, -1.0);
+    float3 t3 = UNITPACK_SELECT(t2, t1, float3(-1.0, -1.0, -1.0));
     bool3 t4 = t3 <= float3(1.0, 1.0, 1.0);
-    float3 t5 = t4 ? t3 : float3(1.0, 1.0, 1.0);
+    float3 t5 = UNITPACK_SELECT(t4, t3, float3(1.0, 1.0, 1.0));
     float3 t6 = t5 * 127.0;
     float3 codes = round(t6);
     float t7 = codes.x + 256.0;

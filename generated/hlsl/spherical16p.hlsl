@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen spherical16p --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- spherical16p: spherical coordinates (θ, φ), snorm×2, 16 bits, precise encoder ----
 #ifndef UNITPACK_SPHERICAL16P_HLSL
@@ -43,7 +53,7 @@ float2 unitpack_spherical16p_sincos_pi(float a0) {
     float2 t27 = float2(s, co);
     float2 t28 = t5 ? t26 : t27;
     float2 t29 = -t28;
-    float2 t30 = t25 ? t29 : t28;
+    float2 t30 = UNITPACK_SELECT(t25, t29, t28);
     return t30;
 }
 
@@ -75,10 +85,10 @@ float3 unitpack_spherical16p_decode(uint code) {
     float2 t4 = float2(t3);
     bool2 t5 = t4 > float2(127.0, 127.0);
     float2 t6 = t4 - 256.0;
-    float2 t7 = t5 ? t6 : t4;
+    float2 t7 = UNITPACK_SELECT(t5, t6, t4);
     float2 t8 = t7 * 0.007874016;
     bool2 t9 = t8 >= float2(-1.0, -1.0);
-    float2 params = t9 ? t8 : float2(-1.0, -1.0);
+    float2 params = UNITPACK_SELECT(t9, t8, float2(-1.0, -1.0));
     float3 t10 = unitpack_spherical16p_decode_float(params);
     return t10;
 }
@@ -179,14 +189,14 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     float t33 = t32 - 1.0;
     float2 t34 = float2(t33, phi);
     bool2 t35 = t34 >= float2(-1.0, -1.0);
-    float2 t36 = t35 ? t34 : float2(-1.0, -1.0);
+    float2 t36 = UNITPACK_SELECT(t35, t34, float2(-1.0, -1.0));
     bool2 t37 = t36 <= float2(1.0, 1.0);
-    float2 t38 = t37 ? t36 : float2(1.0, 1.0);
+    float2 t38 = UNITPACK_SELECT(t37, t36, float2(1.0, 1.0));
     float2 t39 = t38 * 127.0;
     float2 base = floor(t39);
     float2 t40 = base * 0.007874016;
     bool2 t41 = t40 >= float2(-1.0, -1.0);
-    float2 t42 = t41 ? t40 : float2(-1.0, -1.0);
+    float2 t42 = UNITPACK_SELECT(t41, t40, float2(-1.0, -1.0));
     float3 t43 = unitpack_spherical16p_decode_float(t42);
     float3 t44 = t43 - dir;
     float3 t45 = t44 * t44;
@@ -195,10 +205,10 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     float t47 = base.x + 1.0;
     float2 t48 = float2(t47, base.y);
     bool2 t49 = t48 <= float2(127.0, 127.0);
-    float2 cand = t49 ? t48 : float2(127.0, 127.0);
+    float2 cand = UNITPACK_SELECT(t49, t48, float2(127.0, 127.0));
     float2 t50 = cand * 0.007874016;
     bool2 t51 = t50 >= float2(-1.0, -1.0);
-    float2 t52 = t51 ? t50 : float2(-1.0, -1.0);
+    float2 t52 = UNITPACK_SELECT(t51, t50, float2(-1.0, -1.0));
     float3 t53 = unitpack_spherical16p_decode_float(t52);
     float3 t54 = t53 - dir;
     float3 t55 = t54 * t54;
@@ -210,10 +220,10 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     float t58 = base.y + 1.0;
     float2 t59 = float2(base.x, t58);
     bool2 t60 = t59 <= float2(127.0, 127.0);
-    float2 cand2 = t60 ? t59 : float2(127.0, 127.0);
+    float2 cand2 = UNITPACK_SELECT(t60, t59, float2(127.0, 127.0));
     float2 t61 = cand2 * 0.007874016;
     bool2 t62 = t61 >= float2(-1.0, -1.0);
-    float2 t63 = t62 ? t61 : float2(-1.0, -1.0);
+    float2 t63 = UNITPACK_SELECT(t62, t61, float2(-1.0, -1.0));
     float3 t64 = unitpack_spherical16p_decode_float(t63);
     float3 t65 = t64 - dir;
     float3 t66 = t65 * t65;
@@ -224,10 +234,10 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     float best_d3 = t68 ? d2 : best_d2;
     float2 t69 = base + 1.0;
     bool2 t70 = t69 <= float2(127.0, 127.0);
-    float2 cand3 = t70 ? t69 : float2(127.0, 127.0);
+    float2 cand3 = UNITPACK_SELECT(t70, t69, float2(127.0, 127.0));
     float2 t71 = cand3 * 0.007874016;
     bool2 t72 = t71 >= float2(-1.0, -1.0);
-    float2 t73 = t72 ? t71 : float2(-1.0, -1.0);
+    float2 t73 = UNITPACK_SELECT(t72, t71, float2(-1.0, -1.0));
     float3 t74 = unitpack_spherical16p_decode_float(t73);
     float3 t75 = t74 - dir;
     float3 t76 = t75 * t75;
@@ -247,7 +257,7 @@ float2 unitpack_spherical16p_encode_float(float3 v) {
     float2 t1 = unitpack_spherical16p_encode_codes(v);
     float2 t2 = t1 * 0.007874016;
     bool2 t3 = t2 >= float2(-1.0, -1.0);
-    float2 t4 = t3 ? t2 : float2(-1.0, -1.0);
+    float2 t4 = UNITPACK_SELECT(t3, t2, float2(-1.0, -1.0));
     return t4;
 }
 

@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen spherical24 --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- spherical24: spherical coordinates (θ, φ), snorm×2, 24 bits ----
 #ifndef UNITPACK_SPHERICAL24_HLSL
@@ -43,7 +53,7 @@ float2 unitpack_spherical24_sincos_pi(float a0) {
     float2 t27 = float2(s, co);
     float2 t28 = t5 ? t26 : t27;
     float2 t29 = -t28;
-    float2 t30 = t25 ? t29 : t28;
+    float2 t30 = UNITPACK_SELECT(t25, t29, t28);
     return t30;
 }
 
@@ -75,10 +85,10 @@ float3 unitpack_spherical24_decode(uint code) {
     float2 t4 = float2(t3);
     bool2 t5 = t4 > float2(2047.0, 2047.0);
     float2 t6 = t4 - 4096.0;
-    float2 t7 = t5 ? t6 : t4;
+    float2 t7 = UNITPACK_SELECT(t5, t6, t4);
     float2 t8 = t7 * 0.0004885198;
     bool2 t9 = t8 >= float2(-1.0, -1.0);
-    float2 params = t9 ? t8 : float2(-1.0, -1.0);
+    float2 params = UNITPACK_SELECT(t9, t8, float2(-1.0, -1.0));
     float3 t10 = unitpack_spherical24_decode_float(params);
     return t10;
 }
@@ -175,9 +185,9 @@ float2 unitpack_spherical24_encode_float(float3 v) {
 uint unitpack_spherical24_encode(float3 v) {
     float2 t1 = unitpack_spherical24_encode_float(v);
     bool2 t2 = t1 >= float2(-1.0, -1.0);
-    float2 t3 = t2 ? t1 : float2(-1.0, -1.0);
+    float2 t3 = UNITPACK_SELECT(t2, t1, float2(-1.0, -1.0));
     bool2 t4 = t3 <= float2(1.0, 1.0);
-    float2 t5 = t4 ? t3 : float2(1.0, 1.0);
+    float2 t5 = UNITPACK_SELECT(t4, t3, float2(1.0, 1.0));
     float2 t6 = t5 * 2047.0;
     float2 codes = round(t6);
     float t7 = codes.x + 4096.0;

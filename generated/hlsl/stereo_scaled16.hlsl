@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen stereo_scaled16 --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- stereo_scaled16: scaled stereographic, unorm×2, 16 bits ----
 #ifndef UNITPACK_STEREO_SCALED16_HLSL
@@ -71,9 +81,9 @@ float2 unitpack_stereo_scaled16_encode_float(float3 v) {
     float2 t17 = t16 * 0.2812623;
     float2 t18 = t17 + 0.5;
     bool2 t19 = t18 >= float2(0.0, 0.0);
-    float2 t20 = t19 ? t18 : float2(0.0, 0.0);
+    float2 t20 = UNITPACK_SELECT(t19, t18, float2(0.0, 0.0));
     bool2 t21 = t20 <= float2(1.0, 1.0);
-    float2 t22 = t21 ? t20 : float2(1.0, 1.0);
+    float2 t22 = UNITPACK_SELECT(t21, t20, float2(1.0, 1.0));
     return t22;
 }
 
@@ -85,9 +95,9 @@ float2 unitpack_stereo_scaled16_encode_float(float3 v) {
 uint unitpack_stereo_scaled16_encode(float3 v) {
     float2 t1 = unitpack_stereo_scaled16_encode_float(v);
     bool2 t2 = t1 >= float2(0.0, 0.0);
-    float2 t3 = t2 ? t1 : float2(0.0, 0.0);
+    float2 t3 = UNITPACK_SELECT(t2, t1, float2(0.0, 0.0));
     bool2 t4 = t3 <= float2(1.0, 1.0);
-    float2 t5 = t4 ? t3 : float2(1.0, 1.0);
+    float2 t5 = UNITPACK_SELECT(t4, t3, float2(1.0, 1.0));
     float2 t6 = t5 * 255.0;
     float2 codes = round(t6);
     uint t7 = uint(codes.x);

@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen stereo_scaled24p --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- stereo_scaled24p: scaled stereographic, unorm×2, 24 bits, precise encoder ----
 #ifndef UNITPACK_STEREO_SCALED24P_HLSL
@@ -85,13 +95,13 @@ float2 unitpack_stereo_scaled24p_encode_codes(float3 v) {
     float2 t31 = t30 * 0.2812623;
     float2 t32 = t31 + 0.5;
     bool2 t33 = t32 >= float2(0.0, 0.0);
-    float2 t34 = t33 ? t32 : float2(0.0, 0.0);
+    float2 t34 = UNITPACK_SELECT(t33, t32, float2(0.0, 0.0));
     bool2 t35 = t34 <= float2(1.0, 1.0);
-    float2 t36 = t35 ? t34 : float2(1.0, 1.0);
+    float2 t36 = UNITPACK_SELECT(t35, t34, float2(1.0, 1.0));
     bool2 t37 = t36 >= float2(0.0, 0.0);
-    float2 t38 = t37 ? t36 : float2(0.0, 0.0);
+    float2 t38 = UNITPACK_SELECT(t37, t36, float2(0.0, 0.0));
     bool2 t39 = t38 <= float2(1.0, 1.0);
-    float2 t40 = t39 ? t38 : float2(1.0, 1.0);
+    float2 t40 = UNITPACK_SELECT(t39, t38, float2(1.0, 1.0));
     float2 t41 = t40 * 4095.0;
     float2 base = floor(t41);
     float2 t42 = base * 0.00024420026;
@@ -103,7 +113,7 @@ float2 unitpack_stereo_scaled24p_encode_codes(float3 v) {
     float t47 = base.x + 1.0;
     float2 t48 = float2(t47, base.y);
     bool2 t49 = t48 <= float2(4095.0, 4095.0);
-    float2 cand = t49 ? t48 : float2(4095.0, 4095.0);
+    float2 cand = UNITPACK_SELECT(t49, t48, float2(4095.0, 4095.0));
     float2 t50 = cand * 0.00024420026;
     float3 t51 = unitpack_stereo_scaled24p_decode_float(t50);
     float3 t52 = t51 - dir;
@@ -116,7 +126,7 @@ float2 unitpack_stereo_scaled24p_encode_codes(float3 v) {
     float t56 = base.y + 1.0;
     float2 t57 = float2(base.x, t56);
     bool2 t58 = t57 <= float2(4095.0, 4095.0);
-    float2 cand2 = t58 ? t57 : float2(4095.0, 4095.0);
+    float2 cand2 = UNITPACK_SELECT(t58, t57, float2(4095.0, 4095.0));
     float2 t59 = cand2 * 0.00024420026;
     float3 t60 = unitpack_stereo_scaled24p_decode_float(t59);
     float3 t61 = t60 - dir;
@@ -128,7 +138,7 @@ float2 unitpack_stereo_scaled24p_encode_codes(float3 v) {
     float best_d3 = t64 ? d3 : best_d2;
     float2 t65 = base + 1.0;
     bool2 t66 = t65 <= float2(4095.0, 4095.0);
-    float2 cand3 = t66 ? t65 : float2(4095.0, 4095.0);
+    float2 cand3 = UNITPACK_SELECT(t66, t65, float2(4095.0, 4095.0));
     float2 t67 = cand3 * 0.00024420026;
     float3 t68 = unitpack_stereo_scaled24p_decode_float(t67);
     float3 t69 = t68 - dir;

@@ -2,7 +2,17 @@
 // Regenerate: unitpack generate  (or: unitpack gen xy16p --lang hlsl)
 // Every function computes bit for bit what unitpack's Rust model computes (verified on
 // Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.
-// HLSL, Shader Model 5.0 and later.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+
+// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
+// only the (then lane-wise) ?: operator.
+#ifndef UNITPACK_SELECT
+#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#define UNITPACK_SELECT(c, t, f) select(c, t, f)
+#else
+#define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))
+#endif
+#endif
 
 // ---- xy16p: x and y stored, z reconstructed, snorm×2, 16 bits, precise encoder ----
 #ifndef UNITPACK_XY16P_HLSL
@@ -36,10 +46,10 @@ float3 unitpack_xy16p_decode(uint code) {
     float2 t4 = float2(t3);
     bool2 t5 = t4 > float2(127.0, 127.0);
     float2 t6 = t4 - 256.0;
-    float2 t7 = t5 ? t6 : t4;
+    float2 t7 = UNITPACK_SELECT(t5, t6, t4);
     float2 t8 = t7 * 0.007874016;
     bool2 t9 = t8 >= float2(-1.0, -1.0);
-    float2 params = t9 ? t8 : float2(-1.0, -1.0);
+    float2 params = UNITPACK_SELECT(t9, t8, float2(-1.0, -1.0));
     float3 t10 = unitpack_xy16p_decode_float(params);
     return t10;
 }
@@ -89,14 +99,14 @@ float2 unitpack_xy16p_encode_codes(float3 v) {
     float3 t34 = scaled2 / t33;
     float3 t35 = t32 ? t34 : float3(0.0, 0.0, 1.0);
     bool2 t36 = t35.xy >= float2(-1.0, -1.0);
-    float2 t37 = t36 ? t35.xy : float2(-1.0, -1.0);
+    float2 t37 = UNITPACK_SELECT(t36, t35.xy, float2(-1.0, -1.0));
     bool2 t38 = t37 <= float2(1.0, 1.0);
-    float2 t39 = t38 ? t37 : float2(1.0, 1.0);
+    float2 t39 = UNITPACK_SELECT(t38, t37, float2(1.0, 1.0));
     float2 t40 = t39 * 127.0;
     float2 base = floor(t40);
     float2 t41 = base * 0.007874016;
     bool2 t42 = t41 >= float2(-1.0, -1.0);
-    float2 t43 = t42 ? t41 : float2(-1.0, -1.0);
+    float2 t43 = UNITPACK_SELECT(t42, t41, float2(-1.0, -1.0));
     float3 t44 = unitpack_xy16p_decode_float(t43);
     float3 t45 = t44 - dir;
     float3 t46 = t45 * t45;
@@ -105,10 +115,10 @@ float2 unitpack_xy16p_encode_codes(float3 v) {
     float t48 = base.x + 1.0;
     float2 t49 = float2(t48, base.y);
     bool2 t50 = t49 <= float2(127.0, 127.0);
-    float2 cand = t50 ? t49 : float2(127.0, 127.0);
+    float2 cand = UNITPACK_SELECT(t50, t49, float2(127.0, 127.0));
     float2 t51 = cand * 0.007874016;
     bool2 t52 = t51 >= float2(-1.0, -1.0);
-    float2 t53 = t52 ? t51 : float2(-1.0, -1.0);
+    float2 t53 = UNITPACK_SELECT(t52, t51, float2(-1.0, -1.0));
     float3 t54 = unitpack_xy16p_decode_float(t53);
     float3 t55 = t54 - dir;
     float3 t56 = t55 * t55;
@@ -120,10 +130,10 @@ float2 unitpack_xy16p_encode_codes(float3 v) {
     float t59 = base.y + 1.0;
     float2 t60 = float2(base.x, t59);
     bool2 t61 = t60 <= float2(127.0, 127.0);
-    float2 cand2 = t61 ? t60 : float2(127.0, 127.0);
+    float2 cand2 = UNITPACK_SELECT(t61, t60, float2(127.0, 127.0));
     float2 t62 = cand2 * 0.007874016;
     bool2 t63 = t62 >= float2(-1.0, -1.0);
-    float2 t64 = t63 ? t62 : float2(-1.0, -1.0);
+    float2 t64 = UNITPACK_SELECT(t63, t62, float2(-1.0, -1.0));
     float3 t65 = unitpack_xy16p_decode_float(t64);
     float3 t66 = t65 - dir;
     float3 t67 = t66 * t66;
@@ -134,10 +144,10 @@ float2 unitpack_xy16p_encode_codes(float3 v) {
     float best_d3 = t69 ? d2 : best_d2;
     float2 t70 = base + 1.0;
     bool2 t71 = t70 <= float2(127.0, 127.0);
-    float2 cand3 = t71 ? t70 : float2(127.0, 127.0);
+    float2 cand3 = UNITPACK_SELECT(t71, t70, float2(127.0, 127.0));
     float2 t72 = cand3 * 0.007874016;
     bool2 t73 = t72 >= float2(-1.0, -1.0);
-    float2 t74 = t73 ? t72 : float2(-1.0, -1.0);
+    float2 t74 = UNITPACK_SELECT(t73, t72, float2(-1.0, -1.0));
     float3 t75 = unitpack_xy16p_decode_float(t74);
     float3 t76 = t75 - dir;
     float3 t77 = t76 * t76;
@@ -157,7 +167,7 @@ float2 unitpack_xy16p_encode_float(float3 v) {
     float2 t1 = unitpack_xy16p_encode_codes(v);
     float2 t2 = t1 * 0.007874016;
     bool2 t3 = t2 >= float2(-1.0, -1.0);
-    float2 t4 = t3 ? t2 : float2(-1.0, -1.0);
+    float2 t4 = UNITPACK_SELECT(t3, t2, float2(-1.0, -1.0));
     return t4;
 }
 

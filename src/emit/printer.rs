@@ -217,6 +217,9 @@ impl Ctx<'_> {
                 match lang {
                     Lang::Wgsl => format!("select({}, {}, {})", a(2), a(1), a(0)),
                     Lang::Glsl if mask_vec => format!("mix({}, {}, {})", a(2), a(1), a(0)),
+                    // HLSL 2021 (DXC's default) rejects `?:` on vector conditions and wants
+                    // select(); older HLSL has no select(). The include defines this macro.
+                    Lang::Hlsl if mask_vec => format!("UNITPACK_SELECT({}, {}, {})", a(0), a(1), a(2)),
                     _ => format!("{} ? {} : {}", a(0), a(1), a(2)),
                 }
             }
