@@ -70,6 +70,7 @@ struct GlslFile<'a> {
 struct HlslFile<'a> {
     header: &'a [String],
     specs: &'a [SpecView],
+    select_macro: String,
 }
 
 /// One spec's functions in `lang`, named `{prefix}{namespace}_{name}`.
@@ -86,7 +87,7 @@ pub fn spec_view(spec: &Spec, lang: Lang, prefix: &str, stats: Option<ErrorStats
         .funcs
         .iter()
         .map(|f| {
-            let p = printer::print(lang, f, &full);
+            let p = printer::print(lang, f, prefix, &full);
             let public = e.functions.iter().find(|pf| pf.name == f.name);
             FnView {
                 doc: docs::function_doc(spec, &e, &p, public.map(|pf| pf.role), &f.name, stats),
@@ -130,6 +131,7 @@ pub fn render(
         Lang::Hlsl => HlslFile {
             header: &header,
             specs: &views,
+            select_macro: printer::select_macro(prefix),
         }
         .render(),
     };

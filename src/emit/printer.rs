@@ -73,6 +73,7 @@ fn lanes_str(l: &[u8]) -> String {
 
 struct Ctx<'a> {
     lang: Lang,
+    select_macro: &'a str,
     f: &'a Func,
     names: Vec<Option<String>>,
     fn_name: &'a dyn Fn(&str) -> String,
@@ -219,7 +220,9 @@ impl Ctx<'_> {
                     Lang::Glsl if mask_vec => format!("mix({}, {}, {})", a(2), a(1), a(0)),
                     // HLSL 2021 (DXC's default) rejects `?:` on vector conditions and wants
                     // select(); older HLSL has no select(). The include defines this macro.
-                    Lang::Hlsl if mask_vec => format!("UNITPACK_SELECT({}, {}, {})", a(0), a(1), a(2)),
+                    Lang::Hlsl if mask_vec => {
+                        format!("{}({}, {}, {})", self.select_macro, a(0), a(1), a(2))
+                    }
                     _ => format!("{} ? {} : {}", a(0), a(1), a(2)),
                 }
             }
@@ -268,10 +271,17 @@ fn live(f: &Func) -> Vec<bool> {
     live
 }
 
-pub fn print(lang: Lang, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed {
+/// The HLSL lane-wise select macro the templates define, named after the prefix.
+pub fn select_macro(prefix: &str) -> String {
+    format!("{}SELECT", prefix.to_ascii_uppercase())
+}
+
+pub fn print(lang: Lang, f: &Func, prefix: &str, fn_name: &dyn Fn(&str) -> String) -> Printed {
     let live = live(f);
+    let select_macro = select_macro(prefix);
     let mut ctx = Ctx {
         lang,
+        select_macro: &select_macro,
         f,
         names: vec![None; f.nodes.len()],
         fn_name,
