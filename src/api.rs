@@ -1,6 +1,8 @@
-//! The CPU library for asset pipelines: the same `f32` model the shaders are proven
-//! against, so a buffer encoded here decodes on the GPU to exactly the bits the GPU
-//! encoder would have produced.
+//! The CPU library for asset pipelines: the same `f32` model the emitted shaders are
+//! verified against, so codes encoded here are the codes the shader encoder writes, and
+//! the shader decoder turns them into the same vectors as [`Encoder::decode`] — exactly,
+//! on implementations with correctly rounded arithmetic that keep denormals and do not
+//! fuse multiply-adds (verified on lavapipe; see the README on real GPUs).
 //!
 //! ```
 //! use unitpack::api::{CpuCodec, Oct};
@@ -132,7 +134,16 @@ impl StereoScaled {
             scale: crate::codecs::stereo::DEFAULT_SCALE,
         })
     }
-    pub fn with_scale(self, scale: f32) -> StereoScaled {
-        StereoScaled { scale, ..self }
+    /// The same codec with another scale; see [`crate::codecs::stereo::SCALE_RANGE`].
+    pub fn with_scale(self, scale: f32) -> Result<StereoScaled, SpecError> {
+        if crate::codecs::stereo::SCALE_RANGE.contains(&scale) {
+            Ok(StereoScaled { scale, ..self })
+        } else {
+            Err(SpecError::BadValue {
+                key: "scale".into(),
+                value: scale.to_string(),
+                why: "scale must lie in [0.001, 1000]",
+            })
+        }
     }
 }

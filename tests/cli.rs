@@ -703,10 +703,11 @@ fn layout_rgb8_is_oct24_only() {
 
 #[test]
 fn stereo_scale_must_be_a_positive_finite_number() {
-    for v in ["-1", "0", "-0", "inf", "NaN"] {
+    // Also bounded, so that the literals derived from it (2s, -s, 0.5/s) stay finite.
+    for v in ["-1", "0", "-0", "inf", "nan", "3e38", "1e-39"] {
         let err = bad_spec(&format!("stereo_scaled16:scale={v}"));
         assert!(
-            err.contains(&format!("'{v}'")) && err.contains("positive and finite"),
+            err.contains(&format!("'{v}'")) && err.contains("[0.001, 1000]"),
             "scale={v}: {err}"
         );
     }
@@ -1019,6 +1020,12 @@ fn generate_check_names_an_extra_file() {
         !r.stdout.contains("changed:") && !r.stdout.contains("missing:"),
         "{r:?}"
     );
+    // `generate` removes what `--check` called extra, and leaves other files alone.
+    std::fs::write(dir.path().join("wgsl/notes.txt"), "mine\n").unwrap();
+    generate_into(dir.path());
+    assert!(!dir.path().join("wgsl/oct17.wgsl").exists());
+    assert!(dir.path().join("wgsl/notes.txt").exists());
+    assert_eq!(check(dir.path()).code, 0);
 }
 
 #[test]

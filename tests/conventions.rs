@@ -27,20 +27,31 @@ fn sign_not_zero_counts_negative_zero_as_positive() {
     assert_eq!((s.x, s.y), (-1.0, 1.0));
 }
 
+/// On the fold line itself folding changes nothing but the sign of zero, so signed zeros
+/// are what tell `z <= 0` from `z < 0`: compare bits.
 #[test]
 fn oct_folds_on_encode_at_z_le_0_and_on_decode_at_z_lt_0() {
-    // z = +0 and z = -0 are both folded by the encoder: the equator maps to the border.
-    for z in [0.0f32, -0.0] {
-        let p = oct_params(V3::new(0.5f32, 0.5, z));
-        assert_eq!((p.x, p.y), (0.5, 0.5), "equator point with z = {z:?}");
-    }
-    let p = oct_params(V3::new(0.25f32, 0.25, 0.5));
-    assert_eq!((p.x, p.y), (0.25, 0.25), "upper hemisphere is not folded");
+    // Encode: z = +0 folds (z <= 0), and folding (-0, 1) gives x = +0.
+    let p = oct_params(V3::new(-0.0f32, 1.0, 0.0));
+    assert_eq!(
+        (p.x.to_bits(), p.y),
+        (0.0f32.to_bits(), 1.0),
+        "z = +0 must fold"
+    );
+    let p = oct_params(V3::new(-0.0f32, 1.0, -0.0));
+    assert_eq!(p.x.to_bits(), 0.0f32.to_bits(), "z = -0 must fold");
+    let p = oct_params(V3::new(-0.0f32, 1.0, 1e-30));
+    assert_eq!(p.x.to_bits(), (-0.0f32).to_bits(), "z > 0 must not fold");
+    // Decode: (-0, 1) has z = 0 exactly, which must not unfold: x stays -0.
+    let v = oct_direction(V2::new(-0.0f32, 1.0));
+    assert_eq!(
+        (v.x.to_bits(), v.y, v.z),
+        ((-0.0f32).to_bits(), 1.0, 0.0),
+        "z = 0 must not unfold"
+    );
+    // Below the diamond both rules unfold.
     let p = oct_params(V3::new(0.25f32, 0.25, -0.5));
-    assert_eq!((p.x, p.y), (0.75, 0.75), "lower hemisphere is folded");
-    // Decode: on the diamond's edge z = 0 is not unfolded; outside it is.
-    let v = oct_direction(V2::new(0.5f32, 0.5));
-    assert!(v.z == 0.0 && v.x > 0.0 && v.y > 0.0);
+    assert_eq!((p.x, p.y), (0.75, 0.75));
     let v = oct_direction(V2::new(0.75f32, 0.75));
     assert!(v.z < 0.0 && v.x > 0.0 && v.y > 0.0);
 }
@@ -59,6 +70,9 @@ fn degenerate_input_encodes_to_the_documented_code() {
             [0.0, f32::NAN, 1.0],
             [f32::INFINITY, 0.0, 0.0],
             [0.0, f32::NEG_INFINITY, 0.0],
+            [1.0, 0.0, f32::NAN],
+            [1.0, 0.0, f32::NEG_INFINITY],
+            [1.0, 0.0, f32::INFINITY],
         ] {
             let mut code = vec![0u32; enc.out_words];
             (enc.eval)(&bad.map(f32::to_bits), &mut code);
@@ -70,33 +84,41 @@ fn degenerate_input_encodes_to_the_documented_code() {
     }
 }
 
+/// Scaling by a power of two changes no rounding anywhere in the encoders, so the code
+/// must be identical, from denormal-adjacent to overflowing magnitudes.
 #[test]
 fn non_unit_input_encodes_like_its_direction() {
     for spec in codecs() {
         let e = spec.emitted();
-        let (enc, dec) = (role(&e, Role::Encode), role(&e, Role::Decode));
-        let hemi = spec.codec.domain == Some(unitpack::codecs::codec::Domain::Hemisphere);
-        let dir = if hemi {
-            [0.36f32, 0.48, 0.8]
-        } else {
-            [0.36f32, -0.48, -0.8]
+        let enc = role(&e, Role::Encode);
+        let code = |v: [f32; 3]| {
+            let mut c = vec![0u32; enc.out_words];
+            (enc.eval)(&v.map(f32::to_bits), &mut c);
+            c
         };
-        let mut want = vec![0u32; enc.out_words];
-        (enc.eval)(&dir.map(f32::to_bits), &mut want);
-        for scale in [1e-30f32, 1e-3, 7.0, 1e30] {
-            let mut code = vec![0u32; enc.out_words];
-            (enc.eval)(&dir.map(|x| (x * scale).to_bits()), &mut code);
-            let mut a = [0u32; 3];
-            let mut b = [0u32; 3];
-            (dec.eval)(&code, &mut a);
-            (dec.eval)(&want, &mut b);
-            let (a, b) = (a.map(f32::from_bits), b.map(f32::from_bits));
-            let angle = unitpack::quality::angle_deg(a, b);
-            assert!(
-                angle < 1.5,
-                "{spec}: scale {scale} decodes {angle}° away from the unit input"
-            );
+        for dir in [
+            [0.36f32, 0.48, 0.8],
+            [0.36, -0.48, -0.8],
+            [1.0, 1.0, 0.0],
+            [-0.6, 0.0, 0.8],
+        ] {
+            let want = code(dir);
+            for k in [-100, -20, -1, 1, 20, 100, 127] {
+                let scaled = dir.map(|x| x * 2f32.powi(k));
+                assert_eq!(code(scaled), want, "{spec}: {dir:?} scaled by 2^{k}");
+            }
         }
+        // Components so large that their L1 norm (or squared length) overflows.
+        assert_eq!(
+            code([3e38, 3e38, 0.0]),
+            code([1.0, 1.0, 0.0]),
+            "{spec}: huge input"
+        );
+        assert_eq!(
+            code([-f32::MAX, 0.0, f32::MAX]),
+            code([-1.0, 0.0, 1.0]),
+            "{spec}: f32::MAX input"
+        );
     }
 }
 

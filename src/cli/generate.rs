@@ -110,8 +110,28 @@ pub fn catalogue_files() -> Vec<(PathBuf, String)> {
     files
 }
 
+/// Files in `out`'s language folders that the catalogue no longer produces.
+fn extra_files(out: &Path, files: &[(PathBuf, String)]) -> Vec<PathBuf> {
+    let mut extra = Vec::new();
+    for lang in Lang::ALL {
+        let Ok(rd) = std::fs::read_dir(out.join(lang.ext())) else {
+            continue;
+        };
+        for e in rd.flatten() {
+            let rel = PathBuf::from(lang.ext()).join(e.file_name());
+            let ours = rel.extension().is_some_and(|x| x == lang.ext());
+            if ours && !files.iter().any(|(r, _)| *r == rel) {
+                extra.push(out.join(rel));
+            }
+        }
+    }
+    extra.sort();
+    extra
+}
+
 pub fn generate(out: &Path, check: bool) -> Result<i32> {
     let files = catalogue_files();
+    let extra = extra_files(out, &files);
     if check {
         let mut stale = Vec::new();
         for (rel, text) in &files {
@@ -125,17 +145,8 @@ pub fn generate(out: &Path, check: bool) -> Result<i32> {
                 Err(e) => stale.push(format!("unreadable: {} ({e})", p.display())),
             }
         }
-        for lang in Lang::ALL {
-            let Ok(rd) = std::fs::read_dir(out.join(lang.ext())) else {
-                continue;
-            };
-            for e in rd.flatten() {
-                let rel = PathBuf::from(lang.ext()).join(e.file_name());
-                if !files.iter().any(|(r, _)| *r == rel) {
-                    stale.push(format!("extra: {}", out.join(rel).display()));
-                }
-            }
-        }
+        let out_of_date = stale.len();
+        stale.extend(extra.iter().map(|p| format!("extra: {}", p.display())));
         if stale.is_empty() {
             println!("{} files in {} are up to date", files.len(), out.display());
             return Ok(0);
@@ -144,11 +155,14 @@ pub fn generate(out: &Path, check: bool) -> Result<i32> {
             println!("{s}");
         }
         println!(
-            "{} of {} generated files are out of date; run `unitpack generate`",
-            stale.len(),
-            files.len()
+            "{out_of_date} of {} generated files are out of date, {} files are extra; run `unitpack generate` (it also removes extra files)",
+            files.len(),
+            extra.len()
         );
         return Ok(1);
+    }
+    if files.is_empty() {
+        bail!("nothing to generate");
     }
     for lang in Lang::ALL {
         let d = out.join(lang.ext());
@@ -157,8 +171,9 @@ pub fn generate(out: &Path, check: bool) -> Result<i32> {
     for (rel, text) in &files {
         write_atomic(&out.join(rel), text.as_bytes())?;
     }
-    if files.is_empty() {
-        bail!("nothing to generate");
+    for p in &extra {
+        std::fs::remove_file(p).with_context(|| format!("cannot remove stale {}", p.display()))?;
+        println!("removed {}", p.display());
     }
     println!("wrote {} files to {}", files.len(), out.display());
     Ok(0)

@@ -6,8 +6,20 @@ use crate::codecs::functions::{Function, Role};
 use anyhow::{Result, bail};
 use std::io::{Read, Write};
 
+/// A number; `inf` and `nan` are accepted as written, but a finite number too large for
+/// f32 (`1e50`) is an error rather than a silent infinity.
+fn parse_f32(t: &str) -> Result<f32, ()> {
+    let v: f32 = t.parse().map_err(|_| ())?;
+    let spelled = t.to_ascii_lowercase().contains("inf");
+    if v.is_infinite() && !spelled {
+        Err(())
+    } else {
+        Ok(v)
+    }
+}
+
 fn parse_vector(line: &str) -> Option<[f32; 3]> {
-    let mut it = line.split_whitespace().map(|t| t.parse::<f32>());
+    let mut it = line.split_whitespace().map(parse_f32);
     let v = [it.next()?.ok()?, it.next()?.ok()?, it.next()?.ok()?];
     it.next().is_none().then_some(v)
 }

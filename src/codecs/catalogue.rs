@@ -5,7 +5,7 @@
 //! `snorm12x2`. `p` selects the precise encoder.
 
 use super::codec::Domain;
-use super::stereo::DEFAULT_SCALE;
+use super::stereo::{DEFAULT_SCALE, SCALE_RANGE};
 use std::fmt;
 
 /// A codec family as listed by `unitpack list`.
@@ -145,6 +145,11 @@ pub enum SpecError {
     InvalidBits {
         codec: &'static str,
         bits: String,
+        allowed: Vec<String>,
+    },
+    #[error("{codec} needs a bit size, e.g. {codec}{}; allowed sizes: {}", .allowed[0], fmt_list(.allowed))]
+    MissingBits {
+        codec: &'static str,
         allowed: Vec<String>,
     },
     #[error(
@@ -287,8 +292,9 @@ impl std::str::FromStr for Spec {
         };
         let head_lc = head.to_ascii_lowercase();
         let mut spec = parse_head(&head_lc)?;
+        let opts = opts.map(str::to_ascii_lowercase);
         for kv in opts
-            .into_iter()
+            .iter()
             .flat_map(|o| o.split(','))
             .filter(|kv| !kv.is_empty())
         {
@@ -309,11 +315,11 @@ impl std::str::FromStr for Spec {
                         value: v.into(),
                         why: "expected a number",
                     })?;
-                    if !(x.is_finite() && x > 0.0) {
+                    if !SCALE_RANGE.contains(&x) {
                         return Err(SpecError::BadValue {
                             key: k.into(),
                             value: v.into(),
-                            why: "scale must be positive and finite",
+                            why: "scale must lie in [0.001, 1000]",
                         });
                     }
                     spec.scale = x;
@@ -383,13 +389,15 @@ fn parse_head(head: &str) -> Result<Spec, SpecError> {
         return Err(unknown_codec(head));
     };
     let allowed = || c.bits.iter().map(|b| b.to_string()).collect::<Vec<_>>();
+    if digits.is_empty() {
+        return Err(SpecError::MissingBits {
+            codec: c.name,
+            allowed: allowed(),
+        });
+    }
     let bits: u32 = digits.parse().map_err(|_| SpecError::InvalidBits {
         codec: c.name,
-        bits: if digits.is_empty() {
-            "unspecified".into()
-        } else {
-            digits.into()
-        },
+        bits: digits.into(),
         allowed: allowed(),
     })?;
     if !c.bits.contains(&bits) {

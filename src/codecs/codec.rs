@@ -73,10 +73,17 @@ pub trait Codec: Send + Sync {
     /// domain, and a fixed direction for zero, NaN or infinite input). Precise encoders
     /// measure candidates against it.
     fn target<F: Float>(&self, v: V3<F>) -> V3<F> {
-        unit_or_z(match self.domain() {
-            Domain::Sphere => v,
-            Domain::Hemisphere => V3::new(v.x, v.y, F::sel(v.z.gt(F::c(0.0)), v.z, F::c(0.0))),
-        })
+        let u = unit_or_z(v);
+        match self.domain() {
+            Domain::Sphere => u,
+            // Validity is judged on the raw input first (a NaN or infinite z must not be
+            // projected into a real direction), then the projection is renormalized; -Z
+            // projects to zero and so becomes +Z.
+            Domain::Hemisphere => {
+                let z = F::sel(u.z.gt(F::c(0.0)), u.z, F::c(0.0));
+                unit_or_z(V3::new(u.x, u.y, z))
+            }
+        }
     }
     /// Direction → parameters in storage range, before quantization.
     fn params<F: Float>(&self, v: V3<F>) -> Self::P<F>;

@@ -3,7 +3,7 @@
 
 use super::codec::{Codec, Domain};
 use super::quant::{Quant, Quants};
-use crate::model::{Bool, Float, V2, V3};
+use crate::model::{Float, V2, V3};
 
 #[derive(Clone, Copy, Debug)]
 pub struct HemiOct {
@@ -19,15 +19,13 @@ impl Codec for HemiOct {
     fn domain(&self) -> Domain {
         Domain::Hemisphere
     }
-    /// Input below the horizon is projected onto it (`z ← max(z, +0)`); zero, NaN or
-    /// infinite input encodes as +Z.
+    /// Input is normalized onto the +Z hemisphere first (see [`Codec::target`]), which
+    /// also sends zero, NaN and infinite input to +Z; then the survey's Listing 6.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let z = F::sel(v.z.gt(F::c(0.0)), v.z, F::c(0.0));
-        let l1 = (v.x.abs() + v.y.abs() + z).named("l1");
-        let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX)));
-        let p = (v.xy() / l1).named("p");
-        let e = V2::new(p.x + p.y, p.x - p.y);
-        V2::sel_all(ok, e, V2::splat(F::c(0.0)))
+        let u = self.target(v);
+        let l1 = (u.x.abs() + u.y.abs() + u.z).named("l1");
+        let p = (u.xy() / l1).named("p");
+        V2::new(p.x + p.y, p.x - p.y)
     }
     fn direction<F: Float>(&self, e: V2<F>) -> V3<F> {
         let t = (V2::new(e.x + e.y, e.x - e.y) * F::c(0.5)).named("t");

@@ -15,15 +15,26 @@ fn fold<F: Float>(p: V2<F>) -> V2<F> {
     (V2::splat(F::c(1.0)) - p.yx().abs()) * sign_not_zero(p)
 }
 
-/// Sphere → square. Folds on encode when `z <= 0`. Zero, NaN or infinite input, whose L1
-/// norm is not a positive finite number, encodes as +Z.
+/// Sphere → square. Folds on encode when `z <= 0`. Input need not be unit length: when
+/// the L1 norm overflows, the input is first scaled by 1/4 (exact at that magnitude), so
+/// only zero, NaN and infinite input, whose L1 norm is not a positive finite number,
+/// encode as +Z. For every other input the scale is 1 and the arithmetic is the survey's.
 pub fn oct_params<F: Float>(v: V3<F>) -> V2<F> {
-    let a = v.abs();
+    let w = fit_l1(v).named("w");
+    let a = w.abs();
     let l1 = (a.x + a.y + a.z).named("l1");
     let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX)));
-    let p = (v.xy() / l1).named("p");
-    let e = V2::sel_all(v.z.le(F::c(0.0)), fold(p), p);
+    let p = (w.xy() / l1).named("p");
+    let e = V2::sel_all(w.z.le(F::c(0.0)), fold(p), p);
     V2::sel_all(ok, e, V2::splat(F::c(0.0)))
+}
+
+/// `v`, or `v/4` when its L1 norm overflows f32 (then every component that matters is far
+/// above the denormal range, so the scaling is exact where it counts).
+pub fn fit_l1<F: Float>(v: V3<F>) -> V3<F> {
+    let a = v.abs();
+    let fits = (a.x + a.y + a.z).le(F::c(f32::MAX));
+    v * F::sel(fits, F::c(1.0), F::c(0.25))
 }
 
 /// Square → unit vector. Unfolds when `z < 0`; the result is normalized as `v / sqrt(v·v)`.

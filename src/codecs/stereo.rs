@@ -15,6 +15,9 @@ pub struct StereoScaled {
 }
 
 pub const DEFAULT_SCALE: f32 = 1.7777;
+/// Scales whose derived literals (`2s`, `-s`, `0.5/s`) are all normal f32 values, with
+/// room to spare; the useful range is around 1 to 3.
+pub const SCALE_RANGE: std::ops::RangeInclusive<f32> = 0.001..=1000.0;
 
 impl Codec for StereoScaled {
     type P<F: Float> = V2<F>;

@@ -15,9 +15,12 @@ pub fn file_header(command: &str) -> Vec<String> {
             env!("CARGO_PKG_VERSION")
         ),
         format!("Regenerate: {command}"),
-        "Every function computes bit for bit what unitpack's Rust model computes (verified on"
+        "Every function computes bit for bit what unitpack's Rust model computes on any".into(),
+        "implementation with correctly rounded + - * / sqrt that keeps denormals and does not"
             .into(),
-        "Mesa lavapipe); it uses no fma, no builtin trig, no pack builtins.".into(),
+        "fuse multiply-adds (verified on Mesa lavapipe). It uses no fma, no builtin trig and no"
+            .into(),
+        "pack builtins.".into(),
     ]
 }
 

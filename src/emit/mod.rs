@@ -63,6 +63,7 @@ struct WgslFile<'a> {
 struct GlslFile<'a> {
     header: &'a [String],
     specs: &'a [SpecView],
+    precise_macro: String,
 }
 
 #[derive(Template)]
@@ -126,6 +127,7 @@ pub fn render(
         Lang::Glsl => GlslFile {
             header: &header,
             specs: &views,
+            precise_macro: printer::precise_macro(prefix),
         }
         .render(),
         Lang::Hlsl => HlslFile {

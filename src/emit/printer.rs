@@ -74,6 +74,7 @@ fn lanes_str(l: &[u8]) -> String {
 struct Ctx<'a> {
     lang: Lang,
     select_macro: &'a str,
+    precise_macro: &'a str,
     f: &'a Func,
     names: Vec<Option<String>>,
     fn_name: &'a dyn Fn(&str) -> String,
@@ -276,12 +277,20 @@ pub fn select_macro(prefix: &str) -> String {
     format!("{}SELECT", prefix.to_ascii_uppercase())
 }
 
+/// The GLSL macro in front of float declarations: empty by default (GLSL 330 and ES 300
+/// have no `precise`), `precise` where the user defines it so.
+pub fn precise_macro(prefix: &str) -> String {
+    format!("{}PRECISE", prefix.to_ascii_uppercase())
+}
+
 pub fn print(lang: Lang, f: &Func, prefix: &str, fn_name: &dyn Fn(&str) -> String) -> Printed {
     let live = live(f);
     let select_macro = select_macro(prefix);
+    let precise_macro = precise_macro(prefix);
     let mut ctx = Ctx {
         lang,
         select_macro: &select_macro,
+        precise_macro: &precise_macro,
         f,
         names: vec![None; f.nodes.len()],
         fn_name,
@@ -307,9 +316,16 @@ pub fn print(lang: Lang, f: &Func, prefix: &str, fn_name: &dyn Fn(&str) -> Strin
             name = format!("{base}{k}");
         }
         let e = ctx.expr(id);
+        // Float results are `precise` where the language allows it, so drivers that
+        // contract `a*b + c` into an fma must not do so here (lavapipe never does).
+        let qualifier = match (lang, node.ty.kind) {
+            (Lang::Hlsl, Kind::F32) => "precise ".to_string(),
+            (Lang::Glsl, Kind::F32) => format!("{} ", ctx.precise_macro),
+            _ => String::new(),
+        };
         body.push(match lang {
             Lang::Wgsl => format!("let {name} = {e};"),
-            _ => format!("{} {name} = {e};", ty(lang, node.ty)),
+            _ => format!("{qualifier}{} {name} = {e};", ty(lang, node.ty)),
         });
         ctx.names[id] = Some(name);
     }

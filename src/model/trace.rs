@@ -255,10 +255,15 @@ impl Recorder {
             }
         }
         let n0 = self.nodes()[lanes[0].node as usize].clone();
-        let vectorizable = matches!(
-            n0.op,
-            Op::Un(_) | Op::Bin(_) | Op::Shl(_) | Op::Shr(_) | Op::Select | Op::Convert
-        );
+        // Boolean logic and shifts stay scalar: vector forms of them differ across the
+        // languages (GLSL has no `&&` on bvec and needs not(); WGSL shifts need a vector
+        // shift amount), while scalar forms mean the same everywhere.
+        let vectorizable = match n0.op {
+            Op::Un(u) => u != UnOp::Not,
+            Op::Bin(b) => !matches!(b, BinOp::And | BinOp::Or),
+            Op::Select | Op::Convert => true,
+            _ => false,
+        };
         vectorizable
             && n0.ty.lanes == 1
             && lanes.iter().all(|r| {
@@ -625,7 +630,19 @@ impl<A: Value, B: Value> Value for (A, B) {
 /// Traces `f` into a function called `name` (once per module; later calls are no-ops).
 /// `param_names` name the parameters in order; missing names default to `a0`, `a1`, ...
 pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOnce(A) -> R) {
-    if with(|r| r.module.func(name).is_some()) {
+    let existing = with(|r| {
+        r.module
+            .func(name)
+            .map(|f| f.params.iter().map(|p| p.1).collect::<Vec<_>>())
+    });
+    if let Some(params) = existing {
+        // Helpers are keyed by name: a second, different helper under the same name would
+        // silently be replaced by the first.
+        assert_eq!(
+            params,
+            A::tys(),
+            "two different helpers are both called `{name}`"
+        );
         return;
     }
     let tys = A::tys();

@@ -11,6 +11,7 @@ pub mod tools;
 
 use crate::codecs::Spec;
 use crate::codecs::functions::Function;
+use crate::emit::printer::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use crate::model::trace::{Func, Ty};
@@ -221,8 +222,14 @@ fn compile(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             None
         }
         Path::GlslGlslang => {
+            // glslang knows `precise` (naga does not): compile with it, as a user would.
+            let define = format!(
+                "#version 450\n#define {} precise\n",
+                precise_macro(DEFAULT_PREFIX)
+            );
+            let kernel = kernel.replacen("#version 450\n", &define, 1);
             let spv = tools::glslang_spirv(
-                kernel,
+                &kernel,
                 GlslangInput::Glsl { stage: "comp" },
                 HlslOpt::Default,
             )?;
