@@ -274,13 +274,22 @@ fn live(f: &Func) -> Vec<bool> {
 
 /// The HLSL lane-wise select macro the templates define, named after the prefix.
 pub fn select_macro(prefix: &str) -> String {
-    format!("{}SELECT", prefix.to_ascii_uppercase())
+    format!("{}SELECT", macro_prefix(prefix))
+}
+
+/// Macros are global in GLSL and HLSL: without a prefix they still carry the tool's name.
+fn macro_prefix(prefix: &str) -> String {
+    if prefix.is_empty() {
+        "UNITPACK_".into()
+    } else {
+        prefix.to_ascii_uppercase()
+    }
 }
 
 /// The GLSL macro in front of float declarations: empty by default (GLSL 330 and ES 300
 /// have no `precise`), `precise` where the user defines it so.
 pub fn precise_macro(prefix: &str) -> String {
-    format!("{}PRECISE", prefix.to_ascii_uppercase())
+    format!("{}PRECISE", macro_prefix(prefix))
 }
 
 pub fn print(lang: Lang, f: &Func, prefix: &str, fn_name: &dyn Fn(&str) -> String) -> Printed {

@@ -176,11 +176,17 @@ impl Recorder {
             lane: None,
         }
     }
+    /// Whether `r` is a literal: a literal node, or a lane of a vector built from literals.
     fn is_const(&mut self, r: Ref) -> bool {
-        matches!(
-            self.nodes()[r.node as usize].op,
-            Op::ConstF(_) | Op::ConstU(_)
-        )
+        let n = self.nodes()[r.node as usize].clone();
+        match (&n.op, r.lane) {
+            (Op::ConstF(_) | Op::ConstU(_), _) => true,
+            (Op::Construct, Some(l)) => {
+                let arg = n.args[if n.args.len() == 1 { 0 } else { l as usize }];
+                self.is_const(arg)
+            }
+            _ => false,
+        }
     }
     fn record(&mut self, op: Op, args: Vec<Ref>, kind: Kind) -> Ref {
         if !args.is_empty() && args.iter().all(|a| self.is_const(*a)) {
