@@ -3,8 +3,9 @@
 
 use unitpack::codecs::Spec;
 use unitpack::codecs::codec::sign_not_zero;
-use unitpack::codecs::functions::{Emitted, Function, Role};
+use unitpack::codecs::functions::{Emitted, Function, Inputs, Role};
 use unitpack::codecs::oct::{oct_direction, oct_params};
+use unitpack::codecs::quant::Quant;
 use unitpack::model::{V2, V3};
 use unitpack::verify::inputs;
 
@@ -179,4 +180,77 @@ fn trace_refuses_non_portable_arithmetic() {
         !refused(|x| x * Tf::c(1.0 / 3.0)),
         "reciprocal multiply is the allowed form"
     );
+}
+
+/// What a render target of the matching format stores for float-form parameters, computed
+/// independently of the model: the graphics APIs' float→unorm/snorm conversion in f64,
+/// fields in texel order from the lowest bits (RG8, RG16, A2B10G10R10, RGBA16 words...).
+fn texel(q: &[Quant], params: &[f32]) -> Vec<u32> {
+    let mut words = vec![0u64; 2];
+    let mut bit = 0u32;
+    for (quant, &x) in q.iter().zip(params) {
+        let (field, bits) = match *quant {
+            Quant::Snorm(b) => {
+                let m = ((1u64 << (b - 1)) - 1) as f64;
+                let c = (f64::from(x).clamp(-1.0, 1.0) * m).round() as i64;
+                ((c as u64) & ((1 << b) - 1), b)
+            }
+            Quant::Unorm(b) => {
+                let m = ((1u64 << b) - 1) as f64;
+                ((f64::from(x).clamp(0.0, 1.0) * m).round() as u64, b)
+            }
+        };
+        if bit % 32 + bits > 32 {
+            bit = (bit / 32 + 1) * 32; // a field never straddles a 32-bit word
+        }
+        words[(bit / 32) as usize] |= field << (bit % 32);
+        bit += bits;
+    }
+    words
+        .iter()
+        .take(bit.div_ceil(32) as usize)
+        .map(|w| *w as u32)
+        .collect()
+}
+
+#[test]
+fn packed_code_is_the_texel_a_render_target_would_store() {
+    let vs = unitpack::quality::random_unit_vectors(11, 20_000, false);
+    for spec in codecs() {
+        let e = spec.emitted();
+        let (enc, encf, dec) = (
+            role(&e, Role::Encode),
+            role(&e, Role::EncodeFloat),
+            role(&e, Role::Decode),
+        );
+        let Inputs::Codes(q) = &dec.inputs else {
+            panic!("{spec}: decoder inputs")
+        };
+        let mut ties = 0;
+        for v in &vs {
+            let mut code = vec![0u32; enc.out_words];
+            (enc.eval)(&v.map(f32::to_bits), &mut code);
+            let mut p = vec![0u32; encf.out_words];
+            (encf.eval)(&v.map(f32::to_bits), &mut p);
+            let p: Vec<f32> = p.iter().map(|b| f32::from_bits(*b)).collect();
+            // Near a half the APIs allow either neighbour (D3D11 multiplies in f32, as the
+            // model does; an exact conversion may land on the other side): skip inputs
+            // within one f32 ulp of the product of a half.
+            let tie = q.iter().zip(&p).any(|(q, x)| {
+                let scaled = f64::from(*x) * f64::from(q.max_code());
+                let ulp = scaled.abs() * 2f64.powi(-23);
+                (scaled - scaled.floor() - 0.5).abs() <= ulp + 1e-12
+            });
+            if tie {
+                ties += 1;
+                continue;
+            }
+            assert_eq!(code, texel(q, &p), "{spec}: {v:?} → params {p:?}");
+        }
+        assert!(
+            ties < vs.len() / 20,
+            "{spec}: {ties} near-ties of {}",
+            vs.len()
+        );
+    }
 }
