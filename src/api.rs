@@ -19,6 +19,7 @@
 //! assert!(codes.iter().all(|&c| c == codes[0]));
 //! ```
 
+use crate::codecs::SpecError;
 use crate::codecs::codec::Codec;
 use crate::codecs::functions::{decode_packed, encode_packed};
 pub use crate::codecs::hemioct::HemiOct;
@@ -27,7 +28,6 @@ pub use crate::codecs::oct::Oct;
 pub use crate::codecs::spherical::Spherical;
 pub use crate::codecs::stereo::StereoScaled;
 pub use crate::codecs::xy::Xy;
-use crate::codecs::{CATALOGUE, SpecError};
 use crate::model::V3;
 
 /// A codec with its encoder chosen (fast: nearest codes; precise: the survey's "P" search).
@@ -92,19 +92,7 @@ impl<C: Codec> Encoder<C> {
 }
 
 fn checked(name: &'static str, bits: u32) -> Result<u32, SpecError> {
-    let c = CATALOGUE
-        .iter()
-        .find(|c| c.name == name)
-        .expect("catalogue name");
-    if c.bits.contains(&bits) {
-        Ok(bits)
-    } else {
-        Err(SpecError::InvalidBits {
-            codec: c.name,
-            bits: bits.to_string(),
-            allowed: c.bits.iter().map(|b| b.to_string()).collect(),
-        })
-    }
+    crate::codecs::catalogue::desc(name).check_bits(&bits.to_string())
 }
 
 macro_rules! constructor {

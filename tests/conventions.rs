@@ -186,7 +186,7 @@ fn trace_refuses_non_portable_arithmetic() {
 /// independently of the model: the graphics APIs' float→unorm/snorm conversion in f64,
 /// fields in texel order from the lowest bits (RG8, RG16, A2B10G10R10, RGBA16 words...).
 fn texel(q: &[Quant], params: &[f32]) -> Vec<u32> {
-    let mut words = vec![0u64; 2];
+    let mut words = [0u64; 2];
     let mut bit = 0u32;
     for (quant, &x) in q.iter().zip(params) {
         let (field, bits) = match *quant {

@@ -116,6 +116,23 @@ pub static CATALOGUE: &[CodecDesc] = &[
     },
 ];
 
+impl CodecDesc {
+    pub fn allowed_bits(&self) -> Vec<String> {
+        self.bits.iter().map(|b| b.to_string()).collect()
+    }
+    /// `bits` as one of this codec's sizes, or the error listing the allowed ones.
+    pub fn check_bits(&self, bits: &str) -> Result<u32, SpecError> {
+        match bits.parse::<u32>() {
+            Ok(b) if self.bits.contains(&b) => Ok(b),
+            _ => Err(SpecError::InvalidBits {
+                codec: self.name,
+                bits: bits.to_string(),
+                allowed: self.allowed_bits(),
+            }),
+        }
+    }
+}
+
 /// Storage layout of oct24.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Layout {
@@ -388,25 +405,13 @@ fn parse_head(head: &str) -> Result<Spec, SpecError> {
     else {
         return Err(unknown_codec(head));
     };
-    let allowed = || c.bits.iter().map(|b| b.to_string()).collect::<Vec<_>>();
     if digits.is_empty() {
         return Err(SpecError::MissingBits {
             codec: c.name,
-            allowed: allowed(),
+            allowed: c.allowed_bits(),
         });
     }
-    let bits: u32 = digits.parse().map_err(|_| SpecError::InvalidBits {
-        codec: c.name,
-        bits: digits.into(),
-        allowed: allowed(),
-    })?;
-    if !c.bits.contains(&bits) {
-        return Err(SpecError::InvalidBits {
-            codec: c.name,
-            bits: bits.to_string(),
-            allowed: allowed(),
-        });
-    }
+    let bits = c.check_bits(digits)?;
     if precise && !c.precise {
         return Err(SpecError::NoPrecise { codec: c.name });
     }

@@ -241,52 +241,52 @@ fn trace_codec<C: Codec>(c: &C, precise: bool) {
     define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
 }
 
+/// Each packing helper once: traced into the module and evaluated as the reference.
+macro_rules! pack12_helpers {
+    ($(($name:literal, $role:expr, $quants:expr, $param:literal, $P:ident, $f:path)),* $(,)?) => {{
+        let module = trace_module(|| {
+            $(define($name, &[$param], |x: $P<Tf>| $f(x));)*
+        });
+        let functions = vec![$(function($name, $role, Inputs::FloatCodes($quants), |x: $P<f32>| $f(x))),*];
+        Emitted { module, functions, namespace: String::new() }
+    }};
+}
+
 fn pack12_fns() -> Emitted {
-    let module = trace_module(|| {
-        define("snorm12x2_to_unorm8x3", &["f"], |f: V2<Tf>| {
-            pack12::to_unorm8x3(f)
-        });
-        define("snorm12x2_to_unorm8x3_int", &["f"], |f: V2<Tf>| {
-            pack12::to_unorm8x3_int(f)
-        });
-        define("unorm8x3_to_snorm12x2", &["u"], |u: V3<Tf>| {
-            pack12::from_unorm8x3(u)
-        });
-        define("unorm8x3_to_snorm12x2_int", &["u"], |u: V3<Tf>| {
-            pack12::from_unorm8x3_int(u)
-        });
-    });
-    let s12 = vec![Quant::Snorm(12); 2];
-    let u8s = vec![Quant::Unorm(8); 3];
-    let functions = vec![
-        function(
+    let s12 = || vec![Quant::Snorm(12); 2];
+    let u8s = || vec![Quant::Unorm(8); 3];
+    pack12_helpers!(
+        (
             "snorm12x2_to_unorm8x3",
             Role::Pack,
-            Inputs::FloatCodes(s12.clone()),
-            |f: V2<f32>| pack12::to_unorm8x3(f),
+            s12(),
+            "f",
+            V2,
+            pack12::to_unorm8x3
         ),
-        function(
+        (
             "snorm12x2_to_unorm8x3_int",
             Role::Pack,
-            Inputs::FloatCodes(s12),
-            |f: V2<f32>| pack12::to_unorm8x3_int(f),
+            s12(),
+            "f",
+            V2,
+            pack12::to_unorm8x3_int
         ),
-        function(
+        (
             "unorm8x3_to_snorm12x2",
             Role::Unpack,
-            Inputs::FloatCodes(u8s.clone()),
-            |u: V3<f32>| pack12::from_unorm8x3(u),
+            u8s(),
+            "u",
+            V3,
+            pack12::from_unorm8x3
         ),
-        function(
+        (
             "unorm8x3_to_snorm12x2_int",
             Role::Unpack,
-            Inputs::FloatCodes(u8s),
-            |u: V3<f32>| pack12::from_unorm8x3_int(u),
+            u8s(),
+            "u",
+            V3,
+            pack12::from_unorm8x3_int
         ),
-    ];
-    Emitted {
-        module,
-        functions,
-        namespace: String::new(),
-    }
+    )
 }

@@ -14,8 +14,7 @@ const BIAS: f32 = 2047.0;
 
 /// The biased 12-bit integers `round(clamp(f,-1,1)·2047 + 2047)`.
 fn biased<F: Float>(f: V2<F>) -> V2<F> {
-    let c = V2::sel(f.ge(V2::splat(F::c(-1.0))), f, V2::splat(F::c(-1.0)));
-    let c = V2::sel(c.le(V2::splat(F::c(1.0))), c, V2::splat(F::c(1.0)));
+    let c = f.map(|x| Quant::Snorm(12).clamp(x));
     (c * F::c(BIAS) + F::c(BIAS)).round().named("u")
 }
 

@@ -34,8 +34,8 @@ impl Codec for StereoScaled {
         // `/ scale * 0.5` as one literal: drivers fold literal multiply chains anyway.
         let enc = u.xy() / d * F::c(0.5 / self.scale) + F::c(0.5);
         // Clamp to the square (NaN from the pole, where d = 0, goes to 0).
-        let enc = V2::sel(enc.ge(V2::splat(F::c(0.0))), enc, V2::splat(F::c(0.0)));
-        V2::sel(enc.le(V2::splat(F::c(1.0))), enc, V2::splat(F::c(1.0)))
+        let q = self.quants();
+        enc.map(|x| q[0].clamp(x))
     }
     /// The seed's `g = 2 / dot(nn, nn)` divides a literal, which drivers turn into a
     /// multiply by an approximate reciprocal; `(p + p) / d` and `(1 - q) / d` are the same

@@ -176,11 +176,6 @@ impl Ctx<'_> {
                         BinOp::Gt => Some("greaterThan"),
                         BinOp::Ge => Some("greaterThanEqual"),
                         BinOp::Eq => Some("equal"),
-                        BinOp::And | BinOp::Or => {
-                            panic!(
-                                "GLSL has no componentwise boolean operator; combine scalar masks"
-                            )
-                        }
                         _ => None,
                     };
                     if let Some(f) = f {
