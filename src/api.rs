@@ -19,15 +19,9 @@
 //! assert!(codes.iter().all(|&c| c == codes[0]));
 //! ```
 
-use crate::codecs::SpecError;
 use crate::codecs::codec::Codec;
+pub use crate::codecs::cpu::*;
 use crate::codecs::functions::{decode_packed, encode_packed};
-pub use crate::codecs::hemioct::HemiOct;
-pub use crate::codecs::lambert::Lambert;
-pub use crate::codecs::oct::Oct;
-pub use crate::codecs::spherical::Spherical;
-pub use crate::codecs::stereo::StereoScaled;
-pub use crate::codecs::xy::Xy;
 use crate::model::V3;
 
 /// A codec with its encoder chosen (fast: nearest codes; precise: the survey's "P" search).
@@ -87,51 +81,6 @@ impl<C: Codec> Encoder<C> {
         );
         for (o, c) in out.iter_mut().zip(input) {
             *o = self.decode(*c);
-        }
-    }
-}
-
-fn checked(name: &'static str, bits: u32) -> Result<u32, SpecError> {
-    crate::codecs::catalogue::desc(name).check_bits(&bits.to_string())
-}
-
-macro_rules! constructor {
-    ($T:ident, $name:literal) => {
-        impl $T {
-            /// A codec with the given total bit budget; an invalid size is an error listing
-            /// the allowed ones.
-            pub fn new(bits: u32) -> Result<$T, SpecError> {
-                Ok($T {
-                    bits: checked($name, bits)?,
-                })
-            }
-        }
-    };
-}
-constructor!(Oct, "oct");
-constructor!(HemiOct, "hemioct");
-constructor!(Spherical, "spherical");
-constructor!(Lambert, "lambert");
-constructor!(Xy, "xy");
-
-impl StereoScaled {
-    /// Scaled stereographic with the seed's default scale (1.7777); see [`StereoScaled::with_scale`].
-    pub fn new(bits: u32) -> Result<StereoScaled, SpecError> {
-        Ok(StereoScaled {
-            bits: checked("stereo_scaled", bits)?,
-            scale: crate::codecs::stereo::DEFAULT_SCALE,
-        })
-    }
-    /// The same codec with another scale; see [`crate::codecs::stereo::SCALE_RANGE`].
-    pub fn with_scale(self, scale: f32) -> Result<StereoScaled, SpecError> {
-        if crate::codecs::stereo::SCALE_RANGE.contains(&scale) {
-            Ok(StereoScaled { scale, ..self })
-        } else {
-            Err(SpecError::BadValue {
-                key: "scale".into(),
-                value: scale.to_string(),
-                why: "scale must lie in [0.001, 1000]",
-            })
         }
     }
 }

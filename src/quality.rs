@@ -62,7 +62,7 @@ pub struct ErrorStats {
 }
 
 pub fn measure(spec: &Spec, samples: usize) -> Option<ErrorStats> {
-    let domain = spec.codec.domain?;
+    let domain = spec.info().domain?;
     let e = spec.emitted();
     Some(measure_emitted(&e, domain, samples))
 }

@@ -16,7 +16,7 @@ fn role(e: &Emitted, r: Role) -> &Function {
 fn codecs() -> Vec<Spec> {
     Spec::all()
         .into_iter()
-        .filter(|s| s.codec.domain.is_some())
+        .filter(|s| s.info().domain.is_some())
         .collect()
 }
 

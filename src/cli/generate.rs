@@ -46,7 +46,7 @@ pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {
     }
     let specs = &unique[..];
     let stats = stats_for(specs);
-    let ids: Vec<String> = specs.iter().map(|s| s.display_name()).collect();
+    let ids: Vec<String> = specs.iter().map(|s| s.to_string()).collect();
     let prefix_arg = if prefix == DEFAULT_PREFIX {
         String::new()
     } else {
@@ -96,10 +96,8 @@ pub fn catalogue_files() -> Vec<(PathBuf, String)> {
     let mut files = Vec::new();
     for lang in Lang::ALL {
         for (spec, st) in specs.iter().zip(&stats) {
-            let cmd = format!(
-                "unitpack generate  (or: unitpack gen {} --lang {lang})",
-                spec.display_name()
-            );
+            // The same command `gen` writes, so that running it reproduces the file.
+            let cmd = format!("unitpack gen {spec} --lang {lang}");
             let text = render(&[(spec.clone(), *st)], lang, DEFAULT_PREFIX, &cmd);
             files.push((
                 PathBuf::from(lang.ext()).join(format!("{}.{}", spec.id(), lang.ext())),

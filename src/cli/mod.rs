@@ -3,7 +3,7 @@
 mod generate;
 mod stream;
 
-use crate::codecs::{CATALOGUE, Spec};
+use crate::codecs::{FAMILIES, Spec};
 use crate::emit::{DEFAULT_PREFIX, Lang, validate_prefix};
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
@@ -121,31 +121,26 @@ pub fn run(cli: Cli) -> Result<i32> {
     }
 }
 
-/// The `list` table.
+/// The `list` table: each family with the specs a user types.
 pub fn list_text() -> String {
     let mut s = format!(
-        "{:<14} {:<18} {:<11} {:<8} {}\n",
-        "codec", "bits", "domain", "precise", "source"
+        "{:<14} {:<11} {:<8} {}\n",
+        "codec", "domain", "precise", "source"
     );
-    for c in CATALOGUE {
-        let bits = if c.bits.is_empty() {
-            "-".to_string()
-        } else {
-            c.bits
-                .iter()
-                .map(|b| b.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
+    for f in FAMILIES {
+        let c = f.info();
         let domain = c.domain.map_or("-", |d| d.name());
         let precise = if c.precise { "yes" } else { "no" };
         s.push_str(&format!(
-            "{:<14} {:<18} {:<11} {:<8} {}\n",
-            c.name, bits, domain, precise, c.source
+            "{:<14} {:<11} {:<8} {}\n",
+            c.name, domain, precise, c.source
         ));
         s.push_str(&format!("{:<14} {}\n", "", c.title));
-        if !c.options.is_empty() {
-            s.push_str(&format!("{:<14} options: {}\n", "", c.options));
+        let specs: Vec<String> = c.spellings().into_iter().map(|s| s.0).collect();
+        let p = if c.precise { " (add p: precise)" } else { "" };
+        s.push_str(&format!("{:<14} specs: {}{p}\n", "", specs.join(", ")));
+        for o in c.options {
+            s.push_str(&format!("{:<14} option {}\n", "", o.usage()));
         }
     }
     s

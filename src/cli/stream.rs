@@ -49,7 +49,7 @@ fn format_code(w: &[u32]) -> String {
 
 /// Runs the codec over `input`, returning all output lines or the first bad line's error.
 pub fn transform(spec: &Spec, encode: bool, input: &str) -> Result<String> {
-    if spec.codec.domain.is_none() {
+    if spec.info().domain.is_none() {
         bail!(
             "{} is a packing helper, not a codec: it has no encode/decode",
             spec.id()

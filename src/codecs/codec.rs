@@ -198,3 +198,10 @@ pub fn unpack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], code: C) -> P {
         q[i].from_field(field)
     })
 }
+
+/// Doc comments of the helpers defined here.
+pub fn helper_doc(name: &str) -> Option<String> {
+    (name == "encode_codes").then(|| {
+        "Precise search: the integer codes (as floats) around the exact parameters whose decode is nearest the input by squared distance.".to_string()
+    })
+}

@@ -1,17 +1,9 @@
 //! The shader functions a spec emits, each with its `f32` evaluation on raw bits (what
 //! the GPU output is compared against) and the inputs it is verified on.
 
-use super::catalogue::{Layout, Spec};
 use super::codec::{Codec, Params, dequantize, pack, quantize, unpack};
-use super::hemioct::HemiOct;
-use super::lambert::Lambert;
-use super::oct::Oct;
-use super::pack12::{self, Oct24Rgb8};
 use super::quant::Quant;
-use super::snorm3::{OneWord, Snorm3, TwoWords};
-use super::spherical::Spherical;
-use super::stereo::StereoScaled;
-use super::xy::Xy;
+use super::spec::Spec;
 use crate::model::Float;
 use crate::model::trace::{Module, Tf, define, trace_module};
 use crate::model::{V2, V3};
@@ -101,7 +93,7 @@ pub struct Function {
     pub eval: Eval,
 }
 
-fn function<A: Bits + 'static, R: Bits + 'static>(
+pub fn function<A: Bits + 'static, R: Bits + 'static>(
     name: &'static str,
     role: Role,
     inputs: Inputs,
@@ -125,68 +117,47 @@ pub struct Emitted {
     pub namespace: String,
 }
 
-impl Spec {
-    /// Traces the spec and lists its public functions.
-    pub fn emitted(&self) -> Emitted {
-        let s = self.clone();
-        match (self.codec.name, self.bits) {
-            ("oct", 24) if self.layout == Layout::Rgb8 => s.codec_fns(Oct24Rgb8),
-            ("oct", b) => s.codec_fns(Oct { bits: b }),
-            ("hemioct", b) => s.codec_fns(HemiOct { bits: b }),
-            ("snorm3", 48) => s.codec_fns(Snorm3::<TwoWords>::new(16)),
-            ("snorm3", b) => s.codec_fns(Snorm3::<OneWord>::new(b / 3)),
-            ("spherical", b) => s.codec_fns(Spherical { bits: b }),
-            ("lambert", b) => s.codec_fns(Lambert { bits: b }),
-            ("stereo_scaled", b) => s.codec_fns(StereoScaled {
-                bits: b,
-                scale: self.scale,
-            }),
-            ("xy", b) => s.codec_fns(Xy { bits: b }),
-            ("snorm12x2", _) => pack12_fns(),
-            (n, _) => unreachable!("catalogue codec {n} has no implementation"),
-        }
-    }
-
-    fn codec_fns<C: Codec + Clone + 'static>(&self, c: C) -> Emitted
-    where
-        C::P<f32>: Bits,
-        C::C<f32>: Bits,
-    {
-        let q = c.quants();
-        let precise = self.precise;
-        let module = trace_module(|| trace_codec(&c, precise));
-        let (c1, c2, c3, c4) = (c.clone(), c.clone(), c.clone(), c.clone());
-        let functions = vec![
-            function(
-                "decode_float",
-                Role::DecodeFloat,
-                Inputs::FloatCodes(q.to_vec()),
-                move |p| c1.direction(p),
-            ),
-            function(
-                "decode",
-                Role::Decode,
-                Inputs::Codes(q.to_vec()),
-                move |code: C::C<f32>| decode_packed(&c2, code),
-            ),
-            function(
-                "encode_float",
-                Role::EncodeFloat,
-                Inputs::Vectors,
-                move |v: V3<f32>| encode_float(&c3, precise, v),
-            ),
-            function(
-                "encode",
-                Role::Encode,
-                Inputs::Vectors,
-                move |v: V3<f32>| encode_packed(&c4, precise, v),
-            ),
-        ];
-        Emitted {
-            module,
-            functions,
-            namespace: self.id(),
-        }
+/// The four functions of a codec spec (`decode_float`, `decode`, `encode_float`,
+/// `encode`), traced once and evaluated by the same generic code.
+pub fn codec_functions<C: Codec + Clone + 'static>(spec: &Spec, c: C) -> Emitted
+where
+    C::P<f32>: Bits,
+    C::C<f32>: Bits,
+{
+    let q = c.quants();
+    let precise = spec.precise();
+    let module = trace_module(|| trace_codec(&c, precise));
+    let (c1, c2, c3, c4) = (c.clone(), c.clone(), c.clone(), c.clone());
+    let functions = vec![
+        function(
+            "decode_float",
+            Role::DecodeFloat,
+            Inputs::FloatCodes(q.to_vec()),
+            move |p| c1.direction(p),
+        ),
+        function(
+            "decode",
+            Role::Decode,
+            Inputs::Codes(q.to_vec()),
+            move |code: C::C<f32>| decode_packed(&c2, code),
+        ),
+        function(
+            "encode_float",
+            Role::EncodeFloat,
+            Inputs::Vectors,
+            move |v: V3<f32>| encode_float(&c3, precise, v),
+        ),
+        function(
+            "encode",
+            Role::Encode,
+            Inputs::Vectors,
+            move |v: V3<f32>| encode_packed(&c4, precise, v),
+        ),
+    ];
+    Emitted {
+        module,
+        functions,
+        namespace: spec.id(),
     }
 }
 
@@ -239,54 +210,4 @@ fn trace_codec<C: Codec>(c: &C, precise: bool) {
         encode_float(c, precise, v)
     });
     define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
-}
-
-/// Each packing helper once: traced into the module and evaluated as the reference.
-macro_rules! pack12_helpers {
-    ($(($name:literal, $role:expr, $quants:expr, $param:literal, $P:ident, $f:path)),* $(,)?) => {{
-        let module = trace_module(|| {
-            $(define($name, &[$param], |x: $P<Tf>| $f(x));)*
-        });
-        let functions = vec![$(function($name, $role, Inputs::FloatCodes($quants), |x: $P<f32>| $f(x))),*];
-        Emitted { module, functions, namespace: String::new() }
-    }};
-}
-
-fn pack12_fns() -> Emitted {
-    let s12 = || vec![Quant::Snorm(12); 2];
-    let u8s = || vec![Quant::Unorm(8); 3];
-    pack12_helpers!(
-        (
-            "snorm12x2_to_unorm8x3",
-            Role::Pack,
-            s12(),
-            "f",
-            V2,
-            pack12::to_unorm8x3
-        ),
-        (
-            "snorm12x2_to_unorm8x3_int",
-            Role::Pack,
-            s12(),
-            "f",
-            V2,
-            pack12::to_unorm8x3_int
-        ),
-        (
-            "unorm8x3_to_snorm12x2",
-            Role::Unpack,
-            u8s(),
-            "u",
-            V3,
-            pack12::from_unorm8x3
-        ),
-        (
-            "unorm8x3_to_snorm12x2_int",
-            Role::Unpack,
-            u8s(),
-            "u",
-            V3,
-            pack12::from_unorm8x3_int
-        ),
-    )
 }

@@ -4,6 +4,44 @@
 use super::codec::{Codec, Domain};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::spec::{Spec, SpecError};
+
+pub static FAMILY: HemiOctFamily = HemiOctFamily;
+
+pub struct HemiOctFamily;
+
+static INFO: Info = Info {
+    name: "hemioct",
+    title: "hemi-octahedral, snorm×2",
+    sizes: Sizes::Total(&[16, 24, 32]),
+    domain: Some(Domain::Hemisphere),
+    precise: true,
+    source: "Cigolle et al. 2014, Listing 6 and Table 3",
+    edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
+    decode_note: "every code decodes to a unit vector with z ≥ 0",
+    options: &[],
+};
+
+impl Family for HemiOctFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, HemiOct { bits: spec.bits() })
+    }
+}
+
+impl HemiOct {
+    /// The codec with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<HemiOct, SpecError> {
+        Ok(HemiOct {
+            bits: INFO.check_bits(bits)?,
+        })
+    }
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct HemiOct {

@@ -5,6 +5,44 @@
 use super::codec::{Codec, Domain};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::spec::{Spec, SpecError};
+
+pub static FAMILY: LambertFamily = LambertFamily;
+
+pub struct LambertFamily;
+
+static INFO: Info = Info {
+    name: "lambert",
+    title: "Lambert azimuthal equal-area, unorm×2",
+    sizes: Sizes::Total(&[16, 24, 32]),
+    domain: Some(Domain::Sphere),
+    precise: true,
+    source: "Pranckevičius, Compact Normal Storage, method 6",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
+    decode_note: "every code decodes to a unit vector; codes outside the disk decode as -Z",
+    options: &[],
+};
+
+impl Family for LambertFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, Lambert { bits: spec.bits() })
+    }
+}
+
+impl Lambert {
+    /// The codec with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<Lambert, SpecError> {
+        Ok(Lambert {
+            bits: INFO.check_bits(bits)?,
+        })
+    }
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct Lambert {

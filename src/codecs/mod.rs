@@ -1,20 +1,52 @@
-//! The codecs, each written once against the model's vocabulary, plus the machinery they
-//! share: quantization and packing, the precise search, the catalogue and spec syntax,
-//! and the list of shader functions each spec emits.
+//! The codecs, each written once against the model's vocabulary in a file of its own,
+//! plus the machinery they share: quantization and packing, the precise search, the
+//! registry and the spec grammar, and the list of shader functions each spec emits.
+//!
+//! Adding a codec is one new file (its description, options, variants and arithmetic,
+//! ending in a `pub static FAMILY`) and one line in [`registry!`] below.
 
-pub mod catalogue;
 pub mod codec;
+pub mod family;
 pub mod functions;
-pub mod hemioct;
-pub mod lambert;
-pub mod oct;
-pub mod pack12;
 pub mod quant;
-pub mod snorm3;
-pub mod spherical;
-pub mod stereo;
+pub mod spec;
 pub mod trig;
-pub mod xy;
 
-pub use catalogue::{CATALOGUE, Spec, SpecError};
 pub use codec::Codec;
+pub use family::{Family, Info};
+pub use spec::{Spec, SpecError};
+
+/// Declares each codec's module, lists its family in [`FAMILIES`] (in `list` order) and
+/// exports its CPU types through [`cpu`].
+macro_rules! registry {
+    ($($module:ident $(=> $($cpu:ident),+)?;)*) => {
+        $(pub mod $module;)*
+        /// Every codec family, in the order `list` shows them.
+        pub static FAMILIES: &[&dyn Family] = &[$(&$module::FAMILY),*];
+        /// The codec types the CPU API offers.
+        pub mod cpu {
+            $($(pub use super::$module::{$($cpu),+};)?)*
+        }
+    };
+}
+
+registry! {
+    oct => Oct, Oct24Rgb8;
+    hemioct => HemiOct;
+    snorm3 => Snorm3, OneWord, TwoWords;
+    spherical => Spherical;
+    lambert => Lambert;
+    stereo => StereoScaled;
+    xy => Xy;
+    pack12;
+}
+
+/// Doc comments of the helpers every codec may call (the precise search, the model's
+/// trigonometry) and of any family's own helpers.
+pub fn helper_doc(first: &dyn Family, name: &str) -> Option<String> {
+    first
+        .helper_doc(name)
+        .or_else(|| FAMILIES.iter().find_map(|f| f.helper_doc(name)))
+        .or_else(|| codec::helper_doc(name))
+        .or_else(|| trig::helper_doc(name))
+}

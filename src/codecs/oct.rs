@@ -1,9 +1,77 @@
 //! Octahedral encoding (survey §3.1–3.3, Meyer et al. 2010): project onto the octahedron
 //! with the L1 norm, unfold the lower half over the diagonals, store snorm×2.
 
-use super::codec::{Codec, Domain, sign_not_zero};
+use super::codec::{Codec, Domain, precise_search, sign_not_zero};
+use super::family::{Family, Info, OptDesc, OptKind, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::pack12::{BIAS, bytes_float, from_unorm8x3, to_unorm8x3};
 use super::quant::{Quant, Quants};
+use super::spec::{Spec, SpecError};
 use crate::model::{Bool, Float, V2, V3};
+
+pub static FAMILY: OctFamily = OctFamily;
+
+pub struct OctFamily;
+
+static INFO: Info = Info {
+    name: "oct",
+    title: "octahedral, snorm×2",
+    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+    domain: Some(Domain::Sphere),
+    precise: true,
+    source: "Cigolle et al. 2014 (JCGT survey) §3.1–3.3",
+    edge_policy: "input need not be unit length; zero, NaN and infinite input encode as +Z",
+    decode_note: "every code decodes to a unit vector (normalized as v / sqrt(v·v))",
+    options: &[OptDesc {
+        key: "layout",
+        help: "rgb8 stores oct24 as the survey's unorm8×3 bytes (snorm12×2 split into an RGB8 texel)",
+        kind: OptKind::Choice(&["snorm", "rgb8"]),
+    }],
+};
+
+/// Index of the `layout` option; choice 1 is `rgb8`.
+const LAYOUT: usize = 0;
+const RGB8: usize = 1;
+
+impl Family for OctFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
+        if spec.choice(LAYOUT) == RGB8 && spec.bits() != 24 {
+            return Err(SpecError::BadValue {
+                key: "layout".into(),
+                value: "rgb8".into(),
+                why: "the rgb8 layout holds oct24 only".into(),
+            });
+        }
+        Ok(())
+    }
+    fn variants(&self) -> &'static [&'static str] {
+        &["oct24:layout=rgb8"]
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        if spec.choice(LAYOUT) == RGB8 {
+            codec_functions(spec, Oct24Rgb8)
+        } else {
+            codec_functions(spec, Oct { bits: spec.bits() })
+        }
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "oct24_decode_float")
+            .then(|| "oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.".to_string())
+    }
+}
+
+impl Oct {
+    /// Octahedral with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<Oct, SpecError> {
+        Ok(Oct {
+            bits: INFO.check_bits(bits)?,
+        })
+    }
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct Oct {
@@ -60,5 +128,34 @@ impl Codec for Oct {
     }
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         oct_direction(p)
+    }
+}
+
+/// oct24 in the three bytes of an RGB8 texel (survey §3.3). The float form is the
+/// three unorm8 values; the packed form is the RGB8 texel (R in the lowest byte).
+#[derive(Clone, Copy, Debug)]
+pub struct Oct24Rgb8;
+
+impl Codec for Oct24Rgb8 {
+    type P<F: Float> = V3<F>;
+    type C<F: Float> = F::U;
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Unorm(8); 3])
+    }
+    fn domain(&self) -> Domain {
+        Domain::Sphere
+    }
+    fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let e = oct_params(v).named("e");
+        F::call("snorm12x2_to_unorm8x3", e, to_unorm8x3)
+    }
+    fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
+        let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
+        oct_direction(e)
+    }
+    /// The oct24 precise search, then its 12-bit codes split into bytes.
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let c = precise_search(&Oct { bits: 24 }, v, "oct24_decode_float");
+        bytes_float(c + F::c(BIAS))
     }
 }

@@ -5,12 +5,68 @@
 //! forms bit-equal on all 2^24 inputs. The unpack ends in `(s - 2047)·(1/2047)` rather than
 //! the listing's `s·(1/2047) - 1`, which misses zero by an ulp.
 
-use super::codec::{Codec, Domain, precise_search};
-use super::oct::{Oct, oct_direction, oct_params};
-use super::quant::{Quant, Quants};
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, Inputs, Role, function};
+use super::quant::Quant;
+use super::spec::Spec;
+use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, Uint, V2, V3};
 
-const BIAS: f32 = 2047.0;
+pub static FAMILY: Pack12Family = Pack12Family;
+
+pub struct Pack12Family;
+
+static INFO: Info = Info {
+    name: "snorm12x2",
+    title: "snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms",
+    sizes: Sizes::Fixed,
+    domain: None,
+    precise: false,
+    source: "Cigolle et al. 2014 §3.3, Listings 4–5",
+    edge_policy: "parameters are clamped to [-1, 1]",
+    decode_note: "unpack returns values in [-1, 1]",
+    options: &[],
+};
+
+/// Each packing helper once: traced into the module and evaluated as the reference.
+macro_rules! helpers {
+    ($(($name:literal, $role:expr, $quants:expr, $param:literal, $P:ident, $f:path)),* $(,)?) => {{
+        let module = trace_module(|| {
+            $(define($name, &[$param], |x: $P<Tf>| $f(x));)*
+        });
+        let functions = vec![$(function($name, $role, Inputs::FloatCodes($quants), |x: $P<f32>| $f(x))),*];
+        Emitted { module, functions, namespace: String::new() }
+    }};
+}
+
+impl Family for Pack12Family {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, _spec: &Spec) -> Emitted {
+        let s12 = || vec![Quant::Snorm(12); 2];
+        let u8s = || vec![Quant::Unorm(8); 3];
+        helpers!(
+            ("snorm12x2_to_unorm8x3", Role::Pack, s12(), "f", V2, to_unorm8x3),
+            ("snorm12x2_to_unorm8x3_int", Role::Pack, s12(), "f", V2, to_unorm8x3_int),
+            ("unorm8x3_to_snorm12x2", Role::Unpack, u8s(), "u", V3, from_unorm8x3),
+            ("unorm8x3_to_snorm12x2_int", Role::Unpack, u8s(), "u", V3, from_unorm8x3_int),
+        )
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        let s = match name {
+            "snorm12x2_to_unorm8x3" => "Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).",
+            "snorm12x2_to_unorm8x3_int" => "Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input.",
+            "unorm8x3_to_snorm12x2" => "Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].",
+            "unorm8x3_to_snorm12x2_int" => "Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input.",
+            _ => return None,
+        };
+        Some(s.to_string())
+    }
+}
+
+/// The bias of the stored 12-bit integers.
+pub const BIAS: f32 = 2047.0;
 
 /// The biased 12-bit integers `round(clamp(f,-1,1)·2047 + 2047)`.
 fn biased<F: Float>(f: V2<F>) -> V2<F> {
@@ -20,7 +76,7 @@ fn biased<F: Float>(f: V2<F>) -> V2<F> {
 
 /// Bytes of biased integers, with float arithmetic only (exact: every value is an integer
 /// below 2^12 and every scale a power of two).
-fn bytes_float<F: Float>(u: V2<F>) -> V3<F> {
+pub fn bytes_float<F: Float>(u: V2<F>) -> V3<F> {
     let x16 = (u.x * F::c(1.0 / 16.0)).named("x16");
     let hi = x16.floor().named("hi");
     let t = (u.y * F::c(1.0 / 256.0)).floor().named("t");
@@ -63,33 +119,4 @@ pub fn from_unorm8x3_int<F: Float>(u: V3<F>) -> V2<F> {
     let b = (u * F::c(255.0)).round().to_u().named("b");
     let p = V2::new(b.x.shl(4) | b.y.shr(4), (b.y & F::U::c(15)).shl(8) | b.z);
     unbias(p.to_f())
-}
-
-/// oct24 in the three bytes of an RGB8 texel (survey §3.3). The float form is the
-/// three unorm8 values; the packed form is the RGB8 texel (R in the lowest byte).
-#[derive(Clone, Copy, Debug)]
-pub struct Oct24Rgb8;
-
-impl Codec for Oct24Rgb8 {
-    type P<F: Float> = V3<F>;
-    type C<F: Float> = F::U;
-    fn quants(&self) -> Quants {
-        Quants::new(&[Quant::Unorm(8); 3])
-    }
-    fn domain(&self) -> Domain {
-        Domain::Sphere
-    }
-    fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
-        let e = oct_params(v).named("e");
-        F::call("snorm12x2_to_unorm8x3", e, to_unorm8x3)
-    }
-    fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
-        let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
-        oct_direction(e)
-    }
-    /// The oct24 precise search, then its 12-bit codes split into bytes.
-    fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
-        let c = precise_search(&Oct { bits: 24 }, v, "oct24_decode_float");
-        bytes_float(c + F::c(BIAS))
-    }
 }

@@ -5,6 +5,62 @@ use super::codec::{Codec, Domain, unit_or_z};
 use super::quant::{Code, Quant, Quants};
 use crate::model::{Float, V2, V3};
 use std::marker::PhantomData;
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::spec::{Spec, SpecError};
+
+pub static FAMILY: Snorm3Family = Snorm3Family;
+
+pub struct Snorm3Family;
+
+static INFO: Info = Info {
+    name: "snorm3",
+    title: "components as snorm×3",
+    sizes: Sizes::PerComponent {
+        prefix: "snorm",
+        count: 3,
+        per: &[8, 10, 16],
+    },
+    domain: Some(Domain::Sphere),
+    precise: false,
+    source: "Cigolle et al. 2014 §2; Pranckevičius, baseline",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
+    decode_note: "decode re-normalizes; the all-zero code decodes as +Z",
+    options: &[],
+};
+
+impl Family for Snorm3Family {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    /// Components wider than 10 bits do not fit three to a word: snorm16×3 is two words.
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        match spec.bits() / 3 {
+            16 => codec_functions(spec, Snorm3::<TwoWords>::new(16)),
+            b => codec_functions(spec, Snorm3::<OneWord>::new(b)),
+        }
+    }
+}
+
+impl Snorm3<OneWord> {
+    /// snorm×3 in one word, with `bits` per component (8 or 10); an invalid size is an
+    /// error listing the allowed ones.
+    pub fn one_word(bits: u32) -> Result<Self, SpecError> {
+        match INFO.check_bits(bits * 3)? {
+            48 => Err(SpecError::Invalid(
+                "snorm16x3 takes two words: use Snorm3::two_words()".into(),
+            )),
+            _ => Ok(Snorm3::new(bits)),
+        }
+    }
+}
+
+impl Snorm3<TwoWords> {
+    /// snorm16×3 in two words (the low 48 bits of an RGBA16_SNORM texel).
+    pub fn two_words() -> Self {
+        Snorm3::new(16)
+    }
+}
 
 /// How many 32-bit words the packed code takes: the packed type is part of the
 /// emitted signature, so it is fixed per codec type.

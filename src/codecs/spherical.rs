@@ -7,6 +7,44 @@ use super::codec::{Codec, Domain};
 use super::quant::{Quant, Quants};
 use super::trig::{atan2_pi, sincos_pi};
 use crate::model::{Float, V2, V3};
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::spec::{Spec, SpecError};
+
+pub static FAMILY: SphericalFamily = SphericalFamily;
+
+pub struct SphericalFamily;
+
+static INFO: Info = Info {
+    name: "spherical",
+    title: "spherical coordinates (θ, φ), snorm×2",
+    sizes: Sizes::Total(&[16, 24, 32]),
+    domain: Some(Domain::Sphere),
+    precise: true,
+    source: "Cigolle et al. 2014 §2",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
+    decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+    options: &[],
+};
+
+impl Family for SphericalFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, Spherical { bits: spec.bits() })
+    }
+}
+
+impl Spherical {
+    /// The codec with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<Spherical, SpecError> {
+        Ok(Spherical {
+            bits: INFO.check_bits(bits)?,
+        })
+    }
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct Spherical {

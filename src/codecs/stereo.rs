@@ -7,6 +7,71 @@
 use super::codec::{Codec, Domain};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
+use super::family::{Family, Info, OptDesc, OptKind, OptVal, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::spec::{Spec, SpecError};
+
+pub static FAMILY: StereoScaledFamily = StereoScaledFamily;
+
+pub struct StereoScaledFamily;
+
+static INFO: Info = Info {
+    name: "stereo_scaled",
+    title: "scaled stereographic, unorm×2",
+    sizes: Sizes::Total(&[16, 24, 32]),
+    domain: Some(Domain::Sphere),
+    precise: true,
+    source: "Pranckevičius, Compact Normal Storage, method 7",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge",
+    decode_note: "every code decodes to a unit vector (up to rounding)",
+    options: &[SCALE_OPTION],
+};
+
+/// Scales whose derived literals (`2s`, `-s`, `0.5/s`) are all normal f32 values, with
+/// room to spare; the useful range is around 1 to 3.
+const SCALE_OPTION: OptDesc = OptDesc {
+    key: "scale",
+    help: "the disk radius that maps to the square's edge; directions beyond 2·atan(scale) from +Z clamp",
+    kind: OptKind::Number {
+        default: DEFAULT_SCALE,
+        min: 0.001,
+        max: 1000.0,
+    },
+};
+const SCALE: usize = 0;
+
+impl Family for StereoScaledFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(
+            spec,
+            StereoScaled {
+                bits: spec.bits(),
+                scale: spec.number(SCALE),
+            },
+        )
+    }
+}
+
+impl StereoScaled {
+    /// Scaled stereographic with the seed's default scale (1.7777); see
+    /// [`StereoScaled::with_scale`].
+    pub fn new(bits: u32) -> Result<StereoScaled, SpecError> {
+        Ok(StereoScaled {
+            bits: INFO.check_bits(bits)?,
+            scale: DEFAULT_SCALE,
+        })
+    }
+    /// The same codec with another scale, in [0.001, 1000].
+    pub fn with_scale(self, scale: f32) -> Result<StereoScaled, SpecError> {
+        match SCALE_OPTION.parse_value(&scale.to_string())? {
+            OptVal::Number(scale) => Ok(StereoScaled { scale, ..self }),
+            OptVal::Choice(_) => unreachable!("scale is a number"),
+        }
+    }
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct StereoScaled {
@@ -15,9 +80,6 @@ pub struct StereoScaled {
 }
 
 pub const DEFAULT_SCALE: f32 = 1.7777;
-/// Scales whose derived literals (`2s`, `-s`, `0.5/s`) are all normal f32 values, with
-/// room to spare; the useful range is around 1 to 3.
-pub const SCALE_RANGE: std::ops::RangeInclusive<f32> = 0.001..=1000.0;
 
 impl Codec for StereoScaled {
     type P<F: Float> = V2<F>;

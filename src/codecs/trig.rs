@@ -77,3 +77,16 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
     V2::new(sin, cos)
 }
+
+/// Doc comments of the helpers defined here.
+pub fn helper_doc(name: &str) -> Option<String> {
+    match name {
+        "atan2_pi" => Some(format!(
+            "atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ {ATAN2_PI_MAX_ERROR:e}); signed zeros count as positive."
+        )),
+        "sincos_pi" => Some(format!(
+            "(sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
+        )),
+        _ => None,
+    }
+}

@@ -4,6 +4,44 @@
 use super::codec::{Codec, Domain};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::spec::{Spec, SpecError};
+
+pub static FAMILY: XyFamily = XyFamily;
+
+pub struct XyFamily;
+
+static INFO: Info = Info {
+    name: "xy",
+    title: "x and y stored, z reconstructed, snorm×2",
+    sizes: Sizes::Total(&[16, 24, 32]),
+    domain: Some(Domain::Hemisphere),
+    precise: true,
+    source: "Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes",
+    edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
+    decode_note: "z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1",
+    options: &[],
+};
+
+impl Family for XyFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, Xy { bits: spec.bits() })
+    }
+}
+
+impl Xy {
+    /// The codec with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<Xy, SpecError> {
+        Ok(Xy {
+            bits: INFO.check_bits(bits)?,
+        })
+    }
+}
 
 #[derive(Clone, Copy, Debug)]
 pub struct Xy {

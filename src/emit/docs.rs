@@ -5,7 +5,6 @@ use super::printer::Printed;
 use crate::codecs::Spec;
 use crate::codecs::functions::{Emitted, Inputs, Role};
 use crate::codecs::quant::{Quant, field_offsets};
-use crate::codecs::trig::{ATAN2_PI_MAX_ERROR, SINCOS_PI_MAX_ERROR};
 use crate::quality::ErrorStats;
 
 pub fn file_header(command: &str) -> Vec<String> {
@@ -25,12 +24,12 @@ pub fn file_header(command: &str) -> Vec<String> {
 }
 
 pub fn spec_title(spec: &Spec) -> String {
-    let c = spec.codec;
-    let mut t = format!("{}: {}", spec.display_name(), c.title);
-    if spec.bits > 0 {
-        t.push_str(&format!(", {} bits", spec.bits));
+    let c = spec.info();
+    let mut t = format!("{spec}: {}", c.title);
+    if spec.bits() > 0 {
+        t.push_str(&format!(", {} bits", spec.bits()));
     }
-    if spec.precise {
+    if spec.precise() {
         t.push_str(", precise encoder");
     }
     t
@@ -79,25 +78,11 @@ fn param_range(q: &[Quant]) -> &'static str {
     }
 }
 
-fn helper_doc(local: &str) -> Vec<String> {
-    let s = match local {
-        "encode_codes" => {
-            "Precise search: the integer codes (as floats) around the exact parameters whose decode is nearest the input by squared distance.".to_string()
-        }
-        "atan2_pi" => format!(
-            "atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ {ATAN2_PI_MAX_ERROR:e}); signed zeros count as positive."
-        ),
-        "sincos_pi" => format!(
-            "(sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
-        ),
-        "oct24_decode_float" => "oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.".to_string(),
-        "snorm12x2_to_unorm8x3" => "Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).".to_string(),
-        "snorm12x2_to_unorm8x3_int" => "Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input.".to_string(),
-        "unorm8x3_to_snorm12x2" => "Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].".to_string(),
-        "unorm8x3_to_snorm12x2_int" => "Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input.".to_string(),
-        other => format!("Helper `{other}`."),
-    };
-    vec![s]
+fn helper_doc(spec: &Spec, local: &str) -> Vec<String> {
+    vec![
+        crate::codecs::helper_doc(spec.family(), local)
+            .unwrap_or_else(|| format!("Helper `{local}`.")),
+    ]
 }
 
 pub fn function_doc(
@@ -108,22 +93,21 @@ pub fn function_doc(
     local: &str,
     stats: Option<ErrorStats>,
 ) -> Vec<String> {
-    let c = spec.codec;
+    let c = spec.info();
     let Some(role) = role else {
-        return helper_doc(local);
+        return helper_doc(spec, local);
     };
     if matches!(role, Role::Pack | Role::Unpack) {
-        return helper_doc(local);
+        return helper_doc(spec, local);
     }
     let q = quants(e).expect("codec with fields");
     let codec = format!(
-        "{} ({}, {} bits, {})",
-        spec.display_name(),
+        "{spec} ({}, {} bits, {})",
         c.title,
-        spec.bits,
+        spec.bits(),
         c.domain.map_or("", |d| d.name())
     );
-    let enc = if spec.precise {
+    let enc = if spec.precise() {
         "precise encoder"
     } else {
         "fast encoder"
@@ -150,7 +134,7 @@ pub fn function_doc(
         Role::EncodeFloat => vec![
             format!("{}: {codec}, {enc}, float form.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
-            if spec.precise {
+            if spec.precise() {
                 format!(
                     "Out: the chosen codes as values in {range} (c/M) for a {} render target or vertex format.",
                     q[0].name()

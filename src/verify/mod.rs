@@ -320,7 +320,7 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
         if langs.contains(&Lang::Glsl) {
             for (path, r) in glsl_versions(include(Lang::Glsl)) {
                 rows.push(Row {
-                    spec: spec.display_name(),
+                    spec: spec.to_string(),
                     function: "(whole include)".into(),
                     path,
                     tested: 0,
@@ -336,7 +336,7 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
             format!("{}_", e.namespace)
         };
         for f in &e.functions {
-            bar.set_message(format!("{} {}", spec.display_name(), f.name));
+            bar.set_message(format!("{spec} {}", f.name));
             let traced = e.module.func(f.name).expect("traced function");
             let (param, ret) = func_types(traced);
             let input = inputs::generate(&f.inputs, f.in_words);
@@ -354,7 +354,7 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
                     gpu.run(&shader, &input, f.in_words, f.out_words)
                 });
                 let mut row = Row {
-                    spec: spec.display_name(),
+                    spec: spec.to_string(),
                     function: f.name.to_string(),
                     path: path.to_string(),
                     tested: input.len() / f.in_words,
