@@ -180,6 +180,64 @@ fn trace_refuses_non_portable_arithmetic() {
         !refused(|x| x * Tf::c(1.0 / 3.0)),
         "reciprocal multiply is the allowed form"
     );
+    assert!(
+        !refused(|x| x * Tf::c(3.0) * Tf::c(4.0)),
+        "a power-of-two factor folds exactly"
+    );
+    // The same chains across helper calls, which drivers inline before folding.
+    fn scales(x: Tf) -> Tf {
+        x * Tf::c(5.0)
+    }
+    assert!(
+        refused(|x| Tf::call("h", x * Tf::c(3.0), scales)),
+        "literal product passed to a helper that scales it"
+    );
+    assert!(
+        refused(|x| Tf::call("k", x * Tf::c(3.0), |y: Tf| Tf::call("g", y, scales))),
+        "a helper forwarding its parameter to one that scales it"
+    );
+    assert!(
+        refused(|x| Tf::call("h", x, |y: Tf| y * Tf::c(3.0)) * Tf::c(5.0)),
+        "a helper's literal product scaled again by the caller"
+    );
+    assert!(
+        !refused(|x| Tf::call("h", x * Tf::c(3.0), |y: Tf| y * Tf::c(4.0))),
+        "powers of two are exempt across calls too"
+    );
+    assert!(
+        !refused(|x| Tf::call("h", x * Tf::c(3.0), |y: Tf| y + Tf::c(5.0))),
+        "a helper that does not scale its parameter"
+    );
+}
+
+/// The select-based vocabulary states its ±0 and NaN results; check them on raw bits.
+#[test]
+fn select_based_min_max_clamp_and_normalize_state_their_edge_results() {
+    use unitpack::model::{Float, V2, V3};
+    let bits = |x: f32| x.to_bits();
+    assert_eq!(bits((-0.0f32).at_least(0.0)), bits(-0.0), "ties keep self");
+    assert_eq!(bits(0.0f32.at_least(-0.0)), bits(0.0));
+    assert_eq!(
+        bits(f32::NAN.at_least(-1.0)),
+        bits(-1.0),
+        "NaN gives the bound"
+    );
+    assert_eq!(bits(f32::NAN.at_most(1.0)), bits(1.0));
+    assert_eq!(bits(f32::NAN.clamped(-1.0, 1.0)), bits(-1.0));
+    assert_eq!(bits(3.0f32.clamped(-1.0, 1.0)), bits(1.0));
+    assert_eq!(bits((-3.0f32).clamped(-1.0, 1.0)), bits(-1.0));
+    assert_eq!(bits(0.25f32.clamped(-1.0, 1.0)), bits(0.25));
+    let fb = V2::new(0.0f32, 1.0);
+    assert_eq!(V2::new(0.0f32, 0.0).normalize_or(fb), fb);
+    assert_eq!(V2::new(-0.0f32, 0.0).normalize_or(fb), fb);
+    assert_eq!(V2::new(f32::NAN, 1.0).normalize_or(fb), fb);
+    assert_eq!(V2::new(3.0f32, 4.0).normalize_or(fb), V2::new(0.6, 0.8));
+    let z = V3::new(0.0f32, 0.0, 1.0);
+    assert_eq!(V3::new(0.0f32, 0.0, 0.0).normalize_or(z), z);
+    assert_eq!(
+        V3::new(0.0f32, -2.0, 0.0).normalize_or(z),
+        V3::new(0.0, -1.0, 0.0)
+    );
 }
 
 /// What a render target of the matching format stores for float-form parameters, computed

@@ -41,23 +41,18 @@ vec2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(vec3 a0) {
     return t10;
 }
 
-// unitpack_oct24_rgb8_decode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
-// Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
-// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02082°, max 0.05780°.
-vec3 unitpack_oct24_rgb8_decode_float(vec3 params) {
-    UNITPACK_PRECISE vec2 e = unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(params);
-    UNITPACK_PRECISE vec2 t1 = abs(e);
+// oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.
+vec3 unitpack_oct24_rgb8_oct24_decode_float(vec2 a0) {
+    UNITPACK_PRECISE vec2 t1 = abs(a0);
     UNITPACK_PRECISE float t2 = 1.0 - t1.x;
     UNITPACK_PRECISE float z = t2 - t1.y;
     bool t3 = z < 0.0;
-    UNITPACK_PRECISE vec2 t4 = abs(e.yx);
+    UNITPACK_PRECISE vec2 t4 = abs(a0.yx);
     UNITPACK_PRECISE vec2 t5 = 1.0 - t4;
-    bvec2 t6 = greaterThanEqual(e, vec2(0.0));
+    bvec2 t6 = greaterThanEqual(a0, vec2(0.0));
     UNITPACK_PRECISE vec2 t7 = mix(vec2(-1.0), vec2(1.0), t6);
     UNITPACK_PRECISE vec2 t8 = t5 * t7;
-    UNITPACK_PRECISE vec2 t9 = t3 ? t8 : e;
+    UNITPACK_PRECISE vec2 t9 = t3 ? t8 : a0;
     UNITPACK_PRECISE vec3 v = vec3(t9, z);
     UNITPACK_PRECISE vec3 t10 = v * v;
     UNITPACK_PRECISE float t11 = t10.x + t10.y;
@@ -65,6 +60,33 @@ vec3 unitpack_oct24_rgb8_decode_float(vec3 params) {
     UNITPACK_PRECISE float t13 = sqrt(t12);
     UNITPACK_PRECISE vec3 t14 = v / t13;
     return t14;
+}
+
+// unitpack_oct24_rgb8_decode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
+// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02082°, max 0.05780°.
+vec3 unitpack_oct24_rgb8_decode_float(vec3 params) {
+    UNITPACK_PRECISE vec2 e = unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(params);
+    UNITPACK_PRECISE vec3 t1 = unitpack_oct24_rgb8_oct24_decode_float(e);
+    return t1;
+}
+
+// The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey Listing 5, float-only).
+vec2 unitpack_oct24_rgb8_bytes_to_snorm12x2(vec3 a0) {
+    UNITPACK_PRECISE float y16 = a0.y * 0.0625;
+    UNITPACK_PRECISE float hi = floor(y16);
+    UNITPACK_PRECISE float t1 = y16 - hi;
+    UNITPACK_PRECISE vec2 t2 = vec2(a0.x, t1);
+    UNITPACK_PRECISE vec2 t3 = t2 * vec2(16.0, 4096.0);
+    UNITPACK_PRECISE vec2 t4 = vec2(hi, a0.z);
+    UNITPACK_PRECISE vec2 t5 = t3 + t4;
+    UNITPACK_PRECISE vec2 t6 = t5 - 2047.0;
+    UNITPACK_PRECISE vec2 t7 = t6 * 0.0004885198;
+    bvec2 t8 = lessThanEqual(t7, vec2(1.0));
+    UNITPACK_PRECISE vec2 t9 = mix(vec2(1.0), t7, t8);
+    return t9;
 }
 
 // unitpack_oct24_rgb8_decode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder.
@@ -78,8 +100,8 @@ vec3 unitpack_oct24_rgb8_decode(uint code) {
     uvec3 t3 = uvec3(code, t1, t2);
     uvec3 t4 = t3 & uvec3(255u);
     UNITPACK_PRECISE vec3 t5 = vec3(t4);
-    UNITPACK_PRECISE vec3 params = t5 * 0.003921569;
-    UNITPACK_PRECISE vec3 t6 = unitpack_oct24_rgb8_decode_float(params);
+    UNITPACK_PRECISE vec2 e = unitpack_oct24_rgb8_bytes_to_snorm12x2(t5);
+    UNITPACK_PRECISE vec3 t6 = unitpack_oct24_rgb8_oct24_decode_float(e);
     return t6;
 }
 

@@ -38,23 +38,18 @@ float2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(float3 a0) {
     return t10;
 }
 
-// unitpack_oct24_rgb8_decode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
-// Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
-// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02082°, max 0.05780°.
-float3 unitpack_oct24_rgb8_decode_float(float3 params) {
-    precise float2 e = unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(params);
-    precise float2 t1 = abs(e);
+// oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.
+float3 unitpack_oct24_rgb8_oct24_decode_float(float2 a0) {
+    precise float2 t1 = abs(a0);
     precise float t2 = 1.0 - t1.x;
     precise float z = t2 - t1.y;
     bool t3 = z < 0.0;
-    precise float2 t4 = abs(e.yx);
+    precise float2 t4 = abs(a0.yx);
     precise float2 t5 = 1.0 - t4;
-    bool2 t6 = e >= float2(0.0, 0.0);
+    bool2 t6 = a0 >= float2(0.0, 0.0);
     precise float2 t7 = UNITPACK_SELECT(t6, float2(1.0, 1.0), float2(-1.0, -1.0));
     precise float2 t8 = t5 * t7;
-    precise float2 t9 = t3 ? t8 : e;
+    precise float2 t9 = t3 ? t8 : a0;
     precise float3 v = float3(t9, z);
     precise float3 t10 = v * v;
     precise float t11 = t10.x + t10.y;
@@ -62,6 +57,33 @@ float3 unitpack_oct24_rgb8_decode_float(float3 params) {
     precise float t13 = sqrt(t12);
     precise float3 t14 = v / t13;
     return t14;
+}
+
+// unitpack_oct24_rgb8_decode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
+// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02082°, max 0.05780°.
+float3 unitpack_oct24_rgb8_decode_float(float3 params) {
+    precise float2 e = unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(params);
+    precise float3 t1 = unitpack_oct24_rgb8_oct24_decode_float(e);
+    return t1;
+}
+
+// The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey Listing 5, float-only).
+float2 unitpack_oct24_rgb8_bytes_to_snorm12x2(float3 a0) {
+    precise float y16 = a0.y * 0.0625;
+    precise float hi = floor(y16);
+    precise float t1 = y16 - hi;
+    precise float2 t2 = float2(a0.x, t1);
+    precise float2 t3 = t2 * float2(16.0, 4096.0);
+    precise float2 t4 = float2(hi, a0.z);
+    precise float2 t5 = t3 + t4;
+    precise float2 t6 = t5 - 2047.0;
+    precise float2 t7 = t6 * 0.0004885198;
+    bool2 t8 = t7 <= float2(1.0, 1.0);
+    precise float2 t9 = UNITPACK_SELECT(t8, t7, float2(1.0, 1.0));
+    return t9;
 }
 
 // unitpack_oct24_rgb8_decode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder.
@@ -75,8 +97,8 @@ float3 unitpack_oct24_rgb8_decode(uint code) {
     uint3 t3 = uint3(code, t1, t2);
     uint3 t4 = t3 & uint3(255u, 255u, 255u);
     precise float3 t5 = float3(t4);
-    precise float3 params = t5 * 0.003921569;
-    precise float3 t6 = unitpack_oct24_rgb8_decode_float(params);
+    precise float2 e = unitpack_oct24_rgb8_bytes_to_snorm12x2(t5);
+    precise float3 t6 = unitpack_oct24_rgb8_oct24_decode_float(e);
     return t6;
 }
 

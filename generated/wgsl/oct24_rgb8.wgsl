@@ -25,23 +25,18 @@ fn unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
     return t10;
 }
 
-// unitpack_oct24_rgb8_decode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
-// In: parameters in [0, 1], as a unorm8 fetch returns them.
-// Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
-// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02082°, max 0.05780°.
-fn unitpack_oct24_rgb8_decode_float(params: vec3<f32>) -> vec3<f32> {
-    let e = unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(params);
-    let t1 = abs(e);
+// oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.
+fn unitpack_oct24_rgb8_oct24_decode_float(a0: vec2<f32>) -> vec3<f32> {
+    let t1 = abs(a0);
     let t2 = 1.0f - t1.x;
     let z = t2 - t1.y;
     let t3 = z < 0.0f;
-    let t4 = abs(e.yx);
+    let t4 = abs(a0.yx);
     let t5 = 1.0f - t4;
-    let t6 = e >= vec2<f32>(0.0f);
+    let t6 = a0 >= vec2<f32>(0.0f);
     let t7 = select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t6);
     let t8 = t5 * t7;
-    let t9 = select(e, t8, t3);
+    let t9 = select(a0, t8, t3);
     let v = vec3<f32>(t9, z);
     let t10 = v * v;
     let t11 = t10.x + t10.y;
@@ -49,6 +44,33 @@ fn unitpack_oct24_rgb8_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t13 = sqrt(t12);
     let t14 = v / t13;
     return t14;
+}
+
+// unitpack_oct24_rgb8_decode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
+// In: parameters in [0, 1], as a unorm8 fetch returns them.
+// Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02082°, max 0.05780°.
+fn unitpack_oct24_rgb8_decode_float(params: vec3<f32>) -> vec3<f32> {
+    let e = unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(params);
+    let t1 = unitpack_oct24_rgb8_oct24_decode_float(e);
+    return t1;
+}
+
+// The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey Listing 5, float-only).
+fn unitpack_oct24_rgb8_bytes_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
+    let y16 = a0.y * 0.0625f;
+    let hi = floor(y16);
+    let t1 = y16 - hi;
+    let t2 = vec2<f32>(a0.x, t1);
+    let t3 = t2 * vec2<f32>(16.0f, 4096.0f);
+    let t4 = vec2<f32>(hi, a0.z);
+    let t5 = t3 + t4;
+    let t6 = t5 - 2047.0f;
+    let t7 = t6 * 0.0004885198f;
+    let t8 = t7 <= vec2<f32>(1.0f);
+    let t9 = select(vec2<f32>(1.0f), t7, t8);
+    return t9;
 }
 
 // unitpack_oct24_rgb8_decode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder.
@@ -62,8 +84,8 @@ fn unitpack_oct24_rgb8_decode(code: u32) -> vec3<f32> {
     let t3 = vec3<u32>(code, t1, t2);
     let t4 = t3 & vec3<u32>(255u);
     let t5 = vec3<f32>(t4);
-    let params = t5 * 0.003921569f;
-    let t6 = unitpack_oct24_rgb8_decode_float(params);
+    let e = unitpack_oct24_rgb8_bytes_to_snorm12x2(t5);
+    let t6 = unitpack_oct24_rgb8_oct24_decode_float(e);
     return t6;
 }
 

@@ -89,6 +89,13 @@ pub trait Codec: Send + Sync {
     fn params<F: Float>(&self, v: V3<F>) -> Self::P<F>;
     /// Parameters in storage range → direction.
     fn direction<F: Float>(&self, p: Self::P<F>) -> V3<F>;
+    /// Integer codes (as unpacked from the texel) → direction: dequantized, then the
+    /// `decode_float` helper. A codec whose parameters are themselves re-quantized by
+    /// its decoder overrides this to decode the integers directly.
+    fn decode_codes<F: Float>(&self, codes: Self::P<F>) -> V3<F> {
+        let p = dequantize(&self.quants(), codes).named_p("params");
+        F::call("decode_float", p, |p| self.direction(p))
+    }
     /// Integer codes chosen by the precise encoder: [`precise_search`] through this
     /// codec's own `decode_float`.
     fn precise_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
@@ -149,8 +156,7 @@ pub fn sign_not_zero<F: Float>(v: V2<F>) -> V2<F> {
 /// every invalid one (a NaN lane can hide from the select-based maximum, not from it).
 pub fn unit_or_z<F: Float>(v: V3<F>) -> V3<F> {
     let a = v.abs();
-    let m = F::sel(a.x.ge(a.y), a.x, a.y);
-    let m = F::sel(m.ge(a.z), m, a.z).named("largest");
+    let m = a.x.at_least(a.y).at_least(a.z).named("largest");
     let ok = m.gt(F::c(0.0)).and(m.le(F::c(f32::MAX)));
     let w = (v / F::sel(ok, m, F::c(1.0))).named("scaled");
     let len2 = w.length_squared().named("len2");

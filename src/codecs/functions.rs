@@ -161,12 +161,9 @@ where
     }
 }
 
-/// The packed decoder: unpack, dequantize, then the `decode_float` helper.
+/// The packed decoder: unpack, then [`Codec::decode_codes`].
 pub fn decode_packed<F: Float, C: Codec>(c: &C, code: C::C<F>) -> V3<F> {
-    let q = c.quants();
-    let codes: C::P<F> = unpack(&q, code);
-    let p = dequantize(&q, codes).named_p("params");
-    F::call("decode_float", p, |p| c.direction(p))
+    c.decode_codes(unpack(&c.quants(), code))
 }
 
 /// Integer codes of an encoder: the precise search (through the `encode_codes` helper),

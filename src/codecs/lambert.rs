@@ -70,7 +70,7 @@ impl Codec for Lambert {
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let fenc = (enc * F::c(4.0) - F::c(2.0)).named("fenc");
         let f = fenc.length_squared();
-        let f = F::sel(f.le(F::c(4.0)), f, F::c(4.0)).named("f");
+        let f = f.at_most(F::c(4.0)).named("f");
         let g = (F::c(1.0) - f * F::c(0.25)).sqrt().named("g");
         V3::from_xy(fenc * g, F::c(1.0) - f * F::c(0.5))
     }

@@ -4,7 +4,7 @@
 use super::codec::{Codec, Domain, precise_search, sign_not_zero};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes};
 use super::functions::{Emitted, codec_functions};
-use super::pack12::{BIAS, bytes_float, from_unorm8x3, to_unorm8x3};
+use super::pack12::{BIAS, bytes_float, from_bytes, from_unorm8x3, to_unorm8x3};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
 use crate::model::{Bool, Float, V2, V3};
@@ -58,8 +58,15 @@ impl Family for OctFamily {
         }
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "oct24_decode_float")
-            .then(|| "oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.".to_string())
+        match name {
+            "oct24_decode_float" => {
+                Some("oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.".into())
+            }
+            "bytes_to_snorm12x2" => Some(
+                "The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey Listing 5, float-only).".into(),
+            ),
+            _ => None,
+        }
     }
 }
 
@@ -151,7 +158,13 @@ impl Codec for Oct24Rgb8 {
     }
     fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
         let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
-        oct_direction(e)
+        F::call("oct24_decode_float", e, oct_direction)
+    }
+    /// The bytes are already integers: unpacking them with the float-only form directly
+    /// skips a `c·(1/255)·255` round trip (which drivers would fold across the call).
+    fn decode_codes<F: Float>(&self, b: V3<F>) -> V3<F> {
+        let e = F::call("bytes_to_snorm12x2", b, from_bytes).named("e");
+        F::call("oct24_decode_float", e, oct_direction)
     }
     /// The oct24 precise search, then its 12-bit codes split into bytes.
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {

@@ -102,12 +102,16 @@ pub fn to_unorm8x3_int<F: Float>(f: V2<F>) -> V3<F> {
 /// `(s - 2047)·(1/2047)`, clamped to [-1, 1].
 fn unbias<F: Float>(s: V2<F>) -> V2<F> {
     let f = (s - F::c(BIAS)) * F::c(1.0 / BIAS);
-    V2::sel(f.le(V2::splat(F::c(1.0))), f, V2::splat(F::c(1.0)))
+    f.at_most(F::c(1.0))
 }
 
 /// Float-only unpack (Listing 5) of unorm8 values as delivered by an RGB8 fetch.
 pub fn from_unorm8x3<F: Float>(u: V3<F>) -> V2<F> {
-    let b = (u * F::c(255.0)).round().named("b");
+    from_bytes((u * F::c(255.0)).round().named("b"))
+}
+
+/// Float-only unpack of the three bytes, as integral floats.
+pub fn from_bytes<F: Float>(b: V3<F>) -> V2<F> {
     let y16 = (b.y * F::c(1.0 / 16.0)).named("y16");
     let hi = y16.floor().named("hi");
     let s = V2::new(b.x * F::c(16.0) + hi, (y16 - hi) * F::c(4096.0) + b.z);

@@ -48,9 +48,7 @@ impl Quant {
     }
     /// Clamps to the storage range; NaN goes to the low end (comparisons with NaN are false).
     pub fn clamp<F: Float>(self, x: F) -> F {
-        let lo = F::c(self.lo());
-        let x = F::sel(x.ge(lo), x, lo);
-        F::sel(x.le(F::c(1.0)), x, F::c(1.0))
+        x.clamped(F::c(self.lo()), F::c(1.0))
     }
     /// The code nearest to `x`, ties to even.
     pub fn quantize<F: Float>(self, x: F) -> F {
@@ -62,13 +60,12 @@ impl Quant {
     }
     /// Clamps a candidate code to the valid codes.
     pub fn clamp_code<F: Float>(self, c: F) -> F {
-        let hi = F::c(self.max_code());
-        F::sel(c.le(hi), c, hi)
+        c.at_most(F::c(self.max_code()))
     }
     pub fn dequantize<F: Float>(self, c: F) -> F {
         let x = c * F::c(1.0 / self.max_code());
         match self {
-            Quant::Snorm(_) => F::sel(x.ge(F::c(-1.0)), x, F::c(-1.0)),
+            Quant::Snorm(_) => x.at_least(F::c(-1.0)),
             Quant::Unorm(_) => x,
         }
     }

@@ -110,10 +110,6 @@ impl<W: Words> Codec for Snorm3<W> {
     }
     /// The all-zero code, the only one with no direction, decodes as +Z.
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
-        let len2 = p.length_squared().named("len2");
-        let ok = len2.gt(F::c(0.0));
-        let safe = F::sel(ok, len2, F::c(1.0));
-        let v = p / safe.sqrt();
-        V3::sel_all(ok, v, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
+        p.normalize_or(V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
     }
 }

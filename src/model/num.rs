@@ -109,6 +109,24 @@ pub trait Float:
     fn sel(m: Self::B, if_true: Self, if_false: Self) -> Self;
     /// Exact conversion of a non-negative integral value below 2^32.
     fn to_u(self) -> Self::U;
+    /// `self ≥ lo ? self : lo`, a select rather than a `max` builtin, whose ±0 and NaN
+    /// results differ between drivers. A NaN `self` gives `lo`; when the two compare
+    /// equal (`-0` and `+0`) `self` is kept.
+    #[inline(always)]
+    fn at_least(self, lo: Self) -> Self {
+        Self::sel(self.ge(lo), self, lo)
+    }
+    /// `self ≤ hi ? self : hi`: a NaN `self` gives `hi`; on equality `self` is kept.
+    #[inline(always)]
+    fn at_most(self, hi: Self) -> Self {
+        Self::sel(self.le(hi), self, hi)
+    }
+    /// `self` limited to `[lo, hi]` (`lo ≤ hi`): [`Float::at_least`] then
+    /// [`Float::at_most`], so a NaN `self` gives `lo`.
+    #[inline(always)]
+    fn clamped(self, lo: Self, hi: Self) -> Self {
+        self.at_least(lo).at_most(hi)
+    }
     /// Calls a helper function. Evaluating, that is just `f(a)`; tracing, the helper is
     /// traced once into its own shader function and the call site prints a call.
     #[inline(always)]

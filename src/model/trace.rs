@@ -105,6 +105,11 @@ pub struct Func {
     pub nodes: Vec<Node>,
     pub ret: Ref,
     pub ret_ty: Ty,
+    /// Parameters this function multiplies by a literal (directly, or by passing them to
+    /// a helper that does): a caller must not pass a literal product there.
+    pub scaled_params: Vec<bool>,
+    /// Whether the result is a literal product: a caller must not scale it by a literal.
+    pub returns_scaled: bool,
 }
 
 impl Func {
@@ -133,6 +138,8 @@ impl Module {
 struct Recorder {
     module: Module,
     stack: Vec<Vec<Node>>,
+    /// For each function being traced, which of its parameters it scales by a literal.
+    scaled: Vec<Vec<bool>>,
     /// Vector nodes already built from a list of lanes, so shared lanes fuse once.
     memo: std::collections::HashMap<Vec<Ref>, Ref>,
     memo_stack: Vec<std::collections::HashMap<Vec<Ref>, Ref>>,
@@ -176,18 +183,81 @@ impl Recorder {
             lane: None,
         }
     }
-    /// Whether `r` is a literal: a literal node, or a lane of a vector built from literals.
+    /// Whether `r` is a literal: a literal node, or (a lane of) a vector built from literals.
     fn is_const(&mut self, r: Ref) -> bool {
+        self.literal(r).is_some()
+    }
+
+    /// The literal `r` stands for: a literal node, a lane of a vector built from literals,
+    /// or a vector whose lanes are all the same literal. `Some(None)` for a literal
+    /// vector with different lanes.
+    fn literal(&mut self, r: Ref) -> Option<Option<f32>> {
         let n = self.nodes()[r.node as usize].clone();
         match (&n.op, r.lane) {
-            (Op::ConstF(_) | Op::ConstU(_), _) => true,
+            (Op::ConstF(v), _) => Some(Some(*v)),
+            (Op::ConstU(_), _) => Some(None),
             (Op::Construct, Some(l)) => {
                 let arg = n.args[if n.args.len() == 1 { 0 } else { l as usize }];
-                self.is_const(arg)
+                self.literal(arg)
             }
-            _ => false,
+            (Op::Construct, None) => {
+                let lanes: Option<Vec<Option<f32>>> =
+                    n.args.iter().map(|a| self.literal(*a)).collect();
+                let lanes = lanes?;
+                Some(if lanes.iter().all(|l| l.is_some() && *l == lanes[0]) {
+                    lanes[0]
+                } else {
+                    None
+                })
+            }
+            _ => None,
         }
     }
+
+    /// Whether `r` is a product with a literal that a driver could merge with another
+    /// literal factor. Powers of two are exempt: `(x·a)·2^k` and `x·(a·2^k)` round alike.
+    fn is_scaled(&mut self, r: Ref) -> bool {
+        let n = self.nodes()[r.node as usize].clone();
+        n.op == Op::Bin(BinOp::Mul)
+            && n.args.iter().any(|a| match self.literal(*a) {
+                Some(Some(v)) => !is_power_of_two(v),
+                Some(None) => true,
+                None => false,
+            })
+    }
+
+    /// The parameter `r` reads, if it is one (or a lane of one).
+    fn param_of(&mut self, r: Ref) -> Option<usize> {
+        match self.nodes()[r.node as usize].op {
+            Op::Param(i) => Some(i),
+            _ => None,
+        }
+    }
+
+    /// Drivers inline helpers and then fold literal factors across the call: refuse a
+    /// literal product passed where the helper scales by a literal, and remember that
+    /// this function's parameters are scaled when it forwards them there.
+    fn check_call(&mut self, callee: &str, args: &[Ref]) {
+        let f = self
+            .module
+            .func(callee)
+            .expect("helper traced before its call");
+        let scaled = f.scaled_params.clone();
+        for (i, a) in args.iter().enumerate() {
+            if !scaled.get(i).copied().unwrap_or(false) {
+                continue;
+            }
+            if self.is_scaled(*a) {
+                panic!(
+                    "a literal product passed to `{callee}`, which scales that parameter by a literal: after inlining, drivers fold (x*a)*b into x*(a*b)"
+                );
+            }
+            if let Some(p) = self.param_of(*a) {
+                self.scaled.last_mut().expect("traced function")[p] = true;
+            }
+        }
+    }
+
     fn record(&mut self, op: Op, args: Vec<Ref>, kind: Kind) -> Ref {
         if !args.is_empty() && args.iter().all(|a| self.is_const(*a)) {
             panic!(
@@ -204,17 +274,32 @@ impl Recorder {
                 "a literal divided by a value: drivers compute c/x as c*rcp(x); compute the numerator"
             );
         }
-        if op == Op::Bin(BinOp::Mul) && args.iter().any(|a| self.is_const(*a)) {
-            let other = if self.is_const(args[0]) {
-                args[1]
-            } else {
-                args[0]
-            };
-            let n = self.nodes()[other.node as usize].clone();
-            if n.op == Op::Bin(BinOp::Mul) && n.args.iter().any(|a| self.is_const(*a)) {
-                panic!(
-                    "a literal multiply of a literal multiply: drivers fold (x*a)*b into x*(a*b)"
-                );
+        if op == Op::Bin(BinOp::Mul) {
+            let lits: Vec<Option<Option<f32>>> = args.iter().map(|a| self.literal(*a)).collect();
+            if let Some(k) = lits.iter().position(Option::is_some) {
+                let other = args[1 - k];
+                let factor = lits[k].expect("literal");
+                let exempt = factor.is_some_and(is_power_of_two);
+                if !exempt && self.is_scaled(other) {
+                    panic!(
+                        "a literal multiply of a literal multiply: drivers fold (x*a)*b into x*(a*b)"
+                    );
+                }
+                if !exempt {
+                    if let Some(p) = self.param_of(other) {
+                        self.scaled.last_mut().expect("traced function")[p] = true;
+                    }
+                    let n = self.nodes()[other.node as usize].clone();
+                    if let Op::Call(name) = &n.op {
+                        let returns_scaled =
+                            self.module.func(name).is_some_and(|f| f.returns_scaled);
+                        if returns_scaled {
+                            panic!(
+                                "a literal multiply of `{name}`'s result, itself a literal product: after inlining, drivers fold (x*a)*b into x*(a*b)"
+                            );
+                        }
+                    }
+                }
             }
         }
         self.push(op, args, Ty::scalar(kind))
@@ -378,6 +463,10 @@ impl Recorder {
     fn name(&mut self, r: Ref, name: &'static str) {
         self.nodes()[r.node as usize].name = Some(name);
     }
+}
+
+fn is_power_of_two(v: f32) -> bool {
+    v.is_normal() && v.to_bits() & 0x007f_ffff == 0
 }
 
 /// Kind markers for [`T`].
@@ -559,7 +648,10 @@ impl Float for Tf {
         let args = a.refs();
         let rty = R::tys();
         assert_eq!(rty.len(), 1, "helpers return one value");
-        let r = with(|r| r.push(Op::Call(name.to_string()), args, rty[0]));
+        let r = with(|r| {
+            r.check_call(name, &args);
+            r.push(Op::Call(name.to_string()), args, rty[0])
+        });
         R::from_refs(&mut std::iter::once(r))
     }
 }
@@ -666,6 +758,7 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
         .collect();
     let param_refs: Vec<Ref> = with(|r| {
         r.stack.push(Vec::new());
+        r.scaled.push(vec![false; tys.len()]);
         r.memo_stack.push(std::mem::take(&mut r.memo));
         tys.iter()
             .enumerate()
@@ -678,6 +771,8 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
     assert_eq!(ret.len(), 1, "functions return one value");
     with(|r| {
         let ret_ty = r.ty(ret[0]);
+        let returns_scaled = r.is_scaled(ret[0]);
+        let scaled_params = r.scaled.pop().unwrap();
         let nodes = r.stack.pop().unwrap();
         r.memo = r.memo_stack.pop().unwrap();
         r.module.funcs.push(Func {
@@ -686,6 +781,8 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
             nodes,
             ret: ret[0],
             ret_ty,
+            scaled_params,
+            returns_scaled,
         });
     });
 }

@@ -81,6 +81,27 @@ macro_rules! vector {
             }
             #[inline(always)]
             pub fn to_u(self) -> $V<F::U> { self.map(F::to_u) }
+            /// Lane-wise [`Float::at_least`].
+            #[inline(always)]
+            pub fn at_least(self, lo: F) -> Self { self.map(|x| x.at_least(lo)) }
+            /// Lane-wise [`Float::at_most`].
+            #[inline(always)]
+            pub fn at_most(self, hi: F) -> Self { self.map(|x| x.at_most(hi)) }
+            /// Lane-wise [`Float::clamped`].
+            #[inline(always)]
+            pub fn clamped(self, lo: F, hi: F) -> Self { self.map(|x| x.clamped(lo, hi)) }
+            /// `self / sqrt(self·self)`, or `fallback` when the squared length is not
+            /// positive (the zero vector, and NaN lanes). Squared lengths that overflow give
+            /// zero lanes, and denormal ones lose precision: scale first where inputs may be
+            /// that large or small.
+            #[inline(always)]
+            pub fn normalize_or(self, fallback: Self) -> Self {
+                let len2 = self.length_squared().named("len2");
+                let ok = len2.gt(F::c(0.0));
+                let safe = F::sel(ok, len2, F::c(1.0));
+                let v = self / safe.sqrt();
+                Self::sel_all(ok, v, fallback)
+            }
             /// Sum of squares, evaluated left to right: `((x*x) + (y*y)) + ...`.
             #[inline(always)]
             pub fn length_squared(self) -> F {
