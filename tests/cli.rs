@@ -118,7 +118,7 @@ fn expected_files() -> BTreeSet<PathBuf> {
     let mut s = BTreeSet::new();
     for lang in Lang::ALL {
         for spec in Spec::all() {
-            s.insert(PathBuf::from(lang.ext()).join(format!("{}.{}", spec.id(), lang.ext())));
+            s.insert(PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())));
         }
     }
     s
@@ -566,10 +566,10 @@ fn gen_matches_the_generated_file_except_the_regenerate_line() {
         ("spherical24p", Lang::Glsl),
         ("snorm16x3", Lang::Hlsl),
     ] {
-        let g = ok(&["gen", spec, "--lang", lang.ext()]).stdout;
+        let g = ok(&["gen", spec, "--lang", lang.name()]).stdout;
         let f = std::fs::read_to_string(
             dir.path()
-                .join(lang.ext())
+                .join(lang.name())
                 .join(format!("{spec}.{}", lang.ext())),
         )
         .unwrap();
@@ -1120,7 +1120,7 @@ fn every_generated_file_regenerates_from_its_header() {
     let root = manifest_dir().join("generated");
     let mut checked = 0;
     for lang in Lang::ALL {
-        let dir = root.join(lang.ext());
+        let dir = root.join(lang.name());
         for entry in std::fs::read_dir(&dir).expect("generated language folder") {
             let path = entry.unwrap().path();
             let text = std::fs::read_to_string(&path).unwrap();

@@ -54,6 +54,11 @@ fn snapshots_hlsl() {
 }
 
 #[test]
+fn snapshots_c() {
+    snapshot_lang(Lang::C);
+}
+
+#[test]
 fn rendering_is_deterministic() {
     for lang in Lang::ALL {
         for spec in Spec::all() {
@@ -149,6 +154,24 @@ const FORBIDDEN_ALL: &[&str] = &[
     "cross",
     "f32tof16",
     "f16tof32",
+    // C's spellings; `roundf` rounds halves away from zero.
+    "fmaf",
+    "fminf",
+    "fmaxf",
+    "sinf",
+    "cosf",
+    "tanf",
+    "atanf",
+    "atan2f",
+    "acosf",
+    "asinf",
+    "roundf",
+    "lroundf",
+    "hypotf",
+    "expf",
+    "logf",
+    "powf",
+    "copysignf",
 ];
 
 fn forbidden(name: &str) -> bool {
@@ -243,10 +266,11 @@ fn every_function_name_is_prefixed_and_unique() {
             for line in code_lines(&text) {
                 let is_def = match lang {
                     Lang::Wgsl => line.starts_with("fn "),
-                    Lang::Glsl | Lang::Hlsl => {
+                    Lang::Glsl | Lang::Hlsl | Lang::C => {
                         !line.starts_with(' ')
                             && !line.starts_with('#')
                             && !line.starts_with("precision")
+                            && !line.starts_with("typedef")
                             && line.ends_with(") {")
                     }
                 };

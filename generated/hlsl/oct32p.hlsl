@@ -4,12 +4,14 @@
 // implementation with correctly rounded + - * / sqrt that keeps denormals and does not
 // fuse multiply-adds (verified on Mesa lavapipe). It uses no fma, no builtin trig and no
 // pack builtins.
-// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021.
+// HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021, and Slang. Under Slang, compile
+// to SPIR-V with -emit-spirv-via-glsl: Slang's direct SPIR-V output drops `precise`
+// (no NoContraction), so drivers may fuse a*b + c there.
 
-// Lane-wise select: HLSL 2021 requires select() for vector conditions; earlier HLSL has
-// only the (then lane-wise) ?: operator.
+// Lane-wise select: HLSL 2021 requires select() for vector conditions and Slang deprecates
+// a vector ?: (it reports __HLSL_VERSION 2018); earlier HLSL has only the lane-wise ?:.
 #ifndef UNITPACK_SELECT
-#if defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021
+#if defined(__SLANG_COMPILER__) || (defined(__HLSL_VERSION) && __HLSL_VERSION >= 2021)
 #define UNITPACK_SELECT(c, t, f) select(c, t, f)
 #else
 #define UNITPACK_SELECT(c, t, f) ((c) ? (t) : (f))

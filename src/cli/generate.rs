@@ -100,7 +100,7 @@ pub fn catalogue_files() -> Vec<(PathBuf, String)> {
             let cmd = format!("unitpack gen {spec} --lang {lang}");
             let text = render(&[(spec.clone(), *st)], lang, DEFAULT_PREFIX, &cmd);
             files.push((
-                PathBuf::from(lang.ext()).join(format!("{}.{}", spec.id(), lang.ext())),
+                PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())),
                 text,
             ));
         }
@@ -112,11 +112,11 @@ pub fn catalogue_files() -> Vec<(PathBuf, String)> {
 fn extra_files(out: &Path, files: &[(PathBuf, String)]) -> Vec<PathBuf> {
     let mut extra = Vec::new();
     for lang in Lang::ALL {
-        let Ok(rd) = std::fs::read_dir(out.join(lang.ext())) else {
+        let Ok(rd) = std::fs::read_dir(out.join(lang.name())) else {
             continue;
         };
         for e in rd.flatten() {
-            let rel = PathBuf::from(lang.ext()).join(e.file_name());
+            let rel = PathBuf::from(lang.name()).join(e.file_name());
             let ours = rel.extension().is_some_and(|x| x == lang.ext());
             if ours && !files.iter().any(|(r, _)| *r == rel) {
                 extra.push(out.join(rel));
@@ -163,7 +163,7 @@ pub fn generate(out: &Path, check: bool) -> Result<i32> {
         bail!("nothing to generate");
     }
     for lang in Lang::ALL {
-        let d = out.join(lang.ext());
+        let d = out.join(lang.name());
         std::fs::create_dir_all(&d).with_context(|| format!("cannot create {}", d.display()))?;
     }
     for (rel, text) in &files {

@@ -1,41 +1,93 @@
-//! Emission: traced functions → WGSL, GLSL or HLSL text. [`printer`] writes function
-//! bodies; the askama templates in `templates/` own everything around them (header,
-//! include guards, doc comments, signatures); [`docs`] writes the doc comments.
+//! Emission: traced functions → WGSL, GLSL, HLSL or C text. [`printer`] walks each
+//! traced function once; each language's module in [`lang`] owns its syntax, its askama
+//! file template (in `templates/`) and its verification kernel; [`docs`] writes the doc
+//! comments.
 
 pub mod docs;
+pub mod lang;
 pub mod printer;
 
 use crate::codecs::Spec;
 use crate::quality::ErrorStats;
-use askama::Template;
+use lang::{Backend, FileOptions};
+use printer::Printed;
 use std::fmt;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+/// A target language.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Lang {
     Wgsl,
     Glsl,
     Hlsl,
+    /// C99, also valid C++: headers for CPU asset pipelines.
+    C,
 }
 
 impl Lang {
-    pub const ALL: [Lang; 3] = [Lang::Wgsl, Lang::Glsl, Lang::Hlsl];
-    pub fn ext(self) -> &'static str {
+    pub const ALL: [Lang; 4] = [Lang::Wgsl, Lang::Glsl, Lang::Hlsl, Lang::C];
+    /// The language's name: `--lang` value and the folder `generate` writes into.
+    pub fn name(self) -> &'static str {
         match self {
             Lang::Wgsl => "wgsl",
             Lang::Glsl => "glsl",
             Lang::Hlsl => "hlsl",
+            Lang::C => "c",
+        }
+    }
+    /// The file extension of an include.
+    pub fn ext(self) -> &'static str {
+        match self {
+            Lang::C => "h",
+            other => other.name(),
+        }
+    }
+    /// The language's syntax and templates, with names built from `prefix`.
+    pub fn backend(self, prefix: &str) -> Box<dyn Backend> {
+        match self {
+            Lang::Wgsl => Box::new(lang::wgsl::Wgsl),
+            Lang::Glsl => Box::new(lang::glsl::Glsl::new(prefix)),
+            Lang::Hlsl => Box::new(lang::hlsl::Hlsl::new(prefix)),
+            Lang::C => Box::new(lang::c::C::new(prefix)),
         }
     }
 }
 
 impl fmt::Display for Lang {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.ext())
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Lang {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Lang, String> {
+        Lang::ALL
+            .into_iter()
+            .find(|l| l.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| format!("unknown language '{s}'; languages: wgsl, glsl, hlsl, c"))
     }
 }
 
 /// The default name prefix: WGSL has no preprocessor, so names must not clash.
 pub const DEFAULT_PREFIX: &str = "unitpack_";
+
+/// Macros are global in GLSL, HLSL and C: without a prefix they still carry the tool's name.
+pub fn macro_prefix(prefix: &str) -> String {
+    if prefix.is_empty() {
+        "UNITPACK_".into()
+    } else {
+        prefix.to_ascii_uppercase()
+    }
+}
+
+/// C's public array-based entry point of a function whose struct form is [`FnView::name`].
+pub struct Wrapper {
+    /// The public name.
+    pub name: String,
+    pub signature: String,
+    pub body: Vec<String>,
+}
 
 pub struct FnView {
     pub doc: Vec<String>,
@@ -43,6 +95,7 @@ pub struct FnView {
     pub params: Vec<(String, String)>,
     pub ret_ty: String,
     pub body: Vec<String>,
+    pub wrapper: Option<Wrapper>,
 }
 
 pub struct SpecView {
@@ -51,51 +104,53 @@ pub struct SpecView {
     pub functions: Vec<FnView>,
 }
 
-#[derive(Template)]
-#[template(path = "wgsl.txt", escape = "none")]
-struct WgslFile<'a> {
-    header: &'a [String],
-    specs: &'a [SpecView],
-}
-
-#[derive(Template)]
-#[template(path = "glsl.txt", escape = "none")]
-struct GlslFile<'a> {
-    header: &'a [String],
-    specs: &'a [SpecView],
-    precise_macro: String,
-}
-
-#[derive(Template)]
-#[template(path = "hlsl.txt", escape = "none")]
-struct HlslFile<'a> {
-    header: &'a [String],
-    specs: &'a [SpecView],
-    select_macro: String,
-}
-
 /// One spec's functions in `lang`, named `{prefix}{namespace}_{name}`.
-pub fn spec_view(spec: &Spec, lang: Lang, prefix: &str, stats: Option<ErrorStats>) -> SpecView {
+pub fn spec_view(
+    spec: &Spec,
+    lang: Lang,
+    backend: &dyn Backend,
+    prefix: &str,
+    stats: Option<ErrorStats>,
+) -> SpecView {
     let e = spec.emitted();
     let ns = if e.namespace.is_empty() {
         String::new()
     } else {
         format!("{}_", e.namespace)
     };
-    let full = |local: &str| format!("{prefix}{ns}{local}");
+    let public = |local: &str| format!("{prefix}{ns}{local}");
+    let defined = |local: &str| backend.impl_name(&public(local));
     let functions = e
         .module
         .funcs
         .iter()
         .map(|f| {
-            let p = printer::print(lang, f, prefix, &full);
-            let public = e.functions.iter().find(|pf| pf.name == f.name);
+            let p = printer::print(backend, f, &defined);
+            let role = e
+                .functions
+                .iter()
+                .find(|pf| pf.name == f.name)
+                .map(|pf| pf.role);
+            let wrapper = role
+                .and_then(|_| backend.public_abi(&public(&f.name), &p.name, &f.params, f.ret_ty))
+                .map(|(signature, body)| Wrapper {
+                    name: public(&f.name),
+                    signature,
+                    body,
+                });
+            // Doc comments speak of the public name.
+            let shown = Printed {
+                name: public(&f.name),
+                ..p
+            };
+            let doc = docs::function_doc(spec, &e, &shown, role, &f.name, stats);
             FnView {
-                doc: docs::function_doc(spec, &e, &p, public.map(|pf| pf.role), &f.name, stats),
-                name: p.name,
-                params: p.params,
-                ret_ty: p.ret_ty,
-                body: p.body,
+                doc,
+                name: defined(&f.name),
+                params: shown.params,
+                ret_ty: shown.ret_ty,
+                body: shown.body,
+                wrapper,
             }
         })
         .collect();
@@ -113,38 +168,38 @@ pub fn render(
     prefix: &str,
     command: &str,
 ) -> String {
+    render_with(specs, lang, prefix, command, None)
+}
+
+/// [`render`], with a WGSL `#define_import_path` when `import_path` is given.
+pub fn render_with(
+    specs: &[(Spec, Option<ErrorStats>)],
+    lang: Lang,
+    prefix: &str,
+    command: &str,
+    import_path: Option<&str>,
+) -> String {
+    let backend = lang.backend(prefix);
     let views: Vec<SpecView> = specs
         .iter()
-        .map(|(s, st)| spec_view(s, lang, prefix, *st))
+        .map(|(s, st)| spec_view(s, lang, backend.as_ref(), prefix, *st))
         .collect();
     let header = docs::file_header(command);
-    let r = match lang {
-        Lang::Wgsl => WgslFile {
+    let mut s = backend.render(
+        &views,
+        &FileOptions {
             header: &header,
-            specs: &views,
-        }
-        .render(),
-        Lang::Glsl => GlslFile {
-            header: &header,
-            specs: &views,
-            precise_macro: printer::precise_macro(prefix),
-        }
-        .render(),
-        Lang::Hlsl => HlslFile {
-            header: &header,
-            specs: &views,
-            select_macro: printer::select_macro(prefix),
-        }
-        .render(),
-    };
-    let mut s = r.expect("templates render");
+            prefix,
+            import_path,
+        },
+    );
     if !s.ends_with('\n') {
         s.push('\n');
     }
     s
 }
 
-/// Checks that a prefix makes valid identifiers in all three languages.
+/// Checks that a prefix makes valid identifiers in every language.
 pub fn validate_prefix(p: &str) -> Result<(), String> {
     let ok = p.chars().next().is_none_or(|c| c.is_ascii_alphabetic())
         && p.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')

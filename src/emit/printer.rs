@@ -1,13 +1,13 @@
-//! Prints one traced function as statements of a target language.
+//! Prints one traced function as statements of a target language, asking the language
+//! ([`super::lang::Backend`]) for every piece of syntax.
 //!
 //! Every operation becomes one named `let`, in the model's evaluation order, so nothing is
 //! reassociated or reordered; only literals, parameters, swizzles and literal vectors are
 //! written inline. Values nothing returns are dropped (the tracer leaves the scalar lanes
 //! it fused into vector operations behind).
 
-use super::Lang;
-use crate::model::Kind;
-use crate::model::trace::{BinOp, Func, Op, Ref, Ty, UnOp};
+use super::lang::Backend;
+use crate::model::trace::{BinOp, Func, Node, Op, Ref, Ty, UnOp};
 use std::collections::HashSet;
 
 /// A function ready for a template: signature pieces and body lines.
@@ -20,29 +20,9 @@ pub struct Printed {
 
 const LANE: [char; 4] = ['x', 'y', 'z', 'w'];
 
-pub fn ty(lang: Lang, t: Ty) -> String {
-    let (w, g, h) = match t.kind {
-        Kind::F32 => ("f32", "vec", "float"),
-        Kind::U32 => ("u32", "uvec", "uint"),
-        Kind::Bool => ("bool", "bvec", "bool"),
-    };
-    match (lang, t.lanes) {
-        (Lang::Wgsl, 1) => w.to_string(),
-        (Lang::Wgsl, n) => format!("vec{n}<{w}>"),
-        (Lang::Glsl, 1) => match t.kind {
-            Kind::F32 => "float".into(),
-            Kind::U32 => "uint".into(),
-            Kind::Bool => "bool".into(),
-        },
-        (Lang::Glsl, n) => format!("{g}{n}"),
-        (Lang::Hlsl, 1) => h.to_string(),
-        (Lang::Hlsl, n) => format!("{h}{n}"),
-    }
-}
-
 /// The shortest decimal that reads back as exactly `v`, both directly and through f64
 /// (compilers that parse literals as double and then narrow must land on the same f32).
-pub fn f32_literal(lang: Lang, v: f32) -> String {
+pub fn f32_literal(v: f32) -> String {
     assert!(
         v.is_finite(),
         "non-finite literal {v}: compare against f32::MAX instead"
@@ -61,10 +41,7 @@ pub fn f32_literal(lang: Lang, v: f32) -> String {
     if !s.contains(['.', 'e']) {
         s.push_str(".0");
     }
-    match lang {
-        Lang::Wgsl => format!("{s}f"),
-        _ => s,
-    }
+    s
 }
 
 fn lanes_str(l: &[u8]) -> String {
@@ -72,25 +49,33 @@ fn lanes_str(l: &[u8]) -> String {
 }
 
 struct Ctx<'a> {
-    lang: Lang,
-    select_macro: &'a str,
-    precise_macro: &'a str,
+    lang: &'a dyn Backend,
     f: &'a Func,
+    /// Nodes used as a whole vector: passed to a call or returned.
+    whole: Vec<bool>,
     names: Vec<Option<String>>,
     fn_name: &'a dyn Fn(&str) -> String,
 }
 
 impl Ctx<'_> {
+    /// Values written where they are used rather than named: literals, parameters,
+    /// swizzles and literal vectors. Without vector values (C) a swizzle or literal vector
+    /// is written lane by lane where it is used, and named only where it is passed or
+    /// returned whole.
     fn inline(&self, id: usize) -> bool {
         let n = &self.f.nodes[id];
         match &n.op {
-            Op::ConstF(_) | Op::ConstU(_) | Op::Param(_) | Op::Swizzle(_) => true,
-            Op::Construct => n.args.iter().all(|a| {
-                matches!(
-                    self.f.nodes[a.node as usize].op,
-                    Op::ConstF(_) | Op::ConstU(_)
-                )
-            }),
+            Op::ConstF(_) | Op::ConstU(_) | Op::Param(_) => true,
+            Op::Swizzle(_) => self.lang.has_vectors() || !self.whole[id],
+            Op::Construct => {
+                (self.lang.has_vectors() || !self.whole[id])
+                    && n.args.iter().all(|a| {
+                        matches!(
+                            self.f.nodes[a.node as usize].op,
+                            Op::ConstF(_) | Op::ConstU(_)
+                        )
+                    })
+            }
             _ => false,
         }
     }
@@ -109,6 +94,20 @@ impl Ctx<'_> {
             return n.clone();
         }
         self.expr(id)
+    }
+
+    /// Lane `l` of operand `r`, for languages without vector values: a scalar operand is
+    /// used as it is (broadcast), a vector one through its lane.
+    fn lane(&self, r: Ref, l: u8) -> String {
+        if r.lane.is_some() || self.f.ty_of(r).lanes == 1 {
+            return self.r(r);
+        }
+        let id = r.node as usize;
+        let n = &self.f.nodes[id];
+        if self.names[id].is_none() && matches!(n.op, Op::Construct | Op::Swizzle(_)) {
+            return self.lane_expr(n, l);
+        }
+        format!("{}.{}", self.value(id), LANE[l as usize])
     }
 
     /// Construct arguments, with runs of consecutive lanes of one vector written as that
@@ -146,41 +145,70 @@ impl Ctx<'_> {
     }
 
     fn expr(&self, id: usize) -> String {
-        let lang = self.lang;
         let n = &self.f.nodes[id];
-        let a = |i: usize| self.r(n.args[i]);
-        let is_vec = n.ty.lanes > 1;
+        if !self.lang.has_vectors() && n.ty.lanes > 1 && !matches!(n.op, Op::Param(_) | Op::Call(_))
+        {
+            let lanes: Vec<String> = (0..n.ty.lanes).map(|l| self.lane_expr(n, l)).collect();
+            return self.lang.construct(n.ty, &lanes);
+        }
+        let arg_vec = |i: usize| self.f.ty_of(n.args[i]).lanes > 1;
+        let vector = n.ty.lanes > 1;
+        match &n.op {
+            Op::Construct => {
+                let same_literal = n.args.len() > 1
+                    && n.args.iter().all(|r| {
+                        r.lane.is_none()
+                            && matches!(
+                                self.f.nodes[r.node as usize].op,
+                                Op::ConstF(_) | Op::ConstU(_)
+                            )
+                            && self.f.nodes[r.node as usize].op
+                                == self.f.nodes[n.args[0].node as usize].op
+                    });
+                if (n.args.len() == 1 || same_literal) && vector {
+                    self.lang.splat(n.ty, &self.r(n.args[0]))
+                } else {
+                    self.lang.construct(n.ty, &self.construct_args(&n.args))
+                }
+            }
+            Op::Swizzle(l) => format!("{}.{}", self.value(n.args[0].node as usize), lanes_str(l)),
+            _ => self.op_text(n, n.ty, &|i| self.r(n.args[i]), &arg_vec),
+        }
+    }
+
+    /// Lane `l` of a vector operation, as a scalar expression.
+    fn lane_expr(&self, n: &Node, l: u8) -> String {
+        match &n.op {
+            Op::Construct => self.r(n.args[if n.args.len() == 1 { 0 } else { l as usize }]),
+            Op::Swizzle(order) => self.lane(n.args[0], order[l as usize]),
+            _ => self.op_text(
+                n,
+                Ty::scalar(n.ty.kind),
+                &|i| self.lane(n.args[i], l),
+                &|_| false,
+            ),
+        }
+    }
+
+    /// One operation with its operands already written.
+    fn op_text(
+        &self,
+        n: &Node,
+        ty: Ty,
+        a: &dyn Fn(usize) -> String,
+        arg_vec: &dyn Fn(usize) -> bool,
+    ) -> String {
+        let lang = self.lang;
         match &n.op {
             Op::Param(i) => self.f.params[*i].0.clone(),
-            Op::ConstF(v) => f32_literal(lang, *v),
+            Op::ConstF(v) => format!("{}{}", f32_literal(*v), lang.float_suffix()),
             Op::ConstU(v) => format!("{v}u"),
-            Op::Un(u) => {
-                let f = match u {
-                    UnOp::Neg => return format!("-{}", a(0)),
-                    UnOp::Not => return format!("!{}", a(0)),
-                    UnOp::Abs => "abs",
-                    UnOp::Sqrt => "sqrt",
-                    UnOp::Floor => "floor",
-                    // GLSL's round() may round halves either way; roundEven is exact.
-                    UnOp::Round if lang == Lang::Glsl => "roundEven",
-                    UnOp::Round => "round",
-                };
-                format!("{f}({})", a(0))
-            }
+            Op::Un(UnOp::Neg) => format!("-{}", a(0)),
+            Op::Un(UnOp::Not) => format!("!{}", a(0)),
+            Op::Un(u) => format!("{}({})", lang.unary(*u), a(0)),
             Op::Bin(b) => {
-                let arg_vec = self.f.ty_of(n.args[0]).lanes > 1;
-                if lang == Lang::Glsl && arg_vec {
-                    let f = match b {
-                        BinOp::Lt => Some("lessThan"),
-                        BinOp::Le => Some("lessThanEqual"),
-                        BinOp::Gt => Some("greaterThan"),
-                        BinOp::Ge => Some("greaterThanEqual"),
-                        BinOp::Eq => Some("equal"),
-                        _ => None,
-                    };
-                    if let Some(f) = f {
-                        return format!("{f}({}, {})", a(0), a(1));
-                    }
+                if let Some(f) = lang.vector_compare(*b).filter(|_| arg_vec(0)) {
+                    return format!("{f}({}, {})", a(0), a(1));
                 }
                 let op = match b {
                     BinOp::Add => "+",
@@ -209,47 +237,13 @@ impl Ctx<'_> {
             }
             Op::Shl(s) => format!("{} << {s}u", a(0)),
             Op::Shr(s) => format!("{} >> {s}u", a(0)),
-            Op::Select => {
-                let mask_vec = self.f.ty_of(n.args[0]).lanes > 1;
-                match lang {
-                    Lang::Wgsl => format!("select({}, {}, {})", a(2), a(1), a(0)),
-                    Lang::Glsl if mask_vec => format!("mix({}, {}, {})", a(2), a(1), a(0)),
-                    // HLSL 2021 (DXC's default) rejects `?:` on vector conditions and wants
-                    // select(); older HLSL has no select(). The include defines this macro.
-                    Lang::Hlsl if mask_vec => {
-                        format!("{}({}, {}, {})", self.select_macro, a(0), a(1), a(2))
-                    }
-                    _ => format!("{} ? {} : {}", a(0), a(1), a(2)),
-                }
-            }
-            Op::Convert => format!("{}({})", ty(lang, n.ty), a(0)),
-            Op::Construct => {
-                let t = ty(lang, n.ty);
-                let same_literal = n.args.len() > 1
-                    && n.args.iter().all(|r| {
-                        r.lane.is_none()
-                            && matches!(
-                                self.f.nodes[r.node as usize].op,
-                                Op::ConstF(_) | Op::ConstU(_)
-                            )
-                            && self.f.nodes[r.node as usize].op
-                                == self.f.nodes[n.args[0].node as usize].op
-                    });
-                if (n.args.len() == 1 || same_literal) && is_vec {
-                    let x = a(0);
-                    match lang {
-                        Lang::Hlsl => format!("{t}({})", vec![x; n.ty.lanes as usize].join(", ")),
-                        _ => format!("{t}({x})"),
-                    }
-                } else {
-                    format!("{t}({})", self.construct_args(&n.args).join(", "))
-                }
-            }
-            Op::Swizzle(l) => format!("{}.{}", self.value(n.args[0].node as usize), lanes_str(l)),
+            Op::Select => lang.select(arg_vec(0), &a(0), &a(1), &a(2)),
+            Op::Convert => lang.convert(ty, &a(0)),
             Op::Call(name) => {
                 let args: Vec<String> = n.args.iter().map(|r| self.r(*r)).collect();
                 format!("{}({})", (self.fn_name)(name), args.join(", "))
             }
+            Op::Construct | Op::Swizzle(_) => unreachable!("written by expr"),
         }
     }
 }
@@ -267,35 +261,23 @@ fn live(f: &Func) -> Vec<bool> {
     live
 }
 
-/// The HLSL lane-wise select macro the templates define, named after the prefix.
-pub fn select_macro(prefix: &str) -> String {
-    format!("{}SELECT", macro_prefix(prefix))
-}
-
-/// Macros are global in GLSL and HLSL: without a prefix they still carry the tool's name.
-fn macro_prefix(prefix: &str) -> String {
-    if prefix.is_empty() {
-        "UNITPACK_".into()
-    } else {
-        prefix.to_ascii_uppercase()
-    }
-}
-
-/// The GLSL macro in front of float declarations: empty by default (GLSL 330 and ES 300
-/// have no `precise`), `precise` where the user defines it so.
-pub fn precise_macro(prefix: &str) -> String {
-    format!("{}PRECISE", macro_prefix(prefix))
-}
-
-pub fn print(lang: Lang, f: &Func, prefix: &str, fn_name: &dyn Fn(&str) -> String) -> Printed {
+/// Prints `f` in `lang`; `fn_name` maps a traced function's local name to the name it is
+/// defined and called by.
+pub fn print(lang: &dyn Backend, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed {
     let live = live(f);
-    let select_macro = select_macro(prefix);
-    let precise_macro = precise_macro(prefix);
+    let mut whole = vec![false; f.nodes.len()];
+    whole[f.ret.node as usize] = f.ret.lane.is_none();
+    for n in &f.nodes {
+        if matches!(n.op, Op::Call(_)) {
+            for a in n.args.iter().filter(|a| a.lane.is_none()) {
+                whole[a.node as usize] = true;
+            }
+        }
+    }
     let mut ctx = Ctx {
         lang,
-        select_macro: &select_macro,
-        precise_macro: &precise_macro,
         f,
+        whole,
         names: vec![None; f.nodes.len()],
         fn_name,
     };
@@ -320,17 +302,7 @@ pub fn print(lang: Lang, f: &Func, prefix: &str, fn_name: &dyn Fn(&str) -> Strin
             name = format!("{base}{k}");
         }
         let e = ctx.expr(id);
-        // Float results are `precise` where the language allows it, so drivers that
-        // contract `a*b + c` into an fma must not do so here (lavapipe never does).
-        let qualifier = match (lang, node.ty.kind) {
-            (Lang::Hlsl, Kind::F32) => "precise ".to_string(),
-            (Lang::Glsl, Kind::F32) => format!("{} ", ctx.precise_macro),
-            _ => String::new(),
-        };
-        body.push(match lang {
-            Lang::Wgsl => format!("let {name} = {e};"),
-            _ => format!("{qualifier}{} {name} = {e};", ty(lang, node.ty)),
-        });
+        body.push(lang.declare(&name, node.ty, &e));
         ctx.names[id] = Some(name);
     }
     body.push(format!("return {};", ctx.r(f.ret)));
@@ -339,9 +311,9 @@ pub fn print(lang: Lang, f: &Func, prefix: &str, fn_name: &dyn Fn(&str) -> Strin
         params: f
             .params
             .iter()
-            .map(|(n, t)| (n.clone(), ty(lang, *t)))
+            .map(|(n, t)| (n.clone(), lang.ty(*t)))
             .collect(),
-        ret_ty: ty(lang, f.ret_ty),
+        ret_ty: lang.ty(f.ret_ty),
         body,
     }
 }
@@ -362,9 +334,9 @@ mod tests {
             if !v.is_finite() {
                 continue;
             }
-            for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl] {
-                let s = f32_literal(lang, v);
-                let t = s.trim_end_matches('f');
+            {
+                let s = f32_literal(v);
+                let t = s.as_str();
                 assert!(t.contains(['.', 'e']), "{s} is not a float literal");
                 assert_eq!(t.parse::<f32>().unwrap().to_bits(), v.to_bits(), "{s}");
                 assert_eq!(

@@ -6,12 +6,12 @@
 
 pub mod gpu;
 pub mod inputs;
-pub mod kernel;
+pub mod native;
 pub mod tools;
 
 use crate::codecs::Spec;
 use crate::codecs::functions::Function;
-use crate::emit::printer::precise_macro;
+use crate::emit::lang::glsl::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use crate::model::trace::{Func, Ty};
@@ -28,21 +28,28 @@ pub enum Path {
     GlslGlslang,
     HlslGlslangOd,
     HlslGlslangDefault,
+    /// The C header through the system C compiler (C99).
+    CC,
+    /// The same header compiled as C++.
+    CCpp,
 }
 
 impl Path {
-    pub const ALL: [Path; 5] = [
+    pub const ALL: [Path; 7] = [
         Path::WgslNaga,
         Path::GlslNaga,
         Path::GlslGlslang,
         Path::HlslGlslangOd,
         Path::HlslGlslangDefault,
+        Path::CC,
+        Path::CCpp,
     ];
     pub fn lang(self) -> Lang {
         match self {
             Path::WgslNaga => Lang::Wgsl,
             Path::GlslNaga | Path::GlslGlslang => Lang::Glsl,
             Path::HlslGlslangOd | Path::HlslGlslangDefault => Lang::Hlsl,
+            Path::CC | Path::CCpp => Lang::C,
         }
     }
 }
@@ -55,6 +62,8 @@ impl fmt::Display for Path {
             Path::GlslGlslang => "glsl/glslang",
             Path::HlslGlslangOd => "hlsl/glslang -Od",
             Path::HlslGlslangDefault => "hlsl/glslang",
+            Path::CC => "c/cc -O2",
+            Path::CCpp => "c/c++ -O2",
         })
     }
 }
@@ -210,8 +219,24 @@ fn compare(
     (count, first)
 }
 
+/// A compiled kernel: for the GPU (SPIR-V words, or none where wgpu compiles the source
+/// itself), or a native test driver.
+enum Compiled {
+    Gpu(Option<Vec<u32>>),
+    Native(native::Program),
+}
+
 /// Compiles the kernel for `path`, running the static checks on the way.
-fn compile(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
+fn compile(path: Path, kernel: &str) -> Result<Compiled> {
+    let spirv = match path {
+        Path::CC => return native::compile(native::Compiler::C, kernel).map(Compiled::Native),
+        Path::CCpp => return native::compile(native::Compiler::Cpp, kernel).map(Compiled::Native),
+        _ => compile_shader(path, kernel)?,
+    };
+    Ok(Compiled::Gpu(spirv))
+}
+
+fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
     Ok(match path {
         Path::WgslNaga => {
             tools::naga_wgsl(kernel)?;
@@ -253,6 +278,7 @@ fn compile(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             tools::spirv_val(&spv)?;
             Some(spv)
         }
+        Path::CC | Path::CCpp => unreachable!("native paths compile no shader"),
     })
 }
 
@@ -281,11 +307,16 @@ fn func_types(f: &Func) -> (Ty, Ty) {
 
 /// Verifies `specs` on every path of `langs`, with a progress bar when `progress`.
 pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
-    let gpu = Gpu::shared()?;
     let paths: Vec<Path> = Path::ALL
         .into_iter()
         .filter(|p| langs.contains(&p.lang()))
         .collect();
+    // The C paths need no GPU: only ask for the adapter when a shader path is run.
+    let gpu = if paths.iter().any(|p| p.lang() != Lang::C) {
+        Some(Gpu::shared()?)
+    } else {
+        None
+    };
     let emitted: Vec<_> = specs.iter().map(|s| s.emitted()).collect();
     let total: usize = emitted
         .iter()
@@ -344,13 +375,20 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
             for &path in &paths {
                 let lang = path.lang();
                 let name = format!("{DEFAULT_PREFIX}{ns}{}", f.name);
-                let kernel = kernel::wrap(lang, include(lang), &name, param, ret);
-                let result = compile(path, &kernel).and_then(|spv| {
+                let kernel = lang
+                    .backend(DEFAULT_PREFIX)
+                    .kernel(include(lang), &name, param, ret);
+                let result = compile(path, &kernel).and_then(|compiled| {
+                    let spv = match compiled {
+                        Compiled::Native(program) => return program.run(&input),
+                        Compiled::Gpu(spv) => spv,
+                    };
                     let shader = match (&spv, lang) {
                         (Some(words), _) => Shader::SpirV(words),
                         (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
                         (None, _) => Shader::GlslNaga(&kernel),
                     };
+                    let gpu = gpu.as_ref().expect("adapter for shader paths");
                     gpu.run(&shader, &input, f.in_words, f.out_words)
                 });
                 let mut row = Row {
@@ -375,8 +413,10 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
     }
     bar.finish_and_clear();
     Ok(Report {
-        adapter: gpu.adapter_name().to_string(),
-        driver: gpu.driver().to_string(),
+        adapter: gpu.map_or("none (C paths only)".into(), |g| {
+            g.adapter_name().to_string()
+        }),
+        driver: gpu.map_or("-".into(), |g| g.driver().to_string()),
         rows,
     })
 }

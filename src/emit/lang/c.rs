@@ -1,0 +1,233 @@
+//! C99 (also valid C++): header-only, `static inline`, vectors as small structs whose
+//! lanes the printer computes one by one, and public entry points over plain arrays:
+//! `uint32_t unitpack_<id>_encode(const float v[3])`, `void unitpack_<id>_decode(uint32_t
+//! code, float out[3])`, `_encode_float` / `_decode_float` over `float` arrays; codes of
+//! two words are `uint64_t` (first word in the low half). The struct forms, named with a
+//! `_v` suffix, are what the functions call among themselves.
+//!
+//! The arithmetic is exact only when the compiler keeps it as written: no `-ffast-math`,
+//! no contraction (`-ffp-contract=off`; GCC contracts by default in GNU C modes), SSE
+//! rather than x87 arithmetic (x87's excess precision is not supported).
+
+use super::{Backend, FileOptions, scalar_names};
+use crate::emit::SpecView;
+use crate::model::Kind;
+use crate::model::trace::{Ty, UnOp};
+use askama::Template;
+
+pub struct C {
+    /// Prefix of the vector struct names (`unitpack_vec3`).
+    pub prefix: String,
+    /// The include guard of the struct definitions, shared by every header.
+    pub types_guard: String,
+}
+
+impl C {
+    pub fn new(prefix: &str) -> C {
+        let prefix = if prefix.is_empty() {
+            "unitpack_"
+        } else {
+            prefix
+        };
+        C {
+            prefix: prefix.to_string(),
+            types_guard: format!("{}C_TYPES", crate::emit::macro_prefix(prefix)),
+        }
+    }
+
+    fn struct_name(&self, kind: Kind, lanes: u8) -> String {
+        let (_, g, _) = scalar_names(kind);
+        format!("{}{g}{lanes}", self.prefix)
+    }
+
+    /// The array-based signature of a public function and the body that calls its struct
+    /// form `impl_name`.
+    fn array_abi(
+        &self,
+        name: &str,
+        impl_name: &str,
+        params: &[(String, Ty)],
+        ret: Ty,
+    ) -> (String, Vec<String>) {
+        let mut sig = Vec::new();
+        let mut body = Vec::new();
+        let mut args = Vec::new();
+        for (p, t) in params {
+            match (t.kind, t.lanes) {
+                (Kind::U32, 1) => {
+                    sig.push(format!("uint32_t {p}"));
+                    args.push(p.clone());
+                }
+                (Kind::U32, 2) => {
+                    sig.push(format!("uint64_t {p}"));
+                    body.push(format!(
+                        "const {} {p}_w = {{ (uint32_t){p}, (uint32_t)({p} >> 32) }};",
+                        self.ty(*t)
+                    ));
+                    args.push(format!("{p}_w"));
+                }
+                (Kind::F32, n) if n > 1 => {
+                    sig.push(format!("const float {p}[{n}]"));
+                    let lanes: Vec<String> = (0..n).map(|i| format!("{p}[{i}]")).collect();
+                    body.push(format!(
+                        "const {} {p}_v = {{ {} }};",
+                        self.ty(*t),
+                        lanes.join(", ")
+                    ));
+                    args.push(format!("{p}_v"));
+                }
+                _ => unreachable!("public functions take codes or float vectors"),
+            }
+        }
+        let call = format!("{impl_name}({})", args.join(", "));
+        let ret_ty = match (ret.kind, ret.lanes) {
+            (Kind::U32, 1) => {
+                body.push(format!("return {call};"));
+                "uint32_t"
+            }
+            (Kind::U32, 2) => {
+                body.push(format!("const {} r = {call};", self.ty(ret)));
+                body.push("return (uint64_t)r.x | ((uint64_t)r.y << 32);".into());
+                "uint64_t"
+            }
+            (Kind::F32, n) if n > 1 => {
+                sig.push(format!("float out[{n}]"));
+                body.push(format!("const {} r = {call};", self.ty(ret)));
+                for (i, l) in super::LANES.iter().take(n as usize).enumerate() {
+                    body.push(format!("out[{i}] = r.{l};"));
+                }
+                "void"
+            }
+            _ => unreachable!("public functions return codes or float vectors"),
+        };
+        (format!("{ret_ty} {name}({})", sig.join(", ")), body)
+    }
+}
+
+#[derive(Template)]
+#[template(path = "c.txt", escape = "none")]
+struct File<'a> {
+    header: &'a [String],
+    specs: &'a [SpecView],
+    types_guard: &'a str,
+    types: Vec<String>,
+}
+
+impl Backend for C {
+    fn ty(&self, t: Ty) -> String {
+        match (t.kind, t.lanes) {
+            (Kind::F32, 1) => "float".into(),
+            (Kind::U32, 1) => "uint32_t".into(),
+            (Kind::Bool, 1) => "bool".into(),
+            (k, n) => self.struct_name(k, n),
+        }
+    }
+    fn float_suffix(&self) -> &'static str {
+        "f"
+    }
+    fn unary(&self, op: UnOp) -> &'static str {
+        match op {
+            UnOp::Abs => "fabsf",
+            UnOp::Sqrt => "sqrtf",
+            UnOp::Floor => "floorf",
+            // Ties to even in the default rounding mode, without raising inexact.
+            UnOp::Round => "nearbyintf",
+            UnOp::Neg | UnOp::Not => unreachable!("written as operators"),
+        }
+    }
+    fn convert(&self, t: Ty, a: &str) -> String {
+        format!("({}){a}", self.ty(t))
+    }
+    fn splat(&self, t: Ty, x: &str) -> String {
+        self.construct(t, &vec![x.to_string(); t.lanes as usize])
+    }
+    /// A brace initializer: valid in a declaration in both C99 and C++.
+    fn construct(&self, _t: Ty, args: &[String]) -> String {
+        format!("{{ {} }}", args.join(", "))
+    }
+    fn declare(&self, name: &str, t: Ty, expr: &str) -> String {
+        format!("const {} {name} = {expr};", self.ty(t))
+    }
+    fn has_vectors(&self) -> bool {
+        false
+    }
+    fn impl_name(&self, public: &str) -> String {
+        format!("{public}_v")
+    }
+    fn public_abi(
+        &self,
+        name: &str,
+        impl_name: &str,
+        params: &[(String, Ty)],
+        ret: Ty,
+    ) -> Option<(String, Vec<String>)> {
+        Some(self.array_abi(name, impl_name, params, ret))
+    }
+    fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
+        let mut types = Vec::new();
+        for kind in [Kind::F32, Kind::U32, Kind::Bool] {
+            for n in [2u8, 3] {
+                let lanes = ["x", "y", "z"][..n as usize].join(", ");
+                types.push(format!(
+                    "typedef struct {{ {} {lanes}; }} {};",
+                    self.ty(Ty::scalar(kind)),
+                    self.struct_name(kind, n)
+                ));
+            }
+        }
+        File {
+            header: opts.header,
+            specs,
+            types_guard: &self.types_guard,
+            types,
+        }
+        .render()
+        .expect("C template renders")
+    }
+    /// A test driver: reads items of raw words from standard input, applies `func`
+    /// through its public (array) signature, writes the result words to standard output.
+    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+        let (inw, outw) = (param.lanes as usize, ret.lanes as usize);
+        let arg = match (param.kind, param.lanes) {
+            (Kind::U32, 1) => "w[0]".to_string(),
+            (Kind::U32, _) => "(uint64_t)w[0] | ((uint64_t)w[1] << 32)".to_string(),
+            _ => "a".to_string(),
+        };
+        let mut body = vec![];
+        if param.kind == Kind::F32 {
+            body.push(format!("float a[{inw}];"));
+            body.push("memcpy(a, w, sizeof a);".to_string());
+        }
+        match (ret.kind, ret.lanes) {
+            (Kind::U32, 1) => body.push(format!("r[0] = {func}({arg});")),
+            (Kind::U32, _) => {
+                body.push(format!("const uint64_t c = {func}({arg});"));
+                body.push("r[0] = (uint32_t)c;".into());
+                body.push("r[1] = (uint32_t)(c >> 32);".into());
+            }
+            _ => {
+                body.push(format!("float o[{outw}];"));
+                body.push(format!("{func}({arg}, o);"));
+                body.push("memcpy(r, o, sizeof o);".into());
+            }
+        }
+        let body = body.join("\n        ");
+        format!(
+            "#include <stdio.h>
+#include <string.h>
+{include}
+int main(void) {{
+    uint32_t w[{inw}];
+    uint32_t r[{outw}];
+    while (fread(w, sizeof w[0], {inw}, stdin) == {inw}) {{
+        {body}
+        if (fwrite(r, sizeof r[0], {outw}, stdout) != {outw}) {{
+            return 3;
+        }}
+    }}
+    return fflush(stdout) == 0 ? 0 : 3;
+}}
+"
+        )
+    }
+}

@@ -1,0 +1,125 @@
+//! GLSL (450, 330, ES 300): `lessThan` and friends for vector comparisons, `mix` for
+//! lane-wise selects, `roundEven` (GLSL's `round` may round halves either way), and a
+//! `PRECISE` macro in front of float declarations that users define as `precise` where
+//! the language has it.
+
+use super::{Backend, FileOptions, KernelIo, kernel_io, scalar_names};
+use crate::emit::SpecView;
+use crate::model::Kind;
+use crate::model::trace::{BinOp, Ty, UnOp};
+use askama::Template;
+
+pub struct Glsl {
+    /// The macro in front of float declarations (`UNITPACK_PRECISE`).
+    pub precise_macro: String,
+}
+
+impl Glsl {
+    pub fn new(prefix: &str) -> Glsl {
+        Glsl {
+            precise_macro: precise_macro(prefix),
+        }
+    }
+}
+
+/// The GLSL macro in front of float declarations: empty by default (GLSL 330 and ES 300
+/// have no `precise`), `precise` where the user defines it so.
+pub fn precise_macro(prefix: &str) -> String {
+    format!("{}PRECISE", crate::emit::macro_prefix(prefix))
+}
+
+#[derive(Template)]
+#[template(path = "glsl.txt", escape = "none")]
+struct File<'a> {
+    header: &'a [String],
+    specs: &'a [SpecView],
+    precise_macro: &'a str,
+}
+
+impl Backend for Glsl {
+    fn ty(&self, t: Ty) -> String {
+        let (_, g, h) = scalar_names(t.kind);
+        match t.lanes {
+            1 => h.to_string(),
+            n => format!("{g}{n}"),
+        }
+    }
+    fn unary(&self, op: UnOp) -> &'static str {
+        match op {
+            UnOp::Round => "roundEven",
+            UnOp::Abs => "abs",
+            UnOp::Sqrt => "sqrt",
+            UnOp::Floor => "floor",
+            UnOp::Neg | UnOp::Not => unreachable!("written as operators"),
+        }
+    }
+    fn vector_compare(&self, op: BinOp) -> Option<&'static str> {
+        match op {
+            BinOp::Lt => Some("lessThan"),
+            BinOp::Le => Some("lessThanEqual"),
+            BinOp::Gt => Some("greaterThan"),
+            BinOp::Ge => Some("greaterThanEqual"),
+            BinOp::Eq => Some("equal"),
+            _ => None,
+        }
+    }
+    fn select(&self, mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+        if mask_is_vector {
+            format!("mix({f}, {t}, {m})")
+        } else {
+            format!("{m} ? {t} : {f}")
+        }
+    }
+    /// Float results carry the precise macro, so drivers that contract `a*b + c` into an
+    /// fma must not do so here where the user defines it as `precise`.
+    fn declare(&self, name: &str, t: Ty, expr: &str) -> String {
+        let q = if t.kind == Kind::F32 {
+            format!("{} ", self.precise_macro)
+        } else {
+            String::new()
+        };
+        format!("{q}{} {name} = {expr};", self.ty(t))
+    }
+    fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
+        File {
+            header: opts.header,
+            specs,
+            precise_macro: &self.precise_macro,
+        }
+        .render()
+        .expect("GLSL template renders")
+    }
+    /// A `#version 450` compute shader; the include goes after the version line.
+    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+        let outw = ret.lanes;
+        let KernelIo { arg, bits, stores } = kernel_io(
+            self,
+            param,
+            ret,
+            |l| format!("uintBitsToFloat({l})"),
+            "floatBitsToUint(r)",
+        );
+        format!(
+            "#version 450
+layout(local_size_x = 64) in;
+layout(std430, set = 0, binding = 0) readonly buffer InputWords {{ uint input_words[]; }};
+layout(std430, set = 0, binding = 1) buffer OutputWords {{ uint output_words[]; }};
+
+{include}
+void main() {{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= uint(output_words.length()) / {outw}u) {{
+        return;
+    }}
+    {} r = {func}({arg});
+    {} rb = {bits};{stores}
+}}
+",
+            self.ty(ret),
+            self.ty(Ty {
+                kind: Kind::U32,
+                lanes: ret.lanes
+            })
+        )
+    }
+}

@@ -1,0 +1,94 @@
+//! HLSL (Shader Model 5.0+, HLSL 2018 and 2021, and Slang): every float statement is
+//! `precise`; lane-wise selects go through a macro that is `select()` where the compiler
+//! wants it (HLSL 2021, Slang) and `?:` elsewhere.
+
+use super::{Backend, FileOptions, KernelIo, kernel_io, scalar_names};
+use crate::emit::SpecView;
+use crate::model::Kind;
+use crate::model::trace::Ty;
+use askama::Template;
+
+pub struct Hlsl {
+    /// The lane-wise select macro (`UNITPACK_SELECT`).
+    pub select_macro: String,
+}
+
+impl Hlsl {
+    pub fn new(prefix: &str) -> Hlsl {
+        Hlsl {
+            select_macro: format!("{}SELECT", crate::emit::macro_prefix(prefix)),
+        }
+    }
+}
+
+#[derive(Template)]
+#[template(path = "hlsl.txt", escape = "none")]
+struct File<'a> {
+    header: &'a [String],
+    specs: &'a [SpecView],
+    select_macro: &'a str,
+}
+
+impl Backend for Hlsl {
+    fn ty(&self, t: Ty) -> String {
+        let (_, _, h) = scalar_names(t.kind);
+        match t.lanes {
+            1 => h.to_string(),
+            n => format!("{h}{n}"),
+        }
+    }
+    /// HLSL 2021 (DXC's default) rejects `?:` on vector conditions and wants select();
+    /// older HLSL has no select(). The include defines the macro.
+    fn select(&self, mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+        if mask_is_vector {
+            format!("{}({m}, {t}, {f})", self.select_macro)
+        } else {
+            format!("{m} ? {t} : {f}")
+        }
+    }
+    fn splat(&self, t: Ty, x: &str) -> String {
+        let lanes = vec![x; t.lanes as usize];
+        format!("{}({})", self.ty(t), lanes.join(", "))
+    }
+    fn declare(&self, name: &str, t: Ty, expr: &str) -> String {
+        let q = if t.kind == Kind::F32 { "precise " } else { "" };
+        format!("{q}{} {name} = {expr};", self.ty(t))
+    }
+    fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
+        File {
+            header: opts.header,
+            specs,
+            select_macro: &self.select_macro,
+        }
+        .render()
+        .expect("HLSL template renders")
+    }
+    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+        let outw = ret.lanes;
+        let KernelIo { arg, bits, stores } =
+            kernel_io(self, param, ret, |l| format!("asfloat({l})"), "asuint(r)");
+        format!(
+            "{include}
+[[vk::binding(0, 0)]] StructuredBuffer<uint> input_words : register(t0);
+[[vk::binding(1, 0)]] RWStructuredBuffer<uint> output_words : register(u1);
+
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {{
+    uint i = id.x;
+    uint count, stride;
+    output_words.GetDimensions(count, stride);
+    if (i >= count / {outw}u) {{
+        return;
+    }}
+    {} r = {func}({arg});
+    {} rb = {bits};{stores}
+}}
+",
+            self.ty(ret),
+            self.ty(Ty {
+                kind: Kind::U32,
+                lanes: ret.lanes
+            })
+        )
+    }
+}

@@ -1,0 +1,153 @@
+//! One module per target language, as naga's `back/`: each owns its syntax (types,
+//! literals, selects, statements, precise qualifiers), its file template and the compute
+//! kernel (or test driver) that verification wraps around an include. The shared
+//! [`super::printer`] walks a traced function once and asks the language for text.
+
+pub mod c;
+pub mod glsl;
+pub mod hlsl;
+pub mod wgsl;
+
+use super::SpecView;
+use crate::model::Kind;
+use crate::model::trace::{BinOp, Ty, UnOp};
+
+/// What a file template needs besides the functions.
+pub struct FileOptions<'a> {
+    /// Lines of the file header (without comment markers).
+    pub header: &'a [String],
+    pub prefix: &'a str,
+    /// WGSL only: the `#define_import_path` for naga_oil / Bevy composition.
+    pub import_path: Option<&'a str>,
+}
+
+/// A target language.
+pub trait Backend {
+    /// The type of a value.
+    fn ty(&self, t: Ty) -> String;
+    /// Suffix of a float literal (`1.0f` in WGSL and C).
+    fn float_suffix(&self) -> &'static str {
+        ""
+    }
+    /// The builtin for a unary operation other than `-` and `!`.
+    fn unary(&self, op: UnOp) -> &'static str {
+        match op {
+            UnOp::Abs => "abs",
+            UnOp::Sqrt => "sqrt",
+            UnOp::Floor => "floor",
+            UnOp::Round => "round",
+            UnOp::Neg | UnOp::Not => unreachable!("written as operators"),
+        }
+    }
+    /// A comparison of vectors written as a function (GLSL's `lessThan`), if the language
+    /// has no operator for it.
+    fn vector_compare(&self, _op: BinOp) -> Option<&'static str> {
+        None
+    }
+    /// `m ? t : f`, lane-wise when `mask_is_vector`.
+    fn select(&self, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+        format!("{m} ? {t} : {f}")
+    }
+    /// A value conversion to type `t`.
+    fn convert(&self, t: Ty, a: &str) -> String {
+        format!("{}({a})", self.ty(t))
+    }
+    /// A vector with every lane `x`.
+    fn splat(&self, t: Ty, x: &str) -> String {
+        format!("{}({x})", self.ty(t))
+    }
+    /// A vector from its lanes (or shorter vectors).
+    fn construct(&self, t: Ty, args: &[String]) -> String {
+        format!("{}({})", self.ty(t), args.join(", "))
+    }
+    /// One statement declaring `name`.
+    fn declare(&self, name: &str, t: Ty, expr: &str) -> String;
+    /// Whether vectors are values with lane-wise operators. Where they are not (C),
+    /// the printer writes each lane of a vector operation as its own expression.
+    fn has_vectors(&self) -> bool {
+        true
+    }
+    /// The name a function is defined and called by: the public name, or for C the
+    /// struct form behind the array-based public function.
+    fn impl_name(&self, public: &str) -> String {
+        public.to_string()
+    }
+    /// For C, the public array-based signature and body of a public function.
+    fn public_abi(
+        &self,
+        _name: &str,
+        _impl_name: &str,
+        _params: &[(String, Ty)],
+        _ret: Ty,
+    ) -> Option<(String, Vec<String>)> {
+        None
+    }
+    /// The complete include.
+    fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String;
+    /// A program around `include` that applies `func` (parameter type `param`, result
+    /// type `ret`) to every item of raw 32-bit words: a compute shader with the binding
+    /// contract of `crate::verify::gpu`, or for C a test driver reading and writing files.
+    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String;
+}
+
+/// `vec3<f32>`-style names for WGSL, `vec3`/`uvec3`/`bvec3` for GLSL, `float3` for HLSL.
+pub(crate) fn scalar_names(kind: Kind) -> (&'static str, &'static str, &'static str) {
+    match kind {
+        Kind::F32 => ("f32", "vec", "float"),
+        Kind::U32 => ("u32", "uvec", "uint"),
+        Kind::Bool => ("bool", "bvec", "bool"),
+    }
+}
+
+/// The word-level view of a value crossing the kernel boundary: `lanes` words.
+pub(crate) const LANES: [&str; 4] = ["x", "y", "z", "w"];
+
+/// The pieces every compute kernel shares: the argument loaded from `input_words` (bit-cast
+/// by `as_float` where the parameter is float) and the statements storing the result's
+/// words `rb` to `output_words`.
+pub(crate) struct KernelIo {
+    pub arg: String,
+    pub bits: String,
+    pub stores: String,
+}
+
+pub(crate) fn kernel_io(
+    lang: &dyn Backend,
+    param: Ty,
+    ret: Ty,
+    as_float: impl Fn(&str) -> String,
+    as_bits: &str,
+) -> KernelIo {
+    let (inw, outw) = (param.lanes as usize, ret.lanes as usize);
+    let words: Vec<String> = (0..inw)
+        .map(|k| format!("input_words[i * {inw}u + {k}u]"))
+        .collect();
+    let loaded = if inw == 1 {
+        words[0].clone()
+    } else {
+        let u = lang.ty(Ty {
+            kind: Kind::U32,
+            lanes: param.lanes,
+        });
+        format!("{u}({})", words.join(", "))
+    };
+    let arg = match param.kind {
+        Kind::F32 => as_float(&loaded),
+        _ => loaded,
+    };
+    let bits = match ret.kind {
+        Kind::F32 => as_bits.to_string(),
+        _ => "r".to_string(),
+    };
+    let stores = (0..outw)
+        .map(|k| {
+            let lane = if outw == 1 {
+                String::new()
+            } else {
+                format!(".{}", LANES[k])
+            };
+            format!("\n    output_words[i * {outw}u + {k}u] = rb{lane};")
+        })
+        .collect();
+    KernelIo { arg, bits, stores }
+}

@@ -1,0 +1,78 @@
+//! WGSL: `let` statements, `select(f, t, m)`, `1.0f` literals; no preprocessor, so names
+//! carry a prefix and naga_oil users may add `#define_import_path`.
+
+use super::{Backend, FileOptions, KernelIo, kernel_io, scalar_names};
+use crate::emit::SpecView;
+use crate::model::Kind;
+use crate::model::trace::Ty;
+use askama::Template;
+
+pub struct Wgsl;
+
+#[derive(Template)]
+#[template(path = "wgsl.txt", escape = "none")]
+struct File<'a> {
+    header: &'a [String],
+    import_path: Option<&'a str>,
+    specs: &'a [SpecView],
+}
+
+impl Backend for Wgsl {
+    fn ty(&self, t: Ty) -> String {
+        let (w, _, _) = scalar_names(t.kind);
+        match t.lanes {
+            1 => w.to_string(),
+            n => format!("vec{n}<{w}>"),
+        }
+    }
+    fn float_suffix(&self) -> &'static str {
+        "f"
+    }
+    fn select(&self, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+        format!("select({f}, {t}, {m})")
+    }
+    fn declare(&self, name: &str, _t: Ty, expr: &str) -> String {
+        format!("let {name} = {expr};")
+    }
+    fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
+        File {
+            header: opts.header,
+            import_path: opts.import_path,
+            specs,
+        }
+        .render()
+        .expect("WGSL template renders")
+    }
+    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+        let outw = ret.lanes;
+        let KernelIo { arg, bits, stores } = kernel_io(
+            self,
+            param,
+            ret,
+            |l| format!("bitcast<{}>({l})", self.ty(param)),
+            &format!(
+                "bitcast<{}>(r)",
+                self.ty(Ty {
+                    kind: Kind::U32,
+                    lanes: ret.lanes
+                })
+            ),
+        );
+        format!(
+            "{include}
+@group(0) @binding(0) var<storage, read> input_words: array<u32>;
+@group(0) @binding(1) var<storage, read_write> output_words: array<u32>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+    let i = id.x;
+    if (i >= arrayLength(&output_words) / {outw}u) {{
+        return;
+    }}
+    let r = {func}({arg});
+    let rb = {bits};{stores}
+}}
+"
+        )
+    }
+}
