@@ -5,7 +5,12 @@ pub mod api;
 pub mod cli;
 pub mod codecs;
 pub mod emit;
+pub mod generator;
 pub mod model;
 pub mod quality;
 #[cfg(feature = "verify")]
 pub mod verify;
+
+pub use codecs::{Spec, SpecError};
+pub use emit::Lang;
+pub use generator::{GenerateError, Generator, SpecInput};

@@ -2,59 +2,20 @@
 
 use crate::codecs::Spec;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
-use crate::quality::{self, ErrorStats};
 use anyhow::{Context, Result, bail};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Samples behind the error figures printed in doc comments. Fewer than the accuracy
-/// tests use (2^20), so that generating everything stays well under a second.
-pub const DOC_SAMPLES: usize = 1 << 16;
-
-/// Error statistics of every spec, measured in parallel (deterministic: fixed seed).
-pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(specs.len().max(1));
-    let mut out = vec![None; specs.len()];
-    std::thread::scope(|s| {
-        let chunks: Vec<_> = out
-            .chunks_mut(specs.len().div_ceil(threads).max(1))
-            .zip(specs.chunks(specs.len().div_ceil(threads).max(1)))
-            .map(|(o, sp)| {
-                s.spawn(move || {
-                    for (o, spec) in o.iter_mut().zip(sp) {
-                        *o = quality::measure(spec, DOC_SAMPLES);
-                    }
-                })
-            })
-            .collect();
-        for c in chunks {
-            c.join().expect("measurement thread");
-        }
-    });
-    out
-}
+pub use crate::generator::stats_for;
 
 /// The include for `specs` (duplicates dropped: one name, one definition).
 pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {
-    let mut unique: Vec<Spec> = Vec::new();
-    for s in specs {
-        if !unique.iter().any(|u| u.id() == s.id()) {
-            unique.push(s.clone());
-        }
-    }
-    let specs = &unique[..];
-    let stats = stats_for(specs);
-    let ids: Vec<String> = specs.iter().map(|s| s.to_string()).collect();
-    let prefix_arg = if prefix == DEFAULT_PREFIX {
-        String::new()
-    } else {
-        format!(" --prefix {prefix}")
-    };
-    let cmd = format!("unitpack gen {} --lang {lang}{prefix_arg}", ids.join(" "));
-    let pairs: Vec<_> = specs.iter().cloned().zip(stats).collect();
-    render(&pairs, lang, prefix, &cmd)
+    crate::generator::Generator::new()
+        .specs(specs.iter().cloned())
+        .lang(lang)
+        .prefix(prefix)
+        .render(lang)
+        .expect("parsed specs and a validated prefix render")
 }
 
 /// Writes through a temporary file in the same directory and renames it over `path`, so

@@ -1,0 +1,310 @@
+//! The library a build script wants: choose specs, languages and names, then render or
+//! write the includes. It needs no CLI and no GPU (`default-features = false`), errors are
+//! typed, and files are written atomically.
+//!
+//! ```no_run
+//! // build.rs
+//! use unitpack::{Generator, Lang};
+//!
+//! fn main() -> Result<(), unitpack::GenerateError> {
+//!     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").unwrap());
+//!     Generator::new()
+//!         .spec("oct24p")
+//!         .spec("hemioct16")
+//!         .lang(Lang::Wgsl)
+//!         .wgsl_import_path("unitpack::normals")
+//!         .write_file(out.join("normals.wgsl"))?;
+//!     Generator::new()
+//!         .spec("oct24p")
+//!         .lang(Lang::C)
+//!         .write_file(out.join("normals.h"))?;
+//!     Ok(())
+//! }
+//! ```
+
+use crate::codecs::{Spec, SpecError};
+use crate::emit::{DEFAULT_PREFIX, Lang, render_with, validate_prefix};
+use crate::quality::{self, ErrorStats};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Samples behind the error figures printed in doc comments. Fewer than the accuracy
+/// tests use (2^20), so that generating everything stays well under a second.
+pub const DOC_SAMPLES: usize = 1 << 16;
+
+#[derive(Debug, thiserror::Error)]
+pub enum GenerateError {
+    #[error("invalid spec: {0}")]
+    Spec(#[from] SpecError),
+    #[error("{0}")]
+    Prefix(String),
+    #[error(
+        "invalid WGSL import path '{0}': use identifiers separated by '::', e.g. unitpack::normals"
+    )]
+    ImportPath(String),
+    #[error("no spec given: add at least one with .spec(\"oct16\")")]
+    NoSpecs,
+    #[error("{what} needs exactly one language, {count} chosen")]
+    Languages { what: &'static str, count: usize },
+    #[error("cannot write {}: {source}", .path.display())]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+}
+
+/// A spec as the caller gave it: text (parsed when rendering) or already parsed.
+#[derive(Clone, Debug)]
+pub enum SpecInput {
+    Text(String),
+    Parsed(Spec),
+}
+
+impl From<&str> for SpecInput {
+    fn from(s: &str) -> SpecInput {
+        SpecInput::Text(s.to_string())
+    }
+}
+impl From<String> for SpecInput {
+    fn from(s: String) -> SpecInput {
+        SpecInput::Text(s)
+    }
+}
+impl From<Spec> for SpecInput {
+    fn from(s: Spec) -> SpecInput {
+        SpecInput::Parsed(s)
+    }
+}
+
+/// Builds includes: specs × languages, a name prefix and an optional WGSL import path.
+#[derive(Clone, Debug)]
+pub struct Generator {
+    specs: Vec<SpecInput>,
+    langs: Vec<Lang>,
+    prefix: String,
+    import_path: Option<String>,
+    error_stats: bool,
+}
+
+impl Default for Generator {
+    fn default() -> Self {
+        Generator::new()
+    }
+}
+
+impl Generator {
+    /// No specs yet, no language, the default `unitpack_` prefix, error figures on.
+    pub fn new() -> Generator {
+        Generator {
+            specs: Vec::new(),
+            langs: Vec::new(),
+            prefix: DEFAULT_PREFIX.to_string(),
+            import_path: None,
+            error_stats: true,
+        }
+    }
+    /// Adds a spec (`"oct24p"`, `"oct24:layout=rgb8"`, or a parsed [`Spec`]).
+    pub fn spec(mut self, spec: impl Into<SpecInput>) -> Generator {
+        self.specs.push(spec.into());
+        self
+    }
+    /// Adds several specs.
+    pub fn specs<S: Into<SpecInput>>(mut self, specs: impl IntoIterator<Item = S>) -> Generator {
+        self.specs.extend(specs.into_iter().map(Into::into));
+        self
+    }
+    /// Adds a language.
+    pub fn lang(mut self, lang: Lang) -> Generator {
+        if !self.langs.contains(&lang) {
+            self.langs.push(lang);
+        }
+        self
+    }
+    /// Adds several languages.
+    pub fn langs(self, langs: impl IntoIterator<Item = Lang>) -> Generator {
+        langs.into_iter().fold(self, Generator::lang)
+    }
+    /// The prefix of every name (default `unitpack_`).
+    pub fn prefix(mut self, prefix: &str) -> Generator {
+        self.prefix = prefix.to_string();
+        self
+    }
+    /// Starts WGSL files with `#define_import_path PATH`, so that naga_oil (Bevy) users
+    /// can `#import PATH::{unitpack_oct16_decode}`.
+    pub fn wgsl_import_path(mut self, path: &str) -> Generator {
+        self.import_path = Some(path.to_string());
+        self
+    }
+    /// Whether doc comments carry measured round-trip error figures (on by default; off
+    /// saves the measurement, about 2^16 encodes per spec).
+    pub fn error_stats(mut self, on: bool) -> Generator {
+        self.error_stats = on;
+        self
+    }
+
+    /// The parsed specs, duplicates dropped (one name, one definition).
+    pub fn parsed_specs(&self) -> Result<Vec<Spec>, GenerateError> {
+        let mut out: Vec<Spec> = Vec::new();
+        for s in &self.specs {
+            let spec = match s {
+                SpecInput::Text(t) => t.parse()?,
+                SpecInput::Parsed(p) => p.clone(),
+            };
+            if !out.iter().any(|u| u.id() == spec.id()) {
+                out.push(spec);
+            }
+        }
+        if out.is_empty() {
+            return Err(GenerateError::NoSpecs);
+        }
+        Ok(out)
+    }
+
+    fn check(&self) -> Result<(), GenerateError> {
+        validate_prefix(&self.prefix).map_err(GenerateError::Prefix)?;
+        if let Some(p) = &self.import_path {
+            let ident = |s: &str| {
+                s.chars()
+                    .next()
+                    .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                    && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            };
+            if !p.split("::").all(ident) {
+                return Err(GenerateError::ImportPath(p.clone()));
+            }
+        }
+        Ok(())
+    }
+
+    /// The include for `lang`.
+    pub fn render(&self, lang: Lang) -> Result<String, GenerateError> {
+        self.check()?;
+        let specs = self.parsed_specs()?;
+        let stats = if self.error_stats {
+            stats_for(&specs)
+        } else {
+            vec![None; specs.len()]
+        };
+        let ids: Vec<String> = specs.iter().map(|s| s.to_string()).collect();
+        let mut cmd = format!("unitpack gen {} --lang {lang}", ids.join(" "));
+        if self.prefix != DEFAULT_PREFIX {
+            cmd.push_str(&format!(" --prefix {}", self.prefix));
+        }
+        let import = self.import_path.as_deref().filter(|_| lang == Lang::Wgsl);
+        if let Some(p) = import {
+            cmd.push_str(&format!(" --wgsl-import-path {p}"));
+        }
+        let pairs: Vec<_> = specs.into_iter().zip(stats).collect();
+        Ok(render_with(&pairs, lang, &self.prefix, &cmd, import))
+    }
+
+    /// Writes the include of the one chosen language to `path`, atomically, creating
+    /// its parent directories.
+    pub fn write_file(&self, path: impl AsRef<Path>) -> Result<(), GenerateError> {
+        let [lang] = self.langs[..] else {
+            return Err(GenerateError::Languages {
+                what: "write_file",
+                count: self.langs.len(),
+            });
+        };
+        let text = self.render(lang)?;
+        write_atomic(path.as_ref(), text.as_bytes())
+    }
+
+    /// Writes `dir/{stem}.{ext}` for every chosen language; returns the paths written.
+    pub fn write_dir(
+        &self,
+        dir: impl AsRef<Path>,
+        stem: &str,
+    ) -> Result<Vec<PathBuf>, GenerateError> {
+        if self.langs.is_empty() {
+            return Err(GenerateError::Languages {
+                what: "write_dir",
+                count: 0,
+            });
+        }
+        let mut written = Vec::new();
+        for &lang in &self.langs {
+            let path = dir.as_ref().join(format!("{stem}.{}", lang.ext()));
+            write_atomic(&path, self.render(lang)?.as_bytes())?;
+            written.push(path);
+        }
+        Ok(written)
+    }
+}
+
+/// Error statistics of every spec, measured in parallel (deterministic: fixed seed).
+pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(specs.len().max(1));
+    let per = specs.len().div_ceil(threads).max(1);
+    let mut out = vec![None; specs.len()];
+    std::thread::scope(|s| {
+        for (o, sp) in out.chunks_mut(per).zip(specs.chunks(per)) {
+            s.spawn(move || {
+                for (o, spec) in o.iter_mut().zip(sp) {
+                    *o = quality::measure(spec, DOC_SAMPLES);
+                }
+            });
+        }
+    });
+    out
+}
+
+/// Writes through a temporary file in the same directory and renames it over `path`, so
+/// readers never see a half-written file and a failure leaves the old file intact. Parent
+/// directories are created; a new file gets mode 0644, a replaced one keeps its mode
+/// without setuid/setgid bits.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), GenerateError> {
+    let io = |source: std::io::Error| GenerateError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let name = path
+        .file_name()
+        .ok_or_else(|| io(std::io::Error::other("not a file name")))?;
+    let mut tmp = None;
+    for n in 0..100u32 {
+        let candidate = dir.join(format!(
+            ".{}.unitpack-{}-{n}.tmp",
+            name.to_string_lossy(),
+            std::process::id()
+        ));
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&candidate)
+        {
+            Ok(f) => {
+                tmp = Some((candidate, f));
+                break;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(io(e)),
+        }
+    }
+    let (tmp_path, mut file) =
+        tmp.ok_or_else(|| io(std::io::Error::other("no free temporary name")))?;
+    let result = (|| {
+        file.write_all(bytes)?;
+        file.sync_all()?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode() & 0o777);
+            file.set_permissions(std::fs::Permissions::from_mode(mode))?;
+        }
+        std::fs::rename(&tmp_path, path)
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp_path);
+        return Err(io(e));
+    }
+    Ok(())
+}

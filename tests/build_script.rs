@@ -1,0 +1,89 @@
+//! The library as a build script uses it: `examples/build-script` depends on unitpack with
+//! `default-features = false`, generates its includes from `build.rs` through
+//! [`unitpack::Generator`], and is built and run here. Its build graph stays small.
+
+use std::path::Path;
+use std::process::Command;
+
+fn cargo() -> Command {
+    let mut c = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    c.current_dir(env!("CARGO_MANIFEST_DIR"));
+    c
+}
+
+#[test]
+fn a_build_script_generates_includes_with_the_light_library() {
+    let target = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/build-example");
+    let out = cargo()
+        .args([
+            "run",
+            "--offline",
+            "--quiet",
+            "-p",
+            "unitpack-build-example",
+        ])
+        .arg("--target-dir")
+        .arg(&target)
+        .output()
+        .expect("run cargo");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "building examples/build-script failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for (file, sig) in [
+        (
+            "normals.wgsl",
+            "fn unitpack_oct24p_encode(v: vec3<f32>) -> u32 {",
+        ),
+        ("normals.glsl", "uint unitpack_oct24p_encode(vec3 v) {"),
+        ("normals.hlsl", "uint unitpack_oct24p_encode(float3 v) {"),
+        (
+            "normals.h",
+            "static inline uint32_t unitpack_oct24p_encode(const float v[3]) {",
+        ),
+    ] {
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("{file} ")))
+            .unwrap_or_else(|| panic!("no line for {file}:\n{stdout}"));
+        assert!(line.ends_with(sig), "{line}");
+    }
+}
+
+#[test]
+fn the_library_without_default_features_builds_at_most_25_crates() {
+    let out = cargo()
+        .args([
+            "tree",
+            "--offline",
+            "-p",
+            "unitpack-build-example",
+            "-e",
+            "normal,build",
+            "--prefix",
+            "none",
+        ])
+        .output()
+        .expect("run cargo tree");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let mut crates: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    crates.sort();
+    crates.dedup();
+    for heavy in ["wgpu", "naga", "clap", "indicatif", "anyhow", "tempfile"] {
+        assert!(
+            !crates.contains(&heavy),
+            "{heavy} is in the light build: {crates:?}"
+        );
+    }
+    assert!(crates.len() <= 25, "{} crates: {crates:?}", crates.len());
+}
