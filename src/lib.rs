@@ -4,6 +4,7 @@ pub mod api;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod codecs;
+pub mod doc_tables;
 pub mod emit;
 pub mod generator;
 pub mod model;

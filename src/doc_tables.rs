@@ -1,0 +1,100 @@
+//! The README's generated tables: the catalogue (every family with the specs a user types,
+//! its options and source) and the error figures of every spec. `tests/readme.rs` checks
+//! that the README holds exactly these, and rewrites them with `UPDATE_README=1`.
+
+use crate::codecs::{FAMILIES, Spec};
+use crate::quality::{self, VECTOR_SEED};
+
+/// Samples behind the README's error figures (the survey's Table 1 used 2^20 too).
+pub const README_SAMPLES: usize = 1 << 20;
+
+/// Markers around a generated block in the README.
+pub fn markers(name: &str) -> (String, String) {
+    (
+        format!(
+            "<!-- generated: {name} (tests/readme.rs; UPDATE_README=1 cargo test --release --test readme) -->"
+        ),
+        format!("<!-- end generated: {name} -->"),
+    )
+}
+
+/// One row per family: specs, domain, precise encoder, options, source.
+pub fn catalogue_table() -> String {
+    let mut s = String::from(
+        "| codec | specs | domain | precise (`p`) | options | source |\n|---|---|---|---|---|---|\n",
+    );
+    for f in FAMILIES {
+        let c = f.info();
+        let specs: Vec<String> = c
+            .spellings()
+            .into_iter()
+            .map(|(s, _)| format!("`{s}`"))
+            .collect();
+        // A `|` inside a cell would end it.
+        let options: Vec<String> = c
+            .options
+            .iter()
+            .map(|o| o.usage().replace('|', "\\|"))
+            .collect();
+        s.push_str(&format!(
+            "| {} ({}) | {} | {} | {} | {} | {} |\n",
+            c.name,
+            c.title,
+            specs.join(" "),
+            c.domain.map_or("— (helpers)", |d| d.name()),
+            if c.precise { "yes" } else { "no" },
+            if options.is_empty() {
+                "—".to_string()
+            } else {
+                options.join("; ")
+            },
+            c.source
+        ));
+    }
+    s
+}
+
+/// Round-trip error of every codec spec over `samples` seeded unit vectors.
+pub fn error_table(samples: usize) -> String {
+    let specs: Vec<Spec> = Spec::all()
+        .into_iter()
+        .filter(|s| s.info().domain.is_some())
+        .collect();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let per = specs.len().div_ceil(threads).max(1);
+    let mut stats = vec![None; specs.len()];
+    std::thread::scope(|sc| {
+        for (o, sp) in stats.chunks_mut(per).zip(specs.chunks(per)) {
+            sc.spawn(move || {
+                for (o, spec) in o.iter_mut().zip(sp) {
+                    *o = quality::measure(spec, samples);
+                }
+            });
+        }
+    });
+    let mut s = format!(
+        "Round-trip angular error over {samples} seeded unit vectors (seed `{VECTOR_SEED:#x}`; \
+         hemisphere codecs over the +Z hemisphere). The maximum is the largest error in \
+         that sample, not a bound.\n\n| spec | bits | domain | mean | sample max |\n|---|---|---|---|---|\n"
+    );
+    for (spec, st) in specs.iter().zip(stats) {
+        let st = st.expect("codecs have error statistics");
+        s.push_str(&format!(
+            "| `{}` | {} | {} | {:.5}° | {:.5}° |\n",
+            spec.id(),
+            spec.bits(),
+            spec.info().domain.map_or("", |d| d.name()),
+            st.mean,
+            st.max
+        ));
+    }
+    s
+}
+
+/// `text` with the block called `name` replaced by `body`; `None` without its markers.
+pub fn replace_block(text: &str, name: &str, body: &str) -> Option<String> {
+    let (begin, end) = markers(name);
+    let start = text.find(&begin)? + begin.len();
+    let stop = start + text[start..].find(&end)?;
+    Some(format!("{}\n{}{}", &text[..start], body, &text[stop..]))
+}

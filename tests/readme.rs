@@ -1,0 +1,26 @@
+//! The README's tables are written by the tool: this test fails when they are stale, and
+//! rewrites them when run with `UPDATE_README=1`.
+
+use unitpack::doc_tables::{README_SAMPLES, catalogue_table, error_table, replace_block};
+
+#[test]
+fn readme_tables_are_generated_and_fresh() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut fresh = text.clone();
+    for (name, body) in [
+        ("catalogue", catalogue_table()),
+        ("errors", error_table(README_SAMPLES)),
+    ] {
+        fresh = replace_block(&fresh, name, &body)
+            .unwrap_or_else(|| panic!("README.md lacks the markers of the {name} block"));
+    }
+    if std::env::var_os("UPDATE_README").is_some() {
+        std::fs::write(&path, &fresh).unwrap();
+        return;
+    }
+    assert!(
+        fresh == text,
+        "README.md's generated tables are stale: run `UPDATE_README=1 cargo test --release --test readme`"
+    );
+}
