@@ -219,23 +219,7 @@ fn compare(
     (count, first)
 }
 
-/// A compiled kernel: for the GPU (SPIR-V words, or none where wgpu compiles the source
-/// itself), or a native test driver.
-enum Compiled {
-    Gpu(Option<Vec<u32>>),
-    Native(native::Program),
-}
-
-/// Compiles the kernel for `path`, running the static checks on the way.
-fn compile(path: Path, kernel: &str) -> Result<Compiled> {
-    let spirv = match path {
-        Path::CC => return native::compile(native::Compiler::C, kernel).map(Compiled::Native),
-        Path::CCpp => return native::compile(native::Compiler::Cpp, kernel).map(Compiled::Native),
-        _ => compile_shader(path, kernel)?,
-    };
-    Ok(Compiled::Gpu(spirv))
-}
-
+/// Compiles the shader kernel for `path`, running the static checks on the way.
 fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
     Ok(match path {
         Path::WgslNaga => {
@@ -278,7 +262,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             tools::spirv_val(&spv)?;
             Some(spv)
         }
-        Path::CC | Path::CCpp => unreachable!("native paths compile no shader"),
+        Path::CC | Path::CCpp => unreachable!("C paths compile a native driver"),
     })
 }
 
@@ -366,7 +350,35 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
         } else {
             format!("{}_", e.namespace)
         };
-        for f in &e.functions {
+        // The C paths compile one driver per spec and compiler, for all its functions.
+        let full_name = |f: &Function| format!("{DEFAULT_PREFIX}{ns}{}", f.name);
+        let c_programs: Vec<(Path, Result<native::Program, String>)> = paths
+            .iter()
+            .filter(|p| p.lang() == Lang::C)
+            .map(|&p| {
+                let funcs: Vec<(String, Ty, Ty)> = e
+                    .functions
+                    .iter()
+                    .map(|f| {
+                        let (param, ret) = func_types(e.module.func(f.name).expect("traced"));
+                        (full_name(f), param, ret)
+                    })
+                    .collect();
+                let funcs: Vec<(&str, Ty, Ty)> =
+                    funcs.iter().map(|(n, a, b)| (n.as_str(), *a, *b)).collect();
+                let source = crate::emit::lang::c::driver(include(Lang::C), &funcs);
+                let compiler = if p == Path::CC {
+                    native::Compiler::C
+                } else {
+                    native::Compiler::Cpp
+                };
+                (
+                    p,
+                    native::compile(compiler, &source).map_err(|e| format!("{e:#}")),
+                )
+            })
+            .collect();
+        for (index, f) in e.functions.iter().enumerate() {
             bar.set_message(format!("{spec} {}", f.name));
             let traced = e.module.func(f.name).expect("traced function");
             let (param, ret) = func_types(traced);
@@ -374,23 +386,32 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
             let want = expected(f, &input);
             for &path in &paths {
                 let lang = path.lang();
-                let name = format!("{DEFAULT_PREFIX}{ns}{}", f.name);
-                let kernel = lang
-                    .backend(DEFAULT_PREFIX)
-                    .kernel(include(lang), &name, param, ret);
-                let result = compile(path, &kernel).and_then(|compiled| {
-                    let spv = match compiled {
-                        Compiled::Native(program) => return program.run(&input),
-                        Compiled::Gpu(spv) => spv,
-                    };
-                    let shader = match (&spv, lang) {
-                        (Some(words), _) => Shader::SpirV(words),
-                        (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
-                        (None, _) => Shader::GlslNaga(&kernel),
-                    };
-                    let gpu = gpu.as_ref().expect("adapter for shader paths");
-                    gpu.run(&shader, &input, f.in_words, f.out_words)
-                });
+                let result = if lang == Lang::C {
+                    let (_, program) = c_programs
+                        .iter()
+                        .find(|(p, _)| *p == path)
+                        .expect("a driver per C path");
+                    match program {
+                        Ok(program) => program.run(index, &input),
+                        Err(e) => Err(anyhow::anyhow!("{e}")),
+                    }
+                } else {
+                    let kernel = lang.backend(DEFAULT_PREFIX).kernel(
+                        include(lang),
+                        &full_name(f),
+                        param,
+                        ret,
+                    );
+                    compile_shader(path, &kernel).and_then(|spv| {
+                        let shader = match (&spv, lang) {
+                            (Some(words), _) => Shader::SpirV(words),
+                            (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
+                            (None, _) => Shader::GlslNaga(&kernel),
+                        };
+                        let gpu = gpu.as_ref().expect("adapter for shader paths");
+                        gpu.run(&shader, &input, f.in_words, f.out_words)
+                    })
+                };
                 let mut row = Row {
                     spec: spec.to_string(),
                     function: f.name.to_string(),

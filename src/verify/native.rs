@@ -69,9 +69,11 @@ pub fn compile(compiler: Compiler, source: &str) -> Result<Program> {
 }
 
 impl Program {
-    /// Runs the driver over `input` words through its standard input and output.
-    pub fn run(&self, input: &[u32]) -> Result<Vec<u32>> {
+    /// Runs function number `index` of the driver over `input` words through its
+    /// standard input and output.
+    pub fn run(&self, index: usize, input: &[u32]) -> Result<Vec<u32>> {
         let mut child = Command::new(&self.exe)
+            .arg(index.to_string())
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .spawn()

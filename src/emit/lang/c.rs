@@ -184,9 +184,18 @@ impl Backend for C {
         .render()
         .expect("C template renders")
     }
-    /// A test driver: reads items of raw words from standard input, applies `func`
-    /// through its public (array) signature, writes the result words to standard output.
+    /// A test driver for one function: see [`C::driver`].
     fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+        driver(include, &[(func, param, ret)])
+    }
+}
+
+/// A test driver for several functions of one include (compiled once): reads items of raw
+/// words from standard input, applies function number `argv[1]` (default 0) through its
+/// public array signature, and writes the result words to standard output.
+pub fn driver(include: &str, funcs: &[(&str, Ty, Ty)]) -> String {
+    let mut runners = String::new();
+    for (k, (func, param, ret)) in funcs.iter().enumerate() {
         let (inw, outw) = (param.lanes as usize, ret.lanes as usize);
         let arg = match (param.kind, param.lanes) {
             (Kind::U32, 1) => "w[0]".to_string(),
@@ -212,11 +221,9 @@ impl Backend for C {
             }
         }
         let body = body.join("\n        ");
-        format!(
-            "#include <stdio.h>
-#include <string.h>
-{include}
-int main(void) {{
+        runners.push_str(&format!(
+            "
+static int run{k}(void) {{
     uint32_t w[{inw}];
     uint32_t r[{outw}];
     while (fread(w, sizeof w[0], {inw}, stdin) == {inw}) {{
@@ -228,6 +235,26 @@ int main(void) {{
     return fflush(stdout) == 0 ? 0 : 3;
 }}
 "
-        )
+        ));
     }
+    let cases: String = (0..funcs.len())
+        .map(|k| format!("\n    case {k}:\n        return run{k}();"))
+        .collect();
+    format!(
+        "#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+{include}{runners}
+int main(int argc, char **argv) {{
+    /* Large buffers: a pipe's default one (4 KiB) costs a system call per few items. */
+    static char in_buf[1 << 20], out_buf[1 << 20];
+    setvbuf(stdin, in_buf, _IOFBF, sizeof in_buf);
+    setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
+    switch (argc > 1 ? atoi(argv[1]) : 0) {{{cases}
+    default:
+        return 2;
+    }}
+}}
+"
+    )
 }
