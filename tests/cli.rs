@@ -1784,6 +1784,57 @@ fn gen_out_refuses_a_read_only_file_unless_forced() {
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
 }
 
+/// The access(2) half of the rule: a file whose mode lets others write it but not this
+/// user. Root may write anything, so as root the binary runs as `nobody` (setpriv, from
+/// util-linux) in a world-writable folder, where a rename could replace root's file.
+#[cfg(target_os = "linux")]
+#[test]
+fn gen_out_refuses_a_file_the_user_may_not_write() {
+    use std::os::unix::fs::PermissionsExt;
+    if std::fs::read_to_string("/proc/self/status")
+        .unwrap()
+        .lines()
+        .any(|l| l.starts_with("Uid:") && l.split_whitespace().nth(2) != Some("0"))
+    {
+        // Not root: nobody else's file can be set up here; the mode-bit test above covers
+        // the refusal for this user.
+        return;
+    }
+    let dir = tempdir();
+    std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o777)).unwrap();
+    let p = dir.path().join("roots.wgsl");
+    std::fs::write(&p, "root's\n").unwrap();
+    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o644)).unwrap();
+    let as_nobody = |extra: &[&str]| {
+        let mut cmd = Command::new("setpriv");
+        cmd.args(["--reuid=65534", "--regid=65534", "--clear-groups", "--"])
+            .arg(env!("CARGO_BIN_EXE_unitpack"))
+            .args([
+                "gen",
+                "oct16",
+                "--lang",
+                "wgsl",
+                "--out",
+                p.to_str().unwrap(),
+            ])
+            .args(extra);
+        run_cmd(cmd, b"")
+    };
+    let r = as_nobody(&[]);
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("not writable by you") && r.stderr.contains("--force"),
+        "{r:?}"
+    );
+    assert_eq!(std::fs::read_to_string(&p).unwrap(), "root's\n");
+    let r = as_nobody(&["--force"]);
+    assert_eq!(r.code, 0, "{r:?}");
+    assert_eq!(
+        std::fs::read_to_string(&p).unwrap(),
+        ok(&["gen", "oct16", "--lang", "wgsl"]).stdout
+    );
+}
+
 #[test]
 fn gen_out_into_a_full_device_is_a_one_line_error() {
     let err = fails(

@@ -114,10 +114,16 @@ impl AtomicFile {
                 {
                     use std::os::unix::fs::MetadataExt;
                     if !force && !user_may_write(&target, m.mode()) {
+                        let why = if m.mode() & 0o222 == 0 {
+                            "is read-only"
+                        } else {
+                            "is not writable by you"
+                        };
                         bail!(
-                            "{} is read-only (mode {:04o}); pass --force to replace it",
+                            "{} {why} (mode {:04o}, owner uid {}); pass --force to replace it",
                             shown.display(),
-                            m.mode() & 0o7777
+                            m.mode() & 0o7777,
+                            m.uid()
                         );
                     }
                     keep = Some((m.mode() & 0o777, m.uid(), m.gid()));
