@@ -184,7 +184,7 @@ pub fn generate_with(out: &Path, check: bool, force: bool) -> Result<i32> {
         .collect();
     if !foreign.is_empty() && !force {
         bail!(
-            "nothing written: {} file(s) where generate writes were not written by unitpack (no \"{HEADER}\" header): {}; move them away or pass --force",
+            "nothing written: {} file(s) at paths generate writes lack the \"{HEADER}\" header, so unitpack did not write them: {}; move them away or pass --force",
             foreign.len(),
             some_paths(out, &foreign)
         );
@@ -261,9 +261,14 @@ fn check_report(out: &Path, plan: &Plan, mut report: String) -> Result<i32> {
         output::print(&report)?;
         return Ok(0);
     }
+    let run = if plan.files.iter().any(|f| f.2 == State::Foreign) {
+        "`unitpack generate --force` (it replaces files unitpack did not write)"
+    } else {
+        "`unitpack generate`"
+    };
     let _ = writeln!(
         report,
-        "{stale} of {total} generated files are out of date, {} files are extra; run `unitpack generate`",
+        "{stale} of {total} generated files are out of date, {} files are extra; run {run}",
         plan.prune.len()
     );
     output::print(&report)?;

@@ -67,8 +67,8 @@ pub fn text<'a>(files: impl IntoIterator<Item = &'a Path>) -> String {
     s
 }
 
-/// Whether the regular file at `path` starts with [`HEADER`] (read without following
-/// anything but the path; only its first bytes are read).
+/// Whether the file at `path` starts with [`HEADER`]; only its first bytes are read, since
+/// a user's file in the folder may be large. The caller checks that it is a regular file.
 pub fn has_header(path: &Path) -> io::Result<bool> {
     let mut head = Vec::with_capacity(HEADER.len());
     std::fs::File::open(path)?
