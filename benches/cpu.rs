@@ -1,11 +1,14 @@
 //! CPU codec throughput in vectors per second, with a baseline measured in the same run
 //! (normalizing the same vectors in f32) so that results compare across machines as ratios.
+//! Also the `encode`/`decode` stream filter (`unitpack::cli::transcode`) over in-memory
+//! buffers, in its raw binary format and in text, to show what a pipeline gets end to end.
 //! Run: `cargo bench`.
 
 use std::hint::black_box;
 use std::time::Instant;
 use unitpack::api::{CpuCodec, Encoder, HemiOct, Oct};
-use unitpack::codecs::Codec;
+use unitpack::cli::{Direction, Format, transcode};
+use unitpack::codecs::{Codec, Spec};
 
 const N: usize = 1 << 20;
 
@@ -63,4 +66,36 @@ fn main() {
         );
     }
     bench("hemioct24", HemiOct::new(24).unwrap().fast(), &vs, base);
+    for spec in ["oct16", "oct24p", "snorm16x3"] {
+        stream(spec, &vs, Format::Binary);
+    }
+    stream("oct16", &vs, Format::Text);
+}
+
+/// Vectors per second through `transcode`, input and output in `format`, each way.
+fn stream(name: &str, vs: &[[f32; 3]], format: Format) {
+    let spec: Spec = name.parse().unwrap();
+    let vectors: Vec<u8> = match format {
+        Format::Binary => vs.iter().flatten().flat_map(|x| x.to_le_bytes()).collect(),
+        Format::Text => vs
+            .iter()
+            .map(|v| format!("{} {} {}\n", v[0], v[1], v[2]))
+            .collect::<String>()
+            .into_bytes(),
+    };
+    let mut codes = Vec::new();
+    let run = |dir: Direction, input: &[u8], out: &mut Vec<u8>| {
+        out.clear();
+        let n = transcode(&spec, dir, format, format, &mut black_box(input), out).unwrap();
+        assert_eq!(n as usize, N);
+    };
+    let enc = rate(|| run(Direction::Encode, &vectors, &mut codes));
+    let mut back = Vec::new();
+    let dec = rate(|| run(Direction::Decode, &codes, &mut back));
+    let f = format!("{format:?}").to_lowercase();
+    println!(
+        "stream {name:<10} {f:<6} encode {:>7.1} M vectors/s   decode {:>7.1} M vectors/s",
+        enc / 1e6,
+        dec / 1e6
+    );
 }

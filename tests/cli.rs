@@ -12,6 +12,8 @@ use unitpack::emit::Lang;
 struct Run {
     code: i32,
     stdout: String,
+    /// stdout as bytes (binary formats).
+    out: Vec<u8>,
     stderr: String,
 }
 
@@ -25,30 +27,49 @@ impl std::fmt::Debug for Run {
     }
 }
 
-fn run_in(dir: Option<&Path>, args: &[&str], stdin: &str) -> Run {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_unitpack"));
-    cmd.args(args)
-        .stdin(Stdio::piped())
+fn unitpack() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_unitpack"))
+}
+
+/// Runs `cmd` with `stdin` written from another thread (so that large inputs and outputs
+/// cannot deadlock on full pipes).
+fn run_cmd(mut cmd: Command, stdin: &[u8]) -> Run {
+    cmd.stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
-    if let Some(d) = dir {
-        cmd.current_dir(d);
-    }
     let mut child = cmd.spawn().expect("spawn unitpack");
-    {
-        let mut si = child.stdin.take().expect("stdin");
-        // The binary may exit before reading stdin (bad spec): ignore a broken pipe.
-        let _ = si.write_all(stdin.as_bytes());
-    }
+    let mut si = child.stdin.take().expect("stdin");
+    let input = stdin.to_vec();
+    // The binary may exit before reading stdin (bad spec): ignore a broken pipe.
+    let writer = std::thread::spawn(move || {
+        let _ = si.write_all(&input);
+    });
     let out = child.wait_with_output().expect("wait for unitpack");
+    writer.join().expect("stdin writer");
     Run {
         code: out
             .status
             .code()
             .expect("exit code (not killed by a signal)"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        out: out.stdout,
         stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
     }
+}
+
+fn run_in(dir: Option<&Path>, args: &[&str], stdin: &str) -> Run {
+    let mut cmd = unitpack();
+    cmd.args(args);
+    if let Some(d) = dir {
+        cmd.current_dir(d);
+    }
+    run_cmd(cmd, stdin.as_bytes())
+}
+
+fn run_bytes(args: &[&str], stdin: &[u8]) -> Run {
+    let mut cmd = unitpack();
+    cmd.args(args);
+    run_cmd(cmd, stdin)
 }
 
 fn run(args: &[&str]) -> Run {
@@ -83,6 +104,20 @@ fn fails(args: &[&str], stdin: &str) -> String {
     r.stderr
 }
 
+/// A failure with exit status 2 and a one-line error, after `before` was written to
+/// stdout (encode/decode write the lines before a bad one); returns stderr.
+fn fails_after(args: &[&str], stdin: &str, before: &str) -> String {
+    let r = run_stdin(args, stdin);
+    assert_eq!(
+        r.code, 2,
+        "unitpack {args:?} should fail with status 2: {r:?}"
+    );
+    assert_eq!(r.stdout, before, "unitpack {args:?}: {r:?}");
+    assert_eq!(r.stderr.lines().count(), 1, "one line: {r:?}");
+    assert!(r.stderr.starts_with("error: "), "{r:?}");
+    r.stderr
+}
+
 /// `gen SPEC --lang wgsl` must fail with status 2; returns stderr.
 fn bad_spec(spec: &str) -> String {
     fails(&["gen", spec, "--lang", "wgsl"], "")
@@ -113,9 +148,10 @@ fn tree(dir: &Path) -> BTreeSet<PathBuf> {
     out
 }
 
-/// The files `generate` must write: `<lang>/<id>.<lang>` for every spec and language.
+/// The files `generate` must write: `<lang>/<id>.<lang>` for every spec and language,
+/// and the manifest.
 fn expected_files() -> BTreeSet<PathBuf> {
-    let mut s = BTreeSet::new();
+    let mut s = BTreeSet::from([PathBuf::from(".unitpack-manifest")]);
     for lang in Lang::ALL {
         for spec in Spec::all() {
             s.insert(PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())));
@@ -127,8 +163,11 @@ fn expected_files() -> BTreeSet<PathBuf> {
 fn generate_into(dir: &Path) -> Run {
     let r = ok(&["generate", "--out", dir.to_str().expect("UTF-8 path")]);
     assert!(
-        r.stdout
-            .contains(&format!("wrote {} files", expected_files().len())),
+        r.stdout.contains(&format!(
+            "{} files in {}: ",
+            expected_files().len(),
+            dir.display()
+        )),
         "{r:?}"
     );
     r
@@ -196,7 +235,7 @@ fn every_verb_has_help_with_a_description() {
         ("gen", "Print the include for one or more specs"),
         ("generate", "Write every codec × language"),
         ("encode", "Encode vectors read from stdin"),
-        ("decode", "Decode hex codes read from stdin"),
+        ("decode", "Decode codes read from stdin"),
         ("verify", "Prove emitted code bit-exact"),
     ];
     for (verb, description) in cases {
@@ -268,7 +307,7 @@ fn list_names_every_codec_with_its_bit_sizes() {
     let r = ok(&["list"]);
     assert!(r.stderr.is_empty(), "{r:?}");
     let header = r.stdout.lines().next().expect("header line");
-    for col in ["codec", "domain", "precise", "source"] {
+    for col in ["family", "domain", "precise", "source"] {
         assert!(header.contains(col), "list header {header:?} lacks {col}");
     }
     for f in FAMILIES {
@@ -493,27 +532,34 @@ fn gen_out_replaces_an_existing_file_atomically() {
 }
 
 #[test]
-fn gen_out_into_a_missing_directory_fails_and_writes_nothing() {
-    let err = fails(
-        &[
-            "gen",
-            "oct16",
-            "--lang",
-            "wgsl",
-            "--out",
-            "/nonexistent-dir/x.wgsl",
-        ],
-        "",
-    );
-    assert!(err.contains("cannot write"), "{err}");
-    assert!(
-        err.contains("/nonexistent-dir/x.wgsl"),
-        "the message should name the file: {err}"
-    );
-    assert!(!Path::new("/nonexistent-dir/x.wgsl").exists());
-
+fn gen_out_creates_missing_directories() {
     let dir = tempdir();
-    let path = dir.path().join("missing").join("x.wgsl");
+    let path = dir.path().join("new").join("dir").join("x.wgsl");
+    ok(&[
+        "gen",
+        "oct16",
+        "--lang",
+        "wgsl",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        ok(&["gen", "oct16", "--lang", "wgsl"]).stdout
+    );
+    assert_eq!(
+        tree(dir.path()),
+        BTreeSet::from([PathBuf::from("new/dir/x.wgsl")])
+    );
+}
+
+/// A failed write names the user's path, never the temporary file beside it, and leaves
+/// nothing behind.
+#[test]
+fn gen_out_errors_name_the_file_not_a_temporary_one() {
+    let dir = tempdir();
+    std::fs::write(dir.path().join("plain"), "a file, not a directory\n").unwrap();
+    let path = dir.path().join("plain").join("x.wgsl");
     let err = fails(
         &[
             "gen",
@@ -525,13 +571,56 @@ fn gen_out_into_a_missing_directory_fails_and_writes_nothing() {
         ],
         "",
     );
-    assert!(err.contains("cannot write"), "{err}");
-    assert!(tree(dir.path()).is_empty(), "nothing may be left behind");
+    assert!(
+        err.contains(&format!("cannot write {}", path.display())),
+        "{err}"
+    );
+    // The temporary directory's own name may contain "tmp"; nothing after it may.
+    let rest = err.replace(dir.path().to_str().unwrap(), "DIR");
+    assert!(!rest.contains("tmp"), "a temporary file is named: {err}");
+    assert_eq!(tree(dir.path()), BTreeSet::from([PathBuf::from("plain")]));
+    // /proc refuses new files even to root: the temporary file cannot be created.
+    #[cfg(target_os = "linux")]
+    {
+        let err = fails(
+            &[
+                "gen",
+                "oct16",
+                "--lang",
+                "wgsl",
+                "--out",
+                "/proc/self/x.wgsl",
+            ],
+            "",
+        );
+        assert!(err.contains("cannot write /proc/self/x.wgsl"), "{err}");
+        assert!(!err.contains("tmp"), "a temporary file is named: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
 }
 
 #[test]
-fn gen_out_onto_a_directory_fails_and_leaves_it_alone() {
+fn gen_out_onto_a_directory_writes_into_it() {
     let dir = tempdir();
+    ok(&[
+        "gen",
+        "oct16",
+        "--lang",
+        "wgsl",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert_eq!(
+        tree(dir.path()),
+        BTreeSet::from([PathBuf::from("oct16.wgsl")])
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("oct16.wgsl")).unwrap(),
+        ok(&["gen", "oct16", "--lang", "wgsl"]).stdout
+    );
+    // A directory where the file would go is never replaced.
+    let other = tempdir();
+    std::fs::create_dir(other.path().join("oct16.wgsl")).unwrap();
     let err = fails(
         &[
             "gen",
@@ -539,14 +628,14 @@ fn gen_out_onto_a_directory_fails_and_leaves_it_alone() {
             "--lang",
             "wgsl",
             "--out",
-            dir.path().to_str().unwrap(),
+            other.path().to_str().unwrap(),
         ],
         "",
     );
-    assert!(err.contains("cannot write"), "{err}");
-    assert!(dir.path().is_dir());
+    assert!(err.contains("it is a directory"), "{err}");
+    assert!(other.path().join("oct16.wgsl").is_dir());
     assert!(
-        tree(dir.path()).is_empty(),
+        tree(other.path()).is_empty(),
         "no temporary file may be left behind"
     );
 }
@@ -557,6 +646,7 @@ fn gen_with_one_bad_spec_prints_nothing() {
     assert!(err.contains("unknown codec 'octt16'"), "{err}");
 }
 
+/// `gen SPEC` writes exactly the file `generate` writes for it, Regenerate line included.
 #[test]
 fn gen_writes_exactly_the_generated_file() {
     let dir = tempdir();
@@ -831,21 +921,45 @@ fn encode_degenerate_input_gives_the_plus_z_code() {
     }
 }
 
+/// Output line N answers input line N: blank and `#` lines pass through unchanged.
 #[test]
-fn encode_ignores_blank_lines_and_counts_them() {
-    let r = run_stdin(&["encode", "oct16"], "\n  0 0 1  \n\n1\t0\t0");
+fn blank_and_comment_lines_pass_through_so_lines_correspond() {
+    let plus_z = run_stdin(&["encode", "oct16"], "0 0 1\n").stdout;
+    let plus_x = run_stdin(&["encode", "oct16"], "1 0 0\n").stdout;
+    let r = run_stdin(
+        &["encode", "oct16"],
+        "\n  0 0 1  \n# a comment\n\n   # indented\n1\t0\t0",
+    );
     assert_eq!(r.code, 0, "{r:?}");
-    assert_eq!(r.stdout.lines().count(), 2, "{r:?}");
-    let err = fails(&["encode", "oct16"], "0 0 1\n\n1 2\n");
+    assert_eq!(
+        r.stdout,
+        format!("\n{plus_z}# a comment\n\n   # indented\n{plus_x}"),
+        "{r:?}"
+    );
+    let r = run_stdin(&["decode", "oct16"], "# codes\n0x0000007f\n\n127\n");
+    assert_eq!(r.code, 0, "{r:?}");
+    assert_eq!(r.stdout, "# codes\n1.0 0.0 0.0\n\n1.0 0.0 0.0\n", "{r:?}");
+    // Blank lines still count in error messages.
+    let err = fails_after(
+        &["encode", "oct16"],
+        "0 0 1\n\n1 2\n",
+        &format!("{plus_z}\n"),
+    );
     assert!(err.contains("line 3"), "blank lines still count: {err}");
     // Empty input: no output, success.
     let r = run_stdin(&["encode", "oct16"], "");
     assert_eq!((r.code, r.stdout.as_str()), (0, ""), "{r:?}");
+    // \r\n line ends are read; output lines end in \n.
+    let r = run_stdin(&["encode", "oct16"], "0 0 1\r\n# c\r\n");
+    assert_eq!(r.stdout, format!("{plus_z}# c\n"), "{r:?}");
 }
 
+/// On stdout, the output of every line before a bad one has been written (as the help
+/// says); the error names the line and quotes it.
 #[test]
-fn encode_malformed_line_fails_with_no_partial_output() {
-    let err = fails(&["encode", "oct16"], "0 0 1\n1 2\n0 1 0\n");
+fn encode_malformed_line_fails_after_the_lines_before_it() {
+    let plus_z = run_stdin(&["encode", "oct16"], "0 0 1\n").stdout;
+    let err = fails_after(&["encode", "oct16"], "0 0 1\n1 2\n0 1 0\n", &plus_z);
     assert!(err.contains("line 2"), "{err}");
     assert!(
         err.contains("\"1 2\""),
@@ -858,26 +972,168 @@ fn encode_malformed_line_fails_with_no_partial_output() {
 }
 
 #[test]
-fn decode_malformed_line_fails_with_no_partial_output() {
-    let err = fails(&["decode", "oct16"], "zz\n");
-    assert!(err.contains("line 1"), "{err}");
-    let err = fails(&["decode", "oct16"], "0x00000000\n0x7f\n0xg\n");
-    assert!(err.contains("line 3"), "{err}");
-    // A single-word code holds at most 8 hex digits.
-    let err = fails(&["decode", "oct16"], "0x100000000\n");
-    assert!(err.contains("line 1") && err.contains("8"), "{err}");
-    let err = fails(&["decode", "snorm16x3"], "0x10000000000000000\n");
-    assert!(err.contains("line 1"), "{err}");
+fn encode_names_numbers_outside_the_f32_range() {
+    for bad in ["1e39 0 0", "0 -3.5e38 0", "0 0 1e400"] {
+        let err = fails(&["encode", "oct16"], &format!("{bad}\n"));
+        assert!(
+            err.contains("line 1") && err.contains("outside the f32 range"),
+            "{bad:?}: {err}"
+        );
+    }
+    // Spelled infinities are accepted (and encode as +Z), as is f32::MAX.
+    let r = run_stdin(&["encode", "oct16"], "inf 0 0\n3.4028235e38 0 0\n");
+    assert_eq!(r.code, 0, "{r:?}");
 }
 
 #[test]
-fn decode_accepts_codes_with_or_without_prefix() {
-    let r = run_stdin(&["decode", "oct16"], "0x0000007f\n7f\n0X7F\n  0x7f  \n");
+fn a_byte_order_mark_at_the_start_is_accepted() {
+    let plain = run_stdin(&["encode", "oct16"], "0 0 1\n");
+    let r = run_stdin(&["encode", "oct16"], "\u{feff}0 0 1\n");
+    assert_eq!((r.code, &r.stdout), (0, &plain.stdout), "{r:?}");
+    let r = run_stdin(&["decode", "oct16"], "\u{feff}0x7f\n");
+    assert_eq!((r.code, r.stdout.as_str()), (0, "1.0 0.0 0.0\n"), "{r:?}");
+    // Only at the start.
+    let err = fails_after(
+        &["encode", "oct16"],
+        "0 0 1\n\u{feff}0 0 1\n",
+        &plain.stdout,
+    );
+    assert!(err.contains("line 2"), "{err}");
+}
+
+#[test]
+fn invalid_utf8_is_an_error_naming_its_line() {
+    let r = run_bytes(&["encode", "oct16"], b"0 0 1\n0 1 0\n\xff\xfe 0 0\n");
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("line 3") && r.stderr.contains("UTF-8"),
+        "{r:?}"
+    );
+    assert_eq!(r.stdout.lines().count(), 2, "{r:?}");
+    let r = run_bytes(&["decode", "oct16"], b"0x7f\n0x\xc3\n");
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("line 2") && r.stderr.contains("UTF-8"),
+        "{r:?}"
+    );
+}
+
+/// A bad line is quoted cut to about 80 characters, whatever its length.
+#[test]
+fn errors_quote_at_most_80_characters_of_a_line() {
+    for verb in ["encode", "decode"] {
+        let line = format!("0 0 {}\n", "9".repeat(5000));
+        let err = fails(&[verb, "oct16"], &line);
+        assert!(err.contains("line 1"), "{err}");
+        assert!(
+            err.len() < 400,
+            "{verb}: {} bytes of error: {err}",
+            err.len()
+        );
+        assert!(err.contains("5004 bytes"), "{verb}: {err}");
+    }
+    // 10 MB without a line end: still a short error, and quickly.
+    let huge = "x".repeat(10 << 20);
+    let err = fails(&["encode", "oct16"], &huge);
+    assert!(err.contains("line 1") && err.len() < 400, "{err}");
+}
+
+#[test]
+fn decode_malformed_line_fails_after_the_lines_before_it() {
+    let err = fails(&["decode", "oct16"], "zz\n");
+    assert!(err.contains("line 1"), "{err}");
+    let err = fails_after(
+        &["decode", "oct16"],
+        "0x00000000\n0x7f\n0xg\n",
+        "0.0 0.0 1.0\n1.0 0.0 0.0\n",
+    );
+    assert!(err.contains("line 3"), "{err}");
+    let err = fails(&["decode", "oct16"], "0x100000000\n");
+    assert!(err.contains("line 1") && err.contains("16 bits"), "{err}");
+    let err = fails(&["decode", "snorm16x3"], "0x10000000000000000\n");
+    assert!(err.contains("line 1") && err.contains("48 bits"), "{err}");
+}
+
+/// One grammar: `0x` + hex digits, or decimal digits; nothing else.
+#[test]
+fn decode_reads_0x_hex_or_decimal_and_nothing_else() {
+    let r = run_stdin(
+        &["decode", "oct16"],
+        "0x0000007f\n0X7F\n  0x7f  \n127\n\t0127\n",
+    );
     assert_eq!(r.code, 0, "{r:?}");
     let lines: Vec<&str> = r.stdout.lines().collect();
-    assert_eq!(lines.len(), 4, "{r:?}");
+    assert_eq!(lines.len(), 5, "{r:?}");
     for l in lines {
         assert_eq!(parse_vec(l), [1.0, 0.0, 0.0], "{r:?}");
+    }
+    // 123 is decimal 123, not 0x123.
+    assert_eq!(
+        run_stdin(&["decode", "oct16"], "123\n").stdout,
+        run_stdin(&["decode", "oct16"], "0x7b\n").stdout
+    );
+    assert_ne!(
+        run_stdin(&["decode", "oct16"], "123\n").stdout,
+        run_stdin(&["decode", "oct16"], "0x123\n").stdout
+    );
+    for bad in [
+        "0b101", "+ff", "0x+ff", "-1", "+1", "7f", "0x", "1_000", "0o17", "0x7f 1", "1.0",
+    ] {
+        let err = fails(&["decode", "oct16"], &format!("{bad}\n"));
+        assert!(
+            err.contains("line 1") && err.contains("0x followed by hex digits"),
+            "{bad:?}: {err}"
+        );
+    }
+}
+
+/// A decoder ignores bits above its width, so such a code is refused rather than
+/// decoded as another.
+#[test]
+fn decode_rejects_codes_wider_than_the_spec() {
+    for (spec, ok_code, bad, bits) in [
+        ("oct16", "0xffff", "0x1ffff", 16),
+        ("oct16", "65535", "65536", 16),
+        ("oct24", "0xffffff", "0x1000000", 24),
+        ("oct24:layout=rgb8", "0xffffff", "0x1000000", 24),
+        ("snorm10x3", "0x3fffffff", "0x40000000", 30),
+        ("oct32", "0xffffffff", "0x100000000", 32),
+        ("snorm16x3", "0xffffffffffff", "0x1000000000000", 48),
+        ("snorm16x3", "281474976710655", "18446744073709551616", 48),
+    ] {
+        let r = run_stdin(&["decode", spec], &format!("{ok_code}\n"));
+        assert_eq!(r.code, 0, "{spec} {ok_code}: {r:?}");
+        let err = fails(&["decode", spec], &format!("{bad}\n"));
+        assert!(
+            err.contains("line 1") && err.contains(&format!("width of {bits} bits")),
+            "{spec} {bad}: {err}"
+        );
+    }
+}
+
+/// Every code `encode` prints fits the spec's width, so `decode` accepts it.
+#[test]
+fn every_encoded_code_fits_the_spec_width() {
+    use unitpack::codecs::functions::Role;
+    let mut vs = unitpack::quality::random_unit_vectors(5, 4096, false);
+    vs.extend([
+        [0.0, 0.0, -1.0],
+        [-1.0, -1.0, -1.0],
+        [0.0, 0.0, 0.0],
+        [f32::NAN; 3],
+    ]);
+    for spec in Spec::all().iter().filter(|s| s.info().domain.is_some()) {
+        let e = spec.emitted();
+        let f = e.functions.iter().find(|f| f.role == Role::Encode).unwrap();
+        let mut code = vec![0u32; f.out_words];
+        for v in &vs {
+            (f.eval)(&v.map(f32::to_bits), &mut code);
+            let c = code
+                .iter()
+                .rev()
+                .fold(0u64, |a, w| (a << 32) | u64::from(*w));
+            assert!(c >> spec.bits() == 0, "{spec}: {v:?} → {c:#x}");
+        }
     }
 }
 
@@ -935,8 +1191,11 @@ fn generate_writes_every_spec_and_language_then_checks_clean() {
     let r = check(dir.path());
     assert_eq!(r.code, 0, "{r:?}");
     assert!(r.stdout.contains("up to date"), "{r:?}");
-    // Every file starts with the generated-file header.
-    for rel in expected_files() {
+    // Every include starts with the generated-file header.
+    for rel in expected_files()
+        .into_iter()
+        .filter(|r| r != Path::new(".unitpack-manifest"))
+    {
         let text = std::fs::read_to_string(dir.path().join(&rel)).unwrap();
         assert!(
             text.starts_with("// Generated by unitpack"),
@@ -998,29 +1257,47 @@ fn generate_check_names_a_missing_file() {
     );
 }
 
+/// A file is extra (and pruned) only when the manifest lists it and it has the header.
 #[test]
 fn generate_check_names_an_extra_file() {
     let dir = tempdir();
     generate_into(dir.path());
-    std::fs::write(dir.path().join("wgsl/oct17.wgsl"), "fn x() {}\n").unwrap();
+    let stale = dir.path().join("wgsl/oct17.wgsl");
+    std::fs::write(&stale, "// Generated by unitpack 0.0.1 — do not edit.\n").unwrap();
+    add_to_manifest(dir.path(), "wgsl/oct17.wgsl");
     let r = check(dir.path());
     assert_eq!(r.code, 1, "{r:?}");
     assert!(
         r.stdout
             .lines()
-            .any(|l| l.starts_with("extra:") && l.ends_with("wgsl/oct17.wgsl")),
+            .any(|l| l.starts_with("extra:") && l.contains("wgsl/oct17.wgsl")),
         "{r:?}"
     );
+    // Only the manifest (which lists the stale file) differs from what generate writes.
+    let changed: Vec<&str> = r
+        .stdout
+        .lines()
+        .filter(|l| l.starts_with("changed:") || l.starts_with("missing:"))
+        .collect();
     assert!(
-        !r.stdout.contains("changed:") && !r.stdout.contains("missing:"),
+        changed.len() == 1 && changed[0].ends_with(".unitpack-manifest"),
         "{r:?}"
     );
     // `generate` removes what `--check` called extra, and leaves other files alone.
     std::fs::write(dir.path().join("wgsl/notes.txt"), "mine\n").unwrap();
-    generate_into(dir.path());
-    assert!(!dir.path().join("wgsl/oct17.wgsl").exists());
+    let r = generate_into(dir.path());
+    assert!(
+        r.stdout.contains("removed ") && r.stdout.contains("oct17.wgsl"),
+        "{r:?}"
+    );
+    assert!(!stale.exists());
     assert!(dir.path().join("wgsl/notes.txt").exists());
-    assert_eq!(check(dir.path()).code, 0);
+    let r = check(dir.path());
+    assert_eq!(r.code, 0, "user files do not make the check fail: {r:?}");
+    assert!(
+        r.stdout.contains("kept: ") && r.stdout.contains("notes.txt"),
+        "{r:?}"
+    );
 }
 
 #[test]
@@ -1083,8 +1360,13 @@ fn committed_generated_directory_is_up_to_date() {
 
 #[test]
 fn verify_oct16_wgsl_on_lavapipe() {
-    let r = run(&["verify", "oct16", "--lang", "wgsl"]);
+    // Without XDG_RUNTIME_DIR Mesa complains on stderr; that noise is not unitpack's.
+    let mut cmd = unitpack();
+    cmd.args(["verify", "oct16", "--lang", "wgsl"])
+        .env_remove("XDG_RUNTIME_DIR");
+    let r = run_cmd(cmd, b"");
     assert_eq!(r.code, 0, "{r:?}");
+    assert!(!r.stderr.contains("XDG_RUNTIME_DIR"), "{r:?}");
     assert!(r.stdout.lines().any(|l| l.starts_with("adapter:")), "{r:?}");
     let rows: Vec<&str> = r
         .stdout
@@ -1145,4 +1427,913 @@ fn every_generated_file_regenerates_from_its_header() {
         }
     }
     assert_eq!(checked, Spec::all().len() * Lang::ALL.len());
+}
+
+// ---------------------------------------------------------------------------------------
+// generate never loses a user's file (issue 6, item 1)
+
+/// Lists `rel` in `dir`'s manifest, as an earlier run that wrote it would have.
+fn add_to_manifest(dir: &Path, rel: &str) {
+    let m = dir.join(".unitpack-manifest");
+    let mut text = std::fs::read_to_string(&m).unwrap_or_default();
+    text.push_str(rel);
+    text.push('\n');
+    std::fs::write(&m, text).unwrap();
+}
+
+/// `generate --out dir`, which must succeed (without depending on its summary's wording,
+/// so that the tests of what it does to files test only that).
+fn generate_plain(dir: &Path) -> Run {
+    ok(&["generate", "--out", dir.to_str().expect("UTF-8 path")])
+}
+
+/// Every file below `dir` with its contents.
+fn snapshot(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    tree(dir)
+        .into_iter()
+        .map(|rel| {
+            let bytes = std::fs::read(dir.join(&rel)).unwrap();
+            (rel, bytes)
+        })
+        .collect()
+}
+
+#[test]
+fn generate_keeps_files_it_did_not_write() {
+    let dir = tempdir();
+    let d = dir.path();
+    std::fs::create_dir_all(d.join("wgsl")).unwrap();
+    std::fs::create_dir_all(d.join("glsl")).unwrap();
+    std::fs::write(d.join("wgsl/lighting.wgsl"), "fn light() {}\n").unwrap();
+    std::fs::write(d.join("glsl/pbr.glsl"), "void pbr() {}\n").unwrap();
+    let r = generate_plain(d);
+    for f in ["wgsl/lighting.wgsl", "glsl/pbr.glsl"] {
+        assert!(d.join(f).exists(), "{f} was removed: {r:?}");
+        assert!(
+            r.stdout
+                .lines()
+                .any(|l| l.starts_with("kept: ") && l.contains(f)),
+            "{f} should be reported as kept: {r:?}"
+        );
+    }
+    assert!(!r.stdout.contains("removed"), "{r:?}");
+    assert_eq!(
+        std::fs::read_to_string(d.join("wgsl/lighting.wgsl")).unwrap(),
+        "fn light() {}\n"
+    );
+    // A file with unitpack's header that no manifest lists (from `gen --out`) is kept too.
+    let mine = d.join("hlsl/mine.hlsl");
+    ok(&[
+        "gen",
+        "oct16",
+        "--lang",
+        "hlsl",
+        "--out",
+        mine.to_str().unwrap(),
+    ]);
+    let r = generate_plain(d);
+    assert!(mine.exists(), "{r:?}");
+    assert!(
+        r.stdout.contains("kept: ") && r.stdout.contains("mine.hlsl"),
+        "{r:?}"
+    );
+    // A listed file whose header was removed was taken over by the user: kept.
+    std::fs::write(d.join("wgsl/taken.wgsl"), "// my own now\n").unwrap();
+    add_to_manifest(d, "wgsl/taken.wgsl");
+    let r = generate_plain(d);
+    assert!(d.join("wgsl/taken.wgsl").exists(), "{r:?}");
+    assert!(
+        r.stdout.contains("taken.wgsl") && r.stdout.contains("header"),
+        "{r:?}"
+    );
+    assert_eq!(check(d).code, 0, "kept files do not make --check fail");
+}
+
+#[test]
+fn generate_prunes_only_inside_its_folders() {
+    let outer = tempdir();
+    let d = outer.path().join("out");
+    generate_plain(&d);
+    let victim = outer.path().join("victim.wgsl");
+    std::fs::write(
+        &victim,
+        "// Generated by unitpack, but not in its folders\n",
+    )
+    .unwrap();
+    for entry in [
+        "../victim.wgsl",
+        "/etc/passwd",
+        "wgsl/../../victim.wgsl",
+        "victim.wgsl",
+    ] {
+        add_to_manifest(&d, entry);
+    }
+    generate_plain(&d);
+    assert!(
+        victim.exists(),
+        "a manifest entry outside DIR/<lang>/ was followed"
+    );
+}
+
+#[test]
+fn generate_refuses_to_replace_a_users_file_at_a_catalogue_path() {
+    let dir = tempdir();
+    let d = dir.path();
+    generate_plain(d);
+    let stale = d.join("glsl/oct16.glsl");
+    let mut text = std::fs::read_to_string(&stale).unwrap();
+    text.push_str("// stale\n");
+    std::fs::write(&stale, &text).unwrap();
+    let user = d.join("wgsl/oct16.wgsl");
+    std::fs::write(&user, "// my own oct16\n").unwrap();
+    let before = snapshot(d);
+    let err = fails(&["generate", "--out", d.to_str().unwrap()], "");
+    assert!(
+        err.contains("nothing written")
+            && err.contains("wgsl/oct16.wgsl")
+            && err.contains("--force"),
+        "{err}"
+    );
+    assert_eq!(snapshot(d), before, "a refused generate must write nothing");
+    let r = check(d);
+    assert!(
+        r.stdout.contains("not written by unitpack") && r.stdout.contains("wgsl/oct16.wgsl"),
+        "{r:?}"
+    );
+    ok(&["generate", "--out", d.to_str().unwrap(), "--force"]);
+    assert_eq!(check(d).code, 0);
+}
+
+/// Everything is prepared before anything is replaced: a folder that cannot take a file
+/// leaves the others as they were.
+#[cfg(target_os = "linux")]
+#[test]
+fn generate_writes_nothing_when_a_folder_is_unwritable() {
+    let dir = tempdir();
+    let d = dir.path();
+    generate_plain(d);
+    // Make wgsl/ stale, then make glsl/ a folder no one (not even root) can create in.
+    let w = d.join("wgsl/oct16.wgsl");
+    let stale = std::fs::read_to_string(&w).unwrap() + "// stale\n";
+    std::fs::write(&w, &stale).unwrap();
+    std::fs::remove_dir_all(d.join("glsl")).unwrap();
+    std::os::unix::fs::symlink("/proc/self", d.join("glsl")).unwrap();
+    let r = run(&["generate", "--out", d.to_str().unwrap()]);
+    assert_eq!(r.code, 2, "{r:?}");
+    assert_eq!(
+        std::fs::read_to_string(&w).unwrap(),
+        stale,
+        "wgsl/ was rewritten"
+    );
+    assert!(r.stderr.contains("nothing written"), "{r:?}");
+    assert!(
+        tree(&d.join("wgsl"))
+            .iter()
+            .all(|p| !p.to_string_lossy().starts_with('.')),
+        "temporary files left behind"
+    );
+    // A directory where a file goes is found before anything is written, too.
+    std::fs::remove_file(d.join("glsl")).unwrap();
+    std::fs::create_dir_all(d.join("glsl/oct16.glsl")).unwrap();
+    let err = fails(&["generate", "--out", d.to_str().unwrap()], "");
+    assert!(err.contains("glsl/oct16.glsl"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(&w).unwrap(),
+        stale,
+        "wgsl/ was rewritten"
+    );
+}
+
+#[test]
+fn generate_runs_in_parallel_on_one_folder() {
+    let dir = tempdir();
+    let d = dir.path();
+    for round in 0..2 {
+        generate_plain(d);
+        // Stale files from an "older catalogue", which every run will try to prune.
+        for i in 0..60 {
+            let rel = format!("wgsl/old{round}_{i}.wgsl");
+            std::fs::write(d.join(&rel), "// Generated by unitpack 0.0.1\n").unwrap();
+            add_to_manifest(d, &rel);
+        }
+        std::fs::write(
+            d.join("glsl/oct16.glsl"),
+            "// Generated by unitpack, stale\n",
+        )
+        .unwrap();
+        let children: Vec<_> = (0..4)
+            .map(|_| {
+                unitpack()
+                    .args(["generate", "--out", d.to_str().unwrap()])
+                    .stdout(Stdio::piped())
+                    .stderr(Stdio::piped())
+                    .spawn()
+                    .unwrap()
+            })
+            .collect();
+        for c in children {
+            let out = c.wait_with_output().unwrap();
+            assert!(
+                out.status.success(),
+                "a parallel generate failed: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        assert_eq!(tree(d), expected_files(), "round {round}");
+        assert_eq!(check(d).code, 0);
+    }
+}
+
+#[test]
+fn generate_help_and_readme_say_what_it_prunes() {
+    let r = ok(&["generate", "--help"]);
+    for s in [
+        ".unitpack-manifest",
+        "removes a file only if",
+        "Generated by unitpack",
+        "kept",
+    ] {
+        assert!(r.stdout.contains(s), "generate --help lacks {s:?}: {r:?}");
+    }
+    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+    for s in [".unitpack-manifest", "removes a file only if"] {
+        assert!(readme.contains(s), "README lacks {s:?}");
+    }
+}
+
+#[test]
+fn committed_generated_directory_has_its_manifest() {
+    let m = std::fs::read_to_string(manifest_dir().join("generated/.unitpack-manifest"))
+        .expect("generated/.unitpack-manifest is committed");
+    let listed: BTreeSet<PathBuf> = m
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(PathBuf::from)
+        .collect();
+    let mut want = expected_files();
+    want.remove(Path::new(".unitpack-manifest"));
+    assert_eq!(listed, want);
+}
+
+// ---------------------------------------------------------------------------------------
+// writing files (item 6)
+
+fn gen_to(path: &Path, extra: &[&str]) -> Run {
+    let mut args = vec![
+        "gen",
+        "oct16",
+        "--lang",
+        "wgsl",
+        "--out",
+        path.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+#[cfg(unix)]
+#[test]
+fn gen_out_through_a_symlink_replaces_the_target_and_keeps_the_link() {
+    let dir = tempdir();
+    let d = dir.path();
+    std::fs::create_dir(d.join("real")).unwrap();
+    std::fs::write(d.join("real/normals.wgsl"), "old\n").unwrap();
+    // A chain: link → link2 → real/normals.wgsl (relative targets).
+    std::os::unix::fs::symlink("real/normals.wgsl", d.join("link2")).unwrap();
+    std::os::unix::fs::symlink("link2", d.join("link")).unwrap();
+    let r = gen_to(&d.join("link"), &[]);
+    assert_eq!(r.code, 0, "{r:?}");
+    let want = ok(&["gen", "oct16", "--lang", "wgsl"]).stdout;
+    assert_eq!(
+        std::fs::read_to_string(d.join("real/normals.wgsl")).unwrap(),
+        want
+    );
+    for l in ["link", "link2"] {
+        assert!(
+            std::fs::symlink_metadata(d.join(l))
+                .unwrap()
+                .file_type()
+                .is_symlink(),
+            "{l} is no longer a link"
+        );
+    }
+    // A dangling link: its target is created.
+    std::os::unix::fs::symlink("made.wgsl", d.join("dangling")).unwrap();
+    assert_eq!(gen_to(&d.join("dangling"), &[]).code, 0);
+    assert_eq!(std::fs::read_to_string(d.join("made.wgsl")).unwrap(), want);
+    assert!(
+        std::fs::symlink_metadata(d.join("dangling"))
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn gen_out_never_carries_setuid_or_setgid_bits() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempdir();
+    let p = dir.path().join("x.wgsl");
+    std::fs::write(&p, "old\n").unwrap();
+    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o6755)).unwrap();
+    assert_eq!(
+        std::fs::metadata(&p).unwrap().permissions().mode() & 0o7777,
+        0o6755
+    );
+    assert_eq!(gen_to(&p, &[]).code, 0);
+    assert_eq!(
+        std::fs::metadata(&p).unwrap().permissions().mode() & 0o7777,
+        0o755,
+        "the permission bits stay, setuid and setgid go"
+    );
+}
+
+/// A rename only needs the folder to be writable, so without a check a read-only file
+/// would be replaced silently. Tests run as root, whom access(2) lets write anything, so
+/// this checks the mode-bit rule (no write bit at all), which holds for root too.
+#[cfg(unix)]
+#[test]
+fn gen_out_refuses_a_read_only_file_unless_forced() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempdir();
+    let p = dir.path().join("x.wgsl");
+    std::fs::write(&p, "keep me\n").unwrap();
+    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let r = gen_to(&p, &[]);
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("read-only") && r.stderr.contains("--force"),
+        "{r:?}"
+    );
+    assert_eq!(std::fs::read_to_string(&p).unwrap(), "keep me\n");
+    let r = gen_to(&p, &["--force"]);
+    assert_eq!(r.code, 0, "{r:?}");
+    assert_eq!(
+        std::fs::read_to_string(&p).unwrap(),
+        ok(&["gen", "oct16", "--lang", "wgsl"]).stdout
+    );
+    assert_eq!(
+        std::fs::metadata(&p).unwrap().permissions().mode() & 0o777,
+        0o444
+    );
+    // encode/decode --out follow the same rule.
+    let out = dir.path().join("codes.txt");
+    std::fs::write(&out, "old\n").unwrap();
+    std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let err = fails(
+        &["encode", "oct16", "--out", out.to_str().unwrap()],
+        "0 0 1\n",
+    );
+    assert!(err.contains("read-only"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "old\n");
+}
+
+/// The access(2) half of the rule: a file whose mode lets others write it but not this
+/// user. Root may write anything, so as root the binary runs as `nobody` (setpriv, from
+/// util-linux) in a world-writable folder, where a rename could replace root's file.
+#[cfg(target_os = "linux")]
+#[test]
+fn gen_out_refuses_a_file_the_user_may_not_write() {
+    use std::os::unix::fs::PermissionsExt;
+    if std::fs::read_to_string("/proc/self/status")
+        .unwrap()
+        .lines()
+        .any(|l| l.starts_with("Uid:") && l.split_whitespace().nth(2) != Some("0"))
+    {
+        // Not root: nobody else's file can be set up here; the mode-bit test above covers
+        // the refusal for this user.
+        return;
+    }
+    let dir = tempdir();
+    std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o777)).unwrap();
+    let p = dir.path().join("roots.wgsl");
+    std::fs::write(&p, "root's\n").unwrap();
+    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o644)).unwrap();
+    let as_nobody = |extra: &[&str]| {
+        let mut cmd = Command::new("setpriv");
+        cmd.args(["--reuid=65534", "--regid=65534", "--clear-groups", "--"])
+            .arg(env!("CARGO_BIN_EXE_unitpack"))
+            .args([
+                "gen",
+                "oct16",
+                "--lang",
+                "wgsl",
+                "--out",
+                p.to_str().unwrap(),
+            ])
+            .args(extra);
+        run_cmd(cmd, b"")
+    };
+    let r = as_nobody(&[]);
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("not writable by you") && r.stderr.contains("--force"),
+        "{r:?}"
+    );
+    assert_eq!(std::fs::read_to_string(&p).unwrap(), "root's\n");
+    let r = as_nobody(&["--force"]);
+    assert_eq!(r.code, 0, "{r:?}");
+    assert_eq!(
+        std::fs::read_to_string(&p).unwrap(),
+        ok(&["gen", "oct16", "--lang", "wgsl"]).stdout
+    );
+}
+
+#[test]
+fn gen_out_into_a_full_device_is_a_one_line_error() {
+    let err = fails(
+        &["gen", "oct16", "--lang", "wgsl", "--out", "/dev/full"],
+        "",
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("/dev/full") && err.contains("No space left"),
+        "{err}"
+    );
+    assert!(Path::new("/dev/full").exists(), "the device is still there");
+}
+
+// ---------------------------------------------------------------------------------------
+// gen with several languages (item 7)
+
+#[test]
+fn gen_takes_a_comma_list_of_languages_into_a_directory() {
+    let dir = tempdir();
+    let out = format!("{}/", dir.path().join("shaders").display());
+    ok(&[
+        "gen",
+        "oct16",
+        "hemioct24p",
+        "--lang",
+        "wgsl,glsl",
+        "--out",
+        &out,
+    ]);
+    assert_eq!(
+        tree(dir.path()),
+        BTreeSet::from([
+            PathBuf::from("shaders/oct16-hemioct24p.glsl"),
+            PathBuf::from("shaders/oct16-hemioct24p.wgsl"),
+        ])
+    );
+    for lang in ["wgsl", "glsl"] {
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join(format!("shaders/oct16-hemioct24p.{lang}")))
+                .unwrap(),
+            ok(&["gen", "oct16", "hemioct24p", "--lang", lang]).stdout,
+            "{lang}"
+        );
+    }
+    // --name picks the stem; a repeated --lang works as a list too.
+    let named = tempdir();
+    ok(&[
+        "gen",
+        "oct16",
+        "--lang",
+        "hlsl",
+        "--lang",
+        "wgsl",
+        "--name",
+        "normals",
+        "--out",
+        named.path().to_str().unwrap(),
+    ]);
+    assert_eq!(
+        tree(named.path()),
+        BTreeSet::from([PathBuf::from("normals.hlsl"), PathBuf::from("normals.wgsl")])
+    );
+    // Several languages on stdout would be one file of mixed languages: refused.
+    let err = fails(&["gen", "oct16", "--lang", "wgsl,glsl"], "");
+    assert!(err.contains("--out DIR/"), "{err}");
+    for bad in ["../x", ".hidden", ""] {
+        let err = fails(
+            &[
+                "gen",
+                "oct16",
+                "--lang",
+                "wgsl",
+                "--name",
+                bad,
+                "--out",
+                named.path().to_str().unwrap(),
+            ],
+            "",
+        );
+        assert!(err.contains("--name"), "{bad:?}: {err}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// help and JSON (item 7)
+
+#[test]
+fn every_spec_argument_documents_the_grammar() {
+    for verb in ["gen", "encode", "decode", "verify"] {
+        let r = ok(&[verb, "--help"]);
+        for s in [
+            "NAME[BITS][p][:key=value,...]",
+            "oct24p",
+            "snorm8x3",
+            "oct24:layout=rgb8",
+        ] {
+            assert!(r.stdout.contains(s), "`{verb} --help` lacks {s:?}: {r:?}");
+        }
+    }
+    for verb in ["encode", "decode"] {
+        let r = ok(&[verb, "--help"]);
+        for s in [
+            "x y z",
+            "0x followed by hex digits",
+            "decimal",
+            "3 × f32",
+            "u64",
+            "little-endian",
+            "copied unchanged",
+            "--out FILE nothing is written",
+            "before the bad one has been written",
+        ] {
+            assert!(r.stdout.contains(s), "`{verb} --help` lacks {s:?}: {r:?}");
+        }
+    }
+    let r = ok(&["gen", "--help"]);
+    assert!(r.stdout.contains("comma-separated"), "{r:?}");
+}
+
+#[test]
+fn list_json_has_every_spelling_a_user_types() {
+    let r = ok(&["list", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).expect("list --json is JSON");
+    assert_eq!(v["grammar"], "NAME[BITS][p][:key=value,...]");
+    let fams = v["families"].as_array().unwrap();
+    assert_eq!(fams.len(), FAMILIES.len());
+    let mut typed = BTreeSet::new();
+    for f in fams {
+        for s in f["specs"].as_array().unwrap() {
+            let spec = s["spec"].as_str().unwrap();
+            spec.parse::<Spec>()
+                .unwrap_or_else(|e| panic!("{spec}: {e}"));
+            typed.insert(spec.to_string());
+            if let Some(p) = s["precise"].as_str() {
+                assert!(p.parse::<Spec>().unwrap().precise(), "{p}");
+            }
+        }
+    }
+    assert!(
+        typed.contains("snorm8x3") && !typed.contains("snorm3"),
+        "{typed:?}"
+    );
+    let oct = fams.iter().find(|f| f["family"] == "oct").unwrap();
+    assert_eq!(oct["options"][0]["key"], "layout");
+    assert_eq!(oct["options"][0]["default"], "snorm");
+    // The table shows the same spellings, and the grammar.
+    let table = ok(&["list"]).stdout;
+    for t in &typed {
+        assert!(table.contains(t.as_str()), "{t}");
+    }
+    assert!(table.contains("NAME[BITS][p][:key=value,...]"));
+}
+
+#[test]
+fn verify_json_reports_every_row() {
+    let r = ok(&["verify", "oct16", "--lang", "wgsl,glsl", "--json"]);
+    assert!(!r.stderr.contains("XDG_RUNTIME_DIR"), "{r:?}");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).expect("verify --json is JSON");
+    assert_eq!(v["passed"], true, "{r:?}");
+    assert_eq!(v["failed"], 0);
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(v["checks"].as_u64().unwrap() as usize, rows.len());
+    let items: u64 = rows.iter().map(|r| r["tested"].as_u64().unwrap()).sum();
+    assert_eq!(v["items"].as_u64().unwrap(), items);
+    let paths: BTreeSet<&str> = rows.iter().map(|r| r["path"].as_str().unwrap()).collect();
+    for p in ["wgsl/naga", "glsl/naga", "glsl/glslang"] {
+        assert!(paths.contains(p), "{paths:?}");
+    }
+    assert!(
+        rows.iter()
+            .all(|r| r["spec"] == "oct16" && r["error"].is_null())
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// pipes and full disks (item 5)
+
+fn closed_pipe() -> Stdio {
+    let (reader, writer) = std::io::pipe().expect("pipe");
+    drop(reader);
+    Stdio::from(writer)
+}
+
+fn dev_full() -> Stdio {
+    Stdio::from(
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .expect("/dev/full"),
+    )
+}
+
+/// Runs `args` with stdout going to `out`; returns (exit status, stderr).
+fn run_into(args: &[&str], stdin: &[u8], out: Stdio) -> (i32, String) {
+    let mut child = unitpack()
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(out)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let mut si = child.stdin.take().unwrap();
+    let input = stdin.to_vec();
+    let w = std::thread::spawn(move || {
+        let _ = si.write_all(&input);
+    });
+    let o = child.wait_with_output().unwrap();
+    w.join().unwrap();
+    (
+        o.status.code().expect("not killed by a signal"),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// Every verb into a closed pipe (ends quietly) and into a full device (one-line error).
+#[test]
+fn every_verb_into_a_closed_pipe_and_a_full_device() {
+    let gen_dir = tempdir();
+    generate_plain(gen_dir.path());
+    let g = gen_dir.path().to_str().unwrap().to_string();
+    let vectors = "0.48 -0.6 0.64\n".repeat(20_000);
+    let codes = "0x00001234\n".repeat(20_000);
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["list"], ""),
+        (vec!["list", "--json"], ""),
+        (vec!["gen", "oct24p", "--lang", "wgsl"], ""),
+        (vec!["generate", "--out", &g], ""),
+        (vec!["generate", "--out", &g, "--check"], ""),
+        (vec!["encode", "oct16"], &vectors),
+        (vec!["encode", "oct16", "--format", "binary"], ""),
+        (
+            vec!["encode", "oct16", "--output-format", "binary"],
+            &vectors,
+        ),
+        (vec!["decode", "oct16"], &codes),
+        (vec!["verify", "oct16", "--lang", "wgsl"], ""),
+        (vec!["verify", "oct16", "--lang", "wgsl", "--json"], ""),
+        (vec!["--help"], ""),
+        (vec!["--version"], ""),
+        (vec!["gen", "--help"], ""),
+    ];
+    for (args, stdin) in &cases {
+        let (code, err) = run_into(args, stdin.as_bytes(), closed_pipe());
+        assert_eq!(code, 0, "{args:?} into a closed pipe: {err}");
+        assert!(err.is_empty(), "{args:?} into a closed pipe printed: {err}");
+    }
+    for (args, stdin) in &cases {
+        // `encode --format binary` with no input writes nothing, so nothing can fail.
+        if stdin.is_empty() && args.contains(&"encode") {
+            continue;
+        }
+        let (code, err) = run_into(args, stdin.as_bytes(), dev_full());
+        assert_eq!(code, 2, "{args:?} into /dev/full: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(
+            err.starts_with("error: ") && err.contains("No space left on device"),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// streaming (item 4)
+
+/// Runs `args` over `input` with stdout discarded; returns (exit status, peak RSS in KiB).
+/// The peak is the child's VmHWM, sampled every few milliseconds until it exits (a lower
+/// bound of the true peak, which a program holding its whole input keeps for seconds).
+/// Neither wait4's ru_maxrss nor /proc before exec will do: both count the parent's
+/// memory, which the child shares until it runs `unitpack`.
+#[cfg(target_os = "linux")]
+fn peak_rss_kib(args: &[&str], input: Vec<u8>) -> (i32, u64) {
+    let mut child = unitpack()
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut si = child.stdin.take().unwrap();
+    let w = std::thread::spawn(move || {
+        let _ = si.write_all(&input);
+    });
+    let status_file = format!("/proc/{}/status", child.id());
+    let mut peak = 0;
+    let status = loop {
+        if let Ok(s) = std::fs::read_to_string(&status_file) {
+            let ours = s
+                .lines()
+                .any(|l| l.split_whitespace().eq(["Name:", "unitpack"]));
+            let hwm = s.lines().find_map(|l| l.strip_prefix("VmHWM:"));
+            if let (true, Some(v)) = (ours, hwm) {
+                let kib: u64 = v.trim().trim_end_matches("kB").trim().parse().unwrap();
+                peak = peak.max(kib);
+            }
+        }
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(3));
+    };
+    w.join().unwrap();
+    assert!(peak > 0, "no sample of the child's memory");
+    (status.code().expect("not killed"), peak)
+}
+
+/// 48 MB of input in, peak memory far below it: nothing holds the whole input.
+#[cfg(target_os = "linux")]
+#[test]
+fn encode_and_decode_stream_in_bounded_memory() {
+    let vectors = "0.48 -0.6 0.64\n".repeat(3_200_000).into_bytes();
+    let (code, kib) = peak_rss_kib(&["encode", "oct16"], vectors);
+    assert_eq!(code, 0);
+    assert!(
+        kib < 32 * 1024,
+        "encode peaked at {kib} KiB on 48 MB of input"
+    );
+    let codes = "0x00001234\n".repeat(4_400_000).into_bytes();
+    let (code, kib) = peak_rss_kib(&["decode", "oct16"], codes);
+    assert_eq!(code, 0);
+    assert!(
+        kib < 32 * 1024,
+        "decode peaked at {kib} KiB on 48 MB of input"
+    );
+}
+
+#[test]
+fn encode_out_file_is_written_only_when_every_line_is_good() {
+    let dir = tempdir();
+    let p = dir.path().join("codes.txt");
+    std::fs::write(&p, "previous\n").unwrap();
+    let err = fails(
+        &["encode", "oct16", "--out", p.to_str().unwrap()],
+        "0 0 1\n1 0 0\nbad\n",
+    );
+    assert!(err.contains("line 3"), "{err}");
+    assert_eq!(std::fs::read_to_string(&p).unwrap(), "previous\n");
+    assert_eq!(
+        tree(dir.path()),
+        BTreeSet::from([PathBuf::from("codes.txt")])
+    );
+    let r = run_stdin(
+        &["encode", "oct16", "--out", p.to_str().unwrap()],
+        "0 0 1\n1 0 0\n",
+    );
+    assert_eq!((r.code, r.stdout.as_str()), (0, ""), "{r:?}");
+    assert_eq!(
+        std::fs::read_to_string(&p).unwrap(),
+        run_stdin(&["encode", "oct16"], "0 0 1\n1 0 0\n").stdout
+    );
+    assert_eq!(
+        tree(dir.path()),
+        BTreeSet::from([PathBuf::from("codes.txt")])
+    );
+}
+
+fn f32s_le(v: &[[f32; 3]]) -> Vec<u8> {
+    v.iter().flatten().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+#[test]
+fn binary_formats_are_raw_little_endian_records() {
+    let vs = [[0.0f32, 0.0, 1.0], [0.48, -0.6, 0.64], [-0.36, 0.48, -0.8]];
+    let text: String = vs
+        .iter()
+        .map(|v| format!("{} {} {}\n", v[0], v[1], v[2]))
+        .collect();
+    for (spec, width) in [("oct16", 4), ("oct24p", 4), ("snorm16x3", 8)] {
+        let hex = run_stdin(&["encode", spec], &text);
+        let want: Vec<u8> = hex
+            .stdout
+            .lines()
+            .flat_map(|l| {
+                let v = u64::from_str_radix(&l[2..], 16).unwrap();
+                v.to_le_bytes()[..width].to_vec()
+            })
+            .collect();
+        // text → binary, binary → binary
+        let r = run_stdin(&["encode", spec, "--output-format", "binary"], &text);
+        assert_eq!((r.code, &r.out), (0, &want), "{spec}: {r:?}");
+        let r = run_bytes(&["encode", spec, "--format", "binary"], &f32s_le(&vs));
+        assert_eq!((r.code, &r.out), (0, &want), "{spec}: {r:?}");
+        // binary codes → text vectors equals text → text
+        let r = run_bytes(&["decode", spec, "--input-format", "binary"], &want);
+        assert_eq!(r.code, 0, "{r:?}");
+        assert_eq!(r.stdout, run_stdin(&["decode", spec], &hex.stdout).stdout);
+        // binary → binary: 12 bytes per vector, the same floats
+        let r = run_bytes(&["decode", spec, "--format", "binary"], &want);
+        assert_eq!(r.out.len(), 12 * vs.len(), "{spec}");
+        let floats: Vec<[f32; 3]> = r
+            .out
+            .chunks_exact(12)
+            .map(|c| [0, 4, 8].map(|i| f32::from_le_bytes(c[i..i + 4].try_into().unwrap())))
+            .collect();
+        let text_floats: Vec<[f32; 3]> = run_stdin(&["decode", spec], &hex.stdout)
+            .stdout
+            .lines()
+            .map(parse_vec)
+            .collect();
+        assert_eq!(floats, text_floats, "{spec}");
+    }
+    // A partial record is an error naming the record; so is a code above the width.
+    let r = run_bytes(
+        &["encode", "oct16", "--format", "binary"],
+        &[0u8; 12 * 2 + 5],
+    );
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("record 3") && r.stderr.contains("12 bytes"),
+        "{r:?}"
+    );
+    let r = run_bytes(
+        &["decode", "oct16", "--format", "binary"],
+        &0x1_0000u32.to_le_bytes(),
+    );
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(
+        r.stderr.contains("record 1") && r.stderr.contains("16 bits"),
+        "{r:?}"
+    );
+    // Blank and comment lines of text input produce no record.
+    let r = run_stdin(
+        &["encode", "oct16", "--output-format", "binary"],
+        "# c\n\n0 0 1\n",
+    );
+    assert_eq!(r.out.len(), 4, "{r:?}");
+}
+
+// ---------------------------------------------------------------------------------------
+// honest figures (item 9)
+
+#[test]
+fn doc_comments_call_the_maximum_a_sample_maximum() {
+    let r = ok(&["gen", "oct16", "--lang", "wgsl"]);
+    let line = r
+        .stdout
+        .lines()
+        .find(|l| l.contains("Round-trip error"))
+        .expect("an error figure");
+    for s in [
+        "65536 seeded unit vectors",
+        "seed 0x756e69747061636b5f766563746f7273",
+        "sample max",
+        "not a bound",
+    ] {
+        assert!(line.contains(s), "{line}");
+    }
+    assert!(!line.contains(", max "), "{line}");
+    let readme = std::fs::read_to_string(manifest_dir().join("README.md")).unwrap();
+    assert!(readme.contains("sample max"), "README");
+    assert!(
+        readme.contains("0x756e69747061636b5f766563746f7273"),
+        "README names the seed"
+    );
+}
+
+#[test]
+fn gen_writes_c_headers_and_wgsl_import_paths() {
+    let r = ok(&["gen", "oct16", "--lang", "c"]);
+    assert!(
+        r.stdout
+            .contains("static inline uint32_t unitpack_oct16_encode(const float v[3]) {"),
+        "{r:?}"
+    );
+    let r = ok(&[
+        "gen",
+        "oct16",
+        "--lang",
+        "wgsl",
+        "--wgsl-import-path",
+        "unitpack::normals",
+    ]);
+    assert!(
+        r.stdout
+            .starts_with("#define_import_path unitpack::normals\n"),
+        "{r:?}"
+    );
+    assert!(
+        r.stdout.contains(
+            "Regenerate: unitpack gen oct16 --lang wgsl --wgsl-import-path unitpack::normals"
+        ),
+        "{r:?}"
+    );
+    let err = fails(
+        &[
+            "gen",
+            "oct16",
+            "--lang",
+            "wgsl",
+            "--wgsl-import-path",
+            "a b",
+        ],
+        "",
+    );
+    assert!(err.contains("invalid WGSL import path"), "{err}");
 }

@@ -27,7 +27,7 @@ precision highp int;
 // In: parameters in [-1, 1], as a snorm12 fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01485°, max 0.03358°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound).
 vec3 unitpack_hemioct24_decode_float(vec2 params) {
     UNITPACK_PRECISE float t1 = params.x + params.y;
     UNITPACK_PRECISE float t2 = params.x - params.y;
@@ -49,7 +49,7 @@ vec3 unitpack_hemioct24_decode_float(vec2 params) {
 // In: a packed code (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01485°, max 0.03358°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound).
 vec3 unitpack_hemioct24_decode(uint code) {
     uint t1 = code >> 12u;
     uvec2 t2 = uvec2(code, t1);
@@ -69,7 +69,7 @@ vec3 unitpack_hemioct24_decode(uint code) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01485°, max 0.03358°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound).
 vec2 unitpack_hemioct24_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -125,7 +125,7 @@ vec2 unitpack_hemioct24_encode_float(vec3 v) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01485°, max 0.03358°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound).
 uint unitpack_hemioct24_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_hemioct24_encode_float(v);
     bvec2 t2 = greaterThanEqual(t1, vec2(-1.0));

@@ -27,7 +27,7 @@ precision highp int;
 // In: parameters in [-1, 1], as a snorm10 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 vec3 unitpack_snorm10x3_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 t1 = params * params;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
@@ -44,7 +44,7 @@ vec3 unitpack_snorm10x3_decode_float(vec3 params) {
 // In: a packed code (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement), bits 20–29: p2 snorm10 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 vec3 unitpack_snorm10x3_decode(uint code) {
     uint t1 = code >> 10u;
     uint t2 = code >> 20u;
@@ -65,7 +65,7 @@ vec3 unitpack_snorm10x3_decode(uint code) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm10 render target or vertex format to round.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 vec3 unitpack_snorm10x3_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -92,7 +92,7 @@ vec3 unitpack_snorm10x3_encode_float(vec3 v) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement), bits 20–29: p2 snorm10 (two's complement)).
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 uint unitpack_snorm10x3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_snorm10x3_encode_float(v);
     bvec3 t2 = greaterThanEqual(t1, vec3(-1.0));

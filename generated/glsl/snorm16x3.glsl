@@ -27,7 +27,7 @@ precision highp int;
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 vec3 unitpack_snorm16x3_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 t1 = params * params;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
@@ -44,7 +44,7 @@ vec3 unitpack_snorm16x3_decode_float(vec3 params) {
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 vec3 unitpack_snorm16x3_decode(uvec2 code) {
     uint t1 = code.x & 65535u;
     uint t2 = code.x >> 16u;
@@ -65,7 +65,7 @@ vec3 unitpack_snorm16x3_decode(uvec2 code) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 vec3 unitpack_snorm16x3_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -92,7 +92,7 @@ vec3 unitpack_snorm16x3_encode_float(vec3 v) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uvec2 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)).
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 uvec2 unitpack_snorm16x3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_snorm16x3_encode_float(v);
     bvec3 t2 = greaterThanEqual(t1, vec3(-1.0));

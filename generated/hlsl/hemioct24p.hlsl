@@ -26,7 +26,7 @@
 // In: parameters in [-1, 1], as a snorm12 fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01478°, sample max 0.03328° (not a bound).
 float3 unitpack_hemioct24p_decode_float(float2 params) {
     precise float t1 = params.x + params.y;
     precise float t2 = params.x - params.y;
@@ -48,7 +48,7 @@ float3 unitpack_hemioct24p_decode_float(float2 params) {
 // In: a packed code (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01478°, sample max 0.03328° (not a bound).
 float3 unitpack_hemioct24p_decode(uint code) {
     uint t1 = code >> 12u;
     uint2 t2 = uint2(code, t1);
@@ -216,7 +216,7 @@ float2 unitpack_hemioct24p_encode_codes(float3 v) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01478°, sample max 0.03328° (not a bound).
 float2 unitpack_hemioct24p_encode_float(float3 v) {
     precise float2 t1 = unitpack_hemioct24p_encode_codes(v);
     precise float2 t2 = t1 * 0.0004885198;
@@ -229,7 +229,7 @@ float2 unitpack_hemioct24p_encode_float(float3 v) {
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.01478°, max 0.03328°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01478°, sample max 0.03328° (not a bound).
 uint unitpack_hemioct24p_encode(float3 v) {
     precise float2 t1 = unitpack_hemioct24p_encode_codes(v);
     precise float t2 = t1.x + 4096.0;

@@ -26,7 +26,7 @@
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.17039°, max 0.38080°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound).
 float3 unitpack_snorm8x3_decode_float(float3 params) {
     precise float3 t1 = params * params;
     precise float t2 = t1.x + t1.y;
@@ -43,7 +43,7 @@ float3 unitpack_snorm8x3_decode_float(float3 params) {
 // In: a packed code (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement), bits 16–23: p2 snorm8 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.17039°, max 0.38080°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound).
 float3 unitpack_snorm8x3_decode(uint code) {
     uint t1 = code >> 8u;
     uint t2 = code >> 16u;
@@ -64,7 +64,7 @@ float3 unitpack_snorm8x3_decode(uint code) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.17039°, max 0.38080°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound).
 float3 unitpack_snorm8x3_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -91,7 +91,7 @@ float3 unitpack_snorm8x3_encode_float(float3 v) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement), bits 16–23: p2 snorm8 (two's complement)).
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.17039°, max 0.38080°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound).
 uint unitpack_snorm8x3_encode(float3 v) {
     precise float3 t1 = unitpack_snorm8x3_encode_float(v);
     bool3 t2 = t1 >= float3(-1.0, -1.0, -1.0);

@@ -11,7 +11,7 @@
 // In: parameters in [0, 1], as a unorm12 fetch returns them.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02551°, max 1.41272°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 1.41272° (not a bound).
 fn unitpack_lambert24p_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params * 4.0f;
     let fenc = t1 - 2.0f;
@@ -33,7 +33,7 @@ fn unitpack_lambert24p_decode_float(params: vec2<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12); other bits are ignored.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02551°, max 1.41272°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 1.41272° (not a bound).
 fn unitpack_lambert24p_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 12u;
     let t2 = vec2<u32>(code, t1);
@@ -145,7 +145,7 @@ fn unitpack_lambert24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm12 render target or vertex format.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02551°, max 1.41272°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 1.41272° (not a bound).
 fn unitpack_lambert24p_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = unitpack_lambert24p_encode_codes(v);
     let t2 = t1 * 0.00024420026f;
@@ -156,7 +156,7 @@ fn unitpack_lambert24p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: the packed code, u32 (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12).
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.02551°, max 1.41272°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 1.41272° (not a bound).
 fn unitpack_lambert24p_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_lambert24p_encode_codes(v);
     let t2 = u32(t1.x);

@@ -11,7 +11,7 @@
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00130°, max 0.00363°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00363° (not a bound).
 fn unitpack_oct32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = abs(params);
     let t2 = 1.0f - t1.x;
@@ -36,7 +36,7 @@ fn unitpack_oct32_decode_float(params: vec2<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00130°, max 0.00363°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00363° (not a bound).
 fn unitpack_oct32_decode(code: u32) -> vec3<f32> {
     let t1 = code & 65535u;
     let t2 = code >> 16u;
@@ -56,7 +56,7 @@ fn unitpack_oct32_decode(code: u32) -> vec3<f32> {
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00130°, max 0.00363°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00363° (not a bound).
 fn unitpack_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x + t1.y;
@@ -86,7 +86,7 @@ fn unitpack_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00130°, max 0.00363°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00363° (not a bound).
 fn unitpack_oct32_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_oct32_encode_float(v);
     let t2 = t1 >= vec2<f32>(-1.0f);

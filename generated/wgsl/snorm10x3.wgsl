@@ -11,7 +11,7 @@
 // In: parameters in [-1, 1], as a snorm10 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 fn unitpack_snorm10x3_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params * params;
     let t2 = t1.x + t1.y;
@@ -28,7 +28,7 @@ fn unitpack_snorm10x3_decode_float(params: vec3<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement), bits 20–29: p2 snorm10 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 fn unitpack_snorm10x3_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 10u;
     let t2 = code >> 20u;
@@ -49,7 +49,7 @@ fn unitpack_snorm10x3_decode(code: u32) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm10 render target or vertex format to round.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 fn unitpack_snorm10x3_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t1 = abs(v);
     let t2 = t1.x >= t1.y;
@@ -76,7 +76,7 @@ fn unitpack_snorm10x3_encode_float(v: vec3<f32>) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement), bits 20–29: p2 snorm10 (two's complement)).
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.04230°, max 0.09354°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04230°, sample max 0.09354° (not a bound).
 fn unitpack_snorm10x3_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_snorm10x3_encode_float(v);
     let t2 = t1 >= vec3<f32>(-1.0f);

@@ -11,7 +11,7 @@
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 fn unitpack_snorm16x3_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params * params;
     let t2 = t1.x + t1.y;
@@ -28,7 +28,7 @@ fn unitpack_snorm16x3_decode_float(params: vec3<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 fn unitpack_snorm16x3_decode(code: vec2<u32>) -> vec3<f32> {
     let t1 = code.x & 65535u;
     let t2 = code.x >> 16u;
@@ -49,7 +49,7 @@ fn unitpack_snorm16x3_decode(code: vec2<u32>) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 fn unitpack_snorm16x3_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t1 = abs(v);
     let t2 = t1.x >= t1.y;
@@ -76,7 +76,7 @@ fn unitpack_snorm16x3_encode_float(v: vec3<f32>) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, vec2<u32> (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)).
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 0.00066°, max 0.00148°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 fn unitpack_snorm16x3_encode(v: vec3<f32>) -> vec2<u32> {
     let t1 = unitpack_snorm16x3_encode_float(v);
     let t2 = t1 >= vec3<f32>(-1.0f);

@@ -11,7 +11,7 @@
 // In: parameters in [0, 1], as a unorm8 fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding).
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 3.56421°, max 53.41578°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.56421°, sample max 53.41578° (not a bound).
 fn unitpack_stereo_scaled16_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params - 0.5f;
     let p = t1 * 3.5554f;
@@ -30,7 +30,7 @@ fn unitpack_stereo_scaled16_decode_float(params: vec2<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8); other bits are ignored.
 // Out: every code decodes to a unit vector (up to rounding).
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 3.56421°, max 53.41578°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.56421°, sample max 53.41578° (not a bound).
 fn unitpack_stereo_scaled16_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 8u;
     let t2 = vec2<u32>(code, t1);
@@ -45,7 +45,7 @@ fn unitpack_stereo_scaled16_decode(code: u32) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge.
 // Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 3.56421°, max 53.41578°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.56421°, sample max 53.41578° (not a bound).
 fn unitpack_stereo_scaled16_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x >= t1.y;
@@ -80,7 +80,7 @@ fn unitpack_stereo_scaled16_encode_float(v: vec3<f32>) -> vec2<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge.
 // Out: the packed code, u32 (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over 65536 seeded unit vectors: mean 3.56421°, max 53.41578°.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.56421°, sample max 53.41578° (not a bound).
 fn unitpack_stereo_scaled16_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_stereo_scaled16_encode_float(v);
     let t2 = t1 >= vec2<f32>(0.0f);

@@ -1,56 +1,22 @@
-//! `gen` and `generate`: include files on stdout, in a file, or for the whole catalogue.
+//! `generate`: the whole catalogue as `DIR/<lang>/<id>.<lang>`, plus the manifest that
+//! lets a later run prune only what it wrote (see [`super::manifest`]).
+//!
+//! Nothing the user wrote is ever replaced or removed without `--force`, and `--force`
+//! only lets a catalogue path be replaced; it never makes `generate` remove a file.
 
+use super::atomic::AtomicFile;
+use super::include::stats_for;
+use super::manifest::{self, HEADER, MANIFEST};
+use super::output;
 use crate::codecs::Spec;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use anyhow::{Context, Result, bail};
-use std::io::Write;
+use std::collections::BTreeSet;
+use std::fmt::Write as _;
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-pub use crate::generator::stats_for;
-
-/// The include for `specs` (duplicates dropped: one name, one definition).
-pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {
-    crate::generator::Generator::new()
-        .specs(specs.iter().cloned())
-        .lang(lang)
-        .prefix(prefix)
-        .render(lang)
-        .expect("parsed specs and a validated prefix render")
-}
-
-/// Writes through a temporary file in the same directory and renames it over `path`, so
-/// readers never see a half-written file and a failure leaves the old file intact.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).with_context(|| {
-        format!(
-            "cannot write {}: cannot create a file in {}",
-            path.display(),
-            dir.display()
-        )
-    })?;
-    tmp.write_all(bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    // Temporary files are private (0600); give the result the old file's mode, or the
-    // usual 0644 for a new one.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode() & 0o7777);
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(mode))
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
-    tmp.persist(path)
-        .map_err(|e| e.error)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
-}
-
-/// Every generated file: relative path → contents.
+/// Every generated include: relative path → contents.
 pub fn catalogue_files() -> Vec<(PathBuf, String)> {
     let specs = Spec::all();
     let stats = stats_for(&specs);
@@ -69,71 +35,242 @@ pub fn catalogue_files() -> Vec<(PathBuf, String)> {
     files
 }
 
-/// Files in `out`'s language folders that the catalogue no longer produces.
-fn extra_files(out: &Path, files: &[(PathBuf, String)]) -> Vec<PathBuf> {
-    let mut extra = Vec::new();
-    for lang in Lang::ALL {
-        let Ok(rd) = std::fs::read_dir(out.join(lang.name())) else {
-            continue;
-        };
-        for e in rd.flatten() {
-            let rel = PathBuf::from(lang.name()).join(e.file_name());
-            let ours = rel.extension().is_some_and(|x| x == lang.ext());
-            if ours && !files.iter().any(|(r, _)| *r == rel) {
-                extra.push(out.join(rel));
-            }
-        }
-    }
-    extra.sort();
-    extra
+/// What is on disk at a path `generate` writes.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum State {
+    Current,
+    Missing,
+    /// Ours (it has the header), with other contents.
+    Changed,
+    /// Not written by unitpack: no header. Replaced only with `--force`.
+    Foreign,
+    /// A directory or something else that is not a file: never replaced.
+    NotAFile,
 }
 
-pub fn generate(out: &Path, check: bool) -> Result<i32> {
-    let files = catalogue_files();
-    let extra = extra_files(out, &files);
-    if check {
-        let mut stale = Vec::new();
-        for (rel, text) in &files {
-            let p = out.join(rel);
-            match std::fs::read_to_string(&p) {
-                Ok(cur) if cur == *text => {}
-                Ok(_) => stale.push(format!("changed: {}", p.display())),
-                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                    stale.push(format!("missing: {}", p.display()))
-                }
-                Err(e) => stale.push(format!("unreadable: {} ({e})", p.display())),
-            }
-        }
-        let out_of_date = stale.len();
-        stale.extend(extra.iter().map(|p| format!("extra: {}", p.display())));
-        if stale.is_empty() {
-            println!("{} files in {} are up to date", files.len(), out.display());
-            return Ok(0);
-        }
-        for s in &stale {
-            println!("{s}");
-        }
-        println!(
-            "{out_of_date} of {} generated files are out of date, {} files are extra; run `unitpack generate` (it also removes extra files)",
-            files.len(),
-            extra.len()
-        );
-        return Ok(1);
+fn state_of(path: &Path, text: &str, is_manifest: bool) -> Result<State> {
+    let cannot = || format!("cannot read {}", path.display());
+    match std::fs::metadata(path) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(State::Missing),
+        Err(e) => return Err(e).with_context(cannot),
+        // Never opened: reading a FIFO would block.
+        Ok(m) if !m.is_file() => return Ok(State::NotAFile),
+        Ok(_) => {}
     }
-    if files.is_empty() {
-        bail!("nothing to generate");
-    }
+    let cur = std::fs::read(path).with_context(cannot)?;
+    Ok(if cur == text.as_bytes() {
+        State::Current
+    } else if is_manifest || cur.starts_with(HEADER.as_bytes()) {
+        State::Changed
+    } else {
+        State::Foreign
+    })
+}
+
+/// Everything `generate` would do in `out`, worked out before anything is written.
+struct Plan {
+    /// The includes and the manifest (last), with their state on disk.
+    files: Vec<(PathBuf, String, State)>,
+    /// Files to remove: listed in the old manifest, not in the catalogue, with the header.
+    prune: Vec<PathBuf>,
+    /// Files left alone in the language folders, with the reason.
+    kept: Vec<(PathBuf, &'static str)>,
+}
+
+fn plan(out: &Path) -> Result<Plan> {
+    let mut files: Vec<(PathBuf, String)> = catalogue_files();
+    let listed = manifest::text(files.iter().map(|(p, _)| p.as_path()));
+    files.push((PathBuf::from(MANIFEST), listed));
+    let ours: BTreeSet<PathBuf> = files.iter().map(|(p, _)| p.clone()).collect();
+    let old = manifest::read(out)
+        .with_context(|| format!("cannot read {}", out.join(MANIFEST).display()))?;
+    let mut prune = Vec::new();
+    let mut kept = Vec::new();
     for lang in Lang::ALL {
-        let d = out.join(lang.name());
-        std::fs::create_dir_all(&d).with_context(|| format!("cannot create {}", d.display()))?;
+        let dir = out.join(lang.name());
+        let rd = match std::fs::read_dir(&dir) {
+            Ok(rd) => rd,
+            Err(e) if e.kind() == io::ErrorKind::NotFound => continue,
+            Err(e) => return Err(e).with_context(|| format!("cannot list {}", dir.display())),
+        };
+        for e in rd {
+            let e = e.with_context(|| format!("cannot list {}", dir.display()))?;
+            let name = e.file_name();
+            // Hidden files include other runs' temporary files.
+            if name.to_string_lossy().starts_with('.') {
+                continue;
+            }
+            let rel = PathBuf::from(lang.name()).join(&name);
+            if ours.contains(&rel) {
+                continue;
+            }
+            let path = out.join(&rel);
+            let why = if !path.is_file() {
+                "not a file"
+            } else if !old.contains(&rel) {
+                "not in the manifest: unitpack generate did not write it"
+            } else {
+                match manifest::has_header(&path) {
+                    Ok(true) => {
+                        prune.push(rel);
+                        continue;
+                    }
+                    Ok(false) => "listed in the manifest, but it no longer has the unitpack header",
+                    Err(_) => "unreadable",
+                }
+            };
+            kept.push((rel, why));
+        }
     }
-    for (rel, text) in &files {
-        write_atomic(&out.join(rel), text.as_bytes())?;
+    prune.sort();
+    kept.sort();
+    let files = files
+        .into_iter()
+        .map(|(rel, text)| {
+            let state = state_of(&out.join(&rel), &text, rel == Path::new(MANIFEST))?;
+            Ok((rel, text, state))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Plan { files, prune, kept })
+}
+
+/// A short list of paths for a one-line message.
+fn some_paths(out: &Path, paths: &[&PathBuf]) -> String {
+    let mut s: Vec<String> = paths
+        .iter()
+        .take(5)
+        .map(|p| out.join(p).display().to_string())
+        .collect();
+    if paths.len() > 5 {
+        s.push(format!("and {} more", paths.len() - 5));
     }
-    for p in &extra {
-        std::fs::remove_file(p).with_context(|| format!("cannot remove stale {}", p.display()))?;
-        println!("removed {}", p.display());
+    s.join(", ")
+}
+
+/// `generate --out out [--check]`: see [`generate_with`]; never replaces files it did
+/// not write.
+pub fn generate(out: &Path, check: bool) -> Result<i32> {
+    generate_with(out, check, false)
+}
+
+/// Writes (or with `check`, compares) the catalogue in `out`; `force` lets it replace
+/// catalogue paths that hold files unitpack did not write. Returns the exit status.
+pub fn generate_with(out: &Path, check: bool, force: bool) -> Result<i32> {
+    let plan = plan(out)?;
+    let mut report = String::new();
+    for (rel, why) in &plan.kept {
+        let _ = writeln!(report, "kept: {} ({why})", out.join(rel).display());
     }
-    println!("wrote {} files to {}", files.len(), out.display());
+    if check {
+        return check_report(out, &plan, report);
+    }
+    let bad: Vec<&PathBuf> = plan
+        .files
+        .iter()
+        .filter(|f| f.2 == State::NotAFile)
+        .map(|f| &f.0)
+        .collect();
+    if !bad.is_empty() {
+        bail!(
+            "nothing written: {} must be files, but are not (directories?)",
+            some_paths(out, &bad)
+        );
+    }
+    let foreign: Vec<&PathBuf> = plan
+        .files
+        .iter()
+        .filter(|f| f.2 == State::Foreign)
+        .map(|f| &f.0)
+        .collect();
+    if !foreign.is_empty() && !force {
+        bail!(
+            "nothing written: {} file(s) at paths generate writes lack the \"{HEADER}\" header, so unitpack did not write them: {}; move them away or pass --force",
+            foreign.len(),
+            some_paths(out, &foreign)
+        );
+    }
+    // Stage every changed file before renaming any: an unwritable folder (or full disk)
+    // fails here, and dropping the staged files leaves the tree as it was.
+    let mut staged = Vec::new();
+    for (rel, text, state) in &plan.files {
+        if *state == State::Current {
+            continue;
+        }
+        let path = out.join(rel);
+        let mut f = AtomicFile::create(&path, force).context("nothing written")?;
+        f.write_all(text.as_bytes())
+            .with_context(|| format!("nothing written: cannot write {}", path.display()))?;
+        staged.push(f);
+    }
+    let written = staged.len();
+    for f in staged {
+        f.commit()?;
+    }
+    let mut failed = Vec::new();
+    for rel in &plan.prune {
+        let path = out.join(rel);
+        match std::fs::remove_file(&path) {
+            Ok(()) => {
+                let _ = writeln!(report, "removed {}", path.display());
+            }
+            // Another `generate` running on the same folder removed it first.
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+            Err(e) => failed.push(format!("cannot remove {}: {e}", path.display())),
+        }
+    }
+    let _ = writeln!(
+        report,
+        "{} files in {}: {written} written, {} already up to date",
+        plan.files.len(),
+        out.display(),
+        plan.files.len() - written
+    );
+    output::print(&report)?;
+    if !failed.is_empty() {
+        bail!("{}", failed.join("; "));
+    }
     Ok(0)
+}
+
+fn check_report(out: &Path, plan: &Plan, mut report: String) -> Result<i32> {
+    let mut stale = 0;
+    for (rel, _, state) in &plan.files {
+        let p = out.join(rel).display().to_string();
+        let line = match state {
+            State::Current => continue,
+            State::Missing => format!("missing: {p}"),
+            State::Changed => format!("changed: {p}"),
+            State::Foreign => format!(
+                "changed: {p} (not written by unitpack: generate replaces it only with --force)"
+            ),
+            State::NotAFile => format!("changed: {p} (not a file: generate cannot replace it)"),
+        };
+        stale += 1;
+        let _ = writeln!(report, "{line}");
+    }
+    for rel in &plan.prune {
+        let _ = writeln!(
+            report,
+            "extra: {} (generate removes it)",
+            out.join(rel).display()
+        );
+    }
+    let total = plan.files.len();
+    if stale == 0 && plan.prune.is_empty() {
+        let _ = writeln!(report, "{total} files in {} are up to date", out.display());
+        output::print(&report)?;
+        return Ok(0);
+    }
+    let run = if plan.files.iter().any(|f| f.2 == State::Foreign) {
+        "`unitpack generate --force` (it replaces files unitpack did not write)"
+    } else {
+        "`unitpack generate`"
+    };
+    let _ = writeln!(
+        report,
+        "{stale} of {total} generated files are out of date, {} files are extra; run {run}",
+        plan.prune.len()
+    );
+    output::print(&report)?;
+    Ok(1)
 }

@@ -1,21 +1,67 @@
 //! The `unitpack` command line: list, gen, generate, encode, decode, verify.
+//!
+//! Output never goes through `print!` (it panics on a closed or full stdout): see
+//! [`output`]. Files are replaced atomically and only when they are the user's to replace:
+//! see [`atomic`] and [`manifest`].
 
+mod atomic;
 mod generate;
+mod grammar;
+mod include;
+mod list;
+mod manifest;
+pub mod output;
+pub mod runtime_dir;
 mod stream;
+mod verify;
 
-use crate::codecs::{FAMILIES, Spec};
+use crate::codecs::Spec;
 use crate::emit::{DEFAULT_PREFIX, Lang, validate_prefix};
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
+use std::io::{BufReader, Write};
 use std::path::PathBuf;
 
-pub use generate::{gen_text, generate, write_atomic};
+pub use atomic::{AtomicFile, write_atomic, write_atomic_with};
+pub use generate::{generate, generate_with};
+pub use include::gen_text;
+pub use list::{GRAMMAR, list_json, list_text};
+pub use manifest::{HEADER, MANIFEST};
+pub use stream::{Direction, Format, MAX_LINE, transcode};
+
+/// Help of every SPEC argument: the grammar (src/codecs/spec.rs) with examples.
+const SPEC_HELP: &str = "A codec spec: NAME[BITS][p][:key=value,...]. BITS is the total \
+size (oct16) or, for snorm, bits per component (snorm8x3); p selects the precise encoder \
+(oct24p); options follow a colon (oct24:layout=rgb8, stereo_scaled16:scale=1.7777). \
+Case does not matter. `unitpack list` shows every family, size and option";
+
+const STREAM_FORMATS: &str = "\
+Formats (--format, or --input-format/--output-format for one side):
+  text    vectors: one `x y z` line, three f32 numbers (1, -0.5, 1e-3, inf, nan);
+          a finite number beyond the f32 range (1e39) is an error.
+          codes: one per line, 0x followed by hex digits (0x7f) or decimal digits (127);
+          nothing else (no sign, 0b, 0o or _). A code with bits set above the spec's
+          width (oct16: 16 bits) is an error. Codes are written as 0x + 8 hex digits
+          (12 for specs above 32 bits), vectors as shortest round-trip decimals.
+          Output line N answers input line N: blank lines and lines starting with #
+          are copied unchanged. A UTF-8 byte-order mark at the start and \\r\\n line
+          ends are accepted; a line may be at most 1 MiB.
+  binary  raw little-endian records: a vector is 12 bytes (3 × f32), a code 4 bytes
+          (u32), or 8 bytes (u64) for specs above 32 bits (snorm16x3). Blank and
+          comment lines of text input produce no record.
+
+Errors: the first bad line or record ends the run with a one-line error naming it
+(exit status 2). With --out FILE nothing is written (FILE is replaced atomically, only
+on success); on stdout, the output for every line before the bad one has been written.
+Memory use stays bounded whatever the input size.";
 
 #[derive(Parser)]
 #[command(
     name = "unitpack",
     version,
-    about = "Compact unit-vector (normal) codecs for WGSL, GLSL and HLSL, bit-exact with a Rust model"
+    about = "Compact unit-vector (normal) codecs for WGSL, GLSL and HLSL, bit-exact with a Rust model",
+    after_help = "Exit status: 0 success, 1 verify or generate --check found a difference, 2 error. \
+A closed stdout (`unitpack list | head -1`) ends a command quietly."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -24,45 +70,105 @@ pub struct Cli {
 
 #[derive(Subcommand)]
 pub enum Command {
-    /// List every codec: bit sizes, domain, precise encoder, options and source document.
-    List,
+    /// List every codec: domain, precise encoder, the specs to type, options and source.
+    List {
+        /// Print JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Print the include for one or more specs.
     ///
-    /// SPEC is NAME[BITS][p][:key=value,...]: `oct24p` (precise encoder), `hemioct16`,
-    /// `snorm8x3`, `stereo_scaled16:scale=1.7777`, `oct24:layout=rgb8`, `snorm12x2`.
+    /// With one language the include goes to stdout or to --out FILE. With several (or
+    /// with --out naming a directory: existing, or ending in /) each language is written
+    /// to DIR/NAME.<lang>, NAME being --name or the spec ids joined by '-':
+    /// `unitpack gen oct16 hemioct24p --lang wgsl,glsl --out shaders/` writes
+    /// shaders/oct16-hemioct24p.wgsl and shaders/oct16-hemioct24p.glsl.
+    ///
+    /// Files are replaced atomically; missing directories are created; a symlink's target
+    /// is replaced and the link kept; a read-only file is replaced only with --force.
     Gen {
-        #[arg(required = true)]
+        #[arg(required = true, value_name = "SPEC", help = SPEC_HELP)]
         specs: Vec<String>,
-        #[arg(long, value_enum)]
-        lang: Lang,
+        /// Languages, comma-separated (wgsl,glsl,hlsl,c); several need --out DIR/.
+        #[arg(long, value_enum, value_delimiter = ',', required = true)]
+        lang: Vec<Lang>,
         /// Prefix of every function name (WGSL has no preprocessor to avoid clashes).
         #[arg(long, default_value = DEFAULT_PREFIX)]
         prefix: String,
-        /// Write to FILE (atomically) instead of stdout.
-        #[arg(long, value_name = "FILE")]
+        /// Write to FILE, or into a directory (see above), instead of stdout.
+        #[arg(long, value_name = "FILE|DIR/")]
         out: Option<PathBuf>,
+        /// File name stem of the files written into a directory.
+        #[arg(long)]
+        name: Option<String>,
+        /// Replace read-only files too.
+        #[arg(long)]
+        force: bool,
+        /// Start WGSL output with `#define_import_path PATH` (naga_oil, Bevy), e.g.
+        /// unitpack::normals.
+        #[arg(long, value_name = "PATH")]
+        wgsl_import_path: Option<String>,
     },
-    /// Write every codec × language into DIR/<lang>/<id>.<lang>.
+    /// Write every codec × language into DIR/<lang>/<id>.<ext> (C: DIR/c/<id>.h).
+    ///
+    /// Also writes DIR/.unitpack-manifest, the list of files it wrote. A file at a path
+    /// it writes is replaced only if it starts with "// Generated by unitpack" (or with
+    /// --force). It removes a file only if all three hold: an earlier run listed it in
+    /// DIR/.unitpack-manifest, it is no longer in the catalogue, and it still starts with
+    /// "// Generated by unitpack". Every other file in DIR/wgsl, DIR/glsl, DIR/hlsl and DIR/c is
+    /// kept and reported as kept. Every file is prepared before any is replaced, so an
+    /// unwritable folder leaves the tree as it was. Unchanged files are not rewritten.
     Generate {
-        #[arg(long, default_value = "generated")]
+        #[arg(long, value_name = "DIR", default_value = "generated")]
         out: PathBuf,
-        /// Write nothing; exit non-zero and name every file that would change.
+        /// Write nothing; exit 1 and name every file that would change or be removed.
         #[arg(long)]
         check: bool,
+        /// Also replace files at catalogue paths that unitpack did not write, and read-only
+        /// files. Never makes generate remove anything.
+        #[arg(long)]
+        force: bool,
     },
-    /// Encode vectors read from stdin (`x y z` per line) to hex codes, one per line.
-    Encode { spec: String },
-    /// Decode hex codes read from stdin (one per line) to `x y z` lines.
-    Decode { spec: String },
+    /// Encode vectors read from stdin to codes, one output line (or record) per input.
+    #[command(after_help = STREAM_FORMATS)]
+    Encode(StreamArgs),
+    /// Decode codes read from stdin to vectors, one output line (or record) per input.
+    #[command(after_help = STREAM_FORMATS)]
+    Decode(StreamArgs),
     /// Prove emitted code bit-exact: static checks (naga, glslang, spirv-val) and
     /// execution on the Vulkan CPU adapter (lavapipe), compared as raw bits with the model.
     Verify {
         /// Specs to verify (default: all).
+        #[arg(value_name = "SPEC", help = format!("{SPEC_HELP} (default: every spec)"))]
         specs: Vec<String>,
-        /// Languages to verify (default: all).
-        #[arg(long, value_enum)]
+        /// Languages to verify, comma-separated (default: all).
+        #[arg(long, value_enum, value_delimiter = ',')]
         lang: Vec<Lang>,
+        /// Print the report as JSON instead of the table.
+        #[arg(long)]
+        json: bool,
     },
+}
+
+#[derive(clap::Args)]
+pub struct StreamArgs {
+    #[arg(value_name = "SPEC", help = SPEC_HELP)]
+    pub spec: String,
+    /// Format of input and output (see below).
+    #[arg(long, value_enum, default_value = "text")]
+    pub format: Format,
+    /// Format of the input, if it differs from --format.
+    #[arg(long, value_enum)]
+    pub input_format: Option<Format>,
+    /// Format of the output, if it differs from --format.
+    #[arg(long, value_enum)]
+    pub output_format: Option<Format>,
+    /// Write to FILE atomically (only if every input line is good) instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Replace a read-only FILE too.
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn parse_specs(specs: &[String]) -> Result<Vec<Spec>> {
@@ -74,8 +180,8 @@ pub fn parse_specs(specs: &[String]) -> Result<Vec<Spec>> {
 
 pub fn run(cli: Cli) -> Result<i32> {
     match cli.command {
-        Command::List => {
-            print!("{}", list_text());
+        Command::List { json } => {
+            output::print(&if json { list_json() } else { list_text() })?;
             Ok(0)
         }
         Command::Gen {
@@ -83,26 +189,24 @@ pub fn run(cli: Cli) -> Result<i32> {
             lang,
             prefix,
             out,
+            name,
+            force,
+            wgsl_import_path,
         } => {
             validate_prefix(&prefix).map_err(anyhow::Error::msg)?;
             let specs = parse_specs(&specs)?;
-            let text = generate::gen_text(&specs, lang, &prefix);
-            match out {
-                Some(path) => write_atomic(&path, text.as_bytes())?,
-                None => print!("{text}"),
-            }
-            Ok(0)
+            let target = include::Target {
+                out: out.as_deref(),
+                name: name.as_deref(),
+                force,
+                import_path: wgsl_import_path.as_deref(),
+            };
+            include::run(&specs, &lang, &prefix, target)
         }
-        Command::Generate { out, check } => generate(&out, check),
-        Command::Encode { spec } => {
-            let spec: Spec = spec.parse()?;
-            stream::run(&spec, true)
-        }
-        Command::Decode { spec } => {
-            let spec: Spec = spec.parse()?;
-            stream::run(&spec, false)
-        }
-        Command::Verify { specs, lang } => {
+        Command::Generate { out, check, force } => generate_with(&out, check, force),
+        Command::Encode(a) => run_stream(&a, Direction::Encode),
+        Command::Decode(a) => run_stream(&a, Direction::Decode),
+        Command::Verify { specs, lang, json } => {
             let specs = if specs.is_empty() {
                 Spec::all()
             } else {
@@ -115,33 +219,48 @@ pub fn run(cli: Cli) -> Result<i32> {
             };
             let report =
                 crate::verify::run(&specs, &langs, true).context("verification could not run")?;
-            print!("{}", report.table());
+            output::print(&if json {
+                verify::report_json(&report)
+            } else {
+                report.table()
+            })?;
             Ok(if report.all_passed() { 0 } else { 1 })
         }
     }
 }
 
-/// The `list` table: each family with the specs a user types.
-pub fn list_text() -> String {
-    let mut s = format!(
-        "{:<14} {:<11} {:<8} {}\n",
-        "codec", "domain", "precise", "source"
-    );
-    for f in FAMILIES {
-        let c = f.info();
-        let domain = c.domain.map_or("-", |d| d.name());
-        let precise = if c.precise { "yes" } else { "no" };
-        s.push_str(&format!(
-            "{:<14} {:<11} {:<8} {}\n",
-            c.name, domain, precise, c.source
-        ));
-        s.push_str(&format!("{:<14} {}\n", "", c.title));
-        let specs: Vec<String> = c.spellings().into_iter().map(|s| s.0).collect();
-        let p = if c.precise { " (add p: precise)" } else { "" };
-        s.push_str(&format!("{:<14} specs: {}{p}\n", "", specs.join(", ")));
-        for o in c.options {
-            s.push_str(&format!("{:<14} option {}\n", "", o.usage()));
+/// `encode`/`decode`: stdin to stdout or to an atomically replaced file.
+fn run_stream(a: &StreamArgs, dir: Direction) -> Result<i32> {
+    let spec: Spec = a.spec.parse()?;
+    let from = a.input_format.unwrap_or(a.format);
+    let to = a.output_format.unwrap_or(a.format);
+    let stdin = std::io::stdin();
+    let mut input = BufReader::with_capacity(64 * 1024, stdin.lock());
+    match &a.out {
+        Some(path) => {
+            let mut file = AtomicFile::create(path, a.force)?;
+            transcode(&spec, dir, from, to, &mut input, &mut file)
+                .map_err(|e| name_output(e, &path.display().to_string()))?;
+            file.commit()?;
+        }
+        None => {
+            let mut out = output::stdout();
+            let result = transcode(&spec, dir, from, to, &mut input, &mut out);
+            // The output for the lines before a bad one is written either way, as the
+            // help says.
+            let flushed = out.flush();
+            result.map_err(|e| name_output(e, "to stdout"))?;
+            flushed.context("cannot write to stdout")?;
         }
     }
-    s
+    Ok(0)
+}
+
+/// Rewrites a [`stream::WriteError`] as `cannot write <name>: <cause>`, keeping the
+/// `io::Error` in the chain (a closed stdout is recognized by it).
+fn name_output(e: anyhow::Error, name: &str) -> anyhow::Error {
+    match e.downcast::<stream::WriteError>() {
+        Ok(w) => anyhow::Error::new(w.0).context(format!("cannot write {name}")),
+        Err(e) => e,
+    }
 }

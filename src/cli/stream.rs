@@ -1,106 +1,295 @@
-//! `encode` and `decode`: the CPU codec over stdin/stdout. Every line is parsed before
-//! anything is printed, so a malformed line yields an error and no partial output.
+//! `encode` and `decode`: the CPU codec as a stream filter, in bounded memory whatever the
+//! input size (one line, or one block of records, at a time).
+//!
+//! Text input: output line N answers input line N. Blank lines and lines whose first
+//! non-blank character is `#` are copied unchanged (with binary output they produce no
+//! record); a UTF-8 byte-order mark at the start is skipped; `\r\n` line ends are
+//! accepted; output lines end in `\n`. Lines longer than [`MAX_LINE`] bytes are an error.
+//!
+//! Binary input and output are raw little-endian records, for pipelines that move many
+//! vectors: a vector is 12 bytes (three `f32`), a code 4 bytes (`u32`), or 8 bytes (`u64`)
+//! for specs wider than 32 bits (snorm16x3).
+//!
+//! The first bad line or record ends the run with an error naming it. Output before it
+//! has been written (to stdout) or is discarded (`--out`, see [`super::atomic`]).
 
+use super::grammar::{self, LineError, quote};
 use crate::codecs::Spec;
 use crate::codecs::functions::{Function, Role};
 use anyhow::{Result, bail};
-use std::io::{Read, Write};
+use std::io::{BufRead, ErrorKind, Read, Write};
 
-/// A number; `inf` and `nan` are accepted as written, but a finite number too large for
-/// f32 (`1e50`) is an error rather than a silent infinity.
-fn parse_f32(t: &str) -> Result<f32, ()> {
-    let v: f32 = t.parse().map_err(|_| ())?;
-    let spelled = t.to_ascii_lowercase().contains("inf");
-    if v.is_infinite() && !spelled {
-        Err(())
-    } else {
-        Ok(v)
+/// The longest text line read, so that memory stays bounded on input without line ends.
+pub const MAX_LINE: usize = 1 << 20;
+
+/// Records processed per block in binary mode.
+const BLOCK: usize = 8192;
+
+/// How records are written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Lines (see below).
+    Text,
+    /// Raw little-endian records (see below).
+    Binary,
+}
+
+/// Which way the codec runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    Encode,
+    Decode,
+}
+
+/// A spec's encoder or decoder on raw words, with what its codes look like.
+struct Codec {
+    f: Function,
+    /// The spec as the user may type it, for messages.
+    name: String,
+    dir: Direction,
+    bits: u32,
+    /// 32-bit words per code (1, or 2 above 32 bits).
+    code_words: usize,
+}
+
+impl Codec {
+    fn new(spec: &Spec, dir: Direction) -> Result<Codec> {
+        if spec.info().domain.is_none() {
+            bail!(
+                "{} is a packing helper, not a codec: it has no encode/decode",
+                spec.id()
+            );
+        }
+        let role = match dir {
+            Direction::Encode => Role::Encode,
+            Direction::Decode => Role::Decode,
+        };
+        let Some(f) = spec
+            .emitted()
+            .functions
+            .into_iter()
+            .find(|f| f.role == role)
+        else {
+            bail!("{} has no {role:?} function", spec.id());
+        };
+        let code_words = match dir {
+            Direction::Encode => f.out_words,
+            Direction::Decode => f.in_words,
+        };
+        Ok(Codec {
+            f,
+            name: spec.to_string(),
+            dir,
+            bits: spec.bits(),
+            code_words,
+        })
+    }
+
+    fn code_bytes(&self) -> usize {
+        4 * self.code_words
+    }
+
+    fn in_bytes(&self) -> usize {
+        match self.dir {
+            Direction::Encode => 12,
+            Direction::Decode => self.code_bytes(),
+        }
+    }
+
+    /// Encodes a vector or decodes a code; `out` receives 3 floats or the code's words.
+    fn eval(&self, input: &[u32], out: &mut [u32]) {
+        (self.f.eval)(input, out);
     }
 }
 
-fn parse_vector(line: &str) -> Option<[f32; 3]> {
-    let mut it = line.split_whitespace().map(parse_f32);
-    let v = [it.next()?.ok()?, it.next()?.ok()?, it.next()?.ok()?];
-    it.next().is_none().then_some(v)
-}
-
-fn parse_code(line: &str, words: usize) -> Option<Vec<u32>> {
-    let t = line.trim();
-    let t = t
-        .strip_prefix("0x")
-        .or_else(|| t.strip_prefix("0X"))
-        .unwrap_or(t);
-    let v = u64::from_str_radix(t, 16).ok()?;
-    if words == 1 {
-        Some(vec![u32::try_from(v).ok()?])
-    } else {
-        // Two-word codes hold 48 bits (snorm16×3).
-        (v >> 48 == 0).then(|| vec![v as u32, (v >> 32) as u32])
-    }
-}
-
-fn format_code(w: &[u32]) -> String {
+fn code_value(w: &[u32]) -> u64 {
     match w {
-        [a] => format!("0x{a:08x}"),
-        [a, b] => format!("0x{:012x}", (u64::from(*b) << 32) | u64::from(*a)),
-        _ => unreachable!(),
+        [a] => u64::from(*a),
+        [a, b] => u64::from(*a) | (u64::from(*b) << 32),
+        _ => unreachable!("codes are one or two words"),
     }
 }
 
-/// Runs the codec over `input`, returning all output lines or the first bad line's error.
-pub fn transform(spec: &Spec, encode: bool, input: &str) -> Result<String> {
-    if spec.info().domain.is_none() {
-        bail!(
-            "{} is a packing helper, not a codec: it has no encode/decode",
-            spec.id()
-        );
+/// Writes one result in `to`'s form.
+fn put(c: &Codec, res: &[u32], to: Format, out: &mut dyn Write) -> std::io::Result<()> {
+    match (c.dir, to) {
+        (Direction::Encode, Format::Text) => match c.code_words {
+            1 => writeln!(out, "0x{:08x}", res[0]),
+            _ => writeln!(out, "0x{:012x}", code_value(&res[..2])),
+        },
+        (Direction::Encode, Format::Binary) => match c.code_words {
+            1 => out.write_all(&res[0].to_le_bytes()),
+            _ => out.write_all(&code_value(&res[..2]).to_le_bytes()),
+        },
+        (Direction::Decode, Format::Text) => {
+            let [x, y, z] = [0, 1, 2].map(|i| f32::from_bits(res[i]));
+            writeln!(out, "{x:?} {y:?} {z:?}")
+        }
+        (Direction::Decode, Format::Binary) => {
+            for w in &res[..3] {
+                out.write_all(&w.to_le_bytes())?;
+            }
+            Ok(())
+        }
     }
-    let e = spec.emitted();
-    let role = if encode { Role::Encode } else { Role::Decode };
-    let f: &Function = e
-        .functions
-        .iter()
-        .find(|f| f.role == role)
-        .expect("codec function");
-    let mut out = String::new();
-    let mut res = vec![0u32; f.out_words];
-    for (n, line) in input.lines().enumerate() {
-        if line.trim().is_empty() {
+}
+
+/// Runs `spec`'s encoder or decoder from `input` to `output`; returns the records done.
+/// A failed write is a [`WriteError`].
+pub fn transcode(
+    spec: &Spec,
+    dir: Direction,
+    from: Format,
+    to: Format,
+    input: &mut dyn BufRead,
+    output: &mut dyn Write,
+) -> Result<u64> {
+    let c = Codec::new(spec, dir)?;
+    match from {
+        Format::Text => text_in(&c, to, input, output),
+        Format::Binary => binary_in(&c, to, input, output),
+    }
+}
+
+/// A failed write of the output, kept apart from input errors so that the caller can name
+/// its output in the message (`cannot write to stdout: …`).
+#[derive(Debug, thiserror::Error)]
+#[error("cannot write the output: {0}")]
+pub struct WriteError(pub std::io::Error);
+
+fn write_err(e: std::io::Error) -> anyhow::Error {
+    anyhow::Error::new(WriteError(e))
+}
+
+fn read_err(e: std::io::Error) -> anyhow::Error {
+    anyhow::Error::new(e).context("cannot read the input")
+}
+
+fn text_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) -> Result<u64> {
+    let mut buf = Vec::with_capacity(256);
+    let mut words = [0u32; 3];
+    let mut res = [0u32; 3];
+    let (mut n, mut done) = (0u64, 0u64);
+    loop {
+        buf.clear();
+        let got = (&mut *input)
+            .take(MAX_LINE as u64 + 1)
+            .read_until(b'\n', &mut buf)
+            .map_err(read_err)?;
+        if got == 0 {
+            break;
+        }
+        n += 1;
+        if buf.last() == Some(&b'\n') {
+            buf.pop();
+            if buf.last() == Some(&b'\r') {
+                buf.pop();
+            }
+        }
+        if buf.len() > MAX_LINE {
+            bail!("line {n}: longer than {MAX_LINE} bytes");
+        }
+        let mut bytes = &buf[..];
+        if n == 1 {
+            bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+        }
+        let line = std::str::from_utf8(bytes).map_err(|e| {
+            anyhow::anyhow!(
+                "line {n}: not valid UTF-8 (bad byte at column {})",
+                e.valid_up_to() + 1
+            )
+        })?;
+        let body = line.trim_start_matches([' ', '\t']);
+        if body.is_empty() || body.starts_with('#') {
+            if to == Format::Text {
+                out.write_all(line.as_bytes())
+                    .and_then(|()| out.write_all(b"\n"))
+                    .map_err(write_err)?;
+            }
             continue;
         }
-        if encode {
-            let Some(v) = parse_vector(line) else {
-                bail!(
-                    "line {}: expected three numbers `x y z`, got {line:?}",
-                    n + 1
-                );
-            };
-            (f.eval)(&v.map(f32::to_bits), &mut res);
-            out.push_str(&format_code(&res));
-        } else {
-            let Some(code) = parse_code(line, f.in_words) else {
-                let max = if f.in_words == 1 { "8" } else { "12" };
-                bail!(
-                    "line {}: expected a hex code of at most {max} digits, got {line:?}",
-                    n + 1
-                );
-            };
-            (f.eval)(&code, &mut res);
-            let v = res
-                .iter()
-                .map(|b| format!("{:?}", f32::from_bits(*b)))
-                .collect::<Vec<_>>();
-            out.push_str(&v.join(" "));
+        let bad = |e: LineError| match e {
+            LineError::TooWide { bits } => anyhow::anyhow!(
+                "line {n}: {} has bits set above {}'s width of {bits} bits (largest code 0x{:x})",
+                quote(line.trim()),
+                c.name,
+                grammar::max_code(bits)
+            ),
+            e => anyhow::anyhow!("line {n}: {e}: {}", quote(line)),
+        };
+        match c.dir {
+            Direction::Encode => {
+                let v = grammar::parse_vector(line).map_err(bad)?;
+                words = v.map(f32::to_bits);
+            }
+            Direction::Decode => {
+                let v = grammar::parse_code(line, c.bits).map_err(bad)?;
+                words[0] = v as u32;
+                words[1] = (v >> 32) as u32;
+            }
         }
-        out.push('\n');
+        c.eval(&words, &mut res);
+        put(c, &res, to, out).map_err(write_err)?;
+        done += 1;
     }
-    Ok(out)
+    Ok(done)
 }
 
-pub fn run(spec: &Spec, encode: bool) -> Result<i32> {
-    let mut input = String::new();
-    std::io::stdin().read_to_string(&mut input)?;
-    let out = transform(spec, encode, &input)?;
-    std::io::stdout().write_all(out.as_bytes())?;
-    Ok(0)
+/// Fills `buf` from `input` as far as it goes; returns the bytes read (short only at EOF).
+fn fill(input: &mut dyn Read, buf: &mut [u8]) -> Result<usize> {
+    let mut got = 0;
+    while got < buf.len() {
+        match input.read(&mut buf[got..]) {
+            Ok(0) => break,
+            Ok(k) => got += k,
+            Err(e) if e.kind() == ErrorKind::Interrupted => {}
+            Err(e) => return Err(read_err(e)),
+        }
+    }
+    Ok(got)
+}
+
+fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) -> Result<u64> {
+    let size = c.in_bytes();
+    let mut block = vec![0u8; size * BLOCK];
+    let mut res = [0u32; 3];
+    let mut words = [0u32; 3];
+    let mut done = 0u64;
+    let noun = match c.dir {
+        Direction::Encode => "a vector is 12 bytes, 3×f32",
+        Direction::Decode if c.code_words == 1 => "a code is 4 bytes, u32",
+        Direction::Decode => "a code is 8 bytes, u64",
+    };
+    loop {
+        let got = fill(input, &mut block)?;
+        for rec in block[..got - got % size].chunks_exact(size) {
+            done += 1;
+            for (w, b) in words.iter_mut().zip(rec.chunks_exact(4)) {
+                *w = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+            }
+            if c.dir == Direction::Decode {
+                let v = code_value(&words[..c.code_words]);
+                if v > grammar::max_code(c.bits) {
+                    bail!(
+                        "record {done}: code 0x{v:x} has bits set above {}'s width of {} bits (largest code 0x{:x})",
+                        c.name,
+                        c.bits,
+                        grammar::max_code(c.bits)
+                    );
+                }
+            }
+            c.eval(&words, &mut res);
+            put(c, &res, to, out).map_err(write_err)?;
+        }
+        if got % size != 0 {
+            bail!(
+                "the input ends {} bytes into record {} ({noun})",
+                got % size,
+                done + 1
+            );
+        }
+        if got < block.len() {
+            return Ok(done);
+        }
+    }
 }

@@ -288,7 +288,9 @@ impl Gpu {
         // `run` is wrapped in scopes, so anything reaching this handler is unexpected; print
         // it instead of aborting a whole test binary from a wgpu-internal thread.
         device.on_uncaptured_error(Arc::new(|e: wgpu::Error| {
-            eprintln!("unitpack::verify::gpu: uncaptured wgpu error: {e}");
+            // Not eprintln!, which panics when stderr is closed.
+            let msg = format!("unitpack::verify::gpu: uncaptured wgpu error: {e}\n");
+            let _ = std::io::Write::write_all(&mut std::io::stderr(), msg.as_bytes());
         }));
         let lost = Arc::new(Mutex::new(None));
         {

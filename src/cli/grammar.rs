@@ -1,0 +1,172 @@
+//! What `encode` and `decode` accept on a text line, and how a bad line is quoted.
+//!
+//! - A vector is three numbers separated by spaces or tabs, each as Rust reads an `f32`
+//!   (`1`, `-0.5`, `.5`, `1e-3`, `inf`, `nan`). A finite number beyond the f32 range
+//!   (`1e39`) is an error, not a silent infinity.
+//! - A code is `0x` (or `0X`) followed by hex digits, or plain decimal digits: `0x7f`,
+//!   `127`. Nothing else: no sign, no `0b`/`0o`, no `_`; leading zeros do not mean octal.
+//!   It must fit the spec's width (oct16: 16 bits), since a decoder ignores higher bits
+//!   and would silently decode something else.
+
+use std::fmt;
+
+/// Characters of a bad line quoted in an error; longer lines are cut.
+pub const QUOTE_CHARS: usize = 80;
+
+/// `s` in quotes, cut to [`QUOTE_CHARS`] characters (the byte length is named when cut).
+pub fn quote(s: &str) -> String {
+    match s.char_indices().nth(QUOTE_CHARS) {
+        None => format!("{s:?}"),
+        Some((cut, _)) => format!("{:?}… ({} bytes)", &s[..cut], s.len()),
+    }
+}
+
+/// Why a line is not what was expected; the caller adds the line number.
+#[derive(Debug, PartialEq)]
+pub enum LineError {
+    Count(usize),
+    NotANumber(String),
+    OutOfRange(String),
+    NotACode,
+    TooWide { bits: u32 },
+}
+
+impl fmt::Display for LineError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LineError::Count(n) => write!(f, "expected three numbers `x y z`, found {n}"),
+            LineError::NotANumber(t) => write!(f, "{} is not a number", quote(t)),
+            LineError::OutOfRange(t) => write!(
+                f,
+                "{} is outside the f32 range (largest finite magnitude {:e})",
+                quote(t),
+                f32::MAX
+            ),
+            LineError::NotACode => {
+                f.write_str("expected a code: 0x followed by hex digits, or decimal digits")
+            }
+            LineError::TooWide { bits } => write!(
+                f,
+                "the code has bits set above the spec's width of {bits} bits (largest code 0x{:x})",
+                max_code(*bits)
+            ),
+        }
+    }
+}
+
+/// The largest code of a `bits`-wide spec.
+pub fn max_code(bits: u32) -> u64 {
+    if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    }
+}
+
+/// One `f32`; a finite number that rounds to infinity is out of range.
+fn parse_f32(t: &str) -> Result<f32, LineError> {
+    let v: f32 = t.parse().map_err(|_| LineError::NotANumber(t.into()))?;
+    if v.is_infinite() && !t.to_ascii_lowercase().contains("inf") {
+        return Err(LineError::OutOfRange(t.into()));
+    }
+    Ok(v)
+}
+
+/// Three numbers `x y z`.
+pub fn parse_vector(line: &str) -> Result<[f32; 3], LineError> {
+    let mut v = [0f32; 3];
+    let mut n = 0;
+    for t in line.split_ascii_whitespace() {
+        if n < 3 {
+            v[n] = parse_f32(t)?;
+        }
+        n += 1;
+    }
+    if n != 3 {
+        return Err(LineError::Count(n));
+    }
+    Ok(v)
+}
+
+/// One code of a `bits`-wide spec, in the grammar above.
+pub fn parse_code(line: &str, bits: u32) -> Result<u64, LineError> {
+    let t = line.trim_matches([' ', '\t']);
+    let (digits, radix) = match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+        Some(h) => (h, 16),
+        None => (t, 10),
+    };
+    if digits.is_empty() || !digits.chars().all(|c| c.is_digit(radix)) {
+        return Err(LineError::NotACode);
+    }
+    // Only digits remain, so the one failure left is overflow.
+    let v = u64::from_str_radix(digits, radix).map_err(|_| LineError::TooWide { bits })?;
+    if v > max_code(bits) {
+        return Err(LineError::TooWide { bits });
+    }
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes() {
+        assert_eq!(parse_code("123", 16), Ok(123));
+        assert_eq!(parse_code(" 0x7F\t", 16), Ok(0x7f));
+        assert_eq!(parse_code("0X00ff", 16), Ok(0xff));
+        assert_eq!(parse_code("007", 16), Ok(7));
+        for bad in [
+            "0b101", "+ff", "0x+ff", "-1", "ff", "0x", "", "1_0", "0o7", "1 2",
+        ] {
+            assert_eq!(parse_code(bad, 16), Err(LineError::NotACode), "{bad:?}");
+        }
+        assert_eq!(parse_code("0xffff", 16), Ok(0xffff));
+        assert_eq!(
+            parse_code("0x1ffff", 16),
+            Err(LineError::TooWide { bits: 16 })
+        );
+        assert_eq!(
+            parse_code("65536", 16),
+            Err(LineError::TooWide { bits: 16 })
+        );
+        assert_eq!(
+            parse_code("0x1000000", 24),
+            Err(LineError::TooWide { bits: 24 })
+        );
+        assert_eq!(parse_code("0xffffffffffff", 48), Ok(0xffff_ffff_ffff));
+        assert_eq!(
+            parse_code("0x1000000000000", 48),
+            Err(LineError::TooWide { bits: 48 })
+        );
+        assert_eq!(
+            parse_code("99999999999999999999999", 48),
+            Err(LineError::TooWide { bits: 48 })
+        );
+    }
+
+    #[test]
+    fn vectors() {
+        assert_eq!(parse_vector(" 1\t-0.5 .5 "), Ok([1.0, -0.5, 0.5]));
+        assert_eq!(parse_vector("1 2"), Err(LineError::Count(2)));
+        assert_eq!(parse_vector("1 2 3 4"), Err(LineError::Count(4)));
+        assert_eq!(
+            parse_vector("1e39 0 0"),
+            Err(LineError::OutOfRange("1e39".into()))
+        );
+        assert!(parse_vector("inf -inf nan").is_ok());
+        assert_eq!(
+            parse_vector("a 0 0"),
+            Err(LineError::NotANumber("a".into()))
+        );
+    }
+
+    #[test]
+    fn quotes_are_cut() {
+        assert_eq!(quote("1 2"), "\"1 2\"");
+        let long = "é".repeat(1000);
+        let q = quote(&long);
+        assert!(q.chars().count() < QUOTE_CHARS + 20, "{q}");
+        assert!(q.ends_with("(2000 bytes)"), "{q}");
+    }
+}

@@ -1,0 +1,127 @@
+//! `gen`: one include for the given specs, on stdout, in a file, or one file per language
+//! in a directory.
+
+use super::atomic::AtomicFile;
+use super::output;
+use crate::codecs::Spec;
+use crate::emit::Lang;
+use crate::generator::Generator;
+use anyhow::{Context, Result, bail};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+pub use crate::generator::stats_for;
+
+/// The include for `specs` (duplicates dropped: one name, one definition).
+pub fn gen_text(specs: &[Spec], lang: Lang, prefix: &str) -> String {
+    gen_text_with(specs, lang, prefix, None).expect("a validated prefix renders")
+}
+
+/// [`gen_text`] with a WGSL `#define_import_path`: the library's [`Generator`] renders it.
+pub fn gen_text_with(
+    specs: &[Spec],
+    lang: Lang,
+    prefix: &str,
+    import_path: Option<&str>,
+) -> Result<String> {
+    let mut g = Generator::new()
+        .specs(specs.iter().cloned())
+        .lang(lang)
+        .prefix(prefix);
+    if let Some(p) = import_path {
+        g = g.wgsl_import_path(p);
+    }
+    Ok(g.render(lang)?)
+}
+
+/// Where `gen` writes.
+pub struct Target<'a> {
+    pub out: Option<&'a Path>,
+    /// File name stem in directory mode (default: the spec ids joined by `-`).
+    pub name: Option<&'a str>,
+    pub force: bool,
+    /// WGSL `#define_import_path`.
+    pub import_path: Option<&'a str>,
+}
+
+/// Whether `--out` names a directory: it ends in `/`, it is one, or several languages
+/// need one file each.
+fn is_dir_target(out: &Path, langs: usize) -> bool {
+    let s = out.as_os_str().to_string_lossy();
+    langs > 1 || s.ends_with('/') || s.ends_with(std::path::MAIN_SEPARATOR) || out.is_dir()
+}
+
+fn check_name(name: &str) -> Result<()> {
+    let ok = !name.is_empty()
+        && name != "."
+        && name != ".."
+        && !name.contains(['/', '\\', '\0'])
+        && !name.starts_with('.');
+    if !ok {
+        bail!("invalid --name '{name}': give a file name stem without '/' or a leading '.'");
+    }
+    Ok(())
+}
+
+/// Runs `gen`: one language to stdout or a file; any number into a directory as
+/// `DIR/<name>.<ext>`, all written or (on an error before the first rename) none.
+pub fn run(specs: &[Spec], langs: &[Lang], prefix: &str, target: Target) -> Result<i32> {
+    let mut unique: Vec<Lang> = Vec::new();
+    for l in langs {
+        if !unique.contains(l) {
+            unique.push(*l);
+        }
+    }
+    let langs = &unique[..];
+    let text = |lang: Lang| gen_text_with(specs, lang, prefix, target.import_path);
+    let Some(out) = target.out else {
+        let [lang] = langs else {
+            bail!(
+                "--lang {} writes one file per language: add --out DIR/",
+                langs.iter().map(|l| l.name()).collect::<Vec<_>>().join(",")
+            );
+        };
+        output::print(&text(*lang)?)?;
+        return Ok(0);
+    };
+    if !is_dir_target(out, langs.len()) {
+        if target.name.is_some() {
+            bail!(
+                "--name names the files written into a directory: make --out a directory (end it with /)"
+            );
+        }
+        let mut f = AtomicFile::create(out, target.force)?;
+        f.write_all(text(langs[0])?.as_bytes())
+            .with_context(|| format!("cannot write {}", out.display()))?;
+        f.commit()?;
+        return Ok(0);
+    }
+    let stem = match target.name {
+        Some(n) => {
+            check_name(n)?;
+            n.to_string()
+        }
+        None => {
+            let mut ids: Vec<String> = Vec::new();
+            for s in specs {
+                if !ids.contains(&s.id()) {
+                    ids.push(s.id());
+                }
+            }
+            ids.join("-")
+        }
+    };
+    // Stage every file before renaming any, so that an unwritable target leaves none.
+    let mut staged = Vec::new();
+    for lang in langs {
+        let path: PathBuf = out.join(format!("{stem}.{}", lang.ext()));
+        let mut f = AtomicFile::create(&path, target.force)?;
+        f.write_all(text(*lang)?.as_bytes())
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        staged.push(f);
+    }
+    for f in staged {
+        f.commit()?;
+    }
+    Ok(0)
+}

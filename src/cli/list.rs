@@ -1,0 +1,126 @@
+//! `list`: every family with the specs a user types, as a table or as JSON.
+
+use crate::codecs::FAMILIES;
+use crate::codecs::family::OptKind;
+use serde::Serialize;
+
+/// The spec grammar in one line, as every SPEC argument's help gives it.
+pub const GRAMMAR: &str = "NAME[BITS][p][:key=value,...]";
+
+/// The `list` table: each family with the specs a user types.
+pub fn list_text() -> String {
+    let mut s = format!(
+        "{:<14} {:<11} {:<8} {}\n",
+        "family", "domain", "precise", "source"
+    );
+    for f in FAMILIES {
+        let c = f.info();
+        let domain = c.domain.map_or("-", |d| d.name());
+        let precise = if c.precise { "yes" } else { "no" };
+        s.push_str(&format!(
+            "{:<14} {:<11} {:<8} {}\n",
+            c.name, domain, precise, c.source
+        ));
+        s.push_str(&format!("{:<14} {}\n", "", c.title));
+        let specs: Vec<String> = c.spellings().into_iter().map(|s| s.0).collect();
+        let p = if c.precise { " (add p: precise)" } else { "" };
+        s.push_str(&format!("{:<14} specs: {}{p}\n", "", specs.join(", ")));
+        for o in c.options {
+            s.push_str(&format!("{:<14} option {}\n", "", o.usage()));
+        }
+    }
+    s.push_str(&format!(
+        "\nA spec is {GRAMMAR}: oct24p, snorm8x3, stereo_scaled16:scale=2, oct24:layout=rgb8.\n"
+    ));
+    s
+}
+
+#[derive(Serialize)]
+struct ListJson {
+    grammar: &'static str,
+    families: Vec<FamilyJson>,
+}
+
+#[derive(Serialize)]
+struct FamilyJson {
+    family: &'static str,
+    title: &'static str,
+    /// `sphere`, `hemisphere`, or null for packing helpers.
+    domain: Option<&'static str>,
+    precise: bool,
+    source: &'static str,
+    /// Every spec as typed, with its total bits (0 for fixed forms).
+    specs: Vec<SpecJson>,
+    options: Vec<OptionJson>,
+}
+
+#[derive(Serialize)]
+struct SpecJson {
+    spec: String,
+    bits: u32,
+    /// The precise encoder's spelling, when there is one.
+    precise: Option<String>,
+}
+
+#[derive(Serialize)]
+struct OptionJson {
+    key: &'static str,
+    default: String,
+    /// The choices, for a choice option.
+    choices: Option<Vec<&'static str>>,
+    /// The allowed range, for a number option.
+    min: Option<f32>,
+    max: Option<f32>,
+    help: &'static str,
+}
+
+/// `list --json`: the same content as [`list_text`], for scripts.
+pub fn list_json() -> String {
+    let families = FAMILIES
+        .iter()
+        .map(|f| {
+            let c = f.info();
+            FamilyJson {
+                family: c.name,
+                title: c.title,
+                domain: c.domain.map(|d| d.name()),
+                precise: c.precise,
+                source: c.source,
+                specs: c
+                    .spellings()
+                    .into_iter()
+                    .map(|(spec, bits)| SpecJson {
+                        precise: c.precise.then(|| format!("{spec}p")),
+                        spec,
+                        bits,
+                    })
+                    .collect(),
+                options: c
+                    .options
+                    .iter()
+                    .map(|o| {
+                        let (choices, min, max) = match o.kind {
+                            OptKind::Choice(names) => (Some(names.to_vec()), None, None),
+                            OptKind::Number { min, max, .. } => (None, Some(min), Some(max)),
+                        };
+                        OptionJson {
+                            key: o.key,
+                            default: o.value_text(o.default_value()),
+                            choices,
+                            min,
+                            max,
+                            help: o.help,
+                        }
+                    })
+                    .collect(),
+            }
+        })
+        .collect();
+    let mut s = serde_json::to_string_pretty(&ListJson {
+        grammar: GRAMMAR,
+        families,
+    })
+    .expect("list serializes");
+    s.push('\n');
+    s
+}
