@@ -17,7 +17,7 @@
 //!
 //! | class | allowance | model |
 //! |---|---|---|
-//! | `div` | `x / y` within 2.5 ULP (Vulkan, WGSL) | the correctly rounded quotient stepped by up to ±3 floats, kept where within 2.5 ULP of the exact quotient; the worst modes give the farthest floats |
+//! | `div` | `x / y` within 2.5 ULP (Vulkan, WGSL) | the correctly rounded quotient stepped by up to ±3 floats, kept where within 2.5 ULP of the exact quotient and of the same sign; the worst modes give the farthest floats |
 //! | `sqrt` | inherited from `1.0 / inversesqrt(x)`: inversesqrt 2 ULP, divide 2.5 ULP | within [`SQRT_ULP`] = 6.5 ULP of the exact root, see there |
 //! | `fma` | `a*b + c` may be contracted unless `NoContraction` / `precise` (WGSL never guarantees it, GLSL only with `precise`) | a product remembers its factors; an add or subtract with such an operand may round `a*b + c` once (`mul_add`) |
 //! | `denorm` | denormals may be flushed on input and output of arithmetic (D3D: always, sign preserved; Vulkan without float-controls) | each operand of `+ - * /`, `sqrt`, `floor`, `round` and the comparisons, and each result of the arithmetic, may become a zero of the same sign |
@@ -209,7 +209,9 @@ fn flushing<const N: usize>(mode: Mode, a: [f32; N], op: impl Fn([f32; N]) -> f3
 
 /// The floats within `bound` ULP of `exact` (of which `r` is the correctly rounded value).
 /// The ULP is the gap between the two floats around `exact`, as in Vulkan's definition.
-/// Zero, infinite and NaN results are kept as they are.
+/// Zero, infinite and NaN results are kept as they are, and no result changes sign: a
+/// tiny quotient could reach the other sign within the bound, but every division and
+/// root algorithm computes the sign apart from the magnitude.
 fn within_ulp(mode: Mode, r: f32, exact: f64, bound: f64) -> f32 {
     if r == 0.0 || !r.is_finite() {
         return r;
@@ -224,7 +226,9 @@ fn within_ulp(mode: Mode, r: f32, exact: f64, bound: f64) -> f32 {
     let mut c = [0f32; 16];
     let mut n = 0;
     let mut push = |x: f32| {
-        if (f64::from(x) - exact).abs() <= bound * ulp {
+        if (f64::from(x) - exact).abs() <= bound * ulp
+            && x.is_sign_negative() == r.is_sign_negative()
+        {
             c[n] = x;
             n += 1;
         }
