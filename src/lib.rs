@@ -8,6 +8,7 @@ pub mod doc_tables;
 pub mod emit;
 pub mod generator;
 pub mod model;
+pub mod portability;
 pub mod quality;
 #[cfg(feature = "verify")]
 pub mod verify;

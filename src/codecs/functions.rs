@@ -1,10 +1,12 @@
 //! The shader functions a spec emits, each with its `f32` evaluation on raw bits (what
-//! the GPU output is compared against) and the inputs it is verified on.
+//! the GPU output is compared against), the same generic function evaluated by the
+//! adversarial [`Dev`] (what `crate::portability` measures), and the inputs it is verified on.
 
 use super::codec::{Codec, Params, dequantize, pack, quantize, unpack};
 use super::quant::Quant;
 use super::spec::Spec;
 use crate::model::Float;
+use crate::model::deviant::{Dev, DevU};
 use crate::model::trace::{Module, Tf, define, trace_module};
 use crate::model::{V2, V3};
 use std::sync::Arc;
@@ -31,6 +33,24 @@ impl Bits for u32 {
     }
     fn write(self, w: &mut [u32]) {
         w[0] = self;
+    }
+}
+impl Bits for Dev {
+    const WORDS: usize = 1;
+    fn read(w: &[u32]) -> Self {
+        Dev::new(f32::from_bits(w[0]))
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self.value().to_bits();
+    }
+}
+impl Bits for DevU {
+    const WORDS: usize = 1;
+    fn read(w: &[u32]) -> Self {
+        DevU(w[0])
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self.0;
     }
 }
 impl<T: Bits + crate::model::Lane> Bits for V2<T> {
@@ -77,7 +97,7 @@ pub enum Role {
     Unpack,
 }
 
-/// The `f32` model of a function on raw words: one item in, one item out.
+/// A model of a function on raw words: one item in, one item out.
 pub type Eval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
 
 /// One emitted function.
@@ -91,14 +111,21 @@ pub struct Function {
     pub out_words: usize,
     /// The `f32` model on raw bits: one item of `in_words` in, `out_words` out.
     pub eval: Eval,
+    /// The same generic function evaluated with [`Dev`], which deviates as the
+    /// thread's [`crate::model::deviant::with`] says (and equals `eval` when nothing is set).
+    pub eval_dev: Eval,
 }
 
-pub fn function<A: Bits + 'static, R: Bits + 'static>(
+/// A [`Function`] from its `f32` and [`Dev`] instantiations of one generic function
+/// (`generic_function!` below writes both from one body).
+pub fn function<A: Bits + 'static, R: Bits + 'static, AD: Bits + 'static, RD: Bits + 'static>(
     name: &'static str,
     role: Role,
     inputs: Inputs,
     f: impl Fn(A) -> R + Send + Sync + 'static,
+    f_dev: impl Fn(AD) -> RD + Send + Sync + 'static,
 ) -> Function {
+    assert_eq!((A::WORDS, R::WORDS), (AD::WORDS, RD::WORDS));
     Function {
         name,
         role,
@@ -106,7 +133,32 @@ pub fn function<A: Bits + 'static, R: Bits + 'static>(
         in_words: A::WORDS,
         out_words: R::WORDS,
         eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
+        eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
     }
+}
+
+/// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]
+/// whose `eval` and `eval_dev` are the one generic `body` with `F` = `f32` and `F` =
+/// [`Dev`], so the adversarial evaluation can never drift from the reference. Each
+/// capture is cloned into both closures.
+macro_rules! generic_function {
+    ($name:expr, $role:expr, $inputs:expr, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {
+        function(
+            $name,
+            $role,
+            $inputs,
+            {
+                $(let $c = $c.clone();)*
+                type $F = f32;
+                move |$x: $A| $body
+            },
+            {
+                $(let $c = $c.clone();)*
+                type $F = $crate::model::deviant::Dev;
+                move |$x: $A| $body
+            },
+        )
+    };
 }
 
 /// The traced module and the public functions of one spec.
@@ -123,35 +175,36 @@ pub fn codec_functions<C: Codec + Clone + 'static>(spec: &Spec, c: C) -> Emitted
 where
     C::P<f32>: Bits,
     C::C<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::C<Dev>: Bits,
 {
     let q = c.quants();
     let precise = spec.precise();
     let module = trace_module(|| trace_codec(&c, precise));
-    let (c1, c2, c3, c4) = (c.clone(), c.clone(), c.clone(), c.clone());
     let functions = vec![
-        function(
+        generic_function!(
             "decode_float",
             Role::DecodeFloat,
             Inputs::FloatCodes(q.to_vec()),
-            move |p| c1.direction(p),
+            <F> [c] |p: C::P<F>| c.direction(p)
         ),
-        function(
+        generic_function!(
             "decode",
             Role::Decode,
             Inputs::Codes(q.to_vec()),
-            move |code: C::C<f32>| decode_packed(&c2, code),
+            <F> [c] |code: C::C<F>| decode_packed(&c, code)
         ),
-        function(
+        generic_function!(
             "encode_float",
             Role::EncodeFloat,
             Inputs::Vectors,
-            move |v: V3<f32>| encode_float(&c3, precise, v),
+            <F> [c] |v: V3<F>| encode_float(&c, precise, v)
         ),
-        function(
+        generic_function!(
             "encode",
             Role::Encode,
             Inputs::Vectors,
-            move |v: V3<f32>| encode_packed(&c4, precise, v),
+            <F> [c] |v: V3<F>| encode_packed(&c, precise, v)
         ),
     ];
     Emitted {

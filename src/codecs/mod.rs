@@ -8,6 +8,7 @@
 pub mod codec;
 pub mod family;
 pub mod functions;
+pub mod inputs;
 pub mod quant;
 pub mod spec;
 pub mod trig;

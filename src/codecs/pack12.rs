@@ -9,6 +9,7 @@ use super::family::{Family, Info, Sizes};
 use super::functions::{Emitted, Inputs, Role, function};
 use super::quant::Quant;
 use super::spec::Spec;
+use crate::model::deviant::Dev;
 use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, Uint, V2, V3};
 
@@ -28,13 +29,20 @@ static INFO: Info = Info {
     options: &[],
 };
 
-/// Each packing helper once: traced into the module and evaluated as the reference.
+/// Each packing helper once: traced into the module, evaluated as the reference and by the
+/// adversarial [`Dev`].
 macro_rules! helpers {
     ($(($name:literal, $role:expr, $quants:expr, $param:literal, $P:ident, $f:path)),* $(,)?) => {{
         let module = trace_module(|| {
             $(define($name, &[$param], |x: $P<Tf>| $f(x));)*
         });
-        let functions = vec![$(function($name, $role, Inputs::FloatCodes($quants), |x: $P<f32>| $f(x))),*];
+        let functions = vec![$(function(
+            $name,
+            $role,
+            Inputs::FloatCodes($quants),
+            |x: $P<f32>| $f(x),
+            |x: $P<Dev>| $f(x),
+        )),*];
         Emitted { module, functions, namespace: String::new() }
     }};
 }

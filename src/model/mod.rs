@@ -1,6 +1,8 @@
-//! The model: the numeric vocabulary codecs are written in, small vectors over it, and
-//! the tracer that turns a codec into an expression graph.
+//! The model: the numeric vocabulary codecs are written in, small vectors over it, the
+//! tracer that turns a codec into an expression graph, and the adversarial evaluator that
+//! runs a codec the way a conformant GPU may.
 
+pub mod deviant;
 pub mod num;
 pub mod trace;
 pub mod vec;

@@ -5,7 +5,8 @@
 //! every SPIR-V module.
 
 pub mod gpu;
-pub mod inputs;
+/// Lives with the codecs so that the portability report, which needs no GPU, can use it.
+pub use crate::codecs::inputs;
 pub mod native;
 pub mod tools;
 

@@ -1,0 +1,585 @@
+//! An adversarial evaluator: the model's vocabulary evaluated the way a conformant GPU is
+//! *allowed* to evaluate it, rather than the way lavapipe and Rust's `f32` do.
+//!
+//! [`Dev`] (with [`DevU`] and [`DevB`]) implements [`Float`], so every codec runs on it
+//! unchanged: the same generic code the `f32` reference and the tracer run. Which
+//! liberty it takes is a thread-local [`Deviation`] set by [`with`]: one [`Class`] and a
+//! [`Mode`]. With no deviation set, `Dev` computes exactly what `f32` computes.
+//!
+//! Each operation that a class touches has a small set of allowed results; the mode picks
+//! one per operation: [`Mode::Seeded`] uniformly from a seeded stream (reseeded per item by
+//! [`begin_item`], so a result does not depend on which other items ran), [`Mode::Lowest`]
+//! and [`Mode::Highest`] always the lowest or highest (in IEEE total order, so `-0 < +0`).
+//!
+//! What the APIs allow, and how each class models it (Vulkan: "Precision and Operation of
+//! SPIR-V Instructions"; D3D11 functional spec §3.1 "Floating-point rules"; WGSL §15
+//! "Floating Point Evaluation"):
+//!
+//! | class | allowance | model |
+//! |---|---|---|
+//! | `div` | `x / y` within 2.5 ULP (Vulkan, WGSL) | the correctly rounded quotient stepped by up to ±3 floats, kept where within 2.5 ULP of the exact quotient and of the same sign; the worst modes give the farthest floats |
+//! | `sqrt` | inherited from `1.0 / inversesqrt(x)`: inversesqrt 2 ULP, divide 2.5 ULP | within [`SQRT_ULP`] = 6.5 ULP of the exact root, see there |
+//! | `fma` | `a*b + c` may be contracted unless `NoContraction` / `precise` (WGSL never guarantees it, GLSL only with `precise`) | a product remembers its factors; an add or subtract with such an operand may round `a*b + c` once (`mul_add`) |
+//! | `denorm` | denormals may be flushed on input and output of arithmetic (D3D: always, sign preserved; Vulkan without float-controls) | each operand of `+ - * /`, `sqrt`, `floor`, `round` and the comparisons, and each result of the arithmetic, may become a zero of the same sign |
+//! | `zero` | the sign of zero may be lost (Vulkan without `SignedZeroInfNanPreserve`, SSE2-only `floor`/`roundEven` on Mesa) | a zero produced by `floor`, `round`, `abs` or a select may have either sign |
+//! | `excess` | excess precision (C's `FLT_EVAL_METHOD`; Mesa with `GALLIUM_NOSSE=1`) | see [`Class::Excess`] |
+//!
+//! Division and square root outside the normal range, where Vulkan allows anything, are
+//! still held to the same ULP bounds: the model looks for fragile codes, not for every
+//! result a pathological driver could return.
+
+use super::num::{Bool, Float, Kind, Lane, Uint};
+use super::trace::{Ref, Ty, Value};
+use rand_core::Rng;
+use rand_pcg::Pcg64Mcg;
+use std::cell::{Cell, RefCell};
+use std::cmp::Ordering;
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
+
+/// The ULP bound used for `sqrt`. Vulkan states sqrt as "inherited from
+/// 1.0 / inversesqrt()", with inversesqrt within 2 ULP and division within 2.5 ULP. For a
+/// root `r = m·2^e` (`1 ≤ m < 2`), `1/r` has its mantissa `2/m` at the bottom of the next
+/// binade when `m` is near 2, so 2 ULP of `1/r` is a relative error of up to `m·2^-23`,
+/// which is `m² < 4` ULP of `r`; the division adds 2.5 ULP: 6.5 ULP of the exact root in
+/// all. This is the envelope: for roots with a small mantissa fewer are reachable.
+pub const SQRT_ULP: f64 = 6.5;
+/// The ULP bound of division (Vulkan and WGSL).
+pub const DIV_ULP: f64 = 2.5;
+
+/// One kind of liberty an implementation may take.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Class {
+    /// Division within [`DIV_ULP`] of the exact quotient.
+    Div,
+    /// Square root within [`SQRT_ULP`] of the exact root.
+    Sqrt,
+    /// Contraction of `a*b + c` into one rounding.
+    Fma,
+    /// Flush of denormal inputs and outputs of arithmetic to zero.
+    Denorm,
+    /// Loss of the sign of zero in `floor`, `round`, `abs` and selects.
+    Zero,
+    /// Excess precision: the results of `+ - * /` and `sqrt` are kept in f64 along chains of
+    /// arithmetic (including negation and `abs`, which are exact) and rounded to f32 where
+    /// the value is compared, selected, rounded to an integer (`floor`, `round`), converted
+    /// or stored; any single result may also be rounded early (spilled). This is the
+    /// `FLT_EVAL_METHOD == 1` model; x87's 64-bit significand rounds a little differently
+    /// but is caught by the same fragility.
+    Excess,
+}
+
+impl Class {
+    pub const ALL: [Class; 6] = [
+        Class::Div,
+        Class::Sqrt,
+        Class::Fma,
+        Class::Denorm,
+        Class::Zero,
+        Class::Excess,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            Class::Div => "div",
+            Class::Sqrt => "sqrt",
+            Class::Fma => "fma",
+            Class::Denorm => "denorm",
+            Class::Zero => "zero",
+            Class::Excess => "excess",
+        }
+    }
+}
+
+/// How an operation picks among its allowed results.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Uniformly, from a stream seeded by this seed and the item ([`begin_item`]).
+    Seeded(u64),
+    /// Always the lowest allowed result.
+    Lowest,
+    /// Always the highest allowed result.
+    Highest,
+}
+
+impl Mode {
+    pub fn name(self) -> String {
+        match self {
+            Mode::Seeded(s) => format!("seed {s}"),
+            Mode::Lowest => "lowest".into(),
+            Mode::Highest => "highest".into(),
+        }
+    }
+}
+
+/// A class and a mode: what [`Dev`] arithmetic does on this thread.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Deviation {
+    pub class: Class,
+    pub mode: Mode,
+}
+
+thread_local! {
+    static ACTIVE: Cell<Option<Deviation>> = const { Cell::new(None) };
+    static RNG: RefCell<Pcg64Mcg> = RefCell::new(Pcg64Mcg::new(1));
+}
+
+/// Runs `f` with `dev` as this thread's deviation (`None`: exact `f32` arithmetic), and
+/// restores the previous one afterwards, also when `f` panics.
+pub fn with<R>(dev: Option<Deviation>, f: impl FnOnce() -> R) -> R {
+    struct Restore(Option<Deviation>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            ACTIVE.with(|a| a.set(self.0));
+        }
+    }
+    let _restore = Restore(ACTIVE.with(|a| a.replace(dev)));
+    f()
+}
+
+/// Reseeds the stream of [`Mode::Seeded`] for item `index`, so that an item's deviations
+/// depend only on the seed and the item, not on the items evaluated before it.
+pub fn begin_item(index: u64) {
+    if let Some(Deviation {
+        mode: Mode::Seeded(seed),
+        ..
+    }) = ACTIVE.with(Cell::get)
+    {
+        let state = (u128::from(seed) << 64 | u128::from(index))
+            * 0x9e37_79b9_7f4a_7c15_f39c_c060_5ced_c835;
+        RNG.with(|r| *r.borrow_mut() = Pcg64Mcg::new(state | 1));
+    }
+}
+
+/// The mode, when `class` is the active class.
+#[inline(always)]
+fn active(class: Class) -> Option<Mode> {
+    ACTIVE.with(|a| a.get().filter(|d| d.class == class).map(|d| d.mode))
+}
+
+#[inline(always)]
+fn class() -> Option<Class> {
+    ACTIVE.with(|a| a.get().map(|d| d.class))
+}
+
+/// Index of the chosen one of `n` allowed results, `cmp` ordering them.
+fn pick(mode: Mode, n: usize, cmp: impl Fn(usize, usize) -> Ordering) -> usize {
+    if n == 1 {
+        return 0;
+    }
+    match mode {
+        Mode::Seeded(_) => RNG.with(|r| (r.borrow_mut().next_u64() % n as u64) as usize),
+        Mode::Lowest => (1..n).fold(0, |m, i| if cmp(i, m).is_lt() { i } else { m }),
+        Mode::Highest => (1..n).fold(0, |m, i| if cmp(i, m).is_gt() { i } else { m }),
+    }
+}
+
+/// Picks one of the allowed f32 results.
+fn pick_f32(mode: Mode, c: &[f32]) -> f32 {
+    c[pick(mode, c.len(), |i, j| c[i].total_cmp(&c[j]))]
+}
+
+/// A denormal becomes a zero of its sign.
+fn flush(x: f32) -> f32 {
+    if x.is_subnormal() {
+        0f32.copysign(x)
+    } else {
+        x
+    }
+}
+
+/// `op` with each of: the operands as given or flushed, the result as computed or flushed.
+fn flushing<const N: usize>(mode: Mode, a: [f32; N], op: impl Fn([f32; N]) -> f32) -> f32 {
+    let mut c = [0f32; 4];
+    let mut n = 0;
+    let ins: &[[f32; N]] = &[a, a.map(flush)];
+    for &i in &ins[..if a.iter().any(|x| x.is_subnormal()) {
+        2
+    } else {
+        1
+    }] {
+        let r = op(i);
+        c[n] = r;
+        n += 1;
+        if r.is_subnormal() {
+            c[n] = flush(r);
+            n += 1;
+        }
+    }
+    pick_f32(mode, &c[..n])
+}
+
+/// The floats within `bound` ULP of `exact` (of which `r` is the correctly rounded value).
+/// The ULP is the gap between the two floats around `exact`, as in Vulkan's definition.
+/// Zero, infinite and NaN results are kept as they are, and no result changes sign: a
+/// tiny quotient could reach the other sign within the bound, but every division and
+/// root algorithm computes the sign apart from the magnitude.
+fn within_ulp(mode: Mode, r: f32, exact: f64, bound: f64) -> f32 {
+    if r == 0.0 || !r.is_finite() {
+        return r;
+    }
+    let a = r.abs();
+    let ulp = if f64::from(a) <= exact.abs() {
+        f64::from(a.next_up()) - f64::from(a)
+    } else {
+        f64::from(a) - f64::from(a.next_down())
+    };
+    let steps = bound.ceil() as usize + 1;
+    let mut c = [0f32; 16];
+    let mut n = 0;
+    let mut push = |x: f32| {
+        if (f64::from(x) - exact).abs() <= bound * ulp
+            && x.is_sign_negative() == r.is_sign_negative()
+        {
+            c[n] = x;
+            n += 1;
+        }
+    };
+    let (mut lo, mut hi) = (r, r);
+    push(r);
+    for _ in 0..steps {
+        lo = lo.next_down();
+        hi = hi.next_up();
+        push(lo);
+        push(hi);
+    }
+    pick_f32(mode, &c[..n])
+}
+
+/// A sign-of-zero choice for a result that may lose it.
+fn any_zero(mode: Mode, r: f32) -> f32 {
+    if r == 0.0 {
+        pick_f32(mode, &[r, -r])
+    } else {
+        r
+    }
+}
+
+/// What a value remembers beyond its f32 bits, per class.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ext {
+    None,
+    /// `fma`: the value is `round(a*b)` and a following add may use the exact product.
+    Product(f32, f32),
+    /// `excess`: the unrounded value; the f32 bits are its rounding.
+    Wide(f64),
+}
+
+/// A float under the active [`Deviation`]. Its f32 value ([`Dev::value`]) is what a
+/// comparison, a conversion or a store sees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dev {
+    x: f32,
+    ext: Ext,
+}
+
+/// A `u32` whose float conversions produce [`Dev`]. Integer arithmetic is exact
+/// everywhere, so it never deviates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DevU(pub u32);
+
+/// The mask type of [`Dev`] comparisons.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DevB(pub bool);
+
+impl Dev {
+    pub fn new(x: f32) -> Dev {
+        Dev { x, ext: Ext::None }
+    }
+    /// The value as stored: the f32 bits (a kept-wide value rounded, a remembered product
+    /// as its rounding).
+    pub fn value(self) -> f32 {
+        self.x
+    }
+    fn wide(self) -> f64 {
+        match self.ext {
+            Ext::Wide(w) => w,
+            _ => f64::from(self.x),
+        }
+    }
+    /// An excess-precision result: kept wide, or rounded early.
+    fn excess(mode: Mode, w: f64) -> Dev {
+        let narrow = w as f32;
+        let c = [f64::from(narrow), w];
+        let i = pick(mode, if c[0] == w { 1 } else { 2 }, |i, j| {
+            c[i].total_cmp(&c[j])
+        });
+        Dev {
+            x: narrow,
+            ext: if i == 1 { Ext::Wide(w) } else { Ext::None },
+        }
+    }
+    /// `+ - * /` and `sqrt` on `N` operands: `op` in f32, `wide` in f64, `exact` the f64
+    /// value a `div`/`sqrt` deviation is measured against.
+    #[inline(always)]
+    fn arith<const N: usize>(
+        a: [Dev; N],
+        op: impl Fn([f32; N]) -> f32,
+        wide: impl Fn([f64; N]) -> f64,
+    ) -> Dev {
+        let Some(class) = class() else {
+            return Dev::new(op(a.map(|d| d.x)));
+        };
+        let mode = active(class).expect("the active class has a mode");
+        match class {
+            Class::Excess => Dev::excess(mode, wide(a.map(Dev::wide))),
+            Class::Denorm => Dev::new(flushing(mode, a.map(|d| d.x), op)),
+            _ => Dev::new(op(a.map(|d| d.x))),
+        }
+    }
+}
+
+impl Value for Dev {
+    fn tys() -> Vec<Ty> {
+        vec![Ty::scalar(Kind::F32)]
+    }
+    fn refs(self) -> Vec<Ref> {
+        unreachable!("evaluated values are not traced")
+    }
+    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
+        unreachable!("evaluated values are not traced")
+    }
+}
+impl Value for DevU {
+    fn tys() -> Vec<Ty> {
+        vec![Ty::scalar(Kind::U32)]
+    }
+    fn refs(self) -> Vec<Ref> {
+        unreachable!("evaluated values are not traced")
+    }
+    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
+        unreachable!("evaluated values are not traced")
+    }
+}
+impl Value for DevB {
+    fn tys() -> Vec<Ty> {
+        vec![Ty::scalar(Kind::Bool)]
+    }
+    fn refs(self) -> Vec<Ref> {
+        unreachable!("evaluated values are not traced")
+    }
+    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
+        unreachable!("evaluated values are not traced")
+    }
+}
+
+impl Lane for Dev {
+    const KIND: Kind = Kind::F32;
+}
+impl Lane for DevU {
+    const KIND: Kind = Kind::U32;
+}
+impl Lane for DevB {
+    const KIND: Kind = Kind::Bool;
+}
+
+impl Bool for DevB {
+    fn and(self, o: Self) -> Self {
+        DevB(self.0 & o.0)
+    }
+    fn or(self, o: Self) -> Self {
+        DevB(self.0 | o.0)
+    }
+    fn not(self) -> Self {
+        DevB(!self.0)
+    }
+}
+
+impl Add for DevU {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        DevU(self.0.wrapping_add(o.0))
+    }
+}
+impl Sub for DevU {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        DevU(self.0.wrapping_sub(o.0))
+    }
+}
+impl BitAnd for DevU {
+    type Output = Self;
+    fn bitand(self, o: Self) -> Self {
+        DevU(self.0 & o.0)
+    }
+}
+impl BitOr for DevU {
+    type Output = Self;
+    fn bitor(self, o: Self) -> Self {
+        DevU(self.0 | o.0)
+    }
+}
+
+impl Uint for DevU {
+    type F = Dev;
+    type B = DevB;
+    fn c(v: u32) -> Self {
+        DevU(v)
+    }
+    fn shl(self, n: u32) -> Self {
+        DevU(self.0 << n)
+    }
+    fn shr(self, n: u32) -> Self {
+        DevU(self.0 >> n)
+    }
+    fn to_f(self) -> Dev {
+        Dev::new(self.0 as f32)
+    }
+    fn sel(m: DevB, t: Self, f: Self) -> Self {
+        if m.0 { t } else { f }
+    }
+}
+
+impl Add for Dev {
+    type Output = Dev;
+    fn add(self, o: Dev) -> Dev {
+        let Some(mode) = active(Class::Fma) else {
+            return Dev::arith([self, o], |[a, b]| a + b, |[a, b]| a + b);
+        };
+        // Unfused, or either remembered product fused with the other operand.
+        let mut c = [self.x + o.x, 0.0, 0.0];
+        let mut n = 1;
+        for (p, q) in [(self, o), (o, self)] {
+            if let Ext::Product(a, b) = p.ext {
+                c[n] = a.mul_add(b, q.x);
+                n += 1;
+            }
+        }
+        Dev::new(pick_f32(mode, &c[..n]))
+    }
+}
+
+/// `a - b` is `a + (-b)` in IEEE arithmetic, zeros included; negation keeps a remembered
+/// product, so `c - a*b` may fuse as `fma(-a, b, c)`.
+impl Sub for Dev {
+    type Output = Dev;
+    fn sub(self, o: Dev) -> Dev {
+        self + -o
+    }
+}
+
+impl Mul for Dev {
+    type Output = Dev;
+    fn mul(self, o: Dev) -> Dev {
+        if active(Class::Fma).is_some() {
+            return Dev {
+                x: self.x * o.x,
+                ext: Ext::Product(self.x, o.x),
+            };
+        }
+        Dev::arith([self, o], |[a, b]| a * b, |[a, b]| a * b)
+    }
+}
+
+impl Div for Dev {
+    type Output = Dev;
+    fn div(self, o: Dev) -> Dev {
+        if let Some(mode) = active(Class::Div) {
+            let exact = f64::from(self.x) / f64::from(o.x);
+            return Dev::new(within_ulp(mode, self.x / o.x, exact, DIV_ULP));
+        }
+        Dev::arith([self, o], |[a, b]| a / b, |[a, b]| a / b)
+    }
+}
+
+/// Negation is exact and moves no data through arithmetic: it keeps what the value
+/// remembers and is never flushed.
+impl Neg for Dev {
+    type Output = Dev;
+    fn neg(self) -> Dev {
+        Dev {
+            x: -self.x,
+            ext: match self.ext {
+                Ext::None => Ext::None,
+                Ext::Product(a, b) => Ext::Product(-a, b),
+                Ext::Wide(w) => Ext::Wide(-w),
+            },
+        }
+    }
+}
+
+impl Dev {
+    /// `floor` and `round`: on the rounded value, flushable, and losing the sign of a zero.
+    fn integral(self, op: fn(f32) -> f32) -> Dev {
+        match class() {
+            Some(Class::Denorm) => {
+                Dev::new(flushing(active(Class::Denorm).unwrap(), [self.x], |[a]| {
+                    op(a)
+                }))
+            }
+            Some(Class::Zero) => Dev::new(any_zero(active(Class::Zero).unwrap(), op(self.x))),
+            _ => Dev::new(op(self.x)),
+        }
+    }
+    /// Comparisons see the rounded values; under `denorm` their operands may be flushed.
+    fn compare(self, o: Dev, op: fn(f32, f32) -> bool) -> DevB {
+        let exact = op(self.x, o.x);
+        let Some(mode) = active(Class::Denorm) else {
+            return DevB(exact);
+        };
+        if !(self.x.is_subnormal() || o.x.is_subnormal()) {
+            return DevB(exact);
+        }
+        let c = [exact, op(flush(self.x), flush(o.x))];
+        DevB(c[pick(mode, 2, |i, j| c[i].cmp(&c[j]))])
+    }
+}
+
+impl Float for Dev {
+    type U = DevU;
+    type B = DevB;
+    fn c(v: f32) -> Self {
+        Dev::new(v)
+    }
+    /// Exact, so kept wide under `excess`; a zero result may lose its sign under `zero`.
+    fn abs(self) -> Self {
+        match self.ext {
+            Ext::Wide(w) => Dev {
+                x: self.x.abs(),
+                ext: Ext::Wide(w.abs()),
+            },
+            _ => match active(Class::Zero) {
+                Some(mode) => Dev::new(any_zero(mode, self.x.abs())),
+                None => Dev::new(self.x.abs()),
+            },
+        }
+    }
+    fn sqrt(self) -> Self {
+        if let Some(mode) = active(Class::Sqrt) {
+            let exact = f64::from(self.x).sqrt();
+            return Dev::new(within_ulp(mode, self.x.sqrt(), exact, SQRT_ULP));
+        }
+        Dev::arith([self], |[a]| a.sqrt(), |[a]| a.sqrt())
+    }
+    fn floor(self) -> Self {
+        self.integral(f32::floor)
+    }
+    fn round(self) -> Self {
+        self.integral(f32::round_ties_even)
+    }
+    fn lt(self, o: Self) -> DevB {
+        self.compare(o, <f32 as Float>::lt)
+    }
+    fn le(self, o: Self) -> DevB {
+        self.compare(o, <f32 as Float>::le)
+    }
+    fn gt(self, o: Self) -> DevB {
+        self.compare(o, <f32 as Float>::gt)
+    }
+    fn ge(self, o: Self) -> DevB {
+        self.compare(o, <f32 as Float>::ge)
+    }
+    fn eq(self, o: Self) -> DevB {
+        self.compare(o, <f32 as Float>::eq)
+    }
+    /// The chosen value rounded (a select is where excess precision ends and where a
+    /// product can no longer fuse); a zero may lose its sign under `zero`.
+    fn sel(m: DevB, t: Self, f: Self) -> Self {
+        let r = if m.0 { t.x } else { f.x };
+        match active(Class::Zero) {
+            Some(mode) => Dev::new(any_zero(mode, r)),
+            None => Dev::new(r),
+        }
+    }
+    fn to_u(self) -> DevU {
+        DevU(self.x as u32)
+    }
+}

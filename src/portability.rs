@@ -1,0 +1,363 @@
+//! Portability: every emitted function evaluated by the adversarial
+//! [`Dev`](crate::model::deviant::Dev) under each deviation [`Class`] a conformant GPU may
+//! take, compared as raw bits with the exact `f32` reference.
+//!
+//! Bit-exact verification on lavapipe proves the code on an implementation that rounds
+//! every operation correctly; this module asks what changes on one that uses every liberty
+//! the APIs allow. A packed encoder ([`Role::Encode`]) must not change under any class:
+//! its code is data that another implementation decodes. Float outputs report their
+//! largest deviation in ULP, the bound their doc comments can state. It needs no GPU, so
+//! it builds without the `verify` feature.
+//!
+//! ```no_run
+//! use unitpack::model::deviant::Class;
+//! use unitpack::portability::{Options, run};
+//! let report = run(&unitpack::Spec::all(), &Class::ALL, &Options::default());
+//! print!("{}", report.table());
+//! assert!(report.packed_encoders_portable());
+//! ```
+
+use crate::codecs::Spec;
+use crate::codecs::functions::{Function, Inputs, Role};
+use crate::codecs::inputs::{edge_vectors, generate};
+pub use crate::model::deviant::{Class, Deviation, Mode};
+use crate::model::deviant::{begin_item, with};
+use std::fmt::Write;
+
+/// What [`run`] evaluates.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Seeds of the [`Mode::Seeded`] runs.
+    pub seeds: Vec<u64>,
+    /// Also run [`Mode::Lowest`] and [`Mode::Highest`].
+    pub worst_ends: bool,
+    /// Evaluate at most this many items per function, evenly spread over the verify inputs
+    /// (encoders: every edge vector plus this many others); `None`: all of them.
+    pub sample: Option<usize>,
+}
+
+impl Default for Options {
+    /// Three seeds and both worst-case ends over 2^14 items per function: a few seconds
+    /// per spec.
+    fn default() -> Options {
+        Options {
+            seeds: vec![1, 2, 3],
+            worst_ends: true,
+            sample: Some(1 << 14),
+        }
+    }
+}
+
+impl Options {
+    /// The modes each class runs in.
+    pub fn modes(&self) -> Vec<Mode> {
+        let mut m: Vec<Mode> = self.seeds.iter().map(|&s| Mode::Seeded(s)).collect();
+        if self.worst_ends {
+            m.extend([Mode::Lowest, Mode::Highest]);
+        }
+        m
+    }
+}
+
+/// One changed item: its input, the reference output and the deviant one.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Example {
+    pub mode: Mode,
+    pub input: Vec<u32>,
+    pub reference: Vec<u32>,
+    pub deviant: Vec<u32>,
+}
+
+/// One function under one class, over every mode.
+#[derive(Clone, Debug)]
+pub struct Row {
+    /// The spec id.
+    pub spec: String,
+    /// The function's local name (`encode`, `decode_float`, ...).
+    pub function: &'static str,
+    pub role: Role,
+    pub class: Class,
+    /// Items evaluated (in each mode).
+    pub items: usize,
+    /// Items whose output bits changed in at least one mode.
+    pub changed: usize,
+    /// Changed items per mode, in [`PortabilityReport::modes`] order.
+    pub by_mode: Vec<usize>,
+    /// Float outputs: the largest distance in ULP over all lanes, items and modes (a
+    /// sign-of-zero change is 0 ULP; `u64::MAX` when a NaN appeared or vanished). `None`
+    /// for packed codes, where any change is a different code.
+    pub max_ulp: Option<u64>,
+    /// The first changed item.
+    pub example: Option<Example>,
+}
+
+impl Row {
+    /// A packed encoder whose codes changed.
+    pub fn fails(&self) -> bool {
+        self.role == Role::Encode && self.changed > 0
+    }
+}
+
+/// The result of [`run`].
+#[derive(Clone, Debug)]
+pub struct PortabilityReport {
+    pub classes: Vec<Class>,
+    pub modes: Vec<Mode>,
+    /// Per spec, function and class, in that order.
+    pub rows: Vec<Row>,
+}
+
+/// Whether outputs of `role` are floats (everything but packed codes).
+fn float_output(role: Role) -> bool {
+    role != Role::Encode
+}
+
+/// Distance in ULP between two f32 bit patterns; `u64::MAX` when exactly one is NaN.
+pub fn ulp_distance(a: u32, b: u32) -> u64 {
+    let nan = |x: u32| x & 0x7fff_ffff > 0x7f80_0000;
+    if nan(a) || nan(b) {
+        return if nan(a) && nan(b) { 0 } else { u64::MAX };
+    }
+    let line = |x: u32| {
+        let m = i64::from(x & 0x7fff_ffff);
+        if x >> 31 == 1 { -m } else { m }
+    };
+    (line(a) - line(b)).unsigned_abs()
+}
+
+/// Indices of the items evaluated: all, or every edge vector of an encoder plus `n`
+/// evenly spread others.
+fn sample(inputs: &Inputs, items: usize, n: Option<usize>) -> Vec<usize> {
+    let Some(n) = n else {
+        return (0..items).collect();
+    };
+    let first = match inputs {
+        Inputs::Vectors => edge_vectors().len().min(items),
+        _ => 0,
+    };
+    let rest = items - first;
+    let mut out: Vec<usize> = (0..first).collect();
+    if rest <= n {
+        out.extend(first..items);
+    } else {
+        out.extend((0..n).map(|k| first + k * rest / n));
+    }
+    out
+}
+
+/// One function over the sampled items under every class and mode.
+fn measure(
+    spec: &str,
+    f: &Function,
+    classes: &[Class],
+    modes: &[Mode],
+    sample_n: Option<usize>,
+) -> Vec<Row> {
+    let input = generate(&f.inputs, f.in_words);
+    let items = sample(&f.inputs, input.len() / f.in_words, sample_n);
+    let (iw, ow) = (f.in_words, f.out_words);
+    let mut reference = vec![0u32; items.len() * ow];
+    for (k, &i) in items.iter().enumerate() {
+        (f.eval)(&input[i * iw..][..iw], &mut reference[k * ow..][..ow]);
+    }
+    let mut out = vec![0u32; ow];
+    classes
+        .iter()
+        .map(|&class| {
+            let mut changed = vec![false; items.len()];
+            let mut by_mode = Vec::new();
+            let mut max_ulp = float_output(f.role).then_some(0u64);
+            let mut example = None;
+            for &mode in modes {
+                let mut n = 0;
+                with(Some(Deviation { class, mode }), || {
+                    for (k, &i) in items.iter().enumerate() {
+                        begin_item(i as u64);
+                        let inp = &input[i * iw..][..iw];
+                        (f.eval_dev)(inp, &mut out);
+                        let r = &reference[k * ow..][..ow];
+                        if out != r {
+                            n += 1;
+                            changed[k] = true;
+                            if let Some(m) = &mut max_ulp {
+                                let d = r.iter().zip(&out).map(|(&a, &b)| ulp_distance(a, b));
+                                *m = d.fold(*m, u64::max);
+                            }
+                            example.get_or_insert_with(|| Example {
+                                mode,
+                                input: inp.to_vec(),
+                                reference: r.to_vec(),
+                                deviant: out.clone(),
+                            });
+                        }
+                    }
+                });
+                by_mode.push(n);
+            }
+            Row {
+                spec: spec.to_string(),
+                function: f.name,
+                role: f.role,
+                class,
+                items: items.len(),
+                changed: changed.iter().filter(|&&c| c).count(),
+                by_mode,
+                max_ulp,
+                example,
+            }
+        })
+        .collect()
+}
+
+/// Runs every function of every spec under each class in each mode of `opts`.
+pub fn run(specs: &[Spec], classes: &[Class], opts: &Options) -> PortabilityReport {
+    let modes = opts.modes();
+    let mut rows = Vec::new();
+    for spec in specs {
+        let id = spec.id();
+        for f in &spec.emitted().functions {
+            rows.extend(measure(&id, f, classes, &modes, opts.sample));
+        }
+    }
+    PortabilityReport {
+        classes: classes.to_vec(),
+        modes,
+        rows,
+    }
+}
+
+/// A table cell: `.` unchanged; changed items and, for floats, the max ULP; `!` marks a
+/// packed code that changed.
+fn cell(r: &Row) -> String {
+    match (r.changed, r.max_ulp) {
+        (0, _) => ".".into(),
+        (n, None) => format!("{n}!"),
+        (n, Some(u64::MAX)) => format!("{n}/NaN"),
+        (n, Some(u)) => format!("{n}/{u}u"),
+    }
+}
+
+fn json_str(s: &str) -> String {
+    let mut o = String::from("\"");
+    for ch in s.chars() {
+        match ch {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(o, "\\u{:04x}", c as u32);
+            }
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+    o
+}
+
+fn json_words(w: &[u32]) -> String {
+    let items: Vec<String> = w.iter().map(|x| x.to_string()).collect();
+    format!("[{}]", items.join(","))
+}
+
+impl PortabilityReport {
+    /// True when no packed encoder changed its code under any class and mode.
+    pub fn packed_encoders_portable(&self) -> bool {
+        !self.rows.iter().any(Row::fails)
+    }
+
+    /// The rows whose outputs changed.
+    pub fn changed(&self) -> impl Iterator<Item = &Row> {
+        self.rows.iter().filter(|r| r.changed > 0)
+    }
+
+    /// One line per spec and function, one column per class: `.` when no output changed,
+    /// `N/Ku` when N items changed by at most K ULP (`0u`: only the sign of a zero), `N!`
+    /// when N packed codes changed.
+    pub fn table(&self) -> String {
+        let mut t = String::new();
+        let modes: Vec<String> = self.modes.iter().map(|m| m.name()).collect();
+        let _ = writeln!(t, "modes: {}", modes.join(", "));
+        let _ = write!(t, "{:<28} {:<34} {:>7}", "spec", "function", "items");
+        for c in &self.classes {
+            let _ = write!(t, " {:>12}", c.name());
+        }
+        t.push('\n');
+        for group in self.rows.chunks(self.classes.len().max(1)) {
+            let r = &group[0];
+            let _ = write!(
+                t,
+                "{:<28} {:<34} {:>7}",
+                r.spec,
+                format!("{} ({:?})", r.function, r.role),
+                r.items
+            );
+            for r in group {
+                let _ = write!(t, " {:>12}", cell(r));
+            }
+            t.push('\n');
+        }
+        let fails: Vec<String> = self
+            .rows
+            .iter()
+            .filter(|r| r.fails())
+            .map(|r| format!("{} {} under {}", r.spec, r.function, r.class.name()))
+            .collect();
+        if fails.is_empty() {
+            t.push_str("packed encoders: portable under every class\n");
+        } else {
+            let _ = writeln!(t, "packed encoders that change: {}", fails.len());
+            for f in fails {
+                let _ = writeln!(t, "  {f}");
+            }
+        }
+        t
+    }
+
+    /// The report as JSON: classes, modes, `packed_encoders_portable` and every row
+    /// (`max_ulp` is `null` for packed codes and `"NaN"` when a NaN appeared or vanished).
+    pub fn json(&self) -> String {
+        let classes: Vec<String> = self.classes.iter().map(|c| json_str(c.name())).collect();
+        let modes: Vec<String> = self.modes.iter().map(|m| json_str(&m.name())).collect();
+        let rows: Vec<String> = self
+            .rows
+            .iter()
+            .map(|r| {
+                let max_ulp = match r.max_ulp {
+                    None => "null".to_string(),
+                    Some(u64::MAX) => "\"NaN\"".to_string(),
+                    Some(u) => u.to_string(),
+                };
+                let by_mode: Vec<String> = r.by_mode.iter().map(|n| n.to_string()).collect();
+                let example = match &r.example {
+                    None => "null".to_string(),
+                    Some(e) => format!(
+                        "{{\"mode\":{},\"input\":{},\"reference\":{},\"deviant\":{}}}",
+                        json_str(&e.mode.name()),
+                        json_words(&e.input),
+                        json_words(&e.reference),
+                        json_words(&e.deviant)
+                    ),
+                };
+                format!(
+                    "{{\"spec\":{},\"function\":{},\"role\":{},\"class\":{},\"items\":{},\"changed\":{},\"by_mode\":[{}],\"max_ulp\":{},\"fails\":{},\"example\":{}}}",
+                    json_str(&r.spec),
+                    json_str(r.function),
+                    json_str(&format!("{:?}", r.role)),
+                    json_str(r.class.name()),
+                    r.items,
+                    r.changed,
+                    by_mode.join(","),
+                    max_ulp,
+                    r.fails(),
+                    example
+                )
+            })
+            .collect();
+        format!(
+            "{{\"classes\":[{}],\"modes\":[{}],\"packed_encoders_portable\":{},\"rows\":[\n{}\n]}}\n",
+            classes.join(","),
+            modes.join(","),
+            self.packed_encoders_portable(),
+            rows.join(",\n")
+        )
+    }
+}
