@@ -2337,3 +2337,22 @@ fn gen_writes_c_headers_and_wgsl_import_paths() {
     );
     assert!(err.contains("invalid WGSL import path"), "{err}");
 }
+
+/// `verify --portable` evaluates the model under the deviations the APIs allow. Today's
+/// fast oct encoder rounds a quotient that can land on a tie (0.5·127 for (0, 1, 1)), so a
+/// division 1 ULP low changes its code: the report says so and exits 1.
+#[test]
+fn verify_portable_reports_codes_that_allowed_deviations_change() {
+    let r = run(&["verify", "--portable", "oct16", "--json"]);
+    assert_eq!(r.code, 1, "{r:?}");
+    assert!(
+        r.stdout.contains("\"packed_encoders_portable\":false"),
+        "{r:?}"
+    );
+    for class in ["div", "sqrt", "fma", "denorm", "zero", "excess"] {
+        assert!(r.stdout.contains(&format!("\"{class}\"")), "{class}: {r:?}");
+    }
+    let r = run(&["verify", "--portable", "snorm12x2"]);
+    assert_eq!(r.code, 0, "helpers have no packed encoder: {r:?}");
+    assert!(r.stdout.contains("snorm12x2"), "{r:?}");
+}

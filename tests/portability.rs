@@ -288,16 +288,3 @@ fn zero_changes_precise_float_outputs_not_codes() {
     }
     assert!(r.packed_encoders_portable(), "{}", r.table());
 }
-
-/// The whole catalogue under every class: the table the next step works from. Slow (a few
-/// minutes), so run on demand until the CLI offers it:
-/// `cargo test --release --test portability -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn catalogue_report() {
-    let r = run(&Spec::all(), &Class::ALL, &Options::default());
-    print!("{}", r.table());
-    if let Ok(path) = std::env::var("UNITPACK_PORTABILITY_JSON") {
-        std::fs::write(path, r.json()).unwrap();
-    }
-}
