@@ -60,18 +60,7 @@ pub fn error_table(samples: usize) -> String {
         .into_iter()
         .filter(|s| s.info().domain.is_some())
         .collect();
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let per = specs.len().div_ceil(threads).max(1);
-    let mut stats = vec![None; specs.len()];
-    std::thread::scope(|sc| {
-        for (o, sp) in stats.chunks_mut(per).zip(specs.chunks(per)) {
-            sc.spawn(move || {
-                for (o, spec) in o.iter_mut().zip(sp) {
-                    *o = quality::measure(spec, samples);
-                }
-            });
-        }
-    });
+    let stats = quality::measure_all(&specs, samples);
     let mut s = format!(
         "Round-trip angular error over {samples} seeded unit vectors (seed `{VECTOR_SEED:#x}`; \
          hemisphere codecs over the +Z hemisphere). The maximum is the largest error in \

@@ -25,7 +25,6 @@
 use crate::codecs::{Spec, SpecError};
 use crate::emit::{DEFAULT_PREFIX, Lang, render_with, validate_prefix};
 use crate::quality::{self, ErrorStats};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Samples behind the error figures printed in doc comments. Fewer than the accuracy
@@ -46,7 +45,8 @@ pub enum GenerateError {
     NoSpecs,
     #[error("{what} needs exactly one language, {count} chosen")]
     Languages { what: &'static str, count: usize },
-    #[error("cannot write {}: {source}", .path.display())]
+    /// `source` names the path and what failed.
+    #[error("{source}")]
     Io {
         path: PathBuf,
         source: std::io::Error,
@@ -208,7 +208,7 @@ impl Generator {
             });
         };
         let text = self.render(lang)?;
-        write_atomic(path.as_ref(), text.as_bytes())
+        write(path.as_ref(), text.as_bytes())
     }
 
     /// Writes `dir/{stem}.{ext}` for every chosen language; returns the paths written.
@@ -226,85 +226,23 @@ impl Generator {
         let mut written = Vec::new();
         for &lang in &self.langs {
             let path = dir.as_ref().join(format!("{stem}.{}", lang.ext()));
-            write_atomic(&path, self.render(lang)?.as_bytes())?;
+            write(&path, self.render(lang)?.as_bytes())?;
             written.push(path);
         }
         Ok(written)
     }
 }
 
-/// Error statistics of every spec, measured in parallel (deterministic: fixed seed).
+/// Error statistics of every spec for the doc comments (deterministic: fixed seed).
 pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(specs.len().max(1));
-    let per = specs.len().div_ceil(threads).max(1);
-    let mut out = vec![None; specs.len()];
-    std::thread::scope(|s| {
-        for (o, sp) in out.chunks_mut(per).zip(specs.chunks(per)) {
-            s.spawn(move || {
-                for (o, spec) in o.iter_mut().zip(sp) {
-                    *o = quality::measure(spec, DOC_SAMPLES);
-                }
-            });
-        }
-    });
-    out
+    quality::measure_all(specs, DOC_SAMPLES)
 }
 
-/// Writes through a temporary file in the same directory and renames it over `path`, so
-/// readers never see a half-written file and a failure leaves the old file intact. Parent
-/// directories are created; a new file gets mode 0644, a replaced one keeps its mode
-/// without setuid/setgid bits.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), GenerateError> {
-    let io = |source: std::io::Error| GenerateError::Io {
+/// Writes atomically with the CLI's policy ([`crate::atomic`]): a symlink's target is
+/// replaced, parent directories are created, a read-only file is refused.
+fn write(path: &Path, bytes: &[u8]) -> Result<(), GenerateError> {
+    crate::atomic::write_atomic(path, bytes).map_err(|source| GenerateError::Io {
         path: path.to_path_buf(),
         source,
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    std::fs::create_dir_all(dir).map_err(io)?;
-    let name = path
-        .file_name()
-        .ok_or_else(|| io(std::io::Error::other("not a file name")))?;
-    let mut tmp = None;
-    for n in 0..100u32 {
-        let candidate = dir.join(format!(
-            ".{}.unitpack-{}-{n}.tmp",
-            name.to_string_lossy(),
-            std::process::id()
-        ));
-        match std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&candidate)
-        {
-            Ok(f) => {
-                tmp = Some((candidate, f));
-                break;
-            }
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(io(e)),
-        }
-    }
-    let (tmp_path, mut file) =
-        tmp.ok_or_else(|| io(std::io::Error::other("no free temporary name")))?;
-    let result = (|| {
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode() & 0o777);
-            file.set_permissions(std::fs::Permissions::from_mode(mode))?;
-        }
-        std::fs::rename(&tmp_path, path)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp_path);
-        return Err(io(e));
-    }
-    Ok(())
+    })
 }

@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 
 pub mod api;
+pub mod atomic;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod codecs;

@@ -4,10 +4,10 @@
 //! Nothing the user wrote is ever replaced or removed without `--force`, and `--force`
 //! only lets a catalogue path be replaced; it never makes `generate` remove a file.
 
-use super::atomic::AtomicFile;
 use super::include::stats_for;
 use super::manifest::{self, HEADER, MANIFEST};
 use super::output;
+use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use anyhow::{Context, Result, bail};

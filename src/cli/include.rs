@@ -1,8 +1,8 @@
 //! `gen`: one include for the given specs, on stdout, in a file, or one file per language
 //! in a directory.
 
-use super::atomic::AtomicFile;
 use super::output;
+use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
 use crate::emit::Lang;
 use crate::generator::Generator;

@@ -2,9 +2,8 @@
 //!
 //! Output never goes through `print!` (it panics on a closed or full stdout): see
 //! [`output`]. Files are replaced atomically and only when they are the user's to replace:
-//! see [`atomic`] and [`manifest`].
+//! see [`crate::atomic`] and [`manifest`].
 
-mod atomic;
 mod generate;
 mod grammar;
 mod include;
@@ -22,7 +21,7 @@ use clap::{Parser, Subcommand};
 use std::io::{BufReader, Write};
 use std::path::PathBuf;
 
-pub use atomic::{AtomicFile, write_atomic, write_atomic_with};
+pub use crate::atomic::{AtomicFile, write_atomic, write_atomic_with};
 pub use generate::{generate, generate_with};
 pub use include::gen_text;
 pub use list::{GRAMMAR, list_json, list_text};

@@ -11,7 +11,7 @@
 //! for specs wider than 32 bits (snorm16x3).
 //!
 //! The first bad line or record ends the run with an error naming it. Output before it
-//! has been written (to stdout) or is discarded (`--out`, see [`super::atomic`]).
+//! has been written (to stdout) or is discarded (`--out`, see [`crate::atomic`]).
 
 use super::grammar::{self, LineError, quote};
 use crate::codecs::Spec;

@@ -16,11 +16,28 @@
 //!   and (best effort: only root may give a file away) its owner and group; a new file
 //!   gets `0666` less the umask.
 
-use anyhow::{Context, Result, bail};
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+
+type Result<T> = io::Result<T>;
+
+/// An error whose message says what could not be done to the user's path.
+fn fail(kind: io::ErrorKind, msg: String) -> io::Error {
+    io::Error::new(kind, msg)
+}
+
+/// Adds what was being done to an I/O error, keeping its kind.
+trait Context<T> {
+    fn with_context(self, what: impl FnOnce() -> String) -> Result<T>;
+}
+
+impl<T> Context<T> for Result<T> {
+    fn with_context(self, what: impl FnOnce() -> String) -> Result<T> {
+        self.map_err(|e| fail(e.kind(), format!("{}: {e}", what())))
+    }
+}
 
 /// Symlink hops followed before giving up (Linux's own limit).
 const MAX_LINKS: usize = 40;
@@ -56,10 +73,13 @@ fn resolve(path: &Path) -> Result<PathBuf> {
             _ => return Ok(p),
         }
     }
-    bail!(
-        "cannot write {}: more than {MAX_LINKS} symlinks in a chain",
-        path.display()
-    )
+    Err(fail(
+        io::ErrorKind::InvalidInput,
+        format!(
+            "cannot write {}: more than {MAX_LINKS} symlinks in a chain",
+            path.display()
+        ),
+    ))
 }
 
 /// Whether the user may replace the existing file `path` (see the module's policy).
@@ -108,7 +128,12 @@ impl AtomicFile {
         let cannot = |what: &str| format!("cannot write {}: {what}", shown.display());
         let mut keep = None;
         match fs::metadata(&target) {
-            Ok(m) if m.is_dir() => bail!(cannot("it is a directory")),
+            Ok(m) if m.is_dir() => {
+                return Err(fail(
+                    io::ErrorKind::IsADirectory,
+                    cannot("it is a directory"),
+                ));
+            }
             Ok(m) if m.is_file() => {
                 #[cfg(unix)]
                 {
@@ -119,12 +144,15 @@ impl AtomicFile {
                         } else {
                             "is not writable by you"
                         };
-                        bail!(
-                            "{} {why} (mode {:04o}, owner uid {}); pass --force to replace it",
-                            shown.display(),
-                            m.mode() & 0o7777,
-                            m.uid()
-                        );
+                        return Err(fail(
+                            io::ErrorKind::PermissionDenied,
+                            format!(
+                                "{} {why} (mode {:04o}, owner uid {}); pass --force to replace it",
+                                shown.display(),
+                                m.mode() & 0o7777,
+                                m.uid()
+                            ),
+                        ));
                     }
                     keep = Some((m.mode() & 0o777, m.uid(), m.gid()));
                 }
@@ -149,11 +177,17 @@ impl AtomicFile {
                     }
                 }
                 let _ = m;
-                bail!(cannot("it is not a regular file"));
+                return Err(fail(
+                    io::ErrorKind::InvalidInput,
+                    cannot("it is not a regular file"),
+                ));
             }
             Err(e) if e.kind() == io::ErrorKind::NotFound => {}
             Err(e) if e.kind() == io::ErrorKind::NotADirectory => {
-                bail!(cannot("a directory in its path is a file"))
+                return Err(fail(
+                    io::ErrorKind::NotADirectory,
+                    cannot("a directory in its path is a file"),
+                ));
             }
             Err(e) => return Err(e).with_context(|| cannot("cannot inspect it")),
         }
