@@ -241,6 +241,7 @@ fn report_counts_changes_and_renders() {
         seeds: vec![1],
         worst_ends: true,
         sample: Some(1 << 10),
+        encoders_only: false,
     };
     let r = run(&specs(&["oct16"]), &[Class::Div, Class::Zero], &opts);
     assert_eq!(r.rows.len(), 4 * 2);
@@ -287,4 +288,50 @@ fn zero_changes_precise_float_outputs_not_codes() {
         }
     }
     assert!(r.packed_encoders_portable(), "{}", r.table());
+}
+
+/// Every encoder whose codec declares it portable (and says so in its doc comment) keeps
+/// every code under every guaranteed class, in every mode; every other packed encoder
+/// does change under one, so no claim is missing either.
+#[test]
+fn declared_portable_encoders_never_change() {
+    let all = Spec::all();
+    let opts = Options {
+        encoders_only: true,
+        ..Options::default()
+    };
+    let report = run(&all, &Class::GUARANTEED, &opts);
+    let mut portable = 0;
+    for spec in &all {
+        let e = spec.emitted();
+        let id = spec.id();
+        let encode = || {
+            report
+                .rows
+                .iter()
+                .filter(|r| r.spec == id && r.role == Role::Encode)
+        };
+        if !e.functions.iter().any(|f| f.role == Role::Encode) {
+            continue;
+        }
+        if e.portable_encoder {
+            portable += 1;
+            for r in encode() {
+                assert_eq!(
+                    r.changed,
+                    0,
+                    "{id} under {}: {:?}",
+                    r.class.name(),
+                    r.example
+                );
+            }
+        } else {
+            assert!(
+                encode().any(|r| r.changed > 0),
+                "{id} does not change: declare it portable"
+            );
+        }
+    }
+    // oct ×5 and its rgb8 layout, hemioct ×3, snorm3 ×3, xy ×3.
+    assert_eq!(portable, 15);
 }

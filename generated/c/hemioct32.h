@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifndef UNITPACK_C_TYPES
 #define UNITPACK_C_TYPES
@@ -21,6 +22,9 @@ typedef struct { uint32_t x, y; } unitpack_uvec2;
 typedef struct { uint32_t x, y, z; } unitpack_uvec3;
 typedef struct { bool x, y; } unitpack_bvec2;
 typedef struct { bool x, y, z; } unitpack_bvec3;
+// Bit reinterpretation without aliasing: the memcpy compiles to a register move.
+static inline uint32_t unitpack_bits_of(float x) { uint32_t u; memcpy(&u, &x, sizeof u); return u; }
+static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, sizeof x); return x; }
 #endif // UNITPACK_C_TYPES
 
 // ---- hemioct32: hemi-octahedral, snorm×2, 32 bits ----
@@ -150,31 +154,87 @@ static inline void unitpack_hemioct32_encode_float(const float v[3], float out[2
     out[1] = r.y;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+
+static inline unitpack_vec2 unitpack_hemioct32_round_codes_v(unitpack_vec3 a0) {
+    const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };
+    const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
+    const unitpack_vec3 normal = { t2.x ? 0.0f : a0.x, t2.y ? 0.0f : a0.y, t2.z ? 0.0f : a0.z };
+    const unitpack_vec3 t3 = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
+    const bool t4 = t3.x >= t3.y;
+    const float t5 = t4 ? t3.x : t3.y;
+    const bool t6 = t5 >= t3.z;
+    const float largest = t6 ? t5 : t3.z;
+    const uint32_t t7 = unitpack_bits_of(largest);
+    const uint32_t t8 = t7 & 2139095040u;
+    const uint32_t t9 = 2139095040u - t8;
+    const float scale = unitpack_float_of(t9);
+    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
+    const unitpack_vec3 t10 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const float t11 = t10.x + t10.y;
+    const float sum = t11 + t10.z;
+    const bool t12 = sum >= 2.0f;
+    const bool t13 = sum < 16.0f;
+    const bool t14 = t12 && t13;
+    const unitpack_vec3 t15 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const unitpack_bvec3 t16 = { t15.x < 1.8189894e-12f, t15.y < 1.8189894e-12f, t15.z < 1.8189894e-12f };
+    const unitpack_vec3 w = { t16.x ? 0.0f : scaled.x, t16.y ? 0.0f : scaled.y, t16.z ? 0.0f : scaled.z };
+    const bool t17 = w.z > 0.0f;
+    const float t18 = t17 ? w.z : 0.0f;
+    const float t19 = fabsf(w.x);
+    const float t20 = fabsf(w.y);
+    const float t21 = t19 + t20;
+    const float l1 = t21 + t18;
+    const float t22 = w.x + w.y;
+    const float t23 = w.x - w.y;
+    const unitpack_vec2 n = { t22, t23 };
+    const unitpack_bvec2 t24 = { n.x < 0.0f, n.y < 0.0f };
+    const unitpack_vec2 t25 = { fabsf(n.x), fabsf(n.y) };
+    const unitpack_vec2 t26 = { t25.x / l1, t25.y / l1 };
+    const unitpack_vec2 t27 = { t26.x * 32767.0f, t26.y * 32767.0f };
+    const unitpack_vec2 t28 = { nearbyintf(t27.x), nearbyintf(t27.y) };
+    const unitpack_vec2 t29 = { t25.x * 32767.0f, t25.y * 32767.0f };
+    const unitpack_vec2 t30 = { t28.x + 0.5f, t28.y + 0.5f };
+    const unitpack_vec2 t31 = { t30.x * l1, t30.y * l1 };
+    const unitpack_bvec2 t32 = { t29.x >= t31.x, t29.y >= t31.y };
+    const unitpack_vec2 t33 = { t28.x - 0.5f, t28.y - 0.5f };
+    const unitpack_vec2 t34 = { t33.x * l1, t33.y * l1 };
+    const unitpack_bvec2 t35 = { t29.x < t34.x, t29.y < t34.y };
+    const unitpack_vec2 t36 = { t35.x ? -1.0f : 0.0f, t35.y ? -1.0f : 0.0f };
+    const unitpack_vec2 t37 = { t32.x ? 1.0f : t36.x, t32.y ? 1.0f : t36.y };
+    const unitpack_vec2 t38 = { t28.x + t37.x, t28.y + t37.y };
+    const unitpack_bvec2 t39 = { t38.x >= 0.0f, t38.y >= 0.0f };
+    const unitpack_vec2 t40 = { t39.x ? t38.x : 0.0f, t39.y ? t38.y : 0.0f };
+    const unitpack_bvec2 t41 = { t40.x <= 32767.0f, t40.y <= 32767.0f };
+    const unitpack_vec2 t42 = { t41.x ? t40.x : 32767.0f, t41.y ? t40.y : 32767.0f };
+    const unitpack_vec2 t43 = { -t42.x, -t42.y };
+    const unitpack_vec2 t44 = { t24.x ? t43.x : t42.x, t24.y ? t43.y : t42.y };
+    const bool t45 = l1 > 0.0f;
+    const bool t46 = t14 && t45;
+    const unitpack_vec2 t47 = { t46 ? t44.x : 0.0f, t46 ? t44.y : 0.0f };
+    return t47;
+}
+
 // Struct form of unitpack_hemioct32_encode.
 static inline uint32_t unitpack_hemioct32_encode_v(unitpack_vec3 v) {
-    const unitpack_vec2 t1 = unitpack_hemioct32_encode_float_v(v);
-    const unitpack_bvec2 t2 = { t1.x >= (-1.0f), t1.y >= (-1.0f) };
-    const unitpack_vec2 t3 = { t2.x ? t1.x : -1.0f, t2.y ? t1.y : -1.0f };
-    const unitpack_bvec2 t4 = { t3.x <= 1.0f, t3.y <= 1.0f };
-    const unitpack_vec2 t5 = { t4.x ? t3.x : 1.0f, t4.y ? t3.y : 1.0f };
-    const unitpack_vec2 t6 = { t5.x * 32767.0f, t5.y * 32767.0f };
-    const unitpack_vec2 codes = { nearbyintf(t6.x), nearbyintf(t6.y) };
-    const float t7 = codes.x + 65536.0f;
-    const bool t8 = codes.x < 0.0f;
-    const float t9 = t8 ? t7 : codes.x;
-    const uint32_t t10 = (uint32_t)t9;
-    const float t11 = codes.y + 65536.0f;
-    const bool t12 = codes.y < 0.0f;
-    const float t13 = t12 ? t11 : codes.y;
-    const uint32_t t14 = (uint32_t)t13;
-    const uint32_t t15 = t14 << 16u;
-    const uint32_t t16 = t10 | t15;
-    return t16;
+    const unitpack_vec2 t1 = unitpack_hemioct32_round_codes_v(v);
+    const float t2 = t1.x + 65536.0f;
+    const bool t3 = t1.x < 0.0f;
+    const float t4 = t3 ? t2 : t1.x;
+    const uint32_t t5 = (uint32_t)t4;
+    const float t6 = t1.y + 65536.0f;
+    const bool t7 = t1.y < 0.0f;
+    const float t8 = t7 ? t6 : t1.y;
+    const uint32_t t9 = (uint32_t)t8;
+    const uint32_t t10 = t9 << 16u;
+    const uint32_t t11 = t5 | t10;
+    return t11;
 }
 
 // unitpack_hemioct32_encode: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder.
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint32_t (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
 static inline uint32_t unitpack_hemioct32_encode(const float v[3]) {

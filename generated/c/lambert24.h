@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifndef UNITPACK_C_TYPES
 #define UNITPACK_C_TYPES
@@ -21,6 +22,9 @@ typedef struct { uint32_t x, y; } unitpack_uvec2;
 typedef struct { uint32_t x, y, z; } unitpack_uvec3;
 typedef struct { bool x, y; } unitpack_bvec2;
 typedef struct { bool x, y, z; } unitpack_bvec3;
+// Bit reinterpretation without aliasing: the memcpy compiles to a register move.
+static inline uint32_t unitpack_bits_of(float x) { uint32_t u; memcpy(&u, &x, sizeof u); return u; }
+static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, sizeof x); return x; }
 #endif // UNITPACK_C_TYPES
 
 // ---- lambert24: Lambert azimuthal equal-area, unorm×2, 24 bits ----
@@ -142,6 +146,7 @@ static inline uint32_t unitpack_lambert24_encode_v(unitpack_vec3 v) {
 // unitpack_lambert24_encode: lambert24 (Lambert azimuthal equal-area, unorm×2, 24 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: the packed code, uint32_t (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03092°, sample max 2.38667° (not a bound).
 static inline uint32_t unitpack_lambert24_encode(const float v[3]) {

@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifndef UNITPACK_C_TYPES
 #define UNITPACK_C_TYPES
@@ -21,6 +22,9 @@ typedef struct { uint32_t x, y; } unitpack_uvec2;
 typedef struct { uint32_t x, y, z; } unitpack_uvec3;
 typedef struct { bool x, y; } unitpack_bvec2;
 typedef struct { bool x, y, z; } unitpack_bvec3;
+// Bit reinterpretation without aliasing: the memcpy compiles to a register move.
+static inline uint32_t unitpack_bits_of(float x) { uint32_t u; memcpy(&u, &x, sizeof u); return u; }
+static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, sizeof x); return x; }
 #endif // UNITPACK_C_TYPES
 
 // ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms ----

@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifndef UNITPACK_C_TYPES
 #define UNITPACK_C_TYPES
@@ -21,6 +22,9 @@ typedef struct { uint32_t x, y; } unitpack_uvec2;
 typedef struct { uint32_t x, y, z; } unitpack_uvec3;
 typedef struct { bool x, y; } unitpack_bvec2;
 typedef struct { bool x, y, z; } unitpack_bvec3;
+// Bit reinterpretation without aliasing: the memcpy compiles to a register move.
+static inline uint32_t unitpack_bits_of(float x) { uint32_t u; memcpy(&u, &x, sizeof u); return u; }
+static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, sizeof x); return x; }
 #endif // UNITPACK_C_TYPES
 
 // ---- snorm16x3: components as snorm×3, 48 bits ----
@@ -119,36 +123,154 @@ static inline void unitpack_snorm16x3_encode_float(const float v[3], float out[3
     out[2] = r.z;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+
+static inline unitpack_vec3 unitpack_snorm16x3_round_codes_v(unitpack_vec3 a0) {
+    const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };
+    const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
+    const unitpack_vec3 normal = { t2.x ? 0.0f : a0.x, t2.y ? 0.0f : a0.y, t2.z ? 0.0f : a0.z };
+    const unitpack_vec3 t3 = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
+    const bool t4 = t3.x >= t3.y;
+    const float t5 = t4 ? t3.x : t3.y;
+    const bool t6 = t5 >= t3.z;
+    const float largest = t6 ? t5 : t3.z;
+    const uint32_t t7 = unitpack_bits_of(largest);
+    const uint32_t t8 = t7 & 2139095040u;
+    const uint32_t t9 = 2139095040u - t8;
+    const float scale = unitpack_float_of(t9);
+    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
+    const unitpack_vec3 t10 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const float t11 = t10.x + t10.y;
+    const float sum = t11 + t10.z;
+    const bool t12 = sum >= 2.0f;
+    const bool t13 = sum < 16.0f;
+    const bool t14 = t12 && t13;
+    const unitpack_vec3 t15 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const unitpack_bvec3 t16 = { t15.x < 1.8189894e-12f, t15.y < 1.8189894e-12f, t15.z < 1.8189894e-12f };
+    const unitpack_vec3 w = { t16.x ? 0.0f : scaled.x, t16.y ? 0.0f : scaled.y, t16.z ? 0.0f : scaled.z };
+    const uint32_t t17 = unitpack_bits_of(w.x);
+    const uint32_t t18 = t17 & 4294963200u;
+    const float t19 = unitpack_float_of(t18);
+    const float t20 = w.x - t19;
+    const float t21 = t19 * t19;
+    const float t22 = t19 + t19;
+    const float t23 = t22 * t20;
+    const float t24 = t20 * t20;
+    const uint32_t t25 = unitpack_bits_of(w.y);
+    const uint32_t t26 = t25 & 4294963200u;
+    const float t27 = unitpack_float_of(t26);
+    const float t28 = w.y - t27;
+    const float t29 = t27 * t27;
+    const float t30 = t27 + t27;
+    const float t31 = t30 * t28;
+    const float t32 = t28 * t28;
+    const uint32_t t33 = unitpack_bits_of(w.z);
+    const uint32_t t34 = t33 & 4294963200u;
+    const float t35 = unitpack_float_of(t34);
+    const float t36 = w.z - t35;
+    const float t37 = t35 * t35;
+    const float t38 = t35 + t35;
+    const float t39 = t38 * t36;
+    const float t40 = t36 * t36;
+    const float t41 = t21 + t29;
+    const float t42 = t41 + t37;
+    const float t43 = t23 + t31;
+    const float t44 = t43 + t39;
+    const float t45 = t24 + t32;
+    const float t46 = t45 + t40;
+    const float t47 = t42 + t44;
+    const float len2 = t47 + t46;
+    const float t48 = fabsf(w.x);
+    const float t49 = sqrtf(len2);
+    const float t50 = t48 / t49;
+    const float t51 = t50 * 32767.0f;
+    const float t52 = nearbyintf(t51);
+    const float t53 = t48 * 32767.0f;
+    const float t54 = t53 * t53;
+    const float t55 = t52 - 0.5f;
+    const bool t56 = t52 > 0.0f;
+    const float t57 = t55 * t55;
+    const float t58 = t57 * len2;
+    const bool t59 = t54 < t58;
+    const bool t60 = t56 && t59;
+    const float t61 = fabsf(w.y);
+    const float t62 = sqrtf(len2);
+    const float t63 = t61 / t62;
+    const float t64 = t63 * 32767.0f;
+    const float t65 = nearbyintf(t64);
+    const float t66 = t61 * 32767.0f;
+    const float t67 = t66 * t66;
+    const float t68 = t65 - 0.5f;
+    const bool t69 = t65 > 0.0f;
+    const float t70 = t68 * t68;
+    const float t71 = t70 * len2;
+    const bool t72 = t67 < t71;
+    const bool t73 = t69 && t72;
+    const float t74 = fabsf(w.z);
+    const float t75 = sqrtf(len2);
+    const float t76 = t74 / t75;
+    const float t77 = t76 * 32767.0f;
+    const float t78 = nearbyintf(t77);
+    const float t79 = t74 * 32767.0f;
+    const float t80 = t79 * t79;
+    const float t81 = t78 - 0.5f;
+    const bool t82 = t78 > 0.0f;
+    const float t83 = t81 * t81;
+    const float t84 = t83 * len2;
+    const bool t85 = t80 < t84;
+    const bool t86 = t82 && t85;
+    const unitpack_bvec3 t87 = { w.x < 0.0f, w.y < 0.0f, w.z < 0.0f };
+    const unitpack_vec3 t88 = { fabsf(w.x), fabsf(w.y), fabsf(w.z) };
+    const unitpack_vec3 t89 = { len2, len2, len2 };
+    const unitpack_vec3 t90 = { sqrtf(t89.x), sqrtf(t89.y), sqrtf(t89.z) };
+    const unitpack_vec3 t91 = { t88.x / t90.x, t88.y / t90.y, t88.z / t90.z };
+    const unitpack_vec3 t92 = { t91.x * 32767.0f, t91.y * 32767.0f, t91.z * 32767.0f };
+    const unitpack_vec3 t93 = { nearbyintf(t92.x), nearbyintf(t92.y), nearbyintf(t92.z) };
+    const unitpack_vec3 t94 = { t88.x * 32767.0f, t88.y * 32767.0f, t88.z * 32767.0f };
+    const unitpack_vec3 t95 = { t94.x * t94.x, t94.y * t94.y, t94.z * t94.z };
+    const unitpack_vec3 t96 = { t93.x + 0.5f, t93.y + 0.5f, t93.z + 0.5f };
+    const unitpack_vec3 t97 = { t96.x * t96.x, t96.y * t96.y, t96.z * t96.z };
+    const unitpack_vec3 t98 = { t97.x * len2, t97.y * len2, t97.z * len2 };
+    const unitpack_bvec3 t99 = { t95.x >= t98.x, t95.y >= t98.y, t95.z >= t98.z };
+    const unitpack_bvec3 t100 = { t60, t73, t86 };
+    const unitpack_vec3 t101 = { t100.x ? -1.0f : 0.0f, t100.y ? -1.0f : 0.0f, t100.z ? -1.0f : 0.0f };
+    const unitpack_vec3 t102 = { t99.x ? 1.0f : t101.x, t99.y ? 1.0f : t101.y, t99.z ? 1.0f : t101.z };
+    const unitpack_vec3 t103 = { t93.x + t102.x, t93.y + t102.y, t93.z + t102.z };
+    const unitpack_bvec3 t104 = { t103.x >= 0.0f, t103.y >= 0.0f, t103.z >= 0.0f };
+    const unitpack_vec3 t105 = { t104.x ? t103.x : 0.0f, t104.y ? t103.y : 0.0f, t104.z ? t103.z : 0.0f };
+    const unitpack_bvec3 t106 = { t105.x <= 32767.0f, t105.y <= 32767.0f, t105.z <= 32767.0f };
+    const unitpack_vec3 t107 = { t106.x ? t105.x : 32767.0f, t106.y ? t105.y : 32767.0f, t106.z ? t105.z : 32767.0f };
+    const unitpack_vec3 t108 = { -t107.x, -t107.y, -t107.z };
+    const unitpack_vec3 t109 = { t87.x ? t108.x : t107.x, t87.y ? t108.y : t107.y, t87.z ? t108.z : t107.z };
+    const unitpack_vec3 t110 = { t14 ? t109.x : 0.0f, t14 ? t109.y : 0.0f, t14 ? t109.z : 32767.0f };
+    return t110;
+}
+
 // Struct form of unitpack_snorm16x3_encode.
 static inline unitpack_uvec2 unitpack_snorm16x3_encode_v(unitpack_vec3 v) {
-    const unitpack_vec3 t1 = unitpack_snorm16x3_encode_float_v(v);
-    const unitpack_bvec3 t2 = { t1.x >= (-1.0f), t1.y >= (-1.0f), t1.z >= (-1.0f) };
-    const unitpack_vec3 t3 = { t2.x ? t1.x : -1.0f, t2.y ? t1.y : -1.0f, t2.z ? t1.z : -1.0f };
-    const unitpack_bvec3 t4 = { t3.x <= 1.0f, t3.y <= 1.0f, t3.z <= 1.0f };
-    const unitpack_vec3 t5 = { t4.x ? t3.x : 1.0f, t4.y ? t3.y : 1.0f, t4.z ? t3.z : 1.0f };
-    const unitpack_vec3 t6 = { t5.x * 32767.0f, t5.y * 32767.0f, t5.z * 32767.0f };
-    const unitpack_vec3 codes = { nearbyintf(t6.x), nearbyintf(t6.y), nearbyintf(t6.z) };
-    const float t7 = codes.x + 65536.0f;
-    const bool t8 = codes.x < 0.0f;
-    const float t9 = t8 ? t7 : codes.x;
-    const uint32_t t10 = (uint32_t)t9;
-    const float t11 = codes.y + 65536.0f;
-    const bool t12 = codes.y < 0.0f;
-    const float t13 = t12 ? t11 : codes.y;
-    const uint32_t t14 = (uint32_t)t13;
-    const uint32_t t15 = t14 << 16u;
-    const uint32_t t16 = t10 | t15;
-    const float t17 = codes.z + 65536.0f;
-    const bool t18 = codes.z < 0.0f;
-    const float t19 = t18 ? t17 : codes.z;
-    const uint32_t t20 = (uint32_t)t19;
-    const unitpack_uvec2 t21 = { t16, t20 };
-    return t21;
+    const unitpack_vec3 t1 = unitpack_snorm16x3_round_codes_v(v);
+    const float t2 = t1.x + 65536.0f;
+    const bool t3 = t1.x < 0.0f;
+    const float t4 = t3 ? t2 : t1.x;
+    const uint32_t t5 = (uint32_t)t4;
+    const float t6 = t1.y + 65536.0f;
+    const bool t7 = t1.y < 0.0f;
+    const float t8 = t7 ? t6 : t1.y;
+    const uint32_t t9 = (uint32_t)t8;
+    const uint32_t t10 = t9 << 16u;
+    const uint32_t t11 = t5 | t10;
+    const float t12 = t1.z + 65536.0f;
+    const bool t13 = t1.z < 0.0f;
+    const float t14 = t13 ? t12 : t1.z;
+    const uint32_t t15 = (uint32_t)t14;
+    const unitpack_uvec2 t16 = { t11, t15 };
+    return t16;
 }
 
 // unitpack_snorm16x3_encode: snorm16x3 (components as snorm×3, 48 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, unitpack_uvec2 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 static inline uint64_t unitpack_snorm16x3_encode(const float v[3]) {

@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifndef UNITPACK_C_TYPES
 #define UNITPACK_C_TYPES
@@ -21,6 +22,9 @@ typedef struct { uint32_t x, y; } unitpack_uvec2;
 typedef struct { uint32_t x, y, z; } unitpack_uvec3;
 typedef struct { bool x, y; } unitpack_bvec2;
 typedef struct { bool x, y, z; } unitpack_bvec3;
+// Bit reinterpretation without aliasing: the memcpy compiles to a register move.
+static inline uint32_t unitpack_bits_of(float x) { uint32_t u; memcpy(&u, &x, sizeof u); return u; }
+static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, sizeof x); return x; }
 #endif // UNITPACK_C_TYPES
 
 // ---- xy24: x and y stored, z reconstructed, snorm×2, 24 bits ----
@@ -137,31 +141,140 @@ static inline void unitpack_xy24_encode_float(const float v[3], float out[2]) {
     out[1] = r.y;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+
+static inline unitpack_vec2 unitpack_xy24_round_codes_v(unitpack_vec3 a0) {
+    const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };
+    const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
+    const unitpack_vec3 normal = { t2.x ? 0.0f : a0.x, t2.y ? 0.0f : a0.y, t2.z ? 0.0f : a0.z };
+    const unitpack_vec3 t3 = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
+    const bool t4 = t3.x >= t3.y;
+    const float t5 = t4 ? t3.x : t3.y;
+    const bool t6 = t5 >= t3.z;
+    const float largest = t6 ? t5 : t3.z;
+    const uint32_t t7 = unitpack_bits_of(largest);
+    const uint32_t t8 = t7 & 2139095040u;
+    const uint32_t t9 = 2139095040u - t8;
+    const float scale = unitpack_float_of(t9);
+    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
+    const unitpack_vec3 t10 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const float t11 = t10.x + t10.y;
+    const float sum = t11 + t10.z;
+    const bool t12 = sum >= 2.0f;
+    const bool t13 = sum < 16.0f;
+    const bool t14 = t12 && t13;
+    const unitpack_vec3 t15 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const unitpack_bvec3 t16 = { t15.x < 1.8189894e-12f, t15.y < 1.8189894e-12f, t15.z < 1.8189894e-12f };
+    const unitpack_vec3 w = { t16.x ? 0.0f : scaled.x, t16.y ? 0.0f : scaled.y, t16.z ? 0.0f : scaled.z };
+    const bool t17 = w.z > 0.0f;
+    const float t18 = t17 ? w.z : 0.0f;
+    const uint32_t t19 = unitpack_bits_of(w.x);
+    const uint32_t t20 = t19 & 4294963200u;
+    const float t21 = unitpack_float_of(t20);
+    const float t22 = w.x - t21;
+    const float t23 = t21 * t21;
+    const float t24 = t21 + t21;
+    const float t25 = t24 * t22;
+    const float t26 = t22 * t22;
+    const uint32_t t27 = unitpack_bits_of(w.y);
+    const uint32_t t28 = t27 & 4294963200u;
+    const float t29 = unitpack_float_of(t28);
+    const float t30 = w.y - t29;
+    const float t31 = t29 * t29;
+    const float t32 = t29 + t29;
+    const float t33 = t32 * t30;
+    const float t34 = t30 * t30;
+    const uint32_t t35 = unitpack_bits_of(t18);
+    const uint32_t t36 = t35 & 4294963200u;
+    const float t37 = unitpack_float_of(t36);
+    const float t38 = t18 - t37;
+    const float t39 = t37 * t37;
+    const float t40 = t37 + t37;
+    const float t41 = t40 * t38;
+    const float t42 = t38 * t38;
+    const float t43 = t23 + t31;
+    const float t44 = t43 + t39;
+    const float t45 = t25 + t33;
+    const float t46 = t45 + t41;
+    const float t47 = t26 + t34;
+    const float t48 = t47 + t42;
+    const float t49 = t44 + t46;
+    const float len2 = t49 + t48;
+    const float t50 = fabsf(w.x);
+    const float t51 = sqrtf(len2);
+    const float t52 = t50 / t51;
+    const float t53 = t52 * 2047.0f;
+    const float t54 = nearbyintf(t53);
+    const float t55 = t50 * 2047.0f;
+    const float t56 = t55 * t55;
+    const float t57 = t54 - 0.5f;
+    const bool t58 = t54 > 0.0f;
+    const float t59 = t57 * t57;
+    const float t60 = t59 * len2;
+    const bool t61 = t56 < t60;
+    const bool t62 = t58 && t61;
+    const float t63 = fabsf(w.y);
+    const float t64 = sqrtf(len2);
+    const float t65 = t63 / t64;
+    const float t66 = t65 * 2047.0f;
+    const float t67 = nearbyintf(t66);
+    const float t68 = t63 * 2047.0f;
+    const float t69 = t68 * t68;
+    const float t70 = t67 - 0.5f;
+    const bool t71 = t67 > 0.0f;
+    const float t72 = t70 * t70;
+    const float t73 = t72 * len2;
+    const bool t74 = t69 < t73;
+    const bool t75 = t71 && t74;
+    const unitpack_bvec2 t76 = { w.x < 0.0f, w.y < 0.0f };
+    const unitpack_vec2 t77 = { fabsf(w.x), fabsf(w.y) };
+    const unitpack_vec2 t78 = { len2, len2 };
+    const unitpack_vec2 t79 = { sqrtf(t78.x), sqrtf(t78.y) };
+    const unitpack_vec2 t80 = { t77.x / t79.x, t77.y / t79.y };
+    const unitpack_vec2 t81 = { t80.x * 2047.0f, t80.y * 2047.0f };
+    const unitpack_vec2 t82 = { nearbyintf(t81.x), nearbyintf(t81.y) };
+    const unitpack_vec2 t83 = { t77.x * 2047.0f, t77.y * 2047.0f };
+    const unitpack_vec2 t84 = { t83.x * t83.x, t83.y * t83.y };
+    const unitpack_vec2 t85 = { t82.x + 0.5f, t82.y + 0.5f };
+    const unitpack_vec2 t86 = { t85.x * t85.x, t85.y * t85.y };
+    const unitpack_vec2 t87 = { t86.x * len2, t86.y * len2 };
+    const unitpack_bvec2 t88 = { t84.x >= t87.x, t84.y >= t87.y };
+    const unitpack_bvec2 t89 = { t62, t75 };
+    const unitpack_vec2 t90 = { t89.x ? -1.0f : 0.0f, t89.y ? -1.0f : 0.0f };
+    const unitpack_vec2 t91 = { t88.x ? 1.0f : t90.x, t88.y ? 1.0f : t90.y };
+    const unitpack_vec2 t92 = { t82.x + t91.x, t82.y + t91.y };
+    const unitpack_bvec2 t93 = { t92.x >= 0.0f, t92.y >= 0.0f };
+    const unitpack_vec2 t94 = { t93.x ? t92.x : 0.0f, t93.y ? t92.y : 0.0f };
+    const unitpack_bvec2 t95 = { t94.x <= 2047.0f, t94.y <= 2047.0f };
+    const unitpack_vec2 t96 = { t95.x ? t94.x : 2047.0f, t95.y ? t94.y : 2047.0f };
+    const unitpack_vec2 t97 = { -t96.x, -t96.y };
+    const unitpack_vec2 t98 = { t76.x ? t97.x : t96.x, t76.y ? t97.y : t96.y };
+    const bool t99 = len2 > 0.0f;
+    const bool t100 = t14 && t99;
+    const unitpack_vec2 t101 = { t100 ? t98.x : 0.0f, t100 ? t98.y : 0.0f };
+    return t101;
+}
+
 // Struct form of unitpack_xy24_encode.
 static inline uint32_t unitpack_xy24_encode_v(unitpack_vec3 v) {
-    const unitpack_vec2 t1 = unitpack_xy24_encode_float_v(v);
-    const unitpack_bvec2 t2 = { t1.x >= (-1.0f), t1.y >= (-1.0f) };
-    const unitpack_vec2 t3 = { t2.x ? t1.x : -1.0f, t2.y ? t1.y : -1.0f };
-    const unitpack_bvec2 t4 = { t3.x <= 1.0f, t3.y <= 1.0f };
-    const unitpack_vec2 t5 = { t4.x ? t3.x : 1.0f, t4.y ? t3.y : 1.0f };
-    const unitpack_vec2 t6 = { t5.x * 2047.0f, t5.y * 2047.0f };
-    const unitpack_vec2 codes = { nearbyintf(t6.x), nearbyintf(t6.y) };
-    const float t7 = codes.x + 4096.0f;
-    const bool t8 = codes.x < 0.0f;
-    const float t9 = t8 ? t7 : codes.x;
-    const uint32_t t10 = (uint32_t)t9;
-    const float t11 = codes.y + 4096.0f;
-    const bool t12 = codes.y < 0.0f;
-    const float t13 = t12 ? t11 : codes.y;
-    const uint32_t t14 = (uint32_t)t13;
-    const uint32_t t15 = t14 << 12u;
-    const uint32_t t16 = t10 | t15;
-    return t16;
+    const unitpack_vec2 t1 = unitpack_xy24_round_codes_v(v);
+    const float t2 = t1.x + 4096.0f;
+    const bool t3 = t1.x < 0.0f;
+    const float t4 = t3 ? t2 : t1.x;
+    const uint32_t t5 = (uint32_t)t4;
+    const float t6 = t1.y + 4096.0f;
+    const bool t7 = t1.y < 0.0f;
+    const float t8 = t7 ? t6 : t1.y;
+    const uint32_t t9 = (uint32_t)t8;
+    const uint32_t t10 = t9 << 12u;
+    const uint32_t t11 = t5 | t10;
+    return t11;
 }
 
 // unitpack_xy24_encode: xy24 (x and y stored, z reconstructed, snorm×2, 24 bits, hemisphere), fast encoder.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint32_t (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound).
 static inline uint32_t unitpack_xy24_encode(const float v[3]) {

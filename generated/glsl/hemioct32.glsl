@@ -121,30 +121,85 @@ vec2 unitpack_hemioct32_encode_float(vec3 v) {
     return t39;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+vec2 unitpack_hemioct32_round_codes(vec3 a0) {
+    UNITPACK_PRECISE vec3 t1 = abs(a0);
+    bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
+    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), t2);
+    UNITPACK_PRECISE vec3 t3 = abs(normal);
+    bool t4 = t3.x >= t3.y;
+    UNITPACK_PRECISE float t5 = t4 ? t3.x : t3.y;
+    bool t6 = t5 >= t3.z;
+    UNITPACK_PRECISE float largest = t6 ? t5 : t3.z;
+    uint t7 = floatBitsToUint(largest);
+    uint t8 = t7 & 2139095040u;
+    uint t9 = 2139095040u - t8;
+    UNITPACK_PRECISE float scale = uintBitsToFloat(t9);
+    UNITPACK_PRECISE vec3 scaled = normal * scale;
+    UNITPACK_PRECISE vec3 t10 = abs(scaled);
+    UNITPACK_PRECISE float t11 = t10.x + t10.y;
+    UNITPACK_PRECISE float sum = t11 + t10.z;
+    bool t12 = sum >= 2.0;
+    bool t13 = sum < 16.0;
+    bool t14 = t12 && t13;
+    UNITPACK_PRECISE vec3 t15 = abs(scaled);
+    bvec3 t16 = lessThan(t15, vec3(1.8189894e-12));
+    UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), t16);
+    bool t17 = w.z > 0.0;
+    UNITPACK_PRECISE float t18 = t17 ? w.z : 0.0;
+    UNITPACK_PRECISE float t19 = abs(w.x);
+    UNITPACK_PRECISE float t20 = abs(w.y);
+    UNITPACK_PRECISE float t21 = t19 + t20;
+    UNITPACK_PRECISE float l1 = t21 + t18;
+    UNITPACK_PRECISE float t22 = w.x + w.y;
+    UNITPACK_PRECISE float t23 = w.x - w.y;
+    UNITPACK_PRECISE vec2 n = vec2(t22, t23);
+    bvec2 t24 = lessThan(n, vec2(0.0));
+    UNITPACK_PRECISE vec2 t25 = abs(n);
+    UNITPACK_PRECISE vec2 t26 = t25 / l1;
+    UNITPACK_PRECISE vec2 t27 = t26 * 32767.0;
+    UNITPACK_PRECISE vec2 t28 = roundEven(t27);
+    UNITPACK_PRECISE vec2 t29 = t25 * 32767.0;
+    UNITPACK_PRECISE vec2 t30 = t28 + 0.5;
+    UNITPACK_PRECISE vec2 t31 = t30 * l1;
+    bvec2 t32 = greaterThanEqual(t29, t31);
+    UNITPACK_PRECISE vec2 t33 = t28 - 0.5;
+    UNITPACK_PRECISE vec2 t34 = t33 * l1;
+    bvec2 t35 = lessThan(t29, t34);
+    UNITPACK_PRECISE vec2 t36 = mix(vec2(0.0), vec2(-1.0), t35);
+    UNITPACK_PRECISE vec2 t37 = mix(t36, vec2(1.0), t32);
+    UNITPACK_PRECISE vec2 t38 = t28 + t37;
+    bvec2 t39 = greaterThanEqual(t38, vec2(0.0));
+    UNITPACK_PRECISE vec2 t40 = mix(vec2(0.0), t38, t39);
+    bvec2 t41 = lessThanEqual(t40, vec2(32767.0));
+    UNITPACK_PRECISE vec2 t42 = mix(vec2(32767.0), t40, t41);
+    UNITPACK_PRECISE vec2 t43 = -t42;
+    UNITPACK_PRECISE vec2 t44 = mix(t42, t43, t24);
+    bool t45 = l1 > 0.0;
+    bool t46 = t14 && t45;
+    UNITPACK_PRECISE vec2 t47 = t46 ? t44 : vec2(0.0);
+    return t47;
+}
+
 // unitpack_hemioct32_encode: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder.
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
 uint unitpack_hemioct32_encode(vec3 v) {
-    UNITPACK_PRECISE vec2 t1 = unitpack_hemioct32_encode_float(v);
-    bvec2 t2 = greaterThanEqual(t1, vec2(-1.0));
-    UNITPACK_PRECISE vec2 t3 = mix(vec2(-1.0), t1, t2);
-    bvec2 t4 = lessThanEqual(t3, vec2(1.0));
-    UNITPACK_PRECISE vec2 t5 = mix(vec2(1.0), t3, t4);
-    UNITPACK_PRECISE vec2 t6 = t5 * 32767.0;
-    UNITPACK_PRECISE vec2 codes = roundEven(t6);
-    UNITPACK_PRECISE float t7 = codes.x + 65536.0;
-    bool t8 = codes.x < 0.0;
-    UNITPACK_PRECISE float t9 = t8 ? t7 : codes.x;
-    uint t10 = uint(t9);
-    UNITPACK_PRECISE float t11 = codes.y + 65536.0;
-    bool t12 = codes.y < 0.0;
-    UNITPACK_PRECISE float t13 = t12 ? t11 : codes.y;
-    uint t14 = uint(t13);
-    uint t15 = t14 << 16u;
-    uint t16 = t10 | t15;
-    return t16;
+    UNITPACK_PRECISE vec2 t1 = unitpack_hemioct32_round_codes(v);
+    UNITPACK_PRECISE float t2 = t1.x + 65536.0;
+    bool t3 = t1.x < 0.0;
+    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
+    uint t5 = uint(t4);
+    UNITPACK_PRECISE float t6 = t1.y + 65536.0;
+    bool t7 = t1.y < 0.0;
+    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
+    uint t9 = uint(t8);
+    uint t10 = t9 << 16u;
+    uint t11 = t5 | t10;
+    return t11;
 }
 
 #endif // UNITPACK_HEMIOCT32_GLSL

@@ -171,6 +171,7 @@ vec2 unitpack_lambert24p_encode_float(vec3 v) {
 // unitpack_lambert24p_encode: lambert24p (Lambert azimuthal equal-area, unorm×2, 24 bits, sphere), precise encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: the packed code, uint (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 1.41272° (not a bound).
 uint unitpack_lambert24p_encode(vec3 v) {

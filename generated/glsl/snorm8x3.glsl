@@ -88,36 +88,153 @@ vec3 unitpack_snorm8x3_encode_float(vec3 v) {
     return t15;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+vec3 unitpack_snorm8x3_round_codes(vec3 a0) {
+    UNITPACK_PRECISE vec3 t1 = abs(a0);
+    bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
+    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), t2);
+    UNITPACK_PRECISE vec3 t3 = abs(normal);
+    bool t4 = t3.x >= t3.y;
+    UNITPACK_PRECISE float t5 = t4 ? t3.x : t3.y;
+    bool t6 = t5 >= t3.z;
+    UNITPACK_PRECISE float largest = t6 ? t5 : t3.z;
+    uint t7 = floatBitsToUint(largest);
+    uint t8 = t7 & 2139095040u;
+    uint t9 = 2139095040u - t8;
+    UNITPACK_PRECISE float scale = uintBitsToFloat(t9);
+    UNITPACK_PRECISE vec3 scaled = normal * scale;
+    UNITPACK_PRECISE vec3 t10 = abs(scaled);
+    UNITPACK_PRECISE float t11 = t10.x + t10.y;
+    UNITPACK_PRECISE float sum = t11 + t10.z;
+    bool t12 = sum >= 2.0;
+    bool t13 = sum < 16.0;
+    bool t14 = t12 && t13;
+    UNITPACK_PRECISE vec3 t15 = abs(scaled);
+    bvec3 t16 = lessThan(t15, vec3(1.8189894e-12));
+    UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), t16);
+    uint t17 = floatBitsToUint(w.x);
+    uint t18 = t17 & 4294963200u;
+    UNITPACK_PRECISE float t19 = uintBitsToFloat(t18);
+    UNITPACK_PRECISE float t20 = w.x - t19;
+    UNITPACK_PRECISE float t21 = t19 * t19;
+    UNITPACK_PRECISE float t22 = t19 + t19;
+    UNITPACK_PRECISE float t23 = t22 * t20;
+    UNITPACK_PRECISE float t24 = t20 * t20;
+    uint t25 = floatBitsToUint(w.y);
+    uint t26 = t25 & 4294963200u;
+    UNITPACK_PRECISE float t27 = uintBitsToFloat(t26);
+    UNITPACK_PRECISE float t28 = w.y - t27;
+    UNITPACK_PRECISE float t29 = t27 * t27;
+    UNITPACK_PRECISE float t30 = t27 + t27;
+    UNITPACK_PRECISE float t31 = t30 * t28;
+    UNITPACK_PRECISE float t32 = t28 * t28;
+    uint t33 = floatBitsToUint(w.z);
+    uint t34 = t33 & 4294963200u;
+    UNITPACK_PRECISE float t35 = uintBitsToFloat(t34);
+    UNITPACK_PRECISE float t36 = w.z - t35;
+    UNITPACK_PRECISE float t37 = t35 * t35;
+    UNITPACK_PRECISE float t38 = t35 + t35;
+    UNITPACK_PRECISE float t39 = t38 * t36;
+    UNITPACK_PRECISE float t40 = t36 * t36;
+    UNITPACK_PRECISE float t41 = t21 + t29;
+    UNITPACK_PRECISE float t42 = t41 + t37;
+    UNITPACK_PRECISE float t43 = t23 + t31;
+    UNITPACK_PRECISE float t44 = t43 + t39;
+    UNITPACK_PRECISE float t45 = t24 + t32;
+    UNITPACK_PRECISE float t46 = t45 + t40;
+    UNITPACK_PRECISE float t47 = t42 + t44;
+    UNITPACK_PRECISE float len2 = t47 + t46;
+    UNITPACK_PRECISE float t48 = abs(w.x);
+    UNITPACK_PRECISE float t49 = sqrt(len2);
+    UNITPACK_PRECISE float t50 = t48 / t49;
+    UNITPACK_PRECISE float t51 = t50 * 127.0;
+    UNITPACK_PRECISE float t52 = roundEven(t51);
+    UNITPACK_PRECISE float t53 = t48 * 127.0;
+    UNITPACK_PRECISE float t54 = t53 * t53;
+    UNITPACK_PRECISE float t55 = t52 - 0.5;
+    bool t56 = t52 > 0.0;
+    UNITPACK_PRECISE float t57 = t55 * t55;
+    UNITPACK_PRECISE float t58 = t57 * len2;
+    bool t59 = t54 < t58;
+    bool t60 = t56 && t59;
+    UNITPACK_PRECISE float t61 = abs(w.y);
+    UNITPACK_PRECISE float t62 = sqrt(len2);
+    UNITPACK_PRECISE float t63 = t61 / t62;
+    UNITPACK_PRECISE float t64 = t63 * 127.0;
+    UNITPACK_PRECISE float t65 = roundEven(t64);
+    UNITPACK_PRECISE float t66 = t61 * 127.0;
+    UNITPACK_PRECISE float t67 = t66 * t66;
+    UNITPACK_PRECISE float t68 = t65 - 0.5;
+    bool t69 = t65 > 0.0;
+    UNITPACK_PRECISE float t70 = t68 * t68;
+    UNITPACK_PRECISE float t71 = t70 * len2;
+    bool t72 = t67 < t71;
+    bool t73 = t69 && t72;
+    UNITPACK_PRECISE float t74 = abs(w.z);
+    UNITPACK_PRECISE float t75 = sqrt(len2);
+    UNITPACK_PRECISE float t76 = t74 / t75;
+    UNITPACK_PRECISE float t77 = t76 * 127.0;
+    UNITPACK_PRECISE float t78 = roundEven(t77);
+    UNITPACK_PRECISE float t79 = t74 * 127.0;
+    UNITPACK_PRECISE float t80 = t79 * t79;
+    UNITPACK_PRECISE float t81 = t78 - 0.5;
+    bool t82 = t78 > 0.0;
+    UNITPACK_PRECISE float t83 = t81 * t81;
+    UNITPACK_PRECISE float t84 = t83 * len2;
+    bool t85 = t80 < t84;
+    bool t86 = t82 && t85;
+    bvec3 t87 = lessThan(w, vec3(0.0));
+    UNITPACK_PRECISE vec3 t88 = abs(w);
+    UNITPACK_PRECISE vec3 t89 = vec3(len2);
+    UNITPACK_PRECISE vec3 t90 = sqrt(t89);
+    UNITPACK_PRECISE vec3 t91 = t88 / t90;
+    UNITPACK_PRECISE vec3 t92 = t91 * 127.0;
+    UNITPACK_PRECISE vec3 t93 = roundEven(t92);
+    UNITPACK_PRECISE vec3 t94 = t88 * 127.0;
+    UNITPACK_PRECISE vec3 t95 = t94 * t94;
+    UNITPACK_PRECISE vec3 t96 = t93 + 0.5;
+    UNITPACK_PRECISE vec3 t97 = t96 * t96;
+    UNITPACK_PRECISE vec3 t98 = t97 * len2;
+    bvec3 t99 = greaterThanEqual(t95, t98);
+    bvec3 t100 = bvec3(t60, t73, t86);
+    UNITPACK_PRECISE vec3 t101 = mix(vec3(0.0), vec3(-1.0), t100);
+    UNITPACK_PRECISE vec3 t102 = mix(t101, vec3(1.0), t99);
+    UNITPACK_PRECISE vec3 t103 = t93 + t102;
+    bvec3 t104 = greaterThanEqual(t103, vec3(0.0));
+    UNITPACK_PRECISE vec3 t105 = mix(vec3(0.0), t103, t104);
+    bvec3 t106 = lessThanEqual(t105, vec3(127.0));
+    UNITPACK_PRECISE vec3 t107 = mix(vec3(127.0), t105, t106);
+    UNITPACK_PRECISE vec3 t108 = -t107;
+    UNITPACK_PRECISE vec3 t109 = mix(t107, t108, t87);
+    UNITPACK_PRECISE vec3 t110 = t14 ? t109 : vec3(0.0, 0.0, 127.0);
+    return t110;
+}
+
 // unitpack_snorm8x3_encode: snorm8x3 (components as snorm×3, 24 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement), bits 16–23: p2 snorm8 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound).
 uint unitpack_snorm8x3_encode(vec3 v) {
-    UNITPACK_PRECISE vec3 t1 = unitpack_snorm8x3_encode_float(v);
-    bvec3 t2 = greaterThanEqual(t1, vec3(-1.0));
-    UNITPACK_PRECISE vec3 t3 = mix(vec3(-1.0), t1, t2);
-    bvec3 t4 = lessThanEqual(t3, vec3(1.0));
-    UNITPACK_PRECISE vec3 t5 = mix(vec3(1.0), t3, t4);
-    UNITPACK_PRECISE vec3 t6 = t5 * 127.0;
-    UNITPACK_PRECISE vec3 codes = roundEven(t6);
-    UNITPACK_PRECISE float t7 = codes.x + 256.0;
-    bool t8 = codes.x < 0.0;
-    UNITPACK_PRECISE float t9 = t8 ? t7 : codes.x;
-    uint t10 = uint(t9);
-    UNITPACK_PRECISE float t11 = codes.y + 256.0;
-    bool t12 = codes.y < 0.0;
-    UNITPACK_PRECISE float t13 = t12 ? t11 : codes.y;
-    uint t14 = uint(t13);
-    uint t15 = t14 << 8u;
-    uint t16 = t10 | t15;
-    UNITPACK_PRECISE float t17 = codes.z + 256.0;
-    bool t18 = codes.z < 0.0;
-    UNITPACK_PRECISE float t19 = t18 ? t17 : codes.z;
-    uint t20 = uint(t19);
-    uint t21 = t20 << 16u;
-    uint t22 = t16 | t21;
-    return t22;
+    UNITPACK_PRECISE vec3 t1 = unitpack_snorm8x3_round_codes(v);
+    UNITPACK_PRECISE float t2 = t1.x + 256.0;
+    bool t3 = t1.x < 0.0;
+    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
+    uint t5 = uint(t4);
+    UNITPACK_PRECISE float t6 = t1.y + 256.0;
+    bool t7 = t1.y < 0.0;
+    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
+    uint t9 = uint(t8);
+    uint t10 = t9 << 8u;
+    uint t11 = t5 | t10;
+    UNITPACK_PRECISE float t12 = t1.z + 256.0;
+    bool t13 = t1.z < 0.0;
+    UNITPACK_PRECISE float t14 = t13 ? t12 : t1.z;
+    uint t15 = uint(t14);
+    uint t16 = t15 << 16u;
+    uint t17 = t11 | t16;
+    return t17;
 }
 
 #endif // UNITPACK_SNORM8X3_GLSL

@@ -269,6 +269,7 @@ vec2 unitpack_spherical16p_encode_float(vec3 v) {
 // unitpack_spherical16p_encode: spherical16p (spherical coordinates (θ, φ), snorm×2, 16 bits, sphere), precise encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
 uint unitpack_spherical16p_encode(vec3 v) {

@@ -269,6 +269,7 @@ vec2 unitpack_spherical32p_encode_float(vec3 v) {
 // unitpack_spherical32p_encode: spherical32p (spherical coordinates (θ, φ), snorm×2, 32 bits, sphere), precise encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
 uint unitpack_spherical32p_encode(vec3 v) {

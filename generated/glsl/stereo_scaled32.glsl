@@ -95,6 +95,7 @@ vec2 unitpack_stereo_scaled32_encode_float(vec3 v) {
 // unitpack_stereo_scaled32_encode: stereo_scaled32 (scaled stereographic, unorm×2, 32 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge.
 // Out: the packed code, uint (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Pranckevičius, Compact Normal Storage, method 7.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound).
 uint unitpack_stereo_scaled32_encode(vec3 v) {

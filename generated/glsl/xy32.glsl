@@ -27,7 +27,7 @@ precision highp int;
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.31275° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 vec3 unitpack_xy32_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 t1 = params * params;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
@@ -43,7 +43,7 @@ vec3 unitpack_xy32_decode_float(vec2 params) {
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)); other bits are ignored.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.31275° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 vec3 unitpack_xy32_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -63,7 +63,7 @@ vec3 unitpack_xy32_decode(uint code) {
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.31275° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 vec2 unitpack_xy32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -107,30 +107,138 @@ vec2 unitpack_xy32_encode_float(vec3 v) {
     return t33.xy;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+vec2 unitpack_xy32_round_codes(vec3 a0) {
+    UNITPACK_PRECISE vec3 t1 = abs(a0);
+    bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
+    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), t2);
+    UNITPACK_PRECISE vec3 t3 = abs(normal);
+    bool t4 = t3.x >= t3.y;
+    UNITPACK_PRECISE float t5 = t4 ? t3.x : t3.y;
+    bool t6 = t5 >= t3.z;
+    UNITPACK_PRECISE float largest = t6 ? t5 : t3.z;
+    uint t7 = floatBitsToUint(largest);
+    uint t8 = t7 & 2139095040u;
+    uint t9 = 2139095040u - t8;
+    UNITPACK_PRECISE float scale = uintBitsToFloat(t9);
+    UNITPACK_PRECISE vec3 scaled = normal * scale;
+    UNITPACK_PRECISE vec3 t10 = abs(scaled);
+    UNITPACK_PRECISE float t11 = t10.x + t10.y;
+    UNITPACK_PRECISE float sum = t11 + t10.z;
+    bool t12 = sum >= 2.0;
+    bool t13 = sum < 16.0;
+    bool t14 = t12 && t13;
+    UNITPACK_PRECISE vec3 t15 = abs(scaled);
+    bvec3 t16 = lessThan(t15, vec3(1.8189894e-12));
+    UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), t16);
+    bool t17 = w.z > 0.0;
+    UNITPACK_PRECISE float t18 = t17 ? w.z : 0.0;
+    uint t19 = floatBitsToUint(w.x);
+    uint t20 = t19 & 4294963200u;
+    UNITPACK_PRECISE float t21 = uintBitsToFloat(t20);
+    UNITPACK_PRECISE float t22 = w.x - t21;
+    UNITPACK_PRECISE float t23 = t21 * t21;
+    UNITPACK_PRECISE float t24 = t21 + t21;
+    UNITPACK_PRECISE float t25 = t24 * t22;
+    UNITPACK_PRECISE float t26 = t22 * t22;
+    uint t27 = floatBitsToUint(w.y);
+    uint t28 = t27 & 4294963200u;
+    UNITPACK_PRECISE float t29 = uintBitsToFloat(t28);
+    UNITPACK_PRECISE float t30 = w.y - t29;
+    UNITPACK_PRECISE float t31 = t29 * t29;
+    UNITPACK_PRECISE float t32 = t29 + t29;
+    UNITPACK_PRECISE float t33 = t32 * t30;
+    UNITPACK_PRECISE float t34 = t30 * t30;
+    uint t35 = floatBitsToUint(t18);
+    uint t36 = t35 & 4294963200u;
+    UNITPACK_PRECISE float t37 = uintBitsToFloat(t36);
+    UNITPACK_PRECISE float t38 = t18 - t37;
+    UNITPACK_PRECISE float t39 = t37 * t37;
+    UNITPACK_PRECISE float t40 = t37 + t37;
+    UNITPACK_PRECISE float t41 = t40 * t38;
+    UNITPACK_PRECISE float t42 = t38 * t38;
+    UNITPACK_PRECISE float t43 = t23 + t31;
+    UNITPACK_PRECISE float t44 = t43 + t39;
+    UNITPACK_PRECISE float t45 = t25 + t33;
+    UNITPACK_PRECISE float t46 = t45 + t41;
+    UNITPACK_PRECISE float t47 = t26 + t34;
+    UNITPACK_PRECISE float t48 = t47 + t42;
+    UNITPACK_PRECISE float t49 = t44 + t46;
+    UNITPACK_PRECISE float len2 = t49 + t48;
+    UNITPACK_PRECISE float t50 = abs(w.xy.x);
+    UNITPACK_PRECISE float t51 = sqrt(len2);
+    UNITPACK_PRECISE float t52 = t50 / t51;
+    UNITPACK_PRECISE float t53 = t52 * 32767.0;
+    UNITPACK_PRECISE float t54 = roundEven(t53);
+    UNITPACK_PRECISE float t55 = t50 * 32767.0;
+    UNITPACK_PRECISE float t56 = t55 * t55;
+    UNITPACK_PRECISE float t57 = t54 - 0.5;
+    bool t58 = t54 > 0.0;
+    UNITPACK_PRECISE float t59 = t57 * t57;
+    UNITPACK_PRECISE float t60 = t59 * len2;
+    bool t61 = t56 < t60;
+    bool t62 = t58 && t61;
+    UNITPACK_PRECISE float t63 = abs(w.xy.y);
+    UNITPACK_PRECISE float t64 = sqrt(len2);
+    UNITPACK_PRECISE float t65 = t63 / t64;
+    UNITPACK_PRECISE float t66 = t65 * 32767.0;
+    UNITPACK_PRECISE float t67 = roundEven(t66);
+    UNITPACK_PRECISE float t68 = t63 * 32767.0;
+    UNITPACK_PRECISE float t69 = t68 * t68;
+    UNITPACK_PRECISE float t70 = t67 - 0.5;
+    bool t71 = t67 > 0.0;
+    UNITPACK_PRECISE float t72 = t70 * t70;
+    UNITPACK_PRECISE float t73 = t72 * len2;
+    bool t74 = t69 < t73;
+    bool t75 = t71 && t74;
+    bvec2 t76 = lessThan(w.xy, vec2(0.0));
+    UNITPACK_PRECISE vec2 t77 = abs(w.xy);
+    UNITPACK_PRECISE vec2 t78 = vec2(len2);
+    UNITPACK_PRECISE vec2 t79 = sqrt(t78);
+    UNITPACK_PRECISE vec2 t80 = t77 / t79;
+    UNITPACK_PRECISE vec2 t81 = t80 * 32767.0;
+    UNITPACK_PRECISE vec2 t82 = roundEven(t81);
+    UNITPACK_PRECISE vec2 t83 = t77 * 32767.0;
+    UNITPACK_PRECISE vec2 t84 = t83 * t83;
+    UNITPACK_PRECISE vec2 t85 = t82 + 0.5;
+    UNITPACK_PRECISE vec2 t86 = t85 * t85;
+    UNITPACK_PRECISE vec2 t87 = t86 * len2;
+    bvec2 t88 = greaterThanEqual(t84, t87);
+    bvec2 t89 = bvec2(t62, t75);
+    UNITPACK_PRECISE vec2 t90 = mix(vec2(0.0), vec2(-1.0), t89);
+    UNITPACK_PRECISE vec2 t91 = mix(t90, vec2(1.0), t88);
+    UNITPACK_PRECISE vec2 t92 = t82 + t91;
+    bvec2 t93 = greaterThanEqual(t92, vec2(0.0));
+    UNITPACK_PRECISE vec2 t94 = mix(vec2(0.0), t92, t93);
+    bvec2 t95 = lessThanEqual(t94, vec2(32767.0));
+    UNITPACK_PRECISE vec2 t96 = mix(vec2(32767.0), t94, t95);
+    UNITPACK_PRECISE vec2 t97 = -t96;
+    UNITPACK_PRECISE vec2 t98 = mix(t96, t97, t76);
+    bool t99 = len2 > 0.0;
+    bool t100 = t14 && t99;
+    UNITPACK_PRECISE vec2 t101 = t100 ? t98 : vec2(0.0);
+    return t101;
+}
+
 // unitpack_xy32_encode: xy32 (x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere), fast encoder.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.31275° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 uint unitpack_xy32_encode(vec3 v) {
-    UNITPACK_PRECISE vec2 t1 = unitpack_xy32_encode_float(v);
-    bvec2 t2 = greaterThanEqual(t1, vec2(-1.0));
-    UNITPACK_PRECISE vec2 t3 = mix(vec2(-1.0), t1, t2);
-    bvec2 t4 = lessThanEqual(t3, vec2(1.0));
-    UNITPACK_PRECISE vec2 t5 = mix(vec2(1.0), t3, t4);
-    UNITPACK_PRECISE vec2 t6 = t5 * 32767.0;
-    UNITPACK_PRECISE vec2 codes = roundEven(t6);
-    UNITPACK_PRECISE float t7 = codes.x + 65536.0;
-    bool t8 = codes.x < 0.0;
-    UNITPACK_PRECISE float t9 = t8 ? t7 : codes.x;
-    uint t10 = uint(t9);
-    UNITPACK_PRECISE float t11 = codes.y + 65536.0;
-    bool t12 = codes.y < 0.0;
-    UNITPACK_PRECISE float t13 = t12 ? t11 : codes.y;
-    uint t14 = uint(t13);
-    uint t15 = t14 << 16u;
-    uint t16 = t10 | t15;
-    return t16;
+    UNITPACK_PRECISE vec2 t1 = unitpack_xy32_round_codes(v);
+    UNITPACK_PRECISE float t2 = t1.x + 65536.0;
+    bool t3 = t1.x < 0.0;
+    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
+    uint t5 = uint(t4);
+    UNITPACK_PRECISE float t6 = t1.y + 65536.0;
+    bool t7 = t1.y < 0.0;
+    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
+    uint t9 = uint(t8);
+    uint t10 = t9 << 16u;
+    uint t11 = t5 | t10;
+    return t11;
 }
 
 #endif // UNITPACK_XY32_GLSL

@@ -228,6 +228,7 @@ float2 unitpack_hemioct24p_encode_float(float3 v) {
 // unitpack_hemioct24p_encode: hemioct24p (hemi-octahedral, snorm×2, 24 bits, hemisphere), precise encoder.
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01478°, sample max 0.03328° (not a bound).
 uint unitpack_hemioct24p_encode(float3 v) {

@@ -184,6 +184,7 @@ float2 unitpack_oct20p_encode_float(float3 v) {
 // unitpack_oct20p_encode: oct20p (octahedral, snorm×2, 20 bits, sphere), precise encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.07802°, sample max 0.15791° (not a bound).
 uint unitpack_oct20p_encode(float3 v) {

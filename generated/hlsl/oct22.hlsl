@@ -97,30 +97,83 @@ float2 unitpack_oct22_encode_float(float3 v) {
     return t18;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+float2 unitpack_oct22_round_codes(float3 a0) {
+    precise float3 t1 = abs(a0);
+    bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
+    precise float3 normal = UNITPACK_SELECT(t2, float3(0.0, 0.0, 0.0), a0);
+    precise float3 t3 = abs(normal);
+    bool t4 = t3.x >= t3.y;
+    precise float t5 = t4 ? t3.x : t3.y;
+    bool t6 = t5 >= t3.z;
+    precise float largest = t6 ? t5 : t3.z;
+    uint t7 = asuint(largest);
+    uint t8 = t7 & 2139095040u;
+    uint t9 = 2139095040u - t8;
+    precise float scale = asfloat(t9);
+    precise float3 scaled = normal * scale;
+    precise float3 t10 = abs(scaled);
+    precise float t11 = t10.x + t10.y;
+    precise float sum = t11 + t10.z;
+    bool t12 = sum >= 2.0;
+    bool t13 = sum < 16.0;
+    bool t14 = t12 && t13;
+    precise float3 t15 = abs(scaled);
+    bool3 t16 = t15 < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12);
+    precise float3 w = UNITPACK_SELECT(t16, float3(0.0, 0.0, 0.0), scaled);
+    precise float3 t17 = abs(w);
+    precise float t18 = t17.x + t17.y;
+    precise float l1 = t18 + t17.z;
+    precise float2 t19 = l1 - t17.xy.yx;
+    bool2 t20 = w.xy >= float2(0.0, 0.0);
+    precise float2 t21 = UNITPACK_SELECT(t20, float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float2 t22 = t19 * t21;
+    bool t23 = w.z <= 0.0;
+    precise float2 n = t23 ? t22 : w.xy;
+    bool2 t24 = n < float2(0.0, 0.0);
+    precise float2 t25 = abs(n);
+    precise float2 t26 = t25 / l1;
+    precise float2 t27 = t26 * 1023.0;
+    precise float2 t28 = round(t27);
+    precise float2 t29 = t25 * 1023.0;
+    precise float2 t30 = t28 + 0.5;
+    precise float2 t31 = t30 * l1;
+    bool2 t32 = t29 >= t31;
+    precise float2 t33 = t28 - 0.5;
+    precise float2 t34 = t33 * l1;
+    bool2 t35 = t29 < t34;
+    precise float2 t36 = UNITPACK_SELECT(t35, float2(-1.0, -1.0), float2(0.0, 0.0));
+    precise float2 t37 = UNITPACK_SELECT(t32, float2(1.0, 1.0), t36);
+    precise float2 t38 = t28 + t37;
+    bool2 t39 = t38 >= float2(0.0, 0.0);
+    precise float2 t40 = UNITPACK_SELECT(t39, t38, float2(0.0, 0.0));
+    bool2 t41 = t40 <= float2(1023.0, 1023.0);
+    precise float2 t42 = UNITPACK_SELECT(t41, t40, float2(1023.0, 1023.0));
+    precise float2 t43 = -t42;
+    precise float2 t44 = UNITPACK_SELECT(t24, t43, t42);
+    precise float2 t45 = t14 ? t44 : float2(0.0, 0.0);
+    return t45;
+}
+
 // unitpack_oct22_encode: oct22 (octahedral, snorm×2, 22 bits, sphere), fast encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–10: p0 snorm11 (two's complement), bits 11–21: p1 snorm11 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.04188°, sample max 0.11518° (not a bound).
 uint unitpack_oct22_encode(float3 v) {
-    precise float2 t1 = unitpack_oct22_encode_float(v);
-    bool2 t2 = t1 >= float2(-1.0, -1.0);
-    precise float2 t3 = UNITPACK_SELECT(t2, t1, float2(-1.0, -1.0));
-    bool2 t4 = t3 <= float2(1.0, 1.0);
-    precise float2 t5 = UNITPACK_SELECT(t4, t3, float2(1.0, 1.0));
-    precise float2 t6 = t5 * 1023.0;
-    precise float2 codes = round(t6);
-    precise float t7 = codes.x + 2048.0;
-    bool t8 = codes.x < 0.0;
-    precise float t9 = t8 ? t7 : codes.x;
-    uint t10 = uint(t9);
-    precise float t11 = codes.y + 2048.0;
-    bool t12 = codes.y < 0.0;
-    precise float t13 = t12 ? t11 : codes.y;
-    uint t14 = uint(t13);
-    uint t15 = t14 << 11u;
-    uint t16 = t10 | t15;
-    return t16;
+    precise float2 t1 = unitpack_oct22_round_codes(v);
+    precise float t2 = t1.x + 2048.0;
+    bool t3 = t1.x < 0.0;
+    precise float t4 = t3 ? t2 : t1.x;
+    uint t5 = uint(t4);
+    precise float t6 = t1.y + 2048.0;
+    bool t7 = t1.y < 0.0;
+    precise float t8 = t7 ? t6 : t1.y;
+    uint t9 = uint(t8);
+    uint t10 = t9 << 11u;
+    uint t11 = t5 | t10;
+    return t11;
 }
 
 #endif // UNITPACK_OCT22_HLSL

@@ -87,36 +87,153 @@ float3 unitpack_snorm8x3_encode_float(float3 v) {
     return t15;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+float3 unitpack_snorm8x3_round_codes(float3 a0) {
+    precise float3 t1 = abs(a0);
+    bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
+    precise float3 normal = UNITPACK_SELECT(t2, float3(0.0, 0.0, 0.0), a0);
+    precise float3 t3 = abs(normal);
+    bool t4 = t3.x >= t3.y;
+    precise float t5 = t4 ? t3.x : t3.y;
+    bool t6 = t5 >= t3.z;
+    precise float largest = t6 ? t5 : t3.z;
+    uint t7 = asuint(largest);
+    uint t8 = t7 & 2139095040u;
+    uint t9 = 2139095040u - t8;
+    precise float scale = asfloat(t9);
+    precise float3 scaled = normal * scale;
+    precise float3 t10 = abs(scaled);
+    precise float t11 = t10.x + t10.y;
+    precise float sum = t11 + t10.z;
+    bool t12 = sum >= 2.0;
+    bool t13 = sum < 16.0;
+    bool t14 = t12 && t13;
+    precise float3 t15 = abs(scaled);
+    bool3 t16 = t15 < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12);
+    precise float3 w = UNITPACK_SELECT(t16, float3(0.0, 0.0, 0.0), scaled);
+    uint t17 = asuint(w.x);
+    uint t18 = t17 & 4294963200u;
+    precise float t19 = asfloat(t18);
+    precise float t20 = w.x - t19;
+    precise float t21 = t19 * t19;
+    precise float t22 = t19 + t19;
+    precise float t23 = t22 * t20;
+    precise float t24 = t20 * t20;
+    uint t25 = asuint(w.y);
+    uint t26 = t25 & 4294963200u;
+    precise float t27 = asfloat(t26);
+    precise float t28 = w.y - t27;
+    precise float t29 = t27 * t27;
+    precise float t30 = t27 + t27;
+    precise float t31 = t30 * t28;
+    precise float t32 = t28 * t28;
+    uint t33 = asuint(w.z);
+    uint t34 = t33 & 4294963200u;
+    precise float t35 = asfloat(t34);
+    precise float t36 = w.z - t35;
+    precise float t37 = t35 * t35;
+    precise float t38 = t35 + t35;
+    precise float t39 = t38 * t36;
+    precise float t40 = t36 * t36;
+    precise float t41 = t21 + t29;
+    precise float t42 = t41 + t37;
+    precise float t43 = t23 + t31;
+    precise float t44 = t43 + t39;
+    precise float t45 = t24 + t32;
+    precise float t46 = t45 + t40;
+    precise float t47 = t42 + t44;
+    precise float len2 = t47 + t46;
+    precise float t48 = abs(w.x);
+    precise float t49 = sqrt(len2);
+    precise float t50 = t48 / t49;
+    precise float t51 = t50 * 127.0;
+    precise float t52 = round(t51);
+    precise float t53 = t48 * 127.0;
+    precise float t54 = t53 * t53;
+    precise float t55 = t52 - 0.5;
+    bool t56 = t52 > 0.0;
+    precise float t57 = t55 * t55;
+    precise float t58 = t57 * len2;
+    bool t59 = t54 < t58;
+    bool t60 = t56 && t59;
+    precise float t61 = abs(w.y);
+    precise float t62 = sqrt(len2);
+    precise float t63 = t61 / t62;
+    precise float t64 = t63 * 127.0;
+    precise float t65 = round(t64);
+    precise float t66 = t61 * 127.0;
+    precise float t67 = t66 * t66;
+    precise float t68 = t65 - 0.5;
+    bool t69 = t65 > 0.0;
+    precise float t70 = t68 * t68;
+    precise float t71 = t70 * len2;
+    bool t72 = t67 < t71;
+    bool t73 = t69 && t72;
+    precise float t74 = abs(w.z);
+    precise float t75 = sqrt(len2);
+    precise float t76 = t74 / t75;
+    precise float t77 = t76 * 127.0;
+    precise float t78 = round(t77);
+    precise float t79 = t74 * 127.0;
+    precise float t80 = t79 * t79;
+    precise float t81 = t78 - 0.5;
+    bool t82 = t78 > 0.0;
+    precise float t83 = t81 * t81;
+    precise float t84 = t83 * len2;
+    bool t85 = t80 < t84;
+    bool t86 = t82 && t85;
+    bool3 t87 = w < float3(0.0, 0.0, 0.0);
+    precise float3 t88 = abs(w);
+    precise float3 t89 = float3(len2, len2, len2);
+    precise float3 t90 = sqrt(t89);
+    precise float3 t91 = t88 / t90;
+    precise float3 t92 = t91 * 127.0;
+    precise float3 t93 = round(t92);
+    precise float3 t94 = t88 * 127.0;
+    precise float3 t95 = t94 * t94;
+    precise float3 t96 = t93 + 0.5;
+    precise float3 t97 = t96 * t96;
+    precise float3 t98 = t97 * len2;
+    bool3 t99 = t95 >= t98;
+    bool3 t100 = bool3(t60, t73, t86);
+    precise float3 t101 = UNITPACK_SELECT(t100, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0));
+    precise float3 t102 = UNITPACK_SELECT(t99, float3(1.0, 1.0, 1.0), t101);
+    precise float3 t103 = t93 + t102;
+    bool3 t104 = t103 >= float3(0.0, 0.0, 0.0);
+    precise float3 t105 = UNITPACK_SELECT(t104, t103, float3(0.0, 0.0, 0.0));
+    bool3 t106 = t105 <= float3(127.0, 127.0, 127.0);
+    precise float3 t107 = UNITPACK_SELECT(t106, t105, float3(127.0, 127.0, 127.0));
+    precise float3 t108 = -t107;
+    precise float3 t109 = UNITPACK_SELECT(t87, t108, t107);
+    precise float3 t110 = t14 ? t109 : float3(0.0, 0.0, 127.0);
+    return t110;
+}
+
 // unitpack_snorm8x3_encode: snorm8x3 (components as snorm×3, 24 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement), bits 16–23: p2 snorm8 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound).
 uint unitpack_snorm8x3_encode(float3 v) {
-    precise float3 t1 = unitpack_snorm8x3_encode_float(v);
-    bool3 t2 = t1 >= float3(-1.0, -1.0, -1.0);
-    precise float3 t3 = UNITPACK_SELECT(t2, t1, float3(-1.0, -1.0, -1.0));
-    bool3 t4 = t3 <= float3(1.0, 1.0, 1.0);
-    precise float3 t5 = UNITPACK_SELECT(t4, t3, float3(1.0, 1.0, 1.0));
-    precise float3 t6 = t5 * 127.0;
-    precise float3 codes = round(t6);
-    precise float t7 = codes.x + 256.0;
-    bool t8 = codes.x < 0.0;
-    precise float t9 = t8 ? t7 : codes.x;
-    uint t10 = uint(t9);
-    precise float t11 = codes.y + 256.0;
-    bool t12 = codes.y < 0.0;
-    precise float t13 = t12 ? t11 : codes.y;
-    uint t14 = uint(t13);
-    uint t15 = t14 << 8u;
-    uint t16 = t10 | t15;
-    precise float t17 = codes.z + 256.0;
-    bool t18 = codes.z < 0.0;
-    precise float t19 = t18 ? t17 : codes.z;
-    uint t20 = uint(t19);
-    uint t21 = t20 << 16u;
-    uint t22 = t16 | t21;
-    return t22;
+    precise float3 t1 = unitpack_snorm8x3_round_codes(v);
+    precise float t2 = t1.x + 256.0;
+    bool t3 = t1.x < 0.0;
+    precise float t4 = t3 ? t2 : t1.x;
+    uint t5 = uint(t4);
+    precise float t6 = t1.y + 256.0;
+    bool t7 = t1.y < 0.0;
+    precise float t8 = t7 ? t6 : t1.y;
+    uint t9 = uint(t8);
+    uint t10 = t9 << 8u;
+    uint t11 = t5 | t10;
+    precise float t12 = t1.z + 256.0;
+    bool t13 = t1.z < 0.0;
+    precise float t14 = t13 ? t12 : t1.z;
+    uint t15 = uint(t14);
+    uint t16 = t15 << 16u;
+    uint t17 = t11 | t16;
+    return t17;
 }
 
 #endif // UNITPACK_SNORM8X3_HLSL

@@ -94,6 +94,7 @@ float2 unitpack_stereo_scaled24_encode_float(float3 v) {
 // unitpack_stereo_scaled24_encode: stereo_scaled24 (scaled stereographic, unorm×2, 24 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge.
 // Out: the packed code, uint (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Pranckevičius, Compact Normal Storage, method 7.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.28923°, sample max 53.47246° (not a bound).
 uint unitpack_stereo_scaled24_encode(float3 v) {

@@ -106,30 +106,138 @@ float2 unitpack_xy16_encode_float(float3 v) {
     return t33.xy;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+float2 unitpack_xy16_round_codes(float3 a0) {
+    precise float3 t1 = abs(a0);
+    bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
+    precise float3 normal = UNITPACK_SELECT(t2, float3(0.0, 0.0, 0.0), a0);
+    precise float3 t3 = abs(normal);
+    bool t4 = t3.x >= t3.y;
+    precise float t5 = t4 ? t3.x : t3.y;
+    bool t6 = t5 >= t3.z;
+    precise float largest = t6 ? t5 : t3.z;
+    uint t7 = asuint(largest);
+    uint t8 = t7 & 2139095040u;
+    uint t9 = 2139095040u - t8;
+    precise float scale = asfloat(t9);
+    precise float3 scaled = normal * scale;
+    precise float3 t10 = abs(scaled);
+    precise float t11 = t10.x + t10.y;
+    precise float sum = t11 + t10.z;
+    bool t12 = sum >= 2.0;
+    bool t13 = sum < 16.0;
+    bool t14 = t12 && t13;
+    precise float3 t15 = abs(scaled);
+    bool3 t16 = t15 < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12);
+    precise float3 w = UNITPACK_SELECT(t16, float3(0.0, 0.0, 0.0), scaled);
+    bool t17 = w.z > 0.0;
+    precise float t18 = t17 ? w.z : 0.0;
+    uint t19 = asuint(w.x);
+    uint t20 = t19 & 4294963200u;
+    precise float t21 = asfloat(t20);
+    precise float t22 = w.x - t21;
+    precise float t23 = t21 * t21;
+    precise float t24 = t21 + t21;
+    precise float t25 = t24 * t22;
+    precise float t26 = t22 * t22;
+    uint t27 = asuint(w.y);
+    uint t28 = t27 & 4294963200u;
+    precise float t29 = asfloat(t28);
+    precise float t30 = w.y - t29;
+    precise float t31 = t29 * t29;
+    precise float t32 = t29 + t29;
+    precise float t33 = t32 * t30;
+    precise float t34 = t30 * t30;
+    uint t35 = asuint(t18);
+    uint t36 = t35 & 4294963200u;
+    precise float t37 = asfloat(t36);
+    precise float t38 = t18 - t37;
+    precise float t39 = t37 * t37;
+    precise float t40 = t37 + t37;
+    precise float t41 = t40 * t38;
+    precise float t42 = t38 * t38;
+    precise float t43 = t23 + t31;
+    precise float t44 = t43 + t39;
+    precise float t45 = t25 + t33;
+    precise float t46 = t45 + t41;
+    precise float t47 = t26 + t34;
+    precise float t48 = t47 + t42;
+    precise float t49 = t44 + t46;
+    precise float len2 = t49 + t48;
+    precise float t50 = abs(w.xy.x);
+    precise float t51 = sqrt(len2);
+    precise float t52 = t50 / t51;
+    precise float t53 = t52 * 127.0;
+    precise float t54 = round(t53);
+    precise float t55 = t50 * 127.0;
+    precise float t56 = t55 * t55;
+    precise float t57 = t54 - 0.5;
+    bool t58 = t54 > 0.0;
+    precise float t59 = t57 * t57;
+    precise float t60 = t59 * len2;
+    bool t61 = t56 < t60;
+    bool t62 = t58 && t61;
+    precise float t63 = abs(w.xy.y);
+    precise float t64 = sqrt(len2);
+    precise float t65 = t63 / t64;
+    precise float t66 = t65 * 127.0;
+    precise float t67 = round(t66);
+    precise float t68 = t63 * 127.0;
+    precise float t69 = t68 * t68;
+    precise float t70 = t67 - 0.5;
+    bool t71 = t67 > 0.0;
+    precise float t72 = t70 * t70;
+    precise float t73 = t72 * len2;
+    bool t74 = t69 < t73;
+    bool t75 = t71 && t74;
+    bool2 t76 = w.xy < float2(0.0, 0.0);
+    precise float2 t77 = abs(w.xy);
+    precise float2 t78 = float2(len2, len2);
+    precise float2 t79 = sqrt(t78);
+    precise float2 t80 = t77 / t79;
+    precise float2 t81 = t80 * 127.0;
+    precise float2 t82 = round(t81);
+    precise float2 t83 = t77 * 127.0;
+    precise float2 t84 = t83 * t83;
+    precise float2 t85 = t82 + 0.5;
+    precise float2 t86 = t85 * t85;
+    precise float2 t87 = t86 * len2;
+    bool2 t88 = t84 >= t87;
+    bool2 t89 = bool2(t62, t75);
+    precise float2 t90 = UNITPACK_SELECT(t89, float2(-1.0, -1.0), float2(0.0, 0.0));
+    precise float2 t91 = UNITPACK_SELECT(t88, float2(1.0, 1.0), t90);
+    precise float2 t92 = t82 + t91;
+    bool2 t93 = t92 >= float2(0.0, 0.0);
+    precise float2 t94 = UNITPACK_SELECT(t93, t92, float2(0.0, 0.0));
+    bool2 t95 = t94 <= float2(127.0, 127.0);
+    precise float2 t96 = UNITPACK_SELECT(t95, t94, float2(127.0, 127.0));
+    precise float2 t97 = -t96;
+    precise float2 t98 = UNITPACK_SELECT(t76, t97, t96);
+    bool t99 = len2 > 0.0;
+    bool t100 = t14 && t99;
+    precise float2 t101 = t100 ? t98 : float2(0.0, 0.0);
+    return t101;
+}
+
 // unitpack_xy16_encode: xy16 (x and y stored, z reconstructed, snorm×2, 16 bits, hemisphere), fast encoder.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound).
 uint unitpack_xy16_encode(float3 v) {
-    precise float2 t1 = unitpack_xy16_encode_float(v);
-    bool2 t2 = t1 >= float2(-1.0, -1.0);
-    precise float2 t3 = UNITPACK_SELECT(t2, t1, float2(-1.0, -1.0));
-    bool2 t4 = t3 <= float2(1.0, 1.0);
-    precise float2 t5 = UNITPACK_SELECT(t4, t3, float2(1.0, 1.0));
-    precise float2 t6 = t5 * 127.0;
-    precise float2 codes = round(t6);
-    precise float t7 = codes.x + 256.0;
-    bool t8 = codes.x < 0.0;
-    precise float t9 = t8 ? t7 : codes.x;
-    uint t10 = uint(t9);
-    precise float t11 = codes.y + 256.0;
-    bool t12 = codes.y < 0.0;
-    precise float t13 = t12 ? t11 : codes.y;
-    uint t14 = uint(t13);
-    uint t15 = t14 << 8u;
-    uint t16 = t10 | t15;
-    return t16;
+    precise float2 t1 = unitpack_xy16_round_codes(v);
+    precise float t2 = t1.x + 256.0;
+    bool t3 = t1.x < 0.0;
+    precise float t4 = t3 ? t2 : t1.x;
+    uint t5 = uint(t4);
+    precise float t6 = t1.y + 256.0;
+    bool t7 = t1.y < 0.0;
+    precise float t8 = t7 ? t6 : t1.y;
+    uint t9 = uint(t8);
+    uint t10 = t9 << 8u;
+    uint t11 = t5 | t10;
+    return t11;
 }
 
 #endif // UNITPACK_XY16_HLSL

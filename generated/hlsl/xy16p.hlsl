@@ -214,6 +214,7 @@ float2 unitpack_xy16p_encode_float(float3 v) {
 // unitpack_xy16p_encode: xy16p (x and y stored, z reconstructed, snorm×2, 16 bits, hemisphere), precise encoder.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound).
 uint unitpack_xy16p_encode(float3 v) {

@@ -213,6 +213,7 @@ fn unitpack_hemioct16p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // unitpack_hemioct16p_encode: hemioct16p (hemi-octahedral, snorm×2, 16 bits, hemisphere), precise encoder.
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.23889°, sample max 0.54445° (not a bound).
 fn unitpack_hemioct16p_encode(v: vec3<f32>) -> u32 {

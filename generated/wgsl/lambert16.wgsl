@@ -81,6 +81,7 @@ fn unitpack_lambert16_encode_float(v: vec3<f32>) -> vec2<f32> {
 // unitpack_lambert16_encode: lambert16 (Lambert azimuthal equal-area, unorm×2, 16 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: the packed code, u32 (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49282°, sample max 11.36750° (not a bound).
 fn unitpack_lambert16_encode(v: vec3<f32>) -> u32 {

@@ -82,28 +82,81 @@ fn unitpack_oct16_encode_float(v: vec3<f32>) -> vec2<f32> {
     return t18;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+fn unitpack_oct16_round_codes(a0: vec3<f32>) -> vec2<f32> {
+    let t1 = abs(a0);
+    let t2 = t1 < vec3<f32>(1.1754944e-38f);
+    let normal = select(a0, vec3<f32>(0.0f), t2);
+    let t3 = abs(normal);
+    let t4 = t3.x >= t3.y;
+    let t5 = select(t3.y, t3.x, t4);
+    let t6 = t5 >= t3.z;
+    let largest = select(t3.z, t5, t6);
+    let t7 = bitcast<u32>(largest);
+    let t8 = t7 & 2139095040u;
+    let t9 = 2139095040u - t8;
+    let scale = bitcast<f32>(t9);
+    let scaled = normal * scale;
+    let t10 = abs(scaled);
+    let t11 = t10.x + t10.y;
+    let sum = t11 + t10.z;
+    let t12 = sum >= 2.0f;
+    let t13 = sum < 16.0f;
+    let t14 = t12 && t13;
+    let t15 = abs(scaled);
+    let t16 = t15 < vec3<f32>(1.8189894e-12f);
+    let w = select(scaled, vec3<f32>(0.0f), t16);
+    let t17 = abs(w);
+    let t18 = t17.x + t17.y;
+    let l1 = t18 + t17.z;
+    let t19 = l1 - t17.xy.yx;
+    let t20 = w.xy >= vec2<f32>(0.0f);
+    let t21 = select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t20);
+    let t22 = t19 * t21;
+    let t23 = w.z <= 0.0f;
+    let n = select(w.xy, t22, t23);
+    let t24 = n < vec2<f32>(0.0f);
+    let t25 = abs(n);
+    let t26 = t25 / l1;
+    let t27 = t26 * 127.0f;
+    let t28 = round(t27);
+    let t29 = t25 * 127.0f;
+    let t30 = t28 + 0.5f;
+    let t31 = t30 * l1;
+    let t32 = t29 >= t31;
+    let t33 = t28 - 0.5f;
+    let t34 = t33 * l1;
+    let t35 = t29 < t34;
+    let t36 = select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t35);
+    let t37 = select(t36, vec2<f32>(1.0f), t32);
+    let t38 = t28 + t37;
+    let t39 = t38 >= vec2<f32>(0.0f);
+    let t40 = select(vec2<f32>(0.0f), t38, t39);
+    let t41 = t40 <= vec2<f32>(127.0f);
+    let t42 = select(vec2<f32>(127.0f), t40, t41);
+    let t43 = -t42;
+    let t44 = select(t42, t43, t24);
+    let t45 = select(vec2<f32>(0.0f), t44, t14);
+    return t45;
+}
+
 // unitpack_oct16_encode: oct16 (octahedral, snorm×2, 16 bits, sphere), fast encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.33696°, sample max 0.92448° (not a bound).
 fn unitpack_oct16_encode(v: vec3<f32>) -> u32 {
-    let t1 = unitpack_oct16_encode_float(v);
-    let t2 = t1 >= vec2<f32>(-1.0f);
-    let t3 = select(vec2<f32>(-1.0f), t1, t2);
-    let t4 = t3 <= vec2<f32>(1.0f);
-    let t5 = select(vec2<f32>(1.0f), t3, t4);
-    let t6 = t5 * 127.0f;
-    let codes = round(t6);
-    let t7 = codes.x + 256.0f;
-    let t8 = codes.x < 0.0f;
-    let t9 = select(codes.x, t7, t8);
-    let t10 = u32(t9);
-    let t11 = codes.y + 256.0f;
-    let t12 = codes.y < 0.0f;
-    let t13 = select(codes.y, t11, t12);
-    let t14 = u32(t13);
-    let t15 = t14 << 8u;
-    let t16 = t10 | t15;
-    return t16;
+    let t1 = unitpack_oct16_round_codes(v);
+    let t2 = t1.x + 256.0f;
+    let t3 = t1.x < 0.0f;
+    let t4 = select(t1.x, t2, t3);
+    let t5 = u32(t4);
+    let t6 = t1.y + 256.0f;
+    let t7 = t1.y < 0.0f;
+    let t8 = select(t1.y, t6, t7);
+    let t9 = u32(t8);
+    let t10 = t9 << 8u;
+    let t11 = t5 | t10;
+    return t11;
 }

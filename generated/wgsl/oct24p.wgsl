@@ -169,6 +169,7 @@ fn unitpack_oct24p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // unitpack_oct24p_encode: oct24p (octahedral, snorm×2, 24 bits, sphere), precise encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
 fn unitpack_oct24p_encode(v: vec3<f32>) -> u32 {

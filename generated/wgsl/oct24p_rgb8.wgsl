@@ -215,6 +215,7 @@ fn unitpack_oct24p_rgb8_encode_float(v: vec3<f32>) -> vec3<f32> {
 // unitpack_oct24p_rgb8_encode: oct24p:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), precise encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8, bits 16–23: p2 unorm8).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
 fn unitpack_oct24p_rgb8_encode(v: vec3<f32>) -> u32 {

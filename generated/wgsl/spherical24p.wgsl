@@ -253,6 +253,7 @@ fn unitpack_spherical24p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // unitpack_spherical24p_encode: spherical24p (spherical coordinates (θ, φ), snorm×2, 24 bits, sphere), precise encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound).
 fn unitpack_spherical24p_encode(v: vec3<f32>) -> u32 {

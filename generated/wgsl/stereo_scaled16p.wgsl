@@ -153,6 +153,7 @@ fn unitpack_stereo_scaled16p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // unitpack_stereo_scaled16p_encode: stereo_scaled16p (scaled stereographic, unorm×2, 16 bits, sphere), precise encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge.
 // Out: the packed code, u32 (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
+// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
 // Source: Pranckevičius, Compact Normal Storage, method 7.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.56221°, sample max 53.41578° (not a bound).
 fn unitpack_stereo_scaled16p_encode(v: vec3<f32>) -> u32 {

@@ -91,28 +91,136 @@ fn unitpack_xy16_encode_float(v: vec3<f32>) -> vec2<f32> {
     return t33.xy;
 }
 
+// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+fn unitpack_xy16_round_codes(a0: vec3<f32>) -> vec2<f32> {
+    let t1 = abs(a0);
+    let t2 = t1 < vec3<f32>(1.1754944e-38f);
+    let normal = select(a0, vec3<f32>(0.0f), t2);
+    let t3 = abs(normal);
+    let t4 = t3.x >= t3.y;
+    let t5 = select(t3.y, t3.x, t4);
+    let t6 = t5 >= t3.z;
+    let largest = select(t3.z, t5, t6);
+    let t7 = bitcast<u32>(largest);
+    let t8 = t7 & 2139095040u;
+    let t9 = 2139095040u - t8;
+    let scale = bitcast<f32>(t9);
+    let scaled = normal * scale;
+    let t10 = abs(scaled);
+    let t11 = t10.x + t10.y;
+    let sum = t11 + t10.z;
+    let t12 = sum >= 2.0f;
+    let t13 = sum < 16.0f;
+    let t14 = t12 && t13;
+    let t15 = abs(scaled);
+    let t16 = t15 < vec3<f32>(1.8189894e-12f);
+    let w = select(scaled, vec3<f32>(0.0f), t16);
+    let t17 = w.z > 0.0f;
+    let t18 = select(0.0f, w.z, t17);
+    let t19 = bitcast<u32>(w.x);
+    let t20 = t19 & 4294963200u;
+    let t21 = bitcast<f32>(t20);
+    let t22 = w.x - t21;
+    let t23 = t21 * t21;
+    let t24 = t21 + t21;
+    let t25 = t24 * t22;
+    let t26 = t22 * t22;
+    let t27 = bitcast<u32>(w.y);
+    let t28 = t27 & 4294963200u;
+    let t29 = bitcast<f32>(t28);
+    let t30 = w.y - t29;
+    let t31 = t29 * t29;
+    let t32 = t29 + t29;
+    let t33 = t32 * t30;
+    let t34 = t30 * t30;
+    let t35 = bitcast<u32>(t18);
+    let t36 = t35 & 4294963200u;
+    let t37 = bitcast<f32>(t36);
+    let t38 = t18 - t37;
+    let t39 = t37 * t37;
+    let t40 = t37 + t37;
+    let t41 = t40 * t38;
+    let t42 = t38 * t38;
+    let t43 = t23 + t31;
+    let t44 = t43 + t39;
+    let t45 = t25 + t33;
+    let t46 = t45 + t41;
+    let t47 = t26 + t34;
+    let t48 = t47 + t42;
+    let t49 = t44 + t46;
+    let len2 = t49 + t48;
+    let t50 = abs(w.xy.x);
+    let t51 = sqrt(len2);
+    let t52 = t50 / t51;
+    let t53 = t52 * 127.0f;
+    let t54 = round(t53);
+    let t55 = t50 * 127.0f;
+    let t56 = t55 * t55;
+    let t57 = t54 - 0.5f;
+    let t58 = t54 > 0.0f;
+    let t59 = t57 * t57;
+    let t60 = t59 * len2;
+    let t61 = t56 < t60;
+    let t62 = t58 && t61;
+    let t63 = abs(w.xy.y);
+    let t64 = sqrt(len2);
+    let t65 = t63 / t64;
+    let t66 = t65 * 127.0f;
+    let t67 = round(t66);
+    let t68 = t63 * 127.0f;
+    let t69 = t68 * t68;
+    let t70 = t67 - 0.5f;
+    let t71 = t67 > 0.0f;
+    let t72 = t70 * t70;
+    let t73 = t72 * len2;
+    let t74 = t69 < t73;
+    let t75 = t71 && t74;
+    let t76 = w.xy < vec2<f32>(0.0f);
+    let t77 = abs(w.xy);
+    let t78 = vec2<f32>(len2);
+    let t79 = sqrt(t78);
+    let t80 = t77 / t79;
+    let t81 = t80 * 127.0f;
+    let t82 = round(t81);
+    let t83 = t77 * 127.0f;
+    let t84 = t83 * t83;
+    let t85 = t82 + 0.5f;
+    let t86 = t85 * t85;
+    let t87 = t86 * len2;
+    let t88 = t84 >= t87;
+    let t89 = vec2<bool>(t62, t75);
+    let t90 = select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t89);
+    let t91 = select(t90, vec2<f32>(1.0f), t88);
+    let t92 = t82 + t91;
+    let t93 = t92 >= vec2<f32>(0.0f);
+    let t94 = select(vec2<f32>(0.0f), t92, t93);
+    let t95 = t94 <= vec2<f32>(127.0f);
+    let t96 = select(vec2<f32>(127.0f), t94, t95);
+    let t97 = -t96;
+    let t98 = select(t96, t97, t76);
+    let t99 = len2 > 0.0f;
+    let t100 = t14 && t99;
+    let t101 = select(vec2<f32>(0.0f), t98, t100);
+    return t101;
+}
+
 // unitpack_xy16_encode: xy16 (x and y stored, z reconstructed, snorm×2, 16 bits, hemisphere), fast encoder.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
+// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound).
 fn unitpack_xy16_encode(v: vec3<f32>) -> u32 {
-    let t1 = unitpack_xy16_encode_float(v);
-    let t2 = t1 >= vec2<f32>(-1.0f);
-    let t3 = select(vec2<f32>(-1.0f), t1, t2);
-    let t4 = t3 <= vec2<f32>(1.0f);
-    let t5 = select(vec2<f32>(1.0f), t3, t4);
-    let t6 = t5 * 127.0f;
-    let codes = round(t6);
-    let t7 = codes.x + 256.0f;
-    let t8 = codes.x < 0.0f;
-    let t9 = select(codes.x, t7, t8);
-    let t10 = u32(t9);
-    let t11 = codes.y + 256.0f;
-    let t12 = codes.y < 0.0f;
-    let t13 = select(codes.y, t11, t12);
-    let t14 = u32(t13);
-    let t15 = t14 << 8u;
-    let t16 = t10 | t15;
-    return t16;
+    let t1 = unitpack_xy16_round_codes(v);
+    let t2 = t1.x + 256.0f;
+    let t3 = t1.x < 0.0f;
+    let t4 = select(t1.x, t2, t3);
+    let t5 = u32(t4);
+    let t6 = t1.y + 256.0f;
+    let t7 = t1.y < 0.0f;
+    let t8 = select(t1.y, t6, t7);
+    let t9 = u32(t8);
+    let t10 = t9 << 8u;
+    let t11 = t5 | t10;
+    return t11;
 }

@@ -2,7 +2,7 @@
 //! the GPU output is compared against), the same generic function evaluated by the
 //! adversarial [`Dev`] (what `crate::portability` measures), and the inputs it is verified on.
 
-use super::codec::{Codec, Params, dequantize, pack, quantize, unpack};
+use super::codec::{Codec, dequantize, pack, unpack};
 use super::quant::Quant;
 use super::spec::Spec;
 use crate::model::Float;
@@ -167,6 +167,9 @@ pub struct Emitted {
     pub functions: Vec<Function>,
     /// Prefix for every function name of the spec (its id, or empty for helpers-only specs).
     pub namespace: String,
+    /// Whether the packed encoder is portable ([`Codec::portable`]): its doc comment says
+    /// so, and tests/portability.rs holds it to that under every deviation class.
+    pub portable_encoder: bool,
 }
 
 /// The four functions of a codec spec (`decode_float`, `decode`, `encode_float`,
@@ -211,6 +214,7 @@ where
         module,
         functions,
         namespace: spec.id(),
+        portable_encoder: c.portable(precise),
     }
 }
 
@@ -225,8 +229,7 @@ fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
         F::call("encode_codes", v, |v| c.precise_codes(v))
     } else {
-        let p = F::call("encode_float", v, |v| c.params(v));
-        quantize(&c.quants(), p).named_p("codes")
+        c.fast_codes(v)
     }
 }
 

@@ -2,8 +2,9 @@
 //! scaled so that it fills the whole square.
 
 use super::codec::{Codec, Domain};
+use super::exact::{canonical, snorm_ratio};
 use super::quant::{Quant, Quants};
-use crate::model::{Float, V2, V3};
+use crate::model::{Bool, Float, V2, V3};
 use super::family::{Family, Info, Sizes};
 use super::functions::{Emitted, codec_functions};
 use super::spec::{Spec, SpecError};
@@ -70,5 +71,23 @@ impl Codec for HemiOct {
         let a = t.abs();
         let v = V3::from_xy(t, F::c(1.0) - a.x - a.y).named("v");
         v / v.length_squared().sqrt()
+    }
+    /// Listing 6 decided portably ([`crate::codecs::exact`]): the projection onto the
+    /// hemisphere (`z ← max(z, 0)`) needs no normalization, since `(x ± y) / (|x| + |y| + z)`
+    /// does not depend on length; each parameter is the ratio of a correctly rounded sum
+    /// and the L1 norm. `-Z` projects to zero and encodes as +Z, like invalid input.
+    fn fast_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let q = self.quants()[0];
+        F::call("round_codes", v, |v| {
+            let (w, ok) = canonical(v);
+            let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
+            let l1 = (w.x.abs() + w.y.abs() + z).named("l1");
+            let n = V2::new(w.x + w.y, w.x - w.y).named("n");
+            let c = n.map(|x| snorm_ratio(q, x, l1));
+            V2::sel_all(ok.and(l1.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
+        })
+    }
+    fn portable(&self, precise: bool) -> bool {
+        !precise
     }
 }

@@ -6,6 +6,7 @@
 //! ending in a `pub static FAMILY`) and one line in [`registry!`] below.
 
 pub mod codec;
+pub mod exact;
 pub mod family;
 pub mod functions;
 pub mod inputs;

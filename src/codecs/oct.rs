@@ -2,6 +2,7 @@
 //! with the L1 norm, unfold the lower half over the diagonals, store snorm×2.
 
 use super::codec::{Codec, Domain, precise_search, sign_not_zero};
+use super::exact::{canonical, snorm_ratio};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes};
 use super::functions::{Emitted, codec_functions};
 use super::pack12::{BIAS, bytes_float, from_bytes, from_unorm8x3, to_unorm8x3};
@@ -121,6 +122,19 @@ pub fn oct_direction<F: Float>(e: V2<F>) -> V3<F> {
     v / v.length_squared().sqrt()
 }
 
+/// The nearest snorm codes of [`oct_params`], decided portably ([`crate::codecs::exact`]):
+/// each parameter is a ratio `n / l1` of correctly rounded sums of the canonical input's
+/// magnitudes, `x / l1` above the equator and `(l1 - |y|)·sign(x) / l1` folded below it.
+pub fn oct_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
+    let (w, ok) = canonical(v);
+    let a = w.abs();
+    let l1 = (a.x + a.y + a.z).named("l1");
+    let folded = (V2::splat(l1) - a.xy().yx()) * sign_not_zero(w.xy());
+    let n = V2::sel_all(w.z.le(F::c(0.0)), folded, w.xy()).named("n");
+    let c = n.map(|x| snorm_ratio(q, x, l1));
+    V2::sel_all(ok, c, V2::splat(F::c(0.0)))
+}
+
 impl Codec for Oct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
@@ -135,6 +149,13 @@ impl Codec for Oct {
     }
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         oct_direction(p)
+    }
+    fn fast_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let q = self.quants()[0];
+        F::call("round_codes", v, |v| oct_codes(q, v))
+    }
+    fn portable(&self, precise: bool) -> bool {
+        !precise
     }
 }
 
@@ -165,6 +186,14 @@ impl Codec for Oct24Rgb8 {
     fn decode_codes<F: Float>(&self, b: V3<F>) -> V3<F> {
         let e = F::call("bytes_to_snorm12x2", b, from_bytes).named("e");
         F::call("oct24_decode_float", e, oct_direction)
+    }
+    /// The portable oct24 codes, split into bytes.
+    fn fast_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let c = F::call("round_codes", v, |v| oct_codes(Quant::Snorm(12), v));
+        bytes_float(c + F::c(BIAS))
+    }
+    fn portable(&self, precise: bool) -> bool {
+        !precise
     }
     /// The oct24 precise search, then its 12-bit codes split into bytes.
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {

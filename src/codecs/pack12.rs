@@ -43,7 +43,7 @@ macro_rules! helpers {
             |x: $P<f32>| $f(x),
             |x: $P<Dev>| $f(x),
         )),*];
-        Emitted { module, functions, namespace: String::new() }
+        Emitted { module, functions, namespace: String::new(), portable_encoder: false }
     }};
 }
 

@@ -2,6 +2,7 @@
 //! Most codes are not unit length, so decode re-normalizes.
 
 use super::codec::{Codec, Domain, unit_or_z};
+use super::exact::{canonical, length2, snorm_sqrt_ratio};
 use super::quant::{Code, Quant, Quants};
 use crate::model::{Float, V2, V3};
 use std::marker::PhantomData;
@@ -111,5 +112,19 @@ impl<W: Words> Codec for Snorm3<W> {
     /// The all-zero code, the only one with no direction, decodes as +Z.
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
         p.normalize_or(V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
+    }
+    /// Each component `x / |w|` of the canonical input decided portably
+    /// ([`crate::codecs::exact`]) against its exactly computed square length.
+    fn fast_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let q = self.quants()[0];
+        F::call("round_codes", v, |v| {
+            let (w, ok) = canonical(v);
+            let s = length2(w);
+            let c = w.map(|x| snorm_sqrt_ratio(q, x, s));
+            V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(q.max_code())))
+        })
+    }
+    fn portable(&self, _precise: bool) -> bool {
+        true
     }
 }

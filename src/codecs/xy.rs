@@ -2,8 +2,9 @@
 //! `z = sqrt(1 - saturate(x² + y²))`, +Z hemisphere, snorm×2.
 
 use super::codec::{Codec, Domain};
+use super::exact::{canonical, length2, snorm_sqrt_ratio};
 use super::quant::{Quant, Quants};
-use crate::model::{Float, V2, V3};
+use crate::model::{Bool, Float, V2, V3};
 use super::family::{Family, Info, Sizes};
 use super::functions::{Emitted, codec_functions};
 use super::spec::{Spec, SpecError};
@@ -65,5 +66,21 @@ impl Codec for Xy {
         let d = p.length_squared();
         let d = F::sel(d.lt(F::c(1.0)), d, F::c(1.0)).named("d");
         V3::from_xy(p, (F::c(1.0) - d).sqrt())
+    }
+    /// `x / |w|` and `y / |w|` of the canonical input projected onto the hemisphere
+    /// (`z ← max(z, 0)`), decided portably ([`crate::codecs::exact`]); `-Z` projects to
+    /// zero and encodes as +Z, like invalid input.
+    fn fast_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let q = self.quants()[0];
+        F::call("round_codes", v, |v| {
+            let (w, ok) = canonical(v);
+            let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
+            let s = length2(V3::new(w.x, w.y, z));
+            let c = w.xy().map(|x| snorm_sqrt_ratio(q, x, s));
+            V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
+        })
+    }
+    fn portable(&self, precise: bool) -> bool {
+        !precise
     }
 }

@@ -85,6 +85,16 @@ fn helper_doc(spec: &Spec, local: &str) -> Vec<String> {
     ]
 }
 
+/// What a packed encoder guarantees beyond lavapipe (README, "Why the emitted code is
+/// bit-exact, and where").
+fn encoder_portability(portable: bool) -> &'static str {
+    if portable {
+        "Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision."
+    } else {
+        "Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often)."
+    }
+}
+
 pub fn function_doc(
     spec: &Spec,
     e: &Emitted,
@@ -128,6 +138,7 @@ pub fn function_doc(
             format!("{}: {codec}, {enc}.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
             format!("Out: the packed code, {} ({layout}).", p.ret_ty),
+            encoder_portability(e.portable_encoder).into(),
         ],
         Role::Decode => vec![
             format!("{}: {codec}, decoder.", p.name),

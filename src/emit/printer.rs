@@ -82,7 +82,18 @@ impl Ctx<'_> {
 
     /// An operand as text: a name, a literal, or a lane of a vector.
     fn r(&self, r: Ref) -> String {
-        let base = self.value(r.node as usize);
+        let id = r.node as usize;
+        let n = &self.f.nodes[id];
+        // Without vector values, a lane of an unnamed constructor or swizzle is the lane's
+        // own expression (C has no `{ a, b }.x`).
+        if let Some(l) = r.lane
+            && !self.lang.has_vectors()
+            && self.names[id].is_none()
+            && matches!(n.op, Op::Construct | Op::Swizzle(_))
+        {
+            return self.lane_expr(n, l);
+        }
+        let base = self.value(id);
         match r.lane {
             Some(l) => format!("{}.{}", base, LANE[l as usize]),
             None => base,
@@ -239,6 +250,7 @@ impl Ctx<'_> {
             Op::Shr(s) => format!("{} >> {s}u", a(0)),
             Op::Select => lang.select(arg_vec(0), &a(0), &a(1), &a(2)),
             Op::Convert => lang.convert(ty, &a(0)),
+            Op::Bitcast => lang.bitcast(ty, &a(0)),
             Op::Call(name) => {
                 let args: Vec<String> = n.args.iter().map(|r| self.r(*r)).collect();
                 format!("{}({})", (self.fn_name)(name), args.join(", "))

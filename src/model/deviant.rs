@@ -77,6 +77,20 @@ impl Class {
         Class::Zero,
         Class::Excess,
     ];
+    /// The classes a portable encoder is guaranteed against: what a conformant Vulkan, D3D
+    /// or WebGPU implementation may do. Excess precision is measured and reported, but
+    /// the guarantee excludes it (as it excludes fast math): no conformant GPU path keeps
+    /// f32 results wider, and C on x87 is outside the supported targets.
+    pub const GUARANTEED: [Class; 5] = [
+        Class::Div,
+        Class::Sqrt,
+        Class::Fma,
+        Class::Denorm,
+        Class::Zero,
+    ];
+    pub fn guaranteed(self) -> bool {
+        self != Class::Excess
+    }
     pub fn name(self) -> &'static str {
         match self {
             Class::Div => "div",
@@ -423,6 +437,9 @@ impl Uint for DevU {
     fn to_f(self) -> Dev {
         Dev::new(self.0 as f32)
     }
+    fn as_float(self) -> Dev {
+        Dev::new(f32::from_bits(self.0))
+    }
     fn sel(m: DevB, t: Self, f: Self) -> Self {
         if m.0 { t } else { f }
     }
@@ -581,5 +598,9 @@ impl Float for Dev {
     }
     fn to_u(self) -> DevU {
         DevU(self.x as u32)
+    }
+    /// The stored bits: a bitcast is no arithmetic, so nothing deviates.
+    fn to_bits(self) -> DevU {
+        DevU(self.x.to_bits())
     }
 }

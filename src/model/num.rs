@@ -78,6 +78,9 @@ pub trait Uint:
     fn shr(self, n: u32) -> Self;
     /// Exact conversion for values below 2^24 (all the model ever converts).
     fn to_f(self) -> Self::F;
+    /// The float with these bits (WGSL `bitcast<f32>`, GLSL `uintBitsToFloat`, HLSL
+    /// `asfloat`): exact everywhere. The model only makes normal floats this way.
+    fn as_float(self) -> Self::F;
     fn sel(m: Self::B, if_true: Self, if_false: Self) -> Self;
 }
 
@@ -109,6 +112,9 @@ pub trait Float:
     fn sel(m: Self::B, if_true: Self, if_false: Self) -> Self;
     /// Exact conversion of a non-negative integral value below 2^32.
     fn to_u(self) -> Self::U;
+    /// The IEEE bits (WGSL `bitcast<u32>`, GLSL `floatBitsToUint`, HLSL `asuint`): no
+    /// arithmetic, so no implementation can change them.
+    fn to_bits(self) -> Self::U;
     /// `self ≥ lo ? self : lo`, a select rather than a `max` builtin, whose ±0 and NaN
     /// results differ between drivers. A NaN `self` gives `lo`; when the two compare
     /// equal (`-0` and `+0`) `self` is kept.
@@ -184,6 +190,10 @@ impl Uint for u32 {
         self as f32
     }
     #[inline(always)]
+    fn as_float(self) -> f32 {
+        f32::from_bits(self)
+    }
+    #[inline(always)]
     fn sel(m: bool, t: Self, f: Self) -> Self {
         if m { t } else { f }
     }
@@ -239,5 +249,9 @@ impl Float for f32 {
     #[inline(always)]
     fn to_u(self) -> u32 {
         self as u32
+    }
+    #[inline(always)]
+    fn to_bits(self) -> u32 {
+        f32::to_bits(self)
     }
 }

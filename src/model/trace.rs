@@ -82,6 +82,8 @@ pub enum Op {
     Select,
     /// Value conversion to the node's kind.
     Convert,
+    /// Reinterpretation of the 32 bits as the node's kind (f32 ↔ u32).
+    Bitcast,
     /// Builds a vector from scalars (one arg: splat).
     Construct,
     /// args[0] is a vector; picks the given lanes.
@@ -352,7 +354,7 @@ impl Recorder {
         let vectorizable = match n0.op {
             Op::Un(u) => u != UnOp::Not,
             Op::Bin(b) => !matches!(b, BinOp::And | BinOp::Or),
-            Op::Select | Op::Convert => true,
+            Op::Select | Op::Convert | Op::Bitcast => true,
             _ => false,
         };
         vectorizable
@@ -597,6 +599,9 @@ impl Uint for Tu {
     fn to_f(self) -> Tf {
         rec(Op::Convert, &[self.0], Kind::F32)
     }
+    fn as_float(self) -> Tf {
+        rec(Op::Bitcast, &[self.0], Kind::F32)
+    }
     fn sel(m: Tb, t: Self, f: Self) -> Self {
         rec(Op::Select, &[m.0, t.0, f.0], Kind::U32)
     }
@@ -642,6 +647,9 @@ impl Float for Tf {
     }
     fn to_u(self) -> Tu {
         rec(Op::Convert, &[self.0], Kind::U32)
+    }
+    fn to_bits(self) -> Tu {
+        rec(Op::Bitcast, &[self.0], Kind::U32)
     }
     fn call<A: Value, R: Value>(name: &'static str, a: A, f: impl FnOnce(A) -> R) -> R {
         define(name, &[], f);

@@ -110,6 +110,7 @@ struct File<'a> {
     header: &'a [String],
     specs: &'a [SpecView],
     types_guard: &'a str,
+    prefix: &'a str,
     types: Vec<String>,
 }
 
@@ -137,6 +138,13 @@ impl Backend for C {
     }
     fn convert(&self, t: Ty, a: &str) -> String {
         format!("({}){a}", self.ty(t))
+    }
+    /// Through the header's memcpy helpers: the only bitcast valid in both C and C++.
+    fn bitcast(&self, t: Ty, a: &str) -> String {
+        match t.kind {
+            Kind::U32 => format!("{}bits_of({a})", self.prefix),
+            _ => format!("{}float_of({a})", self.prefix),
+        }
     }
     fn splat(&self, t: Ty, x: &str) -> String {
         self.construct(t, &vec![x.to_string(); t.lanes as usize])
@@ -179,6 +187,7 @@ impl Backend for C {
             header: opts.header,
             specs,
             types_guard: &self.types_guard,
+            prefix: &self.prefix,
             types,
         }
         .render()

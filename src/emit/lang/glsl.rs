@@ -70,6 +70,12 @@ impl Backend for Glsl {
             format!("{m} ? {t} : {f}")
         }
     }
+    fn bitcast(&self, t: Ty, a: &str) -> String {
+        match t.kind {
+            Kind::U32 => format!("floatBitsToUint({a})"),
+            _ => format!("uintBitsToFloat({a})"),
+        }
+    }
     /// Float results carry the precise macro, so drivers that contract `a*b + c` into an
     /// fma must not do so here where the user defines it as `precise`.
     fn declare(&self, name: &str, t: Ty, expr: &str) -> String {

@@ -46,6 +46,12 @@ impl Backend for Hlsl {
             format!("{m} ? {t} : {f}")
         }
     }
+    fn bitcast(&self, t: Ty, a: &str) -> String {
+        match t.kind {
+            Kind::U32 => format!("asuint({a})"),
+            _ => format!("asfloat({a})"),
+        }
+    }
     fn splat(&self, t: Ty, x: &str) -> String {
         let lanes = vec![x; t.lanes as usize];
         format!("{}({})", self.ty(t), lanes.join(", "))

@@ -52,6 +52,8 @@ pub trait Backend {
     fn convert(&self, t: Ty, a: &str) -> String {
         format!("{}({a})", self.ty(t))
     }
+    /// A reinterpretation of the bits of `a` as type `t` (f32 ↔ u32).
+    fn bitcast(&self, t: Ty, a: &str) -> String;
     /// A vector with every lane `x`.
     fn splat(&self, t: Ty, x: &str) -> String {
         format!("{}({x})", self.ty(t))

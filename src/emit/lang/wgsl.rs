@@ -34,6 +34,9 @@ impl Backend for Wgsl {
     fn declare(&self, name: &str, _t: Ty, expr: &str) -> String {
         format!("let {name} = {expr};")
     }
+    fn bitcast(&self, t: Ty, a: &str) -> String {
+        format!("bitcast<{}>({a})", self.ty(t))
+    }
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
         File {
             header: opts.header,
