@@ -133,70 +133,6 @@ static inline void unitpack_oct24_rgb8_decode(uint32_t code, float out[3]) {
     out[2] = r.z;
 }
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
-
-static inline unitpack_vec3 unitpack_oct24_rgb8_snorm12x2_to_unorm8x3_v(unitpack_vec2 a0) {
-    const unitpack_bvec2 t1 = { a0.x >= (-1.0f), a0.y >= (-1.0f) };
-    const unitpack_vec2 t2 = { t1.x ? a0.x : -1.0f, t1.y ? a0.y : -1.0f };
-    const unitpack_bvec2 t3 = { t2.x <= 1.0f, t2.y <= 1.0f };
-    const unitpack_vec2 t4 = { t3.x ? t2.x : 1.0f, t3.y ? t2.y : 1.0f };
-    const unitpack_vec2 t5 = { t4.x * 2047.0f, t4.y * 2047.0f };
-    const unitpack_vec2 t6 = { t5.x + 2047.0f, t5.y + 2047.0f };
-    const unitpack_vec2 u = { nearbyintf(t6.x), nearbyintf(t6.y) };
-    const float x16 = u.x * 0.0625f;
-    const float hi = floorf(x16);
-    const float t7 = u.y * 0.00390625f;
-    const float t = floorf(t7);
-    const float t8 = x16 - hi;
-    const float t9 = t8 * 256.0f;
-    const float t10 = t9 + t;
-    const float t11 = t * 256.0f;
-    const float t12 = u.y - t11;
-    const unitpack_vec3 t13 = { hi, t10, t12 };
-    const unitpack_vec3 t14 = { t13.x * 0.003921569f, t13.y * 0.003921569f, t13.z * 0.003921569f };
-    return t14;
-}
-
-// Struct form of unitpack_oct24_rgb8_encode_float.
-static inline unitpack_vec3 unitpack_oct24_rgb8_encode_float_v(unitpack_vec3 v) {
-    const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const float t2 = t1.x + t1.y;
-    const float t3 = t2 + t1.z;
-    const bool t4 = t3 <= 3.4028235e38f;
-    const float t5 = t4 ? 1.0f : 0.25f;
-    const unitpack_vec3 w = { v.x * t5, v.y * t5, v.z * t5 };
-    const unitpack_vec3 t6 = { fabsf(w.x), fabsf(w.y), fabsf(w.z) };
-    const float t7 = t6.x + t6.y;
-    const float l1 = t7 + t6.z;
-    const bool t8 = l1 > 0.0f;
-    const bool t9 = l1 <= 3.4028235e38f;
-    const bool t10 = t8 && t9;
-    const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t11 = w.z <= 0.0f;
-    const unitpack_vec2 t12 = { fabsf(p.y), fabsf(p.x) };
-    const unitpack_vec2 t13 = { 1.0f - t12.x, 1.0f - t12.y };
-    const unitpack_bvec2 t14 = { p.x >= 0.0f, p.y >= 0.0f };
-    const unitpack_vec2 t15 = { t14.x ? 1.0f : -1.0f, t14.y ? 1.0f : -1.0f };
-    const unitpack_vec2 t16 = { t13.x * t15.x, t13.y * t15.y };
-    const unitpack_vec2 t17 = { t11 ? t16.x : p.x, t11 ? t16.y : p.y };
-    const unitpack_vec2 e = { t10 ? t17.x : 0.0f, t10 ? t17.y : 0.0f };
-    const unitpack_vec3 t18 = unitpack_oct24_rgb8_snorm12x2_to_unorm8x3_v(e);
-    return t18;
-}
-
-// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
-// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
-// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
-static inline void unitpack_oct24_rgb8_encode_float(const float v[3], float out[3]) {
-    const unitpack_vec3 v_v = { v[0], v[1], v[2] };
-    const unitpack_vec3 r = unitpack_oct24_rgb8_encode_float_v(v_v);
-    out[0] = r.x;
-    out[1] = r.y;
-    out[2] = r.z;
-}
-
 // The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 
 static inline unitpack_vec2 unitpack_oct24_rgb8_round_codes_v(unitpack_vec3 a0) {
@@ -254,6 +190,37 @@ static inline unitpack_vec2 unitpack_oct24_rgb8_round_codes_v(unitpack_vec3 a0) 
     const unitpack_vec2 t44 = { t24.x ? t43.x : t42.x, t24.y ? t43.y : t42.y };
     const unitpack_vec2 t45 = { t14 ? t44.x : 0.0f, t14 ? t44.y : 0.0f };
     return t45;
+}
+
+// Struct form of unitpack_oct24_rgb8_encode_float.
+static inline unitpack_vec3 unitpack_oct24_rgb8_encode_float_v(unitpack_vec3 v) {
+    const unitpack_vec2 t1 = unitpack_oct24_rgb8_round_codes_v(v);
+    const unitpack_vec2 t2 = { t1.x + 2047.0f, t1.y + 2047.0f };
+    const float x16 = t2.x * 0.0625f;
+    const float hi = floorf(x16);
+    const float t3 = t2.y * 0.00390625f;
+    const float t = floorf(t3);
+    const float t4 = x16 - hi;
+    const float t5 = t4 * 256.0f;
+    const float t6 = t5 + t;
+    const float t7 = t * 256.0f;
+    const float t8 = t2.y - t7;
+    const unitpack_vec3 t9 = { hi, t6, t8 };
+    const unitpack_vec3 t10 = { t9.x * 0.003921569f, t9.y * 0.003921569f, t9.z * 0.003921569f };
+    return t10;
+}
+
+// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
+// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
+// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
+static inline void unitpack_oct24_rgb8_encode_float(const float v[3], float out[3]) {
+    const unitpack_vec3 v_v = { v[0], v[1], v[2] };
+    const unitpack_vec3 r = unitpack_oct24_rgb8_encode_float_v(v_v);
+    out[0] = r.x;
+    out[1] = r.y;
+    out[2] = r.z;
 }
 
 // Struct form of unitpack_oct24_rgb8_encode.

@@ -105,60 +105,6 @@ vec3 unitpack_oct24_rgb8_decode(uint code) {
     return t6;
 }
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
-vec3 unitpack_oct24_rgb8_snorm12x2_to_unorm8x3(vec2 a0) {
-    bvec2 t1 = greaterThanEqual(a0, vec2(-1.0));
-    UNITPACK_PRECISE vec2 t2 = mix(vec2(-1.0), a0, t1);
-    bvec2 t3 = lessThanEqual(t2, vec2(1.0));
-    UNITPACK_PRECISE vec2 t4 = mix(vec2(1.0), t2, t3);
-    UNITPACK_PRECISE vec2 t5 = t4 * 2047.0;
-    UNITPACK_PRECISE vec2 t6 = t5 + 2047.0;
-    UNITPACK_PRECISE vec2 u = roundEven(t6);
-    UNITPACK_PRECISE float x16 = u.x * 0.0625;
-    UNITPACK_PRECISE float hi = floor(x16);
-    UNITPACK_PRECISE float t7 = u.y * 0.00390625;
-    UNITPACK_PRECISE float t = floor(t7);
-    UNITPACK_PRECISE float t8 = x16 - hi;
-    UNITPACK_PRECISE float t9 = t8 * 256.0;
-    UNITPACK_PRECISE float t10 = t9 + t;
-    UNITPACK_PRECISE float t11 = t * 256.0;
-    UNITPACK_PRECISE float t12 = u.y - t11;
-    UNITPACK_PRECISE vec3 t13 = vec3(hi, t10, t12);
-    UNITPACK_PRECISE vec3 t14 = t13 * 0.003921569;
-    return t14;
-}
-
-// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
-// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
-// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
-vec3 unitpack_oct24_rgb8_encode_float(vec3 v) {
-    UNITPACK_PRECISE vec3 t1 = abs(v);
-    UNITPACK_PRECISE float t2 = t1.x + t1.y;
-    UNITPACK_PRECISE float t3 = t2 + t1.z;
-    bool t4 = t3 <= 3.4028235e38;
-    UNITPACK_PRECISE float t5 = t4 ? 1.0 : 0.25;
-    UNITPACK_PRECISE vec3 w = v * t5;
-    UNITPACK_PRECISE vec3 t6 = abs(w);
-    UNITPACK_PRECISE float t7 = t6.x + t6.y;
-    UNITPACK_PRECISE float l1 = t7 + t6.z;
-    bool t8 = l1 > 0.0;
-    bool t9 = l1 <= 3.4028235e38;
-    bool t10 = t8 && t9;
-    UNITPACK_PRECISE vec2 p = w.xy / l1;
-    bool t11 = w.z <= 0.0;
-    UNITPACK_PRECISE vec2 t12 = abs(p.yx);
-    UNITPACK_PRECISE vec2 t13 = 1.0 - t12;
-    bvec2 t14 = greaterThanEqual(p, vec2(0.0));
-    UNITPACK_PRECISE vec2 t15 = mix(vec2(-1.0), vec2(1.0), t14);
-    UNITPACK_PRECISE vec2 t16 = t13 * t15;
-    UNITPACK_PRECISE vec2 t17 = t11 ? t16 : p;
-    UNITPACK_PRECISE vec2 e = t10 ? t17 : vec2(0.0);
-    UNITPACK_PRECISE vec3 t18 = unitpack_oct24_rgb8_snorm12x2_to_unorm8x3(e);
-    return t18;
-}
-
 // The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 vec2 unitpack_oct24_rgb8_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 t1 = abs(a0);
@@ -215,6 +161,28 @@ vec2 unitpack_oct24_rgb8_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec2 t44 = mix(t42, t43, t24);
     UNITPACK_PRECISE vec2 t45 = t14 ? t44 : vec2(0.0);
     return t45;
+}
+
+// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
+// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
+// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
+vec3 unitpack_oct24_rgb8_encode_float(vec3 v) {
+    UNITPACK_PRECISE vec2 t1 = unitpack_oct24_rgb8_round_codes(v);
+    UNITPACK_PRECISE vec2 t2 = t1 + 2047.0;
+    UNITPACK_PRECISE float x16 = t2.x * 0.0625;
+    UNITPACK_PRECISE float hi = floor(x16);
+    UNITPACK_PRECISE float t3 = t2.y * 0.00390625;
+    UNITPACK_PRECISE float t = floor(t3);
+    UNITPACK_PRECISE float t4 = x16 - hi;
+    UNITPACK_PRECISE float t5 = t4 * 256.0;
+    UNITPACK_PRECISE float t6 = t5 + t;
+    UNITPACK_PRECISE float t7 = t * 256.0;
+    UNITPACK_PRECISE float t8 = t2.y - t7;
+    UNITPACK_PRECISE vec3 t9 = vec3(hi, t6, t8);
+    UNITPACK_PRECISE vec3 t10 = t9 * 0.003921569;
+    return t10;
 }
 
 // unitpack_oct24_rgb8_encode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder.

@@ -104,60 +104,6 @@ float3 unitpack_oct24_rgb8_decode(uint code) {
     return t6;
 }
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
-float3 unitpack_oct24_rgb8_snorm12x2_to_unorm8x3(float2 a0) {
-    bool2 t1 = a0 >= float2(-1.0, -1.0);
-    precise float2 t2 = UNITPACK_SELECT(t1, a0, float2(-1.0, -1.0));
-    bool2 t3 = t2 <= float2(1.0, 1.0);
-    precise float2 t4 = UNITPACK_SELECT(t3, t2, float2(1.0, 1.0));
-    precise float2 t5 = t4 * 2047.0;
-    precise float2 t6 = t5 + 2047.0;
-    precise float2 u = round(t6);
-    precise float x16 = u.x * 0.0625;
-    precise float hi = floor(x16);
-    precise float t7 = u.y * 0.00390625;
-    precise float t = floor(t7);
-    precise float t8 = x16 - hi;
-    precise float t9 = t8 * 256.0;
-    precise float t10 = t9 + t;
-    precise float t11 = t * 256.0;
-    precise float t12 = u.y - t11;
-    precise float3 t13 = float3(hi, t10, t12);
-    precise float3 t14 = t13 * 0.003921569;
-    return t14;
-}
-
-// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
-// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
-// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
-float3 unitpack_oct24_rgb8_encode_float(float3 v) {
-    precise float3 t1 = abs(v);
-    precise float t2 = t1.x + t1.y;
-    precise float t3 = t2 + t1.z;
-    bool t4 = t3 <= 3.4028235e38;
-    precise float t5 = t4 ? 1.0 : 0.25;
-    precise float3 w = v * t5;
-    precise float3 t6 = abs(w);
-    precise float t7 = t6.x + t6.y;
-    precise float l1 = t7 + t6.z;
-    bool t8 = l1 > 0.0;
-    bool t9 = l1 <= 3.4028235e38;
-    bool t10 = t8 && t9;
-    precise float2 p = w.xy / l1;
-    bool t11 = w.z <= 0.0;
-    precise float2 t12 = abs(p.yx);
-    precise float2 t13 = 1.0 - t12;
-    bool2 t14 = p >= float2(0.0, 0.0);
-    precise float2 t15 = UNITPACK_SELECT(t14, float2(1.0, 1.0), float2(-1.0, -1.0));
-    precise float2 t16 = t13 * t15;
-    precise float2 t17 = t11 ? t16 : p;
-    precise float2 e = t10 ? t17 : float2(0.0, 0.0);
-    precise float3 t18 = unitpack_oct24_rgb8_snorm12x2_to_unorm8x3(e);
-    return t18;
-}
-
 // The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 float2 unitpack_oct24_rgb8_round_codes(float3 a0) {
     precise float3 t1 = abs(a0);
@@ -214,6 +160,28 @@ float2 unitpack_oct24_rgb8_round_codes(float3 a0) {
     precise float2 t44 = UNITPACK_SELECT(t24, t43, t42);
     precise float2 t45 = t14 ? t44 : float2(0.0, 0.0);
     return t45;
+}
+
+// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
+// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
+// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
+float3 unitpack_oct24_rgb8_encode_float(float3 v) {
+    precise float2 t1 = unitpack_oct24_rgb8_round_codes(v);
+    precise float2 t2 = t1 + 2047.0;
+    precise float x16 = t2.x * 0.0625;
+    precise float hi = floor(x16);
+    precise float t3 = t2.y * 0.00390625;
+    precise float t = floor(t3);
+    precise float t4 = x16 - hi;
+    precise float t5 = t4 * 256.0;
+    precise float t6 = t5 + t;
+    precise float t7 = t * 256.0;
+    precise float t8 = t2.y - t7;
+    precise float3 t9 = float3(hi, t6, t8);
+    precise float3 t10 = t9 * 0.003921569;
+    return t10;
 }
 
 // unitpack_oct24_rgb8_encode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder.

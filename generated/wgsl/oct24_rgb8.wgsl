@@ -89,60 +89,6 @@ fn unitpack_oct24_rgb8_decode(code: u32) -> vec3<f32> {
     return t6;
 }
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
-fn unitpack_oct24_rgb8_snorm12x2_to_unorm8x3(a0: vec2<f32>) -> vec3<f32> {
-    let t1 = a0 >= vec2<f32>(-1.0f);
-    let t2 = select(vec2<f32>(-1.0f), a0, t1);
-    let t3 = t2 <= vec2<f32>(1.0f);
-    let t4 = select(vec2<f32>(1.0f), t2, t3);
-    let t5 = t4 * 2047.0f;
-    let t6 = t5 + 2047.0f;
-    let u = round(t6);
-    let x16 = u.x * 0.0625f;
-    let hi = floor(x16);
-    let t7 = u.y * 0.00390625f;
-    let t = floor(t7);
-    let t8 = x16 - hi;
-    let t9 = t8 * 256.0f;
-    let t10 = t9 + t;
-    let t11 = t * 256.0f;
-    let t12 = u.y - t11;
-    let t13 = vec3<f32>(hi, t10, t12);
-    let t14 = t13 * 0.003921569f;
-    return t14;
-}
-
-// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
-// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
-// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
-fn unitpack_oct24_rgb8_encode_float(v: vec3<f32>) -> vec3<f32> {
-    let t1 = abs(v);
-    let t2 = t1.x + t1.y;
-    let t3 = t2 + t1.z;
-    let t4 = t3 <= 3.4028235e38f;
-    let t5 = select(0.25f, 1.0f, t4);
-    let w = v * t5;
-    let t6 = abs(w);
-    let t7 = t6.x + t6.y;
-    let l1 = t7 + t6.z;
-    let t8 = l1 > 0.0f;
-    let t9 = l1 <= 3.4028235e38f;
-    let t10 = t8 && t9;
-    let p = w.xy / l1;
-    let t11 = w.z <= 0.0f;
-    let t12 = abs(p.yx);
-    let t13 = 1.0f - t12;
-    let t14 = p >= vec2<f32>(0.0f);
-    let t15 = select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t14);
-    let t16 = t13 * t15;
-    let t17 = select(p, t16, t11);
-    let e = select(vec2<f32>(0.0f), t17, t10);
-    let t18 = unitpack_oct24_rgb8_snorm12x2_to_unorm8x3(e);
-    return t18;
-}
-
 // The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t1 = abs(a0);
@@ -199,6 +145,28 @@ fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t44 = select(t42, t43, t24);
     let t45 = select(vec2<f32>(0.0f), t44, t14);
     return t45;
+}
+
+// unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
+// In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
+// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
+fn unitpack_oct24_rgb8_encode_float(v: vec3<f32>) -> vec3<f32> {
+    let t1 = unitpack_oct24_rgb8_round_codes(v);
+    let t2 = t1 + 2047.0f;
+    let x16 = t2.x * 0.0625f;
+    let hi = floor(x16);
+    let t3 = t2.y * 0.00390625f;
+    let t = floor(t3);
+    let t4 = x16 - hi;
+    let t5 = t4 * 256.0f;
+    let t6 = t5 + t;
+    let t7 = t * 256.0f;
+    let t8 = t2.y - t7;
+    let t9 = vec3<f32>(hi, t6, t8);
+    let t10 = t9 * 0.003921569f;
+    return t10;
 }
 
 // unitpack_oct24_rgb8_encode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder.

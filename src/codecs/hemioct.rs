@@ -49,6 +49,19 @@ pub struct HemiOct {
     pub bits: u32,
 }
 
+/// Listing 6's parameters as ratios `n / l1` of correctly rounded sums of the canonical
+/// input ([`canonical`]), projected onto the hemisphere: `n = (x + y, x - y)` and
+/// `l1 = |x| + |y| + max(z, 0)`. The L1 projection does not depend on length, so no
+/// normalization is needed. `ok` is false for zero, NaN and infinite input and for `-Z`,
+/// which projects to zero; all of them encode as +Z.
+fn hemi_ratios<F: Float>(v: V3<F>) -> (V2<F>, F, F::B) {
+    let (w, ok) = canonical(v);
+    let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
+    let l1 = (w.x.abs() + w.y.abs() + z).named("l1");
+    let n = V2::new(w.x + w.y, w.x - w.y).named("n");
+    (n, l1, ok.and(l1.gt(F::c(0.0))))
+}
+
 impl Codec for HemiOct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
@@ -58,13 +71,11 @@ impl Codec for HemiOct {
     fn domain(&self) -> Domain {
         Domain::Hemisphere
     }
-    /// Input is normalized onto the +Z hemisphere first (see [`Codec::target`]), which
-    /// also sends zero, NaN and infinite input to +Z; then the survey's Listing 6.
+    /// The survey's Listing 6 on the input projected onto the +Z hemisphere: `(x ± y) /
+    /// (|x| + |y| + z)` with `z ← max(z, 0)`, as [`hemi_ratios`] gives them.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let u = self.target(v);
-        let l1 = (u.x.abs() + u.y.abs() + u.z).named("l1");
-        let p = (u.xy() / l1).named("p");
-        V2::new(p.x + p.y, p.x - p.y)
+        let (n, l1, ok) = hemi_ratios(v);
+        V2::sel_all(ok, n / l1, V2::splat(F::c(0.0)))
     }
     fn direction<F: Float>(&self, e: V2<F>) -> V3<F> {
         let t = (V2::new(e.x + e.y, e.x - e.y) * F::c(0.5)).named("t");
@@ -72,19 +83,13 @@ impl Codec for HemiOct {
         let v = V3::from_xy(t, F::c(1.0) - a.x - a.y).named("v");
         v / v.length_squared().sqrt()
     }
-    /// Listing 6 decided portably ([`crate::codecs::exact`]): the projection onto the
-    /// hemisphere (`z ← max(z, 0)`) needs no normalization, since `(x ± y) / (|x| + |y| + z)`
-    /// does not depend on length; each parameter is the ratio of a correctly rounded sum
-    /// and the L1 norm. `-Z` projects to zero and encodes as +Z, like invalid input.
+    /// Listing 6 decided portably ([`crate::codecs::exact`]) from the same ratios.
     fn fast_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         F::call("round_codes", v, |v| {
-            let (w, ok) = canonical(v);
-            let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
-            let l1 = (w.x.abs() + w.y.abs() + z).named("l1");
-            let n = V2::new(w.x + w.y, w.x - w.y).named("n");
+            let (n, l1, ok) = hemi_ratios(v);
             let c = n.map(|x| snorm_ratio(q, x, l1));
-            V2::sel_all(ok.and(l1.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
+            V2::sel_all(ok, c, V2::splat(F::c(0.0)))
         })
     }
     fn portable(&self, precise: bool) -> bool {

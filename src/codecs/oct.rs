@@ -5,7 +5,7 @@ use super::codec::{Codec, Domain, precise_search, sign_not_zero};
 use super::exact::{canonical, snorm_ratio};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes};
 use super::functions::{Emitted, codec_functions};
-use super::pack12::{BIAS, bytes_float, from_bytes, from_unorm8x3, to_unorm8x3};
+use super::pack12::{BIAS, bytes_float, from_bytes, from_unorm8x3};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
 use crate::model::{Bool, Float, V2, V3};
@@ -173,9 +173,10 @@ impl Codec for Oct24Rgb8 {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
+    /// The bytes of the portable oct24 codes as unorm8 values: already quantized, so a
+    /// render target stores exactly the packed code's bytes.
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
-        let e = oct_params(v).named("e");
-        F::call("snorm12x2_to_unorm8x3", e, to_unorm8x3)
+        self.fast_codes(v) * F::c(1.0 / 255.0)
     }
     fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
         let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
