@@ -150,7 +150,8 @@ pub enum Command {
         /// the graphics APIs allow (division and sqrt within their ULP bounds, fused
         /// multiply-adds, denormal flushing, lost signs of zero, excess precision), with 3
         /// seeds and both worst-case ends, over 2^14 inputs per function. Reports changed
-        /// outputs per function and class; exits 1 if any packed code changes.
+        /// outputs per function and class; exits 1 if any packed code changes under a
+        /// class the portability guarantee covers (all but excess precision).
         #[arg(long)]
         portable: bool,
     },
