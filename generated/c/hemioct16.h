@@ -142,7 +142,7 @@ static inline void unitpack_hemioct16_encode_float(const float v[3], float out[2
     out[1] = r.y;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 
 static inline unitpack_vec2 unitpack_hemioct16_round_codes_v(unitpack_vec3 a0) {
     const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };

@@ -133,9 +133,9 @@ static inline void unitpack_oct24_rgb8_decode(uint32_t code, float out[3]) {
     out[2] = r.z;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 
-static inline unitpack_vec2 unitpack_oct24_rgb8_round_codes_v(unitpack_vec3 a0) {
+static inline unitpack_vec3 unitpack_oct24_rgb8_round_codes_v(unitpack_vec3 a0) {
     const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };
     const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
     const unitpack_vec3 normal = { t2.x ? 0.0f : a0.x, t2.y ? 0.0f : a0.y, t2.z ? 0.0f : a0.z };
@@ -189,25 +189,25 @@ static inline unitpack_vec2 unitpack_oct24_rgb8_round_codes_v(unitpack_vec3 a0) 
     const unitpack_vec2 t43 = { -t42.x, -t42.y };
     const unitpack_vec2 t44 = { t24.x ? t43.x : t42.x, t24.y ? t43.y : t42.y };
     const unitpack_vec2 t45 = { t14 ? t44.x : 0.0f, t14 ? t44.y : 0.0f };
-    return t45;
+    const unitpack_vec2 t46 = { t45.x + 2047.0f, t45.y + 2047.0f };
+    const float x16 = t46.x * 0.0625f;
+    const float hi = floorf(x16);
+    const float t47 = t46.y * 0.00390625f;
+    const float t = floorf(t47);
+    const float t48 = x16 - hi;
+    const float t49 = t48 * 256.0f;
+    const float t50 = t49 + t;
+    const float t51 = t * 256.0f;
+    const float t52 = t46.y - t51;
+    const unitpack_vec3 t53 = { hi, t50, t52 };
+    return t53;
 }
 
 // Struct form of unitpack_oct24_rgb8_encode_float.
 static inline unitpack_vec3 unitpack_oct24_rgb8_encode_float_v(unitpack_vec3 v) {
-    const unitpack_vec2 t1 = unitpack_oct24_rgb8_round_codes_v(v);
-    const unitpack_vec2 t2 = { t1.x + 2047.0f, t1.y + 2047.0f };
-    const float x16 = t2.x * 0.0625f;
-    const float hi = floorf(x16);
-    const float t3 = t2.y * 0.00390625f;
-    const float t = floorf(t3);
-    const float t4 = x16 - hi;
-    const float t5 = t4 * 256.0f;
-    const float t6 = t5 + t;
-    const float t7 = t * 256.0f;
-    const float t8 = t2.y - t7;
-    const unitpack_vec3 t9 = { hi, t6, t8 };
-    const unitpack_vec3 t10 = { t9.x * 0.003921569f, t9.y * 0.003921569f, t9.z * 0.003921569f };
-    return t10;
+    const unitpack_vec3 t1 = unitpack_oct24_rgb8_round_codes_v(v);
+    const unitpack_vec3 t2 = { t1.x * 0.003921569f, t1.y * 0.003921569f, t1.z * 0.003921569f };
+    return t2;
 }
 
 // unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
@@ -225,25 +225,15 @@ static inline void unitpack_oct24_rgb8_encode_float(const float v[3], float out[
 
 // Struct form of unitpack_oct24_rgb8_encode.
 static inline uint32_t unitpack_oct24_rgb8_encode_v(unitpack_vec3 v) {
-    const unitpack_vec2 t1 = unitpack_oct24_rgb8_round_codes_v(v);
-    const unitpack_vec2 t2 = { t1.x + 2047.0f, t1.y + 2047.0f };
-    const float x16 = t2.x * 0.0625f;
-    const float hi = floorf(x16);
-    const float t3 = t2.y * 0.00390625f;
-    const float t = floorf(t3);
-    const float t4 = x16 - hi;
-    const float t5 = t4 * 256.0f;
-    const float t6 = t5 + t;
-    const float t7 = t * 256.0f;
-    const float t8 = t2.y - t7;
-    const uint32_t t9 = (uint32_t)hi;
-    const uint32_t t10 = (uint32_t)t6;
-    const uint32_t t11 = t10 << 8u;
-    const uint32_t t12 = t9 | t11;
-    const uint32_t t13 = (uint32_t)t8;
-    const uint32_t t14 = t13 << 16u;
-    const uint32_t t15 = t12 | t14;
-    return t15;
+    const unitpack_vec3 t1 = unitpack_oct24_rgb8_round_codes_v(v);
+    const uint32_t t2 = (uint32_t)t1.x;
+    const uint32_t t3 = (uint32_t)t1.y;
+    const uint32_t t4 = t3 << 8u;
+    const uint32_t t5 = t2 | t4;
+    const uint32_t t6 = (uint32_t)t1.z;
+    const uint32_t t7 = t6 << 16u;
+    const uint32_t t8 = t5 | t7;
+    return t8;
 }
 
 // unitpack_oct24_rgb8_encode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder.

@@ -122,7 +122,7 @@ static inline void unitpack_snorm10x3_encode_float(const float v[3], float out[3
     out[2] = r.z;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 
 static inline unitpack_vec3 unitpack_snorm10x3_round_codes_v(unitpack_vec3 a0) {
     const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };

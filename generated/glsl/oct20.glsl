@@ -98,7 +98,7 @@ vec2 unitpack_oct20_encode_float(vec3 v) {
     return t18;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 vec2 unitpack_oct20_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 t1 = abs(a0);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));

@@ -104,8 +104,8 @@ float3 unitpack_oct24_rgb8_decode(uint code) {
     return t6;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
-float2 unitpack_oct24_rgb8_round_codes(float3 a0) {
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+float3 unitpack_oct24_rgb8_round_codes(float3 a0) {
     precise float3 t1 = abs(a0);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
     precise float3 normal = UNITPACK_SELECT(t2, float3(0.0, 0.0, 0.0), a0);
@@ -159,7 +159,18 @@ float2 unitpack_oct24_rgb8_round_codes(float3 a0) {
     precise float2 t43 = -t42;
     precise float2 t44 = UNITPACK_SELECT(t24, t43, t42);
     precise float2 t45 = t14 ? t44 : float2(0.0, 0.0);
-    return t45;
+    precise float2 t46 = t45 + 2047.0;
+    precise float x16 = t46.x * 0.0625;
+    precise float hi = floor(x16);
+    precise float t47 = t46.y * 0.00390625;
+    precise float t = floor(t47);
+    precise float t48 = x16 - hi;
+    precise float t49 = t48 * 256.0;
+    precise float t50 = t49 + t;
+    precise float t51 = t * 256.0;
+    precise float t52 = t46.y - t51;
+    precise float3 t53 = float3(hi, t50, t52);
+    return t53;
 }
 
 // unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
@@ -168,20 +179,9 @@ float2 unitpack_oct24_rgb8_round_codes(float3 a0) {
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 float3 unitpack_oct24_rgb8_encode_float(float3 v) {
-    precise float2 t1 = unitpack_oct24_rgb8_round_codes(v);
-    precise float2 t2 = t1 + 2047.0;
-    precise float x16 = t2.x * 0.0625;
-    precise float hi = floor(x16);
-    precise float t3 = t2.y * 0.00390625;
-    precise float t = floor(t3);
-    precise float t4 = x16 - hi;
-    precise float t5 = t4 * 256.0;
-    precise float t6 = t5 + t;
-    precise float t7 = t * 256.0;
-    precise float t8 = t2.y - t7;
-    precise float3 t9 = float3(hi, t6, t8);
-    precise float3 t10 = t9 * 0.003921569;
-    return t10;
+    precise float3 t1 = unitpack_oct24_rgb8_round_codes(v);
+    precise float3 t2 = t1 * 0.003921569;
+    return t2;
 }
 
 // unitpack_oct24_rgb8_encode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder.
@@ -191,25 +191,15 @@ float3 unitpack_oct24_rgb8_encode_float(float3 v) {
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 uint unitpack_oct24_rgb8_encode(float3 v) {
-    precise float2 t1 = unitpack_oct24_rgb8_round_codes(v);
-    precise float2 t2 = t1 + 2047.0;
-    precise float x16 = t2.x * 0.0625;
-    precise float hi = floor(x16);
-    precise float t3 = t2.y * 0.00390625;
-    precise float t = floor(t3);
-    precise float t4 = x16 - hi;
-    precise float t5 = t4 * 256.0;
-    precise float t6 = t5 + t;
-    precise float t7 = t * 256.0;
-    precise float t8 = t2.y - t7;
-    uint t9 = uint(hi);
-    uint t10 = uint(t6);
-    uint t11 = t10 << 8u;
-    uint t12 = t9 | t11;
-    uint t13 = uint(t8);
-    uint t14 = t13 << 16u;
-    uint t15 = t12 | t14;
-    return t15;
+    precise float3 t1 = unitpack_oct24_rgb8_round_codes(v);
+    uint t2 = uint(t1.x);
+    uint t3 = uint(t1.y);
+    uint t4 = t3 << 8u;
+    uint t5 = t2 | t4;
+    uint t6 = uint(t1.z);
+    uint t7 = t6 << 16u;
+    uint t8 = t5 | t7;
+    return t8;
 }
 
 #endif // UNITPACK_OCT24_RGB8_HLSL

@@ -87,7 +87,7 @@ float3 unitpack_snorm10x3_encode_float(float3 v) {
     return t15;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 float3 unitpack_snorm10x3_round_codes(float3 a0) {
     precise float3 t1 = abs(a0);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);

@@ -89,8 +89,8 @@ fn unitpack_oct24_rgb8_decode(code: u32) -> vec3<f32> {
     return t6;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
-fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec2<f32> {
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let t1 = abs(a0);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
     let normal = select(a0, vec3<f32>(0.0f), t2);
@@ -144,7 +144,18 @@ fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t43 = -t42;
     let t44 = select(t42, t43, t24);
     let t45 = select(vec2<f32>(0.0f), t44, t14);
-    return t45;
+    let t46 = t45 + 2047.0f;
+    let x16 = t46.x * 0.0625f;
+    let hi = floor(x16);
+    let t47 = t46.y * 0.00390625f;
+    let t = floor(t47);
+    let t48 = x16 - hi;
+    let t49 = t48 * 256.0f;
+    let t50 = t49 + t;
+    let t51 = t * 256.0f;
+    let t52 = t46.y - t51;
+    let t53 = vec3<f32>(hi, t50, t52);
+    return t53;
 }
 
 // unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
@@ -154,19 +165,8 @@ fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 fn unitpack_oct24_rgb8_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t1 = unitpack_oct24_rgb8_round_codes(v);
-    let t2 = t1 + 2047.0f;
-    let x16 = t2.x * 0.0625f;
-    let hi = floor(x16);
-    let t3 = t2.y * 0.00390625f;
-    let t = floor(t3);
-    let t4 = x16 - hi;
-    let t5 = t4 * 256.0f;
-    let t6 = t5 + t;
-    let t7 = t * 256.0f;
-    let t8 = t2.y - t7;
-    let t9 = vec3<f32>(hi, t6, t8);
-    let t10 = t9 * 0.003921569f;
-    return t10;
+    let t2 = t1 * 0.003921569f;
+    return t2;
 }
 
 // unitpack_oct24_rgb8_encode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder.
@@ -177,22 +177,12 @@ fn unitpack_oct24_rgb8_encode_float(v: vec3<f32>) -> vec3<f32> {
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 fn unitpack_oct24_rgb8_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_oct24_rgb8_round_codes(v);
-    let t2 = t1 + 2047.0f;
-    let x16 = t2.x * 0.0625f;
-    let hi = floor(x16);
-    let t3 = t2.y * 0.00390625f;
-    let t = floor(t3);
-    let t4 = x16 - hi;
-    let t5 = t4 * 256.0f;
-    let t6 = t5 + t;
-    let t7 = t * 256.0f;
-    let t8 = t2.y - t7;
-    let t9 = u32(hi);
-    let t10 = u32(t6);
-    let t11 = t10 << 8u;
-    let t12 = t9 | t11;
-    let t13 = u32(t8);
-    let t14 = t13 << 16u;
-    let t15 = t12 | t14;
-    return t15;
+    let t2 = u32(t1.x);
+    let t3 = u32(t1.y);
+    let t4 = t3 << 8u;
+    let t5 = t2 | t4;
+    let t6 = u32(t1.z);
+    let t7 = t6 << 16u;
+    let t8 = t5 | t7;
+    return t8;
 }

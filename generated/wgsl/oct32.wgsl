@@ -82,7 +82,7 @@ fn unitpack_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {
     return t18;
 }
 
-// The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
 fn unitpack_oct32_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t1 = abs(a0);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);

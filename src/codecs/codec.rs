@@ -96,19 +96,18 @@ pub trait Codec: Send + Sync {
         let p = dequantize(&self.quants(), codes).named_p("params");
         F::call("decode_float", p, |p| self.direction(p))
     }
+    /// Whether [`Codec::round_codes`] decides every code with [`crate::codecs::exact`], so
+    /// that the fast packed encoder returns the same code on every conformant
+    /// implementation (tests/portability.rs holds each codec to its word both ways).
+    const EXACT_ROUNDING: bool = false;
     /// Integer codes of the fast encoder. The default rounds the `encode_float` helper's
     /// parameters (`round(p·M)`), whose rounding boundaries move with any division or
-    /// square root error an implementation is allowed; a codec that can decide its codes
-    /// with [`crate::codecs::exact`] overrides this and [`Codec::portable`].
-    fn fast_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
+    /// square root error an implementation is allowed. A codec that sets
+    /// [`Codec::EXACT_ROUNDING`] overrides it with an exact form, which the encoder then
+    /// calls as the helper `round_codes`.
+    fn round_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
         let p = F::call("encode_float", v, |v| self.params(v));
         quantize(&self.quants(), p).named_p("codes")
-    }
-    /// Whether the packed encoder (`precise` or fast) returns the same code on every
-    /// conformant implementation: every deviation `unitpack verify --portable` simulates
-    /// leaves it unchanged (tests/portability.rs holds each codec to its word).
-    fn portable(&self, _precise: bool) -> bool {
-        false
     }
     /// Integer codes chosen by the precise encoder: [`precise_search`] through this
     /// codec's own `decode_float`.
@@ -223,7 +222,7 @@ pub fn unpack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], code: C) -> P {
 pub fn helper_doc(name: &str) -> Option<String> {
     match name {
         "encode_codes" => Some("Precise search: the integer codes (as floats) around the exact parameters whose decode is nearest the input by squared distance.".to_string()),
-        "round_codes" => Some("The nearest integer codes (as floats), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.".to_string()),
+        "round_codes" => Some("The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.".to_string()),
         _ => None,
     }
 }

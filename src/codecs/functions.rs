@@ -167,7 +167,7 @@ pub struct Emitted {
     pub functions: Vec<Function>,
     /// Prefix for every function name of the spec (its id, or empty for helpers-only specs).
     pub namespace: String,
-    /// Whether the packed encoder is portable ([`Codec::portable`]): its doc comment says
+    /// Whether the packed encoder is portable (fast, with [`Codec::EXACT_ROUNDING`]): its doc comment says
     /// so, and tests/portability.rs holds it to that under every deviation class.
     pub portable_encoder: bool,
 }
@@ -214,7 +214,7 @@ where
         module,
         functions,
         namespace: spec.id(),
-        portable_encoder: c.portable(precise),
+        portable_encoder: !precise && C::EXACT_ROUNDING,
     }
 }
 
@@ -228,8 +228,10 @@ pub fn decode_packed<F: Float, C: Codec>(c: &C, code: C::C<F>) -> V3<F> {
 fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
         F::call("encode_codes", v, |v| c.precise_codes(v))
+    } else if C::EXACT_ROUNDING {
+        F::call("round_codes", v, |v| c.round_codes(v))
     } else {
-        c.fast_codes(v)
+        c.round_codes(v)
     }
 }
 

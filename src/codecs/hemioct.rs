@@ -84,15 +84,11 @@ impl Codec for HemiOct {
         v / v.length_squared().sqrt()
     }
     /// Listing 6 decided portably ([`crate::codecs::exact`]) from the same ratios.
-    fn fast_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
-        F::call("round_codes", v, |v| {
-            let (n, l1, ok) = hemi_ratios(v);
-            let c = n.map(|x| snorm_ratio(q, x, l1));
-            V2::sel_all(ok, c, V2::splat(F::c(0.0)))
-        })
-    }
-    fn portable(&self, precise: bool) -> bool {
-        !precise
+        let (n, l1, ok) = hemi_ratios(v);
+        let c = n.map(|x| snorm_ratio(q, x, l1));
+        V2::sel_all(ok, c, V2::splat(F::c(0.0)))
     }
 }

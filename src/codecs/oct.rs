@@ -150,12 +150,9 @@ impl Codec for Oct {
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         oct_direction(p)
     }
-    fn fast_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let q = self.quants()[0];
-        F::call("round_codes", v, |v| oct_codes(q, v))
-    }
-    fn portable(&self, precise: bool) -> bool {
-        !precise
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        oct_codes(self.quants()[0], v)
     }
 }
 
@@ -176,7 +173,7 @@ impl Codec for Oct24Rgb8 {
     /// The bytes of the portable oct24 codes as unorm8 values: already quantized, so a
     /// render target stores exactly the packed code's bytes.
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
-        self.fast_codes(v) * F::c(1.0 / 255.0)
+        F::call("round_codes", v, |v| self.round_codes(v)) * F::c(1.0 / 255.0)
     }
     fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
         let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
@@ -188,13 +185,10 @@ impl Codec for Oct24Rgb8 {
         let e = F::call("bytes_to_snorm12x2", b, from_bytes).named("e");
         F::call("oct24_decode_float", e, oct_direction)
     }
+    const EXACT_ROUNDING: bool = true;
     /// The portable oct24 codes, split into bytes.
-    fn fast_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
-        let c = F::call("round_codes", v, |v| oct_codes(Quant::Snorm(12), v));
-        bytes_float(c + F::c(BIAS))
-    }
-    fn portable(&self, precise: bool) -> bool {
-        !precise
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        bytes_float(oct_codes(Quant::Snorm(12), v) + F::c(BIAS))
     }
     /// The oct24 precise search, then its 12-bit codes split into bytes.
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {

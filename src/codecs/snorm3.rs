@@ -115,16 +115,12 @@ impl<W: Words> Codec for Snorm3<W> {
     }
     /// Each component `x / |w|` of the canonical input decided portably
     /// ([`crate::codecs::exact`]) against its exactly computed square length.
-    fn fast_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let q = self.quants()[0];
-        F::call("round_codes", v, |v| {
-            let (w, ok) = canonical(v);
-            let s = length2(w);
-            let c = w.map(|x| snorm_sqrt_ratio(q, x, s));
-            V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(q.max_code())))
-        })
-    }
-    fn portable(&self, _precise: bool) -> bool {
-        true
+        let (w, ok) = canonical(v);
+        let s = length2(w);
+        let c = w.map(|x| snorm_sqrt_ratio(q, x, s));
+        V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(q.max_code())))
     }
 }

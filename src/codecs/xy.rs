@@ -70,17 +70,13 @@ impl Codec for Xy {
     /// `x / |w|` and `y / |w|` of the canonical input projected onto the hemisphere
     /// (`z ← max(z, 0)`), decided portably ([`crate::codecs::exact`]); `-Z` projects to
     /// zero and encodes as +Z, like invalid input.
-    fn fast_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
-        F::call("round_codes", v, |v| {
-            let (w, ok) = canonical(v);
-            let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
-            let s = length2(V3::new(w.x, w.y, z));
-            let c = w.xy().map(|x| snorm_sqrt_ratio(q, x, s));
-            V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
-        })
-    }
-    fn portable(&self, precise: bool) -> bool {
-        !precise
+        let (w, ok) = canonical(v);
+        let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
+        let s = length2(V3::new(w.x, w.y, z));
+        let c = w.xy().map(|x| snorm_sqrt_ratio(q, x, s));
+        V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
     }
 }

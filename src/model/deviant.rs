@@ -89,7 +89,7 @@ impl Class {
         Class::Zero,
     ];
     pub fn guaranteed(self) -> bool {
-        self != Class::Excess
+        Class::GUARANTEED.contains(&self)
     }
     pub fn name(self) -> &'static str {
         match self {
