@@ -155,6 +155,63 @@ fn fma_rounds_a_product_and_sum_once() {
     assert_eq!(under(Class::Excess, Mode::Highest, f), 2f32.powi(-24));
 }
 
+/// Under `reassoc` a sum may be regrouped: `(1 + u) + u` with `u = 2^-24` is 1 (each
+/// half-ULP tie rounds to even) while `1 + (u + u)` is `1 + 2^-23`; and `a*b + a*c` may be
+/// factored as `a*(b + c)`.
+#[test]
+fn reassoc_regroups_sums_and_factors_products() {
+    let u = 2f32.powi(-24);
+    let f = || ((Dev::new(1.0) + Dev::new(u)) + Dev::new(u)).value();
+    assert_eq!(with(None, f), 1.0);
+    assert_eq!(under(Class::Reassoc, Mode::Lowest, f), 1.0);
+    assert_eq!(
+        under(Class::Reassoc, Mode::Highest, f),
+        1.0 + 2f32.powi(-23)
+    );
+    // With b = fl(1/3) and c its next float: 3b + 3c = 2, but 3(b + c) = 2 + 2^-22.
+    let (a, b) = (3.0f32, 1.0f32 / 3.0);
+    let c = b.next_up();
+    let g = || (Dev::new(a) * Dev::new(b) + Dev::new(a) * Dev::new(c)).value();
+    let unfactored = a * b + a * c;
+    let factored = a * (b + c);
+    assert_ne!(unfactored, factored);
+    let both = [
+        under(Class::Reassoc, Mode::Lowest, g),
+        under(Class::Reassoc, Mode::Highest, g),
+    ];
+    assert_eq!(both, [unfactored.min(factored), unfactored.max(factored)]);
+}
+
+/// Under `round` an inexact `+`, `-` or `*` may give either neighbour of the exact value;
+/// an exact one may not change.
+#[test]
+fn round_takes_either_neighbour_of_an_inexact_result() {
+    let u = 2f32.powi(-24);
+    let add = || (Dev::new(1.0) + Dev::new(u)).value();
+    assert_eq!(under(Class::Round, Mode::Lowest, add), 1.0);
+    assert_eq!(
+        under(Class::Round, Mode::Highest, add),
+        1.0 + 2f32.powi(-23)
+    );
+    let third = 1.0f32 / 3.0;
+    let mul = || (Dev::new(third) * Dev::new(3.0)).value();
+    let exact = f64::from(third) * 3.0;
+    for m in [Mode::Lowest, Mode::Highest] {
+        let r = under(Class::Round, m, mul);
+        assert!(
+            (f64::from(r) - exact).abs() < f64::from(f32::EPSILON),
+            "{r}"
+        );
+    }
+    assert_ne!(
+        under(Class::Round, Mode::Lowest, mul),
+        under(Class::Round, Mode::Highest, mul)
+    );
+    let exact_sum = || (Dev::new(1.0) + Dev::new(2.0)).value();
+    assert_eq!(under(Class::Round, Mode::Highest, exact_sum), 3.0);
+    assert_eq!(under(Class::Round, Mode::Lowest, exact_sum), 3.0);
+}
+
 /// Denormal operands and results may become zeros of their sign.
 #[test]
 fn denorm_flushes_inputs_and_outputs() {

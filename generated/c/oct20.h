@@ -131,7 +131,7 @@ static inline void unitpack_oct20_encode_float(const float v[3], float out[2]) {
     out[1] = r.y;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_oct20_round_codes_v(unitpack_vec3 a0) {
     const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };
@@ -209,7 +209,7 @@ static inline uint32_t unitpack_oct20_encode_v(unitpack_vec3 v) {
 // unitpack_oct20_encode: oct20 (octahedral, snorm×2, 20 bits, sphere), fast encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint32_t (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement)).
-// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
+// Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound).
 static inline uint32_t unitpack_oct20_encode(const float v[3]) {

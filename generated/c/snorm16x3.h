@@ -123,7 +123,7 @@ static inline void unitpack_snorm16x3_encode_float(const float v[3], float out[3
     out[2] = r.z;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_snorm16x3_round_codes_v(unitpack_vec3 a0) {
     const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };
@@ -270,7 +270,7 @@ static inline unitpack_uvec2 unitpack_snorm16x3_encode_v(unitpack_vec3 v) {
 // unitpack_snorm16x3_encode: snorm16x3 (components as snorm×3, 48 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, unitpack_uvec2 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)).
-// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
+// Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 static inline uint64_t unitpack_snorm16x3_encode(const float v[3]) {

@@ -88,7 +88,7 @@ vec3 unitpack_snorm16x3_encode_float(vec3 v) {
     return t15;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
 vec3 unitpack_snorm16x3_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 t1 = abs(a0);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
@@ -213,7 +213,7 @@ vec3 unitpack_snorm16x3_round_codes(vec3 a0) {
 // unitpack_snorm16x3_encode: snorm16x3 (components as snorm×3, 48 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uvec2 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)).
-// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
+// Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound).
 uvec2 unitpack_snorm16x3_encode(vec3 v) {

@@ -104,7 +104,7 @@ float3 unitpack_oct24_rgb8_decode(uint code) {
     return t6;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
 float3 unitpack_oct24_rgb8_round_codes(float3 a0) {
     precise float3 t1 = abs(a0);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -187,7 +187,7 @@ float3 unitpack_oct24_rgb8_encode_float(float3 v) {
 // unitpack_oct24_rgb8_encode: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8, bits 16–23: p2 unorm8).
-// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
+// Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 uint unitpack_oct24_rgb8_encode(float3 v) {

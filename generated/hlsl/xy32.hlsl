@@ -106,7 +106,7 @@ float2 unitpack_xy32_encode_float(float3 v) {
     return t33.xy;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
 float2 unitpack_xy32_round_codes(float3 a0) {
     precise float3 t1 = abs(a0);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -222,7 +222,7 @@ float2 unitpack_xy32_round_codes(float3 a0) {
 // unitpack_xy32_encode: xy32 (x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere), fast encoder.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
-// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
+// Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 uint unitpack_xy32_encode(float3 v) {

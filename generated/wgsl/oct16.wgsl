@@ -82,7 +82,7 @@ fn unitpack_oct16_encode_float(v: vec3<f32>) -> vec2<f32> {
     return t18;
 }
 
-// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
 fn unitpack_oct16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t1 = abs(a0);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -143,7 +143,7 @@ fn unitpack_oct16_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // unitpack_oct16_encode: oct16 (octahedral, snorm×2, 16 bits, sphere), fast encoder.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
-// Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision.
+// Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.33696°, sample max 0.92448° (not a bound).
 fn unitpack_oct16_encode(v: vec3<f32>) -> u32 {

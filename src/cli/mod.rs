@@ -148,10 +148,11 @@ pub enum Command {
         json: bool,
         /// Instead of running the emitted code, evaluate the model under every deviation
         /// the graphics APIs allow (division and sqrt within their ULP bounds, fused
-        /// multiply-adds, denormal flushing, lost signs of zero, excess precision), with 3
-        /// seeds and both worst-case ends, over 2^14 inputs per function. Reports changed
-        /// outputs per function and class; exits 1 if any packed code changes under a
-        /// class the portability guarantee covers (all but excess precision).
+        /// multiply-adds, denormal flushing, lost signs of zero, excess precision,
+        /// reassociation, either-neighbour rounding), with 3 seeds and both worst-case
+        /// ends, over 2^14 inputs per function. Reports changed outputs per function and
+        /// class; exits 1 if any packed code changes under a class the portability
+        /// guarantee covers (div, sqrt, fma, denorm, zero).
         #[arg(long)]
         portable: bool,
     },

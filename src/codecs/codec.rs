@@ -97,8 +97,9 @@ pub trait Codec: Send + Sync {
         F::call("decode_float", p, |p| self.direction(p))
     }
     /// Whether [`Codec::round_codes`] decides every code with [`crate::codecs::exact`], so
-    /// that the fast packed encoder returns the same code on every conformant
-    /// implementation (tests/portability.rs holds each codec to its word both ways).
+    /// that the fast packed encoder returns the same code under every deviation class the
+    /// portability guarantee covers (tests/portability.rs holds each codec to its word
+    /// both ways).
     const EXACT_ROUNDING: bool = false;
     /// Integer codes of the fast encoder. The default rounds the `encode_float` helper's
     /// parameters (`round(p·M)`), whose rounding boundaries move with any division or
@@ -222,7 +223,7 @@ pub fn unpack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], code: C) -> P {
 pub fn helper_doc(name: &str) -> Option<String> {
     match name {
         "encode_codes" => Some("Precise search: the integer codes (as floats) around the exact parameters whose decode is nearest the input by squared distance.".to_string()),
-        "round_codes" => Some("The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so every conformant implementation picks the same ones.".to_string()),
+        "round_codes" => Some("The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.".to_string()),
         _ => None,
     }
 }

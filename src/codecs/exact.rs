@@ -1,5 +1,5 @@
-//! Portable quantization: codes decided only by operations that every conformant
-//! implementation computes identically.
+//! Portable quantization: codes decided only by operations that every implementation
+//! rounding `+ - *` to nearest and keeping the order of operations computes identically.
 //!
 //! A GPU may return a quotient or a square root a few ULP away from the correctly rounded
 //! one, contract `a*b + c` into one rounding, flush denormals and lose the sign of a zero
@@ -16,6 +16,12 @@
 //! canonical form by [`canonical`]: scaled by a power of two (exact), with denormal and
 //! negligible components set to zero, which makes flushing and sign-of-zero loss
 //! irrelevant.
+//!
+//! What this cannot absorb: sums and products rounded in another direction (D3D11 lets
+//! hardware truncate, Vulkan's default rounding mode may be toward zero, WGSL names none)
+//! or regrouped (WGSL and SPIR-V without `NoContraction` may reassociate). Both move the
+//! correctly rounded values the comparisons rely on; only exact (integer) arithmetic would
+//! survive them.
 
 use super::quant::Quant;
 use crate::model::{Bool, Float, Uint, V3};

@@ -89,7 +89,7 @@ fn helper_doc(spec: &Spec, local: &str) -> Vec<String> {
 /// bit-exact, and where").
 fn encoder_portability(portable: bool) -> &'static str {
     if portable {
-        "Portable: the same code on every conformant implementation, whatever latitude it takes (division and square root within their ULP bounds, a*b + c contracted or not, denormals flushed or not, signs of zero lost); denormal input components count as zero. Not under fast math or excess precision."
+        "Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision."
     } else {
         "Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often)."
     }

@@ -23,6 +23,8 @@
 //! | `denorm` | denormals may be flushed on input and output of arithmetic (D3D: always, sign preserved; Vulkan without float-controls) | each operand of `+ - * /`, `sqrt`, `floor`, `round` and the comparisons, and each result of the arithmetic, may become a zero of the same sign |
 //! | `zero` | the sign of zero may be lost (Vulkan without `SignedZeroInfNanPreserve`, SSE2-only `floor`/`roundEven` on Mesa) | a zero produced by `floor`, `round`, `abs` or a select may have either sign |
 //! | `excess` | excess precision (C's `FLT_EVAL_METHOD`; Mesa with `GALLIUM_NOSSE=1`) | see [`Class::Excess`] |
+//! | `reassoc` | reassociation and combination of operations unless `NoContraction` / `precise` (SPIR-V's `NoContraction`: "such operations are not allowed to reassociate", so without it they are; WGSL §15.7.5 "Reassociation and Fusion") | a sum remembers its operands: `(a + b) + c` may become `a + (b + c)` or `(a + c) + b`; `a*b + a*c` may become `a*(b + c)` (Mesa's NIR does this) |
+//! | `round` | `+ - *` rounded to either neighbour of the exact result (WGSL names no rounding mode; Vulkan's default may be round-toward-zero unless the shader declares `RoundingModeRTE`) | each result of `+ - *` may be the other neighbour of the exact value |
 //!
 //! Division and square root outside the normal range, where Vulkan allows anything, are
 //! still held to the same ULP bounds: the model looks for fragile codes, not for every
@@ -66,21 +68,31 @@ pub enum Class {
     /// `FLT_EVAL_METHOD == 1` model; x87's 64-bit significand rounds a little differently
     /// but is caught by the same fragility.
     Excess,
+    /// Reassociation of sums and factoring of common factors, which SPIR-V allows on
+    /// operations without `NoContraction` and WGSL allows always.
+    Reassoc,
+    /// Either neighbour of the exact result for `+ - *`.
+    Round,
 }
 
 impl Class {
-    pub const ALL: [Class; 6] = [
+    pub const ALL: [Class; 8] = [
         Class::Div,
         Class::Sqrt,
         Class::Fma,
         Class::Denorm,
         Class::Zero,
         Class::Excess,
+        Class::Reassoc,
+        Class::Round,
     ];
-    /// The classes a portable encoder is guaranteed against: what a conformant Vulkan, D3D
-    /// or WebGPU implementation may do. Excess precision is measured and reported, but
-    /// the guarantee excludes it (as it excludes fast math): no conformant GPU path keeps
-    /// f32 results wider, and C on x87 is outside the supported targets.
+    /// The classes a portable encoder is guaranteed against: what an implementation that
+    /// rounds `+ - *` to nearest and keeps the order of operations (`precise`,
+    /// `NoContraction`, C without fast math) may still do. Excess precision, reassociation
+    /// and either-neighbour rounding are measured and reported, but the guarantee excludes
+    /// them: they change the rounding of sums and products themselves, which only exact
+    /// arithmetic survives; no conformant GPU path keeps f32 results wider, and C on x87 is
+    /// outside the supported targets.
     pub const GUARANTEED: [Class; 5] = [
         Class::Div,
         Class::Sqrt,
@@ -99,6 +111,8 @@ impl Class {
             Class::Denorm => "denorm",
             Class::Zero => "zero",
             Class::Excess => "excess",
+            Class::Reassoc => "reassoc",
+            Class::Round => "round",
         }
     }
 }
@@ -275,6 +289,8 @@ enum Ext {
     Product(f32, f32),
     /// `excess`: the unrounded value; the f32 bits are its rounding.
     Wide(f64),
+    /// `reassoc`: the value is `a + b`, which a following add may regroup.
+    Sum(f32, f32),
 }
 
 /// A float under the active [`Deviation`]. Its f32 value ([`Dev::value`]) is what a
@@ -445,9 +461,51 @@ impl Uint for DevU {
     }
 }
 
+/// Under `round`: `r` (an f32 result whose exact value is `exact`) or its other
+/// neighbour of `exact`.
+fn either_neighbour(mode: Mode, r: f32, exact: f64) -> f32 {
+    let other = match f64::from(r).partial_cmp(&exact) {
+        Some(Ordering::Less) => r.next_up(),
+        Some(Ordering::Greater) => r.next_down(),
+        _ => return r,
+    };
+    pick_f32(mode, &[r, other])
+}
+
+/// Under `reassoc`: `a + b` or a regrouping of it. A remembered sum operand may be
+/// regrouped with the other operand; two remembered products with a common factor may be
+/// factored.
+fn regrouped(mode: Mode, a: Dev, b: Dev) -> Dev {
+    let mut c = vec![a.x + b.x];
+    for (p, q) in [(a, b), (b, a)] {
+        if let Ext::Sum(u, v) = p.ext {
+            c.push(u + (v + q.x));
+            c.push((u + q.x) + v);
+        }
+    }
+    if let (Ext::Product(p, q), Ext::Product(r, t)) = (a.ext, b.ext) {
+        for (f, g, h, k) in [(p, q, r, t), (p, q, t, r), (q, p, r, t), (q, p, t, r)] {
+            if f.to_bits() == h.to_bits() {
+                c.push(f * (g + k));
+            }
+        }
+    }
+    Dev {
+        x: pick_f32(mode, &c),
+        ext: Ext::Sum(a.x, b.x),
+    }
+}
+
 impl Add for Dev {
     type Output = Dev;
     fn add(self, o: Dev) -> Dev {
+        if let Some(mode) = active(Class::Reassoc) {
+            return regrouped(mode, self, o);
+        }
+        if let Some(mode) = active(Class::Round) {
+            let exact = f64::from(self.x) + f64::from(o.x);
+            return Dev::new(either_neighbour(mode, self.x + o.x, exact));
+        }
         let Some(mode) = active(Class::Fma) else {
             return Dev::arith([self, o], |[a, b]| a + b, |[a, b]| a + b);
         };
@@ -476,7 +534,11 @@ impl Sub for Dev {
 impl Mul for Dev {
     type Output = Dev;
     fn mul(self, o: Dev) -> Dev {
-        if active(Class::Fma).is_some() {
+        if let Some(mode) = active(Class::Round) {
+            let exact = f64::from(self.x) * f64::from(o.x);
+            return Dev::new(either_neighbour(mode, self.x * o.x, exact));
+        }
+        if active(Class::Fma).is_some() || active(Class::Reassoc).is_some() {
             return Dev {
                 x: self.x * o.x,
                 ext: Ext::Product(self.x, o.x),
@@ -508,6 +570,7 @@ impl Neg for Dev {
                 Ext::None => Ext::None,
                 Ext::Product(a, b) => Ext::Product(-a, b),
                 Ext::Wide(w) => Ext::Wide(-w),
+                Ext::Sum(a, b) => Ext::Sum(-a, -b),
             },
         }
     }
