@@ -392,3 +392,28 @@ fn declared_portable_encoders_never_change() {
     // oct ×5 and its rgb8 layout, hemioct ×3, snorm3 ×3, xy ×3.
     assert_eq!(portable, 15);
 }
+
+/// What the README's API table says lies outside the guarantee does reach the portable
+/// encoders: either-neighbour rounding moves oct16 codes, and regrouped sums move oct32
+/// codes (its comparisons feed on a three-term L1 sum).
+#[test]
+fn portable_encoders_still_change_under_reassociation_and_rounding() {
+    let specs: Vec<Spec> = ["oct16", "oct32"].map(|s| s.parse().unwrap()).to_vec();
+    assert!(specs.iter().all(|s| s.emitted().portable_encoder));
+    let opts = Options {
+        encoders_only: true,
+        ..Options::default()
+    };
+    let report = run(&specs, &[Class::Reassoc, Class::Round], &opts);
+    let changed = |id: &str, class: Class| {
+        report
+            .rows
+            .iter()
+            .filter(|r| r.spec == id && r.role == Role::Encode && r.class == class)
+            .map(|r| r.changed)
+            .sum::<usize>()
+    };
+    assert!(changed("oct16", Class::Round) > 0);
+    assert!(changed("oct32", Class::Reassoc) > 0);
+    assert!(!report.rows.iter().any(|r| r.class.guaranteed()));
+}

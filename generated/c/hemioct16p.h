@@ -156,10 +156,10 @@ static inline unitpack_vec2 unitpack_hemioct16p_encode_codes_v(unitpack_vec3 v) 
     const unitpack_vec3 w = { t48.x ? 0.0f : scaled3.x, t48.y ? 0.0f : scaled3.y, t48.z ? 0.0f : scaled3.z };
     const bool t49 = w.z > 0.0f;
     const float t50 = t49 ? w.z : 0.0f;
-    const float t51 = fabsf(w.x);
-    const float t52 = fabsf(w.y);
-    const float t53 = t51 + t52;
-    const float l1 = t53 + t50;
+    const unitpack_vec3 t51 = { w.x, w.y, t50 };
+    const unitpack_vec3 t52 = { fabsf(t51.x), fabsf(t51.y), fabsf(t51.z) };
+    const float t53 = t52.x + t52.y;
+    const float l1 = t53 + t52.z;
     const float t54 = w.x + w.y;
     const float t55 = w.x - w.y;
     const unitpack_vec2 n = { t54, t55 };

@@ -130,10 +130,10 @@ vec2 unitpack_hemioct32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 w = mix(scaled3, vec3(0.0), t48);
     bool t49 = w.z > 0.0;
     UNITPACK_PRECISE float t50 = t49 ? w.z : 0.0;
-    UNITPACK_PRECISE float t51 = abs(w.x);
-    UNITPACK_PRECISE float t52 = abs(w.y);
-    UNITPACK_PRECISE float t53 = t51 + t52;
-    UNITPACK_PRECISE float l1 = t53 + t50;
+    UNITPACK_PRECISE vec3 t51 = vec3(w.xy, t50);
+    UNITPACK_PRECISE vec3 t52 = abs(t51);
+    UNITPACK_PRECISE float t53 = t52.x + t52.y;
+    UNITPACK_PRECISE float l1 = t53 + t52.z;
     UNITPACK_PRECISE float t54 = w.x + w.y;
     UNITPACK_PRECISE float t55 = w.x - w.y;
     UNITPACK_PRECISE vec2 n = vec2(t54, t55);

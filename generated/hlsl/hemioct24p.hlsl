@@ -129,10 +129,10 @@ float2 unitpack_hemioct24p_encode_codes(float3 v) {
     precise float3 w = UNITPACK_SELECT(t48, float3(0.0, 0.0, 0.0), scaled3);
     bool t49 = w.z > 0.0;
     precise float t50 = t49 ? w.z : 0.0;
-    precise float t51 = abs(w.x);
-    precise float t52 = abs(w.y);
-    precise float t53 = t51 + t52;
-    precise float l1 = t53 + t50;
+    precise float3 t51 = float3(w.xy, t50);
+    precise float3 t52 = abs(t51);
+    precise float t53 = t52.x + t52.y;
+    precise float l1 = t53 + t52.z;
     precise float t54 = w.x + w.y;
     precise float t55 = w.x - w.y;
     precise float2 n = float2(t54, t55);

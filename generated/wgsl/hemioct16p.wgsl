@@ -114,10 +114,10 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let w = select(scaled3, vec3<f32>(0.0f), t48);
     let t49 = w.z > 0.0f;
     let t50 = select(0.0f, w.z, t49);
-    let t51 = abs(w.x);
-    let t52 = abs(w.y);
-    let t53 = t51 + t52;
-    let l1 = t53 + t50;
+    let t51 = vec3<f32>(w.xy, t50);
+    let t52 = abs(t51);
+    let t53 = t52.x + t52.y;
+    let l1 = t53 + t52.z;
     let t54 = w.x + w.y;
     let t55 = w.x - w.y;
     let n = vec2<f32>(t54, t55);

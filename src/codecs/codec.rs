@@ -79,10 +79,7 @@ pub trait Codec: Send + Sync {
             // Validity is judged on the raw input first (a NaN or infinite z must not be
             // projected into a real direction), then the projection is renormalized; -Z
             // projects to zero and so becomes +Z.
-            Domain::Hemisphere => {
-                let z = F::sel(u.z.gt(F::c(0.0)), u.z, F::c(0.0));
-                unit_or_z(V3::new(u.x, u.y, z))
-            }
+            Domain::Hemisphere => unit_or_z(above_horizon(u)),
         }
     }
     /// Direction → parameters in storage range, before quantization.
@@ -157,6 +154,12 @@ pub fn precise_search<F: Float, C: Codec + ?Sized>(
 
 fn distance2<F: Float>(a: V3<F>, b: V3<F>) -> F {
     (a - b).length_squared()
+}
+
+/// `v` projected onto the +Z hemisphere: `z ← max(z, +0)` as a select (a NaN `z` becomes
+/// `+0`, so validity must be judged before).
+pub fn above_horizon<F: Float>(v: V3<F>) -> V3<F> {
+    V3::new(v.x, v.y, F::sel(v.z.gt(F::c(0.0)), v.z, F::c(0.0)))
 }
 
 /// `x ≥ 0 ? 1 : -1`: −0 counts as positive (never `sign()`, which is 0 at 0).

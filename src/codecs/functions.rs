@@ -167,8 +167,9 @@ pub struct Emitted {
     pub functions: Vec<Function>,
     /// Prefix for every function name of the spec (its id, or empty for helpers-only specs).
     pub namespace: String,
-    /// Whether the packed encoder is portable (fast, with [`Codec::EXACT_ROUNDING`]): its doc comment says
-    /// so, and tests/portability.rs holds it to that under every deviation class.
+    /// Whether the packed encoder is portable (fast, with [`Codec::EXACT_ROUNDING`]): its
+    /// doc comment says so, and tests/portability.rs holds it to that under every
+    /// guaranteed deviation class.
     pub portable_encoder: bool,
 }
 

@@ -1,7 +1,7 @@
 //! Hemi-oct (survey Listing 6, Table 3): the +Z half of the octahedron, rotated 45° and
 //! scaled so that it fills the whole square.
 
-use super::codec::{Codec, Domain};
+use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{canonical, snorm_ratio};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, V2, V3};
@@ -56,8 +56,8 @@ pub struct HemiOct {
 /// which projects to zero; all of them encode as +Z.
 fn hemi_ratios<F: Float>(v: V3<F>) -> (V2<F>, F, F::B) {
     let (w, ok) = canonical(v);
-    let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
-    let l1 = (w.x.abs() + w.y.abs() + z).named("l1");
+    let a = above_horizon(w).abs();
+    let l1 = (a.x + a.y + a.z).named("l1");
     let n = V2::new(w.x + w.y, w.x - w.y).named("n");
     (n, l1, ok.and(l1.gt(F::c(0.0))))
 }

@@ -1,7 +1,7 @@
 //! X and Y stored, Z reconstructed (first seed method 1, survey XYOnly, fourth seed):
 //! `z = sqrt(1 - saturate(x² + y²))`, +Z hemisphere, snorm×2.
 
-use super::codec::{Codec, Domain};
+use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{canonical, length2, snorm_sqrt_ratio};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, V2, V3};
@@ -74,8 +74,7 @@ impl Codec for Xy {
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let (w, ok) = canonical(v);
-        let z = F::sel(w.z.gt(F::c(0.0)), w.z, F::c(0.0));
-        let s = length2(V3::new(w.x, w.y, z));
+        let s = length2(above_horizon(w));
         let c = w.xy().map(|x| snorm_sqrt_ratio(q, x, s));
         V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
     }
