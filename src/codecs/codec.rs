@@ -107,6 +107,10 @@ pub trait Codec: Send + Sync {
         let p = F::call("encode_float", v, |v| self.params(v));
         quantize(&self.quants(), p).named_p("codes")
     }
+    /// Whether [`Codec::precise_codes`] decides the search in integer arithmetic
+    /// ([`crate::codecs::lattice`]), so that the precise packed encoder is portable like
+    /// a fast one with [`Codec::EXACT_ROUNDING`].
+    const EXACT_SEARCH: bool = false;
     /// Integer codes chosen by the precise encoder: [`precise_search`] through this
     /// codec's own `decode_float`.
     fn precise_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {

@@ -115,10 +115,26 @@ pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
     signed(n, corrected(q, estimate, up, down))
 }
 
+/// `floor(n / d · M)` for `|n| ≤ d` (`d > 0`, as for [`snorm_ratio`]): the integer `c`
+/// in `[-M, M]` with `c·d ≤ n·M < (c + 1)·d` (each side rounded once), where a precise
+/// search starts.
+pub fn floor_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
+    let m = F::c(q.max_code());
+    let estimate = (n / d * m).floor();
+    let big = n * m;
+    let up = big.ge((estimate + F::c(1.0)) * d);
+    let down = big.lt(estimate * d);
+    stepped(estimate, up, down).clamped(F::c(q.min_code()), m)
+}
+
 /// The estimate stepped by one where a comparison says so, within `[0, M]`.
 fn corrected<F: Float>(q: Quant, estimate: F, up: F::B, down: F::B) -> F {
-    let step = F::sel(up, F::c(1.0), F::sel(down, F::c(-1.0), F::c(0.0)));
-    (estimate + step).clamped(F::c(0.0), F::c(q.max_code()))
+    stepped(estimate, up, down).clamped(F::c(0.0), F::c(q.max_code()))
+}
+
+/// The estimate stepped by one where a comparison says so.
+fn stepped<F: Float>(estimate: F, up: F::B, down: F::B) -> F {
+    estimate + F::sel(up, F::c(1.0), F::sel(down, F::c(-1.0), F::c(0.0)))
 }
 
 /// `c` with the sign of `n`; a zero `n` gives `c` (which is then 0).

@@ -167,7 +167,8 @@ pub struct Emitted {
     pub functions: Vec<Function>,
     /// Prefix for every function name of the spec (its id, or empty for helpers-only specs).
     pub namespace: String,
-    /// Whether the packed encoder is portable (fast, with [`Codec::EXACT_ROUNDING`]): its
+    /// Whether the packed encoder is portable (fast with [`Codec::EXACT_ROUNDING`], or
+    /// precise with [`Codec::EXACT_SEARCH`]): its
     /// doc comment says so, and tests/portability.rs holds it to that under every
     /// guaranteed deviation class.
     pub portable_encoder: bool,
@@ -215,7 +216,11 @@ where
         module,
         functions,
         namespace: spec.id(),
-        portable_encoder: !precise && C::EXACT_ROUNDING,
+        portable_encoder: if precise {
+            C::EXACT_SEARCH
+        } else {
+            C::EXACT_ROUNDING
+        },
     }
 }
 

@@ -2,7 +2,8 @@
 //! scaled so that it fills the whole square.
 
 use super::codec::{Codec, Domain, above_horizon};
-use super::exact::{canonical, snorm_ratio};
+use super::exact::{canonical, floor_ratio, snorm_ratio};
+use super::lattice::{Closeness, fixed};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, V2, V3};
 use super::family::{Family, Info, Sizes};
@@ -62,6 +63,46 @@ fn hemi_ratios<F: Float>(v: V3<F>) -> (V2<F>, F, F::B) {
     (n, l1, ok.and(l1.gt(F::c(0.0))))
 }
 
+/// The hemi-octahedral codes nearest the input, decided portably
+/// ([`crate::codecs::lattice`]). In the first octant (`a = |x|`, `b = |y|`,
+/// `c = max(z, 0)`) codes `(S, T)` decode to the lattice direction
+/// `(S + T, S - T, 2M - 2S)`; the candidates are the four codes around
+/// `floor(M·(a + b, a - b) / l1)`, each reflected into the first octant (`(-T, -S)` where
+/// `S + T < 0`, `(T, S)` where `S < T`: the reflection is nearer, and is itself a
+/// candidate) and dropped past the equator (`S > M`). The nearest (the first on ties)
+/// then takes the input's signs: a negative `x` maps `(S, T)` to `(-T, -S)`, a negative
+/// `y` to `(T, S)`. Zero, NaN, infinite input and `-Z` give `(0, 0)`.
+fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
+    let m = q.max_code();
+    let mf = F::c(m);
+    let (w, ok) = canonical(v);
+    let a = above_horizon(w).abs();
+    let l1 = (a.x + a.y + a.z).named("l1");
+    let s0 = floor_ratio(q, a.x + a.y, l1).named("s0");
+    let t0 = floor_ratio(q, a.x - a.y, l1).named("t0");
+    let afix = fixed(a);
+    let lattice = |s: F, t: F| {
+        let r = V2::sel_all((s + t).lt(F::c(0.0)), V2::new(-t, -s), V2::new(s, t));
+        let r = V2::sel_all(r.x.lt(r.y), r.yx(), r).named("cand");
+        let z = (F::c(2.0 * m) - r.x - r.x).at_least(F::c(0.0));
+        let d = V3::new((r.x + r.y).to_u(), (r.x - r.y).to_u(), z.to_u());
+        (r, Closeness::<F>::of(afix, d, 2.0 * m))
+    };
+    let (mut best, mut best_c) = lattice(s0, t0);
+    for (i, j) in [(1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+        let s = if i > 0.0 { s0 + F::c(i) } else { s0 };
+        let t = if j > 0.0 { t0 + F::c(j) } else { t0 };
+        let (r, c) = lattice(s, t);
+        let better = r.x.le(mf).and(c.closer(best_c));
+        best = V2::sel_all(better, r, best).named("best");
+        best_c = Closeness::sel(better, c, best_c);
+    }
+    let zero = F::c(0.0);
+    let st = V2::sel_all(w.x.lt(zero), -best.yx(), best);
+    let st = V2::sel_all(w.y.lt(zero), st.yx(), st);
+    V2::sel_all(ok.and(l1.gt(zero)), st, V2::splat(zero))
+}
+
 impl Codec for HemiOct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
@@ -90,5 +131,9 @@ impl Codec for HemiOct {
         let (n, l1, ok) = hemi_ratios(v);
         let c = n.map(|x| snorm_ratio(q, x, l1));
         V2::sel_all(ok, c, V2::splat(F::c(0.0)))
+    }
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        hemioct_nearest_codes(self.quants()[0], v)
     }
 }

@@ -10,6 +10,7 @@ pub mod exact;
 pub mod family;
 pub mod functions;
 pub mod inputs;
+pub mod lattice;
 pub mod quant;
 pub mod spec;
 pub mod trig;

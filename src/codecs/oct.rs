@@ -1,10 +1,11 @@
 //! Octahedral encoding (survey §3.1–3.3, Meyer et al. 2010): project onto the octahedron
 //! with the L1 norm, unfold the lower half over the diagonals, store snorm×2.
 
-use super::codec::{Codec, Domain, precise_search, sign_not_zero};
-use super::exact::{canonical, snorm_ratio};
+use super::codec::{Codec, Domain, sign_not_zero};
+use super::exact::{canonical, floor_ratio, snorm_ratio};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes};
 use super::functions::{Emitted, codec_functions};
+use super::lattice::{Closeness, fixed};
 use super::pack12::{BIAS, bytes_float, from_bytes, from_unorm8x3};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
@@ -135,6 +136,41 @@ pub fn oct_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     V2::sel_all(ok, c, V2::splat(F::c(0.0)))
 }
 
+/// The octahedral codes nearest the input, decided portably: the first octant's lattice
+/// point `(s, t, M - s - t)` nearest `(|x|, |y|, |z|)` in angle among the four around
+/// `floor(M·(|x|, |y|) / l1)` (the first on ties), then the input's signs, unfolded
+/// below the equator: `(±s, ±t)` above, `(±(M - t), ±(M - s))` below, whose decode has
+/// the same magnitudes with a negative `z`. Zero, NaN and infinite input give `(0, 0)`.
+pub fn oct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
+    let m = q.max_code();
+    let mf = F::c(m);
+    let (w, ok) = canonical(v);
+    let a = w.abs();
+    let l1 = (a.x + a.y + a.z).named("l1");
+    let s0 = floor_ratio(q, a.x, l1).named("s0");
+    // Rounded comparisons could put the floors one past the equator together.
+    let t0 = floor_ratio(q, a.y, l1).at_most(mf - s0).named("t0");
+    let fixed = fixed(a);
+    let lattice = |s: F, t: F| {
+        let u = (mf - s - t).at_least(F::c(0.0));
+        Closeness::<F>::of(fixed, V3::new(s.to_u(), t.to_u(), u.to_u()), m)
+    };
+    let mut best = V2::new(s0, t0);
+    let mut best_c = lattice(s0, t0);
+    for (i, j) in [(1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+        let s = if i > 0.0 { s0 + F::c(i) } else { s0 };
+        let t = if j > 0.0 { t0 + F::c(j) } else { t0 };
+        let c = lattice(s, t);
+        let better = (s + t).le(mf).and(c.closer(best_c));
+        best = V2::sel_all(better, V2::new(s, t), best).named("best");
+        best_c = Closeness::sel(better, c, best_c);
+    }
+    let below = w.z.lt(F::c(0.0));
+    let st = V2::sel_all(below, (V2::splat(mf) - best.yx()).named("folded"), best);
+    let signed = V2::sel(w.xy().lt(V2::splat(F::c(0.0))), -st, st);
+    V2::sel_all(ok, signed, V2::splat(F::c(0.0)))
+}
+
 impl Codec for Oct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
@@ -153,6 +189,10 @@ impl Codec for Oct {
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         oct_codes(self.quants()[0], v)
+    }
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        oct_nearest_codes(self.quants()[0], v)
     }
 }
 
@@ -191,8 +231,8 @@ impl Codec for Oct24Rgb8 {
         bytes_float(oct_codes(Quant::Snorm(12), v) + F::c(BIAS))
     }
     /// The oct24 precise search, then its 12-bit codes split into bytes.
+    const EXACT_SEARCH: bool = true;
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
-        let c = precise_search(&Oct { bits: 24 }, v, "oct24_decode_float");
-        bytes_float(c + F::c(BIAS))
+        bytes_float(oct_nearest_codes(Quant::Snorm(12), v) + F::c(BIAS))
     }
 }

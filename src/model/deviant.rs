@@ -459,6 +459,18 @@ impl Uint for DevU {
     fn sel(m: DevB, t: Self, f: Self) -> Self {
         if m.0 { t } else { f }
     }
+    fn wrapping_add(self, o: Self) -> Self {
+        self + o
+    }
+    fn wrapping_sub(self, o: Self) -> Self {
+        self - o
+    }
+    fn wrapping_mul(self, o: Self) -> Self {
+        DevU(self.0.wrapping_mul(o.0))
+    }
+    fn lt(self, o: Self) -> DevB {
+        DevB(self.0 < o.0)
+    }
 }
 
 /// Under `round`: `r` (an f32 result whose exact value is `exact`) or its other

@@ -82,6 +82,15 @@ pub trait Uint:
     /// `asfloat`): exact everywhere. The model only makes normal floats this way.
     fn as_float(self) -> Self::F;
     fn sel(m: Self::B, if_true: Self, if_false: Self) -> Self;
+    /// `self + o` modulo 2^32, which is what `+` on 32-bit unsigned integers means in
+    /// every shader language and in C. Integer arithmetic has no rounding, so no
+    /// implementation, optimiser or regrouping can change a result built from it.
+    fn wrapping_add(self, o: Self) -> Self;
+    /// `self - o` modulo 2^32: a negative difference is its two's complement.
+    fn wrapping_sub(self, o: Self) -> Self;
+    /// `self · o` modulo 2^32 (the low word of the product).
+    fn wrapping_mul(self, o: Self) -> Self;
+    fn lt(self, o: Self) -> Self::B;
 }
 
 /// 32-bit IEEE floats with round-to-nearest-even arithmetic.
@@ -196,6 +205,22 @@ impl Uint for u32 {
     #[inline(always)]
     fn sel(m: bool, t: Self, f: Self) -> Self {
         if m { t } else { f }
+    }
+    #[inline(always)]
+    fn wrapping_add(self, o: Self) -> Self {
+        u32::wrapping_add(self, o)
+    }
+    #[inline(always)]
+    fn wrapping_sub(self, o: Self) -> Self {
+        u32::wrapping_sub(self, o)
+    }
+    #[inline(always)]
+    fn wrapping_mul(self, o: Self) -> Self {
+        u32::wrapping_mul(self, o)
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> bool {
+        self < o
     }
 }
 

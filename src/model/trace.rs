@@ -276,7 +276,8 @@ impl Recorder {
                 "a literal divided by a value: drivers compute c/x as c*rcp(x); compute the numerator"
             );
         }
-        if op == Op::Bin(BinOp::Mul) {
+        // Integer products are exact: only float literal factors can be folded unsafely.
+        if op == Op::Bin(BinOp::Mul) && kind == Kind::F32 {
             let lits: Vec<Option<Option<f32>>> = args.iter().map(|a| self.literal(*a)).collect();
             if let Some(k) = lits.iter().position(Option::is_some) {
                 let other = args[1 - k];
@@ -604,6 +605,18 @@ impl Uint for Tu {
     }
     fn sel(m: Tb, t: Self, f: Self) -> Self {
         rec(Op::Select, &[m.0, t.0, f.0], Kind::U32)
+    }
+    fn wrapping_add(self, o: Self) -> Self {
+        self + o
+    }
+    fn wrapping_sub(self, o: Self) -> Self {
+        self - o
+    }
+    fn wrapping_mul(self, o: Self) -> Self {
+        rec(Op::Bin(BinOp::Mul), &[self.0, o.0], Kind::U32)
+    }
+    fn lt(self, o: Self) -> Tb {
+        rec(Op::Bin(BinOp::Lt), &[self.0, o.0], Kind::Bool)
     }
 }
 

@@ -1,0 +1,132 @@
+//! Portable precise search: the candidate nearest the input is chosen by integer
+//! arithmetic on exact lattice directions, never by decoded floats.
+//!
+//! A precise encoder picks, among the codes around the exact parameters, the one whose
+//! direction is nearest the input. Measured on decoded floats (divisions and square
+//! roots), that choice flips on any implementation whose division or root differs by an
+//! ULP; measured with float sums, it flips where a driver regroups or fuses the sums
+//! (Mesa's NIR factors `a·b + a·c` on paths without `NoContraction`). Here every
+//! candidate is an integer lattice direction `d` (its decode before normalization), the
+//! input is fixed point `A` (exactly `floor(|w|·2^22)` of the canonical input), and the
+//! closeness `sin²(A, d) = |A×d|² / (|A|²·|d|²)` is computed in wrapping 32-bit
+//! integers: exact, so no optimiser can change it. Only the last step, comparing
+//! `e₁·n₂ < e₂·n₁` (`e = |A×d|²·2^-29` and `n = |d|²`, both integers below 2^24), uses two
+//! correctly rounded float products, as the fast encoders' comparisons do.
+//!
+//! Magnitudes: a candidate is within one code of the exact parameters in each
+//! coordinate, so `d = P + δ` with `P ∥ A`, and `|A×d| = |A×δ| < √3·2^24·|δ|`: with
+//! `|δ| < √6` for octahedral codes and `√8` for hemi-octahedral ones (whose lattice is
+//! rotated and twice as fine), `|A×d| < 2^26.3`. The components of `A×d` (each a
+//! difference of two products that may wrap) are therefore exact as two's complement,
+//! and `e < 2^23.6` converts to f32 exactly.
+//!
+//! Each codec maps its codes to lattice directions in the first octant (the input's
+//! magnitudes) and applies the input's signs afterwards, so every integer is
+//! non-negative.
+
+use crate::model::{Float, Uint, V3};
+
+/// `2^22`: canonical magnitudes are below 4, so their fixed point is below `2^24`.
+const FIXED: f32 = (1u32 << 22) as f32;
+/// `|A×d|²` is kept as `|A×d|² >> 29`, below `2^24` for every candidate.
+const CROSS_SHIFT: u32 = 29;
+
+/// The canonical magnitudes in fixed point, `floor(|w|·2^22)`: a power-of-two scaling,
+/// the floor of a normal float and the conversion of an integral value, each exact.
+pub fn fixed<F: Float>(a: V3<F>) -> V3<F::U> {
+    a.map(|x| (x * F::c(FIXED)).floor().to_u()).named("afix")
+}
+
+/// The magnitude of a two's complement word.
+fn magnitude<U: Uint>(x: U) -> U {
+    U::sel(x.lt(U::c(1 << 31)), x, U::c(0).wrapping_sub(x))
+}
+
+/// `x² >> 29` for `x < 2^27`, from 16-bit halves (`x = h·2^16 + l`, so
+/// `x² = h²·2^32 + 2hl·2^16 + l²`): the three partial products, each shifted on its own,
+/// so up to 2 below the exact quotient. Deterministic.
+fn square_shifted<U: Uint>(x: U) -> U {
+    let h = x.shr(16);
+    let l = x & U::c(0xffff);
+    h.wrapping_mul(h).shl(32 - CROSS_SHIFT)
+        + h.wrapping_mul(l).shr(CROSS_SHIFT - 17)
+        + l.wrapping_mul(l).shr(CROSS_SHIFT)
+}
+
+/// How close a lattice direction is to the fixed-point input: `sin²` of their angle is
+/// proportional to `e / n`.
+#[derive(Clone, Copy)]
+pub struct Closeness<F> {
+    /// `|A×d|² >> 29`, exact integer below 2^24, as f32.
+    e: F,
+    /// `|d|² >> shift`, below 2^24, as f32.
+    n: F,
+}
+
+impl<F: Float> Closeness<F> {
+    /// `d` (non-negative integers with `|d| ≤ m`) measured against `a`, the
+    /// [`fixed`] input.
+    pub fn of(a: V3<F::U>, d: V3<F::U>, m: f32) -> Closeness<F> {
+        let x = V3::new(
+            a.y.wrapping_mul(d.z).wrapping_sub(a.z.wrapping_mul(d.y)),
+            a.z.wrapping_mul(d.x).wrapping_sub(a.x.wrapping_mul(d.z)),
+            a.x.wrapping_mul(d.y).wrapping_sub(a.y.wrapping_mul(d.x)),
+        )
+        .named("cross");
+        let x = x.map(|c| square_shifted(magnitude(c)));
+        let e = (x.x + x.y + x.z).to_f().named("e");
+        let n2 = d.x.wrapping_mul(d.x) + d.y.wrapping_mul(d.y) + d.z.wrapping_mul(d.z);
+        let shift = norm_shift(m);
+        let n = if shift == 0 { n2 } else { n2.shr(shift) };
+        Closeness { e, n: n.to_f().named("n") }
+    }
+
+    /// Whether `self` is strictly closer than `other`: `e/n` compared by cross
+    /// multiplication, two correctly rounded products feeding a comparison.
+    pub fn closer(self, other: Closeness<F>) -> F::B {
+        (self.e * other.n).lt(other.e * self.n)
+    }
+
+    pub fn sel(m: F::B, a: Self, b: Self) -> Self {
+        Closeness {
+            e: F::sel(m, a.e, b.e).named("best_e"),
+            n: F::sel(m, a.n, b.n).named("best_n"),
+        }
+    }
+}
+
+/// The right shift that brings `|d|² ≤ m²` below `2^24`.
+fn norm_shift(m: f32) -> u32 {
+    let bits = 64 - ((m as u64) * (m as u64)).leading_zeros();
+    bits.saturating_sub(24)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn square_shifted_is_the_truncated_square_to_two_units() {
+        for x in [0u32, 1, 0xffff, 0x1_0000, 0x12_3456, (1 << 27) - 1, 77_777_777] {
+            let exact = (u64::from(x) * u64::from(x)) >> 29;
+            let got = u64::from(square_shifted(x));
+            assert!(got <= exact && exact - got <= 2, "{x}: {got} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn magnitude_of_twos_complement() {
+        assert_eq!(magnitude(5u32), 5);
+        assert_eq!(magnitude(0u32.wrapping_sub(5)), 5);
+        assert_eq!(magnitude(0u32), 0);
+    }
+
+    #[test]
+    fn norm_shift_keeps_squares_below_two_to_24() {
+        assert_eq!(norm_shift(127.0), 0);
+        assert_eq!(norm_shift(2047.0), 0);
+        assert_eq!(norm_shift(4095.0), 0);
+        assert_eq!(norm_shift(32767.0), 6);
+        assert!((32767u64 * 32767) >> 6 < 1 << 24);
+    }
+}
