@@ -389,8 +389,9 @@ fn declared_portable_encoders_never_change() {
             );
         }
     }
-    // oct ×5 and its rgb8 layout, hemioct ×3, snorm3 ×3, xy ×3.
-    assert_eq!(portable, 15);
+    // Fast: oct ×5 and its rgb8 layout, hemioct ×3, snorm3 ×3, xy ×3. Precise: oct ×5
+    // and its rgb8 layout, hemioct ×3.
+    assert_eq!(portable, 24);
 }
 
 /// What the README's API table says lies outside the guarantee does reach the portable

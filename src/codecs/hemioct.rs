@@ -30,6 +30,11 @@ impl Family for HemiOctFamily {
     fn info(&self) -> &'static Info {
         &INFO
     }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "encode_codes").then(|| {
+            "Precise search, decided in integer arithmetic: among the four codes around the exact parameters, the one whose lattice direction (its decode before normalization) is nearest the input in angle, measured against the input's fixed-point magnitudes (the first on ties); then the input's signs.".into()
+        })
+    }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, HemiOct { bits: spec.bits() })
     }

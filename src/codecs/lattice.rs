@@ -42,15 +42,14 @@ fn magnitude<U: Uint>(x: U) -> U {
     U::sel(x.lt(U::c(1 << 31)), x, U::c(0).wrapping_sub(x))
 }
 
-/// `x² >> 29` for `x < 2^27`, from 16-bit halves (`x = h·2^16 + l`, so
-/// `x² = h²·2^32 + 2hl·2^16 + l²`): the three partial products, each shifted on its own,
-/// so up to 2 below the exact quotient. Deterministic.
+/// About `x² >> 29` for `x < 2^27`, from 16-bit halves (`x = h·2^16 + l`, so
+/// `x² = h²·2^32 + 2hl·2^16 + l²`): the first two partial products, each shifted on its
+/// own; `l² >> 29` (below 8) is left out. At most 9 below the exact quotient, against
+/// `e` of about 2^15 to 2^18 where two candidates nearly tie. Deterministic.
 fn square_shifted<U: Uint>(x: U) -> U {
     let h = x.shr(16);
     let l = x & U::c(0xffff);
-    h.wrapping_mul(h).shl(32 - CROSS_SHIFT)
-        + h.wrapping_mul(l).shr(CROSS_SHIFT - 17)
-        + l.wrapping_mul(l).shr(CROSS_SHIFT)
+    h.wrapping_mul(h).shl(32 - CROSS_SHIFT) + h.wrapping_mul(l).shr(CROSS_SHIFT - 17)
 }
 
 /// How close a lattice direction is to the fixed-point input: `sin²` of their angle is
@@ -78,7 +77,10 @@ impl<F: Float> Closeness<F> {
         let n2 = d.x.wrapping_mul(d.x) + d.y.wrapping_mul(d.y) + d.z.wrapping_mul(d.z);
         let shift = norm_shift(m);
         let n = if shift == 0 { n2 } else { n2.shr(shift) };
-        Closeness { e, n: n.to_f().named("n") }
+        Closeness {
+            e,
+            n: n.to_f().named("n"),
+        }
     }
 
     /// Whether `self` is strictly closer than `other`: `e/n` compared by cross
@@ -106,11 +108,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn square_shifted_is_the_truncated_square_to_two_units() {
-        for x in [0u32, 1, 0xffff, 0x1_0000, 0x12_3456, (1 << 27) - 1, 77_777_777] {
+    fn square_shifted_is_the_truncated_square_to_nine_units() {
+        for x in [
+            0u32,
+            1,
+            0xffff,
+            0x1_0000,
+            0x12_3456,
+            (1 << 27) - 1,
+            77_777_777,
+        ] {
             let exact = (u64::from(x) * u64::from(x)) >> 29;
             let got = u64::from(square_shifted(x));
-            assert!(got <= exact && exact - got <= 2, "{x}: {got} vs {exact}");
+            assert!(got <= exact && exact - got <= 9, "{x}: {got} vs {exact}");
         }
     }
 

@@ -64,6 +64,9 @@ impl Family for OctFamily {
             "oct24_decode_float" => {
                 Some("oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.".into())
             }
+            "encode_codes" => Some(
+                "Precise search, decided in integer arithmetic: among the four codes around the exact parameters, the one whose lattice direction (its decode before normalization) is nearest the input in angle, measured against the input's fixed-point magnitudes (the first on ties); then the input's signs, unfolded below the equator.".into(),
+            ),
             "bytes_to_snorm12x2" => Some(
                 "The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey Listing 5, float-only).".into(),
             ),
