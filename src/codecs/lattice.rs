@@ -137,6 +137,14 @@ mod tests {
         assert_eq!(norm_shift(2047.0), 0);
         assert_eq!(norm_shift(4095.0), 0);
         assert_eq!(norm_shift(32767.0), 6);
-        assert!((32767u64 * 32767) >> 6 < 1 << 24);
+        // Every lattice bound of the codecs (M and 2M for 4- to 16-bit fields): the
+        // largest `|d|²` fits, and one bit less shift would not.
+        for b in 4..=16u32 {
+            for m in [(1u64 << (b - 1)) - 1, 2 * ((1u64 << (b - 1)) - 1)] {
+                let shift = norm_shift(m as f32);
+                assert!((m * m) >> shift < 1 << 24, "{m}");
+                assert!(shift == 0 || (m * m) >> (shift - 1) >= 1 << 24, "{m}");
+            }
+        }
     }
 }
