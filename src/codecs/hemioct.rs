@@ -82,6 +82,10 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let mf = F::c(m);
     let (w, ok) = canonical(v);
     let a = above_horizon(w).abs();
+    let good = ok.and((a.x + a.y + a.z).gt(F::c(0.0)));
+    // Invalid input searches around +Z instead, so that every conversion to an integer
+    // below stays in range (a NaN or negative float has no defined u32 in C).
+    let a = V3::sel_all(good, a, V3::new(F::c(0.0), F::c(0.0), F::c(2.0))).named("a");
     let l1 = (a.x + a.y + a.z).named("l1");
     let s0 = floor_ratio(q, a.x + a.y, l1).named("s0");
     let t0 = floor_ratio(q, a.x - a.y, l1).named("t0");
@@ -105,7 +109,7 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let zero = F::c(0.0);
     let st = V2::sel_all(w.x.lt(zero), -best.yx(), best);
     let st = V2::sel_all(w.y.lt(zero), st.yx(), st);
-    V2::sel_all(ok.and(l1.gt(zero)), st, V2::splat(zero))
+    V2::sel_all(good, st, V2::splat(zero))
 }
 
 impl Codec for HemiOct {

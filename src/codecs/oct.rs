@@ -148,7 +148,9 @@ pub fn oct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let m = q.max_code();
     let mf = F::c(m);
     let (w, ok) = canonical(v);
-    let a = w.abs();
+    // Invalid input searches around +Z instead, so that every conversion to an integer
+    // below stays in range (a NaN or negative float has no defined u32 in C).
+    let a = V3::sel_all(ok, w.abs(), V3::new(F::c(0.0), F::c(0.0), F::c(2.0))).named("a");
     let l1 = (a.x + a.y + a.z).named("l1");
     let s0 = floor_ratio(q, a.x, l1).named("s0");
     // Rounded comparisons could put the floors one past the equator together.
