@@ -418,3 +418,27 @@ fn portable_encoders_still_change_under_reassociation_and_rounding() {
     assert!(changed("oct32", Class::Reassoc) > 0);
     assert!(!report.rows.iter().any(|r| r.class.guaranteed()));
 }
+
+/// The README's measured claim: the integer-decided precise searches keep their codes
+/// under `reassoc` too (their comparisons feed on integers, not on regroupable sums),
+/// where the fast oct32 encoder does not (above).
+#[test]
+fn integer_precise_searches_keep_codes_under_reassociation() {
+    let specs: Vec<Spec> = ["oct32p", "hemioct32p"]
+        .map(|s| s.parse().unwrap())
+        .to_vec();
+    let opts = Options {
+        encoders_only: true,
+        ..Options::default()
+    };
+    let report = run(&specs, &[Class::Reassoc], &opts);
+    let rows: Vec<_> = report
+        .rows
+        .iter()
+        .filter(|r| r.role == Role::Encode)
+        .collect();
+    assert!(!rows.is_empty());
+    for r in rows {
+        assert_eq!(r.changed, 0, "{} under reassoc: {:?}", r.spec, r.example);
+    }
+}

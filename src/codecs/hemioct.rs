@@ -3,7 +3,7 @@
 
 use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{canonical, floor_ratio, snorm_ratio};
-use super::lattice::{Closeness, fixed};
+use super::lattice::{Closeness, fixed, nearest, search_doc};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, V2, V3};
 use super::family::{Family, Info, Sizes};
@@ -31,9 +31,7 @@ impl Family for HemiOctFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| {
-            "Precise search, decided in integer arithmetic: among the four codes around the exact parameters, the one whose lattice direction (its decode before normalization) is nearest the input in angle, measured against the input's fixed-point magnitudes (the first on ties); then the input's signs.".into()
-        })
+        (name == "encode_codes").then(|| search_doc("the input's signs"))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, HemiOct { bits: spec.bits() })
@@ -82,30 +80,23 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let mf = F::c(m);
     let (w, ok) = canonical(v);
     let a = above_horizon(w).abs();
-    let good = ok.and((a.x + a.y + a.z).gt(F::c(0.0)));
+    let sum = (a.x + a.y + a.z).named("sum");
+    let good = ok.and(sum.gt(F::c(0.0)));
     // Invalid input searches around +Z instead, so that every conversion to an integer
     // below stays in range (a NaN or negative float has no defined u32 in C).
     let a = V3::sel_all(good, a, V3::new(F::c(0.0), F::c(0.0), F::c(2.0))).named("a");
-    let l1 = (a.x + a.y + a.z).named("l1");
+    let l1 = F::sel(good, sum, F::c(2.0)).named("l1");
     let s0 = floor_ratio(q, a.x + a.y, l1).named("s0");
     let t0 = floor_ratio(q, a.x - a.y, l1).named("t0");
     let afix = fixed(a);
-    let lattice = |s: F, t: F| {
+    let best = nearest(s0, t0, |s, t| {
         let r = V2::sel_all((s + t).lt(F::c(0.0)), V2::new(-t, -s), V2::new(s, t));
         let r = V2::sel_all(r.x.lt(r.y), r.yx(), r).named("cand");
         let z = (F::c(2.0 * m) - r.x - r.x).at_least(F::c(0.0));
         let d = V3::new((r.x + r.y).to_u(), (r.x - r.y).to_u(), z.to_u());
-        (r, Closeness::<F>::of(afix, d, 2.0 * m))
-    };
-    let (mut best, mut best_c) = lattice(s0, t0);
-    for (i, j) in [(1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
-        let s = if i > 0.0 { s0 + F::c(i) } else { s0 };
-        let t = if j > 0.0 { t0 + F::c(j) } else { t0 };
-        let (r, c) = lattice(s, t);
-        let better = r.x.le(mf).and(c.closer(best_c));
-        best = V2::sel_all(better, r, best).named("best");
-        best_c = Closeness::sel(better, c, best_c);
-    }
+        let c = Closeness::of(afix, d, 2.0 * m);
+        (r, r.x.le(mf), c)
+    });
     let zero = F::c(0.0);
     let st = V2::sel_all(w.x.lt(zero), -best.yx(), best);
     let st = V2::sel_all(w.y.lt(zero), st.yx(), st);

@@ -24,7 +24,7 @@
 //! magnitudes) and applies the input's signs afterwards, so every integer is
 //! non-negative.
 
-use crate::model::{Float, Uint, V3};
+use crate::model::{Bool, Float, Uint, V2, V3};
 
 /// `2^22`: canonical magnitudes are below 4, so their fixed point is below `2^24`.
 const FIXED: f32 = (1u32 << 22) as f32;
@@ -85,16 +85,45 @@ impl<F: Float> Closeness<F> {
 
     /// Whether `self` is strictly closer than `other`: `e/n` compared by cross
     /// multiplication, two correctly rounded products feeding a comparison.
-    pub fn closer(self, other: Closeness<F>) -> F::B {
+    fn closer(self, other: Closeness<F>) -> F::B {
         (self.e * other.n).lt(other.e * self.n)
     }
 
-    pub fn sel(m: F::B, a: Self, b: Self) -> Self {
+    fn sel(m: F::B, a: Self, b: Self) -> Self {
         Closeness {
             e: F::sel(m, a.e, b.e).named("best_e"),
             n: F::sel(m, a.n, b.n).named("best_n"),
         }
     }
+}
+
+/// The nearest of four candidate codes: `(s0, t0)` and the codes one step up in either
+/// or both parameters, the first on ties. `candidate` maps a pair of codes to the codes
+/// it stands for (a codec may reflect them), whether those are valid (the first always
+/// is) and their [`Closeness`].
+pub fn nearest<F: Float>(
+    s0: F,
+    t0: F,
+    candidate: impl Fn(F, F) -> (V2<F>, F::B, Closeness<F>),
+) -> V2<F> {
+    let (mut best, _, mut best_c) = candidate(s0, t0);
+    for (up_s, up_t) in [(true, false), (false, true), (true, true)] {
+        let s = if up_s { s0 + F::c(1.0) } else { s0 };
+        let t = if up_t { t0 + F::c(1.0) } else { t0 };
+        let (codes, valid, c) = candidate(s, t);
+        let better = valid.and(c.closer(best_c));
+        best = V2::sel_all(better, codes, best).named("best");
+        best_c = Closeness::sel(better, c, best_c);
+    }
+    best
+}
+
+/// The doc comment of a lattice search's `encode_codes` helper; `signs` says how the
+/// input's signs are applied.
+pub fn search_doc(signs: &str) -> String {
+    format!(
+        "Precise search, decided in integer arithmetic: among the four codes around the exact parameters, the one whose lattice direction (its decode before normalization) is nearest the input in angle, measured against the input's fixed-point magnitudes (the first on ties); then {signs}."
+    )
 }
 
 /// The right shift that brings `|d|² ≤ m²` below `2^24`.

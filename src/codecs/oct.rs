@@ -5,7 +5,7 @@ use super::codec::{Codec, Domain, sign_not_zero};
 use super::exact::{canonical, floor_ratio, snorm_ratio};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes};
 use super::functions::{Emitted, codec_functions};
-use super::lattice::{Closeness, fixed};
+use super::lattice::{Closeness, fixed, nearest, search_doc};
 use super::pack12::{BIAS, bytes_float, from_bytes, from_unorm8x3};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
@@ -64,9 +64,7 @@ impl Family for OctFamily {
             "oct24_decode_float" => {
                 Some("oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.".into())
             }
-            "encode_codes" => Some(
-                "Precise search, decided in integer arithmetic: among the four codes around the exact parameters, the one whose lattice direction (its decode before normalization) is nearest the input in angle, measured against the input's fixed-point magnitudes (the first on ties); then the input's signs, unfolded below the equator.".into(),
-            ),
+            "encode_codes" => Some(search_doc("the input's signs, unfolded below the equator")),
             "bytes_to_snorm12x2" => Some(
                 "The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey Listing 5, float-only).".into(),
             ),
@@ -156,20 +154,11 @@ pub fn oct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     // Rounded comparisons could put the floors one past the equator together.
     let t0 = floor_ratio(q, a.y, l1).at_most(mf - s0).named("t0");
     let fixed = fixed(a);
-    let lattice = |s: F, t: F| {
+    let best = nearest(s0, t0, |s, t| {
         let u = (mf - s - t).at_least(F::c(0.0));
-        Closeness::<F>::of(fixed, V3::new(s.to_u(), t.to_u(), u.to_u()), m)
-    };
-    let mut best = V2::new(s0, t0);
-    let mut best_c = lattice(s0, t0);
-    for (i, j) in [(1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
-        let s = if i > 0.0 { s0 + F::c(i) } else { s0 };
-        let t = if j > 0.0 { t0 + F::c(j) } else { t0 };
-        let c = lattice(s, t);
-        let better = (s + t).le(mf).and(c.closer(best_c));
-        best = V2::sel_all(better, V2::new(s, t), best).named("best");
-        best_c = Closeness::sel(better, c, best_c);
-    }
+        let c = Closeness::of(fixed, V3::new(s.to_u(), t.to_u(), u.to_u()), m);
+        (V2::new(s, t), (s + t).le(mf), c)
+    });
     let below = w.z.lt(F::c(0.0));
     let st = V2::sel_all(below, (V2::splat(mf) - best.yx()).named("folded"), best);
     let signed = V2::sel(w.xy().lt(V2::splat(F::c(0.0))), -st, st);
@@ -235,8 +224,8 @@ impl Codec for Oct24Rgb8 {
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         bytes_float(oct_codes(Quant::Snorm(12), v) + F::c(BIAS))
     }
-    /// The oct24 precise search, then its 12-bit codes split into bytes.
     const EXACT_SEARCH: bool = true;
+    /// The oct24 precise search, then its 12-bit codes split into bytes.
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         bytes_float(oct_nearest_codes(Quant::Snorm(12), v) + F::c(BIAS))
     }
