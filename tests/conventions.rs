@@ -292,11 +292,15 @@ fn packed_code_is_the_texel_a_render_target_would_store() {
             (encf.eval)(&v.map(f32::to_bits), &mut p);
             let p: Vec<f32> = p.iter().map(|b| f32::from_bits(*b)).collect();
             // Near a half the APIs allow either neighbour (D3D11 multiplies in f32, as the
-            // model does; an exact conversion may land on the other side): skip inputs
-            // within one f32 ulp of the product of a half.
+            // model does; an exact conversion may land on the other side), and the float
+            // form, rounded several times on its way (lambert: a product, a quotient, a
+            // root, a quotient, a sum), may sit a few ULP from the exact parameter the
+            // packed encoder rounds (ULP of the terms before the unorm's `+ 0.5`, so of
+            // at least half the range): skip inputs within four such ulps of a half.
             let tie = q.iter().zip(&p).any(|(q, x)| {
-                let scaled = f64::from(*x) * f64::from(q.max_code());
-                let ulp = scaled.abs() * 2f64.powi(-23);
+                let m = f64::from(q.max_code());
+                let scaled = f64::from(*x) * m;
+                let ulp = 4.0 * scaled.abs().max(m / 2.0) * 2f64.powi(-23);
                 (scaled - scaled.floor() - 0.5).abs() <= ulp + 1e-12
             });
             if tie {
@@ -305,8 +309,9 @@ fn packed_code_is_the_texel_a_render_target_would_store() {
             }
             assert_eq!(code, texel(q, &p), "{spec}: {v:?} → params {p:?}");
         }
+        // A 16-bit field's window is ±1/64 of a code: up to about 6 % of the inputs.
         assert!(
-            ties < vs.len() / 20,
+            ties < vs.len() / 8,
             "{spec}: {ties} near-ties of {}",
             vs.len()
         );

@@ -53,7 +53,7 @@ static inline unitpack_vec3 unitpack_lambert16_decode_float_v(unitpack_vec2 para
 // In: parameters in [0, 1], as a unorm8 fetch returns them.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49282°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
 static inline void unitpack_lambert16_decode_float(const float params[2], float out[3]) {
     const unitpack_vec2 params_v = { params[0], params[1] };
     const unitpack_vec3 r = unitpack_lambert16_decode_float_v(params_v);
@@ -77,7 +77,7 @@ static inline unitpack_vec3 unitpack_lambert16_decode_v(uint32_t code) {
 // In: a packed code (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8); other bits are ignored.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49282°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
 static inline void unitpack_lambert16_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_lambert16_decode_v(code);
     out[0] = r.x;
@@ -88,38 +88,179 @@ static inline void unitpack_lambert16_decode(uint32_t code, float out[3]) {
 // Struct form of unitpack_lambert16_encode_float.
 static inline unitpack_vec2 unitpack_lambert16_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const bool t2 = t1.x >= t1.y;
-    const float t3 = t2 ? t1.x : t1.y;
-    const bool t4 = t3 >= t1.z;
-    const float largest = t4 ? t3 : t1.z;
-    const bool t5 = largest > 0.0f;
-    const bool t6 = largest <= 3.4028235e38f;
-    const bool t7 = t5 && t6;
-    const float t8 = t7 ? largest : 1.0f;
-    const unitpack_vec3 scaled = { v.x / t8, v.y / t8, v.z / t8 };
-    const unitpack_vec3 t9 = { scaled.x * scaled.x, scaled.y * scaled.y, scaled.z * scaled.z };
-    const float t10 = t9.x + t9.y;
-    const float len2 = t10 + t9.z;
-    const bool t11 = len2 >= 1.0f;
-    const bool t12 = t7 && t11;
-    const float t13 = sqrtf(len2);
-    const unitpack_vec3 t14 = { scaled.x / t13, scaled.y / t13, scaled.z / t13 };
-    const unitpack_vec3 t15 = { t12 ? t14.x : 0.0f, t12 ? t14.y : 0.0f, t12 ? t14.z : 1.0f };
-    const float t16 = t15.z * 8.0f;
-    const float t17 = t16 + 8.0f;
-    const float f = sqrtf(t17);
-    const unitpack_vec2 t18 = { t15.x / f, t15.y / f };
-    const unitpack_vec2 t19 = { t18.x + 0.5f, t18.y + 0.5f };
-    const bool t20 = f > 0.0f;
-    const unitpack_vec2 t21 = { t20 ? t19.x : 1.0f, t20 ? t19.y : 0.5f };
-    return t21;
+    const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
+    const unitpack_vec3 normal = { t2.x ? 0.0f : v.x, t2.y ? 0.0f : v.y, t2.z ? 0.0f : v.z };
+    const unitpack_vec3 t3 = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
+    const bool t4 = t3.x >= t3.y;
+    const float t5 = t4 ? t3.x : t3.y;
+    const bool t6 = t5 >= t3.z;
+    const float largest = t6 ? t5 : t3.z;
+    const uint32_t t7 = unitpack_bits_of(largest);
+    const uint32_t t8 = t7 & 2139095040u;
+    const uint32_t t9 = 2139095040u - t8;
+    const float scale = unitpack_float_of(t9);
+    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
+    const unitpack_vec3 t10 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const float t11 = t10.x + t10.y;
+    const float sum = t11 + t10.z;
+    const bool t12 = sum >= 2.0f;
+    const bool t13 = sum < 16.0f;
+    const bool t14 = t12 && t13;
+    const unitpack_vec3 t15 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const unitpack_bvec3 t16 = { t15.x < 1.8189894e-12f, t15.y < 1.8189894e-12f, t15.z < 1.8189894e-12f };
+    const unitpack_vec3 w = { t16.x ? 0.0f : scaled.x, t16.y ? 0.0f : scaled.y, t16.z ? 0.0f : scaled.z };
+    const float t17 = fabsf(w.x);
+    const float t18 = t17 * 2097152.0f;
+    const float t19 = floorf(t18);
+    const uint32_t t20 = (uint32_t)t19;
+    const uint32_t t21 = t20 >> 12u;
+    const uint32_t t22 = t20 & 4095u;
+    const uint32_t t23 = t21 * t22;
+    const uint32_t t24 = t21 * t21;
+    const uint32_t t25 = 0u + t24;
+    const uint32_t t26 = t23 >> 11u;
+    const uint32_t t27 = t25 + t26;
+    const uint32_t t28 = t22 * t22;
+    const uint32_t t29 = 0u + t28;
+    const uint32_t t30 = t23 << 13u;
+    const uint32_t t31 = t30 & 16777215u;
+    const uint32_t t32 = t29 + t31;
+    const float t33 = fabsf(w.y);
+    const float t34 = t33 * 2097152.0f;
+    const float t35 = floorf(t34);
+    const uint32_t t36 = (uint32_t)t35;
+    const uint32_t t37 = t36 >> 12u;
+    const uint32_t t38 = t36 & 4095u;
+    const uint32_t t39 = t37 * t38;
+    const uint32_t t40 = t37 * t37;
+    const uint32_t t41 = t27 + t40;
+    const uint32_t t42 = t39 >> 11u;
+    const uint32_t t43 = t41 + t42;
+    const uint32_t t44 = t38 * t38;
+    const uint32_t t45 = t32 + t44;
+    const uint32_t t46 = t39 << 13u;
+    const uint32_t t47 = t46 & 16777215u;
+    const uint32_t t48 = t45 + t47;
+    const float t49 = fabsf(w.z);
+    const float t50 = t49 * 2097152.0f;
+    const float t51 = floorf(t50);
+    const uint32_t t52 = (uint32_t)t51;
+    const uint32_t t53 = t52 >> 12u;
+    const uint32_t t54 = t52 & 4095u;
+    const uint32_t t55 = t53 * t54;
+    const uint32_t t56 = t53 * t53;
+    const uint32_t t57 = t43 + t56;
+    const uint32_t t58 = t55 >> 11u;
+    const uint32_t t59 = t57 + t58;
+    const uint32_t t60 = t54 * t54;
+    const uint32_t t61 = t48 + t60;
+    const uint32_t t62 = t55 << 13u;
+    const uint32_t t63 = t62 & 16777215u;
+    const uint32_t t64 = t61 + t63;
+    const uint32_t t65 = t64 >> 24u;
+    const uint32_t t66 = t59 + t65;
+    const uint32_t t67 = t64 & 16777215u;
+    const float t68 = (float)t66;
+    const float t69 = t68 * 16777216.0f;
+    const float t70 = (float)t67;
+    const float t71 = t69 + t70;
+    const float len2 = t71 * 2.2737368e-13f;
+    const float root_estimate = sqrtf(len2);
+    const float t72 = root_estimate * 512.0f;
+    const float t73 = floorf(t72);
+    const float root_h0 = t73 * 0.001953125f;
+    const float t74 = root_h0 + 0.001953125f;
+    const float t75 = t74 * t74;
+    const bool t76 = t75 <= len2;
+    const float t77 = root_h0 * root_h0;
+    const bool t78 = t77 > len2;
+    const float t79 = t78 ? -1.0f : 0.0f;
+    const float t80 = t76 ? 1.0f : t79;
+    const float root_k = t73 + t80;
+    const float t81 = root_k * 0.001953125f;
+    const float t82 = t81 * t81;
+    const float root_rest = len2 - t82;
+    const float t83 = t81 + root_estimate;
+    const float t84 = root_rest / t83;
+    const float t85 = t84 * 2097152.0f;
+    const float root_j0 = floorf(t85);
+    const float t86 = root_j0 * 4.7683716e-7f;
+    const float t87 = t81 + t86;
+    const float t88 = root_j0 + 1.0f;
+    const float t89 = t88 * 4.7683716e-7f;
+    const float t90 = t81 + t89;
+    const float t91 = t90 * t90;
+    const bool t92 = t91 <= len2;
+    const float t93 = t87 * t87;
+    const bool t94 = t93 > len2;
+    const float t95 = t94 ? -1.0f : 0.0f;
+    const float t96 = t92 ? 1.0f : t95;
+    const float t97 = root_j0 + t96;
+    const float t98 = root_k * 4096.0f;
+    const float t99 = t98 + t97;
+    const float root = t99 * 4.7683716e-7f;
+    const bool t100 = w.z >= 0.0f;
+    const float t101 = root + w.z;
+    const float t102 = fabsf(w.x);
+    const float t103 = t102 * 2097152.0f;
+    const float t104 = floorf(t103);
+    const uint32_t t105 = (uint32_t)t104;
+    const uint32_t t106 = t105 >> 12u;
+    const uint32_t t107 = t105 & 4095u;
+    const uint32_t t108 = t106 * t107;
+    const uint32_t t109 = t106 * t106;
+    const uint32_t t110 = 0u + t109;
+    const uint32_t t111 = t108 >> 11u;
+    const uint32_t t112 = t110 + t111;
+    const uint32_t t113 = t107 * t107;
+    const uint32_t t114 = 0u + t113;
+    const uint32_t t115 = t108 << 13u;
+    const uint32_t t116 = t115 & 16777215u;
+    const uint32_t t117 = t114 + t116;
+    const float t118 = fabsf(w.y);
+    const float t119 = t118 * 2097152.0f;
+    const float t120 = floorf(t119);
+    const uint32_t t121 = (uint32_t)t120;
+    const uint32_t t122 = t121 >> 12u;
+    const uint32_t t123 = t121 & 4095u;
+    const uint32_t t124 = t122 * t123;
+    const uint32_t t125 = t122 * t122;
+    const uint32_t t126 = t112 + t125;
+    const uint32_t t127 = t124 >> 11u;
+    const uint32_t t128 = t126 + t127;
+    const uint32_t t129 = t123 * t123;
+    const uint32_t t130 = t117 + t129;
+    const uint32_t t131 = t124 << 13u;
+    const uint32_t t132 = t131 & 16777215u;
+    const uint32_t t133 = t130 + t132;
+    const uint32_t t134 = t133 >> 24u;
+    const uint32_t t135 = t128 + t134;
+    const uint32_t t136 = t133 & 16777215u;
+    const float t137 = (float)t135;
+    const float t138 = t137 * 16777216.0f;
+    const float t139 = (float)t136;
+    const float t140 = t138 + t139;
+    const float rho2 = t140 * 2.2737368e-13f;
+    const float opz_a = t100 ? t101 : rho2;
+    const float t141 = root - w.z;
+    const float opz_b = t100 ? 1.0f : t141;
+    const float t142 = root * opz_a;
+    const float t143 = t142 / opz_b;
+    const float t144 = t143 * 8.0f;
+    const float g = sqrtf(t144);
+    const unitpack_vec2 t145 = { w.x / g, w.y / g };
+    const unitpack_vec2 t146 = { t145.x + 0.5f, t145.y + 0.5f };
+    const bool t147 = opz_a > 0.0f;
+    const unitpack_vec2 t148 = { t147 ? t146.x : 1.0f, t147 ? t146.y : 0.5f };
+    const unitpack_vec2 t149 = { t14 ? t148.x : 0.5f, t14 ? t148.y : 0.5f };
+    return t149;
 }
 
 // unitpack_lambert16_encode_float: lambert16 (Lambert azimuthal equal-area, unorm×2, 16 bits, sphere), fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49282°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
 static inline void unitpack_lambert16_encode_float(const float v[3], float out[2]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec2 r = unitpack_lambert16_encode_float_v(v_v);
@@ -127,28 +268,236 @@ static inline void unitpack_lambert16_encode_float(const float v[3], float out[2
     out[1] = r.y;
 }
 
+// The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
+
+static inline unitpack_vec2 unitpack_lambert16_round_codes_v(unitpack_vec3 a0) {
+    const unitpack_vec3 t1 = { fabsf(a0.x), fabsf(a0.y), fabsf(a0.z) };
+    const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
+    const unitpack_vec3 normal = { t2.x ? 0.0f : a0.x, t2.y ? 0.0f : a0.y, t2.z ? 0.0f : a0.z };
+    const unitpack_vec3 t3 = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
+    const bool t4 = t3.x >= t3.y;
+    const float t5 = t4 ? t3.x : t3.y;
+    const bool t6 = t5 >= t3.z;
+    const float largest = t6 ? t5 : t3.z;
+    const uint32_t t7 = unitpack_bits_of(largest);
+    const uint32_t t8 = t7 & 2139095040u;
+    const uint32_t t9 = 2139095040u - t8;
+    const float scale = unitpack_float_of(t9);
+    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
+    const unitpack_vec3 t10 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const float t11 = t10.x + t10.y;
+    const float sum = t11 + t10.z;
+    const bool t12 = sum >= 2.0f;
+    const bool t13 = sum < 16.0f;
+    const bool t14 = t12 && t13;
+    const unitpack_vec3 t15 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
+    const unitpack_bvec3 t16 = { t15.x < 1.8189894e-12f, t15.y < 1.8189894e-12f, t15.z < 1.8189894e-12f };
+    const unitpack_vec3 w = { t16.x ? 0.0f : scaled.x, t16.y ? 0.0f : scaled.y, t16.z ? 0.0f : scaled.z };
+    const float t17 = fabsf(w.x);
+    const float t18 = t17 * 2097152.0f;
+    const float t19 = floorf(t18);
+    const uint32_t t20 = (uint32_t)t19;
+    const uint32_t t21 = t20 >> 12u;
+    const uint32_t t22 = t20 & 4095u;
+    const uint32_t t23 = t21 * t22;
+    const uint32_t t24 = t21 * t21;
+    const uint32_t t25 = 0u + t24;
+    const uint32_t t26 = t23 >> 11u;
+    const uint32_t t27 = t25 + t26;
+    const uint32_t t28 = t22 * t22;
+    const uint32_t t29 = 0u + t28;
+    const uint32_t t30 = t23 << 13u;
+    const uint32_t t31 = t30 & 16777215u;
+    const uint32_t t32 = t29 + t31;
+    const float t33 = fabsf(w.y);
+    const float t34 = t33 * 2097152.0f;
+    const float t35 = floorf(t34);
+    const uint32_t t36 = (uint32_t)t35;
+    const uint32_t t37 = t36 >> 12u;
+    const uint32_t t38 = t36 & 4095u;
+    const uint32_t t39 = t37 * t38;
+    const uint32_t t40 = t37 * t37;
+    const uint32_t t41 = t27 + t40;
+    const uint32_t t42 = t39 >> 11u;
+    const uint32_t t43 = t41 + t42;
+    const uint32_t t44 = t38 * t38;
+    const uint32_t t45 = t32 + t44;
+    const uint32_t t46 = t39 << 13u;
+    const uint32_t t47 = t46 & 16777215u;
+    const uint32_t t48 = t45 + t47;
+    const float t49 = fabsf(w.z);
+    const float t50 = t49 * 2097152.0f;
+    const float t51 = floorf(t50);
+    const uint32_t t52 = (uint32_t)t51;
+    const uint32_t t53 = t52 >> 12u;
+    const uint32_t t54 = t52 & 4095u;
+    const uint32_t t55 = t53 * t54;
+    const uint32_t t56 = t53 * t53;
+    const uint32_t t57 = t43 + t56;
+    const uint32_t t58 = t55 >> 11u;
+    const uint32_t t59 = t57 + t58;
+    const uint32_t t60 = t54 * t54;
+    const uint32_t t61 = t48 + t60;
+    const uint32_t t62 = t55 << 13u;
+    const uint32_t t63 = t62 & 16777215u;
+    const uint32_t t64 = t61 + t63;
+    const uint32_t t65 = t64 >> 24u;
+    const uint32_t t66 = t59 + t65;
+    const uint32_t t67 = t64 & 16777215u;
+    const float t68 = (float)t66;
+    const float t69 = t68 * 16777216.0f;
+    const float t70 = (float)t67;
+    const float t71 = t69 + t70;
+    const float len2 = t71 * 2.2737368e-13f;
+    const float root_estimate = sqrtf(len2);
+    const float t72 = root_estimate * 512.0f;
+    const float t73 = floorf(t72);
+    const float root_h0 = t73 * 0.001953125f;
+    const float t74 = root_h0 + 0.001953125f;
+    const float t75 = t74 * t74;
+    const bool t76 = t75 <= len2;
+    const float t77 = root_h0 * root_h0;
+    const bool t78 = t77 > len2;
+    const float t79 = t78 ? -1.0f : 0.0f;
+    const float t80 = t76 ? 1.0f : t79;
+    const float root_k = t73 + t80;
+    const float t81 = root_k * 0.001953125f;
+    const float t82 = t81 * t81;
+    const float root_rest = len2 - t82;
+    const float t83 = t81 + root_estimate;
+    const float t84 = root_rest / t83;
+    const float t85 = t84 * 2097152.0f;
+    const float root_j0 = floorf(t85);
+    const float t86 = root_j0 * 4.7683716e-7f;
+    const float t87 = t81 + t86;
+    const float t88 = root_j0 + 1.0f;
+    const float t89 = t88 * 4.7683716e-7f;
+    const float t90 = t81 + t89;
+    const float t91 = t90 * t90;
+    const bool t92 = t91 <= len2;
+    const float t93 = t87 * t87;
+    const bool t94 = t93 > len2;
+    const float t95 = t94 ? -1.0f : 0.0f;
+    const float t96 = t92 ? 1.0f : t95;
+    const float t97 = root_j0 + t96;
+    const float t98 = root_k * 4096.0f;
+    const float t99 = t98 + t97;
+    const float root = t99 * 4.7683716e-7f;
+    const bool t100 = w.z >= 0.0f;
+    const float t101 = root + w.z;
+    const float t102 = fabsf(w.x);
+    const float t103 = t102 * 2097152.0f;
+    const float t104 = floorf(t103);
+    const uint32_t t105 = (uint32_t)t104;
+    const uint32_t t106 = t105 >> 12u;
+    const uint32_t t107 = t105 & 4095u;
+    const uint32_t t108 = t106 * t107;
+    const uint32_t t109 = t106 * t106;
+    const uint32_t t110 = 0u + t109;
+    const uint32_t t111 = t108 >> 11u;
+    const uint32_t t112 = t110 + t111;
+    const uint32_t t113 = t107 * t107;
+    const uint32_t t114 = 0u + t113;
+    const uint32_t t115 = t108 << 13u;
+    const uint32_t t116 = t115 & 16777215u;
+    const uint32_t t117 = t114 + t116;
+    const float t118 = fabsf(w.y);
+    const float t119 = t118 * 2097152.0f;
+    const float t120 = floorf(t119);
+    const uint32_t t121 = (uint32_t)t120;
+    const uint32_t t122 = t121 >> 12u;
+    const uint32_t t123 = t121 & 4095u;
+    const uint32_t t124 = t122 * t123;
+    const uint32_t t125 = t122 * t122;
+    const uint32_t t126 = t112 + t125;
+    const uint32_t t127 = t124 >> 11u;
+    const uint32_t t128 = t126 + t127;
+    const uint32_t t129 = t123 * t123;
+    const uint32_t t130 = t117 + t129;
+    const uint32_t t131 = t124 << 13u;
+    const uint32_t t132 = t131 & 16777215u;
+    const uint32_t t133 = t130 + t132;
+    const uint32_t t134 = t133 >> 24u;
+    const uint32_t t135 = t128 + t134;
+    const uint32_t t136 = t133 & 16777215u;
+    const float t137 = (float)t135;
+    const float t138 = t137 * 16777216.0f;
+    const float t139 = (float)t136;
+    const float t140 = t138 + t139;
+    const float rho2 = t140 * 2.2737368e-13f;
+    const float opz_a = t100 ? t101 : rho2;
+    const float t141 = root - w.z;
+    const float opz_b = t100 ? 1.0f : t141;
+    const float la = root * opz_a;
+    const float t142 = la / opz_b;
+    const float t143 = sqrtf(t142);
+    const float t144 = t143 * 0.011091871f;
+    const unitpack_vec2 t145 = { w.x / t144, w.y / t144 };
+    const unitpack_vec2 t146 = { t145.x + 127.5f, t145.y + 127.5f };
+    const unitpack_vec2 t147 = { nearbyintf(t146.x), nearbyintf(t146.y) };
+    const unitpack_bvec2 t148 = { t147.x >= 0.0f, t147.y >= 0.0f };
+    const unitpack_vec2 t149 = { t148.x ? t147.x : 0.0f, t148.y ? t147.y : 0.0f };
+    const unitpack_bvec2 t150 = { t149.x <= 255.0f, t149.y <= 255.0f };
+    const unitpack_vec2 t151 = { t150.x ? t149.x : 255.0f, t150.y ? t149.y : 255.0f };
+    const unitpack_bvec2 t152 = { t151.x < 255.0f, t151.y < 255.0f };
+    const unitpack_bvec2 t153 = { w.x >= 0.0f, w.y >= 0.0f };
+    const unitpack_vec2 t154 = { t151.x - 127.0f, t151.y - 127.0f };
+    const unitpack_bvec2 t155 = { t154.x > 0.0f, t154.y > 0.0f };
+    const unitpack_vec2 t156 = { w.x * w.x, w.y * w.y };
+    const unitpack_vec2 t157 = { t156.x * opz_b, t156.y * opz_b };
+    const unitpack_vec2 t158 = { t157.x * 8128.125f, t157.y * 8128.125f };
+    const unitpack_vec2 t159 = { t154.x * t154.x, t154.y * t154.y };
+    const unitpack_vec2 t160 = { t159.x * la, t159.y * la };
+    const unitpack_bvec2 t161 = { t158.x >= t160.x, t158.y >= t160.y };
+    const unitpack_vec2 t162 = { t161.x ? 1.0f : 0.0f, t161.y ? 1.0f : 0.0f };
+    const unitpack_vec2 t163 = { t155.x ? t162.x : 1.0f, t155.y ? t162.y : 1.0f };
+    const unitpack_bvec2 t164 = { t154.x < 0.0f, t154.y < 0.0f };
+    const unitpack_bvec2 t165 = { t158.x <= t160.x, t158.y <= t160.y };
+    const unitpack_vec2 t166 = { t165.x ? 1.0f : 0.0f, t165.y ? 1.0f : 0.0f };
+    const unitpack_vec2 t167 = { t164.x ? t166.x : 0.0f, t164.y ? t166.y : 0.0f };
+    const unitpack_vec2 t168 = { t153.x ? t163.x : t167.x, t153.y ? t163.y : t167.y };
+    const unitpack_vec2 t169 = { t152.x ? t168.x : 0.0f, t152.y ? t168.y : 0.0f };
+    const unitpack_vec2 t170 = { t151.x + t169.x, t151.y + t169.y };
+    const unitpack_bvec2 t171 = { t151.x > 0.0f, t151.y > 0.0f };
+    const unitpack_bvec2 t172 = { w.x >= 0.0f, w.y >= 0.0f };
+    const unitpack_vec2 t173 = { t151.x - 1.0f, t151.y - 1.0f };
+    const unitpack_vec2 t174 = { t173.x - 127.0f, t173.y - 127.0f };
+    const unitpack_bvec2 t175 = { t174.x > 0.0f, t174.y > 0.0f };
+    const unitpack_vec2 t176 = { t174.x * t174.x, t174.y * t174.y };
+    const unitpack_vec2 t177 = { t176.x * la, t176.y * la };
+    const unitpack_bvec2 t178 = { t158.x >= t177.x, t158.y >= t177.y };
+    const unitpack_vec2 t179 = { t178.x ? 1.0f : 0.0f, t178.y ? 1.0f : 0.0f };
+    const unitpack_vec2 t180 = { t175.x ? t179.x : 1.0f, t175.y ? t179.y : 1.0f };
+    const unitpack_bvec2 t181 = { t174.x < 0.0f, t174.y < 0.0f };
+    const unitpack_bvec2 t182 = { t158.x <= t177.x, t158.y <= t177.y };
+    const unitpack_vec2 t183 = { t182.x ? 1.0f : 0.0f, t182.y ? 1.0f : 0.0f };
+    const unitpack_vec2 t184 = { t181.x ? t183.x : 0.0f, t181.y ? t183.y : 0.0f };
+    const unitpack_vec2 t185 = { t172.x ? t180.x : t184.x, t172.y ? t180.y : t184.y };
+    const unitpack_vec2 t186 = { t185.x - 1.0f, t185.y - 1.0f };
+    const unitpack_vec2 t187 = { t171.x ? t186.x : 0.0f, t171.y ? t186.y : 0.0f };
+    const unitpack_vec2 t188 = { t170.x + t187.x, t170.y + t187.y };
+    const bool t189 = opz_a > 0.0f;
+    const unitpack_vec2 t190 = { t189 ? t188.x : 255.0f, t189 ? t188.y : 128.0f };
+    const unitpack_vec2 t191 = { t14 ? t190.x : 128.0f, t14 ? t190.y : 128.0f };
+    return t191;
+}
+
 // Struct form of unitpack_lambert16_encode.
 static inline uint32_t unitpack_lambert16_encode_v(unitpack_vec3 v) {
-    const unitpack_vec2 t1 = unitpack_lambert16_encode_float_v(v);
-    const unitpack_bvec2 t2 = { t1.x >= 0.0f, t1.y >= 0.0f };
-    const unitpack_vec2 t3 = { t2.x ? t1.x : 0.0f, t2.y ? t1.y : 0.0f };
-    const unitpack_bvec2 t4 = { t3.x <= 1.0f, t3.y <= 1.0f };
-    const unitpack_vec2 t5 = { t4.x ? t3.x : 1.0f, t4.y ? t3.y : 1.0f };
-    const unitpack_vec2 t6 = { t5.x * 255.0f, t5.y * 255.0f };
-    const unitpack_vec2 codes = { nearbyintf(t6.x), nearbyintf(t6.y) };
-    const uint32_t t7 = (uint32_t)codes.x;
-    const uint32_t t8 = (uint32_t)codes.y;
-    const uint32_t t9 = t8 << 8u;
-    const uint32_t t10 = t7 | t9;
-    return t10;
+    const unitpack_vec2 t1 = unitpack_lambert16_round_codes_v(v);
+    const uint32_t t2 = (uint32_t)t1.x;
+    const uint32_t t3 = (uint32_t)t1.y;
+    const uint32_t t4 = t3 << 8u;
+    const uint32_t t5 = t2 | t4;
+    return t5;
 }
 
 // unitpack_lambert16_encode: lambert16 (Lambert azimuthal equal-area, unorm×2, 16 bits, sphere), fast encoder.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: the packed code, uint32_t (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
-// Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often).
+// Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49282°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
 static inline uint32_t unitpack_lambert16_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_lambert16_encode_v(v_v);

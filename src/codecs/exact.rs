@@ -83,6 +83,127 @@ pub fn length2<F: Float>(w: V3<F>) -> F {
     (big + cross + small).named("len2")
 }
 
+/// The fixed-point scale of [`fixed_length2`]: canonical magnitudes are below 4, so
+/// `floor(|x|·2^21) < 2^23` and a sum of three squares is below `2^48`.
+const FIXED_SCALE: f32 = (1u32 << 21) as f32;
+
+/// `Σ xᵢ²` of canonical components, computed exactly in integers and rounded once, so
+/// that neither contraction nor any regrouping of the sum can change it (a float sum of
+/// several terms can be regrouped: Mesa's NIR turns `(a·b + c) + d` into
+/// `a·b + (c + d)` on paths without `NoContraction`, and WGSL never forbids it).
+///
+/// Each `|xᵢ|` becomes `A = floor(|xᵢ|·2^21)` (a power-of-two scaling, a floor and a
+/// conversion, each exact), below `2^23`; with 12-bit limbs `A = a₁·2^12 + a₀`,
+/// `A² = a₁²·2^24 + 2a₁a₀·2^12 + a₀²` is accumulated as `hi·2^24 + lo` in 32-bit
+/// integers (every partial product below `2^24`, so nothing wraps), carried, and
+/// converted as `hi·2^24 + lo` (both below `2^24`, so both exact): the one rounding is
+/// that last addition of two floats. Absolute error about `2^-21` per component (a
+/// relative `2^-22` of a canonical vector's length), then that rounding.
+fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
+    let limb = F::U::c(0xfff);
+    let low24 = F::U::c(0xff_ffff);
+    let (mut hi, mut lo) = (F::U::c(0), F::U::c(0));
+    for x in x {
+        let a = (x.abs() * F::c(FIXED_SCALE)).floor().to_u();
+        let (a1, a0) = (a.shr(12), a & limb);
+        let cross = a1.wrapping_mul(a0);
+        hi = hi + a1.wrapping_mul(a1) + cross.shr(11);
+        lo = lo + a0.wrapping_mul(a0) + (cross.shl(13) & low24);
+    }
+    let hi = hi + lo.shr(24);
+    let lo = lo & low24;
+    let sum = hi.to_f() * F::c((1u32 << 24) as f32) + lo.to_f();
+    sum * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE))
+}
+
+/// [`length2`] computed the [`fixed_sum_of_squares`] way, immune to regrouping.
+pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
+    fixed_sum_of_squares([w.x, w.y, w.z]).named("len2")
+}
+
+/// `x² + y²` of a canonical vector, the [`fixed_sum_of_squares`] way.
+pub fn fixed_length2_xy<F: Float>(w: V3<F>) -> F {
+    fixed_sum_of_squares([w.x, w.y]).named("rho2")
+}
+
+/// The grid of [`root`]'s high part, `2^-9`: a root below 8 is `k·2^-9 + l` with
+/// `k < 2^12`, so the high part has 12 significant bits and its square is exact.
+const ROOT_HIGH: f32 = 1.0 / 512.0;
+/// The grid of [`root`]'s low part, `2^-21`: `l = j·2^-21` with `j < 2^12`.
+const ROOT_LOW: f32 = 1.0 / (1u32 << 21) as f32;
+
+/// `sqrt(s)` for `4 ≤ s < 64` (the [`fixed_length2`] of a canonical vector) as a
+/// function of `s` alone: an implementation's square root (within a few ULP) is only an
+/// estimate, and the result's digits are decided by comparing squares with `s`, like a
+/// code.
+///
+/// The high part `H = k·2^-9` (`k < 2^12`) is the estimate truncated, then stepped by one
+/// unit where `H² ≤ s < (H + 2^-9)²` fails: both squares are exact (12 and 13 bits). The
+/// low part `l = j·2^-21` (`j < 2^12`) is estimated from `(s - H²) / (H + √s)`, then
+/// stepped by one unit where `(H + l)² ≤ s < (H + l + 2^-21)²` fails: `H + l` is exact
+/// (24 bits) and each square is one correctly rounded product meeting `s` in a
+/// comparison, so no contraction or regrouping can reach it. The result is the root
+/// truncated to `2^-21`, give or take one unit where the rounding of a square decides a
+/// near tie: within `2^-20`, about `2^-22` relative, like a rounding. It is returned as
+/// one product, `(k·2^12 + j)·2^-21` (exact integers), not as the sum `H + l`, which an
+/// optimiser could regroup with the caller's next addition.
+pub fn root<F: Float>(s: F) -> F {
+    let (u, v) = (F::c(ROOT_HIGH), F::c(ROOT_LOW));
+    let step = |up: F::B, down: F::B| F::sel(up, F::c(1.0), F::sel(down, F::c(-1.0), F::c(0.0)));
+    let estimate = s.sqrt().named("root_estimate");
+    let k0 = (estimate * F::c(1.0 / ROOT_HIGH)).floor();
+    let h0 = (k0 * u).named("root_h0");
+    let h1 = h0 + u;
+    let up = (h1 * h1).le(s);
+    let down = (h0 * h0).gt(s);
+    let k = (k0 + step(up, down)).named("root_k");
+    let h = k * u;
+    let r = (s - h * h).named("root_rest");
+    let j0 = (r / (h + estimate) * F::c(1.0 / ROOT_LOW))
+        .floor()
+        .named("root_j0");
+    let (m0, m1) = (h + j0 * v, h + (j0 + F::c(1.0)) * v);
+    let up = (m1 * m1).le(s);
+    let down = (m0 * m0).gt(s);
+    let j = j0 + step(up, down);
+    // One product of an integer below 2^24: a sum here could be regrouped with the
+    // caller's next addition.
+    ((k * F::c(ROOT_HIGH / ROOT_LOW) + j) * v).named("root")
+}
+
+/// `1 + z` of the unit direction of a canonical `w` whose length is `l` (from
+/// [`root`]), as the ratio `a / b` times `1/l`: `(l + w.z) / 1` on the upper hemisphere,
+/// `ρ² / (l - w.z)` on the lower, where the sum would cancel (`ρ² = w.x² + w.y²` from
+/// [`fixed_length2_xy`]). `a > 0` for every direction but -Z, where `a = 0`; `b > 0` always.
+/// Selects of sums, no product: contraction cannot reach them.
+pub fn one_plus_z<F: Float>(w: V3<F>, l: F) -> (F, F) {
+    let north = w.z.ge(F::c(0.0));
+    let a = F::sel(north, l + w.z, fixed_length2_xy(w)).named("opz_a");
+    let b = F::sel(north, F::c(1.0), l - w.z).named("opz_b");
+    (a, b)
+}
+
+/// The code decided by `past(c)`: `1` where the parameter, scaled to codes, lies at or
+/// past `c + ½` (the boundary between codes `c` and `c + 1`), `0` where not.
+/// `estimate` (any rounding of the scaled parameter, within one code of it) is clamped
+/// to the codes and stepped by one where `past` says so, so the result depends on `past`
+/// alone; ties go up. `past` answers in floats built with selects, not in boolean logic:
+/// boolean operations stay scalar in emitted code, which would leave the estimate used
+/// both as scalars and, in the vector that returns the codes, recomputed; a driver may
+/// round the two copies of its division differently.
+pub fn decided<F: Float>(q: Quant, estimate: F, past: impl Fn(F) -> F) -> F {
+    let (lo, hi) = (F::c(q.min_code()), F::c(q.max_code()));
+    let e = estimate.clamped(lo, hi).named("estimate");
+    let up = F::sel(e.lt(hi), past(e), F::c(0.0));
+    let down = F::sel(e.gt(lo), past(e - F::c(1.0)) - F::c(1.0), F::c(0.0));
+    e + up + down
+}
+
+/// `1` where `m`, else `0`.
+pub fn one_if<F: Float>(m: F::B) -> F {
+    F::sel(m, F::c(1.0), F::c(0.0))
+}
+
 /// The snorm code of `n / d` (`d > 0`, `|n| ≤ d`, both normal or `n` zero, both computed
 /// with correctly rounded additions only): the integer `c ≤ M` with
 /// `(c - ½)·d ≤ |n|·M < (c + ½)·d`, with the sign of `n` (`-0` counts as positive). Ties
@@ -211,5 +332,66 @@ mod tests {
         assert_eq!(snorm_sqrt_ratio(q, 4.0f32, 25.0), 102.0);
         assert_eq!(snorm_sqrt_ratio(q, 0.0f32, 25.0), 0.0);
         assert_eq!(snorm_sqrt_ratio(q, 5.0f32, 25.0), 127.0);
+    }
+
+    /// Canonical-range values from a fixed LCG: deterministic, spread over [lo, hi).
+    fn spread(n: usize, lo: f64, hi: f64) -> impl Iterator<Item = f64> {
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        (0..n).map(move |_| {
+            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
+        })
+    }
+
+    #[test]
+    fn root_is_the_square_root_to_two_to_minus_20_under_every_allowed_root_and_quotient() {
+        use crate::model::deviant::{Class, Dev, Deviation, Mode, begin_item, with};
+        let squares = [4.0f32, 9.0, 16.0, 49.0, 63.999_996, 4.000_001, 15.999_999];
+        let sample = spread(20_000, 4.0, 64.0).map(|s| s as f32);
+        for (i, s) in squares.into_iter().chain(sample).enumerate() {
+            let r = root(s);
+            let exact = f64::from(s).sqrt();
+            assert!(
+                (f64::from(r) - exact).abs() <= 1.0 / f64::from(1u32 << 20),
+                "{s}: {r}"
+            );
+            if exact.fract() == 0.0 {
+                assert_eq!(f64::from(r), exact, "{s}");
+            }
+            for class in [Class::Sqrt, Class::Div] {
+                for mode in [Mode::Lowest, Mode::Highest, Mode::Seeded(i as u64)] {
+                    let d = with(Some(Deviation { class, mode }), || {
+                        begin_item(i as u64);
+                        root(Dev::new(s)).value()
+                    });
+                    assert_eq!(
+                        d.to_bits(),
+                        r.to_bits(),
+                        "{s} under {} {mode:?}",
+                        class.name()
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_length2_is_the_square_length_to_two_to_minus_20() {
+        let c = |x: f64| x as f32;
+        let v: Vec<f64> = spread(30_000, -4.0, 4.0).collect();
+        for t in v.chunks(3) {
+            // Canonical: the largest component in [2, 4).
+            let w = V3::new(c(t[0].abs().max(2.0)), c(t[1]), c(t[2]));
+            let exact: f64 = w.to_array().iter().map(|&x| f64::from(x).powi(2)).sum();
+            let got = f64::from(fixed_length2(w));
+            assert!(
+                (got - exact).abs() <= exact / f64::from(1u32 << 20),
+                "{w:?}"
+            );
+            let xy = f64::from(w.x).powi(2) + f64::from(w.y).powi(2);
+            assert!((f64::from(fixed_length2_xy(w)) - xy).abs() <= xy / f64::from(1u32 << 20));
+        }
+        // Exact where the components are on the fixed-point grid.
+        assert_eq!(fixed_length2(V3::new(3.0f32, -2.0, 0.5)), 13.25);
     }
 }

@@ -5,6 +5,7 @@
 //! square's edge, so this codec is lossy there by design.
 
 use super::codec::{Codec, Domain};
+use super::exact::{canonical, decided, fixed_length2, one_if, one_plus_z, root};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 use super::family::{Family, Info, OptDesc, OptKind, OptVal, Sizes};
@@ -90,14 +91,42 @@ impl Codec for StereoScaled {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
+    /// `w.xy·b / a · (0.5/scale) + 0.5` from the same canonical input, length and
+    /// `1 + z` as [`Codec::round_codes`] (so the float form and the packed code agree to a
+    /// few ULP, and `1 + z` does not cancel near -Z), clamped to the square.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let u = self.target(v);
-        let d = (u.z + F::c(1.0)).named("d");
+        let (w, ok) = canonical(v);
+        let (a, b) = one_plus_z(w, root(fixed_length2(w)));
         // `/ scale * 0.5` as one literal: drivers fold literal multiply chains anyway.
-        let enc = u.xy() / d * F::c(0.5 / self.scale) + F::c(0.5);
-        // Clamp to the square (NaN from the pole, where d = 0, goes to 0).
+        let enc = (w.xy() * b / a * F::c(0.5 / self.scale) + F::c(0.5)).named("enc");
+        // Clamp to the square (NaN from the pole, where a = 0, goes to 0).
         let q = self.quants();
-        enc.map(|x| q[0].clamp(x))
+        let enc = enc.map(|x| q[0].clamp(x));
+        V2::sel_all(ok, enc, V2::splat(F::c(0.5)))
+    }
+    /// `x / (1 + z)` of the canonical input is `w.x·b / a` ([`one_plus_z`], with the
+    /// length from [`root`]), so the code boundary `c + ½` is passed where
+    /// `(w.x·b)·K ≥ (c + ½ - M/2)·a` (`K = M·0.5/scale`; `c + ½ - M/2` is an integer):
+    /// two products of exact or deterministic values meeting in a comparison, decided
+    /// portably ([`crate::codecs::exact`]). -Z, the projection's pole, encodes as code
+    /// (0, 0), a corner, the nearest codes to it.
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let q = self.quants()[0];
+        let m = q.max_code();
+        let (w, ok) = canonical(v);
+        let (a, b) = one_plus_z(w, root(fixed_length2(w)));
+        let k = F::c((f64::from(m) * 0.5 / f64::from(self.scale)) as f32);
+        let codes = w.xy().map(|x| {
+            // The literal last: drivers move a literal factor outwards (NIR's
+            // constant reassociation), which would regroup `x·K·b`.
+            let t = (x * b * k).named("t");
+            let estimate = (t / a + F::c(m * 0.5)).round();
+            decided(q, estimate, |c| one_if(t.ge((c - F::c((m - 1.0) * 0.5)) * a)))
+        });
+        let centre = F::c((m + 1.0) * 0.5);
+        let codes = V2::sel_all(a.gt(F::c(0.0)), codes, V2::splat(F::c(0.0)));
+        V2::sel_all(ok, codes, V2::splat(centre))
     }
     /// The seed's `g = 2 / dot(nn, nn)` divides a literal, which drivers turn into a
     /// multiply by an approximate reciprocal; `(p + p) / d` and `(1 - q) / d` are the same
