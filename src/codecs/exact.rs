@@ -61,6 +61,15 @@ pub fn canonical<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
     (w.map(|x| keep(x, NEGLIGIBLE)).named("w"), ok)
 }
 
+/// [`canonical`], with invalid input replaced by `(0, 0, 2)` (canonical +Z), so that the
+/// integer conversions that follow stay in range (a NaN or infinite float has no defined
+/// u32 in C); the caller still selects its answer for invalid input by `ok`.
+pub fn canonical_or_z<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
+    let (w, ok) = canonical(v);
+    let z = V3::new(F::c(0.0), F::c(0.0), F::c(2.0));
+    (V3::sel_all(ok, w, z).named("w"), ok)
+}
+
 /// `x·x` as the sum of three products that are exact in f32, so that no contraction of
 /// the additions that follow can change them: `x = h + l` with `h` the top 12 significant
 /// bits (a mask of the bits, no arithmetic) and `l = x - h` (exact) the other 12.
@@ -100,11 +109,17 @@ const FIXED_SCALE: f32 = (1u32 << 21) as f32;
 /// that last addition of two floats. Absolute error about `2^-21` per component (a
 /// relative `2^-22` of a canonical vector's length), then that rounding.
 fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
+    let a = x.map(|x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u());
+    sum_of_squares::<F, N>(a) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE))
+}
+
+/// `Σ aᵢ²` of integers below `2^23`, exact in 32-bit integers and rounded once (see
+/// [`fixed_sum_of_squares`]): the sum is below `2^48`, kept as `hi·2^24 + lo`.
+pub fn sum_of_squares<F: Float, const N: usize>(a: [F::U; N]) -> F {
     let limb = F::U::c(0xfff);
     let low24 = F::U::c(0xff_ffff);
     let (mut hi, mut lo) = (F::U::c(0), F::U::c(0));
-    for x in x {
-        let a = (x.abs() * F::c(FIXED_SCALE)).floor().to_u();
+    for a in a {
         let (a1, a0) = (a.shr(12), a & limb);
         let cross = a1.wrapping_mul(a0);
         hi = hi + a1.wrapping_mul(a1) + cross.shr(11);
@@ -112,8 +127,15 @@ fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
     }
     let hi = hi + lo.shr(24);
     let lo = lo & low24;
-    let sum = hi.to_f() * F::c((1u32 << 24) as f32) + lo.to_f();
-    sum * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE))
+    hi.to_f() * F::c((1u32 << 24) as f32) + lo.to_f()
+}
+
+/// A 32-bit integer as the nearest f32, the same on every implementation: a conversion
+/// of an integer above `2^24` may round either way (Vulkan leaves the direction to the
+/// implementation), so the top and the low 12 bits are converted exactly and added
+/// (the product by `2^12` is exact, so contracting the addition changes nothing).
+pub fn float_of<F: Float>(x: F::U) -> F {
+    x.shr(12).to_f() * F::c(4096.0) + (x & F::U::c(0xfff)).to_f()
 }
 
 /// [`length2`] computed the [`fixed_sum_of_squares`] way, immune to regrouping.
@@ -169,6 +191,35 @@ pub fn root<F: Float>(s: F) -> F {
     // One product of an integer below 2^24: a sum here could be regrouped with the
     // caller's next addition.
     ((k * F::c(ROOT_HIGH / ROOT_LOW) + j) * v).named("root")
+}
+
+/// `sqrt(s)` for `s ≥ 2^-120` as a function of `s` alone: `s` is scaled by an even power
+/// of two (read from its exponent bits, so exact) into `[4, 16)`, where [`root`] decides
+/// its digits, and the root scaled back. About `2^-22` relative, like a rounding.
+pub fn root_of<F: Float>(s: F) -> F {
+    // `x = (E + 1) >> 1` of the biased exponent E: s·2^(2·(64 - x) + 2) is in [4, 16).
+    let x = s.to_bits().shr(23).wrapping_add(F::U::c(1)).shr(1);
+    let down = F::U::c(257).wrapping_sub(x.shl(1)).shl(23).as_float();
+    let up = (F::U::c(62) + x).shl(23).as_float();
+    root(s * down) * up
+}
+
+/// The fixed-point scale of [`fixed_ratio`]: a quotient in `[-1, 1]` becomes an integer
+/// in `[-2^21, 2^21]`, whose estimate from an implementation's division (within 2.5 ULP)
+/// is within one unit of the truth.
+pub const RATIO_ONE: f32 = (1u32 << 21) as f32;
+
+/// `floor(n / d · 2^21)` for `d > 0` and `|n| ≤ d` (both normal or `n` zero), as a
+/// function of `n` and `d` alone: the quotient is only an estimate, corrected by one unit
+/// where `e·d ≤ n·2^21 < (e + 1)·d` fails (single products meeting in comparisons, like
+/// a code; `n·2^21` is exact). Within one unit of the exact floor where a product's
+/// rounding decides a near tie.
+pub fn fixed_ratio<F: Float>(n: F, d: F) -> F {
+    let big = n * F::c(RATIO_ONE);
+    let e = (n / d * F::c(RATIO_ONE)).floor().named("ratio_estimate");
+    let up = ((e + F::c(1.0)) * d).le(big);
+    let down = (e * d).gt(big);
+    stepped(e, up, down).named("ratio")
 }
 
 /// `1 + z` of the unit direction of a canonical `w` whose length is `l` (from

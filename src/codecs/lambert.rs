@@ -3,9 +3,10 @@
 //! own erratum); this one normalizes first.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical, decided, fixed_length2, one_if, one_plus_z, root};
+use super::exact::{canonical_or_z, decided, fixed_length2, float_of, one_if, one_plus_z, root, root_of};
+use super::fixed_decode::{search_doc, ONE, TINY, fixed, fixed_target, nearest_decoded, odd_square_quarter};
 use super::quant::{Quant, Quants};
-use crate::model::{Float, V2, V3};
+use crate::model::{Bool, Float, Uint, V2, V3};
 use super::family::{Family, Info, Sizes};
 use super::functions::{Emitted, codec_functions};
 use super::spec::{Spec, SpecError};
@@ -30,6 +31,9 @@ impl Family for LambertFamily {
     fn info(&self) -> &'static Info {
         &INFO
     }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "encode_codes").then(search_doc)
+    }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Lambert { bits: spec.bits() })
     }
@@ -50,6 +54,57 @@ pub struct Lambert {
     pub bits: u32,
 }
 
+/// The codes of -Z, which the projection maps onto the whole rim.
+fn pole<F: Float>(m: f32) -> V2<F> {
+    V2::new(F::c(m), F::c((m + 1.0) * 0.5))
+}
+
+impl Lambert {
+    /// The codes of the canonical `w` (length `l`, `1 + z` as `a / b` with `a > 0`) at
+    /// boundaries `c + offset`: `½` rounds to the nearest code, `1` floors.
+    fn codes<F: Float>(&self, w: V3<F>, l: F, a: F, b: F, offset: f32) -> V2<F> {
+        let q = self.quants()[0];
+        let m = q.max_code();
+        let la = (l * a).named("la");
+        let g = (la / b).sqrt() * F::c(8f32.sqrt() / m);
+        let m2 = F::c((f64::from(m) * f64::from(m) / 8.0) as f32);
+        w.xy().map(|x| {
+            let big2 = (x * x * b * m2).named("big2");
+            let estimate = (x / g + F::c(m * 0.5)).round();
+            decided(q, estimate, |c| {
+                let h = c - F::c(m * 0.5 - offset);
+                let h2la = h * h * la;
+                let far = F::sel(h.gt(F::c(0.0)), one_if(big2.ge(h2la)), F::c(1.0));
+                let near = F::sel(h.lt(F::c(0.0)), one_if(big2.le(h2la)), F::c(0.0));
+                F::sel(x.ge(F::c(0.0)), far, near)
+            })
+        })
+    }
+
+    /// The decode of unorm codes `c` in fixed point ([`crate::codecs::fixed_decode`]):
+    /// with `t = 2c - M` and `R = M² - |t|²` (0 outside the disk), the direction is
+    /// `(2t·sqrt(R), 2R - M²) / M²`, from exact integers, one root and products.
+    fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
+        let m = self.quants()[0].max_code();
+        let t = (c * F::c(2.0) - F::c(m)).named("t");
+        let quarter = odd_square_quarter(t);
+        // M² - 2 = 4·mq + 3, so R = 4·(mq - quarter) + 3 inside the disk.
+        let mq = F::U::c(((u64::from(m as u32).pow(2) - 5) / 4) as u32);
+        let inside = mq.lt(quarter).not();
+        // Below 2^32 (mq < 2^30); the scaling stays in integers, where no driver can
+        // regroup it with the conversion's addition.
+        let rest = mq.wrapping_sub(quarter).shl(2) + F::U::c(3);
+        let r = float_of::<F>(F::U::sel(inside, rest, F::U::c(0))).named("r");
+        let k = 2.0 * ONE / (f64::from(m) * f64::from(m));
+        // `sqrt(R)·k` as the root of one product, so that `t` meets it in one product: a
+        // chain `t·sqrt(R)·k` may be regrouped around its literal.
+        let g = root_of((r * F::c((k * k) as f32)).at_least(F::c(TINY)));
+        let g = F::sel(inside, g, F::c(0.0)).named("g");
+        let xy = t.map(|x| (x * g).floor());
+        V3::from_xy(xy, fixed(r, k) - F::c(ONE as f32))
+    }
+}
+
 impl Codec for Lambert {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
@@ -64,7 +119,7 @@ impl Codec for Lambert {
     /// ULP, and `1 + z` does not cancel near -Z). -Z, which the projection maps onto the
     /// whole rim, encodes as (1, 0.5).
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let (w, ok) = canonical(v);
+        let (w, ok) = canonical_or_z(v);
         let l = root(fixed_length2(w));
         let (a, b) = one_plus_z(w, l);
         let g = ((l * a / b) * F::c(8.0)).sqrt().named("g");
@@ -81,29 +136,33 @@ impl Codec for Lambert {
     /// outwards). -Z encodes as (M, (M+1)/2), as before.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let q = self.quants()[0];
-        let m = q.max_code();
-        let (w, ok) = canonical(v);
+        let m = self.quants()[0].max_code();
+        let (w, ok) = canonical_or_z(v);
         let l = root(fixed_length2(w));
         let (a, b) = one_plus_z(w, l);
-        let la = (l * a).named("la");
-        let g = (la / b).sqrt() * F::c(8f32.sqrt() / m);
-        let m2 = F::c((f64::from(m) * f64::from(m) / 8.0) as f32);
-        let codes = w.xy().map(|x| {
-            let big2 = (x * x * b * m2).named("big2");
-            let estimate = (x / g + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| {
-                let h = c - F::c((m - 1.0) * 0.5);
-                let h2la = h * h * la;
-                let far = F::sel(h.gt(F::c(0.0)), one_if(big2.ge(h2la)), F::c(1.0));
-                let near = F::sel(h.lt(F::c(0.0)), one_if(big2.le(h2la)), F::c(0.0));
-                F::sel(x.ge(F::c(0.0)), far, near)
-            })
-        });
-        let pole = V2::new(F::c(m), F::c((m + 1.0) * 0.5));
-        let codes = V2::sel_all(a.gt(F::c(0.0)), codes, pole);
-        let centre = F::c((m + 1.0) * 0.5);
-        V2::sel_all(ok, codes, V2::splat(centre))
+        let codes = self.codes(w, l, a, b, 0.5);
+        let codes = V2::sel_all(a.gt(F::c(0.0)), codes, pole(m));
+        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
+    }
+    /// The nearest of the four codes around the exact parameters (floors decided like
+    /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`) by the squared distance
+    /// of their fixed-point decodes ([`crate::codecs::fixed_decode`]); -Z encodes as
+    /// (M, (M+1)/2), like the fast encoder.
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let q = self.quants()[0];
+        let m = q.max_code();
+        let (w, ok) = canonical_or_z(v);
+        let l = root(fixed_length2(w));
+        let (a, b) = one_plus_z(w, l);
+        // -Z has no parameters to search around; it searches around +Z, then is replaced.
+        let at_pole = a.le(F::c(0.0));
+        let w = V3::sel_all(at_pole, V3::new(F::c(0.0), F::c(0.0), F::c(2.0)), w);
+        let [l, a, b] = [(l, 2.0), (a, 4.0), (b, 1.0)].map(|(x, z)| F::sel(at_pole, F::c(z), x));
+        let base = self.codes(w, l, a, b, 1.0).named("base");
+        let best = nearest_decoded(q, base, fixed_target(w, l), |c| self.fixed_direction(c));
+        let codes = V2::sel_all(at_pole, pole(m), best);
+        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
     /// Codes outside the disk (the square's corners) decode as -Z; every decode is unit
     /// length up to rounding.

@@ -82,9 +82,18 @@ impl<F: Float> Closeness<F> {
             n: n.to_f().named("n"),
         }
     }
+}
 
-    /// Whether `self` is strictly closer than `other`: `e/n` compared by cross
-    /// multiplication, two correctly rounded products feeding a comparison.
+/// A deterministic measure of how near a candidate is, for [`nearest`].
+pub trait Measure<F: Float>: Copy {
+    /// Whether `self` is strictly nearer than `other`.
+    fn closer(self, other: Self) -> F::B;
+    fn sel(m: F::B, a: Self, b: Self) -> Self;
+}
+
+impl<F: Float> Measure<F> for Closeness<F> {
+    /// `e/n` compared by cross multiplication, two correctly rounded products feeding a
+    /// comparison.
     fn closer(self, other: Closeness<F>) -> F::B {
         (self.e * other.n).lt(other.e * self.n)
     }
@@ -100,11 +109,11 @@ impl<F: Float> Closeness<F> {
 /// The nearest of four candidate codes: `(s0, t0)` and the codes one step up in either
 /// or both parameters, the first on ties. `candidate` maps a pair of codes to the codes
 /// it stands for (a codec may reflect them), whether those are valid (the first always
-/// is) and their [`Closeness`].
-pub fn nearest<F: Float>(
+/// is) and how near they are (a [`Closeness`] or another [`Measure`]).
+pub fn nearest<F: Float, M: Measure<F>>(
     s0: F,
     t0: F,
-    candidate: impl Fn(F, F) -> (V2<F>, F::B, Closeness<F>),
+    candidate: impl Fn(F, F) -> (V2<F>, F::B, M),
 ) -> V2<F> {
     let (mut best, _, mut best_c) = candidate(s0, t0);
     for (up_s, up_t) in [(true, false), (false, true), (true, true)] {
@@ -113,7 +122,7 @@ pub fn nearest<F: Float>(
         let (codes, valid, c) = candidate(s, t);
         let better = valid.and(c.closer(best_c));
         best = V2::sel_all(better, codes, best).named("best");
-        best_c = Closeness::sel(better, c, best_c);
+        best_c = M::sel(better, c, best_c);
     }
     best
 }

@@ -5,7 +5,8 @@
 //! square's edge, so this codec is lossy there by design.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical, decided, fixed_length2, one_if, one_plus_z, root};
+use super::exact::{canonical_or_z, decided, fixed_length2, fixed_ratio, float_of, one_if, one_plus_z, root};
+use super::fixed_decode::{search_doc, fixed_target, nearest_decoded, odd_square_quarter};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 use super::family::{Family, Info, OptDesc, OptKind, OptVal, Sizes};
@@ -45,6 +46,9 @@ impl Family for StereoScaledFamily {
     fn info(&self) -> &'static Info {
         &INFO
     }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "encode_codes").then(search_doc)
+    }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(
             spec,
@@ -82,6 +86,40 @@ pub struct StereoScaled {
 
 pub const DEFAULT_SCALE: f32 = 1.7777;
 
+impl StereoScaled {
+    /// The codes of the canonical `w` (`1 + z` as `a / b` with `a > 0`, see
+    /// [`Codec::round_codes`]) at boundaries `c + offset`: `½` rounds to the nearest code,
+    /// `1` floors.
+    fn codes<F: Float>(&self, w: V3<F>, a: F, b: F, offset: f32) -> V2<F> {
+        let q = self.quants()[0];
+        let m = q.max_code();
+        let k = F::c((f64::from(m) * 0.5 / f64::from(self.scale)) as f32);
+        w.xy().map(|x| {
+            // The literal last: drivers move a literal factor outwards (NIR's
+            // constant reassociation), which would regroup `x·K·b`.
+            let t = (x * b * k).named("t");
+            let estimate = (t / a + F::c(m * 0.5)).round();
+            decided(q, estimate, |c| one_if(t.ge((c - F::c(m * 0.5 - offset)) * a)))
+        })
+    }
+
+    /// The decode of unorm codes `c` in fixed point ([`crate::codecs::fixed_decode`]):
+    /// with `t = 2c - M` and `K = M / scale`, the direction is `(2K·t, K² - |t|²)` over
+    /// `K² + |t|²`, each quarter of them an exact integer plus a constant, each quotient
+    /// decided by [`fixed_ratio`].
+    fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
+        let m = f64::from(self.quants()[0].max_code());
+        let k = m / f64::from(self.scale);
+        let t = (c * F::c(2.0) - F::c(m as f32)).named("t");
+        // |t|² = 4·quarter + 2: the quarters of the numerators and the denominator.
+        let quarter = float_of::<F>(odd_square_quarter(t)).named("quarter");
+        let den = (quarter + F::c((k * k * 0.25 + 0.5) as f32)).named("den");
+        let z = F::c((k * k * 0.25 - 0.5) as f32) - quarter;
+        let xy = t * F::c((k * 0.5) as f32);
+        V3::from_xy(xy, z).map(|n| fixed_ratio(n, den))
+    }
+}
+
 impl Codec for StereoScaled {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
@@ -95,7 +133,7 @@ impl Codec for StereoScaled {
     /// `1 + z` as [`Codec::round_codes`] (so the float form and the packed code agree to a
     /// few ULP, and `1 + z` does not cancel near -Z), clamped to the square.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let (w, ok) = canonical(v);
+        let (w, ok) = canonical_or_z(v);
         let (a, b) = one_plus_z(w, root(fixed_length2(w)));
         // `/ scale * 0.5` as one literal: drivers fold literal multiply chains anyway.
         let enc = (w.xy() * b / a * F::c(0.5 / self.scale) + F::c(0.5)).named("enc");
@@ -112,21 +150,32 @@ impl Codec for StereoScaled {
     /// (0, 0), a corner, the nearest codes to it.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let m = self.quants()[0].max_code();
+        let (w, ok) = canonical_or_z(v);
+        let (a, b) = one_plus_z(w, root(fixed_length2(w)));
+        let codes = self.codes(w, a, b, 0.5);
+        let codes = V2::sel_all(a.gt(F::c(0.0)), codes, V2::splat(F::c(0.0)));
+        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
+    }
+    /// The nearest of the four codes around the exact parameters (floors decided like
+    /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`) by the squared distance
+    /// of their fixed-point decodes ([`crate::codecs::fixed_decode`]); -Z encodes as
+    /// (0, 0), like the fast encoder.
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
-        let (w, ok) = canonical(v);
-        let (a, b) = one_plus_z(w, root(fixed_length2(w)));
-        let k = F::c((f64::from(m) * 0.5 / f64::from(self.scale)) as f32);
-        let codes = w.xy().map(|x| {
-            // The literal last: drivers move a literal factor outwards (NIR's
-            // constant reassociation), which would regroup `x·K·b`.
-            let t = (x * b * k).named("t");
-            let estimate = (t / a + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| one_if(t.ge((c - F::c((m - 1.0) * 0.5)) * a)))
-        });
-        let centre = F::c((m + 1.0) * 0.5);
-        let codes = V2::sel_all(a.gt(F::c(0.0)), codes, V2::splat(F::c(0.0)));
-        V2::sel_all(ok, codes, V2::splat(centre))
+        let (w, ok) = canonical_or_z(v);
+        let l = root(fixed_length2(w));
+        let (a, b) = one_plus_z(w, l);
+        // -Z has no parameters to search around; it searches around +Z, then is replaced.
+        let at_pole = a.le(F::c(0.0));
+        let w = V3::sel_all(at_pole, V3::new(F::c(0.0), F::c(0.0), F::c(2.0)), w);
+        let [l, a, b] = [(l, 2.0), (a, 4.0), (b, 1.0)].map(|(x, z)| F::sel(at_pole, F::c(z), x));
+        let base = self.codes(w, a, b, 1.0).named("base");
+        let best = nearest_decoded(q, base, fixed_target(w, l), |c| self.fixed_direction(c));
+        let codes = V2::sel_all(at_pole, V2::splat(F::c(0.0)), best);
+        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
     /// The seed's `g = 2 / dot(nn, nn)` divides a literal, which drivers turn into a
     /// multiply by an approximate reciprocal; `(p + p) / d` and `(1 - q) / d` are the same

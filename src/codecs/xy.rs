@@ -2,9 +2,13 @@
 //! `z = sqrt(1 - saturate(x² + y²))`, +Z hemisphere, snorm×2.
 
 use super::codec::{Codec, Domain, above_horizon};
-use super::exact::{canonical, length2, snorm_sqrt_ratio};
+use super::exact::{
+    canonical, canonical_or_z, float_of, floor_ratio, fixed_length2, length2, root, root_of,
+    snorm_sqrt_ratio,
+};
+use super::fixed_decode::{search_doc, ONE, TINY, fixed, fixed_target, nearest_decoded};
 use super::quant::{Quant, Quants};
-use crate::model::{Bool, Float, V2, V3};
+use crate::model::{Bool, Float, Uint, V2, V3};
 use super::family::{Family, Info, Sizes};
 use super::functions::{Emitted, codec_functions};
 use super::spec::{Spec, SpecError};
@@ -28,6 +32,9 @@ static INFO: Info = Info {
 impl Family for XyFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "encode_codes").then(search_doc)
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Xy { bits: spec.bits() })
@@ -77,5 +84,37 @@ impl Codec for Xy {
         let s = length2(above_horizon(w));
         let c = w.xy().map(|x| snorm_sqrt_ratio(q, x, s));
         V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
+    }
+    /// The nearest of the four codes around the exact parameters (floors decided by
+    /// [`floor_ratio`]) by the squared distance of their fixed-point decodes
+    /// ([`crate::codecs::fixed_decode`]) to the input projected onto the hemisphere
+    /// (`z ← max(z, 0)`, then brought back to canonical form); `-Z` projects to zero
+    /// and encodes as +Z, like invalid input.
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let q = self.quants()[0];
+        let (w, ok) = canonical_or_z(v);
+        let (h, up) = canonical_or_z(above_horizon(w));
+        let l = root(fixed_length2(h));
+        let base = h.xy().map(|x| floor_ratio(q, x, l)).named("base");
+        let best = nearest_decoded(q, base, fixed_target(h, l), |c| self.fixed_direction(c));
+        V2::sel_all(ok.and(up), best, V2::splat(F::c(0.0)))
+    }
+}
+
+impl Xy {
+    /// The decode of snorm codes `c` in fixed point ([`crate::codecs::fixed_decode`]):
+    /// `(c, sqrt(M² - |c|²)) / M` (z = 0 outside the disk), from exact integers and one
+    /// root of one product.
+    fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
+        let m = self.quants()[0].max_code();
+        let k = ONE / f64::from(m);
+        let a = c.map(|x| x.abs().to_u());
+        let sq = a.x.wrapping_mul(a.x) + a.y.wrapping_mul(a.y);
+        let m2 = F::U::c((m as u32) * (m as u32));
+        let inside = sq.lt(m2);
+        let r = float_of::<F>(F::U::sel(inside, m2.wrapping_sub(sq), F::U::c(0))).named("r");
+        let z = root_of((r * F::c((k * k) as f32)).at_least(F::c(TINY))).floor();
+        V3::from_xy(c.map(|x| fixed(x, k)), F::sel(inside, z, F::c(0.0)))
     }
 }

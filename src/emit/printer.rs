@@ -273,6 +273,50 @@ fn live(f: &Func) -> Vec<bool> {
     live
 }
 
+/// Words reserved in one of the languages that a value's name could plausibly be (WGSL
+/// reserves many ordinary words, e.g. `target`, `filter`, `sample`); a value named one of
+/// them is printed with a number appended, like a repeated name.
+const RESERVED: &[&str] = &[
+    "active",
+    "attribute",
+    "buffer",
+    "centroid",
+    "common",
+    "const",
+    "filter",
+    "fixed",
+    "flat",
+    "half",
+    "in",
+    "inout",
+    "input",
+    "layout",
+    "line",
+    "linear",
+    "matrix",
+    "noperspective",
+    "out",
+    "output",
+    "patch",
+    "point",
+    "precise",
+    "precision",
+    "register",
+    "sample",
+    "sampler",
+    "shared",
+    "signed",
+    "smooth",
+    "static",
+    "string",
+    "target",
+    "texture",
+    "uniform",
+    "unsigned",
+    "vector",
+    "volatile",
+];
+
 /// Prints `f` in `lang`; `fn_name` maps a traced function's local name to the name it is
 /// defined and called by.
 pub fn print(lang: &dyn Backend, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed {
@@ -294,6 +338,7 @@ pub fn print(lang: &dyn Backend, f: &Func, fn_name: &dyn Fn(&str) -> String) -> 
         fn_name,
     };
     let mut used: HashSet<String> = f.params.iter().map(|p| p.0.clone()).collect();
+    used.extend(RESERVED.iter().map(|w| w.to_string()));
     let mut body = Vec::new();
     let mut temp = 0;
     for (id, node) in f.nodes.iter().enumerate() {

@@ -1,0 +1,106 @@
+//! Portable precise search for codecs whose decode divides or takes a root (`xy`,
+//! `lambert`, `stereo_scaled`): the candidates are decoded in fixed point by a
+//! deterministic form of the codec's own decode, the target likewise, and the nearest is
+//! chosen by the exact squared distance between those integers.
+//!
+//! A precise search that compares decoded floats flips wherever two candidates nearly
+//! tie and an implementation's division or square root lands an ULP away (or a driver
+//! fuses the distance's sums). Here every quotient is decided like a code
+//! ([`fixed_ratio`]), every root by comparing squares ([`root_of`]), every product feeds
+//! only a floor, a comparison or another product, and sums of squares are taken in
+//! integers ([`sum_of_squares`]) and rounded once: each component is an integer in
+//! `[-2^21, 2^21]` (units of `2^-21`) that no allowed deviation changes, within about
+//! one unit of the exact decode, so near-ties are resolved to about `2^-21` of a unit
+//! vector, like a float decode's own error.
+
+use super::exact::{RATIO_ONE, fixed_ratio, sum_of_squares};
+use super::lattice::{Measure, nearest};
+use super::quant::Quant;
+use crate::model::{Bool, Float, Uint, V2, V3};
+
+/// The squared distance between two fixed-point directions, rounded once.
+#[derive(Clone, Copy)]
+pub struct Distance<F>(F);
+
+impl<F: Float> Measure<F> for Distance<F> {
+    fn closer(self, other: Self) -> F::B {
+        self.0.lt(other.0)
+    }
+    fn sel(m: F::B, a: Self, b: Self) -> Self {
+        Distance(F::sel(m, a.0, b.0).named("best_d"))
+    }
+}
+
+/// The unit vector `w / l` (`l` its length from [`super::exact::root`]) in fixed point.
+pub fn fixed_target<F: Float>(w: V3<F>, l: F) -> V3<F> {
+    w.map(|x| fixed_ratio(x, l)).named("aim")
+}
+
+/// `|d - u|²` of two fixed-point directions (integers of at most `2^21`, so each
+/// difference is exact and below `2^23`).
+fn distance<F: Float>(d: V3<F>, u: V3<F>) -> Distance<F> {
+    let e = (d - u).map(|x| x.abs().to_u());
+    Distance(sum_of_squares::<F, 3>([e.x, e.y, e.z]).named("dist"))
+}
+
+/// The nearest of the four codes `base`, `base + (1, 0)`, `(0, 1)` and `(1, 1)` (codes
+/// past the largest are skipped), by the squared distance of their fixed-point decodes
+/// (`decode`) to the fixed-point `target`; the first on ties.
+pub fn nearest_decoded<F: Float>(
+    q: Quant,
+    base: V2<F>,
+    target: V3<F>,
+    decode: impl Fn(V2<F>) -> V3<F>,
+) -> V2<F> {
+    let hi = F::c(q.max_code());
+    nearest(base.x, base.y, |s, t| {
+        let codes = V2::new(s.at_most(hi), t.at_most(hi)).named("cand");
+        let valid = s.le(hi).and(t.le(hi));
+        (codes, valid, distance(decode(codes), target))
+    })
+}
+
+/// `(tx² >> 2) + (ty² >> 2)` of odd integers `|t| < 2^16` (unorm codes `c` as
+/// `t = 2c - M`), exact: `tx² + ty²` is this times 4, plus 2, and would not fit 32 bits.
+pub fn odd_square_quarter<F: Float>(t: V2<F>) -> F::U {
+    let a = t.map(|x| x.abs().to_u());
+    a.x.wrapping_mul(a.x).shr(2) + a.y.wrapping_mul(a.y).shr(2)
+}
+
+/// `floor(x · k)`: a fixed-point component from one product.
+pub fn fixed<F: Float>(x: F, k: f64) -> F {
+    (x * F::c(k as f32)).floor()
+}
+
+/// A floor for [`super::exact::root_of`]'s argument where the square under a root may be
+/// zero (outside the disk; the result is then replaced): far below any square met.
+pub const TINY: f32 = 1.0e-30;
+
+/// The doc comment of the `encode_codes` helper of a search decided here.
+pub fn search_doc() -> String {
+    "Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.".to_string()
+}
+
+/// The fixed-point scale, `2^21`, as f64 for constants.
+pub const ONE: f64 = RATIO_ONE as f64;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn odd_square_quarter_is_exact_at_the_largest_codes() {
+        let t = V2::new(65535.0f32, -65533.0);
+        let q = u64::from(odd_square_quarter(t));
+        assert_eq!(4 * q + 2, 65535u64 * 65535 + 65533 * 65533);
+    }
+
+    #[test]
+    fn distance_is_the_exact_square_sum() {
+        let d = V3::new(2_097_152.0f32, -3.0, 0.0);
+        let u = V3::new(-2_097_152.0f32, 1.0, 5.0);
+        // (2^22)² + 16 + 25, rounded once to f32.
+        let exact = (1u64 << 44) + 41;
+        assert_eq!(distance(d, u).0, exact as f32);
+    }
+}
