@@ -6,7 +6,7 @@
 //! A precise search that compares decoded floats flips wherever two candidates nearly
 //! tie and an implementation's division or square root lands an ULP away (or a driver
 //! fuses the distance's sums). Here every quotient is decided like a code
-//! ([`fixed_ratio`]), every root by comparing squares ([`root_of`]), every product feeds
+//! ([`fixed_ratio`]), every root by comparing squares ([`super::exact::fixed_root`]), every product feeds
 //! only a floor, a comparison or another product, and sums of squares are taken in
 //! integers ([`sum_of_squares`]) and rounded once: each component is an integer in
 //! `[-2^21, 2^21]` (units of `2^-21`) that no allowed deviation changes, within about
@@ -71,10 +71,6 @@ pub fn odd_square_quarter<F: Float>(t: V2<F>) -> F::U {
 pub fn fixed<F: Float>(x: F, k: f64) -> F {
     (x * F::c(k as f32)).floor()
 }
-
-/// A floor for [`super::exact::root_of`]'s argument where the square under a root may be
-/// zero (outside the disk; the result is then replaced): far below any square met.
-pub const TINY: f32 = 1.0e-30;
 
 /// The doc comment of the `encode_codes` helper of a search decided here.
 pub fn search_doc() -> String {

@@ -3,8 +3,8 @@
 //! own erratum); this one normalizes first.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical_or_z, decided, fixed_length2, float_of, one_if, one_plus_z, root, root_of};
-use super::fixed_decode::{search_doc, ONE, TINY, fixed, fixed_target, nearest_decoded, odd_square_quarter};
+use super::exact::{canonical_or_z, decided, fixed_length2, float_of, one_if, one_plus_z, root, fixed_root};
+use super::fixed_decode::{search_doc, ONE, fixed, fixed_target, nearest_decoded, odd_square_quarter};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use super::family::{Family, Info, Sizes};
@@ -96,11 +96,13 @@ impl Lambert {
         let rest = mq.wrapping_sub(quarter).shl(2) + F::U::c(3);
         let r = float_of::<F>(F::U::sel(inside, rest, F::U::c(0))).named("r");
         let k = 2.0 * ONE / (f64::from(m) * f64::from(m));
-        // `sqrt(R)·k` as the root of one product, so that `t` meets it in one product: a
-        // chain `t·sqrt(R)·k` may be regrouped around its literal.
-        let g = root_of((r * F::c((k * k) as f32)).at_least(F::c(TINY)));
-        let g = F::sel(inside, g, F::c(0.0)).named("g");
-        let xy = t.map(|x| (x * g).floor());
+        // `sqrt(R)·k·2^b` (below 2^21) as the fixed root of one product, so that `t`
+        // meets it in one product: a chain `t·sqrt(R)·k` may be regrouped around its
+        // literal; the power of two is exact wherever it goes.
+        let b = (f64::from(m) * 0.5).log2().floor();
+        let scale = 2f64.powf(b);
+        let g = fixed_root(r * F::c((k * k * scale * scale) as f32)).named("g");
+        let xy = t.map(|x| fixed(x * g, 1.0 / scale));
         V3::from_xy(xy, fixed(r, k) - F::c(ONE as f32))
     }
 }

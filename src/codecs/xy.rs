@@ -3,10 +3,10 @@
 
 use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{
-    canonical, canonical_or_z, float_of, floor_ratio, fixed_length2, length2, root, root_of,
+    canonical, canonical_or_z, fixed_root, float_of, floor_ratio, fixed_length2, length2, root,
     snorm_sqrt_ratio,
 };
-use super::fixed_decode::{search_doc, ONE, TINY, fixed, fixed_target, nearest_decoded};
+use super::fixed_decode::{search_doc, ONE, fixed, fixed_target, nearest_decoded};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use super::family::{Family, Info, Sizes};
@@ -105,7 +105,7 @@ impl Codec for Xy {
 impl Xy {
     /// The decode of snorm codes `c` in fixed point ([`crate::codecs::fixed_decode`]):
     /// `(c, sqrt(M² - |c|²)) / M` (z = 0 outside the disk), from exact integers and one
-    /// root of one product.
+    /// [`fixed_root`] of one product.
     fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
         let m = self.quants()[0].max_code();
         let k = ONE / f64::from(m);
@@ -114,7 +114,7 @@ impl Xy {
         let m2 = F::U::c((m as u32) * (m as u32));
         let inside = sq.lt(m2);
         let r = float_of::<F>(F::U::sel(inside, m2.wrapping_sub(sq), F::U::c(0))).named("r");
-        let z = root_of((r * F::c((k * k) as f32)).at_least(F::c(TINY))).floor();
-        V3::from_xy(c.map(|x| fixed(x, k)), F::sel(inside, z, F::c(0.0)))
+        let z = fixed_root(r * F::c((k * k) as f32));
+        V3::from_xy(c.map(|x| fixed(x, k)), z)
     }
 }
