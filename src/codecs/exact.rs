@@ -113,8 +113,9 @@ fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
     sum_of_squares::<F, N>(a) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE))
 }
 
-/// `Σ aᵢ²` of integers below `2^23`, exact in 32-bit integers and rounded once (see
-/// [`fixed_sum_of_squares`]): the sum is below `2^48`, kept as `hi·2^24 + lo`.
+/// `Σ aᵢ²` of three or fewer integers below `2^24` whose squares sum below `2^48`, exact
+/// in 32-bit integers and rounded once (see [`fixed_sum_of_squares`]), kept as
+/// `hi·2^24 + lo` (both then below `2^24`, so both convert exactly).
 pub fn sum_of_squares<F: Float, const N: usize>(a: [F::U; N]) -> F {
     let limb = F::U::c(0xfff);
     let low24 = F::U::c(0xff_ffff);
@@ -193,6 +194,17 @@ pub fn root<F: Float>(s: F) -> F {
     ((k * F::c(ROOT_HIGH / ROOT_LOW) + j) * v).named("root")
 }
 
+/// `sqrt(s)` for `s ≥ 2^-120` as a function of `s` alone: `s` is scaled by an even power
+/// of two (read from its exponent bits, so exact) into `[4, 16)`, where [`root`] decides
+/// its digits, and the root scaled back. About `2^-22` relative, like a rounding.
+pub fn root_of<F: Float>(s: F) -> F {
+    // `x = (E + 1) >> 1` of the biased exponent E: s·2^(2·(64 - x) + 2) is in [4, 16).
+    let x = s.to_bits().shr(23).wrapping_add(F::U::c(1)).shr(1);
+    let down = F::U::c(257).wrapping_sub(x.shl(1)).shl(23).as_float();
+    let up = (F::U::c(62) + x).shl(23).as_float();
+    root(s * down) * up
+}
+
 /// `floor(sqrt(s))` for `0 ≤ s ≤ 2^42`, as a function of `s` alone: the root (within
 /// 6.5 ULP, under 1.7 units below `2^21`) is only an estimate, stepped twice by one where
 /// `e² ≤ s < (e + 1)²` fails (each square one rounded product meeting `s` in a
@@ -222,6 +234,15 @@ pub fn fixed_ratio<F: Float>(n: F, d: F) -> F {
     let up = ((e + F::c(1.0)) * d).le(big);
     let down = (e * d).gt(big);
     stepped(e, up, down).named("ratio")
+}
+
+/// `floor(n / d · 2^23)` for `d > 0` and `0 ≤ |n| ≤ d` ([`fixed_ratio`] on a finer grid:
+/// the quotient's estimate may be 1.25 units off, so it is stepped twice).
+pub fn fine_ratio<F: Float>(n: F, d: F) -> F {
+    let one = F::c((1u32 << 23) as f32);
+    let big = n * one;
+    let step = |e: F| stepped(e, ((e + F::c(1.0)) * d).le(big), (e * d).gt(big));
+    step(step((n / d * one).floor().named("ratio_estimate")).named("ratio_step")).named("ratio")
 }
 
 /// `1 + z` of the unit direction of a canonical `w` whose length is `l` (from

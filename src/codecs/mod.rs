@@ -9,6 +9,7 @@ pub mod codec;
 pub mod exact;
 pub mod family;
 pub mod fixed_decode;
+pub mod fixed_trig;
 pub mod functions;
 pub mod inputs;
 pub mod lattice;

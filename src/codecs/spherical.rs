@@ -4,6 +4,9 @@
 //! conditioned near the poles, where acos loses half its digits.
 
 use super::codec::{Codec, Domain};
+use super::exact::{canonical_or_z, fine_ratio, fixed_length2, fixed_length2_xy, root, root_of};
+use super::fixed_decode::{nearest_decoded, search_doc};
+use super::fixed_trig::{self, FINE, ONE};
 use super::quant::{Quant, Quants};
 use super::trig::{atan2_pi, sincos_pi};
 use crate::model::{Float, V2, V3};
@@ -30,6 +33,9 @@ static INFO: Info = Info {
 impl Family for SphericalFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "encode_codes").then(search_doc)
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Spherical { bits: spec.bits() })
@@ -72,5 +78,57 @@ impl Codec for Spherical {
         let st = F::call("sincos_pi", theta, sincos_pi).named("st");
         let sp = F::call("sincos_pi", p.y, sincos_pi).named("sp");
         V3::new(sp.y * st.x, sp.x * st.x, st.y)
+    }
+    /// `θ` and `φ` from [`fixed_trig::atan2_pi`] of the canonical input (and its `ρ`
+    /// from [`root_of`]), in units of `2^-23` half turns: functions of the input alone,
+    /// each code then one product rounded. Zero, NaN and infinite input give +Z's codes.
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let (theta, phi) = self.fixed_angles(v);
+        let k = F::c((f64::from(self.quants()[0].max_code()) / ONE) as f32);
+        V2::new(theta, phi).map(|a| (a * k).round())
+    }
+    /// The nearest of the four codes around the exact parameters by the squared distance
+    /// of their fixed-point decodes ([`crate::codecs::fixed_decode`], with
+    /// [`fixed_trig::sincos_pi`]), on the trigonometry's grid of `2^-23`: candidates next
+    /// to the target are far closer than `2^24` units, so their squared distances stay
+    /// exact.
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let q = self.quants()[0];
+        let m = q.max_code();
+        let (theta, phi) = self.fixed_angles(v);
+        let k = F::c((f64::from(m) / ONE) as f32);
+        let base = V2::new(theta, phi).map(|a| (a * k).floor()).named("base");
+        let (w, _) = canonical_or_z(v);
+        let l = root(fixed_length2(w));
+        let target = w.map(|x| fine_ratio(x, l)).named("aim");
+        nearest_decoded(q, base, target, |c| {
+            let theta = (c.x + F::c(m)) * F::c((FINE * 0.5 / f64::from(m)) as f32);
+            let phi = c.y * F::c((FINE / f64::from(m)) as f32);
+            let st = fixed_trig::sincos_pi(theta.round());
+            let sp = fixed_trig::sincos_pi(phi.round());
+            // From units of 2^-24 to the target's 2^-23.
+            let scale = F::c((0.5 / FINE) as f32);
+            V3::new(
+                (sp.y * st.x * scale).round(),
+                (sp.x * st.x * scale).round(),
+                (st.y * F::c(0.5)).round(),
+            )
+        })
+    }
+}
+
+impl Spherical {
+    /// `(2θ - 1, φ)` in units of `2^-23` half turns, decided in fixed point.
+    fn fixed_angles<F: Float>(&self, v: V3<F>) -> (F, F) {
+        let (w, _) = canonical_or_z(v);
+        let rho2 = fixed_length2_xy(w);
+        let rho = root_of(rho2.at_least(F::c(1.0e-30)));
+        let rho = F::sel(rho2.gt(F::c(0.0)), rho, F::c(0.0)).named("rho");
+        let theta = fixed_trig::atan2_pi(rho, w.z);
+        let phi = fixed_trig::atan2_pi(w.y, w.x);
+        let theta = (theta * F::c(2.0) - F::c(ONE as f32)).named("theta");
+        (theta, phi.named("phi"))
     }
 }

@@ -1,0 +1,116 @@
+//! Trigonometry in fixed point, for codes that must not depend on an implementation's
+//! division or on contraction ([`super::trig`]'s float polynomials have both).
+//!
+//! Values are integers held in floats, in units of `2^-23` (angles in half turns, as in
+//! [`super::trig`]). A product is [`mul`]: one rounded product, an exact scaling and a
+//! floor, so it is a function of its operands alone and nothing can be fused into it; the
+//! sums that follow add integers below `2^24`, which are exact. Quotients come from
+//! [`fine_ratio`]. Each step loses at most one unit, so the results are within a few
+//! units (`2^-21`) of the exact functions, as close as the float versions.
+
+use super::exact::fine_ratio;
+use crate::model::{Float, V2};
+use std::f64::consts::PI;
+
+/// The unit of [`atan2_pi`]: `2^-23` half turns.
+pub const ONE: f64 = (1u32 << 23) as f64;
+/// The unit of [`sincos_pi`]'s argument and results: `2^-24`, the finest that holds 1.
+pub const FINE: f64 = (1u32 << 24) as f64;
+
+/// `x` in units of `1/one`, rounded: a literal.
+fn units<F: Float>(x: f64, one: f64) -> F {
+    F::c((x * one).round() as f32)
+}
+
+/// `a·b` of two values in units of `1/one`, rounded to a unit.
+fn mul<F: Float>(a: F, b: F, one: f64) -> F {
+    (a * b * F::c((1.0 / one) as f32)).round()
+}
+
+/// `c[0] + z·(c[1] + z·(...))` in units of `1/one`.
+fn poly<F: Float>(z: F, coeffs: &[f64], one: f64) -> F {
+    let mut acc = units::<F>(*coeffs.last().unwrap(), one);
+    for &c in coeffs.iter().rev().skip(1) {
+        acc = mul(acc, z, one) + units(c, one);
+    }
+    acc
+}
+
+/// atan2(y, x) / π in units of half turns, in `[-2^23, 2^23]`, for `y` and `x` normal or
+/// `+0` (never `-0`: [`super::exact::canonical`] values). `atan2(0, 0) = 0`.
+pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
+    let one = F::c(ONE as f32);
+    let (ax, ay) = (x.abs(), y.abs());
+    let y_major = ay.gt(ax);
+    let hi = F::sel(y_major, ay, ax);
+    let lo = F::sel(y_major, ax, ay);
+    let t = fine_ratio(lo, F::sel(hi.gt(F::c(0.0)), hi, F::c(1.0))).named("t");
+    // atan(t) = π/4 + atan((t-1)/(t+1)) keeps the series argument below tan(π/8).
+    let far = t.gt(units((PI / 8.0).tan(), ONE));
+    let z = F::sel(far, fine_ratio(t - one, t + one), t).named("z");
+    let z2 = mul(z, z, ONE);
+    let coeffs: Vec<f64> = (0..10)
+        .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
+        .collect();
+    let r = mul(z, poly(z2, &coeffs, ONE), ONE).named("r");
+    // Radians to half turns, then the octant's offsets (exact integers).
+    let h = (r * F::c((1.0 / PI) as f32)).round();
+    let h = F::sel(far, h + units(0.25, ONE), h);
+    let h = F::sel(y_major, units::<F>(0.5, ONE) - h, h);
+    let h = F::sel(x.lt(F::c(0.0)), one - h, h);
+    F::sel(y.lt(F::c(0.0)), -h, h).named("angle")
+}
+
+/// (sin(π·t), cos(π·t)) for `t` in units of `2^-24` half turns, `|t| ≤ 2^24`, in units
+/// of `2^-24`.
+pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
+    let a = t.abs();
+    let back = a.gt(units(0.5, FINE));
+    let b = F::sel(back, F::c(FINE as f32) - a, a);
+    let swap = b.gt(units(0.25, FINE));
+    let c = F::sel(swap, units::<F>(0.5, FINE) - b, b);
+    // In radians, at most π/4.
+    let u = (c * F::c(PI as f32)).round().named("u");
+    let u2 = mul(u, u, FINE);
+    let fact = |n: i32| (1..=n).map(|k| k as f64).product::<f64>();
+    let sin_coeffs: Vec<f64> = (0..6).map(|k| (-1f64).powi(k) / fact(2 * k + 1)).collect();
+    let cos_coeffs: Vec<f64> = (0..7).map(|k| (-1f64).powi(k) / fact(2 * k)).collect();
+    let s = mul(u, poly(u2, &sin_coeffs, FINE), FINE).named("s");
+    let co = poly(u2, &cos_coeffs, FINE).named("co");
+    let sb = F::sel(swap, co, s);
+    let cb = F::sel(swap, s, co);
+    let cos = F::sel(back, -cb, cb);
+    let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
+    V2::new(sin, cos)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn atan2_pi_is_within_four_units() {
+        for i in 0..2000 {
+            let a = (i as f64 / 2000.0 - 0.5) * 2.0 * PI;
+            for r in [1.0f64, 3.5] {
+                let (y, x) = ((a.sin() * r) as f32, (a.cos() * r) as f32);
+                let got = f64::from(atan2_pi(y, x)) / ONE;
+                let exact = f64::from(y).atan2(f64::from(x)) / PI;
+                assert!((got - exact).abs() <= 4.0 / ONE, "{a}: {got} vs {exact}");
+            }
+        }
+        assert_eq!(atan2_pi(0.0f32, 0.0), 0.0);
+        assert_eq!(atan2_pi(0.0f32, -2.0), ONE as f32);
+    }
+
+    #[test]
+    fn sincos_pi_is_within_four_units() {
+        for i in -1000..=1000 {
+            let t = (f64::from(i) / 1000.0 * FINE).floor();
+            let v = sincos_pi(t as f32);
+            let a = t / FINE * PI;
+            assert!((f64::from(v.x) / FINE - a.sin()).abs() <= 4.0 / FINE, "{t}");
+            assert!((f64::from(v.y) / FINE - a.cos()).abs() <= 4.0 / FINE, "{t}");
+        }
+    }
+}
