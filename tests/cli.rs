@@ -2338,16 +2338,21 @@ fn gen_writes_c_headers_and_wgsl_import_paths() {
     assert!(err.contains("invalid WGSL import path"), "{err}");
 }
 
-/// `verify --portable` evaluates the model under the deviations the APIs allow. The fast
-/// spherical encoder rounds angles computed with divisions, so a quotient a few ULP off
-/// changes its code: the report says so and exits 1. The fast oct encoder decides its
-/// codes with exact comparisons and passes.
+/// `verify --portable` evaluates the model under the deviations the APIs allow. Every
+/// packed encoder decides its codes portably (the spherical ones with fixed-point
+/// trigonometry), so the report says so and exits 0; its float outputs still move.
 #[test]
 fn verify_portable_reports_codes_that_allowed_deviations_change() {
     let r = run(&["verify", "--portable", "spherical16", "--json"]);
-    assert_eq!(r.code, 1, "{r:?}");
+    assert_eq!(r.code, 0, "{r:?}");
     assert!(
-        r.stdout.contains("\"packed_encoders_portable\":false"),
+        r.stdout.contains("\"packed_encoders_portable\":true"),
+        "{r:?}"
+    );
+    assert!(
+        r.stdout.contains(
+            "\"role\":\"DecodeFloat\",\"class\":\"fma\",\"items\":16384,\"changed\":3274"
+        ),
         "{r:?}"
     );
     let r = run(&["verify", "--portable", "oct16", "--json"]);
