@@ -85,7 +85,7 @@ static inline void unitpack_lambert16p_decode(uint32_t code, float out[3]) {
     out[2] = r.z;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 
 static inline unitpack_vec2 unitpack_lambert16p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
@@ -718,9 +718,10 @@ static inline unitpack_vec2 unitpack_lambert16p_encode_codes_v(unitpack_vec3 v) 
     const bool t576 = dist4 < best_d2;
     const bool t577 = t488 && t576;
     const unitpack_vec2 best3 = { t577 ? cand4.x : best2.x, t577 ? cand4.y : best2.y };
-    const unitpack_vec2 t578 = { t142 ? 255.0f : best3.x, t142 ? 128.0f : best3.y };
-    const unitpack_vec2 t579 = { t14 ? t578.x : 128.0f, t14 ? t578.y : 128.0f };
-    return t579;
+    const bool t578 = opz_a <= 0.0f;
+    const unitpack_vec2 t579 = { t578 ? 255.0f : best3.x, t578 ? 128.0f : best3.y };
+    const unitpack_vec2 t580 = { t14 ? t579.x : 128.0f, t14 ? t579.y : 128.0f };
+    return t580;
 }
 
 // Struct form of unitpack_lambert16p_encode_float.

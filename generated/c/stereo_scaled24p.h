@@ -82,7 +82,7 @@ static inline void unitpack_stereo_scaled24p_decode(uint32_t code, float out[3])
     out[2] = r.z;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 
 static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
@@ -628,9 +628,10 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const bool t498 = dist4 < best_d2;
     const bool t499 = t424 && t498;
     const unitpack_vec2 best3 = { t499 ? cand4.x : best2.x, t499 ? cand4.y : best2.y };
-    const unitpack_vec2 t500 = { t142 ? 0.0f : best3.x, t142 ? 0.0f : best3.y };
-    const unitpack_vec2 t501 = { t14 ? t500.x : 2048.0f, t14 ? t500.y : 2048.0f };
-    return t501;
+    const bool t500 = opz_a <= 0.0f;
+    const unitpack_vec2 t501 = { t500 ? 0.0f : best3.x, t500 ? 0.0f : best3.y };
+    const unitpack_vec2 t502 = { t14 ? t501.x : 2048.0f, t14 ? t501.y : 2048.0f };
+    return t502;
 }
 
 // Struct form of unitpack_stereo_scaled24p_encode_float.

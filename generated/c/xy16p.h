@@ -84,7 +84,7 @@ static inline void unitpack_xy16p_decode(uint32_t code, float out[3]) {
     out[2] = r.z;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 
 static inline unitpack_vec2 unitpack_xy16p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };

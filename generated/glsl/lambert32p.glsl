@@ -60,7 +60,7 @@ vec3 unitpack_lambert32p_decode(uint code) {
     return t5;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 vec2 unitpack_lambert32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
@@ -692,9 +692,10 @@ vec2 unitpack_lambert32p_encode_codes(vec3 v) {
     bool t576 = dist4 < best_d2;
     bool t577 = t488 && t576;
     UNITPACK_PRECISE vec2 best3 = t577 ? cand4 : best2;
-    UNITPACK_PRECISE vec2 t578 = t142 ? vec2(65535.0, 32768.0) : best3;
-    UNITPACK_PRECISE vec2 t579 = t14 ? t578 : vec2(32768.0);
-    return t579;
+    bool t578 = opz_a <= 0.0;
+    UNITPACK_PRECISE vec2 t579 = t578 ? vec2(65535.0, 32768.0) : best3;
+    UNITPACK_PRECISE vec2 t580 = t14 ? t579 : vec2(32768.0);
+    return t580;
 }
 
 // unitpack_lambert32p_encode_float: lambert32p (Lambert azimuthal equal-area, unorm×2, 32 bits, sphere), precise encoder, float form.

@@ -57,7 +57,7 @@ vec3 unitpack_stereo_scaled24p_decode(uint code) {
     return t5;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 vec2 unitpack_stereo_scaled24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
@@ -602,9 +602,10 @@ vec2 unitpack_stereo_scaled24p_encode_codes(vec3 v) {
     bool t498 = dist4 < best_d2;
     bool t499 = t424 && t498;
     UNITPACK_PRECISE vec2 best3 = t499 ? cand4 : best2;
-    UNITPACK_PRECISE vec2 t500 = t142 ? vec2(0.0) : best3;
-    UNITPACK_PRECISE vec2 t501 = t14 ? t500 : vec2(2048.0);
-    return t501;
+    bool t500 = opz_a <= 0.0;
+    UNITPACK_PRECISE vec2 t501 = t500 ? vec2(0.0) : best3;
+    UNITPACK_PRECISE vec2 t502 = t14 ? t501 : vec2(2048.0);
+    return t502;
 }
 
 // unitpack_stereo_scaled24p_encode_float: stereo_scaled24p (scaled stereographic, unorm×2, 24 bits, sphere), precise encoder, float form.

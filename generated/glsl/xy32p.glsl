@@ -59,7 +59,7 @@ vec3 unitpack_xy32p_decode(uint code) {
     return t10;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 vec2 unitpack_xy32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));

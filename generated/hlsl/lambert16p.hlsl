@@ -59,7 +59,7 @@ float3 unitpack_lambert16p_decode(uint code) {
     return t5;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 float2 unitpack_lambert16p_encode_codes(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -691,9 +691,10 @@ float2 unitpack_lambert16p_encode_codes(float3 v) {
     bool t576 = dist4 < best_d2;
     bool t577 = t488 && t576;
     precise float2 best3 = t577 ? cand4 : best2;
-    precise float2 t578 = t142 ? float2(255.0, 128.0) : best3;
-    precise float2 t579 = t14 ? t578 : float2(128.0, 128.0);
-    return t579;
+    bool t578 = opz_a <= 0.0;
+    precise float2 t579 = t578 ? float2(255.0, 128.0) : best3;
+    precise float2 t580 = t14 ? t579 : float2(128.0, 128.0);
+    return t580;
 }
 
 // unitpack_lambert16p_encode_float: lambert16p (Lambert azimuthal equal-area, unorm×2, 16 bits, sphere), precise encoder, float form.

@@ -56,7 +56,7 @@ float3 unitpack_stereo_scaled16p_decode(uint code) {
     return t5;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 float2 unitpack_stereo_scaled16p_encode_codes(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -601,9 +601,10 @@ float2 unitpack_stereo_scaled16p_encode_codes(float3 v) {
     bool t498 = dist4 < best_d2;
     bool t499 = t424 && t498;
     precise float2 best3 = t499 ? cand4 : best2;
-    precise float2 t500 = t142 ? float2(0.0, 0.0) : best3;
-    precise float2 t501 = t14 ? t500 : float2(128.0, 128.0);
-    return t501;
+    bool t500 = opz_a <= 0.0;
+    precise float2 t501 = t500 ? float2(0.0, 0.0) : best3;
+    precise float2 t502 = t14 ? t501 : float2(128.0, 128.0);
+    return t502;
 }
 
 // unitpack_stereo_scaled16p_encode_float: stereo_scaled16p (scaled stereographic, unorm×2, 16 bits, sphere), precise encoder, float form.

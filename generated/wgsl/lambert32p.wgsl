@@ -44,7 +44,7 @@ fn unitpack_lambert32p_decode(code: u32) -> vec3<f32> {
     return t5;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 fn unitpack_lambert32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -676,9 +676,10 @@ fn unitpack_lambert32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t576 = dist4 < best_d2;
     let t577 = t488 && t576;
     let best3 = select(best2, cand4, t577);
-    let t578 = select(best3, vec2<f32>(65535.0f, 32768.0f), t142);
-    let t579 = select(vec2<f32>(32768.0f), t578, t14);
-    return t579;
+    let t578 = opz_a <= 0.0f;
+    let t579 = select(best3, vec2<f32>(65535.0f, 32768.0f), t578);
+    let t580 = select(vec2<f32>(32768.0f), t579, t14);
+    return t580;
 }
 
 // unitpack_lambert32p_encode_float: lambert32p (Lambert azimuthal equal-area, unorm×2, 32 bits, sphere), precise encoder, float form.

@@ -41,7 +41,7 @@ fn unitpack_stereo_scaled16p_decode(code: u32) -> vec3<f32> {
     return t5;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 fn unitpack_stereo_scaled16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -586,9 +586,10 @@ fn unitpack_stereo_scaled16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t498 = dist4 < best_d2;
     let t499 = t424 && t498;
     let best3 = select(best2, cand4, t499);
-    let t500 = select(best3, vec2<f32>(0.0f), t142);
-    let t501 = select(vec2<f32>(128.0f), t500, t14);
-    return t501;
+    let t500 = opz_a <= 0.0f;
+    let t501 = select(best3, vec2<f32>(0.0f), t500);
+    let t502 = select(vec2<f32>(128.0f), t501, t14);
+    return t502;
 }
 
 // unitpack_stereo_scaled16p_encode_float: stereo_scaled16p (scaled stereographic, unorm×2, 16 bits, sphere), precise encoder, float form.

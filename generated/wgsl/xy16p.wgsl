@@ -43,7 +43,7 @@ fn unitpack_xy16p_decode(code: u32) -> vec3<f32> {
     return t10;
 }
 
-// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.
+// Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties.
 fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);

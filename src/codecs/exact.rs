@@ -172,14 +172,13 @@ const ROOT_LOW: f32 = 1.0 / (1u32 << 21) as f32;
 /// optimiser could regroup with the caller's next addition.
 pub fn root<F: Float>(s: F) -> F {
     let (u, v) = (F::c(ROOT_HIGH), F::c(ROOT_LOW));
-    let step = |up: F::B, down: F::B| F::sel(up, F::c(1.0), F::sel(down, F::c(-1.0), F::c(0.0)));
     let estimate = s.sqrt().named("root_estimate");
     let k0 = (estimate * F::c(1.0 / ROOT_HIGH)).floor();
     let h0 = (k0 * u).named("root_h0");
     let h1 = h0 + u;
     let up = (h1 * h1).le(s);
     let down = (h0 * h0).gt(s);
-    let k = (k0 + step(up, down)).named("root_k");
+    let k = stepped(k0, up, down).named("root_k");
     let h = k * u;
     let r = (s - h * h).named("root_rest");
     let j0 = (r / (h + estimate) * F::c(1.0 / ROOT_LOW))
@@ -188,7 +187,7 @@ pub fn root<F: Float>(s: F) -> F {
     let (m0, m1) = (h + j0 * v, h + (j0 + F::c(1.0)) * v);
     let up = (m1 * m1).le(s);
     let down = (m0 * m0).gt(s);
-    let j = j0 + step(up, down);
+    let j = stepped(j0, up, down);
     // One product of an integer below 2^24: a sum here could be regrouped with the
     // caller's next addition.
     ((k * F::c(ROOT_HIGH / ROOT_LOW) + j) * v).named("root")
@@ -218,31 +217,22 @@ pub fn fixed_root<F: Float>(s: F) -> F {
     step(step(s.sqrt().floor().named("root_estimate")).named("root_step")).named("root")
 }
 
-/// The fixed-point scale of [`fixed_ratio`]: a quotient in `[-1, 1]` becomes an integer
-/// in `[-2^21, 2^21]`, whose estimate from an implementation's division (within 2.5 ULP)
-/// is within one unit of the truth.
-pub const RATIO_ONE: f32 = (1u32 << 21) as f32;
-
-/// `floor(n / d · 2^21)` for `d > 0` and `|n| ≤ d` (both normal or `n` zero), as a
-/// function of `n` and `d` alone: the quotient is only an estimate, corrected by one unit
-/// where `e·d ≤ n·2^21 < (e + 1)·d` fails (single products meeting in comparisons, like
-/// a code; `n·2^21` is exact). Within one unit of the exact floor where a product's
-/// rounding decides a near tie.
-pub fn fixed_ratio<F: Float>(n: F, d: F) -> F {
-    let big = n * F::c(RATIO_ONE);
-    let e = (n / d * F::c(RATIO_ONE)).floor().named("ratio_estimate");
-    let up = ((e + F::c(1.0)) * d).le(big);
-    let down = (e * d).gt(big);
-    stepped(e, up, down).named("ratio")
-}
-
-/// `floor(n / d · 2^23)` for `d > 0` and `0 ≤ |n| ≤ d` ([`fixed_ratio`] on a finer grid:
-/// the quotient's estimate may be 1.25 units off, so it is stepped twice).
-pub fn fine_ratio<F: Float>(n: F, d: F) -> F {
-    let one = F::c((1u32 << 23) as f32);
+/// `floor(n / d · 2^bits)` for `d > 0` and `|n| ≤ d` (both normal or `n` zero), as a
+/// function of `n` and `d` alone: the quotient is only an estimate (a division within
+/// 2.5 ULP is within `2.5·2^(bits-24)` units of the truth), stepped by one unit as many
+/// times as that can be off where `e·d ≤ n·2^bits < (e + 1)·d` fails (single products
+/// meeting in comparisons, like a code; `n·2^bits` is exact). Within one unit of the exact
+/// floor where a product's rounding decides a near tie.
+pub fn fixed_ratio<F: Float>(n: F, d: F, bits: u32) -> F {
+    let one = F::c((1u32 << bits) as f32);
     let big = n * one;
     let step = |e: F| stepped(e, ((e + F::c(1.0)) * d).le(big), (e * d).gt(big));
-    step(step((n / d * one).floor().named("ratio_estimate")).named("ratio_step")).named("ratio")
+    let off = (2.5 * f64::from(1u32 << bits) / f64::from(1u32 << 24)).floor() as u32;
+    let mut e = (n / d * one).floor().named("ratio_estimate");
+    for _ in 0..=off {
+        e = step(e).named("ratio");
+    }
+    e
 }
 
 /// `1 + z` of the unit direction of a canonical `w` whose length is `l` (from
@@ -255,6 +245,45 @@ pub fn one_plus_z<F: Float>(w: V3<F>, l: F) -> (F, F) {
     let a = F::sel(north, l + w.z, fixed_length2_xy(w)).named("opz_a");
     let b = F::sel(north, F::c(1.0), l - w.z).named("opz_b");
     (a, b)
+}
+
+/// The canonical input with what the projections from -Z need: its length `l` (from
+/// [`root`]) and `1 + z` as `a / b` ([`one_plus_z`]).
+#[derive(Clone, Copy)]
+pub struct OnePlusZ<F: Float> {
+    pub w: V3<F>,
+    /// Whether the input has a direction ([`canonical`]).
+    pub ok: F::B,
+    pub l: F,
+    pub a: F,
+    pub b: F,
+}
+
+impl<F: Float> OnePlusZ<F> {
+    /// From any input, invalid input standing in as +Z ([`canonical_or_z`]).
+    pub fn of(v: V3<F>) -> Self {
+        let (w, ok) = canonical_or_z(v);
+        let l = root(fixed_length2(w));
+        let (a, b) = one_plus_z(w, l);
+        OnePlusZ { w, ok, l, a, b }
+    }
+    /// Whether this is -Z, where `a = 0` and the projections have no finite value.
+    pub fn at_pole(&self) -> F::B {
+        self.a.le(F::c(0.0))
+    }
+    /// The same with -Z replaced by canonical +Z (`l = 2`, `a = 4`, `b = 1`), for a
+    /// search that needs parameters to start from; the caller replaces the pole's answer.
+    pub fn off_pole(self) -> Self {
+        let pole = self.at_pole();
+        let z = |x: F, at: f32| F::sel(pole, F::c(at), x);
+        OnePlusZ {
+            w: V3::sel_all(pole, V3::new(F::c(0.0), F::c(0.0), F::c(2.0)), self.w),
+            ok: self.ok,
+            l: z(self.l, 2.0),
+            a: z(self.a, 4.0),
+            b: z(self.b, 1.0),
+        }
+    }
 }
 
 /// The code decided by `past(c)`: `1` where the parameter, scaled to codes, lies at or
@@ -419,7 +448,7 @@ mod tests {
 
     #[test]
     fn root_is_the_square_root_to_two_to_minus_20_under_every_allowed_root_and_quotient() {
-        use crate::model::deviant::{Class, Dev, Deviation, Mode, begin_item, with};
+        use crate::model::deviant::Dev;
         let squares = [4.0f32, 9.0, 16.0, 49.0, 63.999_996, 4.000_001, 15.999_999];
         let sample = spread(20_000, 4.0, 64.0).map(|s| s as f32);
         for (i, s) in squares.into_iter().chain(sample).enumerate() {
@@ -432,20 +461,86 @@ mod tests {
             if exact.fract() == 0.0 {
                 assert_eq!(f64::from(r), exact, "{s}");
             }
-            for class in [Class::Sqrt, Class::Div] {
-                for mode in [Mode::Lowest, Mode::Highest, Mode::Seeded(i as u64)] {
-                    let d = with(Some(Deviation { class, mode }), || {
-                        begin_item(i as u64);
-                        root(Dev::new(s)).value()
-                    });
-                    assert_eq!(
-                        d.to_bits(),
-                        r.to_bits(),
-                        "{s} under {} {mode:?}",
-                        class.name()
-                    );
-                }
+            same_under_div_and_sqrt(i, r, || root(Dev::new(s)).value());
+        }
+    }
+
+    /// `f` (the same computation on the deviant type) returns `reference`'s bits under
+    /// every allowed quotient and root, at both ends and seeded.
+    fn same_under_div_and_sqrt(i: usize, reference: f32, f: impl Fn() -> f32) {
+        use crate::model::deviant::{Class, Deviation, Mode, begin_item, with};
+        for class in [Class::Sqrt, Class::Div] {
+            for mode in [Mode::Lowest, Mode::Highest, Mode::Seeded(i as u64)] {
+                let d = with(Some(Deviation { class, mode }), || {
+                    begin_item(i as u64);
+                    f()
+                });
+                assert_eq!(
+                    d.to_bits(),
+                    reference.to_bits(),
+                    "item {i} under {} {mode:?}",
+                    class.name()
+                );
             }
+        }
+    }
+
+    #[test]
+    fn fixed_ratio_is_the_floor_to_one_unit_under_every_allowed_quotient() {
+        use crate::model::deviant::Dev;
+        let pairs = spread(20_000, -1.0, 1.0).zip(spread(20_001, 0.5, 14.0).skip(1));
+        for (i, (f, d)) in pairs.enumerate() {
+            let (d, n) = (d as f32, (f * d) as f32);
+            let n = n.clamp(-d, d);
+            for bits in [21, 23] {
+                let r = fixed_ratio(n, d, bits);
+                let exact = (f64::from(n) / f64::from(d) * f64::from(1u32 << bits)).floor();
+                assert!(
+                    (f64::from(r) - exact).abs() <= 1.0,
+                    "{n}/{d} at {bits}: {r}"
+                );
+                same_under_div_and_sqrt(i, r, || {
+                    fixed_ratio(Dev::new(n), Dev::new(d), bits).value()
+                });
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_root_and_root_of_are_roots_under_every_allowed_root() {
+        use crate::model::deviant::Dev;
+        let squares = [0.0f32, 1.0, 4.0, 2.0f32.powi(42), 1e-30, 3.0e12];
+        let sample = spread(20_000, 0.0, 42.0).map(|e| 2f64.powf(e) as f32);
+        for (i, s) in squares.into_iter().chain(sample).enumerate() {
+            let exact = f64::from(s).sqrt();
+            let r = fixed_root(s);
+            assert!((f64::from(r) - exact.floor()).abs() <= 1.0, "{s}: {r}");
+            same_under_div_and_sqrt(i, r, || fixed_root(Dev::new(s)).value());
+            if s > 0.0 {
+                let r = root_of(s);
+                assert!(
+                    (f64::from(r) - exact).abs() <= exact / f64::from(1u32 << 21),
+                    "{s}: {r}"
+                );
+                same_under_div_and_sqrt(i, r, || root_of(Dev::new(s)).value());
+            }
+        }
+    }
+
+    #[test]
+    fn float_of_rounds_every_u32_to_nearest() {
+        for x in [
+            0u32,
+            1,
+            0xff_ffff,
+            0x100_0001,
+            0x100_0003,
+            0x7fff_ffff,
+            u32::MAX,
+        ] {
+            let got: f32 = float_of(x);
+            // Nearest (to even on ties), as Rust's conversion does.
+            assert_eq!(got.to_bits(), (x as f32).to_bits(), "{x}");
         }
     }
 

@@ -6,14 +6,15 @@
 //! A precise search that compares decoded floats flips wherever two candidates nearly
 //! tie and an implementation's division or square root lands an ULP away (or a driver
 //! fuses the distance's sums). Here every quotient is decided like a code
-//! ([`fixed_ratio`]), every root by comparing squares ([`super::exact::fixed_root`]), every product feeds
-//! only a floor, a comparison or another product, and sums of squares are taken in
+//! ([`fixed_ratio`]), every root by comparing squares ([`super::exact::fixed_root`]),
+//! every product feeds only a floor, a comparison or another product, and sums of
+//! squares are taken in
 //! integers ([`sum_of_squares`]) and rounded once: each component is an integer in
 //! `[-2^21, 2^21]` (units of `2^-21`) that no allowed deviation changes, within about
 //! one unit of the exact decode, so near-ties are resolved to about `2^-21` of a unit
 //! vector, like a float decode's own error.
 
-use super::exact::{RATIO_ONE, fixed_ratio, sum_of_squares};
+use super::exact::{fixed_ratio, sum_of_squares};
 use super::lattice::{Measure, nearest};
 use super::quant::Quant;
 use crate::model::{Bool, Float, Uint, V2, V3};
@@ -31,9 +32,10 @@ impl<F: Float> Measure<F> for Distance<F> {
     }
 }
 
-/// The unit vector `w / l` (`l` its length from [`super::exact::root`]) in fixed point.
-pub fn fixed_target<F: Float>(w: V3<F>, l: F) -> V3<F> {
-    w.map(|x| fixed_ratio(x, l)).named("aim")
+/// The unit vector `w / l` (`l` its length from [`super::exact::root`]) in units of
+/// `2^-bits`.
+pub fn fixed_target<F: Float>(w: V3<F>, l: F, bits: u32) -> V3<F> {
+    w.map(|x| fixed_ratio(x, l, bits)).named("aim")
 }
 
 /// `|d - u|²` of two fixed-point directions: integers whose differences are exact and
@@ -73,13 +75,19 @@ pub fn fixed<F: Float>(x: F, k: f64) -> F {
     (x * F::c(k as f32)).floor()
 }
 
-/// The doc comment of the `encode_codes` helper of a search decided here.
-pub fn search_doc() -> String {
-    "Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-21 with every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the first on ties.".to_string()
+/// The doc comment of the `encode_codes` helper of a search decided here, in units of
+/// `2^-bits`.
+pub fn search_doc(bits: u32) -> String {
+    format!(
+        "Precise search, decided in fixed point: among the four codes around the exact parameters, the one whose decode (computed in units of 2^-{bits} with every quotient, root and polynomial decided by comparisons or rounded to a unit) is nearest the input's by exact squared distance, the first on ties."
+    )
 }
 
-/// The fixed-point scale, `2^21`, as f64 for constants.
-pub const ONE: f64 = RATIO_ONE as f64;
+/// The fixed-point unit of the decodes here is `2^-BITS`: a component in `[-1, 1]` is an
+/// integer of at most `2^21`, whose estimate from a division is within one unit.
+pub const BITS: u32 = 21;
+/// `2^BITS`, for constants.
+pub const ONE: f64 = (1u32 << BITS) as f64;
 
 #[cfg(test)]
 mod tests {

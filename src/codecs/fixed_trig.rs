@@ -5,15 +5,18 @@
 //! [`super::trig`]). A product is [`mul`]: one rounded product, an exact scaling and a
 //! floor, so it is a function of its operands alone and nothing can be fused into it; the
 //! sums that follow add integers below `2^24`, which are exact. Quotients come from
-//! [`fine_ratio`]. Each step loses at most one unit, so the results are within a few
+//! [`fixed_ratio`]. Each step loses at most one unit, so the results are within a few
 //! units (`2^-21`) of the exact functions, as close as the float versions.
 
-use super::exact::fine_ratio;
+use super::exact::fixed_ratio;
+use super::trig::atan_series;
 use crate::model::{Float, V2};
 use std::f64::consts::PI;
 
-/// The unit of [`atan2_pi`]: `2^-23` half turns.
-pub const ONE: f64 = (1u32 << 23) as f64;
+/// The unit of [`atan2_pi`] is `2^-BITS` half turns: 1 is the largest value it holds.
+pub const BITS: u32 = 23;
+/// `2^BITS`, for constants.
+pub const ONE: f64 = (1u32 << BITS) as f64;
 /// The unit of [`sincos_pi`]'s argument and results: `2^-24`, the finest that holds 1.
 pub const FINE: f64 = (1u32 << 24) as f64;
 
@@ -44,15 +47,12 @@ pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
     let y_major = ay.gt(ax);
     let hi = F::sel(y_major, ay, ax);
     let lo = F::sel(y_major, ax, ay);
-    let t = fine_ratio(lo, F::sel(hi.gt(F::c(0.0)), hi, F::c(1.0))).named("t");
+    let t = fixed_ratio(lo, F::sel(hi.gt(F::c(0.0)), hi, F::c(1.0)), BITS).named("t");
     // atan(t) = π/4 + atan((t-1)/(t+1)) keeps the series argument below tan(π/8).
     let far = t.gt(units((PI / 8.0).tan(), ONE));
-    let z = F::sel(far, fine_ratio(t - one, t + one), t).named("z");
+    let z = F::sel(far, fixed_ratio(t - one, t + one, BITS), t).named("z");
     let z2 = mul(z, z, ONE);
-    let coeffs: Vec<f64> = (0..10)
-        .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
-        .collect();
-    let r = mul(z, poly(z2, &coeffs, ONE), ONE).named("r");
+    let r = mul(z, poly(z2, &atan_series(), ONE), ONE).named("r");
     // Radians to half turns, then the octant's offsets (exact integers).
     let h = (r * F::c((1.0 / PI) as f32)).round();
     let h = F::sel(far, h + units(0.25, ONE), h);

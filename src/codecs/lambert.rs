@@ -3,8 +3,10 @@
 //! own erratum); this one normalizes first.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical_or_z, decided, fixed_length2, float_of, one_if, one_plus_z, root, fixed_root};
-use super::fixed_decode::{search_doc, ONE, fixed, fixed_target, nearest_decoded, odd_square_quarter};
+use super::exact::{OnePlusZ, decided, fixed_root, float_of, one_if};
+use super::fixed_decode::{
+    BITS, ONE, fixed, fixed_target, nearest_decoded, odd_square_quarter, search_doc,
+};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use super::family::{Family, Info, Sizes};
@@ -32,7 +34,7 @@ impl Family for LambertFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(search_doc)
+        (name == "encode_codes").then(|| search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Lambert { bits: spec.bits() })
@@ -60,16 +62,15 @@ fn pole<F: Float>(m: f32) -> V2<F> {
 }
 
 impl Lambert {
-    /// The codes of the canonical `w` (length `l`, `1 + z` as `a / b` with `a > 0`) at
-    /// boundaries `c + offset`: `½` rounds to the nearest code, `1` floors.
-    fn codes<F: Float>(&self, w: V3<F>, l: F, a: F, b: F, offset: f32) -> V2<F> {
+    /// The codes of `p` (not -Z) at boundaries `c + offset`: `½` rounds to the nearest code, `1` floors.
+    fn codes<F: Float>(&self, p: &OnePlusZ<F>, offset: f32) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
-        let la = (l * a).named("la");
-        let g = (la / b).sqrt() * F::c(8f32.sqrt() / m);
+        let la = (p.l * p.a).named("la");
+        let g = (la / p.b).sqrt() * F::c(8f32.sqrt() / m);
         let m2 = F::c((f64::from(m) * f64::from(m) / 8.0) as f32);
-        w.xy().map(|x| {
-            let big2 = (x * x * b * m2).named("big2");
+        p.w.xy().map(|x| {
+            let big2 = (x * x * p.b * m2).named("big2");
             let estimate = (x / g + F::c(m * 0.5)).round();
             decided(q, estimate, |c| {
                 let h = c - F::c(m * 0.5 - offset);
@@ -121,16 +122,14 @@ impl Codec for Lambert {
     /// ULP, and `1 + z` does not cancel near -Z). -Z, which the projection maps onto the
     /// whole rim, encodes as (1, 0.5).
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let (w, ok) = canonical_or_z(v);
-        let l = root(fixed_length2(w));
-        let (a, b) = one_plus_z(w, l);
-        let g = ((l * a / b) * F::c(8.0)).sqrt().named("g");
-        let enc = w.xy() / g + F::c(0.5);
-        let enc = V2::sel_all(a.gt(F::c(0.0)), enc, V2::new(F::c(1.0), F::c(0.5)));
-        V2::sel_all(ok, enc, V2::splat(F::c(0.5)))
+        let p = OnePlusZ::of(v);
+        let g = ((p.l * p.a / p.b) * F::c(8.0)).sqrt().named("g");
+        let enc = p.w.xy() / g + F::c(0.5);
+        let enc = V2::sel_all(p.at_pole(), V2::new(F::c(1.0), F::c(0.5)), enc);
+        V2::sel_all(p.ok, enc, V2::splat(F::c(0.5)))
     }
     /// `x / sqrt(8(1 + z))` of the canonical input is `w.x / sqrt(8·l·a / b)`
-    /// ([`one_plus_z`], `l` the length from [`root`]), so the code boundary `c + ½` is
+    /// ([`crate::codecs::exact::one_plus_z`], `l` the length from [`crate::codecs::exact::root`]), so the code boundary `c + ½` is
     /// passed where `w.x·M ≥ h·sqrt(8·l·a / b)` (`h = c + ½ - M/2`, an integer): decided
     /// by the signs of `w.x` and `h` and, where they agree, by `(w.x²·b)·(M²/8)` against
     /// `h²·(l·a)`, products of exact or deterministic values meeting in a comparison
@@ -139,12 +138,9 @@ impl Codec for Lambert {
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let m = self.quants()[0].max_code();
-        let (w, ok) = canonical_or_z(v);
-        let l = root(fixed_length2(w));
-        let (a, b) = one_plus_z(w, l);
-        let codes = self.codes(w, l, a, b, 0.5);
-        let codes = V2::sel_all(a.gt(F::c(0.0)), codes, pole(m));
-        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
+        let p = OnePlusZ::of(v);
+        let codes = V2::sel_all(p.at_pole(), pole(m), self.codes(&p, 0.5));
+        V2::sel_all(p.ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
     /// The nearest of the four codes around the exact parameters (floors decided like
     /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`) by the squared distance
@@ -154,17 +150,14 @@ impl Codec for Lambert {
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
-        let (w, ok) = canonical_or_z(v);
-        let l = root(fixed_length2(w));
-        let (a, b) = one_plus_z(w, l);
+        let p = OnePlusZ::of(v);
         // -Z has no parameters to search around; it searches around +Z, then is replaced.
-        let at_pole = a.le(F::c(0.0));
-        let w = V3::sel_all(at_pole, V3::new(F::c(0.0), F::c(0.0), F::c(2.0)), w);
-        let [l, a, b] = [(l, 2.0), (a, 4.0), (b, 1.0)].map(|(x, z)| F::sel(at_pole, F::c(z), x));
-        let base = self.codes(w, l, a, b, 1.0).named("base");
-        let best = nearest_decoded(q, base, fixed_target(w, l), |c| self.fixed_direction(c));
-        let codes = V2::sel_all(at_pole, pole(m), best);
-        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
+        let s = p.off_pole();
+        let base = self.codes(&s, 1.0).named("base");
+        let target = fixed_target(s.w, s.l, BITS);
+        let best = nearest_decoded(q, base, target, |c| self.fixed_direction(c));
+        let codes = V2::sel_all(p.at_pole(), pole(m), best);
+        V2::sel_all(p.ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
     /// Codes outside the disk (the square's corners) decode as -Z; every decode is unit
     /// length up to rounding.

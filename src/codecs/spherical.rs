@@ -4,8 +4,8 @@
 //! conditioned near the poles, where acos loses half its digits.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical_or_z, fine_ratio, fixed_length2, fixed_length2_xy, root, root_of};
-use super::fixed_decode::{nearest_decoded, search_doc};
+use super::exact::{canonical_or_z, fixed_length2, fixed_length2_xy, root, root_of};
+use super::fixed_decode::{fixed_target, nearest_decoded, search_doc};
 use super::fixed_trig::{self, FINE, ONE};
 use super::quant::{Quant, Quants};
 use super::trig::{atan2_pi, sincos_pi};
@@ -35,7 +35,7 @@ impl Family for SphericalFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(search_doc)
+        (name == "encode_codes").then(|| search_doc(fixed_trig::BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Spherical { bits: spec.bits() })
@@ -84,7 +84,7 @@ impl Codec for Spherical {
     /// each code then one product rounded. Zero, NaN and infinite input give +Z's codes.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let (theta, phi) = self.fixed_angles(v);
+        let (theta, phi) = fixed_angles(canonical_or_z(v).0);
         let k = F::c((f64::from(self.quants()[0].max_code()) / ONE) as f32);
         V2::new(theta, phi).map(|a| (a * k).round())
     }
@@ -97,12 +97,11 @@ impl Codec for Spherical {
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
-        let (theta, phi) = self.fixed_angles(v);
+        let (w, _) = canonical_or_z(v);
+        let (theta, phi) = fixed_angles(w);
         let k = F::c((f64::from(m) / ONE) as f32);
         let base = V2::new(theta, phi).map(|a| (a * k).floor()).named("base");
-        let (w, _) = canonical_or_z(v);
-        let l = root(fixed_length2(w));
-        let target = w.map(|x| fine_ratio(x, l)).named("aim");
+        let target = fixed_target(w, root(fixed_length2(w)), fixed_trig::BITS);
         nearest_decoded(q, base, target, |c| {
             let theta = (c.x + F::c(m)) * F::c((FINE * 0.5 / f64::from(m)) as f32);
             let phi = c.y * F::c((FINE / f64::from(m)) as f32);
@@ -119,16 +118,15 @@ impl Codec for Spherical {
     }
 }
 
-impl Spherical {
-    /// `(2θ - 1, φ)` in units of `2^-23` half turns, decided in fixed point.
-    fn fixed_angles<F: Float>(&self, v: V3<F>) -> (F, F) {
-        let (w, _) = canonical_or_z(v);
-        let rho2 = fixed_length2_xy(w);
-        let rho = root_of(rho2.at_least(F::c(1.0e-30)));
-        let rho = F::sel(rho2.gt(F::c(0.0)), rho, F::c(0.0)).named("rho");
-        let theta = fixed_trig::atan2_pi(rho, w.z);
-        let phi = fixed_trig::atan2_pi(w.y, w.x);
-        let theta = (theta * F::c(2.0) - F::c(ONE as f32)).named("theta");
-        (theta, phi.named("phi"))
-    }
+/// `(2θ - 1, φ)` of a canonical `w` in units of `2^-23` half turns, decided in fixed
+/// point.
+fn fixed_angles<F: Float>(w: V3<F>) -> (F, F) {
+    let rho2 = fixed_length2_xy(w);
+    let has_rho = rho2.gt(F::c(0.0));
+    // Any positive stand-in for zero: its root is discarded.
+    let rho = F::sel(has_rho, root_of(F::sel(has_rho, rho2, F::c(1.0))), F::c(0.0));
+    let theta = fixed_trig::atan2_pi(rho.named("rho"), w.z);
+    let phi = fixed_trig::atan2_pi(w.y, w.x);
+    let theta = (theta * F::c(2.0) - F::c(ONE as f32)).named("theta");
+    (theta, phi.named("phi"))
 }

@@ -5,8 +5,8 @@
 //! square's edge, so this codec is lossy there by design.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical_or_z, decided, fixed_length2, fixed_ratio, float_of, one_if, one_plus_z, root};
-use super::fixed_decode::{search_doc, fixed_target, nearest_decoded, odd_square_quarter};
+use super::exact::{OnePlusZ, decided, fixed_ratio, float_of, one_if};
+use super::fixed_decode::{BITS, fixed_target, nearest_decoded, odd_square_quarter, search_doc};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 use super::family::{Family, Info, OptDesc, OptKind, OptVal, Sizes};
@@ -47,7 +47,7 @@ impl Family for StereoScaledFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(search_doc)
+        (name == "encode_codes").then(|| search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(
@@ -87,19 +87,18 @@ pub struct StereoScaled {
 pub const DEFAULT_SCALE: f32 = 1.7777;
 
 impl StereoScaled {
-    /// The codes of the canonical `w` (`1 + z` as `a / b` with `a > 0`, see
-    /// [`Codec::round_codes`]) at boundaries `c + offset`: `½` rounds to the nearest code,
+    /// The codes of `p` (not -Z; see [`Codec::round_codes`]) at boundaries `c + offset`: `½` rounds to the nearest code,
     /// `1` floors.
-    fn codes<F: Float>(&self, w: V3<F>, a: F, b: F, offset: f32) -> V2<F> {
+    fn codes<F: Float>(&self, p: &OnePlusZ<F>, offset: f32) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
         let k = F::c((f64::from(m) * 0.5 / f64::from(self.scale)) as f32);
-        w.xy().map(|x| {
+        p.w.xy().map(|x| {
             // The literal last: drivers move a literal factor outwards (NIR's
             // constant reassociation), which would regroup `x·K·b`.
-            let t = (x * b * k).named("t");
-            let estimate = (t / a + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| one_if(t.ge((c - F::c(m * 0.5 - offset)) * a)))
+            let t = (x * p.b * k).named("t");
+            let estimate = (t / p.a + F::c(m * 0.5)).round();
+            decided(q, estimate, |c| one_if(t.ge((c - F::c(m * 0.5 - offset)) * p.a)))
         })
     }
 
@@ -116,7 +115,7 @@ impl StereoScaled {
         let den = (quarter + F::c((k * k * 0.25 + 0.5) as f32)).named("den");
         let z = F::c((k * k * 0.25 - 0.5) as f32) - quarter;
         let xy = t * F::c((k * 0.5) as f32);
-        V3::from_xy(xy, z).map(|n| fixed_ratio(n, den))
+        V3::from_xy(xy, z).map(|n| fixed_ratio(n, den, BITS))
     }
 }
 
@@ -133,17 +132,16 @@ impl Codec for StereoScaled {
     /// `1 + z` as [`Codec::round_codes`] (so the float form and the packed code agree to a
     /// few ULP, and `1 + z` does not cancel near -Z), clamped to the square.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let (w, ok) = canonical_or_z(v);
-        let (a, b) = one_plus_z(w, root(fixed_length2(w)));
+        let p = OnePlusZ::of(v);
         // `/ scale * 0.5` as one literal: drivers fold literal multiply chains anyway.
-        let enc = (w.xy() * b / a * F::c(0.5 / self.scale) + F::c(0.5)).named("enc");
+        let enc = (p.w.xy() * p.b / p.a * F::c(0.5 / self.scale) + F::c(0.5)).named("enc");
         // Clamp to the square (NaN from the pole, where a = 0, goes to 0).
         let q = self.quants();
         let enc = enc.map(|x| q[0].clamp(x));
-        V2::sel_all(ok, enc, V2::splat(F::c(0.5)))
+        V2::sel_all(p.ok, enc, V2::splat(F::c(0.5)))
     }
-    /// `x / (1 + z)` of the canonical input is `w.x·b / a` ([`one_plus_z`], with the
-    /// length from [`root`]), so the code boundary `c + ½` is passed where
+    /// `x / (1 + z)` of the canonical input is `w.x·b / a` ([`crate::codecs::exact::one_plus_z`], with the
+    /// length from [`crate::codecs::exact::root`]), so the code boundary `c + ½` is passed where
     /// `(w.x·b)·K ≥ (c + ½ - M/2)·a` (`K = M·0.5/scale`; `c + ½ - M/2` is an integer):
     /// two products of exact or deterministic values meeting in a comparison, decided
     /// portably ([`crate::codecs::exact`]). -Z, the projection's pole, encodes as code
@@ -151,11 +149,9 @@ impl Codec for StereoScaled {
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let m = self.quants()[0].max_code();
-        let (w, ok) = canonical_or_z(v);
-        let (a, b) = one_plus_z(w, root(fixed_length2(w)));
-        let codes = self.codes(w, a, b, 0.5);
-        let codes = V2::sel_all(a.gt(F::c(0.0)), codes, V2::splat(F::c(0.0)));
-        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
+        let p = OnePlusZ::of(v);
+        let codes = V2::sel_all(p.at_pole(), V2::splat(F::c(0.0)), self.codes(&p, 0.5));
+        V2::sel_all(p.ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
     /// The nearest of the four codes around the exact parameters (floors decided like
     /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`) by the squared distance
@@ -165,17 +161,14 @@ impl Codec for StereoScaled {
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
-        let (w, ok) = canonical_or_z(v);
-        let l = root(fixed_length2(w));
-        let (a, b) = one_plus_z(w, l);
+        let p = OnePlusZ::of(v);
         // -Z has no parameters to search around; it searches around +Z, then is replaced.
-        let at_pole = a.le(F::c(0.0));
-        let w = V3::sel_all(at_pole, V3::new(F::c(0.0), F::c(0.0), F::c(2.0)), w);
-        let [l, a, b] = [(l, 2.0), (a, 4.0), (b, 1.0)].map(|(x, z)| F::sel(at_pole, F::c(z), x));
-        let base = self.codes(w, a, b, 1.0).named("base");
-        let best = nearest_decoded(q, base, fixed_target(w, l), |c| self.fixed_direction(c));
-        let codes = V2::sel_all(at_pole, V2::splat(F::c(0.0)), best);
-        V2::sel_all(ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
+        let s = p.off_pole();
+        let base = self.codes(&s, 1.0).named("base");
+        let target = fixed_target(s.w, s.l, BITS);
+        let best = nearest_decoded(q, base, target, |c| self.fixed_direction(c));
+        let codes = V2::sel_all(p.at_pole(), V2::splat(F::c(0.0)), best);
+        V2::sel_all(p.ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
     /// The seed's `g = 2 / dot(nn, nn)` divides a literal, which drivers turn into a
     /// multiply by an approximate reciprocal; `(p + p) / d` and `(1 - q) / d` are the same

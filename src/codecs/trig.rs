@@ -22,13 +22,18 @@ fn horner<F: Float>(z: F, coeffs: &[f64]) -> F {
     acc
 }
 
-/// atan(z) for |z| ≤ tan(π/8), by its Taylor series through z^19 (truncation < 3·10⁻⁹).
-fn atan_small<F: Float>(z: F) -> F {
-    let coeffs: Vec<f64> = (0..10)
+/// The coefficients of atan(z)/z in z², through z^19: for |z| ≤ tan(π/8) the series'
+/// truncation is below 3·10⁻⁹. Shared with [`super::fixed_trig`].
+pub fn atan_series() -> Vec<f64> {
+    (0..10)
         .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
-        .collect();
+        .collect()
+}
+
+/// atan(z) for |z| ≤ tan(π/8), by [`atan_series`].
+fn atan_small<F: Float>(z: F) -> F {
     let z2 = (z * z).named("z2");
-    z * horner(z2, &coeffs)
+    z * horner(z2, &atan_series())
 }
 
 /// atan2(y, x) / π in [-1, 1]. Signed zeros count as positive (`atan2_pi(+0, -0) = 0`,

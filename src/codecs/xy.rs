@@ -6,7 +6,7 @@ use super::exact::{
     canonical, canonical_or_z, fixed_root, float_of, floor_ratio, fixed_length2, length2, root,
     snorm_sqrt_ratio,
 };
-use super::fixed_decode::{search_doc, ONE, fixed, fixed_target, nearest_decoded};
+use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use super::quant::{Quant, Quants};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use super::family::{Family, Info, Sizes};
@@ -34,7 +34,7 @@ impl Family for XyFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(search_doc)
+        (name == "encode_codes").then(|| search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Xy { bits: spec.bits() })
@@ -97,7 +97,7 @@ impl Codec for Xy {
         let (h, up) = canonical_or_z(above_horizon(w));
         let l = root(fixed_length2(h));
         let base = h.xy().map(|x| floor_ratio(q, x, l)).named("base");
-        let best = nearest_decoded(q, base, fixed_target(h, l), |c| self.fixed_direction(c));
+        let best = nearest_decoded(q, base, fixed_target(h, l, BITS), |c| self.fixed_direction(c));
         V2::sel_all(ok.and(up), best, V2::splat(F::c(0.0)))
     }
 }

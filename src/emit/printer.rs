@@ -379,6 +379,29 @@ pub fn print(lang: &dyn Backend, f: &Func, fn_name: &dyn Fn(&str) -> String) -> 
 mod tests {
     use super::*;
 
+    /// A value named after a reserved word is printed under another name.
+    #[test]
+    fn reserved_words_are_never_declared() {
+        use crate::emit::lang::wgsl::Wgsl;
+        use crate::model::trace::{Tf, define, trace_module};
+        use crate::model::{Float, Lane};
+        let module = trace_module(|| {
+            define("f", &["x"], |x: Tf| {
+                ((x + Tf::c(1.0)).named("target") * x).named("filter")
+            })
+        });
+        let p = print(&Wgsl, &module.funcs[0], &|n: &str| n.to_string());
+        let body = p.body.join("\n");
+        assert!(
+            body.contains("let target2 = ") && body.contains("let filter2 = "),
+            "{body}"
+        );
+        assert!(
+            !body.contains("let target =") && !body.contains("let filter ="),
+            "{body}"
+        );
+    }
+
     /// Every literal reads back as the same f32, directly and through f64, in every language.
     #[test]
     fn literals_round_trip_exactly() {
