@@ -5,6 +5,7 @@ pub mod atomic;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod codecs;
+pub mod decode_bound;
 pub mod doc_tables;
 pub mod emit;
 pub mod generator;

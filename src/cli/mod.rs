@@ -232,7 +232,7 @@ pub fn run(cli: Cli) -> Result<i32> {
                     &crate::portability::Options::default(),
                 );
                 output::print(&if json { report.json() } else { report.table() })?;
-                return Ok(if report.packed_encoders_portable() {
+                return Ok(if report.guarantees_hold() {
                     0
                 } else {
                     1

@@ -93,6 +93,11 @@ pub trait Codec: Send + Sync {
         let p = dequantize(&self.quants(), codes).named_p("params");
         F::call("decode_float", p, |p| self.direction(p))
     }
+    /// A bit field that holds bits of more than one parameter, so that a range of it is
+    /// no range of either: [`crate::decode_bound`] then takes its values one at a time.
+    fn whole_field(&self) -> Option<usize> {
+        None
+    }
     /// Whether [`Codec::round_codes`] decides every code with [`crate::codecs::exact`], so
     /// that the fast packed encoder returns the same code under every deviation class the
     /// portability guarantee covers (tests/portability.rs holds each codec to its word

@@ -2,11 +2,12 @@
 //! the GPU output is compared against), the same generic function evaluated by the
 //! adversarial [`Dev`] (what `crate::portability` measures), and the inputs it is verified on.
 
-use super::codec::{Codec, dequantize, pack, unpack};
+use super::codec::{Codec, Params, dequantize, pack, unpack};
 use super::quant::Quant;
 use super::spec::Spec;
 use crate::model::Float;
 use crate::model::deviant::{Dev, DevU};
+use crate::model::enclosure::{Encl, EnclU};
 use crate::model::trace::{Module, Tf, define, trace_module};
 use crate::model::{V2, V3};
 use std::sync::Arc;
@@ -114,6 +115,19 @@ pub struct Function {
     /// The same generic function evaluated with [`Dev`], which deviates as the
     /// thread's [`crate::model::deviant::with`] says (and equals `eval` when nothing is set).
     pub eval_dev: Eval,
+    /// For a decoder: the same generic function evaluated with [`Encl`] over a box of
+    /// codes, which [`crate::decode_bound`] refines into a proven deviation bound.
+    pub enclose: Option<Enclose>,
+}
+
+/// A decoder over boxes of codes, for [`crate::decode_bound`].
+#[derive(Clone)]
+pub struct Enclose {
+    /// One inclusive range per field (signed codes for the float form, raw bit fields for
+    /// the packed form) → an enclosure per output lane.
+    pub eval: Arc<dyn Fn(&[(i64, i64)]) -> Vec<Encl> + Send + Sync>,
+    /// A field the boxes take one value of at a time ([`Codec::whole_field`]).
+    pub whole_field: Option<usize>,
 }
 
 /// A [`Function`] from its `f32` and [`Dev`] instantiations of one generic function
@@ -134,6 +148,7 @@ pub fn function<A: Bits + 'static, R: Bits + 'static, AD: Bits + 'static, RD: Bi
         out_words: R::WORDS,
         eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
         eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
+        enclose: None,
     }
 }
 
@@ -186,7 +201,23 @@ where
     let q = c.quants();
     let precise = spec.precise();
     let module = trace_module(|| trace_codec(&c, precise));
-    let functions = vec![
+    let fetch_box = {
+        let c = c.clone();
+        move |r: &[(i64, i64)]| {
+            let p = C::P::<Encl>::build(|i| fetched_range(q[i], r[i]));
+            c.direction(p).to_array().to_vec()
+        }
+    };
+    let field_box = {
+        let c = c.clone();
+        move |r: &[(i64, i64)]| {
+            let codes = C::P::<Encl>::build(|i| {
+                q[i].from_field(EnclU::range(r[i].0 as u64, r[i].1 as u64))
+            });
+            c.decode_codes(codes).to_array().to_vec()
+        }
+    };
+    let mut functions = vec![
         generic_function!(
             "decode_float",
             Role::DecodeFloat,
@@ -212,6 +243,15 @@ where
             <F> [c] |v: V3<F>| encode_packed(&c, precise, v)
         ),
     ];
+    let whole_field = c.whole_field();
+    functions[0].enclose = Some(Enclose {
+        eval: Arc::new(fetch_box),
+        whole_field,
+    });
+    functions[1].enclose = Some(Enclose {
+        eval: Arc::new(field_box),
+        whole_field,
+    });
     Emitted {
         module,
         functions,
@@ -222,6 +262,15 @@ where
             C::EXACT_ROUNDING
         },
     }
+}
+
+/// The values a texture fetch returns for the codes `c0..=c1` (`c/M` correctly rounded,
+/// snorm at least -1): monotone in `c`, so the bounds are the ends'. Every nonzero one is
+/// at least `1/M`, so all are multiples of the f32 spacing at `1/M`.
+fn fetched_range(q: Quant, (c0, c1): (i64, i64)) -> Encl {
+    let m = q.max_code();
+    let at = |c: i64| f64::from(crate::codecs::inputs::fetched(q, c as f32));
+    Encl::range(at(c0), at(c1), crate::model::enclosure::ulp(f64::from(1.0 / m)))
 }
 
 /// The packed decoder: unpack, then [`Codec::decode_codes`].

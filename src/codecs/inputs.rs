@@ -79,7 +79,7 @@ fn codes(q: &[Quant], words: usize) -> Vec<u32> {
 }
 
 /// The value a texture fetch returns for code `c`: `c/M`, correctly rounded, clamped at -1.
-fn fetched(q: Quant, c: f32) -> f32 {
+pub(crate) fn fetched(q: Quant, c: f32) -> f32 {
     (c / q.max_code()).max(-1.0)
 }
 

@@ -213,6 +213,10 @@ impl Codec for Oct24Rgb8 {
         let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
         F::call("oct24_decode_float", e, oct_direction)
     }
+    /// The middle byte holds the low bits of one parameter and the high bits of the other.
+    fn whole_field(&self) -> Option<usize> {
+        Some(1)
+    }
     /// The bytes are already integers: unpacking them with the float-only form directly
     /// skips a `c·(1/255)·255` round trip (which drivers would fold across the call).
     fn decode_codes<F: Float>(&self, b: V3<F>) -> V3<F> {

@@ -3,6 +3,7 @@
 //! runs a codec the way a conformant GPU may.
 
 pub mod deviant;
+pub mod enclosure;
 pub mod num;
 pub mod trace;
 pub mod vec;

@@ -1,0 +1,185 @@
+//! Proven bounds on how far a decoder's output can move on a conformant implementation.
+//!
+//! `verify --portable` samples deviations one class at a time; this proves a bound for
+//! all guaranteed classes at once (`div`, `sqrt`, `fma`, `denorm`, `zero`, see
+//! [`crate::model::enclosure`]) over *every* code. The decoder runs on [`Encl`] over boxes
+//! of codes; each box yields an enclosure of every reference output and every deviation
+//! within it. The boxes are refined where the bound is largest (branch and bound) until the
+//! largest box bound, rounded up to whole units of `2^-24`, is what a single code already
+//! reaches, or an evaluation budget is spent: either way the stated bound covers every box,
+//! so every code.
+
+use crate::codecs::functions::{Enclose, Function, Role};
+use crate::codecs::quant::Quant;
+use crate::codecs::{Spec, functions::Inputs};
+use crate::model::enclosure::Encl;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// The unit bounds are stated in: the f32 ULP of values in `[0.5, 1)`.
+pub const UNIT: f64 = 1.0 / 16_777_216.0;
+
+/// Box evaluations allowed per function before the bound is stated as it stands.
+const BUDGET: usize = 600_000;
+
+/// A proven bound: every output component of every code is within `units · 2^-24` of
+/// the reference on every implementation the guaranteed classes allow.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bound {
+    pub units: f64,
+    /// The largest bound of a single code evaluated on the way: how tight `units` is.
+    pub single_code: f64,
+    pub evaluations: usize,
+    /// The box of codes (one inclusive range per field) whose bound is the stated one.
+    pub at: Vec<(i64, i64)>,
+}
+
+struct Boxed {
+    dev: f64,
+    r: Vec<(i64, i64)>,
+}
+impl PartialEq for Boxed {
+    fn eq(&self, o: &Self) -> bool {
+        self.dev.total_cmp(&o.dev) == Ordering::Equal
+    }
+}
+impl Eq for Boxed {}
+impl PartialOrd for Boxed {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Boxed {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.dev.total_cmp(&o.dev)
+    }
+}
+
+fn deviation(out: &[Encl]) -> f64 {
+    out.iter().map(|e| e.deviation()).fold(0.0, f64::max)
+}
+
+fn single(r: &[(i64, i64)]) -> bool {
+    r.iter().all(|&(a, b)| a == b)
+}
+
+/// Halves `r` along side `k`.
+fn split(r: &[(i64, i64)], k: usize) -> [Vec<(i64, i64)>; 2] {
+    let (a, b) = r[k];
+    let mid = a + (b - a) / 2;
+    let mut lo = r.to_vec();
+    let mut hi = r.to_vec();
+    lo[k].1 = mid;
+    hi[k].0 = mid + 1;
+    [lo, hi]
+}
+
+/// Divides `r` into about `n` boxes per side.
+fn grid(r: &[(i64, i64)], n: i64) -> Vec<Vec<(i64, i64)>> {
+    let mut out = vec![vec![]];
+    for &(a, b) in r {
+        let step = ((b - a + 1) + n - 1) / n;
+        let parts: Vec<(i64, i64)> = (0..n)
+            .map(|k| (a + k * step, (a + (k + 1) * step - 1).min(b)))
+            .filter(|p| p.0 <= p.1)
+            .collect();
+        out = out
+            .into_iter()
+            .flat_map(|prefix| {
+                parts.iter().map(move |&p| {
+                    let mut v = prefix.clone();
+                    v.push(p);
+                    v
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+/// Proves a bound for `f` over every code in `ranges`.
+pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
+    let evaluations = std::cell::Cell::new(0);
+    let eval = |r: &[(i64, i64)]| {
+        evaluations.set(evaluations.get() + 1);
+        deviation(&(f.eval)(r))
+    };
+    let per_side = match ranges.len() {
+        1 => 4096,
+        2 => 64,
+        _ => 16,
+    };
+    let mut heap = BinaryHeap::new();
+    let mut best_single = 0f64;
+    let mut boxes = grid(ranges, per_side);
+    if let Some(k) = f.whole_field {
+        boxes = boxes
+            .into_iter()
+            .flat_map(|r| (r[k].0..=r[k].1).map(move |v| {
+                let mut one = r.clone();
+                one[k] = (v, v);
+                one
+            }))
+            .collect();
+    }
+    for r in boxes {
+        let centre: Vec<(i64, i64)> = r.iter().map(|&(a, b)| (a + (b - a) / 2, a + (b - a) / 2)).collect();
+        best_single = best_single.max(eval(&centre));
+        let dev = eval(&r);
+        heap.push(Boxed { dev, r });
+    }
+    let units = |d: f64| (d / UNIT).ceil();
+    loop {
+        let top = heap.pop().expect("boxes remain");
+        if single(&top.r) {
+            best_single = best_single.max(top.dev);
+        }
+        if single(&top.r) || units(top.dev) <= units(best_single) || evaluations.get() >= BUDGET {
+            return Bound {
+                units: units(top.dev),
+                single_code: best_single / UNIT,
+                evaluations: evaluations.get(),
+                at: top.r,
+            };
+        }
+        // Halve the side whose halves bound lowest: fields do not matter equally (a
+        // bit field may carry the high bits of one parameter and the low bits of another).
+        let halves = (0..top.r.len())
+            .filter(|&k| top.r[k].0 < top.r[k].1)
+            .map(|k| split(&top.r, k).map(|r| Boxed { dev: eval(&r), r }))
+            .min_by(|a, b| a[0].dev.max(a[1].dev).total_cmp(&b[0].dev.max(b[1].dev)))
+            .expect("a box of more than one code has a side to halve");
+        for b in halves {
+            if single(&b.r) {
+                best_single = best_single.max(b.dev);
+            }
+            heap.push(b);
+        }
+    }
+}
+
+/// The codes a decoder function takes, one range per field.
+fn code_ranges(f: &Function) -> Option<Vec<(i64, i64)>> {
+    let q = match (&f.inputs, f.role) {
+        (Inputs::FloatCodes(q), Role::DecodeFloat) => {
+            return Some(q.iter().map(|q| (q.min_code() as i64, q.max_code() as i64)).collect());
+        }
+        (Inputs::Codes(q), Role::Decode) => q,
+        _ => return None,
+    };
+    Some(q.iter().map(|q: &Quant| (0, i64::from(q.mask()))).collect())
+}
+
+/// The proven bound of a decoder function (`None` for other functions).
+pub fn of(f: &Function) -> Option<Bound> {
+    Some(prove(&code_ranges(f)?, f.enclose.as_ref()?))
+}
+
+/// Bounds of both decoders of `spec`, by function name.
+pub fn of_spec(spec: &Spec) -> Vec<(&'static str, Bound)> {
+    spec.emitted()
+        .functions
+        .iter()
+        .filter_map(|f| Some((f.name, of(f)?)))
+        .collect()
+}
