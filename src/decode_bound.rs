@@ -115,15 +115,20 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
     if let Some(k) = f.whole_field {
         boxes = boxes
             .into_iter()
-            .flat_map(|r| (r[k].0..=r[k].1).map(move |v| {
-                let mut one = r.clone();
-                one[k] = (v, v);
-                one
-            }))
+            .flat_map(|r| {
+                (r[k].0..=r[k].1).map(move |v| {
+                    let mut one = r.clone();
+                    one[k] = (v, v);
+                    one
+                })
+            })
             .collect();
     }
     for r in boxes {
-        let centre: Vec<(i64, i64)> = r.iter().map(|&(a, b)| (a + (b - a) / 2, a + (b - a) / 2)).collect();
+        let centre: Vec<(i64, i64)> = r
+            .iter()
+            .map(|&(a, b)| (a + (b - a) / 2, a + (b - a) / 2))
+            .collect();
         best_single = best_single.max(eval(&centre));
         let dev = eval(&r);
         heap.push(Boxed { dev, r });
@@ -162,7 +167,11 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
 fn code_ranges(f: &Function) -> Option<Vec<(i64, i64)>> {
     let q = match (&f.inputs, f.role) {
         (Inputs::FloatCodes(q), Role::DecodeFloat) => {
-            return Some(q.iter().map(|q| (q.min_code() as i64, q.max_code() as i64)).collect());
+            return Some(
+                q.iter()
+                    .map(|q| (q.min_code() as i64, q.max_code() as i64))
+                    .collect(),
+            );
         }
         (Inputs::Codes(q), Role::Decode) => q,
         _ => return None,
@@ -173,6 +182,23 @@ fn code_ranges(f: &Function) -> Option<Vec<(i64, i64)>> {
 /// The proven bound of a decoder function (`None` for other functions).
 pub fn of(f: &Function) -> Option<Bound> {
     Some(prove(&code_ranges(f)?, f.enclose.as_ref()?))
+}
+
+/// [`of`], computed once per process for each spec and function (the doc comments of
+/// every include state it).
+pub fn cached(spec: &Spec, f: &Function) -> Option<Bound> {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    type Cache = HashMap<(String, &'static str), Option<Bound>>;
+    static CACHE: OnceLock<Mutex<Cache>> = OnceLock::new();
+    let key = (spec.id(), f.name);
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(b) = cache.lock().expect("bound cache").get(&key) {
+        return b.clone();
+    }
+    let b = of(f);
+    cache.lock().expect("bound cache").insert(key, b.clone());
+    b
 }
 
 /// Bounds of both decoders of `spec`, by function name.

@@ -80,6 +80,39 @@ pub fn error_table(samples: usize) -> String {
     s
 }
 
+/// The proven bound of every decoder ([`crate::decode_bound`]).
+pub fn bound_table() -> String {
+    let mut s = String::from(
+        "How far each decoder's output can move on a conformant implementation that takes \
+         every latitude the guaranteed classes allow at once (`div`, `sqrt`, `fma`, \
+         `denorm`, `zero`): the largest `|deviant − reference|` of an output component over \
+         every code, in units of 2^-24, proven by interval evaluation.\n\n\
+         | spec | `decode` | `decode_float` |\n|---|---|---|\n",
+    );
+    for spec in Spec::all()
+        .into_iter()
+        .filter(|s| s.info().domain.is_some())
+    {
+        let e = spec.emitted();
+        let cell = |name: &str| {
+            e.functions
+                .iter()
+                .find(|f| f.name == name)
+                .and_then(|f| crate::decode_bound::cached(&spec, f))
+                .map_or("—".to_string(), |b| {
+                    format!("{} ({:.1e})", b.units, b.units * crate::decode_bound::UNIT)
+                })
+        };
+        s.push_str(&format!(
+            "| `{}` | {} | {} |\n",
+            spec.id(),
+            cell("decode"),
+            cell("decode_float")
+        ));
+    }
+    s
+}
+
 /// `text` with the block called `name` replaced by `body`; `None` without its markers.
 pub fn replace_block(text: &str, name: &str, body: &str) -> Option<String> {
     let (begin, end) = markers(name);

@@ -6,8 +6,9 @@
 //! every operation correctly; this module asks what changes on one that uses every liberty
 //! the APIs allow. A packed encoder ([`Role::Encode`]) must not change under any class:
 //! its code is data that another implementation decodes. Float outputs report their
-//! largest deviation in ULP, the bound their doc comments can state. It needs no GPU, so
-//! it builds without the `verify` feature.
+//! largest deviation in ULP; decoders also their largest absolute deviation, which must
+//! stay within the bound [`crate::decode_bound`] proves and their doc comments state. It
+//! needs no GPU, so it builds without the `verify` feature.
 //!
 //! ```no_run
 //! use unitpack::model::deviant::Class;
@@ -214,7 +215,11 @@ fn measure(
                                 *m = d.fold(*m, u64::max);
                             }
                             if let Some(m) = &mut max_dev {
-                                *m = r.iter().zip(&out).map(|(&a, &b)| abs_units(a, b)).fold(*m, f64::max);
+                                *m = r
+                                    .iter()
+                                    .zip(&out)
+                                    .map(|(&a, &b)| abs_units(a, b))
+                                    .fold(*m, f64::max);
                             }
                             example.get_or_insert_with(|| Example {
                                 mode,
@@ -301,7 +306,10 @@ fn json_words(w: &[u32]) -> String {
 impl PortabilityReport {
     /// True when no packed encoder changed its code under any guaranteed class and mode.
     pub fn packed_encoders_portable(&self) -> bool {
-        !self.rows.iter().any(|r| r.role == Role::Encode && r.fails())
+        !self
+            .rows
+            .iter()
+            .any(|r| r.role == Role::Encode && r.fails())
     }
     /// True when, besides, every decoder stayed within its proven bound: what `verify
     /// --portable` exits 0 on.
@@ -325,7 +333,7 @@ impl PortabilityReport {
         for c in &self.classes {
             let _ = write!(t, " {:>12}", c.name());
         }
-        let _ = write!(t, "  {}", "proven (2^-24)");
+        t.push_str("  proven (2^-24)");
         t.push('\n');
         for group in self.rows.chunks(self.classes.len().max(1)) {
             let r = &group[0];

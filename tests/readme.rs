@@ -1,7 +1,9 @@
 //! The README's tables are written by the tool: this test fails when they are stale, and
 //! rewrites them when run with `UPDATE_README=1`.
 
-use unitpack::doc_tables::{README_SAMPLES, catalogue_table, error_table, replace_block};
+use unitpack::doc_tables::{
+    README_SAMPLES, bound_table, catalogue_table, error_table, replace_block,
+};
 
 #[test]
 fn readme_tables_are_generated_and_fresh() {
@@ -11,6 +13,7 @@ fn readme_tables_are_generated_and_fresh() {
     for (name, body) in [
         ("catalogue", catalogue_table()),
         ("errors", error_table(README_SAMPLES)),
+        ("bounds", bound_table()),
     ] {
         fresh = replace_block(&fresh, name, &body)
             .unwrap_or_else(|| panic!("README.md lacks the markers of the {name} block"));

@@ -52,6 +52,7 @@ static inline unitpack_vec3 unitpack_hemioct16p_decode_float_v(unitpack_vec2 par
 // unitpack_hemioct16p_decode_float: hemioct16p (hemi-octahedral, snorm×2, 16 bits, hemisphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.23889°, sample max 0.54445° (not a bound).
 static inline void unitpack_hemioct16p_decode_float(const float params[2], float out[3]) {
@@ -81,6 +82,7 @@ static inline unitpack_vec3 unitpack_hemioct16p_decode_v(uint32_t code) {
 // unitpack_hemioct16p_decode: hemioct16p (hemi-octahedral, snorm×2, 16 bits, hemisphere), decoder.
 // In: a packed code (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector with z ≥ 0.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.23889°, sample max 0.54445° (not a bound).
 static inline void unitpack_hemioct16p_decode(uint32_t code, float out[3]) {
@@ -493,6 +495,7 @@ static inline unitpack_vec2 unitpack_hemioct16p_encode_float_v(unitpack_vec3 v) 
 // unitpack_hemioct16p_encode_float: hemioct16p (hemi-octahedral, snorm×2, 16 bits, hemisphere), precise encoder, float form.
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.23889°, sample max 0.54445° (not a bound).
 static inline void unitpack_hemioct16p_encode_float(const float v[3], float out[2]) {

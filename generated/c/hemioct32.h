@@ -52,6 +52,7 @@ static inline unitpack_vec3 unitpack_hemioct32_decode_float_v(unitpack_vec2 para
 // unitpack_hemioct32_decode_float: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
 static inline void unitpack_hemioct32_decode_float(const float params[2], float out[3]) {
@@ -81,6 +82,7 @@ static inline unitpack_vec3 unitpack_hemioct32_decode_v(uint32_t code) {
 // unitpack_hemioct32_decode: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), decoder.
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector with z ≥ 0.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
 static inline void unitpack_hemioct32_decode(uint32_t code, float out[3]) {
@@ -133,6 +135,7 @@ static inline unitpack_vec2 unitpack_hemioct32_encode_float_v(unitpack_vec3 v) {
 // unitpack_hemioct32_encode_float: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder, float form.
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
 static inline void unitpack_hemioct32_encode_float(const float v[3], float out[2]) {

@@ -52,6 +52,7 @@ static inline unitpack_vec3 unitpack_lambert32_decode_float_v(unitpack_vec2 para
 // unitpack_lambert32_decode_float: lambert32 (Lambert azimuthal equal-area, unorm×2, 32 bits, sphere), decoder, float form.
 // In: parameters in [0, 1], as a unorm16 fetch returns them.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 17369·2^-24 (1.04e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound).
 static inline void unitpack_lambert32_decode_float(const float params[2], float out[3]) {
@@ -76,6 +77,7 @@ static inline unitpack_vec3 unitpack_lambert32_decode_v(uint32_t code) {
 // unitpack_lambert32_decode: lambert32 (Lambert azimuthal equal-area, unorm×2, 32 bits, sphere), decoder.
 // In: a packed code (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16); other bits are ignored.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 17369·2^-24 (1.04e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound).
 static inline void unitpack_lambert32_decode(uint32_t code, float out[3]) {
@@ -260,6 +262,7 @@ static inline unitpack_vec2 unitpack_lambert32_encode_float_v(unitpack_vec3 v) {
 // unitpack_lambert32_encode_float: lambert32 (Lambert azimuthal equal-area, unorm×2, 32 bits, sphere), fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound).
 static inline void unitpack_lambert32_encode_float(const float v[3], float out[2]) {

@@ -55,6 +55,7 @@ static inline unitpack_vec3 unitpack_oct24_decode_float_v(unitpack_vec2 params) 
 // unitpack_oct24_decode_float: oct24 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm12 fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 static inline void unitpack_oct24_decode_float(const float params[2], float out[3]) {
@@ -84,6 +85,7 @@ static inline unitpack_vec3 unitpack_oct24_decode_v(uint32_t code) {
 // unitpack_oct24_decode: oct24 (octahedral, snorm×2, 24 bits, sphere), decoder.
 // In: a packed code (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 static inline void unitpack_oct24_decode(uint32_t code, float out[3]) {
@@ -122,6 +124,7 @@ static inline unitpack_vec2 unitpack_oct24_encode_float_v(unitpack_vec3 v) {
 // unitpack_oct24_encode_float: oct24 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02081°, sample max 0.05780° (not a bound).
 static inline void unitpack_oct24_encode_float(const float v[3], float out[2]) {

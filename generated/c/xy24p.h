@@ -46,6 +46,7 @@ static inline unitpack_vec3 unitpack_xy24p_decode_float_v(unitpack_vec2 params) 
 // unitpack_xy24p_decode_float: xy24p (x and y stored, z reconstructed, snorm×2, 24 bits, hemisphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm12 fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 401·2^-24 (2.39e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound).
 static inline void unitpack_xy24p_decode_float(const float params[2], float out[3]) {
@@ -75,6 +76,7 @@ static inline unitpack_vec3 unitpack_xy24p_decode_v(uint32_t code) {
 // unitpack_xy24p_decode: xy24p (x and y stored, z reconstructed, snorm×2, 24 bits, hemisphere), decoder.
 // In: a packed code (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)); other bits are ignored.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 401·2^-24 (2.39e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound).
 static inline void unitpack_xy24p_decode(uint32_t code, float out[3]) {
@@ -634,6 +636,7 @@ static inline unitpack_vec2 unitpack_xy24p_encode_float_v(unitpack_vec3 v) {
 // unitpack_xy24p_encode_float: xy24p (x and y stored, z reconstructed, snorm×2, 24 bits, hemisphere), precise encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound).
 static inline void unitpack_xy24p_encode_float(const float v[3], float out[2]) {

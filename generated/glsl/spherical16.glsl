@@ -65,6 +65,7 @@ vec2 unitpack_spherical16_sincos_pi(float a0) {
 // unitpack_spherical16_decode_float: spherical16 (spherical coordinates (θ, φ), snorm×2, 16 bits, sphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
 vec3 unitpack_spherical16_decode_float(vec2 params) {
@@ -81,6 +82,7 @@ vec3 unitpack_spherical16_decode_float(vec2 params) {
 // unitpack_spherical16_decode: spherical16 (spherical coordinates (θ, φ), snorm×2, 16 bits, sphere), decoder.
 // In: a packed code (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)); other bits are ignored.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
 vec3 unitpack_spherical16_decode(uint code) {
@@ -150,6 +152,7 @@ float unitpack_spherical16_atan2_pi(float a0, float a1) {
 // unitpack_spherical16_encode_float: spherical16 (spherical coordinates (θ, φ), snorm×2, 16 bits, sphere), fast encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
 vec2 unitpack_spherical16_encode_float(vec3 v) {

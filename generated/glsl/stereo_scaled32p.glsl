@@ -26,6 +26,7 @@ precision highp int;
 // unitpack_stereo_scaled32p_decode_float: stereo_scaled32p (scaled stereographic, unorm×2, 32 bits, sphere), decoder, float form.
 // In: parameters in [0, 1], as a unorm16 fetch returns them.
 // Out: every code decodes to a unit vector (up to rounding).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 13·2^-24 (7.75e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound).
 vec3 unitpack_stereo_scaled32p_decode_float(vec2 params) {
@@ -45,6 +46,7 @@ vec3 unitpack_stereo_scaled32p_decode_float(vec2 params) {
 // unitpack_stereo_scaled32p_decode: stereo_scaled32p (scaled stereographic, unorm×2, 32 bits, sphere), decoder.
 // In: a packed code (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16); other bits are ignored.
 // Out: every code decodes to a unit vector (up to rounding).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 25·2^-24 (1.49e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound).
 vec3 unitpack_stereo_scaled32p_decode(uint code) {
@@ -609,8 +611,9 @@ vec2 unitpack_stereo_scaled32p_encode_codes(vec3 v) {
 }
 
 // unitpack_stereo_scaled32p_encode_float: stereo_scaled32p (scaled stereographic, unorm×2, 32 bits, sphere), precise encoder, float form.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge.
+// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it.
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm16 render target or vertex format.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound).
 vec2 unitpack_stereo_scaled32p_encode_float(vec3 v) {
@@ -620,7 +623,7 @@ vec2 unitpack_stereo_scaled32p_encode_float(vec3 v) {
 }
 
 // unitpack_stereo_scaled32p_encode: stereo_scaled32p (scaled stereographic, unorm×2, 32 bits, sphere), precise encoder.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge.
+// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it.
 // Out: the packed code, uint (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.

@@ -25,6 +25,7 @@
 // unitpack_hemioct24_decode_float: hemioct24 (hemi-octahedral, snorm×2, 24 bits, hemisphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm12 fetch returns them.
 // Out: every code decodes to a unit vector with z ≥ 0.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound).
 float3 unitpack_hemioct24_decode_float(float2 params) {
@@ -47,6 +48,7 @@ float3 unitpack_hemioct24_decode_float(float2 params) {
 // unitpack_hemioct24_decode: hemioct24 (hemi-octahedral, snorm×2, 24 bits, hemisphere), decoder.
 // In: a packed code (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector with z ≥ 0.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound).
 float3 unitpack_hemioct24_decode(uint code) {
@@ -67,6 +69,7 @@ float3 unitpack_hemioct24_decode(uint code) {
 // unitpack_hemioct24_encode_float: hemioct24 (hemi-octahedral, snorm×2, 24 bits, hemisphere), fast encoder, float form.
 // In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound).
 float2 unitpack_hemioct24_encode_float(float3 v) {

@@ -25,6 +25,7 @@
 // unitpack_lambert24p_decode_float: lambert24p (Lambert azimuthal equal-area, unorm×2, 24 bits, sphere), decoder, float form.
 // In: parameters in [0, 1], as a unorm12 fetch returns them.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 2143·2^-24 (1.28e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41272° (not a bound).
 float3 unitpack_lambert24p_decode_float(float2 params) {
@@ -47,6 +48,7 @@ float3 unitpack_lambert24p_decode_float(float2 params) {
 // unitpack_lambert24p_decode: lambert24p (Lambert azimuthal equal-area, unorm×2, 24 bits, sphere), decoder.
 // In: a packed code (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12); other bits are ignored.
 // Out: every code decodes to a unit vector; codes outside the disk decode as -Z.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 2369·2^-24 (1.41e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41272° (not a bound).
 float3 unitpack_lambert24p_decode(uint code) {
@@ -700,6 +702,7 @@ float2 unitpack_lambert24p_encode_codes(float3 v) {
 // unitpack_lambert24p_encode_float: lambert24p (Lambert azimuthal equal-area, unorm×2, 24 bits, sphere), precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5).
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm12 render target or vertex format.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 6.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41272° (not a bound).
 float2 unitpack_lambert24p_encode_float(float3 v) {

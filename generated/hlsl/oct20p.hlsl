@@ -25,6 +25,7 @@
 // unitpack_oct20p_decode_float: oct20p (octahedral, snorm×2, 20 bits, sphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm10 fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.07802°, sample max 0.15791° (not a bound).
 float3 unitpack_oct20p_decode_float(float2 params) {
@@ -50,6 +51,7 @@ float3 unitpack_oct20p_decode_float(float2 params) {
 // unitpack_oct20p_decode: oct20p (octahedral, snorm×2, 20 bits, sphere), decoder.
 // In: a packed code (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.07802°, sample max 0.15791° (not a bound).
 float3 unitpack_oct20p_decode(uint code) {
@@ -402,6 +404,7 @@ float2 unitpack_oct20p_encode_codes(float3 v) {
 // unitpack_oct20p_encode_float: oct20p (octahedral, snorm×2, 20 bits, sphere), precise encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm10 render target or vertex format.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.07802°, sample max 0.15791° (not a bound).
 float2 unitpack_oct20p_encode_float(float3 v) {

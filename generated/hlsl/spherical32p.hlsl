@@ -64,6 +64,7 @@ float2 unitpack_spherical32p_sincos_pi(float a0) {
 // unitpack_spherical32p_decode_float: spherical32p (spherical coordinates (θ, φ), snorm×2, 32 bits, sphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
 float3 unitpack_spherical32p_decode_float(float2 params) {
@@ -80,6 +81,7 @@ float3 unitpack_spherical32p_decode_float(float2 params) {
 // unitpack_spherical32p_decode: spherical32p (spherical coordinates (θ, φ), snorm×2, 32 bits, sphere), decoder.
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)); other bits are ignored.
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
 float3 unitpack_spherical32p_decode(uint code) {
@@ -1330,6 +1332,7 @@ float2 unitpack_spherical32p_encode_codes(float3 v) {
 // unitpack_spherical32p_encode_float: spherical32p (spherical coordinates (θ, φ), snorm×2, 32 bits, sphere), precise encoder, float form.
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm16 render target or vertex format.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
 float2 unitpack_spherical32p_encode_float(float3 v) {

@@ -10,6 +10,7 @@
 // unitpack_oct16_decode_float: oct16 (octahedral, snorm×2, 16 bits, sphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.33696°, sample max 0.92448° (not a bound).
 fn unitpack_oct16_decode_float(params: vec2<f32>) -> vec3<f32> {
@@ -35,6 +36,7 @@ fn unitpack_oct16_decode_float(params: vec2<f32>) -> vec3<f32> {
 // unitpack_oct16_decode: oct16 (octahedral, snorm×2, 16 bits, sphere), decoder.
 // In: a packed code (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)); other bits are ignored.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.33696°, sample max 0.92448° (not a bound).
 fn unitpack_oct16_decode(code: u32) -> vec3<f32> {
@@ -55,6 +57,7 @@ fn unitpack_oct16_decode(code: u32) -> vec3<f32> {
 // unitpack_oct16_encode_float: oct16 (octahedral, snorm×2, 16 bits, sphere), fast encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.33696°, sample max 0.92448° (not a bound).
 fn unitpack_oct16_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -49,6 +49,7 @@ fn unitpack_oct24p_rgb8_oct24_decode_float(a0: vec2<f32>) -> vec3<f32> {
 // unitpack_oct24p_rgb8_decode_float: oct24p:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder, float form.
 // In: parameters in [0, 1], as a unorm8 fetch returns them.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
 fn unitpack_oct24p_rgb8_decode_float(params: vec3<f32>) -> vec3<f32> {
@@ -76,6 +77,7 @@ fn unitpack_oct24p_rgb8_bytes_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
 // unitpack_oct24p_rgb8_decode: oct24p:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), decoder.
 // In: a packed code (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8, bits 16–23: p2 unorm8); other bits are ignored.
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
 fn unitpack_oct24p_rgb8_decode(code: u32) -> vec3<f32> {
@@ -435,6 +437,7 @@ fn unitpack_oct24p_rgb8_encode_codes(v: vec3<f32>) -> vec3<f32> {
 // unitpack_oct24p_rgb8_encode_float: oct24p:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), precise encoder, float form.
 // In: any vector; input need not be unit length; zero, NaN and infinite input encode as +Z.
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm8 render target or vertex format.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
 fn unitpack_oct24p_rgb8_encode_float(v: vec3<f32>) -> vec3<f32> {

@@ -10,6 +10,7 @@
 // unitpack_xy32_decode_float: xy32 (x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere), decoder, float form.
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 6794·2^-24 (4.05e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 fn unitpack_xy32_decode_float(params: vec2<f32>) -> vec3<f32> {
@@ -26,6 +27,7 @@ fn unitpack_xy32_decode_float(params: vec2<f32>) -> vec3<f32> {
 // unitpack_xy32_decode: xy32 (x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere), decoder.
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)); other bits are ignored.
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
+// Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 6794·2^-24 (4.05e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 fn unitpack_xy32_decode(code: u32) -> vec3<f32> {
@@ -46,6 +48,7 @@ fn unitpack_xy32_decode(code: u32) -> vec3<f32> {
 // unitpack_xy32_encode_float: xy32 (x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere), fast encoder, float form.
 // In: any vector; input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00301°, sample max 0.29708° (not a bound).
 fn unitpack_xy32_encode_float(v: vec3<f32>) -> vec2<f32> {

@@ -232,11 +232,7 @@ pub fn run(cli: Cli) -> Result<i32> {
                     &crate::portability::Options::default(),
                 );
                 output::print(&if json { report.json() } else { report.table() })?;
-                return Ok(if report.guarantees_hold() {
-                    0
-                } else {
-                    1
-                });
+                return Ok(if report.guarantees_hold() { 0 } else { 1 });
             }
             let langs = if lang.is_empty() {
                 Lang::ALL.to_vec()

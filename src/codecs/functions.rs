@@ -120,12 +120,15 @@ pub struct Function {
     pub enclose: Option<Enclose>,
 }
 
+/// One inclusive range per field → an enclosure per output lane.
+pub type BoxEval = Arc<dyn Fn(&[(i64, i64)]) -> Vec<Encl> + Send + Sync>;
+
 /// A decoder over boxes of codes, for [`crate::decode_bound`].
 #[derive(Clone)]
 pub struct Enclose {
     /// One inclusive range per field (signed codes for the float form, raw bit fields for
     /// the packed form) → an enclosure per output lane.
-    pub eval: Arc<dyn Fn(&[(i64, i64)]) -> Vec<Encl> + Send + Sync>,
+    pub eval: BoxEval,
     /// A field the boxes take one value of at a time ([`Codec::whole_field`]).
     pub whole_field: Option<usize>,
 }
@@ -270,7 +273,11 @@ where
 fn fetched_range(q: Quant, (c0, c1): (i64, i64)) -> Encl {
     let m = q.max_code();
     let at = |c: i64| f64::from(crate::codecs::inputs::fetched(q, c as f32));
-    Encl::range(at(c0), at(c1), crate::model::enclosure::ulp(f64::from(1.0 / m)))
+    Encl::range(
+        at(c0),
+        at(c1),
+        crate::model::enclosure::ulp(f64::from(1.0 / m)),
+    )
 }
 
 /// The packed decoder: unpack, then [`Codec::decode_codes`].

@@ -24,7 +24,7 @@ static INFO: Info = Info {
     domain: Some(Domain::Sphere),
     precise: true,
     source: "Pranckevičius, Compact Normal Storage, method 7",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it",
     decode_note: "every code decodes to a unit vector (up to rounding)",
     options: &[SCALE_OPTION],
 };

@@ -95,6 +95,17 @@ fn encoder_portability(portable: bool) -> &'static str {
     }
 }
 
+/// What a decoder guarantees beyond lavapipe: its proven bound.
+fn decoder_portability(spec: &Spec, e: &Emitted, role: Role) -> Option<String> {
+    let f = e.functions.iter().find(|f| f.role == role)?;
+    let b = crate::decode_bound::cached(spec, f)?;
+    Some(format!(
+        "Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within {}·2^-24 ({:.2e}) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.",
+        b.units,
+        b.units * crate::decode_bound::UNIT
+    ))
+}
+
 pub fn function_doc(
     spec: &Spec,
     e: &Emitted,
@@ -145,6 +156,14 @@ pub fn function_doc(
             format!("In: a packed code ({layout}); other bits are ignored."),
             format!("Out: {}.", c.decode_note),
         ],
+        Role::DecodeFloat => vec![
+            format!("{}: {codec}, decoder, float form.", p.name),
+            format!(
+                "In: parameters in {range}, as a {} fetch returns them.",
+                q[0].name()
+            ),
+            format!("Out: {}.", c.decode_note),
+        ],
         Role::EncodeFloat => vec![
             format!("{}: {codec}, {enc}, float form.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
@@ -160,16 +179,13 @@ pub fn function_doc(
                 )
             },
         ],
-        Role::DecodeFloat => vec![
-            format!("{}: {codec}, decoder, float form.", p.name),
-            format!(
-                "In: parameters in {range}, as a {} fetch returns them.",
-                q[0].name()
-            ),
-            format!("Out: {}.", c.decode_note),
-        ],
         Role::Pack | Role::Unpack => unreachable!(),
     };
+    match role {
+        Role::Decode | Role::DecodeFloat => d.extend(decoder_portability(spec, e, role)),
+        Role::EncodeFloat => d.push("Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.".into()),
+        _ => {}
+    }
     d.push(format!("Source: {}.", c.source));
     d.extend(error);
     d

@@ -155,7 +155,7 @@ fn imul(a: Iv, b: Iv) -> Iv {
     }
     [mul(a.0, b.0), mul(a.0, b.1), mul(a.1, b.0), mul(a.1, b.1)]
         .into_iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |h, p| join(h, p))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), join)
 }
 
 fn iadd(a: Iv, b: Iv) -> Iv {
@@ -260,7 +260,10 @@ impl Encl {
     }
     /// The deviant range and deviation as an add sees them (a product possibly unrounded).
     fn addend(self) -> (Iv, Iv) {
-        (iadd(self.dev, sym(self.fused)), iadd(self.e, sym(self.fused)))
+        (
+            iadd(self.dev, sym(self.fused)),
+            iadd(self.e, sym(self.fused)),
+        )
     }
     /// `a ± b` (`b` negated when `sub`).
     fn sum(self, o: Encl, sub: bool) -> Encl {
@@ -305,6 +308,14 @@ impl Encl {
     /// `min(a, b)` (or the maximum): monotone in both operands and moving no more than
     /// they do.
     fn extreme(a: Encl, b: Encl, max: bool) -> Encl {
+        // One operand always the smaller (or larger), for the reference and every deviant:
+        // the result is that operand.
+        let below = |x: Encl, y: Encl| x.hi <= y.lo && x.dev.1 <= y.dev.0;
+        match (below(a, b), below(b, a), max) {
+            (true, _, false) | (_, true, true) => return a,
+            (_, true, false) | (true, _, true) => return b,
+            _ => {}
+        }
         let pick = |x: f64, y: f64| if max { x.max(y) } else { x.min(y) };
         Encl::result(
             (pick(a.lo, b.lo), pick(a.hi, b.hi)),
@@ -509,7 +520,7 @@ impl BitAnd for EnclU {
         // monotone; otherwise the result is at most the smaller operand.
         let masked = |x: EnclU, m: u64| {
             ((m + 1).is_power_of_two() && x.lo >> m.count_ones() == x.hi >> m.count_ones())
-                .then(|| EnclU {
+                .then_some(EnclU {
                     lo: x.lo & m,
                     hi: x.hi & m,
                     exact,
@@ -636,7 +647,10 @@ impl Float for Encl {
             return Encl { fused: 0.0, ..self };
         }
         if all.1 <= 0.0 {
-            return Encl { fused: 0.0, ..-self };
+            return Encl {
+                fused: 0.0,
+                ..-self
+            };
         }
         let abs = |x: Iv| {
             if x.0 < 0.0 && x.1 > 0.0 {
@@ -646,15 +660,25 @@ impl Float for Encl {
             }
         };
         // ||a'| − |a|| ≤ |a' − a|
-        let e = if self.undeviated() { (0.0, 0.0) } else { sym(widest(self.e)) };
+        let e = if self.undeviated() {
+            (0.0, 0.0)
+        } else {
+            sym(widest(self.e))
+        };
         Encl::result(abs(self.v()), abs(self.dev), e, self.grid)
     }
     fn sqrt(self) -> Self {
         if self.lo < 0.0 || self.dev.0 < 0.0 {
             return Encl::unknown();
         }
-        let r = rounded((self.lo.sqrt().next_down().max(0.0), self.hi.sqrt().next_up()));
-        let exact = (self.dev.0.sqrt().next_down().max(0.0), self.dev.1.sqrt().next_up());
+        let r = rounded((
+            self.lo.sqrt().next_down().max(0.0),
+            self.hi.sqrt().next_up(),
+        ));
+        let exact = (
+            self.dev.0.sqrt().next_down().max(0.0),
+            self.dev.1.sqrt().next_up(),
+        );
         let dev = iadd(exact, sym(SQRT_ULP * ulp(widest(exact))));
         // |√a' − √a| = |e| / (√a + √a') ≤ √|e|
         let em = widest(self.e);
@@ -664,7 +688,10 @@ impl Float for Encl {
         } else {
             em.sqrt()
         };
-        let e = iadd(sym(prop.next_up()), sym((SQRT_ULP + 0.5) * ulp(Encl::mag(r, dev))));
+        let e = iadd(
+            sym(prop.next_up()),
+            sym((SQRT_ULP + 0.5) * ulp(Encl::mag(r, dev))),
+        );
         Encl::result(r, dev, e, ulp(self.grid.sqrt() * 0.5))
     }
     fn floor(self) -> Self {
@@ -693,7 +720,10 @@ impl Float for Encl {
     }
     fn eq(self, o: Self) -> EnclB {
         self.compare(o, |a, b| {
-            (a.0 == a.1 && b.0 == b.1 && a.0 == b.0, a.1 < b.0 || b.1 < a.0)
+            (
+                a.0 == a.1 && b.0 == b.1 && a.0 == b.0,
+                a.1 < b.0 || b.1 < a.0,
+            )
         })
     }
     fn sel(m: EnclB, t: Self, f: Self) -> Self {
@@ -718,9 +748,15 @@ impl Float for Encl {
             .into_iter()
             .filter_map(|(may, x)| may.then_some(x))
             .collect();
-        let r = refs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |h, x| join(h, x.v()));
-        let mut dev = refs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |h, x| join(h, x.dev));
-        let mut e = refs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |h, x| join(h, x.e));
+        let r = refs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |h, x| join(h, x.v()));
+        let mut dev = refs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |h, x| join(h, x.dev));
+        let mut e = refs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |h, x| join(h, x.e));
         if !m.agree {
             // The deviant may take the other operand.
             dev = join(t.dev, f.dev);
@@ -735,7 +771,11 @@ impl Float for Encl {
         let ok = self.lo >= 0.0 && self.hi <= f64::from(u32::MAX);
         EnclU {
             lo: if ok { self.lo as u64 } else { 0 },
-            hi: if ok { self.hi as u64 } else { u64::from(u32::MAX) },
+            hi: if ok {
+                self.hi as u64
+            } else {
+                u64::from(u32::MAX)
+            },
             exact: ok && self.undeviated(),
         }
     }
@@ -743,7 +783,11 @@ impl Float for Encl {
         // Monotone on positive floats; a zero's bits depend on its sign.
         let ok = self.lo > 0.0;
         EnclU {
-            lo: if ok { u64::from((self.lo as f32).to_bits()) } else { 0 },
+            lo: if ok {
+                u64::from((self.lo as f32).to_bits())
+            } else {
+                0
+            },
             hi: if ok {
                 u64::from((self.hi as f32).to_bits())
             } else {
@@ -766,9 +810,11 @@ mod tests {
     fn correctly_rounded_arithmetic_of_undeviated_values_does_not_deviate() {
         let a = Encl::range(0.25, 0.5, ulp(0.25));
         let b = point(3.0);
-        let s = a * b - point(1.0);
-        assert_eq!((s.elo, s.ehi), (0.0, 0.0));
-        assert!(s.lo <= -0.25 && s.hi >= 0.5);
+        let s = (a - point(1.0)) * b;
+        assert_eq!(s.e, (0.0, 0.0));
+        assert_eq!(s.reference(), (-2.25, -1.5));
+        // The same product feeding a sum may be contracted: then it deviates.
+        assert!((a * b - point(1.0)).deviation() > 0.0);
     }
 
     #[test]
@@ -786,6 +832,17 @@ mod tests {
         assert!((q.deviation() / ulp(1.0 / 3.0) - (DIV_ULP + 0.5)).abs() < 1e-9);
         let r = point(2.0).sqrt();
         assert!((r.deviation() / ulp(2f64.sqrt()) - (SQRT_ULP + 0.5)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_clamp_moves_no_further_than_its_operands() {
+        // 1, and a division's latitude puts the deviant on either side.
+        let d = point(3.0) / point(3.0);
+        assert!(d.dev.1 > 1.0 && d.deviation() > 0.0);
+        assert_eq!((point(1.0) - d).sqrt().deviation(), f64::INFINITY);
+        let c = d.at_most(point(1.0));
+        assert!(c.dev.1 <= 1.0 && c.deviation() <= d.deviation());
+        assert!((point(1.0) - c).sqrt().deviation().is_finite());
     }
 
     #[test]

@@ -1,0 +1,129 @@
+//! The proven decoder bounds: finite for every decoder, never exceeded by the adversarial
+//! evaluator (every guaranteed class, every mode, every code of the 16-bit decoders and a
+//! spread of the others), and not vacuous: one class at a time already moves each 16-bit
+//! decoder's output a good part of its bound.
+
+use unitpack::codecs::Spec;
+use unitpack::codecs::functions::{Function, Role};
+use unitpack::codecs::inputs::generate;
+use unitpack::decode_bound::{UNIT, of};
+use unitpack::model::deviant::{Class, Deviation, Mode, begin_item, with};
+use unitpack::portability::{Options, run};
+
+const MODES: [Mode; 5] = [
+    Mode::Seeded(1),
+    Mode::Seeded(2),
+    Mode::Seeded(3),
+    Mode::Lowest,
+    Mode::Highest,
+];
+
+fn decoders(spec: &Spec) -> Vec<Function> {
+    spec.emitted()
+        .functions
+        .into_iter()
+        .filter(|f| matches!(f.role, Role::Decode | Role::DecodeFloat))
+        .collect()
+}
+
+/// The largest `|deviant − reference|` of an output component, in units of 2^-24, over
+/// `items` of `f`'s verify inputs, every guaranteed class and every mode.
+fn largest_deviation(f: &Function, items: impl Iterator<Item = usize> + Clone) -> f64 {
+    let input = generate(&f.inputs, f.in_words);
+    let (iw, ow) = (f.in_words, f.out_words);
+    let mut worst = 0f64;
+    let (mut r, mut d) = (vec![0; ow], vec![0; ow]);
+    for class in Class::GUARANTEED {
+        for mode in MODES {
+            with(Some(Deviation { class, mode }), || {
+                for i in items.clone() {
+                    let x = &input[i * iw..][..iw];
+                    with(None, || (f.eval)(x, &mut r));
+                    begin_item(i as u64);
+                    (f.eval_dev)(x, &mut d);
+                    for (&a, &b) in r.iter().zip(&d) {
+                        let (a, b) = (f32::from_bits(a), f32::from_bits(b));
+                        assert!(
+                            a.is_nan() == b.is_nan(),
+                            "{} on {x:?}: NaN appeared",
+                            f.name
+                        );
+                        worst = worst.max((f64::from(a) - f64::from(b)).abs() / UNIT);
+                    }
+                }
+            });
+        }
+    }
+    worst
+}
+
+/// Every decoder in the catalogue has a finite bound, and the report's sampled
+/// deviations (what `verify --portable` prints) stay within it.
+#[test]
+fn every_decoder_has_a_finite_bound_the_samples_respect() {
+    let opts = Options {
+        seeds: vec![1],
+        worst_ends: true,
+        sample: Some(1 << 11),
+        encoders_only: false,
+    };
+    let all = Spec::all();
+    let report = run(&all, &Class::GUARANTEED, &opts);
+    let mut decoders = 0;
+    for row in report
+        .rows
+        .iter()
+        .filter(|r| matches!(r.role, Role::Decode | Role::DecodeFloat))
+    {
+        let b = row
+            .bound
+            .unwrap_or_else(|| panic!("{} {} has no bound", row.spec, row.function));
+        assert!(
+            b.is_finite() && b >= 1.0,
+            "{} {}: bound {b}",
+            row.spec,
+            row.function
+        );
+        assert!(
+            !row.exceeds_bound(),
+            "{} {} under {}: {:?} > {b}",
+            row.spec,
+            row.function,
+            row.class.name(),
+            row.max_dev
+        );
+        decoders += 1;
+    }
+    assert!(decoders >= 2 * 5 * 40, "{decoders} decoder rows");
+    assert!(report.guarantees_hold(), "{}", report.table());
+}
+
+/// Exhaustively for 16-bit decoders: no code, class or mode moves an output further than
+/// the bound, and some move it at least an eighth of the way (the enclosure takes every
+/// class at once and each rounding at its worst, the evaluator one class at a time).
+#[test]
+fn no_code_of_a_16_bit_decoder_exceeds_its_bound() {
+    for id in [
+        "oct16",
+        "hemioct16",
+        "lambert16",
+        "stereo_scaled16",
+        "xy16",
+        "spherical16",
+    ] {
+        let spec: Spec = id.parse().unwrap();
+        for f in decoders(&spec) {
+            let n = generate(&f.inputs, f.in_words).len() / f.in_words;
+            assert!(n >= 1 << 16, "{id} {}: every code", f.name);
+            let b = of(&f).expect("a decoder has a bound").units;
+            let seen = largest_deviation(&f, 0..n);
+            assert!(seen <= b, "{id} {}: moved {seen}·2^-24, bound {b}", f.name);
+            eprintln!("{id} {}: moved {seen}·2^-24, bound {b}", f.name);
+            assert!(
+                seen >= b / 8.0,
+                "{id} {}: moved {seen}·2^-24, under an eighth of its bound {b}",
+                f.name
+            );
+        }
+    }
+}
