@@ -443,3 +443,24 @@ fn integer_decided_encoders_keep_codes_under_reassociation() {
         assert_eq!(r.changed, 0, "{} under reassoc: {:?}", r.spec, r.example);
     }
 }
+
+/// Flushing denormals never turns a float form's output into NaN: `atan2_pi` scales tiny
+/// operands up before it divides (an implementation may flush a denormal divisor inside
+/// the division though not in the comparison guarding it).
+#[test]
+fn denormal_flushing_gives_no_nan() {
+    let r = run(
+        &specs(&["spherical16", "spherical32p", "oct16", "lambert16", "xy16"]),
+        &[Class::Denorm],
+        &Options::default(),
+    );
+    for row in &r.rows {
+        assert_ne!(
+            row.max_ulp,
+            Some(u64::MAX),
+            "{} {}: NaN under denorm",
+            row.spec,
+            row.function
+        );
+    }
+}

@@ -100,25 +100,27 @@ static inline unitpack_vec2 unitpack_oct22_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const float t2 = t1.x + t1.y;
     const float t3 = t2 + t1.z;
-    const bool t4 = t3 <= 3.4028235e38f;
-    const float t5 = t4 ? 1.0f : 0.25f;
-    const unitpack_vec3 w = { v.x * t5, v.y * t5, v.z * t5 };
-    const unitpack_vec3 t6 = { fabsf(w.x), fabsf(w.y), fabsf(w.z) };
-    const float t7 = t6.x + t6.y;
-    const float l1 = t7 + t6.z;
-    const bool t8 = l1 > 0.0f;
-    const bool t9 = l1 <= 3.4028235e38f;
-    const bool t10 = t8 && t9;
+    const bool t4 = t3 < 7.888609e-31f;
+    const float t5 = t4 ? 1.2676506e30f : 1.0f;
+    const bool t6 = t3 <= 3.4028235e38f;
+    const float t7 = t6 ? t5 : 0.25f;
+    const unitpack_vec3 w = { v.x * t7, v.y * t7, v.z * t7 };
+    const unitpack_vec3 t8 = { fabsf(w.x), fabsf(w.y), fabsf(w.z) };
+    const float t9 = t8.x + t8.y;
+    const float l1 = t9 + t8.z;
+    const bool t10 = l1 > 0.0f;
+    const bool t11 = l1 <= 3.4028235e38f;
+    const bool t12 = t10 && t11;
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t11 = w.z <= 0.0f;
-    const unitpack_vec2 t12 = { fabsf(p.y), fabsf(p.x) };
-    const unitpack_vec2 t13 = { 1.0f - t12.x, 1.0f - t12.y };
-    const unitpack_bvec2 t14 = { p.x >= 0.0f, p.y >= 0.0f };
-    const unitpack_vec2 t15 = { t14.x ? 1.0f : -1.0f, t14.y ? 1.0f : -1.0f };
-    const unitpack_vec2 t16 = { t13.x * t15.x, t13.y * t15.y };
-    const unitpack_vec2 t17 = { t11 ? t16.x : p.x, t11 ? t16.y : p.y };
-    const unitpack_vec2 t18 = { t10 ? t17.x : 0.0f, t10 ? t17.y : 0.0f };
-    return t18;
+    const bool t13 = w.z <= 0.0f;
+    const unitpack_vec2 t14 = { fabsf(p.y), fabsf(p.x) };
+    const unitpack_vec2 t15 = { 1.0f - t14.x, 1.0f - t14.y };
+    const unitpack_bvec2 t16 = { p.x >= 0.0f, p.y >= 0.0f };
+    const unitpack_vec2 t17 = { t16.x ? 1.0f : -1.0f, t16.y ? 1.0f : -1.0f };
+    const unitpack_vec2 t18 = { t15.x * t17.x, t15.y * t17.y };
+    const unitpack_vec2 t19 = { t13 ? t18.x : p.x, t13 ? t18.y : p.y };
+    const unitpack_vec2 t20 = { t12 ? t19.x : 0.0f, t12 ? t19.y : 0.0f };
+    return t20;
 }
 
 // unitpack_oct22_encode_float: oct22 (octahedral, snorm×2, 22 bits, sphere), fast encoder, float form.

@@ -80,25 +80,27 @@ vec2 unitpack_oct20_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
     UNITPACK_PRECISE float t3 = t2 + t1.z;
-    bool t4 = t3 <= 3.4028235e38;
-    UNITPACK_PRECISE float t5 = t4 ? 1.0 : 0.25;
-    UNITPACK_PRECISE vec3 w = v * t5;
-    UNITPACK_PRECISE vec3 t6 = abs(w);
-    UNITPACK_PRECISE float t7 = t6.x + t6.y;
-    UNITPACK_PRECISE float l1 = t7 + t6.z;
-    bool t8 = l1 > 0.0;
-    bool t9 = l1 <= 3.4028235e38;
-    bool t10 = t8 && t9;
+    bool t4 = t3 < 7.888609e-31;
+    UNITPACK_PRECISE float t5 = t4 ? 1.2676506e30 : 1.0;
+    bool t6 = t3 <= 3.4028235e38;
+    UNITPACK_PRECISE float t7 = t6 ? t5 : 0.25;
+    UNITPACK_PRECISE vec3 w = v * t7;
+    UNITPACK_PRECISE vec3 t8 = abs(w);
+    UNITPACK_PRECISE float t9 = t8.x + t8.y;
+    UNITPACK_PRECISE float l1 = t9 + t8.z;
+    bool t10 = l1 > 0.0;
+    bool t11 = l1 <= 3.4028235e38;
+    bool t12 = t10 && t11;
     UNITPACK_PRECISE vec2 p = w.xy / l1;
-    bool t11 = w.z <= 0.0;
-    UNITPACK_PRECISE vec2 t12 = abs(p.yx);
-    UNITPACK_PRECISE vec2 t13 = 1.0 - t12;
-    bvec2 t14 = greaterThanEqual(p, vec2(0.0));
-    UNITPACK_PRECISE vec2 t15 = mix(vec2(-1.0), vec2(1.0), t14);
-    UNITPACK_PRECISE vec2 t16 = t13 * t15;
-    UNITPACK_PRECISE vec2 t17 = t11 ? t16 : p;
-    UNITPACK_PRECISE vec2 t18 = t10 ? t17 : vec2(0.0);
-    return t18;
+    bool t13 = w.z <= 0.0;
+    UNITPACK_PRECISE vec2 t14 = abs(p.yx);
+    UNITPACK_PRECISE vec2 t15 = 1.0 - t14;
+    bvec2 t16 = greaterThanEqual(p, vec2(0.0));
+    UNITPACK_PRECISE vec2 t17 = mix(vec2(-1.0), vec2(1.0), t16);
+    UNITPACK_PRECISE vec2 t18 = t15 * t17;
+    UNITPACK_PRECISE vec2 t19 = t13 ? t18 : p;
+    UNITPACK_PRECISE vec2 t20 = t12 ? t19 : vec2(0.0);
+    return t20;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.

@@ -79,25 +79,27 @@ float2 unitpack_oct24_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     precise float t2 = t1.x + t1.y;
     precise float t3 = t2 + t1.z;
-    bool t4 = t3 <= 3.4028235e38;
-    precise float t5 = t4 ? 1.0 : 0.25;
-    precise float3 w = v * t5;
-    precise float3 t6 = abs(w);
-    precise float t7 = t6.x + t6.y;
-    precise float l1 = t7 + t6.z;
-    bool t8 = l1 > 0.0;
-    bool t9 = l1 <= 3.4028235e38;
-    bool t10 = t8 && t9;
+    bool t4 = t3 < 7.888609e-31;
+    precise float t5 = t4 ? 1.2676506e30 : 1.0;
+    bool t6 = t3 <= 3.4028235e38;
+    precise float t7 = t6 ? t5 : 0.25;
+    precise float3 w = v * t7;
+    precise float3 t8 = abs(w);
+    precise float t9 = t8.x + t8.y;
+    precise float l1 = t9 + t8.z;
+    bool t10 = l1 > 0.0;
+    bool t11 = l1 <= 3.4028235e38;
+    bool t12 = t10 && t11;
     precise float2 p = w.xy / l1;
-    bool t11 = w.z <= 0.0;
-    precise float2 t12 = abs(p.yx);
-    precise float2 t13 = 1.0 - t12;
-    bool2 t14 = p >= float2(0.0, 0.0);
-    precise float2 t15 = UNITPACK_SELECT(t14, float2(1.0, 1.0), float2(-1.0, -1.0));
-    precise float2 t16 = t13 * t15;
-    precise float2 t17 = t11 ? t16 : p;
-    precise float2 t18 = t10 ? t17 : float2(0.0, 0.0);
-    return t18;
+    bool t13 = w.z <= 0.0;
+    precise float2 t14 = abs(p.yx);
+    precise float2 t15 = 1.0 - t14;
+    bool2 t16 = p >= float2(0.0, 0.0);
+    precise float2 t17 = UNITPACK_SELECT(t16, float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float2 t18 = t15 * t17;
+    precise float2 t19 = t13 ? t18 : p;
+    precise float2 t20 = t12 ? t19 : float2(0.0, 0.0);
+    return t20;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.

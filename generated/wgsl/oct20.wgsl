@@ -64,25 +64,27 @@ fn unitpack_oct20_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x + t1.y;
     let t3 = t2 + t1.z;
-    let t4 = t3 <= 3.4028235e38f;
-    let t5 = select(0.25f, 1.0f, t4);
-    let w = v * t5;
-    let t6 = abs(w);
-    let t7 = t6.x + t6.y;
-    let l1 = t7 + t6.z;
-    let t8 = l1 > 0.0f;
-    let t9 = l1 <= 3.4028235e38f;
-    let t10 = t8 && t9;
+    let t4 = t3 < 7.888609e-31f;
+    let t5 = select(1.0f, 1.2676506e30f, t4);
+    let t6 = t3 <= 3.4028235e38f;
+    let t7 = select(0.25f, t5, t6);
+    let w = v * t7;
+    let t8 = abs(w);
+    let t9 = t8.x + t8.y;
+    let l1 = t9 + t8.z;
+    let t10 = l1 > 0.0f;
+    let t11 = l1 <= 3.4028235e38f;
+    let t12 = t10 && t11;
     let p = w.xy / l1;
-    let t11 = w.z <= 0.0f;
-    let t12 = abs(p.yx);
-    let t13 = 1.0f - t12;
-    let t14 = p >= vec2<f32>(0.0f);
-    let t15 = select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t14);
-    let t16 = t13 * t15;
-    let t17 = select(p, t16, t11);
-    let t18 = select(vec2<f32>(0.0f), t17, t10);
-    return t18;
+    let t13 = w.z <= 0.0f;
+    let t14 = abs(p.yx);
+    let t15 = 1.0f - t14;
+    let t16 = p >= vec2<f32>(0.0f);
+    let t17 = select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t16);
+    let t18 = t15 * t17;
+    let t19 = select(p, t18, t13);
+    let t20 = select(vec2<f32>(0.0f), t19, t12);
+    return t20;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.

@@ -108,11 +108,15 @@ pub fn oct_params<F: Float>(v: V3<F>) -> V2<F> {
 }
 
 /// `v`, or `v/4` when its L1 norm overflows f32 (then every component that matters is far
-/// above the denormal range, so the scaling is exact where it counts).
+/// above the denormal range, so the scaling is exact where it counts), or `v·2^100` when
+/// the norm is below `2^-100` (exact): no denormal norm then reaches the division, where an
+/// implementation may flush it to zero though not in the comparisons (`0/0` is NaN).
 pub fn fit_l1<F: Float>(v: V3<F>) -> V3<F> {
     let a = v.abs();
-    let fits = (a.x + a.y + a.z).le(F::c(f32::MAX));
-    v * F::sel(fits, F::c(1.0), F::c(0.25))
+    let l1 = a.x + a.y + a.z;
+    let tiny = 1.0 / (1u128 << 100) as f32;
+    let up = F::sel(l1.lt(F::c(tiny)), F::c(1.0 / tiny), F::c(1.0));
+    v * F::sel(l1.le(F::c(f32::MAX)), up, F::c(0.25))
 }
 
 /// Square → unit vector. Unfolds when `z < 0`; the result is normalized as `v / sqrt(v·v)`.
