@@ -54,7 +54,7 @@ static inline unitpack_vec3 unitpack_snorm12x2_to_unorm8x3_v(unitpack_vec2 f) {
     return t14;
 }
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
+// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5). Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 static inline void unitpack_snorm12x2_to_unorm8x3(const float f[2], float out[3]) {
     const unitpack_vec2 f_v = { f[0], f[1] };
     const unitpack_vec3 r = unitpack_snorm12x2_to_unorm8x3_v(f_v);
@@ -85,7 +85,7 @@ static inline unitpack_vec3 unitpack_snorm12x2_to_unorm8x3_int_v(unitpack_vec2 f
     return t16;
 }
 
-// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input.
+// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 static inline void unitpack_snorm12x2_to_unorm8x3_int(const float f[2], float out[3]) {
     const unitpack_vec2 f_v = { f[0], f[1] };
     const unitpack_vec3 r = unitpack_snorm12x2_to_unorm8x3_int_v(f_v);
@@ -112,7 +112,7 @@ static inline unitpack_vec2 unitpack_unorm8x3_to_snorm12x2_v(unitpack_vec3 u) {
     return t10;
 }
 
-// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].
+// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 static inline void unitpack_unorm8x3_to_snorm12x2(const float u[3], float out[2]) {
     const unitpack_vec3 u_v = { u[0], u[1], u[2] };
     const unitpack_vec2 r = unitpack_unorm8x3_to_snorm12x2_v(u_v);
@@ -140,7 +140,7 @@ static inline unitpack_vec2 unitpack_unorm8x3_to_snorm12x2_int_v(unitpack_vec3 u
     return t14;
 }
 
-// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input.
+// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 static inline void unitpack_unorm8x3_to_snorm12x2_int(const float u[3], float out[2]) {
     const unitpack_vec3 u_v = { u[0], u[1], u[2] };
     const unitpack_vec2 r = unitpack_unorm8x3_to_snorm12x2_int_v(u_v);

@@ -23,7 +23,7 @@ precision highp float;
 precision highp int;
 #endif
 
-// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].
+// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 vec2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(vec3 a0) {
     UNITPACK_PRECISE vec3 t1 = a0 * 255.0;
     UNITPACK_PRECISE vec3 b = roundEven(t1);

@@ -23,7 +23,7 @@ precision highp float;
 precision highp int;
 #endif
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
+// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5). Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 vec3 unitpack_snorm12x2_to_unorm8x3(vec2 f) {
     bvec2 t1 = greaterThanEqual(f, vec2(-1.0));
     UNITPACK_PRECISE vec2 t2 = mix(vec2(-1.0), f, t1);
@@ -46,7 +46,7 @@ vec3 unitpack_snorm12x2_to_unorm8x3(vec2 f) {
     return t14;
 }
 
-// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input.
+// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 vec3 unitpack_snorm12x2_to_unorm8x3_int(vec2 f) {
     bvec2 t1 = greaterThanEqual(f, vec2(-1.0));
     UNITPACK_PRECISE vec2 t2 = mix(vec2(-1.0), f, t1);
@@ -68,7 +68,7 @@ vec3 unitpack_snorm12x2_to_unorm8x3_int(vec2 f) {
     return t16;
 }
 
-// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].
+// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 vec2 unitpack_unorm8x3_to_snorm12x2(vec3 u) {
     UNITPACK_PRECISE vec3 t1 = u * 255.0;
     UNITPACK_PRECISE vec3 b = roundEven(t1);
@@ -86,7 +86,7 @@ vec2 unitpack_unorm8x3_to_snorm12x2(vec3 u) {
     return t10;
 }
 
-// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input.
+// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 vec2 unitpack_unorm8x3_to_snorm12x2_int(vec3 u) {
     UNITPACK_PRECISE vec3 t1 = u * 255.0;
     UNITPACK_PRECISE vec3 t2 = roundEven(t1);

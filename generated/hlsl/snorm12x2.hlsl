@@ -22,7 +22,7 @@
 #ifndef UNITPACK_SNORM12X2_HLSL
 #define UNITPACK_SNORM12X2_HLSL
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
+// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5). Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 float3 unitpack_snorm12x2_to_unorm8x3(float2 f) {
     bool2 t1 = f >= float2(-1.0, -1.0);
     precise float2 t2 = UNITPACK_SELECT(t1, f, float2(-1.0, -1.0));
@@ -45,7 +45,7 @@ float3 unitpack_snorm12x2_to_unorm8x3(float2 f) {
     return t14;
 }
 
-// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input.
+// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 float3 unitpack_snorm12x2_to_unorm8x3_int(float2 f) {
     bool2 t1 = f >= float2(-1.0, -1.0);
     precise float2 t2 = UNITPACK_SELECT(t1, f, float2(-1.0, -1.0));
@@ -67,7 +67,7 @@ float3 unitpack_snorm12x2_to_unorm8x3_int(float2 f) {
     return t16;
 }
 
-// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].
+// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 float2 unitpack_unorm8x3_to_snorm12x2(float3 u) {
     precise float3 t1 = u * 255.0;
     precise float3 b = round(t1);
@@ -85,7 +85,7 @@ float2 unitpack_unorm8x3_to_snorm12x2(float3 u) {
     return t10;
 }
 
-// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input.
+// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 float2 unitpack_unorm8x3_to_snorm12x2_int(float3 u) {
     precise float3 t1 = u * 255.0;
     precise float3 t2 = round(t1);

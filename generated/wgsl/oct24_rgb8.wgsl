@@ -7,7 +7,7 @@
 
 // ---- oct24:layout=rgb8: octahedral, snorm×2, 24 bits ----
 
-// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].
+// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 fn unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
     let t1 = a0 * 255.0f;
     let b = round(t1);

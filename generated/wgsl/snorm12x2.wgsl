@@ -7,7 +7,7 @@
 
 // ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms ----
 
-// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5).
+// Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5). Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 fn unitpack_snorm12x2_to_unorm8x3(f: vec2<f32>) -> vec3<f32> {
     let t1 = f >= vec2<f32>(-1.0f);
     let t2 = select(vec2<f32>(-1.0f), f, t1);
@@ -30,7 +30,7 @@ fn unitpack_snorm12x2_to_unorm8x3(f: vec2<f32>) -> vec3<f32> {
     return t14;
 }
 
-// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input.
+// Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 fn unitpack_snorm12x2_to_unorm8x3_int(f: vec2<f32>) -> vec3<f32> {
     let t1 = f >= vec2<f32>(-1.0f);
     let t2 = select(vec2<f32>(-1.0f), f, t1);
@@ -52,7 +52,7 @@ fn unitpack_snorm12x2_to_unorm8x3_int(f: vec2<f32>) -> vec3<f32> {
     return t16;
 }
 
-// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1].
+// Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 fn unitpack_unorm8x3_to_snorm12x2(u: vec3<f32>) -> vec2<f32> {
     let t1 = u * 255.0f;
     let b = round(t1);
@@ -70,7 +70,7 @@ fn unitpack_unorm8x3_to_snorm12x2(u: vec3<f32>) -> vec2<f32> {
     return t10;
 }
 
-// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input.
+// Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on every input. Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 fn unitpack_unorm8x3_to_snorm12x2_int(u: vec3<f32>) -> vec2<f32> {
     let t1 = u * 255.0f;
     let t2 = round(t1);
