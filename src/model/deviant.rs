@@ -31,7 +31,6 @@
 //! result a pathological driver could return.
 
 use super::num::{Bool, Float, Kind, Lane, Uint};
-use super::trace::{Ref, Ty, Value};
 use rand_core::Rng;
 use rand_pcg::Pcg64Mcg;
 use std::cell::{Cell, RefCell};
@@ -357,39 +356,7 @@ impl Dev {
     }
 }
 
-impl Value for Dev {
-    fn tys() -> Vec<Ty> {
-        vec![Ty::scalar(Kind::F32)]
-    }
-    fn refs(self) -> Vec<Ref> {
-        unreachable!("evaluated values are not traced")
-    }
-    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
-        unreachable!("evaluated values are not traced")
-    }
-}
-impl Value for DevU {
-    fn tys() -> Vec<Ty> {
-        vec![Ty::scalar(Kind::U32)]
-    }
-    fn refs(self) -> Vec<Ref> {
-        unreachable!("evaluated values are not traced")
-    }
-    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
-        unreachable!("evaluated values are not traced")
-    }
-}
-impl Value for DevB {
-    fn tys() -> Vec<Ty> {
-        vec![Ty::scalar(Kind::Bool)]
-    }
-    fn refs(self) -> Vec<Ref> {
-        unreachable!("evaluated values are not traced")
-    }
-    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
-        unreachable!("evaluated values are not traced")
-    }
-}
+crate::model::trace::value_eval!(Dev, DevU, DevB);
 
 impl Lane for Dev {
     const KIND: Kind = Kind::F32;

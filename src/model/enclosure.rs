@@ -35,7 +35,6 @@
 
 use super::deviant::{DIV_ULP, SQRT_ULP};
 use super::num::{Bool, Float, Kind, Lane, Uint};
-use super::trace::{Ref, Ty, Value};
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
 
 /// The smallest normal f32.
@@ -400,39 +399,8 @@ impl Div for Encl {
     }
 }
 
-impl Value for Encl {
-    fn tys() -> Vec<Ty> {
-        vec![Ty::scalar(Kind::F32)]
-    }
-    fn refs(self) -> Vec<Ref> {
-        unreachable!("evaluated values are not traced")
-    }
-    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
-        unreachable!("evaluated values are not traced")
-    }
-}
-impl Value for EnclU {
-    fn tys() -> Vec<Ty> {
-        vec![Ty::scalar(Kind::U32)]
-    }
-    fn refs(self) -> Vec<Ref> {
-        unreachable!("evaluated values are not traced")
-    }
-    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
-        unreachable!("evaluated values are not traced")
-    }
-}
-impl Value for EnclB {
-    fn tys() -> Vec<Ty> {
-        vec![Ty::scalar(Kind::Bool)]
-    }
-    fn refs(self) -> Vec<Ref> {
-        unreachable!("evaluated values are not traced")
-    }
-    fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self {
-        unreachable!("evaluated values are not traced")
-    }
-}
+crate::model::trace::value_eval!(Encl, EnclU, EnclB);
+
 impl Lane for Encl {
     const KIND: Kind = Kind::F32;
 }

@@ -685,16 +685,25 @@ pub trait Value: Copy {
     fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self;
 }
 
+/// [`Value`] for number types that are evaluated, never traced (`f32`, the adversarial
+/// and the enclosure evaluators).
 macro_rules! value_eval {
     ($($t:ty),*) => {$(
         /// Evaluated values never cross a traced call boundary; `call` runs the closure.
-        impl Value for $t {
-            fn tys() -> Vec<Ty> { vec![Ty::scalar(<$t as Lane>::KIND)] }
-            fn refs(self) -> Vec<Ref> { unreachable!("evaluated values are not traced") }
-            fn from_refs(_: &mut dyn Iterator<Item = Ref>) -> Self { unreachable!("evaluated values are not traced") }
+        impl $crate::model::trace::Value for $t {
+            fn tys() -> Vec<$crate::model::trace::Ty> {
+                vec![$crate::model::trace::Ty::scalar(<$t as $crate::model::Lane>::KIND)]
+            }
+            fn refs(self) -> Vec<$crate::model::trace::Ref> {
+                unreachable!("evaluated values are not traced")
+            }
+            fn from_refs(_: &mut dyn Iterator<Item = $crate::model::trace::Ref>) -> Self {
+                unreachable!("evaluated values are not traced")
+            }
         }
     )*};
 }
+pub(crate) use value_eval;
 value_eval!(f32, u32, bool);
 
 macro_rules! value_vec {
