@@ -27,9 +27,6 @@ const BUDGET: usize = 600_000;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bound {
     pub units: f64,
-    /// The largest bound of a single code evaluated on the way: how tight `units` is.
-    pub single_code: f64,
-    pub evaluations: usize,
     /// The box of codes (one inclusive range per field) whose bound is the stated one.
     pub at: Vec<(i64, i64)>,
 }
@@ -142,8 +139,6 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
         if single(&top.r) || units(top.dev) <= units(best_single) || evaluations.get() >= BUDGET {
             return Bound {
                 units: units(top.dev),
-                single_code: best_single / UNIT,
-                evaluations: evaluations.get(),
                 at: top.r,
             };
         }
@@ -199,13 +194,4 @@ pub fn cached(spec: &Spec, f: &Function) -> Option<Bound> {
     let b = of(f);
     cache.lock().expect("bound cache").insert(key, b.clone());
     b
-}
-
-/// Bounds of both decoders of `spec`, by function name.
-pub fn of_spec(spec: &Spec) -> Vec<(&'static str, Bound)> {
-    spec.emitted()
-        .functions
-        .iter()
-        .filter_map(|f| Some((f.name, of(f)?)))
-        .collect()
 }

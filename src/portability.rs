@@ -98,6 +98,9 @@ pub struct Row {
     /// Decoders: the bound [`crate::decode_bound`] proves for every code and every
     /// guaranteed class at once, in units of [`UNIT`].
     pub bound: Option<f64>,
+    /// Decoders: the box of codes (an inclusive range per field) where the bound is
+    /// attained.
+    pub bound_at: Option<Vec<(i64, i64)>>,
     /// The first changed item.
     pub example: Option<Example>,
 }
@@ -190,7 +193,8 @@ fn measure(
         (f.eval)(&input[i * iw..][..iw], &mut reference[k * ow..][..ow]);
     }
     let mut out = vec![0u32; ow];
-    let bound = crate::decode_bound::of(f).map(|b| b.units);
+    let proven = crate::decode_bound::of(f);
+    let bound = proven.as_ref().map(|b| b.units);
     classes
         .iter()
         .map(|&class| {
@@ -243,6 +247,7 @@ fn measure(
                 max_ulp,
                 max_dev,
                 bound,
+                bound_at: proven.as_ref().map(|b| b.at.clone()),
                 example,
             }
         })
@@ -384,8 +389,10 @@ impl PortabilityReport {
         t
     }
 
-    /// The report as JSON: classes, modes, `packed_encoders_portable` and every row
-    /// (`max_ulp` is `null` for packed codes and `"NaN"` when a NaN appeared or vanished).
+    /// The report as JSON: classes, modes, `packed_encoders_portable`, `guarantees_hold`
+    /// and every row (`max_ulp` is `null` for packed codes and `"NaN"` when a NaN appeared
+    /// or vanished; decoders add `max_dev`, `bound` and `bound_at`, the box of codes where
+    /// the bound is attained, one `[lo, hi]` per field).
     pub fn json(&self) -> String {
         let classes: Vec<String> = self.classes.iter().map(|c| json_str(c.name())).collect();
         let modes: Vec<String> = self.modes.iter().map(|m| json_str(&m.name())).collect();
@@ -415,7 +422,7 @@ impl PortabilityReport {
                     ),
                 };
                 format!(
-                    "{{\"spec\":{},\"function\":{},\"role\":{},\"class\":{},\"items\":{},\"changed\":{},\"by_mode\":[{}],\"max_ulp\":{},\"max_dev\":{},\"bound\":{},\"fails\":{},\"example\":{}}}",
+                    "{{\"spec\":{},\"function\":{},\"role\":{},\"class\":{},\"items\":{},\"changed\":{},\"by_mode\":[{}],\"max_ulp\":{},\"max_dev\":{},\"bound\":{},\"bound_at\":{},\"fails\":{},\"example\":{}}}",
                     json_str(&r.spec),
                     json_str(r.function),
                     json_str(&format!("{:?}", r.role)),
@@ -426,6 +433,11 @@ impl PortabilityReport {
                     max_ulp,
                     units(r.max_dev),
                     units(r.bound),
+                    r.bound_at.as_ref().map_or("null".to_string(), |at| {
+                        let boxes: Vec<String> =
+                            at.iter().map(|(a, b)| format!("[{a},{b}]")).collect();
+                        format!("[{}]", boxes.join(","))
+                    }),
                     r.fails(),
                     example
                 )
@@ -458,6 +470,7 @@ mod tests {
             max_ulp: None,
             max_dev: None,
             bound: None,
+            bound_at: None,
             example: None,
         }
     }

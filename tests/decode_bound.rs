@@ -96,6 +96,12 @@ fn every_decoder_has_a_finite_bound_the_samples_respect() {
     }
     assert!(decoders >= 2 * 5 * 40, "{decoders} decoder rows");
     assert!(report.guarantees_hold(), "{}", report.table());
+    let json = report.json();
+    assert!(json.contains("\"guarantees_hold\":true"));
+    assert!(
+        json.contains("\"bound_at\":[["),
+        "decoder rows name where the bound is attained"
+    );
 }
 
 /// Exhaustively for 16-bit decoders: no code, class or mode moves an output further than
