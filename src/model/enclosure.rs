@@ -316,11 +316,15 @@ impl Encl {
             _ => {}
         }
         let pick = |x: f64, y: f64| if max { x.max(y) } else { x.min(y) };
+        // A comparison may see a denormal operand flushed where the select returns it
+        // unflushed: then the result misses the extreme by less than a normal.
+        let grid = a.grid.min(b.grid);
+        let slack = if grid < MIN_NORMAL { MIN_NORMAL } else { 0.0 };
         Encl::result(
             (pick(a.lo, b.lo), pick(a.hi, b.hi)),
-            (pick(a.dev.0, b.dev.0), pick(a.dev.1, b.dev.1)),
-            join(a.e, b.e),
-            a.grid.min(b.grid),
+            iadd((pick(a.dev.0, b.dev.0), pick(a.dev.1, b.dev.1)), sym(slack)),
+            iadd(join(a.e, b.e), sym(slack)),
+            grid,
         )
     }
 }
@@ -650,7 +654,10 @@ impl Float for Encl {
         let dev = iadd(exact, sym(SQRT_ULP * ulp(widest(exact))));
         // |√a' − √a| = |e| / (√a + √a') ≤ √|e|
         let em = widest(self.e);
-        let denom = self.lo.sqrt() + self.dev.0.sqrt();
+        // Rounded down, so the quotient below is not.
+        let denom = (self.lo.sqrt().next_down().max(0.0) + self.dev.0.sqrt().next_down().max(0.0))
+            .next_down()
+            .max(0.0);
         let prop = if denom > 0.0 {
             (em / denom).min(em.sqrt())
         } else {
