@@ -2,7 +2,7 @@
 //!
 //! Output never goes through `print!` (it panics on a closed or full stdout): see
 //! [`output`]. Files are replaced atomically and only when they are the user's to replace:
-//! see [`crate::atomic`] and [`manifest`].
+//! see [`crate::atomic`] and `manifest`.
 
 mod generate;
 mod grammar;

@@ -135,7 +135,7 @@ fn put(c: &Codec, res: &[u32], to: Format, out: &mut dyn Write) -> std::io::Resu
 }
 
 /// Runs `spec`'s encoder or decoder from `input` to `output`; returns the records done.
-/// A failed write is a [`WriteError`].
+/// A failed write is a `WriteError`.
 pub fn transcode(
     spec: &Spec,
     dir: Direction,

@@ -114,7 +114,7 @@ fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
 }
 
 /// `Σ aᵢ²` of three or fewer integers below `2^24` whose squares sum below `2^48`, exact
-/// in 32-bit integers and rounded once (see [`fixed_sum_of_squares`]), kept as
+/// in 32-bit integers and rounded once (see `fixed_sum_of_squares`), kept as
 /// `hi·2^24 + lo` (both then below `2^24`, so both convert exactly).
 pub fn sum_of_squares<F: Float, const N: usize>(a: [F::U; N]) -> F {
     let limb = F::U::c(0xfff);
@@ -139,12 +139,12 @@ pub fn float_of<F: Float>(x: F::U) -> F {
     x.shr(12).to_f() * F::c(4096.0) + (x & F::U::c(0xfff)).to_f()
 }
 
-/// [`length2`] computed the [`fixed_sum_of_squares`] way, immune to regrouping.
+/// [`length2`] computed the `fixed_sum_of_squares` way, immune to regrouping.
 pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
     fixed_sum_of_squares([w.x, w.y, w.z]).named("len2")
 }
 
-/// `x² + y²` of a canonical vector, the [`fixed_sum_of_squares`] way.
+/// `x² + y²` of a canonical vector, the `fixed_sum_of_squares` way.
 pub fn fixed_length2_xy<F: Float>(w: V3<F>) -> F {
     fixed_sum_of_squares([w.x, w.y]).named("rho2")
 }

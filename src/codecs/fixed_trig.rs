@@ -2,7 +2,7 @@
 //! division or on contraction ([`super::trig`]'s float polynomials have both).
 //!
 //! Values are integers held in floats, in units of `2^-23` (angles in half turns, as in
-//! [`super::trig`]). A product is [`mul`]: one rounded product, an exact scaling and a
+//! [`super::trig`]). A product is `mul`: one rounded product, an exact scaling and a
 //! floor, so it is a function of its operands alone and nothing can be fused into it; the
 //! sums that follow add integers below `2^24`, which are exact. Quotients come from
 //! [`fixed_ratio`]. Each step loses at most one unit, so the results are within a few

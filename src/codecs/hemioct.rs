@@ -113,7 +113,7 @@ impl Codec for HemiOct {
         Domain::Hemisphere
     }
     /// The survey's Listing 6 on the input projected onto the +Z hemisphere: `(x ± y) /
-    /// (|x| + |y| + z)` with `z ← max(z, 0)`, as [`hemi_ratios`] gives them.
+    /// (|x| + |y| + z)` with `z ← max(z, 0)`, as `hemi_ratios` gives them.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let (n, l1, ok) = hemi_ratios(v);
         V2::sel_all(ok, n / l1, V2::splat(F::c(0.0)))

@@ -3,7 +3,7 @@
 //! registry and the spec grammar, and the list of shader functions each spec emits.
 //!
 //! Adding a codec is one new file (its description, options, variants and arithmetic,
-//! ending in a `pub static FAMILY`) and one line in [`registry!`] below.
+//! ending in a `pub static FAMILY`) and one line in `registry!` below.
 
 pub mod codec;
 pub mod exact;

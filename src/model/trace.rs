@@ -86,7 +86,7 @@ pub enum Op {
     Bitcast,
     /// Builds a vector from scalars (one arg: splat).
     Construct,
-    /// args[0] is a vector; picks the given lanes.
+    /// `args[0]` is a vector; picks the given lanes.
     Swizzle(Vec<u8>),
     Call(String),
 }

@@ -193,7 +193,7 @@ impl Backend for C {
         .render()
         .expect("C template renders")
     }
-    /// A test driver for one function: see [`C::driver`].
+    /// A test driver for one function: see `C::driver`.
     fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
         driver(include, &[(func, param, ret)])
     }
