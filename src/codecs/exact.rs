@@ -366,6 +366,15 @@ fn signed<F: Float>(n: F, c: F) -> F {
     F::sel(n.lt(F::c(0.0)), -c, c)
 }
 
+/// `2^100` when the magnitude `m` is below `2^-100`, else 1: a factor that scales a tiny
+/// numerator and divisor up exactly (the ratio unchanged) so that no denormal reaches a
+/// division, where an implementation may flush it to zero though not in the comparison
+/// guarding it (`0/0` is NaN).
+pub fn denormal_proof_scale<F: Float>(m: F) -> F {
+    let tiny = 1.0 / (1u128 << 100) as f32;
+    F::sel(m.lt(F::c(tiny)), F::c(1.0 / tiny), F::c(1.0))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -114,8 +114,7 @@ pub fn oct_params<F: Float>(v: V3<F>) -> V2<F> {
 pub fn fit_l1<F: Float>(v: V3<F>) -> V3<F> {
     let a = v.abs();
     let l1 = a.x + a.y + a.z;
-    let tiny = 1.0 / (1u128 << 100) as f32;
-    let up = F::sel(l1.lt(F::c(tiny)), F::c(1.0 / tiny), F::c(1.0));
+    let up = super::exact::denormal_proof_scale(l1);
     v * F::sel(l1.le(F::c(f32::MAX)), up, F::c(0.25))
 }
 

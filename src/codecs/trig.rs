@@ -36,9 +36,6 @@ fn atan_small<F: Float>(z: F) -> F {
     z * horner(z2, &atan_series())
 }
 
-/// Below this, [`atan2_pi`] scales its operands up by `1/TINY` before it divides.
-const TINY: f32 = 1.0 / (1u128 << 100) as f32;
-
 /// atan2(y, x) / π in [-1, 1]. Signed zeros count as positive (`atan2_pi(+0, -0) = 0`,
 /// `atan2_pi(-0, -1) = 1`); `atan2_pi(0, 0) = 0`. Tiny operands are scaled up before
 /// the division, so no input gives NaN, even on an implementation that flushes denormals
@@ -49,10 +46,7 @@ pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
     let y_major = ay.gt(ax);
     let hi = F::sel(y_major, ay, ax);
     let lo = F::sel(y_major, ax, ay);
-    // Tiny magnitudes are scaled up by a power of two (exact, the ratio unchanged) so that
-    // no denormal reaches the division: an implementation may flush one inside it though
-    // not in the comparison that guards it, and `0/0` is NaN.
-    let up = F::sel(hi.lt(F::c(TINY)), F::c(1.0 / TINY), F::c(1.0));
+    let up = super::exact::denormal_proof_scale(hi);
     let (hi, lo) = (hi * up, lo * up);
     let t = (lo / F::sel(hi.gt(F::c(0.0)), hi, F::c(1.0))).named("t");
     // atan(t) = π/4 + atan((t-1)/(t+1)) keeps the series argument below tan(π/8).
