@@ -1,28 +1,40 @@
 //! Survey Table 1 (Cigolle et al. 2014) reproduced with 2^20 seeded vectors (the survey's method, `src/quality.rs`):
-//! mean error within 2 %, max error within 5 % of the published figures.
+//! mean error within 2 %, max error within 5 % of the published figures. The rows we do
+//! not match that way are asserted by what the README's "Table 1 rows we do not
+//! reproduce" says of them.
 
 use unitpack::codecs::Spec;
-use unitpack::quality::measure;
+use unitpack::quality::{ErrorStats, measure};
 
 const SAMPLES: usize = 1 << 20;
 
-fn check(spec: &str, mean: f64, max: f64) {
+fn measured(spec: &str) -> ErrorStats {
     let s: Spec = spec.parse().unwrap();
     let st = measure(&s, SAMPLES).unwrap();
-    println!(
-        "{spec}: mean {:.5}° (table {mean}), max {:.5}° (table {max})",
-        st.mean, st.max
-    );
+    println!("{spec}: mean {:.5}°, max {:.5}°", st.mean, st.max);
+    st
+}
+
+fn mean_matches(spec: &str, st: &ErrorStats, mean: f64) {
     assert!(
         (st.mean - mean).abs() <= 0.02 * mean,
         "{spec}: mean {:.5}° vs table {mean}°",
         st.mean
     );
+}
+
+fn max_matches(spec: &str, st: &ErrorStats, max: f64) {
     assert!(
         (st.max - max).abs() <= 0.05 * max,
         "{spec}: max {:.5}° vs table {max}°",
         st.max
     );
+}
+
+fn check(spec: &str, mean: f64, max: f64) {
+    let st = measured(spec);
+    mean_matches(spec, &st, mean);
+    max_matches(spec, &st, max);
 }
 
 #[test]
@@ -70,4 +82,49 @@ fn spherical_and_snorm_match_table_1() {
     check("spherical16", 0.35527, 0.78685);
     check("spherical24", 0.02209, 0.04906);
     check("snorm8x3", 0.17015, 0.38588);
+}
+#[test]
+fn more_spherical_sizes_match_table_1() {
+    check("spherical20", 0.08847, 0.19632);
+    check("spherical22", 0.04423, 0.09809);
+}
+/// The table's 0.00957° max is float32 error in its atan2/acos; ours (about 0.00307°) is
+/// the quantization's own.
+#[test]
+fn spherical32_matches_table_1_with_a_lower_max() {
+    let st = measured("spherical32");
+    mean_matches("spherical32", &st, 0.00138);
+    assert!(st.max < 0.0031, "spherical32: max {:.5}°", st.max);
+}
+#[test]
+fn more_snorm_layouts_match_table_1() {
+    check("snorm5x3", 1.45262, 3.26743);
+    check("snorm11_11_10", 0.02937, 0.06776);
+    check("snorm16x3", 0.00066, 0.00149);
+}
+/// The table's mean (0.04708°) does not fit its own neighbours: snorm×3's mean scales
+/// with the step `1/M`, and snorm5x3, snorm8x3 and snorm11_11_10 match the table, which
+/// puts snorm10x3 at 0.170° · 127/511 = 0.0423°, what we measure. The max matches.
+#[test]
+fn snorm10x3_matches_table_1_max_and_the_step_scaling_of_its_mean() {
+    let st = measured("snorm10x3");
+    max_matches("snorm10x3", &st, 0.09598);
+    let scaled = 0.17015 * 127.0 / 511.0;
+    mean_matches("snorm10x3 (scaled from snorm8x3)", &st, scaled);
+}
+#[test]
+fn oct20_and_oct22_match_table_1() {
+    check("oct20", 0.08380, 0.23467);
+    check("oct20p", 0.07829, 0.15722);
+    check("oct22", 0.04180, 0.11734);
+}
+/// The extracted row reads `oct22P 24 0.02372 0.08093±`: a 22-bit codec listed at 24
+/// bits with a mean below oct24's own neighbours', so its mean is not usable. Its max is
+/// marked ±: ours may be lower. The mean must lie below oct22's (the precise search never
+/// picks a worse code than rounding).
+#[test]
+fn oct22p_matches_table_1_max() {
+    let st = measured("oct22p");
+    assert!(st.max <= 1.05 * 0.08093, "oct22p: max {:.5}°", st.max);
+    assert!(st.mean < 0.04180, "oct22p: mean {:.5}°", st.mean);
 }

@@ -1,6 +1,6 @@
 //! The CPU library: construction errors, slices, and round trips.
 
-use unitpack::api::{CpuCodec, HemiOct, Oct, StereoScaled};
+use unitpack::api::{CpuCodec, HemiOct, Oct, Snorm3, StereoScaled};
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
 #[test]
@@ -43,4 +43,20 @@ fn slices_match_single_calls_and_round_trip_within_the_codec_error() {
 fn slice_length_mismatch_is_refused() {
     let oct = Oct::new(16).unwrap().fast();
     oct.encode_slice(&[[0.0, 0.0, 1.0]; 2], &mut [0u32; 3]);
+}
+
+/// The documented layouts: snorm11_11_10 is x in bits 0–10, y in 11–21, z in 22–31;
+/// snorm5x3 is three 5-bit fields from bit 0, bit 15 clear; two's complement fields.
+#[test]
+fn snorm_layouts_put_x_lowest() {
+    let c = Snorm3::snorm11_11_10().fast();
+    assert_eq!(c.encode([1.0, 0.0, 0.0]), 1023);
+    assert_eq!(c.encode([0.0, -1.0, 0.0]), 1025 << 11);
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 511 << 22);
+    assert_eq!(c.decode(0x7ff), [-1.0, 0.0, 0.0]);
+    let c = Snorm3::one_word(5).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 17 << 10);
+    assert_eq!(c.encode([0.6, 0.8, 0.0]), (12 << 5) | 9);
+    assert_eq!(c.decode(15 << 5), [0.0, 1.0, 0.0]);
+    assert!(Snorm3::one_word(6).is_err());
 }

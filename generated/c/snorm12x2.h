@@ -27,7 +27,7 @@ static inline uint32_t unitpack_bits_of(float x) { uint32_t u; memcpy(&u, &x, si
 static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, sizeof x); return x; }
 #endif // UNITPACK_C_TYPES
 
-// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms ----
+// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms, 24 bits ----
 #ifndef UNITPACK_SNORM12X2_H
 #define UNITPACK_SNORM12X2_H
 

@@ -15,7 +15,7 @@
 #define UNITPACK_PRECISE
 #endif
 
-// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms ----
+// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms, 24 bits ----
 #ifndef UNITPACK_SNORM12X2_GLSL
 #define UNITPACK_SNORM12X2_GLSL
 #ifdef GL_ES

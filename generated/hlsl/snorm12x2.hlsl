@@ -18,7 +18,7 @@
 #endif
 #endif
 
-// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms ----
+// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms, 24 bits ----
 #ifndef UNITPACK_SNORM12X2_HLSL
 #define UNITPACK_SNORM12X2_HLSL
 

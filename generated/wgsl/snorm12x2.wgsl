@@ -5,7 +5,7 @@
 // fuse multiply-adds (verified on Mesa lavapipe). It uses no fma, no builtin trig and no
 // pack builtins.
 
-// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms ----
+// ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms, 24 bits ----
 
 // Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5). Other implementations: under the division, square root, contraction, denormal and sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 fn unitpack_snorm12x2_to_unorm8x3(f: vec2<f32>) -> vec3<f32> {

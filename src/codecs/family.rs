@@ -18,8 +18,9 @@ pub enum Sizes {
         count: u32,
         per: &'static [u32],
     },
-    /// One configuration, spelled by the name alone (packing helpers).
-    Fixed,
+    /// One configuration of this many bits, spelled by the name alone (`snorm11_11_10`,
+    /// packing helpers).
+    Fixed(u32),
 }
 
 /// One option a family takes: `key=value` in a spec, `_token` in an id.
@@ -159,7 +160,7 @@ pub struct Info {
 }
 
 impl Info {
-    /// Every size as a user spells it, with its total bit budget (0 for [`Sizes::Fixed`]).
+    /// Every size as a user spells it, with its total bit budget.
     pub fn spellings(&self) -> Vec<(String, u32)> {
         match &self.sizes {
             Sizes::Total(bits) => {
@@ -176,7 +177,7 @@ impl Info {
                 .iter()
                 .map(|b| (format!("{prefix}{b}x{count}"), b * count))
                 .collect(),
-            Sizes::Fixed => vec![(self.name.to_string(), 0)],
+            Sizes::Fixed(bits) => vec![(self.name.to_string(), *bits)],
         }
     }
 

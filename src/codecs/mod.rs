@@ -39,6 +39,7 @@ registry! {
     oct => Oct, Oct24Rgb8;
     hemioct => HemiOct;
     snorm3 => Snorm3, OneWord, TwoWords;
+    snorm11_11_10;
     spherical => Spherical;
     lambert => Lambert;
     stereo => StereoScaled;

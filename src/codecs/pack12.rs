@@ -20,7 +20,7 @@ pub struct Pack12Family;
 static INFO: Info = Info {
     name: "snorm12x2",
     title: "snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms",
-    sizes: Sizes::Fixed,
+    sizes: Sizes::Fixed(24),
     domain: None,
     precise: false,
     source: "Cigolle et al. 2014 §3.3, Listings 4–5",

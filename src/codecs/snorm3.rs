@@ -20,7 +20,7 @@ static INFO: Info = Info {
     sizes: Sizes::PerComponent {
         prefix: "snorm",
         count: 3,
-        per: &[8, 10, 16],
+        per: &[5, 8, 10, 16],
     },
     domain: Some(Domain::Sphere),
     precise: false,
@@ -37,29 +37,34 @@ impl Family for Snorm3Family {
     /// Components wider than 10 bits do not fit three to a word: snorm16×3 is two words.
     fn emitted(&self, spec: &Spec) -> Emitted {
         match spec.bits() / 3 {
-            16 => codec_functions(spec, Snorm3::<TwoWords>::new(16)),
-            b => codec_functions(spec, Snorm3::<OneWord>::new(b)),
+            16 => codec_functions(spec, Snorm3::<TwoWords>::two_words()),
+            b => codec_functions(spec, Snorm3::<OneWord>::new([b; 3])),
         }
     }
 }
 
 impl Snorm3<OneWord> {
-    /// snorm×3 in one word, with `bits` per component (8 or 10); an invalid size is an
-    /// error listing the allowed ones.
+    /// snorm×3 in one word, with `bits` per component (5, 8 or 10); an invalid size is
+    /// an error listing the allowed ones.
     pub fn one_word(bits: u32) -> Result<Self, SpecError> {
         match INFO.check_bits(bits * 3)? {
             48 => Err(SpecError::Invalid(
                 "snorm16x3 takes two words: use Snorm3::two_words()".into(),
             )),
-            _ => Ok(Snorm3::new(bits)),
+            _ => Ok(Snorm3::new([bits; 3])),
         }
+    }
+
+    /// snorm11_11_10: x and y in 11 bits, z in 10, one 32-bit word.
+    pub fn snorm11_11_10() -> Self {
+        Snorm3::new([11, 11, 10])
     }
 }
 
 impl Snorm3<TwoWords> {
     /// snorm16×3 in two words (the low 48 bits of an RGBA16_SNORM texel).
     pub fn two_words() -> Self {
-        Snorm3::new(16)
+        Snorm3::new([16; 3])
     }
 }
 
@@ -83,13 +88,13 @@ impl Words for TwoWords {
 
 #[derive(Clone, Copy, Debug)]
 pub struct Snorm3<W> {
-    /// Bits per component: 8, 10 or 16.
-    pub bits: u32,
+    /// Bits of x, y and z, first field lowest: 5, 8, 10 or 16 each, or 11, 11, 10.
+    pub bits: [u32; 3],
     pub words: PhantomData<W>,
 }
 
 impl<W> Snorm3<W> {
-    pub fn new(bits: u32) -> Self {
+    fn new(bits: [u32; 3]) -> Self {
         Snorm3 {
             bits,
             words: PhantomData,
@@ -101,7 +106,7 @@ impl<W: Words> Codec for Snorm3<W> {
     type P<F: Float> = V3<F>;
     type C<F: Float> = W::C<F>;
     fn quants(&self) -> Quants {
-        Quants::new(&[Quant::Snorm(self.bits); 3])
+        Quants::new(&self.bits.map(Quant::Snorm))
     }
     fn domain(&self) -> Domain {
         Domain::Sphere
@@ -117,10 +122,14 @@ impl<W: Words> Codec for Snorm3<W> {
     /// ([`crate::codecs::exact`]) against its exactly computed square length.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
-        let q = self.quants()[0];
+        let q = self.quants();
         let (w, ok) = canonical(v);
         let s = length2(w);
-        let c = w.map(|x| snorm_sqrt_ratio(q, x, s));
-        V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(q.max_code())))
+        let c = V3::new(
+            snorm_sqrt_ratio(q[0], w.x, s),
+            snorm_sqrt_ratio(q[1], w.y, s),
+            snorm_sqrt_ratio(q[2], w.z, s),
+        );
+        V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(q[2].max_code())))
     }
 }

@@ -21,7 +21,7 @@ pub struct SphericalFamily;
 static INFO: Info = Info {
     name: "spherical",
     title: "spherical coordinates (θ, φ), snorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
+    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
     domain: Some(Domain::Sphere),
     precise: true,
     source: "Cigolle et al. 2014 §2",

@@ -78,6 +78,17 @@ fn param_range(q: &[Quant]) -> &'static str {
     }
 }
 
+/// "a snorm8", or "a snorm11, snorm11, snorm10" where the fields differ: what a
+/// texture fetch or render target of the fields is called.
+fn storage_name(q: &[Quant]) -> String {
+    if q.iter().all(|f| *f == q[0]) {
+        format!("a {}", q[0].name())
+    } else {
+        let names: Vec<String> = q.iter().map(|f| f.name()).collect();
+        format!("a {}", names.join(", "))
+    }
+}
+
 fn helper_doc(spec: &Spec, local: &str) -> Vec<String> {
     vec![
         crate::codecs::helper_doc(spec.family(), local)
@@ -135,6 +146,7 @@ pub fn function_doc(
     };
     let layout = layout_text(q);
     let range = param_range(q);
+    let storage = storage_name(q);
     let error = stats.map(|s| {
         format!(
             "Round-trip error (encode, store, decode) over a sample of {} seeded unit vectors (seed 0x{:032x}): mean {:.5}°, sample max {:.5}° (not a bound).",
@@ -158,10 +170,7 @@ pub fn function_doc(
         ],
         Role::DecodeFloat => vec![
             format!("{}: {codec}, decoder, float form.", p.name),
-            format!(
-                "In: parameters in {range}, as a {} fetch returns them.",
-                q[0].name()
-            ),
+            format!("In: parameters in {range}, as {storage} fetch returns them."),
             format!("Out: {}.", c.decode_note),
         ],
         Role::EncodeFloat => vec![
@@ -169,13 +178,11 @@ pub fn function_doc(
             format!("In: any vector; {}.", c.edge_policy),
             if spec.precise() {
                 format!(
-                    "Out: the chosen codes as values in {range} (c/M) for a {} render target or vertex format.",
-                    q[0].name()
+                    "Out: the chosen codes as values in {range} (c/M) for {storage} render target or vertex format."
                 )
             } else {
                 format!(
-                    "Out: parameters in {range}, unquantized, for a {} render target or vertex format to round.",
-                    q[0].name()
+                    "Out: parameters in {range}, unquantized, for {storage} render target or vertex format to round."
                 )
             },
         ],
