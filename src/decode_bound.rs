@@ -9,7 +9,7 @@
 //! reaches, or an evaluation budget is spent: either way the stated bound covers every box,
 //! so every code.
 
-use crate::codecs::functions::{Enclose, Function, Role};
+use crate::codecs::functions::{Enclose, Function, Role, float_code_range};
 use crate::codecs::quant::Quant;
 use crate::codecs::{Spec, functions::Inputs};
 use crate::model::enclosure::Encl;
@@ -144,10 +144,23 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
         }
         // Halve the side whose halves bound lowest: fields do not matter equally (a
         // bit field may carry the high bits of one parameter and the low bits of another).
+        // On a tie (both unbounded, say) the side with the lower other half, then the
+        // widest side: what is unbounded (an f16 field's infinities and NaNs) is isolated
+        // rather than a narrow side halved again and again.
+        let key = |h: &[Boxed; 2], k: usize| {
+            let (lo, hi) = (h[0].dev.min(h[1].dev), h[0].dev.max(h[1].dev));
+            (hi, lo, -((top.r[k].1 - top.r[k].0) as f64))
+        };
         let halves = (0..top.r.len())
             .filter(|&k| top.r[k].0 < top.r[k].1)
-            .map(|k| split(&top.r, k).map(|r| Boxed { dev: eval(&r), r }))
-            .min_by(|a, b| a[0].dev.max(a[1].dev).total_cmp(&b[0].dev.max(b[1].dev)))
+            .map(|k| (k, split(&top.r, k).map(|r| Boxed { dev: eval(&r), r })))
+            .min_by(|(i, a), (j, b)| {
+                let ((a0, a1, a2), (b0, b1, b2)) = (key(a, *i), key(b, *j));
+                a0.total_cmp(&b0)
+                    .then(a1.total_cmp(&b1))
+                    .then(a2.total_cmp(&b2))
+            })
+            .map(|(_, h)| h)
             .expect("a box of more than one code has a side to halve");
         for b in halves {
             if single(&b.r) {
@@ -162,11 +175,7 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
 fn code_ranges(f: &Function) -> Option<Vec<(i64, i64)>> {
     let q = match (&f.inputs, f.role) {
         (Inputs::FloatCodes(q), Role::DecodeFloat) => {
-            return Some(
-                q.iter()
-                    .map(|q| (q.min_code() as i64, q.max_code() as i64))
-                    .collect(),
-            );
+            return Some(q.iter().map(|q| float_code_range(*q)).collect());
         }
         (Inputs::Codes(q), Role::Decode) => q,
         _ => return None,

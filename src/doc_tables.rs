@@ -54,22 +54,34 @@ pub fn catalogue_table() -> String {
     s
 }
 
-/// Round-trip error of every codec spec over `samples` seeded unit vectors.
-pub fn error_table(samples: usize) -> String {
-    let specs: Vec<Spec> = Spec::all()
+/// Every spec the README's codec table has a row for: the codecs (not the helpers).
+pub fn codec_specs() -> Vec<Spec> {
+    Spec::all()
         .into_iter()
         .filter(|s| s.info().domain.is_some())
-        .collect();
+        .collect()
+}
+
+/// Round-trip error of every [`codec_specs`] spec over `samples` seeded unit vectors, with
+/// the ALU instructions of its packed encoder and decoder (`alu[i]` for spec `i`,
+/// counted by `unitpack::verify::alu`, which needs the shader tools).
+pub fn error_table(samples: usize, alu: &[[u32; 2]]) -> String {
+    let specs = codec_specs();
+    assert_eq!(specs.len(), alu.len(), "one ALU count pair per spec");
     let stats = quality::measure_all(&specs, samples);
     let mut s = format!(
         "Round-trip angular error over {samples} seeded unit vectors (seed `{VECTOR_SEED:#x}`; \
          hemisphere codecs over the +Z hemisphere). The maximum is the largest error in \
-         that sample, not a bound.\n\n| spec | bits | domain | mean | sample max |\n|---|---|---|---|---|\n"
+         that sample, not a bound. ALU: instructions of the packed `encode` and `decode` \
+         (GLSL through `glslangValidator -V` and `spirv-opt -O`, counted as in \
+         \"What portability costs\" below; `src/verify/alu.rs`).\n\n\
+         | spec | bits | domain | mean | sample max | encode ALU | decode ALU |\n\
+         |---|---|---|---|---|---|---|\n"
     );
-    for (spec, st) in specs.iter().zip(stats) {
+    for ((spec, st), [enc, dec]) in specs.iter().zip(stats).zip(alu) {
         let st = st.expect("codecs have error statistics");
         s.push_str(&format!(
-            "| `{}` | {} | {} | {:.5}° | {:.5}° |\n",
+            "| `{}` | {} | {} | {:.5}° | {:.5}° | {enc} | {dec} |\n",
             spec.id(),
             spec.bits(),
             spec.info().domain.map_or("", |d| d.name()),

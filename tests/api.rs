@@ -1,6 +1,8 @@
 //! The CPU library: construction errors, slices, and round trips.
 
-use unitpack::api::{CpuCodec, HemiOct, Oct, Snorm3, StereoScaled};
+use unitpack::api::{
+    CpuCodec, Float16x3, HemiEqArea, HemiOct, HemiStereo, Oct, Snorm3, StereoScaled,
+};
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
 #[test]
@@ -59,4 +61,47 @@ fn snorm_layouts_put_x_lowest() {
     assert_eq!(c.encode([0.6, 0.8, 0.0]), (12 << 5) | 9);
     assert_eq!(c.decode(15 << 5), [0.0, 1.0, 0.0]);
     assert!(Snorm3::one_word(6).is_err());
+}
+
+/// float16x3 is an RGBA16_FLOAT texel's first three channels: x low in word 0, y high,
+/// z low in word 1; halves as IEEE 754 rounds them (0.6 → 0x38cd, 0.8 → 0x3a66).
+#[test]
+fn float16x3_codes_are_rgba16_float_texels() {
+    let c = Float16x3.fast();
+    assert_eq!(c.encode([0.6, 0.8, 0.0]).to_array(), [0x3a66_38cd, 0]);
+    assert_eq!(c.encode([0.0, 0.0, -2.0]).to_array(), [0, 0xbc00]);
+    assert_eq!(c.encode([-0.0, 0.0, 1.0]).to_array(), [0, 0x3c00]);
+    let v = c.decode(unitpack::model::V2::new(0x3a66_38cd, 0));
+    assert_eq!(v, [0.600_097_66, 0.799_804_7, 0.0]);
+    // An infinite or NaN half, or three zeros, decode as +Z.
+    for code in [[0x7c00, 0], [0, 0x7e01], [0x8000_8000, 0x8000]] {
+        let v = c.decode(unitpack::model::V2::new(code[0], code[1]));
+        assert_eq!(v, [0.0, 0.0, 1.0], "{code:x?}");
+    }
+}
+
+/// stereo16 is x in bits 0–7 (unorm8), y in bits 8–14 (unorm7), the hemisphere bit (set
+/// for z < 0) in bit 15; the disk centre is between codes, and ties go up.
+#[test]
+fn stereo_layout_is_x_y_then_the_hemisphere_bit() {
+    let c = HemiStereo::new(16).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 128 | 64 << 8);
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 128 | 64 << 8 | 1 << 15);
+    assert_eq!(c.encode([1.0, 0.0, 0.0]), 255 | 64 << 8);
+    assert_eq!(c.encode([0.0, -1.0, -0.0]), 128);
+    let v = c.decode(255 | 64 << 8 | 1 << 15);
+    assert!(v[0] > 0.9999 && v[2].abs() < 1e-4, "{v:?}");
+    assert!(HemiStereo::new(18).is_err());
+}
+
+/// eqarea shares stereo's layout; the square's corners decode to the opposite pole of
+/// their hemisphere.
+#[test]
+fn eqarea_layout_and_corners() {
+    let c = HemiEqArea::new(16).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 128 | 64 << 8);
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 128 | 64 << 8 | 1 << 15);
+    assert_eq!(c.encode([1.0, 0.0, 0.0]), 255 | 64 << 8);
+    assert_eq!(c.decode(255 | 127 << 8), [0.0, 0.0, -1.0]);
+    assert_eq!(c.decode(1 << 15), [-0.0, -0.0, 1.0]);
 }

@@ -257,6 +257,7 @@ fn texel(q: &[Quant], params: &[f32]) -> Vec<u32> {
                 let m = ((1u64 << b) - 1) as f64;
                 ((f64::from(x).clamp(0.0, 1.0) * m).round() as u64, b)
             }
+            Quant::Half => (half_of(x), 16),
         };
         if bit % 32 + bits > 32 {
             bit = (bit / 32 + 1) * 32; // a field never straddles a 32-bit word
@@ -269,6 +270,38 @@ fn texel(q: &[Quant], params: &[f32]) -> Vec<u32> {
         .take(bit.div_ceil(32) as usize)
         .map(|w| *w as u32)
         .collect()
+}
+
+/// The grid an f32 → f16 conversion rounds `|x| ≤ 65504` to: `2^(e-10)` in the binade
+/// `[2^e, 2^(e+1))`, `2^-24` below `2^-14`; as the factor that scales it to integers.
+fn half_scale(x: f64) -> f64 {
+    let e = x.abs().log2().floor().max(-14.0);
+    2f64.powf(10.0 - e)
+}
+
+/// IEEE 754 f32 → binary16 with ties to even (what an RGBA16_FLOAT target stores), by
+/// the definition of the format.
+fn half_of(x: f32) -> u64 {
+    let sign = if x.is_sign_negative() { 0x8000 } else { 0 };
+    let a = f64::from(x).abs();
+    if a == 0.0 {
+        return sign;
+    }
+    let k = half_scale(a);
+    let c = (a * k).round_ties_even();
+    let e = 10.0 - k.log2(); // the binade's exponent
+    let (c, e) = if c >= 2048.0 {
+        (c / 2.0, e + 1.0)
+    } else {
+        (c, e)
+    };
+    if c < 1024.0 {
+        sign | c as u64 // subnormal
+    } else if e > 15.0 {
+        sign | 0x7c00
+    } else {
+        sign | ((e + 15.0) as u64) << 10 | (c as u64 - 1024)
+    }
 }
 
 #[test]
@@ -298,7 +331,10 @@ fn packed_code_is_the_texel_a_render_target_would_store() {
             // packed encoder rounds (ULP of the terms before the unorm's `+ 0.5`, so of
             // at least half the range): skip inputs within four such ulps of a half.
             let tie = q.iter().zip(&p).any(|(q, x)| {
-                let m = f64::from(q.max_code());
+                let m = match q {
+                    Quant::Half => half_scale(f64::from(*x)),
+                    _ => f64::from(q.max_code()),
+                };
                 let scaled = f64::from(*x) * m;
                 let ulp = 4.0 * scaled.abs().max(m / 2.0) * 2f64.powi(-23);
                 (scaled - scaled.floor() - 0.5).abs() <= ulp + 1e-12

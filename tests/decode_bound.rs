@@ -78,8 +78,11 @@ fn every_decoder_has_a_finite_bound_the_samples_respect() {
         let b = row
             .bound
             .unwrap_or_else(|| panic!("{} {} has no bound", row.spec, row.function));
+        assert!(b.is_finite(), "{} {}: bound {b}", row.spec, row.function);
+        // Only a decoder that does no rounded arithmetic (float16x3: integer unpacking
+        // and one exact product) deviates by nothing at all.
         assert!(
-            b.is_finite() && b >= 1.0,
+            b >= 1.0 || row.spec == "float16x3",
             "{} {}: bound {b}",
             row.spec,
             row.function

@@ -2,7 +2,7 @@
 //! rewrites them when run with `UPDATE_README=1`.
 
 use unitpack::doc_tables::{
-    README_SAMPLES, bound_table, catalogue_table, error_table, replace_block,
+    README_SAMPLES, bound_table, catalogue_table, codec_specs, error_table, replace_block,
 };
 
 #[test]
@@ -10,9 +10,15 @@ fn readme_tables_are_generated_and_fresh() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
     let text = std::fs::read_to_string(&path).unwrap();
     let mut fresh = text.clone();
+    let alu: Vec<[u32; 2]> =
+        unitpack::verify::alu::count_all(&codec_specs(), &["encode", "decode"])
+            .unwrap_or_else(|e| panic!("cannot count ALU instructions: {e:#}"))
+            .into_iter()
+            .map(|c| [c[0], c[1]])
+            .collect();
     for (name, body) in [
         ("catalogue", catalogue_table()),
-        ("errors", error_table(README_SAMPLES)),
+        ("errors", error_table(README_SAMPLES, &alu)),
         ("bounds", bound_table()),
     ] {
         fresh = replace_block(&fresh, name, &body)

@@ -339,6 +339,38 @@ pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
     signed(n, corrected(q, estimate, up, down))
 }
 
+/// The f16 value nearest `n / √s` (`n` a component of a canonical vector, `s` its
+/// [`length2`]), as an f32: [`snorm_sqrt_ratio`] on the f16 grid. The grid spacing
+/// `1/q` is taken from the binade of an estimate, clamped to the f16 normal binades
+/// (below `2^-14` the subnormal spacing `2^-24` is the lowest binade's); an estimate in
+/// the neighbouring binade can only occur within a few ULP of the power of two between
+/// them, which both grids round to. The code is then the integer `c` with
+/// `(c - ½)²·s ≤ (|n|·q)² < (c + ½)²·s` (`|n|·q` exact, each other product rounded
+/// once), times `1/q` (exact). A zero result is `+0` whatever the sign of `n`.
+pub fn half_sqrt_ratio<F: Float>(n: F, s: F) -> F {
+    let u = |v: u32| F::U::c(v);
+    let a = n.abs();
+    let estimate = (a / s.sqrt()).named("half_estimate");
+    // The biased exponent of the estimate (sign masked: a lost sign of zero is harmless),
+    // clamped to the f16 normal binades 2^-14 .. 2^-1: 113 ..= 126.
+    let e = (estimate.to_bits() & u(0x7fff_ffff)).shr(23);
+    let e = F::U::sel(e.lt(u(113)), u(113), e);
+    let e = F::U::sel(u(126).lt(e), u(126), e);
+    // q = 2^(10 - (e - 127)) and 1/q, built as exponent fields.
+    let q = u(264).wrapping_sub(e).shl(23).as_float().named("half_grid");
+    let q_inv = e.wrapping_sub(u(10)).shl(23).as_float();
+    let big = a * q;
+    let big2 = big * big;
+    let c = (estimate * q).round();
+    let hi = c + F::c(0.5);
+    let lo = c - F::c(0.5);
+    let up = big2.ge(hi * hi * s);
+    let down = c.gt(F::c(0.0)).and(big2.lt(lo * lo * s));
+    let c = stepped(c, up, down);
+    let h = c * q_inv;
+    F::sel(n.lt(F::c(0.0)).and(c.gt(F::c(0.0))), -h, h)
+}
+
 /// `floor(n / d · M)` for `|n| ≤ d` (`d > 0`, as for [`snorm_ratio`]): the integer `c`
 /// in `[-M, M]` with `c·d ≤ n·M < (c + 1)·d` (each side rounded once), where a precise
 /// search starts.

@@ -47,18 +47,18 @@ fn distance<F: Float>(d: V3<F>, u: V3<F>) -> Distance<F> {
 }
 
 /// The nearest of the four codes `base`, `base + (1, 0)`, `(0, 1)` and `(1, 1)` (codes
-/// past the largest are skipped), by the squared distance of their fixed-point decodes
-/// (`decode`) to the fixed-point `target`; the first on ties.
+/// past the largest of their field `q` are skipped), by the squared distance of their
+/// fixed-point decodes (`decode`) to the fixed-point `target`; the first on ties.
 pub fn nearest_decoded<F: Float>(
-    q: Quant,
+    q: [Quant; 2],
     base: V2<F>,
     target: V3<F>,
     decode: impl Fn(V2<F>) -> V3<F>,
 ) -> V2<F> {
-    let hi = F::c(q.max_code());
+    let (hx, hy) = (F::c(q[0].max_code()), F::c(q[1].max_code()));
     nearest(base.x, base.y, |s, t| {
-        let codes = V2::new(s.at_most(hi), t.at_most(hi)).named("cand");
-        let valid = s.le(hi).and(t.le(hi));
+        let codes = V2::new(s.at_most(hx), t.at_most(hy)).named("cand");
+        let valid = s.le(hx).and(t.le(hy));
         (codes, valid, distance(decode(codes), target))
     })
 }

@@ -214,9 +214,7 @@ where
     let field_box = {
         let c = c.clone();
         move |r: &[(i64, i64)]| {
-            let codes = C::P::<Encl>::build(|i| {
-                q[i].from_field(EnclU::range(r[i].0 as u64, r[i].1 as u64))
-            });
+            let codes = C::P::<Encl>::build(|i| field_codes(q[i], r[i]));
             c.decode_codes(codes).to_array().to_vec()
         }
     };
@@ -268,16 +266,67 @@ where
 }
 
 /// The values a texture fetch returns for the codes `c0..=c1` (`c/M` correctly rounded,
-/// snorm at least -1): monotone in `c`, so the bounds are the ends'. Every nonzero one is
-/// at least `1/M`, so all are multiples of the f32 spacing at `1/M`.
+/// snorm at least -1; for an f16 field, the finite halves in order, see
+/// [`float_code_range`]): monotone in `c`, so the bounds are the ends'. Every nonzero
+/// one is at least `1/M`, so all are multiples of the f32 spacing at `1/M` (of `2^-24`,
+/// the least f16, for halves).
 fn fetched_range(q: Quant, (c0, c1): (i64, i64)) -> Encl {
-    let m = q.max_code();
-    let at = |c: i64| f64::from(crate::codecs::inputs::fetched(q, c as f32));
-    Encl::range(
-        at(c0),
-        at(c1),
-        crate::model::enclosure::ulp(f64::from(1.0 / m)),
-    )
+    let (at, grid): (fn(Quant, i64) -> f32, f64) = match q {
+        Quant::Half => (|_, k| half_of_ordinal(k), 1.0 / f64::from(1u32 << 24)),
+        _ => (
+            |q, c| crate::codecs::inputs::fetched(q, c as f32),
+            crate::model::enclosure::ulp(f64::from(1.0 / q.max_code())),
+        ),
+    };
+    Encl::range(f64::from(at(q, c0)), f64::from(at(q, c1)), grid)
+}
+
+/// The codes in the raw fields `lo..=hi`: [`Quant::from_field`] evaluated over the range.
+/// An f16 field's conversion ([`crate::codecs::half::half_value`]) is integer operations
+/// and one exact product with a normal result, so no deviation class can move it; its
+/// bit manipulation has no useful interval form, so its enclosure is taken directly as
+/// the exact values of the range: monotone within a sign, finite or not. Infinities and
+/// NaNs stand as infinities, which every decoder only compares (`|x| ≤ MAX` is false for
+/// both) before replacing them.
+fn field_codes(q: Quant, (lo, hi): (i64, i64)) -> Encl {
+    if q != Quant::Half {
+        return q.from_field(EnclU::range(lo as u64, hi as u64));
+    }
+    let (lo, hi) = (lo as u32, hi as u32);
+    let negative = lo >> 15 == 1;
+    let special = |h: u32| h & 0x7fff >= 0x7c00;
+    if lo >> 15 != hi >> 15 || special(lo) != special(hi) {
+        return Encl::unknown();
+    }
+    if special(lo) {
+        let inf = if negative {
+            f64::NEG_INFINITY
+        } else {
+            f64::INFINITY
+        };
+        return Encl::range(inf, inf, 0.0);
+    }
+    let (a, b) = (
+        f64::from(crate::codecs::half::half_value::<f32>(lo)),
+        f64::from(crate::codecs::half::half_value::<f32>(hi)),
+    );
+    Encl::range(a.min(b), a.max(b), 1.0 / f64::from(1u32 << 24))
+}
+
+/// The codes a float-form decoder is proven over, as ordered integers: `min..=max` of
+/// the integer codes, or for an f16 field the finite halves numbered in order of value,
+/// `-0x7bff..=0x7bff` (`k ≥ 0` the half with bits `k`, `-k` its negative).
+pub fn float_code_range(q: Quant) -> (i64, i64) {
+    match q {
+        Quant::Half => (-0x7bff, 0x7bff),
+        _ => (q.min_code() as i64, q.max_code() as i64),
+    }
+}
+
+/// The finite half numbered `k` by [`float_code_range`].
+fn half_of_ordinal(k: i64) -> f32 {
+    let v = crate::codecs::half::half_value::<f32>(k.unsigned_abs() as u32);
+    if k < 0 { -v } else { v }
 }
 
 /// The packed decoder: unpack, then [`Codec::decode_codes`].

@@ -2,6 +2,7 @@
 //! random codes above; seeded random unit vectors plus every edge case for encoders.
 
 use crate::codecs::functions::Inputs;
+use crate::codecs::half::half_value;
 use crate::codecs::quant::{Quant, field_offsets};
 use crate::quality::random_unit_vectors;
 use rand_core::Rng;
@@ -58,7 +59,8 @@ pub fn edge_vectors() -> Vec<[f32; 3]> {
     out
 }
 
-/// Every code of the fields, or seeded random ones above 24 bits, as packed words.
+/// Every code of the fields, or above 24 bits every value of each 16-bit field (f16
+/// fields: every pattern) followed by seeded random codes, as packed words.
 fn codes(q: &[Quant], words: usize) -> Vec<u32> {
     let total: u32 = q.iter().map(|q| q.bits()).sum();
     let mut out = Vec::new();
@@ -70,6 +72,9 @@ fn codes(q: &[Quant], words: usize) -> Vec<u32> {
         return out;
     }
     let mut rng = Pcg64Mcg::new(CODE_SEED);
+    for k in 0..sweep_items(q) {
+        out.extend(swept(q, k).iter().take(words));
+    }
     for _ in 0..RANDOM_ITEMS {
         for _ in 0..words {
             out.push(rng.next_u32());
@@ -78,9 +83,36 @@ fn codes(q: &[Quant], words: usize) -> Vec<u32> {
     out
 }
 
-/// The value a texture fetch returns for code `c`: `c/M`, correctly rounded, clamped at -1.
+/// Items that give every 16-bit field every value: 2^16 when the layout has such a field.
+fn sweep_items(q: &[Quant]) -> u32 {
+    if q.iter().any(|f| f.bits() == 16) {
+        1 << 16
+    } else {
+        0
+    }
+}
+
+/// Item `k` of the sweep: the `i`-th 16-bit field holds `k` times an odd constant (a
+/// permutation of the 2^16 values, a different one per field), other fields random-looking
+/// values of the same kind; packed like [`super::codec::pack`].
+fn swept(q: &[Quant], k: u32) -> [u32; 3] {
+    const ODD: [u32; 3] = [1, 40_503, 9_973];
+    let offs = field_offsets(q);
+    let mut w = [0u32; 3];
+    for (i, (f, off)) in q.iter().zip(offs).enumerate() {
+        let v = k.wrapping_mul(ODD[i]) & f.mask();
+        w[(off / 32) as usize] |= v << (off % 32);
+    }
+    w
+}
+
+/// The value a texture fetch returns for code `c`: `c/M`, correctly rounded, clamped at
+/// -1; an f16 field's code is its value.
 pub(crate) fn fetched(q: Quant, c: f32) -> f32 {
-    (c / q.max_code()).max(-1.0)
+    match q {
+        Quant::Half => c,
+        _ => (c / q.max_code()).max(-1.0),
+    }
 }
 
 /// Float parameters for every code (or random codes), as a fetch delivers them.
@@ -94,13 +126,20 @@ fn float_codes(q: &[Quant]) -> Vec<u32> {
         RANDOM_ITEMS as u64
     };
     let mut out = Vec::with_capacity(n as usize * q.len());
-    for k in 0..n {
-        let bits: u64 = if total <= 24 { k } else { rng.next_u64() };
+    let sweep = (0..sweep_items(q)).map(|k| {
+        let w = swept(q, k);
+        u64::from(w[0]) | u64::from(w[1]) << 32
+    });
+    let rest = (0..n).map(|k| if total <= 24 { k } else { rng.next_u64() });
+    for bits in sweep.chain(rest) {
         for (quant, off) in q.iter().zip(&offs) {
-            let field = ((bits >> off) & u64::from(quant.mask())) as f32;
+            let field = (bits >> off) & u64::from(quant.mask());
             let c = match quant {
-                Quant::Snorm(b) if field > quant.max_code() => field - (1u64 << b) as f32,
-                _ => field,
+                Quant::Half => half_value::<f32>(field as u32),
+                Quant::Snorm(b) if field as f32 > quant.max_code() => {
+                    field as f32 - (1u64 << b) as f32
+                }
+                _ => field as f32,
             };
             out.push(fetched(*quant, c).to_bits());
         }

@@ -6,11 +6,13 @@
 //! ending in a `pub static FAMILY`) and one line in `registry!` below.
 
 pub mod codec;
+pub mod disk;
 pub mod exact;
 pub mod family;
 pub mod fixed_decode;
 pub mod fixed_trig;
 pub mod functions;
+pub mod half;
 pub mod inputs;
 pub mod lattice;
 pub mod quant;
@@ -40,9 +42,12 @@ registry! {
     hemioct => HemiOct;
     snorm3 => Snorm3, OneWord, TwoWords;
     snorm11_11_10;
+    float3 => Float16x3;
     spherical => Spherical;
     lambert => Lambert;
     stereo => StereoScaled;
+    hemi_stereo => HemiStereo;
+    hemi_eqarea => HemiEqArea;
     xy => Xy;
     pack12;
 }

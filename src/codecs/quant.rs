@@ -2,8 +2,10 @@
 //!
 //! Codes are carried as integral `f32` values: every code of up to 24 bits is exact in
 //! f32, so the model never needs signed integers, and two's complement fields come from
-//! one select (`c < 0 ? c + 2^b : c`).
+//! one select (`c < 0 ? c + 2^b : c`). An f16 field ([`Quant::Half`]) carries its value
+//! instead, which f32 holds exactly.
 
+use super::half::{half_bits, half_value};
 use crate::model::{Float, Uint, V2};
 
 /// How one parameter is stored.
@@ -13,30 +15,35 @@ pub enum Quant {
     Snorm(u32),
     /// `c = round(clamp(x,0,1)·M)`, `x = c·(1/M)`, `M = 2^b-1`.
     Unorm(u32),
+    /// An IEEE binary16 field ([`super::half`]): the "code" is the f16 value itself, held
+    /// exactly in f32, and the field its bits; a zero is stored as +0.
+    Half,
 }
 
 impl Quant {
     pub fn bits(self) -> u32 {
         match self {
             Quant::Snorm(b) | Quant::Unorm(b) => b,
+            Quant::Half => 16,
         }
     }
-    /// The largest code, `M`.
+    /// The largest code, `M` (for [`Quant::Half`], the largest finite f16).
     pub fn max_code(self) -> f32 {
         match self {
             Quant::Snorm(b) => ((1u32 << (b - 1)) - 1) as f32,
             Quant::Unorm(b) => ((1u64 << b) - 1) as f32,
+            Quant::Half => 65504.0,
         }
     }
     pub fn min_code(self) -> f32 {
         match self {
-            Quant::Snorm(_) => -self.max_code(),
+            Quant::Snorm(_) | Quant::Half => -self.max_code(),
             Quant::Unorm(_) => 0.0,
         }
     }
     fn lo(self) -> f32 {
         match self {
-            Quant::Snorm(_) => -1.0,
+            Quant::Snorm(_) | Quant::Half => -1.0,
             Quant::Unorm(_) => 0.0,
         }
     }
@@ -44,6 +51,7 @@ impl Quant {
         match self {
             Quant::Snorm(b) => format!("snorm{b}"),
             Quant::Unorm(b) => format!("unorm{b}"),
+            Quant::Half => "float16".to_string(),
         }
     }
     /// Clamps to the storage range; NaN goes to the low end (comparisons with NaN are false).
@@ -52,10 +60,15 @@ impl Quant {
     }
     /// The code nearest to `x`, ties to even.
     pub fn quantize<F: Float>(self, x: F) -> F {
-        (self.clamp(x) * F::c(self.max_code())).round()
+        match self {
+            Quant::Half => half_value(half_bits(self.clamp(x))),
+            _ => (self.clamp(x) * F::c(self.max_code())).round(),
+        }
     }
-    /// The code at or below `x`: where a precise search starts.
+    /// The code at or below `x`: where a precise search starts. Precise searches step
+    /// through integer codes, which an f16 field does not have.
     pub fn floor_code<F: Float>(self, x: F) -> F {
+        assert!(self != Quant::Half, "no precise search over f16 fields");
         (self.clamp(x) * F::c(self.max_code())).floor()
     }
     /// Clamps a candidate code to the valid codes.
@@ -63,10 +76,10 @@ impl Quant {
         c.at_most(F::c(self.max_code()))
     }
     pub fn dequantize<F: Float>(self, c: F) -> F {
-        let x = c * F::c(1.0 / self.max_code());
         match self {
-            Quant::Snorm(_) => x.at_least(F::c(-1.0)),
-            Quant::Unorm(_) => x,
+            Quant::Snorm(_) => (c * F::c(1.0 / self.max_code())).at_least(F::c(-1.0)),
+            Quant::Unorm(_) => c * F::c(1.0 / self.max_code()),
+            Quant::Half => c,
         }
     }
     /// The unsigned bit field of a code.
@@ -77,17 +90,24 @@ impl Quant {
                 F::sel(c.lt(F::c(0.0)), wrapped, c).to_u()
             }
             Quant::Unorm(_) => c.to_u(),
+            // Selects may lose the sign of a zero on some implementations, so a zero
+            // is always stored as +0.
+            Quant::Half => {
+                let h = half_bits(c);
+                F::U::sel((h & F::U::c(0x7fff)).lt(F::U::c(1)), F::U::c(0), h)
+            }
         }
     }
     /// The code held in an unsigned bit field (already masked to `bits`).
     pub fn from_field<F: Float>(self, u: F::U) -> F {
-        let c = u.to_f();
         match self {
             Quant::Snorm(b) => {
+                let c = u.to_f();
                 let wrapped = c - F::c((1u64 << b) as f32);
                 F::sel(c.gt(F::c(self.max_code())), wrapped, c)
             }
-            Quant::Unorm(_) => c,
+            Quant::Unorm(_) => u.to_f(),
+            Quant::Half => half_value(u),
         }
     }
     pub fn mask(self) -> u32 {

@@ -102,7 +102,7 @@ impl Codec for Spherical {
         let k = F::c((f64::from(m) / ONE) as f32);
         let base = V2::new(theta, phi).map(|a| (a * k).floor()).named("base");
         let target = fixed_target(w, root(fixed_length2(w)), fixed_trig::BITS);
-        nearest_decoded(q, base, target, |c| {
+        nearest_decoded([q; 2], base, target, |c| {
             let theta = (c.x + F::c(m)) * F::c((FINE * 0.5 / f64::from(m)) as f32);
             let phi = c.y * F::c((FINE / f64::from(m)) as f32);
             let st = fixed_trig::sincos_pi(theta.round());

@@ -166,7 +166,7 @@ impl Codec for StereoScaled {
         let s = p.off_pole();
         let base = self.codes(&s, 1.0).named("base");
         let target = fixed_target(s.w, s.l, BITS);
-        let best = nearest_decoded(q, base, target, |c| self.fixed_direction(c));
+        let best = nearest_decoded([q; 2], base, target, |c| self.fixed_direction(c));
         let codes = V2::sel_all(p.at_pole(), V2::splat(F::c(0.0)), best);
         V2::sel_all(p.ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }

@@ -97,7 +97,7 @@ impl Codec for Xy {
         let (h, up) = canonical_or_z(above_horizon(w));
         let l = root(fixed_length2(h));
         let base = h.xy().map(|x| floor_ratio(q, x, l)).named("base");
-        let best = nearest_decoded(q, base, fixed_target(h, l, BITS), |c| self.fixed_direction(c));
+        let best = nearest_decoded([q; 2], base, fixed_target(h, l, BITS), |c| self.fixed_direction(c));
         V2::sel_all(ok.and(up), best, V2::splat(F::c(0.0)))
     }
 }

@@ -73,7 +73,7 @@ fn quants(e: &Emitted) -> Option<&[Quant]> {
 
 fn param_range(q: &[Quant]) -> &'static str {
     match q[0] {
-        Quant::Snorm(_) => "[-1, 1]",
+        Quant::Snorm(_) | Quant::Half => "[-1, 1]",
         Quant::Unorm(_) => "[0, 1]",
     }
 }
@@ -110,6 +110,9 @@ fn encoder_portability(portable: bool) -> &'static str {
 fn decoder_portability(spec: &Spec, e: &Emitted, role: Role) -> Option<String> {
     let f = e.functions.iter().find(|f| f.role == role)?;
     let b = crate::decode_bound::cached(spec, f)?;
+    if b.units == 0.0 {
+        return Some("Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.".to_string());
+    }
     Some(format!(
         "Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within {}·2^-24 ({:.2e}) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.",
         b.units,

@@ -248,7 +248,7 @@ impl Ctx<'_> {
             }
             Op::Shl(s) => format!("{} << {s}u", a(0)),
             Op::Shr(s) => format!("{} >> {s}u", a(0)),
-            Op::Select => lang.select(arg_vec(0), &a(0), &a(1), &a(2)),
+            Op::Select => lang.select(ty, arg_vec(0), &a(0), &a(1), &a(2)),
             Op::Convert => lang.convert(ty, &a(0)),
             Op::Bitcast => lang.bitcast(ty, &a(0)),
             Op::Call(name) => {

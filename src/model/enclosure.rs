@@ -220,7 +220,7 @@ impl Encl {
         x
     }
     /// Nothing can be said.
-    fn unknown() -> Encl {
+    pub fn unknown() -> Encl {
         Encl {
             lo: f64::NEG_INFINITY,
             hi: f64::INFINITY,

@@ -7,6 +7,7 @@
 pub mod gpu;
 /// Lives with the codecs so that the portability report, which needs no GPU, can use it.
 pub use crate::codecs::inputs;
+pub mod alu;
 pub mod native;
 pub mod tools;
 

@@ -171,6 +171,22 @@ pub fn glslang_check(source: &str, stage: &'static str) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// `spirv-opt -O` (which inlines every call into the entry point), then `spirv-dis`: the
+/// optimised module as text. Missing binaries name the Debian package `spirv-tools`.
+pub fn spirv_opt_dis(words: &[u32]) -> anyhow::Result<String> {
+    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    let file = temp_file("spv", &bytes)?;
+    let dir = tempfile::tempdir().context("creating a temporary directory")?;
+    let opt = dir.path().join("opt.spv");
+    let mut cmd = Command::new("spirv-opt");
+    cmd.arg("-O").arg(file.path()).arg("-o").arg(&opt);
+    run_ok(&mut cmd, "spirv-opt", "spirv-tools")?;
+    let mut cmd = Command::new("spirv-dis");
+    cmd.arg("--raw-id").arg(&opt);
+    let out = run_ok(&mut cmd, "spirv-dis", "spirv-tools")?;
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
 /// Runs `spirv-val` on the words. If the binary is missing the error names the Debian
 /// package `spirv-tools`.
 pub fn spirv_val(words: &[u32]) -> anyhow::Result<()> {

@@ -1,7 +1,7 @@
 //! GLSL (450, 330, ES 300): `lessThan` and friends for vector comparisons, `mix` for
-//! lane-wise selects, `roundEven` (GLSL's `round` may round halves either way), and a
-//! `PRECISE` macro in front of float declarations that users define as `precise` where
-//! the language has it.
+//! lane-wise float selects (integer ones lane by lane), `roundEven` (GLSL's `round` may
+//! round halves either way), and a `PRECISE` macro in front of float declarations that
+//! users define as `precise` where the language has it.
 
 use super::{Backend, FileOptions, KernelIo, kernel_io, scalar_names};
 use crate::emit::SpecView;
@@ -63,12 +63,27 @@ impl Backend for Glsl {
             _ => None,
         }
     }
-    fn select(&self, mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
-        if mask_is_vector {
-            format!("mix({f}, {t}, {m})")
-        } else {
-            format!("{m} ? {t} : {f}")
+    /// `mix` with a boolean vector selects floats everywhere, but integers only from GLSL
+    /// 4.50 (or with `GL_EXT_shader_integer_mix`): integer vectors select lane by lane.
+    fn select(&self, ty: Ty, mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+        if !mask_is_vector {
+            return format!("{m} ? {t} : {f}");
         }
+        if ty.kind == Kind::F32 {
+            return format!("mix({f}, {t}, {m})");
+        }
+        let lane = |e: &str, i: usize| {
+            let c = ["x", "y", "z", "w"][i];
+            if e.chars().all(|ch| ch.is_ascii_alphanumeric() || ch == '_') {
+                format!("{e}.{c}")
+            } else {
+                format!("({e}).{c}")
+            }
+        };
+        let lanes: Vec<String> = (0..usize::from(ty.lanes))
+            .map(|i| format!("{} ? {} : {}", lane(m, i), lane(t, i), lane(f, i)))
+            .collect();
+        format!("{}({})", self.ty(ty), lanes.join(", "))
     }
     fn bitcast(&self, t: Ty, a: &str) -> String {
         match t.kind {

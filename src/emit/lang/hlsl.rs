@@ -39,7 +39,7 @@ impl Backend for Hlsl {
     }
     /// HLSL 2021 (DXC's default) rejects `?:` on vector conditions and wants select();
     /// older HLSL has no select(). The include defines the macro.
-    fn select(&self, mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+    fn select(&self, _ty: Ty, mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
         if mask_is_vector {
             format!("{}({m}, {t}, {f})", self.select_macro)
         } else {

@@ -45,7 +45,7 @@ pub trait Backend {
         None
     }
     /// `m ? t : f`, lane-wise when `mask_is_vector`.
-    fn select(&self, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+    fn select(&self, _ty: Ty, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
         format!("{m} ? {t} : {f}")
     }
     /// A value conversion to type `t`.

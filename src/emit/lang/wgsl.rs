@@ -28,7 +28,7 @@ impl Backend for Wgsl {
     fn float_suffix(&self) -> &'static str {
         "f"
     }
-    fn select(&self, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+    fn select(&self, _ty: Ty, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
         format!("select({f}, {t}, {m})")
     }
     fn declare(&self, name: &str, _t: Ty, expr: &str) -> String {

@@ -1,0 +1,78 @@
+//! float16×3 (survey §2 and Table 1): the unit vector's components as IEEE binary16, the
+//! layout of the first three channels of an RGBA16_FLOAT texel: x in bits 0–15 and y in
+//! bits 16–31 of word 0, z in bits 0–15 of word 1. Packing and unpacking are
+//! [`super::half`]'s integer forms, never a pack builtin.
+
+use super::codec::{Codec, Domain, unit_or_z};
+use super::exact::{canonical, half_sqrt_ratio, length2};
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::quant::{Quant, Quants};
+use super::spec::Spec;
+use crate::model::{Bool, Float, V2, V3};
+
+pub static FAMILY: Float3Family = Float3Family;
+
+pub struct Float3Family;
+
+static INFO: Info = Info {
+    name: "float3",
+    title: "components as IEEE float16×3 (RGBA16_FLOAT's first three channels)",
+    sizes: Sizes::PerComponent {
+        prefix: "float",
+        count: 3,
+        per: &[16],
+    },
+    domain: Some(Domain::Sphere),
+    precise: false,
+    source: "Cigolle et al. 2014 §2 and Table 1 (float×3)",
+    edge_policy: "input is normalized first, then each component is rounded to the nearest f16 (a component that rounds to zero is +0); zero, NaN and infinite input encode as +Z",
+    decode_note: "the three halves as floats, exactly, without normalizing (unit length to within 2^-11 for codes the encoder writes); a code with an infinite or NaN half, or three zero halves, decodes as +Z",
+    options: &[],
+};
+
+impl Family for Float3Family {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, Float16x3)
+    }
+}
+
+/// float16×3 in two words (the low 48 bits of an RGBA16_FLOAT texel).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Float16x3;
+
+impl Codec for Float16x3 {
+    type P<F: Float> = V3<F>;
+    type C<F: Float> = V2<F::U>;
+    fn quants(&self) -> Quants {
+        Quants::new(&[Quant::Half; 3])
+    }
+    fn domain(&self) -> Domain {
+        Domain::Sphere
+    }
+    /// The unit vector, for an RGBA16_FLOAT render target to round.
+    fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
+        unit_or_z(v)
+    }
+    /// The fetched halves themselves: a half is exact in f32, and normalizing would move
+    /// the vector the encoder chose. Only codes no encoder writes need a stand-in.
+    fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
+        let finite = |x: F| x.abs().le(F::c(f32::MAX));
+        let nonzero = |x: F| x.abs().gt(F::c(0.0));
+        let ok = finite(p.x).and(finite(p.y)).and(finite(p.z));
+        let some = nonzero(p.x).or(nonzero(p.y)).or(nonzero(p.z));
+        V3::sel_all(ok.and(some), p, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
+    }
+    /// Each component of the canonical input rounded to the f16 grid by
+    /// [`half_sqrt_ratio`]: decided by comparing correctly rounded products.
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let (w, ok) = canonical(v);
+        let s = length2(w);
+        let c = w.map(|x| half_sqrt_ratio(x, s));
+        V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
+    }
+}

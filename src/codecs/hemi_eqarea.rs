@@ -1,0 +1,149 @@
+//! Lambert equal-area projection of a hemisphere onto the unit disk plus a hemisphere bit
+//! (survey §2, `eqarea`; Snyder and Mitchell 2001): `p = (x, y) / sqrt(1 + |z|)`, stored
+//! as unorm `p·0.5 + 0.5`, and one bit for the sign of `z`, laid out as [`super::disk`]
+//! says (eqarea16: x bits 0–7, y bits 8–14, the hemisphere bit 15).
+
+use super::codec::{Codec, Domain};
+use super::disk::{Folded, disk_fields, disk_quants, unfold};
+use super::exact::{decided, fixed_root, one_if};
+use super::family::{Family, Info, Sizes};
+use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
+use super::functions::{Emitted, codec_functions};
+use super::quant::{Quant, Quants};
+use super::spec::{Spec, SpecError};
+use crate::model::{Float, V2, V3};
+
+pub static FAMILY: HemiEqAreaFamily = HemiEqAreaFamily;
+
+pub struct HemiEqAreaFamily;
+
+static INFO: Info = Info {
+    name: "eqarea",
+    title: "Lambert equal-area hemisphere on the unit disk + hemisphere bit, unorm×2",
+    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+    domain: Some(Domain::Sphere),
+    precise: true,
+    source: "Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
+    decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole)",
+    options: &[],
+};
+
+impl Family for HemiEqAreaFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "encode_codes").then(|| search_doc(BITS))
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, HemiEqArea { bits: spec.bits() })
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct HemiEqArea {
+    pub bits: u32,
+}
+
+impl HemiEqArea {
+    /// The codec with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<HemiEqArea, SpecError> {
+        Ok(HemiEqArea {
+            bits: INFO.check_bits(bits)?,
+        })
+    }
+
+    /// The unorm codes of the folded input at the boundaries `c + offset` (`½` rounds to
+    /// the nearest code, `1` floors). The parameter is `w.x / sqrt(l·a)`, so the boundary
+    /// `c + offset` is passed where `w.x·(M/2) ≥ k·sqrt(l·a)` (`k = c + offset - M/2`):
+    /// decided by the signs of `w.x` and `k` and, where they agree, by `w.x²·(M²/4)`
+    /// against `k²·(l·a)`, products of exact or deterministic values meeting in a
+    /// comparison ([`crate::codecs::exact`]), the literal factor last.
+    fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
+        let la = (f.l * f.a).named("la");
+        let root_la = la.sqrt();
+        let code = |q: Quant, x: F| {
+            let m = q.max_code();
+            let big2 = (x * x * F::c((f64::from(m).powi(2) / 4.0) as f32)).named("big2");
+            let estimate = (x / root_la * F::c(m * 0.5) + F::c(m * 0.5)).round();
+            decided(q, estimate, |c| {
+                let k = c - F::c(m * 0.5 - offset);
+                let k2la = k * k * la;
+                let far = F::sel(k.gt(F::c(0.0)), one_if(big2.ge(k2la)), F::c(1.0));
+                let near = F::sel(k.lt(F::c(0.0)), one_if(big2.le(k2la)), F::c(0.0));
+                F::sel(x.ge(F::c(0.0)), far, near)
+            })
+        };
+        let [qx, qy] = disk_fields(self.bits);
+        V2::new(code(qx, f.w.x), code(qy, f.w.y))
+    }
+
+    /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: each
+    /// parameter `p = (2c - M)/M` as one rounded product floored ([`fixed`]),
+    /// `q = |p|²` from squares rounded to a unit, `sqrt(2 - q)` in units of `2^-20` by
+    /// [`fixed_root`] (of at most `2^41`), then `p·sqrt(2 - q)` and `1 - q`.
+    fn fixed_direction<F: Float>(&self, c: V2<F>, h: F) -> V3<F> {
+        let one = F::c(ONE as f32);
+        let [qx, qy] = disk_fields(self.bits);
+        let p = |q: Quant, c: F| {
+            let m = f64::from(q.max_code());
+            fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
+        };
+        let p = V2::new(p(qx, c.x), p(qy, c.y)).named("p");
+        let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
+        let q = (sq(p.x) + sq(p.y)).named("q");
+        let rest = (F::c((2.0 * ONE) as f32) - q).at_least(F::c(0.0));
+        let g = fixed_root(rest * F::c((1u32 << 19) as f32)).named("g");
+        let xy = p.map(|x| fixed(x * g, 1.0 / f64::from(1u32 << 20)));
+        V3::from_xy(xy, unfold(one - q, h))
+    }
+}
+
+impl Codec for HemiEqArea {
+    type P<F: Float> = V3<F>;
+    type C<F: Float> = F::U;
+    fn quants(&self) -> Quants {
+        disk_quants(self.bits)
+    }
+    fn domain(&self) -> Domain {
+        Domain::Sphere
+    }
+    /// `(w.xy / sqrt(l·a)·0.5 + 0.5, z < 0)` of the folded canonical input, as the
+    /// packed encoder decides them.
+    fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let f = Folded::of(v);
+        let enc = (f.w.xy() / (f.l * f.a).sqrt() * F::c(0.5) + F::c(0.5)).named("enc");
+        V3::from_xy(enc, f.h)
+    }
+    /// `(p·sqrt(2 - q), 1 - q)` with `p = enc·2 - 1`, `q = |p|²` (at most 2, the
+    /// square's corners), z negated where the hemisphere bit is set: unit length for
+    /// every code.
+    fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
+        let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
+        let q = p.length_squared().at_most(F::c(2.0)).named("q");
+        let g = (F::c(2.0) - q).sqrt().named("g");
+        V3::from_xy(p * g, unfold(F::c(1.0) - q, enc.z))
+    }
+    /// The codes of [`HemiEqArea::codes`] at `c + ½`, the hemisphere bit from the sign
+    /// of the canonical `z`.
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let f = Folded::of(v);
+        V3::from_xy(self.codes(&f, 0.5), f.h)
+    }
+    /// The nearest of the four codes around the exact parameters (floors decided like
+    /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`), in the input's
+    /// hemisphere, by the squared distance of their fixed-point decodes.
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let f = Folded::of(v);
+        let base = self.codes(&f, 1.0).named("base");
+        let target = fixed_target(f.w, f.l, BITS);
+        let best = nearest_decoded(disk_fields(self.bits), base, target, |c| {
+            self.fixed_direction(c, f.h)
+        });
+        V3::from_xy(best, f.h)
+    }
+}

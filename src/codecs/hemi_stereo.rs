@@ -1,0 +1,143 @@
+//! Stereographic projection of a hemisphere onto the unit disk plus a hemisphere bit
+//! (survey §2, `stereo`; Snyder and Mitchell 2001): `p = (x, y) / (1 + |z|)`, stored as
+//! unorm `p·0.5 + 0.5`, and one bit for the sign of `z`, laid out as [`super::disk`]
+//! says (stereo16: x bits 0–7, y bits 8–14, the hemisphere bit 15).
+
+use super::codec::{Codec, Domain};
+use super::disk::{Folded, disk_fields, disk_quants, unfold};
+use super::exact::{decided, fixed_ratio, one_if};
+use super::family::{Family, Info, Sizes};
+use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
+use super::functions::{Emitted, codec_functions};
+use super::quant::{Quant, Quants};
+use super::spec::{Spec, SpecError};
+use crate::model::{Float, V2, V3};
+
+pub static FAMILY: HemiStereoFamily = HemiStereoFamily;
+
+pub struct HemiStereoFamily;
+
+static INFO: Info = Info {
+    name: "stereo",
+    title: "stereographic hemisphere on the unit disk + hemisphere bit, unorm×2",
+    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+    domain: Some(Domain::Sphere),
+    precise: true,
+    source: "Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
+    decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere)",
+    options: &[],
+};
+
+impl Family for HemiStereoFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (name == "encode_codes").then(|| search_doc(BITS))
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, HemiStereo { bits: spec.bits() })
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct HemiStereo {
+    pub bits: u32,
+}
+
+impl HemiStereo {
+    /// The codec with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<HemiStereo, SpecError> {
+        Ok(HemiStereo {
+            bits: INFO.check_bits(bits)?,
+        })
+    }
+
+    /// The unorm codes of `w.xy / (1 + |z|)` (`w` canonical, `l` its length) at the
+    /// boundaries `c + offset`: `½` rounds to the nearest code, `1` floors. With
+    /// `a = l + |w.z|` (a sum of positives, never 0) the parameter is `w.x / a`, so the
+    /// boundary `c + ½` is passed where `w.x·(M/2) ≥ (c + ½ - M/2)·a`: two products
+    /// meeting in a comparison, decided portably ([`crate::codecs::exact`]).
+    fn codes<F: Float>(&self, w: V3<F>, a: F, offset: f32) -> V2<F> {
+        let [qx, qy] = disk_fields(self.bits);
+        let code = |q: Quant, x: F| {
+            let m = q.max_code();
+            let t = (x * F::c(m * 0.5)).named("t");
+            let estimate = (t / a + F::c(m * 0.5)).round();
+            decided(q, estimate, |c| {
+                one_if(t.ge((c - F::c(m * 0.5 - offset)) * a))
+            })
+        };
+        V2::new(code(qx, w.x), code(qy, w.y))
+    }
+
+    /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: each
+    /// parameter `p = (2c - M)/M` as one rounded product floored ([`fixed`]), then `2p / (1 + |p|²)` and
+    /// `(1 - |p|²) / (1 + |p|²)` from products rounded to a unit (exact integers below
+    /// `2^24`) and quotients decided by [`fixed_ratio`].
+    fn fixed_direction<F: Float>(&self, c: V2<F>, h: F) -> V3<F> {
+        let one = F::c(ONE as f32);
+        let [qx, qy] = disk_fields(self.bits);
+        let p = |q: Quant, c: F| {
+            let m = f64::from(q.max_code());
+            fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
+        };
+        let p = V2::new(p(qx, c.x), p(qy, c.y)).named("p");
+        // |p|² in units: each square rounded to a unit, their sum exact (below 2^23).
+        let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
+        let q = (sq(p.x) + sq(p.y)).named("q");
+        let d = one + q;
+        let xy = p.map(|x| fixed_ratio(x + x, d, BITS));
+        let z = fixed_ratio(one - q, d, BITS);
+        V3::from_xy(xy, unfold(z, h))
+    }
+}
+
+impl Codec for HemiStereo {
+    type P<F: Float> = V3<F>;
+    type C<F: Float> = F::U;
+    fn quants(&self) -> Quants {
+        disk_quants(self.bits)
+    }
+    fn domain(&self) -> Domain {
+        Domain::Sphere
+    }
+    /// `(w.xy / (l + |w.z|)·0.5 + 0.5, z < 0)` of the canonical input and its length, as
+    /// the packed encoder decides them.
+    fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let f = Folded::of(v);
+        let enc = (f.w.xy() / f.a * F::c(0.5) + F::c(0.5)).named("enc");
+        V3::from_xy(enc, f.h)
+    }
+    /// `(2p, 1 - |p|²) / (1 + |p|²)` with `p = enc·2 - 1`, z negated where the hemisphere
+    /// bit is set. Both numerators are computed, so every component divides exactly once.
+    fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
+        let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
+        let q = p.length_squared().named("q");
+        let d = (q + F::c(1.0)).named("d");
+        let z = (F::c(1.0) - q) / d;
+        V3::from_xy((p + p) / d, unfold(z, enc.z))
+    }
+    /// The codes of [`HemiStereo::codes`] at `c + ½`, the hemisphere bit from the sign
+    /// of the canonical `z` (a `-0` is already `+0` there).
+    const EXACT_ROUNDING: bool = true;
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let f = Folded::of(v);
+        V3::from_xy(self.codes(f.w, f.a, 0.5), f.h)
+    }
+    /// The nearest of the four codes around the exact parameters (floors decided like
+    /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`), in the input's
+    /// hemisphere, by the squared distance of their fixed-point decodes.
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let f = Folded::of(v);
+        let base = self.codes(f.w, f.a, 1.0).named("base");
+        let target = fixed_target(f.w, f.l, BITS);
+        let best = nearest_decoded(disk_fields(self.bits), base, target, |c| {
+            self.fixed_direction(c, f.h)
+        });
+        V3::from_xy(best, f.h)
+    }
+}

@@ -1,0 +1,224 @@
+//! ALU instruction counts of the emitted functions, the measure of shader cost the README
+//! codec table quotes: each function called once from a GLSL 450 compute shader that
+//! loads its argument from a storage buffer and stores its result in another
+//! (`#define UNITPACK_PRECISE precise`), compiled by `glslangValidator -V`, optimised by
+//! `spirv-opt -O` (which inlines the function into `main`), and counted in `main`:
+//! arithmetic, bit and logic operations, comparisons, selects, conversions, bitcasts and
+//! `GLSL.std.450` calls, a vector instruction counting once. Loads, stores, shuffles,
+//! composites and control flow are not counted. Static counts: a select costs as much
+//! as what it selects between was already computed.
+
+use super::tools::{GlslangInput, HlslOpt, glslang_spirv, spirv_opt_dis};
+use crate::codecs::Spec;
+use crate::codecs::functions::Role;
+use crate::emit::{DEFAULT_PREFIX, Lang, render};
+use anyhow::{Context, Result, anyhow};
+
+/// The opcodes counted (SPIR-V names without `Op`).
+const ALU: &[&str] = &[
+    "FAdd",
+    "FSub",
+    "FMul",
+    "FDiv",
+    "FRem",
+    "FMod",
+    "FNegate",
+    "IAdd",
+    "ISub",
+    "IMul",
+    "UDiv",
+    "SDiv",
+    "UMod",
+    "SRem",
+    "SMod",
+    "SNegate",
+    "VectorTimesScalar",
+    "Dot",
+    "BitwiseAnd",
+    "BitwiseOr",
+    "BitwiseXor",
+    "ShiftLeftLogical",
+    "ShiftRightLogical",
+    "ShiftRightArithmetic",
+    "Not",
+    "BitFieldInsert",
+    "BitFieldSExtract",
+    "BitFieldUExtract",
+    "LogicalAnd",
+    "LogicalOr",
+    "LogicalNot",
+    "LogicalEqual",
+    "LogicalNotEqual",
+    "Any",
+    "All",
+    "IsNan",
+    "IsInf",
+    "FOrdEqual",
+    "FOrdNotEqual",
+    "FOrdLessThan",
+    "FOrdGreaterThan",
+    "FOrdLessThanEqual",
+    "FOrdGreaterThanEqual",
+    "FUnordEqual",
+    "FUnordNotEqual",
+    "FUnordLessThan",
+    "FUnordGreaterThan",
+    "FUnordLessThanEqual",
+    "FUnordGreaterThanEqual",
+    "IEqual",
+    "INotEqual",
+    "ULessThan",
+    "UGreaterThan",
+    "ULessThanEqual",
+    "UGreaterThanEqual",
+    "SLessThan",
+    "SGreaterThan",
+    "SLessThanEqual",
+    "SGreaterThanEqual",
+    "Select",
+    "ConvertFToU",
+    "ConvertFToS",
+    "ConvertUToF",
+    "ConvertSToF",
+    "Bitcast",
+    "FConvert",
+    "UConvert",
+    "SConvert",
+    "ExtInst",
+];
+
+/// The GLSL type of a function's argument or result of `words` words.
+fn glsl_type(float: bool, words: usize) -> String {
+    match (float, words) {
+        (true, 1) => "float".into(),
+        (false, 1) => "uint".into(),
+        (true, n) => format!("vec{n}"),
+        (false, n) => format!("uvec{n}"),
+    }
+}
+
+/// The compute shader that calls `function` of `spec` once.
+fn shader(spec: &Spec, function: &str) -> Result<String> {
+    let e = spec.emitted();
+    let f = e
+        .functions
+        .iter()
+        .find(|f| f.name == function)
+        .ok_or_else(|| anyhow!("{spec} has no function `{function}`"))?;
+    let (float_in, float_out) = match f.role {
+        Role::Encode => (true, false),
+        Role::Decode => (false, true),
+        Role::EncodeFloat | Role::DecodeFloat => (true, true),
+        Role::Pack | Role::Unpack => {
+            return Err(anyhow!("{spec}: only codec functions are counted"));
+        }
+    };
+    let include = render(&[(spec.clone(), None)], Lang::Glsl, DEFAULT_PREFIX, "");
+    let name = if e.namespace.is_empty() {
+        format!("{DEFAULT_PREFIX}{function}")
+    } else {
+        format!("{DEFAULT_PREFIX}{}_{function}", e.namespace)
+    };
+    Ok(format!(
+        "#version 450\n#define UNITPACK_PRECISE precise\n{include}\n\
+         layout(local_size_x = 64) in;\n\
+         layout(std430, set = 0, binding = 0) readonly buffer In {{ {tin} inp[]; }};\n\
+         layout(std430, set = 0, binding = 1) writeonly buffer Out {{ {tout} outp[]; }};\n\
+         void main() {{\n    uint i = gl_GlobalInvocationID.x;\n    outp[i] = {name}(inp[i]);\n}}\n",
+        tin = glsl_type(float_in, f.in_words),
+        tout = glsl_type(float_out, f.out_words),
+    ))
+}
+
+/// ALU instructions in the function `main` of a disassembled module.
+fn count_main(dis: &str) -> Result<u32> {
+    let main_id = dis
+        .lines()
+        .find_map(|l| {
+            let l = l.trim();
+            let rest = l.strip_prefix("OpEntryPoint GLCompute ")?;
+            rest.split_whitespace().next().map(str::to_string)
+        })
+        .ok_or_else(|| anyhow!("no compute entry point in the optimised module"))?;
+    let mut inside = false;
+    let mut n = 0;
+    for l in dis.lines() {
+        let l = l.trim();
+        let op = match l.split_once("= Op") {
+            Some((_, rest)) => rest,
+            None => l.strip_prefix("Op").unwrap_or(""),
+        };
+        let op = op.split_whitespace().next().unwrap_or("");
+        if op == "Function" && l.starts_with(&format!("{main_id} ")) {
+            inside = true;
+        } else if op == "FunctionEnd" {
+            inside = false;
+        } else if inside && ALU.contains(&op) {
+            n += 1;
+        }
+    }
+    Ok(n)
+}
+
+/// The ALU count of one function of one spec.
+pub fn count(spec: &Spec, function: &str) -> Result<u32> {
+    let src = shader(spec, function)?;
+    let words = glslang_spirv(&src, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)
+        .with_context(|| format!("compiling {spec}'s {function} for counting"))?;
+    count_main(&spirv_opt_dis(&words)?)
+}
+
+/// [`count`] of each of `functions` for every spec, on all cores: `out[i][j]` is spec `i`,
+/// function `j`.
+pub fn count_all(specs: &[Spec], functions: &[&str]) -> Result<Vec<Vec<u32>>> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let per = specs.len().div_ceil(threads).max(1);
+    std::thread::scope(|s| {
+        let handles: Vec<_> = specs
+            .chunks(per)
+            .map(|chunk| {
+                s.spawn(move || {
+                    chunk
+                        .iter()
+                        .map(|spec| functions.iter().map(|f| count(spec, f)).collect())
+                        .collect::<Result<Vec<Vec<u32>>>>()
+                })
+            })
+            .collect();
+        let mut out = Vec::new();
+        for h in handles {
+            out.extend(
+                h.join()
+                    .map_err(|_| anyhow!("a counting thread panicked"))??,
+            );
+        }
+        Ok(out)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_the_alu_opcodes_of_main_only() {
+        let dis = "OpEntryPoint GLCompute %main \"main\"\n\
+                   %f = OpFunction %v None %t\n%1 = OpFAdd %float %a %b\nOpFunctionEnd\n\
+                   %main = OpFunction %void None %fn\n%2 = OpLoad %float %p\n\
+                   %3 = OpFMul %float %2 %2\n%4 = OpSelect %float %c %3 %2\n\
+                   OpStore %q %4\nOpReturn\nOpFunctionEnd\n";
+        assert_eq!(count_main(dis).unwrap(), 2);
+    }
+
+    /// The counts the README's "What portability costs" table gives for oct16, measured
+    /// by the same method outside the crate.
+    #[test]
+    fn oct16_counts_as_measured_by_hand() {
+        let spec: Spec = "oct16".parse().unwrap();
+        let got: Vec<u32> = ["encode", "encode_float", "decode", "decode_float"]
+            .iter()
+            .map(|f| count(&spec, f).unwrap())
+            .collect();
+        assert_eq!(got, [62, 23, 24, 15]);
+    }
+}
