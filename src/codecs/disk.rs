@@ -9,8 +9,9 @@
 //! within 1 % of unorm ones, unorm matches best at 16 bits).
 
 use super::exact::{canonical_or_z, fixed_length2, one_if, root};
+use super::fixed_decode::{ONE, fixed};
 use super::quant::{Quant, Quants};
-use crate::model::{Float, V3};
+use crate::model::{Float, V2, V3};
 
 /// The two parameters' fields of a `bits`-bit code.
 pub fn disk_fields(bits: u32) -> [Quant; 2] {
@@ -54,4 +55,18 @@ impl<F: Float> Folded<F> {
 /// `z` on the hemisphere the bit `h` (0 or 1) names.
 pub fn unfold<F: Float>(z: F, h: F) -> F {
     F::sel(h.gt(F::c(0.5)), -z, z)
+}
+
+/// The disk point of codes `c` in units of `2^-21` ([`super::fixed_decode`]), for the
+/// precise searches: each parameter `p = (2c - M)/M` as one rounded product floored,
+/// and `q = |p|²` from squares each rounded to a unit, their sum exact (below `2^23`).
+pub fn fixed_disk_point<F: Float>(bits: u32, c: V2<F>) -> (V2<F>, F) {
+    let [qx, qy] = disk_fields(bits);
+    let p = |q: Quant, c: F| {
+        let m = f64::from(q.max_code());
+        fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
+    };
+    let p = V2::new(p(qx, c.x), p(qy, c.y)).named("p");
+    let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
+    (p, (sq(p.x) + sq(p.y)).named("q"))
 }

@@ -4,7 +4,7 @@
 //! says (eqarea16: x bits 0–7, y bits 8–14, the hemisphere bit 15).
 
 use super::codec::{Codec, Domain};
-use super::disk::{Folded, disk_fields, disk_quants, unfold};
+use super::disk::{Folded, disk_fields, disk_quants, fixed_disk_point, unfold};
 use super::exact::{decided, fixed_root, one_if};
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
@@ -80,20 +80,12 @@ impl HemiEqArea {
         V2::new(code(qx, f.w.x), code(qy, f.w.y))
     }
 
-    /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: each
-    /// parameter `p = (2c - M)/M` as one rounded product floored ([`fixed`]),
-    /// `q = |p|²` from squares rounded to a unit, `sqrt(2 - q)` in units of `2^-20` by
+    /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: the
+    /// disk point and `q = |p|²` from [`fixed_disk_point`], `sqrt(2 - q)` in units of `2^-20` by
     /// [`fixed_root`] (of at most `2^41`), then `p·sqrt(2 - q)` and `1 - q`.
     fn fixed_direction<F: Float>(&self, c: V2<F>, h: F) -> V3<F> {
         let one = F::c(ONE as f32);
-        let [qx, qy] = disk_fields(self.bits);
-        let p = |q: Quant, c: F| {
-            let m = f64::from(q.max_code());
-            fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
-        };
-        let p = V2::new(p(qx, c.x), p(qy, c.y)).named("p");
-        let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
-        let q = (sq(p.x) + sq(p.y)).named("q");
+        let (p, q) = fixed_disk_point(self.bits, c);
         let rest = (F::c((2.0 * ONE) as f32) - q).at_least(F::c(0.0));
         let g = fixed_root(rest * F::c((1u32 << 19) as f32)).named("g");
         let xy = p.map(|x| fixed(x * g, 1.0 / f64::from(1u32 << 20)));

@@ -4,10 +4,10 @@
 //! says (stereo16: x bits 0–7, y bits 8–14, the hemisphere bit 15).
 
 use super::codec::{Codec, Domain};
-use super::disk::{Folded, disk_fields, disk_quants, unfold};
+use super::disk::{Folded, disk_fields, disk_quants, fixed_disk_point, unfold};
 use super::exact::{decided, fixed_ratio, one_if};
 use super::family::{Family, Info, Sizes};
-use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
+use super::fixed_decode::{BITS, ONE, fixed_target, nearest_decoded, search_doc};
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
@@ -73,21 +73,13 @@ impl HemiStereo {
         V2::new(code(qx, w.x), code(qy, w.y))
     }
 
-    /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: each
-    /// parameter `p = (2c - M)/M` as one rounded product floored ([`fixed`]), then `2p / (1 + |p|²)` and
+    /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: the
+    /// disk point from [`fixed_disk_point`], then `2p / (1 + |p|²)` and
     /// `(1 - |p|²) / (1 + |p|²)` from products rounded to a unit (exact integers below
     /// `2^24`) and quotients decided by [`fixed_ratio`].
     fn fixed_direction<F: Float>(&self, c: V2<F>, h: F) -> V3<F> {
         let one = F::c(ONE as f32);
-        let [qx, qy] = disk_fields(self.bits);
-        let p = |q: Quant, c: F| {
-            let m = f64::from(q.max_code());
-            fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
-        };
-        let p = V2::new(p(qx, c.x), p(qy, c.y)).named("p");
-        // |p|² in units: each square rounded to a unit, their sum exact (below 2^23).
-        let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
-        let q = (sq(p.x) + sq(p.y)).named("q");
+        let (p, q) = fixed_disk_point(self.bits, c);
         let d = one + q;
         let xy = p.map(|x| fixed_ratio(x + x, d, BITS));
         let z = fixed_ratio(one - q, d, BITS);
