@@ -159,3 +159,31 @@ pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
         Inputs::FloatCodes(q) => float_codes(q),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Above 24 bits every 16-bit field still takes each of its 65536 values, in the
+    /// packed codes and in the fetched floats (each f16 pattern's value, NaN payloads
+    /// included).
+    #[test]
+    fn every_16_bit_field_takes_every_value() {
+        let q = [Quant::Half; 3];
+        let words = codes(&q, 2);
+        let floats = float_codes(&q);
+        let offs = field_offsets(&q);
+        for (i, off) in offs.iter().enumerate() {
+            let mut seen = vec![false; 1 << 16];
+            let mut seen_bits = std::collections::HashSet::new();
+            for (item, f) in words.chunks(2).zip(floats.chunks(3)) {
+                let w = item[(off / 32) as usize];
+                seen[((w >> (off % 32)) & 0xffff) as usize] = true;
+                seen_bits.insert(f[i]);
+            }
+            assert!(seen.iter().all(|s| *s), "field {i}");
+            // 65536 patterns, and +0 / -0 apart: every pattern gives its own f32.
+            assert_eq!(seen_bits.len(), 1 << 16, "field {i}");
+        }
+    }
+}
