@@ -9,7 +9,7 @@
 //! within 1 % of unorm ones, unorm matches best at 16 bits).
 
 use super::exact::{canonical_or_z, fixed_length2, one_if, root};
-use super::fixed_decode::{ONE, fixed};
+use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 
@@ -69,4 +69,18 @@ pub fn fixed_disk_point<F: Float>(bits: u32, c: V2<F>) -> (V2<F>, F) {
     let p = V2::new(p(qx, c.x), p(qy, c.y)).named("p");
     let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
     (p, (sq(p.x) + sq(p.y)).named("q"))
+}
+
+/// A disk codec's precise codes: of the four codes around `base` (the floors), in the
+/// input's hemisphere, the one whose fixed-point decode (`decode(codes, h)`) is nearest
+/// the input's by exact squared distance ([`nearest_decoded`]), with the hemisphere bit.
+pub fn nearest_disk_codes<F: Float>(
+    bits: u32,
+    f: &Folded<F>,
+    base: V2<F>,
+    decode: impl Fn(V2<F>, F) -> V3<F>,
+) -> V3<F> {
+    let target = fixed_target(f.w, f.l, BITS);
+    let best = nearest_decoded(disk_fields(bits), base, target, |c| decode(c, f.h));
+    V3::from_xy(best, f.h)
 }

@@ -307,6 +307,16 @@ pub fn one_if<F: Float>(m: F::B) -> F {
     F::sel(m, F::c(1.0), F::c(0.0))
 }
 
+/// `1` where `x·K ≥ k·sqrt(s)` (`K > 0`, `s > 0`), else `0`, from `big2 = (x·K)²`
+/// and `k2s = k²·s` (each a product of exact or deterministic values): decided by the
+/// signs of `x` and `k` and, where they agree, by the squares, so no root or quotient
+/// decides it. What [`decided`] asks of a parameter `x / sqrt(s)` at the boundary `k`.
+pub fn past_root_ratio<F: Float>(x: F, big2: F, k: F, k2s: F) -> F {
+    let far = F::sel(k.gt(F::c(0.0)), one_if(big2.ge(k2s)), F::c(1.0));
+    let near = F::sel(k.lt(F::c(0.0)), one_if(big2.le(k2s)), F::c(0.0));
+    F::sel(x.ge(F::c(0.0)), far, near)
+}
+
 /// The snorm code of `n / d` (`d > 0`, `|n| ≤ d`, both normal or `n` zero, both computed
 /// with correctly rounded additions only): the integer `c ≤ M` with
 /// `(c - ½)·d ≤ |n|·M < (c + ½)·d`, with the sign of `n` (`-0` counts as positive). Ties

@@ -4,10 +4,12 @@
 //! says (eqarea16: x bits 0–7, y bits 8–14, the hemisphere bit 15).
 
 use super::codec::{Codec, Domain};
-use super::disk::{Folded, disk_fields, disk_quants, fixed_disk_point, unfold};
-use super::exact::{decided, fixed_root, one_if};
+use super::disk::{
+    Folded, disk_fields, disk_quants, fixed_disk_point, nearest_disk_codes, unfold,
+};
+use super::exact::{decided, fixed_root, past_root_ratio};
 use super::family::{Family, Info, Sizes};
-use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
+use super::fixed_decode::{BITS, ONE, fixed, search_doc};
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
@@ -57,10 +59,9 @@ impl HemiEqArea {
 
     /// The unorm codes of the folded input at the boundaries `c + offset` (`½` rounds to
     /// the nearest code, `1` floors). The parameter is `w.x / sqrt(l·a)`, so the boundary
-    /// `c + offset` is passed where `w.x·(M/2) ≥ k·sqrt(l·a)` (`k = c + offset - M/2`):
-    /// decided by the signs of `w.x` and `k` and, where they agree, by `w.x²·(M²/4)`
-    /// against `k²·(l·a)`, products of exact or deterministic values meeting in a
-    /// comparison ([`crate::codecs::exact`]), the literal factor last.
+    /// `c + offset` is passed where `w.x·(M/2) ≥ k·sqrt(l·a)` (`k = c + offset - M/2`),
+    /// which [`past_root_ratio`] decides from `w.x²·(M²/4)` (the literal factor last) and
+    /// `k²·(l·a)`.
     fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
         let la = (f.l * f.a).named("la");
         let root_la = la.sqrt();
@@ -70,10 +71,7 @@ impl HemiEqArea {
             let estimate = (x / root_la * F::c(m * 0.5) + F::c(m * 0.5)).round();
             decided(q, estimate, |c| {
                 let k = c - F::c(m * 0.5 - offset);
-                let k2la = k * k * la;
-                let far = F::sel(k.gt(F::c(0.0)), one_if(big2.ge(k2la)), F::c(1.0));
-                let near = F::sel(k.lt(F::c(0.0)), one_if(big2.le(k2la)), F::c(0.0));
-                F::sel(x.ge(F::c(0.0)), far, near)
+                past_root_ratio(x, big2, k, k * k * la)
             })
         };
         let [qx, qy] = disk_fields(self.bits);
@@ -132,10 +130,6 @@ impl Codec for HemiEqArea {
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let base = self.codes(&f, 1.0).named("base");
-        let target = fixed_target(f.w, f.l, BITS);
-        let best = nearest_decoded(disk_fields(self.bits), base, target, |c| {
-            self.fixed_direction(c, f.h)
-        });
-        V3::from_xy(best, f.h)
+        nearest_disk_codes(self.bits, &f, base, |c, h| self.fixed_direction(c, h))
     }
 }

@@ -4,10 +4,12 @@
 //! says (stereo16: x bits 0–7, y bits 8–14, the hemisphere bit 15).
 
 use super::codec::{Codec, Domain};
-use super::disk::{Folded, disk_fields, disk_quants, fixed_disk_point, unfold};
+use super::disk::{
+    Folded, disk_fields, disk_quants, fixed_disk_point, nearest_disk_codes, unfold,
+};
 use super::exact::{decided, fixed_ratio, one_if};
 use super::family::{Family, Info, Sizes};
-use super::fixed_decode::{BITS, ONE, fixed_target, nearest_decoded, search_doc};
+use super::fixed_decode::{BITS, ONE, search_doc};
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
@@ -126,10 +128,6 @@ impl Codec for HemiStereo {
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let base = self.codes(f.w, f.a, 1.0).named("base");
-        let target = fixed_target(f.w, f.l, BITS);
-        let best = nearest_decoded(disk_fields(self.bits), base, target, |c| {
-            self.fixed_direction(c, f.h)
-        });
-        V3::from_xy(best, f.h)
+        nearest_disk_codes(self.bits, &f, base, |c, h| self.fixed_direction(c, h))
     }
 }

@@ -3,7 +3,7 @@
 //! own erratum); this one normalizes first.
 
 use super::codec::{Codec, Domain};
-use super::exact::{OnePlusZ, decided, fixed_root, float_of, one_if};
+use super::exact::{OnePlusZ, decided, fixed_root, float_of, past_root_ratio};
 use super::fixed_decode::{
     BITS, ONE, fixed, fixed_target, nearest_decoded, odd_square_quarter, search_doc,
 };
@@ -74,10 +74,7 @@ impl Lambert {
             let estimate = (x / g + F::c(m * 0.5)).round();
             decided(q, estimate, |c| {
                 let h = c - F::c(m * 0.5 - offset);
-                let h2la = h * h * la;
-                let far = F::sel(h.gt(F::c(0.0)), one_if(big2.ge(h2la)), F::c(1.0));
-                let near = F::sel(h.lt(F::c(0.0)), one_if(big2.le(h2la)), F::c(0.0));
-                F::sel(x.ge(F::c(0.0)), far, near)
+                past_root_ratio(x, big2, h, h * h * la)
             })
         })
     }
