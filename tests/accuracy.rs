@@ -194,3 +194,13 @@ fn eqarea_matches_table_1() {
     check("eqarea24", 0.02402, 0.06067);
     check("eqarea32", 0.00150, 0.00383);
 }
+
+/// The azimuthal equidistant hemisphere codec (the same layout as stereo).
+#[test]
+fn eqdist_matches_table_1() {
+    check("eqdist16", 0.38452, 0.78944);
+    check("eqdist20", 0.09541, 0.19667);
+    check("eqdist22", 0.04768, 0.09809);
+    check("eqdist24", 0.02387, 0.04899);
+    check("eqdist32", 0.00149, 0.00307);
+}

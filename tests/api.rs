@@ -1,7 +1,7 @@
 //! The CPU library: construction errors, slices, and round trips.
 
 use unitpack::api::{
-    CpuCodec, Float16x3, HemiEqArea, HemiOct, HemiStereo, Oct, Snorm3, StereoScaled,
+    CpuCodec, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3, StereoScaled,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -104,4 +104,22 @@ fn eqarea_layout_and_corners() {
     assert_eq!(c.encode([1.0, 0.0, 0.0]), 255 | 64 << 8);
     assert_eq!(c.decode(255 | 127 << 8), [0.0, 0.0, -1.0]);
     assert_eq!(c.decode(1 << 15), [-0.0, -0.0, 1.0]);
+}
+
+/// eqdist shares stereo's layout; the disk's edge is the equator and the square's
+/// corners lie 127° (√2 · 90°) from their hemisphere's pole.
+#[test]
+fn eqdist_layout_and_corners() {
+    let c = HemiEqDist::new(16).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 128 | 64 << 8);
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 128 | 64 << 8 | 1 << 15);
+    assert_eq!(c.encode([1.0, 0.0, 0.0]), 255 | 64 << 8);
+    // 45° from +Z towards +X: radius ½, code 127.5 + 63.75.
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    assert_eq!(c.encode([h, 0.0, h]), 191 | 64 << 8);
+    let v = c.decode(255 | 127 << 8);
+    let polar = f64::from(v[2]).acos().to_degrees();
+    assert!((polar - 90.0 * 2f64.sqrt()).abs() < 0.01, "{v:?}: {polar}°");
+    let v = c.decode(255 | 127 << 8 | 1 << 15);
+    assert!((f64::from(-v[2]).acos().to_degrees() - 127.279).abs() < 0.01, "{v:?}");
 }

@@ -9,7 +9,7 @@
 //! units (`2^-21`) of the exact functions, as close as the float versions.
 
 use super::exact::fixed_ratio;
-use super::trig::atan_series;
+use super::trig::{atan_series, factorial, quarter_turn_series};
 use crate::model::{Float, V2};
 use std::f64::consts::PI;
 
@@ -72,9 +72,8 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     // In radians, at most π/4.
     let u = (c * F::c(PI as f32)).round().named("u");
     let u2 = mul(u, u, FINE);
-    let fact = |n: i32| (1..=n).map(|k| k as f64).product::<f64>();
-    let sin_coeffs: Vec<f64> = (0..6).map(|k| (-1f64).powi(k) / fact(2 * k + 1)).collect();
-    let cos_coeffs: Vec<f64> = (0..7).map(|k| (-1f64).powi(k) / fact(2 * k)).collect();
+    let sin_coeffs: Vec<f64> = (0..6).map(|k| (-1f64).powi(k) / factorial(2 * k + 1)).collect();
+    let cos_coeffs: Vec<f64> = (0..7).map(|k| (-1f64).powi(k) / factorial(2 * k)).collect();
     let s = mul(u, poly(u2, &sin_coeffs, FINE), FINE).named("s");
     let co = poly(u2, &cos_coeffs, FINE).named("co");
     let sb = F::sel(swap, co, s);
@@ -82,6 +81,27 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let cos = F::sel(back, -cb, cb);
     let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
     V2::new(sin, cos)
+}
+
+/// `(sin(π·r/2)/r, cos(π·r/2))` of `r = sqrt(q)` for `0 ≤ q ≤ 2`, with `q` and the
+/// results in units of `1/one` (`one` at most `2^21`): [`super::trig::quarter_turn_series`]
+/// by Horner's rule in `q/2`, every product rounded to a unit. In `q/2 ≤ 1` (the
+/// coefficients times `2^k`) a unit lost in one step is never amplified by the next, and
+/// every partial sum stays below `cosh(π/√2) < 5`, so below `2^24` units.
+pub fn sinc_cos_quarter<F: Float>(q: F, one: f64) -> V2<F> {
+    let series = |sine: bool| {
+        let c: Vec<f64> = quarter_turn_series(sine)
+            .iter()
+            .enumerate()
+            .map(|(k, c)| c * 2f64.powi(k as i32))
+            .collect();
+        let mut acc = units::<F>(*c.last().unwrap(), one);
+        for &c in c.iter().rev().skip(1) {
+            acc = mul(acc, q, 2.0 * one) + units(c, one);
+        }
+        acc
+    };
+    V2::new(series(true).named("sinc"), series(false).named("cosq"))
 }
 
 #[cfg(test)]
@@ -101,6 +121,22 @@ mod tests {
         }
         assert_eq!(atan2_pi(0.0f32, 0.0), 0.0);
         assert_eq!(atan2_pi(0.0f32, -2.0), ONE as f32);
+    }
+
+    #[test]
+    fn sinc_cos_quarter_is_within_four_units_for_every_q() {
+        let one = f64::from(1u32 << 21);
+        let mut worst = [0f64; 2];
+        for q in 0..=(1u32 << 22) {
+            let q = f64::from(q);
+            let v = sinc_cos_quarter(q as f32, one);
+            let r = (q / one).sqrt();
+            let a = r * PI / 2.0;
+            let sinc = if r == 0.0 { PI / 2.0 } else { a.sin() / r };
+            worst[0] = worst[0].max((f64::from(v.x) - sinc * one).abs());
+            worst[1] = worst[1].max((f64::from(v.y) - a.cos() * one).abs());
+        }
+        assert!(worst[0] <= 4.0 && worst[1] <= 4.0, "{worst:?}");
     }
 
     #[test]

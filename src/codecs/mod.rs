@@ -48,6 +48,7 @@ registry! {
     stereo => StereoScaled;
     hemi_stereo => HemiStereo;
     hemi_eqarea => HemiEqArea;
+    hemi_eqdist => HemiEqDist;
     xy => Xy;
     pack12;
 }

@@ -22,6 +22,11 @@ fn horner<F: Float>(z: F, coeffs: &[f64]) -> F {
     acc
 }
 
+/// `n!`, for the series' coefficients.
+pub fn factorial(n: i32) -> f64 {
+    (1..=n).map(f64::from).product()
+}
+
 /// The coefficients of atan(z)/z in z², through z^19: for |z| ≤ tan(π/8) the series'
 /// truncation is below 3·10⁻⁹. Shared with [`super::fixed_trig`].
 pub fn atan_series() -> Vec<f64> {
@@ -71,12 +76,11 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let swap = b.gt(F::c(0.25));
     let c = F::sel(swap, F::c(0.5) - b, b).named("c");
     let c2 = (c * c).named("c2");
-    let fact = |n: i32| (1..=n).map(|k| k as f64).product::<f64>();
     let sin_coeffs: Vec<f64> = (0..5)
-        .map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / fact(2 * k + 1))
+        .map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / factorial(2 * k + 1))
         .collect();
     let cos_coeffs: Vec<f64> = (0..6)
-        .map(|k| (-1f64).powi(k) * PI.powi(2 * k) / fact(2 * k))
+        .map(|k| (-1f64).powi(k) * PI.powi(2 * k) / factorial(2 * k))
         .collect();
     let s = (c * horner(c2, &sin_coeffs)).named("s");
     let co = horner(c2, &cos_coeffs).named("co");
@@ -85,6 +89,29 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let cos = F::sel(back, -cb, cb);
     let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
     V2::new(sin, cos)
+}
+
+/// The coefficients of `sin(π·r/2)/r` (`sine`) or `cos(π·r/2)` as series in `q = r²`,
+/// through `q^8`: both are even in `r`, so neither needs the root or a quotient. For
+/// `q ≤ 2` (a unit square's corners) the truncation is below `3·10⁻¹⁰`. Shared with
+/// [`super::fixed_trig`].
+pub fn quarter_turn_series(sine: bool) -> Vec<f64> {
+    let h = PI / 2.0;
+    (0..9)
+        .map(|k| {
+            let n = 2 * k + i32::from(sine);
+            (-1f64).powi(k) * h.powi(n) / factorial(n)
+        })
+        .collect()
+}
+
+/// `(sin(π·r/2)/r, cos(π·r/2))` of `r = sqrt(q)` for `0 ≤ q ≤ 2`, by
+/// [`quarter_turn_series`]: the decode of an azimuthal equidistant disk point `p` is
+/// `(p·s, c)` with `q = |p|²`, division-free and exact at the centre.
+pub fn sinc_cos_quarter<F: Float>(q: F) -> V2<F> {
+    let s = horner(q, &quarter_turn_series(true)).named("sinc");
+    let c = horner(q, &quarter_turn_series(false)).named("cosq");
+    V2::new(s, c)
 }
 
 /// Doc comments of the helpers defined here.
