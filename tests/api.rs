@@ -1,7 +1,8 @@
 //! The CPU library: construction errors, slices, and round trips.
 
 use unitpack::api::{
-    CpuCodec, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3, StereoScaled,
+    CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3,
+    StereoScaled,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -121,5 +122,36 @@ fn eqdist_layout_and_corners() {
     let polar = f64::from(v[2]).acos().to_degrees();
     assert!((polar - 90.0 * 2f64.sqrt()).abs() < 0.01, "{v:?}: {polar}°");
     let v = c.decode(255 | 127 << 8 | 1 << 15);
-    assert!((f64::from(-v[2]).acos().to_degrees() - 127.279).abs() < 0.01, "{v:?}");
+    assert!(
+        (f64::from(-v[2]).acos().to_degrees() - 127.279).abs() < 0.01,
+        "{v:?}"
+    );
+}
+
+/// cube16 is s in bits 0–6 (unorm7), t in bits 7–12 (unorm6), the face in bits 13–15
+/// (+X, -X, +Y, -Y, +Z, -Z = 0–5); on +X the coordinates are (y, z)/|x|, on +Y (z, x)/|y|,
+/// on +Z (x, y)/|z|. Faces 6 and 7 decode as +Z and -Z; warpedcube shares the layout.
+#[test]
+fn cube_layout_is_s_t_then_the_face() {
+    let c = Cube::new(16).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 64 | 32 << 7 | 4 << 13);
+    assert_eq!(c.encode([-2.0, 0.0, 0.0]), 64 | 32 << 7 | 1 << 13);
+    assert_eq!(c.encode([0.0, -1.0, 0.0]), 64 | 32 << 7 | 3 << 13);
+    // On +Y, s is z/|y| and t is x/|y|.
+    assert_eq!(c.encode([0.5, 1.0, -0.75]), 16 | 47 << 7 | 2 << 13);
+    // Ties go to z, then y.
+    assert_eq!(c.encode([1.0, 1.0, 1.0]) >> 13, 4);
+    assert_eq!(c.encode([1.0, -1.0, 0.5]) >> 13, 3);
+    assert_eq!(
+        c.decode(127 | 63 << 7 | 6 << 13),
+        c.decode(127 | 63 << 7 | 4 << 13)
+    );
+    assert_eq!(c.decode(7 << 13), c.decode(5 << 13));
+    let v = c.decode(127 | 63 << 7);
+    let third = 1.0 / 3f32.sqrt();
+    assert!(v.iter().all(|x| (x - third).abs() < 1e-6), "{v:?}");
+    let w = Cube::warped(16).unwrap().fast();
+    // atan(-0.75)/(π/4) = -0.8193 → 11.47; atan(0.5)/(π/4) = 0.5903 → 50.10.
+    assert_eq!(w.encode([0.5, 1.0, -0.75]), 11 | 50 << 7 | 2 << 13);
+    assert!(Cube::warped(20).is_err());
 }

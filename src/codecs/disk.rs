@@ -9,7 +9,7 @@
 //! within 1 % of unorm ones, unorm matches best at 16 bits).
 
 use super::exact::{canonical_or_z, fixed_length2, one_if, root};
-use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded};
+use super::fixed_decode::{BITS, fixed_square_point, fixed_target, nearest_decoded};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 
@@ -58,17 +58,9 @@ pub fn unfold<F: Float>(z: F, h: F) -> F {
 }
 
 /// The disk point of codes `c` in units of `2^-21` ([`super::fixed_decode`]), for the
-/// precise searches: each parameter `p = (2c - M)/M` as one rounded product floored,
-/// and `q = |p|²` from squares each rounded to a unit, their sum exact (below `2^23`).
+/// precise searches, and `q = |p|²`: [`fixed_square_point`] of the parameters' fields.
 pub fn fixed_disk_point<F: Float>(bits: u32, c: V2<F>) -> (V2<F>, F) {
-    let [qx, qy] = disk_fields(bits);
-    let p = |q: Quant, c: F| {
-        let m = f64::from(q.max_code());
-        fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
-    };
-    let p = V2::new(p(qx, c.x), p(qy, c.y)).named("p");
-    let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
-    (p, (sq(p.x) + sq(p.y)).named("q"))
+    fixed_square_point(disk_fields(bits), c)
 }
 
 /// A disk codec's precise codes: of the four codes around `base` (the floors), in the

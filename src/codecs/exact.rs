@@ -307,6 +307,19 @@ pub fn one_if<F: Float>(m: F::B) -> F {
     F::sel(m, F::c(1.0), F::c(0.0))
 }
 
+/// The unorm code of the parameter `x / a · ½ + ½` (`a > 0`, `|x| ≤ a` up to rounding)
+/// at the boundaries `c + offset` (`½` rounds to the nearest code, ties up; `1` floors):
+/// the boundary is passed where `x·(M/2) ≥ (c + offset - M/2)·a`, two products meeting
+/// in a comparison, so [`decided`] steps the estimate by comparisons alone.
+pub fn unorm_ratio<F: Float>(q: Quant, x: F, a: F, offset: f32) -> F {
+    let m = q.max_code();
+    let t = (x * F::c(m * 0.5)).named("t");
+    let estimate = (t / a + F::c(m * 0.5)).round();
+    decided(q, estimate, |c| {
+        one_if(t.ge((c - F::c(m * 0.5 - offset)) * a))
+    })
+}
+
 /// `1` where `x·K ≥ k·sqrt(s)` (`K > 0`, `s > 0`), else `0`, from `big2 = (x·K)²`
 /// and `k2s = k²·s` (each a product of exact or deterministic values): decided by the
 /// signs of `x` and `k` and, where they agree, by the squares, so no root or quotient

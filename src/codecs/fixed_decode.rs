@@ -70,6 +70,19 @@ pub fn odd_square_quarter<F: Float>(t: V2<F>) -> F::U {
     a.x.wrapping_mul(a.x).shr(2) + a.y.wrapping_mul(a.y).shr(2)
 }
 
+/// The point `p = (2c - M)/M` of unorm codes `c` (fields `q`) in the square `[-1, 1]²`,
+/// in units of `2^-BITS`, each coordinate one rounded product floored, and `q = |p|²`
+/// from squares each rounded to a unit, their sum exact (below `2^23`).
+pub fn fixed_square_point<F: Float>(q: [Quant; 2], c: V2<F>) -> (V2<F>, F) {
+    let p = |q: Quant, c: F| {
+        let m = f64::from(q.max_code());
+        fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
+    };
+    let p = V2::new(p(q[0], c.x), p(q[1], c.y)).named("p");
+    let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
+    (p, (sq(p.x) + sq(p.y)).named("q"))
+}
+
 /// `floor(x · k)`: a fixed-point component from one product.
 pub fn fixed<F: Float>(x: F, k: f64) -> F {
     (x * F::c(k as f32)).floor()

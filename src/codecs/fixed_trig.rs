@@ -72,7 +72,9 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     // In radians, at most π/4.
     let u = (c * F::c(PI as f32)).round().named("u");
     let u2 = mul(u, u, FINE);
-    let sin_coeffs: Vec<f64> = (0..6).map(|k| (-1f64).powi(k) / factorial(2 * k + 1)).collect();
+    let sin_coeffs: Vec<f64> = (0..6)
+        .map(|k| (-1f64).powi(k) / factorial(2 * k + 1))
+        .collect();
     let cos_coeffs: Vec<f64> = (0..7).map(|k| (-1f64).powi(k) / factorial(2 * k)).collect();
     let s = mul(u, poly(u2, &sin_coeffs, FINE), FINE).named("s");
     let co = poly(u2, &cos_coeffs, FINE).named("co");

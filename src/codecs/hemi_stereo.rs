@@ -7,11 +7,11 @@ use super::codec::{Codec, Domain};
 use super::disk::{
     Folded, disk_fields, disk_quants, fixed_disk_point, nearest_disk_codes, unfold,
 };
-use super::exact::{decided, fixed_ratio, one_if};
+use super::exact::{fixed_ratio, unorm_ratio};
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{BITS, ONE, search_doc};
 use super::functions::{Emitted, codec_functions};
-use super::quant::{Quant, Quants};
+use super::quant::Quants;
 use super::spec::{Spec, SpecError};
 use crate::model::{Float, V2, V3};
 
@@ -57,22 +57,15 @@ impl HemiStereo {
         })
     }
 
-    /// The unorm codes of `w.xy / (1 + |z|)` (`w` canonical, `l` its length) at the
-    /// boundaries `c + offset`: `½` rounds to the nearest code, `1` floors. With
-    /// `a = l + |w.z|` (a sum of positives, never 0) the parameter is `w.x / a`, so the
-    /// boundary `c + ½` is passed where `w.x·(M/2) ≥ (c + ½ - M/2)·a`: two products
-    /// meeting in a comparison, decided portably ([`crate::codecs::exact`]).
+    /// The unorm codes of `w.xy / (1 + |z|)` (`w` canonical, `a = l + |w.z|` with `l`
+    /// its length, a sum of positives, never 0) at the boundaries `c + offset`: the
+    /// parameter is `w.x / a`, decided by [`unorm_ratio`].
     fn codes<F: Float>(&self, w: V3<F>, a: F, offset: f32) -> V2<F> {
         let [qx, qy] = disk_fields(self.bits);
-        let code = |q: Quant, x: F| {
-            let m = q.max_code();
-            let t = (x * F::c(m * 0.5)).named("t");
-            let estimate = (t / a + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| {
-                one_if(t.ge((c - F::c(m * 0.5 - offset)) * a))
-            })
-        };
-        V2::new(code(qx, w.x), code(qy, w.y))
+        V2::new(
+            unorm_ratio(qx, w.x, a, offset),
+            unorm_ratio(qy, w.y, a, offset),
+        )
     }
 
     /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: the

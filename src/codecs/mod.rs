@@ -49,6 +49,8 @@ registry! {
     hemi_stereo => HemiStereo;
     hemi_eqarea => HemiEqArea;
     hemi_eqdist => HemiEqDist;
+    cube => Cube;
+    warpedcube;
     xy => Xy;
     pack12;
 }
