@@ -12,6 +12,7 @@ pub mod native;
 pub mod tools;
 
 use crate::codecs::Spec;
+use crate::codecs::functions::Emitted;
 use crate::codecs::functions::Function;
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
@@ -317,123 +318,32 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} [{elapsed}]")
             .expect("progress template"),
     );
-    let mut rows = Vec::new();
-    for (spec, e) in specs.iter().zip(&emitted) {
-        let includes: Vec<(Lang, String)> = langs
-            .iter()
-            .map(|l| {
-                (
-                    *l,
-                    render(
-                        &[(spec.clone(), None)],
-                        *l,
-                        DEFAULT_PREFIX,
-                        "unitpack verify",
-                    ),
-                )
+    // Specs are independent: verify them on as many threads as there are cores, each
+    // taking the next spec, and keep the report in spec order. The shader paths share
+    // the one device; the model's expected values and the C compilers use the rest.
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let mut per_spec: Vec<(usize, Vec<Row>)> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..threads.min(specs.len()).max(1))
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(spec) = specs.get(i) else { break };
+                        done.push((i, verify_spec(spec, &emitted[i], langs, &paths, gpu, &bar)));
+                    }
+                    done
+                })
             })
             .collect();
-        let include = |l: Lang| &includes.iter().find(|(x, _)| *x == l).expect("lang").1;
-        if langs.contains(&Lang::Glsl) {
-            for (path, r) in glsl_versions(include(Lang::Glsl)) {
-                rows.push(Row {
-                    spec: spec.to_string(),
-                    function: "(whole include)".into(),
-                    path,
-                    tested: 0,
-                    mismatches: 0,
-                    first: vec![],
-                    error: r.err().map(|e| format!("{e:#}")),
-                });
-            }
-        }
-        let ns = if e.namespace.is_empty() {
-            String::new()
-        } else {
-            format!("{}_", e.namespace)
-        };
-        // The C paths compile one driver per spec and compiler, for all its functions.
-        let full_name = |f: &Function| format!("{DEFAULT_PREFIX}{ns}{}", f.name);
-        let c_programs: Vec<(Path, Result<native::Program, String>)> = paths
-            .iter()
-            .filter(|p| p.lang() == Lang::C)
-            .map(|&p| {
-                let funcs: Vec<(String, Ty, Ty)> = e
-                    .functions
-                    .iter()
-                    .map(|f| {
-                        let (param, ret) = func_types(e.module.func(f.name).expect("traced"));
-                        (full_name(f), param, ret)
-                    })
-                    .collect();
-                let funcs: Vec<(&str, Ty, Ty)> =
-                    funcs.iter().map(|(n, a, b)| (n.as_str(), *a, *b)).collect();
-                let source = crate::emit::lang::c::driver(include(Lang::C), &funcs);
-                let compiler = if p == Path::CC {
-                    native::Compiler::C
-                } else {
-                    native::Compiler::Cpp
-                };
-                (
-                    p,
-                    native::compile(compiler, &source).map_err(|e| format!("{e:#}")),
-                )
-            })
-            .collect();
-        for (index, f) in e.functions.iter().enumerate() {
-            bar.set_message(format!("{spec} {}", f.name));
-            let traced = e.module.func(f.name).expect("traced function");
-            let (param, ret) = func_types(traced);
-            let input = inputs::generate(&f.inputs, f.in_words);
-            let want = expected(f, &input);
-            for &path in &paths {
-                let lang = path.lang();
-                let result = if lang == Lang::C {
-                    let (_, program) = c_programs
-                        .iter()
-                        .find(|(p, _)| *p == path)
-                        .expect("a driver per C path");
-                    match program {
-                        Ok(program) => program.run(index, &input),
-                        Err(e) => Err(anyhow::anyhow!("{e}")),
-                    }
-                } else {
-                    let kernel = lang.backend(DEFAULT_PREFIX).kernel(
-                        include(lang),
-                        &full_name(f),
-                        param,
-                        ret,
-                    );
-                    compile_shader(path, &kernel).and_then(|spv| {
-                        let shader = match (&spv, lang) {
-                            (Some(words), _) => Shader::SpirV(words),
-                            (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
-                            (None, _) => Shader::GlslNaga(&kernel),
-                        };
-                        let gpu = gpu.as_ref().expect("adapter for shader paths");
-                        gpu.run(&shader, &input, f.in_words, f.out_words)
-                    })
-                };
-                let mut row = Row {
-                    spec: spec.to_string(),
-                    function: f.name.to_string(),
-                    path: path.to_string(),
-                    tested: input.len() / f.in_words,
-                    mismatches: 0,
-                    first: vec![],
-                    error: None,
-                };
-                match result {
-                    Ok(got) => {
-                        (row.mismatches, row.first) = compare(f, (param, ret), &input, &want, &got)
-                    }
-                    Err(err) => row.error = Some(format!("{err:#}")),
-                }
-                rows.push(row);
-                bar.inc(1);
-            }
-        }
-    }
+        workers
+            .into_iter()
+            .flat_map(|w| w.join().expect("a verify worker panicked"))
+            .collect()
+    });
+    per_spec.sort_by_key(|(i, _)| *i);
+    let rows = per_spec.into_iter().flat_map(|(_, rows)| rows).collect();
     bar.finish_and_clear();
     Ok(Report {
         adapter: gpu.map_or("none (C paths only)".into(), |g| {
@@ -442,4 +352,128 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
         driver: gpu.map_or("-".into(), |g| g.driver().to_string()),
         rows,
     })
+}
+
+/// Every row of one spec: its whole includes, then each function on each path.
+fn verify_spec(
+    spec: &Spec,
+    e: &Emitted,
+    langs: &[Lang],
+    paths: &[Path],
+    gpu: Option<&Gpu>,
+    bar: &indicatif::ProgressBar,
+) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let includes: Vec<(Lang, String)> = langs
+        .iter()
+        .map(|l| {
+            (
+                *l,
+                render(
+                    &[(spec.clone(), None)],
+                    *l,
+                    DEFAULT_PREFIX,
+                    "unitpack verify",
+                ),
+            )
+        })
+        .collect();
+    let include = |l: Lang| &includes.iter().find(|(x, _)| *x == l).expect("lang").1;
+    if langs.contains(&Lang::Glsl) {
+        for (path, r) in glsl_versions(include(Lang::Glsl)) {
+            rows.push(Row {
+                spec: spec.to_string(),
+                function: "(whole include)".into(),
+                path,
+                tested: 0,
+                mismatches: 0,
+                first: vec![],
+                error: r.err().map(|e| format!("{e:#}")),
+            });
+        }
+    }
+    let ns = if e.namespace.is_empty() {
+        String::new()
+    } else {
+        format!("{}_", e.namespace)
+    };
+    // The C paths compile one driver per spec and compiler, for all its functions.
+    let full_name = |f: &Function| format!("{DEFAULT_PREFIX}{ns}{}", f.name);
+    let c_programs: Vec<(Path, Result<native::Program, String>)> = paths
+        .iter()
+        .filter(|p| p.lang() == Lang::C)
+        .map(|&p| {
+            let funcs: Vec<(String, Ty, Ty)> = e
+                .functions
+                .iter()
+                .map(|f| {
+                    let (param, ret) = func_types(e.module.func(f.name).expect("traced"));
+                    (full_name(f), param, ret)
+                })
+                .collect();
+            let funcs: Vec<(&str, Ty, Ty)> =
+                funcs.iter().map(|(n, a, b)| (n.as_str(), *a, *b)).collect();
+            let source = crate::emit::lang::c::driver(include(Lang::C), &funcs);
+            let compiler = if p == Path::CC {
+                native::Compiler::C
+            } else {
+                native::Compiler::Cpp
+            };
+            (
+                p,
+                native::compile(compiler, &source).map_err(|e| format!("{e:#}")),
+            )
+        })
+        .collect();
+    for (index, f) in e.functions.iter().enumerate() {
+        bar.set_message(format!("{spec} {}", f.name));
+        let traced = e.module.func(f.name).expect("traced function");
+        let (param, ret) = func_types(traced);
+        let input = inputs::generate(&f.inputs, f.in_words);
+        let want = expected(f, &input);
+        for &path in paths {
+            let lang = path.lang();
+            let result = if lang == Lang::C {
+                let (_, program) = c_programs
+                    .iter()
+                    .find(|(p, _)| *p == path)
+                    .expect("a driver per C path");
+                match program {
+                    Ok(program) => program.run(index, &input),
+                    Err(e) => Err(anyhow::anyhow!("{e}")),
+                }
+            } else {
+                let kernel =
+                    lang.backend(DEFAULT_PREFIX)
+                        .kernel(include(lang), &full_name(f), param, ret);
+                compile_shader(path, &kernel).and_then(|spv| {
+                    let shader = match (&spv, lang) {
+                        (Some(words), _) => Shader::SpirV(words),
+                        (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
+                        (None, _) => Shader::GlslNaga(&kernel),
+                    };
+                    let gpu = gpu.as_ref().expect("adapter for shader paths");
+                    gpu.run(&shader, &input, f.in_words, f.out_words)
+                })
+            };
+            let mut row = Row {
+                spec: spec.to_string(),
+                function: f.name.to_string(),
+                path: path.to_string(),
+                tested: input.len() / f.in_words,
+                mismatches: 0,
+                first: vec![],
+                error: None,
+            };
+            match result {
+                Ok(got) => {
+                    (row.mismatches, row.first) = compare(f, (param, ret), &input, &want, &got)
+                }
+                Err(err) => row.error = Some(format!("{err:#}")),
+            }
+            rows.push(row);
+            bar.inc(1);
+        }
+    }
+    rows
 }
