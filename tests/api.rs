@@ -2,7 +2,7 @@
 
 use unitpack::api::{
     CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3,
-    StereoScaled,
+    StereoScaled, XySignZ,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -154,4 +154,21 @@ fn cube_layout_is_s_t_then_the_face() {
     // atan(-0.75)/(π/4) = -0.8193 → 11.47; atan(0.5)/(π/4) = 0.5903 → 50.10.
     assert_eq!(w.encode([0.5, 1.0, -0.75]), 11 | 50 << 7 | 2 << 13);
     assert!(Cube::warped(20).is_err());
+}
+
+/// xy_signz16 is x as snorm8 in bits 0–7, y as snorm7 in bits 8–14, the sign of z in bit
+/// 15; the equator and -0 are on the +Z side, codes outside the disk decode with z = ±0.
+#[test]
+fn xy_signz_layout_is_x_y_then_the_sign_of_z() {
+    let c = XySignZ::new(16).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 0);
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 1 << 15);
+    assert_eq!(c.encode([1.0, 0.0, -0.0]), 127);
+    assert_eq!(c.encode([0.0, -1.0, 0.0]), 65 << 8);
+    assert_eq!(c.encode([0.6, 0.0, -0.8]), 76 | 1 << 15);
+    assert_eq!(c.decode(127 | 1 << 15), [1.0, 0.0, -0.0]);
+    assert_eq!(c.decode(127 | 63 << 8)[2], 0.0);
+    let v = c.decode(76 | 1 << 15);
+    assert!((v[0] - 76.0 / 127.0).abs() < 1e-7 && v[2] < -0.79, "{v:?}");
+    assert!(XySignZ::new(20).is_err());
 }

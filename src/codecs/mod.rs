@@ -52,6 +52,7 @@ registry! {
     cube => Cube;
     warpedcube;
     xy => Xy;
+    xy_signz => XySignZ;
     pack12;
 }
 
