@@ -2,7 +2,7 @@
 
 use unitpack::api::{
     CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3,
-    StereoScaled, XySignZ,
+    SphericalZ, StereoScaled, XySignZ,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -171,4 +171,22 @@ fn xy_signz_layout_is_x_y_then_the_sign_of_z() {
     let v = c.decode(76 | 1 << 15);
     assert!((v[0] - 76.0 / 127.0).abs() < 1e-7 && v[2] < -0.79, "{v:?}");
     assert!(XySignZ::new(20).is_err());
+}
+
+/// spherical_z16 is the seed's `(atan2(y, x)/π, z)·0.5 + 0.5`: the azimuth as unorm8 in
+/// bits 0–7, z as unorm8 in bits 8–15.
+#[test]
+fn spherical_z_layout_is_azimuth_then_z() {
+    let c = SphericalZ::new(16).unwrap().fast();
+    // +X: azimuth 0 → 127.5 → 128 (ties to even); z 0 → 128.
+    assert_eq!(c.encode([1.0, 0.0, 0.0]), 128 | 128 << 8);
+    // +Y: azimuth ½ → 191.25; -Z: z -1 → 0.
+    assert_eq!(c.encode([0.0, 1.0, 0.0]), 191 | 128 << 8);
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 128);
+    // -X (azimuth exactly π) → 255.
+    assert_eq!(c.encode([-1.0, 0.0, 0.0]) & 0xff, 255);
+    let v = c.decode(255 << 8);
+    assert_eq!(v[2], 1.0);
+    assert!(v[0].abs() < 1e-7 && v[1].abs() < 1e-7, "{v:?}");
+    assert!(SphericalZ::new(20).is_err());
 }
