@@ -2,7 +2,7 @@
 
 use unitpack::api::{
     CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3,
-    SphericalZ, StereoScaled, XySignZ,
+    SphericalZ, StereoScaled, XySignZ, XyStereo,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -189,4 +189,19 @@ fn spherical_z_layout_is_azimuth_then_z() {
     assert_eq!(v[2], 1.0);
     assert!(v[0].abs() < 1e-7 && v[1].abs() < 1e-7, "{v:?}");
     assert!(SphericalZ::new(20).is_err());
+}
+
+/// xy_stereo16 is (x, y)/(1 + z) as snorm8×2, x in bits 0–7; the horizon maps onto the
+/// unit circle and input below it is projected onto it first.
+#[test]
+fn xy_stereo_layout_and_horizon() {
+    let c = XyStereo::new(16).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 0);
+    assert_eq!(c.encode([1.0, 0.0, 0.0]), 127);
+    assert_eq!(c.encode([0.0, -1.0, -0.5]), 0x81 << 8);
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 0);
+    // 0.6/(1 + 0.8) = 1/3 → 42.33.
+    assert_eq!(c.encode([0.6, 0.0, 0.8]), 42);
+    assert_eq!(c.decode(127), [1.0, 0.0, 0.0]);
+    assert!(XyStereo::new(20).is_err());
 }

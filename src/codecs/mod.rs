@@ -53,6 +53,7 @@ registry! {
     warpedcube;
     xy => Xy;
     xy_signz => XySignZ;
+    xy_stereo => XyStereo;
     spherical_z => SphericalZ;
     pack12;
 }
