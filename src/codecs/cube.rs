@@ -19,7 +19,7 @@
 use super::codec::{Codec, Domain};
 use super::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root, unorm_ratio};
 use super::family::{Family, Info, Sizes};
-use super::fixed_decode::{BITS, ONE, fixed, fixed_square_point, fixed_target, nearest_decoded, search_doc};
+use super::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_square_point, fixed_target, nearest_decoded, search_doc};
 use super::fixed_trig;
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
@@ -167,8 +167,7 @@ impl Cube {
                 fixed_ratio(sc.x, sc.y, BITS)
             };
             let p = V2::new(tan(qs, c.x), tan(qt, c.y)).named("p");
-            let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
-            (p, (sq(p.x) + sq(p.y)).named("q"))
+            (p, fixed_length2_2d(p))
         } else {
             fixed_square_point(self.fields(), c)
         };

@@ -79,8 +79,18 @@ pub fn fixed_square_point<F: Float>(q: [Quant; 2], c: V2<F>) -> (V2<F>, F) {
         fixed(c * F::c(2.0) - F::c(m as f32), ONE / m)
     };
     let p = V2::new(p(q[0], c.x), p(q[1], c.y)).named("p");
-    let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
-    (p, (sq(p.x) + sq(p.y)).named("q"))
+    (p, fixed_length2_2d(p))
+}
+
+/// `x²` of a fixed-point value in units of `2^-BITS`, rounded to a unit: one product
+/// scaled and rounded, an integer below `2^23` for `|x| ≤ √2`.
+pub fn fixed_square<F: Float>(x: F) -> F {
+    (x * x * F::c((1.0 / ONE) as f32)).round()
+}
+
+/// `|p|²` of a fixed-point point from [`fixed_square`]s: integers, so their sum is exact.
+pub fn fixed_length2_2d<F: Float>(p: V2<F>) -> F {
+    (fixed_square(p.x) + fixed_square(p.y)).named("q")
 }
 
 /// `floor(x · k)`: a fixed-point component from one product.

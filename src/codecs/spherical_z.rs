@@ -5,9 +5,9 @@
 //! never a builtin.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical_or_z, decided, fixed_length2, length2, past_root_ratio, root};
+use super::exact::{canonical_or_z, decided, fixed_length2, fixed_root, length2, past_root_ratio, root};
 use super::family::{Family, Info, Sizes};
-use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
+use super::fixed_decode::{fixed_square, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use super::fixed_trig;
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
@@ -89,7 +89,7 @@ impl SphericalZ {
     }
 
     /// The decode of codes `c` in units of `2^-BITS`: `z = (2c - M)/M` one rounded
-    /// product floored, `sqrt(1 - z²)` by [`fixed_root`](super::exact::fixed_root), the
+    /// product floored, `sqrt(1 - z²)` by [`fixed_root`], the
     /// azimuth's sine and cosine from [`fixed_trig::sincos_pi`] (units of `2^-24`), each
     /// product with the root rounded to a unit.
     fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
@@ -97,9 +97,8 @@ impl SphericalZ {
         let one = F::c(ONE as f32);
         let centred = |c: F| c * F::c(2.0) - F::c(m as f32);
         let z = fixed(centred(c.y), ONE / m).named("z");
-        let z2 = (z * z * F::c((1.0 / ONE) as f32)).round();
-        let rest = (one - z2).at_least(F::c(0.0));
-        let r = super::exact::fixed_root(rest * one).named("r");
+        let rest = (one - fixed_square(z)).at_least(F::c(0.0));
+        let r = fixed_root(rest * one).named("r");
         let sc = fixed_trig::sincos_pi(fixed(centred(c.x), fixed_trig::FINE / m));
         let scale = F::c((1.0 / fixed_trig::FINE) as f32);
         let xy = V2::new(sc.y, sc.x).map(|a| (a * r * scale).round());

@@ -13,7 +13,7 @@ use super::exact::{
     snorm_sqrt_ratio,
 };
 use super::family::{Family, Info, Sizes};
-use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
+use super::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
@@ -75,8 +75,7 @@ impl XySignZ {
         let one = F::c(ONE as f32);
         let k = |q: Quant| ONE / f64::from(q.max_code());
         let p = V2::new(fixed(c.x, k(qx)), fixed(c.y, k(qy))).named("p");
-        let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
-        let rest = (one - (sq(p.x) + sq(p.y))).at_least(F::c(0.0)).named("rest");
+        let rest = (one - fixed_length2_2d(p)).at_least(F::c(0.0)).named("rest");
         let z = fixed_root(rest * one);
         V3::from_xy(p, unfold(z, h))
     }

@@ -9,7 +9,7 @@
 use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{canonical_or_z, fixed_length2, fixed_ratio, floor_ratio, root, snorm_ratio};
 use super::family::{Family, Info, Sizes};
-use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
+use super::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
@@ -92,8 +92,7 @@ impl XyStereo {
         let one = F::c(ONE as f32);
         let k = ONE / f64::from(self.field().max_code());
         let p = c.map(|x| fixed(x, k)).named("p");
-        let sq = |x: F| (x * x * F::c((1.0 / ONE) as f32)).round();
-        let q = (sq(p.x) + sq(p.y)).named("q");
+        let q = fixed_length2_2d(p);
         let d = one + q;
         V3::from_xy(
             p.map(|x| fixed_ratio(x + x, d, BITS)),
