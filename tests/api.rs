@@ -2,7 +2,7 @@
 
 use unitpack::api::{
     CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3,
-    SphericalZ, StereoScaled, XySignZ, XyStereo,
+    SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -204,4 +204,19 @@ fn xy_stereo_layout_and_horizon() {
     assert_eq!(c.encode([0.6, 0.0, 0.8]), 42);
     assert_eq!(c.decode(127), [1.0, 0.0, 0.0]);
     assert!(XyStereo::new(20).is_err());
+}
+
+/// unorm3 is an RGB8 texel of `n·0.5 + 0.5`: x in bits 0–7, y 8–15, z 16–23, the top byte
+/// clear; invalid input is +Z, and the all-zero code decodes to (-1, -1, -1)/√3.
+#[test]
+fn unorm3_is_an_rgb8_texel() {
+    let c = Unorm3.fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 128 | 128 << 8 | 255 << 16);
+    assert_eq!(c.encode([f32::NAN, 0.0, 1.0]), 128 | 128 << 8 | 255 << 16);
+    assert_eq!(c.encode([-1.0, 0.0, 0.0]), 128 << 8 | 128 << 16);
+    // 0.6 → 0.8·255 = 204; -0.8 (as f32 inputs, normalized) → 25.5000009 → 26.
+    assert_eq!(c.encode([0.6, -0.8, 0.0]), 204 | 26 << 8 | 128 << 16);
+    let v = c.decode(0);
+    let third = -1.0 / 3f32.sqrt();
+    assert!(v.iter().all(|x| (x - third).abs() < 1e-6), "{v:?}");
 }

@@ -316,10 +316,10 @@ static inline unitpack_vec2 unitpack_spherical_z16p_encode_codes_v(unitpack_vec3
     const float t168 = angle + 8388608.0f;
     const float t169 = t168 * 1.5199184e-5f;
     const float t170 = floorf(t169);
-    const float t171 = w2.z * w2.z;
-    const float big2 = t171 * 16256.25f;
-    const float t172 = sqrtf(len2);
-    const float t173 = w2.z / t172;
+    const float t171 = sqrtf(len2);
+    const float t172 = w2.z * w2.z;
+    const float big2 = t172 * 16256.25f;
+    const float t173 = w2.z / t171;
     const float t174 = t173 * 127.5f;
     const float t175 = t174 + 127.5f;
     const float t176 = nearbyintf(t175);

@@ -386,10 +386,10 @@ static inline unitpack_vec2 unitpack_spherical_z24_round_codes_v(unitpack_vec3 a
     const float t144 = angle + 8388608.0f;
     const float t145 = t144 * 0.00024408102f;
     const float t146 = nearbyintf(t145);
-    const float t147 = w2.z * w2.z;
-    const float big2 = t147 * 4192256.3f;
-    const float t148 = sqrtf(len2);
-    const float t149 = w2.z / t148;
+    const float t147 = sqrtf(len2);
+    const float t148 = w2.z * w2.z;
+    const float big2 = t148 * 4192256.3f;
+    const float t149 = w2.z / t147;
     const float t150 = t149 * 2047.5f;
     const float t151 = t150 + 2047.5f;
     const float t152 = nearbyintf(t151);

@@ -316,10 +316,10 @@ static inline unitpack_vec2 unitpack_spherical_z32p_encode_codes_v(unitpack_vec3
     const float t168 = angle + 8388608.0f;
     const float t169 = t168 * 0.0039061904f;
     const float t170 = floorf(t169);
-    const float t171 = w2.z * w2.z;
-    const float big2 = t171 * 1073709060.0f;
-    const float t172 = sqrtf(len2);
-    const float t173 = w2.z / t172;
+    const float t171 = sqrtf(len2);
+    const float t172 = w2.z * w2.z;
+    const float big2 = t172 * 1073709060.0f;
+    const float t173 = w2.z / t171;
     const float t174 = t173 * 32767.5f;
     const float t175 = t174 + 32767.5f;
     const float t176 = nearbyintf(t175);

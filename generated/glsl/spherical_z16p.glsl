@@ -289,10 +289,10 @@ vec2 unitpack_spherical_z16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t168 = angle + 8388608.0;
     UNITPACK_PRECISE float t169 = t168 * 1.5199184e-5;
     UNITPACK_PRECISE float t170 = floor(t169);
-    UNITPACK_PRECISE float t171 = w2.z * w2.z;
-    UNITPACK_PRECISE float big2 = t171 * 16256.25;
-    UNITPACK_PRECISE float t172 = sqrt(len2);
-    UNITPACK_PRECISE float t173 = w2.z / t172;
+    UNITPACK_PRECISE float t171 = sqrt(len2);
+    UNITPACK_PRECISE float t172 = w2.z * w2.z;
+    UNITPACK_PRECISE float big2 = t172 * 16256.25;
+    UNITPACK_PRECISE float t173 = w2.z / t171;
     UNITPACK_PRECISE float t174 = t173 * 127.5;
     UNITPACK_PRECISE float t175 = t174 + 127.5;
     UNITPACK_PRECISE float t176 = roundEven(t175);

@@ -289,10 +289,10 @@ vec2 unitpack_spherical_z24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t168 = angle + 8388608.0;
     UNITPACK_PRECISE float t169 = t168 * 0.00024408102;
     UNITPACK_PRECISE float t170 = floor(t169);
-    UNITPACK_PRECISE float t171 = w2.z * w2.z;
-    UNITPACK_PRECISE float big2 = t171 * 4192256.3;
-    UNITPACK_PRECISE float t172 = sqrt(len2);
-    UNITPACK_PRECISE float t173 = w2.z / t172;
+    UNITPACK_PRECISE float t171 = sqrt(len2);
+    UNITPACK_PRECISE float t172 = w2.z * w2.z;
+    UNITPACK_PRECISE float big2 = t172 * 4192256.3;
+    UNITPACK_PRECISE float t173 = w2.z / t171;
     UNITPACK_PRECISE float t174 = t173 * 2047.5;
     UNITPACK_PRECISE float t175 = t174 + 2047.5;
     UNITPACK_PRECISE float t176 = roundEven(t175);

@@ -350,10 +350,10 @@ vec2 unitpack_spherical_z32_round_codes(vec3 a0) {
     UNITPACK_PRECISE float t144 = angle + 8388608.0;
     UNITPACK_PRECISE float t145 = t144 * 0.0039061904;
     UNITPACK_PRECISE float t146 = roundEven(t145);
-    UNITPACK_PRECISE float t147 = w2.z * w2.z;
-    UNITPACK_PRECISE float big2 = t147 * 1073709060.0;
-    UNITPACK_PRECISE float t148 = sqrt(len2);
-    UNITPACK_PRECISE float t149 = w2.z / t148;
+    UNITPACK_PRECISE float t147 = sqrt(len2);
+    UNITPACK_PRECISE float t148 = w2.z * w2.z;
+    UNITPACK_PRECISE float big2 = t148 * 1073709060.0;
+    UNITPACK_PRECISE float t149 = w2.z / t147;
     UNITPACK_PRECISE float t150 = t149 * 32767.5;
     UNITPACK_PRECISE float t151 = t150 + 32767.5;
     UNITPACK_PRECISE float t152 = roundEven(t151);

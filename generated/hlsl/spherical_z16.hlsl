@@ -349,10 +349,10 @@ float2 unitpack_spherical_z16_round_codes(float3 a0) {
     precise float t144 = angle + 8388608.0;
     precise float t145 = t144 * 1.5199184e-5;
     precise float t146 = round(t145);
-    precise float t147 = w2.z * w2.z;
-    precise float big2 = t147 * 16256.25;
-    precise float t148 = sqrt(len2);
-    precise float t149 = w2.z / t148;
+    precise float t147 = sqrt(len2);
+    precise float t148 = w2.z * w2.z;
+    precise float big2 = t148 * 16256.25;
+    precise float t149 = w2.z / t147;
     precise float t150 = t149 * 127.5;
     precise float t151 = t150 + 127.5;
     precise float t152 = round(t151);

@@ -288,10 +288,10 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float t168 = angle + 8388608.0;
     precise float t169 = t168 * 0.00024408102;
     precise float t170 = floor(t169);
-    precise float t171 = w2.z * w2.z;
-    precise float big2 = t171 * 4192256.3;
-    precise float t172 = sqrt(len2);
-    precise float t173 = w2.z / t172;
+    precise float t171 = sqrt(len2);
+    precise float t172 = w2.z * w2.z;
+    precise float big2 = t172 * 4192256.3;
+    precise float t173 = w2.z / t171;
     precise float t174 = t173 * 2047.5;
     precise float t175 = t174 + 2047.5;
     precise float t176 = round(t175);

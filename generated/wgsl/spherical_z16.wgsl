@@ -334,10 +334,10 @@ fn unitpack_spherical_z16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t144 = angle + 8388608.0f;
     let t145 = t144 * 1.5199184e-5f;
     let t146 = round(t145);
-    let t147 = w2.z * w2.z;
-    let big2 = t147 * 16256.25f;
-    let t148 = sqrt(len2);
-    let t149 = w2.z / t148;
+    let t147 = sqrt(len2);
+    let t148 = w2.z * w2.z;
+    let big2 = t148 * 16256.25f;
+    let t149 = w2.z / t147;
     let t150 = t149 * 127.5f;
     let t151 = t150 + 127.5f;
     let t152 = round(t151);

@@ -334,10 +334,10 @@ fn unitpack_spherical_z32_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t144 = angle + 8388608.0f;
     let t145 = t144 * 0.0039061904f;
     let t146 = round(t145);
-    let t147 = w2.z * w2.z;
-    let big2 = t147 * 1073709060.0f;
-    let t148 = sqrt(len2);
-    let t149 = w2.z / t148;
+    let t147 = sqrt(len2);
+    let t148 = w2.z * w2.z;
+    let big2 = t148 * 1073709060.0f;
+    let t149 = w2.z / t147;
     let t150 = t149 * 32767.5f;
     let t151 = t150 + 32767.5f;
     let t152 = round(t151);

@@ -273,10 +273,10 @@ fn unitpack_spherical_z32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t168 = angle + 8388608.0f;
     let t169 = t168 * 0.0039061904f;
     let t170 = floor(t169);
-    let t171 = w2.z * w2.z;
-    let big2 = t171 * 1073709060.0f;
-    let t172 = sqrt(len2);
-    let t173 = w2.z / t172;
+    let t171 = sqrt(len2);
+    let t172 = w2.z * w2.z;
+    let big2 = t172 * 1073709060.0f;
+    let t173 = w2.z / t171;
     let t174 = t173 * 32767.5f;
     let t175 = t174 + 32767.5f;
     let t176 = round(t175);

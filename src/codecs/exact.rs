@@ -320,6 +320,21 @@ pub fn unorm_ratio<F: Float>(q: Quant, x: F, a: F, offset: f32) -> F {
     })
 }
 
+/// The unorm code of the parameter `x / sqrt(s) · ½ + ½` (`s > 0`, `x² ≤ s` up to
+/// rounding; `root` any estimate of `sqrt(s)`, used only for the first guess) at the
+/// boundaries `c + offset` (`½` rounds, ties up; `1` floors): the boundary is passed
+/// where `x·(M/2) ≥ k·sqrt(s)` (`k = c + offset - M/2`), which [`past_root_ratio`]
+/// decides from `x²·(M²/4)` (the literal factor last) and `k²·s`.
+pub fn unorm_sqrt_ratio<F: Float>(q: Quant, x: F, s: F, root: F, offset: f32) -> F {
+    let m = q.max_code();
+    let big2 = (x * x * F::c((f64::from(m).powi(2) / 4.0) as f32)).named("big2");
+    let estimate = (x / root * F::c(m * 0.5) + F::c(m * 0.5)).round();
+    decided(q, estimate, |c| {
+        let k = c - F::c(m * 0.5 - offset);
+        past_root_ratio(x, big2, k, k * k * s)
+    })
+}
+
 /// `1` where `x·K ≥ k·sqrt(s)` (`K > 0`, `s > 0`), else `0`, from `big2 = (x·K)²`
 /// and `k2s = k²·s` (each a product of exact or deterministic values): decided by the
 /// signs of `x` and `k` and, where they agree, by the squares, so no root or quotient

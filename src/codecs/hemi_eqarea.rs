@@ -7,7 +7,7 @@ use super::codec::{Codec, Domain};
 use super::disk::{
     Folded, disk_fields, disk_quants, fixed_disk_point, nearest_disk_codes, unfold,
 };
-use super::exact::{decided, fixed_root, past_root_ratio};
+use super::exact::{fixed_root, unorm_sqrt_ratio};
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{BITS, ONE, fixed, search_doc};
 use super::functions::{Emitted, codec_functions};
@@ -58,22 +58,12 @@ impl HemiEqArea {
     }
 
     /// The unorm codes of the folded input at the boundaries `c + offset` (`½` rounds to
-    /// the nearest code, `1` floors). The parameter is `w.x / sqrt(l·a)`, so the boundary
-    /// `c + offset` is passed where `w.x·(M/2) ≥ k·sqrt(l·a)` (`k = c + offset - M/2`),
-    /// which [`past_root_ratio`] decides from `w.x²·(M²/4)` (the literal factor last) and
-    /// `k²·(l·a)`.
+    /// the nearest code, `1` floors): the parameter is `w.x / sqrt(l·a)`, decided by
+    /// [`unorm_sqrt_ratio`].
     fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
         let la = (f.l * f.a).named("la");
         let root_la = la.sqrt();
-        let code = |q: Quant, x: F| {
-            let m = q.max_code();
-            let big2 = (x * x * F::c((f64::from(m).powi(2) / 4.0) as f32)).named("big2");
-            let estimate = (x / root_la * F::c(m * 0.5) + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| {
-                let k = c - F::c(m * 0.5 - offset);
-                past_root_ratio(x, big2, k, k * k * la)
-            })
-        };
+        let code = |q: Quant, x: F| unorm_sqrt_ratio(q, x, la, root_la, offset);
         let [qx, qy] = disk_fields(self.bits);
         V2::new(code(qx, f.w.x), code(qy, f.w.y))
     }

@@ -42,6 +42,7 @@ registry! {
     hemioct => HemiOct;
     snorm3 => Snorm3, OneWord, TwoWords;
     snorm11_11_10;
+    unorm3 => Unorm3;
     float3 => Float16x3;
     spherical => Spherical;
     lambert => Lambert;

@@ -5,7 +5,7 @@
 //! never a builtin.
 
 use super::codec::{Codec, Domain};
-use super::exact::{canonical_or_z, decided, fixed_length2, fixed_root, length2, past_root_ratio, root};
+use super::exact::{canonical_or_z, fixed_length2, fixed_root, length2, root, unorm_sqrt_ratio};
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{fixed_square, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use super::fixed_trig;
@@ -65,9 +65,8 @@ impl SphericalZ {
     /// `c + offset` (`½` rounds, `1` floors). The azimuth `T = atan2(y, x)/π` in units
     /// of `2^-23` ([`fixed_trig::atan2_pi`], a function of the input alone) scaled to
     /// codes is `(T + 2^23)·M/2^24`, an exact integer times one literal, then rounded
-    /// (ties to even) or floored. The height's boundary `c + offset` is passed where
-    /// `w.z·(M/2) ≥ k·sqrt(s)` (`k = c + offset - M/2`), decided by [`past_root_ratio`]
-    /// from `w.z²·(M²/4)` and `k²·s`.
+    /// (ties to even) or floored. The height `w.z / sqrt(s)` is decided by
+    /// [`unorm_sqrt_ratio`].
     fn codes<F: Float>(&self, w: V3<F>, s: F, offset: f32) -> V2<F> {
         let q = self.field();
         let m = q.max_code();
@@ -79,12 +78,7 @@ impl SphericalZ {
         } else {
             scaled.floor()
         };
-        let big2 = (w.z * w.z * F::c((f64::from(m).powi(2) / 4.0) as f32)).named("big2");
-        let estimate = (w.z / s.sqrt() * F::c(m * 0.5) + F::c(m * 0.5)).round();
-        let z = decided(q, estimate, |c| {
-            let k = c - F::c(m * 0.5 - offset);
-            past_root_ratio(w.z, big2, k, k * k * s)
-        });
+        let z = unorm_sqrt_ratio(q, w.z, s, s.sqrt(), offset);
         V2::new(phi.clamped(F::c(0.0), F::c(m)), z)
     }
 
