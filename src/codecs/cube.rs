@@ -132,20 +132,15 @@ impl Cube {
     /// The codes of the coordinates `n / major` at the boundaries `c + offset` (`½`
     /// rounds, `1` floors). Plain: [`unorm_ratio`]. Warped: the angle `T = atan2(n, major)/π`
     /// in units of `2^-23` from [`fixed_trig::atan2_pi`] (`|T| ≤ 2^21`, a function of the
-    /// input alone); the parameter scaled to codes is `(4T + 2^23)·M/2^24`, an exact
-    /// integer times one literal, rounded once, then rounded to a code (ties to even) or
-    /// floored: no sum follows the product, so nothing can be fused into it.
+    /// input alone), times 4 (the face's quarter turn onto `[-1, 1]`), coded by
+    /// [`fixed_trig::angle_code`].
     fn codes<F: Float>(&self, f: &Face<F>, offset: f32) -> V2<F> {
         let code = |q: Quant, n: F| {
             if !self.warped {
                 return unorm_ratio(q, n, f.major, offset);
             }
-            let m = q.max_code();
             let t = fixed_trig::atan2_pi(n, f.major);
-            let scaled = (t * F::c(4.0) + F::c(fixed_trig::ONE as f32))
-                * F::c((f64::from(m) / (2.0 * fixed_trig::ONE)) as f32);
-            let c = if offset < 1.0 { scaled.round() } else { scaled.floor() };
-            c.clamped(F::c(0.0), F::c(m))
+            fixed_trig::angle_code(q, t * F::c(4.0), offset)
         };
         let [qs, qt] = self.fields();
         V2::new(code(qs, f.s), code(qt, f.t)).named("st")

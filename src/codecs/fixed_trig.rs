@@ -9,6 +9,7 @@
 //! units (`2^-21`) of the exact functions, as close as the float versions.
 
 use super::exact::fixed_ratio;
+use super::quant::Quant;
 use super::trig::{atan_series, factorial, quarter_turn_series};
 use crate::model::{Float, V2};
 use std::f64::consts::PI;
@@ -83,6 +84,22 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let cos = F::sel(back, -cb, cb);
     let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
     V2::new(sin, cos)
+}
+
+/// The unorm code (fields `q`) of an angle `a` in units of `2^-23` half turns,
+/// `|a| ≤ 2^23`, with `[-1, 1]` half turns mapped onto the codes: `(a + 2^23)·M/2^24`,
+/// an exact integer times one literal, rounded once, then rounded to a code (ties to
+/// even) where `offset` is `½` or floored where it is `1`. No sum follows the product,
+/// so nothing can be fused into it: a function of `a` alone.
+pub fn angle_code<F: Float>(q: Quant, a: F, offset: f32) -> F {
+    let m = q.max_code();
+    let scaled = (a + F::c(ONE as f32)) * F::c((f64::from(m) / (2.0 * ONE)) as f32);
+    let c = if offset < 1.0 {
+        scaled.round()
+    } else {
+        scaled.floor()
+    };
+    c.clamped(F::c(0.0), F::c(m))
 }
 
 /// `(sin(π·r/2)/r, cos(π·r/2))` of `r = sqrt(q)` for `0 ≤ q ≤ 2`, with `q` and the

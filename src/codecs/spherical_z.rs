@@ -63,23 +63,14 @@ impl SphericalZ {
 
     /// The codes of a canonical `w` (`s` its [`length2`]) at the boundaries
     /// `c + offset` (`½` rounds, `1` floors). The azimuth `T = atan2(y, x)/π` in units
-    /// of `2^-23` ([`fixed_trig::atan2_pi`], a function of the input alone) scaled to
-    /// codes is `(T + 2^23)·M/2^24`, an exact integer times one literal, then rounded
-    /// (ties to even) or floored. The height `w.z / sqrt(s)` is decided by
+    /// of `2^-23` ([`fixed_trig::atan2_pi`], a function of the input alone) is coded by
+    /// [`fixed_trig::angle_code`]. The height `w.z / sqrt(s)` is decided by
     /// [`unorm_sqrt_ratio`].
     fn codes<F: Float>(&self, w: V3<F>, s: F, offset: f32) -> V2<F> {
         let q = self.field();
-        let m = q.max_code();
-        let t = fixed_trig::atan2_pi(w.y, w.x);
-        let scaled = (t + F::c(fixed_trig::ONE as f32))
-            * F::c((f64::from(m) / (2.0 * fixed_trig::ONE)) as f32);
-        let phi = if offset < 1.0 {
-            scaled.round()
-        } else {
-            scaled.floor()
-        };
+        let phi = fixed_trig::angle_code(q, fixed_trig::atan2_pi(w.y, w.x), offset);
         let z = unorm_sqrt_ratio(q, w.z, s, s.sqrt(), offset);
-        V2::new(phi.clamped(F::c(0.0), F::c(m)), z)
+        V2::new(phi, z)
     }
 
     /// The decode of codes `c` in units of `2^-BITS`: `z = (2c - M)/M` one rounded
