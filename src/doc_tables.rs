@@ -3,7 +3,7 @@
 //! that the README holds exactly these, and rewrites them with `UPDATE_README=1`.
 
 use crate::codecs::{FAMILIES, Spec};
-use crate::quality::{self, VECTOR_SEED};
+use crate::quality::{ErrorStats, VECTOR_SEED};
 
 /// Samples behind the README's error figures (the survey's Table 1 used 2^20 too).
 pub const README_SAMPLES: usize = 1 << 20;
@@ -62,13 +62,14 @@ pub fn codec_specs() -> Vec<Spec> {
         .collect()
 }
 
-/// Round-trip error of every [`codec_specs`] spec over `samples` seeded unit vectors, with
-/// the ALU instructions of its packed encoder and decoder (`alu[i]` for spec `i`,
-/// counted by `unitpack::verify::alu`, which needs the shader tools).
-pub fn error_table(samples: usize, alu: &[[u32; 2]]) -> String {
+/// Round-trip error of every [`codec_specs`] spec (`stats[i]` for spec `i`, measured by
+/// [`quality::measure_all`] over `samples` seeded unit vectors), with the ALU
+/// instructions of its packed encoder and decoder (`alu[i]`, counted by
+/// `unitpack::verify::alu`, which needs the shader tools).
+pub fn error_table(samples: usize, stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> String {
     let specs = codec_specs();
     assert_eq!(specs.len(), alu.len(), "one ALU count pair per spec");
-    let stats = quality::measure_all(&specs, samples);
+    assert_eq!(specs.len(), stats.len(), "one measurement per spec");
     let mut s = format!(
         "Round-trip angular error over {samples} seeded unit vectors (seed `{VECTOR_SEED:#x}`; \
          hemisphere codecs over the +Z hemisphere). The maximum is the largest error in \
@@ -79,7 +80,7 @@ pub fn error_table(samples: usize, alu: &[[u32; 2]]) -> String {
          |---|---|---|---|---|---|---|\n"
     );
     for ((spec, st), [enc, dec]) in specs.iter().zip(stats).zip(alu) {
-        let st = st.expect("codecs have error statistics");
+        let st = st.as_ref().expect("codecs have error statistics");
         s.push_str(&format!(
             "| `{}` | {} | {} | {:.5}° | {:.5}° | {enc} | {dec} |\n",
             spec.id(),
@@ -88,6 +89,45 @@ pub fn error_table(samples: usize, alu: &[[u32; 2]]) -> String {
             st.mean,
             st.max
         ));
+    }
+    s
+}
+
+/// The first seed's methods 6, 4 and 5 side by side: one mapping with Lambert's codes,
+/// and five decoders (Lambert's, the seed's plain and optimized spheremap and CryEngine 3
+/// ones), each with its error, ALU count and proven bound, from the same figures as
+/// [`error_table`] (`stats` and `alu` indexed like [`codec_specs`]).
+pub fn seed_methods_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> String {
+    let specs = codec_specs();
+    let mut s = String::from(
+        "| bits | decoder | spec | mean | sample max | decode ALU | proven `decode` bound (2^-24) |\n\
+         |---|---|---|---|---|---|---|\n",
+    );
+    for bits in [16, 24, 32] {
+        for (decoder, id) in [
+            ("Lambert (method 6)", format!("lambert{bits}")),
+            ("spheremap (method 4)", format!("spheremap{bits}")),
+            ("spheremap, optimized", format!("spheremap{bits}_optimized")),
+            ("CryEngine 3 (method 5)", format!("cry3_{bits}")),
+            ("CryEngine 3, optimized", format!("cry3_{bits}_optimized")),
+        ] {
+            let i = specs
+                .iter()
+                .position(|s| s.id() == id)
+                .unwrap_or_else(|| panic!("{id} is in the catalogue"));
+            let st = stats[i].as_ref().expect("codecs have error statistics");
+            let e = specs[i].emitted();
+            let bound = e
+                .functions
+                .iter()
+                .find(|f| f.name == "decode")
+                .and_then(|f| crate::decode_bound::cached(&specs[i], f))
+                .map_or("—".to_string(), |b| b.units.to_string());
+            s.push_str(&format!(
+                "| {bits} | {decoder} | `{id}` | {:.5}° | {:.5}° | {} | {bound} |\n",
+                st.mean, st.max, alu[i][1]
+            ));
+        }
     }
     s
 }

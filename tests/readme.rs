@@ -3,7 +3,9 @@
 
 use unitpack::doc_tables::{
     README_SAMPLES, bound_table, catalogue_table, codec_specs, error_table, replace_block,
+    seed_methods_table,
 };
+use unitpack::quality::measure_all;
 
 #[test]
 fn readme_tables_are_generated_and_fresh() {
@@ -16,9 +18,11 @@ fn readme_tables_are_generated_and_fresh() {
             .into_iter()
             .map(|c| [c[0], c[1]])
             .collect();
+    let stats = measure_all(&codec_specs(), README_SAMPLES);
     for (name, body) in [
         ("catalogue", catalogue_table()),
-        ("errors", error_table(README_SAMPLES, &alu)),
+        ("errors", error_table(README_SAMPLES, &stats, &alu)),
+        ("seed_methods", seed_methods_table(&stats, &alu)),
         ("bounds", bound_table()),
     ] {
         fresh = replace_block(&fresh, name, &body)

@@ -46,6 +46,8 @@ registry! {
     float3 => Float16x3;
     spherical => Spherical;
     lambert => Lambert;
+    spheremap => Spheremap;
+    cry3 => Cry3;
     stereo => StereoScaled;
     hemi_stereo => HemiStereo;
     hemi_eqarea => HemiEqArea;
