@@ -253,3 +253,18 @@ fn unorm3_is_snorm8x3_on_a_finer_grid() {
     assert!(unorm.mean < snorm.mean, "{unorm:?} vs {snorm:?}");
     assert!(unorm.mean > 0.99 * snorm.mean, "{unorm:?} vs {snorm:?}");
 }
+
+/// The second seed's point: the inverted paraboloid spends the texels xy wastes on the
+/// centre near the horizon instead, so at every size its mean is lower than xy's and
+/// its max a small fraction of it, fast and precise.
+#[test]
+fn paraboloid_beats_xy_at_every_size() {
+    for bits in [16, 24, 32] {
+        for p in ["", "p"] {
+            let xy = measured(&format!("xy{bits}{p}"));
+            let par = measured(&format!("paraboloid{bits}{p}"));
+            assert!(par.mean < 0.7 * xy.mean, "{bits}{p}: {par:?} vs {xy:?}");
+            assert!(par.max < 0.2 * xy.max, "{bits}{p}: {par:?} vs {xy:?}");
+        }
+    }
+}

@@ -1,8 +1,8 @@
 //! The CPU library: construction errors, slices, and round trips.
 
 use unitpack::api::{
-    CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Snorm3,
-    SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
+    CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Paraboloid,
+    Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -204,6 +204,58 @@ fn xy_stereo_layout_and_horizon() {
     assert_eq!(c.encode([0.6, 0.0, 0.8]), 42);
     assert_eq!(c.decode(127), [1.0, 0.0, 0.0]);
     assert!(XyStereo::new(20).is_err());
+}
+
+/// paraboloid16 is snorm8×2 of the point where the ray meets z = 1 - (x² + y²), x in bits
+/// 0–7: the horizon maps onto the unit circle, and (1, 0, 1) onto 1/φ (the golden ratio).
+#[test]
+fn paraboloid_layout_and_horizon() {
+    let c = Paraboloid::new(16).unwrap().fast();
+    assert_eq!(c.encode([0.0, 0.0, 1.0]), 0);
+    assert_eq!(c.encode([1.0, 0.0, 0.0]), 127);
+    assert_eq!(c.encode([0.0, -1.0, -0.5]), 0x81 << 8);
+    assert_eq!(c.encode([0.0, 0.0, -1.0]), 0);
+    assert_eq!(c.encode([f32::NAN, 0.0, 1.0]), 0);
+    // 0.618034·127 = 78.49.
+    assert_eq!(c.encode([1.0, 0.0, 1.0]), 78);
+    assert_eq!(c.decode(127), [1.0, 0.0, 0.0]);
+    assert!(Paraboloid::new(20).is_err());
+}
+
+/// The codes are the seed's quadratic solved in f64 (`a·t² + z·t - 1 = 0`,
+/// `p = n.xy·t`) and rounded, wherever that value is not within f32 precision of a
+/// rounding boundary (the encoder decides with f32 lengths).
+#[test]
+fn paraboloid_codes_are_the_seed_quadratic_rounded() {
+    for bits in [16, 24] {
+        let c = Paraboloid::new(bits).unwrap().fast();
+        let half = bits / 2;
+        let m = f64::from((1u32 << (half - 1)) - 1);
+        let mut near_ties = 0;
+        for v in random_unit_vectors(47, 1 << 16, true) {
+            let n = v.map(f64::from);
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let n = n.map(|x| x / l);
+            let a = n[0] * n[0] + n[1] * n[1];
+            let t = (-n[2] + (n[2] * n[2] + 4.0 * a).sqrt()) / (2.0 * a);
+            let code = c.encode(v);
+            for k in 0..2 {
+                let x = n[k] * t * m;
+                if (x.abs() - x.abs().floor() - 0.5).abs() < x.abs() * 2f64.powi(-20) {
+                    near_ties += 1;
+                    continue;
+                }
+                let field = (code >> (k as u32 * half)) & ((1 << half) - 1);
+                // Two's complement field, sign-extended.
+                let got = ((field << (32 - half)) as i32) >> (32 - half);
+                assert_eq!(f64::from(got), x.round(), "paraboloid{bits} of {v:?}");
+            }
+        }
+        assert!(
+            near_ties < 1 << 10,
+            "paraboloid{bits}: {near_ties} near-ties"
+        );
+    }
 }
 
 /// unorm3 is an RGB8 texel of `n·0.5 + 0.5`: x in bits 0–7, y 8–15, z 16–23, the top byte

@@ -57,6 +57,7 @@ registry! {
     xy => Xy;
     xy_signz => XySignZ;
     xy_stereo => XyStereo;
+    paraboloid => Paraboloid;
     spherical_z => SphericalZ;
     pack12;
 }

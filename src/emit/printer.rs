@@ -275,7 +275,8 @@ fn live(f: &Func) -> Vec<bool> {
 
 /// Words reserved in one of the languages that a value's name could plausibly be (WGSL
 /// reserves many ordinary words, e.g. `target`, `filter`, `sample`); a value named one of
-/// them is printed with a number appended, like a repeated name.
+/// them is printed with a number appended, like a repeated name. HLSL's `half1`–`half4`
+/// are types, so a value named `half` must not become `half1`.
 const RESERVED: &[&str] = &[
     "active",
     "attribute",
@@ -287,6 +288,10 @@ const RESERVED: &[&str] = &[
     "fixed",
     "flat",
     "half",
+    "half1",
+    "half2",
+    "half3",
+    "half4",
     "in",
     "inout",
     "input",
