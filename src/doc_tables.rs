@@ -73,21 +73,25 @@ pub fn error_table(samples: usize, stats: &[Option<ErrorStats>], alu: &[[u32; 2]
     let mut s = format!(
         "Round-trip angular error over {samples} seeded unit vectors (seed `{VECTOR_SEED:#x}`; \
          hemisphere codecs over the +Z hemisphere). The maximum is the largest error in \
-         that sample, not a bound. ALU: instructions of the packed `encode` and `decode` \
+         that sample, not a bound. MSE and PSNR are the first seed's metric: the mean \
+         squared error of the components of `n − n'` (its difference image's three \
+         channels), and `10·log10(1/MSE)`. ALU: instructions of the packed `encode` and `decode` \
          (GLSL through `glslangValidator -V` and `spirv-opt -O`, counted as in \
          \"What portability costs\" below; `src/verify/alu.rs`).\n\n\
-         | spec | bits | domain | mean | sample max | encode ALU | decode ALU |\n\
-         |---|---|---|---|---|---|---|\n"
+         | spec | bits | domain | mean | sample max | MSE | PSNR | encode ALU | decode ALU |\n\
+         |---|---|---|---|---|---|---|---|---|\n"
     );
     for ((spec, st), [enc, dec]) in specs.iter().zip(stats).zip(alu) {
         let st = st.as_ref().expect("codecs have error statistics");
         s.push_str(&format!(
-            "| `{}` | {} | {} | {:.5}° | {:.5}° | {enc} | {dec} |\n",
+            "| `{}` | {} | {} | {:.5}° | {:.5}° | {:.3e} | {:.2} dB | {enc} | {dec} |\n",
             spec.id(),
             spec.bits(),
             spec.info().domain.map_or("", |d| d.name()),
             st.mean,
-            st.max
+            st.max,
+            st.mse,
+            st.psnr()
         ));
     }
     s
@@ -100,8 +104,8 @@ pub fn error_table(samples: usize, stats: &[Option<ErrorStats>], alu: &[[u32; 2]
 pub fn seed_methods_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> String {
     let specs = codec_specs();
     let mut s = String::from(
-        "| bits | decoder | spec | mean | sample max | decode ALU | proven `decode` bound (2^-24) |\n\
-         |---|---|---|---|---|---|---|\n",
+        "| bits | decoder | spec | mean | sample max | PSNR | decode ALU | proven `decode` bound (2^-24) |\n\
+         |---|---|---|---|---|---|---|---|\n",
     );
     for bits in [16, 24, 32] {
         for (decoder, id) in [
@@ -124,8 +128,11 @@ pub fn seed_methods_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> Str
                 .and_then(|f| crate::decode_bound::cached(&specs[i], f))
                 .map_or("—".to_string(), |b| b.units.to_string());
             s.push_str(&format!(
-                "| {bits} | {decoder} | `{id}` | {:.5}° | {:.5}° | {} | {bound} |\n",
-                st.mean, st.max, alu[i][1]
+                "| {bits} | {decoder} | `{id}` | {:.5}° | {:.5}° | {:.2} dB | {} | {bound} |\n",
+                st.mean,
+                st.max,
+                st.psnr(),
+                alu[i][1]
             ));
         }
     }

@@ -53,12 +53,32 @@ pub fn angle_deg(a: [f32; 3], b: [f32; 3]) -> f64 {
     d.clamp(-1.0, 1.0).acos().abs().to_degrees()
 }
 
-/// Mean and max round-trip error of a spec's packed encode → decode, in degrees.
+/// Round-trip error of a spec's packed encode → decode: the angle in degrees (mean and
+/// sample max), and the first seed's metric, the mean squared error of the components of
+/// `n - n'` (its MSE over the `abs(n1 - n2)` difference image: three channels per
+/// normal, peak 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ErrorStats {
     pub mean: f64,
     pub max: f64,
+    pub mse: f64,
     pub samples: usize,
+}
+
+impl ErrorStats {
+    /// `10·log10(1 / MSE)` in dB, the seed's PSNR for a peak of 1.
+    pub fn psnr(&self) -> f64 {
+        -10.0 * self.mse.log10()
+    }
+}
+
+/// `Σ (aₖ - bₖ)² / 3` in f64: one normal's share of the seed's MSE.
+pub fn component_mse(a: [f32; 3], b: [f32; 3]) -> f64 {
+    a.iter()
+        .zip(&b)
+        .map(|(x, y)| (f64::from(*x) - f64::from(*y)).powi(2))
+        .sum::<f64>()
+        / 3.0
 }
 
 pub fn measure(spec: &Spec, samples: usize) -> Option<ErrorStats> {
@@ -78,17 +98,20 @@ pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStat
     let vs = random_unit_vectors(VECTOR_SEED, samples, domain == Domain::Hemisphere);
     let mut code = vec![0u32; enc.out_words];
     let mut out = [0u32; 3];
-    let (mut sum, mut max) = (0f64, 0f64);
+    let (mut sum, mut max, mut squares) = (0f64, 0f64, 0f64);
     for v in &vs {
         (enc.eval)(&v.map(f32::to_bits), &mut code);
         (dec.eval)(&code, &mut out);
-        let a = angle_deg(*v, out.map(f32::from_bits));
+        let n = out.map(f32::from_bits);
+        let a = angle_deg(*v, n);
         sum += a;
         max = max.max(a);
+        squares += component_mse(*v, n);
     }
     ErrorStats {
         mean: sum / samples as f64,
         max,
+        mse: squares / samples as f64,
         samples,
     }
 }

@@ -72,7 +72,7 @@ static inline unitpack_vec3 unitpack_cube32_decode_float_v(unitpack_vec3 params)
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 22·2^-24 (1.31e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound); MSE of the components of n - n' 3.161e-10, PSNR 95.00 dB.
 static inline void unitpack_cube32_decode_float(const float params[3], float out[3]) {
     const unitpack_vec3 params_v = { params[0], params[1], params[2] };
     const unitpack_vec3 r = unitpack_cube32_decode_float_v(params_v);
@@ -99,7 +99,7 @@ static inline unitpack_vec3 unitpack_cube32_decode_v(uint32_t code) {
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 22·2^-24 (1.31e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound); MSE of the components of n - n' 3.161e-10, PSNR 95.00 dB.
 static inline void unitpack_cube32_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_cube32_decode_v(code);
     out[0] = r.x;
@@ -160,7 +160,7 @@ static inline unitpack_vec3 unitpack_cube32_encode_float_v(unitpack_vec3 v) {
 // Out: parameters in [0, 1], unquantized, for a unorm15, unorm14, unorm3 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound); MSE of the components of n - n' 3.161e-10, PSNR 95.00 dB.
 static inline void unitpack_cube32_encode_float(const float v[3], float out[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec3 r = unitpack_cube32_encode_float_v(v_v);
@@ -256,7 +256,7 @@ static inline uint32_t unitpack_cube32_encode_v(unitpack_vec3 v) {
 // Out: the packed code, uint32_t (bits 0–14: p0 unorm15, bits 15–28: p1 unorm14, bits 29–31: p2 unorm3).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.00386° (not a bound); MSE of the components of n - n' 3.161e-10, PSNR 95.00 dB.
 static inline uint32_t unitpack_cube32_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_cube32_encode_v(v_v);

@@ -55,7 +55,7 @@ static inline unitpack_vec3 unitpack_eqarea24_decode_float_v(unitpack_vec3 param
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 41·2^-24 (2.44e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound); MSE of the components of n - n' 7.089e-8, PSNR 71.49 dB.
 static inline void unitpack_eqarea24_decode_float(const float params[3], float out[3]) {
     const unitpack_vec3 params_v = { params[0], params[1], params[2] };
     const unitpack_vec3 r = unitpack_eqarea24_decode_float_v(params_v);
@@ -81,7 +81,7 @@ static inline unitpack_vec3 unitpack_eqarea24_decode_v(uint32_t code) {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23884·2^-24 (1.42e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound); MSE of the components of n - n' 7.089e-8, PSNR 71.49 dB.
 static inline void unitpack_eqarea24_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_eqarea24_decode_v(code);
     out[0] = r.x;
@@ -222,7 +222,7 @@ static inline unitpack_vec3 unitpack_eqarea24_encode_float_v(unitpack_vec3 v) {
 // Out: parameters in [0, 1], unquantized, for a unorm12, unorm11, unorm1 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound); MSE of the components of n - n' 7.089e-8, PSNR 71.49 dB.
 static inline void unitpack_eqarea24_encode_float(const float v[3], float out[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec3 r = unitpack_eqarea24_encode_float_v(v_v);
@@ -463,7 +463,7 @@ static inline uint32_t unitpack_eqarea24_encode_v(unitpack_vec3 v) {
 // Out: the packed code, uint32_t (bits 0–11: p0 unorm12, bits 12–22: p1 unorm11, bits 23–23: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02409°, sample max 0.06117° (not a bound); MSE of the components of n - n' 7.089e-8, PSNR 71.49 dB.
 static inline uint32_t unitpack_eqarea24_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_eqarea24_encode_v(v_v);

@@ -82,7 +82,7 @@ static inline unitpack_vec3 unitpack_eqdist20_decode_float_v(unitpack_vec3 param
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 14·2^-24 (8.34e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.114e-6, PSNR 59.53 dB.
 static inline void unitpack_eqdist20_decode_float(const float params[3], float out[3]) {
     const unitpack_vec3 params_v = { params[0], params[1], params[2] };
     const unitpack_vec3 r = unitpack_eqdist20_decode_float_v(params_v);
@@ -108,7 +108,7 @@ static inline unitpack_vec3 unitpack_eqdist20_decode_v(uint32_t code) {
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 54·2^-24 (3.22e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.114e-6, PSNR 59.53 dB.
 static inline void unitpack_eqdist20_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_eqdist20_decode_v(code);
     out[0] = r.x;
@@ -216,7 +216,7 @@ static inline unitpack_vec3 unitpack_eqdist20_encode_float_v(unitpack_vec3 v) {
 // Out: parameters in [0, 1], unquantized, for a unorm10, unorm9, unorm1 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.114e-6, PSNR 59.53 dB.
 static inline void unitpack_eqdist20_encode_float(const float v[3], float out[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec3 r = unitpack_eqdist20_encode_float_v(v_v);
@@ -563,7 +563,7 @@ static inline uint32_t unitpack_eqdist20_encode_v(unitpack_vec3 v) {
 // Out: the packed code, uint32_t (bits 0–9: p0 unorm10, bits 10–18: p1 unorm9, bits 19–19: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09586°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.114e-6, PSNR 59.53 dB.
 static inline uint32_t unitpack_eqdist20_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_eqdist20_encode_v(v_v);

@@ -59,7 +59,7 @@ static inline unitpack_vec3 unitpack_float16x3_decode_float_v(unitpack_vec3 para
 // Out: the three halves as floats, exactly, without normalizing (unit length to within 2^-11 for codes the encoder writes); a code with an infinite or NaN half, or three zero halves, decodes as +Z.
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 static inline void unitpack_float16x3_decode_float(const float params[3], float out[3]) {
     const unitpack_vec3 params_v = { params[0], params[1], params[2] };
     const unitpack_vec3 r = unitpack_float16x3_decode_float_v(params_v);
@@ -109,7 +109,7 @@ static inline unitpack_vec3 unitpack_float16x3_decode_v(unitpack_uvec2 code) {
 // Out: the three halves as floats, exactly, without normalizing (unit length to within 2^-11 for codes the encoder writes); a code with an infinite or NaN half, or three zero halves, decodes as +Z.
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 static inline void unitpack_float16x3_decode(uint64_t code, float out[3]) {
     const unitpack_uvec2 code_w = { (uint32_t)code, (uint32_t)(code >> 32) };
     const unitpack_vec3 r = unitpack_float16x3_decode_v(code_w);
@@ -146,7 +146,7 @@ static inline unitpack_vec3 unitpack_float16x3_encode_float_v(unitpack_vec3 v) {
 // Out: parameters in [-1, 1], unquantized, for a float16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 static inline void unitpack_float16x3_encode_float(const float v[3], float out[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec3 r = unitpack_float16x3_encode_float_v(v_v);
@@ -434,7 +434,7 @@ static inline unitpack_uvec2 unitpack_float16x3_encode_v(unitpack_vec3 v) {
 // Out: the packed code, unitpack_uvec2 (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2 float16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 static inline uint64_t unitpack_float16x3_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_uvec2 r = unitpack_float16x3_encode_v(v_v);

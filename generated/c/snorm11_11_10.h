@@ -49,7 +49,7 @@ static inline unitpack_vec3 unitpack_snorm11_11_10_decode_float_v(unitpack_vec3 
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23·2^-24 (1.37e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound); MSE of the components of n - n' 1.063e-7, PSNR 69.73 dB.
 static inline void unitpack_snorm11_11_10_decode_float(const float params[3], float out[3]) {
     const unitpack_vec3 params_v = { params[0], params[1], params[2] };
     const unitpack_vec3 r = unitpack_snorm11_11_10_decode_float_v(params_v);
@@ -81,7 +81,7 @@ static inline unitpack_vec3 unitpack_snorm11_11_10_decode_v(uint32_t code) {
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23·2^-24 (1.37e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound); MSE of the components of n - n' 1.063e-7, PSNR 69.73 dB.
 static inline void unitpack_snorm11_11_10_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_snorm11_11_10_decode_v(code);
     out[0] = r.x;
@@ -117,7 +117,7 @@ static inline unitpack_vec3 unitpack_snorm11_11_10_encode_float_v(unitpack_vec3 
 // Out: parameters in [-1, 1], unquantized, for a snorm11, snorm11, snorm10 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 and Table 1.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound); MSE of the components of n - n' 1.063e-7, PSNR 69.73 dB.
 static inline void unitpack_snorm11_11_10_encode_float(const float v[3], float out[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec3 r = unitpack_snorm11_11_10_encode_float_v(v_v);
@@ -276,7 +276,7 @@ static inline uint32_t unitpack_snorm11_11_10_encode_v(unitpack_vec3 v) {
 // Out: the packed code, uint32_t (bits 0–10: p0 snorm11 (two's complement), bits 11–21: p1 snorm11 (two's complement), bits 22–31: p2 snorm10 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02938°, sample max 0.06674° (not a bound); MSE of the components of n - n' 1.063e-7, PSNR 69.73 dB.
 static inline uint32_t unitpack_snorm11_11_10_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_snorm11_11_10_encode_v(v_v);

@@ -54,7 +54,7 @@ static inline unitpack_vec3 unitpack_spheremap32p_optimized_decode_float_v(unitp
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 10033·2^-24 (5.98e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound); MSE of the components of n - n' 5.786e-10, PSNR 92.38 dB.
 static inline void unitpack_spheremap32p_optimized_decode_float(const float params[2], float out[3]) {
     const unitpack_vec2 params_v = { params[0], params[1] };
     const unitpack_vec3 r = unitpack_spheremap32p_optimized_decode_float_v(params_v);
@@ -79,7 +79,7 @@ static inline unitpack_vec3 unitpack_spheremap32p_optimized_decode_v(uint32_t co
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 27781·2^-24 (1.66e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound); MSE of the components of n - n' 5.786e-10, PSNR 92.38 dB.
 static inline void unitpack_spheremap32p_optimized_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_spheremap32p_optimized_decode_v(code);
     out[0] = r.x;
@@ -738,7 +738,7 @@ static inline unitpack_vec2 unitpack_spheremap32p_optimized_encode_float_v(unitp
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm16 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound); MSE of the components of n - n' 5.786e-10, PSNR 92.38 dB.
 static inline void unitpack_spheremap32p_optimized_encode_float(const float v[3], float out[2]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec2 r = unitpack_spheremap32p_optimized_encode_float_v(v_v);
@@ -761,7 +761,7 @@ static inline uint32_t unitpack_spheremap32p_optimized_encode_v(unitpack_vec3 v)
 // Out: the packed code, uint32_t (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00160°, sample max 0.14593° (not a bound); MSE of the components of n - n' 5.786e-10, PSNR 92.38 dB.
 static inline uint32_t unitpack_spheremap32p_optimized_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_spheremap32p_optimized_encode_v(v_v);

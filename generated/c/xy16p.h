@@ -48,7 +48,7 @@ static inline unitpack_vec3 unitpack_xy16p_decode_float_v(unitpack_vec2 params) 
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 24·2^-24 (1.43e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound); MSE of the components of n - n' 2.790e-5, PSNR 45.54 dB.
 static inline void unitpack_xy16p_decode_float(const float params[2], float out[3]) {
     const unitpack_vec2 params_v = { params[0], params[1] };
     const unitpack_vec3 r = unitpack_xy16p_decode_float_v(params_v);
@@ -78,7 +78,7 @@ static inline unitpack_vec3 unitpack_xy16p_decode_v(uint32_t code) {
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 24·2^-24 (1.43e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound); MSE of the components of n - n' 2.790e-5, PSNR 45.54 dB.
 static inline void unitpack_xy16p_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_xy16p_decode_v(code);
     out[0] = r.x;
@@ -638,7 +638,7 @@ static inline unitpack_vec2 unitpack_xy16p_encode_float_v(unitpack_vec3 v) {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound); MSE of the components of n - n' 2.790e-5, PSNR 45.54 dB.
 static inline void unitpack_xy16p_encode_float(const float v[3], float out[2]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec2 r = unitpack_xy16p_encode_float_v(v_v);
@@ -667,7 +667,7 @@ static inline uint32_t unitpack_xy16p_encode_v(unitpack_vec3 v) {
 // Out: the packed code, uint32_t (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36404°, sample max 3.56006° (not a bound); MSE of the components of n - n' 2.790e-5, PSNR 45.54 dB.
 static inline uint32_t unitpack_xy16p_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_xy16p_encode_v(v_v);

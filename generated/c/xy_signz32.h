@@ -51,7 +51,7 @@ static inline unitpack_vec3 unitpack_xy_signz32_decode_float_v(unitpack_vec3 par
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 6793·2^-24 (4.05e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound); MSE of the components of n - n' 3.074e-8, PSNR 75.12 dB.
 static inline void unitpack_xy_signz32_decode_float(const float params[3], float out[3]) {
     const unitpack_vec3 params_v = { params[0], params[1], params[2] };
     const unitpack_vec3 r = unitpack_xy_signz32_decode_float_v(params_v);
@@ -93,7 +93,7 @@ static inline unitpack_vec3 unitpack_xy_signz32_decode_v(uint32_t code) {
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 6793·2^-24 (4.05e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound); MSE of the components of n - n' 3.074e-8, PSNR 75.12 dB.
 static inline void unitpack_xy_signz32_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_xy_signz32_decode_v(code);
     out[0] = r.x;
@@ -132,7 +132,7 @@ static inline unitpack_vec3 unitpack_xy_signz32_encode_float_v(unitpack_vec3 v) 
 // Out: parameters in [-1, 1], unquantized, for a snorm16, snorm15, unorm1 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound); MSE of the components of n - n' 3.074e-8, PSNR 75.12 dB.
 static inline void unitpack_xy_signz32_encode_float(const float v[3], float out[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec3 r = unitpack_xy_signz32_encode_float_v(v_v);
@@ -280,7 +280,7 @@ static inline uint32_t unitpack_xy_signz32_encode_v(unitpack_vec3 v) {
 // Out: the packed code, uint32_t (bits 0–15: p0 snorm16 (two's complement), bits 16–30: p1 snorm15 (two's complement), bits 31–31: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00455°, sample max 0.43438° (not a bound); MSE of the components of n - n' 3.074e-8, PSNR 75.12 dB.
 static inline uint32_t unitpack_xy_signz32_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_xy_signz32_encode_v(v_v);

@@ -49,7 +49,7 @@ static inline unitpack_vec3 unitpack_xy_stereo24_decode_float_v(unitpack_vec2 pa
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 9·2^-24 (5.36e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 static inline void unitpack_xy_stereo24_decode_float(const float params[2], float out[3]) {
     const unitpack_vec2 params_v = { params[0], params[1] };
     const unitpack_vec3 r = unitpack_xy_stereo24_decode_float_v(params_v);
@@ -79,7 +79,7 @@ static inline unitpack_vec3 unitpack_xy_stereo24_decode_v(uint32_t code) {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 9·2^-24 (5.36e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 static inline void unitpack_xy_stereo24_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_xy_stereo24_decode_v(code);
     out[0] = r.x;
@@ -238,7 +238,7 @@ static inline unitpack_vec2 unitpack_xy_stereo24_encode_float_v(unitpack_vec3 v)
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 static inline void unitpack_xy_stereo24_encode_float(const float v[3], float out[2]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_vec2 r = unitpack_xy_stereo24_encode_float_v(v_v);
@@ -436,7 +436,7 @@ static inline uint32_t unitpack_xy_stereo24_encode_v(unitpack_vec3 v) {
 // Out: the packed code, uint32_t (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 static inline uint32_t unitpack_xy_stereo24_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     return unitpack_xy_stereo24_encode_v(v_v);

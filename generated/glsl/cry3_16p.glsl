@@ -28,7 +28,7 @@ precision highp int;
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 141·2^-24 (8.40e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound); MSE of the components of n - n' 2.695e-5, PSNR 45.69 dB.
 vec3 unitpack_cry3_16p_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 t1 = params * 2.0;
     UNITPACK_PRECISE vec2 fenc = t1 - 1.0;
@@ -60,7 +60,7 @@ vec3 unitpack_cry3_16p_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 141·2^-24 (8.40e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound); MSE of the components of n - n' 2.695e-5, PSNR 45.69 dB.
 vec3 unitpack_cry3_16p_decode(uint code) {
     uint t1 = code >> 8u;
     uvec2 t2 = uvec2(code, t1);
@@ -714,7 +714,7 @@ vec2 unitpack_cry3_16p_encode_codes(vec3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm8 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound); MSE of the components of n - n' 2.695e-5, PSNR 45.69 dB.
 vec2 unitpack_cry3_16p_encode_float(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_cry3_16p_encode_codes(v);
     UNITPACK_PRECISE vec2 t2 = t1 * 0.003921569;
@@ -726,7 +726,7 @@ vec2 unitpack_cry3_16p_encode_float(vec3 v) {
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40645°, sample max 7.01928° (not a bound); MSE of the components of n - n' 2.695e-5, PSNR 45.69 dB.
 uint unitpack_cry3_16p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_cry3_16p_encode_codes(v);
     uint t2 = uint(t1.x);

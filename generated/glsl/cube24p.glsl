@@ -28,7 +28,7 @@ precision highp int;
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound); MSE of the components of n - n' 7.949e-8, PSNR 71.00 dB.
 vec3 unitpack_cube24p_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 t1 = params.xy - 0.5;
     UNITPACK_PRECISE vec2 p = t1 * 2.0;
@@ -69,7 +69,7 @@ vec3 unitpack_cube24p_decode_float(vec3 params) {
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 22·2^-24 (1.31e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound); MSE of the components of n - n' 7.949e-8, PSNR 71.00 dB.
 vec3 unitpack_cube24p_decode(uint code) {
     uint t1 = code >> 11u;
     uint t2 = code >> 21u;
@@ -815,7 +815,7 @@ vec3 unitpack_cube24p_encode_codes(vec3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm11, unorm10, unorm3 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound); MSE of the components of n - n' 7.949e-8, PSNR 71.00 dB.
 vec3 unitpack_cube24p_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_cube24p_encode_codes(v);
     UNITPACK_PRECISE vec3 t2 = t1 * vec3(0.0004885198, 0.0009775171, 0.14285715);
@@ -827,7 +827,7 @@ vec3 unitpack_cube24p_encode_float(vec3 v) {
 // Out: the packed code, uint (bits 0–10: p0 unorm11, bits 11–20: p1 unorm10, bits 21–23: p2 unorm3).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02528°, sample max 0.06122° (not a bound); MSE of the components of n - n' 7.949e-8, PSNR 71.00 dB.
 uint unitpack_cube24p_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_cube24p_encode_codes(v);
     uint t2 = uint(t1.x);

@@ -28,7 +28,7 @@ precision highp int;
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound); MSE of the components of n - n' 6.995e-6, PSNR 51.55 dB.
 vec3 unitpack_hemioct16_decode_float(vec2 params) {
     UNITPACK_PRECISE float t1 = params.x + params.y;
     UNITPACK_PRECISE float t2 = params.x - params.y;
@@ -51,7 +51,7 @@ vec3 unitpack_hemioct16_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound); MSE of the components of n - n' 6.995e-6, PSNR 51.55 dB.
 vec3 unitpack_hemioct16_decode(uint code) {
     uint t1 = code >> 8u;
     uvec2 t2 = uvec2(code, t1);
@@ -72,7 +72,7 @@ vec3 unitpack_hemioct16_decode(uint code) {
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound); MSE of the components of n - n' 6.995e-6, PSNR 51.55 dB.
 vec2 unitpack_hemioct16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
@@ -177,7 +177,7 @@ vec2 unitpack_hemioct16_round_codes(vec3 a0) {
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound); MSE of the components of n - n' 6.995e-6, PSNR 51.55 dB.
 uint unitpack_hemioct16_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_hemioct16_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 256.0;

@@ -28,7 +28,7 @@ precision highp int;
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound); MSE of the components of n - n' 2.090e-10, PSNR 96.80 dB.
 vec3 unitpack_oct32_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 t1 = abs(params);
     UNITPACK_PRECISE float t2 = 1.0 - t1.x;
@@ -54,7 +54,7 @@ vec3 unitpack_oct32_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound); MSE of the components of n - n' 2.090e-10, PSNR 96.80 dB.
 vec3 unitpack_oct32_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -75,7 +75,7 @@ vec3 unitpack_oct32_decode(uint code) {
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound); MSE of the components of n - n' 2.090e-10, PSNR 96.80 dB.
 vec2 unitpack_oct32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
@@ -166,7 +166,7 @@ vec2 unitpack_oct32_round_codes(vec3 a0) {
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00130°, sample max 0.00367° (not a bound); MSE of the components of n - n' 2.090e-10, PSNR 96.80 dB.
 uint unitpack_oct32_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_oct32_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 65536.0;

@@ -28,7 +28,7 @@ precision highp int;
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 69·2^-24 (4.11e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 vec3 unitpack_spheremap16_optimized_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 t1 = 1.0 - params;
     UNITPACK_PRECISE vec2 t = params * t1;
@@ -51,7 +51,7 @@ vec3 unitpack_spheremap16_optimized_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 305·2^-24 (1.82e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 vec3 unitpack_spheremap16_optimized_decode(uint code) {
     uint t1 = code >> 8u;
     uvec2 t2 = uvec2(code, t1);
@@ -67,7 +67,7 @@ vec3 unitpack_spheremap16_optimized_decode(uint code) {
 // Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 vec2 unitpack_spheremap16_optimized_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
@@ -458,7 +458,7 @@ vec2 unitpack_spheremap16_optimized_round_codes(vec3 a0) {
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 uint unitpack_spheremap16_optimized_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_spheremap16_optimized_round_codes(v);
     uint t2 = uint(t1.x);

@@ -67,7 +67,7 @@ vec2 unitpack_spherical32_sincos_pi(float a0) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound); MSE of the components of n - n' 2.352e-10, PSNR 96.28 dB.
 vec3 unitpack_spherical32_decode_float(vec2 params) {
     UNITPACK_PRECISE float t1 = params.x + 1.0;
     UNITPACK_PRECISE float theta = t1 * 0.5;
@@ -84,7 +84,7 @@ vec3 unitpack_spherical32_decode_float(vec2 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound); MSE of the components of n - n' 2.352e-10, PSNR 96.28 dB.
 vec3 unitpack_spherical32_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -158,7 +158,7 @@ float unitpack_spherical32_atan2_pi(float a0, float a1) {
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound); MSE of the components of n - n' 2.352e-10, PSNR 96.28 dB.
 vec2 unitpack_spherical32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -527,7 +527,7 @@ vec2 unitpack_spherical32_round_codes(vec3 a0) {
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00139°, sample max 0.00304° (not a bound); MSE of the components of n - n' 2.352e-10, PSNR 96.28 dB.
 uint unitpack_spherical32_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_spherical32_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 65536.0;

@@ -28,7 +28,7 @@ precision highp int;
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 11·2^-24 (6.56e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound); MSE of the components of n - n' 3.018e-10, PSNR 95.20 dB.
 vec3 unitpack_stereo32_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 t1 = params.xy - 0.5;
     UNITPACK_PRECISE vec2 p = t1 * 2.0;
@@ -51,7 +51,7 @@ vec3 unitpack_stereo32_decode_float(vec3 params) {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 25·2^-24 (1.49e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound); MSE of the components of n - n' 3.018e-10, PSNR 95.20 dB.
 vec3 unitpack_stereo32_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -69,7 +69,7 @@ vec3 unitpack_stereo32_decode(uint code) {
 // Out: parameters in [0, 1], unquantized, for a unorm16, unorm15, unorm1 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound); MSE of the components of n - n' 3.018e-10, PSNR 95.20 dB.
 vec3 unitpack_stereo32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
@@ -371,7 +371,7 @@ vec3 unitpack_stereo32_round_codes(vec3 a0) {
 // Out: the packed code, uint (bits 0–15: p0 unorm16, bits 16–30: p1 unorm15, bits 31–31: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00156°, sample max 0.00389° (not a bound); MSE of the components of n - n' 3.018e-10, PSNR 95.20 dB.
 uint unitpack_stereo32_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_stereo32_round_codes(v);
     uint t2 = uint(t1.x);

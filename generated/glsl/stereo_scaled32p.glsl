@@ -28,7 +28,7 @@ precision highp int;
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 13·2^-24 (7.75e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 vec3 unitpack_stereo_scaled32p_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 t1 = params - 0.5;
     UNITPACK_PRECISE vec2 p = t1 * 3.5554;
@@ -48,7 +48,7 @@ vec3 unitpack_stereo_scaled32p_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 25·2^-24 (1.49e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 vec3 unitpack_stereo_scaled32p_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -615,7 +615,7 @@ vec2 unitpack_stereo_scaled32p_encode_codes(vec3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm16 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 vec2 unitpack_stereo_scaled32p_encode_float(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_stereo_scaled32p_encode_codes(v);
     UNITPACK_PRECISE vec2 t2 = t1 * 1.5259022e-5;
@@ -627,7 +627,7 @@ vec2 unitpack_stereo_scaled32p_encode_float(vec3 v) {
 // Out: the packed code, uint (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27203°, sample max 53.47079° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 uint unitpack_stereo_scaled32p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_stereo_scaled32p_encode_codes(v);
     uint t2 = uint(t1.x);

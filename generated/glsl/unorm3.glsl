@@ -28,7 +28,7 @@ precision highp int;
 // Out: decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 20·2^-24 (1.19e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound); MSE of the components of n - n' 3.431e-6, PSNR 54.65 dB.
 vec3 unitpack_unorm3_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 t1 = params - 0.5;
     UNITPACK_PRECISE vec3 p = t1 * 2.0;
@@ -45,7 +45,7 @@ vec3 unitpack_unorm3_decode_float(vec3 params) {
 // Out: decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 179·2^-24 (1.07e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound); MSE of the components of n - n' 3.431e-6, PSNR 54.65 dB.
 vec3 unitpack_unorm3_decode(uint code) {
     uint t1 = code >> 8u;
     uint t2 = code >> 16u;
@@ -62,7 +62,7 @@ vec3 unitpack_unorm3_decode(uint code) {
 // Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound); MSE of the components of n - n' 3.431e-6, PSNR 54.65 dB.
 vec3 unitpack_unorm3_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -197,7 +197,7 @@ vec3 unitpack_unorm3_round_codes(vec3 a0) {
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8, bits 16–23: p2 unorm8).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.16981°, sample max 0.37724° (not a bound); MSE of the components of n - n' 3.431e-6, PSNR 54.65 dB.
 uint unitpack_unorm3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_unorm3_round_codes(v);
     uint t2 = uint(t1.x);

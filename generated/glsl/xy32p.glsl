@@ -28,7 +28,7 @@ precision highp int;
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 6793·2^-24 (4.05e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound); MSE of the components of n - n' 4.836e-9, PSNR 83.16 dB.
 vec3 unitpack_xy32p_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 t1 = params * params;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
@@ -45,7 +45,7 @@ vec3 unitpack_xy32p_decode_float(vec2 params) {
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 6793·2^-24 (4.05e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound); MSE of the components of n - n' 4.836e-9, PSNR 83.16 dB.
 vec3 unitpack_xy32p_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -603,7 +603,7 @@ vec2 unitpack_xy32p_encode_codes(vec3 v) {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm16 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound); MSE of the components of n - n' 4.836e-9, PSNR 83.16 dB.
 vec2 unitpack_xy32p_encode_float(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_xy32p_encode_codes(v);
     UNITPACK_PRECISE vec2 t2 = t1 * 3.051851e-5;
@@ -617,7 +617,7 @@ vec2 unitpack_xy32p_encode_float(vec3 v) {
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00210°, sample max 0.20253° (not a bound); MSE of the components of n - n' 4.836e-9, PSNR 83.16 dB.
 uint unitpack_xy32p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_xy32p_encode_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 65536.0;

@@ -28,7 +28,7 @@ precision highp int;
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 93·2^-24 (5.54e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound); MSE of the components of n - n' 6.043e-5, PSNR 42.19 dB.
 vec3 unitpack_xy_signz16p_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 t1 = params.xy * params.xy;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
@@ -48,7 +48,7 @@ vec3 unitpack_xy_signz16p_decode_float(vec3 params) {
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 93·2^-24 (5.54e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound); MSE of the components of n - n' 6.043e-5, PSNR 42.19 dB.
 vec3 unitpack_xy_signz16p_decode(uint code) {
     uint t1 = code & 255u;
     UNITPACK_PRECISE float t2 = float(t1);
@@ -590,7 +590,7 @@ vec3 unitpack_xy_signz16p_encode_codes(vec3 v) {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm8, snorm7, unorm1 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound); MSE of the components of n - n' 6.043e-5, PSNR 42.19 dB.
 vec3 unitpack_xy_signz16p_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_xy_signz16p_encode_codes(v);
     UNITPACK_PRECISE float t2 = t1.x * 0.007874016;
@@ -609,7 +609,7 @@ vec3 unitpack_xy_signz16p_encode_float(vec3 v) {
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–14: p1 snorm7 (two's complement), bits 15–15: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.54438°, sample max 5.01840° (not a bound); MSE of the components of n - n' 6.043e-5, PSNR 42.19 dB.
 uint unitpack_xy_signz16p_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_xy_signz16p_encode_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 256.0;

@@ -28,7 +28,7 @@ precision highp int;
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 586·2^-24 (3.49e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound); MSE of the components of n - n' 1.891e-6, PSNR 57.23 dB.
 vec3 unitpack_xy_signz24_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 t1 = params.xy * params.xy;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
@@ -48,7 +48,7 @@ vec3 unitpack_xy_signz24_decode_float(vec3 params) {
 // Out: z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 586·2^-24 (3.49e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound); MSE of the components of n - n' 1.891e-6, PSNR 57.23 dB.
 vec3 unitpack_xy_signz24_decode(uint code) {
     uint t1 = code & 4095u;
     UNITPACK_PRECISE float t2 = float(t1);
@@ -82,7 +82,7 @@ vec3 unitpack_xy_signz24_decode(uint code) {
 // Out: parameters in [-1, 1], unquantized, for a snorm12, snorm11, unorm1 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound); MSE of the components of n - n' 1.891e-6, PSNR 57.23 dB.
 vec3 unitpack_xy_signz24_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -227,7 +227,7 @@ vec3 unitpack_xy_signz24_round_codes(vec3 a0) {
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–22: p1 snorm11 (two's complement), bits 23–23: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.05757°, sample max 1.78987° (not a bound); MSE of the components of n - n' 1.891e-6, PSNR 57.23 dB.
 uint unitpack_xy_signz24_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_xy_signz24_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 4096.0;

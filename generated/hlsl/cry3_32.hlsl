@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 20468·2^-24 (1.22e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound); MSE of the components of n - n' 1.606e-9, PSNR 87.94 dB.
 float3 unitpack_cry3_32_decode_float(float2 params) {
     precise float2 t1 = params * 2.0;
     precise float2 fenc = t1 - 1.0;
@@ -59,7 +59,7 @@ float3 unitpack_cry3_32_decode_float(float2 params) {
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 20468·2^-24 (1.22e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound); MSE of the components of n - n' 1.606e-9, PSNR 87.94 dB.
 float3 unitpack_cry3_32_decode(uint code) {
     uint t1 = code & 65535u;
     uint t2 = code >> 16u;
@@ -75,7 +75,7 @@ float3 unitpack_cry3_32_decode(uint code) {
 // Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound); MSE of the components of n - n' 1.606e-9, PSNR 87.94 dB.
 float2 unitpack_cry3_32_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -466,7 +466,7 @@ float2 unitpack_cry3_32_round_codes(float3 a0) {
 // Out: the packed code, uint (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00195°, sample max 0.29721° (not a bound); MSE of the components of n - n' 1.606e-9, PSNR 87.94 dB.
 uint unitpack_cry3_32_encode(float3 v) {
     precise float2 t1 = unitpack_cry3_32_round_codes(v);
     uint t2 = uint(t1.x);

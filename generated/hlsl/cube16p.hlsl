@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 18·2^-24 (1.07e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound); MSE of the components of n - n' 2.087e-5, PSNR 46.80 dB.
 float3 unitpack_cube16p_decode_float(float3 params) {
     precise float2 t1 = params.xy - 0.5;
     precise float2 p = t1 * 2.0;
@@ -68,7 +68,7 @@ float3 unitpack_cube16p_decode_float(float3 params) {
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound); MSE of the components of n - n' 2.087e-5, PSNR 46.80 dB.
 float3 unitpack_cube16p_decode(uint code) {
     uint t1 = code >> 7u;
     uint t2 = code >> 13u;
@@ -814,7 +814,7 @@ float3 unitpack_cube16p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm7, unorm6, unorm3 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound); MSE of the components of n - n' 2.087e-5, PSNR 46.80 dB.
 float3 unitpack_cube16p_encode_float(float3 v) {
     precise float3 t1 = unitpack_cube16p_encode_codes(v);
     precise float3 t2 = t1 * float3(0.007874016, 0.015873017, 0.14285715);
@@ -826,7 +826,7 @@ float3 unitpack_cube16p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–6: p0 unorm7, bits 7–12: p1 unorm6, bits 13–15: p2 unorm3).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40964°, sample max 0.99976° (not a bound); MSE of the components of n - n' 2.087e-5, PSNR 46.80 dB.
 uint unitpack_cube16p_encode(float3 v) {
     precise float3 t1 = unitpack_cube16p_encode_codes(v);
     uint t2 = uint(t1.x);

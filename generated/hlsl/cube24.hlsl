@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound); MSE of the components of n - n' 8.091e-8, PSNR 70.92 dB.
 float3 unitpack_cube24_decode_float(float3 params) {
     precise float2 t1 = params.xy - 0.5;
     precise float2 p = t1 * 2.0;
@@ -68,7 +68,7 @@ float3 unitpack_cube24_decode_float(float3 params) {
 // Out: every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 22·2^-24 (1.31e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound); MSE of the components of n - n' 8.091e-8, PSNR 70.92 dB.
 float3 unitpack_cube24_decode(uint code) {
     uint t1 = code >> 11u;
     uint t2 = code >> 21u;
@@ -85,7 +85,7 @@ float3 unitpack_cube24_decode(uint code) {
 // Out: parameters in [0, 1], unquantized, for a unorm11, unorm10, unorm3 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound); MSE of the components of n - n' 8.091e-8, PSNR 70.92 dB.
 float3 unitpack_cube24_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -206,7 +206,7 @@ float3 unitpack_cube24_round_codes(float3 a0) {
 // Out: the packed code, uint (bits 0–10: p0 unorm11, bits 11–20: p1 unorm10, bits 21–23: p2 unorm3).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (cube).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02551°, sample max 0.06122° (not a bound); MSE of the components of n - n' 8.091e-8, PSNR 70.92 dB.
 uint unitpack_cube24_encode(float3 v) {
     precise float3 t1 = unitpack_cube24_round_codes(v);
     uint t2 = uint(t1.x);

@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 41·2^-24 (2.44e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound); MSE of the components of n - n' 6.708e-8, PSNR 71.73 dB.
 float3 unitpack_eqarea24p_decode_float(float3 params) {
     precise float2 t1 = params.xy - 0.5;
     precise float2 p = t1 * 2.0;
@@ -51,7 +51,7 @@ float3 unitpack_eqarea24p_decode_float(float3 params) {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23884·2^-24 (1.42e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound); MSE of the components of n - n' 6.708e-8, PSNR 71.73 dB.
 float3 unitpack_eqarea24p_decode(uint code) {
     uint t1 = code >> 12u;
     uint t2 = code >> 23u;
@@ -632,7 +632,7 @@ float3 unitpack_eqarea24p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm12, unorm11, unorm1 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound); MSE of the components of n - n' 6.708e-8, PSNR 71.73 dB.
 float3 unitpack_eqarea24p_encode_float(float3 v) {
     precise float3 t1 = unitpack_eqarea24p_encode_codes(v);
     precise float3 t2 = t1 * float3(0.00024420026, 0.0004885198, 1.0);
@@ -644,7 +644,7 @@ float3 unitpack_eqarea24p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–11: p0 unorm12, bits 12–22: p1 unorm11, bits 23–23: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02357°, sample max 0.05504° (not a bound); MSE of the components of n - n' 6.708e-8, PSNR 71.73 dB.
 uint unitpack_eqarea24p_encode(float3 v) {
     precise float3 t1 = unitpack_eqarea24p_encode_codes(v);
     uint t2 = uint(t1.x);

@@ -27,7 +27,7 @@
 // Out: the three halves as floats, exactly, without normalizing (unit length to within 2^-11 for codes the encoder writes); a code with an infinite or NaN half, or three zero halves, decodes as +Z.
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 float3 unitpack_float16x3_decode_float(float3 params) {
     precise float t1 = abs(params.x);
     bool t2 = t1 <= 3.4028235e38;
@@ -55,7 +55,7 @@ float3 unitpack_float16x3_decode_float(float3 params) {
 // Out: the three halves as floats, exactly, without normalizing (unit length to within 2^-11 for codes the encoder writes); a code with an infinite or NaN half, or three zero halves, decodes as +Z.
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 float3 unitpack_float16x3_decode(uint2 code) {
     uint t1 = code.x & 65535u;
     uint t2 = t1 & 32768u;
@@ -96,7 +96,7 @@ float3 unitpack_float16x3_decode(uint2 code) {
 // Out: parameters in [-1, 1], unquantized, for a float16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 float3 unitpack_float16x3_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -313,7 +313,7 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
 // Out: the packed code, uint2 (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2 float16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 uint2 unitpack_float16x3_encode(float3 v) {
     precise float3 t1 = unitpack_float16x3_round_codes(v);
     uint t2 = asuint(t1.x);

@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound); MSE of the components of n - n' 1.791e-7, PSNR 67.47 dB.
 float3 unitpack_oct22p_decode_float(float2 params) {
     precise float2 t1 = abs(params);
     precise float t2 = 1.0 - t1.x;
@@ -53,7 +53,7 @@ float3 unitpack_oct22p_decode_float(float2 params) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound); MSE of the components of n - n' 1.791e-7, PSNR 67.47 dB.
 float3 unitpack_oct22p_decode(uint code) {
     uint t1 = code >> 11u;
     uint2 t2 = uint2(code, t1);
@@ -406,7 +406,7 @@ float2 unitpack_oct22p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm11 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound); MSE of the components of n - n' 1.791e-7, PSNR 67.47 dB.
 float2 unitpack_oct22p_encode_float(float3 v) {
     precise float2 t1 = unitpack_oct22p_encode_codes(v);
     precise float2 t2 = t1 * 0.0009775171;
@@ -420,7 +420,7 @@ float2 unitpack_oct22p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–10: p0 snorm11 (two's complement), bits 11–21: p1 snorm11 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03912°, sample max 0.07772° (not a bound); MSE of the components of n - n' 1.791e-7, PSNR 67.47 dB.
 uint unitpack_oct22p_encode(float3 v) {
     precise float2 t1 = unitpack_oct22p_encode_codes(v);
     precise float t2 = t1.x + 2048.0;

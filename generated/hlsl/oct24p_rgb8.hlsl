@@ -66,7 +66,7 @@ float3 unitpack_oct24p_rgb8_oct24_decode_float(float2 a0) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound); MSE of the components of n - n' 4.439e-8, PSNR 73.53 dB.
 float3 unitpack_oct24p_rgb8_decode_float(float3 params) {
     precise float2 e = unitpack_oct24p_rgb8_unorm8x3_to_snorm12x2(params);
     precise float3 t1 = unitpack_oct24p_rgb8_oct24_decode_float(e);
@@ -94,7 +94,7 @@ float2 unitpack_oct24p_rgb8_bytes_to_snorm12x2(float3 a0) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound); MSE of the components of n - n' 4.439e-8, PSNR 73.53 dB.
 float3 unitpack_oct24p_rgb8_decode(uint code) {
     uint t1 = code >> 8u;
     uint t2 = code >> 16u;
@@ -454,7 +454,7 @@ float3 unitpack_oct24p_rgb8_encode_codes(float3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm8 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound); MSE of the components of n - n' 4.439e-8, PSNR 73.53 dB.
 float3 unitpack_oct24p_rgb8_encode_float(float3 v) {
     precise float3 t1 = unitpack_oct24p_rgb8_encode_codes(v);
     precise float3 t2 = t1 * 0.003921569;
@@ -466,7 +466,7 @@ float3 unitpack_oct24p_rgb8_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8, bits 16–23: p2 unorm8).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01945°, sample max 0.03900° (not a bound); MSE of the components of n - n' 4.439e-8, PSNR 73.53 dB.
 uint unitpack_oct24p_rgb8_encode(float3 v) {
     precise float3 t1 = unitpack_oct24p_rgb8_encode_codes(v);
     uint t2 = uint(t1.x);

@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 24·2^-24 (1.43e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound); MSE of the components of n - n' 3.244e-8, PSNR 74.89 dB.
 float3 unitpack_paraboloid24_decode_float(float2 params) {
     precise float2 t1 = params * params;
     precise float q = t1.x + t1.y;
@@ -48,7 +48,7 @@ float3 unitpack_paraboloid24_decode_float(float2 params) {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 24·2^-24 (1.43e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound); MSE of the components of n - n' 3.244e-8, PSNR 74.89 dB.
 float3 unitpack_paraboloid24_decode(uint code) {
     uint t1 = code >> 12u;
     uint2 t2 = uint2(code, t1);
@@ -69,7 +69,7 @@ float3 unitpack_paraboloid24_decode(uint code) {
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound); MSE of the components of n - n' 3.244e-8, PSNR 74.89 dB.
 float2 unitpack_paraboloid24_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -418,7 +418,7 @@ float2 unitpack_paraboloid24_round_codes(float3 a0) {
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01636°, sample max 0.04112° (not a bound); MSE of the components of n - n' 3.244e-8, PSNR 74.89 dB.
 uint unitpack_paraboloid24_encode(float3 v) {
     precise float2 t1 = unitpack_paraboloid24_round_codes(v);
     precise float t2 = t1.x + 4096.0;

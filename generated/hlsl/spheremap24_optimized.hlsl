@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 1315·2^-24 (7.84e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound); MSE of the components of n - n' 2.691e-7, PSNR 65.70 dB.
 float3 unitpack_spheremap24_optimized_decode_float(float2 params) {
     precise float2 t1 = 1.0 - params;
     precise float2 t = params * t1;
@@ -50,7 +50,7 @@ float3 unitpack_spheremap24_optimized_decode_float(float2 params) {
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 25905·2^-24 (1.54e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound); MSE of the components of n - n' 2.691e-7, PSNR 65.70 dB.
 float3 unitpack_spheremap24_optimized_decode(uint code) {
     uint t1 = code >> 12u;
     uint2 t2 = uint2(code, t1);
@@ -66,7 +66,7 @@ float3 unitpack_spheremap24_optimized_decode(uint code) {
 // Out: parameters in [0, 1], unquantized, for a unorm12 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound); MSE of the components of n - n' 2.691e-7, PSNR 65.70 dB.
 float2 unitpack_spheremap24_optimized_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -457,7 +457,7 @@ float2 unitpack_spheremap24_optimized_round_codes(float3 a0) {
 // Out: the packed code, uint (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03091°, sample max 2.38667° (not a bound); MSE of the components of n - n' 2.691e-7, PSNR 65.70 dB.
 uint unitpack_spheremap24_optimized_encode(float3 v) {
     precise float2 t1 = unitpack_spheremap24_optimized_round_codes(v);
     uint t2 = uint(t1.x);

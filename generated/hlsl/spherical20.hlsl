@@ -66,7 +66,7 @@ float2 unitpack_spherical20_sincos_pi(float a0) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 float3 unitpack_spherical20_decode_float(float2 params) {
     precise float t1 = params.x + 1.0;
     precise float theta = t1 * 0.5;
@@ -83,7 +83,7 @@ float3 unitpack_spherical20_decode_float(float2 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 float3 unitpack_spherical20_decode(uint code) {
     uint t1 = code >> 10u;
     uint2 t2 = uint2(code, t1);
@@ -157,7 +157,7 @@ float unitpack_spherical20_atan2_pi(float a0, float a1) {
 // Out: parameters in [-1, 1], unquantized, for a snorm10 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 float2 unitpack_spherical20_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -526,7 +526,7 @@ float2 unitpack_spherical20_round_codes(float3 a0) {
 // Out: the packed code, uint (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 uint unitpack_spherical20_encode(float3 v) {
     precise float2 t1 = unitpack_spherical20_round_codes(v);
     precise float t2 = t1.x + 1024.0;

@@ -66,7 +66,7 @@ float2 unitpack_spherical20p_sincos_pi(float a0) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 float3 unitpack_spherical20p_decode_float(float2 params) {
     precise float t1 = params.x + 1.0;
     precise float theta = t1 * 0.5;
@@ -83,7 +83,7 @@ float3 unitpack_spherical20p_decode_float(float2 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 float3 unitpack_spherical20p_decode(uint code) {
     uint t1 = code >> 10u;
     uint2 t2 = uint2(code, t1);
@@ -1334,7 +1334,7 @@ float2 unitpack_spherical20p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm10 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 float2 unitpack_spherical20p_encode_float(float3 v) {
     precise float2 t1 = unitpack_spherical20p_encode_codes(v);
     precise float2 t2 = t1 * 0.0019569471;
@@ -1348,7 +1348,7 @@ float2 unitpack_spherical20p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08873°, sample max 0.19517° (not a bound); MSE of the components of n - n' 9.658e-7, PSNR 60.15 dB.
 uint unitpack_spherical20p_encode(float3 v) {
     precise float2 t1 = unitpack_spherical20p_encode_codes(v);
     precise float t2 = t1.x + 1024.0;

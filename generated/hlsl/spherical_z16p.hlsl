@@ -66,7 +66,7 @@ float2 unitpack_spherical_z16p_sincos_pi(float a0) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 10·2^-24 (5.96e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound); MSE of the components of n - n' 1.929e-5, PSNR 47.15 dB.
 float3 unitpack_spherical_z16p_decode_float(float2 params) {
     precise float2 t1 = params - 0.5;
     precise float2 p = t1 * 2.0;
@@ -88,7 +88,7 @@ float3 unitpack_spherical_z16p_decode_float(float2 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 14189·2^-24 (8.46e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound); MSE of the components of n - n' 1.929e-5, PSNR 47.15 dB.
 float3 unitpack_spherical_z16p_decode(uint code) {
     uint t1 = code >> 8u;
     uint2 t2 = uint2(code, t1);
@@ -1023,7 +1023,7 @@ float2 unitpack_spherical_z16p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm8 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound); MSE of the components of n - n' 1.929e-5, PSNR 47.15 dB.
 float2 unitpack_spherical_z16p_encode_float(float3 v) {
     precise float2 t1 = unitpack_spherical_z16p_encode_codes(v);
     precise float2 t2 = t1 * 0.003921569;
@@ -1035,7 +1035,7 @@ float2 unitpack_spherical_z16p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36913°, sample max 3.58374° (not a bound); MSE of the components of n - n' 1.929e-5, PSNR 47.15 dB.
 uint unitpack_spherical_z16p_encode(float3 v) {
     precise float2 t1 = unitpack_spherical_z16p_encode_codes(v);
     uint t2 = uint(t1.x);

@@ -27,7 +27,7 @@
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound); MSE of the components of n - n' 1.236e-6, PSNR 59.08 dB.
 float3 unitpack_stereo20p_decode_float(float3 params) {
     precise float2 t1 = params.xy - 0.5;
     precise float2 p = t1 * 2.0;
@@ -50,7 +50,7 @@ float3 unitpack_stereo20p_decode_float(float3 params) {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 22·2^-24 (1.31e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound); MSE of the components of n - n' 1.236e-6, PSNR 59.08 dB.
 float3 unitpack_stereo20p_decode(uint code) {
     uint t1 = code >> 10u;
     uint t2 = code >> 19u;
@@ -613,7 +613,7 @@ float3 unitpack_stereo20p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm10, unorm9, unorm1 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound); MSE of the components of n - n' 1.236e-6, PSNR 59.08 dB.
 float3 unitpack_stereo20p_encode_float(float3 v) {
     precise float3 t1 = unitpack_stereo20p_encode_codes(v);
     precise float3 t2 = t1 * float3(0.0009775171, 0.0019569471, 1.0);
@@ -625,7 +625,7 @@ float3 unitpack_stereo20p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–9: p0 unorm10, bits 10–18: p1 unorm9, bits 19–19: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09951°, sample max 0.24660° (not a bound); MSE of the components of n - n' 1.236e-6, PSNR 59.08 dB.
 uint unitpack_stereo20p_encode(float3 v) {
     precise float3 t1 = unitpack_stereo20p_encode_codes(v);
     uint t2 = uint(t1.x);

@@ -66,7 +66,7 @@ float2 unitpack_warpedcube32p_sincos_pi(float a0) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 35·2^-24 (2.09e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound); MSE of the components of n - n' 2.731e-10, PSNR 95.64 dB.
 float3 unitpack_warpedcube32p_decode_float(float3 params) {
     precise float2 t1 = params.xy - 0.5;
     precise float2 p = t1 * 2.0;
@@ -107,7 +107,7 @@ float3 unitpack_warpedcube32p_decode_float(float3 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 40·2^-24 (2.38e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound); MSE of the components of n - n' 2.731e-10, PSNR 95.64 dB.
 float3 unitpack_warpedcube32p_decode(uint code) {
     uint t1 = code & 32767u;
     uint t2 = code >> 15u;
@@ -1257,7 +1257,7 @@ float3 unitpack_warpedcube32p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm15, unorm14, unorm3 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound); MSE of the components of n - n' 2.731e-10, PSNR 95.64 dB.
 float3 unitpack_warpedcube32p_encode_float(float3 v) {
     precise float3 t1 = unitpack_warpedcube32p_encode_codes(v);
     precise float3 t2 = t1 * float3(3.051851e-5, 6.103888e-5, 0.14285715);
@@ -1269,7 +1269,7 @@ float3 unitpack_warpedcube32p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–14: p0 unorm15, bits 15–28: p1 unorm14, bits 29–31: p2 unorm3).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00150°, sample max 0.00305° (not a bound); MSE of the components of n - n' 2.731e-10, PSNR 95.64 dB.
 uint unitpack_warpedcube32p_encode(float3 v) {
     precise float3 t1 = unitpack_warpedcube32p_encode_codes(v);
     uint t2 = uint(t1.x);

@@ -27,7 +27,7 @@
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 24·2^-24 (1.43e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound); MSE of the components of n - n' 6.451e-5, PSNR 41.90 dB.
 float3 unitpack_xy16_decode_float(float2 params) {
     precise float2 t1 = params * params;
     precise float t2 = t1.x + t1.y;
@@ -44,7 +44,7 @@ float3 unitpack_xy16_decode_float(float2 params) {
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 24·2^-24 (1.43e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound); MSE of the components of n - n' 6.451e-5, PSNR 41.90 dB.
 float3 unitpack_xy16_decode(uint code) {
     uint t1 = code >> 8u;
     uint2 t2 = uint2(code, t1);
@@ -65,7 +65,7 @@ float3 unitpack_xy16_decode(uint code) {
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound); MSE of the components of n - n' 6.451e-5, PSNR 41.90 dB.
 float2 unitpack_xy16_encode_float(float3 v) {
     precise float3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
@@ -227,7 +227,7 @@ float2 unitpack_xy16_round_codes(float3 a0) {
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.47519°, sample max 5.56067° (not a bound); MSE of the components of n - n' 6.451e-5, PSNR 41.90 dB.
 uint unitpack_xy16_encode(float3 v) {
     precise float2 t1 = unitpack_xy16_round_codes(v);
     precise float t2 = t1.x + 256.0;

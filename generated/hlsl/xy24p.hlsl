@@ -27,7 +27,7 @@
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 401·2^-24 (2.39e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound); MSE of the components of n - n' 3.503e-7, PSNR 64.56 dB.
 float3 unitpack_xy24p_decode_float(float2 params) {
     precise float2 t1 = params * params;
     precise float t2 = t1.x + t1.y;
@@ -44,7 +44,7 @@ float3 unitpack_xy24p_decode_float(float2 params) {
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 401·2^-24 (2.39e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound); MSE of the components of n - n' 3.503e-7, PSNR 64.56 dB.
 float3 unitpack_xy24p_decode(uint code) {
     uint t1 = code >> 12u;
     uint2 t2 = uint2(code, t1);
@@ -602,7 +602,7 @@ float2 unitpack_xy24p_encode_codes(float3 v) {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound); MSE of the components of n - n' 3.503e-7, PSNR 64.56 dB.
 float2 unitpack_xy24p_encode_float(float3 v) {
     precise float2 t1 = unitpack_xy24p_encode_codes(v);
     precise float2 t2 = t1 * 0.0004885198;
@@ -616,7 +616,7 @@ float2 unitpack_xy24p_encode_float(float3 v) {
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02808°, sample max 0.87054° (not a bound); MSE of the components of n - n' 3.503e-7, PSNR 64.56 dB.
 uint unitpack_xy24p_encode(float3 v) {
     precise float2 t1 = unitpack_xy24p_encode_codes(v);
     precise float t2 = t1.x + 4096.0;

@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 2879·2^-24 (1.72e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound); MSE of the components of n - n' 1.291e-7, PSNR 68.89 dB.
 fn unitpack_cry3_24p_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params * 2.0f;
     let fenc = t1 - 1.0f;
@@ -44,7 +44,7 @@ fn unitpack_cry3_24p_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 3184·2^-24 (1.90e-4) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound); MSE of the components of n - n' 1.291e-7, PSNR 68.89 dB.
 fn unitpack_cry3_24p_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 12u;
     let t2 = vec2<u32>(code, t1);
@@ -698,7 +698,7 @@ fn unitpack_cry3_24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm12 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound); MSE of the components of n - n' 1.291e-7, PSNR 68.89 dB.
 fn unitpack_cry3_24p_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = unitpack_cry3_24p_encode_codes(v);
     let t2 = t1 * 0.00024420026f;
@@ -710,7 +710,7 @@ fn unitpack_cry3_24p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02552°, sample max 1.41273° (not a bound); MSE of the components of n - n' 1.291e-7, PSNR 68.89 dB.
 fn unitpack_cry3_24p_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_cry3_24p_encode_codes(v);
     let t2 = u32(t1.x);

@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 17·2^-24 (1.01e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound); MSE of the components of n - n' 1.837e-5, PSNR 47.36 dB.
 fn unitpack_eqarea16_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params.xy - 0.5f;
     let p = t1 * 2.0f;
@@ -36,7 +36,7 @@ fn unitpack_eqarea16_decode_float(params: vec3<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23884·2^-24 (1.42e-3) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound); MSE of the components of n - n' 1.837e-5, PSNR 47.36 dB.
 fn unitpack_eqarea16_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 8u;
     let t2 = code >> 15u;
@@ -53,7 +53,7 @@ fn unitpack_eqarea16_decode(code: u32) -> vec3<f32> {
 // Out: parameters in [0, 1], unquantized, for a unorm8, unorm7, unorm1 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound); MSE of the components of n - n' 1.837e-5, PSNR 47.36 dB.
 fn unitpack_eqarea16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -399,7 +399,7 @@ fn unitpack_eqarea16_round_codes(a0: vec3<f32>) -> vec3<f32> {
 // Out: the packed code, u32 (bits 0–7: p0 unorm8, bits 8–14: p1 unorm7, bits 15–15: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.38753°, sample max 0.96311° (not a bound); MSE of the components of n - n' 1.837e-5, PSNR 47.36 dB.
 fn unitpack_eqarea16_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_eqarea16_round_codes(v);
     let t2 = u32(t1.x);

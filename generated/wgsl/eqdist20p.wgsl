@@ -12,7 +12,7 @@
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 14·2^-24 (8.34e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.089e-6, PSNR 59.63 dB.
 fn unitpack_eqdist20p_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params.xy - 0.5f;
     let p = t1 * 2.0f;
@@ -63,7 +63,7 @@ fn unitpack_eqdist20p_decode_float(params: vec3<f32>) -> vec3<f32> {
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 54·2^-24 (3.22e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.089e-6, PSNR 59.63 dB.
 fn unitpack_eqdist20p_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 10u;
     let t2 = code >> 19u;
@@ -1003,7 +1003,7 @@ fn unitpack_eqdist20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm10, unorm9, unorm1 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.089e-6, PSNR 59.63 dB.
 fn unitpack_eqdist20p_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t1 = unitpack_eqdist20p_encode_codes(v);
     let t2 = t1 * vec3<f32>(0.0009775171f, 0.0019569471f, 1.0f);
@@ -1015,7 +1015,7 @@ fn unitpack_eqdist20p_encode_float(v: vec3<f32>) -> vec3<f32> {
 // Out: the packed code, u32 (bits 0–9: p0 unorm10, bits 10–18: p1 unorm9, bits 19–19: p2 unorm1).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.09496°, sample max 0.19535° (not a bound); MSE of the components of n - n' 1.089e-6, PSNR 59.63 dB.
 fn unitpack_eqdist20p_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_eqdist20p_encode_codes(v);
     let t2 = u32(t1.x);

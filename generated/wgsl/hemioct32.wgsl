@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound); MSE of the components of n - n' 1.052e-10, PSNR 99.78 dB.
 fn unitpack_hemioct32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params.x + params.y;
     let t2 = params.x - params.y;
@@ -35,7 +35,7 @@ fn unitpack_hemioct32_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound); MSE of the components of n - n' 1.052e-10, PSNR 99.78 dB.
 fn unitpack_hemioct32_decode(code: u32) -> vec3<f32> {
     let t1 = code & 65535u;
     let t2 = code >> 16u;
@@ -56,7 +56,7 @@ fn unitpack_hemioct32_decode(code: u32) -> vec3<f32> {
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound); MSE of the components of n - n' 1.052e-10, PSNR 99.78 dB.
 fn unitpack_hemioct32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -161,7 +161,7 @@ fn unitpack_hemioct32_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound); MSE of the components of n - n' 1.052e-10, PSNR 99.78 dB.
 fn unitpack_hemioct32_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_hemioct32_round_codes(v);
     let t2 = t1.x + 65536.0f;

@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound); MSE of the components of n - n' 8.605e-7, PSNR 60.65 dB.
 fn unitpack_oct20_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = abs(params);
     let t2 = 1.0f - t1.x;
@@ -38,7 +38,7 @@ fn unitpack_oct20_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 21·2^-24 (1.25e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound); MSE of the components of n - n' 8.605e-7, PSNR 60.65 dB.
 fn unitpack_oct20_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 10u;
     let t2 = vec2<u32>(code, t1);
@@ -59,7 +59,7 @@ fn unitpack_oct20_decode(code: u32) -> vec3<f32> {
 // Out: parameters in [-1, 1], unquantized, for a snorm10 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound); MSE of the components of n - n' 8.605e-7, PSNR 60.65 dB.
 fn unitpack_oct20_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x + t1.y;
@@ -150,7 +150,7 @@ fn unitpack_oct20_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–9: p0 snorm10 (two's complement), bits 10–19: p1 snorm10 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.08351°, sample max 0.23404° (not a bound); MSE of the components of n - n' 8.605e-7, PSNR 60.65 dB.
 fn unitpack_oct20_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_oct20_round_codes(v);
     let t2 = t1.x + 1024.0f;

@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 27·2^-24 (1.61e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound); MSE of the components of n - n' 1.137e-10, PSNR 99.44 dB.
 fn unitpack_paraboloid32p_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params * params;
     let q = t1.x + t1.y;
@@ -33,7 +33,7 @@ fn unitpack_paraboloid32p_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 27·2^-24 (1.61e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound); MSE of the components of n - n' 1.137e-10, PSNR 99.44 dB.
 fn unitpack_paraboloid32p_decode(code: u32) -> vec3<f32> {
     let t1 = code & 65535u;
     let t2 = code >> 16u;
@@ -825,7 +825,7 @@ fn unitpack_paraboloid32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm16 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound); MSE of the components of n - n' 1.137e-10, PSNR 99.44 dB.
 fn unitpack_paraboloid32p_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = unitpack_paraboloid32p_encode_codes(v);
     let t2 = t1 * 3.051851e-5f;
@@ -839,7 +839,7 @@ fn unitpack_paraboloid32p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00098°, sample max 0.00211° (not a bound); MSE of the components of n - n' 1.137e-10, PSNR 99.44 dB.
 fn unitpack_paraboloid32p_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_paraboloid32p_encode_codes(v);
     let t2 = t1.x + 65536.0f;

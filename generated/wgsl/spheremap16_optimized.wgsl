@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 69·2^-24 (4.11e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 fn unitpack_spheremap16_optimized_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = 1.0f - params;
     let t = params * t1;
@@ -35,7 +35,7 @@ fn unitpack_spheremap16_optimized_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 305·2^-24 (1.82e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 fn unitpack_spheremap16_optimized_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 8u;
     let t2 = vec2<u32>(code, t1);
@@ -51,7 +51,7 @@ fn unitpack_spheremap16_optimized_decode(code: u32) -> vec3<f32> {
 // Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 fn unitpack_spheremap16_optimized_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -442,7 +442,7 @@ fn unitpack_spheremap16_optimized_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 4.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.49284°, sample max 11.36750° (not a bound); MSE of the components of n - n' 5.306e-5, PSNR 42.75 dB.
 fn unitpack_spheremap16_optimized_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_spheremap16_optimized_round_codes(v);
     let t2 = u32(t1.x);

@@ -51,7 +51,7 @@ fn unitpack_spherical16_sincos_pi(a0: f32) -> vec2<f32> {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound); MSE of the components of n - n' 1.562e-5, PSNR 48.06 dB.
 fn unitpack_spherical16_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params.x + 1.0f;
     let theta = t1 * 0.5f;
@@ -68,7 +68,7 @@ fn unitpack_spherical16_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound); MSE of the components of n - n' 1.562e-5, PSNR 48.06 dB.
 fn unitpack_spherical16_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 8u;
     let t2 = vec2<u32>(code, t1);
@@ -142,7 +142,7 @@ fn unitpack_spherical16_atan2_pi(a0: f32, a1: f32) -> f32 {
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound); MSE of the components of n - n' 1.562e-5, PSNR 48.06 dB.
 fn unitpack_spherical16_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x >= t1.y;
@@ -511,7 +511,7 @@ fn unitpack_spherical16_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.35714°, sample max 0.78523° (not a bound); MSE of the components of n - n' 1.562e-5, PSNR 48.06 dB.
 fn unitpack_spherical16_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_spherical16_round_codes(v);
     let t2 = t1.x + 256.0f;

@@ -51,7 +51,7 @@ fn unitpack_spherical24p_sincos_pi(a0: f32) -> vec2<f32> {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound); MSE of the components of n - n' 6.014e-8, PSNR 72.21 dB.
 fn unitpack_spherical24p_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params.x + 1.0f;
     let theta = t1 * 0.5f;
@@ -68,7 +68,7 @@ fn unitpack_spherical24p_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 7·2^-24 (4.17e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound); MSE of the components of n - n' 6.014e-8, PSNR 72.21 dB.
 fn unitpack_spherical24p_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 12u;
     let t2 = vec2<u32>(code, t1);
@@ -1319,7 +1319,7 @@ fn unitpack_spherical24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound); MSE of the components of n - n' 6.014e-8, PSNR 72.21 dB.
 fn unitpack_spherical24p_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = unitpack_spherical24p_encode_codes(v);
     let t2 = t1 * 0.0004885198f;
@@ -1333,7 +1333,7 @@ fn unitpack_spherical24p_encode_float(v: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.02215°, sample max 0.04885° (not a bound); MSE of the components of n - n' 6.014e-8, PSNR 72.21 dB.
 fn unitpack_spherical24p_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_spherical24p_encode_codes(v);
     let t2 = t1.x + 4096.0f;

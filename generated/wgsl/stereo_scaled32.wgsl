@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 13·2^-24 (7.75e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 fn unitpack_stereo_scaled32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params - 0.5f;
     let p = t1 * 3.5554f;
@@ -32,7 +32,7 @@ fn unitpack_stereo_scaled32_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (up to rounding).
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 25·2^-24 (1.49e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 fn unitpack_stereo_scaled32_decode(code: u32) -> vec3<f32> {
     let t1 = code & 65535u;
     let t2 = code >> 16u;
@@ -48,7 +48,7 @@ fn unitpack_stereo_scaled32_decode(code: u32) -> vec3<f32> {
 // Out: parameters in [0, 1], unquantized, for a unorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 fn unitpack_stereo_scaled32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -416,7 +416,7 @@ fn unitpack_stereo_scaled32_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius, Compact Normal Storage, method 7.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 3.27204°, sample max 53.47123° (not a bound); MSE of the components of n - n' 7.670e-3, PSNR 21.15 dB.
 fn unitpack_stereo_scaled32_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_stereo_scaled32_round_codes(v);
     let t2 = u32(t1.x);

@@ -51,7 +51,7 @@ fn unitpack_warpedcube16p_sincos_pi(a0: f32) -> vec2<f32> {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 25·2^-24 (1.49e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound); MSE of the components of n - n' 1.839e-5, PSNR 47.35 dB.
 fn unitpack_warpedcube16p_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params.xy - 0.5f;
     let p = t1 * 2.0f;
@@ -92,7 +92,7 @@ fn unitpack_warpedcube16p_decode_float(params: vec3<f32>) -> vec3<f32> {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and 7 are never written and decode as +Z and -Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 40·2^-24 (2.38e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound); MSE of the components of n - n' 1.839e-5, PSNR 47.35 dB.
 fn unitpack_warpedcube16p_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 7u;
     let t2 = code >> 13u;
@@ -1241,7 +1241,7 @@ fn unitpack_warpedcube16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
 // Out: the chosen codes as values in [0, 1] (c/M) for a unorm7, unorm6, unorm3 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound); MSE of the components of n - n' 1.839e-5, PSNR 47.35 dB.
 fn unitpack_warpedcube16p_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t1 = unitpack_warpedcube16p_encode_codes(v);
     let t2 = t1 * vec3<f32>(0.007874016f, 0.015873017f, 0.14285715f);
@@ -1253,7 +1253,7 @@ fn unitpack_warpedcube16p_encode_float(v: vec3<f32>) -> vec3<f32> {
 // Out: the packed code, u32 (bits 0–6: p0 unorm7, bits 7–12: p1 unorm6, bits 13–15: p2 unorm3).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.39024°, sample max 0.78713° (not a bound); MSE of the components of n - n' 1.839e-5, PSNR 47.35 dB.
 fn unitpack_warpedcube16p_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_warpedcube16p_encode_codes(v);
     let t2 = u32(t1.x);

@@ -12,7 +12,7 @@
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 401·2^-24 (2.39e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound); MSE of the components of n - n' 9.702e-7, PSNR 60.13 dB.
 fn unitpack_xy24_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params * params;
     let t2 = t1.x + t1.y;
@@ -29,7 +29,7 @@ fn unitpack_xy24_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 401·2^-24 (2.39e-5) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound); MSE of the components of n - n' 9.702e-7, PSNR 60.13 dB.
 fn unitpack_xy24_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 12u;
     let t2 = vec2<u32>(code, t1);
@@ -50,7 +50,7 @@ fn unitpack_xy24_decode(code: u32) -> vec3<f32> {
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound); MSE of the components of n - n' 9.702e-7, PSNR 60.13 dB.
 fn unitpack_xy24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x >= t1.y;
@@ -212,7 +212,7 @@ fn unitpack_xy24_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.03888°, sample max 1.33902° (not a bound); MSE of the components of n - n' 9.702e-7, PSNR 60.13 dB.
 fn unitpack_xy24_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_xy24_round_codes(v);
     let t2 = t1.x + 4096.0f;

@@ -12,7 +12,7 @@
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 9·2^-24 (5.36e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 fn unitpack_xy_stereo24_decode_float(params: vec2<f32>) -> vec3<f32> {
     let t1 = params * params;
     let q = t1.x + t1.y;
@@ -30,7 +30,7 @@ fn unitpack_xy_stereo24_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 9·2^-24 (5.36e-7) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 fn unitpack_xy_stereo24_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 12u;
     let t2 = vec2<u32>(code, t1);
@@ -51,7 +51,7 @@ fn unitpack_xy_stereo24_decode(code: u32) -> vec3<f32> {
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 fn unitpack_xy_stereo24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -370,7 +370,7 @@ fn unitpack_xy_stereo24_round_codes(a0: vec3<f32>) -> vec2<f32> {
 // Out: the packed code, u32 (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound).
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01607°, sample max 0.03911° (not a bound); MSE of the components of n - n' 3.099e-8, PSNR 75.09 dB.
 fn unitpack_xy_stereo24_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_xy_stereo24_round_codes(v);
     let t2 = t1.x + 4096.0f;

@@ -152,11 +152,13 @@ pub fn function_doc(
     let storage = storage_name(q);
     let error = stats.map(|s| {
         format!(
-            "Round-trip error (encode, store, decode) over a sample of {} seeded unit vectors (seed 0x{:032x}): mean {:.5}°, sample max {:.5}° (not a bound).",
+            "Round-trip error (encode, store, decode) over a sample of {} seeded unit vectors (seed 0x{:032x}): mean {:.5}°, sample max {:.5}° (not a bound); MSE of the components of n - n' {:.3e}, PSNR {:.2} dB.",
             s.samples,
             crate::quality::VECTOR_SEED,
             s.mean,
-            s.max
+            s.max,
+            s.mse,
+            s.psnr()
         )
     });
     let mut d = match role {
