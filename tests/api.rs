@@ -239,8 +239,8 @@ fn paraboloid_codes_are_the_seed_quadratic_rounded() {
             let a = n[0] * n[0] + n[1] * n[1];
             let t = (-n[2] + (n[2] * n[2] + 4.0 * a).sqrt()) / (2.0 * a);
             let code = c.encode(v);
-            for k in 0..2 {
-                let x = n[k] * t * m;
+            for (k, nk) in n[..2].iter().enumerate() {
+                let x = nk * t * m;
                 if (x.abs() - x.abs().floor() - 0.5).abs() < x.abs() * 2f64.powi(-20) {
                     near_ties += 1;
                     continue;
