@@ -9,12 +9,11 @@
 //! `tests/seed_methods.rs` checks the seed's encoder formulas against each other and the
 //! shared codes.
 
-use super::codec::{Codec, Domain};
+use super::codec::Domain;
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{BITS, search_doc};
 use super::functions::{Emitted, codec_functions};
-use super::lambert::Lambert;
-use super::quant::Quants;
+use super::lambert::{Lambert, LambertDecoder, WithDecoder};
 use super::spec::{Spec, SpecError};
 use super::spheremap::{DECODER, DECODER_OPTION};
 use crate::model::{Float, V2, V3};
@@ -52,66 +51,47 @@ impl Family for Cry3Family {
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(
             spec,
-            Cry3 {
+            WithDecoder {
                 lambert: Lambert { bits: spec.bits() },
-                optimized: spec.choice(DECODER) == 1,
+                decoder: Cry3Decoder {
+                    optimized: spec.choice(DECODER) == 1,
+                },
             },
         )
     }
 }
 
+/// The seed's decoders of Lambert's mapping.
 #[derive(Clone, Copy, Debug)]
-pub struct Cry3 {
-    pub lambert: Lambert,
+pub struct Cry3Decoder {
     /// The seed's optimized decoder rather than its plain one.
     pub optimized: bool,
 }
+
+/// Lambert's codes with the seed's decoders.
+pub type Cry3 = WithDecoder<Cry3Decoder>;
 
 impl Cry3 {
     /// The codec with the given total bit budget and the plain decoder; an invalid size
     /// is an error listing the allowed ones.
     pub fn new(bits: u32) -> Result<Cry3, SpecError> {
-        Ok(Cry3 {
+        Ok(WithDecoder {
             lambert: Lambert {
                 bits: INFO.check_bits(bits)?,
             },
-            optimized: false,
+            decoder: Cry3Decoder { optimized: false },
         })
     }
     /// The same codes, decoded by the seed's optimized decoder.
     pub fn optimized(self) -> Cry3 {
-        Cry3 {
-            optimized: true,
+        WithDecoder {
+            decoder: Cry3Decoder { optimized: true },
             ..self
         }
     }
 }
 
-impl Codec for Cry3 {
-    type P<F: Float> = V2<F>;
-    type C<F: Float> = F::U;
-    fn quants(&self) -> Quants {
-        self.lambert.quants()
-    }
-    fn domain(&self) -> Domain {
-        Domain::Sphere
-    }
-    /// [`Lambert`]'s parameters: for unit input the seed's
-    /// `normalize(n.xy) · sqrt(½ - ½z) · ½ + ½`, with +Z at the centre.
-    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        self.lambert.params(v)
-    }
-    const EXACT_ROUNDING: bool = true;
-    /// [`Lambert`]'s codes, decided exactly.
-    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        self.lambert.round_codes(v)
-    }
-    const EXACT_SEARCH: bool = true;
-    /// [`Lambert`]'s search: candidates are compared by their exact directions, which the
-    /// decoders here compute too.
-    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        self.lambert.precise_codes(v)
-    }
+impl LambertDecoder for Cry3Decoder {
     /// With `f = 2enc - 1` and `d = f·f` limited to the disk (so the square's corners
     /// decode as -Z): plain, `z = -(2d - 1)` and `xy = normalize(f)·sqrt(|1 - z²|)` (the
     /// centre, where `normalize` has no direction, decodes as +Z); optimized,

@@ -166,3 +166,47 @@ impl Codec for Lambert {
         V3::from_xy(fenc * g, F::c(1.0) - f * F::c(0.5))
     }
 }
+
+/// A decoder of Lambert's mapping written another way: the first seed's spheremap
+/// ([`super::spheremap`]) and CryEngine 3 ([`super::cry3`]) decoders.
+pub trait LambertDecoder: Copy + Send + Sync {
+    /// Parameters in storage range (Lambert's) → direction.
+    fn direction<F: Float>(&self, enc: V2<F>) -> V3<F>;
+}
+
+/// Lambert's codes, encoders and all, decoded by `decoder`: for unit input the seed's
+/// methods 4, 5 and 6 are one mapping (its erratum), so only the decoders differ.
+#[derive(Clone, Copy, Debug)]
+pub struct WithDecoder<D> {
+    pub lambert: Lambert,
+    pub decoder: D,
+}
+
+impl<D: LambertDecoder> Codec for WithDecoder<D> {
+    type P<F: Float> = V2<F>;
+    type C<F: Float> = F::U;
+    fn quants(&self) -> Quants {
+        self.lambert.quants()
+    }
+    fn domain(&self) -> Domain {
+        Domain::Sphere
+    }
+    /// [`Lambert`]'s parameters.
+    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.lambert.params(v)
+    }
+    fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
+        self.decoder.direction(enc)
+    }
+    const EXACT_ROUNDING: bool = true;
+    /// [`Lambert`]'s codes, decided exactly.
+    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.lambert.round_codes(v)
+    }
+    const EXACT_SEARCH: bool = true;
+    /// [`Lambert`]'s search: candidates are compared by their exact directions, which
+    /// every decoder of the mapping computes.
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.lambert.precise_codes(v)
+    }
+}

@@ -9,12 +9,11 @@
 //! direction in other orders of operations. `tests/seed_methods.rs` checks the seed's
 //! encoder formulas against each other and the shared codes.
 
-use super::codec::{Codec, Domain};
+use super::codec::Domain;
 use super::family::{Family, Info, OptDesc, OptKind, Sizes};
 use super::fixed_decode::{BITS, search_doc};
 use super::functions::{Emitted, codec_functions};
-use super::lambert::Lambert;
-use super::quant::Quants;
+use super::lambert::{Lambert, LambertDecoder, WithDecoder};
 use super::spec::{Spec, SpecError};
 use crate::model::{Float, V2, V3};
 
@@ -61,65 +60,47 @@ impl Family for SpheremapFamily {
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(
             spec,
-            Spheremap {
+            WithDecoder {
                 lambert: Lambert { bits: spec.bits() },
-                optimized: spec.choice(DECODER) == 1,
+                decoder: SpheremapDecoder {
+                    optimized: spec.choice(DECODER) == 1,
+                },
             },
         )
     }
 }
 
+/// The seed's decoders of Lambert's mapping.
 #[derive(Clone, Copy, Debug)]
-pub struct Spheremap {
-    pub lambert: Lambert,
+pub struct SpheremapDecoder {
     /// The seed's optimized decoder rather than its plain one.
     pub optimized: bool,
 }
+
+/// Lambert's codes with the seed's decoders.
+pub type Spheremap = WithDecoder<SpheremapDecoder>;
 
 impl Spheremap {
     /// The codec with the given total bit budget and the plain decoder; an invalid size
     /// is an error listing the allowed ones.
     pub fn new(bits: u32) -> Result<Spheremap, SpecError> {
-        Ok(Spheremap {
+        Ok(WithDecoder {
             lambert: Lambert {
                 bits: INFO.check_bits(bits)?,
             },
-            optimized: false,
+            decoder: SpheremapDecoder { optimized: false },
         })
     }
     /// The same codes, decoded by the seed's optimized decoder.
     pub fn optimized(self) -> Spheremap {
-        Spheremap {
-            optimized: true,
+        WithDecoder {
+            decoder: SpheremapDecoder { optimized: true },
             ..self
         }
     }
 }
 
-impl Codec for Spheremap {
-    type P<F: Float> = V2<F>;
-    type C<F: Float> = F::U;
-    fn quants(&self) -> Quants {
-        self.lambert.quants()
-    }
-    fn domain(&self) -> Domain {
-        Domain::Sphere
-    }
-    /// [`Lambert`]'s parameters: for unit input the seed's `n / sqrt(2z + 2) · ½ + ½`.
-    fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        self.lambert.params(v)
-    }
-    const EXACT_ROUNDING: bool = true;
-    /// [`Lambert`]'s codes, decided exactly.
-    fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        self.lambert.round_codes(v)
-    }
-    const EXACT_SEARCH: bool = true;
-    /// [`Lambert`]'s search: candidates are compared by their exact directions, which the
-    /// decoders here compute too.
-    fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        self.lambert.precise_codes(v)
-    }
+impl LambertDecoder for SpheremapDecoder {
     /// Plain: `t = enc·(1 - enc)` (the seed's `enc - enc²`), `f = t.x + t.y`, `xy = (4enc - 2)·sqrt(4f - 1)`,
     /// `z = 8f - 3`. Optimized: `f = (t.x - ¼) + t.y` (the seed's `dot(n, (1, 1, ¼))`
     /// with `n = (t, -1)`, its literal term first so that no driver regroups the sum),
