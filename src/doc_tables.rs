@@ -62,14 +62,19 @@ pub fn codec_specs() -> Vec<Spec> {
         .collect()
 }
 
-/// Round-trip error of every [`codec_specs`] spec (`stats[i]` for spec `i`, measured by
-/// [`quality::measure_all`] over `samples` seeded unit vectors), with the ALU
-/// instructions of its packed encoder and decoder (`alu[i]`, counted by
-/// `unitpack::verify::alu`, which needs the shader tools).
-pub fn error_table(samples: usize, stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> String {
+/// Round-trip error of every [`codec_specs`] spec (`stats[i]` for spec `i`, from
+/// [`crate::quality::measure_all`]), with the ALU instructions of its packed encoder and
+/// decoder (`alu[i]`, counted by `unitpack::verify::alu`, which needs the shader tools).
+pub fn error_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> String {
     let specs = codec_specs();
     assert_eq!(specs.len(), alu.len(), "one ALU count pair per spec");
     assert_eq!(specs.len(), stats.len(), "one measurement per spec");
+    let samples = stats
+        .iter()
+        .flatten()
+        .next()
+        .expect("codecs have error statistics")
+        .samples;
     let mut s = format!(
         "Round-trip angular error over {samples} seeded unit vectors (seed `{VECTOR_SEED:#x}`; \
          hemisphere codecs over the +Z hemisphere). The maximum is the largest error in \
@@ -120,12 +125,7 @@ pub fn seed_methods_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> Str
                 .position(|s| s.id() == id)
                 .unwrap_or_else(|| panic!("{id} is in the catalogue"));
             let st = stats[i].as_ref().expect("codecs have error statistics");
-            let e = specs[i].emitted();
-            let bound = e
-                .functions
-                .iter()
-                .find(|f| f.name == "decode")
-                .and_then(|f| crate::decode_bound::cached(&specs[i], f))
+            let bound = decoder_bound(&specs[i], "decode")
                 .map_or("—".to_string(), |b| b.units.to_string());
             s.push_str(&format!(
                 "| {bits} | {decoder} | `{id}` | {:.5}° | {:.5}° | {:.2} dB | {} | {bound} |\n",
@@ -137,6 +137,13 @@ pub fn seed_methods_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> Str
         }
     }
     s
+}
+
+/// The proven bound of `spec`'s decoder function `name` ([`crate::decode_bound`]).
+fn decoder_bound(spec: &Spec, name: &str) -> Option<crate::decode_bound::Bound> {
+    let e = spec.emitted();
+    let f = e.functions.iter().find(|f| f.name == name)?;
+    crate::decode_bound::cached(spec, f)
 }
 
 /// The proven bound of every decoder ([`crate::decode_bound`]).
@@ -152,15 +159,10 @@ pub fn bound_table() -> String {
         .into_iter()
         .filter(|s| s.info().domain.is_some())
     {
-        let e = spec.emitted();
         let cell = |name: &str| {
-            e.functions
-                .iter()
-                .find(|f| f.name == name)
-                .and_then(|f| crate::decode_bound::cached(&spec, f))
-                .map_or("—".to_string(), |b| {
-                    format!("{} ({:.1e})", b.units, b.units * crate::decode_bound::UNIT)
-                })
+            decoder_bound(&spec, name).map_or("—".to_string(), |b| {
+                format!("{} ({:.1e})", b.units, b.units * crate::decode_bound::UNIT)
+            })
         };
         s.push_str(&format!(
             "| `{}` | {} | {} |\n",

@@ -21,7 +21,7 @@ fn readme_tables_are_generated_and_fresh() {
     let stats = measure_all(&codec_specs(), README_SAMPLES);
     for (name, body) in [
         ("catalogue", catalogue_table()),
-        ("errors", error_table(README_SAMPLES, &stats, &alu)),
+        ("errors", error_table(&stats, &alu)),
         ("seed_methods", seed_methods_table(&stats, &alu)),
         ("bounds", bound_table()),
     ] {

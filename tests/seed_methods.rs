@@ -113,56 +113,39 @@ fn spheremap_and_cry3_codes_are_lambert_codes_and_the_seed_formulas_rounded() {
     }
 }
 
+/// A packed decoder on the CPU.
+type Decode<'a> = dyn Fn(u32) -> [f32; 3] + 'a;
+
 /// Every 16-bit code decodes to nearly the same direction through all five decoders:
 /// the seed's plain and optimized spheremap and CryEngine 3 decoders, and Lambert's.
 #[test]
 fn the_seed_decoders_agree_with_lambert_on_every_16_bit_code() {
     let lambert = Lambert::new(16).unwrap().fast();
-    let decoders = [
-        ("spheremap16", Spheremap::new(16).unwrap().fast()),
-        (
-            "spheremap16_optimized",
-            Spheremap::new(16).unwrap().optimized().fast(),
-        ),
+    let sm = Spheremap::new(16).unwrap();
+    let cry = Cry3::new(16).unwrap();
+    let (sm_plain, sm_opt) = (sm.fast(), sm.optimized().fast());
+    let (cry_plain, cry_opt) = (cry.fast(), cry.optimized().fast());
+    let decoders: [(&str, &Decode); 4] = [
+        ("spheremap16", &|c| sm_plain.decode(c)),
+        ("spheremap16_optimized", &|c| sm_opt.decode(c)),
+        ("cry3_16", &|c| cry_plain.decode(c)),
+        ("cry3_16_optimized", &|c| cry_opt.decode(c)),
     ];
-    let cry = [
-        ("cry3_16", Cry3::new(16).unwrap().fast()),
-        (
-            "cry3_16_optimized",
-            Cry3::new(16).unwrap().optimized().fast(),
-        ),
-    ];
-    let mut worst = [0f64; 4];
-    for code in 0..1u32 << 16 {
-        let l = lambert.decode(code);
-        let outs = [
-            decoders[0].1.decode(code),
-            decoders[1].1.decode(code),
-            cry[0].1.decode(code),
-            cry[1].1.decode(code),
-        ];
-        for (w, o) in worst.iter_mut().zip(outs) {
+    for (name, decode) in decoders {
+        let mut worst = 0f64;
+        for code in 0..1u32 << 16 {
+            let o = decode(code);
             let len = o.iter().map(|x| f64::from(*x).powi(2)).sum::<f64>().sqrt();
             assert!(
                 (len - 1.0).abs() < 1e-5,
-                "code {code:#x}: {o:?} is not unit"
+                "{name}: {code:#x} → {o:?} is not unit"
             );
-            *w = w.max(angle_deg(l, o));
+            worst = worst.max(angle_deg(lambert.decode(code), o));
         }
-    }
-    let names = [decoders[0].0, decoders[1].0, cry[0].0, cry[1].0];
-    for (name, w) in names.iter().zip(worst) {
         // Different orders of f32 operations; the quantization step is about 0.9°.
-        assert!(w < 0.01, "{name}: {w}° from lambert16's decode");
-    }
-    // The corners outside the disk decode as -Z through every decoder.
-    for o in [
-        decoders[0].1.decode(0),
-        decoders[1].1.decode(0),
-        cry[0].1.decode(0),
-        cry[1].1.decode(0),
-    ] {
-        // (x and y may be -0: a zero root times a negative coordinate.)
-        assert_eq!(o, [0.0, 0.0, -1.0]);
+        assert!(worst < 0.01, "{name}: {worst}° from lambert16's decode");
+        // The corners outside the disk decode as -Z (x and y may be -0: a zero root
+        // times a negative coordinate).
+        assert_eq!(decode(0), [0.0, 0.0, -1.0], "{name}");
     }
 }
