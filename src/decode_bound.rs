@@ -13,6 +13,7 @@ use crate::codecs::functions::{Enclose, Function, Role, float_code_range};
 use crate::codecs::quant::Quant;
 use crate::codecs::{Spec, functions::Inputs};
 use crate::model::enclosure::Encl;
+use crate::model::trace::{Func, Module, Op};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -188,19 +189,77 @@ pub fn of(f: &Function) -> Option<Bound> {
     Some(prove(&code_ranges(f)?, f.enclose.as_ref()?))
 }
 
-/// [`of`], computed once per process for each spec and function (the doc comments of
-/// every include state it).
-pub fn cached(spec: &Spec, f: &Function) -> Option<Bound> {
-    use std::collections::HashMap;
-    use std::sync::{Mutex, OnceLock};
-    type Cache = HashMap<(String, &'static str), Option<Bound>>;
-    static CACHE: OnceLock<Mutex<Cache>> = OnceLock::new();
-    let key = (spec.id(), f.name);
-    let cache = CACHE.get_or_init(Default::default);
-    if let Some(b) = cache.lock().expect("bound cache").get(&key) {
+type Cache = std::sync::Mutex<std::collections::HashMap<String, Option<Bound>>>;
+
+fn cache() -> &'static Cache {
+    static CACHE: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
+    CACHE.get_or_init(Default::default)
+}
+
+/// What identifies a decoder's bound: its trace and its callees' in `module`, and the
+/// codes it takes.
+fn key(module: &Module, f: &Function) -> String {
+    let traced = traces(module, f.name);
+    assert!(!traced.is_empty(), "{} is not in its module", f.name);
+    format!(
+        "{:?} {:?} {traced:?}",
+        code_ranges(f),
+        f.enclose.as_ref().map(|e| e.whole_field),
+    )
+}
+
+/// [`of`], computed once per process for each distinct decoder (the doc comments of
+/// every include state it). A precise spec's decoders are its fast spec's, so each is
+/// proven once.
+pub fn cached(module: &Module, f: &Function) -> Option<Bound> {
+    let key = key(module, f);
+    if let Some(b) = cache().lock().expect("bound cache").get(&key) {
         return b.clone();
     }
     let b = of(f);
-    cache.lock().expect("bound cache").insert(key, b.clone());
+    cache().lock().expect("bound cache").insert(key, b.clone());
     b
+}
+
+/// Proves the bound of every decoder of `specs` not yet [`cached`], on every core.
+pub fn prove_all(specs: &[Spec]) {
+    let mut todo = std::collections::BTreeMap::new();
+    for spec in specs {
+        let e = spec.emitted();
+        for f in e.functions.into_iter().filter(|f| f.enclose.is_some()) {
+            let key = key(&e.module, &f);
+            if !cache().lock().expect("bound cache").contains_key(&key) {
+                todo.insert(key, f);
+            }
+        }
+    }
+    let todo: Vec<_> = todo.into_iter().collect();
+    let bounds = crate::par::map(&todo, |(_, f)| of(f));
+    let mut cache = cache().lock().expect("bound cache");
+    for ((key, _), b) in todo.into_iter().zip(bounds) {
+        cache.insert(key, b);
+    }
+}
+
+/// The traces of the function `name` and of every function it calls, callees first
+/// (a module lists them in that order).
+fn traces<'m>(module: &'m Module, name: &str) -> Vec<&'m Func> {
+    let mut wanted = std::collections::HashSet::from([name.to_string()]);
+    let mut out: Vec<&Func> = module
+        .funcs
+        .iter()
+        .rev()
+        .filter(|func| {
+            let keep = wanted.contains(&func.name);
+            if keep {
+                wanted.extend(func.nodes.iter().filter_map(|n| match &n.op {
+                    Op::Call(c) => Some(c.clone()),
+                    _ => None,
+                }));
+            }
+            keep
+        })
+        .collect();
+    out.reverse();
+    out
 }

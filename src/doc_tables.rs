@@ -143,7 +143,7 @@ pub fn seed_methods_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> Str
 fn decoder_bound(spec: &Spec, name: &str) -> Option<crate::decode_bound::Bound> {
     let e = spec.emitted();
     let f = e.functions.iter().find(|f| f.name == name)?;
-    crate::decode_bound::cached(spec, f)
+    crate::decode_bound::cached(&e.module, f)
 }
 
 /// The proven bound of every decoder ([`crate::decode_bound`]).

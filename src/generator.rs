@@ -185,6 +185,7 @@ impl Generator {
         } else {
             vec![None; specs.len()]
         };
+        crate::decode_bound::prove_all(&specs);
         let ids: Vec<String> = specs.iter().map(|s| s.to_string()).collect();
         let mut cmd = format!("unitpack gen {} --lang {lang}", ids.join(" "));
         if self.prefix != DEFAULT_PREFIX {

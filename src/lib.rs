@@ -10,6 +10,7 @@ pub mod doc_tables;
 pub mod emit;
 pub mod generator;
 pub mod model;
+mod par;
 pub mod portability;
 pub mod quality;
 #[cfg(feature = "verify")]

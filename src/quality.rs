@@ -118,19 +118,5 @@ pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStat
 
 /// [`measure`] for every spec, on all cores; the same result as one at a time.
 pub fn measure_all(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(specs.len().max(1));
-    let per = specs.len().div_ceil(threads).max(1);
-    let mut out = vec![None; specs.len()];
-    std::thread::scope(|s| {
-        for (o, sp) in out.chunks_mut(per).zip(specs.chunks(per)) {
-            s.spawn(move || {
-                for (o, spec) in o.iter_mut().zip(sp) {
-                    *o = measure(spec, samples);
-                }
-            });
-        }
-    });
-    out
+    crate::par::map(specs, |spec| measure(spec, samples))
 }

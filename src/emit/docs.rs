@@ -107,9 +107,9 @@ fn encoder_portability(portable: bool) -> &'static str {
 }
 
 /// What a decoder guarantees beyond lavapipe: its proven bound.
-fn decoder_portability(spec: &Spec, e: &Emitted, role: Role) -> Option<String> {
+fn decoder_portability(e: &Emitted, role: Role) -> Option<String> {
     let f = e.functions.iter().find(|f| f.role == role)?;
-    let b = crate::decode_bound::cached(spec, f)?;
+    let b = crate::decode_bound::cached(&e.module, f)?;
     if b.units == 0.0 {
         return Some("Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.".to_string());
     }
@@ -194,7 +194,7 @@ pub fn function_doc(
         Role::Pack | Role::Unpack => unreachable!(),
     };
     match role {
-        Role::Decode | Role::DecodeFloat => d.extend(decoder_portability(spec, e, role)),
+        Role::Decode | Role::DecodeFloat => d.extend(decoder_portability(e, role)),
         Role::EncodeFloat => d.push("Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.".into()),
         _ => {}
     }

@@ -86,9 +86,25 @@ pub struct EnclB {
 pub fn ulp(m: f64) -> f64 {
     let m = m.abs();
     if m < MIN_NORMAL {
-        return 2f64.powi(-149);
+        return pow2(-149);
     }
-    2f64.powi(m.log2().floor() as i32 - 23)
+    if !m.is_finite() {
+        // Unbounded (or unknown) magnitudes have an unbounded spacing.
+        return f64::INFINITY;
+    }
+    // The binade is the f64 exponent field: exact, and this runs millions of times.
+    pow2(((m.to_bits() >> 52) as i32) - 1023 - 23)
+}
+
+/// `2^e`, exactly, for the exponents f32 arithmetic meets (normal f64 powers of two).
+fn pow2(e: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&e));
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
+
+/// Whether `c` is a power of two (of either sign).
+fn is_pow2(c: f64) -> bool {
+    c.is_normal() && c.to_bits() & ((1u64 << 52) - 1) == 0
 }
 
 /// The largest power of two `x` is a multiple of (infinite for zero, which is a multiple
@@ -100,7 +116,7 @@ fn lowest_bit(x: f32) -> f64 {
     let b = x.to_bits();
     let exp = ((b >> 23) & 0xff) as i32;
     let mant = b & 0x7f_ffff | if exp > 0 { 0x80_0000 } else { 0 };
-    2f64.powi(exp.max(1) - 150 + mant.trailing_zeros() as i32)
+    pow2(exp.max(1) - 150 + mant.trailing_zeros() as i32)
 }
 
 /// The f32 nearest to `x`, as f64 (monotone in `x`).
@@ -363,7 +379,7 @@ impl Mul for Encl {
         let grid = self.grid * o.grid;
         // A product by zero, or by a power of two that cannot underflow, is exact: there
         // is no rounding for a contraction to skip.
-        let pow2 = |c: Option<f64>| c.is_some_and(|c| c == 0.0 || c.abs().log2().fract() == 0.0);
+        let pow2 = |c: Option<f64>| c.is_some_and(|c| c == 0.0 || is_pow2(c));
         let exact = pow2(self.constant()) && (grid >= MIN_NORMAL || self.constant() == Some(0.0))
             || pow2(o.constant()) && (grid >= MIN_NORMAL || o.constant() == Some(0.0));
         let mut x = if self.undeviated() && o.undeviated() {
