@@ -9,8 +9,14 @@ pub const GRAMMAR: &str = "NAME[BITS][p][:key=value,...]";
 
 /// The `list` table: each family with the specs a user types.
 pub fn list_text() -> String {
+    // The family column is as wide as the longest name.
+    let w = FAMILIES
+        .iter()
+        .map(|f| f.info().name.len())
+        .max()
+        .unwrap_or(0);
     let mut s = format!(
-        "{:<14} {:<11} {:<8} {}\n",
+        "{:<w$} {:<11} {:<8} {}\n",
         "family", "domain", "precise", "source"
     );
     for f in FAMILIES {
@@ -18,15 +24,15 @@ pub fn list_text() -> String {
         let domain = c.domain.map_or("-", |d| d.name());
         let precise = if c.precise { "yes" } else { "no" };
         s.push_str(&format!(
-            "{:<14} {:<11} {:<8} {}\n",
+            "{:<w$} {:<11} {:<8} {}\n",
             c.name, domain, precise, c.source
         ));
-        s.push_str(&format!("{:<14} {}\n", "", c.title));
+        s.push_str(&format!("{:<w$} {}\n", "", c.title));
         let specs: Vec<String> = c.spellings().into_iter().map(|s| s.0).collect();
         let p = if c.precise { " (add p: precise)" } else { "" };
-        s.push_str(&format!("{:<14} specs: {}{p}\n", "", specs.join(", ")));
+        s.push_str(&format!("{:<w$} specs: {}{p}\n", "", specs.join(", ")));
         for o in c.options {
-            s.push_str(&format!("{:<14} option {}\n", "", o.usage()));
+            s.push_str(&format!("{:<w$} option {}\n", "", o.usage()));
         }
     }
     s.push_str(&format!(

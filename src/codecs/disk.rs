@@ -8,7 +8,7 @@
 //! rows (1 + 7 + 7, a wasted bit, makes every mean about 30 % worse; snorm parameters are
 //! within 1 % of unorm ones, unorm matches best at 16 bits).
 
-use super::exact::{canonical_or_z, fixed_length2, one_if, root};
+use super::exact::{canonical_or_z, fixed_length2, one_if, past_root_ratio, root};
 use super::fixed_decode::{BITS, fixed_square_point, fixed_target, nearest_decoded};
 use super::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
@@ -76,3 +76,48 @@ pub fn nearest_disk_codes<F: Float>(
     let best = nearest_decoded(disk_fields(bits), base, target, |c| decode(c, f.h));
     V3::from_xy(best, f.h)
 }
+
+/// A projection of the hemisphere onto the unit disk, as the codecs that map its disk
+/// onto the square ([`super::concentric`]) use it: the radius of the folded input's disk
+/// point (the point's azimuth is the input's), and the way back from a disk point.
+pub trait DiskProjection: Copy + Send + Sync + std::fmt::Debug + 'static {
+    /// Half the disk radius, `r/2`, in floats (the `encode_float` model), given `rho`,
+    /// the float length of `f.w.xy`.
+    fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F;
+    /// The disk radius as the portable encoders decide it.
+    fn radius<F: Float>(f: &Folded<F>) -> Radius<F>;
+    /// The +Z-hemisphere direction of the disk point `p`, as its `xy` and `z`.
+    fn lift<F: Float>(p: V2<F>) -> (V2<F>, F);
+}
+
+/// A disk radius `r` as functions of the input alone, so that whether `r·x` lies past a
+/// boundary `k` is decided the same on every implementation (see [`super::exact`]).
+pub enum Radius<F> {
+    /// `r = sqrt(rho2 / d)`, `rho2 ≥ 0` and `d > 0` deterministic.
+    Root { rho2: F, d: F },
+    /// `r = θ/(π/2)`: `t` the polar angle in units of `2^-23` half turns, an integer.
+    Angle { t: F },
+}
+
+impl<F: Float> Radius<F> {
+    /// Any estimate of `r` (within a few ULP), for a first guess of a code.
+    pub fn estimate(&self) -> F {
+        match *self {
+            Radius::Root { rho2, d } => (rho2 / d).sqrt(),
+            Radius::Angle { t } => t * F::c(ANGLE_TO_RADIUS),
+        }
+    }
+    /// `1` where `r·x ≥ k`, else `0`. `x` and `k` are deterministic; the products are
+    /// single roundings meeting in a comparison (for a root, of squares, with the signs
+    /// decided first by [`past_root_ratio`]), so no contraction or regrouping reaches
+    /// them. `x` may be negative only where `r > 0`.
+    pub fn past(&self, x: F, k: F) -> F {
+        match *self {
+            Radius::Root { rho2, d } => past_root_ratio(x, rho2 * (x * x), k, k * k * d),
+            Radius::Angle { t } => one_if((t * x * F::c(ANGLE_TO_RADIUS)).ge(k)),
+        }
+    }
+}
+
+/// `r = θ/(π/2) = 2·(θ/π)`, from units of `2^-23` half turns: `2^-22`.
+const ANGLE_TO_RADIUS: f32 = 1.0 / 4_194_304.0;

@@ -5,9 +5,10 @@
 
 use super::codec::{Codec, Domain};
 use super::disk::{
-    Folded, disk_fields, disk_quants, fixed_disk_point, nearest_disk_codes, unfold,
+    DiskProjection, Folded, Radius, disk_fields, disk_quants, fixed_disk_point,
+    nearest_disk_codes, unfold,
 };
-use super::exact::{fixed_root, unorm_sqrt_ratio};
+use super::exact::{fixed_length2_xy, fixed_root, unorm_sqrt_ratio};
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{BITS, ONE, fixed, search_doc};
 use super::functions::{Emitted, codec_functions};
@@ -102,9 +103,8 @@ impl Codec for HemiEqArea {
     /// every code.
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
-        let q = p.length_squared().at_most(F::c(2.0)).named("q");
-        let g = (F::c(2.0) - q).sqrt().named("g");
-        V3::from_xy(p * g, unfold(F::c(1.0) - q, enc.z))
+        let (xy, z) = Self::lift(p);
+        V3::from_xy(xy, unfold(z, enc.z))
     }
     /// The codes of [`HemiEqArea::codes`] at `c + ½`, the hemisphere bit from the sign
     /// of the canonical `z`.
@@ -121,5 +121,24 @@ impl Codec for HemiEqArea {
         let f = Folded::of(v);
         let base = self.codes(&f, 1.0).named("base");
         nearest_disk_codes(self.bits, &f, base, |c, h| self.fixed_direction(c, h))
+    }
+}
+
+/// The equal-area disk radius is `ρ/sqrt(1 + |z|)`: `ρ/sqrt(l·a)` of the folded input.
+impl DiskProjection for HemiEqArea {
+    fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F {
+        rho / (f.l * f.a).sqrt() * F::c(0.5)
+    }
+    fn radius<F: Float>(f: &Folded<F>) -> Radius<F> {
+        Radius::Root {
+            rho2: fixed_length2_xy(f.w),
+            d: f.l * f.a,
+        }
+    }
+    /// `(p·sqrt(2 - q), 1 - q)` with `q = |p|²` (at most 2, a square's corners).
+    fn lift<F: Float>(p: V2<F>) -> (V2<F>, F) {
+        let q = p.length_squared().at_most(F::c(2.0)).named("q");
+        let g = (F::c(2.0) - q).sqrt().named("g");
+        (p * g, F::c(1.0) - q)
     }
 }

@@ -11,7 +11,8 @@
 
 use super::codec::{Codec, Domain};
 use super::disk::{
-    Folded, disk_fields, disk_quants, fixed_disk_point, nearest_disk_codes, unfold,
+    DiskProjection, Folded, Radius, disk_fields, disk_quants, fixed_disk_point,
+    nearest_disk_codes, unfold,
 };
 use super::exact::{decided, fixed_length2_xy, past_root_ratio, root_of};
 use super::family::{Family, Info, Sizes};
@@ -77,11 +78,7 @@ impl HemiEqDist {
     /// (`ρ² = 0`, where then `T = 0`) any positive stand-in for `ρ²` decides every
     /// boundary by the sign of `k`, as a parameter of exactly 0 should be.
     fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
-        let rho2 = fixed_length2_xy(f.w);
-        let has_rho = rho2.gt(F::c(0.0));
-        let rho2 = F::sel(has_rho, rho2, F::c(1.0)).named("rho2");
-        let rho = F::sel(has_rho, root_of(rho2), F::c(0.0)).named("rho");
-        let t = fixed_trig::atan2_pi(rho, f.w.z.abs()).named("t");
+        let (rho2, t) = polar_angle(f);
         let code = |q: Quant, x: F| {
             let m = q.max_code();
             let big = (x * t * F::c((f64::from(m) / fixed_trig::ONE) as f32)).named("big");
@@ -104,6 +101,18 @@ impl HemiEqDist {
         let xy = p.map(|x| (x * sc.x * F::c((1.0 / ONE) as f32)).round());
         V3::from_xy(xy, unfold(sc.y, h))
     }
+}
+
+/// `ρ² = w.x² + w.y²` of the folded input from [`fixed_length2_xy`], with any positive
+/// stand-in at the pole (`ρ² = 0`), and the polar angle `θ/π = atan2(ρ, |z|)/π` in
+/// units of `2^-23` half turns from [`fixed_trig::atan2_pi`] (`ρ` from [`root_of`], 0 at
+/// the pole): functions of the input alone.
+pub fn polar_angle<F: Float>(f: &Folded<F>) -> (F, F) {
+    let rho2 = fixed_length2_xy(f.w);
+    let has_rho = rho2.gt(F::c(0.0));
+    let rho2 = F::sel(has_rho, rho2, F::c(1.0)).named("rho2");
+    let rho = F::sel(has_rho, root_of(rho2), F::c(0.0)).named("rho");
+    (rho2, fixed_trig::atan2_pi(rho, f.w.z.abs()).named("t"))
 }
 
 impl Codec for HemiEqDist {
@@ -131,9 +140,8 @@ impl Codec for HemiEqDist {
     /// hemisphere's pole.
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
-        let q = p.length_squared().named("q");
-        let sc = sinc_cos_quarter(q);
-        V3::from_xy(p * sc.x, unfold(sc.y, enc.z))
+        let (xy, z) = Self::lift(p);
+        V3::from_xy(xy, unfold(z, enc.z))
     }
     /// The codes of [`HemiEqDist::codes`] at `c + ½`, the hemisphere bit from the sign
     /// of the canonical `z`.
@@ -150,5 +158,24 @@ impl Codec for HemiEqDist {
         let f = Folded::of(v);
         let base = self.codes(&f, 1.0).named("base");
         nearest_disk_codes(self.bits, &f, base, |c, h| self.fixed_direction(c, h))
+    }
+}
+
+/// The equidistant disk radius is `θ/(π/2)`, `θ = atan2(ρ, |z|)` the polar angle.
+impl DiskProjection for HemiEqDist {
+    fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F {
+        F::call("atan2_pi", (rho, f.w.z.abs()), |(y, x)| atan2_pi(y, x))
+    }
+    fn radius<F: Float>(f: &Folded<F>) -> Radius<F> {
+        Radius::Angle {
+            t: polar_angle(f).1,
+        }
+    }
+    /// `(p·sin(π·r/2)/r, cos(π·r/2))` with `r = |p|`: the two series in `r²` of
+    /// [`sinc_cos_quarter`].
+    fn lift<F: Float>(p: V2<F>) -> (V2<F>, F) {
+        let q = p.length_squared().named("q");
+        let sc = sinc_cos_quarter(q);
+        (p * sc.x, sc.y)
     }
 }

@@ -5,9 +5,10 @@
 
 use super::codec::{Codec, Domain};
 use super::disk::{
-    Folded, disk_fields, disk_quants, fixed_disk_point, nearest_disk_codes, unfold,
+    DiskProjection, Folded, Radius, disk_fields, disk_quants, fixed_disk_point,
+    nearest_disk_codes, unfold,
 };
-use super::exact::{fixed_ratio, unorm_ratio};
+use super::exact::{fixed_length2_xy, fixed_ratio, unorm_ratio};
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{BITS, ONE, search_doc};
 use super::functions::{Emitted, codec_functions};
@@ -102,10 +103,8 @@ impl Codec for HemiStereo {
     /// bit is set. Both numerators are computed, so every component divides exactly once.
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
-        let q = p.length_squared().named("q");
-        let d = (q + F::c(1.0)).named("d");
-        let z = (F::c(1.0) - q) / d;
-        V3::from_xy((p + p) / d, unfold(z, enc.z))
+        let (xy, z) = Self::lift(p);
+        V3::from_xy(xy, unfold(z, enc.z))
     }
     /// The codes of [`HemiStereo::codes`] at `c + ½`, the hemisphere bit from the sign
     /// of the canonical `z` (a `-0` is already `+0` there).
@@ -122,5 +121,26 @@ impl Codec for HemiStereo {
         let f = Folded::of(v);
         let base = self.codes(f.w, f.a, 1.0).named("base");
         nearest_disk_codes(self.bits, &f, base, |c, h| self.fixed_direction(c, h))
+    }
+}
+
+/// The stereographic disk radius is `ρ/(1 + |z|)`: `ρ/a` of the folded input.
+impl DiskProjection for HemiStereo {
+    fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F {
+        rho / f.a * F::c(0.5)
+    }
+    fn radius<F: Float>(f: &Folded<F>) -> Radius<F> {
+        Radius::Root {
+            rho2: fixed_length2_xy(f.w),
+            d: f.a * f.a,
+        }
+    }
+    /// `(2p, 1 - |p|²) / (1 + |p|²)`: both numerators are computed, so every component
+    /// divides exactly once.
+    fn lift<F: Float>(p: V2<F>) -> (V2<F>, F) {
+        let q = p.length_squared().named("q");
+        let d = (q + F::c(1.0)).named("d");
+        let z = (F::c(1.0) - q) / d;
+        ((p + p) / d, z)
     }
 }

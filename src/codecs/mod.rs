@@ -6,6 +6,7 @@
 //! ending in a `pub static FAMILY`) and one line in `registry!` below.
 
 pub mod codec;
+pub mod concentric;
 pub mod disk;
 pub mod exact;
 pub mod family;
@@ -52,6 +53,9 @@ registry! {
     hemi_stereo => HemiStereo;
     hemi_eqarea => HemiEqArea;
     hemi_eqdist => HemiEqDist;
+    stereo_concentric => StereoConcentric;
+    eqarea_concentric => EqAreaConcentric;
+    eqdist_concentric => EqDistConcentric;
     cube => Cube;
     warpedcube;
     xy => Xy;

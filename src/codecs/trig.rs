@@ -75,6 +75,17 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     // sin(π(1/2-b)) = cos(πb)
     let swap = b.gt(F::c(0.25));
     let c = F::sel(swap, F::c(0.5) - b, b).named("c");
+    let V2 { x: s, y: co } = series_quarter(c);
+    let sb = F::sel(swap, co, s);
+    let cb = F::sel(swap, s, co);
+    let cos = F::sel(back, -cb, cb);
+    let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
+    V2::new(sin, cos)
+}
+
+/// `(sin(π·c), cos(π·c))` for `|c| ≤ 1/4` by the Taylor polynomials in `c` (through
+/// `c^9` for sine, `c^10` for cosine), with no branch.
+fn series_quarter<F: Float>(c: F) -> V2<F> {
     let c2 = (c * c).named("c2");
     let sin_coeffs: Vec<f64> = (0..5)
         .map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / factorial(2 * k + 1))
@@ -84,11 +95,15 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
         .collect();
     let s = (c * horner(c2, &sin_coeffs)).named("s");
     let co = horner(c2, &cos_coeffs).named("co");
-    let sb = F::sel(swap, co, s);
-    let cb = F::sel(swap, s, co);
-    let cos = F::sel(back, -cb, cb);
-    let sin = F::sel(t.lt(F::c(0.0)), -sb, sb);
-    V2::new(sin, cos)
+    V2::new(s, co)
+}
+
+/// `(sin(π·t), cos(π·t))` for `|t| ≤ 1/4` (at most an eighth of a turn), with no range
+/// reduction: [`sincos_pi`]'s polynomials on their own. Without a branch there is no
+/// point where an argument's rounding can pick another formula, which is what a
+/// decoder whose angle may land exactly on `±1/4` needs ([`super::concentric`]).
+pub fn sincos_quarter_pi<F: Float>(t: F) -> V2<F> {
+    series_quarter(t)
 }
 
 /// The coefficients of `sin(π·r/2)/r` (`sine`) or `cos(π·r/2)` as series in `q = r²`,
@@ -122,6 +137,9 @@ pub fn helper_doc(name: &str) -> Option<String> {
         )),
         "sincos_pi" => Some(format!(
             "(sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
+        )),
+        "sincos_quarter_pi" => Some(format!(
+            "(sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
         )),
         _ => None,
     }
