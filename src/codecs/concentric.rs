@@ -24,21 +24,23 @@ use super::quant::{Quant, Quants};
 use super::spec::SpecError;
 use super::trig::{atan2_pi, sincos_quarter_pi};
 use crate::model::{Float, V2, V3};
+use std::marker::PhantomData;
 
-/// A hemisphere-to-disk projection `P` composed with the concentric map.
+/// A hemisphere-to-disk projection `P` composed with the concentric map. `P` is only a
+/// type: its arithmetic is in associated functions, so the codec holds no value of it.
 #[derive(Clone, Copy, Debug)]
 pub struct Concentric<P> {
     pub bits: u32,
-    pub projection: P,
+    projection: PhantomData<P>,
 }
 
 impl<P: DiskProjection> Concentric<P> {
     /// The codec with the given total bit budget, for the family `info`; an invalid size
     /// is an error listing the allowed ones.
-    pub fn with(info: &'static Info, bits: u32, projection: P) -> Result<Self, SpecError> {
+    pub fn with(info: &'static Info, bits: u32) -> Result<Self, SpecError> {
         Ok(Concentric {
             bits: info.check_bits(bits)?,
-            projection,
+            projection: PhantomData,
         })
     }
 

@@ -1,5 +1,6 @@
-//! What the hemisphere-to-disk codecs (`stereo`, `eqarea`; survey §2) share: the layout
-//! of a hemisphere bit beside two unorm parameters, and the folded canonical input.
+//! What the hemisphere-to-disk codecs (`stereo`, `eqarea`, `eqdist`; survey §2) and their
+//! concentric-map variants ([`super::concentric`]) share: the layout of a hemisphere bit
+//! beside two unorm parameters, the folded canonical input, and [`DiskProjection`].
 //!
 //! Layout: a total of `B` bits is one hemisphere bit and two parameters of `⌈(B-1)/2⌉`
 //! and `⌊(B-1)/2⌋` bits (16 = 1 + 8 + 7), x in the lowest bits, then y, then the

@@ -41,6 +41,6 @@ impl EqAreaConcentric {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<Self, SpecError> {
-        Concentric::with(&INFO, bits, HemiEqArea { bits })
+        Concentric::with(&INFO, bits)
     }
 }
