@@ -1,5 +1,6 @@
 //! What the hemisphere-to-disk codecs (`stereo`, `eqarea`, `eqdist`; survey §2) and their
-//! concentric-map variants ([`super::concentric`]) share: the layout of a hemisphere bit
+//! concentric-map and elliptical-map variants ([`super::concentric`],
+//! [`super::ellipse`]) share: the layout of a hemisphere bit
 //! beside two unorm parameters, the folded canonical input, and [`DiskProjection`].
 //!
 //! Layout: a total of `B` bits is one hemisphere bit and two parameters of `⌈(B-1)/2⌉`
@@ -79,7 +80,7 @@ pub fn nearest_disk_codes<F: Float>(
 }
 
 /// A projection of the hemisphere onto the unit disk, as the codecs that map its disk
-/// onto the square ([`super::concentric`]) use it: the radius of the folded input's disk
+/// onto the square ([`super::concentric`], [`super::ellipse`]) use it: the radius of the folded input's disk
 /// point (the point's azimuth is the input's), and the way back from a disk point.
 pub trait DiskProjection: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// Half the disk radius, `r/2`, in floats (the `encode_float` model), given `rho`,
@@ -96,8 +97,9 @@ pub trait DiskProjection: Copy + Send + Sync + std::fmt::Debug + 'static {
 pub enum Radius<F> {
     /// `r = sqrt(rho2 / d)`, `rho2 ≥ 0` and `d > 0` deterministic.
     Root { rho2: F, d: F },
-    /// `r = θ/(π/2)`: `t` the polar angle in units of `2^-23` half turns, an integer.
-    Angle { t: F },
+    /// `r = θ/(π/2)`: `t` the polar angle in units of `2^-23` half turns, an integer;
+    /// `rho2` the deterministic `|w.xy|²` of the input whose disk point this is.
+    Angle { t: F, rho2: F },
 }
 
 impl<F: Float> Radius<F> {
@@ -105,7 +107,7 @@ impl<F: Float> Radius<F> {
     pub fn estimate(&self) -> F {
         match *self {
             Radius::Root { rho2, d } => (rho2 / d).sqrt(),
-            Radius::Angle { t } => t * F::c(ANGLE_TO_RADIUS),
+            Radius::Angle { t, .. } => t * F::c(ANGLE_TO_RADIUS),
         }
     }
     /// `1` where `r·x ≥ k`, else `0`. `x` and `k` are deterministic; the products are
@@ -115,10 +117,30 @@ impl<F: Float> Radius<F> {
     pub fn past(&self, x: F, k: F) -> F {
         match *self {
             Radius::Root { rho2, d } => past_root_ratio(x, rho2 * (x * x), k, k * k * d),
-            Radius::Angle { t } => one_if((t * x * F::c(ANGLE_TO_RADIUS)).ge(k)),
+            Radius::Angle { t, .. } => one_if((t * x * F::c(ANGLE_TO_RADIUS)).ge(k)),
+        }
+    }
+    /// The two sides of `(r²/ρ²)·s·scale` against `k` (`s, k ≥ 0`, `scale > 0` a
+    /// literal; `ρ = |w.xy|` of the input whose disk point `r·w.xy/ρ` this radius belongs
+    /// to), each multiplied by the same positive factor, as products of deterministic
+    /// values meeting in a comparison: `(s·scale, k·d)` for a root (`r²/ρ² = 1/d`),
+    /// `(s·t²·2^-44·scale, k·ρ²)` for an angle. The literal is the last factor: Mesa
+    /// moves a literal out of a product used once, `(a·#b)·c` into `(a·c)·#b`, which
+    /// rounds differently. This is what a quadric in the disk point's squared
+    /// coordinates asks of the radius ([`super::ellipse`]).
+    pub fn square_sides(&self, s: F, k: F, scale: f64) -> (F, F) {
+        match *self {
+            Radius::Root { d, .. } => (s * F::c(scale as f32), k * d),
+            Radius::Angle { t, rho2 } => (
+                s * t * t * F::c((scale * f64::from(ANGLE_SQUARED)) as f32),
+                k * rho2,
+            ),
         }
     }
 }
+
+/// `r² = t²·2^-44` from units of `2^-23` half turns (the square of `ANGLE_TO_RADIUS`).
+const ANGLE_SQUARED: f32 = 1.0 / 17_592_186_044_416.0;
 
 /// `r = θ/(π/2) = 2·(θ/π)`, from units of `2^-23` half turns: `2^-22`.
 const ANGLE_TO_RADIUS: f32 = 1.0 / 4_194_304.0;

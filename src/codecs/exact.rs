@@ -286,6 +286,25 @@ impl<F: Float> OnePlusZ<F> {
     }
 }
 
+/// `p + q` of two non-negative products, as a function of their rounded values alone:
+/// an implementation may contract `p + q` into `fma(a, b, q)`, so each is first put
+/// through a floor on a grid of `2^-27` of the larger one's binade (the grid read from
+/// its exponent bits, so exact), which no contraction reaches; the two integers are
+/// added (rounded once, `2^-24`) and scaled back by the power of two. Within `2^-23` of
+/// the sum, relative; below `2^-87` the grid stops shrinking (such a sum is `0`, give
+/// or take).
+pub fn settled_sum<F: Float>(p: F, q: F) -> F {
+    let u = |v: u32| F::U::c(v);
+    // The larger one's biased exponent, clamped to 40 ..= 254 (a zero reads as 0).
+    let e = p.at_least(q).to_bits().shr(23);
+    let e = F::U::sel(e.lt(u(40)), u(40), e);
+    let e = F::U::sel(u(254).lt(e), u(254), e);
+    // 2^(154 - e) and its inverse as exponent fields: 27 ..= 241 and 13 ..= 227.
+    let scale = u(281).wrapping_sub(e).shl(23).as_float();
+    let back = e.wrapping_sub(u(27)).shl(23).as_float();
+    ((p * scale).floor() + (q * scale).floor()) * back
+}
+
 /// The code decided by `past(c)`: `1` where the parameter, scaled to codes, lies at or
 /// past `c + ½` (the boundary between codes `c` and `c + 1`), `0` where not.
 /// `estimate` (any rounding of the scaled parameter, within one code of it) is clamped
@@ -300,6 +319,29 @@ pub fn decided<F: Float>(q: Quant, estimate: F, past: impl Fn(F) -> F) -> F {
     let up = F::sel(e.lt(hi), past(e), F::c(0.0));
     let down = F::sel(e.gt(lo), past(e - F::c(1.0)) - F::c(1.0), F::c(0.0));
     e + up + down
+}
+
+/// The code decided by `past(c)` alone (see [`decided`]), by bisection over all codes of
+/// the unorm `q`: for a parameter whose float estimate can be many codes off (an
+/// ill-conditioned inverse), at the cost of `bits` evaluations of `past`. The code is the
+/// number of boundaries passed; `past` is taken to be `1` up to some boundary and `0`
+/// beyond, and whatever it is, the result is a function of its answers alone. The first
+/// round's boundary, the middle one `2^(b-1) - 1 + ½`, is a literal, which `past`'s
+/// arithmetic cannot take (an expression of literals only is not emitted): the caller
+/// answers it as `middle`.
+pub fn bisected<F: Float>(q: Quant, middle: F::B, past: impl Fn(F) -> F) -> F {
+    let half = (1u64 << (q.bits() - 1)) as f32;
+    let beyond = middle;
+    let mut lo = F::sel(beyond, F::c(half), F::c(0.0));
+    let mut hi = F::sel(beyond, F::c(q.max_code()), F::c(half - 1.0));
+    // The codes lo ..= hi are 2^k in number, halved each round.
+    for _ in 1..q.bits() {
+        let mid = ((lo + hi + F::c(1.0)) * F::c(0.5)).floor();
+        let beyond = past(mid - F::c(1.0)).gt(F::c(0.5));
+        lo = F::sel(beyond, mid, lo);
+        hi = F::sel(beyond, hi, mid - F::c(1.0));
+    }
+    lo
 }
 
 /// `1` where `m`, else `0`.
@@ -541,6 +583,50 @@ mod tests {
                 assert_eq!(f64::from(r), exact, "{s}");
             }
             same_under_div_and_sqrt(i, r, || root(Dev::new(s)).value());
+        }
+    }
+
+    #[test]
+    fn settled_sum_is_the_sum_to_two_to_minus_23_whatever_contraction_does() {
+        use crate::model::deviant::{Class, Dev, Deviation, Mode, begin_item, with};
+        assert_eq!(settled_sum(0.0f32, 0.0).to_bits(), 0);
+        let factors = spread(4_000, -30.0, 30.0).map(|e| 2f64.powf(e) as f32);
+        let factors: Vec<f32> = factors.collect();
+        for (i, w) in factors.windows(4).enumerate() {
+            let (p, q) = (w[0] * w[1], w[2] * w[3 - i % 2]);
+            let s = settled_sum(p, q);
+            let exact = f64::from(p) + f64::from(q);
+            assert!(
+                (f64::from(s) - exact).abs() <= exact / f64::from(1u32 << 23),
+                "{p} + {q}: {s}"
+            );
+            for mode in [Mode::Lowest, Mode::Highest, Mode::Seeded(i as u64)] {
+                let d = with(
+                    Some(Deviation {
+                        class: Class::Fma,
+                        mode,
+                    }),
+                    || {
+                        begin_item(i as u64);
+                        let dev = |x: f32| Dev::new(x);
+                        settled_sum(dev(w[0]) * dev(w[1]), dev(w[2]) * dev(w[3 - i % 2])).value()
+                    },
+                );
+                assert_eq!(d.to_bits(), s.to_bits(), "{p} + {q} under {mode:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn bisected_counts_the_boundaries_passed() {
+        for q in [Quant::Unorm(1), Quant::Unorm(7), Quant::Unorm(8)] {
+            let m = q.max_code();
+            let half = (m + 1.0) * 0.5;
+            for k in 0..=m as u32 {
+                let k = k as f32;
+                let c = bisected(q, half - 1.0 < k, |c: f32| one_if(c < k));
+                assert_eq!(c, k, "{q:?}");
+            }
         }
     }
 

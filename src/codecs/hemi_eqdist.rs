@@ -167,9 +167,8 @@ impl DiskProjection for HemiEqDist {
         F::call("atan2_pi", (rho, f.w.z.abs()), |(y, x)| atan2_pi(y, x))
     }
     fn radius<F: Float>(f: &Folded<F>) -> Radius<F> {
-        Radius::Angle {
-            t: polar_angle(f).1,
-        }
+        let (rho2, t) = polar_angle(f);
+        Radius::Angle { t, rho2 }
     }
     /// `(p·sin(π·r/2)/r, cos(π·r/2))` with `r = |p|`: the two series in `r²` of
     /// [`sinc_cos_quarter`].

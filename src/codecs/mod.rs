@@ -8,6 +8,7 @@
 pub mod codec;
 pub mod concentric;
 pub mod disk;
+pub mod ellipse;
 pub mod exact;
 pub mod family;
 pub mod fixed_decode;
@@ -56,6 +57,9 @@ registry! {
     stereo_concentric => StereoConcentric;
     eqarea_concentric => EqAreaConcentric;
     eqdist_concentric => EqDistConcentric;
+    stereo_ellipse => StereoEllipse;
+    eqarea_ellipse => EqAreaEllipse;
+    eqdist_ellipse => EqDistEllipse;
     cube => Cube;
     warpedcube;
     xy => Xy;

@@ -1,0 +1,46 @@
+//! `stereo` ([`super::hemi_stereo`]) with its disk mapped onto the square by the
+//! elliptical grid map ([`super::ellipse`]): the survey's `stereo+ellipse` rows.
+//! This file is its entry in the registry and its CPU type.
+
+use super::codec::Domain;
+use super::ellipse::Ellipse;
+use super::family::{Family, Info, Sizes};
+use super::functions::{Emitted, codec_functions};
+use super::hemi_stereo::HemiStereo;
+use super::spec::{Spec, SpecError};
+
+pub static FAMILY: StereoEllipseFamily = StereoEllipseFamily;
+
+pub struct StereoEllipseFamily;
+
+static INFO: Info = Info {
+    name: "stereo_ellipse",
+    title: "stereographic hemisphere on the unit disk, elliptical grid map to the square + hemisphere bit, unorm×2",
+    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+    domain: Some(Domain::Sphere),
+    precise: false,
+    source: "Cigolle et al. 2014 §2 (stereo+ellipse); Snyder and Mitchell 2001; the elliptical grid map (Nowell 2005, Fong 2014)",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
+    decode_note: "every code lies on the disk, so every code decodes within its hemisphere, unit length up to rounding",
+    options: &[],
+};
+
+impl Family for StereoEllipseFamily {
+    fn info(&self) -> &'static Info {
+        &INFO
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        codec_functions(spec, StereoEllipse::new(spec.bits()).expect("a valid size"))
+    }
+}
+
+/// The `stereo_ellipse` codec on the CPU.
+pub type StereoEllipse = Ellipse<HemiStereo>;
+
+impl StereoEllipse {
+    /// The codec with the given total bit budget; an invalid size is an error listing
+    /// the allowed ones.
+    pub fn new(bits: u32) -> Result<Self, SpecError> {
+        Ellipse::with(&INFO, bits)
+    }
+}
