@@ -1,5 +1,10 @@
 //! CPU codec throughput in vectors per second, with a baseline measured in the same run
 //! (normalizing the same vectors in f32) so that results compare across machines as ratios.
+//! Beside oct16 and oct32, the peer they replace: meshoptimizer's octahedral vertex filter
+//! (`meshopt_encodeFilterOct` / `meshopt_decodeFilterOct`, 8- and 16-bit components, through
+//! the `meshopt` crate), measured in the same run on the same vectors, as ratios (above 1:
+//! unitpack is faster). meshoptimizer decodes snorm integers to snorm integers in place with
+//! SIMD; unitpack's decode writes f32×3, more work, and the ratio is printed as it stands.
 //! Also the `encode`/`decode` stream filter (`unitpack::cli::transcode`) over in-memory
 //! buffers, in its raw binary format and in text, to show what a pipeline gets end to end.
 //! Run: `cargo bench`.
@@ -23,7 +28,8 @@ fn rate(mut f: impl FnMut()) -> f64 {
     (runs * N) as f64 / t.elapsed().as_secs_f64()
 }
 
-fn bench<C: Codec>(name: &str, e: Encoder<C>, vs: &[[f32; 3]], base: f64)
+/// Prints and returns the encode and decode rates of `e`.
+fn bench<C: Codec>(name: &str, e: Encoder<C>, vs: &[[f32; 3]], base: f64) -> (f64, f64)
 where
     C::C<f32>: Default + Copy,
 {
@@ -38,6 +44,49 @@ where
         dec / 1e6,
         dec / base
     );
+    (enc, dec)
+}
+
+/// meshoptimizer's octahedral filter with `bits`-bit components (8 or 16), as
+/// `(encode, decode)` rates: the encoder into a buffer allocated once (the crate's safe
+/// wrapper allocates per call), the decoder in place, as the library is meant to be used.
+fn meshopt_oct(bits: i32, vs: &[[f32; 3]]) -> (f64, f64) {
+    let input: Vec<[f32; 4]> = vs.iter().map(|v| [v[0], v[1], v[2], 0.0]).collect();
+    let stride = if bits <= 8 { 4 } else { 8 };
+    let mut codes = vec![0u8; N * stride];
+    let encode = |codes: &mut [u8]| {
+        // SAFETY: `codes` holds N vectors of `stride` bytes and `input` N vectors of four
+        // floats, the sizes meshopt_encodeFilterOct reads and writes for this stride.
+        unsafe {
+            meshopt::ffi::meshopt_encodeFilterOct(
+                codes.as_mut_ptr().cast(),
+                N,
+                stride,
+                bits,
+                black_box(input.as_ptr()).cast(),
+            )
+        }
+    };
+    let enc = rate(|| encode(&mut codes));
+    let mut work = codes.clone();
+    let dec = rate(|| {
+        work.copy_from_slice(&codes);
+        // SAFETY: `work` holds N vectors of `stride` bytes, filtered in place.
+        unsafe { meshopt::ffi::meshopt_decodeFilterOct(work.as_mut_ptr().cast(), N, stride) }
+        black_box(&mut work);
+    });
+    (enc, dec)
+}
+
+/// unitpack's rates for one spec over meshoptimizer's at the same component size.
+fn ratios(name: &str, (enc, dec): (f64, f64), (m_enc, m_dec): (f64, f64)) {
+    println!(
+        "{name:<10} vs meshopt: encode {:>5.2}×   decode {:>5.2}×   (meshopt {:>7.1} / {:>7.1} M/s)",
+        enc / m_enc,
+        dec / m_dec,
+        m_enc / 1e6,
+        m_dec / 1e6
+    );
 }
 
 fn main() {
@@ -51,19 +100,27 @@ fn main() {
         black_box(&mut norm);
     });
     println!("baseline (normalize) {:.1} M vectors/s", base / 1e6);
+    let mut peers = Vec::new();
     for bits in [16, 24, 32] {
-        bench(
+        let fast = bench(
             &format!("oct{bits}"),
             Oct::new(bits).unwrap().fast(),
             &vs,
             base,
         );
-        bench(
+        let precise = bench(
             &format!("oct{bits}p"),
             Oct::new(bits).unwrap().precise(),
             &vs,
             base,
         );
+        if bits != 24 {
+            peers.push((bits, fast, precise, meshopt_oct(bits as i32 / 2, &vs)));
+        }
+    }
+    for (bits, fast, precise, peer) in peers {
+        ratios(&format!("oct{bits}"), fast, peer);
+        ratios(&format!("oct{bits}p"), precise, peer);
     }
     bench("hemioct24", HemiOct::new(24).unwrap().fast(), &vs, base);
     for spec in ["oct16", "oct24p", "snorm16x3"] {
