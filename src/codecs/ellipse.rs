@@ -81,10 +81,11 @@ impl<P: DiskProjection> Ellipse<P> {
     }
 }
 
-/// The inverse map's first coordinate of the disk point `(x, y)` over `2√2`
-/// (the caller's literal factor takes it in): `x/(√a + √b)` with `a = (√2 + x)² - y²` and `b = (√2 - x)² - y²`, each written as
-/// a product of two sums that are non-negative on the disk (clamped at 0 against
-/// rounding just outside it); `a` and `b` vanish together only off the disk.
+/// The inverse map's first coordinate of the disk point `(x, y)` over `2√2` (the
+/// caller's literal factor takes it in): `x/(√a + √b)` with `a = (√2 + x)² - y²` and
+/// `b = (√2 - x)² - y²`, each written as a product of two sums that are non-negative on
+/// the disk (clamped at 0 against rounding just outside it); `a` and `b` vanish together
+/// only off the disk.
 fn inverse<F: Float>(x: F, y: F) -> F {
     let ay = y.abs();
     let side = |x: F| {
