@@ -160,6 +160,26 @@ fn oct22p_matches_table_1_max() {
     assert!(st.mean < 0.04180, "oct22p: mean {:.5}°", st.mean);
 }
 
+/// float32x3 has no Table 1 row (the survey measures against float32×3 itself). Its
+/// error is bounded by construction: the input on a grid of 2^-21 of its largest
+/// component's binade (at most √3·2^-22 rad), then each component rounded to the 2^-24
+/// grid (at most √3·2^-25 rad): 2.7·10⁻⁵° in all.
+#[test]
+fn float32x3_is_within_its_grids() {
+    let st = measured("float32x3");
+    let bound = 3f64.sqrt() * (2f64.powi(-22) + 2f64.powi(-25));
+    assert!(
+        st.max <= bound.to_degrees(),
+        "float32x3: max {:.7}°",
+        st.max
+    );
+    assert!(
+        st.mean > 0.0 && st.mean < st.max,
+        "float32x3: mean {:.7}°",
+        st.mean
+    );
+}
+
 /// The table's float16×3 row (0.00635° / 0.02635°) is a conversion that truncates:
 /// rounding each component of the same vectors toward zero on the f16 grid (computed
 /// here from the format's definition) reproduces its mean. float16x3 rounds to nearest,

@@ -1,8 +1,8 @@
 //! The CPU library: construction errors, slices, and round trips.
 
 use unitpack::api::{
-    CpuCodec, Cube, Float16x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct, Paraboloid,
-    Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
+    CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
+    Paraboloid, Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -79,6 +79,47 @@ fn float16x3_codes_are_rgba16_float_texels() {
         let v = c.decode(unitpack::model::V2::new(code[0], code[1]));
         assert_eq!(v, [0.0, 0.0, 1.0], "{code:x?}");
     }
+}
+
+/// float32x3 is an RGB32_FLOAT texel, one word per component (x first), each on the
+/// 2^-24 grid: 0.6 and 0.8 are f32's own nearest values there; the axes are exact.
+#[test]
+fn float32x3_codes_are_rgb32_float_texels() {
+    let c = Float32x3.fast();
+    assert_eq!(
+        c.encode([0.6, 0.0, 0.8]).to_array(),
+        [0.6f32.to_bits(), 0, 0x3f4c_cccc]
+    );
+    assert_eq!(c.encode([0.0, -3.0, 0.0]).to_array(), [0, 0xbf80_0000, 0]);
+    assert_eq!(
+        c.encode([f32::NAN, 0.0, 1.0]).to_array(),
+        [0, 0, 0x3f80_0000]
+    );
+    for v in unitpack::quality::random_unit_vectors(5, 1000, false) {
+        let code = c.encode(v).to_array();
+        for (w, x) in code.iter().zip(v) {
+            let y = f32::from_bits(*w);
+            assert_eq!((y * 16_777_216.0).fract(), 0.0, "{v:?}: {y} off the grid");
+            assert!((y - x).abs() <= 2f32.powi(-21), "{v:?} → {y}");
+        }
+        assert_eq!(
+            c.decode(unitpack::model::V3::from_array(code)),
+            code.map(f32::from_bits)
+        );
+    }
+    // Infinite or NaN components, or no nonzero one, decode as +Z; denormals read as +0.
+    for code in [
+        [0x7f80_0000, 0, 0],
+        [0, 0x7fc0_0001, 0],
+        [0x8000_0000, 1, 0x8000_0001],
+    ] {
+        let v = c.decode(unitpack::model::V3::from_array(code));
+        assert_eq!(v, [0.0, 0.0, 1.0], "{code:x?}");
+    }
+    assert_eq!(
+        c.decode(unitpack::model::V3::from_array([1, 0x3f80_0000, 0])),
+        [0.0, 1.0, 0.0]
+    );
 }
 
 /// stereo16 is x in bits 0–7 (unorm8), y in bits 8–14 (unorm7), the hemisphere bit (set

@@ -888,7 +888,11 @@ fn encode_and_decode_round_trip_for_every_codec() {
         let arg = name.replace("_rgb8", ":layout=rgb8");
         let enc = run_stdin(&["encode", &arg], &text);
         assert_eq!(enc.code, 0, "{name}: {enc:?}");
-        let digits = if spec.bits() > 32 { 12 } else { 8 };
+        let digits = if spec.bits() > 32 {
+            spec.bits().div_ceil(4) as usize
+        } else {
+            8
+        };
         assert!(
             enc.stdout.lines().all(|l| is_hex_code(l, digits)),
             "{name}: {enc:?}"
@@ -1136,7 +1140,7 @@ fn every_encoded_code_fits_the_spec_width() {
             let c = code
                 .iter()
                 .rev()
-                .fold(0u64, |a, w| (a << 32) | u64::from(*w));
+                .fold(0u128, |a, w| (a << 32) | u128::from(*w));
             assert!(c >> spec.bits() == 0, "{spec}: {v:?} → {c:#x}");
         }
     }
@@ -1157,6 +1161,42 @@ fn snorm16x3_codes_have_12_hex_digits() {
         (len - 1.0).abs() < 1e-5,
         "snorm3 decode re-normalizes: {:?}",
         out[1]
+    );
+}
+
+/// float32x3 codes are three words: 24 hex digits (z's word highest) in text, 12 bytes
+/// (x's word first) in binary, and back.
+#[test]
+fn float32x3_codes_are_three_words() {
+    let enc = run_stdin(&["encode", "float32x3"], "0 -2 0\n");
+    assert_eq!(enc.code, 0, "{enc:?}");
+    assert_eq!(enc.stdout, "0x00000000bf80000000000000\n");
+    let dec = run_stdin(&["decode", "float32x3"], "0x3f800000000000003f000000\n");
+    assert_eq!(dec.code, 0, "{dec:?}");
+    assert_eq!(dec.stdout, "0.5 0.0 1.0\n");
+    let err = fails(&["decode", "float32x3"], "0x1000000000000000000000000\n");
+    assert!(err.contains("96 bits"), "{err}");
+    let bin = run_stdin(
+        &["encode", "float32x3", "--output-format", "binary"],
+        "0 0 -1\n",
+    );
+    assert_eq!(bin.code, 0, "{bin:?}");
+    let words: Vec<u8> = [0u32, 0, 0xbf80_0000]
+        .iter()
+        .flat_map(|w| w.to_le_bytes())
+        .collect();
+    assert_eq!(bin.out, words);
+    let back = run_bytes(&["decode", "float32x3", "--input-format", "binary"], &words);
+    assert_eq!(back.code, 0, "{back:?}");
+    assert_eq!(back.stdout, "0.0 0.0 -1.0\n");
+    let short = run_bytes(
+        &["decode", "float32x3", "--input-format", "binary"],
+        &words[..8],
+    );
+    assert_ne!(short.code, 0);
+    assert!(
+        short.stderr.contains("a code is 12 bytes, 3×u32"),
+        "{short:?}"
     );
 }
 

@@ -18,13 +18,13 @@
 #endif
 #endif
 
-// ---- float16x3: components as IEEE float16×3 (RGBA16_FLOAT's first three channels), 48 bits ----
+// ---- float16x3: components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 48 bits ----
 #ifndef UNITPACK_FLOAT16X3_HLSL
 #define UNITPACK_FLOAT16X3_HLSL
 
-// unitpack_float16x3_decode_float: float16x3 (components as IEEE float16×3 (RGBA16_FLOAT's first three channels), 48 bits, sphere), decoder, float form.
+// unitpack_float16x3_decode_float: float16x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 48 bits, sphere), decoder, float form.
 // In: parameters in [-1, 1], as a float16 fetch returns them.
-// Out: the three halves as floats, exactly, without normalizing (unit length to within 2^-11 for codes the encoder writes); a code with an infinite or NaN half, or three zero halves, decodes as +Z.
+// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component, or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
@@ -50,9 +50,9 @@ float3 unitpack_float16x3_decode_float(float3 params) {
     return t18;
 }
 
-// unitpack_float16x3_decode: float16x3 (components as IEEE float16×3 (RGBA16_FLOAT's first three channels), 48 bits, sphere), decoder.
+// unitpack_float16x3_decode: float16x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 48 bits, sphere), decoder.
 // In: a packed code (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2 float16); other bits are ignored.
-// Out: the three halves as floats, exactly, without normalizing (unit length to within 2^-11 for codes the encoder writes); a code with an infinite or NaN half, or three zero halves, decodes as +Z.
+// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component, or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
@@ -91,8 +91,8 @@ float3 unitpack_float16x3_decode(uint2 code) {
     return t30;
 }
 
-// unitpack_float16x3_encode_float: float16x3 (components as IEEE float16×3 (RGBA16_FLOAT's first three channels), 48 bits, sphere), fast encoder, float form.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16 (a component that rounds to zero is +0); zero, NaN and infinite input encode as +Z.
+// unitpack_float16x3_encode_float: float16x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 48 bits, sphere), fast encoder, float form.
+// In: any vector; input is normalized first, then each component is rounded to the nearest f16 (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a float16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
@@ -308,8 +308,8 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
     return t171;
 }
 
-// unitpack_float16x3_encode: float16x3 (components as IEEE float16×3 (RGBA16_FLOAT's first three channels), 48 bits, sphere), fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16 (a component that rounds to zero is +0); zero, NaN and infinite input encode as +Z.
+// unitpack_float16x3_encode: float16x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 48 bits, sphere), fast encoder.
+// In: any vector; input is normalized first, then each component is rounded to the nearest f16 (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint2 (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2 float16).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).

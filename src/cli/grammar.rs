@@ -55,11 +55,11 @@ impl fmt::Display for LineError {
 }
 
 /// The largest code of a `bits`-wide spec.
-pub fn max_code(bits: u32) -> u64 {
-    if bits >= 64 {
-        u64::MAX
+pub fn max_code(bits: u32) -> u128 {
+    if bits >= 128 {
+        u128::MAX
     } else {
-        (1u64 << bits) - 1
+        (1u128 << bits) - 1
     }
 }
 
@@ -89,7 +89,7 @@ pub fn parse_vector(line: &str) -> Result<[f32; 3], LineError> {
 }
 
 /// One code of a `bits`-wide spec, in the grammar above.
-pub fn parse_code(line: &str, bits: u32) -> Result<u64, LineError> {
+pub fn parse_code(line: &str, bits: u32) -> Result<u128, LineError> {
     let t = line.trim_matches([' ', '\t']);
     let (digits, radix) = match t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
         Some(h) => (h, 16),
@@ -99,7 +99,7 @@ pub fn parse_code(line: &str, bits: u32) -> Result<u64, LineError> {
         return Err(LineError::NotACode);
     }
     // Only digits remain, so the one failure left is overflow.
-    let v = u64::from_str_radix(digits, radix).map_err(|_| LineError::TooWide { bits })?;
+    let v = u128::from_str_radix(digits, radix).map_err(|_| LineError::TooWide { bits })?;
     if v > max_code(bits) {
         return Err(LineError::TooWide { bits });
     }

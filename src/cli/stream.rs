@@ -48,7 +48,7 @@ struct Codec {
     name: String,
     dir: Direction,
     bits: u32,
-    /// 32-bit words per code (1, or 2 above 32 bits).
+    /// 32-bit words per code (1; 2 or 3 above 32 bits).
     code_words: usize,
 }
 
@@ -102,12 +102,11 @@ impl Codec {
     }
 }
 
-fn code_value(w: &[u32]) -> u64 {
-    match w {
-        [a] => u64::from(*a),
-        [a, b] => u64::from(*a) | (u64::from(*b) << 32),
-        _ => unreachable!("codes are one or two words"),
-    }
+/// A code's words as one number, first word lowest.
+fn code_value(w: &[u32]) -> u128 {
+    w.iter()
+        .rev()
+        .fold(0, |acc, &x| (acc << 32) | u128::from(x))
 }
 
 /// Writes one result in `to`'s form.
@@ -115,12 +114,17 @@ fn put(c: &Codec, res: &[u32], to: Format, out: &mut dyn Write) -> std::io::Resu
     match (c.dir, to) {
         (Direction::Encode, Format::Text) => match c.code_words {
             1 => writeln!(out, "0x{:08x}", res[0]),
-            _ => writeln!(out, "0x{:012x}", code_value(&res[..2])),
+            n => writeln!(
+                out,
+                "0x{:0w$x}",
+                code_value(&res[..n]),
+                w = c.bits.div_ceil(4) as usize
+            ),
         },
-        (Direction::Encode, Format::Binary) => match c.code_words {
-            1 => out.write_all(&res[0].to_le_bytes()),
-            _ => out.write_all(&code_value(&res[..2]).to_le_bytes()),
-        },
+        // Little-endian words, first word first: one little-endian integer of the width.
+        (Direction::Encode, Format::Binary) => res[..c.code_words]
+            .iter()
+            .try_for_each(|w| out.write_all(&w.to_le_bytes())),
         (Direction::Decode, Format::Text) => {
             let [x, y, z] = [0, 1, 2].map(|i| f32::from_bits(res[i]));
             writeln!(out, "{x:?} {y:?} {z:?}")
@@ -167,7 +171,6 @@ fn read_err(e: std::io::Error) -> anyhow::Error {
 
 fn text_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) -> Result<u64> {
     let mut buf = Vec::with_capacity(256);
-    let mut words = [0u32; 3];
     let mut res = [0u32; 3];
     let (mut n, mut done) = (0u64, 0u64);
     loop {
@@ -217,17 +220,13 @@ fn text_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) 
             ),
             e => anyhow::anyhow!("line {n}: {e}: {}", quote(line)),
         };
-        match c.dir {
-            Direction::Encode => {
-                let v = grammar::parse_vector(line).map_err(bad)?;
-                words = v.map(f32::to_bits);
-            }
+        let words = match c.dir {
+            Direction::Encode => grammar::parse_vector(line).map_err(bad)?.map(f32::to_bits),
             Direction::Decode => {
                 let v = grammar::parse_code(line, c.bits).map_err(bad)?;
-                words[0] = v as u32;
-                words[1] = (v >> 32) as u32;
+                [0, 32, 64].map(|sh| (v >> sh) as u32)
             }
-        }
+        };
         c.eval(&words, &mut res);
         put(c, &res, to, out).map_err(write_err)?;
         done += 1;
@@ -258,7 +257,8 @@ fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write
     let noun = match c.dir {
         Direction::Encode => "a vector is 12 bytes, 3×f32",
         Direction::Decode if c.code_words == 1 => "a code is 4 bytes, u32",
-        Direction::Decode => "a code is 8 bytes, u64",
+        Direction::Decode if c.code_words == 2 => "a code is 8 bytes, u64",
+        Direction::Decode => "a code is 12 bytes, 3×u32",
     };
     loop {
         let got = fill(input, &mut block)?;

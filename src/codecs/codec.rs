@@ -202,7 +202,7 @@ pub fn dequantize<F: Float, P: Params<F>>(q: &[Quant], c: P) -> P {
 /// Packs integer codes into the texel's bits: first field lowest, little-endian.
 pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
     let offs = field_offsets(q);
-    let mut words: [Option<F::U>; 2] = [None, None];
+    let mut words: [Option<F::U>; 3] = [None; 3];
     for (i, quant) in q.iter().enumerate() {
         let f = quant.to_field(c.lane(i));
         let (w, sh) = ((offs[i] / 32) as usize, offs[i] % 32);
@@ -212,7 +212,7 @@ pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
             Some(acc) => acc | f,
         });
     }
-    C::from_words([words[0].unwrap(), words[1].unwrap_or_else(|| F::U::c(0))])
+    C::from_words(words.map(|w| w.unwrap_or_else(|| F::U::c(0))))
 }
 
 /// Unpacks integer codes; bits outside the fields are ignored.

@@ -144,6 +144,74 @@ pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
     fixed_sum_of_squares([w.x, w.y, w.z]).named("len2")
 }
 
+/// `round(sqrt(s)·2^21)` as an integer, for `s` from `fixed_length2` (`4 ≤ s < 48`, an
+/// integer multiple of `2^-42`), as a function of `s` alone: [`root`]'s truncated digits,
+/// stepped by one where the exact integer `S - N²` (`S = s·2^42`, both taken modulo `2^32`
+/// in integers, where the difference, far below `2^31`, is exact) says that `N ± ½` is
+/// passed. Without the step, a unit input would come out one ULP long about half the time.
+fn rounded_root<F: Float>(s: F) -> F::U {
+    let u = |v: u32| F::U::c(v);
+    let n0 = (root(s).named("length") * F::c(FIXED_SCALE)).to_u();
+    // S modulo 2^32 from its exact 24-bit halves (S < 2^48 is a multiple of 2^22).
+    let big = s * F::c(FIXED_SCALE * FIXED_SCALE);
+    let hi = (big * F::c(1.0 / (1u32 << 24) as f32)).floor();
+    let lo = (big - hi * F::c((1u32 << 24) as f32)).to_u();
+    let wide = hi.to_u().shl(24).wrapping_add(lo);
+    // S - N² + 2^30: positive, so unsigned comparisons order it.
+    let bias = u(1 << 30);
+    let e = wide.wrapping_sub(n0.wrapping_mul(n0)).wrapping_add(bias);
+    let up = (bias + n0).lt(e);
+    let down = e.lt(bias.wrapping_sub(n0) + u(1));
+    F::U::sel(up, n0 + u(1), F::U::sel(down, n0.wrapping_sub(u(1)), n0))
+}
+
+/// The direction of a canonical `w` as components on the `2^-24` grid (f32's spacing in
+/// `[½, 1)`), each a function of `w` alone: the components on the grid of
+/// `fixed_sum_of_squares`, `Aᵢ = floor(|wᵢ|·2^21)` (below `2^23`), and their length
+/// `N·2^-21` ([`rounded_root`]), give `kᵢ = round(Aᵢ·2^24 / N)`
+/// (ties up), clamped to `2^24`, with the sign of `wᵢ` (a zero is `+0` or `-0`).
+///
+/// The quotient is only an estimate `k₀`; the exact remainder `r = Aᵢ·2^24 - k₀·N` is
+/// computed modulo `2^32` in integers (it is far below `2^31` in magnitude, so the
+/// wrapped difference is its two's complement), and the correction
+/// `floor((2r + N) / 2N)` is estimated again and checked by the sign and size of the
+/// integer remainder it leaves. No rounding of a float decides a digit, so no
+/// deviation class can change the result. The direction is `A`'s, within `2^-22` rad of
+/// `w`'s; the grid adds at most `2^-25` per component.
+pub fn unit_on_grid<F: Float>(w: V3<F>) -> V3<F> {
+    let u = |v: u32| F::U::c(v);
+    let a = w.map(|x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u());
+    let s = sum_of_squares::<F, 3>([a.x, a.y, a.z]) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE));
+    let n = rounded_root(s);
+    let nf = n.to_f();
+    let one = F::c((1u32 << 24) as f32);
+    let component = |a: F::U, x: F| {
+        let k0 = (a.to_f() / nf * one).round().to_u();
+        let r = a.shl(24).wrapping_sub(k0.wrapping_mul(n));
+        // 2r + N + 16N: the correction plus 8, which is non-negative for |k₀ - k| ≤ 8.
+        let t = r.shl(1).wrapping_add(n).wrapping_add(n.shl(4));
+        let two_n = n.shl(1);
+        let q0 = (float_of::<F>(t) / (nf * F::c(2.0))).floor().to_u();
+        let rest = t.wrapping_sub(q0.wrapping_mul(two_n));
+        let negative = rest.lt(u(0x8000_0000)).not();
+        let over = rest.lt(two_n).not().and(negative.not());
+        let q = F::U::sel(
+            over,
+            q0 + u(1),
+            F::U::sel(negative, q0.wrapping_sub(u(1)), q0),
+        );
+        let k = k0.wrapping_add(q).wrapping_sub(u(8));
+        let k = F::U::sel(u(1 << 24).lt(k), u(1 << 24), k);
+        let v = k.to_f() * F::c(1.0 / (1u32 << 24) as f32);
+        F::sel(x.lt(F::c(0.0)), -v, v)
+    };
+    V3::new(
+        component(a.x, w.x),
+        component(a.y, w.y),
+        component(a.z, w.z),
+    )
+}
+
 /// `x² + y²` of a canonical vector, the `fixed_sum_of_squares` way.
 pub fn fixed_length2_xy<F: Float>(w: V3<F>) -> F {
     fixed_sum_of_squares([w.x, w.y]).named("rho2")
@@ -490,6 +558,42 @@ pub fn denormal_proof_scale<F: Float>(m: F) -> F {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `rounded_root` is the exact integer root rounded to nearest, and every component
+    /// of `unit_on_grid` is `round(Aᵢ·2^24 / N)` (ties up) in exact integer arithmetic,
+    /// for seeded random directions and the axes.
+    #[test]
+    fn unit_on_grid_rounds_exactly() {
+        let mut vs = crate::quality::random_unit_vectors(3, 100_000, false);
+        vs.extend([
+            [1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.6, 0.0, 0.8],
+            [1e-30, 1.0, 1e-9],
+        ]);
+        for v in vs {
+            let (w, ok) = canonical(V3::from_array(v));
+            assert!(ok, "{v:?}");
+            let a = w
+                .to_array()
+                .map(|x| (x.abs() * FIXED_SCALE).floor() as u128);
+            let s = sum_of_squares::<f32, 3>(a.map(|a| a as u32)) / (FIXED_SCALE * FIXED_SCALE);
+            let big = u128::from((f64::from(s) * 2f64.powi(42)) as u64);
+            let n = u128::from(rounded_root::<f32>(s));
+            // (N - ½)² ≤ S < (N + ½)², in integers: N² - N < S ≤ N² + N.
+            assert!(
+                n * n - n < big && big <= n * n + n,
+                "{v:?}: N = {n} is not the rounded root of {big}"
+            );
+            let got = unit_on_grid(w).to_array();
+            for i in 0..3 {
+                let k = ((a[i] << 25) + n) / (2 * n);
+                let want = k.min(1 << 24) as f32 / 16_777_216.0;
+                let want = if w.to_array()[i] < 0.0 { -want } else { want };
+                assert_eq!(got[i].to_bits(), want.to_bits(), "{v:?}: component {i}");
+            }
+        }
+    }
 
     #[test]
     fn canonical_scales_by_a_power_of_two_into_two_to_four() {

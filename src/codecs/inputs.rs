@@ -60,7 +60,8 @@ pub fn edge_vectors() -> Vec<[f32; 3]> {
 }
 
 /// Every code of the fields, or above 24 bits every value of each 16-bit field (f16
-/// fields: every pattern) followed by seeded random codes, as packed words.
+/// fields: every pattern; f32 fields: every sign, exponent and top 7 fraction bits, so
+/// zeros, denormals, infinities and NaNs) followed by seeded random codes, as packed words.
 fn codes(q: &[Quant], words: usize) -> Vec<u32> {
     let total: u32 = q.iter().map(|q| q.bits()).sum();
     let mut out = Vec::new();
@@ -71,21 +72,23 @@ fn codes(q: &[Quant], words: usize) -> Vec<u32> {
         out.extend((0..4096).map(|_| rng.next_u32() | (u32::MAX << total)));
         return out;
     }
-    let mut rng = Pcg64Mcg::new(CODE_SEED);
-    for k in 0..sweep_items(q) {
-        out.extend(swept(q, k).iter().take(words));
-    }
-    for _ in 0..RANDOM_ITEMS {
-        for _ in 0..words {
-            out.push(rng.next_u32());
-        }
+    for item in wide_codes(q) {
+        out.extend(item.iter().take(words));
     }
     out
 }
 
-/// Items that give every 16-bit field every value: 2^16 when the layout has such a field.
+/// The items above 24 bits: the sweep, then seeded random words.
+fn wide_codes(q: &[Quant]) -> impl Iterator<Item = [u32; 3]> + use<'_> {
+    let mut rng = Pcg64Mcg::new(CODE_SEED);
+    let random = (0..RANDOM_ITEMS).map(move |_| [0; 3].map(|_: u32| rng.next_u32()));
+    (0..sweep_items(q)).map(|k| swept(q, k)).chain(random)
+}
+
+/// Items that give every 16-bit field every value: 2^16 when the layout has such a field
+/// (or an f32 field, whose top 16 bits take every value).
 fn sweep_items(q: &[Quant]) -> u32 {
-    if q.iter().any(|f| f.bits() == 16) {
+    if q.iter().any(|f| f.bits() == 16 || *f == Quant::Single) {
         1 << 16
     } else {
         0
@@ -94,23 +97,27 @@ fn sweep_items(q: &[Quant]) -> u32 {
 
 /// Item `k` of the sweep: the `i`-th 16-bit field holds `k` times an odd constant (a
 /// permutation of the 2^16 values, a different one per field), other fields random-looking
-/// values of the same kind; packed like [`super::codec::pack`].
+/// values of the same kind (an f32 field the same in its top 16 bits, zeros below, so
+/// that infinities and zeros occur); packed like [`super::codec::pack`].
 fn swept(q: &[Quant], k: u32) -> [u32; 3] {
     const ODD: [u32; 3] = [1, 40_503, 9_973];
     let offs = field_offsets(q);
     let mut w = [0u32; 3];
     for (i, (f, off)) in q.iter().zip(offs).enumerate() {
-        let v = k.wrapping_mul(ODD[i]) & f.mask();
+        let v = match f {
+            Quant::Single => (k.wrapping_mul(ODD[i]) & 0xffff) << 16,
+            _ => k.wrapping_mul(ODD[i]) & f.mask(),
+        };
         w[(off / 32) as usize] |= v << (off % 32);
     }
     w
 }
 
 /// The value a texture fetch returns for code `c`: `c/M`, correctly rounded, clamped at
-/// -1; an f16 field's code is its value.
+/// -1; a float field's code is its value.
 pub(crate) fn fetched(q: Quant, c: f32) -> f32 {
     match q {
-        Quant::Half => c,
+        Quant::Half | Quant::Single => c,
         _ => (c / q.max_code()).max(-1.0),
     }
 }
@@ -119,23 +126,23 @@ pub(crate) fn fetched(q: Quant, c: f32) -> f32 {
 fn float_codes(q: &[Quant]) -> Vec<u32> {
     let total: u32 = q.iter().map(|q| q.bits()).sum();
     let offs = field_offsets(q);
-    let mut rng = Pcg64Mcg::new(CODE_SEED);
-    let n: u64 = if total <= 24 {
-        1 << total
+    let items: Box<dyn Iterator<Item = [u32; 3]>> = if total <= 24 {
+        Box::new((0..1u32 << total).map(|k| [k, 0, 0]))
     } else {
-        RANDOM_ITEMS as u64
+        Box::new(wide_codes(q))
     };
-    let mut out = Vec::with_capacity(n as usize * q.len());
-    let sweep = (0..sweep_items(q)).map(|k| {
-        let w = swept(q, k);
-        u64::from(w[0]) | u64::from(w[1]) << 32
-    });
-    let rest = (0..n).map(|k| if total <= 24 { k } else { rng.next_u64() });
-    for bits in sweep.chain(rest) {
+    let mut out = Vec::with_capacity(items.size_hint().0 * q.len());
+    for words in items {
         for (quant, off) in q.iter().zip(&offs) {
-            let field = (bits >> off) & u64::from(quant.mask());
+            let word = words[(off / 32) as usize] >> (off % 32);
+            let field = if quant.bits() == 32 {
+                word
+            } else {
+                word & quant.mask()
+            };
             let c = match quant {
-                Quant::Half => half_value::<f32>(field as u32),
+                Quant::Half => half_value::<f32>(field),
+                Quant::Single => f32::from_bits(field),
                 Quant::Snorm(b) if field as f32 > quant.max_code() => {
                     field as f32 - (1u64 << b) as f32
                 }

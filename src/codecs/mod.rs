@@ -45,7 +45,7 @@ registry! {
     snorm3 => Snorm3, OneWord, TwoWords;
     snorm11_11_10;
     unorm3 => Unorm3;
-    float3 => Float16x3;
+    float3 => Float16x3, Float32x3;
     spherical => Spherical;
     lambert => Lambert;
     spheremap => Spheremap;

@@ -2,11 +2,11 @@
 //!
 //! Codes are carried as integral `f32` values: every code of up to 24 bits is exact in
 //! f32, so the model never needs signed integers, and two's complement fields come from
-//! one select (`c < 0 ? c + 2^b : c`). An f16 field ([`Quant::Half`]) carries its value
-//! instead, which f32 holds exactly.
+//! one select (`c < 0 ? c + 2^b : c`). A float field ([`Quant::Half`], [`Quant::Single`])
+//! carries its value instead, which f32 holds exactly.
 
 use super::half::{half_bits, half_value};
-use crate::model::{Float, Uint, V2};
+use crate::model::{Float, Uint, V2, V3};
 
 /// How one parameter is stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -18,6 +18,10 @@ pub enum Quant {
     /// An IEEE binary16 field ([`super::half`]): the "code" is the f16 value itself, held
     /// exactly in f32, and the field its bits; a zero is stored as +0.
     Half,
+    /// An IEEE binary32 field: the "code" is the value itself and the field its bits; a
+    /// zero is stored as +0, and a field with a zero exponent (a denormal, which an
+    /// implementation may flush) is read as +0.
+    Single,
 }
 
 impl Quant {
@@ -25,6 +29,7 @@ impl Quant {
         match self {
             Quant::Snorm(b) | Quant::Unorm(b) => b,
             Quant::Half => 16,
+            Quant::Single => 32,
         }
     }
     /// The largest code, `M` (for [`Quant::Half`], the largest finite f16).
@@ -33,17 +38,18 @@ impl Quant {
             Quant::Snorm(b) => ((1u32 << (b - 1)) - 1) as f32,
             Quant::Unorm(b) => ((1u64 << b) - 1) as f32,
             Quant::Half => 65504.0,
+            Quant::Single => f32::MAX,
         }
     }
     pub fn min_code(self) -> f32 {
         match self {
-            Quant::Snorm(_) | Quant::Half => -self.max_code(),
+            Quant::Snorm(_) | Quant::Half | Quant::Single => -self.max_code(),
             Quant::Unorm(_) => 0.0,
         }
     }
     fn lo(self) -> f32 {
         match self {
-            Quant::Snorm(_) | Quant::Half => -1.0,
+            Quant::Snorm(_) | Quant::Half | Quant::Single => -1.0,
             Quant::Unorm(_) => 0.0,
         }
     }
@@ -52,6 +58,7 @@ impl Quant {
             Quant::Snorm(b) => format!("snorm{b}"),
             Quant::Unorm(b) => format!("unorm{b}"),
             Quant::Half => "float16".to_string(),
+            Quant::Single => "float32".to_string(),
         }
     }
     /// Clamps to the storage range; NaN goes to the low end (comparisons with NaN are false).
@@ -62,13 +69,14 @@ impl Quant {
     pub fn quantize<F: Float>(self, x: F) -> F {
         match self {
             Quant::Half => half_value(half_bits(self.clamp(x))),
+            Quant::Single => self.clamp(x),
             _ => (self.clamp(x) * F::c(self.max_code())).round(),
         }
     }
     /// The code at or below `x`: where a precise search starts. Precise searches step
-    /// through integer codes, which an f16 field does not have.
+    /// through integer codes, which a float field does not have.
     pub fn floor_code<F: Float>(self, x: F) -> F {
-        assert!(self != Quant::Half, "no precise search over f16 fields");
+        assert!(!self.is_float(), "no precise search over float fields");
         (self.clamp(x) * F::c(self.max_code())).floor()
     }
     /// Clamps a candidate code to the valid codes.
@@ -79,8 +87,12 @@ impl Quant {
         match self {
             Quant::Snorm(_) => (c * F::c(1.0 / self.max_code())).at_least(F::c(-1.0)),
             Quant::Unorm(_) => c * F::c(1.0 / self.max_code()),
-            Quant::Half => c,
+            Quant::Half | Quant::Single => c,
         }
+    }
+    /// Whether the field holds a float's bits rather than an integer code.
+    pub fn is_float(self) -> bool {
+        matches!(self, Quant::Half | Quant::Single)
     }
     /// The unsigned bit field of a code.
     pub fn to_field<F: Float>(self, c: F) -> F::U {
@@ -96,6 +108,7 @@ impl Quant {
                 let h = half_bits(c);
                 F::U::sel((h & F::U::c(0x7fff)).lt(F::U::c(1)), F::U::c(0), h)
             }
+            Quant::Single => plus_zero_below_normal(c.to_bits()),
         }
     }
     /// The code held in an unsigned bit field (already masked to `bits`).
@@ -108,6 +121,7 @@ impl Quant {
             }
             Quant::Unorm(_) => u.to_f(),
             Quant::Half => half_value(u),
+            Quant::Single => plus_zero_below_normal(u).as_float(),
         }
     }
     pub fn mask(self) -> u32 {
@@ -137,11 +151,19 @@ impl std::ops::Deref for Quants {
     }
 }
 
-/// A packed code: one `u32`, or two for layouts wider than 32 bits (snorm16×3).
+/// The bits of an f32 with zeros and denormals (exponent field 0) as `+0`, decided on the
+/// bits: an implementation may flush a denormal or lose the sign of a zero, so neither
+/// may reach a stored field or a decoded value.
+fn plus_zero_below_normal<U: Uint>(b: U) -> U {
+    U::sel((b & U::c(0x7f80_0000)).lt(U::c(1)), U::c(0), b)
+}
+
+/// A packed code: one `u32`, two for layouts wider than 32 bits (snorm16×3), or three
+/// (float32×3).
 pub trait Code<F: Float>: crate::model::trace::Value {
     const WORDS: usize;
     fn word(self, i: usize) -> F::U;
-    fn from_words(w: [F::U; 2]) -> Self;
+    fn from_words(w: [F::U; 3]) -> Self;
 }
 
 impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for U {
@@ -149,7 +171,7 @@ impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for U {
     fn word(self, _: usize) -> U {
         self
     }
-    fn from_words(w: [U; 2]) -> Self {
+    fn from_words(w: [U; 3]) -> Self {
         w[0]
     }
 }
@@ -159,8 +181,18 @@ impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V2<U> {
     fn word(self, i: usize) -> U {
         if i == 0 { self.x } else { self.y }
     }
-    fn from_words(w: [U; 2]) -> Self {
+    fn from_words(w: [U; 3]) -> Self {
         V2::new(w[0], w[1])
+    }
+}
+
+impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V3<U> {
+    const WORDS: usize = 3;
+    fn word(self, i: usize) -> U {
+        [self.x, self.y, self.z][i]
+    }
+    fn from_words(w: [U; 3]) -> Self {
+        V3::new(w[0], w[1], w[2])
     }
 }
 

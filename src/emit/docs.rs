@@ -73,7 +73,7 @@ fn quants(e: &Emitted) -> Option<&[Quant]> {
 
 fn param_range(q: &[Quant]) -> &'static str {
     match q[0] {
-        Quant::Snorm(_) | Quant::Half => "[-1, 1]",
+        Quant::Snorm(_) | Quant::Half | Quant::Single => "[-1, 1]",
         Quant::Unorm(_) => "[0, 1]",
     }
 }

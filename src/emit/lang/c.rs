@@ -2,7 +2,8 @@
 //! lanes the printer computes one by one, and public entry points over plain arrays:
 //! `uint32_t unitpack_<id>_encode(const float v[3])`, `void unitpack_<id>_decode(uint32_t
 //! code, float out[3])`, `_encode_float` / `_decode_float` over `float` arrays; codes of
-//! two words are `uint64_t` (first word in the low half). The struct forms, named with a
+//! two words are `uint64_t` (first word in the low half), codes of three `uint32_t[3]`
+//! arrays (`void ..._encode(const float v[3], uint32_t out[3])`). The struct forms, named with a
 //! `_v` suffix, are what the functions call among themselves.
 //!
 //! The arithmetic is exact only when the compiler keeps it as written: no `-ffast-math`,
@@ -66,8 +67,8 @@ impl C {
                     ));
                     args.push(format!("{p}_w"));
                 }
-                (Kind::F32, n) if n > 1 => {
-                    sig.push(format!("const float {p}[{n}]"));
+                (kind @ (Kind::F32 | Kind::U32), n) if n > 1 => {
+                    sig.push(format!("const {} {p}[{n}]", self.ty(Ty { kind, lanes: 1 })));
                     let lanes: Vec<String> = (0..n).map(|i| format!("{p}[{i}]")).collect();
                     body.push(format!(
                         "const {} {p}_v = {{ {} }};",
@@ -90,8 +91,8 @@ impl C {
                 body.push("return (uint64_t)r.x | ((uint64_t)r.y << 32);".into());
                 "uint64_t"
             }
-            (Kind::F32, n) if n > 1 => {
-                sig.push(format!("float out[{n}]"));
+            (kind @ (Kind::F32 | Kind::U32), n) if n > 1 => {
+                sig.push(format!("{} out[{n}]", self.ty(Ty { kind, lanes: 1 })));
                 body.push(format!("const {} r = {call};", self.ty(ret)));
                 for (i, l) in super::LANES.iter().take(n as usize).enumerate() {
                     body.push(format!("out[{i}] = r.{l};"));
@@ -208,7 +209,8 @@ pub fn driver(include: &str, funcs: &[(&str, Ty, Ty)]) -> String {
         let (inw, outw) = (param.lanes as usize, ret.lanes as usize);
         let arg = match (param.kind, param.lanes) {
             (Kind::U32, 1) => "w[0]".to_string(),
-            (Kind::U32, _) => "(uint64_t)w[0] | ((uint64_t)w[1] << 32)".to_string(),
+            (Kind::U32, 2) => "(uint64_t)w[0] | ((uint64_t)w[1] << 32)".to_string(),
+            (Kind::U32, _) => "w".to_string(),
             _ => "a".to_string(),
         };
         let mut body = vec![];
@@ -218,11 +220,12 @@ pub fn driver(include: &str, funcs: &[(&str, Ty, Ty)]) -> String {
         }
         match (ret.kind, ret.lanes) {
             (Kind::U32, 1) => body.push(format!("r[0] = {func}({arg});")),
-            (Kind::U32, _) => {
+            (Kind::U32, 2) => {
                 body.push(format!("const uint64_t c = {func}({arg});"));
                 body.push("r[0] = (uint32_t)c;".into());
                 body.push("r[1] = (uint32_t)(c >> 32);".into());
             }
+            (Kind::U32, _) => body.push(format!("{func}({arg}, r);")),
             _ => {
                 body.push(format!("float o[{outw}];"));
                 body.push(format!("{func}({arg}, o);"));
