@@ -21,7 +21,8 @@
 
 use crate::codecs::codec::Codec;
 pub use crate::codecs::cpu::*;
-use crate::codecs::functions::{decode_packed, encode_packed};
+use crate::codecs::functions::{Function, Role, decode_packed, encode_packed};
+use crate::codecs::{Spec, SpecError};
 use crate::model::V3;
 
 /// A codec with its encoder chosen (fast: nearest codes; precise: the survey's "P" search).
@@ -81,6 +82,93 @@ impl<C: Codec> Encoder<C> {
         );
         for (o, c) in out.iter_mut().zip(input) {
             *o = self.decode(*c);
+        }
+    }
+}
+
+/// A spec's packed encoder and decoder over slices, chosen at run time and compiled inside
+/// unitpack: nothing here is generic, so none of it is instantiated in the calling crate.
+///
+/// [`Encoder`]'s methods are generic, so they are compiled with the caller's profile: in a
+/// dependent crate's debug build, unoptimized (about 20× slower than release). `Batch`'s
+/// code is unitpack's own, and with
+///
+/// ```toml
+/// [profile.dev.package.unitpack]
+/// opt-level = 3
+/// ```
+///
+/// in the dependent crate's `Cargo.toml` it runs optimized in that debug build. It computes
+/// the same bits as [`Encoder`] (the same model; `tests/api.rs` compares them).
+///
+/// ```
+/// use unitpack::api::Batch;
+///
+/// let oct = Batch::new("oct24p").unwrap();
+/// let normals = [[0.0, 0.6, 0.8], [0.0, 0.0, -1.0]];
+/// let mut codes = vec![0u32; normals.len() * oct.words()];
+/// oct.encode(&normals, &mut codes);
+/// let mut back = [[0f32; 3]; 2];
+/// oct.decode(&codes, &mut back);
+/// assert!((back[0][1] - 0.6).abs() < 1e-3);
+/// ```
+pub struct Batch {
+    encode: Function,
+    decode: Function,
+}
+
+impl Batch {
+    /// The batch codec of a spec as the CLI takes it (`oct24p`, `oct24:layout=rgb8`).
+    /// A packing helper (no encoder or decoder) is an error.
+    pub fn new(spec: &str) -> Result<Batch, SpecError> {
+        let spec: Spec = spec.parse()?;
+        let mut functions = spec.emitted().functions;
+        let mut take = |role| {
+            functions
+                .iter()
+                .position(|f| f.role == role)
+                .map(|i| functions.swap_remove(i))
+        };
+        match (take(Role::Encode), take(Role::Decode)) {
+            (Some(encode), Some(decode)) => Ok(Batch { encode, decode }),
+            _ => Err(SpecError::Invalid(format!(
+                "{} is a packing helper, not a codec: it has no encode/decode",
+                spec.id()
+            ))),
+        }
+    }
+
+    /// 32-bit words per code: 1, 2 (`snorm16x3`, `float16x3`) or 3 (`float32x3`), first
+    /// word first.
+    pub fn words(&self) -> usize {
+        self.encode.out_words
+    }
+
+    /// Encodes `input` into `out`, `words()` words per vector.
+    pub fn encode(&self, input: &[[f32; 3]], out: &mut [u32]) {
+        let w = self.words();
+        assert_eq!(
+            input.len() * w,
+            out.len(),
+            "Batch::encode: out must hold words() = {w} words per input vector"
+        );
+        for (v, o) in input.iter().zip(out.chunks_exact_mut(w)) {
+            (self.encode.eval)(&v.map(f32::to_bits), o);
+        }
+    }
+
+    /// Decodes `codes` (`words()` words each) into `out`.
+    pub fn decode(&self, codes: &[u32], out: &mut [[f32; 3]]) {
+        let w = self.words();
+        assert_eq!(
+            codes.len(),
+            out.len() * w,
+            "Batch::decode: codes must hold words() = {w} words per output vector"
+        );
+        let mut bits = [0u32; 3];
+        for (c, o) in codes.chunks_exact(w).zip(out.iter_mut()) {
+            (self.decode.eval)(c, &mut bits);
+            *o = bits.map(f32::from_bits);
         }
     }
 }

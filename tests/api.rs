@@ -1,7 +1,7 @@
 //! The CPU library: construction errors, slices, and round trips.
 
 use unitpack::api::{
-    CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
+    Batch, CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
     Paraboloid, Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
@@ -46,6 +46,69 @@ fn slices_match_single_calls_and_round_trip_within_the_codec_error() {
 fn slice_length_mismatch_is_refused() {
     let oct = Oct::new(16).unwrap().fast();
     oct.encode_slice(&[[0.0, 0.0, 1.0]; 2], &mut [0u32; 3]);
+}
+
+/// The non-generic batch API computes the typed encoders' bits, for one-, two- and
+/// three-word codes, fast and precise, with an option; decoding those codes likewise.
+#[test]
+fn batches_match_the_typed_encoders_bit_for_bit() {
+    let mut vs = random_unit_vectors(9, 2048, false);
+    vs.extend([[0.0, 0.0, 0.0], [f32::NAN, 1.0, 0.0], [1e30, -1e30, 3.0]]);
+    let check = |spec: &str,
+                 words: usize,
+                 enc: &dyn Fn([f32; 3]) -> Vec<u32>,
+                 dec: &dyn Fn(&[u32]) -> [f32; 3]| {
+        let b = Batch::new(spec).unwrap();
+        assert_eq!(b.words(), words, "{spec}");
+        let mut codes = vec![0u32; vs.len() * words];
+        b.encode(&vs, &mut codes);
+        let mut back = vec![[0f32; 3]; vs.len()];
+        b.decode(&codes, &mut back);
+        for ((v, c), d) in vs.iter().zip(codes.chunks(words)).zip(&back) {
+            assert_eq!(c, &enc(*v)[..], "{spec}: {v:?}");
+            assert_eq!(
+                d.map(f32::to_bits),
+                dec(c).map(f32::to_bits),
+                "{spec}: {c:x?}"
+            );
+        }
+    };
+    let oct = Oct::new(24).unwrap().precise();
+    check("oct24p", 1, &|v| vec![oct.encode(v)], &|c| oct.decode(c[0]));
+    let oct = Oct::new(16).unwrap().fast();
+    check("oct16", 1, &|v| vec![oct.encode(v)], &|c| oct.decode(c[0]));
+    let s = StereoScaled::new(24)
+        .unwrap()
+        .with_scale(2.0)
+        .unwrap()
+        .fast();
+    check("stereo_scaled24:scale=2", 1, &|v| vec![s.encode(v)], &|c| {
+        s.decode(c[0])
+    });
+    let h = Float16x3.fast();
+    check("float16x3", 2, &|v| h.encode(v).to_array().to_vec(), &|c| {
+        h.decode(unitpack::model::V2::new(c[0], c[1]))
+    });
+    let f = Float32x3.fast();
+    check("float32x3", 3, &|v| f.encode(v).to_array().to_vec(), &|c| {
+        f.decode(unitpack::model::V3::new(c[0], c[1], c[2]))
+    });
+}
+
+#[test]
+fn batch_refuses_packing_helpers_and_bad_specs() {
+    let e = Batch::new("snorm12x2").err().unwrap().to_string();
+    assert!(e.contains("packing helper"), "{e}");
+    let e = Batch::new("oct17").err().unwrap().to_string();
+    assert!(e.contains("16, 20, 22, 24, 32"), "{e}");
+}
+
+#[test]
+#[should_panic(expected = "words() = 2 words per input vector")]
+fn batch_output_length_is_checked() {
+    Batch::new("snorm16x3")
+        .unwrap()
+        .encode(&[[0.0, 0.0, 1.0]; 2], &mut [0u32; 2]);
 }
 
 /// The documented layouts: snorm11_11_10 is x in bits 0–10, y in 11–21, z in 22–31;
