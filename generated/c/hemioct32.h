@@ -95,41 +95,28 @@ static inline void unitpack_hemioct32_decode(uint32_t code, float out[3]) {
 // Struct form of unitpack_hemioct32_encode_float.
 static inline unitpack_vec2 unitpack_hemioct32_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
-    const unitpack_vec3 normal = { t2.x ? 0.0f : v.x, t2.y ? 0.0f : v.y, t2.z ? 0.0f : v.z };
-    const unitpack_vec3 t3 = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
-    const bool t4 = t3.x >= t3.y;
-    const float t5 = t4 ? t3.x : t3.y;
-    const bool t6 = t5 >= t3.z;
-    const float largest = t6 ? t5 : t3.z;
-    const uint32_t t7 = unitpack_bits_of(largest);
-    const uint32_t t8 = t7 & 2139095040u;
-    const uint32_t t9 = 2139095040u - t8;
-    const float scale = unitpack_float_of(t9);
-    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
-    const unitpack_vec3 t10 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
-    const float t11 = t10.x + t10.y;
-    const float sum = t11 + t10.z;
-    const bool t12 = sum >= 2.0f;
-    const bool t13 = sum < 16.0f;
-    const bool t14 = t12 && t13;
-    const unitpack_vec3 t15 = { fabsf(scaled.x), fabsf(scaled.y), fabsf(scaled.z) };
-    const unitpack_bvec3 t16 = { t15.x < 1.8189894e-12f, t15.y < 1.8189894e-12f, t15.z < 1.8189894e-12f };
-    const unitpack_vec3 w = { t16.x ? 0.0f : scaled.x, t16.y ? 0.0f : scaled.y, t16.z ? 0.0f : scaled.z };
-    const bool t17 = w.z > 0.0f;
-    const float t18 = t17 ? w.z : 0.0f;
-    const unitpack_vec3 t19 = { w.x, w.y, t18 };
-    const unitpack_vec3 t20 = { fabsf(t19.x), fabsf(t19.y), fabsf(t19.z) };
-    const float t21 = t20.x + t20.y;
-    const float l1 = t21 + t20.z;
-    const float t22 = w.x + w.y;
-    const float t23 = w.x - w.y;
-    const unitpack_vec2 n = { t22, t23 };
-    const bool t24 = l1 > 0.0f;
-    const bool t25 = t14 && t24;
-    const unitpack_vec2 t26 = { n.x / l1, n.y / l1 };
-    const unitpack_vec2 t27 = { t25 ? t26.x : 0.0f, t25 ? t26.y : 0.0f };
-    return t27;
+    const float t2 = t1.x + t1.y;
+    const float t3 = t2 + t1.z;
+    const bool t4 = t3 < 7.888609e-31f;
+    const float t5 = t4 ? 1.2676506e30f : 1.0f;
+    const bool t6 = t3 <= 3.4028235e38f;
+    const float t7 = t6 ? t5 : 0.25f;
+    const unitpack_vec3 w = { v.x * t7, v.y * t7, v.z * t7 };
+    const bool t8 = w.z > 0.0f;
+    const float t9 = t8 ? w.z : 0.0f;
+    const unitpack_vec3 t10 = { w.x, w.y, t9 };
+    const unitpack_vec3 t11 = { fabsf(t10.x), fabsf(t10.y), fabsf(t10.z) };
+    const float t12 = t11.x + t11.y;
+    const float l1 = t12 + t11.z;
+    const unitpack_vec2 p = { w.x / l1, w.y / l1 };
+    const bool t13 = l1 > 0.0f;
+    const bool t14 = l1 <= 3.4028235e38f;
+    const bool t15 = t13 && t14;
+    const float t16 = p.x + p.y;
+    const float t17 = p.x - p.y;
+    const unitpack_vec2 t18 = { t16, t17 };
+    const unitpack_vec2 t19 = { t15 ? t18.x : 0.0f, t15 ? t18.y : 0.0f };
+    return t19;
 }
 
 // unitpack_hemioct32_encode_float: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder, float form.

@@ -75,41 +75,28 @@ vec3 unitpack_hemioct24_decode(uint code) {
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound); MSE of the components of n - n' 2.680e-8, PSNR 75.72 dB.
 vec2 unitpack_hemioct24_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(v);
-    bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
-    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), t2);
-    UNITPACK_PRECISE vec3 t3 = abs(normal);
-    bool t4 = t3.x >= t3.y;
-    UNITPACK_PRECISE float t5 = t4 ? t3.x : t3.y;
-    bool t6 = t5 >= t3.z;
-    UNITPACK_PRECISE float largest = t6 ? t5 : t3.z;
-    uint t7 = floatBitsToUint(largest);
-    uint t8 = t7 & 2139095040u;
-    uint t9 = 2139095040u - t8;
-    UNITPACK_PRECISE float scale = uintBitsToFloat(t9);
-    UNITPACK_PRECISE vec3 scaled = normal * scale;
-    UNITPACK_PRECISE vec3 t10 = abs(scaled);
-    UNITPACK_PRECISE float t11 = t10.x + t10.y;
-    UNITPACK_PRECISE float sum = t11 + t10.z;
-    bool t12 = sum >= 2.0;
-    bool t13 = sum < 16.0;
-    bool t14 = t12 && t13;
-    UNITPACK_PRECISE vec3 t15 = abs(scaled);
-    bvec3 t16 = lessThan(t15, vec3(1.8189894e-12));
-    UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), t16);
-    bool t17 = w.z > 0.0;
-    UNITPACK_PRECISE float t18 = t17 ? w.z : 0.0;
-    UNITPACK_PRECISE vec3 t19 = vec3(w.xy, t18);
-    UNITPACK_PRECISE vec3 t20 = abs(t19);
-    UNITPACK_PRECISE float t21 = t20.x + t20.y;
-    UNITPACK_PRECISE float l1 = t21 + t20.z;
-    UNITPACK_PRECISE float t22 = w.x + w.y;
-    UNITPACK_PRECISE float t23 = w.x - w.y;
-    UNITPACK_PRECISE vec2 n = vec2(t22, t23);
-    bool t24 = l1 > 0.0;
-    bool t25 = t14 && t24;
-    UNITPACK_PRECISE vec2 t26 = n / l1;
-    UNITPACK_PRECISE vec2 t27 = t25 ? t26 : vec2(0.0);
-    return t27;
+    UNITPACK_PRECISE float t2 = t1.x + t1.y;
+    UNITPACK_PRECISE float t3 = t2 + t1.z;
+    bool t4 = t3 < 7.888609e-31;
+    UNITPACK_PRECISE float t5 = t4 ? 1.2676506e30 : 1.0;
+    bool t6 = t3 <= 3.4028235e38;
+    UNITPACK_PRECISE float t7 = t6 ? t5 : 0.25;
+    UNITPACK_PRECISE vec3 w = v * t7;
+    bool t8 = w.z > 0.0;
+    UNITPACK_PRECISE float t9 = t8 ? w.z : 0.0;
+    UNITPACK_PRECISE vec3 t10 = vec3(w.xy, t9);
+    UNITPACK_PRECISE vec3 t11 = abs(t10);
+    UNITPACK_PRECISE float t12 = t11.x + t11.y;
+    UNITPACK_PRECISE float l1 = t12 + t11.z;
+    UNITPACK_PRECISE vec2 p = w.xy / l1;
+    bool t13 = l1 > 0.0;
+    bool t14 = l1 <= 3.4028235e38;
+    bool t15 = t13 && t14;
+    UNITPACK_PRECISE float t16 = p.x + p.y;
+    UNITPACK_PRECISE float t17 = p.x - p.y;
+    UNITPACK_PRECISE vec2 t18 = vec2(t16, t17);
+    UNITPACK_PRECISE vec2 t19 = t15 ? t18 : vec2(0.0);
+    return t19;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.

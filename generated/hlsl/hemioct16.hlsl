@@ -74,41 +74,28 @@ float3 unitpack_hemioct16_decode(uint code) {
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.24002°, sample max 0.54445° (not a bound); MSE of the components of n - n' 6.995e-6, PSNR 51.55 dB.
 float2 unitpack_hemioct16_encode_float(float3 v) {
     precise float3 t1 = abs(v);
-    bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
-    precise float3 normal = UNITPACK_SELECT(t2, float3(0.0, 0.0, 0.0), v);
-    precise float3 t3 = abs(normal);
-    bool t4 = t3.x >= t3.y;
-    precise float t5 = t4 ? t3.x : t3.y;
-    bool t6 = t5 >= t3.z;
-    precise float largest = t6 ? t5 : t3.z;
-    uint t7 = asuint(largest);
-    uint t8 = t7 & 2139095040u;
-    uint t9 = 2139095040u - t8;
-    precise float scale = asfloat(t9);
-    precise float3 scaled = normal * scale;
-    precise float3 t10 = abs(scaled);
-    precise float t11 = t10.x + t10.y;
-    precise float sum = t11 + t10.z;
-    bool t12 = sum >= 2.0;
-    bool t13 = sum < 16.0;
-    bool t14 = t12 && t13;
-    precise float3 t15 = abs(scaled);
-    bool3 t16 = t15 < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12);
-    precise float3 w = UNITPACK_SELECT(t16, float3(0.0, 0.0, 0.0), scaled);
-    bool t17 = w.z > 0.0;
-    precise float t18 = t17 ? w.z : 0.0;
-    precise float3 t19 = float3(w.xy, t18);
-    precise float3 t20 = abs(t19);
-    precise float t21 = t20.x + t20.y;
-    precise float l1 = t21 + t20.z;
-    precise float t22 = w.x + w.y;
-    precise float t23 = w.x - w.y;
-    precise float2 n = float2(t22, t23);
-    bool t24 = l1 > 0.0;
-    bool t25 = t14 && t24;
-    precise float2 t26 = n / l1;
-    precise float2 t27 = t25 ? t26 : float2(0.0, 0.0);
-    return t27;
+    precise float t2 = t1.x + t1.y;
+    precise float t3 = t2 + t1.z;
+    bool t4 = t3 < 7.888609e-31;
+    precise float t5 = t4 ? 1.2676506e30 : 1.0;
+    bool t6 = t3 <= 3.4028235e38;
+    precise float t7 = t6 ? t5 : 0.25;
+    precise float3 w = v * t7;
+    bool t8 = w.z > 0.0;
+    precise float t9 = t8 ? w.z : 0.0;
+    precise float3 t10 = float3(w.xy, t9);
+    precise float3 t11 = abs(t10);
+    precise float t12 = t11.x + t11.y;
+    precise float l1 = t12 + t11.z;
+    precise float2 p = w.xy / l1;
+    bool t13 = l1 > 0.0;
+    bool t14 = l1 <= 3.4028235e38;
+    bool t15 = t13 && t14;
+    precise float t16 = p.x + p.y;
+    precise float t17 = p.x - p.y;
+    precise float2 t18 = float2(t16, t17);
+    precise float2 t19 = t15 ? t18 : float2(0.0, 0.0);
+    return t19;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
