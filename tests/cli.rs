@@ -1992,7 +1992,7 @@ fn every_spec_argument_documents_the_grammar() {
             "0x followed by hex digits",
             "decimal",
             "3 × f32",
-            "u64",
+            "u32 per word",
             "little-endian",
             "copied unchanged",
             "--out FILE nothing is written",

@@ -79,8 +79,10 @@ fn every_decoder_has_a_finite_bound_the_samples_respect() {
             .bound
             .unwrap_or_else(|| panic!("{} {} has no bound", row.spec, row.function));
         assert!(b.is_finite(), "{} {}: bound {b}", row.spec, row.function);
-        // Only a decoder that does no rounded arithmetic (float16x3 and float32x3: integer
-        // unpacking, at most one exact product, selects) deviates by nothing at all.
+        // Only the float baselines may be proven below one unit: float16x3's decoders and
+        // float32x3's packed decoder do no rounded arithmetic (integer unpacking, at most
+        // one exact product, selects) and deviate by nothing; float32x3's decode_float
+        // takes the fetched floats, which a flushing implementation may read as zero.
         assert!(
             b >= 1.0 || row.spec.starts_with("float"),
             "{} {}: bound {b}",

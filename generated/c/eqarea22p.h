@@ -8,7 +8,7 @@
 // and with -ffp-contract=off (GCC contracts a*b + c into fma by default in GNU C modes),
 // with SSE arithmetic (x87 excess precision is not supported), in the default rounding mode.
 // Public functions take and return plain arrays; codes of two words are uint64_t, first
-// word in the low half. The `_v` functions are the struct forms they call.
+// word in the low half; codes of three words are uint32_t[3], first word first. The `_v` functions are the struct forms they call.
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>

@@ -8,7 +8,7 @@
 // and with -ffp-contract=off (GCC contracts a*b + c into fma by default in GNU C modes),
 // with SSE arithmetic (x87 excess precision is not supported), in the default rounding mode.
 // Public functions take and return plain arrays; codes of two words are uint64_t, first
-// word in the low half. The `_v` functions are the struct forms they call.
+// word in the low half; codes of three words are uint32_t[3], first word first. The `_v` functions are the struct forms they call.
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -94,33 +94,35 @@ static inline void unitpack_hemioct32_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_hemioct32_encode_float.
 static inline unitpack_vec2 unitpack_hemioct32_encode_float_v(unitpack_vec3 v) {
-    const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const float t2 = t1.x + t1.y;
-    const float t3 = t2 + t1.z;
-    const bool t4 = t3 < 7.888609e-31f;
-    const float t5 = t4 ? 1.2676506e30f : 1.0f;
-    const bool t6 = t3 <= 3.4028235e38f;
-    const float t7 = t6 ? t5 : 0.25f;
-    const unitpack_vec3 w = { v.x * t7, v.y * t7, v.z * t7 };
-    const bool t8 = w.z > 0.0f;
-    const float t9 = t8 ? w.z : 0.0f;
-    const unitpack_vec3 t10 = { w.x, w.y, t9 };
-    const unitpack_vec3 t11 = { fabsf(t10.x), fabsf(t10.y), fabsf(t10.z) };
+    const bool t1 = v.z < 0.0f;
+    const float t2 = t1 ? 0.0f : v.z;
+    const unitpack_vec3 t3 = { v.x, v.y, t2 };
+    const unitpack_vec3 t4 = { fabsf(t3.x), fabsf(t3.y), fabsf(t3.z) };
+    const float t5 = t4.x + t4.y;
+    const float t6 = t5 + t4.z;
+    const bool t7 = t6 < 7.888609e-31f;
+    const float t8 = t7 ? 1.2676506e30f : 1.0f;
+    const bool t9 = t6 <= 3.4028235e38f;
+    const float t10 = t9 ? t8 : 0.25f;
+    const unitpack_vec3 w = { t3.x * t10, t3.y * t10, t3.z * t10 };
+    const unitpack_vec3 t11 = { fabsf(w.x), fabsf(w.y), fabsf(w.z) };
     const float t12 = t11.x + t11.y;
     const float l1 = t12 + t11.z;
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t13 = l1 > 0.0f;
-    const bool t14 = l1 <= 3.4028235e38f;
-    const bool t15 = t13 && t14;
-    const float t16 = p.x + p.y;
-    const float t17 = p.x - p.y;
-    const unitpack_vec2 t18 = { t16, t17 };
-    const unitpack_vec2 t19 = { t15 ? t18.x : 0.0f, t15 ? t18.y : 0.0f };
-    return t19;
+    const bool t13 = v.z >= (-3.4028235e38f);
+    const bool t14 = l1 > 0.0f;
+    const bool t15 = l1 <= 3.4028235e38f;
+    const bool t16 = t14 && t15;
+    const bool t17 = t16 && t13;
+    const float t18 = p.x + p.y;
+    const float t19 = p.x - p.y;
+    const unitpack_vec2 t20 = { t18, t19 };
+    const unitpack_vec2 t21 = { t17 ? t20.x : 0.0f, t17 ? t20.y : 0.0f };
+    return t21;
 }
 
 // unitpack_hemioct32_encode_float: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder, float form.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
@@ -210,7 +212,7 @@ static inline uint32_t unitpack_hemioct32_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct32_encode: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
 // Out: the packed code, uint32_t (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.

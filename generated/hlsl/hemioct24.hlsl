@@ -67,35 +67,37 @@ float3 unitpack_hemioct24_decode(uint code) {
 }
 
 // unitpack_hemioct24_encode_float: hemioct24 (hemi-octahedral, snorm×2, 24 bits, hemisphere), fast encoder, float form.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
 // Out: parameters in [-1, 1], unquantized, for a snorm12 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.01485°, sample max 0.03358° (not a bound); MSE of the components of n - n' 2.680e-8, PSNR 75.72 dB.
 float2 unitpack_hemioct24_encode_float(float3 v) {
-    precise float3 t1 = abs(v);
-    precise float t2 = t1.x + t1.y;
-    precise float t3 = t2 + t1.z;
-    bool t4 = t3 < 7.888609e-31;
-    precise float t5 = t4 ? 1.2676506e30 : 1.0;
-    bool t6 = t3 <= 3.4028235e38;
-    precise float t7 = t6 ? t5 : 0.25;
-    precise float3 w = v * t7;
-    bool t8 = w.z > 0.0;
-    precise float t9 = t8 ? w.z : 0.0;
-    precise float3 t10 = float3(w.xy, t9);
-    precise float3 t11 = abs(t10);
+    bool t1 = v.z < 0.0;
+    precise float t2 = t1 ? 0.0 : v.z;
+    precise float3 t3 = float3(v.xy, t2);
+    precise float3 t4 = abs(t3);
+    precise float t5 = t4.x + t4.y;
+    precise float t6 = t5 + t4.z;
+    bool t7 = t6 < 7.888609e-31;
+    precise float t8 = t7 ? 1.2676506e30 : 1.0;
+    bool t9 = t6 <= 3.4028235e38;
+    precise float t10 = t9 ? t8 : 0.25;
+    precise float3 w = t3 * t10;
+    precise float3 t11 = abs(w);
     precise float t12 = t11.x + t11.y;
     precise float l1 = t12 + t11.z;
     precise float2 p = w.xy / l1;
-    bool t13 = l1 > 0.0;
-    bool t14 = l1 <= 3.4028235e38;
-    bool t15 = t13 && t14;
-    precise float t16 = p.x + p.y;
-    precise float t17 = p.x - p.y;
-    precise float2 t18 = float2(t16, t17);
-    precise float2 t19 = t15 ? t18 : float2(0.0, 0.0);
-    return t19;
+    bool t13 = v.z >= (-3.4028235e38);
+    bool t14 = l1 > 0.0;
+    bool t15 = l1 <= 3.4028235e38;
+    bool t16 = t14 && t15;
+    bool t17 = t16 && t13;
+    precise float t18 = p.x + p.y;
+    precise float t19 = p.x - p.y;
+    precise float2 t20 = float2(t18, t19);
+    precise float2 t21 = t17 ? t20 : float2(0.0, 0.0);
+    return t21;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
@@ -159,7 +161,7 @@ float2 unitpack_hemioct24_round_codes(float3 a0) {
 }
 
 // unitpack_hemioct24_encode: hemioct24 (hemi-octahedral, snorm×2, 24 bits, hemisphere), fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.

@@ -52,35 +52,37 @@ fn unitpack_hemioct32_decode(code: u32) -> vec3<f32> {
 }
 
 // unitpack_hemioct32_encode_float: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder, float form.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00093°, sample max 0.00212° (not a bound); MSE of the components of n - n' 1.052e-10, PSNR 99.78 dB.
 fn unitpack_hemioct32_encode_float(v: vec3<f32>) -> vec2<f32> {
-    let t1 = abs(v);
-    let t2 = t1.x + t1.y;
-    let t3 = t2 + t1.z;
-    let t4 = t3 < 7.888609e-31f;
-    let t5 = select(1.0f, 1.2676506e30f, t4);
-    let t6 = t3 <= 3.4028235e38f;
-    let t7 = select(0.25f, t5, t6);
-    let w = v * t7;
-    let t8 = w.z > 0.0f;
-    let t9 = select(0.0f, w.z, t8);
-    let t10 = vec3<f32>(w.xy, t9);
-    let t11 = abs(t10);
+    let t1 = v.z < 0.0f;
+    let t2 = select(v.z, 0.0f, t1);
+    let t3 = vec3<f32>(v.xy, t2);
+    let t4 = abs(t3);
+    let t5 = t4.x + t4.y;
+    let t6 = t5 + t4.z;
+    let t7 = t6 < 7.888609e-31f;
+    let t8 = select(1.0f, 1.2676506e30f, t7);
+    let t9 = t6 <= 3.4028235e38f;
+    let t10 = select(0.25f, t8, t9);
+    let w = t3 * t10;
+    let t11 = abs(w);
     let t12 = t11.x + t11.y;
     let l1 = t12 + t11.z;
     let p = w.xy / l1;
-    let t13 = l1 > 0.0f;
-    let t14 = l1 <= 3.4028235e38f;
-    let t15 = t13 && t14;
-    let t16 = p.x + p.y;
-    let t17 = p.x - p.y;
-    let t18 = vec2<f32>(t16, t17);
-    let t19 = select(vec2<f32>(0.0f), t18, t15);
-    return t19;
+    let t13 = v.z >= (-3.4028235e38f);
+    let t14 = l1 > 0.0f;
+    let t15 = l1 <= 3.4028235e38f;
+    let t16 = t14 && t15;
+    let t17 = t16 && t13;
+    let t18 = p.x + p.y;
+    let t19 = p.x - p.y;
+    let t20 = vec2<f32>(t18, t19);
+    let t21 = select(vec2<f32>(0.0f), t20, t17);
+    return t21;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by comparing correctly rounded products, never a quotient or a root, so division and square root error, contraction, denormal flushing and lost signs of zero cannot change them.
@@ -144,7 +146,7 @@ fn unitpack_hemioct32_round_codes(a0: vec3<f32>) -> vec2<f32> {
 }
 
 // unitpack_hemioct32_encode: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z.
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
 // Out: the packed code, u32 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.

@@ -40,14 +40,16 @@ Formats (--format, or --input-format/--output-format for one side):
           a finite number beyond the f32 range (1e39) is an error.
           codes: one per line, 0x followed by hex digits (0x7f) or decimal digits (127);
           nothing else (no sign, 0b, 0o or _). A code with bits set above the spec's
-          width (oct16: 16 bits) is an error. Codes are written as 0x + 8 hex digits
-          (12 for specs above 32 bits), vectors as shortest round-trip decimals.
+          width (oct16: 16 bits) is an error. Codes are written as 0x + one hex digit
+          per 4 bits (8 for 32-bit specs, 12 for snorm16x3, 24 for float32x3),
+          vectors as shortest round-trip decimals.
           Output line N answers input line N: blank lines and lines starting with #
           are copied unchanged. A UTF-8 byte-order mark at the start and \\r\\n line
           ends are accepted; a line may be at most 1 MiB.
-  binary  raw little-endian records: a vector is 12 bytes (3 × f32), a code 4 bytes
-          (u32), or 8 bytes (u64) for specs above 32 bits (snorm16x3). Blank and
-          comment lines of text input produce no record.
+  binary  raw little-endian records: a vector is 12 bytes (3 × f32), a code one
+          little-endian u32 per word: 4 bytes, 8 above 32 bits (snorm16x3, float16x3),
+          12 above 64 (float32x3). Blank and comment lines of text input produce no
+          record.
 
 Errors: the first bad line or record ends the run with a one-line error naming it
 (exit status 2). With --out FILE nothing is written (FILE is replaced atomically, only

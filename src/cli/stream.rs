@@ -7,8 +7,8 @@
 //! accepted; output lines end in `\n`. Lines longer than [`MAX_LINE`] bytes are an error.
 //!
 //! Binary input and output are raw little-endian records, for pipelines that move many
-//! vectors: a vector is 12 bytes (three `f32`), a code 4 bytes (`u32`), or 8 bytes (`u64`)
-//! for specs wider than 32 bits (snorm16x3).
+//! vectors: a vector is 12 bytes (three `f32`), a code one `u32` per word of the spec: 4
+//! bytes, 8 for specs wider than 32 bits (snorm16x3), 12 above 64 (float32x3).
 //!
 //! The first bad line or record ends the run with an error naming it. Output before it
 //! has been written (to stdout) or is discarded (`--out`, see [`crate::atomic`]).

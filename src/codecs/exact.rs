@@ -117,6 +117,18 @@ fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
 /// in 32-bit integers and rounded once (see `fixed_sum_of_squares`), kept as
 /// `hi·2^24 + lo` (both then below `2^24`, so both convert exactly).
 pub fn sum_of_squares<F: Float, const N: usize>(a: [F::U; N]) -> F {
+    joined(square_sum_parts::<F, N>(a))
+}
+
+/// `hi·2^24 + lo` as a float: two exact conversions, an exact product and one rounding.
+fn joined<F: Float>((hi, lo): (F::U, F::U)) -> F {
+    hi.to_f() * F::c((1u32 << 24) as f32) + lo.to_f()
+}
+
+/// The exact `Σ aᵢ² = hi·2^24 + lo` of [`sum_of_squares`], both parts below `2^24`:
+/// with 12-bit limbs `a = a₁·2^12 + a₀`, every partial product is below `2^24`, so
+/// nothing wraps before the carry.
+fn square_sum_parts<F: Float, const N: usize>(a: [F::U; N]) -> (F::U, F::U) {
     let limb = F::U::c(0xfff);
     let low24 = F::U::c(0xff_ffff);
     let (mut hi, mut lo) = (F::U::c(0), F::U::c(0));
@@ -126,9 +138,7 @@ pub fn sum_of_squares<F: Float, const N: usize>(a: [F::U; N]) -> F {
         hi = hi + a1.wrapping_mul(a1) + cross.shr(11);
         lo = lo + a0.wrapping_mul(a0) + (cross.shl(13) & low24);
     }
-    let hi = hi + lo.shr(24);
-    let lo = lo & low24;
-    hi.to_f() * F::c((1u32 << 24) as f32) + lo.to_f()
+    (hi + lo.shr(24), lo & low24)
 }
 
 /// A 32-bit integer as the nearest f32, the same on every implementation: a conversion
@@ -144,25 +154,31 @@ pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
     fixed_sum_of_squares([w.x, w.y, w.z]).named("len2")
 }
 
-/// `round(sqrt(s)·2^21)` as an integer, for `s` from `fixed_length2` (`4 ≤ s < 48`, an
-/// integer multiple of `2^-42`), as a function of `s` alone: [`root`]'s truncated digits,
-/// stepped by one where the exact integer `S - N²` (`S = s·2^42`, both taken modulo `2^32`
-/// in integers, where the difference, far below `2^31`, is exact) says that `N ± ½` is
-/// passed. Without the step, a unit input would come out one ULP long about half the time.
-fn rounded_root<F: Float>(s: F) -> F::U {
+/// `N = round(sqrt(S))` for the exact integer `S = Σ Aᵢ²` of three integers `Aᵢ < 2^23`
+/// with `2^44 ≤ S < 3·2^46` (a canonical vector on `fixed_sum_of_squares`'s grid), given
+/// as its parts `hi·2^24 + lo` and as `s`, `S·2^-42` rounded once to f32.
+///
+/// `s` only estimates: [`root`]'s digits of `sqrt(s)`, within `2^-20` of the root of a
+/// value within a relative `2^-24` of `S·2^-42`, give an `n₀` within two units of `N`.
+/// The digits are then decided in integers: `S - n²` is computed modulo `2^32` from the
+/// exact parts (`|S - n²|` stays far below `2^31` for `n` near `N`, so the wrapped
+/// difference is exact), and `n` steps by one where `S - n² > n` (then `n + ½` is passed)
+/// or `S - n² < 1 - n` (then `n - ½` is not reached); two such steps reach `N`, which
+/// is the one integer with `1 - N ≤ S - N² ≤ N`. Without them a unit input would come
+/// out one ULP long about half the time.
+fn rounded_root<F: Float>(s: F, parts: (F::U, F::U)) -> F::U {
     let u = |v: u32| F::U::c(v);
     let n0 = (root(s).named("length") * F::c(FIXED_SCALE)).to_u();
-    // S modulo 2^32 from its exact 24-bit halves (S < 2^48 is a multiple of 2^22).
-    let big = s * F::c(FIXED_SCALE * FIXED_SCALE);
-    let hi = (big * F::c(1.0 / (1u32 << 24) as f32)).floor();
-    let lo = (big - hi * F::c((1u32 << 24) as f32)).to_u();
-    let wide = hi.to_u().shl(24).wrapping_add(lo);
-    // S - N² + 2^30: positive, so unsigned comparisons order it.
+    let wide = parts.0.shl(24).wrapping_add(parts.1);
+    // S - n² + 2^30: positive, so unsigned comparisons order it.
     let bias = u(1 << 30);
-    let e = wide.wrapping_sub(n0.wrapping_mul(n0)).wrapping_add(bias);
-    let up = (bias + n0).lt(e);
-    let down = e.lt(bias.wrapping_sub(n0) + u(1));
-    F::U::sel(up, n0 + u(1), F::U::sel(down, n0.wrapping_sub(u(1)), n0))
+    let step = |n: F::U| {
+        let e = wide.wrapping_sub(n.wrapping_mul(n)).wrapping_add(bias);
+        let up = (bias + n).lt(e);
+        let down = e.lt(bias.wrapping_sub(n) + u(1));
+        F::U::sel(up, n + u(1), F::U::sel(down, n.wrapping_sub(u(1)), n))
+    };
+    step(step(n0))
 }
 
 /// The direction of a canonical `w` as components on the `2^-24` grid (f32's spacing in
@@ -176,13 +192,15 @@ fn rounded_root<F: Float>(s: F) -> F::U {
 /// wrapped difference is its two's complement), and the correction
 /// `floor((2r + N) / 2N)` is estimated again and checked by the sign and size of the
 /// integer remainder it leaves. No rounding of a float decides a digit, so no
-/// deviation class can change the result. The direction is `A`'s, within `2^-22` rad of
-/// `w`'s; the grid adds at most `2^-25` per component.
+/// deviation class can change the result. The direction is `A`'s, within `√3·2^-22` rad
+/// of `w`'s (each floor moves a component of a vector longer than 2 by under `2^-21`);
+/// the grid adds at most `2^-25` per component.
 pub fn unit_on_grid<F: Float>(w: V3<F>) -> V3<F> {
     let u = |v: u32| F::U::c(v);
     let a = w.map(|x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u());
-    let s = sum_of_squares::<F, 3>([a.x, a.y, a.z]) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE));
-    let n = rounded_root(s);
+    let parts = square_sum_parts::<F, 3>([a.x, a.y, a.z]);
+    let s = joined::<F>(parts) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE));
+    let n = rounded_root(s, parts);
     let nf = n.to_f();
     let one = F::c((1u32 << 24) as f32);
     let component = |a: F::U, x: F| {
@@ -577,9 +595,16 @@ mod tests {
             let a = w
                 .to_array()
                 .map(|x| (x.abs() * FIXED_SCALE).floor() as u128);
-            let s = sum_of_squares::<f32, 3>(a.map(|a| a as u32)) / (FIXED_SCALE * FIXED_SCALE);
-            let big = u128::from((f64::from(s) * 2f64.powi(42)) as u64);
-            let n = u128::from(rounded_root::<f32>(s));
+            let parts = square_sum_parts::<f32, 3>(a.map(|a| a as u32));
+            let s = joined::<f32>(parts) / (FIXED_SCALE * FIXED_SCALE);
+            let big: u128 = a.iter().map(|a| a * a).sum();
+            let n = u128::from(rounded_root::<f32>(s, parts));
+            // An estimate off by a relative 2^-23 (n₀ up to two units away) still
+            // reaches N: the integers decide.
+            for off in [1.0 + 2f32.powi(-23), 1.0 - 2f32.powi(-23)] {
+                let moved = u128::from(rounded_root::<f32>(s * off, parts));
+                assert_eq!(moved, n, "{v:?}: estimate {} moved N", s * off);
+            }
             // (N - ½)² ≤ S < (N + ½)², in integers: N² - N < S ≤ N² + N.
             assert!(
                 n * n - n < big && big <= n * n + n,

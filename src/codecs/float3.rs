@@ -108,9 +108,10 @@ impl Codec for Float32x3 {
         unit_or_z(v)
     }
     /// The fetched floats themselves, with a denormal (which an implementation may
-    /// flush) read as +0 and only codes no encoder writes replaced.
+    /// flush) read as +0 and only codes no encoder writes replaced. The test is
+    /// "below the smallest normal", which NaN fails, so a NaN reaches `stored_or_z`.
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
-        let normal = |x: F| F::sel(x.abs().ge(F::c(f32::MIN_POSITIVE)), x, F::c(0.0));
+        let normal = |x: F| F::sel(x.abs().lt(F::c(f32::MIN_POSITIVE)), F::c(0.0), x);
         stored_or_z(p.map(normal))
     }
     /// Each component on the `2^-24` grid by [`unit_on_grid`]: integers decide every digit.

@@ -22,7 +22,7 @@ static INFO: Info = Info {
     domain: Some(Domain::Hemisphere),
     precise: true,
     source: "Cigolle et al. 2014, Listing 6 and Table 3",
-    edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
+    edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon)",
     decode_note: "every code decodes to a unit vector with z ≥ 0",
     options: &[],
 };
@@ -114,18 +114,27 @@ impl Codec for HemiOct {
         Domain::Hemisphere
     }
     /// The survey's Listing 6 on the input projected onto the +Z hemisphere: `(x ± y) /
-    /// (|x| + |y| + z)` with `z ← max(z, 0)`. The L1 projection needs no unit length, so
-    /// the input is only brought into range by oct's power-of-two [`fit_l1`] (exact), not
-    /// normalized, in 20 instructions instead of the 32 of `hemi_ratios`' canonical form.
-    /// `x/l1 ± y/l1` rather than `(x ± y)/l1`: a driver may factor the scale out of
-    /// `x·¼ + y·¼`, and `x + y` overflows for huge input; each quotient is at most 1.
-    /// Zero, NaN and infinite input and `-Z` fail `0 < l1 ≤ MAX` and give `(0, 0)`.
+    /// (|x| + |y| + z)` with a negative `z` replaced by 0 (a NaN kept, so that it fails
+    /// the check below). The L1 projection needs no unit length, so the projected input is
+    /// only brought into range by oct's power-of-two [`fit_l1`] (exact), not normalized,
+    /// in 20 instructions instead of the 32 of `hemi_ratios`' canonical form; fitting the
+    /// projection, not the input, keeps a denormal hemisphere L1 norm (`(1e-45, 1e-45,
+    /// -1)`) from reaching the division. `x/l1 ± y/l1` rather than `(x ± y)/l1`: a driver
+    /// may factor the scale out of `x·¼ + y·¼`, and `x + y` overflows for huge input;
+    /// each quotient is at most 1. Zero, NaN and infinite input and `-Z` fail
+    /// `0 < l1 ≤ MAX` or `z ≥ -MAX` and give `(0, 0)`.
+    ///
+    /// Within `2^-40` rad of `-Z` this form and the packed encoders part: `(1e-13, 0, -1)`
+    /// projects onto the horizon at `+X` here, while the packed encoders' canonical form
+    /// zeroes components below `2^-40` of the largest, sees `-Z` and writes `+Z`'s code.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let w = fit_l1(v).named("w");
-        let a = above_horizon(w).abs();
+        let h = V3::new(v.x, v.y, F::sel(v.z.lt(F::c(0.0)), F::c(0.0), v.z));
+        let w = fit_l1(h).named("w");
+        let a = w.abs();
         let l1 = (a.x + a.y + a.z).named("l1");
         let p = (w.xy() / l1).named("p");
-        let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX)));
+        let finite_z = v.z.ge(F::c(-f32::MAX));
+        let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX))).and(finite_z);
         V2::sel_all(ok, V2::new(p.x + p.y, p.x - p.y), V2::splat(F::c(0.0)))
     }
     fn direction<F: Float>(&self, e: V2<F>) -> V3<F> {
@@ -134,7 +143,8 @@ impl Codec for HemiOct {
         let v = V3::from_xy(t, F::c(1.0) - a.x - a.y).named("v");
         v / v.length_squared().sqrt()
     }
-    /// Listing 6 decided portably ([`crate::codecs::exact`]) from the same ratios.
+    /// Listing 6 decided portably ([`crate::codecs::exact`]) from [`hemi_ratios`]' exact
+    /// sums of the canonical input, not from `params`' quotients.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
