@@ -185,30 +185,24 @@ static inline unitpack_vec2 unitpack_hemioct24_round_codes_v(unitpack_vec3 a0) {
     const unitpack_vec2 t38 = { t37.x ? -1.0f : 0.0f, t37.y ? -1.0f : 0.0f };
     const unitpack_vec2 t39 = { t34.x ? 1.0f : t38.x, t34.y ? 1.0f : t38.y };
     const unitpack_vec2 t40 = { t30.x + t39.x, t30.y + t39.y };
-    const unitpack_bvec2 t41 = { t40.x >= 0.0f, t40.y >= 0.0f };
-    const unitpack_vec2 t42 = { t41.x ? t40.x : 0.0f, t41.y ? t40.y : 0.0f };
-    const unitpack_bvec2 t43 = { t42.x <= 2047.0f, t42.y <= 2047.0f };
-    const unitpack_vec2 t44 = { t43.x ? t42.x : 2047.0f, t43.y ? t42.y : 2047.0f };
-    const unitpack_vec2 t45 = { -t44.x, -t44.y };
-    const unitpack_vec2 t46 = { t26.x ? t45.x : t44.x, t26.y ? t45.y : t44.y };
-    const unitpack_vec2 t47 = { t25 ? t46.x : 0.0f, t25 ? t46.y : 0.0f };
-    return t47;
+    const unitpack_vec2 t41 = { -t40.x, -t40.y };
+    const unitpack_vec2 t42 = { t26.x ? t41.x : t40.x, t26.y ? t41.y : t40.y };
+    const unitpack_vec2 t43 = { t25 ? t42.x : 0.0f, t25 ? t42.y : 0.0f };
+    return t43;
 }
 
 // Struct form of unitpack_hemioct24_encode.
 static inline uint32_t unitpack_hemioct24_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 t1 = unitpack_hemioct24_round_codes_v(v);
     const float t2 = t1.x + 4096.0f;
-    const bool t3 = t1.x < 0.0f;
-    const float t4 = t3 ? t2 : t1.x;
-    const uint32_t t5 = (uint32_t)t4;
-    const float t6 = t1.y + 4096.0f;
-    const bool t7 = t1.y < 0.0f;
-    const float t8 = t7 ? t6 : t1.y;
-    const uint32_t t9 = (uint32_t)t8;
-    const uint32_t t10 = t9 << 12u;
-    const uint32_t t11 = t5 | t10;
-    return t11;
+    const uint32_t t3 = (uint32_t)t2;
+    const uint32_t t4 = t3 & 4095u;
+    const float t5 = t1.y + 4096.0f;
+    const uint32_t t6 = (uint32_t)t5;
+    const uint32_t t7 = t6 << 12u;
+    const uint32_t t8 = t7 & 16773120u;
+    const uint32_t t9 = t4 | t8;
+    return t9;
 }
 
 // unitpack_hemioct24_encode: hemioct24 (hemi-octahedral, snorm×2, 24 bits, hemisphere), fast encoder.

@@ -185,30 +185,24 @@ static inline unitpack_vec2 unitpack_oct22_round_codes_v(unitpack_vec3 a0) {
     const unitpack_vec2 t36 = { t35.x ? -1.0f : 0.0f, t35.y ? -1.0f : 0.0f };
     const unitpack_vec2 t37 = { t32.x ? 1.0f : t36.x, t32.y ? 1.0f : t36.y };
     const unitpack_vec2 t38 = { t28.x + t37.x, t28.y + t37.y };
-    const unitpack_bvec2 t39 = { t38.x >= 0.0f, t38.y >= 0.0f };
-    const unitpack_vec2 t40 = { t39.x ? t38.x : 0.0f, t39.y ? t38.y : 0.0f };
-    const unitpack_bvec2 t41 = { t40.x <= 1023.0f, t40.y <= 1023.0f };
-    const unitpack_vec2 t42 = { t41.x ? t40.x : 1023.0f, t41.y ? t40.y : 1023.0f };
-    const unitpack_vec2 t43 = { -t42.x, -t42.y };
-    const unitpack_vec2 t44 = { t24.x ? t43.x : t42.x, t24.y ? t43.y : t42.y };
-    const unitpack_vec2 t45 = { t14 ? t44.x : 0.0f, t14 ? t44.y : 0.0f };
-    return t45;
+    const unitpack_vec2 t39 = { -t38.x, -t38.y };
+    const unitpack_vec2 t40 = { t24.x ? t39.x : t38.x, t24.y ? t39.y : t38.y };
+    const unitpack_vec2 t41 = { t14 ? t40.x : 0.0f, t14 ? t40.y : 0.0f };
+    return t41;
 }
 
 // Struct form of unitpack_oct22_encode.
 static inline uint32_t unitpack_oct22_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 t1 = unitpack_oct22_round_codes_v(v);
     const float t2 = t1.x + 2048.0f;
-    const bool t3 = t1.x < 0.0f;
-    const float t4 = t3 ? t2 : t1.x;
-    const uint32_t t5 = (uint32_t)t4;
-    const float t6 = t1.y + 2048.0f;
-    const bool t7 = t1.y < 0.0f;
-    const float t8 = t7 ? t6 : t1.y;
-    const uint32_t t9 = (uint32_t)t8;
-    const uint32_t t10 = t9 << 11u;
-    const uint32_t t11 = t5 | t10;
-    return t11;
+    const uint32_t t3 = (uint32_t)t2;
+    const uint32_t t4 = t3 & 2047u;
+    const float t5 = t1.y + 2048.0f;
+    const uint32_t t6 = (uint32_t)t5;
+    const uint32_t t7 = t6 << 11u;
+    const uint32_t t8 = t7 & 4192256u;
+    const uint32_t t9 = t4 | t8;
+    return t9;
 }
 
 // unitpack_oct22_encode: oct22 (octahedral, snorm×2, 22 bits, sphere), fast encoder.

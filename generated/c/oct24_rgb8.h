@@ -184,25 +184,21 @@ static inline unitpack_vec3 unitpack_oct24_rgb8_round_codes_v(unitpack_vec3 a0) 
     const unitpack_vec2 t36 = { t35.x ? -1.0f : 0.0f, t35.y ? -1.0f : 0.0f };
     const unitpack_vec2 t37 = { t32.x ? 1.0f : t36.x, t32.y ? 1.0f : t36.y };
     const unitpack_vec2 t38 = { t28.x + t37.x, t28.y + t37.y };
-    const unitpack_bvec2 t39 = { t38.x >= 0.0f, t38.y >= 0.0f };
-    const unitpack_vec2 t40 = { t39.x ? t38.x : 0.0f, t39.y ? t38.y : 0.0f };
-    const unitpack_bvec2 t41 = { t40.x <= 2047.0f, t40.y <= 2047.0f };
-    const unitpack_vec2 t42 = { t41.x ? t40.x : 2047.0f, t41.y ? t40.y : 2047.0f };
-    const unitpack_vec2 t43 = { -t42.x, -t42.y };
-    const unitpack_vec2 t44 = { t24.x ? t43.x : t42.x, t24.y ? t43.y : t42.y };
-    const unitpack_vec2 t45 = { t14 ? t44.x : 0.0f, t14 ? t44.y : 0.0f };
-    const unitpack_vec2 t46 = { t45.x + 2047.0f, t45.y + 2047.0f };
-    const float x16 = t46.x * 0.0625f;
+    const unitpack_vec2 t39 = { -t38.x, -t38.y };
+    const unitpack_vec2 t40 = { t24.x ? t39.x : t38.x, t24.y ? t39.y : t38.y };
+    const unitpack_vec2 t41 = { t14 ? t40.x : 0.0f, t14 ? t40.y : 0.0f };
+    const unitpack_vec2 t42 = { t41.x + 2047.0f, t41.y + 2047.0f };
+    const float x16 = t42.x * 0.0625f;
     const float hi = floorf(x16);
-    const float t47 = t46.y * 0.00390625f;
-    const float t = floorf(t47);
-    const float t48 = x16 - hi;
-    const float t49 = t48 * 256.0f;
-    const float t50 = t49 + t;
-    const float t51 = t * 256.0f;
-    const float t52 = t46.y - t51;
-    const unitpack_vec3 t53 = { hi, t50, t52 };
-    return t53;
+    const float t43 = t42.y * 0.00390625f;
+    const float t = floorf(t43);
+    const float t44 = x16 - hi;
+    const float t45 = t44 * 256.0f;
+    const float t46 = t45 + t;
+    const float t47 = t * 256.0f;
+    const float t48 = t42.y - t47;
+    const unitpack_vec3 t49 = { hi, t46, t48 };
+    return t49;
 }
 
 // Struct form of unitpack_oct24_rgb8_encode_float.

@@ -253,21 +253,17 @@ static inline unitpack_vec3 unitpack_snorm16x3_round_codes_v(unitpack_vec3 a0) {
 static inline unitpack_uvec2 unitpack_snorm16x3_encode_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = unitpack_snorm16x3_round_codes_v(v);
     const float t2 = t1.x + 65536.0f;
-    const bool t3 = t1.x < 0.0f;
-    const float t4 = t3 ? t2 : t1.x;
-    const uint32_t t5 = (uint32_t)t4;
-    const float t6 = t1.y + 65536.0f;
-    const bool t7 = t1.y < 0.0f;
-    const float t8 = t7 ? t6 : t1.y;
-    const uint32_t t9 = (uint32_t)t8;
-    const uint32_t t10 = t9 << 16u;
-    const uint32_t t11 = t5 | t10;
-    const float t12 = t1.z + 65536.0f;
-    const bool t13 = t1.z < 0.0f;
-    const float t14 = t13 ? t12 : t1.z;
-    const uint32_t t15 = (uint32_t)t14;
-    const unitpack_uvec2 t16 = { t11, t15 };
-    return t16;
+    const uint32_t t3 = (uint32_t)t2;
+    const uint32_t t4 = t3 & 65535u;
+    const float t5 = t1.y + 65536.0f;
+    const uint32_t t6 = (uint32_t)t5;
+    const uint32_t t7 = t6 << 16u;
+    const uint32_t t8 = t4 | t7;
+    const float t9 = t1.z + 65536.0f;
+    const uint32_t t10 = (uint32_t)t9;
+    const uint32_t t11 = t10 & 65535u;
+    const unitpack_uvec2 t12 = { t8, t11 };
+    return t12;
 }
 
 // unitpack_snorm16x3_encode: snorm16x3 (components as snorm×3, 48 bits, sphere), fast encoder.

@@ -252,22 +252,19 @@ static inline unitpack_vec3 unitpack_snorm5x3_round_codes_v(unitpack_vec3 a0) {
 static inline uint32_t unitpack_snorm5x3_encode_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = unitpack_snorm5x3_round_codes_v(v);
     const float t2 = t1.x + 32.0f;
-    const bool t3 = t1.x < 0.0f;
-    const float t4 = t3 ? t2 : t1.x;
-    const uint32_t t5 = (uint32_t)t4;
-    const float t6 = t1.y + 32.0f;
-    const bool t7 = t1.y < 0.0f;
-    const float t8 = t7 ? t6 : t1.y;
-    const uint32_t t9 = (uint32_t)t8;
-    const uint32_t t10 = t9 << 5u;
-    const uint32_t t11 = t5 | t10;
-    const float t12 = t1.z + 32.0f;
-    const bool t13 = t1.z < 0.0f;
-    const float t14 = t13 ? t12 : t1.z;
-    const uint32_t t15 = (uint32_t)t14;
-    const uint32_t t16 = t15 << 10u;
-    const uint32_t t17 = t11 | t16;
-    return t17;
+    const uint32_t t3 = (uint32_t)t2;
+    const uint32_t t4 = t3 & 31u;
+    const float t5 = t1.y + 32.0f;
+    const uint32_t t6 = (uint32_t)t5;
+    const uint32_t t7 = t6 << 5u;
+    const uint32_t t8 = t7 & 992u;
+    const uint32_t t9 = t4 | t8;
+    const float t10 = t1.z + 32.0f;
+    const uint32_t t11 = (uint32_t)t10;
+    const uint32_t t12 = t11 << 10u;
+    const uint32_t t13 = t12 & 31744u;
+    const uint32_t t14 = t9 | t13;
+    return t14;
 }
 
 // unitpack_snorm5x3_encode: snorm5x3 (components as snorm×3, 15 bits, sphere), fast encoder.

@@ -650,16 +650,13 @@ static inline void unitpack_xy32p_encode_float(const float v[3], float out[2]) {
 static inline uint32_t unitpack_xy32p_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 t1 = unitpack_xy32p_encode_codes_v(v);
     const float t2 = t1.x + 65536.0f;
-    const bool t3 = t1.x < 0.0f;
-    const float t4 = t3 ? t2 : t1.x;
-    const uint32_t t5 = (uint32_t)t4;
-    const float t6 = t1.y + 65536.0f;
-    const bool t7 = t1.y < 0.0f;
-    const float t8 = t7 ? t6 : t1.y;
-    const uint32_t t9 = (uint32_t)t8;
-    const uint32_t t10 = t9 << 16u;
-    const uint32_t t11 = t5 | t10;
-    return t11;
+    const uint32_t t3 = (uint32_t)t2;
+    const uint32_t t4 = t3 & 65535u;
+    const float t5 = t1.y + 65536.0f;
+    const uint32_t t6 = (uint32_t)t5;
+    const uint32_t t7 = t6 << 16u;
+    const uint32_t t8 = t4 | t7;
+    return t8;
 }
 
 // unitpack_xy32p_encode: xy32p (x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere), precise encoder.

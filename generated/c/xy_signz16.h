@@ -261,19 +261,17 @@ static inline unitpack_vec3 unitpack_xy_signz16_round_codes_v(unitpack_vec3 a0) 
 static inline uint32_t unitpack_xy_signz16_encode_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = unitpack_xy_signz16_round_codes_v(v);
     const float t2 = t1.x + 256.0f;
-    const bool t3 = t1.x < 0.0f;
-    const float t4 = t3 ? t2 : t1.x;
-    const uint32_t t5 = (uint32_t)t4;
-    const float t6 = t1.y + 128.0f;
-    const bool t7 = t1.y < 0.0f;
-    const float t8 = t7 ? t6 : t1.y;
-    const uint32_t t9 = (uint32_t)t8;
-    const uint32_t t10 = t9 << 8u;
-    const uint32_t t11 = t5 | t10;
-    const uint32_t t12 = (uint32_t)t1.z;
-    const uint32_t t13 = t12 << 15u;
-    const uint32_t t14 = t11 | t13;
-    return t14;
+    const uint32_t t3 = (uint32_t)t2;
+    const uint32_t t4 = t3 & 255u;
+    const float t5 = t1.y + 128.0f;
+    const uint32_t t6 = (uint32_t)t5;
+    const uint32_t t7 = t6 << 8u;
+    const uint32_t t8 = t7 & 32512u;
+    const uint32_t t9 = t4 | t8;
+    const uint32_t t10 = (uint32_t)t1.z;
+    const uint32_t t11 = t10 << 15u;
+    const uint32_t t12 = t9 | t11;
+    return t12;
 }
 
 // unitpack_xy_signz16_encode: xy_signz16 (x and y stored with the sign of z, z reconstructed, snorm×2 + 1 bit, 16 bits, sphere), fast encoder.

@@ -151,14 +151,10 @@ vec2 unitpack_hemioct24_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec2 t38 = mix(vec2(0.0), vec2(-1.0), t37);
     UNITPACK_PRECISE vec2 t39 = mix(t38, vec2(1.0), t34);
     UNITPACK_PRECISE vec2 t40 = t30 + t39;
-    bvec2 t41 = greaterThanEqual(t40, vec2(0.0));
-    UNITPACK_PRECISE vec2 t42 = mix(vec2(0.0), t40, t41);
-    bvec2 t43 = lessThanEqual(t42, vec2(2047.0));
-    UNITPACK_PRECISE vec2 t44 = mix(vec2(2047.0), t42, t43);
-    UNITPACK_PRECISE vec2 t45 = -t44;
-    UNITPACK_PRECISE vec2 t46 = mix(t44, t45, t26);
-    UNITPACK_PRECISE vec2 t47 = t25 ? t46 : vec2(0.0);
-    return t47;
+    UNITPACK_PRECISE vec2 t41 = -t40;
+    UNITPACK_PRECISE vec2 t42 = mix(t40, t41, t26);
+    UNITPACK_PRECISE vec2 t43 = t25 ? t42 : vec2(0.0);
+    return t43;
 }
 
 // unitpack_hemioct24_encode: hemioct24 (hemi-octahedral, snorm×2, 24 bits, hemisphere), fast encoder.
@@ -170,16 +166,14 @@ vec2 unitpack_hemioct24_round_codes(vec3 a0) {
 uint unitpack_hemioct24_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_hemioct24_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 4096.0;
-    bool t3 = t1.x < 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    UNITPACK_PRECISE float t6 = t1.y + 4096.0;
-    bool t7 = t1.y < 0.0;
-    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 12u;
-    uint t11 = t5 | t10;
-    return t11;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 4095u;
+    UNITPACK_PRECISE float t5 = t1.y + 4096.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 12u;
+    uint t8 = t7 & 16773120u;
+    uint t9 = t4 | t8;
+    return t9;
 }
 
 #endif // UNITPACK_HEMIOCT24_GLSL

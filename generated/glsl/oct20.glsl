@@ -151,14 +151,10 @@ vec2 unitpack_oct20_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec2 t36 = mix(vec2(0.0), vec2(-1.0), t35);
     UNITPACK_PRECISE vec2 t37 = mix(t36, vec2(1.0), t32);
     UNITPACK_PRECISE vec2 t38 = t28 + t37;
-    bvec2 t39 = greaterThanEqual(t38, vec2(0.0));
-    UNITPACK_PRECISE vec2 t40 = mix(vec2(0.0), t38, t39);
-    bvec2 t41 = lessThanEqual(t40, vec2(511.0));
-    UNITPACK_PRECISE vec2 t42 = mix(vec2(511.0), t40, t41);
-    UNITPACK_PRECISE vec2 t43 = -t42;
-    UNITPACK_PRECISE vec2 t44 = mix(t42, t43, t24);
-    UNITPACK_PRECISE vec2 t45 = t14 ? t44 : vec2(0.0);
-    return t45;
+    UNITPACK_PRECISE vec2 t39 = -t38;
+    UNITPACK_PRECISE vec2 t40 = mix(t38, t39, t24);
+    UNITPACK_PRECISE vec2 t41 = t14 ? t40 : vec2(0.0);
+    return t41;
 }
 
 // unitpack_oct20_encode: oct20 (octahedral, snorm×2, 20 bits, sphere), fast encoder.
@@ -170,16 +166,14 @@ vec2 unitpack_oct20_round_codes(vec3 a0) {
 uint unitpack_oct20_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_oct20_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 1024.0;
-    bool t3 = t1.x < 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    UNITPACK_PRECISE float t6 = t1.y + 1024.0;
-    bool t7 = t1.y < 0.0;
-    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 10u;
-    uint t11 = t5 | t10;
-    return t11;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 1023u;
+    UNITPACK_PRECISE float t5 = t1.y + 1024.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 10u;
+    uint t8 = t7 & 1047552u;
+    uint t9 = t4 | t8;
+    return t9;
 }
 
 #endif // UNITPACK_OCT20_GLSL

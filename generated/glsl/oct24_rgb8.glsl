@@ -155,25 +155,21 @@ vec3 unitpack_oct24_rgb8_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec2 t36 = mix(vec2(0.0), vec2(-1.0), t35);
     UNITPACK_PRECISE vec2 t37 = mix(t36, vec2(1.0), t32);
     UNITPACK_PRECISE vec2 t38 = t28 + t37;
-    bvec2 t39 = greaterThanEqual(t38, vec2(0.0));
-    UNITPACK_PRECISE vec2 t40 = mix(vec2(0.0), t38, t39);
-    bvec2 t41 = lessThanEqual(t40, vec2(2047.0));
-    UNITPACK_PRECISE vec2 t42 = mix(vec2(2047.0), t40, t41);
-    UNITPACK_PRECISE vec2 t43 = -t42;
-    UNITPACK_PRECISE vec2 t44 = mix(t42, t43, t24);
-    UNITPACK_PRECISE vec2 t45 = t14 ? t44 : vec2(0.0);
-    UNITPACK_PRECISE vec2 t46 = t45 + 2047.0;
-    UNITPACK_PRECISE float x16 = t46.x * 0.0625;
+    UNITPACK_PRECISE vec2 t39 = -t38;
+    UNITPACK_PRECISE vec2 t40 = mix(t38, t39, t24);
+    UNITPACK_PRECISE vec2 t41 = t14 ? t40 : vec2(0.0);
+    UNITPACK_PRECISE vec2 t42 = t41 + 2047.0;
+    UNITPACK_PRECISE float x16 = t42.x * 0.0625;
     UNITPACK_PRECISE float hi = floor(x16);
-    UNITPACK_PRECISE float t47 = t46.y * 0.00390625;
-    UNITPACK_PRECISE float t = floor(t47);
-    UNITPACK_PRECISE float t48 = x16 - hi;
-    UNITPACK_PRECISE float t49 = t48 * 256.0;
-    UNITPACK_PRECISE float t50 = t49 + t;
-    UNITPACK_PRECISE float t51 = t * 256.0;
-    UNITPACK_PRECISE float t52 = t46.y - t51;
-    UNITPACK_PRECISE vec3 t53 = vec3(hi, t50, t52);
-    return t53;
+    UNITPACK_PRECISE float t43 = t42.y * 0.00390625;
+    UNITPACK_PRECISE float t = floor(t43);
+    UNITPACK_PRECISE float t44 = x16 - hi;
+    UNITPACK_PRECISE float t45 = t44 * 256.0;
+    UNITPACK_PRECISE float t46 = t45 + t;
+    UNITPACK_PRECISE float t47 = t * 256.0;
+    UNITPACK_PRECISE float t48 = t42.y - t47;
+    UNITPACK_PRECISE vec3 t49 = vec3(hi, t46, t48);
+    return t49;
 }
 
 // unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.

@@ -423,16 +423,13 @@ vec2 unitpack_paraboloid32_round_codes(vec3 a0) {
 uint unitpack_paraboloid32_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_paraboloid32_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 65536.0;
-    bool t3 = t1.x < 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    UNITPACK_PRECISE float t6 = t1.y + 65536.0;
-    bool t7 = t1.y < 0.0;
-    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 16u;
-    uint t11 = t5 | t10;
-    return t11;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 65535u;
+    UNITPACK_PRECISE float t5 = t1.y + 65536.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 16u;
+    uint t8 = t4 | t7;
+    return t8;
 }
 
 #endif // UNITPACK_PARABOLOID32_GLSL

@@ -222,21 +222,17 @@ vec3 unitpack_snorm16x3_round_codes(vec3 a0) {
 uvec2 unitpack_snorm16x3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_snorm16x3_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 65536.0;
-    bool t3 = t1.x < 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    UNITPACK_PRECISE float t6 = t1.y + 65536.0;
-    bool t7 = t1.y < 0.0;
-    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 16u;
-    uint t11 = t5 | t10;
-    UNITPACK_PRECISE float t12 = t1.z + 65536.0;
-    bool t13 = t1.z < 0.0;
-    UNITPACK_PRECISE float t14 = t13 ? t12 : t1.z;
-    uint t15 = uint(t14);
-    uvec2 t16 = uvec2(t11, t15);
-    return t16;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 65535u;
+    UNITPACK_PRECISE float t5 = t1.y + 65536.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 16u;
+    uint t8 = t4 | t7;
+    UNITPACK_PRECISE float t9 = t1.z + 65536.0;
+    uint t10 = uint(t9);
+    uint t11 = t10 & 65535u;
+    uvec2 t12 = uvec2(t8, t11);
+    return t12;
 }
 
 #endif // UNITPACK_SNORM16X3_GLSL

@@ -222,22 +222,19 @@ vec3 unitpack_snorm8x3_round_codes(vec3 a0) {
 uint unitpack_snorm8x3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_snorm8x3_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 256.0;
-    bool t3 = t1.x < 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    UNITPACK_PRECISE float t6 = t1.y + 256.0;
-    bool t7 = t1.y < 0.0;
-    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 8u;
-    uint t11 = t5 | t10;
-    UNITPACK_PRECISE float t12 = t1.z + 256.0;
-    bool t13 = t1.z < 0.0;
-    UNITPACK_PRECISE float t14 = t13 ? t12 : t1.z;
-    uint t15 = uint(t14);
-    uint t16 = t15 << 16u;
-    uint t17 = t11 | t16;
-    return t17;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 255u;
+    UNITPACK_PRECISE float t5 = t1.y + 256.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 8u;
+    uint t8 = t7 & 65280u;
+    uint t9 = t4 | t8;
+    UNITPACK_PRECISE float t10 = t1.z + 256.0;
+    uint t11 = uint(t10);
+    uint t12 = t11 << 16u;
+    uint t13 = t12 & 16711680u;
+    uint t14 = t9 | t13;
+    return t14;
 }
 
 #endif // UNITPACK_SNORM8X3_GLSL

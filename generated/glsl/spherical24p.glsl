@@ -1353,16 +1353,14 @@ vec2 unitpack_spherical24p_encode_float(vec3 v) {
 uint unitpack_spherical24p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = unitpack_spherical24p_encode_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 4096.0;
-    bool t3 = t1.x < 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    UNITPACK_PRECISE float t6 = t1.y + 4096.0;
-    bool t7 = t1.y < 0.0;
-    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 12u;
-    uint t11 = t5 | t10;
-    return t11;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 4095u;
+    UNITPACK_PRECISE float t5 = t1.y + 4096.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 12u;
+    uint t8 = t7 & 16773120u;
+    uint t9 = t4 | t8;
+    return t9;
 }
 
 #endif // UNITPACK_SPHERICAL24P_GLSL

@@ -230,19 +230,17 @@ vec3 unitpack_xy_signz32_round_codes(vec3 a0) {
 uint unitpack_xy_signz32_encode(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = unitpack_xy_signz32_round_codes(v);
     UNITPACK_PRECISE float t2 = t1.x + 65536.0;
-    bool t3 = t1.x < 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    UNITPACK_PRECISE float t6 = t1.y + 32768.0;
-    bool t7 = t1.y < 0.0;
-    UNITPACK_PRECISE float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 16u;
-    uint t11 = t5 | t10;
-    uint t12 = uint(t1.z);
-    uint t13 = t12 << 31u;
-    uint t14 = t11 | t13;
-    return t14;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 65535u;
+    UNITPACK_PRECISE float t5 = t1.y + 32768.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 16u;
+    uint t8 = t7 & 2147418112u;
+    uint t9 = t4 | t8;
+    uint t10 = uint(t1.z);
+    uint t11 = t10 << 31u;
+    uint t12 = t9 | t11;
+    return t12;
 }
 
 #endif // UNITPACK_XY_SIGNZ32_GLSL

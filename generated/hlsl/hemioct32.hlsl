@@ -150,14 +150,10 @@ float2 unitpack_hemioct32_round_codes(float3 a0) {
     precise float2 t38 = UNITPACK_SELECT(t37, float2(-1.0, -1.0), float2(0.0, 0.0));
     precise float2 t39 = UNITPACK_SELECT(t34, float2(1.0, 1.0), t38);
     precise float2 t40 = t30 + t39;
-    bool2 t41 = t40 >= float2(0.0, 0.0);
-    precise float2 t42 = UNITPACK_SELECT(t41, t40, float2(0.0, 0.0));
-    bool2 t43 = t42 <= float2(32767.0, 32767.0);
-    precise float2 t44 = UNITPACK_SELECT(t43, t42, float2(32767.0, 32767.0));
-    precise float2 t45 = -t44;
-    precise float2 t46 = UNITPACK_SELECT(t26, t45, t44);
-    precise float2 t47 = t25 ? t46 : float2(0.0, 0.0);
-    return t47;
+    precise float2 t41 = -t40;
+    precise float2 t42 = UNITPACK_SELECT(t26, t41, t40);
+    precise float2 t43 = t25 ? t42 : float2(0.0, 0.0);
+    return t43;
 }
 
 // unitpack_hemioct32_encode: hemioct32 (hemi-octahedral, snorm×2, 32 bits, hemisphere), fast encoder.
@@ -169,16 +165,13 @@ float2 unitpack_hemioct32_round_codes(float3 a0) {
 uint unitpack_hemioct32_encode(float3 v) {
     precise float2 t1 = unitpack_hemioct32_round_codes(v);
     precise float t2 = t1.x + 65536.0;
-    bool t3 = t1.x < 0.0;
-    precise float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    precise float t6 = t1.y + 65536.0;
-    bool t7 = t1.y < 0.0;
-    precise float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 16u;
-    uint t11 = t5 | t10;
-    return t11;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 65535u;
+    precise float t5 = t1.y + 65536.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 16u;
+    uint t8 = t4 | t7;
+    return t8;
 }
 
 #endif // UNITPACK_HEMIOCT32_HLSL

@@ -150,14 +150,10 @@ float2 unitpack_oct22_round_codes(float3 a0) {
     precise float2 t36 = UNITPACK_SELECT(t35, float2(-1.0, -1.0), float2(0.0, 0.0));
     precise float2 t37 = UNITPACK_SELECT(t32, float2(1.0, 1.0), t36);
     precise float2 t38 = t28 + t37;
-    bool2 t39 = t38 >= float2(0.0, 0.0);
-    precise float2 t40 = UNITPACK_SELECT(t39, t38, float2(0.0, 0.0));
-    bool2 t41 = t40 <= float2(1023.0, 1023.0);
-    precise float2 t42 = UNITPACK_SELECT(t41, t40, float2(1023.0, 1023.0));
-    precise float2 t43 = -t42;
-    precise float2 t44 = UNITPACK_SELECT(t24, t43, t42);
-    precise float2 t45 = t14 ? t44 : float2(0.0, 0.0);
-    return t45;
+    precise float2 t39 = -t38;
+    precise float2 t40 = UNITPACK_SELECT(t24, t39, t38);
+    precise float2 t41 = t14 ? t40 : float2(0.0, 0.0);
+    return t41;
 }
 
 // unitpack_oct22_encode: oct22 (octahedral, snorm×2, 22 bits, sphere), fast encoder.
@@ -169,16 +165,14 @@ float2 unitpack_oct22_round_codes(float3 a0) {
 uint unitpack_oct22_encode(float3 v) {
     precise float2 t1 = unitpack_oct22_round_codes(v);
     precise float t2 = t1.x + 2048.0;
-    bool t3 = t1.x < 0.0;
-    precise float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    precise float t6 = t1.y + 2048.0;
-    bool t7 = t1.y < 0.0;
-    precise float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 11u;
-    uint t11 = t5 | t10;
-    return t11;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 2047u;
+    precise float t5 = t1.y + 2048.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 11u;
+    uint t8 = t7 & 4192256u;
+    uint t9 = t4 | t8;
+    return t9;
 }
 
 #endif // UNITPACK_OCT22_HLSL

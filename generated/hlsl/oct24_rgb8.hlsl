@@ -154,25 +154,21 @@ float3 unitpack_oct24_rgb8_round_codes(float3 a0) {
     precise float2 t36 = UNITPACK_SELECT(t35, float2(-1.0, -1.0), float2(0.0, 0.0));
     precise float2 t37 = UNITPACK_SELECT(t32, float2(1.0, 1.0), t36);
     precise float2 t38 = t28 + t37;
-    bool2 t39 = t38 >= float2(0.0, 0.0);
-    precise float2 t40 = UNITPACK_SELECT(t39, t38, float2(0.0, 0.0));
-    bool2 t41 = t40 <= float2(2047.0, 2047.0);
-    precise float2 t42 = UNITPACK_SELECT(t41, t40, float2(2047.0, 2047.0));
-    precise float2 t43 = -t42;
-    precise float2 t44 = UNITPACK_SELECT(t24, t43, t42);
-    precise float2 t45 = t14 ? t44 : float2(0.0, 0.0);
-    precise float2 t46 = t45 + 2047.0;
-    precise float x16 = t46.x * 0.0625;
+    precise float2 t39 = -t38;
+    precise float2 t40 = UNITPACK_SELECT(t24, t39, t38);
+    precise float2 t41 = t14 ? t40 : float2(0.0, 0.0);
+    precise float2 t42 = t41 + 2047.0;
+    precise float x16 = t42.x * 0.0625;
     precise float hi = floor(x16);
-    precise float t47 = t46.y * 0.00390625;
-    precise float t = floor(t47);
-    precise float t48 = x16 - hi;
-    precise float t49 = t48 * 256.0;
-    precise float t50 = t49 + t;
-    precise float t51 = t * 256.0;
-    precise float t52 = t46.y - t51;
-    precise float3 t53 = float3(hi, t50, t52);
-    return t53;
+    precise float t43 = t42.y * 0.00390625;
+    precise float t = floor(t43);
+    precise float t44 = x16 - hi;
+    precise float t45 = t44 * 256.0;
+    precise float t46 = t45 + t;
+    precise float t47 = t * 256.0;
+    precise float t48 = t42.y - t47;
+    precise float3 t49 = float3(hi, t46, t48);
+    return t49;
 }
 
 // unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.

@@ -221,21 +221,17 @@ float3 unitpack_snorm16x3_round_codes(float3 a0) {
 uint2 unitpack_snorm16x3_encode(float3 v) {
     precise float3 t1 = unitpack_snorm16x3_round_codes(v);
     precise float t2 = t1.x + 65536.0;
-    bool t3 = t1.x < 0.0;
-    precise float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    precise float t6 = t1.y + 65536.0;
-    bool t7 = t1.y < 0.0;
-    precise float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 16u;
-    uint t11 = t5 | t10;
-    precise float t12 = t1.z + 65536.0;
-    bool t13 = t1.z < 0.0;
-    precise float t14 = t13 ? t12 : t1.z;
-    uint t15 = uint(t14);
-    uint2 t16 = uint2(t11, t15);
-    return t16;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 65535u;
+    precise float t5 = t1.y + 65536.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 16u;
+    uint t8 = t4 | t7;
+    precise float t9 = t1.z + 65536.0;
+    uint t10 = uint(t9);
+    uint t11 = t10 & 65535u;
+    uint2 t12 = uint2(t8, t11);
+    return t12;
 }
 
 #endif // UNITPACK_SNORM16X3_HLSL

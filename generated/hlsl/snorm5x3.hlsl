@@ -221,22 +221,19 @@ float3 unitpack_snorm5x3_round_codes(float3 a0) {
 uint unitpack_snorm5x3_encode(float3 v) {
     precise float3 t1 = unitpack_snorm5x3_round_codes(v);
     precise float t2 = t1.x + 32.0;
-    bool t3 = t1.x < 0.0;
-    precise float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    precise float t6 = t1.y + 32.0;
-    bool t7 = t1.y < 0.0;
-    precise float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 5u;
-    uint t11 = t5 | t10;
-    precise float t12 = t1.z + 32.0;
-    bool t13 = t1.z < 0.0;
-    precise float t14 = t13 ? t12 : t1.z;
-    uint t15 = uint(t14);
-    uint t16 = t15 << 10u;
-    uint t17 = t11 | t16;
-    return t17;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 31u;
+    precise float t5 = t1.y + 32.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 5u;
+    uint t8 = t7 & 992u;
+    uint t9 = t4 | t8;
+    precise float t10 = t1.z + 32.0;
+    uint t11 = uint(t10);
+    uint t12 = t11 << 10u;
+    uint t13 = t12 & 31744u;
+    uint t14 = t9 | t13;
+    return t14;
 }
 
 #endif // UNITPACK_SNORM5X3_HLSL

@@ -530,16 +530,14 @@ float2 unitpack_spherical16_round_codes(float3 a0) {
 uint unitpack_spherical16_encode(float3 v) {
     precise float2 t1 = unitpack_spherical16_round_codes(v);
     precise float t2 = t1.x + 256.0;
-    bool t3 = t1.x < 0.0;
-    precise float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    precise float t6 = t1.y + 256.0;
-    bool t7 = t1.y < 0.0;
-    precise float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 8u;
-    uint t11 = t5 | t10;
-    return t11;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 255u;
+    precise float t5 = t1.y + 256.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 8u;
+    uint t8 = t7 & 65280u;
+    uint t9 = t4 | t8;
+    return t9;
 }
 
 #endif // UNITPACK_SPHERICAL16_HLSL

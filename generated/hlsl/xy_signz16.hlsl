@@ -230,19 +230,17 @@ float3 unitpack_xy_signz16_round_codes(float3 a0) {
 uint unitpack_xy_signz16_encode(float3 v) {
     precise float3 t1 = unitpack_xy_signz16_round_codes(v);
     precise float t2 = t1.x + 256.0;
-    bool t3 = t1.x < 0.0;
-    precise float t4 = t3 ? t2 : t1.x;
-    uint t5 = uint(t4);
-    precise float t6 = t1.y + 128.0;
-    bool t7 = t1.y < 0.0;
-    precise float t8 = t7 ? t6 : t1.y;
-    uint t9 = uint(t8);
-    uint t10 = t9 << 8u;
-    uint t11 = t5 | t10;
-    uint t12 = uint(t1.z);
-    uint t13 = t12 << 15u;
-    uint t14 = t11 | t13;
-    return t14;
+    uint t3 = uint(t2);
+    uint t4 = t3 & 255u;
+    precise float t5 = t1.y + 128.0;
+    uint t6 = uint(t5);
+    uint t7 = t6 << 8u;
+    uint t8 = t7 & 32512u;
+    uint t9 = t4 | t8;
+    uint t10 = uint(t1.z);
+    uint t11 = t10 << 15u;
+    uint t12 = t9 | t11;
+    return t12;
 }
 
 #endif // UNITPACK_XY_SIGNZ16_HLSL

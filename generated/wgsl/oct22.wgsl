@@ -135,14 +135,10 @@ fn unitpack_oct22_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t36 = select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t35);
     let t37 = select(t36, vec2<f32>(1.0f), t32);
     let t38 = t28 + t37;
-    let t39 = t38 >= vec2<f32>(0.0f);
-    let t40 = select(vec2<f32>(0.0f), t38, t39);
-    let t41 = t40 <= vec2<f32>(1023.0f);
-    let t42 = select(vec2<f32>(1023.0f), t40, t41);
-    let t43 = -t42;
-    let t44 = select(t42, t43, t24);
-    let t45 = select(vec2<f32>(0.0f), t44, t14);
-    return t45;
+    let t39 = -t38;
+    let t40 = select(t38, t39, t24);
+    let t41 = select(vec2<f32>(0.0f), t40, t14);
+    return t41;
 }
 
 // unitpack_oct22_encode: oct22 (octahedral, snorm×2, 22 bits, sphere), fast encoder.
@@ -154,14 +150,12 @@ fn unitpack_oct22_round_codes(a0: vec3<f32>) -> vec2<f32> {
 fn unitpack_oct22_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_oct22_round_codes(v);
     let t2 = t1.x + 2048.0f;
-    let t3 = t1.x < 0.0f;
-    let t4 = select(t1.x, t2, t3);
-    let t5 = u32(t4);
-    let t6 = t1.y + 2048.0f;
-    let t7 = t1.y < 0.0f;
-    let t8 = select(t1.y, t6, t7);
-    let t9 = u32(t8);
-    let t10 = t9 << 11u;
-    let t11 = t5 | t10;
-    return t11;
+    let t3 = u32(t2);
+    let t4 = t3 & 2047u;
+    let t5 = t1.y + 2048.0f;
+    let t6 = u32(t5);
+    let t7 = t6 << 11u;
+    let t8 = t7 & 4192256u;
+    let t9 = t4 | t8;
+    return t9;
 }

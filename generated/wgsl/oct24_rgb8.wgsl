@@ -139,25 +139,21 @@ fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let t36 = select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t35);
     let t37 = select(t36, vec2<f32>(1.0f), t32);
     let t38 = t28 + t37;
-    let t39 = t38 >= vec2<f32>(0.0f);
-    let t40 = select(vec2<f32>(0.0f), t38, t39);
-    let t41 = t40 <= vec2<f32>(2047.0f);
-    let t42 = select(vec2<f32>(2047.0f), t40, t41);
-    let t43 = -t42;
-    let t44 = select(t42, t43, t24);
-    let t45 = select(vec2<f32>(0.0f), t44, t14);
-    let t46 = t45 + 2047.0f;
-    let x16 = t46.x * 0.0625f;
+    let t39 = -t38;
+    let t40 = select(t38, t39, t24);
+    let t41 = select(vec2<f32>(0.0f), t40, t14);
+    let t42 = t41 + 2047.0f;
+    let x16 = t42.x * 0.0625f;
     let hi = floor(x16);
-    let t47 = t46.y * 0.00390625f;
-    let t = floor(t47);
-    let t48 = x16 - hi;
-    let t49 = t48 * 256.0f;
-    let t50 = t49 + t;
-    let t51 = t * 256.0f;
-    let t52 = t46.y - t51;
-    let t53 = vec3<f32>(hi, t50, t52);
-    return t53;
+    let t43 = t42.y * 0.00390625f;
+    let t = floor(t43);
+    let t44 = x16 - hi;
+    let t45 = t44 * 256.0f;
+    let t46 = t45 + t;
+    let t47 = t * 256.0f;
+    let t48 = t42.y - t47;
+    let t49 = vec3<f32>(hi, t46, t48);
+    return t49;
 }
 
 // unitpack_oct24_rgb8_encode_float: oct24:layout=rgb8 (octahedral, snorm×2, 24 bits, sphere), fast encoder, float form.

@@ -407,14 +407,12 @@ fn unitpack_paraboloid24_round_codes(a0: vec3<f32>) -> vec2<f32> {
 fn unitpack_paraboloid24_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_paraboloid24_round_codes(v);
     let t2 = t1.x + 4096.0f;
-    let t3 = t1.x < 0.0f;
-    let t4 = select(t1.x, t2, t3);
-    let t5 = u32(t4);
-    let t6 = t1.y + 4096.0f;
-    let t7 = t1.y < 0.0f;
-    let t8 = select(t1.y, t6, t7);
-    let t9 = u32(t8);
-    let t10 = t9 << 12u;
-    let t11 = t5 | t10;
-    return t11;
+    let t3 = u32(t2);
+    let t4 = t3 & 4095u;
+    let t5 = t1.y + 4096.0f;
+    let t6 = u32(t5);
+    let t7 = t6 << 12u;
+    let t8 = t7 & 16773120u;
+    let t9 = t4 | t8;
+    return t9;
 }

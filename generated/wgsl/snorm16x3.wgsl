@@ -206,19 +206,15 @@ fn unitpack_snorm16x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
 fn unitpack_snorm16x3_encode(v: vec3<f32>) -> vec2<u32> {
     let t1 = unitpack_snorm16x3_round_codes(v);
     let t2 = t1.x + 65536.0f;
-    let t3 = t1.x < 0.0f;
-    let t4 = select(t1.x, t2, t3);
-    let t5 = u32(t4);
-    let t6 = t1.y + 65536.0f;
-    let t7 = t1.y < 0.0f;
-    let t8 = select(t1.y, t6, t7);
-    let t9 = u32(t8);
-    let t10 = t9 << 16u;
-    let t11 = t5 | t10;
-    let t12 = t1.z + 65536.0f;
-    let t13 = t1.z < 0.0f;
-    let t14 = select(t1.z, t12, t13);
-    let t15 = u32(t14);
-    let t16 = vec2<u32>(t11, t15);
-    return t16;
+    let t3 = u32(t2);
+    let t4 = t3 & 65535u;
+    let t5 = t1.y + 65536.0f;
+    let t6 = u32(t5);
+    let t7 = t6 << 16u;
+    let t8 = t4 | t7;
+    let t9 = t1.z + 65536.0f;
+    let t10 = u32(t9);
+    let t11 = t10 & 65535u;
+    let t12 = vec2<u32>(t8, t11);
+    return t12;
 }

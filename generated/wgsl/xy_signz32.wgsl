@@ -214,17 +214,15 @@ fn unitpack_xy_signz32_round_codes(a0: vec3<f32>) -> vec3<f32> {
 fn unitpack_xy_signz32_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_xy_signz32_round_codes(v);
     let t2 = t1.x + 65536.0f;
-    let t3 = t1.x < 0.0f;
-    let t4 = select(t1.x, t2, t3);
-    let t5 = u32(t4);
-    let t6 = t1.y + 32768.0f;
-    let t7 = t1.y < 0.0f;
-    let t8 = select(t1.y, t6, t7);
-    let t9 = u32(t8);
-    let t10 = t9 << 16u;
-    let t11 = t5 | t10;
-    let t12 = u32(t1.z);
-    let t13 = t12 << 31u;
-    let t14 = t11 | t13;
-    return t14;
+    let t3 = u32(t2);
+    let t4 = t3 & 65535u;
+    let t5 = t1.y + 32768.0f;
+    let t6 = u32(t5);
+    let t7 = t6 << 16u;
+    let t8 = t7 & 2147418112u;
+    let t9 = t4 | t8;
+    let t10 = u32(t1.z);
+    let t11 = t10 << 31u;
+    let t12 = t9 | t11;
+    return t12;
 }

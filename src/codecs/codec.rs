@@ -204,9 +204,8 @@ pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
     let offs = field_offsets(q);
     let mut words: [Option<F::U>; 3] = [None; 3];
     for (i, quant) in q.iter().enumerate() {
-        let f = quant.to_field(c.lane(i));
         let (w, sh) = ((offs[i] / 32) as usize, offs[i] % 32);
-        let f = if sh == 0 { f } else { f.shl(sh) };
+        let f = quant.field_at(c.lane(i), sh);
         words[w] = Some(match words[w] {
             None => f,
             Some(acc) => acc | f,

@@ -473,18 +473,37 @@ pub fn past_root_ratio<F: Float>(x: F, big2: F, k: F, k2s: F) -> F {
     F::sel(x.ge(F::c(0.0)), far, near)
 }
 
-/// The snorm code of `n / d` (`d > 0`, `|n| ≤ d`, both normal or `n` zero, both computed
-/// with correctly rounded additions only): the integer `c ≤ M` with
+/// The snorm code of `n / d` (`d > 0`, both normal or `n` zero, both computed with
+/// correctly rounded additions only): the integer `c ≤ M` with
 /// `(c - ½)·d ≤ |n|·M < (c + ½)·d`, with the sign of `n` (`-0` counts as positive). Ties
-/// (`|n|·M` equal to a product) round away from zero.
+/// (`|n|·M` equal to a product) round away from zero. `|n|` may exceed `d` by rounding
+/// (`d` a root of floored squares): the code is then clamped to `M`.
 pub fn snorm_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
+    let (estimate, up, down) = snorm_ratio_steps(q, n, d);
+    signed(n, corrected(q, estimate, up, down))
+}
+
+/// [`snorm_ratio`] where `|n| ≤ d` holds exactly: `d` is a correctly rounded sum of `|n|`
+/// and non-negative terms (rounding is monotone, so the sum is at least `|n|`). Then no
+/// clamp can trigger: `|n|/d ≤ 1` within 2.5 ULP, so the estimate is in `[0, M]` for
+/// `M < 2^21`; at `M` the step up needs `|n|·M ≥ (M + ½)·d`, which the rounded products
+/// cannot meet (they are monotone and `(M + ½)/M` exceeds one by more than 2^-24), and
+/// at 0 the step down needs `|n|·M < -½·d`.
+pub fn snorm_ratio_within<F: Float>(q: Quant, n: F, d: F) -> F {
+    debug_assert!(q.max_code() < (1u32 << 21) as f32);
+    let (estimate, up, down) = snorm_ratio_steps(q, n, d);
+    signed(n, stepped(estimate, up, down))
+}
+
+/// `round(|n|/d·M)` and the comparisons that step it to the exact code.
+fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
     let a = n.abs();
     let m = F::c(q.max_code());
     let estimate = (a / d * m).round();
     let big = a * m;
     let up = big.ge((estimate + F::c(0.5)) * d);
     let down = big.lt((estimate - F::c(0.5)) * d);
-    signed(n, corrected(q, estimate, up, down))
+    (estimate, up, down)
 }
 
 /// The snorm code of `n / sqrt(s)` (`s > 0`, `n² ≤ s` up to rounding, both exact or

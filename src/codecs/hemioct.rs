@@ -2,7 +2,7 @@
 //! scaled so that it fills the whole square.
 
 use super::codec::{Codec, Domain, above_horizon};
-use super::exact::{canonical, floor_ratio, snorm_ratio};
+use super::exact::{canonical, floor_ratio, snorm_ratio_within};
 use super::lattice::{Closeness, fixed, nearest, search_doc};
 use super::quant::{Quant, Quants};
 use super::oct::fit_l1;
@@ -149,7 +149,7 @@ impl Codec for HemiOct {
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let (n, l1, ok) = hemi_ratios(v);
-        let c = n.map(|x| snorm_ratio(q, x, l1));
+        let c = n.map(|x| snorm_ratio_within(q, x, l1));
         V2::sel_all(ok, c, V2::splat(F::c(0.0)))
     }
     const EXACT_SEARCH: bool = true;

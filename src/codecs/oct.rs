@@ -2,7 +2,7 @@
 //! with the L1 norm, unfold the lower half over the diagonals, store snorm×2.
 
 use super::codec::{Codec, Domain, sign_not_zero};
-use super::exact::{canonical, floor_ratio, snorm_ratio};
+use super::exact::{canonical, floor_ratio, snorm_ratio_within};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes};
 use super::functions::{Emitted, codec_functions};
 use super::lattice::{Closeness, fixed, nearest, search_doc};
@@ -136,7 +136,7 @@ pub fn oct_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let l1 = (a.x + a.y + a.z).named("l1");
     let folded = (V2::splat(l1) - a.xy().yx()) * sign_not_zero(w.xy());
     let n = V2::sel_all(w.z.le(F::c(0.0)), folded, w.xy()).named("n");
-    let c = n.map(|x| snorm_ratio(q, x, l1));
+    let c = n.map(|x| snorm_ratio_within(q, x, l1));
     V2::sel_all(ok, c, V2::splat(F::c(0.0)))
 }
 

@@ -2,7 +2,7 @@
 //!
 //! Codes are carried as integral `f32` values: every code of up to 24 bits is exact in
 //! f32, so the model never needs signed integers, and two's complement fields come from
-//! one select (`c < 0 ? c + 2^b : c`). A float field ([`Quant::Half`], [`Quant::Single`])
+//! `c + 2^b`, converted and masked (see [`Quant::field_at`]). A float field ([`Quant::Half`], [`Quant::Single`])
 //! carries its value instead, which f32 holds exactly.
 
 use super::half::{half_bits, half_value};
@@ -94,8 +94,27 @@ impl Quant {
     pub fn is_float(self) -> bool {
         matches!(self, Quant::Half | Quant::Single)
     }
+    /// The unsigned bit field of a code, shifted left by `sh`. A snorm code of up to 23
+    /// bits is stored as `(c + 2^b) & mask`: `c + 2^b` is positive and below `2^24`, so
+    /// exact and safely converted, and the mask drops the `2^b` (or the shift does, for
+    /// a field that ends at bit 32) — one instruction fewer than `c < 0 ? c + 2^b : c`,
+    /// which a wider field still needs (`2^24 + c` is not exact).
+    pub fn field_at<F: Float>(self, c: F, sh: u32) -> F::U {
+        let shifted = |u: F::U| if sh == 0 { u } else { u.shl(sh) };
+        match self {
+            Quant::Snorm(b) if b < 24 => {
+                let u = shifted((c + F::c((1u32 << b) as f32)).to_u());
+                if sh + b == 32 {
+                    u
+                } else {
+                    u & F::U::c(self.mask() << sh)
+                }
+            }
+            _ => shifted(self.to_field(c)),
+        }
+    }
     /// The unsigned bit field of a code.
-    pub fn to_field<F: Float>(self, c: F) -> F::U {
+    fn to_field<F: Float>(self, c: F) -> F::U {
         match self {
             Quant::Snorm(b) => {
                 let wrapped = c + F::c((1u64 << b) as f32);

@@ -219,6 +219,6 @@ mod tests {
             .iter()
             .map(|f| count(&spec, f).unwrap())
             .collect();
-        assert_eq!(got, [62, 23, 24, 15]);
+        assert_eq!(got, [56, 23, 24, 15]);
     }
 }
