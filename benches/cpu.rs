@@ -11,7 +11,7 @@
 
 use std::hint::black_box;
 use std::time::Instant;
-use unitpack::api::{CpuCodec, Encoder, HemiOct, Oct};
+use unitpack::api::{Batch, CpuCodec, Encoder, HemiOct, Oct};
 use unitpack::cli::{Direction, Format, transcode};
 use unitpack::codecs::{Codec, Spec};
 
@@ -39,6 +39,25 @@ where
     let dec = rate(|| e.decode_slice(black_box(&codes), &mut out));
     println!(
         "{name:<10} encode {:>7.1} M/s ({:>5.2}× baseline)   decode {:>7.1} M/s ({:>5.2}× baseline)",
+        enc / 1e6,
+        enc / base,
+        dec / 1e6,
+        dec / base
+    );
+    (enc, dec)
+}
+
+/// The encode and decode rates of [`Batch`] (the same model on four SSE2 lanes, through
+/// one non-generic entry point), printed beside the typed encoder's.
+fn batch(spec: &str, vs: &[[f32; 3]], base: f64) -> (f64, f64) {
+    let b = Batch::new(spec).unwrap();
+    let mut codes = vec![0u32; N * b.words()];
+    let enc = rate(|| b.encode(black_box(vs), &mut codes));
+    let mut out = vec![[0f32; 3]; N];
+    let dec = rate(|| b.decode(black_box(&codes), &mut out));
+    println!(
+        "{:<10} encode {:>7.1} M/s ({:>5.2}× baseline)   decode {:>7.1} M/s ({:>5.2}× baseline)",
+        format!("{spec} ×4"),
         enc / 1e6,
         enc / base,
         dec / 1e6,
@@ -81,7 +100,7 @@ fn meshopt_oct(bits: i32, vs: &[[f32; 3]]) -> (f64, f64) {
 /// unitpack's rates for one spec over meshoptimizer's at the same component size.
 fn ratios(name: &str, (enc, dec): (f64, f64), (m_enc, m_dec): (f64, f64)) {
     println!(
-        "{name:<10} vs meshopt: encode {:>5.2}×   decode {:>5.2}×   (meshopt {:>7.1} / {:>7.1} M/s)",
+        "{name:<12} vs meshopt: encode {:>5.2}×   decode {:>5.2}×   (meshopt {:>7.1} / {:>7.1} M/s)",
         enc / m_enc,
         dec / m_dec,
         m_enc / 1e6,
@@ -114,13 +133,18 @@ fn main() {
             &vs,
             base,
         );
+        let lanes = batch(&format!("oct{bits}"), &vs, base);
+        let lanes_precise = batch(&format!("oct{bits}p"), &vs, base);
         if bits != 24 {
-            peers.push((bits, fast, precise, meshopt_oct(bits as i32 / 2, &vs)));
+            let peer = meshopt_oct(bits as i32 / 2, &vs);
+            peers.push((bits, [fast, precise, lanes, lanes_precise], peer));
         }
     }
-    for (bits, fast, precise, peer) in peers {
+    for (bits, [fast, precise, lanes, lanes_precise], peer) in peers {
         ratios(&format!("oct{bits}"), fast, peer);
         ratios(&format!("oct{bits}p"), precise, peer);
+        ratios(&format!("oct{bits} ×4"), lanes, peer);
+        ratios(&format!("oct{bits}p ×4"), lanes_precise, peer);
     }
     bench("hemioct24", HemiOct::new(24).unwrap().fast(), &vs, base);
     for spec in ["oct16", "oct24p", "snorm16x3"] {

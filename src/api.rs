@@ -99,7 +99,8 @@ impl<C: Codec> Encoder<C> {
 /// ```
 ///
 /// in the dependent crate's `Cargo.toml` it runs optimized in that debug build. It computes
-/// the same bits as [`Encoder`] (the same model; `tests/api.rs` compares them).
+/// the same bits as [`Encoder`] (the same model, evaluated four vectors at a time on SSE2
+/// lanes, [`crate::model::lanes`]; `tests/api.rs` compares them).
 ///
 /// ```
 /// use unitpack::api::Batch;
@@ -152,9 +153,11 @@ impl Batch {
             out.len(),
             "Batch::encode: out must hold words() = {w} words per input vector"
         );
-        for (v, o) in input.iter().zip(out.chunks_exact_mut(w)) {
-            (self.encode.eval)(&v.map(f32::to_bits), o);
-        }
+        self.encode.eval_four_at_a_time(
+            input.len(),
+            |i, j| input[i][j].to_bits(),
+            |i, j, x| out[i * w + j] = x,
+        );
     }
 
     /// Decodes `codes` (`words()` words each) into `out`.
@@ -165,10 +168,10 @@ impl Batch {
             out.len() * w,
             "Batch::decode: codes must hold words() = {w} words per output vector"
         );
-        let mut bits = [0u32; 3];
-        for (c, o) in codes.chunks_exact(w).zip(out.iter_mut()) {
-            (self.decode.eval)(c, &mut bits);
-            *o = bits.map(f32::from_bits);
-        }
+        self.decode.eval_four_at_a_time(
+            out.len(),
+            |i, j| codes[i * w + j],
+            |i, j, x| out[i][j] = f32::from_bits(x),
+        );
     }
 }

@@ -250,9 +250,9 @@ fn fill(input: &mut dyn Read, buf: &mut [u8]) -> Result<usize> {
 
 fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) -> Result<u64> {
     let size = c.in_bytes();
+    let (iw, ow) = (c.f.in_words, c.f.out_words);
     let mut block = vec![0u8; size * BLOCK];
-    let mut res = [0u32; 3];
-    let mut words = [0u32; 3];
+    let mut results = vec![0u32; ow * BLOCK];
     let mut done = 0u64;
     let noun = match c.dir {
         Direction::Encode => "a vector is 12 bytes, 3×f32",
@@ -262,24 +262,35 @@ fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write
     };
     loop {
         let got = fill(input, &mut block)?;
-        for rec in block[..got - got % size].chunks_exact(size) {
-            done += 1;
-            for (w, b) in words.iter_mut().zip(rec.chunks_exact(4)) {
-                *w = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-            }
-            if c.dir == Direction::Decode {
-                let v = code_value(&words[..c.code_words]);
-                if v > grammar::max_code(c.bits) {
-                    bail!(
-                        "record {done}: code 0x{v:x} has bits set above {}'s width of {} bits (largest code 0x{:x})",
-                        c.name,
-                        c.bits,
-                        grammar::max_code(c.bits)
-                    );
-                }
-            }
-            c.eval(&words, &mut res);
-            put(c, &res, to, out).map_err(write_err)?;
+        let records = got / size;
+        let word = |i: usize, j: usize| {
+            let b = &block[i * size + 4 * j..][..4];
+            u32::from_le_bytes([b[0], b[1], b[2], b[3]])
+        };
+        // Every record before the first bad one is written, then the error names it.
+        let too_wide = |i: usize| {
+            let w: [u32; 3] = std::array::from_fn(|j| if j < iw { word(i, j) } else { 0 });
+            Some(code_value(&w[..iw])).filter(|v| *v > grammar::max_code(c.bits))
+        };
+        let bad = match c.dir {
+            Direction::Decode => (0..records).find_map(|i| too_wide(i).map(|v| (i, v))),
+            Direction::Encode => None,
+        };
+        let good = bad.map_or(records, |(i, _)| i);
+        // Four records per step on SIMD lanes: the same bits as one at a time.
+        c.f.eval_four_at_a_time(good, word, |i, j, x| results[i * ow + j] = x);
+        for res in results[..good * ow].chunks_exact(ow) {
+            put(c, res, to, out).map_err(write_err)?;
+        }
+        done += good as u64;
+        if let Some((_, v)) = bad {
+            bail!(
+                "record {}: code 0x{v:x} has bits set above {}'s width of {} bits (largest code 0x{:x})",
+                done + 1,
+                c.name,
+                c.bits,
+                grammar::max_code(c.bits)
+            );
         }
         if got % size != 0 {
             bail!(

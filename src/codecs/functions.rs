@@ -8,15 +8,38 @@ use super::spec::Spec;
 use crate::model::Float;
 use crate::model::deviant::{Dev, DevU};
 use crate::model::enclosure::{Encl, EnclU};
+use crate::model::lanes::{F4, U4};
 use crate::model::trace::{Module, Tf, define, trace_module};
 use crate::model::{V2, V3};
 use std::sync::Arc;
 
-/// Values that cross the verification boundary as raw 32-bit words.
-pub trait Bits: Sized {
+/// Values that cross the verification boundary as raw 32-bit words (`W = u32`), or as
+/// [`Lanes`] of four items' words at a time.
+pub trait Bits<W = u32>: Sized {
     const WORDS: usize;
-    fn read(w: &[u32]) -> Self;
-    fn write(self, w: &mut [u32]);
+    fn read(w: &[W]) -> Self;
+    fn write(self, w: &mut [W]);
+}
+
+/// One word of four items, for the [`F4`] evaluation.
+pub type Lanes = [u32; 4];
+impl Bits<Lanes> for F4 {
+    const WORDS: usize = 1;
+    fn read(w: &[Lanes]) -> Self {
+        F4(wide::bytemuck::cast(w[0]))
+    }
+    fn write(self, w: &mut [Lanes]) {
+        w[0] = wide::bytemuck::cast(self.0);
+    }
+}
+impl Bits<Lanes> for U4 {
+    const WORDS: usize = 1;
+    fn read(w: &[Lanes]) -> Self {
+        U4(wide::u32x4::new(w[0]))
+    }
+    fn write(self, w: &mut [Lanes]) {
+        w[0] = self.0.to_array();
+    }
 }
 impl Bits for f32 {
     const WORDS: usize = 1;
@@ -54,22 +77,22 @@ impl Bits for DevU {
         w[0] = self.0;
     }
 }
-impl<T: Bits + crate::model::Lane> Bits for V2<T> {
+impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V2<T> {
     const WORDS: usize = 2;
-    fn read(w: &[u32]) -> Self {
+    fn read(w: &[W]) -> Self {
         V2::new(T::read(&w[0..]), T::read(&w[1..]))
     }
-    fn write(self, w: &mut [u32]) {
+    fn write(self, w: &mut [W]) {
         self.x.write(&mut w[0..]);
         self.y.write(&mut w[1..]);
     }
 }
-impl<T: Bits + crate::model::Lane> Bits for V3<T> {
+impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V3<T> {
     const WORDS: usize = 3;
-    fn read(w: &[u32]) -> Self {
+    fn read(w: &[W]) -> Self {
         V3::new(T::read(&w[0..]), T::read(&w[1..]), T::read(&w[2..]))
     }
-    fn write(self, w: &mut [u32]) {
+    fn write(self, w: &mut [W]) {
         self.x.write(&mut w[0..]);
         self.y.write(&mut w[1..]);
         self.z.write(&mut w[2..]);
@@ -100,6 +123,8 @@ pub enum Role {
 
 /// A model of a function on raw words: one item in, one item out.
 pub type Eval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
+/// The same on four items at once, word by word ([`Lanes`]).
+pub type LanesEval = Arc<dyn Fn(&[Lanes], &mut [Lanes]) + Send + Sync>;
 
 /// One emitted function.
 #[derive(Clone)]
@@ -115,9 +140,41 @@ pub struct Function {
     /// The same generic function evaluated with [`Dev`], which deviates as the
     /// thread's [`crate::model::deviant::with`] says (and equals `eval` when nothing is set).
     pub eval_dev: Eval,
+    /// The same generic function evaluated on four items at once with [`F4`]: what the
+    /// CPU batches run, bit for bit `eval` on each item.
+    pub eval_lanes: LanesEval,
     /// For a decoder: the same generic function evaluated with [`Encl`] over a box of
     /// codes, which [`crate::decode_bound`] refines into a proven deviation bound.
     pub enclose: Option<Enclose>,
+}
+
+impl Function {
+    /// Runs the function on `n` items through [`Function::eval_lanes`] (bit for bit
+    /// [`Function::eval`] on each): `read(item, word)` gathers the lanes, `write(item,
+    /// word, bits)` scatters them. A last partial group repeats its last item in the
+    /// spare lanes and writes only the real ones.
+    #[inline]
+    pub fn eval_four_at_a_time(
+        &self,
+        n: usize,
+        read: impl Fn(usize, usize) -> u32,
+        mut write: impl FnMut(usize, usize, u32),
+    ) {
+        let mut input = [[0u32; 4]; 3];
+        let mut output = [[0u32; 4]; 3];
+        for start in (0..n).step_by(4) {
+            let real = (n - start).min(4);
+            for (j, word) in input.iter_mut().enumerate().take(self.in_words) {
+                *word = std::array::from_fn(|k| read(start + k.min(real - 1), j));
+            }
+            (self.eval_lanes)(&input[..self.in_words], &mut output[..self.out_words]);
+            for (j, word) in output.iter().enumerate().take(self.out_words) {
+                for (k, &x) in word.iter().enumerate().take(real) {
+                    write(start + k, j, x);
+                }
+            }
+        }
+    }
 }
 
 /// One inclusive range per field → an enclosure per output lane.
@@ -133,16 +190,27 @@ pub struct Enclose {
     pub whole_field: Option<usize>,
 }
 
-/// A [`Function`] from its `f32` and [`Dev`] instantiations of one generic function
-/// (`generic_function!` below writes both from one body).
-pub fn function<A: Bits + 'static, R: Bits + 'static, AD: Bits + 'static, RD: Bits + 'static>(
+/// A [`Function`] from its `f32`, [`Dev`] and [`F4`] instantiations of one generic
+/// function (`generic_function!` below writes all three from one body).
+#[allow(clippy::too_many_arguments)]
+pub fn function<A, R, AD, RD, AL, RL>(
     name: &'static str,
     role: Role,
     inputs: Inputs,
     f: impl Fn(A) -> R + Send + Sync + 'static,
     f_dev: impl Fn(AD) -> RD + Send + Sync + 'static,
-) -> Function {
+    f_lanes: impl Fn(AL) -> RL + Send + Sync + 'static,
+) -> Function
+where
+    A: Bits + 'static,
+    R: Bits + 'static,
+    AD: Bits + 'static,
+    RD: Bits + 'static,
+    AL: Bits<Lanes> + 'static,
+    RL: Bits<Lanes> + 'static,
+{
     assert_eq!((A::WORDS, R::WORDS), (AD::WORDS, RD::WORDS));
+    assert_eq!((A::WORDS, R::WORDS), (AL::WORDS, RL::WORDS));
     Function {
         name,
         role,
@@ -151,13 +219,15 @@ pub fn function<A: Bits + 'static, R: Bits + 'static, AD: Bits + 'static, RD: Bi
         out_words: R::WORDS,
         eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
         eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
+        eval_lanes: Arc::new(move |i, o| f_lanes(AL::read(i)).write(o)),
         enclose: None,
     }
 }
 
 /// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]
-/// whose `eval` and `eval_dev` are the one generic `body` with `F` = `f32` and `F` =
-/// [`Dev`], so the adversarial evaluation can never drift from the reference. Each
+/// whose `eval`, `eval_dev` and `eval_lanes` are the one generic `body` with `F` = `f32`,
+/// `F` = [`Dev`] and `F` = [`F4`], so neither the adversarial nor the four-lane evaluation
+/// can drift from the reference. Each
 /// capture is cloned into both closures.
 macro_rules! generic_function {
     ($name:expr, $role:expr, $inputs:expr, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {
@@ -173,6 +243,11 @@ macro_rules! generic_function {
             {
                 $(let $c = $c.clone();)*
                 type $F = $crate::model::deviant::Dev;
+                move |$x: $A| $body
+            },
+            {
+                $(let $c = $c.clone();)*
+                type $F = $crate::model::lanes::F4;
                 move |$x: $A| $body
             },
         )
@@ -200,6 +275,8 @@ where
     C::C<f32>: Bits,
     C::P<Dev>: Bits,
     C::C<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::C<F4>: Bits<Lanes>,
 {
     let q = c.quants();
     let precise = spec.precise();

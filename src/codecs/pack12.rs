@@ -42,6 +42,7 @@ macro_rules! helpers {
             Inputs::FloatCodes($quants),
             |x: $P<f32>| $f(x),
             |x: $P<Dev>| $f(x),
+            |x: $P<crate::model::lanes::F4>| $f(x),
         )),*];
         Emitted { module, functions, namespace: String::new(), portable_encoder: false }
     }};

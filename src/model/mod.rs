@@ -4,6 +4,7 @@
 
 pub mod deviant;
 pub mod enclosure;
+pub mod lanes;
 pub mod num;
 pub mod trace;
 pub mod vec;

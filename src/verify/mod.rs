@@ -35,10 +35,13 @@ pub enum Path {
     CC,
     /// The same header compiled as C++.
     CCpp,
+    /// No emitted code: the model itself on four SSE2 lanes ([`Function::eval_lanes`]),
+    /// what the CPU batches run. Verified whatever the languages asked for.
+    Lanes,
 }
 
 impl Path {
-    pub const ALL: [Path; 7] = [
+    pub const ALL: [Path; 8] = [
         Path::WgslNaga,
         Path::GlslNaga,
         Path::GlslGlslang,
@@ -46,14 +49,21 @@ impl Path {
         Path::HlslGlslangDefault,
         Path::CC,
         Path::CCpp,
+        Path::Lanes,
     ];
-    pub fn lang(self) -> Lang {
+    /// The emitted language the path runs, if any.
+    pub fn lang(self) -> Option<Lang> {
         match self {
-            Path::WgslNaga => Lang::Wgsl,
-            Path::GlslNaga | Path::GlslGlslang => Lang::Glsl,
-            Path::HlslGlslangOd | Path::HlslGlslangDefault => Lang::Hlsl,
-            Path::CC | Path::CCpp => Lang::C,
+            Path::WgslNaga => Some(Lang::Wgsl),
+            Path::GlslNaga | Path::GlslGlslang => Some(Lang::Glsl),
+            Path::HlslGlslangOd | Path::HlslGlslangDefault => Some(Lang::Hlsl),
+            Path::CC | Path::CCpp => Some(Lang::C),
+            Path::Lanes => None,
         }
+    }
+    /// Whether the path runs a shader on the adapter.
+    fn on_gpu(self) -> bool {
+        self.lang().is_some_and(|l| l != Lang::C)
     }
 }
 
@@ -67,6 +77,7 @@ impl fmt::Display for Path {
             Path::HlslGlslangDefault => "hlsl/glslang",
             Path::CC => "c/cc -O2",
             Path::CCpp => "c/c++ -O2",
+            Path::Lanes => "cpu/4 lanes",
         })
     }
 }
@@ -192,6 +203,18 @@ fn expected(f: &Function, input: &[u32]) -> Vec<u32> {
     out
 }
 
+/// The outputs of [`Function::eval_lanes`], four items per call.
+fn lanes(f: &Function, input: &[u32]) -> Vec<u32> {
+    let (iw, ow) = (f.in_words, f.out_words);
+    let mut out = vec![0u32; input.len() / iw * ow];
+    f.eval_four_at_a_time(
+        input.len() / iw,
+        |i, j| input[i * iw + j],
+        |i, j, x| out[i * ow + j] = x,
+    );
+    out
+}
+
 fn compare(
     f: &Function,
     types: (Ty, Ty),
@@ -265,7 +288,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             tools::spirv_val(&spv)?;
             Some(spv)
         }
-        Path::CC | Path::CCpp => unreachable!("C paths compile a native driver"),
+        Path::CC | Path::CCpp | Path::Lanes => unreachable!("not a shader path"),
     })
 }
 
@@ -296,10 +319,10 @@ fn func_types(f: &Func) -> (Ty, Ty) {
 pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
     let paths: Vec<Path> = Path::ALL
         .into_iter()
-        .filter(|p| langs.contains(&p.lang()))
+        .filter(|p| p.lang().is_none_or(|l| langs.contains(&l)))
         .collect();
-    // The C paths need no GPU: only ask for the adapter when a shader path is run.
-    let gpu = if paths.iter().any(|p| p.lang() != Lang::C) {
+    // The C and CPU paths need no GPU: only ask for the adapter when a shader path is run.
+    let gpu = if paths.iter().any(|p| p.on_gpu()) {
         Some(Gpu::shared()?)
     } else {
         None
@@ -401,7 +424,7 @@ fn verify_spec(
     let full_name = |f: &Function| format!("{DEFAULT_PREFIX}{ns}{}", f.name);
     let c_programs: Vec<(Path, Result<native::Program, String>)> = paths
         .iter()
-        .filter(|p| p.lang() == Lang::C)
+        .filter(|p| p.lang() == Some(Lang::C))
         .map(|&p| {
             let funcs: Vec<(String, Ty, Ty)> = e
                 .functions
@@ -432,8 +455,9 @@ fn verify_spec(
         let input = inputs::generate(&f.inputs, f.in_words);
         let want = expected(f, &input);
         for &path in paths {
-            let lang = path.lang();
-            let result = if lang == Lang::C {
+            let result = if path == Path::Lanes {
+                Ok(lanes(f, &input))
+            } else if path.lang() == Some(Lang::C) {
                 let (_, program) = c_programs
                     .iter()
                     .find(|(p, _)| *p == path)
@@ -443,6 +467,7 @@ fn verify_spec(
                     Err(e) => Err(anyhow::anyhow!("{e}")),
                 }
             } else {
+                let lang = path.lang().expect("a shader path");
                 let kernel =
                     lang.backend(DEFAULT_PREFIX)
                         .kernel(include(lang), &full_name(f), param, ret);

@@ -1,0 +1,323 @@
+//! The vocabulary on four lanes at once ([`F4`], [`U4`], [`M4`] over `wide`'s SSE2 types),
+//! so that the CPU batches evaluate the same generic codec definitions four vectors per
+//! step. Every operation is the scalar model's, lane by lane, bit for bit: IEEE `+ - * /`
+//! and `sqrt` are correctly rounded in both; `round`, `floor`, `abs`, negation and the
+//! conversions are written here with the very operations the scalar `f32` model uses
+//! (`src/model/num.rs`), not with instructions whose edge cases (signs of zero, NaN,
+//! out-of-range conversions) could differ.
+
+use super::num::{Bool, Float, Kind, Lane, Uint};
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
+use wide::bytemuck::cast;
+use wide::{f32x4, i32x4, u32x4};
+
+/// Four f32 lanes.
+#[derive(Clone, Copy, Debug)]
+pub struct F4(pub f32x4);
+/// Four u32 lanes.
+#[derive(Clone, Copy, Debug)]
+pub struct U4(pub u32x4);
+/// Four comparison results, all bits set where true.
+#[derive(Clone, Copy, Debug)]
+pub struct M4(pub u32x4);
+
+const SIGN: u32 = 0x8000_0000;
+
+impl F4 {
+    fn bits(self) -> u32x4 {
+        cast(self.0)
+    }
+    fn of_bits(b: u32x4) -> F4 {
+        F4(cast(b))
+    }
+    fn mask(m: f32x4) -> M4 {
+        M4(cast(m))
+    }
+    /// `f32::round_ties_even` as the scalar model computes it: `(|x| + 2^23) - 2^23` with
+    /// the sign of `x` below 2^23, `x` itself above (and for infinities and NaN).
+    fn round_even(self) -> F4 {
+        let two_23 = f32x4::splat(8_388_608.0);
+        let a = self.abs();
+        let r = F4((a.0 + two_23) - two_23).bits() | (self.bits() & u32x4::splat(SIGN));
+        F4::sel(a.lt(F4(two_23)), F4::of_bits(r), self)
+    }
+}
+
+impl Lane for F4 {
+    const KIND: Kind = Kind::F32;
+}
+impl Lane for U4 {
+    const KIND: Kind = Kind::U32;
+}
+impl Lane for M4 {
+    const KIND: Kind = Kind::Bool;
+}
+super::trace::value_eval!(F4, U4, M4);
+
+impl Bool for M4 {
+    #[inline(always)]
+    fn and(self, o: Self) -> Self {
+        M4(self.0 & o.0)
+    }
+    #[inline(always)]
+    fn or(self, o: Self) -> Self {
+        M4(self.0 | o.0)
+    }
+    #[inline(always)]
+    fn not(self) -> Self {
+        M4(!self.0)
+    }
+}
+
+/// `m ? t : f` on bits.
+#[inline(always)]
+fn blend(m: M4, t: u32x4, f: u32x4) -> u32x4 {
+    (t & m.0) | (f & !m.0)
+}
+
+macro_rules! binary {
+    ($t:ident, $tr:ident, $f:ident) => {
+        impl $tr for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn $f(self, o: $t) -> $t {
+                $t(self.0.$f(o.0))
+            }
+        }
+    };
+}
+binary!(F4, Add, add);
+binary!(F4, Sub, sub);
+binary!(F4, Mul, mul);
+binary!(F4, Div, div);
+binary!(U4, Add, add);
+binary!(U4, Sub, sub);
+binary!(U4, BitAnd, bitand);
+binary!(U4, BitOr, bitor);
+
+impl Neg for F4 {
+    type Output = F4;
+    /// The sign bit flipped, as scalar negation does (`0 - x` would turn -0 into +0).
+    #[inline(always)]
+    fn neg(self) -> F4 {
+        F4::of_bits(self.bits() ^ u32x4::splat(SIGN))
+    }
+}
+
+impl Uint for U4 {
+    type F = F4;
+    type B = M4;
+    #[inline(always)]
+    fn c(v: u32) -> Self {
+        U4(u32x4::splat(v))
+    }
+    #[inline(always)]
+    fn shl(self, n: u32) -> Self {
+        U4(self.0 << n)
+    }
+    #[inline(always)]
+    fn shr(self, n: u32) -> Self {
+        U4(self.0 >> n)
+    }
+    /// `u as f32` (round to nearest, ties to even) for every `u`: the two 16-bit halves
+    /// convert exactly, `hi·2^16` is exact, and their sum is rounded once.
+    #[inline(always)]
+    fn to_f(self) -> F4 {
+        let half = |u: u32x4| f32x4::from_i32x4(cast::<u32x4, i32x4>(u));
+        let hi = half(self.0 >> 16);
+        let lo = half(self.0 & u32x4::splat(0xffff));
+        F4(hi * f32x4::splat(65_536.0) + lo)
+    }
+    #[inline(always)]
+    fn as_float(self) -> F4 {
+        F4::of_bits(self.0)
+    }
+    #[inline(always)]
+    fn sel(m: M4, t: Self, f: Self) -> Self {
+        U4(blend(m, t.0, f.0))
+    }
+    #[inline(always)]
+    fn wrapping_add(self, o: Self) -> Self {
+        U4(self.0 + o.0)
+    }
+    #[inline(always)]
+    fn wrapping_sub(self, o: Self) -> Self {
+        U4(self.0 - o.0)
+    }
+    #[inline(always)]
+    fn wrapping_mul(self, o: Self) -> Self {
+        U4(self.0 * o.0)
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> M4 {
+        M4(self.0.simd_lt(o.0))
+    }
+}
+
+impl Float for F4 {
+    type U = U4;
+    type B = M4;
+    #[inline(always)]
+    fn c(v: f32) -> Self {
+        F4(f32x4::splat(v))
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        F4::of_bits(self.bits() & u32x4::splat(!SIGN))
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        F4(self.0.sqrt())
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        let r = self.round_even();
+        F4::sel(r.gt(self), r - F4::c(1.0), r)
+    }
+    #[inline(always)]
+    fn round(self) -> Self {
+        self.round_even()
+    }
+    #[inline(always)]
+    fn lt(self, o: Self) -> M4 {
+        F4::mask(self.0.simd_lt(o.0))
+    }
+    #[inline(always)]
+    fn le(self, o: Self) -> M4 {
+        F4::mask(self.0.simd_le(o.0))
+    }
+    #[inline(always)]
+    fn gt(self, o: Self) -> M4 {
+        F4::mask(self.0.simd_gt(o.0))
+    }
+    #[inline(always)]
+    fn ge(self, o: Self) -> M4 {
+        F4::mask(self.0.simd_ge(o.0))
+    }
+    #[inline(always)]
+    fn eq(self, o: Self) -> M4 {
+        F4::mask(self.0.simd_eq(o.0))
+    }
+    #[inline(always)]
+    fn sel(m: M4, t: Self, f: Self) -> Self {
+        F4::of_bits(blend(m, t.bits(), f.bits()))
+    }
+    /// `x as u32`, saturating as Rust's conversion does: NaN and `x ≤ -1` give 0 (and
+    /// `(-1, 0)` truncates to 0), `x ≥ 2^32` gives `u32::MAX`; `[2^31, 2^32)` converts
+    /// `x - 2^31` (exact there) and adds the top bit back.
+    #[inline(always)]
+    fn to_u(self) -> U4 {
+        let two_31 = F4::c(2_147_483_648.0);
+        let low = U4(cast(self.0.trunc_int()));
+        let high = U4(cast((self - two_31).0.trunc_int())) + U4::c(SIGN);
+        let r = U4::sel(self.ge(two_31), high, low);
+        let r = U4::sel(self.ge(F4::c(4_294_967_296.0)), U4::c(u32::MAX), r);
+        U4::sel(self.gt(F4::c(-1.0)), r, U4::c(0))
+    }
+    #[inline(always)]
+    fn to_bits(self) -> U4 {
+        U4(self.bits())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lanes(x: [f32; 4]) -> F4 {
+        F4(f32x4::new(x))
+    }
+
+    /// Each operation against the scalar model on edge values, as raw bits.
+    #[test]
+    fn every_operation_matches_the_scalar_model_bit_for_bit() {
+        let edges = [
+            0.0f32,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            2.5,
+            -2.5,
+            1e-45,
+            -1e-40,
+            f32::MIN_POSITIVE,
+            8_388_607.5,
+            8_388_609.0,
+            -8_388_608.0,
+            2_147_483_520.0,
+            2_147_483_648.0,
+            4_294_967_040.0,
+            4_294_967_296.0,
+            -1.0,
+            -0.999,
+            3.4e38,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+            123.456,
+            -7.75,
+        ];
+        let n = edges.len();
+        for i in 0..n {
+            let a = [
+                edges[i],
+                edges[(i + 1) % n],
+                edges[(i + 5) % n],
+                edges[(i + 11) % n],
+            ];
+            let b = [
+                edges[(i + 3) % n],
+                edges[i],
+                edges[(i + 7) % n],
+                edges[(i + 2) % n],
+            ];
+            let (x, y) = (lanes(a), lanes(b));
+            // A NaN's sign and payload are not a model value: the compiler may commute
+            // `a + b`, and x86 returns the first operand's NaN. Every other result is
+            // compared as raw bits.
+            let check = |what: &str, got: [u32; 4], want: &dyn Fn(f32, f32) -> u32| {
+                for k in 0..4 {
+                    let w = want(a[k], b[k]);
+                    let nan = |u: u32| f32::from_bits(u).is_nan();
+                    if what.starts_with('f') && nan(w) && nan(got[k]) {
+                        continue;
+                    }
+                    assert_eq!(got[k], w, "{what}({}, {})", a[k], b[k]);
+                }
+            };
+            let fb = |v: F4| v.to_bits().0.to_array();
+            let mb = |m: M4| m.0.to_array().map(|w| u32::from(w != 0));
+            check("fadd", fb(x + y), &|a, b| (a + b).to_bits());
+            check("fsub", fb(x - y), &|a, b| (a - b).to_bits());
+            check("fmul", fb(x * y), &|a, b| (a * b).to_bits());
+            check("fdiv", fb(x / y), &|a, b| (a / b).to_bits());
+            check("fneg", fb(-x), &|a, _| (-a).to_bits());
+            check("fabs", fb(x.abs()), &|a, _| Float::abs(a).to_bits());
+            check("fsqrt", fb(x.sqrt()), &|a, _| Float::sqrt(a).to_bits());
+            check("ffloor", fb(x.floor()), &|a, _| Float::floor(a).to_bits());
+            check("fround", fb(x.round()), &|a, _| Float::round(a).to_bits());
+            check("to_u", x.to_u().0.to_array(), &|a, _| Float::to_u(a));
+            check("lt", mb(x.lt(y)), &|a, b| u32::from(a < b));
+            check("le", mb(x.le(y)), &|a, b| u32::from(a <= b));
+            check("gt", mb(x.gt(y)), &|a, b| u32::from(a > b));
+            check("ge", mb(x.ge(y)), &|a, b| u32::from(a >= b));
+            check("eq", mb(x.eq(y)), &|a, b| u32::from(a == b));
+            let u = U4(x.to_bits().0);
+            let v = U4(y.to_bits().0);
+            let ub = |u: U4| u.0.to_array();
+            let bits = |f: fn(u32, u32) -> u32| move |a: f32, b: f32| f(a.to_bits(), b.to_bits());
+            check("fto_f", fb(u.to_f()), &bits(|a, _| (a as f32).to_bits()));
+            check("mul_u", ub(u.wrapping_mul(v)), &bits(u32::wrapping_mul));
+            check("sub_u", ub(u.wrapping_sub(v)), &bits(u32::wrapping_sub));
+            check("lt_u", mb(u.lt(v)), &bits(|a, b| u32::from(a < b)));
+            check("shr", ub(u.shr(7)), &bits(|a, _| a >> 7));
+            check("shl", ub(u.shl(9)), &bits(|a, _| a << 9));
+            let m = x.lt(y);
+            check("fsel", fb(F4::sel(m, x, y)), &|a, b| {
+                if a < b { a } else { b }.to_bits()
+            });
+        }
+    }
+}
