@@ -153,11 +153,8 @@ impl Batch {
             out.len(),
             "Batch::encode: out must hold words() = {w} words per input vector"
         );
-        self.encode.eval_four_at_a_time(
-            input.len(),
-            |i, j| input[i][j].to_bits(),
-            |i, j, x| out[i * w + j] = x,
-        );
+        self.encode
+            .eval_many(wide::bytemuck::cast_slice(input), out);
     }
 
     /// Decodes `codes` (`words()` words each) into `out`.
@@ -168,10 +165,7 @@ impl Batch {
             out.len() * w,
             "Batch::decode: codes must hold words() = {w} words per output vector"
         );
-        self.decode.eval_four_at_a_time(
-            out.len(),
-            |i, j| codes[i * w + j],
-            |i, j, x| out[i][j] = f32::from_bits(x),
-        );
+        self.decode
+            .eval_many(codes, wide::bytemuck::cast_slice_mut(out));
     }
 }

@@ -253,6 +253,7 @@ fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write
     let (iw, ow) = (c.f.in_words, c.f.out_words);
     let mut block = vec![0u8; size * BLOCK];
     let mut results = vec![0u32; ow * BLOCK];
+    let mut words = Vec::with_capacity(3 * BLOCK);
     let mut done = 0u64;
     let noun = match c.dir {
         Direction::Encode => "a vector is 12 bytes, 3×f32",
@@ -278,7 +279,9 @@ fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write
         };
         let good = bad.map_or(records, |(i, _)| i);
         // Four records per step on SIMD lanes: the same bits as one at a time.
-        c.f.eval_four_at_a_time(good, word, |i, j, x| results[i * ow + j] = x);
+        words.clear();
+        words.extend((0..good * iw).map(|k| word(k / iw, k % iw)));
+        c.f.eval_many(&words, &mut results[..good * ow]);
         for res in results[..good * ow].chunks_exact(ow) {
             put(c, res, to, out).map_err(write_err)?;
         }

@@ -123,7 +123,9 @@ pub enum Role {
 
 /// A model of a function on raw words: one item in, one item out.
 pub type Eval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
-/// The same on four items at once, word by word ([`Lanes`]).
+/// The same on groups of four items, word by word ([`Lanes`]): `in_words` lanes per
+/// group in, `out_words` out, as many groups as the input holds (one call per block, so
+/// the dynamic call is paid once per block, not per group).
 pub type LanesEval = Arc<dyn Fn(&[Lanes], &mut [Lanes]) + Send + Sync>;
 
 /// One emitted function.
@@ -149,28 +151,41 @@ pub struct Function {
 }
 
 impl Function {
-    /// Runs the function on `n` items through [`Function::eval_lanes`] (bit for bit
-    /// [`Function::eval`] on each): `read(item, word)` gathers the lanes, `write(item,
-    /// word, bits)` scatters them. A last partial group repeats its last item in the
-    /// spare lanes and writes only the real ones.
-    #[inline]
-    pub fn eval_four_at_a_time(
-        &self,
-        n: usize,
-        read: impl Fn(usize, usize) -> u32,
-        mut write: impl FnMut(usize, usize, u32),
-    ) {
-        let mut input = [[0u32; 4]; 3];
-        let mut output = [[0u32; 4]; 3];
-        for start in (0..n).step_by(4) {
-            let real = (n - start).min(4);
-            for (j, word) in input.iter_mut().enumerate().take(self.in_words) {
-                *word = std::array::from_fn(|k| read(start + k.min(real - 1), j));
+    /// Runs the function on every item of `input` (`in_words` words each) into `output`
+    /// (`out_words` each) through [`Function::eval_lanes`], bit for bit
+    /// [`Function::eval`] on each item: a block of groups of four per call, transposed
+    /// in and out. A last partial group repeats its last item in the spare lanes and
+    /// writes only the real ones.
+    pub fn eval_many(&self, input: &[u32], output: &mut [u32]) {
+        const GROUPS: usize = 64;
+        let (iw, ow) = (self.in_words, self.out_words);
+        let n = input.len() / iw;
+        assert_eq!(
+            n * ow,
+            output.len(),
+            "{} outputs for {n} items",
+            output.len()
+        );
+        let mut lanes_in = [[0u32; 4]; 3 * GROUPS];
+        let mut lanes_out = [[0u32; 4]; 3 * GROUPS];
+        for (src, dst) in input
+            .chunks(4 * GROUPS * iw)
+            .zip(output.chunks_mut(4 * GROUPS * ow))
+        {
+            let items = src.len() / iw;
+            let groups = items.div_ceil(4);
+            for (g, lanes) in lanes_in[..groups * iw].chunks_exact_mut(iw).enumerate() {
+                for (k, item) in (0..4).map(|k| (k, (4 * g + k).min(items - 1))) {
+                    for (j, lane) in lanes.iter_mut().enumerate() {
+                        lane[k] = src[item * iw + j];
+                    }
+                }
             }
-            (self.eval_lanes)(&input[..self.in_words], &mut output[..self.out_words]);
-            for (j, word) in output.iter().enumerate().take(self.out_words) {
-                for (k, &x) in word.iter().enumerate().take(real) {
-                    write(start + k, j, x);
+            (self.eval_lanes)(&lanes_in[..groups * iw], &mut lanes_out[..groups * ow]);
+            for (item, out) in dst.chunks_exact_mut(ow).enumerate() {
+                let lanes = &lanes_out[item / 4 * ow..][..ow];
+                for (o, lane) in out.iter_mut().zip(lanes) {
+                    *o = lane[item % 4];
                 }
             }
         }
@@ -219,7 +234,11 @@ where
         out_words: R::WORDS,
         eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
         eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
-        eval_lanes: Arc::new(move |i, o| f_lanes(AL::read(i)).write(o)),
+        eval_lanes: Arc::new(move |i, o| {
+            for (i, o) in i.chunks_exact(AL::WORDS).zip(o.chunks_exact_mut(RL::WORDS)) {
+                f_lanes(AL::read(i)).write(o)
+            }
+        }),
         enclose: None,
     }
 }
