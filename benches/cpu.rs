@@ -1,6 +1,7 @@
 //! CPU codec throughput in vectors per second, with a baseline measured in the same run
 //! (normalizing the same vectors in f32) so that results compare across machines as ratios.
-//! Beside oct16 and oct32, the peer they replace: meshoptimizer's octahedral vertex filter
+//! The typed slices (`Encoder::encode_slice`) and `Batch` both run the model four vectors
+//! per step on SSE2 lanes (`unitpack::model::lanes`). Beside oct16 and oct32, the peer they replace: meshoptimizer's octahedral vertex filter
 //! (`meshopt_encodeFilterOct` / `meshopt_decodeFilterOct`, 8- and 16-bit components, through
 //! the `meshopt` crate), measured in the same run on the same vectors, as ratios (above 1:
 //! unitpack is faster). meshoptimizer decodes snorm integers to snorm integers in place with
@@ -38,7 +39,7 @@ where
     let mut out = vec![[0f32; 3]; N];
     let dec = rate(|| e.decode_slice(black_box(&codes), &mut out));
     println!(
-        "{name:<10} encode {:>7.1} M/s ({:>5.2}× baseline)   decode {:>7.1} M/s ({:>5.2}× baseline)",
+        "{name:<12} encode {:>7.1} M/s ({:>5.2}× baseline)   decode {:>7.1} M/s ({:>5.2}× baseline)",
         enc / 1e6,
         enc / base,
         dec / 1e6,
@@ -47,8 +48,9 @@ where
     (enc, dec)
 }
 
-/// The encode and decode rates of [`Batch`] (the same model on four SSE2 lanes, through
-/// one non-generic entry point), printed beside the typed encoder's.
+/// The encode and decode rates of [`Batch`] (the same four-lane model as the typed slices,
+/// through one non-generic entry point compiled inside unitpack), printed beside the typed
+/// encoder's.
 fn batch(spec: &str, vs: &[[f32; 3]], base: f64) -> (f64, f64) {
     let b = Batch::new(spec).unwrap();
     let mut codes = vec![0u32; N * b.words()];
@@ -56,8 +58,8 @@ fn batch(spec: &str, vs: &[[f32; 3]], base: f64) -> (f64, f64) {
     let mut out = vec![[0f32; 3]; N];
     let dec = rate(|| b.decode(black_box(&codes), &mut out));
     println!(
-        "{:<10} encode {:>7.1} M/s ({:>5.2}× baseline)   decode {:>7.1} M/s ({:>5.2}× baseline)",
-        format!("{spec} ×4"),
+        "{:<12} encode {:>7.1} M/s ({:>5.2}× baseline)   decode {:>7.1} M/s ({:>5.2}× baseline)",
+        format!("{spec} Batch"),
         enc / 1e6,
         enc / base,
         dec / 1e6,
@@ -100,7 +102,7 @@ fn meshopt_oct(bits: i32, vs: &[[f32; 3]]) -> (f64, f64) {
 /// unitpack's rates for one spec over meshoptimizer's at the same component size.
 fn ratios(name: &str, (enc, dec): (f64, f64), (m_enc, m_dec): (f64, f64)) {
     println!(
-        "{name:<12} vs meshopt: encode {:>5.2}×   decode {:>5.2}×   (meshopt {:>7.1} / {:>7.1} M/s)",
+        "{name:<13} vs meshopt: encode {:>5.2}×   decode {:>5.2}×   (meshopt {:>7.1} / {:>7.1} M/s)",
         enc / m_enc,
         dec / m_dec,
         m_enc / 1e6,
@@ -143,8 +145,8 @@ fn main() {
     for (bits, [fast, precise, lanes, lanes_precise], peer) in peers {
         ratios(&format!("oct{bits}"), fast, peer);
         ratios(&format!("oct{bits}p"), precise, peer);
-        ratios(&format!("oct{bits} ×4"), lanes, peer);
-        ratios(&format!("oct{bits}p ×4"), lanes_precise, peer);
+        ratios(&format!("oct{bits} Batch"), lanes, peer);
+        ratios(&format!("oct{bits}p Batch"), lanes_precise, peer);
     }
     bench("hemioct24", HemiOct::new(24).unwrap().fast(), &vs, base);
     for spec in ["oct16", "oct24p", "snorm16x3"] {

@@ -22,8 +22,11 @@
 use crate::codecs::codec::Codec;
 pub use crate::codecs::cpu::*;
 use crate::codecs::functions::{Function, Role, decode_packed, encode_packed};
+use crate::codecs::quant::Code;
 use crate::codecs::{Spec, SpecError};
+use crate::model::Uint;
 use crate::model::V3;
+use crate::model::lanes::{F4, U4};
 
 /// A codec with its encoder chosen (fast: nearest codes; precise: the survey's "P" search).
 #[derive(Clone, Copy, Debug)]
@@ -62,26 +65,59 @@ impl<C: Codec> Encoder<C> {
     pub fn decode(&self, code: C::C<f32>) -> [f32; 3] {
         decode_packed(&self.codec, code).to_array()
     }
-    /// Encodes `input` into `out` (same length).
+    /// Encodes `input` into `out` (same length), four vectors per step on SIMD lanes
+    /// ([`crate::model::lanes`]): the same bits as [`Encoder::encode`] on each.
     pub fn encode_slice(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
         assert_eq!(
             input.len(),
             out.len(),
             "encode_slice: input and output lengths differ"
         );
-        for (o, v) in out.iter_mut().zip(input) {
-            *o = self.encode(*v);
+        for (vs, os) in input.chunks(4).zip(out.chunks_mut(4)) {
+            let lane = |j: usize| {
+                let x: [f32; 4] = std::array::from_fn(|k| vs[k.min(vs.len() - 1)][j]);
+                F4(x.into())
+            };
+            let code = encode_packed(
+                &self.codec,
+                self.precise,
+                V3::new(lane(0), lane(1), lane(2)),
+            );
+            let words: [[u32; 4]; 3] = std::array::from_fn(|j| {
+                if j < <C::C<F4> as Code<F4>>::WORDS {
+                    code.word(j).0.to_array()
+                } else {
+                    [0; 4]
+                }
+            });
+            for (k, o) in os.iter_mut().enumerate() {
+                *o = C::C::<f32>::from_words(words.map(|w| w[k]));
+            }
         }
     }
-    /// Decodes `input` into `out` (same length).
+    /// Decodes `input` into `out` (same length), four codes per step on SIMD lanes: the
+    /// same bits as [`Encoder::decode`] on each.
     pub fn decode_slice(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
         assert_eq!(
             input.len(),
             out.len(),
             "decode_slice: input and output lengths differ"
         );
-        for (o, c) in out.iter_mut().zip(input) {
-            *o = self.decode(*c);
+        let words = <C::C<f32> as Code<f32>>::WORDS;
+        for (cs, os) in input.chunks(4).zip(out.chunks_mut(4)) {
+            let lane = |j: usize| {
+                let w: [u32; 4] = std::array::from_fn(|k| cs[k.min(cs.len() - 1)].word(j));
+                U4(w.into())
+            };
+            let code = C::C::<F4>::from_words(std::array::from_fn(|j| {
+                if j < words { lane(j) } else { U4::c(0) }
+            }));
+            let [x, y, z] = decode_packed(&self.codec, code)
+                .to_array()
+                .map(|l| l.0.to_array());
+            for (k, o) in os.iter_mut().enumerate() {
+                *o = [x[k], y[k], z[k]];
+            }
         }
     }
 }

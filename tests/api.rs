@@ -17,6 +17,44 @@ fn invalid_sizes_list_the_allowed_ones() {
     assert!(StereoScaled::new(16).unwrap().with_scale(2.0).is_ok());
 }
 
+/// The slices run four vectors per step on SIMD lanes; every item must be the single
+/// call's bits, for 1-, 2- and 3-word codes, fast and precise, over lengths that leave a
+/// partial last group, the edge vectors and every decoded code's bits.
+#[test]
+fn slices_compute_the_single_calls_bits() {
+    fn check<C: CpuCodec>(name: &str, e: unitpack::api::Encoder<C>)
+    where
+        C::C<f32>: PartialEq + std::fmt::Debug,
+    {
+        let mut vs = random_unit_vectors(21, 4099, false);
+        vs.extend(unitpack::verify::inputs::edge_vectors());
+        vs.extend([[1e30, -1e30, 0.5], [0.0, 0.0, -1.0], [3.0, 4.0, 0.0]]);
+        for len in [vs.len(), 1, 2, 3, 5] {
+            let vs = &vs[..len];
+            let mut codes = vec![e.encode([0.0, 0.0, 1.0]); len];
+            e.encode_slice(vs, &mut codes);
+            let mut back = vec![[0f32; 3]; len];
+            e.decode_slice(&codes, &mut back);
+            for ((v, c), b) in vs.iter().zip(&codes).zip(&back) {
+                assert_eq!(*c, e.encode(*v), "{name}: {v:?}");
+                assert_eq!(
+                    b.map(f32::to_bits),
+                    e.decode(*c).map(f32::to_bits),
+                    "{name}"
+                );
+            }
+        }
+    }
+    check("oct16", Oct::new(16).unwrap().fast());
+    check("oct32p", Oct::new(32).unwrap().precise());
+    check("hemioct24p", HemiOct::new(24).unwrap().precise());
+    check("snorm16x3", Snorm3::two_words().fast());
+    check("snorm11_11_10", Snorm3::snorm11_11_10().fast());
+    check("float16x3", Float16x3.fast());
+    check("float32x3", Float32x3.fast());
+    check("cube24p", Cube::new(24).unwrap().precise());
+}
+
 #[test]
 fn slices_match_single_calls_and_round_trip_within_the_codec_error() {
     let vs = random_unit_vectors(3, 4096, false);

@@ -24,17 +24,21 @@ pub struct M4(pub u32x4);
 const SIGN: u32 = 0x8000_0000;
 
 impl F4 {
+    #[inline(always)]
     fn bits(self) -> u32x4 {
         cast(self.0)
     }
+    #[inline(always)]
     fn of_bits(b: u32x4) -> F4 {
         F4(cast(b))
     }
+    #[inline(always)]
     fn mask(m: f32x4) -> M4 {
         M4(cast(m))
     }
     /// `f32::round_ties_even` as the scalar model computes it: `(|x| + 2^23) - 2^23` with
     /// the sign of `x` below 2^23, `x` itself above (and for infinities and NaN).
+    #[inline(always)]
     fn round_even(self) -> F4 {
         let two_23 = f32x4::splat(8_388_608.0);
         let a = self.abs();
