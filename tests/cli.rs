@@ -2303,6 +2303,25 @@ fn binary_formats_are_raw_little_endian_records() {
         r.stderr.contains("record 3") && r.stderr.contains("12 bytes"),
         "{r:?}"
     );
+    // The two whole records before the partial one are written (to stdout).
+    assert_eq!(r.out.len(), 2 * 4, "{r:?}");
+    // A bad code in the second block of 8192 records: every record before it is
+    // written, each the code's decode, and the error names record 8193.
+    let mut codes: Vec<u8> = (0..8192u32)
+        .flat_map(|i| (i * 7 & 0xffff).to_le_bytes())
+        .collect();
+    codes.extend(0x1_0000u32.to_le_bytes());
+    codes.extend(5u32.to_le_bytes());
+    let r = run_bytes(&["decode", "oct16", "--format", "binary"], &codes);
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(r.stderr.contains("record 8193"), "{}", r.stderr);
+    assert_eq!(r.out.len(), 8192 * 12, "{}", r.stderr);
+    let whole = run_bytes(
+        &["decode", "oct16", "--format", "binary"],
+        &codes[..8192 * 4],
+    );
+    assert_eq!(whole.code, 0, "{}", whole.stderr);
+    assert_eq!(r.out, whole.out);
     let r = run_bytes(
         &["decode", "oct16", "--format", "binary"],
         &0x1_0000u32.to_le_bytes(),

@@ -458,7 +458,7 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
 }
 
 // unitpack_hemioct24p_encode_float: hemioct24p (hemi-octahedral, snorm×2, 24 bits, hemisphere), precise encoder, float form.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
 // Out: the chosen codes as values in [-1, 1] (c/M) for a snorm12 render target or vertex format.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
@@ -472,7 +472,7 @@ vec2 unitpack_hemioct24p_encode_float(vec3 v) {
 }
 
 // unitpack_hemioct24p_encode: hemioct24p (hemi-octahedral, snorm×2, 24 bits, hemisphere), precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.

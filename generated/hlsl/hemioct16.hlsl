@@ -67,7 +67,7 @@ float3 unitpack_hemioct16_decode(uint code) {
 }
 
 // unitpack_hemioct16_encode_float: hemioct16 (hemi-octahedral, snorm×2, 16 bits, hemisphere), fast encoder, float form.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
@@ -157,7 +157,7 @@ float2 unitpack_hemioct16_round_codes(float3 a0) {
 }
 
 // unitpack_hemioct16_encode: hemioct16 (hemi-octahedral, snorm×2, 16 bits, hemisphere), fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon).
+// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.

@@ -167,9 +167,15 @@ pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
 /// is the one integer with `1 - N ≤ S - N² ≤ N`. Without them a unit input would come
 /// out one ULP long about half the time.
 fn rounded_root<F: Float>(s: F, parts: (F::U, F::U)) -> F::U {
-    let u = |v: u32| F::U::c(v);
     let n0 = (root(s).named("length") * F::c(FIXED_SCALE)).to_u();
-    let wide = parts.0.shl(24).wrapping_add(parts.1);
+    settled_root::<F>(n0, parts)
+}
+
+/// [`rounded_root`]'s two integer steps from an estimate `n0` within two units of
+/// `N = round(sqrt(S))`.
+fn settled_root<F: Float>(n0: F::U, (hi, lo): (F::U, F::U)) -> F::U {
+    let u = |v: u32| F::U::c(v);
+    let wide = hi.shl(24).wrapping_add(lo);
     // S - n² + 2^30: positive, so unsigned comparisons order it.
     let bias = u(1 << 30);
     let step = |n: F::U| {
@@ -483,14 +489,16 @@ pub fn snorm_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
     signed(n, corrected(q, estimate, up, down))
 }
 
-/// [`snorm_ratio`] where `|n| ≤ d` holds exactly: `d` is a correctly rounded sum of `|n|`
-/// and non-negative terms (rounding is monotone, so the sum is at least `|n|`). Then no
-/// clamp can trigger: `|n|/d ≤ 1` within 2.5 ULP, so the estimate is in `[0, M]` for
-/// `M < 2^21`; at `M` the step up needs `|n|·M ≥ (M + ½)·d`, which the rounded products
-/// cannot meet (they are monotone and `(M + ½)/M` exceeds one by more than 2^-24), and
+/// [`snorm_ratio`] where `|n| ≤ d` holds by monotone rounding: `d` is a correctly rounded
+/// sum of non-negative terms whose exact sum is at least `|n|`, and `n` a correctly
+/// rounded sum or difference no larger in magnitude (oct's `x` and `l1 - |y|`, hemioct's
+/// `x ± y`). Then no clamp can trigger, for `M < 2^20`: `|n|/d ≤ 1` within 2.5 ULP, so the
+/// estimate is in `[0, M]` (`M·(1 + 5·2^-24)` stays below `M + ½`); at `M` the step up needs
+/// `fl(|n|·M) ≥ fl((M + ½)·d)`, which monotone rounding excludes (`fl(|n|·M) ≤ fl(d·M)`,
+/// and `(M + ½)/M - 1 = 1/(2M)` exceeds `2^-21`, so the two products of `d` round apart);
 /// at 0 the step down needs `|n|·M < -½·d`.
 pub fn snorm_ratio_within<F: Float>(q: Quant, n: F, d: F) -> F {
-    debug_assert!(q.max_code() < (1u32 << 21) as f32);
+    debug_assert!(q.max_code() < (1u32 << 20) as f32);
     let (estimate, up, down) = snorm_ratio_steps(q, n, d);
     signed(n, stepped(estimate, up, down))
 }
@@ -556,7 +564,7 @@ pub fn half_sqrt_ratio<F: Float>(n: F, s: F) -> F {
     F::sel(n.lt(F::c(0.0)).and(c.gt(F::c(0.0))), -h, h)
 }
 
-/// `floor(n / d · M)` for `|n| ≤ d` (`d > 0`, as for [`snorm_ratio`]): the integer `c`
+/// `floor(n / d · M)` for `|n| ≤ d` (`d > 0`): the integer `c`
 /// in `[-M, M]` with `c·d ≤ n·M < (c + 1)·d` (each side rounded once), where a precise
 /// search starts.
 pub fn floor_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
@@ -618,11 +626,11 @@ mod tests {
             let s = joined::<f32>(parts) / (FIXED_SCALE * FIXED_SCALE);
             let big: u128 = a.iter().map(|a| a * a).sum();
             let n = u128::from(rounded_root::<f32>(s, parts));
-            // An estimate off by a relative 2^-23 (n₀ up to two units away) still
-            // reaches N: the integers decide.
-            for off in [1.0 + 2f32.powi(-23), 1.0 - 2f32.powi(-23)] {
-                let moved = u128::from(rounded_root::<f32>(s * off, parts));
-                assert_eq!(moved, n, "{v:?}: estimate {} moved N", s * off);
+            // Any estimate within two units reaches N: the integers decide.
+            for off in [-2i64, -1, 0, 1, 2] {
+                let n0 = (n as i64 + off) as u32;
+                let got = u128::from(settled_root::<f32>(n0, parts));
+                assert_eq!(got, n, "{v:?}: from N{off:+}");
             }
             // (N - ½)² ≤ S < (N + ½)², in integers: N² - N < S ≤ N² + N.
             assert!(

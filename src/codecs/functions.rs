@@ -161,6 +161,12 @@ impl Function {
         let (iw, ow) = (self.in_words, self.out_words);
         let n = input.len() / iw;
         assert_eq!(
+            n * iw,
+            input.len(),
+            "{} input words, {iw} per item",
+            input.len()
+        );
+        assert_eq!(
             n * ow,
             output.len(),
             "{} outputs for {n} items",
@@ -246,8 +252,7 @@ where
 /// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]
 /// whose `eval`, `eval_dev` and `eval_lanes` are the one generic `body` with `F` = `f32`,
 /// `F` = [`Dev`] and `F` = [`F4`], so neither the adversarial nor the four-lane evaluation
-/// can drift from the reference. Each
-/// capture is cloned into both closures.
+/// can drift from the reference. Each capture is cloned into all three closures.
 macro_rules! generic_function {
     ($name:expr, $role:expr, $inputs:expr, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {
         function(

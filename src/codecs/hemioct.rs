@@ -22,7 +22,7 @@ static INFO: Info = Info {
     domain: Some(Domain::Hemisphere),
     precise: true,
     source: "Cigolle et al. 2014, Listing 6 and Table 3",
-    edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also within 2^-40 rad of -Z, where encode_float already sees the horizon)",
+    edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon)",
     decode_note: "every code decodes to a unit vector with z ≥ 0",
     options: &[],
 };
@@ -124,9 +124,9 @@ impl Codec for HemiOct {
     /// each quotient is at most 1. Zero, NaN and infinite input and `-Z` fail
     /// `0 < l1 ≤ MAX` or `z ≥ -MAX` and give `(0, 0)`.
     ///
-    /// Within `2^-40` rad of `-Z` this form and the packed encoders part: `(1e-13, 0, -1)`
-    /// projects onto the horizon at `+X` here, while the packed encoders' canonical form
-    /// zeroes components below `2^-40` of the largest, sees `-Z` and writes `+Z`'s code.
+    /// Within about `2^-39.5` rad of `-Z` this form and the packed encoders part: `(1e-13,
+    /// 0, -1)` projects onto the horizon at `+X` here, while the packed encoders' canonical
+    /// form zeroes components below `2^-40` of the largest, sees `-Z` and writes `+Z`'s code.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let h = V3::new(v.x, v.y, F::sel(v.z.lt(F::c(0.0)), F::c(0.0), v.z));
         let w = fit_l1(h).named("w");

@@ -1,8 +1,9 @@
 //! Scalar quantization (survey eqs. 1–2) and bit-field packing of integer codes.
 //!
 //! Codes are carried as integral `f32` values: every code of up to 24 bits is exact in
-//! f32, so the model never needs signed integers, and two's complement fields come from
-//! `c + 2^b`, converted and masked (see [`Quant::field_at`]). A float field ([`Quant::Half`], [`Quant::Single`])
+//! f32, so the model never needs signed integers, and two's complement fields of up to 23
+//! bits come from `c + 2^b`, converted and masked (see [`Quant::field_at`]); wider ones
+//! from `c < 0 ? c + 2^b : c`. A float field ([`Quant::Half`], [`Quant::Single`])
 //! carries its value instead, which f32 holds exactly.
 
 use super::half::{half_bits, half_value};

@@ -1,10 +1,11 @@
 //! The vocabulary on four lanes at once ([`F4`], [`U4`], [`M4`] over `wide`'s SSE2 types),
 //! so that the CPU batches evaluate the same generic codec definitions four vectors per
 //! step. Every operation is the scalar model's, lane by lane, bit for bit: IEEE `+ - * /`
-//! and `sqrt` are correctly rounded in both; `round`, `floor`, `abs`, negation and the
-//! conversions are written here with the very operations the scalar `f32` model uses
-//! (`src/model/num.rs`), not with instructions whose edge cases (signs of zero, NaN,
-//! out-of-range conversions) could differ.
+//! and `sqrt` are correctly rounded in both; `round`, `floor`, `abs` and negation are
+//! written here with the very steps the scalar `f32` model uses (`src/model/num.rs`), and
+//! the conversions emulate Rust's `as` (saturating `f32 → u32`, correctly rounded
+//! `u32 → f32`) for every input, rather than trust instructions whose edge cases (signs
+//! of zero, NaN, out-of-range values) differ.
 
 use super::num::{Bool, Float, Kind, Lane, Uint};
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
