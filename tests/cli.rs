@@ -2308,7 +2308,7 @@ fn binary_formats_are_raw_little_endian_records() {
     // A bad code in the second block of 8192 records: every record before it is
     // written, each the code's decode, and the error names record 8193.
     let mut codes: Vec<u8> = (0..8192u32)
-        .flat_map(|i| (i * 7 & 0xffff).to_le_bytes())
+        .flat_map(|i| ((i * 7) & 0xffff).to_le_bytes())
         .collect();
     codes.extend(0x1_0000u32.to_le_bytes());
     codes.extend(5u32.to_le_bytes());
