@@ -34,9 +34,11 @@ pub trait Params<F: Float>: Value {
 
 impl<F: Float> Params<F> for V2<F> {
     const N: usize = 2;
+    #[inline(always)]
     fn lane(&self, i: usize) -> F {
         self.to_array()[i]
     }
+    #[inline(always)]
     fn build(mut f: impl FnMut(usize) -> F) -> Self {
         let a = [f(0), f(1)];
         V2::from_array(F::fuse(a))
@@ -48,9 +50,11 @@ impl<F: Float> Params<F> for V2<F> {
 
 impl<F: Float> Params<F> for V3<F> {
     const N: usize = 3;
+    #[inline(always)]
     fn lane(&self, i: usize) -> F {
         self.to_array()[i]
     }
+    #[inline(always)]
     fn build(mut f: impl FnMut(usize) -> F) -> Self {
         let a = [f(0), f(1), f(2)];
         V3::from_array(F::fuse(a))
@@ -89,6 +93,7 @@ pub trait Codec: Send + Sync {
     /// Integer codes (as unpacked from the texel) → direction: dequantized, then the
     /// `decode_float` helper. A codec whose parameters are themselves re-quantized by
     /// its decoder overrides this to decode the integers directly.
+    #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: Self::P<F>) -> V3<F> {
         let p = dequantize(&self.quants(), codes).named_p("params");
         F::call("decode_float", p, |p| self.direction(p))
@@ -195,11 +200,13 @@ pub fn quantize<F: Float, P: Params<F>>(q: &[Quant], p: P) -> P {
     P::build(|i| q[i].quantize(p.lane(i)))
 }
 
+#[inline(always)]
 pub fn dequantize<F: Float, P: Params<F>>(q: &[Quant], c: P) -> P {
     P::build(|i| q[i].dequantize(c.lane(i)))
 }
 
 /// Packs integer codes into the texel's bits: first field lowest, little-endian.
+#[inline(always)]
 pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
     let offs = field_offsets(q);
     let mut words: [Option<F::U>; 3] = [None; 3];
@@ -215,6 +222,7 @@ pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
 }
 
 /// Unpacks integer codes; bits outside the fields are ignored.
+#[inline(always)]
 pub fn unpack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], code: C) -> P {
     let offs = field_offsets(q);
     P::build(|i| {

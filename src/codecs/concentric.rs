@@ -80,6 +80,7 @@ impl<P: DiskProjection> Concentric<P> {
 impl<P: DiskProjection> Codec for Concentric<P> {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         disk_quants(self.bits)
     }

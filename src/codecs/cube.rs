@@ -178,6 +178,7 @@ impl Cube {
 impl Codec for Cube {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         let [qs, qt] = self.fields();
         Quants::new(&[qs, qt, Quant::Unorm(3)])

@@ -118,6 +118,7 @@ fn passed<F: Float>(q: Quant, r: &Radius<F>, along: F, across: F, c: F) -> F {
 impl<P: DiskProjection> Codec for Ellipse<P> {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         disk_quants(self.bits)
     }

@@ -54,6 +54,7 @@ pub struct Float16x3;
 impl Codec for Float16x3 {
     type P<F: Float> = V3<F>;
     type C<F: Float> = V2<F::U>;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Half; 3])
     }
@@ -97,6 +98,7 @@ pub struct Float32x3;
 impl Codec for Float32x3 {
     type P<F: Float> = V3<F>;
     type C<F: Float> = V3<F::U>;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Single; 3])
     }

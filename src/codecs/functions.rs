@@ -461,12 +461,14 @@ fn float_of_ordinal(q: Quant, k: i64) -> f32 {
 }
 
 /// The packed decoder: unpack, then [`Codec::decode_codes`].
+#[inline(always)]
 pub fn decode_packed<F: Float, C: Codec>(c: &C, code: C::C<F>) -> V3<F> {
     c.decode_codes(unpack(&c.quants(), code))
 }
 
 /// Integer codes of an encoder: the precise search (through the `encode_codes` helper),
 /// or the nearest codes of the `encode_float` helper's parameters.
+#[inline(always)]
 fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
         F::call("encode_codes", v, |v| c.precise_codes(v))
@@ -478,6 +480,7 @@ fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
 }
 
 /// The packed encoder.
+#[inline(always)]
 pub fn encode_packed<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::C<F> {
     pack(&c.quants(), codes_of(c, precise, v))
 }

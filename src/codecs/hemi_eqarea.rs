@@ -85,6 +85,7 @@ impl HemiEqArea {
 impl Codec for HemiEqArea {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         disk_quants(self.bits)
     }

@@ -118,6 +118,7 @@ pub fn polar_angle<F: Float>(f: &Folded<F>) -> (F, F) {
 impl Codec for HemiEqDist {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         disk_quants(self.bits)
     }

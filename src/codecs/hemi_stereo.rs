@@ -86,6 +86,7 @@ impl HemiStereo {
 impl Codec for HemiStereo {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         disk_quants(self.bits)
     }

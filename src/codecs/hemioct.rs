@@ -107,6 +107,7 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
 impl Codec for HemiOct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Snorm(self.bits / 2); 2])
     }

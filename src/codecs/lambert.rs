@@ -108,6 +108,7 @@ impl Lambert {
 impl Codec for Lambert {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Unorm(self.bits / 2); 2])
     }
@@ -185,6 +186,7 @@ pub struct WithDecoder<D> {
 impl<D: LambertDecoder> Codec for WithDecoder<D> {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         self.lambert.quants()
     }

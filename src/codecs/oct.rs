@@ -171,6 +171,7 @@ pub fn oct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
 impl Codec for Oct {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Snorm(self.bits / 2); 2])
     }
@@ -201,6 +202,7 @@ pub struct Oct24Rgb8;
 impl Codec for Oct24Rgb8 {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Unorm(8); 3])
     }

@@ -117,6 +117,7 @@ impl Paraboloid {
 impl Codec for Paraboloid {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[self.field(); 2])
     }

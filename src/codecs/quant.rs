@@ -26,6 +26,7 @@ pub enum Quant {
 }
 
 impl Quant {
+    #[inline]
     pub fn bits(self) -> u32 {
         match self {
             Quant::Snorm(b) | Quant::Unorm(b) => b,
@@ -34,6 +35,7 @@ impl Quant {
         }
     }
     /// The largest code, `M` (for [`Quant::Half`], the largest finite f16).
+    #[inline]
     pub fn max_code(self) -> f32 {
         match self {
             Quant::Snorm(b) => ((1u32 << (b - 1)) - 1) as f32,
@@ -42,18 +44,21 @@ impl Quant {
             Quant::Single => f32::MAX,
         }
     }
+    #[inline]
     pub fn min_code(self) -> f32 {
         match self {
             Quant::Snorm(_) | Quant::Half | Quant::Single => -self.max_code(),
             Quant::Unorm(_) => 0.0,
         }
     }
+    #[inline]
     fn lo(self) -> f32 {
         match self {
             Quant::Snorm(_) | Quant::Half | Quant::Single => -1.0,
             Quant::Unorm(_) => 0.0,
         }
     }
+    #[inline]
     pub fn name(self) -> String {
         match self {
             Quant::Snorm(b) => format!("snorm{b}"),
@@ -63,10 +68,12 @@ impl Quant {
         }
     }
     /// Clamps to the storage range; NaN goes to the low end (comparisons with NaN are false).
+    #[inline]
     pub fn clamp<F: Float>(self, x: F) -> F {
         x.clamped(F::c(self.lo()), F::c(1.0))
     }
     /// The code nearest to `x`, ties to even.
+    #[inline]
     pub fn quantize<F: Float>(self, x: F) -> F {
         match self {
             Quant::Half => half_value(half_bits(self.clamp(x))),
@@ -76,14 +83,17 @@ impl Quant {
     }
     /// The code at or below `x`: where a precise search starts. Precise searches step
     /// through integer codes, which a float field does not have.
+    #[inline]
     pub fn floor_code<F: Float>(self, x: F) -> F {
         assert!(!self.is_float(), "no precise search over float fields");
         (self.clamp(x) * F::c(self.max_code())).floor()
     }
     /// Clamps a candidate code to the valid codes.
+    #[inline]
     pub fn clamp_code<F: Float>(self, c: F) -> F {
         c.at_most(F::c(self.max_code()))
     }
+    #[inline]
     pub fn dequantize<F: Float>(self, c: F) -> F {
         match self {
             Quant::Snorm(_) => (c * F::c(1.0 / self.max_code())).at_least(F::c(-1.0)),
@@ -92,6 +102,7 @@ impl Quant {
         }
     }
     /// Whether the field holds a float's bits rather than an integer code.
+    #[inline]
     pub fn is_float(self) -> bool {
         matches!(self, Quant::Half | Quant::Single)
     }
@@ -100,6 +111,7 @@ impl Quant {
     /// exact and safely converted, and the mask drops the `2^b` (or the shift does, for
     /// a field that ends at bit 32) — one instruction fewer than `c < 0 ? c + 2^b : c`,
     /// which a wider field still needs (`2^24 + c` is not exact).
+    #[inline]
     pub fn field_at<F: Float>(self, c: F, sh: u32) -> F::U {
         let shifted = |u: F::U| if sh == 0 { u } else { u.shl(sh) };
         match self {
@@ -115,6 +127,7 @@ impl Quant {
         }
     }
     /// The unsigned bit field of a code.
+    #[inline]
     fn to_field<F: Float>(self, c: F) -> F::U {
         match self {
             Quant::Snorm(b) => {
@@ -132,6 +145,7 @@ impl Quant {
         }
     }
     /// The code held in an unsigned bit field (already masked to `bits`).
+    #[inline]
     pub fn from_field<F: Float>(self, u: F::U) -> F {
         match self {
             Quant::Snorm(b) => {
@@ -144,6 +158,7 @@ impl Quant {
             Quant::Single => plus_zero_below_normal(u).as_float(),
         }
     }
+    #[inline]
     pub fn mask(self) -> u32 {
         ((1u64 << self.bits()) - 1) as u32
     }
@@ -157,6 +172,7 @@ pub struct Quants {
 }
 
 impl Quants {
+    #[inline]
     pub fn new(fields: &[Quant]) -> Quants {
         let mut q = [fields[0]; 3];
         q[..fields.len()].copy_from_slice(fields);
@@ -166,6 +182,7 @@ impl Quants {
 
 impl std::ops::Deref for Quants {
     type Target = [Quant];
+    #[inline]
     fn deref(&self) -> &[Quant] {
         &self.q[..self.n]
     }
@@ -188,9 +205,11 @@ pub trait Code<F: Float>: crate::model::trace::Value {
 
 impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for U {
     const WORDS: usize = 1;
+    #[inline]
     fn word(self, _: usize) -> U {
         self
     }
+    #[inline]
     fn from_words(w: [U; 3]) -> Self {
         w[0]
     }
@@ -198,9 +217,11 @@ impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for U {
 
 impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V2<U> {
     const WORDS: usize = 2;
+    #[inline]
     fn word(self, i: usize) -> U {
         if i == 0 { self.x } else { self.y }
     }
+    #[inline]
     fn from_words(w: [U; 3]) -> Self {
         V2::new(w[0], w[1])
     }
@@ -208,9 +229,11 @@ impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V2<U> {
 
 impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V3<U> {
     const WORDS: usize = 3;
+    #[inline]
     fn word(self, i: usize) -> U {
         [self.x, self.y, self.z][i]
     }
+    #[inline]
     fn from_words(w: [U; 3]) -> Self {
         V3::new(w[0], w[1], w[2])
     }
@@ -218,6 +241,7 @@ impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V3<U> {
 
 /// Bit offset of each field, first field in the lowest bits, no field straddling a word.
 /// A fixed array (unused entries 0): this runs once per encoded vector on the CPU.
+#[inline]
 pub fn field_offsets(quants: &[Quant]) -> [u32; 3] {
     let mut offs = [0; 3];
     let mut off = 0;

@@ -105,6 +105,7 @@ impl<W> Snorm3<W> {
 impl<W: Words> Codec for Snorm3<W> {
     type P<F: Float> = V3<F>;
     type C<F: Float> = W::C<F>;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&self.bits.map(Quant::Snorm))
     }

@@ -60,6 +60,7 @@ pub struct Spherical {
 impl Codec for Spherical {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Snorm(self.bits / 2); 2])
     }

@@ -94,6 +94,7 @@ impl SphericalZ {
 impl Codec for SphericalZ {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[self.field(); 2])
     }

@@ -122,6 +122,7 @@ impl StereoScaled {
 impl Codec for StereoScaled {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Unorm(self.bits / 2); 2])
     }

@@ -43,6 +43,7 @@ pub struct Unorm3;
 impl Codec for Unorm3 {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Unorm(8); 3])
     }

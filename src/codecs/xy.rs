@@ -59,6 +59,7 @@ pub struct Xy {
 impl Codec for Xy {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[Quant::Snorm(self.bits / 2); 2])
     }

@@ -84,6 +84,7 @@ impl XySignZ {
 impl Codec for XySignZ {
     type P<F: Float> = V3<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         let [qx, qy] = self.fields();
         Quants::new(&[qx, qy, Quant::Unorm(1)])

@@ -104,6 +104,7 @@ impl XyStereo {
 impl Codec for XyStereo {
     type P<F: Float> = V2<F>;
     type C<F: Float> = F::U;
+    #[inline]
     fn quants(&self) -> Quants {
         Quants::new(&[self.field(); 2])
     }
