@@ -178,21 +178,51 @@ impl Function {
             .chunks(4 * GROUPS * iw)
             .zip(output.chunks_mut(4 * GROUPS * ow))
         {
-            let items = src.len() / iw;
-            let groups = items.div_ceil(4);
-            for (g, lanes) in lanes_in[..groups * iw].chunks_exact_mut(iw).enumerate() {
-                for (k, item) in (0..4).map(|k| (k, (4 * g + k).min(items - 1))) {
-                    for (j, lane) in lanes.iter_mut().enumerate() {
-                        lane[k] = src[item * iw + j];
-                    }
-                }
+            let groups = (src.len() / iw).div_ceil(4);
+            let (lanes_in, lanes_out) =
+                (&mut lanes_in[..groups * iw], &mut lanes_out[..groups * ow]);
+            match iw {
+                1 => gather::<1>(src, lanes_in),
+                2 => gather::<2>(src, lanes_in),
+                _ => gather::<3>(src, lanes_in),
             }
-            (self.eval_lanes)(&lanes_in[..groups * iw], &mut lanes_out[..groups * ow]);
-            for (item, out) in dst.chunks_exact_mut(ow).enumerate() {
-                let lanes = &lanes_out[item / 4 * ow..][..ow];
-                for (o, lane) in out.iter_mut().zip(lanes) {
-                    *o = lane[item % 4];
-                }
+            (self.eval_lanes)(lanes_in, lanes_out);
+            match ow {
+                1 => scatter::<1>(lanes_out, dst),
+                2 => scatter::<2>(lanes_out, dst),
+                _ => scatter::<3>(lanes_out, dst),
+            }
+        }
+    }
+}
+
+/// Items of `W` words into groups of four lanes per word; a last partial group repeats
+/// its last item. Written per item width so that the full groups are plain moves.
+#[inline]
+fn gather<const W: usize>(src: &[u32], lanes: &mut [Lanes]) {
+    let full = src.chunks_exact(4 * W);
+    let tail = full.remainder();
+    let mut groups = lanes.chunks_exact_mut(W);
+    for (s, group) in full.zip(&mut groups) {
+        for (j, lane) in group.iter_mut().enumerate() {
+            *lane = [s[j], s[W + j], s[2 * W + j], s[3 * W + j]];
+        }
+    }
+    if let Some(group) = groups.next() {
+        let items = tail.len() / W;
+        for (j, lane) in group.iter_mut().enumerate() {
+            *lane = std::array::from_fn(|k| tail[k.min(items - 1) * W + j]);
+        }
+    }
+}
+
+/// Groups of four lanes per word back into items of `W` words, the real items only.
+#[inline]
+fn scatter<const W: usize>(lanes: &[Lanes], dst: &mut [u32]) {
+    for (group, d) in lanes.chunks_exact(W).zip(dst.chunks_mut(4 * W)) {
+        for (k, item) in d.chunks_exact_mut(W).enumerate() {
+            for (o, lane) in item.iter_mut().zip(group) {
+                *o = lane[k];
             }
         }
     }
