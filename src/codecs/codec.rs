@@ -70,7 +70,8 @@ impl<F: Float> Params<F> for V3<F> {
 pub trait Codec: Send + Sync {
     type P<F: Float>: Params<F>;
     type C<F: Float>: Code<F>;
-    /// Storage of each parameter, in texel order.
+    /// Storage of each parameter, in texel order. Implementations are `#[inline]`, so that
+    /// the CPU slices work the fields out once per slice rather than once per group.
     fn quants(&self) -> Quants;
     fn domain(&self) -> Domain;
     /// The unit vector the encoder aims at for any input (normalized, projected onto the

@@ -25,6 +25,9 @@ pub enum Quant {
     Single,
 }
 
+// The methods the models call are `#[inline]`: the CPU slices evaluate them once per group
+// of lanes, and only inlined into the slice's loop do a codec's fields (widths, scales,
+// offsets) become constants worked out once per slice (README, "Speed").
 impl Quant {
     #[inline]
     pub fn bits(self) -> u32 {
@@ -58,7 +61,6 @@ impl Quant {
             Quant::Unorm(_) => 0.0,
         }
     }
-    #[inline]
     pub fn name(self) -> String {
         match self {
             Quant::Snorm(b) => format!("snorm{b}"),
