@@ -67,6 +67,7 @@ registry! {
     xy_stereo => XyStereo;
     paraboloid => Paraboloid;
     spherical_z => SphericalZ;
+    sfib => Sfib;
     pack12;
 }
 

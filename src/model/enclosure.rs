@@ -480,7 +480,9 @@ impl EnclU {
         EnclU {
             lo: if hi <= u64::from(u32::MAX) { lo } else { 0 },
             hi: hi.min(u64::from(u32::MAX)),
-            exact: self.exact && o.exact && hi <= u64::from(u32::MAX),
+            // A wrapped result is anywhere in the word, but still the same for the
+            // reference and every deviant: integer arithmetic does not deviate.
+            exact: self.exact && o.exact,
         }
     }
 }
@@ -548,7 +550,7 @@ impl Uint for EnclU {
         EnclU {
             lo: if fits { lo } else { 0 },
             hi: hi.min(u64::from(u32::MAX)),
-            exact: self.exact && fits,
+            exact: self.exact,
         }
     }
     fn shr(self, n: u32) -> Self {
@@ -606,7 +608,7 @@ impl Uint for EnclU {
             EnclU {
                 lo: 0,
                 hi: u64::from(u32::MAX),
-                exact: false,
+                exact: self.exact && o.exact,
             }
         }
     }
