@@ -3,7 +3,9 @@
 //! every point that could be nearer, with the codec's own decoder as the definition of
 //! where each point is.
 
-use unitpack::codecs::sfib::Sfib;
+use unitpack::codecs::exact::{canonical_or_z, fixed_length2, root};
+use unitpack::codecs::fixed_decode::fixed_target;
+use unitpack::codecs::sfib::{GOLDEN, Sfib, longitude};
 use unitpack::model::V3;
 use unitpack::quality::random_unit_vectors;
 
@@ -46,11 +48,36 @@ fn window(c: &Sfib, q: [f32; 3], chord: f64) -> std::ops::RangeInclusive<u32> {
     lo as u32..=hi as u32
 }
 
+/// The encoder's own measure, computed independently: the squared distance in units of
+/// `2^-21` between the fixed-point point and the input's fixed-point direction, summed
+/// exactly (in u64) and rounded once to f32.
+fn fixed_measure(c: &Sfib, aim: [f32; 3], i: u32) -> f32 {
+    let p = c.fixed_point::<f32>(i).to_array();
+    let exact: u64 = p
+        .iter()
+        .zip(&aim)
+        .map(|(a, b)| ((a - b).abs() as u64).pow(2))
+        .sum();
+    exact as f32
+}
+
 fn nearest_is_chosen(bits: u32, count: usize) {
     let c = Sfib::new(bits).unwrap();
     let mut worst = 0f64;
     for q in queries(count, &c) {
         let j = c.encode_index::<f32>(V3::from_array(q));
+        // Exactly the nearest in the encoder's fixed-point measure, the lower index on ties.
+        let (w, _) = canonical_or_z(V3::from_array(q));
+        let aim = fixed_target(w, root(fixed_length2(w)), 21).to_array();
+        let chosen = fixed_measure(&c, aim, j);
+        let reach = f64::from(chosen).sqrt() / f64::from(1u32 << 21) + 2f64.powi(-18);
+        for i in window(&c, q, reach) {
+            let m = fixed_measure(&c, aim, i);
+            assert!(
+                m > chosen || m == chosen && i >= j,
+                "sfib{bits}: {q:?} encodes as {j} (fixed-point measure {chosen}), but point {i} measures {m}"
+            );
+        }
         let d = dist2(decode(&c, j), q);
         for i in window(&c, q, d.sqrt()) {
             let e = dist2(decode(&c, i), q);
@@ -113,5 +140,31 @@ fn longitude_is_the_exact_fraction_for_every_size() {
                 "sfib{bits} point {i}: longitude {turn} turns, exact {frac}, radius {r}"
             );
         }
+    }
+}
+
+/// `longitude` is the top 24 bits (rounded, plus half a turn) of the low 64 bits of
+/// `i·GOLDEN`, for indices across the whole 32-bit range, the carries from the low
+/// halves included.
+#[test]
+fn longitude_matches_the_128_bit_product() {
+    let mut i = 0x9e37_79b9u32;
+    let edges = [
+        0,
+        1,
+        0xffff,
+        0x1_0000,
+        0x7fff_ffff,
+        0x8000_0000,
+        0xffff_fffe,
+        u32::MAX,
+    ];
+    for k in 0..100_000 {
+        i = i.wrapping_mul(0x2c9277b5).wrapping_add(0xac564b05);
+        let i = if k < edges.len() { edges[k] } else { i };
+        let fraction = (u128::from(i) * u128::from(GOLDEN)) as u64;
+        let top = (fraction >> 32) as u32;
+        let want = top.wrapping_add(128 + (1 << 31)) >> 8;
+        assert_eq!(longitude(i), want, "index {i:#x}");
     }
 }

@@ -16,23 +16,27 @@
 //! is `i` itself.
 //!
 //! Decoding evaluates `frac(i·(Φ - 1))` in fixed point, with `Φ - 1` to 64 bits
-//! (`2^64/Φ`, [`GOLDEN`]) and 32-bit integer products of 16-bit halves, so that the
-//! longitude is exact to `2^-32` turns for every index: a float product would lose all of
-//! it above `2^24` points. `1 - |z|` is formed from the distance in index to the nearer
-//! pole, where it is small, so points near the poles keep their precision.
+//! (`2^64/Φ`, [`GOLDEN`]) and 32-bit integer products of 16-bit halves: the fraction is
+//! exact to `2^-32` turns for every index before it is rounded to the 24 bits a float
+//! holds (`2^-25` turns), where an f32 product would have no fraction left above `2^24`
+//! points. `1 - |z|` is formed from the distance in index to the nearer pole, where it is
+//! small, so points near the poles keep their precision.
 //!
 //! Encoding is Keinert's inverse mapping: near the query, the points form a lattice in
 //! `(φ, z)` spanned by the index steps `F_k` and `F_{k+1}` (consecutive Fibonacci numbers,
-//! `k` from the query's `1 - z²`). Keinert takes the four corners of the query's lattice
-//! cell as candidates; here the nine lattice points around the nearest one, so that the
-//! cell's corners stay among them where an implementation's rounding moves the query
-//! across a cell's edge, and the winner is decided in fixed point ([`Sfib::fixed_point`],
-//! exact squared distances): the packed code is portable like the other codecs'. Queries in the southern hemisphere are
-//! mirrored onto the northern one (point `n - 1 - i` is point `i` mirrored in the
-//! equator and rotated in `φ`), so that `z` is always measured from the nearer pole, and
-//! candidate indices before the pole are reflected onto real points. The choice is
-//! checked against a brute-force search over every point that could be nearer
-//! (`tests/sfib.rs`).
+//! `k` from the query's `1 - z²`). Queries in the southern hemisphere are mirrored onto
+//! the northern one (point `n - 1 - i` is point `i` with `z ↦ -z` and `φ ↦ M - φ`,
+//! [`Sfib::mirror_turn`]), so that `z` is always measured from the nearer pole, and
+//! candidate indices before the pole are replaced by the real points `-1 - i`. Keinert
+//! takes the four corners of the query's lattice cell as candidates; here the nine
+//! lattice points around the nearest one, so that the cell's corners stay among them
+//! where an implementation's rounding moves the query across a cell's edge. The basis
+//! and the hemisphere are chosen from the input's fixed-point direction, and the winner is
+//! decided in fixed point ([`Sfib::fixed_point`], squared distances summed exactly in
+//! integers and rounded once), so the packed code is portable like the other codecs'.
+//! `tests/sfib.rs` checks the choice against a brute-force search over every point that
+//! could be nearer, both in the fixed-point measure (exactly) and in the decoder's
+//! floats (to `2^-18`).
 
 use super::codec::{Codec, Domain};
 use super::family::{Family, Info, Sizes};
@@ -73,9 +77,9 @@ impl Family for SfibFamily {
                     .into(),
             ),
             "fixed_point" => Some(
-                "Point `i` in fixed point (units of 2^-21), every quotient and root decided by \
-                 comparisons and every product rounded or floored before a sum: a function of `i` \
-                 alone, within a few units of the decoder's point."
+                "Point `i` in fixed point (units of 2^-21), its root decided by comparing squares \
+                 and every product rounded or floored before a sum: a function of `i` alone, within \
+                 a few units of the decoder's point."
                     .into(),
             ),
             "fixed_sincos_pi" => Some(
@@ -85,10 +89,10 @@ impl Family for SfibFamily {
             ),
             "encode_index" => Some(
                 "The index of the point nearest the input: the nine lattice points around the \
-                 input in the local Fibonacci lattice (from float arithmetic), compared by the exact \
-                 squared distance of their fixed-point decodes to the input's fixed-point direction, \
-                 the lower index on ties, so that no rounding latitude of an implementation can \
-                 change the code."
+                 input in the local Fibonacci lattice, compared by the squared distance (summed \
+                 exactly in integers, rounded once) of their fixed-point decodes to the input's \
+                 fixed-point direction, the lower index on ties, so that no rounding latitude of an \
+                 implementation can change the code."
                     .into(),
             ),
             _ => None,
@@ -213,8 +217,8 @@ impl Sfib {
     /// Point `i` in fixed point, units of `2^-21`, as a function of `i` alone: what the
     /// encoder measures candidates by. Every product feeds only a floor, a round, a root
     /// decided by squares ([`fixed_root`]) or another product; `1 - |z|` and `1 + |z|`
-    /// are each one product of an index (converted the same everywhere, [`float_of`])
-    /// and a literal, so `ρ² = (1 - |z|)(1 + |z|)` keeps its digits at the poles;
+    /// are each `(ε + index)·s`, the index converted the same everywhere ([`float_of`]),
+    /// so `ρ² = (1 - |z|)(1 + |z|)` keeps its digits at the poles;
     /// `(sin φ, cos φ)` come from [`fixed_trig::sincos_pi`]. Within a few units of
     /// [`Sfib::index_direction`].
     pub fn fixed_point<F: Float>(&self, i: F::U) -> V3<F> {
@@ -245,10 +249,11 @@ impl Sfib {
     /// arithmetic that an implementation may round differently (division, roots,
     /// contraction): the nine lattice points around the nearest one (not the four corners
     /// of the cell) contain the corners of the cell the input lies in even where such a
-    /// difference moves the input across a cell's edge. Among them the nearest to the
-    /// input's fixed-point direction ([`fixed_target`]) by exact squared distance
-    /// ([`sum_of_squares`]) of [`Sfib::fixed_point`], the lower index on ties: a
-    /// function of the input alone.
+    /// difference moves the input across a cell's edge; the basis and the hemisphere,
+    /// which change the candidates wholesale, are chosen from the input's fixed-point
+    /// direction ([`fixed_target`]), a function of the input alone. Among the candidates
+    /// the nearest to that direction by the squared distance of [`Sfib::fixed_point`]
+    /// (summed exactly, [`sum_of_squares`], then rounded once), the lower index on ties.
     pub fn encode_index<F: Float>(&self, v: V3<F>) -> F::U {
         let c = F::U::c;
         let (w, _) = canonical_or_z(v);
@@ -256,7 +261,12 @@ impl Sfib {
         let aim = fixed_target(w, l, FIXED_BITS);
         let u = (w / l).named("u");
         let rho2 = u.xy().length_squared().named("rho2");
-        let south = u.z.lt(F::c(0.0));
+        // The basis and the hemisphere from the fixed-point direction: `ρ²` summed exactly.
+        let a = aim.map(|x| x.abs().to_u());
+        let rho2_fixed = (sum_of_squares::<F, 2>([a.x, a.y])
+            * F::c((1.0 / (FIXED_ONE * FIXED_ONE)) as f32))
+        .named("rho2_fixed");
+        let south = aim.z.lt(F::c(0.0));
         // Measured from the nearer pole: `|z| - z_0 = ε·s - (1 - |z|)`, with
         // `1 - |z| = ρ²/(1 + |z|)`, which keeps its digits near the pole.
         let below = (rho2 / (F::c(1.0) + u.z.abs())).named("below");
@@ -268,7 +278,7 @@ impl Sfib {
         let mut f = rows[0].f.map(c);
         let mut inv = rows[0].inverse.map(|x| F::c(x as f32));
         for row in &rows[1..] {
-            let take = rho2.ge(F::c(row.least as f32));
+            let take = rho2_fixed.ge(F::c(row.least as f32));
             f = [0, 1].map(|j| F::U::sel(take, c(row.f[j]), f[j]));
             inv = [0, 1, 2, 3].map(|j| F::sel(take, F::c(row.inverse[j] as f32), inv[j]));
         }
@@ -339,7 +349,7 @@ struct Row {
 /// interval over many indices stays inside the trigonometry's domain). The fraction is
 /// the top word of the 64-bit product `i·GOLDEN`, from 32-bit products of 16-bit halves
 /// (every sum below stays under `2^32`), rounded to 24 bits.
-fn longitude<U: Uint>(i: U) -> U {
+pub fn longitude<U: Uint>(i: U) -> U {
     let c = U::c;
     let lo = GOLDEN as u32;
     let (il, ih) = ((i & c(0xffff)).named("il"), i.shr(16).named("ih"));
@@ -384,6 +394,8 @@ impl Codec for Sfib {
         let i = self.index(codes).named("i");
         F::call("index_direction", i, |i| self.index_direction(i))
     }
+    /// [`Sfib::encode_index`], which no implementation's rounding latitude can change.
+    const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let i = F::call("encode_index", v, |v| self.encode_index(v)).named("i");
         self.fields(i)
