@@ -560,9 +560,15 @@ impl Uint for EnclU {
             exact: self.exact,
         }
     }
+    /// Exact below `2^24`; a larger value converts with an implementation-defined
+    /// rounding direction, so the enclosure is only claimed for the exact range.
     fn to_f(self) -> Encl {
         let r = Encl::range(f32_of(self.lo as f64), f32_of(self.hi as f64), 1.0);
-        if self.exact { r } else { Encl::unknown() }
+        if self.exact && self.hi < 1 << 24 {
+            r
+        } else {
+            Encl::unknown()
+        }
     }
     fn as_float(self) -> Encl {
         let r = Encl::range(
