@@ -5,11 +5,11 @@
 //!
 //! Point `i` has `z = 1 - (i + ε)·s` with `s = 2/(n - 1 + 2ε)` and longitude
 //! `φ = 2π·frac(i·(Φ - 1))` (Φ the golden ratio). The offset `ε` of the first and last
-//! point from the poles is ours, chosen by measurement: the spiral leaves its largest
-//! holes in the polar caps, and over a dense grid of directions within 3° of a pole the
-//! farthest one from its nearest point (16 bits) is 0.610° with Keinert's `ε = ½` and
-//! 0.580° with `ε = ¼`, the least of any `ε` (elsewhere the largest distance is about
-//! 0.558°).
+//! point from the poles is ours, chosen by a one-off measurement that the tests do not
+//! repeat: the spiral leaves its largest holes in the polar caps, and over a dense grid
+//! of directions within 3° of a pole the farthest one from its nearest point (16 bits)
+//! was 0.610° with Keinert's `ε = ½` and 0.580° with `ε = ¼`, the least of any `ε` we
+//! tried (0 to 0.72; elsewhere the largest distance was about 0.558°).
 //!
 //! Layout: the index, first field lowest — a `B`-bit code stores `i`'s low `B/2` bits in
 //! the first field and its high `B/2` bits in the second (both unorm), so the packed word
@@ -44,7 +44,7 @@ use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
 use super::exact::{canonical_or_z, fixed_length2, fixed_root, float_of, root, sum_of_squares};
-use super::fixed_decode::fixed_target;
+use super::fixed_decode::{BITS, ONE, fixed_target};
 use super::fixed_trig::{self, FINE};
 use super::trig::{atan2_pi, sincos_pi};
 use crate::model::{Bool, Float, Lane, Uint, V2, V3};
@@ -112,11 +112,6 @@ pub const EPSILON: f64 = 0.25;
 /// Lattice coordinates are offset by this before conversion, so that they convert as
 /// non-negative integers (they stay well inside `±2^22` for every size).
 const OFFSET: u32 = 1 << 22;
-
-/// The fixed-point unit of the encoder's comparisons is `2^-FIXED_BITS`.
-const FIXED_BITS: u32 = 21;
-/// `2^FIXED_BITS`.
-const FIXED_ONE: f64 = (1u32 << FIXED_BITS) as f64;
 
 /// Indices at or past this, formed from lattice coordinates, are negative (two's
 /// complement): candidates a few steps beyond the pole.
@@ -194,13 +189,20 @@ impl Sfib {
         if t >= 1.0 { t - 2.0 } else { t }
     }
 
+    /// Whether point `i` is in the northern half, and its distance in index from the
+    /// nearer pole (point `n - 1 - i` is point `i` mirrored).
+    fn pole_distance<U: Uint>(&self, i: U) -> (U::B, U) {
+        let north = i.lt(U::c(1 << (self.bits - 1)));
+        let k = U::sel(north, i, U::c(self.last()).wrapping_sub(i)).named("k");
+        (north, k)
+    }
+
     /// The direction of point `i`.
     pub fn index_direction<F: Float>(&self, i: F::U) -> V3<F> {
         let c = F::U::c;
-        let north = i.lt(c(1 << (self.bits - 1)));
-        // The distance in index from the nearer pole, and from it `1 - |z|`, exact to
-        // rounding even for the points nearest the poles.
-        let k = F::U::sel(north, i, c(self.last()).wrapping_sub(i)).named("k");
+        // `1 - |z|` from the distance in index to the nearer pole, exact to rounding even
+        // for the points nearest the poles.
+        let (north, k) = self.pole_distance(i);
         let s = self.step();
         let fine = ((k & c(255)).to_f() * F::c(s as f32)).named("fine");
         let u = (k.shr(8).to_f() * F::c((256.0 * s) as f32) + (F::c((EPSILON * s) as f32) + fine))
@@ -223,14 +225,13 @@ impl Sfib {
     /// [`Sfib::index_direction`].
     pub fn fixed_point<F: Float>(&self, i: F::U) -> V3<F> {
         let c = F::U::c;
-        let north = i.lt(c(1 << (self.bits - 1)));
-        let k = F::U::sel(north, i, c(self.last()).wrapping_sub(i)).named("k");
+        let (north, k) = self.pole_distance(i);
         let s = F::c(self.step() as f32);
         let side = |k: F::U| (F::c(EPSILON as f32) + float_of(k)) * s;
         let near = side(k).named("near");
         let far = side(c(self.last()).wrapping_sub(k)).named("far");
-        let one = F::c(FIXED_ONE as f32);
-        let rho = fixed_root(near * far * F::c((FIXED_ONE * FIXED_ONE) as f32)).named("rho");
+        let one = F::c(ONE as f32);
+        let rho = fixed_root(near * far * F::c((ONE * ONE) as f32)).named("rho");
         let zm = (one - (near * one).floor()).named("zm");
         let z = F::sel(north, zm, -zm);
         // Half turns in units of 2^-24, in [-2^24, 2^24).
@@ -258,13 +259,13 @@ impl Sfib {
         let c = F::U::c;
         let (w, _) = canonical_or_z(v);
         let l = root(fixed_length2(w));
-        let aim = fixed_target(w, l, FIXED_BITS);
+        let aim = fixed_target(w, l, BITS);
         let u = (w / l).named("u");
         let rho2 = u.xy().length_squared().named("rho2");
         // The basis and the hemisphere from the fixed-point direction: `ρ²` summed exactly.
         let a = aim.map(|x| x.abs().to_u());
         let rho2_fixed = (sum_of_squares::<F, 2>([a.x, a.y])
-            * F::c((1.0 / (FIXED_ONE * FIXED_ONE)) as f32))
+            * F::c((1.0 / (ONE * ONE)) as f32))
         .named("rho2_fixed");
         let south = aim.z.lt(F::c(0.0));
         // Measured from the nearer pole: `|z| - z_0 = ε·s - (1 - |z|)`, with
