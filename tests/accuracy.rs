@@ -420,6 +420,23 @@ fn paraboloid_beats_xy_at_every_size() {
     }
 }
 
+/// The seed's extension: the dual paraboloid spends the corners of the square that the
+/// paraboloid leaves outside its disk, so at every size its mean is lower by more than
+/// 5 %, fast and precise. The fast sample max is lower too; the precise one stays within
+/// 2 % of the paraboloid's (measured: 0.4 % above at 16 and 0.1 % at 24 bits).
+#[test]
+fn paraboloid_square_beats_paraboloid_at_every_size() {
+    for bits in [16, 24, 32] {
+        for p in ["", "p"] {
+            let par = measured(&format!("paraboloid{bits}{p}"));
+            let sq = measured(&format!("paraboloid_square{bits}{p}"));
+            assert!(sq.mean < 0.95 * par.mean, "{bits}{p}: {sq:?} vs {par:?}");
+            let max_ratio = if p.is_empty() { 1.0 } else { 1.02 };
+            assert!(sq.max < max_ratio * par.max, "{bits}{p}: {sq:?} vs {par:?}");
+        }
+    }
+}
+
 /// The first seed's metric on its own baseline: storing each component of `n` as unorm8
 /// leaves an error uniform over one step of `2/255`, whose mean square is
 /// `(2/255)²/12` = 5.13e-6 per component (the seed, which did not renormalize, measured

@@ -2,7 +2,7 @@
 
 use unitpack::api::{
     Batch, CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
-    Paraboloid, Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
+    Paraboloid, ParaboloidSquare, Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -453,6 +453,104 @@ fn paraboloid_codes_are_the_seed_quadratic_rounded() {
             near_ties < 1 << 10,
             "paraboloid{bits}: {near_ties} near-ties"
         );
+    }
+}
+
+/// paraboloid_square16 is snorm8×2 of the point where the ray meets
+/// z = (1 - x²)(1 - y²), x in bits 0–7: the square's edges are the horizon (its corners
+/// the diagonals), and on an axis the surface is the paraboloid's, so (1, 0, 1) still
+/// meets it at 1/φ.
+#[test]
+fn paraboloid_square_layout_and_horizon() {
+    for c in [
+        ParaboloidSquare::new(16).unwrap().fast(),
+        ParaboloidSquare::new(16).unwrap().precise(),
+    ] {
+        assert_eq!(c.encode([0.0, 0.0, 1.0]), 0);
+        assert_eq!(c.encode([1.0, 0.0, 0.0]), 127);
+        assert_eq!(c.encode([1.0, -1.0, 0.0]), 0x817f);
+        assert_eq!(c.encode([0.0, -1.0, -0.5]), 0x81 << 8);
+        for bad in [
+            [0.0, 0.0, -1.0],
+            [0.0; 3],
+            [f32::NAN, 0.0, 1.0],
+            [f32::INFINITY, 1.0, 0.0],
+        ] {
+            assert_eq!(c.encode(bad), 0, "{bad:?}");
+        }
+        // 0.618034·127 = 78.49.
+        assert_eq!(c.encode([1.0, 0.0, 1.0]), 78);
+        assert_eq!(c.decode(127), [1.0, 0.0, 0.0]);
+        let d = c.decode(0x7f7f);
+        assert_eq!(d[2], 0.0);
+        assert!(
+            (d[0] - std::f32::consts::FRAC_1_SQRT_2).abs() < 1e-7,
+            "{d:?}"
+        );
+    }
+    assert!(ParaboloidSquare::new(20).is_err());
+}
+
+/// The root of the quartic along the ray of unit `n` (`n.z ≥ 0`), solved in f64 by
+/// bisection: the larger coordinate `s` where `(1 - s²)(1 - r²s²)·m = n.z·s`, and `g'(s)`
+/// there (how far a small error in the surface moves `s`).
+fn square_root_f64(n: [f64; 3]) -> ([f64; 2], f64) {
+    let (ax, ay) = (n[0].abs(), n[1].abs());
+    let (m, small) = (ax.max(ay), ax.min(ay));
+    let r = if m > 0.0 { small / m } else { 0.0 };
+    let g = |s: f64| (1.0 - s * s) * (1.0 - r * r * s * s) * m - n[2] * s;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if g(mid) >= 0.0 { lo = mid } else { hi = mid }
+    }
+    let s = lo;
+    let slope = -2.0 * s * (1.0 - r * r * s * s) * m - 2.0 * r * r * s * (1.0 - s * s) * m - n[2];
+    let (px, py) = if ax >= ay { (s, r * s) } else { (r * s, s) };
+    ([px.copysign(n[0]), py.copysign(n[1])], slope)
+}
+
+/// The fast codes are the quartic's root (solved in f64) rounded, wherever that value is
+/// not within reach of the encoder's fixed-point error (a few units of 2^-21 in the
+/// surface, divided by the slope) of a rounding boundary, and within that reach of it
+/// everywhere. At 16 and 24 bits the margin is rarely needed; at 32 bits a unit of 2^-21
+/// is 1/64 of a code, so there it often is.
+#[test]
+fn paraboloid_square_codes_are_the_quartic_root_rounded() {
+    for bits in [16, 24, 32] {
+        let c = ParaboloidSquare::new(bits).unwrap().fast();
+        let half = bits / 2;
+        let m = f64::from((1u32 << (half - 1)) - 1);
+        let mut near_ties = 0;
+        let samples = random_unit_vectors(53, 1 << 16, true);
+        for v in &samples {
+            let n = v.map(f64::from);
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let n = n.map(|x| x / l);
+            let (p, slope) = square_root_f64([n[0], n[1], n[2].max(0.0)]);
+            let reach = m * 8.0 * 2f64.powi(-21) * (1.0 + 1.0 / slope.abs());
+            let code = c.encode(*v);
+            for (k, pk) in p.iter().enumerate() {
+                let x = pk * m;
+                let field = (code >> (k as u32 * half)) & ((1 << half) - 1);
+                let got = f64::from(((field << (32 - half)) as i32) >> (32 - half));
+                assert!(
+                    (got - x).abs() <= 0.5 + reach,
+                    "paraboloid_square{bits} of {v:?}: {got} for {x}"
+                );
+                if (x.abs() - x.abs().floor() - 0.5).abs() < reach {
+                    near_ties += 1;
+                    continue;
+                }
+                assert_eq!(got, x.round(), "paraboloid_square{bits} of {v:?}");
+            }
+        }
+        if bits < 32 {
+            assert!(
+                near_ties < samples.len() / 8,
+                "paraboloid_square{bits}: {near_ties} near-ties"
+            );
+        }
     }
 }
 

@@ -66,6 +66,7 @@ registry! {
     xy_signz => XySignZ;
     xy_stereo => XyStereo;
     paraboloid => Paraboloid;
+    paraboloid_square => ParaboloidSquare;
     spherical_z => SphericalZ;
     sfib => Sfib;
     pack12;
