@@ -169,7 +169,7 @@ impl Batch {
         match (take(Role::Encode), take(Role::Decode)) {
             (Some(encode), Some(decode)) => Ok(Batch { encode, decode }),
             _ => Err(SpecError::Invalid(format!(
-                "{} is a packing helper, not a codec: it has no encode/decode",
+                "{} is a helper, not a codec: it has no encode/decode",
                 spec.id()
             ))),
         }

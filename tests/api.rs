@@ -3,6 +3,7 @@
 use unitpack::api::{
     Batch, CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
     Paraboloid, ParaboloidSquare, Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
+    combine_paraboloid_pd,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -134,9 +135,11 @@ fn batches_match_the_typed_encoders_bit_for_bit() {
 }
 
 #[test]
-fn batch_refuses_packing_helpers_and_bad_specs() {
-    let e = Batch::new("snorm12x2").err().unwrap().to_string();
-    assert!(e.contains("packing helper"), "{e}");
+fn batch_refuses_helpers_and_bad_specs() {
+    for helper in ["snorm12x2", "paraboloid_pd"] {
+        let e = Batch::new(helper).err().unwrap().to_string();
+        assert!(e.contains("is a helper, not a codec"), "{e}");
+    }
     let e = Batch::new("oct17").err().unwrap().to_string();
     assert!(e.contains("16, 20, 22, 24, 32"), "{e}");
 }
@@ -489,6 +492,43 @@ fn paraboloid_square_layout_and_horizon() {
         );
     }
     assert!(ParaboloidSquare::new(20).is_err());
+}
+
+/// The second seed's detail combine: with no detail it is the paraboloid's direction
+/// (here on points where both forms of the height are exact); a detail slope tilts the
+/// normal against it, scaled by the primary's height, so it vanishes on the horizon;
+/// outside the disk the point alone is the direction.
+#[test]
+fn paraboloid_pd_combines_as_the_seed_writes() {
+    let close = |a: [f32; 3], b: [f64; 3]| {
+        let l = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt();
+        (0..3).all(|k| (f64::from(a[k]) - b[k] / l).abs() < 2e-7)
+    };
+    for (pn, pd, want) in [
+        ([0.0, 0.0], [0.0, 0.0], [0.0, 0.0, 1.0]),
+        ([0.5, 0.0], [0.0, 0.0], [0.5, 0.0, 0.75]),
+        ([0.0, 0.0], [0.5, 0.0], [-0.5, 0.0, 1.0]),
+        ([0.0, 0.0], [0.25, -0.75], [-0.25, 0.75, 1.0]),
+        // nz = 0.75: the slope is scaled by it before it is added.
+        ([0.5, 0.0], [0.0, 1.0], [0.5, -0.75, 0.75]),
+        // On the horizon the detail has no effect.
+        ([1.0, 0.0], [0.7, -0.3], [1.0, 0.0, 0.0]),
+        ([0.0, -1.5], [0.7, -0.3], [0.0, -1.0, 0.0]),
+    ] {
+        let got = combine_paraboloid_pd(pn, pd);
+        assert!(close(got, want), "{pn:?} {pd:?}: {got:?} vs {want:?}");
+    }
+    // With no detail, the paraboloid decode of the same point, to within rounding.
+    let c = Paraboloid::new(16).unwrap().fast();
+    for code in 0..=0xffffu32 {
+        let field = |k: u32| f32::from(((code >> (8 * k)) & 0xff) as u8 as i8).max(-127.0) / 127.0;
+        let got = combine_paraboloid_pd([field(0), field(1)], [0.0, 0.0]);
+        let want = c.decode(code);
+        assert!(
+            (0..3).all(|k| (got[k] - want[k]).abs() < 4e-7),
+            "{code:#06x}: {got:?} vs {want:?}"
+        );
+    }
 }
 
 /// The root of the quartic along the ray of unit `n` (`n.z ≥ 0`), solved in f64 by

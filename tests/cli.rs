@@ -1201,13 +1201,15 @@ fn float32x3_codes_are_three_words() {
 }
 
 #[test]
-fn packing_helper_has_no_encode_or_decode() {
+fn helpers_have_no_encode_or_decode() {
     for verb in ["encode", "decode"] {
-        let err = fails(&[verb, "snorm12x2"], "0 0 1\n");
-        assert!(
-            err.contains("snorm12x2 is a packing helper, not a codec"),
-            "{verb}: {err}"
-        );
+        for helper in ["snorm12x2", "paraboloid_pd"] {
+            let err = fails(&[verb, helper], "0 0 1\n");
+            assert!(
+                err.contains(&format!("{helper} is a helper, not a codec")),
+                "{verb}: {err}"
+            );
+        }
     }
 }
 

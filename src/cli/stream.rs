@@ -56,7 +56,7 @@ impl Codec {
     fn new(spec: &Spec, dir: Direction) -> Result<Codec> {
         if spec.info().domain.is_none() {
             bail!(
-                "{} is a packing helper, not a codec: it has no encode/decode",
+                "{} is a helper, not a codec: it has no encode/decode",
                 spec.id()
             );
         }

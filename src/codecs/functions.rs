@@ -87,6 +87,17 @@ impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V2<T> {
         self.y.write(&mut w[1..]);
     }
 }
+/// Several arguments, one after the other.
+impl<W, A: Bits<W>, B: Bits<W>> Bits<W> for (A, B) {
+    const WORDS: usize = A::WORDS + B::WORDS;
+    fn read(w: &[W]) -> Self {
+        (A::read(w), B::read(&w[A::WORDS..]))
+    }
+    fn write(self, w: &mut [W]) {
+        self.0.write(w);
+        self.1.write(&mut w[A::WORDS..]);
+    }
+}
 impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V3<T> {
     const WORDS: usize = 3;
     fn read(w: &[W]) -> Self {
@@ -119,6 +130,8 @@ pub enum Role {
     DecodeFloat,
     Pack,
     Unpack,
+    /// A helper that combines decoded values (the second seed's detail combine).
+    Combine,
 }
 
 /// A model of a function on raw words: one item in, one item out.
@@ -172,8 +185,10 @@ impl Function {
             "{} outputs for {n} items",
             output.len()
         );
-        let mut lanes_in = [[0u32; 4]; 3 * GROUPS];
-        let mut lanes_out = [[0u32; 4]; 3 * GROUPS];
+        // Items are at most four words (a combine helper's two vec2 arguments).
+        assert!(iw <= 4 && ow <= 4, "{iw} or {ow} words per item");
+        let mut lanes_in = [[0u32; 4]; 4 * GROUPS];
+        let mut lanes_out = [[0u32; 4]; 4 * GROUPS];
         for (src, dst) in input
             .chunks(4 * GROUPS * iw)
             .zip(output.chunks_mut(4 * GROUPS * ow))
@@ -184,13 +199,15 @@ impl Function {
             match iw {
                 1 => gather::<1>(src, lanes_in),
                 2 => gather::<2>(src, lanes_in),
-                _ => gather::<3>(src, lanes_in),
+                3 => gather::<3>(src, lanes_in),
+                _ => gather::<4>(src, lanes_in),
             }
             (self.eval_lanes)(lanes_in, lanes_out);
             match ow {
                 1 => scatter::<1>(lanes_out, dst),
                 2 => scatter::<2>(lanes_out, dst),
-                _ => scatter::<3>(lanes_out, dst),
+                3 => scatter::<3>(lanes_out, dst),
+                _ => scatter::<4>(lanes_out, dst),
             }
         }
     }

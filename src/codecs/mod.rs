@@ -67,6 +67,7 @@ registry! {
     xy_stereo => XyStereo;
     paraboloid => Paraboloid;
     paraboloid_square => ParaboloidSquare;
+    paraboloid_pd => combine_paraboloid_pd;
     spherical_z => SphericalZ;
     sfib => Sfib;
     pack12;

@@ -132,7 +132,7 @@ pub fn function_doc(
     let Some(role) = role else {
         return helper_doc(spec, local);
     };
-    if matches!(role, Role::Pack | Role::Unpack) {
+    if matches!(role, Role::Pack | Role::Unpack | Role::Combine) {
         return helper_doc(spec, local);
     }
     let q = quants(e).expect("codec with fields");
@@ -191,7 +191,7 @@ pub fn function_doc(
                 )
             },
         ],
-        Role::Pack | Role::Unpack => unreachable!(),
+        Role::Pack | Role::Unpack | Role::Combine => unreachable!(),
     };
     match role {
         Role::Decode | Role::DecodeFloat => d.extend(decoder_portability(e, role)),

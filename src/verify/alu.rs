@@ -109,7 +109,7 @@ fn shader(spec: &Spec, function: &str) -> Result<String> {
         Role::Encode => (true, false),
         Role::Decode => (false, true),
         Role::EncodeFloat | Role::DecodeFloat => (true, true),
-        Role::Pack | Role::Unpack => {
+        Role::Pack | Role::Unpack | Role::Combine => {
             return Err(anyhow!("{spec}: only codec functions are counted"));
         }
     };

@@ -212,7 +212,7 @@ fn lanes(f: &Function, input: &[u32]) -> Vec<u32> {
 
 fn compare(
     f: &Function,
-    types: (Ty, Ty),
+    types: (&[Ty], Ty),
     input: &[u32],
     want: &[u32],
     got: &[u32],
@@ -231,7 +231,7 @@ fn compare(
                     input: input[k * f.in_words..(k + 1) * f.in_words].to_vec(),
                     expected: w.to_vec(),
                     actual: g.to_vec(),
-                    input_float: types.0.kind == Kind::F32,
+                    input_float: types.0.iter().all(|t| t.kind == Kind::F32),
                     output_float: types.1.kind == Kind::F32,
                 });
             }
@@ -306,8 +306,8 @@ fn glsl_versions(include: &str) -> Vec<(String, Result<()>)> {
     ]
 }
 
-fn func_types(f: &Func) -> (Ty, Ty) {
-    (f.params[0].1, f.ret_ty)
+fn func_types(f: &Func) -> (Vec<Ty>, Ty) {
+    (f.params.iter().map(|p| p.1).collect(), f.ret_ty)
 }
 
 /// Verifies `specs` on every path of `langs`, with a progress bar when `progress`.
@@ -421,16 +421,18 @@ fn verify_spec(
         .iter()
         .filter(|p| p.lang() == Some(Lang::C))
         .map(|&p| {
-            let funcs: Vec<(String, Ty, Ty)> = e
+            let funcs: Vec<(String, Vec<Ty>, Ty)> = e
                 .functions
                 .iter()
                 .map(|f| {
-                    let (param, ret) = func_types(e.module.func(f.name).expect("traced"));
-                    (full_name(f), param, ret)
+                    let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+                    (full_name(f), params, ret)
                 })
                 .collect();
-            let funcs: Vec<(&str, Ty, Ty)> =
-                funcs.iter().map(|(n, a, b)| (n.as_str(), *a, *b)).collect();
+            let funcs: Vec<(&str, Vec<Ty>, Ty)> = funcs
+                .iter()
+                .map(|(n, a, b)| (n.as_str(), a.clone(), *b))
+                .collect();
             let source = crate::emit::lang::c::driver(include(Lang::C), &funcs);
             let compiler = if p == Path::CC {
                 native::Compiler::C
@@ -446,7 +448,7 @@ fn verify_spec(
     for (index, f) in e.functions.iter().enumerate() {
         bar.set_message(format!("{spec} {}", f.name));
         let traced = e.module.func(f.name).expect("traced function");
-        let (param, ret) = func_types(traced);
+        let (params, ret) = func_types(traced);
         let input = inputs::generate(&f.inputs, f.in_words);
         let want = expected(f, &input);
         for &path in paths {
@@ -465,7 +467,7 @@ fn verify_spec(
                 let lang = path.lang().expect("a shader path");
                 let kernel =
                     lang.backend(DEFAULT_PREFIX)
-                        .kernel(include(lang), &full_name(f), param, ret);
+                        .kernel(include(lang), &full_name(f), &params, ret);
                 compile_shader(path, &kernel).and_then(|spv| {
                     let shader = match (&spv, lang) {
                         (Some(words), _) => Shader::SpirV(words),
@@ -487,7 +489,7 @@ fn verify_spec(
             };
             match result {
                 Ok(got) => {
-                    (row.mismatches, row.first) = compare(f, (param, ret), &input, &want, &got)
+                    (row.mismatches, row.first) = compare(f, (&params, ret), &input, &want, &got)
                 }
                 Err(err) => row.error = Some(format!("{err:#}")),
             }

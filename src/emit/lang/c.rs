@@ -195,29 +195,40 @@ impl Backend for C {
         .expect("C template renders")
     }
     /// A test driver for one function: see `C::driver`.
-    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
-        driver(include, &[(func, param, ret)])
+    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
+        driver(include, &[(func, params.to_vec(), ret)])
     }
 }
 
 /// A test driver for several functions of one include (compiled once): reads items of raw
-/// words from standard input, applies function number `argv[1]` (default 0) through its
-/// public array signature, and writes the result words to standard output.
-pub fn driver(include: &str, funcs: &[(&str, Ty, Ty)]) -> String {
+/// words from standard input (each function's arguments one after the other), applies
+/// function number `argv[1]` (default 0) through its public array signature, and writes
+/// the result words to standard output.
+pub fn driver(include: &str, funcs: &[(&str, Vec<Ty>, Ty)]) -> String {
     let mut runners = String::new();
-    for (k, (func, param, ret)) in funcs.iter().enumerate() {
-        let (inw, outw) = (param.lanes as usize, ret.lanes as usize);
-        let arg = match (param.kind, param.lanes) {
-            (Kind::U32, 1) => "w[0]".to_string(),
-            (Kind::U32, 2) => "(uint64_t)w[0] | ((uint64_t)w[1] << 32)".to_string(),
-            (Kind::U32, _) => "w".to_string(),
-            _ => "a".to_string(),
-        };
+    for (k, (func, params, ret)) in funcs.iter().enumerate() {
+        let inw: usize = params.iter().map(|p| p.lanes as usize).sum();
+        let outw = ret.lanes as usize;
         let mut body = vec![];
-        if param.kind == Kind::F32 {
-            body.push(format!("float a[{inw}];"));
-            body.push("memcpy(a, w, sizeof a);".to_string());
+        let mut args = vec![];
+        let mut first = 0;
+        for (j, param) in params.iter().enumerate() {
+            let n = param.lanes as usize;
+            args.push(match (param.kind, param.lanes) {
+                (Kind::U32, 1) => format!("w[{first}]"),
+                (Kind::U32, 2) => {
+                    format!("(uint64_t)w[{first}] | ((uint64_t)w[{}] << 32)", first + 1)
+                }
+                (Kind::U32, _) => format!("&w[{first}]"),
+                _ => {
+                    body.push(format!("float a{j}[{n}];"));
+                    body.push(format!("memcpy(a{j}, &w[{first}], sizeof a{j});"));
+                    format!("a{j}")
+                }
+            });
+            first += n;
         }
+        let arg = args.join(", ");
         match (ret.kind, ret.lanes) {
             (Kind::U32, 1) => body.push(format!("r[0] = {func}({arg});")),
             (Kind::U32, 2) => {

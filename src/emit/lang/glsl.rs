@@ -111,13 +111,13 @@ impl Backend for Glsl {
         .expect("GLSL template renders")
     }
     /// A `#version 450` compute shader; the include goes after the version line.
-    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
         let outw = ret.lanes;
-        let KernelIo { arg, bits, stores } = kernel_io(
+        let KernelIo { args, bits, stores } = kernel_io(
             self,
-            param,
+            params,
             ret,
-            |l| format!("uintBitsToFloat({l})"),
+            |l, _| format!("uintBitsToFloat({l})"),
             "floatBitsToUint(r)",
         );
         format!(
@@ -132,7 +132,7 @@ void main() {{
     if (i >= uint(output_words.length()) / {outw}u) {{
         return;
     }}
-    {} r = {func}({arg});
+    {} r = {func}({args});
     {} rb = {bits};{stores}
 }}
 ",

@@ -69,10 +69,15 @@ impl Backend for Hlsl {
         .render()
         .expect("HLSL template renders")
     }
-    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
         let outw = ret.lanes;
-        let KernelIo { arg, bits, stores } =
-            kernel_io(self, param, ret, |l| format!("asfloat({l})"), "asuint(r)");
+        let KernelIo { args, bits, stores } = kernel_io(
+            self,
+            params,
+            ret,
+            |l, _| format!("asfloat({l})"),
+            "asuint(r)",
+        );
         format!(
             "{include}
 [[vk::binding(0, 0)]] StructuredBuffer<uint> input_words : register(t0);
@@ -86,7 +91,7 @@ void main(uint3 id : SV_DispatchThreadID) {{
     if (i >= count / {outw}u) {{
         return;
     }}
-    {} r = {func}({arg});
+    {} r = {func}({args});
     {} rb = {bits};{stores}
 }}
 ",

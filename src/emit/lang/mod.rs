@@ -86,10 +86,11 @@ pub trait Backend {
     }
     /// The complete include.
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String;
-    /// A program around `include` that applies `func` (parameter type `param`, result
-    /// type `ret`) to every item of raw 32-bit words: a compute shader with the binding
-    /// contract of `crate::verify::gpu`, or for C a test driver reading and writing files.
-    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String;
+    /// A program around `include` that applies `func` (parameter types `params`, whose
+    /// words follow one another in an item, result type `ret`) to every item of raw
+    /// 32-bit words: a compute shader with the binding contract of `crate::verify::gpu`,
+    /// or for C a test driver reading and writing files.
+    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String;
 }
 
 /// `vec3<f32>`-style names for WGSL, `vec3`/`uvec3`/`bvec3` for GLSL, `float3` for HLSL.
@@ -104,39 +105,47 @@ pub(crate) fn scalar_names(kind: Kind) -> (&'static str, &'static str, &'static 
 /// The word-level view of a value crossing the kernel boundary: `lanes` words.
 pub(crate) const LANES: [&str; 4] = ["x", "y", "z", "w"];
 
-/// The pieces every compute kernel shares: the argument loaded from `input_words` (bit-cast
-/// by `as_float` where the parameter is float) and the statements storing the result's
-/// words `rb` to `output_words`.
+/// The pieces every compute kernel shares: the arguments loaded one after the other from
+/// `input_words` (each bit-cast by `as_float` where it is float), and the statements
+/// storing the result's words `rb` to `output_words`.
 pub(crate) struct KernelIo {
-    pub arg: String,
+    pub args: String,
     pub bits: String,
     pub stores: String,
 }
 
 pub(crate) fn kernel_io(
     lang: &dyn Backend,
-    param: Ty,
+    params: &[Ty],
     ret: Ty,
-    as_float: impl Fn(&str) -> String,
+    as_float: impl Fn(&str, Ty) -> String,
     as_bits: &str,
 ) -> KernelIo {
-    let (inw, outw) = (param.lanes as usize, ret.lanes as usize);
-    let words: Vec<String> = (0..inw)
-        .map(|k| format!("input_words[i * {inw}u + {k}u]"))
+    let inw: usize = params.iter().map(|p| p.lanes as usize).sum();
+    let outw = ret.lanes as usize;
+    let mut first = 0;
+    let args: Vec<String> = params
+        .iter()
+        .map(|&param| {
+            let words: Vec<String> = (first..first + param.lanes as usize)
+                .map(|k| format!("input_words[i * {inw}u + {k}u]"))
+                .collect();
+            first += words.len();
+            let loaded = if words.len() == 1 {
+                words[0].clone()
+            } else {
+                let u = lang.ty(Ty {
+                    kind: Kind::U32,
+                    lanes: param.lanes,
+                });
+                format!("{u}({})", words.join(", "))
+            };
+            match param.kind {
+                Kind::F32 => as_float(&loaded, param),
+                _ => loaded,
+            }
+        })
         .collect();
-    let loaded = if inw == 1 {
-        words[0].clone()
-    } else {
-        let u = lang.ty(Ty {
-            kind: Kind::U32,
-            lanes: param.lanes,
-        });
-        format!("{u}({})", words.join(", "))
-    };
-    let arg = match param.kind {
-        Kind::F32 => as_float(&loaded),
-        _ => loaded,
-    };
     let bits = match ret.kind {
         Kind::F32 => as_bits.to_string(),
         _ => "r".to_string(),
@@ -151,5 +160,9 @@ pub(crate) fn kernel_io(
             format!("\n    output_words[i * {outw}u + {k}u] = rb{lane};")
         })
         .collect();
-    KernelIo { arg, bits, stores }
+    KernelIo {
+        args: args.join(", "),
+        bits,
+        stores,
+    }
 }

@@ -46,13 +46,13 @@ impl Backend for Wgsl {
         .render()
         .expect("WGSL template renders")
     }
-    fn kernel(&self, include: &str, func: &str, param: Ty, ret: Ty) -> String {
+    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
         let outw = ret.lanes;
-        let KernelIo { arg, bits, stores } = kernel_io(
+        let KernelIo { args, bits, stores } = kernel_io(
             self,
-            param,
+            params,
             ret,
-            |l| format!("bitcast<{}>({l})", self.ty(param)),
+            |l, param| format!("bitcast<{}>({l})", self.ty(param)),
             &format!(
                 "bitcast<{}>(r)",
                 self.ty(Ty {
@@ -72,7 +72,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     if (i >= arrayLength(&output_words) / {outw}u) {{
         return;
     }}
-    let r = {func}({arg});
+    let r = {func}({args});
     let rb = {bits};{stores}
 }}
 "
