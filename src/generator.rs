@@ -178,6 +178,13 @@ impl Generator {
 
     /// The include for `lang`.
     pub fn render(&self, lang: Lang) -> Result<String, GenerateError> {
+        Ok(self.render_each(&[lang])?.remove(0))
+    }
+
+    /// The include for each of `langs`, the specs parsed, proven and measured once for
+    /// all of them (the measurement of a search encoder takes a noticeable fraction of a
+    /// second).
+    fn render_each(&self, langs: &[Lang]) -> Result<Vec<String>, GenerateError> {
         self.check()?;
         let specs = self.parsed_specs()?;
         let stats = if self.error_stats {
@@ -187,16 +194,21 @@ impl Generator {
         };
         crate::decode_bound::prove_all(&specs);
         let ids: Vec<String> = specs.iter().map(|s| s.to_string()).collect();
-        let mut cmd = format!("unitpack gen {} --lang {lang}", ids.join(" "));
-        if self.prefix != DEFAULT_PREFIX {
-            cmd.push_str(&format!(" --prefix {}", self.prefix));
-        }
-        let import = self.import_path.as_deref().filter(|_| lang == Lang::Wgsl);
-        if let Some(p) = import {
-            cmd.push_str(&format!(" --wgsl-import-path {p}"));
-        }
         let pairs: Vec<_> = specs.into_iter().zip(stats).collect();
-        Ok(render_with(&pairs, lang, &self.prefix, &cmd, import))
+        Ok(langs
+            .iter()
+            .map(|&lang| {
+                let mut cmd = format!("unitpack gen {} --lang {lang}", ids.join(" "));
+                if self.prefix != DEFAULT_PREFIX {
+                    cmd.push_str(&format!(" --prefix {}", self.prefix));
+                }
+                let import = self.import_path.as_deref().filter(|_| lang == Lang::Wgsl);
+                if let Some(p) = import {
+                    cmd.push_str(&format!(" --wgsl-import-path {p}"));
+                }
+                render_with(&pairs, lang, &self.prefix, &cmd, import)
+            })
+            .collect())
     }
 
     /// Writes the include of the one chosen language to `path`, atomically, creating
@@ -224,10 +236,11 @@ impl Generator {
                 count: 0,
             });
         }
+        let texts = self.render_each(&self.langs)?;
         let mut written = Vec::new();
-        for &lang in &self.langs {
+        for (&lang, text) in self.langs.iter().zip(texts) {
             let path = dir.as_ref().join(format!("{stem}.{}", lang.ext()));
-            write(&path, self.render(lang)?.as_bytes())?;
+            write(&path, text.as_bytes())?;
             written.push(path);
         }
         Ok(written)

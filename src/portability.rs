@@ -257,16 +257,25 @@ fn measure(
 /// Runs every function of every spec under each class in each mode of `opts`.
 pub fn run(specs: &[Spec], classes: &[Class], opts: &Options) -> PortabilityReport {
     let modes = opts.modes();
-    let mut rows = Vec::new();
-    for spec in specs {
-        let id = spec.id();
-        for f in &spec.emitted().functions {
-            if opts.encoders_only && f.role != Role::Encode {
-                continue;
-            }
-            rows.extend(measure(&id, f, classes, &modes, opts.sample));
-        }
-    }
+    let jobs: Vec<(String, Function)> = specs
+        .iter()
+        .flat_map(|spec| {
+            let id = spec.id();
+            spec.emitted()
+                .functions
+                .into_iter()
+                .filter(|f| !opts.encoders_only || f.role == Role::Encode)
+                .map(move |f| (id.clone(), f))
+        })
+        .collect();
+    // On every core: each item's deviations are seeded by the item alone
+    // (`begin_item`), so the rows are the same as one job at a time, in the same order.
+    let rows = crate::par::map(&jobs, |(id, f)| {
+        measure(id, f, classes, &modes, opts.sample)
+    })
+    .into_iter()
+    .flatten()
+    .collect();
     PortabilityReport {
         classes: classes.to_vec(),
         modes,

@@ -749,10 +749,12 @@ fn snorm3_is_spelled_by_component_size() {
             "{r:?}"
         );
     }
-    // The family name and a precise form are not specs.
+    // The family name is not a spec; the precise form (Best Fit Normals) is.
     let err = bad_spec("snorm3");
     assert!(err.contains("snorm8x3"), "{err}");
-    bad_spec("snorm8x3p");
+    let r = ok(&["gen", "snorm8x3p", "--lang", "wgsl"]);
+    assert!(r.stdout.contains("fn unitpack_snorm8x3p_encode("), "{r:?}");
+    bad_spec("snorm8x3pp");
     bad_spec("snorm0x3");
 }
 

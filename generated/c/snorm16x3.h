@@ -48,7 +48,7 @@ static inline unitpack_vec3 unitpack_snorm16x3_decode_float_v(unitpack_vec3 para
 // In: parameters in [-1, 1], as a snorm16 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23·2^-24 (1.37e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound); MSE of the components of n - n' 5.199e-11, PSNR 102.84 dB.
 static inline void unitpack_snorm16x3_decode_float(const float params[3], float out[3]) {
     const unitpack_vec3 params_v = { params[0], params[1], params[2] };
@@ -79,7 +79,7 @@ static inline unitpack_vec3 unitpack_snorm16x3_decode_v(unitpack_uvec2 code) {
 // In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23·2^-24 (1.37e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound); MSE of the components of n - n' 5.199e-11, PSNR 102.84 dB.
 static inline void unitpack_snorm16x3_decode(uint64_t code, float out[3]) {
     const unitpack_uvec2 code_w = { (uint32_t)code, (uint32_t)(code >> 32) };
@@ -116,7 +116,7 @@ static inline unitpack_vec3 unitpack_snorm16x3_encode_float_v(unitpack_vec3 v) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound); MSE of the components of n - n' 5.199e-11, PSNR 102.84 dB.
 static inline void unitpack_snorm16x3_encode_float(const float v[3], float out[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
@@ -270,7 +270,7 @@ static inline unitpack_uvec2 unitpack_snorm16x3_encode_v(unitpack_vec3 v) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, unitpack_uvec2 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00066°, sample max 0.00148° (not a bound); MSE of the components of n - n' 5.199e-11, PSNR 102.84 dB.
 static inline uint64_t unitpack_snorm16x3_encode(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };

@@ -26,7 +26,7 @@
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23·2^-24 (1.37e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound); MSE of the components of n - n' 3.454e-6, PSNR 54.62 dB.
 float3 unitpack_snorm8x3_decode_float(float3 params) {
     precise float3 t1 = params * params;
@@ -44,7 +44,7 @@ float3 unitpack_snorm8x3_decode_float(float3 params) {
 // In: a packed code (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement), bits 16–23: p2 snorm8 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 23·2^-24 (1.37e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound); MSE of the components of n - n' 3.454e-6, PSNR 54.62 dB.
 float3 unitpack_snorm8x3_decode(uint code) {
     uint t1 = code >> 8u;
@@ -66,7 +66,7 @@ float3 unitpack_snorm8x3_decode(uint code) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm8 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound); MSE of the components of n - n' 3.454e-6, PSNR 54.62 dB.
 float3 unitpack_snorm8x3_encode_float(float3 v) {
     precise float3 t1 = abs(v);
@@ -216,7 +216,7 @@ float3 unitpack_snorm8x3_round_codes(float3 a0) {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's complement), bits 16–23: p2 snorm8 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.17039°, sample max 0.38080° (not a bound); MSE of the components of n - n' 3.454e-6, PSNR 54.62 dB.
 uint unitpack_snorm8x3_encode(float3 v) {
     precise float3 t1 = unitpack_snorm8x3_round_codes(v);

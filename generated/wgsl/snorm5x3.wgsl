@@ -11,7 +11,7 @@
 // In: parameters in [-1, 1], as a snorm5 fetch returns them.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 22·2^-24 (1.31e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 1.45302°, sample max 3.27121° (not a bound); MSE of the components of n - n' 2.515e-4, PSNR 35.99 dB.
 fn unitpack_snorm5x3_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params * params;
@@ -29,7 +29,7 @@ fn unitpack_snorm5x3_decode_float(params: vec3<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–4: p0 snorm5 (two's complement), bits 5–9: p1 snorm5 (two's complement), bits 10–14: p2 snorm5 (two's complement)); other bits are ignored.
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable within a bound: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component is within 22·2^-24 (1.31e-6) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 1.45302°, sample max 3.27121° (not a bound); MSE of the components of n - n' 2.515e-4, PSNR 35.99 dB.
 fn unitpack_snorm5x3_decode(code: u32) -> vec3<f32> {
     let t1 = code >> 5u;
@@ -51,7 +51,7 @@ fn unitpack_snorm5x3_decode(code: u32) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: parameters in [-1, 1], unquantized, for a snorm5 render target or vertex format to round.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 1.45302°, sample max 3.27121° (not a bound); MSE of the components of n - n' 2.515e-4, PSNR 35.99 dB.
 fn unitpack_snorm5x3_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t1 = abs(v);
@@ -201,7 +201,7 @@ fn unitpack_snorm5x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
 // In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z.
 // Out: the packed code, u32 (bits 0–4: p0 snorm5 (two's complement), bits 5–9: p1 snorm5 (two's complement), bits 10–14: p2 snorm5 (two's complement)).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
-// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline.
+// Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 1.45302°, sample max 3.27121° (not a bound); MSE of the components of n - n' 2.515e-4, PSNR 35.99 dB.
 fn unitpack_snorm5x3_encode(v: vec3<f32>) -> u32 {
     let t1 = unitpack_snorm5x3_round_codes(v);

@@ -38,10 +38,17 @@ pub fn fixed_target<F: Float>(w: V3<F>, l: F, bits: u32) -> V3<F> {
     w.map(|x| fixed_ratio(x, l, bits)).named("aim")
 }
 
+impl<F> Distance<F> {
+    /// The squared distance itself.
+    pub fn squared(self) -> F {
+        self.0
+    }
+}
+
 /// `|d - u|²` of two fixed-point directions: integers whose differences are exact and
 /// below `2^24` and whose squared distance is below `2^48` (always, in units of `2^-21`;
 /// for a candidate next to the target, in units of `2^-23`).
-fn distance<F: Float>(d: V3<F>, u: V3<F>) -> Distance<F> {
+pub fn distance<F: Float>(d: V3<F>, u: V3<F>) -> Distance<F> {
     let e = (d - u).map(|x| x.abs().to_u());
     Distance(sum_of_squares::<F, 3>([e.x, e.y, e.z]).named("dist"))
 }

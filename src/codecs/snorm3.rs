@@ -1,8 +1,22 @@
 //! snorm×3: the vector's components stored directly (survey; the first seed's baseline).
 //! Most codes are not unit length, so decode re-normalizes.
+//!
+//! The precise encoder is Best Fit Normals (Kaplanyan 2010, survey §2.2): since the
+//! decoder normalizes, any non-unit code stands for a direction, and the one whose
+//! direction is nearest the input is searched for. With `n` scaled so that its largest
+//! component is `t`, the candidate for scale `t` rounds the others. A direction whose
+//! largest component is below `M/2` recurs at twice (or more) its scale, so the search
+//! tries scales above `M/2` only: the top [`BFN_SCALES`] of them (all of them up to
+//! snorm8). At snorm8 no integer vector around the ray at any scale was nearer over the
+//! sampled inputs of `tests/bfn.rs`; on snorm5's coarse grid the nearest is not always a
+//! rounded one.
 
 use super::codec::{Codec, Domain, unit_or_z};
-use super::exact::{canonical, length2, snorm_sqrt_ratio};
+use super::exact::{
+    canonical, canonical_or_z, fixed_length2, fixed_ratio, length2, root, root_of,
+    snorm_sqrt_ratio, sum_of_squares,
+};
+use super::fixed_decode::{BITS, ONE, distance, fixed_target};
 use super::quant::{Code, Quant, Quants};
 use crate::model::{Float, V2, V3};
 use std::marker::PhantomData;
@@ -23,8 +37,8 @@ static INFO: Info = Info {
         per: &[5, 8, 10, 16],
     },
     domain: Some(Domain::Sphere),
-    precise: false,
-    source: "Cigolle et al. 2014 §2; Pranckevičius, baseline",
+    precise: true,
+    source: "Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010)",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decode re-normalizes; the all-zero code decodes as +Z",
     options: &[],
@@ -33,6 +47,23 @@ static INFO: Info = Info {
 impl Family for Snorm3Family {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        match name {
+            "encode_codes" => Some(format!(
+                "Best Fit Normals: among the codes whose largest component is one of the top \
+                 {BFN_SCALES} scales (all scales above M/2 up to snorm8), each the input scaled to \
+                 that largest component and rounded, the one whose direction (computed in units \
+                 of 2^-{BITS}, every quotient and root decided by comparisons) is nearest the \
+                 input's by exact squared distance, the largest scale on ties."
+            )),
+            "bfn_step" => Some(
+                "One scale of the Best Fit Normals search: the candidate code for scale `t`, kept \
+                 if its fixed-point direction is strictly nearer the input's than the best so far."
+                    .into(),
+            ),
+            _ => None,
+        }
     }
     /// Components wider than 10 bits do not fit three to a word: snorm16×3 is two words.
     fn emitted(&self, spec: &Spec) -> Emitted {
@@ -133,4 +164,64 @@ impl<W: Words> Codec for Snorm3<W> {
         );
         V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(q[2].max_code())))
     }
+    /// Best Fit Normals (see the module): the top scales tried one by one, the largest
+    /// first, each candidate's direction measured in fixed point. Zero, NaN and infinite
+    /// input aim at +Z, whose candidates all point there: the first, `(0, 0, M)`, wins.
+    const EXACT_SEARCH: bool = true;
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
+        let (w, _) = canonical_or_z(v);
+        let aim = fixed_target(w, root(fixed_length2(w)), BITS);
+        let a = aim.abs();
+        let m = a.x.at_least(a.y).at_least(a.z);
+        // Each component over the largest in units of 2^-BITS (the largest exactly ONE).
+        let r = a.map(|x| fixed_ratio(x, m, BITS)).named("r");
+        let top = self.bits.iter().copied().min().map_or(0, |b| (1u32 << (b - 1)) - 1);
+        // The best scale so far and its squared distance.
+        let mut best = V2::new(F::c(0.0), F::c(BFN_FAR));
+        for t in (top + 1 - bfn_scales(top)..=top).rev() {
+            let t = F::c(t as f32);
+            best = F::call("bfn_step", (best, (t, (r, aim))), |(best, (t, (r, aim)))| {
+                bfn_step(best, t, r, aim)
+            })
+            .named("best");
+        }
+        let c = candidate(r, best.x);
+        let signed = |c: F, x: F| F::sel(x.lt(F::c(0.0)), -c, c);
+        V3::new(signed(c.x, aim.x), signed(c.y, aim.y), signed(c.z, aim.z))
+    }
+}
+
+/// Scales the Best Fit Normals search tries at most (all those above `M/2` up to snorm8,
+/// the top ones above): each costs about 150 ALU instructions.
+pub const BFN_SCALES: u32 = 64;
+
+/// The scales tried below the largest code `top`.
+fn bfn_scales(top: u32) -> u32 {
+    (top - top / 2).min(BFN_SCALES)
+}
+
+/// A squared distance no candidate reaches (fixed-point unit vectors are at most 2 apart:
+/// `(2·2^21)²`).
+const BFN_FAR: f32 = 1.0e30;
+
+/// The candidate code magnitudes for scale `t` (`r` the input's magnitudes over its
+/// largest, in units of `2^-BITS`): each component one product rounded, so the largest is
+/// `t` exactly.
+fn candidate<F: Float>(r: V3<F>, t: F) -> V3<F> {
+    r.map(|x| (x * F::c((1.0 / ONE) as f32) * t).round())
+        .named("c")
+}
+
+/// One scale of the search from `best = (scale, squared distance)`: the candidate's
+/// direction `c / |c|` in units of `2^-BITS` from the root of its exact square sum, then
+/// its squared distance to `aim`'s magnitudes; `t` replaces the best only if strictly
+/// nearer.
+fn bfn_step<F: Float>(best: V2<F>, t: F, r: V3<F>, aim: V3<F>) -> V2<F> {
+    let c = candidate(r, t);
+    let a = c.map(|x| x.to_u());
+    let l = root_of(sum_of_squares::<F, 3>([a.x, a.y, a.z])).at_least(t).named("l");
+    let d = c.map(|x| fixed_ratio(x, l, BITS)).named("d");
+    let dist = distance(d, aim.abs()).squared().named("dist");
+    let nearer = dist.lt(best.y);
+    V2::sel_all(nearer, V2::new(t, dist), best)
 }
