@@ -8,11 +8,12 @@ use crate::quality::{ErrorStats, VECTOR_SEED};
 /// Samples behind the README's error figures (the survey's Table 1 used 2^20 too).
 pub const README_SAMPLES: usize = 1 << 20;
 
-/// Markers around a generated block in the README.
-pub fn markers(name: &str) -> (String, String) {
+/// Markers around a generated block in the README, naming the test (`tests/{test}.rs`)
+/// that checks and rewrites it.
+pub fn markers(test: &str, name: &str) -> (String, String) {
     (
         format!(
-            "<!-- generated: {name} (tests/readme.rs; UPDATE_README=1 cargo test --release --test readme) -->"
+            "<!-- generated: {name} (tests/{test}.rs; UPDATE_README=1 cargo test --release --test {test}) -->"
         ),
         format!("<!-- end generated: {name} -->"),
     )
@@ -174,9 +175,10 @@ pub fn bound_table() -> String {
     s
 }
 
-/// `text` with the block called `name` replaced by `body`; `None` without its markers.
-pub fn replace_block(text: &str, name: &str, body: &str) -> Option<String> {
-    let (begin, end) = markers(name);
+/// `text` with the block called `name`, written by `tests/{test}.rs`, replaced by `body`;
+/// `None` without its markers.
+pub fn replace_block(text: &str, test: &str, name: &str, body: &str) -> Option<String> {
+    let (begin, end) = markers(test, name);
     let start = text.find(&begin)? + begin.len();
     let stop = start + text[start..].find(&end)?;
     Some(format!("{}\n{}{}", &text[..start], body, &text[stop..]))

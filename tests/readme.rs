@@ -25,7 +25,7 @@ fn readme_tables_are_generated_and_fresh() {
         ("seed_methods", seed_methods_table(&stats, &alu)),
         ("bounds", bound_table()),
     ] {
-        fresh = replace_block(&fresh, name, &body)
+        fresh = replace_block(&fresh, "readme", name, &body)
             .unwrap_or_else(|| panic!("README.md lacks the markers of the {name} block"));
     }
     if std::env::var_os("UPDATE_README").is_some() {
