@@ -134,8 +134,8 @@ fn more_snorm_layouts_match_table_1() {
     check("snorm16x3", 0.00066, 0.00149);
 }
 /// Table 1's snorm×3P rows are Crytek's table of best lengths, read at its four nearest
-/// texels; ours searches the scales themselves (every one above M/2 at snorm8, so every
-/// code direction near the input; the top 64 at snorm16), and so lands below both rows.
+/// texels; ours searches the scales themselves (every one above M/2 at snorm8, the top
+/// 64 at snorm16), and so lands below both rows.
 /// At snorm8 the mean is 3.7 % and the max 10 % below the table; at snorm16, where the
 /// table barely improves on plain rounding (0.00060° against 0.00066°), the mean is a
 /// sixth of it.

@@ -3,6 +3,7 @@
 //! f64 independently of the encoder's fixed-point measure.
 
 use unitpack::api::{CpuCodec, Snorm3};
+use unitpack::model::V2;
 use unitpack::quality::random_unit_vectors;
 
 /// The angle (radians) between `a` and `b`, from the cross and dot products (accurate
@@ -54,16 +55,19 @@ fn nearest(n: [f64; 3], scales: impl Iterator<Item = u32>, around: bool) -> f64 
     best
 }
 
+/// Holds every sampled code within `slack` radians of the nearest candidate in `scales`
+/// and the mean shortfall below `mean_slack`.
 fn check(
     bits: u32,
     scales: std::ops::RangeInclusive<u32>,
     around: bool,
+    mean_slack: f64,
     decode: impl Fn([f32; 3]) -> [f32; 3],
 ) {
-    // The encoder measures directions in units of 2^-21 (a few units each way) and its
-    // decoder rounds: well under 1e-5 degrees.
+    // The encoder compares directions in units of 2^-21 (about 4.8e-7 rad), a few units
+    // each way, and its decoder rounds: 4e-6 rad is about 8 units (2.3e-4 degrees).
     let slack = 4e-6;
-    let (mut worse, mut samples) = (0.0f64, 0);
+    let (mut worse, mut sum, mut samples) = (0.0f64, 0.0f64, 0);
     for v in random_unit_vectors(61, 1 << 12, false) {
         let n = v.map(f64::from);
         let got = angle(decode(v).map(f64::from), n);
@@ -73,18 +77,36 @@ fn check(
             "snorm{bits}x3p of {v:?}: {got:e} rad, {best:e} reachable"
         );
         worse = worse.max(got - best);
+        sum += (got - best).max(0.0);
         samples += 1;
     }
-    println!("snorm{bits}x3p: at most {worse:e} rad worse over {samples} vectors");
+    let mean = sum / f64::from(samples);
+    println!(
+        "snorm{bits}x3p: at most {worse:e} rad worse, {mean:e} on average, over {samples} vectors"
+    );
+    assert!(
+        mean < mean_slack,
+        "snorm{bits}x3p: {mean:e} rad worse on average than the nearest candidate"
+    );
 }
 
+/// Mean shortfalls allowed (radians; measured 5.6e-9, 5.9e-9 and 6.5e-9 at snorm5, 8
+/// and 10, where the fixed-point measure is fine beside the grid, and 6.5e-8 at snorm16,
+/// 4 % of its mean error, where units of 2^-21 are coarse beside the grid). A search over
+/// fewer scales falls short by about 1e-5 rad at snorm16 (plain rounding's error).
+const MEAN_5: f64 = 2e-8;
+const MEAN_8: f64 = 2e-8;
+const MEAN_10: f64 = 2e-8;
+const MEAN_16: f64 = 1.5e-7;
+
 /// At snorm8 no integer vector around the ray at any scale (`1..=127`) is nearer in the
-/// sample, although the encoder only tries the rounded ones above 63: a direction at a
-/// smaller scale recurs at a multiple of it.
+/// sample, although the encoder only tries the rounded ones above 63 (a code at a smaller
+/// scale has its direction at a multiple of it, but not necessarily as the rounded one
+/// there: this is what shows that nothing is lost).
 #[test]
 fn snorm8x3p_is_the_nearest_around_the_ray_at_every_scale() {
     let c = Snorm3::one_word(8).unwrap().precise();
-    check(8, 1..=127, true, |v| c.decode(c.encode(v)));
+    check(8, 1..=127, true, MEAN_8, |v| c.decode(c.encode(v)));
 }
 
 /// On snorm5's coarse grid the nearest direction is not always a rounded one, so there
@@ -93,16 +115,16 @@ fn snorm8x3p_is_the_nearest_around_the_ray_at_every_scale() {
 #[test]
 fn snorm5x3p_and_snorm10x3p_cover_their_scales() {
     let c = Snorm3::one_word(5).unwrap().precise();
-    check(5, 8..=15, false, |v| c.decode(c.encode(v)));
+    check(5, 8..=15, false, MEAN_5, |v| c.decode(c.encode(v)));
     let c = Snorm3::one_word(10).unwrap().precise();
-    check(10, 448..=511, true, |v| c.decode(c.encode(v)));
+    check(10, 448..=511, true, MEAN_10, |v| c.decode(c.encode(v)));
 }
 
 /// At snorm16 the search tries the top 64 scales.
 #[test]
 fn snorm16x3p_is_the_nearest_over_its_top_scales() {
     let c = Snorm3::two_words().precise();
-    check(16, 32704..=32767, true, |v| c.decode(c.encode(v)));
+    check(16, 32704..=32767, true, MEAN_16, |v| c.decode(c.encode(v)));
 }
 
 /// Directions that are exact at some scale are found exactly, and invalid input is +Z.
@@ -113,7 +135,9 @@ fn snorm8x3p_finds_exact_directions() {
     assert_eq!(c.encode([0.3, 0.5, 0.8]), 45 | 75 << 8 | 120 << 16);
     assert_eq!(c.encode([1.0, 2.0, 3.0]), 42 | 84 << 8 | 126 << 16);
     assert_eq!(c.encode([-1.0, 2.0, -3.0]), 0xd6 | 84 << 8 | 0x82 << 16);
+    let wide = Snorm3::two_words().precise();
     for bad in [[0.0; 3], [f32::NAN, 1.0, 1.0], [f32::INFINITY, 0.0, 0.0]] {
         assert_eq!(c.encode(bad), 127 << 16, "{bad:?}");
+        assert_eq!(wide.encode(bad), V2::new(0, 32767), "{bad:?}");
     }
 }

@@ -130,8 +130,8 @@ fn malformed_specs_name_the_problem() {
     assert!(e.contains("layout is given twice"), "{e}");
     let e = err("stereo_scaled16_scale2:scale=3");
     assert!(e.contains("scale is given twice"), "{e}");
-    let e = err("snorm8x3p");
-    assert!(e.contains("snorm8x3 has no precise encoder"), "{e}");
+    let e = err("snorm11_11_10p");
+    assert!(e.contains("snorm11_11_10 has no precise encoder"), "{e}");
     let e = err("snorm12x2p");
     assert!(e.contains("snorm12x2 has no precise encoder"), "{e}");
     let e = err("oct24_rgb9");

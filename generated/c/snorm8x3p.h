@@ -252,7 +252,7 @@ static inline unitpack_vec2 unitpack_snorm8x3p_bfn_step_v(unitpack_vec2 a0, floa
     return t148;
 }
 
-// Best Fit Normals: among the codes whose largest component is one of the top 64 scales (all scales above M/2 up to snorm8), each the input scaled to that largest component and rounded, the one whose direction (computed in units of 2^-21, every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
+// Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales above M/2, the largest first, each the input scaled to that largest component and rounded, the one whose direction (computed in units of 2^-21, every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
 
 static inline unitpack_vec3 unitpack_snorm8x3p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };

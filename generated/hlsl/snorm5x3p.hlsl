@@ -225,7 +225,7 @@ float2 unitpack_snorm5x3p_bfn_step(float2 a0, float a1, float3 a2, float3 a3) {
     return t148;
 }
 
-// Best Fit Normals: among the codes whose largest component is one of the top 64 scales (all scales above M/2 up to snorm8), each the input scaled to that largest component and rounded, the one whose direction (computed in units of 2^-21, every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
+// Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales above M/2, the largest first, each the input scaled to that largest component and rounded, the one whose direction (computed in units of 2^-21, every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
 float3 unitpack_snorm5x3p_encode_codes(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);

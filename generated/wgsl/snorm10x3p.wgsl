@@ -210,7 +210,7 @@ fn unitpack_snorm10x3p_bfn_step(a0: vec2<f32>, a1: f32, a2: vec3<f32>, a3: vec3<
     return t148;
 }
 
-// Best Fit Normals: among the codes whose largest component is one of the top 64 scales (all scales above M/2 up to snorm8), each the input scaled to that largest component and rounded, the one whose direction (computed in units of 2^-21, every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
+// Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales above M/2, the largest first, each the input scaled to that largest component and rounded, the one whose direction (computed in units of 2^-21, every quotient and root decided by comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
 fn unitpack_snorm10x3p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);

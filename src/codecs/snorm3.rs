@@ -4,12 +4,14 @@
 //! The precise encoder is Best Fit Normals (Kaplanyan 2010, survey §2.2): since the
 //! decoder normalizes, any non-unit code stands for a direction, and the one whose
 //! direction is nearest the input is searched for. With `n` scaled so that its largest
-//! component is `t`, the candidate for scale `t` rounds the others. A direction whose
-//! largest component is below `M/2` recurs at twice (or more) its scale, so the search
-//! tries scales above `M/2` only: the top [`BFN_SCALES`] of them (all of them up to
-//! snorm8). At snorm8 no integer vector around the ray at any scale was nearer over the
-//! sampled inputs of `tests/bfn.rs`; on snorm5's coarse grid the nearest is not always a
-//! rounded one.
+//! component is `t`, the candidate for scale `t` rounds the others. The search tries
+//! scales above `M/2` only, the top [`BFN_SCALES`] of them (all of them up to snorm8): a
+//! code whose largest component is below `M/2` has the same direction at twice its
+//! scale, though that double is one of the integer vectors around the ray there, not
+//! necessarily the rounded one. That the smaller scales add nothing is therefore a
+//! measurement, not a proof: at snorm8 no integer vector around the ray at any scale
+//! (`1..=127`) was nearer over the sampled inputs of `tests/bfn.rs`; on snorm5's coarse
+//! grid the nearest is not always a rounded one.
 
 use super::codec::{Codec, Domain, unit_or_z};
 use super::exact::{
@@ -51,9 +53,9 @@ impl Family for Snorm3Family {
     fn helper_doc(&self, name: &str) -> Option<String> {
         match name {
             "encode_codes" => Some(format!(
-                "Best Fit Normals: among the codes whose largest component is one of the top \
-                 {BFN_SCALES} scales (all scales above M/2 up to snorm8), each the input scaled to \
-                 that largest component and rounded, the one whose direction (computed in units \
+                "Best Fit Normals: among the codes whose largest component is one of at most \
+                 {BFN_SCALES} of the scales above M/2, the largest first, each the input scaled \
+                 to that largest component and rounded, the one whose direction (computed in units \
                  of 2^-{BITS}, every quotient and root decided by comparisons) is nearest the \
                  input's by exact squared distance, the largest scale on ties."
             )),
