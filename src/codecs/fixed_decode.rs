@@ -89,10 +89,15 @@ pub fn fixed_square_point<F: Float>(q: [Quant; 2], c: V2<F>) -> (V2<F>, F) {
     (p, fixed_length2_2d(p))
 }
 
-/// `x²` of a fixed-point value in units of `2^-BITS`, rounded to a unit: one product
-/// scaled and rounded, an integer below `2^23` for `|x| ≤ √2`.
+/// `x·y` of fixed-point values in units of `2^-BITS`, rounded to a unit: one rounded
+/// product scaled by a power of two (exact), so no contraction can reach it.
+pub fn fixed_mul<F: Float>(x: F, y: F) -> F {
+    (x * y * F::c((1.0 / ONE) as f32)).round()
+}
+
+/// `x²` of a fixed-point value ([`fixed_mul`]), an integer below `2^23` for `|x| ≤ √2`.
 pub fn fixed_square<F: Float>(x: F) -> F {
-    (x * x * F::c((1.0 / ONE) as f32)).round()
+    fixed_mul(x, x)
 }
 
 /// `|p|²` of a fixed-point point from [`fixed_square`]s: integers, so their sum is exact.

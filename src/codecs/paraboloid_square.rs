@@ -19,7 +19,7 @@ use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root};
 use super::family::{Family, Info, Sizes};
 use super::fixed_decode::{
-    BITS, ONE, fixed, fixed_square, fixed_target, nearest_decoded, search_doc,
+    BITS, ONE, fixed, fixed_mul, fixed_square, fixed_target, nearest_decoded, search_doc,
 };
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
@@ -76,12 +76,6 @@ pub struct ParaboloidSquare {
 
 /// Bisection steps: the first tries `s = 1` (the horizon), the last adds one unit.
 const STEPS: u32 = BITS + 1;
-
-/// `x·y` of fixed-point values in units of `2^-BITS`, rounded to a unit: one rounded
-/// product scaled by a power of two, so no contraction can reach it.
-fn fixed_mul<F: Float>(x: F, y: F) -> F {
-    (x * y * F::c((1.0 / ONE) as f32)).round()
-}
 
 /// One bisection step from `s` by `h`, for the ray of the fixed-point unit input with
 /// `k = (m, r², u.z)`: `m` the larger of `|u.x|, |u.y|` and `r` the smaller over it.
