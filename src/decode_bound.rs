@@ -102,14 +102,27 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
         evaluations.set(evaluations.get() + 1);
         deviation(&(f.eval)(r))
     };
-    let per_side = match ranges.len() {
+    let mut heap = BinaryHeap::new();
+    let mut best_single = 0f64;
+    // A field the decoder does not read is proven at its lowest value: the enclosure
+    // cannot depend on it.
+    let ranges: Vec<(i64, i64)> = ranges
+        .iter()
+        .enumerate()
+        .map(|(k, &(a, b))| {
+            if f.unread.contains(&k) {
+                (a, a)
+            } else {
+                (a, b)
+            }
+        })
+        .collect();
+    let per_side = match ranges.iter().filter(|r| r.0 < r.1).count() {
         1 => 4096,
         2 => 64,
         _ => 16,
     };
-    let mut heap = BinaryHeap::new();
-    let mut best_single = 0f64;
-    let mut boxes = grid(ranges, per_side);
+    let mut boxes = grid(&ranges, per_side);
     if let Some(k) = f.whole_field {
         boxes = boxes
             .into_iter()

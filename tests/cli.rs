@@ -840,6 +840,25 @@ fn encode_prints_one_hex_code_per_line() {
     assert_ne!(lines[0], lines[1]);
 }
 
+/// The texel layouts' example: x in alpha (0.6·½ + ½ = 204/255), y in green, R = 1, and a
+/// layout on any size but 16 bits is a clear error.
+#[test]
+fn encode_writes_a_dxt5nm_texel() {
+    let r = run_stdin(&["encode", "xy16:layout=dxt5nm"], "0.6 0 0.8\n");
+    assert_eq!(r.code, 0, "{r:?}");
+    let t = u32::from_str_radix(r.stdout.trim().trim_start_matches("0x"), 16).unwrap();
+    assert_eq!(t >> 24, 0xcc, "alpha of {t:#010x}");
+    assert!(matches!(t >> 8 & 0xff, 0x7f | 0x80), "green of {t:#010x}");
+    assert_eq!(
+        (t & 0xff, t >> 16 & 0xff),
+        (0xff, 0),
+        "red and blue of {t:#010x}"
+    );
+    let r = run_stdin(&["encode", "xy24:layout=dxt5nm"], "0 0 1\n");
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(r.stderr.contains("16-bit form only"), "{r:?}");
+}
+
 #[test]
 fn decode_inverts_encode() {
     let input = [

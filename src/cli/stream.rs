@@ -15,7 +15,8 @@
 
 use super::grammar::{self, LineError, quote};
 use crate::codecs::Spec;
-use crate::codecs::functions::{Function, Role};
+use crate::codecs::functions::{Function, Inputs, Role};
+use crate::codecs::quant::code_width;
 use anyhow::{Result, bail};
 use std::io::{BufRead, ErrorKind, Read, Write};
 
@@ -64,12 +65,17 @@ impl Codec {
             Direction::Encode => Role::Encode,
             Direction::Decode => Role::Decode,
         };
-        let Some(f) = spec
-            .emitted()
-            .functions
-            .into_iter()
-            .find(|f| f.role == role)
-        else {
+        let functions = spec.emitted().functions;
+        // The code's width is its fields' (a texel layout's code is the whole RGBA8 texel,
+        // 32 bits, though it holds 16 bits of parameters).
+        let bits = functions
+            .iter()
+            .find_map(|f| match &f.inputs {
+                Inputs::Codes(q) => Some(code_width(q)),
+                _ => None,
+            })
+            .unwrap_or(spec.bits());
+        let Some(f) = functions.into_iter().find(|f| f.role == role) else {
             bail!("{} has no {role:?} function", spec.id());
         };
         let code_words = match dir {
@@ -80,7 +86,7 @@ impl Codec {
             f,
             name: spec.to_string(),
             dir,
-            bits: spec.bits(),
+            bits,
             code_words,
         })
     }

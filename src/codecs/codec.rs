@@ -3,7 +3,7 @@
 
 use super::quant::{Code, Quant, Quants, field_offsets};
 use crate::model::trace::Value;
-use crate::model::{Bool, Float, Uint, V2, V3};
+use crate::model::{Bool, Float, Uint, V2, V3, V4};
 
 /// Which directions a codec represents.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,7 +22,7 @@ impl Domain {
     }
 }
 
-/// The parameter vector a codec stores: `V2` or `V3` of floats.
+/// The parameter vector a codec stores: `V2`, `V3` or (a texel's channels) `V4` of floats.
 pub trait Params<F: Float>: Value {
     const N: usize;
     fn lane(&self, i: usize) -> F;
@@ -58,6 +58,22 @@ impl<F: Float> Params<F> for V3<F> {
     fn build(mut f: impl FnMut(usize) -> F) -> Self {
         let a = [f(0), f(1), f(2)];
         V3::from_array(F::fuse(a))
+    }
+    fn named_p(self, name: &'static str) -> Self {
+        self.named(name)
+    }
+}
+
+impl<F: Float> Params<F> for V4<F> {
+    const N: usize = 4;
+    #[inline(always)]
+    fn lane(&self, i: usize) -> F {
+        self.to_array()[i]
+    }
+    #[inline(always)]
+    fn build(mut f: impl FnMut(usize) -> F) -> Self {
+        let a = [f(0), f(1), f(2), f(3)];
+        V4::from_array(F::fuse(a))
     }
     fn named_p(self, name: &'static str) -> Self {
         self.named(name)
@@ -103,6 +119,20 @@ pub trait Codec: Send + Sync {
     /// no range of either: [`crate::decode_bound`] then takes its values one at a time.
     fn whole_field(&self) -> Option<usize> {
         None
+    }
+    /// Fields the decoder never reads (a texel's constant channels): a bound proven over
+    /// one value of each holds for all ([`crate::decode_bound`]).
+    fn unread_fields(&self) -> &'static [usize] {
+        &[]
+    }
+    /// The name of a second packed encoder, if the codec has one (a texel layout that
+    /// serves two block formats), which writes [`Codec::alternate_codes`] of the codes.
+    fn alternate(&self) -> Option<&'static str> {
+        None
+    }
+    /// The codes the [`Codec::alternate`] encoder writes.
+    fn alternate_codes<F: Float>(&self, codes: Self::P<F>) -> Self::P<F> {
+        codes
     }
     /// Whether [`Codec::round_codes`] decides every code with [`crate::codecs::exact`], so
     /// that the fast packed encoder returns the same code under every deviation class the

@@ -576,6 +576,43 @@ pub fn floor_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
     stepped(estimate, up, down).clamped(F::c(q.min_code()), m)
 }
 
+/// The code of the parameter `n / d` in the field `q`: a snorm field stores it as it is
+/// ([`snorm_ratio`]), a unorm field as a normal-map texel channel does, `n/d·½ + ½`
+/// ([`unorm_ratio`], ties up). One codec definition then serves both storages.
+pub fn ratio_code<F: Float>(q: Quant, n: F, d: F) -> F {
+    match q {
+        Quant::Unorm(_) => unorm_ratio(q, n, d, 0.5),
+        _ => snorm_ratio(q, n, d),
+    }
+}
+
+/// [`ratio_code`] where `|n| ≤ d` holds by monotone rounding ([`snorm_ratio_within`]).
+pub fn ratio_code_within<F: Float>(q: Quant, n: F, d: F) -> F {
+    match q {
+        Quant::Unorm(_) => unorm_ratio(q, n, d, 0.5),
+        _ => snorm_ratio_within(q, n, d),
+    }
+}
+
+/// The code of the parameter `n / sqrt(s)` in the field `q`, stored as [`ratio_code`]
+/// says ([`snorm_sqrt_ratio`] or [`unorm_sqrt_ratio`]).
+pub fn sqrt_ratio_code<F: Float>(q: Quant, n: F, s: F) -> F {
+    match q {
+        Quant::Unorm(_) => unorm_sqrt_ratio(q, n, s, s.sqrt(), 0.5),
+        _ => snorm_sqrt_ratio(q, n, s),
+    }
+}
+
+/// The code at or below the parameter `n / d` in the field `q`, stored as [`ratio_code`]
+/// says: where a precise search starts ([`floor_ratio`], or [`unorm_ratio`] at the
+/// boundaries `c + 1`).
+pub fn floor_ratio_code<F: Float>(q: Quant, n: F, d: F) -> F {
+    match q {
+        Quant::Unorm(_) => unorm_ratio(q, n, d, 1.0),
+        _ => floor_ratio(q, n, d),
+    }
+}
+
 /// The estimate stepped by one where a comparison says so, within `[0, M]`.
 fn corrected<F: Float>(q: Quant, estimate: F, up: F::B, down: F::B) -> F {
     stepped(estimate, up, down).clamped(F::c(0.0), F::c(q.max_code()))

@@ -10,7 +10,7 @@ use crate::model::deviant::{Dev, DevU};
 use crate::model::enclosure::{Encl, EnclU};
 use crate::model::lanes::{F4, U4};
 use crate::model::trace::{Module, Tf, define, trace_module};
-use crate::model::{V2, V3};
+use crate::model::{V2, V3, V4};
 use std::sync::Arc;
 
 /// Values that cross the verification boundary as raw 32-bit words (`W = u32`), or as
@@ -107,6 +107,17 @@ impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V3<T> {
         self.x.write(&mut w[0..]);
         self.y.write(&mut w[1..]);
         self.z.write(&mut w[2..]);
+    }
+}
+impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V4<T> {
+    const WORDS: usize = 4;
+    fn read(w: &[W]) -> Self {
+        V4::from_array(std::array::from_fn(|i| T::read(&w[i..])))
+    }
+    fn write(self, w: &mut [W]) {
+        for (i, lane) in self.to_array().into_iter().enumerate() {
+            lane.write(&mut w[i..]);
+        }
     }
 }
 
@@ -256,6 +267,8 @@ pub struct Enclose {
     pub eval: BoxEval,
     /// A field the boxes take one value of at a time ([`Codec::whole_field`]).
     pub whole_field: Option<usize>,
+    /// Fields the decoder does not read ([`Codec::unread_fields`]): proven at one value.
+    pub unread: &'static [usize],
 }
 
 /// A [`Function`] from its `f32`, [`Dev`] and [`F4`] instantiations of one generic
@@ -392,14 +405,25 @@ where
             <F> [c] |v: V3<F>| encode_packed(&c, precise, v)
         ),
     ];
+    if let Some(name) = c.alternate() {
+        functions.push(generic_function!(
+            name,
+            Role::Encode,
+            Inputs::Vectors,
+            <F> [c] |v: V3<F>| encode_alternate(&c, precise, v)
+        ));
+    }
     let whole_field = c.whole_field();
+    let unread = c.unread_fields();
     functions[0].enclose = Some(Enclose {
         eval: Arc::new(fetch_box),
         whole_field,
+        unread,
     });
     functions[1].enclose = Some(Enclose {
         eval: Arc::new(field_box),
         whole_field,
+        unread,
     });
     Emitted {
         module,
@@ -532,6 +556,12 @@ pub fn encode_packed<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::C
     pack(&c.quants(), codes_of(c, precise, v))
 }
 
+/// The packed [`Codec::alternate`] encoder.
+#[inline(always)]
+pub fn encode_alternate<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::C<F> {
+    pack(&c.quants(), c.alternate_codes(codes_of(c, precise, v)))
+}
+
 /// Float-form encoder output: the exact parameters for the hardware to round (fast), or
 /// the chosen codes' values (precise), which the hardware's rounding keeps.
 pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
@@ -557,4 +587,7 @@ fn trace_codec<C: Codec>(c: &C, precise: bool) {
         encode_float(c, precise, v)
     });
     define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
+    if let Some(name) = c.alternate() {
+        define(name, &["v"], |v: V3<Tf>| encode_alternate(c, precise, v));
+    }
 }

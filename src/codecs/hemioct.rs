@@ -2,12 +2,13 @@
 //! scaled so that it fills the whole square.
 
 use super::codec::{Codec, Domain, above_horizon};
-use super::exact::{canonical, floor_ratio, snorm_ratio_within};
+use super::exact::{canonical, floor_ratio_code, ratio_code_within};
 use super::lattice::{Closeness, fixed, nearest, search_doc};
-use super::quant::{Quant, Quants};
+use super::quant::{Quant, Quants, signed_code, unsigned_code, zero_code};
 use super::oct::fit_l1;
 use crate::model::{Bool, Float, V2, V3};
 use super::family::{Family, Info, Sizes};
+use super::texel::{self, Texel, TexelCodec, texel_variants};
 use super::functions::{Emitted, codec_functions};
 use super::spec::{Spec, SpecError};
 
@@ -24,7 +25,7 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014, Listing 6 and Table 3",
     edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon)",
     decode_note: "every code decodes to a unit vector with z ≥ 0",
-    options: &[],
+    options: &[texel::OPTION],
 };
 
 impl Family for HemiOctFamily {
@@ -34,8 +35,18 @@ impl Family for HemiOctFamily {
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc("the input's signs"))
     }
+    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
+        texel::validate(spec)
+    }
+    fn variants(&self) -> &'static [&'static str] {
+        texel_variants!("hemioct")
+    }
     fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, HemiOct { bits: spec.bits() })
+        let c = HemiOct { bits: spec.bits() };
+        match texel::layout(spec) {
+            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
+            None => codec_functions(spec, c),
+        }
     }
 }
 
@@ -75,7 +86,9 @@ fn hemi_ratios<F: Float>(v: V3<F>) -> (V2<F>, F, F::B) {
 /// `S + T < 0`, `(T, S)` where `S < T`: the reflection is nearer, and is itself a
 /// candidate) and dropped past the equator (`S > M`). The nearest (the first on ties)
 /// then takes the input's signs: a negative `x` maps `(S, T)` to `(-T, -S)`, a negative
-/// `y` to `(T, S)`. Zero, NaN, infinite input and `-Z` give `(0, 0)`.
+/// `y` to `(T, S)`. Zero, NaN, infinite input and `-Z` give `(0, 0)`. In a unorm field
+/// (a texel channel) the same holds of the codes' signed values `2c - M`
+/// ([`signed_code`]), and invalid input gives `(M + 1)/2` ([`zero_code`]).
 fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let m = q.max_code();
     let mf = F::c(m);
@@ -87,10 +100,11 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     // below stays in range (a NaN or negative float has no defined u32 in C).
     let a = V3::sel_all(good, a, V3::new(F::c(0.0), F::c(0.0), F::c(2.0))).named("a");
     let l1 = F::sel(good, sum, F::c(2.0)).named("l1");
-    let s0 = floor_ratio(q, a.x + a.y, l1).named("s0");
-    let t0 = floor_ratio(q, a.x - a.y, l1).named("t0");
+    let s0 = floor_ratio_code(q, a.x + a.y, l1).named("s0");
+    let t0 = floor_ratio_code(q, a.x - a.y, l1).named("t0");
     let afix = fixed(a);
     let best = nearest(s0, t0, |s, t| {
+        let (s, t) = (signed_code(q, s), signed_code(q, t));
         let r = V2::sel_all((s + t).lt(F::c(0.0)), V2::new(-t, -s), V2::new(s, t));
         let r = V2::sel_all(r.x.lt(r.y), r.yx(), r).named("cand");
         let z = (F::c(2.0 * m) - r.x - r.x).at_least(F::c(0.0));
@@ -100,8 +114,8 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     });
     let zero = F::c(0.0);
     let st = V2::sel_all(w.x.lt(zero), -best.yx(), best);
-    let st = V2::sel_all(w.y.lt(zero), st.yx(), st);
-    V2::sel_all(good, st, V2::splat(zero))
+    let st = V2::sel_all(w.y.lt(zero), st.yx(), st).map(|x| unsigned_code(q, x));
+    V2::sel_all(good, st, V2::splat(F::c(zero_code(q))))
 }
 
 impl Codec for HemiOct {
@@ -148,13 +162,27 @@ impl Codec for HemiOct {
     /// sums of the canonical input, not from `params`' quotients.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let q = self.quants()[0];
-        let (n, l1, ok) = hemi_ratios(v);
-        let c = n.map(|x| snorm_ratio_within(q, x, l1));
-        V2::sel_all(ok, c, V2::splat(F::c(0.0)))
+        self.round_in(self.quants()[0], v)
     }
     const EXACT_SEARCH: bool = true;
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        hemioct_nearest_codes(self.quants()[0], v)
+        self.precise_in(self.quants()[0], v)
+    }
+}
+
+impl TexelCodec for HemiOct {
+    fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.params(v)
+    }
+    fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
+        self.direction(p)
+    }
+    fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
+        let (n, l1, ok) = hemi_ratios(v);
+        let c = n.map(|x| ratio_code_within(q, x, l1));
+        V2::sel_all(ok, c, V2::splat(F::c(zero_code(q))))
+    }
+    fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
+        hemioct_nearest_codes(q, v)
     }
 }

@@ -19,6 +19,7 @@ pub mod inputs;
 pub mod lattice;
 pub mod quant;
 pub mod spec;
+pub mod texel;
 pub mod trig;
 
 pub use codec::Codec;
@@ -35,6 +36,7 @@ macro_rules! registry {
         /// The codec types the CPU API offers.
         pub mod cpu {
             $($(pub use super::$module::{$($cpu),+};)?)*
+            pub use super::texel::{Layout, Texel};
         }
     };
 }

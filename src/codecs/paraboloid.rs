@@ -11,15 +11,16 @@
 
 use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{
-    canonical_or_z, fixed_length2, fixed_ratio, fixed_root, floor_ratio, root, root_of,
-    snorm_ratio,
+    canonical_or_z, fixed_length2, fixed_ratio, fixed_root, floor_ratio_code, ratio_code, root,
+    root_of,
 };
 use super::family::{Family, Info, Sizes};
+use super::texel::{self, Texel, TexelCodec, texel_variants};
 use super::fixed_decode::{
     BITS, ONE, fixed, fixed_length2_2d, fixed_square, fixed_target, nearest_decoded, search_doc,
 };
 use super::functions::{Emitted, codec_functions};
-use super::quant::{Quant, Quants};
+use super::quant::{Quant, Quants, signed_code, zero_code};
 use super::spec::{Spec, SpecError};
 use crate::model::{Bool, Float, V2, V3};
 
@@ -36,7 +37,7 @@ static INFO: Info = Info {
     source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid",
     edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
     decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon",
-    options: &[],
+    options: &[texel::OPTION],
 };
 
 impl Family for ParaboloidFamily {
@@ -46,8 +47,18 @@ impl Family for ParaboloidFamily {
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))
     }
+    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
+        texel::validate(spec)
+    }
+    fn variants(&self) -> &'static [&'static str] {
+        texel_variants!("paraboloid")
+    }
     fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Paraboloid { bits: spec.bits() })
+        let c = Paraboloid { bits: spec.bits() };
+        match texel::layout(spec) {
+            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
+            None => codec_functions(spec, c),
+        }
     }
 }
 
@@ -94,15 +105,15 @@ impl Paraboloid {
         Quant::Snorm(self.bits / 2)
     }
 
-    /// The decode of snorm codes `c` in units of `2^-BITS`: `p = c/M` one rounded
-    /// product floored, `q = |p|²` and `z = 1 - min(q, 1)` exact integers, the length
+    /// The decode of codes `c` of the field `q` in units of `2^-BITS`: `p = s/M` of their
+    /// signed values ([`signed_code`]) one rounded product floored, `q = |p|²` and `z = 1 - min(q, 1)` exact integers, the length
     /// `L = sqrt(q + z²)` from [`fixed_root`] (of `L²·2^19`, doubled: within two units)
     /// and no shorter than any component, then each component divided by it with
     /// [`fixed_ratio`].
-    fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
+    fn fixed_direction<F: Float>(q: Quant, c: V2<F>) -> V3<F> {
         let one = F::c(ONE as f32);
-        let k = ONE / f64::from(self.field().max_code());
-        let p = c.map(|x| fixed(x, k)).named("p");
+        let k = ONE / f64::from(q.max_code());
+        let p = c.map(|x| fixed(signed_code(q, x), k)).named("p");
         let q = fixed_length2_2d(p);
         let z = (one - q.at_most(one)).named("z");
         // Below 2^22 (q ≤ 2, and z = 0 there), so the root's argument is below 2^41.
@@ -141,20 +152,34 @@ impl Codec for Paraboloid {
     /// direction on the hemisphere encodes as +Z.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let u = Upper::of(v);
-        let c = u.h.xy().map(|x| snorm_ratio(self.field(), x, u.a));
-        V2::sel_all(u.ok, c, V2::splat(F::c(0.0)))
+        self.round_in(self.field(), v)
     }
     /// The nearest of the four codes around the exact parameters (floors decided by
     /// [`floor_ratio`]) by the squared distance of their fixed-point decodes to the input
     /// projected onto the hemisphere; input without a direction there encodes as +Z.
     const EXACT_SEARCH: bool = true;
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.precise_in(self.field(), v)
+    }
+}
+
+impl TexelCodec for Paraboloid {
+    fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.params(v)
+    }
+    fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
+        self.direction(p)
+    }
+    fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let u = Upper::of(v);
-        let q = self.field();
-        let base = u.h.xy().map(|x| floor_ratio(q, x, u.a)).named("base");
+        let c = u.h.xy().map(|x| ratio_code(q, x, u.a));
+        V2::sel_all(u.ok, c, V2::splat(F::c(zero_code(q))))
+    }
+    fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
+        let u = Upper::of(v);
+        let base = u.h.xy().map(|x| floor_ratio_code(q, x, u.a)).named("base");
         let target = fixed_target(u.h, root(fixed_length2(u.h)), BITS);
-        let best = nearest_decoded([q; 2], base, target, |c| self.fixed_direction(c));
-        V2::sel_all(u.ok, best, V2::splat(F::c(0.0)))
+        let best = nearest_decoded([q; 2], base, target, |c| Self::fixed_direction(q, c));
+        V2::sel_all(u.ok, best, V2::splat(F::c(zero_code(q))))
     }
 }

@@ -18,13 +18,14 @@
 use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root};
 use super::family::{Family, Info, Sizes};
+use super::texel::{self, Texel, TexelCodec, texel_variants};
 use super::fixed_decode::{
     BITS, ONE, fixed, fixed_mul, fixed_square, fixed_target, nearest_decoded, search_doc,
 };
 use super::functions::{Emitted, codec_functions};
-use super::quant::{Quant, Quants};
+use super::quant::{Quant, Quants, signed_code};
 use super::spec::{Spec, SpecError};
-use crate::model::{Bool, Float, V2, V3};
+use crate::model::{Bool, Float, Uint, V2, V3};
 
 pub static FAMILY: ParaboloidSquareFamily = ParaboloidSquareFamily;
 
@@ -39,7 +40,7 @@ static INFO: Info = Info {
     source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the dual inverted paraboloid",
     edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
     decode_note: "every code decodes to a unit vector (up to rounding); the square's edges decode on the horizon",
-    options: &[],
+    options: &[texel::OPTION],
 };
 
 impl Family for ParaboloidSquareFamily {
@@ -64,8 +65,18 @@ impl Family for ParaboloidSquareFamily {
             _ => None,
         }
     }
+    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
+        texel::validate(spec)
+    }
+    fn variants(&self) -> &'static [&'static str] {
+        texel_variants!("paraboloid_square")
+    }
     fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, ParaboloidSquare { bits: spec.bits() })
+        let c = ParaboloidSquare { bits: spec.bits() };
+        match texel::layout(spec) {
+            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
+            None => codec_functions(spec, c),
+        }
     }
 }
 
@@ -101,9 +112,25 @@ impl ParaboloidSquare {
         Quant::Snorm(self.bits / 2)
     }
 
-    /// `M / 2^BITS`: fixed-point parameters to codes in one product.
-    fn code_scale<F: Float>(&self) -> F {
-        F::c((f64::from(self.field().max_code()) / ONE) as f32)
+    /// The code in the field `q` of a fixed-point parameter `x` (units of `2^-BITS`,
+    /// `|x| ≤ 2^BITS`), rounded or floored. A snorm code is `x·M/2^BITS`, one product
+    /// rounded or floored; a unorm one (`p·½ + ½` in a texel channel) is
+    /// `(M·u + 2^BITS) >> (BITS + 1)` (rounded, ties up) or `M·u >> (BITS + 1)` of
+    /// `u = x + 2^BITS`, in integers below `2^31`, so exact.
+    fn code<F: Float>(q: Quant, x: F, rounded: bool) -> F {
+        match q {
+            Quant::Unorm(b) => {
+                debug_assert!(b <= 9, "M·2^(BITS+1) below 2^31");
+                let u = (x + F::c(ONE as f32)).to_u();
+                let n = u.wrapping_mul(F::U::c(q.mask()));
+                let n = if rounded { n + F::U::c(1 << BITS) } else { n };
+                n.shr(BITS + 1).to_f()
+            }
+            _ => {
+                let k = F::c((f64::from(q.max_code()) / ONE) as f32);
+                if rounded { (x * k).round() } else { (x * k).floor() }
+            }
+        }
     }
 
     /// The fixed-point unit direction (units of `2^-BITS`) of the input projected onto
@@ -142,15 +169,15 @@ impl ParaboloidSquare {
         V2::new(signed(p.x, u.x), signed(p.y, u.y))
     }
 
-    /// The decode of snorm codes `c` in units of `2^-BITS`: `p = c/M` one rounded
-    /// product floored, `z = (1 - x²)(1 - y²)` from squares and a product each rounded to
+    /// The decode of codes `c` of the field `q` in units of `2^-BITS`: `p = s/M` of their
+    /// signed values ([`signed_code`]) one rounded product floored, `z = (1 - x²)(1 - y²)` from squares and a product each rounded to
     /// a unit, the length `L = sqrt(x² + y² + z²)` from [`fixed_root`] (of `L²·2^19`,
     /// doubled: within two units) and no shorter than any component, then each component
     /// divided by it with [`fixed_ratio`].
-    fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
+    fn fixed_direction<F: Float>(q: Quant, c: V2<F>) -> V3<F> {
         let one = F::c(ONE as f32);
-        let k = ONE / f64::from(self.field().max_code());
-        let p = c.map(|x| fixed(x, k)).named("p");
+        let k = ONE / f64::from(q.max_code());
+        let p = c.map(|x| fixed(signed_code(q, x), k)).named("p");
         let (x2, y2) = (fixed_square(p.x), fixed_square(p.y));
         let z = fixed_mul(one - x2, one - y2).named("z");
         // At most 3·2^21, so the root's argument is below 2^42.
@@ -183,23 +210,35 @@ impl Codec for ParaboloidSquare {
         let n = V3::from_xy(p, z).named("n");
         n / n.length_squared().sqrt()
     }
-    /// `round(p·M)` of the fixed-point surface point, one product rounded; input without
-    /// a direction on the hemisphere encodes as +Z.
+    /// The codes of the fixed-point surface point ([`Self::code`], rounded); input
+    /// without a direction on the hemisphere encodes as +Z.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let k = self.code_scale();
-        Self::point(Self::aim(v)).map(|x| (x * k).round())
+        self.round_in(self.field(), v)
     }
     /// The nearest of the four codes around the fixed-point surface point by the squared
     /// distance of their fixed-point decodes to the input's fixed-point direction; input
     /// without a direction on the hemisphere encodes as +Z.
     const EXACT_SEARCH: bool = true;
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let q = self.field();
-        let k = self.code_scale();
+        self.precise_in(self.field(), v)
+    }
+}
+
+impl TexelCodec for ParaboloidSquare {
+    fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.params(v)
+    }
+    fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
+        self.direction(p)
+    }
+    fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
+        Self::point(Self::aim(v)).map(|x| Self::code(q, x, true))
+    }
+    fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let target = Self::aim(v);
-        let base = Self::point(target).map(|x| (x * k).floor()).named("base");
+        let base = Self::point(target).map(|x| Self::code(q, x, false)).named("base");
         // At the pole the origin's decode is the target itself, so +Z wins there.
-        nearest_decoded([q; 2], base, target, |c| self.fixed_direction(c))
+        nearest_decoded([q; 2], base, target, |c| Self::fixed_direction(q, c))
     }
 }

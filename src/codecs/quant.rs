@@ -166,17 +166,49 @@ impl Quant {
     }
 }
 
+/// A parameter in `[-1, 1]` has two storages: a snorm field holds `c = p·M`, a unorm
+/// field (a normal-map texel's channel) `c = (p·½ + ½)·M`. Both are the point
+/// `p = s/M` of the signed lattice value `s`: the snorm code itself, or `2c - M`
+/// for a unorm code (odd integers), which the fixed-point decodes of the precise
+/// searches take.
+#[inline]
+pub fn signed_code<F: Float>(q: Quant, c: F) -> F {
+    match q {
+        Quant::Unorm(_) => c + c - F::c(q.max_code()),
+        _ => c,
+    }
+}
+
+/// The code of the signed lattice value `s` ([`signed_code`]): `s`, or `(s + M)/2`.
+#[inline]
+pub fn unsigned_code<F: Float>(q: Quant, s: F) -> F {
+    match q {
+        Quant::Unorm(_) => (s + F::c(q.max_code())) * F::c(0.5),
+        _ => s,
+    }
+}
+
+/// The code `p = 0` rounds to: `0`, or for a unorm field `(M + 1)/2` (ties up), the
+/// code invalid input takes in either storage.
+#[inline]
+pub fn zero_code(q: Quant) -> f32 {
+    match q {
+        Quant::Unorm(_) => (q.max_code() + 1.0) * 0.5,
+        _ => 0.0,
+    }
+}
+
 /// The fields of a codec, without a heap allocation per encoded vector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Quants {
-    q: [Quant; 3],
+    q: [Quant; 4],
     n: usize,
 }
 
 impl Quants {
     #[inline]
     pub fn new(fields: &[Quant]) -> Quants {
-        let mut q = [fields[0]; 3];
+        let mut q = [fields[0]; 4];
         q[..fields.len()].copy_from_slice(fields);
         Quants { q, n: fields.len() }
     }
@@ -241,11 +273,22 @@ impl<F: Float<U = U>, U: Uint<F = F>> Code<F> for V3<U> {
     }
 }
 
+/// The width of a packed code: where its last field ends.
+pub fn code_width(quants: &[Quant]) -> u32 {
+    let offs = field_offsets(quants);
+    quants
+        .iter()
+        .zip(offs)
+        .map(|(q, o)| o + q.bits())
+        .max()
+        .unwrap_or(0)
+}
+
 /// Bit offset of each field, first field in the lowest bits, no field straddling a word.
 /// A fixed array (unused entries 0): this runs once per encoded vector on the CPU.
 #[inline]
-pub fn field_offsets(quants: &[Quant]) -> [u32; 3] {
-    let mut offs = [0; 3];
+pub fn field_offsets(quants: &[Quant]) -> [u32; 4] {
+    let mut offs = [0; 4];
     let mut off = 0;
     for (o, q) in offs.iter_mut().zip(quants) {
         if off / 32 != (off + q.bits() - 1) / 32 {

@@ -3,13 +3,14 @@
 
 use super::codec::{Codec, Domain, above_horizon};
 use super::exact::{
-    canonical, canonical_or_z, fixed_root, float_of, floor_ratio, fixed_length2, length2, root,
-    snorm_sqrt_ratio,
+    canonical, canonical_or_z, fixed_root, float_of, floor_ratio_code, fixed_length2, length2,
+    root, sqrt_ratio_code,
 };
 use super::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
-use super::quant::{Quant, Quants};
+use super::quant::{Quant, Quants, signed_code, zero_code};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use super::family::{Family, Info, Sizes};
+use super::texel::{self, Texel, TexelCodec, texel_variants};
 use super::functions::{Emitted, codec_functions};
 use super::spec::{Spec, SpecError};
 
@@ -26,7 +27,7 @@ static INFO: Info = Info {
     source: "Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes",
     edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
     decode_note: "z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1",
-    options: &[],
+    options: &[texel::OPTION],
 };
 
 impl Family for XyFamily {
@@ -36,8 +37,18 @@ impl Family for XyFamily {
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))
     }
+    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
+        texel::validate(spec)
+    }
+    fn variants(&self) -> &'static [&'static str] {
+        texel_variants!("xy")
+    }
     fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Xy { bits: spec.bits() })
+        let c = Xy { bits: spec.bits() };
+        match texel::layout(spec) {
+            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
+            None => codec_functions(spec, c),
+        }
     }
 }
 
@@ -80,35 +91,50 @@ impl Codec for Xy {
     /// zero and encodes as +Z, like invalid input.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let q = self.quants()[0];
-        let (w, ok) = canonical(v);
-        let s = length2(above_horizon(w));
-        let c = w.xy().map(|x| snorm_sqrt_ratio(q, x, s));
-        V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(0.0)))
+        self.round_in(self.quants()[0], v)
     }
     /// The nearest of the four codes around the exact parameters (floors decided by
-    /// [`floor_ratio`]) by the squared distance of their fixed-point decodes
+    /// [`floor_ratio_code`]) by the squared distance of their fixed-point decodes
     /// ([`crate::codecs::fixed_decode`]) to the input projected onto the hemisphere
     /// (`z ← max(z, 0)`, then brought back to canonical form); `-Z` projects to zero
     /// and encodes as +Z, like invalid input.
     const EXACT_SEARCH: bool = true;
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let q = self.quants()[0];
+        self.precise_in(self.quants()[0], v)
+    }
+}
+
+impl TexelCodec for Xy {
+    fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
+        self.params(v)
+    }
+    fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
+        self.direction(p)
+    }
+    fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
+        let (w, ok) = canonical(v);
+        let s = length2(above_horizon(w));
+        let c = w.xy().map(|x| sqrt_ratio_code(q, x, s));
+        V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(zero_code(q))))
+    }
+    fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let (w, ok) = canonical_or_z(v);
         let (h, up) = canonical_or_z(above_horizon(w));
         let l = root(fixed_length2(h));
-        let base = h.xy().map(|x| floor_ratio(q, x, l)).named("base");
-        let best = nearest_decoded([q; 2], base, fixed_target(h, l, BITS), |c| self.fixed_direction(c));
-        V2::sel_all(ok.and(up), best, V2::splat(F::c(0.0)))
+        let base = h.xy().map(|x| floor_ratio_code(q, x, l)).named("base");
+        let best = nearest_decoded([q; 2], base, fixed_target(h, l, BITS), |c| Self::fixed_direction(q, c));
+        V2::sel_all(ok.and(up), best, V2::splat(F::c(zero_code(q))))
     }
 }
 
 impl Xy {
-    /// The decode of snorm codes `c` in fixed point ([`crate::codecs::fixed_decode`]):
-    /// `(c, sqrt(M² - |c|²)) / M` (z = 0 outside the disk), from exact integers and one
+    /// The decode of codes of the field `q` in fixed point
+    /// ([`crate::codecs::fixed_decode`]): of their signed values `s` ([`signed_code`]),
+    /// `(s, sqrt(M² - |s|²)) / M` (z = 0 outside the disk), from exact integers and one
     /// [`fixed_root`] of one product.
-    fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
-        let m = self.quants()[0].max_code();
+    fn fixed_direction<F: Float>(q: Quant, c: V2<F>) -> V3<F> {
+        let m = q.max_code();
+        let c = c.map(|x| signed_code(q, x));
         let k = ONE / f64::from(m);
         let a = c.map(|x| x.abs().to_u());
         let sq = a.x.wrapping_mul(a.x) + a.y.wrapping_mul(a.y);

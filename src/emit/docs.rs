@@ -5,6 +5,7 @@ use super::printer::Printed;
 use crate::codecs::Spec;
 use crate::codecs::functions::{Emitted, Inputs, Role};
 use crate::codecs::quant::{Quant, field_offsets};
+use crate::codecs::texel;
 use crate::quality::ErrorStats;
 
 pub fn file_header(command: &str) -> Vec<String> {
@@ -23,9 +24,45 @@ pub fn file_header(command: &str) -> Vec<String> {
     ]
 }
 
+/// The family's title, or for a texel layout the projection's with the texel named
+/// (the family title's storage, snorm×2, is not the texel's).
+fn title(spec: &Spec) -> String {
+    let t = spec.info().title;
+    match texel::layout(spec) {
+        Some(_) => format!(
+            "{}, in an RGBA8 texel",
+            t.trim_end_matches(", snorm×2")
+                .trim_end_matches(" as snorm×2")
+        ),
+        None => t.to_string(),
+    }
+}
+
+/// What the doc comments of a texel layout's functions say in place of the fields.
+struct TexelText {
+    channels: String,
+    reads: &'static str,
+}
+
+impl TexelText {
+    fn of(spec: &Spec, local: &str) -> Option<TexelText> {
+        let l = texel::layout(spec)?;
+        let channels = if local == "encode_dxt1" {
+            "R = x, G = y, B = 0, A = 255 (the DXT1 texel)".to_string()
+        } else {
+            l.channels().to_string()
+        };
+        Some(TexelText {
+            channels: format!(
+                "{channels}; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128)"
+            ),
+            reads: l.reads(),
+        })
+    }
+}
+
 pub fn spec_title(spec: &Spec) -> String {
-    let c = spec.info();
-    let mut t = format!("{spec}: {}", c.title);
+    let mut t = format!("{spec}: {}", title(spec));
     if spec.bits() > 0 {
         t.push_str(&format!(", {} bits", spec.bits()));
     }
@@ -138,7 +175,7 @@ pub fn function_doc(
     let q = quants(e).expect("codec with fields");
     let codec = format!(
         "{spec} ({}, {} bits, {})",
-        c.title,
+        title(spec),
         spec.bits(),
         c.domain.map_or("", |d| d.name())
     );
@@ -161,24 +198,65 @@ pub fn function_doc(
             s.psnr()
         )
     });
-    let mut d = match role {
-        Role::Encode => vec![
+    let texel = TexelText::of(spec, local);
+    let mut d = match (role, texel) {
+        (Role::Encode, Some(t)) => vec![
+            format!("{}: {codec}, {enc}.", p.name),
+            format!("In: any vector; {}.", c.edge_policy),
+            format!(
+                "Out: the RGBA8 texel as a {} (R bits 0–7, G 8–15, B 16–23, A 24–31): {}.",
+                p.ret_ty, t.channels
+            ),
+            encoder_portability(e.portable_encoder).into(),
+        ],
+        (Role::Decode, Some(t)) => vec![
+            format!("{}: {codec}, decoder.", p.name),
+            format!(
+                "In: an RGBA8 texel as a uint (R bits 0–7, G 8–15, B 16–23, A 24–31); {}, other channels are ignored.",
+                t.reads
+            ),
+            format!("Out: {}.", c.decode_note),
+        ],
+        (Role::DecodeFloat, Some(t)) => vec![
+            format!("{}: {codec}, decoder, float form.", p.name),
+            format!(
+                "In: the texel (R, G, B, A) in [0, 1] as a unorm8 texture fetch returns it; {}, each p = 2t - 1.",
+                t.reads
+            ),
+            format!("Out: {}.", c.decode_note),
+        ],
+        (Role::EncodeFloat, Some(t)) => vec![
+            format!("{}: {codec}, {enc}, float form.", p.name),
+            format!("In: any vector; {}.", c.edge_policy),
+            if spec.precise() {
+                format!(
+                    "Out: the texel (R, G, B, A) of the chosen codes as values c/255, for an RGBA8 unorm render target: {}.",
+                    t.channels
+                )
+            } else {
+                format!(
+                    "Out: the texel (R, G, B, A) in [0, 1], unquantized, for an RGBA8 unorm render target to round: {}.",
+                    t.channels
+                )
+            },
+        ],
+        (Role::Encode, None) => vec![
             format!("{}: {codec}, {enc}.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
             format!("Out: the packed code, {} ({layout}).", p.ret_ty),
             encoder_portability(e.portable_encoder).into(),
         ],
-        Role::Decode => vec![
+        (Role::Decode, None) => vec![
             format!("{}: {codec}, decoder.", p.name),
             format!("In: a packed code ({layout}); other bits are ignored."),
             format!("Out: {}.", c.decode_note),
         ],
-        Role::DecodeFloat => vec![
+        (Role::DecodeFloat, None) => vec![
             format!("{}: {codec}, decoder, float form.", p.name),
             format!("In: parameters in {range}, as {storage} fetch returns them."),
             format!("Out: {}.", c.decode_note),
         ],
-        Role::EncodeFloat => vec![
+        (Role::EncodeFloat, None) => vec![
             format!("{}: {codec}, {enc}, float form.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
             if spec.precise() {
@@ -191,7 +269,7 @@ pub fn function_doc(
                 )
             },
         ],
-        Role::Pack | Role::Unpack | Role::Combine => unreachable!(),
+        (Role::Pack | Role::Unpack | Role::Combine, _) => unreachable!(),
     };
     match role {
         Role::Decode | Role::DecodeFloat => d.extend(decoder_portability(e, role)),

@@ -10,4 +10,4 @@ pub mod trace;
 pub mod vec;
 
 pub use num::{Bool, Float, Kind, Lane, Uint};
-pub use vec::{V2, V3};
+pub use vec::{V2, V3, V4};

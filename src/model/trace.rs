@@ -9,12 +9,12 @@
 //! operations on literals only (WGSL folds those in f64).
 
 use super::num::{Bool, Float, Kind, Lane, Uint};
-use super::vec::{V2, V3};
+use super::vec::{V2, V3, V4};
 use std::cell::RefCell;
 use std::marker::PhantomData;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
 
-/// The type of a graph value: a scalar kind and 1, 2 or 3 lanes.
+/// The type of a graph value: a scalar kind and 1 to 4 lanes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Ty {
     pub kind: Kind,
@@ -737,6 +737,7 @@ macro_rules! value_vec {
 }
 value_vec!(V2, 2);
 value_vec!(V3, 3);
+value_vec!(V4, 4);
 
 impl<A: Value, B: Value> Value for (A, B) {
     fn tys() -> Vec<Ty> {

@@ -18,6 +18,15 @@ pub struct V3<T> {
     pub z: T,
 }
 
+/// Four lanes: an RGBA texel as a texture fetch delivers it (`x` = R … `w` = A).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct V4<T> {
+    pub x: T,
+    pub y: T,
+    pub z: T,
+    pub w: T,
+}
+
 macro_rules! vector {
     ($V:ident, $n:literal, $($f:ident : $i:literal),+) => {
         impl<T: Lane> $V<T> {
@@ -181,6 +190,7 @@ macro_rules! vector {
 
 vector!(V2, 2, x: 0, y: 1);
 vector!(V3, 3, x: 0, y: 1, z: 2);
+vector!(V4, 4, x: 0, y: 1, z: 2, w: 3);
 
 impl<T: Lane> V2<T> {
     #[inline(always)]

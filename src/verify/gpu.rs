@@ -545,6 +545,150 @@ impl Gpu {
         Ok(())
     }
 
+    /// Runs a WGSL kernel over the texels of an RGBA8 unorm texture: `texels` (R in the
+    /// lowest byte, rows of `width`) are uploaded as a `width`-wide texture, which the
+    /// kernel sees at binding 0 (`texture_2d<f32>`) beside a nearest-filtering sampler at
+    /// binding 1, and writes `out_words` u32 per texel to the storage buffer at binding 2
+    /// (one invocation per texel along x, bounds-checked by the kernel as in [`Gpu::run`]).
+    /// This is how a shader meets a normal map: through the texture unit's unorm8
+    /// conversion, not a buffer of floats.
+    pub fn run_texture(
+        &self,
+        wgsl: &str,
+        texels: &[u32],
+        width: u32,
+        out_words: usize,
+    ) -> anyhow::Result<Vec<u32>> {
+        if width == 0 || !texels.len().is_multiple_of(width as usize) || out_words == 0 {
+            bail!("{} texels do not fill rows of {width}", texels.len());
+        }
+        self.check_lost()?;
+        let height = (texels.len() / width as usize) as u32;
+        let scopes = ErrorScopes::push(&self.device);
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("unitpack texture kernel"),
+                source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(wgsl)),
+            });
+        scopes.check().context("compiling the texture kernel")?;
+        let scopes = ErrorScopes::push(&self.device);
+        let pipeline = self
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("unitpack texture kernel"),
+                layout: None,
+                module: &module,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("unitpack texels"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        self.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * width),
+                rows_per_image: Some(height),
+            },
+            size,
+        );
+        let sampler = self.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("unitpack nearest"),
+            ..Default::default()
+        });
+        let out_bytes = (texels.len() * out_words * 4) as u64;
+        let output = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("unitpack texture output"),
+            size: out_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let readback = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("unitpack texture readback"),
+            size: out_bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("unitpack texture kernel"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: output.as_entire_binding(),
+                },
+            ],
+        });
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("unitpack texture kernel"),
+            });
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("unitpack texture kernel"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(texels.len().div_ceil(WORKGROUP_SIZE as usize) as u32, 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, out_bytes);
+        let submission = self.queue.submit([encoder.finish()]);
+        let (tx, rx) = mpsc::channel();
+        readback.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        scopes.check().context("running the texture kernel")?;
+        let polled = self.device.poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: Some(CHUNK_TIMEOUT),
+        });
+        self.check_lost()?;
+        polled.map_err(|e| anyhow!("waiting for the texture kernel: {e}"))?;
+        rx.recv_timeout(Duration::from_secs(60))
+            .map_err(|_| anyhow!("the readback buffer was never mapped"))?
+            .map_err(|e| anyhow!("mapping the readback buffer: {e}"))?;
+        let out = {
+            let view = readback
+                .get_mapped_range(..)
+                .map_err(|e| anyhow!("reading the mapped readback buffer: {e}"))?;
+            bytemuck::cast_slice(&view).to_vec()
+        };
+        readback.unmap();
+        Ok(out)
+    }
+
     /// Creates the shader module and pipeline, turning any compilation / validation /
     /// pipeline-creation error into an `Err` with the message.
     fn pipeline(&self, shader: &Shader) -> anyhow::Result<wgpu::ComputePipeline> {

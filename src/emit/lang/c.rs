@@ -175,8 +175,8 @@ impl Backend for C {
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
         let mut types = Vec::new();
         for kind in [Kind::F32, Kind::U32, Kind::Bool] {
-            for n in [2u8, 3] {
-                let lanes = ["x", "y", "z"][..n as usize].join(", ");
+            for n in [2u8, 3, 4] {
+                let lanes = ["x", "y", "z", "w"][..n as usize].join(", ");
                 types.push(format!(
                     "typedef struct {{ {} {lanes}; }} {};",
                     self.ty(Ty::scalar(kind)),
