@@ -219,7 +219,15 @@ fn top_level_help_lists_every_verb() {
         r.stdout.contains("Compact unit-vector (normal) codecs"),
         "{r:?}"
     );
-    for verb in ["list", "gen", "generate", "encode", "decode", "verify"] {
+    for verb in [
+        "list",
+        "gen",
+        "generate",
+        "encode",
+        "decode",
+        "verify",
+        "convert-normal-map",
+    ] {
         assert!(
             r.stdout
                 .lines()

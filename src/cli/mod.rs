@@ -1,9 +1,11 @@
-//! The `unitpack` command line: list, gen, generate, encode, decode, verify.
+//! The `unitpack` command line: list, gen, generate, encode, decode, verify,
+//! convert-normal-map.
 //!
 //! Output never goes through `print!` (it panics on a closed or full stdout): see
 //! [`output`]. Files are replaced atomically and only when they are the user's to replace:
 //! see [`crate::atomic`] and `manifest`.
 
+mod convert;
 mod generate;
 mod grammar;
 mod include;
@@ -130,6 +132,41 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
+    /// Convert a tangent-space normal map between its conventional form and a texel layout.
+    ///
+    /// --to SPEC reads a conventional map (PNG, RGB8 or RGB16, each component n·½ + ½;
+    /// an alpha channel is ignored) and writes the RGBA8 texels of SPEC, a texel layout
+    /// (`xy16:layout=dxt5nm`, `hemioct16p_rg`, …: `unitpack list` shows the layout option).
+    /// --from SPEC reads such texels (RGBA8 PNG) and writes the conventional map (RGB8, or
+    /// RGB16 with --depth 16). Each texel goes through the CPU encoder or decoder, which
+    /// computes what the emitted shader functions compute. OUT is written atomically; it
+    /// may not be IN, and a read-only OUT is replaced only with --force. A progress bar
+    /// shows on a terminal for maps of a million texels or more.
+    ConvertNormalMap {
+        /// The map to read (PNG).
+        #[arg(value_name = "IN")]
+        input: PathBuf,
+        /// The PNG file to write.
+        #[arg(value_name = "OUT")]
+        output: PathBuf,
+        /// Write the texels of this layout spec.
+        #[arg(
+            long,
+            value_name = "SPEC",
+            required_unless_present = "from",
+            conflicts_with = "from"
+        )]
+        to: Option<String>,
+        /// Read the texels of this layout spec and write the conventional map.
+        #[arg(long, value_name = "SPEC")]
+        from: Option<String>,
+        /// Bits per channel of the conventional map --from writes.
+        #[arg(long, default_value = "8", value_parser = ["8", "16"])]
+        depth: String,
+        /// Replace a read-only OUT too.
+        #[arg(long)]
+        force: bool,
+    },
     /// Encode vectors read from stdin to codes, one output line (or record) per input.
     #[command(after_help = STREAM_FORMATS)]
     Encode(StreamArgs),
@@ -214,6 +251,22 @@ pub fn run(cli: Cli) -> Result<i32> {
             include::run(&specs, &lang, &prefix, target)
         }
         Command::Generate { out, check, force } => generate_with(&out, check, force),
+        Command::ConvertNormalMap {
+            input,
+            output,
+            to,
+            from,
+            depth,
+            force,
+        } => {
+            let dir = match (&to, &from) {
+                (Some(spec), _) => convert::Direction::To(spec),
+                (None, Some(spec)) => convert::Direction::From(spec, depth == "16"),
+                (None, None) => unreachable!("clap requires --to or --from"),
+            };
+            convert::run(&input, &output, dir, force)?;
+            Ok(0)
+        }
         Command::Encode(a) => run_stream(&a, Direction::Encode),
         Command::Decode(a) => run_stream(&a, Direction::Decode),
         Command::Verify {

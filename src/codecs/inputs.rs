@@ -100,7 +100,7 @@ fn sweep_items(q: &[Quant]) -> u32 {
 /// values of the same kind (an f32 field the same in its top 16 bits, zeros below, so
 /// that infinities and zeros occur); packed like [`super::codec::pack`].
 fn swept(q: &[Quant], k: u32) -> [u32; 3] {
-    const ODD: [u32; 3] = [1, 40_503, 9_973];
+    const ODD: [u32; 4] = [1, 40_503, 9_973, 52_711];
     let offs = field_offsets(q);
     let mut w = [0u32; 3];
     for (i, (f, off)) in q.iter().zip(offs).enumerate() {
@@ -180,7 +180,7 @@ mod tests {
         let words = codes(&q, 2);
         let floats = float_codes(&q);
         let offs = field_offsets(&q);
-        for (i, off) in offs.iter().enumerate() {
+        for (i, off) in offs.iter().take(q.len()).enumerate() {
             let mut seen = vec![false; 1 << 16];
             let mut seen_bits = std::collections::HashSet::new();
             for (item, f) in words.chunks(2).zip(floats.chunks(3)) {

@@ -1,0 +1,178 @@
+//! `convert-normal-map`: a tangent-space normal map between its conventional form (RGB8 or
+//! RGB16, each component stored `n·½ + ½`) and a texel layout (`xy16:layout=dxt5nm`, …),
+//! through the same CPU encoder and decoder the emitted shaders are verified against, so
+//! a map converted here decodes in the shader to what `unitpack decode` prints.
+
+use crate::api::Batch;
+use crate::atomic::write_atomic_with;
+use crate::codecs::{Spec, texel};
+use anyhow::{Context, Result, bail};
+use image::{DynamicImage, ImageFormat, RgbImage, RgbaImage};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::Cursor;
+use std::path::Path;
+
+/// Which way a map is converted.
+pub enum Direction<'a> {
+    /// Conventional map in, texels of the spec out.
+    To(&'a str),
+    /// Texels of the spec in, conventional map out, at 16 bits per channel (else 8).
+    From(&'a str, bool),
+}
+
+/// Rows per step: the progress bar moves once per step, and a step is a batch for the
+/// CPU encoder's four-lane evaluation.
+const ROWS_PER_STEP: usize = 16;
+
+/// Maps of at least this many texels show a progress bar (on a terminal).
+const PROGRESS_TEXELS: usize = 1 << 20;
+
+pub fn run(input: &Path, output: &Path, dir: Direction, force: bool) -> Result<()> {
+    if output
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        != Some("png".into())
+    {
+        bail!("{}: the output must be a .png file", output.display());
+    }
+    if same_file(input, output) {
+        bail!(
+            "{} is both the input and the output; write the converted map elsewhere",
+            output.display()
+        );
+    }
+    let spec_text = match dir {
+        Direction::To(s) | Direction::From(s, _) => s,
+    };
+    let spec: Spec = spec_text.parse()?;
+    if texel::layout(&spec).is_none() {
+        bail!(
+            "{spec} does not store a texel: write a texel layout, NAME16:layout=rg|dxt5nm|rxgb|latc|xra \
+             (or the id, e.g. xy16_dxt5nm) with NAME one of xy, xy_stereo, hemioct, paraboloid, \
+             paraboloid_square (p for the precise encoder)"
+        );
+    }
+    let image = image::ImageReader::open(input)
+        .with_context(|| format!("cannot read {}", input.display()))?
+        .with_guessed_format()
+        .with_context(|| format!("cannot read {}", input.display()))?
+        .decode()
+        .with_context(|| format!("cannot decode {} as an image", input.display()))?;
+    let batch = Batch::new(spec_text)?;
+    let png = match dir {
+        Direction::To(_) => encode_map(&image, &batch, input)?,
+        Direction::From(_, sixteen) => decode_map(&image, &batch, input, sixteen)?,
+    };
+    Ok(write_atomic_with(output, &png, force)?)
+}
+
+/// Whether two paths name one existing file (the output would replace the input).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
+/// The conventional map's vectors, row by row: `2c/M - 1` per component (the
+/// encoder normalizes them), from 8- or 16-bit RGB; an alpha channel is not part of a
+/// normal and is left out.
+fn conventional_vectors(image: &DynamicImage, input: &Path) -> Result<Vec<[f32; 3]>> {
+    let unit = |c: f64, m: f64| (2.0 * c / m - 1.0) as f32;
+    Ok(match image {
+        DynamicImage::ImageRgb8(_) | DynamicImage::ImageRgba8(_) => image
+            .to_rgb8()
+            .pixels()
+            .map(|p| p.0.map(|c| unit(f64::from(c), 255.0)))
+            .collect(),
+        DynamicImage::ImageRgb16(_) | DynamicImage::ImageRgba16(_) => image
+            .to_rgb16()
+            .pixels()
+            .map(|p| p.0.map(|c| unit(f64::from(c), 65535.0)))
+            .collect(),
+        other => bail!(
+            "{} is {:?}: a normal map is RGB8 or RGB16 (each component n·½ + ½)",
+            input.display(),
+            other.color()
+        ),
+    })
+}
+
+fn encode_map(image: &DynamicImage, batch: &Batch, input: &Path) -> Result<Vec<u8>> {
+    let vectors = conventional_vectors(image, input)?;
+    let (w, h) = (image.width(), image.height());
+    let mut texels = vec![0u32; vectors.len()];
+    let step = ROWS_PER_STEP * w as usize;
+    let bar = progress(vectors.len(), "encoding");
+    for (v, t) in vectors
+        .chunks(step.max(1))
+        .zip(texels.chunks_mut(step.max(1)))
+    {
+        batch.encode(v, t);
+        bar.inc(v.len() as u64);
+    }
+    bar.finish_and_clear();
+    let bytes: Vec<u8> = texels.iter().flat_map(|t| t.to_le_bytes()).collect();
+    let out = RgbaImage::from_raw(w, h, bytes).expect("four bytes per texel");
+    png(DynamicImage::ImageRgba8(out))
+}
+
+fn decode_map(image: &DynamicImage, batch: &Batch, input: &Path, sixteen: bool) -> Result<Vec<u8>> {
+    let DynamicImage::ImageRgba8(texels) = image else {
+        bail!(
+            "{} is {:?}: a map of texels is RGBA8 (the layout's four channels)",
+            input.display(),
+            image.color()
+        );
+    };
+    let (w, h) = (image.width(), image.height());
+    let codes: Vec<u32> = texels.pixels().map(|p| u32::from_le_bytes(p.0)).collect();
+    let mut vectors = vec![[0f32; 3]; codes.len()];
+    let step = (ROWS_PER_STEP * w as usize).max(1);
+    let bar = progress(codes.len(), "decoding");
+    for (c, v) in codes.chunks(step).zip(vectors.chunks_mut(step)) {
+        batch.decode(c, v);
+        bar.inc(c.len() as u64);
+    }
+    bar.finish_and_clear();
+    // n·½ + ½, rounded to the nearest code (a decoded component is within [-1, 1] up to
+    // rounding; xy's decoders can return vectors longer than 1 outside the unit disk).
+    let code = |x: f32, m: f64| ((f64::from(x) * 0.5 + 0.5).clamp(0.0, 1.0) * m).round();
+    let image = if sixteen {
+        let data: Vec<u16> = vectors
+            .iter()
+            .flat_map(|v| v.map(|x| code(x, 65535.0) as u16))
+            .collect();
+        DynamicImage::ImageRgb16(image::ImageBuffer::from_raw(w, h, data).expect("three channels"))
+    } else {
+        let data: Vec<u8> = vectors
+            .iter()
+            .flat_map(|v| v.map(|x| code(x, 255.0) as u8))
+            .collect();
+        DynamicImage::ImageRgb8(RgbImage::from_raw(w, h, data).expect("three channels"))
+    };
+    png(image)
+}
+
+/// A progress bar on stderr for large maps (hidden where stderr is not a terminal).
+fn progress(texels: usize, what: &'static str) -> ProgressBar {
+    if texels < PROGRESS_TEXELS {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(texels as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} texels")
+            .expect("a valid template"),
+    );
+    bar.set_message(what);
+    bar
+}
+
+fn png(image: DynamicImage) -> Result<Vec<u8>> {
+    let mut out = Cursor::new(Vec::new());
+    image
+        .write_to(&mut out, ImageFormat::Png)
+        .context("cannot encode the PNG")?;
+    Ok(out.into_inner())
+}

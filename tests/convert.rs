@@ -1,0 +1,305 @@
+//! `unitpack convert-normal-map`: a conventional tangent-space normal map (RGB8 or RGB16
+//! PNG, `n·½ + ½`) to a texel layout and back, texel for texel what the CPU encoder and
+//! decoder give, and bad input refused with a clear error and no file lost.
+
+use image::{DynamicImage, ImageBuffer, Rgb, RgbImage};
+use std::path::Path;
+use std::process::{Command, Output};
+use unitpack::api::Batch;
+
+fn unitpack(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_unitpack"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn arg(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// A deterministic map from a height field: waves plus a bump, 97×61 texels (odd sizes,
+/// so rows are not a multiple of any batch), as `n·½ + ½` at `max` (255 or 65535).
+fn normals(w: u32, h: u32) -> Vec<[f64; 3]> {
+    let height = |x: f64, y: f64| {
+        (x * 0.21).sin() * (y * 0.17).cos() * 6.0
+            + 9.0 * (-((x - 40.0).powi(2) + (y - 30.0).powi(2)) / 90.0).exp()
+    };
+    let mut out = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let (x, y) = (f64::from(x), f64::from(y));
+            let dx = height(x + 0.5, y) - height(x - 0.5, y);
+            let dy = height(x, y + 0.5) - height(x, y - 0.5);
+            let l = (dx * dx + dy * dy + 1.0).sqrt();
+            out.push([-dx / l, -dy / l, 1.0 / l]);
+        }
+    }
+    out
+}
+
+const W: u32 = 97;
+const H: u32 = 61;
+
+fn rgb8_map() -> RgbImage {
+    let data: Vec<u8> = normals(W, H)
+        .iter()
+        .flat_map(|n| n.map(|c| ((c * 0.5 + 0.5) * 255.0).round() as u8))
+        .collect();
+    RgbImage::from_raw(W, H, data).unwrap()
+}
+
+/// A fresh directory, removed when the test ends.
+fn dir() -> tempfile::TempDir {
+    tempfile::tempdir().unwrap()
+}
+
+/// What the conventional texel `c` (of `max`) means: `2c/max - 1` per component.
+fn vector(c: [u32; 3], max: f64) -> [f32; 3] {
+    c.map(|c| (2.0 * f64::from(c) / max - 1.0) as f32)
+}
+
+#[test]
+fn a_map_goes_to_dxt5nm_and_back_texel_for_texel() {
+    let tmp = dir();
+    let d = tmp.path();
+    let (input, texels, back) = (d.join("in.png"), d.join("nm.png"), d.join("back.png"));
+    let map = rgb8_map();
+    map.save(&input).unwrap();
+    let spec = "xy16p:layout=dxt5nm";
+    let r = unitpack(&[
+        "convert-normal-map",
+        arg(&input),
+        arg(&texels),
+        "--to",
+        spec,
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(r.stderr.is_empty(), "no progress bar off a terminal: {r:?}");
+
+    let out = image::open(&texels).unwrap();
+    let DynamicImage::ImageRgba8(out) = out else {
+        panic!("the texels are RGBA8: {:?}", out.color())
+    };
+    assert_eq!(out.dimensions(), (W, H));
+    let batch = Batch::new(spec).unwrap();
+    let vs: Vec<[f32; 3]> = map
+        .pixels()
+        .map(|p| vector(p.0.map(u32::from), 255.0))
+        .collect();
+    let mut want = vec![0u32; vs.len()];
+    batch.encode(&vs, &mut want);
+    for (i, (p, w)) in out.pixels().zip(&want).enumerate() {
+        assert_eq!(u32::from_le_bytes(p.0), *w, "texel {i}: {:?}", vs[i]);
+        assert_eq!((p.0[0], p.0[2]), (255, 0), "dxt5nm: R = 1, B = 0");
+    }
+
+    let r = unitpack(&[
+        "convert-normal-map",
+        arg(&texels),
+        arg(&back),
+        "--from",
+        spec,
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let back = image::open(&back).unwrap().into_rgb8();
+    let mut decoded = vec![[0f32; 3]; want.len()];
+    batch.decode(&want, &mut decoded);
+    let mut worst = 0f64;
+    for (i, (p, n)) in back.pixels().zip(&decoded).enumerate() {
+        let expect = n.map(|x| ((f64::from(x) * 0.5 + 0.5).clamp(0.0, 1.0) * 255.0).round() as u8);
+        assert_eq!(p.0, expect, "texel {i}: decoded {n:?}");
+        let a = vector(p.0.map(u32::from), 255.0);
+        let b = vector(
+            map.get_pixel(i as u32 % W, i as u32 / W).0.map(u32::from),
+            255.0,
+        );
+        worst = worst.max(unitpack::quality::angle_deg(a, b));
+    }
+    // Two 8-bit quantizations of a map whose normals tilt at most about 50°.
+    assert!(worst < 3.0, "sample max {worst}° after the round trip");
+}
+
+/// An RGB16 map reads at 16 bits per component, and --depth 16 writes one back.
+#[test]
+fn sixteen_bit_maps_read_and_write() {
+    let tmp = dir();
+    let d = tmp.path();
+    let (input, texels, back) = (d.join("in16.png"), d.join("rg.png"), d.join("back16.png"));
+    let data: Vec<u16> = normals(W, H)
+        .iter()
+        .flat_map(|n| n.map(|c| ((c * 0.5 + 0.5) * 65535.0).round() as u16))
+        .collect();
+    let map: ImageBuffer<Rgb<u16>, Vec<u16>> = ImageBuffer::from_raw(W, H, data).unwrap();
+    map.save(&input).unwrap();
+    let spec = "hemioct16_rg";
+    let r = unitpack(&[
+        "convert-normal-map",
+        arg(&input),
+        arg(&texels),
+        "--to",
+        spec,
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let out = image::open(&texels).unwrap().into_rgba8();
+    let vs: Vec<[f32; 3]> = map
+        .pixels()
+        .map(|p| vector(p.0.map(u32::from), 65535.0))
+        .collect();
+    let mut want = vec![0u32; vs.len()];
+    Batch::new(spec).unwrap().encode(&vs, &mut want);
+    for (p, w) in out.pixels().zip(&want) {
+        assert_eq!(u32::from_le_bytes(p.0), *w);
+    }
+    let r = unitpack(&[
+        "convert-normal-map",
+        arg(&texels),
+        arg(&back),
+        "--from",
+        spec,
+        "--depth",
+        "16",
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let back = image::open(&back).unwrap();
+    assert!(
+        matches!(back, DynamicImage::ImageRgb16(_)),
+        "{:?}",
+        back.color()
+    );
+}
+
+fn fails(args: &[&str], says: &str) {
+    let r = unitpack(args);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{args:?}: {err}");
+    assert!(
+        err.contains(says),
+        "{args:?}: {err:?} does not say {says:?}"
+    );
+}
+
+/// Bad input is a clear error (exit 2) and loses nothing: the input is never replaced,
+/// nothing is written where the conversion failed, a read-only output is kept.
+#[test]
+fn bad_input_is_refused_and_loses_nothing() {
+    let tmp = dir();
+    let d = tmp.path();
+    let input = d.join("in.png");
+    rgb8_map().save(&input).unwrap();
+    let before = std::fs::read(&input).unwrap();
+    let out = d.join("out.png");
+
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&d.join("missing.png")),
+            arg(&out),
+            "--to",
+            "xy16_rg",
+        ],
+        "missing.png",
+    );
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&out),
+            "--to",
+            "oct16",
+        ],
+        "does not store a texel",
+    );
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&input),
+            "--to",
+            "xy16_rg",
+        ],
+        "both the input and the output",
+    );
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&d.join("out.tga")),
+            "--to",
+            "xy16_rg",
+        ],
+        "must be a .png",
+    );
+    // A conventional RGB8 map is not a map of texels.
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&out),
+            "--from",
+            "xy16_rg",
+        ],
+        "RGBA8",
+    );
+    let gray = d.join("gray.png");
+    image::GrayImage::from_pixel(4, 4, image::Luma([128]))
+        .save(&gray)
+        .unwrap();
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&gray),
+            arg(&out),
+            "--to",
+            "xy16_rg",
+        ],
+        "RGB8 or RGB16",
+    );
+    let text = d.join("text.png");
+    std::fs::write(&text, "not an image").unwrap();
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&text),
+            arg(&out),
+            "--to",
+            "xy16_rg",
+        ],
+        "text.png",
+    );
+    assert!(!out.exists(), "nothing written by a failed conversion");
+    assert_eq!(
+        std::fs::read(&input).unwrap(),
+        before,
+        "the input is untouched"
+    );
+
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::write(&out, "keep me").unwrap();
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let r = unitpack(&[
+            "convert-normal-map",
+            arg(&input),
+            arg(&out),
+            "--to",
+            "xy16_rg",
+        ]);
+        // Root may write a read-only file, but the tool refuses without --force all the same.
+        assert_eq!(r.status.code(), Some(2), "{r:?}");
+        assert_eq!(std::fs::read(&out).unwrap(), b"keep me");
+        let r = unitpack(&[
+            "convert-normal-map",
+            arg(&input),
+            arg(&out),
+            "--to",
+            "xy16_rg",
+            "--force",
+        ]);
+        assert!(r.status.success(), "{r:?}");
+        let t = image::open(&out).unwrap().into_rgba8();
+        assert_eq!(t.dimensions(), (W, H));
+        assert!(t.pixels().all(|p| p.0[2..] == [0, 255]), "rg: B = 0, A = 1");
+    }
+}
