@@ -161,11 +161,77 @@ fn sixteen_bit_maps_read_and_write() {
         "16",
     ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
-    let back = image::open(&back).unwrap();
-    assert!(
-        matches!(back, DynamicImage::ImageRgb16(_)),
-        "{:?}",
-        back.color()
+    let DynamicImage::ImageRgb16(back) = image::open(&back).unwrap() else {
+        panic!("--depth 16 writes RGB16")
+    };
+    let mut decoded = vec![[0f32; 3]; want.len()];
+    Batch::new(spec).unwrap().decode(&want, &mut decoded);
+    for (i, (p, n)) in back.pixels().zip(&decoded).enumerate() {
+        let expect = n.map(|x| ((f64::from(x) + 1.0) / 2.0 * 65535.0).round() as u16);
+        assert_eq!(p.0, expect, "texel {i}: decoded {n:?}");
+    }
+}
+
+/// `--dxt1` writes xra's DXT1 texel (x in R, A = 1), which the same decoder reads; it is
+/// refused for a layout with one texel form, and --depth is refused with --to.
+#[test]
+fn xra_writes_either_texel() {
+    let tmp = dir();
+    let d = tmp.path();
+    let (input, dxt5, dxt1) = (d.join("in.png"), d.join("dxt5.png"), d.join("dxt1.png"));
+    rgb8_map().save(&input).unwrap();
+    for (out, extra) in [(&dxt5, None), (&dxt1, Some("--dxt1"))] {
+        let mut args = vec![
+            "convert-normal-map",
+            arg(&input),
+            arg(out),
+            "--to",
+            "paraboloid16_xra",
+        ];
+        args.extend(extra);
+        let r = unitpack(&args);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    }
+    let (a, b) = (
+        image::open(&dxt5).unwrap().into_rgba8(),
+        image::open(&dxt1).unwrap().into_rgba8(),
+    );
+    for (p5, p1) in a.pixels().zip(b.pixels()) {
+        let [r, g, bl, al] = p5.0;
+        assert_eq!((r, bl), (255, 0), "DXT5: R = 1");
+        assert_eq!(p1.0, [al, g, 0, 255], "DXT1: x in R, A = 1");
+    }
+    let codes = |img: &image::RgbaImage| -> Vec<u32> {
+        img.pixels().map(|p| u32::from_le_bytes(p.0)).collect()
+    };
+    let batch = Batch::new("paraboloid16_xra").unwrap();
+    let mut n5 = vec![[0f32; 3]; (W * H) as usize];
+    let mut n1 = n5.clone();
+    batch.decode(&codes(&a), &mut n5);
+    batch.decode(&codes(&b), &mut n1);
+    assert_eq!(n5, n1, "one decoder for both texels");
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&d.join("x.png")),
+            "--to",
+            "xy16_rg",
+            "--dxt1",
+        ],
+        "--dxt1 is for the xra layout",
+    );
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&d.join("x.png")),
+            "--to",
+            "xy16_rg",
+            "--depth",
+            "16",
+        ],
+        "--depth sets the conventional map --from writes",
     );
 }
 
@@ -274,32 +340,35 @@ fn bad_input_is_refused_and_loses_nothing() {
         "the input is untouched"
     );
 
+    // An existing OUT is replaced only with --force: swapped arguments cannot destroy
+    // a map.
+    std::fs::write(&out, "keep me").unwrap();
+    fails(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&out),
+            "--to",
+            "xy16_rg",
+        ],
+        "pass --force",
+    );
+    assert_eq!(std::fs::read(&out).unwrap(), b"keep me");
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        std::fs::write(&out, "keep me").unwrap();
         std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o444)).unwrap();
-        let r = unitpack(&[
-            "convert-normal-map",
-            arg(&input),
-            arg(&out),
-            "--to",
-            "xy16_rg",
-        ]);
-        // Root may write a read-only file, but the tool refuses without --force all the same.
-        assert_eq!(r.status.code(), Some(2), "{r:?}");
-        assert_eq!(std::fs::read(&out).unwrap(), b"keep me");
-        let r = unitpack(&[
-            "convert-normal-map",
-            arg(&input),
-            arg(&out),
-            "--to",
-            "xy16_rg",
-            "--force",
-        ]);
-        assert!(r.status.success(), "{r:?}");
-        let t = image::open(&out).unwrap().into_rgba8();
-        assert_eq!(t.dimensions(), (W, H));
-        assert!(t.pixels().all(|p| p.0[2..] == [0, 255]), "rg: B = 0, A = 1");
     }
+    let r = unitpack(&[
+        "convert-normal-map",
+        arg(&input),
+        arg(&out),
+        "--to",
+        "xy16_rg",
+        "--force",
+    ]);
+    assert!(r.status.success(), "{r:?}");
+    let t = image::open(&out).unwrap().into_rgba8();
+    assert_eq!(t.dimensions(), (W, H));
+    assert!(t.pixels().all(|p| p.0[2..] == [0, 255]), "rg: B = 0, A = 1");
 }

@@ -150,7 +150,7 @@ fn dxt5nm_stores_x_in_alpha_and_y_in_green() {
     let t = encode("xy16:layout=dxt5nm", &[[0.6, 0.0, 0.8]])[0];
     let [r, g, b, a] = bytes(t);
     assert_eq!(a, 0xcc, "{t:#010x}: 0.6·½ + ½ = 0.8 is 204/255");
-    assert!(g == 0x7f || g == 0x80, "{t:#010x}: y = 0 is 127.5/255");
+    assert_eq!(g, 0x80, "{t:#010x}: y = 0 is 127.5/255, ties up");
     assert_eq!((r, b), (0xff, 0), "{t:#010x}: R = 1, B = 0");
     // And back, through the float form the shader gets from the texture unit.
     let n = decode("xy16:layout=dxt5nm", &[t])[0];
@@ -158,6 +158,30 @@ fn dxt5nm_stores_x_in_alpha_and_y_in_green() {
         (n[0] - 0.6).abs() < 4e-3 && n[1].abs() < 4e-3 && (n[2] - 0.8).abs() < 4e-3,
         "{n:?}"
     );
+}
+
+/// +Z has no code (`p = 0` is 127.5/255): it, and every input without a direction on the
+/// hemisphere, is stored as x = y = 128 (ties up), by the fast and the precise encoders
+/// alike (the other layouts hold the same bytes: `channels_hold_what_the_layout_says`).
+#[test]
+fn plus_z_and_invalid_input_store_128() {
+    let inputs = [
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, 7.5e-30],
+        [0.0, 0.0, -1.0],
+        [0.0, 0.0, 0.0],
+        [f32::NAN, 0.0, 1.0],
+        [f32::INFINITY, 1.0, 0.0],
+        [1e-45, -1e-45, 0.0],
+    ];
+    for family in FAMILIES {
+        for precise in [false, true] {
+            let s = spec(family, precise, "rg");
+            for (v, t) in inputs.iter().zip(encode(&s, &inputs)) {
+                assert_eq!(t, 0xff00_8080, "{s} {v:?}: {t:#010x}");
+            }
+        }
+    }
 }
 
 /// Every layout holds the same two parameter bytes (the fast and the precise encoder each
@@ -373,84 +397,76 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
 
 /// A texel written by the CPU encoder, uploaded as an RGBA8 texture on lavapipe, loaded
 /// and sampled (nearest) in a compute shader and decoded there by the emitted
-/// `decode_float`: the texture unit returns every channel within one ULP of `c/255`, the
-/// shader's decode is bit for bit the model's `decode_float` of what it fetched, and
-/// where the fetch is `c·(1/255)` (the packed decoder's own conversion; lavapipe's, it
-/// turns out, for every code) that is the packed decode of the texel bit for bit — for
-/// every layout of every codec, over every pair of parameter bytes.
+/// `decode_float`, for every layout of every codec: the encoder's texels for 65,536
+/// seeded vectors, and every pair of parameter bytes in the layout's channels. lavapipe's
+/// texture unit returns `c·(1/255)` for every channel (the packed decoder's own
+/// conversion, within one ULP of `c/255`), so the shader's decode of the fetch is bit for
+/// bit the packed decode of the texel. Where a driver returns `c/255` correctly rounded
+/// instead (the APIs allow either), the model's decode of that differs from the packed
+/// decode by at most [`CORRECTLY_ROUNDED_FETCH`] per component.
 #[test]
 fn texture_round_trip_on_lavapipe() {
     let gpu = Gpu::shared().expect("a Vulkan adapter (install mesa-vulkan-drivers)");
-    let (width, height) = (256u32, 256u32);
+    let (width, height) = (256u32, 512u32);
+    let mut worst = 0f64;
     for family in FAMILIES {
         for layout in LAYOUTS {
             let s = spec(family, false, layout);
-            // Every pair of parameter bytes once, in the layout's channels, with the other
-            // channels as the encoder writes them for a seeded vector.
-            let vs = random_unit_vectors(0x7e2, (width * height) as usize, true);
+            let vs = random_unit_vectors(0x7e2, 1 << 16, true);
             let written = encode(&s, &vs);
-            let texels: Vec<u32> = written
-                .iter()
-                .enumerate()
-                .map(|(k, t)| {
-                    let (x, y) = ((k & 255) as u32, (k >> 8) as u32);
-                    let [r, _, b, a] = bytes(*t);
-                    let [r, g, b, a] = match layout {
-                        "rg" => [x, y, b, a],
-                        "xra" if k % 2 == 1 => [x, y, b, 255],
-                        "latc" => [y, y, y, x],
-                        _ => [r, y, b, x],
-                    };
-                    r | g << 8 | b << 16 | a << 24
-                })
-                .collect();
+            // Every pair of parameter bytes, the other channels as the encoder writes
+            // them (xra: DXT5 and DXT1 texels alternately).
+            let swept = written.iter().enumerate().map(|(k, t)| {
+                let (x, y) = ((k & 255) as u32, (k >> 8) as u32);
+                let [r, _, b, a] = bytes(*t);
+                let [r, g, b, a] = match layout {
+                    "rg" => [x, y, b, a],
+                    "xra" if k % 2 == 1 => [x, y, b, 255],
+                    "latc" => [y, y, y, x],
+                    _ => [r, y, b, x],
+                };
+                r | g << 8 | b << 16 | a << 24
+            });
+            let texels: Vec<u32> = written.iter().copied().chain(swept).collect();
             let out = gpu
                 .run_texture(&kernel(&s, width, height), &texels, width, 14)
                 .unwrap_or_else(|e| panic!("{s}: {e:#}"));
             let decode_float = function(&s, "decode_float");
             let packed = decode(&s, &texels);
-            let mut same_as_packed = 0;
             for (k, (t, o)) in texels.iter().zip(out.chunks_exact(14)).enumerate() {
                 let codes = bytes(*t);
-                assert_eq!(
-                    &o[0..4],
-                    &o[4..8],
-                    "{s} texel {k} {t:#010x}: load vs sample"
-                );
-                for (c, f) in codes.iter().zip(&o[0..4]) {
-                    let exact = f64::from(*c) / 255.0;
-                    let f = f64::from(f32::from_bits(*f));
-                    assert!(
-                        (f - exact).abs() <= exact * f64::from(f32::EPSILON),
-                        "{s} texel {k} {t:#010x}: channel {c} fetched as {f}"
-                    );
-                }
-                let mut model = [0u32; 3];
-                (decode_float.eval)(&o[0..4], &mut model);
-                assert_eq!(
-                    &o[8..11],
-                    &model,
-                    "{s} texel {k} {t:#010x}: decode_float of the load"
-                );
-                assert_eq!(
-                    &o[11..14],
-                    &model,
-                    "{s} texel {k} {t:#010x}: decode_float of the sample"
-                );
+                let at = format!("{s} texel {k} {t:#010x}");
+                assert_eq!(&o[0..4], &o[4..8], "{at}: load vs sample");
                 let own: Vec<u32> = codes
                     .iter()
                     .map(|&c| (c as f32 * (1.0f32 / 255.0)).to_bits())
                     .collect();
-                if o[0..4] == own[..] {
-                    assert_eq!(
-                        model,
-                        packed[k].map(f32::to_bits),
-                        "{s} texel {k} {t:#010x}: packed decode"
-                    );
-                    same_as_packed += 1;
+                assert_eq!(&o[0..4], &own[..], "{at}: lavapipe fetches c·(1/255)");
+                let mut model = [0u32; 3];
+                (decode_float.eval)(&o[0..4], &mut model);
+                assert_eq!(&o[8..11], &model, "{at}: decode_float of the load");
+                assert_eq!(&o[11..14], &model, "{at}: decode_float of the sample");
+                assert_eq!(model, packed[k].map(f32::to_bits), "{at}: packed decode");
+                let rounded: Vec<u32> = codes
+                    .iter()
+                    .map(|&c| (c as f32 / 255.0).to_bits())
+                    .collect();
+                let mut other = [0u32; 3];
+                (decode_float.eval)(&rounded, &mut other);
+                for (a, b) in other.iter().zip(packed[k]) {
+                    worst = worst.max((f64::from(f32::from_bits(*a)) - f64::from(b)).abs());
                 }
             }
-            assert!(same_as_packed > 0, "{s}: no fetch equals c·(1/255)");
         }
     }
+    assert!(
+        worst <= CORRECTLY_ROUNDED_FETCH,
+        "a correctly rounded fetch decodes {worst:e} from the packed decode"
+    );
 }
+
+/// The largest difference per component between the decode of a correctly rounded fetch
+/// (`c/255`) and the packed decode (`c·(1/255)`), over the texels of
+/// [`texture_round_trip_on_lavapipe`]: the sample maximum is 8.2e-6, at xy's texels near
+/// the horizon, where `z = sqrt(1 - d)` magnifies the last bit of `d`.
+const CORRECTLY_ROUNDED_FETCH: f64 = 1e-5;

@@ -18,13 +18,10 @@
 #define UNITPACK_C_TYPES
 typedef struct { float x, y; } unitpack_vec2;
 typedef struct { float x, y, z; } unitpack_vec3;
-typedef struct { float x, y, z, w; } unitpack_vec4;
 typedef struct { uint32_t x, y; } unitpack_uvec2;
 typedef struct { uint32_t x, y, z; } unitpack_uvec3;
-typedef struct { uint32_t x, y, z, w; } unitpack_uvec4;
 typedef struct { bool x, y; } unitpack_bvec2;
 typedef struct { bool x, y, z; } unitpack_bvec3;
-typedef struct { bool x, y, z, w; } unitpack_bvec4;
 // Bit reinterpretation without aliasing: the memcpy compiles to a register move.
 static inline uint32_t unitpack_bits_of(float x) { uint32_t u; memcpy(&u, &x, sizeof u); return u; }
 static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, sizeof x); return x; }

@@ -5,6 +5,7 @@
 
 use crate::api::Batch;
 use crate::atomic::write_atomic_with;
+use crate::codecs::functions::Function;
 use crate::codecs::{Spec, texel};
 use anyhow::{Context, Result, bail};
 use image::{DynamicImage, ImageFormat, RgbImage, RgbaImage};
@@ -14,8 +15,8 @@ use std::path::Path;
 
 /// Which way a map is converted.
 pub enum Direction<'a> {
-    /// Conventional map in, texels of the spec out.
-    To(&'a str),
+    /// Conventional map in, texels of the spec out (xra's DXT1 texel where set).
+    To(&'a str, bool),
     /// Texels of the spec in, conventional map out, at 16 bits per channel (else 8).
     From(&'a str, bool),
 }
@@ -42,8 +43,14 @@ pub fn run(input: &Path, output: &Path, dir: Direction, force: bool) -> Result<(
             output.display()
         );
     }
+    if output.exists() && !force {
+        bail!(
+            "{} exists; pass --force to replace it (IN and OUT may have been swapped)",
+            output.display()
+        );
+    }
     let spec_text = match dir {
-        Direction::To(s) | Direction::From(s, _) => s,
+        Direction::To(s, _) | Direction::From(s, _) => s,
     };
     let spec: Spec = spec_text.parse()?;
     if texel::layout(&spec).is_none() {
@@ -59,10 +66,20 @@ pub fn run(input: &Path, output: &Path, dir: Direction, force: bool) -> Result<(
         .with_context(|| format!("cannot read {}", input.display()))?
         .decode()
         .with_context(|| format!("cannot decode {} as an image", input.display()))?;
-    let batch = Batch::new(spec_text)?;
     let png = match dir {
-        Direction::To(_) => encode_map(&image, &batch, input)?,
-        Direction::From(_, sixteen) => decode_map(&image, &batch, input, sixteen)?,
+        Direction::To(_, dxt1) => {
+            let name = if dxt1 { "encode_dxt1" } else { "encode" };
+            let Some(encode) = spec
+                .emitted()
+                .functions
+                .into_iter()
+                .find(|f| f.name == name)
+            else {
+                bail!("{spec} has one texel form; --dxt1 is for the xra layout");
+            };
+            encode_map(&image, &encode, input)?
+        }
+        Direction::From(_, sixteen) => decode_map(&image, &Batch::new(spec_text)?, input, sixteen)?,
     };
     Ok(write_atomic_with(output, &png, force)?)
 }
@@ -99,7 +116,7 @@ fn conventional_vectors(image: &DynamicImage, input: &Path) -> Result<Vec<[f32; 
     })
 }
 
-fn encode_map(image: &DynamicImage, batch: &Batch, input: &Path) -> Result<Vec<u8>> {
+fn encode_map(image: &DynamicImage, encode: &Function, input: &Path) -> Result<Vec<u8>> {
     let vectors = conventional_vectors(image, input)?;
     let (w, h) = (image.width(), image.height());
     let mut texels = vec![0u32; vectors.len()];
@@ -109,7 +126,7 @@ fn encode_map(image: &DynamicImage, batch: &Batch, input: &Path) -> Result<Vec<u
         .chunks(step.max(1))
         .zip(texels.chunks_mut(step.max(1)))
     {
-        batch.encode(v, t);
+        encode.eval_many(bytemuck::cast_slice(v), t);
         bar.inc(v.len() as u64);
     }
     bar.finish_and_clear();

@@ -140,8 +140,9 @@ pub enum Command {
     /// --from SPEC reads such texels (RGBA8 PNG) and writes the conventional map (RGB8, or
     /// RGB16 with --depth 16). Each texel goes through the CPU encoder or decoder, which
     /// computes what the emitted shader functions compute. OUT is written atomically; it
-    /// may not be IN, and a read-only OUT is replaced only with --force. A progress bar
-    /// shows on a terminal for maps of a million texels or more.
+    /// may not be IN, and an existing OUT is replaced only with --force (so swapped
+    /// arguments cannot destroy a map). A progress bar shows on a terminal for maps of a
+    /// million texels or more.
     ConvertNormalMap {
         /// The map to read (PNG).
         #[arg(value_name = "IN")]
@@ -160,10 +161,14 @@ pub enum Command {
         /// Read the texels of this layout spec and write the conventional map.
         #[arg(long, value_name = "SPEC")]
         from: Option<String>,
-        /// Bits per channel of the conventional map --from writes.
-        #[arg(long, default_value = "8", value_parser = ["8", "16"])]
-        depth: String,
-        /// Replace a read-only OUT too.
+        /// Bits per channel of the conventional map --from writes: 8 (the default) or 16.
+        #[arg(long, value_parser = ["8", "16"])]
+        depth: Option<String>,
+        /// With an xra spec and --to: write the DXT1 texel (x in R, A = 1) instead of the
+        /// DXT5 one (x in A, R = 1).
+        #[arg(long)]
+        dxt1: bool,
+        /// Replace an existing OUT (read-only too).
         #[arg(long)]
         force: bool,
     },
@@ -257,11 +262,24 @@ pub fn run(cli: Cli) -> Result<i32> {
             to,
             from,
             depth,
+            dxt1,
             force,
         } => {
+            // clap's `requires` yields to `conflicts_with` (--to and --from), so these
+            // pairings are checked here.
+            if depth.is_some() && from.is_none() {
+                anyhow::bail!(
+                    "--depth sets the conventional map --from writes; --to reads its depth from IN"
+                );
+            }
+            if dxt1 && to.is_none() {
+                anyhow::bail!("--dxt1 chooses the texel --to writes; --from reads either");
+            }
             let dir = match (&to, &from) {
-                (Some(spec), _) => convert::Direction::To(spec),
-                (None, Some(spec)) => convert::Direction::From(spec, depth == "16"),
+                (Some(spec), _) => convert::Direction::To(spec, dxt1),
+                (None, Some(spec)) => {
+                    convert::Direction::From(spec, depth.as_deref() == Some("16"))
+                }
                 (None, None) => unreachable!("clap requires --to or --from"),
             };
             convert::run(&input, &output, dir, force)?;

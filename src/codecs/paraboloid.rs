@@ -148,14 +148,14 @@ impl Codec for Paraboloid {
         let n = V3::from_xy(p, F::c(1.0) - q.at_most(F::c(1.0))).named("n");
         n / n.length_squared().sqrt()
     }
-    /// The snorm codes of `h.x / a` and `h.y / a` ([`snorm_ratio`]); input without a
+    /// The codes of `h.x / a` and `h.y / a` ([`ratio_code`]); input without a
     /// direction on the hemisphere encodes as +Z.
     const EXACT_ROUNDING: bool = true;
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.round_in(self.field(), v)
     }
     /// The nearest of the four codes around the exact parameters (floors decided by
-    /// [`floor_ratio`]) by the squared distance of their fixed-point decodes to the input
+    /// [`floor_ratio_code`]) by the squared distance of their fixed-point decodes to the input
     /// projected onto the hemisphere; input without a direction there encodes as +Z.
     const EXACT_SEARCH: bool = true;
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {

@@ -16,6 +16,19 @@
 //!
 //! Parameters are stored unorm as the hardware expects, so `p = 0` has no code: it
 //! rounds up to 128 (`p = 1/255`), and invalid input encodes as `(128, 128)`.
+//!
+//! On the CPU a layout wraps the codec (its 16-bit form; the wrapped codec's own size
+//! does not matter, the channels are always 8 bits):
+//!
+//! ```
+//! use unitpack::api::{CpuCodec, Layout, Texel, Xy};
+//!
+//! let dxt5nm = Texel { inner: Xy::new(16).unwrap(), layout: Layout::Dxt5nm }.precise();
+//! let t: u32 = dxt5nm.encode([0.6, 0.0, 0.8]);
+//! assert_eq!(t.to_le_bytes(), [0xff, 0x80, 0x00, 0xcc]); // R = 1, G = y, B = 0, A = x
+//! let n = dxt5nm.decode(t);
+//! assert!((n[0] - 0.6).abs() < 4e-3 && (n[2] - 0.8).abs() < 4e-3);
+//! ```
 
 use super::codec::{Codec, Domain, Params, above_horizon};
 use super::exact::{canonical_or_z, length2, unorm_sqrt_ratio};

@@ -113,6 +113,7 @@ struct File<'a> {
     types_guard: &'a str,
     prefix: &'a str,
     types: Vec<String>,
+    types4: Vec<String>,
 }
 
 impl Backend for C {
@@ -173,23 +174,40 @@ impl Backend for C {
         Some(self.array_abi(name, impl_name, params, ret))
     }
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
-        let mut types = Vec::new();
-        for kind in [Kind::F32, Kind::U32, Kind::Bool] {
-            for n in [2u8, 3, 4] {
-                let lanes = ["x", "y", "z", "w"][..n as usize].join(", ");
-                types.push(format!(
-                    "typedef struct {{ {} {lanes}; }} {};",
-                    self.ty(Ty::scalar(kind)),
-                    self.struct_name(kind, n)
-                ));
+        let typedefs = |sizes: &[u8]| -> Vec<String> {
+            let mut out = Vec::new();
+            for kind in [Kind::F32, Kind::U32, Kind::Bool] {
+                for &n in sizes {
+                    let lanes = ["x", "y", "z", "w"][..n as usize].join(", ");
+                    out.push(format!(
+                        "typedef struct {{ {} {lanes}; }} {};",
+                        self.ty(Ty::scalar(kind)),
+                        self.struct_name(kind, n)
+                    ));
+                }
             }
-        }
+            out
+        };
+        let types = typedefs(&[2, 3]);
+        // Four-lane structs (a texel layout's channels) under a guard of their own, in
+        // the files that use them: a header from before they existed, included first,
+        // has already defined the common guard.
+        let four = [Kind::F32, Kind::U32, Kind::Bool].map(|k| self.struct_name(k, 4));
+        let uses_four = specs.iter().flat_map(|s| &s.functions).any(|f| {
+            let text = |t: &str| four.iter().any(|n| t.contains(n.as_str()));
+            text(&f.ret_ty) || f.params.iter().any(|p| text(&p.1)) || f.body.iter().any(|l| text(l))
+        });
         File {
             header: opts.header,
             specs,
             types_guard: &self.types_guard,
             prefix: &self.prefix,
             types,
+            types4: if uses_four {
+                typedefs(&[4])
+            } else {
+                Vec::new()
+            },
         }
         .render()
         .expect("C template renders")
