@@ -159,13 +159,8 @@ impl Batch {
     /// A packing helper (no encoder or decoder) is an error.
     pub fn new(spec: &str) -> Result<Batch, SpecError> {
         let spec: Spec = spec.parse()?;
-        let mut functions = spec.emitted().functions;
-        let mut take = |role| {
-            functions
-                .iter()
-                .position(|f| f.role == role)
-                .map(|i| functions.swap_remove(i))
-        };
+        let e = spec.emitted();
+        let take = |role| e.cpu_function(role).cloned();
         match (take(Role::Encode), take(Role::Decode)) {
             (Some(encode), Some(decode)) => Ok(Batch { encode, decode }),
             _ => Err(SpecError::Invalid(format!(

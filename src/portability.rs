@@ -5,7 +5,8 @@
 //! Bit-exact verification on lavapipe proves the code on an implementation that rounds
 //! every operation correctly; this module asks what changes on one that uses every liberty
 //! the APIs allow. A packed encoder ([`Role::Encode`]) must not change under any class:
-//! its code is data that another implementation decodes. Float outputs report their
+//! its code is data that another implementation decodes; nor may a lookup table's texel
+//! ([`Role::LutTexel`]). Float outputs report their
 //! largest deviation in ULP; decoders also their largest absolute deviation, which must
 //! stay within the bound [`crate::decode_bound`] proves and their doc comments state. It
 //! needs no GPU, so it builds without the `verify` feature.
@@ -111,7 +112,7 @@ impl Row {
     /// bound under one (which would be a flaw in the proof).
     pub fn fails(&self) -> bool {
         self.class.guaranteed()
-            && (self.role == Role::Encode && self.changed > 0 || self.exceeds_bound())
+            && (integer_output(self.role) && self.changed > 0 || self.exceeds_bound())
     }
     /// A decoder output moved further than the proven bound.
     pub fn exceeds_bound(&self) -> bool {
@@ -128,9 +129,16 @@ pub struct PortabilityReport {
     pub rows: Vec<Row>,
 }
 
-/// Whether outputs of `role` are floats (everything but packed codes).
+/// Whether `role` returns integers that must not change under any class: packed codes,
+/// and the lookup-table texels an encoder or decoder reads (another texel is another
+/// code).
+pub fn integer_output(role: Role) -> bool {
+    matches!(role, Role::Encode | Role::LutTexel)
+}
+
+/// Whether outputs of `role` are floats.
 fn float_output(role: Role) -> bool {
-    role != Role::Encode
+    !integer_output(role)
 }
 
 /// Distance in ULP between two f32 bit patterns; `u64::MAX` when exactly one is NaN.
@@ -264,7 +272,7 @@ pub fn run(specs: &[Spec], classes: &[Class], opts: &Options) -> PortabilityRepo
             spec.emitted()
                 .functions
                 .into_iter()
-                .filter(|f| !opts.encoders_only || f.role == Role::Encode)
+                .filter(|f| !opts.encoders_only || integer_output(f.role))
                 .map(move |f| (id.clone(), f))
         })
         .collect();
@@ -323,7 +331,7 @@ impl PortabilityReport {
         !self
             .rows
             .iter()
-            .any(|r| r.role == Role::Encode && r.fails())
+            .any(|r| integer_output(r.role) && r.fails())
     }
     /// True when, besides, every decoder stayed within its proven bound: what `verify
     /// --portable` exits 0 on.
@@ -376,7 +384,9 @@ impl PortabilityReport {
             .iter()
             .filter(|r| r.fails())
             .map(|r| match (r.role, r.max_dev, r.bound) {
-                (Role::Encode, ..) => format!("{} {} under {}", r.spec, r.function, r.class.name()),
+                (role, ..) if integer_output(role) => {
+                    format!("{} {} under {}", r.spec, r.function, r.class.name())
+                }
                 (_, d, b) => format!(
                     "{} {} under {}: moved {:.2}·2^-24, beyond its proven bound {}·2^-24",
                     r.spec,

@@ -88,12 +88,7 @@ pub fn measure(spec: &Spec, samples: usize) -> Option<ErrorStats> {
 }
 
 pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStats {
-    let find = |r: Role| {
-        e.functions
-            .iter()
-            .find(|f| f.role == r)
-            .expect("codec function")
-    };
+    let find = |r: Role| e.cpu_function(r).expect("codec function");
     let (enc, dec) = (find(Role::Encode), find(Role::Decode));
     let vs = random_unit_vectors(VECTOR_SEED, samples, domain == Domain::Hemisphere);
     // Four vectors per step on the lanes, bit for bit the scalar model (`verify`'s

@@ -429,7 +429,14 @@ fn texture_round_trip_on_lavapipe() {
             });
             let texels: Vec<u32> = written.iter().copied().chain(swept).collect();
             let out = gpu
-                .run_texture(&kernel(&s, width, height), &texels, width, 14)
+                .run_texture(
+                    &kernel(&s, width, height),
+                    &texels,
+                    width,
+                    &[],
+                    texels.len(),
+                    14,
+                )
                 .unwrap_or_else(|e| panic!("{s}: {e:#}"));
             let decode_float = function(&s, "decode_float");
             let packed = decode(&s, &texels);

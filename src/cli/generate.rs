@@ -1,5 +1,7 @@
-//! `generate`: the whole catalogue as `DIR/<lang>/<id>.<lang>`, plus the manifest that
-//! lets a later run prune only what it wrote (see [`super::manifest`]).
+//! `generate`: the whole catalogue as `DIR/<lang>/<id>.<lang>`, the lookup tables some
+//! specs read as `DIR/lut/<stem>.png` and `.bin`, plus the manifest that lets a later run
+//! prune only what it wrote (see [`super::manifest`]). Tables are never pruned: they
+//! carry no header that would show they are still ours.
 //!
 //! Nothing the user wrote is ever replaced or removed without `--force`, and `--force`
 //! only lets a catalogue path be replaced; it never makes `generate` remove a file.
@@ -9,6 +11,7 @@ use super::manifest::{self, HEADER, MANIFEST};
 use super::output;
 use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
+use crate::codecs::family::Table;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use anyhow::{Context, Result, bail};
 use std::collections::BTreeSet;
@@ -16,8 +19,10 @@ use std::fmt::Write as _;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-/// Every generated include: relative path → contents.
-pub fn catalogue_files() -> Vec<(PathBuf, String)> {
+/// Every generated file: relative path → contents. The includes, and the lookup tables
+/// of the specs that read one (`lut/<stem>.png`, and the same texels as raw bytes in
+/// `lut/<stem>.bin`).
+pub fn catalogue_files() -> Result<Vec<(PathBuf, Vec<u8>)>> {
     let specs = Spec::all();
     let stats = stats_for(&specs);
     crate::decode_bound::prove_all(&specs);
@@ -29,11 +34,30 @@ pub fn catalogue_files() -> Vec<(PathBuf, String)> {
             let text = render(&[(spec.clone(), *st)], lang, DEFAULT_PREFIX, &cmd);
             files.push((
                 PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())),
-                text,
+                text.into_bytes(),
             ));
         }
     }
-    files
+    for table in specs.iter().flat_map(|s| s.family().tables(s)) {
+        let dir = PathBuf::from(manifest::TABLES);
+        files.push((dir.join(format!("{}.png", table.stem)), png(&table)?));
+        files.push((dir.join(format!("{}.bin", table.stem)), table.bytes));
+    }
+    Ok(files)
+}
+
+/// A table as an 8-bit grayscale or RGBA PNG (deterministic for a given encoder version).
+fn png(t: &Table) -> Result<Vec<u8>> {
+    use image::ImageEncoder;
+    let color = match t.channels {
+        1 => image::ExtendedColorType::L8,
+        _ => image::ExtendedColorType::Rgba8,
+    };
+    let mut out = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut out)
+        .write_image(&t.bytes, t.width, t.height, color)
+        .with_context(|| format!("encoding {} as PNG", t.stem))?;
+    Ok(out)
 }
 
 /// What is on disk at a path `generate` writes.
@@ -49,7 +73,10 @@ enum State {
     NotAFile,
 }
 
-fn state_of(path: &Path, text: &str, is_manifest: bool) -> Result<State> {
+/// The state of `path`, whose catalogue contents are `text`. A text file is ours when it
+/// has the header (the manifest always is); a table, which has no header, when the
+/// previous manifest lists it (`listed`).
+fn state_of(path: &Path, text: &[u8], is_manifest: bool, listed: bool) -> Result<State> {
     let cannot = || format!("cannot read {}", path.display());
     match std::fs::metadata(path) {
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(State::Missing),
@@ -59,9 +86,10 @@ fn state_of(path: &Path, text: &str, is_manifest: bool) -> Result<State> {
         Ok(_) => {}
     }
     let cur = std::fs::read(path).with_context(cannot)?;
-    Ok(if cur == text.as_bytes() {
+    let table = manifest::is_table_path(path);
+    Ok(if cur == text {
         State::Current
-    } else if is_manifest || cur.starts_with(HEADER.as_bytes()) {
+    } else if is_manifest || (!table && cur.starts_with(HEADER.as_bytes())) || (table && listed) {
         State::Changed
     } else {
         State::Foreign
@@ -70,8 +98,8 @@ fn state_of(path: &Path, text: &str, is_manifest: bool) -> Result<State> {
 
 /// Everything `generate` would do in `out`, worked out before anything is written.
 struct Plan {
-    /// The includes and the manifest (last), with their state on disk.
-    files: Vec<(PathBuf, String, State)>,
+    /// The includes, the tables and the manifest (last), with their state on disk.
+    files: Vec<(PathBuf, Vec<u8>, State)>,
     /// Files to remove: listed in the old manifest, not in the catalogue, with the header.
     prune: Vec<PathBuf>,
     /// Files left alone in the language folders, with the reason.
@@ -79,9 +107,9 @@ struct Plan {
 }
 
 fn plan(out: &Path) -> Result<Plan> {
-    let mut files: Vec<(PathBuf, String)> = catalogue_files();
+    let mut files = catalogue_files()?;
     let listed = manifest::text(files.iter().map(|(p, _)| p.as_path()));
-    files.push((PathBuf::from(MANIFEST), listed));
+    files.push((PathBuf::from(MANIFEST), listed.into_bytes()));
     let ours: BTreeSet<PathBuf> = files.iter().map(|(p, _)| p.clone()).collect();
     let old = manifest::read(out)
         .with_context(|| format!("cannot read {}", out.join(MANIFEST).display()))?;
@@ -128,7 +156,8 @@ fn plan(out: &Path) -> Result<Plan> {
     let files = files
         .into_iter()
         .map(|(rel, text)| {
-            let state = state_of(&out.join(&rel), &text, rel == Path::new(MANIFEST))?;
+            let listed = old.contains(&rel);
+            let state = state_of(&out.join(&rel), &text, rel == Path::new(MANIFEST), listed)?;
             Ok((rel, text, state))
         })
         .collect::<Result<Vec<_>>>()?;
@@ -199,7 +228,7 @@ pub fn generate_with(out: &Path, check: bool, force: bool) -> Result<i32> {
         }
         let path = out.join(rel);
         let mut f = AtomicFile::create(&path, force).context("nothing written")?;
-        f.write_all(text.as_bytes())
+        f.write_all(text)
             .with_context(|| format!("nothing written: cannot write {}", path.display()))?;
         staged.push(f);
     }

@@ -33,11 +33,25 @@ pub fn is_catalogue_path(rel: &Path) -> bool {
     let (Some(dir), Some(file)) = (dir.to_str(), file.to_str()) else {
         return false;
     };
-    Lang::ALL.iter().any(|l| {
-        l.name() == dir
-            && !file.starts_with('.')
-            && Path::new(file).extension().is_some_and(|e| e == l.ext())
-    })
+    let ext_is =
+        |ext: &str| !file.starts_with('.') && Path::new(file).extension().is_some_and(|e| e == ext);
+    Lang::ALL.iter().any(|l| l.name() == dir && ext_is(l.ext()))
+        || dir == TABLES && TABLE_EXTS.iter().any(|e| ext_is(e))
+}
+
+/// The folder of the lookup tables, beside the language folders.
+pub const TABLES: &str = "lut";
+const TABLE_EXTS: &[&str] = &["png", "bin"];
+
+/// Whether `path` (absolute or relative) is a table's: in a [`TABLES`] folder, with a
+/// table's extension. Tables have no header; the manifest alone says they are ours.
+pub fn is_table_path(path: &Path) -> bool {
+    path.parent()
+        .and_then(|p| p.file_name())
+        .is_some_and(|d| d == TABLES)
+        && path
+            .extension()
+            .is_some_and(|e| TABLE_EXTS.iter().any(|t| e == *t))
 }
 
 /// The manifest's entries in `dir`; none when there is no manifest.

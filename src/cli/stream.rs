@@ -65,17 +65,18 @@ impl Codec {
             Direction::Encode => Role::Encode,
             Direction::Decode => Role::Decode,
         };
-        let functions = spec.emitted().functions;
+        let emitted = spec.emitted();
         // The code's width is its fields' (a texel layout's code is the whole RGBA8 texel,
         // 32 bits, though it holds 16 bits of parameters).
-        let bits = functions
+        let bits = emitted
+            .functions
             .iter()
             .find_map(|f| match &f.inputs {
                 Inputs::Codes(q) => Some(code_width(q)),
                 _ => None,
             })
             .unwrap_or(spec.bits());
-        let Some(f) = functions.into_iter().find(|f| f.role == role) else {
+        let Some(f) = emitted.cpu_function(role).cloned() else {
             bail!("{} has no {role:?} function", spec.id());
         };
         let code_words = match dir {

@@ -221,8 +221,31 @@ pub trait Family: Sync + 'static {
     }
     /// Traces the spec and lists its public functions.
     fn emitted(&self, spec: &Spec) -> Emitted;
+    /// The lookup tables the spec's shader functions read, which `generate` writes
+    /// beside the includes.
+    fn tables(&self, _spec: &Spec) -> Vec<Table> {
+        Vec::new()
+    }
+    /// What a function's doc comment says of its input and output, where the family's
+    /// functions are not the standard four (a lookup-table codec's pieces).
+    fn function_doc(&self, _name: &str) -> Option<Vec<String>> {
+        None
+    }
     /// The doc comment of a helper function this family defines, if it has one.
     fn helper_doc(&self, _name: &str) -> Option<String> {
         None
     }
+}
+
+/// A lookup texture a spec's functions read: `width × height` texels of `channels`
+/// unorm8 bytes each, row after row (the texel's y), as it is uploaded.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Table {
+    /// File name without extension (`spherical_lut16_atan`).
+    pub stem: String,
+    pub width: u32,
+    pub height: u32,
+    /// 1 (R8) or 4 (RGBA8).
+    pub channels: u8,
+    pub bytes: Vec<u8>,
 }

@@ -130,6 +130,32 @@ pub enum Inputs {
     Codes(Vec<Quant>),
     /// Float parameters as a texture fetch delivers them (`c/M`), for the same codes.
     FloatCodes(Vec<Quant>),
+    /// [`Inputs::Vectors`], each followed by the words [`Extra`] computes from it: the
+    /// model's own texture fetch for a function that takes the fetched value beside the
+    /// vector.
+    VectorsWith(Extra),
+}
+
+/// What [`Inputs::VectorsWith`] appends to each vector.
+#[derive(Clone)]
+pub struct Extra {
+    /// What the words are, for messages.
+    pub name: &'static str,
+    pub words: usize,
+    /// A vector's three words → the extra words.
+    pub of: Arc<dyn Fn(&[u32]) -> Vec<u32> + Send + Sync>,
+}
+
+impl PartialEq for Extra {
+    fn eq(&self, o: &Extra) -> bool {
+        Arc::ptr_eq(&self.of, &o.of)
+    }
+}
+
+impl std::fmt::Debug for Extra {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} ({} words)", self.name, self.words)
+    }
 }
 
 /// What a function does, for its doc comment.
@@ -143,6 +169,8 @@ pub enum Role {
     Unpack,
     /// A helper that combines decoded values (the second seed's detail combine).
     Combine,
+    /// The integer texel of a lookup table that an encoder or decoder reads.
+    LutTexel,
 }
 
 /// A model of a function on raw words: one item in, one item out.
@@ -172,6 +200,9 @@ pub struct Function {
     /// For a decoder: the same generic function evaluated with [`Encl`] over a box of
     /// codes, which [`crate::decode_bound`] refines into a proven deviation bound.
     pub enclose: Option<Enclose>,
+    /// For a CPU-only [`Emitted::cpu`] function: the emitted functions it chains around
+    /// its table fetch, whose costs add up to its own.
+    pub parts: Vec<&'static str>,
 }
 
 impl Function {
@@ -306,6 +337,7 @@ where
             }
         }),
         enclose: None,
+        parts: Vec::new(),
     }
 }
 
@@ -349,6 +381,20 @@ pub struct Emitted {
     /// doc comment says so, and tests/portability.rs holds it to that under every
     /// guaranteed deviation class.
     pub portable_encoder: bool,
+    /// CPU-only functions that stand in for a role the shader splits around a texture
+    /// fetch (`encode` = texel, fetch from the table in memory, `encode(v, fetched)`):
+    /// what `Batch`, the CLI and the error statistics run. Never emitted; their parts are.
+    pub cpu: Vec<Function>,
+}
+
+impl Emitted {
+    /// The CPU function of `role`: a [`Emitted::cpu`] stand-in, else the emitted one.
+    pub fn cpu_function(&self, role: Role) -> Option<&Function> {
+        self.cpu
+            .iter()
+            .chain(&self.functions)
+            .find(|f| f.role == role)
+    }
 }
 
 /// The four functions of a codec spec (`decode_float`, `decode`, `encode_float`,
@@ -434,6 +480,68 @@ where
         } else {
             C::EXACT_ROUNDING
         },
+        cpu: Vec::new(),
+    }
+}
+
+/// A CPU-only function through a table in memory: `first`, then `lookup` of its
+/// output words (one item's), then `second` on the lookup's words, after the item's own
+/// input words where `keep_input`. Each evaluation (`f32`, [`Dev`], four lanes) chains
+/// the parts' own, so it is bit for bit the emitted functions around a fetch that
+/// returns what `lookup` does.
+pub fn through_table(
+    name: &'static str,
+    role: Role,
+    inputs: Inputs,
+    first: &Function,
+    lookup: Arc<dyn Fn(&[u32]) -> Vec<u32> + Send + Sync>,
+    second: &Function,
+    keep_input: bool,
+) -> Function {
+    let (iw, mid) = (first.in_words, first.out_words);
+    let chain = |a: &Eval, b: &Eval| -> Eval {
+        let (a, b, lookup) = (a.clone(), b.clone(), lookup.clone());
+        Arc::new(move |i: &[u32], o: &mut [u32]| {
+            let mut t = vec![0u32; mid];
+            a(i, &mut t);
+            let mut arg = if keep_input { i.to_vec() } else { Vec::new() };
+            arg.extend(lookup(&t));
+            b(&arg, o)
+        })
+    };
+    let (a, b) = (first.eval_lanes.clone(), second.eval_lanes.clone());
+    let (lanes_lookup, second_in) = (lookup.clone(), second.in_words);
+    let eval_lanes: LanesEval = Arc::new(move |i: &[Lanes], o: &mut [Lanes]| {
+        let groups = i.len() / iw;
+        let mut t = vec![[0u32; 4]; groups * mid];
+        a(i, &mut t);
+        let mut arg = vec![[0u32; 4]; groups * second_in];
+        for g in 0..groups {
+            let at = &mut arg[g * second_in..(g + 1) * second_in];
+            if keep_input {
+                at[..iw].copy_from_slice(&i[g * iw..(g + 1) * iw]);
+            }
+            let from = if keep_input { iw } else { 0 };
+            for k in 0..4 {
+                let item: Vec<u32> = t[g * mid..(g + 1) * mid].iter().map(|w| w[k]).collect();
+                for (j, w) in lanes_lookup(&item).into_iter().enumerate() {
+                    at[from + j][k] = w;
+                }
+            }
+        }
+        b(&arg, o)
+    });
+    Function {
+        name,
+        role,
+        inputs,
+        in_words: iw,
+        out_words: second.out_words,
+        eval: chain(&first.eval, &second.eval),
+        eval_dev: chain(&first.eval_dev, &second.eval_dev),
+        eval_lanes,
+        enclose: None,
+        parts: vec![first.name, second.name],
     }
 }
 
@@ -442,7 +550,7 @@ where
 /// [`float_code_range`]): monotone in `c`, so the bounds are the ends'. Every nonzero
 /// one is at least `1/M`, so all are multiples of the f32 spacing at `1/M` (of `2^-24`,
 /// the least f16, for halves; of `2^-149`, the least denormal, for f32 fields).
-fn fetched_range(q: Quant, (c0, c1): (i64, i64)) -> Encl {
+pub(crate) fn fetched_range(q: Quant, (c0, c1): (i64, i64)) -> Encl {
     let (at, grid): (fn(Quant, i64) -> f32, f64) = match q {
         Quant::Half | Quant::Single => (float_of_ordinal, float_grid(q)),
         _ => (

@@ -186,6 +186,10 @@ pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
         }
         Inputs::Codes(q) => codes(q, in_words),
         Inputs::FloatCodes(q) => float_codes(q),
+        Inputs::VectorsWith(extra) => generate(&Inputs::Vectors, 3)
+            .chunks_exact(3)
+            .flat_map(|v| v.iter().copied().chain((extra.of)(v)))
+            .collect(),
     }
 }
 

@@ -71,6 +71,7 @@ registry! {
     paraboloid_square => ParaboloidSquare;
     paraboloid_pd => combine_paraboloid_pd;
     spherical_z => SphericalZ;
+    spherical_lut => SphericalLut;
     sfib => Sfib;
     pack12;
 }

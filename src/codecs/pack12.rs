@@ -44,7 +44,7 @@ macro_rules! helpers {
             |x: $P<Dev>| $f(x),
             |x: $P<crate::model::lanes::F4>| $f(x),
         )),*];
-        Emitted { module, functions, namespace: String::new(), portable_encoder: false }
+        Emitted { module, functions, namespace: String::new(), portable_encoder: false, cpu: Vec::new() }
     }};
 }
 

@@ -62,6 +62,7 @@ impl Family for ParaboloidPdFamily {
             functions: vec![f],
             namespace: String::new(),
             portable_encoder: false,
+            cpu: Vec::new(),
         }
     }
     fn helper_doc(&self, name: &str) -> Option<String> {

@@ -199,7 +199,24 @@ pub fn function_doc(
         )
     });
     let texel = TexelText::of(spec, local);
+    let own = spec.family().function_doc(local);
     let mut d = match (role, texel) {
+        _ if own.is_some() => {
+            let what = match role {
+                Role::Encode => enc,
+                Role::EncodeFloat => "fast encoder, float form",
+                Role::DecodeFloat => "decoder, float form",
+                _ => "lookup texel",
+            };
+            let mut d = vec![format!("{}: {codec}, {what}.", p.name)];
+            d.extend(own.into_iter().flatten());
+            match role {
+                Role::Encode => d.push(encoder_portability(e.portable_encoder).into()),
+                Role::DecodeFloat => d.push(format!("Out: {}.", c.decode_note)),
+                _ => {}
+            }
+            d
+        }
         (Role::Encode, Some(t)) => vec![
             format!("{}: {codec}, {enc}.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
@@ -269,7 +286,7 @@ pub fn function_doc(
                 )
             },
         ],
-        (Role::Pack | Role::Unpack | Role::Combine, _) => unreachable!(),
+        (Role::Pack | Role::Unpack | Role::Combine | Role::LutTexel, _) => unreachable!(),
     };
     match role {
         Role::Decode | Role::DecodeFloat => d.extend(decoder_portability(e, role)),

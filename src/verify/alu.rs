@@ -12,6 +12,8 @@ use super::tools::{GlslangInput, HlslOpt, glslang_spirv, spirv_opt_dis};
 use crate::codecs::Spec;
 use crate::codecs::functions::Role;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
+use crate::model::Kind;
+use crate::model::trace::Ty;
 use anyhow::{Context, Result, anyhow};
 
 /// The opcodes counted (SPIR-V names without `Op`).
@@ -87,17 +89,19 @@ const ALU: &[&str] = &[
     "ExtInst",
 ];
 
-/// The GLSL type of a function's argument or result of `words` words.
-fn glsl_type(float: bool, words: usize) -> String {
-    match (float, words) {
-        (true, 1) => "float".into(),
-        (false, 1) => "uint".into(),
-        (true, n) => format!("vec{n}"),
-        (false, n) => format!("uvec{n}"),
+/// The GLSL type of one traced value.
+fn glsl_type(t: Ty) -> String {
+    match (t.kind, t.lanes) {
+        (Kind::F32, 1) => "float".into(),
+        (Kind::U32, 1) => "uint".into(),
+        (Kind::F32, n) => format!("vec{n}"),
+        (Kind::U32, n) => format!("uvec{n}"),
+        (Kind::Bool, _) => unreachable!("no function takes or returns a bool"),
     }
 }
 
-/// The compute shader that calls `function` of `spec` once.
+/// The compute shader that calls `function` of `spec` once. Several float arguments
+/// (`encode(v, atan)`) arrive as one vector, split by swizzles.
 fn shader(spec: &Spec, function: &str) -> Result<String> {
     let e = spec.emitted();
     let f = e
@@ -105,12 +109,35 @@ fn shader(spec: &Spec, function: &str) -> Result<String> {
         .iter()
         .find(|f| f.name == function)
         .ok_or_else(|| anyhow!("{spec} has no function `{function}`"))?;
-    let (float_in, float_out) = match f.role {
-        Role::Encode => (true, false),
-        Role::Decode => (false, true),
-        Role::EncodeFloat | Role::DecodeFloat => (true, true),
-        Role::Pack | Role::Unpack | Role::Combine => {
-            return Err(anyhow!("{spec}: only codec functions are counted"));
+    if matches!(f.role, Role::Pack | Role::Unpack | Role::Combine) {
+        return Err(anyhow!("{spec}: only codec functions are counted"));
+    }
+    let traced = e.module.func(function).expect("every function is traced");
+    let params: Vec<Ty> = traced.params.iter().map(|p| p.1).collect();
+    let (tin, args) = match params.as_slice() {
+        [one] => (glsl_type(*one), "inp[i]".to_string()),
+        many => {
+            let lanes: u8 = many.iter().map(|t| t.lanes).sum();
+            assert!(
+                many.iter().all(|t| t.kind == Kind::F32) && lanes <= 4,
+                "{spec} {function}: arguments the counting shader cannot pass"
+            );
+            let mut at = 0;
+            let args: Vec<String> = many
+                .iter()
+                .map(|t| {
+                    let sw: String = "xyzw"[at as usize..(at + t.lanes) as usize].into();
+                    at += t.lanes;
+                    format!("inp[i].{sw}")
+                })
+                .collect();
+            (
+                glsl_type(Ty {
+                    kind: Kind::F32,
+                    lanes,
+                }),
+                args.join(", "),
+            )
         }
     };
     let include = render(&[(spec.clone(), None)], Lang::Glsl, DEFAULT_PREFIX, "");
@@ -124,9 +151,8 @@ fn shader(spec: &Spec, function: &str) -> Result<String> {
          layout(local_size_x = 64) in;\n\
          layout(std430, set = 0, binding = 0) readonly buffer In {{ {tin} inp[]; }};\n\
          layout(std430, set = 0, binding = 1) writeonly buffer Out {{ {tout} outp[]; }};\n\
-         void main() {{\n    uint i = gl_GlobalInvocationID.x;\n    outp[i] = {name}(inp[i]);\n}}\n",
-        tin = glsl_type(float_in, f.in_words),
-        tout = glsl_type(float_out, f.out_words),
+         void main() {{\n    uint i = gl_GlobalInvocationID.x;\n    outp[i] = {name}({args});\n}}\n",
+        tout = glsl_type(traced.ret_ty),
     ))
 }
 
@@ -160,8 +186,24 @@ fn count_main(dis: &str) -> Result<u32> {
     Ok(n)
 }
 
-/// The ALU count of one function of one spec.
+/// The ALU count of one function of one spec. A function the shader splits around a
+/// table fetch (`spherical_lut16`'s `encode` = `atan_texel`, fetch, `encode(v, atan)`)
+/// counts as the sum of its emitted parts.
 pub fn count(spec: &Spec, function: &str) -> Result<u32> {
+    let parts = spec
+        .emitted()
+        .cpu
+        .into_iter()
+        .find(|f| f.name == function)
+        .map(|f| f.parts);
+    match parts {
+        Some(parts) => parts.iter().map(|p| count_emitted(spec, p)).sum(),
+        None => count_emitted(spec, function),
+    }
+}
+
+/// The ALU count of one emitted function.
+fn count_emitted(spec: &Spec, function: &str) -> Result<u32> {
     let src = shader(spec, function)?;
     let words = glslang_spirv(&src, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)
         .with_context(|| format!("compiling {spec}'s {function} for counting"))?;

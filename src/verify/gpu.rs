@@ -548,8 +548,10 @@ impl Gpu {
     /// Runs a WGSL kernel over the texels of an RGBA8 unorm texture: `texels` (R in the
     /// lowest byte, rows of `width`) are uploaded as a `width`-wide texture, which the
     /// kernel sees at binding 0 (`texture_2d<f32>`) beside a nearest-filtering sampler at
-    /// binding 1, and writes `out_words` u32 per texel to the storage buffer at binding 2
-    /// (one invocation per texel along x, bounds-checked by the kernel as in [`Gpu::run`]).
+    /// binding 1, and writes `out_words` u32 to the storage buffer at binding 2
+    /// for each of `items` invocations along x, bounds-checked by the kernel as in
+    /// [`Gpu::run`]. A non-empty `input` is bound at binding 3 as a read-only `array<u32>`
+    /// (what the kernel looks up in the texture, for a lookup table).
     /// This is how a shader meets a normal map: through the texture unit's unorm8
     /// conversion, not a buffer of floats.
     pub fn run_texture(
@@ -557,6 +559,8 @@ impl Gpu {
         wgsl: &str,
         texels: &[u32],
         width: u32,
+        input: &[u32],
+        items: usize,
         out_words: usize,
     ) -> anyhow::Result<Vec<u32>> {
         if width == 0 || !texels.len().is_multiple_of(width as usize) || out_words == 0 {
@@ -617,7 +621,18 @@ impl Gpu {
             label: Some("unitpack nearest"),
             ..Default::default()
         });
-        let out_bytes = (texels.len() * out_words * 4) as u64;
+        let out_bytes = (items * out_words * 4) as u64;
+        // wgpu rejects empty buffers: a kernel without input binds none.
+        let input_buf = (!input.is_empty()).then(|| {
+            let b = self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("unitpack texture input"),
+                size: (input.len() * 4) as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            self.queue.write_buffer(&b, 0, bytemuck::cast_slice(input));
+            b
+        });
         let output = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("unitpack texture output"),
             size: out_bytes,
@@ -647,7 +662,13 @@ impl Gpu {
                     binding: 2,
                     resource: output.as_entire_binding(),
                 },
-            ],
+            ]
+            .into_iter()
+            .chain(input_buf.as_ref().map(|b| wgpu::BindGroupEntry {
+                binding: 3,
+                resource: b.as_entire_binding(),
+            }))
+            .collect::<Vec<_>>(),
         });
         let mut encoder = self
             .device
@@ -661,7 +682,7 @@ impl Gpu {
             });
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(texels.len().div_ceil(WORKGROUP_SIZE as usize) as u32, 1, 1);
+            pass.dispatch_workgroups(items.div_ceil(WORKGROUP_SIZE as usize) as u32, 1, 1);
         }
         encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, out_bytes);
         let submission = self.queue.submit([encoder.finish()]);

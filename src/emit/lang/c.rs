@@ -59,6 +59,10 @@ impl C {
                     sig.push(format!("uint32_t {p}"));
                     args.push(p.clone());
                 }
+                (Kind::F32, 1) => {
+                    sig.push(format!("float {p}"));
+                    args.push(p.clone());
+                }
                 (Kind::U32, 2) => {
                     sig.push(format!("uint64_t {p}"));
                     body.push(format!(
@@ -77,7 +81,7 @@ impl C {
                     ));
                     args.push(format!("{p}_v"));
                 }
-                _ => unreachable!("public functions take codes or float vectors"),
+                _ => unreachable!("public functions take codes, floats or float vectors"),
             }
         }
         let call = format!("{impl_name}({})", args.join(", "));
