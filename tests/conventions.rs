@@ -10,7 +10,7 @@ use unitpack::model::{V2, V3};
 use unitpack::verify::inputs;
 
 fn role(e: &Emitted, r: Role) -> &Function {
-    e.functions.iter().find(|f| f.role == r).unwrap()
+    e.cpu_function(r).unwrap()
 }
 
 fn codecs() -> Vec<Spec> {

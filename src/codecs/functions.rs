@@ -136,6 +136,9 @@ pub enum Inputs {
     VectorsWith(Extra),
 }
 
+/// One item's words → other words (a table lookup, the model's own fetch).
+pub type WordsMap = Arc<dyn Fn(&[u32]) -> Vec<u32> + Send + Sync>;
+
 /// What [`Inputs::VectorsWith`] appends to each vector.
 #[derive(Clone)]
 pub struct Extra {
@@ -143,7 +146,7 @@ pub struct Extra {
     pub name: &'static str,
     pub words: usize,
     /// A vector's three words → the extra words.
-    pub of: Arc<dyn Fn(&[u32]) -> Vec<u32> + Send + Sync>,
+    pub of: WordsMap,
 }
 
 impl PartialEq for Extra {
@@ -494,7 +497,7 @@ pub fn through_table(
     role: Role,
     inputs: Inputs,
     first: &Function,
-    lookup: Arc<dyn Fn(&[u32]) -> Vec<u32> + Send + Sync>,
+    lookup: WordsMap,
     second: &Function,
     keep_input: bool,
 ) -> Function {

@@ -242,6 +242,11 @@ pub fn driver(include: &str, funcs: &[(&str, Vec<Ty>, Ty)]) -> String {
                     format!("(uint64_t)w[{first}] | ((uint64_t)w[{}] << 32)", first + 1)
                 }
                 (Kind::U32, _) => format!("&w[{first}]"),
+                (_, 1) => {
+                    body.push(format!("float a{j};"));
+                    body.push(format!("memcpy(&a{j}, &w[{first}], sizeof a{j});"));
+                    format!("a{j}")
+                }
                 _ => {
                     body.push(format!("float a{j}[{n}];"));
                     body.push(format!("memcpy(a{j}, &w[{first}], sizeof a{j});"));
