@@ -172,7 +172,7 @@ fn sample(inputs: &Inputs, items: usize, n: Option<usize>) -> Vec<usize> {
         return (0..items).collect();
     };
     let first = match inputs {
-        Inputs::Vectors => edge_vectors().len().min(items),
+        Inputs::Vectors | Inputs::VectorsWith(_) => edge_vectors().len().min(items),
         _ => 0,
     };
     let rest = items - first;

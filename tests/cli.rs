@@ -158,6 +158,13 @@ fn expected_files() -> BTreeSet<PathBuf> {
             s.insert(PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())));
         }
     }
+    for spec in Spec::all() {
+        for t in spec.family().tables(&spec) {
+            for ext in ["png", "bin"] {
+                s.insert(PathBuf::from("lut").join(format!("{}.{ext}", t.stem)));
+            }
+        }
+    }
     s
 }
 
@@ -933,7 +940,13 @@ fn encode_and_decode_round_trip_for_every_codec() {
         assert_eq!(dec.code, 0, "{name}: {dec:?}");
         let out: Vec<[f32; 3]> = dec.stdout.lines().map(parse_vec).collect();
         assert_eq!(out.len(), input.len(), "{name}: {dec:?}");
-        let tol = if spec.bits() <= 16 { 3.0 } else { 1.0 };
+        // The seed's method 3a tables misread its own codes near the poles by several
+        // degrees (README, "The first seed's method 3a"; sample max 7.2°).
+        let tol = match spec.bits() {
+            _ if spec.id() == "spherical_lut16" => 8.0,
+            0..=16 => 3.0,
+            _ => 1.0,
+        };
         for (a, b) in input.iter().zip(&out) {
             assert!(
                 angle_deg(*a, *b) < tol,
@@ -1172,7 +1185,7 @@ fn every_encoded_code_fits_the_spec_width() {
             spec.bits()
         };
         // Every encoder of a vector alone (a lookup-table codec's CPU encoder, not its
-        // emitted `encode(v, atan)`, which takes the fetch as well).
+        // emitted `encode(v, fetched)`, which takes the fetch as well).
         let encoders = e.cpu.iter().chain(&e.functions);
         for f in encoders.filter(|f| f.role == Role::Encode && f.inputs == Inputs::Vectors) {
             let mut code = vec![0u32; f.out_words];
@@ -1659,6 +1672,56 @@ fn generate_refuses_to_replace_a_users_file_at_a_catalogue_path() {
     assert_eq!(check(d).code, 0);
 }
 
+/// Tables carry no header: the manifest's contents hash is what makes one ours. A table
+/// replaced by the user is refused without --force; one that left the catalogue is
+/// removed while it still has its recorded hash and kept once it has changed.
+#[test]
+fn generate_knows_its_tables_by_their_recorded_hash() {
+    let dir = tempdir();
+    let d = dir.path();
+    generate_plain(d);
+    let table = d.join("lut/spherical_lut16_atan.png");
+    assert!(table.is_file());
+    std::fs::write(&table, b"my own atan table").unwrap();
+    let before = snapshot(d);
+    let err = fails(&["generate", "--out", d.to_str().unwrap()], "");
+    assert!(
+        err.contains("nothing written")
+            && err.contains("lut/spherical_lut16_atan.png")
+            && err.contains("--force"),
+        "{err}"
+    );
+    assert_eq!(snapshot(d), before, "a refused generate must write nothing");
+    ok(&["generate", "--out", d.to_str().unwrap(), "--force"]);
+    assert_eq!(check(d).code, 0);
+    // A table the manifest records but the catalogue no longer has: ours while it has
+    // its hash (removed), the user's once changed (kept).
+    let (old, mine) = (d.join("lut/retired.bin"), d.join("lut/taken.bin"));
+    for p in [&old, &mine] {
+        std::fs::write(p, b"\x00\x01\x02").unwrap();
+    }
+    let hash = unitpack_hash(b"\x00\x01\x02");
+    add_to_manifest(d, &format!("lut/retired.bin {hash:016x}"));
+    add_to_manifest(d, &format!("lut/taken.bin {hash:016x}"));
+    std::fs::write(&mine, b"changed").unwrap();
+    let r = generate_plain(d);
+    assert!(!old.exists(), "{r:?}");
+    assert!(mine.exists(), "{r:?}");
+    assert!(
+        r.stdout.contains("kept: ") && r.stdout.contains("taken.bin"),
+        "{r:?}"
+    );
+}
+
+/// The manifest's table hash, FNV-1a 64, written out here.
+fn unitpack_hash(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h = (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
+    }
+    h
+}
+
 /// Everything is prepared before anything is replaced: a folder that cannot take a file
 /// leaves the others as they were.
 #[cfg(target_os = "linux")]
@@ -1760,10 +1823,11 @@ fn generate_help_and_readme_say_what_it_prunes() {
 fn committed_generated_directory_has_its_manifest() {
     let m = std::fs::read_to_string(manifest_dir().join("generated/.unitpack-manifest"))
         .expect("generated/.unitpack-manifest is committed");
+    // A table's line ends in its contents hash.
     let listed: BTreeSet<PathBuf> = m
         .lines()
         .filter(|l| !l.starts_with('#'))
-        .map(PathBuf::from)
+        .map(|l| PathBuf::from(l.split(' ').next().unwrap()))
         .collect();
     let mut want = expected_files();
     want.remove(Path::new(".unitpack-manifest"));

@@ -397,6 +397,25 @@ fn declared_portable_encoders_never_change() {
         .count();
     assert_eq!(portable, encoders);
     assert!(portable >= 51, "{portable}");
+    // A lookup table's texel decides a code as much as the encoder does: it must not
+    // move either (spherical_lut16's atan_texel and sincos_texel).
+    let texels: Vec<_> = report
+        .rows
+        .iter()
+        .filter(|r| r.role == Role::LutTexel)
+        .collect();
+    assert!(texels.len() >= 4, "{}", texels.len());
+    for r in texels {
+        assert_eq!(
+            r.changed,
+            0,
+            "{} {} under {}: {:?}",
+            r.spec,
+            r.function,
+            r.class.name(),
+            r.example
+        );
+    }
 }
 
 /// What the README's API table says lies outside the guarantee does reach the portable

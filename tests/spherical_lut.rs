@@ -18,13 +18,17 @@ const LUTS: [(SphericalLut, &str); 2] = [
     (SphericalLut::Matched, "spherical_lut16:lut=matched"),
 ];
 
-/// The nearest byte of `x` in [0, 1] lies within half a code of it (plus f64's error).
+/// `byte` is the nearest byte of `x` in [0, 1]; within f64's error of a tie (an exact
+/// ½ such as `sin(-π)·½ + ½`, which f64 computes as a hair below) it is the upper one.
 fn assert_nearest(byte: u8, x: f64, what: &str) {
-    let d = (f64::from(byte) - x * 255.0).abs();
-    assert!(
-        d <= 0.5 + 1e-9,
-        "{what}: byte {byte} for {x} ({d} codes off)"
-    );
+    let scaled = x * 255.0;
+    let frac = scaled - scaled.floor();
+    let want = if (frac - 0.5).abs() < 1e-9 {
+        scaled.ceil()
+    } else {
+        scaled.round()
+    };
+    assert_eq!(f64::from(byte), want, "{what}: byte {byte} for {x}");
 }
 
 /// Every atan texel is the nearest byte of `(atan2(y, x) + π)/2π` at the texel's corner
@@ -71,6 +75,33 @@ fn tables_hold_the_documented_values() {
         SphericalLut::Seed.sincos()[128 * 256 + 128],
         [255, 128, 128, 255]
     );
+}
+
+/// The CPU encoder and decoder chain the emitted functions around a fetch from the
+/// tables in memory; their one-item, four-lane (whole and partial groups) and adversarial
+/// evaluations agree bit for bit.
+#[test]
+fn cpu_functions_agree_in_every_evaluation() {
+    for (_, name) in LUTS {
+        let e = name.parse::<Spec>().unwrap().emitted();
+        assert_eq!(e.cpu.len(), 3, "{name}");
+        for f in &e.cpu {
+            let input = unitpack::verify::inputs::generate(&f.inputs, f.in_words);
+            for n in [1usize, 2, 3, 4, 5, 7, 4093] {
+                let items = &input[..n * f.in_words];
+                let mut many = vec![0u32; n * f.out_words];
+                f.eval_many(items, &mut many);
+                for (k, item) in items.chunks_exact(f.in_words).enumerate() {
+                    let (mut one, mut dev) = (vec![0u32; f.out_words], vec![0u32; f.out_words]);
+                    (f.eval)(item, &mut one);
+                    (f.eval_dev)(item, &mut dev);
+                    let at = format!("{name} {} item {k} of {n}: {item:x?}", f.name);
+                    assert_eq!(&many[k * f.out_words..][..f.out_words], &one[..], "{at}");
+                    assert_eq!(dev, one, "{at}: adversarial with nothing set");
+                }
+            }
+        }
+    }
 }
 
 /// The codes of `v` on the CPU: the atan texel nearest sampling at `n.xy·½ + ½` selects
@@ -161,11 +192,10 @@ fn seed_table_is_worse_than_method_3_and_the_matched_one_is_not() {
     );
 }
 
-/// The WGSL kernel of the encode pass: per vector (three words of `inp`), the emitted
-/// `atan_texel`, a `textureLoad` of the atan table there and a nearest
-/// `textureSampleLevel` at the texel's centre, and `encode` of each fetch: texel x, y,
-/// both fetches' bits and both codes (6 words).
-fn encode_kernel(id: &str, include: &str) -> String {
+/// A WGSL kernel around a spec's include: the table at binding 0 with a nearest sampler,
+/// six output words per item, the items' words in `inp`; `body` computes item `i`'s
+/// outputs `o` from them.
+fn kernel(include: &str, body: &str) -> String {
     format!(
         r#"{include}
 @group(0) @binding(0) var table: texture_2d<f32>;
@@ -179,51 +209,43 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     if (i >= arrayLength(&output_words) / 6u) {{
         return;
     }}
-    let v = bitcast<vec3<f32>>(vec3<u32>(inp[3u * i], inp[3u * i + 1u], inp[3u * i + 2u]));
-    let t = unitpack_{id}_atan_texel(v);
-    let loaded = textureLoad(table, t, 0).r;
-    let uv = (vec2<f32>(t) + vec2<f32>(0.5, 0.5)) / 256.0;
-    let sampled = textureSampleLevel(table, nearest, uv, 0.0).r;
-    output_words[6u * i] = t.x;
-    output_words[6u * i + 1u] = t.y;
-    output_words[6u * i + 2u] = bitcast<u32>(loaded);
-    output_words[6u * i + 3u] = bitcast<u32>(sampled);
-    output_words[6u * i + 4u] = unitpack_{id}_encode(v, loaded);
-    output_words[6u * i + 5u] = unitpack_{id}_encode(v, sampled);
+{body}
+    for (var k = 0u; k < 6u; k++) {{
+        output_words[6u * i + k] = o[k];
+    }}
 }}
 "#
     )
 }
 
-/// The decode pass: per code, `sincos_texel`, a load and a nearest sample of the sin/cos
-/// table, and `decode_float` of each (6 words).
-fn decode_kernel(id: &str, include: &str) -> String {
-    format!(
-        r#"{include}
-@group(0) @binding(0) var table: texture_2d<f32>;
-@group(0) @binding(1) var nearest: sampler;
-@group(0) @binding(2) var<storage, read_write> output_words: array<u32>;
-@group(0) @binding(3) var<storage, read> inp: array<u32>;
+/// The encode pass: per vector (three words of `inp`), the emitted `atan_texel`, a
+/// `textureLoad` of the atan table there and a nearest `textureSampleLevel` at the
+/// texel's centre, and `encode` of each fetch: texel x, y, both fetches' bits and both
+/// codes.
+fn encode_kernel(id: &str, include: &str) -> String {
+    let body = format!(
+        "    let v = bitcast<vec3<f32>>(vec3<u32>(inp[3u * i], inp[3u * i + 1u], inp[3u * i + 2u]));
+    let t = unitpack_{id}_atan_texel(v);
+    let loaded = textureLoad(table, t, 0).r;
+    let sampled = textureSampleLevel(table, nearest, (vec2<f32>(t) + 0.5) / 256.0, 0.0).r;
+    let o = array<u32, 6>(t.x, t.y, bitcast<u32>(loaded), bitcast<u32>(sampled),
+        unitpack_{id}_encode(v, loaded), unitpack_{id}_encode(v, sampled));"
+    );
+    kernel(include, &body)
+}
 
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>) {{
-    let i = gid.x;
-    if (i >= arrayLength(&output_words) / 6u) {{
-        return;
-    }}
-    let t = unitpack_{id}_sincos_texel(inp[i]);
-    let uv = (vec2<f32>(t) + vec2<f32>(0.5, 0.5)) / 256.0;
-    let a = unitpack_{id}_decode_float(textureLoad(table, t, 0).rgb);
-    let b = unitpack_{id}_decode_float(textureSampleLevel(table, nearest, uv, 0.0).rgb);
-    let words = bitcast<vec3<u32>>(a);
-    let other = bitcast<vec3<u32>>(b);
-    for (var k = 0u; k < 3u; k++) {{
-        output_words[6u * i + k] = words[k];
-        output_words[6u * i + 3u + k] = other[k];
-    }}
-}}
-"#
-    )
+/// The decode pass: per code, `sincos_texel`, a load and a nearest sample of the sin/cos
+/// table, and `decode_float` of each.
+fn decode_kernel(id: &str, include: &str) -> String {
+    let body = format!(
+        "    let t = unitpack_{id}_sincos_texel(inp[i]);
+    let uv = (vec2<f32>(t) + 0.5) / 256.0;
+    let a = bitcast<vec3<u32>>(unitpack_{id}_decode_float(textureLoad(table, t, 0).rgb));
+    let b = bitcast<vec3<u32>>(
+        unitpack_{id}_decode_float(textureSampleLevel(table, nearest, uv, 0.0).rgb));
+    let o = array<u32, 6>(a.x, a.y, a.z, b.x, b.y, b.z);"
+    );
+    kernel(include, &body)
 }
 
 /// The tables uploaded as RGBA8 textures on lavapipe (the atan table's byte in R), read

@@ -43,7 +43,7 @@ static inline unitpack_vec3 unitpack_spherical_lut16_matched_decode_float_v(unit
 // Out: the sin/cos table's texel·2 - 1, not renormalized: unit length to within the table's rounding (each component within 1/255).
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 static inline void unitpack_spherical_lut16_matched_decode_float(const float rgb[3], float out[3]) {
     const unitpack_vec3 rgb_v = { rgb[0], rgb[1], rgb[2] };
     const unitpack_vec3 r = unitpack_spherical_lut16_matched_decode_float_v(rgb_v);
@@ -64,7 +64,7 @@ static inline unitpack_uvec2 unitpack_spherical_lut16_matched_sincos_texel_v(uin
 // In: a packed code (bits 0–7 x, 8–15 y); other bits are ignored.
 // Out: the integer texel (x, y) of the 256×256 sin/cos table to read with textureLoad / texelFetch / Load (a nearest sampler at (code + ½)/256 reads the same).
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 static inline uint64_t unitpack_spherical_lut16_matched_sincos_texel(uint32_t code) {
     const unitpack_uvec2 r = unitpack_spherical_lut16_matched_sincos_texel_v(code);
     return (uint64_t)r.x | ((uint64_t)r.y << 32);
@@ -180,7 +180,7 @@ static inline unitpack_uvec2 unitpack_spherical_lut16_matched_atan_texel_v(unitp
 // In: any vector; input is normalized first, zero, NaN and infinite input read the texel of +Z.
 // Out: the integer texel (x, y) of the 256×256 atan table to read with textureLoad / texelFetch / Load: floor(256·(n.xy·½ + ½)) clamped to 255, the texel nearest sampling at n.xy·½ + ½ selects, decided exactly (the same texel on every implementation). Sample at (t + ½)/256 for the same texel through a nearest sampler.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 static inline uint64_t unitpack_spherical_lut16_matched_atan_texel(const float v[3]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
     const unitpack_uvec2 r = unitpack_spherical_lut16_matched_atan_texel_v(v_v);
@@ -188,7 +188,7 @@ static inline uint64_t unitpack_spherical_lut16_matched_atan_texel(const float v
 }
 
 // Struct form of unitpack_spherical_lut16_matched_encode_float.
-static inline unitpack_vec2 unitpack_spherical_lut16_matched_encode_float_v(unitpack_vec3 v, float atan) {
+static inline unitpack_vec2 unitpack_spherical_lut16_matched_encode_float_v(unitpack_vec3 v, float fetched) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const bool t2 = t1.x >= t1.y;
     const float t3 = t2 ? t1.x : t1.y;
@@ -209,25 +209,25 @@ static inline unitpack_vec2 unitpack_spherical_lut16_matched_encode_float_v(unit
     const unitpack_vec3 t15 = { t12 ? t14.x : 0.0f, t12 ? t14.y : 0.0f, t12 ? t14.z : 1.0f };
     const float t16 = t15.z + 1.0f;
     const float t17 = t16 * 0.5f;
-    const unitpack_vec2 t18 = { atan, t17 };
+    const unitpack_vec2 t18 = { fetched, t17 };
     return t18;
 }
 
 // unitpack_spherical_lut16_matched_encode_float: spherical_lut16:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
-// In: any vector, and `atan` as for encode.
-// Out: (atan, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
+// In: any vector, and `fetched` as for encode.
+// Out: (fetched, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
-static inline void unitpack_spherical_lut16_matched_encode_float(const float v[3], float atan, float out[2]) {
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
+static inline void unitpack_spherical_lut16_matched_encode_float(const float v[3], float fetched, float out[2]) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
-    const unitpack_vec2 r = unitpack_spherical_lut16_matched_encode_float_v(v_v, atan);
+    const unitpack_vec2 r = unitpack_spherical_lut16_matched_encode_float_v(v_v, fetched);
     out[0] = r.x;
     out[1] = r.y;
 }
 
 // Struct form of unitpack_spherical_lut16_matched_encode.
-static inline uint32_t unitpack_spherical_lut16_matched_encode_v(unitpack_vec3 v, float atan) {
+static inline uint32_t unitpack_spherical_lut16_matched_encode_v(unitpack_vec3 v, float fetched) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
     const unitpack_vec3 normal = { t2.x ? 0.0f : v.x, t2.y ? 0.0f : v.y, t2.z ? 0.0f : v.z };
@@ -283,8 +283,8 @@ static inline uint32_t unitpack_spherical_lut16_matched_encode_v(unitpack_vec3 v
     const float t46 = t45 + t40;
     const float t47 = t42 + t44;
     const float len2 = t47 + t46;
-    const bool t48 = atan >= 0.0f;
-    const float t49 = t48 ? atan : 0.0f;
+    const bool t48 = fetched >= 0.0f;
+    const float t49 = t48 ? fetched : 0.0f;
     const bool t50 = t49 <= 1.0f;
     const float t51 = t50 ? t49 : 1.0f;
     const float t52 = t51 * 255.0f;
@@ -342,14 +342,14 @@ static inline uint32_t unitpack_spherical_lut16_matched_encode_v(unitpack_vec3 v
 }
 
 // unitpack_spherical_lut16_matched_encode: spherical_lut16:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder.
-// In: any vector, and `atan`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
+// In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
 // Out: the packed code, uint (bits 0–7: x, the fetched byte; bits 8–15: y, z·½ + ½ of the normalized input as unorm8, rounded exactly).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
-static inline uint32_t unitpack_spherical_lut16_matched_encode(const float v[3], float atan) {
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
+static inline uint32_t unitpack_spherical_lut16_matched_encode(const float v[3], float fetched) {
     const unitpack_vec3 v_v = { v[0], v[1], v[2] };
-    return unitpack_spherical_lut16_matched_encode_v(v_v, atan);
+    return unitpack_spherical_lut16_matched_encode_v(v_v, fetched);
 }
 
 #endif // UNITPACK_SPHERICAL_LUT16_MATCHED_H

@@ -27,7 +27,7 @@
 // Out: the sin/cos table's texel·2 - 1, not renormalized: unit length to within the table's rounding (each component within 1/255).
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 float3 unitpack_spherical_lut16_matched_decode_float(float3 rgb) {
     precise float3 t1 = rgb - 0.5;
     precise float3 t2 = t1 * 2.0;
@@ -38,7 +38,7 @@ float3 unitpack_spherical_lut16_matched_decode_float(float3 rgb) {
 // In: a packed code (bits 0–7 x, 8–15 y); other bits are ignored.
 // Out: the integer texel (x, y) of the 256×256 sin/cos table to read with textureLoad / texelFetch / Load (a nearest sampler at (code + ½)/256 reads the same).
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 uint2 unitpack_spherical_lut16_matched_sincos_texel(uint code) {
     uint t1 = code >> 8u;
     uint2 t2 = uint2(code, t1);
@@ -50,7 +50,7 @@ uint2 unitpack_spherical_lut16_matched_sincos_texel(uint code) {
 // In: any vector; input is normalized first, zero, NaN and infinite input read the texel of +Z.
 // Out: the integer texel (x, y) of the 256×256 atan table to read with textureLoad / texelFetch / Load: floor(256·(n.xy·½ + ½)) clamped to 255, the texel nearest sampling at n.xy·½ + ½ selects, decided exactly (the same texel on every implementation). Sample at (t + ½)/256 for the same texel through a nearest sampler.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 uint2 unitpack_spherical_lut16_matched_atan_texel(float3 v) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
@@ -157,12 +157,12 @@ uint2 unitpack_spherical_lut16_matched_atan_texel(float3 v) {
 }
 
 // unitpack_spherical_lut16_matched_encode_float: spherical_lut16:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
-// In: any vector, and `atan` as for encode.
-// Out: (atan, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
+// In: any vector, and `fetched` as for encode.
+// Out: (fetched, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
-float2 unitpack_spherical_lut16_matched_encode_float(float3 v, float atan) {
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
+float2 unitpack_spherical_lut16_matched_encode_float(float3 v, float fetched) {
     precise float3 t1 = abs(v);
     bool t2 = t1.x >= t1.y;
     precise float t3 = t2 ? t1.x : t1.y;
@@ -183,17 +183,17 @@ float2 unitpack_spherical_lut16_matched_encode_float(float3 v, float atan) {
     precise float3 t15 = t12 ? t14 : float3(0.0, 0.0, 1.0);
     precise float t16 = t15.z + 1.0;
     precise float t17 = t16 * 0.5;
-    precise float2 t18 = float2(atan, t17);
+    precise float2 t18 = float2(fetched, t17);
     return t18;
 }
 
 // unitpack_spherical_lut16_matched_encode: spherical_lut16:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder.
-// In: any vector, and `atan`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
+// In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
 // Out: the packed code, uint (bits 0–7: x, the fetched byte; bits 8–15: y, z·½ + ½ of the normalized input as unorm8, rounded exactly).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
-uint unitpack_spherical_lut16_matched_encode(float3 v, float atan) {
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
+uint unitpack_spherical_lut16_matched_encode(float3 v, float fetched) {
     precise float3 t1 = abs(v);
     bool3 t2 = t1 < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38);
     precise float3 normal = UNITPACK_SELECT(t2, float3(0.0, 0.0, 0.0), v);
@@ -249,8 +249,8 @@ uint unitpack_spherical_lut16_matched_encode(float3 v, float atan) {
     precise float t46 = t45 + t40;
     precise float t47 = t42 + t44;
     precise float len2 = t47 + t46;
-    bool t48 = atan >= 0.0;
-    precise float t49 = t48 ? atan : 0.0;
+    bool t48 = fetched >= 0.0;
+    precise float t49 = t48 ? fetched : 0.0;
     bool t50 = t49 <= 1.0;
     precise float t51 = t50 ? t49 : 1.0;
     precise float t52 = t51 * 255.0;

@@ -12,7 +12,7 @@
 // Out: the sin/cos table's texel·2 - 1, not renormalized: unit length to within the table's rounding (each component within 1/255).
 // Portable: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root, contraction of a*b + c, denormals and signs of zero, each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it). Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 fn unitpack_spherical_lut16_matched_decode_float(rgb: vec3<f32>) -> vec3<f32> {
     let t1 = rgb - 0.5f;
     let t2 = t1 * 2.0f;
@@ -23,7 +23,7 @@ fn unitpack_spherical_lut16_matched_decode_float(rgb: vec3<f32>) -> vec3<f32> {
 // In: a packed code (bits 0–7 x, 8–15 y); other bits are ignored.
 // Out: the integer texel (x, y) of the 256×256 sin/cos table to read with textureLoad / texelFetch / Load (a nearest sampler at (code + ½)/256 reads the same).
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 fn unitpack_spherical_lut16_matched_sincos_texel(code: u32) -> vec2<u32> {
     let t1 = code >> 8u;
     let t2 = vec2<u32>(code, t1);
@@ -35,7 +35,7 @@ fn unitpack_spherical_lut16_matched_sincos_texel(code: u32) -> vec2<u32> {
 // In: any vector; input is normalized first, zero, NaN and infinite input read the texel of +Z.
 // Out: the integer texel (x, y) of the 256×256 atan table to read with textureLoad / texelFetch / Load: floor(256·(n.xy·½ + ½)) clamped to 255, the texel nearest sampling at n.xy·½ + ½ selects, decided exactly (the same texel on every implementation). Sample at (t + ½)/256 for the same texel through a nearest sampler.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
 fn unitpack_spherical_lut16_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
@@ -142,12 +142,12 @@ fn unitpack_spherical_lut16_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
 }
 
 // unitpack_spherical_lut16_matched_encode_float: spherical_lut16:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
-// In: any vector, and `atan` as for encode.
-// Out: (atan, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
+// In: any vector, and `fetched` as for encode.
+// Out: (fetched, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
-fn unitpack_spherical_lut16_matched_encode_float(v: vec3<f32>, atan: f32) -> vec2<f32> {
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
+fn unitpack_spherical_lut16_matched_encode_float(v: vec3<f32>, fetched: f32) -> vec2<f32> {
     let t1 = abs(v);
     let t2 = t1.x >= t1.y;
     let t3 = select(t1.y, t1.x, t2);
@@ -168,17 +168,17 @@ fn unitpack_spherical_lut16_matched_encode_float(v: vec3<f32>, atan: f32) -> vec
     let t15 = select(vec3<f32>(0.0f, 0.0f, 1.0f), t14, t12);
     let t16 = t15.z + 1.0f;
     let t17 = t16 * 0.5f;
-    let t18 = vec2<f32>(atan, t17);
+    let t18 = vec2<f32>(fetched, t17);
     return t18;
 }
 
 // unitpack_spherical_lut16_matched_encode: spherical_lut16:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder.
-// In: any vector, and `atan`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
+// In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
 // Out: the packed code, uint (bits 0–7: x, the fetched byte; bits 8–15: y, z·½ + ½ of the normalized input as unorm8, rounded exactly).
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40405°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.642e-5, PSNR 45.78 dB.
-fn unitpack_spherical_lut16_matched_encode(v: vec3<f32>, atan: f32) -> u32 {
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.40450°, sample max 5.30606° (not a bound); MSE of the components of n - n' 2.646e-5, PSNR 45.77 dB.
+fn unitpack_spherical_lut16_matched_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let t1 = abs(v);
     let t2 = t1 < vec3<f32>(1.1754944e-38f);
     let normal = select(v, vec3<f32>(0.0f), t2);
@@ -234,8 +234,8 @@ fn unitpack_spherical_lut16_matched_encode(v: vec3<f32>, atan: f32) -> u32 {
     let t46 = t45 + t40;
     let t47 = t42 + t44;
     let len2 = t47 + t46;
-    let t48 = atan >= 0.0f;
-    let t49 = select(0.0f, atan, t48);
+    let t48 = fetched >= 0.0f;
+    let t49 = select(0.0f, fetched, t48);
     let t50 = t49 <= 1.0f;
     let t51 = select(1.0f, t49, t50);
     let t52 = t51 * 255.0f;

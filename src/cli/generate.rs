@@ -1,7 +1,7 @@
 //! `generate`: the whole catalogue as `DIR/<lang>/<id>.<lang>`, the lookup tables some
 //! specs read as `DIR/lut/<stem>.png` and `.bin`, plus the manifest that lets a later run
-//! prune only what it wrote (see [`super::manifest`]). Tables are never pruned: they
-//! carry no header that would show they are still ours.
+//! prune only what it wrote (see [`super::manifest`]; a table is known by the hash the
+//! manifest records for it, having no header).
 //!
 //! Nothing the user wrote is ever replaced or removed without `--force`, and `--force`
 //! only lets a catalogue path be replaced; it never makes `generate` remove a file.
@@ -73,10 +73,11 @@ enum State {
     NotAFile,
 }
 
-/// The state of `path`, whose catalogue contents are `text`. A text file is ours when it
-/// has the header (the manifest always is); a table, which has no header, when the
-/// previous manifest lists it (`listed`).
-fn state_of(path: &Path, text: &[u8], is_manifest: bool, listed: bool) -> Result<State> {
+/// The state of `out/rel`, whose catalogue contents are `text`. A text file is ours when
+/// it has the header (the manifest always is); a table, which has no header, when it
+/// still has the hash the previous manifest recorded for it (`recorded`).
+fn state_of(out: &Path, rel: &Path, text: &[u8], recorded: Option<u64>) -> Result<State> {
+    let path = &out.join(rel);
     let cannot = || format!("cannot read {}", path.display());
     match std::fs::metadata(path) {
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(State::Missing),
@@ -86,10 +87,14 @@ fn state_of(path: &Path, text: &[u8], is_manifest: bool, listed: bool) -> Result
         Ok(_) => {}
     }
     let cur = std::fs::read(path).with_context(cannot)?;
-    let table = manifest::is_table_path(path);
+    let ours = if manifest::is_table_path(rel) {
+        recorded.is_some_and(|h| manifest::hash(&cur) == h)
+    } else {
+        rel == Path::new(MANIFEST) || cur.starts_with(HEADER.as_bytes())
+    };
     Ok(if cur == text {
         State::Current
-    } else if is_manifest || (!table && cur.starts_with(HEADER.as_bytes())) || (table && listed) {
+    } else if ours {
         State::Changed
     } else {
         State::Foreign
@@ -108,15 +113,16 @@ struct Plan {
 
 fn plan(out: &Path) -> Result<Plan> {
     let mut files = catalogue_files()?;
-    let listed = manifest::text(files.iter().map(|(p, _)| p.as_path()));
+    let listed = manifest::text(files.iter().map(|(p, b)| (p.as_path(), b.as_slice())));
     files.push((PathBuf::from(MANIFEST), listed.into_bytes()));
     let ours: BTreeSet<PathBuf> = files.iter().map(|(p, _)| p.clone()).collect();
     let old = manifest::read(out)
         .with_context(|| format!("cannot read {}", out.join(MANIFEST).display()))?;
     let mut prune = Vec::new();
     let mut kept = Vec::new();
-    for lang in Lang::ALL {
-        let dir = out.join(lang.name());
+    let folders = Lang::ALL.iter().map(|l| l.name()).chain([manifest::TABLES]);
+    for folder in folders {
+        let dir = out.join(folder);
         let rd = match std::fs::read_dir(&dir) {
             Ok(rd) => rd,
             Err(e) if e.kind() == io::ErrorKind::NotFound => continue,
@@ -129,15 +135,21 @@ fn plan(out: &Path) -> Result<Plan> {
             if name.to_string_lossy().starts_with('.') {
                 continue;
             }
-            let rel = PathBuf::from(lang.name()).join(&name);
+            let rel = PathBuf::from(folder).join(&name);
             if ours.contains(&rel) {
                 continue;
             }
             let path = out.join(&rel);
             let why = if !path.is_file() {
                 "not a file"
-            } else if !old.contains(&rel) {
+            } else if !old.contains_key(&rel) {
                 "not in the manifest: unitpack generate did not write it"
+            } else if manifest::is_table_path(&rel) {
+                if manifest::is_recorded_table(&path, old[&rel]) {
+                    prune.push(rel);
+                    continue;
+                }
+                "listed in the manifest, but no longer the table generate wrote"
             } else {
                 match manifest::has_header(&path) {
                     Ok(true) => {
@@ -156,8 +168,8 @@ fn plan(out: &Path) -> Result<Plan> {
     let files = files
         .into_iter()
         .map(|(rel, text)| {
-            let listed = old.contains(&rel);
-            let state = state_of(&out.join(&rel), &text, rel == Path::new(MANIFEST), listed)?;
+            let recorded = old.get(&rel).copied().flatten();
+            let state = state_of(out, &rel, &text, recorded)?;
             Ok((rel, text, state))
         })
         .collect::<Result<Vec<_>>>()?;
@@ -214,7 +226,7 @@ pub fn generate_with(out: &Path, check: bool, force: bool) -> Result<i32> {
         .collect();
     if !foreign.is_empty() && !force {
         bail!(
-            "nothing written: {} file(s) at paths generate writes lack the \"{HEADER}\" header, so unitpack did not write them: {}; move them away or pass --force",
+            "nothing written: {} file(s) at paths generate writes lack the \"{HEADER}\" header (a table in lut/: the contents hash the manifest recorded), so unitpack did not write them: {}; move them away or pass --force",
             foreign.len(),
             some_paths(out, &foreign)
         );

@@ -149,6 +149,9 @@ pub struct Extra {
     pub of: WordsMap,
 }
 
+/// The same map, not merely the same name: two specs' fetches from different tables
+/// share a name, and each `emitted()` builds its own map, so equal inputs are the same
+/// `Inputs` value.
 impl PartialEq for Extra {
     fn eq(&self, o: &Extra) -> bool {
         Arc::ptr_eq(&self.of, &o.of)
@@ -502,6 +505,14 @@ pub fn through_table(
     keep_input: bool,
 ) -> Function {
     let (iw, mid) = (first.in_words, first.out_words);
+    let kept = if keep_input { iw } else { 0 };
+    assert!(
+        second.in_words > kept,
+        "{name}: {} takes {} words, fewer than the kept input and a lookup",
+        second.name,
+        second.in_words
+    );
+    let want = second.in_words;
     let chain = |a: &Eval, b: &Eval| -> Eval {
         let (a, b, lookup) = (a.clone(), b.clone(), lookup.clone());
         Arc::new(move |i: &[u32], o: &mut [u32]| {
@@ -509,6 +520,7 @@ pub fn through_table(
             a(i, &mut t);
             let mut arg = if keep_input { i.to_vec() } else { Vec::new() };
             arg.extend(lookup(&t));
+            assert_eq!(arg.len(), want, "the lookup's words and the kept input");
             b(&arg, o)
         })
     };
@@ -527,7 +539,9 @@ pub fn through_table(
             let from = if keep_input { iw } else { 0 };
             for k in 0..4 {
                 let item: Vec<u32> = t[g * mid..(g + 1) * mid].iter().map(|w| w[k]).collect();
-                for (j, w) in lanes_lookup(&item).into_iter().enumerate() {
+                let words = lanes_lookup(&item);
+                assert_eq!(from + words.len(), second_in, "the lookup's words");
+                for (j, w) in words.into_iter().enumerate() {
                     at[from + j][k] = w;
                 }
             }

@@ -186,10 +186,17 @@ pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
         }
         Inputs::Codes(q) => codes(q, in_words),
         Inputs::FloatCodes(q) => float_codes(q),
-        Inputs::VectorsWith(extra) => generate(&Inputs::Vectors, 3)
-            .chunks_exact(3)
-            .flat_map(|v| v.iter().copied().chain((extra.of)(v)))
-            .collect(),
+        Inputs::VectorsWith(extra) => {
+            assert_eq!(in_words, 3 + extra.words, "{extra:?} after a vector");
+            generate(&Inputs::Vectors, 3)
+                .chunks_exact(3)
+                .flat_map(|v| {
+                    let words = (extra.of)(v);
+                    assert_eq!(words.len(), extra.words, "{extra:?}");
+                    v.iter().copied().chain(words)
+                })
+                .collect()
+        }
     }
 }
 

@@ -21,7 +21,7 @@
 //! filtering.
 //!
 //! The tables ([`atan_lut`], [`sincos_lut`]) are computed in f64 and rounded to the
-//! nearest byte (ties up); `unitpack generate` writes them to `generated/lut/` as PNG
+//! nearest byte (ties up, a value within `1e-9` of a tie counting as one); `unitpack generate` writes them to `generated/lut/` as PNG
 //! and as raw bytes, row `j` (the texel's y) after row `j - 1`:
 //! - `lut=seed` (the default) is the seed's UnityScript: the atan table at texel corners,
 //!   `A(i, j) = (atan2(j/128 - 1, i/128 - 1) + π)/2π`, and the sin/cos table at
@@ -111,12 +111,12 @@ impl Family for SphericalLutFamily {
                 "Out: the integer texel (x, y) of the 256×256 atan table to read with textureLoad / texelFetch / Load: floor(256·(n.xy·½ + ½)) clamped to 255, the texel nearest sampling at n.xy·½ + ½ selects, decided exactly (the same texel on every implementation). Sample at (t + ½)/256 for the same texel through a nearest sampler.",
             ],
             "encode" => &[
-                "In: any vector, and `atan`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).",
+                "In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).",
                 "Out: the packed code, uint (bits 0–7: x, the fetched byte; bits 8–15: y, z·½ + ½ of the normalized input as unorm8, rounded exactly).",
             ],
             "encode_float" => &[
-                "In: any vector, and `atan` as for encode.",
-                "Out: (atan, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.",
+                "In: any vector, and `fetched` as for encode.",
+                "Out: (fetched, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.",
             ],
             "sincos_texel" => &[
                 "In: a packed code (bits 0–7 x, 8–15 y); other bits are ignored.",
@@ -186,9 +186,11 @@ impl SphericalLut {
     }
 }
 
-/// `x` in `[0, 1]` as the nearest byte, ties up.
+/// `x` in `[0, 1]` as the nearest byte, ties up. A value within `1e-9` of a tie counts
+/// as one: the tables hold exact ties (`sin(-π)·r·½ + ½ = ½`, or `z = -15/17` where
+/// `r = 8/17`) that f64 computes a hair below.
 fn byte(x: f64) -> u8 {
-    (x * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8
+    (x * 255.0 + 0.5 + 1e-9).floor().clamp(0.0, 255.0) as u8
 }
 
 /// The atan table: `(atan2(y, x) + π)/2π` at each texel's sample point.
@@ -240,23 +242,23 @@ fn texel_of<F: Float>(x: F, s: F, root: F) -> F {
     })
 }
 
-/// The packed code of `v` with the fetched atan value `atan`: x = its byte (a fetch's
+/// The packed code of `v` with the atan table's fetched value: x = its byte (a fetch's
 /// `c/255` rounds back to `c` under any rounding of the product), y = the unorm8 code of
 /// the normalized input's `z·½ + ½`, nearest, ties up, decided exactly.
-pub fn encode<F: Float>(v: V3<F>, atan: F) -> F::U {
+pub fn encode<F: Float>(v: V3<F>, fetched: F) -> F::U {
     let (w, _) = canonical_or_z(v);
     let s = length2(w);
     let codes = V2::new(
-        BYTE.quantize(atan),
+        BYTE.quantize(fetched),
         unorm_sqrt_ratio(BYTE, w.z, s, s.sqrt(), 0.5),
     );
     super::codec::pack(&FIELDS, codes)
 }
 
-/// The float form: `(atan, z·½ + ½)` of the normalized input.
-pub fn encode_float<F: Float>(v: V3<F>, atan: F) -> V2<F> {
+/// The float form: `(fetched, z·½ + ½)` of the normalized input.
+pub fn encode_float<F: Float>(v: V3<F>, fetched: F) -> V2<F> {
     let u = super::codec::unit_or_z(v);
-    V2::new(atan, (u.z + F::c(1.0)) * F::c(0.5))
+    V2::new(fetched, (u.z + F::c(1.0)) * F::c(0.5))
 }
 
 /// The sin/cos texel of a code: its two bytes.
@@ -278,10 +280,10 @@ fn emitted(spec_id: &str, lut: SphericalLut) -> Emitted {
             sincos_texel::<Tf>(c)
         });
         define("atan_texel", &["v"], |v: V3<Tf>| atan_texel(v));
-        define("encode_float", &["v", "atan"], |(v, a): (V3<Tf>, Tf)| {
+        define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
             encode_float(v, a)
         });
-        define("encode", &["v", "atan"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
+        define("encode", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
     });
     let texel = function(
         "atan_texel",
@@ -389,7 +391,7 @@ fn sincos_fetch(lut: SphericalLut, t: &[u32]) -> Vec<u32> {
 }
 
 /// The model's own fetch of the atan table for a vector (its words): what the verify
-/// inputs of `encode(v, atan)` pair each vector with.
+/// inputs of `encode(v, fetched)` pair each vector with.
 fn fetch_atan(lut: SphericalLut) -> Extra {
     Extra {
         name: "the atan table's value at atan_texel(v)",

@@ -101,7 +101,7 @@ fn glsl_type(t: Ty) -> String {
 }
 
 /// The compute shader that calls `function` of `spec` once. Several float arguments
-/// (`encode(v, atan)`) arrive as one vector, split by swizzles.
+/// (`encode(v, fetched)`) arrive as one vector, split by swizzles.
 fn shader(spec: &Spec, function: &str) -> Result<String> {
     let e = spec.emitted();
     let f = e
@@ -187,7 +187,7 @@ fn count_main(dis: &str) -> Result<u32> {
 }
 
 /// The ALU count of one function of one spec. A function the shader splits around a
-/// table fetch (`spherical_lut16`'s `encode` = `atan_texel`, fetch, `encode(v, atan)`)
+/// table fetch (`spherical_lut16`'s `encode` = `atan_texel`, fetch, `encode(v, fetched)`)
 /// counts as the sum of its emitted parts.
 pub fn count(spec: &Spec, function: &str) -> Result<u32> {
     let parts = spec

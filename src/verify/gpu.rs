@@ -566,6 +566,9 @@ impl Gpu {
         if width == 0 || !texels.len().is_multiple_of(width as usize) || out_words == 0 {
             bail!("{} texels do not fill rows of {width}", texels.len());
         }
+        if items == 0 {
+            bail!("no invocations to run");
+        }
         self.check_lost()?;
         let height = (texels.len() / width as usize) as u32;
         let scopes = ErrorScopes::push(&self.device);
