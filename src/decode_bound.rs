@@ -13,7 +13,7 @@ use crate::codecs::functions::{Enclose, Function, Role, float_code_range};
 use crate::codecs::quant::Quant;
 use crate::codecs::{Spec, functions::Inputs};
 use crate::model::enclosure::Encl;
-use crate::model::trace::{Func, Module, Op};
+use crate::model::trace::Module;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -212,12 +212,11 @@ fn cache() -> &'static Cache {
 /// What identifies a decoder's bound: its trace and its callees' in `module`, and the
 /// codes it takes.
 fn key(module: &Module, f: &Function) -> String {
-    let traced = traces(module, f.name);
-    assert!(!traced.is_empty(), "{} is not in its module", f.name);
     format!(
-        "{:?} {:?} {traced:?}",
+        "{:?} {:?} {}",
         code_ranges(f),
         f.enclose.as_ref().map(|e| e.whole_field),
+        module.identity(f.name),
     )
 }
 
@@ -252,27 +251,4 @@ pub fn prove_all(specs: &[Spec]) {
     for ((key, _), b) in todo.into_iter().zip(bounds) {
         cache.insert(key, b);
     }
-}
-
-/// The traces of the function `name` and of every function it calls, callees first
-/// (a module lists them in that order).
-fn traces<'m>(module: &'m Module, name: &str) -> Vec<&'m Func> {
-    let mut wanted = std::collections::HashSet::from([name.to_string()]);
-    let mut out: Vec<&Func> = module
-        .funcs
-        .iter()
-        .rev()
-        .filter(|func| {
-            let keep = wanted.contains(&func.name);
-            if keep {
-                wanted.extend(func.nodes.iter().filter_map(|n| match &n.op {
-                    Op::Call(c) => Some(c.clone()),
-                    _ => None,
-                }));
-            }
-            keep
-        })
-        .collect();
-    out.reverse();
-    out
 }

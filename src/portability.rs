@@ -20,11 +20,13 @@
 //! ```
 
 use crate::codecs::Spec;
-use crate::codecs::functions::{Function, Inputs, Role};
+use crate::codecs::functions::{Emitted, Function, Inputs, Role};
 use crate::codecs::inputs::{edge_vectors, generate};
 pub use crate::decode_bound::UNIT;
 pub use crate::model::deviant::{Class, Deviation, Mode};
 use crate::model::deviant::{begin_item, with};
+use crate::model::trace::Module;
+use std::collections::HashMap;
 use std::fmt::Write;
 
 /// What [`run`] evaluates.
@@ -37,8 +39,29 @@ pub struct Options {
     /// Evaluate at most this many items per function, evenly spread over the verify inputs
     /// (encoders: every edge vector plus this many others); `None`: all of them.
     pub sample: Option<usize>,
-    /// Evaluate the packed encoders only (what the guarantee is about).
-    pub encoders_only: bool,
+    /// Which functions to evaluate.
+    pub functions: Functions,
+}
+
+/// The functions [`run`] evaluates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Functions {
+    All,
+    /// Those with integer outputs ([`integer_output`]: the packed encoders and lookup
+    /// texels), which the guarantee says never change.
+    IntegerOutputs,
+    /// The decoders, whose proven bounds the report holds them to.
+    Decoders,
+}
+
+impl Functions {
+    fn take(self, role: Role) -> bool {
+        match self {
+            Functions::All => true,
+            Functions::IntegerOutputs => integer_output(role),
+            Functions::Decoders => matches!(role, Role::Decode | Role::DecodeFloat),
+        }
+    }
 }
 
 impl Default for Options {
@@ -49,7 +72,7 @@ impl Default for Options {
             seeds: vec![1, 2, 3],
             worst_ends: true,
             sample: Some(1 << 14),
-            encoders_only: false,
+            functions: Functions::All,
         }
     }
 }
@@ -188,6 +211,7 @@ fn sample(inputs: &Inputs, items: usize, n: Option<usize>) -> Vec<usize> {
 /// One function over the sampled items under every class and mode.
 fn measure(
     spec: &str,
+    module: &Module,
     f: &Function,
     classes: &[Class],
     modes: &[Mode],
@@ -201,7 +225,7 @@ fn measure(
         (f.eval)(&input[i * iw..][..iw], &mut reference[k * ow..][..ow]);
     }
     let mut out = vec![0u32; ow];
-    let proven = crate::decode_bound::of(f);
+    let proven = crate::decode_bound::cached(module, f);
     let bound = proven.as_ref().map(|b| b.units);
     classes
         .iter()
@@ -265,25 +289,42 @@ fn measure(
 /// Runs every function of every spec under each class in each mode of `opts`.
 pub fn run(specs: &[Spec], classes: &[Class], opts: &Options) -> PortabilityReport {
     let modes = opts.modes();
-    let jobs: Vec<(String, Function)> = specs
-        .iter()
-        .flat_map(|spec| {
-            let id = spec.id();
-            spec.emitted()
-                .functions
-                .into_iter()
-                .filter(|f| !opts.encoders_only || integer_output(f.role))
-                .map(move |f| (id.clone(), f))
-        })
-        .collect();
+    let emitted: Vec<Emitted> = specs.iter().map(Spec::emitted).collect();
+    // A function whose code and inputs an earlier one has (a precise spec's decoders are
+    // its fast spec's) deviates alike item by item: it is measured once and its rows
+    // repeated under its own name.
+    let mut first: HashMap<String, Vec<(Inputs, usize)>> = HashMap::new();
+    let mut jobs: Vec<(String, &Module, &Function)> = Vec::new();
+    let mut order: Vec<(String, &Function, usize)> = Vec::new();
+    for (spec, e) in specs.iter().zip(&emitted) {
+        for f in e.functions.iter().filter(|f| opts.functions.take(f.role)) {
+            let seen = first.entry(e.module.identity(f.name)).or_default();
+            let job = match seen.iter().find(|(inputs, _)| *inputs == f.inputs) {
+                Some(&(_, job)) => job,
+                None => {
+                    seen.push((f.inputs.clone(), jobs.len()));
+                    jobs.push((spec.id(), &e.module, f));
+                    jobs.len() - 1
+                }
+            };
+            order.push((spec.id(), f, job));
+        }
+    }
     // On every core: each item's deviations are seeded by the item alone
     // (`begin_item`), so the rows are the same as one job at a time, in the same order.
-    let rows = crate::par::map(&jobs, |(id, f)| {
-        measure(id, f, classes, &modes, opts.sample)
-    })
-    .into_iter()
-    .flatten()
-    .collect();
+    let measured = crate::par::map(&jobs, |(id, module, f)| {
+        measure(id, module, f, classes, &modes, opts.sample)
+    });
+    let rows = order
+        .into_iter()
+        .flat_map(|(id, f, job)| {
+            measured[job].iter().map(move |r| Row {
+                spec: id.clone(),
+                function: f.name,
+                ..r.clone()
+            })
+        })
+        .collect();
     PortabilityReport {
         classes: classes.to_vec(),
         modes,

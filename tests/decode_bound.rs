@@ -8,7 +8,7 @@ use unitpack::codecs::functions::{Function, Role};
 use unitpack::codecs::inputs::generate;
 use unitpack::decode_bound::{UNIT, of};
 use unitpack::model::deviant::{Class, Deviation, Mode, begin_item, with};
-use unitpack::portability::{Options, run};
+use unitpack::portability::{Functions, Options, run};
 
 const MODES: [Mode; 5] = [
     Mode::Seeded(1),
@@ -65,7 +65,7 @@ fn every_decoder_has_a_finite_bound_the_samples_respect() {
         seeds: vec![1],
         worst_ends: true,
         sample: Some(1 << 11),
-        encoders_only: false,
+        functions: Functions::Decoders,
     };
     let all = Spec::all();
     let report = run(&all, &Class::GUARANTEED, &opts);

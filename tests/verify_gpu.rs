@@ -5,6 +5,7 @@
 //! vectors plus the edge cases, plus the static checks. With no Vulkan adapter this
 //! fails and names the package to install.
 
+use std::collections::HashMap;
 use unitpack::codecs::Spec;
 use unitpack::emit::Lang;
 
@@ -32,4 +33,57 @@ fn every_function_is_bit_exact_on_every_path() {
         report.all_passed(),
         "mismatches or compile errors:\n{table}"
     );
+    shared_rows_repeat_identical_code(&report);
+}
+
+/// A function with the code and inputs of one verified before it (a precise spec's
+/// decoders are its fast spec's) repeats that function's result on the shader paths
+/// only, and only where the two are the same code by the traces.
+fn shared_rows_repeat_identical_code(report: &unitpack::verify::Report) {
+    let mut code = HashMap::new();
+    let mut function = |spec: &str, name: &str| {
+        let key = format!("{spec} {name}");
+        code.entry(key)
+            .or_insert_with(|| {
+                let e = spec.parse::<Spec>().expect("a row names a spec").emitted();
+                let f = e.functions.iter().find(|f| f.name == name);
+                let inputs = f.expect("a row names a function").inputs.clone();
+                (e.module.identity(name), inputs)
+            })
+            .clone()
+    };
+    let shared: Vec<_> = report.rows.iter().filter(|r| r.same_as.is_some()).collect();
+    assert!(
+        shared
+            .iter()
+            .any(|r| r.spec == "oct24p" && r.same_as.as_deref() == Some("oct24 decode")),
+        "oct24p's decoders are oct24's"
+    );
+    let run: HashMap<(String, &str), &unitpack::verify::Row> = report
+        .rows
+        .iter()
+        .filter(|o| o.same_as.is_none())
+        .map(|o| ((format!("{} {}", o.spec, o.function), o.path.as_str()), o))
+        .collect();
+    for r in shared {
+        let owner = r.same_as.as_deref().unwrap();
+        assert!(
+            !r.path.starts_with("c/") && r.path != "cpu/4 lanes",
+            "{} {} shares {owner} on {}",
+            r.spec,
+            r.function,
+            r.path
+        );
+        let o = run
+            .get(&(owner.to_string(), r.path.as_str()))
+            .unwrap_or_else(|| panic!("{owner} on {} was run", r.path));
+        assert_eq!((r.tested, r.mismatches), (o.tested, o.mismatches));
+        let (spec, name) = owner.split_once(' ').unwrap();
+        assert!(
+            function(&r.spec, &r.function) == function(spec, name),
+            "{} {} is not the same code as {owner}",
+            r.spec,
+            r.function
+        );
+    }
 }

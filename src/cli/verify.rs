@@ -9,6 +9,7 @@ struct ReportJson<'a> {
     driver: &'a str,
     passed: bool,
     checks: usize,
+    /// Items run: rows that repeat an identical function's result add none.
     items: usize,
     failed: usize,
     rows: Vec<RowJson<'a>>,
@@ -26,6 +27,9 @@ struct RowJson<'a> {
     error: Option<&'a str>,
     /// The first mismatches, as raw 32-bit words.
     first_mismatches: Vec<MismatchJson<'a>>,
+    /// The function (`spec function`) whose identical code and inputs were run on this
+    /// path instead; this row repeats its result.
+    same_code_as: Option<&'a str>,
 }
 
 #[derive(Serialize)]
@@ -48,6 +52,7 @@ fn row(r: &Row) -> RowJson<'_> {
         passed: r.passed(),
         error: r.error.as_deref(),
         first_mismatches: r.first.iter().map(mismatch).collect(),
+        same_code_as: r.same_as.as_deref(),
     }
 }
 
@@ -68,7 +73,7 @@ pub fn report_json(r: &Report) -> String {
         driver: &r.driver,
         passed: r.all_passed(),
         checks: r.rows.len(),
-        items: r.rows.iter().map(|r| r.tested).sum(),
+        items: r.items_run(),
         failed: r.rows.iter().filter(|r| !r.passed()).count(),
         rows: r.rows.iter().map(row).collect(),
     };

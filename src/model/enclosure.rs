@@ -151,6 +151,12 @@ fn add(a: f64, b: f64) -> Iv {
 
 fn mul(a: f64, b: f64) -> Iv {
     let p = a * b;
+    // Two f32 values (24-bit significands, exponents far inside f64's range) multiply
+    // exactly in f64: most products here are of f32 bounds, and this skips the fused
+    // multiply-add, a library call on CPUs the build does not assume FMA for.
+    if f32_of(a) == a && f32_of(b) == b {
+        return (p, p);
+    }
     outward(p, a.mul_add(b, -p))
 }
 

@@ -134,6 +134,39 @@ impl Module {
     pub fn func(&self, name: &str) -> Option<&Func> {
         self.funcs.iter().find(|f| f.name == name)
     }
+
+    /// The traces of the function `name` and of every function it calls, callees first
+    /// (a module lists them in that order): everything its emitted code is made from,
+    /// apart from the names' prefix.
+    pub fn with_callees(&self, name: &str) -> Vec<&Func> {
+        let mut wanted = std::collections::HashSet::from([name.to_string()]);
+        let mut out: Vec<&Func> = self
+            .funcs
+            .iter()
+            .rev()
+            .filter(|func| {
+                let keep = wanted.contains(&func.name);
+                if keep {
+                    wanted.extend(func.nodes.iter().filter_map(|n| match &n.op {
+                        Op::Call(c) => Some(c.clone()),
+                        _ => None,
+                    }));
+                }
+                keep
+            })
+            .collect();
+        out.reverse();
+        out
+    }
+
+    /// A text that two functions share exactly when their traces, and their callees',
+    /// are the same: the same emitted code in every language (a precise spec's decoders
+    /// are its fast spec's), so whatever runs one runs the other alike.
+    pub fn identity(&self, name: &str) -> String {
+        let traced = self.with_callees(name);
+        assert!(!traced.is_empty(), "{name} is not in its module");
+        format!("{traced:?}")
+    }
 }
 
 #[derive(Default)]

@@ -14,12 +14,14 @@ pub mod tools;
 use crate::codecs::Spec;
 use crate::codecs::functions::Emitted;
 use crate::codecs::functions::Function;
+use crate::codecs::functions::Inputs;
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use crate::model::trace::{Func, Ty};
 use anyhow::Result;
 use gpu::{Gpu, Shader};
+use std::collections::HashMap;
 use std::fmt;
 use tools::{GlslangInput, HlslOpt};
 
@@ -104,6 +106,9 @@ pub struct Row {
     pub first: Vec<Mismatch>,
     /// Compilation or validation failure, if any.
     pub error: Option<String>,
+    /// On a shader path: the function (`spec function`) whose code and inputs this one
+    /// shares exactly, verified once on the path; this row repeats that row's result.
+    pub same_as: Option<String>,
 }
 
 impl Row {
@@ -148,8 +153,12 @@ impl Report {
             } else {
                 r.mismatches.to_string()
             };
+            let shared = r
+                .same_as
+                .as_ref()
+                .map_or(String::new(), |o| format!("  (same code as {o})"));
             s.push_str(&format!(
-                "{:<22} {:<28} {:<18} {:>10} {:>10}\n",
+                "{:<22} {:<28} {:<18} {:>10} {:>10}{shared}\n",
                 r.spec, r.function, r.path, r.tested, mm
             ));
         }
@@ -171,14 +180,23 @@ impl Report {
                 ));
             }
         }
-        let total: usize = self.rows.iter().map(|r| r.tested).sum();
+        let shared = self.rows.iter().filter(|r| r.same_as.is_some()).count();
         s.push_str(&format!(
-            "\n{} checks, {} items, {} failed\n",
+            "\n{} checks ({shared} shared with identical code), {} items run, {} failed\n",
             self.rows.len(),
-            total,
+            self.items_run(),
             failed.len()
         ));
         s
+    }
+
+    /// The items actually run: rows that share another's result add none.
+    pub fn items_run(&self) -> usize {
+        self.rows
+            .iter()
+            .filter(|r| r.same_as.is_none())
+            .map(|r| r.tested)
+            .sum()
     }
 }
 
@@ -217,6 +235,10 @@ fn compare(
     want: &[u32],
     got: &[u32],
 ) -> (usize, Vec<Mismatch>) {
+    // Nearly every row matches: one comparison of the whole buffers settles it.
+    if want == got {
+        return (0, Vec::new());
+    }
     let mut count = 0;
     let mut first = Vec::new();
     for (k, (w, g)) in want
@@ -323,6 +345,7 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
         None
     };
     let emitted: Vec<_> = specs.iter().map(|s| s.emitted()).collect();
+    let owners = owners(specs, &emitted);
     let total: usize = emitted
         .iter()
         .map(|e| e.functions.len() * paths.len())
@@ -349,7 +372,11 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
                     loop {
                         let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                         let Some(spec) = specs.get(i) else { break };
-                        done.push((i, verify_spec(spec, &emitted[i], langs, &paths, gpu, &bar)));
+                        let shared = &owners[i];
+                        done.push((
+                            i,
+                            verify_spec(spec, &emitted[i], shared, langs, &paths, gpu, &bar),
+                        ));
                     }
                     done
                 })
@@ -361,7 +388,8 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
             .collect()
     });
     per_spec.sort_by_key(|(i, _)| *i);
-    let rows = per_spec.into_iter().flat_map(|(_, rows)| rows).collect();
+    let mut rows: Vec<Row> = per_spec.into_iter().flat_map(|(_, rows)| rows).collect();
+    copy_shared_results(&mut rows);
     bar.finish_and_clear();
     Ok(Report {
         adapter: gpu.map_or("none (C paths only)".into(), |g| {
@@ -372,10 +400,59 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
     })
 }
 
+/// For each function of each spec, the earlier function (`spec function`) with the same
+/// code ([`crate::model::trace::Module::identity`]) and the same inputs, if there is one: the shader paths
+/// compile and run that one only. The emitted text then differs in the names' prefix
+/// alone, which no driver computes with. The C and CPU paths, cheap beside lavapipe, run
+/// every function.
+fn owners(specs: &[Spec], emitted: &[Emitted]) -> Vec<Vec<Option<String>>> {
+    let mut first: HashMap<String, Vec<(Inputs, String)>> = HashMap::new();
+    specs
+        .iter()
+        .zip(emitted)
+        .map(|(spec, e)| {
+            e.functions
+                .iter()
+                .map(|f| {
+                    let seen = first.entry(e.module.identity(f.name)).or_default();
+                    match seen.iter().find(|(inputs, _)| *inputs == f.inputs) {
+                        Some((_, owner)) => Some(owner.clone()),
+                        None => {
+                            seen.push((f.inputs.clone(), format!("{spec} {}", f.name)));
+                            None
+                        }
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Fills each shared row with the result of the row it names on the same path.
+fn copy_shared_results(rows: &mut [Row]) {
+    let index: HashMap<(String, String), usize> = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.same_as.is_none())
+        .map(|(k, r)| ((format!("{} {}", r.spec, r.function), r.path.clone()), k))
+        .collect();
+    for k in 0..rows.len() {
+        let Some(owner) = rows[k].same_as.clone() else {
+            continue;
+        };
+        let o = index[&(owner, rows[k].path.clone())];
+        let (tested, mismatches) = (rows[o].tested, rows[o].mismatches);
+        let (first, error) = (rows[o].first.clone(), rows[o].error.clone());
+        let r = &mut rows[k];
+        (r.tested, r.mismatches, r.first, r.error) = (tested, mismatches, first, error);
+    }
+}
+
 /// Every row of one spec: its whole includes, then each function on each path.
 fn verify_spec(
     spec: &Spec,
     e: &Emitted,
+    shared: &[Option<String>],
     langs: &[Lang],
     paths: &[Path],
     gpu: Option<&Gpu>,
@@ -407,6 +484,7 @@ fn verify_spec(
                 mismatches: 0,
                 first: vec![],
                 error: r.err().map(|e| format!("{e:#}")),
+                same_as: None,
             });
         }
     }
@@ -452,6 +530,20 @@ fn verify_spec(
         let input = inputs::generate(&f.inputs, f.in_words);
         let want = expected(f, &input);
         for &path in paths {
+            if let (Some(owner), true) = (&shared[index], path.on_gpu()) {
+                rows.push(Row {
+                    spec: spec.to_string(),
+                    function: f.name.to_string(),
+                    path: path.to_string(),
+                    tested: 0,
+                    mismatches: 0,
+                    first: vec![],
+                    error: None,
+                    same_as: Some(owner.clone()),
+                });
+                bar.inc(1);
+                continue;
+            }
             let result = if path == Path::Lanes {
                 Ok(lanes(f, &input))
             } else if path.lang() == Some(Lang::C) {
@@ -486,8 +578,16 @@ fn verify_spec(
                 mismatches: 0,
                 first: vec![],
                 error: None,
+                same_as: None,
             };
             match result {
+                Ok(got) if got.len() != want.len() => {
+                    row.error = Some(format!(
+                        "returned {} words for {} expected",
+                        got.len(),
+                        want.len()
+                    ))
+                }
                 Ok(got) => {
                     (row.mismatches, row.first) = compare(f, (&params, ret), &input, &want, &got)
                 }

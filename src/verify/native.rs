@@ -79,7 +79,8 @@ impl Program {
             .spawn()
             .context("running the C driver")?;
         let mut stdin = child.stdin.take().expect("piped stdin");
-        let bytes: Vec<u8> = input.iter().flat_map(|w| w.to_le_bytes()).collect();
+        // The driver reads and writes native-endian words, as this process holds them.
+        let bytes: Vec<u8> = bytemuck::cast_slice(input).to_vec();
         // Feed the input while the output is read, so neither pipe fills up and blocks.
         let writer = std::thread::spawn(move || stdin.write_all(&bytes));
         let out = child
@@ -95,7 +96,7 @@ impl Program {
         Ok(out
             .stdout
             .chunks_exact(4)
-            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .map(|c| u32::from_ne_bytes([c[0], c[1], c[2], c[3]]))
             .collect())
     }
 }
