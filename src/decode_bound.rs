@@ -224,6 +224,7 @@ fn key(module: &Module, f: &Function) -> String {
 /// every include state it). A precise spec's decoders are its fast spec's, so each is
 /// proven once.
 pub fn cached(module: &Module, f: &Function) -> Option<Bound> {
+    code_ranges(f)?;
     let key = key(module, f);
     if let Some(b) = cache().lock().expect("bound cache").get(&key) {
         return b.clone();

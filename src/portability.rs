@@ -321,6 +321,7 @@ pub fn run(specs: &[Spec], classes: &[Class], opts: &Options) -> PortabilityRepo
             measured[job].iter().map(move |r| Row {
                 spec: id.clone(),
                 function: f.name,
+                role: f.role,
                 ..r.clone()
             })
         })

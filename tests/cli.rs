@@ -1499,9 +1499,9 @@ fn verify_rejects_bad_specs() {
     assert!(err.contains("unknown codec 'octt16'"), "{err}");
 }
 
-/// Every committed include names the command that writes it, `unitpack gen <id> --lang
+/// Every committed include names the command that writes it, `unitpack gen <spec> --lang
 /// <lang>`, and that command reproduces the file byte for byte (run for each spec in one
-/// language, the languages in turn).
+/// language, the languages in turn; `generate --check` compares every file).
 #[test]
 fn every_generated_file_regenerates_from_its_header() {
     let root = manifest_dir().join("generated");
@@ -1518,15 +1518,15 @@ fn every_generated_file_regenerates_from_its_header() {
                 .unwrap_or_else(|| panic!("{} has no Regenerate line", path.display()));
             let args: Vec<&str> = cmd.split_whitespace().collect();
             let stem = path.file_stem().unwrap().to_str().unwrap();
-            // The file name (the id) is a spec, and the header regenerates that spec in
-            // the folder's language.
-            assert_eq!(
-                args,
-                ["unitpack", "gen", stem, "--lang", lang.name()],
-                "{}",
-                path.display()
-            );
-            assert_eq!(stem.parse::<Spec>().unwrap().id(), stem);
+            // The header regenerates the file's spec (named as the catalogue writes it,
+            // `oct24:layout=rgb8` for `oct24_rgb8`) in the folder's language.
+            assert_eq!(args.len(), 5, "{cmd}");
+            assert_eq!(args[..2], ["unitpack", "gen"], "{cmd}");
+            assert_eq!(args[3..], ["--lang", lang.name()], "{cmd}");
+            let spec: Spec = args[2].parse().unwrap();
+            assert_eq!(spec.id(), stem, "{}: the header's spec", path.display());
+            // The file name (the id) is a spec too.
+            assert_eq!(stem.parse::<Spec>().unwrap(), spec);
             // Each spec's command runs in one language, the languages taking turns: the
             // four differ only in `--lang`, and running all would prove every decoder
             // bound four times over.
