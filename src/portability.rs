@@ -20,7 +20,7 @@
 //! ```
 
 use crate::codecs::Spec;
-use crate::codecs::functions::{Emitted, Function, Inputs, Role};
+use crate::codecs::functions::{Emitted, Function, Inputs, Role, first_with_same_code};
 use crate::codecs::inputs::{edge_vectors, generate};
 pub use crate::decode_bound::UNIT;
 pub use crate::model::deviant::{Class, Deviation, Mode};
@@ -290,20 +290,23 @@ fn measure(
 pub fn run(specs: &[Spec], classes: &[Class], opts: &Options) -> PortabilityReport {
     let modes = opts.modes();
     let emitted: Vec<Emitted> = specs.iter().map(Spec::emitted).collect();
-    // A function whose code and inputs an earlier one has (a precise spec's decoders are
-    // its fast spec's) deviates alike item by item: it is measured once and its rows
-    // repeated under its own name.
-    let mut first: HashMap<String, Vec<(Inputs, usize)>> = HashMap::new();
+    // A function with the code and inputs of an earlier one ([`first_with_same_code`]: a
+    // precise spec's decoders are its fast spec's) deviates alike item by item: it is
+    // measured once and its rows repeated under its own name.
+    let same = first_with_same_code(&emitted);
     let mut jobs: Vec<(String, &Module, &Function)> = Vec::new();
+    let mut job_of: HashMap<(usize, usize), usize> = HashMap::new();
     let mut order: Vec<(String, &Function, usize)> = Vec::new();
-    for (spec, e) in specs.iter().zip(&emitted) {
-        for f in e.functions.iter().filter(|f| opts.functions.take(f.role)) {
-            let seen = first.entry(e.module.identity(f.name)).or_default();
-            let job = match seen.iter().find(|(inputs, _)| *inputs == f.inputs) {
-                Some(&(_, job)) => job,
+    for (i, (spec, e)) in specs.iter().zip(&emitted).enumerate() {
+        for (j, f) in e.functions.iter().enumerate() {
+            if !opts.functions.take(f.role) {
+                continue;
+            }
+            let job = match same[i][j] {
+                Some(first) => job_of[&first],
                 None => {
-                    seen.push((f.inputs.clone(), jobs.len()));
                     jobs.push((spec.id(), &e.module, f));
+                    job_of.insert((i, j), jobs.len() - 1);
                     jobs.len() - 1
                 }
             };

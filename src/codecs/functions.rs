@@ -393,6 +393,37 @@ pub struct Emitted {
     pub cpu: Vec<Function>,
 }
 
+/// For each function of each of `emitted` (spec by spec, in order), the first function
+/// before it (its spec's index, its index there) with the same code
+/// ([`Module::identity`]) and equal inputs, if there is one. Such a function computes
+/// exactly what the first one does, item by item and under any deviation: its emitted
+/// text differs in the names' prefix alone, and its model is the same traced computation.
+pub fn first_with_same_code(emitted: &[Emitted]) -> Vec<Vec<Option<(usize, usize)>>> {
+    // Identity → the inputs met with it and where first.
+    type Seen<'a> = Vec<(&'a Inputs, (usize, usize))>;
+    let mut first: std::collections::HashMap<String, Seen> = Default::default();
+    emitted
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            e.functions
+                .iter()
+                .enumerate()
+                .map(|(j, f)| {
+                    let seen = first.entry(e.module.identity(f.name)).or_default();
+                    match seen.iter().find(|(inputs, _)| **inputs == f.inputs) {
+                        Some(&(_, at)) => Some(at),
+                        None => {
+                            seen.push((&f.inputs, (i, j)));
+                            None
+                        }
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
 impl Emitted {
     /// The CPU function of `role`: a [`Emitted::cpu`] stand-in, else the emitted one.
     pub fn cpu_function(&self, role: Role) -> Option<&Function> {

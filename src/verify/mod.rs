@@ -14,7 +14,7 @@ pub mod tools;
 use crate::codecs::Spec;
 use crate::codecs::functions::Emitted;
 use crate::codecs::functions::Function;
-use crate::codecs::functions::Inputs;
+use crate::codecs::functions::first_with_same_code;
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
@@ -401,28 +401,16 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
 }
 
 /// For each function of each spec, the earlier function (`spec function`) with the same
-/// code ([`crate::model::trace::Module::identity`]) and the same inputs, if there is one: the shader paths
-/// compile and run that one only. The emitted text then differs in the names' prefix
-/// alone, which no driver computes with. The C and CPU paths, cheap beside lavapipe, run
-/// every function.
+/// code and inputs ([`first_with_same_code`]), if there is one: the shader paths compile
+/// and run that one only, no driver computing with names. The C and CPU paths, cheap
+/// beside lavapipe, run every function.
 fn owners(specs: &[Spec], emitted: &[Emitted]) -> Vec<Vec<Option<String>>> {
-    let mut first: HashMap<String, Vec<(Inputs, String)>> = HashMap::new();
-    specs
-        .iter()
-        .zip(emitted)
-        .map(|(spec, e)| {
-            e.functions
-                .iter()
-                .map(|f| {
-                    let seen = first.entry(e.module.identity(f.name)).or_default();
-                    match seen.iter().find(|(inputs, _)| *inputs == f.inputs) {
-                        Some((_, owner)) => Some(owner.clone()),
-                        None => {
-                            seen.push((f.inputs.clone(), format!("{spec} {}", f.name)));
-                            None
-                        }
-                    }
-                })
+    first_with_same_code(emitted)
+        .into_iter()
+        .map(|of_spec| {
+            of_spec
+                .into_iter()
+                .map(|at| at.map(|(i, j)| format!("{} {}", specs[i], emitted[i].functions[j].name)))
                 .collect()
         })
         .collect()
