@@ -202,7 +202,7 @@ pub fn of(f: &Function) -> Option<Bound> {
     Some(prove(&code_ranges(f)?, f.enclose.as_ref()?))
 }
 
-type Cache = std::sync::Mutex<std::collections::HashMap<String, Option<Bound>>>;
+type Cache = std::sync::Mutex<std::collections::HashMap<u64, Option<Bound>>>;
 
 fn cache() -> &'static Cache {
     static CACHE: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
@@ -210,14 +210,20 @@ fn cache() -> &'static Cache {
 }
 
 /// What identifies a decoder's bound: its trace and its callees' in `module`, and the
-/// codes it takes.
-fn key(module: &Module, f: &Function) -> String {
-    format!(
+/// codes it takes, hashed. The hash is std's (SipHash with fixed keys), the same in
+/// every run of one build; a store that outlives the process ([`export`]) must be tied to
+/// the build.
+fn key(module: &Module, f: &Function) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let text = format!(
         "{:?} {:?} {}",
         code_ranges(f),
         f.enclose.as_ref().map(|e| e.whole_field),
         module.identity(f.name),
-    )
+    );
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut h);
+    h.finish()
 }
 
 /// [`of`], computed once per process for each distinct decoder (the doc comments of
@@ -232,6 +238,20 @@ pub fn cached(module: &Module, f: &Function) -> Option<Bound> {
     let b = of(f);
     cache().lock().expect("bound cache").insert(key, b.clone());
     b
+}
+
+/// Every bound this process knows, by its key: what a store that outlives the process
+/// saves. Keys are only meaningful to the same build (see [`key`]).
+pub fn export() -> Vec<(u64, Option<Bound>)> {
+    let cache = cache().lock().expect("bound cache");
+    let mut all: Vec<_> = cache.iter().map(|(k, b)| (*k, b.clone())).collect();
+    all.sort_by_key(|(k, _)| *k);
+    all
+}
+
+/// Takes bounds an earlier run of the same build proved ([`export`]) as proven.
+pub fn import(bounds: impl IntoIterator<Item = (u64, Option<Bound>)>) {
+    cache().lock().expect("bound cache").extend(bounds);
 }
 
 /// Proves the bound of every decoder of `specs` not yet [`cached`], on every core.

@@ -249,7 +249,7 @@ impl Generator {
 
 /// Error statistics of every spec for the doc comments (deterministic: fixed seed).
 pub fn stats_for(specs: &[Spec]) -> Vec<Option<ErrorStats>> {
-    quality::measure_all(specs, DOC_SAMPLES)
+    quality::measure_all_once(specs, DOC_SAMPLES)
 }
 
 /// Writes atomically with the CLI's policy ([`crate::atomic`]): a symlink's target is

@@ -118,3 +118,46 @@ pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStat
 pub fn measure_all(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
     crate::par::map(specs, |spec| measure(spec, samples))
 }
+
+/// What a spec's figures are known by: its name and the sample size.
+pub type StatsKey = (String, usize);
+
+type Memo = std::sync::Mutex<std::collections::HashMap<StatsKey, Option<ErrorStats>>>;
+
+fn memo() -> &'static Memo {
+    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
+    MEMO.get_or_init(Default::default)
+}
+
+/// [`measure_all`], each spec measured once per process (the doc comments of every
+/// include state its figures, and a search encoder's take a noticeable fraction of a
+/// second).
+pub fn measure_all_once(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
+    let key = |s: &Spec| (s.to_string(), samples);
+    let todo: Vec<Spec> = {
+        let memo = memo().lock().expect("stats memo");
+        specs
+            .iter()
+            .filter(|s| !memo.contains_key(&key(s)))
+            .cloned()
+            .collect()
+    };
+    let measured = measure_all(&todo, samples);
+    let mut memo = memo().lock().expect("stats memo");
+    memo.extend(todo.iter().map(key).zip(measured));
+    specs.iter().map(|s| memo[&key(s)]).collect()
+}
+
+/// Every spec's figures this process knows: what a store that outlives the process saves.
+/// They are the model's, so only meaningful to the same build.
+pub fn export() -> Vec<(StatsKey, Option<ErrorStats>)> {
+    let memo = memo().lock().expect("stats memo");
+    let mut all: Vec<_> = memo.iter().map(|(k, s)| (k.clone(), *s)).collect();
+    all.sort_by(|a, b| a.0.cmp(&b.0));
+    all
+}
+
+/// Takes figures an earlier run of the same build measured ([`export`]) as measured.
+pub fn import(stats: impl IntoIterator<Item = (StatsKey, Option<ErrorStats>)>) {
+    memo().lock().expect("stats memo").extend(stats);
+}

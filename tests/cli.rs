@@ -28,8 +28,26 @@ impl std::fmt::Debug for Run {
     }
 }
 
+/// Every run shares one figure cache in the build's temporary folder (never the user's):
+/// the whole catalogue is proven once per build, not once per `generate`. The runs whose
+/// point is the proving itself switch it off ([`uncached`]).
 fn unitpack() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_unitpack"))
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_unitpack"));
+    cmd.env(
+        "UNITPACK_CACHE_DIR",
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-figure-cache"),
+    );
+    cmd
+}
+
+/// `args` run with the figure cache off: every bound proven, every figure measured here.
+fn uncached(dir: Option<&Path>, args: &[&str]) -> Run {
+    let mut cmd = unitpack();
+    cmd.env("UNITPACK_CACHE_DIR", "").args(args);
+    if let Some(d) = dir {
+        cmd.current_dir(d);
+    }
+    run_cmd(cmd, b"")
 }
 
 /// Runs `cmd` with `stdin` written from another thread (so that large inputs and outputs
@@ -169,7 +187,15 @@ fn expected_files() -> BTreeSet<PathBuf> {
 }
 
 fn generate_into(dir: &Path) -> Run {
-    let r = ok(&["generate", "--out", dir.to_str().expect("UTF-8 path")]);
+    generated_into(
+        dir,
+        ok(&["generate", "--out", dir.to_str().expect("UTF-8 path")]),
+    )
+}
+
+/// What `generate` into `dir` reported, checked.
+fn generated_into(dir: &Path, r: Run) -> Run {
+    assert_eq!(r.code, 0, "{r:?}");
     assert!(
         r.stdout.contains(&format!(
             "{} files in {}: ",
@@ -1423,8 +1449,10 @@ fn generate_check_of_an_empty_directory_names_every_file_missing() {
 #[test]
 fn generate_is_deterministic() {
     let (a, b) = (tempdir(), tempdir());
-    generate_into(a.path());
-    generate_into(b.path());
+    for d in [&a, &b] {
+        let r = uncached(None, &["generate", "--out", d.path().to_str().unwrap()]);
+        generated_into(d.path(), r);
+    }
     let files = tree(a.path());
     assert_eq!(files, tree(b.path()));
     for rel in &files {
@@ -1447,7 +1475,7 @@ fn generate_is_deterministic() {
 
 #[test]
 fn committed_generated_directory_is_up_to_date() {
-    let r = run_in(Some(&manifest_dir()), &["generate", "--check"], "");
+    let r = uncached(Some(&manifest_dir()), &["generate", "--check"]);
     assert_eq!(
         r.code, 0,
         "generated/ is stale; run `cargo run --release -- generate`: {r:?}"
@@ -1456,6 +1484,73 @@ fn committed_generated_directory_is_up_to_date() {
         r.stdout.contains("files in generated are up to date"),
         "{r:?}"
     );
+}
+
+/// `gen` and `generate` keep the figures they state (proven bounds, error statistics) in
+/// `$UNITPACK_CACHE_DIR/figures.txt` for the next run of the same executable: a run reads
+/// them from there, a file of another build is replaced, a damaged one is ignored, a
+/// file that is not the cache is never touched, and set empty the variable writes nothing.
+#[test]
+fn gen_keeps_its_figures_for_the_next_run() {
+    let home = tempdir();
+    let dir = home.path().join("cache");
+    let file = dir.join("figures.txt");
+    let gen_with = |cache: &Path| {
+        let mut cmd = unitpack();
+        cmd.env("UNITPACK_CACHE_DIR", cache)
+            .args(["gen", "oct16", "--lang", "wgsl"]);
+        let r = run_cmd(cmd, b"");
+        assert_eq!(r.code, 0, "{r:?}");
+        r.stdout
+    };
+    let plain = uncached(None, &["gen", "oct16", "--lang", "wgsl"]).stdout;
+    assert!(plain.contains("mean 0.33696°"), "{plain}");
+    assert_eq!(gen_with(&dir), plain, "a first run states what it proves");
+    let text = std::fs::read_to_string(&file).expect("the first run writes the cache");
+    let header = text.lines().next().unwrap().to_string();
+    assert!(
+        header.starts_with("unitpack figure cache v1 exe="),
+        "{header}"
+    );
+    assert!(text.lines().any(|l| l.starts_with("bound ")), "{text}");
+
+    // The next run takes the figures from the file: one edited there shows in the include.
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("stats ") && l.split(' ').nth(2) == Some("oct16"))
+        .expect("oct16's statistics");
+    let mut words: Vec<&str> = line.split(' ').collect();
+    words[3] = "4029000000000000"; // a mean of 12.5°
+    std::fs::write(&file, text.replace(line, &words.join(" "))).unwrap();
+    let edited = gen_with(&dir);
+    assert!(edited.contains("mean 12.50000°"), "{edited}");
+    assert_eq!(edited.replace("mean 12.50000°", "mean 0.33696°"), plain);
+
+    // Another build's file, or a damaged one, is not read, and is replaced by this one's.
+    for foreign in [
+        text.replacen(&header, "unitpack figure cache v1 exe=0123456789abcdef", 1),
+        format!("{text}bound zz\n"),
+    ] {
+        std::fs::write(&file, &foreign).unwrap();
+        assert_eq!(gen_with(&dir), plain);
+        let now = std::fs::read_to_string(&file).unwrap();
+        assert!(now.starts_with(&format!("{header}\n")), "{now}");
+    }
+
+    // A file of the user's at that path stays as it was.
+    std::fs::write(&file, "my notes\n").unwrap();
+    assert_eq!(gen_with(&dir), plain);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "my notes\n");
+
+    // Set empty, the variable turns the cache off.
+    let off = home.path().join("off");
+    let mut cmd = unitpack();
+    cmd.env("UNITPACK_CACHE_DIR", "")
+        .env("HOME", &off)
+        .env("XDG_CACHE_HOME", &off);
+    cmd.args(["gen", "oct16", "--lang", "wgsl"]);
+    assert_eq!(run_cmd(cmd, b"").stdout, plain);
+    assert!(!off.exists(), "nothing written with the cache off");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -1,0 +1,227 @@
+//! The figures every include states, kept on disk between runs of `gen` and `generate`:
+//! each decoder's proven bound ([`crate::decode_bound`]) and each spec's error statistics
+//! ([`crate::quality`]). Proving and measuring the whole catalogue is two thirds of a
+//! `generate`; the figures are a function of the program alone, so a later run of the
+//! same executable can take them as they were.
+//!
+//! The file is tied to the executable by a hash of its contents: a rebuilt or upgraded
+//! unitpack ignores the file and writes its own. It lives at
+//! `$UNITPACK_CACHE_DIR/figures.txt` when that variable is set (set and empty: no cache),
+//! else in the platform's cache folder (`~/.cache/unitpack/` on Linux). Deleting it is
+//! always safe. An unreadable or malformed file is ignored, a file there that does not
+//! start with this module's header is never replaced, and failing to write costs only the
+//! next run's time: the cache never changes what a run prints or writes.
+
+use crate::decode_bound::{self, Bound};
+use crate::quality::{self, ErrorStats, StatsKey};
+use std::fmt::Write as _;
+use std::hash::Hasher;
+use std::path::PathBuf;
+
+/// The variable that moves the cache folder (or, set empty, turns the cache off).
+pub const ENV: &str = "UNITPACK_CACHE_DIR";
+/// The cache file's name in its folder.
+pub const FILE: &str = "figures.txt";
+/// The first line's start: a file without it is not ours.
+const MAGIC: &str = "unitpack figure cache v1";
+
+/// The cache file, if there is a place for one.
+pub fn path() -> Option<PathBuf> {
+    let dir = match std::env::var_os(ENV) {
+        Some(d) if d.is_empty() => return None,
+        Some(d) => PathBuf::from(d),
+        None => dirs::cache_dir()?.join("unitpack"),
+    };
+    Some(dir.join(FILE))
+}
+
+/// The executable's fingerprint: a hash of its bytes (std's SipHash, fixed keys).
+fn fingerprint() -> Option<u64> {
+    let bytes = std::fs::read(std::env::current_exe().ok()?).ok()?;
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    h.write(&bytes);
+    Some(h.finish())
+}
+
+/// A run's use of the cache: what it loaded, so that it writes only when it learned more.
+pub struct Session {
+    path: PathBuf,
+    header: String,
+    loaded: (usize, usize),
+}
+
+/// Loads the figures an earlier run of this executable saved into this process, and
+/// returns the session that [`Session::save`]s what this run adds. `None` when there is
+/// no cache: no folder, no fingerprint, or a file at the path that is not ours.
+pub fn open() -> Option<Session> {
+    let path = path()?;
+    let header = format!("{MAGIC} exe={:016x}", fingerprint()?);
+    let mut loaded = (0, 0);
+    match std::fs::read_to_string(&path) {
+        Ok(text) if !text.starts_with(MAGIC) => return None,
+        Ok(text) => {
+            if let Some((bounds, stats)) = parse(&text, &header) {
+                loaded = (bounds.len(), stats.len());
+                decode_bound::import(bounds);
+                quality::import(stats);
+            }
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        // Unreadable (not UTF-8, no permission): not known to be ours, so left alone.
+        Err(_) => return None,
+    }
+    Some(Session {
+        path,
+        header,
+        loaded,
+    })
+}
+
+impl Session {
+    /// Writes every figure this process knows, atomically, when it knows more than it
+    /// loaded. A failure is silent: the cache is only ever a saving of time.
+    pub fn save(self) {
+        let (bounds, stats) = (decode_bound::export(), quality::export());
+        if (bounds.len(), stats.len()) == self.loaded {
+            return;
+        }
+        let text = format(&self.header, &bounds, &stats);
+        let _ = crate::atomic::write_atomic(&self.path, text.as_bytes());
+    }
+}
+
+fn format(
+    header: &str,
+    bounds: &[(u64, Option<Bound>)],
+    stats: &[(StatsKey, Option<ErrorStats>)],
+) -> String {
+    let mut t = format!("{header}\n");
+    for (key, b) in bounds {
+        let _ = match b {
+            None => writeln!(t, "bound {key:016x} none"),
+            Some(b) => {
+                let at: Vec<String> = b.at.iter().map(|(lo, hi)| format!("{lo}:{hi}")).collect();
+                writeln!(
+                    t,
+                    "bound {key:016x} {:016x} {}",
+                    b.units.to_bits(),
+                    at.join(",")
+                )
+            }
+        };
+    }
+    for ((spec, samples), s) in stats {
+        let _ = match s {
+            None => writeln!(t, "stats {samples} {spec} none"),
+            Some(s) => writeln!(
+                t,
+                "stats {samples} {spec} {:016x} {:016x} {:016x}",
+                s.mean.to_bits(),
+                s.max.to_bits(),
+                s.mse.to_bits()
+            ),
+        };
+    }
+    t
+}
+
+type Parsed = (
+    Vec<(u64, Option<Bound>)>,
+    Vec<(StatsKey, Option<ErrorStats>)>,
+);
+
+/// The figures in `text` if it is this executable's whole, well-formed file.
+fn parse(text: &str, header: &str) -> Option<Parsed> {
+    let mut lines = text.lines();
+    if lines.next()? != header {
+        return None;
+    }
+    let hex = |s: &str| u64::from_str_radix(s, 16).ok();
+    let float = |s: &str| hex(s).map(f64::from_bits);
+    let (mut bounds, mut stats) = (Vec::new(), Vec::new());
+    for line in lines {
+        let w: Vec<&str> = line.split(' ').collect();
+        match w[..] {
+            ["bound", key, "none"] => bounds.push((hex(key)?, None)),
+            ["bound", key, units, at] => {
+                let at = at
+                    .split(',')
+                    .map(|r| {
+                        let (lo, hi) = r.split_once(':')?;
+                        Some((lo.parse().ok()?, hi.parse().ok()?))
+                    })
+                    .collect::<Option<Vec<(i64, i64)>>>()?;
+                let units = float(units)?;
+                bounds.push((hex(key)?, Some(Bound { units, at })));
+            }
+            ["stats", samples, spec, "none"] => {
+                stats.push(((spec.to_string(), samples.parse().ok()?), None))
+            }
+            ["stats", samples, spec, mean, max, mse] => {
+                let samples = samples.parse().ok()?;
+                let s = ErrorStats {
+                    mean: float(mean)?,
+                    max: float(max)?,
+                    mse: float(mse)?,
+                    samples,
+                };
+                stats.push(((spec.to_string(), samples), Some(s)));
+            }
+            _ => return None,
+        }
+    }
+    Some((bounds, stats))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What is written reads back as the same figures, bit for bit.
+    #[test]
+    fn figures_round_trip() {
+        let bounds = vec![
+            (7, None),
+            (
+                u64::MAX,
+                Some(Bound {
+                    units: 0.1 + 0.2,
+                    at: vec![(-3, 4), (0, 65535)],
+                }),
+            ),
+        ];
+        let stats = vec![
+            (("oct24:layout=rgb8".to_string(), 1000), None),
+            (
+                ("stereo_scaled16:scale=1.7777".to_string(), 1000),
+                Some(ErrorStats {
+                    mean: 1.0 / 3.0,
+                    max: f64::MIN_POSITIVE,
+                    mse: 1e-300,
+                    samples: 1000,
+                }),
+            ),
+        ];
+        let text = format("h", &bounds, &stats);
+        let (b, s) = parse(&text, "h").expect("parses");
+        assert_eq!(b, bounds);
+        assert_eq!(s.len(), 2);
+        assert_eq!(s[0], stats[0]);
+        let (x, y) = (s[1].1.unwrap(), stats[1].1.unwrap());
+        assert_eq!(
+            [x.mean, x.max, x.mse].map(f64::to_bits),
+            [y.mean, y.max, y.mse].map(f64::to_bits)
+        );
+        assert_eq!(s[1].0, stats[1].0);
+    }
+
+    /// Another build's file, or a damaged one, is not read at all.
+    #[test]
+    fn another_header_or_a_bad_line_is_ignored() {
+        let text = format("h", &[(1, None)], &[]);
+        assert!(parse(&text, "h2").is_none());
+        assert!(parse(&format!("{text}bound zz none\n"), "h").is_none());
+        assert!(parse(&format!("{text}stats 10 oct16 1 2\n"), "h").is_none());
+        assert!(parse(&format!("{text}\n"), "h").is_none());
+    }
+}
