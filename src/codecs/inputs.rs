@@ -179,25 +179,33 @@ fn float_codes(q: &[Quant]) -> Vec<u32> {
 /// Input words for a function, `in_words` per item.
 pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
     match inputs {
-        Inputs::Vectors => {
-            let mut v = edge_vectors();
-            v.extend(random_unit_vectors(CODE_SEED, RANDOM_ITEMS, false));
-            v.iter().flat_map(|a| a.map(f32::to_bits)).collect()
-        }
+        Inputs::Vectors => vectors().to_vec(),
         Inputs::Codes(q) => codes(q, in_words),
         Inputs::FloatCodes(q) => float_codes(q),
         Inputs::VectorsWith(extra) => {
             assert_eq!(in_words, 3 + extra.words, "{extra:?} after a vector");
-            generate(&Inputs::Vectors, 3)
-                .chunks_exact(3)
-                .flat_map(|v| {
-                    let words = (extra.of)(v);
-                    assert_eq!(words.len(), extra.words, "{extra:?}");
-                    v.iter().copied().chain(words)
-                })
-                .collect()
+            let v = vectors();
+            let mut out = Vec::with_capacity(v.len() / 3 * in_words);
+            for v in v.chunks_exact(3) {
+                let words = (extra.of)(v);
+                assert_eq!(words.len(), extra.words, "{extra:?}");
+                out.extend_from_slice(v);
+                out.extend(words);
+            }
+            out
         }
     }
+}
+
+/// The edge vectors and the seeded random ones, as f32 bits: made once per process,
+/// since every encoder takes the same ones.
+fn vectors() -> &'static [u32] {
+    static VECTORS: std::sync::OnceLock<Vec<u32>> = std::sync::OnceLock::new();
+    VECTORS.get_or_init(|| {
+        let mut v = edge_vectors();
+        v.extend(random_unit_vectors(CODE_SEED, RANDOM_ITEMS, false));
+        v.iter().flat_map(|a| a.map(f32::to_bits)).collect()
+    })
 }
 
 #[cfg(test)]

@@ -202,12 +202,24 @@ pub fn count(spec: &Spec, function: &str) -> Result<u32> {
     }
 }
 
-/// The ALU count of one emitted function.
+/// The ALU count of one emitted function, compiled once per process for each distinct
+/// code: functions with the same [`Module::identity`](crate::model::trace::Module::identity)
+/// (a precise spec's decoders are its fast spec's) differ only in their names, which no
+/// instruction counts.
 fn count_emitted(spec: &Spec, function: &str) -> Result<u32> {
+    type Memo = std::sync::Mutex<std::collections::HashMap<String, u32>>;
+    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
     let src = shader(spec, function)?;
+    let code = spec.emitted().module.identity(function);
+    let memo = MEMO.get_or_init(Default::default);
+    if let Some(n) = memo.lock().expect("ALU memo").get(&code) {
+        return Ok(*n);
+    }
     let words = glslang_spirv(&src, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)
         .with_context(|| format!("compiling {spec}'s {function} for counting"))?;
-    count_main(&spirv_opt_dis(&words)?)
+    let n = count_main(&spirv_opt_dis(&words)?)?;
+    memo.lock().expect("ALU memo").insert(code, n);
+    Ok(n)
 }
 
 /// [`count`] of each of `functions` for every spec, on all cores: `out[i][j]` is spec `i`,

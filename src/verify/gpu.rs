@@ -392,6 +392,24 @@ impl Gpu {
         in_words: usize,
         out_words: usize,
     ) -> anyhow::Result<Vec<u32>> {
+        let mut out = Vec::with_capacity(input.len() / in_words.max(1) * out_words);
+        self.run_each(shader, input, in_words, out_words, &mut |words| {
+            out.extend_from_slice(words)
+        })?;
+        Ok(out)
+    }
+
+    /// [`Gpu::run`], handing each chunk's output words to `sink`, in order, while the
+    /// readback buffer is mapped, instead of collecting them: a check of 2^24 items then
+    /// never holds their outputs all at once.
+    pub fn run_each(
+        &self,
+        shader: &Shader,
+        input: &[u32],
+        in_words: usize,
+        out_words: usize,
+        sink: &mut dyn FnMut(&[u32]),
+    ) -> anyhow::Result<()> {
         if in_words == 0 || out_words == 0 {
             bail!("in_words ({in_words}) and out_words ({out_words}) must both be at least 1");
         }
@@ -407,10 +425,8 @@ impl Gpu {
             .pipeline(shader)
             .with_context(|| format!("creating the {} compute pipeline", shader.kind()))?;
         let chunk = self.chunk_items(in_words, out_words);
-
-        let mut out = Vec::with_capacity(n * out_words);
         if n == 0 {
-            return Ok(out);
+            return Ok(());
         }
         // Buffers sized for one full chunk, reused for every chunk; the last (short) chunk
         // binds only a prefix so arrayLength() still reports that chunk's size.
@@ -446,7 +462,7 @@ impl Gpu {
                 items_here,
                 out_words,
                 [&input_buf, &output_buf, &readback],
-                &mut out,
+                sink,
             )
             .with_context(|| {
                 format!(
@@ -456,7 +472,7 @@ impl Gpu {
                 )
             })?;
         }
-        Ok(out)
+        Ok(())
     }
 
     fn run_chunk(
@@ -466,7 +482,7 @@ impl Gpu {
         items: usize,
         out_words: usize,
         [input_buf, output_buf, readback]: [&wgpu::Buffer; 3],
-        out: &mut Vec<u32>,
+        sink: &mut dyn FnMut(&[u32]),
     ) -> anyhow::Result<()> {
         let in_bytes = std::mem::size_of_val(input) as u64;
         let out_bytes = (items * out_words * 4) as u64;
@@ -539,7 +555,7 @@ impl Gpu {
             let view = readback
                 .get_mapped_range(..out_bytes)
                 .map_err(|e| anyhow!("reading the mapped readback buffer: {e}"))?;
-            out.extend_from_slice(bytemuck::cast_slice(&view));
+            sink(bytemuck::cast_slice(&view));
         }
         readback.unmap();
         Ok(())

@@ -228,38 +228,77 @@ fn lanes(f: &Function, input: &[u32]) -> Vec<u32> {
     out
 }
 
-fn compare(
-    f: &Function,
-    types: (&[Ty], Ty),
-    input: &[u32],
-    want: &[u32],
-    got: &[u32],
-) -> (usize, Vec<Mismatch>) {
-    // Nearly every row matches: one comparison of the whole buffers settles it.
-    if want == got {
-        return (0, Vec::new());
+/// A function's outputs on one path compared with the model's as they arrive, chunk by
+/// chunk: the mismatch count and the first few mismatches, with their inputs.
+struct Comparison<'a> {
+    f: &'a Function,
+    types: (&'a [Ty], Ty),
+    input: &'a [u32],
+    want: &'a [u32],
+    /// Output words received so far.
+    words: usize,
+    count: usize,
+    first: Vec<Mismatch>,
+}
+
+impl<'a> Comparison<'a> {
+    fn new(f: &'a Function, types: (&'a [Ty], Ty), input: &'a [u32], want: &'a [u32]) -> Self {
+        Comparison {
+            f,
+            types,
+            input,
+            want,
+            words: 0,
+            count: 0,
+            first: Vec::new(),
+        }
     }
-    let mut count = 0;
-    let mut first = Vec::new();
-    for (k, (w, g)) in want
-        .chunks(f.out_words)
-        .zip(got.chunks(f.out_words))
-        .enumerate()
-    {
-        if w != g {
-            count += 1;
-            if first.len() < 5 {
-                first.push(Mismatch {
-                    input: input[k * f.in_words..(k + 1) * f.in_words].to_vec(),
-                    expected: w.to_vec(),
-                    actual: g.to_vec(),
-                    input_float: types.0.iter().all(|t| t.kind == Kind::F32),
-                    output_float: types.1.kind == Kind::F32,
-                });
+
+    /// The next `got` words of output, continuing from the words already received.
+    fn take(&mut self, got: &[u32]) {
+        let at = self.words;
+        self.words += got.len();
+        let Some(want) = self.want.get(at..self.words) else {
+            return; // More words than expected: `finish` says so.
+        };
+        // Nearly every check matches: one comparison of the whole chunk settles it.
+        if want == got {
+            return;
+        }
+        let (f, first_item) = (self.f, at / self.f.out_words);
+        for (k, (w, g)) in want
+            .chunks(f.out_words)
+            .zip(got.chunks(f.out_words))
+            .enumerate()
+        {
+            if w != g {
+                self.count += 1;
+                if self.first.len() < 5 {
+                    let item = first_item + k;
+                    self.first.push(Mismatch {
+                        input: self.input[item * f.in_words..(item + 1) * f.in_words].to_vec(),
+                        expected: w.to_vec(),
+                        actual: g.to_vec(),
+                        input_float: self.types.0.iter().all(|t| t.kind == Kind::F32),
+                        output_float: self.types.1.kind == Kind::F32,
+                    });
+                }
             }
         }
     }
-    (count, first)
+
+    /// The mismatch count and the first mismatches, or an error if the path returned
+    /// another number of words than the model.
+    fn finish(self) -> std::result::Result<(usize, Vec<Mismatch>), String> {
+        if self.words != self.want.len() {
+            return Err(format!(
+                "returned {} words for {} expected",
+                self.words,
+                self.want.len()
+            ));
+        }
+        Ok((self.count, self.first))
+    }
 }
 
 /// Compiles the shader kernel for `path`, running the static checks on the way.
@@ -532,15 +571,17 @@ fn verify_spec(
                 bar.inc(1);
                 continue;
             }
+            let mut cmp = Comparison::new(f, (&params, ret), &input, &want);
             let result = if path == Path::Lanes {
-                Ok(lanes(f, &input))
+                cmp.take(&lanes(f, &input));
+                Ok(())
             } else if path.lang() == Some(Lang::C) {
                 let (_, program) = c_programs
                     .iter()
                     .find(|(p, _)| *p == path)
                     .expect("a driver per C path");
                 match program {
-                    Ok(program) => program.run(index, &input),
+                    Ok(program) => program.run(index, &input).map(|got| cmp.take(&got)),
                     Err(e) => Err(anyhow::anyhow!("{e}")),
                 }
             } else {
@@ -555,7 +596,9 @@ fn verify_spec(
                         (None, _) => Shader::GlslNaga(&kernel),
                     };
                     let gpu = gpu.as_ref().expect("adapter for shader paths");
-                    gpu.run(&shader, &input, f.in_words, f.out_words)
+                    gpu.run_each(&shader, &input, f.in_words, f.out_words, &mut |got| {
+                        cmp.take(got)
+                    })
                 })
             };
             let mut row = Row {
@@ -568,22 +611,60 @@ fn verify_spec(
                 error: None,
                 same_as: None,
             };
-            match result {
-                Ok(got) if got.len() != want.len() => {
-                    row.error = Some(format!(
-                        "returned {} words for {} expected",
-                        got.len(),
-                        want.len()
-                    ))
-                }
-                Ok(got) => {
-                    (row.mismatches, row.first) = compare(f, (&params, ret), &input, &want, &got)
-                }
-                Err(err) => row.error = Some(format!("{err:#}")),
+            match result
+                .map_err(|err| format!("{err:#}"))
+                .and_then(|()| cmp.finish())
+            {
+                Ok((count, first)) => (row.mismatches, row.first) = (count, first),
+                Err(err) => row.error = Some(err),
             }
             rows.push(row);
             bar.inc(1);
         }
     }
     rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Outputs compared chunk by chunk report each mismatch with its own item's input,
+    /// count every one, and a path returning another number of words is an error.
+    #[test]
+    fn comparison_finds_mismatches_across_chunks() {
+        let e = "oct16".parse::<Spec>().expect("spec").emitted();
+        let f = e
+            .functions
+            .iter()
+            .find(|f| f.name == "decode")
+            .expect("decode");
+        let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+        let input: Vec<u32> = (0..100).collect();
+        let want = expected(f, &input);
+        let mut got = want.clone();
+        got[3 * 70 + 1] ^= 1;
+        got[3 * 71] ^= 0x8000_0000;
+        let mut cmp = Comparison::new(f, (&params, ret), &input, &want);
+        for chunk in got.chunks(3 * 64) {
+            cmp.take(chunk);
+        }
+        let (count, first) = cmp.finish().expect("every word");
+        assert_eq!(count, 2);
+        assert_eq!(first[0].input, [70]);
+        assert_eq!(first[0].actual, got[210..213]);
+        assert_eq!(first[0].expected, want[210..213]);
+        assert_eq!(first[1].input, [71]);
+
+        let mut short = Comparison::new(f, (&params, ret), &input, &want);
+        short.take(&want[..297]);
+        assert_eq!(
+            short.finish().unwrap_err(),
+            "returned 297 words for 300 expected"
+        );
+        let mut long = Comparison::new(f, (&params, ret), &input, &want);
+        long.take(&want);
+        long.take(&[0]);
+        assert!(long.finish().is_err());
+    }
 }
