@@ -348,6 +348,27 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
     })
 }
 
+/// The static checks of a whole include: naga validates the WGSL, glslang compiles the
+/// HLSL (beside an empty entry point) and the GLSL as a GLSL 330 and a GLSL ES 300 fragment
+/// shader. (The C paths compile the whole header in every driver.)
+fn whole_include(lang: Lang, include: &str) -> Vec<(String, Result<()>)> {
+    match lang {
+        Lang::Wgsl => vec![("wgsl/naga".to_string(), tools::naga_wgsl(include))],
+        Lang::Hlsl => {
+            let entry = "unitpack_include_check";
+            let source = format!("{include}\n[numthreads(1, 1, 1)]\nvoid {entry}() {{}}\n");
+            let input = GlslangInput::Hlsl {
+                stage: "comp",
+                entry,
+            };
+            let r = tools::glslang_spirv(&source, input, HlslOpt::Default).map(drop);
+            vec![("hlsl/glslang".to_string(), r)]
+        }
+        Lang::Glsl => glsl_versions(include),
+        Lang::C => vec![],
+    }
+}
+
 /// The include must also compile as a GLSL 330 and a GLSL ES 300 fragment shader.
 fn glsl_versions(include: &str) -> Vec<(String, Result<()>)> {
     let v330 =
@@ -440,9 +461,11 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
 }
 
 /// For each function of each spec, the earlier function (`spec function`) with the same
-/// code and inputs ([`first_with_same_code`]), if there is one: the shader paths compile
-/// and run that one only, no driver computing with names. The C and CPU paths, cheap
-/// beside lavapipe, run every function.
+/// code and inputs ([`first_with_same_code`]), if there is one: every path runs that one
+/// only. The same traces are the same `f32` operations, so the model computes the same
+/// outputs for both, and every language emits the same code for both but for the names'
+/// prefix, which no compiler computes with. (Each spec's whole include is still
+/// compiled in every language.)
 fn owners(specs: &[Spec], emitted: &[Emitted]) -> Vec<Vec<Option<String>>> {
     first_with_same_code(emitted)
         .into_iter()
@@ -500,9 +523,10 @@ fn verify_spec(
             )
         })
         .collect();
-    let include = |l: Lang| &includes.iter().find(|(x, _)| *x == l).expect("lang").1;
-    if langs.contains(&Lang::Glsl) {
-        for (path, r) in glsl_versions(include(Lang::Glsl)) {
+    // Every include on its own, whatever its functions share with another spec's: the
+    // kernels below compile only the functions they call.
+    for (lang, include) in &includes {
+        for (path, r) in whole_include(*lang, include) {
             rows.push(Row {
                 spec: spec.to_string(),
                 function: "(whole include)".into(),
@@ -515,6 +539,7 @@ fn verify_spec(
             });
         }
     }
+    let include = |l: Lang| &includes.iter().find(|(x, _)| *x == l).expect("lang").1;
     let ns = if e.namespace.is_empty() {
         String::new()
     } else {
@@ -552,12 +577,8 @@ fn verify_spec(
         .collect();
     for (index, f) in e.functions.iter().enumerate() {
         bar.set_message(format!("{spec} {}", f.name));
-        let traced = e.module.func(f.name).expect("traced function");
-        let (params, ret) = func_types(traced);
-        let input = inputs::generate(&f.inputs, f.in_words);
-        let want = expected(f, &input);
-        for &path in paths {
-            if let (Some(owner), true) = (&shared[index], path.on_gpu()) {
+        if let Some(owner) = &shared[index] {
+            for &path in paths {
                 rows.push(Row {
                     spec: spec.to_string(),
                     function: f.name.to_string(),
@@ -569,8 +590,14 @@ fn verify_spec(
                     same_as: Some(owner.clone()),
                 });
                 bar.inc(1);
-                continue;
             }
+            continue;
+        }
+        let traced = e.module.func(f.name).expect("traced function");
+        let (params, ret) = func_types(traced);
+        let input = inputs::generate(&f.inputs, f.in_words);
+        let want = expected(f, &input);
+        for &path in paths {
             let mut cmp = Comparison::new(f, (&params, ret), &input, &want);
             let result = if path == Path::Lanes {
                 cmp.take(&lanes(f, &input));
@@ -666,5 +693,31 @@ mod tests {
         long.take(&want);
         long.take(&[0]);
         assert!(long.finish().is_err());
+    }
+
+    /// A function no kernel calls is still compiled: an error in it fails the include's
+    /// own check in every shader language.
+    #[test]
+    fn whole_include_checks_uncalled_functions() {
+        let broken = [
+            (
+                Lang::Wgsl,
+                "fn f(c: u32) -> vec3<f32> { return nope(c); }\n",
+            ),
+            (Lang::Hlsl, "float3 f(uint c) { return nope(c); }\n"),
+            (Lang::Glsl, "vec3 f(uint c) { return nope(c); }\n"),
+        ];
+        for (lang, source) in broken {
+            let checks = whole_include(lang, source);
+            assert!(!checks.is_empty(), "{lang:?}");
+            assert!(checks.iter().all(|(_, r)| r.is_err()), "{lang:?}");
+        }
+        let spec: Spec = "oct16".parse().expect("spec");
+        for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl] {
+            let include = render(&[(spec.clone(), None)], lang, DEFAULT_PREFIX, "test");
+            for (path, r) in whole_include(lang, &include) {
+                assert!(r.is_ok(), "{path}: {r:?}");
+            }
+        }
     }
 }
