@@ -202,7 +202,7 @@ pub fn of(f: &Function) -> Option<Bound> {
     Some(prove(&code_ranges(f)?, f.enclose.as_ref()?))
 }
 
-type Cache = std::sync::Mutex<std::collections::HashMap<u64, Option<Bound>>>;
+type Cache = std::sync::Mutex<std::collections::HashMap<u128, Option<Bound>>>;
 
 fn cache() -> &'static Cache {
     static CACHE: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
@@ -210,10 +210,11 @@ fn cache() -> &'static Cache {
 }
 
 /// What identifies a decoder's bound: its trace and its callees' in `module`, and the
-/// codes it takes, hashed. The hash is std's (SipHash with fixed keys), the same in
-/// every run of one build; a store that outlives the process ([`export`]) must be tied to
-/// the build.
-fn key(module: &Module, f: &Function) -> u64 {
+/// codes it takes, hashed to 128 bits (two of std's SipHashes with fixed keys, over the
+/// text with different prefixes: no two of the catalogue's few hundred decoders meet by
+/// chance). The hash is the same in every run of one build; a store that outlives the
+/// process ([`export`]) must be tied to the build.
+fn key(module: &Module, f: &Function) -> u128 {
     use std::hash::{Hash, Hasher};
     let text = format!(
         "{:?} {:?} {}",
@@ -221,9 +222,13 @@ fn key(module: &Module, f: &Function) -> u64 {
         f.enclose.as_ref().map(|e| e.whole_field),
         module.identity(f.name),
     );
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    text.hash(&mut h);
-    h.finish()
+    let half = |prefix: u8| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        prefix.hash(&mut h);
+        text.hash(&mut h);
+        h.finish()
+    };
+    u128::from(half(0)) << 64 | u128::from(half(1))
 }
 
 /// [`of`], computed once per process for each distinct decoder (the doc comments of
@@ -242,7 +247,7 @@ pub fn cached(module: &Module, f: &Function) -> Option<Bound> {
 
 /// Every bound this process knows, by its key: what a store that outlives the process
 /// saves. Keys are only meaningful to the same build (see [`key`]).
-pub fn export() -> Vec<(u64, Option<Bound>)> {
+pub fn export() -> Vec<(u128, Option<Bound>)> {
     let cache = cache().lock().expect("bound cache");
     let mut all: Vec<_> = cache.iter().map(|(k, b)| (*k, b.clone())).collect();
     all.sort_by_key(|(k, _)| *k);
@@ -250,7 +255,7 @@ pub fn export() -> Vec<(u64, Option<Bound>)> {
 }
 
 /// Takes bounds an earlier run of the same build proved ([`export`]) as proven.
-pub fn import(bounds: impl IntoIterator<Item = (u64, Option<Bound>)>) {
+pub fn import(bounds: impl IntoIterator<Item = (u128, Option<Bound>)>) {
     cache().lock().expect("bound cache").extend(bounds);
 }
 

@@ -4,8 +4,10 @@
 //! `generate`; the figures are a function of the program alone, so a later run of the
 //! same executable can take them as they were.
 //!
-//! The file is tied to the executable by a hash of its contents: a rebuilt or upgraded
-//! unitpack ignores the file and writes its own. It lives at
+//! The file is tied to the executable by a hash of its contents, and to the system's
+//! math library (the statistics' random vectors and angles call its `ln`, `cos` and
+//! `acos`) by a hash of that file where it is a shared library: a rebuilt or upgraded
+//! unitpack, or an upgraded libm, ignores the file and writes its own. It lives at
 //! `$UNITPACK_CACHE_DIR/figures.txt` when that variable is set (set and empty: no cache),
 //! else in the platform's cache folder (`~/.cache/unitpack/` on Linux). Deleting it is
 //! always safe. An unreadable or malformed file is ignored, a file there that does not
@@ -22,8 +24,9 @@ use std::path::PathBuf;
 pub const ENV: &str = "UNITPACK_CACHE_DIR";
 /// The cache file's name in its folder.
 pub const FILE: &str = "figures.txt";
-/// The first line's start: a file without it is not ours.
-const MAGIC: &str = "unitpack figure cache v1";
+/// The first line's start: a file without it is not ours. (The format's version follows
+/// it, so that any version's file is known as ours and replaced.)
+const MAGIC: &str = "unitpack figure cache";
 
 /// The cache file, if there is a place for one.
 pub fn path() -> Option<PathBuf> {
@@ -35,12 +38,45 @@ pub fn path() -> Option<PathBuf> {
     Some(dir.join(FILE))
 }
 
-/// The executable's fingerprint: a hash of its bytes (std's SipHash, fixed keys).
+/// The executable's fingerprint: a hash of its bytes and of the shared math library's
+/// (std's SipHash, fixed keys; about 10 ms for a release build).
 fn fingerprint() -> Option<u64> {
-    let bytes = std::fs::read(std::env::current_exe().ok()?).ok()?;
     let mut h = std::collections::hash_map::DefaultHasher::new();
-    h.write(&bytes);
+    h.write(&std::fs::read(std::env::current_exe().ok()?).ok()?);
+    if let Some(libm) = math_library() {
+        h.write(&std::fs::read(libm).ok()?);
+    }
     Some(h.finish())
+}
+
+/// The file `cos` is loaded from, where the math library is a shared object.
+#[cfg(unix)]
+fn math_library() -> Option<PathBuf> {
+    use std::os::unix::ffi::OsStrExt;
+    let cos: extern "C" fn(f64) -> f64 = libc_cos;
+    // SAFETY: dladdr only reads the loader's tables; `info` is written before it is read,
+    // and `dli_fname` is a NUL-terminated string the loader keeps for the process.
+    let name = unsafe {
+        let mut info: libc::Dl_info = std::mem::zeroed();
+        if libc::dladdr(cos as *const libc::c_void, &mut info) == 0 || info.dli_fname.is_null() {
+            return None;
+        }
+        std::ffi::CStr::from_ptr(info.dli_fname)
+    };
+    let path = PathBuf::from(std::ffi::OsStr::from_bytes(name.to_bytes()));
+    (path != std::env::current_exe().ok()?).then_some(path)
+}
+
+#[cfg(unix)]
+unsafe extern "C" {
+    /// The C library's `cos`, the one `f64::cos` calls.
+    #[link_name = "cos"]
+    safe fn libc_cos(x: f64) -> f64;
+}
+
+#[cfg(not(unix))]
+fn math_library() -> Option<PathBuf> {
+    None
 }
 
 /// A run's use of the cache: what it loaded, so that it writes only when it learned more.
@@ -55,8 +91,14 @@ pub struct Session {
 /// no cache: no folder, no fingerprint, or a file at the path that is not ours.
 pub fn open() -> Option<Session> {
     let path = path()?;
-    let header = format!("{MAGIC} exe={:016x}", fingerprint()?);
+    let header = format!("{MAGIC} v2 exe={:016x}", fingerprint()?);
     let mut loaded = (0, 0);
+    match std::fs::symlink_metadata(&path) {
+        // Only a plain file can be ours (a FIFO would block the read).
+        Ok(m) if !m.is_file() => return None,
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => return None,
+        _ => {}
+    }
     match std::fs::read_to_string(&path) {
         Ok(text) if !text.starts_with(MAGIC) => return None,
         Ok(text) => {
@@ -92,13 +134,13 @@ impl Session {
 
 fn format(
     header: &str,
-    bounds: &[(u64, Option<Bound>)],
+    bounds: &[(u128, Option<Bound>)],
     stats: &[(StatsKey, Option<ErrorStats>)],
 ) -> String {
     let mut t = format!("{header}\n");
     for (key, b) in bounds {
         let _ = match b {
-            None => writeln!(t, "bound {key:016x} none"),
+            None => writeln!(t, "bound {key:032x} none"),
             Some(b) => {
                 let at: Vec<String> = b.at.iter().map(|(lo, hi)| format!("{lo}:{hi}")).collect();
                 writeln!(
@@ -126,7 +168,7 @@ fn format(
 }
 
 type Parsed = (
-    Vec<(u64, Option<Bound>)>,
+    Vec<(u128, Option<Bound>)>,
     Vec<(StatsKey, Option<ErrorStats>)>,
 );
 
@@ -136,14 +178,14 @@ fn parse(text: &str, header: &str) -> Option<Parsed> {
     if lines.next()? != header {
         return None;
     }
-    let hex = |s: &str| u64::from_str_radix(s, 16).ok();
-    let float = |s: &str| hex(s).map(f64::from_bits);
+    let key = |s: &str| u128::from_str_radix(s, 16).ok();
+    let float = |s: &str| u64::from_str_radix(s, 16).ok().map(f64::from_bits);
     let (mut bounds, mut stats) = (Vec::new(), Vec::new());
     for line in lines {
         let w: Vec<&str> = line.split(' ').collect();
         match w[..] {
-            ["bound", key, "none"] => bounds.push((hex(key)?, None)),
-            ["bound", key, units, at] => {
+            ["bound", k, "none"] => bounds.push((key(k)?, None)),
+            ["bound", k, units, at] => {
                 let at = at
                     .split(',')
                     .map(|r| {
@@ -152,7 +194,7 @@ fn parse(text: &str, header: &str) -> Option<Parsed> {
                     })
                     .collect::<Option<Vec<(i64, i64)>>>()?;
                 let units = float(units)?;
-                bounds.push((hex(key)?, Some(Bound { units, at })));
+                bounds.push((key(k)?, Some(Bound { units, at })));
             }
             ["stats", samples, spec, "none"] => {
                 stats.push(((spec.to_string(), samples.parse().ok()?), None))
@@ -183,7 +225,7 @@ mod tests {
         let bounds = vec![
             (7, None),
             (
-                u64::MAX,
+                u128::MAX,
                 Some(Bound {
                     units: 0.1 + 0.2,
                     at: vec![(-3, 4), (0, 65535)],
@@ -213,6 +255,16 @@ mod tests {
             [y.mean, y.max, y.mse].map(f64::to_bits)
         );
         assert_eq!(s[1].0, stats[1].0);
+    }
+
+    /// On glibc `cos` comes from the shared libm, so the fingerprint covers that file.
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    #[test]
+    fn the_math_library_is_found() {
+        let libm = math_library().expect("a shared math library");
+        let name = libm.file_name().unwrap().to_string_lossy().into_owned();
+        assert!(name.starts_with("libm"), "{}", libm.display());
+        assert!(std::fs::metadata(&libm).unwrap().is_file());
     }
 
     /// Another build's file, or a damaged one, is not read at all.

@@ -6,7 +6,7 @@
 //! see [`crate::atomic`] and `manifest`.
 
 mod convert;
-pub mod figure_cache;
+mod figure_cache;
 mod generate;
 mod grammar;
 mod include;
@@ -90,6 +90,8 @@ pub enum Command {
     ///
     /// Files are replaced atomically; missing directories are created; a symlink's target
     /// is replaced and the link kept; a read-only file is replaced only with --force.
+    ///
+    /// The proven bounds and error figures the include states are cached as for generate.
     Gen {
         #[arg(required = true, value_name = "SPEC", help = SPEC_HELP)]
         specs: Vec<String>,

@@ -10,7 +10,7 @@
 
 use super::tools::{GlslangInput, HlslOpt, glslang_spirv, spirv_opt_dis};
 use crate::codecs::Spec;
-use crate::codecs::functions::Role;
+use crate::codecs::functions::{Emitted, Role};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use crate::model::trace::Ty;
@@ -102,8 +102,7 @@ fn glsl_type(t: Ty) -> String {
 
 /// The compute shader that calls `function` of `spec` once. Several float arguments
 /// (`encode(v, fetched)`) arrive as one vector, split by swizzles.
-fn shader(spec: &Spec, function: &str) -> Result<String> {
-    let e = spec.emitted();
+fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
     let f = e
         .functions
         .iter()
@@ -209,8 +208,9 @@ pub fn count(spec: &Spec, function: &str) -> Result<u32> {
 fn count_emitted(spec: &Spec, function: &str) -> Result<u32> {
     type Memo = std::sync::Mutex<std::collections::HashMap<String, u32>>;
     static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
-    let src = shader(spec, function)?;
-    let code = spec.emitted().module.identity(function);
+    let e = spec.emitted();
+    let src = shader(spec, &e, function)?;
+    let code = e.module.identity(function);
     let memo = MEMO.get_or_init(Default::default);
     if let Some(n) = memo.lock().expect("ALU memo").get(&code) {
         return Ok(*n);
