@@ -1,8 +1,8 @@
 //! The figures every include states, kept on disk between runs of `gen` and `generate`:
 //! each decoder's proven bound ([`crate::decode_bound`]) and each spec's error statistics
 //! ([`crate::quality`]). Proving and measuring the whole catalogue is two thirds of a
-//! `generate`; the figures are a function of the program alone, so a later run of the
-//! same executable can take them as they were.
+//! `generate`; the figures are a function of the program and its math library alone, so
+//! a later run of the same executable can take them as they were.
 //!
 //! The file is tied to the executable by a hash of its contents, and to the system's
 //! math library (the statistics' random vectors and angles call its `ln`, `cos` and
