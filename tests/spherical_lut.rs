@@ -3,7 +3,8 @@
 //! sampling selects and stores what the seed stores, the decoder returns the table's
 //! texel·2 - 1, the seed's table decodes worse than method 3 and the matched one as
 //! well, and on lavapipe the emitted functions around real texture fetches reproduce the
-//! CPU encoder and decoder bit for bit.
+//! CPU encoder and decoder bit for bit. The precise encoder keeps the block's nearest
+//! texel (measured here in f64) and runs its two fetch passes on lavapipe bit for bit.
 
 use std::f64::consts::PI;
 use unitpack::Lang;
@@ -82,7 +83,8 @@ fn tables_hold_the_documented_values() {
 /// evaluations agree bit for bit.
 #[test]
 fn cpu_functions_agree_in_every_evaluation() {
-    for (_, name) in LUTS {
+    let precise = PRECISE.map(|p| p.2);
+    for name in LUTS.map(|l| l.1).into_iter().chain(precise) {
         let e = name.parse::<Spec>().unwrap().emitted();
         assert_eq!(e.cpu.len(), 3, "{name}");
         for f in &e.cpu {
@@ -134,10 +136,12 @@ fn encoder_reads_the_sampled_texel_and_rounds_z() {
     }
 }
 
-/// Invalid input encodes as +Z: the atan texel (128, 128) and z = 255.
+/// Invalid input encodes as +Z: the atan texel (128, 128) and z = 255; the precise
+/// encoder keeps that code.
 #[test]
 fn invalid_input_reads_the_texel_of_plus_z() {
-    for (lut, name) in LUTS {
+    let precise = PRECISE.map(|(lut, _, name)| (lut, name));
+    for (lut, name) in LUTS.into_iter().chain(precise) {
         let batch = Batch::new(name).unwrap();
         let vs = [
             [0.0, 0.0, 1.0],
@@ -192,6 +196,32 @@ fn seed_table_is_worse_than_method_3_and_the_matched_one_is_not() {
     );
 }
 
+/// The atan table as RGBA8 texels, its byte in R.
+fn atan_texels(lut: SphericalLut) -> Vec<u32> {
+    lut.atan()
+        .iter()
+        .map(|&b| u32::from(b) | 0xff00_0000)
+        .collect()
+}
+
+/// The sin/cos table as RGBA8 texels.
+fn sincos_texels(lut: SphericalLut) -> Vec<u32> {
+    lut.sincos()
+        .iter()
+        .map(|t| u32::from_le_bytes(*t))
+        .collect()
+}
+
+/// A spec's WGSL include.
+fn wgsl_include(name: &str) -> String {
+    Generator::new()
+        .spec(name)
+        .lang(Lang::Wgsl)
+        .error_stats(false)
+        .render(Lang::Wgsl)
+        .unwrap()
+}
+
 /// A WGSL kernel around a spec's include: the table at binding 0 with a nearest sampler,
 /// six output words per item, the items' words in `inp`; `body` computes item `i`'s
 /// outputs `o` from them.
@@ -222,14 +252,44 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {{
 /// `textureLoad` of the atan table there and a nearest `textureSampleLevel` at the
 /// texel's centre, and `encode` of each fetch: texel x, y, both fetches' bits and both
 /// codes.
-fn encode_kernel(id: &str, include: &str) -> String {
+fn encode_kernel(id: &str, include: &str, encode: &str) -> String {
     let body = format!(
         "    let v = bitcast<vec3<f32>>(vec3<u32>(inp[3u * i], inp[3u * i + 1u], inp[3u * i + 2u]));
     let t = unitpack_{id}_atan_texel(v);
     let loaded = textureLoad(table, t, 0).r;
     let sampled = textureSampleLevel(table, nearest, (vec2<f32>(t) + 0.5) / 256.0, 0.0).r;
     let o = array<u32, 6>(t.x, t.y, bitcast<u32>(loaded), bitcast<u32>(sampled),
-        unitpack_{id}_encode(v, loaded), unitpack_{id}_encode(v, sampled));"
+        unitpack_{id}_{encode}(v, loaded), unitpack_{id}_{encode}(v, sampled));"
+    );
+    kernel(include, &body)
+}
+
+/// The precise encoder's second pass: per vector and its fast code (four words of
+/// `inp`), the emitted `precise_texel` for k = 0 … 8, a `textureLoad` of the sin/cos
+/// table and a nearest sample at each, and `encode` of either set of fetches: both codes
+/// and the texels of k = 0 and k = 8.
+fn search_kernel(id: &str, include: &str) -> String {
+    let args = |a: &str| {
+        (0..9)
+            .map(|k| format!("{a}[{k}]"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let (loaded, sampled) = (args("s"), args("r"));
+    let body = format!(
+        "    let v = bitcast<vec3<f32>>(vec3<u32>(inp[4u * i], inp[4u * i + 1u], inp[4u * i + 2u]));
+    let c = inp[4u * i + 3u];
+    var s: array<vec3<f32>, 9>;
+    var r: array<vec3<f32>, 9>;
+    for (var k = 0u; k < 9u; k++) {{
+        let t = unitpack_{id}_precise_texel(c, k);
+        s[k] = textureLoad(table, t, 0).rgb;
+        r[k] = textureSampleLevel(table, nearest, (vec2<f32>(t) + 0.5) / 256.0, 0.0).rgb;
+    }}
+    let first = unitpack_{id}_precise_texel(c, 0u);
+    let last = unitpack_{id}_precise_texel(c, 8u);
+    let o = array<u32, 6>(unitpack_{id}_encode(v, c, {loaded}),
+        unitpack_{id}_encode(v, c, {sampled}), first.x, first.y, last.x, last.y);"
     );
     kernel(include, &body)
 }
@@ -261,25 +321,15 @@ fn texture_round_trip_on_lavapipe() {
     let input: Vec<u32> = vs.iter().flat_map(|v| v.map(f32::to_bits)).collect();
     for (lut, name) in LUTS {
         let id = name.parse::<Spec>().unwrap().id();
-        let include = Generator::new()
-            .spec(name)
-            .lang(Lang::Wgsl)
-            .error_stats(false)
-            .render(Lang::Wgsl)
-            .unwrap();
+        let include = wgsl_include(name);
         let batch = Batch::new(name).unwrap();
         let mut codes = vec![0u32; vs.len()];
         batch.encode(&vs, &mut codes);
 
-        let atan: Vec<u32> = lut
-            .atan()
-            .iter()
-            .map(|&b| u32::from(b) | 0xff00_0000)
-            .collect();
         let out = gpu
             .run_texture(
-                &encode_kernel(&id, &include),
-                &atan,
+                &encode_kernel(&id, &include, "encode"),
+                &atan_texels(lut),
                 256,
                 &input,
                 vs.len(),
@@ -305,18 +355,13 @@ fn texture_round_trip_on_lavapipe() {
             );
         }
 
-        let sincos: Vec<u32> = lut
-            .sincos()
-            .iter()
-            .map(|t| u32::from_le_bytes(*t))
-            .collect();
         let all: Vec<u32> = (0..65536).collect();
         let mut want = vec![[0f32; 3]; all.len()];
         batch.decode(&all, &mut want);
         let out = gpu
             .run_texture(
                 &decode_kernel(&id, &include),
-                &sincos,
+                &sincos_texels(lut),
                 256,
                 &all,
                 all.len(),
@@ -332,6 +377,161 @@ fn texture_round_trip_on_lavapipe() {
                 w.map(f32::from_bits)
             );
             assert_eq!(&o[3..], &w, "{name} code {c:#06x}: sample");
+        }
+    }
+}
+
+/// Each table with its fast and precise spec.
+const PRECISE: [(SphericalLut, &str, &str); 2] = [
+    (SphericalLut::Seed, "spherical_lut16", "spherical_lut16p"),
+    (
+        SphericalLut::Matched,
+        "spherical_lut16:lut=matched",
+        "spherical_lut16p:lut=matched",
+    ),
+];
+
+/// Texel `k` of the 3×3 block around code `c`, row by row, written here: x wraps
+/// around, y is clamped.
+fn block_texel(c: u32, k: u32) -> [u32; 2] {
+    let (x, y) = (i64::from(c & 255), i64::from(c >> 8 & 255));
+    let (dx, dy) = (i64::from(k % 3) - 1, i64::from(k / 3) - 1);
+    [
+        (x + dx).rem_euclid(256) as u32,
+        (y + dy).clamp(0, 255) as u32,
+    ]
+}
+
+/// The angle in radians between `v` and the direction a sin/cos texel decodes to, in f64.
+fn texel_angle(v: [f32; 3], t: [u8; 4]) -> f64 {
+    let d = [0, 1, 2].map(|i| 2.0 * f64::from(t[i]) - 255.0);
+    let n = v.map(f64::from);
+    let cross = [
+        n[1] * d[2] - n[2] * d[1],
+        n[2] * d[0] - n[0] * d[2],
+        n[0] * d[1] - n[1] * d[0],
+    ];
+    let dot: f64 = (0..3).map(|i| n[i] * d[i]).sum();
+    cross.iter().map(|c| c * c).sum::<f64>().sqrt().atan2(dot)
+}
+
+/// The precise encoder returns a code of the 3×3 block around the fast code (x wrapping,
+/// y clamped) whose sin/cos texel is, in f64 here, within 5·10^-4 rad of the block's
+/// nearest to the input: the input's fixed point (2^-12 of its largest component, which
+/// is at least 2) moves its direction by at most √3·2^-13 rad, which can change the
+/// angle to each candidate by as much, and the comparison is otherwise exact. It moves
+/// a good share of the codes and lowers the mean error below the fast encoder's.
+#[test]
+fn precise_encoder_keeps_the_nearest_texel_of_the_block() {
+    let vs = random_unit_vectors(0x3b, 200_000, false);
+    for (lut, fast, precise) in PRECISE {
+        let (mut c, mut p) = (vec![0u32; vs.len()], vec![0u32; vs.len()]);
+        Batch::new(fast).unwrap().encode(&vs, &mut c);
+        Batch::new(precise).unwrap().encode(&vs, &mut p);
+        let (mut moved, mut sum_fast, mut sum_precise) = (0usize, 0.0, 0.0);
+        for ((v, &c), &p) in vs.iter().zip(&c).zip(&p) {
+            let angle = |t: [u32; 2]| texel_angle(*v, lut.sincos()[(t[1] * 256 + t[0]) as usize]);
+            let block: Vec<[u32; 2]> = (0..9).map(|k| block_texel(c, k)).collect();
+            let best = block
+                .iter()
+                .map(|&t| angle(t))
+                .fold(f64::INFINITY, f64::min);
+            let got = [p & 255, p >> 8];
+            assert!(
+                p < 1 << 16 && block.contains(&got),
+                "{precise} {v:?}: {p:#06x} is not in the block around {c:#06x}"
+            );
+            let a = angle(got);
+            assert!(
+                a <= best + 5e-4,
+                "{precise} {v:?}: {p:#06x} at {a} rad, the block's nearest at {best}"
+            );
+            moved += usize::from(p != c);
+            sum_fast += angle(block[4]);
+            sum_precise += a;
+        }
+        let share = moved as f64 / vs.len() as f64;
+        assert!(
+            share > 0.1,
+            "{precise}: {moved} of {} codes moved",
+            vs.len()
+        );
+        assert!(
+            sum_precise < 0.95 * sum_fast,
+            "{precise}: mean {} rad against the fast {}",
+            sum_precise / vs.len() as f64,
+            sum_fast / vs.len() as f64
+        );
+        println!(
+            "{precise}: {share:.3} of the codes moved; mean {:.5} rad against {:.5}",
+            sum_precise / vs.len() as f64,
+            sum_fast / vs.len() as f64
+        );
+    }
+}
+
+/// The precise encoder through real texture fetches on lavapipe, both passes: the
+/// emitted `atan_texel`, a fetch of the atan table and `encode_fast` give the fast code
+/// (equal to the CPU fast encoder's); then `precise_texel` for k = 0 … 8, a load and a
+/// nearest sample of the sin/cos table at each, and `encode` of either give the CPU
+/// precise encoder's code, for 65,536 seeded vectors plus the edge cases, bit for bit;
+/// the block's first and last texels are those written here.
+#[test]
+fn precise_texture_round_trip_on_lavapipe() {
+    let gpu = Gpu::shared().expect("a Vulkan adapter (install mesa-vulkan-drivers)");
+    let mut vs = unitpack::verify::inputs::edge_vectors();
+    vs.extend(random_unit_vectors(0x3a3b, 1 << 16, false));
+    let input: Vec<u32> = vs.iter().flat_map(|v| v.map(f32::to_bits)).collect();
+    for (lut, fast, name) in PRECISE {
+        let id = name.parse::<Spec>().unwrap().id();
+        let include = wgsl_include(name);
+        let (mut want_fast, mut want) = (vec![0u32; vs.len()], vec![0u32; vs.len()]);
+        Batch::new(fast).unwrap().encode(&vs, &mut want_fast);
+        Batch::new(name).unwrap().encode(&vs, &mut want);
+        let first = gpu
+            .run_texture(
+                &encode_kernel(&id, &include, "encode_fast"),
+                &atan_texels(lut),
+                256,
+                &input,
+                vs.len(),
+                6,
+            )
+            .unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let mut second_input = Vec::with_capacity(vs.len() * 4);
+        for (k, (o, v)) in first.chunks_exact(6).zip(&vs).enumerate() {
+            assert_eq!(
+                [o[4], o[5]],
+                [want_fast[k]; 2],
+                "{name} vector {k} {v:?}: the shader's fast code"
+            );
+            second_input.extend(v.map(f32::to_bits));
+            second_input.push(o[4]);
+        }
+        let out = gpu
+            .run_texture(
+                &search_kernel(&id, &include),
+                &sincos_texels(lut),
+                256,
+                &second_input,
+                vs.len(),
+                6,
+            )
+            .unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        for (k, (o, v)) in out.chunks_exact(6).zip(&vs).enumerate() {
+            let at = format!("{name} vector {k} {v:?}, fast code {:#06x}", want_fast[k]);
+            assert_eq!(
+                [o[0], o[1]],
+                [want[k]; 2],
+                "{at}: the shader's precise code (load, sample) vs the CPU's {:#06x}",
+                want[k]
+            );
+            let ends = [block_texel(want_fast[k], 0), block_texel(want_fast[k], 8)].concat();
+            assert_eq!(
+                &o[2..],
+                &ends[..],
+                "{at}: the block's first and last texels"
+            );
         }
     }
 }

@@ -38,7 +38,10 @@ pub fn catalogue_files() -> Result<Vec<(PathBuf, Vec<u8>)>> {
             ));
         }
     }
-    for table in specs.iter().flat_map(|s| s.family().tables(s)) {
+    // A precise spec reads its fast spec's tables: each file is written once.
+    let mut stems = std::collections::HashSet::new();
+    let tables = specs.iter().flat_map(|s| s.family().tables(s));
+    for table in tables.filter(|t| stems.insert(t.stem.clone())) {
         let dir = PathBuf::from(manifest::TABLES);
         files.push((dir.join(format!("{}.png", table.stem)), png(&table)?));
         files.push((dir.join(format!("{}.bin", table.stem)), table.bytes));

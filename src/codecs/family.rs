@@ -228,7 +228,7 @@ pub trait Family: Sync + 'static {
     }
     /// What a function's doc comment says of its input and output, where the family's
     /// functions are not the standard four (a lookup-table codec's pieces).
-    fn function_doc(&self, _name: &str) -> Option<Vec<String>> {
+    fn function_doc(&self, _spec: &Spec, _name: &str) -> Option<Vec<String>> {
         None
     }
     /// The doc comment of a helper function this family defines, if it has one.

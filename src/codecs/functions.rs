@@ -134,6 +134,10 @@ pub enum Inputs {
     /// model's own texture fetch for a function that takes the fetched value beside the
     /// vector.
     VectorsWith(Extra),
+    /// [`Inputs::Codes`] of the fields, each code followed by every index below the
+    /// bound in turn (two words an item): a function of a code and a small integer, such
+    /// as the texel of a precise search's `k`-th candidate.
+    CodesAndIndex(Vec<Quant>, u32),
 }
 
 /// One item's words → other words (a table lookup, the model's own fetch).
@@ -233,10 +237,8 @@ impl Function {
             "{} outputs for {n} items",
             output.len()
         );
-        // Items are at most four words (a combine helper's two vec2 arguments).
-        assert!(iw <= 4 && ow <= 4, "{iw} or {ow} words per item");
-        let mut lanes_in = [[0u32; 4]; 4 * GROUPS];
-        let mut lanes_out = [[0u32; 4]; 4 * GROUPS];
+        let mut lanes_in = vec![[0u32; 4]; iw * GROUPS];
+        let mut lanes_out = vec![[0u32; 4]; ow * GROUPS];
         for (src, dst) in input
             .chunks(4 * GROUPS * iw)
             .zip(output.chunks_mut(4 * GROUPS * ow))
@@ -244,48 +246,52 @@ impl Function {
             let groups = (src.len() / iw).div_ceil(4);
             let (lanes_in, lanes_out) =
                 (&mut lanes_in[..groups * iw], &mut lanes_out[..groups * ow]);
+            // The common widths as constants; a precise search's fetched texels beside
+            // its vector make wider items.
             match iw {
-                1 => gather::<1>(src, lanes_in),
-                2 => gather::<2>(src, lanes_in),
-                3 => gather::<3>(src, lanes_in),
-                _ => gather::<4>(src, lanes_in),
+                1 => gather(1, src, lanes_in),
+                2 => gather(2, src, lanes_in),
+                3 => gather(3, src, lanes_in),
+                4 => gather(4, src, lanes_in),
+                _ => gather(iw, src, lanes_in),
             }
             (self.eval_lanes)(lanes_in, lanes_out);
             match ow {
-                1 => scatter::<1>(lanes_out, dst),
-                2 => scatter::<2>(lanes_out, dst),
-                3 => scatter::<3>(lanes_out, dst),
-                _ => scatter::<4>(lanes_out, dst),
+                1 => scatter(1, lanes_out, dst),
+                2 => scatter(2, lanes_out, dst),
+                3 => scatter(3, lanes_out, dst),
+                4 => scatter(4, lanes_out, dst),
+                _ => scatter(ow, lanes_out, dst),
             }
         }
     }
 }
 
-/// Items of `W` words into groups of four lanes per word; a last partial group repeats
-/// its last item. Written per item width so that the full groups are plain moves.
-#[inline]
-fn gather<const W: usize>(src: &[u32], lanes: &mut [Lanes]) {
-    let full = src.chunks_exact(4 * W);
+/// Items of `w` words into groups of four lanes per word; a last partial group repeats
+/// its last item. Inlined where `w` is a constant, so that the full groups are plain moves.
+#[inline(always)]
+fn gather(w: usize, src: &[u32], lanes: &mut [Lanes]) {
+    let full = src.chunks_exact(4 * w);
     let tail = full.remainder();
-    let mut groups = lanes.chunks_exact_mut(W);
+    let mut groups = lanes.chunks_exact_mut(w);
     for (s, group) in full.zip(&mut groups) {
         for (j, lane) in group.iter_mut().enumerate() {
-            *lane = [s[j], s[W + j], s[2 * W + j], s[3 * W + j]];
+            *lane = [s[j], s[w + j], s[2 * w + j], s[3 * w + j]];
         }
     }
     if let Some(group) = groups.next() {
-        let items = tail.len() / W;
+        let items = tail.len() / w;
         for (j, lane) in group.iter_mut().enumerate() {
-            *lane = std::array::from_fn(|k| tail[k.min(items - 1) * W + j]);
+            *lane = std::array::from_fn(|k| tail[k.min(items - 1) * w + j]);
         }
     }
 }
 
-/// Groups of four lanes per word back into items of `W` words, the real items only.
-#[inline]
-fn scatter<const W: usize>(lanes: &[Lanes], dst: &mut [u32]) {
-    for (group, d) in lanes.chunks_exact(W).zip(dst.chunks_mut(4 * W)) {
-        for (k, item) in d.chunks_exact_mut(W).enumerate() {
+/// Groups of four lanes per word back into items of `w` words, the real items only.
+#[inline(always)]
+fn scatter(w: usize, lanes: &[Lanes], dst: &mut [u32]) {
+    for (group, d) in lanes.chunks_exact(w).zip(dst.chunks_mut(4 * w)) {
+        for (k, item) in d.chunks_exact_mut(w).enumerate() {
             for (o, lane) in item.iter_mut().zip(group) {
                 *o = lane[k];
             }
@@ -375,6 +381,7 @@ macro_rules! generic_function {
         )
     };
 }
+pub(crate) use generic_function;
 
 /// The traced module and the public functions of one spec.
 pub struct Emitted {

@@ -182,6 +182,13 @@ pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
         Inputs::Vectors => vectors().to_vec(),
         Inputs::Codes(q) => codes(q, in_words),
         Inputs::FloatCodes(q) => float_codes(q),
+        Inputs::CodesAndIndex(q, n) => {
+            assert_eq!(in_words, 2, "a code and an index");
+            codes(q, 1)
+                .into_iter()
+                .flat_map(|c| (0..*n).flat_map(move |k| [c, k]))
+                .collect()
+        }
         Inputs::VectorsWith(extra) => {
             assert_eq!(in_words, 3 + extra.words, "{extra:?} after a vector");
             let v = vectors();

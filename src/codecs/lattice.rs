@@ -24,6 +24,7 @@
 //! magnitudes) and applies the input's signs afterwards, so every integer is
 //! non-negative.
 
+use super::exact::sum_of_squares;
 use crate::model::{Bool, Float, Uint, V2, V3};
 
 /// `2^22`: canonical magnitudes are below 4, so their fixed point is below `2^24`.
@@ -56,7 +57,8 @@ fn square_shifted<U: Uint>(x: U) -> U {
 /// proportional to `e / n`.
 #[derive(Clone, Copy)]
 pub struct Closeness<F> {
-    /// `|A×d|² >> 29`, exact integer below 2^24, as f32.
+    /// `|A×d|² >> 29`, an exact integer below 2^24 ([`Closeness::of`]), or `|a×d|²`
+    /// rounded once ([`Closeness::of_small`]), as f32.
     e: F,
     /// `|d|² >> shift`, below 2^24, as f32.
     n: F,
@@ -66,13 +68,7 @@ impl<F: Float> Closeness<F> {
     /// `d` (non-negative integers with `|d| ≤ m`) measured against `a`, the
     /// [`fixed`] input.
     pub fn of(a: V3<F::U>, d: V3<F::U>, m: f32) -> Closeness<F> {
-        let x = V3::new(
-            a.y.wrapping_mul(d.z).wrapping_sub(a.z.wrapping_mul(d.y)),
-            a.z.wrapping_mul(d.x).wrapping_sub(a.x.wrapping_mul(d.z)),
-            a.x.wrapping_mul(d.y).wrapping_sub(a.y.wrapping_mul(d.x)),
-        )
-        .named("cross");
-        let x = x.map(|c| square_shifted(magnitude(c)));
+        let x = cross(a, d).map(|c| square_shifted(magnitude(c)));
         let e = (x.x + x.y + x.z).to_f().named("e");
         let n2 = d.x.wrapping_mul(d.x) + d.y.wrapping_mul(d.y) + d.z.wrapping_mul(d.z);
         let shift = norm_shift(m);
@@ -82,6 +78,31 @@ impl<F: Float> Closeness<F> {
             n: n.to_f().named("n"),
         }
     }
+
+    /// `d` measured against `a`, both signed (two's complement words) and small,
+    /// `|a|·|d| < 2^24`: every component of `a×d` is then exact and below 2^24 in
+    /// magnitude, so `e` is `|a×d|²` itself, summed exactly in integers and rounded once
+    /// ([`sum_of_squares`]), and `n` the exact `|d|²`. For candidates that are not
+    /// lattice directions (a table's texels) at a coarser fixed point than [`fixed`]'s.
+    pub fn of_small(a: V3<F::U>, d: V3<F::U>) -> Closeness<F> {
+        let x = cross(a, d).map(magnitude);
+        let n2 = d.x.wrapping_mul(d.x) + d.y.wrapping_mul(d.y) + d.z.wrapping_mul(d.z);
+        Closeness {
+            e: sum_of_squares::<F, 3>([x.x, x.y, x.z]).named("e"),
+            n: n2.to_f().named("n"),
+        }
+    }
+}
+
+/// `a×d` in wrapping 32-bit arithmetic: exact as two's complement while each component's
+/// magnitude is below 2^31.
+fn cross<U: Uint>(a: V3<U>, d: V3<U>) -> V3<U> {
+    V3::new(
+        a.y.wrapping_mul(d.z).wrapping_sub(a.z.wrapping_mul(d.y)),
+        a.z.wrapping_mul(d.x).wrapping_sub(a.x.wrapping_mul(d.z)),
+        a.x.wrapping_mul(d.y).wrapping_sub(a.y.wrapping_mul(d.x)),
+    )
+    .named("cross")
 }
 
 /// A deterministic measure of how near a candidate is, for [`nearest`].

@@ -141,6 +141,14 @@ impl Spec {
     pub fn precise(&self) -> bool {
         self.precise
     }
+    /// The same spec with the fast encoder: what a precise spec's decoders and lookup
+    /// tables are.
+    pub fn fast(&self) -> Spec {
+        Spec {
+            precise: false,
+            ..self.clone()
+        }
+    }
     /// The index of the chosen name of choice option `i`.
     pub fn choice(&self, i: usize) -> usize {
         match self.opts[i] {

@@ -14,6 +14,24 @@
 //!          n = decode_float(sincos_lut[t].rgb)    rgb·2 - 1
 //! ```
 //!
+//! The precise encoder (`spherical_lut16p`) refines that code against the decoder's own
+//! table: it fetches the sin/cos texels of the 3×3 block of codes around it and keeps
+//! the one nearest the input in angle:
+//!
+//! ```text
+//! encode:  t = atan_texel(v);  a = atan_lut[t].r
+//!          c = encode_fast(v, a)                     the fast code
+//!          s_k = sincos_lut[precise_texel(c, k)].rgb  for k = 0..8, the block row by row
+//!          code = encode(v, c, s_0, …, s_8)
+//! ```
+//!
+//! The choice is made in integers, like the other precise encoders' ([`super::lattice`]): each
+//! candidate's direction is `d = 2·byte - 255` of its fetched texel (its decode times
+//! 255), the input is `A = ±floor(|w|·2^12)` of the canonical input, and `sin²` of their
+//! angle is compared as `|A×d|²/|d|²` computed exactly ([`Closeness::of_small`]), the
+//! fast code first on ties. So every implementation picks the same code; the input's
+//! fixed point resolves near-ties to about `2^-13` rad (0.007°).
+//!
 //! `atan_texel` is the texel that nearest sampling at the seed's coordinates `n.xy·½ + ½`
 //! selects, `floor(256·(n.xy·½ + ½))` clamped to 255, decided exactly from the input
 //! (never through a rounded quotient), so every implementation reads the same texel.
@@ -42,14 +60,18 @@
 use super::codec::Domain;
 use super::exact::{canonical_or_z, decided, length2, past_root_ratio, unorm_sqrt_ratio};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes, Table};
-use super::functions::{Emitted, Enclose, Extra, Inputs, Role, fetched_range, function, through_table};
+use super::functions::{
+    Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap, fetched_range, function,
+    generic_function, through_table,
+};
+use super::lattice::{Closeness, Measure};
 use super::quant::Quant;
 use super::spec::Spec;
 use crate::model::deviant::Dev;
 use crate::model::enclosure::Encl;
 use crate::model::lanes::F4;
 use crate::model::trace::{Tf, define, trace_module};
-use crate::model::{Float, Uint, V2, V3};
+use crate::model::{Float, Lane, Uint, V2, V3};
 use std::sync::{Arc, OnceLock};
 
 pub static FAMILY: SphericalLutFamily = SphericalLutFamily;
@@ -73,9 +95,9 @@ static INFO: Info = Info {
     title: "azimuth and z through an atan2 and a sin/cos lookup texture (256×256)",
     sizes: Sizes::Total(&[16]),
     domain: Some(Domain::Sphere),
-    precise: false,
+    precise: true,
     source: "Pranckevičius method 3a",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (atan texel (128, 128))",
+    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (atan texel (128, 128); the precise encoder keeps that code)",
     decode_note: "the sin/cos table's texel·2 - 1, not renormalized: unit length to within the table's rounding (each component within 1/255)",
     options: OPTIONS,
 };
@@ -88,12 +110,13 @@ impl Family for SphericalLutFamily {
         &["spherical_lut16:lut=matched"]
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
-        emitted(&spec.id(), SphericalLut::of(spec))
+        emitted(&spec.id(), SphericalLut::of(spec), spec.precise())
     }
+    /// A precise spec reads its fast spec's tables (same files, same names).
     fn tables(&self, spec: &Spec) -> Vec<Table> {
         let lut = SphericalLut::of(spec);
         let table = |what: &str, channels: u8, bytes: Vec<u8>| Table {
-            stem: format!("{}_{what}", spec.id()),
+            stem: format!("{}_{what}", spec.fast().id()),
             width: SIZE as u32,
             height: SIZE as u32,
             channels,
@@ -104,8 +127,20 @@ impl Family for SphericalLutFamily {
             table("sincos", 4, lut.sincos().concat()),
         ]
     }
-    fn function_doc(&self, name: &str) -> Option<Vec<String>> {
+    fn function_doc(&self, spec: &Spec, name: &str) -> Option<Vec<String>> {
         let lines: &[&str] = match name {
+            "encode" if spec.precise() => &[
+                "In: any vector; `code`, encode_fast(v, fetched) for it; s0 … s8, the sin/cos table's .rgb at precise_texel(code, k) for k = 0 … 8, as a unorm8 fetch returns them.",
+                "Out: the packed code, uint (bits 0–7 x, 8–15 y): of the 3×3 block of codes around `code`, the one whose sin/cos texel (its decode) is nearest the input in angle, decided in integer arithmetic (the input at 2^-12 of its largest component, each texel as 2·byte - 255); `code` on ties and for zero, NaN and infinite input.",
+            ],
+            "encode_fast" => &[
+                "In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).",
+                "Out: the fast encoder's code, uint (bits 0–7: x, the fetched byte; bits 8–15: y, z·½ + ½ of the normalized input as unorm8, rounded exactly): where encode's search starts.",
+            ],
+            "precise_texel" => &[
+                "In: a code (bits 0–7 x, 8–15 y; other bits are ignored) and k in 0 … 8 (a larger k reads as 8).",
+                "Out: the integer texel (x, y) of the sin/cos table holding the decode of the precise search's candidate k: the code's bytes moved by (k mod 3 - 1, k div 3 - 1), x wrapping around mod 256 (the azimuth is periodic), y clamped to [0, 255]. Row by row; k = 4 is the code itself. The candidate's code is the texel's x | y << 8.",
+            ],
             "atan_texel" => &[
                 "In: any vector; input is normalized first, zero, NaN and infinite input read the texel of +Z.",
                 "Out: the integer texel (x, y) of the 256×256 atan table to read with textureLoad / texelFetch / Load: floor(256·(n.xy·½ + ½)) clamped to 255, the texel nearest sampling at n.xy·½ + ½ selects, decided exactly (the same texel on every implementation). Sample at (t + ½)/256 for the same texel through a nearest sampler.",
@@ -272,8 +307,96 @@ pub fn decode_float<F: Float>(rgb: V3<F>) -> V3<F> {
     (rgb - F::c(0.5)) * F::c(2.0)
 }
 
+/// The candidates of the precise search: the 3×3 block of codes around the fast code.
+const BLOCK: u32 = 9;
+
+/// The input's fixed point for the precise search, `2^12`: canonical components are
+/// below 4 and their magnitudes sum below 12, a texel's `d = 2·byte - 255` is at most 255
+/// per component, so `|A|·|d| ≤ 2^12·12·255 < 2^24`, as [`Closeness::of_small`] needs.
+const ANGLE_FIXED: f32 = (1u32 << 12) as f32;
+
+/// The texel of the precise search's candidate `k` (a larger `k` reads as 8): the code's
+/// bytes moved by `(k mod 3 - 1, k div 3 - 1)`, x wrapping mod 256, y clamped to
+/// `[0, 255]`. All in integers, so every implementation fetches the same texels.
+pub fn precise_texel<F: Float>(code: F::U, k: F::U) -> V2<F::U> {
+    let c = |v: u32| F::U::c(v);
+    let k = F::U::sel(k.lt(c(BLOCK)), k, c(BLOCK - 1));
+    // The row, 0 … 2 (dy + 1), and the column, 0 … 2 (dx + 1).
+    let row = F::U::sel(k.lt(c(3)), c(0), F::U::sel(k.lt(c(6)), c(1), c(2)));
+    let col = k - row.wrapping_mul(c(3));
+    moved::<F::U>(code, col, row)
+}
+
+/// The code's texel moved by `(col - 1, row - 1)` (`col`, `row` in 0 … 2), x wrapping
+/// mod 256, y clamped to `[0, 255]`.
+fn moved<U: Uint>(code: U, col: U, row: U) -> V2<U> {
+    let x = ((code & U::c(0xff)) + col + U::c(255)) & U::c(0xff);
+    // y + row - 1 in [-1, 256], clamped: below 1 is row 0 at y = 0.
+    let y = (code.shr(8) & U::c(0xff)) + row;
+    let y = U::sel(y.lt(U::c(1)), U::c(1), y) - U::c(1);
+    V2::new(x, U::sel(y.lt(U::c(256)), y, U::c(255)))
+}
+
+/// The texel's code, `x | y << 8`.
+fn code_of<U: Uint>(t: V2<U>) -> U {
+    t.x | t.y.shl(8)
+}
+
+/// The nine fetched sin/cos texels of the precise encoder's parameters, nested in pairs
+/// (a function's parameters are a vector, a scalar or a pair of them).
+pub type Block<F> = (
+    V3<F>,
+    (V3<F>, (V3<F>, (V3<F>, (V3<F>, (V3<F>, (V3<F>, (V3<F>, V3<F>))))))),
+);
+
+fn block_array<F: Copy>(b: Block<F>) -> [V3<F>; 9] {
+    let (s0, (s1, (s2, (s3, (s4, (s5, (s6, (s7, s8)))))))) = b;
+    [s0, s1, s2, s3, s4, s5, s6, s7, s8]
+}
+
+/// The precise code: of the candidates `precise_texel(code, k)`, the one whose fetched
+/// texel `s[k]` is nearest the input in angle ([`Closeness::of_small`] of `2·byte - 255`
+/// against the input at [`ANGLE_FIXED`]), `code` (k = 4) first on ties; `code` for
+/// invalid input.
+pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: [V3<F>; 9]) -> F::U {
+    let (w, ok) = canonical_or_z(v);
+    let a = w
+        .map(|x| {
+            let m = (x.abs() * F::c(ANGLE_FIXED)).floor().to_u();
+            F::U::sel(x.lt(F::c(0.0)), F::U::c(0).wrapping_sub(m), m)
+        })
+        .named("afix");
+    let direction = |t: V3<F>| {
+        t.map(|t| {
+            let b = BYTE.quantize(t).to_u();
+            (b + b).wrapping_sub(F::U::c(255))
+        })
+    };
+    let candidate = |k: u32| {
+        // The block's centre is the code itself.
+        let code = if k == 4 {
+            code & F::U::c(0xffff)
+        } else {
+            code_of(moved(code, F::U::c(k % 3), F::U::c(k / 3)))
+        };
+        (code, Closeness::<F>::of_small(a, direction(s[k as usize])))
+    };
+    let (first, mut best_c) = candidate(4);
+    let mut best = first;
+    for k in [0, 1, 2, 3, 5, 6, 7, 8] {
+        let (code, c) = candidate(k);
+        let better = c.closer(best_c);
+        best = F::U::sel(better, code, best).named("best");
+        best_c = Measure::sel(better, c, best_c);
+    }
+    F::U::sel(ok, best, first)
+}
+
 /// The emitted functions, and the CPU encoder and decoder that fetch from the tables.
-fn emitted(spec_id: &str, lut: SphericalLut) -> Emitted {
+fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
+    // The fast code's function: the packed encoder of a fast spec, the search's first
+    // step in a precise one.
+    let fast_name = if precise { "encode_fast" } else { "encode" };
     let module = trace_module(|| {
         define("decode_float", &["rgb"], |rgb: V3<Tf>| decode_float(rgb));
         define("sincos_texel", &["code"], |c: <Tf as Float>::U| {
@@ -283,7 +406,17 @@ fn emitted(spec_id: &str, lut: SphericalLut) -> Emitted {
         define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
             encode_float(v, a)
         });
-        define("encode", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
+        define(fast_name, &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
+        if precise {
+            type U = <Tf as Float>::U;
+            define("precise_texel", &["code", "k"], |(c, k): (U, U)| {
+                precise_texel::<Tf>(c, k)
+            });
+            let names = ["v", "code", "s0", "s1", "s2", "s3", "s4", "s5", "s6", "s7", "s8"];
+            define("encode", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
+                encode_precise(v, c, block_array(s))
+            });
+        }
     });
     let texel = function(
         "atan_texel",
@@ -295,7 +428,7 @@ fn emitted(spec_id: &str, lut: SphericalLut) -> Emitted {
     );
     let with_atan = Inputs::VectorsWith(fetch_atan(lut));
     let enc = function(
-        "encode",
+        fast_name,
         Role::Encode,
         with_atan.clone(),
         |(v, a): (V3<f32>, f32)| encode(v, a),
@@ -334,42 +467,99 @@ fn emitted(spec_id: &str, lut: SphericalLut) -> Emitted {
         whole_field: None,
         unread: &[],
     });
-    let cpu = vec![
-        through_table(
-            "encode",
-            Role::Encode,
-            Inputs::Vectors,
-            &texel,
-            Arc::new(move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]),
-            &enc,
-            true,
-        ),
-        through_table(
-            "encode_float",
-            Role::EncodeFloat,
-            Inputs::Vectors,
-            &texel,
-            Arc::new(move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]),
-            &enc_float,
-            true,
-        ),
-        through_table(
-            "decode",
-            Role::Decode,
-            Inputs::Codes(FIELDS.to_vec()),
-            &sincos,
-            Arc::new(move |t: &[u32]| sincos_fetch(lut, t)),
-            &dec_float,
-            false,
-        ),
-    ];
+    let atan_lookup: WordsMap = Arc::new(move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]);
+    let fast_cpu = through_table(
+        "encode",
+        Role::Encode,
+        Inputs::Vectors,
+        &texel,
+        atan_lookup.clone(),
+        &enc,
+        true,
+    );
+    let enc_float_cpu = through_table(
+        "encode_float",
+        Role::EncodeFloat,
+        Inputs::Vectors,
+        &texel,
+        atan_lookup,
+        &enc_float,
+        true,
+    );
+    let dec_cpu = through_table(
+        "decode",
+        Role::Decode,
+        Inputs::Codes(FIELDS.to_vec()),
+        &sincos,
+        Arc::new(move |t: &[u32]| sincos_fetch(lut, t)),
+        &dec_float,
+        false,
+    );
+    let mut functions = vec![dec_float, sincos, texel, enc_float, enc];
+    let enc_cpu = if precise {
+        let (search_texel, search, cpu) = precise_functions(lut, &fast_cpu);
+        functions.extend([search_texel, search]);
+        cpu
+    } else {
+        fast_cpu
+    };
     Emitted {
         module,
-        functions: vec![dec_float, sincos, texel, enc_float, enc],
-        cpu,
+        functions,
+        cpu: vec![enc_cpu, enc_float_cpu, dec_cpu],
         namespace: spec_id.to_string(),
         portable_encoder: true,
     }
+}
+
+/// The precise spec's `precise_texel` and `encode`, and its CPU encoder: the fast one
+/// (`fast_cpu`), the block's fetches from the table in memory, then `encode`.
+fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> (Function, Function, Function) {
+    type U<F> = <F as Float>::U;
+    let search_texel = generic_function!(
+        "precise_texel",
+        Role::LutTexel,
+        // Every code with each k, and k past the block (read as 8).
+        Inputs::CodesAndIndex(FIELDS.to_vec(), 2 * BLOCK),
+        <F> [] |x: (U<F>, U<F>)| precise_texel::<F>(x.0, x.1)
+    );
+    let block = block_fetch(lut);
+    let fast = fast_cpu.eval.clone();
+    let inputs = Inputs::VectorsWith(Extra {
+        name: "encode_fast's code for the vector (through the atan table) and the sin/cos table's values at its 3×3 block",
+        words: 1 + 3 * BLOCK as usize,
+        of: {
+            let block = block.clone();
+            Arc::new(move |v: &[u32]| {
+                let mut code = [0u32];
+                fast(v, &mut code);
+                block(&code)
+            })
+        },
+    });
+    let search = generic_function!(
+        "encode",
+        Role::Encode,
+        inputs,
+        <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_precise(x.0, x.1.0, block_array(x.1.1))
+    );
+    let mut cpu = through_table("encode", Role::Encode, Inputs::Vectors, fast_cpu, block, &search, true);
+    // What a shader runs: the fast code's two parts, the block's nine texels, the search.
+    cpu.parts = [&fast_cpu.parts[..], &["precise_texel"; BLOCK as usize], &["encode"]].concat();
+    (search_texel, search, cpu)
+}
+
+/// A code's words → the code and the sin/cos table's `.rgb` at each `precise_texel(code,
+/// k)`, as a unorm8 fetch returns them.
+fn block_fetch(lut: SphericalLut) -> WordsMap {
+    Arc::new(move |c: &[u32]| {
+        let mut out = vec![c[0]];
+        for k in 0..BLOCK {
+            let t = precise_texel::<f32>(c[0], k);
+            out.extend(sincos_fetch(lut, &[t.x, t.y]));
+        }
+        out
+    })
 }
 
 /// A unorm8 texel's byte as the texture unit returns it: `c·(1/255)`, lavapipe's

@@ -199,11 +199,13 @@ pub fn function_doc(
         )
     });
     let texel = TexelText::of(spec, local);
-    let own = spec.family().function_doc(local);
+    let own = spec.family().function_doc(spec, local);
     let mut d = match (role, texel) {
         _ if own.is_some() => {
             let what = match role {
-                Role::Encode => enc,
+                // A precise spec's other packed encoders are the search's first step.
+                Role::Encode if local == "encode" => enc,
+                Role::Encode => "fast encoder (the precise search's first step)",
                 Role::EncodeFloat => "fast encoder, float form",
                 Role::DecodeFloat => "decoder, float form",
                 _ => "lookup texel",

@@ -113,14 +113,12 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
     }
     let traced = e.module.func(function).expect("every function is traced");
     let params: Vec<Ty> = traced.params.iter().map(|p| p.1).collect();
-    let (tin, args) = match params.as_slice() {
-        [one] => (glsl_type(*one), "inp[i]".to_string()),
-        many => {
-            let lanes: u8 = many.iter().map(|t| t.lanes).sum();
-            assert!(
-                many.iter().all(|t| t.kind == Kind::F32) && lanes <= 4,
-                "{spec} {function}: arguments the counting shader cannot pass"
-            );
+    let lanes: u8 = params.iter().map(|t| t.lanes).sum();
+    // The input buffer's element type, the call's arguments, and a declaration the
+    // element type needs.
+    let (tin, args, decl) = match params.as_slice() {
+        [one] => (glsl_type(*one), "inp[i]".to_string(), String::new()),
+        many if many.iter().all(|t| t.kind == Kind::F32) && lanes <= 4 => {
             let mut at = 0;
             let args: Vec<String> = many
                 .iter()
@@ -136,7 +134,20 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
                     lanes,
                 }),
                 args.join(", "),
+                String::new(),
             )
+        }
+        // Mixed or many arguments (a precise search's code and fetched texels): one
+        // struct member each, loaded as they are (a load is no ALU instruction).
+        many => {
+            let members: String = many
+                .iter()
+                .enumerate()
+                .map(|(k, t)| format!(" {} a{k};", glsl_type(*t)))
+                .collect();
+            let args: Vec<String> = (0..many.len()).map(|k| format!("inp[i].a{k}")).collect();
+            let decl = format!("struct Args {{{members} }};\n");
+            ("Args".to_string(), args.join(", "), decl)
         }
     };
     let include = render(&[(spec.clone(), None)], Lang::Glsl, DEFAULT_PREFIX, "");
@@ -147,7 +158,7 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
     };
     Ok(format!(
         "#version 450\n#define UNITPACK_PRECISE precise\n{include}\n\
-         layout(local_size_x = 64) in;\n\
+         layout(local_size_x = 64) in;\n{decl}\
          layout(std430, set = 0, binding = 0) readonly buffer In {{ {tin} inp[]; }};\n\
          layout(std430, set = 0, binding = 1) writeonly buffer Out {{ {tout} outp[]; }};\n\
          void main() {{\n    uint i = gl_GlobalInvocationID.x;\n    outp[i] = {name}({args});\n}}\n",
