@@ -12,6 +12,7 @@
 use crate::codecs::functions::{Enclose, Function, Role, float_code_range};
 use crate::codecs::quant::Quant;
 use crate::codecs::{Spec, functions::Inputs};
+use crate::memo::Memo;
 use crate::model::enclosure::Encl;
 use crate::model::trace::Module;
 use std::cmp::Ordering;
@@ -202,12 +203,8 @@ pub fn of(f: &Function) -> Option<Bound> {
     Some(prove(&code_ranges(f)?, f.enclose.as_ref()?))
 }
 
-type Cache = std::sync::Mutex<std::collections::HashMap<u128, Option<Bound>>>;
-
-fn cache() -> &'static Cache {
-    static CACHE: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
-    CACHE.get_or_init(Default::default)
-}
+/// Every bound this process knows, by [`key`].
+static CACHE: Memo<u128, Option<Bound>> = Memo::new();
 
 /// What identifies a decoder's bound: its trace and its callees' in `module`, and the
 /// codes it takes, hashed to 128 bits (two of std's SipHashes with fixed keys, over the
@@ -237,26 +234,23 @@ fn key(module: &Module, f: &Function) -> u128 {
 pub fn cached(module: &Module, f: &Function) -> Option<Bound> {
     code_ranges(f)?;
     let key = key(module, f);
-    if let Some(b) = cache().lock().expect("bound cache").get(&key) {
-        return b.clone();
+    if let Some(b) = CACHE.get(&key) {
+        return b;
     }
     let b = of(f);
-    cache().lock().expect("bound cache").insert(key, b.clone());
+    CACHE.extend([(key, b.clone())]);
     b
 }
 
 /// Every bound this process knows, by its key: what a store that outlives the process
 /// saves. Keys are only meaningful to the same build (see [`key`]).
 pub fn export() -> Vec<(u128, Option<Bound>)> {
-    let cache = cache().lock().expect("bound cache");
-    let mut all: Vec<_> = cache.iter().map(|(k, b)| (*k, b.clone())).collect();
-    all.sort_by_key(|(k, _)| *k);
-    all
+    CACHE.export()
 }
 
 /// Takes bounds an earlier run of the same build proved ([`export`]) as proven.
 pub fn import(bounds: impl IntoIterator<Item = (u128, Option<Bound>)>) {
-    cache().lock().expect("bound cache").extend(bounds);
+    CACHE.extend(bounds);
 }
 
 /// Proves the bound of every decoder of `specs` not yet [`cached`], on every core.
@@ -266,15 +260,12 @@ pub fn prove_all(specs: &[Spec]) {
         let e = spec.emitted();
         for f in e.functions.into_iter().filter(|f| f.enclose.is_some()) {
             let key = key(&e.module, &f);
-            if !cache().lock().expect("bound cache").contains_key(&key) {
+            if !CACHE.contains(&key) {
                 todo.insert(key, f);
             }
         }
     }
     let todo: Vec<_> = todo.into_iter().collect();
     let bounds = crate::par::map(&todo, |(_, f)| of(f));
-    let mut cache = cache().lock().expect("bound cache");
-    for ((key, _), b) in todo.into_iter().zip(bounds) {
-        cache.insert(key, b);
-    }
+    CACHE.extend(todo.into_iter().map(|(key, _)| key).zip(bounds));
 }

@@ -9,6 +9,7 @@ pub mod decode_bound;
 pub mod doc_tables;
 pub mod emit;
 pub mod generator;
+mod memo;
 pub mod model;
 mod par;
 pub mod portability;

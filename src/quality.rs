@@ -5,6 +5,7 @@
 use crate::codecs::Spec;
 use crate::codecs::codec::Domain;
 use crate::codecs::functions::{Emitted, Role};
+use crate::memo::Memo;
 use rand_core::Rng;
 use rand_pcg::Pcg64Mcg;
 
@@ -122,42 +123,34 @@ pub fn measure_all(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
 /// What a spec's figures are known by: its name and the sample size.
 pub type StatsKey = (String, usize);
 
-type Memo = std::sync::Mutex<std::collections::HashMap<StatsKey, Option<ErrorStats>>>;
-
-fn memo() -> &'static Memo {
-    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
-    MEMO.get_or_init(Default::default)
-}
+/// Every spec's figures this process knows.
+static MEMO: Memo<StatsKey, Option<ErrorStats>> = Memo::new();
 
 /// [`measure_all`], each spec measured once per process (the doc comments of every
 /// include state its figures, and a search encoder's take a noticeable fraction of a
 /// second).
 pub fn measure_all_once(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
     let key = |s: &Spec| (s.to_string(), samples);
-    let todo: Vec<Spec> = {
-        let memo = memo().lock().expect("stats memo");
-        specs
-            .iter()
-            .filter(|s| !memo.contains_key(&key(s)))
-            .cloned()
-            .collect()
-    };
+    let todo: Vec<Spec> = specs
+        .iter()
+        .filter(|s| !MEMO.contains(&key(s)))
+        .cloned()
+        .collect();
     let measured = measure_all(&todo, samples);
-    let mut memo = memo().lock().expect("stats memo");
-    memo.extend(todo.iter().map(key).zip(measured));
-    specs.iter().map(|s| memo[&key(s)]).collect()
+    MEMO.extend(todo.iter().map(key).zip(measured.iter().copied()));
+    specs
+        .iter()
+        .map(|s| MEMO.get(&key(s)).expect("every spec is measured"))
+        .collect()
 }
 
 /// Every spec's figures this process knows: what a store that outlives the process saves.
 /// They are the model's, so only meaningful to the same build.
 pub fn export() -> Vec<(StatsKey, Option<ErrorStats>)> {
-    let memo = memo().lock().expect("stats memo");
-    let mut all: Vec<_> = memo.iter().map(|(k, s)| (k.clone(), *s)).collect();
-    all.sort_by(|a, b| a.0.cmp(&b.0));
-    all
+    MEMO.export()
 }
 
 /// Takes figures an earlier run of the same build measured ([`export`]) as measured.
 pub fn import(stats: impl IntoIterator<Item = (StatsKey, Option<ErrorStats>)>) {
-    memo().lock().expect("stats memo").extend(stats);
+    MEMO.extend(stats);
 }

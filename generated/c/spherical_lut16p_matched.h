@@ -187,45 +187,6 @@ static inline uint64_t unitpack_spherical_lut16p_matched_atan_texel(const float 
     return (uint64_t)r.x | ((uint64_t)r.y << 32);
 }
 
-// Struct form of unitpack_spherical_lut16p_matched_encode_float.
-static inline unitpack_vec2 unitpack_spherical_lut16p_matched_encode_float_v(unitpack_vec3 v, float fetched) {
-    const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const bool t2 = t1.x >= t1.y;
-    const float t3 = t2 ? t1.x : t1.y;
-    const bool t4 = t3 >= t1.z;
-    const float largest = t4 ? t3 : t1.z;
-    const bool t5 = largest > 0.0f;
-    const bool t6 = largest <= 3.4028235e38f;
-    const bool t7 = t5 && t6;
-    const float t8 = t7 ? largest : 1.0f;
-    const unitpack_vec3 scaled = { v.x / t8, v.y / t8, v.z / t8 };
-    const unitpack_vec3 t9 = { scaled.x * scaled.x, scaled.y * scaled.y, scaled.z * scaled.z };
-    const float t10 = t9.x + t9.y;
-    const float len2 = t10 + t9.z;
-    const bool t11 = len2 >= 1.0f;
-    const bool t12 = t7 && t11;
-    const float t13 = sqrtf(len2);
-    const unitpack_vec3 t14 = { scaled.x / t13, scaled.y / t13, scaled.z / t13 };
-    const unitpack_vec3 t15 = { t12 ? t14.x : 0.0f, t12 ? t14.y : 0.0f, t12 ? t14.z : 1.0f };
-    const float t16 = t15.z + 1.0f;
-    const float t17 = t16 * 0.5f;
-    const unitpack_vec2 t18 = { fetched, t17 };
-    return t18;
-}
-
-// unitpack_spherical_lut16p_matched_encode_float: spherical_lut16p:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
-// In: any vector, and `fetched` as for encode.
-// Out: (fetched, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
-// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
-// Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36910°, sample max 3.64272° (not a bound); MSE of the components of n - n' 2.026e-5, PSNR 46.93 dB.
-static inline void unitpack_spherical_lut16p_matched_encode_float(const float v[3], float fetched, float out[2]) {
-    const unitpack_vec3 v_v = { v[0], v[1], v[2] };
-    const unitpack_vec2 r = unitpack_spherical_lut16p_matched_encode_float_v(v_v, fetched);
-    out[0] = r.x;
-    out[1] = r.y;
-}
-
 // Struct form of unitpack_spherical_lut16p_matched_encode_fast.
 static inline uint32_t unitpack_spherical_lut16p_matched_encode_fast_v(unitpack_vec3 v, float fetched) {
     const unitpack_vec3 t1 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
@@ -1177,6 +1138,39 @@ static inline uint32_t unitpack_spherical_lut16p_matched_encode(const float v[3]
     const unitpack_vec3 s7_v = { s7[0], s7[1], s7[2] };
     const unitpack_vec3 s8_v = { s8[0], s8[1], s8[2] };
     return unitpack_spherical_lut16p_matched_encode_v(v_v, code, s0_v, s1_v, s2_v, s3_v, s4_v, s5_v, s6_v, s7_v, s8_v);
+}
+
+// Struct form of unitpack_spherical_lut16p_matched_encode_float.
+static inline unitpack_vec2 unitpack_spherical_lut16p_matched_encode_float_v(unitpack_vec3 v, uint32_t code, unitpack_vec3 s0, unitpack_vec3 s1, unitpack_vec3 s2, unitpack_vec3 s3, unitpack_vec3 s4, unitpack_vec3 s5, unitpack_vec3 s6, unitpack_vec3 s7, unitpack_vec3 s8) {
+    const uint32_t t1 = unitpack_spherical_lut16p_matched_encode_v(v, code, s0, s1, s2, s3, s4, s5, s6, s7, s8);
+    const uint32_t t2 = t1 >> 8u;
+    const unitpack_uvec2 t3 = { t1, t2 };
+    const unitpack_uvec2 t4 = { t3.x & 255u, t3.y & 255u };
+    const unitpack_vec2 t5 = { (float)t4.x, (float)t4.y };
+    const unitpack_vec2 t6 = { t5.x * 0.003921569f, t5.y * 0.003921569f };
+    return t6;
+}
+
+// unitpack_spherical_lut16p_matched_encode_float: spherical_lut16p:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
+// In: as encode.
+// Out: the bytes (x, y) of encode's code as c/255, for an RG8 unorm render target, which stores exactly that code.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
+// Source: Pranckevičius method 3a.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36910°, sample max 3.64272° (not a bound); MSE of the components of n - n' 2.026e-5, PSNR 46.93 dB.
+static inline void unitpack_spherical_lut16p_matched_encode_float(const float v[3], uint32_t code, const float s0[3], const float s1[3], const float s2[3], const float s3[3], const float s4[3], const float s5[3], const float s6[3], const float s7[3], const float s8[3], float out[2]) {
+    const unitpack_vec3 v_v = { v[0], v[1], v[2] };
+    const unitpack_vec3 s0_v = { s0[0], s0[1], s0[2] };
+    const unitpack_vec3 s1_v = { s1[0], s1[1], s1[2] };
+    const unitpack_vec3 s2_v = { s2[0], s2[1], s2[2] };
+    const unitpack_vec3 s3_v = { s3[0], s3[1], s3[2] };
+    const unitpack_vec3 s4_v = { s4[0], s4[1], s4[2] };
+    const unitpack_vec3 s5_v = { s5[0], s5[1], s5[2] };
+    const unitpack_vec3 s6_v = { s6[0], s6[1], s6[2] };
+    const unitpack_vec3 s7_v = { s7[0], s7[1], s7[2] };
+    const unitpack_vec3 s8_v = { s8[0], s8[1], s8[2] };
+    const unitpack_vec2 r = unitpack_spherical_lut16p_matched_encode_float_v(v_v, code, s0_v, s1_v, s2_v, s3_v, s4_v, s5_v, s6_v, s7_v, s8_v);
+    out[0] = r.x;
+    out[1] = r.y;
 }
 
 #endif // UNITPACK_SPHERICAL_LUT16P_MATCHED_H

@@ -157,37 +157,6 @@ uvec2 unitpack_spherical_lut16p_matched_atan_texel(vec3 v) {
     return t93;
 }
 
-// unitpack_spherical_lut16p_matched_encode_float: spherical_lut16p:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
-// In: any vector, and `fetched` as for encode.
-// Out: (fetched, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
-// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
-// Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36910°, sample max 3.64272° (not a bound); MSE of the components of n - n' 2.026e-5, PSNR 46.93 dB.
-vec2 unitpack_spherical_lut16p_matched_encode_float(vec3 v, float fetched) {
-    UNITPACK_PRECISE vec3 t1 = abs(v);
-    bool t2 = t1.x >= t1.y;
-    UNITPACK_PRECISE float t3 = t2 ? t1.x : t1.y;
-    bool t4 = t3 >= t1.z;
-    UNITPACK_PRECISE float largest = t4 ? t3 : t1.z;
-    bool t5 = largest > 0.0;
-    bool t6 = largest <= 3.4028235e38;
-    bool t7 = t5 && t6;
-    UNITPACK_PRECISE float t8 = t7 ? largest : 1.0;
-    UNITPACK_PRECISE vec3 scaled = v / t8;
-    UNITPACK_PRECISE vec3 t9 = scaled * scaled;
-    UNITPACK_PRECISE float t10 = t9.x + t9.y;
-    UNITPACK_PRECISE float len2 = t10 + t9.z;
-    bool t11 = len2 >= 1.0;
-    bool t12 = t7 && t11;
-    UNITPACK_PRECISE float t13 = sqrt(len2);
-    UNITPACK_PRECISE vec3 t14 = scaled / t13;
-    UNITPACK_PRECISE vec3 t15 = t12 ? t14 : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE float t16 = t15.z + 1.0;
-    UNITPACK_PRECISE float t17 = t16 * 0.5;
-    UNITPACK_PRECISE vec2 t18 = vec2(fetched, t17);
-    return t18;
-}
-
 // unitpack_spherical_lut16p_matched_encode_fast: spherical_lut16p:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder (the precise search's first step).
 // In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
 // Out: the fast encoder's code, uint (bits 0–7: x, the fetched byte; bits 8–15: y, z·½ + ½ of the normalized input as unorm8, rounded exactly): where encode's search starts.
@@ -1112,6 +1081,22 @@ uint unitpack_spherical_lut16p_matched_encode(vec3 v, uint code, vec3 s0, vec3 s
     uint best8 = t708 ? t644 : best7;
     uint t709 = t14 ? best8 : t23;
     return t709;
+}
+
+// unitpack_spherical_lut16p_matched_encode_float: spherical_lut16p:lut=matched (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
+// In: as encode.
+// Out: the bytes (x, y) of encode's code as c/255, for an RG8 unorm render target, which stores exactly that code.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
+// Source: Pranckevičius method 3a.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.36910°, sample max 3.64272° (not a bound); MSE of the components of n - n' 2.026e-5, PSNR 46.93 dB.
+vec2 unitpack_spherical_lut16p_matched_encode_float(vec3 v, uint code, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 s4, vec3 s5, vec3 s6, vec3 s7, vec3 s8) {
+    uint t1 = unitpack_spherical_lut16p_matched_encode(v, code, s0, s1, s2, s3, s4, s5, s6, s7, s8);
+    uint t2 = t1 >> 8u;
+    uvec2 t3 = uvec2(t1, t2);
+    uvec2 t4 = t3 & uvec2(255u);
+    UNITPACK_PRECISE vec2 t5 = vec2(t4);
+    UNITPACK_PRECISE vec2 t6 = t5 * 0.003921569;
+    return t6;
 }
 
 #endif // UNITPACK_SPHERICAL_LUT16P_MATCHED_GLSL

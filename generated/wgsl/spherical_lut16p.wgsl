@@ -141,37 +141,6 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
     return t93;
 }
 
-// unitpack_spherical_lut16p_encode_float: spherical_lut16p (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
-// In: any vector, and `fetched` as for encode.
-// Out: (fetched, z·½ + ½) of the normalized input, unquantized, for an RG8 unorm render target.
-// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
-// Source: Pranckevičius method 3a.
-// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.37352°, sample max 6.65113° (not a bound); MSE of the components of n - n' 2.196e-5, PSNR 46.58 dB.
-fn unitpack_spherical_lut16p_encode_float(v: vec3<f32>, fetched: f32) -> vec2<f32> {
-    let t1 = abs(v);
-    let t2 = t1.x >= t1.y;
-    let t3 = select(t1.y, t1.x, t2);
-    let t4 = t3 >= t1.z;
-    let largest = select(t1.z, t3, t4);
-    let t5 = largest > 0.0f;
-    let t6 = largest <= 3.4028235e38f;
-    let t7 = t5 && t6;
-    let t8 = select(1.0f, largest, t7);
-    let scaled = v / t8;
-    let t9 = scaled * scaled;
-    let t10 = t9.x + t9.y;
-    let len2 = t10 + t9.z;
-    let t11 = len2 >= 1.0f;
-    let t12 = t7 && t11;
-    let t13 = sqrt(len2);
-    let t14 = scaled / t13;
-    let t15 = select(vec3<f32>(0.0f, 0.0f, 1.0f), t14, t12);
-    let t16 = t15.z + 1.0f;
-    let t17 = t16 * 0.5f;
-    let t18 = vec2<f32>(fetched, t17);
-    return t18;
-}
-
 // unitpack_spherical_lut16p_encode_fast: spherical_lut16p (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder (the precise search's first step).
 // In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).
 // Out: the fast encoder's code, uint (bits 0–7: x, the fetched byte; bits 8–15: y, z·½ + ½ of the normalized input as unorm8, rounded exactly): where encode's search starts.
@@ -1096,4 +1065,20 @@ fn unitpack_spherical_lut16p_encode(v: vec3<f32>, code: u32, s0: vec3<f32>, s1: 
     let best8 = select(best7, t644, t708);
     let t709 = select(t23, best8, t14);
     return t709;
+}
+
+// unitpack_spherical_lut16p_encode_float: spherical_lut16p (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
+// In: as encode.
+// Out: the bytes (x, y) of encode's code as c/255, for an RG8 unorm render target, which stores exactly that code.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.
+// Source: Pranckevičius method 3a.
+// Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.37352°, sample max 6.65113° (not a bound); MSE of the components of n - n' 2.196e-5, PSNR 46.58 dB.
+fn unitpack_spherical_lut16p_encode_float(v: vec3<f32>, code: u32, s0: vec3<f32>, s1: vec3<f32>, s2: vec3<f32>, s3: vec3<f32>, s4: vec3<f32>, s5: vec3<f32>, s6: vec3<f32>, s7: vec3<f32>, s8: vec3<f32>) -> vec2<f32> {
+    let t1 = unitpack_spherical_lut16p_encode(v, code, s0, s1, s2, s3, s4, s5, s6, s7, s8);
+    let t2 = t1 >> 8u;
+    let t3 = vec2<u32>(t1, t2);
+    let t4 = t3 & vec2<u32>(255u);
+    let t5 = vec2<f32>(t4);
+    let t6 = t5 * 0.003921569f;
+    return t6;
 }

@@ -25,6 +25,9 @@
 //!          code = encode(v, c, s_0, …, s_8)
 //! ```
 //!
+//! Its `encode_float` takes `encode`'s arguments and returns the chosen code's bytes as
+//! `c/255` (an RG8 render target stores exactly that code), like every precise float form.
+//!
 //! The choice is made in integers, like the other precise encoders' ([`super::lattice`]): each
 //! candidate's direction is `d = 2·byte - 255` of its fetched texel (its decode times
 //! 255), the input is `A = ±floor(|w|·2^12)` of the canonical input, and `sin²` of their
@@ -132,6 +135,10 @@ impl Family for SphericalLutFamily {
             "encode" if spec.precise() => &[
                 "In: any vector; `code`, encode_fast(v, fetched) for it; s0 … s8, the sin/cos table's .rgb at precise_texel(code, k) for k = 0 … 8, as a unorm8 fetch returns them.",
                 "Out: the packed code, uint (bits 0–7 x, 8–15 y): of the 3×3 block of codes around `code`, the one whose sin/cos texel (its decode) is nearest the input in angle, decided in integer arithmetic (the input at 2^-12 of its largest component, each texel as 2·byte - 255); `code` on ties and for zero, NaN and infinite input.",
+            ],
+            "encode_float" if spec.precise() => &[
+                "In: as encode.",
+                "Out: the bytes (x, y) of encode's code as c/255, for an RG8 unorm render target, which stores exactly that code.",
             ],
             "encode_fast" => &[
                 "In: any vector, and `fetched`, the atan table's value at atan_texel(v) as a unorm8 fetch returns it (c/255).",
@@ -358,7 +365,8 @@ fn block_array<F: Copy>(b: Block<F>) -> [V3<F>; 9] {
 /// texel `s[k]` is nearest the input in angle ([`Closeness::of_small`] of `2·byte - 255`
 /// against the input at [`ANGLE_FIXED`]), `code` (k = 4) first on ties; `code` for
 /// invalid input.
-pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: [V3<F>; 9]) -> F::U {
+pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> F::U {
+    let s = block_array(s);
     let (w, ok) = canonical_or_z(v);
     let a = w
         .map(|x| {
@@ -392,6 +400,14 @@ pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: [V3<F>; 9]) -> F::U {
     F::U::sel(ok, best, first)
 }
 
+/// The precise float form: the chosen code's bytes as `c/255`, which an RG8 unorm render
+/// target stores as exactly that code.
+pub fn encode_float_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> V2<F> {
+    let chosen = F::call("encode", (v, (code, s)), |(v, (c, s))| encode_precise(v, c, s));
+    let chosen: V2<F> = super::codec::unpack(&FIELDS, chosen);
+    super::codec::dequantize(&FIELDS, chosen)
+}
+
 /// The emitted functions, and the CPU encoder and decoder that fetch from the tables.
 fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
     // The fast code's function: the packed encoder of a fast spec, the search's first
@@ -403,9 +419,11 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
             sincos_texel::<Tf>(c)
         });
         define("atan_texel", &["v"], |v: V3<Tf>| atan_texel(v));
-        define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
-            encode_float(v, a)
-        });
+        if !precise {
+            define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
+                encode_float(v, a)
+            });
+        }
         define(fast_name, &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
         if precise {
             type U = <Tf as Float>::U;
@@ -414,7 +432,10 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
             });
             let names = ["v", "code", "s0", "s1", "s2", "s3", "s4", "s5", "s6", "s7", "s8"];
             define("encode", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
-                encode_precise(v, c, block_array(s))
+                encode_precise(v, c, s)
+            });
+            define("encode_float", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
+                encode_float_precise(v, c, s)
             });
         }
     });
@@ -434,14 +455,6 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         |(v, a): (V3<f32>, f32)| encode(v, a),
         |(v, a): (V3<Dev>, Dev)| encode(v, a),
         |(v, a): (V3<F4>, F4)| encode(v, a),
-    );
-    let enc_float = function(
-        "encode_float",
-        Role::EncodeFloat,
-        with_atan,
-        |(v, a): (V3<f32>, f32)| encode_float(v, a),
-        |(v, a): (V3<Dev>, Dev)| encode_float(v, a),
-        |(v, a): (V3<F4>, F4)| encode_float(v, a),
     );
     let sincos = function(
         "sincos_texel",
@@ -477,15 +490,6 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         &enc,
         true,
     );
-    let enc_float_cpu = through_table(
-        "encode_float",
-        Role::EncodeFloat,
-        Inputs::Vectors,
-        &texel,
-        atan_lookup,
-        &enc_float,
-        true,
-    );
     let dec_cpu = through_table(
         "decode",
         Role::Decode,
@@ -495,26 +499,55 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         &dec_float,
         false,
     );
-    let mut functions = vec![dec_float, sincos, texel, enc_float, enc];
-    let enc_cpu = if precise {
-        let (search_texel, search, cpu) = precise_functions(lut, &fast_cpu);
-        functions.extend([search_texel, search]);
-        cpu
+    let mut functions = vec![dec_float, sincos];
+    let cpu = if precise {
+        let p = precise_functions(lut, &fast_cpu);
+        functions.extend([texel, enc, p.texel, p.encode_float, p.encode]);
+        vec![p.cpu_encode, p.cpu_encode_float, dec_cpu]
     } else {
-        fast_cpu
+        let enc_float = function(
+            "encode_float",
+            Role::EncodeFloat,
+            Inputs::VectorsWith(fetch_atan(lut)),
+            |(v, a): (V3<f32>, f32)| encode_float(v, a),
+            |(v, a): (V3<Dev>, Dev)| encode_float(v, a),
+            |(v, a): (V3<F4>, F4)| encode_float(v, a),
+        );
+        let enc_float_cpu = through_table(
+            "encode_float",
+            Role::EncodeFloat,
+            Inputs::Vectors,
+            &texel,
+            atan_lookup,
+            &enc_float,
+            true,
+        );
+        functions.extend([texel, enc_float, enc]);
+        vec![fast_cpu, enc_float_cpu, dec_cpu]
     };
     Emitted {
         module,
         functions,
-        cpu: vec![enc_cpu, enc_float_cpu, dec_cpu],
+        cpu,
         namespace: spec_id.to_string(),
         portable_encoder: true,
     }
 }
 
-/// The precise spec's `precise_texel` and `encode`, and its CPU encoder: the fast one
-/// (`fast_cpu`), the block's fetches from the table in memory, then `encode`.
-fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> (Function, Function, Function) {
+/// A precise spec's own functions.
+struct Precise {
+    texel: Function,
+    encode: Function,
+    encode_float: Function,
+    /// The CPU encoders: the fast one, the block's fetches from the table in memory, then
+    /// `encode` or `encode_float`.
+    cpu_encode: Function,
+    cpu_encode_float: Function,
+}
+
+/// The precise spec's `precise_texel`, `encode` and `encode_float`, and its CPU encoders
+/// chained on the fast one (`fast_cpu`).
+fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
     type U<F> = <F as Float>::U;
     let search_texel = generic_function!(
         "precise_texel",
@@ -540,13 +573,28 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> (Function, Funct
     let search = generic_function!(
         "encode",
         Role::Encode,
-        inputs,
-        <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_precise(x.0, x.1.0, block_array(x.1.1))
+        inputs.clone(),
+        <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_precise(x.0, x.1.0, x.1.1)
     );
-    let mut cpu = through_table("encode", Role::Encode, Inputs::Vectors, fast_cpu, block, &search, true);
+    let search_float = generic_function!(
+        "encode_float",
+        Role::EncodeFloat,
+        inputs,
+        <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_float_precise(x.0, x.1.0, x.1.1)
+    );
     // What a shader runs: the fast code's two parts, the block's nine texels, the search.
-    cpu.parts = [&fast_cpu.parts[..], &["precise_texel"; BLOCK as usize], &["encode"]].concat();
-    (search_texel, search, cpu)
+    let chained = |name: &'static str, role: Role, last: &Function| {
+        let mut cpu = through_table(name, role, Inputs::Vectors, fast_cpu, block.clone(), last, true);
+        cpu.parts = [&fast_cpu.parts[..], &["precise_texel"; BLOCK as usize], &[name]].concat();
+        cpu
+    };
+    Precise {
+        cpu_encode: chained("encode", Role::Encode, &search),
+        cpu_encode_float: chained("encode_float", Role::EncodeFloat, &search_float),
+        texel: search_texel,
+        encode: search,
+        encode_float: search_float,
+    }
 }
 
 /// A code's words → the code and the sin/cos table's `.rgb` at each `precise_texel(code,
