@@ -14,7 +14,8 @@ impl<K: Ord + Clone, V: Clone> Memo<K, V> {
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, BTreeMap<K, V>> {
-        // A panic elsewhere cannot leave a half-written entry: each is one insert.
+        // A panic elsewhere cannot leave a half-written entry: entries are inserted
+        // whole, and an interrupted extend leaves only whole entries.
         self.0.lock().unwrap_or_else(|e| e.into_inner())
     }
 

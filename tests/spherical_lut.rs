@@ -136,23 +136,28 @@ fn encoder_reads_the_sampled_texel_and_rounds_z() {
     }
 }
 
-/// Invalid input encodes as +Z: the atan texel (128, 128) and z = 255; the precise
-/// encoder keeps that code.
+/// Invalid input encodes as +Z does with the fast encoder: the atan texel (128, 128) and
+/// z = 255; the precise encoder keeps that code for invalid input (+Z itself is valid
+/// input to its search, so it is not held to it there).
 #[test]
 fn invalid_input_reads_the_texel_of_plus_z() {
-    let precise = PRECISE.map(|(lut, _, name)| (lut, name));
-    for (lut, name) in LUTS.into_iter().chain(precise) {
+    let invalid = [
+        [0.0, 0.0, 0.0],
+        [f32::NAN, 1.0, 0.0],
+        [f32::INFINITY, 0.0, 0.0],
+    ];
+    let fast = LUTS.map(|(lut, name)| (lut, name, true));
+    let precise = PRECISE.map(|(lut, _, name)| (lut, name, false));
+    for (lut, name, with_plus_z) in fast.into_iter().chain(precise) {
         let batch = Batch::new(name).unwrap();
-        let vs = [
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, 0.0],
-            [f32::NAN, 1.0, 0.0],
-            [f32::INFINITY, 0.0, 0.0],
-        ];
-        let mut codes = [0u32; 4];
+        let mut vs = invalid.to_vec();
+        if with_plus_z {
+            vs.push([0.0, 0.0, 1.0]);
+        }
+        let mut codes = vec![0u32; vs.len()];
         batch.encode(&vs, &mut codes);
         let want = u32::from(lut.atan()[128 * 256 + 128]) | 255 << 8;
-        assert_eq!(codes, [want; 4], "{name}");
+        assert!(codes.iter().all(|&c| c == want), "{name}: {codes:x?}");
     }
 }
 
@@ -417,10 +422,12 @@ fn texel_angle(v: [f32; 3], t: [u8; 4]) -> f64 {
 
 /// The precise encoder returns a code of the 3×3 block around the fast code (x wrapping,
 /// y clamped) whose sin/cos texel is, in f64 here, within 5·10^-4 rad of the block's
-/// nearest to the input: the input's fixed point (2^-12 of its largest component, which
-/// is at least 2) moves its direction by at most √3·2^-13 rad, which can change the
-/// angle to each candidate by as much, and the comparison is otherwise exact. It moves
-/// a good share of the codes and lowers the mean error below the fast encoder's.
+/// nearest to the input: the input's fixed point (steps of 2^-12 on a largest component
+/// in [2, 4)) moves its direction by at most √3·2^-13 rad, which can change the angle to
+/// the chosen and to the nearest candidate by as much each (4.2·10^-4 in all); the one
+/// rounding of `|A×d|²` and the two of the comparison's products are relative 2^-24 and
+/// add next to nothing. It moves a good share of the codes and lowers the mean error
+/// below the fast encoder's.
 #[test]
 fn precise_encoder_keeps_the_nearest_texel_of_the_block() {
     let vs = random_unit_vectors(0x3b, 200_000, false);

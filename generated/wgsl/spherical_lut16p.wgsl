@@ -293,7 +293,7 @@ fn unitpack_spherical_lut16p_precise_texel(code: u32, k: u32) -> vec2<u32> {
 
 // unitpack_spherical_lut16p_encode: spherical_lut16p (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), precise encoder.
 // In: any vector; `code`, encode_fast(v, fetched) for it; s0 … s8, the sin/cos table's .rgb at precise_texel(code, k) for k = 0 … 8, as a unorm8 fetch returns them.
-// Out: the packed code, uint (bits 0–7 x, 8–15 y): of the 3×3 block of codes around `code`, the one whose sin/cos texel (its decode) is nearest the input in angle, decided in integer arithmetic (the input at 2^-12 of its largest component, each texel as 2·byte - 255); `code` on ties and for zero, NaN and infinite input.
+// Out: the packed code, uint (bits 0–7 x, 8–15 y): of the 3×3 block of codes around `code`, the one whose sin/cos texel (its decode) is nearest the input in angle (within 4.2e-4 rad), decided deterministically from integers (the input scaled by a power of two to a largest component in [2, 4), in steps of 2^-12; each texel as 2·byte - 255); `code` on ties and for zero, NaN and infinite input.
 // Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision.
 // Source: Pranckevičius method 3a.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.37352°, sample max 6.65113° (not a bound); MSE of the components of n - n' 2.196e-5, PSNR 46.58 dB.
@@ -1067,7 +1067,7 @@ fn unitpack_spherical_lut16p_encode(v: vec3<f32>, code: u32, s0: vec3<f32>, s1: 
     return t709;
 }
 
-// unitpack_spherical_lut16p_encode_float: spherical_lut16p (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), fast encoder, float form.
+// unitpack_spherical_lut16p_encode_float: spherical_lut16p (azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16 bits, sphere), precise encoder, float form.
 // In: as encode.
 // Out: the bytes (x, y) of encode's code as c/255, for an RG8 unorm render target, which stores exactly that code.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable measures how far); the packed encoder is the portable form.

@@ -13,6 +13,7 @@ use super::quant::Quant;
 use super::trig::{atan_series, factorial, quarter_turn_series};
 use crate::model::{Float, V2};
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 /// The unit of [`atan2_pi`] is `2^-BITS` half turns: 1 is the largest value it holds.
 pub const BITS: u32 = 23;
@@ -53,7 +54,7 @@ pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
     let far = t.gt(units((PI / 8.0).tan(), ONE));
     let z = F::sel(far, fixed_ratio(t - one, t + one, BITS), t).named("z");
     let z2 = mul(z, z, ONE);
-    let r = mul(z, poly(z2, &atan_series(), ONE), ONE).named("r");
+    let r = mul(z, poly(z2, atan_series(), ONE), ONE).named("r");
     // Radians to half turns, then the octant's offsets (exact integers).
     let h = (r * F::c((1.0 / PI) as f32)).round();
     let h = F::sel(far, h + units(0.25, ONE), h);
@@ -73,12 +74,17 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     // In radians, at most π/4.
     let u = (c * F::c(PI as f32)).round().named("u");
     let u2 = mul(u, u, FINE);
-    let sin_coeffs: Vec<f64> = (0..6)
-        .map(|k| (-1f64).powi(k) / factorial(2 * k + 1))
-        .collect();
-    let cos_coeffs: Vec<f64> = (0..7).map(|k| (-1f64).powi(k) / factorial(2 * k)).collect();
-    let s = mul(u, poly(u2, &sin_coeffs, FINE), FINE).named("s");
-    let co = poly(u2, &cos_coeffs, FINE).named("co");
+    static SIN: OnceLock<Vec<f64>> = OnceLock::new();
+    static COS: OnceLock<Vec<f64>> = OnceLock::new();
+    let sin_coeffs = SIN.get_or_init(|| {
+        (0..6)
+            .map(|k| (-1f64).powi(k) / factorial(2 * k + 1))
+            .collect()
+    });
+    let cos_coeffs =
+        COS.get_or_init(|| (0..7).map(|k| (-1f64).powi(k) / factorial(2 * k)).collect());
+    let s = mul(u, poly(u2, sin_coeffs, FINE), FINE).named("s");
+    let co = poly(u2, cos_coeffs, FINE).named("co");
     let sb = F::sel(swap, co, s);
     let cb = F::sel(swap, s, co);
     let cos = F::sel(back, -cb, cb);
@@ -108,12 +114,16 @@ pub fn angle_code<F: Float>(q: Quant, a: F, offset: f32) -> F {
 /// coefficients times `2^k`) a unit lost in one step is never amplified by the next, and
 /// every partial sum stays below `cosh(π/√2) < 5`, so below `2^24` units.
 pub fn sinc_cos_quarter<F: Float>(q: F, one: f64) -> V2<F> {
+    static SIN: OnceLock<Vec<f64>> = OnceLock::new();
+    static COS: OnceLock<Vec<f64>> = OnceLock::new();
     let series = |sine: bool| {
-        let c: Vec<f64> = quarter_turn_series(sine)
-            .iter()
-            .enumerate()
-            .map(|(k, c)| c * 2f64.powi(k as i32))
-            .collect();
+        let c = (if sine { &SIN } else { &COS }).get_or_init(|| {
+            quarter_turn_series(sine)
+                .iter()
+                .enumerate()
+                .map(|(k, c)| c * 2f64.powi(k as i32))
+                .collect()
+        });
         let mut acc = units::<F>(*c.last().unwrap(), one);
         for &c in c.iter().rev().skip(1) {
             acc = mul(acc, q, 2.0 * one) + units(c, one);

@@ -22,7 +22,8 @@
 //!
 //! Each codec maps its codes to lattice directions in the first octant (the input's
 //! magnitudes) and applies the input's signs afterwards, so every integer is
-//! non-negative.
+//! non-negative. [`Closeness::of_small`] measures signed candidates that are not lattice
+//! directions (a lookup table's texels) against a coarser signed fixed point.
 
 use super::exact::sum_of_squares;
 use crate::model::{Bool, Float, Uint, V2, V3};
@@ -79,11 +80,12 @@ impl<F: Float> Closeness<F> {
         }
     }
 
-    /// `d` measured against `a`, both signed (two's complement words) and small,
-    /// `|a|·|d| < 2^24`: every component of `a×d` is then exact and below 2^24 in
-    /// magnitude, so `e` is `|a×d|²` itself, summed exactly in integers and rounded once
-    /// ([`sum_of_squares`]), and `n` the exact `|d|²`. For candidates that are not
-    /// lattice directions (a table's texels) at a coarser fixed point than [`fixed`]'s.
+    /// `d` measured against `a`, both signed (two's complement words) and small:
+    /// Euclidean `|a|·|d| < 2^24` and `|d| < 2^12`. Then `|a×d| < 2^24`, so every
+    /// component of `a×d` is exact and below 2^24 and their squares sum below 2^48: `e` is
+    /// `|a×d|²` summed exactly in integers and rounded once ([`sum_of_squares`]), `n` the
+    /// exact `|d|²`. For candidates that are not lattice directions (a table's texels) at
+    /// a coarser fixed point than [`fixed`]'s.
     pub fn of_small(a: V3<F::U>, d: V3<F::U>) -> Closeness<F> {
         let x = cross(a, d).map(magnitude);
         let n2 = d.x.wrapping_mul(d.x) + d.y.wrapping_mul(d.y) + d.z.wrapping_mul(d.z);

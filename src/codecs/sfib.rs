@@ -48,6 +48,7 @@ use super::fixed_decode::{BITS, ONE, fixed_target};
 use super::fixed_trig::{self, FINE};
 use super::trig::{atan2_pi, sincos_pi};
 use crate::model::{Bool, Float, Lane, Uint, V2, V3};
+use std::sync::OnceLock;
 
 pub static FAMILY: SfibFamily = SfibFamily;
 
@@ -146,8 +147,15 @@ impl Sfib {
         2.0 / (self.points() - 1.0 + 2.0 * EPSILON)
     }
 
-    /// The lattice bases the encoder chooses from, and the least `1 - z²` of each.
-    fn rows(&self) -> Vec<Row> {
+    /// The lattice bases the encoder chooses from, and the least `1 - z²` of each:
+    /// computed once per process and size, since the f32 model's encoder reads them for
+    /// every item.
+    fn rows(&self) -> &'static [Row] {
+        static ROWS: [OnceLock<Vec<Row>>; 33] = [const { OnceLock::new() }; 33];
+        ROWS[self.bits as usize].get_or_init(|| self.make_rows())
+    }
+
+    fn make_rows(&self) -> Vec<Row> {
         let phi = (1.0 + 5f64.sqrt()) / 2.0;
         let density = self.points() * std::f64::consts::PI * 5f64.sqrt();
         let s = self.step();

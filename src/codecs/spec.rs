@@ -115,10 +115,7 @@ impl Spec {
             for v in f.variants() {
                 let s: Spec = v.parse().expect("a family's variants parse");
                 if info.precise {
-                    out.push(Spec {
-                        precise: false,
-                        ..s.clone()
-                    });
+                    out.push(s.fast());
                     out.push(Spec { precise: true, ..s });
                 } else {
                     out.push(s);

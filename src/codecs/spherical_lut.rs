@@ -30,10 +30,13 @@
 //!
 //! The choice is made in integers, like the other precise encoders' ([`super::lattice`]): each
 //! candidate's direction is `d = 2·byte - 255` of its fetched texel (its decode times
-//! 255), the input is `A = ±floor(|w|·2^12)` of the canonical input, and `sin²` of their
-//! angle is compared as `|A×d|²/|d|²` computed exactly ([`Closeness::of_small`]), the
-//! fast code first on ties. So every implementation picks the same code; the input's
-//! fixed point resolves near-ties to about `2^-13` rad (0.007°).
+//! 255), the input is `A = ±floor(|w|·2^12)` of the canonical input `w` (largest
+//! component in `[2, 4)`), and `sin²` of their angle is compared as `|A×d|²/|d|²`:
+//! `|A×d|²` summed exactly in integers and rounded once, the two ratios compared by two
+//! correctly rounded products ([`Closeness::of_small`]), the fast code first on ties. So
+//! every implementation picks the same code. The fixed point moves the input's direction
+//! by at most `√3·2^-13` rad (0.012°), so the chosen texel is within twice that,
+//! `4.2·10^-4` rad, of the block's nearest.
 //!
 //! `atan_texel` is the texel that nearest sampling at the seed's coordinates `n.xy·½ + ½`
 //! selects, `floor(256·(n.xy·½ + ½))` clamped to 255, decided exactly from the input
@@ -134,7 +137,7 @@ impl Family for SphericalLutFamily {
         let lines: &[&str] = match name {
             "encode" if spec.precise() => &[
                 "In: any vector; `code`, encode_fast(v, fetched) for it; s0 … s8, the sin/cos table's .rgb at precise_texel(code, k) for k = 0 … 8, as a unorm8 fetch returns them.",
-                "Out: the packed code, uint (bits 0–7 x, 8–15 y): of the 3×3 block of codes around `code`, the one whose sin/cos texel (its decode) is nearest the input in angle, decided in integer arithmetic (the input at 2^-12 of its largest component, each texel as 2·byte - 255); `code` on ties and for zero, NaN and infinite input.",
+                "Out: the packed code, uint (bits 0–7 x, 8–15 y): of the 3×3 block of codes around `code`, the one whose sin/cos texel (its decode) is nearest the input in angle (within 4.2e-4 rad), decided deterministically from integers (the input scaled by a power of two to a largest component in [2, 4), in steps of 2^-12; each texel as 2·byte - 255); `code` on ties and for zero, NaN and infinite input.",
             ],
             "encode_float" if spec.precise() => &[
                 "In: as encode.",
@@ -318,8 +321,8 @@ pub fn decode_float<F: Float>(rgb: V3<F>) -> V3<F> {
 const BLOCK: u32 = 9;
 
 /// The input's fixed point for the precise search, `2^12`: canonical components are
-/// below 4 and their magnitudes sum below 12, a texel's `d = 2·byte - 255` is at most 255
-/// per component, so `|A|·|d| ≤ 2^12·12·255 < 2^24`, as [`Closeness::of_small`] needs.
+/// below 4, so `|A| < 4√3·2^12`, and a texel's `d = 2·byte - 255` has `|d| ≤ 255√3`, so
+/// `|A|·|d| < 12·255·2^12 < 2^23.6` and `|d| < 2^12`, as [`Closeness::of_small`] needs.
 const ANGLE_FIXED: f32 = (1u32 << 12) as f32;
 
 /// The texel of the precise search's candidate `k` (a larger `k` reads as 8): the code's
@@ -508,7 +511,7 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         let enc_float = function(
             "encode_float",
             Role::EncodeFloat,
-            Inputs::VectorsWith(fetch_atan(lut)),
+            with_atan,
             |(v, a): (V3<f32>, f32)| encode_float(v, a),
             |(v, a): (V3<Dev>, Dev)| encode_float(v, a),
             |(v, a): (V3<F4>, F4)| encode_float(v, a),

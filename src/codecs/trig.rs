@@ -7,6 +7,7 @@
 
 use crate::model::{Float, V2};
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 /// Largest absolute error of [`atan2_pi`] in half turns, as tested (about 0.05°·10⁻³).
 pub const ATAN2_PI_MAX_ERROR: f64 = 2.0e-7;
@@ -28,17 +29,22 @@ pub fn factorial(n: i32) -> f64 {
 }
 
 /// The coefficients of atan(z)/z in z², through z^19: for |z| ≤ tan(π/8) the series'
-/// truncation is below 3·10⁻⁹. Shared with [`super::fixed_trig`].
-pub fn atan_series() -> Vec<f64> {
-    (0..10)
-        .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
-        .collect()
+/// truncation is below 3·10⁻⁹. Shared with [`super::fixed_trig`]. Each series here is
+/// computed once per process: the f32 model evaluates its polynomial for every item, and
+/// the powers and factorials would cost more than the polynomial.
+pub fn atan_series() -> &'static [f64] {
+    static C: OnceLock<Vec<f64>> = OnceLock::new();
+    C.get_or_init(|| {
+        (0..10)
+            .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
+            .collect()
+    })
 }
 
 /// atan(z) for |z| ≤ tan(π/8), by [`atan_series`].
 fn atan_small<F: Float>(z: F) -> F {
     let z2 = (z * z).named("z2");
-    z * horner(z2, &atan_series())
+    z * horner(z2, atan_series())
 }
 
 /// atan2(y, x) / π in [-1, 1]. Signed zeros count as positive (`atan2_pi(+0, -0) = 0`,
@@ -87,14 +93,20 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
 /// `c^9` for sine, `c^10` for cosine), with no branch.
 fn series_quarter<F: Float>(c: F) -> V2<F> {
     let c2 = (c * c).named("c2");
-    let sin_coeffs: Vec<f64> = (0..5)
-        .map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / factorial(2 * k + 1))
-        .collect();
-    let cos_coeffs: Vec<f64> = (0..6)
-        .map(|k| (-1f64).powi(k) * PI.powi(2 * k) / factorial(2 * k))
-        .collect();
-    let s = (c * horner(c2, &sin_coeffs)).named("s");
-    let co = horner(c2, &cos_coeffs).named("co");
+    static SIN: OnceLock<Vec<f64>> = OnceLock::new();
+    static COS: OnceLock<Vec<f64>> = OnceLock::new();
+    let sin_coeffs = SIN.get_or_init(|| {
+        (0..5)
+            .map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / factorial(2 * k + 1))
+            .collect()
+    });
+    let cos_coeffs = COS.get_or_init(|| {
+        (0..6)
+            .map(|k| (-1f64).powi(k) * PI.powi(2 * k) / factorial(2 * k))
+            .collect()
+    });
+    let s = (c * horner(c2, sin_coeffs)).named("s");
+    let co = horner(c2, cos_coeffs).named("co");
     V2::new(s, co)
 }
 
@@ -110,22 +122,26 @@ pub fn sincos_quarter_pi<F: Float>(t: F) -> V2<F> {
 /// through `q^8`: both are even in `r`, so neither needs the root or a quotient. For
 /// `q ≤ 2` (a unit square's corners) the truncation is below `3·10⁻¹⁰`. Shared with
 /// [`super::fixed_trig`].
-pub fn quarter_turn_series(sine: bool) -> Vec<f64> {
+pub fn quarter_turn_series(sine: bool) -> &'static [f64] {
+    static SIN: OnceLock<Vec<f64>> = OnceLock::new();
+    static COS: OnceLock<Vec<f64>> = OnceLock::new();
     let h = PI / 2.0;
-    (0..9)
-        .map(|k| {
-            let n = 2 * k + i32::from(sine);
-            (-1f64).powi(k) * h.powi(n) / factorial(n)
-        })
-        .collect()
+    (if sine { &SIN } else { &COS }).get_or_init(|| {
+        (0..9)
+            .map(|k| {
+                let n = 2 * k + i32::from(sine);
+                (-1f64).powi(k) * h.powi(n) / factorial(n)
+            })
+            .collect()
+    })
 }
 
 /// `(sin(π·r/2)/r, cos(π·r/2))` of `r = sqrt(q)` for `0 ≤ q ≤ 2`, by
 /// [`quarter_turn_series`]: the decode of an azimuthal equidistant disk point `p` is
 /// `(p·s, c)` with `q = |p|²`, division-free and exact at the centre.
 pub fn sinc_cos_quarter<F: Float>(q: F) -> V2<F> {
-    let s = horner(q, &quarter_turn_series(true)).named("sinc");
-    let c = horner(q, &quarter_turn_series(false)).named("cosq");
+    let s = horner(q, quarter_turn_series(true)).named("sinc");
+    let c = horner(q, quarter_turn_series(false)).named("cosq");
     V2::new(s, c)
 }
 

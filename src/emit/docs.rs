@@ -206,6 +206,7 @@ pub fn function_doc(
                 // A precise spec's other packed encoders are the search's first step.
                 Role::Encode if local == "encode" => enc,
                 Role::Encode => "fast encoder (the precise search's first step)",
+                Role::EncodeFloat if spec.precise() => "precise encoder, float form",
                 Role::EncodeFloat => "fast encoder, float form",
                 Role::DecodeFloat => "decoder, float form",
                 _ => "lookup texel",

@@ -184,7 +184,14 @@ fn active(class: Class) -> Option<Mode> {
 
 #[inline(always)]
 fn class() -> Option<Class> {
-    ACTIVE.with(|a| a.get().map(|d| d.class))
+    deviation().map(|d| d.class)
+}
+
+/// This thread's deviation: read once per operation by the arithmetic that every class
+/// may touch (the adversarial runs spend most of their time there).
+#[inline(always)]
+fn deviation() -> Option<Deviation> {
+    ACTIVE.with(Cell::get)
 }
 
 /// Index of the chosen one of `n` allowed results, `cmp` ordering them.
@@ -344,10 +351,20 @@ impl Dev {
         op: impl Fn([f32; N]) -> f32,
         wide: impl Fn([f64; N]) -> f64,
     ) -> Dev {
-        let Some(class) = class() else {
+        Dev::arith_under(deviation(), a, op, wide)
+    }
+
+    /// [`Dev::arith`] under `dev`, the deviation the caller has read.
+    #[inline(always)]
+    fn arith_under<const N: usize>(
+        dev: Option<Deviation>,
+        a: [Dev; N],
+        op: impl Fn([f32; N]) -> f32,
+        wide: impl Fn([f64; N]) -> f64,
+    ) -> Dev {
+        let Some(Deviation { class, mode }) = dev else {
             return Dev::new(op(a.map(|d| d.x)));
         };
-        let mode = active(class).expect("the active class has a mode");
         match class {
             Class::Excess => Dev::excess(mode, wide(a.map(Dev::wide))),
             Class::Denorm => Dev::new(flushing(mode, a.map(|d| d.x), op)),
@@ -478,15 +495,24 @@ fn regrouped(mode: Mode, a: Dev, b: Dev) -> Dev {
 impl Add for Dev {
     type Output = Dev;
     fn add(self, o: Dev) -> Dev {
-        if let Some(mode) = active(Class::Reassoc) {
-            return regrouped(mode, self, o);
-        }
-        if let Some(mode) = active(Class::Round) {
-            let exact = f64::from(self.x) + f64::from(o.x);
-            return Dev::new(either_neighbour(mode, self.x + o.x, exact));
-        }
-        let Some(mode) = active(Class::Fma) else {
-            return Dev::arith([self, o], |[a, b]| a + b, |[a, b]| a + b);
+        let dev = deviation();
+        let mode = match dev {
+            Some(Deviation {
+                class: Class::Reassoc,
+                mode,
+            }) => return regrouped(mode, self, o),
+            Some(Deviation {
+                class: Class::Round,
+                mode,
+            }) => {
+                let exact = f64::from(self.x) + f64::from(o.x);
+                return Dev::new(either_neighbour(mode, self.x + o.x, exact));
+            }
+            Some(Deviation {
+                class: Class::Fma,
+                mode,
+            }) => mode,
+            _ => return Dev::arith_under(dev, [self, o], |[a, b]| a + b, |[a, b]| a + b),
         };
         // Unfused, or either remembered product fused with the other operand.
         let mut c = [self.x + o.x, 0.0, 0.0];
@@ -513,17 +539,19 @@ impl Sub for Dev {
 impl Mul for Dev {
     type Output = Dev;
     fn mul(self, o: Dev) -> Dev {
-        if let Some(mode) = active(Class::Round) {
-            let exact = f64::from(self.x) * f64::from(o.x);
-            return Dev::new(either_neighbour(mode, self.x * o.x, exact));
-        }
-        if active(Class::Fma).is_some() || active(Class::Reassoc).is_some() {
-            return Dev {
+        let dev = deviation();
+        match dev.map(|d| d.class) {
+            Some(Class::Round) => {
+                let exact = f64::from(self.x) * f64::from(o.x);
+                let mode = dev.expect("a deviation").mode;
+                Dev::new(either_neighbour(mode, self.x * o.x, exact))
+            }
+            Some(Class::Fma | Class::Reassoc) => Dev {
                 x: self.x * o.x,
                 ext: Ext::Product(self.x, o.x),
-            };
+            },
+            _ => Dev::arith_under(dev, [self, o], |[a, b]| a * b, |[a, b]| a * b),
         }
-        Dev::arith([self, o], |[a, b]| a * b, |[a, b]| a * b)
     }
 }
 

@@ -217,19 +217,17 @@ pub fn count(spec: &Spec, function: &str) -> Result<u32> {
 /// (a precise spec's decoders are its fast spec's) differ only in their names, which no
 /// instruction counts.
 fn count_emitted(spec: &Spec, function: &str) -> Result<u32> {
-    type Memo = std::sync::Mutex<std::collections::HashMap<String, u32>>;
-    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
+    static MEMO: crate::memo::Memo<String, u32> = crate::memo::Memo::new();
     let e = spec.emitted();
     let src = shader(spec, &e, function)?;
     let code = e.module.identity(function);
-    let memo = MEMO.get_or_init(Default::default);
-    if let Some(n) = memo.lock().expect("ALU memo").get(&code) {
-        return Ok(*n);
+    if let Some(n) = MEMO.get(&code) {
+        return Ok(n);
     }
     let words = glslang_spirv(&src, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)
         .with_context(|| format!("compiling {spec}'s {function} for counting"))?;
     let n = count_main(&spirv_opt_dis(&words)?)?;
-    memo.lock().expect("ALU memo").insert(code, n);
+    MEMO.extend([(code, n)]);
     Ok(n)
 }
 
