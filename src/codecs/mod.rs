@@ -73,6 +73,7 @@ registry! {
     spherical_z => SphericalZ;
     spherical_lut => SphericalLut;
     sfib => Sfib;
+    latlong => Latlong;
     pack12;
 }
 

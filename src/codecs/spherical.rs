@@ -121,7 +121,7 @@ impl Codec for Spherical {
 
 /// `(2θ - 1, φ)` of a canonical `w` in units of `2^-23` half turns, decided in fixed
 /// point.
-fn fixed_angles<F: Float>(w: V3<F>) -> (F, F) {
+pub(crate) fn fixed_angles<F: Float>(w: V3<F>) -> (F, F) {
     let rho2 = fixed_length2_xy(w);
     let has_rho = rho2.gt(F::c(0.0));
     // Any positive stand-in for zero: its root is discarded.
