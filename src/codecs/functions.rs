@@ -452,9 +452,57 @@ where
     C::P<F4>: Bits<Lanes>,
     C::C<F4>: Bits<Lanes>,
 {
-    let q = c.quants();
     let precise = spec.precise();
     let module = trace_module(|| trace_codec(&c, precise));
+    let mut functions = codec_decoders(&c);
+    functions.extend([
+        generic_function!(
+            "encode_float",
+            Role::EncodeFloat,
+            Inputs::Vectors,
+            <F> [c] |v: V3<F>| encode_float(&c, precise, v)
+        ),
+        generic_function!(
+            "encode",
+            Role::Encode,
+            Inputs::Vectors,
+            <F> [c] |v: V3<F>| encode_packed(&c, precise, v)
+        ),
+    ]);
+    if let Some(name) = c.alternate() {
+        functions.push(generic_function!(
+            name,
+            Role::Encode,
+            Inputs::Vectors,
+            <F> [c] |v: V3<F>| encode_alternate(&c, precise, v)
+        ));
+    }
+    Emitted {
+        module,
+        functions,
+        namespace: spec.id(),
+        portable_encoder: if precise {
+            C::EXACT_SEARCH
+        } else {
+            C::EXACT_ROUNDING
+        },
+        cpu: Vec::new(),
+    }
+}
+
+/// A codec's `decode_float` and `decode`, with the enclosures their bounds are proven
+/// by: what a spec whose encoders are its own (a table codec) shares with the codec
+/// whose texels it writes. Traced by [`trace_decoders`].
+pub fn codec_decoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Function>
+where
+    C::P<f32>: Bits,
+    C::C<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::C<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::C<F4>: Bits<Lanes>,
+{
+    let q = c.quants();
     let fetch_box = {
         let c = c.clone();
         move |r: &[(i64, i64)]| {
@@ -469,6 +517,7 @@ where
             c.decode_codes(codes).to_array().to_vec()
         }
     };
+    let c = c.clone();
     let mut functions = vec![
         generic_function!(
             "decode_float",
@@ -482,27 +531,7 @@ where
             Inputs::Codes(q.to_vec()),
             <F> [c] |code: C::C<F>| decode_packed(&c, code)
         ),
-        generic_function!(
-            "encode_float",
-            Role::EncodeFloat,
-            Inputs::Vectors,
-            <F> [c] |v: V3<F>| encode_float(&c, precise, v)
-        ),
-        generic_function!(
-            "encode",
-            Role::Encode,
-            Inputs::Vectors,
-            <F> [c] |v: V3<F>| encode_packed(&c, precise, v)
-        ),
     ];
-    if let Some(name) = c.alternate() {
-        functions.push(generic_function!(
-            name,
-            Role::Encode,
-            Inputs::Vectors,
-            <F> [c] |v: V3<F>| encode_alternate(&c, precise, v)
-        ));
-    }
     let whole_field = c.whole_field();
     let unread = c.unread_fields();
     functions[0].enclose = Some(Enclose {
@@ -515,17 +544,7 @@ where
         whole_field,
         unread,
     });
-    Emitted {
-        module,
-        functions,
-        namespace: spec.id(),
-        portable_encoder: if precise {
-            C::EXACT_SEARCH
-        } else {
-            C::EXACT_ROUNDING
-        },
-        cpu: Vec::new(),
-    }
+    functions
 }
 
 /// A CPU-only function through a table in memory: `first`, then `lookup` of its
@@ -740,9 +759,14 @@ pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<
 
 /// Traces the public functions, decoders first so that encoders calling them find them
 /// with their parameter names. Each is the same generic function the `f32` reference runs.
-fn trace_codec<C: Codec>(c: &C, precise: bool) {
+/// Defines [`codec_decoders`]' functions in the module being traced.
+pub fn trace_decoders<C: Codec>(c: &C) {
     define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
     define("decode", &["code"], |code: C::C<Tf>| decode_packed(c, code));
+}
+
+fn trace_codec<C: Codec>(c: &C, precise: bool) {
+    trace_decoders(c);
     if precise {
         define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
     }
