@@ -11,7 +11,7 @@ use super::manifest::{self, HEADER, MANIFEST};
 use super::output;
 use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
-use crate::codecs::family::Table;
+use crate::codecs::family::{Table, TableFormat};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use anyhow::{Context, Result, bail};
 use std::collections::BTreeSet;
@@ -43,7 +43,9 @@ pub fn catalogue_files() -> Result<Vec<(PathBuf, Vec<u8>)>> {
     let tables = specs.iter().flat_map(|s| s.family().tables(s));
     for table in tables.filter(|t| stems.insert(t.stem.clone())) {
         let dir = PathBuf::from(manifest::TABLES);
-        files.push((dir.join(format!("{}.png", table.stem)), png(&table)?));
+        if table.format == TableFormat::Unorm8 {
+            files.push((dir.join(format!("{}.png", table.stem)), png(&table)?));
+        }
         files.push((dir.join(format!("{}.bin", table.stem)), table.bytes));
     }
     Ok(files)

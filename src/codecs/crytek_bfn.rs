@@ -42,7 +42,7 @@
 
 use super::codec::{Domain, pack};
 use super::exact::{canonical_or_z, fixed_length2, fixed_ratio, root};
-use super::family::{Family, Info, Sizes, Table};
+use super::family::{Family, Info, Sizes, Table, TableFormat};
 use super::functions::{
     Emitted, Extra, Inputs, Role, WordsMap, codec_decoders, function, generic_function,
     through_table, trace_decoders,
@@ -98,6 +98,7 @@ impl Family for CrytekBfnFamily {
             width: SIZE as u32,
             height: SIZE as u32,
             channels: 1,
+            format: TableFormat::Unorm8,
             bytes: fitting_table().to_vec(),
         }]
     }

@@ -237,15 +237,27 @@ pub trait Family: Sync + 'static {
     }
 }
 
-/// A lookup texture a spec's functions read: `width × height` texels of `channels`
-/// unorm8 bytes each, row after row (the texel's y), as it is uploaded.
+/// A lookup table a spec's functions read: `width × height` texels of `channels`
+/// elements each (unorm8 bytes, or little-endian 32-bit words), row after row (the
+/// texel's y), as it is uploaded.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Table {
     /// File name without extension (`spherical_lut16_atan`).
     pub stem: String,
     pub width: u32,
     pub height: u32,
-    /// 1 (R8) or 4 (RGBA8).
+    /// 1 (R8, R32UI), 2 (RG32UI) or 4 (RGBA8).
     pub channels: u8,
+    pub format: TableFormat,
     pub bytes: Vec<u8>,
+}
+
+/// A table's element type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableFormat {
+    /// unorm8 channels: a texture, also written as a PNG.
+    Unorm8,
+    /// 32-bit unsigned integers, little-endian: a buffer or an integer texture, written
+    /// as raw bytes only.
+    Uint32,
 }

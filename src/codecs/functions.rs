@@ -138,18 +138,23 @@ pub enum Inputs {
     /// bound in turn (two words an item): a function of a code and a small integer, such
     /// as the texel of a precise search's `k`-th candidate.
     CodesAndIndex(Vec<Quant>, u32),
+    /// [`Inputs::Codes`] of the fields (one word each), each followed by the words
+    /// [`Extra`] computes from it: the model's own fetches for a decoder stage that takes
+    /// fetched table entries beside the code.
+    CodesWith(Vec<Quant>, Extra),
 }
 
 /// One item's words → other words (a table lookup, the model's own fetch).
 pub type WordsMap = Arc<dyn Fn(&[u32]) -> Vec<u32> + Send + Sync>;
 
-/// What [`Inputs::VectorsWith`] appends to each vector.
+/// What [`Inputs::VectorsWith`] appends to each vector (and [`Inputs::CodesWith`] to
+/// each code).
 #[derive(Clone)]
 pub struct Extra {
     /// What the words are, for messages.
     pub name: &'static str,
     pub words: usize,
-    /// A vector's three words → the extra words.
+    /// A vector's three words (a code's one) → the extra words.
     pub of: WordsMap,
 }
 

@@ -201,6 +201,18 @@ pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
                 .flat_map(|c| (0..*n).flat_map(move |k| [c, k]))
                 .collect()
         }
+        Inputs::CodesWith(q, extra) => {
+            assert_eq!(in_words, 1 + extra.words, "{extra:?} after a code");
+            let c = codes(q, 1);
+            let mut out = Vec::with_capacity(c.len() * in_words);
+            for c in c {
+                let words = (extra.of)(&[c]);
+                assert_eq!(words.len(), extra.words, "{extra:?}");
+                out.push(c);
+                out.extend(words);
+            }
+            out
+        }
         Inputs::VectorsWith(extra) => {
             assert_eq!(in_words, 3 + extra.words, "{extra:?} after a vector");
             let v = vectors();

@@ -94,12 +94,8 @@ impl Codec for Latlong {
         let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
         V2::new(phi * F::c(0.5) + F::c(0.5), theta)
     }
-    /// The grid point: azimuth `p.x·2 - 1` and polar angle `p.y`, in half turns.
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
-        let phi = (p.x * F::c(2.0) - F::c(1.0)).named("phi");
-        let st = F::call("sincos_pi", p.y, sincos_pi).named("st");
-        let sp = F::call("sincos_pi", phi, sincos_pi).named("sp");
-        V3::new(sp.y * st.x, sp.x * st.x, st.y)
+        grid_direction(p)
     }
     /// Both angles of the canonical input from [`fixed_angles`] (units of `2^-23` half
     /// turns, functions of the input alone), each coded by [`fixed_trig::angle_code`]:
@@ -113,4 +109,13 @@ impl Codec for Latlong {
             fixed_trig::angle_code(q, theta, 0.5),
         )
     }
+}
+
+/// The direction of parameters `p` in `[0, 1]²`: azimuth `p.x·2 - 1` and polar angle
+/// `p.y`, in half turns (`latlongd`'s decoder ends the same way).
+pub fn grid_direction<F: Float>(p: V2<F>) -> V3<F> {
+    let phi = (p.x * F::c(2.0) - F::c(1.0)).named("phi");
+    let st = F::call("sincos_pi", p.y, sincos_pi).named("st");
+    let sp = F::call("sincos_pi", phi, sincos_pi).named("sp");
+    V3::new(sp.y * st.x, sp.x * st.x, st.y)
 }

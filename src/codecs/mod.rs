@@ -74,6 +74,7 @@ registry! {
     spherical_lut => SphericalLut;
     sfib => Sfib;
     latlong => Latlong;
+    latlongd;
     crytek_bfn;
     pack12;
 }

@@ -65,7 +65,7 @@
 
 use super::codec::Domain;
 use super::exact::{canonical_or_z, decided, length2, past_root_ratio, unorm_sqrt_ratio};
-use super::family::{Family, Info, OptDesc, OptKind, Sizes, Table};
+use super::family::{Family, Info, OptDesc, OptKind, Sizes, Table, TableFormat};
 use super::functions::{
     Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap, fetched_range, function,
     generic_function, through_table,
@@ -126,6 +126,7 @@ impl Family for SphericalLutFamily {
             width: SIZE as u32,
             height: SIZE as u32,
             channels,
+            format: TableFormat::Unorm8,
             bytes,
         };
         vec![
