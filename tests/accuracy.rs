@@ -107,13 +107,14 @@ fn crytek_bfn_cuts_plain_rgb8s_error_but_is_not_table_1() {
     let st = measured("crytek_bfn24");
     let plain = measured("unorm3");
     let search = measured("snorm8x3p");
-    assert!(st.mean < plain.mean / 2.0, "{st:?} vs unorm3 {plain:?}");
+    assert!(st.mean < 0.35 * plain.mean, "{st:?} vs unorm3 {plain:?}");
     assert!(st.mean > search.mean, "{st:?} vs snorm8x3p {search:?}");
     assert!(st.max < plain.max, "{st:?} vs unorm3 {plain:?}");
 }
 /// latlongD: Smith et al.'s rings with the table decoder. At 32 bits the table's max is
-/// marked ± (float32 intermediates); ours is the rings' bound `ε` (0.00219148°) plus the
-/// decoder's float error (about 2·10^-5°).
+/// marked ± (float32 intermediates); our sample max is the rings' `ε` (0.00219148°, every
+/// patch point's distance to its centre) plus the encoder's angle grid and the decoder's
+/// float error (about 2·10^-5°).
 #[test]
 fn latlongd_matches_table_1() {
     check("latlongd16", 0.30351, 0.56178);

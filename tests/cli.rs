@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use unitpack::codecs::family::Sizes;
+use unitpack::codecs::family::{Sizes, TableFormat};
 use unitpack::codecs::{FAMILIES, Spec};
 use unitpack::emit::Lang;
 
@@ -178,7 +178,12 @@ fn expected_files() -> BTreeSet<PathBuf> {
     }
     for spec in Spec::all() {
         for t in spec.family().tables(&spec) {
-            for ext in ["png", "bin"] {
+            // A texture is written as a PNG too; an integer table as raw words only.
+            let exts: &[&str] = match t.format {
+                TableFormat::Unorm8 => &["png", "bin"],
+                TableFormat::Uint32 => &["bin"],
+            };
+            for ext in exts {
                 s.insert(PathBuf::from("lut").join(format!("{}.{ext}", t.stem)));
             }
         }

@@ -21,8 +21,8 @@ const DOCUMENTED: [(u32, u32, f64); 3] = [
     (32, 58075, 0.00219148),
 ];
 
-/// The patches of ring `j` as the construction defines them, in f64 (std's functions),
-/// in the well-conditioned form the module documents.
+/// The patches of ring `j` in the well-conditioned form the module documents, in f64
+/// with std's functions (the geometric test below checks the form itself).
 fn ring_count(nphi: u32, eps: f64, j: u32) -> f64 {
     if j == 0 || j == nphi - 1 {
         return 1.0;
@@ -64,6 +64,46 @@ fn ring_tables_hold_the_documented_construction() {
         }
         assert_eq!(offset, u64::from(r.total));
         assert_eq!((r.entries[0][1], r.entries[nphi as usize - 1][1]), (1, 1));
+    }
+}
+
+/// The counts checked geometrically, without the construction's trigonometric identity:
+/// a patch's corner on the equator side of its band (polar angle `p + Δ/2`, azimuth
+/// `π/count` from the centre) is within `ε` of the patch centre, and with one patch
+/// fewer it would not be (angles from the vectors' cross and dot products). Every ring at
+/// 16 and 24 bits, every 97th at 32.
+#[test]
+fn ring_counts_are_the_fewest_patches_within_epsilon() {
+    let angle = |p: f64, q: f64, h: f64| {
+        let a = [p.sin(), 0.0, p.cos()];
+        let b = [q.sin() * h.cos(), q.sin() * h.sin(), q.cos()];
+        let cross = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        let sin = cross.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let cos: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
+        sin.atan2(cos)
+    };
+    for (bits, step) in [(16, 1), (24, 1), (32, 97)] {
+        let r = Rings::of(bits);
+        let nphi = r.entries.len() as u32;
+        let dphi = PI / f64::from(nphi - 1);
+        for j in (1..nphi - 1).step_by(step) {
+            let count = f64::from(r.entries[j as usize][1]);
+            let p = f64::from(j.min(nphi - 1 - j)) * dphi;
+            let q = p + dphi / 2.0;
+            let within = angle(p, q, PI / count);
+            assert!(
+                within <= r.epsilon * (1.0 + 1e-9),
+                "{bits} ring {j}: {within}"
+            );
+            if count > 1.0 {
+                let fewer = angle(p, q, PI / (count - 1.0));
+                assert!(fewer > r.epsilon * (1.0 - 1e-9), "{bits} ring {j}: {fewer}");
+            }
+        }
     }
 }
 

@@ -476,7 +476,7 @@ float2 unitpack_latlongd32_encode_float(float3 v, uint2 ring) {
 }
 
 // unitpack_latlongd32_decode_ring: latlongd32 (latitude rings of equal-area patches numbered by ring, decoded through a ring table, 32 bits, sphere), lookup texel.
-// In: a packed code.
+// In: a packed code (bits above the size are ignored).
 // Out: the guess g in 0 … 58073 for the code's ring, from the equal-area count, decided exactly: fetch the ring table's entries g and g + 1 for decode_params (the code's ring is one of them).
 // Source: Cigolle et al. 2014 §2.3 (Smith et al. 2012), precise decoder.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00118°, sample max 0.00219° (not a bound); MSE of the components of n - n' 1.625e-10, PSNR 97.89 dB.
@@ -680,8 +680,8 @@ uint unitpack_latlongd32_decode_ring(uint code) {
 }
 
 // unitpack_latlongd32_decode_params: latlongd32 (latitude rings of equal-area patches numbered by ring, decoded through a ring table, 32 bits, sphere), lookup texel.
-// In: a packed code, g = decode_ring(code), and the ring table's entries (offset, count) at g and g + 1.
-// Out: (k/count, j/58074) of the code's patch k in its ring j, the parameters decode_float reads, decided exactly (k/count floored to 2^-24); the 1 codes at or past 4294967295 decode as -Z.
+// In: a packed code (bits above the size are ignored), g = decode_ring(code), and the ring table's entries (offset, count) at g and g + 1.
+// Out: (k/count, j/58074) of the code's patch k in its ring j, the parameters decode_float reads, decided exactly (k/count floored to 2^-24, within one unit where a product's rounding decides a near tie); the 1 codes at or past 4294967295 decode as -Z.
 // Source: Cigolle et al. 2014 §2.3 (Smith et al. 2012), precise decoder.
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00118°, sample max 0.00219° (not a bound); MSE of the components of n - n' 1.625e-10, PSNR 97.89 dB.
 float2 unitpack_latlongd32_decode_params(uint code, uint g, uint2 ring0, uint2 ring1) {

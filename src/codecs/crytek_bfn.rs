@@ -20,10 +20,11 @@
 //! clamped to 511 and decided from the canonical input by comparing products
 //! ([`fixed_ratio`]; `|n|` from [`root`], `2^-22` relative), never through a rounded
 //! quotient, so every implementation reads the same texel. Where a product's rounding
-//! decides a near tie, the texel is the one past the boundary.
+//! decides a near tie, the texel may be either neighbour of the boundary (the same one
+//! everywhere).
 //!
-//! The table ([`fitting_table`]) follows the generator that reproduces Crytek's shipped
-//! `NormalsFitting.dds` (except where its choice was an exact tie): texel `(i, j)` stands
+//! The table ([`fitting_table`]) follows Crytek's generator as published (a search per
+//! texel for the length whose unorm8 rounding has the least relative error): texel `(i, j)` stands
 //! for the unit direction with `mid = (i + ½)/512` and `minor = mid·(j + ½)/512`, scaled
 //! so that its largest component is 1; for each odd `k` in 3 … 255 the vector times
 //! `k/255` is rounded to unorm8 (`·½ + ½`), and the texel stores the first `k` with the

@@ -580,7 +580,12 @@ pub fn through_table(
         Arc::new(move |i: &[u32], o: &mut [u32]| {
             let mut t = vec![0u32; mid];
             a(i, &mut t);
-            let mut arg = if keep_input { i.to_vec() } else { Vec::new() };
+            // A caller's item may sit in a longer buffer: keep its own words only.
+            let mut arg = if keep_input {
+                i[..iw].to_vec()
+            } else {
+                Vec::new()
+            };
             arg.extend(lookup(&t));
             assert_eq!(arg.len(), want, "the lookup's words and the kept input");
             b(&arg, o)
@@ -762,14 +767,14 @@ pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<
     }
 }
 
-/// Traces the public functions, decoders first so that encoders calling them find them
-/// with their parameter names. Each is the same generic function the `f32` reference runs.
 /// Defines [`codec_decoders`]' functions in the module being traced.
 pub fn trace_decoders<C: Codec>(c: &C) {
     define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
     define("decode", &["code"], |code: C::C<Tf>| decode_packed(c, code));
 }
 
+/// Traces the public functions, decoders first so that encoders calling them find them
+/// with their parameter names. Each is the same generic function the `f32` reference runs.
 fn trace_codec<C: Codec>(c: &C, precise: bool) {
     trace_decoders(c);
     if precise {

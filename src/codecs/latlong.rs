@@ -6,7 +6,7 @@
 //! Neither the survey's text nor Smith et al.'s paper fixes the fast variant's grid (its
 //! supplement, which would, is not available to us). We infer it from Table 1: the
 //! latlong rows sit on the plain lat-long grid's error (mean/max ratio 0.45, where
-//! equal-area rings give 0.51–0.54), and the grid that reproduces them is `2^h` rings
+//! `latlongd`'s equal-area rings give 0.54), and the grid that reproduces them is `2^h` rings
 //! from pole to pole by `2^h - 1` azimuths, `h = B/2`. `tests/accuracy.rs` holds all
 //! three sizes to the table.
 //!
@@ -28,8 +28,8 @@ use super::fixed_trig;
 use super::functions::{Emitted, codec_functions};
 use super::quant::{Quant, Quants};
 use super::spec::{Spec, SpecError};
-use super::spherical::fixed_angles;
-use super::trig::{atan2_pi, sincos_pi};
+use super::spherical::{fixed_angles, float_angles};
+use super::trig::sincos_pi;
 use crate::model::{Float, V2, V3};
 
 pub static FAMILY: LatlongFamily = LatlongFamily;
@@ -88,10 +88,7 @@ impl Codec for Latlong {
     }
     /// `(φ/π·½ + ½, θ/π)`: the azimuth and the polar angle as fractions of their ranges.
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let u = self.target(v);
-        let rho = u.xy().length_squared().sqrt().named("rho");
-        let theta = F::call("atan2_pi", (rho, u.z), |(y, x)| atan2_pi(y, x)).named("theta");
-        let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
+        let (theta, phi) = float_angles(self.target(v));
         V2::new(phi * F::c(0.5) + F::c(0.5), theta)
     }
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {

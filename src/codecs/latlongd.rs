@@ -9,11 +9,14 @@
 //! `Nθ(j) = ceil(π / acos((cos ε - cos p·cos p')/(sin p·sin p')))`, computed in a form
 //! without cancellation ([`counts`]). For a size of `B`
 //! bits, `ε` is the least for which the rings hold at most `2^B` patches (found by
-//! bisection), and `Nφ` the count of rings whose least `ε` is smallest (a one-off scan,
-//! kept as [`RINGS`]): 227 rings and `ε = 0.562432°` at 16 bits (65,536 patches), 3629 and
+//! bisection), and `Nφ` the count of rings whose least `ε` was smallest in a one-off scan
+//! (kept as [`RINGS`]; the tests check that two ring counts either side need more at 16
+//! and 24 bits): 227 rings and `ε = 0.562432°` at 16 bits (65,536 patches), 3629 and
 //! 0.035069° at 24 (16,777,216), 58075 and 0.00219148° at 32 (4,294,967,144; the 152
-//! codes above decode as -Z). `ε` bounds the error of every patch's points, so it is the
-//! codec's proven maximum error (up to the trigonometry's few `10^-7`). The table is
+//! codes above decode as -Z). By construction every point of a patch is within `ε` of its
+//! centre; the codec's error adds what the encoder's angle grid (`2^-23` half turns) can
+//! move an input across a patch boundary and the decoder's float error, a few `10^-5`
+//! degrees, which no proof here bounds (the 32-bit sample max is 0.00221°). The table is
 //! computed in f64 with `libm`'s functions, which compute the same bits on every machine.
 //!
 //! **The ring table**: entry `j` is `(offset, count)`, two u32: the first code of ring
@@ -121,13 +124,13 @@ impl Family for LatlongDFamily {
                 format!("Out: encode's code as two unorm{h} fields (low bits first) read as c/{m}, for a render target of two unorm{h} channels, which stores exactly that code.", h = spec.bits() / 2, m = (1u64 << (spec.bits() / 2)) - 1),
             ],
             "decode_ring" => vec![
-                "In: a packed code.".to_string(),
+                "In: a packed code (bits above the size are ignored).".to_string(),
                 format!("Out: the guess g in 0 … {} for the code's ring, from the equal-area count, decided exactly: fetch the ring table's entries g and g + 1 for decode_params (the code's ring is one of them).", last - 1),
             ],
             "decode_params" => vec![
-                "In: a packed code, g = decode_ring(code), and the ring table's entries (offset, count) at g and g + 1.".to_string(),
+                "In: a packed code (bits above the size are ignored), g = decode_ring(code), and the ring table's entries (offset, count) at g and g + 1.".to_string(),
                 format!(
-                    "Out: (k/count, j/{last}) of the code's patch k in its ring j, the parameters decode_float reads, decided exactly (k/count floored to 2^-24){}.",
+                    "Out: (k/count, j/{last}) of the code's patch k in its ring j, the parameters decode_float reads, decided exactly (k/count floored to 2^-24, within one unit where a product's rounding decides a near tie){}.",
                     if u64::from(r.total) < 1u64 << spec.bits() {
                         format!("; the {} codes at or past {} decode as -Z", (1u64 << spec.bits()) - u64::from(r.total), r.total)
                     } else {
@@ -153,6 +156,8 @@ pub struct Rings {
     pub total: u32,
     /// The error bound `ε`, in radians.
     pub epsilon: f64,
+    /// The size.
+    pub bits: u32,
 }
 
 impl Rings {
@@ -181,7 +186,7 @@ impl Rings {
         }
         let counts = counts(nphi, hi).expect("the bisection's upper end fits");
         let mut offset = 0u64;
-        let entries = counts
+        let entries: Vec<[u32; 2]> = counts
             .iter()
             .map(|&n| {
                 let e = [offset as u32, n as u32];
@@ -189,10 +194,12 @@ impl Rings {
                 e
             })
             .collect();
+        assert!(offset < 1u64 << 32, "the total fits a word");
         Rings {
             entries,
             total: offset as u32,
             epsilon: hi,
+            bits,
         }
     }
 
@@ -270,6 +277,18 @@ pub fn encode_float<F: Float>(bits: u32, v: V3<F>, ring: V2<F::U>) -> V2<F> {
     super::codec::dequantize(&q, unpack::<F, V2<F>, F::U>(&q, code))
 }
 
+/// The code's own bits (those above the size are ignored), a code past the last patch
+/// read as the last (-Z).
+fn code_in_use<F: Float>(r: &Rings, code: F::U) -> F::U {
+    let last = F::U::c(r.total - 1);
+    let code = if r.bits < 32 {
+        code & F::U::c((1u32 << r.bits) - 1)
+    } else {
+        code
+    };
+    F::U::sel(code.lt(last), code, last)
+}
+
 /// The guess `g` for the code's ring (see the module's documentation). With the code
 /// mirrored onto the northern half (`cc`), `u = a/total` for `a = cc + ½` and
 /// `1 - u = b/total`, so `G = atan2(2·sqrt(a·b), b - a)/π·(Nφ - 1)`: here
@@ -281,7 +300,7 @@ pub fn encode_float<F: Float>(bits: u32, v: V3<F>, ring: V2<F::U>) -> V2<F> {
 pub fn decode_ring<F: Float>(r: &Rings, code: F::U) -> F::U {
     let u = |x: u32| F::U::c(x);
     let last = r.total - 1;
-    let c = F::U::sel(code.lt(u(last)), code, u(last));
+    let c = code_in_use::<F>(r, code);
     let south = c.lt(u(r.total.div_ceil(2))).not();
     let cc = F::U::sel(south, u(last).wrapping_sub(c), c);
     let a = float_of::<F>(cc + cc + u(1));
@@ -301,8 +320,7 @@ pub fn decode_ring<F: Float>(r: &Rings, code: F::U) -> F::U {
 /// offset, else `g`; `k = code - offset`; `(k/count, ring/(Nφ - 1))`, the first by
 /// [`fixed_ratio`] on a `2^-24` grid, the second one product with a literal.
 pub fn decode_params<F: Float>(r: &Rings, code: F::U, g: F::U, e0: V2<F::U>, e1: V2<F::U>) -> V2<F> {
-    let last = r.total - 1;
-    let c = F::U::sel(code.lt(F::U::c(last)), code, F::U::c(last));
+    let c = code_in_use::<F>(r, code);
     let next = c.lt(e1.x).not();
     let ring = F::U::sel(next, g + F::U::c(1), g);
     let offset = F::U::sel(next, e1.x, e0.x);

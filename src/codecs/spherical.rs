@@ -68,10 +68,7 @@ impl Codec for Spherical {
         Domain::Sphere
     }
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let u = self.target(v);
-        let rho = u.xy().length_squared().sqrt().named("rho");
-        let theta = F::call("atan2_pi", (rho, u.z), |(y, x)| atan2_pi(y, x)).named("theta");
-        let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
+        let (theta, phi) = float_angles(self.target(v));
         V2::new(theta * F::c(2.0) - F::c(1.0), phi)
     }
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
@@ -117,6 +114,15 @@ impl Codec for Spherical {
             )
         })
     }
+}
+
+/// The polar angle `θ = atan2(|xy|, z)` and the azimuth `φ = atan2(y, x)` of a unit
+/// `u`, in half turns, from the model's float trigonometry: the float forms' angles.
+pub(crate) fn float_angles<F: Float>(u: V3<F>) -> (F, F) {
+    let rho = u.xy().length_squared().sqrt().named("rho");
+    let theta = F::call("atan2_pi", (rho, u.z), |(y, x)| atan2_pi(y, x)).named("theta");
+    let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
+    (theta, phi)
 }
 
 /// `(2θ - 1, φ)` of a canonical `w` in units of `2^-23` half turns, decided in fixed
