@@ -21,6 +21,11 @@ fn a_build_script_generates_includes_with_the_light_library() {
             "--quiet",
             "-p",
             "unitpack-build-example",
+            // A user's crate builds its dependencies as cargo does by default, not with
+            // this workspace's optimised dependencies (which would make this build spend
+            // most of its time optimising proc-macro crates).
+            "--config",
+            "profile.dev.package.\"*\".opt-level=0",
         ])
         .arg("--target-dir")
         .arg(&target)

@@ -160,40 +160,57 @@ fn non_unit_input_encodes_like_its_direction() {
 
 #[test]
 fn every_encoder_output_is_a_valid_code_and_every_code_decodes_finite() {
+    // Tens of millions of decodes: the specs are spread over every core.
+    let specs = codecs();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| {
+                while let Some(spec) =
+                    specs.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+                {
+                    every_code_of(spec);
+                }
+            });
+        }
+    });
+}
+
+/// One spec's edge vectors round trip to finite values and every code decodes finite.
+fn every_code_of(spec: &Spec) {
     let edges = inputs::edge_vectors();
-    for spec in codecs() {
-        let e = spec.emitted();
-        let (enc, dec, encf) = (
-            role(&e, Role::Encode),
-            role(&e, Role::Decode),
-            role(&e, Role::EncodeFloat),
+    let e = spec.emitted();
+    let (enc, dec, encf) = (
+        role(&e, Role::Encode),
+        role(&e, Role::Decode),
+        role(&e, Role::EncodeFloat),
+    );
+    let mut out = [0u32; 3];
+    for v in &edges {
+        let mut code = vec![0u32; enc.out_words];
+        (enc.eval)(&v.map(f32::to_bits), &mut code);
+        (dec.eval)(&code, &mut out);
+        assert!(
+            out.iter().all(|b| f32::from_bits(*b).is_finite()),
+            "{spec}: {v:?} → {code:x?} decodes non-finite"
         );
-        let mut out = [0u32; 3];
-        for v in &edges {
-            let mut code = vec![0u32; enc.out_words];
-            (enc.eval)(&v.map(f32::to_bits), &mut code);
-            (dec.eval)(&code, &mut out);
-            assert!(
-                out.iter().all(|b| f32::from_bits(*b).is_finite()),
-                "{spec}: {v:?} → {code:x?} decodes non-finite"
-            );
-            let mut p = vec![0u32; encf.out_words];
-            (encf.eval)(&v.map(f32::to_bits), &mut p);
-            assert!(
-                p.iter().all(|b| f32::from_bits(*b).is_finite()),
-                "{spec}: float encoder gives non-finite parameters for {v:?}"
-            );
-        }
-        // Every code (all of them up to 24 bits, a seeded sample above).
-        let codes = inputs::generate(&dec.inputs, dec.in_words);
-        for c in codes.chunks(dec.in_words) {
-            (dec.eval)(c, &mut out);
-            let v = out.map(f32::from_bits);
-            assert!(
-                v.iter().all(|x| x.is_finite()),
-                "{spec}: code {c:x?} decodes to {v:?}"
-            );
-        }
+        let mut p = vec![0u32; encf.out_words];
+        (encf.eval)(&v.map(f32::to_bits), &mut p);
+        assert!(
+            p.iter().all(|b| f32::from_bits(*b).is_finite()),
+            "{spec}: float encoder gives non-finite parameters for {v:?}"
+        );
+    }
+    // Every code (all of them up to 24 bits, a seeded sample above).
+    let codes = inputs::generate(&dec.inputs, dec.in_words);
+    for c in codes.chunks(dec.in_words) {
+        (dec.eval)(c, &mut out);
+        let v = out.map(f32::from_bits);
+        assert!(
+            v.iter().all(|x| x.is_finite()),
+            "{spec}: code {c:x?} decodes to {v:?}"
+        );
     }
 }
 

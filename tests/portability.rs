@@ -6,7 +6,9 @@ use unitpack::codecs::Spec;
 use unitpack::codecs::functions::Role;
 use unitpack::codecs::inputs::generate;
 use unitpack::model::Float;
-use unitpack::model::deviant::{Class, DIV_ULP, Dev, Deviation, Mode, SQRT_ULP, begin_item, with};
+use unitpack::model::deviant::{
+    Class, DIV_ULP, Dev, Deviation, Mode, SQRT_ULP, begin_item, item_chose, with,
+};
 use unitpack::portability::{Functions, Options, run, ulp_distance};
 
 fn specs(ids: &[&str]) -> Vec<Spec> {
@@ -250,6 +252,44 @@ fn denorm_flushes_inputs_and_outputs() {
             .value()),
         m
     );
+}
+
+/// An item is marked as having had a choice exactly when some operation allowed results
+/// that differ, which the report relies on to evaluate a forced item in one mode only; a
+/// new item starts unmarked.
+#[test]
+fn item_chose_marks_only_operations_with_different_allowed_results() {
+    let chose = |class: Class, f: &dyn Fn()| {
+        under(class, Mode::Seeded(7), || {
+            begin_item(0);
+            f();
+            item_chose()
+        })
+    };
+    let third = || {
+        let _ = div(1.0, 3.0);
+    };
+    assert!(
+        chose(Class::Div, &third),
+        "1/3 has neighbours within 2.5 ULP"
+    );
+    assert!(
+        !chose(Class::Sqrt, &third),
+        "sqrt's class leaves division alone"
+    );
+    let normal = || {
+        let _ = (Dev::new(1.5) * Dev::c(3.0)).value();
+    };
+    assert!(!chose(Class::Denorm, &normal), "no denormal to flush");
+    let tiny = || {
+        let _ = (Dev::new(f32::MIN_POSITIVE) * Dev::c(0.5)).value();
+    };
+    assert!(chose(Class::Denorm, &tiny), "a denormal product may flush");
+    under(Class::Div, Mode::Lowest, || {
+        third();
+        begin_item(1);
+        assert!(!item_chose(), "begin_item clears the mark");
+    });
 }
 
 /// `floor(-0.25)` is `-1`, but `floor(-0.0)` and `round(-0.25)` are zeros whose sign may be

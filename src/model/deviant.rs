@@ -147,6 +147,8 @@ pub struct Deviation {
 thread_local! {
     static ACTIVE: Cell<Option<Deviation>> = const { Cell::new(None) };
     static RNG: RefCell<Pcg64Mcg> = RefCell::new(Pcg64Mcg::new(1));
+    /// Whether an operation since [`begin_item`] had allowed results that differ.
+    static CHOSE: Cell<bool> = const { Cell::new(false) };
 }
 
 /// Runs `f` with `dev` as this thread's deviation (`None`: exact `f32` arithmetic), and
@@ -165,6 +167,7 @@ pub fn with<R>(dev: Option<Deviation>, f: impl FnOnce() -> R) -> R {
 /// Reseeds the stream of [`Mode::Seeded`] for item `index`, so that an item's deviations
 /// depend only on the seed and the item, not on the items evaluated before it.
 pub fn begin_item(index: u64) {
+    CHOSE.with(|c| c.set(false));
     if let Some(Deviation {
         mode: Mode::Seeded(seed),
         ..
@@ -174,6 +177,13 @@ pub fn begin_item(index: u64) {
             * 0x9e37_79b9_7f4a_7c15_f39c_c060_5ced_c835;
         RNG.with(|r| *r.borrow_mut() = Pcg64Mcg::new(state | 1));
     }
+}
+
+/// Whether an operation since the last [`begin_item`] had more than one distinct allowed
+/// result. Where none had, every mode computes the same result for the item (each
+/// operation's choice is forced), so a caller that has one mode's result has them all.
+pub fn item_chose() -> bool {
+    CHOSE.with(Cell::get)
 }
 
 /// The mode, when `class` is the active class.
@@ -198,6 +208,9 @@ fn deviation() -> Option<Deviation> {
 fn pick(mode: Mode, n: usize, cmp: impl Fn(usize, usize) -> Ordering) -> usize {
     if n == 1 {
         return 0;
+    }
+    if (1..n).any(|i| cmp(i, 0).is_ne()) {
+        CHOSE.with(|c| c.set(true));
     }
     match mode {
         Mode::Seeded(_) => RNG.with(|r| (r.borrow_mut().next_u64() % n as u64) as usize),

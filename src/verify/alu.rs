@@ -234,29 +234,12 @@ fn count_emitted(spec: &Spec, function: &str) -> Result<u32> {
 /// [`count`] of each of `functions` for every spec, on all cores: `out[i][j]` is spec `i`,
 /// function `j`.
 pub fn count_all(specs: &[Spec], functions: &[&str]) -> Result<Vec<Vec<u32>>> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let per = specs.len().div_ceil(threads).max(1);
-    std::thread::scope(|s| {
-        let handles: Vec<_> = specs
-            .chunks(per)
-            .map(|chunk| {
-                s.spawn(move || {
-                    chunk
-                        .iter()
-                        .map(|spec| functions.iter().map(|f| count(spec, f)).collect())
-                        .collect::<Result<Vec<Vec<u32>>>>()
-                })
-            })
-            .collect();
-        let mut out = Vec::new();
-        for h in handles {
-            out.extend(
-                h.join()
-                    .map_err(|_| anyhow!("a counting thread panicked"))??,
-            );
-        }
-        Ok(out)
+    // Each thread takes the next spec: one precise search costs as much as dozens of others.
+    crate::par::map(specs, |spec| {
+        functions.iter().map(|f| count(spec, f)).collect()
     })
+    .into_iter()
+    .collect()
 }
 
 #[cfg(test)]

@@ -106,8 +106,8 @@ pub struct Row {
     pub first: Vec<Mismatch>,
     /// Compilation or validation failure, if any.
     pub error: Option<String>,
-    /// On a shader path: the function (`spec function`) whose code and inputs this one
-    /// shares exactly, verified once on the path; this row repeats that row's result.
+    /// The function (`spec function`) whose code and inputs this one shares exactly,
+    /// verified once on the path; this row repeats that row's result.
     pub same_as: Option<String>,
 }
 
@@ -461,10 +461,10 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
 }
 
 /// For each function of each spec, the earlier function (`spec function`) with the same
-/// code and inputs ([`first_with_same_code`]), if there is one: the shader paths compile
-/// and run that one only, no driver computing with names (each spec's whole include is
-/// still checked on its own). The C and CPU paths, cheap beside lavapipe, run every
-/// function: they tie each function's own model to its emitted code.
+/// code and inputs ([`first_with_same_code`]), if there is one: every path compiles and
+/// runs that one only, no compiler computing with names and the model being the same
+/// traced computation (each spec's whole include is still checked on its own, and its C
+/// driver compiles every function of the header).
 fn owners(specs: &[Spec], emitted: &[Emitted]) -> Vec<Vec<Option<String>>> {
     first_with_same_code(emitted)
         .into_iter()
@@ -576,12 +576,8 @@ fn verify_spec(
         .collect();
     for (index, f) in e.functions.iter().enumerate() {
         bar.set_message(format!("{spec} {}", f.name));
-        let traced = e.module.func(f.name).expect("traced function");
-        let (params, ret) = func_types(traced);
-        let input = inputs::generate(&f.inputs, f.in_words);
-        let want = expected(f, &input);
-        for &path in paths {
-            if let (Some(owner), true) = (&shared[index], path.on_gpu()) {
+        if let Some(owner) = &shared[index] {
+            for &path in paths {
                 rows.push(Row {
                     spec: spec.to_string(),
                     function: f.name.to_string(),
@@ -593,8 +589,14 @@ fn verify_spec(
                     same_as: Some(owner.clone()),
                 });
                 bar.inc(1);
-                continue;
             }
+            continue;
+        }
+        let traced = e.module.func(f.name).expect("traced function");
+        let (params, ret) = func_types(traced);
+        let input = inputs::generate(&f.inputs, f.in_words);
+        let want = expected(f, &input);
+        for &path in paths {
             let mut cmp = Comparison::new(f, (&params, ret), &input, &want);
             let result = if path == Path::Lanes {
                 cmp.take(&lanes(f, &input));
@@ -605,7 +607,9 @@ fn verify_spec(
                     .find(|(p, _)| *p == path)
                     .expect("a driver per C path");
                 match program {
-                    Ok(program) => program.run(index, &input).map(|got| cmp.take(&got)),
+                    Ok(program) => program
+                        .run(index, &input, f.in_words, f.out_words)
+                        .map(|got| cmp.take(&got)),
                     Err(e) => Err(anyhow::anyhow!("{e}")),
                 }
             } else {

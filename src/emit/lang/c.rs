@@ -222,10 +222,15 @@ impl Backend for C {
     }
 }
 
-/// A test driver for several functions of one include (compiled once): reads items of raw
-/// words from standard input (each function's arguments one after the other), applies
-/// function number `argv[1]` (default 0) through its public array signature, and writes
-/// the result words to standard output.
+/// The one symbol a [`driver`] exports.
+pub const DRIVER_ENTRY: &str = "unitpack_verify_run";
+
+/// A test driver for several functions of one include, compiled once as a shared library
+/// that the verifier loads: its one exported function, [`DRIVER_ENTRY`]
+/// `(index, in, out, n)`, applies function number `index` through its public array
+/// signature to `n` items of raw words (each function's arguments one after the other) and
+/// writes the result words to `out`. In the verifying process, so that no item crosses a
+/// pipe. Returns 0, or 2 for an index out of range.
 pub fn driver(include: &str, funcs: &[(&str, Vec<Ty>, Ty)]) -> String {
     let mut runners = String::new();
     for (k, (func, params, ret)) in funcs.iter().enumerate() {
@@ -270,45 +275,34 @@ pub fn driver(include: &str, funcs: &[(&str, Vec<Ty>, Ty)]) -> String {
                 body.push("memcpy(r, o, sizeof o);".into());
             }
         }
-        let body = body.join("\n            ");
+        let body = body.join("\n        ");
         runners.push_str(&format!(
             "
-static int run{k}(void) {{
-    static uint32_t in[BLOCK * {inw}];
-    static uint32_t out[BLOCK * {outw}];
-    size_t n;
-    while ((n = fread(in, sizeof in[0] * {inw}, BLOCK, stdin)) > 0) {{
-        for (size_t i = 0; i < n; i++) {{
-            uint32_t *w = &in[i * {inw}];
-            uint32_t *r = &out[i * {outw}];
-            {body}
-        }}
-        if (fwrite(out, sizeof out[0] * {outw}, n, stdout) != n) {{
-            return 3;
-        }}
+static void run{k}(const uint32_t *in, uint32_t *out, size_t n) {{
+    for (size_t i = 0; i < n; i++) {{
+        const uint32_t *w = &in[i * {inw}];
+        uint32_t *r = &out[i * {outw}];
+        {body}
     }}
-    return ferror(stdin) || fflush(stdout) != 0 ? 3 : 0;
 }}
 "
         ));
     }
     let cases: String = (0..funcs.len())
-        .map(|k| format!("\n    case {k}:\n        return run{k}();"))
+        .map(|k| format!("\n    case {k}:\n        run{k}(in, out, n);\n        return 0;"))
         .collect();
     format!(
-        "#include <stdio.h>
-#include <stdlib.h>
+        "#include <stddef.h>
 #include <string.h>
 {include}
-/* Items per read and write: whole blocks keep stdio's per-call cost off each item. */
-#define BLOCK 4096
 {runners}
-int main(int argc, char **argv) {{
-    /* Large buffers: a pipe's default one (4 KiB) costs a system call per few items. */
-    static char in_buf[1 << 20], out_buf[1 << 20];
-    setvbuf(stdin, in_buf, _IOFBF, sizeof in_buf);
-    setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
-    switch (argc > 1 ? atoi(argv[1]) : 0) {{{cases}
+#ifdef __cplusplus
+extern \"C\"
+#endif
+int {DRIVER_ENTRY}(unsigned index, const uint32_t *in, uint32_t *out, size_t n);
+
+int {DRIVER_ENTRY}(unsigned index, const uint32_t *in, uint32_t *out, size_t n) {{
+    switch (index) {{{cases}
     default:
         return 2;
     }}
