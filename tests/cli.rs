@@ -30,13 +30,30 @@ impl std::fmt::Debug for Run {
 
 /// Every run shares one figure cache in the build's temporary folder (never the user's):
 /// the whole catalogue is proven once per build, not once per `generate`. The runs whose
-/// point is the proving itself switch it off ([`uncached`]).
+/// point is the proving itself switch it off ([`uncached`]). The first run fills the cache
+/// before any other starts, so that no two tests prove the catalogue side by side.
 fn unitpack() -> Command {
+    static FILLED: std::sync::Once = std::sync::Once::new();
+    let cached = |cmd: &mut Command| {
+        cmd.env(
+            "UNITPACK_CACHE_DIR",
+            Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-figure-cache"),
+        );
+    };
+    FILLED.call_once(|| {
+        let out = tempdir();
+        let mut fill = Command::new(env!("CARGO_BIN_EXE_unitpack"));
+        cached(&mut fill);
+        let done = fill
+            .arg("generate")
+            .arg("--out")
+            .arg(out.path())
+            .output()
+            .expect("run unitpack generate");
+        assert!(done.status.success(), "filling the figure cache: {done:?}");
+    });
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_unitpack"));
-    cmd.env(
-        "UNITPACK_CACHE_DIR",
-        Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-figure-cache"),
-    );
+    cached(&mut cmd);
     cmd
 }
 
