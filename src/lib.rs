@@ -11,7 +11,7 @@ pub mod emit;
 pub mod generator;
 mod memo;
 pub mod model;
-mod par;
+pub mod par;
 pub mod portability;
 pub mod quality;
 #[cfg(feature = "verify")]

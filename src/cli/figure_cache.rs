@@ -51,7 +51,7 @@ fn fingerprint() -> Option<u64> {
 
 /// The file `cos` is loaded from, where the math library is a shared object.
 #[cfg(unix)]
-fn math_library() -> Option<PathBuf> {
+pub fn math_library() -> Option<PathBuf> {
     use std::os::unix::ffi::OsStrExt;
     let cos: extern "C" fn(f64) -> f64 = libc_cos;
     // SAFETY: dladdr only reads the loader's tables; `info` is written before it is read,
@@ -75,7 +75,7 @@ unsafe extern "C" {
 }
 
 #[cfg(not(unix))]
-fn math_library() -> Option<PathBuf> {
+pub fn math_library() -> Option<PathBuf> {
     None
 }
 
@@ -132,7 +132,7 @@ impl Session {
     }
 }
 
-fn format(
+pub fn format(
     header: &str,
     bounds: &[(u128, Option<Bound>)],
     stats: &[(StatsKey, Option<ErrorStats>)],
@@ -173,7 +173,7 @@ type Parsed = (
 );
 
 /// The figures in `text` if it is this executable's whole, well-formed file.
-fn parse(text: &str, header: &str) -> Option<Parsed> {
+pub fn parse(text: &str, header: &str) -> Option<Parsed> {
     let mut lines = text.lines();
     if lines.next()? != header {
         return None;
@@ -213,67 +213,4 @@ fn parse(text: &str, header: &str) -> Option<Parsed> {
         }
     }
     Some((bounds, stats))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// What is written reads back as the same figures, bit for bit.
-    #[test]
-    fn figures_round_trip() {
-        let bounds = vec![
-            (7, None),
-            (
-                u128::MAX,
-                Some(Bound {
-                    units: 0.1 + 0.2,
-                    at: vec![(-3, 4), (0, 65535)],
-                }),
-            ),
-        ];
-        let stats = vec![
-            (("oct24:layout=rgb8".to_string(), 1000), None),
-            (
-                ("stereo_scaled16:scale=1.7777".to_string(), 1000),
-                Some(ErrorStats {
-                    mean: 1.0 / 3.0,
-                    max: f64::MIN_POSITIVE,
-                    mse: 1e-300,
-                    samples: 1000,
-                }),
-            ),
-        ];
-        let text = format("h", &bounds, &stats);
-        let (b, s) = parse(&text, "h").expect("parses");
-        assert_eq!(b, bounds);
-        assert_eq!(s.len(), 2);
-        assert_eq!(s[0], stats[0]);
-        let (x, y) = (s[1].1.unwrap(), stats[1].1.unwrap());
-        assert_eq!(
-            [x.mean, x.max, x.mse].map(f64::to_bits),
-            [y.mean, y.max, y.mse].map(f64::to_bits)
-        );
-        assert_eq!(s[1].0, stats[1].0);
-    }
-
-    /// On glibc `cos` comes from the shared libm, so the fingerprint covers that file.
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    #[test]
-    fn the_math_library_is_found() {
-        let libm = math_library().expect("a shared math library");
-        let name = libm.file_name().unwrap().to_string_lossy().into_owned();
-        assert!(name.starts_with("libm"), "{}", libm.display());
-        assert!(std::fs::metadata(&libm).unwrap().is_file());
-    }
-
-    /// Another build's file, or a damaged one, is not read at all.
-    #[test]
-    fn another_header_or_a_bad_line_is_ignored() {
-        let text = format("h", &[(1, None)], &[]);
-        assert!(parse(&text, "h2").is_none());
-        assert!(parse(&format!("{text}bound zz none\n"), "h").is_none());
-        assert!(parse(&format!("{text}stats 10 oct16 1 2\n"), "h").is_none());
-        assert!(parse(&format!("{text}\n"), "h").is_none());
-    }
 }

@@ -6,9 +6,9 @@
 //! see [`crate::atomic`] and `manifest`.
 
 mod convert;
-mod figure_cache;
+pub mod figure_cache;
 mod generate;
-mod grammar;
+pub mod grammar;
 mod include;
 mod list;
 mod manifest;

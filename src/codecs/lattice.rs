@@ -40,7 +40,7 @@ pub fn fixed<F: Float>(a: V3<F>) -> V3<F::U> {
 }
 
 /// The magnitude of a two's complement word.
-fn magnitude<U: Uint>(x: U) -> U {
+pub fn magnitude<U: Uint>(x: U) -> U {
     U::sel(x.lt(U::c(1 << 31)), x, U::c(0).wrapping_sub(x))
 }
 
@@ -48,7 +48,7 @@ fn magnitude<U: Uint>(x: U) -> U {
 /// `x² = h²·2^32 + 2hl·2^16 + l²`): the first two partial products, each shifted on its
 /// own; `l² >> 29` (below 8) is left out. At most 9 below the exact quotient, against
 /// `e` of about 2^15 to 2^18 where two candidates nearly tie. Deterministic.
-fn square_shifted<U: Uint>(x: U) -> U {
+pub fn square_shifted<U: Uint>(x: U) -> U {
     let h = x.shr(16);
     let l = x & U::c(0xffff);
     h.wrapping_mul(h).shl(32 - CROSS_SHIFT) + h.wrapping_mul(l).shr(CROSS_SHIFT - 17)
@@ -159,53 +159,7 @@ pub fn search_doc(signs: &str) -> String {
 }
 
 /// The right shift that brings `|d|² ≤ m²` below `2^24`.
-fn norm_shift(m: f32) -> u32 {
+pub fn norm_shift(m: f32) -> u32 {
     let bits = 64 - ((m as u64) * (m as u64)).leading_zeros();
     bits.saturating_sub(24)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn square_shifted_is_the_truncated_square_to_nine_units() {
-        for x in [
-            0u32,
-            1,
-            0xffff,
-            0x1_0000,
-            0x12_3456,
-            (1 << 27) - 1,
-            77_777_777,
-        ] {
-            let exact = (u64::from(x) * u64::from(x)) >> 29;
-            let got = u64::from(square_shifted(x));
-            assert!(got <= exact && exact - got <= 9, "{x}: {got} vs {exact}");
-        }
-    }
-
-    #[test]
-    fn magnitude_of_twos_complement() {
-        assert_eq!(magnitude(5u32), 5);
-        assert_eq!(magnitude(0u32.wrapping_sub(5)), 5);
-        assert_eq!(magnitude(0u32), 0);
-    }
-
-    #[test]
-    fn norm_shift_keeps_squares_below_two_to_24() {
-        assert_eq!(norm_shift(127.0), 0);
-        assert_eq!(norm_shift(2047.0), 0);
-        assert_eq!(norm_shift(4095.0), 0);
-        assert_eq!(norm_shift(32767.0), 6);
-        // Every lattice bound of the codecs (M and 2M for 4- to 16-bit fields): the
-        // largest `|d|²` fits, and one bit less shift would not.
-        for b in 4..=16u32 {
-            for m in [(1u64 << (b - 1)) - 1, 2 * ((1u64 << (b - 1)) - 1)] {
-                let shift = norm_shift(m as f32);
-                assert!((m * m) >> shift < 1 << 24, "{m}");
-                assert!(shift == 0 || (m * m) >> (shift - 1) >= 1 << 24, "{m}");
-            }
-        }
-    }
 }

@@ -167,7 +167,7 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
 }
 
 /// ALU instructions in the function `main` of a disassembled module.
-fn count_main(dis: &str) -> Result<u32> {
+pub fn count_main(dis: &str) -> Result<u32> {
     let main_id = dis
         .lines()
         .find_map(|l| {
@@ -240,31 +240,4 @@ pub fn count_all(specs: &[Spec], functions: &[&str]) -> Result<Vec<Vec<u32>>> {
     })
     .into_iter()
     .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn counts_the_alu_opcodes_of_main_only() {
-        let dis = "OpEntryPoint GLCompute %main \"main\"\n\
-                   %f = OpFunction %v None %t\n%1 = OpFAdd %float %a %b\nOpFunctionEnd\n\
-                   %main = OpFunction %void None %fn\n%2 = OpLoad %float %p\n\
-                   %3 = OpFMul %float %2 %2\n%4 = OpSelect %float %c %3 %2\n\
-                   OpStore %q %4\nOpReturn\nOpFunctionEnd\n";
-        assert_eq!(count_main(dis).unwrap(), 2);
-    }
-
-    /// The counts the README's "What portability costs" table gives for oct16, measured
-    /// by the same method outside the crate.
-    #[test]
-    fn oct16_counts_as_measured_by_hand() {
-        let spec: Spec = "oct16".parse().unwrap();
-        let got: Vec<u32> = ["encode", "encode_float", "decode", "decode_float"]
-            .iter()
-            .map(|f| count(&spec, f).unwrap())
-            .collect();
-        assert_eq!(got, [56, 23, 24, 15]);
-    }
 }

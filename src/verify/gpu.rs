@@ -71,7 +71,9 @@
 //! }
 //! ```
 //!
-//! glslang: `tools::glslang_spirv(src, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)`.
+//! glslang: `tools::glslang_spirv(src, GlslangInput::Glsl { stage: "comp" }, HlslOpt::Default)`,
+//! after `verify` has made the version line `#version 430` (the first with compute shaders)
+//! and defined the precise macro as `precise`.
 //!
 //! ## 4. HLSL compute through `glslangValidator -D -V` (`-Od` and default), SPIR-V passthrough
 //!

@@ -30,8 +30,9 @@ impl Compiler {
     }
 }
 
-/// The driver's entry: `(index, in, out, n)` (see [`crate::emit::lang::c::driver`]).
-type Entry = unsafe extern "C" fn(u32, *const u32, *mut u32, usize) -> i32;
+/// The driver's entry: `(index, in_words, out_words, in, out, n)` (see
+/// [`crate::emit::lang::c::driver`]).
+type Entry = unsafe extern "C" fn(u32, u32, u32, *const u32, *mut u32, usize) -> i32;
 
 /// A compiled driver, loaded; its file is deleted with its directory.
 pub struct Program {
@@ -106,16 +107,27 @@ impl Program {
                 input.len()
             );
         }
-        let n = input.len() / in_words;
-        let mut out = vec![0u32; n * out_words];
+        let mut out = vec![0u32; input.len() / in_words * out_words];
         let index = u32::try_from(index).context("function index")?;
-        // SAFETY: the driver reads `n` items of this function's own input width from
-        // `input` and writes `n` items of its output width to `out`, both sized for them
-        // here; the generated functions touch no other memory.
-        let rc = unsafe { (self.entry)(index, input.as_ptr(), out.as_mut_ptr(), n) };
-        if rc != 0 {
-            bail!("the C driver has no function {index} (returned {rc})");
+        let widths = (
+            u32::try_from(in_words).context("input width")?,
+            u32::try_from(out_words).context("output width")?,
+        );
+        let entry = self.entry;
+        let rc = std::sync::atomic::AtomicI32::new(0);
+        super::on_all_cores(input, &mut out, in_words, out_words, |i, o| {
+            let n = i.len() / in_words;
+            // SAFETY: `i` holds `n` items of `in_words` and `o` room for `n` items of
+            // `out_words`; the driver refuses widths that are not its function's before
+            // touching either, and the generated functions touch no other memory.
+            let r = unsafe { entry(index, widths.0, widths.1, i.as_ptr(), o.as_mut_ptr(), n) };
+            rc.fetch_max(r, std::sync::atomic::Ordering::Relaxed);
+        });
+        match rc.into_inner() {
+            0 => Ok(out),
+            2 => bail!("the C driver has no function {index}"),
+            3 => bail!("C driver function {index} does not take {in_words} words to {out_words}"),
+            rc => bail!("the C driver returned {rc} for function {index}"),
         }
-        Ok(out)
     }
 }

@@ -227,10 +227,11 @@ pub const DRIVER_ENTRY: &str = "unitpack_verify_run";
 
 /// A test driver for several functions of one include, compiled once as a shared library
 /// that the verifier loads: its one exported function, [`DRIVER_ENTRY`]
-/// `(index, in, out, n)`, applies function number `index` through its public array
-/// signature to `n` items of raw words (each function's arguments one after the other) and
-/// writes the result words to `out`. In the verifying process, so that no item crosses a
-/// pipe. Returns 0, or 2 for an index out of range.
+/// `(index, in_words, out_words, in, out, n)`, applies function number `index` through
+/// its public array signature to `n` items of raw words (each function's arguments one
+/// after the other) and writes the result words to `out`. In the verifying process, so
+/// that no item crosses a pipe. Returns 0; 2 for an index out of range, 3 when the item
+/// widths are not the function's, touching nothing in either case.
 pub fn driver(include: &str, funcs: &[(&str, Vec<Ty>, Ty)]) -> String {
     let mut runners = String::new();
     for (k, (func, params, ret)) in funcs.iter().enumerate() {
@@ -288,8 +289,18 @@ static void run{k}(const uint32_t *in, uint32_t *out, size_t n) {{
 "
         ));
     }
-    let cases: String = (0..funcs.len())
-        .map(|k| format!("\n    case {k}:\n        run{k}(in, out, n);\n        return 0;"))
+    // A caller's item widths that are not the function's would make it read or write
+    // past the buffers: refused (3) before any item is touched.
+    let cases: String = funcs
+        .iter()
+        .enumerate()
+        .map(|(k, (_, params, ret))| {
+            let inw: usize = params.iter().map(|p| p.lanes as usize).sum();
+            format!(
+                "\n    case {k}:\n        if (in_words != {inw} || out_words != {}) return 3;\n        run{k}(in, out, n);\n        return 0;",
+                ret.lanes
+            )
+        })
         .collect();
     format!(
         "#include <stddef.h>
@@ -299,9 +310,11 @@ static void run{k}(const uint32_t *in, uint32_t *out, size_t n) {{
 #ifdef __cplusplus
 extern \"C\"
 #endif
-int {DRIVER_ENTRY}(unsigned index, const uint32_t *in, uint32_t *out, size_t n);
+int {DRIVER_ENTRY}(unsigned index, unsigned in_words, unsigned out_words,
+    const uint32_t *in, uint32_t *out, size_t n);
 
-int {DRIVER_ENTRY}(unsigned index, const uint32_t *in, uint32_t *out, size_t n) {{
+int {DRIVER_ENTRY}(unsigned index, unsigned in_words, unsigned out_words,
+    const uint32_t *in, uint32_t *out, size_t n) {{
     switch (index) {{{cases}
     default:
         return 2;

@@ -1,0 +1,74 @@
+use unitpack::codecs::Spec;
+use unitpack::emit::{DEFAULT_PREFIX, Lang, render};
+use unitpack::verify::*;
+
+/// Outputs compared chunk by chunk report each mismatch with its own item's input,
+/// count every one, and a path returning another number of words is an error.
+#[test]
+fn comparison_finds_mismatches_across_chunks() {
+    let e = "oct16".parse::<Spec>().expect("spec").emitted();
+    let f = e
+        .functions
+        .iter()
+        .find(|f| f.name == "decode")
+        .expect("decode");
+    let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+    let input: Vec<u32> = (0..100).collect();
+    let want = expected(f, &input);
+    let mut got = want.clone();
+    got[3 * 70 + 1] ^= 1;
+    got[3 * 71] ^= 0x8000_0000;
+    let mut cmp = Comparison::new(f, (&params, ret), &input, &want);
+    for chunk in got.chunks(3 * 64) {
+        cmp.take(chunk);
+    }
+    let (count, first) = cmp.finish().expect("every word");
+    assert_eq!(count, 2);
+    assert_eq!(first[0].input, [70]);
+    assert_eq!(first[0].actual, got[210..213]);
+    assert_eq!(first[0].expected, want[210..213]);
+    assert_eq!(first[1].input, [71]);
+
+    let mut short = Comparison::new(f, (&params, ret), &input, &want);
+    short.take(&want[..297]);
+    assert_eq!(
+        short.finish().unwrap_err(),
+        "returned 297 words for 300 expected"
+    );
+    let mut long = Comparison::new(f, (&params, ret), &input, &want);
+    long.take(&want);
+    long.take(&[0]);
+    assert!(long.finish().is_err());
+}
+
+/// A function no kernel calls is still compiled: an error in it fails the include's
+/// own check in every shader language.
+#[test]
+fn whole_include_checks_uncalled_functions() {
+    let broken = [
+        (
+            Lang::Wgsl,
+            "fn f(c: u32) -> vec3<f32> { return nope(c); }\n",
+        ),
+        (Lang::Hlsl, "float3 f(uint c) { return nope(c); }\n"),
+        (
+            Lang::Glsl,
+            "precision highp float;\nvec3 f(uint c) { return nope(c); }\n",
+        ),
+    ];
+    for (lang, source) in broken {
+        let checks = whole_include(lang, source);
+        assert!(!checks.is_empty(), "{lang:?}");
+        for (path, r) in checks {
+            let e = format!("{:#}", r.expect_err(&path));
+            assert!(e.contains("nope"), "{path} names the error: {e}");
+        }
+    }
+    let spec: Spec = "oct16".parse().expect("spec");
+    for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl] {
+        let include = render(&[(spec.clone(), None)], lang, DEFAULT_PREFIX, "test");
+        for (path, r) in whole_include(lang, &include) {
+            assert!(r.is_ok(), "{path}: {r:?}");
+        }
+    }
+}
