@@ -10,6 +10,7 @@ use unitpack::codecs::family::{Sizes, TableFormat};
 use unitpack::codecs::{FAMILIES, Spec};
 use unitpack::emit::Lang;
 
+#[derive(Clone)]
 struct Run {
     code: i32,
     stdout: String,
@@ -33,28 +34,47 @@ impl std::fmt::Debug for Run {
 /// point is the proving itself switch it off ([`uncached`]). The first run fills the cache
 /// before any other starts, so that no two tests prove the catalogue side by side.
 fn unitpack() -> Command {
-    static FILLED: std::sync::Once = std::sync::Once::new();
-    let cached = |cmd: &mut Command| {
-        cmd.env(
-            "UNITPACK_CACHE_DIR",
-            Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-figure-cache"),
-        );
-    };
-    FILLED.call_once(|| {
-        let out = tempdir();
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_unitpack"));
+    cmd.env("UNITPACK_CACHE_DIR", &filled_cache().cache);
+    cmd
+}
+
+/// The shared figure cache and the tree written by the `generate` that filled it.
+struct Filled {
+    cache: PathBuf,
+    tree: PathBuf,
+    run: Run,
+}
+
+/// Fills the shared cache with one `generate` that starts from no cache file, so that it
+/// proves every figure and bound afresh: [`generate_is_deterministic`] holds its tree to
+/// the committed one.
+fn filled_cache() -> &'static Filled {
+    static FILLED: std::sync::OnceLock<Filled> = std::sync::OnceLock::new();
+    FILLED.get_or_init(|| {
+        // Both in the build's temporary folder, left by the last run of this binary.
+        let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
+        let (cache, tree) = (tmp.join("cli-figure-cache"), tmp.join("cli-figure-fill"));
+        for gone in [
+            std::fs::remove_file(cache.join("figures.txt")),
+            std::fs::remove_dir_all(&tree),
+        ] {
+            if let Err(e) = gone {
+                assert_eq!(e.kind(), std::io::ErrorKind::NotFound, "{e}");
+            }
+        }
         let mut fill = Command::new(env!("CARGO_BIN_EXE_unitpack"));
-        cached(&mut fill);
-        let done = fill
+        fill.env("UNITPACK_CACHE_DIR", &cache)
             .arg("generate")
             .arg("--out")
-            .arg(out.path())
-            .output()
-            .expect("run unitpack generate");
-        assert!(done.status.success(), "filling the figure cache: {done:?}");
-    });
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_unitpack"));
-    cached(&mut cmd);
-    cmd
+            .arg(&tree);
+        let run = run_cmd(fill, b"");
+        assert!(
+            cache.join("figures.txt").is_file(),
+            "filling the figure cache: {run:?}"
+        );
+        Filled { cache, tree, run }
+    })
 }
 
 /// `args` run with the figure cache off: every bound proven, every figure measured here.
@@ -1473,11 +1493,11 @@ fn generate_is_deterministic() {
     // One run proving every figure and bound afresh writes, byte for byte, the tree an
     // earlier process wrote: the committed `generated/` (which
     // `committed_generated_directory_is_up_to_date` also holds to the current code).
-    let a = tempdir();
-    let r = uncached(None, &["generate", "--out", a.path().to_str().unwrap()]);
-    generated_into(a.path(), r);
+    let fill = filled_cache();
+    let a = fill.tree.as_path();
+    generated_into(a, fill.run.clone());
     let committed = manifest_dir().join("generated");
-    let files = tree(a.path());
+    let files = tree(a);
     assert_eq!(files, tree(&committed));
     let same_as_committed = |dir: &Path| {
         for rel in &files {
@@ -1488,14 +1508,14 @@ fn generate_is_deterministic() {
             assert!(x == y, "{} differs between two runs", rel.display());
         }
     };
-    same_as_committed(a.path());
+    same_as_committed(a);
     // Regenerating over an existing tree leaves it identical, and so do the figures
     // cached by a run before (the second of two runs on the test binary's shared cache
     // reads them all from it).
-    generate_into(a.path());
-    generate_into(a.path());
-    same_as_committed(a.path());
-    assert_eq!(tree(a.path()), files);
+    generate_into(a);
+    generate_into(a);
+    same_as_committed(a);
+    assert_eq!(tree(a), files);
 }
 
 #[test]
