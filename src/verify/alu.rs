@@ -1,5 +1,5 @@
 //! ALU instruction counts of the emitted functions, the measure of shader cost the README
-//! codec table quotes: each function called once from a GLSL 450 compute shader that
+//! codec table quotes: each function called once from a GLSL 4.30 compute shader that
 //! loads its argument from a storage buffer and stores its result in another
 //! (`#define UNITPACK_PRECISE precise`), compiled by `glslangValidator -V`, optimised by
 //! `spirv-opt -O` (which inlines the function into `main`), and counted in `main`:
@@ -157,7 +157,7 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
         format!("{DEFAULT_PREFIX}{}_{function}", e.namespace)
     };
     Ok(format!(
-        "#version 450\n#define UNITPACK_PRECISE precise\n{include}\n\
+        "#version 430\n#define UNITPACK_PRECISE precise\n{include}\n\
          layout(local_size_x = 64) in;\n{decl}\
          layout(std430, set = 0, binding = 0) readonly buffer In {{ {tin} inp[]; }};\n\
          layout(std430, set = 0, binding = 1) writeonly buffer Out {{ {tout} outp[]; }};\n\
