@@ -69,6 +69,7 @@ fn filled_cache() -> &'static Filled {
             .arg("--out")
             .arg(&tree);
         let run = run_cmd(fill, b"");
+        assert_eq!(run.code, 0, "filling the figure cache: {run:?}");
         assert!(
             cache.join("figures.txt").is_file(),
             "filling the figure cache: {run:?}"
