@@ -2,7 +2,7 @@
 //! PNG, `n·½ + ½`) to a texel layout and back, texel for texel what the CPU encoder and
 //! decoder give, and bad input refused with a clear error and no file lost.
 
-use image::{DynamicImage, ImageBuffer, Rgb, RgbImage};
+use png::{BitDepth, ColorType};
 use std::path::Path;
 use std::process::{Command, Output};
 use unitpack::api::Batch;
@@ -41,12 +41,93 @@ fn normals(w: u32, h: u32) -> Vec<[f64; 3]> {
 const W: u32 = 97;
 const H: u32 = 61;
 
-fn rgb8_map() -> RgbImage {
-    let data: Vec<u8> = normals(W, H)
+/// A PNG's pixels: each sample as an integer (8- or 16-bit), `channels` per pixel.
+struct Image {
+    width: u32,
+    height: u32,
+    color: ColorType,
+    depth: BitDepth,
+    samples: Vec<u32>,
+}
+
+impl Image {
+    fn new(width: u32, height: u32, color: ColorType, depth: BitDepth, samples: Vec<u32>) -> Self {
+        Image {
+            width,
+            height,
+            color,
+            depth,
+            samples,
+        }
+    }
+
+    fn open(path: &Path) -> Image {
+        let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+        let mut reader = png::Decoder::new(file).read_info().unwrap();
+        let mut data = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut data).unwrap();
+        data.truncate(info.buffer_size());
+        let samples = match info.bit_depth {
+            BitDepth::Sixteen => data
+                .chunks_exact(2)
+                .map(|b| u32::from(u16::from_be_bytes([b[0], b[1]])))
+                .collect(),
+            _ => data.iter().map(|&b| u32::from(b)).collect(),
+        };
+        Image::new(
+            info.width,
+            info.height,
+            info.color_type,
+            info.bit_depth,
+            samples,
+        )
+    }
+
+    fn save(&self, path: &Path) {
+        let mut encoder = png::Encoder::new(
+            std::io::BufWriter::new(std::fs::File::create(path).unwrap()),
+            self.width,
+            self.height,
+        );
+        encoder.set_color(self.color);
+        encoder.set_depth(self.depth);
+        let bytes: Vec<u8> = match self.depth {
+            BitDepth::Sixteen => self
+                .samples
+                .iter()
+                .flat_map(|&c| (c as u16).to_be_bytes())
+                .collect(),
+            _ => self.samples.iter().map(|&c| c as u8).collect(),
+        };
+        let mut writer = encoder.write_header().unwrap();
+        writer.write_image_data(&bytes).unwrap();
+        writer.finish().unwrap();
+    }
+
+    /// The pixels, row by row.
+    fn pixels(&self) -> std::slice::ChunksExact<'_, u32> {
+        self.samples.chunks_exact(self.color.samples())
+    }
+
+    /// The pixels of an RGBA8 image as little-endian words (texels).
+    fn texels(&self) -> Vec<u32> {
+        assert_eq!((self.color, self.depth), (ColorType::Rgba, BitDepth::Eight));
+        self.pixels()
+            .map(|p| u32::from_le_bytes([p[0], p[1], p[2], p[3]].map(|c| c as u8)))
+            .collect()
+    }
+}
+
+fn rgb8_map() -> Image {
+    let data: Vec<u32> = normals(W, H)
         .iter()
-        .flat_map(|n| n.map(|c| ((c * 0.5 + 0.5) * 255.0).round() as u8))
+        .flat_map(|n| n.map(|c| ((c * 0.5 + 0.5) * 255.0).round() as u32))
         .collect();
-    RgbImage::from_raw(W, H, data).unwrap()
+    Image::new(W, H, ColorType::Rgb, BitDepth::Eight, data)
+}
+
+fn rgb(p: &[u32]) -> [u32; 3] {
+    [p[0], p[1], p[2]]
 }
 
 /// A fresh directory, removed when the test ends.
@@ -65,7 +146,7 @@ fn a_map_goes_to_dxt5nm_and_back_texel_for_texel() {
     let d = tmp.path();
     let (input, texels, back) = (d.join("in.png"), d.join("nm.png"), d.join("back.png"));
     let map = rgb8_map();
-    map.save(&input).unwrap();
+    map.save(&input);
     let spec = "xy16p:layout=dxt5nm";
     let r = unitpack(&[
         "convert-normal-map",
@@ -77,21 +158,20 @@ fn a_map_goes_to_dxt5nm_and_back_texel_for_texel() {
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     assert!(r.stderr.is_empty(), "no progress bar off a terminal: {r:?}");
 
-    let out = image::open(&texels).unwrap();
-    let DynamicImage::ImageRgba8(out) = out else {
-        panic!("the texels are RGBA8: {:?}", out.color())
-    };
-    assert_eq!(out.dimensions(), (W, H));
+    let out = Image::open(&texels);
+    assert_eq!(
+        (out.color, out.depth),
+        (ColorType::Rgba, BitDepth::Eight),
+        "the texels are RGBA8"
+    );
+    assert_eq!((out.width, out.height), (W, H));
     let batch = Batch::new(spec).unwrap();
-    let vs: Vec<[f32; 3]> = map
-        .pixels()
-        .map(|p| vector(p.0.map(u32::from), 255.0))
-        .collect();
+    let vs: Vec<[f32; 3]> = map.pixels().map(|p| vector(rgb(p), 255.0)).collect();
     let mut want = vec![0u32; vs.len()];
     batch.encode(&vs, &mut want);
-    for (i, (p, w)) in out.pixels().zip(&want).enumerate() {
-        assert_eq!(u32::from_le_bytes(p.0), *w, "texel {i}: {:?}", vs[i]);
-        assert_eq!((p.0[0], p.0[2]), (255, 0), "dxt5nm: R = 1, B = 0");
+    for (i, ((p, t), w)) in out.pixels().zip(out.texels()).zip(&want).enumerate() {
+        assert_eq!(t, *w, "texel {i}: {:?}", vs[i]);
+        assert_eq!((p[0], p[2]), (255, 0), "dxt5nm: R = 1, B = 0");
     }
 
     let r = unitpack(&[
@@ -102,18 +182,16 @@ fn a_map_goes_to_dxt5nm_and_back_texel_for_texel() {
         spec,
     ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
-    let back = image::open(&back).unwrap().into_rgb8();
+    let back = Image::open(&back);
+    assert_eq!((back.color, back.depth), (ColorType::Rgb, BitDepth::Eight));
     let mut decoded = vec![[0f32; 3]; want.len()];
     batch.decode(&want, &mut decoded);
     let mut worst = 0f64;
-    for (i, (p, n)) in back.pixels().zip(&decoded).enumerate() {
-        let expect = n.map(|x| ((f64::from(x) * 0.5 + 0.5).clamp(0.0, 1.0) * 255.0).round() as u8);
-        assert_eq!(p.0, expect, "texel {i}: decoded {n:?}");
-        let a = vector(p.0.map(u32::from), 255.0);
-        let b = vector(
-            map.get_pixel(i as u32 % W, i as u32 / W).0.map(u32::from),
-            255.0,
-        );
+    for (i, ((p, n), m)) in back.pixels().zip(&decoded).zip(map.pixels()).enumerate() {
+        let expect = n.map(|x| ((f64::from(x) * 0.5 + 0.5).clamp(0.0, 1.0) * 255.0).round() as u32);
+        assert_eq!(rgb(p), expect, "texel {i}: decoded {n:?}");
+        let a = vector(rgb(p), 255.0);
+        let b = vector(rgb(m), 255.0);
         worst = worst.max(unitpack::quality::angle_deg(a, b));
     }
     // Two 8-bit quantizations of a map whose normals tilt at most about 50°.
@@ -126,12 +204,12 @@ fn sixteen_bit_maps_read_and_write() {
     let tmp = dir();
     let d = tmp.path();
     let (input, texels, back) = (d.join("in16.png"), d.join("rg.png"), d.join("back16.png"));
-    let data: Vec<u16> = normals(W, H)
+    let data: Vec<u32> = normals(W, H)
         .iter()
-        .flat_map(|n| n.map(|c| ((c * 0.5 + 0.5) * 65535.0).round() as u16))
+        .flat_map(|n| n.map(|c| ((c * 0.5 + 0.5) * 65535.0).round() as u32))
         .collect();
-    let map: ImageBuffer<Rgb<u16>, Vec<u16>> = ImageBuffer::from_raw(W, H, data).unwrap();
-    map.save(&input).unwrap();
+    let map = Image::new(W, H, ColorType::Rgb, BitDepth::Sixteen, data);
+    map.save(&input);
     let spec = "hemioct16_rg";
     let r = unitpack(&[
         "convert-normal-map",
@@ -141,16 +219,11 @@ fn sixteen_bit_maps_read_and_write() {
         spec,
     ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
-    let out = image::open(&texels).unwrap().into_rgba8();
-    let vs: Vec<[f32; 3]> = map
-        .pixels()
-        .map(|p| vector(p.0.map(u32::from), 65535.0))
-        .collect();
+    let out = Image::open(&texels);
+    let vs: Vec<[f32; 3]> = map.pixels().map(|p| vector(rgb(p), 65535.0)).collect();
     let mut want = vec![0u32; vs.len()];
     Batch::new(spec).unwrap().encode(&vs, &mut want);
-    for (p, w) in out.pixels().zip(&want) {
-        assert_eq!(u32::from_le_bytes(p.0), *w);
-    }
+    assert_eq!(out.texels(), want);
     let r = unitpack(&[
         "convert-normal-map",
         arg(&texels),
@@ -161,14 +234,17 @@ fn sixteen_bit_maps_read_and_write() {
         "16",
     ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
-    let DynamicImage::ImageRgb16(back) = image::open(&back).unwrap() else {
-        panic!("--depth 16 writes RGB16")
-    };
+    let back = Image::open(&back);
+    assert_eq!(
+        (back.color, back.depth),
+        (ColorType::Rgb, BitDepth::Sixteen),
+        "--depth 16 writes RGB16"
+    );
     let mut decoded = vec![[0f32; 3]; want.len()];
     Batch::new(spec).unwrap().decode(&want, &mut decoded);
     for (i, (p, n)) in back.pixels().zip(&decoded).enumerate() {
-        let expect = n.map(|x| ((f64::from(x) + 1.0) / 2.0 * 65535.0).round() as u16);
-        assert_eq!(p.0, expect, "texel {i}: decoded {n:?}");
+        let expect = n.map(|x| ((f64::from(x) + 1.0) / 2.0 * 65535.0).round() as u32);
+        assert_eq!(rgb(p), expect, "texel {i}: decoded {n:?}");
     }
 }
 
@@ -179,7 +255,7 @@ fn xra_writes_either_texel() {
     let tmp = dir();
     let d = tmp.path();
     let (input, dxt5, dxt1) = (d.join("in.png"), d.join("dxt5.png"), d.join("dxt1.png"));
-    rgb8_map().save(&input).unwrap();
+    rgb8_map().save(&input);
     for (out, extra) in [(&dxt5, None), (&dxt1, Some("--dxt1"))] {
         let mut args = vec![
             "convert-normal-map",
@@ -192,18 +268,13 @@ fn xra_writes_either_texel() {
         let r = unitpack(&args);
         assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     }
-    let (a, b) = (
-        image::open(&dxt5).unwrap().into_rgba8(),
-        image::open(&dxt1).unwrap().into_rgba8(),
-    );
+    let (a, b) = (Image::open(&dxt5), Image::open(&dxt1));
     for (p5, p1) in a.pixels().zip(b.pixels()) {
-        let [r, g, bl, al] = p5.0;
+        let [r, g, bl, al] = [p5[0], p5[1], p5[2], p5[3]];
         assert_eq!((r, bl), (255, 0), "DXT5: R = 1");
-        assert_eq!(p1.0, [al, g, 0, 255], "DXT1: x in R, A = 1");
+        assert_eq!(p1, [al, g, 0, 255], "DXT1: x in R, A = 1");
     }
-    let codes = |img: &image::RgbaImage| -> Vec<u32> {
-        img.pixels().map(|p| u32::from_le_bytes(p.0)).collect()
-    };
+    let codes = |img: &Image| img.texels();
     let batch = Batch::new("paraboloid16_xra").unwrap();
     let mut n5 = vec![[0f32; 3]; (W * H) as usize];
     let mut n1 = n5.clone();
@@ -252,7 +323,7 @@ fn bad_input_is_refused_and_loses_nothing() {
     let tmp = dir();
     let d = tmp.path();
     let input = d.join("in.png");
-    rgb8_map().save(&input).unwrap();
+    rgb8_map().save(&input);
     let before = std::fs::read(&input).unwrap();
     let out = d.join("out.png");
 
@@ -308,9 +379,7 @@ fn bad_input_is_refused_and_loses_nothing() {
         "RGBA8",
     );
     let gray = d.join("gray.png");
-    image::GrayImage::from_pixel(4, 4, image::Luma([128]))
-        .save(&gray)
-        .unwrap();
+    Image::new(4, 4, ColorType::Grayscale, BitDepth::Eight, vec![128; 16]).save(&gray);
     fails(
         &[
             "convert-normal-map",
@@ -368,7 +437,7 @@ fn bad_input_is_refused_and_loses_nothing() {
         "--force",
     ]);
     assert!(r.status.success(), "{r:?}");
-    let t = image::open(&out).unwrap().into_rgba8();
-    assert_eq!(t.dimensions(), (W, H));
-    assert!(t.pixels().all(|p| p.0[2..] == [0, 255]), "rg: B = 0, A = 1");
+    let t = Image::open(&out);
+    assert_eq!((t.width, t.height), (W, H));
+    assert!(t.pixels().all(|p| p[2..] == [0, 255]), "rg: B = 0, A = 1");
 }

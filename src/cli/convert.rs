@@ -3,14 +3,14 @@
 //! through the same CPU encoder and decoder the emitted shaders are verified against, so
 //! a map converted here decodes in the shader to what `unitpack decode` prints.
 
+use super::png_file::{self, Picture};
 use crate::api::Batch;
 use crate::atomic::write_atomic_with;
 use crate::codecs::functions::Function;
 use crate::codecs::{Spec, texel};
-use anyhow::{Context, Result, bail};
-use image::{DynamicImage, ImageFormat, RgbImage, RgbaImage};
+use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use std::io::Cursor;
+use png::{BitDepth, ColorType};
 use std::path::Path;
 
 /// Which way a map is converted.
@@ -60,12 +60,7 @@ pub fn run(input: &Path, output: &Path, dir: Direction, force: bool) -> Result<(
              paraboloid_square (p for the precise encoder)"
         );
     }
-    let image = image::ImageReader::open(input)
-        .with_context(|| format!("cannot read {}", input.display()))?
-        .with_guessed_format()
-        .with_context(|| format!("cannot read {}", input.display()))?
-        .decode()
-        .with_context(|| format!("cannot decode {} as an image", input.display()))?;
+    let image = png_file::read(input)?;
     let png = match dir {
         Direction::To(_, dxt1) => {
             let name = if dxt1 { "encode_dxt1" } else { "encode" };
@@ -95,30 +90,32 @@ fn same_file(a: &Path, b: &Path) -> bool {
 /// The conventional map's vectors, row by row: `2c/M - 1` per component (the
 /// encoder normalizes them), from 8- or 16-bit RGB; an alpha channel is not part of a
 /// normal and is left out.
-fn conventional_vectors(image: &DynamicImage, input: &Path) -> Result<Vec<[f32; 3]>> {
-    let unit = |c: f64, m: f64| (2.0 * c / m - 1.0) as f32;
-    Ok(match image {
-        DynamicImage::ImageRgb8(_) | DynamicImage::ImageRgba8(_) => image
-            .to_rgb8()
-            .pixels()
-            .map(|p| p.0.map(|c| unit(f64::from(c), 255.0)))
-            .collect(),
-        DynamicImage::ImageRgb16(_) | DynamicImage::ImageRgba16(_) => image
-            .to_rgb16()
-            .pixels()
-            .map(|p| p.0.map(|c| unit(f64::from(c), 65535.0)))
-            .collect(),
-        other => bail!(
-            "{} is {:?}: a normal map is RGB8 or RGB16 (each component n·½ + ½)",
+fn conventional_vectors(image: &Picture, input: &Path) -> Result<Vec<[f32; 3]>> {
+    let channels = match image.color {
+        ColorType::Rgb => 3,
+        ColorType::Rgba => 4,
+        _ => bail!(
+            "{} is {}: a normal map is RGB8 or RGB16 (each component n·½ + ½)",
             input.display(),
-            other.color()
+            image.kind()
         ),
-    })
+    };
+    let max = if image.depth == BitDepth::Sixteen {
+        65535.0
+    } else {
+        255.0
+    };
+    let unit = |c: u32| (2.0 * f64::from(c) / max - 1.0) as f32;
+    Ok(image
+        .samples()
+        .chunks_exact(channels)
+        .map(|p| [unit(p[0]), unit(p[1]), unit(p[2])])
+        .collect())
 }
 
-fn encode_map(image: &DynamicImage, encode: &Function, input: &Path) -> Result<Vec<u8>> {
+fn encode_map(image: &Picture, encode: &Function, input: &Path) -> Result<Vec<u8>> {
     let vectors = conventional_vectors(image, input)?;
-    let (w, h) = (image.width(), image.height());
+    let (w, h) = (image.width, image.height);
     let mut texels = vec![0u32; vectors.len()];
     let step = ROWS_PER_STEP * w as usize;
     let bar = progress(vectors.len(), "encoding");
@@ -131,20 +128,23 @@ fn encode_map(image: &DynamicImage, encode: &Function, input: &Path) -> Result<V
     }
     bar.finish_and_clear();
     let bytes: Vec<u8> = texels.iter().flat_map(|t| t.to_le_bytes()).collect();
-    let out = RgbaImage::from_raw(w, h, bytes).expect("four bytes per texel");
-    png(DynamicImage::ImageRgba8(out))
+    png_file::encode(w, h, ColorType::Rgba, BitDepth::Eight, &bytes)
 }
 
-fn decode_map(image: &DynamicImage, batch: &Batch, input: &Path, sixteen: bool) -> Result<Vec<u8>> {
-    let DynamicImage::ImageRgba8(texels) = image else {
+fn decode_map(image: &Picture, batch: &Batch, input: &Path, sixteen: bool) -> Result<Vec<u8>> {
+    if (image.color, image.depth) != (ColorType::Rgba, BitDepth::Eight) {
         bail!(
-            "{} is {:?}: a map of texels is RGBA8 (the layout's four channels)",
+            "{} is {}: a map of texels is RGBA8 (the layout's four channels)",
             input.display(),
-            image.color()
+            image.kind()
         );
-    };
-    let (w, h) = (image.width(), image.height());
-    let codes: Vec<u32> = texels.pixels().map(|p| u32::from_le_bytes(p.0)).collect();
+    }
+    let (w, h) = (image.width, image.height);
+    let codes: Vec<u32> = image
+        .data
+        .chunks_exact(4)
+        .map(|p| u32::from_le_bytes([p[0], p[1], p[2], p[3]]))
+        .collect();
     let mut vectors = vec![[0f32; 3]; codes.len()];
     let step = (ROWS_PER_STEP * w as usize).max(1);
     let bar = progress(codes.len(), "decoding");
@@ -156,20 +156,16 @@ fn decode_map(image: &DynamicImage, batch: &Batch, input: &Path, sixteen: bool) 
     // n·½ + ½, rounded to the nearest code (a decoded component is within [-1, 1] up to
     // rounding; xy's decoders can return vectors longer than 1 outside the unit disk).
     let code = |x: f32, m: f64| ((f64::from(x) * 0.5 + 0.5).clamp(0.0, 1.0) * m).round();
-    let image = if sixteen {
-        let data: Vec<u16> = vectors
-            .iter()
-            .flat_map(|v| v.map(|x| code(x, 65535.0) as u16))
+    let components = vectors.iter().flatten();
+    if sixteen {
+        let data: Vec<u8> = components
+            .flat_map(|&x| (code(x, 65535.0) as u16).to_be_bytes())
             .collect();
-        DynamicImage::ImageRgb16(image::ImageBuffer::from_raw(w, h, data).expect("three channels"))
+        png_file::encode(w, h, ColorType::Rgb, BitDepth::Sixteen, &data)
     } else {
-        let data: Vec<u8> = vectors
-            .iter()
-            .flat_map(|v| v.map(|x| code(x, 255.0) as u8))
-            .collect();
-        DynamicImage::ImageRgb8(RgbImage::from_raw(w, h, data).expect("three channels"))
-    };
-    png(image)
+        let data: Vec<u8> = components.map(|&x| code(x, 255.0) as u8).collect();
+        png_file::encode(w, h, ColorType::Rgb, BitDepth::Eight, &data)
+    }
 }
 
 /// A progress bar on stderr for large maps (hidden where stderr is not a terminal).
@@ -184,12 +180,4 @@ fn progress(texels: usize, what: &'static str) -> ProgressBar {
     );
     bar.set_message(what);
     bar
-}
-
-fn png(image: DynamicImage) -> Result<Vec<u8>> {
-    let mut out = Cursor::new(Vec::new());
-    image
-        .write_to(&mut out, ImageFormat::Png)
-        .context("cannot encode the PNG")?;
-    Ok(out.into_inner())
 }

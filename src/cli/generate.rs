@@ -53,16 +53,12 @@ pub fn catalogue_files() -> Result<Vec<(PathBuf, Vec<u8>)>> {
 
 /// A table as an 8-bit grayscale or RGBA PNG (deterministic for a given encoder version).
 fn png(t: &Table) -> Result<Vec<u8>> {
-    use image::ImageEncoder;
     let color = match t.channels {
-        1 => image::ExtendedColorType::L8,
-        _ => image::ExtendedColorType::Rgba8,
+        1 => png::ColorType::Grayscale,
+        _ => png::ColorType::Rgba,
     };
-    let mut out = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut out)
-        .write_image(&t.bytes, t.width, t.height, color)
-        .with_context(|| format!("encoding {} as PNG", t.stem))?;
-    Ok(out)
+    super::png_file::encode(t.width, t.height, color, png::BitDepth::Eight, &t.bytes)
+        .with_context(|| format!("encoding {} as PNG", t.stem))
 }
 
 /// What is on disk at a path `generate` writes.

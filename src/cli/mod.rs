@@ -13,6 +13,7 @@ mod include;
 mod list;
 mod manifest;
 pub mod output;
+mod png_file;
 pub mod runtime_dir;
 mod stream;
 mod verify;
