@@ -1,5 +1,5 @@
 //! The README's generated tables: the catalogue (every family with the specs a user types,
-//! its options and source) and the error figures of every spec. `tests/readme.rs` checks
+//! its options and source) and the error figures of every spec. `tests/figures/readme.rs` checks
 //! that the README holds exactly these, and rewrites them with `UPDATE_README=1`.
 
 use crate::codecs::{FAMILIES, Spec};
@@ -8,12 +8,14 @@ use crate::quality::{ErrorStats, VECTOR_SEED};
 /// Samples behind the README's error figures (the survey's Table 1 used 2^20 too).
 pub const README_SAMPLES: usize = 1 << 20;
 
-/// Markers around a generated block in the README, naming the test (`tests/{test}.rs`)
-/// that checks and rewrites it.
+/// Markers around a generated block in the README, naming the test file
+/// (`tests/{test}.rs`) that checks and rewrites it; the test binary is the file's first
+/// path component (`figures/readme` is in the `figures` binary).
 pub fn markers(test: &str, name: &str) -> (String, String) {
+    let binary = test.split('/').next().unwrap_or(test);
     (
         format!(
-            "<!-- generated: {name} (tests/{test}.rs; UPDATE_README=1 cargo test --release --test {test}) -->"
+            "<!-- generated: {name} (tests/{test}.rs; UPDATE_README=1 cargo test --release --test {binary}) -->"
         ),
         format!("<!-- end generated: {name} -->"),
     )

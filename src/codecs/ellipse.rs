@@ -8,7 +8,7 @@
 //! A vertical grid line `u = t` becomes the half ellipse `x²/t² + y²/(2 - t²) = 1`, and a
 //! horizontal one the same with the axes swapped, hence the name; the square's edges
 //! become the circle and its corners the points at 45°. It reproduces Table 1's ellipse
-//! rows (`tests/accuracy.rs`). The layout is [`super::disk`]'s: `(u, v)` stored as unorm
+//! rows (`tests/figures/accuracy.rs`). The layout is [`super::disk`]'s: `(u, v)` stored as unorm
 //! `(u, v)·0.5 + 0.5`, x lowest, then y, then the hemisphere bit.
 //!
 //! The inverse, `u = (√a - √b)/2` with `a, b = 2 + x² - y² ± 2√2·x`, cancels badly near

@@ -7,7 +7,7 @@
 //! supplement, which would, is not available to us). We infer it from Table 1: the
 //! latlong rows sit on the plain lat-long grid's error (mean/max ratio 0.45, where
 //! `latlongd`'s equal-area rings give 0.54), and the grid that reproduces them is `2^h` rings
-//! from pole to pole by `2^h - 1` azimuths, `h = B/2`. `tests/accuracy.rs` holds all
+//! from pole to pole by `2^h - 1` azimuths, `h = B/2`. `tests/figures/accuracy.rs` holds all
 //! three sizes to the table.
 //!
 //! Layout, first field lowest: the azimuth `k` (unorm, `h` bits), then the ring `j`

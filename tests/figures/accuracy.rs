@@ -4,15 +4,13 @@
 //! reproduce" says of them.
 
 use unitpack::codecs::Spec;
-use unitpack::quality::{
-    ErrorStats, VECTOR_SEED, angle_deg, component_mse, measure, random_unit_vectors,
-};
+use unitpack::quality::{ErrorStats, VECTOR_SEED, angle_deg, component_mse, random_unit_vectors};
 
 const SAMPLES: usize = 1 << 20;
 
 fn measured(spec: &str) -> ErrorStats {
     let s: Spec = spec.parse().unwrap();
-    let st = measure(&s, SAMPLES).unwrap();
+    let st = crate::stats(&[s], SAMPLES)[0].expect("a codec spec");
     println!("{spec}: mean {:.5}°, max {:.5}°", st.mean, st.max);
     st
 }

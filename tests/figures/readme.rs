@@ -14,7 +14,6 @@ use unitpack::doc_tables::{
     README_SAMPLES, bound_table, catalogue_table, codec_specs, error_table, replace_block,
     seed_methods_table,
 };
-use unitpack::quality::measure_all;
 use unitpack::verify::alu::{count, count_all};
 
 const FUNCTIONS: [&str; 4] = ["encode", "encode_float", "decode", "decode_float"];
@@ -61,14 +60,14 @@ fn readme_tables_are_generated_and_fresh() {
     let mut fresh = text.clone();
     // Encode and decode, as the tables quote them.
     let alu: Vec<[u32; 2]> = counts().four.iter().map(|c| [c[0], c[2]]).collect();
-    let stats = measure_all(&codec_specs(), README_SAMPLES);
+    let stats = crate::stats(&codec_specs(), README_SAMPLES);
     for (name, body) in [
         ("catalogue", catalogue_table()),
         ("errors", error_table(&stats, &alu)),
         ("seed_methods", seed_methods_table(&stats, &alu)),
         ("bounds", bound_table()),
     ] {
-        fresh = replace_block(&fresh, "readme", name, &body)
+        fresh = replace_block(&fresh, "figures/readme", name, &body)
             .unwrap_or_else(|| panic!("README.md lacks the markers of the {name} block"));
     }
     if std::env::var_os("UPDATE_README").is_some() {
@@ -77,7 +76,7 @@ fn readme_tables_are_generated_and_fresh() {
     }
     assert!(
         fresh == text,
-        "README.md's generated tables are stale: run `UPDATE_README=1 cargo test --release --test readme`"
+        "README.md's generated tables are stale: run `UPDATE_README=1 cargo test --release --test figures`"
     );
 }
 
@@ -87,7 +86,7 @@ fn every_function_stays_within_its_alu_budget() {
     let now = &counts().all;
     if std::env::var_os("UPDATE_ALU_BUDGETS").is_some() {
         let mut text = String::from(
-            "# ALU budget per emitted function: spec, function, instructions (tests/readme.rs).\n",
+            "# ALU budget per emitted function: spec, function, instructions (tests/figures/readme.rs).\n",
         );
         for (k, n) in now {
             text.push_str(&format!("{k} {n}\n"));

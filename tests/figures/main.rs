@@ -1,0 +1,27 @@
+//! The figures the repository states, checked in one binary: the README's generated
+//! tables and the ALU budgets (`readme`), the survey's Table 1 rows (`accuracy`) and the
+//! proven decoder bounds (`decode_bound`). Together because they read the same figures:
+//! each spec's error statistics are measured once here ([`stats`]) and each decoder's
+//! bound proven once (the library's per-process cache), where three binaries measured
+//! and proved the catalogue three times.
+
+mod accuracy;
+mod decode_bound;
+mod readme;
+
+use std::sync::OnceLock;
+use unitpack::codecs::Spec;
+use unitpack::doc_tables::{README_SAMPLES, codec_specs};
+use unitpack::quality::{ErrorStats, measure_all_once};
+
+/// The error statistics of `specs` over `samples` seeded vectors, as
+/// [`unitpack::quality::measure`] gives them. The first caller measures every codec spec
+/// at the README's sample size on all cores while the others wait, so that no test
+/// measures a spec another one is measuring.
+fn stats(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
+    static CATALOGUE: OnceLock<()> = OnceLock::new();
+    CATALOGUE.get_or_init(|| {
+        measure_all_once(&codec_specs(), README_SAMPLES);
+    });
+    measure_all_once(specs, samples)
+}
