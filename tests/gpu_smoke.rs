@@ -400,3 +400,94 @@ fn many_threads_share_one_gpu() {
         }
     });
 }
+
+/// A selecting kernel (what `verify` compiles once per spec and path) runs the function
+/// its selector names, with that function's item widths, on every shader path, over more
+/// than one chunk: each function's outputs are its own, none another's; an index past the
+/// last function runs none (the output stays zero).
+#[test]
+fn selecting_kernels_run_the_function_selected() {
+    use unitpack::emit::Lang;
+    use unitpack::model::Kind;
+    use unitpack::model::trace::Ty;
+    let gpu = Gpu::shared().expect("Gpu::shared()");
+    let ty = |lanes| Ty {
+        kind: Kind::U32,
+        lanes,
+    };
+    // f0: x ↦ 2x + 1 (one word to one); f1: (x, y) ↦ (y, x ^ y) (two words to two).
+    let funcs = [
+        ("f0", vec![ty(1)], ty(1)),
+        ("f1", vec![ty(1), ty(1)], ty(2)),
+    ];
+    let includes = [
+        (
+            Lang::Wgsl,
+            "fn f0(x: u32) -> u32 { return 2u * x + 1u; }\n\
+             fn f1(x: u32, y: u32) -> vec2<u32> { return vec2<u32>(y, x ^ y); }\n",
+        ),
+        (
+            Lang::Glsl,
+            "uint f0(uint x) { return 2u * x + 1u; }\n\
+             uvec2 f1(uint x, uint y) { return uvec2(y, x ^ y); }\n",
+        ),
+        (
+            Lang::Hlsl,
+            "uint f0(uint x) { return 2u * x + 1u; }\n\
+             uint2 f1(uint x, uint y) { return uint2(y, x ^ y); }\n",
+        ),
+    ];
+    let items = MAX_CHUNK_ITEMS + 77;
+    let words: Vec<u32> = (0..2 * items as u32)
+        .map(|k| k.wrapping_mul(2654435761))
+        .collect();
+    let want0: Vec<u32> = words[..items].iter().map(|x| 2 * x + 1).collect();
+    let want1: Vec<u32> = words.chunks(2).flat_map(|p| [p[1], p[0] ^ p[1]]).collect();
+    for (lang, include) in includes {
+        let kernel = lang.backend("unitpack_").kernel(include, &funcs);
+        let mut shaders = Vec::new();
+        let spirv = |input| {
+            let words = glslang_spirv(&kernel, input, HlslOpt::Default)
+                .unwrap_or_else(|e| panic!("{lang:?}: {e:#}"));
+            spirv_val(&words).unwrap_or_else(|e| panic!("{lang:?}: {e:#}"));
+            words
+        };
+        let glsl_spv;
+        let hlsl_spv;
+        match lang {
+            Lang::Wgsl => shaders.push(("wgsl/naga", Shader::Wgsl(&kernel))),
+            Lang::Glsl => {
+                glsl_spv = spirv(GlslangInput::Glsl { stage: "comp" });
+                shaders.push(("glsl/naga", Shader::GlslNaga(&kernel)));
+                shaders.push(("glsl/glslang", Shader::SpirV(&glsl_spv)));
+            }
+            _ => {
+                hlsl_spv = spirv(GlslangInput::Hlsl {
+                    stage: "comp",
+                    entry: "main",
+                });
+                shaders.push(("hlsl/glslang", Shader::SpirV(&hlsl_spv)));
+            }
+        }
+        for (path, shader) in shaders {
+            let kernel = gpu
+                .selecting(&shader)
+                .unwrap_or_else(|e| panic!("{path}: {e:#}"));
+            let run = |index, input: &[u32], width| {
+                let mut out = Vec::new();
+                gpu.run_selected(&kernel, index, input, width, width, &mut |w| {
+                    out.extend_from_slice(w)
+                })
+                .unwrap_or_else(|e| panic!("{path}: {e:#}"));
+                out
+            };
+            assert!(run(1, &words, 2) == want1, "{path}: f1 over two chunks");
+            assert!(
+                run(0, &words[..items], 1) == want0,
+                "{path}: f0 over two chunks"
+            );
+            assert_eq!(run(1, &words[..6], 2), want1[..6], "{path}: f1 again");
+            assert_eq!(run(2, &words[..6], 2), [0; 6], "{path}: no function 2");
+        }
+    }
+}

@@ -15,9 +15,24 @@
 //! the chunk's size, so each kernel bounds-checks itself with
 //! `global_invocation_id.x < arrayLength(output) / OUT_WORDS`.
 //!
+//! # Selecting kernels
+//!
+//! `verify` compiles one kernel per spec and path for all the functions it runs, so that
+//! each front end reads the include once per spec rather than once per function. Such a
+//! kernel's `main` switches on specialization constant 0 (`layout(constant_id = 0)` in
+//! GLSL, `[[vk::constant_id(0)]]` in HLSL, `@id(0) override` in WGSL) and calls that
+//! function's runner, which bounds-checks with its own `OUT_WORDS` as above.
+//! [`Gpu::selecting`] parses and validates the module once; [`Gpu::run_selected`] builds
+//! the pipeline of one function: with the pipeline constant set (naga paths) or, since
+//! passthrough SPIR-V takes no specialization info, with the constant's default set in a
+//! copy of the words. Either way the driver sees a constant and compiles that function's
+//! case alone; a selector read at run time would have a CPU driver run every case under
+//! masks. (`crate::emit::lang::Backend::kernel` writes these kernels; `tests/gpu_smoke.rs`
+//! runs one on every path.)
+//!
 //! # Kernel skeletons
 //!
-//! Minimal kernels for each path, verified by `tests/gpu_smoke.rs`. Replace `IN_WORDS`,
+//! Minimal single-function kernels for each path, verified by `tests/gpu_smoke.rs`. Replace `IN_WORDS`,
 //! `OUT_WORDS` and the `// body` part; everything else is the required shape.
 //!
 //! ## 1. WGSL, compiled by naga inside wgpu ([`Shader::Wgsl`])
@@ -169,6 +184,63 @@ impl Shader<'_> {
             Shader::SpirV(_) => "SPIR-V (passthrough)",
         }
     }
+}
+
+/// A selecting kernel's module, parsed and validated once ([`Gpu::selecting`]), from which
+/// [`Gpu::run_selected`] builds each function's pipeline.
+pub struct Selecting {
+    module: SelectingModule,
+    kind: &'static str,
+}
+
+enum SelectingModule {
+    /// A naga module: the selector is set as a pipeline constant.
+    Naga(wgpu::ShaderModule),
+    /// Passthrough SPIR-V, which takes no pipeline constants: the selector's default is
+    /// set in a copy of the words ([`with_selector`]) for each function.
+    SpirV(Vec<u32>),
+}
+
+/// `words` with the default value of specialization constant 0 (the selecting kernel's
+/// selector) set to `value`. The passthrough path gives the driver no specialization
+/// info, so it specializes the module with the defaults: the copy selects `value`.
+fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
+    const OP_SPEC_CONSTANT: u32 = 50;
+    const OP_DECORATE: u32 = 71;
+    const SPEC_ID: u32 = 1;
+    let instructions = |words: &[u32]| -> anyhow::Result<Vec<usize>> {
+        let mut at = 5; // after the header
+        let mut starts = Vec::new();
+        while at < words.len() {
+            let count = (words[at] >> 16) as usize;
+            if count == 0 || at + count > words.len() {
+                bail!("malformed SPIR-V at word {at}");
+            }
+            starts.push(at);
+            at += count;
+        }
+        Ok(starts)
+    };
+    let starts = instructions(words)?;
+    let op = |at: usize| (words[at] & 0xffff, (words[at] >> 16) as usize);
+    let id = starts
+        .iter()
+        .find(|&&at| {
+            let (code, count) = op(at);
+            code == OP_DECORATE && count == 4 && words[at + 2] == SPEC_ID && words[at + 3] == 0
+        })
+        .map(|&at| words[at + 1])
+        .ok_or_else(|| anyhow!("the SPIR-V has no specialization constant 0 (the selector)"))?;
+    let constant = starts
+        .iter()
+        .find(|&&at| {
+            let (code, count) = op(at);
+            code == OP_SPEC_CONSTANT && count == 4 && words[at + 2] == id
+        })
+        .ok_or_else(|| anyhow!("specialization constant 0 is not a 32-bit OpSpecConstant"))?;
+    let mut out = words.to_vec();
+    out[constant + 3] = value;
+    Ok(out)
 }
 
 /// A wgpu device on the Vulkan CPU adapter (lavapipe), plus the fixed binding layout that
@@ -412,6 +484,63 @@ impl Gpu {
         out_words: usize,
         sink: &mut dyn FnMut(&[u32]),
     ) -> anyhow::Result<()> {
+        Self::check_widths(input, in_words, out_words)?;
+        self.check_lost()?;
+        let pipeline = self
+            .pipeline(shader)
+            .with_context(|| format!("creating the {} compute pipeline", shader.kind()))?;
+        self.dispatch(&pipeline, shader.kind(), input, in_words, out_words, sink)
+    }
+
+    /// Compiles a selecting kernel's module once (see the module docs); each
+    /// [`Gpu::run_selected`] then builds the pipeline of one of its functions.
+    pub fn selecting(&self, shader: &Shader) -> anyhow::Result<Selecting> {
+        self.check_lost()?;
+        let module = match *shader {
+            Shader::SpirV(words) => {
+                // Checked here, so that a module without the selector fails once.
+                with_selector(words, 0)?;
+                SelectingModule::SpirV(words.to_vec())
+            }
+            _ => SelectingModule::Naga(self.module(shader)?),
+        };
+        Ok(Selecting {
+            module,
+            kind: shader.kind(),
+        })
+    }
+
+    /// [`Gpu::run_each`] for function `index` of a selecting kernel: its pipeline built
+    /// with specialization constant 0 set to `index`.
+    pub fn run_selected(
+        &self,
+        kernel: &Selecting,
+        index: u32,
+        input: &[u32],
+        in_words: usize,
+        out_words: usize,
+        sink: &mut dyn FnMut(&[u32]),
+    ) -> anyhow::Result<()> {
+        Self::check_widths(input, in_words, out_words)?;
+        self.check_lost()?;
+        let pipeline = match &kernel.module {
+            SelectingModule::Naga(module) => self.pipeline_of(module, &[("0", f64::from(index))]),
+            SelectingModule::SpirV(words) => {
+                let words = with_selector(words, index)?;
+                self.module(&Shader::SpirV(&words))
+                    .and_then(|module| self.pipeline_of(&module, &[]))
+            }
+        }
+        .with_context(|| {
+            format!(
+                "creating the {} compute pipeline of function {index}",
+                kernel.kind
+            )
+        })?;
+        self.dispatch(&pipeline, kernel.kind, input, in_words, out_words, sink)
+    }
+
+    fn check_widths(input: &[u32], in_words: usize, out_words: usize) -> anyhow::Result<()> {
         if in_words == 0 || out_words == 0 {
             bail!("in_words ({in_words}) and out_words ({out_words}) must both be at least 1");
         }
@@ -421,11 +550,21 @@ impl Gpu {
                 input.len()
             );
         }
+        Ok(())
+    }
+
+    /// Runs a pipeline over every chunk of `input`.
+    fn dispatch(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        kind: &str,
+        input: &[u32],
+        in_words: usize,
+        out_words: usize,
+        sink: &mut dyn FnMut(&[u32]),
+    ) -> anyhow::Result<()> {
         self.check_lost()?;
         let n = input.len() / in_words;
-        let pipeline = self
-            .pipeline(shader)
-            .with_context(|| format!("creating the {} compute pipeline", shader.kind()))?;
         let chunk = self.chunk_items(in_words, out_words);
         if n == 0 {
             return Ok(());
@@ -455,11 +594,11 @@ impl Gpu {
         });
         scopes.check().context("allocating buffers")?;
 
-        for (index, items) in input.chunks(chunk * in_words).enumerate() {
+        for (at, items) in input.chunks(chunk * in_words).enumerate() {
             let items_here = items.len() / in_words;
-            let start = index * chunk;
+            let start = at * chunk;
             self.run_chunk(
-                &pipeline,
+                pipeline,
                 items,
                 items_here,
                 out_words,
@@ -468,8 +607,7 @@ impl Gpu {
             )
             .with_context(|| {
                 format!(
-                    "{} kernel, items {start}..{} of {n}",
-                    shader.kind(),
+                    "{kind} kernel, items {start}..{} of {n}",
                     start + items_here
                 )
             })?;
@@ -734,6 +872,12 @@ impl Gpu {
     /// Creates the shader module and pipeline, turning any compilation / validation /
     /// pipeline-creation error into an `Err` with the message.
     fn pipeline(&self, shader: &Shader) -> anyhow::Result<wgpu::ComputePipeline> {
+        self.pipeline_of(&self.module(shader)?, &[])
+    }
+
+    /// Creates the shader module, turning a compilation or validation error into an `Err`
+    /// with the message.
+    fn module(&self, shader: &Shader) -> anyhow::Result<wgpu::ShaderModule> {
         let scopes = ErrorScopes::push(&self.device);
         let module = match *shader {
             Shader::Wgsl(src) => self
@@ -792,16 +936,27 @@ impl Gpu {
         // Check the module on its own first: a broken module makes pipeline creation fail
         // too, and its message (naga's diagnostic) is the useful one.
         scopes.check().context("compiling the shader module")?;
+        Ok(module)
+    }
 
+    /// Creates the compute pipeline of `module` with the pipeline constants `constants`.
+    fn pipeline_of(
+        &self,
+        module: &wgpu::ShaderModule,
+        constants: &[(&str, f64)],
+    ) -> anyhow::Result<wgpu::ComputePipeline> {
         let scopes = ErrorScopes::push(&self.device);
         let pipeline = self
             .device
             .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some("unitpack verify"),
                 layout: Some(&self.pipeline_layout),
-                module: &module,
+                module,
                 entry_point: Some("main"),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants,
+                    ..Default::default()
+                },
                 cache: None,
             });
         scopes.check().context("creating the compute pipeline")?;

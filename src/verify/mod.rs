@@ -2,7 +2,9 @@
 //! lavapipe over storage-buffer inputs and compared as raw bits with the `f32` model.
 //! Static checks ride along: naga validates WGSL and GLSL, glslang compiles GLSL (also as
 //! `#version 330` and `#version 300 es`) and HLSL (`-Od` and default), spirv-val checks
-//! every SPIR-V module.
+//! every SPIR-V module. Each spec compiles one program per path for all its functions (a
+//! selecting kernel, [`gpu`]'s module docs; a C driver taking the function's index) and
+//! runs it once per function.
 
 pub mod gpu;
 /// Lives with the codecs so that the portability report, which needs no GPU, can use it.
@@ -15,6 +17,7 @@ use crate::codecs::Spec;
 use crate::codecs::functions::Emitted;
 use crate::codecs::functions::Function;
 use crate::codecs::functions::first_with_same_code;
+use crate::emit::lang::KernelFn;
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
@@ -565,25 +568,24 @@ fn verify_spec(
     } else {
         format!("{}_", e.namespace)
     };
-    // The C paths compile one driver per spec and compiler, for all its functions.
+    // Every function as the programs below call it: full name, parameter and result types.
     let full_name = |f: &Function| format!("{DEFAULT_PREFIX}{ns}{}", f.name);
+    let names: Vec<String> = e.functions.iter().map(full_name).collect();
+    let all: Vec<KernelFn> = e
+        .functions
+        .iter()
+        .zip(&names)
+        .map(|(f, name)| {
+            let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+            (name.as_str(), params, ret)
+        })
+        .collect();
+    // The C paths compile one driver per spec and compiler, for all its functions.
     let c_programs: Vec<(Path, Result<native::Program, String>)> = paths
         .iter()
         .filter(|p| p.lang() == Some(Lang::C))
         .map(|&p| {
-            let funcs: Vec<(String, Vec<Ty>, Ty)> = e
-                .functions
-                .iter()
-                .map(|f| {
-                    let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
-                    (full_name(f), params, ret)
-                })
-                .collect();
-            let funcs: Vec<(&str, Vec<Ty>, Ty)> = funcs
-                .iter()
-                .map(|(n, a, b)| (n.as_str(), a.clone(), *b))
-                .collect();
-            let source = crate::emit::lang::c::driver(include(Lang::C), &funcs);
+            let source = crate::emit::lang::c::driver(include(Lang::C), &all);
             let compiler = if p == Path::CC {
                 native::Compiler::C
             } else {
@@ -595,6 +597,35 @@ fn verify_spec(
             )
         })
         .collect();
+    // The shader paths compile one selecting kernel per spec and path for the functions
+    // run here (not those sharing an earlier function's code): each front end reads the
+    // include once per spec, and each function's pipeline is specialized from the one
+    // module. A function's selector is its place in `own`.
+    let own: Vec<usize> = (0..e.functions.len())
+        .filter(|&i| shared[i].is_none())
+        .collect();
+    let kernels: Vec<(Path, Result<gpu::Selecting, String>)> = match gpu {
+        Some(gpu) if !own.is_empty() => {
+            let funcs: Vec<KernelFn> = own.iter().map(|&i| all[i].clone()).collect();
+            paths
+                .iter()
+                .filter(|p| p.on_gpu())
+                .map(|&path| {
+                    let lang = path.lang().expect("a shader path");
+                    let kernel = lang.backend(DEFAULT_PREFIX).kernel(include(lang), &funcs);
+                    let module = compile_shader(path, &kernel).and_then(|spv| {
+                        gpu.selecting(&match (&spv, lang) {
+                            (Some(words), _) => Shader::SpirV(words),
+                            (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
+                            (None, _) => Shader::GlslNaga(&kernel),
+                        })
+                    });
+                    (path, module.map_err(|e| format!("{e:#}")))
+                })
+                .collect()
+        }
+        _ => Vec::new(),
+    };
     for (index, f) in e.functions.iter().enumerate() {
         bar.set_message(format!("{spec} {}", f.name));
         if let Some(owner) = &shared[index] {
@@ -613,12 +644,11 @@ fn verify_spec(
             }
             continue;
         }
-        let traced = e.module.func(f.name).expect("traced function");
-        let (params, ret) = func_types(traced);
+        let (_, params, ret) = &all[index];
         let input = inputs::generate(&f.inputs, f.in_words);
         let want = expected(f, &input);
         for &path in paths {
-            let mut cmp = Comparison::new(f, (&params, ret), &input, &want);
+            let mut cmp = Comparison::new(f, (params, *ret), &input, &want);
             let result = if path == Path::Lanes {
                 cmp.take(&lanes(f, &input));
                 Ok(())
@@ -634,21 +664,22 @@ fn verify_spec(
                     Err(e) => Err(anyhow::anyhow!("{e}")),
                 }
             } else {
-                let lang = path.lang().expect("a shader path");
-                let kernel =
-                    lang.backend(DEFAULT_PREFIX)
-                        .kernel(include(lang), &full_name(f), &params, ret);
-                compile_shader(path, &kernel).and_then(|spv| {
-                    let shader = match (&spv, lang) {
-                        (Some(words), _) => Shader::SpirV(words),
-                        (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
-                        (None, _) => Shader::GlslNaga(&kernel),
-                    };
-                    let gpu = gpu.as_ref().expect("adapter for shader paths");
-                    gpu.run_each(&shader, &input, f.in_words, f.out_words, &mut |got| {
-                        cmp.take(got)
-                    })
-                })
+                let (_, kernel) = kernels
+                    .iter()
+                    .find(|(p, _)| *p == path)
+                    .expect("a kernel per shader path");
+                let selector = own.iter().position(|&i| i == index).expect("run here") as u32;
+                match kernel {
+                    Ok(kernel) => gpu.expect("adapter for shader paths").run_selected(
+                        kernel,
+                        selector,
+                        &input,
+                        f.in_words,
+                        f.out_words,
+                        &mut |got| cmp.take(got),
+                    ),
+                    Err(e) => Err(anyhow::anyhow!("{e}")),
+                }
             };
             let mut row = Row {
                 spec: spec.to_string(),

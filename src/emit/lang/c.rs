@@ -10,7 +10,7 @@
 //! no contraction (`-ffp-contract=off`; GCC contracts by default in GNU C modes), SSE
 //! rather than x87 arithmetic (x87's excess precision is not supported).
 
-use super::{Backend, FileOptions, scalar_names};
+use super::{Backend, FileOptions, KernelFn, scalar_names};
 use crate::emit::SpecView;
 use crate::model::Kind;
 use crate::model::trace::{Ty, UnOp};
@@ -216,9 +216,9 @@ impl Backend for C {
         .render()
         .expect("C template renders")
     }
-    /// A test driver for one function: see `C::driver`.
-    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
-        driver(include, &[(func, params.to_vec(), ret)])
+    /// The test driver: see [`driver`].
+    fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
+        driver(include, funcs)
     }
 }
 
@@ -232,7 +232,7 @@ pub const DRIVER_ENTRY: &str = "unitpack_verify_run";
 /// after the other) and writes the result words to `out`. In the verifying process, so
 /// that no item crosses a pipe. Returns 0; 2 for an index out of range, 3 when the item
 /// widths are not the function's, touching nothing in either case.
-pub fn driver(include: &str, funcs: &[(&str, Vec<Ty>, Ty)]) -> String {
+pub fn driver(include: &str, funcs: &[KernelFn]) -> String {
     let mut runners = String::new();
     for (k, (func, params, ret)) in funcs.iter().enumerate() {
         let inw: usize = params.iter().map(|p| p.lanes as usize).sum();

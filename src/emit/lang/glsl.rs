@@ -3,7 +3,9 @@
 //! round halves either way), and a `PRECISE` macro in front of float declarations that
 //! users define as `precise` where the language has it.
 
-use super::{Backend, FileOptions, KernelIo, kernel_io, scalar_names};
+use super::{
+    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, kernel_runner, scalar_names,
+};
 use crate::emit::SpecView;
 use crate::model::Kind;
 use crate::model::trace::{BinOp, Ty, UnOp};
@@ -111,24 +113,22 @@ impl Backend for Glsl {
         .expect("GLSL template renders")
     }
     /// A `#version 450` compute shader; the include goes after the version line.
-    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
-        let outw = ret.lanes;
-        let KernelIo { args, bits, stores } = kernel_io(
-            self,
-            params,
-            ret,
-            |l, _| format!("uintBitsToFloat({l})"),
-            "floatBitsToUint(r)",
-        );
-        format!(
-            "#version 450
-layout(local_size_x = 64) in;
-layout(std430, set = 0, binding = 0) readonly buffer InputWords {{ uint input_words[]; }};
-layout(std430, set = 0, binding = 1) buffer OutputWords {{ uint output_words[]; }};
-
-{include}
-void main() {{
-    uint i = gl_GlobalInvocationID.x;
+    fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
+        let mut runners = String::new();
+        let mut cases = String::new();
+        for (k, (func, params, ret)) in funcs.iter().enumerate() {
+            let outw = ret.lanes;
+            let KernelIo { args, bits, stores } = kernel_io(
+                self,
+                params,
+                *ret,
+                |l, _| format!("uintBitsToFloat({l})"),
+                "floatBitsToUint(r)",
+            );
+            let runner = kernel_runner(k);
+            runners.push_str(&format!(
+                "
+void {runner}(uint i) {{
     if (i >= uint(output_words.length()) / {outw}u) {{
         return;
     }}
@@ -136,11 +136,31 @@ void main() {{
     {} rb = {bits};{stores}
 }}
 ",
-            self.ty(ret),
-            self.ty(Ty {
-                kind: Kind::U32,
-                lanes: ret.lanes
-            })
+                self.ty(*ret),
+                self.ty(Ty {
+                    kind: Kind::U32,
+                    lanes: ret.lanes
+                })
+            ));
+            cases.push_str(&format!(
+                "\n    case {k}u:\n        {runner}(gl_GlobalInvocationID.x);\n        break;"
+            ));
+        }
+        format!(
+            "#version 450
+layout(local_size_x = 64) in;
+layout(std430, set = 0, binding = 0) readonly buffer InputWords {{ uint input_words[]; }};
+layout(std430, set = 0, binding = 1) buffer OutputWords {{ uint output_words[]; }};
+layout(constant_id = 0) const uint {KERNEL_SELECT} = 0u;
+
+{include}{runners}
+void main() {{
+    switch ({KERNEL_SELECT}) {{{cases}
+    default:
+        break;
+    }}
+}}
+"
         )
     }
 }

@@ -2,7 +2,9 @@
 //! `precise`; lane-wise selects go through a macro that is `select()` where the compiler
 //! wants it (HLSL 2021, Slang) and `?:` elsewhere.
 
-use super::{Backend, FileOptions, KernelIo, kernel_io, scalar_names};
+use super::{
+    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, kernel_runner, scalar_names,
+};
 use crate::emit::SpecView;
 use crate::model::Kind;
 use crate::model::trace::Ty;
@@ -69,23 +71,22 @@ impl Backend for Hlsl {
         .render()
         .expect("HLSL template renders")
     }
-    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
-        let outw = ret.lanes;
-        let KernelIo { args, bits, stores } = kernel_io(
-            self,
-            params,
-            ret,
-            |l, _| format!("asfloat({l})"),
-            "asuint(r)",
-        );
-        format!(
-            "{include}
-[[vk::binding(0, 0)]] StructuredBuffer<uint> input_words : register(t0);
-[[vk::binding(1, 0)]] RWStructuredBuffer<uint> output_words : register(u1);
-
-[numthreads(64, 1, 1)]
-void main(uint3 id : SV_DispatchThreadID) {{
-    uint i = id.x;
+    fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
+        let mut runners = String::new();
+        let mut cases = String::new();
+        for (k, (func, params, ret)) in funcs.iter().enumerate() {
+            let outw = ret.lanes;
+            let KernelIo { args, bits, stores } = kernel_io(
+                self,
+                params,
+                *ret,
+                |l, _| format!("asfloat({l})"),
+                "asuint(r)",
+            );
+            let runner = kernel_runner(k);
+            runners.push_str(&format!(
+                "
+void {runner}(uint i) {{
     uint count, stride;
     output_words.GetDimensions(count, stride);
     if (i >= count / {outw}u) {{
@@ -95,11 +96,30 @@ void main(uint3 id : SV_DispatchThreadID) {{
     {} rb = {bits};{stores}
 }}
 ",
-            self.ty(ret),
-            self.ty(Ty {
-                kind: Kind::U32,
-                lanes: ret.lanes
-            })
+                self.ty(*ret),
+                self.ty(Ty {
+                    kind: Kind::U32,
+                    lanes: ret.lanes
+                })
+            ));
+            cases.push_str(&format!(
+                "\n    case {k}u:\n        {runner}(id.x);\n        break;"
+            ));
+        }
+        format!(
+            "{include}
+[[vk::binding(0, 0)]] StructuredBuffer<uint> input_words : register(t0);
+[[vk::binding(1, 0)]] RWStructuredBuffer<uint> output_words : register(u1);
+[[vk::constant_id(0)]] const uint {KERNEL_SELECT} = 0u;
+{runners}
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {{
+    switch ({KERNEL_SELECT}) {{{cases}
+    default:
+        break;
+    }}
+}}
+"
         )
     }
 }

@@ -86,11 +86,28 @@ pub trait Backend {
     }
     /// The complete include.
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String;
-    /// A program around `include` that applies `func` (parameter types `params`, whose
-    /// words follow one another in an item, result type `ret`) to every item of raw
-    /// 32-bit words: a compute shader with the binding contract of `crate::verify::gpu`,
-    /// or for C a test driver reading and writing files.
-    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String;
+    /// A program around `include` that applies any one of `funcs` (name, parameter types
+    /// whose words follow one another in an item, result type) to every item of raw
+    /// 32-bit words: for the shader languages a compute shader with the binding contract
+    /// of `crate::verify::gpu` whose input's word 0 selects the function (items follow),
+    /// for C a test driver taking the function's index (`c::driver`). One program per
+    /// include: each front end and driver compiler reads the include once, not once per
+    /// function.
+    fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String;
+}
+
+/// A function a [`Backend::kernel`] can apply: its name, parameter types and result type.
+pub type KernelFn<'a> = (&'a str, Vec<Ty>, Ty);
+
+/// The kernel's selector: specialization constant 0 (WGSL `@id(0) override`), whose value
+/// is the index of the function a pipeline runs. A constant, so that the driver compiles
+/// that function's code alone: a selector read at run time would have a CPU driver run
+/// every function's code under masks.
+pub const KERNEL_SELECT: &str = "unitpack_verify_select";
+
+/// The name of the kernel's runner for function `k` of its list (one item per call).
+pub(crate) fn kernel_runner(k: usize) -> String {
+    format!("unitpack_verify_{k}")
 }
 
 /// `vec3<f32>`-style names for WGSL, `vec3`/`uvec3`/`bvec3` for GLSL, `float3` for HLSL.

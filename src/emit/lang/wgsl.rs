@@ -1,7 +1,9 @@
 //! WGSL: `let` statements, `select(f, t, m)`, `1.0f` literals; no preprocessor, so names
 //! carry a prefix and naga_oil users may add `#define_import_path`.
 
-use super::{Backend, FileOptions, KernelIo, kernel_io, scalar_names};
+use super::{
+    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, kernel_runner, scalar_names,
+};
 use crate::emit::SpecView;
 use crate::model::Kind;
 use crate::model::trace::Ty;
@@ -46,34 +48,49 @@ impl Backend for Wgsl {
         .render()
         .expect("WGSL template renders")
     }
-    fn kernel(&self, include: &str, func: &str, params: &[Ty], ret: Ty) -> String {
-        let outw = ret.lanes;
-        let KernelIo { args, bits, stores } = kernel_io(
-            self,
-            params,
-            ret,
-            |l, param| format!("bitcast<{}>({l})", self.ty(param)),
-            &format!(
-                "bitcast<{}>(r)",
-                self.ty(Ty {
-                    kind: Kind::U32,
-                    lanes: ret.lanes
-                })
-            ),
-        );
-        format!(
-            "{include}
-@group(0) @binding(0) var<storage, read> input_words: array<u32>;
-@group(0) @binding(1) var<storage, read_write> output_words: array<u32>;
-
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
-    let i = id.x;
+    fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
+        let mut runners = String::new();
+        let mut cases = String::new();
+        for (k, (func, params, ret)) in funcs.iter().enumerate() {
+            let outw = ret.lanes;
+            let KernelIo { args, bits, stores } = kernel_io(
+                self,
+                params,
+                *ret,
+                |l, param| format!("bitcast<{}>({l})", self.ty(param)),
+                &format!(
+                    "bitcast<{}>(r)",
+                    self.ty(Ty {
+                        kind: Kind::U32,
+                        lanes: ret.lanes
+                    })
+                ),
+            );
+            let runner = kernel_runner(k);
+            runners.push_str(&format!(
+                "
+fn {runner}(i: u32) {{
     if (i >= arrayLength(&output_words) / {outw}u) {{
         return;
     }}
     let r = {func}({args});
     let rb = {bits};{stores}
+}}
+"
+            ));
+            cases.push_str(&format!("\n        case {k}u: {{ {runner}(id.x); }}"));
+        }
+        format!(
+            "{include}
+@group(0) @binding(0) var<storage, read> input_words: array<u32>;
+@group(0) @binding(1) var<storage, read_write> output_words: array<u32>;
+@id(0) override {KERNEL_SELECT}: u32 = 0u;
+{runners}
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+    switch {KERNEL_SELECT} {{{cases}
+        default: {{}}
+    }}
 }}
 "
         )
