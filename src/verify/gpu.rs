@@ -32,8 +32,9 @@
 //!
 //! # Kernel skeletons
 //!
-//! Minimal single-function kernels for each path, verified by `tests/gpu_smoke.rs`. Replace `IN_WORDS`,
-//! `OUT_WORDS` and the `// body` part; everything else is the required shape.
+//! Minimal single-function kernels for each path, verified by `tests/gpu_smoke.rs`.
+//! Replace `IN_WORDS`, `OUT_WORDS` and the `// body` part; everything else is the
+//! required shape.
 //!
 //! ## 1. WGSL, compiled by naga inside wgpu ([`Shader::Wgsl`])
 //!
@@ -553,7 +554,7 @@ impl Gpu {
         Ok(())
     }
 
-    /// Runs a pipeline over every chunk of `input`.
+    /// Runs a pipeline over every chunk of `input` (the device checked by the caller).
     fn dispatch(
         &self,
         pipeline: &wgpu::ComputePipeline,
@@ -563,7 +564,6 @@ impl Gpu {
         out_words: usize,
         sink: &mut dyn FnMut(&[u32]),
     ) -> anyhow::Result<()> {
-        self.check_lost()?;
         let n = input.len() / in_words;
         let chunk = self.chunk_items(in_words, out_words);
         if n == 0 {
@@ -594,9 +594,9 @@ impl Gpu {
         });
         scopes.check().context("allocating buffers")?;
 
-        for (at, items) in input.chunks(chunk * in_words).enumerate() {
+        for (index, items) in input.chunks(chunk * in_words).enumerate() {
             let items_here = items.len() / in_words;
-            let start = at * chunk;
+            let start = index * chunk;
             self.run_chunk(
                 pipeline,
                 items,

@@ -89,10 +89,10 @@ pub trait Backend {
     /// A program around `include` that applies any one of `funcs` (name, parameter types
     /// whose words follow one another in an item, result type) to every item of raw
     /// 32-bit words: for the shader languages a compute shader with the binding contract
-    /// of `crate::verify::gpu` whose input's word 0 selects the function (items follow),
-    /// for C a test driver taking the function's index (`c::driver`). One program per
-    /// include: each front end and driver compiler reads the include once, not once per
-    /// function.
+    /// of `crate::verify::gpu` whose specialization constant 0 ([`KERNEL_SELECT`]) is the
+    /// index of the function it runs, for C a test driver taking the index as an argument
+    /// (`c::driver`). One program per include: each front end and compiler reads the
+    /// include once, not once per function.
     fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String;
 }
 
