@@ -198,6 +198,37 @@ fn a_map_goes_to_dxt5nm_and_back_texel_for_texel() {
     assert!(worst < 3.0, "sample max {worst}° after the round trip");
 }
 
+/// A large map converts: 3000² RGBA16 texels are 72 MB of samples, past the `png`
+/// decoder's default allocation limit of 64 MiB (which bounds its own buffers, not the
+/// image, which the caller allocates).
+#[test]
+fn maps_past_64_mib_convert() {
+    let tmp = dir();
+    let d = tmp.path();
+    let (input, texels) = (d.join("big.png"), d.join("big_rg.png"));
+    let side = 3000;
+    // Straight up (n = +Z): R = G = ½, B = 1, A = 1, a constant that compresses well.
+    let texel = [32768, 32768, 65535, 65535];
+    let samples = texel.repeat((side * side) as usize);
+    Image::new(side, side, ColorType::Rgba, BitDepth::Sixteen, samples).save(&input);
+    assert!(std::fs::metadata(&input).unwrap().len() < 1 << 20);
+    let r = unitpack(&[
+        "convert-normal-map",
+        arg(&input),
+        arg(&texels),
+        "--to",
+        "xy16_rg",
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let out = Image::open(&texels);
+    assert_eq!((out.width, out.height), (side, side));
+    let mut want = [0u32];
+    Batch::new("xy16_rg")
+        .unwrap()
+        .encode(&[vector([32768, 32768, 65535], 65535.0)], &mut want);
+    assert!(out.texels().iter().all(|&t| t == want[0]));
+}
+
 /// An RGB16 map reads at 16 bits per component, and --depth 16 writes one back.
 #[test]
 fn sixteen_bit_maps_read_and_write() {
