@@ -488,7 +488,8 @@ impl Gpu {
         Self::check_widths(input, in_words, out_words)?;
         self.check_lost()?;
         let pipeline = self
-            .pipeline(shader)
+            .module(shader)
+            .and_then(|module| self.pipeline_of(&module, &[]))
             .with_context(|| format!("creating the {} compute pipeline", shader.kind()))?;
         self.dispatch(&pipeline, shader.kind(), input, in_words, out_words, sink)
     }
@@ -867,12 +868,6 @@ impl Gpu {
         };
         readback.unmap();
         Ok(out)
-    }
-
-    /// Creates the shader module and pipeline, turning any compilation / validation /
-    /// pipeline-creation error into an `Err` with the message.
-    fn pipeline(&self, shader: &Shader) -> anyhow::Result<wgpu::ComputePipeline> {
-        self.pipeline_of(&self.module(shader)?, &[])
     }
 
     /// Creates the shader module, turning a compilation or validation error into an `Err`

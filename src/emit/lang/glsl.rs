@@ -4,7 +4,8 @@
 //! users define as `precise` where the language has it.
 
 use super::{
-    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, kernel_runner, scalar_names,
+    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, scalar_names,
+    selecting_parts,
 };
 use crate::emit::SpecView;
 use crate::model::Kind;
@@ -114,20 +115,19 @@ impl Backend for Glsl {
     }
     /// A `#version 450` compute shader; the include goes after the version line.
     fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
-        let mut runners = String::new();
-        let mut cases = String::new();
-        for (k, (func, params, ret)) in funcs.iter().enumerate() {
-            let outw = ret.lanes;
-            let KernelIo { args, bits, stores } = kernel_io(
-                self,
-                params,
-                *ret,
-                |l, _| format!("uintBitsToFloat({l})"),
-                "floatBitsToUint(r)",
-            );
-            let runner = kernel_runner(k);
-            runners.push_str(&format!(
-                "
+        let (runners, cases) = selecting_parts(
+            funcs,
+            |runner, (func, params, ret)| {
+                let outw = ret.lanes;
+                let KernelIo { args, bits, stores } = kernel_io(
+                    self,
+                    params,
+                    *ret,
+                    |l, _| format!("uintBitsToFloat({l})"),
+                    "floatBitsToUint(r)",
+                );
+                format!(
+                    "
 void {runner}(uint i) {{
     if (i >= uint(output_words.length()) / {outw}u) {{
         return;
@@ -136,16 +136,19 @@ void {runner}(uint i) {{
     {} rb = {bits};{stores}
 }}
 ",
-                self.ty(*ret),
-                self.ty(Ty {
-                    kind: Kind::U32,
-                    lanes: ret.lanes
-                })
-            ));
-            cases.push_str(&format!(
-                "\n    case {k}u:\n        {runner}(gl_GlobalInvocationID.x);\n        break;"
-            ));
-        }
+                    self.ty(*ret),
+                    self.ty(Ty {
+                        kind: Kind::U32,
+                        lanes: ret.lanes
+                    })
+                )
+            },
+            |k, runner| {
+                format!(
+                    "\n    case {k}u:\n        {runner}(gl_GlobalInvocationID.x);\n        break;"
+                )
+            },
+        );
         format!(
             "#version 450
 layout(local_size_x = 64) in;

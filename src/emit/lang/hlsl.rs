@@ -3,7 +3,8 @@
 //! wants it (HLSL 2021, Slang) and `?:` elsewhere.
 
 use super::{
-    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, kernel_runner, scalar_names,
+    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, scalar_names,
+    selecting_parts,
 };
 use crate::emit::SpecView;
 use crate::model::Kind;
@@ -72,20 +73,19 @@ impl Backend for Hlsl {
         .expect("HLSL template renders")
     }
     fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
-        let mut runners = String::new();
-        let mut cases = String::new();
-        for (k, (func, params, ret)) in funcs.iter().enumerate() {
-            let outw = ret.lanes;
-            let KernelIo { args, bits, stores } = kernel_io(
-                self,
-                params,
-                *ret,
-                |l, _| format!("asfloat({l})"),
-                "asuint(r)",
-            );
-            let runner = kernel_runner(k);
-            runners.push_str(&format!(
-                "
+        let (runners, cases) = selecting_parts(
+            funcs,
+            |runner, (func, params, ret)| {
+                let outw = ret.lanes;
+                let KernelIo { args, bits, stores } = kernel_io(
+                    self,
+                    params,
+                    *ret,
+                    |l, _| format!("asfloat({l})"),
+                    "asuint(r)",
+                );
+                format!(
+                    "
 void {runner}(uint i) {{
     uint count, stride;
     output_words.GetDimensions(count, stride);
@@ -96,16 +96,15 @@ void {runner}(uint i) {{
     {} rb = {bits};{stores}
 }}
 ",
-                self.ty(*ret),
-                self.ty(Ty {
-                    kind: Kind::U32,
-                    lanes: ret.lanes
-                })
-            ));
-            cases.push_str(&format!(
-                "\n    case {k}u:\n        {runner}(id.x);\n        break;"
-            ));
-        }
+                    self.ty(*ret),
+                    self.ty(Ty {
+                        kind: Kind::U32,
+                        lanes: ret.lanes
+                    })
+                )
+            },
+            |k, runner| format!("\n    case {k}u:\n        {runner}(id.x);\n        break;"),
+        );
         format!(
             "{include}
 [[vk::binding(0, 0)]] StructuredBuffer<uint> input_words : register(t0);

@@ -105,9 +105,21 @@ pub type KernelFn<'a> = (&'a str, Vec<Ty>, Ty);
 /// every function's code under masks.
 pub const KERNEL_SELECT: &str = "unitpack_verify_select";
 
-/// The name of the kernel's runner for function `k` of its list (one item per call).
-pub(crate) fn kernel_runner(k: usize) -> String {
-    format!("unitpack_verify_{k}")
+/// A selecting kernel's runners and the cases of its switch on [`KERNEL_SELECT`], one of
+/// each per function in order: `runner(name, function)` writes the runner `name`, which
+/// applies `function` to item `i`; `case(k, name)` the case that calls it.
+pub(crate) fn selecting_parts(
+    funcs: &[KernelFn],
+    runner: impl Fn(&str, &KernelFn) -> String,
+    case: impl Fn(usize, &str) -> String,
+) -> (String, String) {
+    let (mut runners, mut cases) = (String::new(), String::new());
+    for (k, f) in funcs.iter().enumerate() {
+        let name = format!("unitpack_verify_{k}");
+        runners.push_str(&runner(&name, f));
+        cases.push_str(&case(k, &name));
+    }
+    (runners, cases)
 }
 
 /// `vec3<f32>`-style names for WGSL, `vec3`/`uvec3`/`bvec3` for GLSL, `float3` for HLSL.

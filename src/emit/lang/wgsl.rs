@@ -2,7 +2,8 @@
 //! carry a prefix and naga_oil users may add `#define_import_path`.
 
 use super::{
-    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, kernel_runner, scalar_names,
+    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, scalar_names,
+    selecting_parts,
 };
 use crate::emit::SpecView;
 use crate::model::Kind;
@@ -49,26 +50,25 @@ impl Backend for Wgsl {
         .expect("WGSL template renders")
     }
     fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
-        let mut runners = String::new();
-        let mut cases = String::new();
-        for (k, (func, params, ret)) in funcs.iter().enumerate() {
-            let outw = ret.lanes;
-            let KernelIo { args, bits, stores } = kernel_io(
-                self,
-                params,
-                *ret,
-                |l, param| format!("bitcast<{}>({l})", self.ty(param)),
-                &format!(
-                    "bitcast<{}>(r)",
-                    self.ty(Ty {
-                        kind: Kind::U32,
-                        lanes: ret.lanes
-                    })
-                ),
-            );
-            let runner = kernel_runner(k);
-            runners.push_str(&format!(
-                "
+        let (runners, cases) = selecting_parts(
+            funcs,
+            |runner, (func, params, ret)| {
+                let outw = ret.lanes;
+                let KernelIo { args, bits, stores } = kernel_io(
+                    self,
+                    params,
+                    *ret,
+                    |l, param| format!("bitcast<{}>({l})", self.ty(param)),
+                    &format!(
+                        "bitcast<{}>(r)",
+                        self.ty(Ty {
+                            kind: Kind::U32,
+                            lanes: ret.lanes
+                        })
+                    ),
+                );
+                format!(
+                    "
 fn {runner}(i: u32) {{
     if (i >= arrayLength(&output_words) / {outw}u) {{
         return;
@@ -77,9 +77,10 @@ fn {runner}(i: u32) {{
     let rb = {bits};{stores}
 }}
 "
-            ));
-            cases.push_str(&format!("\n        case {k}u: {{ {runner}(id.x); }}"));
-        }
+                )
+            },
+            |k, runner| format!("\n        case {k}u: {{ {runner}(id.x); }}"),
+        );
         format!(
             "{include}
 @group(0) @binding(0) var<storage, read> input_words: array<u32>;
