@@ -26,7 +26,8 @@ use crate::codecs::quant::Code;
 use crate::codecs::{Spec, SpecError};
 use crate::model::Uint;
 use crate::model::V3;
-use crate::model::lanes::{F4, U4};
+use crate::model::avx2_lanes::{self, F8, WIDTH};
+use crate::model::lanes::{F4, LaneIo};
 
 /// A codec with its encoder chosen (fast: nearest codes; precise: the survey's "P" search).
 #[derive(Clone, Copy, Debug)]
@@ -65,58 +66,121 @@ impl<C: Codec> Encoder<C> {
     pub fn decode(&self, code: C::C<f32>) -> [f32; 3] {
         decode_packed(&self.codec, code).to_array()
     }
-    /// Encodes `input` into `out` (same length), four vectors per step on SIMD lanes
-    /// ([`crate::model::lanes`]): the same bits as [`Encoder::encode`] on each.
+    /// Encodes `input` into `out` (same length), eight vectors per step on AVX2 lanes
+    /// where the processor has them, else four on SSE2 lanes ([`crate::model::lanes`]):
+    /// the same bits as [`Encoder::encode`] on each.
     pub fn encode_slice(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
         assert_eq!(
             input.len(),
             out.len(),
             "encode_slice: input and output lengths differ"
         );
-        for (vs, os) in input.chunks(4).zip(out.chunks_mut(4)) {
-            let lane = |j: usize| {
-                let x: [f32; 4] = std::array::from_fn(|k| vs[k.min(vs.len() - 1)][j]);
-                F4(x.into())
+        if avx2_lanes::available() {
+            // SAFETY: the processor has AVX2.
+            unsafe { self.encode_avx2(input, out) }
+        } else {
+            self.encode_lanes::<F4, 4>(input, out)
+        }
+    }
+
+    /// [`Encoder::encode_slice`] on eight lanes, compiled for AVX2.
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
+    unsafe fn encode_avx2(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
+        self.encode_lanes::<F8, WIDTH>(input, out)
+    }
+
+    /// Encodes `N` vectors per step on the lanes `L`; a last partial step repeats its last
+    /// vector in the spare lanes.
+    #[inline(always)]
+    fn encode_lanes<L: LaneIo<N>, const N: usize>(
+        &self,
+        input: &[[f32; 3]],
+        out: &mut [C::C<f32>],
+    ) {
+        for (vs, os) in input.chunks(N).zip(out.chunks_mut(N)) {
+            let lane = {
+                #[inline(always)]
+                |j: usize| {
+                    L::from_words(std::array::from_fn(|k| {
+                        vs[k.min(vs.len() - 1)][j].to_bits()
+                    }))
+                }
             };
             let code = encode_packed(
                 &self.codec,
                 self.precise,
                 V3::new(lane(0), lane(1), lane(2)),
             );
-            let words: [[u32; 4]; 3] = std::array::from_fn(|j| {
-                if j < <C::C<F4> as Code<F4>>::WORDS {
-                    code.word(j).0.to_array()
-                } else {
-                    [0; 4]
+            let word = {
+                #[inline(always)]
+                |j: usize| {
+                    if j < <C::C<L> as Code<L>>::WORDS {
+                        L::u_words(code.word(j))
+                    } else {
+                        [0; N]
+                    }
                 }
-            });
+            };
+            let words = [word(0), word(1), word(2)];
             for (k, o) in os.iter_mut().enumerate() {
                 *o = C::C::<f32>::from_words(words.map(|w| w[k]));
             }
         }
     }
-    /// Decodes `input` into `out` (same length), four codes per step on SIMD lanes: the
-    /// same bits as [`Encoder::decode`] on each.
+
+    /// Decodes `input` into `out` (same length), eight codes per step on AVX2 lanes where
+    /// the processor has them, else four on SSE2 lanes: the same bits as
+    /// [`Encoder::decode`] on each.
     pub fn decode_slice(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
         assert_eq!(
             input.len(),
             out.len(),
             "decode_slice: input and output lengths differ"
         );
+        if avx2_lanes::available() {
+            // SAFETY: the processor has AVX2.
+            unsafe { self.decode_avx2(input, out) }
+        } else {
+            self.decode_lanes::<F4, 4>(input, out)
+        }
+    }
+
+    /// [`Encoder::decode_slice`] on eight lanes, compiled for AVX2.
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
+    unsafe fn decode_avx2(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
+        self.decode_lanes::<F8, WIDTH>(input, out)
+    }
+
+    /// Decodes `N` codes per step on the lanes `L`.
+    #[inline(always)]
+    fn decode_lanes<L: LaneIo<N>, const N: usize>(
+        &self,
+        input: &[C::C<f32>],
+        out: &mut [[f32; 3]],
+    ) {
         let words = <C::C<f32> as Code<f32>>::WORDS;
-        for (cs, os) in input.chunks(4).zip(out.chunks_mut(4)) {
-            let lane = |j: usize| {
-                let w: [u32; 4] = std::array::from_fn(|k| cs[k.min(cs.len() - 1)].word(j));
-                U4(w.into())
+        for (cs, os) in input.chunks(N).zip(out.chunks_mut(N)) {
+            let lane = {
+                #[inline(always)]
+                |j: usize| {
+                    if j < words {
+                        L::u_from_words(std::array::from_fn(|k| cs[k.min(cs.len() - 1)].word(j)))
+                    } else {
+                        L::U::c(0)
+                    }
+                }
             };
-            let code = C::C::<F4>::from_words(std::array::from_fn(|j| {
-                if j < words { lane(j) } else { U4::c(0) }
-            }));
-            let [x, y, z] = decode_packed(&self.codec, code)
-                .to_array()
-                .map(|l| l.0.to_array());
+            let code = C::C::<L>::from_words([lane(0), lane(1), lane(2)]);
+            let v = decode_packed(&self.codec, code);
+            let [x, y, z] = [v.x.words(), v.y.words(), v.z.words()];
             for (k, o) in os.iter_mut().enumerate() {
-                *o = [x[k], y[k], z[k]];
+                *o = [x[k], y[k], z[k]].map(f32::from_bits);
             }
         }
     }
@@ -135,8 +199,9 @@ impl<C: Codec> Encoder<C> {
 /// ```
 ///
 /// in the dependent crate's `Cargo.toml` it runs optimized in that debug build. It computes
-/// the same bits as [`Encoder`] (the same model, evaluated four vectors at a time on SSE2
-/// lanes, [`crate::model::lanes`]; `tests/api.rs` compares them).
+/// the same bits as [`Encoder`] (the same model, evaluated eight vectors at a time on AVX2
+/// lanes where the processor has them, else four on SSE2 lanes; `tests/api.rs` compares
+/// them).
 ///
 /// ```
 /// use unitpack::api::Batch;

@@ -92,8 +92,8 @@ pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStat
     let find = |r: Role| e.cpu_function(r).expect("codec function");
     let (enc, dec) = (find(Role::Encode), find(Role::Decode));
     let vs = random_unit_vectors(VECTOR_SEED, samples, domain == Domain::Hemisphere);
-    // Four vectors per step on the lanes, bit for bit the scalar model (`verify`'s
-    // `cpu/4 lanes` path): the search encoders cost thousands of operations each.
+    // Eight or four vectors per step on the lanes, bit for bit the scalar model (`verify`'s
+    // `cpu/8 lanes` and `cpu/4 lanes` paths): the search encoders cost thousands of operations each.
     let input: Vec<u32> = vs.iter().flat_map(|v| v.map(f32::to_bits)).collect();
     let mut codes = vec![0u32; samples * enc.out_words];
     enc.eval_many(&input, &mut codes);

@@ -1622,13 +1622,16 @@ fn verify_oct16_wgsl_on_lavapipe() {
         .filter(|l| l.starts_with("oct16 "))
         .collect();
     assert!(!rows.is_empty(), "{r:?}");
-    // The WGSL path, and the model's own four-lane path, which needs no language.
+    // The WGSL path, and the model's own four- and eight-lane paths, which need no language.
     assert!(
-        rows.iter()
-            .all(|l| l.contains("wgsl/naga") || l.contains("cpu/4 lanes")),
+        rows.iter().all(|l| l.contains("wgsl/naga")
+            || l.contains("cpu/4 lanes")
+            || l.contains("cpu/8 lanes")),
         "{r:?}"
     );
-    assert!(rows.iter().any(|l| l.contains("cpu/4 lanes")), "{r:?}");
+    for lanes in ["cpu/4 lanes", "cpu/8 lanes"] {
+        assert!(rows.iter().any(|l| l.contains(lanes)), "{lanes}: {r:?}");
+    }
     for f in ["encode", "decode"] {
         assert!(
             rows.iter().any(|l| l.split_whitespace().nth(1) == Some(f)),

@@ -23,12 +23,17 @@ fn every_function_is_bit_exact_on_every_path() {
         .iter()
         .map(|s| s.emitted().functions.len())
         .sum();
-    let lanes = report.rows.iter().filter(|r| r.path == "cpu/4 lanes");
-    assert_eq!(
-        lanes.filter(|r| r.tested >= 1 << 15).count(),
-        functions,
-        "every function on four lanes"
-    );
+    for (path, what) in [
+        ("cpu/4 lanes", "four SSE2 lanes"),
+        ("cpu/8 lanes", "eight AVX2 lanes"),
+    ] {
+        let lanes = report.rows.iter().filter(|r| r.path == path);
+        assert_eq!(
+            lanes.filter(|r| r.tested >= 1 << 15).count(),
+            functions,
+            "every function on {what}"
+        );
+    }
     assert!(
         report.all_passed(),
         "mismatches or compile errors:\n{table}"
@@ -89,7 +94,7 @@ fn shared_rows_repeat_identical_code(report: &unitpack::verify::Report) {
         .filter(|o| o.same_as.is_none())
         .map(|o| ((format!("{} {}", o.spec, o.function), o.path.as_str()), o))
         .collect();
-    for path in ["wgsl/naga", "c/cc -O2", "cpu/4 lanes"] {
+    for path in ["wgsl/naga", "c/cc -O2", "cpu/4 lanes", "cpu/8 lanes"] {
         assert!(
             shared
                 .iter()

@@ -285,7 +285,8 @@ fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write
             Direction::Encode => None,
         };
         let good = bad.map_or(records, |(i, _)| i);
-        // Four records per step on SIMD lanes: the same bits as one at a time.
+        // Eight (AVX2) or four (SSE2) records per step on SIMD lanes: the same bits as one at
+        // a time.
         words.clear();
         words.extend((0..good * iw).map(|k| word(k / iw, k % iw)));
         c.f.eval_many(&words, &mut results[..good * ow]);

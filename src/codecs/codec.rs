@@ -43,6 +43,7 @@ impl<F: Float> Params<F> for V2<F> {
         let a = [f(0), f(1)];
         V2::from_array(F::fuse(a))
     }
+    #[inline(always)]
     fn named_p(self, name: &'static str) -> Self {
         self.named(name)
     }
@@ -59,6 +60,7 @@ impl<F: Float> Params<F> for V3<F> {
         let a = [f(0), f(1), f(2)];
         V3::from_array(F::fuse(a))
     }
+    #[inline(always)]
     fn named_p(self, name: &'static str) -> Self {
         self.named(name)
     }
@@ -75,6 +77,7 @@ impl<F: Float> Params<F> for V4<F> {
         let a = [f(0), f(1), f(2), f(3)];
         V4::from_array(F::fuse(a))
     }
+    #[inline(always)]
     fn named_p(self, name: &'static str) -> Self {
         self.named(name)
     }
@@ -93,6 +96,7 @@ pub trait Codec: Send + Sync {
     /// The unit vector the encoder aims at for any input (normalized, projected onto the
     /// domain, and a fixed direction for zero, NaN or infinite input). Precise encoders
     /// measure candidates against it.
+    #[inline(always)]
     fn target<F: Float>(&self, v: V3<F>) -> V3<F> {
         let u = unit_or_z(v);
         match self.domain() {
@@ -113,7 +117,12 @@ pub trait Codec: Send + Sync {
     #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: Self::P<F>) -> V3<F> {
         let p = dequantize(&self.quants(), codes).named_p("params");
-        F::call("decode_float", p, |p| self.direction(p))
+        F::call(
+            "decode_float",
+            p,
+            #[inline(always)]
+            |p| self.direction(p),
+        )
     }
     /// A bit field that holds bits of more than one parameter, so that a range of it is
     /// no range of either: [`crate::decode_bound`] then takes its values one at a time.
@@ -131,6 +140,7 @@ pub trait Codec: Send + Sync {
         None
     }
     /// The codes the [`Codec::alternate`] encoder writes.
+    #[inline(always)]
     fn alternate_codes<F: Float>(&self, codes: Self::P<F>) -> Self::P<F> {
         codes
     }
@@ -144,8 +154,14 @@ pub trait Codec: Send + Sync {
     /// square root error an implementation is allowed. A codec that sets
     /// [`Codec::EXACT_ROUNDING`] overrides it with an exact form, which the encoder then
     /// calls as the helper `round_codes`.
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
-        let p = F::call("encode_float", v, |v| self.params(v));
+        let p = F::call(
+            "encode_float",
+            v,
+            #[inline(always)]
+            |v| self.params(v),
+        );
         quantize(&self.quants(), p).named_p("codes")
     }
     /// Whether [`Codec::precise_codes`] decides the search in integer arithmetic
@@ -154,6 +170,7 @@ pub trait Codec: Send + Sync {
     const EXACT_SEARCH: bool = false;
     /// Integer codes chosen by the precise encoder: [`precise_search`] through this
     /// codec's own `decode_float`.
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
         precise_search(self, v, "decode_float")
     }
@@ -164,6 +181,7 @@ pub trait Codec: Send + Sync {
 /// the first one on ties. Candidates are integer codes and are decoded exactly as the
 /// decoder will (through the helper `decode_name`), so encoder and decoder agree on
 /// what "nearest" means; a cosine in f32 could not tell 32-bit candidates apart.
+#[inline(always)]
 pub fn precise_search<F: Float, C: Codec + ?Sized>(
     codec: &C,
     v: V3<F>,
@@ -172,50 +190,76 @@ pub fn precise_search<F: Float, C: Codec + ?Sized>(
     let q = codec.quants();
     let u = codec.target(v).named("dir");
     let p = codec.params(u);
-    let base = C::P::<F>::build(|i| q[i].floor_code(p.lane(i))).named_p("base");
-    let decode = |c: C::P<F>| {
-        let params = dequantize(&q, c);
-        F::call(decode_name, params, |p| codec.direction(p))
+    let base = C::P::<F>::build(
+        #[inline(always)]
+        |i| q[i].floor_code(p.lane(i)),
+    )
+    .named_p("base");
+    let decode = {
+        #[inline(always)]
+        |c: C::P<F>| {
+            let params = dequantize(&q, c);
+            F::call(
+                decode_name,
+                params,
+                #[inline(always)]
+                |p| codec.direction(p),
+            )
+        }
     };
     let mut best = base;
     let mut best_d = distance2(decode(base), u).named("best_d");
     for k in 1..(1usize << C::P::<F>::N) {
-        let cand = C::P::<F>::build(|i| {
-            let step = if k >> i & 1 == 1 {
-                base.lane(i) + F::c(1.0)
-            } else {
-                base.lane(i)
-            };
-            q[i].clamp_code(step)
-        })
+        let cand = C::P::<F>::build(
+            #[inline(always)]
+            |i| {
+                let step = if k >> i & 1 == 1 {
+                    base.lane(i) + F::c(1.0)
+                } else {
+                    base.lane(i)
+                };
+                q[i].clamp_code(step)
+            },
+        )
         .named_p("cand");
         let d = distance2(decode(cand), u).named("d");
         let better = d.lt(best_d);
-        best = C::P::<F>::build(|i| F::sel(better, cand.lane(i), best.lane(i))).named_p("best");
+        best = C::P::<F>::build(
+            #[inline(always)]
+            |i| F::sel(better, cand.lane(i), best.lane(i)),
+        )
+        .named_p("best");
         best_d = F::sel(better, d, best_d).named("best_d");
     }
     best
 }
 
+#[inline(always)]
 fn distance2<F: Float>(a: V3<F>, b: V3<F>) -> F {
     (a - b).length_squared()
 }
 
 /// `v` projected onto the +Z hemisphere: `z ← max(z, +0)` as a select (a NaN `z` becomes
 /// `+0`, so validity must be judged before).
+#[inline(always)]
 pub fn above_horizon<F: Float>(v: V3<F>) -> V3<F> {
     V3::new(v.x, v.y, F::sel(v.z.gt(F::c(0.0)), v.z, F::c(0.0)))
 }
 
 /// `x ≥ 0 ? 1 : -1`: −0 counts as positive (never `sign()`, which is 0 at 0).
+#[inline(always)]
 pub fn sign_not_zero<F: Float>(v: V2<F>) -> V2<F> {
-    v.map(|x| F::sel(x.ge(F::c(0.0)), F::c(1.0), F::c(-1.0)))
+    v.map(
+        #[inline(always)]
+        |x| F::sel(x.ge(F::c(0.0)), F::c(1.0), F::c(-1.0)),
+    )
 }
 
 /// Normalizes `v`; zero, NaN and infinite input become +Z. Scaling by the largest
 /// component first keeps huge and denormal inputs from overflowing or vanishing; after
 /// it the squared length is at least 1 for every valid input and NaN or below 1 for
 /// every invalid one (a NaN lane can hide from the select-based maximum, not from it).
+#[inline(always)]
 pub fn unit_or_z<F: Float>(v: V3<F>) -> V3<F> {
     let a = v.abs();
     let m = a.x.at_least(a.y).at_least(a.z).named("largest");
@@ -227,13 +271,20 @@ pub fn unit_or_z<F: Float>(v: V3<F>) -> V3<F> {
     V3::sel_all(good, unit, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
 }
 
+#[inline(always)]
 pub fn quantize<F: Float, P: Params<F>>(q: &[Quant], p: P) -> P {
-    P::build(|i| q[i].quantize(p.lane(i)))
+    P::build(
+        #[inline(always)]
+        |i| q[i].quantize(p.lane(i)),
+    )
 }
 
 #[inline(always)]
 pub fn dequantize<F: Float, P: Params<F>>(q: &[Quant], c: P) -> P {
-    P::build(|i| q[i].dequantize(c.lane(i)))
+    P::build(
+        #[inline(always)]
+        |i| q[i].dequantize(c.lane(i)),
+    )
 }
 
 /// Packs integer codes into the texel's bits: first field lowest, little-endian.
@@ -249,24 +300,35 @@ pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
             Some(acc) => acc | f,
         });
     }
-    C::from_words(words.map(|w| w.unwrap_or_else(|| F::U::c(0))))
+    C::from_words(words.map(
+        #[inline(always)]
+        |w| {
+            w.unwrap_or_else(
+                #[inline(always)]
+                || F::U::c(0),
+            )
+        },
+    ))
 }
 
 /// Unpacks integer codes; bits outside the fields are ignored.
 #[inline(always)]
 pub fn unpack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], code: C) -> P {
     let offs = field_offsets(q);
-    P::build(|i| {
-        let (w, sh) = ((offs[i] / 32) as usize, offs[i] % 32);
-        let word = code.word(w);
-        let shifted = if sh == 0 { word } else { word.shr(sh) };
-        let field = if sh + q[i].bits() == 32 {
-            shifted
-        } else {
-            shifted & F::U::c(q[i].mask())
-        };
-        q[i].from_field(field)
-    })
+    P::build(
+        #[inline(always)]
+        |i| {
+            let (w, sh) = ((offs[i] / 32) as usize, offs[i] % 32);
+            let word = code.word(w);
+            let shifted = if sh == 0 { word } else { word.shr(sh) };
+            let field = if sh + q[i].bits() == 32 {
+                shifted
+            } else {
+                shifted & F::U::c(q[i].mask())
+            };
+            q[i].from_field(field)
+        },
+    )
 }
 
 /// Doc comments of the helpers defined here.

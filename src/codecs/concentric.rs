@@ -37,6 +37,7 @@ pub struct Concentric<P> {
 impl<P: DiskProjection> Concentric<P> {
     /// The codec with the given total bit budget, for the family `info`; an invalid size
     /// is an error listing the allowed ones.
+    #[inline(always)]
     pub fn with(info: &'static Info, bits: u32) -> Result<Self, SpecError> {
         Ok(Concentric {
             bits: info.check_bits(bits)?,
@@ -51,6 +52,7 @@ impl<P: DiskProjection> Concentric<P> {
     /// half turns (so `T·2^-21` is the angle over `π/4`, in `[-1, 1]`). Each boundary is
     /// decided by [`super::disk::Radius::past`] from the multiplier, a select of two
     /// literals or one product with the literal last.
+    #[inline(always)]
     fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
         let r = P::radius(f);
         let estimate = r.estimate().named("r");
@@ -59,18 +61,26 @@ impl<P: DiskProjection> Concentric<P> {
         let minor = F::sel(x_major, f.w.y, f.w.x).named("minor");
         let t = fixed_trig::atan2_pi(minor, major.abs()).named("t");
         let neg = major.lt(F::c(0.0));
-        let code = |q: Quant, x_field: bool| {
-            let m = q.max_code();
-            let along = F::sel(neg, F::c(-m * 0.5), F::c(m * 0.5));
-            let across = t * F::c((f64::from(m) / f64::from(1u32 << 22)) as f32);
-            let (a, b) = if x_field {
-                (along, across)
-            } else {
-                (across, along)
-            };
-            let x = F::sel(x_major, a, b).named("x");
-            let first = (estimate * x + F::c(m * 0.5)).round();
-            decided(q, first, |c| r.past(x, c - F::c(m * 0.5 - offset)))
+        let code = {
+            #[inline(always)]
+            |q: Quant, x_field: bool| {
+                let m = q.max_code();
+                let along = F::sel(neg, F::c(-m * 0.5), F::c(m * 0.5));
+                let across = t * F::c((f64::from(m) / f64::from(1u32 << 22)) as f32);
+                let (a, b) = if x_field {
+                    (along, across)
+                } else {
+                    (across, along)
+                };
+                let x = F::sel(x_major, a, b).named("x");
+                let first = (estimate * x + F::c(m * 0.5)).round();
+                decided(
+                    q,
+                    first,
+                    #[inline(always)]
+                    |c| r.past(x, c - F::c(m * 0.5 - offset)),
+                )
+            }
         };
         let [qx, qy] = disk_fields(self.bits);
         V2::new(code(qx, true), code(qy, false))
@@ -89,6 +99,7 @@ impl<P: DiskProjection> Codec for Concentric<P> {
     }
     /// `(a, b)·0.5 + 0.5` of the folded canonical input's disk point, and `z < 0`: the
     /// half radius from the projection, the angle from the model's [`atan2_pi`].
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let rho = f.w.xy().length_squared().sqrt().named("rho");
@@ -96,7 +107,13 @@ impl<P: DiskProjection> Codec for Concentric<P> {
         let x_major = f.w.x.abs().ge(f.w.y.abs());
         let major = F::sel(x_major, f.w.x, f.w.y).named("major");
         let minor = F::sel(x_major, f.w.y, f.w.x).named("minor");
-        let t = F::call("atan2_pi", (minor, major.abs()), |(y, x)| atan2_pi(y, x)).named("t");
+        let t = F::call(
+            "atan2_pi",
+            (minor, major.abs()),
+            #[inline(always)]
+            |(y, x)| atan2_pi(y, x),
+        )
+        .named("t");
         let along = F::sel(major.lt(F::c(0.0)), -half, half);
         let across = half * t * F::c(4.0);
         let enc = V2::new(
@@ -107,7 +124,7 @@ impl<P: DiskProjection> Codec for Concentric<P> {
     }
     /// The square point `s = enc·2 - 1` back on the disk: with `a` the coordinate of
     /// larger magnitude (`x` on a tie) and `b` the other, the radius is `r = |a|`
-    /// (computed as `max(|s.x|, |s.y|)`) and the angle from `a`'s half axis
+    /// (computed as `max(#[inline(always)] |s.x|, #[inline(always)] |s.y|)`) and the angle from `a`'s half axis
     /// `φ = (π/4)·(b/r)`, so the disk point is `(a·cos φ, r·sin φ)`, axes swapped back
     /// ([`sincos_quarter_pi`]); the projection lifts it, and z is negated where the
     /// hemisphere bit is set. Every code lies on the disk, so every code decodes within
@@ -120,6 +137,7 @@ impl<P: DiskProjection> Codec for Concentric<P> {
     /// a quotient). Both sides' points are computed and one is chosen last, so that
     /// codes on either side of a diagonal are smooth functions up to the choice. That
     /// is what lets the decoder's bound be proven in reasonable time.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let s = (enc.xy() * F::c(2.0) - F::c(1.0)).named("s");
         let r = s.x.abs().at_least(s.y.abs()).named("r");
@@ -142,6 +160,7 @@ impl<P: DiskProjection> Codec for Concentric<P> {
     /// The codes of [`Concentric::codes`] at `c + ½`, the hemisphere bit from the sign
     /// of the canonical `z`.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         V3::from_xy(self.codes(&f, 0.5), f.h)

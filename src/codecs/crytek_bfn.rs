@@ -35,7 +35,7 @@
 //! `j` after row `j - 1`).
 //!
 //! The packed encoder decides each byte exactly: each component's ratio to the major one,
-//! `r = floor(|w|/major·2^20)` ([`fixed_ratio`]), times `k` in integers, gives
+//! `r = floor(#[inline(always)] |w|/major·2^20)` ([`fixed_ratio`]), times `k` in integers, gives
 //! `128 + floor(r·k/2^21)` for a non-negative component and `128 - ceil(r·k/2^21)` for a
 //! negative one: `round(127.5 ± (r/2^20)·k/2)`, ties up, for `r` on its `2^-20` grid.
 //! Zero, NaN and infinite input encode as +Z at the scale 1, `(128, 128, 255)`, whatever
@@ -45,7 +45,7 @@ use super::codec::{Domain, pack};
 use super::exact::{canonical_or_z, fixed_length2, fixed_ratio, root};
 use super::family::{Family, Info, Sizes, Table, TableFormat};
 use super::functions::{
-    Emitted, Extra, Inputs, Role, WordsMap, codec_decoders, function, generic_function,
+    Emitted, Extra, Inputs, Role, WordsMap, codec_decoders, generic_function,
     through_table, trace_decoders,
 };
 use super::quant::Quant;
@@ -119,16 +119,16 @@ impl Family for CrytekBfnFamily {
             ],
             _ => return None,
         };
-        Some(lines.iter().map(|l| l.to_string()).collect())
+        Some(lines.iter().map(#[inline(always)] |l| l.to_string()).collect())
     }
 }
 
 /// The fitting table, `SIZE × SIZE` bytes, row `j` (the texel's y) after row `j - 1`.
 pub fn fitting_table() -> &'static [u8] {
     static TABLE: OnceLock<Vec<u8>> = OnceLock::new();
-    TABLE.get_or_init(|| {
+    TABLE.get_or_init(#[inline(always)] || {
         (0..SIZE * SIZE)
-            .map(|t| best_scale(t % SIZE, t / SIZE))
+            .map(#[inline(always)] |t| best_scale(t % SIZE, t / SIZE))
             .collect()
     })
 }
@@ -147,7 +147,7 @@ fn best_scale(i: usize, j: usize) -> u8 {
         let t = f64::from(k) / 255.0;
         let err = d
             .iter()
-            .map(|&c| {
+            .map(#[inline(always)] |&c| {
                 let p = t * c;
                 let code = ((p * 0.5 + 0.5) * 255.0 + 0.5).floor();
                 (code / 255.0 * 2.0 - 1.0 - p).abs()
@@ -162,6 +162,7 @@ fn best_scale(i: usize, j: usize) -> u8 {
 }
 
 /// The magnitudes sorted: `(major, mid, minor)`, as values (which axis does not matter).
+#[inline(always)]
 fn sorted<F: Float>(a: V3<F>) -> (F, F, F) {
     let (hi, lo) = (a.x.at_least(a.y), a.x.at_most(a.y));
     let z_major = a.z.ge(hi);
@@ -171,28 +172,30 @@ fn sorted<F: Float>(a: V3<F>) -> (F, F, F) {
 }
 
 /// The fitting table's texel of `v` (see the module's documentation).
+#[inline(always)]
 pub fn fitting_texel<F: Float>(v: V3<F>) -> V2<F::U> {
     let (w, _) = canonical_or_z(v);
-    let (_, mid, minor) = sorted(w.map(|x| x.abs()));
+    let (_, mid, minor) = sorted(w.map(#[inline(always)] |x| x.abs()));
     let last = F::c((SIZE - 1) as f32);
     let l = root(fixed_length2(w)).named("l");
     let i = fixed_ratio(mid, l, SIZE_BITS).at_most(last);
     let has_mid = mid.gt(F::c(0.0));
     let ratio = fixed_ratio(minor, F::sel(has_mid, mid, F::c(1.0)), SIZE_BITS);
     let j = F::sel(has_mid, ratio, F::c(0.0)).at_most(last);
-    V2::new(i, j).map(|t| t.to_u())
+    V2::new(i, j).map(#[inline(always)] |t| t.to_u())
 }
 
 /// The packed code of `v` with the table's fetched scale (see the module's
 /// documentation).
+#[inline(always)]
 pub fn encode<F: Float>(v: V3<F>, fetched: F) -> F::U {
     let (w, ok) = canonical_or_z(v);
-    let a = w.map(|x| x.abs());
+    let a = w.map(#[inline(always)] |x| x.abs());
     let (major, _, _) = sorted(a);
     let k = BYTE.quantize(fetched).named("k").to_u();
-    let u = |x: u32| F::U::c(x);
+    let u = { #[inline(always)] |x: u32| F::U::c(x) };
     let (w, a) = (w.to_array(), a.to_array());
-    let bytes = V3::from_array(std::array::from_fn(|c| {
+    let byte = { #[inline(always)] |c: usize| {
         let (x, m) = (w[c], a[c]);
         let r = fixed_ratio(m, major, RATIO_BITS).to_u();
         let rk = r.wrapping_mul(k);
@@ -200,27 +203,29 @@ pub fn encode<F: Float>(v: V3<F>, fetched: F) -> F::U {
         let up = u(128) + rk.shr(shift);
         let down = u(128) - (rk + u((1 << shift) - 1)).shr(shift);
         F::U::sel(x.lt(F::c(0.0)), down, up).to_f()
-    }));
+    } };
+    let bytes = V3::new(byte(0), byte(1), byte(2));
     let code = pack(&FIELDS, bytes);
     F::U::sel(ok, code, u(128 | 128 << 8 | 255 << 16))
 }
 
 /// Crytek's shader output: `(n / max|n|)·fetched·½ + ½` of the normalized input.
+#[inline(always)]
 pub fn encode_float<F: Float>(v: V3<F>, fetched: F) -> V3<F> {
     let u = super::codec::unit_or_z(v);
-    let (major, _, _) = sorted(u.map(|x| x.abs()));
+    let (major, _, _) = sorted(u.map(#[inline(always)] |x| x.abs()));
     (u / major * fetched) * F::c(0.5) + F::c(0.5)
 }
 
 /// The emitted functions, and the CPU encoders that fetch from the table in memory.
 fn emitted(spec_id: &str) -> Emitted {
-    let module = trace_module(|| {
+    let module = trace_module(#[inline(always)] || {
         trace_decoders(&Unorm3);
-        define("fitting_texel", &["v"], |v: V3<Tf>| fitting_texel(v));
-        define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
+        define("fitting_texel", &["v"], #[inline(always)] |v: V3<Tf>| fitting_texel(v));
+        define("encode_float", &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| {
             encode_float(v, a)
         });
-        define("encode", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
+        define("encode", &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| encode(v, a));
     });
     let texel = generic_function!(
         "fitting_texel",
@@ -231,8 +236,8 @@ fn emitted(spec_id: &str) -> Emitted {
     let with_scale = Inputs::VectorsWith(Extra {
         name: "the fitting table's value at fitting_texel(v)",
         words: 1,
-        of: Arc::new(|v: &[u32]| {
-            let t = fitting_texel::<f32>(V3::from_array(std::array::from_fn(|i| {
+        of: Arc::new(#[inline(always)] |v: &[u32]| {
+            let t = fitting_texel::<f32>(V3::from_array(std::array::from_fn(#[inline(always)] |i| {
                 f32::from_bits(v[i])
             })));
             vec![fetch(&[t.x, t.y]).to_bits()]
@@ -250,9 +255,9 @@ fn emitted(spec_id: &str) -> Emitted {
         with_scale,
         <F> [] |x: (V3<F>, F)| encode_float(x.0, x.1)
     );
-    let lookup: WordsMap = Arc::new(|t: &[u32]| vec![fetch(t).to_bits()]);
+    let lookup: WordsMap = Arc::new(#[inline(always)] |t: &[u32]| vec![fetch(t).to_bits()]);
     let cpu = [(&enc, Role::Encode), (&enc_float, Role::EncodeFloat)]
-        .map(|(f, role)| {
+        .map(#[inline(always)] |(f, role)| {
             through_table(f.name, role, Inputs::Vectors, &texel, lookup.clone(), f, true)
         })
         .to_vec();

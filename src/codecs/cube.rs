@@ -48,7 +48,7 @@ impl Family for CubeFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Cube::of(spec.bits(), false))
@@ -77,11 +77,12 @@ struct Face<F: Float> {
 
 impl<F: Float> Face<F> {
     /// From a canonical vector (whose largest component is at least 2, so never 0).
+    #[inline(always)]
     fn of(w: V3<F>) -> Self {
         let a = w.abs();
         let z = a.z.ge(a.x).and(a.z.ge(a.y));
         let y = a.y.ge(a.x);
-        let pick = |zv: F, yv: F, xv: F| F::sel(z, zv, F::sel(y, yv, xv));
+        let pick = { #[inline(always)] |zv: F, yv: F, xv: F| F::sel(z, zv, F::sel(y, yv, xv)) };
         let major = pick(w.z, w.y, w.x).named("major");
         let axis2 = pick(F::c(4.0), F::c(2.0), F::c(0.0));
         let number = (axis2 + F::sel(major.lt(F::c(0.0)), F::c(1.0), F::c(0.0))).named("face");
@@ -99,14 +100,15 @@ impl<F: Float> Face<F> {
 /// is read by comparisons with half-way thresholds, so the decoder never scales its
 /// dequantized `face/7` back by a literal (which a driver would fold into the
 /// dequantization's own product).
+#[inline(always)]
 fn placed<F: Float>(f: F, unit: f64, m: F, s: F, t: F) -> V3<F> {
-    let at = |k: f64| F::c((k * unit) as f32);
+    let at = { #[inline(always)] |k: f64| F::c((k * unit) as f32) };
     let on_z = f.ge(at(3.5));
     let on_y = f.ge(at(1.5));
     let within = F::sel(on_z, f - at(4.0), F::sel(on_y, f - at(2.0), f));
     let within = F::sel(within.ge(at(1.5)), within - at(2.0), within);
     let m = F::sel(within.gt(at(0.5)), -m, m);
-    let pick = |zv: F, yv: F, xv: F| F::sel(on_z, zv, F::sel(on_y, yv, xv));
+    let pick = { #[inline(always)] |zv: F, yv: F, xv: F| F::sel(on_z, zv, F::sel(on_y, yv, xv)) };
     V3::new(pick(s, t, m), pick(t, m, s), pick(m, s, t))
 }
 
@@ -134,14 +136,15 @@ impl Cube {
     /// in units of `2^-23` from [`fixed_trig::atan2_pi`] (`|T| ≤ 2^21`, a function of the
     /// input alone), times 4 (the face's quarter turn onto `[-1, 1]`), coded by
     /// [`fixed_trig::angle_code`].
+    #[inline(always)]
     fn codes<F: Float>(&self, f: &Face<F>, offset: f32) -> V2<F> {
-        let code = |q: Quant, n: F| {
+        let code = { #[inline(always)] |q: Quant, n: F| {
             if !self.warped {
                 return unorm_ratio(q, n, f.major, offset);
             }
             let t = fixed_trig::atan2_pi(n, f.major);
             fixed_trig::angle_code(q, t * F::c(4.0), offset)
-        };
+        } };
         let [qs, qt] = self.fields();
         V2::new(code(qs, f.s), code(qt, f.t)).named("st")
     }
@@ -150,17 +153,18 @@ impl Cube {
     /// (plain: [`fixed_square_point`]; warped: `tan` of the angles as
     /// [`fixed_trig::sincos_pi`]'s sine over cosine by [`fixed_ratio`]), its length
     /// `sqrt(1 + |p|²)` by [`fixed_root`], then each component over it by [`fixed_ratio`].
+    #[inline(always)]
     fn fixed_direction<F: Float>(&self, c: V2<F>, face: F) -> V3<F> {
         let one = F::c(ONE as f32);
         let (p, q) = if self.warped {
             let [qs, qt] = self.fields();
-            let tan = |q: Quant, c: F| {
+            let tan = { #[inline(always)] |q: Quant, c: F| {
                 let m = f64::from(q.max_code());
                 // The angle in units of 2^-24 half turns: (2c - M)/M · 1/4.
                 let a = fixed(c * F::c(2.0) - F::c(m as f32), fixed_trig::FINE / (4.0 * m));
                 let sc = fixed_trig::sincos_pi(a);
                 fixed_ratio(sc.x, sc.y, BITS)
-            };
+            } };
             let p = V2::new(tan(qs, c.x), tan(qt, c.y)).named("p");
             (p, fixed_length2_2d(p))
         } else {
@@ -170,7 +174,7 @@ impl Cube {
         // doubled), both in units of 2^-21; the major component 1/len is len/len².
         let len2 = (one + q).named("len2");
         let len = (fixed_root(len2 * F::c((1u32 << 19) as f32)) * F::c(2.0)).named("len");
-        let r = |x: F| fixed_ratio(x, len, BITS);
+        let r = { #[inline(always)] |x: F| fixed_ratio(x, len, BITS) };
         placed(face, 1.0, fixed_ratio(len, len2, BITS), r(p.x), r(p.y))
     }
 }
@@ -188,14 +192,15 @@ impl Codec for Cube {
     }
     /// `(s·0.5 + 0.5, t·0.5 + 0.5, face/7)` of the canonical input, the coordinates
     /// `n / major` (warped: `atan2(n, major)/(π/4)`).
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let (w, _) = canonical_or_z(v);
         let f = Face::of(w);
         let st = V2::new(f.s, f.t);
         let enc = if self.warped {
-            let a = |n: F| {
-                F::call("atan2_pi", (n, f.major), |(y, x)| atan2_pi(y, x)) * F::c(2.0)
-            };
+            let a = { #[inline(always)] |n: F| {
+                F::call("atan2_pi", (n, f.major), #[inline(always)] |(y, x)| atan2_pi(y, x)) * F::c(2.0)
+            } };
             V2::new(a(st.x), a(st.y)) + F::c(0.5)
         } else {
             st / f.major * F::c(0.5) + F::c(0.5)
@@ -205,6 +210,7 @@ impl Codec for Cube {
     /// The face point `p = enc·2 - 1` (warped: `tan(p·π/4)`, as `sin/cos` of
     /// [`sincos_pi`] with both scaled by the cosines so no quotient is needed) and the
     /// unit vector `d / sqrt(d·d)` of `d = (p, 1)` placed on face `enc.z·7`.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
         let u = if self.warped {
@@ -214,7 +220,7 @@ impl Codec for Cube {
             let d = V3::new(cs.x * ct.y, ct.x * cs.y, cs.y * ct.y).named("d");
             d / d.length_squared().sqrt()
         } else {
-            // The major coordinate is max(1, |s|, |t|): 1 for every code, and still
+            // The major coordinate is max(1, #[inline(always)] |s|, #[inline(always)] |t|): 1 for every code, and still
             // the largest for parameters past the face's edge. A literal 1 would make
             // the squared length a sum with a constant, which a compiler may regroup.
             let m = p.x.abs().at_least(p.y.abs()).at_least(F::c(1.0));
@@ -226,6 +232,7 @@ impl Codec for Cube {
     }
     /// The codes of [`Cube::codes`] at `c + ½` on the canonical input's face.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Face::of(canonical_or_z(v).0);
         V3::from_xy(self.codes(&f, 0.5), f.number)
@@ -234,12 +241,13 @@ impl Codec for Cube {
     /// [`Codec::round_codes`]' codes), on the input's face, by the squared distance of
     /// their fixed-point decodes.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let (w, _) = canonical_or_z(v);
         let f = Face::of(w);
         let base = self.codes(&f, 1.0).named("base");
         let target = fixed_target(w, root(fixed_length2(w)), BITS);
-        let best = nearest_decoded(self.fields(), base, target, |c| {
+        let best = nearest_decoded(self.fields(), base, target, #[inline(always)] |c| {
             self.fixed_direction(c, f.number)
         });
         V3::from_xy(best, f.number)

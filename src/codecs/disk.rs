@@ -42,6 +42,7 @@ pub struct Folded<F: Float> {
 }
 
 impl<F: Float> Folded<F> {
+    #[inline(always)]
     pub fn of(v: V3<F>) -> Self {
         let (w, _) = canonical_or_z(v);
         let l = root(fixed_length2(w));
@@ -55,12 +56,14 @@ impl<F: Float> Folded<F> {
 }
 
 /// `z` on the hemisphere the bit `h` (0 or 1) names.
+#[inline(always)]
 pub fn unfold<F: Float>(z: F, h: F) -> F {
     F::sel(h.gt(F::c(0.5)), -z, z)
 }
 
 /// The disk point of codes `c` in units of `2^-21` ([`super::fixed_decode`]), for the
 /// precise searches, and `q = |p|²`: [`fixed_square_point`] of the parameters' fields.
+#[inline(always)]
 pub fn fixed_disk_point<F: Float>(bits: u32, c: V2<F>) -> (V2<F>, F) {
     fixed_square_point(disk_fields(bits), c)
 }
@@ -68,6 +71,7 @@ pub fn fixed_disk_point<F: Float>(bits: u32, c: V2<F>) -> (V2<F>, F) {
 /// A disk codec's precise codes: of the four codes around `base` (the floors), in the
 /// input's hemisphere, the one whose fixed-point decode (`decode(codes, h)`) is nearest
 /// the input's by exact squared distance ([`nearest_decoded`]), with the hemisphere bit.
+#[inline(always)]
 pub fn nearest_disk_codes<F: Float>(
     bits: u32,
     f: &Folded<F>,
@@ -75,7 +79,13 @@ pub fn nearest_disk_codes<F: Float>(
     decode: impl Fn(V2<F>, F) -> V3<F>,
 ) -> V3<F> {
     let target = fixed_target(f.w, f.l, BITS);
-    let best = nearest_decoded(disk_fields(bits), base, target, |c| decode(c, f.h));
+    let best = nearest_decoded(
+        disk_fields(bits),
+        base,
+        target,
+        #[inline(always)]
+        |c| decode(c, f.h),
+    );
     V3::from_xy(best, f.h)
 }
 
@@ -104,6 +114,7 @@ pub enum Radius<F> {
 
 impl<F: Float> Radius<F> {
     /// Any estimate of `r` (within a few ULP), for a first guess of a code.
+    #[inline(always)]
     pub fn estimate(&self) -> F {
         match *self {
             Radius::Root { rho2, d } => (rho2 / d).sqrt(),
@@ -114,6 +125,7 @@ impl<F: Float> Radius<F> {
     /// single roundings meeting in a comparison (for a root, of squares, with the signs
     /// decided first by [`past_root_ratio`]), so no contraction or regrouping reaches
     /// them. `x` may be negative only where `r > 0`.
+    #[inline(always)]
     pub fn past(&self, x: F, k: F) -> F {
         match *self {
             Radius::Root { rho2, d } => past_root_ratio(x, rho2 * (x * x), k, k * k * d),
@@ -128,6 +140,7 @@ impl<F: Float> Radius<F> {
     /// moves a literal out of a product used once, `(a·#b)·c` into `(a·c)·#b`, which
     /// rounds differently. This is what a quadric in the disk point's squared
     /// coordinates asks of the radius ([`super::ellipse`]).
+    #[inline(always)]
     pub fn square_sides(&self, s: F, k: F, scale: f64) -> (F, F) {
         match *self {
             Radius::Root { d, .. } => (s * F::c(scale as f32), k * d),

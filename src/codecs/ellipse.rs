@@ -48,6 +48,7 @@ const SQRT2: f32 = std::f32::consts::SQRT_2;
 impl<P: DiskProjection> Ellipse<P> {
     /// The codec with the given total bit budget, for the family `info`; an invalid size
     /// is an error listing the allowed ones.
+    #[inline(always)]
     pub fn with(info: &'static Info, bits: u32) -> Result<Self, SpecError> {
         Ok(Ellipse {
             bits: info.check_bits(bits)?,
@@ -57,6 +58,7 @@ impl<P: DiskProjection> Ellipse<P> {
 
     /// The square point of the folded input's disk point over `2√2`, in floats: the
     /// disk point `w.xy·(r/ρ)` (the pole, `ρ = 0`, is the centre), then [`inverse`].
+    #[inline(always)]
     fn square_point<F: Float>(f: &Folded<F>) -> V2<F> {
         let rho = f.w.xy().length_squared().sqrt().named("rho");
         let half = P::half_radius(f, rho).named("half_r");
@@ -69,14 +71,28 @@ impl<P: DiskProjection> Ellipse<P> {
     /// [`passed`] and found by [`bisected`]: near the square's corners the inverse map is
     /// ill-conditioned (a disk point `δ` inside the circle is `~√δ` from the corner), so
     /// a float estimate can be dozens of codes from the decided one at 32 bits.
+    #[inline(always)]
     fn codes<F: Float>(&self, f: &Folded<F>) -> V2<F> {
         let r = P::radius(f);
         let [qx, qy] = disk_fields(self.bits);
         // The middle boundary, `T = 0`, is `u = 0`: passed where `x ≥ 0`.
-        let middle = |along: F| along.ge(F::c(0.0));
+        let middle = {
+            #[inline(always)]
+            |along: F| along.ge(F::c(0.0))
+        };
         V2::new(
-            bisected(qx, middle(f.w.x), |c| passed(qx, &r, f.w.x, f.w.y, c)),
-            bisected(qy, middle(f.w.y), |c| passed(qy, &r, f.w.y, f.w.x, c)),
+            bisected(
+                qx,
+                middle(f.w.x),
+                #[inline(always)]
+                |c| passed(qx, &r, f.w.x, f.w.y, c),
+            ),
+            bisected(
+                qy,
+                middle(f.w.y),
+                #[inline(always)]
+                |c| passed(qy, &r, f.w.y, f.w.x, c),
+            ),
         )
     }
 }
@@ -86,12 +102,16 @@ impl<P: DiskProjection> Ellipse<P> {
 /// `b = (√2 - x)² - y²`, each written as a product of two sums that are non-negative on
 /// the disk (clamped at 0 against rounding just outside it); `a` and `b` vanish together
 /// only off the disk.
+#[inline(always)]
 fn inverse<F: Float>(x: F, y: F) -> F {
     let ay = y.abs();
-    let side = |x: F| {
-        let near = ((x + F::c(SQRT2)) - ay).at_least(F::c(0.0));
-        let far = (x + F::c(SQRT2)) + ay;
-        (near * far).sqrt()
+    let side = {
+        #[inline(always)]
+        |x: F| {
+            let near = ((x + F::c(SQRT2)) - ay).at_least(F::c(0.0));
+            let far = (x + F::c(SQRT2)) + ay;
+            (near * far).sqrt()
+        }
     };
     x / (side(x) + side(-x))
 }
@@ -101,6 +121,7 @@ fn inverse<F: Float>(x: F, y: F) -> F {
 /// `c + ½`), else `0`. On the side of `t`'s sign the point is past where it lies on or
 /// outside the ellipse `x²/t² + y²/(2 - t²) = 1`; `T = 0` is decided by the sign of `x`
 /// alone (`x = 0` is past: ties go up).
+#[inline(always)]
 fn passed<F: Float>(q: Quant, r: &Radius<F>, along: F, across: F, c: F) -> F {
     let m = f64::from(q.max_code());
     let big_t = (c - F::c(((m - 1.0) * 0.5) as f32)) * F::c(2.0);
@@ -126,6 +147,7 @@ impl<P: DiskProjection> Codec for Ellipse<P> {
         Domain::Sphere
     }
     /// `(u, v)·0.5 + 0.5` of the folded canonical input's square point, and `z < 0`.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let enc = (Self::square_point(&f) * F::c(SQRT2) + F::c(0.5)).named("enc");
@@ -135,9 +157,13 @@ impl<P: DiskProjection> Codec for Ellipse<P> {
     /// `(s.x·sqrt(1 - s.y²/2), s.y·sqrt(1 - s.x²/2))` (each root of a value in
     /// `[½, 1]`); the projection lifts it, and z is negated where the hemisphere bit is
     /// set. Every code lies on the disk, so every code decodes within its hemisphere.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let s = (enc.xy() * F::c(2.0) - F::c(1.0)).named("s");
-        let stretch = |a: F| (F::c(1.0) - a * a * F::c(0.5)).sqrt();
+        let stretch = {
+            #[inline(always)]
+            |a: F| (F::c(1.0) - a * a * F::c(0.5)).sqrt()
+        };
         let p = V2::new(s.x * stretch(s.y), s.y * stretch(s.x)).named("disk");
         let (xy, z) = P::lift(p);
         V3::from_xy(xy, unfold(z, enc.z))
@@ -145,6 +171,7 @@ impl<P: DiskProjection> Codec for Ellipse<P> {
     /// The codes of [`Ellipse::codes`], the hemisphere bit from the sign of the
     /// canonical `z`.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         V3::from_xy(self.codes(&f), f.h)

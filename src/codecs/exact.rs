@@ -45,10 +45,19 @@ const EXPONENT: u32 = 0x7f80_0000;
 /// component whose sign could be lost. `ok` is false for zero, NaN, infinite and
 /// all-denormal input: the scale is then infinite or zero and the scaled sum of magnitudes
 /// NaN or outside `[2, 12)`.
+#[inline(always)]
 pub fn canonical<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
     // `x < least` is false for NaN, so NaN survives to spoil the sum below.
-    let keep = |x: F, least: f32| F::sel(x.abs().lt(F::c(least)), F::c(0.0), x);
-    let v = v.map(|x| keep(x, MIN_NORMAL)).named("normal");
+    let keep = {
+        #[inline(always)]
+        |x: F, least: f32| F::sel(x.abs().lt(F::c(least)), F::c(0.0), x)
+    };
+    let v = v
+        .map(
+            #[inline(always)]
+            |x| keep(x, MIN_NORMAL),
+        )
+        .named("normal");
     let a = v.abs();
     let m = a.x.at_least(a.y).at_least(a.z).named("largest");
     let scale = (F::U::c(EXPONENT) - (m.to_bits() & F::U::c(EXPONENT)))
@@ -58,12 +67,20 @@ pub fn canonical<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
     let b = w.abs();
     let sum = (b.x + b.y + b.z).named("sum");
     let ok = sum.ge(F::c(2.0)).and(sum.lt(F::c(16.0)));
-    (w.map(|x| keep(x, NEGLIGIBLE)).named("w"), ok)
+    (
+        w.map(
+            #[inline(always)]
+            |x| keep(x, NEGLIGIBLE),
+        )
+        .named("w"),
+        ok,
+    )
 }
 
 /// [`canonical`], with invalid input replaced by `(0, 0, 2)` (canonical +Z), so that the
 /// integer conversions that follow stay in range (a NaN or infinite float has no defined
 /// u32 in C); the caller still selects its answer for invalid input by `ok`.
+#[inline(always)]
 pub fn canonical_or_z<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
     let (w, ok) = canonical(v);
     let z = V3::new(F::c(0.0), F::c(0.0), F::c(2.0));
@@ -75,6 +92,7 @@ pub fn canonical_or_z<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
 /// bits (a mask of the bits, no arithmetic) and `l = x - h` (exact) the other 12.
 /// Returns `(h·h, 2h·l, l·l)`. `x` is a canonical component: zero or above `2^-39`,
 /// so every product is zero or normal.
+#[inline(always)]
 fn split_square<F: Float>(x: F) -> [F; 3] {
     let h = (x.to_bits() & F::U::c(0xffff_f000)).as_float();
     let l = x - h;
@@ -84,8 +102,9 @@ fn split_square<F: Float>(x: F) -> [F; 3] {
 /// `w·w` of a canonical vector, computed from exact products only (so contraction cannot
 /// change it) in a fixed order: large terms first, then the cross terms, then the small
 /// ones. Deterministic, within a few ULP of the exact square length.
+#[inline(always)]
 pub fn length2<F: Float>(w: V3<F>) -> F {
-    let [x, y, z] = [w.x, w.y, w.z].map(split_square);
+    let [x, y, z] = [split_square(w.x), split_square(w.y), split_square(w.z)];
     let big = x[0] + y[0] + z[0];
     let cross = x[1] + y[1] + z[1];
     let small = x[2] + y[2] + z[2];
@@ -93,7 +112,7 @@ pub fn length2<F: Float>(w: V3<F>) -> F {
 }
 
 /// The fixed-point scale of [`fixed_length2`]: canonical magnitudes are below 4, so
-/// `floor(|x|·2^21) < 2^23` and a sum of three squares is below `2^48`.
+/// `floor(#[inline(always)] |x|·2^21) < 2^23` and a sum of three squares is below `2^48`.
 pub const FIXED_SCALE: f32 = (1u32 << 21) as f32;
 
 /// `Σ xᵢ²` of canonical components, computed exactly in integers and rounded once, so
@@ -101,26 +120,32 @@ pub const FIXED_SCALE: f32 = (1u32 << 21) as f32;
 /// several terms can be regrouped: Mesa's NIR turns `(a·b + c) + d` into
 /// `a·b + (c + d)` on paths without `NoContraction`, and WGSL never forbids it).
 ///
-/// Each `|xᵢ|` becomes `A = floor(|xᵢ|·2^21)` (a power-of-two scaling, a floor and a
+/// Each `|xᵢ|` becomes `A = floor(#[inline(always)] |xᵢ|·2^21)` (a power-of-two scaling, a floor and a
 /// conversion, each exact), below `2^23`; with 12-bit limbs `A = a₁·2^12 + a₀`,
 /// `A² = a₁²·2^24 + 2a₁a₀·2^12 + a₀²` is accumulated as `hi·2^24 + lo` in 32-bit
 /// integers (every partial product below `2^24`, so nothing wraps), carried, and
 /// converted as `hi·2^24 + lo` (both below `2^24`, so both exact): the one rounding is
 /// that last addition of two floats. Absolute error about `2^-21` per component (a
 /// relative `2^-22` of a canonical vector's length), then that rounding.
+#[inline(always)]
 fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
-    let a = x.map(|x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u());
+    let a = x.map(
+        #[inline(always)]
+        |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u(),
+    );
     sum_of_squares::<F, N>(a) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE))
 }
 
 /// `Σ aᵢ²` of three or fewer integers below `2^24` whose squares sum below `2^48`, exact
 /// in 32-bit integers and rounded once (see `fixed_sum_of_squares`), kept as
 /// `hi·2^24 + lo` (both then below `2^24`, so both convert exactly).
+#[inline(always)]
 pub fn sum_of_squares<F: Float, const N: usize>(a: [F::U; N]) -> F {
     joined(square_sum_parts::<F, N>(a))
 }
 
 /// `hi·2^24 + lo` as a float: two exact conversions, an exact product and one rounding.
+#[inline(always)]
 pub fn joined<F: Float>((hi, lo): (F::U, F::U)) -> F {
     hi.to_f() * F::c((1u32 << 24) as f32) + lo.to_f()
 }
@@ -128,6 +153,7 @@ pub fn joined<F: Float>((hi, lo): (F::U, F::U)) -> F {
 /// The exact `Σ aᵢ² = hi·2^24 + lo` of [`sum_of_squares`], both parts below `2^24`:
 /// with 12-bit limbs `a = a₁·2^12 + a₀`, every partial product is below `2^24`, so
 /// nothing wraps before the carry.
+#[inline(always)]
 pub fn square_sum_parts<F: Float, const N: usize>(a: [F::U; N]) -> (F::U, F::U) {
     let limb = F::U::c(0xfff);
     let low24 = F::U::c(0xff_ffff);
@@ -145,11 +171,13 @@ pub fn square_sum_parts<F: Float, const N: usize>(a: [F::U; N]) -> (F::U, F::U) 
 /// of an integer above `2^24` may round either way (Vulkan leaves the direction to the
 /// implementation), so the top and the low 12 bits are converted exactly and added
 /// (the product by `2^12` is exact, so contracting the addition changes nothing).
+#[inline(always)]
 pub fn float_of<F: Float>(x: F::U) -> F {
     x.shr(12).to_f() * F::c(4096.0) + (x & F::U::c(0xfff)).to_f()
 }
 
 /// [`length2`] computed the `fixed_sum_of_squares` way, immune to regrouping.
+#[inline(always)]
 pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
     fixed_sum_of_squares([w.x, w.y, w.z]).named("len2")
 }
@@ -166,6 +194,7 @@ pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
 /// or `S - n² < 1 - n` (then `n - ½` is not reached); two such steps reach `N`, which
 /// is the one integer with `1 - N ≤ S - N² ≤ N`. Without them a unit input would come
 /// out one ULP long about half the time.
+#[inline(always)]
 pub fn rounded_root<F: Float>(s: F, parts: (F::U, F::U)) -> F::U {
     let n0 = (root(s).named("length") * F::c(FIXED_SCALE)).to_u();
     settled_root::<F>(n0, parts)
@@ -173,23 +202,30 @@ pub fn rounded_root<F: Float>(s: F, parts: (F::U, F::U)) -> F::U {
 
 /// [`rounded_root`]'s two integer steps from an estimate `n0` within two units of
 /// `N = round(sqrt(S))`.
+#[inline(always)]
 pub fn settled_root<F: Float>(n0: F::U, (hi, lo): (F::U, F::U)) -> F::U {
-    let u = |v: u32| F::U::c(v);
+    let u = {
+        #[inline(always)]
+        |v: u32| F::U::c(v)
+    };
     let wide = hi.shl(24).wrapping_add(lo);
     // S - n² + 2^30: positive, so unsigned comparisons order it.
     let bias = u(1 << 30);
-    let step = |n: F::U| {
-        let e = wide.wrapping_sub(n.wrapping_mul(n)).wrapping_add(bias);
-        let up = (bias + n).lt(e);
-        let down = e.lt(bias.wrapping_sub(n) + u(1));
-        F::U::sel(up, n + u(1), F::U::sel(down, n.wrapping_sub(u(1)), n))
+    let step = {
+        #[inline(always)]
+        |n: F::U| {
+            let e = wide.wrapping_sub(n.wrapping_mul(n)).wrapping_add(bias);
+            let up = (bias + n).lt(e);
+            let down = e.lt(bias.wrapping_sub(n) + u(1));
+            F::U::sel(up, n + u(1), F::U::sel(down, n.wrapping_sub(u(1)), n))
+        }
     };
     step(step(n0))
 }
 
 /// The direction of a canonical `w` as components on the `2^-24` grid (f32's spacing in
 /// `[½, 1)`), each a function of `w` alone: the components on the grid of
-/// `fixed_sum_of_squares`, `Aᵢ = floor(|wᵢ|·2^21)` (below `2^23`), and their length
+/// `fixed_sum_of_squares`, `Aᵢ = floor(#[inline(always)] |wᵢ|·2^21)` (below `2^23`), and their length
 /// `N·2^-21` ([`rounded_root`]), give `kᵢ = round(Aᵢ·2^24 / N)`
 /// (ties up), clamped to `2^24`, with the sign of `wᵢ` (a zero is `+0` or `-0`).
 ///
@@ -201,33 +237,43 @@ pub fn settled_root<F: Float>(n0: F::U, (hi, lo): (F::U, F::U)) -> F::U {
 /// deviation class can change the result. The direction is `A`'s, within `√3·2^-22` rad
 /// of `w`'s (each floor moves a component of a vector longer than 2 by under `2^-21`);
 /// the grid adds at most `2^-25` per component.
+#[inline(always)]
 pub fn unit_on_grid<F: Float>(w: V3<F>) -> V3<F> {
-    let u = |v: u32| F::U::c(v);
-    let a = w.map(|x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u());
+    let u = {
+        #[inline(always)]
+        |v: u32| F::U::c(v)
+    };
+    let a = w.map(
+        #[inline(always)]
+        |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u(),
+    );
     let parts = square_sum_parts::<F, 3>([a.x, a.y, a.z]);
     let s = joined::<F>(parts) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE));
     let n = rounded_root(s, parts);
     let nf = n.to_f();
     let one = F::c((1u32 << 24) as f32);
-    let component = |a: F::U, x: F| {
-        let k0 = (a.to_f() / nf * one).round().to_u();
-        let r = a.shl(24).wrapping_sub(k0.wrapping_mul(n));
-        // 2r + N + 16N: the correction plus 8, which is non-negative for |k₀ - k| ≤ 8.
-        let t = r.shl(1).wrapping_add(n).wrapping_add(n.shl(4));
-        let two_n = n.shl(1);
-        let q0 = (float_of::<F>(t) / (nf * F::c(2.0))).floor().to_u();
-        let rest = t.wrapping_sub(q0.wrapping_mul(two_n));
-        let negative = rest.lt(u(0x8000_0000)).not();
-        let over = rest.lt(two_n).not().and(negative.not());
-        let q = F::U::sel(
-            over,
-            q0 + u(1),
-            F::U::sel(negative, q0.wrapping_sub(u(1)), q0),
-        );
-        let k = k0.wrapping_add(q).wrapping_sub(u(8));
-        let k = F::U::sel(u(1 << 24).lt(k), u(1 << 24), k);
-        let v = k.to_f() * F::c(1.0 / (1u32 << 24) as f32);
-        F::sel(x.lt(F::c(0.0)), -v, v)
+    let component = {
+        #[inline(always)]
+        |a: F::U, x: F| {
+            let k0 = (a.to_f() / nf * one).round().to_u();
+            let r = a.shl(24).wrapping_sub(k0.wrapping_mul(n));
+            // 2r + N + 16N: the correction plus 8, which is non-negative for |k₀ - k| ≤ 8.
+            let t = r.shl(1).wrapping_add(n).wrapping_add(n.shl(4));
+            let two_n = n.shl(1);
+            let q0 = (float_of::<F>(t) / (nf * F::c(2.0))).floor().to_u();
+            let rest = t.wrapping_sub(q0.wrapping_mul(two_n));
+            let negative = rest.lt(u(0x8000_0000)).not();
+            let over = rest.lt(two_n).not().and(negative.not());
+            let q = F::U::sel(
+                over,
+                q0 + u(1),
+                F::U::sel(negative, q0.wrapping_sub(u(1)), q0),
+            );
+            let k = k0.wrapping_add(q).wrapping_sub(u(8));
+            let k = F::U::sel(u(1 << 24).lt(k), u(1 << 24), k);
+            let v = k.to_f() * F::c(1.0 / (1u32 << 24) as f32);
+            F::sel(x.lt(F::c(0.0)), -v, v)
+        }
     };
     V3::new(
         component(a.x, w.x),
@@ -237,6 +283,7 @@ pub fn unit_on_grid<F: Float>(w: V3<F>) -> V3<F> {
 }
 
 /// `x² + y²` of a canonical vector, the `fixed_sum_of_squares` way.
+#[inline(always)]
 pub fn fixed_length2_xy<F: Float>(w: V3<F>) -> F {
     fixed_sum_of_squares([w.x, w.y]).named("rho2")
 }
@@ -262,6 +309,7 @@ const ROOT_LOW: f32 = 1.0 / (1u32 << 21) as f32;
 /// near tie: within `2^-20`, about `2^-22` relative, like a rounding. It is returned as
 /// one product, `(k·2^12 + j)·2^-21` (exact integers), not as the sum `H + l`, which an
 /// optimiser could regroup with the caller's next addition.
+#[inline(always)]
 pub fn root<F: Float>(s: F) -> F {
     let (u, v) = (F::c(ROOT_HIGH), F::c(ROOT_LOW));
     let estimate = s.sqrt().named("root_estimate");
@@ -288,6 +336,7 @@ pub fn root<F: Float>(s: F) -> F {
 /// `sqrt(s)` for `s ≥ 2^-120` as a function of `s` alone: `s` is scaled by an even power
 /// of two (read from its exponent bits, so exact) into `[4, 16)`, where [`root`] decides
 /// its digits, and the root scaled back. About `2^-22` relative, like a rounding.
+#[inline(always)]
 pub fn root_of<F: Float>(s: F) -> F {
     // `x = (E + 1) >> 1` of the biased exponent E: s·2^(2·(64 - x) + 2) is in [4, 16).
     let x = s.to_bits().shr(23).wrapping_add(F::U::c(1)).shr(1);
@@ -301,10 +350,14 @@ pub fn root_of<F: Float>(s: F) -> F {
 /// `e² ≤ s < (e + 1)²` fails (each square one rounded product meeting `s` in a
 /// comparison). Within one unit of the exact floor where a square's rounding decides a
 /// near tie.
+#[inline(always)]
 pub fn fixed_root<F: Float>(s: F) -> F {
-    let step = |e: F| {
-        let f = e + F::c(1.0);
-        stepped(e, (f * f).le(s), (e * e).gt(s))
+    let step = {
+        #[inline(always)]
+        |e: F| {
+            let f = e + F::c(1.0);
+            stepped(e, (f * f).le(s), (e * e).gt(s))
+        }
     };
     step(step(s.sqrt().floor().named("root_estimate")).named("root_step")).named("root")
 }
@@ -315,10 +368,14 @@ pub fn fixed_root<F: Float>(s: F) -> F {
 /// times as that can be off where `e·d ≤ n·2^bits < (e + 1)·d` fails (single products
 /// meeting in comparisons, like a code; `n·2^bits` is exact). Within one unit of the exact
 /// floor where a product's rounding decides a near tie.
+#[inline(always)]
 pub fn fixed_ratio<F: Float>(n: F, d: F, bits: u32) -> F {
     let one = F::c((1u32 << bits) as f32);
     let big = n * one;
-    let step = |e: F| stepped(e, ((e + F::c(1.0)) * d).le(big), (e * d).gt(big));
+    let step = {
+        #[inline(always)]
+        |e: F| stepped(e, ((e + F::c(1.0)) * d).le(big), (e * d).gt(big))
+    };
     let off = (2.5 * f64::from(1u32 << bits) / f64::from(1u32 << 24)).floor() as u32;
     let mut e = (n / d * one).floor().named("ratio_estimate");
     for _ in 0..=off {
@@ -332,6 +389,7 @@ pub fn fixed_ratio<F: Float>(n: F, d: F, bits: u32) -> F {
 /// `ρ² / (l - w.z)` on the lower, where the sum would cancel (`ρ² = w.x² + w.y²` from
 /// [`fixed_length2_xy`]). `a > 0` for every direction but -Z, where `a = 0`; `b > 0` always.
 /// Selects of sums, no product: contraction cannot reach them.
+#[inline(always)]
 pub fn one_plus_z<F: Float>(w: V3<F>, l: F) -> (F, F) {
     let north = w.z.ge(F::c(0.0));
     let a = F::sel(north, l + w.z, fixed_length2_xy(w)).named("opz_a");
@@ -353,6 +411,7 @@ pub struct OnePlusZ<F: Float> {
 
 impl<F: Float> OnePlusZ<F> {
     /// From any input, invalid input standing in as +Z ([`canonical_or_z`]).
+    #[inline(always)]
     pub fn of(v: V3<F>) -> Self {
         let (w, ok) = canonical_or_z(v);
         let l = root(fixed_length2(w));
@@ -360,14 +419,19 @@ impl<F: Float> OnePlusZ<F> {
         OnePlusZ { w, ok, l, a, b }
     }
     /// Whether this is -Z, where `a = 0` and the projections have no finite value.
+    #[inline(always)]
     pub fn at_pole(&self) -> F::B {
         self.a.le(F::c(0.0))
     }
     /// The same with -Z replaced by canonical +Z (`l = 2`, `a = 4`, `b = 1`), for a
     /// search that needs parameters to start from; the caller replaces the pole's answer.
+    #[inline(always)]
     pub fn off_pole(self) -> Self {
         let pole = self.at_pole();
-        let z = |x: F, at: f32| F::sel(pole, F::c(at), x);
+        let z = {
+            #[inline(always)]
+            |x: F, at: f32| F::sel(pole, F::c(at), x)
+        };
         OnePlusZ {
             w: V3::sel_all(pole, V3::new(F::c(0.0), F::c(0.0), F::c(2.0)), self.w),
             ok: self.ok,
@@ -385,8 +449,12 @@ impl<F: Float> OnePlusZ<F> {
 /// added (rounded once, `2^-24`) and scaled back by the power of two. Within `2^-23` of
 /// the sum, relative; below `2^-87` the grid stops shrinking (such a sum is `0`, give
 /// or take).
+#[inline(always)]
 pub fn settled_sum<F: Float>(p: F, q: F) -> F {
-    let u = |v: u32| F::U::c(v);
+    let u = {
+        #[inline(always)]
+        |v: u32| F::U::c(v)
+    };
     // The larger one's biased exponent, clamped to 40 ..= 254 (a zero reads as 0).
     let e = p.at_least(q).to_bits().shr(23);
     let e = F::U::sel(e.lt(u(40)), u(40), e);
@@ -405,6 +473,7 @@ pub fn settled_sum<F: Float>(p: F, q: F) -> F {
 /// boolean operations stay scalar in emitted code, which would leave the estimate used
 /// both as scalars and, in the vector that returns the codes, recomputed; a driver may
 /// round the two copies of its division differently.
+#[inline(always)]
 pub fn decided<F: Float>(q: Quant, estimate: F, past: impl Fn(F) -> F) -> F {
     let (lo, hi) = (F::c(q.min_code()), F::c(q.max_code()));
     let e = estimate.clamped(lo, hi).named("estimate");
@@ -421,6 +490,7 @@ pub fn decided<F: Float>(q: Quant, estimate: F, past: impl Fn(F) -> F) -> F {
 /// round's boundary, the middle one `2^(b-1) - 1 + ½`, is a literal, which `past`'s
 /// arithmetic cannot take (an expression of literals only is not emitted): the caller
 /// answers it as `middle`.
+#[inline(always)]
 pub fn bisected<F: Float>(q: Quant, middle: F::B, past: impl Fn(F) -> F) -> F {
     let half = (1u64 << (q.bits() - 1)) as f32;
     let beyond = middle;
@@ -437,6 +507,7 @@ pub fn bisected<F: Float>(q: Quant, middle: F::B, past: impl Fn(F) -> F) -> F {
 }
 
 /// `1` where `m`, else `0`.
+#[inline(always)]
 pub fn one_if<F: Float>(m: F::B) -> F {
     F::sel(m, F::c(1.0), F::c(0.0))
 }
@@ -445,13 +516,17 @@ pub fn one_if<F: Float>(m: F::B) -> F {
 /// at the boundaries `c + offset` (`½` rounds to the nearest code, ties up; `1` floors):
 /// the boundary is passed where `x·(M/2) ≥ (c + offset - M/2)·a`, two products meeting
 /// in a comparison, so [`decided`] steps the estimate by comparisons alone.
+#[inline(always)]
 pub fn unorm_ratio<F: Float>(q: Quant, x: F, a: F, offset: f32) -> F {
     let m = q.max_code();
     let t = (x * F::c(m * 0.5)).named("t");
     let estimate = (t / a + F::c(m * 0.5)).round();
-    decided(q, estimate, |c| {
-        one_if(t.ge((c - F::c(m * 0.5 - offset)) * a))
-    })
+    decided(
+        q,
+        estimate,
+        #[inline(always)]
+        |c| one_if(t.ge((c - F::c(m * 0.5 - offset)) * a)),
+    )
 }
 
 /// The unorm code of the parameter `x / sqrt(s) · ½ + ½` (`s > 0`, `x² ≤ s` up to
@@ -459,20 +534,27 @@ pub fn unorm_ratio<F: Float>(q: Quant, x: F, a: F, offset: f32) -> F {
 /// boundaries `c + offset` (`½` rounds, ties up; `1` floors): the boundary is passed
 /// where `x·(M/2) ≥ k·sqrt(s)` (`k = c + offset - M/2`), which [`past_root_ratio`]
 /// decides from `x²·(M²/4)` (the literal factor last) and `k²·s`.
+#[inline(always)]
 pub fn unorm_sqrt_ratio<F: Float>(q: Quant, x: F, s: F, root: F, offset: f32) -> F {
     let m = q.max_code();
     let big2 = (x * x * F::c((f64::from(m).powi(2) / 4.0) as f32)).named("big2");
     let estimate = (x / root * F::c(m * 0.5) + F::c(m * 0.5)).round();
-    decided(q, estimate, |c| {
-        let k = c - F::c(m * 0.5 - offset);
-        past_root_ratio(x, big2, k, k * k * s)
-    })
+    decided(
+        q,
+        estimate,
+        #[inline(always)]
+        |c| {
+            let k = c - F::c(m * 0.5 - offset);
+            past_root_ratio(x, big2, k, k * k * s)
+        },
+    )
 }
 
 /// `1` where `x·K ≥ k·sqrt(s)` (`K > 0`, `s > 0`), else `0`, from `big2 = (x·K)²`
 /// and `k2s = k²·s` (each a product of exact or deterministic values): decided by the
 /// signs of `x` and `k` and, where they agree, by the squares, so no root or quotient
 /// decides it. What [`decided`] asks of a parameter `x / sqrt(s)` at the boundary `k`.
+#[inline(always)]
 pub fn past_root_ratio<F: Float>(x: F, big2: F, k: F, k2s: F) -> F {
     let far = F::sel(k.gt(F::c(0.0)), one_if(big2.ge(k2s)), F::c(1.0));
     let near = F::sel(k.lt(F::c(0.0)), one_if(big2.le(k2s)), F::c(0.0));
@@ -484,6 +566,7 @@ pub fn past_root_ratio<F: Float>(x: F, big2: F, k: F, k2s: F) -> F {
 /// `(c - ½)·d ≤ |n|·M < (c + ½)·d`, with the sign of `n` (`-0` counts as positive). Ties
 /// (`|n|·M` equal to a product) round away from zero. `|n|` may exceed `d` by rounding
 /// (`d` a root of floored squares): the code is then clamped to `M`.
+#[inline(always)]
 pub fn snorm_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
     let (estimate, up, down) = snorm_ratio_steps(q, n, d);
     signed(n, corrected(q, estimate, up, down))
@@ -494,16 +577,18 @@ pub fn snorm_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
 /// rounded sum or difference no larger in magnitude (oct's `x` and `l1 - |y|`, hemioct's
 /// `x ± y`). Then no clamp can trigger, for `M < 2^20`: `|n|/d ≤ 1` within 2.5 ULP, so the
 /// estimate is in `[0, M]` (`M·(1 + 5·2^-24)` stays below `M + ½`); at `M` the step up needs
-/// `fl(|n|·M) ≥ fl((M + ½)·d)`, which monotone rounding excludes (`fl(|n|·M) ≤ fl(d·M)`,
+/// `fl(#[inline(always)] |n|·M) ≥ fl((M + ½)·d)`, which monotone rounding excludes (`fl(#[inline(always)] |n|·M) ≤ fl(d·M)`,
 /// and `(M + ½)/M - 1 = 1/(2M)` exceeds `2^-21`, so the two products of `d` round apart);
 /// at 0 the step down needs `|n|·M < -½·d`.
+#[inline(always)]
 pub fn snorm_ratio_within<F: Float>(q: Quant, n: F, d: F) -> F {
     debug_assert!(q.max_code() < (1u32 << 20) as f32);
     let (estimate, up, down) = snorm_ratio_steps(q, n, d);
     signed(n, stepped(estimate, up, down))
 }
 
-/// `round(|n|/d·M)` and the comparisons that step it to the exact code.
+/// `round(#[inline(always)] |n|/d·M)` and the comparisons that step it to the exact code.
+#[inline(always)]
 fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
     let a = n.abs();
     let m = F::c(q.max_code());
@@ -516,8 +601,9 @@ fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
 
 /// The snorm code of `n / sqrt(s)` (`s > 0`, `n² ≤ s` up to rounding, both exact or
 /// correctly rounded functions of the input, `s` from [`length2`]): the integer `c ≤ M`
-/// with `(c - ½)²·s ≤ (|n|·M)² < (c + ½)²·s` (each product rounded once), with the sign
+/// with `(c - ½)²·s ≤ (#[inline(always)] |n|·M)² < (c + ½)²·s` (each product rounded once), with the sign
 /// of `n`.
+#[inline(always)]
 pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
     let a = n.abs();
     let m = F::c(q.max_code());
@@ -538,10 +624,14 @@ pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
 /// (below `2^-14` the subnormal spacing `2^-24` is the lowest binade's); an estimate in
 /// the neighbouring binade can only occur within a few ULP of the power of two between
 /// them, which both grids round to. The code is then the integer `c` with
-/// `(c - ½)²·s ≤ (|n|·q)² < (c + ½)²·s` (`|n|·q` exact, each other product rounded
+/// `(c - ½)²·s ≤ (#[inline(always)] |n|·q)² < (c + ½)²·s` (`|n|·q` exact, each other product rounded
 /// once), times `1/q` (exact). A zero result is `+0` whatever the sign of `n`.
+#[inline(always)]
 pub fn half_sqrt_ratio<F: Float>(n: F, s: F) -> F {
-    let u = |v: u32| F::U::c(v);
+    let u = {
+        #[inline(always)]
+        |v: u32| F::U::c(v)
+    };
     let a = n.abs();
     let estimate = (a / s.sqrt()).named("half_estimate");
     // The biased exponent of the estimate (sign masked: a lost sign of zero is harmless),
@@ -567,6 +657,7 @@ pub fn half_sqrt_ratio<F: Float>(n: F, s: F) -> F {
 /// `floor(n / d · M)` for `|n| ≤ d` (`d > 0`): the integer `c`
 /// in `[-M, M]` with `c·d ≤ n·M < (c + 1)·d` (each side rounded once), where a precise
 /// search starts.
+#[inline(always)]
 pub fn floor_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
     let m = F::c(q.max_code());
     let estimate = (n / d * m).floor();
@@ -579,6 +670,7 @@ pub fn floor_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
 /// The code of the parameter `n / d` in the field `q`: a snorm field stores it as it is
 /// ([`snorm_ratio`]), a unorm field as a normal-map texel channel does, `n/d·½ + ½`
 /// ([`unorm_ratio`], ties up). One codec definition then serves both storages.
+#[inline(always)]
 pub fn ratio_code<F: Float>(q: Quant, n: F, d: F) -> F {
     match q {
         Quant::Unorm(_) => unorm_ratio(q, n, d, 0.5),
@@ -587,6 +679,7 @@ pub fn ratio_code<F: Float>(q: Quant, n: F, d: F) -> F {
 }
 
 /// [`ratio_code`] where `|n| ≤ d` holds by monotone rounding ([`snorm_ratio_within`]).
+#[inline(always)]
 pub fn ratio_code_within<F: Float>(q: Quant, n: F, d: F) -> F {
     match q {
         Quant::Unorm(_) => unorm_ratio(q, n, d, 0.5),
@@ -596,6 +689,7 @@ pub fn ratio_code_within<F: Float>(q: Quant, n: F, d: F) -> F {
 
 /// The code of the parameter `n / sqrt(s)` in the field `q`, stored as [`ratio_code`]
 /// says ([`snorm_sqrt_ratio`] or [`unorm_sqrt_ratio`]).
+#[inline(always)]
 pub fn sqrt_ratio_code<F: Float>(q: Quant, n: F, s: F) -> F {
     match q {
         Quant::Unorm(_) => unorm_sqrt_ratio(q, n, s, s.sqrt(), 0.5),
@@ -606,6 +700,7 @@ pub fn sqrt_ratio_code<F: Float>(q: Quant, n: F, s: F) -> F {
 /// The code at or below the parameter `n / d` in the field `q`, stored as [`ratio_code`]
 /// says: where a precise search starts ([`floor_ratio`], or [`unorm_ratio`] at the
 /// boundaries `c + 1`).
+#[inline(always)]
 pub fn floor_ratio_code<F: Float>(q: Quant, n: F, d: F) -> F {
     match q {
         Quant::Unorm(_) => unorm_ratio(q, n, d, 1.0),
@@ -614,16 +709,19 @@ pub fn floor_ratio_code<F: Float>(q: Quant, n: F, d: F) -> F {
 }
 
 /// The estimate stepped by one where a comparison says so, within `[0, M]`.
+#[inline(always)]
 fn corrected<F: Float>(q: Quant, estimate: F, up: F::B, down: F::B) -> F {
     stepped(estimate, up, down).clamped(F::c(0.0), F::c(q.max_code()))
 }
 
 /// The estimate stepped by one where a comparison says so.
+#[inline(always)]
 fn stepped<F: Float>(estimate: F, up: F::B, down: F::B) -> F {
     estimate + F::sel(up, F::c(1.0), F::sel(down, F::c(-1.0), F::c(0.0)))
 }
 
 /// `c` with the sign of `n`; a zero `n` gives `c` (which is then 0).
+#[inline(always)]
 fn signed<F: Float>(n: F, c: F) -> F {
     F::sel(n.lt(F::c(0.0)), -c, c)
 }
@@ -632,6 +730,7 @@ fn signed<F: Float>(n: F, c: F) -> F {
 /// numerator and divisor up exactly (the ratio unchanged) so that no denormal reaches a
 /// division, where an implementation may flush it to zero though not in the comparison
 /// guarding it (`0/0` is NaN).
+#[inline(always)]
 pub fn denormal_proof_scale<F: Float>(m: F) -> F {
     let tiny = 1.0 / (1u128 << 100) as f32;
     F::sel(m.lt(F::c(tiny)), F::c(1.0 / tiny), F::c(1.0))

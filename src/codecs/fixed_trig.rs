@@ -23,16 +23,19 @@ pub const ONE: f64 = (1u32 << BITS) as f64;
 pub const FINE: f64 = (1u32 << 24) as f64;
 
 /// `x` in units of `1/one`, rounded: a literal.
+#[inline(always)]
 fn units<F: Float>(x: f64, one: f64) -> F {
     F::c((x * one).round() as f32)
 }
 
 /// `a·b` of two values in units of `1/one`, rounded to a unit.
+#[inline(always)]
 fn mul<F: Float>(a: F, b: F, one: f64) -> F {
     (a * b * F::c((1.0 / one) as f32)).round()
 }
 
 /// `c[0] + z·(c[1] + z·(...))` in units of `1/one`.
+#[inline(always)]
 fn poly<F: Float>(z: F, coeffs: &[f64], one: f64) -> F {
     let mut acc = units::<F>(*coeffs.last().unwrap(), one);
     for &c in coeffs.iter().rev().skip(1) {
@@ -43,6 +46,7 @@ fn poly<F: Float>(z: F, coeffs: &[f64], one: f64) -> F {
 
 /// atan2(y, x) / π in units of half turns, in `[-2^23, 2^23]`, for `y` and `x` normal or
 /// `+0` (never `-0`: [`super::exact::canonical`] values). `atan2(0, 0) = 0`.
+#[inline(always)]
 pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
     let one = F::c(ONE as f32);
     let (ax, ay) = (x.abs(), y.abs());
@@ -65,6 +69,7 @@ pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
 
 /// (sin(π·t), cos(π·t)) for `t` in units of `2^-24` half turns, `|t| ≤ 2^24`, in units
 /// of `2^-24`.
+#[inline(always)]
 pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let a = t.abs();
     let back = a.gt(units(0.5, FINE));
@@ -76,13 +81,28 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let u2 = mul(u, u, FINE);
     static SIN: OnceLock<Vec<f64>> = OnceLock::new();
     static COS: OnceLock<Vec<f64>> = OnceLock::new();
-    let sin_coeffs = SIN.get_or_init(|| {
-        (0..6)
-            .map(|k| (-1f64).powi(k) / factorial(2 * k + 1))
-            .collect()
-    });
-    let cos_coeffs =
-        COS.get_or_init(|| (0..7).map(|k| (-1f64).powi(k) / factorial(2 * k)).collect());
+    let sin_coeffs = SIN.get_or_init(
+        #[inline(always)]
+        || {
+            (0..6)
+                .map(
+                    #[inline(always)]
+                    |k| (-1f64).powi(k) / factorial(2 * k + 1),
+                )
+                .collect()
+        },
+    );
+    let cos_coeffs = COS.get_or_init(
+        #[inline(always)]
+        || {
+            (0..7)
+                .map(
+                    #[inline(always)]
+                    |k| (-1f64).powi(k) / factorial(2 * k),
+                )
+                .collect()
+        },
+    );
     let s = mul(u, poly(u2, sin_coeffs, FINE), FINE).named("s");
     let co = poly(u2, cos_coeffs, FINE).named("co");
     let sb = F::sel(swap, co, s);
@@ -97,6 +117,7 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
 /// an exact integer times one literal, rounded once, then rounded to a code (ties to
 /// even) where `offset` is `½` or floored where it is `1`. No sum follows the product,
 /// so nothing can be fused into it: a function of `a` alone.
+#[inline(always)]
 pub fn angle_code<F: Float>(q: Quant, a: F, offset: f32) -> F {
     let m = q.max_code();
     let scaled = (a + F::c(ONE as f32)) * F::c((f64::from(m) / (2.0 * ONE)) as f32);
@@ -113,22 +134,32 @@ pub fn angle_code<F: Float>(q: Quant, a: F, offset: f32) -> F {
 /// by Horner's rule in `q/2`, every product rounded to a unit. In `q/2 ≤ 1` (the
 /// coefficients times `2^k`) a unit lost in one step is never amplified by the next, and
 /// every partial sum stays below `cosh(π/√2) < 5`, so below `2^24` units.
+#[inline(always)]
 pub fn sinc_cos_quarter<F: Float>(q: F, one: f64) -> V2<F> {
     static SIN: OnceLock<Vec<f64>> = OnceLock::new();
     static COS: OnceLock<Vec<f64>> = OnceLock::new();
-    let series = |sine: bool| {
-        let c = (if sine { &SIN } else { &COS }).get_or_init(|| {
-            quarter_turn_series(sine)
-                .iter()
-                .enumerate()
-                .map(|(k, c)| c * 2f64.powi(k as i32))
-                .collect()
-        });
-        let mut acc = units::<F>(*c.last().unwrap(), one);
-        for &c in c.iter().rev().skip(1) {
-            acc = mul(acc, q, 2.0 * one) + units(c, one);
+    let series = {
+        #[inline(always)]
+        |sine: bool| {
+            let c = (if sine { &SIN } else { &COS }).get_or_init(
+                #[inline(always)]
+                || {
+                    quarter_turn_series(sine)
+                        .iter()
+                        .enumerate()
+                        .map(
+                            #[inline(always)]
+                            |(k, c)| c * 2f64.powi(k as i32),
+                        )
+                        .collect()
+                },
+            );
+            let mut acc = units::<F>(*c.last().unwrap(), one);
+            for &c in c.iter().rev().skip(1) {
+                acc = mul(acc, q, 2.0 * one) + units(c, one);
+            }
+            acc
         }
-        acc
     };
     V2::new(series(true).named("sinc"), series(false).named("cosq"))
 }

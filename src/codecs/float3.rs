@@ -62,30 +62,34 @@ impl Codec for Float16x3 {
         Domain::Sphere
     }
     /// The unit vector, for an RGBA16_FLOAT render target to round.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         unit_or_z(v)
     }
     /// The fetched halves themselves: a half is exact in f32, and normalizing would move
     /// the vector the encoder chose. Only codes no encoder writes need a stand-in.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
         stored_or_z(p)
     }
     /// Each component of the canonical input rounded to the f16 grid by
     /// [`half_sqrt_ratio`]: decided by comparing correctly rounded products.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let (w, ok) = canonical(v);
         let s = length2(w);
-        let c = w.map(|x| half_sqrt_ratio(x, s));
+        let c = w.map(#[inline(always)] |x| half_sqrt_ratio(x, s));
         V3::sel_all(ok, c, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
     }
 }
 
 /// The stored floats themselves, or +Z for a vector with an infinite or NaN component or
 /// without a nonzero one.
+#[inline(always)]
 fn stored_or_z<F: Float>(p: V3<F>) -> V3<F> {
-    let finite = |x: F| x.abs().le(F::c(f32::MAX));
-    let nonzero = |x: F| x.abs().gt(F::c(0.0));
+    let finite = { #[inline(always)] |x: F| x.abs().le(F::c(f32::MAX)) };
+    let nonzero = { #[inline(always)] |x: F| x.abs().gt(F::c(0.0)) };
     let ok = finite(p.x).and(finite(p.y)).and(finite(p.z));
     let some = nonzero(p.x).or(nonzero(p.y)).or(nonzero(p.z));
     V3::sel_all(ok.and(some), p, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
@@ -106,18 +110,21 @@ impl Codec for Float32x3 {
         Domain::Sphere
     }
     /// The unit vector, as an RGB32_FLOAT render target stores it.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         unit_or_z(v)
     }
     /// The fetched floats themselves, with a denormal (which an implementation may
     /// flush) read as +0 and only codes no encoder writes replaced. The test is
     /// "below the smallest normal", which NaN fails, so a NaN reaches `stored_or_z`.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
-        let normal = |x: F| F::sel(x.abs().lt(F::c(f32::MIN_POSITIVE)), F::c(0.0), x);
+        let normal = { #[inline(always)] |x: F| F::sel(x.abs().lt(F::c(f32::MIN_POSITIVE)), F::c(0.0), x) };
         stored_or_z(p.map(normal))
     }
     /// Each component on the `2^-24` grid by [`unit_on_grid`]: integers decide every digit.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let (w, ok) = canonical_or_z(v);
         V3::sel_all(ok, unit_on_grid(w), V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))

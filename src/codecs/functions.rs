@@ -6,9 +6,10 @@ use super::codec::{Codec, Params, dequantize, pack, unpack};
 use super::quant::Quant;
 use super::spec::Spec;
 use crate::model::Float;
+use crate::model::avx2_lanes::{self, F8, WIDTH};
 use crate::model::deviant::{Dev, DevU};
 use crate::model::enclosure::{Encl, EnclU};
-use crate::model::lanes::{F4, U4};
+use crate::model::lanes::{F4, LaneIo, U4};
 use crate::model::trace::{Module, Tf, define, trace_module};
 use crate::model::{V2, V3, V4};
 use std::sync::Arc;
@@ -23,26 +24,43 @@ pub trait Bits<W = u32>: Sized {
 
 /// One word of four items, for the [`F4`] evaluation.
 pub type Lanes = [u32; 4];
-impl Bits<Lanes> for F4 {
-    const WORDS: usize = 1;
-    fn read(w: &[Lanes]) -> Self {
-        F4(wide::bytemuck::cast(w[0]))
-    }
-    fn write(self, w: &mut [Lanes]) {
-        w[0] = wide::bytemuck::cast(self.0);
-    }
+/// One word of eight items, for the [`F8`] evaluation where the processor has AVX2 (of
+/// four, never run, off x86-64).
+pub type Lanes8 = [u32; WIDTH];
+
+/// Float and integer lanes read and written through [`LaneIo`].
+macro_rules! lane_bits {
+    ($F:ty, $U:ty, $n:literal) => {
+        impl Bits<[u32; $n]> for $F {
+            const WORDS: usize = 1;
+            #[inline(always)]
+            fn read(w: &[[u32; $n]]) -> Self {
+                <$F>::from_words(w[0])
+            }
+            #[inline(always)]
+            fn write(self, w: &mut [[u32; $n]]) {
+                w[0] = self.words();
+            }
+        }
+        impl Bits<[u32; $n]> for $U {
+            const WORDS: usize = 1;
+            #[inline(always)]
+            fn read(w: &[[u32; $n]]) -> Self {
+                <$F>::u_from_words(w[0])
+            }
+            #[inline(always)]
+            fn write(self, w: &mut [[u32; $n]]) {
+                w[0] = <$F>::u_words(self);
+            }
+        }
+    };
 }
-impl Bits<Lanes> for U4 {
-    const WORDS: usize = 1;
-    fn read(w: &[Lanes]) -> Self {
-        U4(wide::u32x4::new(w[0]))
-    }
-    fn write(self, w: &mut [Lanes]) {
-        w[0] = self.0.to_array();
-    }
-}
+lane_bits!(F4, U4, 4);
+#[cfg(target_arch = "x86_64")]
+lane_bits!(F8, crate::model::avx2_lanes::U8, 8);
 impl Bits for f32 {
     const WORDS: usize = 1;
+    #[inline(always)]
     fn read(w: &[u32]) -> Self {
         f32::from_bits(w[0])
     }
@@ -52,6 +70,7 @@ impl Bits for f32 {
 }
 impl Bits for u32 {
     const WORDS: usize = 1;
+    #[inline(always)]
     fn read(w: &[u32]) -> Self {
         w[0]
     }
@@ -61,6 +80,7 @@ impl Bits for u32 {
 }
 impl Bits for Dev {
     const WORDS: usize = 1;
+    #[inline(always)]
     fn read(w: &[u32]) -> Self {
         Dev::new(f32::from_bits(w[0]))
     }
@@ -70,6 +90,7 @@ impl Bits for Dev {
 }
 impl Bits for DevU {
     const WORDS: usize = 1;
+    #[inline(always)]
     fn read(w: &[u32]) -> Self {
         DevU(w[0])
     }
@@ -79,9 +100,11 @@ impl Bits for DevU {
 }
 impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V2<T> {
     const WORDS: usize = 2;
+    #[inline(always)]
     fn read(w: &[W]) -> Self {
         V2::new(T::read(&w[0..]), T::read(&w[1..]))
     }
+    #[inline(always)]
     fn write(self, w: &mut [W]) {
         self.x.write(&mut w[0..]);
         self.y.write(&mut w[1..]);
@@ -90,9 +113,11 @@ impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V2<T> {
 /// Several arguments, one after the other.
 impl<W, A: Bits<W>, B: Bits<W>> Bits<W> for (A, B) {
     const WORDS: usize = A::WORDS + B::WORDS;
+    #[inline(always)]
     fn read(w: &[W]) -> Self {
         (A::read(w), B::read(&w[A::WORDS..]))
     }
+    #[inline(always)]
     fn write(self, w: &mut [W]) {
         self.0.write(w);
         self.1.write(&mut w[A::WORDS..]);
@@ -100,9 +125,11 @@ impl<W, A: Bits<W>, B: Bits<W>> Bits<W> for (A, B) {
 }
 impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V3<T> {
     const WORDS: usize = 3;
+    #[inline(always)]
     fn read(w: &[W]) -> Self {
         V3::new(T::read(&w[0..]), T::read(&w[1..]), T::read(&w[2..]))
     }
+    #[inline(always)]
     fn write(self, w: &mut [W]) {
         self.x.write(&mut w[0..]);
         self.y.write(&mut w[1..]);
@@ -111,13 +138,21 @@ impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V3<T> {
 }
 impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V4<T> {
     const WORDS: usize = 4;
+    #[inline(always)]
     fn read(w: &[W]) -> Self {
-        V4::from_array(std::array::from_fn(|i| T::read(&w[i..])))
+        V4::new(
+            T::read(&w[0..]),
+            T::read(&w[1..]),
+            T::read(&w[2..]),
+            T::read(&w[3..]),
+        )
     }
+    #[inline(always)]
     fn write(self, w: &mut [W]) {
-        for (i, lane) in self.to_array().into_iter().enumerate() {
-            lane.write(&mut w[i..]);
-        }
+        self.x.write(&mut w[0..]);
+        self.y.write(&mut w[1..]);
+        self.z.write(&mut w[2..]);
+        self.w.write(&mut w[3..]);
     }
 }
 
@@ -190,10 +225,35 @@ pub enum Role {
 
 /// A model of a function on raw words: one item in, one item out.
 pub type Eval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
-/// The same on groups of four items, word by word ([`Lanes`]): `in_words` lanes per
-/// group in, `out_words` out, as many groups as the input holds (one call per block, so
-/// the dynamic call is paid once per block, not per group).
-pub type LanesEval = Arc<dyn Fn(&[Lanes], &mut [Lanes]) + Send + Sync>;
+/// The same on groups of `N` items, word by word: `in_words` lanes per group in,
+/// `out_words` out, as many groups as the input holds (one call per block, so the dynamic
+/// call is paid once per block, not per group).
+pub type LanesEvalOf<const N: usize> = Arc<dyn Fn(&[[u32; N]], &mut [[u32; N]]) + Send + Sync>;
+/// Groups of four ([`Lanes`]), on SSE2 lanes.
+pub type LanesEval = LanesEvalOf<4>;
+/// Groups of eight ([`Lanes8`]), on AVX2 lanes. It checks for AVX2 itself, and panics
+/// without it, so calling it is safe anywhere.
+pub type Lanes8Eval = LanesEvalOf<WIDTH>;
+
+/// Which lanes [`Function::eval_many_on`] evaluates on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Width {
+    /// [`Function::eval_lanes`]: four SSE2 lanes, on every x86-64 processor.
+    Four,
+    /// [`Function::eval_lanes8`]: eight AVX2 lanes.
+    Eight,
+}
+
+impl Width {
+    /// The widest this processor runs: what the CPU batches use.
+    pub fn widest() -> Width {
+        if avx2_lanes::available() {
+            Width::Eight
+        } else {
+            Width::Four
+        }
+    }
+}
 
 /// One emitted function.
 #[derive(Clone)]
@@ -210,8 +270,11 @@ pub struct Function {
     /// thread's [`crate::model::deviant::with`] says (and equals `eval` when nothing is set).
     pub eval_dev: Eval,
     /// The same generic function evaluated on four items at once with [`F4`]: what the
-    /// CPU batches run, bit for bit `eval` on each item.
+    /// CPU batches run without AVX2, bit for bit `eval` on each item.
     pub eval_lanes: LanesEval,
+    /// The same on eight items at once with [`F8`], compiled for AVX2: what the CPU
+    /// batches run where the processor has it, bit for bit `eval` on each item.
+    pub eval_lanes8: Lanes8Eval,
     /// For a decoder: the same generic function evaluated with [`Encl`] over a box of
     /// codes, which [`crate::decode_bound`] refines into a proven deviation bound.
     pub enclose: Option<Enclose>,
@@ -222,12 +285,16 @@ pub struct Function {
 
 impl Function {
     /// Runs the function on every item of `input` (`in_words` words each) into `output`
-    /// (`out_words` each) through [`Function::eval_lanes`], bit for bit
-    /// [`Function::eval`] on each item: a block of groups of four per call, transposed
-    /// in and out. A last partial group repeats its last item in the spare lanes and
-    /// writes only the real ones.
+    /// (`out_words` each) on the widest lanes this processor has ([`Width::widest`]), bit
+    /// for bit [`Function::eval`] on each item.
     pub fn eval_many(&self, input: &[u32], output: &mut [u32]) {
-        const GROUPS: usize = 64;
+        self.eval_many_on(Width::widest(), input, output)
+    }
+
+    /// [`Function::eval_many`] on the given lanes: a block of groups per call, transposed
+    /// in and out. A last partial group repeats its last item in the spare lanes and
+    /// writes only the real ones. [`Width::Eight`] panics without AVX2.
+    pub fn eval_many_on(&self, width: Width, input: &[u32], output: &mut [u32]) {
         let (iw, ow) = (self.in_words, self.out_words);
         let n = input.len() / iw;
         assert_eq!(
@@ -242,64 +309,117 @@ impl Function {
             "{} outputs for {n} items",
             output.len()
         );
-        let mut lanes_in = vec![[0u32; 4]; iw * GROUPS];
-        let mut lanes_out = vec![[0u32; 4]; ow * GROUPS];
-        for (src, dst) in input
-            .chunks(4 * GROUPS * iw)
-            .zip(output.chunks_mut(4 * GROUPS * ow))
-        {
-            let groups = (src.len() / iw).div_ceil(4);
-            let (lanes_in, lanes_out) =
-                (&mut lanes_in[..groups * iw], &mut lanes_out[..groups * ow]);
-            // The common widths as constants; a precise search's fetched texels beside
-            // its vector make wider items.
-            match iw {
-                1 => gather(1, src, lanes_in),
-                2 => gather(2, src, lanes_in),
-                3 => gather(3, src, lanes_in),
-                4 => gather(4, src, lanes_in),
-                _ => gather(iw, src, lanes_in),
-            }
-            (self.eval_lanes)(lanes_in, lanes_out);
-            match ow {
-                1 => scatter(1, lanes_out, dst),
-                2 => scatter(2, lanes_out, dst),
-                3 => scatter(3, lanes_out, dst),
-                4 => scatter(4, lanes_out, dst),
-                _ => scatter(ow, lanes_out, dst),
-            }
+        match width {
+            Width::Four => in_groups(&self.eval_lanes, (iw, ow), input, output),
+            Width::Eight => in_groups(&self.eval_lanes8, (iw, ow), input, output),
         }
     }
 }
 
-/// Items of `w` words into groups of four lanes per word; a last partial group repeats
-/// its last item. Inlined where `w` is a constant, so that the full groups are plain moves.
+/// Items of `iw` words through `eval` into items of `ow` words, `N` items per group and
+/// a block of groups per call.
+fn in_groups<const N: usize>(
+    eval: &LanesEvalOf<N>,
+    (iw, ow): (usize, usize),
+    input: &[u32],
+    output: &mut [u32],
+) {
+    const ITEMS: usize = 256;
+    let groups = ITEMS / N;
+    let mut lanes_in = vec![[0u32; N]; iw * groups];
+    let mut lanes_out = vec![[0u32; N]; ow * groups];
+    for (src, dst) in input.chunks(ITEMS * iw).zip(output.chunks_mut(ITEMS * ow)) {
+        let groups = (src.len() / iw).div_ceil(N);
+        let (lanes_in, lanes_out) = (&mut lanes_in[..groups * iw], &mut lanes_out[..groups * ow]);
+        // The common widths as constants, so that the transposes are plain moves; a
+        // precise search's fetched texels beside its vector make wider items.
+        match iw {
+            1 => gather::<N, 1>(src, lanes_in),
+            2 => gather::<N, 2>(src, lanes_in),
+            3 => gather::<N, 3>(src, lanes_in),
+            4 => gather::<N, 4>(src, lanes_in),
+            _ => gather_any(iw, src, lanes_in),
+        }
+        eval(lanes_in, lanes_out);
+        match ow {
+            1 => scatter::<N, 1>(lanes_out, dst),
+            2 => scatter::<N, 2>(lanes_out, dst),
+            3 => scatter::<N, 3>(lanes_out, dst),
+            4 => scatter::<N, 4>(lanes_out, dst),
+            _ => scatter_any(ow, lanes_out, dst),
+        }
+    }
+}
+
+/// Items of `W` words into groups of `N` lanes per word; a last partial group repeats
+/// its last item.
 #[inline(always)]
-fn gather(w: usize, src: &[u32], lanes: &mut [Lanes]) {
-    let full = src.chunks_exact(4 * w);
-    let tail = full.remainder();
-    let mut groups = lanes.chunks_exact_mut(w);
-    for (s, group) in full.zip(&mut groups) {
+fn gather<const N: usize, const W: usize>(src: &[u32], lanes: &mut [[u32; N]]) {
+    let mut full = src.chunks_exact(N * W);
+    let mut groups = lanes.chunks_exact_mut(W);
+    for (s, group) in (&mut full).zip(&mut groups) {
         for (j, lane) in group.iter_mut().enumerate() {
-            *lane = [s[j], s[w + j], s[2 * w + j], s[3 * w + j]];
+            for (k, l) in lane.iter_mut().enumerate() {
+                *l = s[k * W + j];
+            }
         }
     }
     if let Some(group) = groups.next() {
-        let items = tail.len() / w;
-        for (j, lane) in group.iter_mut().enumerate() {
-            *lane = std::array::from_fn(|k| tail[k.min(items - 1) * w + j]);
-        }
+        gather_tail(W, full.remainder(), group);
     }
 }
 
-/// Groups of four lanes per word back into items of `w` words, the real items only.
+/// [`gather`] for any width.
+fn gather_any<const N: usize>(w: usize, src: &[u32], lanes: &mut [[u32; N]]) {
+    let mut full = src.chunks_exact(N * w);
+    let mut groups = lanes.chunks_exact_mut(w);
+    for (s, group) in (&mut full).zip(&mut groups) {
+        for (j, lane) in group.iter_mut().enumerate() {
+            *lane = std::array::from_fn(|k| s[k * w + j]);
+        }
+    }
+    if let Some(group) = groups.next() {
+        gather_tail(w, full.remainder(), group);
+    }
+}
+
+/// The last, partial group: its items, then the last one again in the spare lanes.
+fn gather_tail<const N: usize>(w: usize, tail: &[u32], group: &mut [[u32; N]]) {
+    let items = tail.len() / w;
+    for (j, lane) in group.iter_mut().enumerate() {
+        *lane = std::array::from_fn(|k| tail[k.min(items - 1) * w + j]);
+    }
+}
+
+/// Groups of `N` lanes per word back into items of `W` words, the real items only.
 #[inline(always)]
-fn scatter(w: usize, lanes: &[Lanes], dst: &mut [u32]) {
-    for (group, d) in lanes.chunks_exact(w).zip(dst.chunks_mut(4 * w)) {
-        for (k, item) in d.chunks_exact_mut(w).enumerate() {
-            for (o, lane) in item.iter_mut().zip(group) {
-                *o = lane[k];
+fn scatter<const N: usize, const W: usize>(lanes: &[[u32; N]], dst: &mut [u32]) {
+    let mut full = dst.chunks_exact_mut(N * W);
+    let mut groups = lanes.chunks_exact(W);
+    for (d, group) in (&mut full).zip(&mut groups) {
+        for (k, item) in d.chunks_exact_mut(W).enumerate() {
+            for (j, o) in item.iter_mut().enumerate() {
+                *o = group[j][k];
             }
+        }
+    }
+    if let Some(group) = groups.next() {
+        scatter_tail(W, group, full.into_remainder());
+    }
+}
+
+/// [`scatter`] for any width.
+fn scatter_any<const N: usize>(w: usize, lanes: &[[u32; N]], dst: &mut [u32]) {
+    for (group, d) in lanes.chunks_exact(w).zip(dst.chunks_mut(N * w)) {
+        scatter_tail(w, group, d);
+    }
+}
+
+/// One group's lanes into its items (`dst` may hold fewer than `N`).
+fn scatter_tail<const N: usize>(w: usize, group: &[[u32; N]], dst: &mut [u32]) {
+    for (k, item) in dst.chunks_exact_mut(w).enumerate() {
+        for (o, lane) in item.iter_mut().zip(group) {
+            *o = lane[k];
         }
     }
 }
@@ -319,16 +439,17 @@ pub struct Enclose {
     pub unread: &'static [usize],
 }
 
-/// A [`Function`] from its `f32`, [`Dev`] and [`F4`] instantiations of one generic
-/// function (`generic_function!` below writes all three from one body).
+/// A [`Function`] from its `f32`, [`Dev`], [`F4`] and [`F8`] instantiations of one
+/// generic function (`generic_function!` below writes all four from one body).
 #[allow(clippy::too_many_arguments)]
-pub fn function<A, R, AD, RD, AL, RL>(
+pub(crate) fn function<A, R, AD, RD, AL, RL, AW, RW>(
     name: &'static str,
     role: Role,
     inputs: Inputs,
     f: impl Fn(A) -> R + Send + Sync + 'static,
     f_dev: impl Fn(AD) -> RD + Send + Sync + 'static,
     f_lanes: impl Fn(AL) -> RL + Send + Sync + 'static,
+    f_lanes8: impl Fn(AW) -> RW + Send + Sync + 'static,
 ) -> Function
 where
     A: Bits + 'static,
@@ -337,34 +458,75 @@ where
     RD: Bits + 'static,
     AL: Bits<Lanes> + 'static,
     RL: Bits<Lanes> + 'static,
+    AW: Bits<Lanes8> + 'static,
+    RW: Bits<Lanes8> + 'static,
 {
     assert_eq!((A::WORDS, R::WORDS), (AD::WORDS, RD::WORDS));
     assert_eq!((A::WORDS, R::WORDS), (AL::WORDS, RL::WORDS));
+    assert_eq!((A::WORDS, R::WORDS), (AW::WORDS, RW::WORDS));
     Function {
         name,
         role,
         inputs,
         in_words: A::WORDS,
         out_words: R::WORDS,
-        eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
-        eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
-        eval_lanes: Arc::new(move |i, o| {
-            for (i, o) in i.chunks_exact(AL::WORDS).zip(o.chunks_exact_mut(RL::WORDS)) {
-                f_lanes(AL::read(i)).write(o)
-            }
-        }),
+        eval: Arc::new(
+            #[inline(always)]
+            move |i, o| f(A::read(i)).write(o),
+        ),
+        eval_dev: Arc::new(
+            #[inline(always)]
+            move |i, o| f_dev(AD::read(i)).write(o),
+        ),
+        eval_lanes: Arc::new(
+            #[inline(always)]
+            move |i, o| {
+                for (i, o) in i.chunks_exact(AL::WORDS).zip(o.chunks_exact_mut(RL::WORDS)) {
+                    f_lanes(AL::read(i)).write(o)
+                }
+            },
+        ),
+        eval_lanes8: Arc::new(
+            #[inline(always)]
+            move |i, o| {
+                assert!(
+                    avx2_lanes::available(),
+                    "{name}: the eight-lane evaluation needs a processor with AVX2"
+                );
+                // SAFETY: the processor has AVX2 (checked just above).
+                unsafe { on_avx2(&f_lanes8, i, o) }
+            },
+        ),
         enclose: None,
         parts: Vec::new(),
     }
 }
 
+/// `f` on each group of `i` into `o`, compiled for AVX2: `f` and everything it calls
+/// inline here (the lane operations are `#[inline(always)]`), so the [`F8`] operations
+/// become AVX2 instructions rather than calls.
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
+unsafe fn on_avx2<A: Bits<Lanes8>, R: Bits<Lanes8>>(
+    f: &impl Fn(A) -> R,
+    i: &[Lanes8],
+    o: &mut [Lanes8],
+) {
+    for (i, o) in i.chunks_exact(A::WORDS).zip(o.chunks_exact_mut(R::WORDS)) {
+        f(A::read(i)).write(o)
+    }
+}
+
 /// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]
-/// whose `eval`, `eval_dev` and `eval_lanes` are the one generic `body` with `F` = `f32`,
-/// `F` = [`Dev`] and `F` = [`F4`], so neither the adversarial nor the four-lane evaluation
-/// can drift from the reference. Each capture is cloned into all three closures.
+/// whose `eval`, `eval_dev`, `eval_lanes` and `eval_lanes8` are the one generic `body`
+/// with `F` = `f32`, [`Dev`], [`F4`] and [`F8`], so neither the adversarial nor the
+/// lane evaluations can drift from the reference. Each capture is cloned into all four
+/// closures.
 macro_rules! generic_function {
     ($name:expr, $role:expr, $inputs:expr, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {
-        function(
+        $crate::codecs::functions::function(
             $name,
             $role,
             $inputs,
@@ -381,6 +543,12 @@ macro_rules! generic_function {
             {
                 $(let $c = $c.clone();)*
                 type $F = $crate::model::lanes::F4;
+                move |$x: $A| $body
+            },
+            {
+                $(let $c = $c.clone();)*
+                type $F = $crate::model::avx2_lanes::F8;
+                #[inline(always)]
                 move |$x: $A| $body
             },
         )
@@ -417,38 +585,47 @@ pub fn first_with_same_code(emitted: &[Emitted]) -> Vec<Vec<Option<(usize, usize
     emitted
         .iter()
         .enumerate()
-        .map(|(i, e)| {
-            e.functions
-                .iter()
-                .enumerate()
-                .map(|(j, f)| {
-                    let seen = first.entry(e.module.identity(f.name)).or_default();
-                    match seen.iter().find(|(inputs, _)| **inputs == f.inputs) {
-                        Some(&(_, at)) => Some(at),
-                        None => {
-                            seen.push((&f.inputs, (i, j)));
-                            None
-                        }
-                    }
-                })
-                .collect()
-        })
+        .map(
+            #[inline(always)]
+            |(i, e)| {
+                e.functions
+                    .iter()
+                    .enumerate()
+                    .map(
+                        #[inline(always)]
+                        |(j, f)| {
+                            let seen = first.entry(e.module.identity(f.name)).or_default();
+                            match seen.iter().find(
+                                #[inline(always)]
+                                |(inputs, _)| **inputs == f.inputs,
+                            ) {
+                                Some(&(_, at)) => Some(at),
+                                None => {
+                                    seen.push((&f.inputs, (i, j)));
+                                    None
+                                }
+                            }
+                        },
+                    )
+                    .collect()
+            },
+        )
         .collect()
 }
 
 impl Emitted {
     /// The CPU function of `role`: a [`Emitted::cpu`] stand-in, else the emitted one.
     pub fn cpu_function(&self, role: Role) -> Option<&Function> {
-        self.cpu
-            .iter()
-            .chain(&self.functions)
-            .find(|f| f.role == role)
+        self.cpu.iter().chain(&self.functions).find(
+            #[inline(always)]
+            |f| f.role == role,
+        )
     }
 }
 
 /// The four functions of a codec spec (`decode_float`, `decode`, `encode_float`,
 /// `encode`), traced once and evaluated by the same generic code.
-pub fn codec_functions<C: Codec + Clone + 'static>(spec: &Spec, c: C) -> Emitted
+pub(crate) fn codec_functions<C: Codec + Clone + 'static>(spec: &Spec, c: C) -> Emitted
 where
     C::P<f32>: Bits,
     C::C<f32>: Bits,
@@ -456,9 +633,14 @@ where
     C::C<Dev>: Bits,
     C::P<F4>: Bits<Lanes>,
     C::C<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::C<F8>: Bits<Lanes8>,
 {
     let precise = spec.precise();
-    let module = trace_module(|| trace_codec(&c, precise));
+    let module = trace_module(
+        #[inline(always)]
+        || trace_codec(&c, precise),
+    );
     let mut functions = codec_decoders(&c);
     functions.extend([
         generic_function!(
@@ -498,7 +680,7 @@ where
 /// A codec's `decode_float` and `decode`, with the enclosures their bounds are proven
 /// by: what a spec whose encoders are its own (a table codec) shares with the codec
 /// whose texels it writes. Traced by [`trace_decoders`].
-pub fn codec_decoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Function>
+pub(crate) fn codec_decoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Function>
 where
     C::P<f32>: Bits,
     C::C<f32>: Bits,
@@ -506,19 +688,27 @@ where
     C::C<Dev>: Bits,
     C::P<F4>: Bits<Lanes>,
     C::C<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::C<F8>: Bits<Lanes8>,
 {
     let q = c.quants();
     let fetch_box = {
         let c = c.clone();
         move |r: &[(i64, i64)]| {
-            let p = C::P::<Encl>::build(|i| fetched_range(q[i], r[i]));
+            let p = C::P::<Encl>::build(
+                #[inline(always)]
+                |i| fetched_range(q[i], r[i]),
+            );
             c.direction(p).to_array().to_vec()
         }
     };
     let field_box = {
         let c = c.clone();
         move |r: &[(i64, i64)]| {
-            let codes = C::P::<Encl>::build(|i| field_codes(q[i], r[i]));
+            let codes = C::P::<Encl>::build(
+                #[inline(always)]
+                |i| field_codes(q[i], r[i]),
+            );
             c.decode_codes(codes).to_array().to_vec()
         }
     };
@@ -552,6 +742,60 @@ where
     functions
 }
 
+/// How [`through_table`] chains two lane evaluations around a lookup.
+struct Chain {
+    iw: usize,
+    mid: usize,
+    second_in: usize,
+    keep_input: bool,
+    lookup: WordsMap,
+}
+
+impl Chain {
+    /// `a`, the lookup item by item, then `b`, on groups of `N` lanes.
+    fn chain<const N: usize>(&self, a: &LanesEvalOf<N>, b: &LanesEvalOf<N>) -> LanesEvalOf<N> {
+        let (a, b, lookup) = (a.clone(), b.clone(), self.lookup.clone());
+        let Chain {
+            iw,
+            mid,
+            second_in,
+            keep_input,
+            ..
+        } = *self;
+        Arc::new(
+            #[inline(always)]
+            move |i: &[[u32; N]], o: &mut [[u32; N]]| {
+                let groups = i.len() / iw;
+                let mut t = vec![[0u32; N]; groups * mid];
+                a(i, &mut t);
+                let mut arg = vec![[0u32; N]; groups * second_in];
+                for g in 0..groups {
+                    let at = &mut arg[g * second_in..(g + 1) * second_in];
+                    if keep_input {
+                        at[..iw].copy_from_slice(&i[g * iw..(g + 1) * iw]);
+                    }
+                    let from = if keep_input { iw } else { 0 };
+                    for k in 0..N {
+                        let item: Vec<u32> = t[g * mid..(g + 1) * mid]
+                            .iter()
+                            .map(
+                                #[inline(always)]
+                                |w| w[k],
+                            )
+                            .collect();
+                        let words = lookup(&item);
+                        assert_eq!(from + words.len(), second_in, "the lookup's words");
+                        for (j, w) in words.into_iter().enumerate() {
+                            at[from + j][k] = w;
+                        }
+                    }
+                }
+                b(&arg, o)
+            },
+        )
+    }
+}
+
 /// A CPU-only function through a table in memory: `first`, then `lookup` of its
 /// output words (one item's), then `second` on the lookup's words, after the item's own
 /// input words where `keep_input`. Each evaluation (`f32`, [`Dev`], four lanes) chains
@@ -575,46 +819,35 @@ pub fn through_table(
         second.in_words
     );
     let want = second.in_words;
-    let chain = |a: &Eval, b: &Eval| -> Eval {
-        let (a, b, lookup) = (a.clone(), b.clone(), lookup.clone());
-        Arc::new(move |i: &[u32], o: &mut [u32]| {
-            let mut t = vec![0u32; mid];
-            a(i, &mut t);
-            // A caller's item may sit in a longer buffer: keep its own words only.
-            let mut arg = if keep_input {
-                i[..iw].to_vec()
-            } else {
-                Vec::new()
-            };
-            arg.extend(lookup(&t));
-            assert_eq!(arg.len(), want, "the lookup's words and the kept input");
-            b(&arg, o)
-        })
-    };
-    let (a, b) = (first.eval_lanes.clone(), second.eval_lanes.clone());
-    let (lanes_lookup, second_in) = (lookup.clone(), second.in_words);
-    let eval_lanes: LanesEval = Arc::new(move |i: &[Lanes], o: &mut [Lanes]| {
-        let groups = i.len() / iw;
-        let mut t = vec![[0u32; 4]; groups * mid];
-        a(i, &mut t);
-        let mut arg = vec![[0u32; 4]; groups * second_in];
-        for g in 0..groups {
-            let at = &mut arg[g * second_in..(g + 1) * second_in];
-            if keep_input {
-                at[..iw].copy_from_slice(&i[g * iw..(g + 1) * iw]);
-            }
-            let from = if keep_input { iw } else { 0 };
-            for k in 0..4 {
-                let item: Vec<u32> = t[g * mid..(g + 1) * mid].iter().map(|w| w[k]).collect();
-                let words = lanes_lookup(&item);
-                assert_eq!(from + words.len(), second_in, "the lookup's words");
-                for (j, w) in words.into_iter().enumerate() {
-                    at[from + j][k] = w;
-                }
-            }
+    let chain = {
+        #[inline(always)]
+        |a: &Eval, b: &Eval| -> Eval {
+            let (a, b, lookup) = (a.clone(), b.clone(), lookup.clone());
+            Arc::new(
+                #[inline(always)]
+                move |i: &[u32], o: &mut [u32]| {
+                    let mut t = vec![0u32; mid];
+                    a(i, &mut t);
+                    // A caller's item may sit in a longer buffer: keep its own words only.
+                    let mut arg = if keep_input {
+                        i[..iw].to_vec()
+                    } else {
+                        Vec::new()
+                    };
+                    arg.extend(lookup(&t));
+                    assert_eq!(arg.len(), want, "the lookup's words and the kept input");
+                    b(&arg, o)
+                },
+            )
         }
-        b(&arg, o)
-    });
+    };
+    let lanes = Chain {
+        iw,
+        mid,
+        second_in: second.in_words,
+        keep_input,
+        lookup: lookup.clone(),
+    };
     Function {
         name,
         role,
@@ -623,7 +856,8 @@ pub fn through_table(
         out_words: second.out_words,
         eval: chain(&first.eval, &second.eval),
         eval_dev: chain(&first.eval_dev, &second.eval_dev),
-        eval_lanes,
+        eval_lanes: lanes.chain(&first.eval_lanes, &second.eval_lanes),
+        eval_lanes8: lanes.chain(&first.eval_lanes8, &second.eval_lanes8),
         enclose: None,
         parts: vec![first.name, second.name],
     }
@@ -673,7 +907,10 @@ fn field_codes(q: Quant, (lo, hi): (i64, i64)) -> Encl {
         _ => 0x7f80_0000,
     };
     let negative = lo >> (b - 1) == 1;
-    let special = |h: u32| h & magnitude >= inf;
+    let special = {
+        #[inline(always)]
+        |h: u32| h & magnitude >= inf
+    };
     if lo >> (b - 1) != hi >> (b - 1) || special(lo) != special(hi) {
         return Encl::unknown();
     }
@@ -734,9 +971,19 @@ pub fn decode_packed<F: Float, C: Codec>(c: &C, code: C::C<F>) -> V3<F> {
 #[inline(always)]
 fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
-        F::call("encode_codes", v, |v| c.precise_codes(v))
+        F::call(
+            "encode_codes",
+            v,
+            #[inline(always)]
+            |v| c.precise_codes(v),
+        )
     } else if C::EXACT_ROUNDING {
-        F::call("round_codes", v, |v| c.round_codes(v))
+        F::call(
+            "round_codes",
+            v,
+            #[inline(always)]
+            |v| c.round_codes(v),
+        )
     } else {
         c.round_codes(v)
     }
@@ -756,11 +1003,17 @@ pub fn encode_alternate<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C
 
 /// Float-form encoder output: the exact parameters for the hardware to round (fast), or
 /// the chosen codes' values (precise), which the hardware's rounding keeps.
+#[inline(always)]
 pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
         dequantize(
             &c.quants(),
-            F::call("encode_codes", v, |v| c.precise_codes(v)),
+            F::call(
+                "encode_codes",
+                v,
+                #[inline(always)]
+                |v| c.precise_codes(v),
+            ),
         )
     } else {
         c.params(v)
@@ -769,8 +1022,18 @@ pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<
 
 /// Defines [`codec_decoders`]' functions in the module being traced.
 pub fn trace_decoders<C: Codec>(c: &C) {
-    define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
-    define("decode", &["code"], |code: C::C<Tf>| decode_packed(c, code));
+    define(
+        "decode_float",
+        &["params"],
+        #[inline(always)]
+        |p: C::P<Tf>| c.direction(p),
+    );
+    define(
+        "decode",
+        &["code"],
+        #[inline(always)]
+        |code: C::C<Tf>| decode_packed(c, code),
+    );
 }
 
 /// Traces the public functions, decoders first so that encoders calling them find them
@@ -778,13 +1041,31 @@ pub fn trace_decoders<C: Codec>(c: &C) {
 fn trace_codec<C: Codec>(c: &C, precise: bool) {
     trace_decoders(c);
     if precise {
-        define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
+        define(
+            "encode_codes",
+            &["v"],
+            #[inline(always)]
+            |v: V3<Tf>| c.precise_codes(v),
+        );
     }
-    define("encode_float", &["v"], |v: V3<Tf>| {
-        encode_float(c, precise, v)
-    });
-    define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
+    define(
+        "encode_float",
+        &["v"],
+        #[inline(always)]
+        |v: V3<Tf>| encode_float(c, precise, v),
+    );
+    define(
+        "encode",
+        &["v"],
+        #[inline(always)]
+        |v: V3<Tf>| encode_packed(c, precise, v),
+    );
     if let Some(name) = c.alternate() {
-        define(name, &["v"], |v: V3<Tf>| encode_alternate(c, precise, v));
+        define(
+            name,
+            &["v"],
+            #[inline(always)]
+            |v: V3<Tf>| encode_alternate(c, precise, v),
+        );
     }
 }

@@ -27,8 +27,12 @@ const HALF_NAN: u32 = 0x7e00;
 /// `2^-24`, the sign is kept (also of zeros, infinities and NaNs), and every NaN becomes
 /// the quiet NaN `0x7e00` with its sign. f32 denormals become signed zeros, decided on
 /// the bits, so flushing them changes nothing.
+#[inline(always)]
 pub fn half_bits<F: Float>(x: F) -> F::U {
-    let u = |v: u32| F::U::c(v);
+    let u = {
+        #[inline(always)]
+        |v: u32| F::U::c(v)
+    };
     let b = x.to_bits();
     let sign = b.shr(16) & u(0x8000);
     let a = b & u(0x7fff_ffff);
@@ -52,8 +56,12 @@ pub fn half_bits<F: Float>(x: F) -> F::U {
 
 /// The f32 of f16 bits (the low 16 bits of `h`; the rest must be zero): exact for every
 /// pattern, infinities and NaNs (payload kept) included.
+#[inline(always)]
 pub fn half_value<F: Float>(h: F::U) -> F {
-    let u = |v: u32| F::U::c(v);
+    let u = {
+        #[inline(always)]
+        |v: u32| F::U::c(v)
+    };
     let sign = (h & u(0x8000)).shl(16);
     let m = h & u(0x7fff);
     let wide = m.shl(13);

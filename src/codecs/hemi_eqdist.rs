@@ -1,6 +1,6 @@
 //! Azimuthal equidistant projection of a hemisphere onto the unit disk plus a
 //! hemisphere bit (survey §2, `eqdist`; Snyder and Mitchell 2001): the disk point keeps
-//! the azimuth and puts the polar angle `θ = atan2(ρ, |z|)` at radius `θ/(π/2)`, so
+//! the azimuth and puts the polar angle `θ = atan2(ρ, #[inline(always)] |z|)` at radius `θ/(π/2)`, so
 //! `p = (x, y)/ρ · θ/(π/2)`, stored as unorm `p·0.5 + 0.5`, and one bit for the sign of
 //! `z`, laid out as [`super::disk`] says (eqdist16: x bits 0–7, y bits 8–14, the
 //! hemisphere bit 15).
@@ -45,7 +45,7 @@ impl Family for HemiEqDistFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, HemiEqDist { bits: spec.bits() })
@@ -77,17 +77,18 @@ impl HemiEqDist {
     /// the left side (products only, the literal last) and `k²·ρ²`. At the pole
     /// (`ρ² = 0`, where then `T = 0`) any positive stand-in for `ρ²` decides every
     /// boundary by the sign of `k`, as a parameter of exactly 0 should be.
+    #[inline(always)]
     fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
         let (rho2, t) = polar_angle(f);
-        let code = |q: Quant, x: F| {
+        let code = { #[inline(always)] |q: Quant, x: F| {
             let m = q.max_code();
             let big = (x * t * F::c((f64::from(m) / fixed_trig::ONE) as f32)).named("big");
             let estimate = (big / rho2.sqrt() + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| {
+            decided(q, estimate, #[inline(always)] |c| {
                 let k = c - F::c(m * 0.5 - offset);
                 past_root_ratio(x, big * big, k, k * k * rho2)
             })
-        };
+        } };
         let [qx, qy] = disk_fields(self.bits);
         V2::new(code(qx, f.w.x), code(qy, f.w.y))
     }
@@ -95,18 +96,20 @@ impl HemiEqDist {
     /// The decode of codes `c` (and the hemisphere bit `h`) in units of `2^-BITS`: the
     /// disk point and `q = |p|²` from [`fixed_disk_point`], the two series of
     /// [`fixed_trig::sinc_cos_quarter`] in the same units, then `p·sinc` rounded to a unit.
+    #[inline(always)]
     fn fixed_direction<F: Float>(&self, c: V2<F>, h: F) -> V3<F> {
         let (p, q) = fixed_disk_point(self.bits, c);
         let sc = fixed_trig::sinc_cos_quarter(q, ONE);
-        let xy = p.map(|x| (x * sc.x * F::c((1.0 / ONE) as f32)).round());
+        let xy = p.map(#[inline(always)] |x| (x * sc.x * F::c((1.0 / ONE) as f32)).round());
         V3::from_xy(xy, unfold(sc.y, h))
     }
 }
 
 /// `ρ² = w.x² + w.y²` of the folded input from [`fixed_length2_xy`], with any positive
-/// stand-in at the pole (`ρ² = 0`), and the polar angle `θ/π = atan2(ρ, |z|)/π` in
+/// stand-in at the pole (`ρ² = 0`), and the polar angle `θ/π = atan2(ρ, #[inline(always)] |z|)/π` in
 /// units of `2^-23` half turns from [`fixed_trig::atan2_pi`] (`ρ` from [`root_of`], 0 at
 /// the pole): functions of the input alone.
+#[inline(always)]
 pub fn polar_angle<F: Float>(f: &Folded<F>) -> (F, F) {
     let rho2 = fixed_length2_xy(f.w);
     let has_rho = rho2.gt(F::c(0.0));
@@ -127,10 +130,11 @@ impl Codec for HemiEqDist {
     }
     /// `(w.xy·(θ/π)/ρ + 0.5, z < 0)` of the folded canonical input (`p·0.5 + 0.5` with
     /// `p = w.xy/ρ · θ/(π/2)`); the pole, where `ρ = 0`, is the disk's centre.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let rho = f.w.xy().length_squared().sqrt().named("rho");
-        let t = F::call("atan2_pi", (rho, f.w.z.abs()), |(y, x)| atan2_pi(y, x)).named("t");
+        let t = F::call("atan2_pi", (rho, f.w.z.abs()), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("t");
         let s = (t / F::sel(rho.gt(F::c(0.0)), rho, F::c(1.0))).named("s");
         let enc = (f.w.xy() * s + F::c(0.5)).named("enc");
         V3::from_xy(enc, f.h)
@@ -139,6 +143,7 @@ impl Codec for HemiEqDist {
     /// series in `r²` of [`sinc_cos_quarter`]), z negated where the hemisphere bit is
     /// set: unit length for every code, the square's corners (`r = √2`) 127° from their
     /// hemisphere's pole.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
         let (xy, z) = Self::lift(p);
@@ -147,6 +152,7 @@ impl Codec for HemiEqDist {
     /// The codes of [`HemiEqDist::codes`] at `c + ½`, the hemisphere bit from the sign
     /// of the canonical `z`.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         V3::from_xy(self.codes(&f, 0.5), f.h)
@@ -155,24 +161,28 @@ impl Codec for HemiEqDist {
     /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`), in the input's
     /// hemisphere, by the squared distance of their fixed-point decodes.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let base = self.codes(&f, 1.0).named("base");
-        nearest_disk_codes(self.bits, &f, base, |c, h| self.fixed_direction(c, h))
+        nearest_disk_codes(self.bits, &f, base, #[inline(always)] |c, h| self.fixed_direction(c, h))
     }
 }
 
-/// The equidistant disk radius is `θ/(π/2)`, `θ = atan2(ρ, |z|)` the polar angle.
+/// The equidistant disk radius is `θ/(π/2)`, `θ = atan2(ρ, #[inline(always)] |z|)` the polar angle.
 impl DiskProjection for HemiEqDist {
+    #[inline(always)]
     fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F {
-        F::call("atan2_pi", (rho, f.w.z.abs()), |(y, x)| atan2_pi(y, x))
+        F::call("atan2_pi", (rho, f.w.z.abs()), #[inline(always)] |(y, x)| atan2_pi(y, x))
     }
+    #[inline(always)]
     fn radius<F: Float>(f: &Folded<F>) -> Radius<F> {
         let (rho2, t) = polar_angle(f);
         Radius::Angle { t, rho2 }
     }
     /// `(p·sin(π·r/2)/r, cos(π·r/2))` with `r = |p|`: the two series in `r²` of
     /// [`sinc_cos_quarter`].
+    #[inline(always)]
     fn lift<F: Float>(p: V2<F>) -> (V2<F>, F) {
         let q = p.length_squared().named("q");
         let sc = sinc_cos_quarter(q);

@@ -37,7 +37,7 @@ impl Family for HemiStereoFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, HemiStereo { bits: spec.bits() })
@@ -61,6 +61,7 @@ impl HemiStereo {
     /// The unorm codes of `w.xy / (1 + |z|)` (`w` canonical, `a = l + |w.z|` with `l`
     /// its length, a sum of positives, never 0) at the boundaries `c + offset`: the
     /// parameter is `w.x / a`, decided by [`unorm_ratio`].
+    #[inline(always)]
     fn codes<F: Float>(&self, w: V3<F>, a: F, offset: f32) -> V2<F> {
         let [qx, qy] = disk_fields(self.bits);
         V2::new(
@@ -73,11 +74,12 @@ impl HemiStereo {
     /// disk point from [`fixed_disk_point`], then `2p / (1 + |p|²)` and
     /// `(1 - |p|²) / (1 + |p|²)` from products rounded to a unit (exact integers below
     /// `2^24`) and quotients decided by [`fixed_ratio`].
+    #[inline(always)]
     fn fixed_direction<F: Float>(&self, c: V2<F>, h: F) -> V3<F> {
         let one = F::c(ONE as f32);
         let (p, q) = fixed_disk_point(self.bits, c);
         let d = one + q;
-        let xy = p.map(|x| fixed_ratio(x + x, d, BITS));
+        let xy = p.map(#[inline(always)] |x| fixed_ratio(x + x, d, BITS));
         let z = fixed_ratio(one - q, d, BITS);
         V3::from_xy(xy, unfold(z, h))
     }
@@ -95,6 +97,7 @@ impl Codec for HemiStereo {
     }
     /// `(w.xy / (l + |w.z|)·0.5 + 0.5, z < 0)` of the canonical input and its length, as
     /// the packed encoder decides them.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let enc = (f.w.xy() / f.a * F::c(0.5) + F::c(0.5)).named("enc");
@@ -102,6 +105,7 @@ impl Codec for HemiStereo {
     }
     /// `(2p, 1 - |p|²) / (1 + |p|²)` with `p = enc·2 - 1`, z negated where the hemisphere
     /// bit is set. Both numerators are computed, so every component divides exactly once.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
         let (xy, z) = Self::lift(p);
@@ -110,6 +114,7 @@ impl Codec for HemiStereo {
     /// The codes of [`HemiStereo::codes`] at `c + ½`, the hemisphere bit from the sign
     /// of the canonical `z` (a `-0` is already `+0` there).
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         V3::from_xy(self.codes(f.w, f.a, 0.5), f.h)
@@ -118,18 +123,21 @@ impl Codec for HemiStereo {
     /// [`Codec::round_codes`]' codes, with boundaries at `c + 1`), in the input's
     /// hemisphere, by the squared distance of their fixed-point decodes.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let base = self.codes(f.w, f.a, 1.0).named("base");
-        nearest_disk_codes(self.bits, &f, base, |c, h| self.fixed_direction(c, h))
+        nearest_disk_codes(self.bits, &f, base, #[inline(always)] |c, h| self.fixed_direction(c, h))
     }
 }
 
 /// The stereographic disk radius is `ρ/(1 + |z|)`: `ρ/a` of the folded input.
 impl DiskProjection for HemiStereo {
+    #[inline(always)]
     fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F {
         rho / f.a * F::c(0.5)
     }
+    #[inline(always)]
     fn radius<F: Float>(f: &Folded<F>) -> Radius<F> {
         Radius::Root {
             rho2: fixed_length2_xy(f.w),
@@ -138,6 +146,7 @@ impl DiskProjection for HemiStereo {
     }
     /// `(2p, 1 - |p|²) / (1 + |p|²)`: both numerators are computed, so every component
     /// divides exactly once.
+    #[inline(always)]
     fn lift<F: Float>(p: V2<F>) -> (V2<F>, F) {
         let q = p.length_squared().named("q");
         let d = (q + F::c(1.0)).named("d");

@@ -33,7 +33,7 @@ impl Family for HemiOctFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc("the input's signs"))
+        (name == "encode_codes").then(#[inline(always)] || search_doc("the input's signs"))
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         texel::validate(spec)
@@ -70,6 +70,7 @@ pub struct HemiOct {
 /// `l1 = |x| + |y| + max(z, 0)`. The L1 projection does not depend on length, so no
 /// normalization is needed. `ok` is false for zero, NaN and infinite input and for `-Z`,
 /// which projects to zero; all of them encode as +Z.
+#[inline(always)]
 fn hemi_ratios<F: Float>(v: V3<F>) -> (V2<F>, F, F::B) {
     let (w, ok) = canonical(v);
     let a = above_horizon(w).abs();
@@ -89,6 +90,7 @@ fn hemi_ratios<F: Float>(v: V3<F>) -> (V2<F>, F, F::B) {
 /// `y` to `(T, S)`. Zero, NaN, infinite input and `-Z` give `(0, 0)`. In a unorm field
 /// (a texel channel) the same holds of the codes' signed values `2c - M`
 /// ([`signed_code`]), and invalid input gives `(M + 1)/2` ([`zero_code`]).
+#[inline(always)]
 fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let m = q.max_code();
     let mf = F::c(m);
@@ -103,7 +105,7 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let s0 = floor_ratio_code(q, a.x + a.y, l1).named("s0");
     let t0 = floor_ratio_code(q, a.x - a.y, l1).named("t0");
     let afix = fixed(a);
-    let best = nearest(s0, t0, |s, t| {
+    let best = nearest(s0, t0, #[inline(always)] |s, t| {
         let (s, t) = (signed_code(q, s), signed_code(q, t));
         let r = V2::sel_all((s + t).lt(F::c(0.0)), V2::new(-t, -s), V2::new(s, t));
         let r = V2::sel_all(r.x.lt(r.y), r.yx(), r).named("cand");
@@ -114,7 +116,7 @@ fn hemioct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     });
     let zero = F::c(0.0);
     let st = V2::sel_all(w.x.lt(zero), -best.yx(), best);
-    let st = V2::sel_all(w.y.lt(zero), st.yx(), st).map(|x| unsigned_code(q, x));
+    let st = V2::sel_all(w.y.lt(zero), st.yx(), st).map(#[inline(always)] |x| unsigned_code(q, x));
     V2::sel_all(good, st, V2::splat(F::c(zero_code(q))))
 }
 
@@ -129,7 +131,7 @@ impl Codec for HemiOct {
         Domain::Hemisphere
     }
     /// The survey's Listing 6 on the input projected onto the +Z hemisphere: `(x ± y) /
-    /// (|x| + |y| + z)` with a negative `z` replaced by 0 (a NaN kept, so that it fails
+    /// (#[inline(always)] |x| + |y| + z)` with a negative `z` replaced by 0 (a NaN kept, so that it fails
     /// the check below). The L1 projection needs no unit length, so the projected input is
     /// only brought into range by oct's power-of-two [`fit_l1`] (exact), not normalized,
     /// in 20 instructions instead of the 32 of `hemi_ratios`' canonical form; fitting the
@@ -142,6 +144,7 @@ impl Codec for HemiOct {
     /// Within about `2^-39.5` rad of `-Z` this form and the packed encoders part: `(1e-13,
     /// 0, -1)` projects onto the horizon at `+X` here, while the packed encoders' canonical
     /// form zeroes components below `2^-40` of the largest, sees `-Z` and writes `+Z`'s code.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let h = V3::new(v.x, v.y, F::sel(v.z.lt(F::c(0.0)), F::c(0.0), v.z));
         let w = fit_l1(h).named("w");
@@ -152,6 +155,7 @@ impl Codec for HemiOct {
         let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX))).and(finite_z);
         V2::sel_all(ok, V2::new(p.x + p.y, p.x - p.y), V2::splat(F::c(0.0)))
     }
+    #[inline(always)]
     fn direction<F: Float>(&self, e: V2<F>) -> V3<F> {
         let t = (V2::new(e.x + e.y, e.x - e.y) * F::c(0.5)).named("t");
         let a = t.abs();
@@ -161,27 +165,33 @@ impl Codec for HemiOct {
     /// Listing 6 decided portably ([`crate::codecs::exact`]) from [`hemi_ratios`]' exact
     /// sums of the canonical input, not from `params`' quotients.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.round_in(self.quants()[0], v)
     }
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.precise_in(self.quants()[0], v)
     }
 }
 
 impl TexelCodec for HemiOct {
+    #[inline(always)]
     fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.params(v)
     }
+    #[inline(always)]
     fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
         self.direction(p)
     }
+    #[inline(always)]
     fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let (n, l1, ok) = hemi_ratios(v);
-        let c = n.map(|x| ratio_code_within(q, x, l1));
+        let c = n.map(#[inline(always)] |x| ratio_code_within(q, x, l1));
         V2::sel_all(ok, c, V2::splat(F::c(zero_code(q))))
     }
+    #[inline(always)]
     fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         hemioct_nearest_codes(q, v)
     }

@@ -34,7 +34,7 @@ impl Family for LambertFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Lambert { bits: spec.bits() })
@@ -57,22 +57,24 @@ pub struct Lambert {
 }
 
 /// The codes of -Z, which the projection maps onto the whole rim.
+#[inline(always)]
 fn pole<F: Float>(m: f32) -> V2<F> {
     V2::new(F::c(m), F::c((m + 1.0) * 0.5))
 }
 
 impl Lambert {
     /// The codes of `p` (not -Z) at boundaries `c + offset`: `½` rounds to the nearest code, `1` floors.
+    #[inline(always)]
     fn codes<F: Float>(&self, p: &OnePlusZ<F>, offset: f32) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
         let la = (p.l * p.a).named("la");
         let g = (la / p.b).sqrt() * F::c(8f32.sqrt() / m);
         let m2 = F::c((f64::from(m) * f64::from(m) / 8.0) as f32);
-        p.w.xy().map(|x| {
+        p.w.xy().map(#[inline(always)] |x| {
             let big2 = (x * x * p.b * m2).named("big2");
             let estimate = (x / g + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| {
+            decided(q, estimate, #[inline(always)] |c| {
                 let h = c - F::c(m * 0.5 - offset);
                 past_root_ratio(x, big2, h, h * h * la)
             })
@@ -82,6 +84,7 @@ impl Lambert {
     /// The decode of unorm codes `c` in fixed point ([`crate::codecs::fixed_decode`]):
     /// with `t = 2c - M` and `R = M² - |t|²` (0 outside the disk), the direction is
     /// `(2t·sqrt(R), 2R - M²) / M²`, from exact integers, one root and products.
+    #[inline(always)]
     fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
         let m = self.quants()[0].max_code();
         let t = (c * F::c(2.0) - F::c(m)).named("t");
@@ -100,7 +103,7 @@ impl Lambert {
         let b = (f64::from(m) * 0.5).log2().floor();
         let scale = 2f64.powf(b);
         let g = fixed_root(r * F::c((k * k * scale * scale) as f32)).named("g");
-        let xy = t.map(|x| fixed(x * g, 1.0 / scale));
+        let xy = t.map(#[inline(always)] |x| fixed(x * g, 1.0 / scale));
         V3::from_xy(xy, fixed(r, k) - F::c(ONE as f32))
     }
 }
@@ -119,6 +122,7 @@ impl Codec for Lambert {
     /// as [`Codec::round_codes`] (so the float form and the packed code agree to a few
     /// ULP, and `1 + z` does not cancel near -Z). -Z, which the projection maps onto the
     /// whole rim, encodes as (1, 0.5).
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let p = OnePlusZ::of(v);
         let g = ((p.l * p.a / p.b) * F::c(8.0)).sqrt().named("g");
@@ -134,6 +138,7 @@ impl Codec for Lambert {
     /// ([`crate::codecs::exact`]), each literal factor last (drivers move literal factors
     /// outwards). -Z encodes as (M, (M+1)/2), as before.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let m = self.quants()[0].max_code();
         let p = OnePlusZ::of(v);
@@ -145,6 +150,7 @@ impl Codec for Lambert {
     /// of their fixed-point decodes ([`crate::codecs::fixed_decode`]); -Z encodes as
     /// (M, (M+1)/2), like the fast encoder.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
@@ -153,12 +159,13 @@ impl Codec for Lambert {
         let s = p.off_pole();
         let base = self.codes(&s, 1.0).named("base");
         let target = fixed_target(s.w, s.l, BITS);
-        let best = nearest_decoded([q; 2], base, target, |c| self.fixed_direction(c));
+        let best = nearest_decoded([q; 2], base, target, #[inline(always)] |c| self.fixed_direction(c));
         let codes = V2::sel_all(p.at_pole(), pole(m), best);
         V2::sel_all(p.ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
     /// Codes outside the disk (the square's corners) decode as -Z; every decode is unit
     /// length up to rounding.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let fenc = (enc * F::c(4.0) - F::c(2.0)).named("fenc");
         let f = fenc.length_squared();
@@ -194,20 +201,24 @@ impl<D: LambertDecoder> Codec for WithDecoder<D> {
         Domain::Sphere
     }
     /// [`Lambert`]'s parameters.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.lambert.params(v)
     }
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         self.decoder.direction(enc)
     }
     const EXACT_ROUNDING: bool = true;
     /// [`Lambert`]'s codes, decided exactly.
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.lambert.round_codes(v)
     }
     const EXACT_SEARCH: bool = true;
     /// [`Lambert`]'s search: candidates are compared by their exact directions, which
     /// every decoder of the mapping computes.
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.lambert.precise_codes(v)
     }

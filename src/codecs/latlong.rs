@@ -87,10 +87,12 @@ impl Codec for Latlong {
         Domain::Sphere
     }
     /// `(φ/π·½ + ½, θ/π)`: the azimuth and the polar angle as fractions of their ranges.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let (theta, phi) = float_angles(self.target(v));
         V2::new(phi * F::c(0.5) + F::c(0.5), theta)
     }
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         grid_direction(p)
     }
@@ -98,6 +100,7 @@ impl Codec for Latlong {
     /// turns, functions of the input alone), each coded by [`fixed_trig::angle_code`]:
     /// one exact sum, one product with a literal, rounded once.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let (theta, phi) = fixed_angles(canonical_or_z(v).0);
         let q = self.field();
@@ -110,6 +113,7 @@ impl Codec for Latlong {
 
 /// The direction of parameters `p` in `[0, 1]²`: azimuth `p.x·2 - 1` and polar angle
 /// `p.y`, in half turns (`latlongd`'s decoder ends the same way).
+#[inline(always)]
 pub fn grid_direction<F: Float>(p: V2<F>) -> V3<F> {
     let phi = (p.x * F::c(2.0) - F::c(1.0)).named("phi");
     let st = F::call("sincos_pi", p.y, sincos_pi).named("st");

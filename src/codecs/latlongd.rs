@@ -51,7 +51,7 @@ use super::exact::{canonical_or_z, fixed_ratio, float_of, root_of};
 use super::family::{Family, Info, Sizes, Table, TableFormat};
 use super::fixed_trig::{self, ONE};
 use super::functions::{
-    Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap, fetched_range, function,
+    Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap, fetched_range,
     generic_function, through_table,
 };
 use super::latlong::grid_direction;
@@ -103,7 +103,7 @@ impl Family for LatlongDFamily {
             bytes: rings
                 .entries
                 .iter()
-                .flat_map(|e| e.iter().flat_map(|w| w.to_le_bytes()))
+                .flat_map(#[inline(always)] |e| e.iter().flat_map(#[inline(always)] |w| w.to_le_bytes()))
                 .collect(),
         }]
     }
@@ -166,15 +166,15 @@ impl Rings {
         static TABLES: [OnceLock<Rings>; 3] = [const { OnceLock::new() }; 3];
         let at = RINGS
             .iter()
-            .position(|&(b, _)| b == bits)
+            .position(#[inline(always)] |&(b, _)| b == bits)
             .expect("a latlongd size");
-        TABLES[at].get_or_init(|| Rings::build(bits, RINGS[at].1))
+        TABLES[at].get_or_init(#[inline(always)] || Rings::build(bits, RINGS[at].1))
     }
 
     /// The rings of `nphi` latitudes with the least `ε` whose patches fit `2^bits` codes.
     pub fn build(bits: u32, nphi: u32) -> Rings {
         let budget = 1u64 << bits;
-        let fits = |eps: f64| counts(nphi, eps).is_some_and(|c| c.iter().sum::<u64>() <= budget);
+        let fits = { #[inline(always)] |eps: f64| counts(nphi, eps).is_some_and(#[inline(always)] |c| c.iter().sum::<u64>() <= budget) };
         let (mut lo, mut hi) = (1e-9, 0.2);
         for _ in 0..64 {
             let mid = 0.5 * (lo + hi);
@@ -188,7 +188,7 @@ impl Rings {
         let mut offset = 0u64;
         let entries: Vec<[u32; 2]> = counts
             .iter()
-            .map(|&n| {
+            .map(#[inline(always)] |&n| {
                 let e = [offset as u32, n as u32];
                 offset += n;
                 e
@@ -251,6 +251,7 @@ fn fields(bits: u32) -> [Quant; 2] {
 /// The input's ring: `round(θ·(Nφ - 1))` of its polar angle `θ` in half turns from
 /// [`fixed_angles`] (units of `2^-23`, `2θ - 1` there): one exact sum, one product with
 /// a literal (`Nφ - 1` below `2^16`, so the literal is exact), rounded once.
+#[inline(always)]
 pub fn encode_ring<F: Float>(r: &Rings, v: V3<F>) -> F::U {
     let (theta, _) = fixed_angles(canonical_or_z(v).0);
     let scale = F::c((f64::from(r.rings() - 1) / (2.0 * ONE)) as f32);
@@ -260,6 +261,7 @@ pub fn encode_ring<F: Float>(r: &Rings, v: V3<F>) -> F::U {
 /// The code: `offset + k`, `k = round(t·count·2^-24)` of the azimuth `t = φ + 1` in units
 /// of `2^-23` half turns (`[0, 2^24]`, exact), `count` wrapping to 0. The product of two
 /// exact integers is rounded once; no sum follows it before the rounding to a code.
+#[inline(always)]
 pub fn encode<F: Float>(v: V3<F>, ring: V2<F::U>) -> F::U {
     let (w, ok) = canonical_or_z(v);
     let (_, phi) = fixed_angles(w);
@@ -271,14 +273,16 @@ pub fn encode<F: Float>(v: V3<F>, ring: V2<F::U>) -> F::U {
 }
 
 /// The code's two halves as `c/M`.
+#[inline(always)]
 pub fn encode_float<F: Float>(bits: u32, v: V3<F>, ring: V2<F::U>) -> V2<F> {
     let q = fields(bits);
-    let code = F::call("encode", (v, ring), |(v, r)| encode(v, r));
+    let code = F::call("encode", (v, ring), #[inline(always)] |(v, r)| encode(v, r));
     super::codec::dequantize(&q, unpack::<F, V2<F>, F::U>(&q, code))
 }
 
 /// The code's own bits (those above the size are ignored), a code past the last patch
 /// read as the last (-Z).
+#[inline(always)]
 fn code_in_use<F: Float>(r: &Rings, code: F::U) -> F::U {
     let last = F::U::c(r.total - 1);
     let code = if r.bits < 32 {
@@ -297,8 +301,9 @@ fn code_in_use<F: Float>(r: &Rings, code: F::U) -> F::U {
 /// (no float sum a compiler could regroup), the root by [`root_of`], the angle by
 /// [`fixed_trig::atan2_pi`]; then floored (the southern half: `Nφ - 1 - ceil`) and
 /// clamped to `[0, Nφ - 2]`.
+#[inline(always)]
 pub fn decode_ring<F: Float>(r: &Rings, code: F::U) -> F::U {
-    let u = |x: u32| F::U::c(x);
+    let u = { #[inline(always)] |x: u32| F::U::c(x) };
     let last = r.total - 1;
     let c = code_in_use::<F>(r, code);
     let south = c.lt(u(r.total.div_ceil(2))).not();
@@ -319,6 +324,7 @@ pub fn decode_ring<F: Float>(r: &Rings, code: F::U) -> F::U {
 /// The parameters of the code's patch: ring `g + 1` where the code is at or past its
 /// offset, else `g`; `k = code - offset`; `(k/count, ring/(Nφ - 1))`, the first by
 /// [`fixed_ratio`] on a `2^-24` grid, the second one product with a literal.
+#[inline(always)]
 pub fn decode_params<F: Float>(r: &Rings, code: F::U, g: F::U, e0: V2<F::U>, e1: V2<F::U>) -> V2<F> {
     let c = code_in_use::<F>(r, code);
     let next = c.lt(e1.x).not();
@@ -346,16 +352,16 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
     type U<F> = <F as Float>::U;
     let r = Rings::of(bits);
     let q = fields(bits);
-    let module = trace_module(|| {
-        define("decode_float", &["params"], |p: V2<Tf>| grid_direction(p));
-        define("encode_ring", &["v"], |v: V3<Tf>| encode_ring(r, v));
+    let module = trace_module(#[inline(always)] || {
+        define("decode_float", &["params"], #[inline(always)] |p: V2<Tf>| grid_direction(p));
+        define("encode_ring", &["v"], #[inline(always)] |v: V3<Tf>| encode_ring(r, v));
         // `encode` first: encode_float calls it, and the first definition names the
         // parameters.
-        define("encode", &["v", "ring"], |(v, e): (V3<Tf>, V2<U<Tf>>)| encode(v, e));
-        define("encode_float", &["v", "ring"], |(v, e): (V3<Tf>, V2<U<Tf>>)| {
+        define("encode", &["v", "ring"], #[inline(always)] |(v, e): (V3<Tf>, V2<U<Tf>>)| encode(v, e));
+        define("encode_float", &["v", "ring"], #[inline(always)] |(v, e): (V3<Tf>, V2<U<Tf>>)| {
             encode_float(bits, v, e)
         });
-        define("decode_ring", &["code"], |c: U<Tf>| decode_ring::<Tf>(r, c));
+        define("decode_ring", &["code"], #[inline(always)] |c: U<Tf>| decode_ring::<Tf>(r, c));
         define(
             "decode_params",
             &["code", "g", "ring0", "ring1"],
@@ -372,7 +378,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         <F> [] |p: V2<F>| grid_direction(p)
     );
     dec_float.enclose = Some(Enclose {
-        eval: Arc::new(move |b: &[(i64, i64)]| {
+        eval: Arc::new(#[inline(always)] move |b: &[(i64, i64)]| {
             let p = V2::new(fetched_range(params[0], b[0]), fetched_range(params[1], b[1]));
             grid_direction::<Encl>(p).to_array().to_vec()
         }),
@@ -388,8 +394,8 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
     let with_ring = Inputs::VectorsWith(Extra {
         name: "the ring table's entry at encode_ring(v)",
         words: 2,
-        of: Arc::new(move |v: &[u32]| {
-            let j = encode_ring::<f32>(r, V3::from_array(std::array::from_fn(|i| f32::from_bits(v[i]))));
+        of: Arc::new(#[inline(always)] move |v: &[u32]| {
+            let j = encode_ring::<f32>(r, V3::from_array(std::array::from_fn(#[inline(always)] |i| f32::from_bits(v[i]))));
             r.entry(j).to_vec()
         }),
     });
@@ -412,7 +418,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         <F> [] |c: U<F>| decode_ring::<F>(r, c)
     );
     // A guess's words → the guess and the entries g and g + 1.
-    let pair: WordsMap = Arc::new(move |g: &[u32]| {
+    let pair: WordsMap = Arc::new(#[inline(always)] move |g: &[u32]| {
         let mut out = vec![g[0]];
         out.extend(r.entry(g[0]));
         out.extend(r.entry(g[0] + 1));
@@ -428,16 +434,16 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
                 words: 5,
                 of: {
                     let pair = pair.clone();
-                    Arc::new(move |c: &[u32]| pair(&[decode_ring::<f32>(r, c[0])]))
+                    Arc::new(#[inline(always)] move |c: &[u32]| pair(&[decode_ring::<f32>(r, c[0])]))
                 },
             }
         ),
         <F> [] |x: ParamsArgs<F>| decode_params::<F>(r, x.0, x.1.0, x.1.1.0, x.1.1.1)
     );
-    let lookup: WordsMap = Arc::new(move |j: &[u32]| r.entry(j[0]).to_vec());
-    let cpu_enc = |f: &Function, role: Role| {
+    let lookup: WordsMap = Arc::new(#[inline(always)] move |j: &[u32]| r.entry(j[0]).to_vec());
+    let cpu_enc = { #[inline(always)] |f: &Function, role: Role| {
         through_table(f.name, role, Inputs::Vectors, &ring, lookup.clone(), f, true)
-    };
+    } };
     let cpu = vec![
         cpu_enc(&enc, Role::Encode),
         cpu_enc(&enc_float, Role::EncodeFloat),
@@ -470,7 +476,7 @@ fn cpu_decode(
         params,
         true,
     );
-    let same: WordsMap = Arc::new(|w: &[u32]| w.to_vec());
+    let same: WordsMap = Arc::new(#[inline(always)] |w: &[u32]| w.to_vec());
     let mut dec = through_table(
         "decode",
         Role::Decode,

@@ -7,8 +7,8 @@
 //! ULP; measured with float sums, it flips where a driver regroups or fuses the sums
 //! (Mesa's NIR factors `a·b + a·c` on paths without `NoContraction`). Here every
 //! candidate is an integer lattice direction `d` (its decode before normalization), the
-//! input is fixed point `A` (exactly `floor(|w|·2^22)` of the canonical input), and the
-//! closeness `sin²(A, d) = |A×d|² / (|A|²·|d|²)` is computed in wrapping 32-bit
+//! input is fixed point `A` (exactly `floor(#[inline(always)] |w|·2^22)` of the canonical input), and the
+//! closeness `sin²(A, d) = |A×d|² / (#[inline(always)] |A|²·|d|²)` is computed in wrapping 32-bit
 //! integers: exact, so no optimiser can change it. Only the last step, comparing
 //! `e₁·n₂ < e₂·n₁` (`e = |A×d|²·2^-29` and `n = |d|²`, both integers below 2^24), uses two
 //! correctly rounded float products, as the fast encoders' comparisons do.
@@ -33,13 +33,19 @@ const FIXED: f32 = (1u32 << 22) as f32;
 /// `|A×d|²` is kept as `|A×d|² >> 29`, below `2^24` for every candidate.
 const CROSS_SHIFT: u32 = 29;
 
-/// The canonical magnitudes in fixed point, `floor(|w|·2^22)`: a power-of-two scaling,
+/// The canonical magnitudes in fixed point, `floor(#[inline(always)] |w|·2^22)`: a power-of-two scaling,
 /// the floor of a normal float and the conversion of an integral value, each exact.
+#[inline(always)]
 pub fn fixed<F: Float>(a: V3<F>) -> V3<F::U> {
-    a.map(|x| (x * F::c(FIXED)).floor().to_u()).named("afix")
+    a.map(
+        #[inline(always)]
+        |x| (x * F::c(FIXED)).floor().to_u(),
+    )
+    .named("afix")
 }
 
 /// The magnitude of a two's complement word.
+#[inline(always)]
 pub fn magnitude<U: Uint>(x: U) -> U {
     U::sel(x.lt(U::c(1 << 31)), x, U::c(0).wrapping_sub(x))
 }
@@ -48,6 +54,7 @@ pub fn magnitude<U: Uint>(x: U) -> U {
 /// `x² = h²·2^32 + 2hl·2^16 + l²`): the first two partial products, each shifted on its
 /// own; `l² >> 29` (below 8) is left out. At most 9 below the exact quotient, against
 /// `e` of about 2^15 to 2^18 where two candidates nearly tie. Deterministic.
+#[inline(always)]
 pub fn square_shifted<U: Uint>(x: U) -> U {
     let h = x.shr(16);
     let l = x & U::c(0xffff);
@@ -68,8 +75,12 @@ pub struct Closeness<F> {
 impl<F: Float> Closeness<F> {
     /// `d` (non-negative integers with `|d| ≤ m`) measured against `a`, the
     /// [`fixed`] input.
+    #[inline(always)]
     pub fn of(a: V3<F::U>, d: V3<F::U>, m: f32) -> Closeness<F> {
-        let x = cross(a, d).map(|c| square_shifted(magnitude(c)));
+        let x = cross(a, d).map(
+            #[inline(always)]
+            |c| square_shifted(magnitude(c)),
+        );
         let e = (x.x + x.y + x.z).to_f().named("e");
         let n2 = d.x.wrapping_mul(d.x) + d.y.wrapping_mul(d.y) + d.z.wrapping_mul(d.z);
         let shift = norm_shift(m);
@@ -86,6 +97,7 @@ impl<F: Float> Closeness<F> {
     /// `|a×d|²` summed exactly in integers and rounded once ([`sum_of_squares`]), `n` the
     /// exact `|d|²`. For candidates that are not lattice directions (a table's texels) at
     /// a coarser fixed point than [`fixed`]'s.
+    #[inline(always)]
     pub fn of_small(a: V3<F::U>, d: V3<F::U>) -> Closeness<F> {
         let x = cross(a, d).map(magnitude);
         let n2 = d.x.wrapping_mul(d.x) + d.y.wrapping_mul(d.y) + d.z.wrapping_mul(d.z);
@@ -98,6 +110,7 @@ impl<F: Float> Closeness<F> {
 
 /// `a×d` in wrapping 32-bit arithmetic: exact as two's complement while each component's
 /// magnitude is below 2^31.
+#[inline(always)]
 fn cross<U: Uint>(a: V3<U>, d: V3<U>) -> V3<U> {
     V3::new(
         a.y.wrapping_mul(d.z).wrapping_sub(a.z.wrapping_mul(d.y)),
@@ -117,10 +130,12 @@ pub trait Measure<F: Float>: Copy {
 impl<F: Float> Measure<F> for Closeness<F> {
     /// `e/n` compared by cross multiplication, two correctly rounded products feeding a
     /// comparison.
+    #[inline(always)]
     fn closer(self, other: Closeness<F>) -> F::B {
         (self.e * other.n).lt(other.e * self.n)
     }
 
+    #[inline(always)]
     fn sel(m: F::B, a: Self, b: Self) -> Self {
         Closeness {
             e: F::sel(m, a.e, b.e).named("best_e"),
@@ -133,6 +148,7 @@ impl<F: Float> Measure<F> for Closeness<F> {
 /// or both parameters, the first on ties. `candidate` maps a pair of codes to the codes
 /// it stands for (a codec may reflect them), whether those are valid (the first always
 /// is) and how near they are (a [`Closeness`] or another [`Measure`]).
+#[inline(always)]
 pub fn nearest<F: Float, M: Measure<F>>(
     s0: F,
     t0: F,

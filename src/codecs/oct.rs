@@ -89,6 +89,7 @@ pub struct Oct {
 }
 
 /// Folds a point of the square across the diagonals: `(1 - |p.yx|) · sign_not_zero(p)`.
+#[inline(always)]
 fn fold<F: Float>(p: V2<F>) -> V2<F> {
     (V2::splat(F::c(1.0)) - p.yx().abs()) * sign_not_zero(p)
 }
@@ -97,6 +98,7 @@ fn fold<F: Float>(p: V2<F>) -> V2<F> {
 /// the L1 norm overflows, the input is first scaled by 1/4 (exact at that magnitude), so
 /// only zero, NaN and infinite input, whose L1 norm is not a positive finite number,
 /// encode as +Z. For every other input the scale is 1 and the arithmetic is the survey's.
+#[inline(always)]
 pub fn oct_params<F: Float>(v: V3<F>) -> V2<F> {
     let w = fit_l1(v).named("w");
     let a = w.abs();
@@ -111,6 +113,7 @@ pub fn oct_params<F: Float>(v: V3<F>) -> V2<F> {
 /// above the denormal range, so the scaling is exact where it counts), or `v·2^100` when
 /// the norm is below `2^-100` (exact): no denormal norm then reaches the division, where an
 /// implementation may flush it to zero though not in the comparisons (`0/0` is NaN).
+#[inline(always)]
 pub fn fit_l1<F: Float>(v: V3<F>) -> V3<F> {
     let a = v.abs();
     let l1 = a.x + a.y + a.z;
@@ -119,6 +122,7 @@ pub fn fit_l1<F: Float>(v: V3<F>) -> V3<F> {
 }
 
 /// Square → unit vector. Unfolds when `z < 0`; the result is normalized as `v / sqrt(v·v)`.
+#[inline(always)]
 pub fn oct_direction<F: Float>(e: V2<F>) -> V3<F> {
     let a = e.abs();
     let z = (F::c(1.0) - a.x - a.y).named("z");
@@ -130,21 +134,23 @@ pub fn oct_direction<F: Float>(e: V2<F>) -> V3<F> {
 /// The nearest snorm codes of [`oct_params`], decided portably ([`crate::codecs::exact`]):
 /// each parameter is a ratio `n / l1` of correctly rounded sums of the canonical input's
 /// magnitudes, `x / l1` above the equator and `(l1 - |y|)·sign(x) / l1` folded below it.
+#[inline(always)]
 pub fn oct_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let (w, ok) = canonical(v);
     let a = w.abs();
     let l1 = (a.x + a.y + a.z).named("l1");
     let folded = (V2::splat(l1) - a.xy().yx()) * sign_not_zero(w.xy());
     let n = V2::sel_all(w.z.le(F::c(0.0)), folded, w.xy()).named("n");
-    let c = n.map(|x| snorm_ratio_within(q, x, l1));
+    let c = n.map(#[inline(always)] |x| snorm_ratio_within(q, x, l1));
     V2::sel_all(ok, c, V2::splat(F::c(0.0)))
 }
 
 /// The octahedral codes nearest the input, decided portably: the first octant's lattice
-/// point `(s, t, M - s - t)` nearest `(|x|, |y|, |z|)` in angle among the four around
-/// `floor(M·(|x|, |y|) / l1)` (the first on ties), then the input's signs, unfolded
+/// point `(s, t, M - s - t)` nearest `(#[inline(always)] |x|, #[inline(always)] |y|, #[inline(always)] |z|)` in angle among the four around
+/// `floor(M·(#[inline(always)] |x|, #[inline(always)] |y|) / l1)` (the first on ties), then the input's signs, unfolded
 /// below the equator: `(±s, ±t)` above, `(±(M - t), ±(M - s))` below, whose decode has
 /// the same magnitudes with a negative `z`. Zero, NaN and infinite input give `(0, 0)`.
+#[inline(always)]
 pub fn oct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     let m = q.max_code();
     let mf = F::c(m);
@@ -157,7 +163,7 @@ pub fn oct_nearest_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
     // Rounded comparisons could put the floors one past the equator together.
     let t0 = floor_ratio(q, a.y, l1).at_most(mf - s0).named("t0");
     let fixed = fixed(a);
-    let best = nearest(s0, t0, |s, t| {
+    let best = nearest(s0, t0, #[inline(always)] |s, t| {
         let u = (mf - s - t).at_least(F::c(0.0));
         let c = Closeness::of(fixed, V3::new(s.to_u(), t.to_u(), u.to_u()), m);
         (V2::new(s, t), (s + t).le(mf), c)
@@ -178,17 +184,21 @@ impl Codec for Oct {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         oct_params(v)
     }
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         oct_direction(p)
     }
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         oct_codes(self.quants()[0], v)
     }
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         oct_nearest_codes(self.quants()[0], v)
     }
@@ -211,9 +221,11 @@ impl Codec for Oct24Rgb8 {
     }
     /// The bytes of the portable oct24 codes as unorm8 values: already quantized, so a
     /// render target stores exactly the packed code's bytes.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
-        F::call("round_codes", v, |v| self.round_codes(v)) * F::c(1.0 / 255.0)
+        F::call("round_codes", v, #[inline(always)] |v| self.round_codes(v)) * F::c(1.0 / 255.0)
     }
+    #[inline(always)]
     fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
         let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
         F::call("oct24_decode_float", e, oct_direction)
@@ -224,17 +236,20 @@ impl Codec for Oct24Rgb8 {
     }
     /// The bytes are already integers: unpacking them with the float-only form directly
     /// skips a `c·(1/255)·255` round trip (which drivers would fold across the call).
+    #[inline(always)]
     fn decode_codes<F: Float>(&self, b: V3<F>) -> V3<F> {
         let e = F::call("bytes_to_snorm12x2", b, from_bytes).named("e");
         F::call("oct24_decode_float", e, oct_direction)
     }
     const EXACT_ROUNDING: bool = true;
     /// The portable oct24 codes, split into bytes.
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         bytes_float(oct_codes(Quant::Snorm(12), v) + F::c(BIAS))
     }
     const EXACT_SEARCH: bool = true;
     /// The oct24 precise search, then its 12-bit codes split into bytes.
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         bytes_float(oct_nearest_codes(Quant::Snorm(12), v) + F::c(BIAS))
     }

@@ -6,10 +6,9 @@
 //! the listing's `s·(1/2047) - 1`, which misses zero by an ulp.
 
 use super::family::{Family, Info, Sizes};
-use super::functions::{Emitted, Inputs, Role, function};
+use super::functions::{Emitted, Inputs, Role, generic_function};
 use super::quant::Quant;
 use super::spec::Spec;
-use crate::model::deviant::Dev;
 use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, Uint, V2, V3};
 
@@ -33,16 +32,14 @@ static INFO: Info = Info {
 /// adversarial [`Dev`].
 macro_rules! helpers {
     ($(($name:literal, $role:expr, $quants:expr, $param:literal, $P:ident, $f:path)),* $(,)?) => {{
-        let module = trace_module(|| {
-            $(define($name, &[$param], |x: $P<Tf>| $f(x));)*
+        let module = trace_module(#[inline(always)] || {
+            $(define($name, &[$param], #[inline(always)] |x: $P<Tf>| $f(x));)*
         });
-        let functions = vec![$(function(
+        let functions = vec![$(generic_function!(
             $name,
             $role,
             Inputs::FloatCodes($quants),
-            |x: $P<f32>| $f(x),
-            |x: $P<Dev>| $f(x),
-            |x: $P<crate::model::lanes::F4>| $f(x),
+            <F> [] |x: $P<F>| $f(x)
         )),*];
         Emitted { module, functions, namespace: String::new(), portable_encoder: false, cpu: Vec::new() }
     }};
@@ -53,8 +50,8 @@ impl Family for Pack12Family {
         &INFO
     }
     fn emitted(&self, _spec: &Spec) -> Emitted {
-        let s12 = || vec![Quant::Snorm(12); 2];
-        let u8s = || vec![Quant::Unorm(8); 3];
+        let s12 = { #[inline(always)] || vec![Quant::Snorm(12); 2] };
+        let u8s = { #[inline(always)] || vec![Quant::Unorm(8); 3] };
         helpers!(
             ("snorm12x2_to_unorm8x3", Role::Pack, s12(), "f", V2, to_unorm8x3),
             ("snorm12x2_to_unorm8x3_int", Role::Pack, s12(), "f", V2, to_unorm8x3_int),
@@ -82,13 +79,15 @@ const PORTABILITY: &str = "Other implementations: under the division, square roo
 pub const BIAS: f32 = 2047.0;
 
 /// The biased 12-bit integers `round(clamp(f,-1,1)·2047 + 2047)`.
+#[inline(always)]
 fn biased<F: Float>(f: V2<F>) -> V2<F> {
-    let c = f.map(|x| Quant::Snorm(12).clamp(x));
+    let c = f.map(#[inline(always)] |x| Quant::Snorm(12).clamp(x));
     (c * F::c(BIAS) + F::c(BIAS)).round().named("u")
 }
 
 /// Bytes of biased integers, with float arithmetic only (exact: every value is an integer
 /// below 2^12 and every scale a power of two).
+#[inline(always)]
 pub fn bytes_float<F: Float>(u: V2<F>) -> V3<F> {
     let x16 = (u.x * F::c(1.0 / 16.0)).named("x16");
     let hi = x16.floor().named("hi");
@@ -97,11 +96,13 @@ pub fn bytes_float<F: Float>(u: V2<F>) -> V3<F> {
 }
 
 /// Float-only pack (Listing 5): unorm8 values in [0, 1] for an RGB8 target.
+#[inline(always)]
 pub fn to_unorm8x3<F: Float>(f: V2<F>) -> V3<F> {
     bytes_float(biased(f)) * F::c(1.0 / 255.0)
 }
 
 /// Integer pack (Listing 4): the same values through shifts and masks.
+#[inline(always)]
 pub fn to_unorm8x3_int<F: Float>(f: V2<F>) -> V3<F> {
     let u = biased(f).to_u();
     let b = V3::new(
@@ -109,21 +110,24 @@ pub fn to_unorm8x3_int<F: Float>(f: V2<F>) -> V3<F> {
         (u.x & F::U::c(15)).shl(4) | u.y.shr(8),
         u.y & F::U::c(255),
     );
-    b.map(|x| x.to_f()) * F::c(1.0 / 255.0)
+    b.map(#[inline(always)] |x| x.to_f()) * F::c(1.0 / 255.0)
 }
 
 /// `(s - 2047)·(1/2047)`, clamped to [-1, 1].
+#[inline(always)]
 fn unbias<F: Float>(s: V2<F>) -> V2<F> {
     let f = (s - F::c(BIAS)) * F::c(1.0 / BIAS);
     f.at_most(F::c(1.0))
 }
 
 /// Float-only unpack (Listing 5) of unorm8 values as delivered by an RGB8 fetch.
+#[inline(always)]
 pub fn from_unorm8x3<F: Float>(u: V3<F>) -> V2<F> {
     from_bytes((u * F::c(255.0)).round().named("b"))
 }
 
 /// Float-only unpack of the three bytes, as integral floats.
+#[inline(always)]
 pub fn from_bytes<F: Float>(b: V3<F>) -> V2<F> {
     let y16 = (b.y * F::c(1.0 / 16.0)).named("y16");
     let hi = y16.floor().named("hi");
@@ -132,6 +136,7 @@ pub fn from_bytes<F: Float>(b: V3<F>) -> V2<F> {
 }
 
 /// Integer unpack (Listing 4).
+#[inline(always)]
 pub fn from_unorm8x3_int<F: Float>(u: V3<F>) -> V2<F> {
     let b = (u * F::c(255.0)).round().to_u().named("b");
     let p = V2::new(b.x.shl(4) | b.y.shr(4), (b.y & F::U::c(15)).shl(8) | b.z);

@@ -45,7 +45,7 @@ impl Family for ParaboloidFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         texel::validate(spec)
@@ -77,6 +77,7 @@ struct Upper<F: Float> {
 }
 
 impl<F: Float> Upper<F> {
+    #[inline(always)]
     fn of(v: V3<F>) -> Self {
         let (w, ok) = canonical_or_z(v);
         let (h, up) = canonical_or_z(above_horizon(w));
@@ -110,10 +111,11 @@ impl Paraboloid {
     /// `L = sqrt(q + z²)` from [`fixed_root`] (of `L²·2^19`, doubled: within two units)
     /// and no shorter than any component, then each component divided by it with
     /// [`fixed_ratio`].
+    #[inline(always)]
     fn fixed_direction<F: Float>(q: Quant, c: V2<F>) -> V3<F> {
         let one = F::c(ONE as f32);
         let k = ONE / f64::from(q.max_code());
-        let p = c.map(|x| fixed(signed_code(q, x), k)).named("p");
+        let p = c.map(#[inline(always)] |x| fixed(signed_code(q, x), k)).named("p");
         let q = fixed_length2_2d(p);
         let z = (one - q.at_most(one)).named("z");
         // Below 2^22 (q ≤ 2, and z = 0 there), so the root's argument is below 2^41.
@@ -121,7 +123,7 @@ impl Paraboloid {
         let l = fixed_root(l2 * F::c((ONE * 0.25) as f32)) * F::c(2.0);
         let a = p.abs();
         let l = l.at_least(a.x).at_least(a.y).at_least(z).named("l");
-        V3::from_xy(p.map(|x| fixed_ratio(x, l, BITS)), fixed_ratio(z, l, BITS))
+        V3::from_xy(p.map(#[inline(always)] |x| fixed_ratio(x, l, BITS)), fixed_ratio(z, l, BITS))
     }
 }
 
@@ -137,12 +139,14 @@ impl Codec for Paraboloid {
     }
     /// `h.xy / a` of the canonical input projected onto the hemisphere (see [`Upper`]):
     /// the seed's `(x, y)·t`.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = Upper::of(v);
         u.h.xy() / u.a
     }
     /// The seed's `normalize(p, 1 - saturate(p·p))`: inside the disk the point on the
     /// paraboloid, outside it a direction on the horizon.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let q = p.length_squared().named("q");
         let n = V3::from_xy(p, F::c(1.0) - q.at_most(F::c(1.0))).named("n");
@@ -151,6 +155,7 @@ impl Codec for Paraboloid {
     /// The codes of `h.x / a` and `h.y / a` ([`ratio_code`]); input without a
     /// direction on the hemisphere encodes as +Z.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.round_in(self.field(), v)
     }
@@ -158,28 +163,33 @@ impl Codec for Paraboloid {
     /// [`floor_ratio_code`]) by the squared distance of their fixed-point decodes to the input
     /// projected onto the hemisphere; input without a direction there encodes as +Z.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.precise_in(self.field(), v)
     }
 }
 
 impl TexelCodec for Paraboloid {
+    #[inline(always)]
     fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.params(v)
     }
+    #[inline(always)]
     fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
         self.direction(p)
     }
+    #[inline(always)]
     fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let u = Upper::of(v);
-        let c = u.h.xy().map(|x| ratio_code(q, x, u.a));
+        let c = u.h.xy().map(#[inline(always)] |x| ratio_code(q, x, u.a));
         V2::sel_all(u.ok, c, V2::splat(F::c(zero_code(q))))
     }
+    #[inline(always)]
     fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let u = Upper::of(v);
-        let base = u.h.xy().map(|x| floor_ratio_code(q, x, u.a)).named("base");
+        let base = u.h.xy().map(#[inline(always)] |x| floor_ratio_code(q, x, u.a)).named("base");
         let target = fixed_target(u.h, root(fixed_length2(u.h)), BITS);
-        let best = nearest_decoded([q; 2], base, target, |c| Self::fixed_direction(q, c));
+        let best = nearest_decoded([q; 2], base, target, #[inline(always)] |c| Self::fixed_direction(q, c));
         V2::sel_all(u.ok, best, V2::splat(F::c(zero_code(q))))
     }
 }

@@ -10,11 +10,9 @@
 //! know; with `pd = 0` it is the paraboloid decode up to that rounding.
 
 use super::family::{Family, Info, Sizes};
-use super::functions::{Emitted, Inputs, Role, function};
+use super::functions::{Emitted, Inputs, Role, generic_function};
 use super::quant::Quant;
 use super::spec::Spec;
-use crate::model::deviant::Dev;
-use crate::model::lanes::F4;
 use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, V2, V3};
 
@@ -42,20 +40,18 @@ impl Family for ParaboloidPdFamily {
         &INFO
     }
     fn emitted(&self, _spec: &Spec) -> Emitted {
-        let module = trace_module(|| {
-            define(NAME, &["pn", "pd"], |(pn, pd): (V2<Tf>, V2<Tf>)| {
+        let module = trace_module(#[inline(always)] || {
+            define(NAME, &["pn", "pd"], #[inline(always)] |(pn, pd): (V2<Tf>, V2<Tf>)| {
                 combine(pn, pd)
             });
         });
         // A primary paraboloid point and a detail's slopes as snorm8 fetches return them.
         let inputs = Inputs::FloatCodes(vec![Quant::Snorm(8); 4]);
-        let f = function(
+        let f = generic_function!(
             NAME,
             Role::Combine,
             inputs,
-            |(pn, pd): (V2<f32>, V2<f32>)| combine(pn, pd),
-            |(pn, pd): (V2<Dev>, V2<Dev>)| combine(pn, pd),
-            |(pn, pd): (V2<F4>, V2<F4>)| combine(pn, pd),
+            <F> [] |pd: (V2<F>, V2<F>)| combine(pd.0, pd.1)
         );
         Emitted {
             module,
@@ -66,7 +62,7 @@ impl Family for ParaboloidPdFamily {
         }
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == NAME).then(|| {
+        (name == NAME).then(#[inline(always)] || {
             "The second seed's CombineParaboloidNormalWithPD: `pn` a paraboloid point (the float \
              form of paraboloid's parameters), `pd` a detail normal's partial derivatives; \
              returns normalize(pn - pd·nz, nz) with nz = saturate(1 - pn.x² - pn.y²), a unit \
@@ -81,6 +77,7 @@ impl Family for ParaboloidPdFamily {
 /// `normalize(pd·(-nz) + pn, nz)`, `nz = saturate(1 - pn.x·pn.x - pn.y·pn.y)`: outside
 /// the disk `nz = 0` and `pn` itself (at least 1 long) is the direction, so the length
 /// is never zero.
+#[inline(always)]
 pub fn combine<F: Float>(pn: V2<F>, pd: V2<F>) -> V3<F> {
     let h = F::c(1.0) - pn.x * pn.x - pn.y * pn.y;
     let nz = h.clamped(F::c(0.0), F::c(1.0)).named("nz");

@@ -6,10 +6,10 @@
 //! possible xy combinations"). The decoder is `normalize(p, (1 - x²)(1 - y²))`.
 //!
 //! The seed gives no encoder for this surface: along a ray the point is a root of a
-//! quartic. With `s` the larger of `|x|, |y|` and `r ≤ 1` the ratio of the smaller to
+//! quartic. With `s` the larger of `|x|, #[inline(always)] |y|` and `r ≤ 1` the ratio of the smaller to
 //! it, the ray through the unit input `u` meets the surface where
-//! `g(s) = (1 - s²)(1 - r²s²)·max(|u.x|, |u.y|) - u.z·s` changes sign; `g` falls
-//! strictly on `[0, 1]` from `max(|u.x|, |u.y|) ≥ 0` to `-u.z ≤ 0`, so the root is unique.
+//! `g(s) = (1 - s²)(1 - r²s²)·max(#[inline(always)] |u.x|, #[inline(always)] |u.y|) - u.z·s` changes sign; `g` falls
+//! strictly on `[0, 1]` from `max(#[inline(always)] |u.x|, #[inline(always)] |u.y|) ≥ 0` to `-u.z ≤ 0`, so the root is unique.
 //! The encoder finds it by bisection, a fixed 22 steps in fixed point (units of `2^-21`,
 //! every product rounded to a unit before the next sum), from the input's fixed-point
 //! direction: every step is a function of the input alone, so every implementation
@@ -89,7 +89,8 @@ pub struct ParaboloidSquare {
 const STEPS: u32 = BITS + 1;
 
 /// One bisection step from `s` by `h`, for the ray of the fixed-point unit input with
-/// `k = (m, r², u.z)`: `m` the larger of `|u.x|, |u.y|` and `r` the smaller over it.
+/// `k = (m, r², u.z)`: `m` the larger of `|u.x|, #[inline(always)] |u.y|` and `r` the smaller over it.
+#[inline(always)]
 fn step<F: Float>(s: F, h: F, k: V3<F>) -> F {
     let one = F::c(ONE as f32);
     let t = (s + h).named("t");
@@ -117,6 +118,7 @@ impl ParaboloidSquare {
     /// rounded or floored; a unorm one (`p·½ + ½` in a texel channel) is
     /// `(M·u + 2^BITS) >> (BITS + 1)` (rounded, ties up) or `M·u >> (BITS + 1)` of
     /// `u = x + 2^BITS`, in integers below `2^31`, so exact.
+    #[inline(always)]
     fn code<F: Float>(q: Quant, x: F, rounded: bool) -> F {
         match q {
             Quant::Unorm(b) => {
@@ -136,6 +138,7 @@ impl ParaboloidSquare {
     /// The fixed-point unit direction (units of `2^-BITS`) of the input projected onto
     /// the hemisphere. Input without a direction there (zero, NaN, infinite, -Z) becomes
     /// +Z in canonical form, whose point is the origin: no select needed afterwards.
+    #[inline(always)]
     fn aim<F: Float>(v: V3<F>) -> V3<F> {
         let (w, _) = canonical_or_z(v);
         let (h, _) = canonical_or_z(above_horizon(w));
@@ -143,6 +146,7 @@ impl ParaboloidSquare {
     }
 
     /// [`Self::fixed_point`] as the helper `square_point`.
+    #[inline(always)]
     fn point<F: Float>(u: V3<F>) -> V2<F> {
         F::call("square_point", u, Self::fixed_point).named("p")
     }
@@ -151,6 +155,7 @@ impl ParaboloidSquare {
     /// `2^-BITS`: `s` by bisection (see the module), the smaller coordinate `r·s`, each
     /// with its component's sign. The pole gives `s = 0` (`g` is negative past it) and
     /// the horizon `s = 1` (`g` is never negative before it), with no case of their own.
+    #[inline(always)]
     fn fixed_point<F: Float>(u: V3<F>) -> V2<F> {
         let a = u.xy().abs();
         let x_major = a.x.ge(a.y);
@@ -161,11 +166,11 @@ impl ParaboloidSquare {
         let mut s = F::c(0.0);
         for i in (0..STEPS).rev() {
             let h = F::c((1u32 << i) as f32);
-            s = F::call("square_step", (s, (h, k)), |(s, (h, k))| step(s, h, k)).named("s");
+            s = F::call("square_step", (s, (h, k)), #[inline(always)] |(s, (h, k))| step(s, h, k)).named("s");
         }
         let minor = fixed_mul(r, s);
         let p = V2::new(F::sel(x_major, s, minor), F::sel(x_major, minor, s));
-        let signed = |p: F, c: F| F::sel(c.lt(F::c(0.0)), -p, p);
+        let signed = { #[inline(always)] |p: F, c: F| F::sel(c.lt(F::c(0.0)), -p, p) };
         V2::new(signed(p.x, u.x), signed(p.y, u.y))
     }
 
@@ -174,10 +179,11 @@ impl ParaboloidSquare {
     /// a unit, the length `L = sqrt(x² + y² + z²)` from [`fixed_root`] (of `L²·2^19`,
     /// doubled: within two units) and no shorter than any component, then each component
     /// divided by it with [`fixed_ratio`].
+    #[inline(always)]
     fn fixed_direction<F: Float>(q: Quant, c: V2<F>) -> V3<F> {
         let one = F::c(ONE as f32);
         let k = ONE / f64::from(q.max_code());
-        let p = c.map(|x| fixed(signed_code(q, x), k)).named("p");
+        let p = c.map(#[inline(always)] |x| fixed(signed_code(q, x), k)).named("p");
         let (x2, y2) = (fixed_square(p.x), fixed_square(p.y));
         let z = fixed_mul(one - x2, one - y2).named("z");
         // At most 3·2^21, so the root's argument is below 2^42.
@@ -185,7 +191,7 @@ impl ParaboloidSquare {
         let l = fixed_root(l2 * F::c((ONE * 0.25) as f32)) * F::c(2.0);
         let a = p.abs();
         let l = l.at_least(a.x).at_least(a.y).at_least(z).named("l");
-        V3::from_xy(p.map(|x| fixed_ratio(x, l, BITS)), fixed_ratio(z, l, BITS))
+        V3::from_xy(p.map(#[inline(always)] |x| fixed_ratio(x, l, BITS)), fixed_ratio(z, l, BITS))
     }
 }
 
@@ -200,11 +206,13 @@ impl Codec for ParaboloidSquare {
         Domain::Hemisphere
     }
     /// The fixed-point surface point scaled to `[-1, 1]` (exactly: a power of two).
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         Self::point(Self::aim(v)) * F::c((1.0 / ONE) as f32)
     }
     /// `normalize(p, (1 - x²)(1 - y²))`: `z ≥ 0` on the whole square, zero only on its
     /// edges, where `p` itself is at least 1 long.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let z = ((F::c(1.0) - p.x * p.x) * (F::c(1.0) - p.y * p.y)).named("z");
         let n = V3::from_xy(p, z).named("n");
@@ -213,6 +221,7 @@ impl Codec for ParaboloidSquare {
     /// The codes of the fixed-point surface point ([`Self::code`], rounded); input
     /// without a direction on the hemisphere encodes as +Z.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.round_in(self.field(), v)
     }
@@ -220,25 +229,30 @@ impl Codec for ParaboloidSquare {
     /// distance of their fixed-point decodes to the input's fixed-point direction; input
     /// without a direction on the hemisphere encodes as +Z.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.precise_in(self.field(), v)
     }
 }
 
 impl TexelCodec for ParaboloidSquare {
+    #[inline(always)]
     fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.params(v)
     }
+    #[inline(always)]
     fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
         self.direction(p)
     }
+    #[inline(always)]
     fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
-        Self::point(Self::aim(v)).map(|x| Self::code(q, x, true))
+        Self::point(Self::aim(v)).map(#[inline(always)] |x| Self::code(q, x, true))
     }
+    #[inline(always)]
     fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let target = Self::aim(v);
-        let base = Self::point(target).map(|x| Self::code(q, x, false)).named("base");
+        let base = Self::point(target).map(#[inline(always)] |x| Self::code(q, x, false)).named("base");
         // At the pole the origin's decode is the target itself, so +Z wins there.
-        nearest_decoded([q; 2], base, target, |c| Self::fixed_direction(q, c))
+        nearest_decoded([q; 2], base, target, #[inline(always)] |c| Self::fixed_direction(q, c))
     }
 }

@@ -70,12 +70,12 @@ impl Quant {
         }
     }
     /// Clamps to the storage range; NaN goes to the low end (comparisons with NaN are false).
-    #[inline]
+    #[inline(always)]
     pub fn clamp<F: Float>(self, x: F) -> F {
         x.clamped(F::c(self.lo()), F::c(1.0))
     }
     /// The code nearest to `x`, ties to even.
-    #[inline]
+    #[inline(always)]
     pub fn quantize<F: Float>(self, x: F) -> F {
         match self {
             Quant::Half => half_value(half_bits(self.clamp(x))),
@@ -85,17 +85,17 @@ impl Quant {
     }
     /// The code at or below `x`: where a precise search starts. Precise searches step
     /// through integer codes, which a float field does not have.
-    #[inline]
+    #[inline(always)]
     pub fn floor_code<F: Float>(self, x: F) -> F {
         assert!(!self.is_float(), "no precise search over float fields");
         (self.clamp(x) * F::c(self.max_code())).floor()
     }
     /// Clamps a candidate code to the valid codes.
-    #[inline]
+    #[inline(always)]
     pub fn clamp_code<F: Float>(self, c: F) -> F {
         c.at_most(F::c(self.max_code()))
     }
-    #[inline]
+    #[inline(always)]
     pub fn dequantize<F: Float>(self, c: F) -> F {
         match self {
             Quant::Snorm(_) => (c * F::c(1.0 / self.max_code())).at_least(F::c(-1.0)),
@@ -113,9 +113,12 @@ impl Quant {
     /// exact and safely converted, and the mask drops the `2^b` (or the shift does, for
     /// a field that ends at bit 32) — one instruction fewer than `c < 0 ? c + 2^b : c`,
     /// which a wider field still needs (`2^24 + c` is not exact).
-    #[inline]
+    #[inline(always)]
     pub fn field_at<F: Float>(self, c: F, sh: u32) -> F::U {
-        let shifted = |u: F::U| if sh == 0 { u } else { u.shl(sh) };
+        let shifted = {
+            #[inline(always)]
+            |u: F::U| if sh == 0 { u } else { u.shl(sh) }
+        };
         match self {
             Quant::Snorm(b) if b < 24 => {
                 let u = shifted((c + F::c((1u32 << b) as f32)).to_u());
@@ -129,7 +132,7 @@ impl Quant {
         }
     }
     /// The unsigned bit field of a code.
-    #[inline]
+    #[inline(always)]
     fn to_field<F: Float>(self, c: F) -> F::U {
         match self {
             Quant::Snorm(b) => {
@@ -147,7 +150,7 @@ impl Quant {
         }
     }
     /// The code held in an unsigned bit field (already masked to `bits`).
-    #[inline]
+    #[inline(always)]
     pub fn from_field<F: Float>(self, u: F::U) -> F {
         match self {
             Quant::Snorm(b) => {
@@ -171,7 +174,7 @@ impl Quant {
 /// `p = s/M` of the signed lattice value `s`: the snorm code itself, or `2c - M`
 /// for a unorm code (odd integers), which the fixed-point decodes of the precise
 /// searches take.
-#[inline]
+#[inline(always)]
 pub fn signed_code<F: Float>(q: Quant, c: F) -> F {
     match q {
         Quant::Unorm(_) => c + c - F::c(q.max_code()),
@@ -180,7 +183,7 @@ pub fn signed_code<F: Float>(q: Quant, c: F) -> F {
 }
 
 /// The code of the signed lattice value `s` ([`signed_code`]): `s`, or `(s + M)/2`.
-#[inline]
+#[inline(always)]
 pub fn unsigned_code<F: Float>(q: Quant, s: F) -> F {
     match q {
         Quant::Unorm(_) => (s + F::c(q.max_code())) * F::c(0.5),
@@ -225,6 +228,7 @@ impl std::ops::Deref for Quants {
 /// The bits of an f32 with zeros and denormals (exponent field 0) as `+0`, decided on the
 /// bits: an implementation may flush a denormal or lose the sign of a zero, so neither
 /// may reach a stored field or a decoded value.
+#[inline(always)]
 fn plus_zero_below_normal<U: Uint>(b: U) -> U {
     U::sel((b & U::c(0x7f80_0000)).lt(U::c(1)), U::c(0), b)
 }
@@ -279,7 +283,10 @@ pub fn code_width(quants: &[Quant]) -> u32 {
     quants
         .iter()
         .zip(offs)
-        .map(|(q, o)| o + q.bits())
+        .map(
+            #[inline(always)]
+            |(q, o)| o + q.bits(),
+        )
         .max()
         .unwrap_or(0)
 }

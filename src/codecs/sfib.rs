@@ -152,7 +152,7 @@ impl Sfib {
     /// every item.
     fn rows(&self) -> &'static [Row] {
         static ROWS: [OnceLock<Vec<Row>>; 33] = [const { OnceLock::new() }; 33];
-        ROWS[self.bits as usize].get_or_init(|| self.make_rows())
+        ROWS[self.bits as usize].get_or_init(#[inline(always)] || self.make_rows())
     }
 
     fn make_rows(&self) -> Vec<Row> {
@@ -165,12 +165,12 @@ impl Sfib {
             fib.push(next);
         }
         // The longitude step of `f` index steps, in half turns, wrapped to (-1, 1].
-        let dt = |f: u64| {
+        let dt = { #[inline(always)] |f: u64| {
             let turns = (f as f64 * (phi - 1.0)).fract();
             2.0 * if turns > 0.5 { turns - 1.0 } else { turns }
-        };
+        } };
         (2..)
-            .map(|k| {
+            .map(#[inline(always)] |k| {
                 let (f0, f1) = (fib[k], fib[k + 1]);
                 let (t0, t1) = (dt(f0), dt(f1));
                 let (z0, z1) = (-s * f0 as f64, -s * f1 as f64);
@@ -185,7 +185,7 @@ impl Sfib {
                     inverse: [z1 / det, -t1 / det, -z0 / det, t0 / det],
                 }
             })
-            .take_while(|r| r.least <= 1.0)
+            .take_while(#[inline(always)] |r| r.least <= 1.0)
             .collect()
     }
 
@@ -199,6 +199,7 @@ impl Sfib {
 
     /// Whether point `i` is in the northern half, and its distance in index from the
     /// nearer pole (point `n - 1 - i` is point `i` mirrored).
+    #[inline(always)]
     fn pole_distance<U: Uint>(&self, i: U) -> (U::B, U) {
         let north = i.lt(U::c(1 << (self.bits - 1)));
         let k = U::sel(north, i, U::c(self.last()).wrapping_sub(i)).named("k");
@@ -206,6 +207,7 @@ impl Sfib {
     }
 
     /// The direction of point `i`.
+    #[inline(always)]
     pub fn index_direction<F: Float>(&self, i: F::U) -> V3<F> {
         let c = F::U::c;
         // `1 - |z|` from the distance in index to the nearer pole, exact to rounding even
@@ -231,11 +233,12 @@ impl Sfib {
     /// so `ρ² = (1 - |z|)(1 + |z|)` keeps its digits at the poles;
     /// `(sin φ, cos φ)` come from [`fixed_trig::sincos_pi`]. Within a few units of
     /// [`Sfib::index_direction`].
+    #[inline(always)]
     pub fn fixed_point<F: Float>(&self, i: F::U) -> V3<F> {
         let c = F::U::c;
         let (north, k) = self.pole_distance(i);
         let s = F::c(self.step() as f32);
-        let side = |k: F::U| (F::c(EPSILON as f32) + float_of(k)) * s;
+        let side = { #[inline(always)] |k: F::U| (F::c(EPSILON as f32) + float_of(k)) * s };
         let near = side(k).named("near");
         let far = side(c(self.last()).wrapping_sub(k)).named("far");
         let one = F::c(ONE as f32);
@@ -263,6 +266,7 @@ impl Sfib {
     /// direction ([`fixed_target`]), a function of the input alone. Among the candidates
     /// the nearest to that direction by the squared distance of [`Sfib::fixed_point`]
     /// (summed exactly, [`sum_of_squares`], then rounded once), the lower index on ties.
+    #[inline(always)]
     pub fn encode_index<F: Float>(&self, v: V3<F>) -> F::U {
         let c = F::U::c;
         let (w, _) = canonical_or_z(v);
@@ -271,7 +275,7 @@ impl Sfib {
         let u = (w / l).named("u");
         let rho2 = u.xy().length_squared().named("rho2");
         // The basis and the hemisphere from the fixed-point direction: `ρ²` summed exactly.
-        let a = aim.map(|x| x.abs().to_u());
+        let a = aim.map(#[inline(always)] |x| x.abs().to_u());
         let rho2_fixed = (sum_of_squares::<F, 2>([a.x, a.y])
             * F::c((1.0 / (ONE * ONE)) as f32))
         .named("rho2_fixed");
@@ -280,23 +284,28 @@ impl Sfib {
         // `1 - |z| = ρ²/(1 + |z|)`, which keeps its digits near the pole.
         let below = (rho2 / (F::c(1.0) + u.z.abs())).named("below");
         let dz = (F::c((EPSILON * self.step()) as f32) - below).named("dz");
-        let t = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("t");
+        let t = F::call("atan2_pi", (u.y, u.x), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("t");
         let t = F::sel(south, F::c(self.mirror_turn() as f32) - t, t).named("tn");
         // The lattice basis for the query's `1 - z²`: the last row whose least value it reaches.
         let rows = self.rows();
-        let mut f = rows[0].f.map(c);
-        let mut inv = rows[0].inverse.map(|x| F::c(x as f32));
+        let r0 = &rows[0];
+        let mut f = [c(r0.f[0]), c(r0.f[1])];
+        let inv0 = { #[inline(always)] |j: usize| F::c(r0.inverse[j] as f32) };
+        let mut inv = [inv0(0), inv0(1), inv0(2), inv0(3)];
         for row in &rows[1..] {
             let take = rho2_fixed.ge(F::c(row.least as f32));
-            f = [0, 1].map(|j| F::U::sel(take, c(row.f[j]), f[j]));
-            inv = [0, 1, 2, 3].map(|j| F::sel(take, F::c(row.inverse[j] as f32), inv[j]));
+            let fj = { #[inline(always)] |j: usize| F::U::sel(take, c(row.f[j]), f[j]) };
+            f = [fj(0), fj(1)];
+            let invj = { #[inline(always)] |j: usize| F::sel(take, F::c(row.inverse[j] as f32), inv[j]) };
+            inv = [invj(0), invj(1), invj(2), invj(3)];
         }
         // The lattice point nearest the input, less one step of each vector, offset to
         // convert as non-negative integers.
-        let cell = [0, 1].map(|j| {
+        let cell_of = { #[inline(always)] |j: usize| {
             let x = (t * inv[2 * j] + dz * inv[2 * j + 1]).round();
             (F::c((OFFSET - 1) as f32) + x).to_u()
-        });
+        } };
+        let cell = [cell_of(0), cell_of(1)];
         let corner = cell[0]
             .wrapping_mul(f[0])
             .wrapping_add(cell[1].wrapping_mul(f[1]))
@@ -315,8 +324,8 @@ impl Sfib {
                 // Before the pole: reflect onto the real point `-1 - i`.
                 let i = F::U::sel(c(NEGATIVE - 1).lt(i), c(u32::MAX).wrapping_sub(i), i);
                 let i = F::U::sel(south, last.wrapping_sub(i), i) & last;
-                let p = F::call("fixed_point", i, |i| self.fixed_point(i));
-                let e = (p - aim).map(|x| x.abs().to_u());
+                let p = F::call("fixed_point", i, #[inline(always)] |i| self.fixed_point(i));
+                let e = (p - aim).map(#[inline(always)] |x| x.abs().to_u());
                 let d = sum_of_squares::<F, 3>([e.x, e.y, e.z]).named("d");
                 best = Some(match best {
                     None => (d, i),
@@ -331,6 +340,7 @@ impl Sfib {
     }
 
     /// The two fields of index `i`: its low and high halves.
+    #[inline(always)]
     fn fields<F: Float>(&self, i: F::U) -> V2<F> {
         let h = self.bits / 2;
         V2::new((i & F::U::c((1 << h) - 1)).to_f(), i.shr(h).to_f())
@@ -338,6 +348,7 @@ impl Sfib {
 
     /// The index of the two fields' codes (a sum, not an or: the same bits, and an
     /// interval evaluation keeps a single code a single index).
+    #[inline(always)]
     fn index<F: Float>(&self, codes: V2<F>) -> F::U {
         codes.x.to_u() + codes.y.to_u().shl(self.bits / 2)
     }
@@ -358,6 +369,7 @@ struct Row {
 /// interval over many indices stays inside the trigonometry's domain). The fraction is
 /// the top word of the 64-bit product `i·GOLDEN`, from 32-bit products of 16-bit halves
 /// (every sum below stays under `2^32`), rounded to 24 bits.
+#[inline(always)]
 pub fn longitude<U: Uint>(i: U) -> U {
     let c = U::c;
     let lo = GOLDEN as u32;
@@ -389,24 +401,28 @@ impl Codec for Sfib {
         Domain::Sphere
     }
     /// The chosen index's two fields as a texture fetch returns them (`c/M`).
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let m = self.quants()[0].max_code();
         self.round_codes(v) * F::c(1.0 / m)
     }
     /// The fields re-quantized (`round(p·M)`, exact for a fetched `c/M`), then the
     /// point of their index.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let m = self.quants()[0].max_code();
         self.decode_codes((p * F::c(m)).round())
     }
+    #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: V2<F>) -> V3<F> {
         let i = self.index(codes).named("i");
-        F::call("index_direction", i, |i| self.index_direction(i))
+        F::call("index_direction", i, #[inline(always)] |i| self.index_direction(i))
     }
     /// [`Sfib::encode_index`], which no implementation's rounding latitude can change.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let i = F::call("encode_index", v, |v| self.encode_index(v)).named("i");
+        let i = F::call("encode_index", v, #[inline(always)] |v| self.encode_index(v)).named("i");
         self.fields(i)
     }
 }

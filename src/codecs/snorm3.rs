@@ -79,6 +79,7 @@ impl Family for Snorm3Family {
 impl Snorm3<OneWord> {
     /// snorm×3 in one word, with `bits` per component (5, 8 or 10); an invalid size is
     /// an error listing the allowed ones.
+    #[inline(always)]
     pub fn one_word(bits: u32) -> Result<Self, SpecError> {
         match INFO.check_bits(bits * 3)? {
             48 => Err(SpecError::Invalid(
@@ -89,6 +90,7 @@ impl Snorm3<OneWord> {
     }
 
     /// snorm11_11_10: x and y in 11 bits, z in 10, one 32-bit word.
+    #[inline(always)]
     pub fn snorm11_11_10() -> Self {
         Snorm3::new([11, 11, 10])
     }
@@ -96,6 +98,7 @@ impl Snorm3<OneWord> {
 
 impl Snorm3<TwoWords> {
     /// snorm16×3 in two words (the low 48 bits of an RGBA16_SNORM texel).
+    #[inline(always)]
     pub fn two_words() -> Self {
         Snorm3::new([16; 3])
     }
@@ -127,6 +130,7 @@ pub struct Snorm3<W> {
 }
 
 impl<W> Snorm3<W> {
+    #[inline(always)]
     fn new(bits: [u32; 3]) -> Self {
         Snorm3 {
             bits,
@@ -145,16 +149,19 @@ impl<W: Words> Codec for Snorm3<W> {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         unit_or_z(v)
     }
     /// The all-zero code, the only one with no direction, decodes as +Z.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
         p.normalize_or(V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
     }
     /// Each component `x / |w|` of the canonical input decided portably
     /// ([`crate::codecs::exact`]) against its exactly computed square length.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let q = self.quants();
         let (w, ok) = canonical(v);
@@ -170,25 +177,26 @@ impl<W: Words> Codec for Snorm3<W> {
     /// first, each candidate's direction measured in fixed point. Zero, NaN and infinite
     /// input aim at +Z, whose candidates all point there: the first, `(0, 0, M)`, wins.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let (w, _) = canonical_or_z(v);
         let aim = fixed_target(w, root(fixed_length2(w)), BITS);
         let a = aim.abs();
         let m = a.x.at_least(a.y).at_least(a.z);
         // Each component over the largest in units of 2^-BITS (the largest exactly ONE).
-        let r = a.map(|x| fixed_ratio(x, m, BITS)).named("r");
-        let top = self.bits.iter().copied().min().map_or(0, |b| (1u32 << (b - 1)) - 1);
+        let r = a.map(#[inline(always)] |x| fixed_ratio(x, m, BITS)).named("r");
+        let top = self.bits.iter().copied().min().map_or(0, #[inline(always)] |b| (1u32 << (b - 1)) - 1);
         // The best scale so far and its squared distance.
         let mut best = V2::new(F::c(0.0), F::c(BFN_FAR));
         for t in (top + 1 - bfn_scales(top)..=top).rev() {
             let t = F::c(t as f32);
-            best = F::call("bfn_step", (best, (t, (r, aim))), |(best, (t, (r, aim)))| {
+            best = F::call("bfn_step", (best, (t, (r, aim))), #[inline(always)] |(best, (t, (r, aim)))| {
                 bfn_step(best, t, r, aim)
             })
             .named("best");
         }
         let c = candidate(r, best.x);
-        let signed = |c: F, x: F| F::sel(x.lt(F::c(0.0)), -c, c);
+        let signed = { #[inline(always)] |c: F, x: F| F::sel(x.lt(F::c(0.0)), -c, c) };
         V3::new(signed(c.x, aim.x), signed(c.y, aim.y), signed(c.z, aim.z))
     }
 }
@@ -211,8 +219,9 @@ const BFN_FAR: f32 = 1.0e30;
 /// is `t` exactly. The same value as [`super::fixed_decode::fixed_mul`]`(r, t)`, but
 /// scaled first: `r·2^-BITS` is then the same in every step, and compilers compute it
 /// once instead of once per scale (64 instructions fewer).
+#[inline(always)]
 fn candidate<F: Float>(r: V3<F>, t: F) -> V3<F> {
-    r.map(|x| (x * F::c((1.0 / ONE) as f32) * t).round())
+    r.map(#[inline(always)] |x| (x * F::c((1.0 / ONE) as f32) * t).round())
         .named("c")
 }
 
@@ -220,11 +229,12 @@ fn candidate<F: Float>(r: V3<F>, t: F) -> V3<F> {
 /// direction `c / |c|` in units of `2^-BITS` from the root of its exact square sum, then
 /// its squared distance to `aim`'s magnitudes; `t` replaces the best only if strictly
 /// nearer.
+#[inline(always)]
 fn bfn_step<F: Float>(best: V2<F>, t: F, r: V3<F>, aim: V3<F>) -> V2<F> {
     let c = candidate(r, t);
-    let a = c.map(|x| x.to_u());
+    let a = c.map(#[inline(always)] |x| x.to_u());
     let l = root_of(sum_of_squares::<F, 3>([a.x, a.y, a.z])).at_least(t).named("l");
-    let d = c.map(|x| fixed_ratio(x, l, BITS)).named("d");
+    let d = c.map(#[inline(always)] |x| fixed_ratio(x, l, BITS)).named("d");
     let dist = distance(d, aim.abs()).squared().named("dist");
     let nearer = dist.lt(best.y);
     V2::sel_all(nearer, V2::new(t, dist), best)

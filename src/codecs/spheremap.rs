@@ -55,7 +55,7 @@ impl Family for SpheremapFamily {
         ]
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(
@@ -106,6 +106,7 @@ impl LambertDecoder for SpheremapDecoder {
     /// with `n = (t, -1)`, its literal term first so that no driver regroups the sum),
     /// `xy = (8enc - 4)·sqrt(f)`, `z = 8f - 1`. `f` is limited to the disk (`4f - 1 ≥ 0`), so the square's corners
     /// decode as -Z.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         // The seed's `-enc·enc + enc`, factored as the naga paths' drivers factor it.
         let t = (enc * (V2::splat(F::c(1.0)) - enc)).named("t");

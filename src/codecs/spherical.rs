@@ -1,6 +1,6 @@
 //! Spherical coordinates (survey §2): θ ∈ [0, π] and φ ∈ [-π, π] stored as snorm×2,
 //! `(θ/π·2 - 1, φ/π)`. Trigonometry comes from [`super::trig`].
-//! θ is computed as `atan2(|xy|, z)` rather than `acos(z)`: same angle, but well
+//! θ is computed as `atan2(#[inline(always)] |xy|, z)` rather than `acos(z)`: same angle, but well
 //! conditioned near the poles, where acos loses half its digits.
 
 use super::codec::{Codec, Domain};
@@ -35,7 +35,7 @@ impl Family for SphericalFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(fixed_trig::BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(fixed_trig::BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Spherical { bits: spec.bits() })
@@ -67,10 +67,12 @@ impl Codec for Spherical {
     fn domain(&self) -> Domain {
         Domain::Sphere
     }
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let (theta, phi) = float_angles(self.target(v));
         V2::new(theta * F::c(2.0) - F::c(1.0), phi)
     }
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let theta = ((p.x + F::c(1.0)) * F::c(0.5)).named("theta");
         let st = F::call("sincos_pi", theta, sincos_pi).named("st");
@@ -81,10 +83,11 @@ impl Codec for Spherical {
     /// from [`root_of`]), in units of `2^-23` half turns: functions of the input alone,
     /// each code then one product rounded. Zero, NaN and infinite input give +Z's codes.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let (theta, phi) = fixed_angles(canonical_or_z(v).0);
         let k = F::c((f64::from(self.quants()[0].max_code()) / ONE) as f32);
-        V2::new(theta, phi).map(|a| (a * k).round())
+        V2::new(theta, phi).map(#[inline(always)] |a| (a * k).round())
     }
     /// The nearest of the four codes around the exact parameters by the squared distance
     /// of their fixed-point decodes ([`crate::codecs::fixed_decode`], with
@@ -92,15 +95,16 @@ impl Codec for Spherical {
     /// to the target are far closer than `2^24` units, so their squared distances stay
     /// exact.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
         let (w, _) = canonical_or_z(v);
         let (theta, phi) = fixed_angles(w);
         let k = F::c((f64::from(m) / ONE) as f32);
-        let base = V2::new(theta, phi).map(|a| (a * k).floor()).named("base");
+        let base = V2::new(theta, phi).map(#[inline(always)] |a| (a * k).floor()).named("base");
         let target = fixed_target(w, root(fixed_length2(w)), fixed_trig::BITS);
-        nearest_decoded([q; 2], base, target, |c| {
+        nearest_decoded([q; 2], base, target, #[inline(always)] |c| {
             let theta = (c.x + F::c(m)) * F::c((FINE * 0.5 / f64::from(m)) as f32);
             let phi = c.y * F::c((FINE / f64::from(m)) as f32);
             let st = fixed_trig::sincos_pi(theta.round());
@@ -116,17 +120,19 @@ impl Codec for Spherical {
     }
 }
 
-/// The polar angle `θ = atan2(|xy|, z)` and the azimuth `φ = atan2(y, x)` of a unit
+/// The polar angle `θ = atan2(#[inline(always)] |xy|, z)` and the azimuth `φ = atan2(y, x)` of a unit
 /// `u`, in half turns, from the model's float trigonometry: the float forms' angles.
+#[inline(always)]
 pub(crate) fn float_angles<F: Float>(u: V3<F>) -> (F, F) {
     let rho = u.xy().length_squared().sqrt().named("rho");
-    let theta = F::call("atan2_pi", (rho, u.z), |(y, x)| atan2_pi(y, x)).named("theta");
-    let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
+    let theta = F::call("atan2_pi", (rho, u.z), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("theta");
+    let phi = F::call("atan2_pi", (u.y, u.x), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("phi");
     (theta, phi)
 }
 
 /// `(2θ - 1, φ)` of a canonical `w` in units of `2^-23` half turns, decided in fixed
 /// point.
+#[inline(always)]
 pub(crate) fn fixed_angles<F: Float>(w: V3<F>) -> (F, F) {
     let rho2 = fixed_length2_xy(w);
     let has_rho = rho2.gt(F::c(0.0));

@@ -30,7 +30,7 @@
 //!
 //! The choice is made in integers, like the other precise encoders' ([`super::lattice`]): each
 //! candidate's direction is `d = 2·byte - 255` of its fetched texel (its decode times
-//! 255), the input is `A = ±floor(|w|·2^12)` of the canonical input `w` (largest
+//! 255), the input is `A = ±floor(#[inline(always)] |w|·2^12)` of the canonical input `w` (largest
 //! component in `[2, 4)`), and `sin²` of their angle is compared as `|A×d|²/|d|²`:
 //! `|A×d|²` summed exactly in integers and rounded once, the two ratios compared by two
 //! correctly rounded products ([`Closeness::of_small`]), the fast code first on ties. So
@@ -67,15 +67,13 @@ use super::codec::Domain;
 use super::exact::{canonical_or_z, decided, length2, past_root_ratio, unorm_sqrt_ratio};
 use super::family::{Family, Info, OptDesc, OptKind, Sizes, Table, TableFormat};
 use super::functions::{
-    Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap, fetched_range, function,
+    Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap, fetched_range,
     generic_function, through_table,
 };
 use super::lattice::{Closeness, Measure};
 use super::quant::Quant;
 use super::spec::Spec;
-use crate::model::deviant::Dev;
 use crate::model::enclosure::Encl;
-use crate::model::lanes::F4;
 use crate::model::trace::{Tf, define, trace_module};
 use crate::model::{Float, Lane, Uint, V2, V3};
 use std::sync::{Arc, OnceLock};
@@ -121,14 +119,14 @@ impl Family for SphericalLutFamily {
     /// A precise spec reads its fast spec's tables (same files, same names).
     fn tables(&self, spec: &Spec) -> Vec<Table> {
         let lut = SphericalLut::of(spec);
-        let table = |what: &str, channels: u8, bytes: Vec<u8>| Table {
+        let table = { #[inline(always)] |what: &str, channels: u8, bytes: Vec<u8>| Table {
             stem: format!("{}_{what}", spec.fast().id()),
             width: SIZE as u32,
             height: SIZE as u32,
             channels,
             format: TableFormat::Unorm8,
             bytes,
-        };
+        } };
         vec![
             table("atan", 1, lut.atan().to_vec()),
             table("sincos", 4, lut.sincos().concat()),
@@ -173,7 +171,7 @@ impl Family for SphericalLutFamily {
             ],
             _ => return None,
         };
-        Some(lines.iter().map(|l| l.to_string()).collect())
+        Some(lines.iter().map(#[inline(always)] |l| l.to_string()).collect())
     }
 }
 
@@ -199,7 +197,7 @@ impl SphericalLut {
             SphericalLut::Seed => &SEED,
             SphericalLut::Matched => &MATCHED,
         };
-        cell.get_or_init(|| atan_lut(self))
+        cell.get_or_init(#[inline(always)] || atan_lut(self))
     }
 
     /// The sin/cos table, `SIZE × SIZE` RGBA8 texels (A = 255), rows as [`SphericalLut::atan`].
@@ -210,7 +208,7 @@ impl SphericalLut {
             SphericalLut::Seed => &SEED,
             SphericalLut::Matched => &MATCHED,
         };
-        cell.get_or_init(|| sincos_lut(self))
+        cell.get_or_init(#[inline(always)] || sincos_lut(self))
     }
 
     /// Where the atan table samples texel `i` (a texel's corner, or its centre).
@@ -243,7 +241,7 @@ fn byte(x: f64) -> u8 {
 pub fn atan_lut(lut: SphericalLut) -> Vec<u8> {
     use std::f64::consts::PI;
     (0..SIZE * SIZE)
-        .map(|k| {
+        .map(#[inline(always)] |k| {
             let (x, y) = (lut.atan_at(k % SIZE), lut.atan_at(k / SIZE));
             byte((y.atan2(x) + PI) / (2.0 * PI))
         })
@@ -255,10 +253,10 @@ pub fn atan_lut(lut: SphericalLut) -> Vec<u8> {
 pub fn sincos_lut(lut: SphericalLut) -> Vec<[u8; 4]> {
     use std::f64::consts::PI;
     (0..SIZE * SIZE)
-        .map(|k| {
+        .map(#[inline(always)] |k| {
             let (phi, z) = (PI * lut.sincos_at(k % SIZE), lut.sincos_at(k / SIZE));
             let r = (1.0 - z * z).max(0.0).sqrt();
-            let half = |c: f64| byte(c * 0.5 + 0.5);
+            let half = { #[inline(always)] |c: f64| byte(c * 0.5 + 0.5) };
             [half(phi.cos() * r), half(phi.sin() * r), half(z), 255]
         })
         .collect()
@@ -269,20 +267,22 @@ const FIELDS: [Quant; 2] = [BYTE, BYTE];
 
 /// The atan texel of `v`: per coordinate, `floor(256·(n·½ + ½))` clamped to 255 for the
 /// normalized input's `x` and `y`.
+#[inline(always)]
 pub fn atan_texel<F: Float>(v: V3<F>) -> V2<F::U> {
     let (w, _) = canonical_or_z(v);
     let s = length2(w).named("s");
     let root = s.sqrt();
-    V2::new(texel_of(w.x, s, root), texel_of(w.y, s, root)).map(|t| t.to_u())
+    V2::new(texel_of(w.x, s, root), texel_of(w.y, s, root)).map(#[inline(always)] |t| t.to_u())
 }
 
 /// `min(floor(128·x/sqrt(s) + 128), 255)`: the texel boundary `k = c + 1` is passed
 /// where `x·128 ≥ (c + 1 - 128)·sqrt(s)`, decided by [`past_root_ratio`] from squares,
 /// so the float estimate (a quotient) never decides a texel.
+#[inline(always)]
 fn texel_of<F: Float>(x: F, s: F, root: F) -> F {
     let big2 = (x * x * F::c(16384.0)).named("big2");
     let estimate = (x / root * F::c(128.0) + F::c(128.0)).floor();
-    decided(BYTE, estimate, |c| {
+    decided(BYTE, estimate, #[inline(always)] |c| {
         let k = c - F::c(127.0);
         past_root_ratio(x, big2, k, k * k * s)
     })
@@ -291,6 +291,7 @@ fn texel_of<F: Float>(x: F, s: F, root: F) -> F {
 /// The packed code of `v` with the atan table's fetched value: x = its byte (a fetch's
 /// `c/255` rounds back to `c` under any rounding of the product), y = the unorm8 code of
 /// the normalized input's `z·½ + ½`, nearest, ties up, decided exactly.
+#[inline(always)]
 pub fn encode<F: Float>(v: V3<F>, fetched: F) -> F::U {
     let (w, _) = canonical_or_z(v);
     let s = length2(w);
@@ -302,18 +303,21 @@ pub fn encode<F: Float>(v: V3<F>, fetched: F) -> F::U {
 }
 
 /// The float form: `(fetched, z·½ + ½)` of the normalized input.
+#[inline(always)]
 pub fn encode_float<F: Float>(v: V3<F>, fetched: F) -> V2<F> {
     let u = super::codec::unit_or_z(v);
     V2::new(fetched, (u.z + F::c(1.0)) * F::c(0.5))
 }
 
 /// The sin/cos texel of a code: its two bytes.
+#[inline(always)]
 pub fn sincos_texel<F: Float>(code: F::U) -> V2<F::U> {
     V2::new(code & F::U::c(0xff), code.shr(8) & F::U::c(0xff))
 }
 
 /// The seed's `sclook·2 - 1`, written `(t - ½)·2` (exact for every byte's fetch at
 /// or above ¼, and never contracted into a different rounding).
+#[inline(always)]
 pub fn decode_float<F: Float>(rgb: V3<F>) -> V3<F> {
     (rgb - F::c(0.5)) * F::c(2.0)
 }
@@ -329,8 +333,9 @@ const ANGLE_FIXED: f32 = (1u32 << 12) as f32;
 /// The texel of the precise search's candidate `k` (a larger `k` reads as 8): the code's
 /// bytes moved by `(k mod 3 - 1, k div 3 - 1)`, x wrapping mod 256, y clamped to
 /// `[0, 255]`. All in integers, so every implementation fetches the same texels.
+#[inline(always)]
 pub fn precise_texel<F: Float>(code: F::U, k: F::U) -> V2<F::U> {
-    let c = |v: u32| F::U::c(v);
+    let c = { #[inline(always)] |v: u32| F::U::c(v) };
     let k = F::U::sel(k.lt(c(BLOCK)), k, c(BLOCK - 1));
     // The row, 0 … 2 (dy + 1), and the column, 0 … 2 (dx + 1).
     let row = F::U::sel(k.lt(c(3)), c(0), F::U::sel(k.lt(c(6)), c(1), c(2)));
@@ -340,6 +345,7 @@ pub fn precise_texel<F: Float>(code: F::U, k: F::U) -> V2<F::U> {
 
 /// The code's texel moved by `(col - 1, row - 1)` (`col`, `row` in 0 … 2), x wrapping
 /// mod 256, y clamped to `[0, 255]`.
+#[inline(always)]
 fn moved<U: Uint>(code: U, col: U, row: U) -> V2<U> {
     let x = ((code & U::c(0xff)) + col + U::c(255)) & U::c(0xff);
     // y + row - 1 in [-1, 256], clamped: below 1 is row 0 at y = 0.
@@ -349,6 +355,7 @@ fn moved<U: Uint>(code: U, col: U, row: U) -> V2<U> {
 }
 
 /// The texel's code, `x | y << 8`.
+#[inline(always)]
 fn code_of<U: Uint>(t: V2<U>) -> U {
     t.x | t.y.shl(8)
 }
@@ -360,6 +367,7 @@ pub type Block<F> = (
     (V3<F>, (V3<F>, (V3<F>, (V3<F>, (V3<F>, (V3<F>, (V3<F>, V3<F>))))))),
 );
 
+#[inline(always)]
 fn block_array<F: Copy>(b: Block<F>) -> [V3<F>; 9] {
     let (s0, (s1, (s2, (s3, (s4, (s5, (s6, (s7, s8)))))))) = b;
     [s0, s1, s2, s3, s4, s5, s6, s7, s8]
@@ -369,22 +377,23 @@ fn block_array<F: Copy>(b: Block<F>) -> [V3<F>; 9] {
 /// texel `s[k]` is nearest the input in angle ([`Closeness::of_small`] of `2·byte - 255`
 /// against the input at [`ANGLE_FIXED`]), `code` (k = 4) first on ties; `code` for
 /// invalid input.
+#[inline(always)]
 pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> F::U {
     let s = block_array(s);
     let (w, ok) = canonical_or_z(v);
     let a = w
-        .map(|x| {
+        .map(#[inline(always)] |x| {
             let m = (x.abs() * F::c(ANGLE_FIXED)).floor().to_u();
             F::U::sel(x.lt(F::c(0.0)), F::U::c(0).wrapping_sub(m), m)
         })
         .named("afix");
-    let direction = |t: V3<F>| {
-        t.map(|t| {
+    let direction = { #[inline(always)] |t: V3<F>| {
+        t.map(#[inline(always)] |t| {
             let b = BYTE.quantize(t).to_u();
             (b + b).wrapping_sub(F::U::c(255))
         })
-    };
-    let candidate = |k: u32| {
+    } };
+    let candidate = { #[inline(always)] |k: u32| {
         // The block's centre is the code itself.
         let code = if k == 4 {
             code & F::U::c(0xffff)
@@ -392,7 +401,7 @@ pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> F::U {
             code_of(moved(code, F::U::c(k % 3), F::U::c(k / 3)))
         };
         (code, Closeness::<F>::of_small(a, direction(s[k as usize])))
-    };
+    } };
     let (first, mut best_c) = candidate(4);
     let mut best = first;
     for k in [0, 1, 2, 3, 5, 6, 7, 8] {
@@ -406,8 +415,9 @@ pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> F::U {
 
 /// The precise float form: the chosen code's bytes as `c/255`, which an RG8 unorm render
 /// target stores as exactly that code.
+#[inline(always)]
 pub fn encode_float_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> V2<F> {
-    let chosen = F::call("encode", (v, (code, s)), |(v, (c, s))| encode_precise(v, c, s));
+    let chosen = F::call("encode", (v, (code, s)), #[inline(always)] |(v, (c, s))| encode_precise(v, c, s));
     let chosen: V2<F> = super::codec::unpack(&FIELDS, chosen);
     super::codec::dequantize(&FIELDS, chosen)
 }
@@ -417,74 +427,66 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
     // The fast code's function: the packed encoder of a fast spec, the search's first
     // step in a precise one.
     let fast_name = if precise { "encode_fast" } else { "encode" };
-    let module = trace_module(|| {
-        define("decode_float", &["rgb"], |rgb: V3<Tf>| decode_float(rgb));
-        define("sincos_texel", &["code"], |c: <Tf as Float>::U| {
+    let module = trace_module(#[inline(always)] || {
+        define("decode_float", &["rgb"], #[inline(always)] |rgb: V3<Tf>| decode_float(rgb));
+        define("sincos_texel", &["code"], #[inline(always)] |c: <Tf as Float>::U| {
             sincos_texel::<Tf>(c)
         });
-        define("atan_texel", &["v"], |v: V3<Tf>| atan_texel(v));
+        define("atan_texel", &["v"], #[inline(always)] |v: V3<Tf>| atan_texel(v));
         if !precise {
-            define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
+            define("encode_float", &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| {
                 encode_float(v, a)
             });
         }
-        define(fast_name, &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
+        define(fast_name, &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| encode(v, a));
         if precise {
             type U = <Tf as Float>::U;
-            define("precise_texel", &["code", "k"], |(c, k): (U, U)| {
+            define("precise_texel", &["code", "k"], #[inline(always)] |(c, k): (U, U)| {
                 precise_texel::<Tf>(c, k)
             });
             let names = ["v", "code", "s0", "s1", "s2", "s3", "s4", "s5", "s6", "s7", "s8"];
-            define("encode", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
+            define("encode", &names, #[inline(always)] |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
                 encode_precise(v, c, s)
             });
-            define("encode_float", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
+            define("encode_float", &names, #[inline(always)] |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
                 encode_float_precise(v, c, s)
             });
         }
     });
-    let texel = function(
+    let texel = generic_function!(
         "atan_texel",
         Role::LutTexel,
         Inputs::Vectors,
-        |v: V3<f32>| atan_texel(v),
-        |v: V3<Dev>| atan_texel(v),
-        |v: V3<F4>| atan_texel(v),
+        <F> [] |v: V3<F>| atan_texel(v)
     );
     let with_atan = Inputs::VectorsWith(fetch_atan(lut));
-    let enc = function(
+    let enc = generic_function!(
         fast_name,
         Role::Encode,
         with_atan.clone(),
-        |(v, a): (V3<f32>, f32)| encode(v, a),
-        |(v, a): (V3<Dev>, Dev)| encode(v, a),
-        |(v, a): (V3<F4>, F4)| encode(v, a),
+        <F> [] |va: (V3<F>, F)| encode(va.0, va.1)
     );
-    let sincos = function(
+    let sincos = generic_function!(
         "sincos_texel",
         Role::LutTexel,
         Inputs::Codes(FIELDS.to_vec()),
-        |c: u32| sincos_texel::<f32>(c),
-        |c: crate::model::deviant::DevU| sincos_texel::<Dev>(c),
-        |c: crate::model::lanes::U4| sincos_texel::<F4>(c),
+        <F> [] |c: <F as Float>::U| sincos_texel::<F>(c)
     );
-    let mut dec_float = function(
+    let mut dec_float = generic_function!(
         "decode_float",
         Role::DecodeFloat,
         Inputs::FloatCodes(vec![BYTE; 3]),
-        |rgb: V3<f32>| decode_float(rgb),
-        |rgb: V3<Dev>| decode_float(rgb),
-        |rgb: V3<F4>| decode_float(rgb),
+        <F> [] |rgb: V3<F>| decode_float(rgb)
     );
     dec_float.enclose = Some(Enclose {
-        eval: Arc::new(|r: &[(i64, i64)]| {
-            let rgb = V3::from_array(std::array::from_fn(|i| fetched_range(BYTE, r[i])));
+        eval: Arc::new(#[inline(always)] |r: &[(i64, i64)]| {
+            let rgb = V3::from_array(std::array::from_fn(#[inline(always)] |i| fetched_range(BYTE, r[i])));
             decode_float::<Encl>(rgb).to_array().to_vec()
         }),
         whole_field: None,
         unread: &[],
     });
-    let atan_lookup: WordsMap = Arc::new(move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]);
+    let atan_lookup: WordsMap = Arc::new(#[inline(always)] move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]);
     let fast_cpu = through_table(
         "encode",
         Role::Encode,
@@ -499,7 +501,7 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         Role::Decode,
         Inputs::Codes(FIELDS.to_vec()),
         &sincos,
-        Arc::new(move |t: &[u32]| sincos_fetch(lut, t)),
+        Arc::new(#[inline(always)] move |t: &[u32]| sincos_fetch(lut, t)),
         &dec_float,
         false,
     );
@@ -509,13 +511,11 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         functions.extend([texel, enc, p.texel, p.encode_float, p.encode]);
         vec![p.cpu_encode, p.cpu_encode_float, dec_cpu]
     } else {
-        let enc_float = function(
+        let enc_float = generic_function!(
             "encode_float",
             Role::EncodeFloat,
             with_atan,
-            |(v, a): (V3<f32>, f32)| encode_float(v, a),
-            |(v, a): (V3<Dev>, Dev)| encode_float(v, a),
-            |(v, a): (V3<F4>, F4)| encode_float(v, a),
+            <F> [] |va: (V3<F>, F)| encode_float(va.0, va.1)
         );
         let enc_float_cpu = through_table(
             "encode_float",
@@ -567,7 +567,7 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
         words: 1 + 3 * BLOCK as usize,
         of: {
             let block = block.clone();
-            Arc::new(move |v: &[u32]| {
+            Arc::new(#[inline(always)] move |v: &[u32]| {
                 let mut code = [0u32];
                 fast(v, &mut code);
                 block(&code)
@@ -587,11 +587,11 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
         <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_float_precise(x.0, x.1.0, x.1.1)
     );
     // What a shader runs: the fast code's two parts, the block's nine texels, the search.
-    let chained = |name: &'static str, role: Role, last: &Function| {
+    let chained = { #[inline(always)] |name: &'static str, role: Role, last: &Function| {
         let mut cpu = through_table(name, role, Inputs::Vectors, fast_cpu, block.clone(), last, true);
         cpu.parts = [&fast_cpu.parts[..], &["precise_texel"; BLOCK as usize], &[name]].concat();
         cpu
-    };
+    } };
     Precise {
         cpu_encode: chained("encode", Role::Encode, &search),
         cpu_encode_float: chained("encode_float", Role::EncodeFloat, &search_float),
@@ -604,7 +604,7 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
 /// A code's words → the code and the sin/cos table's `.rgb` at each `precise_texel(code,
 /// k)`, as a unorm8 fetch returns them.
 fn block_fetch(lut: SphericalLut) -> WordsMap {
-    Arc::new(move |c: &[u32]| {
+    Arc::new(#[inline(always)] move |c: &[u32]| {
         let mut out = vec![c[0]];
         for k in 0..BLOCK {
             let t = precise_texel::<f32>(c[0], k);
@@ -629,7 +629,7 @@ fn atan_fetch(lut: SphericalLut, t: &[u32]) -> f32 {
 /// The sin/cos table's `.rgb` at the texel `t = [x, y]`, as words.
 fn sincos_fetch(lut: SphericalLut, t: &[u32]) -> Vec<u32> {
     let texel = lut.sincos()[t[1] as usize * SIZE + t[0] as usize];
-    texel[..3].iter().map(|&c| fetch(c).to_bits()).collect()
+    texel[..3].iter().map(#[inline(always)] |&c| fetch(c).to_bits()).collect()
 }
 
 /// The model's own fetch of the atan table for a vector (its words): what the verify
@@ -638,8 +638,8 @@ fn fetch_atan(lut: SphericalLut) -> Extra {
     Extra {
         name: "the atan table's value at atan_texel(v)",
         words: 1,
-        of: Arc::new(move |v: &[u32]| {
-            let t = atan_texel::<f32>(V3::from_array(std::array::from_fn(|i| f32::from_bits(v[i]))));
+        of: Arc::new(#[inline(always)] move |v: &[u32]| {
+            let t = atan_texel::<f32>(V3::from_array(std::array::from_fn(#[inline(always)] |i| f32::from_bits(v[i]))));
             vec![atan_fetch(lut, &[t.x, t.y]).to_bits()]
         }),
     }

@@ -36,7 +36,7 @@ impl Family for SphericalZFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, SphericalZ { bits: spec.bits() })
@@ -66,6 +66,7 @@ impl SphericalZ {
     /// of `2^-23` ([`fixed_trig::atan2_pi`], a function of the input alone) is coded by
     /// [`fixed_trig::angle_code`]. The height `w.z / sqrt(s)` is decided by
     /// [`unorm_sqrt_ratio`].
+    #[inline(always)]
     fn codes<F: Float>(&self, w: V3<F>, s: F, offset: f32) -> V2<F> {
         let q = self.field();
         let phi = fixed_trig::angle_code(q, fixed_trig::atan2_pi(w.y, w.x), offset);
@@ -77,16 +78,17 @@ impl SphericalZ {
     /// product floored, `sqrt(1 - z²)` by [`fixed_root`], the
     /// azimuth's sine and cosine from [`fixed_trig::sincos_pi`] (units of `2^-24`), each
     /// product with the root rounded to a unit.
+    #[inline(always)]
     fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
         let m = f64::from(self.field().max_code());
         let one = F::c(ONE as f32);
-        let centred = |c: F| c * F::c(2.0) - F::c(m as f32);
+        let centred = { #[inline(always)] |c: F| c * F::c(2.0) - F::c(m as f32) };
         let z = fixed(centred(c.y), ONE / m).named("z");
         let rest = (one - fixed_square(z)).at_least(F::c(0.0));
         let r = fixed_root(rest * one).named("r");
         let sc = fixed_trig::sincos_pi(fixed(centred(c.x), fixed_trig::FINE / m));
         let scale = F::c((1.0 / fixed_trig::FINE) as f32);
-        let xy = V2::new(sc.y, sc.x).map(|a| (a * r * scale).round());
+        let xy = V2::new(sc.y, sc.x).map(#[inline(always)] |a| (a * r * scale).round());
         V3::from_xy(xy, z)
     }
 }
@@ -102,13 +104,15 @@ impl Codec for SphericalZ {
         Domain::Sphere
     }
     /// `((atan2(y, x)/π, z) + 1)·0.5` of the normalized input, as the seed writes it.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = self.target(v);
-        let phi = F::call("atan2_pi", (u.y, u.x), |(y, x)| atan2_pi(y, x)).named("phi");
+        let phi = F::call("atan2_pi", (u.y, u.x), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("phi");
         (V2::new(phi, u.z) + F::c(1.0)) * F::c(0.5)
     }
     /// `((cos φ, sin φ)·sqrt(1 - z²), z)` with `φ = enc.x·2 - 1` half turns and
     /// `z = enc.y·2 - 1` (`1 - z²` as `(1 - z)(1 + z)`, floored at 0).
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let p = ((enc - F::c(0.5)) * F::c(2.0)).named("p");
         let sp = F::call("sincos_pi", p.x, sincos_pi).named("sp");
@@ -120,6 +124,7 @@ impl Codec for SphericalZ {
     }
     /// The codes of [`SphericalZ::codes`] at `c + ½` of the canonical input.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let (w, _) = canonical_or_z(v);
         self.codes(w, length2(w), 0.5)
@@ -128,11 +133,12 @@ impl Codec for SphericalZ {
     /// [`Codec::round_codes`]' codes) by the squared distance of their fixed-point
     /// decodes. The azimuth wraps at ±π, where the search does not look across.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let (w, _) = canonical_or_z(v);
         let s = fixed_length2(w);
         let base = self.codes(w, s, 1.0).named("base");
         let target = fixed_target(w, root(s), BITS);
-        nearest_decoded([self.field(); 2], base, target, |c| self.fixed_direction(c))
+        nearest_decoded([self.field(); 2], base, target, #[inline(always)] |c| self.fixed_direction(c))
     }
 }

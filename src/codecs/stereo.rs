@@ -47,7 +47,7 @@ impl Family for StereoScaledFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(
@@ -89,16 +89,17 @@ pub const DEFAULT_SCALE: f32 = 1.7777;
 impl StereoScaled {
     /// The codes of `p` (not -Z; see [`Codec::round_codes`]) at boundaries `c + offset`: `½` rounds to the nearest code,
     /// `1` floors.
+    #[inline(always)]
     fn codes<F: Float>(&self, p: &OnePlusZ<F>, offset: f32) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
         let k = F::c((f64::from(m) * 0.5 / f64::from(self.scale)) as f32);
-        p.w.xy().map(|x| {
+        p.w.xy().map(#[inline(always)] |x| {
             // The literal last: drivers move a literal factor outwards (NIR's
             // constant reassociation), which would regroup `x·K·b`.
             let t = (x * p.b * k).named("t");
             let estimate = (t / p.a + F::c(m * 0.5)).round();
-            decided(q, estimate, |c| one_if(t.ge((c - F::c(m * 0.5 - offset)) * p.a)))
+            decided(q, estimate, #[inline(always)] |c| one_if(t.ge((c - F::c(m * 0.5 - offset)) * p.a)))
         })
     }
 
@@ -106,6 +107,7 @@ impl StereoScaled {
     /// with `t = 2c - M` and `K = M / scale`, the direction is `(2K·t, K² - |t|²)` over
     /// `K² + |t|²`, each quarter of them an exact integer plus a constant, each quotient
     /// decided by [`fixed_ratio`].
+    #[inline(always)]
     fn fixed_direction<F: Float>(&self, c: V2<F>) -> V3<F> {
         let m = f64::from(self.quants()[0].max_code());
         let k = m / f64::from(self.scale);
@@ -115,7 +117,7 @@ impl StereoScaled {
         let den = (quarter + F::c((k * k * 0.25 + 0.5) as f32)).named("den");
         let z = F::c((k * k * 0.25 - 0.5) as f32) - quarter;
         let xy = t * F::c((k * 0.5) as f32);
-        V3::from_xy(xy, z).map(|n| fixed_ratio(n, den, BITS))
+        V3::from_xy(xy, z).map(#[inline(always)] |n| fixed_ratio(n, den, BITS))
     }
 }
 
@@ -132,13 +134,14 @@ impl Codec for StereoScaled {
     /// `w.xy·b / a · (0.5/scale) + 0.5` from the same canonical input, length and
     /// `1 + z` as [`Codec::round_codes`] (so the float form and the packed code agree to a
     /// few ULP, and `1 + z` does not cancel near -Z), clamped to the square.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let p = OnePlusZ::of(v);
         // `/ scale * 0.5` as one literal: drivers fold literal multiply chains anyway.
         let enc = (p.w.xy() * p.b / p.a * F::c(0.5 / self.scale) + F::c(0.5)).named("enc");
         // Clamp to the square (NaN from the pole, where a = 0, goes to 0).
         let q = self.quants();
-        let enc = enc.map(|x| q[0].clamp(x));
+        let enc = enc.map(#[inline(always)] |x| q[0].clamp(x));
         V2::sel_all(p.ok, enc, V2::splat(F::c(0.5)))
     }
     /// `x / (1 + z)` of the canonical input is `w.x·b / a` ([`crate::codecs::exact::one_plus_z`], with the
@@ -148,6 +151,7 @@ impl Codec for StereoScaled {
     /// portably ([`crate::codecs::exact`]). -Z, the projection's pole, encodes as code
     /// (0, 0), a corner, the nearest codes to it.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let m = self.quants()[0].max_code();
         let p = OnePlusZ::of(v);
@@ -159,6 +163,7 @@ impl Codec for StereoScaled {
     /// of their fixed-point decodes ([`crate::codecs::fixed_decode`]); -Z encodes as
     /// (0, 0), like the fast encoder.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         let q = self.quants()[0];
         let m = q.max_code();
@@ -167,7 +172,7 @@ impl Codec for StereoScaled {
         let s = p.off_pole();
         let base = self.codes(&s, 1.0).named("base");
         let target = fixed_target(s.w, s.l, BITS);
-        let best = nearest_decoded([q; 2], base, target, |c| self.fixed_direction(c));
+        let best = nearest_decoded([q; 2], base, target, #[inline(always)] |c| self.fixed_direction(c));
         let codes = V2::sel_all(p.at_pole(), V2::splat(F::c(0.0)), best);
         V2::sel_all(p.ok, codes, V2::splat(F::c((m + 1.0) * 0.5)))
     }
@@ -176,6 +181,7 @@ impl Codec for StereoScaled {
     /// map with both numerators computed, so every target divides exactly. `enc·2s - s` is
     /// written `(enc - 0.5)·2s`: after the packed decoder's `c·(1/M)` a second literal
     /// multiply would be folded into one by the driver.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let s = self.scale;
         let p = ((enc - F::c(0.5)) * F::c(2.0 * s)).named("p");

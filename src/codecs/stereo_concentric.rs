@@ -40,6 +40,7 @@ pub type StereoConcentric = Concentric<HemiStereo>;
 impl StereoConcentric {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
+    #[inline(always)]
     pub fn new(bits: u32) -> Result<Self, SpecError> {
         Concentric::with(&INFO, bits)
     }

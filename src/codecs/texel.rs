@@ -70,6 +70,7 @@ impl Layout {
 
     /// The texel of the parameters' channel values `x`, `y` (codes, or values in
     /// `[0, 1]`), `z` (rxgb's blue) and the value of a full channel, `one`.
+    #[inline(always)]
     fn texel<F: Float>(self, x: F, y: F, z: F, one: F) -> V4<F> {
         let zero = F::c(0.0);
         let t = match self {
@@ -82,6 +83,7 @@ impl Layout {
     }
 
     /// The parameters' channels of a fetched texel.
+    #[inline(always)]
     fn read<F: Float>(self, t: V4<F>) -> V2<F> {
         let x = match self {
             Layout::Rg => t.x,
@@ -193,6 +195,7 @@ pub struct Texel<C> {
 
 impl<C: TexelCodec> Texel<C> {
     /// The texel of the codes `c` and, for rxgb, the input's `z` as a code.
+    #[inline(always)]
     fn codes<F: Float>(&self, c: V2<F>, v: V3<F>) -> V4<F> {
         let z = if self.layout == Layout::Rxgb {
             z_code(v)
@@ -205,6 +208,7 @@ impl<C: TexelCodec> Texel<C> {
 
 /// The unorm8 code of `z·½ + ½` of the input's unit direction on the hemisphere, decided
 /// exactly ([`unorm_sqrt_ratio`]); input without a direction there stands in as +Z (255).
+#[inline(always)]
 fn z_code<F: Float>(v: V3<F>) -> F {
     let (w, _) = canonical_or_z(v);
     let (h, _) = canonical_or_z(above_horizon(w));
@@ -224,8 +228,12 @@ impl<C: TexelCodec> Codec for Texel<C> {
     }
     /// The texel a render target should hold: `p·½ + ½` of the codec's parameters,
     /// rxgb's blue `z·½ + ½` of the input's direction, full channels 1.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V4<F> {
-        let half = |x: F| F::c(0.5) + x * F::c(0.5);
+        let half = {
+            #[inline(always)]
+            |x: F| F::c(0.5) + x * F::c(0.5)
+        };
         let p = self.inner.params2(v).named("p");
         let z = if self.layout == Layout::Rxgb {
             half(self.inner.target(v).z)
@@ -236,11 +244,15 @@ impl<C: TexelCodec> Codec for Texel<C> {
     }
     /// The parameters `2t - 1` of the texel's channels (`t·2` is exact, so a fused
     /// multiply-add computes the same), then the codec's decode.
+    #[inline(always)]
     fn direction<F: Float>(&self, t: V4<F>) -> V3<F> {
         let p = self
             .layout
             .read(t)
-            .map(|x| x * F::c(2.0) - F::c(1.0))
+            .map(
+                #[inline(always)]
+                |x| x * F::c(2.0) - F::c(1.0),
+            )
             .named("p");
         self.inner.direction2(p)
     }
@@ -248,11 +260,13 @@ impl<C: TexelCodec> Codec for Texel<C> {
         self.layout.unread()
     }
     const EXACT_ROUNDING: bool = C::EXACT_ROUNDING;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V4<F> {
         let c = self.inner.round_in(CHANNEL, v).named("c");
         self.codes(c, v)
     }
     const EXACT_SEARCH: bool = C::EXACT_SEARCH;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V4<F> {
         let c = self.inner.precise_in(CHANNEL, v).named("c");
         self.codes(c, v)
@@ -261,7 +275,11 @@ impl<C: TexelCodec> Codec for Texel<C> {
         (self.layout == Layout::Xra).then_some("encode_dxt1")
     }
     /// xra's DXT1 texel: x in R and A = 1, the DXT5 texel with R and A swapped.
+    #[inline(always)]
     fn alternate_codes<F: Float>(&self, c: V4<F>) -> V4<F> {
-        V4::build(|i| c.lane([3, 1, 2, 0][i]))
+        V4::build(
+            #[inline(always)]
+            |i| c.lane([3, 1, 2, 0][i]),
+        )
     }
 }

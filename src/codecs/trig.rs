@@ -15,6 +15,7 @@ pub const ATAN2_PI_MAX_ERROR: f64 = 2.0e-7;
 pub const SINCOS_PI_MAX_ERROR: f64 = 2.5e-7;
 
 /// `c[0] + z·(c[1] + z·(...))`, evaluated as written.
+#[inline(always)]
 fn horner<F: Float>(z: F, coeffs: &[f64]) -> F {
     let mut acc = F::c(*coeffs.last().unwrap() as f32);
     for c in coeffs.iter().rev().skip(1) {
@@ -34,14 +35,21 @@ pub fn factorial(n: i32) -> f64 {
 /// the powers and factorials would cost more than the polynomial.
 pub fn atan_series() -> &'static [f64] {
     static C: OnceLock<Vec<f64>> = OnceLock::new();
-    C.get_or_init(|| {
-        (0..10)
-            .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
-            .collect()
-    })
+    C.get_or_init(
+        #[inline(always)]
+        || {
+            (0..10)
+                .map(
+                    #[inline(always)]
+                    |k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64,
+                )
+                .collect()
+        },
+    )
 }
 
 /// atan(z) for |z| ≤ tan(π/8), by [`atan_series`].
+#[inline(always)]
 fn atan_small<F: Float>(z: F) -> F {
     let z2 = (z * z).named("z2");
     z * horner(z2, atan_series())
@@ -51,6 +59,7 @@ fn atan_small<F: Float>(z: F) -> F {
 /// `atan2_pi(-0, -1) = 1`); `atan2_pi(0, 0) = 0`. Tiny operands are scaled up before
 /// the division, so no input gives NaN, even on an implementation that flushes denormals
 /// (which may then read denormal operands as zeros).
+#[inline(always)]
 pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
     let ax = x.abs();
     let ay = y.abs();
@@ -73,6 +82,7 @@ pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
 
 /// (sin(π·t), cos(π·t)) for t in [-1, 1], by range reduction to [0, 1/4] and Taylor
 /// polynomials in t (through t^9 for sine, t^10 for cosine).
+#[inline(always)]
 pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let a = t.abs();
     // cos(π(1-a)) = -cos(πa), sin(π(1-a)) = sin(πa)
@@ -91,20 +101,33 @@ pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
 
 /// `(sin(π·c), cos(π·c))` for `|c| ≤ 1/4` by the Taylor polynomials in `c` (through
 /// `c^9` for sine, `c^10` for cosine), with no branch.
+#[inline(always)]
 fn series_quarter<F: Float>(c: F) -> V2<F> {
     let c2 = (c * c).named("c2");
     static SIN: OnceLock<Vec<f64>> = OnceLock::new();
     static COS: OnceLock<Vec<f64>> = OnceLock::new();
-    let sin_coeffs = SIN.get_or_init(|| {
-        (0..5)
-            .map(|k| (-1f64).powi(k) * PI.powi(2 * k + 1) / factorial(2 * k + 1))
-            .collect()
-    });
-    let cos_coeffs = COS.get_or_init(|| {
-        (0..6)
-            .map(|k| (-1f64).powi(k) * PI.powi(2 * k) / factorial(2 * k))
-            .collect()
-    });
+    let sin_coeffs = SIN.get_or_init(
+        #[inline(always)]
+        || {
+            (0..5)
+                .map(
+                    #[inline(always)]
+                    |k| (-1f64).powi(k) * PI.powi(2 * k + 1) / factorial(2 * k + 1),
+                )
+                .collect()
+        },
+    );
+    let cos_coeffs = COS.get_or_init(
+        #[inline(always)]
+        || {
+            (0..6)
+                .map(
+                    #[inline(always)]
+                    |k| (-1f64).powi(k) * PI.powi(2 * k) / factorial(2 * k),
+                )
+                .collect()
+        },
+    );
     let s = (c * horner(c2, sin_coeffs)).named("s");
     let co = horner(c2, cos_coeffs).named("co");
     V2::new(s, co)
@@ -114,6 +137,7 @@ fn series_quarter<F: Float>(c: F) -> V2<F> {
 /// reduction: [`sincos_pi`]'s polynomials on their own. Without a branch there is no
 /// point where an argument's rounding can pick another formula, which is what a
 /// decoder whose angle may land exactly on `±1/4` needs ([`super::concentric`]).
+#[inline(always)]
 pub fn sincos_quarter_pi<F: Float>(t: F) -> V2<F> {
     series_quarter(t)
 }
@@ -126,19 +150,26 @@ pub fn quarter_turn_series(sine: bool) -> &'static [f64] {
     static SIN: OnceLock<Vec<f64>> = OnceLock::new();
     static COS: OnceLock<Vec<f64>> = OnceLock::new();
     let h = PI / 2.0;
-    (if sine { &SIN } else { &COS }).get_or_init(|| {
-        (0..9)
-            .map(|k| {
-                let n = 2 * k + i32::from(sine);
-                (-1f64).powi(k) * h.powi(n) / factorial(n)
-            })
-            .collect()
-    })
+    (if sine { &SIN } else { &COS }).get_or_init(
+        #[inline(always)]
+        || {
+            (0..9)
+                .map(
+                    #[inline(always)]
+                    |k| {
+                        let n = 2 * k + i32::from(sine);
+                        (-1f64).powi(k) * h.powi(n) / factorial(n)
+                    },
+                )
+                .collect()
+        },
+    )
 }
 
 /// `(sin(π·r/2)/r, cos(π·r/2))` of `r = sqrt(q)` for `0 ≤ q ≤ 2`, by
 /// [`quarter_turn_series`]: the decode of an azimuthal equidistant disk point `p` is
 /// `(p·s, c)` with `q = |p|²`, division-free and exact at the centre.
+#[inline(always)]
 pub fn sinc_cos_quarter<F: Float>(q: F) -> V2<F> {
     let s = horner(q, quarter_turn_series(true)).named("sinc");
     let c = horner(q, quarter_turn_series(false)).named("cosq");
@@ -149,13 +180,13 @@ pub fn sinc_cos_quarter<F: Float>(q: F) -> V2<F> {
 pub fn helper_doc(name: &str) -> Option<String> {
     match name {
         "atan2_pi" => Some(format!(
-            "atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ {ATAN2_PI_MAX_ERROR:e}); signed zeros count as positive."
+            "atan2(y, x) / π in [-1, 1] from exact operations only (#[inline(always)] |error| ≤ {ATAN2_PI_MAX_ERROR:e}); signed zeros count as positive."
         )),
         "sincos_pi" => Some(format!(
-            "(sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
+            "(sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (#[inline(always)] |error| ≤ {SINCOS_PI_MAX_ERROR:e})."
         )),
         "sincos_quarter_pi" => Some(format!(
-            "(sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
+            "(sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (#[inline(always)] |error| ≤ {SINCOS_PI_MAX_ERROR:e})."
         )),
         _ => None,
     }

@@ -51,20 +51,23 @@ impl Codec for Unorm3 {
         Domain::Sphere
     }
     /// `n·0.5 + 0.5` of the normalized input.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         self.target(v) * F::c(0.5) + F::c(0.5)
     }
     /// `p / sqrt(p·p)` of `p = enc·2 - 1`.
+    #[inline(always)]
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc - F::c(0.5)) * F::c(2.0)).named("p");
         p / p.length_squared().sqrt()
     }
     /// Each component `w / |w|` of the canonical input decided by [`unorm_sqrt_ratio`].
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let (w, _) = canonical_or_z(v);
         let s = length2(w);
         let root = s.sqrt();
-        w.map(|x| unorm_sqrt_ratio(Quant::Unorm(8), x, s, root, 0.5))
+        w.map(#[inline(always)] |x| unorm_sqrt_ratio(Quant::Unorm(8), x, s, root, 0.5))
     }
 }

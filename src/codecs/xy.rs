@@ -35,7 +35,7 @@ impl Family for XyFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         texel::validate(spec)
@@ -77,10 +77,12 @@ impl Codec for Xy {
     fn domain(&self) -> Domain {
         Domain::Hemisphere
     }
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.target(v).xy()
     }
     /// Codes outside the unit disk decode to `(x, y, 0)`, which is longer than 1.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let d = p.length_squared();
         let d = F::sel(d.lt(F::c(1.0)), d, F::c(1.0)).named("d");
@@ -90,6 +92,7 @@ impl Codec for Xy {
     /// (`z ← max(z, 0)`), decided portably ([`crate::codecs::exact`]); `-Z` projects to
     /// zero and encodes as +Z, like invalid input.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.round_in(self.quants()[0], v)
     }
@@ -99,30 +102,35 @@ impl Codec for Xy {
     /// (`z ← max(z, 0)`, then brought back to canonical form); `-Z` projects to zero
     /// and encodes as +Z, like invalid input.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.precise_in(self.quants()[0], v)
     }
 }
 
 impl TexelCodec for Xy {
+    #[inline(always)]
     fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.params(v)
     }
+    #[inline(always)]
     fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
         self.direction(p)
     }
+    #[inline(always)]
     fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let (w, ok) = canonical(v);
         let s = length2(above_horizon(w));
-        let c = w.xy().map(|x| sqrt_ratio_code(q, x, s));
+        let c = w.xy().map(#[inline(always)] |x| sqrt_ratio_code(q, x, s));
         V2::sel_all(ok.and(s.gt(F::c(0.0))), c, V2::splat(F::c(zero_code(q))))
     }
+    #[inline(always)]
     fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let (w, ok) = canonical_or_z(v);
         let (h, up) = canonical_or_z(above_horizon(w));
         let l = root(fixed_length2(h));
-        let base = h.xy().map(|x| floor_ratio_code(q, x, l)).named("base");
-        let best = nearest_decoded([q; 2], base, fixed_target(h, l, BITS), |c| Self::fixed_direction(q, c));
+        let base = h.xy().map(#[inline(always)] |x| floor_ratio_code(q, x, l)).named("base");
+        let best = nearest_decoded([q; 2], base, fixed_target(h, l, BITS), #[inline(always)] |c| Self::fixed_direction(q, c));
         V2::sel_all(ok.and(up), best, V2::splat(F::c(zero_code(q))))
     }
 }
@@ -132,16 +140,17 @@ impl Xy {
     /// ([`crate::codecs::fixed_decode`]): of their signed values `s` ([`signed_code`]),
     /// `(s, sqrt(M² - |s|²)) / M` (z = 0 outside the disk), from exact integers and one
     /// [`fixed_root`] of one product.
+    #[inline(always)]
     fn fixed_direction<F: Float>(q: Quant, c: V2<F>) -> V3<F> {
         let m = q.max_code();
-        let c = c.map(|x| signed_code(q, x));
+        let c = c.map(#[inline(always)] |x| signed_code(q, x));
         let k = ONE / f64::from(m);
-        let a = c.map(|x| x.abs().to_u());
+        let a = c.map(#[inline(always)] |x| x.abs().to_u());
         let sq = a.x.wrapping_mul(a.x) + a.y.wrapping_mul(a.y);
         let m2 = F::U::c((m as u32) * (m as u32));
         let inside = sq.lt(m2);
         let r = float_of::<F>(F::U::sel(inside, m2.wrapping_sub(sq), F::U::c(0))).named("r");
         let z = fixed_root(r * F::c((k * k) as f32));
-        V3::from_xy(c.map(|x| fixed(x, k)), z)
+        V3::from_xy(c.map(#[inline(always)] |x| fixed(x, k)), z)
     }
 }

@@ -40,7 +40,7 @@ impl Family for XySignZFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, XySignZ { bits: spec.bits() })
@@ -70,10 +70,11 @@ impl XySignZ {
     /// component `c/M` one rounded product floored, `q = x² + y²` from squares rounded
     /// to a unit (an exact sum), `z = sqrt(1 - q)` by [`fixed_root`] of one product
     /// (0 outside the disk).
+    #[inline(always)]
     fn fixed_direction<F: Float>(&self, c: V2<F>, h: F) -> V3<F> {
         let [qx, qy] = self.fields();
         let one = F::c(ONE as f32);
-        let k = |q: Quant| ONE / f64::from(q.max_code());
+        let k = { #[inline(always)] |q: Quant| ONE / f64::from(q.max_code()) };
         let p = V2::new(fixed(c.x, k(qx)), fixed(c.y, k(qy))).named("p");
         let rest = (one - fixed_length2_2d(p)).at_least(F::c(0.0)).named("rest");
         let z = fixed_root(rest * one);
@@ -93,11 +94,13 @@ impl Codec for XySignZ {
         Domain::Sphere
     }
     /// `(x, y, z < 0)` of the normalized input.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let u = self.target(v);
         V3::from_xy(u.xy(), one_if(u.z.lt(F::c(0.0))))
     }
     /// `(x, y, ±sqrt(1 - min(x² + y², 1)))`, z negated where the sign bit is set.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
         let xy = p.xy();
         let d = xy.length_squared();
@@ -107,6 +110,7 @@ impl Codec for XySignZ {
     /// `x / |w|` and `y / |w|` of the canonical input, decided portably
     /// ([`snorm_sqrt_ratio`]), and the sign bit of its `z` (a `-0` is already `+0`).
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let [qx, qy] = self.fields();
         let (w, _) = canonical_or_z(v);
@@ -118,6 +122,7 @@ impl Codec for XySignZ {
     /// [`floor_ratio`]), with the input's sign bit, by the squared distance of their
     /// fixed-point decodes.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V3<F> {
         let [qx, qy] = self.fields();
         let (w, _) = canonical_or_z(v);
@@ -125,7 +130,7 @@ impl Codec for XySignZ {
         let h = one_if(w.z.lt(F::c(0.0)));
         let base = V2::new(floor_ratio(qx, w.x, l), floor_ratio(qy, w.y, l)).named("base");
         let target = fixed_target(w, l, BITS);
-        let best = nearest_decoded([qx, qy], base, target, |c| self.fixed_direction(c, h));
+        let best = nearest_decoded([qx, qy], base, target, #[inline(always)] |c| self.fixed_direction(c, h));
         V3::from_xy(best, h)
     }
 }

@@ -37,7 +37,7 @@ impl Family for XyStereoFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
+        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         texel::validate(spec)
@@ -70,6 +70,7 @@ struct Upper<F: Float> {
 }
 
 impl<F: Float> Upper<F> {
+    #[inline(always)]
     fn of(v: V3<F>) -> Self {
         let (w, ok) = canonical_or_z(v);
         let (h, up) = canonical_or_z(above_horizon(w));
@@ -100,14 +101,15 @@ impl XyStereo {
     /// their signed values ([`signed_code`]) one rounded product floored, `q = |p|²` from
     /// squares rounded to a unit (an exact sum), then `2p / (1 + q)` and
     /// `(1 - q) / (1 + q)` by [`fixed_ratio`].
+    #[inline(always)]
     fn fixed_direction<F: Float>(q: Quant, c: V2<F>) -> V3<F> {
         let one = F::c(ONE as f32);
         let k = ONE / f64::from(q.max_code());
-        let p = c.map(|x| fixed(signed_code(q, x), k)).named("p");
+        let p = c.map(#[inline(always)] |x| fixed(signed_code(q, x), k)).named("p");
         let q = fixed_length2_2d(p);
         let d = one + q;
         V3::from_xy(
-            p.map(|x| fixed_ratio(x + x, d, BITS)),
+            p.map(#[inline(always)] |x| fixed_ratio(x + x, d, BITS)),
             fixed_ratio(one - q, d, BITS),
         )
     }
@@ -124,12 +126,14 @@ impl Codec for XyStereo {
         Domain::Hemisphere
     }
     /// `w.xy / (l + w.z)` of the canonical input projected onto the hemisphere.
+    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = Upper::of(v);
         u.h.xy() / u.a
     }
     /// `(2p, 1 - |p|²) / (1 + |p|²)`: both numerators are computed, so each component
     /// divides exactly once.
+    #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let q = p.length_squared().named("q");
         let d = (q + F::c(1.0)).named("d");
@@ -138,6 +142,7 @@ impl Codec for XyStereo {
     /// The codes of `w.x / a` and `w.y / a` ([`ratio_code`]); input without a
     /// direction on the hemisphere encodes as +Z.
     const EXACT_ROUNDING: bool = true;
+    #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.round_in(self.field(), v)
     }
@@ -145,28 +150,33 @@ impl Codec for XyStereo {
     /// [`floor_ratio_code`]) by the squared distance of their fixed-point decodes to the input
     /// projected onto the hemisphere; input without a direction there encodes as +Z.
     const EXACT_SEARCH: bool = true;
+    #[inline(always)]
     fn precise_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.precise_in(self.field(), v)
     }
 }
 
 impl TexelCodec for XyStereo {
+    #[inline(always)]
     fn params2<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.params(v)
     }
+    #[inline(always)]
     fn direction2<F: Float>(&self, p: V2<F>) -> V3<F> {
         self.direction(p)
     }
+    #[inline(always)]
     fn round_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let u = Upper::of(v);
-        let c = u.h.xy().map(|x| ratio_code(q, x, u.a));
+        let c = u.h.xy().map(#[inline(always)] |x| ratio_code(q, x, u.a));
         V2::sel_all(u.ok, c, V2::splat(F::c(zero_code(q))))
     }
+    #[inline(always)]
     fn precise_in<F: Float>(&self, q: Quant, v: V3<F>) -> V2<F> {
         let u = Upper::of(v);
-        let base = u.h.xy().map(|x| floor_ratio_code(q, x, u.a)).named("base");
+        let base = u.h.xy().map(#[inline(always)] |x| floor_ratio_code(q, x, u.a)).named("base");
         let target = fixed_target(u.h, u.l, BITS);
-        let best = nearest_decoded([q; 2], base, target, |c| Self::fixed_direction(q, c));
+        let best = nearest_decoded([q; 2], base, target, #[inline(always)] |c| Self::fixed_direction(q, c));
         V2::sel_all(u.ok, best, V2::splat(F::c(zero_code(q))))
     }
 }

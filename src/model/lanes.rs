@@ -1,6 +1,7 @@
 //! The vocabulary on four lanes at once ([`F4`], [`U4`], [`M4`] over `wide`'s SSE2 types),
 //! so that the CPU batches evaluate the same generic codec definitions four vectors per
-//! step. Every operation is the scalar model's, lane by lane, bit for bit: IEEE `+ - * /`
+//! step on every x86-64 processor (eight per step on AVX2 lanes where the processor has
+//! them, [`super::avx2_lanes`]). Every operation is the scalar model's, lane by lane, bit for bit: IEEE `+ - * /`
 //! and `sqrt` are correctly rounded in both; `round`, `floor`, `abs` and negation are
 //! written here with the very steps the scalar `f32` model uses (`src/model/num.rs`), and
 //! the conversions emulate Rust's `as` (saturating `f32 → u32`, correctly rounded
@@ -45,6 +46,83 @@ impl F4 {
         let a = self.abs();
         let r = F4((a.0 + two_23) - two_23).bits() | (self.bits() & u32x4::splat(SIGN));
         F4::sel(a.lt(F4(two_23)), F4::of_bits(r), self)
+    }
+}
+
+/// Lanes to and from the words of `N` items, one word each: how the batch runner and the
+/// slice APIs move items between memory and the evaluation (f32 lanes as their bits).
+pub trait LaneIo<const N: usize>: Float {
+    fn from_words(w: [u32; N]) -> Self;
+    fn words(self) -> [u32; N];
+    fn u_from_words(w: [u32; N]) -> Self::U;
+    fn u_words(u: Self::U) -> [u32; N];
+}
+
+/// Every operation of the vocabulary on the lanes `a` and `b` (and on their bits as
+/// integers), by name, as raw result bits (masks as 0/1): what
+/// `tests/internals/model_lanes.rs` compares with the scalar model for each lane type.
+#[inline(always)]
+pub fn operations<L: LaneIo<N>, const N: usize>(
+    a: [f32; N],
+    b: [f32; N],
+) -> Vec<(&'static str, [u32; N])> {
+    let (x, y) = (
+        L::from_words(a.map(f32::to_bits)),
+        L::from_words(b.map(f32::to_bits)),
+    );
+    let (u, v) = (x.to_bits(), y.to_bits());
+    let m = |m: L::B| L::u_words(L::U::sel(m, L::U::c(1), L::U::c(0)));
+    let f = |v: L| v.words();
+    vec![
+        ("fadd", f(x + y)),
+        ("fsub", f(x - y)),
+        ("fmul", f(x * y)),
+        ("fdiv", f(x / y)),
+        ("fneg", f(-x)),
+        ("fabs", f(x.abs())),
+        ("fsqrt", f(x.sqrt())),
+        ("ffloor", f(x.floor())),
+        ("fround", f(x.round())),
+        ("to_u", L::u_words(x.to_u())),
+        ("lt", m(x.lt(y))),
+        ("le", m(x.le(y))),
+        ("gt", m(x.gt(y))),
+        ("ge", m(x.ge(y))),
+        ("eq", m(x.eq(y))),
+        ("and", m(x.lt(y).and(x.ge(y.abs())))),
+        ("or", m(x.lt(y).or(x.eq(y)))),
+        ("not", m(x.lt(y).not())),
+        ("fsel", f(L::sel(x.lt(y), x, y))),
+        ("fto_f", f(u.to_f())),
+        ("as_float", f(u.as_float())),
+        ("add_u", L::u_words(u.wrapping_add(v))),
+        ("sub_u", L::u_words(u.wrapping_sub(v))),
+        ("mul_u", L::u_words(u.wrapping_mul(v))),
+        ("and_u", L::u_words(u & v)),
+        ("or_u", L::u_words(u | v)),
+        ("lt_u", m(u.lt(v))),
+        ("shr", L::u_words(u.shr(7))),
+        ("shl", L::u_words(u.shl(9))),
+        ("usel", L::u_words(L::U::sel(u.lt(v), u, v))),
+    ]
+}
+
+impl LaneIo<4> for F4 {
+    #[inline(always)]
+    fn from_words(w: [u32; 4]) -> Self {
+        F4(cast(w))
+    }
+    #[inline(always)]
+    fn words(self) -> [u32; 4] {
+        cast(self.0)
+    }
+    #[inline(always)]
+    fn u_from_words(w: [u32; 4]) -> U4 {
+        U4(u32x4::new(w))
+    }
+    #[inline(always)]
+    fn u_words(u: U4) -> [u32; 4] {
+        u.0.to_array()
     }
 }
 

@@ -65,11 +65,11 @@ macro_rules! vector {
 
         impl<F: Float> $V<F> {
             #[inline(always)]
-            pub fn abs(self) -> Self { self.map(F::abs) }
+            pub fn abs(self) -> Self { self.map(#[inline(always)] |x| F::abs(x)) }
             #[inline(always)]
-            pub fn floor(self) -> Self { self.map(F::floor) }
+            pub fn floor(self) -> Self { self.map(#[inline(always)] |x| F::floor(x)) }
             #[inline(always)]
-            pub fn round(self) -> Self { self.map(F::round) }
+            pub fn round(self) -> Self { self.map(#[inline(always)] |x| F::round(x)) }
             #[inline(always)]
             pub fn lt(self, o: Self) -> $V<F::B> { self.zip(o, F::lt) }
             #[inline(always)]
@@ -89,16 +89,16 @@ macro_rules! vector {
                 $V::from_array(F::fuse([$(F::sel(m, t.$f, f.$f)),+]))
             }
             #[inline(always)]
-            pub fn to_u(self) -> $V<F::U> { self.map(F::to_u) }
+            pub fn to_u(self) -> $V<F::U> { self.map(#[inline(always)] |x| F::to_u(x)) }
             /// Lane-wise [`Float::at_least`].
             #[inline(always)]
-            pub fn at_least(self, lo: F) -> Self { self.map(|x| x.at_least(lo)) }
+            pub fn at_least(self, lo: F) -> Self { self.map(#[inline(always)] |x| x.at_least(lo)) }
             /// Lane-wise [`Float::at_most`].
             #[inline(always)]
-            pub fn at_most(self, hi: F) -> Self { self.map(|x| x.at_most(hi)) }
+            pub fn at_most(self, hi: F) -> Self { self.map(#[inline(always)] |x| x.at_most(hi)) }
             /// Lane-wise [`Float::clamped`].
             #[inline(always)]
-            pub fn clamped(self, lo: F, hi: F) -> Self { self.map(|x| x.clamped(lo, hi)) }
+            pub fn clamped(self, lo: F, hi: F) -> Self { self.map(#[inline(always)] |x| x.clamped(lo, hi)) }
             /// `self / sqrt(self·self)`, or `fallback` when the squared length is not
             /// positive (the zero vector, and NaN lanes). Squared lengths that overflow give
             /// zero lanes, and denormal ones lose precision: scale first where inputs may be
@@ -114,7 +114,7 @@ macro_rules! vector {
             /// Sum of squares, evaluated left to right: `((x*x) + (y*y)) + ...`.
             #[inline(always)]
             pub fn length_squared(self) -> F {
-                let s = self.zip(self, |a, b| a * b);
+                let s = self.zip(self, #[inline(always)] |a, b| a * b);
                 let a = s.to_array();
                 let mut acc = a[0];
                 for v in &a[1..] {
@@ -126,64 +126,64 @@ macro_rules! vector {
 
         impl<U: Uint> $V<U> {
             #[inline(always)]
-            pub fn to_f(self) -> $V<U::F> { self.map(U::to_f) }
+            pub fn to_f(self) -> $V<U::F> { self.map(#[inline(always)] |x| U::to_f(x)) }
         }
 
         impl<T: Lane + Add<Output = T>> Add for $V<T> {
             type Output = Self;
             #[inline(always)]
-            fn add(self, o: Self) -> Self { self.zip(o, |a, b| a + b) }
+            fn add(self, o: Self) -> Self { self.zip(o, #[inline(always)] |a, b| a + b) }
         }
         impl<T: Lane + Sub<Output = T>> Sub for $V<T> {
             type Output = Self;
             #[inline(always)]
-            fn sub(self, o: Self) -> Self { self.zip(o, |a, b| a - b) }
+            fn sub(self, o: Self) -> Self { self.zip(o, #[inline(always)] |a, b| a - b) }
         }
         impl<T: Lane + Mul<Output = T>> Mul for $V<T> {
             type Output = Self;
             #[inline(always)]
-            fn mul(self, o: Self) -> Self { self.zip(o, |a, b| a * b) }
+            fn mul(self, o: Self) -> Self { self.zip(o, #[inline(always)] |a, b| a * b) }
         }
         impl<T: Lane + Div<Output = T>> Div for $V<T> {
             type Output = Self;
             #[inline(always)]
-            fn div(self, o: Self) -> Self { self.zip(o, |a, b| a / b) }
+            fn div(self, o: Self) -> Self { self.zip(o, #[inline(always)] |a, b| a / b) }
         }
         impl<T: Lane + BitAnd<Output = T>> BitAnd for $V<T> {
             type Output = Self;
             #[inline(always)]
-            fn bitand(self, o: Self) -> Self { self.zip(o, |a, b| a & b) }
+            fn bitand(self, o: Self) -> Self { self.zip(o, #[inline(always)] |a, b| a & b) }
         }
         impl<T: Lane + BitOr<Output = T>> BitOr for $V<T> {
             type Output = Self;
             #[inline(always)]
-            fn bitor(self, o: Self) -> Self { self.zip(o, |a, b| a | b) }
+            fn bitor(self, o: Self) -> Self { self.zip(o, #[inline(always)] |a, b| a | b) }
         }
         impl<T: Lane + Neg<Output = T>> Neg for $V<T> {
             type Output = Self;
             #[inline(always)]
-            fn neg(self) -> Self { self.map(|a| -a) }
+            fn neg(self) -> Self { self.map(#[inline(always)] |a| -a) }
         }
         /// Vector-by-scalar products print as `v * s`, as in hand-written shaders.
         impl<F: Float> Mul<F> for $V<F> {
             type Output = Self;
             #[inline(always)]
-            fn mul(self, s: F) -> Self { self.map(|a| a * s) }
+            fn mul(self, s: F) -> Self { self.map(#[inline(always)] |a| a * s) }
         }
         impl<F: Float> Div<F> for $V<F> {
             type Output = Self;
             #[inline(always)]
-            fn div(self, s: F) -> Self { self.map(|a| a / s) }
+            fn div(self, s: F) -> Self { self.map(#[inline(always)] |a| a / s) }
         }
         impl<F: Float> Add<F> for $V<F> {
             type Output = Self;
             #[inline(always)]
-            fn add(self, s: F) -> Self { self.map(|a| a + s) }
+            fn add(self, s: F) -> Self { self.map(#[inline(always)] |a| a + s) }
         }
         impl<F: Float> Sub<F> for $V<F> {
             type Output = Self;
             #[inline(always)]
-            fn sub(self, s: F) -> Self { self.map(|a| a - s) }
+            fn sub(self, s: F) -> Self { self.map(#[inline(always)] |a| a - s) }
         }
     };
 }

@@ -15,12 +15,13 @@ pub mod tools;
 
 use crate::codecs::Spec;
 use crate::codecs::functions::Emitted;
-use crate::codecs::functions::Function;
 use crate::codecs::functions::first_with_same_code;
+use crate::codecs::functions::{Function, Width};
 use crate::emit::lang::KernelFn;
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
+use crate::model::avx2_lanes;
 use crate::model::trace::{Func, Ty};
 use anyhow::Result;
 use gpu::{Gpu, Shader};
@@ -41,12 +42,16 @@ pub enum Path {
     /// The same header compiled as C++.
     CCpp,
     /// No emitted code: the model itself on four SSE2 lanes ([`Function::eval_lanes`]),
-    /// what the CPU batches run. Verified whatever the languages asked for.
+    /// what the CPU batches run without AVX2. Verified whatever the languages asked for.
     Lanes,
+    /// The model on eight AVX2 lanes ([`Function::eval_lanes8`]), what the CPU batches run
+    /// where the processor has AVX2. Verified whatever the languages asked for; an error
+    /// on a processor without AVX2.
+    Lanes8,
 }
 
 impl Path {
-    pub const ALL: [Path; 8] = [
+    pub const ALL: [Path; 9] = [
         Path::WgslNaga,
         Path::GlslNaga,
         Path::GlslGlslang,
@@ -55,6 +60,7 @@ impl Path {
         Path::CC,
         Path::CCpp,
         Path::Lanes,
+        Path::Lanes8,
     ];
     /// The emitted language the path runs, if any.
     pub fn lang(self) -> Option<Lang> {
@@ -63,7 +69,7 @@ impl Path {
             Path::GlslNaga | Path::GlslGlslang => Some(Lang::Glsl),
             Path::HlslGlslangOd | Path::HlslGlslangDefault => Some(Lang::Hlsl),
             Path::CC | Path::CCpp => Some(Lang::C),
-            Path::Lanes => None,
+            Path::Lanes | Path::Lanes8 => None,
         }
     }
     /// Whether the path runs a shader on the adapter.
@@ -83,6 +89,7 @@ impl fmt::Display for Path {
             Path::CC => "c/cc -O2",
             Path::CCpp => "c/c++ -O2",
             Path::Lanes => "cpu/4 lanes",
+            Path::Lanes8 => "cpu/8 lanes",
         })
     }
 }
@@ -214,11 +221,11 @@ pub fn expected(f: &Function, input: &[u32]) -> Vec<u32> {
     out
 }
 
-/// The outputs of [`Function::eval_lanes`], four items per call, on all cores.
-fn lanes(f: &Function, input: &[u32]) -> Vec<u32> {
+/// The outputs of [`Function::eval_many_on`] the given lanes, on all cores.
+fn lanes(f: &Function, width: Width, input: &[u32]) -> Vec<u32> {
     let mut out = vec![0u32; input.len() / f.in_words * f.out_words];
     on_all_cores(input, &mut out, f.in_words, f.out_words, |i, o| {
-        f.eval_many(i, o)
+        f.eval_many_on(width, i, o)
     });
     out
 }
@@ -368,7 +375,9 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             tools::spirv_val(&spv)?;
             Some(spv)
         }
-        Path::CC | Path::CCpp | Path::Lanes => unreachable!("not a shader path"),
+        Path::CC | Path::CCpp | Path::Lanes | Path::Lanes8 => {
+            unreachable!("not a shader path")
+        }
     })
 }
 
@@ -650,8 +659,17 @@ fn verify_spec(
         for &path in paths {
             let mut cmp = Comparison::new(f, (params, *ret), &input, &want);
             let result = if path == Path::Lanes {
-                cmp.take(&lanes(f, &input));
+                cmp.take(&lanes(f, Width::Four, &input));
                 Ok(())
+            } else if path == Path::Lanes8 {
+                if avx2_lanes::available() {
+                    cmp.take(&lanes(f, Width::Eight, &input));
+                    Ok(())
+                } else {
+                    Err(anyhow::anyhow!(
+                        "this processor has no AVX2: the eight-lane path cannot run here"
+                    ))
+                }
             } else if path.lang() == Some(Lang::C) {
                 let (_, program) = c_programs
                     .iter()

@@ -1,100 +1,148 @@
-use unitpack::model::lanes::*;
-use unitpack::model::num::{Float, Uint};
-use wide::f32x4;
+use unitpack::model::avx2_lanes;
+use unitpack::model::lanes::{F4, operations};
+use unitpack::model::num::{Bool, Float, Uint};
 
-fn lanes(x: [f32; 4]) -> F4 {
-    F4(f32x4::new(x))
+const EDGES: [f32; 26] = [
+    0.0,
+    -0.0,
+    0.5,
+    -0.5,
+    1.5,
+    2.5,
+    -2.5,
+    1e-45,
+    -1e-40,
+    f32::MIN_POSITIVE,
+    8_388_607.5,
+    8_388_609.0,
+    -8_388_608.0,
+    2_147_483_520.0,
+    2_147_483_648.0,
+    4_294_967_040.0,
+    4_294_967_296.0,
+    -1.0,
+    -0.999,
+    3.4e38,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+    f32::NAN,
+    -f32::NAN,
+    123.456,
+    -7.75,
+];
+
+/// The scalar model's result of operation `what` on `a` and `b`, as raw bits (masks 0/1).
+fn scalar(what: &str, a: f32, b: f32) -> u32 {
+    let (u, v) = (a.to_bits(), b.to_bits());
+    let m = |c: bool| u32::from(c);
+    match what {
+        "fadd" => (a + b).to_bits(),
+        "fsub" => (a - b).to_bits(),
+        "fmul" => (a * b).to_bits(),
+        "fdiv" => (a / b).to_bits(),
+        "fneg" => (-a).to_bits(),
+        "fabs" => Float::abs(a).to_bits(),
+        "fsqrt" => Float::sqrt(a).to_bits(),
+        "ffloor" => Float::floor(a).to_bits(),
+        "fround" => Float::round(a).to_bits(),
+        "to_u" => Float::to_u(a),
+        "lt" => m(a < b),
+        "le" => m(a <= b),
+        "gt" => m(a > b),
+        "ge" => m(a >= b),
+        "eq" => m(a == b),
+        "and" => m(Float::lt(a, b).and(a >= b.abs())),
+        "or" => m(Float::lt(a, b).or(a == b)),
+        "not" => m(Float::lt(a, b).not()),
+        "fsel" => f32::sel(a < b, a, b).to_bits(),
+        "fto_f" => (u as f32).to_bits(),
+        "as_float" => u,
+        "add_u" => u.wrapping_add(v),
+        "sub_u" => u.wrapping_sub(v),
+        "mul_u" => u.wrapping_mul(v),
+        "and_u" => u & v,
+        "or_u" => u | v,
+        "lt_u" => m(u < v),
+        "shr" => u >> 7,
+        "shl" => u << 9,
+        "usel" => u32::sel(u < v, u, v),
+        _ => panic!("no scalar model for {what}"),
+    }
 }
 
-/// Each operation against the scalar model on edge values, as raw bits.
-#[test]
-fn every_operation_matches_the_scalar_model_bit_for_bit() {
-    let edges = [
-        0.0f32,
-        -0.0,
-        0.5,
-        -0.5,
-        1.5,
-        2.5,
-        -2.5,
-        1e-45,
-        -1e-40,
-        f32::MIN_POSITIVE,
-        8_388_607.5,
-        8_388_609.0,
-        -8_388_608.0,
-        2_147_483_520.0,
-        2_147_483_648.0,
-        4_294_967_040.0,
-        4_294_967_296.0,
-        -1.0,
-        -0.999,
-        3.4e38,
-        f32::INFINITY,
-        f32::NEG_INFINITY,
-        f32::NAN,
-        -f32::NAN,
-        123.456,
-        -7.75,
-    ];
-    let n = edges.len();
-    for i in 0..n {
-        let a = [
-            edges[i],
-            edges[(i + 1) % n],
-            edges[(i + 5) % n],
-            edges[(i + 11) % n],
-        ];
-        let b = [
-            edges[(i + 3) % n],
-            edges[i],
-            edges[(i + 7) % n],
-            edges[(i + 2) % n],
-        ];
-        let (x, y) = (lanes(a), lanes(b));
-        // A NaN's sign and payload are not a model value: the compiler may commute
-        // `a + b`, and x86 returns the first operand's NaN. Every other result is
-        // compared as raw bits.
-        let check = |what: &str, got: [u32; 4], want: &dyn Fn(f32, f32) -> u32| {
-            for k in 0..4 {
-                let w = want(a[k], b[k]);
-                let nan = |u: u32| f32::from_bits(u).is_nan();
-                if what.starts_with('f') && nan(w) && nan(got[k]) {
-                    continue;
-                }
-                assert_eq!(got[k], w, "{what}({}, {})", a[k], b[k]);
+/// Every operation's lanes against the scalar model. A NaN's sign and payload are not a
+/// model value: the compiler may commute `a + b`, and x86 returns the first operand's
+/// NaN. Every other result is compared as raw bits.
+fn check<const N: usize>(lanes: &str, a: [f32; N], b: [f32; N], got: &[(&str, [u32; N])]) {
+    assert_eq!(got.len(), 30, "{lanes}: every operation is checked");
+    for (what, got) in got {
+        for k in 0..N {
+            let want = scalar(what, a[k], b[k]);
+            let nan = |u: u32| f32::from_bits(u).is_nan();
+            if what.starts_with('f') && nan(want) && nan(got[k]) {
+                continue;
             }
-        };
-        let fb = |v: F4| v.to_bits().0.to_array();
-        let mb = |m: M4| m.0.to_array().map(|w| u32::from(w != 0));
-        check("fadd", fb(x + y), &|a, b| (a + b).to_bits());
-        check("fsub", fb(x - y), &|a, b| (a - b).to_bits());
-        check("fmul", fb(x * y), &|a, b| (a * b).to_bits());
-        check("fdiv", fb(x / y), &|a, b| (a / b).to_bits());
-        check("fneg", fb(-x), &|a, _| (-a).to_bits());
-        check("fabs", fb(x.abs()), &|a, _| Float::abs(a).to_bits());
-        check("fsqrt", fb(x.sqrt()), &|a, _| Float::sqrt(a).to_bits());
-        check("ffloor", fb(x.floor()), &|a, _| Float::floor(a).to_bits());
-        check("fround", fb(x.round()), &|a, _| Float::round(a).to_bits());
-        check("to_u", x.to_u().0.to_array(), &|a, _| Float::to_u(a));
-        check("lt", mb(x.lt(y)), &|a, b| u32::from(a < b));
-        check("le", mb(x.le(y)), &|a, b| u32::from(a <= b));
-        check("gt", mb(x.gt(y)), &|a, b| u32::from(a > b));
-        check("ge", mb(x.ge(y)), &|a, b| u32::from(a >= b));
-        check("eq", mb(x.eq(y)), &|a, b| u32::from(a == b));
-        let u = U4(x.to_bits().0);
-        let v = U4(y.to_bits().0);
-        let ub = |u: U4| u.0.to_array();
-        let bits = |f: fn(u32, u32) -> u32| move |a: f32, b: f32| f(a.to_bits(), b.to_bits());
-        check("fto_f", fb(u.to_f()), &bits(|a, _| (a as f32).to_bits()));
-        check("mul_u", ub(u.wrapping_mul(v)), &bits(u32::wrapping_mul));
-        check("sub_u", ub(u.wrapping_sub(v)), &bits(u32::wrapping_sub));
-        check("lt_u", mb(u.lt(v)), &bits(|a, b| u32::from(a < b)));
-        check("shr", ub(u.shr(7)), &bits(|a, _| a >> 7));
-        check("shl", ub(u.shl(9)), &bits(|a, _| a << 9));
-        let m = x.lt(y);
-        check("fsel", fb(F4::sel(m, x, y)), &|a, b| {
-            if a < b { a } else { b }.to_bits()
-        });
+            assert_eq!(
+                got[k], want,
+                "{lanes} {what}({:e}, {:e}) lane {k}: {:#010x}, the model {want:#010x}",
+                a[k], b[k], got[k]
+            );
+        }
+    }
+}
+
+/// Lane sets drawn from `pool`, rotated so that every value meets several neighbours.
+fn lane_sets<const N: usize>(pool: &[f32]) -> Vec<([f32; N], [f32; N])> {
+    let n = pool.len();
+    (0..n)
+        .map(|i| {
+            (
+                std::array::from_fn(|k| pool[(i + k * k + k) % n]),
+                std::array::from_fn(|k| pool[(i + 3 * k + 3) % n]),
+            )
+        })
+        .collect()
+}
+
+/// Pools that take every path of the conversions: all edges (lanes at or past 2^31 and
+/// negative bit patterns), and non-negative values below 2^31 only (the direct
+/// conversions of the eight AVX2 lanes).
+fn pools() -> [Vec<f32>; 2] {
+    [
+        EDGES.to_vec(),
+        EDGES
+            .iter()
+            .copied()
+            .filter(|x| x.to_bits() >> 31 == 0 && *x < 2_147_483_648.0)
+            .collect(),
+    ]
+}
+
+#[test]
+fn every_operation_on_four_lanes_matches_the_scalar_model_bit_for_bit() {
+    for pool in pools() {
+        for (a, b) in lane_sets::<4>(&pool) {
+            check("4 lanes", a, b, &operations::<F4, 4>(a, b));
+        }
+    }
+}
+
+#[test]
+fn every_operation_on_eight_avx2_lanes_matches_the_scalar_model_bit_for_bit() {
+    // Off x86-64 there are no eight-lane operations to test.
+    let wanted = cfg!(target_arch = "x86_64");
+    assert_eq!(
+        avx2_lanes::available(),
+        wanted,
+        "the CPU batches' eight-lane path needs a processor with AVX2 to be tested"
+    );
+    for pool in pools() {
+        for (a, b) in lane_sets::<8>(&pool) {
+            let got = avx2_lanes::operations(a, b);
+            assert_eq!(got.is_some(), wanted, "eight-lane operations ran");
+            if let Some(got) = got {
+                check("8 lanes", a, b, &got);
+            }
+        }
     }
 }

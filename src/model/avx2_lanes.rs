@@ -1,0 +1,301 @@
+//! The vocabulary on eight lanes at once ([`F8`], [`U8`], [`M8`] over AVX2 registers): what
+//! the CPU batches run where the processor has AVX2, chosen at run time, so that a build
+//! for the baseline x86-64 target needs no `target-cpu` flag. Like the four SSE2 lanes of
+//! [`super::lanes`], every operation is the scalar model's, lane by lane, bit for bit; the
+//! newer instructions make several of them shorter:
+//!
+//! - `round` and `floor` are `vroundps`, which returns exactly what the model's steps
+//!   (`(|x| + 2^23) - 2^23` with the sign of `x`, and one less where that exceeds `x`)
+//!   return for every number; a NaN lane keeps its input, as in the model;
+//! - selects are one `vblendvps`, on masks that are all ones or all zeros per lane;
+//! - `u32 → f32` converts directly when no lane has its top bit set (every code the models
+//!   convert), and otherwise through the two exact 16-bit halves the SSE2 lanes always use;
+//! - `f32 → u32` truncates directly and takes the SSE2 lanes' `[2^31, 2^32)` path only when
+//!   a lane reaches 2^31.
+//!
+//! Sound by construction: the module is private to the crate, and its values exist only
+//! inside functions compiled with `#[target_feature(enable = "avx2")]` that run after
+//! [`available`] said yes ([`crate::codecs::functions::Function::eval_many`], the typed
+//! slices of [`crate::api`]). Those functions inline everything the models call; the
+//! operations here are `#[inline(always)]` so that the intrinsics inline with them.
+
+use super::lanes::LaneIo;
+use super::num::{Bool, Float, Kind, Lane, Uint};
+use std::arch::x86_64::*;
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
+
+/// Eight f32 lanes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct F8(__m256);
+/// Eight u32 lanes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct U8(__m256i);
+/// Eight comparison results, all bits set where true.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct M8(__m256i);
+
+/// Whether this processor runs the eight-lane code (checked once, then cached by std).
+#[inline]
+pub fn available() -> bool {
+    is_x86_feature_detected!("avx2")
+}
+
+/// [`super::lanes::operations`] on eight AVX2 lanes; `None` where the processor has no AVX2.
+pub fn operations(a: [f32; 8], b: [f32; 8]) -> Option<Vec<(&'static str, [u32; 8])>> {
+    /// # Safety
+    /// The processor must have AVX2.
+    #[target_feature(enable = "avx2")]
+    unsafe fn on_avx2(a: [f32; 8], b: [f32; 8]) -> Vec<(&'static str, [u32; 8])> {
+        super::lanes::operations::<F8, 8>(a, b)
+    }
+    // SAFETY: the processor has AVX2 (checked first).
+    available().then(|| unsafe { on_avx2(a, b) })
+}
+
+/// Runs an AVX2 intrinsic. SAFETY (every use): an [`F8`], [`U8`] or [`M8`] exists only
+/// in code reached after [`available`] returned true (see the module documentation).
+macro_rules! avx {
+    ($e:expr) => {
+        unsafe { $e }
+    };
+}
+
+/// Lanes per evaluation.
+pub(crate) const WIDTH: usize = 8;
+
+const SIGN: i32 = i32::MIN;
+
+impl LaneIo<8> for F8 {
+    #[inline(always)]
+    fn from_words(w: [u32; 8]) -> Self {
+        U8::from_array(w).as_float()
+    }
+    #[inline(always)]
+    fn words(self) -> [u32; 8] {
+        self.to_bits().to_array()
+    }
+    #[inline(always)]
+    fn u_from_words(w: [u32; 8]) -> U8 {
+        U8::from_array(w)
+    }
+    #[inline(always)]
+    fn u_words(u: U8) -> [u32; 8] {
+        u.to_array()
+    }
+}
+
+impl F8 {
+    #[inline(always)]
+    fn mask(m: __m256) -> M8 {
+        M8(avx!(_mm256_castps_si256(m)))
+    }
+    /// `r` where `self` is a number, `self` where it is NaN (the model's NaN passes its
+    /// rounding steps unchanged; `vroundps` would quiet a signalling one).
+    #[inline(always)]
+    fn unless_nan(self, r: __m256) -> F8 {
+        let nan = avx!(_mm256_cmp_ps::<_CMP_UNORD_Q>(self.0, self.0));
+        F8(avx!(_mm256_blendv_ps(r, self.0, nan)))
+    }
+}
+
+impl U8 {
+    #[inline(always)]
+    pub(crate) fn from_array(w: [u32; 8]) -> U8 {
+        U8(avx!(_mm256_loadu_si256(w.as_ptr().cast())))
+    }
+    #[inline(always)]
+    pub(crate) fn to_array(self) -> [u32; 8] {
+        let mut w = [0u32; 8];
+        avx!(_mm256_storeu_si256(w.as_mut_ptr().cast(), self.0));
+        w
+    }
+    /// Whether any lane has its top bit set.
+    #[inline(always)]
+    fn any_top_bit(self) -> bool {
+        avx!(_mm256_movemask_ps(_mm256_castsi256_ps(self.0))) != 0
+    }
+}
+
+impl Lane for F8 {
+    const KIND: Kind = Kind::F32;
+}
+impl Lane for U8 {
+    const KIND: Kind = Kind::U32;
+}
+impl Lane for M8 {
+    const KIND: Kind = Kind::Bool;
+}
+super::trace::value_eval!(F8, U8, M8);
+
+impl Bool for M8 {
+    #[inline(always)]
+    fn and(self, o: Self) -> Self {
+        M8(avx!(_mm256_and_si256(self.0, o.0)))
+    }
+    #[inline(always)]
+    fn or(self, o: Self) -> Self {
+        M8(avx!(_mm256_or_si256(self.0, o.0)))
+    }
+    #[inline(always)]
+    fn not(self) -> Self {
+        M8(avx!(_mm256_xor_si256(self.0, _mm256_set1_epi32(-1))))
+    }
+}
+
+macro_rules! binary {
+    ($t:ident, $tr:ident, $f:ident, $op:ident) => {
+        impl $tr for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn $f(self, o: $t) -> $t {
+                $t(avx!($op(self.0, o.0)))
+            }
+        }
+    };
+}
+binary!(F8, Add, add, _mm256_add_ps);
+binary!(F8, Sub, sub, _mm256_sub_ps);
+binary!(F8, Mul, mul, _mm256_mul_ps);
+binary!(F8, Div, div, _mm256_div_ps);
+binary!(U8, Add, add, _mm256_add_epi32);
+binary!(U8, Sub, sub, _mm256_sub_epi32);
+binary!(U8, BitAnd, bitand, _mm256_and_si256);
+binary!(U8, BitOr, bitor, _mm256_or_si256);
+
+impl Neg for F8 {
+    type Output = F8;
+    /// The sign bit flipped, as scalar negation does.
+    #[inline(always)]
+    fn neg(self) -> F8 {
+        F8(avx!(_mm256_xor_ps(self.0, _mm256_set1_ps(-0.0))))
+    }
+}
+
+impl Uint for U8 {
+    type F = F8;
+    type B = M8;
+    #[inline(always)]
+    fn c(v: u32) -> Self {
+        U8(avx!(_mm256_set1_epi32(v as i32)))
+    }
+    #[inline(always)]
+    fn shl(self, n: u32) -> Self {
+        U8(avx!(_mm256_sll_epi32(self.0, _mm_cvtsi32_si128(n as i32))))
+    }
+    #[inline(always)]
+    fn shr(self, n: u32) -> Self {
+        U8(avx!(_mm256_srl_epi32(self.0, _mm_cvtsi32_si128(n as i32))))
+    }
+    /// `u as f32` (round to nearest, ties to even) for every `u`: a signed conversion
+    /// when every lane is below 2^31, else the sum of the exactly converted halves
+    /// `hi·2^16 + lo`, rounded once.
+    #[inline(always)]
+    fn to_f(self) -> F8 {
+        if !self.any_top_bit() {
+            return F8(avx!(_mm256_cvtepi32_ps(self.0)));
+        }
+        let hi = F8(avx!(_mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(self.0))));
+        let lo = F8(avx!(_mm256_cvtepi32_ps(_mm256_and_si256(
+            self.0,
+            _mm256_set1_epi32(0xffff)
+        ))));
+        hi * F8::c(65_536.0) + lo
+    }
+    #[inline(always)]
+    fn as_float(self) -> F8 {
+        F8(avx!(_mm256_castsi256_ps(self.0)))
+    }
+    #[inline(always)]
+    fn sel(m: M8, t: Self, f: Self) -> Self {
+        U8(avx!(_mm256_blendv_epi8(f.0, t.0, m.0)))
+    }
+    #[inline(always)]
+    fn wrapping_add(self, o: Self) -> Self {
+        self + o
+    }
+    #[inline(always)]
+    fn wrapping_sub(self, o: Self) -> Self {
+        self - o
+    }
+    #[inline(always)]
+    fn wrapping_mul(self, o: Self) -> Self {
+        U8(avx!(_mm256_mullo_epi32(self.0, o.0)))
+    }
+    /// Unsigned `<` as a signed comparison with both top bits flipped.
+    #[inline(always)]
+    fn lt(self, o: Self) -> M8 {
+        let s = avx!(_mm256_set1_epi32(SIGN));
+        M8(avx!(_mm256_cmpgt_epi32(
+            _mm256_xor_si256(o.0, s),
+            _mm256_xor_si256(self.0, s)
+        )))
+    }
+}
+
+macro_rules! compare {
+    ($f:ident, $pred:ident) => {
+        #[inline(always)]
+        fn $f(self, o: Self) -> M8 {
+            F8::mask(avx!(_mm256_cmp_ps::<$pred>(self.0, o.0)))
+        }
+    };
+}
+
+impl Float for F8 {
+    type U = U8;
+    type B = M8;
+    #[inline(always)]
+    fn c(v: f32) -> Self {
+        F8(avx!(_mm256_set1_ps(v)))
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        F8(avx!(_mm256_andnot_ps(_mm256_set1_ps(-0.0), self.0)))
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        F8(avx!(_mm256_sqrt_ps(self.0)))
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        self.unless_nan(avx!(_mm256_round_ps::<
+            { _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC },
+        >(self.0)))
+    }
+    #[inline(always)]
+    fn round(self) -> Self {
+        self.unless_nan(avx!(_mm256_round_ps::<
+            { _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC },
+        >(self.0)))
+    }
+    compare!(lt, _CMP_LT_OQ);
+    compare!(le, _CMP_LE_OQ);
+    compare!(gt, _CMP_GT_OQ);
+    compare!(ge, _CMP_GE_OQ);
+    compare!(eq, _CMP_EQ_OQ);
+    #[inline(always)]
+    fn sel(m: M8, t: Self, f: Self) -> Self {
+        F8(avx!(_mm256_blendv_ps(f.0, t.0, _mm256_castsi256_ps(m.0))))
+    }
+    /// `x as u32`, saturating as Rust's conversion does: the signed truncation where
+    /// `-1 < x < 2^31` (it gives 0 on `(-1, 0]`), 0 where `x ≤ -1` or NaN; when some lane
+    /// reaches 2^31, `[2^31, 2^32)` converts `x - 2^31` (exact there) with the top bit
+    /// added back, and `x ≥ 2^32` gives `u32::MAX`.
+    #[inline(always)]
+    fn to_u(self) -> U8 {
+        let two_31 = F8::c(2_147_483_648.0);
+        let above = U8(avx!(_mm256_cvttps_epi32(self.0)));
+        let r = U8::sel(self.gt(F8::c(-1.0)), above, U8::c(0));
+        let high = self.ge(two_31);
+        if !U8(high.0).any_top_bit() {
+            return r;
+        }
+        let top = U8(avx!(_mm256_cvttps_epi32((self - two_31).0))) + U8::c(SIGN as u32);
+        let r = U8::sel(high, top, r);
+        U8::sel(self.ge(F8::c(4_294_967_296.0)), U8::c(u32::MAX), r)
+    }
+    #[inline(always)]
+    fn to_bits(self) -> U8 {
+        U8(avx!(_mm256_castps_si256(self.0)))
+    }
+}
