@@ -2332,8 +2332,8 @@ fn verify_json_reports_every_row() {
     let copies: Vec<_> = rows.iter().filter(shared).collect();
     assert_eq!(
         copies.len(),
-        2 * 4,
-        "two decoders on three shader paths and four lanes"
+        2 * 5,
+        "two decoders on three shader paths and the four- and eight-lane paths"
     );
     for c in copies {
         assert_eq!(c["spec"], "oct16p");

@@ -124,7 +124,7 @@ impl<P: DiskProjection> Codec for Concentric<P> {
     }
     /// The square point `s = enc·2 - 1` back on the disk: with `a` the coordinate of
     /// larger magnitude (`x` on a tie) and `b` the other, the radius is `r = |a|`
-    /// (computed as `max(#[inline(always)] |s.x|, #[inline(always)] |s.y|)`) and the angle from `a`'s half axis
+    /// (computed as `max(|s.x|, |s.y|)`) and the angle from `a`'s half axis
     /// `φ = (π/4)·(b/r)`, so the disk point is `(a·cos φ, r·sin φ)`, axes swapped back
     /// ([`sincos_quarter_pi`]); the projection lifts it, and z is negated where the
     /// hemisphere bit is set. Every code lies on the disk, so every code decodes within

@@ -93,7 +93,7 @@ impl Cry3 {
 
 impl LambertDecoder for Cry3Decoder {
     /// With `f = 2enc - 1` and `d = f·f` limited to the disk (so the square's corners
-    /// decode as -Z): plain, `z = -(2d - 1)` and `xy = normalize(f)·sqrt(#[inline(always)] |1 - z²|)` (the
+    /// decode as -Z): plain, `z = -(2d - 1)` and `xy = normalize(f)·sqrt(|1 - z²|)` (the
     /// centre, where `normalize` has no direction, decodes as +Z); optimized,
     /// `l = 1 - d`, `xy = 2f·sqrt(l)` and `z = 2l - 1`.
     #[inline(always)]
@@ -107,7 +107,7 @@ impl LambertDecoder for Cry3Decoder {
         } else {
             let z = (-(d.at_most(F::c(1.0)) * F::c(2.0) - F::c(1.0))).named("z");
             let dir = f.normalize_or(V2::splat(F::c(0.0)));
-            // 1 - z² is never negative (#[inline(always)] |z| ≤ 1), so its absolute value changes no
+            // 1 - z² is never negative (|z| ≤ 1), so its absolute value changes no
             // output; it lets the proven bound see that the root's argument is not
             // negative, which a limit at 0 could not promise where a comparison flushes
             // a denormal the select then passes on.

@@ -35,7 +35,7 @@
 //! `j` after row `j - 1`).
 //!
 //! The packed encoder decides each byte exactly: each component's ratio to the major one,
-//! `r = floor(#[inline(always)] |w|/major·2^20)` ([`fixed_ratio`]), times `k` in integers, gives
+//! `r = floor(|w|/major·2^20)` ([`fixed_ratio`]), times `k` in integers, gives
 //! `128 + floor(r·k/2^21)` for a non-negative component and `128 - ceil(r·k/2^21)` for a
 //! negative one: `round(127.5 ± (r/2^20)·k/2)`, ties up, for `r` on its `2^-20` grid.
 //! Zero, NaN and infinite input encode as +Z at the scale 1, `(128, 128, 255)`, whatever

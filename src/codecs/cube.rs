@@ -220,7 +220,7 @@ impl Codec for Cube {
             let d = V3::new(cs.x * ct.y, ct.x * cs.y, cs.y * ct.y).named("d");
             d / d.length_squared().sqrt()
         } else {
-            // The major coordinate is max(1, #[inline(always)] |s|, #[inline(always)] |t|): 1 for every code, and still
+            // The major coordinate is max(1, |s|, |t|): 1 for every code, and still
             // the largest for parameters past the face's edge. A literal 1 would make
             // the squared length a sum with a constant, which a compiler may regroup.
             let m = p.x.abs().at_least(p.y.abs()).at_least(F::c(1.0));

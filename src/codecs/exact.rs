@@ -112,7 +112,7 @@ pub fn length2<F: Float>(w: V3<F>) -> F {
 }
 
 /// The fixed-point scale of [`fixed_length2`]: canonical magnitudes are below 4, so
-/// `floor(#[inline(always)] |x|·2^21) < 2^23` and a sum of three squares is below `2^48`.
+/// `floor(|x|·2^21) < 2^23` and a sum of three squares is below `2^48`.
 pub const FIXED_SCALE: f32 = (1u32 << 21) as f32;
 
 /// `Σ xᵢ²` of canonical components, computed exactly in integers and rounded once, so
@@ -120,7 +120,7 @@ pub const FIXED_SCALE: f32 = (1u32 << 21) as f32;
 /// several terms can be regrouped: Mesa's NIR turns `(a·b + c) + d` into
 /// `a·b + (c + d)` on paths without `NoContraction`, and WGSL never forbids it).
 ///
-/// Each `|xᵢ|` becomes `A = floor(#[inline(always)] |xᵢ|·2^21)` (a power-of-two scaling, a floor and a
+/// Each `|xᵢ|` becomes `A = floor(|xᵢ|·2^21)` (a power-of-two scaling, a floor and a
 /// conversion, each exact), below `2^23`; with 12-bit limbs `A = a₁·2^12 + a₀`,
 /// `A² = a₁²·2^24 + 2a₁a₀·2^12 + a₀²` is accumulated as `hi·2^24 + lo` in 32-bit
 /// integers (every partial product below `2^24`, so nothing wraps), carried, and
@@ -225,7 +225,7 @@ pub fn settled_root<F: Float>(n0: F::U, (hi, lo): (F::U, F::U)) -> F::U {
 
 /// The direction of a canonical `w` as components on the `2^-24` grid (f32's spacing in
 /// `[½, 1)`), each a function of `w` alone: the components on the grid of
-/// `fixed_sum_of_squares`, `Aᵢ = floor(#[inline(always)] |wᵢ|·2^21)` (below `2^23`), and their length
+/// `fixed_sum_of_squares`, `Aᵢ = floor(|wᵢ|·2^21)` (below `2^23`), and their length
 /// `N·2^-21` ([`rounded_root`]), give `kᵢ = round(Aᵢ·2^24 / N)`
 /// (ties up), clamped to `2^24`, with the sign of `wᵢ` (a zero is `+0` or `-0`).
 ///
@@ -577,7 +577,7 @@ pub fn snorm_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
 /// rounded sum or difference no larger in magnitude (oct's `x` and `l1 - |y|`, hemioct's
 /// `x ± y`). Then no clamp can trigger, for `M < 2^20`: `|n|/d ≤ 1` within 2.5 ULP, so the
 /// estimate is in `[0, M]` (`M·(1 + 5·2^-24)` stays below `M + ½`); at `M` the step up needs
-/// `fl(#[inline(always)] |n|·M) ≥ fl((M + ½)·d)`, which monotone rounding excludes (`fl(#[inline(always)] |n|·M) ≤ fl(d·M)`,
+/// `fl(|n|·M) ≥ fl((M + ½)·d)`, which monotone rounding excludes (`fl(|n|·M) ≤ fl(d·M)`,
 /// and `(M + ½)/M - 1 = 1/(2M)` exceeds `2^-21`, so the two products of `d` round apart);
 /// at 0 the step down needs `|n|·M < -½·d`.
 #[inline(always)]
@@ -587,7 +587,7 @@ pub fn snorm_ratio_within<F: Float>(q: Quant, n: F, d: F) -> F {
     signed(n, stepped(estimate, up, down))
 }
 
-/// `round(#[inline(always)] |n|/d·M)` and the comparisons that step it to the exact code.
+/// `round(|n|/d·M)` and the comparisons that step it to the exact code.
 #[inline(always)]
 fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
     let a = n.abs();
@@ -601,7 +601,7 @@ fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
 
 /// The snorm code of `n / sqrt(s)` (`s > 0`, `n² ≤ s` up to rounding, both exact or
 /// correctly rounded functions of the input, `s` from [`length2`]): the integer `c ≤ M`
-/// with `(c - ½)²·s ≤ (#[inline(always)] |n|·M)² < (c + ½)²·s` (each product rounded once), with the sign
+/// with `(c - ½)²·s ≤ (|n|·M)² < (c + ½)²·s` (each product rounded once), with the sign
 /// of `n`.
 #[inline(always)]
 pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
@@ -624,7 +624,7 @@ pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
 /// (below `2^-14` the subnormal spacing `2^-24` is the lowest binade's); an estimate in
 /// the neighbouring binade can only occur within a few ULP of the power of two between
 /// them, which both grids round to. The code is then the integer `c` with
-/// `(c - ½)²·s ≤ (#[inline(always)] |n|·q)² < (c + ½)²·s` (`|n|·q` exact, each other product rounded
+/// `(c - ½)²·s ≤ (|n|·q)² < (c + ½)²·s` (`|n|·q` exact, each other product rounded
 /// once), times `1/q` (exact). A zero result is `+0` whatever the sign of `n`.
 #[inline(always)]
 pub fn half_sqrt_ratio<F: Float>(n: F, s: F) -> F {

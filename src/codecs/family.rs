@@ -92,13 +92,7 @@ impl OptDesc {
     /// Reads an id token back, if it is one of this option's.
     pub fn parse_id_token(&self, token: &str) -> Option<OptVal> {
         match self.kind {
-            OptKind::Choice(names) => names
-                .iter()
-                .position(
-                    #[inline(always)]
-                    |n| *n == token,
-                )
-                .map(OptVal::Choice),
+            OptKind::Choice(names) => names.iter().position(|n| *n == token).map(OptVal::Choice),
             OptKind::Number { .. } => {
                 let rest = token.strip_prefix(self.key)?;
                 let text = rest.replace('p', ".").replace('m', "-");
@@ -109,31 +103,19 @@ impl OptDesc {
 
     /// Parses `value` as written after `key=`, checking its range.
     pub fn parse_value(&self, value: &str) -> Result<OptVal, SpecError> {
-        let bad = {
-            #[inline(always)]
-            |why: String| SpecError::BadValue {
-                key: self.key.to_string(),
-                value: value.to_string(),
-                why,
-            }
+        let bad = |why: String| SpecError::BadValue {
+            key: self.key.to_string(),
+            value: value.to_string(),
+            why,
         };
         match self.kind {
             OptKind::Choice(names) => names
                 .iter()
-                .position(
-                    #[inline(always)]
-                    |n| *n == value,
-                )
+                .position(|n| *n == value)
                 .map(OptVal::Choice)
-                .ok_or_else(
-                    #[inline(always)]
-                    || bad(format!("expected {}", names.join(" or "))),
-                ),
+                .ok_or_else(|| bad(format!("expected {}", names.join(" or ")))),
             OptKind::Number { min, max, .. } => {
-                let x: f32 = value.parse().map_err(
-                    #[inline(always)]
-                    |_| bad("expected a number".into()),
-                )?;
+                let x: f32 = value.parse().map_err(|_| bad("expected a number".into()))?;
                 if (min..=max).contains(&x) {
                     Ok(OptVal::Number(x))
                 } else {
@@ -147,13 +129,7 @@ impl OptDesc {
     pub fn usage(&self) -> String {
         let values = match &self.kind {
             OptKind::Choice(names) => {
-                let mut v: Vec<String> = names
-                    .iter()
-                    .map(
-                        #[inline(always)]
-                        |n| n.to_string(),
-                    )
-                    .collect();
+                let mut v: Vec<String> = names.iter().map(|n| n.to_string()).collect();
                 v[0].push_str(" (default)");
                 v.join(" | ")
             }
@@ -188,27 +164,18 @@ impl Info {
     pub fn spellings(&self) -> Vec<(String, u32)> {
         match &self.sizes {
             Sizes::Total(bits) => {
-                let sep = if self.name.ends_with(
-                    #[inline(always)]
-                    |c: char| c.is_ascii_digit(),
-                ) {
+                let sep = if self.name.ends_with(|c: char| c.is_ascii_digit()) {
                     "_"
                 } else {
                     ""
                 };
                 bits.iter()
-                    .map(
-                        #[inline(always)]
-                        |b| (format!("{}{sep}{b}", self.name), *b),
-                    )
+                    .map(|b| (format!("{}{sep}{b}", self.name), *b))
                     .collect()
             }
             Sizes::PerComponent { prefix, count, per } => per
                 .iter()
-                .map(
-                    #[inline(always)]
-                    |b| (format!("{prefix}{b}x{count}"), b * count),
-                )
+                .map(|b| (format!("{prefix}{b}x{count}"), b * count))
                 .collect(),
             Sizes::Fixed(bits) => vec![(self.name.to_string(), *bits)],
         }
@@ -216,13 +183,7 @@ impl Info {
 
     /// The allowed total bit budgets.
     pub fn total_bits(&self) -> Vec<u32> {
-        self.spellings()
-            .into_iter()
-            .map(
-                #[inline(always)]
-                |s| s.1,
-            )
-            .collect()
+        self.spellings().into_iter().map(|s| s.1).collect()
     }
 
     /// `bits` if it is one of this family's sizes, else the error listing them.
@@ -233,24 +194,14 @@ impl Info {
             Err(SpecError::InvalidBits {
                 codec: self.name,
                 bits: bits.to_string(),
-                allowed: self
-                    .total_bits()
-                    .iter()
-                    .map(
-                        #[inline(always)]
-                        |b| b.to_string(),
-                    )
-                    .collect(),
+                allowed: self.total_bits().iter().map(|b| b.to_string()).collect(),
             })
         }
     }
 
     /// Index of the option called `key`.
     pub fn option_index(&self, key: &str) -> Option<usize> {
-        self.options.iter().position(
-            #[inline(always)]
-            |o| o.key == key,
-        )
+        self.options.iter().position(|o| o.key == key)
     }
 }
 

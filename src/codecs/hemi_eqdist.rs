@@ -1,6 +1,6 @@
 //! Azimuthal equidistant projection of a hemisphere onto the unit disk plus a
 //! hemisphere bit (survey §2, `eqdist`; Snyder and Mitchell 2001): the disk point keeps
-//! the azimuth and puts the polar angle `θ = atan2(ρ, #[inline(always)] |z|)` at radius `θ/(π/2)`, so
+//! the azimuth and puts the polar angle `θ = atan2(ρ, |z|)` at radius `θ/(π/2)`, so
 //! `p = (x, y)/ρ · θ/(π/2)`, stored as unorm `p·0.5 + 0.5`, and one bit for the sign of
 //! `z`, laid out as [`super::disk`] says (eqdist16: x bits 0–7, y bits 8–14, the
 //! hemisphere bit 15).
@@ -106,7 +106,7 @@ impl HemiEqDist {
 }
 
 /// `ρ² = w.x² + w.y²` of the folded input from [`fixed_length2_xy`], with any positive
-/// stand-in at the pole (`ρ² = 0`), and the polar angle `θ/π = atan2(ρ, #[inline(always)] |z|)/π` in
+/// stand-in at the pole (`ρ² = 0`), and the polar angle `θ/π = atan2(ρ, |z|)/π` in
 /// units of `2^-23` half turns from [`fixed_trig::atan2_pi`] (`ρ` from [`root_of`], 0 at
 /// the pole): functions of the input alone.
 #[inline(always)]
@@ -169,7 +169,7 @@ impl Codec for HemiEqDist {
     }
 }
 
-/// The equidistant disk radius is `θ/(π/2)`, `θ = atan2(ρ, #[inline(always)] |z|)` the polar angle.
+/// The equidistant disk radius is `θ/(π/2)`, `θ = atan2(ρ, |z|)` the polar angle.
 impl DiskProjection for HemiEqDist {
     #[inline(always)]
     fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F {

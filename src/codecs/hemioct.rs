@@ -131,7 +131,7 @@ impl Codec for HemiOct {
         Domain::Hemisphere
     }
     /// The survey's Listing 6 on the input projected onto the +Z hemisphere: `(x ± y) /
-    /// (#[inline(always)] |x| + |y| + z)` with a negative `z` replaced by 0 (a NaN kept, so that it fails
+    /// (|x| + |y| + z)` with a negative `z` replaced by 0 (a NaN kept, so that it fails
     /// the check below). The L1 projection needs no unit length, so the projected input is
     /// only brought into range by oct's power-of-two [`fit_l1`] (exact), not normalized,
     /// in 20 instructions instead of the 32 of `hemi_ratios`' canonical form; fitting the

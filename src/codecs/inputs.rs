@@ -63,22 +63,13 @@ pub fn edge_vectors() -> Vec<[f32; 3]> {
 /// fields: every pattern; f32 fields: every sign, exponent and top 7 fraction bits, so
 /// zeros, denormals, infinities and NaNs) followed by seeded random codes, as packed words.
 pub fn codes(q: &[Quant], words: usize) -> Vec<u32> {
-    let total: u32 = q
-        .iter()
-        .map(
-            #[inline(always)]
-            |q| q.bits(),
-        )
-        .sum();
+    let total: u32 = q.iter().map(|q| q.bits()).sum();
     let mut out = Vec::new();
     if total <= 24 {
         out.extend(0..1u32 << total);
         // The same codes with garbage in the unused high bits, which decoders ignore.
         let mut rng = Pcg64Mcg::new(CODE_SEED);
-        out.extend((0..4096).map(
-            #[inline(always)]
-            |_| rng.next_u32() | (u32::MAX << total),
-        ));
+        out.extend((0..4096).map(|_| rng.next_u32() | (u32::MAX << total)));
         return out;
     }
     for item in wide_codes(q) {
@@ -90,20 +81,9 @@ pub fn codes(q: &[Quant], words: usize) -> Vec<u32> {
 /// The items above 24 bits: the sweeps, then seeded random words.
 fn wide_codes(q: &[Quant]) -> impl Iterator<Item = [u32; 3]> + use<'_> {
     let mut rng = Pcg64Mcg::new(CODE_SEED);
-    let random = (0..RANDOM_ITEMS).map(
-        #[inline(always)]
-        move |_| {
-            [0; 3].map(
-                #[inline(always)]
-                |_: u32| rng.next_u32(),
-            )
-        },
-    );
+    let random = (0..RANDOM_ITEMS).map(move |_| [0; 3].map(|_: u32| rng.next_u32()));
     (0..sweep_items(q))
-        .map(
-            #[inline(always)]
-            |k| swept(q, k),
-        )
+        .map(|k| swept(q, k))
         .chain(texel_pairs(q))
         .chain(random)
 }
@@ -113,37 +93,24 @@ fn wide_codes(q: &[Quant]) -> impl Iterator<Item = [u32; 3]> + use<'_> {
 /// three, of which R or A is full), so this covers every texel an encoder writes, where
 /// random words alone would meet most, not all.
 fn texel_pairs(q: &[Quant]) -> impl Iterator<Item = [u32; 3]> + use<> {
-    let texel = q.len() == 4
-        && q.iter().all(
-            #[inline(always)]
-            |f| f.bits() == 8,
-        );
+    let texel = q.len() == 4 && q.iter().all(|f| f.bits() == 8);
     let pairs: &[(u32, u32)] = if texel {
         &[(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
     } else {
         &[]
     };
-    pairs.iter().flat_map(
-        #[inline(always)]
-        |&(i, j)| {
-            (0..1u32 << 16).map(
-                #[inline(always)]
-                move |k| {
-                    let hole = !(0xff << (8 * i) | 0xff << (8 * j));
-                    [hole | (k & 0xff) << (8 * i) | (k >> 8) << (8 * j), 0, 0]
-                },
-            )
-        },
-    )
+    pairs.iter().flat_map(|&(i, j)| {
+        (0..1u32 << 16).map(move |k| {
+            let hole = !(0xff << (8 * i) | 0xff << (8 * j));
+            [hole | (k & 0xff) << (8 * i) | (k >> 8) << (8 * j), 0, 0]
+        })
+    })
 }
 
 /// Items that give every 16-bit field every value: 2^16 when the layout has such a field
 /// (or an f32 field, whose top 16 bits take every value).
 fn sweep_items(q: &[Quant]) -> u32 {
-    if q.iter().any(
-        #[inline(always)]
-        |f| f.bits() == 16 || *f == Quant::Single,
-    ) {
+    if q.iter().any(|f| f.bits() == 16 || *f == Quant::Single) {
         1 << 16
     } else {
         0
@@ -192,38 +159,14 @@ fn fetched_field(q: Quant, field: u32) -> u32 {
 /// of at most 16 bits read their value from a table made once per field, so that the
 /// 2^24 items of a 24-bit code cost no division each.
 pub fn float_codes(q: &[Quant]) -> Vec<u32> {
-    let total: u32 = q
-        .iter()
-        .map(
-            #[inline(always)]
-            |q| q.bits(),
-        )
-        .sum();
+    let total: u32 = q.iter().map(|q| q.bits()).sum();
     let offs = field_offsets(q);
     let tables: Vec<Option<Vec<u32>>> = q
         .iter()
-        .map(
-            #[inline(always)]
-            |&f| {
-                (f.bits() <= 16).then(
-                    #[inline(always)]
-                    || {
-                        (0..=f.mask())
-                            .map(
-                                #[inline(always)]
-                                |v| fetched_field(f, v),
-                            )
-                            .collect()
-                    },
-                )
-            },
-        )
+        .map(|&f| (f.bits() <= 16).then(|| (0..=f.mask()).map(|v| fetched_field(f, v)).collect()))
         .collect();
     let items: Box<dyn Iterator<Item = [u32; 3]>> = if total <= 24 {
-        Box::new((0..1u32 << total).map(
-            #[inline(always)]
-            |k| [k, 0, 0],
-        ))
+        Box::new((0..1u32 << total).map(|k| [k, 0, 0]))
     } else {
         Box::new(wide_codes(q))
     };
@@ -255,15 +198,7 @@ pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
             assert_eq!(in_words, 2, "a code and an index");
             codes(q, 1)
                 .into_iter()
-                .flat_map(
-                    #[inline(always)]
-                    |c| {
-                        (0..*n).flat_map(
-                            #[inline(always)]
-                            move |k| [c, k],
-                        )
-                    },
-                )
+                .flat_map(|c| (0..*n).flat_map(move |k| [c, k]))
                 .collect()
         }
         Inputs::CodesWith(q, extra) => {
@@ -297,17 +232,9 @@ pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
 /// since every encoder takes the same ones.
 fn vectors() -> &'static [u32] {
     static VECTORS: std::sync::OnceLock<Vec<u32>> = std::sync::OnceLock::new();
-    VECTORS.get_or_init(
-        #[inline(always)]
-        || {
-            let mut v = edge_vectors();
-            v.extend(random_unit_vectors(CODE_SEED, RANDOM_ITEMS, false));
-            v.iter()
-                .flat_map(
-                    #[inline(always)]
-                    |a| a.map(f32::to_bits),
-                )
-                .collect()
-        },
-    )
+    VECTORS.get_or_init(|| {
+        let mut v = edge_vectors();
+        v.extend(random_unit_vectors(CODE_SEED, RANDOM_ITEMS, false));
+        v.iter().flat_map(|a| a.map(f32::to_bits)).collect()
+    })
 }

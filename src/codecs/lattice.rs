@@ -7,8 +7,8 @@
 //! ULP; measured with float sums, it flips where a driver regroups or fuses the sums
 //! (Mesa's NIR factors `a·b + a·c` on paths without `NoContraction`). Here every
 //! candidate is an integer lattice direction `d` (its decode before normalization), the
-//! input is fixed point `A` (exactly `floor(#[inline(always)] |w|·2^22)` of the canonical input), and the
-//! closeness `sin²(A, d) = |A×d|² / (#[inline(always)] |A|²·|d|²)` is computed in wrapping 32-bit
+//! input is fixed point `A` (exactly `floor(|w|·2^22)` of the canonical input), and the
+//! closeness `sin²(A, d) = |A×d|² / (|A|²·|d|²)` is computed in wrapping 32-bit
 //! integers: exact, so no optimiser can change it. Only the last step, comparing
 //! `e₁·n₂ < e₂·n₁` (`e = |A×d|²·2^-29` and `n = |d|²`, both integers below 2^24), uses two
 //! correctly rounded float products, as the fast encoders' comparisons do.
@@ -33,7 +33,7 @@ const FIXED: f32 = (1u32 << 22) as f32;
 /// `|A×d|²` is kept as `|A×d|² >> 29`, below `2^24` for every candidate.
 const CROSS_SHIFT: u32 = 29;
 
-/// The canonical magnitudes in fixed point, `floor(#[inline(always)] |w|·2^22)`: a power-of-two scaling,
+/// The canonical magnitudes in fixed point, `floor(|w|·2^22)`: a power-of-two scaling,
 /// the floor of a normal float and the conversion of an integral value, each exact.
 #[inline(always)]
 pub fn fixed<F: Float>(a: V3<F>) -> V3<F::U> {

@@ -84,21 +84,7 @@ registry! {
 pub fn helper_doc(first: &dyn Family, name: &str) -> Option<String> {
     first
         .helper_doc(name)
-        .or_else(
-            #[inline(always)]
-            || codec::helper_doc(name),
-        )
-        .or_else(
-            #[inline(always)]
-            || trig::helper_doc(name),
-        )
-        .or_else(
-            #[inline(always)]
-            || {
-                FAMILIES.iter().find_map(
-                    #[inline(always)]
-                    |f| f.helper_doc(name),
-                )
-            },
-        )
+        .or_else(|| codec::helper_doc(name))
+        .or_else(|| trig::helper_doc(name))
+        .or_else(|| FAMILIES.iter().find_map(|f| f.helper_doc(name)))
 }

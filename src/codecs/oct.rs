@@ -146,8 +146,8 @@ pub fn oct_codes<F: Float>(q: Quant, v: V3<F>) -> V2<F> {
 }
 
 /// The octahedral codes nearest the input, decided portably: the first octant's lattice
-/// point `(s, t, M - s - t)` nearest `(#[inline(always)] |x|, #[inline(always)] |y|, #[inline(always)] |z|)` in angle among the four around
-/// `floor(M·(#[inline(always)] |x|, #[inline(always)] |y|) / l1)` (the first on ties), then the input's signs, unfolded
+/// point `(s, t, M - s - t)` nearest `(|x|, |y|, |z|)` in angle among the four around
+/// `floor(M·(|x|, |y|) / l1)` (the first on ties), then the input's signs, unfolded
 /// below the equator: `(±s, ±t)` above, `(±(M - t), ±(M - s))` below, whose decode has
 /// the same magnitudes with a negative `z`. Zero, NaN and infinite input give `(0, 0)`.
 #[inline(always)]

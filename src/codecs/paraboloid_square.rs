@@ -6,10 +6,10 @@
 //! possible xy combinations"). The decoder is `normalize(p, (1 - x²)(1 - y²))`.
 //!
 //! The seed gives no encoder for this surface: along a ray the point is a root of a
-//! quartic. With `s` the larger of `|x|, #[inline(always)] |y|` and `r ≤ 1` the ratio of the smaller to
+//! quartic. With `s` the larger of `|x|, |y|` and `r ≤ 1` the ratio of the smaller to
 //! it, the ray through the unit input `u` meets the surface where
-//! `g(s) = (1 - s²)(1 - r²s²)·max(#[inline(always)] |u.x|, #[inline(always)] |u.y|) - u.z·s` changes sign; `g` falls
-//! strictly on `[0, 1]` from `max(#[inline(always)] |u.x|, #[inline(always)] |u.y|) ≥ 0` to `-u.z ≤ 0`, so the root is unique.
+//! `g(s) = (1 - s²)(1 - r²s²)·max(|u.x|, |u.y|) - u.z·s` changes sign; `g` falls
+//! strictly on `[0, 1]` from `max(|u.x|, |u.y|) ≥ 0` to `-u.z ≤ 0`, so the root is unique.
 //! The encoder finds it by bisection, a fixed 22 steps in fixed point (units of `2^-21`,
 //! every product rounded to a unit before the next sum), from the input's fixed-point
 //! direction: every step is a function of the input alone, so every implementation
@@ -89,7 +89,7 @@ pub struct ParaboloidSquare {
 const STEPS: u32 = BITS + 1;
 
 /// One bisection step from `s` by `h`, for the ray of the fixed-point unit input with
-/// `k = (m, r², u.z)`: `m` the larger of `|u.x|, #[inline(always)] |u.y|` and `r` the smaller over it.
+/// `k = (m, r², u.z)`: `m` the larger of `|u.x|, |u.y|` and `r` the smaller over it.
 #[inline(always)]
 fn step<F: Float>(s: F, h: F, k: V3<F>) -> F {
     let one = F::c(ONE as f32);

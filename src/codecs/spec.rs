@@ -95,10 +95,7 @@ impl Spec {
                 .info()
                 .options
                 .iter()
-                .map(
-                    #[inline(always)]
-                    |o| o.default_value(),
-                )
+                .map(|o| o.default_value())
                 .collect(),
         }
     }
@@ -174,14 +171,8 @@ impl Spec {
         let spelled = info
             .spellings()
             .into_iter()
-            .find(
-                #[inline(always)]
-                |s| s.1 == self.bits,
-            )
-            .map(
-                #[inline(always)]
-                |s| s.0,
-            )
+            .find(|s| s.1 == self.bits)
+            .map(|s| s.0)
             .expect("a spec's size is one of its family's");
         format!("{spelled}{}", if self.precise { "p" } else { "" })
     }
@@ -192,14 +183,8 @@ impl Spec {
             .options
             .iter()
             .zip(&self.opts)
-            .filter(
-                #[inline(always)]
-                |(d, v)| d.default_value() != **v,
-            )
-            .map(
-                #[inline(always)]
-                |(d, v)| (d, *v),
-            )
+            .filter(|(d, v)| d.default_value() != **v)
+            .map(|(d, v)| (d, *v))
     }
 
     /// The identifier used in file and function names: `oct24p_rgb8`,
@@ -254,10 +239,7 @@ pub fn valid_names() -> Vec<String> {
         let info = f.info();
         match info.sizes {
             super::family::Sizes::Total(_) => v.push(info.name.to_string()),
-            _ => v.extend(info.spellings().into_iter().map(
-                #[inline(always)]
-                |s| s.0,
-            )),
+            _ => v.extend(info.spellings().into_iter().map(|s| s.0)),
         }
     }
     v
@@ -269,10 +251,7 @@ fn options_text(info: &Info) -> String {
     } else {
         info.options
             .iter()
-            .map(
-                #[inline(always)]
-                |o| o.usage(),
-            )
+            .map(|o| o.usage())
             .collect::<Vec<_>>()
             .join("; ")
     }
@@ -300,31 +279,24 @@ impl std::str::FromStr for Spec {
         }
         let mut spec = Spec::new(family, bits, precise);
         let mut given_keys: Vec<&'static str> = Vec::new();
-        let mut set = {
-            #[inline(always)]
-            |i: usize, v: OptVal, spec: &mut Spec| {
-                let key = info.options[i].key;
-                if given_keys.contains(&key) {
-                    return Err(SpecError::DuplicateOption {
-                        key: key.to_string(),
-                        given: given.to_string(),
-                    });
-                }
-                given_keys.push(key);
-                spec.opts[i] = v;
-                Ok(())
+        let mut set = |i: usize, v: OptVal, spec: &mut Spec| {
+            let key = info.options[i].key;
+            if given_keys.contains(&key) {
+                return Err(SpecError::DuplicateOption {
+                    key: key.to_string(),
+                    given: given.to_string(),
+                });
             }
+            given_keys.push(key);
+            spec.opts[i] = v;
+            Ok(())
         };
         for token in tokens.split('_').skip(1) {
-            let found = info.options.iter().enumerate().find_map(
-                #[inline(always)]
-                |(i, d)| {
-                    d.parse_id_token(token).map(
-                        #[inline(always)]
-                        |v| (i, v),
-                    )
-                },
-            );
+            let found = info
+                .options
+                .iter()
+                .enumerate()
+                .find_map(|(i, d)| d.parse_id_token(token).map(|v| (i, v)));
             let Some((i, v)) = found else {
                 return Err(SpecError::UnknownToken {
                     codec: info.name,
@@ -371,12 +343,7 @@ fn match_head(head: &str) -> Result<(&'static dyn Family, u32, &str), SpecError>
             };
             let fits =
                 rest.is_empty() || rest == "p" || rest.starts_with('_') || rest.starts_with("p_");
-            if fits
-                && best.is_none_or(
-                    #[inline(always)]
-                    |b| spelled.len() > b.2,
-                )
-            {
+            if fits && best.is_none_or(|b| spelled.len() > b.2) {
                 best = Some((f, bits, spelled.len()));
             }
         }
@@ -397,12 +364,7 @@ fn diagnose(head: &str) -> SpecError {
             Sizes::PerComponent { prefix, .. } => prefix,
             _ => info.name,
         };
-        if head.starts_with(stem)
-            && named.is_none_or(
-                #[inline(always)]
-                |n| stem.len() > n.1.len(),
-            )
-        {
+        if head.starts_with(stem) && named.is_none_or(|n| stem.len() > n.1.len()) {
             named = Some((info, stem));
         }
     }
@@ -413,37 +375,18 @@ fn diagnose(head: &str) -> SpecError {
         return SpecError::Spelling {
             codec: info.name,
             given: head.to_string(),
-            allowed: info
-                .spellings()
-                .into_iter()
-                .map(
-                    #[inline(always)]
-                    |s| s.0,
-                )
-                .collect(),
+            allowed: info.spellings().into_iter().map(|s| s.0).collect(),
         };
     }
-    let allowed: Vec<String> = info
-        .total_bits()
-        .iter()
-        .map(
-            #[inline(always)]
-            |b| b.to_string(),
-        )
-        .collect();
+    let allowed: Vec<String> = info.total_bits().iter().map(|b| b.to_string()).collect();
     let rest = &head[stem.len()..];
     let rest = rest.strip_prefix('_').unwrap_or(rest);
-    let digits: String = rest
-        .chars()
-        .take_while(
-            #[inline(always)]
-            |c| c.is_ascii_digit(),
-        )
-        .collect();
-    if let Some((spelled, _)) = info.spellings().into_iter().find(
-        #[inline(always)]
-        |s| head.starts_with(s.0.as_str()),
-    ) {
+    let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
+    if let Some((spelled, _)) = info
+        .spellings()
+        .into_iter()
+        .find(|s| head.starts_with(s.0.as_str()))
+    {
         SpecError::Trailing {
             given: head.to_string(),
             spelled,
@@ -466,33 +409,18 @@ fn diagnose(head: &str) -> SpecError {
 
 /// Suggestions: names sharing a prefix with what was typed first, then by edit distance.
 fn unknown_codec(given: &str) -> SpecError {
-    let name: String = given
-        .chars()
-        .take_while(
-            #[inline(always)]
-            |c| !c.is_ascii_digit(),
-        )
-        .collect();
-    let key = {
-        #[inline(always)]
-        |v: &String| {
-            let related =
-                v.starts_with(name.as_str()) || (!name.is_empty() && name.starts_with(v.as_str()));
-            (!related, strsim::levenshtein(&name, v))
-        }
+    let name: String = given.chars().take_while(|c| !c.is_ascii_digit()).collect();
+    let key = |v: &String| {
+        let related =
+            v.starts_with(name.as_str()) || (!name.is_empty() && name.starts_with(v.as_str()));
+        (!related, strsim::levenshtein(&name, v))
     };
     let mut valid = valid_names();
-    valid.sort_by_key(
-        #[inline(always)]
-        |v| (key(v), v.clone()),
-    );
+    valid.sort_by_key(|v| (key(v), v.clone()));
     let best = key(&valid[0]);
     let nearest = valid
         .iter()
-        .take_while(
-            #[inline(always)]
-            |v| key(v) == best,
-        )
+        .take_while(|v| key(v) == best)
         .cloned()
         .collect();
     SpecError::UnknownCodec {

@@ -1,6 +1,6 @@
 //! Spherical coordinates (survey §2): θ ∈ [0, π] and φ ∈ [-π, π] stored as snorm×2,
 //! `(θ/π·2 - 1, φ/π)`. Trigonometry comes from [`super::trig`].
-//! θ is computed as `atan2(#[inline(always)] |xy|, z)` rather than `acos(z)`: same angle, but well
+//! θ is computed as `atan2(|xy|, z)` rather than `acos(z)`: same angle, but well
 //! conditioned near the poles, where acos loses half its digits.
 
 use super::codec::{Codec, Domain};
@@ -120,7 +120,7 @@ impl Codec for Spherical {
     }
 }
 
-/// The polar angle `θ = atan2(#[inline(always)] |xy|, z)` and the azimuth `φ = atan2(y, x)` of a unit
+/// The polar angle `θ = atan2(|xy|, z)` and the azimuth `φ = atan2(y, x)` of a unit
 /// `u`, in half turns, from the model's float trigonometry: the float forms' angles.
 #[inline(always)]
 pub(crate) fn float_angles<F: Float>(u: V3<F>) -> (F, F) {

@@ -30,7 +30,7 @@
 //!
 //! The choice is made in integers, like the other precise encoders' ([`super::lattice`]): each
 //! candidate's direction is `d = 2·byte - 255` of its fetched texel (its decode times
-//! 255), the input is `A = ±floor(#[inline(always)] |w|·2^12)` of the canonical input `w` (largest
+//! 255), the input is `A = ±floor(|w|·2^12)` of the canonical input `w` (largest
 //! component in `[2, 4)`), and `sin²` of their angle is compared as `|A×d|²/|d|²`:
 //! `|A×d|²` summed exactly in integers and rounded once, the two ratios compared by two
 //! correctly rounded products ([`Closeness::of_small`]), the fast code first on ties. So

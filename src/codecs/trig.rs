@@ -180,13 +180,13 @@ pub fn sinc_cos_quarter<F: Float>(q: F) -> V2<F> {
 pub fn helper_doc(name: &str) -> Option<String> {
     match name {
         "atan2_pi" => Some(format!(
-            "atan2(y, x) / π in [-1, 1] from exact operations only (#[inline(always)] |error| ≤ {ATAN2_PI_MAX_ERROR:e}); signed zeros count as positive."
+            "atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ {ATAN2_PI_MAX_ERROR:e}); signed zeros count as positive."
         )),
         "sincos_pi" => Some(format!(
-            "(sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (#[inline(always)] |error| ≤ {SINCOS_PI_MAX_ERROR:e})."
+            "(sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
         )),
         "sincos_quarter_pi" => Some(format!(
-            "(sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (#[inline(always)] |error| ≤ {SINCOS_PI_MAX_ERROR:e})."
+            "(sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (|error| ≤ {SINCOS_PI_MAX_ERROR:e})."
         )),
         _ => None,
     }
