@@ -225,15 +225,10 @@ pub enum Role {
 
 /// A model of a function on raw words: one item in, one item out.
 pub type Eval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
-/// The same on groups of `N` items, word by word: `in_words` lanes per group in,
-/// `out_words` out, as many groups as the input holds (one call per block, so the dynamic
-/// call is paid once per block, not per group).
-pub type LanesEvalOf<const N: usize> = Arc<dyn Fn(&[[u32; N]], &mut [[u32; N]]) + Send + Sync>;
-/// Groups of four ([`Lanes`]), on SSE2 lanes.
-pub type LanesEval = LanesEvalOf<4>;
-/// Groups of eight ([`Lanes8`]), on AVX2 lanes. It checks for AVX2 itself, and panics
-/// without it, so calling it is safe anywhere.
-pub type Lanes8Eval = LanesEvalOf<WIDTH>;
+/// The same on any number of items at once (`in_words` each in, `out_words` out), on SIMD
+/// lanes: groups of four or eight items transposed into lanes, evaluated together and
+/// transposed back, inside the function compiled for those lanes.
+pub type LanesEval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
 
 /// Which lanes [`Function::eval_many_on`] evaluates on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -274,7 +269,7 @@ pub struct Function {
     pub eval_lanes: LanesEval,
     /// The same on eight items at once with [`F8`], compiled for AVX2: what the CPU
     /// batches run where the processor has it, bit for bit `eval` on each item.
-    pub eval_lanes8: Lanes8Eval,
+    pub eval_lanes8: LanesEval,
     /// For a decoder: the same generic function evaluated with [`Encl`] over a box of
     /// codes, which [`crate::decode_bound`] refines into a proven deviation bound.
     pub enclose: Option<Enclose>,
@@ -309,117 +304,68 @@ impl Function {
             "{} outputs for {n} items",
             output.len()
         );
-        match width {
-            Width::Four => in_groups(&self.eval_lanes, (iw, ow), input, output),
-            Width::Eight => in_groups(&self.eval_lanes8, (iw, ow), input, output),
+        let eval = match width {
+            Width::Four => &self.eval_lanes,
+            Width::Eight => &self.eval_lanes8,
+        };
+        // Blocks that keep a table function's intermediate items in cache.
+        const BLOCK: usize = 1024;
+        for (i, o) in input.chunks(BLOCK * iw).zip(output.chunks_mut(BLOCK * ow)) {
+            eval(i, o)
         }
     }
 }
 
-/// Items of `iw` words through `eval` into items of `ow` words, `N` items per group and
-/// a block of groups per call.
-fn in_groups<const N: usize>(
-    eval: &LanesEvalOf<N>,
-    (iw, ow): (usize, usize),
+/// The widest item a lane evaluation takes or returns, in words (a precise search's
+/// vector and fetched texels).
+const MAX_WORDS: usize = 32;
+
+/// `f` on every item of `input` into `output`, `N` items per group: each group's words
+/// transposed into lanes on the stack, evaluated, and transposed back. A last partial
+/// group repeats its last item in the spare lanes and writes only the real ones. Inlined
+/// into the function compiled for the lanes, so the transposes are too.
+#[inline(always)]
+fn in_groups<A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>(
+    f: &impl Fn(A) -> R,
     input: &[u32],
     output: &mut [u32],
 ) {
-    const ITEMS: usize = 256;
-    let groups = ITEMS / N;
-    let mut lanes_in = vec![[0u32; N]; iw * groups];
-    let mut lanes_out = vec![[0u32; N]; ow * groups];
-    for (src, dst) in input.chunks(ITEMS * iw).zip(output.chunks_mut(ITEMS * ow)) {
-        let groups = (src.len() / iw).div_ceil(N);
-        let (lanes_in, lanes_out) = (&mut lanes_in[..groups * iw], &mut lanes_out[..groups * ow]);
-        // The common widths as constants, so that the transposes are plain moves; a
-        // precise search's fetched texels beside its vector make wider items.
-        match iw {
-            1 => gather::<N, 1>(src, lanes_in),
-            2 => gather::<N, 2>(src, lanes_in),
-            3 => gather::<N, 3>(src, lanes_in),
-            4 => gather::<N, 4>(src, lanes_in),
-            _ => gather_any(iw, src, lanes_in),
-        }
-        eval(lanes_in, lanes_out);
-        match ow {
-            1 => scatter::<N, 1>(lanes_out, dst),
-            2 => scatter::<N, 2>(lanes_out, dst),
-            3 => scatter::<N, 3>(lanes_out, dst),
-            4 => scatter::<N, 4>(lanes_out, dst),
-            _ => scatter_any(ow, lanes_out, dst),
-        }
-    }
-}
-
-/// Items of `W` words into groups of `N` lanes per word; a last partial group repeats
-/// its last item.
-#[inline(always)]
-fn gather<const N: usize, const W: usize>(src: &[u32], lanes: &mut [[u32; N]]) {
-    let mut full = src.chunks_exact(N * W);
-    let mut groups = lanes.chunks_exact_mut(W);
-    for (s, group) in (&mut full).zip(&mut groups) {
-        for (j, lane) in group.iter_mut().enumerate() {
+    let (iw, ow) = (A::WORDS, R::WORDS);
+    assert!(
+        iw <= MAX_WORDS && ow <= MAX_WORDS,
+        "items of at most {MAX_WORDS} words"
+    );
+    let mut lanes_in = [[0u32; N]; MAX_WORDS];
+    let mut lanes_out = [[0u32; N]; MAX_WORDS];
+    let (lanes_in, lanes_out) = (&mut lanes_in[..iw], &mut lanes_out[..ow]);
+    let mut src = input.chunks_exact(N * iw);
+    let mut dst = output.chunks_exact_mut(N * ow);
+    for (s, d) in (&mut src).zip(&mut dst) {
+        for (j, lane) in lanes_in.iter_mut().enumerate() {
             for (k, l) in lane.iter_mut().enumerate() {
-                *l = s[k * W + j];
+                *l = s[k * iw + j];
+            }
+        }
+        f(A::read(lanes_in)).write(lanes_out);
+        for (k, item) in d.chunks_exact_mut(ow).enumerate() {
+            for (o, lane) in item.iter_mut().zip(lanes_out.iter()) {
+                *o = lane[k];
             }
         }
     }
-    if let Some(group) = groups.next() {
-        gather_tail(W, full.remainder(), group);
-    }
-}
-
-/// [`gather`] for any width.
-fn gather_any<const N: usize>(w: usize, src: &[u32], lanes: &mut [[u32; N]]) {
-    let mut full = src.chunks_exact(N * w);
-    let mut groups = lanes.chunks_exact_mut(w);
-    for (s, group) in (&mut full).zip(&mut groups) {
-        for (j, lane) in group.iter_mut().enumerate() {
-            *lane = std::array::from_fn(|k| s[k * w + j]);
-        }
-    }
-    if let Some(group) = groups.next() {
-        gather_tail(w, full.remainder(), group);
-    }
-}
-
-/// The last, partial group: its items, then the last one again in the spare lanes.
-fn gather_tail<const N: usize>(w: usize, tail: &[u32], group: &mut [[u32; N]]) {
-    let items = tail.len() / w;
-    for (j, lane) in group.iter_mut().enumerate() {
-        *lane = std::array::from_fn(|k| tail[k.min(items - 1) * w + j]);
-    }
-}
-
-/// Groups of `N` lanes per word back into items of `W` words, the real items only.
-#[inline(always)]
-fn scatter<const N: usize, const W: usize>(lanes: &[[u32; N]], dst: &mut [u32]) {
-    let mut full = dst.chunks_exact_mut(N * W);
-    let mut groups = lanes.chunks_exact(W);
-    for (d, group) in (&mut full).zip(&mut groups) {
-        for (k, item) in d.chunks_exact_mut(W).enumerate() {
-            for (j, o) in item.iter_mut().enumerate() {
-                *o = group[j][k];
+    let (s, d) = (src.remainder(), dst.into_remainder());
+    let items = s.len() / iw;
+    if items > 0 {
+        for (j, lane) in lanes_in.iter_mut().enumerate() {
+            for (k, l) in lane.iter_mut().enumerate() {
+                *l = s[k.min(items - 1) * iw + j];
             }
         }
-    }
-    if let Some(group) = groups.next() {
-        scatter_tail(W, group, full.into_remainder());
-    }
-}
-
-/// [`scatter`] for any width.
-fn scatter_any<const N: usize>(w: usize, lanes: &[[u32; N]], dst: &mut [u32]) {
-    for (group, d) in lanes.chunks_exact(w).zip(dst.chunks_mut(N * w)) {
-        scatter_tail(w, group, d);
-    }
-}
-
-/// One group's lanes into its items (`dst` may hold fewer than `N`).
-fn scatter_tail<const N: usize>(w: usize, group: &[[u32; N]], dst: &mut [u32]) {
-    for (k, item) in dst.chunks_exact_mut(w).enumerate() {
-        for (o, lane) in item.iter_mut().zip(group) {
-            *o = lane[k];
+        f(A::read(lanes_in)).write(lanes_out);
+        for (k, item) in d.chunks_exact_mut(ow).enumerate() {
+            for (o, lane) in item.iter_mut().zip(lanes_out.iter()) {
+                *o = lane[k];
+            }
         }
     }
 }
@@ -478,45 +424,29 @@ where
             #[inline(always)]
             move |i, o| f_dev(AD::read(i)).write(o),
         ),
-        eval_lanes: Arc::new(
-            #[inline(always)]
-            move |i, o| {
-                for (i, o) in i.chunks_exact(AL::WORDS).zip(o.chunks_exact_mut(RL::WORDS)) {
-                    f_lanes(AL::read(i)).write(o)
-                }
-            },
-        ),
-        eval_lanes8: Arc::new(
-            #[inline(always)]
-            move |i, o| {
-                assert!(
-                    avx2_lanes::available(),
-                    "{name}: the eight-lane evaluation needs a processor with AVX2"
-                );
-                // SAFETY: the processor has AVX2 (checked just above).
-                unsafe { on_avx2(&f_lanes8, i, o) }
-            },
-        ),
+        eval_lanes: Arc::new(move |i, o| in_groups(&f_lanes, i, o)),
+        eval_lanes8: Arc::new(move |i, o| {
+            assert!(
+                avx2_lanes::available(),
+                "{name}: the eight-lane evaluation needs a processor with AVX2"
+            );
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { on_avx2(&f_lanes8, i, o) }
+        }),
         enclose: None,
         parts: Vec::new(),
     }
 }
 
-/// `f` on each group of `i` into `o`, compiled for AVX2: `f` and everything it calls
+/// [`in_groups`] of `f` on eight lanes, compiled for AVX2: `f` and everything it calls
 /// inline here (the lane operations are `#[inline(always)]`), so the [`F8`] operations
 /// become AVX2 instructions rather than calls.
 ///
 /// # Safety
 /// The processor must have AVX2.
 #[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
-unsafe fn on_avx2<A: Bits<Lanes8>, R: Bits<Lanes8>>(
-    f: &impl Fn(A) -> R,
-    i: &[Lanes8],
-    o: &mut [Lanes8],
-) {
-    for (i, o) in i.chunks_exact(A::WORDS).zip(o.chunks_exact_mut(R::WORDS)) {
-        f(A::read(i)).write(o)
-    }
+unsafe fn on_avx2<A: Bits<Lanes8>, R: Bits<Lanes8>>(f: &impl Fn(A) -> R, i: &[u32], o: &mut [u32]) {
+    in_groups(f, i, o)
 }
 
 /// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]
@@ -752,8 +682,8 @@ struct Chain {
 }
 
 impl Chain {
-    /// `a`, the lookup item by item, then `b`, on groups of `N` lanes.
-    fn chain<const N: usize>(&self, a: &LanesEvalOf<N>, b: &LanesEvalOf<N>) -> LanesEvalOf<N> {
+    /// `a` on the items, the lookup item by item, then `b`: each part on its lanes.
+    fn chain(&self, a: &LanesEval, b: &LanesEval) -> LanesEval {
         let (a, b, lookup) = (a.clone(), b.clone(), self.lookup.clone());
         let Chain {
             iw,
@@ -762,37 +692,20 @@ impl Chain {
             keep_input,
             ..
         } = *self;
-        Arc::new(
-            #[inline(always)]
-            move |i: &[[u32; N]], o: &mut [[u32; N]]| {
-                let groups = i.len() / iw;
-                let mut t = vec![[0u32; N]; groups * mid];
-                a(i, &mut t);
-                let mut arg = vec![[0u32; N]; groups * second_in];
-                for g in 0..groups {
-                    let at = &mut arg[g * second_in..(g + 1) * second_in];
-                    if keep_input {
-                        at[..iw].copy_from_slice(&i[g * iw..(g + 1) * iw]);
-                    }
-                    let from = if keep_input { iw } else { 0 };
-                    for k in 0..N {
-                        let item: Vec<u32> = t[g * mid..(g + 1) * mid]
-                            .iter()
-                            .map(
-                                #[inline(always)]
-                                |w| w[k],
-                            )
-                            .collect();
-                        let words = lookup(&item);
-                        assert_eq!(from + words.len(), second_in, "the lookup's words");
-                        for (j, w) in words.into_iter().enumerate() {
-                            at[from + j][k] = w;
-                        }
-                    }
+        Arc::new(move |i: &[u32], o: &mut [u32]| {
+            let n = i.len() / iw;
+            let mut t = vec![0u32; n * mid];
+            a(i, &mut t);
+            let mut arg = Vec::with_capacity(n * second_in);
+            for (item, t) in i.chunks_exact(iw).zip(t.chunks_exact(mid)) {
+                if keep_input {
+                    arg.extend_from_slice(item);
                 }
-                b(&arg, o)
-            },
-        )
+                arg.extend(lookup(t));
+            }
+            assert_eq!(arg.len(), n * second_in, "the lookup's words");
+            b(&arg, o)
+        })
     }
 }
 
