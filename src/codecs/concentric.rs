@@ -144,8 +144,20 @@ impl<P: DiskProjection> Codec for Concentric<P> {
         let div = F::sel(r.gt(F::c(0.0)), r, F::c(1.0));
         let angle = (s / div * F::c(0.25)).named("angle");
         // Both sides' points, then the choice: each is a smooth function of the code.
-        let on_x = F::call("sincos_quarter_pi", angle.y, sincos_quarter_pi).named("on_x");
-        let on_y = F::call("sincos_quarter_pi", angle.x, sincos_quarter_pi).named("on_y");
+        let on_x = F::call(
+            "sincos_quarter_pi",
+            angle.y,
+            #[inline(always)]
+            |a| sincos_quarter_pi(a),
+        )
+        .named("on_x");
+        let on_y = F::call(
+            "sincos_quarter_pi",
+            angle.x,
+            #[inline(always)]
+            |a| sincos_quarter_pi(a),
+        )
+        .named("on_y");
         let x_side = V2::new(s.x * on_x.y, r * on_x.x);
         let y_side = V2::new(r * on_y.x, s.y * on_y.y);
         let x_major = s.x.abs().ge(s.y.abs());

@@ -119,16 +119,16 @@ impl Family for CrytekBfnFamily {
             ],
             _ => return None,
         };
-        Some(lines.iter().map(#[inline(always)] |l| l.to_string()).collect())
+        Some(lines.iter().map(|l| l.to_string()).collect())
     }
 }
 
 /// The fitting table, `SIZE × SIZE` bytes, row `j` (the texel's y) after row `j - 1`.
 pub fn fitting_table() -> &'static [u8] {
     static TABLE: OnceLock<Vec<u8>> = OnceLock::new();
-    TABLE.get_or_init(#[inline(always)] || {
+    TABLE.get_or_init(|| {
         (0..SIZE * SIZE)
-            .map(#[inline(always)] |t| best_scale(t % SIZE, t / SIZE))
+            .map(|t| best_scale(t % SIZE, t / SIZE))
             .collect()
     })
 }
@@ -147,7 +147,7 @@ fn best_scale(i: usize, j: usize) -> u8 {
         let t = f64::from(k) / 255.0;
         let err = d
             .iter()
-            .map(#[inline(always)] |&c| {
+            .map(|&c| {
                 let p = t * c;
                 let code = ((p * 0.5 + 0.5) * 255.0 + 0.5).floor();
                 (code / 255.0 * 2.0 - 1.0 - p).abs()
@@ -219,13 +219,13 @@ pub fn encode_float<F: Float>(v: V3<F>, fetched: F) -> V3<F> {
 
 /// The emitted functions, and the CPU encoders that fetch from the table in memory.
 fn emitted(spec_id: &str) -> Emitted {
-    let module = trace_module(#[inline(always)] || {
+    let module = trace_module(|| {
         trace_decoders(&Unorm3);
-        define("fitting_texel", &["v"], #[inline(always)] |v: V3<Tf>| fitting_texel(v));
-        define("encode_float", &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| {
+        define("fitting_texel", &["v"], |v: V3<Tf>| fitting_texel(v));
+        define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
             encode_float(v, a)
         });
-        define("encode", &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| encode(v, a));
+        define("encode", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
     });
     let texel = generic_function!(
         "fitting_texel",
@@ -236,8 +236,8 @@ fn emitted(spec_id: &str) -> Emitted {
     let with_scale = Inputs::VectorsWith(Extra {
         name: "the fitting table's value at fitting_texel(v)",
         words: 1,
-        of: Arc::new(#[inline(always)] |v: &[u32]| {
-            let t = fitting_texel::<f32>(V3::from_array(std::array::from_fn(#[inline(always)] |i| {
+        of: Arc::new(|v: &[u32]| {
+            let t = fitting_texel::<f32>(V3::from_array(std::array::from_fn(|i| {
                 f32::from_bits(v[i])
             })));
             vec![fetch(&[t.x, t.y]).to_bits()]
@@ -255,9 +255,9 @@ fn emitted(spec_id: &str) -> Emitted {
         with_scale,
         <F> [] |x: (V3<F>, F)| encode_float(x.0, x.1)
     );
-    let lookup: WordsMap = Arc::new(#[inline(always)] |t: &[u32]| vec![fetch(t).to_bits()]);
+    let lookup: WordsMap = Arc::new(|t: &[u32]| vec![fetch(t).to_bits()]);
     let cpu = [(&enc, Role::Encode), (&enc_float, Role::EncodeFloat)]
-        .map(#[inline(always)] |(f, role)| {
+        .map(|(f, role)| {
             through_table(f.name, role, Inputs::Vectors, &texel, lookup.clone(), f, true)
         })
         .to_vec();

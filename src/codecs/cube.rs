@@ -48,7 +48,7 @@ impl Family for CubeFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
+        (name == "encode_codes").then(|| search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Cube::of(spec.bits(), false))
@@ -214,8 +214,8 @@ impl Codec for Cube {
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
         let u = if self.warped {
-            let cs = F::call("sincos_pi", p.x * F::c(0.25), sincos_pi).named("cs");
-            let ct = F::call("sincos_pi", p.y * F::c(0.25), sincos_pi).named("ct");
+            let cs = F::call("sincos_pi", p.x * F::c(0.25), #[inline(always)] |a| sincos_pi(a)).named("cs");
+            let ct = F::call("sincos_pi", p.y * F::c(0.25), #[inline(always)] |a| sincos_pi(a)).named("ct");
             // (tan a, tan b, 1)·cos a·cos b.
             let d = V3::new(cs.x * ct.y, ct.x * cs.y, cs.y * ct.y).named("d");
             d / d.length_squared().sqrt()

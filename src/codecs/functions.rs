@@ -416,14 +416,8 @@ where
         inputs,
         in_words: A::WORDS,
         out_words: R::WORDS,
-        eval: Arc::new(
-            #[inline(always)]
-            move |i, o| f(A::read(i)).write(o),
-        ),
-        eval_dev: Arc::new(
-            #[inline(always)]
-            move |i, o| f_dev(AD::read(i)).write(o),
-        ),
+        eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
+        eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
         eval_lanes: Arc::new(move |i, o| in_groups(&f_lanes, i, o)),
         eval_lanes8: Arc::new(move |i, o| {
             assert!(
@@ -515,41 +509,32 @@ pub fn first_with_same_code(emitted: &[Emitted]) -> Vec<Vec<Option<(usize, usize
     emitted
         .iter()
         .enumerate()
-        .map(
-            #[inline(always)]
-            |(i, e)| {
-                e.functions
-                    .iter()
-                    .enumerate()
-                    .map(
-                        #[inline(always)]
-                        |(j, f)| {
-                            let seen = first.entry(e.module.identity(f.name)).or_default();
-                            match seen.iter().find(
-                                #[inline(always)]
-                                |(inputs, _)| **inputs == f.inputs,
-                            ) {
-                                Some(&(_, at)) => Some(at),
-                                None => {
-                                    seen.push((&f.inputs, (i, j)));
-                                    None
-                                }
-                            }
-                        },
-                    )
-                    .collect()
-            },
-        )
+        .map(|(i, e)| {
+            e.functions
+                .iter()
+                .enumerate()
+                .map(|(j, f)| {
+                    let seen = first.entry(e.module.identity(f.name)).or_default();
+                    match seen.iter().find(|(inputs, _)| **inputs == f.inputs) {
+                        Some(&(_, at)) => Some(at),
+                        None => {
+                            seen.push((&f.inputs, (i, j)));
+                            None
+                        }
+                    }
+                })
+                .collect()
+        })
         .collect()
 }
 
 impl Emitted {
     /// The CPU function of `role`: a [`Emitted::cpu`] stand-in, else the emitted one.
     pub fn cpu_function(&self, role: Role) -> Option<&Function> {
-        self.cpu.iter().chain(&self.functions).find(
-            #[inline(always)]
-            |f| f.role == role,
-        )
+        self.cpu
+            .iter()
+            .chain(&self.functions)
+            .find(|f| f.role == role)
     }
 }
 
@@ -732,27 +717,21 @@ pub fn through_table(
         second.in_words
     );
     let want = second.in_words;
-    let chain = {
-        #[inline(always)]
-        |a: &Eval, b: &Eval| -> Eval {
-            let (a, b, lookup) = (a.clone(), b.clone(), lookup.clone());
-            Arc::new(
-                #[inline(always)]
-                move |i: &[u32], o: &mut [u32]| {
-                    let mut t = vec![0u32; mid];
-                    a(i, &mut t);
-                    // A caller's item may sit in a longer buffer: keep its own words only.
-                    let mut arg = if keep_input {
-                        i[..iw].to_vec()
-                    } else {
-                        Vec::new()
-                    };
-                    arg.extend(lookup(&t));
-                    assert_eq!(arg.len(), want, "the lookup's words and the kept input");
-                    b(&arg, o)
-                },
-            )
-        }
+    let chain = |a: &Eval, b: &Eval| -> Eval {
+        let (a, b, lookup) = (a.clone(), b.clone(), lookup.clone());
+        Arc::new(move |i: &[u32], o: &mut [u32]| {
+            let mut t = vec![0u32; mid];
+            a(i, &mut t);
+            // A caller's item may sit in a longer buffer: keep its own words only.
+            let mut arg = if keep_input {
+                i[..iw].to_vec()
+            } else {
+                Vec::new()
+            };
+            arg.extend(lookup(&t));
+            assert_eq!(arg.len(), want, "the lookup's words and the kept input");
+            b(&arg, o)
+        })
     };
     let lanes = Chain {
         iw,
@@ -820,10 +799,7 @@ fn field_codes(q: Quant, (lo, hi): (i64, i64)) -> Encl {
         _ => 0x7f80_0000,
     };
     let negative = lo >> (b - 1) == 1;
-    let special = {
-        #[inline(always)]
-        |h: u32| h & magnitude >= inf
-    };
+    let special = |h: u32| h & magnitude >= inf;
     if lo >> (b - 1) != hi >> (b - 1) || special(lo) != special(hi) {
         return Encl::unknown();
     }
@@ -935,18 +911,8 @@ pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<
 
 /// Defines [`codec_decoders`]' functions in the module being traced.
 pub fn trace_decoders<C: Codec>(c: &C) {
-    define(
-        "decode_float",
-        &["params"],
-        #[inline(always)]
-        |p: C::P<Tf>| c.direction(p),
-    );
-    define(
-        "decode",
-        &["code"],
-        #[inline(always)]
-        |code: C::C<Tf>| decode_packed(c, code),
-    );
+    define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
+    define("decode", &["code"], |code: C::C<Tf>| decode_packed(c, code));
 }
 
 /// Traces the public functions, decoders first so that encoders calling them find them
@@ -954,31 +920,13 @@ pub fn trace_decoders<C: Codec>(c: &C) {
 fn trace_codec<C: Codec>(c: &C, precise: bool) {
     trace_decoders(c);
     if precise {
-        define(
-            "encode_codes",
-            &["v"],
-            #[inline(always)]
-            |v: V3<Tf>| c.precise_codes(v),
-        );
+        define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
     }
-    define(
-        "encode_float",
-        &["v"],
-        #[inline(always)]
-        |v: V3<Tf>| encode_float(c, precise, v),
-    );
-    define(
-        "encode",
-        &["v"],
-        #[inline(always)]
-        |v: V3<Tf>| encode_packed(c, precise, v),
-    );
+    define("encode_float", &["v"], |v: V3<Tf>| {
+        encode_float(c, precise, v)
+    });
+    define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
     if let Some(name) = c.alternate() {
-        define(
-            name,
-            &["v"],
-            #[inline(always)]
-            |v: V3<Tf>| encode_alternate(c, precise, v),
-        );
+        define(name, &["v"], |v: V3<Tf>| encode_alternate(c, precise, v));
     }
 }

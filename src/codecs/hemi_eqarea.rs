@@ -37,7 +37,7 @@ impl Family for HemiEqAreaFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
+        (name == "encode_codes").then(|| search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, HemiEqArea { bits: spec.bits() })

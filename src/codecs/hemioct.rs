@@ -33,7 +33,7 @@ impl Family for HemiOctFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(#[inline(always)] || search_doc("the input's signs"))
+        (name == "encode_codes").then(|| search_doc("the input's signs"))
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         texel::validate(spec)

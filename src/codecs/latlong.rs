@@ -116,7 +116,7 @@ impl Codec for Latlong {
 #[inline(always)]
 pub fn grid_direction<F: Float>(p: V2<F>) -> V3<F> {
     let phi = (p.x * F::c(2.0) - F::c(1.0)).named("phi");
-    let st = F::call("sincos_pi", p.y, sincos_pi).named("st");
-    let sp = F::call("sincos_pi", phi, sincos_pi).named("sp");
+    let st = F::call("sincos_pi", p.y, #[inline(always)] |a| sincos_pi(a)).named("st");
+    let sp = F::call("sincos_pi", phi, #[inline(always)] |a| sincos_pi(a)).named("sp");
     V3::new(sp.y * st.x, sp.x * st.x, st.y)
 }

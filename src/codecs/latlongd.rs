@@ -103,7 +103,7 @@ impl Family for LatlongDFamily {
             bytes: rings
                 .entries
                 .iter()
-                .flat_map(#[inline(always)] |e| e.iter().flat_map(#[inline(always)] |w| w.to_le_bytes()))
+                .flat_map(|e| e.iter().flat_map(#[inline(always)] |w| w.to_le_bytes()))
                 .collect(),
         }]
     }
@@ -166,15 +166,15 @@ impl Rings {
         static TABLES: [OnceLock<Rings>; 3] = [const { OnceLock::new() }; 3];
         let at = RINGS
             .iter()
-            .position(#[inline(always)] |&(b, _)| b == bits)
+            .position(|&(b, _)| b == bits)
             .expect("a latlongd size");
-        TABLES[at].get_or_init(#[inline(always)] || Rings::build(bits, RINGS[at].1))
+        TABLES[at].get_or_init(|| Rings::build(bits, RINGS[at].1))
     }
 
     /// The rings of `nphi` latitudes with the least `ε` whose patches fit `2^bits` codes.
     pub fn build(bits: u32, nphi: u32) -> Rings {
         let budget = 1u64 << bits;
-        let fits = { #[inline(always)] |eps: f64| counts(nphi, eps).is_some_and(#[inline(always)] |c| c.iter().sum::<u64>() <= budget) };
+        let fits = |eps: f64| counts(nphi, eps).is_some_and(#[inline(always)] |c| c.iter().sum::<u64>() <= budget);
         let (mut lo, mut hi) = (1e-9, 0.2);
         for _ in 0..64 {
             let mid = 0.5 * (lo + hi);
@@ -188,7 +188,7 @@ impl Rings {
         let mut offset = 0u64;
         let entries: Vec<[u32; 2]> = counts
             .iter()
-            .map(#[inline(always)] |&n| {
+            .map(|&n| {
                 let e = [offset as u32, n as u32];
                 offset += n;
                 e
@@ -352,16 +352,16 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
     type U<F> = <F as Float>::U;
     let r = Rings::of(bits);
     let q = fields(bits);
-    let module = trace_module(#[inline(always)] || {
-        define("decode_float", &["params"], #[inline(always)] |p: V2<Tf>| grid_direction(p));
-        define("encode_ring", &["v"], #[inline(always)] |v: V3<Tf>| encode_ring(r, v));
+    let module = trace_module(|| {
+        define("decode_float", &["params"], |p: V2<Tf>| grid_direction(p));
+        define("encode_ring", &["v"], |v: V3<Tf>| encode_ring(r, v));
         // `encode` first: encode_float calls it, and the first definition names the
         // parameters.
-        define("encode", &["v", "ring"], #[inline(always)] |(v, e): (V3<Tf>, V2<U<Tf>>)| encode(v, e));
-        define("encode_float", &["v", "ring"], #[inline(always)] |(v, e): (V3<Tf>, V2<U<Tf>>)| {
+        define("encode", &["v", "ring"], |(v, e): (V3<Tf>, V2<U<Tf>>)| encode(v, e));
+        define("encode_float", &["v", "ring"], |(v, e): (V3<Tf>, V2<U<Tf>>)| {
             encode_float(bits, v, e)
         });
-        define("decode_ring", &["code"], #[inline(always)] |c: U<Tf>| decode_ring::<Tf>(r, c));
+        define("decode_ring", &["code"], |c: U<Tf>| decode_ring::<Tf>(r, c));
         define(
             "decode_params",
             &["code", "g", "ring0", "ring1"],
@@ -378,7 +378,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         <F> [] |p: V2<F>| grid_direction(p)
     );
     dec_float.enclose = Some(Enclose {
-        eval: Arc::new(#[inline(always)] move |b: &[(i64, i64)]| {
+        eval: Arc::new(move |b: &[(i64, i64)]| {
             let p = V2::new(fetched_range(params[0], b[0]), fetched_range(params[1], b[1]));
             grid_direction::<Encl>(p).to_array().to_vec()
         }),
@@ -394,8 +394,8 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
     let with_ring = Inputs::VectorsWith(Extra {
         name: "the ring table's entry at encode_ring(v)",
         words: 2,
-        of: Arc::new(#[inline(always)] move |v: &[u32]| {
-            let j = encode_ring::<f32>(r, V3::from_array(std::array::from_fn(#[inline(always)] |i| f32::from_bits(v[i]))));
+        of: Arc::new(move |v: &[u32]| {
+            let j = encode_ring::<f32>(r, V3::from_array(std::array::from_fn(|i| f32::from_bits(v[i]))));
             r.entry(j).to_vec()
         }),
     });
@@ -418,7 +418,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         <F> [] |c: U<F>| decode_ring::<F>(r, c)
     );
     // A guess's words → the guess and the entries g and g + 1.
-    let pair: WordsMap = Arc::new(#[inline(always)] move |g: &[u32]| {
+    let pair: WordsMap = Arc::new(move |g: &[u32]| {
         let mut out = vec![g[0]];
         out.extend(r.entry(g[0]));
         out.extend(r.entry(g[0] + 1));
@@ -434,16 +434,16 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
                 words: 5,
                 of: {
                     let pair = pair.clone();
-                    Arc::new(#[inline(always)] move |c: &[u32]| pair(&[decode_ring::<f32>(r, c[0])]))
+                    Arc::new(move |c: &[u32]| pair(&[decode_ring::<f32>(r, c[0])]))
                 },
             }
         ),
         <F> [] |x: ParamsArgs<F>| decode_params::<F>(r, x.0, x.1.0, x.1.1.0, x.1.1.1)
     );
-    let lookup: WordsMap = Arc::new(#[inline(always)] move |j: &[u32]| r.entry(j[0]).to_vec());
-    let cpu_enc = { #[inline(always)] |f: &Function, role: Role| {
+    let lookup: WordsMap = Arc::new(move |j: &[u32]| r.entry(j[0]).to_vec());
+    let cpu_enc = |f: &Function, role: Role| {
         through_table(f.name, role, Inputs::Vectors, &ring, lookup.clone(), f, true)
-    } };
+    };
     let cpu = vec![
         cpu_enc(&enc, Role::Encode),
         cpu_enc(&enc_float, Role::EncodeFloat),
@@ -476,7 +476,7 @@ fn cpu_decode(
         params,
         true,
     );
-    let same: WordsMap = Arc::new(#[inline(always)] |w: &[u32]| w.to_vec());
+    let same: WordsMap = Arc::new(|w: &[u32]| w.to_vec());
     let mut dec = through_table(
         "decode",
         Role::Decode,

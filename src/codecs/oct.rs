@@ -227,8 +227,8 @@ impl Codec for Oct24Rgb8 {
     }
     #[inline(always)]
     fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
-        let e = F::call("unorm8x3_to_snorm12x2", u, from_unorm8x3).named("e");
-        F::call("oct24_decode_float", e, oct_direction)
+        let e = F::call("unorm8x3_to_snorm12x2", u, #[inline(always)] |a| from_unorm8x3(a)).named("e");
+        F::call("oct24_decode_float", e, #[inline(always)] |a| oct_direction(a))
     }
     /// The middle byte holds the low bits of one parameter and the high bits of the other.
     fn whole_field(&self) -> Option<usize> {
@@ -238,8 +238,8 @@ impl Codec for Oct24Rgb8 {
     /// skips a `c·(1/255)·255` round trip (which drivers would fold across the call).
     #[inline(always)]
     fn decode_codes<F: Float>(&self, b: V3<F>) -> V3<F> {
-        let e = F::call("bytes_to_snorm12x2", b, from_bytes).named("e");
-        F::call("oct24_decode_float", e, oct_direction)
+        let e = F::call("bytes_to_snorm12x2", b, #[inline(always)] |a| from_bytes(a)).named("e");
+        F::call("oct24_decode_float", e, #[inline(always)] |a| oct_direction(a))
     }
     const EXACT_ROUNDING: bool = true;
     /// The portable oct24 codes, split into bytes.

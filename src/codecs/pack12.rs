@@ -50,8 +50,8 @@ impl Family for Pack12Family {
         &INFO
     }
     fn emitted(&self, _spec: &Spec) -> Emitted {
-        let s12 = { #[inline(always)] || vec![Quant::Snorm(12); 2] };
-        let u8s = { #[inline(always)] || vec![Quant::Unorm(8); 3] };
+        let s12 = || vec![Quant::Snorm(12); 2];
+        let u8s = || vec![Quant::Unorm(8); 3];
         helpers!(
             ("snorm12x2_to_unorm8x3", Role::Pack, s12(), "f", V2, to_unorm8x3),
             ("snorm12x2_to_unorm8x3_int", Role::Pack, s12(), "f", V2, to_unorm8x3_int),

@@ -40,8 +40,8 @@ impl Family for ParaboloidPdFamily {
         &INFO
     }
     fn emitted(&self, _spec: &Spec) -> Emitted {
-        let module = trace_module(#[inline(always)] || {
-            define(NAME, &["pn", "pd"], #[inline(always)] |(pn, pd): (V2<Tf>, V2<Tf>)| {
+        let module = trace_module(|| {
+            define(NAME, &["pn", "pd"], |(pn, pd): (V2<Tf>, V2<Tf>)| {
                 combine(pn, pd)
             });
         });
@@ -62,7 +62,7 @@ impl Family for ParaboloidPdFamily {
         }
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == NAME).then(#[inline(always)] || {
+        (name == NAME).then(|| {
             "The second seed's CombineParaboloidNormalWithPD: `pn` a paraboloid point (the float \
              form of paraboloid's parameters), `pd` a detail normal's partial derivatives; \
              returns normalize(pn - pd·nz, nz) with nz = saturate(1 - pn.x² - pn.y²), a unit \

@@ -148,7 +148,7 @@ impl ParaboloidSquare {
     /// [`Self::fixed_point`] as the helper `square_point`.
     #[inline(always)]
     fn point<F: Float>(u: V3<F>) -> V2<F> {
-        F::call("square_point", u, Self::fixed_point).named("p")
+        F::call("square_point", u, #[inline(always)] |a| Self::fixed_point(a)).named("p")
     }
 
     /// The surface point on the ray of the fixed-point unit `u` (`u.z ≥ 0`) in units of

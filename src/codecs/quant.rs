@@ -283,10 +283,7 @@ pub fn code_width(quants: &[Quant]) -> u32 {
     quants
         .iter()
         .zip(offs)
-        .map(
-            #[inline(always)]
-            |(q, o)| o + q.bits(),
-        )
+        .map(|(q, o)| o + q.bits())
         .max()
         .unwrap_or(0)
 }

@@ -152,7 +152,7 @@ impl Sfib {
     /// every item.
     fn rows(&self) -> &'static [Row] {
         static ROWS: [OnceLock<Vec<Row>>; 33] = [const { OnceLock::new() }; 33];
-        ROWS[self.bits as usize].get_or_init(#[inline(always)] || self.make_rows())
+        ROWS[self.bits as usize].get_or_init(|| self.make_rows())
     }
 
     fn make_rows(&self) -> Vec<Row> {
@@ -165,12 +165,12 @@ impl Sfib {
             fib.push(next);
         }
         // The longitude step of `f` index steps, in half turns, wrapped to (-1, 1].
-        let dt = { #[inline(always)] |f: u64| {
+        let dt = |f: u64| {
             let turns = (f as f64 * (phi - 1.0)).fract();
             2.0 * if turns > 0.5 { turns - 1.0 } else { turns }
-        } };
+        };
         (2..)
-            .map(#[inline(always)] |k| {
+            .map(|k| {
                 let (f0, f1) = (fib[k], fib[k + 1]);
                 let (t0, t1) = (dt(f0), dt(f1));
                 let (z0, z1) = (-s * f0 as f64, -s * f1 as f64);
@@ -185,7 +185,7 @@ impl Sfib {
                     inverse: [z1 / det, -t1 / det, -z0 / det, t0 / det],
                 }
             })
-            .take_while(#[inline(always)] |r| r.least <= 1.0)
+            .take_while(|r| r.least <= 1.0)
             .collect()
     }
 
@@ -222,7 +222,7 @@ impl Sfib {
         let r = (u * (F::c(2.0) - u)).sqrt().named("r");
         // Half turns in [-1, 1): 2^-23 per step of the 24-bit longitude.
         let t = F::c(-1.0) + longitude(i).to_f() * F::c(2f32.powi(-23));
-        let sc = F::call("sincos_pi", t, sincos_pi).named("sc");
+        let sc = F::call("sincos_pi", t, #[inline(always)] |a| sincos_pi(a)).named("sc");
         V3::new(r * sc.y, r * sc.x, z)
     }
 
@@ -247,7 +247,7 @@ impl Sfib {
         let z = F::sel(north, zm, -zm);
         // Half turns in units of 2^-24, in [-2^24, 2^24).
         let t = F::c(-FINE as f32) + longitude(i).to_f() * F::c(2.0);
-        let sc = F::call("fixed_sincos_pi", t, fixed_trig::sincos_pi).named("sc");
+        let sc = F::call("fixed_sincos_pi", t, #[inline(always)] |a| fixed_trig::sincos_pi(a)).named("sc");
         let scale = F::c((1.0 / FINE) as f32);
         V3::new(
             (rho * sc.y * scale).round(),

@@ -35,7 +35,7 @@ impl Family for SphericalFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(#[inline(always)] || search_doc(fixed_trig::BITS))
+        (name == "encode_codes").then(|| search_doc(fixed_trig::BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Spherical { bits: spec.bits() })
@@ -75,8 +75,8 @@ impl Codec for Spherical {
     #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let theta = ((p.x + F::c(1.0)) * F::c(0.5)).named("theta");
-        let st = F::call("sincos_pi", theta, sincos_pi).named("st");
-        let sp = F::call("sincos_pi", p.y, sincos_pi).named("sp");
+        let st = F::call("sincos_pi", theta, #[inline(always)] |a| sincos_pi(a)).named("st");
+        let sp = F::call("sincos_pi", p.y, #[inline(always)] |a| sincos_pi(a)).named("sp");
         V3::new(sp.y * st.x, sp.x * st.x, st.y)
     }
     /// `θ` and `φ` from [`fixed_trig::atan2_pi`] of the canonical input (and its `ρ`

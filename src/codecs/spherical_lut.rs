@@ -119,14 +119,14 @@ impl Family for SphericalLutFamily {
     /// A precise spec reads its fast spec's tables (same files, same names).
     fn tables(&self, spec: &Spec) -> Vec<Table> {
         let lut = SphericalLut::of(spec);
-        let table = { #[inline(always)] |what: &str, channels: u8, bytes: Vec<u8>| Table {
+        let table = |what: &str, channels: u8, bytes: Vec<u8>| Table {
             stem: format!("{}_{what}", spec.fast().id()),
             width: SIZE as u32,
             height: SIZE as u32,
             channels,
             format: TableFormat::Unorm8,
             bytes,
-        } };
+        };
         vec![
             table("atan", 1, lut.atan().to_vec()),
             table("sincos", 4, lut.sincos().concat()),
@@ -171,7 +171,7 @@ impl Family for SphericalLutFamily {
             ],
             _ => return None,
         };
-        Some(lines.iter().map(#[inline(always)] |l| l.to_string()).collect())
+        Some(lines.iter().map(|l| l.to_string()).collect())
     }
 }
 
@@ -197,7 +197,7 @@ impl SphericalLut {
             SphericalLut::Seed => &SEED,
             SphericalLut::Matched => &MATCHED,
         };
-        cell.get_or_init(#[inline(always)] || atan_lut(self))
+        cell.get_or_init(|| atan_lut(self))
     }
 
     /// The sin/cos table, `SIZE × SIZE` RGBA8 texels (A = 255), rows as [`SphericalLut::atan`].
@@ -208,7 +208,7 @@ impl SphericalLut {
             SphericalLut::Seed => &SEED,
             SphericalLut::Matched => &MATCHED,
         };
-        cell.get_or_init(#[inline(always)] || sincos_lut(self))
+        cell.get_or_init(|| sincos_lut(self))
     }
 
     /// Where the atan table samples texel `i` (a texel's corner, or its centre).
@@ -241,7 +241,7 @@ fn byte(x: f64) -> u8 {
 pub fn atan_lut(lut: SphericalLut) -> Vec<u8> {
     use std::f64::consts::PI;
     (0..SIZE * SIZE)
-        .map(#[inline(always)] |k| {
+        .map(|k| {
             let (x, y) = (lut.atan_at(k % SIZE), lut.atan_at(k / SIZE));
             byte((y.atan2(x) + PI) / (2.0 * PI))
         })
@@ -253,10 +253,10 @@ pub fn atan_lut(lut: SphericalLut) -> Vec<u8> {
 pub fn sincos_lut(lut: SphericalLut) -> Vec<[u8; 4]> {
     use std::f64::consts::PI;
     (0..SIZE * SIZE)
-        .map(#[inline(always)] |k| {
+        .map(|k| {
             let (phi, z) = (PI * lut.sincos_at(k % SIZE), lut.sincos_at(k / SIZE));
             let r = (1.0 - z * z).max(0.0).sqrt();
-            let half = { #[inline(always)] |c: f64| byte(c * 0.5 + 0.5) };
+            let half = |c: f64| byte(c * 0.5 + 0.5);
             [half(phi.cos() * r), half(phi.sin() * r), half(z), 255]
         })
         .collect()
@@ -427,28 +427,28 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
     // The fast code's function: the packed encoder of a fast spec, the search's first
     // step in a precise one.
     let fast_name = if precise { "encode_fast" } else { "encode" };
-    let module = trace_module(#[inline(always)] || {
-        define("decode_float", &["rgb"], #[inline(always)] |rgb: V3<Tf>| decode_float(rgb));
-        define("sincos_texel", &["code"], #[inline(always)] |c: <Tf as Float>::U| {
+    let module = trace_module(|| {
+        define("decode_float", &["rgb"], |rgb: V3<Tf>| decode_float(rgb));
+        define("sincos_texel", &["code"], |c: <Tf as Float>::U| {
             sincos_texel::<Tf>(c)
         });
-        define("atan_texel", &["v"], #[inline(always)] |v: V3<Tf>| atan_texel(v));
+        define("atan_texel", &["v"], |v: V3<Tf>| atan_texel(v));
         if !precise {
-            define("encode_float", &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| {
+            define("encode_float", &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| {
                 encode_float(v, a)
             });
         }
-        define(fast_name, &["v", "fetched"], #[inline(always)] |(v, a): (V3<Tf>, Tf)| encode(v, a));
+        define(fast_name, &["v", "fetched"], |(v, a): (V3<Tf>, Tf)| encode(v, a));
         if precise {
             type U = <Tf as Float>::U;
-            define("precise_texel", &["code", "k"], #[inline(always)] |(c, k): (U, U)| {
+            define("precise_texel", &["code", "k"], |(c, k): (U, U)| {
                 precise_texel::<Tf>(c, k)
             });
             let names = ["v", "code", "s0", "s1", "s2", "s3", "s4", "s5", "s6", "s7", "s8"];
-            define("encode", &names, #[inline(always)] |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
+            define("encode", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
                 encode_precise(v, c, s)
             });
-            define("encode_float", &names, #[inline(always)] |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
+            define("encode_float", &names, |(v, (c, s)): (V3<Tf>, (U, Block<Tf>))| {
                 encode_float_precise(v, c, s)
             });
         }
@@ -479,14 +479,14 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         <F> [] |rgb: V3<F>| decode_float(rgb)
     );
     dec_float.enclose = Some(Enclose {
-        eval: Arc::new(#[inline(always)] |r: &[(i64, i64)]| {
-            let rgb = V3::from_array(std::array::from_fn(#[inline(always)] |i| fetched_range(BYTE, r[i])));
+        eval: Arc::new(|r: &[(i64, i64)]| {
+            let rgb = V3::from_array(std::array::from_fn(|i| fetched_range(BYTE, r[i])));
             decode_float::<Encl>(rgb).to_array().to_vec()
         }),
         whole_field: None,
         unread: &[],
     });
-    let atan_lookup: WordsMap = Arc::new(#[inline(always)] move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]);
+    let atan_lookup: WordsMap = Arc::new(move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]);
     let fast_cpu = through_table(
         "encode",
         Role::Encode,
@@ -501,7 +501,7 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         Role::Decode,
         Inputs::Codes(FIELDS.to_vec()),
         &sincos,
-        Arc::new(#[inline(always)] move |t: &[u32]| sincos_fetch(lut, t)),
+        Arc::new(move |t: &[u32]| sincos_fetch(lut, t)),
         &dec_float,
         false,
     );
@@ -567,7 +567,7 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
         words: 1 + 3 * BLOCK as usize,
         of: {
             let block = block.clone();
-            Arc::new(#[inline(always)] move |v: &[u32]| {
+            Arc::new(move |v: &[u32]| {
                 let mut code = [0u32];
                 fast(v, &mut code);
                 block(&code)
@@ -587,11 +587,11 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
         <F> [] |x: (V3<F>, (U<F>, Block<F>))| encode_float_precise(x.0, x.1.0, x.1.1)
     );
     // What a shader runs: the fast code's two parts, the block's nine texels, the search.
-    let chained = { #[inline(always)] |name: &'static str, role: Role, last: &Function| {
+    let chained = |name: &'static str, role: Role, last: &Function| {
         let mut cpu = through_table(name, role, Inputs::Vectors, fast_cpu, block.clone(), last, true);
         cpu.parts = [&fast_cpu.parts[..], &["precise_texel"; BLOCK as usize], &[name]].concat();
         cpu
-    } };
+    };
     Precise {
         cpu_encode: chained("encode", Role::Encode, &search),
         cpu_encode_float: chained("encode_float", Role::EncodeFloat, &search_float),
@@ -604,7 +604,7 @@ fn precise_functions(lut: SphericalLut, fast_cpu: &Function) -> Precise {
 /// A code's words → the code and the sin/cos table's `.rgb` at each `precise_texel(code,
 /// k)`, as a unorm8 fetch returns them.
 fn block_fetch(lut: SphericalLut) -> WordsMap {
-    Arc::new(#[inline(always)] move |c: &[u32]| {
+    Arc::new(move |c: &[u32]| {
         let mut out = vec![c[0]];
         for k in 0..BLOCK {
             let t = precise_texel::<f32>(c[0], k);
@@ -629,7 +629,7 @@ fn atan_fetch(lut: SphericalLut, t: &[u32]) -> f32 {
 /// The sin/cos table's `.rgb` at the texel `t = [x, y]`, as words.
 fn sincos_fetch(lut: SphericalLut, t: &[u32]) -> Vec<u32> {
     let texel = lut.sincos()[t[1] as usize * SIZE + t[0] as usize];
-    texel[..3].iter().map(#[inline(always)] |&c| fetch(c).to_bits()).collect()
+    texel[..3].iter().map(|&c| fetch(c).to_bits()).collect()
 }
 
 /// The model's own fetch of the atan table for a vector (its words): what the verify
@@ -638,8 +638,8 @@ fn fetch_atan(lut: SphericalLut) -> Extra {
     Extra {
         name: "the atan table's value at atan_texel(v)",
         words: 1,
-        of: Arc::new(#[inline(always)] move |v: &[u32]| {
-            let t = atan_texel::<f32>(V3::from_array(std::array::from_fn(#[inline(always)] |i| f32::from_bits(v[i]))));
+        of: Arc::new(move |v: &[u32]| {
+            let t = atan_texel::<f32>(V3::from_array(std::array::from_fn(|i| f32::from_bits(v[i]))));
             vec![atan_fetch(lut, &[t.x, t.y]).to_bits()]
         }),
     }

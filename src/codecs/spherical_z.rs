@@ -36,7 +36,7 @@ impl Family for SphericalZFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
+        (name == "encode_codes").then(|| search_doc(BITS))
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, SphericalZ { bits: spec.bits() })
@@ -115,7 +115,7 @@ impl Codec for SphericalZ {
     #[inline(always)]
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let p = ((enc - F::c(0.5)) * F::c(2.0)).named("p");
-        let sp = F::call("sincos_pi", p.x, sincos_pi).named("sp");
+        let sp = F::call("sincos_pi", p.x, #[inline(always)] |a| sincos_pi(a)).named("sp");
         // 1 - z² as (1 - z)(1 + z): no product for a driver to fuse into the
         // subtraction, and no cancellation near the poles.
         let rest = ((F::c(1.0) - p.y) * (F::c(1.0) + p.y)).at_least(F::c(0.0));

@@ -35,17 +35,11 @@ pub fn factorial(n: i32) -> f64 {
 /// the powers and factorials would cost more than the polynomial.
 pub fn atan_series() -> &'static [f64] {
     static C: OnceLock<Vec<f64>> = OnceLock::new();
-    C.get_or_init(
-        #[inline(always)]
-        || {
-            (0..10)
-                .map(
-                    #[inline(always)]
-                    |k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64,
-                )
-                .collect()
-        },
-    )
+    C.get_or_init(|| {
+        (0..10)
+            .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 } / (2 * k + 1) as f64)
+            .collect()
+    })
 }
 
 /// atan(z) for |z| ≤ tan(π/8), by [`atan_series`].
@@ -150,20 +144,14 @@ pub fn quarter_turn_series(sine: bool) -> &'static [f64] {
     static SIN: OnceLock<Vec<f64>> = OnceLock::new();
     static COS: OnceLock<Vec<f64>> = OnceLock::new();
     let h = PI / 2.0;
-    (if sine { &SIN } else { &COS }).get_or_init(
-        #[inline(always)]
-        || {
-            (0..9)
-                .map(
-                    #[inline(always)]
-                    |k| {
-                        let n = 2 * k + i32::from(sine);
-                        (-1f64).powi(k) * h.powi(n) / factorial(n)
-                    },
-                )
-                .collect()
-        },
-    )
+    (if sine { &SIN } else { &COS }).get_or_init(|| {
+        (0..9)
+            .map(|k| {
+                let n = 2 * k + i32::from(sine);
+                (-1f64).powi(k) * h.powi(n) / factorial(n)
+            })
+            .collect()
+    })
 }
 
 /// `(sin(π·r/2)/r, cos(π·r/2))` of `r = sqrt(q)` for `0 ≤ q ≤ 2`, by

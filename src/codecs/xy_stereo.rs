@@ -37,7 +37,7 @@ impl Family for XyStereoFamily {
         &INFO
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(#[inline(always)] || search_doc(BITS))
+        (name == "encode_codes").then(|| search_doc(BITS))
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         texel::validate(spec)
