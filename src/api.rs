@@ -21,6 +21,7 @@
 
 use crate::codecs::codec::Codec;
 pub use crate::codecs::cpu::*;
+pub use crate::codecs::functions::Width;
 use crate::codecs::functions::{Function, Role, decode_packed, encode_packed};
 use crate::codecs::quant::Code;
 use crate::codecs::{Spec, SpecError};
@@ -70,16 +71,24 @@ impl<C: Codec> Encoder<C> {
     /// where the processor has them, else four on SSE2 lanes ([`crate::model::lanes`]):
     /// the same bits as [`Encoder::encode`] on each.
     pub fn encode_slice(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
+        self.encode_slice_on(Width::widest(), input, out)
+    }
+
+    /// [`Encoder::encode_slice`] on the given lanes, so that both widths can be compared;
+    /// [`Width::Eight`] panics without AVX2.
+    pub fn encode_slice_on(&self, width: Width, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
         assert_eq!(
             input.len(),
             out.len(),
             "encode_slice: input and output lengths differ"
         );
-        if avx2_lanes::available() {
-            // SAFETY: the processor has AVX2.
-            unsafe { self.encode_avx2(input, out) }
-        } else {
-            self.encode_lanes::<F4, 4>(input, out)
+        match width {
+            Width::Four => self.encode_lanes::<F4, 4>(input, out),
+            Width::Eight => {
+                assert!(avx2_lanes::available(), "eight lanes need AVX2");
+                // SAFETY: the processor has AVX2 (checked just above).
+                unsafe { self.encode_avx2(input, out) }
+            }
         }
     }
 
@@ -135,16 +144,23 @@ impl<C: Codec> Encoder<C> {
     /// the processor has them, else four on SSE2 lanes: the same bits as
     /// [`Encoder::decode`] on each.
     pub fn decode_slice(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
+        self.decode_slice_on(Width::widest(), input, out)
+    }
+
+    /// [`Encoder::decode_slice`] on the given lanes; [`Width::Eight`] panics without AVX2.
+    pub fn decode_slice_on(&self, width: Width, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
         assert_eq!(
             input.len(),
             out.len(),
             "decode_slice: input and output lengths differ"
         );
-        if avx2_lanes::available() {
-            // SAFETY: the processor has AVX2.
-            unsafe { self.decode_avx2(input, out) }
-        } else {
-            self.decode_lanes::<F4, 4>(input, out)
+        match width {
+            Width::Four => self.decode_lanes::<F4, 4>(input, out),
+            Width::Eight => {
+                assert!(avx2_lanes::available(), "eight lanes need AVX2");
+                // SAFETY: the processor has AVX2 (checked just above).
+                unsafe { self.decode_avx2(input, out) }
+            }
         }
     }
 

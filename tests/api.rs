@@ -2,8 +2,8 @@
 
 use unitpack::api::{
     Batch, CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
-    Paraboloid, ParaboloidSquare, Snorm3, SphericalZ, StereoScaled, Unorm3, XySignZ, XyStereo,
-    combine_paraboloid_pd,
+    Paraboloid, ParaboloidSquare, Snorm3, SphericalZ, StereoScaled, Unorm3, Width, XySignZ,
+    XyStereo, combine_paraboloid_pd,
 };
 use unitpack::quality::{angle_deg, random_unit_vectors};
 
@@ -18,8 +18,8 @@ fn invalid_sizes_list_the_allowed_ones() {
     assert!(StereoScaled::new(16).unwrap().with_scale(2.0).is_ok());
 }
 
-/// The slices run four vectors per step on SIMD lanes; every item must be the single
-/// call's bits, for 1-, 2- and 3-word codes, fast and precise, over lengths that leave a
+/// The slices run four (SSE2) or eight (AVX2) vectors per step on SIMD lanes; on either,
+/// every item must be the single call's bits, for 1-, 2- and 3-word codes, fast and precise, over lengths that leave a
 /// partial last group, the edge vectors and every decoded code's bits.
 #[test]
 fn slices_compute_the_single_calls_bits() {
@@ -30,19 +30,31 @@ fn slices_compute_the_single_calls_bits() {
         let mut vs = random_unit_vectors(21, 4099, false);
         vs.extend(unitpack::verify::inputs::edge_vectors());
         vs.extend([[1e30, -1e30, 0.5], [0.0, 0.0, -1.0], [3.0, 4.0, 0.0]]);
-        for len in [vs.len(), 1, 2, 3, 5] {
-            let vs = &vs[..len];
-            let mut codes = vec![e.encode([0.0, 0.0, 1.0]); len];
-            e.encode_slice(vs, &mut codes);
-            let mut back = vec![[0f32; 3]; len];
-            e.decode_slice(&codes, &mut back);
-            for ((v, c), b) in vs.iter().zip(&codes).zip(&back) {
-                assert_eq!(*c, e.encode(*v), "{name}: {v:?}");
-                assert_eq!(
-                    b.map(f32::to_bits),
-                    e.decode(*c).map(f32::to_bits),
-                    "{name}"
-                );
+        // Both lane widths, whichever the processor would pick (eight needs AVX2).
+        assert!(
+            !cfg!(target_arch = "x86_64") || Width::widest() == Width::Eight,
+            "the eight-lane slices need a processor with AVX2 to be tested"
+        );
+        let widths: &[Width] = if Width::widest() == Width::Eight {
+            &[Width::Four, Width::Eight]
+        } else {
+            &[Width::Four]
+        };
+        for &width in widths {
+            for len in [vs.len(), 1, 2, 3, 5, 9] {
+                let vs = &vs[..len];
+                let mut codes = vec![e.encode([0.0, 0.0, 1.0]); len];
+                e.encode_slice_on(width, vs, &mut codes);
+                let mut back = vec![[0f32; 3]; len];
+                e.decode_slice_on(width, &codes, &mut back);
+                for ((v, c), b) in vs.iter().zip(&codes).zip(&back) {
+                    assert_eq!(*c, e.encode(*v), "{name} on {width:?}: {v:?}");
+                    assert_eq!(
+                        b.map(f32::to_bits),
+                        e.decode(*c).map(f32::to_bits),
+                        "{name} on {width:?}"
+                    );
+                }
             }
         }
     }
