@@ -1641,6 +1641,29 @@ fn verify_oct16_wgsl_on_lavapipe() {
     assert!(r.stdout.contains(" 0 failed"), "{r:?}");
 }
 
+/// `--adapter gpu` runs the shader paths on the machine's own GPU, never on lavapipe: where
+/// there is none (CI), it fails naming the adapters it found and what to install.
+#[test]
+fn verify_on_the_hardware_adapter_never_falls_back_to_lavapipe() {
+    let r = run(&["verify", "oct16", "--lang", "wgsl", "--adapter", "gpu"]);
+    let adapter = r.stdout.lines().find(|l| l.starts_with("adapter:"));
+    match adapter {
+        Some(line) => assert!(!line.contains("llvmpipe"), "{r:?}"),
+        None => {
+            assert_eq!(r.code, 2, "{r:?}");
+            assert!(
+                r.stderr
+                    .contains("no hardware Vulkan adapter found (adapters: ")
+                    && r.stderr.contains("llvmpipe")
+                    && r.stderr.contains("libvulkan1"),
+                "{r:?}"
+            );
+        }
+    }
+    let err = fails(&["verify", "oct16", "--adapter", "npu"], "");
+    assert!(err.contains("invalid value 'npu'"), "{err}");
+}
+
 #[test]
 fn verify_rejects_bad_specs() {
     let err = fails(&["verify", "octt16", "--lang", "wgsl"], "");

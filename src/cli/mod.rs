@@ -200,6 +200,12 @@ pub enum Command {
         /// Print the report as JSON instead of the table.
         #[arg(long)]
         json: bool,
+        /// The Vulkan adapter that runs the shader paths: `cpu` is lavapipe, where the
+        /// canonical arithmetic is proven; `gpu` is this machine's own GPU, which the
+        /// graphics APIs allow to round, flush and fuse differently, so mismatches there
+        /// show what `--portable` predicts for it.
+        #[arg(long, value_enum, default_value_t = AdapterArg::Cpu)]
+        adapter: AdapterArg,
         /// Instead of running the emitted code, evaluate the model under every deviation
         /// the graphics APIs allow (division and sqrt within their ULP bounds, fused
         /// multiply-adds, denormal flushing, lost signs of zero, excess precision,
@@ -210,6 +216,24 @@ pub enum Command {
         #[arg(long)]
         portable: bool,
     },
+}
+
+/// `verify --adapter`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum AdapterArg {
+    /// The Vulkan CPU adapter (Mesa's lavapipe).
+    Cpu,
+    /// The first Vulkan adapter that is not a CPU.
+    Gpu,
+}
+
+impl From<AdapterArg> for crate::verify::gpu::Adapter {
+    fn from(a: AdapterArg) -> Self {
+        match a {
+            AdapterArg::Cpu => Self::Cpu,
+            AdapterArg::Gpu => Self::Hardware,
+        }
+    }
 }
 
 #[derive(clap::Args)]
@@ -303,6 +327,7 @@ pub fn run(cli: Cli) -> Result<i32> {
             specs,
             lang,
             json,
+            adapter,
             portable,
         } => {
             let specs = if specs.is_empty() {
@@ -324,8 +349,8 @@ pub fn run(cli: Cli) -> Result<i32> {
             } else {
                 lang
             };
-            let report =
-                crate::verify::run(&specs, &langs, true).context("verification could not run")?;
+            let report = crate::verify::run_on(&specs, &langs, true, adapter.into())
+                .context("verification could not run")?;
             output::print(&if json {
                 verify::report_json(&report)
             } else {

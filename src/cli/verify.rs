@@ -30,6 +30,11 @@ struct RowJson<'a> {
     /// The function (`spec function`) whose identical code and inputs were run on this
     /// path instead; this row repeats its result.
     same_code_as: Option<&'a str>,
+    /// Float outputs that mismatched only: the largest `|expected - actual|` of any lane,
+    /// 0 when only the sign of a zero differs, with its mismatch in `largest_at`. Infinite
+    /// (one side NaN, or infinities that differ) prints as `null` beside a `largest_at`.
+    largest_difference: Option<f64>,
+    largest_at: Option<MismatchJson<'a>>,
 }
 
 #[derive(Serialize)]
@@ -53,6 +58,8 @@ fn row(r: &Row) -> RowJson<'_> {
         error: r.error.as_deref(),
         first_mismatches: r.first.iter().map(mismatch).collect(),
         same_code_as: r.same_as.as_deref(),
+        largest_difference: r.largest.as_ref().map(|l| l.difference),
+        largest_at: r.largest.as_ref().map(|l| mismatch(&l.at)),
     }
 }
 

@@ -244,6 +244,19 @@ fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
     Ok(out)
 }
 
+/// Which Vulkan adapter a [`Gpu`] runs on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Adapter {
+    /// The CPU adapter (Mesa's lavapipe), where the canonical arithmetic is proven: it
+    /// rounds correctly, keeps denormals and never fuses. The default.
+    #[default]
+    Cpu,
+    /// The first adapter that is not a CPU: the machine's own GPU, which the graphics APIs
+    /// allow to round, flush and fuse differently (`verify --portable` says where that can
+    /// change a code).
+    Hardware,
+}
+
 /// A wgpu device on the Vulkan CPU adapter (lavapipe), plus the fixed binding layout that
 /// every verification kernel uses.
 ///
@@ -285,41 +298,71 @@ const NO_ADAPTER: &str = "no Vulkan adapter found; install the Debian package \
 `mesa-vulkan-drivers` (lavapipe, the Vulkan CPU driver)";
 
 impl Gpu {
-    /// Opens the Vulkan CPU adapter (lavapipe).
-    ///
-    /// The CPU adapter is preferred because it is deterministic and available on any CI
-    /// machine; if there is none, the first Vulkan adapter is used. If no Vulkan adapter
-    /// exists at all, the error tells the user to install `mesa-vulkan-drivers`.
+    /// Opens the Vulkan CPU adapter (lavapipe): [`Gpu::open`] with [`Adapter::Cpu`].
     pub fn new() -> anyhow::Result<Gpu> {
-        pollster::block_on(Self::new_async())
+        Self::open(Adapter::Cpu)
+    }
+
+    /// Opens the adapter `which` asks for.
+    ///
+    /// [`Adapter::Cpu`] prefers the CPU adapter because it is deterministic and available
+    /// on any CI machine; if there is none, the first Vulkan adapter is used. If no Vulkan
+    /// adapter exists at all, the error tells the user to install `mesa-vulkan-drivers`.
+    /// [`Adapter::Hardware`] takes the first adapter that is not a CPU, and its error lists
+    /// the adapters that were found.
+    pub fn open(which: Adapter) -> anyhow::Result<Gpu> {
+        pollster::block_on(Self::new_async(which))
     }
 
     /// A process-wide `Gpu`, created on first use. Tests running in parallel threads can
     /// share it instead of each opening a device (which costs lavapipe a few threads and
     /// some memory each). The creation error, if any, is remembered and returned every time.
     pub fn shared() -> anyhow::Result<&'static Gpu> {
-        static SHARED: OnceLock<Result<Gpu, String>> = OnceLock::new();
-        SHARED
-            .get_or_init(|| Gpu::new().map_err(|e| format!("{e:#}")))
+        Self::shared_on(Adapter::Cpu)
+    }
+
+    /// The process-wide `Gpu` on the adapter `which` asks for, as [`Gpu::shared`].
+    pub fn shared_on(which: Adapter) -> anyhow::Result<&'static Gpu> {
+        static SHARED: [OnceLock<Result<Gpu, String>>; 2] = [OnceLock::new(), OnceLock::new()];
+        SHARED[which as usize]
+            .get_or_init(|| Gpu::open(which).map_err(|e| format!("{e:#}")))
             .as_ref()
             .map_err(|e| anyhow!("{e}"))
     }
 
-    async fn new_async() -> anyhow::Result<Gpu> {
+    async fn new_async(which: Adapter) -> anyhow::Result<Gpu> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = wgpu::Backends::VULKAN;
         desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
         let instance = wgpu::Instance::new(desc);
 
         let adapters = instance.enumerate_adapters(wgpu::Backends::VULKAN).await;
-        let adapter = match adapters
-            .iter()
-            .position(|a| a.get_info().device_type == wgpu::DeviceType::Cpu)
-        {
-            Some(i) => adapters.into_iter().nth(i),
-            None => adapters.into_iter().next(),
-        }
-        .ok_or_else(|| anyhow!(NO_ADAPTER))?;
+        let is_cpu = |a: &wgpu::Adapter| a.get_info().device_type == wgpu::DeviceType::Cpu;
+        let adapter = match which {
+            Adapter::Cpu => match adapters.iter().position(is_cpu) {
+                Some(i) => adapters.into_iter().nth(i),
+                None => adapters.into_iter().next(),
+            }
+            .ok_or_else(|| anyhow!(NO_ADAPTER))?,
+            Adapter::Hardware => {
+                let found: Vec<String> = adapters
+                    .iter()
+                    .map(|a| format!("{:?} ({:?})", a.get_info().name, a.get_info().device_type))
+                    .collect();
+                adapters.into_iter().find(|a| !is_cpu(a)).ok_or_else(|| {
+                    anyhow!(
+                        "no hardware Vulkan adapter found (adapters: {}); install the \
+                             GPU vendor's Vulkan driver and the Vulkan loader (Debian package \
+                             `libvulkan1`)",
+                        if found.is_empty() {
+                            "none".to_string()
+                        } else {
+                            found.join(", ")
+                        }
+                    )
+                })?
+            }
+        };
         let info = adapter.get_info();
 
         // Passthrough is only needed for `Shader::SpirV`; without it the other paths still work.

@@ -24,7 +24,7 @@ use crate::model::Kind;
 use crate::model::avx2_lanes;
 use crate::model::trace::{Func, Ty};
 use anyhow::Result;
-use gpu::{Gpu, Shader};
+use gpu::{Adapter, Gpu, Shader};
 use std::collections::HashMap;
 use std::fmt;
 use tools::{GlslangInput, HlslOpt};
@@ -119,6 +119,33 @@ pub struct Row {
     /// The function (`spec function`) whose code and inputs this one shares exactly,
     /// verified once on the path; this row repeats that row's result.
     pub same_as: Option<String>,
+    /// For float outputs that mismatched: the mismatch farthest from the model's value.
+    /// On lavapipe there is none; on a hardware adapter it says how far the GPU's
+    /// division, roots, contractions and flushes moved the outputs.
+    pub largest: Option<Largest>,
+}
+
+/// The largest difference of one function's float outputs from the model's on a path.
+#[derive(Clone, Debug)]
+pub struct Largest {
+    /// `|expected - actual|` of the lane that differs most, in f64: 0 when only the sign
+    /// of a zero differs, infinite when one side is NaN or their infinities differ.
+    pub difference: f64,
+    pub at: Mismatch,
+}
+
+/// `|a - b|` of two f32 words, as [`Largest::difference`] defines it.
+fn difference(a: u32, b: u32) -> f64 {
+    let (a, b) = (f64::from(f32::from_bits(a)), f64::from(f32::from_bits(b)));
+    match (a.is_nan(), b.is_nan()) {
+        (true, true) => 0.0,
+        (false, false) if a == b => 0.0,
+        (false, false) => {
+            let d = (a - b).abs();
+            if d.is_nan() { f64::INFINITY } else { d }
+        }
+        _ => f64::INFINITY,
+    }
 }
 
 impl Row {
@@ -180,6 +207,15 @@ impl Report {
             ));
             if let Some(e) = &r.error {
                 s.push_str(&format!("  {e}\n"));
+            }
+            if let Some(l) = &r.largest {
+                s.push_str(&format!(
+                    "  largest difference {:e}, at input [{}]\n    expected [{}]\n    actual   [{}]\n  first mismatches:\n",
+                    l.difference,
+                    words_hex(&l.at.input, l.at.input_float),
+                    words_hex(&l.at.expected, l.at.output_float),
+                    words_hex(&l.at.actual, l.at.output_float)
+                ));
             }
             for m in &r.first {
                 s.push_str(&format!(
@@ -268,6 +304,17 @@ pub struct Comparison<'a> {
     words: usize,
     count: usize,
     first: Vec<Mismatch>,
+    largest: Option<Largest>,
+}
+
+/// What a [`Comparison`] found.
+#[derive(Debug)]
+pub struct Outcome {
+    pub count: usize,
+    /// The first few mismatches, in input order.
+    pub first: Vec<Mismatch>,
+    /// For float outputs, the mismatch farthest from the model.
+    pub largest: Option<Largest>,
 }
 
 impl<'a> Comparison<'a> {
@@ -280,6 +327,7 @@ impl<'a> Comparison<'a> {
             words: 0,
             count: 0,
             first: Vec::new(),
+            largest: None,
         }
     }
 
@@ -302,23 +350,37 @@ impl<'a> Comparison<'a> {
         {
             if w != g {
                 self.count += 1;
+                let item = first_item + k;
+                let mismatch = || Mismatch {
+                    input: self.input[item * f.in_words..(item + 1) * f.in_words].to_vec(),
+                    expected: w.to_vec(),
+                    actual: g.to_vec(),
+                    input_float: self.types.0.iter().all(|t| t.kind == Kind::F32),
+                    output_float: self.types.1.kind == Kind::F32,
+                };
+                if self.types.1.kind == Kind::F32 {
+                    let d = w
+                        .iter()
+                        .zip(g)
+                        .map(|(&w, &g)| difference(w, g))
+                        .fold(0.0, f64::max);
+                    if self.largest.as_ref().is_none_or(|l| d > l.difference) {
+                        self.largest = Some(Largest {
+                            difference: d,
+                            at: mismatch(),
+                        });
+                    }
+                }
                 if self.first.len() < 5 {
-                    let item = first_item + k;
-                    self.first.push(Mismatch {
-                        input: self.input[item * f.in_words..(item + 1) * f.in_words].to_vec(),
-                        expected: w.to_vec(),
-                        actual: g.to_vec(),
-                        input_float: self.types.0.iter().all(|t| t.kind == Kind::F32),
-                        output_float: self.types.1.kind == Kind::F32,
-                    });
+                    self.first.push(mismatch());
                 }
             }
         }
     }
 
-    /// The mismatch count and the first mismatches, or an error if the path returned
-    /// another number of words than the model.
-    pub fn finish(self) -> std::result::Result<(usize, Vec<Mismatch>), String> {
+    /// What was found, or an error if the path returned another number of words than
+    /// the model.
+    pub fn finish(self) -> std::result::Result<Outcome, String> {
         if self.words != self.want.len() {
             return Err(format!(
                 "returned {} words for {} expected",
@@ -326,7 +388,11 @@ impl<'a> Comparison<'a> {
                 self.want.len()
             ));
         }
-        Ok((self.count, self.first))
+        Ok(Outcome {
+            count: self.count,
+            first: self.first,
+            largest: self.largest,
+        })
     }
 }
 
@@ -425,15 +491,21 @@ pub fn func_types(f: &Func) -> (Vec<Ty>, Ty) {
     (f.params.iter().map(|p| p.1).collect(), f.ret_ty)
 }
 
-/// Verifies `specs` on every path of `langs`, with a progress bar when `progress`.
+/// Verifies `specs` on every path of `langs`, with a progress bar when `progress`, on the
+/// Vulkan CPU adapter.
 pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
+    run_on(specs, langs, progress, Adapter::Cpu)
+}
+
+/// [`run`] with the shader paths on the Vulkan adapter `adapter` asks for.
+pub fn run_on(specs: &[Spec], langs: &[Lang], progress: bool, adapter: Adapter) -> Result<Report> {
     let paths: Vec<Path> = Path::ALL
         .into_iter()
         .filter(|p| p.lang().is_none_or(|l| langs.contains(&l)))
         .collect();
     // The C and CPU paths need no GPU: only ask for the adapter when a shader path is run.
     let gpu = if paths.iter().any(|p| p.on_gpu()) {
-        Some(Gpu::shared()?)
+        Some(Gpu::shared_on(adapter)?)
     } else {
         None
     };
@@ -568,6 +640,7 @@ fn verify_spec(
                 first: vec![],
                 error: r.err().map(|e| format!("{e:#}")),
                 same_as: None,
+                largest: None,
             });
         }
     }
@@ -648,6 +721,7 @@ fn verify_spec(
                     first: vec![],
                     error: None,
                     same_as: Some(owner.clone()),
+                    largest: None,
                 });
                 bar.inc(1);
             }
@@ -708,12 +782,13 @@ fn verify_spec(
                 first: vec![],
                 error: None,
                 same_as: None,
+                largest: None,
             };
             match result
                 .map_err(|err| format!("{err:#}"))
                 .and_then(|()| cmp.finish())
             {
-                Ok((count, first)) => (row.mismatches, row.first) = (count, first),
+                Ok(o) => (row.mismatches, row.first, row.largest) = (o.count, o.first, o.largest),
                 Err(err) => row.error = Some(err),
             }
             rows.push(row);

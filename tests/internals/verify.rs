@@ -22,12 +22,31 @@ fn comparison_finds_mismatches_across_chunks() {
     for chunk in got.chunks(3 * 64) {
         cmp.take(chunk);
     }
-    let (count, first) = cmp.finish().expect("every word");
-    assert_eq!(count, 2);
+    let found = cmp.finish().expect("every word");
+    assert_eq!(found.count, 2);
+    let first = &found.first;
     assert_eq!(first[0].input, [70]);
     assert_eq!(first[0].actual, got[210..213]);
     assert_eq!(first[0].expected, want[210..213]);
     assert_eq!(first[1].input, [71]);
+    // The sign flip of item 71 moves x by 2|x|, far more than item 70's last bit.
+    let x71 = f64::from(f32::from_bits(want[3 * 71]));
+    assert!(x71 != 0.0, "the test needs a nonzero x at item 71");
+    let largest = found.largest.as_ref().expect("float outputs differ");
+    assert_eq!(largest.at.input, [71]);
+    assert_eq!(largest.difference, 2.0 * x71.abs());
+
+    // A NaN where the model has a number is the largest difference there is.
+    got[3 * 90 + 2] = f32::NAN.to_bits();
+    let mut cmp = Comparison::new(f, (&params, ret), &input, &want);
+    cmp.take(&got);
+    let found = cmp.finish().expect("every word");
+    assert_eq!(found.count, 3);
+    let largest = found.largest.expect("float outputs differ");
+    assert_eq!(
+        (largest.at.input.as_slice(), largest.difference),
+        (&[90][..], f64::INFINITY)
+    );
 
     let mut short = Comparison::new(f, (&params, ret), &input, &want);
     short.take(&want[..297]);
