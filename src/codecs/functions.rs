@@ -386,9 +386,7 @@ fn to_lanes<const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
 /// eight-lane decoders' three outputs went out as six 128-bit stores and 15 % slower.
 #[inline(always)]
 fn to_lanes_of<const W: usize, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
-    let items: &[[u32; W]; N] = wide::bytemuck::cast_slice::<u32, [u32; W]>(s)
-        .try_into()
-        .expect("a whole group");
+    let items: &[[u32; W]; N] = s.as_chunks::<W>().0.try_into().expect("a whole group");
     let lanes: &mut [[u32; N]; W] = lanes.try_into().expect("W lanes");
     for k in 0..N {
         for j in 0..W {
@@ -418,9 +416,7 @@ fn from_lanes<const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
 /// [`from_lanes`] for items of `W` words, as [`to_lanes_of`].
 #[inline(always)]
 fn from_lanes_of<const W: usize, const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
-    let items: &mut [[u32; W]; N] = wide::bytemuck::cast_slice_mut::<u32, [u32; W]>(d)
-        .try_into()
-        .expect("a whole group");
+    let items: &mut [[u32; W]; N] = d.as_chunks_mut::<W>().0.try_into().expect("a whole group");
     let lanes: &[[u32; N]; W] = lanes.try_into().expect("W lanes");
     for k in 0..N {
         for j in 0..W {
