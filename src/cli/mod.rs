@@ -202,8 +202,9 @@ pub enum Command {
         json: bool,
         /// The Vulkan adapter that runs the shader paths: `cpu` is lavapipe, where the
         /// canonical arithmetic is proven; `gpu` is this machine's own GPU, which the
-        /// graphics APIs allow to round, flush and fuse differently, so mismatches there
-        /// show what `--portable` predicts for it.
+        /// graphics APIs allow to round, flush and fuse differently: mismatches there are
+        /// what this GPU changes, and for float outputs the report gives the largest
+        /// difference, to hold against the bound in each function's doc comment.
         #[arg(long, value_enum, default_value_t = AdapterArg::Cpu)]
         adapter: AdapterArg,
         /// Instead of running the emitted code, evaluate the model under every deviation

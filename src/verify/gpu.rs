@@ -252,8 +252,8 @@ pub enum Adapter {
     #[default]
     Cpu,
     /// The first adapter that is not a CPU: the machine's own GPU, which the graphics APIs
-    /// allow to round, flush and fuse differently (`verify --portable` says where that can
-    /// change a code).
+    /// allow to round, flush and fuse differently (`verify --portable` models those
+    /// liberties one class at a time).
     Hardware,
 }
 
