@@ -205,8 +205,8 @@ pub enum Command {
         /// graphics APIs allow to round, flush and fuse differently: mismatches there are
         /// what this GPU changes, and for float outputs the report gives the largest
         /// difference, to hold against the bound in each function's doc comment.
-        #[arg(long, value_enum, default_value_t = AdapterArg::Cpu)]
-        adapter: AdapterArg,
+        #[arg(long, value_enum, default_value_t = crate::verify::gpu::Adapter::Cpu)]
+        adapter: crate::verify::gpu::Adapter,
         /// Instead of running the emitted code, evaluate the model under every deviation
         /// the graphics APIs allow (division and sqrt within their ULP bounds, fused
         /// multiply-adds, denormal flushing, lost signs of zero, excess precision,
@@ -217,24 +217,6 @@ pub enum Command {
         #[arg(long)]
         portable: bool,
     },
-}
-
-/// `verify --adapter`.
-#[derive(Clone, Copy, clap::ValueEnum)]
-pub enum AdapterArg {
-    /// The Vulkan CPU adapter (Mesa's lavapipe).
-    Cpu,
-    /// The first Vulkan adapter that is not a CPU.
-    Gpu,
-}
-
-impl From<AdapterArg> for crate::verify::gpu::Adapter {
-    fn from(a: AdapterArg) -> Self {
-        match a {
-            AdapterArg::Cpu => Self::Cpu,
-            AdapterArg::Gpu => Self::Hardware,
-        }
-    }
 }
 
 #[derive(clap::Args)]
@@ -350,7 +332,7 @@ pub fn run(cli: Cli) -> Result<i32> {
             } else {
                 lang
             };
-            let report = crate::verify::run_on(&specs, &langs, true, adapter.into())
+            let report = crate::verify::run_on(&specs, &langs, true, adapter)
                 .context("verification could not run")?;
             output::print(&if json {
                 verify::report_json(&report)

@@ -244,13 +244,15 @@ fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
     Ok(out)
 }
 
-/// Which Vulkan adapter a [`Gpu`] runs on.
+/// Which Vulkan adapter a [`Gpu`] runs on (`verify --adapter cpu|gpu`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Adapter {
     /// The CPU adapter (Mesa's lavapipe), where the canonical arithmetic is proven: it
     /// rounds correctly, keeps denormals and never fuses. The default.
     #[default]
     Cpu,
+    #[cfg_attr(feature = "cli", value(name = "gpu"))]
     /// The first adapter that is not a CPU: the machine's own GPU, which the graphics APIs
     /// allow to round, flush and fuse differently (`verify --portable` models those
     /// liberties one class at a time).
