@@ -29,6 +29,7 @@ use crate::model::Uint;
 use crate::model::V3;
 use crate::model::avx2_lanes::{self, F8, WIDTH};
 use crate::model::lanes::{F4, LaneIo};
+use wide::bytemuck::{cast_slice, cast_slice_mut};
 
 /// A codec with its encoder chosen (fast: nearest codes; precise: the survey's "P" search).
 #[derive(Clone, Copy, Debug)]
@@ -111,14 +112,11 @@ impl<C: Codec> Encoder<C> {
         in_whole_groups(input, out, {
             #[inline(always)]
             |vs: &[[f32; 3]; N], os: &mut [C::C<f32>; N]| {
-                let lane = {
-                    #[inline(always)]
-                    |j: usize| L::from_words(std::array::from_fn(|k| vs[k][j].to_bits()))
-                };
+                let [x, y, z] = L::u_from_items3(as_words(vs));
                 let code = encode_packed(
                     &self.codec,
                     self.precise,
-                    V3::new(lane(0), lane(1), lane(2)),
+                    V3::new(x.as_float(), y.as_float(), z.as_float()),
                 );
                 let word = {
                     #[inline(always)]
@@ -194,17 +192,25 @@ impl<C: Codec> Encoder<C> {
                 };
                 let code = C::C::<L>::from_words([lane(0), lane(1), lane(2)]);
                 let v = decode_packed(&self.codec, code);
-                let [x, y, z] = [v.x.words(), v.y.words(), v.z.words()];
-                for (k, o) in os.iter_mut().enumerate() {
-                    *o = [
-                        f32::from_bits(x[k]),
-                        f32::from_bits(y[k]),
-                        f32::from_bits(z[k]),
-                    ];
-                }
+                L::u_to_items3(
+                    [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()],
+                    as_words_mut(os),
+                );
             }
         });
     }
+}
+
+/// A group of vectors as their components' bits ([`LaneIo::u_from_items3`]'s items).
+#[inline(always)]
+fn as_words<const N: usize>(vs: &[[f32; 3]; N]) -> &[[u32; 3]; N] {
+    cast_slice(vs).try_into().expect("N vectors")
+}
+
+/// [`as_words`] for writing.
+#[inline(always)]
+fn as_words_mut<const N: usize>(vs: &mut [[f32; 3]; N]) -> &mut [[u32; 3]; N] {
+    cast_slice_mut(vs).try_into().expect("N vectors")
 }
 
 /// `group` on each whole group of `N` items of `input` and `out` (of equal lengths), then
@@ -298,8 +304,7 @@ impl Batch {
             out.len(),
             "Batch::encode: out must hold words() = {w} words per input vector"
         );
-        self.encode
-            .eval_many(wide::bytemuck::cast_slice(input), out);
+        self.encode.eval_many(cast_slice(input), out);
     }
 
     /// Decodes `codes` (`words()` words each) into `out`.
@@ -310,7 +315,6 @@ impl Batch {
             out.len() * w,
             "Batch::decode: codes must hold words() = {w} words per output vector"
         );
-        self.decode
-            .eval_many(codes, wide::bytemuck::cast_slice_mut(out));
+        self.decode.eval_many(codes, cast_slice_mut(out));
     }
 }

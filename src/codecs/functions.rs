@@ -325,7 +325,7 @@ const MAX_WORDS: usize = 32;
 /// group repeats its last item in the spare lanes and writes only the real ones. Inlined
 /// into the function compiled for the lanes, so the transposes are too.
 #[inline(always)]
-fn in_groups<A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>(
+fn in_groups<L: LaneIo<N>, A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>(
     f: &impl Fn(A) -> R,
     input: &[u32],
     output: &mut [u32],
@@ -341,9 +341,9 @@ fn in_groups<A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>(
     let mut src = input.chunks_exact(N * iw);
     let mut dst = output.chunks_exact_mut(N * ow);
     for (s, d) in (&mut src).zip(&mut dst) {
-        to_lanes(s, lanes_in);
+        to_lanes::<L, N>(s, lanes_in);
         f(A::read(lanes_in)).write(lanes_out);
-        from_lanes(lanes_out, d);
+        from_lanes::<L, N>(lanes_out, d);
     }
     let (s, d) = (src.remainder(), dst.into_remainder());
     let items = s.len() / iw;
@@ -362,14 +362,20 @@ fn in_groups<A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>(
     }
 }
 
-/// One whole group of `N` items (`s`, `N·lanes.len()` words) into lanes. Items of 1 to 4
-/// words (codes and vectors) go through fixed-size arrays ([`to_lanes_of`]).
+/// One whole group of `N` items (`s`, `N·lanes.len()` words) into lanes. Items of three
+/// words (vectors) take the lanes' own transposes ([`LaneIo::u_from_items3`]), other items
+/// of 1 to 4 words (codes) go through fixed-size arrays ([`to_lanes_of`]).
 #[inline(always)]
-fn to_lanes<const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
+fn to_lanes<L: LaneIo<N>, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
     match lanes.len() {
         1 => to_lanes_of::<1, N>(s, lanes),
         2 => to_lanes_of::<2, N>(s, lanes),
-        3 => to_lanes_of::<3, N>(s, lanes),
+        3 => {
+            let items = s.as_chunks::<3>().0.try_into().expect("a whole group");
+            for (lane, u) in lanes.iter_mut().zip(L::u_from_items3(items)) {
+                *lane = L::u_words(u);
+            }
+        }
         4 => to_lanes_of::<4, N>(s, lanes),
         w => {
             for (j, lane) in lanes.iter_mut().enumerate() {
@@ -395,13 +401,21 @@ fn to_lanes_of<const W: usize, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]
     }
 }
 
-/// Lanes into one whole group of `N` items (`d`, `N·lanes.len()` words), as [`to_lanes`].
+/// Lanes into one whole group of `N` items (`d`, `N·lanes.len()` words), as [`to_lanes`]
+/// ([`LaneIo::u_to_items3`] for three words).
 #[inline(always)]
-fn from_lanes<const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
+fn from_lanes<L: LaneIo<N>, const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
     match lanes.len() {
         1 => from_lanes_of::<1, N>(lanes, d),
         2 => from_lanes_of::<2, N>(lanes, d),
-        3 => from_lanes_of::<3, N>(lanes, d),
+        3 => {
+            let items = d.as_chunks_mut::<3>().0.try_into().expect("a whole group");
+            let u = {
+                #[inline(always)]
+                |j: usize| L::u_from_words(lanes[j])
+            };
+            L::u_to_items3([u(0), u(1), u(2)], items);
+        }
         4 => from_lanes_of::<4, N>(lanes, d),
         w => {
             for (k, item) in d.chunks_exact_mut(w).enumerate() {
@@ -473,7 +487,7 @@ where
         out_words: R::WORDS,
         eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
         eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
-        eval_lanes: Arc::new(move |i, o| in_groups(&f_lanes, i, o)),
+        eval_lanes: Arc::new(move |i, o| in_groups::<F4, _, _, 4>(&f_lanes, i, o)),
         eval_lanes8: Arc::new(move |i, o| {
             assert!(
                 avx2_lanes::available(),
@@ -495,7 +509,7 @@ where
 /// The processor must have AVX2.
 #[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
 unsafe fn on_avx2<A: Bits<Lanes8>, R: Bits<Lanes8>>(f: &impl Fn(A) -> R, i: &[u32], o: &mut [u32]) {
-    in_groups(f, i, o)
+    in_groups::<F8, _, _, WIDTH>(f, i, o)
 }
 
 /// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]

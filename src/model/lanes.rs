@@ -56,6 +56,20 @@ pub trait LaneIo<const N: usize>: Float {
     fn words(self) -> [u32; N];
     fn u_from_words(w: [u32; N]) -> Self::U;
     fn u_words(u: Self::U) -> [u32; N];
+    /// `N` items of three words each (vectors, as their `f32` bits, and three-word codes)
+    /// as three lanes: lane `j` holds word `j` of every item.
+    #[inline(always)]
+    fn u_from_items3(items: &[[u32; 3]; N]) -> [Self::U; 3] {
+        std::array::from_fn(|j| Self::u_from_words(std::array::from_fn(|k| items[k][j])))
+    }
+    /// The inverse of [`LaneIo::u_from_items3`]: word `j` of item `k` from lane `j`.
+    #[inline(always)]
+    fn u_to_items3(lanes: [Self::U; 3], items: &mut [[u32; 3]; N]) {
+        let words = lanes.map(Self::u_words);
+        for (k, item) in items.iter_mut().enumerate() {
+            *item = std::array::from_fn(|j| words[j][k]);
+        }
+    }
 }
 
 /// Every operation of the vocabulary on the lanes `a` and `b` (and on their bits as
