@@ -1,8 +1,9 @@
 //! CPU codec throughput in vectors per second, with a baseline measured in the same run
 //! (normalizing the same vectors in f32) so that results compare across machines as ratios.
 //! The typed slices (`Encoder::encode_slice`) and `Batch` both run the model eight vectors
-//! per step on AVX2 lanes where the processor has them (chosen at run time), else four on
-//! SSE2 lanes (`unitpack::model::lanes`, `avx2_lanes`). Beside oct16 and oct32, the peer they replace: meshoptimizer's octahedral vertex filter
+//! per step on AVX2 lanes where the processor has them (chosen at run time; the typed
+//! slices compiled for AVX-512VL where it has that too), else four on SSE2 lanes
+//! (`unitpack::model::lanes`, `avx2_lanes`). Beside oct16 and oct32, the peer they replace: meshoptimizer's octahedral vertex filter
 //! (`meshopt_encodeFilterOct` / `meshopt_decodeFilterOct`, 8- and 16-bit components, through
 //! the `meshopt` crate), measured in the same run on the same vectors, as ratios (above 1:
 //! unitpack is faster). meshoptimizer decodes snorm integers to snorm integers in place with

@@ -69,14 +69,15 @@ impl<C: Codec> Encoder<C> {
         decode_packed(&self.codec, code).to_array()
     }
     /// Encodes `input` into `out` (same length), eight vectors per step on AVX2 lanes
-    /// where the processor has them, else four on SSE2 lanes ([`crate::model::lanes`]):
-    /// the same bits as [`Encoder::encode`] on each.
+    /// where the processor has them (compiled for AVX-512VL where it has that too), else
+    /// four on SSE2 lanes ([`crate::model::lanes`]): the same bits as [`Encoder::encode`]
+    /// on each.
     pub fn encode_slice(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
         self.encode_slice_on(Width::widest(), input, out)
     }
 
-    /// [`Encoder::encode_slice`] on the given lanes, so that both widths can be compared;
-    /// [`Width::Eight`] panics without AVX2.
+    /// [`Encoder::encode_slice`] on the given lanes, so that every width can be compared;
+    /// [`Width::Eight`] panics without AVX2, [`Width::EightAvx512`] without AVX-512VL.
     pub fn encode_slice_on(&self, width: Width, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
         assert_eq!(
             input.len(),
@@ -90,6 +91,14 @@ impl<C: Codec> Encoder<C> {
                 // SAFETY: the processor has AVX2 (checked just above).
                 unsafe { self.encode_avx2(input, out) }
             }
+            Width::EightAvx512 => {
+                assert!(
+                    avx2_lanes::avx512_available(),
+                    "eight lanes on AVX-512VL need AVX2, AVX-512F and AVX-512VL"
+                );
+                // SAFETY: the processor has all three (checked just above).
+                unsafe { self.encode_avx512(input, out) }
+            }
         }
     }
 
@@ -99,6 +108,18 @@ impl<C: Codec> Encoder<C> {
     /// The processor must have AVX2.
     #[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
     unsafe fn encode_avx2(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
+        self.encode_lanes::<F8, WIDTH>(input, out)
+    }
+
+    /// [`Encoder::encode_slice`] on eight lanes, compiled for AVX-512VL ([`Width::EightAvx512`]).
+    ///
+    /// # Safety
+    /// The processor must have AVX2, AVX-512F and AVX-512VL.
+    #[cfg_attr(
+        target_arch = "x86_64",
+        target_feature(enable = "avx2,avx512f,avx512vl")
+    )]
+    unsafe fn encode_avx512(&self, input: &[[f32; 3]], out: &mut [C::C<f32>]) {
         self.encode_lanes::<F8, WIDTH>(input, out)
     }
 
@@ -137,13 +158,14 @@ impl<C: Codec> Encoder<C> {
     }
 
     /// Decodes `input` into `out` (same length), eight codes per step on AVX2 lanes where
-    /// the processor has them, else four on SSE2 lanes: the same bits as
-    /// [`Encoder::decode`] on each.
+    /// the processor has them (compiled for AVX-512VL where it has that too), else four on
+    /// SSE2 lanes: the same bits as [`Encoder::decode`] on each.
     pub fn decode_slice(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
         self.decode_slice_on(Width::widest(), input, out)
     }
 
-    /// [`Encoder::decode_slice`] on the given lanes; [`Width::Eight`] panics without AVX2.
+    /// [`Encoder::decode_slice`] on the given lanes; [`Width::Eight`] panics without AVX2,
+    /// [`Width::EightAvx512`] without AVX-512VL.
     pub fn decode_slice_on(&self, width: Width, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
         assert_eq!(
             input.len(),
@@ -157,6 +179,14 @@ impl<C: Codec> Encoder<C> {
                 // SAFETY: the processor has AVX2 (checked just above).
                 unsafe { self.decode_avx2(input, out) }
             }
+            Width::EightAvx512 => {
+                assert!(
+                    avx2_lanes::avx512_available(),
+                    "eight lanes on AVX-512VL need AVX2, AVX-512F and AVX-512VL"
+                );
+                // SAFETY: the processor has all three (checked just above).
+                unsafe { self.decode_avx512(input, out) }
+            }
         }
     }
 
@@ -166,6 +196,18 @@ impl<C: Codec> Encoder<C> {
     /// The processor must have AVX2.
     #[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
     unsafe fn decode_avx2(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
+        self.decode_lanes::<F8, WIDTH>(input, out)
+    }
+
+    /// [`Encoder::decode_slice`] on eight lanes, compiled for AVX-512VL ([`Width::EightAvx512`]).
+    ///
+    /// # Safety
+    /// The processor must have AVX2, AVX-512F and AVX-512VL.
+    #[cfg_attr(
+        target_arch = "x86_64",
+        target_feature(enable = "avx2,avx512f,avx512vl")
+    )]
+    unsafe fn decode_avx512(&self, input: &[C::C<f32>], out: &mut [[f32; 3]]) {
         self.decode_lanes::<F8, WIDTH>(input, out)
     }
 

@@ -30,17 +30,18 @@ fn slices_compute_the_single_calls_bits() {
         let mut vs = random_unit_vectors(21, 4099, false);
         vs.extend(unitpack::verify::inputs::edge_vectors());
         vs.extend([[1e30, -1e30, 0.5], [0.0, 0.0, -1.0], [3.0, 4.0, 0.0]]);
-        // Both lane widths, whichever the processor would pick (eight needs AVX2).
+        // Every lane width up to the one the processor would pick (eight needs AVX2; the
+        // AVX-512VL copy of the eight runs where the processor has that too).
+        let widths = match Width::widest() {
+            Width::Four => vec![Width::Four],
+            Width::Eight => vec![Width::Four, Width::Eight],
+            Width::EightAvx512 => vec![Width::Four, Width::Eight, Width::EightAvx512],
+        };
         assert!(
-            !cfg!(target_arch = "x86_64") || Width::widest() == Width::Eight,
+            !cfg!(target_arch = "x86_64") || widths.len() > 1,
             "the eight-lane slices need a processor with AVX2 to be tested"
         );
-        let widths: &[Width] = if Width::widest() == Width::Eight {
-            &[Width::Four, Width::Eight]
-        } else {
-            &[Width::Four]
-        };
-        for &width in widths {
+        for &width in &widths {
             for len in [vs.len(), 1, 2, 3, 5, 9] {
                 let vs = &vs[..len];
                 let mut codes = vec![e.encode([0.0, 0.0, 1.0]); len];

@@ -14,8 +14,8 @@
 //!   a lane reaches 2^31.
 //!
 //! Sound by construction: the module is private to the crate, and its values exist only
-//! inside functions compiled with `#[target_feature(enable = "avx2")]` that run after
-//! [`available`] said yes ([`crate::codecs::functions::Function::eval_many`], the typed
+//! inside functions compiled with `#[target_feature(enable = "avx2")]` (or AVX2 and
+//! AVX-512VL) that run after [`available`] (or [`avx512_available`]) said yes ([`crate::codecs::functions::Function::eval_many`], the typed
 //! slices of [`crate::api`]). Those functions must inline everything the models call: an
 //! operation left in a function compiled for the baseline target becomes a call to an
 //! out-of-line intrinsic. So the operations here, and the models' generic functions,
@@ -42,6 +42,13 @@ pub(crate) struct M8(__m256i);
 #[inline]
 pub fn available() -> bool {
     is_x86_feature_detected!("avx2")
+}
+
+/// Whether this processor also runs the eight-lane code compiled for AVX-512F and VL
+/// ([`crate::codecs::functions::Width::EightAvx512`]; checked once, then cached by std).
+#[inline]
+pub fn avx512_available() -> bool {
+    available() && is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl")
 }
 
 /// [`super::lanes::operations`] on eight AVX2 lanes; `None` where the processor has no AVX2.
