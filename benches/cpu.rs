@@ -3,10 +3,10 @@
 //! The typed slices (`Encoder::encode_slice`) and `Batch` both run the model eight vectors
 //! per step on AVX2 lanes where the processor has them (chosen at run time; the typed
 //! slices compiled for AVX-512VL where it has that too), else four on SSE2 lanes
-//! (`unitpack::model::lanes`, `avx2_lanes`). Beside oct16 and oct32, the peer they replace: meshoptimizer's octahedral vertex filter
-//! (`meshopt_encodeFilterOct` / `meshopt_decodeFilterOct`, 8- and 16-bit components, through
-//! the `meshopt` crate), measured in the same run on the same vectors, as ratios (above 1:
-//! unitpack is faster). meshoptimizer decodes snorm integers to snorm integers in place with
+//! (`unitpack::model::lanes`, `avx2_lanes`). Beside oct16 and oct32, the peer they
+//! replace: meshoptimizer's octahedral vertex filter (`meshopt_encodeFilterOct` /
+//! `meshopt_decodeFilterOct`, 8- and 16-bit components, through the `meshopt` crate),
+//! measured in the same run on the same vectors, as ratios (above 1: unitpack is faster). meshoptimizer decodes snorm integers to snorm integers in place with
 //! SIMD; unitpack's decode writes f32×3, more work, and the ratio is printed as it stands.
 //! Also the `encode`/`decode` stream filter (`unitpack::cli::transcode`) over in-memory
 //! buffers, in its raw binary format and in text, to show what a pipeline gets end to end.

@@ -238,12 +238,12 @@ pub enum Width {
     /// [`Function::eval_lanes8`]: eight AVX2 lanes.
     Eight,
     /// The same eight lanes compiled for AVX-512VL too, where the processor has it:
-    /// compares into mask registers, one-instruction selects and 32 registers, which made
-    /// the typed oct decoders about a third faster on an Intel Xeon (`vblendvps` is several
-    /// micro-operations there, one on AMD's Zen 4). The typed slices of
-    /// [`crate::api::Encoder`] have this copy; [`Function::eval_many_on`] runs
-    /// [`Width::Eight`] for it, since a second copy of every function's lanes would cost
-    /// the build more than the batches gain.
+    /// compares into mask registers, one-instruction selects and 32 registers. On an Intel
+    /// Xeon, where `vblendvps` is several micro-operations, the typed oct16 decoder went
+    /// from 0.87–0.93× meshoptimizer's to 1.02–1.60× with it; on AMD's Zen 4, where it is
+    /// one, it runs about a seventh slower (README, "Speed"). The typed slices of [`crate::api::Encoder`] have this copy;
+    /// [`Function::eval_many_on`] runs [`Width::Eight`] for it, since a second copy of
+    /// every function's lanes would cost the build more than the batches gain.
     EightAvx512,
 }
 
