@@ -3,7 +3,7 @@
 
 use super::quant::{Code, Quant, Quants, field_offsets};
 use crate::model::trace::Value;
-use crate::model::{Bool, Float, Uint, V2, V3, V4};
+use crate::model::{Bool, Float, Uint, V2, V3, V4, each};
 
 /// Which directions a codec represents.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -300,7 +300,8 @@ pub fn pack<F: Float, P: Params<F>, C: Code<F>>(q: &[Quant], c: P) -> C {
             Some(acc) => acc | f,
         });
     }
-    C::from_words(words.map(
+    C::from_words(each(
+        words,
         #[inline(always)]
         |w| {
             w.unwrap_or_else(

@@ -24,7 +24,7 @@
 //! survive them.
 
 use super::quant::Quant;
-use crate::model::{Bool, Float, Uint, V3};
+use crate::model::{Bool, Float, Uint, V3, each};
 
 /// The smallest normal f32, `2^-126`.
 pub const MIN_NORMAL: f32 = f32::MIN_POSITIVE;
@@ -129,7 +129,8 @@ pub const FIXED_SCALE: f32 = (1u32 << 21) as f32;
 /// relative `2^-22` of a canonical vector's length), then that rounding.
 #[inline(always)]
 fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
-    let a = x.map(
+    let a = each(
+        x,
         #[inline(always)]
         |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u(),
     );

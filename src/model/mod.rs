@@ -14,6 +14,9 @@ pub mod avx2_lanes {
     pub fn available() -> bool {
         false
     }
+    pub fn avx512_available() -> bool {
+        false
+    }
     pub fn operations(_: [f32; 8], _: [f32; 8]) -> Option<Vec<(&'static str, [u32; 8])>> {
         None
     }
@@ -26,4 +29,4 @@ pub mod trace;
 pub mod vec;
 
 pub use num::{Bool, Float, Kind, Lane, Uint};
-pub use vec::{V2, V3, V4};
+pub use vec::{V2, V3, V4, each};

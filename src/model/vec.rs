@@ -209,3 +209,16 @@ impl<T: Lane> V3<T> {
         V3::from_array(T::fuse([xy.x, xy.y, z]))
     }
 }
+
+/// `f` of every element of `a`, first to last (as `a.map(f)` evaluates them), inlined
+/// whole. `[T; N]::map` hands its closure to a std function that is not always inlined;
+/// left in a function compiled for the baseline target, the eight lanes' operations in
+/// that closure become calls to out-of-line intrinsics (`src/model/avx2_lanes.rs`).
+#[inline(always)]
+pub fn each<T: Copy, R: Copy, const N: usize>(a: [T; N], f: impl Fn(T) -> R) -> [R; N] {
+    let mut out = [f(a[0]); N];
+    for k in 1..N {
+        out[k] = f(a[k]);
+    }
+    out
+}
