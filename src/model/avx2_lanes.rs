@@ -16,12 +16,14 @@
 //! Sound by construction: the module is private to the crate, and its values exist only
 //! inside functions compiled with `#[target_feature(enable = "avx2")]` (or AVX2 and
 //! AVX-512VL) that run after [`available`] (or [`avx512_available`]) said yes
-//! ([`crate::codecs::functions::Function::eval_many`], the typed slices of [`crate::api`]). Those functions must inline everything the models call: an
-//! operation left in a function compiled for the baseline target becomes a call to an
-//! out-of-line intrinsic. So the operations here, and the models' generic functions,
-//! methods and closures in `src/codecs` and `src/model/vec.rs`, are `#[inline(always)]`.
-//! A closure bound by `let` is written `{ #[inline(always)] |..| .. }`, because the block's
-//! tail is the one place there that Rust accepts the attribute.
+//! ([`crate::codecs::functions::Function::eval_many`], the typed slices of [`crate::api`]).
+//! Those functions must inline everything the models call: an operation left in a function
+//! compiled for the baseline target becomes a call to an out-of-line intrinsic. So the
+//! operations here, and the models' generic functions, methods and closures in
+//! `src/codecs` and `src/model/vec.rs`, are `#[inline(always)]`. A closure bound by `let`
+//! is written `{ #[inline(always)] |..| .. }`, because the block's tail is the one place
+//! there that Rust accepts the attribute, and arrays are mapped with
+//! [`crate::model::each`], since `[T; N]::map` may leave its closure out of line.
 
 use super::lanes::LaneIo;
 use super::num::{Bool, Float, Kind, Lane, Uint};
