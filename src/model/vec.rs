@@ -214,8 +214,10 @@ impl<T: Lane> V3<T> {
 /// whole. `[T; N]::map` hands its closure to a std function that is not always inlined;
 /// left in a function compiled for the baseline target, the eight lanes' operations in
 /// that closure become calls to out-of-line intrinsics (`src/model/avx2_lanes.rs`).
+/// `N` must be at least 1 (checked when compiled): the first result fills the array.
 #[inline(always)]
 pub fn each<T: Copy, R: Copy, const N: usize>(a: [T; N], f: impl Fn(T) -> R) -> [R; N] {
+    const { assert!(N > 0, "each: an empty array has no first element") };
     let mut out = [f(a[0]); N];
     for k in 1..N {
         out[k] = f(a[k]);
