@@ -113,7 +113,7 @@ fn ratios(name: &str, (enc, dec): (f64, f64), (m_enc, m_dec): (f64, f64)) {
 }
 
 fn main() {
-    let vs = unitpack::quality::random_unit_vectors(1, N, false);
+    let vs = unitpack::sampling::random_unit_vectors(1, N, false);
     let mut norm = vec![[0f32; 3]; N];
     let base = rate(|| {
         for (o, v) in norm.iter_mut().zip(black_box(&vs)) {

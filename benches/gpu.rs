@@ -10,7 +10,7 @@
 
 use std::time::Instant;
 use unitpack::Spec;
-use unitpack::codecs::functions::Role;
+use unitpack::codecs::core::function::Role;
 use unitpack::emit::{DEFAULT_PREFIX, Lang, render};
 use unitpack::verify::gpu::{Gpu, Shader};
 
@@ -71,7 +71,7 @@ fn per_vector(gpu: &Gpu, source: &str, iter: u32, base: f64, input: &[u32]) -> f
 
 fn main() {
     let gpu = Gpu::shared().expect("lavapipe (install mesa-vulkan-drivers)");
-    let vs = unitpack::quality::random_unit_vectors(1, ITEMS, false);
+    let vs = unitpack::sampling::random_unit_vectors(1, ITEMS, false);
     let input: Vec<u32> = vs.iter().flatten().map(|x| x.to_bits()).collect();
     let base_encode = seconds(
         gpu,

@@ -19,11 +19,12 @@
 //! assert!(codes.iter().all(|&c| c == codes[0]));
 //! ```
 
-use crate::codecs::codec::Codec;
+use crate::codecs::core::codec::Codec;
+pub use crate::codecs::core::function::Width;
+use crate::codecs::core::function::{Function, Role};
+use crate::codecs::core::pipeline::{decode_packed, encode_packed};
 pub use crate::codecs::cpu::*;
-pub use crate::codecs::functions::Width;
-use crate::codecs::functions::{Function, Role, decode_packed, encode_packed};
-use crate::codecs::quant::Code;
+use crate::codecs::toolkit::quant::Code;
 use crate::codecs::{Spec, SpecError};
 use crate::model::Uint;
 use crate::model::V3;

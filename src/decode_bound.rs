@@ -9,9 +9,11 @@
 //! reaches, or an evaluation budget is spent: either way the stated bound covers every box,
 //! so every code.
 
-use crate::codecs::functions::{Enclose, Function, Role, float_code_range};
-use crate::codecs::quant::Quant;
-use crate::codecs::{Spec, functions::Inputs};
+use crate::codecs::Spec;
+use crate::codecs::core::decode_boxes::float_code_range;
+use crate::codecs::core::function::Inputs;
+use crate::codecs::core::function::{Enclose, Function, Role};
+use crate::codecs::toolkit::quant::Quant;
 use crate::memo::Memo;
 use crate::model::enclosure::Encl;
 use crate::model::trace::Module;

@@ -14,6 +14,7 @@ pub mod model;
 pub mod par;
 pub mod portability;
 pub mod quality;
+pub mod sampling;
 #[cfg(feature = "verify")]
 pub mod verify;
 

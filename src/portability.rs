@@ -20,8 +20,8 @@
 //! ```
 
 use crate::codecs::Spec;
-use crate::codecs::functions::{Emitted, Function, Inputs, Role, first_with_same_code};
-use crate::codecs::inputs::{edge_vectors, generate};
+use crate::codecs::core::function::{Emitted, Function, Inputs, Role, first_with_same_code};
+use crate::codecs::core::inputs::{edge_vectors, generate};
 pub use crate::decode_bound::UNIT;
 pub use crate::model::deviant::{Class, Deviation, Mode};
 use crate::model::deviant::{begin_item, item_chose, with};

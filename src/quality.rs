@@ -3,46 +3,13 @@
 //! vectors, `|acos(dot)|` in degrees.
 
 use crate::codecs::Spec;
-use crate::codecs::codec::Domain;
-use crate::codecs::functions::{Emitted, Role};
+use crate::codecs::core::codec::Domain;
+use crate::codecs::core::function::{Emitted, Role};
 use crate::memo::Memo;
-use rand_core::Rng;
-use rand_pcg::Pcg64Mcg;
+use crate::sampling::random_unit_vectors;
 
 /// Seeds are fixed so that every run, and every file generated, is identical.
 pub const VECTOR_SEED: u128 = 0x756e_6974_7061_636b_5f76_6563_746f_7273;
-
-fn uniform(rng: &mut Pcg64Mcg) -> f64 {
-    // 53 random bits in (0, 1].
-    ((rng.next_u64() >> 11) + 1) as f64 * (1.0 / (1u64 << 53) as f64)
-}
-
-/// `n` seeded random unit vectors, normalized in f64 and rounded to f32; on the +Z
-/// hemisphere (`z = |z|`) when asked.
-pub fn random_unit_vectors(seed: u128, n: usize, hemisphere: bool) -> Vec<[f32; 3]> {
-    let mut rng = Pcg64Mcg::new(seed);
-    let mut out = Vec::with_capacity(n);
-    while out.len() < n {
-        let mut g = [0f64; 3];
-        for pair in [0, 2] {
-            // Box–Muller: two Gaussians from two uniforms.
-            let (u1, u2) = (uniform(&mut rng), uniform(&mut rng));
-            let r = (-2.0 * u1.ln()).sqrt();
-            let t = std::f64::consts::TAU * u2;
-            g[pair] = r * t.cos();
-            if pair == 0 {
-                g[1] = r * t.sin();
-            }
-        }
-        let len = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
-        if len < 1e-9 {
-            continue;
-        }
-        let z = if hemisphere { g[2].abs() } else { g[2] };
-        out.push([(g[0] / len) as f32, (g[1] / len) as f32, (z / len) as f32]);
-    }
-    out
-}
 
 /// Angle between two vectors in degrees, both normalized in f64.
 pub fn angle_deg(a: [f32; 3], b: [f32; 3]) -> f64 {

@@ -5,7 +5,8 @@ use unitpack::api::{
     Paraboloid, ParaboloidSquare, Snorm3, SphericalZ, StereoScaled, Unorm3, Width, XySignZ,
     XyStereo, combine_paraboloid_pd,
 };
-use unitpack::quality::{angle_deg, random_unit_vectors};
+use unitpack::quality::angle_deg;
+use unitpack::sampling::random_unit_vectors;
 
 #[test]
 fn invalid_sizes_list_the_allowed_ones() {
@@ -259,7 +260,7 @@ fn float32x3_codes_are_rgb32_float_texels() {
         c.encode([f32::NAN, 0.0, 1.0]).to_array(),
         [0, 0, 0x3f80_0000]
     );
-    for v in unitpack::quality::random_unit_vectors(5, 1000, false) {
+    for v in unitpack::sampling::random_unit_vectors(5, 1000, false) {
         let code = c.encode(v).to_array();
         for (w, x) in code.iter().zip(v) {
             let y = f32::from_bits(*w);

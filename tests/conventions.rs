@@ -2,10 +2,10 @@
 //! code for zero / NaN / ±inf / non-unit input, every code decodes to a finite vector.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::codec::sign_not_zero;
-use unitpack::codecs::functions::{Emitted, Function, Inputs, Role};
-use unitpack::codecs::oct::{oct_direction, oct_params};
-use unitpack::codecs::quant::Quant;
+use unitpack::codecs::core::codec::sign_not_zero;
+use unitpack::codecs::core::function::{Emitted, Function, Inputs, Role};
+use unitpack::codecs::octahedral::oct::{oct_direction, oct_params};
+use unitpack::codecs::toolkit::quant::Quant;
 use unitpack::model::{V2, V3};
 use unitpack::verify::inputs;
 
@@ -94,7 +94,7 @@ fn degenerate_input_encodes_to_the_documented_code() {
 #[test]
 fn hemioct_float_form_fits_the_projected_input() {
     use unitpack::codecs::Codec;
-    use unitpack::codecs::hemioct::HemiOct;
+    use unitpack::codecs::octahedral::hemioct::HemiOct;
     let c = HemiOct { bits: 16 };
     for (v, want) in [
         ([1e-45f32, 1e-45, -1.0], [1.0f32, 0.0]),
@@ -359,7 +359,7 @@ fn half_of(x: f32) -> u64 {
 
 #[test]
 fn packed_code_is_the_texel_a_render_target_would_store() {
-    let vs = unitpack::quality::random_unit_vectors(11, 20_000, false);
+    let vs = unitpack::sampling::random_unit_vectors(11, 20_000, false);
     for spec in codecs() {
         let e = spec.emitted();
         let (enc, encf, dec) = (

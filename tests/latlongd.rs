@@ -9,9 +9,9 @@
 use std::f64::consts::PI;
 use unitpack::Lang;
 use unitpack::api::Batch;
-use unitpack::codecs::latlongd::{RINGS, Rings, decode_ring};
+use unitpack::codecs::angular::latlongd::{RINGS, Rings, decode_ring};
 use unitpack::generator::Generator;
-use unitpack::quality::random_unit_vectors;
+use unitpack::sampling::random_unit_vectors;
 use unitpack::verify::gpu::Gpu;
 
 /// `(bits, Nφ, ε in degrees)` as the module documents them.

@@ -1,7 +1,9 @@
 //! Survey Listings 4–5: the integer and float-only snorm12×2 ↔ unorm8×3 forms are equal,
 //! bit for bit, on all 2^24 inputs each way (CPU model; the GPU run is in `verify`).
 
-use unitpack::codecs::pack12::{from_unorm8x3, from_unorm8x3_int, to_unorm8x3, to_unorm8x3_int};
+use unitpack::codecs::component::snorm12x2::{
+    from_unorm8x3, from_unorm8x3_int, to_unorm8x3, to_unorm8x3_int,
+};
 use unitpack::model::{V2, V3};
 
 #[test]

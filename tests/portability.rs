@@ -3,8 +3,8 @@
 //! what the report measures on the catalogue.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::functions::Role;
-use unitpack::codecs::inputs::generate;
+use unitpack::codecs::core::function::Role;
+use unitpack::codecs::core::inputs::generate;
 use unitpack::model::Float;
 use unitpack::model::deviant::{
     Class, DIV_ULP, Dev, Deviation, Mode, SQRT_ULP, begin_item, item_chose, with,

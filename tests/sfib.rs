@@ -3,11 +3,11 @@
 //! every point that could be nearer, with the codec's own decoder as the definition of
 //! where each point is.
 
-use unitpack::codecs::exact::{canonical_or_z, fixed_length2, root};
-use unitpack::codecs::fixed_decode::fixed_target;
-use unitpack::codecs::sfib::{GOLDEN, Sfib, longitude};
+use unitpack::codecs::angular::sfib::{GOLDEN, Sfib, longitude};
+use unitpack::codecs::toolkit::exact::{canonical_or_z, fixed_length2, root};
+use unitpack::codecs::toolkit::fixed_decode::fixed_target;
 use unitpack::model::V3;
-use unitpack::quality::random_unit_vectors;
+use unitpack::sampling::random_unit_vectors;
 
 fn decode(c: &Sfib, i: u32) -> [f32; 3] {
     c.index_direction::<f32>(i).to_array()
@@ -41,7 +41,7 @@ fn queries(count: usize, c: &Sfib) -> Vec<[f32; 3]> {
 /// Every index whose point could be within `chord` of `q`: its `z` is within `chord`.
 fn window(c: &Sfib, q: [f32; 3], chord: f64) -> std::ops::RangeInclusive<u32> {
     let s = c.step();
-    let index_at = |z: f64| (1.0 - unitpack::codecs::sfib::EPSILON * s - z) / s;
+    let index_at = |z: f64| (1.0 - unitpack::codecs::angular::sfib::EPSILON * s - z) / s;
     let z = f64::from(q[2]);
     let lo = (index_at(z + chord) - 3.0).max(0.0);
     let hi = (index_at(z - chord) + 3.0).min(c.points() - 1.0);
@@ -130,7 +130,7 @@ fn longitude_is_the_exact_fraction_for_every_size() {
         ] {
             let p = decode(&c, i);
             let turn = f64::from(p[1]).atan2(f64::from(p[0])) / std::f64::consts::TAU;
-            let product = u128::from(i) * u128::from(unitpack::codecs::sfib::GOLDEN);
+            let product = u128::from(i) * u128::from(unitpack::codecs::angular::sfib::GOLDEN);
             let frac = (product as u64) as f64 / 2f64.powi(64);
             let diff = (turn - frac).rem_euclid(1.0);
             let diff = diff.min(1.0 - diff);

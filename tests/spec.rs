@@ -1,7 +1,7 @@
 //! The spec grammar: every spec reads back from both of its written forms, names ending in
 //! a digit have a spelling, and malformed specs name the real problem.
 
-use unitpack::codecs::family::{OptKind, Sizes};
+use unitpack::codecs::core::info::{OptKind, Sizes};
 use unitpack::codecs::{FAMILIES, Spec, SpecError};
 
 /// Every family × size × encoder × option value (numbers at their ends, default and a
@@ -99,7 +99,7 @@ fn every_size_spelling_is_unambiguous() {
 
 #[test]
 fn names_ending_in_a_digit_take_an_underscore_before_their_size() {
-    use unitpack::codecs::family::Info;
+    use unitpack::codecs::core::info::Info;
     let info = Info {
         name: "cry3",
         title: "",

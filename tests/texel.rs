@@ -8,9 +8,9 @@
 use unitpack::Lang;
 use unitpack::api::Batch;
 use unitpack::codecs::Spec;
-use unitpack::codecs::functions::Function;
+use unitpack::codecs::core::function::Function;
 use unitpack::generator::Generator;
-use unitpack::quality::random_unit_vectors;
+use unitpack::sampling::random_unit_vectors;
 use unitpack::verify::gpu::Gpu;
 
 const FAMILIES: [&str; 5] = [

@@ -1,7 +1,7 @@
 //! The model's own trigonometry against f64, over the whole input range.
 
 use std::f64::consts::PI;
-use unitpack::codecs::trig::{
+use unitpack::codecs::toolkit::trig::{
     ATAN2_PI_MAX_ERROR, SINCOS_PI_MAX_ERROR, atan2_pi, sincos_pi, sincos_quarter_pi,
 };
 

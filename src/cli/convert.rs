@@ -6,8 +6,8 @@
 use super::png_file::{self, Picture};
 use crate::api::Batch;
 use crate::atomic::write_atomic_with;
-use crate::codecs::functions::Function;
-use crate::codecs::{Spec, texel};
+use crate::codecs::core::function::Function;
+use crate::codecs::{Spec, toolkit::texel};
 use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use png::{BitDepth, ColorType};

@@ -11,7 +11,7 @@ use super::manifest::{self, HEADER, MANIFEST};
 use super::output;
 use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
-use crate::codecs::family::{Table, TableFormat};
+use crate::codecs::core::spec::{Table, TableFormat};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use anyhow::{Context, Result, bail};
 use std::collections::BTreeSet;

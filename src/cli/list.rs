@@ -1,7 +1,7 @@
 //! `list`: every family with the specs a user types, as a table or as JSON.
 
 use crate::codecs::FAMILIES;
-use crate::codecs::family::OptKind;
+use crate::codecs::core::info::OptKind;
 use serde::Serialize;
 
 /// The spec grammar in one line, as every SPEC argument's help gives it.

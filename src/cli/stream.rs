@@ -15,8 +15,8 @@
 
 use super::grammar::{self, LineError, quote};
 use crate::codecs::Spec;
-use crate::codecs::functions::{Function, Inputs, Role};
-use crate::codecs::quant::code_width;
+use crate::codecs::core::function::{Function, Inputs, Role};
+use crate::codecs::toolkit::quant::code_width;
 use anyhow::{Result, bail};
 use std::io::{BufRead, ErrorKind, Read, Write};
 

@@ -1,82 +1,109 @@
-//! The codecs, each written once against the model's vocabulary in a file of its own,
-//! plus the machinery they share: quantization and packing, the precise search, the
-//! registry and the spec grammar, and the list of shader functions each spec emits.
+//! The codecs, each written once against the model's vocabulary in a file of its own and
+//! grouped by kind, plus the machinery they share:
 //!
-//! Adding a codec is one new file (its description, options, variants and arithmetic,
-//! ending in a `pub static FAMILY`) and one line in `registry!` below.
+//! - [`core`]: what a codec and a codec family are, the spec grammar, and the shader
+//!   functions a spec emits with their evaluations and verify inputs;
+//! - [`toolkit`]: quantization and packing, exact (portable) arithmetic, the precise
+//!   search, fixed-point and polynomial trigonometry, normal-map texel layouts — the pieces
+//!   a codec is built from;
+//! - one folder per kind of codec: [`octahedral`], [`component`] (per-component),
+//!   [`angular`] (spherical angles and point sets), [`azimuthal`] (hemisphere-to-disk
+//!   projections and their square maps), [`cube_maps`] and [`table`] (table-driven).
+//!
+//! Adding a codec is one new file in its kind's folder (its description, options,
+//! variants and arithmetic, ending in a `pub static FAMILY`) and one line in
+//! `registry!` below; docs/ARCHITECTURE.md has the steps.
 
-pub mod codec;
-pub mod concentric;
-pub mod disk;
-pub mod ellipse;
-pub mod exact;
-pub mod family;
-pub mod fixed_decode;
-pub mod fixed_trig;
-pub mod functions;
-pub mod half;
-pub mod inputs;
-pub mod lattice;
-pub mod quant;
-pub mod spec;
-pub mod texel;
-pub mod trig;
+pub mod core;
+pub mod toolkit;
 
-pub use codec::Codec;
-pub use family::{Family, Info};
-pub use spec::{Spec, SpecError};
+pub use self::core::codec::Codec;
+pub use self::core::info::Info;
+pub use self::core::spec::Family;
+pub use self::core::spec::{Spec, SpecError};
 
-/// Declares each codec's module, lists its family in [`FAMILIES`] (in `list` order) and
-/// exports its CPU types through [`cpu`].
+/// Declares the kinds' folders and their modules (the shared ones in parentheses), lists
+/// each module's families (in brackets) in [`FAMILIES`] in `list` order, and exports the
+/// codecs' CPU types through [`cpu`].
 macro_rules! registry {
-    ($($module:ident $(=> $($cpu:ident),+)?;)*) => {
-        $(pub mod $module;)*
+    ($(
+        $(#[doc = $doc:literal])*
+        $kind:ident $(($($shared:ident),+))? {
+            $($module:ident [$($family:ident),+] $(=> $($cpu:ident),+)?;)*
+        }
+    )*) => {
+        $(
+            $(#[doc = $doc])*
+            pub mod $kind {
+                $($(pub mod $shared;)+)?
+                $(pub mod $module;)*
+            }
+        )*
         /// Every codec family, in the order `list` shows them.
-        pub static FAMILIES: &[&dyn Family] = &[$(&$module::FAMILY),*];
+        pub static FAMILIES: &[&dyn Family] = &[$($($(&$kind::$module::$family),+),*),*];
         /// The codec types the CPU API offers.
         pub mod cpu {
-            $($(pub use super::$module::{$($cpu),+};)?)*
-            pub use super::texel::{Layout, Texel};
+            $($($(pub use super::$kind::$module::{$($cpu),+};)?)*)*
+            pub use super::toolkit::texel::{Layout, Texel};
         }
     };
 }
 
 registry! {
-    oct => Oct, Oct24Rgb8;
-    hemioct => HemiOct;
-    snorm3 => Snorm3, OneWord, TwoWords;
-    snorm11_11_10;
-    unorm3 => Unorm3;
-    float3 => Float16x3, Float32x3;
-    spherical => Spherical;
-    lambert => Lambert;
-    spheremap => Spheremap;
-    cry3 => Cry3;
-    stereo => StereoScaled;
-    hemi_stereo => HemiStereo;
-    hemi_eqarea => HemiEqArea;
-    hemi_eqdist => HemiEqDist;
-    stereo_concentric => StereoConcentric;
-    eqarea_concentric => EqAreaConcentric;
-    eqdist_concentric => EqDistConcentric;
-    stereo_ellipse => StereoEllipse;
-    eqarea_ellipse => EqAreaEllipse;
-    eqdist_ellipse => EqDistEllipse;
-    cube => Cube;
-    warpedcube;
-    xy => Xy;
-    xy_signz => XySignZ;
-    xy_stereo => XyStereo;
-    paraboloid => Paraboloid;
-    paraboloid_square => ParaboloidSquare;
-    paraboloid_pd => combine_paraboloid_pd;
-    spherical_z => SphericalZ;
-    spherical_lut => SphericalLut;
-    sfib => Sfib;
-    latlong => Latlong;
-    latlongd;
-    crytek_bfn;
-    pack12;
+    /// Octahedral maps: the sphere onto the octahedron, unfolded onto a square.
+    octahedral {
+        oct [FAMILY] => Oct, Oct24Rgb8;
+        hemioct [FAMILY] => HemiOct;
+    }
+    /// Per-component codes: the vector's components (or two of them) quantized one by one,
+    /// and the packing helpers of such fields.
+    component {
+        snorm3 [FAMILY] => Snorm3, OneWord, TwoWords;
+        snorm11_11_10 [FAMILY];
+        unorm3 [FAMILY] => Unorm3;
+        float3 [FAMILY] => Float16x3, Float32x3;
+        xy [FAMILY] => Xy;
+        xy_signz [FAMILY] => XySignZ;
+        snorm12x2 [FAMILY];
+    }
+    /// Spherical angles (azimuth and polar angle or z), latitude rings and point sets.
+    angular {
+        spherical [FAMILY] => Spherical;
+        spherical_z [FAMILY] => SphericalZ;
+        latlong [FAMILY] => Latlong;
+        latlongd [FAMILY];
+        sfib [FAMILY] => Sfib;
+    }
+    /// Azimuthal projections of a hemisphere (or the sphere) onto a disk or plane, and the
+    /// maps of the disk onto the square.
+    azimuthal (disk, concentric, ellipse) {
+        lambert [FAMILY] => Lambert;
+        spheremap [FAMILY] => Spheremap;
+        cry3 [FAMILY] => Cry3;
+        stereo_scaled [FAMILY] => StereoScaled;
+        stereo [FAMILY] => HemiStereo;
+        eqarea [FAMILY] => HemiEqArea;
+        eqdist [FAMILY] => HemiEqDist;
+        disk_square [
+            STEREO_CONCENTRIC, EQAREA_CONCENTRIC, EQDIST_CONCENTRIC,
+            STEREO_ELLIPSE, EQAREA_ELLIPSE, EQDIST_ELLIPSE
+        ] => StereoConcentric, EqAreaConcentric, EqDistConcentric,
+            StereoEllipse, EqAreaEllipse, EqDistEllipse;
+        xy_stereo [FAMILY] => XyStereo;
+        paraboloid [FAMILY] => Paraboloid;
+        paraboloid_square [FAMILY] => ParaboloidSquare;
+        paraboloid_pd [FAMILY] => combine_paraboloid_pd;
+    }
+    /// Cube maps: a face index and two coordinates on that face.
+    cube_maps {
+        cube [FAMILY] => Cube;
+        warpedcube [FAMILY];
+    }
+    /// Table-driven codecs: lookup textures and fitting tables the shader reads.
+    table {
+        spherical_lut [FAMILY] => SphericalLut;
+        crytek_bfn [FAMILY];
+    }
 }
 
 /// Doc comments of the helpers every codec may call (the precise search, the model's
@@ -84,7 +111,7 @@ registry! {
 pub fn helper_doc(first: &dyn Family, name: &str) -> Option<String> {
     first
         .helper_doc(name)
-        .or_else(|| codec::helper_doc(name))
-        .or_else(|| trig::helper_doc(name))
+        .or_else(|| core::codec::helper_doc(name))
+        .or_else(|| toolkit::trig::helper_doc(name))
         .or_else(|| FAMILIES.iter().find_map(|f| f.helper_doc(name)))
 }

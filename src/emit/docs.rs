@@ -3,9 +3,9 @@
 
 use super::printer::Printed;
 use crate::codecs::Spec;
-use crate::codecs::functions::{Emitted, Inputs, Role};
-use crate::codecs::quant::{Quant, field_offsets};
-use crate::codecs::texel;
+use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::toolkit::quant::{Quant, field_offsets};
+use crate::codecs::toolkit::texel;
 use crate::quality::ErrorStats;
 
 pub fn file_header(command: &str) -> Vec<String> {

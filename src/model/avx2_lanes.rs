@@ -16,7 +16,7 @@
 //! Sound by construction: the module is private to the crate, and its values exist only
 //! inside functions compiled with `#[target_feature(enable = "avx2")]` (or AVX2 and
 //! AVX-512VL) that run after [`available`] (or [`avx512_available`]) said yes
-//! ([`crate::codecs::functions::Function::eval_many`], the typed slices of [`crate::api`]).
+//! ([`crate::codecs::core::function::Function::eval_many`], the typed slices of [`crate::api`]).
 //! Those functions must inline everything the models call: an operation left in a function
 //! compiled for the baseline target becomes a call to an out-of-line intrinsic. So the
 //! operations here, and the models' generic functions, methods and closures in
@@ -47,7 +47,7 @@ pub fn available() -> bool {
 }
 
 /// Whether this processor also runs the eight-lane code compiled for AVX-512F and VL
-/// ([`crate::codecs::functions::Width::EightAvx512`]; checked once, then cached by std).
+/// ([`crate::codecs::core::function::Width::EightAvx512`]; checked once, then cached by std).
 #[inline]
 pub fn avx512_available() -> bool {
     available() && is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl")
@@ -191,7 +191,7 @@ impl Lane for U8 {
 impl Lane for M8 {
     const KIND: Kind = Kind::Bool;
 }
-super::trace::value_eval!(F8, U8, M8);
+super::num::value_eval!(F8, U8, M8);
 
 impl Bool for M8 {
     #[inline(always)]

@@ -386,7 +386,7 @@ impl Dev {
     }
 }
 
-crate::model::trace::value_eval!(Dev, DevU, DevB);
+crate::model::num::value_eval!(Dev, DevU, DevB);
 
 impl Lane for Dev {
     const KIND: Kind = Kind::F32;

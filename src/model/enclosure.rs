@@ -429,7 +429,7 @@ impl Div for Encl {
     }
 }
 
-crate::model::trace::value_eval!(Encl, EnclU, EnclB);
+crate::model::num::value_eval!(Encl, EnclU, EnclB);
 
 impl Lane for Encl {
     const KIND: Kind = Kind::F32;

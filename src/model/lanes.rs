@@ -149,7 +149,7 @@ impl Lane for U4 {
 impl Lane for M4 {
     const KIND: Kind = Kind::Bool;
 }
-super::trace::value_eval!(F4, U4, M4);
+super::num::value_eval!(F4, U4, M4);
 
 impl Bool for M4 {
     #[inline(always)]

@@ -41,7 +41,7 @@ pub enum Kind {
 /// Everything that can sit in one lane of a vector. The two hooks are identities when
 /// evaluating; the tracer uses them to turn componentwise work back into vector syntax
 /// and to give intermediates readable names.
-pub trait Lane: Copy + 'static + crate::model::trace::Value {
+pub trait Lane: Copy + 'static + Value {
     const KIND: Kind;
     /// Called by the vector helpers on the lanes of every componentwise result.
     #[inline(always)]
@@ -145,11 +145,7 @@ pub trait Float:
     /// Calls a helper function. Evaluating, that is just `f(a)`; tracing, the helper is
     /// traced once into its own shader function and the call site prints a call.
     #[inline(always)]
-    fn call<A: crate::model::trace::Value, R: crate::model::trace::Value>(
-        _name: &'static str,
-        a: A,
-        f: impl FnOnce(A) -> R,
-    ) -> R {
+    fn call<A: Value, R: Value>(_name: &'static str, a: A, f: impl FnOnce(A) -> R) -> R {
         f(a)
     }
 }
@@ -293,5 +289,71 @@ impl Float for f32 {
     #[inline(always)]
     fn to_bits(self) -> u32 {
         f32::to_bits(self)
+    }
+}
+
+/// The type of a graph value: a scalar kind and 1 to 4 lanes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Ty {
+    pub kind: Kind,
+    pub lanes: u8,
+}
+
+impl Ty {
+    pub const fn scalar(kind: Kind) -> Ty {
+        Ty { kind, lanes: 1 }
+    }
+}
+
+/// A reference to a node's value, or to one lane of a vector node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Ref {
+    pub node: u32,
+    pub lane: Option<u8>,
+}
+
+/// Values that can be function parameters and results: traced scalars, vectors of them,
+/// and tuples of those (parameters only).
+pub trait Value: Copy {
+    fn tys() -> Vec<Ty>;
+    fn refs(self) -> Vec<Ref>;
+    fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self;
+}
+
+/// [`Value`] for number types that are evaluated, never traced (`f32`, the adversarial
+/// and the enclosure evaluators).
+macro_rules! value_eval {
+    ($($t:ty),*) => {$(
+        /// Evaluated values never cross a traced call boundary; `call` runs the closure.
+        impl $crate::model::num::Value for $t {
+            fn tys() -> Vec<$crate::model::num::Ty> {
+                vec![$crate::model::num::Ty::scalar(<$t as $crate::model::Lane>::KIND)]
+            }
+            fn refs(self) -> Vec<$crate::model::num::Ref> {
+                unreachable!("evaluated values are not traced")
+            }
+            fn from_refs(_: &mut dyn Iterator<Item = $crate::model::num::Ref>) -> Self {
+                unreachable!("evaluated values are not traced")
+            }
+        }
+    )*};
+}
+pub(crate) use value_eval;
+value_eval!(f32, u32, bool);
+
+impl<A: Value, B: Value> Value for (A, B) {
+    fn tys() -> Vec<Ty> {
+        let mut t = A::tys();
+        t.extend(B::tys());
+        t
+    }
+    fn refs(self) -> Vec<Ref> {
+        let mut r = self.0.refs();
+        r.extend(self.1.refs());
+        r
+    }
+    fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self {
+        let a = A::from_refs(r);
+        (a, B::from_refs(r))
     }
 }

@@ -9,30 +9,11 @@
 //! operations on literals only (WGSL folds those in f64).
 
 use super::num::{Bool, Float, Kind, Lane, Uint};
+pub use super::num::{Ref, Ty, Value};
 use super::vec::{V2, V3, V4};
 use std::cell::RefCell;
 use std::marker::PhantomData;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Sub};
-
-/// The type of a graph value: a scalar kind and 1 to 4 lanes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Ty {
-    pub kind: Kind,
-    pub lanes: u8,
-}
-
-impl Ty {
-    pub const fn scalar(kind: Kind) -> Ty {
-        Ty { kind, lanes: 1 }
-    }
-}
-
-/// A reference to a node's value, or to one lane of a vector node.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Ref {
-    pub node: u32,
-    pub lane: Option<u8>,
-}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum UnOp {
@@ -710,35 +691,6 @@ impl Float for Tf {
     }
 }
 
-/// Values that can be function parameters and results: traced scalars, vectors of them,
-/// and tuples of those (parameters only).
-pub trait Value: Copy {
-    fn tys() -> Vec<Ty>;
-    fn refs(self) -> Vec<Ref>;
-    fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self;
-}
-
-/// [`Value`] for number types that are evaluated, never traced (`f32`, the adversarial
-/// and the enclosure evaluators).
-macro_rules! value_eval {
-    ($($t:ty),*) => {$(
-        /// Evaluated values never cross a traced call boundary; `call` runs the closure.
-        impl $crate::model::trace::Value for $t {
-            fn tys() -> Vec<$crate::model::trace::Ty> {
-                vec![$crate::model::trace::Ty::scalar(<$t as $crate::model::Lane>::KIND)]
-            }
-            fn refs(self) -> Vec<$crate::model::trace::Ref> {
-                unreachable!("evaluated values are not traced")
-            }
-            fn from_refs(_: &mut dyn Iterator<Item = $crate::model::trace::Ref>) -> Self {
-                unreachable!("evaluated values are not traced")
-            }
-        }
-    )*};
-}
-pub(crate) use value_eval;
-value_eval!(f32, u32, bool);
-
 macro_rules! value_vec {
     ($V:ident, $n:literal) => {
         impl<X: Lane + Value> Value for $V<X> {
@@ -771,23 +723,6 @@ macro_rules! value_vec {
 value_vec!(V2, 2);
 value_vec!(V3, 3);
 value_vec!(V4, 4);
-
-impl<A: Value, B: Value> Value for (A, B) {
-    fn tys() -> Vec<Ty> {
-        let mut t = A::tys();
-        t.extend(B::tys());
-        t
-    }
-    fn refs(self) -> Vec<Ref> {
-        let mut r = self.0.refs();
-        r.extend(self.1.refs());
-        r
-    }
-    fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self {
-        let a = A::from_refs(r);
-        (a, B::from_refs(r))
-    }
-}
 
 /// Traces `f` into a function called `name` (once per module; later calls are no-ops).
 /// `param_names` name the parameters in order; missing names default to `a0`, `a1`, ...

@@ -10,7 +10,7 @@
 
 use super::tools::{GlslangInput, HlslOpt, glslang_spirv, spirv_opt_dis};
 use crate::codecs::Spec;
-use crate::codecs::functions::{Emitted, Role};
+use crate::codecs::core::function::{Emitted, Role};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use crate::model::trace::Ty;

@@ -8,15 +8,15 @@
 
 pub mod gpu;
 /// Lives with the codecs so that the portability report, which needs no GPU, can use it.
-pub use crate::codecs::inputs;
+pub use crate::codecs::core::inputs;
 pub mod alu;
 pub mod native;
 pub mod tools;
 
 use crate::codecs::Spec;
-use crate::codecs::functions::Emitted;
-use crate::codecs::functions::first_with_same_code;
-use crate::codecs::functions::{Function, Width};
+use crate::codecs::core::function::Emitted;
+use crate::codecs::core::function::first_with_same_code;
+use crate::codecs::core::function::{Function, Width};
 use crate::emit::lang::KernelFn;
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::{DEFAULT_PREFIX, Lang, render};

@@ -4,7 +4,8 @@
 //! reproduce" says of them.
 
 use unitpack::codecs::Spec;
-use unitpack::quality::{ErrorStats, VECTOR_SEED, angle_deg, component_mse, random_unit_vectors};
+use unitpack::quality::{ErrorStats, VECTOR_SEED, angle_deg, component_mse};
+use unitpack::sampling::random_unit_vectors;
 
 const SAMPLES: usize = 1 << 20;
 

@@ -4,8 +4,8 @@
 //! decoder's output a good part of its bound.
 
 use unitpack::codecs::Spec;
-use unitpack::codecs::functions::{Function, Role};
-use unitpack::codecs::inputs::generate;
+use unitpack::codecs::core::function::{Function, Role};
+use unitpack::codecs::core::inputs::generate;
 use unitpack::decode_bound::{UNIT, of};
 use unitpack::model::deviant::{Class, Deviation, Mode, begin_item, with};
 use unitpack::portability::{Functions, Options, run};

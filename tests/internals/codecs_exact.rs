@@ -1,5 +1,5 @@
-use unitpack::codecs::exact::*;
-use unitpack::codecs::quant::Quant;
+use unitpack::codecs::toolkit::exact::*;
+use unitpack::codecs::toolkit::quant::Quant;
 use unitpack::model::V3;
 
 /// `rounded_root` is the exact integer root rounded to nearest, and every component
@@ -7,7 +7,7 @@ use unitpack::model::V3;
 /// for seeded random directions and the axes.
 #[test]
 fn unit_on_grid_rounds_exactly() {
-    let mut vs = unitpack::quality::random_unit_vectors(3, 100_000, false);
+    let mut vs = unitpack::sampling::random_unit_vectors(3, 100_000, false);
     vs.extend([
         [1.0, 0.0, 0.0],
         [0.0, -1.0, 0.0],

@@ -1,4 +1,4 @@
-use unitpack::codecs::fixed_decode::*;
+use unitpack::codecs::toolkit::fixed_decode::*;
 use unitpack::model::{V2, V3};
 
 #[test]

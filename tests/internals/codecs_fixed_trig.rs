@@ -1,5 +1,5 @@
 use std::f64::consts::PI;
-use unitpack::codecs::fixed_trig::*;
+use unitpack::codecs::toolkit::fixed_trig::*;
 
 #[test]
 fn atan2_pi_is_within_one_and_a_half_units() {

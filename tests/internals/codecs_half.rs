@@ -1,4 +1,4 @@
-use unitpack::codecs::half::*;
+use unitpack::codecs::toolkit::half::*;
 
 /// Every f16 value, from the definition: `(-1)^s · 2^(e-15) · (1 + m/1024)`, or
 /// `m · 2^-24` for `e = 0`.

@@ -1,5 +1,5 @@
-use unitpack::codecs::inputs::*;
-use unitpack::codecs::quant::{Quant, field_offsets};
+use unitpack::codecs::core::inputs::*;
+use unitpack::codecs::toolkit::quant::{Quant, field_offsets};
 
 /// An RGBA8 texel's sweep holds every (G, A) pair with R = B = 255 (dxt5nm's and
 /// xra's DXT5 texels) and every (R, G) pair with B = A = 255 (rg's, xra's DXT1).

@@ -1,4 +1,4 @@
-use unitpack::codecs::lattice::*;
+use unitpack::codecs::toolkit::lattice::*;
 
 #[test]
 fn square_shifted_is_the_truncated_square_to_nine_units() {

@@ -1,4 +1,4 @@
-use unitpack::codecs::sfib::*;
+use unitpack::codecs::angular::sfib::*;
 
 /// [`GOLDEN`] is `2^64·(√5 - 1)/2` rounded down: `√5·2^62` by an integer square root,
 /// then `2·(√5·2^62 - 2^62)` is within two units of it.

@@ -1,4 +1,4 @@
-use unitpack::codecs::functions::Role;
+use unitpack::codecs::core::function::Role;
 use unitpack::model::deviant::{Class, Mode};
 use unitpack::portability::*;
 

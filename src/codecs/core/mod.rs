@@ -1,0 +1,21 @@
+//! What every codec shares and no codec's arithmetic, in dependency order (no module
+//! names one after it):
+//!
+//! - [`error`]: what is wrong with a spec; [`info`]: what a family says about itself;
+//! - [`function`]: the shader functions a spec emits as the registry holds them, and
+//!   [`words`]: their evaluations on raw words and SIMD lanes;
+//! - [`inputs`]: what every function is verified on; [`decode_boxes`]: enclosures over
+//!   boxes of codes for the proven decoder bounds;
+//! - [`spec`]: the spec grammar and the [`spec::Family`] trait every family implements;
+//! - [`codec`]: what a codec is, and [`pipeline`]: the encode/decode pipeline every codec
+//!   shares and the four functions of a codec spec.
+
+pub mod codec;
+pub mod decode_boxes;
+pub mod error;
+pub mod function;
+pub mod info;
+pub mod inputs;
+pub mod pipeline;
+pub mod spec;
+pub mod words;

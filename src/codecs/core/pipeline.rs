@@ -1,0 +1,317 @@
+//! The encode/decode pipeline every codec shares, from its parameters to packed codes
+//! and back, and the four functions of a codec spec traced and evaluated from it.
+
+use crate::codecs::core::codec::{Codec, Params, dequantize, pack, unpack};
+use crate::codecs::core::decode_boxes::{fetched_range, field_codes};
+use crate::codecs::core::function::{
+    Emitted, Enclose, Eval, Function, Inputs, LanesEval, Role, WordsMap,
+};
+use crate::codecs::core::spec::Spec;
+use crate::codecs::core::words::{Bits, Lanes, Lanes8, generic_function};
+use crate::model::Float;
+use crate::model::V3;
+use crate::model::avx2_lanes::F8;
+use crate::model::deviant::Dev;
+use crate::model::enclosure::Encl;
+use crate::model::lanes::F4;
+use crate::model::trace::{Tf, define, trace_module};
+use std::sync::Arc;
+
+/// The four functions of a codec spec (`decode_float`, `decode`, `encode_float`,
+/// `encode`), traced once and evaluated by the same generic code.
+pub(crate) fn codec_functions<C: Codec + Clone + 'static>(spec: &Spec, c: C) -> Emitted
+where
+    C::P<f32>: Bits,
+    C::C<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::C<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::C<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::C<F8>: Bits<Lanes8>,
+{
+    let precise = spec.precise();
+    let module = trace_module(
+        #[inline(always)]
+        || trace_codec(&c, precise),
+    );
+    let mut functions = codec_decoders(&c);
+    functions.extend([
+        generic_function!(
+            "encode_float",
+            Role::EncodeFloat,
+            Inputs::Vectors,
+            <F> [c] |v: V3<F>| encode_float(&c, precise, v)
+        ),
+        generic_function!(
+            "encode",
+            Role::Encode,
+            Inputs::Vectors,
+            <F> [c] |v: V3<F>| encode_packed(&c, precise, v)
+        ),
+    ]);
+    if let Some(name) = c.alternate() {
+        functions.push(generic_function!(
+            name,
+            Role::Encode,
+            Inputs::Vectors,
+            <F> [c] |v: V3<F>| encode_alternate(&c, precise, v)
+        ));
+    }
+    Emitted {
+        module,
+        functions,
+        namespace: spec.id(),
+        portable_encoder: if precise {
+            C::EXACT_SEARCH
+        } else {
+            C::EXACT_ROUNDING
+        },
+        cpu: Vec::new(),
+    }
+}
+
+/// A codec's `decode_float` and `decode`, with the enclosures their bounds are proven
+/// by: what a spec whose encoders are its own (a table codec) shares with the codec
+/// whose texels it writes. Traced by [`trace_decoders`].
+pub(crate) fn codec_decoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Function>
+where
+    C::P<f32>: Bits,
+    C::C<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::C<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::C<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::C<F8>: Bits<Lanes8>,
+{
+    let q = c.quants();
+    let fetch_box = {
+        let c = c.clone();
+        move |r: &[(i64, i64)]| {
+            let p = C::P::<Encl>::build(
+                #[inline(always)]
+                |i| fetched_range(q[i], r[i]),
+            );
+            c.direction(p).to_array().to_vec()
+        }
+    };
+    let field_box = {
+        let c = c.clone();
+        move |r: &[(i64, i64)]| {
+            let codes = C::P::<Encl>::build(
+                #[inline(always)]
+                |i| field_codes(q[i], r[i]),
+            );
+            c.decode_codes(codes).to_array().to_vec()
+        }
+    };
+    let c = c.clone();
+    let mut functions = vec![
+        generic_function!(
+            "decode_float",
+            Role::DecodeFloat,
+            Inputs::FloatCodes(q.to_vec()),
+            <F> [c] |p: C::P<F>| c.direction(p)
+        ),
+        generic_function!(
+            "decode",
+            Role::Decode,
+            Inputs::Codes(q.to_vec()),
+            <F> [c] |code: C::C<F>| decode_packed(&c, code)
+        ),
+    ];
+    let whole_field = c.whole_field();
+    let unread = c.unread_fields();
+    functions[0].enclose = Some(Enclose {
+        eval: Arc::new(fetch_box),
+        whole_field,
+        unread,
+    });
+    functions[1].enclose = Some(Enclose {
+        eval: Arc::new(field_box),
+        whole_field,
+        unread,
+    });
+    functions
+}
+
+/// How [`through_table`] chains two lane evaluations around a lookup.
+struct Chain {
+    iw: usize,
+    mid: usize,
+    second_in: usize,
+    keep_input: bool,
+    lookup: WordsMap,
+}
+
+impl Chain {
+    /// `a` on the items, the lookup item by item, then `b`: each part on its lanes.
+    fn chain(&self, a: &LanesEval, b: &LanesEval) -> LanesEval {
+        let (a, b, lookup) = (a.clone(), b.clone(), self.lookup.clone());
+        let Chain {
+            iw,
+            mid,
+            second_in,
+            keep_input,
+            ..
+        } = *self;
+        Arc::new(move |i: &[u32], o: &mut [u32]| {
+            let n = i.len() / iw;
+            let mut t = vec![0u32; n * mid];
+            a(i, &mut t);
+            let mut arg = Vec::with_capacity(n * second_in);
+            for (item, t) in i.chunks_exact(iw).zip(t.chunks_exact(mid)) {
+                if keep_input {
+                    arg.extend_from_slice(item);
+                }
+                arg.extend(lookup(t));
+            }
+            assert_eq!(arg.len(), n * second_in, "the lookup's words");
+            b(&arg, o)
+        })
+    }
+}
+
+/// A CPU-only function through a table in memory: `first`, then `lookup` of its
+/// output words (one item's), then `second` on the lookup's words, after the item's own
+/// input words where `keep_input`. Each evaluation (`f32`, [`Dev`], four lanes) chains
+/// the parts' own, so it is bit for bit the emitted functions around a fetch that
+/// returns what `lookup` does.
+pub fn through_table(
+    name: &'static str,
+    role: Role,
+    inputs: Inputs,
+    first: &Function,
+    lookup: WordsMap,
+    second: &Function,
+    keep_input: bool,
+) -> Function {
+    let (iw, mid) = (first.in_words, first.out_words);
+    let kept = if keep_input { iw } else { 0 };
+    assert!(
+        second.in_words > kept,
+        "{name}: {} takes {} words, fewer than the kept input and a lookup",
+        second.name,
+        second.in_words
+    );
+    let want = second.in_words;
+    let chain = |a: &Eval, b: &Eval| -> Eval {
+        let (a, b, lookup) = (a.clone(), b.clone(), lookup.clone());
+        Arc::new(move |i: &[u32], o: &mut [u32]| {
+            let mut t = vec![0u32; mid];
+            a(i, &mut t);
+            // A caller's item may sit in a longer buffer: keep its own words only.
+            let mut arg = if keep_input {
+                i[..iw].to_vec()
+            } else {
+                Vec::new()
+            };
+            arg.extend(lookup(&t));
+            assert_eq!(arg.len(), want, "the lookup's words and the kept input");
+            b(&arg, o)
+        })
+    };
+    let lanes = Chain {
+        iw,
+        mid,
+        second_in: second.in_words,
+        keep_input,
+        lookup: lookup.clone(),
+    };
+    Function {
+        name,
+        role,
+        inputs,
+        in_words: iw,
+        out_words: second.out_words,
+        eval: chain(&first.eval, &second.eval),
+        eval_dev: chain(&first.eval_dev, &second.eval_dev),
+        eval_lanes: lanes.chain(&first.eval_lanes, &second.eval_lanes),
+        eval_lanes8: lanes.chain(&first.eval_lanes8, &second.eval_lanes8),
+        enclose: None,
+        parts: vec![first.name, second.name],
+    }
+}
+
+/// The packed decoder: unpack, then [`Codec::decode_codes`].
+#[inline(always)]
+pub fn decode_packed<F: Float, C: Codec>(c: &C, code: C::C<F>) -> V3<F> {
+    c.decode_codes(unpack(&c.quants(), code))
+}
+
+/// Integer codes of an encoder: the precise search (through the `encode_codes` helper),
+/// or the nearest codes of the `encode_float` helper's parameters.
+#[inline(always)]
+fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
+    if precise {
+        F::call(
+            "encode_codes",
+            v,
+            #[inline(always)]
+            |v| c.precise_codes(v),
+        )
+    } else if C::EXACT_ROUNDING {
+        F::call(
+            "round_codes",
+            v,
+            #[inline(always)]
+            |v| c.round_codes(v),
+        )
+    } else {
+        c.round_codes(v)
+    }
+}
+
+/// The packed encoder.
+#[inline(always)]
+pub fn encode_packed<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::C<F> {
+    pack(&c.quants(), codes_of(c, precise, v))
+}
+
+/// The packed [`Codec::alternate`] encoder.
+#[inline(always)]
+pub fn encode_alternate<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::C<F> {
+    pack(&c.quants(), c.alternate_codes(codes_of(c, precise, v)))
+}
+
+/// Float-form encoder output: the exact parameters for the hardware to round (fast), or
+/// the chosen codes' values (precise), which the hardware's rounding keeps.
+#[inline(always)]
+pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
+    if precise {
+        dequantize(
+            &c.quants(),
+            F::call(
+                "encode_codes",
+                v,
+                #[inline(always)]
+                |v| c.precise_codes(v),
+            ),
+        )
+    } else {
+        c.params(v)
+    }
+}
+
+/// Defines [`codec_decoders`]' functions in the module being traced.
+pub fn trace_decoders<C: Codec>(c: &C) {
+    define("decode_float", &["params"], |p: C::P<Tf>| c.direction(p));
+    define("decode", &["code"], |code: C::C<Tf>| decode_packed(c, code));
+}
+
+/// Traces the public functions, decoders first so that encoders calling them find them
+/// with their parameter names. Each is the same generic function the `f32` reference runs.
+fn trace_codec<C: Codec>(c: &C, precise: bool) {
+    trace_decoders(c);
+    if precise {
+        define("encode_codes", &["v"], |v: V3<Tf>| c.precise_codes(v));
+    }
+    define("encode_float", &["v"], |v: V3<Tf>| {
+        encode_float(c, precise, v)
+    });
+    define("encode", &["v"], |v: V3<Tf>| encode_packed(c, precise, v));
+    if let Some(name) = c.alternate() {
+        define(name, &["v"], |v: V3<Tf>| encode_alternate(c, precise, v));
+    }
+}

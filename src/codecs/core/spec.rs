@@ -1,0 +1,435 @@
+//! Specs: one codec configuration, and the grammar users type.
+//!
+//! ```text
+//! spec   = head ["p"] {"_" token} [":" option {"," option}]
+//! head   = name bits            (oct16, hemioct24; a name ending in a digit: cry3_16)
+//!        | prefix bits "x" n    (snorm8x3: bits per component)
+//!        | name                 (fixed forms: snorm12x2)
+//! option = key "=" value        (oct24:layout=rgb8, stereo_scaled16:scale=2.5)
+//! token  = choice | key number  (oct24_rgb8, stereo_scaled16_scale2p5: "." as "p", "-" as "m")
+//! ```
+//!
+//! `p` selects the precise encoder. Case does not matter. Every id (file and function
+//! name) is itself a spec, and [`Spec`]'s `Display` writes the `key=value` form; both read
+//! back as the same spec. An option may be given once, and an option list must not be empty.
+
+pub use crate::codecs::core::error::SpecError;
+use crate::codecs::core::function::Emitted;
+use crate::codecs::core::info::{Info, OptVal};
+use std::fmt;
+use std::hash::{Hash, Hasher};
+
+/// One parsed spec: a family, a size, the encoder, and every option's value.
+#[derive(Clone)]
+pub struct Spec {
+    family: &'static dyn Family,
+    bits: u32,
+    precise: bool,
+    /// One value per option of the family, in the family's order (defaults included).
+    opts: Vec<OptVal>,
+}
+
+impl Spec {
+    /// The spec of `family` at `bits` with default options.
+    pub fn new(family: &'static dyn Family, bits: u32, precise: bool) -> Spec {
+        Spec {
+            family,
+            bits,
+            precise,
+            opts: family
+                .info()
+                .options
+                .iter()
+                .map(|o| o.default_value())
+                .collect(),
+        }
+    }
+
+    /// Every spec `generate` writes: each size of each family with default options (fast
+    /// and precise), plus each family's variants.
+    pub fn all() -> Vec<Spec> {
+        let mut out = Vec::new();
+        for &f in crate::codecs::FAMILIES {
+            let info = f.info();
+            for (_, bits) in info.spellings() {
+                out.push(Spec::new(f, bits, false));
+                if info.precise {
+                    out.push(Spec::new(f, bits, true));
+                }
+            }
+            for v in f.variants() {
+                let s: Spec = v.parse().expect("a family's variants parse");
+                if info.precise {
+                    out.push(s.fast());
+                    out.push(Spec { precise: true, ..s });
+                } else {
+                    out.push(s);
+                }
+            }
+        }
+        out
+    }
+
+    pub fn family(&self) -> &'static dyn Family {
+        self.family
+    }
+    pub fn info(&self) -> &'static Info {
+        self.family.info()
+    }
+    /// Total bit budget (0 for fixed helper forms).
+    pub fn bits(&self) -> u32 {
+        self.bits
+    }
+    pub fn precise(&self) -> bool {
+        self.precise
+    }
+    /// The same spec with the fast encoder: what a precise spec's decoders and lookup
+    /// tables are.
+    pub fn fast(&self) -> Spec {
+        Spec {
+            precise: false,
+            ..self.clone()
+        }
+    }
+    /// The index of the chosen name of choice option `i`.
+    pub fn choice(&self, i: usize) -> usize {
+        match self.opts[i] {
+            OptVal::Choice(c) => c,
+            OptVal::Number(_) => panic!("option {i} is a number"),
+        }
+    }
+    /// The value of number option `i`.
+    pub fn number(&self, i: usize) -> f32 {
+        match self.opts[i] {
+            OptVal::Number(x) => x,
+            OptVal::Choice(_) => panic!("option {i} is a choice"),
+        }
+    }
+
+    /// Traces the spec and lists its public functions.
+    pub fn emitted(&self) -> Emitted {
+        self.family.emitted(self)
+    }
+
+    fn head(&self) -> String {
+        let info = self.info();
+        let spelled = info
+            .spellings()
+            .into_iter()
+            .find(|s| s.1 == self.bits)
+            .map(|s| s.0)
+            .expect("a spec's size is one of its family's");
+        format!("{spelled}{}", if self.precise { "p" } else { "" })
+    }
+
+    /// Options that differ from their default, with their descriptions.
+    fn set_options(
+        &self,
+    ) -> impl Iterator<Item = (&'static crate::codecs::core::info::OptDesc, OptVal)> + '_ {
+        self.info()
+            .options
+            .iter()
+            .zip(&self.opts)
+            .filter(|(d, v)| d.default_value() != **v)
+            .map(|(d, v)| (d, *v))
+    }
+
+    /// The identifier used in file and function names: `oct24p_rgb8`,
+    /// `stereo_scaled16_scale2`. It is a spec too: it parses back to this spec.
+    pub fn id(&self) -> String {
+        let mut s = self.head();
+        for (d, v) in self.set_options() {
+            s.push('_');
+            s.push_str(&d.id_token(v));
+        }
+        s
+    }
+}
+
+impl PartialEq for Spec {
+    fn eq(&self, o: &Spec) -> bool {
+        std::ptr::addr_eq(self.family, o.family)
+            && (self.bits, self.precise) == (o.bits, o.precise)
+            && self.opts == o.opts
+    }
+}
+impl Eq for Spec {}
+
+impl Hash for Spec {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        self.id().hash(h);
+    }
+}
+
+/// `oct24p`, `oct24:layout=rgb8`, `stereo_scaled16:scale=2`.
+impl fmt::Display for Spec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.head())?;
+        for (i, (d, v)) in self.set_options().enumerate() {
+            let sep = if i == 0 { ':' } else { ',' };
+            write!(f, "{sep}{}={}", d.key, d.value_text(v))?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Debug for Spec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Spec({self})")
+    }
+}
+
+/// Every spelling a user can type, for suggestions and `list`.
+pub fn valid_names() -> Vec<String> {
+    let mut v = Vec::new();
+    for f in crate::codecs::FAMILIES {
+        let info = f.info();
+        match info.sizes {
+            crate::codecs::core::info::Sizes::Total(_) => v.push(info.name.to_string()),
+            _ => v.extend(info.spellings().into_iter().map(|s| s.0)),
+        }
+    }
+    v
+}
+
+fn options_text(info: &Info) -> String {
+    if info.options.is_empty() {
+        "none".to_string()
+    } else {
+        info.options
+            .iter()
+            .map(|o| o.usage())
+            .collect::<Vec<_>>()
+            .join("; ")
+    }
+}
+
+impl std::str::FromStr for Spec {
+    type Err = SpecError;
+    fn from_str(given: &str) -> Result<Spec, SpecError> {
+        let lower = given.trim().to_ascii_lowercase();
+        let (head, opts) = match lower.split_once(':') {
+            Some((h, o)) => (h, Some(o)),
+            None => (lower.as_str(), None),
+        };
+        let (family, bits, rest) = match_head(head)?;
+        let info = family.info();
+        let (precise, tokens) = match rest.strip_prefix('p') {
+            Some(r) if r.is_empty() || r.starts_with('_') => (true, r),
+            _ => (false, rest),
+        };
+        let spelled = &head[..head.len() - rest.len()];
+        if precise && !info.precise {
+            return Err(SpecError::NoPrecise {
+                spelled: spelled.to_string(),
+            });
+        }
+        let mut spec = Spec::new(family, bits, precise);
+        let mut given_keys: Vec<&'static str> = Vec::new();
+        let mut set = |i: usize, v: OptVal, spec: &mut Spec| {
+            let key = info.options[i].key;
+            if given_keys.contains(&key) {
+                return Err(SpecError::DuplicateOption {
+                    key: key.to_string(),
+                    given: given.to_string(),
+                });
+            }
+            given_keys.push(key);
+            spec.opts[i] = v;
+            Ok(())
+        };
+        for token in tokens.split('_').skip(1) {
+            let found = info
+                .options
+                .iter()
+                .enumerate()
+                .find_map(|(i, d)| d.parse_id_token(token).map(|v| (i, v)));
+            let Some((i, v)) = found else {
+                return Err(SpecError::UnknownToken {
+                    codec: info.name,
+                    given: given.to_string(),
+                    token: token.to_string(),
+                    options: options_text(info),
+                });
+            };
+            set(i, v, &mut spec)?;
+        }
+        if let Some(opts) = opts {
+            for kv in opts.split(',') {
+                let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
+                let (k, v) = (k.trim(), v.trim());
+                if k.is_empty() {
+                    return Err(SpecError::EmptyOption {
+                        given: given.to_string(),
+                    });
+                }
+                let Some(i) = info.option_index(k) else {
+                    return Err(SpecError::UnknownOption {
+                        codec: info.name,
+                        key: k.to_string(),
+                        options: options_text(info),
+                    });
+                };
+                let v = info.options[i].parse_value(v)?;
+                set(i, v, &mut spec)?;
+            }
+        }
+        family.validate(&spec)?;
+        Ok(spec)
+    }
+}
+
+/// The family and size `head` starts with, and what follows them (`p`, `_tokens`).
+/// The longest spelling wins; what follows it must be nothing, `p`, or `_`-separated.
+fn match_head(head: &str) -> Result<(&'static dyn Family, u32, &str), SpecError> {
+    let mut best: Option<(&'static dyn Family, u32, usize)> = None;
+    for &f in crate::codecs::FAMILIES {
+        for (spelled, bits) in f.info().spellings() {
+            let Some(rest) = head.strip_prefix(spelled.as_str()) else {
+                continue;
+            };
+            let fits =
+                rest.is_empty() || rest == "p" || rest.starts_with('_') || rest.starts_with("p_");
+            if fits && best.is_none_or(|b| spelled.len() > b.2) {
+                best = Some((f, bits, spelled.len()));
+            }
+        }
+    }
+    if let Some((f, bits, len)) = best {
+        return Ok((f, bits, &head[len..]));
+    }
+    Err(diagnose(head))
+}
+
+/// Why `head` names no spec: a known name with a wrong or missing size, or an unknown name.
+fn diagnose(head: &str) -> SpecError {
+    use crate::codecs::core::info::Sizes;
+    let mut named: Option<(&'static Info, &str)> = None;
+    for f in crate::codecs::FAMILIES {
+        let info = f.info();
+        let stem = match info.sizes {
+            Sizes::PerComponent { prefix, .. } => prefix,
+            _ => info.name,
+        };
+        if head.starts_with(stem) && named.is_none_or(|n| stem.len() > n.1.len()) {
+            named = Some((info, stem));
+        }
+    }
+    let Some((info, stem)) = named else {
+        return unknown_codec(head);
+    };
+    if !matches!(info.sizes, Sizes::Total(_)) {
+        return SpecError::Spelling {
+            codec: info.name,
+            given: head.to_string(),
+            allowed: info.spellings().into_iter().map(|s| s.0).collect(),
+        };
+    }
+    let allowed: Vec<String> = info.total_bits().iter().map(|b| b.to_string()).collect();
+    let rest = &head[stem.len()..];
+    let rest = rest.strip_prefix('_').unwrap_or(rest);
+    let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
+    if let Some((spelled, _)) = info
+        .spellings()
+        .into_iter()
+        .find(|s| head.starts_with(s.0.as_str()))
+    {
+        SpecError::Trailing {
+            given: head.to_string(),
+            spelled,
+        }
+    } else if !digits.is_empty() {
+        SpecError::InvalidBits {
+            codec: info.name,
+            bits: digits,
+            allowed,
+        }
+    } else if rest.is_empty() || rest == "p" {
+        SpecError::MissingBits {
+            codec: info.name,
+            allowed,
+        }
+    } else {
+        unknown_codec(head)
+    }
+}
+
+/// Suggestions: names sharing a prefix with what was typed first, then by edit distance.
+fn unknown_codec(given: &str) -> SpecError {
+    let name: String = given.chars().take_while(|c| !c.is_ascii_digit()).collect();
+    let key = |v: &String| {
+        let related =
+            v.starts_with(name.as_str()) || (!name.is_empty() && name.starts_with(v.as_str()));
+        (!related, strsim::levenshtein(&name, v))
+    };
+    let mut valid = valid_names();
+    valid.sort_by_key(|v| (key(v), v.clone()));
+    let best = key(&valid[0]);
+    let nearest = valid
+        .iter()
+        .take_while(|v| key(v) == best)
+        .cloned()
+        .collect();
+    SpecError::UnknownCodec {
+        given: given.to_string(),
+        nearest,
+        valid,
+    }
+}
+
+/// A codec family in the registry. Everything about it lives in its own file; nothing
+/// outside that file names it.
+pub trait Family: Sync + 'static {
+    fn info(&self) -> &'static Info;
+    /// Checks that combine the size and options (each option's own range is checked by
+    /// the parser).
+    fn validate(&self, _spec: &Spec) -> Result<(), SpecError> {
+        Ok(())
+    }
+    /// Specs `generate` writes besides every size with default options (with and without
+    /// the precise encoder), written as spec strings.
+    fn variants(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// Traces the spec and lists its public functions.
+    fn emitted(&self, spec: &Spec) -> Emitted;
+    /// The lookup tables the spec's shader functions read, which `generate` writes
+    /// beside the includes.
+    fn tables(&self, _spec: &Spec) -> Vec<Table> {
+        Vec::new()
+    }
+    /// What a function's doc comment says of its input and output, where the family's
+    /// functions are not the standard four (a lookup-table codec's pieces).
+    fn function_doc(&self, _spec: &Spec, _name: &str) -> Option<Vec<String>> {
+        None
+    }
+    /// The doc comment of a helper function this family defines, if it has one.
+    fn helper_doc(&self, _name: &str) -> Option<String> {
+        None
+    }
+}
+
+/// A lookup table a spec's functions read: `width × height` texels of `channels`
+/// elements each (unorm8 bytes, or little-endian 32-bit words), row after row (the
+/// texel's y), as it is uploaded.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Table {
+    /// File name without extension (`spherical_lut16_atan`).
+    pub stem: String,
+    pub width: u32,
+    pub height: u32,
+    /// 1 (R8, R32UI), 2 (RG32UI) or 4 (RGBA8).
+    pub channels: u8,
+    pub format: TableFormat,
+    pub bytes: Vec<u8>,
+}
+
+/// A table's element type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableFormat {
+    /// unorm8 channels: a texture, also written as a PNG.
+    Unorm8,
+    /// 32-bit unsigned integers, little-endian: a buffer or an integer texture, written
+    /// as raw bytes only.
+    Uint32,
+}

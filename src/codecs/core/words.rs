@@ -1,0 +1,372 @@
+//! Values crossing the verification boundary as raw 32-bit words, and the constructor
+//! that turns one generic function into a [`Function`] with all its evaluations: `f32`,
+//! the adversarial `Dev`, and four or eight SIMD lanes, moving items between memory and
+//! lanes a whole group at a time.
+
+use crate::codecs::core::function::{Function, Inputs, Role};
+use crate::model::avx2_lanes::{self, F8, WIDTH};
+use crate::model::deviant::{Dev, DevU};
+use crate::model::lanes::{F4, LaneIo, U4};
+use crate::model::{V2, V3, V4};
+use std::sync::Arc;
+
+/// Values that cross the verification boundary as raw 32-bit words (`W = u32`), or as
+/// [`Lanes`] of four items' words at a time.
+pub trait Bits<W = u32>: Sized {
+    const WORDS: usize;
+    fn read(w: &[W]) -> Self;
+    fn write(self, w: &mut [W]);
+}
+
+/// One word of four items, for the [`F4`] evaluation.
+pub type Lanes = [u32; 4];
+/// One word of eight items, for the [`F8`] evaluation where the processor has AVX2 (of
+/// four, never run, off x86-64).
+pub type Lanes8 = [u32; WIDTH];
+
+/// Float and integer lanes read and written through [`LaneIo`].
+macro_rules! lane_bits {
+    ($F:ty, $U:ty, $n:literal) => {
+        impl Bits<[u32; $n]> for $F {
+            const WORDS: usize = 1;
+            #[inline(always)]
+            fn read(w: &[[u32; $n]]) -> Self {
+                <$F>::from_words(w[0])
+            }
+            #[inline(always)]
+            fn write(self, w: &mut [[u32; $n]]) {
+                w[0] = self.words();
+            }
+        }
+        impl Bits<[u32; $n]> for $U {
+            const WORDS: usize = 1;
+            #[inline(always)]
+            fn read(w: &[[u32; $n]]) -> Self {
+                <$F>::u_from_words(w[0])
+            }
+            #[inline(always)]
+            fn write(self, w: &mut [[u32; $n]]) {
+                w[0] = <$F>::u_words(self);
+            }
+        }
+    };
+}
+lane_bits!(F4, U4, 4);
+#[cfg(target_arch = "x86_64")]
+lane_bits!(F8, crate::model::avx2_lanes::U8, 8);
+impl Bits for f32 {
+    const WORDS: usize = 1;
+    #[inline(always)]
+    fn read(w: &[u32]) -> Self {
+        f32::from_bits(w[0])
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self.to_bits();
+    }
+}
+impl Bits for u32 {
+    const WORDS: usize = 1;
+    #[inline(always)]
+    fn read(w: &[u32]) -> Self {
+        w[0]
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self;
+    }
+}
+impl Bits for Dev {
+    const WORDS: usize = 1;
+    #[inline(always)]
+    fn read(w: &[u32]) -> Self {
+        Dev::new(f32::from_bits(w[0]))
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self.value().to_bits();
+    }
+}
+impl Bits for DevU {
+    const WORDS: usize = 1;
+    #[inline(always)]
+    fn read(w: &[u32]) -> Self {
+        DevU(w[0])
+    }
+    fn write(self, w: &mut [u32]) {
+        w[0] = self.0;
+    }
+}
+impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V2<T> {
+    const WORDS: usize = 2;
+    #[inline(always)]
+    fn read(w: &[W]) -> Self {
+        V2::new(T::read(&w[0..]), T::read(&w[1..]))
+    }
+    #[inline(always)]
+    fn write(self, w: &mut [W]) {
+        self.x.write(&mut w[0..]);
+        self.y.write(&mut w[1..]);
+    }
+}
+/// Several arguments, one after the other.
+impl<W, A: Bits<W>, B: Bits<W>> Bits<W> for (A, B) {
+    const WORDS: usize = A::WORDS + B::WORDS;
+    #[inline(always)]
+    fn read(w: &[W]) -> Self {
+        (A::read(w), B::read(&w[A::WORDS..]))
+    }
+    #[inline(always)]
+    fn write(self, w: &mut [W]) {
+        self.0.write(w);
+        self.1.write(&mut w[A::WORDS..]);
+    }
+}
+impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V3<T> {
+    const WORDS: usize = 3;
+    #[inline(always)]
+    fn read(w: &[W]) -> Self {
+        V3::new(T::read(&w[0..]), T::read(&w[1..]), T::read(&w[2..]))
+    }
+    #[inline(always)]
+    fn write(self, w: &mut [W]) {
+        self.x.write(&mut w[0..]);
+        self.y.write(&mut w[1..]);
+        self.z.write(&mut w[2..]);
+    }
+}
+impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V4<T> {
+    const WORDS: usize = 4;
+    #[inline(always)]
+    fn read(w: &[W]) -> Self {
+        V4::new(
+            T::read(&w[0..]),
+            T::read(&w[1..]),
+            T::read(&w[2..]),
+            T::read(&w[3..]),
+        )
+    }
+    #[inline(always)]
+    fn write(self, w: &mut [W]) {
+        self.x.write(&mut w[0..]);
+        self.y.write(&mut w[1..]);
+        self.z.write(&mut w[2..]);
+        self.w.write(&mut w[3..]);
+    }
+}
+
+/// The widest item a lane evaluation takes or returns, in words (a precise search's
+/// vector and fetched texels).
+const MAX_WORDS: usize = 32;
+
+/// `f` on every item of `input` into `output`, `N` items per group: each group's words
+/// transposed into lanes on the stack, evaluated, and transposed back. A last partial
+/// group repeats its last item in the spare lanes and writes only the real ones. Inlined
+/// into the function compiled for the lanes, so the transposes are too.
+#[inline(always)]
+fn in_groups<L: LaneIo<N>, A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>(
+    f: &impl Fn(A) -> R,
+    input: &[u32],
+    output: &mut [u32],
+) {
+    let (iw, ow) = (A::WORDS, R::WORDS);
+    assert!(
+        iw <= MAX_WORDS && ow <= MAX_WORDS,
+        "items of at most {MAX_WORDS} words"
+    );
+    let mut lanes_in = [[0u32; N]; MAX_WORDS];
+    let mut lanes_out = [[0u32; N]; MAX_WORDS];
+    let (lanes_in, lanes_out) = (&mut lanes_in[..iw], &mut lanes_out[..ow]);
+    let mut src = input.chunks_exact(N * iw);
+    let mut dst = output.chunks_exact_mut(N * ow);
+    for (s, d) in (&mut src).zip(&mut dst) {
+        to_lanes::<L, N>(s, lanes_in);
+        f(A::read(lanes_in)).write(lanes_out);
+        from_lanes::<L, N>(lanes_out, d);
+    }
+    let (s, d) = (src.remainder(), dst.into_remainder());
+    let items = s.len() / iw;
+    if items > 0 {
+        for (j, lane) in lanes_in.iter_mut().enumerate() {
+            for (k, l) in lane.iter_mut().enumerate() {
+                *l = s[k.min(items - 1) * iw + j];
+            }
+        }
+        f(A::read(lanes_in)).write(lanes_out);
+        for (k, item) in d.chunks_exact_mut(ow).enumerate() {
+            for (o, lane) in item.iter_mut().zip(lanes_out.iter()) {
+                *o = lane[k];
+            }
+        }
+    }
+}
+
+/// One whole group of `N` items (`s`, `N·lanes.len()` words) into lanes. Items of three
+/// words (vectors) take the lanes' own transposes ([`LaneIo::u_from_items3`]), other items
+/// of 1 to 4 words (codes) go through fixed-size arrays ([`to_lanes_of`]).
+#[inline(always)]
+fn to_lanes<L: LaneIo<N>, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
+    match lanes.len() {
+        1 => to_lanes_of::<1, N>(s, lanes),
+        2 => to_lanes_of::<2, N>(s, lanes),
+        3 => {
+            let items = s.as_chunks::<3>().0.try_into().expect("a whole group");
+            for (lane, u) in lanes.iter_mut().zip(L::u_from_items3(items)) {
+                *lane = L::u_words(u);
+            }
+        }
+        4 => to_lanes_of::<4, N>(s, lanes),
+        w => {
+            for (j, lane) in lanes.iter_mut().enumerate() {
+                for (k, l) in lane.iter_mut().enumerate() {
+                    *l = s[k * w + j];
+                }
+            }
+        }
+    }
+}
+
+/// [`to_lanes`] for items of `W` words. A group as a fixed-size array of fixed-size items
+/// is what LLVM moves with whole-register loads and shuffles; indexed through slices, the
+/// eight-lane decoders' three outputs went out as six 128-bit stores and 15 % slower.
+#[inline(always)]
+fn to_lanes_of<const W: usize, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
+    let items: &[[u32; W]; N] = s.as_chunks::<W>().0.try_into().expect("a whole group");
+    let lanes: &mut [[u32; N]; W] = lanes.try_into().expect("W lanes");
+    for k in 0..N {
+        for j in 0..W {
+            lanes[j][k] = items[k][j];
+        }
+    }
+}
+
+/// Lanes into one whole group of `N` items (`d`, `N·lanes.len()` words), as [`to_lanes`]
+/// ([`LaneIo::u_to_items3`] for three words).
+#[inline(always)]
+fn from_lanes<L: LaneIo<N>, const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
+    match lanes.len() {
+        1 => from_lanes_of::<1, N>(lanes, d),
+        2 => from_lanes_of::<2, N>(lanes, d),
+        3 => {
+            let items = d.as_chunks_mut::<3>().0.try_into().expect("a whole group");
+            let u = {
+                #[inline(always)]
+                |j: usize| L::u_from_words(lanes[j])
+            };
+            L::u_to_items3([u(0), u(1), u(2)], items);
+        }
+        4 => from_lanes_of::<4, N>(lanes, d),
+        w => {
+            for (k, item) in d.chunks_exact_mut(w).enumerate() {
+                for (o, lane) in item.iter_mut().zip(lanes) {
+                    *o = lane[k];
+                }
+            }
+        }
+    }
+}
+
+/// [`from_lanes`] for items of `W` words, as [`to_lanes_of`].
+#[inline(always)]
+fn from_lanes_of<const W: usize, const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
+    let items: &mut [[u32; W]; N] = d.as_chunks_mut::<W>().0.try_into().expect("a whole group");
+    let lanes: &[[u32; N]; W] = lanes.try_into().expect("W lanes");
+    for k in 0..N {
+        for j in 0..W {
+            items[k][j] = lanes[j][k];
+        }
+    }
+}
+
+/// One inclusive range per field → an enclosure per output lane.
+/// A [`Function`] from its `f32`, [`Dev`], [`F4`] and [`F8`] instantiations of one
+/// generic function (`generic_function!` below writes all four from one body).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn function<A, R, AD, RD, AL, RL, AW, RW>(
+    name: &'static str,
+    role: Role,
+    inputs: Inputs,
+    f: impl Fn(A) -> R + Send + Sync + 'static,
+    f_dev: impl Fn(AD) -> RD + Send + Sync + 'static,
+    f_lanes: impl Fn(AL) -> RL + Send + Sync + 'static,
+    f_lanes8: impl Fn(AW) -> RW + Send + Sync + 'static,
+) -> Function
+where
+    A: Bits + 'static,
+    R: Bits + 'static,
+    AD: Bits + 'static,
+    RD: Bits + 'static,
+    AL: Bits<Lanes> + 'static,
+    RL: Bits<Lanes> + 'static,
+    AW: Bits<Lanes8> + 'static,
+    RW: Bits<Lanes8> + 'static,
+{
+    assert_eq!((A::WORDS, R::WORDS), (AD::WORDS, RD::WORDS));
+    assert_eq!((A::WORDS, R::WORDS), (AL::WORDS, RL::WORDS));
+    assert_eq!((A::WORDS, R::WORDS), (AW::WORDS, RW::WORDS));
+    Function {
+        name,
+        role,
+        inputs,
+        in_words: A::WORDS,
+        out_words: R::WORDS,
+        eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
+        eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
+        eval_lanes: Arc::new(move |i, o| in_groups::<F4, _, _, 4>(&f_lanes, i, o)),
+        eval_lanes8: Arc::new(move |i, o| {
+            assert!(
+                avx2_lanes::available(),
+                "{name}: the eight-lane evaluation needs a processor with AVX2"
+            );
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { on_avx2(&f_lanes8, i, o) }
+        }),
+        enclose: None,
+        parts: Vec::new(),
+    }
+}
+
+/// [`in_groups`] of `f` on eight lanes, compiled for AVX2: `f` and everything it calls
+/// inline here (the lane operations are `#[inline(always)]`), so the [`F8`] operations
+/// become AVX2 instructions rather than calls.
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
+unsafe fn on_avx2<A: Bits<Lanes8>, R: Bits<Lanes8>>(f: &impl Fn(A) -> R, i: &[u32], o: &mut [u32]) {
+    in_groups::<F8, _, _, WIDTH>(f, i, o)
+}
+
+/// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]
+/// whose `eval`, `eval_dev`, `eval_lanes` and `eval_lanes8` are the one generic `body`
+/// with `F` = `f32`, [`Dev`], [`F4`] and [`F8`], so neither the adversarial nor the
+/// lane evaluations can drift from the reference. Each capture is cloned into all four
+/// closures.
+macro_rules! generic_function {
+    ($name:expr, $role:expr, $inputs:expr, <$F:ident> [$($c:ident),*] |$x:ident: $A:ty| $body:expr) => {
+        $crate::codecs::core::words::function(
+            $name,
+            $role,
+            $inputs,
+            {
+                $(let $c = $c.clone();)*
+                type $F = f32;
+                move |$x: $A| $body
+            },
+            {
+                $(let $c = $c.clone();)*
+                type $F = $crate::model::deviant::Dev;
+                move |$x: $A| $body
+            },
+            {
+                $(let $c = $c.clone();)*
+                type $F = $crate::model::lanes::F4;
+                move |$x: $A| $body
+            },
+            {
+                $(let $c = $c.clone();)*
+                type $F = $crate::model::avx2_lanes::F8;
+                #[inline(always)]
+                move |$x: $A| $body
+            },
+        )
+    };
+}
+pub(crate) use generic_function;
