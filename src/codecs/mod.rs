@@ -14,7 +14,11 @@
 //! variants and arithmetic, ending in a `pub static FAMILY`) and one line in
 //! `registry!` below; docs/ARCHITECTURE.md has the steps.
 
+// Machinery and the families' own modules are not API (the CPU types are, through
+// [`cpu`] and `crate::api`); public for the integration tests and the binary.
+#[doc(hidden)]
 pub mod core;
+#[doc(hidden)]
 pub mod toolkit;
 
 pub use self::core::codec::Codec;
@@ -34,6 +38,7 @@ macro_rules! registry {
     )*) => {
         $(
             $(#[doc = $doc])*
+            #[doc(hidden)]
             pub mod $kind {
                 $($(pub mod $shared;)+)?
                 $(pub mod $module;)*

@@ -14,6 +14,7 @@ mod codecs_inputs;
 mod codecs_lattice;
 mod codecs_sfib;
 mod emit_printer;
+mod layout;
 mod model_enclosure;
 mod model_lanes;
 mod model_num;
