@@ -40,7 +40,7 @@ fn command(spec: &Spec, lang: Lang) -> String {
 }
 
 /// A spec's include without error statistics: what the emitter writes, independent of
-/// measurement (which tests/cli.rs's `generate` runs cover).
+/// measurement (the CLI tests' `generate --check` holds the figures to `generated/`).
 fn rendered(spec: &Spec, lang: Lang, prefix: &str) -> String {
     render(&[(spec.clone(), None)], lang, prefix, &command(spec, lang))
 }
@@ -51,8 +51,9 @@ struct Include {
     text: String,
 }
 
-/// Every spec × language with the default prefix, rendered once on every core and shared
-/// by the tests below (each used to render the catalogue for itself).
+/// Every spec × language with the default prefix, rendered on every core once per process
+/// and shared by the tests below: the first render of a spec proves its decoders' bounds,
+/// most of the time this file takes.
 fn catalogue() -> &'static [Include] {
     static ALL: OnceLock<Vec<Include>> = OnceLock::new();
     ALL.get_or_init(|| {
@@ -126,9 +127,10 @@ fn stale_in_generated(root: &Path) -> Vec<String> {
 }
 
 /// Every spec × language has its copy in `generated/`, equal to what the emitter writes
-/// now but for the measured error figures (a stored snapshot of each include used to
-/// repeat it). tests/cli.rs holds the whole files, figures included, to `generate
-/// --check`; this test needs neither the binary nor the measurement, and names the line.
+/// now but for the measured error figures: `generated/` is the one stored copy of each
+/// include. The CLI tests hold the whole files, figures included, to `generate --check`;
+/// this test needs neither the binary nor the measurement (but to refresh), and names the
+/// first line that differs.
 #[test]
 fn generated_holds_every_rendered_include() {
     for inc in catalogue() {
