@@ -13,6 +13,7 @@ mod codecs_half;
 mod codecs_inputs;
 mod codecs_lattice;
 mod codecs_sfib;
+mod codecs_trig;
 mod emit_printer;
 mod layout;
 mod model_enclosure;

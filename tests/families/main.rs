@@ -1,0 +1,14 @@
+//! Each family's own tests, in a module named after the family (or the families) it
+//! checks; what holds for every spec (conventions, verify, portability, figures) is in
+//! the suite's other binaries. One binary, so that the suite links the library once for
+//! all of them.
+
+mod crytek_bfn;
+mod lambert;
+mod latlongd;
+mod oct;
+mod sfib;
+mod snorm12x2;
+mod snorm3;
+mod spherical_lut;
+mod texel_layouts;
