@@ -53,7 +53,7 @@ impl<P: DiskProjection> Concentric<P> {
     /// decided by [`crate::codecs::azimuthal::disk::Radius::past`] from the multiplier, a select of two
     /// literals or one product with the literal last.
     #[inline(always)]
-    fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
+    pub fn codes<F: Float>(&self, f: &Folded<F>, offset: f32) -> V2<F> {
         let r = P::radius(f);
         let estimate = r.estimate().named("r");
         let x_major = f.w.x.abs().ge(f.w.y.abs());
