@@ -359,8 +359,12 @@ fn block_compression_table() {
     let b = unitpack::doc_tables::block("block_compression");
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(b.file);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", b.file));
-    let fresh = replace_block(&text, b.test, b.name, &body)
-        .unwrap_or_else(|| panic!("{} lacks the markers of the block_compression block", b.file));
+    let fresh = replace_block(&text, b.test, b.name, &body).unwrap_or_else(|| {
+        panic!(
+            "{} lacks the markers of the block_compression block",
+            b.file
+        )
+    });
     if unitpack::doc_tables::refreshing() {
         if fresh != text {
             std::fs::write(&path, &fresh).unwrap();

@@ -82,9 +82,11 @@ fn parse(text: &str) -> (Vec<Fence>, Vec<(usize, String)>) {
             None => prose.push((i + 1, line.to_string())),
             Some((_, _, fence)) if trimmed.starts_with("```") => fences.push(fence),
             Some((n, pad, mut fence)) => {
-                fence
-                    .body
-                    .push(line.strip_prefix(pad.as_str()).unwrap_or(trimmed).to_string());
+                fence.body.push(
+                    line.strip_prefix(pad.as_str())
+                        .unwrap_or(trimmed)
+                        .to_string(),
+                );
                 open = Some((n, pad, fence));
             }
         }
@@ -107,9 +109,8 @@ fn package_of(program: &str) -> &'static str {
 
 /// Whether `program` is on PATH.
 fn on_path(program: &str) -> bool {
-    std::env::var_os("PATH").is_some_and(|paths| {
-        std::env::split_paths(&paths).any(|dir| dir.join(program).is_file())
-    })
+    std::env::var_os("PATH")
+        .is_some_and(|paths| std::env::split_paths(&paths).any(|dir| dir.join(program).is_file()))
 }
 
 /// Runs one shell command line in `dir`, with the built `unitpack` first on PATH, and
@@ -127,10 +128,9 @@ fn sh(dir: &Path, line: &str, cache: &Path) -> std::process::Output {
         }
     }
     let bin = Path::new(env!("CARGO_BIN_EXE_unitpack")).parent().unwrap();
-    let path = std::env::join_paths(
-        std::iter::once(bin.to_path_buf())
-            .chain(std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())),
-    )
+    let path = std::env::join_paths(std::iter::once(bin.to_path_buf()).chain(
+        std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default()),
+    ))
     .unwrap();
     Command::new("sh")
         .arg("-c")
@@ -321,7 +321,11 @@ fn rows(text: &str) -> std::collections::BTreeMap<String, Vec<String>> {
                 .split(" | ")
                 .map(|c| c.trim().to_string())
                 .collect();
-            let spec = cells.first()?.strip_prefix('`')?.strip_suffix('`')?.to_string();
+            let spec = cells
+                .first()?
+                .strip_prefix('`')?
+                .strip_suffix('`')?
+                .to_string();
             Some((spec, cells))
         })
         .collect()
@@ -360,7 +364,10 @@ fn readme_figures_are_the_tools() {
         );
         recommended += 1;
     }
-    assert!(recommended >= 4, "the recommendation table has {recommended} rows");
+    assert!(
+        recommended >= 4,
+        "the recommendation table has {recommended} rows"
+    );
 
     // The crate count of a build-script user, with the command the README quotes.
     let out = Command::new(env!("CARGO"))
@@ -387,7 +394,10 @@ fn readme_figures_are_the_tools() {
         .filter_map(|l| l.split(' ').next())
         .filter(|c| !c.is_empty())
         .collect();
-    let said = format!("Its build graph is {} crates, unitpack included", crates.len());
+    let said = format!(
+        "Its build graph is {} crates, unitpack included",
+        crates.len()
+    );
     assert!(
         readme.contains(&said),
         "README.md should say \"{said}\" ({crates:?})"
@@ -499,8 +509,15 @@ fn relative_links_resolve() {
 fn readme_is_a_users_guide() {
     let readme = read(&root().join("README.md"));
     let lines = readme.lines().count();
-    assert!(lines <= 400, "README.md has {lines} lines; the limit is 400");
-    for section in ["## Install", "## Set-up on a fresh machine", "## Quick start"] {
+    assert!(
+        lines <= 400,
+        "README.md has {lines} lines; the limit is 400"
+    );
+    for section in [
+        "## Install",
+        "## Set-up on a fresh machine",
+        "## Quick start",
+    ] {
         assert!(readme.contains(section), "README.md lacks {section}");
     }
     // The set-up commands, as `.ci/run` runs the second.
@@ -526,8 +543,16 @@ fn paths_the_docs_name_exist() {
                 continue;
             }
             let top = span.split('/').next().unwrap_or("");
-            let named = ["src", "tests", "benches", "examples", "templates", "generated", "docs"]
-                .contains(&top)
+            let named = [
+                "src",
+                "tests",
+                "benches",
+                "examples",
+                "templates",
+                "generated",
+                "docs",
+            ]
+            .contains(&top)
                 && span.contains('/')
                 && !span.contains(|c: char| c.is_whitespace() || "<>*{}…".contains(c));
             if !named {
@@ -541,6 +566,10 @@ fn paths_the_docs_name_exist() {
             checked += 1;
         }
     }
-    assert!(missing.is_empty(), "paths that do not exist:\n{}", missing.join("\n"));
+    assert!(
+        missing.is_empty(),
+        "paths that do not exist:\n{}",
+        missing.join("\n")
+    );
     assert!(checked >= 20, "only {checked} paths found");
 }

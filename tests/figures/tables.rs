@@ -12,8 +12,8 @@
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
 use unitpack::doc_tables::{
-    README_SAMPLES, REFRESH_COMMAND, block, bound_table, catalogue_table, codec_specs,
-    error_table, portability_cost_table, refreshing, replace_block, seed_methods_table,
+    README_SAMPLES, REFRESH_COMMAND, block, bound_table, catalogue_table, codec_specs, error_table,
+    portability_cost_table, refreshing, replace_block, seed_methods_table,
 };
 use unitpack::verify::alu::{count, count_all};
 
@@ -134,12 +134,16 @@ fn oct16_encoder_breakdown_adds_up_to_its_count() {
         .take_while(|l| !l.starts_with("| total |"))
         .map(|l| {
             let cells: Vec<&str> = l.split(" | ").collect();
-            cells[cells.len() - 2].trim().parse::<u32>().unwrap_or_else(|_| {
-                panic!("a count in the second-to-last cell of {l:?}")
-            })
+            cells[cells.len() - 2]
+                .trim()
+                .parse::<u32>()
+                .unwrap_or_else(|_| panic!("a count in the second-to-last cell of {l:?}"))
         })
         .sum();
-    assert_eq!(parts, total, "the parts of oct16's encoder add up to its total");
+    assert_eq!(
+        parts, total,
+        "the parts of oct16's encoder add up to its total"
+    );
     let now = counts().all["oct16 encode"];
     assert_eq!(
         total, now,
