@@ -1,21 +1,88 @@
-//! The README's generated tables: the catalogue (every family with the specs a user types,
-//! its options and source) and the error figures of every spec. `tests/figures/readme.rs` checks
-//! that the README holds exactly these, and rewrites them with `UPDATE_README=1`.
+//! The documentation's generated tables: the catalogue (every family with the specs a user
+//! types, its options and source), the error figures of every spec, the proven decoder
+//! bounds and the cost of portability. Each lives between two marker lines in one file
+//! under `docs/` ([`BLOCKS`]); the test that computes it (`tests/figures/tables.rs`,
+//! `tests/block_compression.rs`) checks that the file holds exactly this text and rewrites
+//! it when [`REFRESH_ENV`] is set.
 
 use crate::codecs::{FAMILIES, Spec};
 use crate::quality::{ErrorStats, VECTOR_SEED};
 
-/// Samples behind the README's error figures (the survey's Table 1 used 2^20 too).
+/// Samples behind the documented error figures (the survey's Table 1 used 2^20 too).
 pub const README_SAMPLES: usize = 1 << 20;
 
-/// Markers around a generated block in the README, naming the test file
-/// (`tests/{test}.rs`) that checks and rewrites it; the test binary is the file's first
-/// path component (`figures/readme` is in the `figures` binary).
+/// The environment variable that makes the tests rewrite every file a tool writes (the
+/// generated tables, `tests/alu_budgets.txt`) instead of failing when it is stale:
+/// `UNITPACK_REFRESH=1 cargo test --release`.
+pub const REFRESH_ENV: &str = "UNITPACK_REFRESH";
+
+/// The command that rewrites every tool-written file, for error messages.
+pub const REFRESH_COMMAND: &str = "UNITPACK_REFRESH=1 cargo test --release";
+
+/// Whether this run rewrites tool-written files ([`REFRESH_ENV`] set, and not to `0`).
+pub fn refreshing() -> bool {
+    std::env::var_os(REFRESH_ENV).is_some_and(|v| !v.is_empty() && v != "0")
+}
+
+/// A generated block: its name, the file that holds it (relative to the repository
+/// root) and the test that writes it (`tests/{test}.rs`).
+#[derive(Clone, Copy, Debug)]
+pub struct Block {
+    pub name: &'static str,
+    pub file: &'static str,
+    pub test: &'static str,
+}
+
+/// Every generated block of the documentation, each in exactly one file.
+pub const BLOCKS: &[Block] = &[
+    Block {
+        name: "catalogue",
+        file: "docs/codecs.md",
+        test: "figures/tables",
+    },
+    Block {
+        name: "errors",
+        file: "docs/codecs.md",
+        test: "figures/tables",
+    },
+    Block {
+        name: "seed_methods",
+        file: "docs/design/families.md",
+        test: "figures/tables",
+    },
+    Block {
+        name: "bounds",
+        file: "docs/design/decoder-bounds.md",
+        test: "figures/tables",
+    },
+    Block {
+        name: "portability_cost",
+        file: "docs/design/portability.md",
+        test: "figures/tables",
+    },
+    Block {
+        name: "block_compression",
+        file: "docs/design/block-compression.md",
+        test: "block_compression",
+    },
+];
+
+/// The block called `name`.
+pub fn block(name: &str) -> &'static Block {
+    BLOCKS
+        .iter()
+        .find(|b| b.name == name)
+        .unwrap_or_else(|| panic!("no generated block called {name}"))
+}
+
+/// Markers around a generated block, naming the test file (`tests/{test}.rs`) that
+/// checks and rewrites it; the test binary is the file's first path component
+/// (`figures/tables` is in the `figures` binary).
 pub fn markers(test: &str, name: &str) -> (String, String) {
     let binary = test.split('/').next().unwrap_or(test);
     (
         format!(
-            "<!-- generated: {name} (tests/{test}.rs; UPDATE_README=1 cargo test --release --test {binary}) -->"
+            "<!-- generated: {name} (tests/{test}.rs; {REFRESH_ENV}=1 cargo test --release --test {binary}) -->"
         ),
         format!("<!-- end generated: {name} -->"),
     )
@@ -57,7 +124,7 @@ pub fn catalogue_table() -> String {
     s
 }
 
-/// Every spec the README's codec table has a row for: the codecs (not the helpers).
+/// Every spec the error table has a row for: the codecs (not the helpers).
 pub fn codec_specs() -> Vec<Spec> {
     Spec::all()
         .into_iter()
@@ -85,7 +152,8 @@ pub fn error_table(stats: &[Option<ErrorStats>], alu: &[[u32; 2]]) -> String {
          squared error of the components of `n − n'` (its difference image's three \
          channels), and `10·log10(1/MSE)`. ALU: instructions of the packed `encode` and `decode` \
          (GLSL through `glslangValidator -V` and `spirv-opt -O`, counted as in \
-         \"What portability costs\" below; `src/verify/alu.rs`).\n\n\
+         [What portability costs](design/portability.md#what-portability-costs); \
+         `src/verify/alu.rs`).\n\n\
          | spec | bits | domain | mean | sample max | MSE | PSNR | encode ALU | decode ALU |\n\
          |---|---|---|---|---|---|---|---|---|\n"
     );
@@ -176,6 +244,54 @@ pub fn bound_table() -> String {
             cell("decode"),
             cell("decode_float")
         ));
+    }
+    s
+}
+
+/// ALU counts of the non-portable forms of some functions (the model at commit
+/// `c5990d3`, before codes were decided exactly): spec, then `encode`, `encode_float`,
+/// `decode`, `decode_float`. A record, not a measurement this crate can repeat.
+pub const NON_PORTABLE_ALU: &[(&str, [u32; 4])] = &[
+    ("oct16", [37, 21, 24, 15]),
+    ("oct16p", [160, 153, 24, 15]),
+    ("oct24:layout=rgb8", [51, 38, 28, 26]),
+    ("oct24p:layout=rgb8", [167, 161, 28, 26]),
+    ("hemioct16", [61, 45, 20, 11]),
+    ("hemioct16p", [188, 181, 20, 11]),
+    ("snorm8x3", [40, 18, 18, 8]),
+    ("spherical16", [127, 111, 75, 66]),
+    ("spherical16p", [454, 447, 75, 66]),
+    ("lambert16", [35, 25, 16, 12]),
+    ("lambert16p", [138, 135, 16, 12]),
+    ("stereo_scaled16", [36, 26, 13, 9]),
+    ("stereo_scaled16p", [127, 124, 13, 9]),
+    ("xy16", [54, 38, 15, 6]),
+    ("xy16p", [161, 154, 15, 6]),
+];
+
+/// [`NON_PORTABLE_ALU`] beside today's counts, `count(spec, function)`: one cell per
+/// function, `before → now` where they differ.
+pub fn portability_cost_table(count: impl Fn(&Spec, &str) -> u32) -> String {
+    let mut s = String::from(
+        "| spec | `encode` | `encode_float` | `decode` | `decode_float` |\n|---|---|---|---|---|\n",
+    );
+    for (text, before) in NON_PORTABLE_ALU {
+        let spec: Spec = text
+            .parse()
+            .unwrap_or_else(|e| panic!("{text} is a spec: {e}"));
+        s.push_str(&format!("| `{text}` |"));
+        for (f, b) in ["encode", "encode_float", "decode", "decode_float"]
+            .iter()
+            .zip(before)
+        {
+            let now = count(&spec, f);
+            if now == *b {
+                s.push_str(&format!(" {now} |"));
+            } else {
+                s.push_str(&format!(" {b} → {now} |"));
+            }
+        }
+        s.push('\n');
     }
     s
 }

@@ -3,7 +3,8 @@
 //! tangent-space normal map, each hemisphere codec's two parameters stored unorm8
 //! (`p·0.5 + 0.5`, as the texel layouts store them), compressed, decompressed and
 //! reconstructed by the codec's float decoder, and the angle to the map's own normal
-//! measured. The README's table is written by this test (`UPDATE_README=1`).
+//! measured. The table in docs/design/block-compression.md is written by this test
+//! (`UNITPACK_REFRESH=1`).
 
 use texpresso::{Algorithm, COLOUR_WEIGHTS_UNIFORM, Format, Params};
 use unitpack::api::{HemiOct, Paraboloid, ParaboloidSquare, Xy, XyStereo};
@@ -296,7 +297,7 @@ fn measure(map: &[[f32; 3]], r: &Reconstruction, s: Storage) -> Error {
     }
 }
 
-/// Every map × reconstruction × storage, and the README's table of them.
+/// Every map × reconstruction × storage, and the documented table of them.
 fn table() -> (Vec<Vec<Error>>, String) {
     let rs = reconstructions();
     let mut errors = Vec::new();
@@ -336,7 +337,7 @@ fn table() -> (Vec<Vec<Error>>, String) {
 
 /// Compression only adds error, BC5's two independent 8-bit-endpoint channels beat the
 /// 6-bit green endpoints of DXT5nm's colour block, which beat DXT1's shared 5:6:5 block,
-/// for every reconstruction; and the README holds this very table.
+/// for every reconstruction; and docs/design/block-compression.md holds this very table.
 #[test]
 fn block_compression_table() {
     let (errors, body) = table();
@@ -355,17 +356,26 @@ fn block_compression_table() {
         assert!(bc5.mean < dxt5.mean, "{}: {bc5:?} vs {dxt5:?}", r.name);
         assert!(dxt5.mean < dxt1.mean, "{}: {dxt5:?} vs {dxt1:?}", r.name);
     }
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
-    let text = std::fs::read_to_string(&path).unwrap();
-    let fresh = replace_block(&text, "block_compression", "block_compression", &body)
-        .expect("README.md lacks the markers of the block_compression block");
-    if std::env::var_os("UPDATE_README").is_some() {
-        std::fs::write(&path, &fresh).unwrap();
+    let b = unitpack::doc_tables::block("block_compression");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(b.file);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", b.file));
+    let fresh = replace_block(&text, b.test, b.name, &body).unwrap_or_else(|| {
+        panic!(
+            "{} lacks the markers of the block_compression block",
+            b.file
+        )
+    });
+    if unitpack::doc_tables::refreshing() {
+        if fresh != text {
+            std::fs::write(&path, &fresh).unwrap();
+        }
         return;
     }
     assert!(
         fresh == text,
-        "README.md's block compression table is stale: run \
-         `UPDATE_README=1 cargo test --release --test block_compression`"
+        "{}'s block compression table is stale: run `{}` \
+         (or `UNITPACK_REFRESH=1 cargo test --release --test block_compression` for it alone)",
+        b.file,
+        unitpack::doc_tables::REFRESH_COMMAND
     );
 }

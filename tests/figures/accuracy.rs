@@ -1,6 +1,6 @@
 //! Survey Table 1 (Cigolle et al. 2014) reproduced with 2^20 seeded vectors (the survey's method, `src/quality.rs`):
 //! mean error within 2 %, max error within 5 % of the published figures. The rows we do
-//! not match that way are asserted by what the README's "Table 1 rows we do not
+//! not match that way are asserted by what docs/design/survey.md's "Table 1 rows we do not
 //! reproduce" says of them.
 
 use unitpack::codecs::Spec;
@@ -96,7 +96,7 @@ fn latlong_matches_table_1() {
     assert!(st.max < 0.00324, "latlong32: {st:?}");
 }
 /// Table 1's CrytekBFN24 row (0.04027° / 4.78260°) is not reproduced by any reading of
-/// Crytek's table we tried (README, "Table 1 rows we do not reproduce"). Ours follows the
+/// Crytek's table we tried (docs/design/survey.md, "Table 1 rows we do not reproduce"). Ours follows the
 /// generator of Crytek's shipped 512×512 table, read at the nearest texel: the fitted
 /// lengths cut plain RGB8's mean error to a third (`unorm3`, the same bytes without
 /// them) and keep its max, but stay above the precise search's (`snorm8x3p`), which
@@ -414,7 +414,7 @@ fn stereo_ellipse_matches_table_1_with_stereo_maxes() {
     assert!(st.max < 0.0040, "stereo_ellipse32: max {:.5}°", st.max);
 }
 
-/// cube and warpedcube have no Table 1 rows (the README table publishes ours). The warp
+/// cube and warpedcube have no Table 1 rows (docs/codecs.md publishes ours). The warp
 /// exists to even the point density, so it must lower both the mean and the max at every
 /// size. cube spends 3 bits on six faces (log2 6 ≈ 2.6 needed) and oversamples the
 /// corners, so it trails oct of the same size, but by less than 1.5× in the mean.
@@ -521,7 +521,7 @@ fn unorm3_mse_is_the_uniform_quantization_error_off_the_normal() {
 /// `N = 2^b` codes (DESIGN §5, the hexagonal estimate of the covering radius,
 /// `acos(1 - 2/N)·1.0996` for the max and 0.61 of that for the mean): the mean within 2 %
 /// of it at every size, the sample max within 20 % (the spiral's largest holes are in the
-/// polar caps, README "Spherical Fibonacci").
+/// polar caps, docs/design/families.md "Spherical Fibonacci").
 #[test]
 fn sfib_is_near_the_covering_limit() {
     for bits in [16, 24, 32] {

@@ -1,13 +1,12 @@
-//! The figures the repository states, checked in one binary: the README's generated
-//! tables and the ALU budgets (`readme`), the survey's Table 1 rows (`accuracy`) and the
+//! The figures the repository states, checked in one binary: the generated tables in
+//! `docs/` and the ALU budgets (`tables`), the survey's Table 1 rows (`accuracy`) and the
 //! proven decoder bounds (`decode_bound`). Together because they read the same figures:
 //! each spec's error statistics are measured once here ([`stats`]) and each decoder's
-//! bound proven once (the library's per-process cache), where three binaries measured
-//! and proved the catalogue three times.
+//! bound proven once (the library's per-process cache).
 
 mod accuracy;
 mod decode_bound;
-mod readme;
+mod tables;
 
 use std::sync::OnceLock;
 use unitpack::codecs::Spec;
@@ -16,7 +15,7 @@ use unitpack::quality::{ErrorStats, measure_all_once};
 
 /// The error statistics of `specs` over `samples` seeded vectors, as
 /// [`unitpack::quality::measure`] gives them. The first caller measures every codec spec
-/// at the README's sample size on all cores while the others wait, so that no test
+/// at the documented tables' sample size on all cores while the others wait, so that no test
 /// measures a spec another one is measuring.
 fn stats(specs: &[Spec], samples: usize) -> Vec<Option<ErrorStats>> {
     static CATALOGUE: OnceLock<()> = OnceLock::new();
