@@ -112,7 +112,7 @@ pub fn catalogue_table() -> String {
             c.title,
             specs.join(" "),
             c.domain.map_or("— (helpers)", |d| d.name()),
-            if c.precise { "yes" } else { "no" },
+            if f.precise() { "yes" } else { "no" },
             if options.is_empty() {
                 "—".to_string()
             } else {

@@ -13,7 +13,7 @@ fn every_configuration() -> Vec<String> {
         let info = f.info();
         for (spelled, _) in info.spellings() {
             for p in ["", "p"] {
-                if p == "p" && !info.precise {
+                if p == "p" && !f.precise() {
                     continue;
                 }
                 out.push(format!("{spelled}{p}"));
@@ -105,7 +105,6 @@ fn names_ending_in_a_digit_take_an_underscore_before_their_size() {
         title: "",
         sizes: Sizes::Total(&[16, 24]),
         domain: None,
-        precise: false,
         source: "",
         edge_policy: "",
         decode_note: "",
@@ -146,4 +145,28 @@ fn malformed_specs_name_the_problem() {
     assert!(e.contains("after oct16 comes nothing"), "{e}");
     let e = err("snorm9x3");
     assert!(e.contains("snorm8x3, snorm10x3, snorm16x3"), "{e}");
+}
+
+/// A family offers the precise encoder exactly where its codec decides the search in
+/// exact arithmetic (`Family::precise` is derived from `Codec::EXACT_SEARCH`), so every
+/// precise spec's packed encoder is portable, and asking a family without one for `p`
+/// is refused.
+#[test]
+fn the_precise_encoder_is_offered_where_its_search_is_exact() {
+    for f in FAMILIES {
+        let (spelled, _) = f.info().spellings()[0].clone();
+        let p = format!("{spelled}p").parse::<Spec>();
+        if f.precise() {
+            let spec = p.unwrap_or_else(|e| panic!("{spelled}p: {e}"));
+            assert!(
+                spec.emitted().portable_encoder,
+                "{spec}: a precise encoder whose search is not exact"
+            );
+        } else {
+            assert!(
+                p.is_err(),
+                "{spelled}p parses, though {spelled} has no precise encoder"
+            );
+        }
+    }
 }

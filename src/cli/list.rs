@@ -22,14 +22,14 @@ pub fn list_text() -> String {
     for f in FAMILIES {
         let c = f.info();
         let domain = c.domain.map_or("-", |d| d.name());
-        let precise = if c.precise { "yes" } else { "no" };
+        let precise = if f.precise() { "yes" } else { "no" };
         s.push_str(&format!(
             "{:<w$} {:<11} {:<8} {}\n",
             c.name, domain, precise, c.source
         ));
         s.push_str(&format!("{:<w$} {}\n", "", c.title));
         let specs: Vec<String> = c.spellings().into_iter().map(|s| s.0).collect();
-        let p = if c.precise { " (add p: precise)" } else { "" };
+        let p = if f.precise() { " (add p: precise)" } else { "" };
         s.push_str(&format!("{:<w$} specs: {}{p}\n", "", specs.join(", ")));
         for o in c.options {
             s.push_str(&format!("{:<w$} option {}\n", "", o.usage()));
@@ -90,13 +90,13 @@ pub fn list_json() -> String {
                 family: c.name,
                 title: c.title,
                 domain: c.domain.map(|d| d.name()),
-                precise: c.precise,
+                precise: f.precise(),
                 source: c.source,
                 specs: c
                     .spellings()
                     .into_iter()
                     .map(|(spec, bits)| SpecJson {
-                        precise: c.precise.then(|| format!("{spec}p")),
+                        precise: f.precise().then(|| format!("{spec}p")),
                         spec,
                         bits,
                     })

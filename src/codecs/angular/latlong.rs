@@ -43,7 +43,6 @@ static INFO: Info = Info {
     title: "latitude–longitude patches numbered by ring, 2^h rings × (2^h - 1) azimuths",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: false,
     source: "Cigolle et al. 2014 §2 (Smith et al. 2012), fast decoder",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (ring 0)",
     decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
@@ -53,6 +52,9 @@ static INFO: Info = Info {
 impl Family for LatlongFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Latlong::EXACT_SEARCH
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Latlong { bits: spec.bits() })

@@ -73,7 +73,6 @@ static INFO: Info = Info {
     title: "latitude rings of equal-area patches numbered by ring, decoded through a ring table",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: false,
     source: "Cigolle et al. 2014 §2.3 (Smith et al. 2012), precise decoder",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as code 0 (+Z), whatever was fetched",
     decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
@@ -89,6 +88,10 @@ const TURN_BITS: u32 = 24;
 impl Family for LatlongDFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        // Its encoder is latlong's; the ring table serves the decoder only.
+        false
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         emitted(&spec.id(), spec.bits())

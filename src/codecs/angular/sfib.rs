@@ -61,7 +61,6 @@ static INFO: Info = Info {
     title: "spherical Fibonacci point set, the code is the point's index",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: false,
     source: "Keinert et al. 2015 (Spherical Fibonacci Mapping), beyond the survey",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (index 0); the encoder returns the nearest point to within 2^-18 (checked by brute force)",
     decode_note: "every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7)",
@@ -71,6 +70,9 @@ static INFO: Info = Info {
 impl Family for SfibFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Sfib::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         match name {

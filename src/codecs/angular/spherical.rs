@@ -25,7 +25,6 @@ static INFO: Info = Info {
     title: "spherical coordinates (θ, φ), snorm×2",
     sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Cigolle et al. 2014 §2",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
@@ -35,6 +34,9 @@ static INFO: Info = Info {
 impl Family for SphericalFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Spherical::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(fixed_trig::BITS))

@@ -26,7 +26,6 @@ static INFO: Info = Info {
     title: "azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Pranckevičius method 3",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
@@ -36,6 +35,9 @@ static INFO: Info = Info {
 impl Family for SphericalZFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        SphericalZ::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

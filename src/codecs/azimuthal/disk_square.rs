@@ -9,7 +9,7 @@ use super::ellipse::Ellipse;
 use super::eqarea::HemiEqArea;
 use super::eqdist::HemiEqDist;
 use super::stereo::HemiStereo;
-use crate::codecs::core::codec::Domain;
+use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
@@ -20,12 +20,16 @@ use crate::codecs::core::spec::{Spec, SpecError};
 /// traced from the combination's codec type.
 pub struct DiskSquare {
     info: &'static Info,
+    precise: bool,
     emitted: fn(&Spec) -> Emitted,
 }
 
 impl Family for DiskSquare {
     fn info(&self) -> &'static Info {
         self.info
+    }
+    fn precise(&self) -> bool {
+        self.precise
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         (self.emitted)(spec)
@@ -51,7 +55,6 @@ macro_rules! disk_square {
                 ),
                 sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
                 domain: Some(Domain::Sphere),
-                precise: false,
                 source: concat!(
                     "Cigolle et al. 2014 §2 (",
                     $row,
@@ -64,6 +67,7 @@ macro_rules! disk_square {
                               hemisphere, unit length up to rounding",
                 options: &[],
             },
+            precise: <$cpu as Codec>::EXACT_SEARCH,
             emitted: |spec| codec_functions(spec, $cpu::new(spec.bits()).expect("a valid size")),
         };
 

@@ -35,7 +35,6 @@ static INFO: Info = Info {
     title: "azimuthal equidistant hemisphere on the unit disk + hemisphere bit, unorm×2",
     sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
     decode_note: "decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator)",
@@ -45,6 +44,9 @@ static INFO: Info = Info {
 impl Family for HemiEqDistFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        HemiEqDist::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

@@ -24,7 +24,6 @@ static INFO: Info = Info {
     title: "Lambert azimuthal equal-area, unorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Pranckevičius, Compact Normal Storage, method 6",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
     decode_note: "every code decodes to a unit vector; codes outside the disk decode as -Z",
@@ -34,6 +33,9 @@ static INFO: Info = Info {
 impl Family for LambertFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Lambert::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

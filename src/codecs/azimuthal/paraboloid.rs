@@ -35,7 +35,6 @@ static INFO: Info = Info {
     title: "inverted paraboloid z = 1 - (x² + y²) of the +Z hemisphere, snorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Hemisphere),
-    precise: true,
     source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid",
     edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
     decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon",
@@ -45,6 +44,9 @@ static INFO: Info = Info {
 impl Family for ParaboloidFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Paraboloid::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

@@ -27,7 +27,6 @@ static INFO: Info = Info {
     title: "combine a paraboloid normal with a partial-derivative detail normal",
     sizes: Sizes::Fixed(0),
     domain: None,
-    precise: false,
     source: "Improved Normal-map Distributions (Insomniac), CombineParaboloidNormalWithPD",
     edge_policy: "any finite input; the paraboloid point may lie outside the unit disk (its height is then 0)",
     decode_note: "a unit vector (up to rounding) for any finite input",
@@ -40,6 +39,10 @@ const NAME: &str = "combine_paraboloid_pd";
 impl Family for ParaboloidPdFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        // A combination of two paraboloid fields, with no encoder of its own to search.
+        false
     }
     fn emitted(&self, _spec: &Spec) -> Emitted {
         let module = trace_module(|| {

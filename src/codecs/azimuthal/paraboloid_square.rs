@@ -38,7 +38,6 @@ static INFO: Info = Info {
     title: "dual inverted paraboloid z = (1 - x²)(1 - y²) of the +Z hemisphere, snorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Hemisphere),
-    precise: true,
     source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the dual inverted paraboloid",
     edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
     decode_note: "every code decodes to a unit vector (up to rounding); the square's edges decode on the horizon",
@@ -48,6 +47,9 @@ static INFO: Info = Info {
 impl Family for ParaboloidSquareFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        ParaboloidSquare::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         match name {

@@ -10,6 +10,7 @@
 //! encoder formulas against each other and the shared codes.
 
 use crate::codecs::core::codec::Domain;
+use crate::codecs::core::codec::Codec;
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
 use crate::codecs::core::spec::Family;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
@@ -38,7 +39,6 @@ static INFO: Info = Info {
     title: "spheremap transform, unorm×2 (Lambert's codes, the seed's decoders)",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Pranckevičius, Compact Normal Storage, method 4",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
     decode_note: "every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z",
@@ -48,6 +48,9 @@ static INFO: Info = Info {
 impl Family for SpheremapFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Lambert::EXACT_SEARCH
     }
     fn variants(&self) -> &'static [&'static str] {
         &[

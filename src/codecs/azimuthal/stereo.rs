@@ -27,7 +27,6 @@ static INFO: Info = Info {
     title: "stereographic hemisphere on the unit disk + hemisphere bit, unorm×2",
     sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
     decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere)",
@@ -37,6 +36,9 @@ static INFO: Info = Info {
 impl Family for HemiStereoFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        HemiStereo::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

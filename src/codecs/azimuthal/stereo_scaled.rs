@@ -24,7 +24,6 @@ static INFO: Info = Info {
     title: "scaled stereographic, unorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Pranckevičius, Compact Normal Storage, method 7",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it",
     decode_note: "every code decodes to a unit vector (up to rounding)",
@@ -47,6 +46,9 @@ const SCALE: usize = 0;
 impl Family for StereoScaledFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        StereoScaled::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

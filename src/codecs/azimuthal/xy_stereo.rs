@@ -27,7 +27,6 @@ static INFO: Info = Info {
     title: "stereographic projection of the +Z hemisphere, (x, y)/(1 + z) as snorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Hemisphere),
-    precise: true,
     source: "NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001",
     edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
     decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon",
@@ -37,6 +36,9 @@ static INFO: Info = Info {
 impl Family for XyStereoFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        XyStereo::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

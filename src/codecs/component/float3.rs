@@ -30,7 +30,6 @@ static INFO: Info = Info {
         per: &[16, 32],
     },
     domain: Some(Domain::Sphere),
-    precise: false,
     source: "Cigolle et al. 2014 §2 and Table 1 (float×3)",
     edge_policy: "input is normalized first, then each component is rounded to the nearest f16 (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z",
     decode_note: "the three stored floats, exactly, without normalizing (unit length to within 2^-11 for float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component, or with every component zero, decodes as +Z; a denormal float32 component is read as +0",
@@ -40,6 +39,9 @@ static INFO: Info = Info {
 impl Family for Float3Family {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Float16x3::EXACT_SEARCH && Float32x3::EXACT_SEARCH
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         match spec.bits() {

@@ -2,11 +2,12 @@
 //! three fields of one 32-bit word, x in the lowest bits (bits 0–10 x, 11–21 y, 22–31 z).
 
 use crate::codecs::core::codec::Domain;
+use crate::codecs::core::codec::Codec;
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::component::snorm3::Snorm3;
+use crate::codecs::component::snorm3::{OneWord, Snorm3};
 use crate::codecs::core::spec::Spec;
 
 pub static FAMILY: Snorm111110Family = Snorm111110Family;
@@ -18,7 +19,6 @@ static INFO: Info = Info {
     title: "components as snorm 11, 11 and 10 bits in one word (x lowest)",
     sizes: Sizes::Fixed(32),
     domain: Some(Domain::Sphere),
-    precise: false,
     source: "Cigolle et al. 2014 §2 and Table 1",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decode re-normalizes; the all-zero code decodes as +Z",
@@ -28,6 +28,9 @@ static INFO: Info = Info {
 impl Family for Snorm111110Family {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Snorm3::<OneWord>::EXACT_SEARCH
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Snorm3::snorm11_11_10())

@@ -23,7 +23,6 @@ static INFO: Info = Info {
     title: "snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms",
     sizes: Sizes::Fixed(24),
     domain: None,
-    precise: false,
     source: "Cigolle et al. 2014 §3.3, Listings 4–5",
     edge_policy: "parameters are clamped to [-1, 1]",
     decode_note: "unpack returns values in [-1, 1]",
@@ -50,6 +49,10 @@ macro_rules! helpers {
 impl Family for Pack12Family {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        // A packing helper: it has no encoder.
+        false
     }
     fn emitted(&self, _spec: &Spec) -> Emitted {
         let s12 = || vec![Quant::Snorm(12); 2];

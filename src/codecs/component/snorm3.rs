@@ -41,7 +41,6 @@ static INFO: Info = Info {
         per: &[5, 8, 10, 16],
     },
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010)",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decode re-normalizes; the all-zero code decodes as +Z",
@@ -51,6 +50,9 @@ static INFO: Info = Info {
 impl Family for Snorm3Family {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Snorm3::<OneWord>::EXACT_SEARCH && Snorm3::<TwoWords>::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         match name {

@@ -22,7 +22,6 @@ static INFO: Info = Info {
     title: "components scaled and biased, n·0.5 + 0.5, as unorm8×3 (an RGB8 texel)",
     sizes: Sizes::Fixed(24),
     domain: Some(Domain::Sphere),
-    precise: false,
     source: "Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z)",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector",
@@ -32,6 +31,9 @@ static INFO: Info = Info {
 impl Family for Unorm3Family {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Unorm3::EXACT_SEARCH
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         codec_functions(spec, Unorm3)

@@ -25,7 +25,6 @@ static INFO: Info = Info {
     title: "x and y stored, z reconstructed, snorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Hemisphere),
-    precise: true,
     source: "Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes",
     edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
     decode_note: "z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1",
@@ -35,6 +34,9 @@ static INFO: Info = Info {
 impl Family for XyFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Xy::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

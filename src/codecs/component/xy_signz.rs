@@ -30,7 +30,6 @@ static INFO: Info = Info {
     title: "x and y stored with the sign of z, z reconstructed, snorm×2 + 1 bit",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Pranckevičius method 2",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) and -0 are on the +Z side",
     decode_note: "z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1",
@@ -40,6 +39,9 @@ static INFO: Info = Info {
 impl Family for XySignZFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        XySignZ::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

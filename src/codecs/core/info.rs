@@ -147,8 +147,6 @@ pub struct Info {
     pub sizes: Sizes,
     /// `None` for packing helpers, which are not codecs and have no encode/decode.
     pub domain: Option<Domain>,
-    /// Whether the precise (`p`) encoder exists.
-    pub precise: bool,
     pub source: &'static str,
     /// What zero, NaN, infinite and out-of-domain input encode to.
     pub edge_policy: &'static str,

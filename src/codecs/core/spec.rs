@@ -53,13 +53,13 @@ impl Spec {
             let info = f.info();
             for (_, bits) in info.spellings() {
                 out.push(Spec::new(f, bits, false));
-                if info.precise {
+                if f.precise() {
                     out.push(Spec::new(f, bits, true));
                 }
             }
             for v in f.variants() {
                 let s: Spec = v.parse().expect("a family's variants parse");
-                if info.precise {
+                if f.precise() {
                     out.push(s.fast());
                     out.push(Spec { precise: true, ..s });
                 } else {
@@ -219,7 +219,7 @@ impl std::str::FromStr for Spec {
             _ => (false, rest),
         };
         let spelled = &head[..head.len() - rest.len()];
-        if precise && !info.precise {
+        if precise && !family.precise() {
             return Err(SpecError::NoPrecise {
                 spelled: spelled.to_string(),
             });
@@ -381,6 +381,10 @@ fn unknown_codec(given: &str) -> SpecError {
 /// outside that file names it.
 pub trait Family: Sync + 'static {
     fn info(&self) -> &'static Info;
+    /// Whether the precise (`p`) encoder is offered: derived from the codec
+    /// (`Codec::EXACT_SEARCH`), since it is offered exactly where its search is decided
+    /// in exact arithmetic, so that the precise packed encoder is portable.
+    fn precise(&self) -> bool;
     /// Checks that combine the size and options (each option's own range is checked by
     /// the parser).
     fn validate(&self, _spec: &Spec) -> Result<(), SpecError> {

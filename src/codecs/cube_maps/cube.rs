@@ -38,7 +38,6 @@ static INFO: Info = Info {
     title: "cube-map face (3 bits) + unorm×2 coordinates on it",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Cigolle et al. 2014 §2 (cube)",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; ties between components go to z, then y",
     decode_note: "every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z",
@@ -48,6 +47,9 @@ static INFO: Info = Info {
 impl Family for CubeFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Cube::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

@@ -4,6 +4,7 @@
 
 use crate::codecs::core::codec::Domain;
 use crate::codecs::cube_maps::cube::Cube;
+use crate::codecs::core::codec::Codec;
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::Family;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
@@ -20,7 +21,6 @@ static INFO: Info = Info {
     title: "cube-map face (3 bits) + equi-angular unorm×2 coordinates, atan(s)/(π/4)",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; ties between components go to z, then y",
     decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and 7 are never written and decode as +Z and -Z",
@@ -30,6 +30,9 @@ static INFO: Info = Info {
 impl Family for WarpedCubeFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Cube::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc(BITS))

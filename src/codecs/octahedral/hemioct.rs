@@ -23,7 +23,6 @@ static INFO: Info = Info {
     title: "hemi-octahedral, snorm×2",
     sizes: Sizes::Total(&[16, 24, 32]),
     domain: Some(Domain::Hemisphere),
-    precise: true,
     source: "Cigolle et al. 2014, Listing 6 and Table 3",
     edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon)",
     decode_note: "every code decodes to a unit vector with z ≥ 0",
@@ -33,6 +32,9 @@ static INFO: Info = Info {
 impl Family for HemiOctFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        HemiOct::EXACT_SEARCH
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (name == "encode_codes").then(|| search_doc("the input's signs"))

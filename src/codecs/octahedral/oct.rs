@@ -22,7 +22,6 @@ static INFO: Info = Info {
     title: "octahedral, snorm×2",
     sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Cigolle et al. 2014 (JCGT survey) §3.1–3.3",
     edge_policy: "input need not be unit length; zero, NaN and infinite input encode as +Z",
     decode_note: "every code decodes to a unit vector (normalized as v / sqrt(v·v))",
@@ -40,6 +39,9 @@ const RGB8: usize = 1;
 impl Family for OctFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        Oct::EXACT_SEARCH && Oct24Rgb8::EXACT_SEARCH
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         if spec.choice(LAYOUT) == RGB8 && spec.bits() != 24 {

@@ -79,7 +79,6 @@ static INFO: Info = Info {
     title: "Crytek's best fit normals: RGB8 scaled by a fitting table's length (512×512)",
     sizes: Sizes::Total(&[24]),
     domain: Some(Domain::Sphere),
-    precise: false,
     source: "Cigolle et al. 2014 §2.2 (Kaplanyan 2010, CryENGINE 3)",
     edge_policy: "zero, NaN and infinite input encode as +Z at the scale 1, (128, 128, 255), whatever was fetched",
     decode_note: "decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector",
@@ -89,6 +88,10 @@ static INFO: Info = Info {
 impl Family for CrytekBfnFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        // The fitting table is itself the encoder's choice of code.
+        false
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         emitted(&spec.id())

@@ -100,7 +100,6 @@ static INFO: Info = Info {
     title: "azimuth and z through an atan2 and a sin/cos lookup texture (256×256)",
     sizes: Sizes::Total(&[16]),
     domain: Some(Domain::Sphere),
-    precise: true,
     source: "Pranckevičius method 3a",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (atan texel (128, 128); the precise encoder keeps that code)",
     decode_note: "the sin/cos table's texel·2 - 1, not renormalized: unit length to within the table's rounding (each component within 1/255)",
@@ -110,6 +109,10 @@ static INFO: Info = Info {
 impl Family for SphericalLutFamily {
     fn info(&self) -> &'static Info {
         &INFO
+    }
+    fn precise(&self) -> bool {
+        // Its precise encoder searches the lattice in integers (`encode_codes`).
+        true
     }
     fn variants(&self) -> &'static [&'static str] {
         &["spherical_lut16:lut=matched"]
