@@ -558,7 +558,7 @@ fn paths_the_docs_name_exist() {
             if !named {
                 continue;
             }
-            // `src/codecs/exact.rs`, or a folder, `tests/internals/`.
+            // `src/codecs/toolkit/exact.rs`, or a folder, `tests/internals/`.
             let path = span.trim_end_matches('/');
             if !root().join(path).exists() {
                 missing.push(format!("{}: `{span}`", doc.display()));

@@ -35,7 +35,7 @@
 //! `decode_ring` inverts the equal-area count: a code's fraction of the sphere's patches,
 //! `u = (c + ½)/total` (mirrored onto the northern half), is at the polar angle
 //! `acos(1 - 2u)`, in rings `G`; the guess is `floor(G)`, and the code's ring is `g` or
-//! `g + 1` wherever `|G - ring| < 1`: `tests/latlongd.rs` checks that for every code at
+//! `g + 1` wherever `|G - ring| < 1`: `tests/families/latlongd.rs` checks that for every code at
 //! 16 and 24 bits, and at 32 at every ring's first and last code, where the real-valued
 //! `G`, which is monotone in the code, is also checked within 0.9 rings of the ring (the
 //! model's `G` follows it to within a few hundredths of a ring, the trigonometry's

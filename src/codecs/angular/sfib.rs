@@ -34,7 +34,7 @@
 //! and the hemisphere are chosen from the input's fixed-point direction, and the winner is
 //! decided in fixed point ([`Sfib::fixed_point`], squared distances summed exactly in
 //! integers and rounded once), so the packed code is portable like the other codecs'.
-//! `tests/sfib.rs` checks the choice against a brute-force search over every point that
+//! `tests/families/sfib.rs` checks the choice against a brute-force search over every point that
 //! could be nearer, both in the fixed-point measure (exactly) and in the decoder's
 //! floats (to `2^-18`).
 

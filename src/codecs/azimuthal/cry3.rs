@@ -6,7 +6,7 @@
 //! [`crate::codecs::azimuthal::lambert`]'s mapping (the seed's erratum), with the seed's Unity orientation
 //! (+Z at the centre, as printed). The encoders are Lambert's, which also define the poles
 //! (`normalize(n.xy)` has no direction there); the decoders are the seed's.
-//! `tests/seed_methods.rs` checks the seed's encoder formulas against each other and the
+//! `tests/families/lambert.rs` checks the seed's encoder formulas against each other and the
 //! shared codes.
 
 use crate::codecs::core::codec::Domain;

@@ -6,7 +6,7 @@
 //! notes that methods 4, 5 and 6 are one mapping. So the encoders are
 //! [`crate::codecs::azimuthal::lambert`]'s (which normalize first, decide every code exactly and keep -Z
 //! defined), and what this codec adds is the seed's decoders, which compute the same
-//! direction in other orders of operations. `tests/seed_methods.rs` checks the seed's
+//! direction in other orders of operations. `tests/families/lambert.rs` checks the seed's
 //! encoder formulas against each other and the shared codes.
 
 use crate::codecs::core::codec::Domain;

@@ -1,7 +1,7 @@
 //! snorm12×2 ↔ unorm8×3 (survey §3.3, Listings 4–5): two 12-bit parameters in the three
 //! bytes of an RGB8 texel, stored biased (`u = c + 2047`, bytes `u.x>>4`,
 //! `(u.x&15)<<4 | u.y>>8`, `u.y&255`). Each direction exists in an integer form and a
-//! float-only form for hardware without fast integers; `tests/pack12.rs` proves the two
+//! float-only form for hardware without fast integers; `tests/families/snorm12x2.rs` proves the two
 //! forms bit-equal on all 2^24 inputs. The unpack ends in `(s - 2047)·(1/2047)` rather than
 //! the listing's `s·(1/2047) - 1`, which misses zero by an ulp.
 

@@ -10,7 +10,7 @@
 //! scale, though that double is one of the integer vectors around the ray there, not
 //! necessarily the rounded one. That the smaller scales add nothing is therefore a
 //! measurement, not a proof: at snorm8 no integer vector around the ray at any scale
-//! (`1..=127`) was nearer over the sampled inputs of `tests/bfn.rs`; on snorm5's coarse
+//! (`1..=127`) was nearer over the sampled inputs of `tests/families/snorm3.rs`; on snorm5's coarse
 //! grid the nearest is not always a rounded one.
 
 use crate::codecs::core::codec::{Codec, Domain, unit_or_z};

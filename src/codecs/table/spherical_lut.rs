@@ -619,7 +619,7 @@ fn block_fetch(lut: SphericalLut) -> WordsMap {
 }
 
 /// A unorm8 texel's byte as the texture unit returns it: `c·(1/255)`, lavapipe's
-/// conversion (tests/spherical_lut.rs checks it), which rounds back to `c` in
+/// conversion (tests/families/spherical_lut.rs checks it), which rounds back to `c` in
 /// [`encode`] however it is computed.
 fn fetch(c: u8) -> f32 {
     BYTE.dequantize(f32::from(c))

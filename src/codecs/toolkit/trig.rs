@@ -2,7 +2,7 @@
 //! drivers, and from Rust by up to thousands of ULP even on lavapipe, so codecs that need
 //! angles use these polynomial versions, built only from exact operations: both sides then
 //! compute the same bits. Angles are in units of π (half turns), which keeps the range
-//! reductions exact. `tests/trig.rs` measures the error against f64 over the whole range:
+//! reductions exact. `tests/internals/codecs_trig.rs` measures the error against f64 over the whole range:
 //! [`atan2_pi`] within [`ATAN2_PI_MAX_ERROR`], [`sincos_pi`] within [`SINCOS_PI_MAX_ERROR`].
 
 use crate::model::{Float, V2};
