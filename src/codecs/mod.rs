@@ -44,6 +44,7 @@ macro_rules! registry {
 registry! {
     oct => Oct, Oct24Rgb8;
     hemioct => HemiOct;
+    eqarea_oct => EqAreaOct;
     snorm3 => Snorm3, OneWord, TwoWords;
     snorm11_11_10;
     unorm3 => Unorm3;

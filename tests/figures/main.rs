@@ -6,6 +6,7 @@
 //! and proved the catalogue three times.
 
 mod accuracy;
+mod cover;
 mod decode_bound;
 mod readme;
 
