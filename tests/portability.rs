@@ -7,8 +7,8 @@ use unitpack::codecs::functions::Role;
 use unitpack::codecs::inputs::generate;
 use unitpack::model::Float;
 use unitpack::model::deviant::{
-    Class, DIV_ULP, Dev, Deviation, ITEM_HASH, Mode, SQRT_ULP, begin_item, item_chose,
-    item_state, with,
+    Class, DIV_ULP, Dev, Deviation, ITEM_HASH, Mode, SQRT_ULP, begin_item, item_chose, item_state,
+    with,
 };
 use unitpack::portability::{Functions, Options, run, ulp_distance};
 
@@ -69,7 +69,11 @@ fn item_state_is_the_product_modulo_2_128() {
     };
     for (seed, index) in [(0, 5), (1, 0), (7, 1 << 40), (u64::MAX, u64::MAX)] {
         let a = u128::from(seed) << 64 | u128::from(index);
-        assert_eq!(item_state(seed, index), limbs(a, ITEM_HASH) | 1, "{seed} {index}");
+        assert_eq!(
+            item_state(seed, index),
+            limbs(a, ITEM_HASH) | 1,
+            "{seed} {index}"
+        );
     }
     assert_eq!(item_state(0, 0), 1);
     let draws = || {

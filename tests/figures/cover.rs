@@ -105,19 +105,36 @@ fn cover(enc: &Function, dec: &Function, q: &[Quant], hemisphere: bool) -> Cover
         reach: 0.0,
         at: [0.0; 3],
     };
+    // A field the encoder writes as one constant (a texel's constant channel, such as
+    // xra's R = 1) measures nothing, though the decoder reads it.
+    let raw = |c: &[u32], i: usize| c[(offs[i] / 32) as usize] >> (offs[i] % 32) & q[i].mask();
+    let constant: Vec<bool> = (0..q.len())
+        .map(|i| {
+            let mut all = codes.chunks_exact(enc.out_words).map(|c| raw(c, i));
+            let first = all.next();
+            all.all(|x| Some(x) == first)
+        })
+        .collect();
     'sample: for (v, c) in vs.iter().zip(codes.chunks_exact(enc.out_words)) {
         let at = decode(c);
         let mut reach = 0.0;
         for (i, &field) in q.iter().enumerate() {
-            if field.bits() < MEASURING_BITS {
+            if field.bits() < MEASURING_BITS || constant[i] {
                 continue;
             }
-            let mut far = 0f64;
+            let (mut far, mut end) = (0f64, false);
             for dir in [-1, 1] {
-                let Some(n) = step(c, field, offs[i], dir) else {
-                    continue 'sample;
-                };
-                far = far.max(angle_deg(at, decode(&n)));
+                match step(c, field, offs[i], dir) {
+                    Some(n) => far = far.max(angle_deg(at, decode(&n))),
+                    None => end = true,
+                }
+            }
+            // Nor does a field the decoder does not read (rxgb's z), wherever its value.
+            if far == 0.0 {
+                continue;
+            }
+            if end {
+                continue 'sample;
             }
             reach += far;
         }
@@ -139,6 +156,14 @@ fn encoder_and_decoder(spec: &Spec) -> (Function, Function, Vec<Quant>, bool) {
     (find(Role::Encode), dec, q, hemisphere)
 }
 
+/// The specs whose encoders are coarser than their own codes, and why: they must stay
+/// beyond reach (the list cannot go stale), and every other spec within it.
+const BEYOND_REACH: &[(&str, &str)] = &[(
+    "spherical_lut16",
+    "the seed's tables read codes as c/128 - 1 where the encoder writes c/127.5 - 1, \
+     which puts its worst errors near the poles (README, spherical_lut; lut=matched is within reach)",
+)];
+
 #[test]
 fn every_input_lies_within_its_codes_neighbours_reach() {
     let specs: Vec<Spec> = codec_specs()
@@ -150,7 +175,15 @@ fn every_input_lies_within_its_codes_neighbours_reach() {
         let (enc, dec, q, hemisphere) = encoder_and_decoder(spec);
         let c = cover(&enc, &dec, &q, hemisphere);
         let mut out = Vec::new();
-        if c.excess > 0.0 {
+        let id = spec.to_string();
+        if let Some((_, why)) = BEYOND_REACH.iter().find(|(s, _)| *s == id) {
+            if c.excess <= 0.0 {
+                out.push(format!(
+                    "{spec} is now within reach: remove it from BEYOND_REACH"
+                ));
+            }
+            println!("{spec}: {:.6}° beyond reach, as stated ({why})", c.excess);
+        } else if c.excess > 0.0 {
             out.push(format!(
                 "{spec}: {:?} lies {:.6}° beyond its code's neighbours' reach ({:.6}°)",
                 c.at, c.excess, c.reach
