@@ -106,7 +106,10 @@ fn packed_codes_round_the_maps_point() {
                 assert_eq!(field, want, "eqarea_oct{bits} {v:?}: field {i} of {code:x}");
             }
         }
-        assert!(compared > fields * 4 / 5, "eqarea_oct{bits}: {compared} of {fields}");
+        assert!(
+            compared > fields * 4 / 5,
+            "eqarea_oct{bits}: {compared} of {fields}"
+        );
     }
 }
 
