@@ -9,10 +9,11 @@
 //! azimuth `φ` in the quadrant, as the fraction `φ/(π/2)`, splits `r` between the two
 //! coordinates: `(r·(1 - φ/(π/2)), r·φ/(π/2))`, with the input's signs. The lower
 //! hemisphere unfolds over the diagonals as `oct` does, `(1 - |v|, 1 - |u|)`; the fold
-//! sides are `oct`'s (encode folds at `z <= 0`, decode at `|x| + |y| > 1`). The map is
-//! the identity on the axes and on the diagonals of the square, like `oct`, but spreads
-//! the codes evenly over the sphere, where `oct` crowds them near the octahedron's
-//! vertices.
+//! sides are `oct`'s (encode folds at `z <= 0`, decode at `|x| + |y| > 1`). As in `oct`,
+//! the square's axes and diagonals are the meridians at multiples of 45° and the
+//! diamond's edges the equator; in between, equal areas of the square hold equal areas of
+//! the sphere, where `oct` crowds its codes near the axes (the octahedron's vertices) and
+//! thins them at the faces' centres, about ninefold.
 //!
 //! The radius is the equal-area disk codec's ([`super::hemi_eqarea`]: `ρ/sqrt(1 + |z|)`
 //! is `sqrt(1 - |z|)` of a unit vector), so the packed encoder decides each code as the
