@@ -59,6 +59,7 @@ registry! {
     octahedral {
         oct [FAMILY] => Oct, Oct24Rgb8;
         hemioct [FAMILY] => HemiOct;
+        eqarea_oct [FAMILY] => EqAreaOct;
     }
     /// Per-component codes: the vector's components (or two of them) quantized one by one,
     /// and the packing helpers of such fields.

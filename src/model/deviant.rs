@@ -173,11 +173,20 @@ pub fn begin_item(index: u64) {
         ..
     }) = ACTIVE.with(Cell::get)
     {
-        let state = (u128::from(seed) << 64 | u128::from(index))
-            * 0x9e37_79b9_7f4a_7c15_f39c_c060_5ced_c835;
-        RNG.with(|r| *r.borrow_mut() = Pcg64Mcg::new(state | 1));
+        RNG.with(|r| *r.borrow_mut() = Pcg64Mcg::new(item_state(seed, index)));
     }
 }
+
+/// The state [`begin_item`] seeds an item's stream with: `(seed·2^64 + index)` times an
+/// odd constant, modulo `2^128` (a multiplicative hash, which wraps by design: a plain
+/// `*` overflows for every seed above 0 and panics in a debug build), made odd as
+/// `Pcg64Mcg` wants.
+pub fn item_state(seed: u64, index: u64) -> u128 {
+    (u128::from(seed) << 64 | u128::from(index)).wrapping_mul(ITEM_HASH) | 1
+}
+
+/// The odd multiplier of [`item_state`].
+pub const ITEM_HASH: u128 = 0x9e37_79b9_7f4a_7c15_f39c_c060_5ced_c835;
 
 /// Whether an operation since the last [`begin_item`] had more than one distinct allowed
 /// result. Where none had, every mode computes the same result for the item (each

@@ -4,6 +4,7 @@
 //! all of them.
 
 mod crytek_bfn;
+mod eqarea_oct;
 mod lambert;
 mod latlongd;
 mod oct;

@@ -5,6 +5,7 @@
 //! bound proven once (the library's per-process cache).
 
 mod accuracy;
+mod cover;
 mod decode_bound;
 mod tables;
 
