@@ -31,7 +31,9 @@ use std::path::{Path, PathBuf};
 /// tests use (2^20), so that generating everything stays well under a second.
 pub const DOC_SAMPLES: usize = 1 << 16;
 
-#[derive(Debug, thiserror::Error)]
+/// Why a [`Generator`] could not render or write. Its `Debug` form is its message (see
+/// the `impl`).
+#[derive(thiserror::Error)]
 pub enum GenerateError {
     #[error("invalid spec: {0}")]
     Spec(#[from] SpecError),
@@ -51,6 +53,17 @@ pub enum GenerateError {
         path: PathBuf,
         source: std::io::Error,
     },
+}
+
+/// The message, as `Display` gives it: a build script's `fn main() -> Result<(),
+/// GenerateError>` (the pattern above) reports an error through `Debug`, and
+/// `Error: invalid spec: oct has no 17-bit form; allowed sizes: 16, 20, 22, 24, 32` tells
+/// its user what to fix where `Error: Spec(InvalidBits { codec: "oct", .. })` does not.
+/// The variants remain for code to match on.
+impl std::fmt::Debug for GenerateError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::Display::fmt(self, f)
+    }
 }
 
 /// A spec as the caller gave it: text (parsed when rendering) or already parsed.

@@ -362,6 +362,31 @@ fn cell(r: &Row) -> String {
     }
 }
 
+/// What [`cell`]'s forms and the last column mean, printed under the table: `229x` or
+/// `14073/859030801u` is unreadable to someone who has not read this file.
+pub fn legend() -> String {
+    let names = |covered: bool| {
+        let classes = Class::ALL.iter().filter(|c| c.guaranteed() == covered);
+        classes.map(|c| c.name()).collect::<Vec<_>>().join(", ")
+    };
+    format!(
+        "\
+cells:  .       no output changed under the class
+        N/Ku    N float outputs changed, by at most K units in the last place
+                (0u: only the sign of a zero)
+        N/NaN   N float outputs changed, a NaN appearing or vanishing among them
+        N!      N packed codes changed under a class the guarantee covers: a failure
+                (covered: {})
+        Nx      N packed codes changed under a class it does not cover
+                (not covered: {})
+proven: ≤B (seen S): a decoder's proven bound on how far the covered classes move an
+        output component, and the largest move seen, both in units of 2^-24
+",
+        names(true),
+        names(false)
+    )
+}
+
 fn json_str(s: &str) -> String {
     let mut o = String::from("\"");
     for ch in s.chars() {
@@ -410,12 +435,21 @@ impl PortabilityReport {
         let modes: Vec<String> = self.modes.iter().map(|m| m.name()).collect();
         let _ = writeln!(t, "modes: {}", modes.join(", "));
         let _ = write!(t, "{:<28} {:<34} {:>7}", "spec", "function", "items");
-        for c in &self.classes {
-            let _ = write!(t, " {:>12}", c.name());
+        // A column is as wide as its widest cell (`16318/877203419u` is wider than 12), so
+        // that no row shifts the columns after it.
+        let groups = || self.rows.chunks(self.classes.len().max(1));
+        let widths: Vec<usize> = (0..self.classes.len())
+            .map(|i| {
+                let cells = groups().filter_map(|g| g.get(i)).map(|r| cell(r).len());
+                cells.fold(12, usize::max)
+            })
+            .collect();
+        for (c, w) in self.classes.iter().zip(&widths) {
+            let _ = write!(t, " {:>w$}", c.name());
         }
         t.push_str("  proven (2^-24)");
         t.push('\n');
-        for group in self.rows.chunks(self.classes.len().max(1)) {
+        for group in groups() {
             let r = &group[0];
             let _ = write!(
                 t,
@@ -424,8 +458,8 @@ impl PortabilityReport {
                 format!("{} ({:?})", r.function, r.role),
                 r.items
             );
-            for r in group {
-                let _ = write!(t, " {:>12}", cell(r));
+            for (r, w) in group.iter().zip(&widths) {
+                let _ = write!(t, " {:>w$}", cell(r));
             }
             if let Some(b) = r.bound {
                 let seen = group
@@ -455,6 +489,7 @@ impl PortabilityReport {
                 ),
             })
             .collect();
+        t.push_str(&legend());
         if fails.is_empty() {
             t.push_str("packed encoders: portable under every guaranteed class (div, sqrt, fma, denorm, zero); decoders: within their proven bounds\n");
         } else {

@@ -2,6 +2,8 @@
 
 use unitpack::{Generator, Lang};
 
+// An error fails the build with its message, `Error: invalid spec: oct has no 17-bit
+// form; allowed sizes: 16, 20, 22, 24, 32`: `GenerateError`'s `Debug` is its `Display`.
 fn main() -> Result<(), unitpack::GenerateError> {
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
     // A WGSL module that naga_oil / Bevy shaders import as `normals::{...}`.

@@ -3,14 +3,16 @@
 //! through the same CPU encoder and decoder the emitted shaders are verified against, so
 //! a map converted here decodes in the shader to what `unitpack decode` prints.
 
+use super::output;
 use super::png_file::{self, Picture};
 use crate::api::Batch;
 use crate::atomic::write_atomic_with;
 use crate::codecs::core::function::Function;
 use crate::codecs::{Spec, toolkit::texel};
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use png::{BitDepth, ColorType};
+use std::io::Write;
 use std::path::Path;
 
 /// Which way a map is converted.
@@ -29,25 +31,9 @@ const ROWS_PER_STEP: usize = 16;
 const PROGRESS_TEXELS: usize = 1 << 20;
 
 pub fn run(input: &Path, output: &Path, dir: Direction, force: bool) -> Result<()> {
-    if output
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        != Some("png".into())
-    {
-        bail!("{}: the output must be a .png file", output.display());
-    }
-    if same_file(input, output) {
-        bail!(
-            "{} is both the input and the output; write the converted map elsewhere",
-            output.display()
-        );
-    }
-    if output.exists() && !force {
-        bail!(
-            "{} exists; pass --force to replace it (IN and OUT may have been swapped)",
-            output.display()
-        );
+    let to_stdout = output::is_stdout(output);
+    if !to_stdout {
+        check_output(input, output, force)?;
     }
     let spec_text = match dir {
         Direction::To(s, _) | Direction::From(s, _) => s,
@@ -76,7 +62,40 @@ pub fn run(input: &Path, output: &Path, dir: Direction, force: bool) -> Result<(
         }
         Direction::From(_, sixteen) => decode_map(&image, &Batch::new(spec_text)?, input, sixteen)?,
     };
+    if to_stdout {
+        let mut out = output::stdout();
+        return out
+            .write_all(&png)
+            .and_then(|()| out.flush())
+            .context("cannot write to stdout");
+    }
     Ok(write_atomic_with(output, &png, force)?)
+}
+
+/// Refuses an OUT that is not a `.png`, that is IN, or that exists (without `force`):
+/// swapped arguments cannot destroy a map.
+fn check_output(input: &Path, output: &Path, force: bool) -> Result<()> {
+    if output
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        != Some("png".into())
+    {
+        bail!("{}: the output must be a .png file", output.display());
+    }
+    if same_file(input, output) {
+        bail!(
+            "{} is both the input and the output; write the converted map elsewhere",
+            output.display()
+        );
+    }
+    if output.exists() && !force {
+        bail!(
+            "{} exists; pass --force to replace it (IN and OUT may have been swapped)",
+            output.display()
+        );
+    }
+    Ok(())
 }
 
 /// Whether two paths name one existing file (the output would replace the input).
@@ -101,16 +120,48 @@ fn conventional_vectors(image: &Picture, input: &Path) -> Result<Vec<[f32; 3]>> 
         ),
     };
     let max = if image.depth == BitDepth::Sixteen {
-        65535.0
+        65535
     } else {
-        255.0
+        255
     };
-    let unit = |c: u32| (2.0 * f64::from(c) / max - 1.0) as f32;
-    Ok(image
-        .samples()
-        .chunks_exact(channels)
+    let samples = image.samples();
+    let pixels = || samples.chunks_exact(channels);
+    if let Some(pattern) = texel_pattern(pixels(), max) {
+        bail!(
+            "{} looks like a map of texels, not a conventional normal map: {pattern}, so \
+             its RGB are not normals; convert texels to a normal map with --from SPEC",
+            input.display()
+        );
+    }
+    let unit = |c: u32| (2.0 * f64::from(c) / f64::from(max) - 1.0) as f32;
+    Ok(pixels()
         .map(|p| [unit(p[0]), unit(p[1]), unit(p[2])])
         .collect())
+}
+
+/// How a map's channels show that it holds the texels of a two-parameter layout (what
+/// `--to` writes) rather than `n·½ + ½`, if they do: no map of normals has these in every
+/// texel, since each would make every normal point into the surface (B = 0), lie along
+/// +X (R = 1) or along the diagonal (R = G = B). The alpha channel, where dxt5nm, rxgb,
+/// latc and xra keep x, is not read as part of a normal, so without this check such a map
+/// would convert without a word into nonsense.
+fn texel_pattern<'a>(
+    mut pixels: impl Iterator<Item = &'a [u32]> + Clone,
+    max: u32,
+) -> Option<&'static str> {
+    // An empty map shows no pattern (`all` would hold for each).
+    pixels.clone().next()?;
+    if pixels.clone().all(|p| p[2] == 0) {
+        Some(
+            "B = 0 in every texel (a normal pointing into the surface), as the rg, dxt5nm and xra layouts store texels",
+        )
+    } else if pixels.clone().all(|p| p[0] == max) {
+        Some("R = 1 in every texel (a normal along +X), as the rxgb layout stores texels")
+    } else if pixels.all(|p| p[0] == p[1] && p[1] == p[2]) {
+        Some("R = G = B in every texel, as the latc layout stores texels")
+    } else {
+        None
+    }
 }
 
 fn encode_map(image: &Picture, encode: &Function, input: &Path) -> Result<Vec<u8>> {

@@ -5,6 +5,11 @@
 //!
 //! Nothing the user wrote is ever replaced or removed without `--force`, and `--force`
 //! only lets a catalogue path be replaced; it never makes `generate` remove a file.
+//!
+//! The report (what was written, kept, removed) goes to stdout, the same wherever it
+//! goes. On a terminal, stderr also shows what `generate` is doing while it works (a
+//! first run proves every bound and measures every figure, which takes a while) and, at
+//! the end, what it wrote and how long it took: see [`Progress`].
 
 use super::include::stats_for;
 use super::manifest::{self, HEADER, MANIFEST};
@@ -14,18 +19,29 @@ use crate::codecs::Spec;
 use crate::codecs::core::spec::{Table, TableFormat};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
-use std::io::{self, Write};
+use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 /// Every generated file: relative path → contents. The includes, and the lookup tables
 /// of the specs that read one (`lut/<stem>.png`, and the same texels as raw bytes in
 /// `lut/<stem>.bin`).
-pub fn catalogue_files() -> Result<Vec<(PathBuf, Vec<u8>)>> {
+fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
     let specs = Spec::all();
+    progress.stage(format!(
+        "measuring the error figures of {} specs",
+        specs.len()
+    ));
     let stats = stats_for(&specs);
+    progress.stage("proving the decoders' error bounds".into());
     crate::decode_bound::prove_all(&specs);
+    progress.stage(format!(
+        "rendering {} includes",
+        specs.len() * Lang::ALL.len()
+    ));
     let mut files = Vec::new();
     for lang in Lang::ALL {
         for (spec, st) in specs.iter().zip(&stats) {
@@ -112,8 +128,9 @@ struct Plan {
     kept: Vec<(PathBuf, &'static str)>,
 }
 
-fn plan(out: &Path) -> Result<Plan> {
-    let mut files = catalogue_files()?;
+fn plan(out: &Path, progress: &Progress) -> Result<Plan> {
+    let mut files = catalogue_files(progress)?;
+    progress.stage(format!("comparing with {}", out.display()));
     let listed = manifest::text(files.iter().map(|(p, b)| (p.as_path(), b.as_slice())));
     files.push((PathBuf::from(MANIFEST), listed.into_bytes()));
     let ours: BTreeSet<PathBuf> = files.iter().map(|(p, _)| p.clone()).collect();
@@ -199,13 +216,14 @@ pub fn generate(out: &Path, check: bool) -> Result<i32> {
 /// Writes (or with `check`, compares) the catalogue in `out`; `force` lets it replace
 /// catalogue paths that hold files unitpack did not write. Returns the exit status.
 pub fn generate_with(out: &Path, check: bool, force: bool) -> Result<i32> {
-    let plan = plan(out)?;
+    let progress = Progress::start();
+    let plan = plan(out, &progress)?;
     let mut report = String::new();
     for (rel, why) in &plan.kept {
         let _ = writeln!(report, "kept: {} ({why})", out.join(rel).display());
     }
     if check {
-        return check_report(out, &plan, report);
+        return check_report(out, &plan, report, progress);
     }
     let bad: Vec<&PathBuf> = plan
         .files
@@ -234,6 +252,13 @@ pub fn generate_with(out: &Path, check: bool, force: bool) -> Result<i32> {
     }
     // Stage every changed file before renaming any: an unwritable folder (or full disk)
     // fails here, and dropping the staged files leaves the tree as it was.
+    let changed: Vec<&PathBuf> = plan
+        .files
+        .iter()
+        .filter(|f| f.2 != State::Current)
+        .map(|f| &f.0)
+        .collect();
+    progress.stage(format!("writing {} files", changed.len()));
     let mut staged = Vec::new();
     for (rel, text, state) in &plan.files {
         if *state == State::Current {
@@ -268,14 +293,82 @@ pub fn generate_with(out: &Path, check: bool, force: bool) -> Result<i32> {
         out.display(),
         plan.files.len() - written
     );
+    progress.clear();
     output::print(&report)?;
+    progress.summary(&if written == 0 {
+        format!(
+            "wrote nothing: all {} files in {} were up to date",
+            plan.files.len(),
+            out.display()
+        )
+    } else {
+        let files = if written == 1 { "file" } else { "files" };
+        format!("wrote {written} {files}: {}", some_paths(out, &changed))
+    });
     if !failed.is_empty() {
         bail!("{}", failed.join("; "));
     }
     Ok(0)
 }
 
-fn check_report(out: &Path, plan: &Plan, mut report: String) -> Result<i32> {
+/// `generate`'s words to a person watching it, on stderr, where stderr is a terminal:
+/// while it works, a spinner naming the stage; at the end, one line saying what it wrote
+/// and how long it took. Elsewhere (a pipe, a file, CI) nothing: the stdout report is
+/// the same either way, so a script sees exactly what it saw before.
+struct Progress {
+    bar: ProgressBar,
+    start: Instant,
+    /// Whether stderr is a terminal.
+    attended: bool,
+}
+
+impl Progress {
+    fn start() -> Progress {
+        if !io::stderr().is_terminal() {
+            return Progress::hidden();
+        }
+        let bar = ProgressBar::new_spinner();
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} generate: {msg} ({elapsed})")
+                .expect("a valid template"),
+        );
+        bar.enable_steady_tick(Duration::from_millis(100));
+        Progress {
+            bar,
+            start: Instant::now(),
+            attended: true,
+        }
+    }
+
+    /// Says nothing: stderr is not a terminal.
+    fn hidden() -> Progress {
+        Progress {
+            bar: ProgressBar::hidden(),
+            start: Instant::now(),
+            attended: false,
+        }
+    }
+
+    /// What `generate` is doing now.
+    fn stage(&self, what: String) {
+        self.bar.set_message(what);
+    }
+
+    /// Removes the spinner, so that the report on stdout is not drawn over.
+    fn clear(&self) {
+        self.bar.finish_and_clear();
+    }
+
+    /// The last line: `generate: <what> in 1.2 s`.
+    fn summary(&self, what: &str) {
+        if self.attended {
+            let secs = self.start.elapsed().as_secs_f64();
+            let _ = writeln!(io::stderr(), "generate: {what} in {secs:.1} s");
+        }
+    }
+}
+
+fn check_report(out: &Path, plan: &Plan, mut report: String, progress: Progress) -> Result<i32> {
     let mut stale = 0;
     for (rel, _, state) in &plan.files {
         let p = out.join(rel).display().to_string();
@@ -299,9 +392,12 @@ fn check_report(out: &Path, plan: &Plan, mut report: String) -> Result<i32> {
         );
     }
     let total = plan.files.len();
+    let summary = format!("compared {total} files with {}", out.display());
+    progress.clear();
     if stale == 0 && plan.prune.is_empty() {
         let _ = writeln!(report, "{total} files in {} are up to date", out.display());
         output::print(&report)?;
+        progress.summary(&summary);
         return Ok(0);
     }
     let run = if plan.files.iter().any(|f| f.2 == State::Foreign) {
@@ -315,5 +411,6 @@ fn check_report(out: &Path, plan: &Plan, mut report: String) -> Result<i32> {
         plan.prune.len()
     );
     output::print(&report)?;
+    progress.summary(&summary);
     Ok(1)
 }

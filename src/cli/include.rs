@@ -47,8 +47,18 @@ pub struct Target<'a> {
 /// Whether `--out` names a directory: it ends in `/`, it is one, or several languages
 /// need one file each.
 fn is_dir_target(out: &Path, langs: usize) -> bool {
+    langs > 1 || ends_in_separator(out) || out.is_dir()
+}
+
+/// Whether the path as typed ends in `/` (the user's way of saying "a directory").
+fn ends_in_separator(out: &Path) -> bool {
     let s = out.as_os_str().to_string_lossy();
-    langs > 1 || s.ends_with('/') || s.ends_with(std::path::MAIN_SEPARATOR) || out.is_dir()
+    s.ends_with('/') || s.ends_with(std::path::MAIN_SEPARATOR)
+}
+
+/// The languages as `--lang` takes them: `wgsl,glsl`.
+fn lang_list(langs: &[Lang]) -> String {
+    langs.iter().map(|l| l.name()).collect::<Vec<_>>().join(",")
 }
 
 fn check_name(name: &str) -> Result<()> {
@@ -74,16 +84,28 @@ pub fn run(specs: &[Spec], langs: &[Lang], prefix: &str, target: Target) -> Resu
     }
     let langs = &unique[..];
     let text = |lang: Lang| gen_text_with(specs, lang, prefix, target.import_path);
-    let Some(out) = target.out else {
+    // `--out -` is standard output, as no --out is.
+    let Some(out) = target.out.filter(|o| !output::is_stdout(o)) else {
         let [lang] = langs else {
             bail!(
                 "--lang {} writes one file per language: add --out DIR/",
-                langs.iter().map(|l| l.name()).collect::<Vec<_>>().join(",")
+                lang_list(langs)
             );
         };
         output::print(&text(*lang)?)?;
         return Ok(0);
     };
+    if langs.len() > 1 && !ends_in_separator(out) && !out.is_dir() && out.extension().is_some() {
+        // `--lang wgsl,glsl --out x.txt` would otherwise make a directory named x.txt.
+        let dir = out.with_extension("");
+        bail!(
+            "--lang {} writes one file per language into a directory, and {} names a file; \
+             give a directory (--out {}/) or one language",
+            lang_list(langs),
+            out.display(),
+            dir.display()
+        );
+    }
     if !is_dir_target(out, langs.len()) {
         if target.name.is_some() {
             bail!(

@@ -102,7 +102,7 @@ pub enum Command {
         /// Prefix of every function name (WGSL has no preprocessor to avoid clashes).
         #[arg(long, default_value = DEFAULT_PREFIX)]
         prefix: String,
-        /// Write to FILE, or into a directory (see above), instead of stdout.
+        /// Write to FILE, or into a directory (see above), instead of stdout (`-`: stdout).
         #[arg(long, value_name = "FILE|DIR/")]
         out: Option<PathBuf>,
         /// File name stem of the files written into a directory.
@@ -131,6 +131,9 @@ pub enum Command {
     /// The proven bounds and error figures the includes state are kept for the next run
     /// of the same executable in $UNITPACK_CACHE_DIR/figures.txt (default: the platform's
     /// cache folder, ~/.cache/unitpack on Linux; set empty: no cache).
+    ///
+    /// On a terminal, stderr shows what it is doing and, at the end, what it wrote and how
+    /// long it took; piped, only the report (stdout) is printed.
     Generate {
         #[arg(long, value_name = "DIR", default_value = "generated")]
         out: PathBuf,
@@ -151,22 +154,22 @@ pub enum Command {
     /// RGB16 with --depth 16). Each texel goes through the CPU encoder or decoder, which
     /// computes what the emitted shader functions compute. OUT is written atomically; it
     /// may not be IN, and an existing OUT is replaced only with --force (so swapped
-    /// arguments cannot destroy a map). A progress bar shows on a terminal for maps of a
-    /// million texels or more.
+    /// arguments cannot destroy a map); OUT `-` writes the PNG to stdout. A progress bar
+    /// shows on a terminal for maps of a million texels or more.
+    ///
+    /// A map whose channels show it already holds texels (B = 0 in every texel, as rg,
+    /// dxt5nm and xra store them; R = 1 in every texel, as rxgb; R = G = B, as latc) is
+    /// refused by --to: its vectors are not normals.
+    #[command(group = clap::ArgGroup::new("direction").required(true).args(["to", "from"]))]
     ConvertNormalMap {
         /// The map to read (PNG).
         #[arg(value_name = "IN")]
         input: PathBuf,
-        /// The PNG file to write.
+        /// The PNG file to write (`-`: stdout).
         #[arg(value_name = "OUT")]
         output: PathBuf,
         /// Write the texels of this layout spec.
-        #[arg(
-            long,
-            value_name = "SPEC",
-            required_unless_present = "from",
-            conflicts_with = "from"
-        )]
+        #[arg(long, value_name = "SPEC")]
         to: Option<String>,
         /// Read the texels of this layout spec and write the conventional map.
         #[arg(long, value_name = "SPEC")]
@@ -232,7 +235,8 @@ pub struct StreamArgs {
     /// Format of the output, if it differs from --format.
     #[arg(long, value_enum)]
     pub output_format: Option<Format>,
-    /// Write to FILE atomically (only if every input line is good) instead of stdout.
+    /// Write to FILE atomically (only if every input line is good) instead of stdout
+    /// (`-`: stdout).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
     /// Replace a read-only FILE too.
@@ -273,6 +277,11 @@ pub fn run(cli: Cli) -> Result<i32> {
             with_figure_cache(|| include::run(&specs, &lang, &prefix, target))
         }
         Command::Generate { out, check, force } => {
+            if output::is_stdout(&out) {
+                anyhow::bail!(
+                    "generate writes a folder of files, which standard output (--out -) cannot hold: name a folder"
+                );
+            }
             with_figure_cache(|| generate_with(&out, check, force))
         }
         Command::ConvertNormalMap {
@@ -284,8 +293,8 @@ pub fn run(cli: Cli) -> Result<i32> {
             dxt1,
             force,
         } => {
-            // clap's `requires` yields to `conflicts_with` (--to and --from), so these
-            // pairings are checked here.
+            // clap's `requires` would yield to the group that makes --to and --from
+            // exclusive, so these pairings are checked here.
             if depth.is_some() && from.is_none() {
                 anyhow::bail!(
                     "--depth sets the conventional map --from writes; --to reads its depth from IN"
@@ -299,7 +308,7 @@ pub fn run(cli: Cli) -> Result<i32> {
                 (None, Some(spec)) => {
                     convert::Direction::From(spec, depth.as_deref() == Some("16"))
                 }
-                (None, None) => unreachable!("clap requires --to or --from"),
+                (None, None) => unreachable!("clap requires one of --to and --from"),
             };
             convert::run(&input, &output, dir, force)?;
             Ok(0)
@@ -362,7 +371,8 @@ fn run_stream(a: &StreamArgs, dir: Direction) -> Result<i32> {
     let to = a.output_format.unwrap_or(a.format);
     let stdin = std::io::stdin();
     let mut input = BufReader::with_capacity(64 * 1024, stdin.lock());
-    match &a.out {
+    // `--out -` is standard output, as no --out is.
+    match a.out.as_deref().filter(|p| !output::is_stdout(p)) {
         Some(path) => {
             let mut file = AtomicFile::create(path, a.force)?;
             transcode(&spec, dir, from, to, &mut input, &mut file)

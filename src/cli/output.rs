@@ -6,6 +6,13 @@
 use anyhow::{Context, Result};
 use std::fmt;
 use std::io::{self, BufWriter, ErrorKind, StdoutLock, Write};
+use std::path::Path;
+
+/// Whether an output path is `-`, which every verb reads as standard output (as `cat`,
+/// `tar` and most tools do), so that `--out -` never leaves a file named `-` behind.
+pub fn is_stdout(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
 
 /// The cause attached to the `BrokenPipe` error of a write to a closed stdout. A reader
 /// that went away asked for no more output; that is not an error worth a message.

@@ -17,14 +17,15 @@ pub struct Picture {
 }
 
 impl Picture {
-    /// What the image is, as error messages name it (`Rgb8`, `L16`, `Rgba8`, …).
+    /// What the image is, as error messages name it: `RGB8`, `L16`, `RGBA8`, … (the
+    /// spelling of the help text and of texture formats, not the `png` crate's `Rgb`).
     pub fn kind(&self) -> String {
         let channels = match self.color {
             ColorType::Grayscale => "L",
-            ColorType::GrayscaleAlpha => "La",
-            ColorType::Rgb => "Rgb",
-            ColorType::Rgba => "Rgba",
-            ColorType::Indexed => "Indexed",
+            ColorType::GrayscaleAlpha => "LA",
+            ColorType::Rgb => "RGB",
+            ColorType::Rgba => "RGBA",
+            ColorType::Indexed => "indexed ",
         };
         format!("{channels}{}", self.depth as u8)
     }

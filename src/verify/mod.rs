@@ -180,8 +180,19 @@ impl Report {
 
     pub fn table(&self) -> String {
         let mut s = format!("adapter: {} — driver: {}\n", self.adapter, self.driver);
+        // Each column is as wide as its longest entry (`glsl es 300/glslang` is wider
+        // than the usual 18), so that no row shifts the columns after it.
+        let width = |min: usize, field: fn(&Row) -> &str| {
+            let longest = self.rows.iter().map(|r| field(r).chars().count()).max();
+            longest.unwrap_or(0).max(min)
+        };
+        let (ws, wf, wp) = (
+            width(22, |r| &r.spec),
+            width(28, |r| &r.function),
+            width(18, |r| &r.path),
+        );
         s.push_str(&format!(
-            "{:<22} {:<28} {:<18} {:>10} {:>10}\n",
+            "{:<ws$} {:<wf$} {:<wp$} {:>10} {:>10}\n",
             "spec", "function", "path", "tested", "mismatches"
         ));
         for r in &self.rows {
@@ -195,7 +206,7 @@ impl Report {
                 .as_ref()
                 .map_or(String::new(), |o| format!("  (same code as {o})"));
             s.push_str(&format!(
-                "{:<22} {:<28} {:<18} {:>10} {:>10}{shared}\n",
+                "{:<ws$} {:<wf$} {:<wp$} {:>10} {:>10}{shared}\n",
                 r.spec, r.function, r.path, r.tested, mm
             ));
         }

@@ -74,25 +74,8 @@ pub fn filled_cache() -> &'static Filled {
             cache.join("figures.txt").is_file(),
             "filling the figure cache: {run:?}"
         );
-        // The refresh command rewrites the committed generated/ here, from the filled
-        // cache, before any test reads it (each such test calls `committed_generated`).
-        if std::env::var_os("UNITPACK_REFRESH").is_some_and(|v| !v.is_empty()) {
-            let mut g = Command::new(env!("CARGO_BIN_EXE_unitpack"));
-            g.env("UNITPACK_CACHE_DIR", &cache)
-                .arg("generate")
-                .arg("--out")
-                .arg(manifest_dir().join("generated"));
-            let r = run_cmd(g, b"");
-            assert_eq!(r.code, 0, "refreshing generated/: {r:?}");
-        }
         Filled { cache, tree, run }
     })
-}
-
-/// The committed generated/, after the refresh command (if set) has rewritten it.
-pub fn committed_generated() -> PathBuf {
-    filled_cache();
-    manifest_dir().join("generated")
 }
 
 /// `args` run with the figure cache off: every bound proven, every figure measured here.
@@ -353,13 +336,33 @@ pub fn generated_copy(dir: &Path) {
     }
 }
 
+/// Whether this run rewrites the stored files the tests compare with (the project's one
+/// refresh command: `UNITPACK_REFRESH=1 cargo test --release`).
+pub fn refreshing() -> bool {
+    std::env::var_os("UNITPACK_REFRESH").is_some()
+}
+
+/// The committed `generated/` folder. When [`refreshing`], `generate` rewrites it first,
+/// once per run, so that every test that holds it to the code (up to date, deterministic,
+/// its manifest, its Regenerate lines) reads the rewritten tree and passes.
+pub fn committed_generated() -> PathBuf {
+    static REFRESHED: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+    let dir = manifest_dir().join("generated");
+    if refreshing() {
+        REFRESHED.get_or_init(|| {
+            let r = run_in(Some(&manifest_dir()), &["generate"], "");
+            assert_eq!(r.code, 0, "refreshing generated/: {r:?}");
+        });
+    }
+    dir
+}
+
 /// Holds `actual` to the stored file `rel` (below tests/cli/), which this test wrote from
-/// the tool's output. With `UNITPACK_REFRESH` set (the project's one refresh command,
-/// `UNITPACK_REFRESH=1 cargo test --release`) the file is rewritten instead, and the test
+/// the tool's output. When [`refreshing`], the file is rewritten instead, and the test
 /// passes.
 pub fn matches_stored(rel: &str, actual: &str) {
     let path = manifest_dir().join("tests/cli").join(rel);
-    if std::env::var_os("UNITPACK_REFRESH").is_some() {
+    if refreshing() {
         std::fs::write(&path, actual)
             .unwrap_or_else(|e| panic!("cannot rewrite {}: {e}", path.display()));
         return;
@@ -380,4 +383,29 @@ pub fn matches_stored(rel: &str, actual: &str) {
             actual.lines().nth(line).unwrap_or("(end of output)"),
         );
     }
+}
+
+/// Runs `args` on a pseudo-terminal, as a person at a terminal runs them: `script`
+/// (util-linux; Debian's bsdutils) gives the binary a terminal as stdin, stdout and
+/// stderr. Returns the exit status and everything the terminal showed.
+pub fn on_a_terminal(dir: Option<&Path>, args: &[&str]) -> (i32, String) {
+    let quote = |s: &str| format!("'{}'", s.replace('\'', r"'\''"));
+    let line: Vec<String> = std::iter::once(env!("CARGO_BIN_EXE_unitpack"))
+        .chain(args.iter().copied())
+        .map(quote)
+        .collect();
+    let mut cmd = Command::new("script");
+    cmd.args(["-q", "-e", "-c", &line.join(" "), "/dev/null"])
+        .env("UNITPACK_CACHE_DIR", &filled_cache().cache)
+        .env("TERM", "xterm");
+    if let Some(d) = dir {
+        cmd.current_dir(d);
+    }
+    let out = cmd.stdin(Stdio::null()).output().unwrap_or_else(|e| {
+        panic!("cannot run `script` ({e}): install util-linux (Debian: bsdutils)")
+    });
+    (
+        out.status.code().expect("not killed by a signal"),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
 }

@@ -472,3 +472,140 @@ fn bad_input_is_refused_and_loses_nothing() {
     assert_eq!((t.width, t.height), (W, H));
     assert!(t.pixels().all(|p| p[2..] == [0, 255]), "rg: B = 0, A = 1");
 }
+
+/// The exit status 2 and stderr of a conversion that must fail, having written no `out`.
+fn refused(args: &[&str], out: &Path) -> String {
+    let r = unitpack(args);
+    let err = String::from_utf8_lossy(&r.stderr).into_owned();
+    assert_eq!(r.status.code(), Some(2), "{args:?}: {err}");
+    assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    err
+}
+
+/// A map of texels is not a map of normals, but `--to` ignores alpha (where dxt5nm, rxgb,
+/// latc and xra keep x), and the binary before this converted one without a word into
+/// nonsense. Each layout's texels, as `--to` writes them, are refused when given to `--to`
+/// again: the error names the channel pattern that gave them away and `--from`.
+#[test]
+fn texels_given_to_to_are_refused() {
+    let tmp = dir();
+    let d = tmp.path();
+    let input = d.join("in.png");
+    rgb8_map().save(&input);
+    let again = d.join("again.png");
+    for (spec, extra, pattern) in [
+        ("xy16_rg", None, "B = 0 in every texel"),
+        ("xy16p:layout=dxt5nm", None, "B = 0 in every texel"),
+        ("paraboloid16_xra", None, "B = 0 in every texel"),
+        ("paraboloid16_xra", Some("--dxt1"), "B = 0 in every texel"),
+        ("hemioct16:layout=rxgb", None, "R = 1 in every texel"),
+        ("xy16:layout=latc", None, "R = G = B in every texel"),
+    ] {
+        let texels = d.join(format!("{spec}.png"));
+        let mut args = vec![
+            "convert-normal-map",
+            arg(&input),
+            arg(&texels),
+            "--to",
+            spec,
+        ];
+        args.extend(extra);
+        args.push("--force");
+        let r = unitpack(&args);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let err = refused(
+            &[
+                "convert-normal-map",
+                arg(&texels),
+                arg(&again),
+                "--to",
+                spec,
+            ],
+            &again,
+        );
+        assert!(
+            err.contains(&format!(
+                "{} looks like a map of texels, not a conventional normal map: {pattern}",
+                texels.display()
+            )) && err.contains("with --from SPEC"),
+            "{spec}: {err}"
+        );
+    }
+}
+
+/// The usage line shows both directions (it showed `--to` alone before, as if `--from`
+/// did not exist), and a call with neither or both says which to give.
+#[test]
+fn usage_names_to_and_from() {
+    let r = unitpack(&["convert-normal-map", "--help"]);
+    let help = String::from_utf8_lossy(&r.stdout);
+    let usage = help
+        .lines()
+        .find(|l| l.starts_with("Usage: "))
+        .unwrap_or_else(|| panic!("no usage line: {help}"));
+    assert!(
+        usage.contains("--to <SPEC>") && usage.contains("--from <SPEC>"),
+        "{usage}"
+    );
+    let out = Path::new("never-written.png");
+    let err = refused(&["convert-normal-map", "in.png", arg(out)], out);
+    assert!(err.contains("--to <SPEC>|--from <SPEC>"), "{err}");
+    let err = refused(
+        &[
+            "convert-normal-map",
+            "in.png",
+            arg(out),
+            "--to",
+            "xy16_rg",
+            "--from",
+            "xy16_rg",
+        ],
+        out,
+    );
+    assert!(err.contains("cannot be used with"), "{err}");
+}
+
+/// Messages name an image's format as the help and texture formats do, `RGB8`, `RGBA8`,
+/// `L8`; the binary before this printed the `png` crate's names (`in.png is Rgb8`).
+#[test]
+fn formats_are_named_as_the_help_names_them() {
+    let tmp = dir();
+    let d = tmp.path();
+    let (input, gray, out) = (d.join("in.png"), d.join("gray.png"), d.join("out.png"));
+    rgb8_map().save(&input);
+    Image::new(4, 4, ColorType::Grayscale, BitDepth::Eight, vec![128; 16]).save(&gray);
+    let err = refused(
+        &[
+            "convert-normal-map",
+            arg(&input),
+            arg(&out),
+            "--from",
+            "xy16_rg",
+        ],
+        &out,
+    );
+    assert!(
+        err.contains(&format!(
+            "{} is RGB8: a map of texels is RGBA8",
+            input.display()
+        )),
+        "{err}"
+    );
+    let err = refused(
+        &[
+            "convert-normal-map",
+            arg(&gray),
+            arg(&out),
+            "--to",
+            "xy16_rg",
+        ],
+        &out,
+    );
+    assert!(
+        err.contains(&format!(
+            "{} is L8: a normal map is RGB8 or RGB16",
+            gray.display()
+        )),
+        "{err}"
+    );
+}

@@ -153,7 +153,7 @@ fn generate_is_deterministic() {
     let fill = filled_cache();
     let a = fill.tree.as_path();
     generated_into(a, fill.run.clone());
-    let committed = manifest_dir().join("generated");
+    let committed = committed_generated();
     let files = tree(a);
     assert_eq!(files, tree(&committed));
     let same_as_committed = |dir: &Path| {
@@ -179,10 +179,12 @@ fn generate_is_deterministic() {
 fn committed_generated_directory_is_up_to_date() {
     // The figures may come from the test binary's shared cache: `generate_is_deterministic`
     // holds a run that proves them all afresh to the same tree.
+    committed_generated();
     let r = run_in(Some(&manifest_dir()), &["generate", "--check"], "");
     assert_eq!(
         r.code, 0,
-        "generated/ is stale; run `cargo run --release -- generate`: {r:?}"
+        "generated/ is stale; run `cargo run --release -- generate` or \
+         `UNITPACK_REFRESH=1 cargo test --release`: {r:?}"
     );
     assert!(
         r.stdout.contains("files in generated are up to date"),
@@ -456,4 +458,67 @@ fn committed_generated_directory_has_its_manifest() {
     let mut want = expected_files();
     want.remove(Path::new(".unitpack-manifest"));
     assert_eq!(listed, want);
+}
+
+/// On a terminal, `generate` says what it is doing while it works and, at the end, on
+/// stderr, what it wrote and how long it took; piped, stderr stays empty and stdout holds
+/// the report alone, as scripts read it. The binary before this printed nothing on stderr
+/// on a terminal either, so the terminal half fails on it.
+#[test]
+fn generate_on_a_terminal_says_what_it_does_and_how_long_it_took() {
+    let dir = tempdir();
+    let out = dir.path().join("out");
+    let out_arg = out.to_str().unwrap();
+    let (code, shown) = on_a_terminal(None, &["generate", "--out", out_arg]);
+    assert_eq!(code, 0, "{shown}");
+    // The spinner names each stage as it comes (the first is always drawn).
+    assert!(
+        shown.contains("generate: measuring the error figures"),
+        "{shown}"
+    );
+    let n = expected_files().len();
+    let last = shown
+        .lines()
+        .rev()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or_default();
+    assert!(
+        last.starts_with(&format!("generate: wrote {n} files: {out_arg}/"))
+            && last.contains(" and ")
+            && is_seconds(last),
+        "{shown}"
+    );
+    let (code, shown) = on_a_terminal(None, &["generate", "--out", out_arg]);
+    assert_eq!(code, 0, "{shown}");
+    assert!(
+        shown.contains(&format!(
+            "generate: wrote nothing: all {n} files in {out_arg} were up to date in "
+        )),
+        "{shown}"
+    );
+    let (code, shown) = on_a_terminal(None, &["generate", "--out", out_arg, "--check"]);
+    assert_eq!(code, 0, "{shown}");
+    assert!(
+        shown.contains(&format!("generate: compared {n} files with {out_arg} in ")),
+        "{shown}"
+    );
+    // Piped: the report alone, as before.
+    for args in [
+        &["generate", "--out", out_arg][..],
+        &["generate", "--out", out_arg, "--check"],
+    ] {
+        let r = run(args);
+        assert_eq!(r.code, 0, "{r:?}");
+        assert!(r.stderr.is_empty(), "{args:?} piped wrote to stderr: {r:?}");
+        assert!(!r.stdout.contains("generate: "), "{r:?}");
+    }
+}
+
+/// Whether `line` ends in a duration as `generate` prints it: `in 1.2 s`.
+fn is_seconds(line: &str) -> bool {
+    let Some(rest) = line.trim_end().strip_suffix(" s") else {
+        return false;
+    };
+    let secs = rest.rsplit(" in ").next().unwrap_or_default();
+    secs.parse::<f64>().is_ok_and(|s| s >= 0.0) && secs.contains('.')
 }

@@ -734,3 +734,40 @@ fn gen_writes_c_headers_and_wgsl_import_paths() {
     );
     assert!(err.contains("invalid WGSL import path"), "{err}");
 }
+
+/// Several languages go into a directory, one file each; `--out x.txt` names a file, so it
+/// is refused and nothing is created (the binary before this made a directory named
+/// x.txt without a word). A directory whose name has a dot is still one when it ends
+/// in `/`.
+#[test]
+fn gen_refuses_a_file_name_for_several_languages() {
+    let dir = tempdir();
+    let out = dir.path().join("x.txt");
+    let err = fails(
+        &[
+            "gen",
+            "oct16",
+            "--lang",
+            "wgsl,glsl",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(
+        err.contains("--lang wgsl,glsl writes one file per language into a directory")
+            && err.contains(&format!("{} names a file", out.display()))
+            && err.contains(&format!("--out {}/", dir.path().join("x").display())),
+        "{err}"
+    );
+    assert!(tree(dir.path()).is_empty(), "nothing created");
+    let slashed = format!("{}/", dir.path().join("shaders.v2").display());
+    ok(&["gen", "oct16", "--lang", "wgsl,glsl", "--out", &slashed]);
+    assert_eq!(
+        tree(dir.path()),
+        BTreeSet::from([
+            PathBuf::from("shaders.v2/oct16.glsl"),
+            PathBuf::from("shaders.v2/oct16.wgsl"),
+        ])
+    );
+}

@@ -2,7 +2,9 @@
 //! into a closed pipe ends quietly and into a full device with a one-line error.
 
 use crate::common::*;
+use std::collections::BTreeSet;
 use std::io::Write;
+use std::path::PathBuf;
 use std::process::Stdio;
 
 fn closed_pipe() -> Stdio {
@@ -88,4 +90,52 @@ fn every_verb_into_a_closed_pipe_and_a_full_device() {
         );
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
+}
+
+/// `--out -` is standard output for `gen`, `encode` and `decode`, and OUT `-` for
+/// `convert-normal-map`: the same bytes as without it, and no file named `-`. `generate`
+/// writes a folder, which stdout cannot hold: refused. Before, each of them wrote (or
+/// made a folder) named `-` in the working directory and printed nothing.
+#[test]
+fn out_dash_is_standard_output_for_every_verb() {
+    let dir = tempdir();
+    let d = Some(dir.path());
+    let gen_args = ["gen", "oct16", "--lang", "wgsl"];
+    let r = run_in(d, &[&gen_args[..], &["--out", "-"]].concat(), "");
+    assert_eq!(r.code, 0, "{r:?}");
+    assert_eq!(r.stdout, ok(&gen_args).stdout);
+    let vectors = "0 0 1\n0.6 0 0.8\n";
+    let codes = run_stdin(&["encode", "oct16"], vectors).stdout;
+    let r = run_in(d, &["encode", "oct16", "--out", "-"], vectors);
+    assert_eq!((r.code, &r.stdout), (0, &codes), "{r:?}");
+    let r = run_in(d, &["decode", "oct16", "--out", "-"], &codes);
+    assert_eq!(
+        (r.code, &r.stdout),
+        (0, &run_stdin(&["decode", "oct16"], &codes).stdout),
+        "{r:?}"
+    );
+    // A map: 2×1 texels, straight up and tilted, written as an RGB8 PNG.
+    let map = dir.path().join("map.png");
+    let mut png = Vec::new();
+    let mut e = png::Encoder::new(&mut png, 2, 1);
+    e.set_color(png::ColorType::Rgb);
+    let mut w = e.write_header().unwrap();
+    w.write_image_data(&[128, 128, 255, 200, 128, 220]).unwrap();
+    w.finish().unwrap();
+    std::fs::write(&map, &png).unwrap();
+    let convert = ["convert-normal-map", "map.png", "--to", "xy16_rg"];
+    let r = run_in(d, &[&convert[..2], &["-"], &convert[2..]].concat(), "");
+    assert_eq!(r.code, 0, "{r:?}");
+    run_in(d, &[&convert[..2], &["rg.png"], &convert[2..]].concat(), "");
+    let file = dir.path().join("rg.png");
+    assert_eq!(r.out, std::fs::read(&file).unwrap(), "the PNG, on stdout");
+    std::fs::remove_file(file).unwrap();
+    let r = run_in(d, &["generate", "--out", "-"], "");
+    assert_eq!(r.code, 2, "{r:?}");
+    assert!(r.stderr.contains("--out -") && r.stdout.is_empty(), "{r:?}");
+    assert_eq!(
+        tree(dir.path()),
+        BTreeSet::from([PathBuf::from("map.png")]),
+        "nothing but the map"
+    );
 }

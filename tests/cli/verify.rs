@@ -136,3 +136,106 @@ fn verify_portable_reports_codes_that_allowed_deviations_change() {
     assert_eq!(r.code, 0, "helpers have no packed encoder: {r:?}");
     assert!(r.stdout.contains("snorm12x2"), "{r:?}");
 }
+
+/// `verify --portable`'s table explains its cells: every form a cell takes (`.`, `N/Ku`,
+/// `N/NaN`, `N!`, `Nx`) and the proven column are in a legend under it, every cell of
+/// the table has one of those forms, and each ends under its class's name (a wide cell
+/// widens its column). The binary before this printed the table alone, and a cell such as
+/// `16318/877203419u` pushed the rest of its row right.
+#[test]
+fn verify_portable_explains_its_cells() {
+    let r = run(&["verify", "--portable", "spherical16"]);
+    assert_eq!(r.code, 0, "{r:?}");
+    for s in [
+        "cells:  .       no output changed",
+        "N/Ku    N float outputs changed, by at most K units in the last place",
+        "N/NaN",
+        "N!      N packed codes changed under a class the guarantee covers: a failure\n                (covered: div, sqrt, fma, denorm, zero)",
+        "Nx      N packed codes changed under a class it does not cover\n                (not covered: excess, reassoc, round)",
+        "proven: ≤B (seen S)",
+    ] {
+        assert!(r.stdout.contains(s), "no legend for {s:?}: {r:?}");
+    }
+    let header = r.stdout.lines().nth(1).expect("the header");
+    // spec, function, items, one column per class, proven (2^-24).
+    let classes = header
+        .split_whitespace()
+        .skip(3)
+        .take_while(|w| *w != "proven")
+        .count();
+    assert!(classes >= 5, "{header}");
+    let mut cells = 0;
+    let names = &word_ends(header)[3..3 + classes];
+    for row in r.stdout.lines().filter(|l| l.starts_with("spherical16 ")) {
+        // spec, function, (role), items, then one cell per class.
+        let words: Vec<&str> = row.split_whitespace().collect();
+        assert_eq!(
+            &word_ends(row)[4..4 + classes],
+            names,
+            "{row:?} under {header:?}"
+        );
+        for cell in &words[4..4 + classes] {
+            let (n, rest) = cell.split_at(cell.find(|c: char| !c.is_ascii_digit()).unwrap_or(0));
+            let known = match rest {
+                "." => n.is_empty(),
+                "!" | "x" | "/NaN" => !n.is_empty(),
+                u => {
+                    let k = u.strip_prefix('/').and_then(|k| k.strip_suffix('u'));
+                    !n.is_empty() && k.is_some_and(|k| k.parse::<u64>().is_ok())
+                }
+            };
+            assert!(known, "cell {cell:?} of {row:?} is not in the legend");
+            cells += 1;
+        }
+    }
+    assert!(cells >= 2 * classes, "{r:?}");
+}
+
+/// Every row of `verify`'s table keeps the columns of the header, the static check
+/// `glsl es 300/glslang` too: its path is one character longer than the column was, and
+/// on the binary before this it pushed `tested` and `mismatches` one column right.
+#[test]
+fn verify_table_columns_line_up() {
+    let r = run(&["verify", "oct16", "--lang", "glsl"]);
+    assert_eq!(r.code, 0, "{r:?}");
+    let lines: Vec<&str> = r.stdout.lines().collect();
+    let header = lines
+        .iter()
+        .find(|l| l.starts_with("spec "))
+        .expect("a header");
+    let end_of = |line: &str, word: &str| {
+        line.find(word)
+            .map(|i| line[..i + word.len()].chars().count())
+    };
+    let (tested, mismatches) = (end_of(header, "tested"), end_of(header, "mismatches"));
+    let rows: Vec<&str> = lines
+        .iter()
+        .copied()
+        .filter(|l| l.starts_with("oct16 "))
+        .collect();
+    assert!(
+        rows.iter().any(|l| l.contains("glsl es 300/glslang")),
+        "{r:?}"
+    );
+    for row in rows {
+        // The two right-aligned numbers end where their headings end.
+        let row = row.split("  (same code as").next().unwrap_or_default();
+        let ends = word_ends(row);
+        let n = ends.len();
+        assert!(n >= 2, "{row:?}");
+        assert_eq!(
+            (Some(ends[n - 2]), Some(ends[n - 1])),
+            (tested, mismatches),
+            "{row:?} under {header:?}"
+        );
+    }
+}
+
+/// Where each word of `line` ends, in characters: right-aligned cells line up when these
+/// equal their headings'.
+fn word_ends(line: &str) -> Vec<usize> {
+    let chars: Vec<char> = line.chars().collect();
+    (1..=chars.len())
+        .filter(|&i| chars[i - 1] != ' ' && chars.get(i).is_none_or(|&c| c == ' '))
+        .collect()
+}
