@@ -381,9 +381,11 @@ fn unknown_codec(given: &str) -> SpecError {
 /// outside that file names it.
 pub trait Family: Sync + 'static {
     fn info(&self) -> &'static Info;
-    /// Whether the precise (`p`) encoder is offered: derived from the codec
-    /// (`Codec::EXACT_SEARCH`), since it is offered exactly where its search is decided
-    /// in exact arithmetic, so that the precise packed encoder is portable.
+    /// Whether the precise (`p`) encoder is offered. A codec family returns its codec's
+    /// `Codec::EXACT_SEARCH` (offered only where the search is decided in exact
+    /// arithmetic, so the precise packed encoder is portable); a family that has no such
+    /// codec, or whose search does not fit its layout (`snorm11_11_10`), returns a
+    /// literal with its reason beside it.
     fn precise(&self) -> bool;
     /// Checks that combine the size and options (each option's own range is checked by
     /// the parser).
