@@ -144,11 +144,57 @@ pub trait Float:
     }
     /// Calls a helper function. Evaluating, that is just `f(a)`; tracing, the helper is
     /// traced once into its own shader function and the call site prints a call.
+    /// [`helper!`] writes the common call, a model function of up to four arguments
+    /// named after itself.
     #[inline(always)]
     fn call<A: Value, R: Value>(_name: &'static str, a: A, f: impl FnOnce(A) -> R) -> R {
         f(a)
     }
 }
+
+/// Calls a function of the model as a helper function of the emitted code
+/// ([`Float::call`]), named after it, with its arguments packed as the helper's one
+/// argument and unpacked again:
+///
+/// - `helper!(atan2_pi(y, x))` is `F::call("atan2_pi", (y, x), |(y, x)| atan2_pi(y, x))`;
+/// - `helper!(self.fixed_point(i))` calls a method, named after the method;
+/// - `helper!("fixed_sincos_pi" => fixed_trig::sincos_pi(t))` names the helper where
+///   the function's name is taken or is a path.
+///
+/// `F` is the caller's float type parameter, which every model function calls `F`; one
+/// to four arguments.
+macro_rules! helper {
+    ($name:literal => $recv:ident . $m:ident ($($a:expr),+ $(,)?)) => {
+        $crate::model::num::helper!(@call $name, [$recv.$m], $($a),+)
+    };
+    ($name:literal => $($f:ident)::+ ($($a:expr),+ $(,)?)) => {
+        $crate::model::num::helper!(@call $name, [$($f)::+], $($a),+)
+    };
+    ($recv:ident . $m:ident ($($a:expr),+ $(,)?)) => {
+        $crate::model::num::helper!(@call stringify!($m), [$recv.$m], $($a),+)
+    };
+    ($f:ident ($($a:expr),+ $(,)?)) => {
+        $crate::model::num::helper!(@call stringify!($f), [$f], $($a),+)
+    };
+    (@call $name:expr, [$($f:tt)+], $a:expr) => {
+        F::call($name, $a, #[inline(always)] |a| $($f)+(a))
+    };
+    (@call $name:expr, [$($f:tt)+], $a:expr, $b:expr) => {
+        F::call($name, ($a, $b), #[inline(always)] |(a, b)| $($f)+(a, b))
+    };
+    (@call $name:expr, [$($f:tt)+], $a:expr, $b:expr, $c:expr) => {
+        F::call($name, ($a, ($b, $c)), #[inline(always)] |(a, (b, c))| $($f)+(a, b, c))
+    };
+    (@call $name:expr, [$($f:tt)+], $a:expr, $b:expr, $c:expr, $d:expr) => {
+        F::call(
+            $name,
+            ($a, ($b, ($c, $d))),
+            #[inline(always)]
+            |(a, (b, (c, d)))| $($f)+(a, b, c, d),
+        )
+    };
+}
+pub(crate) use helper;
 
 impl Lane for f32 {
     const KIND: Kind = Kind::F32;

@@ -21,45 +21,33 @@
 //! each code one rounded product of an exact integer, so the packed code is a function of
 //! the input alone on every path; the decoder uses [`crate::codecs::toolkit::trig`], never a builtin.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::canonical_or_z;
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_trig;
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::codecs::angular::spherical::{fixed_angles, float_angles};
 use crate::codecs::toolkit::trig::sincos_pi;
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: LatlongFamily = LatlongFamily;
-
-pub struct LatlongFamily;
-
-static INFO: Info = Info {
-    name: "latlong",
-    title: "latitude–longitude patches numbered by ring, 2^h rings × (2^h - 1) azimuths",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Cigolle et al. 2014 §2 (Smith et al. 2012), fast decoder",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (ring 0)",
-    decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
-    options: &[],
-};
-
-impl Family for LatlongFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Latlong::EXACT_SEARCH
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Latlong { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<Latlong> = CodecFamily::new(
+    Info {
+        name: "latlong",
+        title: "latitude–longitude patches numbered by ring, 2^h rings × (2^h - 1) azimuths",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Cigolle et al. 2014 §2 (Smith et al. 2012), fast decoder",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (ring 0)",
+        decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+        options: &[],
+    },
+    |bits| Latlong { bits },
+    codec_functions,
+);
 
 #[derive(Clone, Copy, Debug)]
 pub struct Latlong {
@@ -70,9 +58,7 @@ impl Latlong {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<Latlong, SpecError> {
-        Ok(Latlong {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     fn field(&self) -> Quant {
@@ -120,7 +106,7 @@ impl Codec for Latlong {
 #[inline(always)]
 pub fn grid_direction<F: Float>(p: V2<F>) -> V3<F> {
     let phi = (p.x * F::c(2.0) - F::c(1.0)).named("phi");
-    let st = F::call("sincos_pi", p.y, #[inline(always)] |a| sincos_pi(a)).named("st");
-    let sp = F::call("sincos_pi", phi, #[inline(always)] |a| sincos_pi(a)).named("sp");
+    let st = helper!(sincos_pi(p.y)).named("st");
+    let sp = helper!(sincos_pi(phi)).named("sp");
     V3::new(sp.y * st.x, sp.x * st.x, st.y)
 }

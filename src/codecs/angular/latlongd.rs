@@ -46,6 +46,7 @@
 //! ([`fixed_trig`]), quotients by comparing products ([`fixed_ratio`]), conversions of
 //! words above `2^24` by [`float_of`], so every implementation computes the same.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Domain, unpack};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_ratio, float_of, root_of};
 use crate::codecs::core::info::{Info, Sizes};
@@ -86,7 +87,7 @@ pub const RINGS: [(u32, u32); 3] = [(16, 227), (24, 3629), (32, 58075)];
 const TURN_BITS: u32 = 24;
 
 impl Family for LatlongDFamily {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {
@@ -280,7 +281,7 @@ pub fn encode<F: Float>(v: V3<F>, ring: V2<F::U>) -> F::U {
 #[inline(always)]
 pub fn encode_float<F: Float>(bits: u32, v: V3<F>, ring: V2<F::U>) -> V2<F> {
     let q = fields(bits);
-    let code = F::call("encode", (v, ring), #[inline(always)] |(v, r)| encode(v, r));
+    let code = helper!(encode(v, ring));
     crate::codecs::core::codec::dequantize(&q, unpack::<F, V2<F>, F::U>(&q, code))
 }
 

@@ -38,13 +38,13 @@
 //! could be nearer, both in the fixed-point measure (exactly) and in the decoder's
 //! floats (to `2^-18`).
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_root, float_of, root, sum_of_squares};
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, fixed_target};
 use crate::codecs::toolkit::fixed_trig::{self, FINE};
@@ -52,61 +52,47 @@ use crate::codecs::toolkit::trig::{atan2_pi, sincos_pi};
 use crate::model::{Bool, Float, Lane, Uint, V2, V3};
 use std::sync::OnceLock;
 
-pub static FAMILY: SfibFamily = SfibFamily;
-
-pub struct SfibFamily;
-
-static INFO: Info = Info {
-    name: "sfib",
-    title: "spherical Fibonacci point set, the code is the point's index",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Keinert et al. 2015 (Spherical Fibonacci Mapping), beyond the survey",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (index 0); the encoder returns the nearest point to within 2^-18 (checked by brute force)",
-    decode_note: "every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7)",
-    options: &[],
-};
-
-impl Family for SfibFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Sfib::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        match name {
-            "index_direction" => Some(
-                "The direction of point `i`: `z` from the index's distance to the nearer pole, \
-                 `φ = 2π·frac(i·(Φ - 1))` in 64-bit fixed point from 32-bit products."
-                    .into(),
-            ),
-            "fixed_point" => Some(
-                "Point `i` in fixed point (units of 2^-21), its root decided by comparing squares \
-                 and every product rounded or floored before a sum: a function of `i` alone, within \
-                 a few units of the decoder's point."
-                    .into(),
-            ),
-            "fixed_sincos_pi" => Some(
-                "(sin(π·t), cos(π·t)) in fixed point: `t` and the results in units of 2^-24, every \
-                 product rounded to a unit before the next sum."
-                    .into(),
-            ),
-            "encode_index" => Some(
-                "The index of the point nearest the input: the nine lattice points around the \
-                 input in the local Fibonacci lattice, compared by the squared distance (summed \
-                 exactly in integers, rounded once) of their fixed-point decodes to the input's \
-                 fixed-point direction, the lower index on ties, so that no rounding latitude of an \
-                 implementation can change the code."
-                    .into(),
-            ),
-            _ => None,
-        }
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Sfib { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<Sfib> = CodecFamily::new(
+    Info {
+        name: "sfib",
+        title: "spherical Fibonacci point set, the code is the point's index",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Keinert et al. 2015 (Spherical Fibonacci Mapping), beyond the survey",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (index 0); the encoder returns the nearest point to within 2^-18 (checked by brute force)",
+        decode_note: "every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7)",
+        options: &[],
+    },
+    |bits| Sfib { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| match name {
+    "index_direction" => Some(
+        "The direction of point `i`: `z` from the index's distance to the nearer pole, \
+         `φ = 2π·frac(i·(Φ - 1))` in 64-bit fixed point from 32-bit products."
+            .into(),
+    ),
+    "fixed_point" => Some(
+        "Point `i` in fixed point (units of 2^-21), its root decided by comparing squares \
+         and every product rounded or floored before a sum: a function of `i` alone, within \
+         a few units of the decoder's point."
+            .into(),
+    ),
+    "fixed_sincos_pi" => Some(
+        "(sin(π·t), cos(π·t)) in fixed point: `t` and the results in units of 2^-24, every \
+         product rounded to a unit before the next sum."
+            .into(),
+    ),
+    "encode_index" => Some(
+        "The index of the point nearest the input: the nine lattice points around the \
+         input in the local Fibonacci lattice, compared by the squared distance (summed \
+         exactly in integers, rounded once) of their fixed-point decodes to the input's \
+         fixed-point direction, the lower index on ties, so that no rounding latitude of an \
+         implementation can change the code."
+            .into(),
+    ),
+    _ => None,
+});
 
 /// `2^64·(Φ - 1) = 2^64/Φ`, rounded down: the longitude step in 64-bit fixed point.
 pub const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -131,9 +117,7 @@ impl Sfib {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<Sfib, SpecError> {
-        Ok(Sfib {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     /// The number of points, `n = 2^b`.
@@ -226,7 +210,7 @@ impl Sfib {
         let r = (u * (F::c(2.0) - u)).sqrt().named("r");
         // Half turns in [-1, 1): 2^-23 per step of the 24-bit longitude.
         let t = F::c(-1.0) + longitude(i).to_f() * F::c(2f32.powi(-23));
-        let sc = F::call("sincos_pi", t, #[inline(always)] |a| sincos_pi(a)).named("sc");
+        let sc = helper!(sincos_pi(t)).named("sc");
         V3::new(r * sc.y, r * sc.x, z)
     }
 
@@ -251,7 +235,7 @@ impl Sfib {
         let z = F::sel(north, zm, -zm);
         // Half turns in units of 2^-24, in [-2^24, 2^24).
         let t = F::c(-FINE as f32) + longitude(i).to_f() * F::c(2.0);
-        let sc = F::call("fixed_sincos_pi", t, #[inline(always)] |a| fixed_trig::sincos_pi(a)).named("sc");
+        let sc = helper!("fixed_sincos_pi" => fixed_trig::sincos_pi(t)).named("sc");
         let scale = F::c((1.0 / FINE) as f32);
         V3::new(
             (rho * sc.y * scale).round(),
@@ -288,7 +272,7 @@ impl Sfib {
         // `1 - |z| = ρ²/(1 + |z|)`, which keeps its digits near the pole.
         let below = (rho2 / (F::c(1.0) + u.z.abs())).named("below");
         let dz = (F::c((EPSILON * self.step()) as f32) - below).named("dz");
-        let t = F::call("atan2_pi", (u.y, u.x), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("t");
+        let t = helper!(atan2_pi(u.y, u.x)).named("t");
         let t = F::sel(south, F::c(self.mirror_turn() as f32) - t, t).named("tn");
         // The lattice basis for the query's `1 - z²`: the last row whose least value it reaches.
         let rows = self.rows();
@@ -328,7 +312,7 @@ impl Sfib {
                 // Before the pole: reflect onto the real point `-1 - i`.
                 let i = F::U::sel(c(NEGATIVE - 1).lt(i), c(u32::MAX).wrapping_sub(i), i);
                 let i = F::U::sel(south, last.wrapping_sub(i), i) & last;
-                let p = F::call("fixed_point", i, #[inline(always)] |i| self.fixed_point(i));
+                let p = helper!(self.fixed_point(i));
                 let e = (p - aim).map(#[inline(always)] |x| x.abs().to_u());
                 let d = sum_of_squares::<F, 3>([e.x, e.y, e.z]).named("d");
                 best = Some(match best {
@@ -420,13 +404,13 @@ impl Codec for Sfib {
     #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: V2<F>) -> V3<F> {
         let i = self.index(codes).named("i");
-        F::call("index_direction", i, #[inline(always)] |i| self.index_direction(i))
+        helper!(self.index_direction(i))
     }
     /// [`Sfib::encode_index`], which no implementation's rounding latitude can change.
     const EXACT_ROUNDING: bool = true;
     #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> V2<F> {
-        let i = F::call("encode_index", v, #[inline(always)] |v| self.encode_index(v)).named("i");
+        let i = helper!(self.encode_index(v)).named("i");
         self.fields(i)
     }
 }

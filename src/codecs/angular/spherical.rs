@@ -3,6 +3,7 @@
 //! θ is computed as `atan2(|xy|, z)` rather than `acos(z)`: same angle, but well
 //! conditioned near the poles, where acos loses half its digits.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_length2_xy, root, root_of};
 use crate::codecs::toolkit::fixed_decode::{fixed_target, nearest_decoded, search_doc};
@@ -11,48 +12,31 @@ use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::codecs::toolkit::trig::{atan2_pi, sincos_pi};
 use crate::model::{Float, V2, V3};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 
-pub static FAMILY: SphericalFamily = SphericalFamily;
-
-pub struct SphericalFamily;
-
-static INFO: Info = Info {
-    name: "spherical",
-    title: "spherical coordinates (θ, φ), snorm×2",
-    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Cigolle et al. 2014 §2",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
-    decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
-    options: &[],
-};
-
-impl Family for SphericalFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Spherical::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(fixed_trig::BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Spherical { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<Spherical> = CodecFamily::new(
+    Info {
+        name: "spherical",
+        title: "spherical coordinates (θ, φ), snorm×2",
+        sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Cigolle et al. 2014 §2",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
+        decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+        options: &[],
+    },
+    |bits| Spherical { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(fixed_trig::BITS)));
 
 impl Spherical {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<Spherical, SpecError> {
-        Ok(Spherical {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 }
 
@@ -79,8 +63,8 @@ impl Codec for Spherical {
     #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         let theta = ((p.x + F::c(1.0)) * F::c(0.5)).named("theta");
-        let st = F::call("sincos_pi", theta, #[inline(always)] |a| sincos_pi(a)).named("st");
-        let sp = F::call("sincos_pi", p.y, #[inline(always)] |a| sincos_pi(a)).named("sp");
+        let st = helper!(sincos_pi(theta)).named("st");
+        let sp = helper!(sincos_pi(p.y)).named("sp");
         V3::new(sp.y * st.x, sp.x * st.x, st.y)
     }
     /// `θ` and `φ` from [`fixed_trig::atan2_pi`] of the canonical input (and its `ρ`
@@ -129,8 +113,8 @@ impl Codec for Spherical {
 #[inline(always)]
 pub(crate) fn float_angles<F: Float>(u: V3<F>) -> (F, F) {
     let rho = u.xy().length_squared().sqrt().named("rho");
-    let theta = F::call("atan2_pi", (rho, u.z), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("theta");
-    let phi = F::call("atan2_pi", (u.y, u.x), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("phi");
+    let theta = helper!(atan2_pi(rho, u.z)).named("theta");
+    let phi = helper!(atan2_pi(u.y, u.x)).named("phi");
     (theta, phi)
 }
 

@@ -4,48 +4,34 @@
 //! `(cos φ, sin φ)·sqrt(1 - z²)`. The trigonometry is the model's own ([`crate::codecs::toolkit::trig`]),
 //! never a builtin.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_root, length2, root, unorm_sqrt_ratio};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{fixed_square, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use crate::codecs::toolkit::fixed_trig;
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::trig::{atan2_pi, sincos_pi};
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: SphericalZFamily = SphericalZFamily;
-
-pub struct SphericalZFamily;
-
-static INFO: Info = Info {
-    name: "spherical_z",
-    title: "azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Pranckevičius method 3",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
-    decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
-    options: &[],
-};
-
-impl Family for SphericalZFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        SphericalZ::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, SphericalZ { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<SphericalZ> = CodecFamily::new(
+    Info {
+        name: "spherical_z",
+        title: "azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Pranckevičius method 3",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
+        decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+        options: &[],
+    },
+    |bits| SphericalZ { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 #[derive(Clone, Copy, Debug)]
 pub struct SphericalZ {
@@ -56,9 +42,7 @@ impl SphericalZ {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<SphericalZ, SpecError> {
-        Ok(SphericalZ {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     fn field(&self) -> Quant {
@@ -111,7 +95,7 @@ impl Codec for SphericalZ {
     #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         let u = self.target(v);
-        let phi = F::call("atan2_pi", (u.y, u.x), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("phi");
+        let phi = helper!(atan2_pi(u.y, u.x)).named("phi");
         (V2::new(phi, u.z) + F::c(1.0)) * F::c(0.5)
     }
     /// `((cos φ, sin φ)·sqrt(1 - z²), z)` with `φ = enc.x·2 - 1` half turns and
@@ -119,7 +103,7 @@ impl Codec for SphericalZ {
     #[inline(always)]
     fn direction<F: Float>(&self, enc: V2<F>) -> V3<F> {
         let p = ((enc - F::c(0.5)) * F::c(2.0)).named("p");
-        let sp = F::call("sincos_pi", p.x, #[inline(always)] |a| sincos_pi(a)).named("sp");
+        let sp = helper!(sincos_pi(p.x)).named("sp");
         // 1 - z² as (1 - z)(1 + z): no product for a driver to fuse into the
         // subtraction, and no cancellation near the poles.
         let rest = ((F::c(1.0) - p.y) * (F::c(1.0) + p.y)).at_least(F::c(0.0));

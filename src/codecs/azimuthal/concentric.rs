@@ -15,6 +15,7 @@
 //! (one quotient, then the model's sine and cosine), and the projection lifts the disk
 //! point.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::azimuthal::disk::{DiskProjection, Folded, disk_fields, disk_quants, unfold};
 use crate::codecs::toolkit::exact::decided;
@@ -107,12 +108,7 @@ impl<P: DiskProjection> Codec for Concentric<P> {
         let x_major = f.w.x.abs().ge(f.w.y.abs());
         let major = F::sel(x_major, f.w.x, f.w.y).named("major");
         let minor = F::sel(x_major, f.w.y, f.w.x).named("minor");
-        let t = F::call(
-            "atan2_pi",
-            (minor, major.abs()),
-            #[inline(always)]
-            |(y, x)| atan2_pi(y, x),
-        )
+        let t = helper!(atan2_pi(minor, major.abs()))
         .named("t");
         let along = F::sel(major.lt(F::c(0.0)), -half, half);
         let across = half * t * F::c(4.0);
@@ -144,19 +140,9 @@ impl<P: DiskProjection> Codec for Concentric<P> {
         let div = F::sel(r.gt(F::c(0.0)), r, F::c(1.0));
         let angle = (s / div * F::c(0.25)).named("angle");
         // Both sides' points, then the choice: each is a smooth function of the code.
-        let on_x = F::call(
-            "sincos_quarter_pi",
-            angle.y,
-            #[inline(always)]
-            |a| sincos_quarter_pi(a),
-        )
+        let on_x = helper!(sincos_quarter_pi(angle.y))
         .named("on_x");
-        let on_y = F::call(
-            "sincos_quarter_pi",
-            angle.x,
-            #[inline(always)]
-            |a| sincos_quarter_pi(a),
-        )
+        let on_y = helper!(sincos_quarter_pi(angle.x))
         .named("on_y");
         let x_side = V2::new(s.x * on_x.y, r * on_x.x);
         let y_side = V2::new(r * on_y.x, s.y * on_y.y);

@@ -10,61 +10,38 @@
 //! shared codes.
 
 use crate::codecs::core::codec::Domain;
-use crate::codecs::core::codec::Codec;
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::azimuthal::lambert::{Lambert, LambertDecoder, WithDecoder};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::codecs::azimuthal::spheremap::{DECODER, DECODER_OPTION};
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: Cry3Family = Cry3Family;
-
-pub struct Cry3Family;
-
-static INFO: Info = Info {
-    name: "cry3",
-    title: "CryEngine 3, unorm×2 (Lambert's codes, the seed's decoders)",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009)",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
-    decode_note: "every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z",
-    options: &[DECODER_OPTION],
-};
-
-impl Family for Cry3Family {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Lambert::EXACT_SEARCH
-    }
-    fn variants(&self) -> &'static [&'static str] {
-        &[
-            "cry3_16:decoder=optimized",
-            "cry3_24:decoder=optimized",
-            "cry3_32:decoder=optimized",
-        ]
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(
-            spec,
-            WithDecoder {
-                lambert: Lambert { bits: spec.bits() },
-                decoder: Cry3Decoder {
-                    optimized: spec.choice(DECODER) == 1,
-                },
-            },
-        )
-    }
-}
+pub static FAMILY: CodecFamily<Cry3> = CodecFamily::new(
+    Info {
+        name: "cry3",
+        title: "CryEngine 3, unorm×2 (Lambert's codes, the seed's decoders)",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009)",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
+        decode_note: "every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z",
+        options: &[DECODER_OPTION],
+    },
+    |bits| WithDecoder {
+        lambert: Lambert { bits },
+        decoder: Cry3Decoder { optimized: false },
+    },
+    |spec, c| codec_functions(spec, if spec.choice(DECODER) == 1 { c.optimized() } else { c }),
+)
+.with_variants(&[
+    "cry3_16:decoder=optimized",
+    "cry3_24:decoder=optimized",
+    "cry3_32:decoder=optimized",
+])
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 /// The seed's decoders of Lambert's mapping.
 #[derive(Clone, Copy, Debug)]
@@ -80,12 +57,7 @@ impl Cry3 {
     /// The codec with the given total bit budget and the plain decoder; an invalid size
     /// is an error listing the allowed ones.
     pub fn new(bits: u32) -> Result<Cry3, SpecError> {
-        Ok(WithDecoder {
-            lambert: Lambert {
-                bits: INFO.check_bits(bits)?,
-            },
-            decoder: Cry3Decoder { optimized: false },
-        })
+        FAMILY.codec(bits)
     }
     /// The same codes, decoded by the seed's optimized decoder.
     pub fn optimized(self) -> Cry3 {

@@ -25,7 +25,7 @@ pub struct DiskSquare {
 }
 
 impl Family for DiskSquare {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         self.info
     }
     fn precise(&self) -> bool {

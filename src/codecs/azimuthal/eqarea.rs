@@ -10,43 +10,28 @@ use crate::codecs::azimuthal::disk::{
 };
 use crate::codecs::toolkit::exact::{fixed_length2_xy, fixed_root, unorm_sqrt_ratio};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, fixed, search_doc};
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: HemiEqAreaFamily = HemiEqAreaFamily;
-
-pub struct HemiEqAreaFamily;
-
-static INFO: Info = Info {
-    name: "eqarea",
-    title: "Lambert equal-area hemisphere on the unit disk + hemisphere bit, unorm×2",
-    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
-    decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole)",
-    options: &[],
-};
-
-impl Family for HemiEqAreaFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        HemiEqArea::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, HemiEqArea { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<HemiEqArea> = CodecFamily::new(
+    Info {
+        name: "eqarea",
+        title: "Lambert equal-area hemisphere on the unit disk + hemisphere bit, unorm×2",
+        sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
+        decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole)",
+        options: &[],
+    },
+    |bits| HemiEqArea { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 #[derive(Clone, Copy, Debug)]
 pub struct HemiEqArea {
@@ -57,9 +42,7 @@ impl HemiEqArea {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<HemiEqArea, SpecError> {
-        Ok(HemiEqArea {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     /// The unorm codes of the folded input at the boundaries `c + offset` (`½` rounds to

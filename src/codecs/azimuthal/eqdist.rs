@@ -9,6 +9,7 @@
 //! `r²` ([`crate::codecs::toolkit::trig::sinc_cos_quarter`]), so it needs neither a root nor a quotient.
 //! The angle comes from the model's trigonometry, never a builtin.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::azimuthal::disk::{
     DiskProjection, Folded, Radius, disk_fields, disk_quants, fixed_disk_point,
@@ -16,45 +17,30 @@ use crate::codecs::azimuthal::disk::{
 };
 use crate::codecs::toolkit::exact::{decided, fixed_length2_xy, past_root_ratio, root_of};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, search_doc};
 use crate::codecs::toolkit::fixed_trig;
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::trig::{atan2_pi, sinc_cos_quarter};
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: HemiEqDistFamily = HemiEqDistFamily;
-
-pub struct HemiEqDistFamily;
-
-static INFO: Info = Info {
-    name: "eqdist",
-    title: "azimuthal equidistant hemisphere on the unit disk + hemisphere bit, unorm×2",
-    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
-    decode_note: "decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator)",
-    options: &[],
-};
-
-impl Family for HemiEqDistFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        HemiEqDist::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, HemiEqDist { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<HemiEqDist> = CodecFamily::new(
+    Info {
+        name: "eqdist",
+        title: "azimuthal equidistant hemisphere on the unit disk + hemisphere bit, unorm×2",
+        sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
+        decode_note: "decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator)",
+        options: &[],
+    },
+    |bits| HemiEqDist { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 #[derive(Clone, Copy, Debug)]
 pub struct HemiEqDist {
@@ -65,9 +51,7 @@ impl HemiEqDist {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<HemiEqDist, SpecError> {
-        Ok(HemiEqDist {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     /// The unorm codes of the folded input at the boundaries `c + offset` (`½` rounds to
@@ -138,7 +122,7 @@ impl Codec for HemiEqDist {
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
         let f = Folded::of(v);
         let rho = f.w.xy().length_squared().sqrt().named("rho");
-        let t = F::call("atan2_pi", (rho, f.w.z.abs()), #[inline(always)] |(y, x)| atan2_pi(y, x)).named("t");
+        let t = helper!(atan2_pi(rho, f.w.z.abs())).named("t");
         let s = (t / F::sel(rho.gt(F::c(0.0)), rho, F::c(1.0))).named("s");
         let enc = (f.w.xy() * s + F::c(0.5)).named("enc");
         V3::from_xy(enc, f.h)
@@ -177,7 +161,7 @@ impl Codec for HemiEqDist {
 impl DiskProjection for HemiEqDist {
     #[inline(always)]
     fn half_radius<F: Float>(f: &Folded<F>, rho: F) -> F {
-        F::call("atan2_pi", (rho, f.w.z.abs()), #[inline(always)] |(y, x)| atan2_pi(y, x))
+        helper!(atan2_pi(rho, f.w.z.abs()))
     }
     #[inline(always)]
     fn radius<F: Float>(f: &Folded<F>) -> Radius<F> {

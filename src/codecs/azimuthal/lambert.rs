@@ -10,48 +10,31 @@ use crate::codecs::toolkit::fixed_decode::{
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 
-pub static FAMILY: LambertFamily = LambertFamily;
-
-pub struct LambertFamily;
-
-static INFO: Info = Info {
-    name: "lambert",
-    title: "Lambert azimuthal equal-area, unorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Pranckevičius, Compact Normal Storage, method 6",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
-    decode_note: "every code decodes to a unit vector; codes outside the disk decode as -Z",
-    options: &[],
-};
-
-impl Family for LambertFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Lambert::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Lambert { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<Lambert> = CodecFamily::new(
+    Info {
+        name: "lambert",
+        title: "Lambert azimuthal equal-area, unorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Pranckevičius, Compact Normal Storage, method 6",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
+        decode_note: "every code decodes to a unit vector; codes outside the disk decode as -Z",
+        options: &[],
+    },
+    |bits| Lambert { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 impl Lambert {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<Lambert, SpecError> {
-        Ok(Lambert {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 }
 

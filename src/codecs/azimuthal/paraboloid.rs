@@ -15,56 +15,32 @@ use crate::codecs::toolkit::exact::{
     root_of,
 };
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::toolkit::texel::{self, Texel, TexelCodec, texel_variants};
+use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{
     BITS, ONE, fixed, fixed_length2_2d, fixed_square, fixed_target, nearest_decoded, search_doc,
 };
-use crate::codecs::core::function::Emitted;
-use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, zero_code};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::model::{Bool, Float, V2, V3};
 
-pub static FAMILY: ParaboloidFamily = ParaboloidFamily;
-
-pub struct ParaboloidFamily;
-
-static INFO: Info = Info {
-    name: "paraboloid",
-    title: "inverted paraboloid z = 1 - (x² + y²) of the +Z hemisphere, snorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Hemisphere),
-    source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid",
-    edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
-    decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon",
-    options: &[texel::OPTION],
-};
-
-impl Family for ParaboloidFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Paraboloid::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
-        texel::validate(spec)
-    }
-    fn variants(&self) -> &'static [&'static str] {
-        texel_variants!("paraboloid")
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        let c = Paraboloid { bits: spec.bits() };
-        match texel::layout(spec) {
-            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
-            None => codec_functions(spec, c),
-        }
-    }
-}
+pub static FAMILY: CodecFamily<Paraboloid> = CodecFamily::new(
+    Info {
+        name: "paraboloid",
+        title: "inverted paraboloid z = 1 - (x² + y²) of the +Z hemisphere, snorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Hemisphere),
+        source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid",
+        edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
+        decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon",
+        options: &[texel::OPTION],
+    },
+    |bits| Paraboloid { bits },
+    texel::functions,
+)
+.with_validate(texel::validate)
+.with_variants(texel_variants!("paraboloid"))
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 #[derive(Clone, Copy, Debug)]
 pub struct Paraboloid {
@@ -101,9 +77,7 @@ impl Paraboloid {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<Paraboloid, SpecError> {
-        Ok(Paraboloid {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     fn field(&self) -> Quant {

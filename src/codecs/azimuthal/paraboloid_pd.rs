@@ -37,7 +37,7 @@ static INFO: Info = Info {
 const NAME: &str = "combine_paraboloid_pd";
 
 impl Family for ParaboloidPdFamily {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {

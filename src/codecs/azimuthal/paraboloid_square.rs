@@ -15,74 +15,51 @@
 //! direction: every step is a function of the input alone, so every implementation
 //! computes the same point and the same codes.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain, above_horizon};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::toolkit::texel::{self, Texel, TexelCodec, texel_variants};
+use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{
     BITS, ONE, fixed, fixed_mul, fixed_square, fixed_target, nearest_decoded, search_doc,
 };
-use crate::codecs::core::function::Emitted;
-use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::model::{Bool, Float, Uint, V2, V3};
 
-pub static FAMILY: ParaboloidSquareFamily = ParaboloidSquareFamily;
-
-pub struct ParaboloidSquareFamily;
-
-static INFO: Info = Info {
-    name: "paraboloid_square",
-    title: "dual inverted paraboloid z = (1 - x²)(1 - y²) of the +Z hemisphere, snorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Hemisphere),
-    source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the dual inverted paraboloid",
-    edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
-    decode_note: "every code decodes to a unit vector (up to rounding); the square's edges decode on the horizon",
-    options: &[texel::OPTION],
-};
-
-impl Family for ParaboloidSquareFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        ParaboloidSquare::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        match name {
-            "encode_codes" => Some(search_doc(BITS)),
-            "square_point" => Some(
-                "The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: \
-                 the input's fixed-point direction, then 22 bisection steps on the larger \
-                 coordinate; a function of the input alone."
-                    .into(),
-            ),
-            "square_step" => Some(
-                "One bisection step: `s + h` where the surface at that point is still above the \
-                 ray (`(1 - t²)(1 - r²t²)·m ≥ u.z·t`, every product rounded to a unit of 2^-21), \
-                 else `s`."
-                    .into(),
-            ),
-            _ => None,
-        }
-    }
-    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
-        texel::validate(spec)
-    }
-    fn variants(&self) -> &'static [&'static str] {
-        texel_variants!("paraboloid_square")
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        let c = ParaboloidSquare { bits: spec.bits() };
-        match texel::layout(spec) {
-            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
-            None => codec_functions(spec, c),
-        }
-    }
-}
+pub static FAMILY: CodecFamily<ParaboloidSquare> = CodecFamily::new(
+    Info {
+        name: "paraboloid_square",
+        title: "dual inverted paraboloid z = (1 - x²)(1 - y²) of the +Z hemisphere, snorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Hemisphere),
+        source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the dual inverted paraboloid",
+        edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
+        decode_note: "every code decodes to a unit vector (up to rounding); the square's edges decode on the horizon",
+        options: &[texel::OPTION],
+    },
+    |bits| ParaboloidSquare { bits },
+    texel::functions,
+)
+.with_validate(texel::validate)
+.with_variants(texel_variants!("paraboloid_square"))
+.with_helper_doc(|name| match name {
+    "encode_codes" => Some(search_doc(BITS)),
+    "square_point" => Some(
+        "The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: \
+         the input's fixed-point direction, then 22 bisection steps on the larger \
+         coordinate; a function of the input alone."
+            .into(),
+    ),
+    "square_step" => Some(
+        "One bisection step: `s + h` where the surface at that point is still above the \
+         ray (`(1 - t²)(1 - r²t²)·m ≥ u.z·t`, every product rounded to a unit of 2^-21), \
+         else `s`."
+            .into(),
+    ),
+    _ => None,
+});
 
 #[derive(Clone, Copy, Debug)]
 pub struct ParaboloidSquare {
@@ -108,9 +85,7 @@ impl ParaboloidSquare {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<ParaboloidSquare, SpecError> {
-        Ok(ParaboloidSquare {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     fn field(&self) -> Quant {
@@ -152,7 +127,7 @@ impl ParaboloidSquare {
     /// [`Self::fixed_point`] as the helper `square_point`.
     #[inline(always)]
     fn point<F: Float>(u: V3<F>) -> V2<F> {
-        F::call("square_point", u, #[inline(always)] |a| Self::fixed_point(a)).named("p")
+        helper!("square_point" => Self::fixed_point(u)).named("p")
     }
 
     /// The surface point on the ray of the fixed-point unit `u` (`u.z ≥ 0`) in units of
@@ -170,7 +145,7 @@ impl ParaboloidSquare {
         let mut s = F::c(0.0);
         for i in (0..STEPS).rev() {
             let h = F::c((1u32 << i) as f32);
-            s = F::call("square_step", (s, (h, k)), #[inline(always)] |(s, (h, k))| step(s, h, k)).named("s");
+            s = helper!("square_step" => step(s, h, k)).named("s");
         }
         let minor = fixed_mul(r, s);
         let p = V2::new(F::sel(x_major, s, minor), F::sel(x_major, minor, s));

@@ -10,19 +10,13 @@
 //! encoder formulas against each other and the shared codes.
 
 use crate::codecs::core::codec::Domain;
-use crate::codecs::core::codec::Codec;
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::azimuthal::lambert::{Lambert, LambertDecoder, WithDecoder};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::model::{Float, V2, V3};
-
-pub static FAMILY: SpheremapFamily = SpheremapFamily;
-
-pub struct SpheremapFamily;
 
 /// The `decoder` option shared with [`crate::codecs::azimuthal::cry3`]: the seed gives each method a plain
 /// decoder and an "optimized" one with fewer instructions.
@@ -34,46 +28,25 @@ pub const DECODER_OPTION: OptDesc = OptDesc {
 /// Index of the `decoder` option; choice 1 is `optimized`.
 pub const DECODER: usize = 0;
 
-static INFO: Info = Info {
-    name: "spheremap",
-    title: "spheremap transform, unorm×2 (Lambert's codes, the seed's decoders)",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Pranckevičius, Compact Normal Storage, method 4",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
-    decode_note: "every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z",
-    options: &[DECODER_OPTION],
-};
-
-impl Family for SpheremapFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Lambert::EXACT_SEARCH
-    }
-    fn variants(&self) -> &'static [&'static str] {
-        &[
-            "spheremap16:decoder=optimized",
-            "spheremap24:decoder=optimized",
-            "spheremap32:decoder=optimized",
-        ]
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(
-            spec,
-            WithDecoder {
-                lambert: Lambert { bits: spec.bits() },
-                decoder: SpheremapDecoder {
-                    optimized: spec.choice(DECODER) == 1,
-                },
-            },
-        )
-    }
-}
+pub static FAMILY: CodecFamily<Spheremap> = CodecFamily::new(
+    Info {
+        name: "spheremap",
+        title: "spheremap transform, unorm×2 (Lambert's codes, the seed's decoders)",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Pranckevičius, Compact Normal Storage, method 4",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
+        decode_note: "every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z",
+        options: &[DECODER_OPTION],
+    },
+    |bits| WithDecoder {
+        lambert: Lambert { bits },
+        decoder: SpheremapDecoder { optimized: false },
+    },
+    |spec, c| codec_functions(spec, if spec.choice(DECODER) == 1 { c.optimized() } else { c }),
+)
+.with_variants(&["spheremap16:decoder=optimized", "spheremap24:decoder=optimized", "spheremap32:decoder=optimized"])
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 /// The seed's decoders of Lambert's mapping.
 #[derive(Clone, Copy, Debug)]
@@ -89,12 +62,7 @@ impl Spheremap {
     /// The codec with the given total bit budget and the plain decoder; an invalid size
     /// is an error listing the allowed ones.
     pub fn new(bits: u32) -> Result<Spheremap, SpecError> {
-        Ok(WithDecoder {
-            lambert: Lambert {
-                bits: INFO.check_bits(bits)?,
-            },
-            decoder: SpheremapDecoder { optimized: false },
-        })
+        FAMILY.codec(bits)
     }
     /// The same codes, decoded by the seed's optimized decoder.
     pub fn optimized(self) -> Spheremap {

@@ -10,43 +10,28 @@ use crate::codecs::azimuthal::disk::{
 };
 use crate::codecs::toolkit::exact::{fixed_length2_xy, fixed_ratio, unorm_ratio};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, search_doc};
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::Quants;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: HemiStereoFamily = HemiStereoFamily;
-
-pub struct HemiStereoFamily;
-
-static INFO: Info = Info {
-    name: "stereo",
-    title: "stereographic hemisphere on the unit disk + hemisphere bit, unorm×2",
-    sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
-    decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere)",
-    options: &[],
-};
-
-impl Family for HemiStereoFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        HemiStereo::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, HemiStereo { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<HemiStereo> = CodecFamily::new(
+    Info {
+        name: "stereo",
+        title: "stereographic hemisphere on the unit disk + hemisphere bit, unorm×2",
+        sizes: Sizes::Total(&[16, 20, 22, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Cigolle et al. 2014 §2 (stereo); Snyder and Mitchell 2001",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
+        decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere)",
+        options: &[],
+    },
+    |bits| HemiStereo { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 #[derive(Clone, Copy, Debug)]
 pub struct HemiStereo {
@@ -57,9 +42,7 @@ impl HemiStereo {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<HemiStereo, SpecError> {
-        Ok(HemiStereo {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     /// The unorm codes of `w.xy / (1 + |z|)` (`w` canonical, `a = l + |w.z|` with `l`

@@ -10,25 +10,25 @@ use crate::codecs::toolkit::fixed_decode::{BITS, fixed_target, nearest_decoded, 
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::model::{Float, V2, V3};
 use crate::codecs::core::info::{Info, OptDesc, OptKind, OptVal, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 
-pub static FAMILY: StereoScaledFamily = StereoScaledFamily;
-
-pub struct StereoScaledFamily;
-
-static INFO: Info = Info {
-    name: "stereo_scaled",
-    title: "scaled stereographic, unorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Pranckevičius, Compact Normal Storage, method 7",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it",
-    decode_note: "every code decodes to a unit vector (up to rounding)",
-    options: &[SCALE_OPTION],
-};
+pub static FAMILY: CodecFamily<StereoScaled> = CodecFamily::new(
+    Info {
+        name: "stereo_scaled",
+        title: "scaled stereographic, unorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Pranckevičius, Compact Normal Storage, method 7",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it",
+        decode_note: "every code decodes to a unit vector (up to rounding)",
+        options: &[SCALE_OPTION],
+    },
+    |bits| StereoScaled { bits, scale: DEFAULT_SCALE },
+    |spec, c| codec_functions(spec, StereoScaled { scale: spec.number(SCALE), ..c }),
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 /// Scales whose derived literals (`2s`, `-s`, `0.5/s`) are all normal f32 values, with
 /// room to spare; the useful range is around 1 to 3.
@@ -43,35 +43,11 @@ const SCALE_OPTION: OptDesc = OptDesc {
 };
 const SCALE: usize = 0;
 
-impl Family for StereoScaledFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        StereoScaled::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(
-            spec,
-            StereoScaled {
-                bits: spec.bits(),
-                scale: spec.number(SCALE),
-            },
-        )
-    }
-}
-
 impl StereoScaled {
     /// Scaled stereographic with the seed's default scale (1.7777); see
     /// [`StereoScaled::with_scale`].
     pub fn new(bits: u32) -> Result<StereoScaled, SpecError> {
-        Ok(StereoScaled {
-            bits: INFO.check_bits(bits)?,
-            scale: DEFAULT_SCALE,
-        })
+        FAMILY.codec(bits)
     }
     /// The same codec with another scale, in [0.001, 1000].
     pub fn with_scale(self, scale: f32) -> Result<StereoScaled, SpecError> {

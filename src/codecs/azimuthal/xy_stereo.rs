@@ -9,54 +9,30 @@
 use crate::codecs::core::codec::{Codec, Domain, above_horizon};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, floor_ratio_code, ratio_code, root};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::toolkit::texel::{self, Texel, TexelCodec, texel_variants};
+use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
-use crate::codecs::core::function::Emitted;
-use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, zero_code};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::model::{Bool, Float, V2, V3};
 
-pub static FAMILY: XyStereoFamily = XyStereoFamily;
-
-pub struct XyStereoFamily;
-
-static INFO: Info = Info {
-    name: "xy_stereo",
-    title: "stereographic projection of the +Z hemisphere, (x, y)/(1 + z) as snorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Hemisphere),
-    source: "NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001",
-    edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
-    decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon",
-    options: &[texel::OPTION],
-};
-
-impl Family for XyStereoFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        XyStereo::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
-        texel::validate(spec)
-    }
-    fn variants(&self) -> &'static [&'static str] {
-        texel_variants!("xy_stereo")
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        let c = XyStereo { bits: spec.bits() };
-        match texel::layout(spec) {
-            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
-            None => codec_functions(spec, c),
-        }
-    }
-}
+pub static FAMILY: CodecFamily<XyStereo> = CodecFamily::new(
+    Info {
+        name: "xy_stereo",
+        title: "stereographic projection of the +Z hemisphere, (x, y)/(1 + z) as snorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Hemisphere),
+        source: "NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001",
+        edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
+        decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon",
+        options: &[texel::OPTION],
+    },
+    |bits| XyStereo { bits },
+    texel::functions,
+)
+.with_validate(texel::validate)
+.with_variants(texel_variants!("xy_stereo"))
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 #[derive(Clone, Copy, Debug)]
 pub struct XyStereo {
@@ -92,9 +68,7 @@ impl XyStereo {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<XyStereo, SpecError> {
-        Ok(XyStereo {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     fn field(&self) -> Quant {

@@ -37,7 +37,7 @@ static INFO: Info = Info {
 };
 
 impl Family for Float3Family {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {

@@ -25,7 +25,7 @@ static INFO: Info = Info {
 };
 
 impl Family for Snorm111110Family {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {

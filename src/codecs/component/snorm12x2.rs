@@ -47,7 +47,7 @@ macro_rules! helpers {
 }
 
 impl Family for Pack12Family {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {

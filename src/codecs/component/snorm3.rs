@@ -13,6 +13,7 @@
 //! (`1..=127`) was nearer over the sampled inputs of `tests/families/snorm3.rs`; on snorm5's coarse
 //! grid the nearest is not always a rounded one.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain, unit_or_z};
 use crate::codecs::toolkit::exact::{
     canonical, canonical_or_z, fixed_length2, fixed_ratio, length2, root, root_of,
@@ -48,7 +49,7 @@ static INFO: Info = Info {
 };
 
 impl Family for Snorm3Family {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {
@@ -194,9 +195,7 @@ impl<W: Words> Codec for Snorm3<W> {
         let mut best = V2::new(F::c(0.0), F::c(BFN_FAR));
         for t in (top + 1 - bfn_scales(top)..=top).rev() {
             let t = F::c(t as f32);
-            best = F::call("bfn_step", (best, (t, (r, aim))), #[inline(always)] |(best, (t, (r, aim)))| {
-                bfn_step(best, t, r, aim)
-            })
+            best = helper!(bfn_step(best, t, r, aim))
             .named("best");
         }
         let c = candidate(r, best.x);

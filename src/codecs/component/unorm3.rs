@@ -6,39 +6,25 @@
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{canonical_or_z, length2, unorm_sqrt_ratio};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::core::function::Emitted;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::Spec;
 use crate::model::{Float, V3};
 
-pub static FAMILY: Unorm3Family = Unorm3Family;
-
-pub struct Unorm3Family;
-
-static INFO: Info = Info {
-    name: "unorm3",
-    title: "components scaled and biased, n·0.5 + 0.5, as unorm8×3 (an RGB8 texel)",
-    sizes: Sizes::Fixed(24),
-    domain: Some(Domain::Sphere),
-    source: "Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z)",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
-    decode_note: "decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector",
-    options: &[],
-};
-
-impl Family for Unorm3Family {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Unorm3::EXACT_SEARCH
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Unorm3)
-    }
-}
+pub static FAMILY: CodecFamily<Unorm3> = CodecFamily::new(
+    Info {
+        name: "unorm3",
+        title: "components scaled and biased, n·0.5 + 0.5, as unorm8×3 (an RGB8 texel)",
+        sizes: Sizes::Fixed(24),
+        domain: Some(Domain::Sphere),
+        source: "Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z)",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
+        decode_note: "decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector",
+        options: &[],
+    },
+    |_| Unorm3,
+    codec_functions,
+);
 
 /// The baseline codec; it has one size.
 #[derive(Clone, Copy, Debug)]

@@ -10,59 +10,33 @@ use crate::codecs::toolkit::fixed_decode::{BITS, ONE, fixed, fixed_target, neare
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, zero_code};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::toolkit::texel::{self, Texel, TexelCodec, texel_variants};
-use crate::codecs::core::function::Emitted;
-use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
+use crate::codecs::core::spec::SpecError;
 
-pub static FAMILY: XyFamily = XyFamily;
-
-pub struct XyFamily;
-
-static INFO: Info = Info {
-    name: "xy",
-    title: "x and y stored, z reconstructed, snorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Hemisphere),
-    source: "Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes",
-    edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
-    decode_note: "z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1",
-    options: &[texel::OPTION],
-};
-
-impl Family for XyFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Xy::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
-        texel::validate(spec)
-    }
-    fn variants(&self) -> &'static [&'static str] {
-        texel_variants!("xy")
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        let c = Xy { bits: spec.bits() };
-        match texel::layout(spec) {
-            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
-            None => codec_functions(spec, c),
-        }
-    }
-}
+pub static FAMILY: CodecFamily<Xy> = CodecFamily::new(
+    Info {
+        name: "xy",
+        title: "x and y stored, z reconstructed, snorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Hemisphere),
+        source: "Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes",
+        edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
+        decode_note: "z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1",
+        options: &[texel::OPTION],
+    },
+    |bits| Xy { bits },
+    texel::functions,
+)
+.with_validate(texel::validate)
+.with_variants(texel_variants!("xy"))
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 impl Xy {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<Xy, SpecError> {
-        Ok(Xy {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 }
 

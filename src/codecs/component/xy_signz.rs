@@ -13,43 +13,28 @@ use crate::codecs::toolkit::exact::{
     snorm_sqrt_ratio,
 };
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: XySignZFamily = XySignZFamily;
-
-pub struct XySignZFamily;
-
-static INFO: Info = Info {
-    name: "xy_signz",
-    title: "x and y stored with the sign of z, z reconstructed, snorm×2 + 1 bit",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Pranckevičius method 2",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) and -0 are on the +Z side",
-    decode_note: "z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1",
-    options: &[],
-};
-
-impl Family for XySignZFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        XySignZ::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, XySignZ { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<XySignZ> = CodecFamily::new(
+    Info {
+        name: "xy_signz",
+        title: "x and y stored with the sign of z, z reconstructed, snorm×2 + 1 bit",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Pranckevičius method 2",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) and -0 are on the +Z side",
+        decode_note: "z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1",
+        options: &[],
+    },
+    |bits| XySignZ { bits },
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 #[derive(Clone, Copy, Debug)]
 pub struct XySignZ {
@@ -60,9 +45,7 @@ impl XySignZ {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<XySignZ, SpecError> {
-        Ok(XySignZ {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     fn fields(&self) -> [Quant; 2] {

@@ -2,6 +2,7 @@
 //! precise (integer candidate) search and bit packing are written once, here.
 
 use crate::codecs::toolkit::quant::{Code, Quant, Quants, field_offsets};
+use crate::model::num::helper;
 use crate::model::trace::Value;
 use crate::model::{Bool, Float, Uint, V2, V3, V4, each};
 
@@ -117,12 +118,7 @@ pub trait Codec: Send + Sync {
     #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: Self::P<F>) -> V3<F> {
         let p = dequantize(&self.quants(), codes).named_p("params");
-        F::call(
-            "decode_float",
-            p,
-            #[inline(always)]
-            |p| self.direction(p),
-        )
+        helper!("decode_float" => self.direction(p))
     }
     /// A bit field that holds bits of more than one parameter, so that a range of it is
     /// no range of either: [`crate::decode_bound`] then takes its values one at a time.
@@ -156,12 +152,7 @@ pub trait Codec: Send + Sync {
     /// calls as the helper `round_codes`.
     #[inline(always)]
     fn round_codes<F: Float>(&self, v: V3<F>) -> Self::P<F> {
-        let p = F::call(
-            "encode_float",
-            v,
-            #[inline(always)]
-            |v| self.params(v),
-        );
+        let p = helper!("encode_float" => self.params(v));
         quantize(&self.quants(), p).named_p("codes")
     }
     /// Whether [`Codec::precise_codes`] decides the search in integer arithmetic

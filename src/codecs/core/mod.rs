@@ -8,9 +8,11 @@
 //!   boxes of codes for the proven decoder bounds;
 //! - [`spec`]: the spec grammar and the [`spec::Family`] trait every family implements;
 //! - [`codec`]: what a codec is, and [`pipeline`]: the encode/decode pipeline every codec
-//!   shares and the four functions of a codec spec.
+//!   shares and the four functions of a codec spec;
+//! - [`codec_family`]: the family of one codec type, which most families are.
 
 pub mod codec;
+pub mod codec_family;
 pub mod decode_boxes;
 pub mod error;
 pub mod function;

@@ -14,6 +14,7 @@ use crate::model::avx2_lanes::F8;
 use crate::model::deviant::Dev;
 use crate::model::enclosure::Encl;
 use crate::model::lanes::F4;
+use crate::model::num::helper;
 use crate::model::trace::{Tf, define, trace_module};
 use std::sync::Arc;
 
@@ -245,19 +246,9 @@ pub fn decode_packed<F: Float, C: Codec>(c: &C, code: C::C<F>) -> V3<F> {
 #[inline(always)]
 fn codes_of<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
-        F::call(
-            "encode_codes",
-            v,
-            #[inline(always)]
-            |v| c.precise_codes(v),
-        )
+        helper!("encode_codes" => c.precise_codes(v))
     } else if C::EXACT_ROUNDING {
-        F::call(
-            "round_codes",
-            v,
-            #[inline(always)]
-            |v| c.round_codes(v),
-        )
+        helper!(c.round_codes(v))
     } else {
         c.round_codes(v)
     }
@@ -280,15 +271,7 @@ pub fn encode_alternate<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C
 #[inline(always)]
 pub fn encode_float<F: Float, C: Codec>(c: &C, precise: bool, v: V3<F>) -> C::P<F> {
     if precise {
-        dequantize(
-            &c.quants(),
-            F::call(
-                "encode_codes",
-                v,
-                #[inline(always)]
-                |v| c.precise_codes(v),
-            ),
-        )
+        dequantize(&c.quants(), helper!("encode_codes" => c.precise_codes(v)))
     } else {
         c.params(v)
     }

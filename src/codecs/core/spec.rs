@@ -73,7 +73,7 @@ impl Spec {
     pub fn family(&self) -> &'static dyn Family {
         self.family
     }
-    pub fn info(&self) -> &'static Info {
+    pub fn info(&self) -> &Info {
         self.family.info()
     }
     /// Total bit budget (0 for fixed helper forms).
@@ -380,7 +380,7 @@ fn unknown_codec(given: &str) -> SpecError {
 /// A codec family in the registry. Everything about it lives in its own file; nothing
 /// outside that file names it.
 pub trait Family: Sync + 'static {
-    fn info(&self) -> &'static Info;
+    fn info(&self) -> &Info;
     /// Whether the precise (`p`) encoder is offered. A codec family returns its codec's
     /// `Codec::EXACT_SEARCH` (offered only where the search is decided in exact
     /// arithmetic, so the precise packed encoder is portable); a family that has no such

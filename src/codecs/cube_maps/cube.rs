@@ -16,48 +16,34 @@
 //! representable points"): equal code steps are equal angles along the face's axes, which
 //! evens the point density between a face's centre and its corners.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root, unorm_ratio};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_square_point, fixed_target, nearest_decoded, search_doc};
 use crate::codecs::toolkit::fixed_trig;
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::trig::{atan2_pi, sincos_pi};
 use crate::model::{Bool, Float, V2, V3};
 
-pub static FAMILY: CubeFamily = CubeFamily;
-
-pub struct CubeFamily;
-
-static INFO: Info = Info {
-    name: "cube",
-    title: "cube-map face (3 bits) + unorm×2 coordinates on it",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Cigolle et al. 2014 §2 (cube)",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; ties between components go to z, then y",
-    decode_note: "every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z",
-    options: &[],
-};
-
-impl Family for CubeFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        Cube::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc(BITS))
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, Cube::of(spec.bits(), false))
-    }
-}
+pub static FAMILY: CodecFamily<Cube> = CodecFamily::new(
+    Info {
+        name: "cube",
+        title: "cube-map face (3 bits) + unorm×2 coordinates on it",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Cigolle et al. 2014 §2 (cube)",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; ties between components go to z, then y",
+        decode_note: "every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z",
+        options: &[],
+    },
+    |bits| Cube::of(bits, false),
+    codec_functions,
+)
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 /// A cube-map codec; `warped` selects the equi-angular coordinates.
 #[derive(Clone, Copy, Debug)]
@@ -120,11 +106,11 @@ impl Cube {
     /// The plain cube codec with the given total bit budget; an invalid size is an error
     /// listing the allowed ones.
     pub fn new(bits: u32) -> Result<Cube, SpecError> {
-        Ok(Cube::of(INFO.check_bits(bits)?, false))
+        FAMILY.codec(bits)
     }
     /// The warped (equi-angular) cube codec.
     pub fn warped(bits: u32) -> Result<Cube, SpecError> {
-        Ok(Cube::of(INFO.check_bits(bits)?, true))
+        FAMILY.codec(bits).map(|c| Cube::of(c.bits, true))
     }
     pub(super) fn of(bits: u32, warped: bool) -> Cube {
         Cube { bits, warped }
@@ -203,7 +189,7 @@ impl Codec for Cube {
         let st = V2::new(f.s, f.t);
         let enc = if self.warped {
             let a = { #[inline(always)] |n: F| {
-                F::call("atan2_pi", (n, f.major), #[inline(always)] |(y, x)| atan2_pi(y, x)) * F::c(2.0)
+                helper!(atan2_pi(n, f.major)) * F::c(2.0)
             } };
             V2::new(a(st.x), a(st.y)) + F::c(0.5)
         } else {
@@ -218,8 +204,8 @@ impl Codec for Cube {
     fn direction<F: Float>(&self, enc: V3<F>) -> V3<F> {
         let p = ((enc.xy() - F::c(0.5)) * F::c(2.0)).named("p");
         let u = if self.warped {
-            let cs = F::call("sincos_pi", p.x * F::c(0.25), #[inline(always)] |a| sincos_pi(a)).named("cs");
-            let ct = F::call("sincos_pi", p.y * F::c(0.25), #[inline(always)] |a| sincos_pi(a)).named("ct");
+            let cs = helper!(sincos_pi(p.x * F::c(0.25))).named("cs");
+            let ct = helper!(sincos_pi(p.y * F::c(0.25))).named("ct");
             // (tan a, tan b, 1)·cos a·cos b.
             let d = V3::new(cs.x * ct.y, ct.x * cs.y, cs.y * ct.y).named("d");
             d / d.length_squared().sqrt()

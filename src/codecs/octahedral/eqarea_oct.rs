@@ -22,46 +22,34 @@
 //! `r·x` passes a code boundary is decided by [`crate::codecs::azimuthal::disk::Radius::past`], so every
 //! implementation computes the same code.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain, sign_not_zero};
 use crate::codecs::azimuthal::disk::{DiskProjection, Folded};
 use crate::codecs::toolkit::exact::decided;
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
+use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_trig;
-use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::azimuthal::eqarea::HemiEqArea;
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::trig::{atan2_pi, sincos_quarter_pi};
 use crate::model::{Float, V2, V3};
 
-pub static FAMILY: EqAreaOctFamily = EqAreaOctFamily;
-
-pub struct EqAreaOctFamily;
-
-static INFO: Info = Info {
-    name: "eqarea_oct",
-    title: "equal-area octahedral (Clarberg), snorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Sphere),
-    source: "Clarberg 2008, Fast equal-area mapping of the (hemi)sphere using SIMD (JGT 13(3)); pbrt-v4 EqualAreaSphereToSquare / EqualAreaSquareToSphere",
-    edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; folds on encode when z <= 0, as oct",
-    decode_note: "every code decodes to a unit vector (up to rounding); unfolds where |x| + |y| > 1, as oct",
-    options: &[],
-};
-
-impl Family for EqAreaOctFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        EqAreaOct::EXACT_SEARCH
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        codec_functions(spec, EqAreaOct { bits: spec.bits() })
-    }
-}
+pub static FAMILY: CodecFamily<EqAreaOct> = CodecFamily::new(
+    Info {
+        name: "eqarea_oct",
+        title: "equal-area octahedral (Clarberg), snorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Sphere),
+        source: "Clarberg 2008, Fast equal-area mapping of the (hemi)sphere using SIMD (JGT 13(3)); pbrt-v4 EqualAreaSphereToSquare / EqualAreaSquareToSphere",
+        edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; folds on encode when z <= 0, as oct",
+        decode_note: "every code decodes to a unit vector (up to rounding); unfolds where |x| + |y| > 1, as oct",
+        options: &[],
+    },
+    |bits| EqAreaOct { bits },
+    codec_functions,
+);
 
 /// The `eqarea_oct` codec on the CPU.
 #[derive(Clone, Copy, Debug)]
@@ -73,9 +61,7 @@ impl EqAreaOct {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<EqAreaOct, SpecError> {
-        Ok(EqAreaOct {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 
     fn field(&self) -> Quant {
@@ -121,12 +107,7 @@ impl Codec for EqAreaOct {
         let a = f.w.xy().abs();
         let rho = f.w.xy().length_squared().sqrt().named("rho");
         let r = (rho / (f.l * f.a).sqrt()).named("r");
-        let t = F::call(
-            "atan2_pi",
-            (a.y, a.x),
-            #[inline(always)]
-            |(y, x)| atan2_pi(y, x),
-        )
+        let t = helper!(atan2_pi(a.y, a.x))
         .named("t");
         let along_y = (r * (t * F::c(2.0))).named("v");
         let p = V2::new(r - along_y, along_y).named("p");
@@ -154,19 +135,9 @@ impl Codec for EqAreaOct {
         let div = F::sel(r.gt(F::c(0.0)), r, F::c(1.0));
         let angle = (b / div * F::c(0.5)).named("angle");
         // (sin φ, cos φ) where φ ≤ π/4, (cos φ, sin φ) where φ ≥ π/4.
-        let low = F::call(
-            "sincos_quarter_pi",
-            angle.y,
-            #[inline(always)]
-            |t| sincos_quarter_pi(t),
-        )
+        let low = helper!(sincos_quarter_pi(angle.y))
         .named("low");
-        let high = F::call(
-            "sincos_quarter_pi",
-            angle.x,
-            #[inline(always)]
-            |t| sincos_quarter_pi(t),
-        )
+        let high = helper!(sincos_quarter_pi(angle.x))
         .named("high");
         let x_major = b.x.ge(b.y);
         let cs = V2::new(

@@ -8,59 +8,33 @@ use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, unsigned_code, z
 use crate::codecs::octahedral::oct::fit_l1;
 use crate::model::{Bool, Float, V2, V3};
 use crate::codecs::core::info::{Info, Sizes};
-use crate::codecs::core::spec::Family;
-use crate::codecs::toolkit::texel::{self, Texel, TexelCodec, texel_variants};
-use crate::codecs::core::function::Emitted;
-use crate::codecs::core::pipeline::codec_functions;
-use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
+use crate::codecs::core::spec::SpecError;
 
-pub static FAMILY: HemiOctFamily = HemiOctFamily;
-
-pub struct HemiOctFamily;
-
-static INFO: Info = Info {
-    name: "hemioct",
-    title: "hemi-octahedral, snorm×2",
-    sizes: Sizes::Total(&[16, 24, 32]),
-    domain: Some(Domain::Hemisphere),
-    source: "Cigolle et al. 2014, Listing 6 and Table 3",
-    edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon)",
-    decode_note: "every code decodes to a unit vector with z ≥ 0",
-    options: &[texel::OPTION],
-};
-
-impl Family for HemiOctFamily {
-    fn info(&self) -> &'static Info {
-        &INFO
-    }
-    fn precise(&self) -> bool {
-        HemiOct::EXACT_SEARCH
-    }
-    fn helper_doc(&self, name: &str) -> Option<String> {
-        (name == "encode_codes").then(|| search_doc("the input's signs"))
-    }
-    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
-        texel::validate(spec)
-    }
-    fn variants(&self) -> &'static [&'static str] {
-        texel_variants!("hemioct")
-    }
-    fn emitted(&self, spec: &Spec) -> Emitted {
-        let c = HemiOct { bits: spec.bits() };
-        match texel::layout(spec) {
-            Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
-            None => codec_functions(spec, c),
-        }
-    }
-}
+pub static FAMILY: CodecFamily<HemiOct> = CodecFamily::new(
+    Info {
+        name: "hemioct",
+        title: "hemi-octahedral, snorm×2",
+        sizes: Sizes::Total(&[16, 24, 32]),
+        domain: Some(Domain::Hemisphere),
+        source: "Cigolle et al. 2014, Listing 6 and Table 3",
+        edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon)",
+        decode_note: "every code decodes to a unit vector with z ≥ 0",
+        options: &[texel::OPTION],
+    },
+    |bits| HemiOct { bits },
+    texel::functions,
+)
+.with_validate(texel::validate)
+.with_variants(texel_variants!("hemioct"))
+.with_helper_doc(|name| (name == "encode_codes").then(|| search_doc("the input's signs")));
 
 impl HemiOct {
     /// The codec with the given total bit budget; an invalid size is an error listing
     /// the allowed ones.
     pub fn new(bits: u32) -> Result<HemiOct, SpecError> {
-        Ok(HemiOct {
-            bits: INFO.check_bits(bits)?,
-        })
+        FAMILY.codec(bits)
     }
 }
 

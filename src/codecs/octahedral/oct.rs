@@ -1,6 +1,7 @@
 //! Octahedral encoding (survey §3.1–3.3, Meyer et al. 2010): project onto the octahedron
 //! with the L1 norm, unfold the lower half over the diagonals, store snorm×2.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain, sign_not_zero};
 use crate::codecs::toolkit::exact::{canonical, floor_ratio, snorm_ratio_within};
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
@@ -37,7 +38,7 @@ const LAYOUT: usize = 0;
 const RGB8: usize = 1;
 
 impl Family for OctFamily {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {
@@ -227,12 +228,12 @@ impl Codec for Oct24Rgb8 {
     /// render target stores exactly the packed code's bytes.
     #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V3<F> {
-        F::call("round_codes", v, #[inline(always)] |v| self.round_codes(v)) * F::c(1.0 / 255.0)
+        helper!(self.round_codes(v)) * F::c(1.0 / 255.0)
     }
     #[inline(always)]
     fn direction<F: Float>(&self, u: V3<F>) -> V3<F> {
-        let e = F::call("unorm8x3_to_snorm12x2", u, #[inline(always)] |a| from_unorm8x3(a)).named("e");
-        F::call("oct24_decode_float", e, #[inline(always)] |a| oct_direction(a))
+        let e = helper!("unorm8x3_to_snorm12x2" => from_unorm8x3(u)).named("e");
+        helper!("oct24_decode_float" => oct_direction(e))
     }
     /// The middle byte holds the low bits of one parameter and the high bits of the other.
     fn whole_field(&self) -> Option<usize> {
@@ -242,8 +243,8 @@ impl Codec for Oct24Rgb8 {
     /// skips a `c·(1/255)·255` round trip (which drivers would fold across the call).
     #[inline(always)]
     fn decode_codes<F: Float>(&self, b: V3<F>) -> V3<F> {
-        let e = F::call("bytes_to_snorm12x2", b, #[inline(always)] |a| from_bytes(a)).named("e");
-        F::call("oct24_decode_float", e, #[inline(always)] |a| oct_direction(a))
+        let e = helper!("bytes_to_snorm12x2" => from_bytes(b)).named("e");
+        helper!("oct24_decode_float" => oct_direction(e))
     }
     const EXACT_ROUNDING: bool = true;
     /// The portable oct24 codes, split into bytes.

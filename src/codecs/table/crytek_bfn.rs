@@ -86,7 +86,7 @@ static INFO: Info = Info {
 };
 
 impl Family for CrytekBfnFamily {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {

@@ -63,6 +63,7 @@
 //! fetch from the same tables in memory, a texel's byte `c` read as `c·(1/255)` as
 //! lavapipe's texture unit returns it.
 
+use crate::model::num::helper;
 use crate::codecs::core::codec::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, decided, length2, past_root_ratio, unorm_sqrt_ratio};
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
@@ -107,7 +108,7 @@ static INFO: Info = Info {
 };
 
 impl Family for SphericalLutFamily {
-    fn info(&self) -> &'static Info {
+    fn info(&self) -> &Info {
         &INFO
     }
     fn precise(&self) -> bool {
@@ -421,7 +422,7 @@ pub fn encode_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> F::U {
 /// target stores as exactly that code.
 #[inline(always)]
 pub fn encode_float_precise<F: Float>(v: V3<F>, code: F::U, s: Block<F>) -> V2<F> {
-    let chosen = F::call("encode", (v, (code, s)), #[inline(always)] |(v, (c, s))| encode_precise(v, c, s));
+    let chosen = helper!("encode" => encode_precise(v, code, s));
     let chosen: V2<F> = crate::codecs::core::codec::unpack(&FIELDS, chosen);
     crate::codecs::core::codec::dequantize(&FIELDS, chosen)
 }

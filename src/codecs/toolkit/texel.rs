@@ -31,10 +31,16 @@
 //! ```
 
 use crate::codecs::core::codec::{Codec, Domain, Params, above_horizon};
+use crate::codecs::core::function::Emitted;
 use crate::codecs::core::info::{OptDesc, OptKind};
+use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::words::{Bits, Lanes, Lanes8};
 use crate::codecs::toolkit::exact::{canonical_or_z, length2, unorm_sqrt_ratio};
 use crate::codecs::toolkit::quant::{Quant, Quants};
+use crate::model::avx2_lanes::F8;
+use crate::model::deviant::Dev;
+use crate::model::lanes::F4;
 use crate::model::{Float, V2, V3, V4};
 
 /// The storage of one channel.
@@ -156,6 +162,25 @@ pub fn validate(spec: &Spec) -> Result<(), SpecError> {
         });
     }
     Ok(())
+}
+
+/// The functions of a spec of a family with the texel layouts: its codec in the layout
+/// the spec asks for, or in its own packing.
+pub(crate) fn functions<C: TexelCodec>(spec: &Spec, c: C) -> Emitted
+where
+    C::P<f32>: Bits,
+    C::C<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::C<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::C<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::C<F8>: Bits<Lanes8>,
+{
+    match layout(spec) {
+        Some(layout) => codec_functions(spec, Texel { inner: c, layout }),
+        None => codec_functions(spec, c),
+    }
 }
 
 /// `generate`'s variants of a family: its 16-bit form in every layout.

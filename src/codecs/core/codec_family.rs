@@ -1,0 +1,82 @@
+//! The common family: one codec type whose codec follows from the spec's total bits.
+//! A family file then holds its [`Info`], how a size becomes a codec, how the codec's
+//! functions are emitted (its own packing, or also the texel layouts), and the docs of
+//! its helpers, in one `static`; everything else a [`Family`] says follows from these.
+//! Families whose sizes pick different codec types (`oct`, `snorm3`, `float3`) or that
+//! are no codec at all (lookup tables, `paraboloid_pd`) implement [`Family`] by hand.
+
+use crate::codecs::core::codec::Codec;
+use crate::codecs::core::function::Emitted;
+use crate::codecs::core::info::Info;
+use crate::codecs::core::spec::{Family, Spec, SpecError};
+
+/// A [`Family`] of one codec type `C`.
+pub struct CodecFamily<C> {
+    pub info: Info,
+    /// The codec of a valid total size.
+    sized: fn(u32) -> C,
+    /// Traces and lists the spec's functions for its codec (`codec_functions`, or
+    /// `texel::functions` for a family with the texel layouts; a family whose options
+    /// change the codec applies them here).
+    emit: fn(&Spec, C) -> Emitted,
+    validate: fn(&Spec) -> Result<(), SpecError>,
+    variants: &'static [&'static str],
+    helper_doc: fn(&str) -> Option<String>,
+}
+
+impl<C> CodecFamily<C> {
+    /// A family without options and without helper docs.
+    pub const fn new(info: Info, sized: fn(u32) -> C, emit: fn(&Spec, C) -> Emitted) -> Self {
+        CodecFamily {
+            info,
+            sized,
+            emit,
+            validate: |_| Ok(()),
+            variants: &[],
+            helper_doc: |_| None,
+        }
+    }
+
+    /// With the check that combines the options with the size ([`Family::validate`]).
+    pub const fn with_validate(self, validate: fn(&Spec) -> Result<(), SpecError>) -> Self {
+        CodecFamily { validate, ..self }
+    }
+
+    /// With the specs `generate` writes besides the defaults ([`Family::variants`]).
+    pub const fn with_variants(self, variants: &'static [&'static str]) -> Self {
+        CodecFamily { variants, ..self }
+    }
+
+    /// With doc comments for the helper functions the codec defines
+    /// ([`Family::helper_doc`]).
+    pub const fn with_helper_doc(self, helper_doc: fn(&str) -> Option<String>) -> Self {
+        CodecFamily { helper_doc, ..self }
+    }
+
+    /// The codec of `bits` total bits; an invalid size is an error listing the allowed ones.
+    pub fn codec(&self, bits: u32) -> Result<C, SpecError> {
+        self.info.check_bits(bits).map(self.sized)
+    }
+}
+
+impl<C: Codec + 'static> Family for CodecFamily<C> {
+    fn info(&self) -> &Info {
+        &self.info
+    }
+    /// The codec's own: offered where its search is exact.
+    fn precise(&self) -> bool {
+        C::EXACT_SEARCH
+    }
+    fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
+        (self.validate)(spec)
+    }
+    fn variants(&self) -> &'static [&'static str] {
+        self.variants
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        (self.emit)(spec, (self.sized)(spec.bits()))
+    }
+    fn helper_doc(&self, name: &str) -> Option<String> {
+        (self.helper_doc)(name)
+    }
+}
