@@ -14,7 +14,7 @@
 //! ```no_run
 //! use unitpack::model::deviant::Class;
 //! use unitpack::portability::{Options, run};
-//! let report = run(&unitpack::Spec::all(), &Class::ALL, &Options::default());
+//! let report = run(&unitpack::Spec::all(), &Class::ALL.map(Into::into), &Options::default());
 //! print!("{}", report.table());
 //! println!("packed encoders portable: {}", report.packed_encoders_portable());
 //! ```
@@ -23,7 +23,7 @@ use crate::codecs::Spec;
 use crate::codecs::core::function::{Emitted, Function, Inputs, Role, first_with_same_code};
 use crate::codecs::core::inputs::{edge_vectors, generate};
 pub use crate::decode_bound::UNIT;
-pub use crate::model::deviant::{Class, Deviation, Mode};
+pub use crate::model::deviant::{Class, Classes, Deviation, Mode};
 use crate::model::deviant::{begin_item, item_chose, with};
 use crate::model::trace::Module;
 use std::collections::HashMap;
@@ -36,6 +36,8 @@ pub struct Options {
     pub seeds: Vec<u64>,
     /// Also run [`Mode::Lowest`] and [`Mode::Highest`].
     pub worst_ends: bool,
+    /// Seeds of the [`Mode::Site`] runs: one choice per operation for every item.
+    pub sites: Vec<u64>,
     /// Evaluate at most this many items per function, evenly spread over the verify inputs
     /// (encoders: every edge vector plus this many others); `None`: all of them.
     pub sample: Option<usize>,
@@ -71,6 +73,7 @@ impl Default for Options {
         Options {
             seeds: vec![1, 2, 3],
             worst_ends: true,
+            sites: Vec::new(),
             sample: Some(1 << 14),
             functions: Functions::All,
         }
@@ -78,14 +81,31 @@ impl Default for Options {
 }
 
 impl Options {
+    /// What `verify --portable` runs: [`Options::default`] and three per-site seeds.
+    pub fn cli() -> Options {
+        Options {
+            sites: vec![1, 2, 3],
+            ..Options::default()
+        }
+    }
     /// The modes each class runs in.
     pub fn modes(&self) -> Vec<Mode> {
         let mut m: Vec<Mode> = self.seeds.iter().map(|&s| Mode::Seeded(s)).collect();
         if self.worst_ends {
             m.extend([Mode::Lowest, Mode::Highest]);
         }
+        m.extend(self.sites.iter().map(|&s| Mode::Site(s)));
         m
     }
+}
+
+/// What `verify --portable` measures: each class alone, and the liberties a path without
+/// `NoContraction` (WGSL, GLSL without `precise`) may take together, `fma`, `reassoc` and
+/// `contract`, which per site reproduce what an H100 changed on those paths.
+pub fn cli_classes() -> Vec<Classes> {
+    let mut c: Vec<Classes> = Class::ALL.map(Into::into).to_vec();
+    c.push(Classes::of(&[Class::Fma, Class::Reassoc, Class::Contract]));
+    c
 }
 
 /// One changed item: its input, the reference output and the deviant one.
@@ -105,7 +125,7 @@ pub struct Row {
     /// The function's local name (`encode`, `decode_float`, ...).
     pub function: &'static str,
     pub role: Role,
-    pub class: Class,
+    pub class: Classes,
     /// Items evaluated (in each mode).
     pub items: usize,
     /// Items whose output bits changed in at least one mode.
@@ -146,7 +166,7 @@ impl Row {
 /// The result of [`run`].
 #[derive(Clone, Debug)]
 pub struct PortabilityReport {
-    pub classes: Vec<Class>,
+    pub classes: Vec<Classes>,
     pub modes: Vec<Mode>,
     /// Per spec, function and class, in that order.
     pub rows: Vec<Row>,
@@ -213,7 +233,7 @@ fn measure(
     spec: &str,
     module: &Module,
     f: &Function,
-    classes: &[Class],
+    classes: &[Classes],
     modes: &[Mode],
     sample_n: Option<usize>,
 ) -> Vec<Row> {
@@ -241,44 +261,50 @@ fn measure(
             let mut forced = vec![false; items.len()];
             for (m, &mode) in modes.iter().enumerate() {
                 let mut n = 0;
-                with(Some(Deviation { class, mode }), || {
-                    for (k, &i) in items.iter().enumerate() {
-                        let inp = &input[i * iw..][..iw];
-                        let kept = &mut first[k * ow..][..ow];
-                        if m > 0 && forced[k] {
-                            out.copy_from_slice(kept);
-                        } else {
-                            begin_item(i as u64);
-                            (f.eval_dev)(inp, &mut out);
-                            if m == 0 {
-                                kept.copy_from_slice(&out);
-                                forced[k] = !item_chose();
+                with(
+                    Some(Deviation {
+                        classes: class,
+                        mode,
+                    }),
+                    || {
+                        for (k, &i) in items.iter().enumerate() {
+                            let inp = &input[i * iw..][..iw];
+                            let kept = &mut first[k * ow..][..ow];
+                            if m > 0 && forced[k] {
+                                out.copy_from_slice(kept);
+                            } else {
+                                begin_item(i as u64);
+                                (f.eval_dev)(inp, &mut out);
+                                if m == 0 {
+                                    kept.copy_from_slice(&out);
+                                    forced[k] = !item_chose();
+                                }
+                            }
+                            let r = &reference[k * ow..][..ow];
+                            if out != r {
+                                n += 1;
+                                changed[k] = true;
+                                if let Some(m) = &mut max_ulp {
+                                    let d = r.iter().zip(&out).map(|(&a, &b)| ulp_distance(a, b));
+                                    *m = d.fold(*m, u64::max);
+                                }
+                                if let Some(m) = &mut max_dev {
+                                    *m = r
+                                        .iter()
+                                        .zip(&out)
+                                        .map(|(&a, &b)| abs_units(a, b))
+                                        .fold(*m, f64::max);
+                                }
+                                example.get_or_insert_with(|| Example {
+                                    mode,
+                                    input: inp.to_vec(),
+                                    reference: r.to_vec(),
+                                    deviant: out.clone(),
+                                });
                             }
                         }
-                        let r = &reference[k * ow..][..ow];
-                        if out != r {
-                            n += 1;
-                            changed[k] = true;
-                            if let Some(m) = &mut max_ulp {
-                                let d = r.iter().zip(&out).map(|(&a, &b)| ulp_distance(a, b));
-                                *m = d.fold(*m, u64::max);
-                            }
-                            if let Some(m) = &mut max_dev {
-                                *m = r
-                                    .iter()
-                                    .zip(&out)
-                                    .map(|(&a, &b)| abs_units(a, b))
-                                    .fold(*m, f64::max);
-                            }
-                            example.get_or_insert_with(|| Example {
-                                mode,
-                                input: inp.to_vec(),
-                                reference: r.to_vec(),
-                                deviant: out.clone(),
-                            });
-                        }
-                    }
-                });
+                    },
+                );
                 by_mode.push(n);
             }
             Row {
@@ -300,7 +326,7 @@ fn measure(
 }
 
 /// Runs every function of every spec under each class in each mode of `opts`.
-pub fn run(specs: &[Spec], classes: &[Class], opts: &Options) -> PortabilityReport {
+pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityReport {
     let modes = opts.modes();
     let emitted: Vec<Emitted> = specs.iter().map(Spec::emitted).collect();
     // A function with the code and inputs of an earlier one ([`first_with_same_code`]: a
@@ -441,7 +467,7 @@ impl PortabilityReport {
         let widths: Vec<usize> = (0..self.classes.len())
             .map(|i| {
                 let cells = groups().filter_map(|g| g.get(i)).map(|r| cell(r).len());
-                cells.fold(12, usize::max)
+                cells.fold(self.classes[i].name().len().max(12), usize::max)
             })
             .collect();
         for (c, w) in self.classes.iter().zip(&widths) {
@@ -506,7 +532,7 @@ impl PortabilityReport {
     /// or vanished; decoders add `max_dev`, `bound` and `bound_at`, the box of codes where
     /// the bound is attained, one `[lo, hi]` per field).
     pub fn json(&self) -> String {
-        let classes: Vec<String> = self.classes.iter().map(|c| json_str(c.name())).collect();
+        let classes: Vec<String> = self.classes.iter().map(|c| json_str(&c.name())).collect();
         let modes: Vec<String> = self.modes.iter().map(|m| json_str(&m.name())).collect();
         let rows: Vec<String> = self
             .rows
@@ -538,7 +564,7 @@ impl PortabilityReport {
                     json_str(&r.spec),
                     json_str(r.function),
                     json_str(&format!("{:?}", r.role)),
-                    json_str(r.class.name()),
+                    json_str(&r.class.name()),
                     r.items,
                     r.changed,
                     by_mode.join(","),

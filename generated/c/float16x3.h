@@ -33,25 +33,17 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // Struct form of unitpack_float16x3_decode_float.
 static inline unitpack_vec3 unitpack_float16x3_decode_float_v(unitpack_vec3 params) {
-    const float t1 = fabsf(params.x);
-    const bool t2 = t1 <= 3.4028235e38f;
-    const float t3 = fabsf(params.y);
-    const bool t4 = t3 <= 3.4028235e38f;
-    const bool t5 = t2 && t4;
-    const float t6 = fabsf(params.z);
-    const bool t7 = t6 <= 3.4028235e38f;
-    const bool t8 = t5 && t7;
-    const float t9 = fabsf(params.x);
-    const bool t10 = t9 > 0.0f;
-    const float t11 = fabsf(params.y);
-    const bool t12 = t11 > 0.0f;
-    const bool t13 = t10 || t12;
-    const float t14 = fabsf(params.z);
-    const bool t15 = t14 > 0.0f;
-    const bool t16 = t13 || t15;
-    const bool t17 = t8 && t16;
-    const unitpack_vec3 t18 = { t17 ? params.x : 0.0f, t17 ? params.y : 0.0f, t17 ? params.z : 1.0f };
-    return t18;
+    const unitpack_uvec3 t1 = { unitpack_bits_of(params.x), unitpack_bits_of(params.y), unitpack_bits_of(params.z) };
+    const unitpack_uvec3 t2 = { t1.x & 2147483647u, t1.y & 2147483647u, t1.z & 2147483647u };
+    const unitpack_bvec3 t3 = { t2.x < 2139095040u, t2.y < 2139095040u, t2.z < 2139095040u };
+    const unitpack_bvec3 t4 = { 0u < t2.x, 0u < t2.y, 0u < t2.z };
+    const bool t5 = t3.x && t3.y;
+    const bool t6 = t5 && t3.z;
+    const bool t7 = t4.x || t4.y;
+    const bool t8 = t7 || t4.z;
+    const bool t9 = t6 && t8;
+    const unitpack_vec3 t10 = { t9 ? params.x : 0.0f, t9 ? params.y : 0.0f, t9 ? params.z : 1.0f };
+    return t10;
 }
 
 // unitpack_float16x3_decode_float: float16x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 48 bits, sphere), decoder, float form.

@@ -33,28 +33,18 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // Struct form of unitpack_float32x3_decode_float.
 static inline unitpack_vec3 unitpack_float32x3_decode_float_v(unitpack_vec3 params) {
-    const unitpack_vec3 t1 = { fabsf(params.x), fabsf(params.y), fabsf(params.z) };
-    const unitpack_bvec3 t2 = { t1.x < 1.1754944e-38f, t1.y < 1.1754944e-38f, t1.z < 1.1754944e-38f };
-    const unitpack_vec3 t3 = { t2.x ? 0.0f : params.x, t2.y ? 0.0f : params.y, t2.z ? 0.0f : params.z };
-    const float t4 = fabsf(t3.x);
-    const bool t5 = t4 <= 3.4028235e38f;
-    const float t6 = fabsf(t3.y);
-    const bool t7 = t6 <= 3.4028235e38f;
-    const bool t8 = t5 && t7;
-    const float t9 = fabsf(t3.z);
-    const bool t10 = t9 <= 3.4028235e38f;
-    const bool t11 = t8 && t10;
-    const float t12 = fabsf(t3.x);
-    const bool t13 = t12 > 0.0f;
-    const float t14 = fabsf(t3.y);
-    const bool t15 = t14 > 0.0f;
-    const bool t16 = t13 || t15;
-    const float t17 = fabsf(t3.z);
-    const bool t18 = t17 > 0.0f;
-    const bool t19 = t16 || t18;
-    const bool t20 = t11 && t19;
-    const unitpack_vec3 t21 = { t20 ? t3.x : 0.0f, t20 ? t3.y : 0.0f, t20 ? t3.z : 1.0f };
-    return t21;
+    const unitpack_uvec3 t1 = { unitpack_bits_of(params.x), unitpack_bits_of(params.y), unitpack_bits_of(params.z) };
+    const unitpack_uvec3 t2 = { t1.x & 2147483647u, t1.y & 2147483647u, t1.z & 2147483647u };
+    const unitpack_bvec3 t3 = { t2.x < 2139095040u, t2.y < 2139095040u, t2.z < 2139095040u };
+    const unitpack_bvec3 t4 = { 8388607u < t2.x, 8388607u < t2.y, 8388607u < t2.z };
+    const bool t5 = t3.x && t3.y;
+    const bool t6 = t5 && t3.z;
+    const bool t7 = t4.x || t4.y;
+    const bool t8 = t7 || t4.z;
+    const unitpack_vec3 t9 = { t4.x ? params.x : 0.0f, t4.y ? params.y : 0.0f, t4.z ? params.z : 0.0f };
+    const bool t10 = t6 && t8;
+    const unitpack_vec3 t11 = { t10 ? t9.x : 0.0f, t10 ? t9.y : 0.0f, t10 ? t9.z : 1.0f };
+    return t11;
 }
 
 // unitpack_float32x3_decode_float: float32x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 96 bits, sphere), decoder, float form.

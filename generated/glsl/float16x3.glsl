@@ -30,25 +30,17 @@ precision highp int;
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00605°, sample max 0.02166° (not a bound); MSE of the components of n - n' 1.140e-8, PSNR 79.43 dB.
 vec3 unitpack_float16x3_decode_float(vec3 params) {
-    UNITPACK_PRECISE float t1 = abs(params.x);
-    bool t2 = t1 <= 3.4028235e38;
-    UNITPACK_PRECISE float t3 = abs(params.y);
-    bool t4 = t3 <= 3.4028235e38;
-    bool t5 = t2 && t4;
-    UNITPACK_PRECISE float t6 = abs(params.z);
-    bool t7 = t6 <= 3.4028235e38;
-    bool t8 = t5 && t7;
-    UNITPACK_PRECISE float t9 = abs(params.x);
-    bool t10 = t9 > 0.0;
-    UNITPACK_PRECISE float t11 = abs(params.y);
-    bool t12 = t11 > 0.0;
-    bool t13 = t10 || t12;
-    UNITPACK_PRECISE float t14 = abs(params.z);
-    bool t15 = t14 > 0.0;
-    bool t16 = t13 || t15;
-    bool t17 = t8 && t16;
-    UNITPACK_PRECISE vec3 t18 = t17 ? params : vec3(0.0, 0.0, 1.0);
-    return t18;
+    uvec3 t1 = floatBitsToUint(params);
+    uvec3 t2 = t1 & uvec3(2147483647u);
+    bvec3 t3 = lessThan(t2, uvec3(2139095040u));
+    bvec3 t4 = lessThan(uvec3(0u), t2);
+    bool t5 = t3.x && t3.y;
+    bool t6 = t5 && t3.z;
+    bool t7 = t4.x || t4.y;
+    bool t8 = t7 || t4.z;
+    bool t9 = t6 && t8;
+    UNITPACK_PRECISE vec3 t10 = t9 ? params : vec3(0.0, 0.0, 1.0);
+    return t10;
 }
 
 // unitpack_float16x3_decode: float16x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 48 bits, sphere), decoder.

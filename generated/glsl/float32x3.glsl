@@ -30,28 +30,18 @@ precision highp int;
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
 // Round-trip error (encode, store, decode) over a sample of 65536 seeded unit vectors (seed 0x756e69747061636b5f766563746f7273): mean 0.00000°, sample max 0.00001° (not a bound); MSE of the components of n - n' 2.317e-15, PSNR 146.35 dB.
 vec3 unitpack_float32x3_decode_float(vec3 params) {
-    UNITPACK_PRECISE vec3 t1 = abs(params);
-    bvec3 t2 = lessThan(t1, vec3(1.1754944e-38));
-    UNITPACK_PRECISE vec3 t3 = mix(params, vec3(0.0), t2);
-    UNITPACK_PRECISE float t4 = abs(t3.x);
-    bool t5 = t4 <= 3.4028235e38;
-    UNITPACK_PRECISE float t6 = abs(t3.y);
-    bool t7 = t6 <= 3.4028235e38;
-    bool t8 = t5 && t7;
-    UNITPACK_PRECISE float t9 = abs(t3.z);
-    bool t10 = t9 <= 3.4028235e38;
-    bool t11 = t8 && t10;
-    UNITPACK_PRECISE float t12 = abs(t3.x);
-    bool t13 = t12 > 0.0;
-    UNITPACK_PRECISE float t14 = abs(t3.y);
-    bool t15 = t14 > 0.0;
-    bool t16 = t13 || t15;
-    UNITPACK_PRECISE float t17 = abs(t3.z);
-    bool t18 = t17 > 0.0;
-    bool t19 = t16 || t18;
-    bool t20 = t11 && t19;
-    UNITPACK_PRECISE vec3 t21 = t20 ? t3 : vec3(0.0, 0.0, 1.0);
-    return t21;
+    uvec3 t1 = floatBitsToUint(params);
+    uvec3 t2 = t1 & uvec3(2147483647u);
+    bvec3 t3 = lessThan(t2, uvec3(2139095040u));
+    bvec3 t4 = lessThan(uvec3(8388607u), t2);
+    bool t5 = t3.x && t3.y;
+    bool t6 = t5 && t3.z;
+    bool t7 = t4.x || t4.y;
+    bool t8 = t7 || t4.z;
+    UNITPACK_PRECISE vec3 t9 = mix(vec3(0.0), params, t4);
+    bool t10 = t6 && t8;
+    UNITPACK_PRECISE vec3 t11 = t10 ? t9 : vec3(0.0, 0.0, 1.0);
+    return t11;
 }
 
 // unitpack_float32x3_decode: float32x3 (components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32: RGB32_FLOAT), 96 bits, sphere), decoder.

@@ -213,12 +213,19 @@ pub enum Command {
         /// Instead of running the emitted code, evaluate the model under every deviation
         /// the graphics APIs allow (division and sqrt within their ULP bounds, fused
         /// multiply-adds, denormal flushing, lost signs of zero, excess precision,
-        /// reassociation, either-neighbour rounding), with 3 seeds and both worst-case
-        /// ends, over 2^14 inputs per function. Reports changed outputs per function and
+        /// reassociation, either-neighbour rounding, contraction into comparisons and
+        /// products), one class at a time and fma+reassoc+contract together, with 3
+        /// seeds, 3 per-site choices and both worst-case ends, over 2^14 inputs per
+        /// function. Reports changed outputs per function and
         /// class; exits 1 if any packed code changes under a class the portability
         /// guarantee covers (div, sqrt, fma, denorm, zero).
         #[arg(long)]
         portable: bool,
+        /// List up to N mismatches of each function with integer outputs (codes, indices)
+        /// per path instead of 5, e.g. to keep what a GPU changed as regression data.
+        /// Float outputs list 5 and their largest difference.
+        #[arg(long, value_name = "N", default_value_t = crate::verify::FIRST)]
+        keep: usize,
     },
 }
 
@@ -321,6 +328,7 @@ pub fn run(cli: Cli) -> Result<i32> {
             json,
             adapter,
             portable,
+            keep,
         } => {
             let specs = if specs.is_empty() {
                 Spec::all()
@@ -330,8 +338,8 @@ pub fn run(cli: Cli) -> Result<i32> {
             if portable {
                 let report = crate::portability::run(
                     &specs,
-                    &crate::model::deviant::Class::ALL,
-                    &crate::portability::Options::default(),
+                    &crate::portability::cli_classes(),
+                    &crate::portability::Options::cli(),
                 );
                 output::print(&if json { report.json() } else { report.table() })?;
                 return Ok(if report.guarantees_hold() { 0 } else { 1 });
@@ -341,7 +349,7 @@ pub fn run(cli: Cli) -> Result<i32> {
             } else {
                 lang
             };
-            let report = crate::verify::run_on(&specs, &langs, true, adapter)
+            let report = crate::verify::run_on(&specs, &langs, true, adapter, keep)
                 .context("verification could not run")?;
             output::print(&if json {
                 verify::report_json(&report)

@@ -9,7 +9,13 @@
 //! Each operation that a class touches has a small set of allowed results; the mode picks
 //! one per operation: [`Mode::Seeded`] uniformly from a seeded stream (reseeded per item by
 //! [`begin_item`], so a result does not depend on which other items ran), [`Mode::Lowest`]
-//! and [`Mode::Highest`] always the lowest or highest (in IEEE total order, so `-0 < +0`).
+//! and [`Mode::Highest`] always the lowest or highest (in IEEE total order, so `-0 < +0`),
+//! [`Mode::Site`] by a hash of the seed and the operation's place in the function, the same
+//! for every item, as a compiler fuses or regroups an instruction for every input or for
+//! none. A [`Deviation`] takes a set of classes ([`Classes`]) at once: an implementation
+//! that contracts also regroups, and the changes an NVIDIA H100 made on the paths without
+//! `NoContraction` are reproduced only by `fma`, `reassoc` and `contract` together, per
+//! site (`tests/portability.rs`, over the codes kept in `tests/data/`).
 //!
 //! What the APIs allow, and how each class models it (Vulkan: "Precision and Operation of
 //! SPIR-V Instructions"; D3D11 functional spec §3.1 "Floating-point rules"; WGSL §15
@@ -25,6 +31,7 @@
 //! | `excess` | excess precision (C's `FLT_EVAL_METHOD`; Mesa with `GALLIUM_NOSSE=1`) | see [`Class::Excess`] |
 //! | `reassoc` | reassociation and combination of operations unless `NoContraction` / `precise` (SPIR-V's `NoContraction`: "such operations are not allowed to reassociate", so without it they are; WGSL §15.7.5 "Reassociation and Fusion") | a sum remembers its operands: `(a + b) + c` may become `a + (b + c)` or `(a + c) + b`; `a*b + a*c` may become `a*(b + c)` (a rule of Mesa's `nir_opt_algebraic` for operations not marked exact) |
 //! | `round` | `+ - *` rounded to either neighbour of the exact result (WGSL names no rounding mode; Vulkan's default may be round-toward-zero unless the shader declares `RoundingModeRTE`) | each result of `+ - *` may be the other neighbour of the exact value |
+//! | `contract` | a multiply combined with any other instruction unless `NoContraction` / `precise` (SPIR-V: `NoContraction` "cannot be combined with another instruction"; WGSL §15.7.5) | a comparison may take a remembered product whole (`a*b < c` as `fma(a, b, -c) < 0`); a product may be distributed over a remembered sum (`(u + v)*k` as `u*k + v*k`, or with one product fused) or regrouped with a remembered product (`(f*g)*k` as `f*(g*k)`); under `div` too, a quotient may be `a*(1/b)`, a product the next operation may take whole |
 //!
 //! Division and square root outside the normal range, where Vulkan allows anything, are
 //! still held to the same ULP bounds: the model looks for fragile codes, not for every
@@ -72,10 +79,16 @@ pub enum Class {
     Reassoc,
     /// Either neighbour of the exact result for `+ - *`.
     Round,
+    /// Contraction beyond `a*b + c`: a comparison taking a product whole (`a*b < c` as
+    /// `fma(a, b, -c) < 0`), a product distributed over a sum (`(u + v)*k` as
+    /// `u*k + v*k`, one product possibly fused) or regrouped with another product
+    /// (`(f*g)*k` as `f*(g*k)`), which SPIR-V allows on operations without `NoContraction`
+    /// and WGSL always; C compilers contract only `a*b + c`.
+    Contract,
 }
 
 impl Class {
-    pub const ALL: [Class; 8] = [
+    pub const ALL: [Class; 9] = [
         Class::Div,
         Class::Sqrt,
         Class::Fma,
@@ -84,6 +97,7 @@ impl Class {
         Class::Excess,
         Class::Reassoc,
         Class::Round,
+        Class::Contract,
     ];
     /// The classes a portable encoder is guaranteed against: what an implementation that
     /// rounds `+ - *` to nearest and keeps the order of operations (`precise`,
@@ -112,7 +126,51 @@ impl Class {
             Class::Excess => "excess",
             Class::Reassoc => "reassoc",
             Class::Round => "round",
+            Class::Contract => "contract",
         }
+    }
+}
+
+/// A set of [`Class`]es taken at once: what one implementation may combine (a driver that
+/// contracts `a*b + c` also computes `x / y` within its ULP bound, and may contract the
+/// product its division became).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Classes(u16);
+
+impl Classes {
+    /// The set of `classes`.
+    pub const fn of(classes: &[Class]) -> Classes {
+        let mut bits = 0;
+        let mut i = 0;
+        while i < classes.len() {
+            bits |= 1 << classes[i] as u16;
+            i += 1;
+        }
+        Classes(bits)
+    }
+    pub fn contains(self, class: Class) -> bool {
+        self.0 & 1 << class as u16 != 0
+    }
+    /// The members, in [`Class::ALL`] order.
+    pub fn members(self) -> impl Iterator<Item = Class> {
+        Class::ALL.into_iter().filter(move |&c| self.contains(c))
+    }
+    /// Whether the portability guarantee covers every member ([`Class::guaranteed`]).
+    pub fn guaranteed(self) -> bool {
+        self.members().all(Class::guaranteed)
+    }
+    /// The members' names joined by `+` (`fma+div`).
+    pub fn name(self) -> String {
+        self.members()
+            .map(Class::name)
+            .collect::<Vec<_>>()
+            .join("+")
+    }
+}
+
+impl From<Class> for Classes {
+    fn from(c: Class) -> Classes {
+        Classes::of(&[c])
     }
 }
 
@@ -125,6 +183,12 @@ pub enum Mode {
     Lowest,
     /// Always the highest allowed result.
     Highest,
+    /// Per site: each operation of the function (its place in the evaluation, the same for
+    /// every item of straight-line code) picks by a hash of this seed and the site, the
+    /// same for every item, as a compiler decides once per instruction whether to fuse,
+    /// regroup or approximate it. Where the number of allowed results depends on the
+    /// values (a zero quotient has one), the pick is the hash modulo that number.
+    Site(u64),
 }
 
 impl Mode {
@@ -133,15 +197,25 @@ impl Mode {
             Mode::Seeded(s) => format!("seed {s}"),
             Mode::Lowest => "lowest".into(),
             Mode::Highest => "highest".into(),
+            Mode::Site(s) => format!("site {s}"),
         }
     }
 }
 
-/// A class and a mode: what [`Dev`] arithmetic does on this thread.
+/// The classes and a mode: what [`Dev`] arithmetic does on this thread.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Deviation {
-    pub class: Class,
+    pub classes: Classes,
     pub mode: Mode,
+}
+
+impl Deviation {
+    pub fn new(classes: impl Into<Classes>, mode: Mode) -> Deviation {
+        Deviation {
+            classes: classes.into(),
+            mode,
+        }
+    }
 }
 
 thread_local! {
@@ -149,6 +223,9 @@ thread_local! {
     static RNG: RefCell<Pcg64Mcg> = RefCell::new(Pcg64Mcg::new(1));
     /// Whether an operation since [`begin_item`] had allowed results that differ.
     static CHOSE: Cell<bool> = const { Cell::new(false) };
+    /// The site of the operation being evaluated ([`Mode::Site`]): operations since
+    /// [`begin_item`], and picks within the operation.
+    static SITE: Cell<(u64, u64)> = const { Cell::new((0, 0)) };
 }
 
 /// Runs `f` with `dev` as this thread's deviation (`None`: exact `f32` arithmetic), and
@@ -168,6 +245,7 @@ pub fn with<R>(dev: Option<Deviation>, f: impl FnOnce() -> R) -> R {
 /// depend only on the seed and the item, not on the items evaluated before it.
 pub fn begin_item(index: u64) {
     CHOSE.with(|c| c.set(false));
+    SITE.with(|s| s.set((0, 0)));
     if let Some(Deviation {
         mode: Mode::Seeded(seed),
         ..
@@ -195,15 +273,35 @@ pub fn item_chose() -> bool {
     CHOSE.with(Cell::get)
 }
 
-/// The mode, when `class` is the active class.
+/// The mode, when `class` is an active class.
 #[inline(always)]
 fn active(class: Class) -> Option<Mode> {
-    ACTIVE.with(|a| a.get().filter(|d| d.class == class).map(|d| d.mode))
+    ACTIVE.with(|a| {
+        a.get()
+            .filter(|d| d.classes.contains(class))
+            .map(|d| d.mode)
+    })
 }
 
+/// Marks the start of an operation: the next site of [`Mode::Site`].
 #[inline(always)]
-fn class() -> Option<Class> {
-    deviation().map(|d| d.class)
+fn site() {
+    SITE.with(|s| s.set((s.get().0 + 1, 0)));
+}
+
+/// A hash of `seed` and the current site and pick ([`Mode::Site`]), advancing the pick.
+fn site_hash(seed: u64) -> u64 {
+    let (op, k) = SITE.with(|s| {
+        let v = s.get();
+        s.set((v.0, v.1 + 1));
+        v
+    });
+    // SplitMix64's finalizer over the three words: every bit of each moves the result.
+    let mut z =
+        seed ^ op.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ k.wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
+    z = (z ^ z >> 30).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ z >> 27).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ z >> 31
 }
 
 /// This thread's deviation: read once per operation by the arithmetic that every class
@@ -215,6 +313,12 @@ fn deviation() -> Option<Deviation> {
 
 /// Index of the chosen one of `n` allowed results, `cmp` ordering them.
 fn pick(mode: Mode, n: usize, cmp: impl Fn(usize, usize) -> Ordering) -> usize {
+    // A site's picks advance whatever their number of results, so that the next pick of
+    // the operation is the same pick on every item.
+    let site = match mode {
+        Mode::Site(seed) => site_hash(seed),
+        _ => 0,
+    };
     if n == 1 {
         return 0;
     }
@@ -223,6 +327,7 @@ fn pick(mode: Mode, n: usize, cmp: impl Fn(usize, usize) -> Ordering) -> usize {
     }
     match mode {
         Mode::Seeded(_) => RNG.with(|r| (r.borrow_mut().next_u64() % n as u64) as usize),
+        Mode::Site(_) => (site % n as u64) as usize,
         Mode::Lowest => (1..n).fold(0, |m, i| if cmp(i, m).is_lt() { i } else { m }),
         Mode::Highest => (1..n).fold(0, |m, i| if cmp(i, m).is_gt() { i } else { m }),
     }
@@ -269,8 +374,16 @@ fn flushing<const N: usize>(mode: Mode, a: [f32; N], op: impl Fn([f32; N]) -> f3
 /// tiny quotient could reach the other sign within the bound, but every division and
 /// root algorithm computes the sign apart from the magnitude.
 fn within_ulp(mode: Mode, r: f32, exact: f64, bound: f64) -> f32 {
+    let (c, n) = within_ulp_all(r, exact, bound);
+    pick_f32(mode, &c[..n])
+}
+
+/// The candidates of [`within_ulp`]: `r` first, then the others, and their number.
+fn within_ulp_all(r: f32, exact: f64, bound: f64) -> ([f32; 16], usize) {
+    let mut c = [0f32; 16];
     if r == 0.0 || !r.is_finite() {
-        return r;
+        c[0] = r;
+        return (c, 1);
     }
     let a = r.abs();
     let ulp = if f64::from(a) <= exact.abs() {
@@ -279,7 +392,6 @@ fn within_ulp(mode: Mode, r: f32, exact: f64, bound: f64) -> f32 {
         f64::from(a) - f64::from(a.next_down())
     };
     let steps = bound.ceil() as usize + 1;
-    let mut c = [0f32; 16];
     let mut n = 0;
     let mut push = |x: f32| {
         if (f64::from(x) - exact).abs() <= bound * ulp
@@ -297,7 +409,7 @@ fn within_ulp(mode: Mode, r: f32, exact: f64, bound: f64) -> f32 {
         push(lo);
         push(hi);
     }
-    pick_f32(mode, &c[..n])
+    (c, n)
 }
 
 /// A sign-of-zero choice for a result that may lose it.
@@ -384,13 +496,15 @@ impl Dev {
         op: impl Fn([f32; N]) -> f32,
         wide: impl Fn([f64; N]) -> f64,
     ) -> Dev {
-        let Some(Deviation { class, mode }) = dev else {
+        let Some(Deviation { classes, mode }) = dev else {
             return Dev::new(op(a.map(|d| d.x)));
         };
-        match class {
-            Class::Excess => Dev::excess(mode, wide(a.map(Dev::wide))),
-            Class::Denorm => Dev::new(flushing(mode, a.map(|d| d.x), op)),
-            _ => Dev::new(op(a.map(|d| d.x))),
+        if classes.contains(Class::Excess) {
+            Dev::excess(mode, wide(a.map(Dev::wide)))
+        } else if classes.contains(Class::Denorm) {
+            Dev::new(flushing(mode, a.map(|d| d.x), op))
+        } else {
+            Dev::new(op(a.map(|d| d.x)))
         }
     }
 }
@@ -479,73 +593,95 @@ impl Uint for DevU {
     }
 }
 
-/// Under `round`: `r` (an f32 result whose exact value is `exact`) or its other
-/// neighbour of `exact`.
-fn either_neighbour(mode: Mode, r: f32, exact: f64) -> f32 {
-    let other = match f64::from(r).partial_cmp(&exact) {
-        Some(Ordering::Less) => r.next_up(),
-        Some(Ordering::Greater) => r.next_down(),
-        _ => return r,
-    };
-    pick_f32(mode, &[r, other])
+/// Under `round`: the other neighbour of `exact` beside `r` (an f32 result whose exact value
+/// is `exact`), if `r` is inexact.
+fn other_neighbour(r: f32, exact: f64) -> Option<f32> {
+    match f64::from(r).partial_cmp(&exact) {
+        Some(Ordering::Less) => Some(r.next_up()),
+        Some(Ordering::Greater) => Some(r.next_down()),
+        _ => None,
+    }
 }
 
-/// Under `reassoc`: `a + b` or a regrouping of it. A remembered sum operand may be
-/// regrouped with the other operand; two remembered products with a common factor may be
-/// factored.
-fn regrouped(mode: Mode, a: Dev, b: Dev) -> Dev {
-    let mut c = vec![a.x + b.x];
-    for (p, q) in [(a, b), (b, a)] {
-        if let Ext::Sum(u, v) = p.ext {
-            c.push(u + (v + q.x));
-            c.push((u + q.x) + v);
+/// Up to 12 allowed results of one operation.
+struct Results {
+    c: [f32; 12],
+    n: usize,
+}
+
+impl Results {
+    fn new(r: f32) -> Results {
+        let mut c = [0f32; 12];
+        c[0] = r;
+        Results { c, n: 1 }
+    }
+    fn push(&mut self, x: f32) {
+        self.c[self.n] = x;
+        self.n += 1;
+    }
+    fn pick(&self, mode: Mode) -> f32 {
+        pick_f32(mode, &self.c[..self.n])
+    }
+}
+
+/// `a + b` under the active classes that touch a sum: `round` (either neighbour of the
+/// exact sum), `fma` (a remembered product operand fused with the other operand) and
+/// `reassoc` (a remembered sum operand regrouped with the other operand, two remembered
+/// products with a common factor factored); the result remembers its operands under
+/// `reassoc` and `contract` (which may distribute a product over it).
+fn sum(d: Deviation, a: Dev, b: Dev) -> Dev {
+    let cs = d.classes;
+    let mut r = Results::new(a.x + b.x);
+    if cs.contains(Class::Round) {
+        let exact = f64::from(a.x) + f64::from(b.x);
+        if let Some(o) = other_neighbour(a.x + b.x, exact) {
+            r.push(o);
         }
     }
-    if let (Ext::Product(p, q), Ext::Product(r, t)) = (a.ext, b.ext) {
-        for (f, g, h, k) in [(p, q, r, t), (p, q, t, r), (q, p, r, t), (q, p, t, r)] {
+    for (p, q) in [(a, b), (b, a)] {
+        match p.ext {
+            Ext::Product(f, g) if cs.contains(Class::Fma) => r.push(f.mul_add(g, q.x)),
+            Ext::Sum(u, v) if cs.contains(Class::Reassoc) => {
+                r.push(u + (v + q.x));
+                r.push((u + q.x) + v);
+            }
+            _ => {}
+        }
+    }
+    if let (true, Ext::Product(p, q), Ext::Product(u, t)) =
+        (cs.contains(Class::Reassoc), a.ext, b.ext)
+    {
+        for (f, g, h, k) in [(p, q, u, t), (p, q, t, u), (q, p, u, t), (q, p, t, u)] {
             if f.to_bits() == h.to_bits() {
-                c.push(f * (g + k));
+                r.push(f * (g + k));
             }
         }
     }
     Dev {
-        x: pick_f32(mode, &c),
-        ext: Ext::Sum(a.x, b.x),
+        x: r.pick(d.mode),
+        ext: if cs.contains(Class::Reassoc) || cs.contains(Class::Contract) {
+            Ext::Sum(a.x, b.x)
+        } else {
+            Ext::None
+        },
     }
 }
 
 impl Add for Dev {
     type Output = Dev;
     fn add(self, o: Dev) -> Dev {
+        site();
         let dev = deviation();
-        let mode = match dev {
-            Some(Deviation {
-                class: Class::Reassoc,
-                mode,
-            }) => return regrouped(mode, self, o),
-            Some(Deviation {
-                class: Class::Round,
-                mode,
-            }) => {
-                let exact = f64::from(self.x) + f64::from(o.x);
-                return Dev::new(either_neighbour(mode, self.x + o.x, exact));
+        match dev {
+            Some(d)
+                if [Class::Reassoc, Class::Round, Class::Fma, Class::Contract]
+                    .iter()
+                    .any(|&c| d.classes.contains(c)) =>
+            {
+                sum(d, self, o)
             }
-            Some(Deviation {
-                class: Class::Fma,
-                mode,
-            }) => mode,
-            _ => return Dev::arith_under(dev, [self, o], |[a, b]| a + b, |[a, b]| a + b),
-        };
-        // Unfused, or either remembered product fused with the other operand.
-        let mut c = [self.x + o.x, 0.0, 0.0];
-        let mut n = 1;
-        for (p, q) in [(self, o), (o, self)] {
-            if let Ext::Product(a, b) = p.ext {
-                c[n] = a.mul_add(b, q.x);
-                n += 1;
-            }
+            _ => Dev::arith_under(dev, [self, o], |[a, b]| a + b, |[a, b]| a + b),
         }
-        Dev::new(pick_f32(mode, &c[..n]))
     }
 }
 
@@ -561,28 +697,83 @@ impl Sub for Dev {
 impl Mul for Dev {
     type Output = Dev;
     fn mul(self, o: Dev) -> Dev {
+        site();
         let dev = deviation();
-        match dev.map(|d| d.class) {
-            Some(Class::Round) => {
+        let Some(d) = dev else {
+            return Dev::new(self.x * o.x);
+        };
+        let cs = d.classes;
+        let base = if cs.contains(Class::Round) || cs.contains(Class::Contract) {
+            let mut r = Results::new(self.x * o.x);
+            if cs.contains(Class::Round) {
                 let exact = f64::from(self.x) * f64::from(o.x);
-                let mode = dev.expect("a deviation").mode;
-                Dev::new(either_neighbour(mode, self.x * o.x, exact))
+                if let Some(other) = other_neighbour(self.x * o.x, exact) {
+                    r.push(other);
+                }
             }
-            Some(Class::Fma | Class::Reassoc) => Dev {
-                x: self.x * o.x,
+            if cs.contains(Class::Contract) {
+                for (p, q) in [(self, o), (o, self)] {
+                    match p.ext {
+                        // `(u + v)·q` distributed, each product rounded or one fused.
+                        Ext::Sum(u, v) => {
+                            r.push(u * q.x + v * q.x);
+                            r.push(u.mul_add(q.x, v * q.x));
+                            r.push(v.mul_add(q.x, u * q.x));
+                        }
+                        // `(f·g)·q` regrouped.
+                        Ext::Product(f, g) => {
+                            r.push(f * (g * q.x));
+                            r.push(g * (f * q.x));
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            Dev::new(r.pick(d.mode))
+        } else {
+            Dev::arith_under(dev, [self, o], |[a, b]| a * b, |[a, b]| a * b)
+        };
+        // A product that a following add may fuse or factor remembers its factors (not
+        // under `excess`, whose wide value is the product unrounded already).
+        let remembered = [Class::Fma, Class::Reassoc, Class::Contract]
+            .iter()
+            .any(|&c| cs.contains(c));
+        if remembered && !d.classes.contains(Class::Excess) {
+            Dev {
+                x: base.x,
                 ext: Ext::Product(self.x, o.x),
-            },
-            _ => Dev::arith_under(dev, [self, o], |[a, b]| a * b, |[a, b]| a * b),
+            }
+        } else {
+            base
         }
     }
 }
 
 impl Div for Dev {
     type Output = Dev;
+    /// Under `div`, a quotient within [`DIV_ULP`]; under `div` and `contract` together also
+    /// `a · (1/b)`, the reciprocal multiply a driver divides with, remembered as a product
+    /// that a following add or comparison may take whole.
     fn div(self, o: Dev) -> Dev {
+        site();
         if let Some(mode) = active(Class::Div) {
             let exact = f64::from(self.x) / f64::from(o.x);
-            return Dev::new(within_ulp(mode, self.x / o.x, exact, DIV_ULP));
+            let (mut c, mut n) = within_ulp_all(self.x / o.x, exact, DIV_ULP);
+            let recip = 1.0 / o.x;
+            let reciprocal = active(Class::Contract).is_some() && recip.is_finite() && recip != 0.0;
+            if reciprocal {
+                c[n] = self.x * recip;
+                n += 1;
+            }
+            let i = pick(mode, n, |i, j| c[i].total_cmp(&c[j]));
+            return Dev {
+                x: c[i],
+                ext: if reciprocal && i == n - 1 {
+                    Ext::Product(self.x, recip)
+                } else {
+                    Ext::None
+                },
+            };
         }
         Dev::arith([self, o], |[a, b]| a / b, |[a, b]| a / b)
     }
@@ -608,27 +799,50 @@ impl Neg for Dev {
 impl Dev {
     /// `floor` and `round`: on the rounded value, flushable, and losing the sign of a zero.
     fn integral(self, op: fn(f32) -> f32) -> Dev {
-        match class() {
-            Some(Class::Denorm) => {
-                Dev::new(flushing(active(Class::Denorm).unwrap(), [self.x], |[a]| {
-                    op(a)
-                }))
-            }
-            Some(Class::Zero) => Dev::new(any_zero(active(Class::Zero).unwrap(), op(self.x))),
-            _ => Dev::new(op(self.x)),
+        site();
+        let r = match active(Class::Denorm) {
+            Some(mode) => flushing(mode, [self.x], |[a]| op(a)),
+            None => op(self.x),
+        };
+        match active(Class::Zero) {
+            Some(mode) => Dev::new(any_zero(mode, r)),
+            None => Dev::new(r),
         }
     }
-    /// Comparisons see the rounded values; under `denorm` their operands may be flushed.
-    fn compare(self, o: Dev, op: fn(f32, f32) -> bool) -> DevB {
-        let exact = op(self.x, o.x);
-        let Some(mode) = active(Class::Denorm) else {
-            return DevB(exact);
-        };
-        if !(self.x.is_subnormal() || o.x.is_subnormal()) {
-            return DevB(exact);
+    /// Comparisons see the rounded values; under `denorm` their operands may be flushed;
+    /// under `contract` a remembered product may be compared unrounded, as `a*b < c`
+    /// rewritten to `fma(a, b, -c) < 0`: SPIR-V's `NoContraction` forbids combining a
+    /// multiply with any other instruction, so without it (WGSL, GLSL without `precise`)
+    /// a comparison may take the product whole. C compilers contract only `a*b + c`, so
+    /// this is no `fma` liberty.
+    fn compare(self, o: Dev, op: fn(f64, f64) -> bool) -> DevB {
+        site();
+        let (a, b) = (f64::from(self.x), f64::from(o.x));
+        let mut c = [op(a, b), false, false, false];
+        let mut n = 1;
+        let dev = deviation();
+        if let Some(Deviation { classes, mode }) = dev {
+            if classes.contains(Class::Denorm) && (self.x.is_subnormal() || o.x.is_subnormal()) {
+                c[n] = op(f64::from(flush(self.x)), f64::from(flush(o.x)));
+                n += 1;
+            }
+            if classes.contains(Class::Contract) {
+                let whole = |d: Dev| match d.ext {
+                    Ext::Product(f, g) => Some(f64::from(f) * f64::from(g)),
+                    _ => None,
+                };
+                if let Some(p) = whole(self) {
+                    c[n] = op(p, b);
+                    n += 1;
+                }
+                if let Some(p) = whole(o) {
+                    c[n] = op(a, p);
+                    n += 1;
+                }
+            }
+            return DevB(c[pick(mode, n, |i, j| c[i].cmp(&c[j]))]);
         }
-        let c = [exact, op(flush(self.x), flush(o.x))];
-        DevB(c[pick(mode, 2, |i, j| c[i].cmp(&c[j]))])
+        DevB(c[0])
     }
 }
 
@@ -640,6 +854,7 @@ impl Float for Dev {
     }
     /// Exact, so kept wide under `excess`; a zero result may lose its sign under `zero`.
     fn abs(self) -> Self {
+        site();
         match self.ext {
             Ext::Wide(w) => Dev {
                 x: self.x.abs(),
@@ -652,6 +867,7 @@ impl Float for Dev {
         }
     }
     fn sqrt(self) -> Self {
+        site();
         if let Some(mode) = active(Class::Sqrt) {
             let exact = f64::from(self.x).sqrt();
             return Dev::new(within_ulp(mode, self.x.sqrt(), exact, SQRT_ULP));
@@ -665,23 +881,24 @@ impl Float for Dev {
         self.integral(f32::round_ties_even)
     }
     fn lt(self, o: Self) -> DevB {
-        self.compare(o, <f32 as Float>::lt)
+        self.compare(o, |a, b| a < b)
     }
     fn le(self, o: Self) -> DevB {
-        self.compare(o, <f32 as Float>::le)
+        self.compare(o, |a, b| a <= b)
     }
     fn gt(self, o: Self) -> DevB {
-        self.compare(o, <f32 as Float>::gt)
+        self.compare(o, |a, b| a > b)
     }
     fn ge(self, o: Self) -> DevB {
-        self.compare(o, <f32 as Float>::ge)
+        self.compare(o, |a, b| a >= b)
     }
     fn eq(self, o: Self) -> DevB {
-        self.compare(o, <f32 as Float>::eq)
+        self.compare(o, |a, b| a == b)
     }
     /// The chosen value rounded (a select is where excess precision ends and where a
     /// product can no longer fuse); a zero may lose its sign under `zero`.
     fn sel(m: DevB, t: Self, f: Self) -> Self {
+        site();
         let r = if m.0 { t.x } else { f.x };
         match active(Class::Zero) {
             Some(mode) => Dev::new(any_zero(mode, r)),

@@ -788,6 +788,29 @@ impl Float for Encl {
             exact: ok && self.undeviated(),
         }
     }
+    /// Monotone in `|x|` and blind to the sign of a zero, so as exact as the value.
+    fn magnitude_bits(self) -> EnclU {
+        let (lo, hi) = if self.lo >= 0.0 {
+            (self.lo, self.hi)
+        } else if self.hi <= 0.0 {
+            (-self.hi, -self.lo)
+        } else {
+            (0.0, (-self.lo).max(self.hi))
+        };
+        if lo.is_nan() || hi.is_nan() || hi == f64::INFINITY && lo == 0.0 {
+            return EnclU {
+                lo: 0,
+                hi: 0x7fff_ffff,
+                exact: false,
+            };
+        }
+        let bits = |m: f64| u64::from((m as f32).to_bits());
+        EnclU {
+            lo: bits(lo),
+            hi: bits(hi),
+            exact: self.undeviated(),
+        }
+    }
     fn to_bits(self) -> EnclU {
         // Monotone on positive floats; a zero's bits depend on its sign.
         let ok = self.lo > 0.0;

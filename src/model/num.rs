@@ -124,6 +124,15 @@ pub trait Float:
     /// The IEEE bits (WGSL `bitcast<u32>`, GLSL `floatBitsToUint`, HLSL `asuint`): no
     /// arithmetic, so no implementation can change them.
     fn to_bits(self) -> Self::U;
+    /// The bits of `|self|` (exponent and mantissa, the sign cleared): what NaN,
+    /// infinity, zero and the binade are decided on. A compiler may fold a float
+    /// comparison with NaN or infinity where `precise` is absent (Mesa's OpenGL GLSL
+    /// compiler folds `|x| <= MAX` to true); an integer comparison of a bitcast means
+    /// the same everywhere.
+    #[inline(always)]
+    fn magnitude_bits(self) -> Self::U {
+        self.to_bits() & Self::U::c(0x7fff_ffff)
+    }
     /// `self ≥ lo ? self : lo`, a select rather than a `max` builtin, whose ±0 and NaN
     /// results differ between drivers. A NaN `self` gives `lo`; when the two compare
     /// equal (`-0` and `+0`) `self` is kept.

@@ -315,6 +315,8 @@ pub struct Comparison<'a> {
     words: usize,
     count: usize,
     first: Vec<Mismatch>,
+    /// How many mismatches `first` lists for integer outputs.
+    keep: usize,
     largest: Option<Largest>,
 }
 
@@ -338,8 +340,17 @@ impl<'a> Comparison<'a> {
             words: 0,
             count: 0,
             first: Vec::new(),
+            keep: FIRST,
             largest: None,
         }
+    }
+
+    /// Lists up to `keep` mismatches (at least [`FIRST`]) when the outputs are integers.
+    pub fn keeping(mut self, keep: usize) -> Self {
+        if self.types.1.kind != Kind::F32 {
+            self.keep = keep.max(FIRST);
+        }
+        self
     }
 
     /// The next `got` words of output, continuing from the words already received.
@@ -382,7 +393,7 @@ impl<'a> Comparison<'a> {
                         });
                     }
                 }
-                if self.first.len() < 5 {
+                if self.first.len() < self.keep {
                     self.first.push(mismatch());
                 }
             }
@@ -505,11 +516,23 @@ pub fn func_types(f: &Func) -> (Vec<Ty>, Ty) {
 /// Verifies `specs` on every path of `langs`, with a progress bar when `progress`, on the
 /// Vulkan CPU adapter.
 pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
-    run_on(specs, langs, progress, Adapter::Cpu)
+    run_on(specs, langs, progress, Adapter::Cpu, FIRST)
 }
 
-/// [`run`] with the shader paths on the Vulkan adapter `adapter` asks for.
-pub fn run_on(specs: &[Spec], langs: &[Lang], progress: bool, adapter: Adapter) -> Result<Report> {
+/// How many mismatches a row lists by default ([`Row::first`]).
+pub const FIRST: usize = 5;
+
+/// [`run`] with the shader paths on the Vulkan adapter `adapter` asks for, listing up to
+/// `keep` mismatches of each function with integer outputs per path (float outputs list
+/// [`FIRST`] and their largest): a hardware run's changed codes are regression data for
+/// the deviation model, while its float outputs differ in the last bits by the million.
+pub fn run_on(
+    specs: &[Spec],
+    langs: &[Lang],
+    progress: bool,
+    adapter: Adapter,
+    keep: usize,
+) -> Result<Report> {
     let paths: Vec<Path> = Path::ALL
         .into_iter()
         .filter(|p| p.lang().is_none_or(|l| langs.contains(&l)))
@@ -539,6 +562,11 @@ pub fn run_on(specs: &[Spec], langs: &[Lang], progress: bool, adapter: Adapter) 
     // taking the next spec, and keep the report in spec order. The shader paths share
     // the one device; the model's expected values and the C compilers use the rest.
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let on = On {
+        paths: &paths,
+        gpu,
+        keep,
+    };
     let next = std::sync::atomic::AtomicUsize::new(0);
     let mut per_spec: Vec<(usize, Vec<Row>)> = std::thread::scope(|scope| {
         let workers: Vec<_> = (0..threads.min(specs.len()).max(1))
@@ -549,10 +577,7 @@ pub fn run_on(specs: &[Spec], langs: &[Lang], progress: bool, adapter: Adapter) 
                         let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                         let Some(spec) = specs.get(i) else { break };
                         let shared = &owners[i];
-                        done.push((
-                            i,
-                            verify_spec(spec, &emitted[i], shared, langs, &paths, gpu, &bar),
-                        ));
+                        done.push((i, verify_spec(spec, &emitted[i], shared, langs, &on, &bar)));
                     }
                     done
                 })
@@ -613,16 +638,24 @@ fn copy_shared_results(rows: &mut [Row]) {
     }
 }
 
+/// Where a run verifies and what it lists: the paths, the adapter of the shader paths, and
+/// how many mismatches of integer outputs a row keeps.
+struct On<'a> {
+    paths: &'a [Path],
+    gpu: Option<&'a Gpu>,
+    keep: usize,
+}
+
 /// Every row of one spec: its whole includes, then each function on each path.
 fn verify_spec(
     spec: &Spec,
     e: &Emitted,
     shared: &[Option<String>],
     langs: &[Lang],
-    paths: &[Path],
-    gpu: Option<&Gpu>,
+    on: &On,
     bar: &indicatif::ProgressBar,
 ) -> Vec<Row> {
+    let (paths, gpu, keep) = (on.paths, on.gpu, on.keep);
     let mut rows = Vec::new();
     let includes: Vec<(Lang, String)> = langs
         .iter()
@@ -742,7 +775,7 @@ fn verify_spec(
         let input = inputs::generate(&f.inputs, f.in_words);
         let want = expected(f, &input);
         for &path in paths {
-            let mut cmp = Comparison::new(f, (params, *ret), &input, &want);
+            let mut cmp = Comparison::new(f, (params, *ret), &input, &want).keeping(keep);
             let result = if path == Path::Lanes {
                 cmp.take(&lanes(f, Width::Four, &input));
                 Ok(())

@@ -151,7 +151,7 @@ fn verify_portable_explains_its_cells() {
         "N/Ku    N float outputs changed, by at most K units in the last place",
         "N/NaN",
         "N!      N packed codes changed under a class the guarantee covers: a failure\n                (covered: div, sqrt, fma, denorm, zero)",
-        "Nx      N packed codes changed under a class it does not cover\n                (not covered: excess, reassoc, round)",
+        "Nx      N packed codes changed under a class it does not cover\n                (not covered: excess, reassoc, round, contract)",
         "proven: ≤B (seen S)",
     ] {
         assert!(r.stdout.contains(s), "no legend for {s:?}: {r:?}");

@@ -35,7 +35,7 @@ fn largest_deviation(f: &Function, items: impl Iterator<Item = usize> + Clone) -
     let (mut r, mut d) = (vec![0; ow], vec![0; ow]);
     for class in Class::GUARANTEED {
         for mode in MODES {
-            with(Some(Deviation { class, mode }), || {
+            with(Some(Deviation::new(class, mode)), || {
                 for i in items.clone() {
                     let x = &input[i * iw..][..iw];
                     with(None, || (f.eval)(x, &mut r));
@@ -64,11 +64,12 @@ fn every_decoder_has_a_finite_bound_the_samples_respect() {
     let opts = Options {
         seeds: vec![1],
         worst_ends: true,
+        sites: Vec::new(),
         sample: Some(1 << 11),
         functions: Functions::Decoders,
     };
     let all = Spec::all();
-    let report = run(&all, &Class::GUARANTEED, &opts);
+    let report = run(&all, &Class::GUARANTEED.map(Into::into), &opts);
     let mut decoders = 0;
     for row in report
         .rows

@@ -155,17 +155,11 @@ fn settled_sum_is_the_sum_to_two_to_minus_23_whatever_contraction_does() {
             "{p} + {q}: {s}"
         );
         for mode in [Mode::Lowest, Mode::Highest, Mode::Seeded(i as u64)] {
-            let d = with(
-                Some(Deviation {
-                    class: Class::Fma,
-                    mode,
-                }),
-                || {
-                    begin_item(i as u64);
-                    let dev = |x: f32| Dev::new(x);
-                    settled_sum(dev(w[0]) * dev(w[1]), dev(w[2]) * dev(w[3 - i % 2])).value()
-                },
-            );
+            let d = with(Some(Deviation::new(Class::Fma, mode)), || {
+                begin_item(i as u64);
+                let dev = |x: f32| Dev::new(x);
+                settled_sum(dev(w[0]) * dev(w[1]), dev(w[2]) * dev(w[3 - i % 2])).value()
+            });
             assert_eq!(d.to_bits(), s.to_bits(), "{p} + {q} under {mode:?}");
         }
     }
@@ -190,7 +184,7 @@ fn same_under_div_and_sqrt(i: usize, reference: f32, f: impl Fn() -> f32) {
     use unitpack::model::deviant::{Class, Deviation, Mode, begin_item, with};
     for class in [Class::Sqrt, Class::Div] {
         for mode in [Mode::Lowest, Mode::Highest, Mode::Seeded(i as u64)] {
-            let d = with(Some(Deviation { class, mode }), || {
+            let d = with(Some(Deviation::new(class, mode)), || {
                 begin_item(i as u64);
                 f()
             });

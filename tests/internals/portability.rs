@@ -7,7 +7,7 @@ fn row(class: Class, changed: usize) -> Row {
         spec: "oct16".into(),
         function: "encode",
         role: Role::Encode,
-        class,
+        class: class.into(),
         items: 10,
         changed,
         by_mode: vec![changed],
@@ -24,7 +24,7 @@ fn row(class: Class, changed: usize) -> Row {
 #[test]
 fn a_code_changed_under_a_guaranteed_class_fails_the_report() {
     let report = |rows| PortabilityReport {
-        classes: vec![Class::Div, Class::Excess],
+        classes: vec![Class::Div.into(), Class::Excess.into()],
         modes: vec![Mode::Lowest],
         rows,
     };

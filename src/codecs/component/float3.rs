@@ -15,7 +15,7 @@ use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::codecs::core::spec::Spec;
-use crate::model::{Bool, Float, V2, V3};
+use crate::model::{Bool, Float, Uint, V2, V3};
 
 pub static FAMILY: Float3Family = Float3Family;
 
@@ -74,7 +74,7 @@ impl Codec for Float16x3 {
     /// the vector the encoder chose. Only codes no encoder writes need a stand-in.
     #[inline(always)]
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
-        stored_or_z(p)
+        stored_or_z(p, 1, false)
     }
     /// Each component of the canonical input rounded to the f16 grid by
     /// [`half_sqrt_ratio`]: decided by comparing correctly rounded products.
@@ -88,16 +88,31 @@ impl Codec for Float16x3 {
     }
 }
 
-/// The stored floats themselves, or +Z for a vector with an infinite or NaN component or
-/// without a nonzero one.
+/// The stored floats themselves, with each component whose magnitude's bits are below
+/// `least` read as +0 (when `flush`), or +Z for a vector with an infinite or NaN component
+/// or without a component of at least `least`. Everything is decided on the bits
+/// ([`Float::magnitude_bits`]): a compiler may fold a float comparison with NaN where
+/// `precise` is absent, and Mesa's OpenGL GLSL compiler does (`|x| <= MAX` becomes true).
 #[inline(always)]
-fn stored_or_z<F: Float>(p: V3<F>) -> V3<F> {
-    let finite = { #[inline(always)] |x: F| x.abs().le(F::c(f32::MAX)) };
-    let nonzero = { #[inline(always)] |x: F| x.abs().gt(F::c(0.0)) };
-    let ok = finite(p.x).and(finite(p.y)).and(finite(p.z));
-    let some = nonzero(p.x).or(nonzero(p.y)).or(nonzero(p.z));
-    V3::sel_all(ok.and(some), p, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
+fn stored_or_z<F: Float>(p: V3<F>, least: u32, flush: bool) -> V3<F> {
+    let m = p.map(#[inline(always)] |x| x.magnitude_bits());
+    let finite = m.map(#[inline(always)] |m| m.lt(F::U::c(F32_INF)));
+    let counts = m.map(#[inline(always)] |m| F::U::c(least - 1).lt(m));
+    let ok = finite.x.and(finite.y).and(finite.z);
+    let some = counts.x.or(counts.y).or(counts.z);
+    let kept = if flush {
+        p.zip(counts, #[inline(always)] |x, c| F::sel(c, x, F::c(0.0)))
+    } else {
+        p
+    };
+    V3::sel_all(ok.and(some), kept, V3::new(F::c(0.0), F::c(0.0), F::c(1.0)))
 }
+
+/// The bits of the f32 infinity, the least magnitude that is not finite.
+const F32_INF: u32 = 0x7f80_0000;
+
+/// The bits of the smallest normal f32.
+const F32_MIN_NORMAL: u32 = 0x0080_0000;
 
 /// float32×3 in three words (an RGB32_FLOAT texel).
 #[derive(Clone, Copy, Debug, Default)]
@@ -119,12 +134,11 @@ impl Codec for Float32x3 {
         unit_or_z(v)
     }
     /// The fetched floats themselves, with a denormal (which an implementation may
-    /// flush) read as +0 and only codes no encoder writes replaced. The test is
-    /// "below the smallest normal", which NaN fails, so a NaN reaches `stored_or_z`.
+    /// flush) read as +0 and only codes no encoder writes replaced. Decided on the
+    /// fetched bits before any arithmetic, so no flush can reach the decision.
     #[inline(always)]
     fn direction<F: Float>(&self, p: V3<F>) -> V3<F> {
-        let normal = { #[inline(always)] |x: F| F::sel(x.abs().lt(F::c(f32::MIN_POSITIVE)), F::c(0.0), x) };
-        stored_or_z(p.map(normal))
+        stored_or_z(p, F32_MIN_NORMAL, true)
     }
     /// Each component on the `2^-24` grid by [`unit_on_grid`]: integers decide every digit.
     const EXACT_ROUNDING: bool = true;
