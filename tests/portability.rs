@@ -616,6 +616,7 @@ fn h100_items_hold_the_model_outputs() {
     for (file, lines) in [
         ("h100_naga_changed_codes.tsv", 2085),
         ("h100_naga_beyond_bound.tsv", 6),
+        ("h100_gl_precise_changed_codes.tsv", 48),
     ] {
         let items = kept(file);
         assert_eq!(items.len(), lines, "{file}");

@@ -9,7 +9,8 @@ GPU's), through EGL, with and without `#define UNITPACK_PRECISE precise`:
    special values), 65536 random and 16384 small-integer vectors, against the model
    (`unitpack encode SPEC --format binary`).
 
-Usage: python3 tools/mesa_gl_check.py generated/glsl target/release/unitpack
+Usage: python3 tools/mesa_gl_check.py generated/glsl target/release/unitpack [DIFFS.tsv]
+(DIFFS.tsv: every differing item, one per line: what, input words, driver's words, model's)
 Needs: pip install moderngl numpy; Mesa's EGL and GL drivers (Debian: libegl1 libegl-mesa0
 libgl1-mesa-dri). Exits 1 if anything differs. Stands in for a verify path until
 `unitpack verify` runs OpenGL itself.
@@ -20,6 +21,7 @@ import moderngl
 import numpy as np
 
 inc_dir, exe = sys.argv[1], sys.argv[2]
+diffs = open(sys.argv[3], "w") if len(sys.argv) > 3 else None
 ctx = moderngl.create_standalone_context(backend="egl", require=430)
 print(ctx.info["GL_RENDERER"], ctx.info["GL_VERSION"])
 differing = 0
@@ -50,10 +52,12 @@ def report(what, items, got, want):
     bad = np.nonzero((got != want).any(1))[0]
     differing += len(bad)
     line = f"{what}: {len(bad)} of {len(items)} differ"
+    hx = lambda w: " ".join(f"{x:08x}" for x in w)
     if len(bad):
         i = bad[0]
-        hx = lambda w: " ".join(f"{x:08x}" for x in w)
         line += f"; e.g. {hx(items[i])} -> {hx(got[i])}, model {hx(want[i])}"
+    for i in bad if diffs else []:
+        diffs.write(f"{what}\t{hx(items[i])}\t{hx(got[i])}\t{hx(want[i])}\n")
     print(line, flush=True)
 
 
