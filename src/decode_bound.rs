@@ -1,7 +1,7 @@
 //! Proven bounds on how far a decoder's output can move on a conformant implementation.
 //!
-//! `verify --portable` samples deviations one class at a time; this proves a bound for
-//! all guaranteed classes at once (`div`, `sqrt`, `fma`, `denorm`, `zero`, see
+//! `verify --portable` samples the guaranteed deviations one class at a time; this proves
+//! a bound for all guaranteed classes at once (`div`, `sqrt`, `fma`, `denorm`, `zero`, see
 //! [`crate::model::enclosure`]) over *every* code. The decoder runs on [`Encl`] over boxes
 //! of codes; each box yields an enclosure of every reference output and every deviation
 //! within it. The boxes are refined where the bound is largest (branch and bound) until the

@@ -255,7 +255,7 @@ pub enum Adapter {
     #[cfg_attr(feature = "cli", value(name = "gpu"))]
     /// The first adapter that is not a CPU: the machine's own GPU, which the graphics APIs
     /// allow to round, flush and fuse differently (`verify --portable` models those
-    /// liberties one class at a time).
+    /// liberties, alone and together).
     Hardware,
 }
 
