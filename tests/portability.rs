@@ -252,6 +252,73 @@ fn round_takes_either_neighbour_of_an_inexact_result() {
     assert_eq!(under(Class::Round, Mode::Lowest, exact_sum), 3.0);
 }
 
+/// Under a per-site mode an operation makes the same choice for every item: each of 64
+/// seeds rounds 200 inexact sums (one per item) either all to nearest or all to the other
+/// neighbour, and both happen across the seeds; a seeded mode mixes them.
+#[test]
+fn a_site_chooses_the_same_for_every_item() {
+    let items: Vec<(f32, f32)> = (0..200)
+        .map(|i| {
+            (
+                1.0 + i as f32 * 2f32.powi(-10),
+                2f32.powi(-24) * (1.0 + i as f32 / 512.0),
+            )
+        })
+        .collect();
+    let nearest = |mode: Mode| -> Vec<bool> {
+        items
+            .iter()
+            .enumerate()
+            .map(|(i, &(a, b))| {
+                under(Class::Round, mode, || {
+                    begin_item(i as u64);
+                    (Dev::new(a) + Dev::new(b)).value() == a + b
+                })
+            })
+            .collect()
+    };
+    let mut seen = [false; 2];
+    for seed in 0..64 {
+        let n = nearest(Mode::Site(seed));
+        assert!(n.iter().all(|&x| x == n[0]), "seed {seed}: {n:?}");
+        seen[usize::from(n[0])] = true;
+    }
+    assert_eq!(seen, [true, true]);
+    let mixed = nearest(Mode::Seeded(1));
+    assert!(mixed.contains(&true) && mixed.contains(&false));
+}
+
+/// Under `contract` a comparison may take a product whole: `a*b` rounds to exactly `c`
+/// while the exact product is below it, so `a*b < c` is false as written and true when
+/// contracted; `fma` alone (a C compiler's latitude) never does this, and a classes set
+/// takes both at once.
+#[test]
+fn contract_compares_a_product_whole() {
+    let (a, b) = (1.0 + 2f32.powi(-13), 1.0 - 2f32.powi(-13));
+    let c = a * b;
+    assert!(f64::from(a) * f64::from(b) < f64::from(c));
+    let less = || (Dev::new(a) * Dev::new(b)).lt(Dev::new(c)).0;
+    assert!(!less());
+    for class in [Class::Fma, Class::Reassoc, Class::Div, Class::Denorm] {
+        for mode in [Mode::Lowest, Mode::Highest, Mode::Site(1), Mode::Seeded(1)] {
+            assert!(!under(class, mode, less), "{class:?} {mode:?}");
+        }
+    }
+    let both: Vec<bool> = [Mode::Lowest, Mode::Highest]
+        .into_iter()
+        .map(|m| {
+            with(
+                Some(Deviation::new(
+                    Classes::of(&[Class::Fma, Class::Contract]),
+                    m,
+                )),
+                less,
+            )
+        })
+        .collect();
+    assert_eq!(both, [false, true]);
+}
+
 /// Denormal operands and results may become zeros of their sign.
 #[test]
 fn denorm_flushes_inputs_and_outputs() {
