@@ -15,7 +15,7 @@ Needs: pip install moderngl numpy; Mesa's EGL and GL drivers (Debian: libegl1 li
 libgl1-mesa-dri). Exits 1 if anything differs. Stands in for a verify path until
 `unitpack verify` runs OpenGL itself.
 """
-import glob, re, struct, subprocess, sys
+import glob, re, subprocess, sys
 
 import moderngl
 import numpy as np
@@ -131,7 +131,6 @@ for path in sorted(glob.glob(f"{inc_dir}/*.glsl")):
         bad = np.nonzero((got != padded).any(1))[0]
         if len(bad):
             report(f"{spec} encode, precise={precise}", vin, got.view(np.uint32), padded.view(np.uint32))
-        differing += 0
     specs += 1
 print(f"{specs} packed encoders on {len(vin)} vectors each; {differing} items differ in all")
 sys.exit(1 if differing else 0)
