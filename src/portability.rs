@@ -99,12 +99,11 @@ impl Options {
     }
 }
 
-/// What `verify --portable` measures: each class alone, and the liberties a path without
-/// `NoContraction` (WGSL, GLSL without `precise`) may take together, `fma`, `reassoc` and
-/// `contract`, which per site reproduce what an H100 changed on those paths.
+/// What `verify --portable` measures: each class alone, and
+/// [`Classes::WITHOUT_NO_CONTRACTION`] together.
 pub fn cli_classes() -> Vec<Classes> {
     let mut c: Vec<Classes> = Class::ALL.map(Into::into).to_vec();
-    c.push(Classes::of(&[Class::Fma, Class::Reassoc, Class::Contract]));
+    c.push(Classes::WITHOUT_NO_CONTRACTION);
     c
 }
 

@@ -138,6 +138,11 @@ impl Class {
 pub struct Classes(u16);
 
 impl Classes {
+    /// What a path without `NoContraction` (WGSL, GLSL without `precise`) may take at
+    /// once: `fma`, `reassoc` and `contract`. Per site, these reproduce what an H100
+    /// changed on those paths (`tests/portability.rs`).
+    pub const WITHOUT_NO_CONTRACTION: Classes =
+        Classes::of(&[Class::Fma, Class::Reassoc, Class::Contract]);
     /// The set of `classes`.
     pub const fn of(classes: &[Class]) -> Classes {
         let mut bits = 0;
