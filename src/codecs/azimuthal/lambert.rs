@@ -11,6 +11,7 @@ use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::core::ieee;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::SpecError;
 
@@ -23,11 +24,12 @@ pub static FAMILY: CodecFamily<Lambert> = CodecFamily::new(
         source: "Pranckevičius, Compact Normal Storage, method 6",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
         decode_note: "every code decodes to a unit vector; codes outside the disk decode as -Z",
-        options: &[],
+        options: &[ieee::OPTION],
     },
     |bits| Lambert { bits },
-    codec_functions,
+    |spec, c| ieee::functions(spec, c, codec_functions),
 )
+.with_variants(&["lambert16:guarantee=ieee"])
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 impl Lambert {
@@ -116,6 +118,19 @@ impl Codec for Lambert {
         let enc = p.w.xy() / g + F::c(0.5);
         let enc = V2::sel_all(p.at_pole(), V2::new(F::c(1.0), F::c(0.5)), enc);
         V2::sel_all(p.ok, enc, V2::splat(F::c(0.5)))
+    }
+    /// The seed's `xy / sqrt(8z + 8) + 0.5` of the normalized input in plain arithmetic
+    /// (the lean tier); -Z encodes as (1, 0.5) and input whose squared length is not a
+    /// positive finite `f32` as +Z, like the default tier.
+    #[inline(always)]
+    fn ieee_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let len2 = v.length_squared().named("len2");
+        let ok = len2.gt(F::c(0.0)).and(len2.le(F::c(f32::MAX)));
+        let n = (v / len2.sqrt()).named("n");
+        let f = (n.z * F::c(8.0) + F::c(8.0)).sqrt().named("f");
+        let enc = n.xy() / f + F::c(0.5);
+        let enc = V2::sel_all(f.gt(F::c(0.0)), enc, V2::new(F::c(1.0), F::c(0.5)));
+        V2::sel_all(ok, enc, V2::splat(F::c(0.5)))
     }
     /// `x / sqrt(8(1 + z))` of the canonical input is `w.x / sqrt(8·l·a / b)`
     /// ([`crate::codecs::toolkit::exact::one_plus_z`], `l` the length from [`crate::codecs::toolkit::exact::root`]), so the code boundary `c + ½` is

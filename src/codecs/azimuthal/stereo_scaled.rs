@@ -8,9 +8,10 @@ use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{OnePlusZ, decided, fixed_ratio, float_of, one_if};
 use crate::codecs::toolkit::fixed_decode::{BITS, fixed_target, nearest_decoded, odd_square_quarter, search_doc};
 use crate::codecs::toolkit::quant::{Quant, Quants};
-use crate::model::{Float, V2, V3};
+use crate::model::{Bool, Float, V2, V3};
 use crate::codecs::core::info::{Info, OptDesc, OptKind, OptVal, Sizes};
 use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::core::ieee;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::SpecError;
 
@@ -23,11 +24,15 @@ pub static FAMILY: CodecFamily<StereoScaled> = CodecFamily::new(
         source: "Pranckevičius, Compact Normal Storage, method 7",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it",
         decode_note: "every code decodes to a unit vector (up to rounding)",
-        options: &[SCALE_OPTION],
+        options: &[SCALE_OPTION, ieee::OPTION],
     },
     |bits| StereoScaled { bits, scale: DEFAULT_SCALE },
-    |spec, c| codec_functions(spec, StereoScaled { scale: spec.number(SCALE), ..c }),
+    |spec, c| {
+        let c = StereoScaled { scale: spec.number(SCALE), ..c };
+        ieee::functions(spec, c, codec_functions)
+    },
 )
+.with_variants(&["stereo_scaled16:guarantee=ieee"])
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 /// Scales whose derived literals (`2s`, `-s`, `0.5/s`) are all normal f32 values, with
@@ -123,6 +128,20 @@ impl Codec for StereoScaled {
         let q = self.quants();
         let enc = enc.map(#[inline(always)] |x| q[0].clamp(x));
         V2::sel_all(p.ok, enc, V2::splat(F::c(0.5)))
+    }
+    /// The seed's `xy / (z + 1) / scale · 0.5 + 0.5` of the normalized input in plain
+    /// arithmetic (the lean tier), clamped to the square (the pole's `0/0` gives 0, the
+    /// corner (0, 0) like the default tier); input whose squared length is not a positive
+    /// finite `f32` encodes as +Z.
+    #[inline(always)]
+    fn ieee_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let len2 = v.length_squared().named("len2");
+        let ok = len2.gt(F::c(0.0)).and(len2.le(F::c(f32::MAX)));
+        let n = (v / len2.sqrt()).named("n");
+        let enc = (n.xy() / (n.z + F::c(1.0)) * F::c(0.5 / self.scale) + F::c(0.5)).named("enc");
+        let q = self.quants();
+        let enc = enc.map(#[inline(always)] |x| q[0].clamp(x));
+        V2::sel_all(ok, enc, V2::splat(F::c(0.5)))
     }
     /// `x / (1 + z)` of the canonical input is `w.x·b / a` ([`crate::codecs::toolkit::exact::one_plus_z`], with the
     /// length from [`crate::codecs::toolkit::exact::root`]), so the code boundary `c + ½` is passed where

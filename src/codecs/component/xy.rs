@@ -11,6 +11,7 @@ use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, zero_code};
 use crate::model::{Bool, Float, Uint, V2, V3};
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::core::ieee;
 use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::core::spec::SpecError;
 
@@ -23,13 +24,16 @@ pub static FAMILY: CodecFamily<Xy> = CodecFamily::new(
         source: "Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes",
         edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
         decode_note: "z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1",
-        options: &[texel::OPTION],
+        options: &[texel::OPTION, ieee::OPTION],
     },
     |bits| Xy { bits },
-    texel::functions,
+    |spec, c| ieee::functions(spec, c, texel::functions),
 )
-.with_validate(texel::validate)
-.with_variants(texel_variants!("xy"))
+.with_validate(|spec| {
+    texel::validate(spec)?;
+    ieee::validate_own_packing(spec, texel::layout(spec).is_some())
+})
+.with_variants(texel_variants!("xy", "xy16:guarantee=ieee"))
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 
 impl Xy {
@@ -58,6 +62,18 @@ impl Codec for Xy {
     #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         self.target(v).xy()
+    }
+    /// The input projected onto the hemisphere (`z ← max(z, 0)`, a NaN kept) and
+    /// normalized, in plain arithmetic (the lean tier): input whose squared length is not
+    /// a positive finite `f32`, an infinite `z` and `-Z` give `(0, 0)`, +Z's code.
+    #[inline(always)]
+    fn ieee_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let h = V3::new(v.x, v.y, F::sel(v.z.lt(F::c(0.0)), F::c(0.0), v.z));
+        let len2 = h.length_squared().named("len2");
+        let finite_z = v.z.ge(F::c(-f32::MAX));
+        let ok = len2.gt(F::c(0.0)).and(len2.le(F::c(f32::MAX))).and(finite_z);
+        let p = (h.xy() / len2.sqrt()).named("p");
+        V2::sel_all(ok, p, V2::splat(F::c(0.0)))
     }
     /// Codes outside the unit disk decode to `(x, y, 0)`, which is longer than 1.
     #[inline(always)]

@@ -110,6 +110,18 @@ pub trait Codec: Send + Sync {
     }
     /// Direction → parameters in storage range, before quantization.
     fn params<F: Float>(&self, v: V3<F>) -> Self::P<F>;
+    /// [`Codec::params`] in the source's plain arithmetic, for the lean tier
+    /// ([`crate::codecs::core::ieee`]): without the power-of-two scalings and canonical
+    /// forms that make the default tier's encoders portable, so exact only where every
+    /// operation rounds correctly and denormals are kept. The default is `params` itself.
+    #[inline(always)]
+    fn ieee_params<F: Float>(&self, v: V3<F>) -> Self::P<F> {
+        self.params(v)
+    }
+    /// Whether [`Codec::ieee_params`] are always within the storage range and never NaN
+    /// (in the arithmetic the lean tier assumes), so that its fast encoder rounds them
+    /// without clamping.
+    const IEEE_IN_RANGE: bool = false;
     /// Parameters in storage range → direction.
     fn direction<F: Float>(&self, p: Self::P<F>) -> V3<F>;
     /// Integer codes (as unpacked from the texel) → direction: dequantized, then the

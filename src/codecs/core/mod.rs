@@ -9,13 +9,16 @@
 //! - [`spec`]: the spec grammar and the [`spec::Family`] trait every family implements;
 //! - [`codec`]: what a codec is, and [`pipeline`]: the encode/decode pipeline every codec
 //!   shares and the four functions of a codec spec;
-//! - [`codec_family`]: the family of one codec type, which most families are.
+//! - [`codec_family`]: the family of one codec type, which most families are;
+//! - [`ieee`]: the lean tier (`guarantee=ieee`), a codec's encoders without the exact
+//!   decisions that make them portable.
 
 pub mod codec;
 pub mod codec_family;
 pub mod decode_boxes;
 pub mod error;
 pub mod function;
+pub mod ieee;
 pub mod info;
 pub mod inputs;
 pub mod pipeline;

@@ -9,6 +9,7 @@ use crate::codecs::octahedral::oct::fit_l1;
 use crate::model::{Bool, Float, V2, V3};
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::codec_family::CodecFamily;
+use crate::codecs::core::ieee;
 use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::core::spec::SpecError;
 
@@ -21,13 +22,16 @@ pub static FAMILY: CodecFamily<HemiOct> = CodecFamily::new(
         source: "Cigolle et al. 2014, Listing 6 and Table 3",
         edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon)",
         decode_note: "every code decodes to a unit vector with z ≥ 0",
-        options: &[texel::OPTION],
+        options: &[texel::OPTION, ieee::OPTION],
     },
     |bits| HemiOct { bits },
-    texel::functions,
+    |spec, c| ieee::functions(spec, c, texel::functions),
 )
-.with_validate(texel::validate)
-.with_variants(texel_variants!("hemioct"))
+.with_validate(|spec| {
+    texel::validate(spec)?;
+    ieee::validate_own_packing(spec, texel::layout(spec).is_some())
+})
+.with_variants(texel_variants!("hemioct", "hemioct16:guarantee=ieee"))
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc("the input's signs")));
 
 impl HemiOct {
@@ -129,6 +133,18 @@ impl Codec for HemiOct {
         let a = w.abs();
         let l1 = (a.x + a.y + a.z).named("l1");
         let p = (w.xy() / l1).named("p");
+        let finite_z = v.z.ge(F::c(-f32::MAX));
+        let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX))).and(finite_z);
+        V2::sel_all(ok, V2::new(p.x + p.y, p.x - p.y), V2::splat(F::c(0.0)))
+    }
+    /// Listing 6 in plain arithmetic (the lean tier): the same projection onto the
+    /// hemisphere and checks, without [`fit_l1`]'s scaling.
+    #[inline(always)]
+    fn ieee_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+        let h = V3::new(v.x, v.y, F::sel(v.z.lt(F::c(0.0)), F::c(0.0), v.z));
+        let a = h.abs();
+        let l1 = (a.x + a.y + a.z).named("l1");
+        let p = (h.xy() / l1).named("p");
         let finite_z = v.z.ge(F::c(-f32::MAX));
         let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX))).and(finite_z);
         V2::sel_all(ok, V2::new(p.x + p.y, p.x - p.y), V2::splat(F::c(0.0)))

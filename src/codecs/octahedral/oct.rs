@@ -7,6 +7,7 @@ use crate::codecs::toolkit::exact::{canonical, floor_ratio, snorm_ratio_within};
 use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
+use crate::codecs::core::ieee;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::lattice::{Closeness, fixed, nearest, search_doc};
 use crate::codecs::component::snorm12x2::{BIAS, bytes_float, from_bytes, from_unorm8x3};
@@ -26,11 +27,14 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 (JCGT survey) §3.1–3.3",
     edge_policy: "input need not be unit length; zero, NaN and infinite input encode as +Z",
     decode_note: "every code decodes to a unit vector (normalized as v / sqrt(v·v))",
-    options: &[OptDesc {
-        key: "layout",
-        help: "rgb8 stores oct24 as the survey's unorm8×3 bytes (snorm12×2 split into an RGB8 texel)",
-        kind: OptKind::Choice(&["snorm", "rgb8"]),
-    }],
+    options: &[
+        OptDesc {
+            key: "layout",
+            help: "rgb8 stores oct24 as the survey's unorm8×3 bytes (snorm12×2 split into an RGB8 texel)",
+            kind: OptKind::Choice(&["snorm", "rgb8"]),
+        },
+        ieee::OPTION,
+    ],
 };
 
 /// Index of the `layout` option; choice 1 is `rgb8`.
@@ -52,16 +56,16 @@ impl Family for OctFamily {
                 why: "the rgb8 layout holds oct24 only".into(),
             });
         }
-        Ok(())
+        ieee::validate_own_packing(spec, spec.choice(LAYOUT) == RGB8)
     }
     fn variants(&self) -> &'static [&'static str] {
-        &["oct24:layout=rgb8"]
+        &["oct24:layout=rgb8", "oct16:guarantee=ieee"]
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
         if spec.choice(LAYOUT) == RGB8 {
             codec_functions(spec, Oct24Rgb8)
         } else {
-            codec_functions(spec, Oct { bits: spec.bits() })
+            ieee::functions(spec, Oct { bits: spec.bits() }, codec_functions)
         }
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
@@ -111,6 +115,24 @@ pub fn oct_params<F: Float>(v: V3<F>) -> V2<F> {
     let ok = l1.gt(F::c(0.0)).and(l1.le(F::c(f32::MAX)));
     let p = (w.xy() / l1).named("p");
     let e = V2::sel_all(w.z.le(F::c(0.0)), fold(p), p);
+    V2::sel_all(ok, e, V2::splat(F::c(0.0)))
+}
+
+/// [`oct_params`] in plain arithmetic (the lean tier): the survey's projection. The
+/// quotients are at most 1 in magnitude (`|x| ≤ l1`, and rounding is monotonic), so
+/// their sum is below 4 unless one is NaN: zero, NaN and infinite input (`0/0`, `∞/∞`,
+/// `x/NaN`) fail that one comparison and give `(0, 0)`. Finite input whose L1 norm
+/// overflows divides by infinity: its parameters are zeros, then `(0, 0)` or the fold's
+/// corner, a defined code.
+#[inline(always)]
+pub fn oct_params_ieee<F: Float>(v: V3<F>) -> V2<F> {
+    let a = v.abs();
+    let l1 = (a.x + a.y + a.z).named("l1");
+    let p = (v.xy() / l1).named("p");
+    let ap = p.abs();
+    let ok = (ap.x + ap.y).lt(F::c(4.0));
+    let folded = (V2::splat(F::c(1.0)) - ap.yx()) * sign_not_zero(p);
+    let e = V2::sel_all(v.z.le(F::c(0.0)), folded, p);
     V2::sel_all(ok, e, V2::splat(F::c(0.0)))
 }
 
@@ -193,6 +215,12 @@ impl Codec for Oct {
     fn params<F: Float>(&self, v: V3<F>) -> V2<F> {
         oct_params(v)
     }
+    #[inline(always)]
+    fn ieee_params<F: Float>(&self, v: V3<F>) -> V2<F> {
+        oct_params_ieee(v)
+    }
+    /// [`oct_params_ieee`]'s parameters are in `[-1, 1]` and never NaN.
+    const IEEE_IN_RANGE: bool = true;
     #[inline(always)]
     fn direction<F: Float>(&self, p: V2<F>) -> V3<F> {
         oct_direction(p)

@@ -83,6 +83,13 @@ impl Quant {
             _ => (self.clamp(x) * F::c(self.max_code())).round(),
         }
     }
+    /// The code nearest to `x`, ties to even, for an `x` already in range and not NaN
+    /// (an integer field).
+    #[inline(always)]
+    pub fn quantize_in_range<F: Float>(self, x: F) -> F {
+        assert!(!self.is_float(), "a float field is stored, not rounded");
+        (x * F::c(self.max_code())).round()
+    }
     /// The code at or below `x`: where a precise search starts. Precise searches step
     /// through integer codes, which a float field does not have.
     #[inline(always)]

@@ -183,15 +183,16 @@ where
     }
 }
 
-/// `generate`'s variants of a family: its 16-bit form in every layout.
+/// `generate`'s variants of a family: its 16-bit form in every layout, then any others.
 macro_rules! texel_variants {
-    ($name:literal) => {
+    ($name:literal $(, $more:literal)*) => {
         &[
             concat!($name, "16:layout=rg"),
             concat!($name, "16:layout=dxt5nm"),
             concat!($name, "16:layout=rxgb"),
             concat!($name, "16:layout=latc"),
             concat!($name, "16:layout=xra"),
+            $($more,)*
         ]
     };
 }

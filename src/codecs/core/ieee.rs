@@ -1,0 +1,139 @@
+//! The lean tier, `guarantee=ieee`: a codec's encoders in the plain arithmetic of its
+//! source, for a user who runs only where `+ - * /` and `sqrt` round correctly to nearest,
+//! denormals are kept and nothing is contracted (lavapipe, C with `-ffp-contract=off`,
+//! the CPU), or who does not need the same codes everywhere.
+//!
+//! The default tier (`guarantee=portable`) decides every code with exact comparisons
+//! ([`crate::codecs::toolkit::exact`], [`crate::codecs::toolkit::lattice`]) and scales
+//! tiny and huge input into range, so that the code survives every liberty the APIs
+//! allow; that costs instructions (oct16's packed encoder: 56, its octahedral core 20).
+//! Here the fast encoder rounds the parameters ([`Codec::round_codes`]' default) of the
+//! codec's [`Codec::ieee_params`], and the precise encoder is the float search of the
+//! survey ([`precise_search`]) through the codec's own decoder. Decoders are the
+//! default tier's, unchanged. Zero, NaN and infinite input encode as in the default
+//! tier; finite input so large or so small that its norm overflows or underflows in plain
+//! arithmetic gets a defined code, which need not be its direction's (the default tier
+//! scales such input into range first).
+
+use crate::codecs::core::codec::{Codec, Domain, Params, precise_search, quantize};
+use crate::codecs::core::function::Emitted;
+use crate::codecs::core::info::{OptDesc, OptKind};
+use crate::codecs::core::pipeline::codec_functions;
+use crate::codecs::core::spec::{Spec, SpecError};
+use crate::codecs::core::words::{Bits, Lanes, Lanes8};
+use crate::codecs::toolkit::quant::Quants;
+use crate::model::avx2_lanes::F8;
+use crate::model::deviant::Dev;
+use crate::model::lanes::F4;
+use crate::model::num::helper;
+use crate::model::{Float, V3};
+
+/// The `guarantee` option of a family with a lean tier.
+pub const OPTION: OptDesc = OptDesc {
+    key: "guarantee",
+    help: "portable: the same codes on every implementation the include's header names; ieee: the lean arithmetic of the source (oct16's packed encoder 56 → 24 instructions), bit-exact only where + - * / sqrt round correctly, denormals are kept and nothing is contracted (lavapipe, C with -ffp-contract=off, the CPU)",
+    kind: OptKind::Choice(&["portable", "ieee"]),
+};
+
+/// Whether the spec asks for the lean tier.
+pub fn asked(spec: &Spec) -> bool {
+    spec.info()
+        .option_index(OPTION.key)
+        .is_some_and(|i| spec.choice(i) == 1)
+}
+
+/// The lean tier covers a codec's own packing: a texel layout's channels are decided
+/// in the default tier only.
+pub fn validate_own_packing(spec: &Spec, layout: bool) -> Result<(), SpecError> {
+    if asked(spec) && layout {
+        return Err(SpecError::BadValue {
+            key: OPTION.key.into(),
+            value: "ieee".into(),
+            why: "the ieee tier covers the codec's own packing, not a texel layout".into(),
+        });
+    }
+    Ok(())
+}
+
+/// A codec in the lean tier.
+#[derive(Clone, Copy, Debug)]
+pub struct Ieee<C>(pub C);
+
+impl<C: Codec> Codec for Ieee<C> {
+    type P<F: Float> = C::P<F>;
+    type C<F: Float> = C::C<F>;
+    #[inline]
+    fn quants(&self) -> Quants {
+        self.0.quants()
+    }
+    fn domain(&self) -> Domain {
+        self.0.domain()
+    }
+    #[inline(always)]
+    fn target<F: Float>(&self, v: V3<F>) -> V3<F> {
+        self.0.target(v)
+    }
+    #[inline(always)]
+    fn params<F: Float>(&self, v: V3<F>) -> C::P<F> {
+        self.0.ieee_params(v)
+    }
+    #[inline(always)]
+    fn direction<F: Float>(&self, p: C::P<F>) -> V3<F> {
+        self.0.direction(p)
+    }
+    #[inline(always)]
+    fn decode_codes<F: Float>(&self, codes: C::P<F>) -> V3<F> {
+        self.0.decode_codes(codes)
+    }
+    fn whole_field(&self) -> Option<usize> {
+        self.0.whole_field()
+    }
+    fn unread_fields(&self) -> &'static [usize] {
+        self.0.unread_fields()
+    }
+    /// The default rounding of the parameters, without the clamp where the codec's
+    /// [`Codec::IEEE_IN_RANGE`] says they cannot leave the range.
+    #[inline(always)]
+    fn round_codes<F: Float>(&self, v: V3<F>) -> C::P<F> {
+        let p = helper!("encode_float" => self.params(v));
+        let q = self.quants();
+        let codes = if C::IEEE_IN_RANGE {
+            C::P::<F>::build(
+                #[inline(always)]
+                |i| q[i].quantize_in_range(p.lane(i)),
+            )
+        } else {
+            quantize(&q, p)
+        };
+        codes.named_p("codes")
+    }
+    /// The survey's search: the codes around the parameters, decoded in floats.
+    #[inline(always)]
+    fn precise_codes<F: Float>(&self, v: V3<F>) -> C::P<F> {
+        precise_search(self, v, "decode_float")
+    }
+}
+
+/// The functions of a spec of a family with a lean tier: `default` (the family's own
+/// emission) unless the spec asks for `guarantee=ieee`.
+pub(crate) fn functions<C: Codec + Clone + 'static>(
+    spec: &Spec,
+    c: C,
+    default: fn(&Spec, C) -> Emitted,
+) -> Emitted
+where
+    C::P<f32>: Bits,
+    C::C<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::C<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::C<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::C<F8>: Bits<Lanes8>,
+{
+    if asked(spec) {
+        codec_functions(spec, Ieee(c))
+    } else {
+        default(spec, c)
+    }
+}
