@@ -61,6 +61,11 @@ pub const BLOCKS: &[Block] = &[
         test: "figures/tables",
     },
     Block {
+        name: "tiers",
+        file: "docs/design/portability.md",
+        test: "figures/tables",
+    },
+    Block {
         name: "block_compression",
         file: "docs/design/block-compression.md",
         test: "block_compression",
@@ -290,6 +295,39 @@ pub fn portability_cost_table(count: impl Fn(&Spec, &str) -> u32) -> String {
             } else {
                 s.push_str(&format!(" {b} → {now} |"));
             }
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// The specs whose families have a lean tier, as the tier table lists them.
+pub const TIER_SPECS: [&str; 10] = [
+    "oct16",
+    "oct16p",
+    "hemioct16",
+    "hemioct16p",
+    "lambert16",
+    "lambert16p",
+    "stereo_scaled16",
+    "stereo_scaled16p",
+    "xy16",
+    "xy16p",
+];
+
+/// The ALU price of the guarantee: each of [`TIER_SPECS`]' encoders in the default tier
+/// (`guarantee=portable`) and the lean one (`guarantee=ieee`), `count(spec, function)`.
+pub fn tier_table(count: impl Fn(&Spec, &str) -> u32) -> String {
+    let mut s = String::from(
+        "| spec | `encode` portable | `encode` ieee | `encode_float` portable | `encode_float` ieee |\n|---|---|---|---|---|\n",
+    );
+    for text in TIER_SPECS {
+        let parse =
+            |t: &str| -> Spec { t.parse().unwrap_or_else(|e| panic!("{t} is a spec: {e}")) };
+        let (portable, ieee) = (parse(text), parse(&format!("{text}:guarantee=ieee")));
+        s.push_str(&format!("| `{text}` |"));
+        for f in ["encode", "encode_float"] {
+            s.push_str(&format!(" {} | {} |", count(&portable, f), count(&ieee, f)));
         }
         s.push('\n');
     }

@@ -6,7 +6,8 @@
 //! every operation correctly; this module asks what changes on one that uses every liberty
 //! the APIs allow. A packed encoder ([`Role::Encode`]) must not change under any class:
 //! its code is data that another implementation decodes; nor may a lookup table's texel
-//! ([`Role::LutTexel`]). Float outputs report their
+//! ([`Role::LutTexel`]). The lean tier's encoders (`guarantee=ieee`), documented not
+//! portable, are measured and marked, not failed. Float outputs report their
 //! largest deviation in ULP; decoders also their largest absolute deviation, which must
 //! stay within the bound [`crate::decode_bound`] proves and their doc comments state. It
 //! needs no GPU, so it builds without the `verify` feature.
@@ -146,6 +147,10 @@ pub struct Row {
     pub bound_at: Option<Vec<(i64, i64)>>,
     /// The first changed item.
     pub example: Option<Example>,
+    /// Whether the function's doc comment promises the guarantee: every decoder (held to
+    /// its bound) and lookup texel, and every packed encoder but those it calls not
+    /// portable (the lean tier, `guarantee=ieee`), whose changes are measured, not failures.
+    pub promised: bool,
 }
 
 impl Row {
@@ -154,7 +159,8 @@ impl Row {
     /// bound under one (which would be a flaw in the proof).
     pub fn fails(&self) -> bool {
         self.class.guaranteed()
-            && (integer_output(self.role) && self.changed > 0 || self.exceeds_bound())
+            && (integer_output(self.role) && self.promised && self.changed > 0
+                || self.exceeds_bound())
     }
     /// A decoder output moved further than the proven bound.
     pub fn exceeds_bound(&self) -> bool {
@@ -235,6 +241,7 @@ fn measure(
     classes: &[Classes],
     modes: &[Mode],
     sample_n: Option<usize>,
+    promised: bool,
 ) -> Vec<Row> {
     let input = generate(&f.inputs, f.in_words);
     let items = sample(&f.inputs, input.len() / f.in_words, sample_n);
@@ -319,6 +326,7 @@ fn measure(
                 bound,
                 bound_at: proven.as_ref().map(|b| b.at.clone()),
                 example,
+                promised,
             }
         })
         .collect()
@@ -332,7 +340,7 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
     // precise spec's decoders are its fast spec's) deviates alike item by item: it is
     // measured once and its rows repeated under its own name.
     let same = first_with_same_code(&emitted);
-    let mut jobs: Vec<(String, &Module, &Function)> = Vec::new();
+    let mut jobs: Vec<(String, &Module, &Function, bool)> = Vec::new();
     let mut job_of: HashMap<(usize, usize), usize> = HashMap::new();
     let mut order: Vec<(String, &Function, usize)> = Vec::new();
     for (i, (spec, e)) in specs.iter().zip(&emitted).enumerate() {
@@ -340,10 +348,11 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
             if !opts.functions.take(f.role) {
                 continue;
             }
+            let promised = f.role != Role::Encode || e.portable_encoder;
             let job = match same[i][j] {
                 Some(first) => job_of[&first],
                 None => {
-                    jobs.push((spec.id(), &e.module, f));
+                    jobs.push((spec.id(), &e.module, f, promised));
                     job_of.insert((i, j), jobs.len() - 1);
                     jobs.len() - 1
                 }
@@ -353,8 +362,8 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
     }
     // On every core: each item's deviations are seeded by the item alone
     // (`begin_item`), so the rows are the same as one job at a time, in the same order.
-    let measured = crate::par::map(&jobs, |(id, module, f)| {
-        measure(id, module, f, classes, &modes, opts.sample)
+    let measured = crate::par::map(&jobs, |(id, module, f, promised)| {
+        measure(id, module, f, classes, &modes, opts.sample, *promised)
     });
     let rows = order
         .into_iter()
@@ -375,11 +384,12 @@ pub fn run(specs: &[Spec], classes: &[Classes], opts: &Options) -> PortabilityRe
 }
 
 /// A table cell: `.` unchanged; changed items and, for floats, the max ULP; `!` marks a
-/// packed code that changed under a guaranteed class, `x` one that changed under excess
-/// precision (outside the guarantee).
+/// packed code that changed under a guaranteed class, `x` one that changed under a class
+/// outside the guarantee, `~` one of an encoder documented not portable.
 fn cell(r: &Row) -> String {
     match (r.changed, r.max_ulp) {
         (0, _) => ".".into(),
+        (n, None) if !r.promised => format!("{n}~"),
         (n, None) if r.class.guaranteed() => format!("{n}!"),
         (n, None) => format!("{n}x"),
         (n, Some(u64::MAX)) => format!("{n}/NaN"),
@@ -404,6 +414,8 @@ cells:  .       no output changed under the class
                 (covered: {})
         Nx      N packed codes changed under a class it does not cover
                 (not covered: {})
+        N~      N packed codes changed of an encoder its doc comment calls not
+                portable (the lean tier, guarantee=ieee): measured, not a failure
 proven: ≤B (seen S): a decoder's proven bound on how far the covered classes move an
         output component, and the largest move seen, both in units of 2^-24
 ",
@@ -559,7 +571,7 @@ impl PortabilityReport {
                     ),
                 };
                 format!(
-                    "{{\"spec\":{},\"function\":{},\"role\":{},\"class\":{},\"items\":{},\"changed\":{},\"by_mode\":[{}],\"max_ulp\":{},\"max_dev\":{},\"bound\":{},\"bound_at\":{},\"fails\":{},\"example\":{}}}",
+                    "{{\"spec\":{},\"function\":{},\"role\":{},\"class\":{},\"items\":{},\"changed\":{},\"by_mode\":[{}],\"max_ulp\":{},\"max_dev\":{},\"bound\":{},\"bound_at\":{},\"fails\":{},\"promised\":{},\"example\":{}}}",
                     json_str(&r.spec),
                     json_str(r.function),
                     json_str(&format!("{:?}", r.role)),
@@ -576,6 +588,7 @@ impl PortabilityReport {
                         format!("[{}]", boxes.join(","))
                     }),
                     r.fails(),
+                    r.promised,
                     example
                 )
             })

@@ -110,10 +110,18 @@ fn hemioct_float_form_fits_the_projected_input() {
 }
 
 /// Scaling by a power of two changes no rounding anywhere in the encoders, so the code
-/// must be identical, from denormal-adjacent to overflowing magnitudes.
+/// must be identical, from denormal-adjacent to overflowing magnitudes. The lean tier
+/// (`guarantee=ieee`) leaves out the range fit by design (its doc comment says so): it
+/// is held to the magnitudes whose norm neither overflows nor underflows.
 #[test]
 fn non_unit_input_encodes_like_its_direction() {
     for spec in codecs() {
+        let lean = spec.id().ends_with("_ieee");
+        let scales: &[i32] = if lean {
+            &[-20, -1, 1, 20]
+        } else {
+            &[-100, -20, -1, 1, 20, 100, 127]
+        };
         let e = spec.emitted();
         let enc = role(&e, Role::Encode);
         let code = |v: [f32; 3]| {
@@ -128,7 +136,7 @@ fn non_unit_input_encodes_like_its_direction() {
             [-0.6, 0.0, 0.8],
         ] {
             let want = code(dir);
-            for k in [-100, -20, -1, 1, 20, 100, 127] {
+            for &k in scales {
                 let scaled = dir.map(|x| x * 2f32.powi(k));
                 assert_eq!(code(scaled), want, "{spec}: {dir:?} scaled by 2^{k}");
             }
@@ -138,6 +146,9 @@ fn non_unit_input_encodes_like_its_direction() {
         // integer arithmetic (`exact::unit_on_grid`), so its components may move with the
         // magnitude, provably by under 19 units of 2^-24 (tests/api.rs); every other
         // codec decides its codes from the direction alone.
+        if lean {
+            continue;
+        }
         for (huge, unit) in [
             ([3e38, 3e38, 0.0], [1.0, 1.0, 0.0]),
             ([-f32::MAX, 0.0, f32::MAX], [-1.0, 0.0, 1.0]),

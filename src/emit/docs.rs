@@ -135,8 +135,10 @@ fn helper_doc(spec: &Spec, local: &str) -> Vec<String> {
 
 /// What a packed encoder guarantees beyond lavapipe (README, "Why the emitted code is
 /// bit-exact, and where").
-fn encoder_portability(portable: bool) -> &'static str {
-    if portable {
+fn encoder_portability(spec: &Spec, portable: bool) -> &'static str {
+    if crate::codecs::core::ieee::asked(spec) {
+        "The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring code. Finite input whose norm overflows or underflows in plain arithmetic gets a defined code that need not be its direction's. The default, guarantee=portable, returns the same code on every implementation the include's header names."
+    } else if portable {
         "Portable: the same code on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as the include's header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero; denormal input components count as zero. Not where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or under fast math or excess precision."
     } else {
         "Not yet portable: bit-exact where every operation is correctly rounded and nothing is contracted (lavapipe, C with -ffp-contract=off); a driver using the division, square root or contraction latitude the APIs allow may return a neighbouring code (`unitpack verify --portable` measures how often)."
@@ -214,7 +216,7 @@ pub fn function_doc(
             let mut d = vec![format!("{}: {codec}, {what}.", p.name)];
             d.extend(own.into_iter().flatten());
             match role {
-                Role::Encode => d.push(encoder_portability(e.portable_encoder).into()),
+                Role::Encode => d.push(encoder_portability(spec, e.portable_encoder).into()),
                 Role::DecodeFloat => d.push(format!("Out: {}.", c.decode_note)),
                 _ => {}
             }
@@ -227,7 +229,7 @@ pub fn function_doc(
                 "Out: the RGBA8 texel as a {} (R bits 0–7, G 8–15, B 16–23, A 24–31): {}.",
                 p.ret_ty, t.channels
             ),
-            encoder_portability(e.portable_encoder).into(),
+            encoder_portability(spec, e.portable_encoder).into(),
         ],
         (Role::Decode, Some(t)) => vec![
             format!("{}: {codec}, decoder.", p.name),
@@ -264,7 +266,7 @@ pub fn function_doc(
             format!("{}: {codec}, {enc}.", p.name),
             format!("In: any vector; {}.", c.edge_policy),
             format!("Out: the packed code, {} ({layout}).", p.ret_ty),
-            encoder_portability(e.portable_encoder).into(),
+            encoder_portability(spec, e.portable_encoder).into(),
         ],
         (Role::Decode, None) => vec![
             format!("{}: {codec}, decoder.", p.name),

@@ -5,6 +5,7 @@
 
 mod crytek_bfn;
 mod eqarea_oct;
+mod ieee;
 mod lambert;
 mod latlongd;
 mod oct;

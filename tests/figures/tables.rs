@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use std::sync::OnceLock;
 use unitpack::doc_tables::{
     README_SAMPLES, REFRESH_COMMAND, block, bound_table, catalogue_table, codec_specs, error_table,
-    portability_cost_table, refreshing, replace_block, seed_methods_table,
+    portability_cost_table, refreshing, replace_block, seed_methods_table, tier_table,
 };
 use unitpack::verify::alu::{count, count_all};
 
@@ -111,8 +111,22 @@ fn generated_tables_are_fresh() {
     };
     check_blocks(
         "docs/design/portability.md",
-        &[("portability_cost", portability_cost_table(count))],
+        &[
+            ("portability_cost", portability_cost_table(count)),
+            ("tiers", tier_table(count)),
+        ],
     );
+}
+
+/// The lean tier's point: oct16's packed encoder in the instructions of its octahedral
+/// core and packing (issue 44's figure, the README's counting), against the default
+/// tier's, which must stay dearer (or the lean tier has nothing to offer).
+#[test]
+fn the_lean_oct16_encoder_takes_at_most_24_instructions() {
+    let all = &counts().all;
+    let lean = all["oct16_ieee encode"];
+    assert!(lean <= 24, "oct16:guarantee=ieee encode counts {lean}");
+    assert!(all["oct16 encode"] > lean);
 }
 
 /// docs/design/portability.md takes oct16's packed encoder apart instruction by

@@ -16,10 +16,11 @@ fn row(class: Class, changed: usize) -> Row {
         bound: None,
         bound_at: None,
         example: None,
+        promised: true,
     }
 }
 
-/// Every encoder in the catalogue is portable, so the failing verdict (`verify
+/// Every encoder the catalogue promises is portable, so the failing verdict (`verify
 /// --portable` exits 1 on it) is exercised here on a report with a changed code.
 #[test]
 fn a_code_changed_under_a_guaranteed_class_fails_the_report() {
@@ -38,4 +39,16 @@ fn a_code_changed_under_a_guaranteed_class_fails_the_report() {
     let outside = report(vec![row(Class::Div, 0), row(Class::Excess, 2)]);
     assert!(outside.packed_encoders_portable());
     assert!(outside.table().contains("2x"));
+    // An encoder documented not portable (the lean tier) is measured, not failed.
+    let lean = report(vec![
+        Row {
+            promised: false,
+            ..row(Class::Div, 5)
+        },
+        row(Class::Excess, 0),
+    ]);
+    assert!(lean.packed_encoders_portable());
+    assert!(lean.guarantees_hold());
+    assert!(lean.table().contains("5~"), "{}", lean.table());
+    assert!(lean.json().contains("\"fails\":false,\"promised\":false"));
 }

@@ -10,8 +10,9 @@
 //! Here the fast encoder rounds the parameters ([`Codec::round_codes`]' default) of the
 //! codec's [`Codec::ieee_params`], and the precise encoder is the float search of the
 //! survey ([`precise_search`]) through the codec's own decoder. Decoders are the
-//! default tier's, unchanged. Zero, NaN and infinite input encode as in the default
-//! tier; finite input so large or so small that its norm overflows or underflows in plain
+//! default tier's, unchanged. Zero, NaN and infinite input encode as +Z, as in the
+//! default tier (a precise search where +Z falls between codes may keep another code as
+//! near it); finite input so large or so small that its norm overflows or underflows in plain
 //! arithmetic gets a defined code, which need not be its direction's (the default tier
 //! scales such input into range first).
 
@@ -31,7 +32,7 @@ use crate::model::{Float, V3};
 /// The `guarantee` option of a family with a lean tier.
 pub const OPTION: OptDesc = OptDesc {
     key: "guarantee",
-    help: "portable: the same codes on every implementation the include's header names; ieee: the lean arithmetic of the source (oct16's packed encoder 56 → 24 instructions), bit-exact only where + - * / sqrt round correctly, denormals are kept and nothing is contracted (lavapipe, C with -ffp-contract=off, the CPU)",
+    help: "portable: the same codes on every implementation the include's header names; ieee: the lean arithmetic of the source, not portable: bit-exact only where + - * / sqrt round correctly, denormals are kept and nothing is contracted (lavapipe, C with -ffp-contract=off, the CPU)",
     kind: OptKind::Choice(&["portable", "ieee"]),
 };
 

@@ -118,19 +118,18 @@ pub fn oct_params<F: Float>(v: V3<F>) -> V2<F> {
     V2::sel_all(ok, e, V2::splat(F::c(0.0)))
 }
 
-/// [`oct_params`] in plain arithmetic (the lean tier): the survey's projection. The
-/// quotients are at most 1 in magnitude (`|x| ≤ l1`, and rounding is monotonic), so
-/// their sum is below 4 unless one is NaN: zero, NaN and infinite input (`0/0`, `∞/∞`,
-/// `x/NaN`) fail that one comparison and give `(0, 0)`. Finite input whose L1 norm
-/// overflows divides by infinity: its parameters are zeros, then `(0, 0)` or the fold's
-/// corner, a defined code.
+/// [`oct_params`] in plain arithmetic (the lean tier): the survey's projection. A
+/// quotient's magnitude is at most 1 (`|x| ≤ l1`, and rounding is monotonic), so
+/// `|p.x| + l1 ≤ MAX` fails exactly where `l1` is not a finite `f32` or a quotient is NaN:
+/// for zero, NaN and infinite input, and finite input whose L1 norm overflows, all of
+/// which give `(0, 0)`, +Z's code, at the cost of one add and one compare.
 #[inline(always)]
 pub fn oct_params_ieee<F: Float>(v: V3<F>) -> V2<F> {
     let a = v.abs();
     let l1 = (a.x + a.y + a.z).named("l1");
     let p = (v.xy() / l1).named("p");
     let ap = p.abs();
-    let ok = (ap.x + ap.y).lt(F::c(4.0));
+    let ok = (ap.x + l1).le(F::c(f32::MAX));
     let folded = (V2::splat(F::c(1.0)) - ap.yx()) * sign_not_zero(p);
     let e = V2::sel_all(v.z.le(F::c(0.0)), folded, p);
     V2::sel_all(ok, e, V2::splat(F::c(0.0)))
