@@ -302,18 +302,7 @@ pub fn portability_cost_table(count: impl Fn(&Spec, &str) -> u32) -> String {
 }
 
 /// The specs whose families have a lean tier, as the tier table lists them.
-pub const TIER_SPECS: [&str; 10] = [
-    "oct16",
-    "oct16p",
-    "hemioct16",
-    "hemioct16p",
-    "lambert16",
-    "lambert16p",
-    "stereo_scaled16",
-    "stereo_scaled16p",
-    "xy16",
-    "xy16p",
-];
+pub const TIER_SPECS: [&str; 5] = ["oct16", "hemioct16", "lambert16", "stereo_scaled16", "xy16"];
 
 /// The ALU price of the guarantee: each of [`TIER_SPECS`]' encoders in the default tier
 /// (`guarantee=portable`) and the lean one (`guarantee=ieee`), `count(spec, function)`.

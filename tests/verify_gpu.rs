@@ -6,6 +6,7 @@
 //! fails and names the package to install.
 
 use std::collections::HashMap;
+use unitpack::Generator;
 use unitpack::codecs::Spec;
 use unitpack::emit::Lang;
 
@@ -116,4 +117,84 @@ fn shared_rows_repeat_identical_code(report: &unitpack::verify::Report) {
             r.function
         );
     }
+}
+
+/// The OpenGL paths exist for what a driver's own GLSL compiler does to the text: Mesa's
+/// folds the float comparisons float16x3's decoder once tested NaN and infinity with
+/// where no `precise` forbids it (tests/data holds that decoder). Through those paths
+/// that decoder differs from the model on codes with a NaN half without `precise` and
+/// agrees with it, and the decoder emitted today agrees both ways.
+#[test]
+fn the_opengl_paths_catch_what_mesa_folds_without_precise() {
+    use unitpack::emit::DEFAULT_PREFIX;
+    use unitpack::emit::lang::KERNEL_SELECT;
+    use unitpack::emit::lang::glsl::Glsl;
+    use unitpack::model::Kind;
+    use unitpack::model::trace::Ty;
+    use unitpack::verify::gl::Gl;
+
+    let gl = Gl::new(true, 1).unwrap_or_else(|e| panic!("{e:#}"));
+    let spec: Spec = "float16x3".parse().unwrap();
+    let e = spec.emitted();
+    let decode = e.functions.iter().find(|f| f.name == "decode").unwrap();
+    // Every combination of NaN, infinite, zero, one and finite halves.
+    let halves = [
+        0x7c01u32, 0x7e00, 0x7fff, 0xfe00, 0x7c00, 0xfc00, 0, 0x8000, 0x3c00, 0xbc00, 0x3555,
+    ];
+    let mut input = Vec::new();
+    for &x in &halves {
+        for &y in &halves {
+            for &z in &halves {
+                input.extend([x | y << 16, z]);
+            }
+        }
+    }
+    let want = unitpack::verify::expected(decode, &input);
+    let funcs = [(
+        "unitpack_float16x3_decode",
+        vec![Ty {
+            kind: Kind::U32,
+            lanes: 2,
+        }],
+        Ty {
+            kind: Kind::F32,
+            lanes: 3,
+        },
+    )];
+    let today = Generator::new()
+        .spec("float16x3")
+        .lang(Lang::Glsl)
+        .render(Lang::Glsl)
+        .unwrap();
+    let differing = |include: &str, precise: bool| {
+        let kernel = Glsl::new(DEFAULT_PREFIX).gl_kernel(include, &funcs, precise);
+        let program = gl
+            .program(&kernel, KERNEL_SELECT)
+            .unwrap_or_else(|e| panic!("{e:#}"));
+        let mut got = Vec::new();
+        gl.run_selected(&program, 0, &input, 2, 3, &mut |out| {
+            got.extend_from_slice(out)
+        })
+        .unwrap_or_else(|e| panic!("{e:#}"));
+        program.delete(&gl).unwrap();
+        got.chunks(3)
+            .zip(want.chunks(3))
+            .filter(|(a, b)| a != b)
+            .count()
+    };
+    let folded = include_str!("data/float16x3_decode_folded_by_mesa.glsl");
+    let n = differing(folded, false);
+    assert!(
+        n > 0,
+        "{}: the old decoder agrees without precise, so this driver no longer folds its \
+         comparisons and the test shows nothing",
+        gl.renderer
+    );
+    assert_eq!(differing(folded, true), 0, "with precise");
+    assert_eq!(
+        differing(&today, false),
+        0,
+        "today's decoder without precise"
+    );
+    assert_eq!(differing(&today, true), 0, "today's decoder with precise");
 }

@@ -6,6 +6,7 @@
 //! selecting kernel, [`gpu`]'s module docs; a C driver taking the function's index) and
 //! runs it once per function.
 
+pub mod gl;
 pub mod gpu;
 /// Lives with the codecs so that the portability report, which needs no GPU, can use it.
 pub use crate::codecs::core::inputs;
@@ -37,6 +38,12 @@ pub enum Path {
     GlslGlslang,
     HlslGlslangOd,
     HlslGlslangDefault,
+    /// The GLSL include through the OpenGL driver's own GLSL compiler (EGL; Mesa's
+    /// llvmpipe on the CPU adapter), without `precise`: what a user who leaves
+    /// `UNITPACK_PRECISE` undefined gets ([`gl`]).
+    GlslGl,
+    /// The same with `#define UNITPACK_PRECISE precise`.
+    GlslGlPrecise,
     /// The C header through the system C compiler (C99).
     CC,
     /// The same header compiled as C++.
@@ -51,12 +58,14 @@ pub enum Path {
 }
 
 impl Path {
-    pub const ALL: [Path; 9] = [
+    pub const ALL: [Path; 11] = [
         Path::WgslNaga,
         Path::GlslNaga,
         Path::GlslGlslang,
         Path::HlslGlslangOd,
         Path::HlslGlslangDefault,
+        Path::GlslGl,
+        Path::GlslGlPrecise,
         Path::CC,
         Path::CCpp,
         Path::Lanes,
@@ -66,15 +75,21 @@ impl Path {
     pub fn lang(self) -> Option<Lang> {
         match self {
             Path::WgslNaga => Some(Lang::Wgsl),
-            Path::GlslNaga | Path::GlslGlslang => Some(Lang::Glsl),
+            Path::GlslNaga | Path::GlslGlslang | Path::GlslGl | Path::GlslGlPrecise => {
+                Some(Lang::Glsl)
+            }
             Path::HlslGlslangOd | Path::HlslGlslangDefault => Some(Lang::Hlsl),
             Path::CC | Path::CCpp => Some(Lang::C),
             Path::Lanes | Path::Lanes8 => None,
         }
     }
-    /// Whether the path runs a shader on the adapter.
-    fn on_gpu(self) -> bool {
-        self.lang().is_some_and(|l| l != Lang::C)
+    /// Whether the path runs a shader on the Vulkan adapter.
+    fn on_vulkan(self) -> bool {
+        self.lang().is_some_and(|l| l != Lang::C) && !self.on_gl()
+    }
+    /// Whether the path runs a shader through OpenGL.
+    fn on_gl(self) -> bool {
+        matches!(self, Path::GlslGl | Path::GlslGlPrecise)
     }
 }
 
@@ -86,6 +101,8 @@ impl fmt::Display for Path {
             Path::GlslGlslang => "glsl/glslang",
             Path::HlslGlslangOd => "hlsl/glslang -Od",
             Path::HlslGlslangDefault => "hlsl/glslang",
+            Path::GlslGl => "glsl/gl",
+            Path::GlslGlPrecise => "glsl/gl precise",
             Path::CC => "c/cc -O2",
             Path::CCpp => "c/c++ -O2",
             Path::Lanes => "cpu/4 lanes",
@@ -463,6 +480,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             tools::spirv_val(&spv)?;
             Some(spv)
         }
+        Path::GlslGl | Path::GlslGlPrecise => unreachable!("compiled by the OpenGL driver"),
         Path::CC | Path::CCpp | Path::Lanes | Path::Lanes8 => {
             unreachable!("not a shader path")
         }
@@ -538,8 +556,14 @@ pub fn run_on(
         .filter(|p| p.lang().is_none_or(|l| langs.contains(&l)))
         .collect();
     // The C and CPU paths need no GPU: only ask for the adapter when a shader path is run.
-    let gpu = if paths.iter().any(|p| p.on_gpu()) {
+    let gpu = if paths.iter().any(|p| p.on_vulkan()) {
         Some(Gpu::shared_on(adapter)?)
+    } else {
+        None
+    };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let gl = if paths.iter().any(|p| p.on_gl()) {
+        Some(gl::Gl::new(adapter == Adapter::Cpu, threads)?)
     } else {
         None
     };
@@ -561,10 +585,10 @@ pub fn run_on(
     // Specs are independent: verify them on as many threads as there are cores, each
     // taking the next spec, and keep the report in spec order. The shader paths share
     // the one device; the model's expected values and the C compilers use the rest.
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let on = On {
         paths: &paths,
         gpu,
+        gl: gl.as_ref(),
         keep,
     };
     let next = std::sync::atomic::AtomicUsize::new(0);
@@ -638,11 +662,42 @@ fn copy_shared_results(rows: &mut [Row]) {
     }
 }
 
+/// Items of each function the OpenGL paths run: every edge item (the inputs put them
+/// first) and a seeded spread of the rest. Those paths check what the driver's GLSL
+/// compiler makes of the text, with the arithmetic of the same backend as lavapipe's,
+/// which the Vulkan paths check on every item.
+pub const GL_ITEMS: usize = 1 << 16;
+
+/// The first `GL_ITEMS / 2` items and a seeded, evenly spread choice of the others, with
+/// their expected outputs; every item where there are no more.
+fn gl_sample(input: &[u32], want: &[u32], iw: usize, ow: usize) -> (Vec<u32>, Vec<u32>) {
+    let n = input.len() / iw;
+    if n <= GL_ITEMS {
+        return (input.to_vec(), want.to_vec());
+    }
+    let head = GL_ITEMS / 2;
+    let rest = GL_ITEMS - head;
+    let step = (n - head) as f64 / rest as f64;
+    let picks = (0..head).chain((0..rest).map(|k| {
+        // Jittered within each step, so that a field's low bits vary between picks.
+        let jitter = (k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+        head + (k as f64 * step) as usize + (jitter as usize % step.max(1.0) as usize)
+    }));
+    let (mut i, mut o) = (Vec::new(), Vec::new());
+    for k in picks {
+        let k = k.min(n - 1);
+        i.extend_from_slice(&input[k * iw..][..iw]);
+        o.extend_from_slice(&want[k * ow..][..ow]);
+    }
+    (i, o)
+}
+
 /// Where a run verifies and what it lists: the paths, the adapter of the shader paths, and
 /// how many mismatches of integer outputs a row keeps.
 struct On<'a> {
     paths: &'a [Path],
     gpu: Option<&'a Gpu>,
+    gl: Option<&'a gl::Gl>,
     keep: usize,
 }
 
@@ -735,7 +790,7 @@ fn verify_spec(
             let funcs: Vec<KernelFn> = own.iter().map(|&i| all[i].clone()).collect();
             paths
                 .iter()
-                .filter(|p| p.on_gpu())
+                .filter(|p| p.on_vulkan())
                 .map(|&path| {
                     let lang = path.lang().expect("a shader path");
                     let kernel = lang.backend(DEFAULT_PREFIX).kernel(include(lang), &funcs);
@@ -747,6 +802,25 @@ fn verify_spec(
                         })
                     });
                     (path, module.map_err(|e| format!("{e:#}")))
+                })
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    // The OpenGL paths compile the same functions once per form, as the driver's own
+    // GLSL compiler reads them.
+    let gl_programs: Vec<(Path, Result<gl::Program, String>)> = match on.gl {
+        Some(ctx) if !own.is_empty() => {
+            let funcs: Vec<KernelFn> = own.iter().map(|&i| all[i].clone()).collect();
+            let glsl = crate::emit::lang::glsl::Glsl::new(DEFAULT_PREFIX);
+            paths
+                .iter()
+                .filter(|p| p.on_gl())
+                .map(|&path| {
+                    let kernel =
+                        glsl.gl_kernel(include(Lang::Glsl), &funcs, path == Path::GlslGlPrecise);
+                    let program = ctx.program(&kernel, crate::emit::lang::KERNEL_SELECT);
+                    (path, program.map_err(|e| format!("{e:#}")))
                 })
                 .collect()
         }
@@ -774,14 +848,24 @@ fn verify_spec(
         let (_, params, ret) = &all[index];
         let input = inputs::generate(&f.inputs, f.in_words);
         let want = expected(f, &input);
+        let (gl_input, gl_want) = if paths.iter().any(|p| p.on_gl()) {
+            gl_sample(&input, &want, f.in_words, f.out_words)
+        } else {
+            (Vec::new(), Vec::new())
+        };
         for &path in paths {
-            let mut cmp = Comparison::new(f, (params, *ret), &input, &want).keeping(keep);
+            let (input, want) = if path.on_gl() {
+                (&gl_input, &gl_want)
+            } else {
+                (&input, &want)
+            };
+            let mut cmp = Comparison::new(f, (params, *ret), input, want).keeping(keep);
             let result = if path == Path::Lanes {
-                cmp.take(&lanes(f, Width::Four, &input));
+                cmp.take(&lanes(f, Width::Four, input));
                 Ok(())
             } else if path == Path::Lanes8 {
                 if avx2_lanes::available() {
-                    cmp.take(&lanes(f, Width::Eight, &input));
+                    cmp.take(&lanes(f, Width::Eight, input));
                     Ok(())
                 } else {
                     Err(anyhow::anyhow!(
@@ -795,8 +879,25 @@ fn verify_spec(
                     .expect("a driver per C path");
                 match program {
                     Ok(program) => program
-                        .run(index, &input, f.in_words, f.out_words)
+                        .run(index, input, f.in_words, f.out_words)
                         .map(|got| cmp.take(&got)),
+                    Err(e) => Err(anyhow::anyhow!("{e}")),
+                }
+            } else if path.on_gl() {
+                let (_, program) = gl_programs
+                    .iter()
+                    .find(|(p, _)| *p == path)
+                    .expect("a program per OpenGL path");
+                let selector = own.iter().position(|&i| i == index).expect("run here") as u32;
+                match program {
+                    Ok(program) => on.gl.expect("a context for OpenGL paths").run_selected(
+                        program,
+                        selector,
+                        input,
+                        f.in_words,
+                        f.out_words,
+                        &mut |got| cmp.take(got),
+                    ),
                     Err(e) => Err(anyhow::anyhow!("{e}")),
                 }
             } else {
@@ -809,7 +910,7 @@ fn verify_spec(
                     Ok(kernel) => gpu.expect("adapter for shader paths").run_selected(
                         kernel,
                         selector,
-                        &input,
+                        input,
                         f.in_words,
                         f.out_words,
                         &mut |got| cmp.take(got),
@@ -837,6 +938,13 @@ fn verify_spec(
             }
             rows.push(row);
             bar.inc(1);
+        }
+    }
+    if let Some(ctx) = on.gl {
+        for (_, program) in gl_programs {
+            if let Ok(p) = program {
+                let _ = p.delete(ctx);
+            }
         }
     }
     rows

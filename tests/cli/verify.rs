@@ -88,8 +88,9 @@ fn verify_json_reports_every_row() {
     let copies: Vec<_> = rows.iter().filter(shared).collect();
     assert_eq!(
         copies.len(),
-        2 * 5,
-        "two decoders on three shader paths and the four- and eight-lane paths"
+        2 * 7,
+        "two decoders on three Vulkan shader paths, two OpenGL paths and the four- and \
+         eight-lane paths"
     );
     for c in copies {
         assert_eq!(c["spec"], "oct16p");
@@ -97,7 +98,13 @@ fn verify_json_reports_every_row() {
         assert_eq!(c["same_code_as"].as_str(), Some(owner.as_str()));
     }
     let paths: BTreeSet<&str> = rows.iter().map(|r| r["path"].as_str().unwrap()).collect();
-    for p in ["wgsl/naga", "glsl/naga", "glsl/glslang"] {
+    for p in [
+        "wgsl/naga",
+        "glsl/naga",
+        "glsl/glslang",
+        "glsl/gl",
+        "glsl/gl precise",
+    ] {
         assert!(paths.contains(p), "{paths:?}");
     }
     assert!(

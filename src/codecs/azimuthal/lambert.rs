@@ -29,6 +29,7 @@ pub static FAMILY: CodecFamily<Lambert> = CodecFamily::new(
     |bits| Lambert { bits },
     |spec, c| ieee::functions(spec, c, codec_functions),
 )
+.with_validate(|spec| ieee::validate(spec, false))
 .with_variants(&["lambert16:guarantee=ieee"])
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 

@@ -32,6 +32,7 @@ pub static FAMILY: CodecFamily<StereoScaled> = CodecFamily::new(
         ieee::functions(spec, c, codec_functions)
     },
 )
+.with_validate(|spec| ieee::validate(spec, false))
 .with_variants(&["stereo_scaled16:guarantee=ieee"])
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc(BITS)));
 

@@ -8,15 +8,13 @@
 //! tiny and huge input into range, so that the code survives every liberty the APIs
 //! allow; that costs instructions (oct16's packed encoder: 56, its octahedral core 20).
 //! Here the fast encoder rounds the parameters ([`Codec::round_codes`]' default) of the
-//! codec's [`Codec::ieee_params`], and the precise encoder is the float search of the
-//! survey ([`precise_search`]) through the codec's own decoder. Decoders are the
-//! default tier's, unchanged. Zero, NaN and infinite input encode as +Z, as in the
-//! default tier (a precise search where +Z falls between codes may keep another code as
-//! near it); finite input so large or so small that its norm overflows or underflows in plain
+//! codec's [`Codec::ieee_params`]; there is no lean precise encoder ([`validate`]).
+//! Decoders are the default tier's, unchanged. Zero, NaN and infinite input encode as +Z,
+//! as in the default tier; finite input so large or so small that its norm overflows or underflows in plain
 //! arithmetic gets a defined code, which need not be its direction's (the default tier
 //! scales such input into range first).
 
-use crate::codecs::core::codec::{Codec, Domain, Params, precise_search, quantize};
+use crate::codecs::core::codec::{Codec, Domain, Params, quantize};
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::info::{OptDesc, OptKind};
 use crate::codecs::core::pipeline::codec_functions;
@@ -43,17 +41,25 @@ pub fn asked(spec: &Spec) -> bool {
         .is_some_and(|i| spec.choice(i) == 1)
 }
 
-/// The lean tier covers a codec's own packing: a texel layout's channels are decided
-/// in the default tier only.
-pub fn validate_own_packing(spec: &Spec, layout: bool) -> Result<(), SpecError> {
-    if asked(spec) && layout {
-        return Err(SpecError::BadValue {
-            key: OPTION.key.into(),
-            value: "ieee".into(),
-            why: "the ieee tier covers the codec's own packing, not a texel layout".into(),
-        });
-    }
-    Ok(())
+/// The lean tier is the fast encoder's, in a codec's own packing: the precise search
+/// runs where its cost does not matter (offline, at asset time), so it keeps the portable
+/// form, and a texel layout's channels are decided in the default tier only.
+pub fn validate(spec: &Spec, layout: bool) -> Result<(), SpecError> {
+    let why = if !asked(spec) {
+        return Ok(());
+    } else if layout {
+        "the ieee tier covers the codec's own packing, not a texel layout"
+    } else if spec.precise() {
+        "the ieee tier is the fast encoder's: the precise search (p) runs offline, where \
+         its portable form costs nothing at run time"
+    } else {
+        return Ok(());
+    };
+    Err(SpecError::BadValue {
+        key: OPTION.key.into(),
+        value: "ieee".into(),
+        why: why.into(),
+    })
 }
 
 /// A codec in the lean tier.
@@ -107,11 +113,6 @@ impl<C: Codec> Codec for Ieee<C> {
             quantize(&q, p)
         };
         codes.named_p("codes")
-    }
-    /// The survey's search: the codes around the parameters, decoded in floats.
-    #[inline(always)]
-    fn precise_codes<F: Float>(&self, v: V3<F>) -> C::P<F> {
-        precise_search(self, v, "decode_float")
     }
 }
 

@@ -59,11 +59,16 @@ impl Spec {
             }
             for v in f.variants() {
                 let s: Spec = v.parse().expect("a family's variants parse");
-                if f.precise() {
-                    out.push(s.fast());
-                    out.push(Spec { precise: true, ..s });
-                } else {
-                    out.push(s);
+                let precise = Spec {
+                    precise: true,
+                    ..s.clone()
+                };
+                // With the precise encoder too where the family offers it for the variant
+                // (the lean tier has none).
+                let with_precise = f.precise() && f.validate(&precise).is_ok();
+                out.push(s.fast());
+                if with_precise {
+                    out.push(precise);
                 }
             }
         }

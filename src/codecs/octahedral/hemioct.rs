@@ -29,7 +29,7 @@ pub static FAMILY: CodecFamily<HemiOct> = CodecFamily::new(
 )
 .with_validate(|spec| {
     texel::validate(spec)?;
-    ieee::validate_own_packing(spec, texel::layout(spec).is_some())
+    ieee::validate(spec, texel::layout(spec).is_some())
 })
 .with_variants(texel_variants!("hemioct", "hemioct16:guarantee=ieee"))
 .with_helper_doc(|name| (name == "encode_codes").then(|| search_doc("the input's signs")));

@@ -56,7 +56,7 @@ impl Family for OctFamily {
                 why: "the rgb8 layout holds oct24 only".into(),
             });
         }
-        ieee::validate_own_packing(spec, spec.choice(LAYOUT) == RGB8)
+        ieee::validate(spec, spec.choice(LAYOUT) == RGB8)
     }
     fn variants(&self) -> &'static [&'static str] {
         &["oct24:layout=rgb8", "oct16:guarantee=ieee"]

@@ -12,6 +12,15 @@ use crate::model::Kind;
 use crate::model::trace::{BinOp, Ty, UnOp};
 use askama::Template;
 
+/// What a selecting kernel is compiled for: SPIR-V for Vulkan (glslang, naga), with the
+/// function chosen by a specialization constant; or an OpenGL 4.3 driver's own GLSL
+/// compiler, with a uniform (GLSL for OpenGL has no specialization constants) and the
+/// include's statements `precise` or not.
+pub enum Target {
+    Vulkan,
+    OpenGl { precise: bool },
+}
+
 pub struct Glsl {
     /// The macro in front of float declarations (`UNITPACK_PRECISE`).
     pub precise_macro: String,
@@ -22,6 +31,82 @@ impl Glsl {
         Glsl {
             precise_macro: precise_macro(prefix),
         }
+    }
+
+    /// The OpenGL form of [`Backend::kernel`]: `KERNEL_SELECT` is a uniform.
+    pub fn gl_kernel(&self, include: &str, funcs: &[KernelFn], precise: bool) -> String {
+        self.selecting_kernel(include, funcs, &Target::OpenGl { precise })
+    }
+
+    fn selecting_kernel(&self, include: &str, funcs: &[KernelFn], target: &Target) -> String {
+        let (runners, cases) = selecting_parts(
+            funcs,
+            |runner, (func, params, ret)| {
+                let outw = ret.lanes;
+                let KernelIo { args, bits, stores } = kernel_io(
+                    self,
+                    params,
+                    *ret,
+                    |l, _| format!("uintBitsToFloat({l})"),
+                    "floatBitsToUint(r)",
+                );
+                format!(
+                    "
+void {runner}(uint i) {{
+    if (i >= uint(output_words.length()) / {outw}u) {{
+        return;
+    }}
+    {} r = {func}({args});
+    {} rb = {bits};{stores}
+}}
+",
+                    self.ty(*ret),
+                    self.ty(Ty {
+                        kind: Kind::U32,
+                        lanes: ret.lanes
+                    })
+                )
+            },
+            |k, runner| {
+                format!(
+                    "\n    case {k}u:\n        {runner}(gl_GlobalInvocationID.x);\n        break;"
+                )
+            },
+        );
+        let (head, set, select) = match target {
+            Target::Vulkan => (
+                "#version 450\n".to_string(),
+                "set = 0, ",
+                format!("layout(constant_id = 0) const uint {KERNEL_SELECT} = 0u;"),
+            ),
+            Target::OpenGl { precise } => (
+                format!(
+                    "#version 430\n{}",
+                    if *precise {
+                        format!("#define {} precise\n", self.precise_macro)
+                    } else {
+                        String::new()
+                    }
+                ),
+                "",
+                format!("uniform uint {KERNEL_SELECT};"),
+            ),
+        };
+        format!(
+            "{head}layout(local_size_x = 64) in;
+layout(std430, {set}binding = 0) readonly buffer InputWords {{ uint input_words[]; }};
+layout(std430, {set}binding = 1) buffer OutputWords {{ uint output_words[]; }};
+{select}
+
+{include}{runners}
+void main() {{
+    switch ({KERNEL_SELECT}) {{{cases}
+    default:
+        break;
+    }}
+}}
+"
+        )
     }
 }
 
@@ -115,55 +200,6 @@ impl Backend for Glsl {
     }
     /// A `#version 450` compute shader; the include goes after the version line.
     fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String {
-        let (runners, cases) = selecting_parts(
-            funcs,
-            |runner, (func, params, ret)| {
-                let outw = ret.lanes;
-                let KernelIo { args, bits, stores } = kernel_io(
-                    self,
-                    params,
-                    *ret,
-                    |l, _| format!("uintBitsToFloat({l})"),
-                    "floatBitsToUint(r)",
-                );
-                format!(
-                    "
-void {runner}(uint i) {{
-    if (i >= uint(output_words.length()) / {outw}u) {{
-        return;
-    }}
-    {} r = {func}({args});
-    {} rb = {bits};{stores}
-}}
-",
-                    self.ty(*ret),
-                    self.ty(Ty {
-                        kind: Kind::U32,
-                        lanes: ret.lanes
-                    })
-                )
-            },
-            |k, runner| {
-                format!(
-                    "\n    case {k}u:\n        {runner}(gl_GlobalInvocationID.x);\n        break;"
-                )
-            },
-        );
-        format!(
-            "#version 450
-layout(local_size_x = 64) in;
-layout(std430, set = 0, binding = 0) readonly buffer InputWords {{ uint input_words[]; }};
-layout(std430, set = 0, binding = 1) buffer OutputWords {{ uint output_words[]; }};
-layout(constant_id = 0) const uint {KERNEL_SELECT} = 0u;
-
-{include}{runners}
-void main() {{
-    switch ({KERNEL_SELECT}) {{{cases}
-    default:
-        break;
-    }}
-}}
-"
-        )
+        self.selecting_kernel(include, funcs, &Target::Vulkan)
     }
 }
