@@ -133,7 +133,7 @@ fn the_opengl_paths_catch_what_mesa_folds_without_precise() {
     use unitpack::model::trace::Ty;
     use unitpack::verify::gl::Gl;
 
-    let gl = Gl::new(true, 1).unwrap_or_else(|e| panic!("{e:#}"));
+    let gl = Gl::shared(true, 2).unwrap_or_else(|e| panic!("{e:#}"));
     let spec: Spec = "float16x3".parse().unwrap();
     let e = spec.emitted();
     let decode = e.functions.iter().find(|f| f.name == "decode").unwrap();
@@ -176,7 +176,7 @@ fn the_opengl_paths_catch_what_mesa_folds_without_precise() {
             got.extend_from_slice(out)
         })
         .unwrap_or_else(|e| panic!("{e:#}"));
-        program.delete(&gl).unwrap();
+        program.delete(gl).unwrap();
         got.chunks(3)
             .zip(want.chunks(3))
             .filter(|(a, b)| a != b)

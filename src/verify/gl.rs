@@ -13,7 +13,7 @@
 use anyhow::{Context as _, Result, anyhow, bail};
 use glow::HasContext;
 use khronos_egl as egl;
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 /// `EGL_PLATFORM_SURFACELESS_MESA`: a display without a window system.
 const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
@@ -66,10 +66,22 @@ impl Drop for Current<'_> {
 }
 
 impl Gl {
+    /// The process's contexts for the CPU (`software`) or the GPU, opened on first use
+    /// with `contexts` contexts and never closed: unloading libEGL while the driver's
+    /// threads live would crash the process at exit, as would terminating a display
+    /// another run still uses.
+    pub fn shared(software: bool, contexts: usize) -> Result<&'static Gl> {
+        static SHARED: [OnceLock<Result<Gl, String>>; 2] = [OnceLock::new(), OnceLock::new()];
+        SHARED[usize::from(software)]
+            .get_or_init(|| Gl::new(software, contexts).map_err(|e| format!("{e:#}")))
+            .as_ref()
+            .map_err(|e| anyhow!("{e}"))
+    }
+
     /// `contexts` OpenGL 4.3 core contexts of the surfaceless EGL display. With
     /// `software`, the renderer must be llvmpipe, the CPU implementation that rounds like
     /// lavapipe; without, it must not be (a GPU run's rows are the GPU's).
-    pub fn new(software: bool, contexts: usize) -> Result<Gl> {
+    fn new(software: bool, contexts: usize) -> Result<Gl> {
         // SAFETY: loading libEGL runs its initializers, as any EGL client does.
         let lib = unsafe { libloading::Library::new("libEGL.so.1") }.context(NO_GL)?;
         let egl = unsafe { Egl::load_required_from(lib) }
@@ -277,17 +289,6 @@ impl Gl {
             gl.delete_buffer(bo);
             result
         }
-    }
-}
-
-impl Drop for Gl {
-    fn drop(&mut self) {
-        for s in &mut self.states {
-            if let Ok(s) = s.get_mut() {
-                let _ = self.egl.destroy_context(self.display, s.context);
-            }
-        }
-        let _ = self.egl.terminate(self.display);
     }
 }
 

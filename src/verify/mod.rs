@@ -563,7 +563,7 @@ pub fn run_on(
     };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let gl = if paths.iter().any(|p| p.on_gl()) {
-        Some(gl::Gl::new(adapter == Adapter::Cpu, threads)?)
+        Some(gl::Gl::shared(adapter == Adapter::Cpu, threads)?)
     } else {
         None
     };
@@ -588,7 +588,7 @@ pub fn run_on(
     let on = On {
         paths: &paths,
         gpu,
-        gl: gl.as_ref(),
+        gl,
         keep,
     };
     let next = std::sync::atomic::AtomicUsize::new(0);

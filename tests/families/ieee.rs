@@ -101,8 +101,14 @@ fn zero_nan_and_infinite_input_encode_as_in_the_default_tier() {
 #[test]
 fn a_texel_layout_and_the_precise_encoder_refuse_the_lean_tier() {
     for (text, why) in [
-        ("xy16:layout=rg,guarantee=ieee", "covers the codec's own packing"),
-        ("oct24:layout=rgb8,guarantee=ieee", "covers the codec's own packing"),
+        (
+            "xy16:layout=rg,guarantee=ieee",
+            "covers the codec's own packing",
+        ),
+        (
+            "oct24:layout=rgb8,guarantee=ieee",
+            "covers the codec's own packing",
+        ),
         ("oct16p:guarantee=ieee", "is the fast encoder's"),
         ("lambert16p_ieee", "is the fast encoder's"),
     ] {
