@@ -116,7 +116,7 @@ fn hemioct_float_form_fits_the_projected_input() {
 #[test]
 fn non_unit_input_encodes_like_its_direction() {
     for spec in codecs() {
-        let lean = spec.id().ends_with("_ieee");
+        let lean = unitpack::codecs::core::ieee::asked(&spec);
         let scales: &[i32] = if lean {
             &[-20, -1, 1, 20]
         } else {

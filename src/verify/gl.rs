@@ -292,7 +292,7 @@ impl Gl {
     }
 }
 
-/// Programs are deleted with their context, which lives as long as the run.
+/// The contexts live as long as the process, so a run deletes what it compiles.
 impl Program {
     /// Frees the program now (a run compiles one per spec and form).
     pub fn delete(self, gl: &Gl) -> Result<()> {

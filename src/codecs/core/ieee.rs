@@ -77,10 +77,6 @@ impl<C: Codec> Codec for Ieee<C> {
         self.0.domain()
     }
     #[inline(always)]
-    fn target<F: Float>(&self, v: V3<F>) -> V3<F> {
-        self.0.target(v)
-    }
-    #[inline(always)]
     fn params<F: Float>(&self, v: V3<F>) -> C::P<F> {
         self.0.ieee_params(v)
     }
