@@ -648,7 +648,7 @@ fn denormal_flushing_gives_no_nan() {
     }
 }
 
-/// One line of a kept hardware run (`tests/data/h100_*.tsv`): spec, function, input words,
+/// One line of a kept hardware run (`tests/data/h100_*.tsv`, `tests/data/h200_*.tsv`): spec, function, input words,
 /// the model's output words and the GPU's, and any further columns.
 struct Kept {
     spec: String,
@@ -681,15 +681,17 @@ fn kept(file: &str) -> Vec<Kept> {
         .collect()
 }
 
-/// The H100's kept items still hold the model's outputs: each line's model column is what
+/// The H100's and H200's kept items still hold the model's outputs: each line's model column is what
 /// the function computes today, and the GPU's column differs from it. A model change that
 /// moves one of these outputs makes the data stale, and this says which line.
 #[test]
-fn h100_items_hold_the_model_outputs() {
+fn gpu_items_hold_the_model_outputs() {
     for (file, lines) in [
         ("h100_naga_changed_codes.tsv", 2085),
         ("h100_naga_beyond_bound.tsv", 6),
         ("h100_gl_precise_changed_codes.tsv", 48),
+        ("h200_changed_codes.tsv", 2783),
+        ("h200_beyond_bound.tsv", 15),
     ] {
         let items = kept(file);
         assert_eq!(items.len(), lines, "{file}");

@@ -88,15 +88,28 @@ impl Gl {
             .map_err(|e| anyhow!("{e}"))
             .context(NO_GL)?;
         // SAFETY: the surfaceless platform takes no native display.
-        let display = unsafe {
+        let surfaceless = unsafe {
             egl.get_platform_display(
                 PLATFORM_SURFACELESS_MESA,
                 egl::DEFAULT_DISPLAY,
                 &[egl::ATTRIB_NONE],
             )
         }
-        .context(NO_GL)?;
-        egl.initialize(display).context(NO_GL)?;
+        .map_err(anyhow::Error::from)
+        .and_then(|d| Ok(egl.initialize(d).map(|_| d)?));
+        let display = match surfaceless {
+            Ok(d) => d,
+            // A GPU vendor's EGL without Mesa's surfaceless platform (NVIDIA's) opens
+            // its headless device as the default display.
+            Err(_) if !software => {
+                // SAFETY: the default display takes no native display either.
+                let d = unsafe { egl.get_display(egl::DEFAULT_DISPLAY) }
+                    .ok_or_else(|| anyhow!("EGL has no default display").context(NO_GL))?;
+                egl.initialize(d).context(NO_GL)?;
+                d
+            }
+            Err(e) => return Err(e.context(NO_GL)),
+        };
         egl.bind_api(egl::OPENGL_API).context(NO_GL)?;
         let config = egl
             .choose_first_config(
@@ -153,8 +166,8 @@ impl Gl {
         }
         if !software && cpu {
             bail!(
-                "the OpenGL renderer is {renderer}, the CPU: no GPU answers through EGL's \
-                 surfaceless platform (leave out --lang glsl, or verify on the CPU adapter)"
+                "the OpenGL renderer is {renderer}, the CPU: no GPU answers through EGL \
+                 (leave out --lang glsl, or verify on the CPU adapter)"
             );
         }
         Ok(Gl {
