@@ -80,3 +80,28 @@ fn writes_are_atomic_create_parents_and_match_render() {
     assert_eq!(std::fs::read_to_string(&blocker).unwrap(), "keep");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A build script written as `examples/build-script/build.rs` is (`fn main() -> Result<(),
+/// GenerateError>`) that asks for a spec that does not exist fails with the error's
+/// message, which says what to fix: `main` reports an error as `Error: {err:?}`, so the
+/// `Debug` form must be the message. Before, it printed `Error: Spec(InvalidBits { codec:
+/// "oct", bits: "17", .. })`. Nothing is written.
+#[test]
+fn a_failing_build_script_says_what_to_fix() {
+    let dir = tempdir();
+    let out = dir.join("normals.wgsl");
+    let e = Generator::new()
+        .specs(["oct24p", "oct17"])
+        .lang(Lang::Wgsl)
+        .wgsl_import_path("normals")
+        .write_file(&out)
+        .unwrap_err();
+    let reported = format!("Error: {e:?}");
+    assert_eq!(
+        reported,
+        "Error: invalid spec: oct has no 17-bit form; allowed sizes: 16, 20, 22, 24, 32"
+    );
+    assert!(matches!(e, GenerateError::Spec(_)), "{e}");
+    assert!(!out.exists(), "a failed build wrote {}", out.display());
+    std::fs::remove_dir_all(dir).unwrap();
+}
