@@ -179,7 +179,8 @@ impl Rings {
     /// The rings of `nphi` latitudes with the least `ε` whose patches fit `2^bits` codes.
     pub fn build(bits: u32, nphi: u32) -> Rings {
         let budget = 1u64 << bits;
-        let fits = |eps: f64| counts(nphi, eps).is_some_and(#[inline(always)] |c| c.iter().sum::<u64>() <= budget);
+        let rings = ring_sines(nphi);
+        let fits = |eps: f64| counts(&rings, nphi, eps).is_some_and(#[inline(always)] |c| c.iter().sum::<u64>() <= budget);
         let (mut lo, mut hi) = (1e-9, 0.2);
         for _ in 0..64 {
             let mid = 0.5 * (lo + hi);
@@ -189,7 +190,7 @@ impl Rings {
                 lo = mid;
             }
         }
-        let counts = counts(nphi, hi).expect("the bisection's upper end fits");
+        let counts = counts(&rings, nphi, hi).expect("the bisection's upper end fits");
         let mut offset = 0u64;
         let entries: Vec<[u32; 2]> = counts
             .iter()
@@ -218,6 +219,19 @@ impl Rings {
     }
 }
 
+/// `sin p·sin q` of each ring between the poles (`p` its polar angle from the nearer
+/// pole, so that mirrored rings compute the same count; `q = p + Δ/2`).
+fn ring_sines(nphi: u32) -> Vec<f64> {
+    let dphi = std::f64::consts::PI / f64::from(nphi - 1);
+    let d = 0.5 * dphi;
+    (1..nphi - 1)
+        .map(|j| {
+            let p = f64::from(j.min(nphi - 1 - j)) * dphi;
+            libm::sin(p) * libm::sin(p + d)
+        })
+        .collect()
+}
+
 /// Patches per ring for `nphi` rings and error `eps` (radians); `None` where `eps` is too
 /// small for the rings' spacing. The half-width `h` of a patch solves
 /// `cos ε = cos p·cos q + sin p·sin q·cos h` (`q = p + Δ/2`, Δ the rings' spacing),
@@ -225,19 +239,19 @@ impl Rings {
 /// `sin²(h/2) = sin((ε - Δ/2)/2)·sin((ε + Δ/2)/2) / (sin p·sin q)`, so that the count
 /// `ceil(π/h)` is accurate to f64's precision even at 32 bits, where `cos ε` is within
 /// `10^-9` of 1.
-fn counts(nphi: u32, eps: f64) -> Option<Vec<u64>> {
+///
+/// `rings` holds [`ring_sines`]: the bisection over `eps` asks for the counts 64 times,
+/// and only the numerator depends on `eps`.
+fn counts(rings: &[f64], nphi: u32, eps: f64) -> Option<Vec<u64>> {
     use std::f64::consts::PI;
-    let dphi = PI / f64::from(nphi - 1);
-    let d = 0.5 * dphi;
+    let d = 0.5 * (PI / f64::from(nphi - 1));
     if eps <= d {
         return None;
     }
+    let numerator = libm::sin(0.5 * (eps - d)) * libm::sin(0.5 * (eps + d));
     let mut out = vec![1u64];
-    for j in 1..nphi - 1 {
-        // The nearer pole's ring index, so that mirrored rings compute the same count.
-        let p = f64::from(j.min(nphi - 1 - j)) * dphi;
-        let q = p + d;
-        let s2 = libm::sin(0.5 * (eps - d)) * libm::sin(0.5 * (eps + d)) / (libm::sin(p) * libm::sin(q));
+    for &sines in rings {
+        let s2 = numerator / sines;
         out.push(if s2 >= 1.0 {
             1
         } else {
