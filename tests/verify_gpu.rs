@@ -41,6 +41,42 @@ fn every_function_is_bit_exact_on_every_path() {
     );
     every_include_is_checked_whole(&report);
     shared_rows_repeat_identical_code(&report);
+    sampled_paths_run_their_sample(&report);
+}
+
+/// The C++ and OpenGL paths run every item of a function with at most their sample's
+/// size, else exactly that many, and the C path runs every item of the same function.
+fn sampled_paths_run_their_sample(report: &unitpack::verify::Report) {
+    use unitpack::verify::Path;
+    let every: HashMap<(&str, &str), usize> = report
+        .rows
+        .iter()
+        .filter(|r| r.path == Path::CC.to_string())
+        .map(|r| ((r.spec.as_str(), r.function.as_str()), r.tested))
+        .collect();
+    for path in [Path::CCpp, Path::GlslGl, Path::GlslGlPrecise] {
+        let items = path.sampled().expect("a sampled path");
+        let rows: Vec<_> = report
+            .rows
+            .iter()
+            .filter(|r| r.path == path.to_string() && r.function != "(whole include)")
+            .collect();
+        assert!(!rows.is_empty(), "{path} ran");
+        for r in rows {
+            let all = every[&(r.spec.as_str(), r.function.as_str())];
+            assert_eq!(
+                r.tested,
+                all.min(items),
+                "{} {} on {path}",
+                r.spec,
+                r.function
+            );
+        }
+    }
+    assert!(
+        every.values().any(|&n| n > 1 << 20),
+        "the C path runs every item"
+    );
 }
 
 /// Each spec's include is checked on its own in every shader language, also where every

@@ -91,6 +91,17 @@ impl Path {
     fn on_gl(self) -> bool {
         matches!(self, Path::GlslGl | Path::GlslGlPrecise)
     }
+    /// How many items of each function the path runs where it runs a sample
+    /// ([`sample`]): the paths whose arithmetic another path already runs on every item
+    /// with the same code generator, so that what they add is their front end's reading
+    /// of the text. `None`: every item.
+    pub fn sampled(self) -> Option<usize> {
+        match self {
+            Path::GlslGl | Path::GlslGlPrecise => Some(GL_ITEMS),
+            Path::CCpp => Some(CPP_ITEMS),
+            _ => None,
+        }
+    }
 }
 
 impl fmt::Display for Path {
@@ -668,15 +679,24 @@ fn copy_shared_results(rows: &mut [Row]) {
 /// which the Vulkan paths check on every item.
 pub const GL_ITEMS: usize = 1 << 16;
 
-/// The first `GL_ITEMS / 2` items and a seeded, evenly spread choice of the others, with
+/// Items of each function the C++ path runs, chosen as for [`GL_ITEMS`]: g++ reads the
+/// header with its own front end but optimizes and generates code with the same GCC back
+/// end and flags as the C path, which runs every item; the sample holds every edge item
+/// and every code of a function of up to 17 bits.
+pub const CPP_ITEMS: usize = 1 << 17;
+
+/// A sample's input words and the model's output words for them.
+type Sample = (Vec<u32>, Vec<u32>);
+
+/// The first `items / 2` items and a seeded, evenly spread choice of the others, with
 /// their expected outputs; every item where there are no more.
-fn gl_sample(input: &[u32], want: &[u32], iw: usize, ow: usize) -> (Vec<u32>, Vec<u32>) {
+fn sample(input: &[u32], want: &[u32], iw: usize, ow: usize, items: usize) -> Sample {
     let n = input.len() / iw;
-    if n <= GL_ITEMS {
+    if n <= items {
         return (input.to_vec(), want.to_vec());
     }
-    let head = GL_ITEMS / 2;
-    let rest = GL_ITEMS - head;
+    let head = items / 2;
+    let rest = items - head;
     let step = (n - head) as f64 / rest as f64;
     let picks = (0..head).chain((0..rest).map(|k| {
         // Jittered within each step, so that a field's low bits vary between picks.
@@ -848,16 +868,20 @@ fn verify_spec(
         let (_, params, ret) = &all[index];
         let input = inputs::generate(&f.inputs, f.in_words);
         let want = expected(f, &input);
-        let (gl_input, gl_want) = if paths.iter().any(|p| p.on_gl()) {
-            gl_sample(&input, &want, f.in_words, f.out_words)
-        } else {
-            (Vec::new(), Vec::new())
-        };
+        // Each sample size the paths ask for, drawn once.
+        let mut samples: Vec<(usize, Sample)> = Vec::new();
+        for items in paths.iter().filter_map(|p| p.sampled()) {
+            if samples.iter().all(|(n, _)| *n != items) {
+                samples.push((items, sample(&input, &want, f.in_words, f.out_words, items)));
+            }
+        }
         for &path in paths {
-            let (input, want) = if path.on_gl() {
-                (&gl_input, &gl_want)
-            } else {
-                (&input, &want)
+            let (input, want) = match path.sampled() {
+                Some(items) => {
+                    let (_, (i, w)) = samples.iter().find(|(n, _)| *n == items).expect("drawn");
+                    (i, w)
+                }
+                None => (&input, &want),
             };
             let mut cmp = Comparison::new(f, (params, *ret), input, want).keeping(keep);
             let result = if path == Path::Lanes {
