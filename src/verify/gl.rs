@@ -78,7 +78,8 @@ impl Gl {
             .map_err(|e| anyhow!("{e}"))
     }
 
-    /// `contexts` OpenGL 4.3 core contexts of the surfaceless EGL display. With
+    /// `contexts` OpenGL 4.3 core contexts of the surfaceless EGL display (for a GPU
+    /// without that platform, the default display). With
     /// `software`, the renderer must be llvmpipe, the CPU implementation that rounds like
     /// lavapipe; without, it must not be (a GPU run's rows are the GPU's).
     fn new(software: bool, contexts: usize) -> Result<Gl> {
@@ -96,7 +97,10 @@ impl Gl {
             )
         }
         .map_err(anyhow::Error::from)
-        .and_then(|d| Ok(egl.initialize(d).map(|_| d)?));
+        .and_then(|d| {
+            egl.initialize(d)?;
+            Ok(d)
+        });
         let display = match surfaceless {
             Ok(d) => d,
             // A GPU vendor's EGL without Mesa's surfaceless platform (NVIDIA's) opens
