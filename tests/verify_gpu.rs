@@ -1,6 +1,6 @@
 //! The whole catalogue on lavapipe: every emitted function on every path (WGSL via naga,
-//! GLSL via naga and glslang, HLSL via glslang with -Od and default optimization, C
-//! and C++), and the model's own four-lane evaluation that the CPU batches run, each
+//! GLSL via naga and glslang, HLSL via glslang with -Od and default optimization and via
+//! Slang's four routes, GLSL on the OpenGL driver, C and C++), and the model's own four-lane evaluation that the CPU batches run, each
 //! compared as raw bits with the f32 model on every code up to 24 bits and 2^20 seeded
 //! vectors plus the edge cases, plus the static checks. With no Vulkan adapter this
 //! fails and names the package to install.
@@ -42,6 +42,146 @@ fn every_function_is_bit_exact_on_every_path() {
     every_include_is_checked_whole(&report);
     shared_rows_repeat_identical_code(&report);
     sampled_paths_run_their_sample(&report);
+    slang_routes_hold_what_the_readme_says(&report);
+}
+
+/// Through Slang, `-O0` and `-emit-spirv-via-glsl` give the model's bits for every
+/// function; the default and `-O3` routes give every packed code and index, and measure
+/// (not hold) float outputs, which Slang's optimizer does move there: were it to stop, the
+/// README's account of those routes would be out of date.
+fn slang_routes_hold_what_the_readme_says(report: &unitpack::verify::Report) {
+    use unitpack::verify::Path;
+    for path in [
+        Path::HlslSlangO0,
+        Path::HlslSlang,
+        Path::HlslSlangO3,
+        Path::HlslSlangViaGlsl,
+    ] {
+        let rows: Vec<_> = report
+            .rows
+            .iter()
+            .filter(|r| r.path == path.to_string() && r.same_as.is_none())
+            .collect();
+        assert!(rows.len() > 500, "{path} ran every function");
+        for r in &rows {
+            assert!(
+                r.error.is_none(),
+                "{} {} on {path}: {:?}",
+                r.spec,
+                r.function,
+                r.error
+            );
+            if !r.measured {
+                assert_eq!(r.mismatches, 0, "{} {} on {path}", r.spec, r.function);
+            }
+        }
+        let measured = rows.iter().filter(|r| r.measured).count();
+        let moved = rows
+            .iter()
+            .filter(|r| r.measured && r.mismatches > 0)
+            .count();
+        if path.regroups() {
+            assert!(
+                measured > 0 && moved > 0,
+                "{path}: {moved} of {measured} moved"
+            );
+        } else {
+            assert_eq!(
+                measured, 0,
+                "{path} holds every function to the model's bits"
+            );
+        }
+    }
+    // The packed encoders are held on every route, measured nowhere.
+    assert!(
+        report
+            .rows
+            .iter()
+            .filter(|r| r.function == "encode" && r.path.starts_with("hlsl/slang"))
+            .all(|r| !r.measured && r.mismatches == 0)
+    );
+}
+
+/// Slang's direct SPIR-V at its default optimization and at `-O3` drops `precise`, and
+/// its optimizer turns a product by a constant squared, `(x·k)·(x·k)`, into `(x·x)·k²`.
+/// snorm11_11_10's exact rounding once squared `|n|·M` so (tests/data holds that include):
+/// through Slang at `-O3` it changes codes of tie vectors, at `-O0` and through GLSL it
+/// does not, and today's encoder, which squares `|n·M|`, keeps every code on every route.
+#[test]
+fn slang_regroups_a_squared_product_the_encoders_no_longer_offer_it() {
+    use unitpack::emit::DEFAULT_PREFIX;
+    use unitpack::model::Kind;
+    use unitpack::model::trace::Ty;
+    use unitpack::verify::gpu::{Adapter, Gpu, Shader};
+    use unitpack::verify::slang::{Route, Slang};
+
+    let slang = Slang::shared().unwrap_or_else(|e| panic!("{e:#}"));
+    let gpu = Gpu::shared_on(Adapter::Cpu).unwrap_or_else(|e| panic!("{e:#}"));
+    let spec: Spec = "snorm11_11_10".parse().unwrap();
+    let e = spec.emitted();
+    let encode = e.functions.iter().find(|f| f.name == "encode").unwrap();
+    // Every vector of these components: (±1, ±√½, ±√½) and its kin sit on ties.
+    let parts = [1.0f32, -1.0, 0.5, -0.5, 0.0, 0.75];
+    let parts: Vec<f32> = parts
+        .into_iter()
+        .chain([
+            std::f32::consts::FRAC_1_SQRT_2,
+            -std::f32::consts::FRAC_1_SQRT_2,
+        ])
+        .collect();
+    let mut input = Vec::new();
+    for &x in &parts {
+        for &y in &parts {
+            for &z in &parts {
+                input.extend([x.to_bits(), y.to_bits(), z.to_bits()]);
+            }
+        }
+    }
+    let want = unitpack::verify::expected(encode, &input);
+    let funcs = [(
+        "unitpack_snorm11_11_10_encode",
+        vec![Ty {
+            kind: Kind::F32,
+            lanes: 3,
+        }],
+        Ty {
+            kind: Kind::U32,
+            lanes: 1,
+        },
+    )];
+    let today = Generator::new()
+        .spec("snorm11_11_10")
+        .lang(Lang::Hlsl)
+        .render(Lang::Hlsl)
+        .unwrap();
+    let differing = |include: &str, route: Route| {
+        let kernel = Lang::Hlsl.backend(DEFAULT_PREFIX).kernel(include, &funcs);
+        let spv = slang
+            .spirv(&kernel, route)
+            .unwrap_or_else(|e| panic!("{e:#}"));
+        let module = gpu
+            .selecting(&Shader::SpirV(&spv))
+            .unwrap_or_else(|e| panic!("{e:#}"));
+        let mut got = Vec::new();
+        gpu.run_selected(&module, 0, &input, 3, 1, &mut |out| {
+            got.extend_from_slice(out)
+        })
+        .unwrap_or_else(|e| panic!("{e:#}"));
+        assert_eq!(got.len(), want.len());
+        got.iter().zip(&want).filter(|(a, b)| a != b).count()
+    };
+    let old = include_str!("data/snorm11_11_10_encode_regrouped_by_slang.hlsl");
+    assert!(
+        differing(old, Route::O3) > 0,
+        "Slang {} no longer regroups the old encoder at -O3: this test shows nothing",
+        slang.version
+    );
+    for route in [Route::O0, Route::ViaGlsl] {
+        assert_eq!(differing(old, route), 0, "the old encoder on {route:?}");
+    }
+    for route in [Route::O0, Route::Default, Route::O3, Route::ViaGlsl] {
+        assert_eq!(differing(&today, route), 0, "today's encoder on {route:?}");
+    }
 }
 
 /// The C++ and OpenGL paths run every item of a function with at most their sample's
@@ -54,7 +194,15 @@ fn sampled_paths_run_their_sample(report: &unitpack::verify::Report) {
         .filter(|r| r.path == Path::CC.to_string())
         .map(|r| ((r.spec.as_str(), r.function.as_str()), r.tested))
         .collect();
-    for path in [Path::CCpp, Path::GlslGl, Path::GlslGlPrecise] {
+    for path in [
+        Path::CCpp,
+        Path::GlslGl,
+        Path::GlslGlPrecise,
+        Path::HlslSlangO0,
+        Path::HlslSlang,
+        Path::HlslSlangO3,
+        Path::HlslSlangViaGlsl,
+    ] {
         let items = path.sampled().expect("a sampled path");
         let rows: Vec<_> = report
             .rows

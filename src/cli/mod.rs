@@ -192,7 +192,8 @@ pub enum Command {
     #[command(after_help = STREAM_FORMATS)]
     Decode(StreamArgs),
     /// Prove emitted code bit-exact: static checks (naga, glslang, spirv-val) and
-    /// execution on the Vulkan CPU adapter (lavapipe), compared as raw bits with the model.
+    /// execution on the Vulkan CPU adapter (lavapipe) through naga, glslang and Slang, on
+    /// the OpenGL driver and through the C compilers, compared as raw bits with the model.
     Verify {
         /// Specs to verify (default: all).
         #[arg(value_name = "SPEC", help = format!("{SPEC_HELP} (default: every spec)"))]

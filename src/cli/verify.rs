@@ -35,6 +35,9 @@ struct RowJson<'a> {
     /// (one side NaN, or infinities that differ) prints as `null` beside a `largest_at`.
     largest_difference: Option<f64>,
     largest_at: Option<MismatchJson<'a>>,
+    /// Float outputs on a path that regroups products (Slang's direct SPIR-V at its
+    /// default and `-O3`): mismatches reported, not a failure.
+    measured: bool,
 }
 
 #[derive(Serialize)]
@@ -60,6 +63,7 @@ fn row(r: &Row) -> RowJson<'_> {
         same_code_as: r.same_as.as_deref(),
         largest_difference: r.largest.as_ref().map(|l| l.difference),
         largest_at: r.largest.as_ref().map(|l| mismatch(&l.at)),
+        measured: r.measured,
     }
 }
 

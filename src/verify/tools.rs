@@ -81,7 +81,7 @@ fn tool_output(out: &Output) -> String {
 }
 
 /// Writes `contents` to a fresh temporary file whose name ends in `.{ext}`.
-fn temp_file(ext: &str, contents: &[u8]) -> anyhow::Result<tempfile::NamedTempFile> {
+pub(crate) fn temp_file(ext: &str, contents: &[u8]) -> anyhow::Result<tempfile::NamedTempFile> {
     let mut file = tempfile::Builder::new()
         .prefix("unitpack-")
         .suffix(&format!(".{ext}"))

@@ -72,9 +72,13 @@ impl HemiEqDist {
             let m = q.max_code();
             let big = (x * t * F::c((f64::from(m) / fixed_trig::ONE) as f32)).named("big");
             let estimate = (big / rho2.sqrt() + F::c(m * 0.5)).round();
+            // Squared as `|big|·|big|` (the same bits): `big·big`, a product by a constant
+            // squared, is what Slang's SPIR-V optimizer regroups as `(x·t)²·K²`
+            // (`exact::snorm_sqrt_ratio` says more).
+            let magnitude = big.abs();
             decided(q, estimate, #[inline(always)] |c| {
                 let k = c - F::c(m * 0.5 - offset);
-                past_root_ratio(x, big * big, k, k * k * rho2)
+                past_root_ratio(x, magnitude * magnitude, k, k * k * rho2)
             })
         } };
         let [qx, qy] = disk_fields(self.bits);

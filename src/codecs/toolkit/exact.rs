@@ -604,12 +604,16 @@ fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
 /// correctly rounded functions of the input, `s` from [`length2`]): the integer `c ≤ M`
 /// with `(c - ½)²·s ≤ (|n|·M)² < (c + ½)²·s` (each product rounded once), with the sign
 /// of `n`.
+///
+/// `|n|·M` is taken as `|n·M|` (the same bits): squared as `(|n|·M)·(|n|·M)`, a product
+/// by a constant squared, Slang's SPIR-V optimizer regroups it as `M²·(|n|·|n|)`, a
+/// different rounding, where nothing marks the product `NoContraction`. The absolute
+/// value of a product is not a product by a constant, and that rewrite leaves it alone.
 #[inline(always)]
 pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
-    let a = n.abs();
     let m = F::c(q.max_code());
-    let estimate = (a / s.sqrt() * m).round();
-    let big = a * m;
+    let big = (n * m).abs();
+    let estimate = (big / s.sqrt()).round();
     let big2 = big * big;
     let hi = estimate + F::c(0.5);
     let lo = estimate - F::c(0.5);
