@@ -93,21 +93,29 @@ pub fn compile(compiler: Compiler, source: &str) -> Result<Program> {
 
 impl Program {
     /// Runs function number `index` of the driver over `input`, items of `in_words`
-    /// words, giving `out_words` words per item.
+    /// words, writing `out_words` words per item to `out`.
     pub fn run(
         &self,
         index: usize,
         input: &[u32],
         in_words: usize,
         out_words: usize,
-    ) -> Result<Vec<u32>> {
+        out: &mut [u32],
+    ) -> Result<()> {
         if in_words == 0 || !input.len().is_multiple_of(in_words) {
             bail!(
                 "{} input words are not whole items of {in_words}",
                 input.len()
             );
         }
-        let mut out = vec![0u32; input.len() / in_words * out_words];
+        if out.len() != input.len() / in_words * out_words {
+            bail!(
+                "room for {} output words, not the {} of {} items",
+                out.len(),
+                input.len() / in_words * out_words,
+                input.len() / in_words
+            );
+        }
         let index = u32::try_from(index).context("function index")?;
         let widths = (
             u32::try_from(in_words).context("input width")?,
@@ -115,7 +123,7 @@ impl Program {
         );
         let entry = self.entry;
         let rc = std::sync::atomic::AtomicI32::new(0);
-        super::on_all_cores(input, &mut out, in_words, out_words, |i, o| {
+        super::on_all_cores(input, out, in_words, out_words, |i, o| {
             let n = i.len() / in_words;
             // SAFETY: `i` holds `n` items of `in_words` and `o` room for `n` items of
             // `out_words`; the driver refuses widths that are not its function's before
@@ -124,7 +132,7 @@ impl Program {
             rc.fetch_max(r, std::sync::atomic::Ordering::Relaxed);
         });
         match rc.into_inner() {
-            0 => Ok(out),
+            0 => Ok(()),
             2 => bail!("the C driver has no function {index}"),
             3 => bail!("C driver function {index} does not take {in_words} words to {out_words}"),
             rc => bail!("the C driver returned {rc} for function {index}"),

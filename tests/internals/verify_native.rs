@@ -16,12 +16,28 @@ fn driver_runs_in_process_and_refuses_other_widths() {
     for compiler in [Compiler::C, Compiler::Cpp] {
         let program = compile(compiler, &source).expect("the driver compiles");
         let input: Vec<u32> = (0..10_000).collect();
-        let out = program.run(0, &input, 1, 1).expect("runs");
+        let mut out = vec![0u32; 10_000];
+        program.run(0, &input, 1, 1, &mut out).expect("runs");
         assert_eq!(out, input.iter().map(|x| 2 * x).collect::<Vec<_>>());
-        let e = program.run(1, &input, 1, 1).unwrap_err().to_string();
+        let e = program
+            .run(1, &input, 1, 1, &mut out)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("no function 1"), "{e}");
-        let e = program.run(0, &input, 1, 3).unwrap_err().to_string();
+        let mut wide = vec![0u32; 30_000];
+        let e = program
+            .run(0, &input, 1, 3, &mut wide)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("does not take 1 words to 3"), "{e}");
-        assert!(program.run(0, &input[..3], 2, 1).is_err(), "half an item");
+        let e = program
+            .run(0, &input, 1, 3, &mut out)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("room for 10000 output words"), "{e}");
+        assert!(
+            program.run(0, &input[..3], 2, 1, &mut out).is_err(),
+            "half an item"
+        );
     }
 }

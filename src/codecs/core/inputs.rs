@@ -165,26 +165,45 @@ pub fn float_codes(q: &[Quant]) -> Vec<u32> {
         .iter()
         .map(|&f| (f.bits() <= 16).then(|| (0..=f.mask()).map(|v| fetched_field(f, v)).collect()))
         .collect();
-    let items: Box<dyn Iterator<Item = [u32; 3]>> = if total <= 24 {
-        Box::new((0..1u32 << total).map(|k| [k, 0, 0]))
-    } else {
-        Box::new(wide_codes(q))
-    };
-    let mut out = Vec::with_capacity(items.size_hint().0 * q.len());
-    for words in items {
-        for ((quant, off), table) in q.iter().zip(&offs).zip(&tables) {
+    let fill = |words: [u32; 3], out: &mut [u32]| {
+        for (((quant, off), table), out) in q.iter().zip(&offs).zip(&tables).zip(out) {
             let word = words[(off / 32) as usize] >> (off % 32);
             let field = if quant.bits() == 32 {
                 word
             } else {
                 word & quant.mask()
             };
-            out.push(match table {
+            *out = match table {
                 Some(t) => t[field as usize],
                 None => fetched_field(*quant, field),
+            };
+        }
+    };
+    let fields = q.len();
+    if total > 24 {
+        let mut out = Vec::new();
+        for words in wide_codes(q) {
+            let at = out.len();
+            out.resize(at + fields, 0);
+            fill(words, &mut out[at..]);
+        }
+        return out;
+    }
+    // Every code, split between the cores: 2^24 codes took a second on one.
+    let n = 1usize << total;
+    let mut out = vec![0u32; n * fields];
+    let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
+    let per = n.div_ceil(threads).max(1);
+    std::thread::scope(|s| {
+        for (t, share) in out.chunks_mut(per * fields).enumerate() {
+            let fill = &fill;
+            s.spawn(move || {
+                for (j, item) in share.chunks_mut(fields).enumerate() {
+                    fill([(t * per + j) as u32, 0, 0], item);
+                }
             });
         }
-    }
+    });
     out
 }
 
