@@ -125,9 +125,6 @@ impl Path {
             _ => None,
         }
     }
-}
-
-impl Path {
     /// Whether the path's compiler regroups float products itself, which the doc comments
     /// exclude ("not where a compiler may reassociate"): Slang's direct SPIR-V at its
     /// default optimization and at `-O3` (it drops `precise`, then its optimizer turns
