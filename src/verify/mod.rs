@@ -369,8 +369,8 @@ fn lanes(f: &Function, width: Width, input: &[u32], out: &mut [u32]) {
 
 /// Items a CPU path (the lanes, the C driver) computes at a time before the comparison
 /// takes them: a whole function's outputs at once (up to 200 MB for a 24-bit decoder) had
-/// the kernel map and zero fresh pages for every function and path, a fifth of verify's
-/// time. A multiple of 256, so that the lanes meet the same neighbours as in one call.
+/// the kernel map and zero fresh pages for every function and path. A multiple of 256, so
+/// that the lanes meet the same neighbours as in one call.
 const CPU_CHUNK: usize = 1 << 18;
 
 /// Runs `fill` over `input` a [`CPU_CHUNK`] at a time, into one reused buffer, and hands
