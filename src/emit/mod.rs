@@ -5,6 +5,7 @@
 
 pub mod docs;
 pub mod lang;
+pub mod layout;
 pub mod printer;
 
 use crate::codecs::Spec;
@@ -101,6 +102,8 @@ pub struct FnView {
 pub struct SpecView {
     pub guard: String,
     pub title: String,
+    /// Paragraphs under the title: what the spec's functions share.
+    pub doc: Vec<String>,
     pub functions: Vec<FnView>,
 }
 
@@ -143,7 +146,7 @@ pub fn spec_view(
                 name: public(&f.name),
                 ..p
             };
-            let doc = docs::function_doc(spec, &e, &shown, role, &f.name, stats);
+            let doc = docs::function_doc(spec, &e, &shown, role, &f.name);
             FnView {
                 doc,
                 name: defined(&f.name),
@@ -157,6 +160,7 @@ pub fn spec_view(
     SpecView {
         guard: format!("{}{}_{}", prefix, spec.id(), lang.ext()).to_ascii_uppercase(),
         title: docs::spec_title(spec),
+        doc: docs::spec_doc(spec, stats),
         functions,
     }
 }
@@ -180,11 +184,17 @@ pub fn render_with(
     import_path: Option<&str>,
 ) -> String {
     let backend = lang.backend(prefix);
-    let views: Vec<SpecView> = specs
+    let mut views: Vec<SpecView> = specs
         .iter()
         .map(|(s, st)| spec_view(s, lang, backend.as_ref(), prefix, *st))
         .collect();
-    let header = docs::file_header(command);
+    refer_back(&mut views);
+    let functions = || views.iter().flat_map(|v| &v.functions);
+    let header = docs::file_header(
+        command,
+        functions().any(|f| f.doc.iter().any(|d| d.starts_with("Portable"))),
+        specs.iter().any(|(_, st)| st.is_some()),
+    );
     let mut s = backend.render(
         &views,
         &FileOptions {
@@ -196,7 +206,34 @@ pub fn render_with(
     if !s.ends_with('\n') {
         s.push('\n');
     }
-    s
+    layout::wrap(&s)
+}
+
+/// A long paragraph a function's comment shares with an earlier function's (the edge
+/// policy of a spec's encoders, say) is written once: the later comment refers back to
+/// the first, so that a reader meets each long paragraph once per file.
+fn refer_back(views: &mut [SpecView]) {
+    const LONG: usize = 200;
+    let mut first: std::collections::HashMap<String, String> = Default::default();
+    for f in views.iter_mut().flat_map(|v| &mut v.functions) {
+        let public = f.wrapper.as_ref().map_or(&f.name, |w| &w.name).clone();
+        for d in &mut f.doc {
+            if d.chars().count() <= LONG {
+                continue;
+            }
+            match first.get(d.as_str()) {
+                Some(earlier) => {
+                    *d = match d.split_once(": ") {
+                        Some((label, _)) => format!("{label}: as for {earlier}."),
+                        None => format!("As for {earlier}."),
+                    };
+                }
+                None => {
+                    first.insert(d.clone(), public.clone());
+                }
+            }
+        }
+    }
 }
 
 /// Checks that a prefix makes valid identifiers in every language.

@@ -1,12 +1,32 @@
 //! Prints one traced function as statements of a target language, asking the language
 //! ([`super::lang::Backend`]) for every piece of syntax.
 //!
-//! Every operation becomes one named `let`, in the model's evaluation order, so nothing is
-//! reassociated or reordered; only literals, parameters, swizzles and literal vectors are
-//! written inline. Values nothing returns are dropped (the tracer leaves the scalar lanes
-//! it fused into vector operations behind).
+//! Every traced operation is printed once, with the operands it was traced with, so nothing
+//! is reassociated, reordered within an operation, duplicated or dropped (values nothing
+//! returns are dropped: the tracer leaves the scalar lanes it fused into vector operations
+//! behind). What changes between operations is only how they are written down:
+//! - a value the model names (`Float::named`) is declared under its name;
+//! - an unnamed value used once is folded into the expression that uses it, with the
+//!   parentheses the languages' precedence needs, when its text stays short
+//!   ([`FOLD_WIDTH`]);
+//! - an unnamed value used more than once is declared as a temporary `t1`, `t2`, …;
+//! - literals, parameters, swizzles and literal vectors are written where they are used.
+//!
+//! Folding keeps two guarantees the one-operation-per-statement form had:
+//! - Where float declarations are `precise` (GLSL with `UNITPACK_PRECISE`, HLSL), every
+//!   float operation must lie in the initializer of a float declaration, because `precise`
+//!   covers the operations that compute the declared value (GLSL 4.60 §4.7.1; glslang marks
+//!   each with `NoContraction`). So a float operation is never folded into a call's
+//!   argument, a non-float declaration or a `return`: it is declared instead.
+//! - C compilers may contract `a*b + c` written as one expression (clang's default
+//!   `-ffp-contract=on`), never across statements: in C a product is not folded into a sum,
+//!   difference or negation.
+//!
+//! `tests/printer.rs` proves that folding changed no operation: naga reads the folded and
+//! the one-operation-per-statement WGSL of every function into the same expression graph.
 
 use super::lang::Backend;
+use crate::model::Kind;
 use crate::model::trace::{BinOp, Func, Node, Op, Ref, Ty, UnOp};
 use std::collections::HashSet;
 
@@ -17,6 +37,10 @@ pub struct Printed {
     pub ret_ty: String,
     pub body: Vec<String>,
 }
+
+/// The longest expression folded into another: longer ones are declared, so that a
+/// statement reads as one line and a reader can name its parts.
+pub const FOLD_WIDTH: usize = 80;
 
 const LANE: [char; 4] = ['x', 'y', 'z', 'w'];
 
@@ -48,12 +72,167 @@ fn lanes_str(l: &[u8]) -> String {
     l.iter().map(|i| LANE[*i as usize]).collect()
 }
 
+/// Operator precedence levels, tightest first, as C, GLSL, HLSL and WGSL share them.
+pub mod prec {
+    pub const PRIMARY: u8 = 0;
+    pub const UNARY: u8 = 1;
+    pub const MUL: u8 = 2;
+    pub const ADD: u8 = 3;
+    pub const SHIFT: u8 = 4;
+    pub const COMPARE: u8 = 5;
+    pub const BITAND: u8 = 7;
+    pub const BITOR: u8 = 8;
+    pub const AND: u8 = 9;
+    pub const OR: u8 = 10;
+    pub const TERNARY: u8 = 11;
+}
+
+/// The level of a binary operator token as the printer writes it (between spaces).
+pub(crate) fn op_level(tok: &str) -> Option<u8> {
+    Some(match tok {
+        "*" | "/" => prec::MUL,
+        "+" | "-" => prec::ADD,
+        "<<" | ">>" => prec::SHIFT,
+        "<" | "<=" | ">" | ">=" | "==" | "!=" => prec::COMPARE,
+        "&" => prec::BITAND,
+        "|" => prec::BITOR,
+        "&&" => prec::AND,
+        "||" => prec::OR,
+        "?" | ":" => prec::TERNARY,
+        _ => return None,
+    })
+}
+
+/// The tokens of `text` outside brackets, split at spaces: the printer writes every binary
+/// operator between spaces and nothing else at the top level with one.
+pub fn top_level_tokens(text: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut depth = 0i32;
+    let mut start = 0;
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
+            ' ' if depth == 0 => {
+                out.push((start, &text[start..i]));
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    out.push((start, &text[start..]));
+    out
+}
+
+/// The level of the loosest operator at the top level of an expression's text.
+pub fn precedence(text: &str) -> u8 {
+    let level = top_level_tokens(text)
+        .iter()
+        .filter_map(|(_, t)| op_level(t))
+        .max();
+    if let Some(l) = level {
+        return l;
+    }
+    if text.starts_with(['-', '!']) {
+        return prec::UNARY;
+    }
+    // `(float)x`, a C cast: an opening bracket closed before the end.
+    if text.starts_with('(') {
+        let mut depth = 0;
+        for (i, c) in text.char_indices() {
+            match c {
+                '(' => depth += 1,
+                ')' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return if i + 1 == text.len() {
+                            prec::PRIMARY
+                        } else {
+                            prec::UNARY
+                        };
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    prec::PRIMARY
+}
+
+/// `text` as an operand where nothing looser than `max` may stand unbracketed.
+pub fn operand(text: String, max: u8) -> String {
+    if precedence(&text) > max {
+        format!("({text})")
+    } else {
+        text
+    }
+}
+
+/// Whether the printer folds single-use values into their users, or writes every operation
+/// as a statement of its own (the form `tests/printer.rs` compares the folded one with).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Style {
+    Folded,
+    OneOperationPerStatement,
+}
+
+/// Who uses a value: the value declared by the statement it appears in, or `return`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum User {
+    Node(usize),
+    Return,
+}
+
+/// How often a value's text appears in the function, written one operation per statement.
+#[derive(Clone, Default)]
+struct Uses {
+    /// Appearances whole (or through a swizzle of several lanes).
+    whole: usize,
+    /// Appearances through one lane, per lane.
+    lanes: [usize; 4],
+    users: Vec<User>,
+}
+
+impl Uses {
+    fn total(&self) -> usize {
+        self.whole + self.lanes.iter().sum::<usize>()
+    }
+}
+
+/// The text that stands for node `id` while uses are counted.
+fn marker(id: usize) -> String {
+    format!("\u{1}{id}\u{2}")
+}
+
+/// Records the markers in `text` as uses by `user`.
+fn count_markers(text: &str, user: User, uses: &mut [Uses]) {
+    let mut rest = text;
+    while let Some(p) = rest.find('\u{1}') {
+        let q = p + rest[p..].find('\u{2}').expect("marker ends");
+        let id: usize = rest[p + 1..q].parse().expect("marker id");
+        let after = &rest[q + '\u{2}'.len_utf8()..];
+        let swizzle: String = after
+            .strip_prefix('.')
+            .map(|s| s.chars().take_while(|c| LANE.contains(c)).collect())
+            .unwrap_or_default();
+        let u = &mut uses[id];
+        match swizzle.as_bytes() {
+            [l] => u.lanes[LANE.iter().position(|c| *c as u8 == *l).expect("lane")] += 1,
+            _ => u.whole += 1,
+        }
+        u.users.push(user);
+        rest = after;
+    }
+}
+
 struct Ctx<'a> {
     lang: &'a dyn Backend,
     f: &'a Func,
     /// Nodes used as a whole vector: passed to a call or returned.
     whole: Vec<bool>,
     names: Vec<Option<String>>,
+    /// Values written inside the expression that uses them.
+    folded: Vec<bool>,
     fn_name: &'a dyn Fn(&str) -> String,
 }
 
@@ -80,23 +259,29 @@ impl Ctx<'_> {
         }
     }
 
-    /// An operand as text: a name, a literal, or a lane of a vector.
+    /// Without vector values (C), whether a lane of this node, unnamed, is written as the
+    /// lane's own expression (C has no `{ a, b }.x`).
+    fn by_lane(&self, id: usize) -> bool {
+        !self.lang.has_vectors()
+            && self.names[id].is_none()
+            && !matches!(
+                self.f.nodes[id].op,
+                Op::Call(_) | Op::Param(_) | Op::ConstF(_) | Op::ConstU(_)
+            )
+    }
+
+    /// `value.suffix`, with the value bracketed unless it is primary.
+    fn postfix(&self, id: usize, suffix: &str) -> String {
+        format!("{}.{suffix}", operand(self.value(id), prec::PRIMARY))
+    }
+
+    /// An operand as text: a name, a literal, a folded expression, or a lane of one.
     fn r(&self, r: Ref) -> String {
         let id = r.node as usize;
-        let n = &self.f.nodes[id];
-        // Without vector values, a lane of an unnamed constructor or swizzle is the lane's
-        // own expression (C has no `{ a, b }.x`).
-        if let Some(l) = r.lane
-            && !self.lang.has_vectors()
-            && self.names[id].is_none()
-            && matches!(n.op, Op::Construct | Op::Swizzle(_))
-        {
-            return self.lane_expr(n, l);
-        }
-        let base = self.value(id);
         match r.lane {
-            Some(l) => format!("{}.{}", base, LANE[l as usize]),
-            None => base,
+            Some(l) if self.by_lane(id) => self.lane_expr(&self.f.nodes[id], l),
+            Some(l) => self.postfix(id, &LANE[l as usize].to_string()),
+            None => self.value(id),
         }
     }
 
@@ -114,11 +299,10 @@ impl Ctx<'_> {
             return self.r(r);
         }
         let id = r.node as usize;
-        let n = &self.f.nodes[id];
-        if self.names[id].is_none() && matches!(n.op, Op::Construct | Op::Swizzle(_)) {
-            return self.lane_expr(n, l);
+        if self.by_lane(id) {
+            return self.lane_expr(&self.f.nodes[id], l);
         }
-        format!("{}.{}", self.value(id), LANE[l as usize])
+        self.postfix(id, &LANE[l as usize].to_string())
     }
 
     /// Construct arguments, with runs of consecutive lanes of one vector written as that
@@ -137,13 +321,13 @@ impl Ctx<'_> {
                     j += 1;
                 }
                 if j - i > 1 {
-                    let src = self.value(a.node as usize);
+                    let id = a.node as usize;
                     let lanes: Vec<u8> = (l0..l0 + (j - i) as u8).collect();
-                    let whole = l0 == 0 && self.f.nodes[a.node as usize].ty.lanes as usize == j - i;
+                    let whole = l0 == 0 && self.f.nodes[id].ty.lanes as usize == j - i;
                     out.push(if whole {
-                        src
+                        self.value(id)
                     } else {
-                        format!("{src}.{}", lanes_str(&lanes))
+                        self.postfix(id, &lanes_str(&lanes))
                     });
                     i = j;
                     continue;
@@ -182,7 +366,7 @@ impl Ctx<'_> {
                     self.lang.construct(n.ty, &self.construct_args(&n.args))
                 }
             }
-            Op::Swizzle(l) => format!("{}.{}", self.value(n.args[0].node as usize), lanes_str(l)),
+            Op::Swizzle(l) => self.postfix(n.args[0].node as usize, &lanes_str(l)),
             _ => self.op_text(n, n.ty, &|i| self.r(n.args[i]), &arg_vec),
         }
     }
@@ -210,54 +394,110 @@ impl Ctx<'_> {
         arg_vec: &dyn Fn(usize) -> bool,
     ) -> String {
         let lang = self.lang;
+        // `-x` of a negative operand would read `--x`.
+        let unary = |s: String| {
+            if s.starts_with('-') {
+                format!("({s})")
+            } else {
+                operand(s, prec::UNARY)
+            }
+        };
         match &n.op {
             Op::Param(i) => self.f.params[*i].0.clone(),
             Op::ConstF(v) => format!("{}{}", f32_literal(*v), lang.float_suffix()),
             Op::ConstU(v) => format!("{v}u"),
-            Op::Un(UnOp::Neg) => format!("-{}", a(0)),
-            Op::Un(UnOp::Not) => format!("!{}", a(0)),
+            Op::Un(UnOp::Neg) => format!("-{}", unary(a(0))),
+            Op::Un(UnOp::Not) => format!("!{}", unary(a(0))),
             Op::Un(u) => format!("{}({})", lang.unary(*u), a(0)),
             Op::Bin(b) => {
                 if let Some(f) = lang.vector_compare(*b).filter(|_| arg_vec(0)) {
                     return format!("{f}({}, {})", a(0), a(1));
                 }
-                let op = match b {
-                    BinOp::Add => "+",
-                    BinOp::Sub => "-",
-                    BinOp::Mul => "*",
-                    BinOp::Div => "/",
-                    BinOp::And => "&&",
-                    BinOp::Or => "||",
-                    BinOp::BitAnd => "&",
-                    BinOp::BitOr => "|",
-                    BinOp::Lt => "<",
-                    BinOp::Le => "<=",
-                    BinOp::Gt => ">",
-                    BinOp::Ge => ">=",
-                    BinOp::Eq => "==",
+                let (op, level) = match b {
+                    BinOp::Add => ("+", prec::ADD),
+                    BinOp::Sub => ("-", prec::ADD),
+                    BinOp::Mul => ("*", prec::MUL),
+                    BinOp::Div => ("/", prec::MUL),
+                    BinOp::And => ("&&", prec::AND),
+                    BinOp::Or => ("||", prec::OR),
+                    BinOp::BitAnd => ("&", prec::BITAND),
+                    BinOp::BitOr => ("|", prec::BITOR),
+                    BinOp::Lt => ("<", prec::COMPARE),
+                    BinOp::Le => ("<=", prec::COMPARE),
+                    BinOp::Gt => (">", prec::COMPARE),
+                    BinOp::Ge => (">=", prec::COMPARE),
+                    BinOp::Eq => ("==", prec::COMPARE),
                 };
-                // `x - -1.0` reads badly and `x--1` does not parse: parenthesize.
-                let paren = |s: String| {
-                    if s.starts_with('-') {
-                        format!("({s})")
-                    } else {
-                        s
-                    }
+                // The tighter operands WGSL's grammar allows (its bitwise operators and
+                // comparisons mix with nothing unbracketed), which also keep C compilers'
+                // -Wparentheses quiet. The left operand may continue a chain of the same
+                // associative-to-the-left operator; the right one may not.
+                let (right_max, chains) = match level {
+                    prec::MUL => (prec::UNARY, true),
+                    prec::ADD => (prec::MUL, true),
+                    prec::COMPARE => (prec::ADD, false),
+                    prec::BITAND | prec::BITOR => (prec::UNARY, true),
+                    _ => (prec::COMPARE, true),
                 };
-                format!("{} {op} {}", paren(a(0)), paren(a(1)))
+                let left = a(0);
+                let left = if chains && precedence(&left) == level {
+                    left
+                } else {
+                    operand(left, right_max)
+                };
+                // `x - -1.0` reads badly: a negative right operand is bracketed.
+                let right = a(1);
+                let right = if right.starts_with('-') {
+                    format!("({right})")
+                } else {
+                    operand(right, right_max)
+                };
+                format!("{left} {op} {right}")
             }
-            Op::Shl(s) => format!("{} << {s}u", a(0)),
-            Op::Shr(s) => format!("{} >> {s}u", a(0)),
-            Op::Select => lang.select(ty, arg_vec(0), &a(0), &a(1), &a(2)),
+            Op::Shl(s) => format!("{} << {s}u", operand(a(0), prec::UNARY)),
+            Op::Shr(s) => format!("{} >> {s}u", operand(a(0), prec::UNARY)),
+            // Bracketed so that a `?:` select's operands need nothing more.
+            Op::Select => lang.select(
+                ty,
+                arg_vec(0),
+                &operand(a(0), prec::OR),
+                &operand(a(1), prec::OR),
+                &operand(a(2), prec::OR),
+            ),
             Op::Convert => lang.convert(ty, &a(0)),
             Op::Bitcast => lang.bitcast(ty, &a(0)),
             Op::Call(name) => {
                 let args: Vec<String> = n.args.iter().map(|r| self.r(*r)).collect();
-                format!("{}({})", (self.fn_name)(name), args.join(", "))
+                lang.call(&(self.fn_name)(name), &args)
             }
             Op::Construct | Op::Swizzle(_) => unreachable!("written by expr"),
         }
     }
+
+    /// Whether the value's text, as folded now, holds a float operation that a `precise`
+    /// declaration must cover.
+    fn carries_float_op(&self, id: usize) -> bool {
+        let n = &self.f.nodes[id];
+        (n.ty.kind == Kind::F32 && matches!(n.op, Op::Bin(_) | Op::Un(_)))
+            || n.args.iter().any(|a| {
+                let a = a.node as usize;
+                self.names[a].is_none() && self.carries_float_op(a)
+            })
+    }
+}
+
+/// Nodes used as a whole vector: passed to a call or returned.
+fn whole_uses(f: &Func) -> Vec<bool> {
+    let mut whole = vec![false; f.nodes.len()];
+    whole[f.ret.node as usize] = f.ret.lane.is_none();
+    for n in &f.nodes {
+        if matches!(n.op, Op::Call(_)) {
+            for a in n.args.iter().filter(|a| a.lane.is_none()) {
+                whole[a.node as usize] = true;
+            }
+        }
+    }
+    whole
 }
 
 /// Node ids the return value depends on.
@@ -322,52 +562,193 @@ const RESERVED: &[&str] = &[
     "volatile",
 ];
 
-/// Prints `f` in `lang`; `fn_name` maps a traced function's local name to the name it is
-/// defined and called by.
-pub fn print(lang: &dyn Backend, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed {
-    let live = live(f);
-    let mut whole = vec![false; f.nodes.len()];
-    whole[f.ret.node as usize] = f.ret.lane.is_none();
-    for n in &f.nodes {
-        if matches!(n.op, Op::Call(_)) {
-            for a in n.args.iter().filter(|a| a.lane.is_none()) {
-                whole[a.node as usize] = true;
+/// Statements being written: the body so far and the names taken.
+struct Body {
+    lines: Vec<String>,
+    used: HashSet<String>,
+    temps: usize,
+}
+
+impl Ctx<'_> {
+    /// The name a value takes from what computes it, where the model gives it none: a
+    /// helper's result takes the helper's name (`round_codes`, `abs_normal` for
+    /// `abs(normal)`), a named value squared its name and `_sq`.
+    fn derived_name(&self, id: usize) -> Option<String> {
+        let n = &self.f.nodes[id];
+        let named = |r: Ref| -> Option<String> {
+            let a = r.node as usize;
+            let base = match &self.f.nodes[a].op {
+                Op::Param(i) => self.f.params[*i].0.clone(),
+                _ => self.names[a].clone()?,
+            };
+            Some(match r.lane {
+                Some(l) => format!("{base}_{}", LANE[l as usize]),
+                None => base,
+            })
+        };
+        match &n.op {
+            Op::Call(callee) => Some(callee.clone()),
+            Op::Un(u @ (UnOp::Abs | UnOp::Floor | UnOp::Round | UnOp::Sqrt)) => {
+                let op = match u {
+                    UnOp::Abs => "abs",
+                    UnOp::Floor => "floor",
+                    UnOp::Round => "round",
+                    _ => "sqrt",
+                };
+                Some(format!("{op}_{}", named(n.args[0])?))
+            }
+            Op::Bin(BinOp::Mul) if n.args[0] == n.args[1] => {
+                Some(format!("{}_sq", named(n.args[0])?))
+            }
+            _ => None,
+        }
+    }
+
+    /// Declares node `id` under its model name, `hint`, a name derived from what computes
+    /// it, or the next temporary's name. A name taken already gets a number, after an
+    /// underscore where it ends in a digit.
+    fn declare(&mut self, id: usize, hint: Option<&str>, body: &mut Body) {
+        let node = &self.f.nodes[id];
+        let base = match node.name.map(str::to_string).or(hint.map(str::to_string)) {
+            Some(n) => n,
+            None => match self.derived_name(id) {
+                Some(n) => n,
+                None => loop {
+                    body.temps += 1;
+                    let t = format!("t{}", body.temps);
+                    if !body.used.contains(&t) {
+                        break t;
+                    }
+                },
+            },
+        };
+        let mut name = base.clone();
+        let mut k = 1;
+        let sep = if base.ends_with(|c: char| c.is_ascii_digit()) {
+            "_"
+        } else {
+            ""
+        };
+        while !body.used.insert(name.clone()) {
+            k += 1;
+            name = format!("{base}{sep}{k}");
+        }
+        self.folded[id] = false;
+        let e = self.expr(id);
+        body.lines.push(self.lang.declare(&name, node.ty, &e));
+        self.names[id] = Some(name);
+    }
+
+    /// Where float declarations are `precise`: declares the float values folded into `refs`
+    /// that no float declaration would otherwise cover (below a call, a non-float
+    /// declaration or `return`), looking through folded non-float values.
+    fn declare_uncovered(&mut self, refs: &[Ref], hint: Option<&str>, body: &mut Body) {
+        for r in refs {
+            let id = r.node as usize;
+            if self.names[id].is_some() {
+                continue;
+            }
+            let n = &self.f.nodes[id];
+            let folded = self.folded[id] || self.inline(id);
+            if self.folded[id] && n.ty.kind == Kind::F32 && self.carries_float_op(id) {
+                self.declare(id, hint, body);
+            } else if folded {
+                let args = n.args.clone();
+                self.declare_uncovered(&args, None, body);
             }
         }
     }
+}
+
+/// How often each value's text appears when every operation has a statement of its own,
+/// and where.
+fn uses(
+    lang: &dyn Backend,
+    f: &Func,
+    live: &[bool],
+    fn_name: &dyn Fn(&str) -> String,
+) -> Vec<Uses> {
     let mut ctx = Ctx {
         lang,
         f,
-        whole,
+        whole: whole_uses(f),
         names: vec![None; f.nodes.len()],
+        folded: vec![false; f.nodes.len()],
         fn_name,
     };
-    let mut used: HashSet<String> = f.params.iter().map(|p| p.0.clone()).collect();
-    used.extend(RESERVED.iter().map(|w| w.to_string()));
-    let mut body = Vec::new();
-    let mut temp = 0;
+    let declared: Vec<usize> = (0..f.nodes.len())
+        .filter(|&id| live[id] && !ctx.inline(id))
+        .collect();
+    for &id in &declared {
+        ctx.names[id] = Some(marker(id));
+    }
+    let mut uses = vec![Uses::default(); f.nodes.len()];
+    for &id in &declared {
+        count_markers(&ctx.expr(id), User::Node(id), &mut uses);
+    }
+    count_markers(&ctx.r(f.ret), User::Return, &mut uses);
+    uses
+}
+
+/// Prints `f` in `lang`; `fn_name` maps a traced function's local name to the name it is
+/// defined and called by.
+pub fn print(lang: &dyn Backend, f: &Func, fn_name: &dyn Fn(&str) -> String) -> Printed {
+    print_as(lang, f, fn_name, Style::Folded)
+}
+
+/// [`print`] in the given [`Style`].
+pub fn print_as(
+    lang: &dyn Backend,
+    f: &Func,
+    fn_name: &dyn Fn(&str) -> String,
+    style: Style,
+) -> Printed {
+    let live = live(f);
+    let uses = uses(lang, f, &live, fn_name);
+    let mut ctx = Ctx {
+        lang,
+        f,
+        whole: whole_uses(f),
+        names: vec![None; f.nodes.len()],
+        folded: vec![false; f.nodes.len()],
+        fn_name,
+    };
+    let mut body = Body {
+        lines: Vec::new(),
+        used: f.params.iter().map(|p| p.0.clone()).collect(),
+        temps: 0,
+    };
+    body.used.extend(RESERVED.iter().map(|w| w.to_string()));
+    // A value named like a function it calls would hide that function.
+    body.used.extend(f.nodes.iter().filter_map(|n| match &n.op {
+        Op::Call(c) => Some(fn_name(c)),
+        _ => None,
+    }));
+    let precise = lang.precise_declarations();
     for (id, node) in f.nodes.iter().enumerate() {
         if !live[id] || ctx.inline(id) {
             continue;
         }
-        let base = match node.name {
-            Some(n) => n.to_string(),
-            None => {
-                temp += 1;
-                format!("t{temp}")
-            }
-        };
-        let mut name = base.clone();
-        let mut k = 1;
-        while !used.insert(name.clone()) {
-            k += 1;
-            name = format!("{base}{k}");
+        if precise && matches!(node.op, Op::Call(_)) {
+            ctx.declare_uncovered(&node.args, None, &mut body);
         }
-        let e = ctx.expr(id);
-        body.push(lang.declare(&name, node.ty, &e));
-        ctx.names[id] = Some(name);
+        if style == Style::Folded && may_fold(&ctx, id, &uses[id]) {
+            ctx.folded[id] = true;
+            // `return x;` is no longer than `let t = x;`.
+            if uses[id].users == [User::Return] || ctx.expr(id).len() <= FOLD_WIDTH {
+                continue;
+            }
+        }
+        if precise && node.ty.kind != Kind::F32 {
+            ctx.folded[id] = false;
+            ctx.declare_uncovered(&node.args, None, &mut body);
+        }
+        ctx.declare(id, None, &mut body);
     }
-    body.push(format!("return {};", ctx.r(f.ret)));
+    if precise {
+        ctx.declare_uncovered(&[f.ret], Some("result"), &mut body);
+    }
+    body.lines.push(format!("return {};", ctx.r(f.ret)));
     Printed {
         name: fn_name(&f.name),
         params: f
@@ -376,6 +757,34 @@ pub fn print(lang: &dyn Backend, f: &Func, fn_name: &dyn Fn(&str) -> String) -> 
             .map(|(n, t)| (n.clone(), lang.ty(*t)))
             .collect(),
         ret_ty: lang.ty(f.ret_ty),
-        body,
+        body: body.lines,
     }
+}
+
+/// Whether node `id` may be written inside the expression that uses it.
+fn may_fold(ctx: &Ctx, id: usize, uses: &Uses) -> bool {
+    let n = &ctx.f.nodes[id];
+    let vectors = ctx.lang.has_vectors();
+    if n.name.is_some() || uses.users.is_empty() {
+        return false;
+    }
+    // Once, or without vector values once per lane (each lane is its own expression).
+    let once = uses.total() == 1
+        || (!vectors
+            && !matches!(n.op, Op::Call(_))
+            && uses.whole == 0
+            && uses.lanes.iter().all(|&k| k <= 1));
+    // A brace initializer is no expression: a vector passed or returned whole is declared.
+    let braced = !vectors && n.ty.lanes > 1 && uses.whole > 0;
+    let contracted = ctx.lang.contracts_expressions()
+        && n.ty.kind == Kind::F32
+        && n.op == Op::Bin(BinOp::Mul)
+        && uses.users.iter().any(|u| match u {
+            User::Node(c) => matches!(
+                ctx.f.nodes[*c].op,
+                Op::Bin(BinOp::Add | BinOp::Sub) | Op::Un(UnOp::Neg)
+            ),
+            User::Return => false,
+        });
+    once && !braced && !contracted
 }

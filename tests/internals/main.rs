@@ -14,6 +14,8 @@ mod codecs_inputs;
 mod codecs_lattice;
 mod codecs_sfib;
 mod codecs_trig;
+mod emit_folding;
+mod emit_layout;
 mod emit_printer;
 mod layout;
 mod model_enclosure;

@@ -124,12 +124,17 @@ fn inverse<F: Float>(x: F, y: F) -> F {
 #[inline(always)]
 fn passed<F: Float>(q: Quant, r: &Radius<F>, along: F, across: F, c: F) -> F {
     let m = f64::from(q.max_code());
-    let big_t = (c - F::c(((m - 1.0) * 0.5) as f32)) * F::c(2.0);
+    let big_t = ((c - F::c(((m - 1.0) * 0.5) as f32)) * F::c(2.0)).named("ell_t");
     // T² through a floor (the identity on an integer), so no contraction reaches it.
     let h = (big_t * big_t).floor().named("ell_h");
-    let g = F::c((2.0 * m * m) as f32) - h;
-    let s = settled_sum(along * along * g, across * across * h);
+    let g = (F::c((2.0 * m * m) as f32) - h).named("ell_g");
+    let s = settled_sum(
+        (along * along * g).named("ell_p"),
+        (across * across * h).named("ell_q"),
+    )
+    .named("ell_s");
     let (lhs, rhs) = r.square_sides(s, h * g, m * m);
+    let (lhs, rhs) = (lhs.named("lhs"), rhs.named("rhs"));
     let up = big_t.gt(F::c(0.0));
     let outside = F::sel(along.gt(F::c(0.0)), one_if(lhs.ge(rhs)), F::c(0.0));
     let inside = F::sel(along.ge(F::c(0.0)), F::c(1.0), one_if(lhs.le(rhs)));

@@ -24,7 +24,7 @@
 //! survive them.
 
 use crate::codecs::toolkit::quant::Quant;
-use crate::model::{Bool, Float, Uint, V3, each};
+use crate::model::{Bool, Float, Lane, Uint, V3, each};
 
 /// The smallest normal f32, `2^-126`.
 pub const MIN_NORMAL: f32 = f32::MIN_POSITIVE;
@@ -59,14 +59,18 @@ pub fn canonical<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
         )
         .named("normal");
     let a = v.abs();
-    let m = a.x.at_least(a.y).at_least(a.z).named("largest");
+    let m =
+        a.x.at_least(a.y)
+            .named("larger")
+            .at_least(a.z)
+            .named("largest");
     let scale = (F::U::c(EXPONENT) - (m.to_bits() & F::U::c(EXPONENT)))
         .as_float()
         .named("scale");
     let w = (v * scale).named("scaled");
     let b = w.abs();
     let sum = (b.x + b.y + b.z).named("sum");
-    let ok = sum.ge(F::c(2.0)).and(sum.lt(F::c(16.0)));
+    let ok = sum.ge(F::c(2.0)).and(sum.lt(F::c(16.0))).named("ok");
     (
         w.map(
             #[inline(always)]
@@ -94,8 +98,10 @@ pub fn canonical_or_z<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
 /// so every product is zero or normal.
 #[inline(always)]
 fn split_square<F: Float>(x: F) -> [F; 3] {
-    let h = (x.to_bits() & F::U::c(0xffff_f000)).as_float();
-    let l = x - h;
+    let h = (x.to_bits() & F::U::c(0xffff_f000))
+        .as_float()
+        .named("split_hi");
+    let l = (x - h).named("split_lo");
     [h * h, (h + h) * l, l * l]
 }
 
@@ -132,7 +138,7 @@ fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
     let a = each(
         x,
         #[inline(always)]
-        |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u(),
+        |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u().named("fixed"),
     );
     sum_of_squares::<F, N>(a) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE))
 }
@@ -160,12 +166,12 @@ pub fn square_sum_parts<F: Float, const N: usize>(a: [F::U; N]) -> (F::U, F::U) 
     let low24 = F::U::c(0xff_ffff);
     let (mut hi, mut lo) = (F::U::c(0), F::U::c(0));
     for a in a {
-        let (a1, a0) = (a.shr(12), a & limb);
-        let cross = a1.wrapping_mul(a0);
-        hi = hi + a1.wrapping_mul(a1) + cross.shr(11);
-        lo = lo + a0.wrapping_mul(a0) + (cross.shl(13) & low24);
+        let (a1, a0) = (a.shr(12).named("limb1"), (a & limb).named("limb0"));
+        let cross = a1.wrapping_mul(a0).named("cross");
+        hi = (hi + a1.wrapping_mul(a1) + cross.shr(11)).named("hi");
+        lo = (lo + a0.wrapping_mul(a0) + (cross.shl(13) & low24)).named("lo");
     }
-    (hi + lo.shr(24), lo & low24)
+    ((hi + lo.shr(24)).named("hi"), (lo & low24).named("lo"))
 }
 
 /// A 32-bit integer as the nearest f32, the same on every implementation: a conversion
@@ -209,16 +215,19 @@ pub fn settled_root<F: Float>(n0: F::U, (hi, lo): (F::U, F::U)) -> F::U {
         #[inline(always)]
         |v: u32| F::U::c(v)
     };
-    let wide = hi.shl(24).wrapping_add(lo);
+    let wide = hi.shl(24).wrapping_add(lo).named("wide");
     // S - n² + 2^30: positive, so unsigned comparisons order it.
     let bias = u(1 << 30);
     let step = {
         #[inline(always)]
         |n: F::U| {
-            let e = wide.wrapping_sub(n.wrapping_mul(n)).wrapping_add(bias);
+            let e = wide
+                .wrapping_sub(n.wrapping_mul(n))
+                .wrapping_add(bias)
+                .named("rest");
             let up = (bias + n).lt(e);
             let down = e.lt(bias.wrapping_sub(n) + u(1));
-            F::U::sel(up, n + u(1), F::U::sel(down, n.wrapping_sub(u(1)), n))
+            F::U::sel(up, n + u(1), F::U::sel(down, n.wrapping_sub(u(1)), n)).named("n")
         }
     };
     step(step(n0))
@@ -246,33 +255,36 @@ pub fn unit_on_grid<F: Float>(w: V3<F>) -> V3<F> {
     };
     let a = w.map(
         #[inline(always)]
-        |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u(),
+        |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u().named("fixed"),
     );
     let parts = square_sum_parts::<F, 3>([a.x, a.y, a.z]);
     let s = joined::<F>(parts) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE));
     let n = rounded_root(s, parts);
-    let nf = n.to_f();
+    let nf = n.to_f().named("nf");
     let one = F::c((1u32 << 24) as f32);
     let component = {
         #[inline(always)]
         |a: F::U, x: F| {
-            let k0 = (a.to_f() / nf * one).round().to_u();
-            let r = a.shl(24).wrapping_sub(k0.wrapping_mul(n));
+            let k0 = (a.to_f() / nf * one).round().to_u().named("k0");
+            let r = a.shl(24).wrapping_sub(k0.wrapping_mul(n)).named("r");
             // 2r + N + 16N: the correction plus 8, which is non-negative for |k₀ - k| ≤ 8.
-            let t = r.shl(1).wrapping_add(n).wrapping_add(n.shl(4));
-            let two_n = n.shl(1);
-            let q0 = (float_of::<F>(t) / (nf * F::c(2.0))).floor().to_u();
-            let rest = t.wrapping_sub(q0.wrapping_mul(two_n));
-            let negative = rest.lt(u(0x8000_0000)).not();
+            let t = r.shl(1).wrapping_add(n).wrapping_add(n.shl(4)).named("t");
+            let two_n = n.shl(1).named("two_n");
+            let q0 = (float_of::<F>(t) / (nf * F::c(2.0)))
+                .floor()
+                .to_u()
+                .named("q0");
+            let rest = t.wrapping_sub(q0.wrapping_mul(two_n)).named("rest");
+            let negative = rest.lt(u(0x8000_0000)).not().named("negative");
             let over = rest.lt(two_n).not().and(negative.not());
             let q = F::U::sel(
                 over,
                 q0 + u(1),
                 F::U::sel(negative, q0.wrapping_sub(u(1)), q0),
             );
-            let k = k0.wrapping_add(q).wrapping_sub(u(8));
+            let k = k0.wrapping_add(q).wrapping_sub(u(8)).named("k");
             let k = F::U::sel(u(1 << 24).lt(k), u(1 << 24), k);
-            let v = k.to_f() * F::c(1.0 / (1u32 << 24) as f32);
+            let v = (k.to_f() * F::c(1.0 / (1u32 << 24) as f32)).named("v");
             F::sel(x.lt(F::c(0.0)), -v, v)
         }
     };
@@ -316,19 +328,22 @@ pub fn root<F: Float>(s: F) -> F {
     let estimate = s.sqrt().named("root_estimate");
     let k0 = (estimate * F::c(1.0 / ROOT_HIGH)).floor();
     let h0 = (k0 * u).named("root_h0");
-    let h1 = h0 + u;
+    let h1 = (h0 + u).named("root_h1");
     let up = (h1 * h1).le(s);
     let down = (h0 * h0).gt(s);
     let k = stepped(k0, up, down).named("root_k");
-    let h = k * u;
+    let h = (k * u).named("root_h");
     let r = (s - h * h).named("root_rest");
     let j0 = (r / (h + estimate) * F::c(1.0 / ROOT_LOW))
         .floor()
         .named("root_j0");
-    let (m0, m1) = (h + j0 * v, h + (j0 + F::c(1.0)) * v);
+    let (m0, m1) = (
+        (h + j0 * v).named("root_m0"),
+        (h + (j0 + F::c(1.0)) * v).named("root_m1"),
+    );
     let up = (m1 * m1).le(s);
     let down = (m0 * m0).gt(s);
-    let j = stepped(j0, up, down);
+    let j = stepped(j0, up, down).named("root_j");
     // One product of an integer below 2^24: a sum here could be regrouped with the
     // caller's next addition.
     ((k * F::c(ROOT_HIGH / ROOT_LOW) + j) * v).named("root")
@@ -340,9 +355,18 @@ pub fn root<F: Float>(s: F) -> F {
 #[inline(always)]
 pub fn root_of<F: Float>(s: F) -> F {
     // `x = (E + 1) >> 1` of the biased exponent E: s·2^(2·(64 - x) + 2) is in [4, 16).
-    let x = s.to_bits().shr(23).wrapping_add(F::U::c(1)).shr(1);
-    let down = F::U::c(257).wrapping_sub(x.shl(1)).shl(23).as_float();
-    let up = (F::U::c(62) + x).shl(23).as_float();
+    let x = s
+        .to_bits()
+        .shr(23)
+        .wrapping_add(F::U::c(1))
+        .shr(1)
+        .named("half_exponent");
+    let down = F::U::c(257)
+        .wrapping_sub(x.shl(1))
+        .shl(23)
+        .as_float()
+        .named("root_down");
+    let up = (F::U::c(62) + x).shl(23).as_float().named("root_up");
     root(s * down) * up
 }
 
@@ -356,7 +380,7 @@ pub fn fixed_root<F: Float>(s: F) -> F {
     let step = {
         #[inline(always)]
         |e: F| {
-            let f = e + F::c(1.0);
+            let f = (e + F::c(1.0)).named("root_next");
             stepped(e, (f * f).le(s), (e * e).gt(s))
         }
     };
@@ -372,7 +396,7 @@ pub fn fixed_root<F: Float>(s: F) -> F {
 #[inline(always)]
 pub fn fixed_ratio<F: Float>(n: F, d: F, bits: u32) -> F {
     let one = F::c((1u32 << bits) as f32);
-    let big = n * one;
+    let big = (n * one).named("big");
     let step = {
         #[inline(always)]
         |e: F| stepped(e, ((e + F::c(1.0)) * d).le(big), (e * d).gt(big))
@@ -457,9 +481,9 @@ pub fn settled_sum<F: Float>(p: F, q: F) -> F {
         |v: u32| F::U::c(v)
     };
     // The larger one's biased exponent, clamped to 40 ..= 254 (a zero reads as 0).
-    let e = p.at_least(q).to_bits().shr(23);
-    let e = F::U::sel(e.lt(u(40)), u(40), e);
-    let e = F::U::sel(u(254).lt(e), u(254), e);
+    let e = p.at_least(q).to_bits().shr(23).named("exponent");
+    let e = F::U::sel(e.lt(u(40)), u(40), e).named("exponent");
+    let e = F::U::sel(u(254).lt(e), u(254), e).named("exponent");
     // 2^(154 - e) and its inverse as exponent fields: 27 ..= 241 and 13 ..= 227.
     let scale = u(281).wrapping_sub(e).shl(23).as_float();
     let back = e.wrapping_sub(u(27)).shl(23).as_float();
@@ -478,8 +502,8 @@ pub fn settled_sum<F: Float>(p: F, q: F) -> F {
 pub fn decided<F: Float>(q: Quant, estimate: F, past: impl Fn(F) -> F) -> F {
     let (lo, hi) = (F::c(q.min_code()), F::c(q.max_code()));
     let e = estimate.clamped(lo, hi).named("estimate");
-    let up = F::sel(e.lt(hi), past(e), F::c(0.0));
-    let down = F::sel(e.gt(lo), past(e - F::c(1.0)) - F::c(1.0), F::c(0.0));
+    let up = F::sel(e.lt(hi), past(e), F::c(0.0)).named("up");
+    let down = F::sel(e.gt(lo), past(e - F::c(1.0)) - F::c(1.0), F::c(0.0)).named("down");
     e + up + down
 }
 
@@ -499,10 +523,10 @@ pub fn bisected<F: Float>(q: Quant, middle: F::B, past: impl Fn(F) -> F) -> F {
     let mut hi = F::sel(beyond, F::c(q.max_code()), F::c(half - 1.0));
     // The codes lo ..= hi are 2^k in number, halved each round.
     for _ in 1..q.bits() {
-        let mid = ((lo + hi + F::c(1.0)) * F::c(0.5)).floor();
-        let beyond = past(mid - F::c(1.0)).gt(F::c(0.5));
-        lo = F::sel(beyond, mid, lo);
-        hi = F::sel(beyond, hi, mid - F::c(1.0));
+        let mid = ((lo + hi + F::c(1.0)) * F::c(0.5)).floor().named("mid");
+        let beyond = past(mid - F::c(1.0)).gt(F::c(0.5)).named("beyond");
+        lo = F::sel(beyond, mid, lo).named("lo");
+        hi = F::sel(beyond, hi, mid - F::c(1.0)).named("hi");
     }
     lo
 }
@@ -591,10 +615,10 @@ pub fn snorm_ratio_within<F: Float>(q: Quant, n: F, d: F) -> F {
 /// `round(|n|/d·M)` and the comparisons that step it to the exact code.
 #[inline(always)]
 fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
-    let a = n.abs();
+    let a = n.abs().named("magnitude");
     let m = F::c(q.max_code());
-    let estimate = (a / d * m).round();
-    let big = a * m;
+    let estimate = (a / d * m).round().named("estimate");
+    let big = (a * m).named("big");
     let up = big.ge((estimate + F::c(0.5)) * d);
     let down = big.lt((estimate - F::c(0.5)) * d);
     (estimate, up, down)
@@ -612,11 +636,11 @@ fn snorm_ratio_steps<F: Float>(q: Quant, n: F, d: F) -> (F, F::B, F::B) {
 #[inline(always)]
 pub fn snorm_sqrt_ratio<F: Float>(q: Quant, n: F, s: F) -> F {
     let m = F::c(q.max_code());
-    let big = (n * m).abs();
-    let estimate = (big / s.sqrt()).round();
-    let big2 = big * big;
-    let hi = estimate + F::c(0.5);
-    let lo = estimate - F::c(0.5);
+    let big = (n * m).abs().named("big");
+    let estimate = (big / s.sqrt()).round().named("estimate");
+    let big2 = (big * big).named("big2");
+    let hi = (estimate + F::c(0.5)).named("upper");
+    let lo = (estimate - F::c(0.5)).named("lower");
     let up = big2.ge(hi * hi * s);
     // At code 0 the lower boundary is 0 itself (`lo² > 0` would wrongly step down).
     let down = estimate.gt(F::c(0.0)).and(big2.lt(lo * lo * s));
@@ -641,17 +665,19 @@ pub fn half_sqrt_ratio<F: Float>(n: F, s: F) -> F {
     let estimate = (a / s.sqrt()).named("half_estimate");
     // The biased exponent of the estimate (sign masked: a lost sign of zero is harmless),
     // clamped to the f16 normal binades 2^-14 .. 2^-1: 113 ..= 126.
-    let e = (estimate.to_bits() & u(0x7fff_ffff)).shr(23);
-    let e = F::U::sel(e.lt(u(113)), u(113), e);
-    let e = F::U::sel(u(126).lt(e), u(126), e);
+    let e = (estimate.to_bits() & u(0x7fff_ffff))
+        .shr(23)
+        .named("exponent");
+    let e = F::U::sel(e.lt(u(113)), u(113), e).named("exponent");
+    let e = F::U::sel(u(126).lt(e), u(126), e).named("exponent");
     // q = 2^(10 - (e - 127)) and 1/q, built as exponent fields.
     let q = u(264).wrapping_sub(e).shl(23).as_float().named("half_grid");
-    let q_inv = e.wrapping_sub(u(10)).shl(23).as_float();
-    let big = a * q;
-    let big2 = big * big;
-    let c = (estimate * q).round();
-    let hi = c + F::c(0.5);
-    let lo = c - F::c(0.5);
+    let q_inv = e.wrapping_sub(u(10)).shl(23).as_float().named("half_unit");
+    let big = (a * q).named("big");
+    let big2 = (big * big).named("big2");
+    let c = (estimate * q).round().named("half_code");
+    let hi = (c + F::c(0.5)).named("upper");
+    let lo = (c - F::c(0.5)).named("lower");
     let up = big2.ge(hi * hi * s);
     let down = c.gt(F::c(0.0)).and(big2.lt(lo * lo * s));
     let c = stepped(c, up, down);
@@ -665,8 +691,8 @@ pub fn half_sqrt_ratio<F: Float>(n: F, s: F) -> F {
 #[inline(always)]
 pub fn floor_ratio<F: Float>(q: Quant, n: F, d: F) -> F {
     let m = F::c(q.max_code());
-    let estimate = (n / d * m).floor();
-    let big = n * m;
+    let estimate = (n / d * m).floor().named("estimate");
+    let big = (n * m).named("big");
     let up = big.ge((estimate + F::c(1.0)) * d);
     let down = big.lt(estimate * d);
     stepped(estimate, up, down).clamped(F::c(q.min_code()), m)

@@ -11,7 +11,7 @@
 use crate::codecs::toolkit::exact::fixed_ratio;
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::toolkit::trig::{atan_series, factorial, quarter_turn_series};
-use crate::model::{Float, V2};
+use crate::model::{Float, Lane, V2};
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -50,20 +50,20 @@ fn poly<F: Float>(z: F, coeffs: &[f64], one: f64) -> F {
 pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
     let one = F::c(ONE as f32);
     let (ax, ay) = (x.abs(), y.abs());
-    let y_major = ay.gt(ax);
-    let hi = F::sel(y_major, ay, ax);
-    let lo = F::sel(y_major, ax, ay);
+    let y_major = ay.gt(ax).named("y_major");
+    let hi = F::sel(y_major, ay, ax).named("hi");
+    let lo = F::sel(y_major, ax, ay).named("lo");
     let t = fixed_ratio(lo, F::sel(hi.gt(F::c(0.0)), hi, F::c(1.0)), BITS).named("t");
     // atan(t) = π/4 + atan((t-1)/(t+1)) keeps the series argument below tan(π/8).
-    let far = t.gt(units((PI / 8.0).tan(), ONE));
+    let far = t.gt(units((PI / 8.0).tan(), ONE)).named("far");
     let z = F::sel(far, fixed_ratio(t - one, t + one, BITS), t).named("z");
-    let z2 = mul(z, z, ONE);
+    let z2 = mul(z, z, ONE).named("z2");
     let r = mul(z, poly(z2, atan_series(), ONE), ONE).named("r");
     // Radians to half turns, then the octant's offsets (exact integers).
-    let h = (r * F::c((1.0 / PI) as f32)).round();
-    let h = F::sel(far, h + units(0.25, ONE), h);
-    let h = F::sel(y_major, units::<F>(0.5, ONE) - h, h);
-    let h = F::sel(x.lt(F::c(0.0)), one - h, h);
+    let h = (r * F::c((1.0 / PI) as f32)).round().named("h");
+    let h = F::sel(far, h + units(0.25, ONE), h).named("h");
+    let h = F::sel(y_major, units::<F>(0.5, ONE) - h, h).named("h");
+    let h = F::sel(x.lt(F::c(0.0)), one - h, h).named("h");
     F::sel(y.lt(F::c(0.0)), -h, h).named("angle")
 }
 
@@ -72,13 +72,13 @@ pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
 #[inline(always)]
 pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let a = t.abs();
-    let back = a.gt(units(0.5, FINE));
-    let b = F::sel(back, F::c(FINE as f32) - a, a);
-    let swap = b.gt(units(0.25, FINE));
+    let back = a.gt(units(0.5, FINE)).named("back");
+    let b = F::sel(back, F::c(FINE as f32) - a, a).named("b");
+    let swap = b.gt(units(0.25, FINE)).named("swap");
     let c = F::sel(swap, units::<F>(0.5, FINE) - b, b);
     // In radians, at most π/4.
     let u = (c * F::c(PI as f32)).round().named("u");
-    let u2 = mul(u, u, FINE);
+    let u2 = mul(u, u, FINE).named("u2");
     static SIN: OnceLock<Vec<f64>> = OnceLock::new();
     static COS: OnceLock<Vec<f64>> = OnceLock::new();
     let sin_coeffs = SIN.get_or_init(

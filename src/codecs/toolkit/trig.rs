@@ -5,7 +5,7 @@
 //! reductions exact. `tests/internals/codecs_trig.rs` measures the error against f64 over the whole range:
 //! [`atan2_pi`] within [`ATAN2_PI_MAX_ERROR`], [`sincos_pi`] within [`SINCOS_PI_MAX_ERROR`].
 
-use crate::model::{Float, V2};
+use crate::model::{Float, Lane, V2};
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -57,19 +57,19 @@ fn atan_small<F: Float>(z: F) -> F {
 pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
     let ax = x.abs();
     let ay = y.abs();
-    let y_major = ay.gt(ax);
-    let hi = F::sel(y_major, ay, ax);
+    let y_major = ay.gt(ax).named("y_major");
+    let hi = F::sel(y_major, ay, ax).named("hi");
     let lo = F::sel(y_major, ax, ay);
-    let up = crate::codecs::toolkit::exact::denormal_proof_scale(hi);
-    let (hi, lo) = (hi * up, lo * up);
+    let up = crate::codecs::toolkit::exact::denormal_proof_scale(hi).named("up");
+    let (hi, lo) = ((hi * up).named("hi"), lo * up);
     let t = (lo / F::sel(hi.gt(F::c(0.0)), hi, F::c(1.0))).named("t");
     // atan(t) = π/4 + atan((t-1)/(t+1)) keeps the series argument below tan(π/8).
-    let far = t.gt(F::c((PI / 8.0).tan() as f32));
-    let z = F::sel(far, (t - F::c(1.0)) / (t + F::c(1.0)), t);
+    let far = t.gt(F::c((PI / 8.0).tan() as f32)).named("far");
+    let z = F::sel(far, (t - F::c(1.0)) / (t + F::c(1.0)), t).named("z");
     let r = atan_small(z).named("r");
-    let r = F::sel(far, r + F::c((PI / 4.0) as f32), r);
-    let r = F::sel(y_major, F::c((PI / 2.0) as f32) - r, r);
-    let r = F::sel(x.lt(F::c(0.0)), F::c(PI as f32) - r, r);
+    let r = F::sel(far, r + F::c((PI / 4.0) as f32), r).named("r");
+    let r = F::sel(y_major, F::c((PI / 2.0) as f32) - r, r).named("r");
+    let r = F::sel(x.lt(F::c(0.0)), F::c(PI as f32) - r, r).named("r");
     let r = F::sel(y.lt(F::c(0.0)), -r, r);
     r * F::c((1.0 / PI) as f32)
 }
@@ -80,10 +80,10 @@ pub fn atan2_pi<F: Float>(y: F, x: F) -> F {
 pub fn sincos_pi<F: Float>(t: F) -> V2<F> {
     let a = t.abs();
     // cos(π(1-a)) = -cos(πa), sin(π(1-a)) = sin(πa)
-    let back = a.gt(F::c(0.5));
-    let b = F::sel(back, F::c(1.0) - a, a);
+    let back = a.gt(F::c(0.5)).named("back");
+    let b = F::sel(back, F::c(1.0) - a, a).named("b");
     // sin(π(1/2-b)) = cos(πb)
-    let swap = b.gt(F::c(0.25));
+    let swap = b.gt(F::c(0.25)).named("swap");
     let c = F::sel(swap, F::c(0.5) - b, b).named("c");
     let V2 { x: s, y: co } = series_quarter(c);
     let sb = F::sel(swap, co, s);

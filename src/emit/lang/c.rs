@@ -143,6 +143,7 @@ impl Backend for C {
         }
     }
     fn convert(&self, t: Ty, a: &str) -> String {
+        let a = crate::emit::printer::operand(a.to_string(), crate::emit::printer::prec::UNARY);
         format!("({}){a}", self.ty(t))
     }
     /// Through the header's memcpy helpers: the only bitcast valid in both C and C++.
@@ -164,6 +165,9 @@ impl Backend for C {
     }
     fn has_vectors(&self) -> bool {
         false
+    }
+    fn contracts_expressions(&self) -> bool {
+        true
     }
     fn impl_name(&self, public: &str) -> String {
         format!("{public}_v")

@@ -189,6 +189,9 @@ impl Backend for Glsl {
         };
         format!("{q}{} {name} = {expr};", self.ty(t))
     }
+    fn precise_declarations(&self) -> bool {
+        true
+    }
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
         File {
             header: opts.header,

@@ -59,6 +59,9 @@ impl Backend for Hlsl {
         let lanes = vec![x; t.lanes as usize];
         format!("{}({})", self.ty(t), lanes.join(", "))
     }
+    fn precise_declarations(&self) -> bool {
+        true
+    }
     fn declare(&self, name: &str, t: Ty, expr: &str) -> String {
         let q = if t.kind == Kind::F32 { "precise " } else { "" };
         format!("{q}{} {name} = {expr};", self.ty(t))

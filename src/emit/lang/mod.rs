@@ -60,10 +60,29 @@ pub trait Backend {
     }
     /// A vector from its lanes (or shorter vectors).
     fn construct(&self, t: Ty, args: &[String]) -> String {
-        format!("{}({})", self.ty(t), args.join(", "))
+        format!("{}({})", self.ty(t), self.arguments(args))
+    }
+    /// A call of function `name`.
+    fn call(&self, name: &str, args: &[String]) -> String {
+        format!("{name}({})", self.arguments(args))
+    }
+    /// An argument list's text.
+    fn arguments(&self, args: &[String]) -> String {
+        args.join(", ")
     }
     /// One statement declaring `name`.
     fn declare(&self, name: &str, t: Ty, expr: &str) -> String;
+    /// Whether float declarations are `precise` (or may be made so): every float
+    /// operation must then lie in a float declaration's initializer, which `precise`
+    /// covers, rather than in a call's argument, a non-float declaration or a `return`.
+    fn precise_declarations(&self) -> bool {
+        false
+    }
+    /// Whether the compiler may contract `a*b + c` written as one expression but not
+    /// across statements (C: clang's default `-ffp-contract=on`).
+    fn contracts_expressions(&self) -> bool {
+        false
+    }
     /// Whether vectors are values with lane-wise operators. Where they are not (C),
     /// the printer writes each lane of a vector operation as its own expression.
     fn has_vectors(&self) -> bool {

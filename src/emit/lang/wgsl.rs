@@ -6,6 +6,7 @@ use super::{
     selecting_parts,
 };
 use crate::emit::SpecView;
+use crate::emit::printer::top_level_tokens;
 use crate::model::Kind;
 use crate::model::trace::Ty;
 use askama::Template;
@@ -32,7 +33,27 @@ impl Backend for Wgsl {
         "f"
     }
     fn select(&self, _ty: Ty, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
-        format!("select({f}, {t}, {m})")
+        format!(
+            "select({})",
+            self.arguments(&[f.to_string(), t.to_string(), m.to_string()])
+        )
+    }
+    /// WGSL's template-list discovery reads `f(a < b, c > d)` as `f(a<b, c>d)`, a template
+    /// list (WGSL §3.9): an argument with a `<` at its top level is bracketed unless it is
+    /// the last, whose `<` the closing `)` ends.
+    fn arguments(&self, args: &[String]) -> String {
+        let last = args.len().saturating_sub(1);
+        args.iter()
+            .enumerate()
+            .map(|(i, a)| {
+                if i < last && top_level_tokens(a).iter().any(|(_, t)| *t == "<") {
+                    format!("({a})")
+                } else {
+                    a.clone()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
     }
     fn declare(&self, name: &str, _t: Ty, expr: &str) -> String {
         format!("let {name} = {expr};")
