@@ -74,12 +74,11 @@ static inline void unitpack_crytek_bfn24_decode_float(const float params[3], flo
 
 // Struct form of unitpack_crytek_bfn24_decode.
 static inline unitpack_vec3 unitpack_crytek_bfn24_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u)
+    const unitpack_vec3 params = {
+        (float)(code & 255u) * 0.003921569f,
+        (float)((code >> 8u) & 255u) * 0.003921569f,
+        (float)((code >> 16u) & 255u) * 0.003921569f
     };
-    const unitpack_vec3 params = { t1.x * 0.003921569f, t1.y * 0.003921569f, t1.z * 0.003921569f };
     const unitpack_vec3 decode_float = unitpack_crytek_bfn24_decode_float_v(params);
     return decode_float;
 }
@@ -100,39 +99,37 @@ static inline void unitpack_crytek_bfn24_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_crytek_bfn24_fitting_texel.
 static inline unitpack_uvec2 unitpack_crytek_bfn24_fitting_texel_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const float t3 = abs_w2.x >= abs_w2.y ? abs_w2.x : abs_w2.y;
-    const float t4 = abs_w2.x <= abs_w2.y ? abs_w2.x : abs_w2.y;
-    const bool t5 = abs_w2.z >= t3;
-    const float t6 = t5 ? t3 : (abs_w2.z >= t4 ? abs_w2.z : t4);
-    const float t7 = t5 ? t4 : (abs_w2.z <= t4 ? abs_w2.z : t4);
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float t1 = abs_w2.x >= abs_w2.y ? abs_w2.x : abs_w2.y;
+    const float t2 = abs_w2.x <= abs_w2.y ? abs_w2.x : abs_w2.y;
+    const bool t3 = abs_w2.z >= t1;
+    const float t4 = t3 ? t1 : (abs_w2.z >= t2 ? abs_w2.z : t2);
+    const float t5 = t3 ? t2 : (abs_w2.z <= t2 ? abs_w2.z : t2);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -150,46 +147,46 @@ static inline unitpack_uvec2 unitpack_crytek_bfn24_fitting_texel_v(unitpack_vec3
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t8 = (float)hi4 * 16777216.0f;
-    const float len2 = (t8 + (float)lo4) * 2.2737368e-13f;
+    const float t6 = (float)hi4 * 16777216.0f;
+    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t9 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t9 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t9
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t10 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t10;
-    const float t11 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t11;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t12 = root_k * 4096.0f;
-    const float l = (t12 + root_j) * 4.7683716e-7f;
-    const float big = t6 * 512.0f;
-    const float ratio_estimate = floorf(t6 / l * 512.0f);
-    const float t13 = (ratio_estimate + 1.0f) * l <= big
-        ? 1.0f
-        : (ratio_estimate * l > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t13;
-    const bool t14 = t6 > 0.0f;
-    const float t15 = t14 ? t6 : 1.0f;
-    const float big2 = t7 * 512.0f;
-    const float ratio_estimate2 = floorf(t7 / t15 * 512.0f);
-    const float t16 = (ratio_estimate2 + 1.0f) * t15 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t15 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t16;
-    const unitpack_vec2 t17 = { ratio, t14 ? ratio2 : 0.0f };
-    const unitpack_uvec2 t18 = {
-        (uint32_t)(t17.x <= 511.0f ? t17.x : 511.0f),
-        (uint32_t)(t17.y <= 511.0f ? t17.y : 511.0f)
+    const float t7 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t7;
+    const float t8 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t8;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t9 = root_k * 4096.0f;
+    const float l = (t9 + root_j) * 4.7683716e-7f;
+    const float big = t4 * 512.0f;
+    const float ratio_estimate = floorf(t4 / l * 512.0f);
+    const float step_down3 = ratio_estimate * l > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * l <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const bool t10 = t4 > 0.0f;
+    const float t11 = t10 ? t4 : 1.0f;
+    const float big2 = t5 * 512.0f;
+    const float ratio_estimate2 = floorf(t5 / t11 * 512.0f);
+    const float step_down4 = ratio_estimate2 * t11 > big2 ? -1.0f : 0.0f;
+    const float step4 = (ratio_estimate2 + 1.0f) * t11 <= big2 ? 1.0f : step_down4;
+    const float ratio2 = ratio_estimate2 + step4;
+    const unitpack_vec2 t12 = { ratio, t10 ? ratio2 : 0.0f };
+    const unitpack_uvec2 t13 = {
+        (uint32_t)(t12.x <= 511.0f ? t12.x : 511.0f),
+        (uint32_t)(t12.y <= 511.0f ? t12.y : 511.0f)
     };
-    return t18;
+    return t13;
 }
 
 // unitpack_crytek_bfn24_fitting_texel: lookup texel.
@@ -258,67 +255,56 @@ static inline void unitpack_crytek_bfn24_encode_float(
 
 // Struct form of unitpack_crytek_bfn24_encode.
 static inline uint32_t unitpack_crytek_bfn24_encode_v(unitpack_vec3 v, float fetched) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const float t3 = abs_w2.x >= abs_w2.y ? abs_w2.x : abs_w2.y;
-    const float t4 = t3 >= abs_w2.z ? t3 : abs_w2.z;
-    const float t5 = fetched >= 0.0f ? fetched : 0.0f;
-    const float k = nearbyintf((t5 <= 1.0f ? t5 : 1.0f) * 255.0f);
-    const uint32_t t6 = (uint32_t)k;
+    const float t1 = abs_w2.x >= abs_w2.y ? abs_w2.x : abs_w2.y;
+    const float t2 = t1 >= abs_w2.z ? t1 : abs_w2.z;
+    const float t3 = fetched >= 0.0f ? fetched : 0.0f;
+    const float k = nearbyintf((t3 <= 1.0f ? t3 : 1.0f) * 255.0f);
+    const uint32_t k_u = (uint32_t)k;
     const float big = abs_w2.x * 1048576.0f;
-    const float ratio_estimate = floorf(abs_w2.x / t4 * 1048576.0f);
-    const float t7 = (ratio_estimate + 1.0f) * t4 <= big
-        ? 1.0f
-        : (ratio_estimate * t4 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t7;
-    const uint32_t t8 = (uint32_t)ratio * t6;
+    const float ratio_estimate = floorf(abs_w2.x / t2 * 1048576.0f);
+    const float step_down = ratio_estimate * t2 > big ? -1.0f : 0.0f;
+    const float step = (ratio_estimate + 1.0f) * t2 <= big ? 1.0f : step_down;
+    const float ratio = ratio_estimate + step;
+    const uint32_t t4 = (uint32_t)ratio * k_u;
+    const uint32_t t5 = w2.x < 0.0f ? 128u - ((t4 + 2097151u) >> 21u) : 128u + (t4 >> 21u);
     const float big2 = abs_w2.y * 1048576.0f;
-    const float ratio_estimate2 = floorf(abs_w2.y / t4 * 1048576.0f);
-    const float t9 = (ratio_estimate2 + 1.0f) * t4 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t4 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t9;
-    const uint32_t t10 = (uint32_t)ratio2 * t6;
+    const float ratio_estimate2 = floorf(abs_w2.y / t2 * 1048576.0f);
+    const float step_down2 = ratio_estimate2 * t2 > big2 ? -1.0f : 0.0f;
+    const float step2 = (ratio_estimate2 + 1.0f) * t2 <= big2 ? 1.0f : step_down2;
+    const float ratio2 = ratio_estimate2 + step2;
+    const uint32_t t6 = (uint32_t)ratio2 * k_u;
+    const uint32_t t7 = w2.y < 0.0f ? 128u - ((t6 + 2097151u) >> 21u) : 128u + (t6 >> 21u);
     const float big3 = abs_w2.z * 1048576.0f;
-    const float ratio_estimate3 = floorf(abs_w2.z / t4 * 1048576.0f);
-    const float t11 = (ratio_estimate3 + 1.0f) * t4 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * t4 > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t11;
-    const uint32_t t12 = (uint32_t)ratio3 * t6;
-    const uint32_t t13 = (uint32_t)(float)(
-        w2.x < 0.0f ? 128u - ((t8 + 2097151u) >> 21u) : 128u + (t8 >> 21u)
-    );
-    const uint32_t t14 = (uint32_t)(float)(
-        w2.y < 0.0f ? 128u - ((t10 + 2097151u) >> 21u) : 128u + (t10 >> 21u)
-    );
-    const uint32_t t15 = (uint32_t)(float)(
-        w2.z < 0.0f ? 128u - ((t12 + 2097151u) >> 21u) : 128u + (t12 >> 21u)
-    );
-    return ok ? t13 | (t14 << 8u) | (t15 << 16u) : 16744576u;
+    const float ratio_estimate3 = floorf(abs_w2.z / t2 * 1048576.0f);
+    const float step_down3 = ratio_estimate3 * t2 > big3 ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate3 + 1.0f) * t2 <= big3 ? 1.0f : step_down3;
+    const float ratio3 = ratio_estimate3 + step3;
+    const uint32_t t8 = (uint32_t)ratio3 * k_u;
+    const uint32_t t9 = w2.z < 0.0f ? 128u - ((t8 + 2097151u) >> 21u) : 128u + (t8 >> 21u);
+    const uint32_t t10 = (uint32_t)(float)t5
+        | ((uint32_t)(float)t7 << 8u)
+        | ((uint32_t)(float)t9 << 16u);
+    return ok ? t10 : 16744576u;
 }
 
 // unitpack_crytek_bfn24_encode: fast encoder.

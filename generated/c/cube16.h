@@ -83,12 +83,11 @@ static inline void unitpack_cube16_decode_float(const float params[3], float out
 
 // Struct form of unitpack_cube16_decode.
 static inline unitpack_vec3 unitpack_cube16_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 127u),
-        (float)((code >> 7u) & 63u),
-        (float)((code >> 13u) & 7u)
+    const unitpack_vec3 params = {
+        (float)(code & 127u) * 0.007874016f,
+        (float)((code >> 7u) & 63u) * 0.015873017f,
+        (float)((code >> 13u) & 7u) * 0.14285715f
     };
-    const unitpack_vec3 params = { t1.x * 0.007874016f, t1.y * 0.015873017f, t1.z * 0.14285715f };
     const unitpack_vec3 decode_float = unitpack_cube16_decode_float_v(params);
     return decode_float;
 }
@@ -110,44 +109,38 @@ static inline void unitpack_cube16_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_cube16_encode_float.
 static inline unitpack_vec3 unitpack_cube16_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const bool t3 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    const bool t4 = abs_w2.y >= abs_w2.x;
-    const float major = t3 ? w2.z : (t4 ? w2.y : w2.x);
-    const float face = (t3 ? 4.0f : (t4 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
+    const bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
+    const bool t2 = abs_w2.y >= abs_w2.x;
+    const float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
+    const float face = (t1 ? 4.0f : (t2 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
     const float abs_major = fabsf(major);
-    const unitpack_vec2 t5 = {
-        (t3 ? w2.x : (t4 ? w2.z : w2.y)) / abs_major,
-        (t3 ? w2.y : (t4 ? w2.x : w2.z)) / abs_major
+    const unitpack_vec2 t3 = {
+        (t1 ? w2.x : (t2 ? w2.z : w2.y)) / abs_major * 0.5f,
+        (t1 ? w2.y : (t2 ? w2.x : w2.z)) / abs_major * 0.5f
     };
-    const unitpack_vec2 t6 = { t5.x * 0.5f, t5.y * 0.5f };
-    const unitpack_vec2 enc = { t6.x + 0.5f, t6.y + 0.5f };
-    const unitpack_vec3 t7 = { enc.x, enc.y, face * 0.14285715f };
-    return t7;
+    const unitpack_vec2 enc = { t3.x + 0.5f, t3.y + 0.5f };
+    const unitpack_vec3 t4 = { enc.x, enc.y, face * 0.14285715f };
+    return t4;
 }
 
 // unitpack_cube16_encode_float: fast encoder, float form.
@@ -170,64 +163,52 @@ static inline void unitpack_cube16_encode_float(const float v[3], float out[3]) 
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_cube16_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const bool t3 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    const bool t4 = abs_w2.y >= abs_w2.x;
-    const float major = t3 ? w2.z : (t4 ? w2.y : w2.x);
-    const float face = (t3 ? 4.0f : (t4 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
+    const bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
+    const bool t2 = abs_w2.y >= abs_w2.x;
+    const float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
+    const float face = (t1 ? 4.0f : (t2 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
     const float abs_major = fabsf(major);
-    const unitpack_vec2 t5 = {
-        (t3 ? w2.x : (t4 ? w2.z : w2.y)) * 63.5f,
-        (t3 ? w2.y : (t4 ? w2.x : w2.z)) * 31.5f
+    const unitpack_vec2 t3 = {
+        (t1 ? w2.x : (t2 ? w2.z : w2.y)) * 63.5f,
+        (t1 ? w2.y : (t2 ? w2.x : w2.z)) * 31.5f
     };
-    const unitpack_vec2 t6 = {
-        nearbyintf(t5.x / abs_major + 63.5f),
-        nearbyintf(t5.y / abs_major + 31.5f)
+    const unitpack_vec2 t4 = {
+        nearbyintf(t3.x / abs_major + 63.5f),
+        nearbyintf(t3.y / abs_major + 31.5f)
     };
-    const unitpack_vec2 t7 = { t6.x >= 0.0f ? t6.x : 0.0f, t6.y >= 0.0f ? t6.y : 0.0f };
-    const unitpack_vec2 t8 = { t7.x <= 127.0f ? t7.x : 127.0f, t7.y <= 63.0f ? t7.y : 63.0f };
-    const unitpack_vec2 t9 = {
-        t5.x >= (t8.x - 63.0f) * abs_major ? 1.0f : 0.0f,
-        t5.y >= (t8.y - 31.0f) * abs_major ? 1.0f : 0.0f
+    const unitpack_vec2 t5 = { t4.x >= 0.0f ? t4.x : 0.0f, t4.y >= 0.0f ? t4.y : 0.0f };
+    const unitpack_vec2 t6 = { t5.x <= 127.0f ? t5.x : 127.0f, t5.y <= 63.0f ? t5.y : 63.0f };
+    const unitpack_vec2 t7 = {
+        t6.x + (t6.x < 127.0f ? (t3.x >= (t6.x - 63.0f) * abs_major ? 1.0f : 0.0f) : 0.0f),
+        t6.y + (t6.y < 63.0f ? (t3.y >= (t6.y - 31.0f) * abs_major ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_bvec2 t10 = {
-        t5.x >= (t8.x - 1.0f - 63.0f) * abs_major,
-        t5.y >= (t8.y - 1.0f - 31.0f) * abs_major
+    const unitpack_vec2 t8 = {
+        t6.x > 0.0f ? (t3.x >= (t6.x - 1.0f - 63.0f) * abs_major ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t6.y > 0.0f ? (t3.y >= (t6.y - 1.0f - 31.0f) * abs_major ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t11 = {
-        t8.x > 0.0f ? (t10.x ? 1.0f : 0.0f) - 1.0f : 0.0f,
-        t8.y > 0.0f ? (t10.y ? 1.0f : 0.0f) - 1.0f : 0.0f
-    };
-    const unitpack_vec2 st = {
-        t8.x + (t8.x < 127.0f ? t9.x : 0.0f) + t11.x,
-        t8.y + (t8.y < 63.0f ? t9.y : 0.0f) + t11.y
-    };
-    const unitpack_vec3 t12 = { st.x, st.y, face };
-    return t12;
+    const unitpack_vec2 st = { t7.x + t8.x, t7.y + t8.y };
+    const unitpack_vec3 t9 = { st.x, st.y, face };
+    return t9;
 }
 
 // Struct form of unitpack_cube16_encode.

@@ -84,12 +84,11 @@ static inline void unitpack_cube16p_decode_float(const float params[3], float ou
 
 // Struct form of unitpack_cube16p_decode.
 static inline unitpack_vec3 unitpack_cube16p_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 127u),
-        (float)((code >> 7u) & 63u),
-        (float)((code >> 13u) & 7u)
+    const unitpack_vec3 params = {
+        (float)(code & 127u) * 0.007874016f,
+        (float)((code >> 7u) & 63u) * 0.015873017f,
+        (float)((code >> 13u) & 7u) * 0.14285715f
     };
-    const unitpack_vec3 params = { t1.x * 0.007874016f, t1.y * 0.015873017f, t1.z * 0.14285715f };
     const unitpack_vec3 decode_float = unitpack_cube16p_decode_float_v(params);
     return decode_float;
 }
@@ -115,65 +114,56 @@ static inline void unitpack_cube16p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec3 unitpack_cube16p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const bool t3 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    const bool t4 = abs_w2.y >= abs_w2.x;
-    const float major = t3 ? w2.z : (t4 ? w2.y : w2.x);
-    const float face = (t3 ? 4.0f : (t4 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
+    const bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
+    const bool t2 = abs_w2.y >= abs_w2.x;
+    const float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
+    const float face = (t1 ? 4.0f : (t2 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
     const float abs_major = fabsf(major);
-    const unitpack_vec2 t5 = {
-        (t3 ? w2.x : (t4 ? w2.z : w2.y)) * 63.5f,
-        (t3 ? w2.y : (t4 ? w2.x : w2.z)) * 31.5f
+    const unitpack_vec2 t3 = {
+        (t1 ? w2.x : (t2 ? w2.z : w2.y)) * 63.5f,
+        (t1 ? w2.y : (t2 ? w2.x : w2.z)) * 31.5f
     };
-    const unitpack_vec2 t6 = {
-        nearbyintf(t5.x / abs_major + 63.5f),
-        nearbyintf(t5.y / abs_major + 31.5f)
+    const unitpack_vec2 t4 = {
+        nearbyintf(t3.x / abs_major + 63.5f),
+        nearbyintf(t3.y / abs_major + 31.5f)
     };
-    const unitpack_vec2 t7 = { t6.x >= 0.0f ? t6.x : 0.0f, t6.y >= 0.0f ? t6.y : 0.0f };
-    const unitpack_vec2 t8 = { t7.x <= 127.0f ? t7.x : 127.0f, t7.y <= 63.0f ? t7.y : 63.0f };
-    const unitpack_vec2 t9 = {
-        t5.x >= (t8.x - 62.5f) * abs_major ? 1.0f : 0.0f,
-        t5.y >= (t8.y - 30.5f) * abs_major ? 1.0f : 0.0f
+    const unitpack_vec2 t5 = { t4.x >= 0.0f ? t4.x : 0.0f, t4.y >= 0.0f ? t4.y : 0.0f };
+    const unitpack_vec2 t6 = { t5.x <= 127.0f ? t5.x : 127.0f, t5.y <= 63.0f ? t5.y : 63.0f };
+    const unitpack_vec2 t7 = {
+        t6.x + (t6.x < 127.0f ? (t3.x >= (t6.x - 62.5f) * abs_major ? 1.0f : 0.0f) : 0.0f),
+        t6.y + (t6.y < 63.0f ? (t3.y >= (t6.y - 30.5f) * abs_major ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_bvec2 t10 = {
-        t5.x >= (t8.x - 1.0f - 62.5f) * abs_major,
-        t5.y >= (t8.y - 1.0f - 30.5f) * abs_major
+    const unitpack_vec2 t8 = {
+        t6.x > 0.0f ? (t3.x >= (t6.x - 1.0f - 62.5f) * abs_major ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t6.y > 0.0f ? (t3.y >= (t6.y - 1.0f - 30.5f) * abs_major ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t11 = {
-        t8.x > 0.0f ? (t10.x ? 1.0f : 0.0f) - 1.0f : 0.0f,
-        t8.y > 0.0f ? (t10.y ? 1.0f : 0.0f) - 1.0f : 0.0f
-    };
-    const unitpack_vec2 base = {
-        t8.x + (t8.x < 127.0f ? t9.x : 0.0f) + t11.x,
-        t8.y + (t8.y < 63.0f ? t9.y : 0.0f) + t11.y
-    };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const unitpack_vec2 base = { t7.x + t8.x, t7.y + t8.y };
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -191,365 +181,338 @@ static inline unitpack_vec3 unitpack_cube16p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t12 = (float)hi4 * 16777216.0f;
-    const float len2 = (t12 + (float)lo4) * 2.2737368e-13f;
+    const float t9 = (float)hi4 * 16777216.0f;
+    const float len2 = (t9 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t13 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t13 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t13
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t14 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t14;
-    const float t15 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t15;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t16 = root_k * 4096.0f;
-    const float root = (t16 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t17 = {
+    const float t10 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t10;
+    const float t11 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t11;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t12 = root_k * 4096.0f;
+    const float root = (t12 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t13 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t18 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t19 = {
-        (t17.x + 1.0f) * root <= t18.x,
-        (t17.y + 1.0f) * root <= t18.y,
-        (t17.z + 1.0f) * root <= t18.z
+    const unitpack_vec3 t14 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t15 = {
+        (t13.x + 1.0f) * root <= t14.x ? 1.0f : (t13.x * root > t14.x ? -1.0f : 0.0f),
+        (t13.y + 1.0f) * root <= t14.y ? 1.0f : (t13.y * root > t14.y ? -1.0f : 0.0f),
+        (t13.z + 1.0f) * root <= t14.z ? 1.0f : (t13.z * root > t14.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t20 = {
-        t17.x * root > t18.x ? -1.0f : 0.0f,
-        t17.y * root > t18.y ? -1.0f : 0.0f,
-        t17.z * root > t18.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t17.x + (t19.x ? 1.0f : t20.x),
-        t17.y + (t19.y ? 1.0f : t20.y),
-        t17.z + (t19.z ? 1.0f : t20.z)
-    };
+    const unitpack_vec3 aim = { t13.x + t15.x, t13.y + t15.y, t13.z + t15.z };
     const unitpack_vec2 cand = {
         base.x <= 127.0f ? base.x : 127.0f,
         base.y <= 63.0f ? base.y : 63.0f
     };
-    const unitpack_vec2 t21 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t16 = { cand.x * 2.0f, cand.y * 2.0f };
     const unitpack_vec2 p = {
-        floorf((t21.x - 127.0f) * 16513.008f),
-        floorf((t21.y - 63.0f) * 33288.13f)
+        floorf((t16.x - 127.0f) * 16513.008f),
+        floorf((t16.y - 63.0f) * 33288.13f)
     };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
     const float len2_2 = 2097152.0f + q;
-    const float t22 = len2_2 * 524288.0f;
-    const float root_estimate2 = floorf(sqrtf(t22));
+    const float t17 = len2_2 * 524288.0f;
+    const float root_estimate2 = floorf(sqrtf(t17));
     const float root_next = root_estimate2 + 1.0f;
-    const float t23 = root_next * root_next <= t22
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t22 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t23;
+    const float step_down3 = root_estimate2 * root_estimate2 > t17 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t17 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t24 = root_next2 * root_next2 <= t22
-        ? 1.0f
-        : (root_step * root_step > t22 ? -1.0f : 0.0f);
-    const float root2 = root_step + t24;
+    const float step_down4 = root_step * root_step > t17 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t17 ? 1.0f : step_down4;
+    const float root2 = root_step + step4;
     const float len = root2 * 2.0f;
     const float big = len * 2097152.0f;
     const float ratio_estimate = floorf(len / len2_2 * 2097152.0f);
-    const float t25 = (ratio_estimate + 1.0f) * len2_2 <= big
-        ? 1.0f
-        : (ratio_estimate * len2_2 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t25;
+    const float step_down5 = ratio_estimate * len2_2 > big ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate + 1.0f) * len2_2 <= big ? 1.0f : step_down5;
+    const float ratio = ratio_estimate + step5;
     const float big2 = p.x * 2097152.0f;
     const float ratio_estimate2 = floorf(p.x / len * 2097152.0f);
-    const float t26 = (ratio_estimate2 + 1.0f) * len <= big2
-        ? 1.0f
-        : (ratio_estimate2 * len > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t26;
+    const float step_down6 = ratio_estimate2 * len > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio_estimate2 + 1.0f) * len <= big2 ? 1.0f : step_down6;
+    const float ratio2 = ratio_estimate2 + step6;
     const float big3 = p.y * 2097152.0f;
     const float ratio_estimate3 = floorf(p.y / len * 2097152.0f);
-    const float t27 = (ratio_estimate3 + 1.0f) * len <= big3
-        ? 1.0f
-        : (ratio_estimate3 * len > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t27;
-    const bool t28 = face >= 3.5f;
-    const bool t29 = face >= 1.5f;
-    const float t30 = t28 ? face - 4.0f : (t29 ? face - 2.0f : face);
-    const float t31 = (t30 >= 1.5f ? t30 - 2.0f : t30) > 0.5f ? -ratio : ratio;
-    const unitpack_vec3 t32 = {
-        t28 ? ratio2 : (t29 ? ratio3 : t31),
-        t28 ? ratio3 : (t29 ? t31 : ratio2),
-        t28 ? t31 : (t29 ? ratio2 : ratio3)
+    const float step_down7 = ratio_estimate3 * len > big3 ? -1.0f : 0.0f;
+    const float step7 = (ratio_estimate3 + 1.0f) * len <= big3 ? 1.0f : step_down7;
+    const float ratio3 = ratio_estimate3 + step7;
+    const bool t18 = face >= 3.5f;
+    const bool t19 = face >= 1.5f;
+    const float t20 = t18 ? face - 4.0f : (t19 ? face - 2.0f : face);
+    const float t21 = (t20 >= 1.5f ? t20 - 2.0f : t20) > 0.5f ? -ratio : ratio;
+    const unitpack_vec3 offset = {
+        (t18 ? ratio2 : (t19 ? ratio3 : t21)) - aim.x,
+        (t18 ? ratio3 : (t19 ? t21 : ratio2)) - aim.y,
+        (t18 ? t21 : (t19 ? ratio2 : ratio3)) - aim.z
     };
-    const unitpack_uvec3 t33 = {
-        (uint32_t)fabsf(t32.x - aim.x),
-        (uint32_t)fabsf(t32.y - aim.y),
-        (uint32_t)fabsf(t32.z - aim.z)
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_4 = t33.x >> 12u;
-    const uint32_t limb0_4 = t33.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t33.y >> 12u;
-    const uint32_t limb0_5 = t33.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t33.z >> 12u;
-    const uint32_t limb0_6 = t33.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t34 = (float)hi8 * 16777216.0f;
-    const float dist = t34 + (float)lo8;
-    const float t35 = base.x + 1.0f;
-    const unitpack_vec2 t36 = { t35, base.y };
+    const float t22 = (float)hi8 * 16777216.0f;
+    const float dist = t22 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t23 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t36.x <= 127.0f ? t36.x : 127.0f,
-        t36.y <= 63.0f ? t36.y : 63.0f
+        t23.x <= 127.0f ? t23.x : 127.0f,
+        t23.y <= 63.0f ? t23.y : 63.0f
     };
-    const unitpack_vec2 t37 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t24 = { cand2.x * 2.0f, cand2.y * 2.0f };
     const unitpack_vec2 p2 = {
-        floorf((t37.x - 127.0f) * 16513.008f),
-        floorf((t37.y - 63.0f) * 33288.13f)
+        floorf((t24.x - 127.0f) * 16513.008f),
+        floorf((t24.y - 63.0f) * 33288.13f)
     };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
     const float len2_3 = 2097152.0f + q2;
-    const float t38 = len2_3 * 524288.0f;
-    const float root_estimate3 = floorf(sqrtf(t38));
+    const float t25 = len2_3 * 524288.0f;
+    const float root_estimate3 = floorf(sqrtf(t25));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t39 = root_next3 * root_next3 <= t38
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t38 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t39;
+    const float step_down8 = root_estimate3 * root_estimate3 > t25 ? -1.0f : 0.0f;
+    const float step8 = root_next3 * root_next3 <= t25 ? 1.0f : step_down8;
+    const float root_step2 = root_estimate3 + step8;
     const float root_next4 = root_step2 + 1.0f;
-    const float t40 = root_next4 * root_next4 <= t38
-        ? 1.0f
-        : (root_step2 * root_step2 > t38 ? -1.0f : 0.0f);
-    const float root3 = root_step2 + t40;
+    const float step_down9 = root_step2 * root_step2 > t25 ? -1.0f : 0.0f;
+    const float step9 = root_next4 * root_next4 <= t25 ? 1.0f : step_down9;
+    const float root3 = root_step2 + step9;
     const float len3 = root3 * 2.0f;
     const float big4 = len3 * 2097152.0f;
     const float ratio_estimate4 = floorf(len3 / len2_3 * 2097152.0f);
-    const float t41 = (ratio_estimate4 + 1.0f) * len2_3 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * len2_3 > big4 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate4 + t41;
+    const float step_down10 = ratio_estimate4 * len2_3 > big4 ? -1.0f : 0.0f;
+    const float step10 = (ratio_estimate4 + 1.0f) * len2_3 <= big4 ? 1.0f : step_down10;
+    const float ratio4 = ratio_estimate4 + step10;
     const float big5 = p2.x * 2097152.0f;
     const float ratio_estimate5 = floorf(p2.x / len3 * 2097152.0f);
-    const float t42 = (ratio_estimate5 + 1.0f) * len3 <= big5
-        ? 1.0f
-        : (ratio_estimate5 * len3 > big5 ? -1.0f : 0.0f);
-    const float ratio5 = ratio_estimate5 + t42;
+    const float step_down11 = ratio_estimate5 * len3 > big5 ? -1.0f : 0.0f;
+    const float step11 = (ratio_estimate5 + 1.0f) * len3 <= big5 ? 1.0f : step_down11;
+    const float ratio5 = ratio_estimate5 + step11;
     const float big6 = p2.y * 2097152.0f;
     const float ratio_estimate6 = floorf(p2.y / len3 * 2097152.0f);
-    const float t43 = (ratio_estimate6 + 1.0f) * len3 <= big6
-        ? 1.0f
-        : (ratio_estimate6 * len3 > big6 ? -1.0f : 0.0f);
-    const float ratio6 = ratio_estimate6 + t43;
-    const bool t44 = face >= 3.5f;
-    const bool t45 = face >= 1.5f;
-    const float t46 = t44 ? face - 4.0f : (t45 ? face - 2.0f : face);
-    const float t47 = (t46 >= 1.5f ? t46 - 2.0f : t46) > 0.5f ? -ratio4 : ratio4;
-    const unitpack_vec3 t48 = {
-        t44 ? ratio5 : (t45 ? ratio6 : t47),
-        t44 ? ratio6 : (t45 ? t47 : ratio5),
-        t44 ? t47 : (t45 ? ratio5 : ratio6)
+    const float step_down12 = ratio_estimate6 * len3 > big6 ? -1.0f : 0.0f;
+    const float step12 = (ratio_estimate6 + 1.0f) * len3 <= big6 ? 1.0f : step_down12;
+    const float ratio6 = ratio_estimate6 + step12;
+    const bool t26 = face >= 3.5f;
+    const bool t27 = face >= 1.5f;
+    const float t28 = t26 ? face - 4.0f : (t27 ? face - 2.0f : face);
+    const float t29 = (t28 >= 1.5f ? t28 - 2.0f : t28) > 0.5f ? -ratio4 : ratio4;
+    const unitpack_vec3 offset2 = {
+        (t26 ? ratio5 : (t27 ? ratio6 : t29)) - aim.x,
+        (t26 ? ratio6 : (t27 ? t29 : ratio5)) - aim.y,
+        (t26 ? t29 : (t27 ? ratio5 : ratio6)) - aim.z
     };
-    const unitpack_uvec3 t49 = {
-        (uint32_t)fabsf(t48.x - aim.x),
-        (uint32_t)fabsf(t48.y - aim.y),
-        (uint32_t)fabsf(t48.z - aim.z)
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const uint32_t limb1_7 = t49.x >> 12u;
-    const uint32_t limb0_7 = t49.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t49.y >> 12u;
-    const uint32_t limb0_8 = t49.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t49.z >> 12u;
-    const uint32_t limb0_9 = t49.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t50 = (float)hi12 * 16777216.0f;
-    const float dist2 = t50 + (float)lo12;
-    const bool t51 = t35 <= 127.0f && base.y <= 63.0f && dist2 < dist;
-    const unitpack_vec2 best = { t51 ? cand2.x : cand.x, t51 ? cand2.y : cand.y };
-    const float best_d = t51 ? dist2 : dist;
-    const float t52 = base.y + 1.0f;
-    const unitpack_vec2 t53 = { base.x, t52 };
+    const float t30 = (float)hi12 * 16777216.0f;
+    const float dist2 = t30 + (float)lo12;
+    const bool t31 = s_up <= 127.0f && base.y <= 63.0f && dist2 < dist;
+    const unitpack_vec2 best = { t31 ? cand2.x : cand.x, t31 ? cand2.y : cand.y };
+    const float best_d = t31 ? dist2 : dist;
+    const unitpack_vec2 t32 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t53.x <= 127.0f ? t53.x : 127.0f,
-        t53.y <= 63.0f ? t53.y : 63.0f
+        t32.x <= 127.0f ? t32.x : 127.0f,
+        t32.y <= 63.0f ? t32.y : 63.0f
     };
-    const unitpack_vec2 t54 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 t33 = { cand3.x * 2.0f, cand3.y * 2.0f };
     const unitpack_vec2 p3 = {
-        floorf((t54.x - 127.0f) * 16513.008f),
-        floorf((t54.y - 63.0f) * 33288.13f)
+        floorf((t33.x - 127.0f) * 16513.008f),
+        floorf((t33.y - 63.0f) * 33288.13f)
     };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
     const float len2_4 = 2097152.0f + q3;
-    const float t55 = len2_4 * 524288.0f;
-    const float root_estimate4 = floorf(sqrtf(t55));
+    const float t34 = len2_4 * 524288.0f;
+    const float root_estimate4 = floorf(sqrtf(t34));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t56 = root_next5 * root_next5 <= t55
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t55 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t56;
+    const float step_down13 = root_estimate4 * root_estimate4 > t34 ? -1.0f : 0.0f;
+    const float step13 = root_next5 * root_next5 <= t34 ? 1.0f : step_down13;
+    const float root_step3 = root_estimate4 + step13;
     const float root_next6 = root_step3 + 1.0f;
-    const float t57 = root_next6 * root_next6 <= t55
-        ? 1.0f
-        : (root_step3 * root_step3 > t55 ? -1.0f : 0.0f);
-    const float root4 = root_step3 + t57;
+    const float step_down14 = root_step3 * root_step3 > t34 ? -1.0f : 0.0f;
+    const float step14 = root_next6 * root_next6 <= t34 ? 1.0f : step_down14;
+    const float root4 = root_step3 + step14;
     const float len4 = root4 * 2.0f;
     const float big7 = len4 * 2097152.0f;
     const float ratio_estimate7 = floorf(len4 / len2_4 * 2097152.0f);
-    const float t58 = (ratio_estimate7 + 1.0f) * len2_4 <= big7
-        ? 1.0f
-        : (ratio_estimate7 * len2_4 > big7 ? -1.0f : 0.0f);
-    const float ratio7 = ratio_estimate7 + t58;
+    const float step_down15 = ratio_estimate7 * len2_4 > big7 ? -1.0f : 0.0f;
+    const float step15 = (ratio_estimate7 + 1.0f) * len2_4 <= big7 ? 1.0f : step_down15;
+    const float ratio7 = ratio_estimate7 + step15;
     const float big8 = p3.x * 2097152.0f;
     const float ratio_estimate8 = floorf(p3.x / len4 * 2097152.0f);
-    const float t59 = (ratio_estimate8 + 1.0f) * len4 <= big8
-        ? 1.0f
-        : (ratio_estimate8 * len4 > big8 ? -1.0f : 0.0f);
-    const float ratio8 = ratio_estimate8 + t59;
+    const float step_down16 = ratio_estimate8 * len4 > big8 ? -1.0f : 0.0f;
+    const float step16 = (ratio_estimate8 + 1.0f) * len4 <= big8 ? 1.0f : step_down16;
+    const float ratio8 = ratio_estimate8 + step16;
     const float big9 = p3.y * 2097152.0f;
     const float ratio_estimate9 = floorf(p3.y / len4 * 2097152.0f);
-    const float t60 = (ratio_estimate9 + 1.0f) * len4 <= big9
-        ? 1.0f
-        : (ratio_estimate9 * len4 > big9 ? -1.0f : 0.0f);
-    const float ratio9 = ratio_estimate9 + t60;
-    const bool t61 = face >= 3.5f;
-    const bool t62 = face >= 1.5f;
-    const float t63 = t61 ? face - 4.0f : (t62 ? face - 2.0f : face);
-    const float t64 = (t63 >= 1.5f ? t63 - 2.0f : t63) > 0.5f ? -ratio7 : ratio7;
-    const unitpack_vec3 t65 = {
-        t61 ? ratio8 : (t62 ? ratio9 : t64),
-        t61 ? ratio9 : (t62 ? t64 : ratio8),
-        t61 ? t64 : (t62 ? ratio8 : ratio9)
+    const float step_down17 = ratio_estimate9 * len4 > big9 ? -1.0f : 0.0f;
+    const float step17 = (ratio_estimate9 + 1.0f) * len4 <= big9 ? 1.0f : step_down17;
+    const float ratio9 = ratio_estimate9 + step17;
+    const bool t35 = face >= 3.5f;
+    const bool t36 = face >= 1.5f;
+    const float t37 = t35 ? face - 4.0f : (t36 ? face - 2.0f : face);
+    const float t38 = (t37 >= 1.5f ? t37 - 2.0f : t37) > 0.5f ? -ratio7 : ratio7;
+    const unitpack_vec3 offset3 = {
+        (t35 ? ratio8 : (t36 ? ratio9 : t38)) - aim.x,
+        (t35 ? ratio9 : (t36 ? t38 : ratio8)) - aim.y,
+        (t35 ? t38 : (t36 ? ratio8 : ratio9)) - aim.z
     };
-    const unitpack_uvec3 t66 = {
-        (uint32_t)fabsf(t65.x - aim.x),
-        (uint32_t)fabsf(t65.y - aim.y),
-        (uint32_t)fabsf(t65.z - aim.z)
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_10 = t66.x >> 12u;
-    const uint32_t limb0_10 = t66.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t66.y >> 12u;
-    const uint32_t limb0_11 = t66.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t66.z >> 12u;
-    const uint32_t limb0_12 = t66.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t67 = (float)hi16 * 16777216.0f;
-    const float dist3 = t67 + (float)lo16;
-    const bool t68 = base.x <= 127.0f && t52 <= 63.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t68 ? cand3.x : best.x, t68 ? cand3.y : best.y };
-    const float best_d2 = t68 ? dist3 : best_d;
-    const unitpack_vec2 t69 = { base.x + 1.0f, base.y + 1.0f };
+    const float t39 = (float)hi16 * 16777216.0f;
+    const float dist3 = t39 + (float)lo16;
+    const bool t40 = base.x <= 127.0f && t_up <= 63.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t40 ? cand3.x : best.x, t40 ? cand3.y : best.y };
+    const float best_d2 = t40 ? dist3 : best_d;
+    const unitpack_vec2 t41 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t69.x <= 127.0f ? t69.x : 127.0f,
-        t69.y <= 63.0f ? t69.y : 63.0f
+        t41.x <= 127.0f ? t41.x : 127.0f,
+        t41.y <= 63.0f ? t41.y : 63.0f
     };
-    const unitpack_vec2 t70 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t42 = { cand4.x * 2.0f, cand4.y * 2.0f };
     const unitpack_vec2 p4 = {
-        floorf((t70.x - 127.0f) * 16513.008f),
-        floorf((t70.y - 63.0f) * 33288.13f)
+        floorf((t42.x - 127.0f) * 16513.008f),
+        floorf((t42.y - 63.0f) * 33288.13f)
     };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
     const float len2_5 = 2097152.0f + q4;
-    const float t71 = len2_5 * 524288.0f;
-    const float root_estimate5 = floorf(sqrtf(t71));
+    const float t43 = len2_5 * 524288.0f;
+    const float root_estimate5 = floorf(sqrtf(t43));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t72 = root_next7 * root_next7 <= t71
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t71 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t72;
+    const float step_down18 = root_estimate5 * root_estimate5 > t43 ? -1.0f : 0.0f;
+    const float step18 = root_next7 * root_next7 <= t43 ? 1.0f : step_down18;
+    const float root_step4 = root_estimate5 + step18;
     const float root_next8 = root_step4 + 1.0f;
-    const float t73 = root_next8 * root_next8 <= t71
-        ? 1.0f
-        : (root_step4 * root_step4 > t71 ? -1.0f : 0.0f);
-    const float root5 = root_step4 + t73;
+    const float step_down19 = root_step4 * root_step4 > t43 ? -1.0f : 0.0f;
+    const float step19 = root_next8 * root_next8 <= t43 ? 1.0f : step_down19;
+    const float root5 = root_step4 + step19;
     const float len5 = root5 * 2.0f;
     const float big10 = len5 * 2097152.0f;
     const float ratio_estimate10 = floorf(len5 / len2_5 * 2097152.0f);
-    const float t74 = (ratio_estimate10 + 1.0f) * len2_5 <= big10
-        ? 1.0f
-        : (ratio_estimate10 * len2_5 > big10 ? -1.0f : 0.0f);
-    const float ratio10 = ratio_estimate10 + t74;
+    const float step_down20 = ratio_estimate10 * len2_5 > big10 ? -1.0f : 0.0f;
+    const float step20 = (ratio_estimate10 + 1.0f) * len2_5 <= big10 ? 1.0f : step_down20;
+    const float ratio10 = ratio_estimate10 + step20;
     const float big11 = p4.x * 2097152.0f;
     const float ratio_estimate11 = floorf(p4.x / len5 * 2097152.0f);
-    const float t75 = (ratio_estimate11 + 1.0f) * len5 <= big11
-        ? 1.0f
-        : (ratio_estimate11 * len5 > big11 ? -1.0f : 0.0f);
-    const float ratio11 = ratio_estimate11 + t75;
+    const float step_down21 = ratio_estimate11 * len5 > big11 ? -1.0f : 0.0f;
+    const float step21 = (ratio_estimate11 + 1.0f) * len5 <= big11 ? 1.0f : step_down21;
+    const float ratio11 = ratio_estimate11 + step21;
     const float big12 = p4.y * 2097152.0f;
     const float ratio_estimate12 = floorf(p4.y / len5 * 2097152.0f);
-    const float t76 = (ratio_estimate12 + 1.0f) * len5 <= big12
-        ? 1.0f
-        : (ratio_estimate12 * len5 > big12 ? -1.0f : 0.0f);
-    const float ratio12 = ratio_estimate12 + t76;
-    const bool t77 = face >= 3.5f;
-    const bool t78 = face >= 1.5f;
-    const float t79 = t77 ? face - 4.0f : (t78 ? face - 2.0f : face);
-    const float t80 = (t79 >= 1.5f ? t79 - 2.0f : t79) > 0.5f ? -ratio10 : ratio10;
-    const unitpack_vec3 t81 = {
-        t77 ? ratio11 : (t78 ? ratio12 : t80),
-        t77 ? ratio12 : (t78 ? t80 : ratio11),
-        t77 ? t80 : (t78 ? ratio11 : ratio12)
+    const float step_down22 = ratio_estimate12 * len5 > big12 ? -1.0f : 0.0f;
+    const float step22 = (ratio_estimate12 + 1.0f) * len5 <= big12 ? 1.0f : step_down22;
+    const float ratio12 = ratio_estimate12 + step22;
+    const bool t44 = face >= 3.5f;
+    const bool t45 = face >= 1.5f;
+    const float t46 = t44 ? face - 4.0f : (t45 ? face - 2.0f : face);
+    const float t47 = (t46 >= 1.5f ? t46 - 2.0f : t46) > 0.5f ? -ratio10 : ratio10;
+    const unitpack_vec3 offset4 = {
+        (t44 ? ratio11 : (t45 ? ratio12 : t47)) - aim.x,
+        (t44 ? ratio12 : (t45 ? t47 : ratio11)) - aim.y,
+        (t44 ? t47 : (t45 ? ratio11 : ratio12)) - aim.z
     };
-    const unitpack_uvec3 t82 = {
-        (uint32_t)fabsf(t81.x - aim.x),
-        (uint32_t)fabsf(t81.y - aim.y),
-        (uint32_t)fabsf(t81.z - aim.z)
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_13 = t82.x >> 12u;
-    const uint32_t limb0_13 = t82.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t82.y >> 12u;
-    const uint32_t limb0_14 = t82.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t82.z >> 12u;
-    const uint32_t limb0_15 = t82.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t83 = (float)hi20 * 16777216.0f;
-    const float dist4 = t83 + (float)lo20;
-    const bool t84 = base.x + 1.0f <= 127.0f && base.y + 1.0f <= 63.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t84 ? cand4.x : best2.x, t84 ? cand4.y : best2.y };
-    const unitpack_vec3 t85 = { best3.x, best3.y, face };
-    return t85;
+    const float t48 = (float)hi20 * 16777216.0f;
+    const float dist4 = t48 + (float)lo20;
+    const bool t49 = s_up <= 127.0f && t_up <= 63.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t49 ? cand4.x : best2.x, t49 ? cand4.y : best2.y };
+    const unitpack_vec3 t50 = { best3.x, best3.y, face };
+    return t50;
 }
 
 // Struct form of unitpack_cube16p_encode_float.

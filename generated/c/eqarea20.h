@@ -75,12 +75,11 @@ static inline void unitpack_eqarea20_decode_float(const float params[3], float o
 
 // Struct form of unitpack_eqarea20_decode.
 static inline unitpack_vec3 unitpack_eqarea20_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 1023u),
-        (float)((code >> 10u) & 511u),
-        (float)((code >> 19u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 1023u) * 0.0009775171f,
+        (float)((code >> 10u) & 511u) * 0.0019569471f,
+        (float)((code >> 19u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.0009775171f, t1.y * 0.0019569471f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_eqarea20_decode_float_v(params);
     return decode_float;
 }
@@ -103,33 +102,31 @@ static inline void unitpack_eqarea20_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_eqarea20_encode_float.
 static inline unitpack_vec3 unitpack_eqarea20_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -147,31 +144,34 @@ static inline unitpack_vec3 unitpack_eqarea20_encode_float_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const float t8 = sqrtf(root * (root + fabsf(w2.z)));
-    const unitpack_vec2 t9 = { w2.x / t8 * 0.5f, w2.y / t8 * 0.5f };
-    const unitpack_vec2 enc = { t9.x + 0.5f, t9.y + 0.5f };
-    const unitpack_vec3 t10 = { enc.x, enc.y, w2.z < 0.0f ? 1.0f : 0.0f };
-    return t10;
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const float t5 = sqrtf(root * (root + fabsf(w2.z)));
+    const unitpack_vec2 t6 = { w2.x / t5 * 0.5f, w2.y / t5 * 0.5f };
+    const unitpack_vec2 enc = { t6.x + 0.5f, t6.y + 0.5f };
+    const unitpack_vec3 t7 = { enc.x, enc.y, one_if };
+    return t7;
 }
 
 // unitpack_eqarea20_encode_float: fast encoder, float form.
@@ -194,33 +194,31 @@ static inline void unitpack_eqarea20_encode_float(const float v[3], float out[3]
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_eqarea20_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -238,68 +236,71 @@ static inline unitpack_vec3 unitpack_eqarea20_round_codes_v(unitpack_vec3 a0) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
     const float la = root * (root + fabsf(w2.z));
     const float sqrt_la = sqrtf(la);
     const float big2 = w2.x * w2.x * 261632.25f;
-    const float t8 = w2.x / sqrt_la * 511.5f;
-    const float t9 = nearbyintf(t8 + 511.5f);
-    const float t10 = t9 >= 0.0f ? t9 : 0.0f;
-    const float estimate = t10 <= 1023.0f ? t10 : 1023.0f;
-    const float t11 = estimate - 511.0f;
-    const float t12 = t11 * t11 * la;
-    const float t13 = w2.x >= 0.0f
-        ? (t11 > 0.0f ? (big2 >= t12 ? 1.0f : 0.0f) : 1.0f)
-        : (t11 < 0.0f ? (big2 <= t12 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 1023.0f ? t13 : 0.0f;
-    const float t14 = estimate - 1.0f - 511.0f;
-    const float t15 = t14 * t14 * la;
-    const float t16 = w2.x >= 0.0f
-        ? (t14 > 0.0f ? (big2 >= t15 ? 1.0f : 0.0f) : 1.0f)
-        : (t14 < 0.0f ? (big2 <= t15 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t16 - 1.0f : 0.0f;
+    const float t5 = w2.x / sqrt_la * 511.5f;
+    const float t6 = nearbyintf(t5 + 511.5f);
+    const float t7 = t6 >= 0.0f ? t6 : 0.0f;
+    const float estimate = t7 <= 1023.0f ? t7 : 1023.0f;
+    const float t8 = estimate - 511.0f;
+    const float t9 = t8 * t8 * la;
+    const float one_if2 = big2 >= t9 ? 1.0f : 0.0f;
+    const float one_if3 = big2 <= t9 ? 1.0f : 0.0f;
+    const float up = estimate < 1023.0f
+        ? (w2.x >= 0.0f ? (t8 > 0.0f ? one_if2 : 1.0f) : (t8 < 0.0f ? one_if3 : 0.0f))
+        : 0.0f;
+    const float t10 = estimate - 1.0f - 511.0f;
+    const float t11 = t10 * t10 * la;
+    const float one_if4 = big2 >= t11 ? 1.0f : 0.0f;
+    const float one_if5 = big2 <= t11 ? 1.0f : 0.0f;
+    const float t12 = (w2.x >= 0.0f ? (t10 > 0.0f ? one_if4 : 1.0f) : (t10 < 0.0f ? one_if5 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t12 : 0.0f;
     const float big2_2 = w2.y * w2.y * 65280.25f;
-    const float t17 = w2.y / sqrt_la * 255.5f;
-    const float t18 = nearbyintf(t17 + 255.5f);
-    const float t19 = t18 >= 0.0f ? t18 : 0.0f;
-    const float estimate2 = t19 <= 511.0f ? t19 : 511.0f;
-    const float t20 = estimate2 - 255.0f;
-    const float t21 = t20 * t20 * la;
-    const float t22 = w2.y >= 0.0f
-        ? (t20 > 0.0f ? (big2_2 >= t21 ? 1.0f : 0.0f) : 1.0f)
-        : (t20 < 0.0f ? (big2_2 <= t21 ? 1.0f : 0.0f) : 0.0f);
-    const float up2 = estimate2 < 511.0f ? t22 : 0.0f;
-    const float t23 = estimate2 - 1.0f - 255.0f;
-    const float t24 = t23 * t23 * la;
-    const float t25 = w2.y >= 0.0f
-        ? (t23 > 0.0f ? (big2_2 >= t24 ? 1.0f : 0.0f) : 1.0f)
-        : (t23 < 0.0f ? (big2_2 <= t24 ? 1.0f : 0.0f) : 0.0f);
-    const float down2 = estimate2 > 0.0f ? t25 - 1.0f : 0.0f;
-    const unitpack_vec3 t26 = {
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0f ? 1.0f : 0.0f
-    };
-    return t26;
+    const float t13 = w2.y / sqrt_la * 255.5f;
+    const float t14 = nearbyintf(t13 + 255.5f);
+    const float t15 = t14 >= 0.0f ? t14 : 0.0f;
+    const float estimate2 = t15 <= 511.0f ? t15 : 511.0f;
+    const float t16 = estimate2 - 255.0f;
+    const float t17 = t16 * t16 * la;
+    const float one_if6 = big2_2 >= t17 ? 1.0f : 0.0f;
+    const float one_if7 = big2_2 <= t17 ? 1.0f : 0.0f;
+    const float up2 = estimate2 < 511.0f
+        ? (w2.y >= 0.0f ? (t16 > 0.0f ? one_if6 : 1.0f) : (t16 < 0.0f ? one_if7 : 0.0f))
+        : 0.0f;
+    const float t18 = estimate2 - 1.0f - 255.0f;
+    const float t19 = t18 * t18 * la;
+    const float one_if8 = big2_2 >= t19 ? 1.0f : 0.0f;
+    const float one_if9 = big2_2 <= t19 ? 1.0f : 0.0f;
+    const float t20 = (w2.y >= 0.0f ? (t18 > 0.0f ? one_if8 : 1.0f) : (t18 < 0.0f ? one_if9 : 0.0f))
+        - 1.0f;
+    const float down2 = estimate2 > 0.0f ? t20 : 0.0f;
+    const unitpack_vec3 t21 = { estimate + up + down, estimate2 + up2 + down2, one_if };
+    return t21;
 }
 
 // Struct form of unitpack_eqarea20_encode.

@@ -75,12 +75,11 @@ static inline void unitpack_eqarea22p_decode_float(const float params[3], float 
 
 // Struct form of unitpack_eqarea22p_decode.
 static inline unitpack_vec3 unitpack_eqarea22p_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 2047u),
-        (float)((code >> 11u) & 1023u),
-        (float)((code >> 21u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 2047u) * 0.0004885198f,
+        (float)((code >> 11u) & 1023u) * 0.0009775171f,
+        (float)((code >> 21u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.0004885198f, t1.y * 0.0009775171f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_eqarea22p_decode_float_v(params);
     return decode_float;
 }
@@ -107,33 +106,31 @@ static inline void unitpack_eqarea22p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec3 unitpack_eqarea22p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -151,317 +148,298 @@ static inline unitpack_vec3 unitpack_eqarea22p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const float t8 = w2.z < 0.0f ? 1.0f : 0.0f;
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
     const float la = root * (root + fabsf(w2.z));
     const float sqrt_la = sqrtf(la);
-    const unitpack_vec2 t9 = { w2.x / sqrt_la * 1023.5f, w2.y / sqrt_la * 511.5f };
-    const unitpack_vec2 t10 = { nearbyintf(t9.x + 1023.5f), nearbyintf(t9.y + 511.5f) };
-    const unitpack_vec2 t11 = { t10.x >= 0.0f ? t10.x : 0.0f, t10.y >= 0.0f ? t10.y : 0.0f };
+    const unitpack_vec2 t5 = { w2.x / sqrt_la * 1023.5f, w2.y / sqrt_la * 511.5f };
+    const unitpack_vec2 t6 = { nearbyintf(t5.x + 1023.5f), nearbyintf(t5.y + 511.5f) };
+    const unitpack_vec2 t7 = { t6.x >= 0.0f ? t6.x : 0.0f, t6.y >= 0.0f ? t6.y : 0.0f };
+    const unitpack_vec2 t8 = { t7.x <= 2047.0f ? t7.x : 2047.0f, t7.y <= 1023.0f ? t7.y : 1023.0f };
+    const unitpack_vec2 t9 = { t8.x - 1022.5f, t8.y - 510.5f };
+    const unitpack_vec2 t10 = { w2.x * w2.x * 1047552.25f, w2.y * w2.y * 261632.25f };
+    const unitpack_vec2 t11 = { t9.x * t9.x * la, t9.y * t9.y * la };
     const unitpack_vec2 t12 = {
-        t11.x <= 2047.0f ? t11.x : 2047.0f,
-        t11.y <= 1023.0f ? t11.y : 1023.0f
+        w2.x >= 0.0f
+            ? (t9.x > 0.0f ? (t10.x >= t11.x ? 1.0f : 0.0f) : 1.0f)
+            : (t9.x < 0.0f ? (t10.x <= t11.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t9.y > 0.0f ? (t10.y >= t11.y ? 1.0f : 0.0f) : 1.0f)
+            : (t9.y < 0.0f ? (t10.y <= t11.y ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t13 = { t12.x - 1022.5f, t12.y - 510.5f };
-    const unitpack_vec2 t14 = { w2.x * w2.x * 1047552.25f, w2.y * w2.y * 261632.25f };
-    const unitpack_vec2 t15 = { t13.x * t13.x * la, t13.y * t13.y * la };
-    const unitpack_vec2 t16 = {
-        t13.x > 0.0f ? (t14.x >= t15.x ? 1.0f : 0.0f) : 1.0f,
-        t13.y > 0.0f ? (t14.y >= t15.y ? 1.0f : 0.0f) : 1.0f
+    const unitpack_vec2 t13 = { t8.x - 1.0f - 1022.5f, t8.y - 1.0f - 510.5f };
+    const unitpack_vec2 t14 = { t13.x * t13.x * la, t13.y * t13.y * la };
+    const unitpack_vec2 t15 = {
+        w2.x >= 0.0f
+            ? (t13.x > 0.0f ? (t10.x >= t14.x ? 1.0f : 0.0f) : 1.0f)
+            : (t13.x < 0.0f ? (t10.x <= t14.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t13.y > 0.0f ? (t10.y >= t14.y ? 1.0f : 0.0f) : 1.0f)
+            : (t13.y < 0.0f ? (t10.y <= t14.y ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t17 = {
-        t13.x < 0.0f ? (t14.x <= t15.x ? 1.0f : 0.0f) : 0.0f,
-        t13.y < 0.0f ? (t14.y <= t15.y ? 1.0f : 0.0f) : 0.0f
+    const unitpack_vec2 base = {
+        t8.x + (t8.x < 2047.0f ? t12.x : 0.0f) + (t8.x > 0.0f ? t15.x - 1.0f : 0.0f),
+        t8.y + (t8.y < 1023.0f ? t12.y : 0.0f) + (t8.y > 0.0f ? t15.y - 1.0f : 0.0f)
     };
-    const unitpack_vec2 t18 = {
-        t12.x < 2047.0f ? (w2.x >= 0.0f ? t16.x : t17.x) : 0.0f,
-        t12.y < 1023.0f ? (w2.y >= 0.0f ? t16.y : t17.y) : 0.0f
-    };
-    const unitpack_vec2 t19 = { t12.x - 1.0f - 1022.5f, t12.y - 1.0f - 510.5f };
-    const unitpack_vec2 t20 = { t19.x * t19.x * la, t19.y * t19.y * la };
-    const unitpack_vec2 t21 = {
-        t19.x > 0.0f ? (t14.x >= t20.x ? 1.0f : 0.0f) : 1.0f,
-        t19.y > 0.0f ? (t14.y >= t20.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t22 = {
-        t19.x < 0.0f ? (t14.x <= t20.x ? 1.0f : 0.0f) : 0.0f,
-        t19.y < 0.0f ? (t14.y <= t20.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t23 = {
-        t12.x > 0.0f ? (w2.x >= 0.0f ? t21.x : t22.x) - 1.0f : 0.0f,
-        t12.y > 0.0f ? (w2.y >= 0.0f ? t21.y : t22.y) - 1.0f : 0.0f
-    };
-    const unitpack_vec2 base = { t12.x + t18.x + t23.x, t12.y + t18.y + t23.y };
-    const unitpack_vec3 t24 = {
+    const unitpack_vec3 t16 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t25 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t26 = {
-        (t24.x + 1.0f) * root <= t25.x,
-        (t24.y + 1.0f) * root <= t25.y,
-        (t24.z + 1.0f) * root <= t25.z
+    const unitpack_vec3 t17 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t18 = {
+        (t16.x + 1.0f) * root <= t17.x ? 1.0f : (t16.x * root > t17.x ? -1.0f : 0.0f),
+        (t16.y + 1.0f) * root <= t17.y ? 1.0f : (t16.y * root > t17.y ? -1.0f : 0.0f),
+        (t16.z + 1.0f) * root <= t17.z ? 1.0f : (t16.z * root > t17.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t27 = {
-        t24.x * root > t25.x ? -1.0f : 0.0f,
-        t24.y * root > t25.y ? -1.0f : 0.0f,
-        t24.z * root > t25.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t24.x + (t26.x ? 1.0f : t27.x),
-        t24.y + (t26.y ? 1.0f : t27.y),
-        t24.z + (t26.z ? 1.0f : t27.z)
-    };
+    const unitpack_vec3 aim = { t16.x + t18.x, t16.y + t18.y, t16.z + t18.z };
     const unitpack_vec2 cand = {
         base.x <= 2047.0f ? base.x : 2047.0f,
         base.y <= 1023.0f ? base.y : 1023.0f
     };
-    const unitpack_vec2 t28 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t19 = { cand.x * 2.0f, cand.y * 2.0f };
     const unitpack_vec2 p = {
-        floorf((t28.x - 2047.0f) * 1024.5002f),
-        floorf((t28.y - 1023.0f) * 2050.002f)
+        floorf((t19.x - 2047.0f) * 1024.5002f),
+        floorf((t19.y - 1023.0f) * 2050.002f)
     };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
-    const float t29 = 4194304.0f - q;
-    const float t30 = (t29 >= 0.0f ? t29 : 0.0f) * 524288.0f;
-    const float root_estimate2 = floorf(sqrtf(t30));
+    const float t20 = 4194304.0f - q;
+    const float t21 = (t20 >= 0.0f ? t20 : 0.0f) * 524288.0f;
+    const float root_estimate2 = floorf(sqrtf(t21));
     const float root_next = root_estimate2 + 1.0f;
-    const float t31 = root_next * root_next <= t30
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t30 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t31;
+    const float step_down3 = root_estimate2 * root_estimate2 > t21 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t21 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t32 = root_next2 * root_next2 <= t30
-        ? 1.0f
-        : (root_step * root_step > t30 ? -1.0f : 0.0f);
-    const float g = root_step + t32;
-    const float t33 = 2097152.0f - q;
-    const unitpack_vec3 t34 = {
+    const float step_down4 = root_step * root_step > t21 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t21 ? 1.0f : step_down4;
+    const float g = root_step + step4;
+    const float t22 = 2097152.0f - q;
+    const unitpack_vec3 t23 = {
         floorf(p.x * g * 9.536743e-7f),
         floorf(p.y * g * 9.536743e-7f),
-        t8 > 0.5f ? -t33 : t33
+        one_if > 0.5f ? -t22 : t22
     };
-    const unitpack_uvec3 t35 = {
-        (uint32_t)fabsf(t34.x - aim.x),
-        (uint32_t)fabsf(t34.y - aim.y),
-        (uint32_t)fabsf(t34.z - aim.z)
+    const unitpack_vec3 offset = { t23.x - aim.x, t23.y - aim.y, t23.z - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_4 = t35.x >> 12u;
-    const uint32_t limb0_4 = t35.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t35.y >> 12u;
-    const uint32_t limb0_5 = t35.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t35.z >> 12u;
-    const uint32_t limb0_6 = t35.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t36 = (float)hi8 * 16777216.0f;
-    const float dist = t36 + (float)lo8;
-    const float t37 = base.x + 1.0f;
-    const unitpack_vec2 t38 = { t37, base.y };
+    const float t24 = (float)hi8 * 16777216.0f;
+    const float dist = t24 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t25 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t38.x <= 2047.0f ? t38.x : 2047.0f,
-        t38.y <= 1023.0f ? t38.y : 1023.0f
+        t25.x <= 2047.0f ? t25.x : 2047.0f,
+        t25.y <= 1023.0f ? t25.y : 1023.0f
     };
-    const unitpack_vec2 t39 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t26 = { cand2.x * 2.0f, cand2.y * 2.0f };
     const unitpack_vec2 p2 = {
-        floorf((t39.x - 2047.0f) * 1024.5002f),
-        floorf((t39.y - 1023.0f) * 2050.002f)
+        floorf((t26.x - 2047.0f) * 1024.5002f),
+        floorf((t26.y - 1023.0f) * 2050.002f)
     };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
-    const float t40 = 4194304.0f - q2;
-    const float t41 = (t40 >= 0.0f ? t40 : 0.0f) * 524288.0f;
-    const float root_estimate3 = floorf(sqrtf(t41));
+    const float t27 = 4194304.0f - q2;
+    const float t28 = (t27 >= 0.0f ? t27 : 0.0f) * 524288.0f;
+    const float root_estimate3 = floorf(sqrtf(t28));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t42 = root_next3 * root_next3 <= t41
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t41 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t42;
+    const float step_down5 = root_estimate3 * root_estimate3 > t28 ? -1.0f : 0.0f;
+    const float step5 = root_next3 * root_next3 <= t28 ? 1.0f : step_down5;
+    const float root_step2 = root_estimate3 + step5;
     const float root_next4 = root_step2 + 1.0f;
-    const float t43 = root_next4 * root_next4 <= t41
-        ? 1.0f
-        : (root_step2 * root_step2 > t41 ? -1.0f : 0.0f);
-    const float g2 = root_step2 + t43;
-    const float t44 = 2097152.0f - q2;
-    const unitpack_vec3 t45 = {
+    const float step_down6 = root_step2 * root_step2 > t28 ? -1.0f : 0.0f;
+    const float step6 = root_next4 * root_next4 <= t28 ? 1.0f : step_down6;
+    const float g2 = root_step2 + step6;
+    const float t29 = 2097152.0f - q2;
+    const unitpack_vec3 t30 = {
         floorf(p2.x * g2 * 9.536743e-7f),
         floorf(p2.y * g2 * 9.536743e-7f),
-        t8 > 0.5f ? -t44 : t44
+        one_if > 0.5f ? -t29 : t29
     };
-    const unitpack_uvec3 t46 = {
-        (uint32_t)fabsf(t45.x - aim.x),
-        (uint32_t)fabsf(t45.y - aim.y),
-        (uint32_t)fabsf(t45.z - aim.z)
+    const unitpack_vec3 offset2 = { t30.x - aim.x, t30.y - aim.y, t30.z - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const uint32_t limb1_7 = t46.x >> 12u;
-    const uint32_t limb0_7 = t46.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t46.y >> 12u;
-    const uint32_t limb0_8 = t46.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t46.z >> 12u;
-    const uint32_t limb0_9 = t46.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t47 = (float)hi12 * 16777216.0f;
-    const float dist2 = t47 + (float)lo12;
-    const bool t48 = t37 <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
-    const unitpack_vec2 best = { t48 ? cand2.x : cand.x, t48 ? cand2.y : cand.y };
-    const float best_d = t48 ? dist2 : dist;
-    const float t49 = base.y + 1.0f;
-    const unitpack_vec2 t50 = { base.x, t49 };
+    const float t31 = (float)hi12 * 16777216.0f;
+    const float dist2 = t31 + (float)lo12;
+    const bool t32 = s_up <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
+    const unitpack_vec2 best = { t32 ? cand2.x : cand.x, t32 ? cand2.y : cand.y };
+    const float best_d = t32 ? dist2 : dist;
+    const unitpack_vec2 t33 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t50.x <= 2047.0f ? t50.x : 2047.0f,
-        t50.y <= 1023.0f ? t50.y : 1023.0f
+        t33.x <= 2047.0f ? t33.x : 2047.0f,
+        t33.y <= 1023.0f ? t33.y : 1023.0f
     };
-    const unitpack_vec2 t51 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 t34 = { cand3.x * 2.0f, cand3.y * 2.0f };
     const unitpack_vec2 p3 = {
-        floorf((t51.x - 2047.0f) * 1024.5002f),
-        floorf((t51.y - 1023.0f) * 2050.002f)
+        floorf((t34.x - 2047.0f) * 1024.5002f),
+        floorf((t34.y - 1023.0f) * 2050.002f)
     };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
-    const float t52 = 4194304.0f - q3;
-    const float t53 = (t52 >= 0.0f ? t52 : 0.0f) * 524288.0f;
-    const float root_estimate4 = floorf(sqrtf(t53));
+    const float t35 = 4194304.0f - q3;
+    const float t36 = (t35 >= 0.0f ? t35 : 0.0f) * 524288.0f;
+    const float root_estimate4 = floorf(sqrtf(t36));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t54 = root_next5 * root_next5 <= t53
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t53 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t54;
+    const float step_down7 = root_estimate4 * root_estimate4 > t36 ? -1.0f : 0.0f;
+    const float step7 = root_next5 * root_next5 <= t36 ? 1.0f : step_down7;
+    const float root_step3 = root_estimate4 + step7;
     const float root_next6 = root_step3 + 1.0f;
-    const float t55 = root_next6 * root_next6 <= t53
-        ? 1.0f
-        : (root_step3 * root_step3 > t53 ? -1.0f : 0.0f);
-    const float g3 = root_step3 + t55;
-    const float t56 = 2097152.0f - q3;
-    const unitpack_vec3 t57 = {
+    const float step_down8 = root_step3 * root_step3 > t36 ? -1.0f : 0.0f;
+    const float step8 = root_next6 * root_next6 <= t36 ? 1.0f : step_down8;
+    const float g3 = root_step3 + step8;
+    const float t37 = 2097152.0f - q3;
+    const unitpack_vec3 t38 = {
         floorf(p3.x * g3 * 9.536743e-7f),
         floorf(p3.y * g3 * 9.536743e-7f),
-        t8 > 0.5f ? -t56 : t56
+        one_if > 0.5f ? -t37 : t37
     };
-    const unitpack_uvec3 t58 = {
-        (uint32_t)fabsf(t57.x - aim.x),
-        (uint32_t)fabsf(t57.y - aim.y),
-        (uint32_t)fabsf(t57.z - aim.z)
+    const unitpack_vec3 offset3 = { t38.x - aim.x, t38.y - aim.y, t38.z - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_10 = t58.x >> 12u;
-    const uint32_t limb0_10 = t58.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t58.y >> 12u;
-    const uint32_t limb0_11 = t58.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t58.z >> 12u;
-    const uint32_t limb0_12 = t58.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t59 = (float)hi16 * 16777216.0f;
-    const float dist3 = t59 + (float)lo16;
-    const bool t60 = base.x <= 2047.0f && t49 <= 1023.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t60 ? cand3.x : best.x, t60 ? cand3.y : best.y };
-    const float best_d2 = t60 ? dist3 : best_d;
-    const unitpack_vec2 t61 = { base.x + 1.0f, base.y + 1.0f };
+    const float t39 = (float)hi16 * 16777216.0f;
+    const float dist3 = t39 + (float)lo16;
+    const bool t40 = base.x <= 2047.0f && t_up <= 1023.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t40 ? cand3.x : best.x, t40 ? cand3.y : best.y };
+    const float best_d2 = t40 ? dist3 : best_d;
+    const unitpack_vec2 t41 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t61.x <= 2047.0f ? t61.x : 2047.0f,
-        t61.y <= 1023.0f ? t61.y : 1023.0f
+        t41.x <= 2047.0f ? t41.x : 2047.0f,
+        t41.y <= 1023.0f ? t41.y : 1023.0f
     };
-    const unitpack_vec2 t62 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t42 = { cand4.x * 2.0f, cand4.y * 2.0f };
     const unitpack_vec2 p4 = {
-        floorf((t62.x - 2047.0f) * 1024.5002f),
-        floorf((t62.y - 1023.0f) * 2050.002f)
+        floorf((t42.x - 2047.0f) * 1024.5002f),
+        floorf((t42.y - 1023.0f) * 2050.002f)
     };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
-    const float t63 = 4194304.0f - q4;
-    const float t64 = (t63 >= 0.0f ? t63 : 0.0f) * 524288.0f;
-    const float root_estimate5 = floorf(sqrtf(t64));
+    const float t43 = 4194304.0f - q4;
+    const float t44 = (t43 >= 0.0f ? t43 : 0.0f) * 524288.0f;
+    const float root_estimate5 = floorf(sqrtf(t44));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t65 = root_next7 * root_next7 <= t64
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t64 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t65;
+    const float step_down9 = root_estimate5 * root_estimate5 > t44 ? -1.0f : 0.0f;
+    const float step9 = root_next7 * root_next7 <= t44 ? 1.0f : step_down9;
+    const float root_step4 = root_estimate5 + step9;
     const float root_next8 = root_step4 + 1.0f;
-    const float t66 = root_next8 * root_next8 <= t64
-        ? 1.0f
-        : (root_step4 * root_step4 > t64 ? -1.0f : 0.0f);
-    const float g4 = root_step4 + t66;
-    const float t67 = 2097152.0f - q4;
-    const unitpack_vec3 t68 = {
+    const float step_down10 = root_step4 * root_step4 > t44 ? -1.0f : 0.0f;
+    const float step10 = root_next8 * root_next8 <= t44 ? 1.0f : step_down10;
+    const float g4 = root_step4 + step10;
+    const float t45 = 2097152.0f - q4;
+    const unitpack_vec3 t46 = {
         floorf(p4.x * g4 * 9.536743e-7f),
         floorf(p4.y * g4 * 9.536743e-7f),
-        t8 > 0.5f ? -t67 : t67
+        one_if > 0.5f ? -t45 : t45
     };
-    const unitpack_uvec3 t69 = {
-        (uint32_t)fabsf(t68.x - aim.x),
-        (uint32_t)fabsf(t68.y - aim.y),
-        (uint32_t)fabsf(t68.z - aim.z)
+    const unitpack_vec3 offset4 = { t46.x - aim.x, t46.y - aim.y, t46.z - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_13 = t69.x >> 12u;
-    const uint32_t limb0_13 = t69.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t69.y >> 12u;
-    const uint32_t limb0_14 = t69.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t69.z >> 12u;
-    const uint32_t limb0_15 = t69.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t70 = (float)hi20 * 16777216.0f;
-    const float dist4 = t70 + (float)lo20;
-    const bool t71 = base.x + 1.0f <= 2047.0f && base.y + 1.0f <= 1023.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t71 ? cand4.x : best2.x, t71 ? cand4.y : best2.y };
-    const unitpack_vec3 t72 = { best3.x, best3.y, t8 };
-    return t72;
+    const float t47 = (float)hi20 * 16777216.0f;
+    const float dist4 = t47 + (float)lo20;
+    const bool t48 = s_up <= 2047.0f && t_up <= 1023.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t48 ? cand4.x : best2.x, t48 ? cand4.y : best2.y };
+    const unitpack_vec3 t49 = { best3.x, best3.y, one_if };
+    return t49;
 }
 
 // Struct form of unitpack_eqarea22p_encode_float.

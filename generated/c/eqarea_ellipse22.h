@@ -78,12 +78,11 @@ static inline void unitpack_eqarea_ellipse22_decode_float(const float params[3],
 
 // Struct form of unitpack_eqarea_ellipse22_decode.
 static inline unitpack_vec3 unitpack_eqarea_ellipse22_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 2047u),
-        (float)((code >> 11u) & 1023u),
-        (float)((code >> 21u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 2047u) * 0.0004885198f,
+        (float)((code >> 11u) & 1023u) * 0.0009775171f,
+        (float)((code >> 21u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.0004885198f, t1.y * 0.0009775171f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_eqarea_ellipse22_decode_float_v(params);
     return decode_float;
 }
@@ -103,33 +102,31 @@ static inline void unitpack_eqarea_ellipse22_decode(uint32_t code, float out[3])
 
 // Struct form of unitpack_eqarea_ellipse22_encode_float.
 static inline unitpack_vec3 unitpack_eqarea_ellipse22_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -147,51 +144,49 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_encode_float_v(unitpack_ve
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const unitpack_vec2 t8 = { w2.x * w2.x, w2.y * w2.y };
-    const float rho = sqrtf(t8.x + t8.y);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const unitpack_vec2 t5 = { w2.x * w2.x, w2.y * w2.y };
+    const float rho = sqrtf(t5.x + t5.y);
     const float half_r = rho / sqrtf(root * (root + fabsf(w2.z))) * 0.5f;
-    const float t9 = half_r / (rho > 0.0f ? rho : 1.0f) * 2.0f;
-    const unitpack_vec2 disk = { w2.x * t9, w2.y * t9 };
-    const unitpack_vec2 t10 = { fabsf(disk.y), fabsf(disk.x) };
-    const unitpack_vec2 t11 = { disk.x + 1.4142135f - t10.x, disk.y + 1.4142135f - t10.y };
-    const unitpack_vec2 t12 = {
-        (t11.x >= 0.0f ? t11.x : 0.0f) * (disk.x + 1.4142135f + t10.x),
-        (t11.y >= 0.0f ? t11.y : 0.0f) * (disk.y + 1.4142135f + t10.y)
+    const float t6 = half_r / (rho > 0.0f ? rho : 1.0f) * 2.0f;
+    const unitpack_vec2 disk = { w2.x * t6, w2.y * t6 };
+    const unitpack_vec2 t7 = { fabsf(disk.y), fabsf(disk.x) };
+    const unitpack_vec2 t8 = { disk.x + 1.4142135f - t7.x, disk.y + 1.4142135f - t7.y };
+    const unitpack_vec2 neg_disk = { -disk.x, -disk.y };
+    const unitpack_vec2 t9 = { neg_disk.x + 1.4142135f - t7.x, neg_disk.y + 1.4142135f - t7.y };
+    const unitpack_vec2 t10 = {
+        sqrtf((t8.x >= 0.0f ? t8.x : 0.0f) * (disk.x + 1.4142135f + t7.x))
+            + sqrtf((t9.x >= 0.0f ? t9.x : 0.0f) * (neg_disk.x + 1.4142135f + t7.x)),
+        sqrtf((t8.y >= 0.0f ? t8.y : 0.0f) * (disk.y + 1.4142135f + t7.y))
+            + sqrtf((t9.y >= 0.0f ? t9.y : 0.0f) * (neg_disk.y + 1.4142135f + t7.y))
     };
-    const unitpack_vec2 t13 = { -disk.x, -disk.y };
-    const unitpack_vec2 t14 = { t13.x + 1.4142135f - t10.x, t13.y + 1.4142135f - t10.y };
-    const unitpack_vec2 t15 = {
-        (t14.x >= 0.0f ? t14.x : 0.0f) * (t13.x + 1.4142135f + t10.x),
-        (t14.y >= 0.0f ? t14.y : 0.0f) * (t13.y + 1.4142135f + t10.y)
-    };
-    const unitpack_vec2 square = {
-        disk.x / (sqrtf(t12.x) + sqrtf(t15.x)),
-        disk.y / (sqrtf(t12.y) + sqrtf(t15.y))
-    };
-    const unitpack_vec2 t16 = { square.x * 1.4142135f, square.y * 1.4142135f };
-    const unitpack_vec2 enc = { t16.x + 0.5f, t16.y + 0.5f };
-    const unitpack_vec3 t17 = { enc.x, enc.y, w2.z < 0.0f ? 1.0f : 0.0f };
-    return t17;
+    const unitpack_vec2 square = { disk.x / t10.x, disk.y / t10.y };
+    const unitpack_vec2 t11 = { square.x * 1.4142135f, square.y * 1.4142135f };
+    const unitpack_vec2 enc = { t11.x + 0.5f, t11.y + 0.5f };
+    const unitpack_vec3 t12 = { enc.x, enc.y, one_if };
+    return t12;
 }
 
 // unitpack_eqarea_ellipse22_encode_float: fast encoder, float form.
@@ -214,33 +209,31 @@ static inline void unitpack_eqarea_ellipse22_encode_float(const float v[3], floa
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -258,32 +251,35 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const float t8 = root * (root + fabsf(w2.z));
-    const bool t9 = w2.x >= 0.0f;
-    const float t10 = t9 ? 1024.0f : 0.0f;
-    const float t11 = t9 ? 2047.0f : 1023.0f;
-    const float mid = floorf((t10 + t11 + 1.0f) * 0.5f);
-    const float ell_t = (mid - 1.0f - 1023.0f) * 2.0f;
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float t5 = root * (root + fabsf(w2.z));
+    const bool t6 = w2.x >= 0.0f;
+    const float t7 = t6 ? 1024.0f : 0.0f;
+    const float t8 = t6 ? 2047.0f : 1023.0f;
+    const float mid = floorf((t7 + t8 + 1.0f) * 0.5f);
+    const float mid_below = mid - 1.0f;
+    const float ell_t = (mid_below - 1023.0f) * 2.0f;
     const float ell_h = floorf(ell_t * ell_t);
     const float ell_g = 8380418.0f - ell_h;
     const float ell_p = w2.x * w2.x * ell_g;
@@ -291,19 +287,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent = unitpack_bits_of(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     const uint32_t exponent2 = exponent < 40u ? 40u : exponent;
     const uint32_t exponent3 = 254u < exponent2 ? 254u : exponent2;
-    const float t12 = unitpack_float_of((281u - exponent3) << 23u);
-    const float ell_s = (floorf(ell_p * t12) + floorf(ell_q * t12))
-        * unitpack_float_of((exponent3 - 27u) << 23u);
+    const float scale2 = unitpack_float_of((281u - exponent3) << 23u);
+    const float back = unitpack_float_of((exponent3 - 27u) << 23u);
+    const float ell_s = (floorf(ell_p * scale2) + floorf(ell_q * scale2)) * back;
     const float lhs = ell_s * 4190209.0f;
-    const float rhs = ell_h * ell_g * t8;
-    const float t13 = ell_t > 0.0f
-        ? (w2.x > 0.0f ? (lhs >= rhs ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs <= rhs ? 1.0f : 0.0f));
-    const bool beyond = t13 > 0.5f;
-    const float lo5 = beyond ? mid : t10;
-    const float hi5 = beyond ? t11 : mid - 1.0f;
+    const float rhs = ell_h * ell_g * t5;
+    const float one_if = lhs >= rhs ? 1.0f : 0.0f;
+    const float outside = w2.x > 0.0f ? one_if : 0.0f;
+    const float one_if2 = lhs <= rhs ? 1.0f : 0.0f;
+    const float inside = w2.x >= 0.0f ? 1.0f : one_if2;
+    const bool beyond = (ell_t > 0.0f ? outside : inside) > 0.5f;
+    const float lo5 = beyond ? mid : t7;
+    const float hi5 = beyond ? t8 : mid_below;
     const float mid2 = floorf((lo5 + hi5 + 1.0f) * 0.5f);
-    const float ell_t2 = (mid2 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below2 = mid2 - 1.0f;
+    const float ell_t2 = (mid_below2 - 1023.0f) * 2.0f;
     const float ell_h2 = floorf(ell_t2 * ell_t2);
     const float ell_g2 = 8380418.0f - ell_h2;
     const float ell_p2 = w2.x * w2.x * ell_g2;
@@ -311,19 +309,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent4 = unitpack_bits_of(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     const uint32_t exponent5 = exponent4 < 40u ? 40u : exponent4;
     const uint32_t exponent6 = 254u < exponent5 ? 254u : exponent5;
-    const float t14 = unitpack_float_of((281u - exponent6) << 23u);
-    const float ell_s2 = (floorf(ell_p2 * t14) + floorf(ell_q2 * t14))
-        * unitpack_float_of((exponent6 - 27u) << 23u);
+    const float scale3 = unitpack_float_of((281u - exponent6) << 23u);
+    const float back2 = unitpack_float_of((exponent6 - 27u) << 23u);
+    const float ell_s2 = (floorf(ell_p2 * scale3) + floorf(ell_q2 * scale3)) * back2;
     const float lhs2 = ell_s2 * 4190209.0f;
-    const float rhs2 = ell_h2 * ell_g2 * t8;
-    const float t15 = ell_t2 > 0.0f
-        ? (w2.x > 0.0f ? (lhs2 >= rhs2 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs2 <= rhs2 ? 1.0f : 0.0f));
-    const bool beyond2 = t15 > 0.5f;
+    const float rhs2 = ell_h2 * ell_g2 * t5;
+    const float one_if3 = lhs2 >= rhs2 ? 1.0f : 0.0f;
+    const float outside2 = w2.x > 0.0f ? one_if3 : 0.0f;
+    const float one_if4 = lhs2 <= rhs2 ? 1.0f : 0.0f;
+    const float inside2 = w2.x >= 0.0f ? 1.0f : one_if4;
+    const bool beyond2 = (ell_t2 > 0.0f ? outside2 : inside2) > 0.5f;
     const float lo6 = beyond2 ? mid2 : lo5;
-    const float hi6 = beyond2 ? hi5 : mid2 - 1.0f;
+    const float hi6 = beyond2 ? hi5 : mid_below2;
     const float mid3 = floorf((lo6 + hi6 + 1.0f) * 0.5f);
-    const float ell_t3 = (mid3 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below3 = mid3 - 1.0f;
+    const float ell_t3 = (mid_below3 - 1023.0f) * 2.0f;
     const float ell_h3 = floorf(ell_t3 * ell_t3);
     const float ell_g3 = 8380418.0f - ell_h3;
     const float ell_p3 = w2.x * w2.x * ell_g3;
@@ -331,19 +331,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent7 = unitpack_bits_of(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     const uint32_t exponent8 = exponent7 < 40u ? 40u : exponent7;
     const uint32_t exponent9 = 254u < exponent8 ? 254u : exponent8;
-    const float t16 = unitpack_float_of((281u - exponent9) << 23u);
-    const float ell_s3 = (floorf(ell_p3 * t16) + floorf(ell_q3 * t16))
-        * unitpack_float_of((exponent9 - 27u) << 23u);
+    const float scale4 = unitpack_float_of((281u - exponent9) << 23u);
+    const float back3 = unitpack_float_of((exponent9 - 27u) << 23u);
+    const float ell_s3 = (floorf(ell_p3 * scale4) + floorf(ell_q3 * scale4)) * back3;
     const float lhs3 = ell_s3 * 4190209.0f;
-    const float rhs3 = ell_h3 * ell_g3 * t8;
-    const float t17 = ell_t3 > 0.0f
-        ? (w2.x > 0.0f ? (lhs3 >= rhs3 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs3 <= rhs3 ? 1.0f : 0.0f));
-    const bool beyond3 = t17 > 0.5f;
+    const float rhs3 = ell_h3 * ell_g3 * t5;
+    const float one_if5 = lhs3 >= rhs3 ? 1.0f : 0.0f;
+    const float outside3 = w2.x > 0.0f ? one_if5 : 0.0f;
+    const float one_if6 = lhs3 <= rhs3 ? 1.0f : 0.0f;
+    const float inside3 = w2.x >= 0.0f ? 1.0f : one_if6;
+    const bool beyond3 = (ell_t3 > 0.0f ? outside3 : inside3) > 0.5f;
     const float lo7 = beyond3 ? mid3 : lo6;
-    const float hi7 = beyond3 ? hi6 : mid3 - 1.0f;
+    const float hi7 = beyond3 ? hi6 : mid_below3;
     const float mid4 = floorf((lo7 + hi7 + 1.0f) * 0.5f);
-    const float ell_t4 = (mid4 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below4 = mid4 - 1.0f;
+    const float ell_t4 = (mid_below4 - 1023.0f) * 2.0f;
     const float ell_h4 = floorf(ell_t4 * ell_t4);
     const float ell_g4 = 8380418.0f - ell_h4;
     const float ell_p4 = w2.x * w2.x * ell_g4;
@@ -351,19 +353,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent10 = unitpack_bits_of(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     const uint32_t exponent11 = exponent10 < 40u ? 40u : exponent10;
     const uint32_t exponent12 = 254u < exponent11 ? 254u : exponent11;
-    const float t18 = unitpack_float_of((281u - exponent12) << 23u);
-    const float ell_s4 = (floorf(ell_p4 * t18) + floorf(ell_q4 * t18))
-        * unitpack_float_of((exponent12 - 27u) << 23u);
+    const float scale5 = unitpack_float_of((281u - exponent12) << 23u);
+    const float back4 = unitpack_float_of((exponent12 - 27u) << 23u);
+    const float ell_s4 = (floorf(ell_p4 * scale5) + floorf(ell_q4 * scale5)) * back4;
     const float lhs4 = ell_s4 * 4190209.0f;
-    const float rhs4 = ell_h4 * ell_g4 * t8;
-    const float t19 = ell_t4 > 0.0f
-        ? (w2.x > 0.0f ? (lhs4 >= rhs4 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs4 <= rhs4 ? 1.0f : 0.0f));
-    const bool beyond4 = t19 > 0.5f;
+    const float rhs4 = ell_h4 * ell_g4 * t5;
+    const float one_if7 = lhs4 >= rhs4 ? 1.0f : 0.0f;
+    const float outside4 = w2.x > 0.0f ? one_if7 : 0.0f;
+    const float one_if8 = lhs4 <= rhs4 ? 1.0f : 0.0f;
+    const float inside4 = w2.x >= 0.0f ? 1.0f : one_if8;
+    const bool beyond4 = (ell_t4 > 0.0f ? outside4 : inside4) > 0.5f;
     const float lo8 = beyond4 ? mid4 : lo7;
-    const float hi8 = beyond4 ? hi7 : mid4 - 1.0f;
+    const float hi8 = beyond4 ? hi7 : mid_below4;
     const float mid5 = floorf((lo8 + hi8 + 1.0f) * 0.5f);
-    const float ell_t5 = (mid5 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below5 = mid5 - 1.0f;
+    const float ell_t5 = (mid_below5 - 1023.0f) * 2.0f;
     const float ell_h5 = floorf(ell_t5 * ell_t5);
     const float ell_g5 = 8380418.0f - ell_h5;
     const float ell_p5 = w2.x * w2.x * ell_g5;
@@ -371,19 +375,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent13 = unitpack_bits_of(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     const uint32_t exponent14 = exponent13 < 40u ? 40u : exponent13;
     const uint32_t exponent15 = 254u < exponent14 ? 254u : exponent14;
-    const float t20 = unitpack_float_of((281u - exponent15) << 23u);
-    const float ell_s5 = (floorf(ell_p5 * t20) + floorf(ell_q5 * t20))
-        * unitpack_float_of((exponent15 - 27u) << 23u);
+    const float scale6 = unitpack_float_of((281u - exponent15) << 23u);
+    const float back5 = unitpack_float_of((exponent15 - 27u) << 23u);
+    const float ell_s5 = (floorf(ell_p5 * scale6) + floorf(ell_q5 * scale6)) * back5;
     const float lhs5 = ell_s5 * 4190209.0f;
-    const float rhs5 = ell_h5 * ell_g5 * t8;
-    const float t21 = ell_t5 > 0.0f
-        ? (w2.x > 0.0f ? (lhs5 >= rhs5 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs5 <= rhs5 ? 1.0f : 0.0f));
-    const bool beyond5 = t21 > 0.5f;
+    const float rhs5 = ell_h5 * ell_g5 * t5;
+    const float one_if9 = lhs5 >= rhs5 ? 1.0f : 0.0f;
+    const float outside5 = w2.x > 0.0f ? one_if9 : 0.0f;
+    const float one_if10 = lhs5 <= rhs5 ? 1.0f : 0.0f;
+    const float inside5 = w2.x >= 0.0f ? 1.0f : one_if10;
+    const bool beyond5 = (ell_t5 > 0.0f ? outside5 : inside5) > 0.5f;
     const float lo9 = beyond5 ? mid5 : lo8;
-    const float hi9 = beyond5 ? hi8 : mid5 - 1.0f;
+    const float hi9 = beyond5 ? hi8 : mid_below5;
     const float mid6 = floorf((lo9 + hi9 + 1.0f) * 0.5f);
-    const float ell_t6 = (mid6 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below6 = mid6 - 1.0f;
+    const float ell_t6 = (mid_below6 - 1023.0f) * 2.0f;
     const float ell_h6 = floorf(ell_t6 * ell_t6);
     const float ell_g6 = 8380418.0f - ell_h6;
     const float ell_p6 = w2.x * w2.x * ell_g6;
@@ -391,19 +397,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent16 = unitpack_bits_of(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     const uint32_t exponent17 = exponent16 < 40u ? 40u : exponent16;
     const uint32_t exponent18 = 254u < exponent17 ? 254u : exponent17;
-    const float t22 = unitpack_float_of((281u - exponent18) << 23u);
-    const float ell_s6 = (floorf(ell_p6 * t22) + floorf(ell_q6 * t22))
-        * unitpack_float_of((exponent18 - 27u) << 23u);
+    const float scale7 = unitpack_float_of((281u - exponent18) << 23u);
+    const float back6 = unitpack_float_of((exponent18 - 27u) << 23u);
+    const float ell_s6 = (floorf(ell_p6 * scale7) + floorf(ell_q6 * scale7)) * back6;
     const float lhs6 = ell_s6 * 4190209.0f;
-    const float rhs6 = ell_h6 * ell_g6 * t8;
-    const float t23 = ell_t6 > 0.0f
-        ? (w2.x > 0.0f ? (lhs6 >= rhs6 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs6 <= rhs6 ? 1.0f : 0.0f));
-    const bool beyond6 = t23 > 0.5f;
+    const float rhs6 = ell_h6 * ell_g6 * t5;
+    const float one_if11 = lhs6 >= rhs6 ? 1.0f : 0.0f;
+    const float outside6 = w2.x > 0.0f ? one_if11 : 0.0f;
+    const float one_if12 = lhs6 <= rhs6 ? 1.0f : 0.0f;
+    const float inside6 = w2.x >= 0.0f ? 1.0f : one_if12;
+    const bool beyond6 = (ell_t6 > 0.0f ? outside6 : inside6) > 0.5f;
     const float lo10 = beyond6 ? mid6 : lo9;
-    const float hi10 = beyond6 ? hi9 : mid6 - 1.0f;
+    const float hi10 = beyond6 ? hi9 : mid_below6;
     const float mid7 = floorf((lo10 + hi10 + 1.0f) * 0.5f);
-    const float ell_t7 = (mid7 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below7 = mid7 - 1.0f;
+    const float ell_t7 = (mid_below7 - 1023.0f) * 2.0f;
     const float ell_h7 = floorf(ell_t7 * ell_t7);
     const float ell_g7 = 8380418.0f - ell_h7;
     const float ell_p7 = w2.x * w2.x * ell_g7;
@@ -411,19 +419,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent19 = unitpack_bits_of(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     const uint32_t exponent20 = exponent19 < 40u ? 40u : exponent19;
     const uint32_t exponent21 = 254u < exponent20 ? 254u : exponent20;
-    const float t24 = unitpack_float_of((281u - exponent21) << 23u);
-    const float ell_s7 = (floorf(ell_p7 * t24) + floorf(ell_q7 * t24))
-        * unitpack_float_of((exponent21 - 27u) << 23u);
+    const float scale8 = unitpack_float_of((281u - exponent21) << 23u);
+    const float back7 = unitpack_float_of((exponent21 - 27u) << 23u);
+    const float ell_s7 = (floorf(ell_p7 * scale8) + floorf(ell_q7 * scale8)) * back7;
     const float lhs7 = ell_s7 * 4190209.0f;
-    const float rhs7 = ell_h7 * ell_g7 * t8;
-    const float t25 = ell_t7 > 0.0f
-        ? (w2.x > 0.0f ? (lhs7 >= rhs7 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs7 <= rhs7 ? 1.0f : 0.0f));
-    const bool beyond7 = t25 > 0.5f;
+    const float rhs7 = ell_h7 * ell_g7 * t5;
+    const float one_if13 = lhs7 >= rhs7 ? 1.0f : 0.0f;
+    const float outside7 = w2.x > 0.0f ? one_if13 : 0.0f;
+    const float one_if14 = lhs7 <= rhs7 ? 1.0f : 0.0f;
+    const float inside7 = w2.x >= 0.0f ? 1.0f : one_if14;
+    const bool beyond7 = (ell_t7 > 0.0f ? outside7 : inside7) > 0.5f;
     const float lo11 = beyond7 ? mid7 : lo10;
-    const float hi11 = beyond7 ? hi10 : mid7 - 1.0f;
+    const float hi11 = beyond7 ? hi10 : mid_below7;
     const float mid8 = floorf((lo11 + hi11 + 1.0f) * 0.5f);
-    const float ell_t8 = (mid8 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below8 = mid8 - 1.0f;
+    const float ell_t8 = (mid_below8 - 1023.0f) * 2.0f;
     const float ell_h8 = floorf(ell_t8 * ell_t8);
     const float ell_g8 = 8380418.0f - ell_h8;
     const float ell_p8 = w2.x * w2.x * ell_g8;
@@ -431,19 +441,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent22 = unitpack_bits_of(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     const uint32_t exponent23 = exponent22 < 40u ? 40u : exponent22;
     const uint32_t exponent24 = 254u < exponent23 ? 254u : exponent23;
-    const float t26 = unitpack_float_of((281u - exponent24) << 23u);
-    const float ell_s8 = (floorf(ell_p8 * t26) + floorf(ell_q8 * t26))
-        * unitpack_float_of((exponent24 - 27u) << 23u);
+    const float scale9 = unitpack_float_of((281u - exponent24) << 23u);
+    const float back8 = unitpack_float_of((exponent24 - 27u) << 23u);
+    const float ell_s8 = (floorf(ell_p8 * scale9) + floorf(ell_q8 * scale9)) * back8;
     const float lhs8 = ell_s8 * 4190209.0f;
-    const float rhs8 = ell_h8 * ell_g8 * t8;
-    const float t27 = ell_t8 > 0.0f
-        ? (w2.x > 0.0f ? (lhs8 >= rhs8 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs8 <= rhs8 ? 1.0f : 0.0f));
-    const bool beyond8 = t27 > 0.5f;
+    const float rhs8 = ell_h8 * ell_g8 * t5;
+    const float one_if15 = lhs8 >= rhs8 ? 1.0f : 0.0f;
+    const float outside8 = w2.x > 0.0f ? one_if15 : 0.0f;
+    const float one_if16 = lhs8 <= rhs8 ? 1.0f : 0.0f;
+    const float inside8 = w2.x >= 0.0f ? 1.0f : one_if16;
+    const bool beyond8 = (ell_t8 > 0.0f ? outside8 : inside8) > 0.5f;
     const float lo12 = beyond8 ? mid8 : lo11;
-    const float hi12 = beyond8 ? hi11 : mid8 - 1.0f;
+    const float hi12 = beyond8 ? hi11 : mid_below8;
     const float mid9 = floorf((lo12 + hi12 + 1.0f) * 0.5f);
-    const float ell_t9 = (mid9 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below9 = mid9 - 1.0f;
+    const float ell_t9 = (mid_below9 - 1023.0f) * 2.0f;
     const float ell_h9 = floorf(ell_t9 * ell_t9);
     const float ell_g9 = 8380418.0f - ell_h9;
     const float ell_p9 = w2.x * w2.x * ell_g9;
@@ -451,19 +463,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent25 = unitpack_bits_of(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     const uint32_t exponent26 = exponent25 < 40u ? 40u : exponent25;
     const uint32_t exponent27 = 254u < exponent26 ? 254u : exponent26;
-    const float t28 = unitpack_float_of((281u - exponent27) << 23u);
-    const float ell_s9 = (floorf(ell_p9 * t28) + floorf(ell_q9 * t28))
-        * unitpack_float_of((exponent27 - 27u) << 23u);
+    const float scale10 = unitpack_float_of((281u - exponent27) << 23u);
+    const float back9 = unitpack_float_of((exponent27 - 27u) << 23u);
+    const float ell_s9 = (floorf(ell_p9 * scale10) + floorf(ell_q9 * scale10)) * back9;
     const float lhs9 = ell_s9 * 4190209.0f;
-    const float rhs9 = ell_h9 * ell_g9 * t8;
-    const float t29 = ell_t9 > 0.0f
-        ? (w2.x > 0.0f ? (lhs9 >= rhs9 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs9 <= rhs9 ? 1.0f : 0.0f));
-    const bool beyond9 = t29 > 0.5f;
+    const float rhs9 = ell_h9 * ell_g9 * t5;
+    const float one_if17 = lhs9 >= rhs9 ? 1.0f : 0.0f;
+    const float outside9 = w2.x > 0.0f ? one_if17 : 0.0f;
+    const float one_if18 = lhs9 <= rhs9 ? 1.0f : 0.0f;
+    const float inside9 = w2.x >= 0.0f ? 1.0f : one_if18;
+    const bool beyond9 = (ell_t9 > 0.0f ? outside9 : inside9) > 0.5f;
     const float lo13 = beyond9 ? mid9 : lo12;
-    const float hi13 = beyond9 ? hi12 : mid9 - 1.0f;
+    const float hi13 = beyond9 ? hi12 : mid_below9;
     const float mid10 = floorf((lo13 + hi13 + 1.0f) * 0.5f);
-    const float ell_t10 = (mid10 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below10 = mid10 - 1.0f;
+    const float ell_t10 = (mid_below10 - 1023.0f) * 2.0f;
     const float ell_h10 = floorf(ell_t10 * ell_t10);
     const float ell_g10 = 8380418.0f - ell_h10;
     const float ell_p10 = w2.x * w2.x * ell_g10;
@@ -471,20 +485,22 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent28 = unitpack_bits_of(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     const uint32_t exponent29 = exponent28 < 40u ? 40u : exponent28;
     const uint32_t exponent30 = 254u < exponent29 ? 254u : exponent29;
-    const float t30 = unitpack_float_of((281u - exponent30) << 23u);
-    const float ell_s10 = (floorf(ell_p10 * t30) + floorf(ell_q10 * t30))
-        * unitpack_float_of((exponent30 - 27u) << 23u);
+    const float scale11 = unitpack_float_of((281u - exponent30) << 23u);
+    const float back10 = unitpack_float_of((exponent30 - 27u) << 23u);
+    const float ell_s10 = (floorf(ell_p10 * scale11) + floorf(ell_q10 * scale11)) * back10;
     const float lhs10 = ell_s10 * 4190209.0f;
-    const float rhs10 = ell_h10 * ell_g10 * t8;
-    const float t31 = ell_t10 > 0.0f
-        ? (w2.x > 0.0f ? (lhs10 >= rhs10 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs10 <= rhs10 ? 1.0f : 0.0f));
-    const bool beyond10 = t31 > 0.5f;
-    const bool t32 = w2.y >= 0.0f;
-    const float t33 = t32 ? 512.0f : 0.0f;
-    const float t34 = t32 ? 1023.0f : 511.0f;
-    const float mid11 = floorf((t33 + t34 + 1.0f) * 0.5f);
-    const float ell_t11 = (mid11 - 1.0f - 511.0f) * 2.0f;
+    const float rhs10 = ell_h10 * ell_g10 * t5;
+    const float one_if19 = lhs10 >= rhs10 ? 1.0f : 0.0f;
+    const float outside10 = w2.x > 0.0f ? one_if19 : 0.0f;
+    const float one_if20 = lhs10 <= rhs10 ? 1.0f : 0.0f;
+    const float inside10 = w2.x >= 0.0f ? 1.0f : one_if20;
+    const bool beyond10 = (ell_t10 > 0.0f ? outside10 : inside10) > 0.5f;
+    const bool t9 = w2.y >= 0.0f;
+    const float t10 = t9 ? 512.0f : 0.0f;
+    const float t11 = t9 ? 1023.0f : 511.0f;
+    const float mid11 = floorf((t10 + t11 + 1.0f) * 0.5f);
+    const float mid_below11 = mid11 - 1.0f;
+    const float ell_t11 = (mid_below11 - 511.0f) * 2.0f;
     const float ell_h11 = floorf(ell_t11 * ell_t11);
     const float ell_g11 = 2093058.0f - ell_h11;
     const float ell_p11 = w2.y * w2.y * ell_g11;
@@ -492,19 +508,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent31 = unitpack_bits_of(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     const uint32_t exponent32 = exponent31 < 40u ? 40u : exponent31;
     const uint32_t exponent33 = 254u < exponent32 ? 254u : exponent32;
-    const float t35 = unitpack_float_of((281u - exponent33) << 23u);
-    const float ell_s11 = (floorf(ell_p11 * t35) + floorf(ell_q11 * t35))
-        * unitpack_float_of((exponent33 - 27u) << 23u);
+    const float scale12 = unitpack_float_of((281u - exponent33) << 23u);
+    const float back11 = unitpack_float_of((exponent33 - 27u) << 23u);
+    const float ell_s11 = (floorf(ell_p11 * scale12) + floorf(ell_q11 * scale12)) * back11;
     const float lhs11 = ell_s11 * 1046529.0f;
-    const float rhs11 = ell_h11 * ell_g11 * t8;
-    const float t36 = ell_t11 > 0.0f
-        ? (w2.y > 0.0f ? (lhs11 >= rhs11 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs11 <= rhs11 ? 1.0f : 0.0f));
-    const bool beyond11 = t36 > 0.5f;
-    const float lo14 = beyond11 ? mid11 : t33;
-    const float hi14 = beyond11 ? t34 : mid11 - 1.0f;
+    const float rhs11 = ell_h11 * ell_g11 * t5;
+    const float one_if21 = lhs11 >= rhs11 ? 1.0f : 0.0f;
+    const float outside11 = w2.y > 0.0f ? one_if21 : 0.0f;
+    const float one_if22 = lhs11 <= rhs11 ? 1.0f : 0.0f;
+    const float inside11 = w2.y >= 0.0f ? 1.0f : one_if22;
+    const bool beyond11 = (ell_t11 > 0.0f ? outside11 : inside11) > 0.5f;
+    const float lo14 = beyond11 ? mid11 : t10;
+    const float hi14 = beyond11 ? t11 : mid_below11;
     const float mid12 = floorf((lo14 + hi14 + 1.0f) * 0.5f);
-    const float ell_t12 = (mid12 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below12 = mid12 - 1.0f;
+    const float ell_t12 = (mid_below12 - 511.0f) * 2.0f;
     const float ell_h12 = floorf(ell_t12 * ell_t12);
     const float ell_g12 = 2093058.0f - ell_h12;
     const float ell_p12 = w2.y * w2.y * ell_g12;
@@ -512,19 +530,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent34 = unitpack_bits_of(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     const uint32_t exponent35 = exponent34 < 40u ? 40u : exponent34;
     const uint32_t exponent36 = 254u < exponent35 ? 254u : exponent35;
-    const float t37 = unitpack_float_of((281u - exponent36) << 23u);
-    const float ell_s12 = (floorf(ell_p12 * t37) + floorf(ell_q12 * t37))
-        * unitpack_float_of((exponent36 - 27u) << 23u);
+    const float scale13 = unitpack_float_of((281u - exponent36) << 23u);
+    const float back12 = unitpack_float_of((exponent36 - 27u) << 23u);
+    const float ell_s12 = (floorf(ell_p12 * scale13) + floorf(ell_q12 * scale13)) * back12;
     const float lhs12 = ell_s12 * 1046529.0f;
-    const float rhs12 = ell_h12 * ell_g12 * t8;
-    const float t38 = ell_t12 > 0.0f
-        ? (w2.y > 0.0f ? (lhs12 >= rhs12 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs12 <= rhs12 ? 1.0f : 0.0f));
-    const bool beyond12 = t38 > 0.5f;
+    const float rhs12 = ell_h12 * ell_g12 * t5;
+    const float one_if23 = lhs12 >= rhs12 ? 1.0f : 0.0f;
+    const float outside12 = w2.y > 0.0f ? one_if23 : 0.0f;
+    const float one_if24 = lhs12 <= rhs12 ? 1.0f : 0.0f;
+    const float inside12 = w2.y >= 0.0f ? 1.0f : one_if24;
+    const bool beyond12 = (ell_t12 > 0.0f ? outside12 : inside12) > 0.5f;
     const float lo15 = beyond12 ? mid12 : lo14;
-    const float hi15 = beyond12 ? hi14 : mid12 - 1.0f;
+    const float hi15 = beyond12 ? hi14 : mid_below12;
     const float mid13 = floorf((lo15 + hi15 + 1.0f) * 0.5f);
-    const float ell_t13 = (mid13 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below13 = mid13 - 1.0f;
+    const float ell_t13 = (mid_below13 - 511.0f) * 2.0f;
     const float ell_h13 = floorf(ell_t13 * ell_t13);
     const float ell_g13 = 2093058.0f - ell_h13;
     const float ell_p13 = w2.y * w2.y * ell_g13;
@@ -532,19 +552,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent37 = unitpack_bits_of(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     const uint32_t exponent38 = exponent37 < 40u ? 40u : exponent37;
     const uint32_t exponent39 = 254u < exponent38 ? 254u : exponent38;
-    const float t39 = unitpack_float_of((281u - exponent39) << 23u);
-    const float ell_s13 = (floorf(ell_p13 * t39) + floorf(ell_q13 * t39))
-        * unitpack_float_of((exponent39 - 27u) << 23u);
+    const float scale14 = unitpack_float_of((281u - exponent39) << 23u);
+    const float back13 = unitpack_float_of((exponent39 - 27u) << 23u);
+    const float ell_s13 = (floorf(ell_p13 * scale14) + floorf(ell_q13 * scale14)) * back13;
     const float lhs13 = ell_s13 * 1046529.0f;
-    const float rhs13 = ell_h13 * ell_g13 * t8;
-    const float t40 = ell_t13 > 0.0f
-        ? (w2.y > 0.0f ? (lhs13 >= rhs13 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs13 <= rhs13 ? 1.0f : 0.0f));
-    const bool beyond13 = t40 > 0.5f;
+    const float rhs13 = ell_h13 * ell_g13 * t5;
+    const float one_if25 = lhs13 >= rhs13 ? 1.0f : 0.0f;
+    const float outside13 = w2.y > 0.0f ? one_if25 : 0.0f;
+    const float one_if26 = lhs13 <= rhs13 ? 1.0f : 0.0f;
+    const float inside13 = w2.y >= 0.0f ? 1.0f : one_if26;
+    const bool beyond13 = (ell_t13 > 0.0f ? outside13 : inside13) > 0.5f;
     const float lo16 = beyond13 ? mid13 : lo15;
-    const float hi16 = beyond13 ? hi15 : mid13 - 1.0f;
+    const float hi16 = beyond13 ? hi15 : mid_below13;
     const float mid14 = floorf((lo16 + hi16 + 1.0f) * 0.5f);
-    const float ell_t14 = (mid14 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below14 = mid14 - 1.0f;
+    const float ell_t14 = (mid_below14 - 511.0f) * 2.0f;
     const float ell_h14 = floorf(ell_t14 * ell_t14);
     const float ell_g14 = 2093058.0f - ell_h14;
     const float ell_p14 = w2.y * w2.y * ell_g14;
@@ -552,19 +574,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent40 = unitpack_bits_of(ell_p14 >= ell_q14 ? ell_p14 : ell_q14) >> 23u;
     const uint32_t exponent41 = exponent40 < 40u ? 40u : exponent40;
     const uint32_t exponent42 = 254u < exponent41 ? 254u : exponent41;
-    const float t41 = unitpack_float_of((281u - exponent42) << 23u);
-    const float ell_s14 = (floorf(ell_p14 * t41) + floorf(ell_q14 * t41))
-        * unitpack_float_of((exponent42 - 27u) << 23u);
+    const float scale15 = unitpack_float_of((281u - exponent42) << 23u);
+    const float back14 = unitpack_float_of((exponent42 - 27u) << 23u);
+    const float ell_s14 = (floorf(ell_p14 * scale15) + floorf(ell_q14 * scale15)) * back14;
     const float lhs14 = ell_s14 * 1046529.0f;
-    const float rhs14 = ell_h14 * ell_g14 * t8;
-    const float t42 = ell_t14 > 0.0f
-        ? (w2.y > 0.0f ? (lhs14 >= rhs14 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs14 <= rhs14 ? 1.0f : 0.0f));
-    const bool beyond14 = t42 > 0.5f;
+    const float rhs14 = ell_h14 * ell_g14 * t5;
+    const float one_if27 = lhs14 >= rhs14 ? 1.0f : 0.0f;
+    const float outside14 = w2.y > 0.0f ? one_if27 : 0.0f;
+    const float one_if28 = lhs14 <= rhs14 ? 1.0f : 0.0f;
+    const float inside14 = w2.y >= 0.0f ? 1.0f : one_if28;
+    const bool beyond14 = (ell_t14 > 0.0f ? outside14 : inside14) > 0.5f;
     const float lo17 = beyond14 ? mid14 : lo16;
-    const float hi17 = beyond14 ? hi16 : mid14 - 1.0f;
+    const float hi17 = beyond14 ? hi16 : mid_below14;
     const float mid15 = floorf((lo17 + hi17 + 1.0f) * 0.5f);
-    const float ell_t15 = (mid15 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below15 = mid15 - 1.0f;
+    const float ell_t15 = (mid_below15 - 511.0f) * 2.0f;
     const float ell_h15 = floorf(ell_t15 * ell_t15);
     const float ell_g15 = 2093058.0f - ell_h15;
     const float ell_p15 = w2.y * w2.y * ell_g15;
@@ -572,19 +596,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent43 = unitpack_bits_of(ell_p15 >= ell_q15 ? ell_p15 : ell_q15) >> 23u;
     const uint32_t exponent44 = exponent43 < 40u ? 40u : exponent43;
     const uint32_t exponent45 = 254u < exponent44 ? 254u : exponent44;
-    const float t43 = unitpack_float_of((281u - exponent45) << 23u);
-    const float ell_s15 = (floorf(ell_p15 * t43) + floorf(ell_q15 * t43))
-        * unitpack_float_of((exponent45 - 27u) << 23u);
+    const float scale16 = unitpack_float_of((281u - exponent45) << 23u);
+    const float back15 = unitpack_float_of((exponent45 - 27u) << 23u);
+    const float ell_s15 = (floorf(ell_p15 * scale16) + floorf(ell_q15 * scale16)) * back15;
     const float lhs15 = ell_s15 * 1046529.0f;
-    const float rhs15 = ell_h15 * ell_g15 * t8;
-    const float t44 = ell_t15 > 0.0f
-        ? (w2.y > 0.0f ? (lhs15 >= rhs15 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs15 <= rhs15 ? 1.0f : 0.0f));
-    const bool beyond15 = t44 > 0.5f;
+    const float rhs15 = ell_h15 * ell_g15 * t5;
+    const float one_if29 = lhs15 >= rhs15 ? 1.0f : 0.0f;
+    const float outside15 = w2.y > 0.0f ? one_if29 : 0.0f;
+    const float one_if30 = lhs15 <= rhs15 ? 1.0f : 0.0f;
+    const float inside15 = w2.y >= 0.0f ? 1.0f : one_if30;
+    const bool beyond15 = (ell_t15 > 0.0f ? outside15 : inside15) > 0.5f;
     const float lo18 = beyond15 ? mid15 : lo17;
-    const float hi18 = beyond15 ? hi17 : mid15 - 1.0f;
+    const float hi18 = beyond15 ? hi17 : mid_below15;
     const float mid16 = floorf((lo18 + hi18 + 1.0f) * 0.5f);
-    const float ell_t16 = (mid16 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below16 = mid16 - 1.0f;
+    const float ell_t16 = (mid_below16 - 511.0f) * 2.0f;
     const float ell_h16 = floorf(ell_t16 * ell_t16);
     const float ell_g16 = 2093058.0f - ell_h16;
     const float ell_p16 = w2.y * w2.y * ell_g16;
@@ -592,19 +618,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent46 = unitpack_bits_of(ell_p16 >= ell_q16 ? ell_p16 : ell_q16) >> 23u;
     const uint32_t exponent47 = exponent46 < 40u ? 40u : exponent46;
     const uint32_t exponent48 = 254u < exponent47 ? 254u : exponent47;
-    const float t45 = unitpack_float_of((281u - exponent48) << 23u);
-    const float ell_s16 = (floorf(ell_p16 * t45) + floorf(ell_q16 * t45))
-        * unitpack_float_of((exponent48 - 27u) << 23u);
+    const float scale17 = unitpack_float_of((281u - exponent48) << 23u);
+    const float back16 = unitpack_float_of((exponent48 - 27u) << 23u);
+    const float ell_s16 = (floorf(ell_p16 * scale17) + floorf(ell_q16 * scale17)) * back16;
     const float lhs16 = ell_s16 * 1046529.0f;
-    const float rhs16 = ell_h16 * ell_g16 * t8;
-    const float t46 = ell_t16 > 0.0f
-        ? (w2.y > 0.0f ? (lhs16 >= rhs16 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs16 <= rhs16 ? 1.0f : 0.0f));
-    const bool beyond16 = t46 > 0.5f;
+    const float rhs16 = ell_h16 * ell_g16 * t5;
+    const float one_if31 = lhs16 >= rhs16 ? 1.0f : 0.0f;
+    const float outside16 = w2.y > 0.0f ? one_if31 : 0.0f;
+    const float one_if32 = lhs16 <= rhs16 ? 1.0f : 0.0f;
+    const float inside16 = w2.y >= 0.0f ? 1.0f : one_if32;
+    const bool beyond16 = (ell_t16 > 0.0f ? outside16 : inside16) > 0.5f;
     const float lo19 = beyond16 ? mid16 : lo18;
-    const float hi19 = beyond16 ? hi18 : mid16 - 1.0f;
+    const float hi19 = beyond16 ? hi18 : mid_below16;
     const float mid17 = floorf((lo19 + hi19 + 1.0f) * 0.5f);
-    const float ell_t17 = (mid17 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below17 = mid17 - 1.0f;
+    const float ell_t17 = (mid_below17 - 511.0f) * 2.0f;
     const float ell_h17 = floorf(ell_t17 * ell_t17);
     const float ell_g17 = 2093058.0f - ell_h17;
     const float ell_p17 = w2.y * w2.y * ell_g17;
@@ -612,19 +640,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent49 = unitpack_bits_of(ell_p17 >= ell_q17 ? ell_p17 : ell_q17) >> 23u;
     const uint32_t exponent50 = exponent49 < 40u ? 40u : exponent49;
     const uint32_t exponent51 = 254u < exponent50 ? 254u : exponent50;
-    const float t47 = unitpack_float_of((281u - exponent51) << 23u);
-    const float ell_s17 = (floorf(ell_p17 * t47) + floorf(ell_q17 * t47))
-        * unitpack_float_of((exponent51 - 27u) << 23u);
+    const float scale18 = unitpack_float_of((281u - exponent51) << 23u);
+    const float back17 = unitpack_float_of((exponent51 - 27u) << 23u);
+    const float ell_s17 = (floorf(ell_p17 * scale18) + floorf(ell_q17 * scale18)) * back17;
     const float lhs17 = ell_s17 * 1046529.0f;
-    const float rhs17 = ell_h17 * ell_g17 * t8;
-    const float t48 = ell_t17 > 0.0f
-        ? (w2.y > 0.0f ? (lhs17 >= rhs17 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs17 <= rhs17 ? 1.0f : 0.0f));
-    const bool beyond17 = t48 > 0.5f;
+    const float rhs17 = ell_h17 * ell_g17 * t5;
+    const float one_if33 = lhs17 >= rhs17 ? 1.0f : 0.0f;
+    const float outside17 = w2.y > 0.0f ? one_if33 : 0.0f;
+    const float one_if34 = lhs17 <= rhs17 ? 1.0f : 0.0f;
+    const float inside17 = w2.y >= 0.0f ? 1.0f : one_if34;
+    const bool beyond17 = (ell_t17 > 0.0f ? outside17 : inside17) > 0.5f;
     const float lo20 = beyond17 ? mid17 : lo19;
-    const float hi20 = beyond17 ? hi19 : mid17 - 1.0f;
+    const float hi20 = beyond17 ? hi19 : mid_below17;
     const float mid18 = floorf((lo20 + hi20 + 1.0f) * 0.5f);
-    const float ell_t18 = (mid18 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below18 = mid18 - 1.0f;
+    const float ell_t18 = (mid_below18 - 511.0f) * 2.0f;
     const float ell_h18 = floorf(ell_t18 * ell_t18);
     const float ell_g18 = 2093058.0f - ell_h18;
     const float ell_p18 = w2.y * w2.y * ell_g18;
@@ -632,19 +662,21 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent52 = unitpack_bits_of(ell_p18 >= ell_q18 ? ell_p18 : ell_q18) >> 23u;
     const uint32_t exponent53 = exponent52 < 40u ? 40u : exponent52;
     const uint32_t exponent54 = 254u < exponent53 ? 254u : exponent53;
-    const float t49 = unitpack_float_of((281u - exponent54) << 23u);
-    const float ell_s18 = (floorf(ell_p18 * t49) + floorf(ell_q18 * t49))
-        * unitpack_float_of((exponent54 - 27u) << 23u);
+    const float scale19 = unitpack_float_of((281u - exponent54) << 23u);
+    const float back18 = unitpack_float_of((exponent54 - 27u) << 23u);
+    const float ell_s18 = (floorf(ell_p18 * scale19) + floorf(ell_q18 * scale19)) * back18;
     const float lhs18 = ell_s18 * 1046529.0f;
-    const float rhs18 = ell_h18 * ell_g18 * t8;
-    const float t50 = ell_t18 > 0.0f
-        ? (w2.y > 0.0f ? (lhs18 >= rhs18 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs18 <= rhs18 ? 1.0f : 0.0f));
-    const bool beyond18 = t50 > 0.5f;
+    const float rhs18 = ell_h18 * ell_g18 * t5;
+    const float one_if35 = lhs18 >= rhs18 ? 1.0f : 0.0f;
+    const float outside18 = w2.y > 0.0f ? one_if35 : 0.0f;
+    const float one_if36 = lhs18 <= rhs18 ? 1.0f : 0.0f;
+    const float inside18 = w2.y >= 0.0f ? 1.0f : one_if36;
+    const bool beyond18 = (ell_t18 > 0.0f ? outside18 : inside18) > 0.5f;
     const float lo21 = beyond18 ? mid18 : lo20;
-    const float hi21 = beyond18 ? hi20 : mid18 - 1.0f;
+    const float hi21 = beyond18 ? hi20 : mid_below18;
     const float mid19 = floorf((lo21 + hi21 + 1.0f) * 0.5f);
-    const float ell_t19 = (mid19 - 1.0f - 511.0f) * 2.0f;
+    const float mid_below19 = mid19 - 1.0f;
+    const float ell_t19 = (mid_below19 - 511.0f) * 2.0f;
     const float ell_h19 = floorf(ell_t19 * ell_t19);
     const float ell_g19 = 2093058.0f - ell_h19;
     const float ell_p19 = w2.y * w2.y * ell_g19;
@@ -652,21 +684,22 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse22_round_codes_v(unitpack_vec
     const uint32_t exponent55 = unitpack_bits_of(ell_p19 >= ell_q19 ? ell_p19 : ell_q19) >> 23u;
     const uint32_t exponent56 = exponent55 < 40u ? 40u : exponent55;
     const uint32_t exponent57 = 254u < exponent56 ? 254u : exponent56;
-    const float t51 = unitpack_float_of((281u - exponent57) << 23u);
-    const float ell_s19 = (floorf(ell_p19 * t51) + floorf(ell_q19 * t51))
-        * unitpack_float_of((exponent57 - 27u) << 23u);
+    const float scale20 = unitpack_float_of((281u - exponent57) << 23u);
+    const float back19 = unitpack_float_of((exponent57 - 27u) << 23u);
+    const float ell_s19 = (floorf(ell_p19 * scale20) + floorf(ell_q19 * scale20)) * back19;
     const float lhs19 = ell_s19 * 1046529.0f;
-    const float rhs19 = ell_h19 * ell_g19 * t8;
-    const float t52 = ell_t19 > 0.0f
-        ? (w2.y > 0.0f ? (lhs19 >= rhs19 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs19 <= rhs19 ? 1.0f : 0.0f));
-    const bool beyond19 = t52 > 0.5f;
-    const unitpack_vec3 t53 = {
+    const float rhs19 = ell_h19 * ell_g19 * t5;
+    const float one_if37 = lhs19 >= rhs19 ? 1.0f : 0.0f;
+    const float outside19 = w2.y > 0.0f ? one_if37 : 0.0f;
+    const float one_if38 = lhs19 <= rhs19 ? 1.0f : 0.0f;
+    const float inside19 = w2.y >= 0.0f ? 1.0f : one_if38;
+    const bool beyond19 = (ell_t19 > 0.0f ? outside19 : inside19) > 0.5f;
+    const unitpack_vec3 t12 = {
         beyond10 ? mid10 : lo13,
         beyond19 ? mid19 : lo21,
         w2.z < 0.0f ? 1.0f : 0.0f
     };
-    return t53;
+    return t12;
 }
 
 // Struct form of unitpack_eqarea_ellipse22_encode.

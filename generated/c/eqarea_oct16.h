@@ -82,13 +82,13 @@ static inline unitpack_vec3 unitpack_eqarea_oct16_decode_float_v(unitpack_vec2 p
     const unitpack_vec2 cs = { t3 ? low.y : high.x, t3 ? low.x : high.y };
     const float r2 = r * r;
     const float k = r * sqrtf(2.0f - r2);
-    const unitpack_vec2 t4 = {
+    const float t4 = 1.0f - r2;
+    const unitpack_vec3 t5 = {
         cs.x * k * (params.x >= 0.0f ? 1.0f : -1.0f),
-        cs.y * k * (params.y >= 0.0f ? 1.0f : -1.0f)
+        cs.y * k * (params.y >= 0.0f ? 1.0f : -1.0f),
+        t1 ? -t4 : t4
     };
-    const float t5 = 1.0f - r2;
-    const unitpack_vec3 t6 = { t4.x, t4.y, t1 ? -t5 : t5 };
-    return t6;
+    return t5;
 }
 
 // unitpack_eqarea_oct16_decode_float: decoder, float form.
@@ -161,33 +161,31 @@ static inline float unitpack_eqarea_oct16_atan2_pi_v(float a0, float a1) {
 
 // Struct form of unitpack_eqarea_oct16_encode_float.
 static inline unitpack_vec2 unitpack_eqarea_oct16_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -205,36 +203,38 @@ static inline unitpack_vec2 unitpack_eqarea_oct16_encode_float_v(unitpack_vec3 v
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const unitpack_vec2 t8 = { w2.x * w2.x, w2.y * w2.y };
-    const float rho = sqrtf(t8.x + t8.y);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const unitpack_vec2 t5 = { w2.x * w2.x, w2.y * w2.y };
+    const float rho = sqrtf(t5.x + t5.y);
     const float r = rho / sqrtf(root * (root + fabsf(w2.z)));
     const float t = unitpack_eqarea_oct16_atan2_pi_v(fabsf(w2.y), fabsf(w2.x));
     const float v2 = r * (t * 2.0f);
     const unitpack_vec2 p = { r - v2, v2 };
-    const bool t9 = w2.z <= 0.0f;
+    const bool t6 = w2.z <= 0.0f;
     const unitpack_vec2 enc = {
-        (t9 ? 1.0f - p.y : p.x) * (w2.x >= 0.0f ? 1.0f : -1.0f),
-        (t9 ? 1.0f - p.x : p.y) * (w2.y >= 0.0f ? 1.0f : -1.0f)
+        (t6 ? 1.0f - p.y : p.x) * (w2.x >= 0.0f ? 1.0f : -1.0f),
+        (t6 ? 1.0f - p.x : p.y) * (w2.y >= 0.0f ? 1.0f : -1.0f)
     };
     return enc;
 }
@@ -257,33 +257,31 @@ static inline void unitpack_eqarea_oct16_encode_float(const float v[3], float ou
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_eqarea_oct16_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -301,28 +299,32 @@ static inline unitpack_vec2 unitpack_eqarea_oct16_round_codes_v(unitpack_vec3 a0
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float fixed_f4 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -335,109 +337,102 @@ static inline unitpack_vec2 unitpack_eqarea_oct16_round_codes_v(unitpack_vec3 a0
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t8 = (float)hi7 * 16777216.0f;
-    const float rho2 = (t8 + (float)lo7) * 2.2737368e-13f;
-    const float t9 = root * (root + fabsf(w2.z));
-    const float r = sqrtf(rho2 / t9);
-    const unitpack_vec2 t10 = { fabsf(w2.x), fabsf(w2.y) };
-    const float abs_t10_x = fabsf(t10.x);
-    const float abs_t10_y = fabsf(t10.y);
-    const bool y_major = abs_t10_y > abs_t10_x;
-    const float hi8 = y_major ? abs_t10_y : abs_t10_x;
-    const float lo8 = y_major ? abs_t10_x : abs_t10_y;
-    const float t11 = hi8 > 0.0f ? hi8 : 1.0f;
+    const float t5 = (float)hi7 * 16777216.0f;
+    const float rho2 = (t5 + (float)lo7) * 2.2737368e-13f;
+    const float t6 = root * (root + fabsf(w2.z));
+    const float r = sqrtf(rho2 / t6);
+    const unitpack_vec2 t7 = { fabsf(w2.x), fabsf(w2.y) };
+    const float abs_t7_x = fabsf(t7.x);
+    const float abs_t7_y = fabsf(t7.y);
+    const bool y_major = abs_t7_y > abs_t7_x;
+    const float hi8 = y_major ? abs_t7_y : abs_t7_x;
+    const float lo8 = y_major ? abs_t7_x : abs_t7_y;
+    const float t8 = hi8 > 0.0f ? hi8 : 1.0f;
     const float big = lo8 * 8388608.0f;
-    const float ratio_estimate = floorf(lo8 / t11 * 8388608.0f);
-    const float t12 = (ratio_estimate + 1.0f) * t11 <= big
-        ? 1.0f
-        : (ratio_estimate * t11 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t12;
-    const float t = ratio
-        + ((ratio + 1.0f) * t11 <= big ? 1.0f : (ratio * t11 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo8 / t8 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t8 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t8 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t8 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t8 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t13 = t - 8388608.0f;
-    const float t14 = t + 8388608.0f;
-    const float big2 = t13 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t13 / t14 * 8388608.0f);
-    const float t15 = (ratio_estimate2 + 1.0f) * t14 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t14 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t15;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t14 <= big2 ? 1.0f : (ratio2 * t14 > big2 ? -1.0f : 0.0f));
+    const float t9 = t - 8388608.0f;
+    const float t10 = t + 8388608.0f;
+    const float big2 = t9 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t9 / t10 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t10 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t10 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t16 = nearbyintf(
+    const float t11 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t17 = (nearbyintf((t16 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t12 = (nearbyintf((t11 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t18 = (
-        nearbyintf((nearbyintf(t17) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t13 = (
+        nearbyintf((nearbyintf(t12) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t19 = nearbyintf(
-        (nearbyintf(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t15 = nearbyintf(
+        (nearbyintf(t14 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t20 = (nearbyintf((t19 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r2 = nearbyintf(z * (nearbyintf(t20) + 8388608.0f) * 1.1920929e-7f);
+    const float r2 = nearbyintf(z * (t15 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r2 * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
-    const float h4 = t10.x < 0.0f ? 8388608.0f - h3 : h3;
-    const float t21 = t10.y < 0.0f ? -h4 : h4;
-    const unitpack_vec2 mult = { (4194304.0f - t21) * 3.027916e-5f, t21 * 3.027916e-5f };
-    const unitpack_vec2 t22 = { nearbyintf(r * mult.x), nearbyintf(r * mult.y) };
+    const float h4 = t7.x < 0.0f ? 8388608.0f - h3 : h3;
+    const float t16 = t7.y < 0.0f ? -h4 : h4;
+    const unitpack_vec2 mult = { (4194304.0f - t16) * 3.027916e-5f, t16 * 3.027916e-5f };
+    const unitpack_vec2 t17 = { nearbyintf(r * mult.x), nearbyintf(r * mult.y) };
+    const unitpack_vec2 t18 = {
+        t17.x >= (-127.0f) ? t17.x : -127.0f,
+        t17.y >= (-127.0f) ? t17.y : -127.0f
+    };
+    const unitpack_vec2 t19 = {
+        t18.x <= 127.0f ? t18.x : 127.0f,
+        t18.y <= 127.0f ? t18.y : 127.0f
+    };
+    const unitpack_vec2 t20 = { t19.x + 0.5f, t19.y + 0.5f };
+    const unitpack_vec2 t21 = { rho2 * (mult.x * mult.x), rho2 * (mult.y * mult.y) };
+    const unitpack_vec2 t22 = { t20.x * t20.x * t6, t20.y * t20.y * t6 };
     const unitpack_vec2 t23 = {
-        t22.x >= (-127.0f) ? t22.x : -127.0f,
-        t22.y >= (-127.0f) ? t22.y : -127.0f
+        mult.x >= 0.0f
+            ? (t20.x > 0.0f ? (t21.x >= t22.x ? 1.0f : 0.0f) : 1.0f)
+            : (t20.x < 0.0f ? (t21.x <= t22.x ? 1.0f : 0.0f) : 0.0f),
+        mult.y >= 0.0f
+            ? (t20.y > 0.0f ? (t21.y >= t22.y ? 1.0f : 0.0f) : 1.0f)
+            : (t20.y < 0.0f ? (t21.y <= t22.y ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t24 = {
-        t23.x <= 127.0f ? t23.x : 127.0f,
-        t23.y <= 127.0f ? t23.y : 127.0f
-    };
-    const unitpack_vec2 t25 = { t24.x + 0.5f, t24.y + 0.5f };
-    const unitpack_vec2 t26 = { rho2 * (mult.x * mult.x), rho2 * (mult.y * mult.y) };
-    const unitpack_vec2 t27 = { t25.x * t25.x * t9, t25.y * t25.y * t9 };
-    const unitpack_vec2 t28 = {
-        t25.x > 0.0f ? (t26.x >= t27.x ? 1.0f : 0.0f) : 1.0f,
-        t25.y > 0.0f ? (t26.y >= t27.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t29 = {
-        t25.x < 0.0f ? (t26.x <= t27.x ? 1.0f : 0.0f) : 0.0f,
-        t25.y < 0.0f ? (t26.y <= t27.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t30 = {
-        t24.x < 127.0f ? (mult.x >= 0.0f ? t28.x : t29.x) : 0.0f,
-        t24.y < 127.0f ? (mult.y >= 0.0f ? t28.y : t29.y) : 0.0f
-    };
-    const unitpack_vec2 t31 = { t24.x - 1.0f + 0.5f, t24.y - 1.0f + 0.5f };
-    const unitpack_vec2 t32 = { rho2 * (mult.x * mult.x), rho2 * (mult.y * mult.y) };
-    const unitpack_vec2 t33 = { t31.x * t31.x * t9, t31.y * t31.y * t9 };
-    const unitpack_vec2 t34 = {
-        t31.x > 0.0f ? (t32.x >= t33.x ? 1.0f : 0.0f) : 1.0f,
-        t31.y > 0.0f ? (t32.y >= t33.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t35 = {
-        t31.x < 0.0f ? (t32.x <= t33.x ? 1.0f : 0.0f) : 0.0f,
-        t31.y < 0.0f ? (t32.y <= t33.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t36 = {
-        (mult.x >= 0.0f ? t34.x : t35.x) - 1.0f,
-        (mult.y >= 0.0f ? t34.y : t35.y) - 1.0f
+    const unitpack_vec2 t24 = { t19.x - 1.0f + 0.5f, t19.y - 1.0f + 0.5f };
+    const unitpack_vec2 t25 = { rho2 * (mult.x * mult.x), rho2 * (mult.y * mult.y) };
+    const unitpack_vec2 t26 = { t24.x * t24.x * t6, t24.y * t24.y * t6 };
+    const unitpack_vec2 t27 = {
+        mult.x >= 0.0f
+            ? (t24.x > 0.0f ? (t25.x >= t26.x ? 1.0f : 0.0f) : 1.0f)
+            : (t24.x < 0.0f ? (t25.x <= t26.x ? 1.0f : 0.0f) : 0.0f),
+        mult.y >= 0.0f
+            ? (t24.y > 0.0f ? (t25.y >= t26.y ? 1.0f : 0.0f) : 1.0f)
+            : (t24.y < 0.0f ? (t25.y <= t26.y ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec2 c = {
-        t24.x + t30.x + (t24.x > (-127.0f) ? t36.x : 0.0f),
-        t24.y + t30.y + (t24.y > (-127.0f) ? t36.y : 0.0f)
+        t19.x + (t19.x < 127.0f ? t23.x : 0.0f) + (t19.x > (-127.0f) ? t27.x - 1.0f : 0.0f),
+        t19.y + (t19.y < 127.0f ? t23.y : 0.0f) + (t19.y > (-127.0f) ? t27.y - 1.0f : 0.0f)
     };
     const unitpack_vec2 folded = { 127.0f - c.y, 127.0f - c.x };
-    const bool t37 = w2.z <= 0.0f;
-    const unitpack_vec2 t38 = { t37 ? folded.x : c.x, t37 ? folded.y : c.y };
-    const unitpack_vec2 t39 = { w2.x < 0.0f ? -t38.x : t38.x, w2.y < 0.0f ? -t38.y : t38.y };
-    return t39;
+    const bool t28 = w2.z <= 0.0f;
+    const unitpack_vec2 t29 = { t28 ? folded.x : c.x, t28 ? folded.y : c.y };
+    const unitpack_vec2 t30 = { w2.x < 0.0f ? -t29.x : t29.x, w2.y < 0.0f ? -t29.y : t29.y };
+    return t30;
 }
 
 // Struct form of unitpack_eqarea_oct16_encode.

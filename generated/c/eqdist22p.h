@@ -89,12 +89,11 @@ static inline void unitpack_eqdist22p_decode_float(const float params[3], float 
 
 // Struct form of unitpack_eqdist22p_decode.
 static inline unitpack_vec3 unitpack_eqdist22p_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 2047u),
-        (float)((code >> 11u) & 1023u),
-        (float)((code >> 21u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 2047u) * 0.0004885198f,
+        (float)((code >> 11u) & 1023u) * 0.0009775171f,
+        (float)((code >> 21u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.0004885198f, t1.y * 0.0009775171f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_eqdist22p_decode_float_v(params);
     return decode_float;
 }
@@ -120,33 +119,31 @@ static inline void unitpack_eqdist22p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec3 unitpack_eqdist22p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -164,29 +161,33 @@ static inline unitpack_vec3 unitpack_eqdist22p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const float t8 = w2.z < 0.0f ? 1.0f : 0.0f;
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const float fixed_f4 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -199,437 +200,407 @@ static inline unitpack_vec3 unitpack_eqdist22p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t9 = (float)hi7 * 16777216.0f;
-    const float rho2 = (t9 + (float)lo7) * 2.2737368e-13f;
-    const bool t10 = rho2 > 0.0f;
-    const float rho2_2 = t10 ? rho2 : 1.0f;
+    const float t5 = (float)hi7 * 16777216.0f;
+    const float rho2 = (t5 + (float)lo7) * 2.2737368e-13f;
+    const bool t6 = rho2 > 0.0f;
+    const float rho2_2 = t6 ? rho2 : 1.0f;
     const uint32_t half_exponent = ((unitpack_bits_of(rho2_2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t11 = rho2_2 * root_down;
-    const float root_estimate2 = sqrtf(t11);
-    const float t12 = floorf(root_estimate2 * 512.0f);
-    const float root_h0_2 = t12 * 0.001953125f;
+    const float t7 = rho2_2 * root_down;
+    const float root_estimate2 = sqrtf(t7);
+    const float root_k0_2 = floorf(root_estimate2 * 512.0f);
+    const float root_h0_2 = root_k0_2 * 0.001953125f;
     const float root_h1_2 = root_h0_2 + 0.001953125f;
-    const float t13 = root_h1_2 * root_h1_2 <= t11
-        ? 1.0f
-        : (root_h0_2 * root_h0_2 > t11 ? -1.0f : 0.0f);
-    const float root_k2 = t12 + t13;
+    const float step_down3 = root_h0_2 * root_h0_2 > t7 ? -1.0f : 0.0f;
+    const float step3 = root_h1_2 * root_h1_2 <= t7 ? 1.0f : step_down3;
+    const float root_k2 = root_k0_2 + step3;
     const float root_h2 = root_k2 * 0.001953125f;
     const float root_h2_sq = root_h2 * root_h2;
-    const float root_rest2 = t11 - root_h2_sq;
+    const float root_rest2 = t7 - root_h2_sq;
     const float root_j0_2 = floorf(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
-    const float t14 = root_j0_2 * 4.7683716e-7f;
-    const float root_m0_2 = root_h2 + t14;
-    const float t15 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    const float root_m1_2 = root_h2 + t15;
-    const float t16 = root_m1_2 * root_m1_2 <= t11
-        ? 1.0f
-        : (root_m0_2 * root_m0_2 > t11 ? -1.0f : 0.0f);
-    const float root_j2 = root_j0_2 + t16;
-    const float t17 = root_k2 * 4096.0f;
-    const float root2 = (t17 + root_j2) * 4.7683716e-7f;
-    const float rho = t10 ? root2 * root_up : 0.0f;
+    const float t8 = root_j0_2 * 4.7683716e-7f;
+    const float root_m0_2 = root_h2 + t8;
+    const float t9 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
+    const float root_m1_2 = root_h2 + t9;
+    const float step_down4 = root_m0_2 * root_m0_2 > t7 ? -1.0f : 0.0f;
+    const float step4 = root_m1_2 * root_m1_2 <= t7 ? 1.0f : step_down4;
+    const float root_j2 = root_j0_2 + step4;
+    const float t10 = root_k2 * 4096.0f;
+    const float root2 = (t10 + root_j2) * 4.7683716e-7f;
+    const float rho = t6 ? root2 * root_up : 0.0f;
     const float abs_w2_z = fabsf(w2.z);
     const float abs_abs_w2_z = fabsf(abs_w2_z);
     const float abs_rho = fabsf(rho);
     const bool y_major = abs_rho > abs_abs_w2_z;
     const float hi8 = y_major ? abs_rho : abs_abs_w2_z;
     const float lo8 = y_major ? abs_abs_w2_z : abs_rho;
-    const float t18 = hi8 > 0.0f ? hi8 : 1.0f;
+    const float t11 = hi8 > 0.0f ? hi8 : 1.0f;
     const float big = lo8 * 8388608.0f;
-    const float ratio_estimate = floorf(lo8 / t18 * 8388608.0f);
-    const float t19 = (ratio_estimate + 1.0f) * t18 <= big
-        ? 1.0f
-        : (ratio_estimate * t18 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t19;
-    const float t = ratio
-        + ((ratio + 1.0f) * t18 <= big ? 1.0f : (ratio * t18 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo8 / t11 * 8388608.0f);
+    const float step_down5 = ratio_estimate * t11 > big ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate + 1.0f) * t11 <= big ? 1.0f : step_down5;
+    const float ratio = ratio_estimate + step5;
+    const float step_down6 = ratio * t11 > big ? -1.0f : 0.0f;
+    const float step6 = (ratio + 1.0f) * t11 <= big ? 1.0f : step_down6;
+    const float t = ratio + step6;
     const bool far = t > 3474675.0f;
-    const float t20 = t - 8388608.0f;
-    const float t21 = t + 8388608.0f;
-    const float big2 = t20 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t20 / t21 * 8388608.0f);
-    const float t22 = (ratio_estimate2 + 1.0f) * t21 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t21 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t22;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t21 <= big2 ? 1.0f : (ratio2 * t21 > big2 ? -1.0f : 0.0f));
+    const float t12 = t - 8388608.0f;
+    const float t13 = t + 8388608.0f;
+    const float big2 = t12 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t12 / t13 * 8388608.0f);
+    const float step_down7 = ratio_estimate2 * t13 > big2 ? -1.0f : 0.0f;
+    const float step7 = (ratio_estimate2 + 1.0f) * t13 <= big2 ? 1.0f : step_down7;
+    const float ratio2 = ratio_estimate2 + step7;
+    const float step_down8 = ratio2 * t13 > big2 ? -1.0f : 0.0f;
+    const float step8 = (ratio2 + 1.0f) * t13 <= big2 ? 1.0f : step_down8;
+    const float ratio3 = ratio2 + step8;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t23 = nearbyintf(
+    const float t14 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t24 = (nearbyintf((t23 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t15 = (nearbyintf((t14 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t25 = (
-        nearbyintf((nearbyintf(t24) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t16 = (
+        nearbyintf((nearbyintf(t15) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t26 = nearbyintf(
-        (nearbyintf(t25 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t17 = nearbyintf(
+        (nearbyintf(t16 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t18 = nearbyintf(
+        (nearbyintf(t17 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t27 = (nearbyintf((t26 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t27) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t18 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = abs_w2_z < 0.0f ? 8388608.0f - h3 : h3;
-    const float t28 = rho < 0.0f ? -h4 : h4;
-    const unitpack_vec2 t29 = { w2.x * t28 * 0.00024402142f, w2.y * t28 * 0.0001219511f };
-    const unitpack_vec2 t30 = {
-        nearbyintf(t29.x / sqrtf(rho2_2) + 1023.5f),
-        nearbyintf(t29.y / sqrtf(rho2_2) + 511.5f)
+    const float t19 = rho < 0.0f ? -h4 : h4;
+    const unitpack_vec2 t20 = { w2.x * t19 * 0.00024402142f, w2.y * t19 * 0.0001219511f };
+    const unitpack_vec2 t21 = {
+        nearbyintf(t20.x / sqrtf(rho2_2) + 1023.5f),
+        nearbyintf(t20.y / sqrtf(rho2_2) + 511.5f)
     };
-    const unitpack_vec2 t31 = { t30.x >= 0.0f ? t30.x : 0.0f, t30.y >= 0.0f ? t30.y : 0.0f };
-    const unitpack_vec2 t32 = {
-        t31.x <= 2047.0f ? t31.x : 2047.0f,
-        t31.y <= 1023.0f ? t31.y : 1023.0f
+    const unitpack_vec2 t22 = { t21.x >= 0.0f ? t21.x : 0.0f, t21.y >= 0.0f ? t21.y : 0.0f };
+    const unitpack_vec2 t23 = {
+        t22.x <= 2047.0f ? t22.x : 2047.0f,
+        t22.y <= 1023.0f ? t22.y : 1023.0f
     };
-    const unitpack_vec2 t33 = { t32.x - 1022.5f, t32.y - 510.5f };
-    const unitpack_vec2 abs_t29 = { fabsf(t29.x), fabsf(t29.y) };
-    const unitpack_vec2 abs_t29_sq = { abs_t29.x * abs_t29.x, abs_t29.y * abs_t29.y };
-    const unitpack_vec2 t34 = { t33.x * t33.x * rho2_2, t33.y * t33.y * rho2_2 };
-    const unitpack_vec2 t35 = {
-        t33.x > 0.0f ? (abs_t29_sq.x >= t34.x ? 1.0f : 0.0f) : 1.0f,
-        t33.y > 0.0f ? (abs_t29_sq.y >= t34.y ? 1.0f : 0.0f) : 1.0f
+    const unitpack_vec2 t24 = { t23.x - 1022.5f, t23.y - 510.5f };
+    const unitpack_vec2 abs_t20 = { fabsf(t20.x), fabsf(t20.y) };
+    const unitpack_vec2 abs_t20_sq = { abs_t20.x * abs_t20.x, abs_t20.y * abs_t20.y };
+    const unitpack_vec2 t25 = { t24.x * t24.x * rho2_2, t24.y * t24.y * rho2_2 };
+    const unitpack_vec2 t26 = {
+        w2.x >= 0.0f
+            ? (t24.x > 0.0f ? (abs_t20_sq.x >= t25.x ? 1.0f : 0.0f) : 1.0f)
+            : (t24.x < 0.0f ? (abs_t20_sq.x <= t25.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t24.y > 0.0f ? (abs_t20_sq.y >= t25.y ? 1.0f : 0.0f) : 1.0f)
+            : (t24.y < 0.0f ? (abs_t20_sq.y <= t25.y ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t36 = {
-        t33.x < 0.0f ? (abs_t29_sq.x <= t34.x ? 1.0f : 0.0f) : 0.0f,
-        t33.y < 0.0f ? (abs_t29_sq.y <= t34.y ? 1.0f : 0.0f) : 0.0f
+    const unitpack_vec2 t27 = { t23.x - 1.0f - 1022.5f, t23.y - 1.0f - 510.5f };
+    const unitpack_vec2 abs_t20_sq2 = { abs_t20.x * abs_t20.x, abs_t20.y * abs_t20.y };
+    const unitpack_vec2 t28 = { t27.x * t27.x * rho2_2, t27.y * t27.y * rho2_2 };
+    const unitpack_vec2 t29 = {
+        w2.x >= 0.0f
+            ? (t27.x > 0.0f ? (abs_t20_sq2.x >= t28.x ? 1.0f : 0.0f) : 1.0f)
+            : (t27.x < 0.0f ? (abs_t20_sq2.x <= t28.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t27.y > 0.0f ? (abs_t20_sq2.y >= t28.y ? 1.0f : 0.0f) : 1.0f)
+            : (t27.y < 0.0f ? (abs_t20_sq2.y <= t28.y ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t37 = {
-        t32.x < 2047.0f ? (w2.x >= 0.0f ? t35.x : t36.x) : 0.0f,
-        t32.y < 1023.0f ? (w2.y >= 0.0f ? t35.y : t36.y) : 0.0f
+    const unitpack_vec2 base = {
+        t23.x + (t23.x < 2047.0f ? t26.x : 0.0f) + (t23.x > 0.0f ? t29.x - 1.0f : 0.0f),
+        t23.y + (t23.y < 1023.0f ? t26.y : 0.0f) + (t23.y > 0.0f ? t29.y - 1.0f : 0.0f)
     };
-    const unitpack_vec2 t38 = { t32.x - 1.0f - 1022.5f, t32.y - 1.0f - 510.5f };
-    const unitpack_vec2 abs_t29_sq2 = { abs_t29.x * abs_t29.x, abs_t29.y * abs_t29.y };
-    const unitpack_vec2 t39 = { t38.x * t38.x * rho2_2, t38.y * t38.y * rho2_2 };
-    const unitpack_vec2 t40 = {
-        t38.x > 0.0f ? (abs_t29_sq2.x >= t39.x ? 1.0f : 0.0f) : 1.0f,
-        t38.y > 0.0f ? (abs_t29_sq2.y >= t39.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t41 = {
-        t38.x < 0.0f ? (abs_t29_sq2.x <= t39.x ? 1.0f : 0.0f) : 0.0f,
-        t38.y < 0.0f ? (abs_t29_sq2.y <= t39.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t42 = {
-        t32.x > 0.0f ? (w2.x >= 0.0f ? t40.x : t41.x) - 1.0f : 0.0f,
-        t32.y > 0.0f ? (w2.y >= 0.0f ? t40.y : t41.y) - 1.0f : 0.0f
-    };
-    const unitpack_vec2 base = { t32.x + t37.x + t42.x, t32.y + t37.y + t42.y };
-    const unitpack_vec3 t43 = {
+    const unitpack_vec3 t30 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t44 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t45 = {
-        (t43.x + 1.0f) * root <= t44.x,
-        (t43.y + 1.0f) * root <= t44.y,
-        (t43.z + 1.0f) * root <= t44.z
+    const unitpack_vec3 t31 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t32 = {
+        (t30.x + 1.0f) * root <= t31.x ? 1.0f : (t30.x * root > t31.x ? -1.0f : 0.0f),
+        (t30.y + 1.0f) * root <= t31.y ? 1.0f : (t30.y * root > t31.y ? -1.0f : 0.0f),
+        (t30.z + 1.0f) * root <= t31.z ? 1.0f : (t30.z * root > t31.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t46 = {
-        t43.x * root > t44.x ? -1.0f : 0.0f,
-        t43.y * root > t44.y ? -1.0f : 0.0f,
-        t43.z * root > t44.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t43.x + (t45.x ? 1.0f : t46.x),
-        t43.y + (t45.y ? 1.0f : t46.y),
-        t43.z + (t45.z ? 1.0f : t46.z)
-    };
+    const unitpack_vec3 aim = { t30.x + t32.x, t30.y + t32.y, t30.z + t32.z };
     const unitpack_vec2 cand = {
         base.x <= 2047.0f ? base.x : 2047.0f,
         base.y <= 1023.0f ? base.y : 1023.0f
     };
-    const unitpack_vec2 t47 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t33 = { cand.x * 2.0f, cand.y * 2.0f };
     const unitpack_vec2 p = {
-        floorf((t47.x - 2047.0f) * 1024.5002f),
-        floorf((t47.y - 1023.0f) * 2050.002f)
+        floorf((t33.x - 2047.0f) * 1024.5002f),
+        floorf((t33.y - 1023.0f) * 2050.002f)
     };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
-    const float t48 = nearbyintf(
+    const float t34 = nearbyintf(
         (nearbyintf(0.0f * q * 2.3841858e-7f) + (-0.0f)) * q * 2.3841858e-7f
-    )
-        + 8.0f;
-    const float t49 = nearbyintf(
-        (nearbyintf(t48 * q * 2.3841858e-7f) + (-242.0f)) * q * 2.3841858e-7f
     );
-    const float t50 = (nearbyintf((t49 + 5384.0f) * q * 2.3841858e-7f) + (-78547.0f))
+    const float t35 = (nearbyintf((t34 + 8.0f) * q * 2.3841858e-7f) + (-242.0f))
         * q
         * 2.3841858e-7f;
-    const float t51 = (
-        nearbyintf((nearbyintf(t50) + 668510.0f) * q * 2.3841858e-7f) + (-2709370.0f)
-    )
+    const float t36 = (nearbyintf((nearbyintf(t35) + 5384.0f) * q * 2.3841858e-7f) + (-78547.0f))
         * q;
-    const float sinc = nearbyintf(t51 * 2.3841858e-7f) + 3294199.0f;
-    const float t52 = nearbyintf(
+    const float t37 = nearbyintf((nearbyintf(t36 * 2.3841858e-7f) + 668510.0f) * q * 2.3841858e-7f)
+        + (-2709370.0f);
+    const float sinc = nearbyintf(t37 * q * 2.3841858e-7f) + 3294199.0f;
+    const float t38 = nearbyintf(
         (nearbyintf(0.0f * q * 2.3841858e-7f) + (-2.0f)) * q * 2.3841858e-7f
-    )
-        + 63.0f;
-    const float t53 = nearbyintf(
-        (nearbyintf(t52 * q * 2.3841858e-7f) + (-1691.0f)) * q * 2.3841858e-7f
     );
-    const float t54 = (nearbyintf((t53 + 30845.0f) * q * 2.3841858e-7f) + (-350031.0f))
+    const float t39 = (nearbyintf((t38 + 63.0f) * q * 2.3841858e-7f) + (-1691.0f))
         * q
         * 2.3841858e-7f;
-    const float t55 = (
-        nearbyintf((nearbyintf(t54) + 2127934.0f) * q * 2.3841858e-7f) + (-5174515.0f)
-    )
+    const float t40 = (nearbyintf((nearbyintf(t39) + 30845.0f) * q * 2.3841858e-7f) + (-350031.0f))
         * q;
-    const float cosq = nearbyintf(t55 * 2.3841858e-7f) + 2097152.0f;
-    const unitpack_vec2 t56 = {
+    const float t41 = nearbyintf((nearbyintf(t40 * 2.3841858e-7f) + 2127934.0f) * q * 2.3841858e-7f)
+        + (-5174515.0f);
+    const float cosq = nearbyintf(t41 * q * 2.3841858e-7f) + 2097152.0f;
+    const unitpack_vec3 t42 = {
         nearbyintf(p.x * sinc * 4.7683716e-7f),
-        nearbyintf(p.y * sinc * 4.7683716e-7f)
+        nearbyintf(p.y * sinc * 4.7683716e-7f),
+        one_if > 0.5f ? -cosq : cosq
     };
-    const unitpack_vec3 t57 = {
-        fabsf(t56.x - aim.x),
-        fabsf(t56.y - aim.y),
-        fabsf((t8 > 0.5f ? -cosq : cosq) - aim.z)
+    const unitpack_vec3 offset = { t42.x - aim.x, t42.y - aim.y, t42.z - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_uvec3 t58 = { (uint32_t)t57.x, (uint32_t)t57.y, (uint32_t)t57.z };
-    const uint32_t limb1_6 = t58.x >> 12u;
-    const uint32_t limb0_6 = t58.x & 4095u;
+    const uint32_t limb1_6 = offset_u.x >> 12u;
+    const uint32_t limb0_6 = offset_u.x & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi9 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo9 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_7 = t58.y >> 12u;
-    const uint32_t limb0_7 = t58.y & 4095u;
+    const uint32_t limb1_7 = offset_u.y >> 12u;
+    const uint32_t limb0_7 = offset_u.y & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi10 = hi9 + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo10 = lo9 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t58.z >> 12u;
-    const uint32_t limb0_8 = t58.z & 4095u;
+    const uint32_t limb1_8 = offset_u.z >> 12u;
+    const uint32_t limb0_8 = offset_u.z & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t59 = (float)hi12 * 16777216.0f;
-    const float dist = t59 + (float)lo12;
-    const float t60 = base.x + 1.0f;
-    const unitpack_vec2 t61 = { t60, base.y };
+    const float t43 = (float)hi12 * 16777216.0f;
+    const float dist = t43 + (float)lo12;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t44 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t61.x <= 2047.0f ? t61.x : 2047.0f,
-        t61.y <= 1023.0f ? t61.y : 1023.0f
+        t44.x <= 2047.0f ? t44.x : 2047.0f,
+        t44.y <= 1023.0f ? t44.y : 1023.0f
     };
-    const unitpack_vec2 t62 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t45 = { cand2.x * 2.0f, cand2.y * 2.0f };
     const unitpack_vec2 p2 = {
-        floorf((t62.x - 2047.0f) * 1024.5002f),
-        floorf((t62.y - 1023.0f) * 2050.002f)
+        floorf((t45.x - 2047.0f) * 1024.5002f),
+        floorf((t45.y - 1023.0f) * 2050.002f)
     };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
-    const float t63 = nearbyintf(
+    const float t46 = nearbyintf(
         (nearbyintf(0.0f * q2 * 2.3841858e-7f) + (-0.0f)) * q2 * 2.3841858e-7f
     );
-    const float t64 = nearbyintf(
-        (nearbyintf((t63 + 8.0f) * q2 * 2.3841858e-7f) + (-242.0f)) * q2 * 2.3841858e-7f
-    );
-    const float t65 = (nearbyintf((t64 + 5384.0f) * q2 * 2.3841858e-7f) + (-78547.0f))
+    const float t47 = (nearbyintf((t46 + 8.0f) * q2 * 2.3841858e-7f) + (-242.0f))
         * q2
         * 2.3841858e-7f;
-    const float t66 = (
-        nearbyintf((nearbyintf(t65) + 668510.0f) * q2 * 2.3841858e-7f) + (-2709370.0f)
-    )
+    const float t48 = (nearbyintf((nearbyintf(t47) + 5384.0f) * q2 * 2.3841858e-7f) + (-78547.0f))
         * q2;
-    const float sinc2 = nearbyintf(t66 * 2.3841858e-7f) + 3294199.0f;
-    const float t67 = nearbyintf(
+    const float t49 = nearbyintf((nearbyintf(t48 * 2.3841858e-7f) + 668510.0f) * q2 * 2.3841858e-7f)
+        + (-2709370.0f);
+    const float sinc2 = nearbyintf(t49 * q2 * 2.3841858e-7f) + 3294199.0f;
+    const float t50 = nearbyintf(
         (nearbyintf(0.0f * q2 * 2.3841858e-7f) + (-2.0f)) * q2 * 2.3841858e-7f
     );
-    const float t68 = (nearbyintf((t67 + 63.0f) * q2 * 2.3841858e-7f) + (-1691.0f))
+    const float t51 = (nearbyintf((t50 + 63.0f) * q2 * 2.3841858e-7f) + (-1691.0f))
         * q2
         * 2.3841858e-7f;
-    const float t69 = (nearbyintf((nearbyintf(t68) + 30845.0f) * q2 * 2.3841858e-7f) + (-350031.0f))
+    const float t52 = (nearbyintf((nearbyintf(t51) + 30845.0f) * q2 * 2.3841858e-7f) + (-350031.0f))
         * q2;
-    const float t70 = nearbyintf(
-        (nearbyintf(t69 * 2.3841858e-7f) + 2127934.0f) * q2 * 2.3841858e-7f
+    const float t53 = nearbyintf(
+        (nearbyintf(t52 * 2.3841858e-7f) + 2127934.0f) * q2 * 2.3841858e-7f
     )
         + (-5174515.0f);
-    const float cosq2 = nearbyintf(t70 * q2 * 2.3841858e-7f) + 2097152.0f;
-    const unitpack_vec2 t71 = {
+    const float cosq2 = nearbyintf(t53 * q2 * 2.3841858e-7f) + 2097152.0f;
+    const unitpack_vec3 t54 = {
         nearbyintf(p2.x * sinc2 * 4.7683716e-7f),
-        nearbyintf(p2.y * sinc2 * 4.7683716e-7f)
+        nearbyintf(p2.y * sinc2 * 4.7683716e-7f),
+        one_if > 0.5f ? -cosq2 : cosq2
     };
-    const unitpack_vec3 t72 = {
-        fabsf(t71.x - aim.x),
-        fabsf(t71.y - aim.y),
-        fabsf((t8 > 0.5f ? -cosq2 : cosq2) - aim.z)
+    const unitpack_vec3 offset2 = { t54.x - aim.x, t54.y - aim.y, t54.z - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const unitpack_uvec3 t73 = { (uint32_t)t72.x, (uint32_t)t72.y, (uint32_t)t72.z };
-    const uint32_t limb1_9 = t73.x >> 12u;
-    const uint32_t limb0_9 = t73.x & 4095u;
+    const uint32_t limb1_9 = offset_u2.x >> 12u;
+    const uint32_t limb0_9 = offset_u2.x & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi13 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo13 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t limb1_10 = t73.y >> 12u;
-    const uint32_t limb0_10 = t73.y & 4095u;
+    const uint32_t limb1_10 = offset_u2.y >> 12u;
+    const uint32_t limb0_10 = offset_u2.y & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi14 = hi13 + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo14 = lo13 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t73.z >> 12u;
-    const uint32_t limb0_11 = t73.z & 4095u;
+    const uint32_t limb1_11 = offset_u2.z >> 12u;
+    const uint32_t limb0_11 = offset_u2.z & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t74 = (float)hi16 * 16777216.0f;
-    const float dist2 = t74 + (float)lo16;
-    const bool t75 = t60 <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
-    const unitpack_vec2 best = { t75 ? cand2.x : cand.x, t75 ? cand2.y : cand.y };
-    const float best_d = t75 ? dist2 : dist;
-    const float t76 = base.y + 1.0f;
-    const unitpack_vec2 t77 = { base.x, t76 };
+    const float t55 = (float)hi16 * 16777216.0f;
+    const float dist2 = t55 + (float)lo16;
+    const bool t56 = s_up <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
+    const unitpack_vec2 best = { t56 ? cand2.x : cand.x, t56 ? cand2.y : cand.y };
+    const float best_d = t56 ? dist2 : dist;
+    const unitpack_vec2 t57 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t77.x <= 2047.0f ? t77.x : 2047.0f,
-        t77.y <= 1023.0f ? t77.y : 1023.0f
+        t57.x <= 2047.0f ? t57.x : 2047.0f,
+        t57.y <= 1023.0f ? t57.y : 1023.0f
     };
-    const unitpack_vec2 t78 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 t58 = { cand3.x * 2.0f, cand3.y * 2.0f };
     const unitpack_vec2 p3 = {
-        floorf((t78.x - 2047.0f) * 1024.5002f),
-        floorf((t78.y - 1023.0f) * 2050.002f)
+        floorf((t58.x - 2047.0f) * 1024.5002f),
+        floorf((t58.y - 1023.0f) * 2050.002f)
     };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
-    const float t79 = nearbyintf(
+    const float t59 = nearbyintf(
         (nearbyintf(0.0f * q3 * 2.3841858e-7f) + (-0.0f)) * q3 * 2.3841858e-7f
     );
-    const float t80 = nearbyintf(
-        (nearbyintf((t79 + 8.0f) * q3 * 2.3841858e-7f) + (-242.0f)) * q3 * 2.3841858e-7f
-    );
-    const float t81 = (nearbyintf((t80 + 5384.0f) * q3 * 2.3841858e-7f) + (-78547.0f))
+    const float t60 = (nearbyintf((t59 + 8.0f) * q3 * 2.3841858e-7f) + (-242.0f))
         * q3
         * 2.3841858e-7f;
-    const float t82 = (
-        nearbyintf((nearbyintf(t81) + 668510.0f) * q3 * 2.3841858e-7f) + (-2709370.0f)
-    )
+    const float t61 = (nearbyintf((nearbyintf(t60) + 5384.0f) * q3 * 2.3841858e-7f) + (-78547.0f))
         * q3;
-    const float sinc3 = nearbyintf(t82 * 2.3841858e-7f) + 3294199.0f;
-    const float t83 = nearbyintf(
+    const float t62 = nearbyintf((nearbyintf(t61 * 2.3841858e-7f) + 668510.0f) * q3 * 2.3841858e-7f)
+        + (-2709370.0f);
+    const float sinc3 = nearbyintf(t62 * q3 * 2.3841858e-7f) + 3294199.0f;
+    const float t63 = nearbyintf(
         (nearbyintf(0.0f * q3 * 2.3841858e-7f) + (-2.0f)) * q3 * 2.3841858e-7f
     );
-    const float t84 = (nearbyintf((t83 + 63.0f) * q3 * 2.3841858e-7f) + (-1691.0f))
+    const float t64 = (nearbyintf((t63 + 63.0f) * q3 * 2.3841858e-7f) + (-1691.0f))
         * q3
         * 2.3841858e-7f;
-    const float t85 = (nearbyintf((nearbyintf(t84) + 30845.0f) * q3 * 2.3841858e-7f) + (-350031.0f))
+    const float t65 = (nearbyintf((nearbyintf(t64) + 30845.0f) * q3 * 2.3841858e-7f) + (-350031.0f))
         * q3;
-    const float t86 = nearbyintf(
-        (nearbyintf(t85 * 2.3841858e-7f) + 2127934.0f) * q3 * 2.3841858e-7f
+    const float t66 = nearbyintf(
+        (nearbyintf(t65 * 2.3841858e-7f) + 2127934.0f) * q3 * 2.3841858e-7f
     )
         + (-5174515.0f);
-    const float cosq3 = nearbyintf(t86 * q3 * 2.3841858e-7f) + 2097152.0f;
-    const unitpack_vec2 t87 = {
+    const float cosq3 = nearbyintf(t66 * q3 * 2.3841858e-7f) + 2097152.0f;
+    const unitpack_vec3 t67 = {
         nearbyintf(p3.x * sinc3 * 4.7683716e-7f),
-        nearbyintf(p3.y * sinc3 * 4.7683716e-7f)
+        nearbyintf(p3.y * sinc3 * 4.7683716e-7f),
+        one_if > 0.5f ? -cosq3 : cosq3
     };
-    const unitpack_vec3 t88 = {
-        fabsf(t87.x - aim.x),
-        fabsf(t87.y - aim.y),
-        fabsf((t8 > 0.5f ? -cosq3 : cosq3) - aim.z)
+    const unitpack_vec3 offset3 = { t67.x - aim.x, t67.y - aim.y, t67.z - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const unitpack_uvec3 t89 = { (uint32_t)t88.x, (uint32_t)t88.y, (uint32_t)t88.z };
-    const uint32_t limb1_12 = t89.x >> 12u;
-    const uint32_t limb0_12 = t89.x & 4095u;
+    const uint32_t limb1_12 = offset_u3.x >> 12u;
+    const uint32_t limb0_12 = offset_u3.x & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi17 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo17 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    const uint32_t limb1_13 = t89.y >> 12u;
-    const uint32_t limb0_13 = t89.y & 4095u;
+    const uint32_t limb1_13 = offset_u3.y >> 12u;
+    const uint32_t limb0_13 = offset_u3.y & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi18 = hi17 + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo18 = lo17 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t89.z >> 12u;
-    const uint32_t limb0_14 = t89.z & 4095u;
+    const uint32_t limb1_14 = offset_u3.z >> 12u;
+    const uint32_t limb0_14 = offset_u3.z & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t90 = (float)hi20 * 16777216.0f;
-    const float dist3 = t90 + (float)lo20;
-    const bool t91 = base.x <= 2047.0f && t76 <= 1023.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t91 ? cand3.x : best.x, t91 ? cand3.y : best.y };
-    const float best_d2 = t91 ? dist3 : best_d;
-    const unitpack_vec2 t92 = { base.x + 1.0f, base.y + 1.0f };
+    const float t68 = (float)hi20 * 16777216.0f;
+    const float dist3 = t68 + (float)lo20;
+    const bool t69 = base.x <= 2047.0f && t_up <= 1023.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t69 ? cand3.x : best.x, t69 ? cand3.y : best.y };
+    const float best_d2 = t69 ? dist3 : best_d;
+    const unitpack_vec2 t70 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t92.x <= 2047.0f ? t92.x : 2047.0f,
-        t92.y <= 1023.0f ? t92.y : 1023.0f
+        t70.x <= 2047.0f ? t70.x : 2047.0f,
+        t70.y <= 1023.0f ? t70.y : 1023.0f
     };
-    const unitpack_vec2 t93 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t71 = { cand4.x * 2.0f, cand4.y * 2.0f };
     const unitpack_vec2 p4 = {
-        floorf((t93.x - 2047.0f) * 1024.5002f),
-        floorf((t93.y - 1023.0f) * 2050.002f)
+        floorf((t71.x - 2047.0f) * 1024.5002f),
+        floorf((t71.y - 1023.0f) * 2050.002f)
     };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
-    const float t94 = nearbyintf(
+    const float t72 = nearbyintf(
         (nearbyintf(0.0f * q4 * 2.3841858e-7f) + (-0.0f)) * q4 * 2.3841858e-7f
     );
-    const float t95 = nearbyintf(
-        (nearbyintf((t94 + 8.0f) * q4 * 2.3841858e-7f) + (-242.0f)) * q4 * 2.3841858e-7f
-    );
-    const float t96 = (nearbyintf((t95 + 5384.0f) * q4 * 2.3841858e-7f) + (-78547.0f))
+    const float t73 = (nearbyintf((t72 + 8.0f) * q4 * 2.3841858e-7f) + (-242.0f))
         * q4
         * 2.3841858e-7f;
-    const float t97 = (
-        nearbyintf((nearbyintf(t96) + 668510.0f) * q4 * 2.3841858e-7f) + (-2709370.0f)
-    )
+    const float t74 = (nearbyintf((nearbyintf(t73) + 5384.0f) * q4 * 2.3841858e-7f) + (-78547.0f))
         * q4;
-    const float sinc4 = nearbyintf(t97 * 2.3841858e-7f) + 3294199.0f;
-    const float t98 = nearbyintf(
+    const float t75 = nearbyintf((nearbyintf(t74 * 2.3841858e-7f) + 668510.0f) * q4 * 2.3841858e-7f)
+        + (-2709370.0f);
+    const float sinc4 = nearbyintf(t75 * q4 * 2.3841858e-7f) + 3294199.0f;
+    const float t76 = nearbyintf(
         (nearbyintf(0.0f * q4 * 2.3841858e-7f) + (-2.0f)) * q4 * 2.3841858e-7f
     );
-    const float t99 = (nearbyintf((t98 + 63.0f) * q4 * 2.3841858e-7f) + (-1691.0f))
+    const float t77 = (nearbyintf((t76 + 63.0f) * q4 * 2.3841858e-7f) + (-1691.0f))
         * q4
         * 2.3841858e-7f;
-    const float t100 = (
-        nearbyintf((nearbyintf(t99) + 30845.0f) * q4 * 2.3841858e-7f) + (-350031.0f)
-    )
+    const float t78 = (nearbyintf((nearbyintf(t77) + 30845.0f) * q4 * 2.3841858e-7f) + (-350031.0f))
         * q4;
-    const float t101 = nearbyintf(
-        (nearbyintf(t100 * 2.3841858e-7f) + 2127934.0f) * q4 * 2.3841858e-7f
+    const float t79 = nearbyintf(
+        (nearbyintf(t78 * 2.3841858e-7f) + 2127934.0f) * q4 * 2.3841858e-7f
     )
         + (-5174515.0f);
-    const float cosq4 = nearbyintf(t101 * q4 * 2.3841858e-7f) + 2097152.0f;
-    const unitpack_vec2 t102 = {
+    const float cosq4 = nearbyintf(t79 * q4 * 2.3841858e-7f) + 2097152.0f;
+    const unitpack_vec3 t80 = {
         nearbyintf(p4.x * sinc4 * 4.7683716e-7f),
-        nearbyintf(p4.y * sinc4 * 4.7683716e-7f)
+        nearbyintf(p4.y * sinc4 * 4.7683716e-7f),
+        one_if > 0.5f ? -cosq4 : cosq4
     };
-    const unitpack_vec3 t103 = {
-        fabsf(t102.x - aim.x),
-        fabsf(t102.y - aim.y),
-        fabsf((t8 > 0.5f ? -cosq4 : cosq4) - aim.z)
+    const unitpack_vec3 offset4 = { t80.x - aim.x, t80.y - aim.y, t80.z - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const unitpack_uvec3 t104 = { (uint32_t)t103.x, (uint32_t)t103.y, (uint32_t)t103.z };
-    const uint32_t limb1_15 = t104.x >> 12u;
-    const uint32_t limb0_15 = t104.x & 4095u;
+    const uint32_t limb1_15 = offset_u4.x >> 12u;
+    const uint32_t limb0_15 = offset_u4.x & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi21 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo21 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_16 = t104.y >> 12u;
-    const uint32_t limb0_16 = t104.y & 4095u;
+    const uint32_t limb1_16 = offset_u4.y >> 12u;
+    const uint32_t limb0_16 = offset_u4.y & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi22 = hi21 + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo22 = lo21 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t104.z >> 12u;
-    const uint32_t limb0_17 = t104.z & 4095u;
+    const uint32_t limb1_17 = offset_u4.z >> 12u;
+    const uint32_t limb0_17 = offset_u4.z & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi23 = hi22 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo23 = lo22 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     const uint32_t hi24 = hi23 + (lo23 >> 24u);
     const uint32_t lo24 = lo23 & 16777215u;
-    const float t105 = (float)hi24 * 16777216.0f;
-    const float dist4 = t105 + (float)lo24;
-    const bool t106 = base.x + 1.0f <= 2047.0f && base.y + 1.0f <= 1023.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t106 ? cand4.x : best2.x, t106 ? cand4.y : best2.y };
-    const unitpack_vec3 t107 = { best3.x, best3.y, t8 };
-    return t107;
+    const float t81 = (float)hi24 * 16777216.0f;
+    const float dist4 = t81 + (float)lo24;
+    const bool t82 = s_up <= 2047.0f && t_up <= 1023.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t82 ? cand4.x : best2.x, t82 ? cand4.y : best2.y };
+    const unitpack_vec3 t83 = { best3.x, best3.y, one_if };
+    return t83;
 }
 
 // Struct form of unitpack_eqdist22p_encode_float.

@@ -89,12 +89,11 @@ static inline void unitpack_eqdist24_decode_float(const float params[3], float o
 
 // Struct form of unitpack_eqdist24_decode.
 static inline unitpack_vec3 unitpack_eqdist24_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 4095u),
-        (float)((code >> 12u) & 2047u),
-        (float)((code >> 23u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 4095u) * 0.00024420026f,
+        (float)((code >> 12u) & 2047u) * 0.0004885198f,
+        (float)((code >> 23u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.00024420026f, t1.y * 0.0004885198f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_eqdist24_decode_float_v(params);
     return decode_float;
 }
@@ -146,38 +145,34 @@ static inline float unitpack_eqdist24_atan2_pi_v(float a0, float a1) {
 
 // Struct form of unitpack_eqdist24_encode_float.
 static inline unitpack_vec3 unitpack_eqdist24_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec2 t3 = { w2.x * w2.x, w2.y * w2.y };
-    const float rho = sqrtf(t3.x + t3.y);
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const unitpack_vec2 t1 = { w2.x * w2.x, w2.y * w2.y };
+    const float rho = sqrtf(t1.x + t1.y);
     const float t = unitpack_eqdist24_atan2_pi_v(rho, fabsf(w2.z));
     const float s = t / (rho > 0.0f ? rho : 1.0f);
-    const unitpack_vec2 t4 = { w2.x * s, w2.y * s };
-    const unitpack_vec2 enc = { t4.x + 0.5f, t4.y + 0.5f };
-    const unitpack_vec3 t5 = { enc.x, enc.y, w2.z < 0.0f ? 1.0f : 0.0f };
-    return t5;
+    const unitpack_vec2 t2 = { w2.x * s, w2.y * s };
+    const unitpack_vec2 enc = { t2.x + 0.5f, t2.y + 0.5f };
+    const unitpack_vec3 t3 = { enc.x, enc.y, one_if };
+    return t3;
 }
 
 // unitpack_eqdist24_encode_float: fast encoder, float form.
@@ -200,32 +195,30 @@ static inline void unitpack_eqdist24_encode_float(const float v[3], float out[3]
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_eqdist24_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -238,127 +231,130 @@ static inline unitpack_vec3 unitpack_eqdist24_round_codes_v(unitpack_vec3 a0) {
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
     const uint32_t hi3 = hi2 + (lo2 >> 24u);
     const uint32_t lo3 = lo2 & 16777215u;
-    const float t3 = (float)hi3 * 16777216.0f;
-    const float rho2 = (t3 + (float)lo3) * 2.2737368e-13f;
-    const bool t4 = rho2 > 0.0f;
-    const float rho2_2 = t4 ? rho2 : 1.0f;
+    const float t1 = (float)hi3 * 16777216.0f;
+    const float rho2 = (t1 + (float)lo3) * 2.2737368e-13f;
+    const bool t2 = rho2 > 0.0f;
+    const float rho2_2 = t2 ? rho2 : 1.0f;
     const uint32_t half_exponent = ((unitpack_bits_of(rho2_2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t5 = rho2_2 * root_down;
-    const float root_estimate = sqrtf(t5);
-    const float t6 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t6 * 0.001953125f;
+    const float t3 = rho2_2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0f : (root_h0 * root_h0 > t5 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t5 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t7 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t7;
-    const float t8 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t8;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0f : (root_m0 * root_m0 > t5 ? -1.0f : 0.0f));
-    const float t9 = root_k * 4096.0f;
-    const float root = (t9 + root_j) * 4.7683716e-7f;
-    const float rho = t4 ? root * root_up : 0.0f;
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float rho = t2 ? root * root_up : 0.0f;
     const float abs_w2_z = fabsf(w2.z);
     const float abs_abs_w2_z = fabsf(abs_w2_z);
     const float abs_rho = fabsf(rho);
     const bool y_major = abs_rho > abs_abs_w2_z;
     const float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     const float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    const float t10 = hi4 > 0.0f ? hi4 : 1.0f;
+    const float t7 = hi4 > 0.0f ? hi4 : 1.0f;
     const float big = lo4 * 8388608.0f;
-    const float ratio_estimate = floorf(lo4 / t10 * 8388608.0f);
-    const float t11 = (ratio_estimate + 1.0f) * t10 <= big
-        ? 1.0f
-        : (ratio_estimate * t10 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t11;
-    const float t = ratio
-        + ((ratio + 1.0f) * t10 <= big ? 1.0f : (ratio * t10 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo4 / t7 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t7 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t7 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t7 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t7 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t12 = t - 8388608.0f;
-    const float t13 = t + 8388608.0f;
-    const float big2 = t12 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t12 / t13 * 8388608.0f);
-    const float t14 = (ratio_estimate2 + 1.0f) * t13 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t13 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t14;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t13 <= big2 ? 1.0f : (ratio2 * t13 > big2 ? -1.0f : 0.0f));
+    const float t8 = t - 8388608.0f;
+    const float t9 = t + 8388608.0f;
+    const float big2 = t8 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t8 / t9 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t9 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t9 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t9 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t9 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t15 = nearbyintf(
+    const float t10 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t16 = (nearbyintf((t15 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t11 = (nearbyintf((t10 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t17 = (
-        nearbyintf((nearbyintf(t16) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t12 = (
+        nearbyintf((nearbyintf(t11) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t18 = nearbyintf(
-        (nearbyintf(t17 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t13 = nearbyintf(
+        (nearbyintf(t12 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t19 = (nearbyintf((t18 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t19) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t14 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = abs_w2_z < 0.0f ? 8388608.0f - h3 : h3;
-    const float t20 = rho < 0.0f ? -h4 : h4;
-    const float big3 = w2.x * t20 * 0.00048816204f;
-    const float t21 = nearbyintf(big3 / sqrtf(rho2_2) + 2047.5f);
+    const float t15 = rho < 0.0f ? -h4 : h4;
+    const float big3 = w2.x * t15 * 0.00048816204f;
+    const float t16 = nearbyintf(big3 / sqrtf(rho2_2) + 2047.5f);
     const float abs_big3 = fabsf(big3);
-    const float t22 = t21 >= 0.0f ? t21 : 0.0f;
-    const float estimate = t22 <= 4095.0f ? t22 : 4095.0f;
-    const float t23 = estimate - 2047.0f;
+    const float t17 = t16 >= 0.0f ? t16 : 0.0f;
+    const float estimate = t17 <= 4095.0f ? t17 : 4095.0f;
+    const float t18 = estimate - 2047.0f;
     const float abs_big3_sq = abs_big3 * abs_big3;
-    const float t24 = t23 * t23 * rho2_2;
-    const float t25 = w2.x >= 0.0f
-        ? (t23 > 0.0f ? (abs_big3_sq >= t24 ? 1.0f : 0.0f) : 1.0f)
-        : (t23 < 0.0f ? (abs_big3_sq <= t24 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 4095.0f ? t25 : 0.0f;
-    const float t26 = estimate - 1.0f - 2047.0f;
+    const float t19 = t18 * t18 * rho2_2;
+    const float one_if2 = abs_big3_sq >= t19 ? 1.0f : 0.0f;
+    const float one_if3 = abs_big3_sq <= t19 ? 1.0f : 0.0f;
+    const float up = estimate < 4095.0f
+        ? (w2.x >= 0.0f ? (t18 > 0.0f ? one_if2 : 1.0f) : (t18 < 0.0f ? one_if3 : 0.0f))
+        : 0.0f;
+    const float t20 = estimate - 1.0f - 2047.0f;
     const float abs_big3_sq2 = abs_big3 * abs_big3;
-    const float t27 = t26 * t26 * rho2_2;
-    const float t28 = w2.x >= 0.0f
-        ? (t26 > 0.0f ? (abs_big3_sq2 >= t27 ? 1.0f : 0.0f) : 1.0f)
-        : (t26 < 0.0f ? (abs_big3_sq2 <= t27 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t28 - 1.0f : 0.0f;
-    const float big4 = w2.y * t20 * 0.00024402142f;
-    const float t29 = nearbyintf(big4 / sqrtf(rho2_2) + 1023.5f);
+    const float t21 = t20 * t20 * rho2_2;
+    const float one_if4 = abs_big3_sq2 >= t21 ? 1.0f : 0.0f;
+    const float one_if5 = abs_big3_sq2 <= t21 ? 1.0f : 0.0f;
+    const float t22 = (w2.x >= 0.0f ? (t20 > 0.0f ? one_if4 : 1.0f) : (t20 < 0.0f ? one_if5 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t22 : 0.0f;
+    const float big4 = w2.y * t15 * 0.00024402142f;
+    const float t23 = nearbyintf(big4 / sqrtf(rho2_2) + 1023.5f);
     const float abs_big4 = fabsf(big4);
-    const float t30 = t29 >= 0.0f ? t29 : 0.0f;
-    const float estimate2 = t30 <= 2047.0f ? t30 : 2047.0f;
-    const float t31 = estimate2 - 1023.0f;
+    const float t24 = t23 >= 0.0f ? t23 : 0.0f;
+    const float estimate2 = t24 <= 2047.0f ? t24 : 2047.0f;
+    const float t25 = estimate2 - 1023.0f;
     const float abs_big4_sq = abs_big4 * abs_big4;
-    const float t32 = t31 * t31 * rho2_2;
-    const float t33 = w2.y >= 0.0f
-        ? (t31 > 0.0f ? (abs_big4_sq >= t32 ? 1.0f : 0.0f) : 1.0f)
-        : (t31 < 0.0f ? (abs_big4_sq <= t32 ? 1.0f : 0.0f) : 0.0f);
-    const float up2 = estimate2 < 2047.0f ? t33 : 0.0f;
-    const float t34 = estimate2 - 1.0f - 1023.0f;
+    const float t26 = t25 * t25 * rho2_2;
+    const float one_if6 = abs_big4_sq >= t26 ? 1.0f : 0.0f;
+    const float one_if7 = abs_big4_sq <= t26 ? 1.0f : 0.0f;
+    const float up2 = estimate2 < 2047.0f
+        ? (w2.y >= 0.0f ? (t25 > 0.0f ? one_if6 : 1.0f) : (t25 < 0.0f ? one_if7 : 0.0f))
+        : 0.0f;
+    const float t27 = estimate2 - 1.0f - 1023.0f;
     const float abs_big4_sq2 = abs_big4 * abs_big4;
-    const float t35 = t34 * t34 * rho2_2;
-    const float t36 = w2.y >= 0.0f
-        ? (t34 > 0.0f ? (abs_big4_sq2 >= t35 ? 1.0f : 0.0f) : 1.0f)
-        : (t34 < 0.0f ? (abs_big4_sq2 <= t35 ? 1.0f : 0.0f) : 0.0f);
-    const float down2 = estimate2 > 0.0f ? t36 - 1.0f : 0.0f;
-    const unitpack_vec3 t37 = {
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0f ? 1.0f : 0.0f
-    };
-    return t37;
+    const float t28 = t27 * t27 * rho2_2;
+    const float one_if8 = abs_big4_sq2 >= t28 ? 1.0f : 0.0f;
+    const float one_if9 = abs_big4_sq2 <= t28 ? 1.0f : 0.0f;
+    const float t29 = (w2.y >= 0.0f ? (t27 > 0.0f ? one_if8 : 1.0f) : (t27 < 0.0f ? one_if9 : 0.0f))
+        - 1.0f;
+    const float down2 = estimate2 > 0.0f ? t29 : 0.0f;
+    const unitpack_vec3 t30 = { estimate + up + down, estimate2 + up2 + down2, one_if };
+    return t30;
 }
 
 // Struct form of unitpack_eqdist24_encode.

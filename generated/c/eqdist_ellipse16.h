@@ -93,12 +93,11 @@ static inline void unitpack_eqdist_ellipse16_decode_float(const float params[3],
 
 // Struct form of unitpack_eqdist_ellipse16_decode.
 static inline unitpack_vec3 unitpack_eqdist_ellipse16_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 127u),
-        (float)((code >> 15u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 255u) * 0.003921569f,
+        (float)((code >> 8u) & 127u) * 0.007874016f,
+        (float)((code >> 15u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.003921569f, t1.y * 0.007874016f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_eqdist_ellipse16_decode_float_v(params);
     return decode_float;
 }
@@ -148,55 +147,46 @@ static inline float unitpack_eqdist_ellipse16_atan2_pi_v(float a0, float a1) {
 
 // Struct form of unitpack_eqdist_ellipse16_encode_float.
 static inline unitpack_vec3 unitpack_eqdist_ellipse16_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec2 t3 = { w2.x * w2.x, w2.y * w2.y };
-    const float rho = sqrtf(t3.x + t3.y);
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const unitpack_vec2 t1 = { w2.x * w2.x, w2.y * w2.y };
+    const float rho = sqrtf(t1.x + t1.y);
     const float half_r = unitpack_eqdist_ellipse16_atan2_pi_v(rho, fabsf(w2.z));
-    const float t4 = half_r / (rho > 0.0f ? rho : 1.0f) * 2.0f;
-    const unitpack_vec2 disk = { w2.x * t4, w2.y * t4 };
-    const unitpack_vec2 t5 = { fabsf(disk.y), fabsf(disk.x) };
-    const unitpack_vec2 t6 = { disk.x + 1.4142135f - t5.x, disk.y + 1.4142135f - t5.y };
-    const unitpack_vec2 t7 = {
-        (t6.x >= 0.0f ? t6.x : 0.0f) * (disk.x + 1.4142135f + t5.x),
-        (t6.y >= 0.0f ? t6.y : 0.0f) * (disk.y + 1.4142135f + t5.y)
+    const float t2 = half_r / (rho > 0.0f ? rho : 1.0f) * 2.0f;
+    const unitpack_vec2 disk = { w2.x * t2, w2.y * t2 };
+    const unitpack_vec2 t3 = { fabsf(disk.y), fabsf(disk.x) };
+    const unitpack_vec2 t4 = { disk.x + 1.4142135f - t3.x, disk.y + 1.4142135f - t3.y };
+    const unitpack_vec2 neg_disk = { -disk.x, -disk.y };
+    const unitpack_vec2 t5 = { neg_disk.x + 1.4142135f - t3.x, neg_disk.y + 1.4142135f - t3.y };
+    const unitpack_vec2 t6 = {
+        sqrtf((t4.x >= 0.0f ? t4.x : 0.0f) * (disk.x + 1.4142135f + t3.x))
+            + sqrtf((t5.x >= 0.0f ? t5.x : 0.0f) * (neg_disk.x + 1.4142135f + t3.x)),
+        sqrtf((t4.y >= 0.0f ? t4.y : 0.0f) * (disk.y + 1.4142135f + t3.y))
+            + sqrtf((t5.y >= 0.0f ? t5.y : 0.0f) * (neg_disk.y + 1.4142135f + t3.y))
     };
-    const unitpack_vec2 t8 = { -disk.x, -disk.y };
-    const unitpack_vec2 t9 = { t8.x + 1.4142135f - t5.x, t8.y + 1.4142135f - t5.y };
-    const unitpack_vec2 t10 = {
-        (t9.x >= 0.0f ? t9.x : 0.0f) * (t8.x + 1.4142135f + t5.x),
-        (t9.y >= 0.0f ? t9.y : 0.0f) * (t8.y + 1.4142135f + t5.y)
-    };
-    const unitpack_vec2 square = {
-        disk.x / (sqrtf(t7.x) + sqrtf(t10.x)),
-        disk.y / (sqrtf(t7.y) + sqrtf(t10.y))
-    };
-    const unitpack_vec2 t11 = { square.x * 1.4142135f, square.y * 1.4142135f };
-    const unitpack_vec2 enc = { t11.x + 0.5f, t11.y + 0.5f };
-    const unitpack_vec3 t12 = { enc.x, enc.y, w2.z < 0.0f ? 1.0f : 0.0f };
-    return t12;
+    const unitpack_vec2 square = { disk.x / t6.x, disk.y / t6.y };
+    const unitpack_vec2 t7 = { square.x * 1.4142135f, square.y * 1.4142135f };
+    const unitpack_vec2 enc = { t7.x + 0.5f, t7.y + 0.5f };
+    const unitpack_vec3 t8 = { enc.x, enc.y, one_if };
+    return t8;
 }
 
 // unitpack_eqdist_ellipse16_encode_float: fast encoder, float form.
@@ -219,32 +209,29 @@ static inline void unitpack_eqdist_ellipse16_encode_float(const float v[3], floa
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -257,88 +244,92 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
     const uint32_t hi3 = hi2 + (lo2 >> 24u);
     const uint32_t lo3 = lo2 & 16777215u;
-    const float t3 = (float)hi3 * 16777216.0f;
-    const float rho2 = (t3 + (float)lo3) * 2.2737368e-13f;
-    const bool t4 = rho2 > 0.0f;
-    const float rho2_2 = t4 ? rho2 : 1.0f;
+    const float t1 = (float)hi3 * 16777216.0f;
+    const float rho2 = (t1 + (float)lo3) * 2.2737368e-13f;
+    const bool t2 = rho2 > 0.0f;
+    const float rho2_2 = t2 ? rho2 : 1.0f;
     const uint32_t half_exponent = ((unitpack_bits_of(rho2_2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t5 = rho2_2 * root_down;
-    const float root_estimate = sqrtf(t5);
-    const float t6 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t6 * 0.001953125f;
+    const float t3 = rho2_2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0f : (root_h0 * root_h0 > t5 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t5 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t7 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t7;
-    const float t8 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t8;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0f : (root_m0 * root_m0 > t5 ? -1.0f : 0.0f));
-    const float t9 = root_k * 4096.0f;
-    const float root = (t9 + root_j) * 4.7683716e-7f;
-    const float rho = t4 ? root * root_up : 0.0f;
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float rho = t2 ? root * root_up : 0.0f;
     const float abs_w2_z = fabsf(w2.z);
     const float abs_abs_w2_z = fabsf(abs_w2_z);
     const float abs_rho = fabsf(rho);
     const bool y_major = abs_rho > abs_abs_w2_z;
     const float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     const float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    const float t10 = hi4 > 0.0f ? hi4 : 1.0f;
+    const float t7 = hi4 > 0.0f ? hi4 : 1.0f;
     const float big = lo4 * 8388608.0f;
-    const float ratio_estimate = floorf(lo4 / t10 * 8388608.0f);
-    const float t11 = (ratio_estimate + 1.0f) * t10 <= big
-        ? 1.0f
-        : (ratio_estimate * t10 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t11;
-    const float t = ratio
-        + ((ratio + 1.0f) * t10 <= big ? 1.0f : (ratio * t10 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo4 / t7 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t7 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t7 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t7 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t7 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t12 = t - 8388608.0f;
-    const float t13 = t + 8388608.0f;
-    const float big2 = t12 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t12 / t13 * 8388608.0f);
-    const float t14 = (ratio_estimate2 + 1.0f) * t13 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t13 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t14;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t13 <= big2 ? 1.0f : (ratio2 * t13 > big2 ? -1.0f : 0.0f));
+    const float t8 = t - 8388608.0f;
+    const float t9 = t + 8388608.0f;
+    const float big2 = t8 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t8 / t9 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t9 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t9 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t9 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t9 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t15 = nearbyintf(
+    const float t10 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t16 = (nearbyintf((t15 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t11 = (nearbyintf((t10 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t17 = (
-        nearbyintf((nearbyintf(t16) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t12 = (
+        nearbyintf((nearbyintf(t11) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t18 = nearbyintf(
-        (nearbyintf(t17 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t13 = nearbyintf(
+        (nearbyintf(t12 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t19 = (nearbyintf((t18 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t19) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t14 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = abs_w2_z < 0.0f ? 8388608.0f - h3 : h3;
-    const float t20 = rho < 0.0f ? -h4 : h4;
-    const bool t21 = w2.x >= 0.0f;
-    const float t22 = t21 ? 128.0f : 0.0f;
-    const float t23 = t21 ? 255.0f : 127.0f;
-    const float mid = floorf((t22 + t23 + 1.0f) * 0.5f);
-    const float ell_t = (mid - 1.0f - 127.0f) * 2.0f;
+    const float t15 = rho < 0.0f ? -h4 : h4;
+    const bool t16 = w2.x >= 0.0f;
+    const float t17 = t16 ? 128.0f : 0.0f;
+    const float t18 = t16 ? 255.0f : 127.0f;
+    const float mid = floorf((t17 + t18 + 1.0f) * 0.5f);
+    const float mid_below = mid - 1.0f;
+    const float ell_t = (mid_below - 127.0f) * 2.0f;
     const float ell_h = floorf(ell_t * ell_t);
     const float ell_g = 130050.0f - ell_h;
     const float ell_p = w2.x * w2.x * ell_g;
@@ -346,19 +337,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent = unitpack_bits_of(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     const uint32_t exponent2 = exponent < 40u ? 40u : exponent;
     const uint32_t exponent3 = 254u < exponent2 ? 254u : exponent2;
-    const float t24 = unitpack_float_of((281u - exponent3) << 23u);
-    const float ell_s = (floorf(ell_p * t24) + floorf(ell_q * t24))
-        * unitpack_float_of((exponent3 - 27u) << 23u);
-    const float lhs = ell_s * t20 * t20 * 3.6962433e-9f;
+    const float scale2 = unitpack_float_of((281u - exponent3) << 23u);
+    const float back = unitpack_float_of((exponent3 - 27u) << 23u);
+    const float ell_s = (floorf(ell_p * scale2) + floorf(ell_q * scale2)) * back;
+    const float lhs = ell_s * t15 * t15 * 3.6962433e-9f;
     const float rhs = ell_h * ell_g * rho2_2;
-    const float t25 = ell_t > 0.0f
-        ? (w2.x > 0.0f ? (lhs >= rhs ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs <= rhs ? 1.0f : 0.0f));
-    const bool beyond = t25 > 0.5f;
-    const float lo5 = beyond ? mid : t22;
-    const float hi5 = beyond ? t23 : mid - 1.0f;
+    const float one_if = lhs >= rhs ? 1.0f : 0.0f;
+    const float outside = w2.x > 0.0f ? one_if : 0.0f;
+    const float one_if2 = lhs <= rhs ? 1.0f : 0.0f;
+    const float inside = w2.x >= 0.0f ? 1.0f : one_if2;
+    const bool beyond = (ell_t > 0.0f ? outside : inside) > 0.5f;
+    const float lo5 = beyond ? mid : t17;
+    const float hi5 = beyond ? t18 : mid_below;
     const float mid2 = floorf((lo5 + hi5 + 1.0f) * 0.5f);
-    const float ell_t2 = (mid2 - 1.0f - 127.0f) * 2.0f;
+    const float mid_below2 = mid2 - 1.0f;
+    const float ell_t2 = (mid_below2 - 127.0f) * 2.0f;
     const float ell_h2 = floorf(ell_t2 * ell_t2);
     const float ell_g2 = 130050.0f - ell_h2;
     const float ell_p2 = w2.x * w2.x * ell_g2;
@@ -366,19 +359,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent4 = unitpack_bits_of(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     const uint32_t exponent5 = exponent4 < 40u ? 40u : exponent4;
     const uint32_t exponent6 = 254u < exponent5 ? 254u : exponent5;
-    const float t26 = unitpack_float_of((281u - exponent6) << 23u);
-    const float ell_s2 = (floorf(ell_p2 * t26) + floorf(ell_q2 * t26))
-        * unitpack_float_of((exponent6 - 27u) << 23u);
-    const float lhs2 = ell_s2 * t20 * t20 * 3.6962433e-9f;
+    const float scale3 = unitpack_float_of((281u - exponent6) << 23u);
+    const float back2 = unitpack_float_of((exponent6 - 27u) << 23u);
+    const float ell_s2 = (floorf(ell_p2 * scale3) + floorf(ell_q2 * scale3)) * back2;
+    const float lhs2 = ell_s2 * t15 * t15 * 3.6962433e-9f;
     const float rhs2 = ell_h2 * ell_g2 * rho2_2;
-    const float t27 = ell_t2 > 0.0f
-        ? (w2.x > 0.0f ? (lhs2 >= rhs2 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs2 <= rhs2 ? 1.0f : 0.0f));
-    const bool beyond2 = t27 > 0.5f;
+    const float one_if3 = lhs2 >= rhs2 ? 1.0f : 0.0f;
+    const float outside2 = w2.x > 0.0f ? one_if3 : 0.0f;
+    const float one_if4 = lhs2 <= rhs2 ? 1.0f : 0.0f;
+    const float inside2 = w2.x >= 0.0f ? 1.0f : one_if4;
+    const bool beyond2 = (ell_t2 > 0.0f ? outside2 : inside2) > 0.5f;
     const float lo6 = beyond2 ? mid2 : lo5;
-    const float hi6 = beyond2 ? hi5 : mid2 - 1.0f;
+    const float hi6 = beyond2 ? hi5 : mid_below2;
     const float mid3 = floorf((lo6 + hi6 + 1.0f) * 0.5f);
-    const float ell_t3 = (mid3 - 1.0f - 127.0f) * 2.0f;
+    const float mid_below3 = mid3 - 1.0f;
+    const float ell_t3 = (mid_below3 - 127.0f) * 2.0f;
     const float ell_h3 = floorf(ell_t3 * ell_t3);
     const float ell_g3 = 130050.0f - ell_h3;
     const float ell_p3 = w2.x * w2.x * ell_g3;
@@ -386,19 +381,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent7 = unitpack_bits_of(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     const uint32_t exponent8 = exponent7 < 40u ? 40u : exponent7;
     const uint32_t exponent9 = 254u < exponent8 ? 254u : exponent8;
-    const float t28 = unitpack_float_of((281u - exponent9) << 23u);
-    const float ell_s3 = (floorf(ell_p3 * t28) + floorf(ell_q3 * t28))
-        * unitpack_float_of((exponent9 - 27u) << 23u);
-    const float lhs3 = ell_s3 * t20 * t20 * 3.6962433e-9f;
+    const float scale4 = unitpack_float_of((281u - exponent9) << 23u);
+    const float back3 = unitpack_float_of((exponent9 - 27u) << 23u);
+    const float ell_s3 = (floorf(ell_p3 * scale4) + floorf(ell_q3 * scale4)) * back3;
+    const float lhs3 = ell_s3 * t15 * t15 * 3.6962433e-9f;
     const float rhs3 = ell_h3 * ell_g3 * rho2_2;
-    const float t29 = ell_t3 > 0.0f
-        ? (w2.x > 0.0f ? (lhs3 >= rhs3 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs3 <= rhs3 ? 1.0f : 0.0f));
-    const bool beyond3 = t29 > 0.5f;
+    const float one_if5 = lhs3 >= rhs3 ? 1.0f : 0.0f;
+    const float outside3 = w2.x > 0.0f ? one_if5 : 0.0f;
+    const float one_if6 = lhs3 <= rhs3 ? 1.0f : 0.0f;
+    const float inside3 = w2.x >= 0.0f ? 1.0f : one_if6;
+    const bool beyond3 = (ell_t3 > 0.0f ? outside3 : inside3) > 0.5f;
     const float lo7 = beyond3 ? mid3 : lo6;
-    const float hi7 = beyond3 ? hi6 : mid3 - 1.0f;
+    const float hi7 = beyond3 ? hi6 : mid_below3;
     const float mid4 = floorf((lo7 + hi7 + 1.0f) * 0.5f);
-    const float ell_t4 = (mid4 - 1.0f - 127.0f) * 2.0f;
+    const float mid_below4 = mid4 - 1.0f;
+    const float ell_t4 = (mid_below4 - 127.0f) * 2.0f;
     const float ell_h4 = floorf(ell_t4 * ell_t4);
     const float ell_g4 = 130050.0f - ell_h4;
     const float ell_p4 = w2.x * w2.x * ell_g4;
@@ -406,19 +403,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent10 = unitpack_bits_of(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     const uint32_t exponent11 = exponent10 < 40u ? 40u : exponent10;
     const uint32_t exponent12 = 254u < exponent11 ? 254u : exponent11;
-    const float t30 = unitpack_float_of((281u - exponent12) << 23u);
-    const float ell_s4 = (floorf(ell_p4 * t30) + floorf(ell_q4 * t30))
-        * unitpack_float_of((exponent12 - 27u) << 23u);
-    const float lhs4 = ell_s4 * t20 * t20 * 3.6962433e-9f;
+    const float scale5 = unitpack_float_of((281u - exponent12) << 23u);
+    const float back4 = unitpack_float_of((exponent12 - 27u) << 23u);
+    const float ell_s4 = (floorf(ell_p4 * scale5) + floorf(ell_q4 * scale5)) * back4;
+    const float lhs4 = ell_s4 * t15 * t15 * 3.6962433e-9f;
     const float rhs4 = ell_h4 * ell_g4 * rho2_2;
-    const float t31 = ell_t4 > 0.0f
-        ? (w2.x > 0.0f ? (lhs4 >= rhs4 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs4 <= rhs4 ? 1.0f : 0.0f));
-    const bool beyond4 = t31 > 0.5f;
+    const float one_if7 = lhs4 >= rhs4 ? 1.0f : 0.0f;
+    const float outside4 = w2.x > 0.0f ? one_if7 : 0.0f;
+    const float one_if8 = lhs4 <= rhs4 ? 1.0f : 0.0f;
+    const float inside4 = w2.x >= 0.0f ? 1.0f : one_if8;
+    const bool beyond4 = (ell_t4 > 0.0f ? outside4 : inside4) > 0.5f;
     const float lo8 = beyond4 ? mid4 : lo7;
-    const float hi8 = beyond4 ? hi7 : mid4 - 1.0f;
+    const float hi8 = beyond4 ? hi7 : mid_below4;
     const float mid5 = floorf((lo8 + hi8 + 1.0f) * 0.5f);
-    const float ell_t5 = (mid5 - 1.0f - 127.0f) * 2.0f;
+    const float mid_below5 = mid5 - 1.0f;
+    const float ell_t5 = (mid_below5 - 127.0f) * 2.0f;
     const float ell_h5 = floorf(ell_t5 * ell_t5);
     const float ell_g5 = 130050.0f - ell_h5;
     const float ell_p5 = w2.x * w2.x * ell_g5;
@@ -426,19 +425,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent13 = unitpack_bits_of(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     const uint32_t exponent14 = exponent13 < 40u ? 40u : exponent13;
     const uint32_t exponent15 = 254u < exponent14 ? 254u : exponent14;
-    const float t32 = unitpack_float_of((281u - exponent15) << 23u);
-    const float ell_s5 = (floorf(ell_p5 * t32) + floorf(ell_q5 * t32))
-        * unitpack_float_of((exponent15 - 27u) << 23u);
-    const float lhs5 = ell_s5 * t20 * t20 * 3.6962433e-9f;
+    const float scale6 = unitpack_float_of((281u - exponent15) << 23u);
+    const float back5 = unitpack_float_of((exponent15 - 27u) << 23u);
+    const float ell_s5 = (floorf(ell_p5 * scale6) + floorf(ell_q5 * scale6)) * back5;
+    const float lhs5 = ell_s5 * t15 * t15 * 3.6962433e-9f;
     const float rhs5 = ell_h5 * ell_g5 * rho2_2;
-    const float t33 = ell_t5 > 0.0f
-        ? (w2.x > 0.0f ? (lhs5 >= rhs5 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs5 <= rhs5 ? 1.0f : 0.0f));
-    const bool beyond5 = t33 > 0.5f;
+    const float one_if9 = lhs5 >= rhs5 ? 1.0f : 0.0f;
+    const float outside5 = w2.x > 0.0f ? one_if9 : 0.0f;
+    const float one_if10 = lhs5 <= rhs5 ? 1.0f : 0.0f;
+    const float inside5 = w2.x >= 0.0f ? 1.0f : one_if10;
+    const bool beyond5 = (ell_t5 > 0.0f ? outside5 : inside5) > 0.5f;
     const float lo9 = beyond5 ? mid5 : lo8;
-    const float hi9 = beyond5 ? hi8 : mid5 - 1.0f;
+    const float hi9 = beyond5 ? hi8 : mid_below5;
     const float mid6 = floorf((lo9 + hi9 + 1.0f) * 0.5f);
-    const float ell_t6 = (mid6 - 1.0f - 127.0f) * 2.0f;
+    const float mid_below6 = mid6 - 1.0f;
+    const float ell_t6 = (mid_below6 - 127.0f) * 2.0f;
     const float ell_h6 = floorf(ell_t6 * ell_t6);
     const float ell_g6 = 130050.0f - ell_h6;
     const float ell_p6 = w2.x * w2.x * ell_g6;
@@ -446,19 +447,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent16 = unitpack_bits_of(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     const uint32_t exponent17 = exponent16 < 40u ? 40u : exponent16;
     const uint32_t exponent18 = 254u < exponent17 ? 254u : exponent17;
-    const float t34 = unitpack_float_of((281u - exponent18) << 23u);
-    const float ell_s6 = (floorf(ell_p6 * t34) + floorf(ell_q6 * t34))
-        * unitpack_float_of((exponent18 - 27u) << 23u);
-    const float lhs6 = ell_s6 * t20 * t20 * 3.6962433e-9f;
+    const float scale7 = unitpack_float_of((281u - exponent18) << 23u);
+    const float back6 = unitpack_float_of((exponent18 - 27u) << 23u);
+    const float ell_s6 = (floorf(ell_p6 * scale7) + floorf(ell_q6 * scale7)) * back6;
+    const float lhs6 = ell_s6 * t15 * t15 * 3.6962433e-9f;
     const float rhs6 = ell_h6 * ell_g6 * rho2_2;
-    const float t35 = ell_t6 > 0.0f
-        ? (w2.x > 0.0f ? (lhs6 >= rhs6 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs6 <= rhs6 ? 1.0f : 0.0f));
-    const bool beyond6 = t35 > 0.5f;
+    const float one_if11 = lhs6 >= rhs6 ? 1.0f : 0.0f;
+    const float outside6 = w2.x > 0.0f ? one_if11 : 0.0f;
+    const float one_if12 = lhs6 <= rhs6 ? 1.0f : 0.0f;
+    const float inside6 = w2.x >= 0.0f ? 1.0f : one_if12;
+    const bool beyond6 = (ell_t6 > 0.0f ? outside6 : inside6) > 0.5f;
     const float lo10 = beyond6 ? mid6 : lo9;
-    const float hi10 = beyond6 ? hi9 : mid6 - 1.0f;
+    const float hi10 = beyond6 ? hi9 : mid_below6;
     const float mid7 = floorf((lo10 + hi10 + 1.0f) * 0.5f);
-    const float ell_t7 = (mid7 - 1.0f - 127.0f) * 2.0f;
+    const float mid_below7 = mid7 - 1.0f;
+    const float ell_t7 = (mid_below7 - 127.0f) * 2.0f;
     const float ell_h7 = floorf(ell_t7 * ell_t7);
     const float ell_g7 = 130050.0f - ell_h7;
     const float ell_p7 = w2.x * w2.x * ell_g7;
@@ -466,20 +469,22 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent19 = unitpack_bits_of(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     const uint32_t exponent20 = exponent19 < 40u ? 40u : exponent19;
     const uint32_t exponent21 = 254u < exponent20 ? 254u : exponent20;
-    const float t36 = unitpack_float_of((281u - exponent21) << 23u);
-    const float ell_s7 = (floorf(ell_p7 * t36) + floorf(ell_q7 * t36))
-        * unitpack_float_of((exponent21 - 27u) << 23u);
-    const float lhs7 = ell_s7 * t20 * t20 * 3.6962433e-9f;
+    const float scale8 = unitpack_float_of((281u - exponent21) << 23u);
+    const float back7 = unitpack_float_of((exponent21 - 27u) << 23u);
+    const float ell_s7 = (floorf(ell_p7 * scale8) + floorf(ell_q7 * scale8)) * back7;
+    const float lhs7 = ell_s7 * t15 * t15 * 3.6962433e-9f;
     const float rhs7 = ell_h7 * ell_g7 * rho2_2;
-    const float t37 = ell_t7 > 0.0f
-        ? (w2.x > 0.0f ? (lhs7 >= rhs7 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs7 <= rhs7 ? 1.0f : 0.0f));
-    const bool beyond7 = t37 > 0.5f;
-    const bool t38 = w2.y >= 0.0f;
-    const float t39 = t38 ? 64.0f : 0.0f;
-    const float t40 = t38 ? 127.0f : 63.0f;
-    const float mid8 = floorf((t39 + t40 + 1.0f) * 0.5f);
-    const float ell_t8 = (mid8 - 1.0f - 63.0f) * 2.0f;
+    const float one_if13 = lhs7 >= rhs7 ? 1.0f : 0.0f;
+    const float outside7 = w2.x > 0.0f ? one_if13 : 0.0f;
+    const float one_if14 = lhs7 <= rhs7 ? 1.0f : 0.0f;
+    const float inside7 = w2.x >= 0.0f ? 1.0f : one_if14;
+    const bool beyond7 = (ell_t7 > 0.0f ? outside7 : inside7) > 0.5f;
+    const bool t19 = w2.y >= 0.0f;
+    const float t20 = t19 ? 64.0f : 0.0f;
+    const float t21 = t19 ? 127.0f : 63.0f;
+    const float mid8 = floorf((t20 + t21 + 1.0f) * 0.5f);
+    const float mid_below8 = mid8 - 1.0f;
+    const float ell_t8 = (mid_below8 - 63.0f) * 2.0f;
     const float ell_h8 = floorf(ell_t8 * ell_t8);
     const float ell_g8 = 32258.0f - ell_h8;
     const float ell_p8 = w2.y * w2.y * ell_g8;
@@ -487,19 +492,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent22 = unitpack_bits_of(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     const uint32_t exponent23 = exponent22 < 40u ? 40u : exponent22;
     const uint32_t exponent24 = 254u < exponent23 ? 254u : exponent23;
-    const float t41 = unitpack_float_of((281u - exponent24) << 23u);
-    const float ell_s8 = (floorf(ell_p8 * t41) + floorf(ell_q8 * t41))
-        * unitpack_float_of((exponent24 - 27u) << 23u);
-    const float lhs8 = ell_s8 * t20 * t20 * 9.168275e-10f;
+    const float scale9 = unitpack_float_of((281u - exponent24) << 23u);
+    const float back8 = unitpack_float_of((exponent24 - 27u) << 23u);
+    const float ell_s8 = (floorf(ell_p8 * scale9) + floorf(ell_q8 * scale9)) * back8;
+    const float lhs8 = ell_s8 * t15 * t15 * 9.168275e-10f;
     const float rhs8 = ell_h8 * ell_g8 * rho2_2;
-    const float t42 = ell_t8 > 0.0f
-        ? (w2.y > 0.0f ? (lhs8 >= rhs8 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs8 <= rhs8 ? 1.0f : 0.0f));
-    const bool beyond8 = t42 > 0.5f;
-    const float lo11 = beyond8 ? mid8 : t39;
-    const float hi11 = beyond8 ? t40 : mid8 - 1.0f;
+    const float one_if15 = lhs8 >= rhs8 ? 1.0f : 0.0f;
+    const float outside8 = w2.y > 0.0f ? one_if15 : 0.0f;
+    const float one_if16 = lhs8 <= rhs8 ? 1.0f : 0.0f;
+    const float inside8 = w2.y >= 0.0f ? 1.0f : one_if16;
+    const bool beyond8 = (ell_t8 > 0.0f ? outside8 : inside8) > 0.5f;
+    const float lo11 = beyond8 ? mid8 : t20;
+    const float hi11 = beyond8 ? t21 : mid_below8;
     const float mid9 = floorf((lo11 + hi11 + 1.0f) * 0.5f);
-    const float ell_t9 = (mid9 - 1.0f - 63.0f) * 2.0f;
+    const float mid_below9 = mid9 - 1.0f;
+    const float ell_t9 = (mid_below9 - 63.0f) * 2.0f;
     const float ell_h9 = floorf(ell_t9 * ell_t9);
     const float ell_g9 = 32258.0f - ell_h9;
     const float ell_p9 = w2.y * w2.y * ell_g9;
@@ -507,19 +514,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent25 = unitpack_bits_of(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     const uint32_t exponent26 = exponent25 < 40u ? 40u : exponent25;
     const uint32_t exponent27 = 254u < exponent26 ? 254u : exponent26;
-    const float t43 = unitpack_float_of((281u - exponent27) << 23u);
-    const float ell_s9 = (floorf(ell_p9 * t43) + floorf(ell_q9 * t43))
-        * unitpack_float_of((exponent27 - 27u) << 23u);
-    const float lhs9 = ell_s9 * t20 * t20 * 9.168275e-10f;
+    const float scale10 = unitpack_float_of((281u - exponent27) << 23u);
+    const float back9 = unitpack_float_of((exponent27 - 27u) << 23u);
+    const float ell_s9 = (floorf(ell_p9 * scale10) + floorf(ell_q9 * scale10)) * back9;
+    const float lhs9 = ell_s9 * t15 * t15 * 9.168275e-10f;
     const float rhs9 = ell_h9 * ell_g9 * rho2_2;
-    const float t44 = ell_t9 > 0.0f
-        ? (w2.y > 0.0f ? (lhs9 >= rhs9 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs9 <= rhs9 ? 1.0f : 0.0f));
-    const bool beyond9 = t44 > 0.5f;
+    const float one_if17 = lhs9 >= rhs9 ? 1.0f : 0.0f;
+    const float outside9 = w2.y > 0.0f ? one_if17 : 0.0f;
+    const float one_if18 = lhs9 <= rhs9 ? 1.0f : 0.0f;
+    const float inside9 = w2.y >= 0.0f ? 1.0f : one_if18;
+    const bool beyond9 = (ell_t9 > 0.0f ? outside9 : inside9) > 0.5f;
     const float lo12 = beyond9 ? mid9 : lo11;
-    const float hi12 = beyond9 ? hi11 : mid9 - 1.0f;
+    const float hi12 = beyond9 ? hi11 : mid_below9;
     const float mid10 = floorf((lo12 + hi12 + 1.0f) * 0.5f);
-    const float ell_t10 = (mid10 - 1.0f - 63.0f) * 2.0f;
+    const float mid_below10 = mid10 - 1.0f;
+    const float ell_t10 = (mid_below10 - 63.0f) * 2.0f;
     const float ell_h10 = floorf(ell_t10 * ell_t10);
     const float ell_g10 = 32258.0f - ell_h10;
     const float ell_p10 = w2.y * w2.y * ell_g10;
@@ -527,19 +536,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent28 = unitpack_bits_of(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     const uint32_t exponent29 = exponent28 < 40u ? 40u : exponent28;
     const uint32_t exponent30 = 254u < exponent29 ? 254u : exponent29;
-    const float t45 = unitpack_float_of((281u - exponent30) << 23u);
-    const float ell_s10 = (floorf(ell_p10 * t45) + floorf(ell_q10 * t45))
-        * unitpack_float_of((exponent30 - 27u) << 23u);
-    const float lhs10 = ell_s10 * t20 * t20 * 9.168275e-10f;
+    const float scale11 = unitpack_float_of((281u - exponent30) << 23u);
+    const float back10 = unitpack_float_of((exponent30 - 27u) << 23u);
+    const float ell_s10 = (floorf(ell_p10 * scale11) + floorf(ell_q10 * scale11)) * back10;
+    const float lhs10 = ell_s10 * t15 * t15 * 9.168275e-10f;
     const float rhs10 = ell_h10 * ell_g10 * rho2_2;
-    const float t46 = ell_t10 > 0.0f
-        ? (w2.y > 0.0f ? (lhs10 >= rhs10 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs10 <= rhs10 ? 1.0f : 0.0f));
-    const bool beyond10 = t46 > 0.5f;
+    const float one_if19 = lhs10 >= rhs10 ? 1.0f : 0.0f;
+    const float outside10 = w2.y > 0.0f ? one_if19 : 0.0f;
+    const float one_if20 = lhs10 <= rhs10 ? 1.0f : 0.0f;
+    const float inside10 = w2.y >= 0.0f ? 1.0f : one_if20;
+    const bool beyond10 = (ell_t10 > 0.0f ? outside10 : inside10) > 0.5f;
     const float lo13 = beyond10 ? mid10 : lo12;
-    const float hi13 = beyond10 ? hi12 : mid10 - 1.0f;
+    const float hi13 = beyond10 ? hi12 : mid_below10;
     const float mid11 = floorf((lo13 + hi13 + 1.0f) * 0.5f);
-    const float ell_t11 = (mid11 - 1.0f - 63.0f) * 2.0f;
+    const float mid_below11 = mid11 - 1.0f;
+    const float ell_t11 = (mid_below11 - 63.0f) * 2.0f;
     const float ell_h11 = floorf(ell_t11 * ell_t11);
     const float ell_g11 = 32258.0f - ell_h11;
     const float ell_p11 = w2.y * w2.y * ell_g11;
@@ -547,19 +558,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent31 = unitpack_bits_of(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     const uint32_t exponent32 = exponent31 < 40u ? 40u : exponent31;
     const uint32_t exponent33 = 254u < exponent32 ? 254u : exponent32;
-    const float t47 = unitpack_float_of((281u - exponent33) << 23u);
-    const float ell_s11 = (floorf(ell_p11 * t47) + floorf(ell_q11 * t47))
-        * unitpack_float_of((exponent33 - 27u) << 23u);
-    const float lhs11 = ell_s11 * t20 * t20 * 9.168275e-10f;
+    const float scale12 = unitpack_float_of((281u - exponent33) << 23u);
+    const float back11 = unitpack_float_of((exponent33 - 27u) << 23u);
+    const float ell_s11 = (floorf(ell_p11 * scale12) + floorf(ell_q11 * scale12)) * back11;
+    const float lhs11 = ell_s11 * t15 * t15 * 9.168275e-10f;
     const float rhs11 = ell_h11 * ell_g11 * rho2_2;
-    const float t48 = ell_t11 > 0.0f
-        ? (w2.y > 0.0f ? (lhs11 >= rhs11 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs11 <= rhs11 ? 1.0f : 0.0f));
-    const bool beyond11 = t48 > 0.5f;
+    const float one_if21 = lhs11 >= rhs11 ? 1.0f : 0.0f;
+    const float outside11 = w2.y > 0.0f ? one_if21 : 0.0f;
+    const float one_if22 = lhs11 <= rhs11 ? 1.0f : 0.0f;
+    const float inside11 = w2.y >= 0.0f ? 1.0f : one_if22;
+    const bool beyond11 = (ell_t11 > 0.0f ? outside11 : inside11) > 0.5f;
     const float lo14 = beyond11 ? mid11 : lo13;
-    const float hi14 = beyond11 ? hi13 : mid11 - 1.0f;
+    const float hi14 = beyond11 ? hi13 : mid_below11;
     const float mid12 = floorf((lo14 + hi14 + 1.0f) * 0.5f);
-    const float ell_t12 = (mid12 - 1.0f - 63.0f) * 2.0f;
+    const float mid_below12 = mid12 - 1.0f;
+    const float ell_t12 = (mid_below12 - 63.0f) * 2.0f;
     const float ell_h12 = floorf(ell_t12 * ell_t12);
     const float ell_g12 = 32258.0f - ell_h12;
     const float ell_p12 = w2.y * w2.y * ell_g12;
@@ -567,19 +580,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent34 = unitpack_bits_of(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     const uint32_t exponent35 = exponent34 < 40u ? 40u : exponent34;
     const uint32_t exponent36 = 254u < exponent35 ? 254u : exponent35;
-    const float t49 = unitpack_float_of((281u - exponent36) << 23u);
-    const float ell_s12 = (floorf(ell_p12 * t49) + floorf(ell_q12 * t49))
-        * unitpack_float_of((exponent36 - 27u) << 23u);
-    const float lhs12 = ell_s12 * t20 * t20 * 9.168275e-10f;
+    const float scale13 = unitpack_float_of((281u - exponent36) << 23u);
+    const float back12 = unitpack_float_of((exponent36 - 27u) << 23u);
+    const float ell_s12 = (floorf(ell_p12 * scale13) + floorf(ell_q12 * scale13)) * back12;
+    const float lhs12 = ell_s12 * t15 * t15 * 9.168275e-10f;
     const float rhs12 = ell_h12 * ell_g12 * rho2_2;
-    const float t50 = ell_t12 > 0.0f
-        ? (w2.y > 0.0f ? (lhs12 >= rhs12 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs12 <= rhs12 ? 1.0f : 0.0f));
-    const bool beyond12 = t50 > 0.5f;
+    const float one_if23 = lhs12 >= rhs12 ? 1.0f : 0.0f;
+    const float outside12 = w2.y > 0.0f ? one_if23 : 0.0f;
+    const float one_if24 = lhs12 <= rhs12 ? 1.0f : 0.0f;
+    const float inside12 = w2.y >= 0.0f ? 1.0f : one_if24;
+    const bool beyond12 = (ell_t12 > 0.0f ? outside12 : inside12) > 0.5f;
     const float lo15 = beyond12 ? mid12 : lo14;
-    const float hi15 = beyond12 ? hi14 : mid12 - 1.0f;
+    const float hi15 = beyond12 ? hi14 : mid_below12;
     const float mid13 = floorf((lo15 + hi15 + 1.0f) * 0.5f);
-    const float ell_t13 = (mid13 - 1.0f - 63.0f) * 2.0f;
+    const float mid_below13 = mid13 - 1.0f;
+    const float ell_t13 = (mid_below13 - 63.0f) * 2.0f;
     const float ell_h13 = floorf(ell_t13 * ell_t13);
     const float ell_g13 = 32258.0f - ell_h13;
     const float ell_p13 = w2.y * w2.y * ell_g13;
@@ -587,21 +602,22 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse16_round_codes_v(unitpack_vec
     const uint32_t exponent37 = unitpack_bits_of(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     const uint32_t exponent38 = exponent37 < 40u ? 40u : exponent37;
     const uint32_t exponent39 = 254u < exponent38 ? 254u : exponent38;
-    const float t51 = unitpack_float_of((281u - exponent39) << 23u);
-    const float ell_s13 = (floorf(ell_p13 * t51) + floorf(ell_q13 * t51))
-        * unitpack_float_of((exponent39 - 27u) << 23u);
-    const float lhs13 = ell_s13 * t20 * t20 * 9.168275e-10f;
+    const float scale14 = unitpack_float_of((281u - exponent39) << 23u);
+    const float back13 = unitpack_float_of((exponent39 - 27u) << 23u);
+    const float ell_s13 = (floorf(ell_p13 * scale14) + floorf(ell_q13 * scale14)) * back13;
+    const float lhs13 = ell_s13 * t15 * t15 * 9.168275e-10f;
     const float rhs13 = ell_h13 * ell_g13 * rho2_2;
-    const float t52 = ell_t13 > 0.0f
-        ? (w2.y > 0.0f ? (lhs13 >= rhs13 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs13 <= rhs13 ? 1.0f : 0.0f));
-    const bool beyond13 = t52 > 0.5f;
-    const unitpack_vec3 t53 = {
+    const float one_if25 = lhs13 >= rhs13 ? 1.0f : 0.0f;
+    const float outside13 = w2.y > 0.0f ? one_if25 : 0.0f;
+    const float one_if26 = lhs13 <= rhs13 ? 1.0f : 0.0f;
+    const float inside13 = w2.y >= 0.0f ? 1.0f : one_if26;
+    const bool beyond13 = (ell_t13 > 0.0f ? outside13 : inside13) > 0.5f;
+    const unitpack_vec3 t22 = {
         beyond7 ? mid7 : lo10,
         beyond13 ? mid13 : lo15,
         w2.z < 0.0f ? 1.0f : 0.0f
     };
-    return t53;
+    return t22;
 }
 
 // Struct form of unitpack_eqdist_ellipse16_encode.

@@ -93,12 +93,11 @@ static inline void unitpack_eqdist_ellipse24_decode_float(const float params[3],
 
 // Struct form of unitpack_eqdist_ellipse24_decode.
 static inline unitpack_vec3 unitpack_eqdist_ellipse24_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 4095u),
-        (float)((code >> 12u) & 2047u),
-        (float)((code >> 23u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 4095u) * 0.00024420026f,
+        (float)((code >> 12u) & 2047u) * 0.0004885198f,
+        (float)((code >> 23u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.00024420026f, t1.y * 0.0004885198f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_eqdist_ellipse24_decode_float_v(params);
     return decode_float;
 }
@@ -148,55 +147,46 @@ static inline float unitpack_eqdist_ellipse24_atan2_pi_v(float a0, float a1) {
 
 // Struct form of unitpack_eqdist_ellipse24_encode_float.
 static inline unitpack_vec3 unitpack_eqdist_ellipse24_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec2 t3 = { w2.x * w2.x, w2.y * w2.y };
-    const float rho = sqrtf(t3.x + t3.y);
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const unitpack_vec2 t1 = { w2.x * w2.x, w2.y * w2.y };
+    const float rho = sqrtf(t1.x + t1.y);
     const float half_r = unitpack_eqdist_ellipse24_atan2_pi_v(rho, fabsf(w2.z));
-    const float t4 = half_r / (rho > 0.0f ? rho : 1.0f) * 2.0f;
-    const unitpack_vec2 disk = { w2.x * t4, w2.y * t4 };
-    const unitpack_vec2 t5 = { fabsf(disk.y), fabsf(disk.x) };
-    const unitpack_vec2 t6 = { disk.x + 1.4142135f - t5.x, disk.y + 1.4142135f - t5.y };
-    const unitpack_vec2 t7 = {
-        (t6.x >= 0.0f ? t6.x : 0.0f) * (disk.x + 1.4142135f + t5.x),
-        (t6.y >= 0.0f ? t6.y : 0.0f) * (disk.y + 1.4142135f + t5.y)
+    const float t2 = half_r / (rho > 0.0f ? rho : 1.0f) * 2.0f;
+    const unitpack_vec2 disk = { w2.x * t2, w2.y * t2 };
+    const unitpack_vec2 t3 = { fabsf(disk.y), fabsf(disk.x) };
+    const unitpack_vec2 t4 = { disk.x + 1.4142135f - t3.x, disk.y + 1.4142135f - t3.y };
+    const unitpack_vec2 neg_disk = { -disk.x, -disk.y };
+    const unitpack_vec2 t5 = { neg_disk.x + 1.4142135f - t3.x, neg_disk.y + 1.4142135f - t3.y };
+    const unitpack_vec2 t6 = {
+        sqrtf((t4.x >= 0.0f ? t4.x : 0.0f) * (disk.x + 1.4142135f + t3.x))
+            + sqrtf((t5.x >= 0.0f ? t5.x : 0.0f) * (neg_disk.x + 1.4142135f + t3.x)),
+        sqrtf((t4.y >= 0.0f ? t4.y : 0.0f) * (disk.y + 1.4142135f + t3.y))
+            + sqrtf((t5.y >= 0.0f ? t5.y : 0.0f) * (neg_disk.y + 1.4142135f + t3.y))
     };
-    const unitpack_vec2 t8 = { -disk.x, -disk.y };
-    const unitpack_vec2 t9 = { t8.x + 1.4142135f - t5.x, t8.y + 1.4142135f - t5.y };
-    const unitpack_vec2 t10 = {
-        (t9.x >= 0.0f ? t9.x : 0.0f) * (t8.x + 1.4142135f + t5.x),
-        (t9.y >= 0.0f ? t9.y : 0.0f) * (t8.y + 1.4142135f + t5.y)
-    };
-    const unitpack_vec2 square = {
-        disk.x / (sqrtf(t7.x) + sqrtf(t10.x)),
-        disk.y / (sqrtf(t7.y) + sqrtf(t10.y))
-    };
-    const unitpack_vec2 t11 = { square.x * 1.4142135f, square.y * 1.4142135f };
-    const unitpack_vec2 enc = { t11.x + 0.5f, t11.y + 0.5f };
-    const unitpack_vec3 t12 = { enc.x, enc.y, w2.z < 0.0f ? 1.0f : 0.0f };
-    return t12;
+    const unitpack_vec2 square = { disk.x / t6.x, disk.y / t6.y };
+    const unitpack_vec2 t7 = { square.x * 1.4142135f, square.y * 1.4142135f };
+    const unitpack_vec2 enc = { t7.x + 0.5f, t7.y + 0.5f };
+    const unitpack_vec3 t8 = { enc.x, enc.y, one_if };
+    return t8;
 }
 
 // unitpack_eqdist_ellipse24_encode_float: fast encoder, float form.
@@ -219,32 +209,29 @@ static inline void unitpack_eqdist_ellipse24_encode_float(const float v[3], floa
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -257,88 +244,92 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
     const uint32_t hi3 = hi2 + (lo2 >> 24u);
     const uint32_t lo3 = lo2 & 16777215u;
-    const float t3 = (float)hi3 * 16777216.0f;
-    const float rho2 = (t3 + (float)lo3) * 2.2737368e-13f;
-    const bool t4 = rho2 > 0.0f;
-    const float rho2_2 = t4 ? rho2 : 1.0f;
+    const float t1 = (float)hi3 * 16777216.0f;
+    const float rho2 = (t1 + (float)lo3) * 2.2737368e-13f;
+    const bool t2 = rho2 > 0.0f;
+    const float rho2_2 = t2 ? rho2 : 1.0f;
     const uint32_t half_exponent = ((unitpack_bits_of(rho2_2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t5 = rho2_2 * root_down;
-    const float root_estimate = sqrtf(t5);
-    const float t6 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t6 * 0.001953125f;
+    const float t3 = rho2_2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0f : (root_h0 * root_h0 > t5 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t5 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t7 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t7;
-    const float t8 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t8;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0f : (root_m0 * root_m0 > t5 ? -1.0f : 0.0f));
-    const float t9 = root_k * 4096.0f;
-    const float root = (t9 + root_j) * 4.7683716e-7f;
-    const float rho = t4 ? root * root_up : 0.0f;
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float rho = t2 ? root * root_up : 0.0f;
     const float abs_w2_z = fabsf(w2.z);
     const float abs_abs_w2_z = fabsf(abs_w2_z);
     const float abs_rho = fabsf(rho);
     const bool y_major = abs_rho > abs_abs_w2_z;
     const float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     const float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    const float t10 = hi4 > 0.0f ? hi4 : 1.0f;
+    const float t7 = hi4 > 0.0f ? hi4 : 1.0f;
     const float big = lo4 * 8388608.0f;
-    const float ratio_estimate = floorf(lo4 / t10 * 8388608.0f);
-    const float t11 = (ratio_estimate + 1.0f) * t10 <= big
-        ? 1.0f
-        : (ratio_estimate * t10 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t11;
-    const float t = ratio
-        + ((ratio + 1.0f) * t10 <= big ? 1.0f : (ratio * t10 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo4 / t7 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t7 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t7 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t7 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t7 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t12 = t - 8388608.0f;
-    const float t13 = t + 8388608.0f;
-    const float big2 = t12 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t12 / t13 * 8388608.0f);
-    const float t14 = (ratio_estimate2 + 1.0f) * t13 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t13 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t14;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t13 <= big2 ? 1.0f : (ratio2 * t13 > big2 ? -1.0f : 0.0f));
+    const float t8 = t - 8388608.0f;
+    const float t9 = t + 8388608.0f;
+    const float big2 = t8 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t8 / t9 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t9 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t9 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t9 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t9 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t15 = nearbyintf(
+    const float t10 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t16 = (nearbyintf((t15 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t11 = (nearbyintf((t10 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t17 = (
-        nearbyintf((nearbyintf(t16) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t12 = (
+        nearbyintf((nearbyintf(t11) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t18 = nearbyintf(
-        (nearbyintf(t17 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t13 = nearbyintf(
+        (nearbyintf(t12 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t19 = (nearbyintf((t18 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t19) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t14 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = abs_w2_z < 0.0f ? 8388608.0f - h3 : h3;
-    const float t20 = rho < 0.0f ? -h4 : h4;
-    const bool t21 = w2.x >= 0.0f;
-    const float t22 = t21 ? 2048.0f : 0.0f;
-    const float t23 = t21 ? 4095.0f : 2047.0f;
-    const float mid = floorf((t22 + t23 + 1.0f) * 0.5f);
-    const float ell_t = (mid - 1.0f - 2047.0f) * 2.0f;
+    const float t15 = rho < 0.0f ? -h4 : h4;
+    const bool t16 = w2.x >= 0.0f;
+    const float t17 = t16 ? 2048.0f : 0.0f;
+    const float t18 = t16 ? 4095.0f : 2047.0f;
+    const float mid = floorf((t17 + t18 + 1.0f) * 0.5f);
+    const float mid_below = mid - 1.0f;
+    const float ell_t = (mid_below - 2047.0f) * 2.0f;
     const float ell_h = floorf(ell_t * ell_t);
     const float ell_g = 33538050.0f - ell_h;
     const float ell_p = w2.x * w2.x * ell_g;
@@ -346,19 +337,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent = unitpack_bits_of(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     const uint32_t exponent2 = exponent < 40u ? 40u : exponent;
     const uint32_t exponent3 = 254u < exponent2 ? 254u : exponent2;
-    const float t24 = unitpack_float_of((281u - exponent3) << 23u);
-    const float ell_s = (floorf(ell_p * t24) + floorf(ell_q * t24))
-        * unitpack_float_of((exponent3 - 27u) << 23u);
-    const float lhs = ell_s * t20 * t20 * 9.532087e-7f;
+    const float scale2 = unitpack_float_of((281u - exponent3) << 23u);
+    const float back = unitpack_float_of((exponent3 - 27u) << 23u);
+    const float ell_s = (floorf(ell_p * scale2) + floorf(ell_q * scale2)) * back;
+    const float lhs = ell_s * t15 * t15 * 9.532087e-7f;
     const float rhs = ell_h * ell_g * rho2_2;
-    const float t25 = ell_t > 0.0f
-        ? (w2.x > 0.0f ? (lhs >= rhs ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs <= rhs ? 1.0f : 0.0f));
-    const bool beyond = t25 > 0.5f;
-    const float lo5 = beyond ? mid : t22;
-    const float hi5 = beyond ? t23 : mid - 1.0f;
+    const float one_if = lhs >= rhs ? 1.0f : 0.0f;
+    const float outside = w2.x > 0.0f ? one_if : 0.0f;
+    const float one_if2 = lhs <= rhs ? 1.0f : 0.0f;
+    const float inside = w2.x >= 0.0f ? 1.0f : one_if2;
+    const bool beyond = (ell_t > 0.0f ? outside : inside) > 0.5f;
+    const float lo5 = beyond ? mid : t17;
+    const float hi5 = beyond ? t18 : mid_below;
     const float mid2 = floorf((lo5 + hi5 + 1.0f) * 0.5f);
-    const float ell_t2 = (mid2 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below2 = mid2 - 1.0f;
+    const float ell_t2 = (mid_below2 - 2047.0f) * 2.0f;
     const float ell_h2 = floorf(ell_t2 * ell_t2);
     const float ell_g2 = 33538050.0f - ell_h2;
     const float ell_p2 = w2.x * w2.x * ell_g2;
@@ -366,19 +359,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent4 = unitpack_bits_of(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     const uint32_t exponent5 = exponent4 < 40u ? 40u : exponent4;
     const uint32_t exponent6 = 254u < exponent5 ? 254u : exponent5;
-    const float t26 = unitpack_float_of((281u - exponent6) << 23u);
-    const float ell_s2 = (floorf(ell_p2 * t26) + floorf(ell_q2 * t26))
-        * unitpack_float_of((exponent6 - 27u) << 23u);
-    const float lhs2 = ell_s2 * t20 * t20 * 9.532087e-7f;
+    const float scale3 = unitpack_float_of((281u - exponent6) << 23u);
+    const float back2 = unitpack_float_of((exponent6 - 27u) << 23u);
+    const float ell_s2 = (floorf(ell_p2 * scale3) + floorf(ell_q2 * scale3)) * back2;
+    const float lhs2 = ell_s2 * t15 * t15 * 9.532087e-7f;
     const float rhs2 = ell_h2 * ell_g2 * rho2_2;
-    const float t27 = ell_t2 > 0.0f
-        ? (w2.x > 0.0f ? (lhs2 >= rhs2 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs2 <= rhs2 ? 1.0f : 0.0f));
-    const bool beyond2 = t27 > 0.5f;
+    const float one_if3 = lhs2 >= rhs2 ? 1.0f : 0.0f;
+    const float outside2 = w2.x > 0.0f ? one_if3 : 0.0f;
+    const float one_if4 = lhs2 <= rhs2 ? 1.0f : 0.0f;
+    const float inside2 = w2.x >= 0.0f ? 1.0f : one_if4;
+    const bool beyond2 = (ell_t2 > 0.0f ? outside2 : inside2) > 0.5f;
     const float lo6 = beyond2 ? mid2 : lo5;
-    const float hi6 = beyond2 ? hi5 : mid2 - 1.0f;
+    const float hi6 = beyond2 ? hi5 : mid_below2;
     const float mid3 = floorf((lo6 + hi6 + 1.0f) * 0.5f);
-    const float ell_t3 = (mid3 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below3 = mid3 - 1.0f;
+    const float ell_t3 = (mid_below3 - 2047.0f) * 2.0f;
     const float ell_h3 = floorf(ell_t3 * ell_t3);
     const float ell_g3 = 33538050.0f - ell_h3;
     const float ell_p3 = w2.x * w2.x * ell_g3;
@@ -386,19 +381,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent7 = unitpack_bits_of(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     const uint32_t exponent8 = exponent7 < 40u ? 40u : exponent7;
     const uint32_t exponent9 = 254u < exponent8 ? 254u : exponent8;
-    const float t28 = unitpack_float_of((281u - exponent9) << 23u);
-    const float ell_s3 = (floorf(ell_p3 * t28) + floorf(ell_q3 * t28))
-        * unitpack_float_of((exponent9 - 27u) << 23u);
-    const float lhs3 = ell_s3 * t20 * t20 * 9.532087e-7f;
+    const float scale4 = unitpack_float_of((281u - exponent9) << 23u);
+    const float back3 = unitpack_float_of((exponent9 - 27u) << 23u);
+    const float ell_s3 = (floorf(ell_p3 * scale4) + floorf(ell_q3 * scale4)) * back3;
+    const float lhs3 = ell_s3 * t15 * t15 * 9.532087e-7f;
     const float rhs3 = ell_h3 * ell_g3 * rho2_2;
-    const float t29 = ell_t3 > 0.0f
-        ? (w2.x > 0.0f ? (lhs3 >= rhs3 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs3 <= rhs3 ? 1.0f : 0.0f));
-    const bool beyond3 = t29 > 0.5f;
+    const float one_if5 = lhs3 >= rhs3 ? 1.0f : 0.0f;
+    const float outside3 = w2.x > 0.0f ? one_if5 : 0.0f;
+    const float one_if6 = lhs3 <= rhs3 ? 1.0f : 0.0f;
+    const float inside3 = w2.x >= 0.0f ? 1.0f : one_if6;
+    const bool beyond3 = (ell_t3 > 0.0f ? outside3 : inside3) > 0.5f;
     const float lo7 = beyond3 ? mid3 : lo6;
-    const float hi7 = beyond3 ? hi6 : mid3 - 1.0f;
+    const float hi7 = beyond3 ? hi6 : mid_below3;
     const float mid4 = floorf((lo7 + hi7 + 1.0f) * 0.5f);
-    const float ell_t4 = (mid4 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below4 = mid4 - 1.0f;
+    const float ell_t4 = (mid_below4 - 2047.0f) * 2.0f;
     const float ell_h4 = floorf(ell_t4 * ell_t4);
     const float ell_g4 = 33538050.0f - ell_h4;
     const float ell_p4 = w2.x * w2.x * ell_g4;
@@ -406,19 +403,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent10 = unitpack_bits_of(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     const uint32_t exponent11 = exponent10 < 40u ? 40u : exponent10;
     const uint32_t exponent12 = 254u < exponent11 ? 254u : exponent11;
-    const float t30 = unitpack_float_of((281u - exponent12) << 23u);
-    const float ell_s4 = (floorf(ell_p4 * t30) + floorf(ell_q4 * t30))
-        * unitpack_float_of((exponent12 - 27u) << 23u);
-    const float lhs4 = ell_s4 * t20 * t20 * 9.532087e-7f;
+    const float scale5 = unitpack_float_of((281u - exponent12) << 23u);
+    const float back4 = unitpack_float_of((exponent12 - 27u) << 23u);
+    const float ell_s4 = (floorf(ell_p4 * scale5) + floorf(ell_q4 * scale5)) * back4;
+    const float lhs4 = ell_s4 * t15 * t15 * 9.532087e-7f;
     const float rhs4 = ell_h4 * ell_g4 * rho2_2;
-    const float t31 = ell_t4 > 0.0f
-        ? (w2.x > 0.0f ? (lhs4 >= rhs4 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs4 <= rhs4 ? 1.0f : 0.0f));
-    const bool beyond4 = t31 > 0.5f;
+    const float one_if7 = lhs4 >= rhs4 ? 1.0f : 0.0f;
+    const float outside4 = w2.x > 0.0f ? one_if7 : 0.0f;
+    const float one_if8 = lhs4 <= rhs4 ? 1.0f : 0.0f;
+    const float inside4 = w2.x >= 0.0f ? 1.0f : one_if8;
+    const bool beyond4 = (ell_t4 > 0.0f ? outside4 : inside4) > 0.5f;
     const float lo8 = beyond4 ? mid4 : lo7;
-    const float hi8 = beyond4 ? hi7 : mid4 - 1.0f;
+    const float hi8 = beyond4 ? hi7 : mid_below4;
     const float mid5 = floorf((lo8 + hi8 + 1.0f) * 0.5f);
-    const float ell_t5 = (mid5 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below5 = mid5 - 1.0f;
+    const float ell_t5 = (mid_below5 - 2047.0f) * 2.0f;
     const float ell_h5 = floorf(ell_t5 * ell_t5);
     const float ell_g5 = 33538050.0f - ell_h5;
     const float ell_p5 = w2.x * w2.x * ell_g5;
@@ -426,19 +425,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent13 = unitpack_bits_of(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     const uint32_t exponent14 = exponent13 < 40u ? 40u : exponent13;
     const uint32_t exponent15 = 254u < exponent14 ? 254u : exponent14;
-    const float t32 = unitpack_float_of((281u - exponent15) << 23u);
-    const float ell_s5 = (floorf(ell_p5 * t32) + floorf(ell_q5 * t32))
-        * unitpack_float_of((exponent15 - 27u) << 23u);
-    const float lhs5 = ell_s5 * t20 * t20 * 9.532087e-7f;
+    const float scale6 = unitpack_float_of((281u - exponent15) << 23u);
+    const float back5 = unitpack_float_of((exponent15 - 27u) << 23u);
+    const float ell_s5 = (floorf(ell_p5 * scale6) + floorf(ell_q5 * scale6)) * back5;
+    const float lhs5 = ell_s5 * t15 * t15 * 9.532087e-7f;
     const float rhs5 = ell_h5 * ell_g5 * rho2_2;
-    const float t33 = ell_t5 > 0.0f
-        ? (w2.x > 0.0f ? (lhs5 >= rhs5 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs5 <= rhs5 ? 1.0f : 0.0f));
-    const bool beyond5 = t33 > 0.5f;
+    const float one_if9 = lhs5 >= rhs5 ? 1.0f : 0.0f;
+    const float outside5 = w2.x > 0.0f ? one_if9 : 0.0f;
+    const float one_if10 = lhs5 <= rhs5 ? 1.0f : 0.0f;
+    const float inside5 = w2.x >= 0.0f ? 1.0f : one_if10;
+    const bool beyond5 = (ell_t5 > 0.0f ? outside5 : inside5) > 0.5f;
     const float lo9 = beyond5 ? mid5 : lo8;
-    const float hi9 = beyond5 ? hi8 : mid5 - 1.0f;
+    const float hi9 = beyond5 ? hi8 : mid_below5;
     const float mid6 = floorf((lo9 + hi9 + 1.0f) * 0.5f);
-    const float ell_t6 = (mid6 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below6 = mid6 - 1.0f;
+    const float ell_t6 = (mid_below6 - 2047.0f) * 2.0f;
     const float ell_h6 = floorf(ell_t6 * ell_t6);
     const float ell_g6 = 33538050.0f - ell_h6;
     const float ell_p6 = w2.x * w2.x * ell_g6;
@@ -446,19 +447,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent16 = unitpack_bits_of(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     const uint32_t exponent17 = exponent16 < 40u ? 40u : exponent16;
     const uint32_t exponent18 = 254u < exponent17 ? 254u : exponent17;
-    const float t34 = unitpack_float_of((281u - exponent18) << 23u);
-    const float ell_s6 = (floorf(ell_p6 * t34) + floorf(ell_q6 * t34))
-        * unitpack_float_of((exponent18 - 27u) << 23u);
-    const float lhs6 = ell_s6 * t20 * t20 * 9.532087e-7f;
+    const float scale7 = unitpack_float_of((281u - exponent18) << 23u);
+    const float back6 = unitpack_float_of((exponent18 - 27u) << 23u);
+    const float ell_s6 = (floorf(ell_p6 * scale7) + floorf(ell_q6 * scale7)) * back6;
+    const float lhs6 = ell_s6 * t15 * t15 * 9.532087e-7f;
     const float rhs6 = ell_h6 * ell_g6 * rho2_2;
-    const float t35 = ell_t6 > 0.0f
-        ? (w2.x > 0.0f ? (lhs6 >= rhs6 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs6 <= rhs6 ? 1.0f : 0.0f));
-    const bool beyond6 = t35 > 0.5f;
+    const float one_if11 = lhs6 >= rhs6 ? 1.0f : 0.0f;
+    const float outside6 = w2.x > 0.0f ? one_if11 : 0.0f;
+    const float one_if12 = lhs6 <= rhs6 ? 1.0f : 0.0f;
+    const float inside6 = w2.x >= 0.0f ? 1.0f : one_if12;
+    const bool beyond6 = (ell_t6 > 0.0f ? outside6 : inside6) > 0.5f;
     const float lo10 = beyond6 ? mid6 : lo9;
-    const float hi10 = beyond6 ? hi9 : mid6 - 1.0f;
+    const float hi10 = beyond6 ? hi9 : mid_below6;
     const float mid7 = floorf((lo10 + hi10 + 1.0f) * 0.5f);
-    const float ell_t7 = (mid7 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below7 = mid7 - 1.0f;
+    const float ell_t7 = (mid_below7 - 2047.0f) * 2.0f;
     const float ell_h7 = floorf(ell_t7 * ell_t7);
     const float ell_g7 = 33538050.0f - ell_h7;
     const float ell_p7 = w2.x * w2.x * ell_g7;
@@ -466,19 +469,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent19 = unitpack_bits_of(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     const uint32_t exponent20 = exponent19 < 40u ? 40u : exponent19;
     const uint32_t exponent21 = 254u < exponent20 ? 254u : exponent20;
-    const float t36 = unitpack_float_of((281u - exponent21) << 23u);
-    const float ell_s7 = (floorf(ell_p7 * t36) + floorf(ell_q7 * t36))
-        * unitpack_float_of((exponent21 - 27u) << 23u);
-    const float lhs7 = ell_s7 * t20 * t20 * 9.532087e-7f;
+    const float scale8 = unitpack_float_of((281u - exponent21) << 23u);
+    const float back7 = unitpack_float_of((exponent21 - 27u) << 23u);
+    const float ell_s7 = (floorf(ell_p7 * scale8) + floorf(ell_q7 * scale8)) * back7;
+    const float lhs7 = ell_s7 * t15 * t15 * 9.532087e-7f;
     const float rhs7 = ell_h7 * ell_g7 * rho2_2;
-    const float t37 = ell_t7 > 0.0f
-        ? (w2.x > 0.0f ? (lhs7 >= rhs7 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs7 <= rhs7 ? 1.0f : 0.0f));
-    const bool beyond7 = t37 > 0.5f;
+    const float one_if13 = lhs7 >= rhs7 ? 1.0f : 0.0f;
+    const float outside7 = w2.x > 0.0f ? one_if13 : 0.0f;
+    const float one_if14 = lhs7 <= rhs7 ? 1.0f : 0.0f;
+    const float inside7 = w2.x >= 0.0f ? 1.0f : one_if14;
+    const bool beyond7 = (ell_t7 > 0.0f ? outside7 : inside7) > 0.5f;
     const float lo11 = beyond7 ? mid7 : lo10;
-    const float hi11 = beyond7 ? hi10 : mid7 - 1.0f;
+    const float hi11 = beyond7 ? hi10 : mid_below7;
     const float mid8 = floorf((lo11 + hi11 + 1.0f) * 0.5f);
-    const float ell_t8 = (mid8 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below8 = mid8 - 1.0f;
+    const float ell_t8 = (mid_below8 - 2047.0f) * 2.0f;
     const float ell_h8 = floorf(ell_t8 * ell_t8);
     const float ell_g8 = 33538050.0f - ell_h8;
     const float ell_p8 = w2.x * w2.x * ell_g8;
@@ -486,19 +491,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent22 = unitpack_bits_of(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     const uint32_t exponent23 = exponent22 < 40u ? 40u : exponent22;
     const uint32_t exponent24 = 254u < exponent23 ? 254u : exponent23;
-    const float t38 = unitpack_float_of((281u - exponent24) << 23u);
-    const float ell_s8 = (floorf(ell_p8 * t38) + floorf(ell_q8 * t38))
-        * unitpack_float_of((exponent24 - 27u) << 23u);
-    const float lhs8 = ell_s8 * t20 * t20 * 9.532087e-7f;
+    const float scale9 = unitpack_float_of((281u - exponent24) << 23u);
+    const float back8 = unitpack_float_of((exponent24 - 27u) << 23u);
+    const float ell_s8 = (floorf(ell_p8 * scale9) + floorf(ell_q8 * scale9)) * back8;
+    const float lhs8 = ell_s8 * t15 * t15 * 9.532087e-7f;
     const float rhs8 = ell_h8 * ell_g8 * rho2_2;
-    const float t39 = ell_t8 > 0.0f
-        ? (w2.x > 0.0f ? (lhs8 >= rhs8 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs8 <= rhs8 ? 1.0f : 0.0f));
-    const bool beyond8 = t39 > 0.5f;
+    const float one_if15 = lhs8 >= rhs8 ? 1.0f : 0.0f;
+    const float outside8 = w2.x > 0.0f ? one_if15 : 0.0f;
+    const float one_if16 = lhs8 <= rhs8 ? 1.0f : 0.0f;
+    const float inside8 = w2.x >= 0.0f ? 1.0f : one_if16;
+    const bool beyond8 = (ell_t8 > 0.0f ? outside8 : inside8) > 0.5f;
     const float lo12 = beyond8 ? mid8 : lo11;
-    const float hi12 = beyond8 ? hi11 : mid8 - 1.0f;
+    const float hi12 = beyond8 ? hi11 : mid_below8;
     const float mid9 = floorf((lo12 + hi12 + 1.0f) * 0.5f);
-    const float ell_t9 = (mid9 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below9 = mid9 - 1.0f;
+    const float ell_t9 = (mid_below9 - 2047.0f) * 2.0f;
     const float ell_h9 = floorf(ell_t9 * ell_t9);
     const float ell_g9 = 33538050.0f - ell_h9;
     const float ell_p9 = w2.x * w2.x * ell_g9;
@@ -506,19 +513,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent25 = unitpack_bits_of(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     const uint32_t exponent26 = exponent25 < 40u ? 40u : exponent25;
     const uint32_t exponent27 = 254u < exponent26 ? 254u : exponent26;
-    const float t40 = unitpack_float_of((281u - exponent27) << 23u);
-    const float ell_s9 = (floorf(ell_p9 * t40) + floorf(ell_q9 * t40))
-        * unitpack_float_of((exponent27 - 27u) << 23u);
-    const float lhs9 = ell_s9 * t20 * t20 * 9.532087e-7f;
+    const float scale10 = unitpack_float_of((281u - exponent27) << 23u);
+    const float back9 = unitpack_float_of((exponent27 - 27u) << 23u);
+    const float ell_s9 = (floorf(ell_p9 * scale10) + floorf(ell_q9 * scale10)) * back9;
+    const float lhs9 = ell_s9 * t15 * t15 * 9.532087e-7f;
     const float rhs9 = ell_h9 * ell_g9 * rho2_2;
-    const float t41 = ell_t9 > 0.0f
-        ? (w2.x > 0.0f ? (lhs9 >= rhs9 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs9 <= rhs9 ? 1.0f : 0.0f));
-    const bool beyond9 = t41 > 0.5f;
+    const float one_if17 = lhs9 >= rhs9 ? 1.0f : 0.0f;
+    const float outside9 = w2.x > 0.0f ? one_if17 : 0.0f;
+    const float one_if18 = lhs9 <= rhs9 ? 1.0f : 0.0f;
+    const float inside9 = w2.x >= 0.0f ? 1.0f : one_if18;
+    const bool beyond9 = (ell_t9 > 0.0f ? outside9 : inside9) > 0.5f;
     const float lo13 = beyond9 ? mid9 : lo12;
-    const float hi13 = beyond9 ? hi12 : mid9 - 1.0f;
+    const float hi13 = beyond9 ? hi12 : mid_below9;
     const float mid10 = floorf((lo13 + hi13 + 1.0f) * 0.5f);
-    const float ell_t10 = (mid10 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below10 = mid10 - 1.0f;
+    const float ell_t10 = (mid_below10 - 2047.0f) * 2.0f;
     const float ell_h10 = floorf(ell_t10 * ell_t10);
     const float ell_g10 = 33538050.0f - ell_h10;
     const float ell_p10 = w2.x * w2.x * ell_g10;
@@ -526,19 +535,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent28 = unitpack_bits_of(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     const uint32_t exponent29 = exponent28 < 40u ? 40u : exponent28;
     const uint32_t exponent30 = 254u < exponent29 ? 254u : exponent29;
-    const float t42 = unitpack_float_of((281u - exponent30) << 23u);
-    const float ell_s10 = (floorf(ell_p10 * t42) + floorf(ell_q10 * t42))
-        * unitpack_float_of((exponent30 - 27u) << 23u);
-    const float lhs10 = ell_s10 * t20 * t20 * 9.532087e-7f;
+    const float scale11 = unitpack_float_of((281u - exponent30) << 23u);
+    const float back10 = unitpack_float_of((exponent30 - 27u) << 23u);
+    const float ell_s10 = (floorf(ell_p10 * scale11) + floorf(ell_q10 * scale11)) * back10;
+    const float lhs10 = ell_s10 * t15 * t15 * 9.532087e-7f;
     const float rhs10 = ell_h10 * ell_g10 * rho2_2;
-    const float t43 = ell_t10 > 0.0f
-        ? (w2.x > 0.0f ? (lhs10 >= rhs10 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs10 <= rhs10 ? 1.0f : 0.0f));
-    const bool beyond10 = t43 > 0.5f;
+    const float one_if19 = lhs10 >= rhs10 ? 1.0f : 0.0f;
+    const float outside10 = w2.x > 0.0f ? one_if19 : 0.0f;
+    const float one_if20 = lhs10 <= rhs10 ? 1.0f : 0.0f;
+    const float inside10 = w2.x >= 0.0f ? 1.0f : one_if20;
+    const bool beyond10 = (ell_t10 > 0.0f ? outside10 : inside10) > 0.5f;
     const float lo14 = beyond10 ? mid10 : lo13;
-    const float hi14 = beyond10 ? hi13 : mid10 - 1.0f;
+    const float hi14 = beyond10 ? hi13 : mid_below10;
     const float mid11 = floorf((lo14 + hi14 + 1.0f) * 0.5f);
-    const float ell_t11 = (mid11 - 1.0f - 2047.0f) * 2.0f;
+    const float mid_below11 = mid11 - 1.0f;
+    const float ell_t11 = (mid_below11 - 2047.0f) * 2.0f;
     const float ell_h11 = floorf(ell_t11 * ell_t11);
     const float ell_g11 = 33538050.0f - ell_h11;
     const float ell_p11 = w2.x * w2.x * ell_g11;
@@ -546,20 +557,22 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent31 = unitpack_bits_of(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     const uint32_t exponent32 = exponent31 < 40u ? 40u : exponent31;
     const uint32_t exponent33 = 254u < exponent32 ? 254u : exponent32;
-    const float t44 = unitpack_float_of((281u - exponent33) << 23u);
-    const float ell_s11 = (floorf(ell_p11 * t44) + floorf(ell_q11 * t44))
-        * unitpack_float_of((exponent33 - 27u) << 23u);
-    const float lhs11 = ell_s11 * t20 * t20 * 9.532087e-7f;
+    const float scale12 = unitpack_float_of((281u - exponent33) << 23u);
+    const float back11 = unitpack_float_of((exponent33 - 27u) << 23u);
+    const float ell_s11 = (floorf(ell_p11 * scale12) + floorf(ell_q11 * scale12)) * back11;
+    const float lhs11 = ell_s11 * t15 * t15 * 9.532087e-7f;
     const float rhs11 = ell_h11 * ell_g11 * rho2_2;
-    const float t45 = ell_t11 > 0.0f
-        ? (w2.x > 0.0f ? (lhs11 >= rhs11 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.x >= 0.0f ? 1.0f : (lhs11 <= rhs11 ? 1.0f : 0.0f));
-    const bool beyond11 = t45 > 0.5f;
-    const bool t46 = w2.y >= 0.0f;
-    const float t47 = t46 ? 1024.0f : 0.0f;
-    const float t48 = t46 ? 2047.0f : 1023.0f;
-    const float mid12 = floorf((t47 + t48 + 1.0f) * 0.5f);
-    const float ell_t12 = (mid12 - 1.0f - 1023.0f) * 2.0f;
+    const float one_if21 = lhs11 >= rhs11 ? 1.0f : 0.0f;
+    const float outside11 = w2.x > 0.0f ? one_if21 : 0.0f;
+    const float one_if22 = lhs11 <= rhs11 ? 1.0f : 0.0f;
+    const float inside11 = w2.x >= 0.0f ? 1.0f : one_if22;
+    const bool beyond11 = (ell_t11 > 0.0f ? outside11 : inside11) > 0.5f;
+    const bool t19 = w2.y >= 0.0f;
+    const float t20 = t19 ? 1024.0f : 0.0f;
+    const float t21 = t19 ? 2047.0f : 1023.0f;
+    const float mid12 = floorf((t20 + t21 + 1.0f) * 0.5f);
+    const float mid_below12 = mid12 - 1.0f;
+    const float ell_t12 = (mid_below12 - 1023.0f) * 2.0f;
     const float ell_h12 = floorf(ell_t12 * ell_t12);
     const float ell_g12 = 8380418.0f - ell_h12;
     const float ell_p12 = w2.y * w2.y * ell_g12;
@@ -567,19 +580,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent34 = unitpack_bits_of(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     const uint32_t exponent35 = exponent34 < 40u ? 40u : exponent34;
     const uint32_t exponent36 = 254u < exponent35 ? 254u : exponent35;
-    const float t49 = unitpack_float_of((281u - exponent36) << 23u);
-    const float ell_s12 = (floorf(ell_p12 * t49) + floorf(ell_q12 * t49))
-        * unitpack_float_of((exponent36 - 27u) << 23u);
-    const float lhs12 = ell_s12 * t20 * t20 * 2.381858e-7f;
+    const float scale13 = unitpack_float_of((281u - exponent36) << 23u);
+    const float back12 = unitpack_float_of((exponent36 - 27u) << 23u);
+    const float ell_s12 = (floorf(ell_p12 * scale13) + floorf(ell_q12 * scale13)) * back12;
+    const float lhs12 = ell_s12 * t15 * t15 * 2.381858e-7f;
     const float rhs12 = ell_h12 * ell_g12 * rho2_2;
-    const float t50 = ell_t12 > 0.0f
-        ? (w2.y > 0.0f ? (lhs12 >= rhs12 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs12 <= rhs12 ? 1.0f : 0.0f));
-    const bool beyond12 = t50 > 0.5f;
-    const float lo15 = beyond12 ? mid12 : t47;
-    const float hi15 = beyond12 ? t48 : mid12 - 1.0f;
+    const float one_if23 = lhs12 >= rhs12 ? 1.0f : 0.0f;
+    const float outside12 = w2.y > 0.0f ? one_if23 : 0.0f;
+    const float one_if24 = lhs12 <= rhs12 ? 1.0f : 0.0f;
+    const float inside12 = w2.y >= 0.0f ? 1.0f : one_if24;
+    const bool beyond12 = (ell_t12 > 0.0f ? outside12 : inside12) > 0.5f;
+    const float lo15 = beyond12 ? mid12 : t20;
+    const float hi15 = beyond12 ? t21 : mid_below12;
     const float mid13 = floorf((lo15 + hi15 + 1.0f) * 0.5f);
-    const float ell_t13 = (mid13 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below13 = mid13 - 1.0f;
+    const float ell_t13 = (mid_below13 - 1023.0f) * 2.0f;
     const float ell_h13 = floorf(ell_t13 * ell_t13);
     const float ell_g13 = 8380418.0f - ell_h13;
     const float ell_p13 = w2.y * w2.y * ell_g13;
@@ -587,19 +602,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent37 = unitpack_bits_of(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     const uint32_t exponent38 = exponent37 < 40u ? 40u : exponent37;
     const uint32_t exponent39 = 254u < exponent38 ? 254u : exponent38;
-    const float t51 = unitpack_float_of((281u - exponent39) << 23u);
-    const float ell_s13 = (floorf(ell_p13 * t51) + floorf(ell_q13 * t51))
-        * unitpack_float_of((exponent39 - 27u) << 23u);
-    const float lhs13 = ell_s13 * t20 * t20 * 2.381858e-7f;
+    const float scale14 = unitpack_float_of((281u - exponent39) << 23u);
+    const float back13 = unitpack_float_of((exponent39 - 27u) << 23u);
+    const float ell_s13 = (floorf(ell_p13 * scale14) + floorf(ell_q13 * scale14)) * back13;
+    const float lhs13 = ell_s13 * t15 * t15 * 2.381858e-7f;
     const float rhs13 = ell_h13 * ell_g13 * rho2_2;
-    const float t52 = ell_t13 > 0.0f
-        ? (w2.y > 0.0f ? (lhs13 >= rhs13 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs13 <= rhs13 ? 1.0f : 0.0f));
-    const bool beyond13 = t52 > 0.5f;
+    const float one_if25 = lhs13 >= rhs13 ? 1.0f : 0.0f;
+    const float outside13 = w2.y > 0.0f ? one_if25 : 0.0f;
+    const float one_if26 = lhs13 <= rhs13 ? 1.0f : 0.0f;
+    const float inside13 = w2.y >= 0.0f ? 1.0f : one_if26;
+    const bool beyond13 = (ell_t13 > 0.0f ? outside13 : inside13) > 0.5f;
     const float lo16 = beyond13 ? mid13 : lo15;
-    const float hi16 = beyond13 ? hi15 : mid13 - 1.0f;
+    const float hi16 = beyond13 ? hi15 : mid_below13;
     const float mid14 = floorf((lo16 + hi16 + 1.0f) * 0.5f);
-    const float ell_t14 = (mid14 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below14 = mid14 - 1.0f;
+    const float ell_t14 = (mid_below14 - 1023.0f) * 2.0f;
     const float ell_h14 = floorf(ell_t14 * ell_t14);
     const float ell_g14 = 8380418.0f - ell_h14;
     const float ell_p14 = w2.y * w2.y * ell_g14;
@@ -607,19 +624,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent40 = unitpack_bits_of(ell_p14 >= ell_q14 ? ell_p14 : ell_q14) >> 23u;
     const uint32_t exponent41 = exponent40 < 40u ? 40u : exponent40;
     const uint32_t exponent42 = 254u < exponent41 ? 254u : exponent41;
-    const float t53 = unitpack_float_of((281u - exponent42) << 23u);
-    const float ell_s14 = (floorf(ell_p14 * t53) + floorf(ell_q14 * t53))
-        * unitpack_float_of((exponent42 - 27u) << 23u);
-    const float lhs14 = ell_s14 * t20 * t20 * 2.381858e-7f;
+    const float scale15 = unitpack_float_of((281u - exponent42) << 23u);
+    const float back14 = unitpack_float_of((exponent42 - 27u) << 23u);
+    const float ell_s14 = (floorf(ell_p14 * scale15) + floorf(ell_q14 * scale15)) * back14;
+    const float lhs14 = ell_s14 * t15 * t15 * 2.381858e-7f;
     const float rhs14 = ell_h14 * ell_g14 * rho2_2;
-    const float t54 = ell_t14 > 0.0f
-        ? (w2.y > 0.0f ? (lhs14 >= rhs14 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs14 <= rhs14 ? 1.0f : 0.0f));
-    const bool beyond14 = t54 > 0.5f;
+    const float one_if27 = lhs14 >= rhs14 ? 1.0f : 0.0f;
+    const float outside14 = w2.y > 0.0f ? one_if27 : 0.0f;
+    const float one_if28 = lhs14 <= rhs14 ? 1.0f : 0.0f;
+    const float inside14 = w2.y >= 0.0f ? 1.0f : one_if28;
+    const bool beyond14 = (ell_t14 > 0.0f ? outside14 : inside14) > 0.5f;
     const float lo17 = beyond14 ? mid14 : lo16;
-    const float hi17 = beyond14 ? hi16 : mid14 - 1.0f;
+    const float hi17 = beyond14 ? hi16 : mid_below14;
     const float mid15 = floorf((lo17 + hi17 + 1.0f) * 0.5f);
-    const float ell_t15 = (mid15 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below15 = mid15 - 1.0f;
+    const float ell_t15 = (mid_below15 - 1023.0f) * 2.0f;
     const float ell_h15 = floorf(ell_t15 * ell_t15);
     const float ell_g15 = 8380418.0f - ell_h15;
     const float ell_p15 = w2.y * w2.y * ell_g15;
@@ -627,19 +646,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent43 = unitpack_bits_of(ell_p15 >= ell_q15 ? ell_p15 : ell_q15) >> 23u;
     const uint32_t exponent44 = exponent43 < 40u ? 40u : exponent43;
     const uint32_t exponent45 = 254u < exponent44 ? 254u : exponent44;
-    const float t55 = unitpack_float_of((281u - exponent45) << 23u);
-    const float ell_s15 = (floorf(ell_p15 * t55) + floorf(ell_q15 * t55))
-        * unitpack_float_of((exponent45 - 27u) << 23u);
-    const float lhs15 = ell_s15 * t20 * t20 * 2.381858e-7f;
+    const float scale16 = unitpack_float_of((281u - exponent45) << 23u);
+    const float back15 = unitpack_float_of((exponent45 - 27u) << 23u);
+    const float ell_s15 = (floorf(ell_p15 * scale16) + floorf(ell_q15 * scale16)) * back15;
+    const float lhs15 = ell_s15 * t15 * t15 * 2.381858e-7f;
     const float rhs15 = ell_h15 * ell_g15 * rho2_2;
-    const float t56 = ell_t15 > 0.0f
-        ? (w2.y > 0.0f ? (lhs15 >= rhs15 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs15 <= rhs15 ? 1.0f : 0.0f));
-    const bool beyond15 = t56 > 0.5f;
+    const float one_if29 = lhs15 >= rhs15 ? 1.0f : 0.0f;
+    const float outside15 = w2.y > 0.0f ? one_if29 : 0.0f;
+    const float one_if30 = lhs15 <= rhs15 ? 1.0f : 0.0f;
+    const float inside15 = w2.y >= 0.0f ? 1.0f : one_if30;
+    const bool beyond15 = (ell_t15 > 0.0f ? outside15 : inside15) > 0.5f;
     const float lo18 = beyond15 ? mid15 : lo17;
-    const float hi18 = beyond15 ? hi17 : mid15 - 1.0f;
+    const float hi18 = beyond15 ? hi17 : mid_below15;
     const float mid16 = floorf((lo18 + hi18 + 1.0f) * 0.5f);
-    const float ell_t16 = (mid16 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below16 = mid16 - 1.0f;
+    const float ell_t16 = (mid_below16 - 1023.0f) * 2.0f;
     const float ell_h16 = floorf(ell_t16 * ell_t16);
     const float ell_g16 = 8380418.0f - ell_h16;
     const float ell_p16 = w2.y * w2.y * ell_g16;
@@ -647,19 +668,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent46 = unitpack_bits_of(ell_p16 >= ell_q16 ? ell_p16 : ell_q16) >> 23u;
     const uint32_t exponent47 = exponent46 < 40u ? 40u : exponent46;
     const uint32_t exponent48 = 254u < exponent47 ? 254u : exponent47;
-    const float t57 = unitpack_float_of((281u - exponent48) << 23u);
-    const float ell_s16 = (floorf(ell_p16 * t57) + floorf(ell_q16 * t57))
-        * unitpack_float_of((exponent48 - 27u) << 23u);
-    const float lhs16 = ell_s16 * t20 * t20 * 2.381858e-7f;
+    const float scale17 = unitpack_float_of((281u - exponent48) << 23u);
+    const float back16 = unitpack_float_of((exponent48 - 27u) << 23u);
+    const float ell_s16 = (floorf(ell_p16 * scale17) + floorf(ell_q16 * scale17)) * back16;
+    const float lhs16 = ell_s16 * t15 * t15 * 2.381858e-7f;
     const float rhs16 = ell_h16 * ell_g16 * rho2_2;
-    const float t58 = ell_t16 > 0.0f
-        ? (w2.y > 0.0f ? (lhs16 >= rhs16 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs16 <= rhs16 ? 1.0f : 0.0f));
-    const bool beyond16 = t58 > 0.5f;
+    const float one_if31 = lhs16 >= rhs16 ? 1.0f : 0.0f;
+    const float outside16 = w2.y > 0.0f ? one_if31 : 0.0f;
+    const float one_if32 = lhs16 <= rhs16 ? 1.0f : 0.0f;
+    const float inside16 = w2.y >= 0.0f ? 1.0f : one_if32;
+    const bool beyond16 = (ell_t16 > 0.0f ? outside16 : inside16) > 0.5f;
     const float lo19 = beyond16 ? mid16 : lo18;
-    const float hi19 = beyond16 ? hi18 : mid16 - 1.0f;
+    const float hi19 = beyond16 ? hi18 : mid_below16;
     const float mid17 = floorf((lo19 + hi19 + 1.0f) * 0.5f);
-    const float ell_t17 = (mid17 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below17 = mid17 - 1.0f;
+    const float ell_t17 = (mid_below17 - 1023.0f) * 2.0f;
     const float ell_h17 = floorf(ell_t17 * ell_t17);
     const float ell_g17 = 8380418.0f - ell_h17;
     const float ell_p17 = w2.y * w2.y * ell_g17;
@@ -667,19 +690,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent49 = unitpack_bits_of(ell_p17 >= ell_q17 ? ell_p17 : ell_q17) >> 23u;
     const uint32_t exponent50 = exponent49 < 40u ? 40u : exponent49;
     const uint32_t exponent51 = 254u < exponent50 ? 254u : exponent50;
-    const float t59 = unitpack_float_of((281u - exponent51) << 23u);
-    const float ell_s17 = (floorf(ell_p17 * t59) + floorf(ell_q17 * t59))
-        * unitpack_float_of((exponent51 - 27u) << 23u);
-    const float lhs17 = ell_s17 * t20 * t20 * 2.381858e-7f;
+    const float scale18 = unitpack_float_of((281u - exponent51) << 23u);
+    const float back17 = unitpack_float_of((exponent51 - 27u) << 23u);
+    const float ell_s17 = (floorf(ell_p17 * scale18) + floorf(ell_q17 * scale18)) * back17;
+    const float lhs17 = ell_s17 * t15 * t15 * 2.381858e-7f;
     const float rhs17 = ell_h17 * ell_g17 * rho2_2;
-    const float t60 = ell_t17 > 0.0f
-        ? (w2.y > 0.0f ? (lhs17 >= rhs17 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs17 <= rhs17 ? 1.0f : 0.0f));
-    const bool beyond17 = t60 > 0.5f;
+    const float one_if33 = lhs17 >= rhs17 ? 1.0f : 0.0f;
+    const float outside17 = w2.y > 0.0f ? one_if33 : 0.0f;
+    const float one_if34 = lhs17 <= rhs17 ? 1.0f : 0.0f;
+    const float inside17 = w2.y >= 0.0f ? 1.0f : one_if34;
+    const bool beyond17 = (ell_t17 > 0.0f ? outside17 : inside17) > 0.5f;
     const float lo20 = beyond17 ? mid17 : lo19;
-    const float hi20 = beyond17 ? hi19 : mid17 - 1.0f;
+    const float hi20 = beyond17 ? hi19 : mid_below17;
     const float mid18 = floorf((lo20 + hi20 + 1.0f) * 0.5f);
-    const float ell_t18 = (mid18 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below18 = mid18 - 1.0f;
+    const float ell_t18 = (mid_below18 - 1023.0f) * 2.0f;
     const float ell_h18 = floorf(ell_t18 * ell_t18);
     const float ell_g18 = 8380418.0f - ell_h18;
     const float ell_p18 = w2.y * w2.y * ell_g18;
@@ -687,19 +712,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent52 = unitpack_bits_of(ell_p18 >= ell_q18 ? ell_p18 : ell_q18) >> 23u;
     const uint32_t exponent53 = exponent52 < 40u ? 40u : exponent52;
     const uint32_t exponent54 = 254u < exponent53 ? 254u : exponent53;
-    const float t61 = unitpack_float_of((281u - exponent54) << 23u);
-    const float ell_s18 = (floorf(ell_p18 * t61) + floorf(ell_q18 * t61))
-        * unitpack_float_of((exponent54 - 27u) << 23u);
-    const float lhs18 = ell_s18 * t20 * t20 * 2.381858e-7f;
+    const float scale19 = unitpack_float_of((281u - exponent54) << 23u);
+    const float back18 = unitpack_float_of((exponent54 - 27u) << 23u);
+    const float ell_s18 = (floorf(ell_p18 * scale19) + floorf(ell_q18 * scale19)) * back18;
+    const float lhs18 = ell_s18 * t15 * t15 * 2.381858e-7f;
     const float rhs18 = ell_h18 * ell_g18 * rho2_2;
-    const float t62 = ell_t18 > 0.0f
-        ? (w2.y > 0.0f ? (lhs18 >= rhs18 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs18 <= rhs18 ? 1.0f : 0.0f));
-    const bool beyond18 = t62 > 0.5f;
+    const float one_if35 = lhs18 >= rhs18 ? 1.0f : 0.0f;
+    const float outside18 = w2.y > 0.0f ? one_if35 : 0.0f;
+    const float one_if36 = lhs18 <= rhs18 ? 1.0f : 0.0f;
+    const float inside18 = w2.y >= 0.0f ? 1.0f : one_if36;
+    const bool beyond18 = (ell_t18 > 0.0f ? outside18 : inside18) > 0.5f;
     const float lo21 = beyond18 ? mid18 : lo20;
-    const float hi21 = beyond18 ? hi20 : mid18 - 1.0f;
+    const float hi21 = beyond18 ? hi20 : mid_below18;
     const float mid19 = floorf((lo21 + hi21 + 1.0f) * 0.5f);
-    const float ell_t19 = (mid19 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below19 = mid19 - 1.0f;
+    const float ell_t19 = (mid_below19 - 1023.0f) * 2.0f;
     const float ell_h19 = floorf(ell_t19 * ell_t19);
     const float ell_g19 = 8380418.0f - ell_h19;
     const float ell_p19 = w2.y * w2.y * ell_g19;
@@ -707,19 +734,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent55 = unitpack_bits_of(ell_p19 >= ell_q19 ? ell_p19 : ell_q19) >> 23u;
     const uint32_t exponent56 = exponent55 < 40u ? 40u : exponent55;
     const uint32_t exponent57 = 254u < exponent56 ? 254u : exponent56;
-    const float t63 = unitpack_float_of((281u - exponent57) << 23u);
-    const float ell_s19 = (floorf(ell_p19 * t63) + floorf(ell_q19 * t63))
-        * unitpack_float_of((exponent57 - 27u) << 23u);
-    const float lhs19 = ell_s19 * t20 * t20 * 2.381858e-7f;
+    const float scale20 = unitpack_float_of((281u - exponent57) << 23u);
+    const float back19 = unitpack_float_of((exponent57 - 27u) << 23u);
+    const float ell_s19 = (floorf(ell_p19 * scale20) + floorf(ell_q19 * scale20)) * back19;
+    const float lhs19 = ell_s19 * t15 * t15 * 2.381858e-7f;
     const float rhs19 = ell_h19 * ell_g19 * rho2_2;
-    const float t64 = ell_t19 > 0.0f
-        ? (w2.y > 0.0f ? (lhs19 >= rhs19 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs19 <= rhs19 ? 1.0f : 0.0f));
-    const bool beyond19 = t64 > 0.5f;
+    const float one_if37 = lhs19 >= rhs19 ? 1.0f : 0.0f;
+    const float outside19 = w2.y > 0.0f ? one_if37 : 0.0f;
+    const float one_if38 = lhs19 <= rhs19 ? 1.0f : 0.0f;
+    const float inside19 = w2.y >= 0.0f ? 1.0f : one_if38;
+    const bool beyond19 = (ell_t19 > 0.0f ? outside19 : inside19) > 0.5f;
     const float lo22 = beyond19 ? mid19 : lo21;
-    const float hi22 = beyond19 ? hi21 : mid19 - 1.0f;
+    const float hi22 = beyond19 ? hi21 : mid_below19;
     const float mid20 = floorf((lo22 + hi22 + 1.0f) * 0.5f);
-    const float ell_t20 = (mid20 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below20 = mid20 - 1.0f;
+    const float ell_t20 = (mid_below20 - 1023.0f) * 2.0f;
     const float ell_h20 = floorf(ell_t20 * ell_t20);
     const float ell_g20 = 8380418.0f - ell_h20;
     const float ell_p20 = w2.y * w2.y * ell_g20;
@@ -727,19 +756,21 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent58 = unitpack_bits_of(ell_p20 >= ell_q20 ? ell_p20 : ell_q20) >> 23u;
     const uint32_t exponent59 = exponent58 < 40u ? 40u : exponent58;
     const uint32_t exponent60 = 254u < exponent59 ? 254u : exponent59;
-    const float t65 = unitpack_float_of((281u - exponent60) << 23u);
-    const float ell_s20 = (floorf(ell_p20 * t65) + floorf(ell_q20 * t65))
-        * unitpack_float_of((exponent60 - 27u) << 23u);
-    const float lhs20 = ell_s20 * t20 * t20 * 2.381858e-7f;
+    const float scale21 = unitpack_float_of((281u - exponent60) << 23u);
+    const float back20 = unitpack_float_of((exponent60 - 27u) << 23u);
+    const float ell_s20 = (floorf(ell_p20 * scale21) + floorf(ell_q20 * scale21)) * back20;
+    const float lhs20 = ell_s20 * t15 * t15 * 2.381858e-7f;
     const float rhs20 = ell_h20 * ell_g20 * rho2_2;
-    const float t66 = ell_t20 > 0.0f
-        ? (w2.y > 0.0f ? (lhs20 >= rhs20 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs20 <= rhs20 ? 1.0f : 0.0f));
-    const bool beyond20 = t66 > 0.5f;
+    const float one_if39 = lhs20 >= rhs20 ? 1.0f : 0.0f;
+    const float outside20 = w2.y > 0.0f ? one_if39 : 0.0f;
+    const float one_if40 = lhs20 <= rhs20 ? 1.0f : 0.0f;
+    const float inside20 = w2.y >= 0.0f ? 1.0f : one_if40;
+    const bool beyond20 = (ell_t20 > 0.0f ? outside20 : inside20) > 0.5f;
     const float lo23 = beyond20 ? mid20 : lo22;
-    const float hi23 = beyond20 ? hi22 : mid20 - 1.0f;
+    const float hi23 = beyond20 ? hi22 : mid_below20;
     const float mid21 = floorf((lo23 + hi23 + 1.0f) * 0.5f);
-    const float ell_t21 = (mid21 - 1.0f - 1023.0f) * 2.0f;
+    const float mid_below21 = mid21 - 1.0f;
+    const float ell_t21 = (mid_below21 - 1023.0f) * 2.0f;
     const float ell_h21 = floorf(ell_t21 * ell_t21);
     const float ell_g21 = 8380418.0f - ell_h21;
     const float ell_p21 = w2.y * w2.y * ell_g21;
@@ -747,21 +778,22 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse24_round_codes_v(unitpack_vec
     const uint32_t exponent61 = unitpack_bits_of(ell_p21 >= ell_q21 ? ell_p21 : ell_q21) >> 23u;
     const uint32_t exponent62 = exponent61 < 40u ? 40u : exponent61;
     const uint32_t exponent63 = 254u < exponent62 ? 254u : exponent62;
-    const float t67 = unitpack_float_of((281u - exponent63) << 23u);
-    const float ell_s21 = (floorf(ell_p21 * t67) + floorf(ell_q21 * t67))
-        * unitpack_float_of((exponent63 - 27u) << 23u);
-    const float lhs21 = ell_s21 * t20 * t20 * 2.381858e-7f;
+    const float scale22 = unitpack_float_of((281u - exponent63) << 23u);
+    const float back21 = unitpack_float_of((exponent63 - 27u) << 23u);
+    const float ell_s21 = (floorf(ell_p21 * scale22) + floorf(ell_q21 * scale22)) * back21;
+    const float lhs21 = ell_s21 * t15 * t15 * 2.381858e-7f;
     const float rhs21 = ell_h21 * ell_g21 * rho2_2;
-    const float t68 = ell_t21 > 0.0f
-        ? (w2.y > 0.0f ? (lhs21 >= rhs21 ? 1.0f : 0.0f) : 0.0f)
-        : (w2.y >= 0.0f ? 1.0f : (lhs21 <= rhs21 ? 1.0f : 0.0f));
-    const bool beyond21 = t68 > 0.5f;
-    const unitpack_vec3 t69 = {
+    const float one_if41 = lhs21 >= rhs21 ? 1.0f : 0.0f;
+    const float outside21 = w2.y > 0.0f ? one_if41 : 0.0f;
+    const float one_if42 = lhs21 <= rhs21 ? 1.0f : 0.0f;
+    const float inside21 = w2.y >= 0.0f ? 1.0f : one_if42;
+    const bool beyond21 = (ell_t21 > 0.0f ? outside21 : inside21) > 0.5f;
+    const unitpack_vec3 t22 = {
         beyond11 ? mid11 : lo14,
         beyond21 ? mid21 : lo23,
         w2.z < 0.0f ? 1.0f : 0.0f
     };
-    return t69;
+    return t22;
 }
 
 // Struct form of unitpack_eqdist_ellipse24_encode.

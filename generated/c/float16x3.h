@@ -48,17 +48,16 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // Struct form of unitpack_float16x3_decode_float.
 static inline unitpack_vec3 unitpack_float16x3_decode_float_v(unitpack_vec3 params) {
     const unitpack_uvec3 t1 = {
-        unitpack_bits_of(params.x),
-        unitpack_bits_of(params.y),
-        unitpack_bits_of(params.z)
+        unitpack_bits_of(params.x) & 2147483647u,
+        unitpack_bits_of(params.y) & 2147483647u,
+        unitpack_bits_of(params.z) & 2147483647u
     };
-    const unitpack_uvec3 t2 = { t1.x & 2147483647u, t1.y & 2147483647u, t1.z & 2147483647u };
-    const bool t3 = t2.x < 2139095040u
-        && t2.y < 2139095040u
-        && t2.z < 2139095040u
-        && (0u < t2.x || 0u < t2.y || 0u < t2.z);
-    const unitpack_vec3 t4 = { t3 ? params.x : 0.0f, t3 ? params.y : 0.0f, t3 ? params.z : 1.0f };
-    return t4;
+    const bool t2 = t1.x < 2139095040u
+        && t1.y < 2139095040u
+        && t1.z < 2139095040u
+        && (0u < t1.x || 0u < t1.y || 0u < t1.z);
+    const unitpack_vec3 t3 = { t2 ? params.x : 0.0f, t2 ? params.y : 0.0f, t2 ? params.z : 1.0f };
+    return t3;
 }
 
 // unitpack_float16x3_decode_float: decoder, float form.
@@ -83,31 +82,23 @@ static inline unitpack_vec3 unitpack_float16x3_decode_v(unitpack_uvec2 code) {
     const uint32_t t2 = code.x >> 16u;
     const uint32_t t3 = code.y & 65535u;
     const unitpack_uvec3 t4 = { t1 & 32767u, t2 & 32767u, t3 & 32767u };
-    const unitpack_vec3 t5 = {
-        (float)t4.x * 5.9604645e-8f,
-        (float)t4.y * 5.9604645e-8f,
-        (float)t4.z * 5.9604645e-8f
+    const unitpack_uvec3 t5 = { (t1 & 32767u) << 13u, (t2 & 32767u) << 13u, (t3 & 32767u) << 13u };
+    const unitpack_uvec3 t6 = {
+        t4.x < 31744u
+            ? (t4.x < 1024u ? unitpack_bits_of((float)t4.x * 5.9604645e-8f) : t5.x + 939524096u)
+            : t5.x | 2139095040u,
+        t4.y < 31744u
+            ? (t4.y < 1024u ? unitpack_bits_of((float)t4.y * 5.9604645e-8f) : t5.y + 939524096u)
+            : t5.y | 2139095040u,
+        t4.z < 31744u
+            ? (t4.z < 1024u ? unitpack_bits_of((float)t4.z * 5.9604645e-8f) : t5.z + 939524096u)
+            : t5.z | 2139095040u
     };
-    const unitpack_uvec3 t6 = { (t1 & 32767u) << 13u, (t2 & 32767u) << 13u, (t3 & 32767u) << 13u };
-    const unitpack_uvec3 t7 = {
-        t4.x < 1024u ? unitpack_bits_of(t5.x) : t6.x + 939524096u,
-        t4.y < 1024u ? unitpack_bits_of(t5.y) : t6.y + 939524096u,
-        t4.z < 1024u ? unitpack_bits_of(t5.z) : t6.z + 939524096u
-    };
-    const unitpack_uvec3 t8 = {
-        t4.x < 31744u ? t7.x : t6.x | 2139095040u,
-        t4.y < 31744u ? t7.y : t6.y | 2139095040u,
-        t4.z < 31744u ? t7.z : t6.z | 2139095040u
-    };
-    const unitpack_uvec3 t9 = {
-        t8.x | ((t1 & 32768u) << 16u),
-        t8.y | ((t2 & 32768u) << 16u),
-        t8.z | ((t3 & 32768u) << 16u)
-    };
+    const unitpack_uvec3 t7 = { (t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u };
     const unitpack_vec3 params = {
-        unitpack_float_of(t9.x),
-        unitpack_float_of(t9.y),
-        unitpack_float_of(t9.z)
+        unitpack_float_of(t6.x | t7.x),
+        unitpack_float_of(t6.y | t7.y),
+        unitpack_float_of(t6.z | t7.z)
     };
     const unitpack_vec3 decode_float = unitpack_float16x3_decode_float_v(params);
     return decode_float;
@@ -116,9 +107,7 @@ static inline unitpack_vec3 unitpack_float16x3_decode_v(unitpack_uvec2 code) {
 // unitpack_float16x3_decode: decoder.
 // In: a packed code (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2 float16);
 //   other bits are ignored.
-// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
-//   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
-//   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
+// Out: as for unitpack_float16x3_decode_float.
 // Portable as unitpack_float16x3_decode_float is, within the same bound.
 static inline void unitpack_float16x3_decode(uint64_t code, float out[3]) {
     const unitpack_uvec2 code_w = { (uint32_t)code, (uint32_t)(code >> 32) };
@@ -172,135 +161,128 @@ static inline void unitpack_float16x3_encode_float(const float v[3], float out[3
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_float16x3_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 4294963200u);
     const float split_lo = w.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 4294963200u);
     const float split_lo2 = w.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w.z) & 4294963200u);
     const float split_lo3 = w.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float abs_w_x = fabsf(w.x);
     const float half_estimate = abs_w_x / sqrtf(len2);
     const uint32_t exponent = (unitpack_bits_of(half_estimate) & 2147483647u) >> 23u;
     const uint32_t exponent2 = exponent < 113u ? 113u : exponent;
     const uint32_t exponent3 = 126u < exponent2 ? 126u : exponent2;
-    const uint32_t t6 = (264u - exponent3) << 23u;
-    const float half_grid = unitpack_float_of(t6);
+    const uint32_t t4 = (264u - exponent3) << 23u;
+    const float half_grid = unitpack_float_of(t4);
     const float big = abs_w_x * half_grid;
     const float big2 = big * big;
     const float half_code = nearbyintf(half_estimate * half_grid);
     const float upper = half_code + 0.5f;
     const float lower = half_code - 0.5f;
-    const bool t7 = half_code > 0.0f && big2 < lower * lower * len2;
-    const bool t8 = w.x < 0.0f
-        && half_code + (big2 >= upper * upper * len2 ? 1.0f : (t7 ? -1.0f : 0.0f)) > 0.0f;
+    const bool t5 = half_code > 0.0f && big2 < lower * lower * len2;
+    const float step_down = t5 ? -1.0f : 0.0f;
+    const float step = big2 >= upper * upper * len2 ? 1.0f : step_down;
     const float abs_w_y = fabsf(w.y);
     const float half_estimate2 = abs_w_y / sqrtf(len2);
     const uint32_t exponent4 = (unitpack_bits_of(half_estimate2) & 2147483647u) >> 23u;
     const uint32_t exponent5 = exponent4 < 113u ? 113u : exponent4;
     const uint32_t exponent6 = 126u < exponent5 ? 126u : exponent5;
-    const uint32_t t9 = (264u - exponent6) << 23u;
-    const float half_grid2 = unitpack_float_of(t9);
+    const uint32_t t6 = (264u - exponent6) << 23u;
+    const float half_grid2 = unitpack_float_of(t6);
     const float big3 = abs_w_y * half_grid2;
     const float big2_2 = big3 * big3;
     const float half_code2 = nearbyintf(half_estimate2 * half_grid2);
     const float upper2 = half_code2 + 0.5f;
     const float lower2 = half_code2 - 0.5f;
-    const bool t10 = half_code2 > 0.0f && big2_2 < lower2 * lower2 * len2;
-    const bool t11 = half_code2 + (big2_2 >= upper2 * upper2 * len2 ? 1.0f : (t10 ? -1.0f : 0.0f))
-        > 0.0f;
+    const bool t7 = half_code2 > 0.0f && big2_2 < lower2 * lower2 * len2;
+    const float step_down2 = t7 ? -1.0f : 0.0f;
+    const float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0f : step_down2;
     const float abs_w_z = fabsf(w.z);
     const float half_estimate3 = abs_w_z / sqrtf(len2);
     const uint32_t exponent7 = (unitpack_bits_of(half_estimate3) & 2147483647u) >> 23u;
     const uint32_t exponent8 = exponent7 < 113u ? 113u : exponent7;
     const uint32_t exponent9 = 126u < exponent8 ? 126u : exponent8;
-    const uint32_t t12 = (264u - exponent9) << 23u;
-    const float half_grid3 = unitpack_float_of(t12);
+    const uint32_t t8 = (264u - exponent9) << 23u;
+    const float half_grid3 = unitpack_float_of(t8);
     const float big4 = abs_w_z * half_grid3;
     const float big2_3 = big4 * big4;
     const float half_code3 = nearbyintf(half_estimate3 * half_grid3);
     const float upper3 = half_code3 + 0.5f;
     const float lower3 = half_code3 - 0.5f;
-    const bool t13 = half_code3 > 0.0f && big2_3 < lower3 * lower3 * len2;
-    const bool t14 = half_code3 + (big2_3 >= upper3 * upper3 * len2 ? 1.0f : (t13 ? -1.0f : 0.0f))
-        > 0.0f;
+    const bool t9 = half_code3 > 0.0f && big2_3 < lower3 * lower3 * len2;
+    const float step_down3 = t9 ? -1.0f : 0.0f;
+    const float step3 = big2_3 >= upper3 * upper3 * len2 ? 1.0f : step_down3;
+    const unitpack_bvec3 t10 = {
+        w.x < 0.0f && half_code + step > 0.0f,
+        w.y < 0.0f && half_code2 + step2 > 0.0f,
+        w.z < 0.0f && half_code3 + step3 > 0.0f
+    };
     const unitpack_vec3 abs_w = { fabsf(w.x), fabsf(w.y), fabsf(w.z) };
-    const unitpack_vec3 t15 = {
+    const unitpack_vec3 t11 = {
+        unitpack_float_of(t4),
         unitpack_float_of(t6),
-        unitpack_float_of(t9),
-        unitpack_float_of(t12)
+        unitpack_float_of(t8)
     };
-    const unitpack_vec3 t16 = {
-        abs_w.x / sqrtf(len2) * t15.x,
-        abs_w.y / sqrtf(len2) * t15.y,
-        abs_w.z / sqrtf(len2) * t15.z
+    const unitpack_vec3 t12 = {
+        nearbyintf(abs_w.x / sqrtf(len2) * t11.x),
+        nearbyintf(abs_w.y / sqrtf(len2) * t11.y),
+        nearbyintf(abs_w.z / sqrtf(len2) * t11.z)
     };
-    const unitpack_vec3 round_t16 = { nearbyintf(t16.x), nearbyintf(t16.y), nearbyintf(t16.z) };
-    const unitpack_vec3 t17 = { abs_w.x * t15.x, abs_w.y * t15.y, abs_w.z * t15.z };
-    const unitpack_vec3 t18 = { round_t16.x + 0.5f, round_t16.y + 0.5f, round_t16.z + 0.5f };
-    const unitpack_bvec3 t19 = {
-        t17.x * t17.x >= t18.x * t18.x * len2,
-        t17.y * t17.y >= t18.y * t18.y * len2,
-        t17.z * t17.z >= t18.z * t18.z * len2
+    const unitpack_vec3 t13 = { abs_w.x * t11.x, abs_w.y * t11.y, abs_w.z * t11.z };
+    const unitpack_vec3 t14 = { t12.x + 0.5f, t12.y + 0.5f, t12.z + 0.5f };
+    const unitpack_vec3 t15 = {
+        t13.x * t13.x >= t14.x * t14.x * len2 ? 1.0f : (t5 ? -1.0f : 0.0f),
+        t13.y * t13.y >= t14.y * t14.y * len2 ? 1.0f : (t7 ? -1.0f : 0.0f),
+        t13.z * t13.z >= t14.z * t14.z * len2 ? 1.0f : (t9 ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t20 = {
-        t19.x ? 1.0f : (t7 ? -1.0f : 0.0f),
-        t19.y ? 1.0f : (t10 ? -1.0f : 0.0f),
-        t19.z ? 1.0f : (t13 ? -1.0f : 0.0f)
+    const unitpack_uvec3 t16 = {
+        (exponent3 - 10u) << 23u,
+        (exponent6 - 10u) << 23u,
+        (exponent9 - 10u) << 23u
     };
-    const unitpack_vec3 t21 = {
-        unitpack_float_of((exponent3 - 10u) << 23u),
-        unitpack_float_of((exponent6 - 10u) << 23u),
-        unitpack_float_of((exponent9 - 10u) << 23u)
+    const unitpack_vec3 t17 = {
+        (t12.x + t15.x) * unitpack_float_of(t16.x),
+        (t12.y + t15.y) * unitpack_float_of(t16.y),
+        (t12.z + t15.z) * unitpack_float_of(t16.z)
     };
-    const unitpack_vec3 t22 = {
-        (round_t16.x + t20.x) * t21.x,
-        (round_t16.y + t20.y) * t21.y,
-        (round_t16.z + t20.z) * t21.z
+    const unitpack_vec3 t18 = {
+        ok ? (t10.x ? -t17.x : t17.x) : 0.0f,
+        ok ? (t10.y ? -t17.y : t17.y) : 0.0f,
+        ok ? (t10.z ? -t17.z : t17.z) : 1.0f
     };
-    const unitpack_vec3 t23 = {
-        t8 ? -t22.x : t22.x,
-        w.y < 0.0f && t11 ? -t22.y : t22.y,
-        w.z < 0.0f && t14 ? -t22.z : t22.z
-    };
-    const unitpack_vec3 t24 = { ok ? t23.x : 0.0f, ok ? t23.y : 0.0f, ok ? t23.z : 1.0f };
-    return t24;
+    return t18;
 }
 
 // Struct form of unitpack_float16x3_encode.
@@ -326,27 +308,23 @@ static inline unitpack_uvec2 unitpack_float16x3_encode_v(unitpack_vec3 v) {
         t8 ? (uint32_t)nearbyintf(unitpack_float_of(t8 ? t7 : 0u) * 16777216.0f) : t9
     )
         | ((t6 >> 16u) & 32768u);
-    const uint32_t t11 = unitpack_bits_of(round_codes.z);
-    const uint32_t t12 = t11 & 2147483647u;
-    const bool t13 = t12 < 947912704u;
-    const uint32_t t14 = t12 < 1199566848u
-        ? (t12 - 939524096u + 4095u + ((t12 >> 13u) & 1u)) >> 13u
-        : (2139095040u < t12 ? 32256u : 31744u);
-    const uint32_t t15 = t13
-        ? (uint32_t)nearbyintf(unitpack_float_of(t13 ? t12 : 0u) * 16777216.0f)
-        : t14;
-    const uint32_t t16 = t15 | ((t11 >> 16u) & 32768u);
-    const unitpack_uvec2 t17 = {
-        ((t5 & 32767u) < 1u ? 0u : t5) | (((t10 & 32767u) < 1u ? 0u : t10) << 16u),
-        (t16 & 32767u) < 1u ? 0u : t16
-    };
+    const uint32_t t11 = ((t5 & 32767u) < 1u ? 0u : t5) | (((t10 & 32767u) < 1u ? 0u : t10) << 16u);
+    const uint32_t t12 = unitpack_bits_of(round_codes.z);
+    const uint32_t t13 = t12 & 2147483647u;
+    const bool t14 = t13 < 947912704u;
+    const uint32_t t15 = t13 < 1199566848u
+        ? (t13 - 939524096u + 4095u + ((t13 >> 13u) & 1u)) >> 13u
+        : (2139095040u < t13 ? 32256u : 31744u);
+    const uint32_t t16 = (
+        t14 ? (uint32_t)nearbyintf(unitpack_float_of(t14 ? t13 : 0u) * 16777216.0f) : t15
+    )
+        | ((t12 >> 16u) & 32768u);
+    const unitpack_uvec2 t17 = { t11, (t16 & 32767u) < 1u ? 0u : t16 };
     return t17;
 }
 
 // unitpack_float16x3_encode: fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16
-//   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
-//   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
+// In: as for unitpack_float16x3_encode_float.
 // Out: the packed code, unitpack_uvec2 (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits
 //   0–15: p2 float16).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -48,22 +48,21 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // Struct form of unitpack_float32x3_decode_float.
 static inline unitpack_vec3 unitpack_float32x3_decode_float_v(unitpack_vec3 params) {
     const unitpack_uvec3 t1 = {
-        unitpack_bits_of(params.x),
-        unitpack_bits_of(params.y),
-        unitpack_bits_of(params.z)
+        unitpack_bits_of(params.x) & 2147483647u,
+        unitpack_bits_of(params.y) & 2147483647u,
+        unitpack_bits_of(params.z) & 2147483647u
     };
-    const unitpack_uvec3 t2 = { t1.x & 2147483647u, t1.y & 2147483647u, t1.z & 2147483647u };
-    const unitpack_bvec3 t3 = { 8388607u < t2.x, 8388607u < t2.y, 8388607u < t2.z };
-    const bool t4 = t2.x < 2139095040u
-        && t2.y < 2139095040u
-        && t2.z < 2139095040u
-        && (t3.x || t3.y || t3.z);
-    const unitpack_vec3 t5 = {
-        t4 ? (t3.x ? params.x : 0.0f) : 0.0f,
-        t4 ? (t3.y ? params.y : 0.0f) : 0.0f,
-        t4 ? (t3.z ? params.z : 0.0f) : 1.0f
+    const unitpack_bvec3 t2 = { 8388607u < t1.x, 8388607u < t1.y, 8388607u < t1.z };
+    const bool t3 = t1.x < 2139095040u
+        && t1.y < 2139095040u
+        && t1.z < 2139095040u
+        && (t2.x || t2.y || t2.z);
+    const unitpack_vec3 t4 = {
+        t3 ? (t2.x ? params.x : 0.0f) : 0.0f,
+        t3 ? (t2.y ? params.y : 0.0f) : 0.0f,
+        t3 ? (t2.z ? params.z : 0.0f) : 1.0f
     };
-    return t5;
+    return t4;
 }
 
 // unitpack_float32x3_decode_float: decoder, float form.
@@ -84,15 +83,10 @@ static inline void unitpack_float32x3_decode_float(const float params[3], float 
 
 // Struct form of unitpack_float32x3_decode.
 static inline unitpack_vec3 unitpack_float32x3_decode_v(unitpack_uvec3 code) {
-    const unitpack_bvec3 t1 = {
-        (code.x & 2139095040u) < 1u,
-        (code.y & 2139095040u) < 1u,
-        (code.z & 2139095040u) < 1u
-    };
     const unitpack_vec3 params = {
-        unitpack_float_of(t1.x ? 0u : code.x),
-        unitpack_float_of(t1.y ? 0u : code.y),
-        unitpack_float_of(t1.z ? 0u : code.z)
+        unitpack_float_of((code.x & 2139095040u) < 1u ? 0u : code.x),
+        unitpack_float_of((code.y & 2139095040u) < 1u ? 0u : code.y),
+        unitpack_float_of((code.z & 2139095040u) < 1u ? 0u : code.z)
     };
     const unitpack_vec3 decode_float = unitpack_float32x3_decode_float_v(params);
     return decode_float;
@@ -101,9 +95,7 @@ static inline unitpack_vec3 unitpack_float32x3_decode_v(unitpack_uvec3 code) {
 // unitpack_float32x3_decode: decoder.
 // In: a packed code (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2 bits 0–31: p2
 //   float32); other bits are ignored.
-// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
-//   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
-//   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
+// Out: as for unitpack_float32x3_decode_float.
 // Portable (as the header says): each output component equals what this function computes here, for
 //   every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack
 //   verify --portable prints it).
@@ -159,176 +151,149 @@ static inline void unitpack_float32x3_encode_float(const float v[3], float out[3
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_float32x3_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = {
-        floorf(fabsf(w2.x) * 2097152.0f),
-        floorf(fabsf(w2.y) * 2097152.0f),
-        floorf(fabsf(w2.z) * 2097152.0f)
+    const unitpack_uvec3 t1 = {
+        (uint32_t)floorf(fabsf(w2.x) * 2097152.0f),
+        (uint32_t)floorf(fabsf(w2.y) * 2097152.0f),
+        (uint32_t)floorf(fabsf(w2.z) * 2097152.0f)
     };
-    const unitpack_uvec3 t4 = { (uint32_t)t3.x, (uint32_t)t3.y, (uint32_t)t3.z };
-    const uint32_t limb1 = t4.x >> 12u;
-    const uint32_t limb0 = t4.x & 4095u;
+    const uint32_t limb1 = t1.x >> 12u;
+    const uint32_t limb0 = t1.x & 4095u;
     const uint32_t cross = limb1 * limb0;
     const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
     const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
-    const uint32_t limb1_2 = t4.y >> 12u;
-    const uint32_t limb0_2 = t4.y & 4095u;
+    const uint32_t limb1_2 = t1.y >> 12u;
+    const uint32_t limb0_2 = t1.y & 4095u;
     const uint32_t cross2 = limb1_2 * limb0_2;
     const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
-    const uint32_t limb1_3 = t4.z >> 12u;
-    const uint32_t limb0_3 = t4.z & 4095u;
+    const uint32_t limb1_3 = t1.z >> 12u;
+    const uint32_t limb0_3 = t1.z & 4095u;
     const uint32_t cross3 = limb1_3 * limb0_3;
     const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t5 = (float)hi4 * 16777216.0f;
-    const float t6 = (t5 + (float)lo4) * 2.2737368e-13f;
-    const float root_estimate = sqrtf(t6);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float t3 = (t2 + (float)lo4) * 2.2737368e-13f;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= t6 ? 1.0f : (root_h0 * root_h0 > t6 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t6 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t6 ? 1.0f : (root_m0 * root_m0 > t6 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float length = (t10 + root_j) * 4.7683716e-7f;
-    const uint32_t t11 = (uint32_t)(length * 2097152.0f);
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float length = (t6 + root_j) * 4.7683716e-7f;
+    const uint32_t t7 = (uint32_t)(length * 2097152.0f);
     const uint32_t wide = (hi4 << 24u) + lo4;
-    const uint32_t rest = wide - t11 * t11 + 1073741824u;
-    const uint32_t n = 1073741824u + t11 < rest
-        ? t11 + 1u
-        : (rest < 1073741824u - t11 + 1u ? t11 - 1u : t11);
+    const uint32_t rest = wide - t7 * t7 + 1073741824u;
+    const uint32_t n = 1073741824u + t7 < rest
+        ? t7 + 1u
+        : (rest < 1073741824u - t7 + 1u ? t7 - 1u : t7);
     const uint32_t rest2 = wide - n * n + 1073741824u;
     const uint32_t n2 = 1073741824u + n < rest2
         ? n + 1u
         : (rest2 < 1073741824u - n + 1u ? n - 1u : n);
     const float nf = (float)n2;
-    const uint32_t k0 = (uint32_t)nearbyintf((float)t4.x / nf * 16777216.0f);
-    const uint32_t r = (t4.x << 24u) - k0 * n2;
-    const uint32_t t12 = r << 1u;
-    const uint32_t t13 = n2 << 4u;
-    const uint32_t t = t12 + n2 + t13;
+    const uint32_t k0 = (uint32_t)nearbyintf((float)t1.x / nf * 16777216.0f);
+    const uint32_t r = (t1.x << 24u) - k0 * n2;
+    const uint32_t t8 = r << 1u;
+    const uint32_t t9 = n2 << 4u;
+    const uint32_t t = t8 + n2 + t9;
     const uint32_t two_n = n2 << 1u;
-    const uint32_t t14 = t >> 12u;
-    const float t15 = (float)t14 * 4096.0f;
-    const uint32_t q0 = (uint32_t)floorf((t15 + (float)(t & 4095u)) / (nf * 2.0f));
+    const uint32_t t10 = t >> 12u;
+    const float t11 = (float)t10 * 4096.0f;
+    const uint32_t q0 = (uint32_t)floorf((t11 + (float)(t & 4095u)) / (nf * 2.0f));
     const uint32_t rest3 = t - q0 * two_n;
     const bool negative = !(rest3 < 2147483648u);
-    const uint32_t k0_2 = (uint32_t)nearbyintf((float)t4.y / nf * 16777216.0f);
-    const uint32_t r2 = (t4.y << 24u) - k0_2 * n2;
-    const uint32_t t16 = r2 << 1u;
-    const uint32_t t17 = n2 << 4u;
-    const uint32_t t18 = t16 + n2 + t17;
+    const uint32_t k0_2 = (uint32_t)nearbyintf((float)t1.y / nf * 16777216.0f);
+    const uint32_t r2 = (t1.y << 24u) - k0_2 * n2;
+    const uint32_t t12 = r2 << 1u;
+    const uint32_t t13 = n2 << 4u;
+    const uint32_t t14 = t12 + n2 + t13;
     const uint32_t two_n2 = n2 << 1u;
-    const uint32_t t19 = t18 >> 12u;
-    const float t20 = (float)t19 * 4096.0f;
-    const uint32_t q0_2 = (uint32_t)floorf((t20 + (float)(t18 & 4095u)) / (nf * 2.0f));
-    const uint32_t rest4 = t18 - q0_2 * two_n2;
+    const uint32_t t15 = t14 >> 12u;
+    const float t16 = (float)t15 * 4096.0f;
+    const uint32_t q0_2 = (uint32_t)floorf((t16 + (float)(t14 & 4095u)) / (nf * 2.0f));
+    const uint32_t rest4 = t14 - q0_2 * two_n2;
     const bool negative2 = !(rest4 < 2147483648u);
-    const uint32_t k0_3 = (uint32_t)nearbyintf((float)t4.z / nf * 16777216.0f);
-    const uint32_t r3 = (t4.z << 24u) - k0_3 * n2;
-    const uint32_t t21 = r3 << 1u;
-    const uint32_t t22 = n2 << 4u;
-    const uint32_t t23 = t21 + n2 + t22;
+    const uint32_t k0_3 = (uint32_t)nearbyintf((float)t1.z / nf * 16777216.0f);
+    const uint32_t r3 = (t1.z << 24u) - k0_3 * n2;
+    const uint32_t t17 = r3 << 1u;
+    const uint32_t t18 = n2 << 4u;
+    const uint32_t t19 = t17 + n2 + t18;
     const uint32_t two_n3 = n2 << 1u;
-    const uint32_t t24 = t23 >> 12u;
-    const float t25 = (float)t24 * 4096.0f;
-    const uint32_t q0_3 = (uint32_t)floorf((t25 + (float)(t23 & 4095u)) / (nf * 2.0f));
-    const uint32_t rest5 = t23 - q0_3 * two_n3;
+    const uint32_t t20 = t19 >> 12u;
+    const float t21 = (float)t20 * 4096.0f;
+    const uint32_t q0_3 = (uint32_t)floorf((t21 + (float)(t19 & 4095u)) / (nf * 2.0f));
+    const uint32_t rest5 = t19 - q0_3 * two_n3;
     const bool negative3 = !(rest5 < 2147483648u);
-    const unitpack_vec3 t26 = {
-        (float)t4.x / nf * 16777216.0f,
-        (float)t4.y / nf * 16777216.0f,
-        (float)t4.z / nf * 16777216.0f
-    };
-    const unitpack_uvec3 t27 = {
-        (uint32_t)nearbyintf(t26.x),
-        (uint32_t)nearbyintf(t26.y),
-        (uint32_t)nearbyintf(t26.z)
-    };
-    const unitpack_bvec3 t28 = {
+    const unitpack_bvec3 t22 = {
         !(rest3 < two_n) && !negative,
         !(rest4 < two_n2) && !negative2,
         !(rest5 < two_n3) && !negative3
     };
-    const unitpack_vec3 t29 = { (float)t14 * 4096.0f, (float)t19 * 4096.0f, (float)t24 * 4096.0f };
-    const unitpack_vec3 t30 = {
-        (float)((t12 + n2 + t13) & 4095u),
-        (float)((t16 + n2 + t17) & 4095u),
-        (float)((t21 + n2 + t22) & 4095u)
+    const unitpack_vec3 t23 = { (float)t10 * 4096.0f, (float)t15 * 4096.0f, (float)t20 * 4096.0f };
+    const unitpack_vec3 t24 = {
+        t23.x + (float)((t8 + n2 + t9) & 4095u),
+        t23.y + (float)((t12 + n2 + t13) & 4095u),
+        t23.z + (float)((t17 + n2 + t18) & 4095u)
     };
-    const unitpack_vec3 t31 = {
-        (t29.x + t30.x) / (nf * 2.0f),
-        (t29.y + t30.y) / (nf * 2.0f),
-        (t29.z + t30.z) / (nf * 2.0f)
+    const unitpack_uvec3 t25 = {
+        (uint32_t)floorf(t24.x / (nf * 2.0f)),
+        (uint32_t)floorf(t24.y / (nf * 2.0f)),
+        (uint32_t)floorf(t24.z / (nf * 2.0f))
     };
-    const unitpack_uvec3 t32 = {
-        (uint32_t)floorf(t31.x),
-        (uint32_t)floorf(t31.y),
-        (uint32_t)floorf(t31.z)
+    const unitpack_uvec3 t26 = {
+        (uint32_t)nearbyintf((float)t1.x / nf * 16777216.0f)
+            + (t22.x ? t25.x + 1u : (negative ? t25.x - 1u : t25.x)),
+        (uint32_t)nearbyintf((float)t1.y / nf * 16777216.0f)
+            + (t22.y ? t25.y + 1u : (negative2 ? t25.y - 1u : t25.y)),
+        (uint32_t)nearbyintf((float)t1.z / nf * 16777216.0f)
+            + (t22.z ? t25.z + 1u : (negative3 ? t25.z - 1u : t25.z))
     };
-    const unitpack_uvec3 t33 = {
-        negative ? t32.x - 1u : t32.x,
-        negative2 ? t32.y - 1u : t32.y,
-        negative3 ? t32.z - 1u : t32.z
+    const unitpack_uvec3 t27 = { t26.x - 8u, t26.y - 8u, t26.z - 8u };
+    const unitpack_vec3 t28 = {
+        (float)(16777216u < t27.x ? 16777216u : t27.x) * 5.9604645e-8f,
+        (float)(16777216u < t27.y ? 16777216u : t27.y) * 5.9604645e-8f,
+        (float)(16777216u < t27.z ? 16777216u : t27.z) * 5.9604645e-8f
     };
-    const unitpack_uvec3 t34 = {
-        t28.x ? t32.x + 1u : t33.x,
-        t28.y ? t32.y + 1u : t33.y,
-        t28.z ? t32.z + 1u : t33.z
+    const unitpack_vec3 t29 = {
+        ok ? (w2.x < 0.0f ? -t28.x : t28.x) : 0.0f,
+        ok ? (w2.y < 0.0f ? -t28.y : t28.y) : 0.0f,
+        ok ? (w2.z < 0.0f ? -t28.z : t28.z) : 1.0f
     };
-    const unitpack_uvec3 t35 = { t27.x + t34.x - 8u, t27.y + t34.y - 8u, t27.z + t34.z - 8u };
-    const unitpack_uvec3 t36 = {
-        16777216u < t35.x ? 16777216u : t35.x,
-        16777216u < t35.y ? 16777216u : t35.y,
-        16777216u < t35.z ? 16777216u : t35.z
-    };
-    const unitpack_vec3 t37 = {
-        (float)t36.x * 5.9604645e-8f,
-        (float)t36.y * 5.9604645e-8f,
-        (float)t36.z * 5.9604645e-8f
-    };
-    const unitpack_vec3 t38 = {
-        w2.x < 0.0f ? -t37.x : t37.x,
-        w2.y < 0.0f ? -t37.y : t37.y,
-        w2.z < 0.0f ? -t37.z : t37.z
-    };
-    const unitpack_vec3 t39 = { ok ? t38.x : 0.0f, ok ? t38.y : 0.0f, ok ? t38.z : 1.0f };
-    return t39;
+    return t29;
 }
 
 // Struct form of unitpack_float32x3_encode.
@@ -339,19 +304,16 @@ static inline unitpack_uvec3 unitpack_float32x3_encode_v(unitpack_vec3 v) {
         unitpack_bits_of(round_codes.y),
         unitpack_bits_of(round_codes.z)
     };
-    const unitpack_bvec3 t2 = {
-        (t1.x & 2139095040u) < 1u,
-        (t1.y & 2139095040u) < 1u,
-        (t1.z & 2139095040u) < 1u
+    const unitpack_uvec3 t2 = {
+        (t1.x & 2139095040u) < 1u ? 0u : t1.x,
+        (t1.y & 2139095040u) < 1u ? 0u : t1.y,
+        (t1.z & 2139095040u) < 1u ? 0u : t1.z
     };
-    const unitpack_uvec3 t3 = { t2.x ? 0u : t1.x, t2.y ? 0u : t1.y, t2.z ? 0u : t1.z };
-    return t3;
+    return t2;
 }
 
 // unitpack_float32x3_encode: fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16
-//   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
-//   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
+// In: as for unitpack_float32x3_encode_float.
 // Out: the packed code, unitpack_uvec3 (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2
 //   bits 0–31: p2 float32).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -94,11 +94,12 @@ static inline void unitpack_hemioct16_ieee_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_hemioct16_ieee_encode_float.
 static inline unitpack_vec2 unitpack_hemioct16_ieee_encode_float_v(unitpack_vec3 v) {
-    const float l1 = fabsf(v.x) + fabsf(v.y) + fabsf(v.z < 0.0f ? 0.0f : v.z);
+    const float t1 = fabsf(v.x) + fabsf(v.y);
+    const float l1 = t1 + fabsf(v.z < 0.0f ? 0.0f : v.z);
     const unitpack_vec2 p = { v.x / l1, v.y / l1 };
-    const bool t1 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
-    const unitpack_vec2 t2 = { t1 ? p.x + p.y : 0.0f, t1 ? p.x - p.y : 0.0f };
-    return t2;
+    const bool t2 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const unitpack_vec2 t3 = { t2 ? p.x + p.y : 0.0f, t2 ? p.x - p.y : 0.0f };
+    return t3;
 }
 
 // unitpack_hemioct16_ieee_encode_float: fast encoder, float form.
@@ -130,9 +131,7 @@ static inline uint32_t unitpack_hemioct16_ieee_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct16_ieee_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_ieee_encode_float.
 // Out: the packed code, uint32_t (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8
 //   (two's complement)).
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round

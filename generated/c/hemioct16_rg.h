@@ -79,17 +79,17 @@ static inline void unitpack_hemioct16_rg_decode_float(const float params[4], flo
 
 // Struct form of unitpack_hemioct16_rg_decode.
 static inline unitpack_vec3 unitpack_hemioct16_rg_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_hemioct16_rg_decode_float_v(params);
     return decode_float;
@@ -110,17 +110,19 @@ static inline void unitpack_hemioct16_rg_decode(uint32_t code, float out[3]) {
 // Struct form of unitpack_hemioct16_rg_encode_float.
 static inline unitpack_vec4 unitpack_hemioct16_rg_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { v.x, v.y, v.z < 0.0f ? 0.0f : v.z };
-    const float t2 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
-    const float t3 = t2 <= 3.4028235e38f ? (t2 < 7.888609e-31f ? 1.2676506e30f : 1.0f) : 0.25f;
-    const unitpack_vec3 w = { t1.x * t3, t1.y * t3, t1.z * t3 };
+    const float norm1 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
+    const float fit = norm1 <= 3.4028235e38f
+        ? (norm1 < 7.888609e-31f ? 1.2676506e30f : 1.0f)
+        : 0.25f;
+    const unitpack_vec3 w = { t1.x * fit, t1.y * fit, t1.z * fit };
     const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z);
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t4 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
-    const unitpack_vec2 p2 = { t4 ? p.x + p.y : 0.0f, t4 ? p.x - p.y : 0.0f };
-    const float t5 = p2.x * 0.5f;
-    const float t6 = p2.y * 0.5f;
-    const unitpack_vec4 t7 = { 0.5f + t5, 0.5f + t6, 0.0f, 1.0f };
-    return t7;
+    const bool t2 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const unitpack_vec2 p2 = { t2 ? p.x + p.y : 0.0f, t2 ? p.x - p.y : 0.0f };
+    const float t3 = p2.x * 0.5f;
+    const float t4 = p2.y * 0.5f;
+    const unitpack_vec4 t5 = { 0.5f + t3, 0.5f + t4, 0.0f, 1.0f };
+    return t5;
 }
 
 // unitpack_hemioct16_rg_encode_float: fast encoder, float form.
@@ -146,51 +148,43 @@ static inline void unitpack_hemioct16_rg_encode_float(const float v[3], float ou
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec4 unitpack_hemioct16_rg_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z > 0.0f ? w.z : 0.0f);
+    const float t1 = fabsf(w.x) + fabsf(w.y);
+    const float l1 = t1 + fabsf(w.z > 0.0f ? w.z : 0.0f);
     const unitpack_vec2 n = { w.x + w.y, w.x - w.y };
-    const bool t3 = ok && l1 > 0.0f;
-    const unitpack_vec2 t4 = { n.x * 127.5f, n.y * 127.5f };
-    const unitpack_vec2 t5 = { nearbyintf(t4.x / l1 + 127.5f), nearbyintf(t4.y / l1 + 127.5f) };
-    const unitpack_vec2 t6 = { t5.x >= 0.0f ? t5.x : 0.0f, t5.y >= 0.0f ? t5.y : 0.0f };
-    const unitpack_vec2 t7 = { t6.x <= 255.0f ? t6.x : 255.0f, t6.y <= 255.0f ? t6.y : 255.0f };
+    const bool t2 = ok && l1 > 0.0f;
+    const unitpack_vec2 t3 = { n.x * 127.5f, n.y * 127.5f };
+    const unitpack_vec2 t4 = { nearbyintf(t3.x / l1 + 127.5f), nearbyintf(t3.y / l1 + 127.5f) };
+    const unitpack_vec2 t5 = { t4.x >= 0.0f ? t4.x : 0.0f, t4.y >= 0.0f ? t4.y : 0.0f };
+    const unitpack_vec2 t6 = { t5.x <= 255.0f ? t5.x : 255.0f, t5.y <= 255.0f ? t5.y : 255.0f };
+    const unitpack_vec2 t7 = {
+        t6.x + (t6.x < 255.0f ? (t3.x >= (t6.x - 127.0f) * l1 ? 1.0f : 0.0f) : 0.0f),
+        t6.y + (t6.y < 255.0f ? (t3.y >= (t6.y - 127.0f) * l1 ? 1.0f : 0.0f) : 0.0f)
+    };
     const unitpack_vec2 t8 = {
-        t4.x >= (t7.x - 127.0f) * l1 ? 1.0f : 0.0f,
-        t4.y >= (t7.y - 127.0f) * l1 ? 1.0f : 0.0f
+        t6.x > 0.0f ? (t3.x >= (t6.x - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t6.y > 0.0f ? (t3.y >= (t6.y - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t9 = {
-        t4.x >= (t7.x - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f,
-        t4.y >= (t7.y - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f
-    };
-    const unitpack_vec2 t10 = {
-        t7.x + (t7.x < 255.0f ? t8.x : 0.0f) + (t7.x > 0.0f ? t9.x - 1.0f : 0.0f),
-        t7.y + (t7.y < 255.0f ? t8.y : 0.0f) + (t7.y > 0.0f ? t9.y - 1.0f : 0.0f)
-    };
-    const unitpack_vec2 c = { t3 ? t10.x : 128.0f, t3 ? t10.y : 128.0f };
-    const unitpack_vec4 t11 = { c.x, c.y, 0.0f, 255.0f };
-    return t11;
+    const unitpack_vec2 c = { t2 ? t7.x + t8.x : 128.0f, t2 ? t7.y + t8.y : 128.0f };
+    const unitpack_vec4 t9 = { c.x, c.y, 0.0f, 255.0f };
+    return t9;
 }
 
 // Struct form of unitpack_hemioct16_rg_encode.
@@ -203,9 +197,7 @@ static inline uint32_t unitpack_hemioct16_rg_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct16_rg_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_rg_encode_float.
 // Out: the RGBA8 texel as a uint32_t (R bits 0–7, G 8–15, B 16–23, A 24–31): R = x, G = y, B = 0, A
 //   = 255; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128).
 // Portable (as the header says): the same code on every such implementation; denormal input

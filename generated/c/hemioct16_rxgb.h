@@ -79,17 +79,17 @@ static inline void unitpack_hemioct16_rxgb_decode_float(const float params[4], f
 
 // Struct form of unitpack_hemioct16_rxgb_decode.
 static inline unitpack_vec3 unitpack_hemioct16_rxgb_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_hemioct16_rxgb_decode_float_v(params);
     return decode_float;
@@ -110,57 +110,54 @@ static inline void unitpack_hemioct16_rxgb_decode(uint32_t code, float out[3]) {
 // Struct form of unitpack_hemioct16_rxgb_encode_float.
 static inline unitpack_vec4 unitpack_hemioct16_rxgb_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { v.x, v.y, v.z < 0.0f ? 0.0f : v.z };
-    const float t2 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
-    const float t3 = t2 <= 3.4028235e38f ? (t2 < 7.888609e-31f ? 1.2676506e30f : 1.0f) : 0.25f;
-    const unitpack_vec3 w = { t1.x * t3, t1.y * t3, t1.z * t3 };
+    const float norm1 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
+    const float fit = norm1 <= 3.4028235e38f
+        ? (norm1 < 7.888609e-31f ? 1.2676506e30f : 1.0f)
+        : 0.25f;
+    const unitpack_vec3 w = { t1.x * fit, t1.y * fit, t1.z * fit };
     const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z);
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t4 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
-    const unitpack_vec2 p2 = { t4 ? p.x + p.y : 0.0f, t4 ? p.x - p.y : 0.0f };
+    const bool t2 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const unitpack_vec2 p2 = { t2 ? p.x + p.y : 0.0f, t2 ? p.x - p.y : 0.0f };
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const float t5 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    const float largest = t5 >= abs_v.z ? t5 : abs_v.z;
-    const bool t6 = largest > 0.0f && largest <= 3.4028235e38f;
-    const float t7 = t6 ? largest : 1.0f;
-    const unitpack_vec3 scaled = { v.x / t7, v.y / t7, v.z / t7 };
+    const float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    const float largest = t3 >= abs_v.z ? t3 : abs_v.z;
+    const bool t4 = largest > 0.0f && largest <= 3.4028235e38f;
+    const float t5 = t4 ? largest : 1.0f;
+    const unitpack_vec3 scaled = { v.x / t5, v.y / t5, v.z / t5 };
     const unitpack_vec3 scaled_sq = {
         scaled.x * scaled.x,
         scaled.y * scaled.y,
         scaled.z * scaled.z
     };
     const float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    const bool t8 = t6 && len2 >= 1.0f;
+    const bool t6 = t4 && len2 >= 1.0f;
     const float sqrt_len2 = sqrtf(len2);
-    const unitpack_vec3 t9 = {
-        t8 ? scaled.x / sqrt_len2 : 0.0f,
-        t8 ? scaled.y / sqrt_len2 : 0.0f,
-        t8 ? scaled.z / sqrt_len2 : 1.0f
+    const unitpack_vec3 t7 = {
+        t6 ? scaled.x / sqrt_len2 : 0.0f,
+        t6 ? scaled.y / sqrt_len2 : 0.0f,
+        t6 ? scaled.z / sqrt_len2 : 1.0f
     };
-    const unitpack_vec3 t10 = { t9.x, t9.y, t9.z > 0.0f ? t9.z : 0.0f };
-    const unitpack_vec3 abs_t10 = { fabsf(t10.x), fabsf(t10.y), fabsf(t10.z) };
-    const float t11 = abs_t10.x >= abs_t10.y ? abs_t10.x : abs_t10.y;
-    const float largest2 = t11 >= abs_t10.z ? t11 : abs_t10.z;
-    const bool t12 = largest2 > 0.0f && largest2 <= 3.4028235e38f;
-    const float t13 = t12 ? largest2 : 1.0f;
-    const unitpack_vec3 scaled2 = { t10.x / t13, t10.y / t13, t10.z / t13 };
+    const unitpack_vec3 t8 = { t7.x, t7.y, t7.z > 0.0f ? t7.z : 0.0f };
+    const unitpack_vec3 abs_t8 = { fabsf(t8.x), fabsf(t8.y), fabsf(t8.z) };
+    const float t9 = abs_t8.x >= abs_t8.y ? abs_t8.x : abs_t8.y;
+    const float largest2 = t9 >= abs_t8.z ? t9 : abs_t8.z;
+    const bool t10 = largest2 > 0.0f && largest2 <= 3.4028235e38f;
+    const float t11 = t10 ? largest2 : 1.0f;
+    const unitpack_vec3 scaled2 = { t8.x / t11, t8.y / t11, t8.z / t11 };
     const unitpack_vec3 scaled2_sq = {
         scaled2.x * scaled2.x,
         scaled2.y * scaled2.y,
         scaled2.z * scaled2.z
     };
     const float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    const bool t14 = t12 && len2_2 >= 1.0f;
+    const bool t12 = t10 && len2_2 >= 1.0f;
     const float sqrt_len2_2 = sqrtf(len2_2);
-    const unitpack_vec3 t15 = {
-        t14 ? scaled2.x / sqrt_len2_2 : 0.0f,
-        t14 ? scaled2.y / sqrt_len2_2 : 0.0f,
-        t14 ? scaled2.z / sqrt_len2_2 : 1.0f
-    };
-    const float t16 = t15.z * 0.5f;
-    const float t17 = p2.x * 0.5f;
-    const float t18 = p2.y * 0.5f;
-    const unitpack_vec4 t19 = { 1.0f, 0.5f + t18, 0.5f + t16, 0.5f + t17 };
-    return t19;
+    const float t13 = (t12 ? scaled2.z / sqrt_len2_2 : 1.0f) * 0.5f;
+    const float t14 = p2.x * 0.5f;
+    const float t15 = p2.y * 0.5f;
+    const unitpack_vec4 t16 = { 1.0f, 0.5f + t15, 0.5f + t13, 0.5f + t14 };
+    return t16;
 }
 
 // unitpack_hemioct16_rxgb_encode_float: fast encoder, float form.
@@ -186,55 +183,46 @@ static inline void unitpack_hemioct16_rxgb_encode_float(const float v[3], float 
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec4 unitpack_hemioct16_rxgb_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z > 0.0f ? w.z : 0.0f);
+    const float t1 = fabsf(w.x) + fabsf(w.y);
+    const float l1 = t1 + fabsf(w.z > 0.0f ? w.z : 0.0f);
     const unitpack_vec2 n = { w.x + w.y, w.x - w.y };
-    const bool t3 = ok && l1 > 0.0f;
-    const unitpack_vec2 t4 = { n.x * 127.5f, n.y * 127.5f };
-    const unitpack_vec2 t5 = { nearbyintf(t4.x / l1 + 127.5f), nearbyintf(t4.y / l1 + 127.5f) };
-    const unitpack_vec2 t6 = { t5.x >= 0.0f ? t5.x : 0.0f, t5.y >= 0.0f ? t5.y : 0.0f };
-    const unitpack_vec2 t7 = { t6.x <= 255.0f ? t6.x : 255.0f, t6.y <= 255.0f ? t6.y : 255.0f };
+    const bool t2 = ok && l1 > 0.0f;
+    const unitpack_vec2 t3 = { n.x * 127.5f, n.y * 127.5f };
+    const unitpack_vec2 t4 = { nearbyintf(t3.x / l1 + 127.5f), nearbyintf(t3.y / l1 + 127.5f) };
+    const unitpack_vec2 t5 = { t4.x >= 0.0f ? t4.x : 0.0f, t4.y >= 0.0f ? t4.y : 0.0f };
+    const unitpack_vec2 t6 = { t5.x <= 255.0f ? t5.x : 255.0f, t5.y <= 255.0f ? t5.y : 255.0f };
+    const unitpack_vec2 t7 = {
+        t6.x + (t6.x < 255.0f ? (t3.x >= (t6.x - 127.0f) * l1 ? 1.0f : 0.0f) : 0.0f),
+        t6.y + (t6.y < 255.0f ? (t3.y >= (t6.y - 127.0f) * l1 ? 1.0f : 0.0f) : 0.0f)
+    };
     const unitpack_vec2 t8 = {
-        t4.x >= (t7.x - 127.0f) * l1 ? 1.0f : 0.0f,
-        t4.y >= (t7.y - 127.0f) * l1 ? 1.0f : 0.0f
+        t6.x > 0.0f ? (t3.x >= (t6.x - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t6.y > 0.0f ? (t3.y >= (t6.y - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t9 = {
-        t4.x >= (t7.x - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f,
-        t4.y >= (t7.y - 1.0f - 127.0f) * l1 ? 1.0f : 0.0f
+    const unitpack_vec2 c = { t2 ? t7.x + t8.x : 128.0f, t2 ? t7.y + t8.y : 128.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec2 t10 = {
-        t7.x + (t7.x < 255.0f ? t8.x : 0.0f) + (t7.x > 0.0f ? t9.x - 1.0f : 0.0f),
-        t7.y + (t7.y < 255.0f ? t8.y : 0.0f) + (t7.y > 0.0f ? t9.y - 1.0f : 0.0f)
-    };
-    const unitpack_vec2 c = { t3 ? t10.x : 128.0f, t3 ? t10.y : 128.0f };
-    const unitpack_bvec3 t11 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
-    };
-    const unitpack_vec3 normal2 = { t11.x ? 0.0f : a0.x, t11.y ? 0.0f : a0.y, t11.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -243,28 +231,19 @@ static inline unitpack_vec4 unitpack_hemioct16_rxgb_round_codes_v(unitpack_vec3 
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t12 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w2 = {
-        t12.x ? 0.0f : scaled2.x,
-        t12.y ? 0.0f : scaled2.y,
-        t12.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w3 = { ok2 ? w2.x : 0.0f, ok2 ? w2.y : 0.0f, ok2 ? w2.z : 2.0f };
-    const unitpack_vec3 t13 = { w3.x, w3.y, w3.z > 0.0f ? w3.z : 0.0f };
-    const unitpack_bvec3 t14 = {
-        fabsf(t13.x) < 1.1754944e-38f,
-        fabsf(t13.y) < 1.1754944e-38f,
-        fabsf(t13.z) < 1.1754944e-38f
-    };
+    const unitpack_vec3 t9 = { w3.x, w3.y, w3.z > 0.0f ? w3.z : 0.0f };
     const unitpack_vec3 normal3 = {
-        t14.x ? 0.0f : t13.x,
-        t14.y ? 0.0f : t13.y,
-        t14.z ? 0.0f : t13.z
+        fabsf(t9.x) < 1.1754944e-38f ? 0.0f : t9.x,
+        fabsf(t9.y) < 1.1754944e-38f ? 0.0f : t9.y,
+        fabsf(t9.z) < 1.1754944e-38f ? 0.0f : t9.z
     };
     const unitpack_vec3 abs_normal3 = { fabsf(normal3.x), fabsf(normal3.y), fabsf(normal3.z) };
     const float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
@@ -274,57 +253,55 @@ static inline unitpack_vec4 unitpack_hemioct16_rxgb_round_codes_v(unitpack_vec3 
     );
     const unitpack_vec3 scaled3 = { normal3.x * scale3, normal3.y * scale3, normal3.z * scale3 };
     const float sum3 = fabsf(scaled3.x) + fabsf(scaled3.y) + fabsf(scaled3.z);
-    const bool ok3 = sum3 >= 2.0f && sum3 < 16.0f;
-    const unitpack_bvec3 t15 = {
-        fabsf(scaled3.x) < 1.8189894e-12f,
-        fabsf(scaled3.y) < 1.8189894e-12f,
-        fabsf(scaled3.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_3 = sum3 < 16.0f;
+    const bool ok3 = sum3 >= 2.0f && sum_below_16_3;
     const unitpack_vec3 w4 = {
-        t15.x ? 0.0f : scaled3.x,
-        t15.y ? 0.0f : scaled3.y,
-        t15.z ? 0.0f : scaled3.z
+        fabsf(scaled3.x) < 1.8189894e-12f ? 0.0f : scaled3.x,
+        fabsf(scaled3.y) < 1.8189894e-12f ? 0.0f : scaled3.y,
+        fabsf(scaled3.z) < 1.8189894e-12f ? 0.0f : scaled3.z
     };
     const unitpack_vec3 w5 = { ok3 ? w4.x : 0.0f, ok3 ? w4.y : 0.0f, ok3 ? w4.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w5.x) & 4294963200u);
     const float split_lo = w5.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t16 = (split_hi + split_hi) * split_lo;
+    const float t10 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w5.y) & 4294963200u);
     const float split_lo2 = w5.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t17 = (split_hi2 + split_hi2) * split_lo2;
+    const float t11 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w5.z) & 4294963200u);
     const float split_lo3 = w5.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t18 = (split_hi3 + split_hi3) * split_lo3;
+    const float t12 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t16 + t17 + t18)
+        + (t10 + t11 + t12)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float big2 = w5.z * w5.z * 16256.25f;
-    const float t19 = w5.z / sqrtf(len2) * 127.5f;
-    const float t20 = nearbyintf(t19 + 127.5f);
-    const float t21 = t20 >= 0.0f ? t20 : 0.0f;
-    const float estimate = t21 <= 255.0f ? t21 : 255.0f;
-    const float t22 = estimate - 127.0f;
-    const float t23 = t22 * t22 * len2;
-    const float t24 = w5.z >= 0.0f
-        ? (t22 > 0.0f ? (big2 >= t23 ? 1.0f : 0.0f) : 1.0f)
-        : (t22 < 0.0f ? (big2 <= t23 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 255.0f ? t24 : 0.0f;
-    const float t25 = estimate - 1.0f - 127.0f;
-    const float t26 = t25 * t25 * len2;
-    const float t27 = w5.z >= 0.0f
-        ? (t25 > 0.0f ? (big2 >= t26 ? 1.0f : 0.0f) : 1.0f)
-        : (t25 < 0.0f ? (big2 <= t26 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t27 - 1.0f : 0.0f;
-    const unitpack_vec4 t28 = { 255.0f, c.y, estimate + up + down, c.x };
-    return t28;
+    const float t13 = w5.z / sqrtf(len2) * 127.5f;
+    const float t14 = nearbyintf(t13 + 127.5f);
+    const float t15 = t14 >= 0.0f ? t14 : 0.0f;
+    const float estimate = t15 <= 255.0f ? t15 : 255.0f;
+    const float t16 = estimate - 127.0f;
+    const float t17 = t16 * t16 * len2;
+    const float one_if = big2 >= t17 ? 1.0f : 0.0f;
+    const float one_if2 = big2 <= t17 ? 1.0f : 0.0f;
+    const float up = estimate < 255.0f
+        ? (w5.z >= 0.0f ? (t16 > 0.0f ? one_if : 1.0f) : (t16 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t18 = estimate - 1.0f - 127.0f;
+    const float t19 = t18 * t18 * len2;
+    const float one_if3 = big2 >= t19 ? 1.0f : 0.0f;
+    const float one_if4 = big2 <= t19 ? 1.0f : 0.0f;
+    const float t20 = (w5.z >= 0.0f ? (t18 > 0.0f ? one_if3 : 1.0f) : (t18 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t20 : 0.0f;
+    const unitpack_vec4 t21 = { 255.0f, c.y, estimate + up + down, c.x };
+    return t21;
 }
 
 // Struct form of unitpack_hemioct16_rxgb_encode.
@@ -337,9 +314,7 @@ static inline uint32_t unitpack_hemioct16_rxgb_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct16_rxgb_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_rxgb_encode_float.
 // Out: the RGBA8 texel as a uint32_t (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B =
 //   the input's z (z·½ + ½), A = x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is
 //   stored as x = y = 128).

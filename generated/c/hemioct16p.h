@@ -98,244 +98,225 @@ static inline void unitpack_hemioct16p_decode(uint32_t code, float out[3]) {
 //   input's signs.
 
 static inline unitpack_vec2 unitpack_hemioct16p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const unitpack_vec3 t3 = { fabsf(w.x), fabsf(w.y), fabsf(w.z > 0.0f ? w.z : 0.0f) };
-    const float sum2 = t3.x + t3.y + t3.z;
-    const bool t4 = ok && sum2 > 0.0f;
-    const unitpack_vec3 a = { t4 ? t3.x : 0.0f, t4 ? t3.y : 0.0f, t4 ? t3.z : 2.0f };
-    const float l1 = t4 ? sum2 : 2.0f;
-    const float t5 = a.x + a.y;
-    const float estimate = floorf(t5 / l1 * 127.0f);
-    const float big = t5 * 127.0f;
-    const float t6 = estimate
-        + (big >= (estimate + 1.0f) * l1 ? 1.0f : (big < estimate * l1 ? -1.0f : 0.0f));
-    const float t7 = t6 >= (-127.0f) ? t6 : -127.0f;
-    const float s0 = t7 <= 127.0f ? t7 : 127.0f;
-    const float t8 = a.x - a.y;
-    const float estimate2 = floorf(t8 / l1 * 127.0f);
-    const float big2 = t8 * 127.0f;
-    const float t9 = estimate2
-        + (big2 >= (estimate2 + 1.0f) * l1 ? 1.0f : (big2 < estimate2 * l1 ? -1.0f : 0.0f));
-    const float t10 = t9 >= (-127.0f) ? t9 : -127.0f;
-    const float t0 = t10 <= 127.0f ? t10 : 127.0f;
+    const unitpack_vec3 t1 = { fabsf(w.x), fabsf(w.y), fabsf(w.z > 0.0f ? w.z : 0.0f) };
+    const float sum2 = t1.x + t1.y + t1.z;
+    const bool t2 = ok && sum2 > 0.0f;
+    const unitpack_vec3 a = { t2 ? t1.x : 0.0f, t2 ? t1.y : 0.0f, t2 ? t1.z : 2.0f };
+    const float l1 = t2 ? sum2 : 2.0f;
+    const float t3 = a.x + a.y;
+    const float estimate = floorf(t3 / l1 * 127.0f);
+    const float big = t3 * 127.0f;
+    const float step_down = big < estimate * l1 ? -1.0f : 0.0f;
+    const float step = big >= (estimate + 1.0f) * l1 ? 1.0f : step_down;
+    const float t4 = estimate + step;
+    const float t5 = t4 >= (-127.0f) ? t4 : -127.0f;
+    const float s0 = t5 <= 127.0f ? t5 : 127.0f;
+    const float t6 = a.x - a.y;
+    const float estimate2 = floorf(t6 / l1 * 127.0f);
+    const float big2 = t6 * 127.0f;
+    const float step_down2 = big2 < estimate2 * l1 ? -1.0f : 0.0f;
+    const float step2 = big2 >= (estimate2 + 1.0f) * l1 ? 1.0f : step_down2;
+    const float t7 = estimate2 + step2;
+    const float t8 = t7 >= (-127.0f) ? t7 : -127.0f;
+    const float t0 = t8 <= 127.0f ? t8 : 127.0f;
     const unitpack_uvec3 afix = {
         (uint32_t)floorf(a.x * 4194304.0f),
         (uint32_t)floorf(a.y * 4194304.0f),
         (uint32_t)floorf(a.z * 4194304.0f)
     };
-    const bool t11 = s0 + t0 < 0.0f;
-    const unitpack_vec2 t12 = { t8, t5 };
-    const unitpack_vec2 t13 = { floorf(t12.x / l1 * 127.0f), floorf(t12.y / l1 * 127.0f) };
-    const unitpack_vec2 t14 = { t12.x * 127.0f, t12.y * 127.0f };
+    const bool t9 = s0 + t0 < 0.0f;
+    const unitpack_vec2 t10 = { t6, t3 };
+    const unitpack_vec2 t11 = { floorf(t10.x / l1 * 127.0f), floorf(t10.y / l1 * 127.0f) };
+    const unitpack_vec2 t12 = { t10.x * 127.0f, t10.y * 127.0f };
+    const unitpack_vec2 t13 = {
+        t12.x >= (t11.x + 1.0f) * l1 ? 1.0f : (t12.x < t11.x * l1 ? -1.0f : 0.0f),
+        t12.y >= (t11.y + 1.0f) * l1 ? 1.0f : (t12.y < t11.y * l1 ? -1.0f : 0.0f)
+    };
+    const unitpack_vec2 t14 = { t11.x + t13.x, t11.y + t13.y };
     const unitpack_vec2 t15 = {
-        t14.x >= (t13.x + 1.0f) * l1 ? 1.0f : (t14.x < t13.x * l1 ? -1.0f : 0.0f),
-        t14.y >= (t13.y + 1.0f) * l1 ? 1.0f : (t14.y < t13.y * l1 ? -1.0f : 0.0f)
+        t14.x >= (-127.0f) ? t14.x : -127.0f,
+        t14.y >= (-127.0f) ? t14.y : -127.0f
     };
-    const unitpack_vec2 t16 = { t13.x + t15.x, t13.y + t15.y };
-    const unitpack_vec2 t17 = {
-        t16.x >= (-127.0f) ? t16.x : -127.0f,
-        t16.y >= (-127.0f) ? t16.y : -127.0f
+    const unitpack_vec2 t16 = {
+        t15.x <= 127.0f ? t15.x : 127.0f,
+        t15.y <= 127.0f ? t15.y : 127.0f
     };
-    const unitpack_vec2 t18 = {
-        t17.x <= 127.0f ? t17.x : 127.0f,
-        t17.y <= 127.0f ? t17.y : 127.0f
+    const unitpack_vec2 t17 = { t3, t6 };
+    const unitpack_vec2 t18 = { floorf(t17.x / l1 * 127.0f), floorf(t17.y / l1 * 127.0f) };
+    const unitpack_vec2 t19 = { t17.x * 127.0f, t17.y * 127.0f };
+    const unitpack_vec2 t20 = {
+        t19.x >= (t18.x + 1.0f) * l1 ? 1.0f : (t19.x < t18.x * l1 ? -1.0f : 0.0f),
+        t19.y >= (t18.y + 1.0f) * l1 ? 1.0f : (t19.y < t18.y * l1 ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t19 = { t5, t8 };
-    const unitpack_vec2 t20 = { floorf(t19.x / l1 * 127.0f), floorf(t19.y / l1 * 127.0f) };
-    const unitpack_vec2 t21 = { t19.x * 127.0f, t19.y * 127.0f };
+    const unitpack_vec2 t21 = { t18.x + t20.x, t18.y + t20.y };
     const unitpack_vec2 t22 = {
-        t21.x >= (t20.x + 1.0f) * l1 ? 1.0f : (t21.x < t20.x * l1 ? -1.0f : 0.0f),
-        t21.y >= (t20.y + 1.0f) * l1 ? 1.0f : (t21.y < t20.y * l1 ? -1.0f : 0.0f)
+        t21.x >= (-127.0f) ? t21.x : -127.0f,
+        t21.y >= (-127.0f) ? t21.y : -127.0f
     };
-    const unitpack_vec2 t23 = { t20.x + t22.x, t20.y + t22.y };
-    const unitpack_vec2 t24 = {
-        t23.x >= (-127.0f) ? t23.x : -127.0f,
-        t23.y >= (-127.0f) ? t23.y : -127.0f
+    const unitpack_vec2 t23 = {
+        t22.x <= 127.0f ? t22.x : 127.0f,
+        t22.y <= 127.0f ? t22.y : 127.0f
     };
-    const unitpack_vec2 t25 = {
-        t24.x <= 127.0f ? t24.x : 127.0f,
-        t24.y <= 127.0f ? t24.y : 127.0f
-    };
-    const unitpack_vec2 t26 = { t11 ? -t18.x : t25.x, t11 ? -t18.y : t25.y };
-    const bool t27 = t26.x < t26.y;
-    const unitpack_vec2 cand = { t27 ? t26.y : t26.x, t27 ? t26.x : t26.y };
-    const float t28 = 254.0f - cand.x - cand.x;
-    const float t29 = t28 >= 0.0f ? t28 : 0.0f;
-    const float t30 = cand.x + cand.y;
-    const uint32_t t31 = (uint32_t)t30;
-    const float t32 = cand.x - cand.y;
-    const uint32_t t33 = (uint32_t)t32;
-    const uint32_t t34 = (uint32_t)t29;
+    const unitpack_vec2 t24 = { t9 ? -t16.x : t23.x, t9 ? -t16.y : t23.y };
+    const bool t25 = t24.x < t24.y;
+    const unitpack_vec2 cand = { t25 ? t24.y : t24.x, t25 ? t24.x : t24.y };
+    const float t26 = 254.0f - cand.x - cand.x;
+    const float t27 = t26 >= 0.0f ? t26 : 0.0f;
+    const float t28 = cand.x + cand.y;
+    const uint32_t t28_u = (uint32_t)t28;
+    const float t29 = cand.x - cand.y;
+    const uint32_t t29_u = (uint32_t)t29;
+    const uint32_t t27_u = (uint32_t)t27;
     const unitpack_uvec3 cross = {
-        afix.y * (uint32_t)t29 - afix.z * (uint32_t)t32,
-        afix.z * (uint32_t)t30 - afix.x * (uint32_t)t29,
-        afix.x * (uint32_t)t32 - afix.y * (uint32_t)t30
+        afix.y * (uint32_t)t27 - afix.z * (uint32_t)t29,
+        afix.z * (uint32_t)t28 - afix.x * (uint32_t)t27,
+        afix.x * (uint32_t)t29 - afix.y * (uint32_t)t28
     };
-    const uint32_t t35 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
-    const uint32_t t36 = t35 >> 16u;
-    const uint32_t t37 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
-    const uint32_t t38 = t37 >> 16u;
-    const uint32_t t39 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    const uint32_t t40 = t39 >> 16u;
-    const unitpack_uvec3 t41 = {
-        (t36 * (t35 & 65535u)) >> 12u,
-        (t38 * (t37 & 65535u)) >> 12u,
-        (t40 * (t39 & 65535u)) >> 12u
+    const uint32_t t30 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
+    const uint32_t t31 = t30 >> 16u;
+    const uint32_t t32 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    const uint32_t t33 = t32 >> 16u;
+    const uint32_t t34 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
+    const uint32_t t35 = t34 >> 16u;
+    const unitpack_uvec3 t36 = { (t31 * t31) << 3u, (t33 * t33) << 3u, (t35 * t35) << 3u };
+    const unitpack_uvec3 t37 = {
+        (t31 * (t30 & 65535u)) >> 12u,
+        (t33 * (t32 & 65535u)) >> 12u,
+        (t35 * (t34 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t42 = {
-        ((t36 * t36) << 3u) + t41.x,
-        ((t38 * t38) << 3u) + t41.y,
-        ((t40 * t40) << 3u) + t41.z
-    };
-    const float e = (float)(t42.x + t42.y + t42.z);
-    const float n = (float)(t31 * t31 + t33 * t33 + t34 * t34);
-    const float t43 = s0 + 1.0f;
-    const bool t44 = t43 + t0 < 0.0f;
-    const unitpack_vec2 t45 = { t44 ? -t0 : t43, t44 ? -t43 : t0 };
-    const bool t46 = t45.x < t45.y;
-    const unitpack_vec2 cand2 = { t46 ? t45.y : t45.x, t46 ? t45.x : t45.y };
-    const float t47 = 254.0f - cand2.x - cand2.x;
-    const float t48 = t47 >= 0.0f ? t47 : 0.0f;
-    const float t49 = cand2.x + cand2.y;
-    const uint32_t t50 = (uint32_t)t49;
-    const float t51 = cand2.x - cand2.y;
-    const uint32_t t52 = (uint32_t)t51;
-    const uint32_t t53 = (uint32_t)t48;
+    const float e = (float)(t36.x + t37.x + (t36.y + t37.y) + (t36.z + t37.z));
+    const float n = (float)(t28_u * t28_u + t29_u * t29_u + t27_u * t27_u);
+    const float s_up = s0 + 1.0f;
+    const float t_up = t0 + 1.0f;
+    const bool t38 = s_up + t0 < 0.0f;
+    const unitpack_vec2 t39 = { t38 ? -t0 : s_up, t38 ? -s_up : t0 };
+    const bool t40 = t39.x < t39.y;
+    const unitpack_vec2 cand2 = { t40 ? t39.y : t39.x, t40 ? t39.x : t39.y };
+    const float t41 = 254.0f - cand2.x - cand2.x;
+    const float t42 = t41 >= 0.0f ? t41 : 0.0f;
+    const float t43 = cand2.x + cand2.y;
+    const uint32_t t43_u = (uint32_t)t43;
+    const float t44 = cand2.x - cand2.y;
+    const uint32_t t44_u = (uint32_t)t44;
+    const uint32_t t42_u = (uint32_t)t42;
     const unitpack_uvec3 cross2 = {
-        afix.y * (uint32_t)t48 - afix.z * (uint32_t)t51,
-        afix.z * (uint32_t)t49 - afix.x * (uint32_t)t48,
-        afix.x * (uint32_t)t51 - afix.y * (uint32_t)t49
+        afix.y * (uint32_t)t42 - afix.z * (uint32_t)t44,
+        afix.z * (uint32_t)t43 - afix.x * (uint32_t)t42,
+        afix.x * (uint32_t)t44 - afix.y * (uint32_t)t43
     };
-    const uint32_t t54 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
-    const uint32_t t55 = t54 >> 16u;
-    const uint32_t t56 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    const uint32_t t57 = t56 >> 16u;
-    const uint32_t t58 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
-    const uint32_t t59 = t58 >> 16u;
-    const unitpack_uvec3 t60 = {
-        (t55 * (t54 & 65535u)) >> 12u,
-        (t57 * (t56 & 65535u)) >> 12u,
-        (t59 * (t58 & 65535u)) >> 12u
+    const uint32_t t45 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
+    const uint32_t t46 = t45 >> 16u;
+    const uint32_t t47 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
+    const uint32_t t48 = t47 >> 16u;
+    const uint32_t t49 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
+    const uint32_t t50 = t49 >> 16u;
+    const unitpack_uvec3 t51 = { (t46 * t46) << 3u, (t48 * t48) << 3u, (t50 * t50) << 3u };
+    const unitpack_uvec3 t52 = {
+        (t46 * (t45 & 65535u)) >> 12u,
+        (t48 * (t47 & 65535u)) >> 12u,
+        (t50 * (t49 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t61 = {
-        ((t55 * t55) << 3u) + t60.x,
-        ((t57 * t57) << 3u) + t60.y,
-        ((t59 * t59) << 3u) + t60.z
-    };
-    const float e2 = (float)(t61.x + t61.y + t61.z);
-    const float n2 = (float)(t50 * t50 + t52 * t52 + t53 * t53);
-    const bool t62 = cand2.x <= 127.0f && e2 * n < e * n2;
-    const unitpack_vec2 best = { t62 ? cand2.x : cand.x, t62 ? cand2.y : cand.y };
-    const float best_e = t62 ? e2 : e;
-    const float best_n = t62 ? n2 : n;
-    const float t63 = t0 + 1.0f;
-    const bool t64 = s0 + t63 < 0.0f;
-    const unitpack_vec2 t65 = { t64 ? -t63 : s0, t64 ? -s0 : t63 };
-    const bool t66 = t65.x < t65.y;
-    const unitpack_vec2 cand3 = { t66 ? t65.y : t65.x, t66 ? t65.x : t65.y };
-    const float t67 = 254.0f - cand3.x - cand3.x;
-    const float t68 = t67 >= 0.0f ? t67 : 0.0f;
-    const float t69 = cand3.x + cand3.y;
-    const uint32_t t70 = (uint32_t)t69;
-    const float t71 = cand3.x - cand3.y;
-    const uint32_t t72 = (uint32_t)t71;
-    const uint32_t t73 = (uint32_t)t68;
+    const float e2 = (float)(t51.x + t52.x + (t51.y + t52.y) + (t51.z + t52.z));
+    const float n2 = (float)(t43_u * t43_u + t44_u * t44_u + t42_u * t42_u);
+    const bool t53 = cand2.x <= 127.0f && e2 * n < e * n2;
+    const unitpack_vec2 best = { t53 ? cand2.x : cand.x, t53 ? cand2.y : cand.y };
+    const float best_e = t53 ? e2 : e;
+    const float best_n = t53 ? n2 : n;
+    const bool t54 = s0 + t_up < 0.0f;
+    const unitpack_vec2 t55 = { t54 ? -t_up : s0, t54 ? -s0 : t_up };
+    const bool t56 = t55.x < t55.y;
+    const unitpack_vec2 cand3 = { t56 ? t55.y : t55.x, t56 ? t55.x : t55.y };
+    const float t57 = 254.0f - cand3.x - cand3.x;
+    const float t58 = t57 >= 0.0f ? t57 : 0.0f;
+    const float t59 = cand3.x + cand3.y;
+    const uint32_t t59_u = (uint32_t)t59;
+    const float t60 = cand3.x - cand3.y;
+    const uint32_t t60_u = (uint32_t)t60;
+    const uint32_t t58_u = (uint32_t)t58;
     const unitpack_uvec3 cross3 = {
-        afix.y * (uint32_t)t68 - afix.z * (uint32_t)t71,
-        afix.z * (uint32_t)t69 - afix.x * (uint32_t)t68,
-        afix.x * (uint32_t)t71 - afix.y * (uint32_t)t69
+        afix.y * (uint32_t)t58 - afix.z * (uint32_t)t60,
+        afix.z * (uint32_t)t59 - afix.x * (uint32_t)t58,
+        afix.x * (uint32_t)t60 - afix.y * (uint32_t)t59
     };
-    const uint32_t t74 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    const uint32_t t75 = t74 >> 16u;
-    const uint32_t t76 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
-    const uint32_t t77 = t76 >> 16u;
-    const uint32_t t78 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
-    const uint32_t t79 = t78 >> 16u;
-    const unitpack_uvec3 t80 = {
-        (t75 * (t74 & 65535u)) >> 12u,
-        (t77 * (t76 & 65535u)) >> 12u,
-        (t79 * (t78 & 65535u)) >> 12u
+    const uint32_t t61 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
+    const uint32_t t62 = t61 >> 16u;
+    const uint32_t t63 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
+    const uint32_t t64 = t63 >> 16u;
+    const uint32_t t65 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
+    const uint32_t t66 = t65 >> 16u;
+    const unitpack_uvec3 t67 = { (t62 * t62) << 3u, (t64 * t64) << 3u, (t66 * t66) << 3u };
+    const unitpack_uvec3 t68 = {
+        (t62 * (t61 & 65535u)) >> 12u,
+        (t64 * (t63 & 65535u)) >> 12u,
+        (t66 * (t65 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t81 = {
-        ((t75 * t75) << 3u) + t80.x,
-        ((t77 * t77) << 3u) + t80.y,
-        ((t79 * t79) << 3u) + t80.z
+    const float e3 = (float)(t67.x + t68.x + (t67.y + t68.y) + (t67.z + t68.z));
+    const float n3 = (float)(t59_u * t59_u + t60_u * t60_u + t58_u * t58_u);
+    const bool t69 = cand3.x <= 127.0f && e3 * best_n < best_e * n3;
+    const unitpack_vec2 best2 = { t69 ? cand3.x : best.x, t69 ? cand3.y : best.y };
+    const float best_e2 = t69 ? e3 : best_e;
+    const float best_n2 = t69 ? n3 : best_n;
+    const bool t70 = s_up + t_up < 0.0f;
+    const unitpack_vec2 t71 = {
+        t70 ? -(t16.x + 1.0f) : t23.x + 1.0f,
+        t70 ? -(t16.y + 1.0f) : t23.y + 1.0f
     };
-    const float e3 = (float)(t81.x + t81.y + t81.z);
-    const float n3 = (float)(t70 * t70 + t72 * t72 + t73 * t73);
-    const bool t82 = cand3.x <= 127.0f && e3 * best_n < best_e * n3;
-    const unitpack_vec2 best2 = { t82 ? cand3.x : best.x, t82 ? cand3.y : best.y };
-    const float best_e2 = t82 ? e3 : best_e;
-    const float best_n2 = t82 ? n3 : best_n;
-    const bool t83 = s0 + 1.0f + (t0 + 1.0f) < 0.0f;
-    const unitpack_vec2 t84 = {
-        t83 ? -(t18.x + 1.0f) : t25.x + 1.0f,
-        t83 ? -(t18.y + 1.0f) : t25.y + 1.0f
-    };
-    const bool t85 = t84.x < t84.y;
-    const unitpack_vec2 cand4 = { t85 ? t84.y : t84.x, t85 ? t84.x : t84.y };
-    const float t86 = 254.0f - cand4.x - cand4.x;
-    const float t87 = t86 >= 0.0f ? t86 : 0.0f;
-    const float t88 = cand4.x + cand4.y;
-    const uint32_t t89 = (uint32_t)t88;
-    const float t90 = cand4.x - cand4.y;
-    const uint32_t t91 = (uint32_t)t90;
-    const uint32_t t92 = (uint32_t)t87;
+    const bool t72 = t71.x < t71.y;
+    const unitpack_vec2 cand4 = { t72 ? t71.y : t71.x, t72 ? t71.x : t71.y };
+    const float t73 = 254.0f - cand4.x - cand4.x;
+    const float t74 = t73 >= 0.0f ? t73 : 0.0f;
+    const float t75 = cand4.x + cand4.y;
+    const uint32_t t75_u = (uint32_t)t75;
+    const float t76 = cand4.x - cand4.y;
+    const uint32_t t76_u = (uint32_t)t76;
+    const uint32_t t74_u = (uint32_t)t74;
     const unitpack_uvec3 cross4 = {
-        afix.y * (uint32_t)t87 - afix.z * (uint32_t)t90,
-        afix.z * (uint32_t)t88 - afix.x * (uint32_t)t87,
-        afix.x * (uint32_t)t90 - afix.y * (uint32_t)t88
+        afix.y * (uint32_t)t74 - afix.z * (uint32_t)t76,
+        afix.z * (uint32_t)t75 - afix.x * (uint32_t)t74,
+        afix.x * (uint32_t)t76 - afix.y * (uint32_t)t75
     };
-    const uint32_t t93 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
-    const uint32_t t94 = t93 >> 16u;
-    const uint32_t t95 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    const uint32_t t96 = t95 >> 16u;
-    const uint32_t t97 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    const uint32_t t98 = t97 >> 16u;
-    const unitpack_uvec3 t99 = {
-        (t94 * (t93 & 65535u)) >> 12u,
-        (t96 * (t95 & 65535u)) >> 12u,
-        (t98 * (t97 & 65535u)) >> 12u
+    const uint32_t t77 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
+    const uint32_t t78 = t77 >> 16u;
+    const uint32_t t79 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
+    const uint32_t t80 = t79 >> 16u;
+    const uint32_t t81 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
+    const uint32_t t82 = t81 >> 16u;
+    const unitpack_uvec3 t83 = { (t78 * t78) << 3u, (t80 * t80) << 3u, (t82 * t82) << 3u };
+    const unitpack_uvec3 t84 = {
+        (t78 * (t77 & 65535u)) >> 12u,
+        (t80 * (t79 & 65535u)) >> 12u,
+        (t82 * (t81 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t100 = {
-        ((t94 * t94) << 3u) + t99.x,
-        ((t96 * t96) << 3u) + t99.y,
-        ((t98 * t98) << 3u) + t99.z
+    const float e4 = (float)(t83.x + t84.x + (t83.y + t84.y) + (t83.z + t84.z));
+    const float n4 = (float)(t75_u * t75_u + t76_u * t76_u + t74_u * t74_u);
+    const bool t85 = cand4.x <= 127.0f && e4 * best_n2 < best_e2 * n4;
+    const unitpack_vec2 best3 = { t85 ? cand4.x : best2.x, t85 ? cand4.y : best2.y };
+    const bool t86 = w.x < 0.0f;
+    const unitpack_vec2 t87 = { t86 ? -best3.y : best3.x, t86 ? -best3.x : best3.y };
+    const bool t88 = w.y < 0.0f;
+    const unitpack_vec2 t89 = {
+        t2 ? (t88 ? t87.y : t87.x) : 0.0f,
+        t2 ? (t88 ? t87.x : t87.y) : 0.0f
     };
-    const float e4 = (float)(t100.x + t100.y + t100.z);
-    const float n4 = (float)(t89 * t89 + t91 * t91 + t92 * t92);
-    const bool t101 = cand4.x <= 127.0f && e4 * best_n2 < best_e2 * n4;
-    const unitpack_vec2 best3 = { t101 ? cand4.x : best2.x, t101 ? cand4.y : best2.y };
-    const bool t102 = w.x < 0.0f;
-    const unitpack_vec2 t103 = { t102 ? -best3.y : best3.x, t102 ? -best3.x : best3.y };
-    const bool t104 = w.y < 0.0f;
-    const unitpack_vec2 t105 = {
-        t4 ? (t104 ? t103.y : t103.x) : 0.0f,
-        t4 ? (t104 ? t103.x : t103.y) : 0.0f
-    };
-    return t105;
+    return t89;
 }
 
 // Struct form of unitpack_hemioct16p_encode_float.
@@ -368,9 +349,7 @@ static inline uint32_t unitpack_hemioct16p_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct16p_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16p_encode_float.
 // Out: the packed code, uint32_t (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8
 //   (two's complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -80,17 +80,17 @@ static inline void unitpack_hemioct16p_xra_decode_float(const float params[4], f
 
 // Struct form of unitpack_hemioct16p_xra_decode.
 static inline unitpack_vec3 unitpack_hemioct16p_xra_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_hemioct16p_xra_decode_float_v(params);
     return decode_float;
@@ -114,301 +114,265 @@ static inline void unitpack_hemioct16p_xra_decode(uint32_t code, float out[3]) {
 //   input's signs.
 
 static inline unitpack_vec4 unitpack_hemioct16p_xra_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const unitpack_vec3 t3 = { fabsf(w.x), fabsf(w.y), fabsf(w.z > 0.0f ? w.z : 0.0f) };
-    const float sum2 = t3.x + t3.y + t3.z;
-    const bool t4 = ok && sum2 > 0.0f;
-    const unitpack_vec3 a = { t4 ? t3.x : 0.0f, t4 ? t3.y : 0.0f, t4 ? t3.z : 2.0f };
-    const float l1 = t4 ? sum2 : 2.0f;
-    const float t5 = a.x + a.y;
-    const float t = t5 * 127.5f;
-    const float t6 = nearbyintf(t / l1 + 127.5f);
-    const float t7 = t6 >= 0.0f ? t6 : 0.0f;
-    const float estimate = t7 <= 255.0f ? t7 : 255.0f;
-    const bool t8 = estimate < 255.0f;
-    const float t9 = t >= (estimate - 126.5f) * l1 ? 1.0f : 0.0f;
-    const float up = t8 ? t9 : 0.0f;
-    const bool t10 = estimate > 0.0f;
-    const float t11 = (t >= (estimate - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f) - 1.0f;
-    const float down = t10 ? t11 : 0.0f;
-    const float t12 = estimate + up;
-    const float s0 = t12 + down;
-    const float t13 = a.x - a.y;
-    const float t14 = t13 * 127.5f;
-    const float t15 = nearbyintf(t14 / l1 + 127.5f);
-    const float t16 = t15 >= 0.0f ? t15 : 0.0f;
-    const float estimate2 = t16 <= 255.0f ? t16 : 255.0f;
-    const bool t17 = estimate2 < 255.0f;
-    const float t18 = t14 >= (estimate2 - 126.5f) * l1 ? 1.0f : 0.0f;
-    const float up2 = t17 ? t18 : 0.0f;
-    const bool t19 = estimate2 > 0.0f;
-    const float t20 = (t14 >= (estimate2 - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f) - 1.0f;
-    const float down2 = t19 ? t20 : 0.0f;
-    const float t21 = estimate2 + up2;
-    const float t0 = t21 + down2;
+    const unitpack_vec3 t1 = { fabsf(w.x), fabsf(w.y), fabsf(w.z > 0.0f ? w.z : 0.0f) };
+    const float sum2 = t1.x + t1.y + t1.z;
+    const bool t2 = ok && sum2 > 0.0f;
+    const unitpack_vec3 a = { t2 ? t1.x : 0.0f, t2 ? t1.y : 0.0f, t2 ? t1.z : 2.0f };
+    const float l1 = t2 ? sum2 : 2.0f;
+    const float t3 = a.x + a.y;
+    const float t = t3 * 127.5f;
+    const float t4 = nearbyintf(t / l1 + 127.5f);
+    const float t5 = t4 >= 0.0f ? t4 : 0.0f;
+    const float estimate = t5 <= 255.0f ? t5 : 255.0f;
+    const bool t6 = estimate < 255.0f;
+    const float one_if = t >= (estimate - 126.5f) * l1 ? 1.0f : 0.0f;
+    const float up = t6 ? one_if : 0.0f;
+    const bool t7 = estimate > 0.0f;
+    const float one_if2 = t >= (estimate - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f;
+    const float t8 = one_if2 - 1.0f;
+    const float down = t7 ? t8 : 0.0f;
+    const float t9 = estimate + up;
+    const float s0 = t9 + down;
+    const float t10 = a.x - a.y;
+    const float t11 = t10 * 127.5f;
+    const float t12 = nearbyintf(t11 / l1 + 127.5f);
+    const float t13 = t12 >= 0.0f ? t12 : 0.0f;
+    const float estimate2 = t13 <= 255.0f ? t13 : 255.0f;
+    const bool t14 = estimate2 < 255.0f;
+    const float one_if3 = t11 >= (estimate2 - 126.5f) * l1 ? 1.0f : 0.0f;
+    const float up2 = t14 ? one_if3 : 0.0f;
+    const bool t15 = estimate2 > 0.0f;
+    const float one_if4 = t11 >= (estimate2 - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f;
+    const float t16 = one_if4 - 1.0f;
+    const float down2 = t15 ? t16 : 0.0f;
+    const float t17 = estimate2 + up2;
+    const float t0 = t17 + down2;
     const unitpack_uvec3 afix = {
         (uint32_t)floorf(a.x * 4194304.0f),
         (uint32_t)floorf(a.y * 4194304.0f),
         (uint32_t)floorf(a.z * 4194304.0f)
     };
-    const bool t22 = s0 + s0 - 255.0f + (t0 + t0 - 255.0f) < 0.0f;
-    const unitpack_vec2 t23 = { t13 * 127.5f, t5 * 127.5f };
-    const unitpack_vec2 t24 = { nearbyintf(t23.x / l1 + 127.5f), nearbyintf(t23.y / l1 + 127.5f) };
-    const unitpack_vec2 t25 = { t24.x >= 0.0f ? t24.x : 0.0f, t24.y >= 0.0f ? t24.y : 0.0f };
-    const unitpack_vec2 t26 = {
-        t25.x <= 255.0f ? t25.x : 255.0f,
-        t25.y <= 255.0f ? t25.y : 255.0f
+    const bool t18 = s0 + s0 - 255.0f + (t0 + t0 - 255.0f) < 0.0f;
+    const unitpack_vec2 t19 = { t10 * 127.5f, t3 * 127.5f };
+    const unitpack_vec2 t20 = { nearbyintf(t19.x / l1 + 127.5f), nearbyintf(t19.y / l1 + 127.5f) };
+    const unitpack_vec2 t21 = { t20.x >= 0.0f ? t20.x : 0.0f, t20.y >= 0.0f ? t20.y : 0.0f };
+    const unitpack_vec2 t22 = {
+        t21.x <= 255.0f ? t21.x : 255.0f,
+        t21.y <= 255.0f ? t21.y : 255.0f
     };
-    const unitpack_vec2 t27 = {
-        t23.x >= (t26.x - 126.5f) * l1 ? 1.0f : 0.0f,
-        t23.y >= (t26.y - 126.5f) * l1 ? 1.0f : 0.0f
+    const unitpack_vec2 t23 = {
+        t22.x + (t22.x < 255.0f ? (t19.x >= (t22.x - 126.5f) * l1 ? 1.0f : 0.0f) : 0.0f),
+        t22.y + (t22.y < 255.0f ? (t19.y >= (t22.y - 126.5f) * l1 ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t28 = {
-        t26.x + (t26.x < 255.0f ? t27.x : 0.0f),
-        t26.y + (t26.y < 255.0f ? t27.y : 0.0f)
+    const unitpack_vec2 t24 = {
+        t22.x > 0.0f ? (t19.x >= (t22.x - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t22.y > 0.0f ? (t19.y >= (t22.y - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
+    const unitpack_vec2 t25 = { t23.x + t24.x, t23.y + t24.y };
+    const unitpack_vec2 t26 = { t3 * 127.5f, t10 * 127.5f };
+    const unitpack_vec2 t27 = { nearbyintf(t26.x / l1 + 127.5f), nearbyintf(t26.y / l1 + 127.5f) };
+    const unitpack_vec2 t28 = { t27.x >= 0.0f ? t27.x : 0.0f, t27.y >= 0.0f ? t27.y : 0.0f };
     const unitpack_vec2 t29 = {
-        t23.x >= (t26.x - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f,
-        t23.y >= (t26.y - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f
+        t28.x <= 255.0f ? t28.x : 255.0f,
+        t28.y <= 255.0f ? t28.y : 255.0f
     };
     const unitpack_vec2 t30 = {
-        t28.x + (t26.x > 0.0f ? t29.x - 1.0f : 0.0f),
-        t28.y + (t26.y > 0.0f ? t29.y - 1.0f : 0.0f)
+        t29.x + (t29.x < 255.0f ? (t26.x >= (t29.x - 126.5f) * l1 ? 1.0f : 0.0f) : 0.0f),
+        t29.y + (t29.y < 255.0f ? (t26.y >= (t29.y - 126.5f) * l1 ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t31 = { t5 * 127.5f, t13 * 127.5f };
-    const unitpack_vec2 t32 = { nearbyintf(t31.x / l1 + 127.5f), nearbyintf(t31.y / l1 + 127.5f) };
-    const unitpack_vec2 t33 = { t32.x >= 0.0f ? t32.x : 0.0f, t32.y >= 0.0f ? t32.y : 0.0f };
-    const unitpack_vec2 t34 = {
-        t33.x <= 255.0f ? t33.x : 255.0f,
-        t33.y <= 255.0f ? t33.y : 255.0f
+    const unitpack_vec2 t31 = {
+        t29.x > 0.0f ? (t26.x >= (t29.x - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t29.y > 0.0f ? (t26.y >= (t29.y - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t35 = {
-        t31.x >= (t34.x - 126.5f) * l1 ? 1.0f : 0.0f,
-        t31.y >= (t34.y - 126.5f) * l1 ? 1.0f : 0.0f
+    const unitpack_vec2 t32 = { t30.x + t31.x, t30.y + t31.y };
+    const unitpack_vec2 t33 = {
+        t18 ? -(t25.x + t25.x - 255.0f) : t32.x + t32.x - 255.0f,
+        t18 ? -(t25.y + t25.y - 255.0f) : t32.y + t32.y - 255.0f
     };
-    const unitpack_vec2 t36 = {
-        t34.x + (t34.x < 255.0f ? t35.x : 0.0f),
-        t34.y + (t34.y < 255.0f ? t35.y : 0.0f)
-    };
-    const unitpack_vec2 t37 = {
-        t31.x >= (t34.x - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f,
-        t31.y >= (t34.y - 1.0f - 126.5f) * l1 ? 1.0f : 0.0f
-    };
-    const unitpack_vec2 t38 = {
-        t36.x + (t34.x > 0.0f ? t37.x - 1.0f : 0.0f),
-        t36.y + (t34.y > 0.0f ? t37.y - 1.0f : 0.0f)
-    };
-    const unitpack_vec2 t39 = {
-        t22 ? -(t30.x + t30.x - 255.0f) : t38.x + t38.x - 255.0f,
-        t22 ? -(t30.y + t30.y - 255.0f) : t38.y + t38.y - 255.0f
-    };
-    const bool t40 = t39.x < t39.y;
-    const unitpack_vec2 cand = { t40 ? t39.y : t39.x, t40 ? t39.x : t39.y };
-    const float t41 = 510.0f - cand.x - cand.x;
-    const float t42 = t41 >= 0.0f ? t41 : 0.0f;
-    const float t43 = cand.x + cand.y;
-    const uint32_t t44 = (uint32_t)t43;
-    const float t45 = cand.x - cand.y;
-    const uint32_t t46 = (uint32_t)t45;
-    const uint32_t t47 = (uint32_t)t42;
+    const bool t34 = t33.x < t33.y;
+    const unitpack_vec2 cand = { t34 ? t33.y : t33.x, t34 ? t33.x : t33.y };
+    const float t35 = 510.0f - cand.x - cand.x;
+    const float t36 = t35 >= 0.0f ? t35 : 0.0f;
+    const float t37 = cand.x + cand.y;
+    const uint32_t t37_u = (uint32_t)t37;
+    const float t38 = cand.x - cand.y;
+    const uint32_t t38_u = (uint32_t)t38;
+    const uint32_t t36_u = (uint32_t)t36;
     const unitpack_uvec3 cross = {
-        afix.y * (uint32_t)t42 - afix.z * (uint32_t)t45,
-        afix.z * (uint32_t)t43 - afix.x * (uint32_t)t42,
-        afix.x * (uint32_t)t45 - afix.y * (uint32_t)t43
+        afix.y * (uint32_t)t36 - afix.z * (uint32_t)t38,
+        afix.z * (uint32_t)t37 - afix.x * (uint32_t)t36,
+        afix.x * (uint32_t)t38 - afix.y * (uint32_t)t37
     };
-    const uint32_t t48 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
-    const uint32_t t49 = t48 >> 16u;
-    const uint32_t t50 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
-    const uint32_t t51 = t50 >> 16u;
-    const uint32_t t52 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    const uint32_t t53 = t52 >> 16u;
-    const unitpack_uvec3 t54 = {
-        (t49 * (t48 & 65535u)) >> 12u,
-        (t51 * (t50 & 65535u)) >> 12u,
-        (t53 * (t52 & 65535u)) >> 12u
+    const uint32_t t39 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
+    const uint32_t t40 = t39 >> 16u;
+    const uint32_t t41 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    const uint32_t t42 = t41 >> 16u;
+    const uint32_t t43 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
+    const uint32_t t44 = t43 >> 16u;
+    const unitpack_uvec3 t45 = { (t40 * t40) << 3u, (t42 * t42) << 3u, (t44 * t44) << 3u };
+    const unitpack_uvec3 t46 = {
+        (t40 * (t39 & 65535u)) >> 12u,
+        (t42 * (t41 & 65535u)) >> 12u,
+        (t44 * (t43 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t55 = {
-        ((t49 * t49) << 3u) + t54.x,
-        ((t51 * t51) << 3u) + t54.y,
-        ((t53 * t53) << 3u) + t54.z
+    const float e = (float)(t45.x + t46.x + (t45.y + t46.y) + (t45.z + t46.z));
+    const float n = (float)(t37_u * t37_u + t38_u * t38_u + t36_u * t36_u);
+    const float s_up = s0 + 1.0f;
+    const float t_up = t0 + 1.0f;
+    const bool t47 = s_up + s_up - 255.0f + (t0 + t0 - 255.0f) < 0.0f;
+    const unitpack_vec2 t48 = {
+        estimate2 + (t14 ? one_if3 : 0.0f) + down2,
+        t9 + (t7 ? t8 : 0.0f) + 1.0f
     };
-    const float e = (float)(t55.x + t55.y + t55.z);
-    const float n = (float)(t44 * t44 + t46 * t46 + t47 * t47);
-    const float t56 = s0 + 1.0f;
-    const bool t57 = t56 + t56 - 255.0f + (t0 + t0 - 255.0f) < 0.0f;
-    const unitpack_vec2 t58 = {
-        estimate2 + (t17 ? t18 : 0.0f) + down2,
-        t12 + (t10 ? t11 : 0.0f) + 1.0f
+    const unitpack_vec2 t49 = {
+        t9 + (t7 ? t8 : 0.0f) + 1.0f,
+        estimate2 + (t14 ? one_if3 : 0.0f) + down2
     };
-    const unitpack_vec2 t59 = {
-        t12 + (t10 ? t11 : 0.0f) + 1.0f,
-        estimate2 + (t17 ? t18 : 0.0f) + down2
+    const unitpack_vec2 t50 = {
+        t47 ? -(t48.x + t48.x - 255.0f) : t49.x + t49.x - 255.0f,
+        t47 ? -(t48.y + t48.y - 255.0f) : t49.y + t49.y - 255.0f
     };
-    const unitpack_vec2 t60 = {
-        t57 ? -(t58.x + t58.x - 255.0f) : t59.x + t59.x - 255.0f,
-        t57 ? -(t58.y + t58.y - 255.0f) : t59.y + t59.y - 255.0f
-    };
-    const bool t61 = t60.x < t60.y;
-    const unitpack_vec2 cand2 = { t61 ? t60.y : t60.x, t61 ? t60.x : t60.y };
-    const float t62 = 510.0f - cand2.x - cand2.x;
-    const float t63 = t62 >= 0.0f ? t62 : 0.0f;
-    const float t64 = cand2.x + cand2.y;
-    const uint32_t t65 = (uint32_t)t64;
-    const float t66 = cand2.x - cand2.y;
-    const uint32_t t67 = (uint32_t)t66;
-    const uint32_t t68 = (uint32_t)t63;
+    const bool t51 = t50.x < t50.y;
+    const unitpack_vec2 cand2 = { t51 ? t50.y : t50.x, t51 ? t50.x : t50.y };
+    const float t52 = 510.0f - cand2.x - cand2.x;
+    const float t53 = t52 >= 0.0f ? t52 : 0.0f;
+    const float t54 = cand2.x + cand2.y;
+    const uint32_t t54_u = (uint32_t)t54;
+    const float t55 = cand2.x - cand2.y;
+    const uint32_t t55_u = (uint32_t)t55;
+    const uint32_t t53_u = (uint32_t)t53;
     const unitpack_uvec3 cross2 = {
-        afix.y * (uint32_t)t63 - afix.z * (uint32_t)t66,
-        afix.z * (uint32_t)t64 - afix.x * (uint32_t)t63,
-        afix.x * (uint32_t)t66 - afix.y * (uint32_t)t64
+        afix.y * (uint32_t)t53 - afix.z * (uint32_t)t55,
+        afix.z * (uint32_t)t54 - afix.x * (uint32_t)t53,
+        afix.x * (uint32_t)t55 - afix.y * (uint32_t)t54
     };
-    const uint32_t t69 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
-    const uint32_t t70 = t69 >> 16u;
-    const uint32_t t71 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    const uint32_t t72 = t71 >> 16u;
-    const uint32_t t73 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
-    const uint32_t t74 = t73 >> 16u;
-    const unitpack_uvec3 t75 = {
-        (t70 * (t69 & 65535u)) >> 12u,
-        (t72 * (t71 & 65535u)) >> 12u,
-        (t74 * (t73 & 65535u)) >> 12u
+    const uint32_t t56 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
+    const uint32_t t57 = t56 >> 16u;
+    const uint32_t t58 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
+    const uint32_t t59 = t58 >> 16u;
+    const uint32_t t60 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
+    const uint32_t t61 = t60 >> 16u;
+    const unitpack_uvec3 t62 = { (t57 * t57) << 3u, (t59 * t59) << 3u, (t61 * t61) << 3u };
+    const unitpack_uvec3 t63 = {
+        (t57 * (t56 & 65535u)) >> 12u,
+        (t59 * (t58 & 65535u)) >> 12u,
+        (t61 * (t60 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t76 = {
-        ((t70 * t70) << 3u) + t75.x,
-        ((t72 * t72) << 3u) + t75.y,
-        ((t74 * t74) << 3u) + t75.z
+    const float e2 = (float)(t62.x + t63.x + (t62.y + t63.y) + (t62.z + t63.z));
+    const float n2 = (float)(t54_u * t54_u + t55_u * t55_u + t53_u * t53_u);
+    const bool t64 = cand2.x <= 255.0f && e2 * n < e * n2;
+    const unitpack_vec2 best = { t64 ? cand2.x : cand.x, t64 ? cand2.y : cand.y };
+    const float best_e = t64 ? e2 : e;
+    const float best_n = t64 ? n2 : n;
+    const bool t65 = s0 + s0 - 255.0f + (t_up + t_up - 255.0f) < 0.0f;
+    const unitpack_vec2 t66 = {
+        t17 + (t15 ? t16 : 0.0f) + 1.0f,
+        estimate + (t6 ? one_if : 0.0f) + down
     };
-    const float e2 = (float)(t76.x + t76.y + t76.z);
-    const float n2 = (float)(t65 * t65 + t67 * t67 + t68 * t68);
-    const bool t77 = cand2.x <= 255.0f && e2 * n < e * n2;
-    const unitpack_vec2 best = { t77 ? cand2.x : cand.x, t77 ? cand2.y : cand.y };
-    const float best_e = t77 ? e2 : e;
-    const float best_n = t77 ? n2 : n;
-    const float t78 = t0 + 1.0f;
-    const bool t79 = s0 + s0 - 255.0f + (t78 + t78 - 255.0f) < 0.0f;
-    const unitpack_vec2 t80 = {
-        t21 + (t19 ? t20 : 0.0f) + 1.0f,
-        estimate + (t8 ? t9 : 0.0f) + down
+    const unitpack_vec2 t67 = {
+        estimate + (t6 ? one_if : 0.0f) + down,
+        t17 + (t15 ? t16 : 0.0f) + 1.0f
     };
-    const unitpack_vec2 t81 = {
-        estimate + (t8 ? t9 : 0.0f) + down,
-        t21 + (t19 ? t20 : 0.0f) + 1.0f
+    const unitpack_vec2 t68 = {
+        t65 ? -(t66.x + t66.x - 255.0f) : t67.x + t67.x - 255.0f,
+        t65 ? -(t66.y + t66.y - 255.0f) : t67.y + t67.y - 255.0f
     };
-    const unitpack_vec2 t82 = {
-        t79 ? -(t80.x + t80.x - 255.0f) : t81.x + t81.x - 255.0f,
-        t79 ? -(t80.y + t80.y - 255.0f) : t81.y + t81.y - 255.0f
-    };
-    const bool t83 = t82.x < t82.y;
-    const unitpack_vec2 cand3 = { t83 ? t82.y : t82.x, t83 ? t82.x : t82.y };
-    const float t84 = 510.0f - cand3.x - cand3.x;
-    const float t85 = t84 >= 0.0f ? t84 : 0.0f;
-    const float t86 = cand3.x + cand3.y;
-    const uint32_t t87 = (uint32_t)t86;
-    const float t88 = cand3.x - cand3.y;
-    const uint32_t t89 = (uint32_t)t88;
-    const uint32_t t90 = (uint32_t)t85;
+    const bool t69 = t68.x < t68.y;
+    const unitpack_vec2 cand3 = { t69 ? t68.y : t68.x, t69 ? t68.x : t68.y };
+    const float t70 = 510.0f - cand3.x - cand3.x;
+    const float t71 = t70 >= 0.0f ? t70 : 0.0f;
+    const float t72 = cand3.x + cand3.y;
+    const uint32_t t72_u = (uint32_t)t72;
+    const float t73 = cand3.x - cand3.y;
+    const uint32_t t73_u = (uint32_t)t73;
+    const uint32_t t71_u = (uint32_t)t71;
     const unitpack_uvec3 cross3 = {
-        afix.y * (uint32_t)t85 - afix.z * (uint32_t)t88,
-        afix.z * (uint32_t)t86 - afix.x * (uint32_t)t85,
-        afix.x * (uint32_t)t88 - afix.y * (uint32_t)t86
+        afix.y * (uint32_t)t71 - afix.z * (uint32_t)t73,
+        afix.z * (uint32_t)t72 - afix.x * (uint32_t)t71,
+        afix.x * (uint32_t)t73 - afix.y * (uint32_t)t72
     };
-    const uint32_t t91 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    const uint32_t t92 = t91 >> 16u;
-    const uint32_t t93 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
-    const uint32_t t94 = t93 >> 16u;
-    const uint32_t t95 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
-    const uint32_t t96 = t95 >> 16u;
-    const unitpack_uvec3 t97 = {
-        (t92 * (t91 & 65535u)) >> 12u,
-        (t94 * (t93 & 65535u)) >> 12u,
-        (t96 * (t95 & 65535u)) >> 12u
+    const uint32_t t74 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
+    const uint32_t t75 = t74 >> 16u;
+    const uint32_t t76 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
+    const uint32_t t77 = t76 >> 16u;
+    const uint32_t t78 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
+    const uint32_t t79 = t78 >> 16u;
+    const unitpack_uvec3 t80 = { (t75 * t75) << 3u, (t77 * t77) << 3u, (t79 * t79) << 3u };
+    const unitpack_uvec3 t81 = {
+        (t75 * (t74 & 65535u)) >> 12u,
+        (t77 * (t76 & 65535u)) >> 12u,
+        (t79 * (t78 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t98 = {
-        ((t92 * t92) << 3u) + t97.x,
-        ((t94 * t94) << 3u) + t97.y,
-        ((t96 * t96) << 3u) + t97.z
+    const float e3 = (float)(t80.x + t81.x + (t80.y + t81.y) + (t80.z + t81.z));
+    const float n3 = (float)(t72_u * t72_u + t73_u * t73_u + t71_u * t71_u);
+    const bool t82 = cand3.x <= 255.0f && e3 * best_n < best_e * n3;
+    const unitpack_vec2 best2 = { t82 ? cand3.x : best.x, t82 ? cand3.y : best.y };
+    const float best_e2 = t82 ? e3 : best_e;
+    const float best_n2 = t82 ? n3 : best_n;
+    const bool t83 = s_up + s_up - 255.0f + (t_up + t_up - 255.0f) < 0.0f;
+    const unitpack_vec2 t84 = { t25.x + 1.0f, t25.y + 1.0f };
+    const unitpack_vec2 t85 = { t32.x + 1.0f, t32.y + 1.0f };
+    const unitpack_vec2 t86 = {
+        t83 ? -(t84.x + t84.x - 255.0f) : t85.x + t85.x - 255.0f,
+        t83 ? -(t84.y + t84.y - 255.0f) : t85.y + t85.y - 255.0f
     };
-    const float e3 = (float)(t98.x + t98.y + t98.z);
-    const float n3 = (float)(t87 * t87 + t89 * t89 + t90 * t90);
-    const bool t99 = cand3.x <= 255.0f && e3 * best_n < best_e * n3;
-    const unitpack_vec2 best2 = { t99 ? cand3.x : best.x, t99 ? cand3.y : best.y };
-    const float best_e2 = t99 ? e3 : best_e;
-    const float best_n2 = t99 ? n3 : best_n;
-    const float t100 = s0 + 1.0f;
-    const float t101 = t0 + 1.0f;
-    const bool t102 = t100 + t100 - 255.0f + (t101 + t101 - 255.0f) < 0.0f;
-    const unitpack_vec2 t103 = { t30.x + 1.0f, t30.y + 1.0f };
-    const unitpack_vec2 t104 = { t38.x + 1.0f, t38.y + 1.0f };
-    const unitpack_vec2 t105 = {
-        t102 ? -(t103.x + t103.x - 255.0f) : t104.x + t104.x - 255.0f,
-        t102 ? -(t103.y + t103.y - 255.0f) : t104.y + t104.y - 255.0f
-    };
-    const bool t106 = t105.x < t105.y;
-    const unitpack_vec2 cand4 = { t106 ? t105.y : t105.x, t106 ? t105.x : t105.y };
-    const float t107 = 510.0f - cand4.x - cand4.x;
-    const float t108 = t107 >= 0.0f ? t107 : 0.0f;
-    const float t109 = cand4.x + cand4.y;
-    const uint32_t t110 = (uint32_t)t109;
-    const float t111 = cand4.x - cand4.y;
-    const uint32_t t112 = (uint32_t)t111;
-    const uint32_t t113 = (uint32_t)t108;
+    const bool t87 = t86.x < t86.y;
+    const unitpack_vec2 cand4 = { t87 ? t86.y : t86.x, t87 ? t86.x : t86.y };
+    const float t88 = 510.0f - cand4.x - cand4.x;
+    const float t89 = t88 >= 0.0f ? t88 : 0.0f;
+    const float t90 = cand4.x + cand4.y;
+    const uint32_t t90_u = (uint32_t)t90;
+    const float t91 = cand4.x - cand4.y;
+    const uint32_t t91_u = (uint32_t)t91;
+    const uint32_t t89_u = (uint32_t)t89;
     const unitpack_uvec3 cross4 = {
-        afix.y * (uint32_t)t108 - afix.z * (uint32_t)t111,
-        afix.z * (uint32_t)t109 - afix.x * (uint32_t)t108,
-        afix.x * (uint32_t)t111 - afix.y * (uint32_t)t109
+        afix.y * (uint32_t)t89 - afix.z * (uint32_t)t91,
+        afix.z * (uint32_t)t90 - afix.x * (uint32_t)t89,
+        afix.x * (uint32_t)t91 - afix.y * (uint32_t)t90
     };
-    const uint32_t t114 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
-    const uint32_t t115 = t114 >> 16u;
-    const uint32_t t116 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    const uint32_t t117 = t116 >> 16u;
-    const uint32_t t118 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    const uint32_t t119 = t118 >> 16u;
-    const unitpack_uvec3 t120 = {
-        (t115 * (t114 & 65535u)) >> 12u,
-        (t117 * (t116 & 65535u)) >> 12u,
-        (t119 * (t118 & 65535u)) >> 12u
+    const uint32_t t92 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
+    const uint32_t t93 = t92 >> 16u;
+    const uint32_t t94 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
+    const uint32_t t95 = t94 >> 16u;
+    const uint32_t t96 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
+    const uint32_t t97 = t96 >> 16u;
+    const unitpack_uvec3 t98 = { (t93 * t93) << 3u, (t95 * t95) << 3u, (t97 * t97) << 3u };
+    const unitpack_uvec3 t99 = {
+        (t93 * (t92 & 65535u)) >> 12u,
+        (t95 * (t94 & 65535u)) >> 12u,
+        (t97 * (t96 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t121 = {
-        ((t115 * t115) << 3u) + t120.x,
-        ((t117 * t117) << 3u) + t120.y,
-        ((t119 * t119) << 3u) + t120.z
+    const float e4 = (float)(t98.x + t99.x + (t98.y + t99.y) + (t98.z + t99.z));
+    const float n4 = (float)(t90_u * t90_u + t91_u * t91_u + t89_u * t89_u);
+    const bool t100 = cand4.x <= 255.0f && e4 * best_n2 < best_e2 * n4;
+    const unitpack_vec2 best3 = { t100 ? cand4.x : best2.x, t100 ? cand4.y : best2.y };
+    const bool t101 = w.x < 0.0f;
+    const unitpack_vec2 t102 = { t101 ? -best3.y : best3.x, t101 ? -best3.x : best3.y };
+    const bool t103 = w.y < 0.0f;
+    const unitpack_vec2 c = {
+        t2 ? ((t103 ? t102.y : t102.x) + 255.0f) * 0.5f : 128.0f,
+        t2 ? ((t103 ? t102.x : t102.y) + 255.0f) * 0.5f : 128.0f
     };
-    const float e4 = (float)(t121.x + t121.y + t121.z);
-    const float n4 = (float)(t110 * t110 + t112 * t112 + t113 * t113);
-    const bool t122 = cand4.x <= 255.0f && e4 * best_n2 < best_e2 * n4;
-    const unitpack_vec2 best3 = { t122 ? cand4.x : best2.x, t122 ? cand4.y : best2.y };
-    const bool t123 = w.x < 0.0f;
-    const unitpack_vec2 t124 = { t123 ? -best3.y : best3.x, t123 ? -best3.x : best3.y };
-    const bool t125 = w.y < 0.0f;
-    const unitpack_vec2 t126 = {
-        ((t125 ? t124.y : t124.x) + 255.0f) * 0.5f,
-        ((t125 ? t124.x : t124.y) + 255.0f) * 0.5f
-    };
-    const unitpack_vec2 c = { t4 ? t126.x : 128.0f, t4 ? t126.y : 128.0f };
-    const unitpack_vec4 t127 = { 255.0f, c.y, 0.0f, c.x };
-    return t127;
+    const unitpack_vec4 t104 = { 255.0f, c.y, 0.0f, c.x };
+    return t104;
 }
 
 // Struct form of unitpack_hemioct16p_xra_encode_float.
@@ -451,9 +415,7 @@ static inline uint32_t unitpack_hemioct16p_xra_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct16p_xra_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16p_xra_encode_float.
 // Out: the RGBA8 texel as a uint32_t (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B = 0,
 //   A = x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128).
 // Portable (as the header says): the same code on every such implementation; denormal input
@@ -473,9 +435,7 @@ static inline uint32_t unitpack_hemioct16p_xra_encode_dxt1_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct16p_xra_encode_dxt1: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16p_xra_encode_float.
 // Out: the RGBA8 texel as a uint32_t (R bits 0–7, G 8–15, B 16–23, A 24–31): R = x, G = y, B = 0, A
 //   = 255 (the DXT1 texel); x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored
 //   as x = y = 128).

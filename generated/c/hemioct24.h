@@ -72,11 +72,10 @@ static inline void unitpack_hemioct24_decode_float(const float params[2], float 
 static inline unitpack_vec3 unitpack_hemioct24_decode_v(uint32_t code) {
     const unitpack_vec2 t1 = { (float)(code & 4095u), (float)((code >> 12u) & 4095u) };
     const unitpack_vec2 t2 = {
-        t1.x > 2047.0f ? t1.x - 4096.0f : t1.x,
-        t1.y > 2047.0f ? t1.y - 4096.0f : t1.y
+        (t1.x > 2047.0f ? t1.x - 4096.0f : t1.x) * 0.0004885198f,
+        (t1.y > 2047.0f ? t1.y - 4096.0f : t1.y) * 0.0004885198f
     };
-    const unitpack_vec2 t3 = { t2.x * 0.0004885198f, t2.y * 0.0004885198f };
-    const unitpack_vec2 params = { t3.x >= (-1.0f) ? t3.x : -1.0f, t3.y >= (-1.0f) ? t3.y : -1.0f };
+    const unitpack_vec2 params = { t2.x >= (-1.0f) ? t2.x : -1.0f, t2.y >= (-1.0f) ? t2.y : -1.0f };
     const unitpack_vec3 decode_float = unitpack_hemioct24_decode_float_v(params);
     return decode_float;
 }
@@ -96,14 +95,16 @@ static inline void unitpack_hemioct24_decode(uint32_t code, float out[3]) {
 // Struct form of unitpack_hemioct24_encode_float.
 static inline unitpack_vec2 unitpack_hemioct24_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { v.x, v.y, v.z < 0.0f ? 0.0f : v.z };
-    const float t2 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
-    const float t3 = t2 <= 3.4028235e38f ? (t2 < 7.888609e-31f ? 1.2676506e30f : 1.0f) : 0.25f;
-    const unitpack_vec3 w = { t1.x * t3, t1.y * t3, t1.z * t3 };
+    const float norm1 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
+    const float fit = norm1 <= 3.4028235e38f
+        ? (norm1 < 7.888609e-31f ? 1.2676506e30f : 1.0f)
+        : 0.25f;
+    const unitpack_vec3 w = { t1.x * fit, t1.y * fit, t1.z * fit };
     const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z);
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t4 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
-    const unitpack_vec2 t5 = { t4 ? p.x + p.y : 0.0f, t4 ? p.x - p.y : 0.0f };
-    return t5;
+    const bool t2 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const unitpack_vec2 t3 = { t2 ? p.x + p.y : 0.0f, t2 ? p.x - p.y : 0.0f };
+    return t3;
 }
 
 // unitpack_hemioct24_encode_float: fast encoder, float form.
@@ -125,52 +126,44 @@ static inline void unitpack_hemioct24_encode_float(const float v[3], float out[2
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_hemioct24_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z > 0.0f ? w.z : 0.0f);
+    const float t1 = fabsf(w.x) + fabsf(w.y);
+    const float l1 = t1 + fabsf(w.z > 0.0f ? w.z : 0.0f);
     const unitpack_vec2 n = { w.x + w.y, w.x - w.y };
-    const bool t3 = ok && l1 > 0.0f;
+    const bool t2 = ok && l1 > 0.0f;
     const unitpack_vec2 abs_n = { fabsf(n.x), fabsf(n.y) };
-    const unitpack_vec2 t4 = {
+    const unitpack_vec2 t3 = {
         nearbyintf(abs_n.x / l1 * 2047.0f),
         nearbyintf(abs_n.y / l1 * 2047.0f)
     };
-    const unitpack_vec2 t5 = { abs_n.x * 2047.0f, abs_n.y * 2047.0f };
-    const unitpack_vec2 t6 = {
-        t5.x < (t4.x - 0.5f) * l1 ? -1.0f : 0.0f,
-        t5.y < (t4.y - 0.5f) * l1 ? -1.0f : 0.0f
+    const unitpack_vec2 t4 = { abs_n.x * 2047.0f, abs_n.y * 2047.0f };
+    const unitpack_vec2 t5 = {
+        t4.x >= (t3.x + 0.5f) * l1 ? 1.0f : (t4.x < (t3.x - 0.5f) * l1 ? -1.0f : 0.0f),
+        t4.y >= (t3.y + 0.5f) * l1 ? 1.0f : (t4.y < (t3.y - 0.5f) * l1 ? -1.0f : 0.0f)
     };
+    const unitpack_vec2 t6 = { t3.x + t5.x, t3.y + t5.y };
     const unitpack_vec2 t7 = {
-        t5.x >= (t4.x + 0.5f) * l1 ? 1.0f : t6.x,
-        t5.y >= (t4.y + 0.5f) * l1 ? 1.0f : t6.y
+        t2 ? (n.x < 0.0f ? -t6.x : t6.x) : 0.0f,
+        t2 ? (n.y < 0.0f ? -t6.y : t6.y) : 0.0f
     };
-    const unitpack_vec2 t8 = { t4.x + t7.x, t4.y + t7.y };
-    const unitpack_vec2 t9 = {
-        t3 ? (n.x < 0.0f ? -t8.x : t8.x) : 0.0f,
-        t3 ? (n.y < 0.0f ? -t8.y : t8.y) : 0.0f
-    };
-    return t9;
+    return t7;
 }
 
 // Struct form of unitpack_hemioct24_encode.
@@ -181,9 +174,7 @@ static inline uint32_t unitpack_hemioct24_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_hemioct24_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct24_encode_float.
 // Out: the packed code, uint32_t (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12
 //   (two's complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

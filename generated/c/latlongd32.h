@@ -97,32 +97,29 @@ static inline void unitpack_latlongd32_decode_float(const float params[2], float
 
 // Struct form of unitpack_latlongd32_encode_ring.
 static inline uint32_t unitpack_latlongd32_encode_ring_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -135,84 +132,87 @@ static inline uint32_t unitpack_latlongd32_encode_ring_v(unitpack_vec3 v) {
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
     const uint32_t hi3 = hi2 + (lo2 >> 24u);
     const uint32_t lo3 = lo2 & 16777215u;
-    const float t3 = (float)hi3 * 16777216.0f;
-    const float rho2 = (t3 + (float)lo3) * 2.2737368e-13f;
-    const bool t4 = rho2 > 0.0f;
-    const float t5 = t4 ? rho2 : 1.0f;
-    const uint32_t half_exponent = ((unitpack_bits_of(t5) >> 23u) + 1u) >> 1u;
+    const float t1 = (float)hi3 * 16777216.0f;
+    const float rho2 = (t1 + (float)lo3) * 2.2737368e-13f;
+    const bool t2 = rho2 > 0.0f;
+    const float t3 = t2 ? rho2 : 1.0f;
+    const uint32_t half_exponent = ((unitpack_bits_of(t3) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t6 = t5 * root_down;
-    const float root_estimate = sqrtf(t6);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float t4 = t3 * root_down;
+    const float root_estimate = sqrtf(t4);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= t6 ? 1.0f : (root_h0 * root_h0 > t6 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t4 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t4 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t6 - root_h_sq;
+    const float root_rest = t4 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t6 ? 1.0f : (root_m0 * root_m0 > t6 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
-    const float rho = t4 ? root * root_up : 0.0f;
+    const float t5 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t5;
+    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t6;
+    const float step_down2 = root_m0 * root_m0 > t4 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t4 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t7 = root_k * 4096.0f;
+    const float root = (t7 + root_j) * 4.7683716e-7f;
+    const float rho = t2 ? root * root_up : 0.0f;
     const float abs_w2_z = fabsf(w2.z);
     const float abs_rho = fabsf(rho);
     const bool y_major = abs_rho > abs_w2_z;
     const float hi4 = y_major ? abs_rho : abs_w2_z;
     const float lo4 = y_major ? abs_w2_z : abs_rho;
-    const float t11 = hi4 > 0.0f ? hi4 : 1.0f;
+    const float t8 = hi4 > 0.0f ? hi4 : 1.0f;
     const float big = lo4 * 8388608.0f;
-    const float ratio_estimate = floorf(lo4 / t11 * 8388608.0f);
-    const float t12 = (ratio_estimate + 1.0f) * t11 <= big
-        ? 1.0f
-        : (ratio_estimate * t11 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t12;
-    const float t = ratio
-        + ((ratio + 1.0f) * t11 <= big ? 1.0f : (ratio * t11 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo4 / t8 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t8 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t8 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t8 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t8 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t13 = t - 8388608.0f;
-    const float t14 = t + 8388608.0f;
-    const float big2 = t13 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t13 / t14 * 8388608.0f);
-    const float t15 = (ratio_estimate2 + 1.0f) * t14 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t14 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t15;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t14 <= big2 ? 1.0f : (ratio2 * t14 > big2 ? -1.0f : 0.0f));
+    const float t9 = t - 8388608.0f;
+    const float t10 = t + 8388608.0f;
+    const float big2 = t9 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t9 / t10 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t10 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t10 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t16 = nearbyintf(
+    const float t11 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t17 = (nearbyintf((t16 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t12 = (nearbyintf((t11 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t18 = (
-        nearbyintf((nearbyintf(t17) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t13 = (
+        nearbyintf((nearbyintf(t12) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t19 = nearbyintf(
-        (nearbyintf(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t15 = nearbyintf(
+        (nearbyintf(t14 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t20 = (nearbyintf((t19 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t20) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t15 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = w2.z < 0.0f ? 8388608.0f - h3 : h3;
     const float angle = rho < 0.0f ? -h4 : h4;
-    const float t21 = angle * 2.0f;
-    const float theta = t21 - 8388608.0f;
+    const float t16 = angle * 2.0f;
+    const float theta = t16 - 8388608.0f;
     return (uint32_t)nearbyintf((theta + 8388608.0f) * 0.0034614801f);
 }
 
@@ -228,28 +228,23 @@ static inline uint32_t unitpack_latlongd32_encode_ring(const float v[3]) {
 
 // Struct form of unitpack_latlongd32_encode.
 static inline uint32_t unitpack_latlongd32_encode_v(unitpack_vec3 v, unitpack_uvec2 ring) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float abs_w2_x = fabsf(w2.x);
@@ -257,49 +252,51 @@ static inline uint32_t unitpack_latlongd32_encode_v(unitpack_vec3 v, unitpack_uv
     const bool y_major = abs_w2_y > abs_w2_x;
     const float hi = y_major ? abs_w2_y : abs_w2_x;
     const float lo = y_major ? abs_w2_x : abs_w2_y;
-    const float t3 = hi > 0.0f ? hi : 1.0f;
+    const float t1 = hi > 0.0f ? hi : 1.0f;
     const float big = lo * 8388608.0f;
-    const float ratio_estimate = floorf(lo / t3 * 8388608.0f);
-    const float t4 = (ratio_estimate + 1.0f) * t3 <= big
-        ? 1.0f
-        : (ratio_estimate * t3 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t4;
-    const float t = ratio + ((ratio + 1.0f) * t3 <= big ? 1.0f : (ratio * t3 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo / t1 * 8388608.0f);
+    const float step_down = ratio_estimate * t1 > big ? -1.0f : 0.0f;
+    const float step = (ratio_estimate + 1.0f) * t1 <= big ? 1.0f : step_down;
+    const float ratio = ratio_estimate + step;
+    const float step_down2 = ratio * t1 > big ? -1.0f : 0.0f;
+    const float step2 = (ratio + 1.0f) * t1 <= big ? 1.0f : step_down2;
+    const float t = ratio + step2;
     const bool far = t > 3474675.0f;
-    const float t5 = t - 8388608.0f;
-    const float t6 = t + 8388608.0f;
-    const float big2 = t5 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t5 / t6 * 8388608.0f);
-    const float t7 = (ratio_estimate2 + 1.0f) * t6 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t6 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t7;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t6 <= big2 ? 1.0f : (ratio2 * t6 > big2 ? -1.0f : 0.0f));
+    const float t2 = t - 8388608.0f;
+    const float t3 = t + 8388608.0f;
+    const float big2 = t2 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t2 / t3 * 8388608.0f);
+    const float step_down3 = ratio_estimate2 * t3 > big2 ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate2 + 1.0f) * t3 <= big2 ? 1.0f : step_down3;
+    const float ratio2 = ratio_estimate2 + step3;
+    const float step_down4 = ratio2 * t3 > big2 ? -1.0f : 0.0f;
+    const float step4 = (ratio2 + 1.0f) * t3 <= big2 ? 1.0f : step_down4;
+    const float ratio3 = ratio2 + step4;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t8 = nearbyintf(
+    const float t4 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t9 = (nearbyintf((t8 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t5 = (nearbyintf((t4 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t10 = (nearbyintf((nearbyintf(t9) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f)
+    const float t6 = (nearbyintf((nearbyintf(t5) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f)
         * z2;
-    const float t11 = nearbyintf(
-        (nearbyintf(t10 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t7 = nearbyintf(
+        (nearbyintf(t6 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t8 = nearbyintf(
+        (nearbyintf(t7 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t12 = (nearbyintf((t11 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t12) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t8 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = w2.x < 0.0f ? 8388608.0f - h3 : h3;
     const float phi = w2.y < 0.0f ? -h4 : h4;
-    const uint32_t t13 = (uint32_t)nearbyintf((phi + 8388608.0f) * (float)ring.y * 5.9604645e-8f);
-    return ok ? ring.x + (t13 < ring.y ? t13 : 0u) : 0u;
+    const uint32_t t9 = (uint32_t)nearbyintf((phi + 8388608.0f) * (float)ring.y * 5.9604645e-8f);
+    return ok ? ring.x + (t9 < ring.y ? t9 : 0u) : 0u;
 }
 
 // unitpack_latlongd32_encode: fast encoder.
@@ -360,77 +357,80 @@ static inline uint32_t unitpack_latlongd32_decode_ring_v(uint32_t code) {
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
     const float t13 = t12 * root_down;
     const float root_estimate = sqrtf(t13);
-    const float t14 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t14 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t14
-        + (root_h1 * root_h1 <= t13 ? 1.0f : (root_h0 * root_h0 > t13 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t13 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t13 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = t13 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t15 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t15;
-    const float t16 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t16;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t13 ? 1.0f : (root_m0 * root_m0 > t13 ? -1.0f : 0.0f));
-    const float t17 = root_k * 4096.0f;
-    const float root = (t17 + root_j) * 4.7683716e-7f;
-    const float t18 = root * root_up;
+    const float t14 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t14;
+    const float t15 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t15;
+    const float step_down2 = root_m0 * root_m0 > t13 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t13 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t16 = root_k * 4096.0f;
+    const float root = (t16 + root_j) * 4.7683716e-7f;
+    const float t17 = root * root_up;
     const float abs_t11 = fabsf(t11);
-    const float abs_t18 = fabsf(t18);
-    const bool y_major = abs_t18 > abs_t11;
-    const float hi = y_major ? abs_t18 : abs_t11;
-    const float lo = y_major ? abs_t11 : abs_t18;
-    const float t19 = hi > 0.0f ? hi : 1.0f;
+    const float abs_t17 = fabsf(t17);
+    const bool y_major = abs_t17 > abs_t11;
+    const float hi = y_major ? abs_t17 : abs_t11;
+    const float lo = y_major ? abs_t11 : abs_t17;
+    const float t18 = hi > 0.0f ? hi : 1.0f;
     const float big = lo * 8388608.0f;
-    const float ratio_estimate = floorf(lo / t19 * 8388608.0f);
-    const float t20 = (ratio_estimate + 1.0f) * t19 <= big
-        ? 1.0f
-        : (ratio_estimate * t19 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t20;
-    const float t = ratio
-        + ((ratio + 1.0f) * t19 <= big ? 1.0f : (ratio * t19 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo / t18 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t18 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t18 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t18 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t18 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t21 = t - 8388608.0f;
-    const float t22 = t + 8388608.0f;
-    const float big2 = t21 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t21 / t22 * 8388608.0f);
-    const float t23 = (ratio_estimate2 + 1.0f) * t22 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t22 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t23;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t22 <= big2 ? 1.0f : (ratio2 * t22 > big2 ? -1.0f : 0.0f));
+    const float t19 = t - 8388608.0f;
+    const float t20 = t + 8388608.0f;
+    const float big2 = t19 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t19 / t20 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t20 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t20 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t20 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t20 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t24 = nearbyintf(
+    const float t21 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t25 = (nearbyintf((t24 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t22 = (nearbyintf((t21 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t26 = (
-        nearbyintf((nearbyintf(t25) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t23 = (
+        nearbyintf((nearbyintf(t22) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t27 = nearbyintf(
-        (nearbyintf(t26 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t24 = nearbyintf(
+        (nearbyintf(t23 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t25 = nearbyintf(
+        (nearbyintf(t24 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t28 = (nearbyintf((t27 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t28) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t25 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = t11 < 0.0f ? 8388608.0f - h3 : h3;
-    const float angle = t18 < 0.0f ? -h4 : h4;
-    const float t29 = angle * 0.0069229603f;
-    const float t30 = t2 ? 58074.0f + floorf(0.0f - t29) : floorf(t29);
-    const float t31 = t30 >= 0.0f ? t30 : 0.0f;
-    return (uint32_t)(t31 <= 58073.0f ? t31 : 58073.0f);
+    const float angle = t17 < 0.0f ? -h4 : h4;
+    const float t26 = angle * 0.0069229603f;
+    const float t27 = t2 ? 58074.0f + floorf(0.0f - t26) : floorf(t26);
+    const float t28 = t27 >= 0.0f ? t27 : 0.0f;
+    return (uint32_t)(t28 <= 58073.0f ? t28 : 58073.0f);
 }
 
 // unitpack_latlongd32_decode_ring: lookup texel.
@@ -454,19 +454,20 @@ static inline unitpack_vec2 unitpack_latlongd32_decode_params_v(
     const float t4 = (float)(t2 ? ring1.y : ring0.y);
     const float big = t3 * 16777216.0f;
     const float ratio_estimate = floorf(t3 / t4 * 16777216.0f);
-    const float t5 = (ratio_estimate + 1.0f) * t4 <= big
-        ? 1.0f
-        : (ratio_estimate * t4 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t5;
-    const float ratio2 = ratio
-        + ((ratio + 1.0f) * t4 <= big ? 1.0f : (ratio * t4 > big ? -1.0f : 0.0f));
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t4 <= big ? 1.0f : (ratio2 * t4 > big ? -1.0f : 0.0f));
-    const unitpack_vec2 t6 = {
+    const float step_down = ratio_estimate * t4 > big ? -1.0f : 0.0f;
+    const float step = (ratio_estimate + 1.0f) * t4 <= big ? 1.0f : step_down;
+    const float ratio = ratio_estimate + step;
+    const float step_down2 = ratio * t4 > big ? -1.0f : 0.0f;
+    const float step2 = (ratio + 1.0f) * t4 <= big ? 1.0f : step_down2;
+    const float ratio2 = ratio + step2;
+    const float step_down3 = ratio2 * t4 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio2 + 1.0f) * t4 <= big ? 1.0f : step_down3;
+    const float ratio3 = ratio2 + step3;
+    const unitpack_vec2 t5 = {
         (float)(uint32_t)ratio3 * 5.9604645e-8f,
         (float)(t2 ? g + 1u : g) * 1.721941e-5f
     };
-    return t6;
+    return t5;
 }
 
 // unitpack_latlongd32_decode_params: lookup texel.

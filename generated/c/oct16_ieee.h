@@ -48,15 +48,15 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 static inline unitpack_vec3 unitpack_oct16_ieee_decode_float_v(unitpack_vec2 params) {
     const float z = 1.0f - fabsf(params.x) - fabsf(params.y);
     const bool t1 = z < 0.0f;
-    const unitpack_vec2 t2 = {
+    const unitpack_vec2 folded = {
         (1.0f - fabsf(params.y)) * (params.x >= 0.0f ? 1.0f : -1.0f),
         (1.0f - fabsf(params.x)) * (params.y >= 0.0f ? 1.0f : -1.0f)
     };
-    const unitpack_vec3 v = { t1 ? t2.x : params.x, t1 ? t2.y : params.y, z };
+    const unitpack_vec3 v = { t1 ? folded.x : params.x, t1 ? folded.y : params.y, z };
     const unitpack_vec3 v_sq = { v.x * v.x, v.y * v.y, v.z * v.z };
-    const float t3 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
-    const unitpack_vec3 t4 = { v.x / t3, v.y / t3, v.z / t3 };
-    return t4;
+    const float t2 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
+    const unitpack_vec3 t3 = { v.x / t2, v.y / t2, v.z / t2 };
+    return t3;
 }
 
 // unitpack_oct16_ieee_decode_float: decoder, float form.
@@ -103,13 +103,12 @@ static inline unitpack_vec2 unitpack_oct16_ieee_encode_float_v(unitpack_vec3 v) 
     const unitpack_vec2 p = { v.x / l1, v.y / l1 };
     const unitpack_vec2 abs_p = { fabsf(p.x), fabsf(p.y) };
     const bool t1 = abs_p.x + l1 <= 3.4028235e38f;
-    const unitpack_vec2 t2 = {
-        (1.0f - abs_p.y) * (p.x >= 0.0f ? 1.0f : -1.0f),
-        (1.0f - abs_p.x) * (p.y >= 0.0f ? 1.0f : -1.0f)
+    const bool t2 = v.z <= 0.0f;
+    const unitpack_vec2 t3 = {
+        t1 ? (t2 ? (1.0f - abs_p.y) * (p.x >= 0.0f ? 1.0f : -1.0f) : p.x) : 0.0f,
+        t1 ? (t2 ? (1.0f - abs_p.x) * (p.y >= 0.0f ? 1.0f : -1.0f) : p.y) : 0.0f
     };
-    const bool t3 = v.z <= 0.0f;
-    const unitpack_vec2 t4 = { t1 ? (t3 ? t2.x : p.x) : 0.0f, t1 ? (t3 ? t2.y : p.y) : 0.0f };
-    return t4;
+    return t3;
 }
 
 // unitpack_oct16_ieee_encode_float: fast encoder, float form.

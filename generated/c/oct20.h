@@ -48,15 +48,15 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 static inline unitpack_vec3 unitpack_oct20_decode_float_v(unitpack_vec2 params) {
     const float z = 1.0f - fabsf(params.x) - fabsf(params.y);
     const bool t1 = z < 0.0f;
-    const unitpack_vec2 t2 = {
+    const unitpack_vec2 folded = {
         (1.0f - fabsf(params.y)) * (params.x >= 0.0f ? 1.0f : -1.0f),
         (1.0f - fabsf(params.x)) * (params.y >= 0.0f ? 1.0f : -1.0f)
     };
-    const unitpack_vec3 v = { t1 ? t2.x : params.x, t1 ? t2.y : params.y, z };
+    const unitpack_vec3 v = { t1 ? folded.x : params.x, t1 ? folded.y : params.y, z };
     const unitpack_vec3 v_sq = { v.x * v.x, v.y * v.y, v.z * v.z };
-    const float t3 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
-    const unitpack_vec3 t4 = { v.x / t3, v.y / t3, v.z / t3 };
-    return t4;
+    const float t2 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
+    const unitpack_vec3 t3 = { v.x / t2, v.y / t2, v.z / t2 };
+    return t3;
 }
 
 // unitpack_oct20_decode_float: decoder, float form.
@@ -99,19 +99,24 @@ static inline void unitpack_oct20_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_oct20_encode_float.
 static inline unitpack_vec2 unitpack_oct20_encode_float_v(unitpack_vec3 v) {
-    const float t1 = fabsf(v.x) + fabsf(v.y) + fabsf(v.z);
-    const float t2 = t1 <= 3.4028235e38f ? (t1 < 7.888609e-31f ? 1.2676506e30f : 1.0f) : 0.25f;
-    const unitpack_vec3 w = { v.x * t2, v.y * t2, v.z * t2 };
+    const float norm1 = fabsf(v.x) + fabsf(v.y) + fabsf(v.z);
+    const float fit = norm1 <= 3.4028235e38f
+        ? (norm1 < 7.888609e-31f ? 1.2676506e30f : 1.0f)
+        : 0.25f;
+    const unitpack_vec3 w = { v.x * fit, v.y * fit, v.z * fit };
     const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z);
-    const bool t3 = l1 > 0.0f && l1 <= 3.4028235e38f;
+    const bool t1 = l1 > 0.0f && l1 <= 3.4028235e38f;
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t4 = w.z <= 0.0f;
-    const unitpack_vec2 t5 = {
+    const bool t2 = w.z <= 0.0f;
+    const unitpack_vec2 folded = {
         (1.0f - fabsf(p.y)) * (p.x >= 0.0f ? 1.0f : -1.0f),
         (1.0f - fabsf(p.x)) * (p.y >= 0.0f ? 1.0f : -1.0f)
     };
-    const unitpack_vec2 t6 = { t3 ? (t4 ? t5.x : p.x) : 0.0f, t3 ? (t4 ? t5.y : p.y) : 0.0f };
-    return t6;
+    const unitpack_vec2 t3 = {
+        t1 ? (t2 ? folded.x : p.x) : 0.0f,
+        t1 ? (t2 ? folded.y : p.y) : 0.0f
+    };
+    return t3;
 }
 
 // unitpack_oct20_encode_float: fast encoder, float form.
@@ -131,57 +136,47 @@ static inline void unitpack_oct20_encode_float(const float v[3], float out[2]) {
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_oct20_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 abs_w = { fabsf(w.x), fabsf(w.y), fabsf(w.z) };
     const float l1 = abs_w.x + abs_w.y + abs_w.z;
-    const unitpack_vec2 t3 = {
-        (l1 - abs_w.y) * (w.x >= 0.0f ? 1.0f : -1.0f),
-        (l1 - abs_w.x) * (w.y >= 0.0f ? 1.0f : -1.0f)
+    const bool t1 = w.z <= 0.0f;
+    const unitpack_vec2 n = {
+        t1 ? (l1 - abs_w.y) * (w.x >= 0.0f ? 1.0f : -1.0f) : w.x,
+        t1 ? (l1 - abs_w.x) * (w.y >= 0.0f ? 1.0f : -1.0f) : w.y
     };
-    const bool t4 = w.z <= 0.0f;
-    const unitpack_vec2 n = { t4 ? t3.x : w.x, t4 ? t3.y : w.y };
     const unitpack_vec2 abs_n = { fabsf(n.x), fabsf(n.y) };
-    const unitpack_vec2 t5 = {
+    const unitpack_vec2 t2 = {
         nearbyintf(abs_n.x / l1 * 511.0f),
         nearbyintf(abs_n.y / l1 * 511.0f)
     };
-    const unitpack_vec2 t6 = { abs_n.x * 511.0f, abs_n.y * 511.0f };
-    const unitpack_vec2 t7 = {
-        t6.x < (t5.x - 0.5f) * l1 ? -1.0f : 0.0f,
-        t6.y < (t5.y - 0.5f) * l1 ? -1.0f : 0.0f
+    const unitpack_vec2 t3 = { abs_n.x * 511.0f, abs_n.y * 511.0f };
+    const unitpack_vec2 t4 = {
+        t3.x >= (t2.x + 0.5f) * l1 ? 1.0f : (t3.x < (t2.x - 0.5f) * l1 ? -1.0f : 0.0f),
+        t3.y >= (t2.y + 0.5f) * l1 ? 1.0f : (t3.y < (t2.y - 0.5f) * l1 ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t8 = {
-        t6.x >= (t5.x + 0.5f) * l1 ? 1.0f : t7.x,
-        t6.y >= (t5.y + 0.5f) * l1 ? 1.0f : t7.y
+    const unitpack_vec2 t5 = { t2.x + t4.x, t2.y + t4.y };
+    const unitpack_vec2 t6 = {
+        ok ? (n.x < 0.0f ? -t5.x : t5.x) : 0.0f,
+        ok ? (n.y < 0.0f ? -t5.y : t5.y) : 0.0f
     };
-    const unitpack_vec2 t9 = { t5.x + t8.x, t5.y + t8.y };
-    const unitpack_vec2 t10 = {
-        ok ? (n.x < 0.0f ? -t9.x : t9.x) : 0.0f,
-        ok ? (n.y < 0.0f ? -t9.y : t9.y) : 0.0f
-    };
-    return t10;
+    return t6;
 }
 
 // Struct form of unitpack_oct20_encode.

@@ -71,15 +71,15 @@ static inline unitpack_vec2 unitpack_oct24p_rgb8_unorm8x3_to_snorm12x2_v(unitpac
 static inline unitpack_vec3 unitpack_oct24p_rgb8_oct24_decode_float_v(unitpack_vec2 a0) {
     const float z = 1.0f - fabsf(a0.x) - fabsf(a0.y);
     const bool t1 = z < 0.0f;
-    const unitpack_vec2 t2 = {
+    const unitpack_vec2 folded = {
         (1.0f - fabsf(a0.y)) * (a0.x >= 0.0f ? 1.0f : -1.0f),
         (1.0f - fabsf(a0.x)) * (a0.y >= 0.0f ? 1.0f : -1.0f)
     };
-    const unitpack_vec3 v = { t1 ? t2.x : a0.x, t1 ? t2.y : a0.y, z };
+    const unitpack_vec3 v = { t1 ? folded.x : a0.x, t1 ? folded.y : a0.y, z };
     const unitpack_vec3 v_sq = { v.x * v.x, v.y * v.y, v.z * v.z };
-    const float t3 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
-    const unitpack_vec3 t4 = { v.x / t3, v.y / t3, v.z / t3 };
-    return t4;
+    const float t2 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
+    const unitpack_vec3 t3 = { v.x / t2, v.y / t2, v.z / t2 };
+    return t3;
 }
 
 // Struct form of unitpack_oct24p_rgb8_decode_float.
@@ -148,28 +148,23 @@ static inline void unitpack_oct24p_rgb8_decode(uint32_t code, float out[3]) {
 //   input's signs, unfolded below the equator.
 
 static inline unitpack_vec3 unitpack_oct24p_rgb8_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 a = {
         ok ? fabsf(w.x) : 0.0f,
@@ -179,181 +174,154 @@ static inline unitpack_vec3 unitpack_oct24p_rgb8_encode_codes_v(unitpack_vec3 v)
     const float l1 = a.x + a.y + a.z;
     const float estimate = floorf(a.x / l1 * 2047.0f);
     const float big = a.x * 2047.0f;
-    const float t3 = estimate
-        + (big >= (estimate + 1.0f) * l1 ? 1.0f : (big < estimate * l1 ? -1.0f : 0.0f));
-    const bool t4 = t3 >= (-2047.0f);
-    const float t5 = t4 ? t3 : -2047.0f;
-    const bool t6 = t5 <= 2047.0f;
-    const float s0 = t6 ? t5 : 2047.0f;
+    const float step_down = big < estimate * l1 ? -1.0f : 0.0f;
+    const float step = big >= (estimate + 1.0f) * l1 ? 1.0f : step_down;
+    const float t1 = estimate + step;
+    const bool t2 = t1 >= (-2047.0f);
+    const float t3 = t2 ? t1 : -2047.0f;
+    const bool t4 = t3 <= 2047.0f;
+    const float s0 = t4 ? t3 : 2047.0f;
     const float estimate2 = floorf(a.y / l1 * 2047.0f);
     const float big2 = a.y * 2047.0f;
-    const float t7 = estimate2
-        + (big2 >= (estimate2 + 1.0f) * l1 ? 1.0f : (big2 < estimate2 * l1 ? -1.0f : 0.0f));
-    const float t8 = t7 >= (-2047.0f) ? t7 : -2047.0f;
-    const bool t9 = t8 <= 2047.0f;
-    const float t10 = t9 ? t8 : 2047.0f;
-    const float t11 = 2047.0f - s0;
-    const bool t12 = t10 <= t11;
-    const float t0 = t12 ? t10 : t11;
+    const float step_down2 = big2 < estimate2 * l1 ? -1.0f : 0.0f;
+    const float step2 = big2 >= (estimate2 + 1.0f) * l1 ? 1.0f : step_down2;
+    const float t5 = estimate2 + step2;
+    const float t6 = t5 >= (-2047.0f) ? t5 : -2047.0f;
+    const bool t7 = t6 <= 2047.0f;
+    const float t8 = t7 ? t6 : 2047.0f;
+    const float t9 = 2047.0f - s0;
+    const bool t10 = t8 <= t9;
+    const float t0 = t10 ? t8 : t9;
     const unitpack_uvec3 afix = {
         (uint32_t)floorf(a.x * 4194304.0f),
         (uint32_t)floorf(a.y * 4194304.0f),
         (uint32_t)floorf(a.z * 4194304.0f)
     };
-    const float t13 = 2047.0f - s0 - t0;
-    const bool t14 = t13 >= 0.0f;
-    const uint32_t t15 = (uint32_t)s0;
-    const uint32_t t16 = (uint32_t)t0;
-    const uint32_t t17 = (uint32_t)(t14 ? t13 : 0.0f);
-    const unitpack_uvec3 t18 = {
-        (uint32_t)(t14 ? t13 : 0.0f),
-        (uint32_t)(t6 ? t5 : 2047.0f),
-        (uint32_t)(t12 ? t10 : t11)
-    };
-    const unitpack_uvec3 t19 = {
-        (uint32_t)(t12 ? t10 : t11),
-        (uint32_t)(t14 ? t13 : 0.0f),
-        (uint32_t)(t6 ? t5 : 2047.0f)
-    };
+    const float t11 = 2047.0f - s0 - t0;
+    const bool t12 = t11 >= 0.0f;
+    const uint32_t s0_u = (uint32_t)s0;
+    const uint32_t t0_u = (uint32_t)t0;
+    const uint32_t t13 = (uint32_t)(t12 ? t11 : 0.0f);
     const unitpack_uvec3 cross = {
-        afix.y * t18.x - afix.z * t19.x,
-        afix.z * t18.y - afix.x * t19.y,
-        afix.x * t18.z - afix.y * t19.z
+        afix.y * (uint32_t)(t12 ? t11 : 0.0f) - afix.z * (uint32_t)(t10 ? t8 : t9),
+        afix.z * (uint32_t)(t4 ? t3 : 2047.0f) - afix.x * (uint32_t)(t12 ? t11 : 0.0f),
+        afix.x * (uint32_t)(t10 ? t8 : t9) - afix.y * (uint32_t)(t4 ? t3 : 2047.0f)
     };
-    const uint32_t t20 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
-    const uint32_t t21 = t20 >> 16u;
-    const uint32_t t22 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
-    const uint32_t t23 = t22 >> 16u;
-    const uint32_t t24 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    const uint32_t t25 = t24 >> 16u;
-    const unitpack_uvec3 t26 = {
-        (t21 * (t20 & 65535u)) >> 12u,
-        (t23 * (t22 & 65535u)) >> 12u,
-        (t25 * (t24 & 65535u)) >> 12u
+    const uint32_t t14 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
+    const uint32_t t15 = t14 >> 16u;
+    const uint32_t t16 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    const uint32_t t17 = t16 >> 16u;
+    const uint32_t t18 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
+    const uint32_t t19 = t18 >> 16u;
+    const unitpack_uvec3 t20 = { (t15 * t15) << 3u, (t17 * t17) << 3u, (t19 * t19) << 3u };
+    const unitpack_uvec3 t21 = {
+        (t15 * (t14 & 65535u)) >> 12u,
+        (t17 * (t16 & 65535u)) >> 12u,
+        (t19 * (t18 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t27 = {
-        ((t21 * t21) << 3u) + t26.x,
-        ((t23 * t23) << 3u) + t26.y,
-        ((t25 * t25) << 3u) + t26.z
-    };
-    const float e = (float)(t27.x + t27.y + t27.z);
-    const float n = (float)(t15 * t15 + t16 * t16 + t17 * t17);
-    const float t28 = s0 + 1.0f;
-    const float t29 = 2047.0f - t28 - t0;
-    const float t30 = t29 >= 0.0f ? t29 : 0.0f;
-    const uint32_t t31 = (uint32_t)t28;
-    const uint32_t t32 = (uint32_t)t0;
-    const uint32_t t33 = (uint32_t)t30;
+    const float e = (float)(t20.x + t21.x + (t20.y + t21.y) + (t20.z + t21.z));
+    const float n = (float)(s0_u * s0_u + t0_u * t0_u + t13 * t13);
+    const float s_up = s0 + 1.0f;
+    const float t_up = t0 + 1.0f;
+    const float t22 = 2047.0f - s_up - t0;
+    const float t23 = t22 >= 0.0f ? t22 : 0.0f;
+    const uint32_t s_up_u = (uint32_t)s_up;
+    const uint32_t t0_u2 = (uint32_t)t0;
+    const uint32_t t23_u = (uint32_t)t23;
     const unitpack_uvec3 cross2 = {
-        afix.y * (uint32_t)t30 - afix.z * (uint32_t)t0,
-        afix.z * (uint32_t)t28 - afix.x * (uint32_t)t30,
-        afix.x * (uint32_t)t0 - afix.y * (uint32_t)t28
+        afix.y * (uint32_t)t23 - afix.z * (uint32_t)t0,
+        afix.z * (uint32_t)s_up - afix.x * (uint32_t)t23,
+        afix.x * (uint32_t)t0 - afix.y * (uint32_t)s_up
     };
-    const uint32_t t34 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
-    const uint32_t t35 = t34 >> 16u;
-    const uint32_t t36 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    const uint32_t t37 = t36 >> 16u;
-    const uint32_t t38 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
-    const uint32_t t39 = t38 >> 16u;
-    const unitpack_uvec3 t40 = {
-        (t35 * (t34 & 65535u)) >> 12u,
-        (t37 * (t36 & 65535u)) >> 12u,
-        (t39 * (t38 & 65535u)) >> 12u
+    const uint32_t t24 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
+    const uint32_t t25 = t24 >> 16u;
+    const uint32_t t26 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
+    const uint32_t t27 = t26 >> 16u;
+    const uint32_t t28 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
+    const uint32_t t29 = t28 >> 16u;
+    const unitpack_uvec3 t30 = { (t25 * t25) << 3u, (t27 * t27) << 3u, (t29 * t29) << 3u };
+    const unitpack_uvec3 t31 = {
+        (t25 * (t24 & 65535u)) >> 12u,
+        (t27 * (t26 & 65535u)) >> 12u,
+        (t29 * (t28 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t41 = {
-        ((t35 * t35) << 3u) + t40.x,
-        ((t37 * t37) << 3u) + t40.y,
-        ((t39 * t39) << 3u) + t40.z
-    };
-    const float e2 = (float)(t41.x + t41.y + t41.z);
-    const float n2 = (float)(t31 * t31 + t32 * t32 + t33 * t33);
-    const bool t42 = t28 + t0 <= 2047.0f && e2 * n < e * n2;
-    const unitpack_vec2 t43 = { t4 ? t3 : -2047.0f, t9 ? t8 : 2047.0f };
-    const unitpack_vec2 t44 = { 2047.0f, t11 };
-    const unitpack_vec2 t45 = { t43.x <= t44.x ? t43.x : t44.x, t43.y <= t44.y ? t43.y : t44.y };
-    const unitpack_vec2 best = { t42 ? t28 : t45.x, t42 ? t0 : t45.y };
-    const float best_e = t42 ? e2 : e;
-    const float best_n = t42 ? n2 : n;
-    const float t46 = t0 + 1.0f;
-    const float t47 = 2047.0f - s0 - t46;
-    const float t48 = t47 >= 0.0f ? t47 : 0.0f;
-    const uint32_t t49 = (uint32_t)s0;
-    const uint32_t t50 = (uint32_t)t46;
-    const uint32_t t51 = (uint32_t)t48;
+    const float e2 = (float)(t30.x + t31.x + (t30.y + t31.y) + (t30.z + t31.z));
+    const float n2 = (float)(s_up_u * s_up_u + t0_u2 * t0_u2 + t23_u * t23_u);
+    const bool t32 = s_up + t0 <= 2047.0f && e2 * n < e * n2;
+    const unitpack_vec2 t33 = { t2 ? t1 : -2047.0f, t7 ? t6 : 2047.0f };
+    const unitpack_vec2 t34 = { 2047.0f, t9 };
+    const unitpack_vec2 t35 = { t33.x <= t34.x ? t33.x : t34.x, t33.y <= t34.y ? t33.y : t34.y };
+    const unitpack_vec2 best = { t32 ? s_up : t35.x, t32 ? t0 : t35.y };
+    const float best_e = t32 ? e2 : e;
+    const float best_n = t32 ? n2 : n;
+    const float t36 = 2047.0f - s0 - t_up;
+    const float t37 = t36 >= 0.0f ? t36 : 0.0f;
+    const uint32_t s0_u2 = (uint32_t)s0;
+    const uint32_t t_up_u = (uint32_t)t_up;
+    const uint32_t t37_u = (uint32_t)t37;
     const unitpack_uvec3 cross3 = {
-        afix.y * (uint32_t)t48 - afix.z * (uint32_t)t46,
-        afix.z * (uint32_t)s0 - afix.x * (uint32_t)t48,
-        afix.x * (uint32_t)t46 - afix.y * (uint32_t)s0
+        afix.y * (uint32_t)t37 - afix.z * (uint32_t)t_up,
+        afix.z * (uint32_t)s0 - afix.x * (uint32_t)t37,
+        afix.x * (uint32_t)t_up - afix.y * (uint32_t)s0
     };
-    const uint32_t t52 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    const uint32_t t53 = t52 >> 16u;
-    const uint32_t t54 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
-    const uint32_t t55 = t54 >> 16u;
-    const uint32_t t56 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
-    const uint32_t t57 = t56 >> 16u;
-    const unitpack_uvec3 t58 = {
-        (t53 * (t52 & 65535u)) >> 12u,
-        (t55 * (t54 & 65535u)) >> 12u,
-        (t57 * (t56 & 65535u)) >> 12u
+    const uint32_t t38 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
+    const uint32_t t39 = t38 >> 16u;
+    const uint32_t t40 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
+    const uint32_t t41 = t40 >> 16u;
+    const uint32_t t42 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
+    const uint32_t t43 = t42 >> 16u;
+    const unitpack_uvec3 t44 = { (t39 * t39) << 3u, (t41 * t41) << 3u, (t43 * t43) << 3u };
+    const unitpack_uvec3 t45 = {
+        (t39 * (t38 & 65535u)) >> 12u,
+        (t41 * (t40 & 65535u)) >> 12u,
+        (t43 * (t42 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t59 = {
-        ((t53 * t53) << 3u) + t58.x,
-        ((t55 * t55) << 3u) + t58.y,
-        ((t57 * t57) << 3u) + t58.z
-    };
-    const float e3 = (float)(t59.x + t59.y + t59.z);
-    const float n3 = (float)(t49 * t49 + t50 * t50 + t51 * t51);
-    const bool t60 = s0 + t46 <= 2047.0f && e3 * best_n < best_e * n3;
-    const unitpack_vec2 best2 = { t60 ? s0 : best.x, t60 ? t46 : best.y };
-    const float best_e2 = t60 ? e3 : best_e;
-    const float best_n2 = t60 ? n3 : best_n;
-    const float t61 = s0 + 1.0f;
-    const float t62 = t0 + 1.0f;
-    const float t63 = 2047.0f - t61 - t62;
-    const float t64 = t63 >= 0.0f ? t63 : 0.0f;
-    const uint32_t t65 = (uint32_t)t61;
-    const uint32_t t66 = (uint32_t)t62;
-    const uint32_t t67 = (uint32_t)t64;
+    const float e3 = (float)(t44.x + t45.x + (t44.y + t45.y) + (t44.z + t45.z));
+    const float n3 = (float)(s0_u2 * s0_u2 + t_up_u * t_up_u + t37_u * t37_u);
+    const bool t46 = s0 + t_up <= 2047.0f && e3 * best_n < best_e * n3;
+    const unitpack_vec2 best2 = { t46 ? s0 : best.x, t46 ? t_up : best.y };
+    const float best_e2 = t46 ? e3 : best_e;
+    const float best_n2 = t46 ? n3 : best_n;
+    const float t47 = 2047.0f - s_up - t_up;
+    const float t48 = t47 >= 0.0f ? t47 : 0.0f;
+    const uint32_t s_up_u2 = (uint32_t)s_up;
+    const uint32_t t_up_u2 = (uint32_t)t_up;
+    const uint32_t t48_u = (uint32_t)t48;
     const unitpack_uvec3 cross4 = {
-        afix.y * (uint32_t)t64 - afix.z * (uint32_t)t62,
-        afix.z * (uint32_t)t61 - afix.x * (uint32_t)t64,
-        afix.x * (uint32_t)t62 - afix.y * (uint32_t)t61
+        afix.y * (uint32_t)t48 - afix.z * (uint32_t)t_up,
+        afix.z * (uint32_t)s_up - afix.x * (uint32_t)t48,
+        afix.x * (uint32_t)t_up - afix.y * (uint32_t)s_up
     };
-    const uint32_t t68 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
-    const uint32_t t69 = t68 >> 16u;
-    const uint32_t t70 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    const uint32_t t71 = t70 >> 16u;
-    const uint32_t t72 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    const uint32_t t73 = t72 >> 16u;
-    const unitpack_uvec3 t74 = {
-        (t69 * (t68 & 65535u)) >> 12u,
-        (t71 * (t70 & 65535u)) >> 12u,
-        (t73 * (t72 & 65535u)) >> 12u
+    const uint32_t t49 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
+    const uint32_t t50 = t49 >> 16u;
+    const uint32_t t51 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
+    const uint32_t t52 = t51 >> 16u;
+    const uint32_t t53 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
+    const uint32_t t54 = t53 >> 16u;
+    const unitpack_uvec3 t55 = { (t50 * t50) << 3u, (t52 * t52) << 3u, (t54 * t54) << 3u };
+    const unitpack_uvec3 t56 = {
+        (t50 * (t49 & 65535u)) >> 12u,
+        (t52 * (t51 & 65535u)) >> 12u,
+        (t54 * (t53 & 65535u)) >> 12u
     };
-    const unitpack_uvec3 t75 = {
-        ((t69 * t69) << 3u) + t74.x,
-        ((t71 * t71) << 3u) + t74.y,
-        ((t73 * t73) << 3u) + t74.z
-    };
-    const float e4 = (float)(t75.x + t75.y + t75.z);
-    const float n4 = (float)(t65 * t65 + t66 * t66 + t67 * t67);
-    const bool t76 = t61 + t62 <= 2047.0f && e4 * best_n2 < best_e2 * n4;
-    const unitpack_vec2 best3 = { t76 ? t45.x + 1.0f : best2.x, t76 ? t45.y + 1.0f : best2.y };
-    const bool t77 = w.z < 0.0f;
+    const float e4 = (float)(t55.x + t56.x + (t55.y + t56.y) + (t55.z + t56.z));
+    const float n4 = (float)(s_up_u2 * s_up_u2 + t_up_u2 * t_up_u2 + t48_u * t48_u);
+    const bool t57 = s_up + t_up <= 2047.0f && e4 * best_n2 < best_e2 * n4;
+    const unitpack_vec2 best3 = { t57 ? t35.x + 1.0f : best2.x, t57 ? t35.y + 1.0f : best2.y };
+    const bool t58 = w.z < 0.0f;
     const unitpack_vec2 folded = { 2047.0f - best3.y, 2047.0f - best3.x };
-    const unitpack_vec2 t78 = { t77 ? folded.x : best3.x, t77 ? folded.y : best3.y };
-    const unitpack_vec2 t79 = {
-        ok ? (w.x < 0.0f ? -t78.x : t78.x) : 0.0f,
-        ok ? (w.y < 0.0f ? -t78.y : t78.y) : 0.0f
+    const unitpack_vec2 t59 = { t58 ? folded.x : best3.x, t58 ? folded.y : best3.y };
+    const unitpack_vec2 t60 = {
+        (ok ? (w.x < 0.0f ? -t59.x : t59.x) : 0.0f) + 2047.0f,
+        (ok ? (w.y < 0.0f ? -t59.y : t59.y) : 0.0f) + 2047.0f
     };
-    const unitpack_vec2 t80 = { t79.x + 2047.0f, t79.y + 2047.0f };
-    const float x16 = t80.x * 0.0625f;
+    const float x16 = t60.x * 0.0625f;
     const float hi = floorf(x16);
-    const float t = floorf(t80.y * 0.00390625f);
-    const float t81 = (x16 - hi) * 256.0f;
-    const float t82 = t * 256.0f;
-    const unitpack_vec3 t83 = { hi, t81 + t, t80.y - t82 };
-    return t83;
+    const float t = floorf(t60.y * 0.00390625f);
+    const float t61 = (x16 - hi) * 256.0f;
+    const float t62 = t * 256.0f;
+    const unitpack_vec3 t63 = { hi, t61 + t, t60.y - t62 };
+    return t63;
 }
 
 // Struct form of unitpack_oct24p_rgb8_encode_float.

@@ -82,17 +82,17 @@ static inline void unitpack_paraboloid16_dxt5nm_decode_float(const float params[
 
 // Struct form of unitpack_paraboloid16_dxt5nm_decode.
 static inline unitpack_vec3 unitpack_paraboloid16_dxt5nm_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_paraboloid16_dxt5nm_decode_float_v(params);
     return decode_float;
@@ -113,37 +113,31 @@ static inline void unitpack_paraboloid16_dxt5nm_decode(uint32_t code, float out[
 
 // Struct form of unitpack_paraboloid16_dxt5nm_encode_float.
 static inline unitpack_vec4 unitpack_paraboloid16_dxt5nm_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -152,22 +146,21 @@ static inline unitpack_vec4 unitpack_paraboloid16_dxt5nm_encode_float_v(unitpack
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -185,37 +178,39 @@ static inline unitpack_vec4 unitpack_paraboloid16_dxt5nm_encode_float_v(unitpack
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
     const unitpack_vec2 p = { w4.x / a, w4.y / a };
-    const float t13 = p.x * 0.5f;
-    const float t14 = p.y * 0.5f;
-    const unitpack_vec4 t15 = { 1.0f, 0.5f + t14, 0.0f, 0.5f + t13 };
-    return t15;
+    const float t8 = p.x * 0.5f;
+    const float t9 = p.y * 0.5f;
+    const unitpack_vec4 t10 = { 1.0f, 0.5f + t9, 0.0f, 0.5f + t8 };
+    return t10;
 }
 
 // unitpack_paraboloid16_dxt5nm_encode_float: fast encoder, float form.
@@ -240,37 +235,31 @@ static inline void unitpack_paraboloid16_dxt5nm_encode_float(const float v[3], f
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec4 unitpack_paraboloid16_dxt5nm_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -279,22 +268,21 @@ static inline unitpack_vec4 unitpack_paraboloid16_dxt5nm_round_codes_v(unitpack_
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -312,59 +300,53 @@ static inline unitpack_vec4 unitpack_paraboloid16_dxt5nm_round_codes_v(unitpack_
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
-    const bool t13 = ok && ok2;
-    const unitpack_vec2 t14 = { w4.x * 127.5f, w4.y * 127.5f };
-    const unitpack_vec2 t15 = { nearbyintf(t14.x / a + 127.5f), nearbyintf(t14.y / a + 127.5f) };
-    const unitpack_vec2 t16 = { t15.x >= 0.0f ? t15.x : 0.0f, t15.y >= 0.0f ? t15.y : 0.0f };
-    const unitpack_vec2 t17 = {
-        t16.x <= 255.0f ? t16.x : 255.0f,
-        t16.y <= 255.0f ? t16.y : 255.0f
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
+    const bool t8 = ok && ok2;
+    const unitpack_vec2 t9 = { w4.x * 127.5f, w4.y * 127.5f };
+    const unitpack_vec2 t10 = { nearbyintf(t9.x / a + 127.5f), nearbyintf(t9.y / a + 127.5f) };
+    const unitpack_vec2 t11 = { t10.x >= 0.0f ? t10.x : 0.0f, t10.y >= 0.0f ? t10.y : 0.0f };
+    const unitpack_vec2 t12 = {
+        t11.x <= 255.0f ? t11.x : 255.0f,
+        t11.y <= 255.0f ? t11.y : 255.0f
     };
-    const unitpack_vec2 t18 = {
-        t14.x >= (t17.x - 127.0f) * a ? 1.0f : 0.0f,
-        t14.y >= (t17.y - 127.0f) * a ? 1.0f : 0.0f
+    const unitpack_vec2 t13 = {
+        t12.x + (t12.x < 255.0f ? (t9.x >= (t12.x - 127.0f) * a ? 1.0f : 0.0f) : 0.0f),
+        t12.y + (t12.y < 255.0f ? (t9.y >= (t12.y - 127.0f) * a ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t19 = {
-        t17.x + (t17.x < 255.0f ? t18.x : 0.0f),
-        t17.y + (t17.y < 255.0f ? t18.y : 0.0f)
+    const unitpack_vec2 t14 = {
+        t12.x > 0.0f ? (t9.x >= (t12.x - 1.0f - 127.0f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t12.y > 0.0f ? (t9.y >= (t12.y - 1.0f - 127.0f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t20 = {
-        t14.x >= (t17.x - 1.0f - 127.0f) * a ? 1.0f : 0.0f,
-        t14.y >= (t17.y - 1.0f - 127.0f) * a ? 1.0f : 0.0f
-    };
-    const unitpack_vec2 t21 = {
-        t19.x + (t17.x > 0.0f ? t20.x - 1.0f : 0.0f),
-        t19.y + (t17.y > 0.0f ? t20.y - 1.0f : 0.0f)
-    };
-    const unitpack_vec2 c = { t13 ? t21.x : 128.0f, t13 ? t21.y : 128.0f };
-    const unitpack_vec4 t22 = { 255.0f, c.y, 0.0f, c.x };
-    return t22;
+    const unitpack_vec2 c = { t8 ? t13.x + t14.x : 128.0f, t8 ? t13.y + t14.y : 128.0f };
+    const unitpack_vec4 t15 = { 255.0f, c.y, 0.0f, c.x };
+    return t15;
 }
 
 // Struct form of unitpack_paraboloid16_dxt5nm_encode.

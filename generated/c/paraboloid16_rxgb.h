@@ -82,17 +82,17 @@ static inline void unitpack_paraboloid16_rxgb_decode_float(const float params[4]
 
 // Struct form of unitpack_paraboloid16_rxgb_decode.
 static inline unitpack_vec3 unitpack_paraboloid16_rxgb_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_paraboloid16_rxgb_decode_float_v(params);
     return decode_float;
@@ -113,37 +113,31 @@ static inline void unitpack_paraboloid16_rxgb_decode(uint32_t code, float out[3]
 
 // Struct form of unitpack_paraboloid16_rxgb_encode_float.
 static inline unitpack_vec4 unitpack_paraboloid16_rxgb_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -152,22 +146,21 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_encode_float_v(unitpack_v
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -185,77 +178,74 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_encode_float_v(unitpack_v
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
     const unitpack_vec2 p = { w4.x / a, w4.y / a };
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const float t13 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    const float largest3 = t13 >= abs_v.z ? t13 : abs_v.z;
-    const bool t14 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
-    const float t15 = t14 ? largest3 : 1.0f;
-    const unitpack_vec3 scaled3 = { v.x / t15, v.y / t15, v.z / t15 };
+    const float t8 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    const float largest3 = t8 >= abs_v.z ? t8 : abs_v.z;
+    const bool t9 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    const float t10 = t9 ? largest3 : 1.0f;
+    const unitpack_vec3 scaled3 = { v.x / t10, v.y / t10, v.z / t10 };
     const unitpack_vec3 scaled3_sq = {
         scaled3.x * scaled3.x,
         scaled3.y * scaled3.y,
         scaled3.z * scaled3.z
     };
     const float len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    const bool t16 = t14 && len2_2 >= 1.0f;
+    const bool t11 = t9 && len2_2 >= 1.0f;
     const float sqrt_len2_2 = sqrtf(len2_2);
-    const unitpack_vec3 t17 = {
-        t16 ? scaled3.x / sqrt_len2_2 : 0.0f,
-        t16 ? scaled3.y / sqrt_len2_2 : 0.0f,
-        t16 ? scaled3.z / sqrt_len2_2 : 1.0f
+    const unitpack_vec3 t12 = {
+        t11 ? scaled3.x / sqrt_len2_2 : 0.0f,
+        t11 ? scaled3.y / sqrt_len2_2 : 0.0f,
+        t11 ? scaled3.z / sqrt_len2_2 : 1.0f
     };
-    const unitpack_vec3 t18 = { t17.x, t17.y, t17.z > 0.0f ? t17.z : 0.0f };
-    const unitpack_vec3 abs_t18 = { fabsf(t18.x), fabsf(t18.y), fabsf(t18.z) };
-    const float t19 = abs_t18.x >= abs_t18.y ? abs_t18.x : abs_t18.y;
-    const float largest4 = t19 >= abs_t18.z ? t19 : abs_t18.z;
-    const bool t20 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
-    const float t21 = t20 ? largest4 : 1.0f;
-    const unitpack_vec3 scaled4 = { t18.x / t21, t18.y / t21, t18.z / t21 };
+    const unitpack_vec3 t13 = { t12.x, t12.y, t12.z > 0.0f ? t12.z : 0.0f };
+    const unitpack_vec3 abs_t13 = { fabsf(t13.x), fabsf(t13.y), fabsf(t13.z) };
+    const float t14 = abs_t13.x >= abs_t13.y ? abs_t13.x : abs_t13.y;
+    const float largest4 = t14 >= abs_t13.z ? t14 : abs_t13.z;
+    const bool t15 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    const float t16 = t15 ? largest4 : 1.0f;
+    const unitpack_vec3 scaled4 = { t13.x / t16, t13.y / t16, t13.z / t16 };
     const unitpack_vec3 scaled4_sq = {
         scaled4.x * scaled4.x,
         scaled4.y * scaled4.y,
         scaled4.z * scaled4.z
     };
     const float len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    const bool t22 = t20 && len2_3 >= 1.0f;
+    const bool t17 = t15 && len2_3 >= 1.0f;
     const float sqrt_len2_3 = sqrtf(len2_3);
-    const unitpack_vec3 t23 = {
-        t22 ? scaled4.x / sqrt_len2_3 : 0.0f,
-        t22 ? scaled4.y / sqrt_len2_3 : 0.0f,
-        t22 ? scaled4.z / sqrt_len2_3 : 1.0f
-    };
-    const float t24 = t23.z * 0.5f;
-    const float t25 = p.x * 0.5f;
-    const float t26 = p.y * 0.5f;
-    const unitpack_vec4 t27 = { 1.0f, 0.5f + t26, 0.5f + t24, 0.5f + t25 };
-    return t27;
+    const float t18 = (t17 ? scaled4.z / sqrt_len2_3 : 1.0f) * 0.5f;
+    const float t19 = p.x * 0.5f;
+    const float t20 = p.y * 0.5f;
+    const unitpack_vec4 t21 = { 1.0f, 0.5f + t20, 0.5f + t18, 0.5f + t19 };
+    return t21;
 }
 
 // unitpack_paraboloid16_rxgb_encode_float: fast encoder, float form.
@@ -280,37 +270,31 @@ static inline void unitpack_paraboloid16_rxgb_encode_float(const float v[3], flo
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec4 unitpack_paraboloid16_rxgb_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -319,22 +303,21 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_round_codes_v(unitpack_ve
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -352,63 +335,56 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_round_codes_v(unitpack_ve
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
-    const bool t13 = ok && ok2;
-    const unitpack_vec2 t14 = { w4.x * 127.5f, w4.y * 127.5f };
-    const unitpack_vec2 t15 = { nearbyintf(t14.x / a + 127.5f), nearbyintf(t14.y / a + 127.5f) };
-    const unitpack_vec2 t16 = { t15.x >= 0.0f ? t15.x : 0.0f, t15.y >= 0.0f ? t15.y : 0.0f };
-    const unitpack_vec2 t17 = {
-        t16.x <= 255.0f ? t16.x : 255.0f,
-        t16.y <= 255.0f ? t16.y : 255.0f
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
+    const bool t8 = ok && ok2;
+    const unitpack_vec2 t9 = { w4.x * 127.5f, w4.y * 127.5f };
+    const unitpack_vec2 t10 = { nearbyintf(t9.x / a + 127.5f), nearbyintf(t9.y / a + 127.5f) };
+    const unitpack_vec2 t11 = { t10.x >= 0.0f ? t10.x : 0.0f, t10.y >= 0.0f ? t10.y : 0.0f };
+    const unitpack_vec2 t12 = {
+        t11.x <= 255.0f ? t11.x : 255.0f,
+        t11.y <= 255.0f ? t11.y : 255.0f
     };
-    const unitpack_vec2 t18 = {
-        t14.x >= (t17.x - 127.0f) * a ? 1.0f : 0.0f,
-        t14.y >= (t17.y - 127.0f) * a ? 1.0f : 0.0f
+    const unitpack_vec2 t13 = {
+        t12.x + (t12.x < 255.0f ? (t9.x >= (t12.x - 127.0f) * a ? 1.0f : 0.0f) : 0.0f),
+        t12.y + (t12.y < 255.0f ? (t9.y >= (t12.y - 127.0f) * a ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t19 = {
-        t17.x + (t17.x < 255.0f ? t18.x : 0.0f),
-        t17.y + (t17.y < 255.0f ? t18.y : 0.0f)
+    const unitpack_vec2 t14 = {
+        t12.x > 0.0f ? (t9.x >= (t12.x - 1.0f - 127.0f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t12.y > 0.0f ? (t9.y >= (t12.y - 1.0f - 127.0f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t20 = {
-        t14.x >= (t17.x - 1.0f - 127.0f) * a ? 1.0f : 0.0f,
-        t14.y >= (t17.y - 1.0f - 127.0f) * a ? 1.0f : 0.0f
+    const unitpack_vec2 c = { t8 ? t13.x + t14.x : 128.0f, t8 ? t13.y + t14.y : 128.0f };
+    const unitpack_vec3 normal3 = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec2 t21 = {
-        t19.x + (t17.x > 0.0f ? t20.x - 1.0f : 0.0f),
-        t19.y + (t17.y > 0.0f ? t20.y - 1.0f : 0.0f)
-    };
-    const unitpack_vec2 c = { t13 ? t21.x : 128.0f, t13 ? t21.y : 128.0f };
-    const unitpack_bvec3 t22 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
-    };
-    const unitpack_vec3 normal3 = { t22.x ? 0.0f : a0.x, t22.y ? 0.0f : a0.y, t22.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal3 = { fabsf(normal3.x), fabsf(normal3.y), fabsf(normal3.z) };
     const float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     const float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
@@ -417,28 +393,19 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_round_codes_v(unitpack_ve
     );
     const unitpack_vec3 scaled3 = { normal3.x * scale3, normal3.y * scale3, normal3.z * scale3 };
     const float sum3 = fabsf(scaled3.x) + fabsf(scaled3.y) + fabsf(scaled3.z);
-    const bool ok3 = sum3 >= 2.0f && sum3 < 16.0f;
-    const unitpack_bvec3 t23 = {
-        fabsf(scaled3.x) < 1.8189894e-12f,
-        fabsf(scaled3.y) < 1.8189894e-12f,
-        fabsf(scaled3.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_3 = sum3 < 16.0f;
+    const bool ok3 = sum3 >= 2.0f && sum_below_16_3;
     const unitpack_vec3 w5 = {
-        t23.x ? 0.0f : scaled3.x,
-        t23.y ? 0.0f : scaled3.y,
-        t23.z ? 0.0f : scaled3.z
+        fabsf(scaled3.x) < 1.8189894e-12f ? 0.0f : scaled3.x,
+        fabsf(scaled3.y) < 1.8189894e-12f ? 0.0f : scaled3.y,
+        fabsf(scaled3.z) < 1.8189894e-12f ? 0.0f : scaled3.z
     };
     const unitpack_vec3 w6 = { ok3 ? w5.x : 0.0f, ok3 ? w5.y : 0.0f, ok3 ? w5.z : 2.0f };
-    const unitpack_vec3 t24 = { w6.x, w6.y, w6.z > 0.0f ? w6.z : 0.0f };
-    const unitpack_bvec3 t25 = {
-        fabsf(t24.x) < 1.1754944e-38f,
-        fabsf(t24.y) < 1.1754944e-38f,
-        fabsf(t24.z) < 1.1754944e-38f
-    };
+    const unitpack_vec3 t15 = { w6.x, w6.y, w6.z > 0.0f ? w6.z : 0.0f };
     const unitpack_vec3 normal4 = {
-        t25.x ? 0.0f : t24.x,
-        t25.y ? 0.0f : t24.y,
-        t25.z ? 0.0f : t24.z
+        fabsf(t15.x) < 1.1754944e-38f ? 0.0f : t15.x,
+        fabsf(t15.y) < 1.1754944e-38f ? 0.0f : t15.y,
+        fabsf(t15.z) < 1.1754944e-38f ? 0.0f : t15.z
     };
     const unitpack_vec3 abs_normal4 = { fabsf(normal4.x), fabsf(normal4.y), fabsf(normal4.z) };
     const float larger4 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
@@ -448,57 +415,55 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_round_codes_v(unitpack_ve
     );
     const unitpack_vec3 scaled4 = { normal4.x * scale4, normal4.y * scale4, normal4.z * scale4 };
     const float sum4 = fabsf(scaled4.x) + fabsf(scaled4.y) + fabsf(scaled4.z);
-    const bool ok4 = sum4 >= 2.0f && sum4 < 16.0f;
-    const unitpack_bvec3 t26 = {
-        fabsf(scaled4.x) < 1.8189894e-12f,
-        fabsf(scaled4.y) < 1.8189894e-12f,
-        fabsf(scaled4.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_4 = sum4 < 16.0f;
+    const bool ok4 = sum4 >= 2.0f && sum_below_16_4;
     const unitpack_vec3 w7 = {
-        t26.x ? 0.0f : scaled4.x,
-        t26.y ? 0.0f : scaled4.y,
-        t26.z ? 0.0f : scaled4.z
+        fabsf(scaled4.x) < 1.8189894e-12f ? 0.0f : scaled4.x,
+        fabsf(scaled4.y) < 1.8189894e-12f ? 0.0f : scaled4.y,
+        fabsf(scaled4.z) < 1.8189894e-12f ? 0.0f : scaled4.z
     };
     const unitpack_vec3 w8 = { ok4 ? w7.x : 0.0f, ok4 ? w7.y : 0.0f, ok4 ? w7.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w8.x) & 4294963200u);
     const float split_lo = w8.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t27 = (split_hi + split_hi) * split_lo;
+    const float t16 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w8.y) & 4294963200u);
     const float split_lo2 = w8.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t28 = (split_hi2 + split_hi2) * split_lo2;
+    const float t17 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w8.z) & 4294963200u);
     const float split_lo3 = w8.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t29 = (split_hi3 + split_hi3) * split_lo3;
+    const float t18 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2_2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t27 + t28 + t29)
+        + (t16 + t17 + t18)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float big2 = w8.z * w8.z * 16256.25f;
-    const float t30 = w8.z / sqrtf(len2_2) * 127.5f;
-    const float t31 = nearbyintf(t30 + 127.5f);
-    const float t32 = t31 >= 0.0f ? t31 : 0.0f;
-    const float estimate = t32 <= 255.0f ? t32 : 255.0f;
-    const float t33 = estimate - 127.0f;
-    const float t34 = t33 * t33 * len2_2;
-    const float t35 = w8.z >= 0.0f
-        ? (t33 > 0.0f ? (big2 >= t34 ? 1.0f : 0.0f) : 1.0f)
-        : (t33 < 0.0f ? (big2 <= t34 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 255.0f ? t35 : 0.0f;
-    const float t36 = estimate - 1.0f - 127.0f;
-    const float t37 = t36 * t36 * len2_2;
-    const float t38 = w8.z >= 0.0f
-        ? (t36 > 0.0f ? (big2 >= t37 ? 1.0f : 0.0f) : 1.0f)
-        : (t36 < 0.0f ? (big2 <= t37 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t38 - 1.0f : 0.0f;
-    const unitpack_vec4 t39 = { 255.0f, c.y, estimate + up + down, c.x };
-    return t39;
+    const float t19 = w8.z / sqrtf(len2_2) * 127.5f;
+    const float t20 = nearbyintf(t19 + 127.5f);
+    const float t21 = t20 >= 0.0f ? t20 : 0.0f;
+    const float estimate = t21 <= 255.0f ? t21 : 255.0f;
+    const float t22 = estimate - 127.0f;
+    const float t23 = t22 * t22 * len2_2;
+    const float one_if = big2 >= t23 ? 1.0f : 0.0f;
+    const float one_if2 = big2 <= t23 ? 1.0f : 0.0f;
+    const float up = estimate < 255.0f
+        ? (w8.z >= 0.0f ? (t22 > 0.0f ? one_if : 1.0f) : (t22 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t24 = estimate - 1.0f - 127.0f;
+    const float t25 = t24 * t24 * len2_2;
+    const float one_if3 = big2 >= t25 ? 1.0f : 0.0f;
+    const float one_if4 = big2 <= t25 ? 1.0f : 0.0f;
+    const float t26 = (w8.z >= 0.0f ? (t24 > 0.0f ? one_if3 : 1.0f) : (t24 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t26 : 0.0f;
+    const unitpack_vec4 t27 = { 255.0f, c.y, estimate + up + down, c.x };
+    return t27;
 }
 
 // Struct form of unitpack_paraboloid16_rxgb_encode.

@@ -82,17 +82,17 @@ static inline void unitpack_paraboloid16p_xra_decode_float(const float params[4]
 
 // Struct form of unitpack_paraboloid16p_xra_decode.
 static inline unitpack_vec3 unitpack_paraboloid16p_xra_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_paraboloid16p_xra_decode_float_v(params);
     return decode_float;
@@ -117,37 +117,31 @@ static inline void unitpack_paraboloid16p_xra_decode(uint32_t code, float out[3]
 //   on ties.
 
 static inline unitpack_vec4 unitpack_paraboloid16p_xra_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -156,22 +150,21 @@ static inline unitpack_vec4 unitpack_paraboloid16p_xra_encode_codes_v(unitpack_v
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -189,59 +182,57 @@ static inline unitpack_vec4 unitpack_paraboloid16p_xra_encode_codes_v(unitpack_v
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
-    const bool t13 = ok && ok2;
-    const unitpack_vec2 t14 = { w4.x * 127.5f, w4.y * 127.5f };
-    const unitpack_vec2 t15 = { nearbyintf(t14.x / a + 127.5f), nearbyintf(t14.y / a + 127.5f) };
-    const unitpack_vec2 t16 = { t15.x >= 0.0f ? t15.x : 0.0f, t15.y >= 0.0f ? t15.y : 0.0f };
-    const unitpack_vec2 t17 = {
-        t16.x <= 255.0f ? t16.x : 255.0f,
-        t16.y <= 255.0f ? t16.y : 255.0f
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
+    const bool t8 = ok && ok2;
+    const unitpack_vec2 t9 = { w4.x * 127.5f, w4.y * 127.5f };
+    const unitpack_vec2 t10 = { nearbyintf(t9.x / a + 127.5f), nearbyintf(t9.y / a + 127.5f) };
+    const unitpack_vec2 t11 = { t10.x >= 0.0f ? t10.x : 0.0f, t10.y >= 0.0f ? t10.y : 0.0f };
+    const unitpack_vec2 t12 = {
+        t11.x <= 255.0f ? t11.x : 255.0f,
+        t11.y <= 255.0f ? t11.y : 255.0f
     };
-    const unitpack_vec2 t18 = {
-        t14.x >= (t17.x - 126.5f) * a ? 1.0f : 0.0f,
-        t14.y >= (t17.y - 126.5f) * a ? 1.0f : 0.0f
+    const unitpack_vec2 t13 = {
+        t12.x + (t12.x < 255.0f ? (t9.x >= (t12.x - 126.5f) * a ? 1.0f : 0.0f) : 0.0f),
+        t12.y + (t12.y < 255.0f ? (t9.y >= (t12.y - 126.5f) * a ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t19 = {
-        t17.x + (t17.x < 255.0f ? t18.x : 0.0f),
-        t17.y + (t17.y < 255.0f ? t18.y : 0.0f)
+    const unitpack_vec2 t14 = {
+        t12.x > 0.0f ? (t9.x >= (t12.x - 1.0f - 126.5f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t12.y > 0.0f ? (t9.y >= (t12.y - 1.0f - 126.5f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t20 = {
-        t14.x >= (t17.x - 1.0f - 126.5f) * a ? 1.0f : 0.0f,
-        t14.y >= (t17.y - 1.0f - 126.5f) * a ? 1.0f : 0.0f
-    };
-    const unitpack_vec2 base = {
-        t19.x + (t17.x > 0.0f ? t20.x - 1.0f : 0.0f),
-        t19.y + (t17.y > 0.0f ? t20.y - 1.0f : 0.0f)
-    };
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed7 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const unitpack_vec2 base = { t13.x + t14.x, t13.y + t14.y };
+    const float fixed_f4 = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
+    const float fixed_f6 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed7 = (uint32_t)fixed_f6;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -259,336 +250,307 @@ static inline unitpack_vec4 unitpack_paraboloid16p_xra_encode_codes_v(unitpack_v
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t21 = (float)hi8 * 16777216.0f;
-    const float len2_2 = (t21 + (float)lo8) * 2.2737368e-13f;
+    const float t15 = (float)hi8 * 16777216.0f;
+    const float len2_2 = (t15 + (float)lo8) * 2.2737368e-13f;
     const float root_estimate2 = sqrtf(len2_2);
-    const float t22 = floorf(root_estimate2 * 512.0f);
-    const float root_h0_2 = t22 * 0.001953125f;
+    const float root_k0_2 = floorf(root_estimate2 * 512.0f);
+    const float root_h0_2 = root_k0_2 * 0.001953125f;
     const float root_h1_2 = root_h0_2 + 0.001953125f;
-    const float t23 = root_h1_2 * root_h1_2 <= len2_2
-        ? 1.0f
-        : (root_h0_2 * root_h0_2 > len2_2 ? -1.0f : 0.0f);
-    const float root_k2 = t22 + t23;
+    const float step_down3 = root_h0_2 * root_h0_2 > len2_2 ? -1.0f : 0.0f;
+    const float step3 = root_h1_2 * root_h1_2 <= len2_2 ? 1.0f : step_down3;
+    const float root_k2 = root_k0_2 + step3;
     const float root_h2 = root_k2 * 0.001953125f;
     const float root_h2_sq = root_h2 * root_h2;
     const float root_rest2 = len2_2 - root_h2_sq;
     const float root_j0_2 = floorf(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
-    const float t24 = root_j0_2 * 4.7683716e-7f;
-    const float root_m0_2 = root_h2 + t24;
-    const float t25 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    const float root_m1_2 = root_h2 + t25;
-    const float t26 = root_m1_2 * root_m1_2 <= len2_2
-        ? 1.0f
-        : (root_m0_2 * root_m0_2 > len2_2 ? -1.0f : 0.0f);
-    const float root_j2 = root_j0_2 + t26;
-    const float t27 = root_k2 * 4096.0f;
-    const float root2 = (t27 + root_j2) * 4.7683716e-7f;
-    const unitpack_vec3 t28 = {
-        w4.x / root2 * 2097152.0f,
-        w4.y / root2 * 2097152.0f,
-        w4.z / root2 * 2097152.0f
+    const float t16 = root_j0_2 * 4.7683716e-7f;
+    const float root_m0_2 = root_h2 + t16;
+    const float t17 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
+    const float root_m1_2 = root_h2 + t17;
+    const float step_down4 = root_m0_2 * root_m0_2 > len2_2 ? -1.0f : 0.0f;
+    const float step4 = root_m1_2 * root_m1_2 <= len2_2 ? 1.0f : step_down4;
+    const float root_j2 = root_j0_2 + step4;
+    const float t18 = root_k2 * 4096.0f;
+    const float root2 = (t18 + root_j2) * 4.7683716e-7f;
+    const unitpack_vec3 t19 = {
+        floorf(w4.x / root2 * 2097152.0f),
+        floorf(w4.y / root2 * 2097152.0f),
+        floorf(w4.z / root2 * 2097152.0f)
     };
-    const unitpack_vec3 floor_t28 = { floorf(t28.x), floorf(t28.y), floorf(t28.z) };
-    const unitpack_vec3 t29 = {
-        (floor_t28.x + 1.0f) * root2,
-        (floor_t28.y + 1.0f) * root2,
-        (floor_t28.z + 1.0f) * root2
+    const unitpack_vec3 t20 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
+    const unitpack_vec3 t21 = {
+        (t19.x + 1.0f) * root2 <= t20.x ? 1.0f : (t19.x * root2 > t20.x ? -1.0f : 0.0f),
+        (t19.y + 1.0f) * root2 <= t20.y ? 1.0f : (t19.y * root2 > t20.y ? -1.0f : 0.0f),
+        (t19.z + 1.0f) * root2 <= t20.z ? 1.0f : (t19.z * root2 > t20.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t30 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
-    const unitpack_bvec3 t31 = {
-        floor_t28.x * root2 > t30.x,
-        floor_t28.y * root2 > t30.y,
-        floor_t28.z * root2 > t30.z
-    };
-    const unitpack_vec3 t32 = {
-        t29.x <= t30.x ? 1.0f : (t31.x ? -1.0f : 0.0f),
-        t29.y <= t30.y ? 1.0f : (t31.y ? -1.0f : 0.0f),
-        t29.z <= t30.z ? 1.0f : (t31.z ? -1.0f : 0.0f)
-    };
-    const unitpack_vec3 aim = { floor_t28.x + t32.x, floor_t28.y + t32.y, floor_t28.z + t32.z };
+    const unitpack_vec3 aim = { t19.x + t21.x, t19.y + t21.y, t19.z + t21.z };
     const unitpack_vec2 cand = {
         base.x <= 255.0f ? base.x : 255.0f,
         base.y <= 255.0f ? base.y : 255.0f
     };
-    const unitpack_vec2 t33 = {
-        (cand.x + cand.x - 255.0f) * 8224.126f,
-        (cand.y + cand.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p = {
+        floorf((cand.x + cand.x - 255.0f) * 8224.126f),
+        floorf((cand.y + cand.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p = { floorf(t33.x), floorf(t33.y) };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
     const float z = 2097152.0f - (q <= 2097152.0f ? q : 2097152.0f);
     const float l2 = q + nearbyintf(z * z * 4.7683716e-7f);
-    const float t34 = l2 * 524288.0f;
-    const float root_estimate3 = floorf(sqrtf(t34));
+    const float t22 = l2 * 524288.0f;
+    const float root_estimate3 = floorf(sqrtf(t22));
     const float root_next = root_estimate3 + 1.0f;
-    const float t35 = root_next * root_next <= t34
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t34 ? -1.0f : 0.0f);
-    const float root_step = root_estimate3 + t35;
+    const float step_down5 = root_estimate3 * root_estimate3 > t22 ? -1.0f : 0.0f;
+    const float step5 = root_next * root_next <= t22 ? 1.0f : step_down5;
+    const float root_step = root_estimate3 + step5;
     const float root_next2 = root_step + 1.0f;
-    const float t36 = root_next2 * root_next2 <= t34
-        ? 1.0f
-        : (root_step * root_step > t34 ? -1.0f : 0.0f);
-    const float root3 = root_step + t36;
-    const float t37 = root3 * 2.0f;
+    const float step_down6 = root_step * root_step > t22 ? -1.0f : 0.0f;
+    const float step6 = root_next2 * root_next2 <= t22 ? 1.0f : step_down6;
+    const float root3 = root_step + step6;
+    const float t23 = root3 * 2.0f;
     const unitpack_vec2 abs_p = { fabsf(p.x), fabsf(p.y) };
-    const float t38 = t37 >= abs_p.x ? t37 : abs_p.x;
-    const float t39 = t38 >= abs_p.y ? t38 : abs_p.y;
-    const float l = t39 >= z ? t39 : z;
-    const unitpack_vec2 t40 = { floorf(p.x / l * 2097152.0f), floorf(p.y / l * 2097152.0f) };
-    const unitpack_vec2 t41 = { p.x * 2097152.0f, p.y * 2097152.0f };
-    const unitpack_vec2 t42 = {
-        (t40.x + 1.0f) * l <= t41.x ? 1.0f : (t40.x * l > t41.x ? -1.0f : 0.0f),
-        (t40.y + 1.0f) * l <= t41.y ? 1.0f : (t40.y * l > t41.y ? -1.0f : 0.0f)
+    const float t24 = t23 >= abs_p.x ? t23 : abs_p.x;
+    const float t25 = t24 >= abs_p.y ? t24 : abs_p.y;
+    const float l = t25 >= z ? t25 : z;
+    const unitpack_vec2 t26 = { floorf(p.x / l * 2097152.0f), floorf(p.y / l * 2097152.0f) };
+    const unitpack_vec2 t27 = { p.x * 2097152.0f, p.y * 2097152.0f };
+    const unitpack_vec2 t28 = {
+        (t26.x + 1.0f) * l <= t27.x ? 1.0f : (t26.x * l > t27.x ? -1.0f : 0.0f),
+        (t26.y + 1.0f) * l <= t27.y ? 1.0f : (t26.y * l > t27.y ? -1.0f : 0.0f)
     };
     const float big = z * 2097152.0f;
     const float ratio_estimate = floorf(z / l * 2097152.0f);
-    const float t43 = (ratio_estimate + 1.0f) * l <= big
-        ? 1.0f
-        : (ratio_estimate * l > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t43;
-    const unitpack_vec3 t44 = {
-        fabsf(t40.x + t42.x - aim.x),
-        fabsf(t40.y + t42.y - aim.y),
-        fabsf(ratio - aim.z)
+    const float step_down7 = ratio_estimate * l > big ? -1.0f : 0.0f;
+    const float step7 = (ratio_estimate + 1.0f) * l <= big ? 1.0f : step_down7;
+    const float ratio = ratio_estimate + step7;
+    const unitpack_vec3 offset = { t26.x + t28.x - aim.x, t26.y + t28.y - aim.y, ratio - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_uvec3 t45 = { (uint32_t)t44.x, (uint32_t)t44.y, (uint32_t)t44.z };
-    const uint32_t limb1_7 = t45.x >> 12u;
-    const uint32_t limb0_7 = t45.x & 4095u;
+    const uint32_t limb1_7 = offset_u.x >> 12u;
+    const uint32_t limb0_7 = offset_u.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t45.y >> 12u;
-    const uint32_t limb0_8 = t45.y & 4095u;
+    const uint32_t limb1_8 = offset_u.y >> 12u;
+    const uint32_t limb0_8 = offset_u.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t45.z >> 12u;
-    const uint32_t limb0_9 = t45.z & 4095u;
+    const uint32_t limb1_9 = offset_u.z >> 12u;
+    const uint32_t limb0_9 = offset_u.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t46 = (float)hi12 * 16777216.0f;
-    const float dist = t46 + (float)lo12;
-    const float t47 = base.x + 1.0f;
-    const unitpack_vec2 t48 = { t47, base.y };
+    const float t29 = (float)hi12 * 16777216.0f;
+    const float dist = t29 + (float)lo12;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t30 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t48.x <= 255.0f ? t48.x : 255.0f,
-        t48.y <= 255.0f ? t48.y : 255.0f
+        t30.x <= 255.0f ? t30.x : 255.0f,
+        t30.y <= 255.0f ? t30.y : 255.0f
     };
-    const unitpack_vec2 t49 = {
-        (cand2.x + cand2.x - 255.0f) * 8224.126f,
-        (cand2.y + cand2.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p2 = {
+        floorf((cand2.x + cand2.x - 255.0f) * 8224.126f),
+        floorf((cand2.y + cand2.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p2 = { floorf(t49.x), floorf(t49.y) };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
     const float z2 = 2097152.0f - (q2 <= 2097152.0f ? q2 : 2097152.0f);
     const float l2_2 = q2 + nearbyintf(z2 * z2 * 4.7683716e-7f);
-    const float t50 = l2_2 * 524288.0f;
-    const float root_estimate4 = floorf(sqrtf(t50));
+    const float t31 = l2_2 * 524288.0f;
+    const float root_estimate4 = floorf(sqrtf(t31));
     const float root_next3 = root_estimate4 + 1.0f;
-    const float t51 = root_next3 * root_next3 <= t50
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t50 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate4 + t51;
+    const float step_down8 = root_estimate4 * root_estimate4 > t31 ? -1.0f : 0.0f;
+    const float step8 = root_next3 * root_next3 <= t31 ? 1.0f : step_down8;
+    const float root_step2 = root_estimate4 + step8;
     const float root_next4 = root_step2 + 1.0f;
-    const float t52 = root_next4 * root_next4 <= t50
-        ? 1.0f
-        : (root_step2 * root_step2 > t50 ? -1.0f : 0.0f);
-    const float root4 = root_step2 + t52;
-    const float t53 = root4 * 2.0f;
+    const float step_down9 = root_step2 * root_step2 > t31 ? -1.0f : 0.0f;
+    const float step9 = root_next4 * root_next4 <= t31 ? 1.0f : step_down9;
+    const float root4 = root_step2 + step9;
+    const float t32 = root4 * 2.0f;
     const unitpack_vec2 abs_p2 = { fabsf(p2.x), fabsf(p2.y) };
-    const float t54 = t53 >= abs_p2.x ? t53 : abs_p2.x;
-    const float t55 = t54 >= abs_p2.y ? t54 : abs_p2.y;
-    const float l3 = t55 >= z2 ? t55 : z2;
-    const unitpack_vec2 t56 = { floorf(p2.x / l3 * 2097152.0f), floorf(p2.y / l3 * 2097152.0f) };
-    const unitpack_vec2 t57 = { p2.x * 2097152.0f, p2.y * 2097152.0f };
-    const unitpack_vec2 t58 = {
-        (t56.x + 1.0f) * l3 <= t57.x ? 1.0f : (t56.x * l3 > t57.x ? -1.0f : 0.0f),
-        (t56.y + 1.0f) * l3 <= t57.y ? 1.0f : (t56.y * l3 > t57.y ? -1.0f : 0.0f)
+    const float t33 = t32 >= abs_p2.x ? t32 : abs_p2.x;
+    const float t34 = t33 >= abs_p2.y ? t33 : abs_p2.y;
+    const float l3 = t34 >= z2 ? t34 : z2;
+    const unitpack_vec2 t35 = { floorf(p2.x / l3 * 2097152.0f), floorf(p2.y / l3 * 2097152.0f) };
+    const unitpack_vec2 t36 = { p2.x * 2097152.0f, p2.y * 2097152.0f };
+    const unitpack_vec2 t37 = {
+        (t35.x + 1.0f) * l3 <= t36.x ? 1.0f : (t35.x * l3 > t36.x ? -1.0f : 0.0f),
+        (t35.y + 1.0f) * l3 <= t36.y ? 1.0f : (t35.y * l3 > t36.y ? -1.0f : 0.0f)
     };
     const float big2 = z2 * 2097152.0f;
     const float ratio_estimate2 = floorf(z2 / l3 * 2097152.0f);
-    const float t59 = (ratio_estimate2 + 1.0f) * l3 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * l3 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t59;
-    const unitpack_vec3 t60 = {
-        fabsf(t56.x + t58.x - aim.x),
-        fabsf(t56.y + t58.y - aim.y),
-        fabsf(ratio2 - aim.z)
+    const float step_down10 = ratio_estimate2 * l3 > big2 ? -1.0f : 0.0f;
+    const float step10 = (ratio_estimate2 + 1.0f) * l3 <= big2 ? 1.0f : step_down10;
+    const float ratio2 = ratio_estimate2 + step10;
+    const unitpack_vec3 offset2 = { t35.x + t37.x - aim.x, t35.y + t37.y - aim.y, ratio2 - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const unitpack_uvec3 t61 = { (uint32_t)t60.x, (uint32_t)t60.y, (uint32_t)t60.z };
-    const uint32_t limb1_10 = t61.x >> 12u;
-    const uint32_t limb0_10 = t61.x & 4095u;
+    const uint32_t limb1_10 = offset_u2.x >> 12u;
+    const uint32_t limb0_10 = offset_u2.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t61.y >> 12u;
-    const uint32_t limb0_11 = t61.y & 4095u;
+    const uint32_t limb1_11 = offset_u2.y >> 12u;
+    const uint32_t limb0_11 = offset_u2.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t61.z >> 12u;
-    const uint32_t limb0_12 = t61.z & 4095u;
+    const uint32_t limb1_12 = offset_u2.z >> 12u;
+    const uint32_t limb0_12 = offset_u2.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t62 = (float)hi16 * 16777216.0f;
-    const float dist2 = t62 + (float)lo16;
-    const bool t63 = t47 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    const unitpack_vec2 best = { t63 ? cand2.x : cand.x, t63 ? cand2.y : cand.y };
-    const float best_d = t63 ? dist2 : dist;
-    const float t64 = base.y + 1.0f;
-    const unitpack_vec2 t65 = { base.x, t64 };
+    const float t38 = (float)hi16 * 16777216.0f;
+    const float dist2 = t38 + (float)lo16;
+    const bool t39 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    const unitpack_vec2 best = { t39 ? cand2.x : cand.x, t39 ? cand2.y : cand.y };
+    const float best_d = t39 ? dist2 : dist;
+    const unitpack_vec2 t40 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t65.x <= 255.0f ? t65.x : 255.0f,
-        t65.y <= 255.0f ? t65.y : 255.0f
+        t40.x <= 255.0f ? t40.x : 255.0f,
+        t40.y <= 255.0f ? t40.y : 255.0f
     };
-    const unitpack_vec2 t66 = {
-        (cand3.x + cand3.x - 255.0f) * 8224.126f,
-        (cand3.y + cand3.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p3 = {
+        floorf((cand3.x + cand3.x - 255.0f) * 8224.126f),
+        floorf((cand3.y + cand3.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p3 = { floorf(t66.x), floorf(t66.y) };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
     const float z3 = 2097152.0f - (q3 <= 2097152.0f ? q3 : 2097152.0f);
     const float l2_3 = q3 + nearbyintf(z3 * z3 * 4.7683716e-7f);
-    const float t67 = l2_3 * 524288.0f;
-    const float root_estimate5 = floorf(sqrtf(t67));
+    const float t41 = l2_3 * 524288.0f;
+    const float root_estimate5 = floorf(sqrtf(t41));
     const float root_next5 = root_estimate5 + 1.0f;
-    const float t68 = root_next5 * root_next5 <= t67
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t67 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate5 + t68;
+    const float step_down11 = root_estimate5 * root_estimate5 > t41 ? -1.0f : 0.0f;
+    const float step11 = root_next5 * root_next5 <= t41 ? 1.0f : step_down11;
+    const float root_step3 = root_estimate5 + step11;
     const float root_next6 = root_step3 + 1.0f;
-    const float t69 = root_next6 * root_next6 <= t67
-        ? 1.0f
-        : (root_step3 * root_step3 > t67 ? -1.0f : 0.0f);
-    const float root5 = root_step3 + t69;
-    const float t70 = root5 * 2.0f;
+    const float step_down12 = root_step3 * root_step3 > t41 ? -1.0f : 0.0f;
+    const float step12 = root_next6 * root_next6 <= t41 ? 1.0f : step_down12;
+    const float root5 = root_step3 + step12;
+    const float t42 = root5 * 2.0f;
     const unitpack_vec2 abs_p3 = { fabsf(p3.x), fabsf(p3.y) };
-    const float t71 = t70 >= abs_p3.x ? t70 : abs_p3.x;
-    const float t72 = t71 >= abs_p3.y ? t71 : abs_p3.y;
-    const float l4 = t72 >= z3 ? t72 : z3;
-    const unitpack_vec2 t73 = { floorf(p3.x / l4 * 2097152.0f), floorf(p3.y / l4 * 2097152.0f) };
-    const unitpack_vec2 t74 = { p3.x * 2097152.0f, p3.y * 2097152.0f };
-    const unitpack_vec2 t75 = {
-        (t73.x + 1.0f) * l4 <= t74.x ? 1.0f : (t73.x * l4 > t74.x ? -1.0f : 0.0f),
-        (t73.y + 1.0f) * l4 <= t74.y ? 1.0f : (t73.y * l4 > t74.y ? -1.0f : 0.0f)
+    const float t43 = t42 >= abs_p3.x ? t42 : abs_p3.x;
+    const float t44 = t43 >= abs_p3.y ? t43 : abs_p3.y;
+    const float l4 = t44 >= z3 ? t44 : z3;
+    const unitpack_vec2 t45 = { floorf(p3.x / l4 * 2097152.0f), floorf(p3.y / l4 * 2097152.0f) };
+    const unitpack_vec2 t46 = { p3.x * 2097152.0f, p3.y * 2097152.0f };
+    const unitpack_vec2 t47 = {
+        (t45.x + 1.0f) * l4 <= t46.x ? 1.0f : (t45.x * l4 > t46.x ? -1.0f : 0.0f),
+        (t45.y + 1.0f) * l4 <= t46.y ? 1.0f : (t45.y * l4 > t46.y ? -1.0f : 0.0f)
     };
     const float big3 = z3 * 2097152.0f;
     const float ratio_estimate3 = floorf(z3 / l4 * 2097152.0f);
-    const float t76 = (ratio_estimate3 + 1.0f) * l4 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * l4 > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t76;
-    const unitpack_vec3 t77 = {
-        fabsf(t73.x + t75.x - aim.x),
-        fabsf(t73.y + t75.y - aim.y),
-        fabsf(ratio3 - aim.z)
+    const float step_down13 = ratio_estimate3 * l4 > big3 ? -1.0f : 0.0f;
+    const float step13 = (ratio_estimate3 + 1.0f) * l4 <= big3 ? 1.0f : step_down13;
+    const float ratio3 = ratio_estimate3 + step13;
+    const unitpack_vec3 offset3 = { t45.x + t47.x - aim.x, t45.y + t47.y - aim.y, ratio3 - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const unitpack_uvec3 t78 = { (uint32_t)t77.x, (uint32_t)t77.y, (uint32_t)t77.z };
-    const uint32_t limb1_13 = t78.x >> 12u;
-    const uint32_t limb0_13 = t78.x & 4095u;
+    const uint32_t limb1_13 = offset_u3.x >> 12u;
+    const uint32_t limb0_13 = offset_u3.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t78.y >> 12u;
-    const uint32_t limb0_14 = t78.y & 4095u;
+    const uint32_t limb1_14 = offset_u3.y >> 12u;
+    const uint32_t limb0_14 = offset_u3.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t78.z >> 12u;
-    const uint32_t limb0_15 = t78.z & 4095u;
+    const uint32_t limb1_15 = offset_u3.z >> 12u;
+    const uint32_t limb0_15 = offset_u3.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t79 = (float)hi20 * 16777216.0f;
-    const float dist3 = t79 + (float)lo20;
-    const bool t80 = base.x <= 255.0f && t64 <= 255.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t80 ? cand3.x : best.x, t80 ? cand3.y : best.y };
-    const float best_d2 = t80 ? dist3 : best_d;
-    const unitpack_vec2 t81 = { base.x + 1.0f, base.y + 1.0f };
+    const float t48 = (float)hi20 * 16777216.0f;
+    const float dist3 = t48 + (float)lo20;
+    const bool t49 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t49 ? cand3.x : best.x, t49 ? cand3.y : best.y };
+    const float best_d2 = t49 ? dist3 : best_d;
+    const unitpack_vec2 t50 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t81.x <= 255.0f ? t81.x : 255.0f,
-        t81.y <= 255.0f ? t81.y : 255.0f
+        t50.x <= 255.0f ? t50.x : 255.0f,
+        t50.y <= 255.0f ? t50.y : 255.0f
     };
-    const unitpack_vec2 t82 = {
-        (cand4.x + cand4.x - 255.0f) * 8224.126f,
-        (cand4.y + cand4.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p4 = {
+        floorf((cand4.x + cand4.x - 255.0f) * 8224.126f),
+        floorf((cand4.y + cand4.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p4 = { floorf(t82.x), floorf(t82.y) };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
     const float z4 = 2097152.0f - (q4 <= 2097152.0f ? q4 : 2097152.0f);
     const float l2_4 = q4 + nearbyintf(z4 * z4 * 4.7683716e-7f);
-    const float t83 = l2_4 * 524288.0f;
-    const float root_estimate6 = floorf(sqrtf(t83));
+    const float t51 = l2_4 * 524288.0f;
+    const float root_estimate6 = floorf(sqrtf(t51));
     const float root_next7 = root_estimate6 + 1.0f;
-    const float t84 = root_next7 * root_next7 <= t83
-        ? 1.0f
-        : (root_estimate6 * root_estimate6 > t83 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate6 + t84;
+    const float step_down14 = root_estimate6 * root_estimate6 > t51 ? -1.0f : 0.0f;
+    const float step14 = root_next7 * root_next7 <= t51 ? 1.0f : step_down14;
+    const float root_step4 = root_estimate6 + step14;
     const float root_next8 = root_step4 + 1.0f;
-    const float t85 = root_next8 * root_next8 <= t83
-        ? 1.0f
-        : (root_step4 * root_step4 > t83 ? -1.0f : 0.0f);
-    const float root6 = root_step4 + t85;
-    const float t86 = root6 * 2.0f;
+    const float step_down15 = root_step4 * root_step4 > t51 ? -1.0f : 0.0f;
+    const float step15 = root_next8 * root_next8 <= t51 ? 1.0f : step_down15;
+    const float root6 = root_step4 + step15;
+    const float t52 = root6 * 2.0f;
     const unitpack_vec2 abs_p4 = { fabsf(p4.x), fabsf(p4.y) };
-    const float t87 = t86 >= abs_p4.x ? t86 : abs_p4.x;
-    const float t88 = t87 >= abs_p4.y ? t87 : abs_p4.y;
-    const float l5 = t88 >= z4 ? t88 : z4;
-    const unitpack_vec2 t89 = { floorf(p4.x / l5 * 2097152.0f), floorf(p4.y / l5 * 2097152.0f) };
-    const unitpack_vec2 t90 = { p4.x * 2097152.0f, p4.y * 2097152.0f };
-    const unitpack_vec2 t91 = {
-        (t89.x + 1.0f) * l5 <= t90.x ? 1.0f : (t89.x * l5 > t90.x ? -1.0f : 0.0f),
-        (t89.y + 1.0f) * l5 <= t90.y ? 1.0f : (t89.y * l5 > t90.y ? -1.0f : 0.0f)
+    const float t53 = t52 >= abs_p4.x ? t52 : abs_p4.x;
+    const float t54 = t53 >= abs_p4.y ? t53 : abs_p4.y;
+    const float l5 = t54 >= z4 ? t54 : z4;
+    const unitpack_vec2 t55 = { floorf(p4.x / l5 * 2097152.0f), floorf(p4.y / l5 * 2097152.0f) };
+    const unitpack_vec2 t56 = { p4.x * 2097152.0f, p4.y * 2097152.0f };
+    const unitpack_vec2 t57 = {
+        (t55.x + 1.0f) * l5 <= t56.x ? 1.0f : (t55.x * l5 > t56.x ? -1.0f : 0.0f),
+        (t55.y + 1.0f) * l5 <= t56.y ? 1.0f : (t55.y * l5 > t56.y ? -1.0f : 0.0f)
     };
     const float big4 = z4 * 2097152.0f;
     const float ratio_estimate4 = floorf(z4 / l5 * 2097152.0f);
-    const float t92 = (ratio_estimate4 + 1.0f) * l5 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * l5 > big4 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate4 + t92;
-    const unitpack_vec3 t93 = {
-        fabsf(t89.x + t91.x - aim.x),
-        fabsf(t89.y + t91.y - aim.y),
-        fabsf(ratio4 - aim.z)
+    const float step_down16 = ratio_estimate4 * l5 > big4 ? -1.0f : 0.0f;
+    const float step16 = (ratio_estimate4 + 1.0f) * l5 <= big4 ? 1.0f : step_down16;
+    const float ratio4 = ratio_estimate4 + step16;
+    const unitpack_vec3 offset4 = { t55.x + t57.x - aim.x, t55.y + t57.y - aim.y, ratio4 - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const unitpack_uvec3 t94 = { (uint32_t)t93.x, (uint32_t)t93.y, (uint32_t)t93.z };
-    const uint32_t limb1_16 = t94.x >> 12u;
-    const uint32_t limb0_16 = t94.x & 4095u;
+    const uint32_t limb1_16 = offset_u4.x >> 12u;
+    const uint32_t limb0_16 = offset_u4.x & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi21 = 0u + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo21 = 0u + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t94.y >> 12u;
-    const uint32_t limb0_17 = t94.y & 4095u;
+    const uint32_t limb1_17 = offset_u4.y >> 12u;
+    const uint32_t limb0_17 = offset_u4.y & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
-    const uint32_t limb1_18 = t94.z >> 12u;
-    const uint32_t limb0_18 = t94.z & 4095u;
+    const uint32_t limb1_18 = offset_u4.z >> 12u;
+    const uint32_t limb0_18 = offset_u4.z & 4095u;
     const uint32_t cross18 = limb1_18 * limb0_18;
     const uint32_t hi23 = hi22 + limb1_18 * limb1_18 + (cross18 >> 11u);
     const uint32_t lo23 = lo22 + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
     const uint32_t hi24 = hi23 + (lo23 >> 24u);
     const uint32_t lo24 = lo23 & 16777215u;
-    const float t95 = (float)hi24 * 16777216.0f;
-    const float dist4 = t95 + (float)lo24;
-    const bool t96 = base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t96 ? cand4.x : best2.x, t96 ? cand4.y : best2.y };
-    const unitpack_vec2 c = { t13 ? best3.x : 128.0f, t13 ? best3.y : 128.0f };
-    const unitpack_vec4 t97 = { 255.0f, c.y, 0.0f, c.x };
-    return t97;
+    const float t58 = (float)hi24 * 16777216.0f;
+    const float dist4 = t58 + (float)lo24;
+    const bool t59 = s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t59 ? cand4.x : best2.x, t59 ? cand4.y : best2.y };
+    const unitpack_vec2 c = { t8 ? best3.x : 128.0f, t8 ? best3.y : 128.0f };
+    const unitpack_vec4 t60 = { 255.0f, c.y, 0.0f, c.x };
+    return t60;
 }
 
 // Struct form of unitpack_paraboloid16p_xra_encode_float.

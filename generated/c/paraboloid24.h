@@ -75,11 +75,10 @@ static inline void unitpack_paraboloid24_decode_float(const float params[2], flo
 static inline unitpack_vec3 unitpack_paraboloid24_decode_v(uint32_t code) {
     const unitpack_vec2 t1 = { (float)(code & 4095u), (float)((code >> 12u) & 4095u) };
     const unitpack_vec2 t2 = {
-        t1.x > 2047.0f ? t1.x - 4096.0f : t1.x,
-        t1.y > 2047.0f ? t1.y - 4096.0f : t1.y
+        (t1.x > 2047.0f ? t1.x - 4096.0f : t1.x) * 0.0004885198f,
+        (t1.y > 2047.0f ? t1.y - 4096.0f : t1.y) * 0.0004885198f
     };
-    const unitpack_vec2 t3 = { t2.x * 0.0004885198f, t2.y * 0.0004885198f };
-    const unitpack_vec2 params = { t3.x >= (-1.0f) ? t3.x : -1.0f, t3.y >= (-1.0f) ? t3.y : -1.0f };
+    const unitpack_vec2 params = { t2.x >= (-1.0f) ? t2.x : -1.0f, t2.y >= (-1.0f) ? t2.y : -1.0f };
     const unitpack_vec3 decode_float = unitpack_paraboloid24_decode_float_v(params);
     return decode_float;
 }
@@ -99,37 +98,31 @@ static inline void unitpack_paraboloid24_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_paraboloid24_encode_float.
 static inline unitpack_vec2 unitpack_paraboloid24_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -138,22 +131,21 @@ static inline unitpack_vec2 unitpack_paraboloid24_encode_float_v(unitpack_vec3 v
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -171,34 +163,36 @@ static inline unitpack_vec2 unitpack_paraboloid24_encode_float_v(unitpack_vec3 v
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
-    const unitpack_vec2 t13 = { w4.x / a, w4.y / a };
-    return t13;
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
+    const unitpack_vec2 t8 = { w4.x / a, w4.y / a };
+    return t8;
 }
 
 // unitpack_paraboloid24_encode_float: fast encoder, float form.
@@ -219,37 +213,31 @@ static inline void unitpack_paraboloid24_encode_float(const float v[3], float ou
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_paraboloid24_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -258,22 +246,21 @@ static inline unitpack_vec2 unitpack_paraboloid24_round_codes_v(unitpack_vec3 a0
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -291,55 +278,53 @@ static inline unitpack_vec2 unitpack_paraboloid24_round_codes_v(unitpack_vec3 a0
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
-    const bool t13 = ok && ok2;
-    const unitpack_vec2 t14 = { fabsf(w4.x), fabsf(w4.y) };
-    const unitpack_vec2 t15 = { nearbyintf(t14.x / a * 2047.0f), nearbyintf(t14.y / a * 2047.0f) };
-    const unitpack_vec2 t16 = { t14.x * 2047.0f, t14.y * 2047.0f };
-    const unitpack_vec2 t17 = {
-        t16.x < (t15.x - 0.5f) * a ? -1.0f : 0.0f,
-        t16.y < (t15.y - 0.5f) * a ? -1.0f : 0.0f
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
+    const bool t8 = ok && ok2;
+    const unitpack_vec2 t9 = { fabsf(w4.x), fabsf(w4.y) };
+    const unitpack_vec2 t10 = { nearbyintf(t9.x / a * 2047.0f), nearbyintf(t9.y / a * 2047.0f) };
+    const unitpack_vec2 t11 = { t9.x * 2047.0f, t9.y * 2047.0f };
+    const unitpack_vec2 t12 = {
+        t11.x >= (t10.x + 0.5f) * a ? 1.0f : (t11.x < (t10.x - 0.5f) * a ? -1.0f : 0.0f),
+        t11.y >= (t10.y + 0.5f) * a ? 1.0f : (t11.y < (t10.y - 0.5f) * a ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t18 = {
-        t16.x >= (t15.x + 0.5f) * a ? 1.0f : t17.x,
-        t16.y >= (t15.y + 0.5f) * a ? 1.0f : t17.y
+    const unitpack_vec2 t13 = { t10.x + t12.x, t10.y + t12.y };
+    const unitpack_vec2 t14 = { t13.x >= 0.0f ? t13.x : 0.0f, t13.y >= 0.0f ? t13.y : 0.0f };
+    const unitpack_vec2 t15 = {
+        t14.x <= 2047.0f ? t14.x : 2047.0f,
+        t14.y <= 2047.0f ? t14.y : 2047.0f
     };
-    const unitpack_vec2 t19 = { t15.x + t18.x, t15.y + t18.y };
-    const unitpack_vec2 t20 = { t19.x >= 0.0f ? t19.x : 0.0f, t19.y >= 0.0f ? t19.y : 0.0f };
-    const unitpack_vec2 t21 = {
-        t20.x <= 2047.0f ? t20.x : 2047.0f,
-        t20.y <= 2047.0f ? t20.y : 2047.0f
+    const unitpack_vec2 t16 = {
+        t8 ? (w4.x < 0.0f ? -t15.x : t15.x) : 0.0f,
+        t8 ? (w4.y < 0.0f ? -t15.y : t15.y) : 0.0f
     };
-    const unitpack_vec2 t22 = {
-        t13 ? (w4.x < 0.0f ? -t21.x : t21.x) : 0.0f,
-        t13 ? (w4.y < 0.0f ? -t21.y : t21.y) : 0.0f
-    };
-    return t22;
+    return t16;
 }
 
 // Struct form of unitpack_paraboloid24_encode.

@@ -75,11 +75,10 @@ static inline void unitpack_paraboloid32p_decode_float(const float params[2], fl
 static inline unitpack_vec3 unitpack_paraboloid32p_decode_v(uint32_t code) {
     const unitpack_vec2 t1 = { (float)(code & 65535u), (float)(code >> 16u) };
     const unitpack_vec2 t2 = {
-        t1.x > 32767.0f ? t1.x - 65536.0f : t1.x,
-        t1.y > 32767.0f ? t1.y - 65536.0f : t1.y
+        (t1.x > 32767.0f ? t1.x - 65536.0f : t1.x) * 3.051851e-5f,
+        (t1.y > 32767.0f ? t1.y - 65536.0f : t1.y) * 3.051851e-5f
     };
-    const unitpack_vec2 t3 = { t2.x * 3.051851e-5f, t2.y * 3.051851e-5f };
-    const unitpack_vec2 params = { t3.x >= (-1.0f) ? t3.x : -1.0f, t3.y >= (-1.0f) ? t3.y : -1.0f };
+    const unitpack_vec2 params = { t2.x >= (-1.0f) ? t2.x : -1.0f, t2.y >= (-1.0f) ? t2.y : -1.0f };
     const unitpack_vec3 decode_float = unitpack_paraboloid32p_decode_float_v(params);
     return decode_float;
 }
@@ -103,37 +102,31 @@ static inline void unitpack_paraboloid32p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec2 unitpack_paraboloid32p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -142,22 +135,21 @@ static inline unitpack_vec2 unitpack_paraboloid32p_encode_codes_v(unitpack_vec3 
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
     const unitpack_vec3 halved = { w4.x, w4.y, w4.z * 0.5f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(halved.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(halved.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(halved.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(halved.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(halved.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(halved.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -175,51 +167,56 @@ static inline unitpack_vec2 unitpack_paraboloid32p_encode_codes_v(unitpack_vec3 
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const uint32_t half_exponent = ((unitpack_bits_of(len2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t7 = len2 * root_down;
-    const float root_estimate = sqrtf(t7);
-    const float t8 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t8 * 0.001953125f;
+    const float t3 = len2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t8
-        + (root_h1 * root_h1 <= t7 ? 1.0f : (root_h0 * root_h0 > t7 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t7 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t9 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t9;
-    const float t10 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t10;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t7 ? 1.0f : (root_m0 * root_m0 > t7 ? -1.0f : 0.0f));
-    const float t11 = root_k * 4096.0f;
-    const float root = (t11 + root_j) * 4.7683716e-7f;
-    const float t12 = root * root_up;
-    const float a = t12 + halved.z;
-    const bool t13 = ok && ok2;
-    const unitpack_vec2 t14 = { floorf(w4.x / a * 32767.0f), floorf(w4.y / a * 32767.0f) };
-    const unitpack_vec2 t15 = { w4.x * 32767.0f, w4.y * 32767.0f };
-    const unitpack_vec2 t16 = {
-        t15.x >= (t14.x + 1.0f) * a ? 1.0f : (t15.x < t14.x * a ? -1.0f : 0.0f),
-        t15.y >= (t14.y + 1.0f) * a ? 1.0f : (t15.y < t14.y * a ? -1.0f : 0.0f)
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float a = t7 + halved.z;
+    const bool t8 = ok && ok2;
+    const unitpack_vec2 t9 = { floorf(w4.x / a * 32767.0f), floorf(w4.y / a * 32767.0f) };
+    const unitpack_vec2 t10 = { w4.x * 32767.0f, w4.y * 32767.0f };
+    const unitpack_vec2 t11 = {
+        t10.x >= (t9.x + 1.0f) * a ? 1.0f : (t10.x < t9.x * a ? -1.0f : 0.0f),
+        t10.y >= (t9.y + 1.0f) * a ? 1.0f : (t10.y < t9.y * a ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t17 = { t14.x + t16.x, t14.y + t16.y };
-    const unitpack_vec2 t18 = {
-        t17.x >= (-32767.0f) ? t17.x : -32767.0f,
-        t17.y >= (-32767.0f) ? t17.y : -32767.0f
+    const unitpack_vec2 t12 = { t9.x + t11.x, t9.y + t11.y };
+    const unitpack_vec2 t13 = {
+        t12.x >= (-32767.0f) ? t12.x : -32767.0f,
+        t12.y >= (-32767.0f) ? t12.y : -32767.0f
     };
     const unitpack_vec2 base = {
-        t18.x <= 32767.0f ? t18.x : 32767.0f,
-        t18.y <= 32767.0f ? t18.y : 32767.0f
+        t13.x <= 32767.0f ? t13.x : 32767.0f,
+        t13.y <= 32767.0f ? t13.y : 32767.0f
     };
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed7 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const float fixed_f4 = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
+    const float fixed_f6 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed7 = (uint32_t)fixed_f6;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -237,53 +234,40 @@ static inline unitpack_vec2 unitpack_paraboloid32p_encode_codes_v(unitpack_vec3 
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t19 = (float)hi8 * 16777216.0f;
-    const float len2_2 = (t19 + (float)lo8) * 2.2737368e-13f;
+    const float t14 = (float)hi8 * 16777216.0f;
+    const float len2_2 = (t14 + (float)lo8) * 2.2737368e-13f;
     const float root_estimate2 = sqrtf(len2_2);
-    const float t20 = floorf(root_estimate2 * 512.0f);
-    const float root_h0_2 = t20 * 0.001953125f;
+    const float root_k0_2 = floorf(root_estimate2 * 512.0f);
+    const float root_h0_2 = root_k0_2 * 0.001953125f;
     const float root_h1_2 = root_h0_2 + 0.001953125f;
-    const float t21 = root_h1_2 * root_h1_2 <= len2_2
-        ? 1.0f
-        : (root_h0_2 * root_h0_2 > len2_2 ? -1.0f : 0.0f);
-    const float root_k2 = t20 + t21;
+    const float step_down3 = root_h0_2 * root_h0_2 > len2_2 ? -1.0f : 0.0f;
+    const float step3 = root_h1_2 * root_h1_2 <= len2_2 ? 1.0f : step_down3;
+    const float root_k2 = root_k0_2 + step3;
     const float root_h2 = root_k2 * 0.001953125f;
     const float root_h2_sq = root_h2 * root_h2;
     const float root_rest2 = len2_2 - root_h2_sq;
     const float root_j0_2 = floorf(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
-    const float t22 = root_j0_2 * 4.7683716e-7f;
-    const float root_m0_2 = root_h2 + t22;
-    const float t23 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    const float root_m1_2 = root_h2 + t23;
-    const float t24 = root_m1_2 * root_m1_2 <= len2_2
-        ? 1.0f
-        : (root_m0_2 * root_m0_2 > len2_2 ? -1.0f : 0.0f);
-    const float root_j2 = root_j0_2 + t24;
-    const float t25 = root_k2 * 4096.0f;
-    const float root2 = (t25 + root_j2) * 4.7683716e-7f;
-    const unitpack_vec3 t26 = {
-        w4.x / root2 * 2097152.0f,
-        w4.y / root2 * 2097152.0f,
-        w4.z / root2 * 2097152.0f
+    const float t15 = root_j0_2 * 4.7683716e-7f;
+    const float root_m0_2 = root_h2 + t15;
+    const float t16 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
+    const float root_m1_2 = root_h2 + t16;
+    const float step_down4 = root_m0_2 * root_m0_2 > len2_2 ? -1.0f : 0.0f;
+    const float step4 = root_m1_2 * root_m1_2 <= len2_2 ? 1.0f : step_down4;
+    const float root_j2 = root_j0_2 + step4;
+    const float t17 = root_k2 * 4096.0f;
+    const float root2 = (t17 + root_j2) * 4.7683716e-7f;
+    const unitpack_vec3 t18 = {
+        floorf(w4.x / root2 * 2097152.0f),
+        floorf(w4.y / root2 * 2097152.0f),
+        floorf(w4.z / root2 * 2097152.0f)
     };
-    const unitpack_vec3 floor_t26 = { floorf(t26.x), floorf(t26.y), floorf(t26.z) };
-    const unitpack_vec3 t27 = {
-        (floor_t26.x + 1.0f) * root2,
-        (floor_t26.y + 1.0f) * root2,
-        (floor_t26.z + 1.0f) * root2
+    const unitpack_vec3 t19 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
+    const unitpack_vec3 t20 = {
+        (t18.x + 1.0f) * root2 <= t19.x ? 1.0f : (t18.x * root2 > t19.x ? -1.0f : 0.0f),
+        (t18.y + 1.0f) * root2 <= t19.y ? 1.0f : (t18.y * root2 > t19.y ? -1.0f : 0.0f),
+        (t18.z + 1.0f) * root2 <= t19.z ? 1.0f : (t18.z * root2 > t19.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t28 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
-    const unitpack_bvec3 t29 = {
-        floor_t26.x * root2 > t28.x,
-        floor_t26.y * root2 > t28.y,
-        floor_t26.z * root2 > t28.z
-    };
-    const unitpack_vec3 t30 = {
-        t27.x <= t28.x ? 1.0f : (t29.x ? -1.0f : 0.0f),
-        t27.y <= t28.y ? 1.0f : (t29.y ? -1.0f : 0.0f),
-        t27.z <= t28.z ? 1.0f : (t29.z ? -1.0f : 0.0f)
-    };
-    const unitpack_vec3 aim = { floor_t26.x + t30.x, floor_t26.y + t30.y, floor_t26.z + t30.z };
+    const unitpack_vec3 aim = { t18.x + t20.x, t18.y + t20.y, t18.z + t20.z };
     const unitpack_vec2 cand = {
         base.x <= 32767.0f ? base.x : 32767.0f,
         base.y <= 32767.0f ? base.y : 32767.0f
@@ -292,264 +276,252 @@ static inline unitpack_vec2 unitpack_paraboloid32p_encode_codes_v(unitpack_vec3 
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
     const float z = 2097152.0f - (q <= 2097152.0f ? q : 2097152.0f);
     const float l2 = q + nearbyintf(z * z * 4.7683716e-7f);
-    const float t31 = l2 * 524288.0f;
-    const float root_estimate3 = floorf(sqrtf(t31));
+    const float t21 = l2 * 524288.0f;
+    const float root_estimate3 = floorf(sqrtf(t21));
     const float root_next = root_estimate3 + 1.0f;
-    const float t32 = root_next * root_next <= t31
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t31 ? -1.0f : 0.0f);
-    const float root_step = root_estimate3 + t32;
+    const float step_down5 = root_estimate3 * root_estimate3 > t21 ? -1.0f : 0.0f;
+    const float step5 = root_next * root_next <= t21 ? 1.0f : step_down5;
+    const float root_step = root_estimate3 + step5;
     const float root_next2 = root_step + 1.0f;
-    const float t33 = root_next2 * root_next2 <= t31
-        ? 1.0f
-        : (root_step * root_step > t31 ? -1.0f : 0.0f);
-    const float root3 = root_step + t33;
-    const float t34 = root3 * 2.0f;
+    const float step_down6 = root_step * root_step > t21 ? -1.0f : 0.0f;
+    const float step6 = root_next2 * root_next2 <= t21 ? 1.0f : step_down6;
+    const float root3 = root_step + step6;
+    const float t22 = root3 * 2.0f;
     const unitpack_vec2 abs_p = { fabsf(p.x), fabsf(p.y) };
-    const float t35 = t34 >= abs_p.x ? t34 : abs_p.x;
-    const float t36 = t35 >= abs_p.y ? t35 : abs_p.y;
-    const float l = t36 >= z ? t36 : z;
-    const unitpack_vec2 t37 = { floorf(p.x / l * 2097152.0f), floorf(p.y / l * 2097152.0f) };
-    const unitpack_vec2 t38 = { p.x * 2097152.0f, p.y * 2097152.0f };
-    const unitpack_vec2 t39 = {
-        (t37.x + 1.0f) * l <= t38.x ? 1.0f : (t37.x * l > t38.x ? -1.0f : 0.0f),
-        (t37.y + 1.0f) * l <= t38.y ? 1.0f : (t37.y * l > t38.y ? -1.0f : 0.0f)
+    const float t23 = t22 >= abs_p.x ? t22 : abs_p.x;
+    const float t24 = t23 >= abs_p.y ? t23 : abs_p.y;
+    const float l = t24 >= z ? t24 : z;
+    const unitpack_vec2 t25 = { floorf(p.x / l * 2097152.0f), floorf(p.y / l * 2097152.0f) };
+    const unitpack_vec2 t26 = { p.x * 2097152.0f, p.y * 2097152.0f };
+    const unitpack_vec2 t27 = {
+        (t25.x + 1.0f) * l <= t26.x ? 1.0f : (t25.x * l > t26.x ? -1.0f : 0.0f),
+        (t25.y + 1.0f) * l <= t26.y ? 1.0f : (t25.y * l > t26.y ? -1.0f : 0.0f)
     };
     const float big = z * 2097152.0f;
     const float ratio_estimate = floorf(z / l * 2097152.0f);
-    const float t40 = (ratio_estimate + 1.0f) * l <= big
-        ? 1.0f
-        : (ratio_estimate * l > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t40;
-    const unitpack_vec3 t41 = {
-        fabsf(t37.x + t39.x - aim.x),
-        fabsf(t37.y + t39.y - aim.y),
-        fabsf(ratio - aim.z)
+    const float step_down7 = ratio_estimate * l > big ? -1.0f : 0.0f;
+    const float step7 = (ratio_estimate + 1.0f) * l <= big ? 1.0f : step_down7;
+    const float ratio = ratio_estimate + step7;
+    const unitpack_vec3 offset = { t25.x + t27.x - aim.x, t25.y + t27.y - aim.y, ratio - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_uvec3 t42 = { (uint32_t)t41.x, (uint32_t)t41.y, (uint32_t)t41.z };
-    const uint32_t limb1_7 = t42.x >> 12u;
-    const uint32_t limb0_7 = t42.x & 4095u;
+    const uint32_t limb1_7 = offset_u.x >> 12u;
+    const uint32_t limb0_7 = offset_u.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t42.y >> 12u;
-    const uint32_t limb0_8 = t42.y & 4095u;
+    const uint32_t limb1_8 = offset_u.y >> 12u;
+    const uint32_t limb0_8 = offset_u.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t42.z >> 12u;
-    const uint32_t limb0_9 = t42.z & 4095u;
+    const uint32_t limb1_9 = offset_u.z >> 12u;
+    const uint32_t limb0_9 = offset_u.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t43 = (float)hi12 * 16777216.0f;
-    const float dist = t43 + (float)lo12;
-    const float t44 = base.x + 1.0f;
-    const unitpack_vec2 t45 = { t44, base.y };
+    const float t28 = (float)hi12 * 16777216.0f;
+    const float dist = t28 + (float)lo12;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t29 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t45.x <= 32767.0f ? t45.x : 32767.0f,
-        t45.y <= 32767.0f ? t45.y : 32767.0f
+        t29.x <= 32767.0f ? t29.x : 32767.0f,
+        t29.y <= 32767.0f ? t29.y : 32767.0f
     };
     const unitpack_vec2 p2 = { floorf(cand2.x * 64.00195f), floorf(cand2.y * 64.00195f) };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
     const float z2 = 2097152.0f - (q2 <= 2097152.0f ? q2 : 2097152.0f);
     const float l2_2 = q2 + nearbyintf(z2 * z2 * 4.7683716e-7f);
-    const float t46 = l2_2 * 524288.0f;
-    const float root_estimate4 = floorf(sqrtf(t46));
+    const float t30 = l2_2 * 524288.0f;
+    const float root_estimate4 = floorf(sqrtf(t30));
     const float root_next3 = root_estimate4 + 1.0f;
-    const float t47 = root_next3 * root_next3 <= t46
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t46 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate4 + t47;
+    const float step_down8 = root_estimate4 * root_estimate4 > t30 ? -1.0f : 0.0f;
+    const float step8 = root_next3 * root_next3 <= t30 ? 1.0f : step_down8;
+    const float root_step2 = root_estimate4 + step8;
     const float root_next4 = root_step2 + 1.0f;
-    const float t48 = root_next4 * root_next4 <= t46
-        ? 1.0f
-        : (root_step2 * root_step2 > t46 ? -1.0f : 0.0f);
-    const float root4 = root_step2 + t48;
-    const float t49 = root4 * 2.0f;
+    const float step_down9 = root_step2 * root_step2 > t30 ? -1.0f : 0.0f;
+    const float step9 = root_next4 * root_next4 <= t30 ? 1.0f : step_down9;
+    const float root4 = root_step2 + step9;
+    const float t31 = root4 * 2.0f;
     const unitpack_vec2 abs_p2 = { fabsf(p2.x), fabsf(p2.y) };
-    const float t50 = t49 >= abs_p2.x ? t49 : abs_p2.x;
-    const float t51 = t50 >= abs_p2.y ? t50 : abs_p2.y;
-    const float l3 = t51 >= z2 ? t51 : z2;
-    const unitpack_vec2 t52 = { floorf(p2.x / l3 * 2097152.0f), floorf(p2.y / l3 * 2097152.0f) };
-    const unitpack_vec2 t53 = { p2.x * 2097152.0f, p2.y * 2097152.0f };
-    const unitpack_vec2 t54 = {
-        (t52.x + 1.0f) * l3 <= t53.x ? 1.0f : (t52.x * l3 > t53.x ? -1.0f : 0.0f),
-        (t52.y + 1.0f) * l3 <= t53.y ? 1.0f : (t52.y * l3 > t53.y ? -1.0f : 0.0f)
+    const float t32 = t31 >= abs_p2.x ? t31 : abs_p2.x;
+    const float t33 = t32 >= abs_p2.y ? t32 : abs_p2.y;
+    const float l3 = t33 >= z2 ? t33 : z2;
+    const unitpack_vec2 t34 = { floorf(p2.x / l3 * 2097152.0f), floorf(p2.y / l3 * 2097152.0f) };
+    const unitpack_vec2 t35 = { p2.x * 2097152.0f, p2.y * 2097152.0f };
+    const unitpack_vec2 t36 = {
+        (t34.x + 1.0f) * l3 <= t35.x ? 1.0f : (t34.x * l3 > t35.x ? -1.0f : 0.0f),
+        (t34.y + 1.0f) * l3 <= t35.y ? 1.0f : (t34.y * l3 > t35.y ? -1.0f : 0.0f)
     };
     const float big2 = z2 * 2097152.0f;
     const float ratio_estimate2 = floorf(z2 / l3 * 2097152.0f);
-    const float t55 = (ratio_estimate2 + 1.0f) * l3 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * l3 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t55;
-    const unitpack_vec3 t56 = {
-        fabsf(t52.x + t54.x - aim.x),
-        fabsf(t52.y + t54.y - aim.y),
-        fabsf(ratio2 - aim.z)
+    const float step_down10 = ratio_estimate2 * l3 > big2 ? -1.0f : 0.0f;
+    const float step10 = (ratio_estimate2 + 1.0f) * l3 <= big2 ? 1.0f : step_down10;
+    const float ratio2 = ratio_estimate2 + step10;
+    const unitpack_vec3 offset2 = { t34.x + t36.x - aim.x, t34.y + t36.y - aim.y, ratio2 - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const unitpack_uvec3 t57 = { (uint32_t)t56.x, (uint32_t)t56.y, (uint32_t)t56.z };
-    const uint32_t limb1_10 = t57.x >> 12u;
-    const uint32_t limb0_10 = t57.x & 4095u;
+    const uint32_t limb1_10 = offset_u2.x >> 12u;
+    const uint32_t limb0_10 = offset_u2.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t57.y >> 12u;
-    const uint32_t limb0_11 = t57.y & 4095u;
+    const uint32_t limb1_11 = offset_u2.y >> 12u;
+    const uint32_t limb0_11 = offset_u2.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t57.z >> 12u;
-    const uint32_t limb0_12 = t57.z & 4095u;
+    const uint32_t limb1_12 = offset_u2.z >> 12u;
+    const uint32_t limb0_12 = offset_u2.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t58 = (float)hi16 * 16777216.0f;
-    const float dist2 = t58 + (float)lo16;
-    const bool t59 = t44 <= 32767.0f && base.y <= 32767.0f && dist2 < dist;
-    const unitpack_vec2 best = { t59 ? cand2.x : cand.x, t59 ? cand2.y : cand.y };
-    const float best_d = t59 ? dist2 : dist;
-    const float t60 = base.y + 1.0f;
-    const unitpack_vec2 t61 = { base.x, t60 };
+    const float t37 = (float)hi16 * 16777216.0f;
+    const float dist2 = t37 + (float)lo16;
+    const bool t38 = s_up <= 32767.0f && base.y <= 32767.0f && dist2 < dist;
+    const unitpack_vec2 best = { t38 ? cand2.x : cand.x, t38 ? cand2.y : cand.y };
+    const float best_d = t38 ? dist2 : dist;
+    const unitpack_vec2 t39 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t61.x <= 32767.0f ? t61.x : 32767.0f,
-        t61.y <= 32767.0f ? t61.y : 32767.0f
+        t39.x <= 32767.0f ? t39.x : 32767.0f,
+        t39.y <= 32767.0f ? t39.y : 32767.0f
     };
     const unitpack_vec2 p3 = { floorf(cand3.x * 64.00195f), floorf(cand3.y * 64.00195f) };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
     const float z3 = 2097152.0f - (q3 <= 2097152.0f ? q3 : 2097152.0f);
     const float l2_3 = q3 + nearbyintf(z3 * z3 * 4.7683716e-7f);
-    const float t62 = l2_3 * 524288.0f;
-    const float root_estimate5 = floorf(sqrtf(t62));
+    const float t40 = l2_3 * 524288.0f;
+    const float root_estimate5 = floorf(sqrtf(t40));
     const float root_next5 = root_estimate5 + 1.0f;
-    const float t63 = root_next5 * root_next5 <= t62
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t62 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate5 + t63;
+    const float step_down11 = root_estimate5 * root_estimate5 > t40 ? -1.0f : 0.0f;
+    const float step11 = root_next5 * root_next5 <= t40 ? 1.0f : step_down11;
+    const float root_step3 = root_estimate5 + step11;
     const float root_next6 = root_step3 + 1.0f;
-    const float t64 = root_next6 * root_next6 <= t62
-        ? 1.0f
-        : (root_step3 * root_step3 > t62 ? -1.0f : 0.0f);
-    const float root5 = root_step3 + t64;
-    const float t65 = root5 * 2.0f;
+    const float step_down12 = root_step3 * root_step3 > t40 ? -1.0f : 0.0f;
+    const float step12 = root_next6 * root_next6 <= t40 ? 1.0f : step_down12;
+    const float root5 = root_step3 + step12;
+    const float t41 = root5 * 2.0f;
     const unitpack_vec2 abs_p3 = { fabsf(p3.x), fabsf(p3.y) };
-    const float t66 = t65 >= abs_p3.x ? t65 : abs_p3.x;
-    const float t67 = t66 >= abs_p3.y ? t66 : abs_p3.y;
-    const float l4 = t67 >= z3 ? t67 : z3;
-    const unitpack_vec2 t68 = { floorf(p3.x / l4 * 2097152.0f), floorf(p3.y / l4 * 2097152.0f) };
-    const unitpack_vec2 t69 = { p3.x * 2097152.0f, p3.y * 2097152.0f };
-    const unitpack_vec2 t70 = {
-        (t68.x + 1.0f) * l4 <= t69.x ? 1.0f : (t68.x * l4 > t69.x ? -1.0f : 0.0f),
-        (t68.y + 1.0f) * l4 <= t69.y ? 1.0f : (t68.y * l4 > t69.y ? -1.0f : 0.0f)
+    const float t42 = t41 >= abs_p3.x ? t41 : abs_p3.x;
+    const float t43 = t42 >= abs_p3.y ? t42 : abs_p3.y;
+    const float l4 = t43 >= z3 ? t43 : z3;
+    const unitpack_vec2 t44 = { floorf(p3.x / l4 * 2097152.0f), floorf(p3.y / l4 * 2097152.0f) };
+    const unitpack_vec2 t45 = { p3.x * 2097152.0f, p3.y * 2097152.0f };
+    const unitpack_vec2 t46 = {
+        (t44.x + 1.0f) * l4 <= t45.x ? 1.0f : (t44.x * l4 > t45.x ? -1.0f : 0.0f),
+        (t44.y + 1.0f) * l4 <= t45.y ? 1.0f : (t44.y * l4 > t45.y ? -1.0f : 0.0f)
     };
     const float big3 = z3 * 2097152.0f;
     const float ratio_estimate3 = floorf(z3 / l4 * 2097152.0f);
-    const float t71 = (ratio_estimate3 + 1.0f) * l4 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * l4 > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t71;
-    const unitpack_vec3 t72 = {
-        fabsf(t68.x + t70.x - aim.x),
-        fabsf(t68.y + t70.y - aim.y),
-        fabsf(ratio3 - aim.z)
+    const float step_down13 = ratio_estimate3 * l4 > big3 ? -1.0f : 0.0f;
+    const float step13 = (ratio_estimate3 + 1.0f) * l4 <= big3 ? 1.0f : step_down13;
+    const float ratio3 = ratio_estimate3 + step13;
+    const unitpack_vec3 offset3 = { t44.x + t46.x - aim.x, t44.y + t46.y - aim.y, ratio3 - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const unitpack_uvec3 t73 = { (uint32_t)t72.x, (uint32_t)t72.y, (uint32_t)t72.z };
-    const uint32_t limb1_13 = t73.x >> 12u;
-    const uint32_t limb0_13 = t73.x & 4095u;
+    const uint32_t limb1_13 = offset_u3.x >> 12u;
+    const uint32_t limb0_13 = offset_u3.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t73.y >> 12u;
-    const uint32_t limb0_14 = t73.y & 4095u;
+    const uint32_t limb1_14 = offset_u3.y >> 12u;
+    const uint32_t limb0_14 = offset_u3.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t73.z >> 12u;
-    const uint32_t limb0_15 = t73.z & 4095u;
+    const uint32_t limb1_15 = offset_u3.z >> 12u;
+    const uint32_t limb0_15 = offset_u3.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t74 = (float)hi20 * 16777216.0f;
-    const float dist3 = t74 + (float)lo20;
-    const bool t75 = base.x <= 32767.0f && t60 <= 32767.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t75 ? cand3.x : best.x, t75 ? cand3.y : best.y };
-    const float best_d2 = t75 ? dist3 : best_d;
-    const unitpack_vec2 t76 = { base.x + 1.0f, base.y + 1.0f };
+    const float t47 = (float)hi20 * 16777216.0f;
+    const float dist3 = t47 + (float)lo20;
+    const bool t48 = base.x <= 32767.0f && t_up <= 32767.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t48 ? cand3.x : best.x, t48 ? cand3.y : best.y };
+    const float best_d2 = t48 ? dist3 : best_d;
+    const unitpack_vec2 t49 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t76.x <= 32767.0f ? t76.x : 32767.0f,
-        t76.y <= 32767.0f ? t76.y : 32767.0f
+        t49.x <= 32767.0f ? t49.x : 32767.0f,
+        t49.y <= 32767.0f ? t49.y : 32767.0f
     };
     const unitpack_vec2 p4 = { floorf(cand4.x * 64.00195f), floorf(cand4.y * 64.00195f) };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
     const float z4 = 2097152.0f - (q4 <= 2097152.0f ? q4 : 2097152.0f);
     const float l2_4 = q4 + nearbyintf(z4 * z4 * 4.7683716e-7f);
-    const float t77 = l2_4 * 524288.0f;
-    const float root_estimate6 = floorf(sqrtf(t77));
+    const float t50 = l2_4 * 524288.0f;
+    const float root_estimate6 = floorf(sqrtf(t50));
     const float root_next7 = root_estimate6 + 1.0f;
-    const float t78 = root_next7 * root_next7 <= t77
-        ? 1.0f
-        : (root_estimate6 * root_estimate6 > t77 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate6 + t78;
+    const float step_down14 = root_estimate6 * root_estimate6 > t50 ? -1.0f : 0.0f;
+    const float step14 = root_next7 * root_next7 <= t50 ? 1.0f : step_down14;
+    const float root_step4 = root_estimate6 + step14;
     const float root_next8 = root_step4 + 1.0f;
-    const float t79 = root_next8 * root_next8 <= t77
-        ? 1.0f
-        : (root_step4 * root_step4 > t77 ? -1.0f : 0.0f);
-    const float root6 = root_step4 + t79;
-    const float t80 = root6 * 2.0f;
+    const float step_down15 = root_step4 * root_step4 > t50 ? -1.0f : 0.0f;
+    const float step15 = root_next8 * root_next8 <= t50 ? 1.0f : step_down15;
+    const float root6 = root_step4 + step15;
+    const float t51 = root6 * 2.0f;
     const unitpack_vec2 abs_p4 = { fabsf(p4.x), fabsf(p4.y) };
-    const float t81 = t80 >= abs_p4.x ? t80 : abs_p4.x;
-    const float t82 = t81 >= abs_p4.y ? t81 : abs_p4.y;
-    const float l5 = t82 >= z4 ? t82 : z4;
-    const unitpack_vec2 t83 = { floorf(p4.x / l5 * 2097152.0f), floorf(p4.y / l5 * 2097152.0f) };
-    const unitpack_vec2 t84 = { p4.x * 2097152.0f, p4.y * 2097152.0f };
-    const unitpack_vec2 t85 = {
-        (t83.x + 1.0f) * l5 <= t84.x ? 1.0f : (t83.x * l5 > t84.x ? -1.0f : 0.0f),
-        (t83.y + 1.0f) * l5 <= t84.y ? 1.0f : (t83.y * l5 > t84.y ? -1.0f : 0.0f)
+    const float t52 = t51 >= abs_p4.x ? t51 : abs_p4.x;
+    const float t53 = t52 >= abs_p4.y ? t52 : abs_p4.y;
+    const float l5 = t53 >= z4 ? t53 : z4;
+    const unitpack_vec2 t54 = { floorf(p4.x / l5 * 2097152.0f), floorf(p4.y / l5 * 2097152.0f) };
+    const unitpack_vec2 t55 = { p4.x * 2097152.0f, p4.y * 2097152.0f };
+    const unitpack_vec2 t56 = {
+        (t54.x + 1.0f) * l5 <= t55.x ? 1.0f : (t54.x * l5 > t55.x ? -1.0f : 0.0f),
+        (t54.y + 1.0f) * l5 <= t55.y ? 1.0f : (t54.y * l5 > t55.y ? -1.0f : 0.0f)
     };
     const float big4 = z4 * 2097152.0f;
     const float ratio_estimate4 = floorf(z4 / l5 * 2097152.0f);
-    const float t86 = (ratio_estimate4 + 1.0f) * l5 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * l5 > big4 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate4 + t86;
-    const unitpack_vec3 t87 = {
-        fabsf(t83.x + t85.x - aim.x),
-        fabsf(t83.y + t85.y - aim.y),
-        fabsf(ratio4 - aim.z)
+    const float step_down16 = ratio_estimate4 * l5 > big4 ? -1.0f : 0.0f;
+    const float step16 = (ratio_estimate4 + 1.0f) * l5 <= big4 ? 1.0f : step_down16;
+    const float ratio4 = ratio_estimate4 + step16;
+    const unitpack_vec3 offset4 = { t54.x + t56.x - aim.x, t54.y + t56.y - aim.y, ratio4 - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const unitpack_uvec3 t88 = { (uint32_t)t87.x, (uint32_t)t87.y, (uint32_t)t87.z };
-    const uint32_t limb1_16 = t88.x >> 12u;
-    const uint32_t limb0_16 = t88.x & 4095u;
+    const uint32_t limb1_16 = offset_u4.x >> 12u;
+    const uint32_t limb0_16 = offset_u4.x & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi21 = 0u + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo21 = 0u + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t88.y >> 12u;
-    const uint32_t limb0_17 = t88.y & 4095u;
+    const uint32_t limb1_17 = offset_u4.y >> 12u;
+    const uint32_t limb0_17 = offset_u4.y & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
-    const uint32_t limb1_18 = t88.z >> 12u;
-    const uint32_t limb0_18 = t88.z & 4095u;
+    const uint32_t limb1_18 = offset_u4.z >> 12u;
+    const uint32_t limb0_18 = offset_u4.z & 4095u;
     const uint32_t cross18 = limb1_18 * limb0_18;
     const uint32_t hi23 = hi22 + limb1_18 * limb1_18 + (cross18 >> 11u);
     const uint32_t lo23 = lo22 + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
     const uint32_t hi24 = hi23 + (lo23 >> 24u);
     const uint32_t lo24 = lo23 & 16777215u;
-    const float t89 = (float)hi24 * 16777216.0f;
-    const float dist4 = t89 + (float)lo24;
-    const bool t90 = base.x + 1.0f <= 32767.0f && base.y + 1.0f <= 32767.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t90 ? cand4.x : best2.x, t90 ? cand4.y : best2.y };
-    const unitpack_vec2 t91 = { t13 ? best3.x : 0.0f, t13 ? best3.y : 0.0f };
-    return t91;
+    const float t57 = (float)hi24 * 16777216.0f;
+    const float dist4 = t57 + (float)lo24;
+    const bool t58 = s_up <= 32767.0f && t_up <= 32767.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t58 ? cand4.x : best2.x, t58 ? cand4.y : best2.y };
+    const unitpack_vec2 t59 = { t8 ? best3.x : 0.0f, t8 ? best3.y : 0.0f };
+    return t59;
 }
 
 // Struct form of unitpack_paraboloid32p_encode_float.

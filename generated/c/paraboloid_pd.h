@@ -41,17 +41,17 @@ static inline unitpack_vec3 unitpack_combine_paraboloid_pd_v(unitpack_vec2 pn, u
     const float t1 = 1.0f - pn_x_sq - pn_y_sq;
     const float t2 = t1 >= 0.0f ? t1 : 0.0f;
     const float nz = t2 <= 1.0f ? t2 : 1.0f;
-    const float t3 = -nz;
-    const unitpack_vec2 t4 = { pd.x * t3, pd.y * t3 };
-    const unitpack_vec3 combined = { t4.x + pn.x, t4.y + pn.y, nz };
+    const float neg_nz = -nz;
+    const unitpack_vec2 t3 = { pd.x * neg_nz, pd.y * neg_nz };
+    const unitpack_vec3 combined = { t3.x + pn.x, t3.y + pn.y, nz };
     const unitpack_vec3 combined_sq = {
         combined.x * combined.x,
         combined.y * combined.y,
         combined.z * combined.z
     };
-    const float t5 = sqrtf(combined_sq.x + combined_sq.y + combined_sq.z);
-    const unitpack_vec3 t6 = { combined.x / t5, combined.y / t5, combined.z / t5 };
-    return t6;
+    const float t4 = sqrtf(combined_sq.x + combined_sq.y + combined_sq.z);
+    const unitpack_vec3 t5 = { combined.x / t4, combined.y / t4, combined.z / t4 };
+    return t5;
 }
 
 // The second seed's CombineParaboloidNormalWithPD: `pn` a paraboloid point (the float form of

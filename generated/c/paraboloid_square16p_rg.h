@@ -87,17 +87,17 @@ static inline void unitpack_paraboloid_square16p_rg_decode_float(
 
 // Struct form of unitpack_paraboloid_square16p_rg_decode.
 static inline unitpack_vec3 unitpack_paraboloid_square16p_rg_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_paraboloid_square16p_rg_decode_float_v(params);
     return decode_float;
@@ -147,10 +147,9 @@ static inline unitpack_vec2 unitpack_paraboloid_square16p_rg_square_point_v(unit
     const float t5 = t3 >= 1.0f ? t3 : 1.0f;
     const float big = t4 * 2097152.0f;
     const float ratio_estimate = floorf(t4 / t5 * 2097152.0f);
-    const float t6 = (ratio_estimate + 1.0f) * t5 <= big
-        ? 1.0f
-        : (ratio_estimate * t5 > big ? -1.0f : 0.0f);
-    const float r = ratio_estimate + t6;
+    const float step_down = ratio_estimate * t5 > big ? -1.0f : 0.0f;
+    const float step = (ratio_estimate + 1.0f) * t5 <= big ? 1.0f : step_down;
+    const float r = ratio_estimate + step;
     const unitpack_vec3 k = { t3, nearbyintf(r * r * 4.7683716e-7f), a0.z };
     const float s = unitpack_paraboloid_square16p_rg_square_step_v(0.0f, 2097152.0f, k);
     const float s2 = unitpack_paraboloid_square16p_rg_square_step_v(s, 1048576.0f, k);
@@ -174,10 +173,10 @@ static inline unitpack_vec2 unitpack_paraboloid_square16p_rg_square_point_v(unit
     const float s20 = unitpack_paraboloid_square16p_rg_square_step_v(s19, 4.0f, k);
     const float s21 = unitpack_paraboloid_square16p_rg_square_step_v(s20, 2.0f, k);
     const float s22 = unitpack_paraboloid_square16p_rg_square_step_v(s21, 1.0f, k);
-    const float t7 = nearbyintf(r * s22 * 4.7683716e-7f);
-    const unitpack_vec2 t8 = { t2 ? s22 : t7, t2 ? t7 : s22 };
-    const unitpack_vec2 t9 = { a0.x < 0.0f ? -t8.x : t8.x, a0.y < 0.0f ? -t8.y : t8.y };
-    return t9;
+    const float t6 = nearbyintf(r * s22 * 4.7683716e-7f);
+    const unitpack_vec2 t7 = { t2 ? s22 : t6, t2 ? t6 : s22 };
+    const unitpack_vec2 t8 = { a0.x < 0.0f ? -t7.x : t7.x, a0.y < 0.0f ? -t7.y : t7.y };
+    return t8;
 }
 
 // Precise search, decided in fixed point: among the four codes around the exact parameters, the one
@@ -186,37 +185,31 @@ static inline unitpack_vec2 unitpack_paraboloid_square16p_rg_square_point_v(unit
 //   on ties.
 
 static inline unitpack_vec4 unitpack_paraboloid_square16p_rg_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -225,21 +218,20 @@ static inline unitpack_vec4 unitpack_paraboloid_square16p_rg_encode_codes_v(unit
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -257,336 +249,313 @@ static inline unitpack_vec4 unitpack_paraboloid_square16p_rg_encode_codes_v(unit
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t11 = {
+    const float t3 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t3;
+    const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t4;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t5 = root_k * 4096.0f;
+    const float root = (t5 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t6 = {
         floorf(w4.x / root * 2097152.0f),
         floorf(w4.y / root * 2097152.0f),
         floorf(w4.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t12 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
-    const unitpack_bvec3 t13 = {
-        (t11.x + 1.0f) * root <= t12.x,
-        (t11.y + 1.0f) * root <= t12.y,
-        (t11.z + 1.0f) * root <= t12.z
+    const unitpack_vec3 t7 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
+    const unitpack_vec3 t8 = {
+        (t6.x + 1.0f) * root <= t7.x ? 1.0f : (t6.x * root > t7.x ? -1.0f : 0.0f),
+        (t6.y + 1.0f) * root <= t7.y ? 1.0f : (t6.y * root > t7.y ? -1.0f : 0.0f),
+        (t6.z + 1.0f) * root <= t7.z ? 1.0f : (t6.z * root > t7.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t14 = {
-        t11.x * root > t12.x ? -1.0f : 0.0f,
-        t11.y * root > t12.y ? -1.0f : 0.0f,
-        t11.z * root > t12.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t11.x + (t13.x ? 1.0f : t14.x),
-        t11.y + (t13.y ? 1.0f : t14.y),
-        t11.z + (t13.z ? 1.0f : t14.z)
-    };
+    const unitpack_vec3 aim = { t6.x + t8.x, t6.y + t8.y, t6.z + t8.z };
     const unitpack_vec2 p = unitpack_paraboloid_square16p_rg_square_point_v(aim);
-    const unitpack_uvec2 t15 = {
+    const unitpack_uvec2 t9 = {
         ((uint32_t)(p.x + 2097152.0f) * 255u) >> 22u,
         ((uint32_t)(p.y + 2097152.0f) * 255u) >> 22u
     };
-    const unitpack_vec2 base = { (float)t15.x, (float)t15.y };
+    const unitpack_vec2 base = { (float)t9.x, (float)t9.y };
     const unitpack_vec2 cand = {
         base.x <= 255.0f ? base.x : 255.0f,
         base.y <= 255.0f ? base.y : 255.0f
     };
-    const unitpack_vec2 t16 = {
-        (cand.x + cand.x - 255.0f) * 8224.126f,
-        (cand.y + cand.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p2 = {
+        floorf((cand.x + cand.x - 255.0f) * 8224.126f),
+        floorf((cand.y + cand.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p2 = { floorf(t16.x), floorf(t16.y) };
-    const float t17 = nearbyintf(p2.x * p2.x * 4.7683716e-7f);
-    const float t18 = nearbyintf(p2.y * p2.y * 4.7683716e-7f);
-    const float z = nearbyintf((2097152.0f - t17) * (2097152.0f - t18) * 4.7683716e-7f);
-    const float l2 = t17 + t18 + nearbyintf(z * z * 4.7683716e-7f);
-    const float t19 = l2 * 524288.0f;
-    const float root_estimate2 = floorf(sqrtf(t19));
+    const float t10 = nearbyintf(p2.x * p2.x * 4.7683716e-7f);
+    const float t11 = nearbyintf(p2.y * p2.y * 4.7683716e-7f);
+    const float z = nearbyintf((2097152.0f - t10) * (2097152.0f - t11) * 4.7683716e-7f);
+    const float l2 = t10 + t11 + nearbyintf(z * z * 4.7683716e-7f);
+    const float t12 = l2 * 524288.0f;
+    const float root_estimate2 = floorf(sqrtf(t12));
     const float root_next = root_estimate2 + 1.0f;
-    const float t20 = root_next * root_next <= t19
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t19 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t20;
+    const float step_down3 = root_estimate2 * root_estimate2 > t12 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t12 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t21 = root_next2 * root_next2 <= t19
-        ? 1.0f
-        : (root_step * root_step > t19 ? -1.0f : 0.0f);
-    const float root2 = root_step + t21;
-    const float t22 = root2 * 2.0f;
+    const float step_down4 = root_step * root_step > t12 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t12 ? 1.0f : step_down4;
+    const float root2 = root_step + step4;
+    const float t13 = root2 * 2.0f;
     const unitpack_vec2 abs_p2 = { fabsf(p2.x), fabsf(p2.y) };
-    const float t23 = t22 >= abs_p2.x ? t22 : abs_p2.x;
-    const float t24 = t23 >= abs_p2.y ? t23 : abs_p2.y;
-    const float l = t24 >= z ? t24 : z;
-    const unitpack_vec2 t25 = { floorf(p2.x / l * 2097152.0f), floorf(p2.y / l * 2097152.0f) };
-    const unitpack_vec2 t26 = { p2.x * 2097152.0f, p2.y * 2097152.0f };
-    const unitpack_vec2 t27 = {
-        (t25.x + 1.0f) * l <= t26.x ? 1.0f : (t25.x * l > t26.x ? -1.0f : 0.0f),
-        (t25.y + 1.0f) * l <= t26.y ? 1.0f : (t25.y * l > t26.y ? -1.0f : 0.0f)
+    const float t14 = t13 >= abs_p2.x ? t13 : abs_p2.x;
+    const float t15 = t14 >= abs_p2.y ? t14 : abs_p2.y;
+    const float l = t15 >= z ? t15 : z;
+    const unitpack_vec2 t16 = { floorf(p2.x / l * 2097152.0f), floorf(p2.y / l * 2097152.0f) };
+    const unitpack_vec2 t17 = { p2.x * 2097152.0f, p2.y * 2097152.0f };
+    const unitpack_vec2 t18 = {
+        (t16.x + 1.0f) * l <= t17.x ? 1.0f : (t16.x * l > t17.x ? -1.0f : 0.0f),
+        (t16.y + 1.0f) * l <= t17.y ? 1.0f : (t16.y * l > t17.y ? -1.0f : 0.0f)
     };
     const float big = z * 2097152.0f;
     const float ratio_estimate = floorf(z / l * 2097152.0f);
-    const float t28 = (ratio_estimate + 1.0f) * l <= big
-        ? 1.0f
-        : (ratio_estimate * l > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t28;
-    const unitpack_vec3 t29 = {
-        fabsf(t25.x + t27.x - aim.x),
-        fabsf(t25.y + t27.y - aim.y),
-        fabsf(ratio - aim.z)
+    const float step_down5 = ratio_estimate * l > big ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate + 1.0f) * l <= big ? 1.0f : step_down5;
+    const float ratio = ratio_estimate + step5;
+    const unitpack_vec3 offset = { t16.x + t18.x - aim.x, t16.y + t18.y - aim.y, ratio - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_uvec3 t30 = { (uint32_t)t29.x, (uint32_t)t29.y, (uint32_t)t29.z };
-    const uint32_t limb1_4 = t30.x >> 12u;
-    const uint32_t limb0_4 = t30.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t30.y >> 12u;
-    const uint32_t limb0_5 = t30.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t30.z >> 12u;
-    const uint32_t limb0_6 = t30.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t31 = (float)hi8 * 16777216.0f;
-    const float dist = t31 + (float)lo8;
-    const float t32 = base.x + 1.0f;
-    const unitpack_vec2 t33 = { t32, base.y };
+    const float t19 = (float)hi8 * 16777216.0f;
+    const float dist = t19 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t20 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t33.x <= 255.0f ? t33.x : 255.0f,
-        t33.y <= 255.0f ? t33.y : 255.0f
+        t20.x <= 255.0f ? t20.x : 255.0f,
+        t20.y <= 255.0f ? t20.y : 255.0f
     };
-    const unitpack_vec2 t34 = {
-        (cand2.x + cand2.x - 255.0f) * 8224.126f,
-        (cand2.y + cand2.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p3 = {
+        floorf((cand2.x + cand2.x - 255.0f) * 8224.126f),
+        floorf((cand2.y + cand2.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p3 = { floorf(t34.x), floorf(t34.y) };
-    const float t35 = nearbyintf(p3.x * p3.x * 4.7683716e-7f);
-    const float t36 = nearbyintf(p3.y * p3.y * 4.7683716e-7f);
-    const float z2 = nearbyintf((2097152.0f - t35) * (2097152.0f - t36) * 4.7683716e-7f);
-    const float l2_2 = t35 + t36 + nearbyintf(z2 * z2 * 4.7683716e-7f);
-    const float t37 = l2_2 * 524288.0f;
-    const float root_estimate3 = floorf(sqrtf(t37));
+    const float t21 = nearbyintf(p3.x * p3.x * 4.7683716e-7f);
+    const float t22 = nearbyintf(p3.y * p3.y * 4.7683716e-7f);
+    const float z2 = nearbyintf((2097152.0f - t21) * (2097152.0f - t22) * 4.7683716e-7f);
+    const float l2_2 = t21 + t22 + nearbyintf(z2 * z2 * 4.7683716e-7f);
+    const float t23 = l2_2 * 524288.0f;
+    const float root_estimate3 = floorf(sqrtf(t23));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t38 = root_next3 * root_next3 <= t37
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t37 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t38;
+    const float step_down6 = root_estimate3 * root_estimate3 > t23 ? -1.0f : 0.0f;
+    const float step6 = root_next3 * root_next3 <= t23 ? 1.0f : step_down6;
+    const float root_step2 = root_estimate3 + step6;
     const float root_next4 = root_step2 + 1.0f;
-    const float t39 = root_next4 * root_next4 <= t37
-        ? 1.0f
-        : (root_step2 * root_step2 > t37 ? -1.0f : 0.0f);
-    const float root3 = root_step2 + t39;
-    const float t40 = root3 * 2.0f;
+    const float step_down7 = root_step2 * root_step2 > t23 ? -1.0f : 0.0f;
+    const float step7 = root_next4 * root_next4 <= t23 ? 1.0f : step_down7;
+    const float root3 = root_step2 + step7;
+    const float t24 = root3 * 2.0f;
     const unitpack_vec2 abs_p3 = { fabsf(p3.x), fabsf(p3.y) };
-    const float t41 = t40 >= abs_p3.x ? t40 : abs_p3.x;
-    const float t42 = t41 >= abs_p3.y ? t41 : abs_p3.y;
-    const float l3 = t42 >= z2 ? t42 : z2;
-    const unitpack_vec2 t43 = { floorf(p3.x / l3 * 2097152.0f), floorf(p3.y / l3 * 2097152.0f) };
-    const unitpack_vec2 t44 = { p3.x * 2097152.0f, p3.y * 2097152.0f };
-    const unitpack_vec2 t45 = {
-        (t43.x + 1.0f) * l3 <= t44.x ? 1.0f : (t43.x * l3 > t44.x ? -1.0f : 0.0f),
-        (t43.y + 1.0f) * l3 <= t44.y ? 1.0f : (t43.y * l3 > t44.y ? -1.0f : 0.0f)
+    const float t25 = t24 >= abs_p3.x ? t24 : abs_p3.x;
+    const float t26 = t25 >= abs_p3.y ? t25 : abs_p3.y;
+    const float l3 = t26 >= z2 ? t26 : z2;
+    const unitpack_vec2 t27 = { floorf(p3.x / l3 * 2097152.0f), floorf(p3.y / l3 * 2097152.0f) };
+    const unitpack_vec2 t28 = { p3.x * 2097152.0f, p3.y * 2097152.0f };
+    const unitpack_vec2 t29 = {
+        (t27.x + 1.0f) * l3 <= t28.x ? 1.0f : (t27.x * l3 > t28.x ? -1.0f : 0.0f),
+        (t27.y + 1.0f) * l3 <= t28.y ? 1.0f : (t27.y * l3 > t28.y ? -1.0f : 0.0f)
     };
     const float big2 = z2 * 2097152.0f;
     const float ratio_estimate2 = floorf(z2 / l3 * 2097152.0f);
-    const float t46 = (ratio_estimate2 + 1.0f) * l3 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * l3 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t46;
-    const unitpack_vec3 t47 = {
-        fabsf(t43.x + t45.x - aim.x),
-        fabsf(t43.y + t45.y - aim.y),
-        fabsf(ratio2 - aim.z)
+    const float step_down8 = ratio_estimate2 * l3 > big2 ? -1.0f : 0.0f;
+    const float step8 = (ratio_estimate2 + 1.0f) * l3 <= big2 ? 1.0f : step_down8;
+    const float ratio2 = ratio_estimate2 + step8;
+    const unitpack_vec3 offset2 = { t27.x + t29.x - aim.x, t27.y + t29.y - aim.y, ratio2 - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const unitpack_uvec3 t48 = { (uint32_t)t47.x, (uint32_t)t47.y, (uint32_t)t47.z };
-    const uint32_t limb1_7 = t48.x >> 12u;
-    const uint32_t limb0_7 = t48.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t48.y >> 12u;
-    const uint32_t limb0_8 = t48.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t48.z >> 12u;
-    const uint32_t limb0_9 = t48.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t49 = (float)hi12 * 16777216.0f;
-    const float dist2 = t49 + (float)lo12;
-    const bool t50 = t32 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    const unitpack_vec2 best = { t50 ? cand2.x : cand.x, t50 ? cand2.y : cand.y };
-    const float best_d = t50 ? dist2 : dist;
-    const float t51 = base.y + 1.0f;
-    const unitpack_vec2 t52 = { base.x, t51 };
+    const float t30 = (float)hi12 * 16777216.0f;
+    const float dist2 = t30 + (float)lo12;
+    const bool t31 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    const unitpack_vec2 best = { t31 ? cand2.x : cand.x, t31 ? cand2.y : cand.y };
+    const float best_d = t31 ? dist2 : dist;
+    const unitpack_vec2 t32 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t52.x <= 255.0f ? t52.x : 255.0f,
-        t52.y <= 255.0f ? t52.y : 255.0f
+        t32.x <= 255.0f ? t32.x : 255.0f,
+        t32.y <= 255.0f ? t32.y : 255.0f
     };
-    const unitpack_vec2 t53 = {
-        (cand3.x + cand3.x - 255.0f) * 8224.126f,
-        (cand3.y + cand3.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p4 = {
+        floorf((cand3.x + cand3.x - 255.0f) * 8224.126f),
+        floorf((cand3.y + cand3.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p4 = { floorf(t53.x), floorf(t53.y) };
-    const float t54 = nearbyintf(p4.x * p4.x * 4.7683716e-7f);
-    const float t55 = nearbyintf(p4.y * p4.y * 4.7683716e-7f);
-    const float z3 = nearbyintf((2097152.0f - t54) * (2097152.0f - t55) * 4.7683716e-7f);
-    const float l2_3 = t54 + t55 + nearbyintf(z3 * z3 * 4.7683716e-7f);
-    const float t56 = l2_3 * 524288.0f;
-    const float root_estimate4 = floorf(sqrtf(t56));
+    const float t33 = nearbyintf(p4.x * p4.x * 4.7683716e-7f);
+    const float t34 = nearbyintf(p4.y * p4.y * 4.7683716e-7f);
+    const float z3 = nearbyintf((2097152.0f - t33) * (2097152.0f - t34) * 4.7683716e-7f);
+    const float l2_3 = t33 + t34 + nearbyintf(z3 * z3 * 4.7683716e-7f);
+    const float t35 = l2_3 * 524288.0f;
+    const float root_estimate4 = floorf(sqrtf(t35));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t57 = root_next5 * root_next5 <= t56
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t56 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t57;
+    const float step_down9 = root_estimate4 * root_estimate4 > t35 ? -1.0f : 0.0f;
+    const float step9 = root_next5 * root_next5 <= t35 ? 1.0f : step_down9;
+    const float root_step3 = root_estimate4 + step9;
     const float root_next6 = root_step3 + 1.0f;
-    const float t58 = root_next6 * root_next6 <= t56
-        ? 1.0f
-        : (root_step3 * root_step3 > t56 ? -1.0f : 0.0f);
-    const float root4 = root_step3 + t58;
-    const float t59 = root4 * 2.0f;
+    const float step_down10 = root_step3 * root_step3 > t35 ? -1.0f : 0.0f;
+    const float step10 = root_next6 * root_next6 <= t35 ? 1.0f : step_down10;
+    const float root4 = root_step3 + step10;
+    const float t36 = root4 * 2.0f;
     const unitpack_vec2 abs_p4 = { fabsf(p4.x), fabsf(p4.y) };
-    const float t60 = t59 >= abs_p4.x ? t59 : abs_p4.x;
-    const float t61 = t60 >= abs_p4.y ? t60 : abs_p4.y;
-    const float l4 = t61 >= z3 ? t61 : z3;
-    const unitpack_vec2 t62 = { floorf(p4.x / l4 * 2097152.0f), floorf(p4.y / l4 * 2097152.0f) };
-    const unitpack_vec2 t63 = { p4.x * 2097152.0f, p4.y * 2097152.0f };
-    const unitpack_vec2 t64 = {
-        (t62.x + 1.0f) * l4 <= t63.x ? 1.0f : (t62.x * l4 > t63.x ? -1.0f : 0.0f),
-        (t62.y + 1.0f) * l4 <= t63.y ? 1.0f : (t62.y * l4 > t63.y ? -1.0f : 0.0f)
+    const float t37 = t36 >= abs_p4.x ? t36 : abs_p4.x;
+    const float t38 = t37 >= abs_p4.y ? t37 : abs_p4.y;
+    const float l4 = t38 >= z3 ? t38 : z3;
+    const unitpack_vec2 t39 = { floorf(p4.x / l4 * 2097152.0f), floorf(p4.y / l4 * 2097152.0f) };
+    const unitpack_vec2 t40 = { p4.x * 2097152.0f, p4.y * 2097152.0f };
+    const unitpack_vec2 t41 = {
+        (t39.x + 1.0f) * l4 <= t40.x ? 1.0f : (t39.x * l4 > t40.x ? -1.0f : 0.0f),
+        (t39.y + 1.0f) * l4 <= t40.y ? 1.0f : (t39.y * l4 > t40.y ? -1.0f : 0.0f)
     };
     const float big3 = z3 * 2097152.0f;
     const float ratio_estimate3 = floorf(z3 / l4 * 2097152.0f);
-    const float t65 = (ratio_estimate3 + 1.0f) * l4 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * l4 > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t65;
-    const unitpack_vec3 t66 = {
-        fabsf(t62.x + t64.x - aim.x),
-        fabsf(t62.y + t64.y - aim.y),
-        fabsf(ratio3 - aim.z)
+    const float step_down11 = ratio_estimate3 * l4 > big3 ? -1.0f : 0.0f;
+    const float step11 = (ratio_estimate3 + 1.0f) * l4 <= big3 ? 1.0f : step_down11;
+    const float ratio3 = ratio_estimate3 + step11;
+    const unitpack_vec3 offset3 = { t39.x + t41.x - aim.x, t39.y + t41.y - aim.y, ratio3 - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const unitpack_uvec3 t67 = { (uint32_t)t66.x, (uint32_t)t66.y, (uint32_t)t66.z };
-    const uint32_t limb1_10 = t67.x >> 12u;
-    const uint32_t limb0_10 = t67.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t67.y >> 12u;
-    const uint32_t limb0_11 = t67.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t67.z >> 12u;
-    const uint32_t limb0_12 = t67.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t68 = (float)hi16 * 16777216.0f;
-    const float dist3 = t68 + (float)lo16;
-    const bool t69 = base.x <= 255.0f && t51 <= 255.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t69 ? cand3.x : best.x, t69 ? cand3.y : best.y };
-    const float best_d2 = t69 ? dist3 : best_d;
-    const unitpack_vec2 t70 = { base.x + 1.0f, base.y + 1.0f };
+    const float t42 = (float)hi16 * 16777216.0f;
+    const float dist3 = t42 + (float)lo16;
+    const bool t43 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t43 ? cand3.x : best.x, t43 ? cand3.y : best.y };
+    const float best_d2 = t43 ? dist3 : best_d;
+    const unitpack_vec2 t44 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t70.x <= 255.0f ? t70.x : 255.0f,
-        t70.y <= 255.0f ? t70.y : 255.0f
+        t44.x <= 255.0f ? t44.x : 255.0f,
+        t44.y <= 255.0f ? t44.y : 255.0f
     };
-    const unitpack_vec2 t71 = {
-        (cand4.x + cand4.x - 255.0f) * 8224.126f,
-        (cand4.y + cand4.y - 255.0f) * 8224.126f
+    const unitpack_vec2 p5 = {
+        floorf((cand4.x + cand4.x - 255.0f) * 8224.126f),
+        floorf((cand4.y + cand4.y - 255.0f) * 8224.126f)
     };
-    const unitpack_vec2 p5 = { floorf(t71.x), floorf(t71.y) };
-    const float t72 = nearbyintf(p5.x * p5.x * 4.7683716e-7f);
-    const float t73 = nearbyintf(p5.y * p5.y * 4.7683716e-7f);
-    const float z4 = nearbyintf((2097152.0f - t72) * (2097152.0f - t73) * 4.7683716e-7f);
-    const float l2_4 = t72 + t73 + nearbyintf(z4 * z4 * 4.7683716e-7f);
-    const float t74 = l2_4 * 524288.0f;
-    const float root_estimate5 = floorf(sqrtf(t74));
+    const float t45 = nearbyintf(p5.x * p5.x * 4.7683716e-7f);
+    const float t46 = nearbyintf(p5.y * p5.y * 4.7683716e-7f);
+    const float z4 = nearbyintf((2097152.0f - t45) * (2097152.0f - t46) * 4.7683716e-7f);
+    const float l2_4 = t45 + t46 + nearbyintf(z4 * z4 * 4.7683716e-7f);
+    const float t47 = l2_4 * 524288.0f;
+    const float root_estimate5 = floorf(sqrtf(t47));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t75 = root_next7 * root_next7 <= t74
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t74 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t75;
+    const float step_down12 = root_estimate5 * root_estimate5 > t47 ? -1.0f : 0.0f;
+    const float step12 = root_next7 * root_next7 <= t47 ? 1.0f : step_down12;
+    const float root_step4 = root_estimate5 + step12;
     const float root_next8 = root_step4 + 1.0f;
-    const float t76 = root_next8 * root_next8 <= t74
-        ? 1.0f
-        : (root_step4 * root_step4 > t74 ? -1.0f : 0.0f);
-    const float root5 = root_step4 + t76;
-    const float t77 = root5 * 2.0f;
+    const float step_down13 = root_step4 * root_step4 > t47 ? -1.0f : 0.0f;
+    const float step13 = root_next8 * root_next8 <= t47 ? 1.0f : step_down13;
+    const float root5 = root_step4 + step13;
+    const float t48 = root5 * 2.0f;
     const unitpack_vec2 abs_p5 = { fabsf(p5.x), fabsf(p5.y) };
-    const float t78 = t77 >= abs_p5.x ? t77 : abs_p5.x;
-    const float t79 = t78 >= abs_p5.y ? t78 : abs_p5.y;
-    const float l5 = t79 >= z4 ? t79 : z4;
-    const unitpack_vec2 t80 = { floorf(p5.x / l5 * 2097152.0f), floorf(p5.y / l5 * 2097152.0f) };
-    const unitpack_vec2 t81 = { p5.x * 2097152.0f, p5.y * 2097152.0f };
-    const unitpack_vec2 t82 = {
-        (t80.x + 1.0f) * l5 <= t81.x ? 1.0f : (t80.x * l5 > t81.x ? -1.0f : 0.0f),
-        (t80.y + 1.0f) * l5 <= t81.y ? 1.0f : (t80.y * l5 > t81.y ? -1.0f : 0.0f)
+    const float t49 = t48 >= abs_p5.x ? t48 : abs_p5.x;
+    const float t50 = t49 >= abs_p5.y ? t49 : abs_p5.y;
+    const float l5 = t50 >= z4 ? t50 : z4;
+    const unitpack_vec2 t51 = { floorf(p5.x / l5 * 2097152.0f), floorf(p5.y / l5 * 2097152.0f) };
+    const unitpack_vec2 t52 = { p5.x * 2097152.0f, p5.y * 2097152.0f };
+    const unitpack_vec2 t53 = {
+        (t51.x + 1.0f) * l5 <= t52.x ? 1.0f : (t51.x * l5 > t52.x ? -1.0f : 0.0f),
+        (t51.y + 1.0f) * l5 <= t52.y ? 1.0f : (t51.y * l5 > t52.y ? -1.0f : 0.0f)
     };
     const float big4 = z4 * 2097152.0f;
     const float ratio_estimate4 = floorf(z4 / l5 * 2097152.0f);
-    const float t83 = (ratio_estimate4 + 1.0f) * l5 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * l5 > big4 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate4 + t83;
-    const unitpack_vec3 t84 = {
-        fabsf(t80.x + t82.x - aim.x),
-        fabsf(t80.y + t82.y - aim.y),
-        fabsf(ratio4 - aim.z)
+    const float step_down14 = ratio_estimate4 * l5 > big4 ? -1.0f : 0.0f;
+    const float step14 = (ratio_estimate4 + 1.0f) * l5 <= big4 ? 1.0f : step_down14;
+    const float ratio4 = ratio_estimate4 + step14;
+    const unitpack_vec3 offset4 = { t51.x + t53.x - aim.x, t51.y + t53.y - aim.y, ratio4 - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const unitpack_uvec3 t85 = { (uint32_t)t84.x, (uint32_t)t84.y, (uint32_t)t84.z };
-    const uint32_t limb1_13 = t85.x >> 12u;
-    const uint32_t limb0_13 = t85.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t85.y >> 12u;
-    const uint32_t limb0_14 = t85.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t85.z >> 12u;
-    const uint32_t limb0_15 = t85.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t86 = (float)hi20 * 16777216.0f;
-    const float dist4 = t86 + (float)lo20;
-    const bool t87 = base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2;
-    const unitpack_vec2 c = { t87 ? cand4.x : best2.x, t87 ? cand4.y : best2.y };
-    const unitpack_vec4 t88 = { c.x, c.y, 0.0f, 255.0f };
-    return t88;
+    const float t54 = (float)hi20 * 16777216.0f;
+    const float dist4 = t54 + (float)lo20;
+    const bool t55 = s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2;
+    const unitpack_vec2 c = { t55 ? cand4.x : best2.x, t55 ? cand4.y : best2.y };
+    const unitpack_vec4 t56 = { c.x, c.y, 0.0f, 255.0f };
+    return t56;
 }
 
 // Struct form of unitpack_paraboloid_square16p_rg_encode_float.

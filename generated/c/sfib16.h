@@ -213,32 +213,30 @@ static inline unitpack_vec3 unitpack_sfib16_fixed_point_v(uint32_t a0) {
     const float t5 = near * far * 4398046500000.0f;
     const float root_estimate = floorf(sqrtf(t5));
     const float root_next = root_estimate + 1.0f;
-    const float t6 = root_next * root_next <= t5
-        ? 1.0f
-        : (root_estimate * root_estimate > t5 ? -1.0f : 0.0f);
-    const float root_step = root_estimate + t6;
+    const float step_down = root_estimate * root_estimate > t5 ? -1.0f : 0.0f;
+    const float step = root_next * root_next <= t5 ? 1.0f : step_down;
+    const float root_step = root_estimate + step;
     const float root_next2 = root_step + 1.0f;
-    const float t7 = root_next2 * root_next2 <= t5
-        ? 1.0f
-        : (root_step * root_step > t5 ? -1.0f : 0.0f);
-    const float rho = root_step + t7;
+    const float step_down2 = root_step * root_step > t5 ? -1.0f : 0.0f;
+    const float step2 = root_next2 * root_next2 <= t5 ? 1.0f : step_down2;
+    const float rho = root_step + step2;
     const float zm = 2097152.0f - floorf(near * 2097152.0f);
     const uint32_t il = a0 & 65535u;
     const uint32_t ih = a0 >> 16u;
-    const uint32_t t8 = il * 32586u;
-    const uint32_t t9 = ih * 31765u;
-    const uint32_t mid = ((il * 31765u) >> 16u) + (t8 & 65535u) + (t9 & 65535u);
-    const uint32_t high = ih * 32586u + (t8 >> 16u) + (t9 >> 16u) + (mid >> 16u);
+    const uint32_t t6 = il * 32586u;
+    const uint32_t t7 = ih * 31765u;
+    const uint32_t mid = ((il * 31765u) >> 16u) + (t6 & 65535u) + (t7 & 65535u);
+    const uint32_t high = ih * 32586u + (t6 >> 16u) + (t7 >> 16u) + (mid >> 16u);
     const uint32_t turns = a0 * 2654435769u + high;
     const uint32_t longitude = (turns + 2147483776u) >> 8u;
-    const float t10 = (float)longitude * 2.0f;
-    const unitpack_vec2 sc = unitpack_sfib16_fixed_sincos_pi_v(-16777216.0f + t10);
-    const unitpack_vec3 t11 = {
+    const float t8 = (float)longitude * 2.0f;
+    const unitpack_vec2 sc = unitpack_sfib16_fixed_sincos_pi_v(-16777216.0f + t8);
+    const unitpack_vec3 t9 = {
         nearbyintf(rho * sc.y * 5.9604645e-8f),
         nearbyintf(rho * sc.x * 5.9604645e-8f),
         t1 ? zm : -zm
     };
-    return t11;
+    return t9;
 }
 
 // The index of the point nearest the input: the nine lattice points around the input in the local
@@ -247,33 +245,31 @@ static inline unitpack_vec3 unitpack_sfib16_fixed_point_v(uint32_t a0) {
 //   that no rounding latitude of an implementation can change the code.
 
 static inline uint32_t unitpack_sfib16_encode_index_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -291,406 +287,426 @@ static inline uint32_t unitpack_sfib16_encode_index_v(unitpack_vec3 a0) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t8 = {
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t5 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t9 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t10 = {
-        (t8.x + 1.0f) * root <= t9.x,
-        (t8.y + 1.0f) * root <= t9.y,
-        (t8.z + 1.0f) * root <= t9.z
+    const unitpack_vec3 t6 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t7 = {
+        (t5.x + 1.0f) * root <= t6.x ? 1.0f : (t5.x * root > t6.x ? -1.0f : 0.0f),
+        (t5.y + 1.0f) * root <= t6.y ? 1.0f : (t5.y * root > t6.y ? -1.0f : 0.0f),
+        (t5.z + 1.0f) * root <= t6.z ? 1.0f : (t5.z * root > t6.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t11 = {
-        t8.x * root > t9.x ? -1.0f : 0.0f,
-        t8.y * root > t9.y ? -1.0f : 0.0f,
-        t8.z * root > t9.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t8.x + (t10.x ? 1.0f : t11.x),
-        t8.y + (t10.y ? 1.0f : t11.y),
-        t8.z + (t10.z ? 1.0f : t11.z)
-    };
+    const unitpack_vec3 aim = { t5.x + t7.x, t5.y + t7.y, t5.z + t7.z };
     const unitpack_vec3 u = { w2.x / root, w2.y / root, w2.z / root };
-    const unitpack_vec2 t12 = { u.x * u.x, u.y * u.y };
-    const float rho2 = t12.x + t12.y;
-    const unitpack_uvec3 t13 = {
+    const unitpack_vec2 t8 = { u.x * u.x, u.y * u.y };
+    const float rho2 = t8.x + t8.y;
+    const unitpack_uvec3 t9 = {
         (uint32_t)fabsf(aim.x),
         (uint32_t)fabsf(aim.y),
         (uint32_t)fabsf(aim.z)
     };
-    const uint32_t limb1_4 = t13.x >> 12u;
-    const uint32_t limb0_4 = t13.x & 4095u;
+    const uint32_t limb1_4 = t9.x >> 12u;
+    const uint32_t limb0_4 = t9.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t13.y >> 12u;
-    const uint32_t limb0_5 = t13.y & 4095u;
+    const uint32_t limb1_5 = t9.y >> 12u;
+    const uint32_t limb0_5 = t9.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t14 = (float)hi7 * 16777216.0f;
-    const float rho2_fixed = (t14 + (float)lo7) * 2.2737368e-13f;
-    const bool t15 = aim.z < 0.0f;
+    const float t10 = (float)hi7 * 16777216.0f;
+    const float rho2_fixed = (t10 + (float)lo7) * 2.2737368e-13f;
+    const bool t11 = aim.z < 0.0f;
     const float below = rho2 / (1.0f + fabsf(u.z));
     const float dz = 7.629453e-6f - below;
     const float t = unitpack_sfib16_atan2_pi_v(u.y, u.x);
-    const float tn = t15 ? -0.28509456f - t : t;
-    const bool t16 = rho2_fixed >= 3.8977236e-5f;
-    const bool t17 = rho2_fixed >= 0.00010204373f;
-    const bool t18 = rho2_fixed >= 0.00026715396f;
-    const bool t19 = rho2_fixed >= 0.00069941813f;
-    const float t20 = t19
-        ? -1128.582f
-        : (t18 ? -1826.0841f : (t17 ? -2954.6663f : (t16 ? -4780.7505f : -7735.4165f)));
-    const float t21 = t19
-        ? -1826.0841f
-        : (t18 ? -2954.6663f : (t17 ? -4780.7505f : (t16 ? -7735.4165f : -12516.167f)));
-    const bool t22 = rho2_fixed >= 0.0018311004f;
-    const float t23 = t22
-        ? 10.5f
-        : (t19 ? -6.5f : (t18 ? 4.0f : (t17 ? -2.5f : (t16 ? 1.5f : -1.0f))));
-    const bool t24 = rho2_fixed >= 0.0047938833f;
-    const uint32_t t25 = t24
+    const float tn = t11 ? -0.28509456f - t : t;
+    const bool t12 = rho2_fixed >= 3.8977236e-5f;
+    const bool t13 = rho2_fixed >= 0.00010204373f;
+    const bool t14 = rho2_fixed >= 0.00026715396f;
+    const bool t15 = rho2_fixed >= 0.00069941813f;
+    const bool t16 = rho2_fixed >= 0.0018311004f;
+    const bool t17 = rho2_fixed >= 0.0047938833f;
+    const bool t18 = rho2_fixed >= 0.012550549f;
+    const uint32_t t19 = t18
         ? 34u
-        : (t22 ? 21u : (t19 ? 13u : (t18 ? 8u : (t17 ? 5u : (t16 ? 3u : 2u)))));
-    const float t26 = t24
-        ? 10.5f
-        : (t22 ? -6.5f : (t19 ? 4.0f : (t18 ? -2.5f : (t17 ? 1.5f : (t16 ? -1.0f : 0.5f)))));
-    const bool t27 = rho2_fixed >= 0.012550549f;
-    const uint32_t t28 = t27
-        ? 34u
-        : (t24 ? 21u : (t22 ? 13u : (t19 ? 8u : (t18 ? 5u : (t17 ? 3u : (t16 ? 2u : 1u))))));
-    const bool t29 = rho2_fixed >= 0.032857765f;
-    const float t30 = t29
-        ? -164.6579f
-        : (t27 ? -266.4221f : (t24 ? -431.08f : (t22 ? -697.5021f : t20)));
-    const float t31 = t29
+        : (t17 ? 21u : (t16 ? 13u : (t15 ? 8u : (t14 ? 5u : (t13 ? 3u : (t12 ? 2u : 1u))))));
+    const uint32_t t20 = t18
+        ? 55u
+        : (t17 ? 34u : (t16 ? 21u : (t15 ? 13u : (t14 ? 8u : (t13 ? 5u : (t12 ? 3u : 2u))))));
+    const float t21 = t18
+        ? 27.5f
+        : (
+            t17
+                ? -17.0f
+                : (
+                    t16
+                        ? 10.5f
+                        : (t15 ? -6.5f : (t14 ? 4.0f : (t13 ? -2.5f : (t12 ? 1.5f : -1.0f))))
+                )
+        );
+    const float t22 = t18
         ? -266.4221f
-        : (t27 ? -431.08f : (t24 ? -697.5021f : (t22 ? -1128.582f : t21)));
-    const bool t32 = rho2_fixed >= 0.08602274f;
-    const bool t33 = rho2_fixed >= 0.22521046f;
-    const float t34 = t33
-        ? -116.5f
-        : (t32 ? 72.0f : (t29 ? -44.5f : (t27 ? 27.5f : (t24 ? -17.0f : t23))));
-    const bool t35 = rho2_fixed >= 0.58960867f;
-    const uint32_t t36 = t35 ? 233u : (t33 ? 144u : (t32 ? 89u : (t29 ? 55u : t28)));
-    const uint32_t t37 = t35 ? 377u : (t33 ? 233u : (t32 ? 144u : (t29 ? 89u : (t27 ? 55u : t25))));
-    const float t38 = t35
-        ? -116.5f
-        : (t33 ? 72.0f : (t32 ? -44.5f : (t29 ? 27.5f : (t27 ? -17.0f : t26))));
-    const float t39 = tn * (t35 ? 188.5f : t34);
-    const float t40 = dz * (t35 ? -38.870457f : (t33 ? -62.893723f : (t32 ? -101.76418f : t30)));
-    const float t41 = tn * t38;
-    const float t42 = dz * (t35 ? -62.893723f : (t33 ? -101.76418f : (t32 ? -164.6579f : t31)));
-    const uint32_t t43 = (uint32_t)(4194303.0f + nearbyintf(t39 + t40)) * t36
-        + (uint32_t)(4194303.0f + nearbyintf(t41 + t42)) * t37;
-    const uint32_t corner = t43 - ((t36 + t37) << 22u);
-    const uint32_t t44 = 3221225471u < corner ? 4294967295u - corner : corner;
-    const uint32_t t45 = (t15 ? 65535u - t44 : t44) & 65535u;
-    const unitpack_vec3 fixed_point = unitpack_sfib16_fixed_point_v(t45);
-    const unitpack_vec3 t46 = {
-        fabsf(fixed_point.x - aim.x),
-        fabsf(fixed_point.y - aim.y),
-        fabsf(fixed_point.z - aim.z)
+        : (
+            t17
+                ? -431.08f
+                : (
+                    t16
+                        ? -697.5021f
+                        : (
+                            t15
+                                ? -1128.582f
+                                : (
+                                    t14
+                                        ? -1826.0841f
+                                        : (t13 ? -2954.6663f : (t12 ? -4780.7505f : -7735.4165f))
+                                )
+                        )
+                )
+        );
+    const float t23 = t18
+        ? -17.0f
+        : (
+            t17
+                ? 10.5f
+                : (t16 ? -6.5f : (t15 ? 4.0f : (t14 ? -2.5f : (t13 ? 1.5f : (t12 ? -1.0f : 0.5f)))))
+        );
+    const float t24 = t18
+        ? -431.08f
+        : (
+            t17
+                ? -697.5021f
+                : (
+                    t16
+                        ? -1128.582f
+                        : (
+                            t15
+                                ? -1826.0841f
+                                : (
+                                    t14
+                                        ? -2954.6663f
+                                        : (t13 ? -4780.7505f : (t12 ? -7735.4165f : -12516.167f))
+                                )
+                        )
+                )
+        );
+    const bool t25 = rho2_fixed >= 0.032857765f;
+    const bool t26 = rho2_fixed >= 0.08602274f;
+    const bool t27 = rho2_fixed >= 0.22521046f;
+    const bool t28 = rho2_fixed >= 0.58960867f;
+    const uint32_t t29 = t28 ? 233u : (t27 ? 144u : (t26 ? 89u : (t25 ? 55u : t19)));
+    const uint32_t t30 = t28 ? 377u : (t27 ? 233u : (t26 ? 144u : (t25 ? 89u : t20)));
+    const float t31 = tn * (t28 ? 188.5f : (t27 ? -116.5f : (t26 ? 72.0f : (t25 ? -44.5f : t21))));
+    const float t32 = dz
+        * (
+            t28 ? -38.870457f : (t27 ? -62.893723f : (t26 ? -101.76418f : (t25 ? -164.6579f : t22)))
+        );
+    const float t33 = tn * (t28 ? -116.5f : (t27 ? 72.0f : (t26 ? -44.5f : (t25 ? 27.5f : t23))));
+    const float t34 = dz
+        * (t28 ? -62.893723f : (t27 ? -101.76418f : (t26 ? -164.6579f : (t25 ? -266.4221f : t24))));
+    const uint32_t t35 = (uint32_t)(4194303.0f + nearbyintf(t31 + t32)) * t29
+        + (uint32_t)(4194303.0f + nearbyintf(t33 + t34)) * t30;
+    const uint32_t corner = t35 - ((t29 + t30) << 22u);
+    const uint32_t t36 = 3221225471u < corner ? 4294967295u - corner : corner;
+    const uint32_t t37 = (t11 ? 65535u - t36 : t36) & 65535u;
+    const unitpack_vec3 fixed_point = unitpack_sfib16_fixed_point_v(t37);
+    const unitpack_uvec3 t38 = {
+        (uint32_t)fabsf(fixed_point.x - aim.x),
+        (uint32_t)fabsf(fixed_point.y - aim.y),
+        (uint32_t)fabsf(fixed_point.z - aim.z)
     };
-    const unitpack_uvec3 t47 = { (uint32_t)t46.x, (uint32_t)t46.y, (uint32_t)t46.z };
-    const uint32_t limb1_6 = t47.x >> 12u;
-    const uint32_t limb0_6 = t47.x & 4095u;
+    const uint32_t limb1_6 = t38.x >> 12u;
+    const uint32_t limb0_6 = t38.x & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_7 = t47.y >> 12u;
-    const uint32_t limb0_7 = t47.y & 4095u;
+    const uint32_t limb1_7 = t38.y >> 12u;
+    const uint32_t limb0_7 = t38.y & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t47.z >> 12u;
-    const uint32_t limb0_8 = t47.z & 4095u;
+    const uint32_t limb1_8 = t38.z >> 12u;
+    const uint32_t limb0_8 = t38.z & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi11 = hi10 + (lo10 >> 24u);
     const uint32_t lo11 = lo10 & 16777215u;
-    const float t48 = (float)hi11 * 16777216.0f;
-    const float d = t48 + (float)lo11;
-    const uint32_t t49 = corner + t36;
-    const uint32_t t50 = 3221225471u < t49 ? 4294967295u - t49 : t49;
-    const uint32_t t51 = (t15 ? 65535u - t50 : t50) & 65535u;
-    const unitpack_vec3 fixed_point2 = unitpack_sfib16_fixed_point_v(t51);
-    const unitpack_vec3 t52 = {
-        fabsf(fixed_point2.x - aim.x),
-        fabsf(fixed_point2.y - aim.y),
-        fabsf(fixed_point2.z - aim.z)
+    const float t39 = (float)hi11 * 16777216.0f;
+    const float d = t39 + (float)lo11;
+    const uint32_t t40 = corner + t29;
+    const uint32_t t41 = 3221225471u < t40 ? 4294967295u - t40 : t40;
+    const uint32_t t42 = (t11 ? 65535u - t41 : t41) & 65535u;
+    const unitpack_vec3 fixed_point2 = unitpack_sfib16_fixed_point_v(t42);
+    const unitpack_uvec3 t43 = {
+        (uint32_t)fabsf(fixed_point2.x - aim.x),
+        (uint32_t)fabsf(fixed_point2.y - aim.y),
+        (uint32_t)fabsf(fixed_point2.z - aim.z)
     };
-    const unitpack_uvec3 t53 = { (uint32_t)t52.x, (uint32_t)t52.y, (uint32_t)t52.z };
-    const uint32_t limb1_9 = t53.x >> 12u;
-    const uint32_t limb0_9 = t53.x & 4095u;
+    const uint32_t limb1_9 = t43.x >> 12u;
+    const uint32_t limb0_9 = t43.x & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t limb1_10 = t53.y >> 12u;
-    const uint32_t limb0_10 = t53.y & 4095u;
+    const uint32_t limb1_10 = t43.y >> 12u;
+    const uint32_t limb0_10 = t43.y & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t53.z >> 12u;
-    const uint32_t limb0_11 = t53.z & 4095u;
+    const uint32_t limb1_11 = t43.z >> 12u;
+    const uint32_t limb0_11 = t43.z & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     const uint32_t hi15 = hi14 + (lo14 >> 24u);
     const uint32_t lo15 = lo14 & 16777215u;
-    const float t54 = (float)hi15 * 16777216.0f;
-    const float d2 = t54 + (float)lo15;
-    const bool t55 = d2 < d || (d2 == d && t51 < t45);
-    const float t56 = t55 ? d2 : d;
-    const uint32_t t57 = t55 ? t51 : t45;
-    const uint32_t t58 = corner + t36 + t36;
-    const uint32_t t59 = 3221225471u < t58 ? 4294967295u - t58 : t58;
-    const uint32_t t60 = (t15 ? 65535u - t59 : t59) & 65535u;
-    const unitpack_vec3 fixed_point3 = unitpack_sfib16_fixed_point_v(t60);
-    const unitpack_vec3 t61 = {
-        fabsf(fixed_point3.x - aim.x),
-        fabsf(fixed_point3.y - aim.y),
-        fabsf(fixed_point3.z - aim.z)
+    const float t44 = (float)hi15 * 16777216.0f;
+    const float d2 = t44 + (float)lo15;
+    const bool t45 = d2 < d || (d2 == d && t42 < t37);
+    const float t46 = t45 ? d2 : d;
+    const uint32_t t47 = t45 ? t42 : t37;
+    const uint32_t t48 = corner + t29 + t29;
+    const uint32_t t49 = 3221225471u < t48 ? 4294967295u - t48 : t48;
+    const uint32_t t50 = (t11 ? 65535u - t49 : t49) & 65535u;
+    const unitpack_vec3 fixed_point3 = unitpack_sfib16_fixed_point_v(t50);
+    const unitpack_uvec3 t51 = {
+        (uint32_t)fabsf(fixed_point3.x - aim.x),
+        (uint32_t)fabsf(fixed_point3.y - aim.y),
+        (uint32_t)fabsf(fixed_point3.z - aim.z)
     };
-    const unitpack_uvec3 t62 = { (uint32_t)t61.x, (uint32_t)t61.y, (uint32_t)t61.z };
-    const uint32_t limb1_12 = t62.x >> 12u;
-    const uint32_t limb0_12 = t62.x & 4095u;
+    const uint32_t limb1_12 = t51.x >> 12u;
+    const uint32_t limb0_12 = t51.x & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    const uint32_t limb1_13 = t62.y >> 12u;
-    const uint32_t limb0_13 = t62.y & 4095u;
+    const uint32_t limb1_13 = t51.y >> 12u;
+    const uint32_t limb0_13 = t51.y & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t62.z >> 12u;
-    const uint32_t limb0_14 = t62.z & 4095u;
+    const uint32_t limb1_14 = t51.z >> 12u;
+    const uint32_t limb0_14 = t51.z & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     const uint32_t hi19 = hi18 + (lo18 >> 24u);
     const uint32_t lo19 = lo18 & 16777215u;
-    const float t63 = (float)hi19 * 16777216.0f;
-    const float d3 = t63 + (float)lo19;
-    const bool t64 = d3 < t56 || (d3 == t56 && t60 < t57);
-    const float t65 = t64 ? d3 : t56;
-    const uint32_t t66 = t64 ? t60 : t57;
-    const uint32_t t67 = corner + t37;
-    const uint32_t t68 = 3221225471u < t67 ? 4294967295u - t67 : t67;
-    const uint32_t t69 = (t15 ? 65535u - t68 : t68) & 65535u;
-    const unitpack_vec3 fixed_point4 = unitpack_sfib16_fixed_point_v(t69);
-    const unitpack_vec3 t70 = {
-        fabsf(fixed_point4.x - aim.x),
-        fabsf(fixed_point4.y - aim.y),
-        fabsf(fixed_point4.z - aim.z)
+    const float t52 = (float)hi19 * 16777216.0f;
+    const float d3 = t52 + (float)lo19;
+    const bool t53 = d3 < t46 || (d3 == t46 && t50 < t47);
+    const float t54 = t53 ? d3 : t46;
+    const uint32_t t55 = t53 ? t50 : t47;
+    const uint32_t t56 = corner + t30;
+    const uint32_t t57 = 3221225471u < t56 ? 4294967295u - t56 : t56;
+    const uint32_t t58 = (t11 ? 65535u - t57 : t57) & 65535u;
+    const unitpack_vec3 fixed_point4 = unitpack_sfib16_fixed_point_v(t58);
+    const unitpack_uvec3 t59 = {
+        (uint32_t)fabsf(fixed_point4.x - aim.x),
+        (uint32_t)fabsf(fixed_point4.y - aim.y),
+        (uint32_t)fabsf(fixed_point4.z - aim.z)
     };
-    const unitpack_uvec3 t71 = { (uint32_t)t70.x, (uint32_t)t70.y, (uint32_t)t70.z };
-    const uint32_t limb1_15 = t71.x >> 12u;
-    const uint32_t limb0_15 = t71.x & 4095u;
+    const uint32_t limb1_15 = t59.x >> 12u;
+    const uint32_t limb0_15 = t59.x & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_16 = t71.y >> 12u;
-    const uint32_t limb0_16 = t71.y & 4095u;
+    const uint32_t limb1_16 = t59.y >> 12u;
+    const uint32_t limb0_16 = t59.y & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t71.z >> 12u;
-    const uint32_t limb0_17 = t71.z & 4095u;
+    const uint32_t limb1_17 = t59.z >> 12u;
+    const uint32_t limb0_17 = t59.z & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     const uint32_t hi23 = hi22 + (lo22 >> 24u);
     const uint32_t lo23 = lo22 & 16777215u;
-    const float t72 = (float)hi23 * 16777216.0f;
-    const float d4 = t72 + (float)lo23;
-    const bool t73 = d4 < t65 || (d4 == t65 && t69 < t66);
-    const float t74 = t73 ? d4 : t65;
-    const uint32_t t75 = t73 ? t69 : t66;
-    const uint32_t t76 = corner + t36 + t37;
-    const uint32_t t77 = 3221225471u < t76 ? 4294967295u - t76 : t76;
-    const uint32_t t78 = (t15 ? 65535u - t77 : t77) & 65535u;
-    const unitpack_vec3 fixed_point5 = unitpack_sfib16_fixed_point_v(t78);
-    const unitpack_vec3 t79 = {
-        fabsf(fixed_point5.x - aim.x),
-        fabsf(fixed_point5.y - aim.y),
-        fabsf(fixed_point5.z - aim.z)
+    const float t60 = (float)hi23 * 16777216.0f;
+    const float d4 = t60 + (float)lo23;
+    const bool t61 = d4 < t54 || (d4 == t54 && t58 < t55);
+    const float t62 = t61 ? d4 : t54;
+    const uint32_t t63 = t61 ? t58 : t55;
+    const uint32_t t64 = corner + t29 + t30;
+    const uint32_t t65 = 3221225471u < t64 ? 4294967295u - t64 : t64;
+    const uint32_t t66 = (t11 ? 65535u - t65 : t65) & 65535u;
+    const unitpack_vec3 fixed_point5 = unitpack_sfib16_fixed_point_v(t66);
+    const unitpack_uvec3 t67 = {
+        (uint32_t)fabsf(fixed_point5.x - aim.x),
+        (uint32_t)fabsf(fixed_point5.y - aim.y),
+        (uint32_t)fabsf(fixed_point5.z - aim.z)
     };
-    const unitpack_uvec3 t80 = { (uint32_t)t79.x, (uint32_t)t79.y, (uint32_t)t79.z };
-    const uint32_t limb1_18 = t80.x >> 12u;
-    const uint32_t limb0_18 = t80.x & 4095u;
+    const uint32_t limb1_18 = t67.x >> 12u;
+    const uint32_t limb0_18 = t67.x & 4095u;
     const uint32_t cross18 = limb1_18 * limb0_18;
     const uint32_t hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     const uint32_t lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    const uint32_t limb1_19 = t80.y >> 12u;
-    const uint32_t limb0_19 = t80.y & 4095u;
+    const uint32_t limb1_19 = t67.y >> 12u;
+    const uint32_t limb0_19 = t67.y & 4095u;
     const uint32_t cross19 = limb1_19 * limb0_19;
     const uint32_t hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     const uint32_t lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    const uint32_t limb1_20 = t80.z >> 12u;
-    const uint32_t limb0_20 = t80.z & 4095u;
+    const uint32_t limb1_20 = t67.z >> 12u;
+    const uint32_t limb0_20 = t67.z & 4095u;
     const uint32_t cross20 = limb1_20 * limb0_20;
     const uint32_t hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     const uint32_t lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     const uint32_t hi27 = hi26 + (lo26 >> 24u);
     const uint32_t lo27 = lo26 & 16777215u;
-    const float t81 = (float)hi27 * 16777216.0f;
-    const float d5 = t81 + (float)lo27;
-    const bool t82 = d5 < t74 || (d5 == t74 && t78 < t75);
-    const float t83 = t82 ? d5 : t74;
-    const uint32_t t84 = t82 ? t78 : t75;
-    const uint32_t t85 = corner + t36 + t36 + t37;
-    const uint32_t t86 = 3221225471u < t85 ? 4294967295u - t85 : t85;
-    const uint32_t t87 = (t15 ? 65535u - t86 : t86) & 65535u;
-    const unitpack_vec3 fixed_point6 = unitpack_sfib16_fixed_point_v(t87);
-    const unitpack_vec3 t88 = {
-        fabsf(fixed_point6.x - aim.x),
-        fabsf(fixed_point6.y - aim.y),
-        fabsf(fixed_point6.z - aim.z)
+    const float t68 = (float)hi27 * 16777216.0f;
+    const float d5 = t68 + (float)lo27;
+    const bool t69 = d5 < t62 || (d5 == t62 && t66 < t63);
+    const float t70 = t69 ? d5 : t62;
+    const uint32_t t71 = t69 ? t66 : t63;
+    const uint32_t t72 = corner + t29 + t29 + t30;
+    const uint32_t t73 = 3221225471u < t72 ? 4294967295u - t72 : t72;
+    const uint32_t t74 = (t11 ? 65535u - t73 : t73) & 65535u;
+    const unitpack_vec3 fixed_point6 = unitpack_sfib16_fixed_point_v(t74);
+    const unitpack_uvec3 t75 = {
+        (uint32_t)fabsf(fixed_point6.x - aim.x),
+        (uint32_t)fabsf(fixed_point6.y - aim.y),
+        (uint32_t)fabsf(fixed_point6.z - aim.z)
     };
-    const unitpack_uvec3 t89 = { (uint32_t)t88.x, (uint32_t)t88.y, (uint32_t)t88.z };
-    const uint32_t limb1_21 = t89.x >> 12u;
-    const uint32_t limb0_21 = t89.x & 4095u;
+    const uint32_t limb1_21 = t75.x >> 12u;
+    const uint32_t limb0_21 = t75.x & 4095u;
     const uint32_t cross21 = limb1_21 * limb0_21;
     const uint32_t hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     const uint32_t lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    const uint32_t limb1_22 = t89.y >> 12u;
-    const uint32_t limb0_22 = t89.y & 4095u;
+    const uint32_t limb1_22 = t75.y >> 12u;
+    const uint32_t limb0_22 = t75.y & 4095u;
     const uint32_t cross22 = limb1_22 * limb0_22;
     const uint32_t hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     const uint32_t lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    const uint32_t limb1_23 = t89.z >> 12u;
-    const uint32_t limb0_23 = t89.z & 4095u;
+    const uint32_t limb1_23 = t75.z >> 12u;
+    const uint32_t limb0_23 = t75.z & 4095u;
     const uint32_t cross23 = limb1_23 * limb0_23;
     const uint32_t hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     const uint32_t lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     const uint32_t hi31 = hi30 + (lo30 >> 24u);
     const uint32_t lo31 = lo30 & 16777215u;
-    const float t90 = (float)hi31 * 16777216.0f;
-    const float d6 = t90 + (float)lo31;
-    const bool t91 = d6 < t83 || (d6 == t83 && t87 < t84);
-    const float t92 = t91 ? d6 : t83;
-    const uint32_t t93 = t91 ? t87 : t84;
-    const uint32_t t94 = corner + t37 + t37;
-    const uint32_t t95 = 3221225471u < t94 ? 4294967295u - t94 : t94;
-    const uint32_t t96 = (t15 ? 65535u - t95 : t95) & 65535u;
-    const unitpack_vec3 fixed_point7 = unitpack_sfib16_fixed_point_v(t96);
-    const unitpack_vec3 t97 = {
-        fabsf(fixed_point7.x - aim.x),
-        fabsf(fixed_point7.y - aim.y),
-        fabsf(fixed_point7.z - aim.z)
+    const float t76 = (float)hi31 * 16777216.0f;
+    const float d6 = t76 + (float)lo31;
+    const bool t77 = d6 < t70 || (d6 == t70 && t74 < t71);
+    const float t78 = t77 ? d6 : t70;
+    const uint32_t t79 = t77 ? t74 : t71;
+    const uint32_t t80 = corner + t30 + t30;
+    const uint32_t t81 = 3221225471u < t80 ? 4294967295u - t80 : t80;
+    const uint32_t t82 = (t11 ? 65535u - t81 : t81) & 65535u;
+    const unitpack_vec3 fixed_point7 = unitpack_sfib16_fixed_point_v(t82);
+    const unitpack_uvec3 t83 = {
+        (uint32_t)fabsf(fixed_point7.x - aim.x),
+        (uint32_t)fabsf(fixed_point7.y - aim.y),
+        (uint32_t)fabsf(fixed_point7.z - aim.z)
     };
-    const unitpack_uvec3 t98 = { (uint32_t)t97.x, (uint32_t)t97.y, (uint32_t)t97.z };
-    const uint32_t limb1_24 = t98.x >> 12u;
-    const uint32_t limb0_24 = t98.x & 4095u;
+    const uint32_t limb1_24 = t83.x >> 12u;
+    const uint32_t limb0_24 = t83.x & 4095u;
     const uint32_t cross24 = limb1_24 * limb0_24;
     const uint32_t hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     const uint32_t lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    const uint32_t limb1_25 = t98.y >> 12u;
-    const uint32_t limb0_25 = t98.y & 4095u;
+    const uint32_t limb1_25 = t83.y >> 12u;
+    const uint32_t limb0_25 = t83.y & 4095u;
     const uint32_t cross25 = limb1_25 * limb0_25;
     const uint32_t hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     const uint32_t lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    const uint32_t limb1_26 = t98.z >> 12u;
-    const uint32_t limb0_26 = t98.z & 4095u;
+    const uint32_t limb1_26 = t83.z >> 12u;
+    const uint32_t limb0_26 = t83.z & 4095u;
     const uint32_t cross26 = limb1_26 * limb0_26;
     const uint32_t hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     const uint32_t lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     const uint32_t hi35 = hi34 + (lo34 >> 24u);
     const uint32_t lo35 = lo34 & 16777215u;
-    const float t99 = (float)hi35 * 16777216.0f;
-    const float d7 = t99 + (float)lo35;
-    const bool t100 = d7 < t92 || (d7 == t92 && t96 < t93);
-    const float t101 = t100 ? d7 : t92;
-    const uint32_t t102 = t100 ? t96 : t93;
-    const uint32_t t103 = corner + t36 + t37 + t37;
-    const uint32_t t104 = 3221225471u < t103 ? 4294967295u - t103 : t103;
-    const uint32_t t105 = (t15 ? 65535u - t104 : t104) & 65535u;
-    const unitpack_vec3 fixed_point8 = unitpack_sfib16_fixed_point_v(t105);
-    const unitpack_vec3 t106 = {
-        fabsf(fixed_point8.x - aim.x),
-        fabsf(fixed_point8.y - aim.y),
-        fabsf(fixed_point8.z - aim.z)
+    const float t84 = (float)hi35 * 16777216.0f;
+    const float d7 = t84 + (float)lo35;
+    const bool t85 = d7 < t78 || (d7 == t78 && t82 < t79);
+    const float t86 = t85 ? d7 : t78;
+    const uint32_t t87 = t85 ? t82 : t79;
+    const uint32_t t88 = corner + t29 + t30 + t30;
+    const uint32_t t89 = 3221225471u < t88 ? 4294967295u - t88 : t88;
+    const uint32_t t90 = (t11 ? 65535u - t89 : t89) & 65535u;
+    const unitpack_vec3 fixed_point8 = unitpack_sfib16_fixed_point_v(t90);
+    const unitpack_uvec3 t91 = {
+        (uint32_t)fabsf(fixed_point8.x - aim.x),
+        (uint32_t)fabsf(fixed_point8.y - aim.y),
+        (uint32_t)fabsf(fixed_point8.z - aim.z)
     };
-    const unitpack_uvec3 t107 = { (uint32_t)t106.x, (uint32_t)t106.y, (uint32_t)t106.z };
-    const uint32_t limb1_27 = t107.x >> 12u;
-    const uint32_t limb0_27 = t107.x & 4095u;
+    const uint32_t limb1_27 = t91.x >> 12u;
+    const uint32_t limb0_27 = t91.x & 4095u;
     const uint32_t cross27 = limb1_27 * limb0_27;
     const uint32_t hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     const uint32_t lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    const uint32_t limb1_28 = t107.y >> 12u;
-    const uint32_t limb0_28 = t107.y & 4095u;
+    const uint32_t limb1_28 = t91.y >> 12u;
+    const uint32_t limb0_28 = t91.y & 4095u;
     const uint32_t cross28 = limb1_28 * limb0_28;
     const uint32_t hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     const uint32_t lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    const uint32_t limb1_29 = t107.z >> 12u;
-    const uint32_t limb0_29 = t107.z & 4095u;
+    const uint32_t limb1_29 = t91.z >> 12u;
+    const uint32_t limb0_29 = t91.z & 4095u;
     const uint32_t cross29 = limb1_29 * limb0_29;
     const uint32_t hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     const uint32_t lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     const uint32_t hi39 = hi38 + (lo38 >> 24u);
     const uint32_t lo39 = lo38 & 16777215u;
-    const float t108 = (float)hi39 * 16777216.0f;
-    const float d8 = t108 + (float)lo39;
-    const bool t109 = d8 < t101 || (d8 == t101 && t105 < t102);
-    const float t110 = t109 ? d8 : t101;
-    const uint32_t t111 = t109 ? t105 : t102;
-    const uint32_t t112 = corner + t36 + t36 + t37 + t37;
-    const uint32_t t113 = 3221225471u < t112 ? 4294967295u - t112 : t112;
-    const uint32_t t114 = (t15 ? 65535u - t113 : t113) & 65535u;
-    const unitpack_vec3 fixed_point9 = unitpack_sfib16_fixed_point_v(t114);
-    const unitpack_vec3 t115 = {
-        fabsf(fixed_point9.x - aim.x),
-        fabsf(fixed_point9.y - aim.y),
-        fabsf(fixed_point9.z - aim.z)
+    const float t92 = (float)hi39 * 16777216.0f;
+    const float d8 = t92 + (float)lo39;
+    const bool t93 = d8 < t86 || (d8 == t86 && t90 < t87);
+    const float t94 = t93 ? d8 : t86;
+    const uint32_t t95 = t93 ? t90 : t87;
+    const uint32_t t96 = corner + t29 + t29 + t30 + t30;
+    const uint32_t t97 = 3221225471u < t96 ? 4294967295u - t96 : t96;
+    const uint32_t t98 = (t11 ? 65535u - t97 : t97) & 65535u;
+    const unitpack_vec3 fixed_point9 = unitpack_sfib16_fixed_point_v(t98);
+    const unitpack_uvec3 t99 = {
+        (uint32_t)fabsf(fixed_point9.x - aim.x),
+        (uint32_t)fabsf(fixed_point9.y - aim.y),
+        (uint32_t)fabsf(fixed_point9.z - aim.z)
     };
-    const unitpack_uvec3 t116 = { (uint32_t)t115.x, (uint32_t)t115.y, (uint32_t)t115.z };
-    const uint32_t limb1_30 = t116.x >> 12u;
-    const uint32_t limb0_30 = t116.x & 4095u;
+    const uint32_t limb1_30 = t99.x >> 12u;
+    const uint32_t limb0_30 = t99.x & 4095u;
     const uint32_t cross30 = limb1_30 * limb0_30;
     const uint32_t hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     const uint32_t lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    const uint32_t limb1_31 = t116.y >> 12u;
-    const uint32_t limb0_31 = t116.y & 4095u;
+    const uint32_t limb1_31 = t99.y >> 12u;
+    const uint32_t limb0_31 = t99.y & 4095u;
     const uint32_t cross31 = limb1_31 * limb0_31;
     const uint32_t hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     const uint32_t lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    const uint32_t limb1_32 = t116.z >> 12u;
-    const uint32_t limb0_32 = t116.z & 4095u;
+    const uint32_t limb1_32 = t99.z >> 12u;
+    const uint32_t limb0_32 = t99.z & 4095u;
     const uint32_t cross32 = limb1_32 * limb0_32;
     const uint32_t hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     const uint32_t lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     const uint32_t hi43 = hi42 + (lo42 >> 24u);
     const uint32_t lo43 = lo42 & 16777215u;
-    const float t117 = (float)hi43 * 16777216.0f;
-    const float d9 = t117 + (float)lo43;
-    return d9 < t110 || (d9 == t110 && t114 < t111) ? t114 : t111;
+    const float t100 = (float)hi43 * 16777216.0f;
+    const float d9 = t100 + (float)lo43;
+    return d9 < t94 || (d9 == t94 && t98 < t95) ? t98 : t95;
 }
 
 // Struct form of unitpack_sfib16_encode_float.

@@ -213,32 +213,30 @@ static inline unitpack_vec3 unitpack_sfib24_fixed_point_v(uint32_t a0) {
     const float t5 = near * far * 4398046500000.0f;
     const float root_estimate = floorf(sqrtf(t5));
     const float root_next = root_estimate + 1.0f;
-    const float t6 = root_next * root_next <= t5
-        ? 1.0f
-        : (root_estimate * root_estimate > t5 ? -1.0f : 0.0f);
-    const float root_step = root_estimate + t6;
+    const float step_down = root_estimate * root_estimate > t5 ? -1.0f : 0.0f;
+    const float step = root_next * root_next <= t5 ? 1.0f : step_down;
+    const float root_step = root_estimate + step;
     const float root_next2 = root_step + 1.0f;
-    const float t7 = root_next2 * root_next2 <= t5
-        ? 1.0f
-        : (root_step * root_step > t5 ? -1.0f : 0.0f);
-    const float rho = root_step + t7;
+    const float step_down2 = root_step * root_step > t5 ? -1.0f : 0.0f;
+    const float step2 = root_next2 * root_next2 <= t5 ? 1.0f : step_down2;
+    const float rho = root_step + step2;
     const float zm = 2097152.0f - floorf(near * 2097152.0f);
     const uint32_t il = a0 & 65535u;
     const uint32_t ih = a0 >> 16u;
-    const uint32_t t8 = il * 32586u;
-    const uint32_t t9 = ih * 31765u;
-    const uint32_t mid = ((il * 31765u) >> 16u) + (t8 & 65535u) + (t9 & 65535u);
-    const uint32_t high = ih * 32586u + (t8 >> 16u) + (t9 >> 16u) + (mid >> 16u);
+    const uint32_t t6 = il * 32586u;
+    const uint32_t t7 = ih * 31765u;
+    const uint32_t mid = ((il * 31765u) >> 16u) + (t6 & 65535u) + (t7 & 65535u);
+    const uint32_t high = ih * 32586u + (t6 >> 16u) + (t7 >> 16u) + (mid >> 16u);
     const uint32_t turns = a0 * 2654435769u + high;
     const uint32_t longitude = (turns + 2147483776u) >> 8u;
-    const float t10 = (float)longitude * 2.0f;
-    const unitpack_vec2 sc = unitpack_sfib24_fixed_sincos_pi_v(-16777216.0f + t10);
-    const unitpack_vec3 t11 = {
+    const float t8 = (float)longitude * 2.0f;
+    const unitpack_vec2 sc = unitpack_sfib24_fixed_sincos_pi_v(-16777216.0f + t8);
+    const unitpack_vec3 t9 = {
         nearbyintf(rho * sc.y * 5.9604645e-8f),
         nearbyintf(rho * sc.x * 5.9604645e-8f),
         t1 ? zm : -zm
     };
-    return t11;
+    return t9;
 }
 
 // The index of the point nearest the input: the nine lattice points around the input in the local
@@ -247,33 +245,31 @@ static inline unitpack_vec3 unitpack_sfib24_fixed_point_v(uint32_t a0) {
 //   that no rounding latitude of an implementation can change the code.
 
 static inline uint32_t unitpack_sfib24_encode_index_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -291,438 +287,502 @@ static inline uint32_t unitpack_sfib24_encode_index_v(unitpack_vec3 a0) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t8 = {
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t5 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t9 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t10 = {
-        (t8.x + 1.0f) * root <= t9.x,
-        (t8.y + 1.0f) * root <= t9.y,
-        (t8.z + 1.0f) * root <= t9.z
+    const unitpack_vec3 t6 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t7 = {
+        (t5.x + 1.0f) * root <= t6.x ? 1.0f : (t5.x * root > t6.x ? -1.0f : 0.0f),
+        (t5.y + 1.0f) * root <= t6.y ? 1.0f : (t5.y * root > t6.y ? -1.0f : 0.0f),
+        (t5.z + 1.0f) * root <= t6.z ? 1.0f : (t5.z * root > t6.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t11 = {
-        t8.x * root > t9.x ? -1.0f : 0.0f,
-        t8.y * root > t9.y ? -1.0f : 0.0f,
-        t8.z * root > t9.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t8.x + (t10.x ? 1.0f : t11.x),
-        t8.y + (t10.y ? 1.0f : t11.y),
-        t8.z + (t10.z ? 1.0f : t11.z)
-    };
+    const unitpack_vec3 aim = { t5.x + t7.x, t5.y + t7.y, t5.z + t7.z };
     const unitpack_vec3 u = { w2.x / root, w2.y / root, w2.z / root };
-    const unitpack_vec2 t12 = { u.x * u.x, u.y * u.y };
-    const float rho2 = t12.x + t12.y;
-    const unitpack_uvec3 t13 = {
+    const unitpack_vec2 t8 = { u.x * u.x, u.y * u.y };
+    const float rho2 = t8.x + t8.y;
+    const unitpack_uvec3 t9 = {
         (uint32_t)fabsf(aim.x),
         (uint32_t)fabsf(aim.y),
         (uint32_t)fabsf(aim.z)
     };
-    const uint32_t limb1_4 = t13.x >> 12u;
-    const uint32_t limb0_4 = t13.x & 4095u;
+    const uint32_t limb1_4 = t9.x >> 12u;
+    const uint32_t limb0_4 = t9.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t13.y >> 12u;
-    const uint32_t limb0_5 = t13.y & 4095u;
+    const uint32_t limb1_5 = t9.y >> 12u;
+    const uint32_t limb0_5 = t9.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t14 = (float)hi7 * 16777216.0f;
-    const float rho2_fixed = (t14 + (float)lo7) * 2.2737368e-13f;
-    const bool t15 = aim.z < 0.0f;
+    const float t10 = (float)hi7 * 16777216.0f;
+    const float rho2_fixed = (t10 + (float)lo7) * 2.2737368e-13f;
+    const bool t11 = aim.z < 0.0f;
     const float below = rho2 / (1.0f + fabsf(u.z));
     const float dz = 2.9802322e-8f - below;
     const float t = unitpack_sfib24_atan2_pi_v(u.y, u.x);
-    const float tn = t15 ? 0.21312913f - t : t;
-    const bool t16 = rho2_fixed >= 1.5225483e-7f;
-    const bool t17 = rho2_fixed >= 3.986083e-7f;
-    const bool t18 = rho2_fixed >= 1.0435701e-6f;
-    const bool t19 = rho2_fixed >= 2.732102e-6f;
-    const float t20 = t19
-        ? -288919.2f
-        : (t18 ? -467481.1f : (t17 ? -756400.3f : (t16 ? -1223881.4f : -1980281.6f)));
-    const float t21 = t19
-        ? -467481.1f
-        : (t18 ? -756400.3f : (t17 ? -1223881.4f : (t16 ? -1980281.6f : -3204163.0f)));
-    const bool t22 = rho2_fixed >= 7.152736e-6f;
-    const float t23 = t22
-        ? 10.5f
-        : (t19 ? -6.5f : (t18 ? 4.0f : (t17 ? -2.5f : (t16 ? 1.5f : -1.0f))));
-    const bool t24 = rho2_fixed >= 1.8726107e-5f;
-    const uint32_t t25 = t24
+    const float tn = t11 ? 0.21312913f - t : t;
+    const bool t12 = rho2_fixed >= 1.5225483e-7f;
+    const bool t13 = rho2_fixed >= 3.986083e-7f;
+    const bool t14 = rho2_fixed >= 1.0435701e-6f;
+    const bool t15 = rho2_fixed >= 2.732102e-6f;
+    const bool t16 = rho2_fixed >= 7.152736e-6f;
+    const bool t17 = rho2_fixed >= 1.8726107e-5f;
+    const bool t18 = rho2_fixed >= 4.902558e-5f;
+    const uint32_t t19 = t18
         ? 34u
-        : (t22 ? 21u : (t19 ? 13u : (t18 ? 8u : (t17 ? 5u : (t16 ? 3u : 2u)))));
-    const float t26 = t24
-        ? 10.5f
-        : (t22 ? -6.5f : (t19 ? 4.0f : (t18 ? -2.5f : (t17 ? 1.5f : (t16 ? -1.0f : 0.5f)))));
-    const bool t27 = rho2_fixed >= 4.902558e-5f;
-    const uint32_t t28 = t27
-        ? 34u
-        : (t24 ? 21u : (t22 ? 13u : (t19 ? 8u : (t18 ? 5u : (t17 ? 3u : (t16 ? 2u : 1u))))));
-    const bool t29 = rho2_fixed >= 0.00012835064f;
-    const float t30 = t29
-        ? -42152.742f
-        : (t27 ? -68204.57f : (t24 ? -110357.31f : (t22 ? -178561.89f : t20)));
-    const float t31 = t29
+        : (t17 ? 21u : (t16 ? 13u : (t15 ? 8u : (t14 ? 5u : (t13 ? 3u : (t12 ? 2u : 1u))))));
+    const uint32_t t20 = t18
+        ? 55u
+        : (t17 ? 34u : (t16 ? 21u : (t15 ? 13u : (t14 ? 8u : (t13 ? 5u : (t12 ? 3u : 2u))))));
+    const float t21 = t18
+        ? 27.5f
+        : (
+            t17
+                ? -17.0f
+                : (
+                    t16
+                        ? 10.5f
+                        : (t15 ? -6.5f : (t14 ? 4.0f : (t13 ? -2.5f : (t12 ? 1.5f : -1.0f))))
+                )
+        );
+    const float t22 = t18
         ? -68204.57f
-        : (t27 ? -110357.31f : (t24 ? -178561.89f : (t22 ? -288919.2f : t21)));
-    const bool t32 = rho2_fixed >= 0.00033602634f;
-    const bool t33 = rho2_fixed >= 0.00087972835f;
-    const float t34 = t33
-        ? -116.5f
-        : (t32 ? 72.0f : (t29 ? -44.5f : (t27 ? 27.5f : (t24 ? -17.0f : t23))));
-    const bool t35 = rho2_fixed >= 0.0023031589f;
-    const float t36 = t35
-        ? -116.5f
-        : (t33 ? 72.0f : (t32 ? -44.5f : (t29 ? 27.5f : (t27 ? -17.0f : t26))));
-    const bool t37 = rho2_fixed >= 0.006029748f;
-    const uint32_t t38 = t37
-        ? 610u
-        : (t35 ? 377u : (t33 ? 233u : (t32 ? 144u : (t29 ? 89u : (t27 ? 55u : t25)))));
-    const float t39 = t37
-        ? -6150.0024f
-        : (t35 ? -9950.913f : (t33 ? -16100.915f : (t32 ? -26051.828f : t30)));
-    const float t40 = t37
-        ? -9950.913f
-        : (t35 ? -16100.915f : (t33 ? -26051.828f : (t32 ? -42152.742f : t31)));
-    const bool t41 = rho2_fixed >= 0.015786085f;
-    const uint32_t t42 = t41
-        ? 610u
-        : (t37 ? 377u : (t35 ? 233u : (t33 ? 144u : (t32 ? 89u : (t29 ? 55u : t28)))));
-    const bool t43 = rho2_fixed >= 0.04132851f;
-    const bool t44 = rho2_fixed >= 0.10819943f;
-    const float t45 = t44
-        ? 1292.0f
-        : (t43 ? -798.5f : (t41 ? 493.5f : (t37 ? -305.0f : (t35 ? 188.5f : t34))));
-    const bool t46 = rho2_fixed >= 0.2832698f;
-    const float t47 = t46
-        ? -897.27325f
-        : (t44 ? -1451.8186f : (t43 ? -2349.0918f : (t41 ? -3800.9104f : t39)));
-    const float t48 = t46
-        ? 1292.0f
-        : (t44 ? -798.5f : (t43 ? 493.5f : (t41 ? -305.0f : (t37 ? 188.5f : t36))));
-    const float t49 = t46
-        ? -1451.8186f
-        : (t44 ? -2349.0918f : (t43 ? -3800.9104f : (t41 ? -6150.0024f : t40)));
-    const bool t50 = rho2_fixed >= 0.74161f;
-    const uint32_t t51 = t50 ? 4181u : (t46 ? 2584u : (t44 ? 1597u : (t43 ? 987u : t42)));
-    const uint32_t t52 = t50
-        ? 6765u
-        : (t46 ? 4181u : (t44 ? 2584u : (t43 ? 1597u : (t41 ? 987u : t38))));
-    const float t53 = tn * (t50 ? 3382.5f : (t46 ? -2090.5f : t45));
-    const float t54 = dz * (t50 ? -554.54535f : t47);
-    const float t55 = tn * (t50 ? -2090.5f : t48);
-    const float t56 = dz * (t50 ? -897.27325f : t49);
-    const uint32_t t57 = (uint32_t)(4194303.0f + nearbyintf(t53 + t54)) * t51
-        + (uint32_t)(4194303.0f + nearbyintf(t55 + t56)) * t52;
-    const uint32_t corner = t57 - ((t51 + t52) << 22u);
-    const uint32_t t58 = 3221225471u < corner ? 4294967295u - corner : corner;
-    const uint32_t t59 = (t15 ? 16777215u - t58 : t58) & 16777215u;
-    const unitpack_vec3 fixed_point = unitpack_sfib24_fixed_point_v(t59);
-    const unitpack_vec3 t60 = {
-        fabsf(fixed_point.x - aim.x),
-        fabsf(fixed_point.y - aim.y),
-        fabsf(fixed_point.z - aim.z)
+        : (
+            t17
+                ? -110357.31f
+                : (
+                    t16
+                        ? -178561.89f
+                        : (
+                            t15
+                                ? -288919.2f
+                                : (
+                                    t14
+                                        ? -467481.1f
+                                        : (t13 ? -756400.3f : (t12 ? -1223881.4f : -1980281.6f))
+                                )
+                        )
+                )
+        );
+    const float t23 = t18
+        ? -17.0f
+        : (
+            t17
+                ? 10.5f
+                : (t16 ? -6.5f : (t15 ? 4.0f : (t14 ? -2.5f : (t13 ? 1.5f : (t12 ? -1.0f : 0.5f)))))
+        );
+    const float t24 = t18
+        ? -110357.31f
+        : (
+            t17
+                ? -178561.89f
+                : (
+                    t16
+                        ? -288919.2f
+                        : (
+                            t15
+                                ? -467481.1f
+                                : (
+                                    t14
+                                        ? -756400.3f
+                                        : (t13 ? -1223881.4f : (t12 ? -1980281.6f : -3204163.0f))
+                                )
+                        )
+                )
+        );
+    const bool t25 = rho2_fixed >= 0.00012835064f;
+    const bool t26 = rho2_fixed >= 0.00033602634f;
+    const bool t27 = rho2_fixed >= 0.00087972835f;
+    const bool t28 = rho2_fixed >= 0.0023031589f;
+    const bool t29 = rho2_fixed >= 0.006029748f;
+    const bool t30 = rho2_fixed >= 0.015786085f;
+    const bool t31 = rho2_fixed >= 0.04132851f;
+    const uint32_t t32 = t31
+        ? 987u
+        : (
+            t30
+                ? 610u
+                : (t29 ? 377u : (t28 ? 233u : (t27 ? 144u : (t26 ? 89u : (t25 ? 55u : t19)))))
+        );
+    const uint32_t t33 = t31
+        ? 1597u
+        : (
+            t30
+                ? 987u
+                : (t29 ? 610u : (t28 ? 377u : (t27 ? 233u : (t26 ? 144u : (t25 ? 89u : t20)))))
+        );
+    const float t34 = t31
+        ? -798.5f
+        : (
+            t30
+                ? 493.5f
+                : (
+                    t29
+                        ? -305.0f
+                        : (t28 ? 188.5f : (t27 ? -116.5f : (t26 ? 72.0f : (t25 ? -44.5f : t21))))
+                )
+        );
+    const float t35 = t31
+        ? -2349.0918f
+        : (
+            t30
+                ? -3800.9104f
+                : (
+                    t29
+                        ? -6150.0024f
+                        : (
+                            t28
+                                ? -9950.913f
+                                : (
+                                    t27
+                                        ? -16100.915f
+                                        : (t26 ? -26051.828f : (t25 ? -42152.742f : t22))
+                                )
+                        )
+                )
+        );
+    const float t36 = t31
+        ? 493.5f
+        : (
+            t30
+                ? -305.0f
+                : (
+                    t29
+                        ? 188.5f
+                        : (t28 ? -116.5f : (t27 ? 72.0f : (t26 ? -44.5f : (t25 ? 27.5f : t23))))
+                )
+        );
+    const float t37 = t31
+        ? -3800.9104f
+        : (
+            t30
+                ? -6150.0024f
+                : (
+                    t29
+                        ? -9950.913f
+                        : (
+                            t28
+                                ? -16100.915f
+                                : (
+                                    t27
+                                        ? -26051.828f
+                                        : (t26 ? -42152.742f : (t25 ? -68204.57f : t24))
+                                )
+                        )
+                )
+        );
+    const bool t38 = rho2_fixed >= 0.10819943f;
+    const bool t39 = rho2_fixed >= 0.2832698f;
+    const bool t40 = rho2_fixed >= 0.74161f;
+    const uint32_t t41 = t40 ? 4181u : (t39 ? 2584u : (t38 ? 1597u : t32));
+    const uint32_t t42 = t40 ? 6765u : (t39 ? 4181u : (t38 ? 2584u : t33));
+    const float t43 = tn * (t40 ? 3382.5f : (t39 ? -2090.5f : (t38 ? 1292.0f : t34)));
+    const float t44 = dz * (t40 ? -554.54535f : (t39 ? -897.27325f : (t38 ? -1451.8186f : t35)));
+    const float t45 = tn * (t40 ? -2090.5f : (t39 ? 1292.0f : (t38 ? -798.5f : t36)));
+    const float t46 = dz * (t40 ? -897.27325f : (t39 ? -1451.8186f : (t38 ? -2349.0918f : t37)));
+    const uint32_t t47 = (uint32_t)(4194303.0f + nearbyintf(t43 + t44)) * t41
+        + (uint32_t)(4194303.0f + nearbyintf(t45 + t46)) * t42;
+    const uint32_t corner = t47 - ((t41 + t42) << 22u);
+    const uint32_t t48 = 3221225471u < corner ? 4294967295u - corner : corner;
+    const uint32_t t49 = (t11 ? 16777215u - t48 : t48) & 16777215u;
+    const unitpack_vec3 fixed_point = unitpack_sfib24_fixed_point_v(t49);
+    const unitpack_uvec3 t50 = {
+        (uint32_t)fabsf(fixed_point.x - aim.x),
+        (uint32_t)fabsf(fixed_point.y - aim.y),
+        (uint32_t)fabsf(fixed_point.z - aim.z)
     };
-    const unitpack_uvec3 t61 = { (uint32_t)t60.x, (uint32_t)t60.y, (uint32_t)t60.z };
-    const uint32_t limb1_6 = t61.x >> 12u;
-    const uint32_t limb0_6 = t61.x & 4095u;
+    const uint32_t limb1_6 = t50.x >> 12u;
+    const uint32_t limb0_6 = t50.x & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_7 = t61.y >> 12u;
-    const uint32_t limb0_7 = t61.y & 4095u;
+    const uint32_t limb1_7 = t50.y >> 12u;
+    const uint32_t limb0_7 = t50.y & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t61.z >> 12u;
-    const uint32_t limb0_8 = t61.z & 4095u;
+    const uint32_t limb1_8 = t50.z >> 12u;
+    const uint32_t limb0_8 = t50.z & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi11 = hi10 + (lo10 >> 24u);
     const uint32_t lo11 = lo10 & 16777215u;
-    const float t62 = (float)hi11 * 16777216.0f;
-    const float d = t62 + (float)lo11;
-    const uint32_t t63 = corner + t51;
-    const uint32_t t64 = 3221225471u < t63 ? 4294967295u - t63 : t63;
-    const uint32_t t65 = (t15 ? 16777215u - t64 : t64) & 16777215u;
-    const unitpack_vec3 fixed_point2 = unitpack_sfib24_fixed_point_v(t65);
-    const unitpack_vec3 t66 = {
-        fabsf(fixed_point2.x - aim.x),
-        fabsf(fixed_point2.y - aim.y),
-        fabsf(fixed_point2.z - aim.z)
+    const float t51 = (float)hi11 * 16777216.0f;
+    const float d = t51 + (float)lo11;
+    const uint32_t t52 = corner + t41;
+    const uint32_t t53 = 3221225471u < t52 ? 4294967295u - t52 : t52;
+    const uint32_t t54 = (t11 ? 16777215u - t53 : t53) & 16777215u;
+    const unitpack_vec3 fixed_point2 = unitpack_sfib24_fixed_point_v(t54);
+    const unitpack_uvec3 t55 = {
+        (uint32_t)fabsf(fixed_point2.x - aim.x),
+        (uint32_t)fabsf(fixed_point2.y - aim.y),
+        (uint32_t)fabsf(fixed_point2.z - aim.z)
     };
-    const unitpack_uvec3 t67 = { (uint32_t)t66.x, (uint32_t)t66.y, (uint32_t)t66.z };
-    const uint32_t limb1_9 = t67.x >> 12u;
-    const uint32_t limb0_9 = t67.x & 4095u;
+    const uint32_t limb1_9 = t55.x >> 12u;
+    const uint32_t limb0_9 = t55.x & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t limb1_10 = t67.y >> 12u;
-    const uint32_t limb0_10 = t67.y & 4095u;
+    const uint32_t limb1_10 = t55.y >> 12u;
+    const uint32_t limb0_10 = t55.y & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t67.z >> 12u;
-    const uint32_t limb0_11 = t67.z & 4095u;
+    const uint32_t limb1_11 = t55.z >> 12u;
+    const uint32_t limb0_11 = t55.z & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     const uint32_t hi15 = hi14 + (lo14 >> 24u);
     const uint32_t lo15 = lo14 & 16777215u;
-    const float t68 = (float)hi15 * 16777216.0f;
-    const float d2 = t68 + (float)lo15;
-    const bool t69 = d2 < d || (d2 == d && t65 < t59);
-    const float t70 = t69 ? d2 : d;
-    const uint32_t t71 = t69 ? t65 : t59;
-    const uint32_t t72 = corner + t51 + t51;
-    const uint32_t t73 = 3221225471u < t72 ? 4294967295u - t72 : t72;
-    const uint32_t t74 = (t15 ? 16777215u - t73 : t73) & 16777215u;
-    const unitpack_vec3 fixed_point3 = unitpack_sfib24_fixed_point_v(t74);
-    const unitpack_vec3 t75 = {
-        fabsf(fixed_point3.x - aim.x),
-        fabsf(fixed_point3.y - aim.y),
-        fabsf(fixed_point3.z - aim.z)
+    const float t56 = (float)hi15 * 16777216.0f;
+    const float d2 = t56 + (float)lo15;
+    const bool t57 = d2 < d || (d2 == d && t54 < t49);
+    const float t58 = t57 ? d2 : d;
+    const uint32_t t59 = t57 ? t54 : t49;
+    const uint32_t t60 = corner + t41 + t41;
+    const uint32_t t61 = 3221225471u < t60 ? 4294967295u - t60 : t60;
+    const uint32_t t62 = (t11 ? 16777215u - t61 : t61) & 16777215u;
+    const unitpack_vec3 fixed_point3 = unitpack_sfib24_fixed_point_v(t62);
+    const unitpack_uvec3 t63 = {
+        (uint32_t)fabsf(fixed_point3.x - aim.x),
+        (uint32_t)fabsf(fixed_point3.y - aim.y),
+        (uint32_t)fabsf(fixed_point3.z - aim.z)
     };
-    const unitpack_uvec3 t76 = { (uint32_t)t75.x, (uint32_t)t75.y, (uint32_t)t75.z };
-    const uint32_t limb1_12 = t76.x >> 12u;
-    const uint32_t limb0_12 = t76.x & 4095u;
+    const uint32_t limb1_12 = t63.x >> 12u;
+    const uint32_t limb0_12 = t63.x & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    const uint32_t limb1_13 = t76.y >> 12u;
-    const uint32_t limb0_13 = t76.y & 4095u;
+    const uint32_t limb1_13 = t63.y >> 12u;
+    const uint32_t limb0_13 = t63.y & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t76.z >> 12u;
-    const uint32_t limb0_14 = t76.z & 4095u;
+    const uint32_t limb1_14 = t63.z >> 12u;
+    const uint32_t limb0_14 = t63.z & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     const uint32_t hi19 = hi18 + (lo18 >> 24u);
     const uint32_t lo19 = lo18 & 16777215u;
-    const float t77 = (float)hi19 * 16777216.0f;
-    const float d3 = t77 + (float)lo19;
-    const bool t78 = d3 < t70 || (d3 == t70 && t74 < t71);
-    const float t79 = t78 ? d3 : t70;
-    const uint32_t t80 = t78 ? t74 : t71;
-    const uint32_t t81 = corner + t52;
-    const uint32_t t82 = 3221225471u < t81 ? 4294967295u - t81 : t81;
-    const uint32_t t83 = (t15 ? 16777215u - t82 : t82) & 16777215u;
-    const unitpack_vec3 fixed_point4 = unitpack_sfib24_fixed_point_v(t83);
-    const unitpack_vec3 t84 = {
-        fabsf(fixed_point4.x - aim.x),
-        fabsf(fixed_point4.y - aim.y),
-        fabsf(fixed_point4.z - aim.z)
+    const float t64 = (float)hi19 * 16777216.0f;
+    const float d3 = t64 + (float)lo19;
+    const bool t65 = d3 < t58 || (d3 == t58 && t62 < t59);
+    const float t66 = t65 ? d3 : t58;
+    const uint32_t t67 = t65 ? t62 : t59;
+    const uint32_t t68 = corner + t42;
+    const uint32_t t69 = 3221225471u < t68 ? 4294967295u - t68 : t68;
+    const uint32_t t70 = (t11 ? 16777215u - t69 : t69) & 16777215u;
+    const unitpack_vec3 fixed_point4 = unitpack_sfib24_fixed_point_v(t70);
+    const unitpack_uvec3 t71 = {
+        (uint32_t)fabsf(fixed_point4.x - aim.x),
+        (uint32_t)fabsf(fixed_point4.y - aim.y),
+        (uint32_t)fabsf(fixed_point4.z - aim.z)
     };
-    const unitpack_uvec3 t85 = { (uint32_t)t84.x, (uint32_t)t84.y, (uint32_t)t84.z };
-    const uint32_t limb1_15 = t85.x >> 12u;
-    const uint32_t limb0_15 = t85.x & 4095u;
+    const uint32_t limb1_15 = t71.x >> 12u;
+    const uint32_t limb0_15 = t71.x & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_16 = t85.y >> 12u;
-    const uint32_t limb0_16 = t85.y & 4095u;
+    const uint32_t limb1_16 = t71.y >> 12u;
+    const uint32_t limb0_16 = t71.y & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t85.z >> 12u;
-    const uint32_t limb0_17 = t85.z & 4095u;
+    const uint32_t limb1_17 = t71.z >> 12u;
+    const uint32_t limb0_17 = t71.z & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     const uint32_t hi23 = hi22 + (lo22 >> 24u);
     const uint32_t lo23 = lo22 & 16777215u;
-    const float t86 = (float)hi23 * 16777216.0f;
-    const float d4 = t86 + (float)lo23;
-    const bool t87 = d4 < t79 || (d4 == t79 && t83 < t80);
-    const float t88 = t87 ? d4 : t79;
-    const uint32_t t89 = t87 ? t83 : t80;
-    const uint32_t t90 = corner + t51 + t52;
-    const uint32_t t91 = 3221225471u < t90 ? 4294967295u - t90 : t90;
-    const uint32_t t92 = (t15 ? 16777215u - t91 : t91) & 16777215u;
-    const unitpack_vec3 fixed_point5 = unitpack_sfib24_fixed_point_v(t92);
-    const unitpack_vec3 t93 = {
-        fabsf(fixed_point5.x - aim.x),
-        fabsf(fixed_point5.y - aim.y),
-        fabsf(fixed_point5.z - aim.z)
+    const float t72 = (float)hi23 * 16777216.0f;
+    const float d4 = t72 + (float)lo23;
+    const bool t73 = d4 < t66 || (d4 == t66 && t70 < t67);
+    const float t74 = t73 ? d4 : t66;
+    const uint32_t t75 = t73 ? t70 : t67;
+    const uint32_t t76 = corner + t41 + t42;
+    const uint32_t t77 = 3221225471u < t76 ? 4294967295u - t76 : t76;
+    const uint32_t t78 = (t11 ? 16777215u - t77 : t77) & 16777215u;
+    const unitpack_vec3 fixed_point5 = unitpack_sfib24_fixed_point_v(t78);
+    const unitpack_uvec3 t79 = {
+        (uint32_t)fabsf(fixed_point5.x - aim.x),
+        (uint32_t)fabsf(fixed_point5.y - aim.y),
+        (uint32_t)fabsf(fixed_point5.z - aim.z)
     };
-    const unitpack_uvec3 t94 = { (uint32_t)t93.x, (uint32_t)t93.y, (uint32_t)t93.z };
-    const uint32_t limb1_18 = t94.x >> 12u;
-    const uint32_t limb0_18 = t94.x & 4095u;
+    const uint32_t limb1_18 = t79.x >> 12u;
+    const uint32_t limb0_18 = t79.x & 4095u;
     const uint32_t cross18 = limb1_18 * limb0_18;
     const uint32_t hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     const uint32_t lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    const uint32_t limb1_19 = t94.y >> 12u;
-    const uint32_t limb0_19 = t94.y & 4095u;
+    const uint32_t limb1_19 = t79.y >> 12u;
+    const uint32_t limb0_19 = t79.y & 4095u;
     const uint32_t cross19 = limb1_19 * limb0_19;
     const uint32_t hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     const uint32_t lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    const uint32_t limb1_20 = t94.z >> 12u;
-    const uint32_t limb0_20 = t94.z & 4095u;
+    const uint32_t limb1_20 = t79.z >> 12u;
+    const uint32_t limb0_20 = t79.z & 4095u;
     const uint32_t cross20 = limb1_20 * limb0_20;
     const uint32_t hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     const uint32_t lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     const uint32_t hi27 = hi26 + (lo26 >> 24u);
     const uint32_t lo27 = lo26 & 16777215u;
-    const float t95 = (float)hi27 * 16777216.0f;
-    const float d5 = t95 + (float)lo27;
-    const bool t96 = d5 < t88 || (d5 == t88 && t92 < t89);
-    const float t97 = t96 ? d5 : t88;
-    const uint32_t t98 = t96 ? t92 : t89;
-    const uint32_t t99 = corner + t51 + t51 + t52;
-    const uint32_t t100 = 3221225471u < t99 ? 4294967295u - t99 : t99;
-    const uint32_t t101 = (t15 ? 16777215u - t100 : t100) & 16777215u;
-    const unitpack_vec3 fixed_point6 = unitpack_sfib24_fixed_point_v(t101);
-    const unitpack_vec3 t102 = {
-        fabsf(fixed_point6.x - aim.x),
-        fabsf(fixed_point6.y - aim.y),
-        fabsf(fixed_point6.z - aim.z)
+    const float t80 = (float)hi27 * 16777216.0f;
+    const float d5 = t80 + (float)lo27;
+    const bool t81 = d5 < t74 || (d5 == t74 && t78 < t75);
+    const float t82 = t81 ? d5 : t74;
+    const uint32_t t83 = t81 ? t78 : t75;
+    const uint32_t t84 = corner + t41 + t41 + t42;
+    const uint32_t t85 = 3221225471u < t84 ? 4294967295u - t84 : t84;
+    const uint32_t t86 = (t11 ? 16777215u - t85 : t85) & 16777215u;
+    const unitpack_vec3 fixed_point6 = unitpack_sfib24_fixed_point_v(t86);
+    const unitpack_uvec3 t87 = {
+        (uint32_t)fabsf(fixed_point6.x - aim.x),
+        (uint32_t)fabsf(fixed_point6.y - aim.y),
+        (uint32_t)fabsf(fixed_point6.z - aim.z)
     };
-    const unitpack_uvec3 t103 = { (uint32_t)t102.x, (uint32_t)t102.y, (uint32_t)t102.z };
-    const uint32_t limb1_21 = t103.x >> 12u;
-    const uint32_t limb0_21 = t103.x & 4095u;
+    const uint32_t limb1_21 = t87.x >> 12u;
+    const uint32_t limb0_21 = t87.x & 4095u;
     const uint32_t cross21 = limb1_21 * limb0_21;
     const uint32_t hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     const uint32_t lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    const uint32_t limb1_22 = t103.y >> 12u;
-    const uint32_t limb0_22 = t103.y & 4095u;
+    const uint32_t limb1_22 = t87.y >> 12u;
+    const uint32_t limb0_22 = t87.y & 4095u;
     const uint32_t cross22 = limb1_22 * limb0_22;
     const uint32_t hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     const uint32_t lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    const uint32_t limb1_23 = t103.z >> 12u;
-    const uint32_t limb0_23 = t103.z & 4095u;
+    const uint32_t limb1_23 = t87.z >> 12u;
+    const uint32_t limb0_23 = t87.z & 4095u;
     const uint32_t cross23 = limb1_23 * limb0_23;
     const uint32_t hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     const uint32_t lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     const uint32_t hi31 = hi30 + (lo30 >> 24u);
     const uint32_t lo31 = lo30 & 16777215u;
-    const float t104 = (float)hi31 * 16777216.0f;
-    const float d6 = t104 + (float)lo31;
-    const bool t105 = d6 < t97 || (d6 == t97 && t101 < t98);
-    const float t106 = t105 ? d6 : t97;
-    const uint32_t t107 = t105 ? t101 : t98;
-    const uint32_t t108 = corner + t52 + t52;
-    const uint32_t t109 = 3221225471u < t108 ? 4294967295u - t108 : t108;
-    const uint32_t t110 = (t15 ? 16777215u - t109 : t109) & 16777215u;
-    const unitpack_vec3 fixed_point7 = unitpack_sfib24_fixed_point_v(t110);
-    const unitpack_vec3 t111 = {
-        fabsf(fixed_point7.x - aim.x),
-        fabsf(fixed_point7.y - aim.y),
-        fabsf(fixed_point7.z - aim.z)
+    const float t88 = (float)hi31 * 16777216.0f;
+    const float d6 = t88 + (float)lo31;
+    const bool t89 = d6 < t82 || (d6 == t82 && t86 < t83);
+    const float t90 = t89 ? d6 : t82;
+    const uint32_t t91 = t89 ? t86 : t83;
+    const uint32_t t92 = corner + t42 + t42;
+    const uint32_t t93 = 3221225471u < t92 ? 4294967295u - t92 : t92;
+    const uint32_t t94 = (t11 ? 16777215u - t93 : t93) & 16777215u;
+    const unitpack_vec3 fixed_point7 = unitpack_sfib24_fixed_point_v(t94);
+    const unitpack_uvec3 t95 = {
+        (uint32_t)fabsf(fixed_point7.x - aim.x),
+        (uint32_t)fabsf(fixed_point7.y - aim.y),
+        (uint32_t)fabsf(fixed_point7.z - aim.z)
     };
-    const unitpack_uvec3 t112 = { (uint32_t)t111.x, (uint32_t)t111.y, (uint32_t)t111.z };
-    const uint32_t limb1_24 = t112.x >> 12u;
-    const uint32_t limb0_24 = t112.x & 4095u;
+    const uint32_t limb1_24 = t95.x >> 12u;
+    const uint32_t limb0_24 = t95.x & 4095u;
     const uint32_t cross24 = limb1_24 * limb0_24;
     const uint32_t hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     const uint32_t lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    const uint32_t limb1_25 = t112.y >> 12u;
-    const uint32_t limb0_25 = t112.y & 4095u;
+    const uint32_t limb1_25 = t95.y >> 12u;
+    const uint32_t limb0_25 = t95.y & 4095u;
     const uint32_t cross25 = limb1_25 * limb0_25;
     const uint32_t hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     const uint32_t lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    const uint32_t limb1_26 = t112.z >> 12u;
-    const uint32_t limb0_26 = t112.z & 4095u;
+    const uint32_t limb1_26 = t95.z >> 12u;
+    const uint32_t limb0_26 = t95.z & 4095u;
     const uint32_t cross26 = limb1_26 * limb0_26;
     const uint32_t hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     const uint32_t lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     const uint32_t hi35 = hi34 + (lo34 >> 24u);
     const uint32_t lo35 = lo34 & 16777215u;
-    const float t113 = (float)hi35 * 16777216.0f;
-    const float d7 = t113 + (float)lo35;
-    const bool t114 = d7 < t106 || (d7 == t106 && t110 < t107);
-    const float t115 = t114 ? d7 : t106;
-    const uint32_t t116 = t114 ? t110 : t107;
-    const uint32_t t117 = corner + t51 + t52 + t52;
-    const uint32_t t118 = 3221225471u < t117 ? 4294967295u - t117 : t117;
-    const uint32_t t119 = (t15 ? 16777215u - t118 : t118) & 16777215u;
-    const unitpack_vec3 fixed_point8 = unitpack_sfib24_fixed_point_v(t119);
-    const unitpack_vec3 t120 = {
-        fabsf(fixed_point8.x - aim.x),
-        fabsf(fixed_point8.y - aim.y),
-        fabsf(fixed_point8.z - aim.z)
+    const float t96 = (float)hi35 * 16777216.0f;
+    const float d7 = t96 + (float)lo35;
+    const bool t97 = d7 < t90 || (d7 == t90 && t94 < t91);
+    const float t98 = t97 ? d7 : t90;
+    const uint32_t t99 = t97 ? t94 : t91;
+    const uint32_t t100 = corner + t41 + t42 + t42;
+    const uint32_t t101 = 3221225471u < t100 ? 4294967295u - t100 : t100;
+    const uint32_t t102 = (t11 ? 16777215u - t101 : t101) & 16777215u;
+    const unitpack_vec3 fixed_point8 = unitpack_sfib24_fixed_point_v(t102);
+    const unitpack_uvec3 t103 = {
+        (uint32_t)fabsf(fixed_point8.x - aim.x),
+        (uint32_t)fabsf(fixed_point8.y - aim.y),
+        (uint32_t)fabsf(fixed_point8.z - aim.z)
     };
-    const unitpack_uvec3 t121 = { (uint32_t)t120.x, (uint32_t)t120.y, (uint32_t)t120.z };
-    const uint32_t limb1_27 = t121.x >> 12u;
-    const uint32_t limb0_27 = t121.x & 4095u;
+    const uint32_t limb1_27 = t103.x >> 12u;
+    const uint32_t limb0_27 = t103.x & 4095u;
     const uint32_t cross27 = limb1_27 * limb0_27;
     const uint32_t hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     const uint32_t lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    const uint32_t limb1_28 = t121.y >> 12u;
-    const uint32_t limb0_28 = t121.y & 4095u;
+    const uint32_t limb1_28 = t103.y >> 12u;
+    const uint32_t limb0_28 = t103.y & 4095u;
     const uint32_t cross28 = limb1_28 * limb0_28;
     const uint32_t hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     const uint32_t lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    const uint32_t limb1_29 = t121.z >> 12u;
-    const uint32_t limb0_29 = t121.z & 4095u;
+    const uint32_t limb1_29 = t103.z >> 12u;
+    const uint32_t limb0_29 = t103.z & 4095u;
     const uint32_t cross29 = limb1_29 * limb0_29;
     const uint32_t hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     const uint32_t lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     const uint32_t hi39 = hi38 + (lo38 >> 24u);
     const uint32_t lo39 = lo38 & 16777215u;
-    const float t122 = (float)hi39 * 16777216.0f;
-    const float d8 = t122 + (float)lo39;
-    const bool t123 = d8 < t115 || (d8 == t115 && t119 < t116);
-    const float t124 = t123 ? d8 : t115;
-    const uint32_t t125 = t123 ? t119 : t116;
-    const uint32_t t126 = corner + t51 + t51 + t52 + t52;
-    const uint32_t t127 = 3221225471u < t126 ? 4294967295u - t126 : t126;
-    const uint32_t t128 = (t15 ? 16777215u - t127 : t127) & 16777215u;
-    const unitpack_vec3 fixed_point9 = unitpack_sfib24_fixed_point_v(t128);
-    const unitpack_vec3 t129 = {
-        fabsf(fixed_point9.x - aim.x),
-        fabsf(fixed_point9.y - aim.y),
-        fabsf(fixed_point9.z - aim.z)
+    const float t104 = (float)hi39 * 16777216.0f;
+    const float d8 = t104 + (float)lo39;
+    const bool t105 = d8 < t98 || (d8 == t98 && t102 < t99);
+    const float t106 = t105 ? d8 : t98;
+    const uint32_t t107 = t105 ? t102 : t99;
+    const uint32_t t108 = corner + t41 + t41 + t42 + t42;
+    const uint32_t t109 = 3221225471u < t108 ? 4294967295u - t108 : t108;
+    const uint32_t t110 = (t11 ? 16777215u - t109 : t109) & 16777215u;
+    const unitpack_vec3 fixed_point9 = unitpack_sfib24_fixed_point_v(t110);
+    const unitpack_uvec3 t111 = {
+        (uint32_t)fabsf(fixed_point9.x - aim.x),
+        (uint32_t)fabsf(fixed_point9.y - aim.y),
+        (uint32_t)fabsf(fixed_point9.z - aim.z)
     };
-    const unitpack_uvec3 t130 = { (uint32_t)t129.x, (uint32_t)t129.y, (uint32_t)t129.z };
-    const uint32_t limb1_30 = t130.x >> 12u;
-    const uint32_t limb0_30 = t130.x & 4095u;
+    const uint32_t limb1_30 = t111.x >> 12u;
+    const uint32_t limb0_30 = t111.x & 4095u;
     const uint32_t cross30 = limb1_30 * limb0_30;
     const uint32_t hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     const uint32_t lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    const uint32_t limb1_31 = t130.y >> 12u;
-    const uint32_t limb0_31 = t130.y & 4095u;
+    const uint32_t limb1_31 = t111.y >> 12u;
+    const uint32_t limb0_31 = t111.y & 4095u;
     const uint32_t cross31 = limb1_31 * limb0_31;
     const uint32_t hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     const uint32_t lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    const uint32_t limb1_32 = t130.z >> 12u;
-    const uint32_t limb0_32 = t130.z & 4095u;
+    const uint32_t limb1_32 = t111.z >> 12u;
+    const uint32_t limb0_32 = t111.z & 4095u;
     const uint32_t cross32 = limb1_32 * limb0_32;
     const uint32_t hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     const uint32_t lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     const uint32_t hi43 = hi42 + (lo42 >> 24u);
     const uint32_t lo43 = lo42 & 16777215u;
-    const float t131 = (float)hi43 * 16777216.0f;
-    const float d9 = t131 + (float)lo43;
-    return d9 < t124 || (d9 == t124 && t128 < t125) ? t128 : t125;
+    const float t112 = (float)hi43 * 16777216.0f;
+    const float d9 = t112 + (float)lo43;
+    return d9 < t106 || (d9 == t106 && t110 < t107) ? t110 : t107;
 }
 
 // Struct form of unitpack_sfib24_encode_float.

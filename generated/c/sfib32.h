@@ -212,32 +212,30 @@ static inline unitpack_vec3 unitpack_sfib32_fixed_point_v(uint32_t a0) {
     const float t5 = near * far * 4398046500000.0f;
     const float root_estimate = floorf(sqrtf(t5));
     const float root_next = root_estimate + 1.0f;
-    const float t6 = root_next * root_next <= t5
-        ? 1.0f
-        : (root_estimate * root_estimate > t5 ? -1.0f : 0.0f);
-    const float root_step = root_estimate + t6;
+    const float step_down = root_estimate * root_estimate > t5 ? -1.0f : 0.0f;
+    const float step = root_next * root_next <= t5 ? 1.0f : step_down;
+    const float root_step = root_estimate + step;
     const float root_next2 = root_step + 1.0f;
-    const float t7 = root_next2 * root_next2 <= t5
-        ? 1.0f
-        : (root_step * root_step > t5 ? -1.0f : 0.0f);
-    const float rho = root_step + t7;
+    const float step_down2 = root_step * root_step > t5 ? -1.0f : 0.0f;
+    const float step2 = root_next2 * root_next2 <= t5 ? 1.0f : step_down2;
+    const float rho = root_step + step2;
     const float zm = 2097152.0f - floorf(near * 2097152.0f);
     const uint32_t il = a0 & 65535u;
     const uint32_t ih = a0 >> 16u;
-    const uint32_t t8 = il * 32586u;
-    const uint32_t t9 = ih * 31765u;
-    const uint32_t mid = ((il * 31765u) >> 16u) + (t8 & 65535u) + (t9 & 65535u);
-    const uint32_t high = ih * 32586u + (t8 >> 16u) + (t9 >> 16u) + (mid >> 16u);
+    const uint32_t t6 = il * 32586u;
+    const uint32_t t7 = ih * 31765u;
+    const uint32_t mid = ((il * 31765u) >> 16u) + (t6 & 65535u) + (t7 & 65535u);
+    const uint32_t high = ih * 32586u + (t6 >> 16u) + (t7 >> 16u) + (mid >> 16u);
     const uint32_t turns = a0 * 2654435769u + high;
     const uint32_t longitude = (turns + 2147483776u) >> 8u;
-    const float t10 = (float)longitude * 2.0f;
-    const unitpack_vec2 sc = unitpack_sfib32_fixed_sincos_pi_v(-16777216.0f + t10);
-    const unitpack_vec3 t11 = {
+    const float t8 = (float)longitude * 2.0f;
+    const unitpack_vec2 sc = unitpack_sfib32_fixed_sincos_pi_v(-16777216.0f + t8);
+    const unitpack_vec3 t9 = {
         nearbyintf(rho * sc.y * 5.9604645e-8f),
         nearbyintf(rho * sc.x * 5.9604645e-8f),
         t1 ? zm : -zm
     };
-    return t11;
+    return t9;
 }
 
 // The index of the point nearest the input: the nine lattice points around the input in the local
@@ -246,33 +244,31 @@ static inline unitpack_vec3 unitpack_sfib32_fixed_point_v(uint32_t a0) {
 //   that no rounding latitude of an implementation can change the code.
 
 static inline uint32_t unitpack_sfib32_encode_index_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -290,468 +286,606 @@ static inline uint32_t unitpack_sfib32_encode_index_v(unitpack_vec3 a0) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t8 = {
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t5 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t9 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t10 = {
-        (t8.x + 1.0f) * root <= t9.x,
-        (t8.y + 1.0f) * root <= t9.y,
-        (t8.z + 1.0f) * root <= t9.z
+    const unitpack_vec3 t6 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t7 = {
+        (t5.x + 1.0f) * root <= t6.x ? 1.0f : (t5.x * root > t6.x ? -1.0f : 0.0f),
+        (t5.y + 1.0f) * root <= t6.y ? 1.0f : (t5.y * root > t6.y ? -1.0f : 0.0f),
+        (t5.z + 1.0f) * root <= t6.z ? 1.0f : (t5.z * root > t6.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t11 = {
-        t8.x * root > t9.x ? -1.0f : 0.0f,
-        t8.y * root > t9.y ? -1.0f : 0.0f,
-        t8.z * root > t9.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t8.x + (t10.x ? 1.0f : t11.x),
-        t8.y + (t10.y ? 1.0f : t11.y),
-        t8.z + (t10.z ? 1.0f : t11.z)
-    };
+    const unitpack_vec3 aim = { t5.x + t7.x, t5.y + t7.y, t5.z + t7.z };
     const unitpack_vec3 u = { w2.x / root, w2.y / root, w2.z / root };
-    const unitpack_vec2 t12 = { u.x * u.x, u.y * u.y };
-    const float rho2 = t12.x + t12.y;
-    const unitpack_uvec3 t13 = {
+    const unitpack_vec2 t8 = { u.x * u.x, u.y * u.y };
+    const float rho2 = t8.x + t8.y;
+    const unitpack_uvec3 t9 = {
         (uint32_t)fabsf(aim.x),
         (uint32_t)fabsf(aim.y),
         (uint32_t)fabsf(aim.z)
     };
-    const uint32_t limb1_4 = t13.x >> 12u;
-    const uint32_t limb0_4 = t13.x & 4095u;
+    const uint32_t limb1_4 = t9.x >> 12u;
+    const uint32_t limb0_4 = t9.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t13.y >> 12u;
-    const uint32_t limb0_5 = t13.y & 4095u;
+    const uint32_t limb1_5 = t9.y >> 12u;
+    const uint32_t limb0_5 = t9.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t14 = (float)hi7 * 16777216.0f;
-    const float rho2_fixed = (t14 + (float)lo7) * 2.2737368e-13f;
-    const bool t15 = aim.z < 0.0f;
+    const float t10 = (float)hi7 * 16777216.0f;
+    const float rho2_fixed = (t10 + (float)lo7) * 2.2737368e-13f;
+    const bool t11 = aim.z < 0.0f;
     const float below = rho2 / (1.0f + fabsf(u.z));
     const float dz = 1.1641532e-10f - below;
     const float t = unitpack_sfib32_atan2_pi_v(u.y, u.x);
-    const float tn = t15 ? -0.24160738f - t : t;
-    const bool t16 = rho2_fixed >= 5.947454e-10f;
-    const bool t17 = rho2_fixed >= 1.5570637e-9f;
-    const bool t18 = rho2_fixed >= 4.076446e-9f;
-    const float t19 = t18
-        ? -119675160.0f
-        : (t17 ? -193638480.0f : (t16 ? -313313630.0f : -506952130.0f));
-    const float t20 = t18
-        ? -193638480.0f
-        : (t17 ? -313313630.0f : (t16 ? -506952130.0f : -820265800.0f));
-    const bool t21 = rho2_fixed >= 1.0672274e-8f;
-    const bool t22 = rho2_fixed >= 2.7940375e-8f;
-    const float t23 = t22
-        ? 10.5f
-        : (t21 ? -6.5f : (t18 ? 4.0f : (t17 ? -2.5f : (t16 ? 1.5f : -1.0f))));
-    const bool t24 = rho2_fixed >= 7.3148854e-8f;
-    const uint32_t t25 = t24
+    const float tn = t11 ? -0.24160738f - t : t;
+    const bool t12 = rho2_fixed >= 5.947454e-10f;
+    const bool t13 = rho2_fixed >= 1.5570637e-9f;
+    const bool t14 = rho2_fixed >= 4.076446e-9f;
+    const bool t15 = rho2_fixed >= 1.0672274e-8f;
+    const bool t16 = rho2_fixed >= 2.7940375e-8f;
+    const bool t17 = rho2_fixed >= 7.3148854e-8f;
+    const bool t18 = rho2_fixed >= 1.9150617e-7f;
+    const uint32_t t19 = t18
         ? 34u
-        : (t22 ? 21u : (t21 ? 13u : (t18 ? 8u : (t17 ? 5u : (t16 ? 3u : 2u)))));
-    const float t26 = t24
-        ? 10.5f
-        : (t22 ? -6.5f : (t21 ? 4.0f : (t18 ? -2.5f : (t17 ? 1.5f : (t16 ? -1.0f : 0.5f)))));
-    const bool t27 = rho2_fixed >= 1.9150617e-7f;
-    const uint32_t t28 = t27
-        ? 34u
-        : (t24 ? 21u : (t22 ? 13u : (t21 ? 8u : (t18 ? 5u : (t17 ? 3u : (t16 ? 2u : 1u))))));
-    const float t29 = t27
+        : (t17 ? 21u : (t16 ? 13u : (t15 ? 8u : (t14 ? 5u : (t13 ? 3u : (t12 ? 2u : 1u))))));
+    const uint32_t t20 = t18
+        ? 55u
+        : (t17 ? 34u : (t16 ? 21u : (t15 ? 13u : (t14 ? 8u : (t13 ? 5u : (t12 ? 3u : 2u))))));
+    const float t21 = t18
+        ? 27.5f
+        : (
+            t17
+                ? -17.0f
+                : (
+                    t16
+                        ? 10.5f
+                        : (t15 ? -6.5f : (t14 ? 4.0f : (t13 ? -2.5f : (t12 ? 1.5f : -1.0f))))
+                )
+        );
+    const float t22 = t18
         ? -17460370.0f
-        : (t24 ? -28251474.0f : (t22 ? -45711844.0f : (t21 ? -73963320.0f : t19)));
-    const float t30 = t27
+        : (
+            t17
+                ? -28251474.0f
+                : (
+                    t16
+                        ? -45711844.0f
+                        : (
+                            t15
+                                ? -73963320.0f
+                                : (
+                                    t14
+                                        ? -119675160.0f
+                                        : (
+                                            t13
+                                                ? -193638480.0f
+                                                : (t12 ? -313313630.0f : -506952130.0f)
+                                        )
+                                )
+                        )
+                )
+        );
+    const float t23 = t18
+        ? -17.0f
+        : (
+            t17
+                ? 10.5f
+                : (t16 ? -6.5f : (t15 ? 4.0f : (t14 ? -2.5f : (t13 ? 1.5f : (t12 ? -1.0f : 0.5f)))))
+        );
+    const float t24 = t18
         ? -28251474.0f
-        : (t24 ? -45711844.0f : (t22 ? -73963320.0f : (t21 ? -119675160.0f : t20)));
-    const bool t31 = rho2_fixed >= 5.013697e-7f;
-    const bool t32 = rho2_fixed >= 1.3126029e-6f;
-    const bool t33 = rho2_fixed >= 3.4364389e-6f;
-    const float t34 = t33
-        ? -116.5f
-        : (t32 ? 72.0f : (t31 ? -44.5f : (t27 ? 27.5f : (t24 ? -17.0f : t23))));
-    const bool t35 = rho2_fixed >= 8.996714e-6f;
-    const float t36 = t35
-        ? -2547433.8f
-        : (t33 ? -4121834.5f : (t32 ? -6669268.0f : (t31 ? -10791103.0f : t29)));
-    const float t37 = t35
-        ? -116.5f
-        : (t33 ? 72.0f : (t32 ? -44.5f : (t31 ? 27.5f : (t27 ? -17.0f : t26))));
-    const float t38 = t35
-        ? -4121834.5f
-        : (t33 ? -6669268.0f : (t32 ? -10791103.0f : (t31 ? -17460370.0f : t30)));
-    const bool t39 = rho2_fixed >= 2.3553703e-5f;
-    const uint32_t t40 = t39
-        ? 610u
-        : (t35 ? 377u : (t33 ? 233u : (t32 ? 144u : (t31 ? 89u : (t27 ? 55u : t25)))));
-    const bool t41 = rho2_fixed >= 6.1664396e-5f;
-    const uint32_t t42 = t41
-        ? 610u
-        : (t39 ? 377u : (t35 ? 233u : (t33 ? 144u : (t32 ? 89u : (t31 ? 55u : t28)))));
-    const bool t43 = rho2_fixed >= 0.00016143949f;
-    const bool t44 = rho2_fixed >= 0.00042265403f;
-    const float t45 = t44
-        ? 1292.0f
-        : (t43 ? -798.5f : (t41 ? 493.5f : (t39 ? -305.0f : (t35 ? 188.5f : t34))));
-    const float t46 = t44
-        ? -371665.56f
-        : (t43 ? -601367.56f : (t41 ? -973033.1f : (t39 ? -1574400.6f : t36)));
-    const float t47 = t44
+        : (
+            t17
+                ? -45711844.0f
+                : (
+                    t16
+                        ? -73963320.0f
+                        : (
+                            t15
+                                ? -119675160.0f
+                                : (
+                                    t14
+                                        ? -193638480.0f
+                                        : (
+                                            t13
+                                                ? -313313630.0f
+                                                : (t12 ? -506952130.0f : -820265800.0f)
+                                        )
+                                )
+                        )
+                )
+        );
+    const bool t25 = rho2_fixed >= 5.013697e-7f;
+    const bool t26 = rho2_fixed >= 1.3126029e-6f;
+    const bool t27 = rho2_fixed >= 3.4364389e-6f;
+    const bool t28 = rho2_fixed >= 8.996714e-6f;
+    const bool t29 = rho2_fixed >= 2.3553703e-5f;
+    const bool t30 = rho2_fixed >= 6.1664396e-5f;
+    const bool t31 = rho2_fixed >= 0.00016143949f;
+    const uint32_t t32 = t31
+        ? 987u
+        : (
+            t30
+                ? 610u
+                : (t29 ? 377u : (t28 ? 233u : (t27 ? 144u : (t26 ? 89u : (t25 ? 55u : t19)))))
+        );
+    const uint32_t t33 = t31
+        ? 1597u
+        : (
+            t30
+                ? 987u
+                : (t29 ? 610u : (t28 ? 377u : (t27 ? 233u : (t26 ? 144u : (t25 ? 89u : t20)))))
+        );
+    const float t34 = t31
+        ? -798.5f
+        : (
+            t30
+                ? 493.5f
+                : (
+                    t29
+                        ? -305.0f
+                        : (t28 ? 188.5f : (t27 ? -116.5f : (t26 ? 72.0f : (t25 ? -44.5f : t21))))
+                )
+        );
+    const float t35 = t31
         ? -601367.56f
-        : (t43 ? -973033.1f : (t41 ? -1574400.6f : (t39 ? -2547433.8f : t38)));
-    const bool t48 = rho2_fixed >= 0.0011065226f;
-    const float t49 = t48
-        ? 1292.0f
-        : (t44 ? -798.5f : (t43 ? 493.5f : (t41 ? -305.0f : (t39 ? 188.5f : t37))));
-    const bool t50 = rho2_fixed >= 0.002896914f;
-    const bool t51 = rho2_fixed >= 0.0075842193f;
-    const uint32_t t52 = t51
-        ? 10946u
-        : (t50 ? 6765u : (t48 ? 4181u : (t44 ? 2584u : (t43 ? 1597u : (t41 ? 987u : t40)))));
-    const bool t53 = rho2_fixed >= 0.019855743f;
-    const uint32_t t54 = t53
-        ? 10946u
-        : (t51 ? 6765u : (t50 ? 4181u : (t48 ? 2584u : (t44 ? 1597u : (t43 ? 987u : t42)))));
-    const float t55 = t53
-        ? -54225.273f
-        : (t51 ? -87738.34f : (t50 ? -141963.63f : (t48 ? -229701.95f : t46)));
-    const float t56 = t53
-        ? -87738.34f
-        : (t51 ? -141963.63f : (t50 ? -229701.95f : (t48 ? -371665.6f : t47)));
-    const bool t57 = rho2_fixed >= 0.05198301f;
-    const float t58 = t57
-        ? -14328.5f
-        : (t53 ? 8855.5f : (t51 ? -5473.0f : (t50 ? 3382.5f : (t48 ? -2090.5f : t45))));
-    const bool t59 = rho2_fixed >= 0.13609329f;
-    const float t60 = t59
+        : (
+            t30
+                ? -973033.1f
+                : (
+                    t29
+                        ? -1574400.6f
+                        : (
+                            t28
+                                ? -2547433.8f
+                                : (
+                                    t27
+                                        ? -4121834.5f
+                                        : (t26 ? -6669268.0f : (t25 ? -10791103.0f : t22))
+                                )
+                        )
+                )
+        );
+    const float t36 = t31
+        ? 493.5f
+        : (
+            t30
+                ? -305.0f
+                : (
+                    t29
+                        ? 188.5f
+                        : (t28 ? -116.5f : (t27 ? 72.0f : (t26 ? -44.5f : (t25 ? 27.5f : t23))))
+                )
+        );
+    const float t37 = t31
+        ? -973033.1f
+        : (
+            t30
+                ? -1574400.6f
+                : (
+                    t29
+                        ? -2547433.8f
+                        : (
+                            t28
+                                ? -4121834.5f
+                                : (
+                                    t27
+                                        ? -6669268.0f
+                                        : (t26 ? -10791103.0f : (t25 ? -17460370.0f : t24))
+                                )
+                        )
+                )
+        );
+    const bool t38 = rho2_fixed >= 0.00042265403f;
+    const bool t39 = rho2_fixed >= 0.0011065226f;
+    const bool t40 = rho2_fixed >= 0.002896914f;
+    const bool t41 = rho2_fixed >= 0.0075842193f;
+    const bool t42 = rho2_fixed >= 0.019855743f;
+    const bool t43 = rho2_fixed >= 0.05198301f;
+    const bool t44 = rho2_fixed >= 0.13609329f;
+    const uint32_t t45 = t44
+        ? 28657u
+        : (
+            t43
+                ? 17711u
+                : (
+                    t42
+                        ? 10946u
+                        : (t41 ? 6765u : (t40 ? 4181u : (t39 ? 2584u : (t38 ? 1597u : t32))))
+                )
+        );
+    const uint32_t t46 = t44
+        ? 46368u
+        : (
+            t43
+                ? 28657u
+                : (
+                    t42
+                        ? 17711u
+                        : (t41 ? 10946u : (t40 ? 6765u : (t39 ? 4181u : (t38 ? 2584u : t33))))
+                )
+        );
+    const float t47 = t44
+        ? 23183.998f
+        : (
+            t43
+                ? -14328.5f
+                : (
+                    t42
+                        ? 8855.5f
+                        : (
+                            t41
+                                ? -5473.0f
+                                : (t40 ? 3382.5f : (t39 ? -2090.5f : (t38 ? 1292.0f : t34)))
+                        )
+                )
+        );
+    const float t48 = t44
+        ? -20712.209f
+        : (
+            t43
+                ? -33513.07f
+                : (
+                    t42
+                        ? -54225.273f
+                        : (
+                            t41
+                                ? -87738.34f
+                                : (
+                                    t40
+                                        ? -141963.63f
+                                        : (t39 ? -229701.95f : (t38 ? -371665.56f : t35))
+                                )
+                        )
+                )
+        );
+    const float t49 = t44
         ? -14328.498f
-        : (t57 ? 8855.5f : (t53 ? -5473.0f : (t51 ? 3382.5f : (t50 ? -2090.5f : t49))));
-    const bool t61 = rho2_fixed >= 0.35629687f;
-    const bool t62 = rho2_fixed >= 0.9327973f;
-    const uint32_t t63 = t62 ? 75025u : (t61 ? 46368u : (t59 ? 28657u : (t57 ? 17711u : t54)));
-    const uint32_t t64 = t62
-        ? 121393u
-        : (t61 ? 75025u : (t59 ? 46368u : (t57 ? 28657u : (t53 ? 17711u : t52))));
-    const float t65 = t62
-        ? -7911.345f
-        : (t61 ? -12800.858f : (t59 ? -20712.209f : (t57 ? -33513.07f : t55)));
-    const float t66 = t62
-        ? -12800.861f
-        : (t61 ? -20712.209f : (t59 ? -33513.066f : (t57 ? -54225.273f : t56)));
-    const float t67 = tn * (t62 ? 60696.51f : (t61 ? -37512.496f : (t59 ? 23183.998f : t58)));
-    const float t68 = dz * t65;
-    const float t69 = tn * (t62 ? -37512.508f : (t61 ? 23183.998f : t60));
-    const float t70 = dz * t66;
-    const uint32_t t71 = (uint32_t)(4194303.0f + nearbyintf(t67 + t68)) * t63
-        + (uint32_t)(4194303.0f + nearbyintf(t69 + t70)) * t64;
-    const uint32_t corner = t71 - ((t63 + t64) << 22u);
-    const uint32_t t72 = 3221225471u < corner ? 4294967295u - corner : corner;
-    const uint32_t t73 = (t15 ? 4294967295u - t72 : t72) & 4294967295u;
-    const unitpack_vec3 fixed_point = unitpack_sfib32_fixed_point_v(t73);
-    const unitpack_vec3 t74 = {
-        fabsf(fixed_point.x - aim.x),
-        fabsf(fixed_point.y - aim.y),
-        fabsf(fixed_point.z - aim.z)
+        : (
+            t43
+                ? 8855.5f
+                : (
+                    t42
+                        ? -5473.0f
+                        : (
+                            t41
+                                ? 3382.5f
+                                : (t40 ? -2090.5f : (t39 ? 1292.0f : (t38 ? -798.5f : t36)))
+                        )
+                )
+        );
+    const float t50 = t44
+        ? -33513.066f
+        : (
+            t43
+                ? -54225.273f
+                : (
+                    t42
+                        ? -87738.34f
+                        : (
+                            t41
+                                ? -141963.63f
+                                : (
+                                    t40
+                                        ? -229701.95f
+                                        : (t39 ? -371665.6f : (t38 ? -601367.56f : t37))
+                                )
+                        )
+                )
+        );
+    const bool t51 = rho2_fixed >= 0.35629687f;
+    const bool t52 = rho2_fixed >= 0.9327973f;
+    const uint32_t t53 = t52 ? 75025u : (t51 ? 46368u : t45);
+    const uint32_t t54 = t52 ? 121393u : (t51 ? 75025u : t46);
+    const float t55 = tn * (t52 ? 60696.51f : (t51 ? -37512.496f : t47));
+    const float t56 = dz * (t52 ? -7911.345f : (t51 ? -12800.858f : t48));
+    const float t57 = tn * (t52 ? -37512.508f : (t51 ? 23183.998f : t49));
+    const float t58 = dz * (t52 ? -12800.861f : (t51 ? -20712.209f : t50));
+    const uint32_t t59 = (uint32_t)(4194303.0f + nearbyintf(t55 + t56)) * t53
+        + (uint32_t)(4194303.0f + nearbyintf(t57 + t58)) * t54;
+    const uint32_t corner = t59 - ((t53 + t54) << 22u);
+    const uint32_t t60 = 3221225471u < corner ? 4294967295u - corner : corner;
+    const uint32_t t61 = (t11 ? 4294967295u - t60 : t60) & 4294967295u;
+    const unitpack_vec3 fixed_point = unitpack_sfib32_fixed_point_v(t61);
+    const unitpack_uvec3 t62 = {
+        (uint32_t)fabsf(fixed_point.x - aim.x),
+        (uint32_t)fabsf(fixed_point.y - aim.y),
+        (uint32_t)fabsf(fixed_point.z - aim.z)
     };
-    const unitpack_uvec3 t75 = { (uint32_t)t74.x, (uint32_t)t74.y, (uint32_t)t74.z };
-    const uint32_t limb1_6 = t75.x >> 12u;
-    const uint32_t limb0_6 = t75.x & 4095u;
+    const uint32_t limb1_6 = t62.x >> 12u;
+    const uint32_t limb0_6 = t62.x & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_7 = t75.y >> 12u;
-    const uint32_t limb0_7 = t75.y & 4095u;
+    const uint32_t limb1_7 = t62.y >> 12u;
+    const uint32_t limb0_7 = t62.y & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t75.z >> 12u;
-    const uint32_t limb0_8 = t75.z & 4095u;
+    const uint32_t limb1_8 = t62.z >> 12u;
+    const uint32_t limb0_8 = t62.z & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi11 = hi10 + (lo10 >> 24u);
     const uint32_t lo11 = lo10 & 16777215u;
-    const float t76 = (float)hi11 * 16777216.0f;
-    const float d = t76 + (float)lo11;
-    const uint32_t t77 = corner + t63;
-    const uint32_t t78 = 3221225471u < t77 ? 4294967295u - t77 : t77;
-    const uint32_t t79 = (t15 ? 4294967295u - t78 : t78) & 4294967295u;
-    const unitpack_vec3 fixed_point2 = unitpack_sfib32_fixed_point_v(t79);
-    const unitpack_vec3 t80 = {
-        fabsf(fixed_point2.x - aim.x),
-        fabsf(fixed_point2.y - aim.y),
-        fabsf(fixed_point2.z - aim.z)
+    const float t63 = (float)hi11 * 16777216.0f;
+    const float d = t63 + (float)lo11;
+    const uint32_t t64 = corner + t53;
+    const uint32_t t65 = 3221225471u < t64 ? 4294967295u - t64 : t64;
+    const uint32_t t66 = (t11 ? 4294967295u - t65 : t65) & 4294967295u;
+    const unitpack_vec3 fixed_point2 = unitpack_sfib32_fixed_point_v(t66);
+    const unitpack_uvec3 t67 = {
+        (uint32_t)fabsf(fixed_point2.x - aim.x),
+        (uint32_t)fabsf(fixed_point2.y - aim.y),
+        (uint32_t)fabsf(fixed_point2.z - aim.z)
     };
-    const unitpack_uvec3 t81 = { (uint32_t)t80.x, (uint32_t)t80.y, (uint32_t)t80.z };
-    const uint32_t limb1_9 = t81.x >> 12u;
-    const uint32_t limb0_9 = t81.x & 4095u;
+    const uint32_t limb1_9 = t67.x >> 12u;
+    const uint32_t limb0_9 = t67.x & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t limb1_10 = t81.y >> 12u;
-    const uint32_t limb0_10 = t81.y & 4095u;
+    const uint32_t limb1_10 = t67.y >> 12u;
+    const uint32_t limb0_10 = t67.y & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t81.z >> 12u;
-    const uint32_t limb0_11 = t81.z & 4095u;
+    const uint32_t limb1_11 = t67.z >> 12u;
+    const uint32_t limb0_11 = t67.z & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     const uint32_t hi15 = hi14 + (lo14 >> 24u);
     const uint32_t lo15 = lo14 & 16777215u;
-    const float t82 = (float)hi15 * 16777216.0f;
-    const float d2 = t82 + (float)lo15;
-    const bool t83 = d2 < d || (d2 == d && t79 < t73);
-    const float t84 = t83 ? d2 : d;
-    const uint32_t t85 = t83 ? t79 : t73;
-    const uint32_t t86 = corner + t63 + t63;
-    const uint32_t t87 = 3221225471u < t86 ? 4294967295u - t86 : t86;
-    const uint32_t t88 = (t15 ? 4294967295u - t87 : t87) & 4294967295u;
-    const unitpack_vec3 fixed_point3 = unitpack_sfib32_fixed_point_v(t88);
-    const unitpack_vec3 t89 = {
-        fabsf(fixed_point3.x - aim.x),
-        fabsf(fixed_point3.y - aim.y),
-        fabsf(fixed_point3.z - aim.z)
+    const float t68 = (float)hi15 * 16777216.0f;
+    const float d2 = t68 + (float)lo15;
+    const bool t69 = d2 < d || (d2 == d && t66 < t61);
+    const float t70 = t69 ? d2 : d;
+    const uint32_t t71 = t69 ? t66 : t61;
+    const uint32_t t72 = corner + t53 + t53;
+    const uint32_t t73 = 3221225471u < t72 ? 4294967295u - t72 : t72;
+    const uint32_t t74 = (t11 ? 4294967295u - t73 : t73) & 4294967295u;
+    const unitpack_vec3 fixed_point3 = unitpack_sfib32_fixed_point_v(t74);
+    const unitpack_uvec3 t75 = {
+        (uint32_t)fabsf(fixed_point3.x - aim.x),
+        (uint32_t)fabsf(fixed_point3.y - aim.y),
+        (uint32_t)fabsf(fixed_point3.z - aim.z)
     };
-    const unitpack_uvec3 t90 = { (uint32_t)t89.x, (uint32_t)t89.y, (uint32_t)t89.z };
-    const uint32_t limb1_12 = t90.x >> 12u;
-    const uint32_t limb0_12 = t90.x & 4095u;
+    const uint32_t limb1_12 = t75.x >> 12u;
+    const uint32_t limb0_12 = t75.x & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    const uint32_t limb1_13 = t90.y >> 12u;
-    const uint32_t limb0_13 = t90.y & 4095u;
+    const uint32_t limb1_13 = t75.y >> 12u;
+    const uint32_t limb0_13 = t75.y & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t90.z >> 12u;
-    const uint32_t limb0_14 = t90.z & 4095u;
+    const uint32_t limb1_14 = t75.z >> 12u;
+    const uint32_t limb0_14 = t75.z & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     const uint32_t hi19 = hi18 + (lo18 >> 24u);
     const uint32_t lo19 = lo18 & 16777215u;
-    const float t91 = (float)hi19 * 16777216.0f;
-    const float d3 = t91 + (float)lo19;
-    const bool t92 = d3 < t84 || (d3 == t84 && t88 < t85);
-    const float t93 = t92 ? d3 : t84;
-    const uint32_t t94 = t92 ? t88 : t85;
-    const uint32_t t95 = corner + t64;
-    const uint32_t t96 = 3221225471u < t95 ? 4294967295u - t95 : t95;
-    const uint32_t t97 = (t15 ? 4294967295u - t96 : t96) & 4294967295u;
-    const unitpack_vec3 fixed_point4 = unitpack_sfib32_fixed_point_v(t97);
-    const unitpack_vec3 t98 = {
-        fabsf(fixed_point4.x - aim.x),
-        fabsf(fixed_point4.y - aim.y),
-        fabsf(fixed_point4.z - aim.z)
+    const float t76 = (float)hi19 * 16777216.0f;
+    const float d3 = t76 + (float)lo19;
+    const bool t77 = d3 < t70 || (d3 == t70 && t74 < t71);
+    const float t78 = t77 ? d3 : t70;
+    const uint32_t t79 = t77 ? t74 : t71;
+    const uint32_t t80 = corner + t54;
+    const uint32_t t81 = 3221225471u < t80 ? 4294967295u - t80 : t80;
+    const uint32_t t82 = (t11 ? 4294967295u - t81 : t81) & 4294967295u;
+    const unitpack_vec3 fixed_point4 = unitpack_sfib32_fixed_point_v(t82);
+    const unitpack_uvec3 t83 = {
+        (uint32_t)fabsf(fixed_point4.x - aim.x),
+        (uint32_t)fabsf(fixed_point4.y - aim.y),
+        (uint32_t)fabsf(fixed_point4.z - aim.z)
     };
-    const unitpack_uvec3 t99 = { (uint32_t)t98.x, (uint32_t)t98.y, (uint32_t)t98.z };
-    const uint32_t limb1_15 = t99.x >> 12u;
-    const uint32_t limb0_15 = t99.x & 4095u;
+    const uint32_t limb1_15 = t83.x >> 12u;
+    const uint32_t limb0_15 = t83.x & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_16 = t99.y >> 12u;
-    const uint32_t limb0_16 = t99.y & 4095u;
+    const uint32_t limb1_16 = t83.y >> 12u;
+    const uint32_t limb0_16 = t83.y & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t99.z >> 12u;
-    const uint32_t limb0_17 = t99.z & 4095u;
+    const uint32_t limb1_17 = t83.z >> 12u;
+    const uint32_t limb0_17 = t83.z & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     const uint32_t hi23 = hi22 + (lo22 >> 24u);
     const uint32_t lo23 = lo22 & 16777215u;
-    const float t100 = (float)hi23 * 16777216.0f;
-    const float d4 = t100 + (float)lo23;
-    const bool t101 = d4 < t93 || (d4 == t93 && t97 < t94);
-    const float t102 = t101 ? d4 : t93;
-    const uint32_t t103 = t101 ? t97 : t94;
-    const uint32_t t104 = corner + t63 + t64;
-    const uint32_t t105 = 3221225471u < t104 ? 4294967295u - t104 : t104;
-    const uint32_t t106 = (t15 ? 4294967295u - t105 : t105) & 4294967295u;
-    const unitpack_vec3 fixed_point5 = unitpack_sfib32_fixed_point_v(t106);
-    const unitpack_vec3 t107 = {
-        fabsf(fixed_point5.x - aim.x),
-        fabsf(fixed_point5.y - aim.y),
-        fabsf(fixed_point5.z - aim.z)
+    const float t84 = (float)hi23 * 16777216.0f;
+    const float d4 = t84 + (float)lo23;
+    const bool t85 = d4 < t78 || (d4 == t78 && t82 < t79);
+    const float t86 = t85 ? d4 : t78;
+    const uint32_t t87 = t85 ? t82 : t79;
+    const uint32_t t88 = corner + t53 + t54;
+    const uint32_t t89 = 3221225471u < t88 ? 4294967295u - t88 : t88;
+    const uint32_t t90 = (t11 ? 4294967295u - t89 : t89) & 4294967295u;
+    const unitpack_vec3 fixed_point5 = unitpack_sfib32_fixed_point_v(t90);
+    const unitpack_uvec3 t91 = {
+        (uint32_t)fabsf(fixed_point5.x - aim.x),
+        (uint32_t)fabsf(fixed_point5.y - aim.y),
+        (uint32_t)fabsf(fixed_point5.z - aim.z)
     };
-    const unitpack_uvec3 t108 = { (uint32_t)t107.x, (uint32_t)t107.y, (uint32_t)t107.z };
-    const uint32_t limb1_18 = t108.x >> 12u;
-    const uint32_t limb0_18 = t108.x & 4095u;
+    const uint32_t limb1_18 = t91.x >> 12u;
+    const uint32_t limb0_18 = t91.x & 4095u;
     const uint32_t cross18 = limb1_18 * limb0_18;
     const uint32_t hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     const uint32_t lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    const uint32_t limb1_19 = t108.y >> 12u;
-    const uint32_t limb0_19 = t108.y & 4095u;
+    const uint32_t limb1_19 = t91.y >> 12u;
+    const uint32_t limb0_19 = t91.y & 4095u;
     const uint32_t cross19 = limb1_19 * limb0_19;
     const uint32_t hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     const uint32_t lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    const uint32_t limb1_20 = t108.z >> 12u;
-    const uint32_t limb0_20 = t108.z & 4095u;
+    const uint32_t limb1_20 = t91.z >> 12u;
+    const uint32_t limb0_20 = t91.z & 4095u;
     const uint32_t cross20 = limb1_20 * limb0_20;
     const uint32_t hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     const uint32_t lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     const uint32_t hi27 = hi26 + (lo26 >> 24u);
     const uint32_t lo27 = lo26 & 16777215u;
-    const float t109 = (float)hi27 * 16777216.0f;
-    const float d5 = t109 + (float)lo27;
-    const bool t110 = d5 < t102 || (d5 == t102 && t106 < t103);
-    const float t111 = t110 ? d5 : t102;
-    const uint32_t t112 = t110 ? t106 : t103;
-    const uint32_t t113 = corner + t63 + t63 + t64;
-    const uint32_t t114 = 3221225471u < t113 ? 4294967295u - t113 : t113;
-    const uint32_t t115 = (t15 ? 4294967295u - t114 : t114) & 4294967295u;
-    const unitpack_vec3 fixed_point6 = unitpack_sfib32_fixed_point_v(t115);
-    const unitpack_vec3 t116 = {
-        fabsf(fixed_point6.x - aim.x),
-        fabsf(fixed_point6.y - aim.y),
-        fabsf(fixed_point6.z - aim.z)
+    const float t92 = (float)hi27 * 16777216.0f;
+    const float d5 = t92 + (float)lo27;
+    const bool t93 = d5 < t86 || (d5 == t86 && t90 < t87);
+    const float t94 = t93 ? d5 : t86;
+    const uint32_t t95 = t93 ? t90 : t87;
+    const uint32_t t96 = corner + t53 + t53 + t54;
+    const uint32_t t97 = 3221225471u < t96 ? 4294967295u - t96 : t96;
+    const uint32_t t98 = (t11 ? 4294967295u - t97 : t97) & 4294967295u;
+    const unitpack_vec3 fixed_point6 = unitpack_sfib32_fixed_point_v(t98);
+    const unitpack_uvec3 t99 = {
+        (uint32_t)fabsf(fixed_point6.x - aim.x),
+        (uint32_t)fabsf(fixed_point6.y - aim.y),
+        (uint32_t)fabsf(fixed_point6.z - aim.z)
     };
-    const unitpack_uvec3 t117 = { (uint32_t)t116.x, (uint32_t)t116.y, (uint32_t)t116.z };
-    const uint32_t limb1_21 = t117.x >> 12u;
-    const uint32_t limb0_21 = t117.x & 4095u;
+    const uint32_t limb1_21 = t99.x >> 12u;
+    const uint32_t limb0_21 = t99.x & 4095u;
     const uint32_t cross21 = limb1_21 * limb0_21;
     const uint32_t hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     const uint32_t lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    const uint32_t limb1_22 = t117.y >> 12u;
-    const uint32_t limb0_22 = t117.y & 4095u;
+    const uint32_t limb1_22 = t99.y >> 12u;
+    const uint32_t limb0_22 = t99.y & 4095u;
     const uint32_t cross22 = limb1_22 * limb0_22;
     const uint32_t hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     const uint32_t lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    const uint32_t limb1_23 = t117.z >> 12u;
-    const uint32_t limb0_23 = t117.z & 4095u;
+    const uint32_t limb1_23 = t99.z >> 12u;
+    const uint32_t limb0_23 = t99.z & 4095u;
     const uint32_t cross23 = limb1_23 * limb0_23;
     const uint32_t hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     const uint32_t lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     const uint32_t hi31 = hi30 + (lo30 >> 24u);
     const uint32_t lo31 = lo30 & 16777215u;
-    const float t118 = (float)hi31 * 16777216.0f;
-    const float d6 = t118 + (float)lo31;
-    const bool t119 = d6 < t111 || (d6 == t111 && t115 < t112);
-    const float t120 = t119 ? d6 : t111;
-    const uint32_t t121 = t119 ? t115 : t112;
-    const uint32_t t122 = corner + t64 + t64;
-    const uint32_t t123 = 3221225471u < t122 ? 4294967295u - t122 : t122;
-    const uint32_t t124 = (t15 ? 4294967295u - t123 : t123) & 4294967295u;
-    const unitpack_vec3 fixed_point7 = unitpack_sfib32_fixed_point_v(t124);
-    const unitpack_vec3 t125 = {
-        fabsf(fixed_point7.x - aim.x),
-        fabsf(fixed_point7.y - aim.y),
-        fabsf(fixed_point7.z - aim.z)
+    const float t100 = (float)hi31 * 16777216.0f;
+    const float d6 = t100 + (float)lo31;
+    const bool t101 = d6 < t94 || (d6 == t94 && t98 < t95);
+    const float t102 = t101 ? d6 : t94;
+    const uint32_t t103 = t101 ? t98 : t95;
+    const uint32_t t104 = corner + t54 + t54;
+    const uint32_t t105 = 3221225471u < t104 ? 4294967295u - t104 : t104;
+    const uint32_t t106 = (t11 ? 4294967295u - t105 : t105) & 4294967295u;
+    const unitpack_vec3 fixed_point7 = unitpack_sfib32_fixed_point_v(t106);
+    const unitpack_uvec3 t107 = {
+        (uint32_t)fabsf(fixed_point7.x - aim.x),
+        (uint32_t)fabsf(fixed_point7.y - aim.y),
+        (uint32_t)fabsf(fixed_point7.z - aim.z)
     };
-    const unitpack_uvec3 t126 = { (uint32_t)t125.x, (uint32_t)t125.y, (uint32_t)t125.z };
-    const uint32_t limb1_24 = t126.x >> 12u;
-    const uint32_t limb0_24 = t126.x & 4095u;
+    const uint32_t limb1_24 = t107.x >> 12u;
+    const uint32_t limb0_24 = t107.x & 4095u;
     const uint32_t cross24 = limb1_24 * limb0_24;
     const uint32_t hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     const uint32_t lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    const uint32_t limb1_25 = t126.y >> 12u;
-    const uint32_t limb0_25 = t126.y & 4095u;
+    const uint32_t limb1_25 = t107.y >> 12u;
+    const uint32_t limb0_25 = t107.y & 4095u;
     const uint32_t cross25 = limb1_25 * limb0_25;
     const uint32_t hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     const uint32_t lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    const uint32_t limb1_26 = t126.z >> 12u;
-    const uint32_t limb0_26 = t126.z & 4095u;
+    const uint32_t limb1_26 = t107.z >> 12u;
+    const uint32_t limb0_26 = t107.z & 4095u;
     const uint32_t cross26 = limb1_26 * limb0_26;
     const uint32_t hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     const uint32_t lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     const uint32_t hi35 = hi34 + (lo34 >> 24u);
     const uint32_t lo35 = lo34 & 16777215u;
-    const float t127 = (float)hi35 * 16777216.0f;
-    const float d7 = t127 + (float)lo35;
-    const bool t128 = d7 < t120 || (d7 == t120 && t124 < t121);
-    const float t129 = t128 ? d7 : t120;
-    const uint32_t t130 = t128 ? t124 : t121;
-    const uint32_t t131 = corner + t63 + t64 + t64;
-    const uint32_t t132 = 3221225471u < t131 ? 4294967295u - t131 : t131;
-    const uint32_t t133 = (t15 ? 4294967295u - t132 : t132) & 4294967295u;
-    const unitpack_vec3 fixed_point8 = unitpack_sfib32_fixed_point_v(t133);
-    const unitpack_vec3 t134 = {
-        fabsf(fixed_point8.x - aim.x),
-        fabsf(fixed_point8.y - aim.y),
-        fabsf(fixed_point8.z - aim.z)
+    const float t108 = (float)hi35 * 16777216.0f;
+    const float d7 = t108 + (float)lo35;
+    const bool t109 = d7 < t102 || (d7 == t102 && t106 < t103);
+    const float t110 = t109 ? d7 : t102;
+    const uint32_t t111 = t109 ? t106 : t103;
+    const uint32_t t112 = corner + t53 + t54 + t54;
+    const uint32_t t113 = 3221225471u < t112 ? 4294967295u - t112 : t112;
+    const uint32_t t114 = (t11 ? 4294967295u - t113 : t113) & 4294967295u;
+    const unitpack_vec3 fixed_point8 = unitpack_sfib32_fixed_point_v(t114);
+    const unitpack_uvec3 t115 = {
+        (uint32_t)fabsf(fixed_point8.x - aim.x),
+        (uint32_t)fabsf(fixed_point8.y - aim.y),
+        (uint32_t)fabsf(fixed_point8.z - aim.z)
     };
-    const unitpack_uvec3 t135 = { (uint32_t)t134.x, (uint32_t)t134.y, (uint32_t)t134.z };
-    const uint32_t limb1_27 = t135.x >> 12u;
-    const uint32_t limb0_27 = t135.x & 4095u;
+    const uint32_t limb1_27 = t115.x >> 12u;
+    const uint32_t limb0_27 = t115.x & 4095u;
     const uint32_t cross27 = limb1_27 * limb0_27;
     const uint32_t hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     const uint32_t lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    const uint32_t limb1_28 = t135.y >> 12u;
-    const uint32_t limb0_28 = t135.y & 4095u;
+    const uint32_t limb1_28 = t115.y >> 12u;
+    const uint32_t limb0_28 = t115.y & 4095u;
     const uint32_t cross28 = limb1_28 * limb0_28;
     const uint32_t hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     const uint32_t lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    const uint32_t limb1_29 = t135.z >> 12u;
-    const uint32_t limb0_29 = t135.z & 4095u;
+    const uint32_t limb1_29 = t115.z >> 12u;
+    const uint32_t limb0_29 = t115.z & 4095u;
     const uint32_t cross29 = limb1_29 * limb0_29;
     const uint32_t hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     const uint32_t lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     const uint32_t hi39 = hi38 + (lo38 >> 24u);
     const uint32_t lo39 = lo38 & 16777215u;
-    const float t136 = (float)hi39 * 16777216.0f;
-    const float d8 = t136 + (float)lo39;
-    const bool t137 = d8 < t129 || (d8 == t129 && t133 < t130);
-    const float t138 = t137 ? d8 : t129;
-    const uint32_t t139 = t137 ? t133 : t130;
-    const uint32_t t140 = corner + t63 + t63 + t64 + t64;
-    const uint32_t t141 = 3221225471u < t140 ? 4294967295u - t140 : t140;
-    const uint32_t t142 = (t15 ? 4294967295u - t141 : t141) & 4294967295u;
-    const unitpack_vec3 fixed_point9 = unitpack_sfib32_fixed_point_v(t142);
-    const unitpack_vec3 t143 = {
-        fabsf(fixed_point9.x - aim.x),
-        fabsf(fixed_point9.y - aim.y),
-        fabsf(fixed_point9.z - aim.z)
+    const float t116 = (float)hi39 * 16777216.0f;
+    const float d8 = t116 + (float)lo39;
+    const bool t117 = d8 < t110 || (d8 == t110 && t114 < t111);
+    const float t118 = t117 ? d8 : t110;
+    const uint32_t t119 = t117 ? t114 : t111;
+    const uint32_t t120 = corner + t53 + t53 + t54 + t54;
+    const uint32_t t121 = 3221225471u < t120 ? 4294967295u - t120 : t120;
+    const uint32_t t122 = (t11 ? 4294967295u - t121 : t121) & 4294967295u;
+    const unitpack_vec3 fixed_point9 = unitpack_sfib32_fixed_point_v(t122);
+    const unitpack_uvec3 t123 = {
+        (uint32_t)fabsf(fixed_point9.x - aim.x),
+        (uint32_t)fabsf(fixed_point9.y - aim.y),
+        (uint32_t)fabsf(fixed_point9.z - aim.z)
     };
-    const unitpack_uvec3 t144 = { (uint32_t)t143.x, (uint32_t)t143.y, (uint32_t)t143.z };
-    const uint32_t limb1_30 = t144.x >> 12u;
-    const uint32_t limb0_30 = t144.x & 4095u;
+    const uint32_t limb1_30 = t123.x >> 12u;
+    const uint32_t limb0_30 = t123.x & 4095u;
     const uint32_t cross30 = limb1_30 * limb0_30;
     const uint32_t hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     const uint32_t lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    const uint32_t limb1_31 = t144.y >> 12u;
-    const uint32_t limb0_31 = t144.y & 4095u;
+    const uint32_t limb1_31 = t123.y >> 12u;
+    const uint32_t limb0_31 = t123.y & 4095u;
     const uint32_t cross31 = limb1_31 * limb0_31;
     const uint32_t hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     const uint32_t lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    const uint32_t limb1_32 = t144.z >> 12u;
-    const uint32_t limb0_32 = t144.z & 4095u;
+    const uint32_t limb1_32 = t123.z >> 12u;
+    const uint32_t limb0_32 = t123.z & 4095u;
     const uint32_t cross32 = limb1_32 * limb0_32;
     const uint32_t hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     const uint32_t lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     const uint32_t hi43 = hi42 + (lo42 >> 24u);
     const uint32_t lo43 = lo42 & 16777215u;
-    const float t145 = (float)hi43 * 16777216.0f;
-    const float d9 = t145 + (float)lo43;
-    return d9 < t138 || (d9 == t138 && t142 < t139) ? t142 : t139;
+    const float t124 = (float)hi43 * 16777216.0f;
+    const float d9 = t124 + (float)lo43;
+    return d9 < t118 || (d9 == t118 && t122 < t119) ? t122 : t119;
 }
 
 // Struct form of unitpack_sfib32_encode_float.

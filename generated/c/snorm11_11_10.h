@@ -85,15 +85,14 @@ static inline unitpack_vec3 unitpack_snorm11_11_10_decode_v(uint32_t code) {
         (float)(code >> 22u)
     };
     const unitpack_vec3 t2 = {
-        t1.x > 1023.0f ? t1.x - 2048.0f : t1.x,
-        t1.y > 1023.0f ? t1.y - 2048.0f : t1.y,
-        t1.z > 511.0f ? t1.z - 1024.0f : t1.z
+        (t1.x > 1023.0f ? t1.x - 2048.0f : t1.x) * 0.0009775171f,
+        (t1.y > 1023.0f ? t1.y - 2048.0f : t1.y) * 0.0009775171f,
+        (t1.z > 511.0f ? t1.z - 1024.0f : t1.z) * 0.0019569471f
     };
-    const unitpack_vec3 t3 = { t2.x * 0.0009775171f, t2.y * 0.0009775171f, t2.z * 0.0019569471f };
     const unitpack_vec3 params = {
-        t3.x >= (-1.0f) ? t3.x : -1.0f,
-        t3.y >= (-1.0f) ? t3.y : -1.0f,
-        t3.z >= (-1.0f) ? t3.z : -1.0f
+        t2.x >= (-1.0f) ? t2.x : -1.0f,
+        t2.y >= (-1.0f) ? t2.y : -1.0f,
+        t2.z >= (-1.0f) ? t2.z : -1.0f
     };
     const unitpack_vec3 decode_float = unitpack_snorm11_11_10_decode_float_v(params);
     return decode_float;
@@ -154,48 +153,43 @@ static inline void unitpack_snorm11_11_10_encode_float(const float v[3], float o
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_snorm11_11_10_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 4294963200u);
     const float split_lo = w.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 4294963200u);
     const float split_lo2 = w.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w.z) & 4294963200u);
     const float split_lo3 = w.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float big = fabsf(w.x * 1023.0f);
     const float estimate = nearbyintf(big / sqrtf(len2));
@@ -209,46 +203,39 @@ static inline unitpack_vec3 unitpack_snorm11_11_10_round_codes_v(unitpack_vec3 a
     const float estimate3 = nearbyintf(big4 / sqrtf(len2));
     const float big2_3 = big4 * big4;
     const float lower3 = estimate3 - 0.5f;
-    const unitpack_vec3 t6 = { fabsf(w.x * 1023.0f), fabsf(w.y * 1023.0f), fabsf(w.z * 511.0f) };
-    const unitpack_vec3 t7 = {
-        nearbyintf(t6.x / sqrtf(len2)),
-        nearbyintf(t6.y / sqrtf(len2)),
-        nearbyintf(t6.z / sqrtf(len2))
+    const unitpack_vec3 t4 = { fabsf(w.x * 1023.0f), fabsf(w.y * 1023.0f), fabsf(w.z * 511.0f) };
+    const unitpack_vec3 t5 = {
+        nearbyintf(t4.x / sqrtf(len2)),
+        nearbyintf(t4.y / sqrtf(len2)),
+        nearbyintf(t4.z / sqrtf(len2))
     };
-    const unitpack_vec3 t8 = { t7.x + 0.5f, t7.y + 0.5f, t7.z + 0.5f };
-    const unitpack_bvec3 t9 = {
-        t6.x * t6.x >= t8.x * t8.x * len2,
-        t6.y * t6.y >= t8.y * t8.y * len2,
-        t6.z * t6.z >= t8.z * t8.z * len2
-    };
-    const unitpack_bvec3 t10 = {
+    const unitpack_vec3 t6 = { t5.x + 0.5f, t5.y + 0.5f, t5.z + 0.5f };
+    const unitpack_bvec3 t7 = {
         estimate > 0.0f && big2 < lower * lower * len2,
         estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2,
         estimate3 > 0.0f && big2_3 < lower3 * lower3 * len2
     };
+    const unitpack_vec3 t8 = {
+        t5.x + (t4.x * t4.x >= t6.x * t6.x * len2 ? 1.0f : (t7.x ? -1.0f : 0.0f)),
+        t5.y + (t4.y * t4.y >= t6.y * t6.y * len2 ? 1.0f : (t7.y ? -1.0f : 0.0f)),
+        t5.z + (t4.z * t4.z >= t6.z * t6.z * len2 ? 1.0f : (t7.z ? -1.0f : 0.0f))
+    };
+    const unitpack_vec3 t9 = {
+        t8.x >= 0.0f ? t8.x : 0.0f,
+        t8.y >= 0.0f ? t8.y : 0.0f,
+        t8.z >= 0.0f ? t8.z : 0.0f
+    };
+    const unitpack_vec3 t10 = {
+        t9.x <= 1023.0f ? t9.x : 1023.0f,
+        t9.y <= 1023.0f ? t9.y : 1023.0f,
+        t9.z <= 511.0f ? t9.z : 511.0f
+    };
     const unitpack_vec3 t11 = {
-        t9.x ? 1.0f : (t10.x ? -1.0f : 0.0f),
-        t9.y ? 1.0f : (t10.y ? -1.0f : 0.0f),
-        t9.z ? 1.0f : (t10.z ? -1.0f : 0.0f)
+        ok ? (w.x < 0.0f ? -t10.x : t10.x) : 0.0f,
+        ok ? (w.y < 0.0f ? -t10.y : t10.y) : 0.0f,
+        ok ? (w.z < 0.0f ? -t10.z : t10.z) : 511.0f
     };
-    const unitpack_vec3 t12 = { t7.x + t11.x, t7.y + t11.y, t7.z + t11.z };
-    const unitpack_vec3 t13 = {
-        t12.x >= 0.0f ? t12.x : 0.0f,
-        t12.y >= 0.0f ? t12.y : 0.0f,
-        t12.z >= 0.0f ? t12.z : 0.0f
-    };
-    const unitpack_vec3 t14 = {
-        t13.x <= 1023.0f ? t13.x : 1023.0f,
-        t13.y <= 1023.0f ? t13.y : 1023.0f,
-        t13.z <= 511.0f ? t13.z : 511.0f
-    };
-    const unitpack_vec3 t15 = {
-        w.x < 0.0f ? -t14.x : t14.x,
-        w.y < 0.0f ? -t14.y : t14.y,
-        w.z < 0.0f ? -t14.z : t14.z
-    };
-    const unitpack_vec3 t16 = { ok ? t15.x : 0.0f, ok ? t15.y : 0.0f, ok ? t15.z : 511.0f };
-    return t16;
+    return t11;
 }
 
 // Struct form of unitpack_snorm11_11_10_encode.

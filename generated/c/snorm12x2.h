@@ -75,14 +75,14 @@ static inline unitpack_vec3 unitpack_snorm12x2_to_unorm8x3_int_v(unitpack_vec2 f
         (t1.y <= 1.0f ? t1.y : 1.0f) * 2047.0f
     };
     const unitpack_vec2 u = { nearbyintf(t2.x + 2047.0f), nearbyintf(t2.y + 2047.0f) };
-    const unitpack_uvec2 t3 = { (uint32_t)u.x, (uint32_t)u.y };
+    const unitpack_uvec2 u_u = { (uint32_t)u.x, (uint32_t)u.y };
+    const unitpack_uvec3 t3 = { u_u.x >> 4u, ((u_u.x & 15u) << 4u) | (u_u.y >> 8u), u_u.y & 255u };
     const unitpack_vec3 t4 = {
-        (float)(t3.x >> 4u),
-        (float)(((t3.x & 15u) << 4u) | (t3.y >> 8u)),
-        (float)(t3.y & 255u)
+        (float)t3.x * 0.003921569f,
+        (float)t3.y * 0.003921569f,
+        (float)t3.z * 0.003921569f
     };
-    const unitpack_vec3 t5 = { t4.x * 0.003921569f, t4.y * 0.003921569f, t4.z * 0.003921569f };
-    return t5;
+    return t4;
 }
 
 // Integer pack of two snorm12 values into three unorm8 values (survey Listing 4); equal to the
@@ -134,11 +134,11 @@ static inline unitpack_vec2 unitpack_unorm8x3_to_snorm12x2_int_v(unitpack_vec3 u
         (uint32_t)nearbyintf(u.y * 255.0f),
         (uint32_t)nearbyintf(u.z * 255.0f)
     };
-    const unitpack_vec2 t1 = {
-        (float)((b.x << 4u) | (b.y >> 4u)) - 2047.0f,
-        (float)(((b.y & 15u) << 8u) | b.z) - 2047.0f
+    const unitpack_uvec2 t1 = { (b.x << 4u) | (b.y >> 4u), ((b.y & 15u) << 8u) | b.z };
+    const unitpack_vec2 t2 = {
+        ((float)t1.x - 2047.0f) * 0.0004885198f,
+        ((float)t1.y - 2047.0f) * 0.0004885198f
     };
-    const unitpack_vec2 t2 = { t1.x * 0.0004885198f, t1.y * 0.0004885198f };
     const unitpack_vec2 t3 = { t2.x <= 1.0f ? t2.x : 1.0f, t2.y <= 1.0f ? t2.y : 1.0f };
     return t3;
 }

@@ -85,15 +85,14 @@ static inline unitpack_vec3 unitpack_snorm5x3p_decode_v(uint32_t code) {
         (float)((code >> 10u) & 31u)
     };
     const unitpack_vec3 t2 = {
-        t1.x > 15.0f ? t1.x - 32.0f : t1.x,
-        t1.y > 15.0f ? t1.y - 32.0f : t1.y,
-        t1.z > 15.0f ? t1.z - 32.0f : t1.z
+        (t1.x > 15.0f ? t1.x - 32.0f : t1.x) * 0.06666667f,
+        (t1.y > 15.0f ? t1.y - 32.0f : t1.y) * 0.06666667f,
+        (t1.z > 15.0f ? t1.z - 32.0f : t1.z) * 0.06666667f
     };
-    const unitpack_vec3 t3 = { t2.x * 0.06666667f, t2.y * 0.06666667f, t2.z * 0.06666667f };
     const unitpack_vec3 params = {
-        t3.x >= (-1.0f) ? t3.x : -1.0f,
-        t3.y >= (-1.0f) ? t3.y : -1.0f,
-        t3.z >= (-1.0f) ? t3.z : -1.0f
+        t2.x >= (-1.0f) ? t2.x : -1.0f,
+        t2.y >= (-1.0f) ? t2.y : -1.0f,
+        t2.z >= (-1.0f) ? t2.z : -1.0f
     };
     const unitpack_vec3 decode_float = unitpack_snorm5x3p_decode_float_v(params);
     return decode_float;
@@ -120,104 +119,97 @@ static inline unitpack_vec2 unitpack_snorm5x3p_bfn_step_v(
     unitpack_vec3 a2,
     unitpack_vec3 a3
 ) {
-    const unitpack_vec3 t1 = {
-        a2.x * 4.7683716e-7f * a1,
-        a2.y * 4.7683716e-7f * a1,
-        a2.z * 4.7683716e-7f * a1
+    const unitpack_vec3 c = {
+        nearbyintf(a2.x * 4.7683716e-7f * a1),
+        nearbyintf(a2.y * 4.7683716e-7f * a1),
+        nearbyintf(a2.z * 4.7683716e-7f * a1)
     };
-    const unitpack_vec3 c = { nearbyintf(t1.x), nearbyintf(t1.y), nearbyintf(t1.z) };
-    const unitpack_uvec3 t2 = { (uint32_t)c.x, (uint32_t)c.y, (uint32_t)c.z };
-    const uint32_t limb1 = t2.x >> 12u;
-    const uint32_t limb0 = t2.x & 4095u;
+    const unitpack_uvec3 c_u = { (uint32_t)c.x, (uint32_t)c.y, (uint32_t)c.z };
+    const uint32_t limb1 = c_u.x >> 12u;
+    const uint32_t limb0 = c_u.x & 4095u;
     const uint32_t cross = limb1 * limb0;
     const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
     const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
-    const uint32_t limb1_2 = t2.y >> 12u;
-    const uint32_t limb0_2 = t2.y & 4095u;
+    const uint32_t limb1_2 = c_u.y >> 12u;
+    const uint32_t limb0_2 = c_u.y & 4095u;
     const uint32_t cross2 = limb1_2 * limb0_2;
     const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
-    const uint32_t limb1_3 = t2.z >> 12u;
-    const uint32_t limb0_3 = t2.z & 4095u;
+    const uint32_t limb1_3 = c_u.z >> 12u;
+    const uint32_t limb0_3 = c_u.z & 4095u;
     const uint32_t cross3 = limb1_3 * limb0_3;
     const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float t4 = t3 + (float)lo4;
-    const uint32_t half_exponent = ((unitpack_bits_of(t4) >> 23u) + 1u) >> 1u;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float t2 = t1 + (float)lo4;
+    const uint32_t half_exponent = ((unitpack_bits_of(t2) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t5 = t4 * root_down;
-    const float root_estimate = sqrtf(t5);
-    const float t6 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t6 * 0.001953125f;
+    const float t3 = t2 * root_down;
+    const float root_estimate = sqrtf(t3);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0f : (root_h0 * root_h0 > t5 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t5 - root_h_sq;
+    const float root_rest = t3 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t7 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t7;
-    const float t8 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t8;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0f : (root_m0 * root_m0 > t5 ? -1.0f : 0.0f));
-    const float t9 = root_k * 4096.0f;
-    const float root = (t9 + root_j) * 4.7683716e-7f;
-    const float t10 = root * root_up;
-    const float l = t10 >= a1 ? t10 : a1;
-    const unitpack_vec3 t11 = {
+    const float t4 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t4;
+    const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t5;
+    const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t6 = root_k * 4096.0f;
+    const float root = (t6 + root_j) * 4.7683716e-7f;
+    const float t7 = root * root_up;
+    const float l = t7 >= a1 ? t7 : a1;
+    const unitpack_vec3 t8 = {
         floorf(c.x / l * 2097152.0f),
         floorf(c.y / l * 2097152.0f),
         floorf(c.z / l * 2097152.0f)
     };
-    const unitpack_vec3 t12 = { c.x * 2097152.0f, c.y * 2097152.0f, c.z * 2097152.0f };
-    const unitpack_bvec3 t13 = {
-        (t11.x + 1.0f) * l <= t12.x,
-        (t11.y + 1.0f) * l <= t12.y,
-        (t11.z + 1.0f) * l <= t12.z
+    const unitpack_vec3 t9 = { c.x * 2097152.0f, c.y * 2097152.0f, c.z * 2097152.0f };
+    const unitpack_vec3 t10 = {
+        (t8.x + 1.0f) * l <= t9.x ? 1.0f : (t8.x * l > t9.x ? -1.0f : 0.0f),
+        (t8.y + 1.0f) * l <= t9.y ? 1.0f : (t8.y * l > t9.y ? -1.0f : 0.0f),
+        (t8.z + 1.0f) * l <= t9.z ? 1.0f : (t8.z * l > t9.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t14 = {
-        t11.x * l > t12.x ? -1.0f : 0.0f,
-        t11.y * l > t12.y ? -1.0f : 0.0f,
-        t11.z * l > t12.z ? -1.0f : 0.0f
+    const unitpack_vec3 d = { t8.x + t10.x, t8.y + t10.y, t8.z + t10.z };
+    const unitpack_vec3 offset = { d.x - fabsf(a3.x), d.y - fabsf(a3.y), d.z - fabsf(a3.z) };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_vec3 d = {
-        t11.x + (t13.x ? 1.0f : t14.x),
-        t11.y + (t13.y ? 1.0f : t14.y),
-        t11.z + (t13.z ? 1.0f : t14.z)
-    };
-    const unitpack_uvec3 t15 = {
-        (uint32_t)fabsf(d.x - fabsf(a3.x)),
-        (uint32_t)fabsf(d.y - fabsf(a3.y)),
-        (uint32_t)fabsf(d.z - fabsf(a3.z))
-    };
-    const uint32_t limb1_4 = t15.x >> 12u;
-    const uint32_t limb0_4 = t15.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t15.y >> 12u;
-    const uint32_t limb0_5 = t15.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t15.z >> 12u;
-    const uint32_t limb0_6 = t15.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t16 = (float)hi8 * 16777216.0f;
-    const float dist = t16 + (float)lo8;
-    const bool t17 = dist < a0.y;
-    const unitpack_vec2 t18 = { t17 ? a1 : a0.x, t17 ? dist : a0.y };
-    return t18;
+    const float t11 = (float)hi8 * 16777216.0f;
+    const float dist = t11 + (float)lo8;
+    const bool t12 = dist < a0.y;
+    const unitpack_vec2 t13 = { t12 ? a1 : a0.x, t12 ? dist : a0.y };
+    return t13;
 }
 
 // Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales
@@ -226,33 +218,31 @@ static inline unitpack_vec2 unitpack_snorm5x3p_bfn_step_v(
 //   comparisons) is nearest the input's by exact squared distance, the largest scale on ties.
 
 static inline unitpack_vec3 unitpack_snorm5x3p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -270,79 +260,61 @@ static inline unitpack_vec3 unitpack_snorm5x3p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t8 = {
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t5 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t9 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t10 = {
-        (t8.x + 1.0f) * root <= t9.x,
-        (t8.y + 1.0f) * root <= t9.y,
-        (t8.z + 1.0f) * root <= t9.z
+    const unitpack_vec3 t6 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t7 = {
+        (t5.x + 1.0f) * root <= t6.x ? 1.0f : (t5.x * root > t6.x ? -1.0f : 0.0f),
+        (t5.y + 1.0f) * root <= t6.y ? 1.0f : (t5.y * root > t6.y ? -1.0f : 0.0f),
+        (t5.z + 1.0f) * root <= t6.z ? 1.0f : (t5.z * root > t6.z ? -1.0f : 0.0f)
+    };
+    const unitpack_vec3 aim = { t5.x + t7.x, t5.y + t7.y, t5.z + t7.z };
+    const unitpack_vec3 abs_aim = { fabsf(aim.x), fabsf(aim.y), fabsf(aim.z) };
+    const float t8 = abs_aim.x >= abs_aim.y ? abs_aim.x : abs_aim.y;
+    const float t9 = t8 >= abs_aim.z ? t8 : abs_aim.z;
+    const unitpack_vec3 t10 = {
+        floorf(abs_aim.x / t9 * 2097152.0f),
+        floorf(abs_aim.y / t9 * 2097152.0f),
+        floorf(abs_aim.z / t9 * 2097152.0f)
     };
     const unitpack_vec3 t11 = {
-        t8.x * root > t9.x ? -1.0f : 0.0f,
-        t8.y * root > t9.y ? -1.0f : 0.0f,
-        t8.z * root > t9.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t8.x + (t10.x ? 1.0f : t11.x),
-        t8.y + (t10.y ? 1.0f : t11.y),
-        t8.z + (t10.z ? 1.0f : t11.z)
-    };
-    const unitpack_vec3 abs_aim = { fabsf(aim.x), fabsf(aim.y), fabsf(aim.z) };
-    const float t12 = abs_aim.x >= abs_aim.y ? abs_aim.x : abs_aim.y;
-    const float t13 = t12 >= abs_aim.z ? t12 : abs_aim.z;
-    const unitpack_vec3 t14 = {
-        abs_aim.x / t13 * 2097152.0f,
-        abs_aim.y / t13 * 2097152.0f,
-        abs_aim.z / t13 * 2097152.0f
-    };
-    const unitpack_vec3 floor_t14 = { floorf(t14.x), floorf(t14.y), floorf(t14.z) };
-    const unitpack_vec3 t15 = {
-        (floor_t14.x + 1.0f) * t13,
-        (floor_t14.y + 1.0f) * t13,
-        (floor_t14.z + 1.0f) * t13
-    };
-    const unitpack_vec3 t16 = {
         abs_aim.x * 2097152.0f,
         abs_aim.y * 2097152.0f,
         abs_aim.z * 2097152.0f
     };
-    const unitpack_bvec3 t17 = {
-        floor_t14.x * t13 > t16.x,
-        floor_t14.y * t13 > t16.y,
-        floor_t14.z * t13 > t16.z
+    const unitpack_vec3 t12 = {
+        (t10.x + 1.0f) * t9 <= t11.x ? 1.0f : (t10.x * t9 > t11.x ? -1.0f : 0.0f),
+        (t10.y + 1.0f) * t9 <= t11.y ? 1.0f : (t10.y * t9 > t11.y ? -1.0f : 0.0f),
+        (t10.z + 1.0f) * t9 <= t11.z ? 1.0f : (t10.z * t9 > t11.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t18 = {
-        t15.x <= t16.x ? 1.0f : (t17.x ? -1.0f : 0.0f),
-        t15.y <= t16.y ? 1.0f : (t17.y ? -1.0f : 0.0f),
-        t15.z <= t16.z ? 1.0f : (t17.z ? -1.0f : 0.0f)
-    };
-    const unitpack_vec3 r = { floor_t14.x + t18.x, floor_t14.y + t18.y, floor_t14.z + t18.z };
-    const unitpack_vec2 t19 = { 0.0f, 1e30f };
-    const unitpack_vec2 best = unitpack_snorm5x3p_bfn_step_v(t19, 15.0f, r, aim);
+    const unitpack_vec3 r = { t10.x + t12.x, t10.y + t12.y, t10.z + t12.z };
+    const unitpack_vec2 t13 = { 0.0f, 1e30f };
+    const unitpack_vec2 best = unitpack_snorm5x3p_bfn_step_v(t13, 15.0f, r, aim);
     const unitpack_vec2 best2 = unitpack_snorm5x3p_bfn_step_v(best, 14.0f, r, aim);
     const unitpack_vec2 best3 = unitpack_snorm5x3p_bfn_step_v(best2, 13.0f, r, aim);
     const unitpack_vec2 best4 = unitpack_snorm5x3p_bfn_step_v(best3, 12.0f, r, aim);
@@ -350,18 +322,17 @@ static inline unitpack_vec3 unitpack_snorm5x3p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec2 best6 = unitpack_snorm5x3p_bfn_step_v(best5, 10.0f, r, aim);
     const unitpack_vec2 best7 = unitpack_snorm5x3p_bfn_step_v(best6, 9.0f, r, aim);
     const unitpack_vec2 best8 = unitpack_snorm5x3p_bfn_step_v(best7, 8.0f, r, aim);
-    const unitpack_vec3 t20 = {
-        r.x * 4.7683716e-7f * best8.x,
-        r.y * 4.7683716e-7f * best8.x,
-        r.z * 4.7683716e-7f * best8.x
+    const unitpack_vec3 c = {
+        nearbyintf(r.x * 4.7683716e-7f * best8.x),
+        nearbyintf(r.y * 4.7683716e-7f * best8.x),
+        nearbyintf(r.z * 4.7683716e-7f * best8.x)
     };
-    const unitpack_vec3 c = { nearbyintf(t20.x), nearbyintf(t20.y), nearbyintf(t20.z) };
-    const unitpack_vec3 t21 = {
+    const unitpack_vec3 t14 = {
         aim.x < 0.0f ? -c.x : c.x,
         aim.y < 0.0f ? -c.y : c.y,
         aim.z < 0.0f ? -c.z : c.z
     };
-    return t21;
+    return t14;
 }
 
 // Struct form of unitpack_snorm5x3p_encode_float.

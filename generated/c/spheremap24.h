@@ -97,33 +97,31 @@ static inline void unitpack_spheremap24_decode(uint32_t code, float out[3]) {
 
 // Struct form of unitpack_spheremap24_encode_float.
 static inline unitpack_vec2 unitpack_spheremap24_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -141,29 +139,33 @@ static inline unitpack_vec2 unitpack_spheremap24_encode_float_v(unitpack_vec3 v)
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const bool t8 = w2.z >= 0.0f;
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const bool t5 = w2.z >= 0.0f;
+    const float fixed_f4 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -176,17 +178,17 @@ static inline unitpack_vec2 unitpack_spheremap24_encode_float_v(unitpack_vec3 v)
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t9 = (float)hi7 * 16777216.0f;
-    const float rho2 = (t9 + (float)lo7) * 2.2737368e-13f;
-    const float opz_a = t8 ? root + w2.z : rho2;
-    const float opz_b = t8 ? 1.0f : root - w2.z;
+    const float t6 = (float)hi7 * 16777216.0f;
+    const float rho2 = (t6 + (float)lo7) * 2.2737368e-13f;
+    const float opz_a = t5 ? root + w2.z : rho2;
+    const float opz_b = t5 ? 1.0f : root - w2.z;
     const float g = sqrtf(root * opz_a / opz_b * 8.0f);
-    const bool t10 = opz_a <= 0.0f;
-    const unitpack_vec2 t11 = {
-        ok ? (t10 ? 1.0f : w2.x / g + 0.5f) : 0.5f,
-        ok ? (t10 ? 0.5f : w2.y / g + 0.5f) : 0.5f
+    const bool t7 = opz_a <= 0.0f;
+    const unitpack_vec2 t8 = {
+        ok ? (t7 ? 1.0f : w2.x / g + 0.5f) : 0.5f,
+        ok ? (t7 ? 0.5f : w2.y / g + 0.5f) : 0.5f
     };
-    return t11;
+    return t8;
 }
 
 // unitpack_spheremap24_encode_float: fast encoder, float form.
@@ -207,33 +209,31 @@ static inline void unitpack_spheremap24_encode_float(const float v[3], float out
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_spheremap24_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -251,29 +251,33 @@ static inline unitpack_vec2 unitpack_spheremap24_round_codes_v(unitpack_vec3 a0)
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const bool t8 = w2.z >= 0.0f;
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const bool t5 = w2.z >= 0.0f;
+    const float fixed_f4 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -286,59 +290,52 @@ static inline unitpack_vec2 unitpack_spheremap24_round_codes_v(unitpack_vec3 a0)
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t9 = (float)hi7 * 16777216.0f;
-    const float rho2 = (t9 + (float)lo7) * 2.2737368e-13f;
-    const float opz_a = t8 ? root + w2.z : rho2;
-    const float opz_b = t8 ? 1.0f : root - w2.z;
-    const bool t10 = opz_a <= 0.0f;
+    const float t6 = (float)hi7 * 16777216.0f;
+    const float rho2 = (t6 + (float)lo7) * 2.2737368e-13f;
+    const float opz_a = t5 ? root + w2.z : rho2;
+    const float opz_b = t5 ? 1.0f : root - w2.z;
+    const bool t7 = opz_a <= 0.0f;
     const float la = root * opz_a;
-    const float t11 = sqrtf(la / opz_b) * 0.0006907026f;
-    const unitpack_vec2 t12 = {
-        nearbyintf(w2.x / t11 + 2047.5f),
-        nearbyintf(w2.y / t11 + 2047.5f)
+    const float t8 = sqrtf(la / opz_b) * 0.0006907026f;
+    const unitpack_vec2 t9 = { nearbyintf(w2.x / t8 + 2047.5f), nearbyintf(w2.y / t8 + 2047.5f) };
+    const unitpack_vec2 t10 = { t9.x >= 0.0f ? t9.x : 0.0f, t9.y >= 0.0f ? t9.y : 0.0f };
+    const unitpack_vec2 t11 = {
+        t10.x <= 4095.0f ? t10.x : 4095.0f,
+        t10.y <= 4095.0f ? t10.y : 4095.0f
     };
-    const unitpack_vec2 t13 = { t12.x >= 0.0f ? t12.x : 0.0f, t12.y >= 0.0f ? t12.y : 0.0f };
-    const unitpack_vec2 t14 = {
-        t13.x <= 4095.0f ? t13.x : 4095.0f,
-        t13.y <= 4095.0f ? t13.y : 4095.0f
-    };
-    const unitpack_vec2 t15 = { t14.x - 2047.0f, t14.y - 2047.0f };
-    const unitpack_vec2 t16 = {
+    const unitpack_vec2 t12 = { t11.x - 2047.0f, t11.y - 2047.0f };
+    const unitpack_vec2 t13 = {
         w2.x * w2.x * opz_b * 2096128.1f,
         w2.y * w2.y * opz_b * 2096128.1f
     };
-    const unitpack_vec2 t17 = { t15.x * t15.x * la, t15.y * t15.y * la };
+    const unitpack_vec2 t14 = { t12.x * t12.x * la, t12.y * t12.y * la };
+    const unitpack_vec2 t15 = {
+        w2.x >= 0.0f
+            ? (t12.x > 0.0f ? (t13.x >= t14.x ? 1.0f : 0.0f) : 1.0f)
+            : (t12.x < 0.0f ? (t13.x <= t14.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t12.y > 0.0f ? (t13.y >= t14.y ? 1.0f : 0.0f) : 1.0f)
+            : (t12.y < 0.0f ? (t13.y <= t14.y ? 1.0f : 0.0f) : 0.0f)
+    };
+    const unitpack_vec2 t16 = { t11.x - 1.0f - 2047.0f, t11.y - 1.0f - 2047.0f };
+    const unitpack_vec2 t17 = { t16.x * t16.x * la, t16.y * t16.y * la };
     const unitpack_vec2 t18 = {
-        t15.x > 0.0f ? (t16.x >= t17.x ? 1.0f : 0.0f) : 1.0f,
-        t15.y > 0.0f ? (t16.y >= t17.y ? 1.0f : 0.0f) : 1.0f
+        w2.x >= 0.0f
+            ? (t16.x > 0.0f ? (t13.x >= t17.x ? 1.0f : 0.0f) : 1.0f)
+            : (t16.x < 0.0f ? (t13.x <= t17.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t16.y > 0.0f ? (t13.y >= t17.y ? 1.0f : 0.0f) : 1.0f)
+            : (t16.y < 0.0f ? (t13.y <= t17.y ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec2 t19 = {
-        t15.x < 0.0f ? (t16.x <= t17.x ? 1.0f : 0.0f) : 0.0f,
-        t15.y < 0.0f ? (t16.y <= t17.y ? 1.0f : 0.0f) : 0.0f
+        t11.x + (t11.x < 4095.0f ? t15.x : 0.0f) + (t11.x > 0.0f ? t18.x - 1.0f : 0.0f),
+        t11.y + (t11.y < 4095.0f ? t15.y : 0.0f) + (t11.y > 0.0f ? t18.y - 1.0f : 0.0f)
     };
     const unitpack_vec2 t20 = {
-        t14.x < 4095.0f ? (w2.x >= 0.0f ? t18.x : t19.x) : 0.0f,
-        t14.y < 4095.0f ? (w2.y >= 0.0f ? t18.y : t19.y) : 0.0f
+        ok ? (t7 ? 4095.0f : t19.x) : 2048.0f,
+        ok ? (t7 ? 2048.0f : t19.y) : 2048.0f
     };
-    const unitpack_vec2 t21 = { t14.x - 1.0f - 2047.0f, t14.y - 1.0f - 2047.0f };
-    const unitpack_vec2 t22 = { t21.x * t21.x * la, t21.y * t21.y * la };
-    const unitpack_vec2 t23 = {
-        t21.x > 0.0f ? (t16.x >= t22.x ? 1.0f : 0.0f) : 1.0f,
-        t21.y > 0.0f ? (t16.y >= t22.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t24 = {
-        t21.x < 0.0f ? (t16.x <= t22.x ? 1.0f : 0.0f) : 0.0f,
-        t21.y < 0.0f ? (t16.y <= t22.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t25 = {
-        t14.x > 0.0f ? (w2.x >= 0.0f ? t23.x : t24.x) - 1.0f : 0.0f,
-        t14.y > 0.0f ? (w2.y >= 0.0f ? t23.y : t24.y) - 1.0f : 0.0f
-    };
-    const unitpack_vec2 t26 = {
-        ok ? (t10 ? 4095.0f : t14.x + t20.x + t25.x) : 2048.0f,
-        ok ? (t10 ? 2048.0f : t14.y + t20.y + t25.y) : 2048.0f
-    };
-    return t26;
+    return t20;
 }
 
 // Struct form of unitpack_spheremap24_encode.

@@ -103,33 +103,31 @@ static inline void unitpack_spheremap24p_optimized_decode(uint32_t code, float o
 //   on ties.
 
 static inline unitpack_vec2 unitpack_spheremap24p_optimized_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -147,29 +145,33 @@ static inline unitpack_vec2 unitpack_spheremap24p_optimized_encode_codes_v(unitp
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const bool t8 = w2.z >= 0.0f;
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const bool t5 = w2.z >= 0.0f;
+    const float fixed_f4 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -182,309 +184,285 @@ static inline unitpack_vec2 unitpack_spheremap24p_optimized_encode_codes_v(unitp
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t9 = (float)hi7 * 16777216.0f;
-    const float rho2 = (t9 + (float)lo7) * 2.2737368e-13f;
-    const float opz_a = t8 ? root + w2.z : rho2;
-    const float opz_b = t8 ? 1.0f : root - w2.z;
-    const bool t10 = opz_a <= 0.0f;
-    const unitpack_vec3 t11 = { t10 ? 0.0f : w2.x, t10 ? 0.0f : w2.y, t10 ? 2.0f : w2.z };
-    const float t12 = t10 ? 2.0f : root;
-    const float t13 = t10 ? 1.0f : opz_b;
-    const float la = t12 * (t10 ? 4.0f : opz_a);
-    const float t14 = sqrtf(la / t13) * 0.0006907026f;
-    const unitpack_vec2 t15 = {
-        nearbyintf(t11.x / t14 + 2047.5f),
-        nearbyintf(t11.y / t14 + 2047.5f)
+    const float t6 = (float)hi7 * 16777216.0f;
+    const float rho2 = (t6 + (float)lo7) * 2.2737368e-13f;
+    const float opz_a = t5 ? root + w2.z : rho2;
+    const float opz_b = t5 ? 1.0f : root - w2.z;
+    const bool t7 = opz_a <= 0.0f;
+    const unitpack_vec3 t8 = { t7 ? 0.0f : w2.x, t7 ? 0.0f : w2.y, t7 ? 2.0f : w2.z };
+    const float t9 = t7 ? 2.0f : root;
+    const float t10 = t7 ? 1.0f : opz_b;
+    const float la = t9 * (t7 ? 4.0f : opz_a);
+    const float t11 = sqrtf(la / t10) * 0.0006907026f;
+    const unitpack_vec2 t12 = {
+        nearbyintf(t8.x / t11 + 2047.5f),
+        nearbyintf(t8.y / t11 + 2047.5f)
     };
-    const unitpack_vec2 t16 = { t15.x >= 0.0f ? t15.x : 0.0f, t15.y >= 0.0f ? t15.y : 0.0f };
-    const unitpack_vec2 t17 = {
-        t16.x <= 4095.0f ? t16.x : 4095.0f,
-        t16.y <= 4095.0f ? t16.y : 4095.0f
+    const unitpack_vec2 t13 = { t12.x >= 0.0f ? t12.x : 0.0f, t12.y >= 0.0f ? t12.y : 0.0f };
+    const unitpack_vec2 t14 = {
+        t13.x <= 4095.0f ? t13.x : 4095.0f,
+        t13.y <= 4095.0f ? t13.y : 4095.0f
     };
-    const unitpack_vec2 t18 = { t17.x - 2046.5f, t17.y - 2046.5f };
-    const unitpack_vec2 t19 = {
-        t11.x * t11.x * t13 * 2096128.1f,
-        t11.y * t11.y * t13 * 2096128.1f
+    const unitpack_vec2 t15 = { t14.x - 2046.5f, t14.y - 2046.5f };
+    const unitpack_vec2 t16 = { t8.x * t8.x * t10 * 2096128.1f, t8.y * t8.y * t10 * 2096128.1f };
+    const unitpack_vec2 t17 = { t15.x * t15.x * la, t15.y * t15.y * la };
+    const unitpack_vec2 t18 = {
+        t8.x >= 0.0f
+            ? (t15.x > 0.0f ? (t16.x >= t17.x ? 1.0f : 0.0f) : 1.0f)
+            : (t15.x < 0.0f ? (t16.x <= t17.x ? 1.0f : 0.0f) : 0.0f),
+        t8.y >= 0.0f
+            ? (t15.y > 0.0f ? (t16.y >= t17.y ? 1.0f : 0.0f) : 1.0f)
+            : (t15.y < 0.0f ? (t16.y <= t17.y ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t20 = { t18.x * t18.x * la, t18.y * t18.y * la };
+    const unitpack_vec2 t19 = { t14.x - 1.0f - 2046.5f, t14.y - 1.0f - 2046.5f };
+    const unitpack_vec2 t20 = { t19.x * t19.x * la, t19.y * t19.y * la };
     const unitpack_vec2 t21 = {
-        t18.x > 0.0f ? (t19.x >= t20.x ? 1.0f : 0.0f) : 1.0f,
-        t18.y > 0.0f ? (t19.y >= t20.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t22 = {
-        t18.x < 0.0f ? (t19.x <= t20.x ? 1.0f : 0.0f) : 0.0f,
-        t18.y < 0.0f ? (t19.y <= t20.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t23 = {
-        t17.x < 4095.0f ? (t11.x >= 0.0f ? t21.x : t22.x) : 0.0f,
-        t17.y < 4095.0f ? (t11.y >= 0.0f ? t21.y : t22.y) : 0.0f
-    };
-    const unitpack_vec2 t24 = { t17.x - 1.0f - 2046.5f, t17.y - 1.0f - 2046.5f };
-    const unitpack_vec2 t25 = { t24.x * t24.x * la, t24.y * t24.y * la };
-    const unitpack_vec2 t26 = {
-        t24.x > 0.0f ? (t19.x >= t25.x ? 1.0f : 0.0f) : 1.0f,
-        t24.y > 0.0f ? (t19.y >= t25.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t27 = {
-        t24.x < 0.0f ? (t19.x <= t25.x ? 1.0f : 0.0f) : 0.0f,
-        t24.y < 0.0f ? (t19.y <= t25.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t28 = {
-        (t11.x >= 0.0f ? t26.x : t27.x) - 1.0f,
-        (t11.y >= 0.0f ? t26.y : t27.y) - 1.0f
+        t8.x >= 0.0f
+            ? (t19.x > 0.0f ? (t16.x >= t20.x ? 1.0f : 0.0f) : 1.0f)
+            : (t19.x < 0.0f ? (t16.x <= t20.x ? 1.0f : 0.0f) : 0.0f),
+        t8.y >= 0.0f
+            ? (t19.y > 0.0f ? (t16.y >= t20.y ? 1.0f : 0.0f) : 1.0f)
+            : (t19.y < 0.0f ? (t16.y <= t20.y ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec2 base = {
-        t17.x + t23.x + (t17.x > 0.0f ? t28.x : 0.0f),
-        t17.y + t23.y + (t17.y > 0.0f ? t28.y : 0.0f)
+        t14.x + (t14.x < 4095.0f ? t18.x : 0.0f) + (t14.x > 0.0f ? t21.x - 1.0f : 0.0f),
+        t14.y + (t14.y < 4095.0f ? t18.y : 0.0f) + (t14.y > 0.0f ? t21.y - 1.0f : 0.0f)
     };
-    const unitpack_vec3 t29 = {
-        floorf(t11.x / t12 * 2097152.0f),
-        floorf(t11.y / t12 * 2097152.0f),
-        floorf(t11.z / t12 * 2097152.0f)
+    const unitpack_vec3 t22 = {
+        floorf(t8.x / t9 * 2097152.0f),
+        floorf(t8.y / t9 * 2097152.0f),
+        floorf(t8.z / t9 * 2097152.0f)
     };
-    const unitpack_vec3 t30 = { t11.x * 2097152.0f, t11.y * 2097152.0f, t11.z * 2097152.0f };
-    const unitpack_bvec3 t31 = {
-        (t29.x + 1.0f) * t12 <= t30.x,
-        (t29.y + 1.0f) * t12 <= t30.y,
-        (t29.z + 1.0f) * t12 <= t30.z
+    const unitpack_vec3 t23 = { t8.x * 2097152.0f, t8.y * 2097152.0f, t8.z * 2097152.0f };
+    const unitpack_vec3 t24 = {
+        (t22.x + 1.0f) * t9 <= t23.x ? 1.0f : (t22.x * t9 > t23.x ? -1.0f : 0.0f),
+        (t22.y + 1.0f) * t9 <= t23.y ? 1.0f : (t22.y * t9 > t23.y ? -1.0f : 0.0f),
+        (t22.z + 1.0f) * t9 <= t23.z ? 1.0f : (t22.z * t9 > t23.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t32 = {
-        t29.x * t12 > t30.x ? -1.0f : 0.0f,
-        t29.y * t12 > t30.y ? -1.0f : 0.0f,
-        t29.z * t12 > t30.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t29.x + (t31.x ? 1.0f : t32.x),
-        t29.y + (t31.y ? 1.0f : t32.y),
-        t29.z + (t31.z ? 1.0f : t32.z)
-    };
+    const unitpack_vec3 aim = { t22.x + t24.x, t22.y + t24.y, t22.z + t24.z };
     const unitpack_vec2 cand = {
         base.x <= 4095.0f ? base.x : 4095.0f,
         base.y <= 4095.0f ? base.y : 4095.0f
     };
-    const unitpack_vec2 t33 = { cand.x * 2.0f, cand.y * 2.0f };
-    const unitpack_vec2 t = { t33.x - 4095.0f, t33.y - 4095.0f };
-    const unitpack_uvec2 t34 = { (uint32_t)fabsf(t.x), (uint32_t)fabsf(t.y) };
-    const uint32_t t35 = ((t34.x * t34.x) >> 2u) + ((t34.y * t34.y) >> 2u);
-    const uint32_t t36 = !(4192255u < t35) ? ((4192255u - t35) << 2u) + 3u : 0u;
-    const float t37 = (float)(t36 >> 12u) * 4096.0f;
-    const float r = t37 + (float)(t36 & 4095u);
-    const float t38 = r * 65600.04f;
-    const float root_estimate2 = floorf(sqrtf(t38));
+    const unitpack_vec2 t25 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t = { t25.x - 4095.0f, t25.y - 4095.0f };
+    const unitpack_uvec2 t26 = { (uint32_t)fabsf(t.x), (uint32_t)fabsf(t.y) };
+    const uint32_t t27 = ((t26.x * t26.x) >> 2u) + ((t26.y * t26.y) >> 2u);
+    const uint32_t t28 = !(4192255u < t27) ? ((4192255u - t27) << 2u) + 3u : 0u;
+    const float t29 = (float)(t28 >> 12u) * 4096.0f;
+    const float r = t29 + (float)(t28 & 4095u);
+    const float t30 = r * 65600.04f;
+    const float root_estimate2 = floorf(sqrtf(t30));
     const float root_next = root_estimate2 + 1.0f;
-    const float t39 = root_next * root_next <= t38
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t38 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t39;
+    const float step_down3 = root_estimate2 * root_estimate2 > t30 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t30 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t40 = root_next2 * root_next2 <= t38
-        ? 1.0f
-        : (root_step * root_step > t38 ? -1.0f : 0.0f);
-    const float g = root_step + t40;
-    const unitpack_vec3 t41 = {
+    const float step_down4 = root_step * root_step > t30 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t30 ? 1.0f : step_down4;
+    const float g = root_step + step4;
+    const unitpack_vec3 t31 = {
         floorf(t.x * g * 0.0009765625f),
         floorf(t.y * g * 0.0009765625f),
         floorf(r * 0.25012213f) - 2097152.0f
     };
-    const unitpack_uvec3 t42 = {
-        (uint32_t)fabsf(t41.x - aim.x),
-        (uint32_t)fabsf(t41.y - aim.y),
-        (uint32_t)fabsf(t41.z - aim.z)
+    const unitpack_vec3 offset = { t31.x - aim.x, t31.y - aim.y, t31.z - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_6 = t42.x >> 12u;
-    const uint32_t limb0_6 = t42.x & 4095u;
+    const uint32_t limb1_6 = offset_u.x >> 12u;
+    const uint32_t limb0_6 = offset_u.x & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_7 = t42.y >> 12u;
-    const uint32_t limb0_7 = t42.y & 4095u;
+    const uint32_t limb1_7 = offset_u.y >> 12u;
+    const uint32_t limb0_7 = offset_u.y & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t42.z >> 12u;
-    const uint32_t limb0_8 = t42.z & 4095u;
+    const uint32_t limb1_8 = offset_u.z >> 12u;
+    const uint32_t limb0_8 = offset_u.z & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi11 = hi10 + (lo10 >> 24u);
     const uint32_t lo11 = lo10 & 16777215u;
-    const float t43 = (float)hi11 * 16777216.0f;
-    const float dist = t43 + (float)lo11;
-    const float t44 = base.x + 1.0f;
-    const unitpack_vec2 t45 = { t44, base.y };
+    const float t32 = (float)hi11 * 16777216.0f;
+    const float dist = t32 + (float)lo11;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t33 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t45.x <= 4095.0f ? t45.x : 4095.0f,
-        t45.y <= 4095.0f ? t45.y : 4095.0f
+        t33.x <= 4095.0f ? t33.x : 4095.0f,
+        t33.y <= 4095.0f ? t33.y : 4095.0f
     };
-    const unitpack_vec2 t46 = { cand2.x * 2.0f, cand2.y * 2.0f };
-    const unitpack_vec2 t47 = { t46.x - 4095.0f, t46.y - 4095.0f };
-    const unitpack_uvec2 t48 = { (uint32_t)fabsf(t47.x), (uint32_t)fabsf(t47.y) };
-    const uint32_t t49 = ((t48.x * t48.x) >> 2u) + ((t48.y * t48.y) >> 2u);
-    const uint32_t t50 = !(4192255u < t49) ? ((4192255u - t49) << 2u) + 3u : 0u;
-    const float t51 = (float)(t50 >> 12u) * 4096.0f;
-    const float r2 = t51 + (float)(t50 & 4095u);
-    const float t52 = r2 * 65600.04f;
-    const float root_estimate3 = floorf(sqrtf(t52));
+    const unitpack_vec2 t34 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t35 = { t34.x - 4095.0f, t34.y - 4095.0f };
+    const unitpack_uvec2 t36 = { (uint32_t)fabsf(t35.x), (uint32_t)fabsf(t35.y) };
+    const uint32_t t37 = ((t36.x * t36.x) >> 2u) + ((t36.y * t36.y) >> 2u);
+    const uint32_t t38 = !(4192255u < t37) ? ((4192255u - t37) << 2u) + 3u : 0u;
+    const float t39 = (float)(t38 >> 12u) * 4096.0f;
+    const float r2 = t39 + (float)(t38 & 4095u);
+    const float t40 = r2 * 65600.04f;
+    const float root_estimate3 = floorf(sqrtf(t40));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t53 = root_next3 * root_next3 <= t52
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t52 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t53;
+    const float step_down5 = root_estimate3 * root_estimate3 > t40 ? -1.0f : 0.0f;
+    const float step5 = root_next3 * root_next3 <= t40 ? 1.0f : step_down5;
+    const float root_step2 = root_estimate3 + step5;
     const float root_next4 = root_step2 + 1.0f;
-    const float t54 = root_next4 * root_next4 <= t52
-        ? 1.0f
-        : (root_step2 * root_step2 > t52 ? -1.0f : 0.0f);
-    const float g2 = root_step2 + t54;
-    const unitpack_vec3 t55 = {
-        floorf(t47.x * g2 * 0.0009765625f),
-        floorf(t47.y * g2 * 0.0009765625f),
+    const float step_down6 = root_step2 * root_step2 > t40 ? -1.0f : 0.0f;
+    const float step6 = root_next4 * root_next4 <= t40 ? 1.0f : step_down6;
+    const float g2 = root_step2 + step6;
+    const unitpack_vec3 t41 = {
+        floorf(t35.x * g2 * 0.0009765625f),
+        floorf(t35.y * g2 * 0.0009765625f),
         floorf(r2 * 0.25012213f) - 2097152.0f
     };
-    const unitpack_uvec3 t56 = {
-        (uint32_t)fabsf(t55.x - aim.x),
-        (uint32_t)fabsf(t55.y - aim.y),
-        (uint32_t)fabsf(t55.z - aim.z)
+    const unitpack_vec3 offset2 = { t41.x - aim.x, t41.y - aim.y, t41.z - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const uint32_t limb1_9 = t56.x >> 12u;
-    const uint32_t limb0_9 = t56.x & 4095u;
+    const uint32_t limb1_9 = offset_u2.x >> 12u;
+    const uint32_t limb0_9 = offset_u2.x & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t limb1_10 = t56.y >> 12u;
-    const uint32_t limb0_10 = t56.y & 4095u;
+    const uint32_t limb1_10 = offset_u2.y >> 12u;
+    const uint32_t limb0_10 = offset_u2.y & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t56.z >> 12u;
-    const uint32_t limb0_11 = t56.z & 4095u;
+    const uint32_t limb1_11 = offset_u2.z >> 12u;
+    const uint32_t limb0_11 = offset_u2.z & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     const uint32_t hi15 = hi14 + (lo14 >> 24u);
     const uint32_t lo15 = lo14 & 16777215u;
-    const float t57 = (float)hi15 * 16777216.0f;
-    const float dist2 = t57 + (float)lo15;
-    const bool t58 = t44 <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
-    const unitpack_vec2 best = { t58 ? cand2.x : cand.x, t58 ? cand2.y : cand.y };
-    const float best_d = t58 ? dist2 : dist;
-    const float t59 = base.y + 1.0f;
-    const unitpack_vec2 t60 = { base.x, t59 };
+    const float t42 = (float)hi15 * 16777216.0f;
+    const float dist2 = t42 + (float)lo15;
+    const bool t43 = s_up <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
+    const unitpack_vec2 best = { t43 ? cand2.x : cand.x, t43 ? cand2.y : cand.y };
+    const float best_d = t43 ? dist2 : dist;
+    const unitpack_vec2 t44 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t60.x <= 4095.0f ? t60.x : 4095.0f,
-        t60.y <= 4095.0f ? t60.y : 4095.0f
+        t44.x <= 4095.0f ? t44.x : 4095.0f,
+        t44.y <= 4095.0f ? t44.y : 4095.0f
     };
-    const unitpack_vec2 t61 = { cand3.x * 2.0f, cand3.y * 2.0f };
-    const unitpack_vec2 t62 = { t61.x - 4095.0f, t61.y - 4095.0f };
-    const unitpack_uvec2 t63 = { (uint32_t)fabsf(t62.x), (uint32_t)fabsf(t62.y) };
-    const uint32_t t64 = ((t63.x * t63.x) >> 2u) + ((t63.y * t63.y) >> 2u);
-    const uint32_t t65 = !(4192255u < t64) ? ((4192255u - t64) << 2u) + 3u : 0u;
-    const float t66 = (float)(t65 >> 12u) * 4096.0f;
-    const float r3 = t66 + (float)(t65 & 4095u);
-    const float t67 = r3 * 65600.04f;
-    const float root_estimate4 = floorf(sqrtf(t67));
+    const unitpack_vec2 t45 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 t46 = { t45.x - 4095.0f, t45.y - 4095.0f };
+    const unitpack_uvec2 t47 = { (uint32_t)fabsf(t46.x), (uint32_t)fabsf(t46.y) };
+    const uint32_t t48 = ((t47.x * t47.x) >> 2u) + ((t47.y * t47.y) >> 2u);
+    const uint32_t t49 = !(4192255u < t48) ? ((4192255u - t48) << 2u) + 3u : 0u;
+    const float t50 = (float)(t49 >> 12u) * 4096.0f;
+    const float r3 = t50 + (float)(t49 & 4095u);
+    const float t51 = r3 * 65600.04f;
+    const float root_estimate4 = floorf(sqrtf(t51));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t68 = root_next5 * root_next5 <= t67
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t67 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t68;
+    const float step_down7 = root_estimate4 * root_estimate4 > t51 ? -1.0f : 0.0f;
+    const float step7 = root_next5 * root_next5 <= t51 ? 1.0f : step_down7;
+    const float root_step3 = root_estimate4 + step7;
     const float root_next6 = root_step3 + 1.0f;
-    const float t69 = root_next6 * root_next6 <= t67
-        ? 1.0f
-        : (root_step3 * root_step3 > t67 ? -1.0f : 0.0f);
-    const float g3 = root_step3 + t69;
-    const unitpack_vec3 t70 = {
-        floorf(t62.x * g3 * 0.0009765625f),
-        floorf(t62.y * g3 * 0.0009765625f),
+    const float step_down8 = root_step3 * root_step3 > t51 ? -1.0f : 0.0f;
+    const float step8 = root_next6 * root_next6 <= t51 ? 1.0f : step_down8;
+    const float g3 = root_step3 + step8;
+    const unitpack_vec3 t52 = {
+        floorf(t46.x * g3 * 0.0009765625f),
+        floorf(t46.y * g3 * 0.0009765625f),
         floorf(r3 * 0.25012213f) - 2097152.0f
     };
-    const unitpack_uvec3 t71 = {
-        (uint32_t)fabsf(t70.x - aim.x),
-        (uint32_t)fabsf(t70.y - aim.y),
-        (uint32_t)fabsf(t70.z - aim.z)
+    const unitpack_vec3 offset3 = { t52.x - aim.x, t52.y - aim.y, t52.z - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_12 = t71.x >> 12u;
-    const uint32_t limb0_12 = t71.x & 4095u;
+    const uint32_t limb1_12 = offset_u3.x >> 12u;
+    const uint32_t limb0_12 = offset_u3.x & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    const uint32_t limb1_13 = t71.y >> 12u;
-    const uint32_t limb0_13 = t71.y & 4095u;
+    const uint32_t limb1_13 = offset_u3.y >> 12u;
+    const uint32_t limb0_13 = offset_u3.y & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t71.z >> 12u;
-    const uint32_t limb0_14 = t71.z & 4095u;
+    const uint32_t limb1_14 = offset_u3.z >> 12u;
+    const uint32_t limb0_14 = offset_u3.z & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     const uint32_t hi19 = hi18 + (lo18 >> 24u);
     const uint32_t lo19 = lo18 & 16777215u;
-    const float t72 = (float)hi19 * 16777216.0f;
-    const float dist3 = t72 + (float)lo19;
-    const bool t73 = base.x <= 4095.0f && t59 <= 4095.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t73 ? cand3.x : best.x, t73 ? cand3.y : best.y };
-    const float best_d2 = t73 ? dist3 : best_d;
-    const unitpack_vec2 t74 = { base.x + 1.0f, base.y + 1.0f };
+    const float t53 = (float)hi19 * 16777216.0f;
+    const float dist3 = t53 + (float)lo19;
+    const bool t54 = base.x <= 4095.0f && t_up <= 4095.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t54 ? cand3.x : best.x, t54 ? cand3.y : best.y };
+    const float best_d2 = t54 ? dist3 : best_d;
+    const unitpack_vec2 t55 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t74.x <= 4095.0f ? t74.x : 4095.0f,
-        t74.y <= 4095.0f ? t74.y : 4095.0f
+        t55.x <= 4095.0f ? t55.x : 4095.0f,
+        t55.y <= 4095.0f ? t55.y : 4095.0f
     };
-    const unitpack_vec2 t75 = { cand4.x * 2.0f, cand4.y * 2.0f };
-    const unitpack_vec2 t76 = { t75.x - 4095.0f, t75.y - 4095.0f };
-    const unitpack_uvec2 t77 = { (uint32_t)fabsf(t76.x), (uint32_t)fabsf(t76.y) };
-    const uint32_t t78 = ((t77.x * t77.x) >> 2u) + ((t77.y * t77.y) >> 2u);
-    const uint32_t t79 = !(4192255u < t78) ? ((4192255u - t78) << 2u) + 3u : 0u;
-    const float t80 = (float)(t79 >> 12u) * 4096.0f;
-    const float r4 = t80 + (float)(t79 & 4095u);
-    const float t81 = r4 * 65600.04f;
-    const float root_estimate5 = floorf(sqrtf(t81));
+    const unitpack_vec2 t56 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t57 = { t56.x - 4095.0f, t56.y - 4095.0f };
+    const unitpack_uvec2 t58 = { (uint32_t)fabsf(t57.x), (uint32_t)fabsf(t57.y) };
+    const uint32_t t59 = ((t58.x * t58.x) >> 2u) + ((t58.y * t58.y) >> 2u);
+    const uint32_t t60 = !(4192255u < t59) ? ((4192255u - t59) << 2u) + 3u : 0u;
+    const float t61 = (float)(t60 >> 12u) * 4096.0f;
+    const float r4 = t61 + (float)(t60 & 4095u);
+    const float t62 = r4 * 65600.04f;
+    const float root_estimate5 = floorf(sqrtf(t62));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t82 = root_next7 * root_next7 <= t81
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t81 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t82;
+    const float step_down9 = root_estimate5 * root_estimate5 > t62 ? -1.0f : 0.0f;
+    const float step9 = root_next7 * root_next7 <= t62 ? 1.0f : step_down9;
+    const float root_step4 = root_estimate5 + step9;
     const float root_next8 = root_step4 + 1.0f;
-    const float t83 = root_next8 * root_next8 <= t81
-        ? 1.0f
-        : (root_step4 * root_step4 > t81 ? -1.0f : 0.0f);
-    const float g4 = root_step4 + t83;
-    const unitpack_vec3 t84 = {
-        floorf(t76.x * g4 * 0.0009765625f),
-        floorf(t76.y * g4 * 0.0009765625f),
+    const float step_down10 = root_step4 * root_step4 > t62 ? -1.0f : 0.0f;
+    const float step10 = root_next8 * root_next8 <= t62 ? 1.0f : step_down10;
+    const float g4 = root_step4 + step10;
+    const unitpack_vec3 t63 = {
+        floorf(t57.x * g4 * 0.0009765625f),
+        floorf(t57.y * g4 * 0.0009765625f),
         floorf(r4 * 0.25012213f) - 2097152.0f
     };
-    const unitpack_uvec3 t85 = {
-        (uint32_t)fabsf(t84.x - aim.x),
-        (uint32_t)fabsf(t84.y - aim.y),
-        (uint32_t)fabsf(t84.z - aim.z)
+    const unitpack_vec3 offset4 = { t63.x - aim.x, t63.y - aim.y, t63.z - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_15 = t85.x >> 12u;
-    const uint32_t limb0_15 = t85.x & 4095u;
+    const uint32_t limb1_15 = offset_u4.x >> 12u;
+    const uint32_t limb0_15 = offset_u4.x & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_16 = t85.y >> 12u;
-    const uint32_t limb0_16 = t85.y & 4095u;
+    const uint32_t limb1_16 = offset_u4.y >> 12u;
+    const uint32_t limb0_16 = offset_u4.y & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t85.z >> 12u;
-    const uint32_t limb0_17 = t85.z & 4095u;
+    const uint32_t limb1_17 = offset_u4.z >> 12u;
+    const uint32_t limb0_17 = offset_u4.z & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     const uint32_t hi23 = hi22 + (lo22 >> 24u);
     const uint32_t lo23 = lo22 & 16777215u;
-    const float t86 = (float)hi23 * 16777216.0f;
-    const float dist4 = t86 + (float)lo23;
-    const bool t87 = base.x + 1.0f <= 4095.0f && base.y + 1.0f <= 4095.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t87 ? cand4.x : best2.x, t87 ? cand4.y : best2.y };
-    const bool t88 = opz_a <= 0.0f;
-    const unitpack_vec2 t89 = {
-        ok ? (t88 ? 4095.0f : best3.x) : 2048.0f,
-        ok ? (t88 ? 2048.0f : best3.y) : 2048.0f
+    const float t64 = (float)hi23 * 16777216.0f;
+    const float dist4 = t64 + (float)lo23;
+    const bool t65 = s_up <= 4095.0f && t_up <= 4095.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t65 ? cand4.x : best2.x, t65 ? cand4.y : best2.y };
+    const bool t66 = opz_a <= 0.0f;
+    const unitpack_vec2 t67 = {
+        ok ? (t66 ? 4095.0f : best3.x) : 2048.0f,
+        ok ? (t66 ? 2048.0f : best3.y) : 2048.0f
     };
-    return t89;
+    return t67;
 }
 
 // Struct form of unitpack_spheremap24p_optimized_encode_float.

@@ -122,32 +122,29 @@ static inline void unitpack_spherical20p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec2 unitpack_spherical20p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -160,77 +157,80 @@ static inline unitpack_vec2 unitpack_spherical20p_encode_codes_v(unitpack_vec3 v
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
     const uint32_t hi3 = hi2 + (lo2 >> 24u);
     const uint32_t lo3 = lo2 & 16777215u;
-    const float t3 = (float)hi3 * 16777216.0f;
-    const float rho2 = (t3 + (float)lo3) * 2.2737368e-13f;
-    const bool t4 = rho2 > 0.0f;
-    const float t5 = t4 ? rho2 : 1.0f;
-    const uint32_t half_exponent = ((unitpack_bits_of(t5) >> 23u) + 1u) >> 1u;
+    const float t1 = (float)hi3 * 16777216.0f;
+    const float rho2 = (t1 + (float)lo3) * 2.2737368e-13f;
+    const bool t2 = rho2 > 0.0f;
+    const float t3 = t2 ? rho2 : 1.0f;
+    const uint32_t half_exponent = ((unitpack_bits_of(t3) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t6 = t5 * root_down;
-    const float root_estimate = sqrtf(t6);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float t4 = t3 * root_down;
+    const float root_estimate = sqrtf(t4);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= t6 ? 1.0f : (root_h0 * root_h0 > t6 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t4 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t4 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t6 - root_h_sq;
+    const float root_rest = t4 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t6 ? 1.0f : (root_m0 * root_m0 > t6 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
-    const float rho = t4 ? root * root_up : 0.0f;
+    const float t5 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t5;
+    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t6;
+    const float step_down2 = root_m0 * root_m0 > t4 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t4 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t7 = root_k * 4096.0f;
+    const float root = (t7 + root_j) * 4.7683716e-7f;
+    const float rho = t2 ? root * root_up : 0.0f;
     const float abs_w2_z = fabsf(w2.z);
     const float abs_rho = fabsf(rho);
     const bool y_major = abs_rho > abs_w2_z;
     const float hi4 = y_major ? abs_rho : abs_w2_z;
     const float lo4 = y_major ? abs_w2_z : abs_rho;
-    const float t11 = hi4 > 0.0f ? hi4 : 1.0f;
+    const float t8 = hi4 > 0.0f ? hi4 : 1.0f;
     const float big = lo4 * 8388608.0f;
-    const float ratio_estimate = floorf(lo4 / t11 * 8388608.0f);
-    const float t12 = (ratio_estimate + 1.0f) * t11 <= big
-        ? 1.0f
-        : (ratio_estimate * t11 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t12;
-    const float t = ratio
-        + ((ratio + 1.0f) * t11 <= big ? 1.0f : (ratio * t11 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo4 / t8 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t8 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t8 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t8 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t8 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t13 = t - 8388608.0f;
-    const float t14 = t + 8388608.0f;
-    const float big2 = t13 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t13 / t14 * 8388608.0f);
-    const float t15 = (ratio_estimate2 + 1.0f) * t14 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t14 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t15;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t14 <= big2 ? 1.0f : (ratio2 * t14 > big2 ? -1.0f : 0.0f));
+    const float t9 = t - 8388608.0f;
+    const float t10 = t + 8388608.0f;
+    const float big2 = t9 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t9 / t10 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t10 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t10 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t16 = nearbyintf(
+    const float t11 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t17 = (nearbyintf((t16 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t12 = (nearbyintf((t11 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t18 = (
-        nearbyintf((nearbyintf(t17) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t13 = (
+        nearbyintf((nearbyintf(t12) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t19 = nearbyintf(
-        (nearbyintf(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t15 = nearbyintf(
+        (nearbyintf(t14 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t20 = (nearbyintf((t19 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t20) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t15 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
@@ -241,57 +241,60 @@ static inline unitpack_vec2 unitpack_spherical20p_encode_codes_v(unitpack_vec3 v
     const bool y_major2 = abs_w2_y > abs_w2_x;
     const float hi5 = y_major2 ? abs_w2_y : abs_w2_x;
     const float lo5 = y_major2 ? abs_w2_x : abs_w2_y;
-    const float t21 = hi5 > 0.0f ? hi5 : 1.0f;
+    const float t16 = hi5 > 0.0f ? hi5 : 1.0f;
     const float big3 = lo5 * 8388608.0f;
-    const float ratio_estimate3 = floorf(lo5 / t21 * 8388608.0f);
-    const float t22 = (ratio_estimate3 + 1.0f) * t21 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * t21 > big3 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate3 + t22;
-    const float t23 = ratio4
-        + ((ratio4 + 1.0f) * t21 <= big3 ? 1.0f : (ratio4 * t21 > big3 ? -1.0f : 0.0f));
-    const bool far2 = t23 > 3474675.0f;
-    const float t24 = t23 - 8388608.0f;
-    const float t25 = t23 + 8388608.0f;
-    const float big4 = t24 * 8388608.0f;
-    const float ratio_estimate4 = floorf(t24 / t25 * 8388608.0f);
-    const float t26 = (ratio_estimate4 + 1.0f) * t25 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * t25 > big4 ? -1.0f : 0.0f);
-    const float ratio5 = ratio_estimate4 + t26;
-    const float ratio6 = ratio5
-        + ((ratio5 + 1.0f) * t25 <= big4 ? 1.0f : (ratio5 * t25 > big4 ? -1.0f : 0.0f));
-    const float z3 = far2 ? ratio6 : t23;
+    const float ratio_estimate3 = floorf(lo5 / t16 * 8388608.0f);
+    const float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0f : 0.0f;
+    const float step7 = (ratio_estimate3 + 1.0f) * t16 <= big3 ? 1.0f : step_down7;
+    const float ratio4 = ratio_estimate3 + step7;
+    const float step_down8 = ratio4 * t16 > big3 ? -1.0f : 0.0f;
+    const float step8 = (ratio4 + 1.0f) * t16 <= big3 ? 1.0f : step_down8;
+    const float t17 = ratio4 + step8;
+    const bool far2 = t17 > 3474675.0f;
+    const float t18 = t17 - 8388608.0f;
+    const float t19 = t17 + 8388608.0f;
+    const float big4 = t18 * 8388608.0f;
+    const float ratio_estimate4 = floorf(t18 / t19 * 8388608.0f);
+    const float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0f : 0.0f;
+    const float step9 = (ratio_estimate4 + 1.0f) * t19 <= big4 ? 1.0f : step_down9;
+    const float ratio5 = ratio_estimate4 + step9;
+    const float step_down10 = ratio5 * t19 > big4 ? -1.0f : 0.0f;
+    const float step10 = (ratio5 + 1.0f) * t19 <= big4 ? 1.0f : step_down10;
+    const float ratio6 = ratio5 + step10;
+    const float z3 = far2 ? ratio6 : t17;
     const float z2_2 = nearbyintf(z3 * z3 * 1.1920929e-7f);
-    const float t27 = (nearbyintf(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f)
+    const float t20 = nearbyintf(
+        (nearbyintf(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f
+    );
+    const float t21 = (nearbyintf((t20 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
         * z2_2
         * 1.1920929e-7f;
-    const float t28 = (
-        nearbyintf((nearbyintf(t27) + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f
+    const float t22 = (
+        nearbyintf((nearbyintf(t21) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f
     )
         * z2_2;
-    const float t29 = nearbyintf(
-        (nearbyintf(t28 * 1.1920929e-7f) + (-762601.0f)) * z2_2 * 1.1920929e-7f
+    const float t23 = nearbyintf(
+        (nearbyintf(t22 * 1.1920929e-7f) + (-1198373.0f)) * z2_2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t24 = nearbyintf(
+        (nearbyintf(t23 * z2_2 * 1.1920929e-7f) + (-2796203.0f)) * z2_2 * 1.1920929e-7f
     );
-    const float t30 = (nearbyintf((t29 + 932068.0f) * z2_2 * 1.1920929e-7f) + (-1198373.0f))
-        * z2_2
-        * 1.1920929e-7f;
-    const float t31 = nearbyintf((nearbyintf(t30) + 1677722.0f) * z2_2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    const float r2 = nearbyintf(
-        z3 * (nearbyintf(t31 * z2_2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f
-    );
+    const float r2 = nearbyintf(z3 * (t24 + 8388608.0f) * 1.1920929e-7f);
     const float h5 = nearbyintf(r2 * 0.31830987f);
     const float h6 = far2 ? h5 + 2097152.0f : h5;
     const float h7 = y_major2 ? 4194304.0f - h6 : h6;
     const float h8 = w2.x < 0.0f ? 8388608.0f - h7 : h7;
     const float phi = w2.y < 0.0f ? -h8 : h8;
-    const float t32 = angle * 2.0f;
-    const float theta = t32 - 8388608.0f;
+    const float t25 = angle * 2.0f;
+    const float theta = t25 - 8388608.0f;
     const unitpack_vec2 base = { floorf(theta * 6.0915947e-5f), floorf(phi * 6.0915947e-5f) };
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f3 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
+    const float fixed_f4 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_3 = fixed4 >> 12u;
     const uint32_t limb0_3 = fixed4 & 4095u;
     const uint32_t cross3 = limb1_3 * limb0_3;
@@ -309,461 +312,447 @@ static inline unitpack_vec2 unitpack_spherical20p_encode_codes_v(unitpack_vec3 v
     const uint32_t lo8 = lo7 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi9 = hi8 + (lo8 >> 24u);
     const uint32_t lo9 = lo8 & 16777215u;
-    const float t33 = (float)hi9 * 16777216.0f;
-    const float len2 = (t33 + (float)lo9) * 2.2737368e-13f;
+    const float t26 = (float)hi9 * 16777216.0f;
+    const float len2 = (t26 + (float)lo9) * 2.2737368e-13f;
     const float root_estimate2 = sqrtf(len2);
-    const float t34 = floorf(root_estimate2 * 512.0f);
-    const float root_h0_2 = t34 * 0.001953125f;
+    const float root_k0_2 = floorf(root_estimate2 * 512.0f);
+    const float root_h0_2 = root_k0_2 * 0.001953125f;
     const float root_h1_2 = root_h0_2 + 0.001953125f;
-    const float t35 = root_h1_2 * root_h1_2 <= len2
-        ? 1.0f
-        : (root_h0_2 * root_h0_2 > len2 ? -1.0f : 0.0f);
-    const float root_k2 = t34 + t35;
+    const float step_down11 = root_h0_2 * root_h0_2 > len2 ? -1.0f : 0.0f;
+    const float step11 = root_h1_2 * root_h1_2 <= len2 ? 1.0f : step_down11;
+    const float root_k2 = root_k0_2 + step11;
     const float root_h2 = root_k2 * 0.001953125f;
     const float root_h2_sq = root_h2 * root_h2;
     const float root_rest2 = len2 - root_h2_sq;
     const float root_j0_2 = floorf(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
-    const float t36 = root_j0_2 * 4.7683716e-7f;
-    const float root_m0_2 = root_h2 + t36;
-    const float t37 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    const float root_m1_2 = root_h2 + t37;
-    const float t38 = root_m1_2 * root_m1_2 <= len2
-        ? 1.0f
-        : (root_m0_2 * root_m0_2 > len2 ? -1.0f : 0.0f);
-    const float root_j2 = root_j0_2 + t38;
-    const float t39 = root_k2 * 4096.0f;
-    const float root2 = (t39 + root_j2) * 4.7683716e-7f;
-    const unitpack_vec3 t40 = {
-        w2.x / root2 * 8388608.0f,
-        w2.y / root2 * 8388608.0f,
-        w2.z / root2 * 8388608.0f
+    const float t27 = root_j0_2 * 4.7683716e-7f;
+    const float root_m0_2 = root_h2 + t27;
+    const float t28 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
+    const float root_m1_2 = root_h2 + t28;
+    const float step_down12 = root_m0_2 * root_m0_2 > len2 ? -1.0f : 0.0f;
+    const float step12 = root_m1_2 * root_m1_2 <= len2 ? 1.0f : step_down12;
+    const float root_j2 = root_j0_2 + step12;
+    const float t29 = root_k2 * 4096.0f;
+    const float root2 = (t29 + root_j2) * 4.7683716e-7f;
+    const unitpack_vec3 t30 = {
+        floorf(w2.x / root2 * 8388608.0f),
+        floorf(w2.y / root2 * 8388608.0f),
+        floorf(w2.z / root2 * 8388608.0f)
     };
-    const unitpack_vec3 floor_t40 = { floorf(t40.x), floorf(t40.y), floorf(t40.z) };
-    const unitpack_vec3 t41 = {
-        (floor_t40.x + 1.0f) * root2,
-        (floor_t40.y + 1.0f) * root2,
-        (floor_t40.z + 1.0f) * root2
+    const unitpack_vec3 t31 = { w2.x * 8388608.0f, w2.y * 8388608.0f, w2.z * 8388608.0f };
+    const unitpack_vec3 t32 = {
+        (t30.x + 1.0f) * root2 <= t31.x ? 1.0f : (t30.x * root2 > t31.x ? -1.0f : 0.0f),
+        (t30.y + 1.0f) * root2 <= t31.y ? 1.0f : (t30.y * root2 > t31.y ? -1.0f : 0.0f),
+        (t30.z + 1.0f) * root2 <= t31.z ? 1.0f : (t30.z * root2 > t31.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t42 = { w2.x * 8388608.0f, w2.y * 8388608.0f, w2.z * 8388608.0f };
-    const unitpack_bvec3 t43 = {
-        floor_t40.x * root2 > t42.x,
-        floor_t40.y * root2 > t42.y,
-        floor_t40.z * root2 > t42.z
+    const unitpack_vec3 t33 = { t30.x + t32.x, t30.y + t32.y, t30.z + t32.z };
+    const unitpack_vec3 t34 = {
+        (t33.x + 1.0f) * root2 <= t31.x ? 1.0f : (t33.x * root2 > t31.x ? -1.0f : 0.0f),
+        (t33.y + 1.0f) * root2 <= t31.y ? 1.0f : (t33.y * root2 > t31.y ? -1.0f : 0.0f),
+        (t33.z + 1.0f) * root2 <= t31.z ? 1.0f : (t33.z * root2 > t31.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t44 = {
-        t41.x <= t42.x ? 1.0f : (t43.x ? -1.0f : 0.0f),
-        t41.y <= t42.y ? 1.0f : (t43.y ? -1.0f : 0.0f),
-        t41.z <= t42.z ? 1.0f : (t43.z ? -1.0f : 0.0f)
-    };
-    const unitpack_vec3 t45 = { floor_t40.x + t44.x, floor_t40.y + t44.y, floor_t40.z + t44.z };
-    const unitpack_bvec3 t46 = {
-        (t45.x + 1.0f) * root2 <= t42.x,
-        (t45.y + 1.0f) * root2 <= t42.y,
-        (t45.z + 1.0f) * root2 <= t42.z
-    };
-    const unitpack_vec3 t47 = {
-        t45.x * root2 > t42.x ? -1.0f : 0.0f,
-        t45.y * root2 > t42.y ? -1.0f : 0.0f,
-        t45.z * root2 > t42.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t45.x + (t46.x ? 1.0f : t47.x),
-        t45.y + (t46.y ? 1.0f : t47.y),
-        t45.z + (t46.z ? 1.0f : t47.z)
-    };
+    const unitpack_vec3 aim = { t33.x + t34.x, t33.y + t34.y, t33.z + t34.z };
     const unitpack_vec2 cand = {
         base.x <= 511.0f ? base.x : 511.0f,
         base.y <= 511.0f ? base.y : 511.0f
     };
-    const float t48 = nearbyintf((cand.x + 511.0f) * 16416.063f);
-    const float abs_t48 = fabsf(t48);
-    const bool back = abs_t48 > 8388608.0f;
-    const float b = back ? 16777216.0f - abs_t48 : abs_t48;
+    const float t35 = nearbyintf((cand.x + 511.0f) * 16416.063f);
+    const float abs_t35 = fabsf(t35);
+    const bool back = abs_t35 > 8388608.0f;
+    const float b = back ? 16777216.0f - abs_t35 : abs_t35;
     const bool swap = b > 4194304.0f;
     const float u = nearbyintf((swap ? 8388608.0f - b : b) * 3.1415927f);
     const float u2 = nearbyintf(u * u * 5.9604645e-8f);
-    const float t49 = nearbyintf(
+    const float t36 = nearbyintf(
         (nearbyintf(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f
     );
-    const float t50 = (nearbyintf((t49 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f)
+    const float t37 = (nearbyintf((t36 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f)
         * u2
         * 5.9604645e-8f;
-    const float t51 = u
-        * (nearbyintf((nearbyintf(t50) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
-    const float s = nearbyintf(t51 * 5.9604645e-8f);
-    const float t52 = nearbyintf(
+    const float t38 = u
+        * (nearbyintf((nearbyintf(t37) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
+    const float s = nearbyintf(t38 * 5.9604645e-8f);
+    const float t39 = nearbyintf(
         (nearbyintf(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f
     );
-    const float t53 = (nearbyintf((t52 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f))
+    const float t40 = (nearbyintf((t39 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f))
         * u2
         * 5.9604645e-8f;
-    const float t54 = (
-        nearbyintf((nearbyintf(t53) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)
+    const float t41 = (
+        nearbyintf((nearbyintf(t40) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)
     )
         * u2;
-    const float co = nearbyintf(t54 * 5.9604645e-8f) + 16777216.0f;
-    const float t55 = swap ? co : s;
-    const float t56 = swap ? s : co;
-    const float t57 = t48 < 0.0f ? -t55 : t55;
-    const float t58 = nearbyintf(cand.y * 32832.125f);
-    const float abs_t58 = fabsf(t58);
-    const bool back2 = abs_t58 > 8388608.0f;
-    const float b2 = back2 ? 16777216.0f - abs_t58 : abs_t58;
+    const float co = nearbyintf(t41 * 5.9604645e-8f) + 16777216.0f;
+    const float t42 = swap ? co : s;
+    const float t43 = swap ? s : co;
+    const float t44 = t35 < 0.0f ? -t42 : t42;
+    const float t45 = nearbyintf(cand.y * 32832.125f);
+    const float abs_t45 = fabsf(t45);
+    const bool back2 = abs_t45 > 8388608.0f;
+    const float b2 = back2 ? 16777216.0f - abs_t45 : abs_t45;
     const bool swap2 = b2 > 4194304.0f;
     const float u3 = nearbyintf((swap2 ? 8388608.0f - b2 : b2) * 3.1415927f);
     const float u2_2 = nearbyintf(u3 * u3 * 5.9604645e-8f);
-    const float t59 = nearbyintf(
+    const float t46 = nearbyintf(
         (nearbyintf(-0.0f * u2_2 * 5.9604645e-8f) + 46.0f) * u2_2 * 5.9604645e-8f
     );
-    const float t60 = (nearbyintf((t59 + (-3329.0f)) * u2_2 * 5.9604645e-8f) + 139810.0f)
+    const float t47 = (nearbyintf((t46 + (-3329.0f)) * u2_2 * 5.9604645e-8f) + 139810.0f)
         * u2_2
         * 5.9604645e-8f;
-    const float t61 = nearbyintf((nearbyintf(t60) + (-2796203.0f)) * u2_2 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s2 = nearbyintf(u3 * t61 * 5.9604645e-8f);
-    const float t62 = nearbyintf(
+    const float t48 = u3
+        * (nearbyintf((nearbyintf(t47) + (-2796203.0f)) * u2_2 * 5.9604645e-8f) + 16777216.0f);
+    const float s2 = nearbyintf(t48 * 5.9604645e-8f);
+    const float t49 = nearbyintf(
         (nearbyintf(0.0f * u2_2 * 5.9604645e-8f) + (-5.0f)) * u2_2 * 5.9604645e-8f
     );
-    const float t63 = (nearbyintf((t62 + 416.0f) * u2_2 * 5.9604645e-8f) + (-23302.0f))
+    const float t50 = (nearbyintf((t49 + 416.0f) * u2_2 * 5.9604645e-8f) + (-23302.0f))
         * u2_2
         * 5.9604645e-8f;
-    const float t64 = (
-        nearbyintf((nearbyintf(t63) + 699051.0f) * u2_2 * 5.9604645e-8f) + (-8388608.0f)
+    const float t51 = (
+        nearbyintf((nearbyintf(t50) + 699051.0f) * u2_2 * 5.9604645e-8f) + (-8388608.0f)
     )
         * u2_2;
-    const float co2 = nearbyintf(t64 * 5.9604645e-8f) + 16777216.0f;
-    const float t65 = swap2 ? co2 : s2;
-    const float t66 = swap2 ? s2 : co2;
-    const unitpack_vec3 t67 = {
-        (back2 ? -t66 : t66) * t57,
-        (t58 < 0.0f ? -t65 : t65) * t57,
-        back ? -t56 : t56
+    const float co2 = nearbyintf(t51 * 5.9604645e-8f) + 16777216.0f;
+    const float t52 = swap2 ? co2 : s2;
+    const float t53 = swap2 ? s2 : co2;
+    const unitpack_vec3 t54 = {
+        (back2 ? -t53 : t53) * t44,
+        (t45 < 0.0f ? -t52 : t52) * t44,
+        back ? -t43 : t43
     };
-    const unitpack_vec3 t68 = {
-        nearbyintf(t67.x * 2.9802322e-8f),
-        nearbyintf(t67.y * 2.9802322e-8f),
-        nearbyintf(t67.z * 0.5f)
+    const unitpack_vec3 offset = {
+        nearbyintf(t54.x * 2.9802322e-8f) - aim.x,
+        nearbyintf(t54.y * 2.9802322e-8f) - aim.y,
+        nearbyintf(t54.z * 0.5f) - aim.z
     };
-    const unitpack_uvec3 t69 = {
-        (uint32_t)fabsf(t68.x - aim.x),
-        (uint32_t)fabsf(t68.y - aim.y),
-        (uint32_t)fabsf(t68.z - aim.z)
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_6 = t69.x >> 12u;
-    const uint32_t limb0_6 = t69.x & 4095u;
+    const uint32_t limb1_6 = offset_u.x >> 12u;
+    const uint32_t limb0_6 = offset_u.x & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi10 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo10 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_7 = t69.y >> 12u;
-    const uint32_t limb0_7 = t69.y & 4095u;
+    const uint32_t limb1_7 = offset_u.y >> 12u;
+    const uint32_t limb0_7 = offset_u.y & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi11 = hi10 + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo11 = lo10 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t69.z >> 12u;
-    const uint32_t limb0_8 = t69.z & 4095u;
+    const uint32_t limb1_8 = offset_u.z >> 12u;
+    const uint32_t limb0_8 = offset_u.z & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi12 = hi11 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo12 = lo11 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi13 = hi12 + (lo12 >> 24u);
     const uint32_t lo13 = lo12 & 16777215u;
-    const float t70 = (float)hi13 * 16777216.0f;
-    const float dist = t70 + (float)lo13;
-    const float t71 = base.x + 1.0f;
-    const unitpack_vec2 t72 = { t71, base.y };
+    const float t55 = (float)hi13 * 16777216.0f;
+    const float dist = t55 + (float)lo13;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t56 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t72.x <= 511.0f ? t72.x : 511.0f,
-        t72.y <= 511.0f ? t72.y : 511.0f
+        t56.x <= 511.0f ? t56.x : 511.0f,
+        t56.y <= 511.0f ? t56.y : 511.0f
     };
-    const float t73 = nearbyintf((cand2.x + 511.0f) * 16416.063f);
-    const float abs_t73 = fabsf(t73);
-    const bool back3 = abs_t73 > 8388608.0f;
-    const float b3 = back3 ? 16777216.0f - abs_t73 : abs_t73;
+    const float t57 = nearbyintf((cand2.x + 511.0f) * 16416.063f);
+    const float abs_t57 = fabsf(t57);
+    const bool back3 = abs_t57 > 8388608.0f;
+    const float b3 = back3 ? 16777216.0f - abs_t57 : abs_t57;
     const bool swap3 = b3 > 4194304.0f;
     const float u4 = nearbyintf((swap3 ? 8388608.0f - b3 : b3) * 3.1415927f);
     const float u2_3 = nearbyintf(u4 * u4 * 5.9604645e-8f);
-    const float t74 = nearbyintf(
+    const float t58 = nearbyintf(
         (nearbyintf(-0.0f * u2_3 * 5.9604645e-8f) + 46.0f) * u2_3 * 5.9604645e-8f
     );
-    const float t75 = (nearbyintf((t74 + (-3329.0f)) * u2_3 * 5.9604645e-8f) + 139810.0f)
+    const float t59 = (nearbyintf((t58 + (-3329.0f)) * u2_3 * 5.9604645e-8f) + 139810.0f)
         * u2_3
         * 5.9604645e-8f;
-    const float t76 = nearbyintf((nearbyintf(t75) + (-2796203.0f)) * u2_3 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s3 = nearbyintf(u4 * t76 * 5.9604645e-8f);
-    const float t77 = nearbyintf(
+    const float t60 = u4
+        * (nearbyintf((nearbyintf(t59) + (-2796203.0f)) * u2_3 * 5.9604645e-8f) + 16777216.0f);
+    const float s3 = nearbyintf(t60 * 5.9604645e-8f);
+    const float t61 = nearbyintf(
         (nearbyintf(0.0f * u2_3 * 5.9604645e-8f) + (-5.0f)) * u2_3 * 5.9604645e-8f
     );
-    const float t78 = (nearbyintf((t77 + 416.0f) * u2_3 * 5.9604645e-8f) + (-23302.0f))
+    const float t62 = (nearbyintf((t61 + 416.0f) * u2_3 * 5.9604645e-8f) + (-23302.0f))
         * u2_3
         * 5.9604645e-8f;
-    const float t79 = (
-        nearbyintf((nearbyintf(t78) + 699051.0f) * u2_3 * 5.9604645e-8f) + (-8388608.0f)
+    const float t63 = (
+        nearbyintf((nearbyintf(t62) + 699051.0f) * u2_3 * 5.9604645e-8f) + (-8388608.0f)
     )
         * u2_3;
-    const float co3 = nearbyintf(t79 * 5.9604645e-8f) + 16777216.0f;
-    const float t80 = swap3 ? co3 : s3;
-    const float t81 = swap3 ? s3 : co3;
-    const float t82 = t73 < 0.0f ? -t80 : t80;
-    const float t83 = nearbyintf(cand2.y * 32832.125f);
-    const float abs_t83 = fabsf(t83);
-    const bool back4 = abs_t83 > 8388608.0f;
-    const float b4 = back4 ? 16777216.0f - abs_t83 : abs_t83;
+    const float co3 = nearbyintf(t63 * 5.9604645e-8f) + 16777216.0f;
+    const float t64 = swap3 ? co3 : s3;
+    const float t65 = swap3 ? s3 : co3;
+    const float t66 = t57 < 0.0f ? -t64 : t64;
+    const float t67 = nearbyintf(cand2.y * 32832.125f);
+    const float abs_t67 = fabsf(t67);
+    const bool back4 = abs_t67 > 8388608.0f;
+    const float b4 = back4 ? 16777216.0f - abs_t67 : abs_t67;
     const bool swap4 = b4 > 4194304.0f;
     const float u5 = nearbyintf((swap4 ? 8388608.0f - b4 : b4) * 3.1415927f);
     const float u2_4 = nearbyintf(u5 * u5 * 5.9604645e-8f);
-    const float t84 = nearbyintf(
+    const float t68 = nearbyintf(
         (nearbyintf(-0.0f * u2_4 * 5.9604645e-8f) + 46.0f) * u2_4 * 5.9604645e-8f
     );
-    const float t85 = (nearbyintf((t84 + (-3329.0f)) * u2_4 * 5.9604645e-8f) + 139810.0f)
+    const float t69 = (nearbyintf((t68 + (-3329.0f)) * u2_4 * 5.9604645e-8f) + 139810.0f)
         * u2_4
         * 5.9604645e-8f;
-    const float t86 = nearbyintf((nearbyintf(t85) + (-2796203.0f)) * u2_4 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s4 = nearbyintf(u5 * t86 * 5.9604645e-8f);
-    const float t87 = nearbyintf(
+    const float t70 = u5
+        * (nearbyintf((nearbyintf(t69) + (-2796203.0f)) * u2_4 * 5.9604645e-8f) + 16777216.0f);
+    const float s4 = nearbyintf(t70 * 5.9604645e-8f);
+    const float t71 = nearbyintf(
         (nearbyintf(0.0f * u2_4 * 5.9604645e-8f) + (-5.0f)) * u2_4 * 5.9604645e-8f
     );
-    const float t88 = (nearbyintf((t87 + 416.0f) * u2_4 * 5.9604645e-8f) + (-23302.0f))
+    const float t72 = (nearbyintf((t71 + 416.0f) * u2_4 * 5.9604645e-8f) + (-23302.0f))
         * u2_4
         * 5.9604645e-8f;
-    const float t89 = (
-        nearbyintf((nearbyintf(t88) + 699051.0f) * u2_4 * 5.9604645e-8f) + (-8388608.0f)
+    const float t73 = (
+        nearbyintf((nearbyintf(t72) + 699051.0f) * u2_4 * 5.9604645e-8f) + (-8388608.0f)
     )
         * u2_4;
-    const float co4 = nearbyintf(t89 * 5.9604645e-8f) + 16777216.0f;
-    const float t90 = swap4 ? co4 : s4;
-    const float t91 = swap4 ? s4 : co4;
-    const unitpack_vec3 t92 = {
-        (back4 ? -t91 : t91) * t82,
-        (t83 < 0.0f ? -t90 : t90) * t82,
-        back3 ? -t81 : t81
+    const float co4 = nearbyintf(t73 * 5.9604645e-8f) + 16777216.0f;
+    const float t74 = swap4 ? co4 : s4;
+    const float t75 = swap4 ? s4 : co4;
+    const unitpack_vec3 t76 = {
+        (back4 ? -t75 : t75) * t66,
+        (t67 < 0.0f ? -t74 : t74) * t66,
+        back3 ? -t65 : t65
     };
-    const unitpack_vec3 t93 = {
-        nearbyintf(t92.x * 2.9802322e-8f),
-        nearbyintf(t92.y * 2.9802322e-8f),
-        nearbyintf(t92.z * 0.5f)
+    const unitpack_vec3 offset2 = {
+        nearbyintf(t76.x * 2.9802322e-8f) - aim.x,
+        nearbyintf(t76.y * 2.9802322e-8f) - aim.y,
+        nearbyintf(t76.z * 0.5f) - aim.z
     };
-    const unitpack_uvec3 t94 = {
-        (uint32_t)fabsf(t93.x - aim.x),
-        (uint32_t)fabsf(t93.y - aim.y),
-        (uint32_t)fabsf(t93.z - aim.z)
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const uint32_t limb1_9 = t94.x >> 12u;
-    const uint32_t limb0_9 = t94.x & 4095u;
+    const uint32_t limb1_9 = offset_u2.x >> 12u;
+    const uint32_t limb0_9 = offset_u2.x & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi14 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo14 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t limb1_10 = t94.y >> 12u;
-    const uint32_t limb0_10 = t94.y & 4095u;
+    const uint32_t limb1_10 = offset_u2.y >> 12u;
+    const uint32_t limb0_10 = offset_u2.y & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi15 = hi14 + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo15 = lo14 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t94.z >> 12u;
-    const uint32_t limb0_11 = t94.z & 4095u;
+    const uint32_t limb1_11 = offset_u2.z >> 12u;
+    const uint32_t limb0_11 = offset_u2.z & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi16 = hi15 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo16 = lo15 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     const uint32_t hi17 = hi16 + (lo16 >> 24u);
     const uint32_t lo17 = lo16 & 16777215u;
-    const float t95 = (float)hi17 * 16777216.0f;
-    const float dist2 = t95 + (float)lo17;
-    const bool t96 = t71 <= 511.0f && base.y <= 511.0f && dist2 < dist;
-    const unitpack_vec2 best = { t96 ? cand2.x : cand.x, t96 ? cand2.y : cand.y };
-    const float best_d = t96 ? dist2 : dist;
-    const float t97 = base.y + 1.0f;
-    const unitpack_vec2 t98 = { base.x, t97 };
+    const float t77 = (float)hi17 * 16777216.0f;
+    const float dist2 = t77 + (float)lo17;
+    const bool t78 = s_up <= 511.0f && base.y <= 511.0f && dist2 < dist;
+    const unitpack_vec2 best = { t78 ? cand2.x : cand.x, t78 ? cand2.y : cand.y };
+    const float best_d = t78 ? dist2 : dist;
+    const unitpack_vec2 t79 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t98.x <= 511.0f ? t98.x : 511.0f,
-        t98.y <= 511.0f ? t98.y : 511.0f
+        t79.x <= 511.0f ? t79.x : 511.0f,
+        t79.y <= 511.0f ? t79.y : 511.0f
     };
-    const float t99 = nearbyintf((cand3.x + 511.0f) * 16416.063f);
-    const float abs_t99 = fabsf(t99);
-    const bool back5 = abs_t99 > 8388608.0f;
-    const float b5 = back5 ? 16777216.0f - abs_t99 : abs_t99;
+    const float t80 = nearbyintf((cand3.x + 511.0f) * 16416.063f);
+    const float abs_t80 = fabsf(t80);
+    const bool back5 = abs_t80 > 8388608.0f;
+    const float b5 = back5 ? 16777216.0f - abs_t80 : abs_t80;
     const bool swap5 = b5 > 4194304.0f;
     const float u6 = nearbyintf((swap5 ? 8388608.0f - b5 : b5) * 3.1415927f);
     const float u2_5 = nearbyintf(u6 * u6 * 5.9604645e-8f);
-    const float t100 = nearbyintf(
+    const float t81 = nearbyintf(
         (nearbyintf(-0.0f * u2_5 * 5.9604645e-8f) + 46.0f) * u2_5 * 5.9604645e-8f
     );
-    const float t101 = (nearbyintf((t100 + (-3329.0f)) * u2_5 * 5.9604645e-8f) + 139810.0f)
+    const float t82 = (nearbyintf((t81 + (-3329.0f)) * u2_5 * 5.9604645e-8f) + 139810.0f)
         * u2_5
         * 5.9604645e-8f;
-    const float t102 = nearbyintf((nearbyintf(t101) + (-2796203.0f)) * u2_5 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s5 = nearbyintf(u6 * t102 * 5.9604645e-8f);
-    const float t103 = nearbyintf(
+    const float t83 = u6
+        * (nearbyintf((nearbyintf(t82) + (-2796203.0f)) * u2_5 * 5.9604645e-8f) + 16777216.0f);
+    const float s5 = nearbyintf(t83 * 5.9604645e-8f);
+    const float t84 = nearbyintf(
         (nearbyintf(0.0f * u2_5 * 5.9604645e-8f) + (-5.0f)) * u2_5 * 5.9604645e-8f
     );
-    const float t104 = (nearbyintf((t103 + 416.0f) * u2_5 * 5.9604645e-8f) + (-23302.0f))
+    const float t85 = (nearbyintf((t84 + 416.0f) * u2_5 * 5.9604645e-8f) + (-23302.0f))
         * u2_5
         * 5.9604645e-8f;
-    const float t105 = nearbyintf((nearbyintf(t104) + 699051.0f) * u2_5 * 5.9604645e-8f)
-        + (-8388608.0f);
-    const float co5 = nearbyintf(t105 * u2_5 * 5.9604645e-8f) + 16777216.0f;
-    const float t106 = swap5 ? co5 : s5;
-    const float t107 = swap5 ? s5 : co5;
-    const float t108 = t99 < 0.0f ? -t106 : t106;
-    const float t109 = nearbyintf(cand3.y * 32832.125f);
-    const float abs_t109 = fabsf(t109);
-    const bool back6 = abs_t109 > 8388608.0f;
-    const float b6 = back6 ? 16777216.0f - abs_t109 : abs_t109;
+    const float t86 = (
+        nearbyintf((nearbyintf(t85) + 699051.0f) * u2_5 * 5.9604645e-8f) + (-8388608.0f)
+    )
+        * u2_5;
+    const float co5 = nearbyintf(t86 * 5.9604645e-8f) + 16777216.0f;
+    const float t87 = swap5 ? co5 : s5;
+    const float t88 = swap5 ? s5 : co5;
+    const float t89 = t80 < 0.0f ? -t87 : t87;
+    const float t90 = nearbyintf(cand3.y * 32832.125f);
+    const float abs_t90 = fabsf(t90);
+    const bool back6 = abs_t90 > 8388608.0f;
+    const float b6 = back6 ? 16777216.0f - abs_t90 : abs_t90;
     const bool swap6 = b6 > 4194304.0f;
     const float u7 = nearbyintf((swap6 ? 8388608.0f - b6 : b6) * 3.1415927f);
     const float u2_6 = nearbyintf(u7 * u7 * 5.9604645e-8f);
-    const float t110 = nearbyintf(
+    const float t91 = nearbyintf(
         (nearbyintf(-0.0f * u2_6 * 5.9604645e-8f) + 46.0f) * u2_6 * 5.9604645e-8f
     );
-    const float t111 = (nearbyintf((t110 + (-3329.0f)) * u2_6 * 5.9604645e-8f) + 139810.0f)
+    const float t92 = (nearbyintf((t91 + (-3329.0f)) * u2_6 * 5.9604645e-8f) + 139810.0f)
         * u2_6
         * 5.9604645e-8f;
-    const float t112 = nearbyintf((nearbyintf(t111) + (-2796203.0f)) * u2_6 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s6 = nearbyintf(u7 * t112 * 5.9604645e-8f);
-    const float t113 = nearbyintf(
+    const float t93 = u7
+        * (nearbyintf((nearbyintf(t92) + (-2796203.0f)) * u2_6 * 5.9604645e-8f) + 16777216.0f);
+    const float s6 = nearbyintf(t93 * 5.9604645e-8f);
+    const float t94 = nearbyintf(
         (nearbyintf(0.0f * u2_6 * 5.9604645e-8f) + (-5.0f)) * u2_6 * 5.9604645e-8f
     );
-    const float t114 = (nearbyintf((t113 + 416.0f) * u2_6 * 5.9604645e-8f) + (-23302.0f))
+    const float t95 = (nearbyintf((t94 + 416.0f) * u2_6 * 5.9604645e-8f) + (-23302.0f))
         * u2_6
         * 5.9604645e-8f;
-    const float t115 = nearbyintf((nearbyintf(t114) + 699051.0f) * u2_6 * 5.9604645e-8f)
-        + (-8388608.0f);
-    const float co6 = nearbyintf(t115 * u2_6 * 5.9604645e-8f) + 16777216.0f;
-    const float t116 = swap6 ? co6 : s6;
-    const float t117 = swap6 ? s6 : co6;
-    const unitpack_vec3 t118 = {
-        (back6 ? -t117 : t117) * t108,
-        (t109 < 0.0f ? -t116 : t116) * t108,
-        back5 ? -t107 : t107
+    const float t96 = (
+        nearbyintf((nearbyintf(t95) + 699051.0f) * u2_6 * 5.9604645e-8f) + (-8388608.0f)
+    )
+        * u2_6;
+    const float co6 = nearbyintf(t96 * 5.9604645e-8f) + 16777216.0f;
+    const float t97 = swap6 ? co6 : s6;
+    const float t98 = swap6 ? s6 : co6;
+    const unitpack_vec3 t99 = {
+        (back6 ? -t98 : t98) * t89,
+        (t90 < 0.0f ? -t97 : t97) * t89,
+        back5 ? -t88 : t88
     };
-    const unitpack_vec3 t119 = {
-        nearbyintf(t118.x * 2.9802322e-8f),
-        nearbyintf(t118.y * 2.9802322e-8f),
-        nearbyintf(t118.z * 0.5f)
+    const unitpack_vec3 offset3 = {
+        nearbyintf(t99.x * 2.9802322e-8f) - aim.x,
+        nearbyintf(t99.y * 2.9802322e-8f) - aim.y,
+        nearbyintf(t99.z * 0.5f) - aim.z
     };
-    const unitpack_uvec3 t120 = {
-        (uint32_t)fabsf(t119.x - aim.x),
-        (uint32_t)fabsf(t119.y - aim.y),
-        (uint32_t)fabsf(t119.z - aim.z)
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_12 = t120.x >> 12u;
-    const uint32_t limb0_12 = t120.x & 4095u;
+    const uint32_t limb1_12 = offset_u3.x >> 12u;
+    const uint32_t limb0_12 = offset_u3.x & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi18 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo18 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    const uint32_t limb1_13 = t120.y >> 12u;
-    const uint32_t limb0_13 = t120.y & 4095u;
+    const uint32_t limb1_13 = offset_u3.y >> 12u;
+    const uint32_t limb0_13 = offset_u3.y & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi19 = hi18 + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo19 = lo18 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t120.z >> 12u;
-    const uint32_t limb0_14 = t120.z & 4095u;
+    const uint32_t limb1_14 = offset_u3.z >> 12u;
+    const uint32_t limb0_14 = offset_u3.z & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi20 = hi19 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo20 = lo19 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     const uint32_t hi21 = hi20 + (lo20 >> 24u);
     const uint32_t lo21 = lo20 & 16777215u;
-    const float t121 = (float)hi21 * 16777216.0f;
-    const float dist3 = t121 + (float)lo21;
-    const bool t122 = base.x <= 511.0f && t97 <= 511.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t122 ? cand3.x : best.x, t122 ? cand3.y : best.y };
-    const float best_d2 = t122 ? dist3 : best_d;
-    const unitpack_vec2 t123 = { base.x + 1.0f, base.y + 1.0f };
+    const float t100 = (float)hi21 * 16777216.0f;
+    const float dist3 = t100 + (float)lo21;
+    const bool t101 = base.x <= 511.0f && t_up <= 511.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t101 ? cand3.x : best.x, t101 ? cand3.y : best.y };
+    const float best_d2 = t101 ? dist3 : best_d;
+    const unitpack_vec2 t102 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t123.x <= 511.0f ? t123.x : 511.0f,
-        t123.y <= 511.0f ? t123.y : 511.0f
+        t102.x <= 511.0f ? t102.x : 511.0f,
+        t102.y <= 511.0f ? t102.y : 511.0f
     };
-    const float t124 = nearbyintf((cand4.x + 511.0f) * 16416.063f);
-    const float abs_t124 = fabsf(t124);
-    const bool back7 = abs_t124 > 8388608.0f;
-    const float b7 = back7 ? 16777216.0f - abs_t124 : abs_t124;
+    const float t103 = nearbyintf((cand4.x + 511.0f) * 16416.063f);
+    const float abs_t103 = fabsf(t103);
+    const bool back7 = abs_t103 > 8388608.0f;
+    const float b7 = back7 ? 16777216.0f - abs_t103 : abs_t103;
     const bool swap7 = b7 > 4194304.0f;
     const float u8 = nearbyintf((swap7 ? 8388608.0f - b7 : b7) * 3.1415927f);
     const float u2_7 = nearbyintf(u8 * u8 * 5.9604645e-8f);
-    const float t125 = nearbyintf(
+    const float t104 = nearbyintf(
         (nearbyintf(-0.0f * u2_7 * 5.9604645e-8f) + 46.0f) * u2_7 * 5.9604645e-8f
     );
-    const float t126 = (nearbyintf((t125 + (-3329.0f)) * u2_7 * 5.9604645e-8f) + 139810.0f)
+    const float t105 = (nearbyintf((t104 + (-3329.0f)) * u2_7 * 5.9604645e-8f) + 139810.0f)
         * u2_7
         * 5.9604645e-8f;
-    const float t127 = nearbyintf((nearbyintf(t126) + (-2796203.0f)) * u2_7 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s7 = nearbyintf(u8 * t127 * 5.9604645e-8f);
-    const float t128 = nearbyintf(
+    const float t106 = u8
+        * (nearbyintf((nearbyintf(t105) + (-2796203.0f)) * u2_7 * 5.9604645e-8f) + 16777216.0f);
+    const float s7 = nearbyintf(t106 * 5.9604645e-8f);
+    const float t107 = nearbyintf(
         (nearbyintf(0.0f * u2_7 * 5.9604645e-8f) + (-5.0f)) * u2_7 * 5.9604645e-8f
     );
-    const float t129 = (nearbyintf((t128 + 416.0f) * u2_7 * 5.9604645e-8f) + (-23302.0f))
+    const float t108 = (nearbyintf((t107 + 416.0f) * u2_7 * 5.9604645e-8f) + (-23302.0f))
         * u2_7
         * 5.9604645e-8f;
-    const float t130 = nearbyintf((nearbyintf(t129) + 699051.0f) * u2_7 * 5.9604645e-8f)
-        + (-8388608.0f);
-    const float co7 = nearbyintf(t130 * u2_7 * 5.9604645e-8f) + 16777216.0f;
-    const float t131 = swap7 ? co7 : s7;
-    const float t132 = swap7 ? s7 : co7;
-    const float t133 = t124 < 0.0f ? -t131 : t131;
-    const float t134 = nearbyintf(cand4.y * 32832.125f);
-    const float abs_t134 = fabsf(t134);
-    const bool back8 = abs_t134 > 8388608.0f;
-    const float b8 = back8 ? 16777216.0f - abs_t134 : abs_t134;
+    const float t109 = (
+        nearbyintf((nearbyintf(t108) + 699051.0f) * u2_7 * 5.9604645e-8f) + (-8388608.0f)
+    )
+        * u2_7;
+    const float co7 = nearbyintf(t109 * 5.9604645e-8f) + 16777216.0f;
+    const float t110 = swap7 ? co7 : s7;
+    const float t111 = swap7 ? s7 : co7;
+    const float t112 = t103 < 0.0f ? -t110 : t110;
+    const float t113 = nearbyintf(cand4.y * 32832.125f);
+    const float abs_t113 = fabsf(t113);
+    const bool back8 = abs_t113 > 8388608.0f;
+    const float b8 = back8 ? 16777216.0f - abs_t113 : abs_t113;
     const bool swap8 = b8 > 4194304.0f;
     const float u9 = nearbyintf((swap8 ? 8388608.0f - b8 : b8) * 3.1415927f);
     const float u2_8 = nearbyintf(u9 * u9 * 5.9604645e-8f);
-    const float t135 = nearbyintf(
+    const float t114 = nearbyintf(
         (nearbyintf(-0.0f * u2_8 * 5.9604645e-8f) + 46.0f) * u2_8 * 5.9604645e-8f
     );
-    const float t136 = (nearbyintf((t135 + (-3329.0f)) * u2_8 * 5.9604645e-8f) + 139810.0f)
+    const float t115 = (nearbyintf((t114 + (-3329.0f)) * u2_8 * 5.9604645e-8f) + 139810.0f)
         * u2_8
         * 5.9604645e-8f;
-    const float t137 = nearbyintf((nearbyintf(t136) + (-2796203.0f)) * u2_8 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s8 = nearbyintf(u9 * t137 * 5.9604645e-8f);
-    const float t138 = nearbyintf(
+    const float t116 = u9
+        * (nearbyintf((nearbyintf(t115) + (-2796203.0f)) * u2_8 * 5.9604645e-8f) + 16777216.0f);
+    const float s8 = nearbyintf(t116 * 5.9604645e-8f);
+    const float t117 = nearbyintf(
         (nearbyintf(0.0f * u2_8 * 5.9604645e-8f) + (-5.0f)) * u2_8 * 5.9604645e-8f
     );
-    const float t139 = (nearbyintf((t138 + 416.0f) * u2_8 * 5.9604645e-8f) + (-23302.0f))
+    const float t118 = (nearbyintf((t117 + 416.0f) * u2_8 * 5.9604645e-8f) + (-23302.0f))
         * u2_8
         * 5.9604645e-8f;
-    const float t140 = nearbyintf((nearbyintf(t139) + 699051.0f) * u2_8 * 5.9604645e-8f)
-        + (-8388608.0f);
-    const float co8 = nearbyintf(t140 * u2_8 * 5.9604645e-8f) + 16777216.0f;
-    const float t141 = swap8 ? co8 : s8;
-    const float t142 = swap8 ? s8 : co8;
-    const unitpack_vec3 t143 = {
-        (back8 ? -t142 : t142) * t133,
-        (t134 < 0.0f ? -t141 : t141) * t133,
-        back7 ? -t132 : t132
+    const float t119 = (
+        nearbyintf((nearbyintf(t118) + 699051.0f) * u2_8 * 5.9604645e-8f) + (-8388608.0f)
+    )
+        * u2_8;
+    const float co8 = nearbyintf(t119 * 5.9604645e-8f) + 16777216.0f;
+    const float t120 = swap8 ? co8 : s8;
+    const float t121 = swap8 ? s8 : co8;
+    const unitpack_vec3 t122 = {
+        (back8 ? -t121 : t121) * t112,
+        (t113 < 0.0f ? -t120 : t120) * t112,
+        back7 ? -t111 : t111
     };
-    const unitpack_vec3 t144 = {
-        nearbyintf(t143.x * 2.9802322e-8f),
-        nearbyintf(t143.y * 2.9802322e-8f),
-        nearbyintf(t143.z * 0.5f)
+    const unitpack_vec3 offset4 = {
+        nearbyintf(t122.x * 2.9802322e-8f) - aim.x,
+        nearbyintf(t122.y * 2.9802322e-8f) - aim.y,
+        nearbyintf(t122.z * 0.5f) - aim.z
     };
-    const unitpack_uvec3 t145 = {
-        (uint32_t)fabsf(t144.x - aim.x),
-        (uint32_t)fabsf(t144.y - aim.y),
-        (uint32_t)fabsf(t144.z - aim.z)
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_15 = t145.x >> 12u;
-    const uint32_t limb0_15 = t145.x & 4095u;
+    const uint32_t limb1_15 = offset_u4.x >> 12u;
+    const uint32_t limb0_15 = offset_u4.x & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi22 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo22 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_16 = t145.y >> 12u;
-    const uint32_t limb0_16 = t145.y & 4095u;
+    const uint32_t limb1_16 = offset_u4.y >> 12u;
+    const uint32_t limb0_16 = offset_u4.y & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi23 = hi22 + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo23 = lo22 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t145.z >> 12u;
-    const uint32_t limb0_17 = t145.z & 4095u;
+    const uint32_t limb1_17 = offset_u4.z >> 12u;
+    const uint32_t limb0_17 = offset_u4.z & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi24 = hi23 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo24 = lo23 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     const uint32_t hi25 = hi24 + (lo24 >> 24u);
     const uint32_t lo25 = lo24 & 16777215u;
-    const float t146 = (float)hi25 * 16777216.0f;
-    const float dist4 = t146 + (float)lo25;
-    const bool t147 = base.x + 1.0f <= 511.0f && base.y + 1.0f <= 511.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t147 ? cand4.x : best2.x, t147 ? cand4.y : best2.y };
+    const float t123 = (float)hi25 * 16777216.0f;
+    const float dist4 = t123 + (float)lo25;
+    const bool t124 = s_up <= 511.0f && t_up <= 511.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t124 ? cand4.x : best2.x, t124 ? cand4.y : best2.y };
     return best3;
 }
 

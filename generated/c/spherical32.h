@@ -96,11 +96,10 @@ static inline void unitpack_spherical32_decode_float(const float params[2], floa
 static inline unitpack_vec3 unitpack_spherical32_decode_v(uint32_t code) {
     const unitpack_vec2 t1 = { (float)(code & 65535u), (float)(code >> 16u) };
     const unitpack_vec2 t2 = {
-        t1.x > 32767.0f ? t1.x - 65536.0f : t1.x,
-        t1.y > 32767.0f ? t1.y - 65536.0f : t1.y
+        (t1.x > 32767.0f ? t1.x - 65536.0f : t1.x) * 3.051851e-5f,
+        (t1.y > 32767.0f ? t1.y - 65536.0f : t1.y) * 3.051851e-5f
     };
-    const unitpack_vec2 t3 = { t2.x * 3.051851e-5f, t2.y * 3.051851e-5f };
-    const unitpack_vec2 params = { t3.x >= (-1.0f) ? t3.x : -1.0f, t3.y >= (-1.0f) ? t3.y : -1.0f };
+    const unitpack_vec2 params = { t2.x >= (-1.0f) ? t2.x : -1.0f, t2.y >= (-1.0f) ? t2.y : -1.0f };
     const unitpack_vec3 decode_float = unitpack_spherical32_decode_float_v(params);
     return decode_float;
 }
@@ -194,32 +193,29 @@ static inline void unitpack_spherical32_encode_float(const float v[3], float out
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_spherical32_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -232,77 +228,80 @@ static inline unitpack_vec2 unitpack_spherical32_round_codes_v(unitpack_vec3 a0)
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
     const uint32_t hi3 = hi2 + (lo2 >> 24u);
     const uint32_t lo3 = lo2 & 16777215u;
-    const float t3 = (float)hi3 * 16777216.0f;
-    const float rho2 = (t3 + (float)lo3) * 2.2737368e-13f;
-    const bool t4 = rho2 > 0.0f;
-    const float t5 = t4 ? rho2 : 1.0f;
-    const uint32_t half_exponent = ((unitpack_bits_of(t5) >> 23u) + 1u) >> 1u;
+    const float t1 = (float)hi3 * 16777216.0f;
+    const float rho2 = (t1 + (float)lo3) * 2.2737368e-13f;
+    const bool t2 = rho2 > 0.0f;
+    const float t3 = t2 ? rho2 : 1.0f;
+    const uint32_t half_exponent = ((unitpack_bits_of(t3) >> 23u) + 1u) >> 1u;
     const float root_down = unitpack_float_of((257u - (half_exponent << 1u)) << 23u);
     const float root_up = unitpack_float_of((62u + half_exponent) << 23u);
-    const float t6 = t5 * root_down;
-    const float root_estimate = sqrtf(t6);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float t4 = t3 * root_down;
+    const float root_estimate = sqrtf(t4);
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= t6 ? 1.0f : (root_h0 * root_h0 > t6 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > t4 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= t4 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
-    const float root_rest = t6 - root_h_sq;
+    const float root_rest = t4 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= t6 ? 1.0f : (root_m0 * root_m0 > t6 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
-    const float rho = t4 ? root * root_up : 0.0f;
+    const float t5 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t5;
+    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t6;
+    const float step_down2 = root_m0 * root_m0 > t4 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= t4 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t7 = root_k * 4096.0f;
+    const float root = (t7 + root_j) * 4.7683716e-7f;
+    const float rho = t2 ? root * root_up : 0.0f;
     const float abs_w2_z = fabsf(w2.z);
     const float abs_rho = fabsf(rho);
     const bool y_major = abs_rho > abs_w2_z;
     const float hi4 = y_major ? abs_rho : abs_w2_z;
     const float lo4 = y_major ? abs_w2_z : abs_rho;
-    const float t11 = hi4 > 0.0f ? hi4 : 1.0f;
+    const float t8 = hi4 > 0.0f ? hi4 : 1.0f;
     const float big = lo4 * 8388608.0f;
-    const float ratio_estimate = floorf(lo4 / t11 * 8388608.0f);
-    const float t12 = (ratio_estimate + 1.0f) * t11 <= big
-        ? 1.0f
-        : (ratio_estimate * t11 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t12;
-    const float t = ratio
-        + ((ratio + 1.0f) * t11 <= big ? 1.0f : (ratio * t11 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo4 / t8 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t8 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t8 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t8 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t8 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t13 = t - 8388608.0f;
-    const float t14 = t + 8388608.0f;
-    const float big2 = t13 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t13 / t14 * 8388608.0f);
-    const float t15 = (ratio_estimate2 + 1.0f) * t14 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t14 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t15;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t14 <= big2 ? 1.0f : (ratio2 * t14 > big2 ? -1.0f : 0.0f));
+    const float t9 = t - 8388608.0f;
+    const float t10 = t + 8388608.0f;
+    const float big2 = t9 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t9 / t10 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t10 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t10 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t16 = nearbyintf(
+    const float t11 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t17 = (nearbyintf((t16 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t12 = (nearbyintf((t11 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t18 = (
-        nearbyintf((nearbyintf(t17) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t13 = (
+        nearbyintf((nearbyintf(t12) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t19 = nearbyintf(
-        (nearbyintf(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t15 = nearbyintf(
+        (nearbyintf(t14 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t20 = (nearbyintf((t19 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t20) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t15 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
@@ -313,58 +312,58 @@ static inline unitpack_vec2 unitpack_spherical32_round_codes_v(unitpack_vec3 a0)
     const bool y_major2 = abs_w2_y > abs_w2_x;
     const float hi5 = y_major2 ? abs_w2_y : abs_w2_x;
     const float lo5 = y_major2 ? abs_w2_x : abs_w2_y;
-    const float t21 = hi5 > 0.0f ? hi5 : 1.0f;
+    const float t16 = hi5 > 0.0f ? hi5 : 1.0f;
     const float big3 = lo5 * 8388608.0f;
-    const float ratio_estimate3 = floorf(lo5 / t21 * 8388608.0f);
-    const float t22 = (ratio_estimate3 + 1.0f) * t21 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * t21 > big3 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate3 + t22;
-    const float t23 = ratio4
-        + ((ratio4 + 1.0f) * t21 <= big3 ? 1.0f : (ratio4 * t21 > big3 ? -1.0f : 0.0f));
-    const bool far2 = t23 > 3474675.0f;
-    const float t24 = t23 - 8388608.0f;
-    const float t25 = t23 + 8388608.0f;
-    const float big4 = t24 * 8388608.0f;
-    const float ratio_estimate4 = floorf(t24 / t25 * 8388608.0f);
-    const float t26 = (ratio_estimate4 + 1.0f) * t25 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * t25 > big4 ? -1.0f : 0.0f);
-    const float ratio5 = ratio_estimate4 + t26;
-    const float ratio6 = ratio5
-        + ((ratio5 + 1.0f) * t25 <= big4 ? 1.0f : (ratio5 * t25 > big4 ? -1.0f : 0.0f));
-    const float z3 = far2 ? ratio6 : t23;
+    const float ratio_estimate3 = floorf(lo5 / t16 * 8388608.0f);
+    const float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0f : 0.0f;
+    const float step7 = (ratio_estimate3 + 1.0f) * t16 <= big3 ? 1.0f : step_down7;
+    const float ratio4 = ratio_estimate3 + step7;
+    const float step_down8 = ratio4 * t16 > big3 ? -1.0f : 0.0f;
+    const float step8 = (ratio4 + 1.0f) * t16 <= big3 ? 1.0f : step_down8;
+    const float t17 = ratio4 + step8;
+    const bool far2 = t17 > 3474675.0f;
+    const float t18 = t17 - 8388608.0f;
+    const float t19 = t17 + 8388608.0f;
+    const float big4 = t18 * 8388608.0f;
+    const float ratio_estimate4 = floorf(t18 / t19 * 8388608.0f);
+    const float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0f : 0.0f;
+    const float step9 = (ratio_estimate4 + 1.0f) * t19 <= big4 ? 1.0f : step_down9;
+    const float ratio5 = ratio_estimate4 + step9;
+    const float step_down10 = ratio5 * t19 > big4 ? -1.0f : 0.0f;
+    const float step10 = (ratio5 + 1.0f) * t19 <= big4 ? 1.0f : step_down10;
+    const float ratio6 = ratio5 + step10;
+    const float z3 = far2 ? ratio6 : t17;
     const float z2_2 = nearbyintf(z3 * z3 * 1.1920929e-7f);
-    const float t27 = (nearbyintf(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f)
+    const float t20 = nearbyintf(
+        (nearbyintf(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f
+    );
+    const float t21 = (nearbyintf((t20 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
         * z2_2
         * 1.1920929e-7f;
-    const float t28 = (
-        nearbyintf((nearbyintf(t27) + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f
+    const float t22 = (
+        nearbyintf((nearbyintf(t21) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f
     )
         * z2_2;
-    const float t29 = nearbyintf(
-        (nearbyintf(t28 * 1.1920929e-7f) + (-762601.0f)) * z2_2 * 1.1920929e-7f
+    const float t23 = nearbyintf(
+        (nearbyintf(t22 * 1.1920929e-7f) + (-1198373.0f)) * z2_2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t24 = nearbyintf(
+        (nearbyintf(t23 * z2_2 * 1.1920929e-7f) + (-2796203.0f)) * z2_2 * 1.1920929e-7f
     );
-    const float t30 = (nearbyintf((t29 + 932068.0f) * z2_2 * 1.1920929e-7f) + (-1198373.0f))
-        * z2_2
-        * 1.1920929e-7f;
-    const float t31 = nearbyintf((nearbyintf(t30) + 1677722.0f) * z2_2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    const float r2 = nearbyintf(
-        z3 * (nearbyintf(t31 * z2_2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f
-    );
+    const float r2 = nearbyintf(z3 * (t24 + 8388608.0f) * 1.1920929e-7f);
     const float h5 = nearbyintf(r2 * 0.31830987f);
     const float h6 = far2 ? h5 + 2097152.0f : h5;
     const float h7 = y_major2 ? 4194304.0f - h6 : h6;
     const float h8 = w2.x < 0.0f ? 8388608.0f - h7 : h7;
     const float phi = w2.y < 0.0f ? -h8 : h8;
-    const float t32 = angle * 2.0f;
-    const float theta = t32 - 8388608.0f;
-    const unitpack_vec2 t33 = {
+    const float t25 = angle * 2.0f;
+    const float theta = t25 - 8388608.0f;
+    const unitpack_vec2 t26 = {
         nearbyintf(theta * 0.0039061308f),
         nearbyintf(phi * 0.0039061308f)
     };
-    return t33;
+    return t26;
 }
 
 // Struct form of unitpack_spherical32_encode.

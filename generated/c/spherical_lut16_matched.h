@@ -87,89 +87,77 @@ static inline uint64_t unitpack_spherical_lut16_matched_sincos_texel(uint32_t co
 
 // Struct form of unitpack_spherical_lut16_matched_atan_texel.
 static inline unitpack_uvec2 unitpack_spherical_lut16_matched_atan_texel_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float s = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float sqrt_s = sqrtf(s);
-    const unitpack_vec2 t6 = { w2.x / sqrt_s * 128.0f, w2.y / sqrt_s * 128.0f };
-    const unitpack_vec2 t7 = { floorf(t6.x + 128.0f), floorf(t6.y + 128.0f) };
-    const unitpack_vec2 t8 = { t7.x >= 0.0f ? t7.x : 0.0f, t7.y >= 0.0f ? t7.y : 0.0f };
-    const unitpack_vec2 t9 = { t8.x <= 255.0f ? t8.x : 255.0f, t8.y <= 255.0f ? t8.y : 255.0f };
-    const unitpack_vec2 t10 = { t9.x - 127.0f, t9.y - 127.0f };
-    const unitpack_vec2 t11 = { w2.x * w2.x * 16384.0f, w2.y * w2.y * 16384.0f };
-    const unitpack_vec2 t12 = { t10.x * t10.x * s, t10.y * t10.y * s };
-    const unitpack_vec2 t13 = {
-        t10.x > 0.0f ? (t11.x >= t12.x ? 1.0f : 0.0f) : 1.0f,
-        t10.y > 0.0f ? (t11.y >= t12.y ? 1.0f : 0.0f) : 1.0f
+    const unitpack_vec2 t4 = { w2.x / sqrt_s * 128.0f, w2.y / sqrt_s * 128.0f };
+    const unitpack_vec2 t5 = { floorf(t4.x + 128.0f), floorf(t4.y + 128.0f) };
+    const unitpack_vec2 t6 = { t5.x >= 0.0f ? t5.x : 0.0f, t5.y >= 0.0f ? t5.y : 0.0f };
+    const unitpack_vec2 t7 = { t6.x <= 255.0f ? t6.x : 255.0f, t6.y <= 255.0f ? t6.y : 255.0f };
+    const unitpack_vec2 t8 = { t7.x - 127.0f, t7.y - 127.0f };
+    const unitpack_vec2 t9 = { w2.x * w2.x * 16384.0f, w2.y * w2.y * 16384.0f };
+    const unitpack_vec2 t10 = { t8.x * t8.x * s, t8.y * t8.y * s };
+    const unitpack_vec2 t11 = {
+        w2.x >= 0.0f
+            ? (t8.x > 0.0f ? (t9.x >= t10.x ? 1.0f : 0.0f) : 1.0f)
+            : (t8.x < 0.0f ? (t9.x <= t10.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t8.y > 0.0f ? (t9.y >= t10.y ? 1.0f : 0.0f) : 1.0f)
+            : (t8.y < 0.0f ? (t9.y <= t10.y ? 1.0f : 0.0f) : 0.0f)
     };
+    const unitpack_vec2 t12 = { t7.x - 1.0f - 127.0f, t7.y - 1.0f - 127.0f };
+    const unitpack_vec2 t13 = { t12.x * t12.x * s, t12.y * t12.y * s };
     const unitpack_vec2 t14 = {
-        t10.x < 0.0f ? (t11.x <= t12.x ? 1.0f : 0.0f) : 0.0f,
-        t10.y < 0.0f ? (t11.y <= t12.y ? 1.0f : 0.0f) : 0.0f
+        w2.x >= 0.0f
+            ? (t12.x > 0.0f ? (t9.x >= t13.x ? 1.0f : 0.0f) : 1.0f)
+            : (t12.x < 0.0f ? (t9.x <= t13.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t12.y > 0.0f ? (t9.y >= t13.y ? 1.0f : 0.0f) : 1.0f)
+            : (t12.y < 0.0f ? (t9.y <= t13.y ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec2 t15 = {
-        t9.x < 255.0f ? (w2.x >= 0.0f ? t13.x : t14.x) : 0.0f,
-        t9.y < 255.0f ? (w2.y >= 0.0f ? t13.y : t14.y) : 0.0f
+        t7.x + (t7.x < 255.0f ? t11.x : 0.0f) + (t7.x > 0.0f ? t14.x - 1.0f : 0.0f),
+        t7.y + (t7.y < 255.0f ? t11.y : 0.0f) + (t7.y > 0.0f ? t14.y - 1.0f : 0.0f)
     };
-    const unitpack_vec2 t16 = { t9.x - 1.0f - 127.0f, t9.y - 1.0f - 127.0f };
-    const unitpack_vec2 t17 = { t16.x * t16.x * s, t16.y * t16.y * s };
-    const unitpack_vec2 t18 = {
-        t16.x > 0.0f ? (t11.x >= t17.x ? 1.0f : 0.0f) : 1.0f,
-        t16.y > 0.0f ? (t11.y >= t17.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t19 = {
-        t16.x < 0.0f ? (t11.x <= t17.x ? 1.0f : 0.0f) : 0.0f,
-        t16.y < 0.0f ? (t11.y <= t17.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t20 = {
-        t9.x > 0.0f ? (w2.x >= 0.0f ? t18.x : t19.x) - 1.0f : 0.0f,
-        t9.y > 0.0f ? (w2.y >= 0.0f ? t18.y : t19.y) - 1.0f : 0.0f
-    };
-    const unitpack_uvec2 t21 = {
-        (uint32_t)(t9.x + t15.x + t20.x),
-        (uint32_t)(t9.y + t15.y + t20.y)
-    };
-    return t21;
+    const unitpack_uvec2 t15_u = { (uint32_t)t15.x, (uint32_t)t15.y };
+    return t15_u;
 }
 
 // unitpack_spherical_lut16_matched_atan_texel: lookup texel.
@@ -203,13 +191,8 @@ static inline unitpack_vec2 unitpack_spherical_lut16_matched_encode_float_v(
     const float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
     const bool t4 = t2 && len2 >= 1.0f;
     const float sqrt_len2 = sqrtf(len2);
-    const unitpack_vec3 t5 = {
-        t4 ? scaled.x / sqrt_len2 : 0.0f,
-        t4 ? scaled.y / sqrt_len2 : 0.0f,
-        t4 ? scaled.z / sqrt_len2 : 1.0f
-    };
-    const unitpack_vec2 t6 = { fetched, (t5.z + 1.0f) * 0.5f };
-    return t6;
+    const unitpack_vec2 t5 = { fetched, ((t4 ? scaled.z / sqrt_len2 : 1.0f) + 1.0f) * 0.5f };
+    return t5;
 }
 
 // unitpack_spherical_lut16_matched_encode_float: fast encoder, float form.
@@ -230,69 +213,66 @@ static inline void unitpack_spherical_lut16_matched_encode_float(
 
 // Struct form of unitpack_spherical_lut16_matched_encode.
 static inline uint32_t unitpack_spherical_lut16_matched_encode_v(unitpack_vec3 v, float fetched) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
-    const float t6 = fetched >= 0.0f ? fetched : 0.0f;
+    const float t4 = fetched >= 0.0f ? fetched : 0.0f;
     const float big2 = w2.z * w2.z * 16256.25f;
-    const float t7 = w2.z / sqrtf(len2) * 127.5f;
-    const float t8 = nearbyintf(t7 + 127.5f);
-    const float t9 = t8 >= 0.0f ? t8 : 0.0f;
-    const float estimate = t9 <= 255.0f ? t9 : 255.0f;
-    const float t10 = estimate - 127.0f;
+    const float t5 = w2.z / sqrtf(len2) * 127.5f;
+    const float t6 = nearbyintf(t5 + 127.5f);
+    const float t7 = t6 >= 0.0f ? t6 : 0.0f;
+    const float estimate = t7 <= 255.0f ? t7 : 255.0f;
+    const float t8 = estimate - 127.0f;
+    const float t9 = t8 * t8 * len2;
+    const float one_if = big2 >= t9 ? 1.0f : 0.0f;
+    const float one_if2 = big2 <= t9 ? 1.0f : 0.0f;
+    const float up = estimate < 255.0f
+        ? (w2.z >= 0.0f ? (t8 > 0.0f ? one_if : 1.0f) : (t8 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t10 = estimate - 1.0f - 127.0f;
     const float t11 = t10 * t10 * len2;
-    const float t12 = w2.z >= 0.0f
-        ? (t10 > 0.0f ? (big2 >= t11 ? 1.0f : 0.0f) : 1.0f)
-        : (t10 < 0.0f ? (big2 <= t11 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 255.0f ? t12 : 0.0f;
-    const float t13 = estimate - 1.0f - 127.0f;
-    const float t14 = t13 * t13 * len2;
-    const float t15 = w2.z >= 0.0f
-        ? (t13 > 0.0f ? (big2 >= t14 ? 1.0f : 0.0f) : 1.0f)
-        : (t13 < 0.0f ? (big2 <= t14 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t15 - 1.0f : 0.0f;
-    return (uint32_t)nearbyintf((t6 <= 1.0f ? t6 : 1.0f) * 255.0f)
+    const float one_if3 = big2 >= t11 ? 1.0f : 0.0f;
+    const float one_if4 = big2 <= t11 ? 1.0f : 0.0f;
+    const float t12 = (w2.z >= 0.0f ? (t10 > 0.0f ? one_if3 : 1.0f) : (t10 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t12 : 0.0f;
+    return (uint32_t)nearbyintf((t4 <= 1.0f ? t4 : 1.0f) * 255.0f)
         | ((uint32_t)(estimate + up + down) << 8u);
 }
 

@@ -87,89 +87,77 @@ static inline uint64_t unitpack_spherical_lut16p_sincos_texel(uint32_t code) {
 
 // Struct form of unitpack_spherical_lut16p_atan_texel.
 static inline unitpack_uvec2 unitpack_spherical_lut16p_atan_texel_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float s = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float sqrt_s = sqrtf(s);
-    const unitpack_vec2 t6 = { w2.x / sqrt_s * 128.0f, w2.y / sqrt_s * 128.0f };
-    const unitpack_vec2 t7 = { floorf(t6.x + 128.0f), floorf(t6.y + 128.0f) };
-    const unitpack_vec2 t8 = { t7.x >= 0.0f ? t7.x : 0.0f, t7.y >= 0.0f ? t7.y : 0.0f };
-    const unitpack_vec2 t9 = { t8.x <= 255.0f ? t8.x : 255.0f, t8.y <= 255.0f ? t8.y : 255.0f };
-    const unitpack_vec2 t10 = { t9.x - 127.0f, t9.y - 127.0f };
-    const unitpack_vec2 t11 = { w2.x * w2.x * 16384.0f, w2.y * w2.y * 16384.0f };
-    const unitpack_vec2 t12 = { t10.x * t10.x * s, t10.y * t10.y * s };
-    const unitpack_vec2 t13 = {
-        t10.x > 0.0f ? (t11.x >= t12.x ? 1.0f : 0.0f) : 1.0f,
-        t10.y > 0.0f ? (t11.y >= t12.y ? 1.0f : 0.0f) : 1.0f
+    const unitpack_vec2 t4 = { w2.x / sqrt_s * 128.0f, w2.y / sqrt_s * 128.0f };
+    const unitpack_vec2 t5 = { floorf(t4.x + 128.0f), floorf(t4.y + 128.0f) };
+    const unitpack_vec2 t6 = { t5.x >= 0.0f ? t5.x : 0.0f, t5.y >= 0.0f ? t5.y : 0.0f };
+    const unitpack_vec2 t7 = { t6.x <= 255.0f ? t6.x : 255.0f, t6.y <= 255.0f ? t6.y : 255.0f };
+    const unitpack_vec2 t8 = { t7.x - 127.0f, t7.y - 127.0f };
+    const unitpack_vec2 t9 = { w2.x * w2.x * 16384.0f, w2.y * w2.y * 16384.0f };
+    const unitpack_vec2 t10 = { t8.x * t8.x * s, t8.y * t8.y * s };
+    const unitpack_vec2 t11 = {
+        w2.x >= 0.0f
+            ? (t8.x > 0.0f ? (t9.x >= t10.x ? 1.0f : 0.0f) : 1.0f)
+            : (t8.x < 0.0f ? (t9.x <= t10.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t8.y > 0.0f ? (t9.y >= t10.y ? 1.0f : 0.0f) : 1.0f)
+            : (t8.y < 0.0f ? (t9.y <= t10.y ? 1.0f : 0.0f) : 0.0f)
     };
+    const unitpack_vec2 t12 = { t7.x - 1.0f - 127.0f, t7.y - 1.0f - 127.0f };
+    const unitpack_vec2 t13 = { t12.x * t12.x * s, t12.y * t12.y * s };
     const unitpack_vec2 t14 = {
-        t10.x < 0.0f ? (t11.x <= t12.x ? 1.0f : 0.0f) : 0.0f,
-        t10.y < 0.0f ? (t11.y <= t12.y ? 1.0f : 0.0f) : 0.0f
+        w2.x >= 0.0f
+            ? (t12.x > 0.0f ? (t9.x >= t13.x ? 1.0f : 0.0f) : 1.0f)
+            : (t12.x < 0.0f ? (t9.x <= t13.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t12.y > 0.0f ? (t9.y >= t13.y ? 1.0f : 0.0f) : 1.0f)
+            : (t12.y < 0.0f ? (t9.y <= t13.y ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec2 t15 = {
-        t9.x < 255.0f ? (w2.x >= 0.0f ? t13.x : t14.x) : 0.0f,
-        t9.y < 255.0f ? (w2.y >= 0.0f ? t13.y : t14.y) : 0.0f
+        t7.x + (t7.x < 255.0f ? t11.x : 0.0f) + (t7.x > 0.0f ? t14.x - 1.0f : 0.0f),
+        t7.y + (t7.y < 255.0f ? t11.y : 0.0f) + (t7.y > 0.0f ? t14.y - 1.0f : 0.0f)
     };
-    const unitpack_vec2 t16 = { t9.x - 1.0f - 127.0f, t9.y - 1.0f - 127.0f };
-    const unitpack_vec2 t17 = { t16.x * t16.x * s, t16.y * t16.y * s };
-    const unitpack_vec2 t18 = {
-        t16.x > 0.0f ? (t11.x >= t17.x ? 1.0f : 0.0f) : 1.0f,
-        t16.y > 0.0f ? (t11.y >= t17.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t19 = {
-        t16.x < 0.0f ? (t11.x <= t17.x ? 1.0f : 0.0f) : 0.0f,
-        t16.y < 0.0f ? (t11.y <= t17.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t20 = {
-        t9.x > 0.0f ? (w2.x >= 0.0f ? t18.x : t19.x) - 1.0f : 0.0f,
-        t9.y > 0.0f ? (w2.y >= 0.0f ? t18.y : t19.y) - 1.0f : 0.0f
-    };
-    const unitpack_uvec2 t21 = {
-        (uint32_t)(t9.x + t15.x + t20.x),
-        (uint32_t)(t9.y + t15.y + t20.y)
-    };
-    return t21;
+    const unitpack_uvec2 t15_u = { (uint32_t)t15.x, (uint32_t)t15.y };
+    return t15_u;
 }
 
 // unitpack_spherical_lut16p_atan_texel: lookup texel.
@@ -186,69 +174,66 @@ static inline uint64_t unitpack_spherical_lut16p_atan_texel(const float v[3]) {
 
 // Struct form of unitpack_spherical_lut16p_encode_fast.
 static inline uint32_t unitpack_spherical_lut16p_encode_fast_v(unitpack_vec3 v, float fetched) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
-    const float t6 = fetched >= 0.0f ? fetched : 0.0f;
+    const float t4 = fetched >= 0.0f ? fetched : 0.0f;
     const float big2 = w2.z * w2.z * 16256.25f;
-    const float t7 = w2.z / sqrtf(len2) * 127.5f;
-    const float t8 = nearbyintf(t7 + 127.5f);
-    const float t9 = t8 >= 0.0f ? t8 : 0.0f;
-    const float estimate = t9 <= 255.0f ? t9 : 255.0f;
-    const float t10 = estimate - 127.0f;
+    const float t5 = w2.z / sqrtf(len2) * 127.5f;
+    const float t6 = nearbyintf(t5 + 127.5f);
+    const float t7 = t6 >= 0.0f ? t6 : 0.0f;
+    const float estimate = t7 <= 255.0f ? t7 : 255.0f;
+    const float t8 = estimate - 127.0f;
+    const float t9 = t8 * t8 * len2;
+    const float one_if = big2 >= t9 ? 1.0f : 0.0f;
+    const float one_if2 = big2 <= t9 ? 1.0f : 0.0f;
+    const float up = estimate < 255.0f
+        ? (w2.z >= 0.0f ? (t8 > 0.0f ? one_if : 1.0f) : (t8 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t10 = estimate - 1.0f - 127.0f;
     const float t11 = t10 * t10 * len2;
-    const float t12 = w2.z >= 0.0f
-        ? (t10 > 0.0f ? (big2 >= t11 ? 1.0f : 0.0f) : 1.0f)
-        : (t10 < 0.0f ? (big2 <= t11 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 255.0f ? t12 : 0.0f;
-    const float t13 = estimate - 1.0f - 127.0f;
-    const float t14 = t13 * t13 * len2;
-    const float t15 = w2.z >= 0.0f
-        ? (t13 > 0.0f ? (big2 >= t14 ? 1.0f : 0.0f) : 1.0f)
-        : (t13 < 0.0f ? (big2 <= t14 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t15 - 1.0f : 0.0f;
-    return (uint32_t)nearbyintf((t6 <= 1.0f ? t6 : 1.0f) * 255.0f)
+    const float one_if3 = big2 >= t11 ? 1.0f : 0.0f;
+    const float one_if4 = big2 <= t11 ? 1.0f : 0.0f;
+    const float t12 = (w2.z >= 0.0f ? (t10 > 0.0f ? one_if3 : 1.0f) : (t10 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t12 : 0.0f;
+    return (uint32_t)nearbyintf((t4 <= 1.0f ? t4 : 1.0f) * 255.0f)
         | ((uint32_t)(estimate + up + down) << 8u);
 }
 
@@ -302,527 +287,459 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     unitpack_vec3 s7,
     unitpack_vec3 s8
 ) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = {
-        floorf(fabsf(w2.x) * 4096.0f),
-        floorf(fabsf(w2.y) * 4096.0f),
-        floorf(fabsf(w2.z) * 4096.0f)
+    const unitpack_uvec3 t1 = {
+        (uint32_t)floorf(fabsf(w2.x) * 4096.0f),
+        (uint32_t)floorf(fabsf(w2.y) * 4096.0f),
+        (uint32_t)floorf(fabsf(w2.z) * 4096.0f)
     };
-    const unitpack_uvec3 t4 = { (uint32_t)t3.x, (uint32_t)t3.y, (uint32_t)t3.z };
     const unitpack_uvec3 afix = {
-        w2.x < 0.0f ? 0u - t4.x : t4.x,
-        w2.y < 0.0f ? 0u - t4.y : t4.y,
-        w2.z < 0.0f ? 0u - t4.z : t4.z
+        w2.x < 0.0f ? 0u - t1.x : t1.x,
+        w2.y < 0.0f ? 0u - t1.y : t1.y,
+        w2.z < 0.0f ? 0u - t1.z : t1.z
     };
-    const uint32_t t5 = code & 65535u;
-    const unitpack_vec3 t6 = {
+    const uint32_t t2 = code & 65535u;
+    const unitpack_vec3 t3 = {
         s4.x >= 0.0f ? s4.x : 0.0f,
         s4.y >= 0.0f ? s4.y : 0.0f,
         s4.z >= 0.0f ? s4.z : 0.0f
     };
-    const unitpack_vec3 t7 = {
-        t6.x <= 1.0f ? t6.x : 1.0f,
-        t6.y <= 1.0f ? t6.y : 1.0f,
-        t6.z <= 1.0f ? t6.z : 1.0f
+    const unitpack_uvec3 t4 = {
+        (uint32_t)nearbyintf((t3.x <= 1.0f ? t3.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t3.y <= 1.0f ? t3.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t3.z <= 1.0f ? t3.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t8 = {
-        nearbyintf(t7.x * 255.0f),
-        nearbyintf(t7.y * 255.0f),
-        nearbyintf(t7.z * 255.0f)
-    };
-    const unitpack_uvec3 t9 = { (uint32_t)t8.x, (uint32_t)t8.y, (uint32_t)t8.z };
-    const unitpack_uvec3 t10 = { t9.x + t9.x - 255u, t9.y + t9.y - 255u, t9.z + t9.z - 255u };
+    const unitpack_uvec3 t5 = { t4.x + t4.x - 255u, t4.y + t4.y - 255u, t4.z + t4.z - 255u };
     const unitpack_uvec3 cross = {
-        afix.y * t10.z - afix.z * t10.y,
-        afix.z * t10.x - afix.x * t10.z,
-        afix.x * t10.y - afix.y * t10.x
+        afix.y * t5.z - afix.z * t5.y,
+        afix.z * t5.x - afix.x * t5.z,
+        afix.x * t5.y - afix.y * t5.x
     };
-    const unitpack_uvec3 t11 = {
+    const unitpack_uvec3 t6 = {
         cross.x < 2147483648u ? cross.x : 0u - cross.x,
         cross.y < 2147483648u ? cross.y : 0u - cross.y,
         cross.z < 2147483648u ? cross.z : 0u - cross.z
     };
-    const uint32_t limb1 = t11.x >> 12u;
-    const uint32_t limb0 = t11.x & 4095u;
+    const uint32_t limb1 = t6.x >> 12u;
+    const uint32_t limb0 = t6.x & 4095u;
     const uint32_t cross2 = limb1 * limb0;
     const uint32_t hi = 0u + limb1 * limb1 + (cross2 >> 11u);
     const uint32_t lo = 0u + limb0 * limb0 + ((cross2 << 13u) & 16777215u);
-    const uint32_t limb1_2 = t11.y >> 12u;
-    const uint32_t limb0_2 = t11.y & 4095u;
+    const uint32_t limb1_2 = t6.y >> 12u;
+    const uint32_t limb0_2 = t6.y & 4095u;
     const uint32_t cross3 = limb1_2 * limb0_2;
     const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross3 >> 11u);
     const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross3 << 13u) & 16777215u);
-    const uint32_t limb1_3 = t11.z >> 12u;
-    const uint32_t limb0_3 = t11.z & 4095u;
+    const uint32_t limb1_3 = t6.z >> 12u;
+    const uint32_t limb0_3 = t6.z & 4095u;
     const uint32_t cross4 = limb1_3 * limb0_3;
     const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross4 >> 11u);
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross4 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t12 = (float)hi4 * 16777216.0f;
-    const float e = t12 + (float)lo4;
-    const float n = (float)(t10.x * t10.x + t10.y * t10.y + t10.z * t10.z);
-    const uint32_t t13 = ((code >> 8u) & 255u) + 0u;
-    const uint32_t t14 = (t13 < 1u ? 1u : t13) - 1u;
-    const unitpack_vec3 t15 = {
+    const float t7 = (float)hi4 * 16777216.0f;
+    const float e = t7 + (float)lo4;
+    const float n = (float)(t5.x * t5.x + t5.y * t5.y + t5.z * t5.z);
+    const uint32_t t8 = ((code >> 8u) & 255u) + 0u;
+    const uint32_t t9 = (t8 < 1u ? 1u : t8) - 1u;
+    const uint32_t t10 = (((code & 255u) + 0u + 255u) & 255u) | ((t9 < 256u ? t9 : 255u) << 8u);
+    const unitpack_vec3 t11 = {
         s0.x >= 0.0f ? s0.x : 0.0f,
         s0.y >= 0.0f ? s0.y : 0.0f,
         s0.z >= 0.0f ? s0.z : 0.0f
     };
-    const unitpack_vec3 t16 = {
-        t15.x <= 1.0f ? t15.x : 1.0f,
-        t15.y <= 1.0f ? t15.y : 1.0f,
-        t15.z <= 1.0f ? t15.z : 1.0f
+    const unitpack_uvec3 t12 = {
+        (uint32_t)nearbyintf((t11.x <= 1.0f ? t11.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t11.y <= 1.0f ? t11.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t11.z <= 1.0f ? t11.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t17 = {
-        nearbyintf(t16.x * 255.0f),
-        nearbyintf(t16.y * 255.0f),
-        nearbyintf(t16.z * 255.0f)
-    };
-    const unitpack_uvec3 t18 = { (uint32_t)t17.x, (uint32_t)t17.y, (uint32_t)t17.z };
-    const unitpack_uvec3 t19 = { t18.x + t18.x - 255u, t18.y + t18.y - 255u, t18.z + t18.z - 255u };
+    const unitpack_uvec3 t13 = { t12.x + t12.x - 255u, t12.y + t12.y - 255u, t12.z + t12.z - 255u };
     const unitpack_uvec3 cross5 = {
-        afix.y * t19.z - afix.z * t19.y,
-        afix.z * t19.x - afix.x * t19.z,
-        afix.x * t19.y - afix.y * t19.x
+        afix.y * t13.z - afix.z * t13.y,
+        afix.z * t13.x - afix.x * t13.z,
+        afix.x * t13.y - afix.y * t13.x
     };
-    const unitpack_uvec3 t20 = {
+    const unitpack_uvec3 t14 = {
         cross5.x < 2147483648u ? cross5.x : 0u - cross5.x,
         cross5.y < 2147483648u ? cross5.y : 0u - cross5.y,
         cross5.z < 2147483648u ? cross5.z : 0u - cross5.z
     };
-    const uint32_t limb1_4 = t20.x >> 12u;
-    const uint32_t limb0_4 = t20.x & 4095u;
+    const uint32_t limb1_4 = t14.x >> 12u;
+    const uint32_t limb0_4 = t14.x & 4095u;
     const uint32_t cross6 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t20.y >> 12u;
-    const uint32_t limb0_5 = t20.y & 4095u;
+    const uint32_t limb1_5 = t14.y >> 12u;
+    const uint32_t limb0_5 = t14.y & 4095u;
     const uint32_t cross7 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t20.z >> 12u;
-    const uint32_t limb0_6 = t20.z & 4095u;
+    const uint32_t limb1_6 = t14.z >> 12u;
+    const uint32_t limb0_6 = t14.z & 4095u;
     const uint32_t cross8 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t21 = (float)hi8 * 16777216.0f;
-    const float e2 = t21 + (float)lo8;
-    const float n2 = (float)(t19.x * t19.x + t19.y * t19.y + t19.z * t19.z);
-    const bool t22 = e2 * n < e * n2;
-    const uint32_t best = t22
-        ? (((code & 255u) + 0u + 255u) & 255u) | ((t14 < 256u ? t14 : 255u) << 8u)
-        : t5;
-    const float best_e = t22 ? e2 : e;
-    const float best_n = t22 ? n2 : n;
-    const uint32_t t23 = ((code >> 8u) & 255u) + 0u;
-    const uint32_t t24 = (t23 < 1u ? 1u : t23) - 1u;
-    const unitpack_vec3 t25 = {
+    const float t15 = (float)hi8 * 16777216.0f;
+    const float e2 = t15 + (float)lo8;
+    const float n2 = (float)(t13.x * t13.x + t13.y * t13.y + t13.z * t13.z);
+    const bool t16 = e2 * n < e * n2;
+    const uint32_t best = t16 ? t10 : t2;
+    const float best_e = t16 ? e2 : e;
+    const float best_n = t16 ? n2 : n;
+    const uint32_t t17 = ((code >> 8u) & 255u) + 0u;
+    const uint32_t t18 = (t17 < 1u ? 1u : t17) - 1u;
+    const uint32_t t19 = (((code & 255u) + 1u + 255u) & 255u) | ((t18 < 256u ? t18 : 255u) << 8u);
+    const unitpack_vec3 t20 = {
         s1.x >= 0.0f ? s1.x : 0.0f,
         s1.y >= 0.0f ? s1.y : 0.0f,
         s1.z >= 0.0f ? s1.z : 0.0f
     };
-    const unitpack_vec3 t26 = {
-        t25.x <= 1.0f ? t25.x : 1.0f,
-        t25.y <= 1.0f ? t25.y : 1.0f,
-        t25.z <= 1.0f ? t25.z : 1.0f
+    const unitpack_uvec3 t21 = {
+        (uint32_t)nearbyintf((t20.x <= 1.0f ? t20.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t20.y <= 1.0f ? t20.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t20.z <= 1.0f ? t20.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t27 = {
-        nearbyintf(t26.x * 255.0f),
-        nearbyintf(t26.y * 255.0f),
-        nearbyintf(t26.z * 255.0f)
-    };
-    const unitpack_uvec3 t28 = { (uint32_t)t27.x, (uint32_t)t27.y, (uint32_t)t27.z };
-    const unitpack_uvec3 t29 = { t28.x + t28.x - 255u, t28.y + t28.y - 255u, t28.z + t28.z - 255u };
+    const unitpack_uvec3 t22 = { t21.x + t21.x - 255u, t21.y + t21.y - 255u, t21.z + t21.z - 255u };
     const unitpack_uvec3 cross9 = {
-        afix.y * t29.z - afix.z * t29.y,
-        afix.z * t29.x - afix.x * t29.z,
-        afix.x * t29.y - afix.y * t29.x
+        afix.y * t22.z - afix.z * t22.y,
+        afix.z * t22.x - afix.x * t22.z,
+        afix.x * t22.y - afix.y * t22.x
     };
-    const unitpack_uvec3 t30 = {
+    const unitpack_uvec3 t23 = {
         cross9.x < 2147483648u ? cross9.x : 0u - cross9.x,
         cross9.y < 2147483648u ? cross9.y : 0u - cross9.y,
         cross9.z < 2147483648u ? cross9.z : 0u - cross9.z
     };
-    const uint32_t limb1_7 = t30.x >> 12u;
-    const uint32_t limb0_7 = t30.x & 4095u;
+    const uint32_t limb1_7 = t23.x >> 12u;
+    const uint32_t limb0_7 = t23.x & 4095u;
     const uint32_t cross10 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t30.y >> 12u;
-    const uint32_t limb0_8 = t30.y & 4095u;
+    const uint32_t limb1_8 = t23.y >> 12u;
+    const uint32_t limb0_8 = t23.y & 4095u;
     const uint32_t cross11 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t30.z >> 12u;
-    const uint32_t limb0_9 = t30.z & 4095u;
+    const uint32_t limb1_9 = t23.z >> 12u;
+    const uint32_t limb0_9 = t23.z & 4095u;
     const uint32_t cross12 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t31 = (float)hi12 * 16777216.0f;
-    const float e3 = t31 + (float)lo12;
-    const float n3 = (float)(t29.x * t29.x + t29.y * t29.y + t29.z * t29.z);
-    const bool t32 = e3 * best_n < best_e * n3;
-    const uint32_t best2 = t32
-        ? (((code & 255u) + 1u + 255u) & 255u) | ((t24 < 256u ? t24 : 255u) << 8u)
-        : best;
-    const float best_e2 = t32 ? e3 : best_e;
-    const float best_n2 = t32 ? n3 : best_n;
-    const uint32_t t33 = ((code >> 8u) & 255u) + 0u;
-    const uint32_t t34 = (t33 < 1u ? 1u : t33) - 1u;
-    const unitpack_vec3 t35 = {
+    const float t24 = (float)hi12 * 16777216.0f;
+    const float e3 = t24 + (float)lo12;
+    const float n3 = (float)(t22.x * t22.x + t22.y * t22.y + t22.z * t22.z);
+    const bool t25 = e3 * best_n < best_e * n3;
+    const uint32_t best2 = t25 ? t19 : best;
+    const float best_e2 = t25 ? e3 : best_e;
+    const float best_n2 = t25 ? n3 : best_n;
+    const uint32_t t26 = ((code >> 8u) & 255u) + 0u;
+    const uint32_t t27 = (t26 < 1u ? 1u : t26) - 1u;
+    const uint32_t t28 = (((code & 255u) + 2u + 255u) & 255u) | ((t27 < 256u ? t27 : 255u) << 8u);
+    const unitpack_vec3 t29 = {
         s2.x >= 0.0f ? s2.x : 0.0f,
         s2.y >= 0.0f ? s2.y : 0.0f,
         s2.z >= 0.0f ? s2.z : 0.0f
     };
-    const unitpack_vec3 t36 = {
-        t35.x <= 1.0f ? t35.x : 1.0f,
-        t35.y <= 1.0f ? t35.y : 1.0f,
-        t35.z <= 1.0f ? t35.z : 1.0f
+    const unitpack_uvec3 t30 = {
+        (uint32_t)nearbyintf((t29.x <= 1.0f ? t29.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t29.y <= 1.0f ? t29.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t29.z <= 1.0f ? t29.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t37 = {
-        nearbyintf(t36.x * 255.0f),
-        nearbyintf(t36.y * 255.0f),
-        nearbyintf(t36.z * 255.0f)
-    };
-    const unitpack_uvec3 t38 = { (uint32_t)t37.x, (uint32_t)t37.y, (uint32_t)t37.z };
-    const unitpack_uvec3 t39 = { t38.x + t38.x - 255u, t38.y + t38.y - 255u, t38.z + t38.z - 255u };
+    const unitpack_uvec3 t31 = { t30.x + t30.x - 255u, t30.y + t30.y - 255u, t30.z + t30.z - 255u };
     const unitpack_uvec3 cross13 = {
-        afix.y * t39.z - afix.z * t39.y,
-        afix.z * t39.x - afix.x * t39.z,
-        afix.x * t39.y - afix.y * t39.x
+        afix.y * t31.z - afix.z * t31.y,
+        afix.z * t31.x - afix.x * t31.z,
+        afix.x * t31.y - afix.y * t31.x
     };
-    const unitpack_uvec3 t40 = {
+    const unitpack_uvec3 t32 = {
         cross13.x < 2147483648u ? cross13.x : 0u - cross13.x,
         cross13.y < 2147483648u ? cross13.y : 0u - cross13.y,
         cross13.z < 2147483648u ? cross13.z : 0u - cross13.z
     };
-    const uint32_t limb1_10 = t40.x >> 12u;
-    const uint32_t limb0_10 = t40.x & 4095u;
+    const uint32_t limb1_10 = t32.x >> 12u;
+    const uint32_t limb0_10 = t32.x & 4095u;
     const uint32_t cross14 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t40.y >> 12u;
-    const uint32_t limb0_11 = t40.y & 4095u;
+    const uint32_t limb1_11 = t32.y >> 12u;
+    const uint32_t limb0_11 = t32.y & 4095u;
     const uint32_t cross15 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t40.z >> 12u;
-    const uint32_t limb0_12 = t40.z & 4095u;
+    const uint32_t limb1_12 = t32.z >> 12u;
+    const uint32_t limb0_12 = t32.z & 4095u;
     const uint32_t cross16 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t41 = (float)hi16 * 16777216.0f;
-    const float e4 = t41 + (float)lo16;
-    const float n4 = (float)(t39.x * t39.x + t39.y * t39.y + t39.z * t39.z);
-    const bool t42 = e4 * best_n2 < best_e2 * n4;
-    const uint32_t best3 = t42
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t34 < 256u ? t34 : 255u) << 8u)
-        : best2;
-    const float best_e3 = t42 ? e4 : best_e2;
-    const float best_n3 = t42 ? n4 : best_n2;
-    const uint32_t t43 = ((code >> 8u) & 255u) + 1u;
-    const uint32_t t44 = (t43 < 1u ? 1u : t43) - 1u;
-    const unitpack_vec3 t45 = {
+    const float t33 = (float)hi16 * 16777216.0f;
+    const float e4 = t33 + (float)lo16;
+    const float n4 = (float)(t31.x * t31.x + t31.y * t31.y + t31.z * t31.z);
+    const bool t34 = e4 * best_n2 < best_e2 * n4;
+    const uint32_t best3 = t34 ? t28 : best2;
+    const float best_e3 = t34 ? e4 : best_e2;
+    const float best_n3 = t34 ? n4 : best_n2;
+    const uint32_t t35 = ((code >> 8u) & 255u) + 1u;
+    const uint32_t t36 = (t35 < 1u ? 1u : t35) - 1u;
+    const uint32_t t37 = (((code & 255u) + 0u + 255u) & 255u) | ((t36 < 256u ? t36 : 255u) << 8u);
+    const unitpack_vec3 t38 = {
         s3.x >= 0.0f ? s3.x : 0.0f,
         s3.y >= 0.0f ? s3.y : 0.0f,
         s3.z >= 0.0f ? s3.z : 0.0f
     };
-    const unitpack_vec3 t46 = {
-        t45.x <= 1.0f ? t45.x : 1.0f,
-        t45.y <= 1.0f ? t45.y : 1.0f,
-        t45.z <= 1.0f ? t45.z : 1.0f
+    const unitpack_uvec3 t39 = {
+        (uint32_t)nearbyintf((t38.x <= 1.0f ? t38.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t38.y <= 1.0f ? t38.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t38.z <= 1.0f ? t38.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t47 = {
-        nearbyintf(t46.x * 255.0f),
-        nearbyintf(t46.y * 255.0f),
-        nearbyintf(t46.z * 255.0f)
-    };
-    const unitpack_uvec3 t48 = { (uint32_t)t47.x, (uint32_t)t47.y, (uint32_t)t47.z };
-    const unitpack_uvec3 t49 = { t48.x + t48.x - 255u, t48.y + t48.y - 255u, t48.z + t48.z - 255u };
+    const unitpack_uvec3 t40 = { t39.x + t39.x - 255u, t39.y + t39.y - 255u, t39.z + t39.z - 255u };
     const unitpack_uvec3 cross17 = {
-        afix.y * t49.z - afix.z * t49.y,
-        afix.z * t49.x - afix.x * t49.z,
-        afix.x * t49.y - afix.y * t49.x
+        afix.y * t40.z - afix.z * t40.y,
+        afix.z * t40.x - afix.x * t40.z,
+        afix.x * t40.y - afix.y * t40.x
     };
-    const unitpack_uvec3 t50 = {
+    const unitpack_uvec3 t41 = {
         cross17.x < 2147483648u ? cross17.x : 0u - cross17.x,
         cross17.y < 2147483648u ? cross17.y : 0u - cross17.y,
         cross17.z < 2147483648u ? cross17.z : 0u - cross17.z
     };
-    const uint32_t limb1_13 = t50.x >> 12u;
-    const uint32_t limb0_13 = t50.x & 4095u;
+    const uint32_t limb1_13 = t41.x >> 12u;
+    const uint32_t limb0_13 = t41.x & 4095u;
     const uint32_t cross18 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t50.y >> 12u;
-    const uint32_t limb0_14 = t50.y & 4095u;
+    const uint32_t limb1_14 = t41.y >> 12u;
+    const uint32_t limb0_14 = t41.y & 4095u;
     const uint32_t cross19 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t50.z >> 12u;
-    const uint32_t limb0_15 = t50.z & 4095u;
+    const uint32_t limb1_15 = t41.z >> 12u;
+    const uint32_t limb0_15 = t41.z & 4095u;
     const uint32_t cross20 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t51 = (float)hi20 * 16777216.0f;
-    const float e5 = t51 + (float)lo20;
-    const float n5 = (float)(t49.x * t49.x + t49.y * t49.y + t49.z * t49.z);
-    const bool t52 = e5 * best_n3 < best_e3 * n5;
-    const uint32_t best4 = t52
-        ? (((code & 255u) + 0u + 255u) & 255u) | ((t44 < 256u ? t44 : 255u) << 8u)
-        : best3;
-    const float best_e4 = t52 ? e5 : best_e3;
-    const float best_n4 = t52 ? n5 : best_n3;
-    const uint32_t t53 = ((code >> 8u) & 255u) + 1u;
-    const uint32_t t54 = (t53 < 1u ? 1u : t53) - 1u;
-    const unitpack_vec3 t55 = {
+    const float t42 = (float)hi20 * 16777216.0f;
+    const float e5 = t42 + (float)lo20;
+    const float n5 = (float)(t40.x * t40.x + t40.y * t40.y + t40.z * t40.z);
+    const bool t43 = e5 * best_n3 < best_e3 * n5;
+    const uint32_t best4 = t43 ? t37 : best3;
+    const float best_e4 = t43 ? e5 : best_e3;
+    const float best_n4 = t43 ? n5 : best_n3;
+    const uint32_t t44 = ((code >> 8u) & 255u) + 1u;
+    const uint32_t t45 = (t44 < 1u ? 1u : t44) - 1u;
+    const uint32_t t46 = (((code & 255u) + 2u + 255u) & 255u) | ((t45 < 256u ? t45 : 255u) << 8u);
+    const unitpack_vec3 t47 = {
         s5.x >= 0.0f ? s5.x : 0.0f,
         s5.y >= 0.0f ? s5.y : 0.0f,
         s5.z >= 0.0f ? s5.z : 0.0f
     };
-    const unitpack_vec3 t56 = {
-        t55.x <= 1.0f ? t55.x : 1.0f,
-        t55.y <= 1.0f ? t55.y : 1.0f,
-        t55.z <= 1.0f ? t55.z : 1.0f
+    const unitpack_uvec3 t48 = {
+        (uint32_t)nearbyintf((t47.x <= 1.0f ? t47.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t47.y <= 1.0f ? t47.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t47.z <= 1.0f ? t47.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t57 = {
-        nearbyintf(t56.x * 255.0f),
-        nearbyintf(t56.y * 255.0f),
-        nearbyintf(t56.z * 255.0f)
-    };
-    const unitpack_uvec3 t58 = { (uint32_t)t57.x, (uint32_t)t57.y, (uint32_t)t57.z };
-    const unitpack_uvec3 t59 = { t58.x + t58.x - 255u, t58.y + t58.y - 255u, t58.z + t58.z - 255u };
+    const unitpack_uvec3 t49 = { t48.x + t48.x - 255u, t48.y + t48.y - 255u, t48.z + t48.z - 255u };
     const unitpack_uvec3 cross21 = {
-        afix.y * t59.z - afix.z * t59.y,
-        afix.z * t59.x - afix.x * t59.z,
-        afix.x * t59.y - afix.y * t59.x
+        afix.y * t49.z - afix.z * t49.y,
+        afix.z * t49.x - afix.x * t49.z,
+        afix.x * t49.y - afix.y * t49.x
     };
-    const unitpack_uvec3 t60 = {
+    const unitpack_uvec3 t50 = {
         cross21.x < 2147483648u ? cross21.x : 0u - cross21.x,
         cross21.y < 2147483648u ? cross21.y : 0u - cross21.y,
         cross21.z < 2147483648u ? cross21.z : 0u - cross21.z
     };
-    const uint32_t limb1_16 = t60.x >> 12u;
-    const uint32_t limb0_16 = t60.x & 4095u;
+    const uint32_t limb1_16 = t50.x >> 12u;
+    const uint32_t limb0_16 = t50.x & 4095u;
     const uint32_t cross22 = limb1_16 * limb0_16;
     const uint32_t hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
     const uint32_t lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t60.y >> 12u;
-    const uint32_t limb0_17 = t60.y & 4095u;
+    const uint32_t limb1_17 = t50.y >> 12u;
+    const uint32_t limb0_17 = t50.y & 4095u;
     const uint32_t cross23 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
-    const uint32_t limb1_18 = t60.z >> 12u;
-    const uint32_t limb0_18 = t60.z & 4095u;
+    const uint32_t limb1_18 = t50.z >> 12u;
+    const uint32_t limb0_18 = t50.z & 4095u;
     const uint32_t cross24 = limb1_18 * limb0_18;
     const uint32_t hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
     const uint32_t lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
     const uint32_t hi24 = hi23 + (lo23 >> 24u);
     const uint32_t lo24 = lo23 & 16777215u;
-    const float t61 = (float)hi24 * 16777216.0f;
-    const float e6 = t61 + (float)lo24;
-    const float n6 = (float)(t59.x * t59.x + t59.y * t59.y + t59.z * t59.z);
-    const bool t62 = e6 * best_n4 < best_e4 * n6;
-    const uint32_t best5 = t62
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t54 < 256u ? t54 : 255u) << 8u)
-        : best4;
-    const float best_e5 = t62 ? e6 : best_e4;
-    const float best_n5 = t62 ? n6 : best_n4;
-    const uint32_t t63 = ((code >> 8u) & 255u) + 2u;
-    const uint32_t t64 = (t63 < 1u ? 1u : t63) - 1u;
-    const unitpack_vec3 t65 = {
+    const float t51 = (float)hi24 * 16777216.0f;
+    const float e6 = t51 + (float)lo24;
+    const float n6 = (float)(t49.x * t49.x + t49.y * t49.y + t49.z * t49.z);
+    const bool t52 = e6 * best_n4 < best_e4 * n6;
+    const uint32_t best5 = t52 ? t46 : best4;
+    const float best_e5 = t52 ? e6 : best_e4;
+    const float best_n5 = t52 ? n6 : best_n4;
+    const uint32_t t53 = ((code >> 8u) & 255u) + 2u;
+    const uint32_t t54 = (t53 < 1u ? 1u : t53) - 1u;
+    const uint32_t t55 = (((code & 255u) + 0u + 255u) & 255u) | ((t54 < 256u ? t54 : 255u) << 8u);
+    const unitpack_vec3 t56 = {
         s6.x >= 0.0f ? s6.x : 0.0f,
         s6.y >= 0.0f ? s6.y : 0.0f,
         s6.z >= 0.0f ? s6.z : 0.0f
     };
-    const unitpack_vec3 t66 = {
-        t65.x <= 1.0f ? t65.x : 1.0f,
-        t65.y <= 1.0f ? t65.y : 1.0f,
-        t65.z <= 1.0f ? t65.z : 1.0f
+    const unitpack_uvec3 t57 = {
+        (uint32_t)nearbyintf((t56.x <= 1.0f ? t56.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t56.y <= 1.0f ? t56.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t56.z <= 1.0f ? t56.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t67 = {
-        nearbyintf(t66.x * 255.0f),
-        nearbyintf(t66.y * 255.0f),
-        nearbyintf(t66.z * 255.0f)
-    };
-    const unitpack_uvec3 t68 = { (uint32_t)t67.x, (uint32_t)t67.y, (uint32_t)t67.z };
-    const unitpack_uvec3 t69 = { t68.x + t68.x - 255u, t68.y + t68.y - 255u, t68.z + t68.z - 255u };
+    const unitpack_uvec3 t58 = { t57.x + t57.x - 255u, t57.y + t57.y - 255u, t57.z + t57.z - 255u };
     const unitpack_uvec3 cross25 = {
-        afix.y * t69.z - afix.z * t69.y,
-        afix.z * t69.x - afix.x * t69.z,
-        afix.x * t69.y - afix.y * t69.x
+        afix.y * t58.z - afix.z * t58.y,
+        afix.z * t58.x - afix.x * t58.z,
+        afix.x * t58.y - afix.y * t58.x
     };
-    const unitpack_uvec3 t70 = {
+    const unitpack_uvec3 t59 = {
         cross25.x < 2147483648u ? cross25.x : 0u - cross25.x,
         cross25.y < 2147483648u ? cross25.y : 0u - cross25.y,
         cross25.z < 2147483648u ? cross25.z : 0u - cross25.z
     };
-    const uint32_t limb1_19 = t70.x >> 12u;
-    const uint32_t limb0_19 = t70.x & 4095u;
+    const uint32_t limb1_19 = t59.x >> 12u;
+    const uint32_t limb0_19 = t59.x & 4095u;
     const uint32_t cross26 = limb1_19 * limb0_19;
     const uint32_t hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
     const uint32_t lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
-    const uint32_t limb1_20 = t70.y >> 12u;
-    const uint32_t limb0_20 = t70.y & 4095u;
+    const uint32_t limb1_20 = t59.y >> 12u;
+    const uint32_t limb0_20 = t59.y & 4095u;
     const uint32_t cross27 = limb1_20 * limb0_20;
     const uint32_t hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
     const uint32_t lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
-    const uint32_t limb1_21 = t70.z >> 12u;
-    const uint32_t limb0_21 = t70.z & 4095u;
+    const uint32_t limb1_21 = t59.z >> 12u;
+    const uint32_t limb0_21 = t59.z & 4095u;
     const uint32_t cross28 = limb1_21 * limb0_21;
     const uint32_t hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
     const uint32_t lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
     const uint32_t hi28 = hi27 + (lo27 >> 24u);
     const uint32_t lo28 = lo27 & 16777215u;
-    const float t71 = (float)hi28 * 16777216.0f;
-    const float e7 = t71 + (float)lo28;
-    const float n7 = (float)(t69.x * t69.x + t69.y * t69.y + t69.z * t69.z);
-    const bool t72 = e7 * best_n5 < best_e5 * n7;
-    const uint32_t best6 = t72
-        ? (((code & 255u) + 0u + 255u) & 255u) | ((t64 < 256u ? t64 : 255u) << 8u)
-        : best5;
-    const float best_e6 = t72 ? e7 : best_e5;
-    const float best_n6 = t72 ? n7 : best_n5;
-    const uint32_t t73 = ((code >> 8u) & 255u) + 2u;
-    const uint32_t t74 = (t73 < 1u ? 1u : t73) - 1u;
-    const unitpack_vec3 t75 = {
+    const float t60 = (float)hi28 * 16777216.0f;
+    const float e7 = t60 + (float)lo28;
+    const float n7 = (float)(t58.x * t58.x + t58.y * t58.y + t58.z * t58.z);
+    const bool t61 = e7 * best_n5 < best_e5 * n7;
+    const uint32_t best6 = t61 ? t55 : best5;
+    const float best_e6 = t61 ? e7 : best_e5;
+    const float best_n6 = t61 ? n7 : best_n5;
+    const uint32_t t62 = ((code >> 8u) & 255u) + 2u;
+    const uint32_t t63 = (t62 < 1u ? 1u : t62) - 1u;
+    const uint32_t t64 = (((code & 255u) + 1u + 255u) & 255u) | ((t63 < 256u ? t63 : 255u) << 8u);
+    const unitpack_vec3 t65 = {
         s7.x >= 0.0f ? s7.x : 0.0f,
         s7.y >= 0.0f ? s7.y : 0.0f,
         s7.z >= 0.0f ? s7.z : 0.0f
     };
-    const unitpack_vec3 t76 = {
-        t75.x <= 1.0f ? t75.x : 1.0f,
-        t75.y <= 1.0f ? t75.y : 1.0f,
-        t75.z <= 1.0f ? t75.z : 1.0f
+    const unitpack_uvec3 t66 = {
+        (uint32_t)nearbyintf((t65.x <= 1.0f ? t65.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t65.y <= 1.0f ? t65.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t65.z <= 1.0f ? t65.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t77 = {
-        nearbyintf(t76.x * 255.0f),
-        nearbyintf(t76.y * 255.0f),
-        nearbyintf(t76.z * 255.0f)
-    };
-    const unitpack_uvec3 t78 = { (uint32_t)t77.x, (uint32_t)t77.y, (uint32_t)t77.z };
-    const unitpack_uvec3 t79 = { t78.x + t78.x - 255u, t78.y + t78.y - 255u, t78.z + t78.z - 255u };
+    const unitpack_uvec3 t67 = { t66.x + t66.x - 255u, t66.y + t66.y - 255u, t66.z + t66.z - 255u };
     const unitpack_uvec3 cross29 = {
-        afix.y * t79.z - afix.z * t79.y,
-        afix.z * t79.x - afix.x * t79.z,
-        afix.x * t79.y - afix.y * t79.x
+        afix.y * t67.z - afix.z * t67.y,
+        afix.z * t67.x - afix.x * t67.z,
+        afix.x * t67.y - afix.y * t67.x
     };
-    const unitpack_uvec3 t80 = {
+    const unitpack_uvec3 t68 = {
         cross29.x < 2147483648u ? cross29.x : 0u - cross29.x,
         cross29.y < 2147483648u ? cross29.y : 0u - cross29.y,
         cross29.z < 2147483648u ? cross29.z : 0u - cross29.z
     };
-    const uint32_t limb1_22 = t80.x >> 12u;
-    const uint32_t limb0_22 = t80.x & 4095u;
+    const uint32_t limb1_22 = t68.x >> 12u;
+    const uint32_t limb0_22 = t68.x & 4095u;
     const uint32_t cross30 = limb1_22 * limb0_22;
     const uint32_t hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
     const uint32_t lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
-    const uint32_t limb1_23 = t80.y >> 12u;
-    const uint32_t limb0_23 = t80.y & 4095u;
+    const uint32_t limb1_23 = t68.y >> 12u;
+    const uint32_t limb0_23 = t68.y & 4095u;
     const uint32_t cross31 = limb1_23 * limb0_23;
     const uint32_t hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
     const uint32_t lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
-    const uint32_t limb1_24 = t80.z >> 12u;
-    const uint32_t limb0_24 = t80.z & 4095u;
+    const uint32_t limb1_24 = t68.z >> 12u;
+    const uint32_t limb0_24 = t68.z & 4095u;
     const uint32_t cross32 = limb1_24 * limb0_24;
     const uint32_t hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
     const uint32_t lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
     const uint32_t hi32 = hi31 + (lo31 >> 24u);
     const uint32_t lo32 = lo31 & 16777215u;
-    const float t81 = (float)hi32 * 16777216.0f;
-    const float e8 = t81 + (float)lo32;
-    const float n8 = (float)(t79.x * t79.x + t79.y * t79.y + t79.z * t79.z);
-    const bool t82 = e8 * best_n6 < best_e6 * n8;
-    const uint32_t best7 = t82
-        ? (((code & 255u) + 1u + 255u) & 255u) | ((t74 < 256u ? t74 : 255u) << 8u)
-        : best6;
-    const float best_e7 = t82 ? e8 : best_e6;
-    const float best_n7 = t82 ? n8 : best_n6;
-    const uint32_t t83 = ((code >> 8u) & 255u) + 2u;
-    const uint32_t t84 = (t83 < 1u ? 1u : t83) - 1u;
-    const unitpack_vec3 t85 = {
+    const float t69 = (float)hi32 * 16777216.0f;
+    const float e8 = t69 + (float)lo32;
+    const float n8 = (float)(t67.x * t67.x + t67.y * t67.y + t67.z * t67.z);
+    const bool t70 = e8 * best_n6 < best_e6 * n8;
+    const uint32_t best7 = t70 ? t64 : best6;
+    const float best_e7 = t70 ? e8 : best_e6;
+    const float best_n7 = t70 ? n8 : best_n6;
+    const uint32_t t71 = ((code >> 8u) & 255u) + 2u;
+    const uint32_t t72 = (t71 < 1u ? 1u : t71) - 1u;
+    const uint32_t t73 = (((code & 255u) + 2u + 255u) & 255u) | ((t72 < 256u ? t72 : 255u) << 8u);
+    const unitpack_vec3 t74 = {
         s8.x >= 0.0f ? s8.x : 0.0f,
         s8.y >= 0.0f ? s8.y : 0.0f,
         s8.z >= 0.0f ? s8.z : 0.0f
     };
-    const unitpack_vec3 t86 = {
-        t85.x <= 1.0f ? t85.x : 1.0f,
-        t85.y <= 1.0f ? t85.y : 1.0f,
-        t85.z <= 1.0f ? t85.z : 1.0f
+    const unitpack_uvec3 t75 = {
+        (uint32_t)nearbyintf((t74.x <= 1.0f ? t74.x : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t74.y <= 1.0f ? t74.y : 1.0f) * 255.0f),
+        (uint32_t)nearbyintf((t74.z <= 1.0f ? t74.z : 1.0f) * 255.0f)
     };
-    const unitpack_vec3 t87 = {
-        nearbyintf(t86.x * 255.0f),
-        nearbyintf(t86.y * 255.0f),
-        nearbyintf(t86.z * 255.0f)
-    };
-    const unitpack_uvec3 t88 = { (uint32_t)t87.x, (uint32_t)t87.y, (uint32_t)t87.z };
-    const unitpack_uvec3 t89 = { t88.x + t88.x - 255u, t88.y + t88.y - 255u, t88.z + t88.z - 255u };
+    const unitpack_uvec3 t76 = { t75.x + t75.x - 255u, t75.y + t75.y - 255u, t75.z + t75.z - 255u };
     const unitpack_uvec3 cross33 = {
-        afix.y * t89.z - afix.z * t89.y,
-        afix.z * t89.x - afix.x * t89.z,
-        afix.x * t89.y - afix.y * t89.x
+        afix.y * t76.z - afix.z * t76.y,
+        afix.z * t76.x - afix.x * t76.z,
+        afix.x * t76.y - afix.y * t76.x
     };
-    const unitpack_uvec3 t90 = {
+    const unitpack_uvec3 t77 = {
         cross33.x < 2147483648u ? cross33.x : 0u - cross33.x,
         cross33.y < 2147483648u ? cross33.y : 0u - cross33.y,
         cross33.z < 2147483648u ? cross33.z : 0u - cross33.z
     };
-    const uint32_t limb1_25 = t90.x >> 12u;
-    const uint32_t limb0_25 = t90.x & 4095u;
+    const uint32_t limb1_25 = t77.x >> 12u;
+    const uint32_t limb0_25 = t77.x & 4095u;
     const uint32_t cross34 = limb1_25 * limb0_25;
     const uint32_t hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
     const uint32_t lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
-    const uint32_t limb1_26 = t90.y >> 12u;
-    const uint32_t limb0_26 = t90.y & 4095u;
+    const uint32_t limb1_26 = t77.y >> 12u;
+    const uint32_t limb0_26 = t77.y & 4095u;
     const uint32_t cross35 = limb1_26 * limb0_26;
     const uint32_t hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
     const uint32_t lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
-    const uint32_t limb1_27 = t90.z >> 12u;
-    const uint32_t limb0_27 = t90.z & 4095u;
+    const uint32_t limb1_27 = t77.z >> 12u;
+    const uint32_t limb0_27 = t77.z & 4095u;
     const uint32_t cross36 = limb1_27 * limb0_27;
     const uint32_t hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
     const uint32_t lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
     const uint32_t hi36 = hi35 + (lo35 >> 24u);
     const uint32_t lo36 = lo35 & 16777215u;
-    const float t91 = (float)hi36 * 16777216.0f;
-    const float e9 = t91 + (float)lo36;
-    const float n9 = (float)(t89.x * t89.x + t89.y * t89.y + t89.z * t89.z);
-    const uint32_t best8 = e9 * best_n7 < best_e7 * n9
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t84 < 256u ? t84 : 255u) << 8u)
-        : best7;
-    return ok ? best8 : t5;
+    const float t78 = (float)hi36 * 16777216.0f;
+    const float e9 = t78 + (float)lo36;
+    const float n9 = (float)(t76.x * t76.x + t76.y * t76.y + t76.z * t76.z);
+    const uint32_t best8 = e9 * best_n7 < best_e7 * n9 ? t73 : best7;
+    return ok ? best8 : t2;
 }
 
 // unitpack_spherical_lut16p_encode: precise encoder.

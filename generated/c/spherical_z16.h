@@ -162,14 +162,15 @@ static inline unitpack_vec2 unitpack_spherical_z16_encode_float_v(unitpack_vec3 
     const float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
     const bool t4 = t2 && len2 >= 1.0f;
     const float sqrt_len2 = sqrtf(len2);
-    const unitpack_vec3 t5 = {
-        t4 ? scaled.x / sqrt_len2 : 0.0f,
+    const float phi = unitpack_spherical_z16_atan2_pi_v(
         t4 ? scaled.y / sqrt_len2 : 0.0f,
-        t4 ? scaled.z / sqrt_len2 : 1.0f
+        t4 ? scaled.x / sqrt_len2 : 0.0f
+    );
+    const unitpack_vec2 t5 = {
+        (phi + 1.0f) * 0.5f,
+        ((t4 ? scaled.z / sqrt_len2 : 1.0f) + 1.0f) * 0.5f
     };
-    const float phi = unitpack_spherical_z16_atan2_pi_v(t5.y, t5.x);
-    const unitpack_vec2 t6 = { (phi + 1.0f) * 0.5f, (t5.z + 1.0f) * 0.5f };
-    return t6;
+    return t5;
 }
 
 // unitpack_spherical_z16_encode_float: fast encoder, float form.
@@ -189,119 +190,116 @@ static inline void unitpack_spherical_z16_encode_float(const float v[3], float o
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_spherical_z16_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float abs_w2_x = fabsf(w2.x);
     const float abs_w2_y = fabsf(w2.y);
     const bool y_major = abs_w2_y > abs_w2_x;
     const float hi = y_major ? abs_w2_y : abs_w2_x;
     const float lo = y_major ? abs_w2_x : abs_w2_y;
-    const float t6 = hi > 0.0f ? hi : 1.0f;
+    const float t4 = hi > 0.0f ? hi : 1.0f;
     const float big = lo * 8388608.0f;
-    const float ratio_estimate = floorf(lo / t6 * 8388608.0f);
-    const float t7 = (ratio_estimate + 1.0f) * t6 <= big
-        ? 1.0f
-        : (ratio_estimate * t6 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t7;
-    const float t = ratio + ((ratio + 1.0f) * t6 <= big ? 1.0f : (ratio * t6 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo / t4 * 8388608.0f);
+    const float step_down = ratio_estimate * t4 > big ? -1.0f : 0.0f;
+    const float step = (ratio_estimate + 1.0f) * t4 <= big ? 1.0f : step_down;
+    const float ratio = ratio_estimate + step;
+    const float step_down2 = ratio * t4 > big ? -1.0f : 0.0f;
+    const float step2 = (ratio + 1.0f) * t4 <= big ? 1.0f : step_down2;
+    const float t = ratio + step2;
     const bool far = t > 3474675.0f;
-    const float t8 = t - 8388608.0f;
-    const float t9 = t + 8388608.0f;
-    const float big2 = t8 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t8 / t9 * 8388608.0f);
-    const float t10 = (ratio_estimate2 + 1.0f) * t9 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t9 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t10;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t9 <= big2 ? 1.0f : (ratio2 * t9 > big2 ? -1.0f : 0.0f));
+    const float t5 = t - 8388608.0f;
+    const float t6 = t + 8388608.0f;
+    const float big2 = t5 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t5 / t6 * 8388608.0f);
+    const float step_down3 = ratio_estimate2 * t6 > big2 ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate2 + 1.0f) * t6 <= big2 ? 1.0f : step_down3;
+    const float ratio2 = ratio_estimate2 + step3;
+    const float step_down4 = ratio2 * t6 > big2 ? -1.0f : 0.0f;
+    const float step4 = (ratio2 + 1.0f) * t6 <= big2 ? 1.0f : step_down4;
+    const float ratio3 = ratio2 + step4;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t11 = nearbyintf(
+    const float t7 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t12 = (nearbyintf((t11 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t8 = (nearbyintf((t7 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t13 = (
-        nearbyintf((nearbyintf(t12) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
-    )
+    const float t9 = (nearbyintf((nearbyintf(t8) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f)
         * z2;
-    const float t14 = nearbyintf(
-        (nearbyintf(t13 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t10 = nearbyintf(
+        (nearbyintf(t9 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t11 = nearbyintf(
+        (nearbyintf(t10 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t15 = (nearbyintf((t14 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t15) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t11 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = w2.x < 0.0f ? 8388608.0f - h3 : h3;
     const float angle = w2.y < 0.0f ? -h4 : h4;
-    const float t16 = nearbyintf((angle + 8388608.0f) * 1.5199184e-5f);
-    const float t17 = t16 >= 0.0f ? t16 : 0.0f;
+    const float t12 = nearbyintf((angle + 8388608.0f) * 1.5199184e-5f);
+    const float t13 = t12 >= 0.0f ? t12 : 0.0f;
     const float big2_2 = w2.z * w2.z * 16256.25f;
-    const float t18 = w2.z / sqrtf(len2) * 127.5f;
-    const float t19 = nearbyintf(t18 + 127.5f);
-    const float t20 = t19 >= 0.0f ? t19 : 0.0f;
-    const float estimate = t20 <= 255.0f ? t20 : 255.0f;
-    const float t21 = estimate - 127.0f;
-    const float t22 = t21 * t21 * len2;
-    const float t23 = w2.z >= 0.0f
-        ? (t21 > 0.0f ? (big2_2 >= t22 ? 1.0f : 0.0f) : 1.0f)
-        : (t21 < 0.0f ? (big2_2 <= t22 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 255.0f ? t23 : 0.0f;
-    const float t24 = estimate - 1.0f - 127.0f;
-    const float t25 = t24 * t24 * len2;
-    const float t26 = w2.z >= 0.0f
-        ? (t24 > 0.0f ? (big2_2 >= t25 ? 1.0f : 0.0f) : 1.0f)
-        : (t24 < 0.0f ? (big2_2 <= t25 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t26 - 1.0f : 0.0f;
-    const unitpack_vec2 t27 = { t17 <= 255.0f ? t17 : 255.0f, estimate + up + down };
-    return t27;
+    const float t14 = w2.z / sqrtf(len2) * 127.5f;
+    const float t15 = nearbyintf(t14 + 127.5f);
+    const float t16 = t15 >= 0.0f ? t15 : 0.0f;
+    const float estimate = t16 <= 255.0f ? t16 : 255.0f;
+    const float t17 = estimate - 127.0f;
+    const float t18 = t17 * t17 * len2;
+    const float one_if = big2_2 >= t18 ? 1.0f : 0.0f;
+    const float one_if2 = big2_2 <= t18 ? 1.0f : 0.0f;
+    const float up = estimate < 255.0f
+        ? (w2.z >= 0.0f ? (t17 > 0.0f ? one_if : 1.0f) : (t17 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t19 = estimate - 1.0f - 127.0f;
+    const float t20 = t19 * t19 * len2;
+    const float one_if3 = big2_2 >= t20 ? 1.0f : 0.0f;
+    const float one_if4 = big2_2 <= t20 ? 1.0f : 0.0f;
+    const float t21 = (w2.z >= 0.0f ? (t19 > 0.0f ? one_if3 : 1.0f) : (t19 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t21 : 0.0f;
+    const unitpack_vec2 t22 = { t13 <= 255.0f ? t13 : 255.0f, estimate + up + down };
+    return t22;
 }
 
 // Struct form of unitpack_spherical_z16_encode.

@@ -123,33 +123,31 @@ static inline void unitpack_spherical_z32p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec2 unitpack_spherical_z32p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -167,434 +165,423 @@ static inline unitpack_vec2 unitpack_spherical_z32p_encode_codes_v(unitpack_vec3
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float abs_w2_x = fabsf(w2.x);
     const float abs_w2_y = fabsf(w2.y);
     const bool y_major = abs_w2_y > abs_w2_x;
     const float hi5 = y_major ? abs_w2_y : abs_w2_x;
     const float lo5 = y_major ? abs_w2_x : abs_w2_y;
-    const float t4 = hi5 > 0.0f ? hi5 : 1.0f;
+    const float t2 = hi5 > 0.0f ? hi5 : 1.0f;
     const float big = lo5 * 8388608.0f;
-    const float ratio_estimate = floorf(lo5 / t4 * 8388608.0f);
-    const float t5 = (ratio_estimate + 1.0f) * t4 <= big
-        ? 1.0f
-        : (ratio_estimate * t4 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t5;
-    const float t = ratio + ((ratio + 1.0f) * t4 <= big ? 1.0f : (ratio * t4 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo5 / t2 * 8388608.0f);
+    const float step_down = ratio_estimate * t2 > big ? -1.0f : 0.0f;
+    const float step = (ratio_estimate + 1.0f) * t2 <= big ? 1.0f : step_down;
+    const float ratio = ratio_estimate + step;
+    const float step_down2 = ratio * t2 > big ? -1.0f : 0.0f;
+    const float step2 = (ratio + 1.0f) * t2 <= big ? 1.0f : step_down2;
+    const float t = ratio + step2;
     const bool far = t > 3474675.0f;
-    const float t6 = t - 8388608.0f;
-    const float t7 = t + 8388608.0f;
-    const float big2 = t6 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t6 / t7 * 8388608.0f);
-    const float t8 = (ratio_estimate2 + 1.0f) * t7 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t7 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t8;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t7 <= big2 ? 1.0f : (ratio2 * t7 > big2 ? -1.0f : 0.0f));
+    const float t3 = t - 8388608.0f;
+    const float t4 = t + 8388608.0f;
+    const float big2 = t3 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t3 / t4 * 8388608.0f);
+    const float step_down3 = ratio_estimate2 * t4 > big2 ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate2 + 1.0f) * t4 <= big2 ? 1.0f : step_down3;
+    const float ratio2 = ratio_estimate2 + step3;
+    const float step_down4 = ratio2 * t4 > big2 ? -1.0f : 0.0f;
+    const float step4 = (ratio2 + 1.0f) * t4 <= big2 ? 1.0f : step_down4;
+    const float ratio3 = ratio2 + step4;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t9 = nearbyintf(
+    const float t5 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t10 = (nearbyintf((t9 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t6 = (nearbyintf((t5 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t11 = (
-        nearbyintf((nearbyintf(t10) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
-    )
+    const float t7 = (nearbyintf((nearbyintf(t6) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f)
         * z2;
-    const float t12 = nearbyintf(
-        (nearbyintf(t11 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t8 = nearbyintf(
+        (nearbyintf(t7 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t9 = nearbyintf(
+        (nearbyintf(t8 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t13 = (nearbyintf((t12 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r = nearbyintf(z * (nearbyintf(t13) + 8388608.0f) * 1.1920929e-7f);
+    const float r = nearbyintf(z * (t9 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = w2.x < 0.0f ? 8388608.0f - h3 : h3;
     const float angle = w2.y < 0.0f ? -h4 : h4;
-    const float t14 = floorf((angle + 8388608.0f) * 0.0039061904f);
-    const float t15 = t14 >= 0.0f ? t14 : 0.0f;
+    const float t10 = floorf((angle + 8388608.0f) * 0.0039061904f);
+    const float t11 = t10 >= 0.0f ? t10 : 0.0f;
     const float big2_2 = w2.z * w2.z * 1073709060.0f;
-    const float t16 = w2.z / sqrtf(len2) * 32767.5f;
-    const float t17 = nearbyintf(t16 + 32767.5f);
-    const float t18 = t17 >= 0.0f ? t17 : 0.0f;
-    const float estimate = t18 <= 65535.0f ? t18 : 65535.0f;
-    const float t19 = estimate - 32766.5f;
-    const float t20 = t19 * t19 * len2;
-    const float t21 = w2.z >= 0.0f
-        ? (t19 > 0.0f ? (big2_2 >= t20 ? 1.0f : 0.0f) : 1.0f)
-        : (t19 < 0.0f ? (big2_2 <= t20 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 65535.0f ? t21 : 0.0f;
-    const float t22 = estimate - 1.0f - 32766.5f;
-    const float t23 = t22 * t22 * len2;
-    const float t24 = w2.z >= 0.0f
-        ? (t22 > 0.0f ? (big2_2 >= t23 ? 1.0f : 0.0f) : 1.0f)
-        : (t22 < 0.0f ? (big2_2 <= t23 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t24 - 1.0f : 0.0f;
-    const unitpack_vec2 base = { t15 <= 65535.0f ? t15 : 65535.0f, estimate + up + down };
+    const float t12 = w2.z / sqrtf(len2) * 32767.5f;
+    const float t13 = nearbyintf(t12 + 32767.5f);
+    const float t14 = t13 >= 0.0f ? t13 : 0.0f;
+    const float estimate = t14 <= 65535.0f ? t14 : 65535.0f;
+    const float t15 = estimate - 32766.5f;
+    const float t16 = t15 * t15 * len2;
+    const float one_if = big2_2 >= t16 ? 1.0f : 0.0f;
+    const float one_if2 = big2_2 <= t16 ? 1.0f : 0.0f;
+    const float up = estimate < 65535.0f
+        ? (w2.z >= 0.0f ? (t15 > 0.0f ? one_if : 1.0f) : (t15 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t17 = estimate - 1.0f - 32766.5f;
+    const float t18 = t17 * t17 * len2;
+    const float one_if3 = big2_2 >= t18 ? 1.0f : 0.0f;
+    const float one_if4 = big2_2 <= t18 ? 1.0f : 0.0f;
+    const float t19 = (w2.z >= 0.0f ? (t17 > 0.0f ? one_if3 : 1.0f) : (t17 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t19 : 0.0f;
+    const unitpack_vec2 base = { t11 <= 65535.0f ? t11 : 65535.0f, estimate + up + down };
     const float root_estimate = sqrtf(len2);
-    const float t25 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t25 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t25
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down5 = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step5 = root_h1 * root_h1 <= len2 ? 1.0f : step_down5;
+    const float root_k = root_k0 + step5;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t26 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t26;
-    const float t27 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t27;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t28 = root_k * 4096.0f;
-    const float root = (t28 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t29 = {
+    const float t20 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t20;
+    const float t21 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t21;
+    const float step_down6 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step6 = root_m1 * root_m1 <= len2 ? 1.0f : step_down6;
+    const float root_j = root_j0 + step6;
+    const float t22 = root_k * 4096.0f;
+    const float root = (t22 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t23 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t30 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t31 = {
-        (t29.x + 1.0f) * root <= t30.x,
-        (t29.y + 1.0f) * root <= t30.y,
-        (t29.z + 1.0f) * root <= t30.z
+    const unitpack_vec3 t24 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t25 = {
+        (t23.x + 1.0f) * root <= t24.x ? 1.0f : (t23.x * root > t24.x ? -1.0f : 0.0f),
+        (t23.y + 1.0f) * root <= t24.y ? 1.0f : (t23.y * root > t24.y ? -1.0f : 0.0f),
+        (t23.z + 1.0f) * root <= t24.z ? 1.0f : (t23.z * root > t24.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t32 = {
-        t29.x * root > t30.x ? -1.0f : 0.0f,
-        t29.y * root > t30.y ? -1.0f : 0.0f,
-        t29.z * root > t30.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t29.x + (t31.x ? 1.0f : t32.x),
-        t29.y + (t31.y ? 1.0f : t32.y),
-        t29.z + (t31.z ? 1.0f : t32.z)
-    };
+    const unitpack_vec3 aim = { t23.x + t25.x, t23.y + t25.y, t23.z + t25.z };
     const unitpack_vec2 cand = {
         base.x <= 65535.0f ? base.x : 65535.0f,
         base.y <= 65535.0f ? base.y : 65535.0f
     };
-    const float t33 = cand.y * 2.0f;
-    const float z3 = floorf((t33 - 65535.0f) * 32.00049f);
-    const float t34 = 2097152.0f - nearbyintf(z3 * z3 * 4.7683716e-7f);
-    const float t35 = (t34 >= 0.0f ? t34 : 0.0f) * 2097152.0f;
-    const float root_estimate2 = floorf(sqrtf(t35));
+    const float t26 = cand.y * 2.0f;
+    const float z3 = floorf((t26 - 65535.0f) * 32.00049f);
+    const float t27 = 2097152.0f - nearbyintf(z3 * z3 * 4.7683716e-7f);
+    const float t28 = (t27 >= 0.0f ? t27 : 0.0f) * 2097152.0f;
+    const float root_estimate2 = floorf(sqrtf(t28));
     const float root_next = root_estimate2 + 1.0f;
-    const float t36 = root_next * root_next <= t35
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t35 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t36;
+    const float step_down7 = root_estimate2 * root_estimate2 > t28 ? -1.0f : 0.0f;
+    const float step7 = root_next * root_next <= t28 ? 1.0f : step_down7;
+    const float root_step = root_estimate2 + step7;
     const float root_next2 = root_step + 1.0f;
-    const float t37 = root_next2 * root_next2 <= t35
-        ? 1.0f
-        : (root_step * root_step > t35 ? -1.0f : 0.0f);
-    const float r2 = root_step + t37;
-    const float t38 = cand.x * 2.0f;
-    const float t39 = floorf((t38 - 65535.0f) * 256.0039f);
-    const float abs_t39 = fabsf(t39);
-    const bool back = abs_t39 > 8388608.0f;
-    const float b = back ? 16777216.0f - abs_t39 : abs_t39;
+    const float step_down8 = root_step * root_step > t28 ? -1.0f : 0.0f;
+    const float step8 = root_next2 * root_next2 <= t28 ? 1.0f : step_down8;
+    const float r2 = root_step + step8;
+    const float t29 = cand.x * 2.0f;
+    const float t30 = floorf((t29 - 65535.0f) * 256.0039f);
+    const float abs_t30 = fabsf(t30);
+    const bool back = abs_t30 > 8388608.0f;
+    const float b = back ? 16777216.0f - abs_t30 : abs_t30;
     const bool swap = b > 4194304.0f;
     const float u = nearbyintf((swap ? 8388608.0f - b : b) * 3.1415927f);
     const float u2 = nearbyintf(u * u * 5.9604645e-8f);
-    const float t40 = nearbyintf(
+    const float t31 = nearbyintf(
         (nearbyintf(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f
     );
-    const float t41 = (nearbyintf((t40 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f)
+    const float t32 = (nearbyintf((t31 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f)
         * u2
         * 5.9604645e-8f;
-    const float t42 = u
-        * (nearbyintf((nearbyintf(t41) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
-    const float s = nearbyintf(t42 * 5.9604645e-8f);
-    const float t43 = nearbyintf(
+    const float t33 = u
+        * (nearbyintf((nearbyintf(t32) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
+    const float s = nearbyintf(t33 * 5.9604645e-8f);
+    const float t34 = nearbyintf(
         (nearbyintf(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f
     );
-    const float t44 = (nearbyintf((t43 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f))
+    const float t35 = (nearbyintf((t34 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f))
         * u2
         * 5.9604645e-8f;
-    const float t45 = (
-        nearbyintf((nearbyintf(t44) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)
+    const float t36 = (
+        nearbyintf((nearbyintf(t35) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)
     )
         * u2;
-    const float co = nearbyintf(t45 * 5.9604645e-8f) + 16777216.0f;
-    const unitpack_vec2 t46 = { swap ? s : co, swap ? co : s };
-    const unitpack_vec2 t47 = {
-        (back ? -t46.x : t46.x) * r2 * 5.9604645e-8f,
-        (t39 < 0.0f ? -t46.y : t46.y) * r2 * 5.9604645e-8f
+    const float co = nearbyintf(t36 * 5.9604645e-8f) + 16777216.0f;
+    const unitpack_vec2 t37 = { swap ? s : co, swap ? co : s };
+    const unitpack_vec2 t38 = {
+        nearbyintf((back ? -t37.x : t37.x) * r2 * 5.9604645e-8f),
+        nearbyintf((t30 < 0.0f ? -t37.y : t37.y) * r2 * 5.9604645e-8f)
     };
-    const unitpack_vec3 t48 = {
-        fabsf(nearbyintf(t47.x) - aim.x),
-        fabsf(nearbyintf(t47.y) - aim.y),
-        fabsf(z3 - aim.z)
+    const unitpack_vec3 offset = { t38.x - aim.x, t38.y - aim.y, z3 - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_uvec3 t49 = { (uint32_t)t48.x, (uint32_t)t48.y, (uint32_t)t48.z };
-    const uint32_t limb1_4 = t49.x >> 12u;
-    const uint32_t limb0_4 = t49.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi6 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo6 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t49.y >> 12u;
-    const uint32_t limb0_5 = t49.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi7 = hi6 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo7 = lo6 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t49.z >> 12u;
-    const uint32_t limb0_6 = t49.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi8 = hi7 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo8 = lo7 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi9 = hi8 + (lo8 >> 24u);
     const uint32_t lo9 = lo8 & 16777215u;
-    const float t50 = (float)hi9 * 16777216.0f;
-    const float dist = t50 + (float)lo9;
-    const float t51 = base.x + 1.0f;
-    const unitpack_vec2 t52 = { t51, base.y };
+    const float t39 = (float)hi9 * 16777216.0f;
+    const float dist = t39 + (float)lo9;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t40 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t52.x <= 65535.0f ? t52.x : 65535.0f,
-        t52.y <= 65535.0f ? t52.y : 65535.0f
+        t40.x <= 65535.0f ? t40.x : 65535.0f,
+        t40.y <= 65535.0f ? t40.y : 65535.0f
     };
-    const float t53 = cand2.y * 2.0f;
-    const float z4 = floorf((t53 - 65535.0f) * 32.00049f);
-    const float t54 = 2097152.0f - nearbyintf(z4 * z4 * 4.7683716e-7f);
-    const float t55 = (t54 >= 0.0f ? t54 : 0.0f) * 2097152.0f;
-    const float root_estimate3 = floorf(sqrtf(t55));
+    const float t41 = cand2.y * 2.0f;
+    const float z4 = floorf((t41 - 65535.0f) * 32.00049f);
+    const float t42 = 2097152.0f - nearbyintf(z4 * z4 * 4.7683716e-7f);
+    const float t43 = (t42 >= 0.0f ? t42 : 0.0f) * 2097152.0f;
+    const float root_estimate3 = floorf(sqrtf(t43));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t56 = root_next3 * root_next3 <= t55
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t55 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t56;
+    const float step_down9 = root_estimate3 * root_estimate3 > t43 ? -1.0f : 0.0f;
+    const float step9 = root_next3 * root_next3 <= t43 ? 1.0f : step_down9;
+    const float root_step2 = root_estimate3 + step9;
     const float root_next4 = root_step2 + 1.0f;
-    const float t57 = root_next4 * root_next4 <= t55
-        ? 1.0f
-        : (root_step2 * root_step2 > t55 ? -1.0f : 0.0f);
-    const float r3 = root_step2 + t57;
-    const float t58 = cand2.x * 2.0f;
-    const float t59 = floorf((t58 - 65535.0f) * 256.0039f);
-    const float abs_t59 = fabsf(t59);
-    const bool back2 = abs_t59 > 8388608.0f;
-    const float b2 = back2 ? 16777216.0f - abs_t59 : abs_t59;
+    const float step_down10 = root_step2 * root_step2 > t43 ? -1.0f : 0.0f;
+    const float step10 = root_next4 * root_next4 <= t43 ? 1.0f : step_down10;
+    const float r3 = root_step2 + step10;
+    const float t44 = cand2.x * 2.0f;
+    const float t45 = floorf((t44 - 65535.0f) * 256.0039f);
+    const float abs_t45 = fabsf(t45);
+    const bool back2 = abs_t45 > 8388608.0f;
+    const float b2 = back2 ? 16777216.0f - abs_t45 : abs_t45;
     const bool swap2 = b2 > 4194304.0f;
     const float u3 = nearbyintf((swap2 ? 8388608.0f - b2 : b2) * 3.1415927f);
     const float u2_2 = nearbyintf(u3 * u3 * 5.9604645e-8f);
-    const float t60 = nearbyintf(
+    const float t46 = nearbyintf(
         (nearbyintf(-0.0f * u2_2 * 5.9604645e-8f) + 46.0f) * u2_2 * 5.9604645e-8f
     );
-    const float t61 = (nearbyintf((t60 + (-3329.0f)) * u2_2 * 5.9604645e-8f) + 139810.0f)
+    const float t47 = (nearbyintf((t46 + (-3329.0f)) * u2_2 * 5.9604645e-8f) + 139810.0f)
         * u2_2
         * 5.9604645e-8f;
-    const float t62 = nearbyintf((nearbyintf(t61) + (-2796203.0f)) * u2_2 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s2 = nearbyintf(u3 * t62 * 5.9604645e-8f);
-    const float t63 = nearbyintf(
+    const float t48 = u3
+        * (nearbyintf((nearbyintf(t47) + (-2796203.0f)) * u2_2 * 5.9604645e-8f) + 16777216.0f);
+    const float s2 = nearbyintf(t48 * 5.9604645e-8f);
+    const float t49 = nearbyintf(
         (nearbyintf(0.0f * u2_2 * 5.9604645e-8f) + (-5.0f)) * u2_2 * 5.9604645e-8f
     );
-    const float t64 = (nearbyintf((t63 + 416.0f) * u2_2 * 5.9604645e-8f) + (-23302.0f))
+    const float t50 = (nearbyintf((t49 + 416.0f) * u2_2 * 5.9604645e-8f) + (-23302.0f))
         * u2_2
         * 5.9604645e-8f;
-    const float t65 = (
-        nearbyintf((nearbyintf(t64) + 699051.0f) * u2_2 * 5.9604645e-8f) + (-8388608.0f)
+    const float t51 = (
+        nearbyintf((nearbyintf(t50) + 699051.0f) * u2_2 * 5.9604645e-8f) + (-8388608.0f)
     )
         * u2_2;
-    const float co2 = nearbyintf(t65 * 5.9604645e-8f) + 16777216.0f;
-    const unitpack_vec2 t66 = { swap2 ? s2 : co2, swap2 ? co2 : s2 };
-    const unitpack_vec2 t67 = {
-        (back2 ? -t66.x : t66.x) * r3 * 5.9604645e-8f,
-        (t59 < 0.0f ? -t66.y : t66.y) * r3 * 5.9604645e-8f
+    const float co2 = nearbyintf(t51 * 5.9604645e-8f) + 16777216.0f;
+    const unitpack_vec2 t52 = { swap2 ? s2 : co2, swap2 ? co2 : s2 };
+    const unitpack_vec2 t53 = {
+        nearbyintf((back2 ? -t52.x : t52.x) * r3 * 5.9604645e-8f),
+        nearbyintf((t45 < 0.0f ? -t52.y : t52.y) * r3 * 5.9604645e-8f)
     };
-    const unitpack_vec3 t68 = {
-        fabsf(nearbyintf(t67.x) - aim.x),
-        fabsf(nearbyintf(t67.y) - aim.y),
-        fabsf(z4 - aim.z)
+    const unitpack_vec3 offset2 = { t53.x - aim.x, t53.y - aim.y, z4 - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const unitpack_uvec3 t69 = { (uint32_t)t68.x, (uint32_t)t68.y, (uint32_t)t68.z };
-    const uint32_t limb1_7 = t69.x >> 12u;
-    const uint32_t limb0_7 = t69.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi10 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo10 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t69.y >> 12u;
-    const uint32_t limb0_8 = t69.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t69.z >> 12u;
-    const uint32_t limb0_9 = t69.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi12 = hi11 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo12 = lo11 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi13 = hi12 + (lo12 >> 24u);
     const uint32_t lo13 = lo12 & 16777215u;
-    const float t70 = (float)hi13 * 16777216.0f;
-    const float dist2 = t70 + (float)lo13;
-    const bool t71 = t51 <= 65535.0f && base.y <= 65535.0f && dist2 < dist;
-    const unitpack_vec2 best = { t71 ? cand2.x : cand.x, t71 ? cand2.y : cand.y };
-    const float best_d = t71 ? dist2 : dist;
-    const float t72 = base.y + 1.0f;
-    const unitpack_vec2 t73 = { base.x, t72 };
+    const float t54 = (float)hi13 * 16777216.0f;
+    const float dist2 = t54 + (float)lo13;
+    const bool t55 = s_up <= 65535.0f && base.y <= 65535.0f && dist2 < dist;
+    const unitpack_vec2 best = { t55 ? cand2.x : cand.x, t55 ? cand2.y : cand.y };
+    const float best_d = t55 ? dist2 : dist;
+    const unitpack_vec2 t56 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t73.x <= 65535.0f ? t73.x : 65535.0f,
-        t73.y <= 65535.0f ? t73.y : 65535.0f
+        t56.x <= 65535.0f ? t56.x : 65535.0f,
+        t56.y <= 65535.0f ? t56.y : 65535.0f
     };
-    const float t74 = cand3.y * 2.0f;
-    const float z5 = floorf((t74 - 65535.0f) * 32.00049f);
-    const float t75 = 2097152.0f - nearbyintf(z5 * z5 * 4.7683716e-7f);
-    const float t76 = (t75 >= 0.0f ? t75 : 0.0f) * 2097152.0f;
-    const float root_estimate4 = floorf(sqrtf(t76));
+    const float t57 = cand3.y * 2.0f;
+    const float z5 = floorf((t57 - 65535.0f) * 32.00049f);
+    const float t58 = 2097152.0f - nearbyintf(z5 * z5 * 4.7683716e-7f);
+    const float t59 = (t58 >= 0.0f ? t58 : 0.0f) * 2097152.0f;
+    const float root_estimate4 = floorf(sqrtf(t59));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t77 = root_next5 * root_next5 <= t76
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t76 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t77;
+    const float step_down11 = root_estimate4 * root_estimate4 > t59 ? -1.0f : 0.0f;
+    const float step11 = root_next5 * root_next5 <= t59 ? 1.0f : step_down11;
+    const float root_step3 = root_estimate4 + step11;
     const float root_next6 = root_step3 + 1.0f;
-    const float t78 = root_next6 * root_next6 <= t76
-        ? 1.0f
-        : (root_step3 * root_step3 > t76 ? -1.0f : 0.0f);
-    const float r4 = root_step3 + t78;
-    const float t79 = cand3.x * 2.0f;
-    const float t80 = floorf((t79 - 65535.0f) * 256.0039f);
-    const float abs_t80 = fabsf(t80);
-    const bool back3 = abs_t80 > 8388608.0f;
-    const float b3 = back3 ? 16777216.0f - abs_t80 : abs_t80;
+    const float step_down12 = root_step3 * root_step3 > t59 ? -1.0f : 0.0f;
+    const float step12 = root_next6 * root_next6 <= t59 ? 1.0f : step_down12;
+    const float r4 = root_step3 + step12;
+    const float t60 = cand3.x * 2.0f;
+    const float t61 = floorf((t60 - 65535.0f) * 256.0039f);
+    const float abs_t61 = fabsf(t61);
+    const bool back3 = abs_t61 > 8388608.0f;
+    const float b3 = back3 ? 16777216.0f - abs_t61 : abs_t61;
     const bool swap3 = b3 > 4194304.0f;
     const float u4 = nearbyintf((swap3 ? 8388608.0f - b3 : b3) * 3.1415927f);
     const float u2_3 = nearbyintf(u4 * u4 * 5.9604645e-8f);
-    const float t81 = nearbyintf(
+    const float t62 = nearbyintf(
         (nearbyintf(-0.0f * u2_3 * 5.9604645e-8f) + 46.0f) * u2_3 * 5.9604645e-8f
     );
-    const float t82 = (nearbyintf((t81 + (-3329.0f)) * u2_3 * 5.9604645e-8f) + 139810.0f)
+    const float t63 = (nearbyintf((t62 + (-3329.0f)) * u2_3 * 5.9604645e-8f) + 139810.0f)
         * u2_3
         * 5.9604645e-8f;
-    const float t83 = nearbyintf((nearbyintf(t82) + (-2796203.0f)) * u2_3 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s3 = nearbyintf(u4 * t83 * 5.9604645e-8f);
-    const float t84 = nearbyintf(
+    const float t64 = u4
+        * (nearbyintf((nearbyintf(t63) + (-2796203.0f)) * u2_3 * 5.9604645e-8f) + 16777216.0f);
+    const float s3 = nearbyintf(t64 * 5.9604645e-8f);
+    const float t65 = nearbyintf(
         (nearbyintf(0.0f * u2_3 * 5.9604645e-8f) + (-5.0f)) * u2_3 * 5.9604645e-8f
     );
-    const float t85 = (nearbyintf((t84 + 416.0f) * u2_3 * 5.9604645e-8f) + (-23302.0f))
+    const float t66 = (nearbyintf((t65 + 416.0f) * u2_3 * 5.9604645e-8f) + (-23302.0f))
         * u2_3
         * 5.9604645e-8f;
-    const float t86 = (
-        nearbyintf((nearbyintf(t85) + 699051.0f) * u2_3 * 5.9604645e-8f) + (-8388608.0f)
+    const float t67 = (
+        nearbyintf((nearbyintf(t66) + 699051.0f) * u2_3 * 5.9604645e-8f) + (-8388608.0f)
     )
         * u2_3;
-    const float co3 = nearbyintf(t86 * 5.9604645e-8f) + 16777216.0f;
-    const unitpack_vec2 t87 = { swap3 ? s3 : co3, swap3 ? co3 : s3 };
-    const unitpack_vec2 t88 = {
-        (back3 ? -t87.x : t87.x) * r4 * 5.9604645e-8f,
-        (t80 < 0.0f ? -t87.y : t87.y) * r4 * 5.9604645e-8f
+    const float co3 = nearbyintf(t67 * 5.9604645e-8f) + 16777216.0f;
+    const unitpack_vec2 t68 = { swap3 ? s3 : co3, swap3 ? co3 : s3 };
+    const unitpack_vec2 t69 = {
+        nearbyintf((back3 ? -t68.x : t68.x) * r4 * 5.9604645e-8f),
+        nearbyintf((t61 < 0.0f ? -t68.y : t68.y) * r4 * 5.9604645e-8f)
     };
-    const unitpack_vec3 t89 = {
-        fabsf(nearbyintf(t88.x) - aim.x),
-        fabsf(nearbyintf(t88.y) - aim.y),
-        fabsf(z5 - aim.z)
+    const unitpack_vec3 offset3 = { t69.x - aim.x, t69.y - aim.y, z5 - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const unitpack_uvec3 t90 = { (uint32_t)t89.x, (uint32_t)t89.y, (uint32_t)t89.z };
-    const uint32_t limb1_10 = t90.x >> 12u;
-    const uint32_t limb0_10 = t90.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi14 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo14 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t90.y >> 12u;
-    const uint32_t limb0_11 = t90.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t90.z >> 12u;
-    const uint32_t limb0_12 = t90.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi16 = hi15 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo16 = lo15 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi17 = hi16 + (lo16 >> 24u);
     const uint32_t lo17 = lo16 & 16777215u;
-    const float t91 = (float)hi17 * 16777216.0f;
-    const float dist3 = t91 + (float)lo17;
-    const bool t92 = base.x <= 65535.0f && t72 <= 65535.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t92 ? cand3.x : best.x, t92 ? cand3.y : best.y };
-    const float best_d2 = t92 ? dist3 : best_d;
-    const unitpack_vec2 t93 = { base.x + 1.0f, base.y + 1.0f };
+    const float t70 = (float)hi17 * 16777216.0f;
+    const float dist3 = t70 + (float)lo17;
+    const bool t71 = base.x <= 65535.0f && t_up <= 65535.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t71 ? cand3.x : best.x, t71 ? cand3.y : best.y };
+    const float best_d2 = t71 ? dist3 : best_d;
+    const unitpack_vec2 t72 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t93.x <= 65535.0f ? t93.x : 65535.0f,
-        t93.y <= 65535.0f ? t93.y : 65535.0f
+        t72.x <= 65535.0f ? t72.x : 65535.0f,
+        t72.y <= 65535.0f ? t72.y : 65535.0f
     };
-    const float t94 = cand4.y * 2.0f;
-    const float z6 = floorf((t94 - 65535.0f) * 32.00049f);
-    const float t95 = 2097152.0f - nearbyintf(z6 * z6 * 4.7683716e-7f);
-    const float t96 = (t95 >= 0.0f ? t95 : 0.0f) * 2097152.0f;
-    const float root_estimate5 = floorf(sqrtf(t96));
+    const float t73 = cand4.y * 2.0f;
+    const float z6 = floorf((t73 - 65535.0f) * 32.00049f);
+    const float t74 = 2097152.0f - nearbyintf(z6 * z6 * 4.7683716e-7f);
+    const float t75 = (t74 >= 0.0f ? t74 : 0.0f) * 2097152.0f;
+    const float root_estimate5 = floorf(sqrtf(t75));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t97 = root_next7 * root_next7 <= t96
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t96 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t97;
+    const float step_down13 = root_estimate5 * root_estimate5 > t75 ? -1.0f : 0.0f;
+    const float step13 = root_next7 * root_next7 <= t75 ? 1.0f : step_down13;
+    const float root_step4 = root_estimate5 + step13;
     const float root_next8 = root_step4 + 1.0f;
-    const float t98 = root_next8 * root_next8 <= t96
-        ? 1.0f
-        : (root_step4 * root_step4 > t96 ? -1.0f : 0.0f);
-    const float r5 = root_step4 + t98;
-    const float t99 = cand4.x * 2.0f;
-    const float t100 = floorf((t99 - 65535.0f) * 256.0039f);
-    const float abs_t100 = fabsf(t100);
-    const bool back4 = abs_t100 > 8388608.0f;
-    const float b4 = back4 ? 16777216.0f - abs_t100 : abs_t100;
+    const float step_down14 = root_step4 * root_step4 > t75 ? -1.0f : 0.0f;
+    const float step14 = root_next8 * root_next8 <= t75 ? 1.0f : step_down14;
+    const float r5 = root_step4 + step14;
+    const float t76 = cand4.x * 2.0f;
+    const float t77 = floorf((t76 - 65535.0f) * 256.0039f);
+    const float abs_t77 = fabsf(t77);
+    const bool back4 = abs_t77 > 8388608.0f;
+    const float b4 = back4 ? 16777216.0f - abs_t77 : abs_t77;
     const bool swap4 = b4 > 4194304.0f;
     const float u5 = nearbyintf((swap4 ? 8388608.0f - b4 : b4) * 3.1415927f);
     const float u2_4 = nearbyintf(u5 * u5 * 5.9604645e-8f);
-    const float t101 = nearbyintf(
+    const float t78 = nearbyintf(
         (nearbyintf(-0.0f * u2_4 * 5.9604645e-8f) + 46.0f) * u2_4 * 5.9604645e-8f
     );
-    const float t102 = (nearbyintf((t101 + (-3329.0f)) * u2_4 * 5.9604645e-8f) + 139810.0f)
+    const float t79 = (nearbyintf((t78 + (-3329.0f)) * u2_4 * 5.9604645e-8f) + 139810.0f)
         * u2_4
         * 5.9604645e-8f;
-    const float t103 = nearbyintf((nearbyintf(t102) + (-2796203.0f)) * u2_4 * 5.9604645e-8f)
-        + 16777216.0f;
-    const float s4 = nearbyintf(u5 * t103 * 5.9604645e-8f);
-    const float t104 = nearbyintf(
+    const float t80 = u5
+        * (nearbyintf((nearbyintf(t79) + (-2796203.0f)) * u2_4 * 5.9604645e-8f) + 16777216.0f);
+    const float s4 = nearbyintf(t80 * 5.9604645e-8f);
+    const float t81 = nearbyintf(
         (nearbyintf(0.0f * u2_4 * 5.9604645e-8f) + (-5.0f)) * u2_4 * 5.9604645e-8f
     );
-    const float t105 = (nearbyintf((t104 + 416.0f) * u2_4 * 5.9604645e-8f) + (-23302.0f))
+    const float t82 = (nearbyintf((t81 + 416.0f) * u2_4 * 5.9604645e-8f) + (-23302.0f))
         * u2_4
         * 5.9604645e-8f;
-    const float t106 = nearbyintf((nearbyintf(t105) + 699051.0f) * u2_4 * 5.9604645e-8f)
-        + (-8388608.0f);
-    const float co4 = nearbyintf(t106 * u2_4 * 5.9604645e-8f) + 16777216.0f;
-    const unitpack_vec2 t107 = { swap4 ? s4 : co4, swap4 ? co4 : s4 };
-    const unitpack_vec2 t108 = {
-        (back4 ? -t107.x : t107.x) * r5 * 5.9604645e-8f,
-        (t100 < 0.0f ? -t107.y : t107.y) * r5 * 5.9604645e-8f
+    const float t83 = (
+        nearbyintf((nearbyintf(t82) + 699051.0f) * u2_4 * 5.9604645e-8f) + (-8388608.0f)
+    )
+        * u2_4;
+    const float co4 = nearbyintf(t83 * 5.9604645e-8f) + 16777216.0f;
+    const unitpack_vec2 t84 = { swap4 ? s4 : co4, swap4 ? co4 : s4 };
+    const unitpack_vec2 t85 = {
+        nearbyintf((back4 ? -t84.x : t84.x) * r5 * 5.9604645e-8f),
+        nearbyintf((t77 < 0.0f ? -t84.y : t84.y) * r5 * 5.9604645e-8f)
     };
-    const unitpack_vec3 t109 = {
-        fabsf(nearbyintf(t108.x) - aim.x),
-        fabsf(nearbyintf(t108.y) - aim.y),
-        fabsf(z6 - aim.z)
+    const unitpack_vec3 offset4 = { t85.x - aim.x, t85.y - aim.y, z6 - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const unitpack_uvec3 t110 = { (uint32_t)t109.x, (uint32_t)t109.y, (uint32_t)t109.z };
-    const uint32_t limb1_13 = t110.x >> 12u;
-    const uint32_t limb0_13 = t110.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi18 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo18 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t110.y >> 12u;
-    const uint32_t limb0_14 = t110.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t110.z >> 12u;
-    const uint32_t limb0_15 = t110.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi20 = hi19 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo20 = lo19 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi21 = hi20 + (lo20 >> 24u);
     const uint32_t lo21 = lo20 & 16777215u;
-    const float t111 = (float)hi21 * 16777216.0f;
-    const float dist4 = t111 + (float)lo21;
-    const bool t112 = base.x + 1.0f <= 65535.0f && base.y + 1.0f <= 65535.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t112 ? cand4.x : best2.x, t112 ? cand4.y : best2.y };
+    const float t86 = (float)hi21 * 16777216.0f;
+    const float dist4 = t86 + (float)lo21;
+    const bool t87 = s_up <= 65535.0f && t_up <= 65535.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t87 ? cand4.x : best2.x, t87 ? cand4.y : best2.y };
     return best3;
 }
 

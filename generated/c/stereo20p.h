@@ -73,12 +73,11 @@ static inline void unitpack_stereo20p_decode_float(const float params[3], float 
 
 // Struct form of unitpack_stereo20p_decode.
 static inline unitpack_vec3 unitpack_stereo20p_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 1023u),
-        (float)((code >> 10u) & 511u),
-        (float)((code >> 19u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 1023u) * 0.0009775171f,
+        (float)((code >> 10u) & 511u) * 0.0019569471f,
+        (float)((code >> 19u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.0009775171f, t1.y * 0.0019569471f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_stereo20p_decode_float_v(params);
     return decode_float;
 }
@@ -104,33 +103,31 @@ static inline void unitpack_stereo20p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec3 unitpack_stereo20p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -148,144 +145,188 @@ static inline unitpack_vec3 unitpack_stereo20p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const float t8 = root + fabsf(w2.z);
-    const float t9 = w2.z < 0.0f ? 1.0f : 0.0f;
-    const unitpack_vec2 t10 = { w2.x * 511.5f, w2.y * 255.5f };
-    const unitpack_vec2 t11 = { nearbyintf(t10.x / t8 + 511.5f), nearbyintf(t10.y / t8 + 255.5f) };
-    const unitpack_vec2 t12 = { t11.x >= 0.0f ? t11.x : 0.0f, t11.y >= 0.0f ? t11.y : 0.0f };
-    const unitpack_vec2 t13 = {
-        t12.x <= 1023.0f ? t12.x : 1023.0f,
-        t12.y <= 511.0f ? t12.y : 511.0f
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float t5 = root + fabsf(w2.z);
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const unitpack_vec2 t6 = { w2.x * 511.5f, w2.y * 255.5f };
+    const unitpack_vec2 t7 = { nearbyintf(t6.x / t5 + 511.5f), nearbyintf(t6.y / t5 + 255.5f) };
+    const unitpack_vec2 t8 = { t7.x >= 0.0f ? t7.x : 0.0f, t7.y >= 0.0f ? t7.y : 0.0f };
+    const unitpack_vec2 t9 = { t8.x <= 1023.0f ? t8.x : 1023.0f, t8.y <= 511.0f ? t8.y : 511.0f };
+    const unitpack_vec2 t10 = {
+        t9.x + (t9.x < 1023.0f ? (t6.x >= (t9.x - 510.5f) * t5 ? 1.0f : 0.0f) : 0.0f),
+        t9.y + (t9.y < 511.0f ? (t6.y >= (t9.y - 254.5f) * t5 ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t14 = {
-        t10.x >= (t13.x - 510.5f) * t8 ? 1.0f : 0.0f,
-        t10.y >= (t13.y - 254.5f) * t8 ? 1.0f : 0.0f
+    const unitpack_vec2 t11 = {
+        t9.x > 0.0f ? (t6.x >= (t9.x - 1.0f - 510.5f) * t5 ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t9.y > 0.0f ? (t6.y >= (t9.y - 1.0f - 254.5f) * t5 ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t15 = {
-        t13.x + (t13.x < 1023.0f ? t14.x : 0.0f),
-        t13.y + (t13.y < 511.0f ? t14.y : 0.0f)
-    };
-    const unitpack_vec2 t16 = {
-        t10.x >= (t13.x - 1.0f - 510.5f) * t8 ? 1.0f : 0.0f,
-        t10.y >= (t13.y - 1.0f - 254.5f) * t8 ? 1.0f : 0.0f
-    };
-    const unitpack_vec2 base = {
-        t15.x + (t13.x > 0.0f ? t16.x - 1.0f : 0.0f),
-        t15.y + (t13.y > 0.0f ? t16.y - 1.0f : 0.0f)
-    };
-    const unitpack_vec3 t17 = {
+    const unitpack_vec2 base = { t10.x + t11.x, t10.y + t11.y };
+    const unitpack_vec3 t12 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t18 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t19 = {
-        (t17.x + 1.0f) * root <= t18.x,
-        (t17.y + 1.0f) * root <= t18.y,
-        (t17.z + 1.0f) * root <= t18.z
+    const unitpack_vec3 t13 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t14 = {
+        (t12.x + 1.0f) * root <= t13.x ? 1.0f : (t12.x * root > t13.x ? -1.0f : 0.0f),
+        (t12.y + 1.0f) * root <= t13.y ? 1.0f : (t12.y * root > t13.y ? -1.0f : 0.0f),
+        (t12.z + 1.0f) * root <= t13.z ? 1.0f : (t12.z * root > t13.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t20 = {
-        t17.x * root > t18.x ? -1.0f : 0.0f,
-        t17.y * root > t18.y ? -1.0f : 0.0f,
-        t17.z * root > t18.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t17.x + (t19.x ? 1.0f : t20.x),
-        t17.y + (t19.y ? 1.0f : t20.y),
-        t17.z + (t19.z ? 1.0f : t20.z)
-    };
+    const unitpack_vec3 aim = { t12.x + t14.x, t12.y + t14.y, t12.z + t14.z };
     const unitpack_vec2 cand = {
         base.x <= 1023.0f ? base.x : 1023.0f,
         base.y <= 511.0f ? base.y : 511.0f
     };
-    const unitpack_vec2 t21 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t15 = { cand.x * 2.0f, cand.y * 2.0f };
     const unitpack_vec2 p = {
-        floorf((t21.x - 1023.0f) * 2050.002f),
-        floorf((t21.y - 511.0f) * 4104.0156f)
+        floorf((t15.x - 1023.0f) * 2050.002f),
+        floorf((t15.y - 511.0f) * 4104.0156f)
     };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
-    const float t22 = 2097152.0f + q;
-    const unitpack_vec2 t23 = { p.x + p.x, p.y + p.y };
-    const unitpack_vec2 t24 = {
-        floorf(t23.x / t22 * 2097152.0f),
-        floorf(t23.y / t22 * 2097152.0f)
+    const float t16 = 2097152.0f + q;
+    const unitpack_vec2 t17 = { p.x + p.x, p.y + p.y };
+    const unitpack_vec2 t18 = {
+        floorf(t17.x / t16 * 2097152.0f),
+        floorf(t17.y / t16 * 2097152.0f)
     };
-    const unitpack_vec2 t25 = { t23.x * 2097152.0f, t23.y * 2097152.0f };
-    const unitpack_vec2 t26 = {
-        (t24.x + 1.0f) * t22 <= t25.x ? 1.0f : (t24.x * t22 > t25.x ? -1.0f : 0.0f),
-        (t24.y + 1.0f) * t22 <= t25.y ? 1.0f : (t24.y * t22 > t25.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t19 = { t17.x * 2097152.0f, t17.y * 2097152.0f };
+    const unitpack_vec2 t20 = {
+        (t18.x + 1.0f) * t16 <= t19.x ? 1.0f : (t18.x * t16 > t19.x ? -1.0f : 0.0f),
+        (t18.y + 1.0f) * t16 <= t19.y ? 1.0f : (t18.y * t16 > t19.y ? -1.0f : 0.0f)
     };
-    const float t27 = 2097152.0f - q;
-    const float big = t27 * 2097152.0f;
-    const float ratio_estimate = floorf(t27 / t22 * 2097152.0f);
-    const float t28 = (ratio_estimate + 1.0f) * t22 <= big
-        ? 1.0f
-        : (ratio_estimate * t22 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t28;
-    const unitpack_vec3 t29 = {
-        t24.x + t26.x - aim.x,
-        t24.y + t26.y - aim.y,
-        (t9 > 0.5f ? -ratio : ratio) - aim.z
+    const float t21 = 2097152.0f - q;
+    const float big = t21 * 2097152.0f;
+    const float ratio_estimate = floorf(t21 / t16 * 2097152.0f);
+    const float step_down3 = ratio_estimate * t16 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t16 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const unitpack_vec3 offset = {
+        t18.x + t20.x - aim.x,
+        t18.y + t20.y - aim.y,
+        (one_if > 0.5f ? -ratio : ratio) - aim.z
     };
-    const unitpack_uvec3 t30 = {
-        (uint32_t)fabsf(t29.x),
-        (uint32_t)fabsf(t29.y),
-        (uint32_t)fabsf(t29.z)
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_4 = t30.x >> 12u;
-    const uint32_t limb0_4 = t30.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t30.y >> 12u;
-    const uint32_t limb0_5 = t30.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t30.z >> 12u;
-    const uint32_t limb0_6 = t30.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t31 = (float)hi8 * 16777216.0f;
-    const float dist = t31 + (float)lo8;
-    const float t32 = base.x + 1.0f;
-    const unitpack_vec2 t33 = { t32, base.y };
+    const float t22 = (float)hi8 * 16777216.0f;
+    const float dist = t22 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t23 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t33.x <= 1023.0f ? t33.x : 1023.0f,
-        t33.y <= 511.0f ? t33.y : 511.0f
+        t23.x <= 1023.0f ? t23.x : 1023.0f,
+        t23.y <= 511.0f ? t23.y : 511.0f
     };
-    const unitpack_vec2 t34 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t24 = { cand2.x * 2.0f, cand2.y * 2.0f };
     const unitpack_vec2 p2 = {
-        floorf((t34.x - 1023.0f) * 2050.002f),
-        floorf((t34.y - 511.0f) * 4104.0156f)
+        floorf((t24.x - 1023.0f) * 2050.002f),
+        floorf((t24.y - 511.0f) * 4104.0156f)
     };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
-    const float t35 = 2097152.0f + q2;
-    const unitpack_vec2 t36 = { p2.x + p2.x, p2.y + p2.y };
+    const float t25 = 2097152.0f + q2;
+    const unitpack_vec2 t26 = { p2.x + p2.x, p2.y + p2.y };
+    const unitpack_vec2 t27 = {
+        floorf(t26.x / t25 * 2097152.0f),
+        floorf(t26.y / t25 * 2097152.0f)
+    };
+    const unitpack_vec2 t28 = { t26.x * 2097152.0f, t26.y * 2097152.0f };
+    const unitpack_vec2 t29 = {
+        (t27.x + 1.0f) * t25 <= t28.x ? 1.0f : (t27.x * t25 > t28.x ? -1.0f : 0.0f),
+        (t27.y + 1.0f) * t25 <= t28.y ? 1.0f : (t27.y * t25 > t28.y ? -1.0f : 0.0f)
+    };
+    const float t30 = 2097152.0f - q2;
+    const float big2 = t30 * 2097152.0f;
+    const float ratio_estimate2 = floorf(t30 / t25 * 2097152.0f);
+    const float step_down4 = ratio_estimate2 * t25 > big2 ? -1.0f : 0.0f;
+    const float step4 = (ratio_estimate2 + 1.0f) * t25 <= big2 ? 1.0f : step_down4;
+    const float ratio2 = ratio_estimate2 + step4;
+    const unitpack_vec3 offset2 = {
+        t27.x + t29.x - aim.x,
+        t27.y + t29.y - aim.y,
+        (one_if > 0.5f ? -ratio2 : ratio2) - aim.z
+    };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
+    };
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
+    const uint32_t cross7 = limb1_7 * limb0_7;
+    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
+    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
+    const uint32_t cross8 = limb1_8 * limb0_8;
+    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
+    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
+    const uint32_t cross9 = limb1_9 * limb0_9;
+    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
+    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    const uint32_t hi12 = hi11 + (lo11 >> 24u);
+    const uint32_t lo12 = lo11 & 16777215u;
+    const float t31 = (float)hi12 * 16777216.0f;
+    const float dist2 = t31 + (float)lo12;
+    const bool t32 = s_up <= 1023.0f && base.y <= 511.0f && dist2 < dist;
+    const unitpack_vec2 best = { t32 ? cand2.x : cand.x, t32 ? cand2.y : cand.y };
+    const float best_d = t32 ? dist2 : dist;
+    const unitpack_vec2 t33 = { base.x, t_up };
+    const unitpack_vec2 cand3 = {
+        t33.x <= 1023.0f ? t33.x : 1023.0f,
+        t33.y <= 511.0f ? t33.y : 511.0f
+    };
+    const unitpack_vec2 t34 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 p3 = {
+        floorf((t34.x - 1023.0f) * 2050.002f),
+        floorf((t34.y - 511.0f) * 4104.0156f)
+    };
+    const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
+        + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
+    const float t35 = 2097152.0f + q3;
+    const unitpack_vec2 t36 = { p3.x + p3.x, p3.y + p3.y };
     const unitpack_vec2 t37 = {
         floorf(t36.x / t35 * 2097152.0f),
         floorf(t36.y / t35 * 2097152.0f)
@@ -295,171 +336,106 @@ static inline unitpack_vec3 unitpack_stereo20p_encode_codes_v(unitpack_vec3 v) {
         (t37.x + 1.0f) * t35 <= t38.x ? 1.0f : (t37.x * t35 > t38.x ? -1.0f : 0.0f),
         (t37.y + 1.0f) * t35 <= t38.y ? 1.0f : (t37.y * t35 > t38.y ? -1.0f : 0.0f)
     };
-    const float t40 = 2097152.0f - q2;
-    const float big2 = t40 * 2097152.0f;
-    const float ratio_estimate2 = floorf(t40 / t35 * 2097152.0f);
-    const float t41 = (ratio_estimate2 + 1.0f) * t35 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t35 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t41;
-    const unitpack_vec3 t42 = {
+    const float t40 = 2097152.0f - q3;
+    const float big3 = t40 * 2097152.0f;
+    const float ratio_estimate3 = floorf(t40 / t35 * 2097152.0f);
+    const float step_down5 = ratio_estimate3 * t35 > big3 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate3 + 1.0f) * t35 <= big3 ? 1.0f : step_down5;
+    const float ratio3 = ratio_estimate3 + step5;
+    const unitpack_vec3 offset3 = {
         t37.x + t39.x - aim.x,
         t37.y + t39.y - aim.y,
-        (t9 > 0.5f ? -ratio2 : ratio2) - aim.z
+        (one_if > 0.5f ? -ratio3 : ratio3) - aim.z
     };
-    const unitpack_uvec3 t43 = {
-        (uint32_t)fabsf(t42.x),
-        (uint32_t)fabsf(t42.y),
-        (uint32_t)fabsf(t42.z)
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_7 = t43.x >> 12u;
-    const uint32_t limb0_7 = t43.x & 4095u;
-    const uint32_t cross7 = limb1_7 * limb0_7;
-    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t43.y >> 12u;
-    const uint32_t limb0_8 = t43.y & 4095u;
-    const uint32_t cross8 = limb1_8 * limb0_8;
-    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t43.z >> 12u;
-    const uint32_t limb0_9 = t43.z & 4095u;
-    const uint32_t cross9 = limb1_9 * limb0_9;
-    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t hi12 = hi11 + (lo11 >> 24u);
-    const uint32_t lo12 = lo11 & 16777215u;
-    const float t44 = (float)hi12 * 16777216.0f;
-    const float dist2 = t44 + (float)lo12;
-    const bool t45 = t32 <= 1023.0f && base.y <= 511.0f && dist2 < dist;
-    const unitpack_vec2 best = { t45 ? cand2.x : cand.x, t45 ? cand2.y : cand.y };
-    const float best_d = t45 ? dist2 : dist;
-    const float t46 = base.y + 1.0f;
-    const unitpack_vec2 t47 = { base.x, t46 };
-    const unitpack_vec2 cand3 = {
-        t47.x <= 1023.0f ? t47.x : 1023.0f,
-        t47.y <= 511.0f ? t47.y : 511.0f
-    };
-    const unitpack_vec2 t48 = { cand3.x * 2.0f, cand3.y * 2.0f };
-    const unitpack_vec2 p3 = {
-        floorf((t48.x - 1023.0f) * 2050.002f),
-        floorf((t48.y - 511.0f) * 4104.0156f)
-    };
-    const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
-        + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
-    const float t49 = 2097152.0f + q3;
-    const unitpack_vec2 t50 = { p3.x + p3.x, p3.y + p3.y };
-    const unitpack_vec2 t51 = {
-        floorf(t50.x / t49 * 2097152.0f),
-        floorf(t50.y / t49 * 2097152.0f)
-    };
-    const unitpack_vec2 t52 = { t50.x * 2097152.0f, t50.y * 2097152.0f };
-    const unitpack_vec2 t53 = {
-        (t51.x + 1.0f) * t49 <= t52.x ? 1.0f : (t51.x * t49 > t52.x ? -1.0f : 0.0f),
-        (t51.y + 1.0f) * t49 <= t52.y ? 1.0f : (t51.y * t49 > t52.y ? -1.0f : 0.0f)
-    };
-    const float t54 = 2097152.0f - q3;
-    const float big3 = t54 * 2097152.0f;
-    const float ratio_estimate3 = floorf(t54 / t49 * 2097152.0f);
-    const float t55 = (ratio_estimate3 + 1.0f) * t49 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * t49 > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t55;
-    const unitpack_vec3 t56 = {
-        t51.x + t53.x - aim.x,
-        t51.y + t53.y - aim.y,
-        (t9 > 0.5f ? -ratio3 : ratio3) - aim.z
-    };
-    const unitpack_uvec3 t57 = {
-        (uint32_t)fabsf(t56.x),
-        (uint32_t)fabsf(t56.y),
-        (uint32_t)fabsf(t56.z)
-    };
-    const uint32_t limb1_10 = t57.x >> 12u;
-    const uint32_t limb0_10 = t57.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t57.y >> 12u;
-    const uint32_t limb0_11 = t57.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t57.z >> 12u;
-    const uint32_t limb0_12 = t57.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t58 = (float)hi16 * 16777216.0f;
-    const float dist3 = t58 + (float)lo16;
-    const bool t59 = base.x <= 1023.0f && t46 <= 511.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t59 ? cand3.x : best.x, t59 ? cand3.y : best.y };
-    const float best_d2 = t59 ? dist3 : best_d;
-    const unitpack_vec2 t60 = { base.x + 1.0f, base.y + 1.0f };
+    const float t41 = (float)hi16 * 16777216.0f;
+    const float dist3 = t41 + (float)lo16;
+    const bool t42 = base.x <= 1023.0f && t_up <= 511.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t42 ? cand3.x : best.x, t42 ? cand3.y : best.y };
+    const float best_d2 = t42 ? dist3 : best_d;
+    const unitpack_vec2 t43 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t60.x <= 1023.0f ? t60.x : 1023.0f,
-        t60.y <= 511.0f ? t60.y : 511.0f
+        t43.x <= 1023.0f ? t43.x : 1023.0f,
+        t43.y <= 511.0f ? t43.y : 511.0f
     };
-    const unitpack_vec2 t61 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t44 = { cand4.x * 2.0f, cand4.y * 2.0f };
     const unitpack_vec2 p4 = {
-        floorf((t61.x - 1023.0f) * 2050.002f),
-        floorf((t61.y - 511.0f) * 4104.0156f)
+        floorf((t44.x - 1023.0f) * 2050.002f),
+        floorf((t44.y - 511.0f) * 4104.0156f)
     };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
-    const float t62 = 2097152.0f + q4;
-    const unitpack_vec2 t63 = { p4.x + p4.x, p4.y + p4.y };
-    const unitpack_vec2 t64 = {
-        floorf(t63.x / t62 * 2097152.0f),
-        floorf(t63.y / t62 * 2097152.0f)
+    const float t45 = 2097152.0f + q4;
+    const unitpack_vec2 t46 = { p4.x + p4.x, p4.y + p4.y };
+    const unitpack_vec2 t47 = {
+        floorf(t46.x / t45 * 2097152.0f),
+        floorf(t46.y / t45 * 2097152.0f)
     };
-    const unitpack_vec2 t65 = { t63.x * 2097152.0f, t63.y * 2097152.0f };
-    const unitpack_vec2 t66 = {
-        (t64.x + 1.0f) * t62 <= t65.x ? 1.0f : (t64.x * t62 > t65.x ? -1.0f : 0.0f),
-        (t64.y + 1.0f) * t62 <= t65.y ? 1.0f : (t64.y * t62 > t65.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t48 = { t46.x * 2097152.0f, t46.y * 2097152.0f };
+    const unitpack_vec2 t49 = {
+        (t47.x + 1.0f) * t45 <= t48.x ? 1.0f : (t47.x * t45 > t48.x ? -1.0f : 0.0f),
+        (t47.y + 1.0f) * t45 <= t48.y ? 1.0f : (t47.y * t45 > t48.y ? -1.0f : 0.0f)
     };
-    const float t67 = 2097152.0f - q4;
-    const float big4 = t67 * 2097152.0f;
-    const float ratio_estimate4 = floorf(t67 / t62 * 2097152.0f);
-    const float t68 = (ratio_estimate4 + 1.0f) * t62 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * t62 > big4 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate4 + t68;
-    const unitpack_vec3 t69 = {
-        t64.x + t66.x - aim.x,
-        t64.y + t66.y - aim.y,
-        (t9 > 0.5f ? -ratio4 : ratio4) - aim.z
+    const float t50 = 2097152.0f - q4;
+    const float big4 = t50 * 2097152.0f;
+    const float ratio_estimate4 = floorf(t50 / t45 * 2097152.0f);
+    const float step_down6 = ratio_estimate4 * t45 > big4 ? -1.0f : 0.0f;
+    const float step6 = (ratio_estimate4 + 1.0f) * t45 <= big4 ? 1.0f : step_down6;
+    const float ratio4 = ratio_estimate4 + step6;
+    const unitpack_vec3 offset4 = {
+        t47.x + t49.x - aim.x,
+        t47.y + t49.y - aim.y,
+        (one_if > 0.5f ? -ratio4 : ratio4) - aim.z
     };
-    const unitpack_uvec3 t70 = {
-        (uint32_t)fabsf(t69.x),
-        (uint32_t)fabsf(t69.y),
-        (uint32_t)fabsf(t69.z)
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_13 = t70.x >> 12u;
-    const uint32_t limb0_13 = t70.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t70.y >> 12u;
-    const uint32_t limb0_14 = t70.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t70.z >> 12u;
-    const uint32_t limb0_15 = t70.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t71 = (float)hi20 * 16777216.0f;
-    const float dist4 = t71 + (float)lo20;
-    const bool t72 = base.x + 1.0f <= 1023.0f && base.y + 1.0f <= 511.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t72 ? cand4.x : best2.x, t72 ? cand4.y : best2.y };
-    const unitpack_vec3 t73 = { best3.x, best3.y, t9 };
-    return t73;
+    const float t51 = (float)hi20 * 16777216.0f;
+    const float dist4 = t51 + (float)lo20;
+    const bool t52 = s_up <= 1023.0f && t_up <= 511.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t52 ? cand4.x : best2.x, t52 ? cand4.y : best2.y };
+    const unitpack_vec3 t53 = { best3.x, best3.y, one_if };
+    return t53;
 }
 
 // Struct form of unitpack_stereo20p_encode_float.

@@ -108,12 +108,11 @@ static inline void unitpack_stereo_concentric20_decode_float(const float params[
 
 // Struct form of unitpack_stereo_concentric20_decode.
 static inline unitpack_vec3 unitpack_stereo_concentric20_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 1023u),
-        (float)((code >> 10u) & 511u),
-        (float)((code >> 19u) & 1u)
+    const unitpack_vec3 params = {
+        (float)(code & 1023u) * 0.0009775171f,
+        (float)((code >> 10u) & 511u) * 0.0019569471f,
+        (float)((code >> 19u) & 1u) * 1.0f
     };
-    const unitpack_vec3 params = { t1.x * 0.0009775171f, t1.y * 0.0019569471f, t1.z * 1.0f };
     const unitpack_vec3 decode_float = unitpack_stereo_concentric20_decode_float_v(params);
     return decode_float;
 }
@@ -163,33 +162,31 @@ static inline float unitpack_stereo_concentric20_atan2_pi_v(float a0, float a1) 
 
 // Struct form of unitpack_stereo_concentric20_encode_float.
 static inline unitpack_vec3 unitpack_stereo_concentric20_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -207,38 +204,41 @@ static inline unitpack_vec3 unitpack_stereo_concentric20_encode_float_v(unitpack
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const unitpack_vec2 t8 = { w2.x * w2.x, w2.y * w2.y };
-    const float rho = sqrtf(t8.x + t8.y);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const unitpack_vec2 t5 = { w2.x * w2.x, w2.y * w2.y };
+    const float rho = sqrtf(t5.x + t5.y);
     const float half_r = rho / (root + fabsf(w2.z)) * 0.5f;
-    const bool t9 = fabsf(w2.x) >= fabsf(w2.y);
-    const float major = t9 ? w2.x : w2.y;
-    const float minor = t9 ? w2.y : w2.x;
+    const bool t6 = fabsf(w2.x) >= fabsf(w2.y);
+    const float major = t6 ? w2.x : w2.y;
+    const float minor = t6 ? w2.y : w2.x;
     const float t = unitpack_stereo_concentric20_atan2_pi_v(minor, fabsf(major));
-    const float t10 = major < 0.0f ? -half_r : half_r;
-    const float t11 = half_r * t * 4.0f;
-    const unitpack_vec2 enc = { (t9 ? t10 : t11) + 0.5f, (t9 ? t11 : t10) + 0.5f };
-    const unitpack_vec3 t12 = { enc.x, enc.y, w2.z < 0.0f ? 1.0f : 0.0f };
-    return t12;
+    const float t7 = major < 0.0f ? -half_r : half_r;
+    const float t8 = half_r * t * 4.0f;
+    const unitpack_vec2 enc = { (t6 ? t7 : t8) + 0.5f, (t6 ? t8 : t7) + 0.5f };
+    const unitpack_vec3 t9 = { enc.x, enc.y, one_if };
+    return t9;
 }
 
 // unitpack_stereo_concentric20_encode_float: fast encoder, float form.
@@ -261,33 +261,31 @@ static inline void unitpack_stereo_concentric20_encode_float(const float v[3], f
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_stereo_concentric20_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -305,29 +303,34 @@ static inline unitpack_vec3 unitpack_stereo_concentric20_round_codes_v(unitpack_
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const float t8 = root + fabsf(w2.z);
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float t5 = root + fabsf(w2.z);
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const float fixed_f4 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -340,108 +343,109 @@ static inline unitpack_vec3 unitpack_stereo_concentric20_round_codes_v(unitpack_
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t9 = (float)hi7 * 16777216.0f;
-    const float rho2 = (t9 + (float)lo7) * 2.2737368e-13f;
-    const float t8_sq = t8 * t8;
-    const float r = sqrtf(rho2 / t8_sq);
-    const bool t10 = fabsf(w2.x) >= fabsf(w2.y);
-    const float major = t10 ? w2.x : w2.y;
-    const float minor = t10 ? w2.y : w2.x;
+    const float t6 = (float)hi7 * 16777216.0f;
+    const float rho2 = (t6 + (float)lo7) * 2.2737368e-13f;
+    const float t5_sq = t5 * t5;
+    const float r = sqrtf(rho2 / t5_sq);
+    const bool t7 = fabsf(w2.x) >= fabsf(w2.y);
+    const float major = t7 ? w2.x : w2.y;
+    const float minor = t7 ? w2.y : w2.x;
     const float abs_major = fabsf(major);
     const float abs_abs_major = fabsf(abs_major);
     const float abs_minor = fabsf(minor);
     const bool y_major = abs_minor > abs_abs_major;
     const float hi8 = y_major ? abs_minor : abs_abs_major;
     const float lo8 = y_major ? abs_abs_major : abs_minor;
-    const float t11 = hi8 > 0.0f ? hi8 : 1.0f;
+    const float t8 = hi8 > 0.0f ? hi8 : 1.0f;
     const float big = lo8 * 8388608.0f;
-    const float ratio_estimate = floorf(lo8 / t11 * 8388608.0f);
-    const float t12 = (ratio_estimate + 1.0f) * t11 <= big
-        ? 1.0f
-        : (ratio_estimate * t11 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t12;
-    const float t = ratio
-        + ((ratio + 1.0f) * t11 <= big ? 1.0f : (ratio * t11 > big ? -1.0f : 0.0f));
+    const float ratio_estimate = floorf(lo8 / t8 * 8388608.0f);
+    const float step_down3 = ratio_estimate * t8 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t8 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const float step_down4 = ratio * t8 > big ? -1.0f : 0.0f;
+    const float step4 = (ratio + 1.0f) * t8 <= big ? 1.0f : step_down4;
+    const float t = ratio + step4;
     const bool far = t > 3474675.0f;
-    const float t13 = t - 8388608.0f;
-    const float t14 = t + 8388608.0f;
-    const float big2 = t13 * 8388608.0f;
-    const float ratio_estimate2 = floorf(t13 / t14 * 8388608.0f);
-    const float t15 = (ratio_estimate2 + 1.0f) * t14 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t14 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t15;
-    const float ratio3 = ratio2
-        + ((ratio2 + 1.0f) * t14 <= big2 ? 1.0f : (ratio2 * t14 > big2 ? -1.0f : 0.0f));
+    const float t9 = t - 8388608.0f;
+    const float t10 = t + 8388608.0f;
+    const float big2 = t9 * 8388608.0f;
+    const float ratio_estimate2 = floorf(t9 / t10 * 8388608.0f);
+    const float step_down5 = ratio_estimate2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate2 + 1.0f) * t10 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + step5;
+    const float step_down6 = ratio2 * t10 > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio2 + 1.0f) * t10 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + step6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
-    const float t16 = nearbyintf(
+    const float t11 = nearbyintf(
         (nearbyintf(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f
     );
-    const float t17 = (nearbyintf((t16 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
+    const float t12 = (nearbyintf((t11 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f)
         * z2
         * 1.1920929e-7f;
-    const float t18 = (
-        nearbyintf((nearbyintf(t17) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
+    const float t13 = (
+        nearbyintf((nearbyintf(t12) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f
     )
         * z2;
-    const float t19 = nearbyintf(
-        (nearbyintf(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    const float t14 = nearbyintf(
+        (nearbyintf(t13 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f
+    )
+        + 1677722.0f;
+    const float t15 = nearbyintf(
+        (nearbyintf(t14 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f
     );
-    const float t20 = (nearbyintf((t19 + 1677722.0f) * z2 * 1.1920929e-7f) + (-2796203.0f))
-        * z2
-        * 1.1920929e-7f;
-    const float r2 = nearbyintf(z * (nearbyintf(t20) + 8388608.0f) * 1.1920929e-7f);
+    const float r2 = nearbyintf(z * (t15 + 8388608.0f) * 1.1920929e-7f);
     const float h = nearbyintf(r2 * 0.31830987f);
     const float h2 = far ? h + 2097152.0f : h;
     const float h3 = y_major ? 4194304.0f - h2 : h2;
     const float h4 = abs_major < 0.0f ? 8388608.0f - h3 : h3;
-    const float t21 = minor < 0.0f ? -h4 : h4;
-    const bool t22 = major < 0.0f;
-    const float x = t10 ? (t22 ? -511.5f : 511.5f) : t21 * 0.0002439022f;
-    const float t23 = r * x;
-    const float t24 = nearbyintf(t23 + 511.5f);
-    const float t25 = t24 >= 0.0f ? t24 : 0.0f;
-    const float estimate = t25 <= 1023.0f ? t25 : 1023.0f;
-    const float t26 = estimate - 511.0f;
-    const float t27 = rho2 * (x * x);
-    const float t28 = t26 * t26 * t8_sq;
-    const float t29 = x >= 0.0f
-        ? (t26 > 0.0f ? (t27 >= t28 ? 1.0f : 0.0f) : 1.0f)
-        : (t26 < 0.0f ? (t27 <= t28 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 1023.0f ? t29 : 0.0f;
-    const float t30 = estimate - 1.0f - 511.0f;
-    const float t31 = rho2 * (x * x);
-    const float t32 = t30 * t30 * t8_sq;
-    const float t33 = x >= 0.0f
-        ? (t30 > 0.0f ? (t31 >= t32 ? 1.0f : 0.0f) : 1.0f)
-        : (t30 < 0.0f ? (t31 <= t32 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t33 - 1.0f : 0.0f;
-    const float x2 = t10 ? t21 * 0.000121831894f : (t22 ? -255.5f : 255.5f);
-    const float t34 = r * x2;
-    const float t35 = nearbyintf(t34 + 255.5f);
-    const float t36 = t35 >= 0.0f ? t35 : 0.0f;
-    const float estimate2 = t36 <= 511.0f ? t36 : 511.0f;
-    const float t37 = estimate2 - 255.0f;
-    const float t38 = rho2 * (x2 * x2);
-    const float t39 = t37 * t37 * t8_sq;
-    const float t40 = x2 >= 0.0f
-        ? (t37 > 0.0f ? (t38 >= t39 ? 1.0f : 0.0f) : 1.0f)
-        : (t37 < 0.0f ? (t38 <= t39 ? 1.0f : 0.0f) : 0.0f);
-    const float up2 = estimate2 < 511.0f ? t40 : 0.0f;
-    const float t41 = estimate2 - 1.0f - 255.0f;
-    const float t42 = rho2 * (x2 * x2);
-    const float t43 = t41 * t41 * t8_sq;
-    const float t44 = x2 >= 0.0f
-        ? (t41 > 0.0f ? (t42 >= t43 ? 1.0f : 0.0f) : 1.0f)
-        : (t41 < 0.0f ? (t42 <= t43 ? 1.0f : 0.0f) : 0.0f);
-    const float down2 = estimate2 > 0.0f ? t44 - 1.0f : 0.0f;
-    const unitpack_vec3 t45 = {
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0f ? 1.0f : 0.0f
-    };
-    return t45;
+    const float t16 = minor < 0.0f ? -h4 : h4;
+    const bool t17 = major < 0.0f;
+    const float x = t7 ? (t17 ? -511.5f : 511.5f) : t16 * 0.0002439022f;
+    const float t18 = r * x;
+    const float t19 = nearbyintf(t18 + 511.5f);
+    const float t20 = t19 >= 0.0f ? t19 : 0.0f;
+    const float estimate = t20 <= 1023.0f ? t20 : 1023.0f;
+    const float t21 = estimate - 511.0f;
+    const float t22 = rho2 * (x * x);
+    const float t23 = t21 * t21 * t5_sq;
+    const float one_if2 = t22 >= t23 ? 1.0f : 0.0f;
+    const float one_if3 = t22 <= t23 ? 1.0f : 0.0f;
+    const float up = estimate < 1023.0f
+        ? (x >= 0.0f ? (t21 > 0.0f ? one_if2 : 1.0f) : (t21 < 0.0f ? one_if3 : 0.0f))
+        : 0.0f;
+    const float t24 = estimate - 1.0f - 511.0f;
+    const float t25 = rho2 * (x * x);
+    const float t26 = t24 * t24 * t5_sq;
+    const float one_if4 = t25 >= t26 ? 1.0f : 0.0f;
+    const float one_if5 = t25 <= t26 ? 1.0f : 0.0f;
+    const float t27 = (x >= 0.0f ? (t24 > 0.0f ? one_if4 : 1.0f) : (t24 < 0.0f ? one_if5 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t27 : 0.0f;
+    const float x2 = t7 ? t16 * 0.000121831894f : (t17 ? -255.5f : 255.5f);
+    const float t28 = r * x2;
+    const float t29 = nearbyintf(t28 + 255.5f);
+    const float t30 = t29 >= 0.0f ? t29 : 0.0f;
+    const float estimate2 = t30 <= 511.0f ? t30 : 511.0f;
+    const float t31 = estimate2 - 255.0f;
+    const float t32 = rho2 * (x2 * x2);
+    const float t33 = t31 * t31 * t5_sq;
+    const float one_if6 = t32 >= t33 ? 1.0f : 0.0f;
+    const float one_if7 = t32 <= t33 ? 1.0f : 0.0f;
+    const float up2 = estimate2 < 511.0f
+        ? (x2 >= 0.0f ? (t31 > 0.0f ? one_if6 : 1.0f) : (t31 < 0.0f ? one_if7 : 0.0f))
+        : 0.0f;
+    const float t34 = estimate2 - 1.0f - 255.0f;
+    const float t35 = rho2 * (x2 * x2);
+    const float t36 = t34 * t34 * t5_sq;
+    const float one_if8 = t35 >= t36 ? 1.0f : 0.0f;
+    const float one_if9 = t35 <= t36 ? 1.0f : 0.0f;
+    const float t37 = (x2 >= 0.0f ? (t34 > 0.0f ? one_if8 : 1.0f) : (t34 < 0.0f ? one_if9 : 0.0f))
+        - 1.0f;
+    const float down2 = estimate2 > 0.0f ? t37 : 0.0f;
+    const unitpack_vec3 t38 = { estimate + up + down, estimate2 + up2 + down2, one_if };
+    return t38;
 }
 
 // Struct form of unitpack_stereo_concentric20_encode.

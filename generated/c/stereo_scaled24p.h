@@ -97,33 +97,31 @@ static inline void unitpack_stereo_scaled24p_decode(uint32_t code, float out[3])
 //   on ties.
 
 static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -141,29 +139,33 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const bool t8 = w2.z >= 0.0f;
-    const uint32_t fixed5 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed6 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const bool t5 = w2.z >= 0.0f;
+    const float fixed_f4 = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed5 = (uint32_t)fixed_f4;
+    const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
     const uint32_t limb0_4 = fixed5 & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
@@ -176,328 +178,273 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
     const uint32_t lo7 = lo6 & 16777215u;
-    const float t9 = (float)hi7 * 16777216.0f;
-    const float rho2 = (t9 + (float)lo7) * 2.2737368e-13f;
-    const float opz_a = t8 ? root + w2.z : rho2;
-    const float opz_b = t8 ? 1.0f : root - w2.z;
-    const bool t10 = opz_a <= 0.0f;
-    const unitpack_vec3 t11 = { t10 ? 0.0f : w2.x, t10 ? 0.0f : w2.y, t10 ? 2.0f : w2.z };
-    const float t12 = t10 ? 2.0f : root;
-    const float t13 = t10 ? 4.0f : opz_a;
-    const float t14 = t10 ? 1.0f : opz_b;
-    const unitpack_vec2 t15 = { t11.x * t14 * 1151.7692f, t11.y * t14 * 1151.7692f };
+    const float t6 = (float)hi7 * 16777216.0f;
+    const float rho2 = (t6 + (float)lo7) * 2.2737368e-13f;
+    const float opz_a = t5 ? root + w2.z : rho2;
+    const float opz_b = t5 ? 1.0f : root - w2.z;
+    const bool t7 = opz_a <= 0.0f;
+    const unitpack_vec3 t8 = { t7 ? 0.0f : w2.x, t7 ? 0.0f : w2.y, t7 ? 2.0f : w2.z };
+    const float t9 = t7 ? 2.0f : root;
+    const float t10 = t7 ? 4.0f : opz_a;
+    const float t11 = t7 ? 1.0f : opz_b;
+    const unitpack_vec2 t12 = { t8.x * t11 * 1151.7692f, t8.y * t11 * 1151.7692f };
+    const unitpack_vec2 t13 = {
+        nearbyintf(t12.x / t10 + 2047.5f),
+        nearbyintf(t12.y / t10 + 2047.5f)
+    };
+    const unitpack_vec2 t14 = { t13.x >= 0.0f ? t13.x : 0.0f, t13.y >= 0.0f ? t13.y : 0.0f };
+    const unitpack_vec2 t15 = {
+        t14.x <= 4095.0f ? t14.x : 4095.0f,
+        t14.y <= 4095.0f ? t14.y : 4095.0f
+    };
     const unitpack_vec2 t16 = {
-        nearbyintf(t15.x / t13 + 2047.5f),
-        nearbyintf(t15.y / t13 + 2047.5f)
+        t15.x + (t15.x < 4095.0f ? (t12.x >= (t15.x - 2046.5f) * t10 ? 1.0f : 0.0f) : 0.0f),
+        t15.y + (t15.y < 4095.0f ? (t12.y >= (t15.y - 2046.5f) * t10 ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t17 = { t16.x >= 0.0f ? t16.x : 0.0f, t16.y >= 0.0f ? t16.y : 0.0f };
-    const unitpack_vec2 t18 = {
-        t17.x <= 4095.0f ? t17.x : 4095.0f,
-        t17.y <= 4095.0f ? t17.y : 4095.0f
+    const unitpack_vec2 t17 = {
+        t15.x > 0.0f ? (t12.x >= (t15.x - 1.0f - 2046.5f) * t10 ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t15.y > 0.0f ? (t12.y >= (t15.y - 1.0f - 2046.5f) * t10 ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t19 = {
-        t15.x >= (t18.x - 2046.5f) * t13 ? 1.0f : 0.0f,
-        t15.y >= (t18.y - 2046.5f) * t13 ? 1.0f : 0.0f
+    const unitpack_vec2 base = { t16.x + t17.x, t16.y + t17.y };
+    const unitpack_vec3 t18 = {
+        floorf(t8.x / t9 * 2097152.0f),
+        floorf(t8.y / t9 * 2097152.0f),
+        floorf(t8.z / t9 * 2097152.0f)
     };
-    const unitpack_vec2 t20 = {
-        t18.x + (t18.x < 4095.0f ? t19.x : 0.0f),
-        t18.y + (t18.y < 4095.0f ? t19.y : 0.0f)
+    const unitpack_vec3 t19 = { t8.x * 2097152.0f, t8.y * 2097152.0f, t8.z * 2097152.0f };
+    const unitpack_vec3 t20 = {
+        (t18.x + 1.0f) * t9 <= t19.x ? 1.0f : (t18.x * t9 > t19.x ? -1.0f : 0.0f),
+        (t18.y + 1.0f) * t9 <= t19.y ? 1.0f : (t18.y * t9 > t19.y ? -1.0f : 0.0f),
+        (t18.z + 1.0f) * t9 <= t19.z ? 1.0f : (t18.z * t9 > t19.z ? -1.0f : 0.0f)
     };
-    const unitpack_bvec2 t21 = {
-        t15.x >= (t18.x - 1.0f - 2046.5f) * t13,
-        t15.y >= (t18.y - 1.0f - 2046.5f) * t13
-    };
-    const unitpack_vec2 t22 = {
-        t18.x > 0.0f ? (t21.x ? 1.0f : 0.0f) - 1.0f : 0.0f,
-        t18.y > 0.0f ? (t21.y ? 1.0f : 0.0f) - 1.0f : 0.0f
-    };
-    const unitpack_vec2 base = { t20.x + t22.x, t20.y + t22.y };
-    const unitpack_vec3 t23 = {
-        floorf(t11.x / t12 * 2097152.0f),
-        floorf(t11.y / t12 * 2097152.0f),
-        floorf(t11.z / t12 * 2097152.0f)
-    };
-    const unitpack_vec3 t24 = { t11.x * 2097152.0f, t11.y * 2097152.0f, t11.z * 2097152.0f };
-    const unitpack_bvec3 t25 = {
-        (t23.x + 1.0f) * t12 <= t24.x,
-        (t23.y + 1.0f) * t12 <= t24.y,
-        (t23.z + 1.0f) * t12 <= t24.z
-    };
-    const unitpack_vec3 t26 = {
-        t23.x * t12 > t24.x ? -1.0f : 0.0f,
-        t23.y * t12 > t24.y ? -1.0f : 0.0f,
-        t23.z * t12 > t24.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t23.x + (t25.x ? 1.0f : t26.x),
-        t23.y + (t25.y ? 1.0f : t26.y),
-        t23.z + (t25.z ? 1.0f : t26.z)
-    };
+    const unitpack_vec3 aim = { t18.x + t20.x, t18.y + t20.y, t18.z + t20.z };
     const unitpack_vec2 cand = {
         base.x <= 4095.0f ? base.x : 4095.0f,
         base.y <= 4095.0f ? base.y : 4095.0f
     };
-    const unitpack_vec2 t27 = { cand.x * 2.0f, cand.y * 2.0f };
-    const unitpack_vec2 t = { t27.x - 4095.0f, t27.y - 4095.0f };
-    const unitpack_uvec2 t28 = { (uint32_t)fabsf(t.x), (uint32_t)fabsf(t.y) };
-    const uint32_t t29 = ((t28.x * t28.x) >> 2u) + ((t28.y * t28.y) >> 2u);
-    const float t30 = (float)(t29 >> 12u) * 4096.0f;
-    const float quarter = t30 + (float)(t29 & 4095u);
+    const unitpack_vec2 t21 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t = { t21.x - 4095.0f, t21.y - 4095.0f };
+    const unitpack_uvec2 t22 = { (uint32_t)fabsf(t.x), (uint32_t)fabsf(t.y) };
+    const uint32_t t23 = ((t22.x * t22.x) >> 2u) + ((t22.y * t22.y) >> 2u);
+    const float t24 = (float)(t23 >> 12u) * 4096.0f;
+    const float quarter = t24 + (float)(t23 & 4095u);
     const float den = quarter + 1326572.8f;
-    const unitpack_vec3 t31 = { t.x * 1151.7692f, t.y * 1151.7692f, 1326571.8f - quarter };
-    const unitpack_vec3 t32 = {
-        floorf(t31.x / den * 2097152.0f),
-        floorf(t31.y / den * 2097152.0f),
-        floorf(t31.z / den * 2097152.0f)
+    const unitpack_vec3 t25 = { t.x * 1151.7692f, t.y * 1151.7692f, 1326571.8f - quarter };
+    const unitpack_vec3 t26 = {
+        floorf(t25.x / den * 2097152.0f),
+        floorf(t25.y / den * 2097152.0f),
+        floorf(t25.z / den * 2097152.0f)
     };
-    const unitpack_vec3 t33 = { t31.x * 2097152.0f, t31.y * 2097152.0f, t31.z * 2097152.0f };
-    const unitpack_bvec3 t34 = {
-        (t32.x + 1.0f) * den <= t33.x,
-        (t32.y + 1.0f) * den <= t33.y,
-        (t32.z + 1.0f) * den <= t33.z
+    const unitpack_vec3 t27 = { t25.x * 2097152.0f, t25.y * 2097152.0f, t25.z * 2097152.0f };
+    const unitpack_vec3 t28 = {
+        (t26.x + 1.0f) * den <= t27.x ? 1.0f : (t26.x * den > t27.x ? -1.0f : 0.0f),
+        (t26.y + 1.0f) * den <= t27.y ? 1.0f : (t26.y * den > t27.y ? -1.0f : 0.0f),
+        (t26.z + 1.0f) * den <= t27.z ? 1.0f : (t26.z * den > t27.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t35 = {
-        t32.x * den > t33.x ? -1.0f : 0.0f,
-        t32.y * den > t33.y ? -1.0f : 0.0f,
-        t32.z * den > t33.z ? -1.0f : 0.0f
+    const unitpack_vec3 offset = {
+        t26.x + t28.x - aim.x,
+        t26.y + t28.y - aim.y,
+        t26.z + t28.z - aim.z
     };
-    const unitpack_vec3 t36 = {
-        t32.x + (t34.x ? 1.0f : t35.x),
-        t32.y + (t34.y ? 1.0f : t35.y),
-        t32.z + (t34.z ? 1.0f : t35.z)
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_uvec3 t37 = {
-        (uint32_t)fabsf(t36.x - aim.x),
-        (uint32_t)fabsf(t36.y - aim.y),
-        (uint32_t)fabsf(t36.z - aim.z)
-    };
-    const uint32_t limb1_6 = t37.x >> 12u;
-    const uint32_t limb0_6 = t37.x & 4095u;
+    const uint32_t limb1_6 = offset_u.x >> 12u;
+    const uint32_t limb0_6 = offset_u.x & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    const uint32_t limb1_7 = t37.y >> 12u;
-    const uint32_t limb0_7 = t37.y & 4095u;
+    const uint32_t limb1_7 = offset_u.y >> 12u;
+    const uint32_t limb0_7 = offset_u.y & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t37.z >> 12u;
-    const uint32_t limb0_8 = t37.z & 4095u;
+    const uint32_t limb1_8 = offset_u.z >> 12u;
+    const uint32_t limb0_8 = offset_u.z & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     const uint32_t hi11 = hi10 + (lo10 >> 24u);
     const uint32_t lo11 = lo10 & 16777215u;
-    const float t38 = (float)hi11 * 16777216.0f;
-    const float dist = t38 + (float)lo11;
-    const float t39 = base.x + 1.0f;
-    const unitpack_vec2 t40 = { t39, base.y };
+    const float t29 = (float)hi11 * 16777216.0f;
+    const float dist = t29 + (float)lo11;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t30 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t40.x <= 4095.0f ? t40.x : 4095.0f,
-        t40.y <= 4095.0f ? t40.y : 4095.0f
+        t30.x <= 4095.0f ? t30.x : 4095.0f,
+        t30.y <= 4095.0f ? t30.y : 4095.0f
     };
-    const unitpack_vec2 t41 = { cand2.x * 2.0f, cand2.y * 2.0f };
-    const unitpack_vec2 t42 = { t41.x - 4095.0f, t41.y - 4095.0f };
-    const unitpack_uvec2 t43 = { (uint32_t)fabsf(t42.x), (uint32_t)fabsf(t42.y) };
-    const uint32_t t44 = ((t43.x * t43.x) >> 2u) + ((t43.y * t43.y) >> 2u);
-    const float t45 = (float)(t44 >> 12u) * 4096.0f;
-    const float quarter2 = t45 + (float)(t44 & 4095u);
+    const unitpack_vec2 t31 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t32 = { t31.x - 4095.0f, t31.y - 4095.0f };
+    const unitpack_uvec2 t33 = { (uint32_t)fabsf(t32.x), (uint32_t)fabsf(t32.y) };
+    const uint32_t t34 = ((t33.x * t33.x) >> 2u) + ((t33.y * t33.y) >> 2u);
+    const float t35 = (float)(t34 >> 12u) * 4096.0f;
+    const float quarter2 = t35 + (float)(t34 & 4095u);
     const float den2 = quarter2 + 1326572.8f;
-    const unitpack_vec3 t46 = { t42.x * 1151.7692f, t42.y * 1151.7692f, 1326571.8f - quarter2 };
-    const unitpack_vec3 t47 = {
-        t46.x / den2 * 2097152.0f,
-        t46.y / den2 * 2097152.0f,
-        t46.z / den2 * 2097152.0f
+    const unitpack_vec3 t36 = { t32.x * 1151.7692f, t32.y * 1151.7692f, 1326571.8f - quarter2 };
+    const unitpack_vec3 t37 = {
+        floorf(t36.x / den2 * 2097152.0f),
+        floorf(t36.y / den2 * 2097152.0f),
+        floorf(t36.z / den2 * 2097152.0f)
     };
-    const unitpack_vec3 floor_t47 = { floorf(t47.x), floorf(t47.y), floorf(t47.z) };
-    const unitpack_vec3 t48 = {
-        (floor_t47.x + 1.0f) * den2,
-        (floor_t47.y + 1.0f) * den2,
-        (floor_t47.z + 1.0f) * den2
+    const unitpack_vec3 t38 = { t36.x * 2097152.0f, t36.y * 2097152.0f, t36.z * 2097152.0f };
+    const unitpack_vec3 t39 = {
+        (t37.x + 1.0f) * den2 <= t38.x ? 1.0f : (t37.x * den2 > t38.x ? -1.0f : 0.0f),
+        (t37.y + 1.0f) * den2 <= t38.y ? 1.0f : (t37.y * den2 > t38.y ? -1.0f : 0.0f),
+        (t37.z + 1.0f) * den2 <= t38.z ? 1.0f : (t37.z * den2 > t38.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t49 = { t46.x * 2097152.0f, t46.y * 2097152.0f, t46.z * 2097152.0f };
-    const unitpack_bvec3 t50 = {
-        floor_t47.x * den2 > t49.x,
-        floor_t47.y * den2 > t49.y,
-        floor_t47.z * den2 > t49.z
+    const unitpack_vec3 offset2 = {
+        t37.x + t39.x - aim.x,
+        t37.y + t39.y - aim.y,
+        t37.z + t39.z - aim.z
     };
-    const unitpack_vec3 t51 = {
-        t48.x <= t49.x ? 1.0f : (t50.x ? -1.0f : 0.0f),
-        t48.y <= t49.y ? 1.0f : (t50.y ? -1.0f : 0.0f),
-        t48.z <= t49.z ? 1.0f : (t50.z ? -1.0f : 0.0f)
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const unitpack_vec3 t52 = {
-        floor_t47.x + t51.x - aim.x,
-        floor_t47.y + t51.y - aim.y,
-        floor_t47.z + t51.z - aim.z
-    };
-    const unitpack_uvec3 t53 = {
-        (uint32_t)fabsf(t52.x),
-        (uint32_t)fabsf(t52.y),
-        (uint32_t)fabsf(t52.z)
-    };
-    const uint32_t limb1_9 = t53.x >> 12u;
-    const uint32_t limb0_9 = t53.x & 4095u;
+    const uint32_t limb1_9 = offset_u2.x >> 12u;
+    const uint32_t limb0_9 = offset_u2.x & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    const uint32_t limb1_10 = t53.y >> 12u;
-    const uint32_t limb0_10 = t53.y & 4095u;
+    const uint32_t limb1_10 = offset_u2.y >> 12u;
+    const uint32_t limb0_10 = offset_u2.y & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t53.z >> 12u;
-    const uint32_t limb0_11 = t53.z & 4095u;
+    const uint32_t limb1_11 = offset_u2.z >> 12u;
+    const uint32_t limb0_11 = offset_u2.z & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     const uint32_t hi15 = hi14 + (lo14 >> 24u);
     const uint32_t lo15 = lo14 & 16777215u;
-    const float t54 = (float)hi15 * 16777216.0f;
-    const float dist2 = t54 + (float)lo15;
-    const bool t55 = t39 <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
-    const unitpack_vec2 best = { t55 ? cand2.x : cand.x, t55 ? cand2.y : cand.y };
-    const float best_d = t55 ? dist2 : dist;
-    const float t56 = base.y + 1.0f;
-    const unitpack_vec2 t57 = { base.x, t56 };
+    const float t40 = (float)hi15 * 16777216.0f;
+    const float dist2 = t40 + (float)lo15;
+    const bool t41 = s_up <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
+    const unitpack_vec2 best = { t41 ? cand2.x : cand.x, t41 ? cand2.y : cand.y };
+    const float best_d = t41 ? dist2 : dist;
+    const unitpack_vec2 t42 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t57.x <= 4095.0f ? t57.x : 4095.0f,
-        t57.y <= 4095.0f ? t57.y : 4095.0f
+        t42.x <= 4095.0f ? t42.x : 4095.0f,
+        t42.y <= 4095.0f ? t42.y : 4095.0f
     };
-    const unitpack_vec2 t58 = { cand3.x * 2.0f, cand3.y * 2.0f };
-    const unitpack_vec2 t59 = { t58.x - 4095.0f, t58.y - 4095.0f };
-    const unitpack_uvec2 t60 = { (uint32_t)fabsf(t59.x), (uint32_t)fabsf(t59.y) };
-    const uint32_t t61 = ((t60.x * t60.x) >> 2u) + ((t60.y * t60.y) >> 2u);
-    const float t62 = (float)(t61 >> 12u) * 4096.0f;
-    const float quarter3 = t62 + (float)(t61 & 4095u);
+    const unitpack_vec2 t43 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 t44 = { t43.x - 4095.0f, t43.y - 4095.0f };
+    const unitpack_uvec2 t45 = { (uint32_t)fabsf(t44.x), (uint32_t)fabsf(t44.y) };
+    const uint32_t t46 = ((t45.x * t45.x) >> 2u) + ((t45.y * t45.y) >> 2u);
+    const float t47 = (float)(t46 >> 12u) * 4096.0f;
+    const float quarter3 = t47 + (float)(t46 & 4095u);
     const float den3 = quarter3 + 1326572.8f;
-    const unitpack_vec3 t63 = { t59.x * 1151.7692f, t59.y * 1151.7692f, 1326571.8f - quarter3 };
-    const unitpack_vec3 t64 = {
-        t63.x / den3 * 2097152.0f,
-        t63.y / den3 * 2097152.0f,
-        t63.z / den3 * 2097152.0f
+    const unitpack_vec3 t48 = { t44.x * 1151.7692f, t44.y * 1151.7692f, 1326571.8f - quarter3 };
+    const unitpack_vec3 t49 = {
+        floorf(t48.x / den3 * 2097152.0f),
+        floorf(t48.y / den3 * 2097152.0f),
+        floorf(t48.z / den3 * 2097152.0f)
     };
-    const unitpack_vec3 floor_t64 = { floorf(t64.x), floorf(t64.y), floorf(t64.z) };
-    const unitpack_vec3 t65 = {
-        (floor_t64.x + 1.0f) * den3,
-        (floor_t64.y + 1.0f) * den3,
-        (floor_t64.z + 1.0f) * den3
+    const unitpack_vec3 t50 = { t48.x * 2097152.0f, t48.y * 2097152.0f, t48.z * 2097152.0f };
+    const unitpack_vec3 t51 = {
+        (t49.x + 1.0f) * den3 <= t50.x ? 1.0f : (t49.x * den3 > t50.x ? -1.0f : 0.0f),
+        (t49.y + 1.0f) * den3 <= t50.y ? 1.0f : (t49.y * den3 > t50.y ? -1.0f : 0.0f),
+        (t49.z + 1.0f) * den3 <= t50.z ? 1.0f : (t49.z * den3 > t50.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t66 = { t63.x * 2097152.0f, t63.y * 2097152.0f, t63.z * 2097152.0f };
-    const unitpack_bvec3 t67 = {
-        floor_t64.x * den3 > t66.x,
-        floor_t64.y * den3 > t66.y,
-        floor_t64.z * den3 > t66.z
+    const unitpack_vec3 offset3 = {
+        t49.x + t51.x - aim.x,
+        t49.y + t51.y - aim.y,
+        t49.z + t51.z - aim.z
     };
-    const unitpack_vec3 t68 = {
-        t65.x <= t66.x ? 1.0f : (t67.x ? -1.0f : 0.0f),
-        t65.y <= t66.y ? 1.0f : (t67.y ? -1.0f : 0.0f),
-        t65.z <= t66.z ? 1.0f : (t67.z ? -1.0f : 0.0f)
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const unitpack_vec3 t69 = {
-        floor_t64.x + t68.x - aim.x,
-        floor_t64.y + t68.y - aim.y,
-        floor_t64.z + t68.z - aim.z
-    };
-    const unitpack_uvec3 t70 = {
-        (uint32_t)fabsf(t69.x),
-        (uint32_t)fabsf(t69.y),
-        (uint32_t)fabsf(t69.z)
-    };
-    const uint32_t limb1_12 = t70.x >> 12u;
-    const uint32_t limb0_12 = t70.x & 4095u;
+    const uint32_t limb1_12 = offset_u3.x >> 12u;
+    const uint32_t limb0_12 = offset_u3.x & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    const uint32_t limb1_13 = t70.y >> 12u;
-    const uint32_t limb0_13 = t70.y & 4095u;
+    const uint32_t limb1_13 = offset_u3.y >> 12u;
+    const uint32_t limb0_13 = offset_u3.y & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t70.z >> 12u;
-    const uint32_t limb0_14 = t70.z & 4095u;
+    const uint32_t limb1_14 = offset_u3.z >> 12u;
+    const uint32_t limb0_14 = offset_u3.z & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     const uint32_t hi19 = hi18 + (lo18 >> 24u);
     const uint32_t lo19 = lo18 & 16777215u;
-    const float t71 = (float)hi19 * 16777216.0f;
-    const float dist3 = t71 + (float)lo19;
-    const bool t72 = base.x <= 4095.0f && t56 <= 4095.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t72 ? cand3.x : best.x, t72 ? cand3.y : best.y };
-    const float best_d2 = t72 ? dist3 : best_d;
-    const unitpack_vec2 t73 = { base.x + 1.0f, base.y + 1.0f };
+    const float t52 = (float)hi19 * 16777216.0f;
+    const float dist3 = t52 + (float)lo19;
+    const bool t53 = base.x <= 4095.0f && t_up <= 4095.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t53 ? cand3.x : best.x, t53 ? cand3.y : best.y };
+    const float best_d2 = t53 ? dist3 : best_d;
+    const unitpack_vec2 t54 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t73.x <= 4095.0f ? t73.x : 4095.0f,
-        t73.y <= 4095.0f ? t73.y : 4095.0f
+        t54.x <= 4095.0f ? t54.x : 4095.0f,
+        t54.y <= 4095.0f ? t54.y : 4095.0f
     };
-    const unitpack_vec2 t74 = { cand4.x * 2.0f, cand4.y * 2.0f };
-    const unitpack_vec2 t75 = { t74.x - 4095.0f, t74.y - 4095.0f };
-    const unitpack_uvec2 t76 = { (uint32_t)fabsf(t75.x), (uint32_t)fabsf(t75.y) };
-    const uint32_t t77 = ((t76.x * t76.x) >> 2u) + ((t76.y * t76.y) >> 2u);
-    const float t78 = (float)(t77 >> 12u) * 4096.0f;
-    const float quarter4 = t78 + (float)(t77 & 4095u);
+    const unitpack_vec2 t55 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t56 = { t55.x - 4095.0f, t55.y - 4095.0f };
+    const unitpack_uvec2 t57 = { (uint32_t)fabsf(t56.x), (uint32_t)fabsf(t56.y) };
+    const uint32_t t58 = ((t57.x * t57.x) >> 2u) + ((t57.y * t57.y) >> 2u);
+    const float t59 = (float)(t58 >> 12u) * 4096.0f;
+    const float quarter4 = t59 + (float)(t58 & 4095u);
     const float den4 = quarter4 + 1326572.8f;
-    const unitpack_vec3 t79 = { t75.x * 1151.7692f, t75.y * 1151.7692f, 1326571.8f - quarter4 };
-    const unitpack_vec3 t80 = {
-        t79.x / den4 * 2097152.0f,
-        t79.y / den4 * 2097152.0f,
-        t79.z / den4 * 2097152.0f
+    const unitpack_vec3 t60 = { t56.x * 1151.7692f, t56.y * 1151.7692f, 1326571.8f - quarter4 };
+    const unitpack_vec3 t61 = {
+        floorf(t60.x / den4 * 2097152.0f),
+        floorf(t60.y / den4 * 2097152.0f),
+        floorf(t60.z / den4 * 2097152.0f)
     };
-    const unitpack_vec3 floor_t80 = { floorf(t80.x), floorf(t80.y), floorf(t80.z) };
-    const unitpack_vec3 t81 = {
-        (floor_t80.x + 1.0f) * den4,
-        (floor_t80.y + 1.0f) * den4,
-        (floor_t80.z + 1.0f) * den4
+    const unitpack_vec3 t62 = { t60.x * 2097152.0f, t60.y * 2097152.0f, t60.z * 2097152.0f };
+    const unitpack_vec3 t63 = {
+        (t61.x + 1.0f) * den4 <= t62.x ? 1.0f : (t61.x * den4 > t62.x ? -1.0f : 0.0f),
+        (t61.y + 1.0f) * den4 <= t62.y ? 1.0f : (t61.y * den4 > t62.y ? -1.0f : 0.0f),
+        (t61.z + 1.0f) * den4 <= t62.z ? 1.0f : (t61.z * den4 > t62.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t82 = { t79.x * 2097152.0f, t79.y * 2097152.0f, t79.z * 2097152.0f };
-    const unitpack_bvec3 t83 = {
-        floor_t80.x * den4 > t82.x,
-        floor_t80.y * den4 > t82.y,
-        floor_t80.z * den4 > t82.z
+    const unitpack_vec3 offset4 = {
+        t61.x + t63.x - aim.x,
+        t61.y + t63.y - aim.y,
+        t61.z + t63.z - aim.z
     };
-    const unitpack_vec3 t84 = {
-        t81.x <= t82.x ? 1.0f : (t83.x ? -1.0f : 0.0f),
-        t81.y <= t82.y ? 1.0f : (t83.y ? -1.0f : 0.0f),
-        t81.z <= t82.z ? 1.0f : (t83.z ? -1.0f : 0.0f)
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const unitpack_vec3 t85 = {
-        floor_t80.x + t84.x - aim.x,
-        floor_t80.y + t84.y - aim.y,
-        floor_t80.z + t84.z - aim.z
-    };
-    const unitpack_uvec3 t86 = {
-        (uint32_t)fabsf(t85.x),
-        (uint32_t)fabsf(t85.y),
-        (uint32_t)fabsf(t85.z)
-    };
-    const uint32_t limb1_15 = t86.x >> 12u;
-    const uint32_t limb0_15 = t86.x & 4095u;
+    const uint32_t limb1_15 = offset_u4.x >> 12u;
+    const uint32_t limb0_15 = offset_u4.x & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    const uint32_t limb1_16 = t86.y >> 12u;
-    const uint32_t limb0_16 = t86.y & 4095u;
+    const uint32_t limb1_16 = offset_u4.y >> 12u;
+    const uint32_t limb0_16 = offset_u4.y & 4095u;
     const uint32_t cross16 = limb1_16 * limb0_16;
     const uint32_t hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     const uint32_t lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    const uint32_t limb1_17 = t86.z >> 12u;
-    const uint32_t limb0_17 = t86.z & 4095u;
+    const uint32_t limb1_17 = offset_u4.z >> 12u;
+    const uint32_t limb0_17 = offset_u4.z & 4095u;
     const uint32_t cross17 = limb1_17 * limb0_17;
     const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     const uint32_t hi23 = hi22 + (lo22 >> 24u);
     const uint32_t lo23 = lo22 & 16777215u;
-    const float t87 = (float)hi23 * 16777216.0f;
-    const float dist4 = t87 + (float)lo23;
-    const bool t88 = base.x + 1.0f <= 4095.0f && base.y + 1.0f <= 4095.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t88 ? cand4.x : best2.x, t88 ? cand4.y : best2.y };
-    const bool t89 = opz_a <= 0.0f;
-    const unitpack_vec2 t90 = {
-        ok ? (t89 ? 0.0f : best3.x) : 2048.0f,
-        ok ? (t89 ? 0.0f : best3.y) : 2048.0f
+    const float t64 = (float)hi23 * 16777216.0f;
+    const float dist4 = t64 + (float)lo23;
+    const bool t65 = s_up <= 4095.0f && t_up <= 4095.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t65 ? cand4.x : best2.x, t65 ? cand4.y : best2.y };
+    const bool t66 = opz_a <= 0.0f;
+    const unitpack_vec2 t67 = {
+        ok ? (t66 ? 0.0f : best3.x) : 2048.0f,
+        ok ? (t66 ? 0.0f : best3.y) : 2048.0f
     };
-    return t90;
+    return t67;
 }
 
 // Struct form of unitpack_stereo_scaled24p_encode_float.
@@ -528,9 +475,7 @@ static inline uint32_t unitpack_stereo_scaled24p_encode_v(unitpack_vec3 v) {
 }
 
 // unitpack_stereo_scaled24p_encode: precise encoder.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
-//   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
-//   encodes as (0, 0), the corner nearest it.
+// In: as for unitpack_stereo_scaled24p_encode_float.
 // Out: the packed code, uint32_t (bits 0–11: p0 unorm12, bits 12–23: p1 unorm12).
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.

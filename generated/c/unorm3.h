@@ -74,12 +74,11 @@ static inline void unitpack_unorm3_decode_float(const float params[3], float out
 
 // Struct form of unitpack_unorm3_decode.
 static inline unitpack_vec3 unitpack_unorm3_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u)
+    const unitpack_vec3 params = {
+        (float)(code & 255u) * 0.003921569f,
+        (float)((code >> 8u) & 255u) * 0.003921569f,
+        (float)((code >> 16u) & 255u) * 0.003921569f
     };
-    const unitpack_vec3 params = { t1.x * 0.003921569f, t1.y * 0.003921569f, t1.z * 0.003921569f };
     const unitpack_vec3 decode_float = unitpack_unorm3_decode_float_v(params);
     return decode_float;
 }
@@ -115,13 +114,12 @@ static inline unitpack_vec3 unitpack_unorm3_encode_float_v(unitpack_vec3 v) {
     const bool t4 = t2 && len2 >= 1.0f;
     const float sqrt_len2 = sqrtf(len2);
     const unitpack_vec3 t5 = {
-        t4 ? scaled.x / sqrt_len2 : 0.0f,
-        t4 ? scaled.y / sqrt_len2 : 0.0f,
-        t4 ? scaled.z / sqrt_len2 : 1.0f
+        (t4 ? scaled.x / sqrt_len2 : 0.0f) * 0.5f,
+        (t4 ? scaled.y / sqrt_len2 : 0.0f) * 0.5f,
+        (t4 ? scaled.z / sqrt_len2 : 1.0f) * 0.5f
     };
-    const unitpack_vec3 t6 = { t5.x * 0.5f, t5.y * 0.5f, t5.z * 0.5f };
-    const unitpack_vec3 t7 = { t6.x + 0.5f, t6.y + 0.5f, t6.z + 0.5f };
-    return t7;
+    const unitpack_vec3 t6 = { t5.x + 0.5f, t5.y + 0.5f, t5.z + 0.5f };
+    return t6;
 }
 
 // unitpack_unorm3_encode_float: fast encoder, float form.
@@ -142,142 +140,103 @@ static inline void unitpack_unorm3_encode_float(const float v[3], float out[3]) 
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_unorm3_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float sqrt_len2 = sqrtf(len2);
-    const unitpack_vec3 t6 = {
+    const unitpack_vec3 t4 = {
         w2.x / sqrt_len2 * 127.5f,
         w2.y / sqrt_len2 * 127.5f,
         w2.z / sqrt_len2 * 127.5f
     };
+    const unitpack_vec3 t5 = {
+        nearbyintf(t4.x + 127.5f),
+        nearbyintf(t4.y + 127.5f),
+        nearbyintf(t4.z + 127.5f)
+    };
+    const unitpack_vec3 t6 = {
+        t5.x >= 0.0f ? t5.x : 0.0f,
+        t5.y >= 0.0f ? t5.y : 0.0f,
+        t5.z >= 0.0f ? t5.z : 0.0f
+    };
     const unitpack_vec3 t7 = {
-        nearbyintf(t6.x + 127.5f),
-        nearbyintf(t6.y + 127.5f),
-        nearbyintf(t6.z + 127.5f)
+        t6.x <= 255.0f ? t6.x : 255.0f,
+        t6.y <= 255.0f ? t6.y : 255.0f,
+        t6.z <= 255.0f ? t6.z : 255.0f
     };
-    const unitpack_vec3 t8 = {
-        t7.x >= 0.0f ? t7.x : 0.0f,
-        t7.y >= 0.0f ? t7.y : 0.0f,
-        t7.z >= 0.0f ? t7.z : 0.0f
-    };
+    const unitpack_vec3 t8 = { t7.x - 127.0f, t7.y - 127.0f, t7.z - 127.0f };
     const unitpack_vec3 t9 = {
-        t8.x <= 255.0f ? t8.x : 255.0f,
-        t8.y <= 255.0f ? t8.y : 255.0f,
-        t8.z <= 255.0f ? t8.z : 255.0f
-    };
-    const unitpack_vec3 t10 = { t9.x - 127.0f, t9.y - 127.0f, t9.z - 127.0f };
-    const unitpack_vec3 t11 = {
         w2.x * w2.x * 16256.25f,
         w2.y * w2.y * 16256.25f,
         w2.z * w2.z * 16256.25f
     };
-    const unitpack_vec3 t12 = { t10.x * t10.x * len2, t10.y * t10.y * len2, t10.z * t10.z * len2 };
-    const unitpack_vec3 t13 = {
-        t11.x >= t12.x ? 1.0f : 0.0f,
-        t11.y >= t12.y ? 1.0f : 0.0f,
-        t11.z >= t12.z ? 1.0f : 0.0f
+    const unitpack_vec3 t10 = { t8.x * t8.x * len2, t8.y * t8.y * len2, t8.z * t8.z * len2 };
+    const unitpack_vec3 t11 = {
+        w2.x >= 0.0f
+            ? (t8.x > 0.0f ? (t9.x >= t10.x ? 1.0f : 0.0f) : 1.0f)
+            : (t8.x < 0.0f ? (t9.x <= t10.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t8.y > 0.0f ? (t9.y >= t10.y ? 1.0f : 0.0f) : 1.0f)
+            : (t8.y < 0.0f ? (t9.y <= t10.y ? 1.0f : 0.0f) : 0.0f),
+        w2.z >= 0.0f
+            ? (t8.z > 0.0f ? (t9.z >= t10.z ? 1.0f : 0.0f) : 1.0f)
+            : (t8.z < 0.0f ? (t9.z <= t10.z ? 1.0f : 0.0f) : 0.0f)
     };
+    const unitpack_vec3 t12 = { t7.x - 1.0f - 127.0f, t7.y - 1.0f - 127.0f, t7.z - 1.0f - 127.0f };
+    const unitpack_vec3 t13 = { t12.x * t12.x * len2, t12.y * t12.y * len2, t12.z * t12.z * len2 };
     const unitpack_vec3 t14 = {
-        t10.x > 0.0f ? t13.x : 1.0f,
-        t10.y > 0.0f ? t13.y : 1.0f,
-        t10.z > 0.0f ? t13.z : 1.0f
+        w2.x >= 0.0f
+            ? (t12.x > 0.0f ? (t9.x >= t13.x ? 1.0f : 0.0f) : 1.0f)
+            : (t12.x < 0.0f ? (t9.x <= t13.x ? 1.0f : 0.0f) : 0.0f),
+        w2.y >= 0.0f
+            ? (t12.y > 0.0f ? (t9.y >= t13.y ? 1.0f : 0.0f) : 1.0f)
+            : (t12.y < 0.0f ? (t9.y <= t13.y ? 1.0f : 0.0f) : 0.0f),
+        w2.z >= 0.0f
+            ? (t12.z > 0.0f ? (t9.z >= t13.z ? 1.0f : 0.0f) : 1.0f)
+            : (t12.z < 0.0f ? (t9.z <= t13.z ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec3 t15 = {
-        t11.x <= t12.x ? 1.0f : 0.0f,
-        t11.y <= t12.y ? 1.0f : 0.0f,
-        t11.z <= t12.z ? 1.0f : 0.0f
+        t7.x + (t7.x < 255.0f ? t11.x : 0.0f) + (t7.x > 0.0f ? t14.x - 1.0f : 0.0f),
+        t7.y + (t7.y < 255.0f ? t11.y : 0.0f) + (t7.y > 0.0f ? t14.y - 1.0f : 0.0f),
+        t7.z + (t7.z < 255.0f ? t11.z : 0.0f) + (t7.z > 0.0f ? t14.z - 1.0f : 0.0f)
     };
-    const unitpack_vec3 t16 = {
-        t10.x < 0.0f ? t15.x : 0.0f,
-        t10.y < 0.0f ? t15.y : 0.0f,
-        t10.z < 0.0f ? t15.z : 0.0f
-    };
-    const unitpack_vec3 t17 = {
-        w2.x >= 0.0f ? t14.x : t16.x,
-        w2.y >= 0.0f ? t14.y : t16.y,
-        w2.z >= 0.0f ? t14.z : t16.z
-    };
-    const unitpack_vec3 t18 = {
-        t9.x < 255.0f ? t17.x : 0.0f,
-        t9.y < 255.0f ? t17.y : 0.0f,
-        t9.z < 255.0f ? t17.z : 0.0f
-    };
-    const unitpack_vec3 t19 = { t9.x - 1.0f - 127.0f, t9.y - 1.0f - 127.0f, t9.z - 1.0f - 127.0f };
-    const unitpack_vec3 t20 = { t19.x * t19.x * len2, t19.y * t19.y * len2, t19.z * t19.z * len2 };
-    const unitpack_vec3 t21 = {
-        t11.x >= t20.x ? 1.0f : 0.0f,
-        t11.y >= t20.y ? 1.0f : 0.0f,
-        t11.z >= t20.z ? 1.0f : 0.0f
-    };
-    const unitpack_vec3 t22 = {
-        t19.x > 0.0f ? t21.x : 1.0f,
-        t19.y > 0.0f ? t21.y : 1.0f,
-        t19.z > 0.0f ? t21.z : 1.0f
-    };
-    const unitpack_vec3 t23 = {
-        t11.x <= t20.x ? 1.0f : 0.0f,
-        t11.y <= t20.y ? 1.0f : 0.0f,
-        t11.z <= t20.z ? 1.0f : 0.0f
-    };
-    const unitpack_vec3 t24 = {
-        t19.x < 0.0f ? t23.x : 0.0f,
-        t19.y < 0.0f ? t23.y : 0.0f,
-        t19.z < 0.0f ? t23.z : 0.0f
-    };
-    const unitpack_vec3 t25 = {
-        w2.x >= 0.0f ? t22.x : t24.x,
-        w2.y >= 0.0f ? t22.y : t24.y,
-        w2.z >= 0.0f ? t22.z : t24.z
-    };
-    const unitpack_vec3 t26 = {
-        t9.x > 0.0f ? t25.x - 1.0f : 0.0f,
-        t9.y > 0.0f ? t25.y - 1.0f : 0.0f,
-        t9.z > 0.0f ? t25.z - 1.0f : 0.0f
-    };
-    const unitpack_vec3 t27 = { t9.x + t18.x + t26.x, t9.y + t18.y + t26.y, t9.z + t18.z + t26.z };
-    return t27;
+    return t15;
 }
 
 // Struct form of unitpack_unorm3_encode.

@@ -108,12 +108,11 @@ static inline void unitpack_warpedcube16_decode_float(const float params[3], flo
 
 // Struct form of unitpack_warpedcube16_decode.
 static inline unitpack_vec3 unitpack_warpedcube16_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 127u),
-        (float)((code >> 7u) & 63u),
-        (float)((code >> 13u) & 7u)
+    const unitpack_vec3 params = {
+        (float)(code & 127u) * 0.007874016f,
+        (float)((code >> 7u) & 63u) * 0.015873017f,
+        (float)((code >> 13u) & 7u) * 0.14285715f
     };
-    const unitpack_vec3 params = { t1.x * 0.007874016f, t1.y * 0.015873017f, t1.z * 0.14285715f };
     const unitpack_vec3 decode_float = unitpack_warpedcube16_decode_float_v(params);
     return decode_float;
 }
@@ -165,46 +164,40 @@ static inline float unitpack_warpedcube16_atan2_pi_v(float a0, float a1) {
 
 // Struct form of unitpack_warpedcube16_encode_float.
 static inline unitpack_vec3 unitpack_warpedcube16_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const bool t3 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    const bool t4 = abs_w2.y >= abs_w2.x;
-    const float major = t3 ? w2.z : (t4 ? w2.y : w2.x);
-    const float face = (t3 ? 4.0f : (t4 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
-    const float s = t3 ? w2.x : (t4 ? w2.z : w2.y);
-    const float t = t3 ? w2.y : (t4 ? w2.x : w2.z);
+    const bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
+    const bool t2 = abs_w2.y >= abs_w2.x;
+    const float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
+    const float face = (t1 ? 4.0f : (t2 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
+    const float s = t1 ? w2.x : (t2 ? w2.z : w2.y);
+    const float t = t1 ? w2.y : (t2 ? w2.x : w2.z);
     const float abs_major = fabsf(major);
-    const unitpack_vec2 t5 = {
-        unitpack_warpedcube16_atan2_pi_v(s, abs_major),
-        unitpack_warpedcube16_atan2_pi_v(t, abs_major)
+    const unitpack_vec2 t3 = {
+        unitpack_warpedcube16_atan2_pi_v(s, abs_major) * 2.0f,
+        unitpack_warpedcube16_atan2_pi_v(t, abs_major) * 2.0f
     };
-    const unitpack_vec2 t6 = { t5.x * 2.0f, t5.y * 2.0f };
-    const unitpack_vec2 enc = { t6.x + 0.5f, t6.y + 0.5f };
-    const unitpack_vec3 t7 = { enc.x, enc.y, face * 0.14285715f };
-    return t7;
+    const unitpack_vec2 enc = { t3.x + 0.5f, t3.y + 0.5f };
+    const unitpack_vec3 t4 = { enc.x, enc.y, face * 0.14285715f };
+    return t4;
 }
 
 // unitpack_warpedcube16_encode_float: fast encoder, float form.
@@ -227,157 +220,135 @@ static inline void unitpack_warpedcube16_encode_float(const float v[3], float ou
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_warpedcube16_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const bool t3 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    const bool t4 = abs_w2.y >= abs_w2.x;
-    const float major = t3 ? w2.z : (t4 ? w2.y : w2.x);
-    const float face = (t3 ? 4.0f : (t4 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
+    const bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
+    const bool t2 = abs_w2.y >= abs_w2.x;
+    const float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
+    const float face = (t1 ? 4.0f : (t2 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
     const float abs_major = fabsf(major);
-    const unitpack_vec2 t5 = { t3 ? w2.x : (t4 ? w2.z : w2.y), t3 ? w2.y : (t4 ? w2.x : w2.z) };
-    const unitpack_vec2 abs_t5 = { fabsf(t5.x), fabsf(t5.y) };
-    const unitpack_vec2 t6 = { fabsf(abs_major), fabsf(abs_major) };
-    const unitpack_bvec2 t7 = { abs_t5.x > t6.x, abs_t5.y > t6.y };
-    const unitpack_vec2 t8 = { t7.x ? t6.x : abs_t5.x, t7.y ? t6.y : abs_t5.y };
-    const unitpack_vec2 t9 = { t7.x ? abs_t5.x : t6.x, t7.y ? abs_t5.y : t6.y };
-    const unitpack_vec2 t10 = { t9.x > 0.0f ? t9.x : 1.0f, t9.y > 0.0f ? t9.y : 1.0f };
+    const unitpack_vec2 t3 = { t1 ? w2.x : (t2 ? w2.z : w2.y), t1 ? w2.y : (t2 ? w2.x : w2.z) };
+    const unitpack_vec2 abs_t3 = { fabsf(t3.x), fabsf(t3.y) };
+    const unitpack_vec2 t4 = { fabsf(abs_major), fabsf(abs_major) };
+    const unitpack_bvec2 t5 = { abs_t3.x > t4.x, abs_t3.y > t4.y };
+    const unitpack_vec2 t6 = { t5.x ? t4.x : abs_t3.x, t5.y ? t4.y : abs_t3.y };
+    const unitpack_vec2 t7 = { t5.x ? abs_t3.x : t4.x, t5.y ? abs_t3.y : t4.y };
+    const unitpack_vec2 t8 = { t7.x > 0.0f ? t7.x : 1.0f, t7.y > 0.0f ? t7.y : 1.0f };
+    const unitpack_vec2 t9 = { floorf(t6.x / t8.x * 8388608.0f), floorf(t6.y / t8.y * 8388608.0f) };
+    const unitpack_vec2 t10 = { t6.x * 8388608.0f, t6.y * 8388608.0f };
     const unitpack_vec2 t11 = {
-        floorf(t8.x / t10.x * 8388608.0f),
-        floorf(t8.y / t10.y * 8388608.0f)
+        (t9.x + 1.0f) * t8.x <= t10.x ? 1.0f : (t9.x * t8.x > t10.x ? -1.0f : 0.0f),
+        (t9.y + 1.0f) * t8.y <= t10.y ? 1.0f : (t9.y * t8.y > t10.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t12 = { t8.x * 8388608.0f, t8.y * 8388608.0f };
+    const unitpack_vec2 t12 = { t9.x + t11.x, t9.y + t11.y };
     const unitpack_vec2 t13 = {
-        (t11.x + 1.0f) * t10.x <= t12.x ? 1.0f : (t11.x * t10.x > t12.x ? -1.0f : 0.0f),
-        (t11.y + 1.0f) * t10.y <= t12.y ? 1.0f : (t11.y * t10.y > t12.y ? -1.0f : 0.0f)
+        (t12.x + 1.0f) * t8.x <= t10.x ? 1.0f : (t12.x * t8.x > t10.x ? -1.0f : 0.0f),
+        (t12.y + 1.0f) * t8.y <= t10.y ? 1.0f : (t12.y * t8.y > t10.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t14 = { t11.x + t13.x, t11.y + t13.y };
-    const unitpack_vec2 t15 = {
-        (t14.x + 1.0f) * t10.x <= t12.x ? 1.0f : (t14.x * t10.x > t12.x ? -1.0f : 0.0f),
-        (t14.y + 1.0f) * t10.y <= t12.y ? 1.0f : (t14.y * t10.y > t12.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t14 = { t12.x + t13.x, t12.y + t13.y };
+    const unitpack_bvec2 t15 = { t14.x > 3474675.0f, t14.y > 3474675.0f };
+    const unitpack_vec2 t16 = { t14.x - 8388608.0f, t14.y - 8388608.0f };
+    const unitpack_vec2 t17 = { t14.x + 8388608.0f, t14.y + 8388608.0f };
+    const unitpack_vec2 t18 = {
+        floorf(t16.x / t17.x * 8388608.0f),
+        floorf(t16.y / t17.y * 8388608.0f)
     };
-    const unitpack_vec2 t16 = { t14.x + t15.x, t14.y + t15.y };
-    const unitpack_bvec2 t17 = { t16.x > 3474675.0f, t16.y > 3474675.0f };
-    const unitpack_vec2 t18 = { t16.x - 8388608.0f, t16.y - 8388608.0f };
-    const unitpack_vec2 t19 = { t16.x + 8388608.0f, t16.y + 8388608.0f };
+    const unitpack_vec2 t19 = { t16.x * 8388608.0f, t16.y * 8388608.0f };
     const unitpack_vec2 t20 = {
-        floorf(t18.x / t19.x * 8388608.0f),
-        floorf(t18.y / t19.y * 8388608.0f)
+        (t18.x + 1.0f) * t17.x <= t19.x ? 1.0f : (t18.x * t17.x > t19.x ? -1.0f : 0.0f),
+        (t18.y + 1.0f) * t17.y <= t19.y ? 1.0f : (t18.y * t17.y > t19.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t21 = { t18.x * 8388608.0f, t18.y * 8388608.0f };
+    const unitpack_vec2 t21 = { t18.x + t20.x, t18.y + t20.y };
     const unitpack_vec2 t22 = {
-        (t20.x + 1.0f) * t19.x <= t21.x ? 1.0f : (t20.x * t19.x > t21.x ? -1.0f : 0.0f),
-        (t20.y + 1.0f) * t19.y <= t21.y ? 1.0f : (t20.y * t19.y > t21.y ? -1.0f : 0.0f)
+        (t21.x + 1.0f) * t17.x <= t19.x ? 1.0f : (t21.x * t17.x > t19.x ? -1.0f : 0.0f),
+        (t21.y + 1.0f) * t17.y <= t19.y ? 1.0f : (t21.y * t17.y > t19.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t23 = { t20.x + t22.x, t20.y + t22.y };
+    const unitpack_vec2 t23 = { t15.x ? t21.x + t22.x : t14.x, t15.y ? t21.y + t22.y : t14.y };
     const unitpack_vec2 t24 = {
-        (t23.x + 1.0f) * t19.x <= t21.x ? 1.0f : (t23.x * t19.x > t21.x ? -1.0f : 0.0f),
-        (t23.y + 1.0f) * t19.y <= t21.y ? 1.0f : (t23.y * t19.y > t21.y ? -1.0f : 0.0f)
+        nearbyintf(t23.x * t23.x * 1.1920929e-7f),
+        nearbyintf(t23.y * t23.y * 1.1920929e-7f)
     };
-    const unitpack_vec2 t25 = { t17.x ? t23.x + t24.x : t16.x, t17.y ? t23.y + t24.y : t16.y };
+    const unitpack_vec2 t25 = {
+        nearbyintf(
+            (nearbyintf(-441506.0f * t24.x * 1.1920929e-7f) + 493448.0f) * t24.x * 1.1920929e-7f
+        ),
+        nearbyintf(
+            (nearbyintf(-441506.0f * t24.y * 1.1920929e-7f) + 493448.0f) * t24.y * 1.1920929e-7f
+        )
+    };
     const unitpack_vec2 t26 = {
-        nearbyintf(t25.x * t25.x * 1.1920929e-7f),
-        nearbyintf(t25.y * t25.y * 1.1920929e-7f)
+        (nearbyintf((t25.x + (-559241.0f)) * t24.x * 1.1920929e-7f) + 645278.0f)
+            * t24.x
+            * 1.1920929e-7f,
+        (nearbyintf((t25.y + (-559241.0f)) * t24.y * 1.1920929e-7f) + 645278.0f)
+            * t24.y
+            * 1.1920929e-7f
     };
     const unitpack_vec2 t27 = {
-        nearbyintf(-441506.0f * t26.x * 1.1920929e-7f),
-        nearbyintf(-441506.0f * t26.y * 1.1920929e-7f)
+        (nearbyintf((nearbyintf(t26.x) + (-762601.0f)) * t24.x * 1.1920929e-7f) + 932068.0f)
+            * t24.x,
+        (nearbyintf((nearbyintf(t26.y) + (-762601.0f)) * t24.y * 1.1920929e-7f) + 932068.0f) * t24.y
     };
     const unitpack_vec2 t28 = {
-        (t27.x + 493448.0f) * t26.x * 1.1920929e-7f,
-        (t27.y + 493448.0f) * t26.y * 1.1920929e-7f
+        nearbyintf((nearbyintf(t27.x * 1.1920929e-7f) + (-1198373.0f)) * t24.x * 1.1920929e-7f)
+            + 1677722.0f,
+        nearbyintf((nearbyintf(t27.y * 1.1920929e-7f) + (-1198373.0f)) * t24.y * 1.1920929e-7f)
+            + 1677722.0f
     };
     const unitpack_vec2 t29 = {
-        (nearbyintf(t28.x) + (-559241.0f)) * t26.x,
-        (nearbyintf(t28.y) + (-559241.0f)) * t26.y
+        nearbyintf(
+            (nearbyintf(t28.x * t24.x * 1.1920929e-7f) + (-2796203.0f)) * t24.x * 1.1920929e-7f
+        ),
+        nearbyintf(
+            (nearbyintf(t28.y * t24.y * 1.1920929e-7f) + (-2796203.0f)) * t24.y * 1.1920929e-7f
+        )
     };
     const unitpack_vec2 t30 = {
-        nearbyintf(t29.x * 1.1920929e-7f) + 645278.0f,
-        nearbyintf(t29.y * 1.1920929e-7f) + 645278.0f
+        nearbyintf(nearbyintf(t23.x * (t29.x + 8388608.0f) * 1.1920929e-7f) * 0.31830987f),
+        nearbyintf(nearbyintf(t23.y * (t29.y + 8388608.0f) * 1.1920929e-7f) * 0.31830987f)
     };
     const unitpack_vec2 t31 = {
-        nearbyintf(t30.x * t26.x * 1.1920929e-7f),
-        nearbyintf(t30.y * t26.y * 1.1920929e-7f)
+        t15.x ? t30.x + 2097152.0f : t30.x,
+        t15.y ? t30.y + 2097152.0f : t30.y
     };
     const unitpack_vec2 t32 = {
-        (t31.x + (-762601.0f)) * t26.x * 1.1920929e-7f,
-        (t31.y + (-762601.0f)) * t26.y * 1.1920929e-7f
+        t5.x ? 4194304.0f - t31.x : t31.x,
+        t5.y ? 4194304.0f - t31.y : t31.y
     };
     const unitpack_vec2 t33 = {
-        (nearbyintf(t32.x) + 932068.0f) * t26.x,
-        (nearbyintf(t32.y) + 932068.0f) * t26.y
+        abs_major < 0.0f ? 8388608.0f - t32.x : t32.x,
+        abs_major < 0.0f ? 8388608.0f - t32.y : t32.y
     };
     const unitpack_vec2 t34 = {
-        nearbyintf(t33.x * 1.1920929e-7f) + (-1198373.0f),
-        nearbyintf(t33.y * 1.1920929e-7f) + (-1198373.0f)
+        (t3.x < 0.0f ? -t33.x : t33.x) * 4.0f,
+        (t3.y < 0.0f ? -t33.y : t33.y) * 4.0f
     };
     const unitpack_vec2 t35 = {
-        nearbyintf(t34.x * t26.x * 1.1920929e-7f),
-        nearbyintf(t34.y * t26.y * 1.1920929e-7f)
+        nearbyintf((t34.x + 8388608.0f) * 7.56979e-6f),
+        nearbyintf((t34.y + 8388608.0f) * 3.7550926e-6f)
     };
-    const unitpack_vec2 t36 = {
-        (t35.x + 1677722.0f) * t26.x * 1.1920929e-7f,
-        (t35.y + 1677722.0f) * t26.y * 1.1920929e-7f
-    };
-    const unitpack_vec2 t37 = {
-        (nearbyintf(t36.x) + (-2796203.0f)) * t26.x,
-        (nearbyintf(t36.y) + (-2796203.0f)) * t26.y
-    };
-    const unitpack_vec2 t38 = {
-        nearbyintf(t37.x * 1.1920929e-7f) + 8388608.0f,
-        nearbyintf(t37.y * 1.1920929e-7f) + 8388608.0f
-    };
-    const unitpack_vec2 t39 = {
-        nearbyintf(t25.x * t38.x * 1.1920929e-7f),
-        nearbyintf(t25.y * t38.y * 1.1920929e-7f)
-    };
-    const unitpack_vec2 t40 = { nearbyintf(t39.x * 0.31830987f), nearbyintf(t39.y * 0.31830987f) };
-    const unitpack_vec2 t41 = {
-        t17.x ? t40.x + 2097152.0f : t40.x,
-        t17.y ? t40.y + 2097152.0f : t40.y
-    };
-    const unitpack_vec2 t42 = {
-        t7.x ? 4194304.0f - t41.x : t41.x,
-        t7.y ? 4194304.0f - t41.y : t41.y
-    };
-    const unitpack_vec2 t43 = {
-        abs_major < 0.0f ? 8388608.0f - t42.x : t42.x,
-        abs_major < 0.0f ? 8388608.0f - t42.y : t42.y
-    };
-    const unitpack_vec2 t44 = {
-        (t5.x < 0.0f ? -t43.x : t43.x) * 4.0f,
-        (t5.y < 0.0f ? -t43.y : t43.y) * 4.0f
-    };
-    const unitpack_vec2 t45 = {
-        nearbyintf((t44.x + 8388608.0f) * 7.56979e-6f),
-        nearbyintf((t44.y + 8388608.0f) * 3.7550926e-6f)
-    };
-    const unitpack_vec2 t46 = { t45.x >= 0.0f ? t45.x : 0.0f, t45.y >= 0.0f ? t45.y : 0.0f };
-    const unitpack_vec2 st = { t46.x <= 127.0f ? t46.x : 127.0f, t46.y <= 63.0f ? t46.y : 63.0f };
-    const unitpack_vec3 t47 = { st.x, st.y, face };
-    return t47;
+    const unitpack_vec2 t36 = { t35.x >= 0.0f ? t35.x : 0.0f, t35.y >= 0.0f ? t35.y : 0.0f };
+    const unitpack_vec2 st = { t36.x <= 127.0f ? t36.x : 127.0f, t36.y <= 63.0f ? t36.y : 63.0f };
+    const unitpack_vec3 t37 = { st.x, st.y, face };
+    return t37;
 }
 
 // Struct form of unitpack_warpedcube16_encode.

@@ -108,12 +108,11 @@ static inline void unitpack_warpedcube24p_decode_float(const float params[3], fl
 
 // Struct form of unitpack_warpedcube24p_decode.
 static inline unitpack_vec3 unitpack_warpedcube24p_decode_v(uint32_t code) {
-    const unitpack_vec3 t1 = {
-        (float)(code & 2047u),
-        (float)((code >> 11u) & 1023u),
-        (float)((code >> 21u) & 7u)
+    const unitpack_vec3 params = {
+        (float)(code & 2047u) * 0.0004885198f,
+        (float)((code >> 11u) & 1023u) * 0.0009775171f,
+        (float)((code >> 21u) & 7u) * 0.14285715f
     };
-    const unitpack_vec3 params = { t1.x * 0.0004885198f, t1.y * 0.0009775171f, t1.z * 0.14285715f };
     const unitpack_vec3 decode_float = unitpack_warpedcube24p_decode_float_v(params);
     return decode_float;
 }
@@ -139,161 +138,142 @@ static inline void unitpack_warpedcube24p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec3 unitpack_warpedcube24p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const unitpack_vec3 abs_w2 = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const bool t3 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    const bool t4 = abs_w2.y >= abs_w2.x;
-    const float major = t3 ? w2.z : (t4 ? w2.y : w2.x);
-    const float face = (t3 ? 4.0f : (t4 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
+    const bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
+    const bool t2 = abs_w2.y >= abs_w2.x;
+    const float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
+    const float face = (t1 ? 4.0f : (t2 ? 2.0f : 0.0f)) + (major < 0.0f ? 1.0f : 0.0f);
     const float abs_major = fabsf(major);
-    const unitpack_vec2 t5 = { t3 ? w2.x : (t4 ? w2.z : w2.y), t3 ? w2.y : (t4 ? w2.x : w2.z) };
-    const unitpack_vec2 abs_t5 = { fabsf(t5.x), fabsf(t5.y) };
-    const unitpack_vec2 t6 = { fabsf(abs_major), fabsf(abs_major) };
-    const unitpack_bvec2 t7 = { abs_t5.x > t6.x, abs_t5.y > t6.y };
-    const unitpack_vec2 t8 = { t7.x ? t6.x : abs_t5.x, t7.y ? t6.y : abs_t5.y };
-    const unitpack_vec2 t9 = { t7.x ? abs_t5.x : t6.x, t7.y ? abs_t5.y : t6.y };
-    const unitpack_vec2 t10 = { t9.x > 0.0f ? t9.x : 1.0f, t9.y > 0.0f ? t9.y : 1.0f };
+    const unitpack_vec2 t3 = { t1 ? w2.x : (t2 ? w2.z : w2.y), t1 ? w2.y : (t2 ? w2.x : w2.z) };
+    const unitpack_vec2 abs_t3 = { fabsf(t3.x), fabsf(t3.y) };
+    const unitpack_vec2 t4 = { fabsf(abs_major), fabsf(abs_major) };
+    const unitpack_bvec2 t5 = { abs_t3.x > t4.x, abs_t3.y > t4.y };
+    const unitpack_vec2 t6 = { t5.x ? t4.x : abs_t3.x, t5.y ? t4.y : abs_t3.y };
+    const unitpack_vec2 t7 = { t5.x ? abs_t3.x : t4.x, t5.y ? abs_t3.y : t4.y };
+    const unitpack_vec2 t8 = { t7.x > 0.0f ? t7.x : 1.0f, t7.y > 0.0f ? t7.y : 1.0f };
+    const unitpack_vec2 t9 = { floorf(t6.x / t8.x * 8388608.0f), floorf(t6.y / t8.y * 8388608.0f) };
+    const unitpack_vec2 t10 = { t6.x * 8388608.0f, t6.y * 8388608.0f };
     const unitpack_vec2 t11 = {
-        floorf(t8.x / t10.x * 8388608.0f),
-        floorf(t8.y / t10.y * 8388608.0f)
+        (t9.x + 1.0f) * t8.x <= t10.x ? 1.0f : (t9.x * t8.x > t10.x ? -1.0f : 0.0f),
+        (t9.y + 1.0f) * t8.y <= t10.y ? 1.0f : (t9.y * t8.y > t10.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t12 = { t8.x * 8388608.0f, t8.y * 8388608.0f };
+    const unitpack_vec2 t12 = { t9.x + t11.x, t9.y + t11.y };
     const unitpack_vec2 t13 = {
-        (t11.x + 1.0f) * t10.x <= t12.x ? 1.0f : (t11.x * t10.x > t12.x ? -1.0f : 0.0f),
-        (t11.y + 1.0f) * t10.y <= t12.y ? 1.0f : (t11.y * t10.y > t12.y ? -1.0f : 0.0f)
+        (t12.x + 1.0f) * t8.x <= t10.x ? 1.0f : (t12.x * t8.x > t10.x ? -1.0f : 0.0f),
+        (t12.y + 1.0f) * t8.y <= t10.y ? 1.0f : (t12.y * t8.y > t10.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t14 = { t11.x + t13.x, t11.y + t13.y };
-    const unitpack_vec2 t15 = {
-        (t14.x + 1.0f) * t10.x <= t12.x ? 1.0f : (t14.x * t10.x > t12.x ? -1.0f : 0.0f),
-        (t14.y + 1.0f) * t10.y <= t12.y ? 1.0f : (t14.y * t10.y > t12.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t14 = { t12.x + t13.x, t12.y + t13.y };
+    const unitpack_bvec2 t15 = { t14.x > 3474675.0f, t14.y > 3474675.0f };
+    const unitpack_vec2 t16 = { t14.x - 8388608.0f, t14.y - 8388608.0f };
+    const unitpack_vec2 t17 = { t14.x + 8388608.0f, t14.y + 8388608.0f };
+    const unitpack_vec2 t18 = {
+        floorf(t16.x / t17.x * 8388608.0f),
+        floorf(t16.y / t17.y * 8388608.0f)
     };
-    const unitpack_vec2 t16 = { t14.x + t15.x, t14.y + t15.y };
-    const unitpack_bvec2 t17 = { t16.x > 3474675.0f, t16.y > 3474675.0f };
-    const unitpack_vec2 t18 = { t16.x - 8388608.0f, t16.y - 8388608.0f };
-    const unitpack_vec2 t19 = { t16.x + 8388608.0f, t16.y + 8388608.0f };
+    const unitpack_vec2 t19 = { t16.x * 8388608.0f, t16.y * 8388608.0f };
     const unitpack_vec2 t20 = {
-        floorf(t18.x / t19.x * 8388608.0f),
-        floorf(t18.y / t19.y * 8388608.0f)
+        (t18.x + 1.0f) * t17.x <= t19.x ? 1.0f : (t18.x * t17.x > t19.x ? -1.0f : 0.0f),
+        (t18.y + 1.0f) * t17.y <= t19.y ? 1.0f : (t18.y * t17.y > t19.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t21 = { t18.x * 8388608.0f, t18.y * 8388608.0f };
+    const unitpack_vec2 t21 = { t18.x + t20.x, t18.y + t20.y };
     const unitpack_vec2 t22 = {
-        (t20.x + 1.0f) * t19.x <= t21.x ? 1.0f : (t20.x * t19.x > t21.x ? -1.0f : 0.0f),
-        (t20.y + 1.0f) * t19.y <= t21.y ? 1.0f : (t20.y * t19.y > t21.y ? -1.0f : 0.0f)
+        (t21.x + 1.0f) * t17.x <= t19.x ? 1.0f : (t21.x * t17.x > t19.x ? -1.0f : 0.0f),
+        (t21.y + 1.0f) * t17.y <= t19.y ? 1.0f : (t21.y * t17.y > t19.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t23 = { t20.x + t22.x, t20.y + t22.y };
+    const unitpack_vec2 t23 = { t15.x ? t21.x + t22.x : t14.x, t15.y ? t21.y + t22.y : t14.y };
     const unitpack_vec2 t24 = {
-        (t23.x + 1.0f) * t19.x <= t21.x ? 1.0f : (t23.x * t19.x > t21.x ? -1.0f : 0.0f),
-        (t23.y + 1.0f) * t19.y <= t21.y ? 1.0f : (t23.y * t19.y > t21.y ? -1.0f : 0.0f)
+        nearbyintf(t23.x * t23.x * 1.1920929e-7f),
+        nearbyintf(t23.y * t23.y * 1.1920929e-7f)
     };
-    const unitpack_vec2 t25 = { t17.x ? t23.x + t24.x : t16.x, t17.y ? t23.y + t24.y : t16.y };
+    const unitpack_vec2 t25 = {
+        nearbyintf(
+            (nearbyintf(-441506.0f * t24.x * 1.1920929e-7f) + 493448.0f) * t24.x * 1.1920929e-7f
+        ),
+        nearbyintf(
+            (nearbyintf(-441506.0f * t24.y * 1.1920929e-7f) + 493448.0f) * t24.y * 1.1920929e-7f
+        )
+    };
     const unitpack_vec2 t26 = {
-        nearbyintf(t25.x * t25.x * 1.1920929e-7f),
-        nearbyintf(t25.y * t25.y * 1.1920929e-7f)
+        (nearbyintf((t25.x + (-559241.0f)) * t24.x * 1.1920929e-7f) + 645278.0f)
+            * t24.x
+            * 1.1920929e-7f,
+        (nearbyintf((t25.y + (-559241.0f)) * t24.y * 1.1920929e-7f) + 645278.0f)
+            * t24.y
+            * 1.1920929e-7f
     };
     const unitpack_vec2 t27 = {
-        nearbyintf(-441506.0f * t26.x * 1.1920929e-7f),
-        nearbyintf(-441506.0f * t26.y * 1.1920929e-7f)
+        (nearbyintf((nearbyintf(t26.x) + (-762601.0f)) * t24.x * 1.1920929e-7f) + 932068.0f)
+            * t24.x,
+        (nearbyintf((nearbyintf(t26.y) + (-762601.0f)) * t24.y * 1.1920929e-7f) + 932068.0f) * t24.y
     };
     const unitpack_vec2 t28 = {
-        (t27.x + 493448.0f) * t26.x * 1.1920929e-7f,
-        (t27.y + 493448.0f) * t26.y * 1.1920929e-7f
+        nearbyintf((nearbyintf(t27.x * 1.1920929e-7f) + (-1198373.0f)) * t24.x * 1.1920929e-7f)
+            + 1677722.0f,
+        nearbyintf((nearbyintf(t27.y * 1.1920929e-7f) + (-1198373.0f)) * t24.y * 1.1920929e-7f)
+            + 1677722.0f
     };
     const unitpack_vec2 t29 = {
-        (nearbyintf(t28.x) + (-559241.0f)) * t26.x,
-        (nearbyintf(t28.y) + (-559241.0f)) * t26.y
+        nearbyintf(
+            (nearbyintf(t28.x * t24.x * 1.1920929e-7f) + (-2796203.0f)) * t24.x * 1.1920929e-7f
+        ),
+        nearbyintf(
+            (nearbyintf(t28.y * t24.y * 1.1920929e-7f) + (-2796203.0f)) * t24.y * 1.1920929e-7f
+        )
     };
     const unitpack_vec2 t30 = {
-        nearbyintf(t29.x * 1.1920929e-7f) + 645278.0f,
-        nearbyintf(t29.y * 1.1920929e-7f) + 645278.0f
+        nearbyintf(nearbyintf(t23.x * (t29.x + 8388608.0f) * 1.1920929e-7f) * 0.31830987f),
+        nearbyintf(nearbyintf(t23.y * (t29.y + 8388608.0f) * 1.1920929e-7f) * 0.31830987f)
     };
     const unitpack_vec2 t31 = {
-        nearbyintf(t30.x * t26.x * 1.1920929e-7f),
-        nearbyintf(t30.y * t26.y * 1.1920929e-7f)
+        t15.x ? t30.x + 2097152.0f : t30.x,
+        t15.y ? t30.y + 2097152.0f : t30.y
     };
     const unitpack_vec2 t32 = {
-        (t31.x + (-762601.0f)) * t26.x * 1.1920929e-7f,
-        (t31.y + (-762601.0f)) * t26.y * 1.1920929e-7f
+        t5.x ? 4194304.0f - t31.x : t31.x,
+        t5.y ? 4194304.0f - t31.y : t31.y
     };
     const unitpack_vec2 t33 = {
-        (nearbyintf(t32.x) + 932068.0f) * t26.x,
-        (nearbyintf(t32.y) + 932068.0f) * t26.y
+        abs_major < 0.0f ? 8388608.0f - t32.x : t32.x,
+        abs_major < 0.0f ? 8388608.0f - t32.y : t32.y
     };
     const unitpack_vec2 t34 = {
-        nearbyintf(t33.x * 1.1920929e-7f) + (-1198373.0f),
-        nearbyintf(t33.y * 1.1920929e-7f) + (-1198373.0f)
+        (t3.x < 0.0f ? -t33.x : t33.x) * 4.0f,
+        (t3.y < 0.0f ? -t33.y : t33.y) * 4.0f
     };
     const unitpack_vec2 t35 = {
-        nearbyintf(t34.x * t26.x * 1.1920929e-7f),
-        nearbyintf(t34.y * t26.y * 1.1920929e-7f)
+        floorf((t34.x + 8388608.0f) * 0.00012201071f),
+        floorf((t34.y + 8388608.0f) * 6.097555e-5f)
     };
-    const unitpack_vec2 t36 = {
-        (t35.x + 1677722.0f) * t26.x * 1.1920929e-7f,
-        (t35.y + 1677722.0f) * t26.y * 1.1920929e-7f
-    };
-    const unitpack_vec2 t37 = {
-        (nearbyintf(t36.x) + (-2796203.0f)) * t26.x,
-        (nearbyintf(t36.y) + (-2796203.0f)) * t26.y
-    };
-    const unitpack_vec2 t38 = {
-        nearbyintf(t37.x * 1.1920929e-7f) + 8388608.0f,
-        nearbyintf(t37.y * 1.1920929e-7f) + 8388608.0f
-    };
-    const unitpack_vec2 t39 = {
-        nearbyintf(t25.x * t38.x * 1.1920929e-7f),
-        nearbyintf(t25.y * t38.y * 1.1920929e-7f)
-    };
-    const unitpack_vec2 t40 = { nearbyintf(t39.x * 0.31830987f), nearbyintf(t39.y * 0.31830987f) };
-    const unitpack_vec2 t41 = {
-        t17.x ? t40.x + 2097152.0f : t40.x,
-        t17.y ? t40.y + 2097152.0f : t40.y
-    };
-    const unitpack_vec2 t42 = {
-        t7.x ? 4194304.0f - t41.x : t41.x,
-        t7.y ? 4194304.0f - t41.y : t41.y
-    };
-    const unitpack_vec2 t43 = {
-        abs_major < 0.0f ? 8388608.0f - t42.x : t42.x,
-        abs_major < 0.0f ? 8388608.0f - t42.y : t42.y
-    };
-    const unitpack_vec2 t44 = {
-        (t5.x < 0.0f ? -t43.x : t43.x) * 4.0f,
-        (t5.y < 0.0f ? -t43.y : t43.y) * 4.0f
-    };
-    const unitpack_vec2 t45 = {
-        floorf((t44.x + 8388608.0f) * 0.00012201071f),
-        floorf((t44.y + 8388608.0f) * 6.097555e-5f)
-    };
-    const unitpack_vec2 t46 = { t45.x >= 0.0f ? t45.x : 0.0f, t45.y >= 0.0f ? t45.y : 0.0f };
+    const unitpack_vec2 t36 = { t35.x >= 0.0f ? t35.x : 0.0f, t35.y >= 0.0f ? t35.y : 0.0f };
     const unitpack_vec2 base = {
-        t46.x <= 2047.0f ? t46.x : 2047.0f,
-        t46.y <= 1023.0f ? t46.y : 1023.0f
+        t36.x <= 2047.0f ? t36.x : 2047.0f,
+        t36.y <= 1023.0f ? t36.y : 1023.0f
     };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -311,766 +291,656 @@ static inline unitpack_vec3 unitpack_warpedcube24p_encode_codes_v(unitpack_vec3 
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t47 = (float)hi4 * 16777216.0f;
-    const float len2 = (t47 + (float)lo4) * 2.2737368e-13f;
+    const float t37 = (float)hi4 * 16777216.0f;
+    const float len2 = (t37 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t48 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t48 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t48
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t49 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t49;
-    const float t50 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t50;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t51 = root_k * 4096.0f;
-    const float root = (t51 + root_j) * 4.7683716e-7f;
-    const unitpack_vec3 t52 = {
+    const float t38 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t38;
+    const float t39 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t39;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t40 = root_k * 4096.0f;
+    const float root = (t40 + root_j) * 4.7683716e-7f;
+    const unitpack_vec3 t41 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t53 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t54 = {
-        (t52.x + 1.0f) * root <= t53.x,
-        (t52.y + 1.0f) * root <= t53.y,
-        (t52.z + 1.0f) * root <= t53.z
+    const unitpack_vec3 t42 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t43 = {
+        (t41.x + 1.0f) * root <= t42.x ? 1.0f : (t41.x * root > t42.x ? -1.0f : 0.0f),
+        (t41.y + 1.0f) * root <= t42.y ? 1.0f : (t41.y * root > t42.y ? -1.0f : 0.0f),
+        (t41.z + 1.0f) * root <= t42.z ? 1.0f : (t41.z * root > t42.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t55 = {
-        t52.x * root > t53.x ? -1.0f : 0.0f,
-        t52.y * root > t53.y ? -1.0f : 0.0f,
-        t52.z * root > t53.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t52.x + (t54.x ? 1.0f : t55.x),
-        t52.y + (t54.y ? 1.0f : t55.y),
-        t52.z + (t54.z ? 1.0f : t55.z)
-    };
+    const unitpack_vec3 aim = { t41.x + t43.x, t41.y + t43.y, t41.z + t43.z };
     const unitpack_vec2 cand = {
         base.x <= 2047.0f ? base.x : 2047.0f,
         base.y <= 1023.0f ? base.y : 1023.0f
     };
-    const unitpack_vec2 t56 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t44 = { cand.x * 2.0f, cand.y * 2.0f };
+    const unitpack_vec2 t45 = {
+        floorf((t44.x - 2047.0f) * 2049.0005f),
+        floorf((t44.y - 1023.0f) * 4100.004f)
+    };
+    const unitpack_vec2 abs_t45 = { fabsf(t45.x), fabsf(t45.y) };
+    const unitpack_bvec2 t46 = { abs_t45.x > 8388608.0f, abs_t45.y > 8388608.0f };
+    const unitpack_vec2 t47 = {
+        t46.x ? 16777216.0f - abs_t45.x : abs_t45.x,
+        t46.y ? 16777216.0f - abs_t45.y : abs_t45.y
+    };
+    const unitpack_bvec2 t48 = { t47.x > 4194304.0f, t47.y > 4194304.0f };
+    const unitpack_vec2 t49 = {
+        nearbyintf((t48.x ? 8388608.0f - t47.x : t47.x) * 3.1415927f),
+        nearbyintf((t48.y ? 8388608.0f - t47.y : t47.y) * 3.1415927f)
+    };
+    const unitpack_vec2 t50 = {
+        nearbyintf(t49.x * t49.x * 5.9604645e-8f),
+        nearbyintf(t49.y * t49.y * 5.9604645e-8f)
+    };
+    const unitpack_vec2 t51 = {
+        nearbyintf((nearbyintf(0.0f * t50.x * 5.9604645e-8f) + (-5.0f)) * t50.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(0.0f * t50.y * 5.9604645e-8f) + (-5.0f)) * t50.y * 5.9604645e-8f)
+    };
+    const unitpack_vec2 t52 = {
+        (nearbyintf((t51.x + 416.0f) * t50.x * 5.9604645e-8f) + (-23302.0f))
+            * t50.x
+            * 5.9604645e-8f,
+        (nearbyintf((t51.y + 416.0f) * t50.y * 5.9604645e-8f) + (-23302.0f)) * t50.y * 5.9604645e-8f
+    };
+    const unitpack_vec2 t53 = {
+        (nearbyintf((nearbyintf(t52.x) + 699051.0f) * t50.x * 5.9604645e-8f) + (-8388608.0f))
+            * t50.x,
+        (nearbyintf((nearbyintf(t52.y) + 699051.0f) * t50.y * 5.9604645e-8f) + (-8388608.0f))
+            * t50.y
+    };
+    const unitpack_vec2 t54 = {
+        nearbyintf(t53.x * 5.9604645e-8f) + 16777216.0f,
+        nearbyintf(t53.y * 5.9604645e-8f) + 16777216.0f
+    };
+    const unitpack_vec2 t55 = {
+        nearbyintf((nearbyintf(-0.0f * t50.x * 5.9604645e-8f) + 46.0f) * t50.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(-0.0f * t50.y * 5.9604645e-8f) + 46.0f) * t50.y * 5.9604645e-8f)
+    };
+    const unitpack_vec2 t56 = {
+        (nearbyintf((t55.x + (-3329.0f)) * t50.x * 5.9604645e-8f) + 139810.0f)
+            * t50.x
+            * 5.9604645e-8f,
+        (nearbyintf((t55.y + (-3329.0f)) * t50.y * 5.9604645e-8f) + 139810.0f)
+            * t50.y
+            * 5.9604645e-8f
+    };
     const unitpack_vec2 t57 = {
-        floorf((t56.x - 2047.0f) * 2049.0005f),
-        floorf((t56.y - 1023.0f) * 4100.004f)
+        t49.x
+            * (
+                nearbyintf((nearbyintf(t56.x) + (-2796203.0f)) * t50.x * 5.9604645e-8f)
+                    + 16777216.0f
+            ),
+        t49.y
+            * (
+                nearbyintf((nearbyintf(t56.y) + (-2796203.0f)) * t50.y * 5.9604645e-8f)
+                    + 16777216.0f
+            )
     };
-    const unitpack_vec2 abs_t57 = { fabsf(t57.x), fabsf(t57.y) };
-    const unitpack_bvec2 t58 = { abs_t57.x > 8388608.0f, abs_t57.y > 8388608.0f };
-    const unitpack_vec2 t59 = {
-        t58.x ? 16777216.0f - abs_t57.x : abs_t57.x,
-        t58.y ? 16777216.0f - abs_t57.y : abs_t57.y
+    const unitpack_vec2 t58 = {
+        nearbyintf(t57.x * 5.9604645e-8f),
+        nearbyintf(t57.y * 5.9604645e-8f)
     };
-    const unitpack_bvec2 t60 = { t59.x > 4194304.0f, t59.y > 4194304.0f };
-    const unitpack_vec2 t61 = {
-        (t60.x ? 8388608.0f - t59.x : t59.x) * 3.1415927f,
-        (t60.y ? 8388608.0f - t59.y : t59.y) * 3.1415927f
-    };
-    const unitpack_vec2 round_t61 = { nearbyintf(t61.x), nearbyintf(t61.y) };
-    const unitpack_vec2 t62 = {
-        round_t61.x * round_t61.x * 5.9604645e-8f,
-        round_t61.y * round_t61.y * 5.9604645e-8f
-    };
-    const unitpack_vec2 round_t62 = { nearbyintf(t62.x), nearbyintf(t62.y) };
+    const unitpack_vec2 t59 = { t48.x ? t54.x : t58.x, t48.y ? t54.y : t58.y };
+    const unitpack_vec2 t60 = { t45.x < 0.0f ? -t59.x : t59.x, t45.y < 0.0f ? -t59.y : t59.y };
+    const unitpack_vec2 t61 = { t48.x ? t58.x : t54.x, t48.y ? t58.y : t54.y };
+    const unitpack_vec2 t62 = { t46.x ? -t61.x : t61.x, t46.y ? -t61.y : t61.y };
     const unitpack_vec2 t63 = {
-        nearbyintf(0.0f * round_t62.x * 5.9604645e-8f),
-        nearbyintf(0.0f * round_t62.y * 5.9604645e-8f)
+        floorf(t60.x / t62.x * 2097152.0f),
+        floorf(t60.y / t62.y * 2097152.0f)
     };
-    const unitpack_vec2 t64 = {
-        (t63.x + (-5.0f)) * round_t62.x * 5.9604645e-8f,
-        (t63.y + (-5.0f)) * round_t62.y * 5.9604645e-8f
-    };
+    const unitpack_vec2 t64 = { t60.x * 2097152.0f, t60.y * 2097152.0f };
     const unitpack_vec2 t65 = {
-        (nearbyintf(t64.x) + 416.0f) * round_t62.x,
-        (nearbyintf(t64.y) + 416.0f) * round_t62.y
+        (t63.x + 1.0f) * t62.x <= t64.x ? 1.0f : (t63.x * t62.x > t64.x ? -1.0f : 0.0f),
+        (t63.y + 1.0f) * t62.y <= t64.y ? 1.0f : (t63.y * t62.y > t64.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t66 = {
-        nearbyintf(t65.x * 5.9604645e-8f) + (-23302.0f),
-        nearbyintf(t65.y * 5.9604645e-8f) + (-23302.0f)
-    };
-    const unitpack_vec2 t67 = {
-        nearbyintf(t66.x * round_t62.x * 5.9604645e-8f),
-        nearbyintf(t66.y * round_t62.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t68 = {
-        (t67.x + 699051.0f) * round_t62.x * 5.9604645e-8f,
-        (t67.y + 699051.0f) * round_t62.y * 5.9604645e-8f
-    };
-    const unitpack_vec2 t69 = {
-        (nearbyintf(t68.x) + (-8388608.0f)) * round_t62.x,
-        (nearbyintf(t68.y) + (-8388608.0f)) * round_t62.y
-    };
-    const unitpack_vec2 t70 = {
-        nearbyintf(t69.x * 5.9604645e-8f) + 16777216.0f,
-        nearbyintf(t69.y * 5.9604645e-8f) + 16777216.0f
-    };
-    const unitpack_vec2 t71 = {
-        nearbyintf(-0.0f * round_t62.x * 5.9604645e-8f),
-        nearbyintf(-0.0f * round_t62.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t72 = {
-        (t71.x + 46.0f) * round_t62.x * 5.9604645e-8f,
-        (t71.y + 46.0f) * round_t62.y * 5.9604645e-8f
-    };
-    const unitpack_vec2 t73 = {
-        (nearbyintf(t72.x) + (-3329.0f)) * round_t62.x,
-        (nearbyintf(t72.y) + (-3329.0f)) * round_t62.y
-    };
-    const unitpack_vec2 t74 = {
-        nearbyintf(t73.x * 5.9604645e-8f) + 139810.0f,
-        nearbyintf(t73.y * 5.9604645e-8f) + 139810.0f
-    };
-    const unitpack_vec2 t75 = {
-        nearbyintf(t74.x * round_t62.x * 5.9604645e-8f),
-        nearbyintf(t74.y * round_t62.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t76 = {
-        (t75.x + (-2796203.0f)) * round_t62.x * 5.9604645e-8f,
-        (t75.y + (-2796203.0f)) * round_t62.y * 5.9604645e-8f
-    };
-    const unitpack_vec2 t77 = {
-        round_t61.x * (nearbyintf(t76.x) + 16777216.0f),
-        round_t61.y * (nearbyintf(t76.y) + 16777216.0f)
-    };
-    const unitpack_vec2 t78 = {
-        nearbyintf(t77.x * 5.9604645e-8f),
-        nearbyintf(t77.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t79 = { t60.x ? t70.x : t78.x, t60.y ? t70.y : t78.y };
-    const unitpack_vec2 t80 = { t57.x < 0.0f ? -t79.x : t79.x, t57.y < 0.0f ? -t79.y : t79.y };
-    const unitpack_vec2 t81 = { t60.x ? t78.x : t70.x, t60.y ? t78.y : t70.y };
-    const unitpack_vec2 t82 = { t58.x ? -t81.x : t81.x, t58.y ? -t81.y : t81.y };
-    const unitpack_vec2 t83 = {
-        floorf(t80.x / t82.x * 2097152.0f),
-        floorf(t80.y / t82.y * 2097152.0f)
-    };
-    const unitpack_vec2 t84 = { t80.x * 2097152.0f, t80.y * 2097152.0f };
-    const unitpack_vec2 t85 = {
-        (t83.x + 1.0f) * t82.x <= t84.x ? 1.0f : (t83.x * t82.x > t84.x ? -1.0f : 0.0f),
-        (t83.y + 1.0f) * t82.y <= t84.y ? 1.0f : (t83.y * t82.y > t84.y ? -1.0f : 0.0f)
-    };
-    const unitpack_vec2 p = { t83.x + t85.x, t83.y + t85.y };
+    const unitpack_vec2 p = { t63.x + t65.x, t63.y + t65.y };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
     const float len2_2 = 2097152.0f + q;
-    const float t86 = len2_2 * 524288.0f;
-    const float root_estimate2 = floorf(sqrtf(t86));
+    const float t66 = len2_2 * 524288.0f;
+    const float root_estimate2 = floorf(sqrtf(t66));
     const float root_next = root_estimate2 + 1.0f;
-    const float t87 = root_next * root_next <= t86
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t86 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t87;
+    const float step_down3 = root_estimate2 * root_estimate2 > t66 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t66 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t88 = root_next2 * root_next2 <= t86
-        ? 1.0f
-        : (root_step * root_step > t86 ? -1.0f : 0.0f);
-    const float root2 = root_step + t88;
+    const float step_down4 = root_step * root_step > t66 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t66 ? 1.0f : step_down4;
+    const float root2 = root_step + step4;
     const float len = root2 * 2.0f;
     const float big = len * 2097152.0f;
     const float ratio_estimate = floorf(len / len2_2 * 2097152.0f);
-    const float t89 = (ratio_estimate + 1.0f) * len2_2 <= big
-        ? 1.0f
-        : (ratio_estimate * len2_2 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t89;
+    const float step_down5 = ratio_estimate * len2_2 > big ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate + 1.0f) * len2_2 <= big ? 1.0f : step_down5;
+    const float ratio = ratio_estimate + step5;
     const float big2 = p.x * 2097152.0f;
     const float ratio_estimate2 = floorf(p.x / len * 2097152.0f);
-    const float t90 = (ratio_estimate2 + 1.0f) * len <= big2
-        ? 1.0f
-        : (ratio_estimate2 * len > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t90;
+    const float step_down6 = ratio_estimate2 * len > big2 ? -1.0f : 0.0f;
+    const float step6 = (ratio_estimate2 + 1.0f) * len <= big2 ? 1.0f : step_down6;
+    const float ratio2 = ratio_estimate2 + step6;
     const float big3 = p.y * 2097152.0f;
     const float ratio_estimate3 = floorf(p.y / len * 2097152.0f);
-    const float t91 = (ratio_estimate3 + 1.0f) * len <= big3
-        ? 1.0f
-        : (ratio_estimate3 * len > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t91;
-    const bool t92 = face >= 3.5f;
-    const bool t93 = face >= 1.5f;
-    const float t94 = t92 ? face - 4.0f : (t93 ? face - 2.0f : face);
-    const float t95 = (t94 >= 1.5f ? t94 - 2.0f : t94) > 0.5f ? -ratio : ratio;
-    const unitpack_vec3 t96 = {
-        t92 ? ratio2 : (t93 ? ratio3 : t95),
-        t92 ? ratio3 : (t93 ? t95 : ratio2),
-        t92 ? t95 : (t93 ? ratio2 : ratio3)
+    const float step_down7 = ratio_estimate3 * len > big3 ? -1.0f : 0.0f;
+    const float step7 = (ratio_estimate3 + 1.0f) * len <= big3 ? 1.0f : step_down7;
+    const float ratio3 = ratio_estimate3 + step7;
+    const bool t67 = face >= 3.5f;
+    const bool t68 = face >= 1.5f;
+    const float t69 = t67 ? face - 4.0f : (t68 ? face - 2.0f : face);
+    const float t70 = (t69 >= 1.5f ? t69 - 2.0f : t69) > 0.5f ? -ratio : ratio;
+    const unitpack_vec3 offset = {
+        (t67 ? ratio2 : (t68 ? ratio3 : t70)) - aim.x,
+        (t67 ? ratio3 : (t68 ? t70 : ratio2)) - aim.y,
+        (t67 ? t70 : (t68 ? ratio2 : ratio3)) - aim.z
     };
-    const unitpack_uvec3 t97 = {
-        (uint32_t)fabsf(t96.x - aim.x),
-        (uint32_t)fabsf(t96.y - aim.y),
-        (uint32_t)fabsf(t96.z - aim.z)
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_4 = t97.x >> 12u;
-    const uint32_t limb0_4 = t97.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t97.y >> 12u;
-    const uint32_t limb0_5 = t97.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t97.z >> 12u;
-    const uint32_t limb0_6 = t97.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t98 = (float)hi8 * 16777216.0f;
-    const float dist = t98 + (float)lo8;
-    const float t99 = base.x + 1.0f;
-    const unitpack_vec2 t100 = { t99, base.y };
+    const float t71 = (float)hi8 * 16777216.0f;
+    const float dist = t71 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t72 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t100.x <= 2047.0f ? t100.x : 2047.0f,
-        t100.y <= 1023.0f ? t100.y : 1023.0f
+        t72.x <= 2047.0f ? t72.x : 2047.0f,
+        t72.y <= 1023.0f ? t72.y : 1023.0f
     };
-    const unitpack_vec2 t101 = { cand2.x * 2.0f, cand2.y * 2.0f };
-    const unitpack_vec2 t102 = {
-        floorf((t101.x - 2047.0f) * 2049.0005f),
-        floorf((t101.y - 1023.0f) * 4100.004f)
+    const unitpack_vec2 t73 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t74 = {
+        floorf((t73.x - 2047.0f) * 2049.0005f),
+        floorf((t73.y - 1023.0f) * 4100.004f)
     };
-    const unitpack_vec2 abs_t102 = { fabsf(t102.x), fabsf(t102.y) };
-    const unitpack_bvec2 t103 = { abs_t102.x > 8388608.0f, abs_t102.y > 8388608.0f };
-    const unitpack_vec2 t104 = {
-        t103.x ? 16777216.0f - abs_t102.x : abs_t102.x,
-        t103.y ? 16777216.0f - abs_t102.y : abs_t102.y
+    const unitpack_vec2 abs_t74 = { fabsf(t74.x), fabsf(t74.y) };
+    const unitpack_bvec2 t75 = { abs_t74.x > 8388608.0f, abs_t74.y > 8388608.0f };
+    const unitpack_vec2 t76 = {
+        t75.x ? 16777216.0f - abs_t74.x : abs_t74.x,
+        t75.y ? 16777216.0f - abs_t74.y : abs_t74.y
     };
-    const unitpack_bvec2 t105 = { t104.x > 4194304.0f, t104.y > 4194304.0f };
-    const unitpack_vec2 t106 = {
-        (t105.x ? 8388608.0f - t104.x : t104.x) * 3.1415927f,
-        (t105.y ? 8388608.0f - t104.y : t104.y) * 3.1415927f
+    const unitpack_bvec2 t77 = { t76.x > 4194304.0f, t76.y > 4194304.0f };
+    const unitpack_vec2 t78 = {
+        nearbyintf((t77.x ? 8388608.0f - t76.x : t76.x) * 3.1415927f),
+        nearbyintf((t77.y ? 8388608.0f - t76.y : t76.y) * 3.1415927f)
     };
-    const unitpack_vec2 round_t106 = { nearbyintf(t106.x), nearbyintf(t106.y) };
-    const unitpack_vec2 t107 = {
-        round_t106.x * round_t106.x * 5.9604645e-8f,
-        round_t106.y * round_t106.y * 5.9604645e-8f
+    const unitpack_vec2 t79 = {
+        nearbyintf(t78.x * t78.x * 5.9604645e-8f),
+        nearbyintf(t78.y * t78.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 round_t107 = { nearbyintf(t107.x), nearbyintf(t107.y) };
-    const unitpack_vec2 t108 = {
-        nearbyintf(0.0f * round_t107.x * 5.9604645e-8f),
-        nearbyintf(0.0f * round_t107.y * 5.9604645e-8f)
+    const unitpack_vec2 t80 = {
+        nearbyintf((nearbyintf(0.0f * t79.x * 5.9604645e-8f) + (-5.0f)) * t79.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(0.0f * t79.y * 5.9604645e-8f) + (-5.0f)) * t79.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t109 = {
-        (t108.x + (-5.0f)) * round_t107.x * 5.9604645e-8f,
-        (t108.y + (-5.0f)) * round_t107.y * 5.9604645e-8f
+    const unitpack_vec2 t81 = {
+        (nearbyintf((t80.x + 416.0f) * t79.x * 5.9604645e-8f) + (-23302.0f))
+            * t79.x
+            * 5.9604645e-8f,
+        (nearbyintf((t80.y + 416.0f) * t79.y * 5.9604645e-8f) + (-23302.0f)) * t79.y * 5.9604645e-8f
     };
-    const unitpack_vec2 t110 = {
-        (nearbyintf(t109.x) + 416.0f) * round_t107.x,
-        (nearbyintf(t109.y) + 416.0f) * round_t107.y
+    const unitpack_vec2 t82 = {
+        (nearbyintf((nearbyintf(t81.x) + 699051.0f) * t79.x * 5.9604645e-8f) + (-8388608.0f))
+            * t79.x,
+        (nearbyintf((nearbyintf(t81.y) + 699051.0f) * t79.y * 5.9604645e-8f) + (-8388608.0f))
+            * t79.y
     };
-    const unitpack_vec2 t111 = {
-        nearbyintf(t110.x * 5.9604645e-8f) + (-23302.0f),
-        nearbyintf(t110.y * 5.9604645e-8f) + (-23302.0f)
+    const unitpack_vec2 t83 = {
+        nearbyintf(t82.x * 5.9604645e-8f) + 16777216.0f,
+        nearbyintf(t82.y * 5.9604645e-8f) + 16777216.0f
     };
-    const unitpack_vec2 t112 = {
-        nearbyintf(t111.x * round_t107.x * 5.9604645e-8f),
-        nearbyintf(t111.y * round_t107.y * 5.9604645e-8f)
+    const unitpack_vec2 t84 = {
+        nearbyintf((nearbyintf(-0.0f * t79.x * 5.9604645e-8f) + 46.0f) * t79.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(-0.0f * t79.y * 5.9604645e-8f) + 46.0f) * t79.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t113 = {
-        (t112.x + 699051.0f) * round_t107.x * 5.9604645e-8f,
-        (t112.y + 699051.0f) * round_t107.y * 5.9604645e-8f
+    const unitpack_vec2 t85 = {
+        (nearbyintf((t84.x + (-3329.0f)) * t79.x * 5.9604645e-8f) + 139810.0f)
+            * t79.x
+            * 5.9604645e-8f,
+        (nearbyintf((t84.y + (-3329.0f)) * t79.y * 5.9604645e-8f) + 139810.0f)
+            * t79.y
+            * 5.9604645e-8f
     };
-    const unitpack_vec2 t114 = {
-        (nearbyintf(t113.x) + (-8388608.0f)) * round_t107.x,
-        (nearbyintf(t113.y) + (-8388608.0f)) * round_t107.y
+    const unitpack_vec2 t86 = {
+        t78.x
+            * (
+                nearbyintf((nearbyintf(t85.x) + (-2796203.0f)) * t79.x * 5.9604645e-8f)
+                    + 16777216.0f
+            ),
+        t78.y
+            * (
+                nearbyintf((nearbyintf(t85.y) + (-2796203.0f)) * t79.y * 5.9604645e-8f)
+                    + 16777216.0f
+            )
     };
-    const unitpack_vec2 t115 = {
-        nearbyintf(t114.x * 5.9604645e-8f) + 16777216.0f,
-        nearbyintf(t114.y * 5.9604645e-8f) + 16777216.0f
+    const unitpack_vec2 t87 = {
+        nearbyintf(t86.x * 5.9604645e-8f),
+        nearbyintf(t86.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t116 = {
-        nearbyintf(-0.0f * round_t107.x * 5.9604645e-8f),
-        nearbyintf(-0.0f * round_t107.y * 5.9604645e-8f)
+    const unitpack_vec2 t88 = { t77.x ? t83.x : t87.x, t77.y ? t83.y : t87.y };
+    const unitpack_vec2 t89 = { t74.x < 0.0f ? -t88.x : t88.x, t74.y < 0.0f ? -t88.y : t88.y };
+    const unitpack_vec2 t90 = { t77.x ? t87.x : t83.x, t77.y ? t87.y : t83.y };
+    const unitpack_vec2 t91 = { t75.x ? -t90.x : t90.x, t75.y ? -t90.y : t90.y };
+    const unitpack_vec2 t92 = {
+        floorf(t89.x / t91.x * 2097152.0f),
+        floorf(t89.y / t91.y * 2097152.0f)
     };
-    const unitpack_vec2 t117 = {
-        (t116.x + 46.0f) * round_t107.x * 5.9604645e-8f,
-        (t116.y + 46.0f) * round_t107.y * 5.9604645e-8f
+    const unitpack_vec2 t93 = { t89.x * 2097152.0f, t89.y * 2097152.0f };
+    const unitpack_vec2 t94 = {
+        (t92.x + 1.0f) * t91.x <= t93.x ? 1.0f : (t92.x * t91.x > t93.x ? -1.0f : 0.0f),
+        (t92.y + 1.0f) * t91.y <= t93.y ? 1.0f : (t92.y * t91.y > t93.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t118 = {
-        (nearbyintf(t117.x) + (-3329.0f)) * round_t107.x,
-        (nearbyintf(t117.y) + (-3329.0f)) * round_t107.y
-    };
-    const unitpack_vec2 t119 = {
-        nearbyintf(t118.x * 5.9604645e-8f) + 139810.0f,
-        nearbyintf(t118.y * 5.9604645e-8f) + 139810.0f
-    };
-    const unitpack_vec2 t120 = {
-        nearbyintf(t119.x * round_t107.x * 5.9604645e-8f),
-        nearbyintf(t119.y * round_t107.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t121 = {
-        (t120.x + (-2796203.0f)) * round_t107.x,
-        (t120.y + (-2796203.0f)) * round_t107.y
-    };
-    const unitpack_vec2 t122 = {
-        nearbyintf(t121.x * 5.9604645e-8f) + 16777216.0f,
-        nearbyintf(t121.y * 5.9604645e-8f) + 16777216.0f
-    };
-    const unitpack_vec2 t123 = {
-        nearbyintf(round_t106.x * t122.x * 5.9604645e-8f),
-        nearbyintf(round_t106.y * t122.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t124 = { t105.x ? t115.x : t123.x, t105.y ? t115.y : t123.y };
-    const unitpack_vec2 t125 = {
-        t102.x < 0.0f ? -t124.x : t124.x,
-        t102.y < 0.0f ? -t124.y : t124.y
-    };
-    const unitpack_vec2 t126 = { t105.x ? t123.x : t115.x, t105.y ? t123.y : t115.y };
-    const unitpack_vec2 t127 = { t103.x ? -t126.x : t126.x, t103.y ? -t126.y : t126.y };
-    const unitpack_vec2 t128 = {
-        floorf(t125.x / t127.x * 2097152.0f),
-        floorf(t125.y / t127.y * 2097152.0f)
-    };
-    const unitpack_vec2 t129 = { t125.x * 2097152.0f, t125.y * 2097152.0f };
-    const unitpack_vec2 t130 = {
-        t128.x * t127.x > t129.x ? -1.0f : 0.0f,
-        t128.y * t127.y > t129.y ? -1.0f : 0.0f
-    };
-    const unitpack_vec2 t131 = {
-        (t128.x + 1.0f) * t127.x <= t129.x ? 1.0f : t130.x,
-        (t128.y + 1.0f) * t127.y <= t129.y ? 1.0f : t130.y
-    };
-    const unitpack_vec2 p2 = { t128.x + t131.x, t128.y + t131.y };
+    const unitpack_vec2 p2 = { t92.x + t94.x, t92.y + t94.y };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
     const float len2_3 = 2097152.0f + q2;
-    const float t132 = len2_3 * 524288.0f;
-    const float root_estimate3 = floorf(sqrtf(t132));
+    const float t95 = len2_3 * 524288.0f;
+    const float root_estimate3 = floorf(sqrtf(t95));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t133 = root_next3 * root_next3 <= t132
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t132 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t133;
+    const float step_down8 = root_estimate3 * root_estimate3 > t95 ? -1.0f : 0.0f;
+    const float step8 = root_next3 * root_next3 <= t95 ? 1.0f : step_down8;
+    const float root_step2 = root_estimate3 + step8;
     const float root_next4 = root_step2 + 1.0f;
-    const float t134 = root_next4 * root_next4 <= t132
-        ? 1.0f
-        : (root_step2 * root_step2 > t132 ? -1.0f : 0.0f);
-    const float root3 = root_step2 + t134;
+    const float step_down9 = root_step2 * root_step2 > t95 ? -1.0f : 0.0f;
+    const float step9 = root_next4 * root_next4 <= t95 ? 1.0f : step_down9;
+    const float root3 = root_step2 + step9;
     const float len3 = root3 * 2.0f;
     const float big4 = len3 * 2097152.0f;
     const float ratio_estimate4 = floorf(len3 / len2_3 * 2097152.0f);
-    const float t135 = (ratio_estimate4 + 1.0f) * len2_3 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * len2_3 > big4 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate4 + t135;
+    const float step_down10 = ratio_estimate4 * len2_3 > big4 ? -1.0f : 0.0f;
+    const float step10 = (ratio_estimate4 + 1.0f) * len2_3 <= big4 ? 1.0f : step_down10;
+    const float ratio4 = ratio_estimate4 + step10;
     const float big5 = p2.x * 2097152.0f;
     const float ratio_estimate5 = floorf(p2.x / len3 * 2097152.0f);
-    const float t136 = (ratio_estimate5 + 1.0f) * len3 <= big5
-        ? 1.0f
-        : (ratio_estimate5 * len3 > big5 ? -1.0f : 0.0f);
-    const float ratio5 = ratio_estimate5 + t136;
+    const float step_down11 = ratio_estimate5 * len3 > big5 ? -1.0f : 0.0f;
+    const float step11 = (ratio_estimate5 + 1.0f) * len3 <= big5 ? 1.0f : step_down11;
+    const float ratio5 = ratio_estimate5 + step11;
     const float big6 = p2.y * 2097152.0f;
     const float ratio_estimate6 = floorf(p2.y / len3 * 2097152.0f);
-    const float t137 = (ratio_estimate6 + 1.0f) * len3 <= big6
-        ? 1.0f
-        : (ratio_estimate6 * len3 > big6 ? -1.0f : 0.0f);
-    const float ratio6 = ratio_estimate6 + t137;
-    const bool t138 = face >= 3.5f;
-    const bool t139 = face >= 1.5f;
-    const float t140 = t138 ? face - 4.0f : (t139 ? face - 2.0f : face);
-    const float t141 = (t140 >= 1.5f ? t140 - 2.0f : t140) > 0.5f ? -ratio4 : ratio4;
-    const unitpack_vec3 t142 = {
-        t138 ? ratio5 : (t139 ? ratio6 : t141),
-        t138 ? ratio6 : (t139 ? t141 : ratio5),
-        t138 ? t141 : (t139 ? ratio5 : ratio6)
+    const float step_down12 = ratio_estimate6 * len3 > big6 ? -1.0f : 0.0f;
+    const float step12 = (ratio_estimate6 + 1.0f) * len3 <= big6 ? 1.0f : step_down12;
+    const float ratio6 = ratio_estimate6 + step12;
+    const bool t96 = face >= 3.5f;
+    const bool t97 = face >= 1.5f;
+    const float t98 = t96 ? face - 4.0f : (t97 ? face - 2.0f : face);
+    const float t99 = (t98 >= 1.5f ? t98 - 2.0f : t98) > 0.5f ? -ratio4 : ratio4;
+    const unitpack_vec3 offset2 = {
+        (t96 ? ratio5 : (t97 ? ratio6 : t99)) - aim.x,
+        (t96 ? ratio6 : (t97 ? t99 : ratio5)) - aim.y,
+        (t96 ? t99 : (t97 ? ratio5 : ratio6)) - aim.z
     };
-    const unitpack_uvec3 t143 = {
-        (uint32_t)fabsf(t142.x - aim.x),
-        (uint32_t)fabsf(t142.y - aim.y),
-        (uint32_t)fabsf(t142.z - aim.z)
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const uint32_t limb1_7 = t143.x >> 12u;
-    const uint32_t limb0_7 = t143.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t143.y >> 12u;
-    const uint32_t limb0_8 = t143.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t143.z >> 12u;
-    const uint32_t limb0_9 = t143.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t144 = (float)hi12 * 16777216.0f;
-    const float dist2 = t144 + (float)lo12;
-    const bool t145 = t99 <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
-    const unitpack_vec2 best = { t145 ? cand2.x : cand.x, t145 ? cand2.y : cand.y };
-    const float best_d = t145 ? dist2 : dist;
-    const float t146 = base.y + 1.0f;
-    const unitpack_vec2 t147 = { base.x, t146 };
+    const float t100 = (float)hi12 * 16777216.0f;
+    const float dist2 = t100 + (float)lo12;
+    const bool t101 = s_up <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
+    const unitpack_vec2 best = { t101 ? cand2.x : cand.x, t101 ? cand2.y : cand.y };
+    const float best_d = t101 ? dist2 : dist;
+    const unitpack_vec2 t102 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t147.x <= 2047.0f ? t147.x : 2047.0f,
-        t147.y <= 1023.0f ? t147.y : 1023.0f
+        t102.x <= 2047.0f ? t102.x : 2047.0f,
+        t102.y <= 1023.0f ? t102.y : 1023.0f
     };
-    const unitpack_vec2 t148 = { cand3.x * 2.0f, cand3.y * 2.0f };
-    const unitpack_vec2 t149 = {
-        floorf((t148.x - 2047.0f) * 2049.0005f),
-        floorf((t148.y - 1023.0f) * 4100.004f)
+    const unitpack_vec2 t103 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 t104 = {
+        floorf((t103.x - 2047.0f) * 2049.0005f),
+        floorf((t103.y - 1023.0f) * 4100.004f)
     };
-    const unitpack_vec2 abs_t149 = { fabsf(t149.x), fabsf(t149.y) };
-    const unitpack_bvec2 t150 = { abs_t149.x > 8388608.0f, abs_t149.y > 8388608.0f };
-    const unitpack_vec2 t151 = {
-        t150.x ? 16777216.0f - abs_t149.x : abs_t149.x,
-        t150.y ? 16777216.0f - abs_t149.y : abs_t149.y
+    const unitpack_vec2 abs_t104 = { fabsf(t104.x), fabsf(t104.y) };
+    const unitpack_bvec2 t105 = { abs_t104.x > 8388608.0f, abs_t104.y > 8388608.0f };
+    const unitpack_vec2 t106 = {
+        t105.x ? 16777216.0f - abs_t104.x : abs_t104.x,
+        t105.y ? 16777216.0f - abs_t104.y : abs_t104.y
     };
-    const unitpack_bvec2 t152 = { t151.x > 4194304.0f, t151.y > 4194304.0f };
-    const unitpack_vec2 t153 = {
-        (t152.x ? 8388608.0f - t151.x : t151.x) * 3.1415927f,
-        (t152.y ? 8388608.0f - t151.y : t151.y) * 3.1415927f
+    const unitpack_bvec2 t107 = { t106.x > 4194304.0f, t106.y > 4194304.0f };
+    const unitpack_vec2 t108 = {
+        nearbyintf((t107.x ? 8388608.0f - t106.x : t106.x) * 3.1415927f),
+        nearbyintf((t107.y ? 8388608.0f - t106.y : t106.y) * 3.1415927f)
     };
-    const unitpack_vec2 round_t153 = { nearbyintf(t153.x), nearbyintf(t153.y) };
-    const unitpack_vec2 t154 = {
-        round_t153.x * round_t153.x * 5.9604645e-8f,
-        round_t153.y * round_t153.y * 5.9604645e-8f
+    const unitpack_vec2 t109 = {
+        nearbyintf(t108.x * t108.x * 5.9604645e-8f),
+        nearbyintf(t108.y * t108.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 round_t154 = { nearbyintf(t154.x), nearbyintf(t154.y) };
-    const unitpack_vec2 t155 = {
-        nearbyintf(0.0f * round_t154.x * 5.9604645e-8f),
-        nearbyintf(0.0f * round_t154.y * 5.9604645e-8f)
+    const unitpack_vec2 t110 = {
+        nearbyintf((nearbyintf(0.0f * t109.x * 5.9604645e-8f) + (-5.0f)) * t109.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(0.0f * t109.y * 5.9604645e-8f) + (-5.0f)) * t109.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t156 = {
-        (t155.x + (-5.0f)) * round_t154.x * 5.9604645e-8f,
-        (t155.y + (-5.0f)) * round_t154.y * 5.9604645e-8f
+    const unitpack_vec2 t111 = {
+        (nearbyintf((t110.x + 416.0f) * t109.x * 5.9604645e-8f) + (-23302.0f))
+            * t109.x
+            * 5.9604645e-8f,
+        (nearbyintf((t110.y + 416.0f) * t109.y * 5.9604645e-8f) + (-23302.0f))
+            * t109.y
+            * 5.9604645e-8f
     };
-    const unitpack_vec2 t157 = {
-        (nearbyintf(t156.x) + 416.0f) * round_t154.x,
-        (nearbyintf(t156.y) + 416.0f) * round_t154.y
+    const unitpack_vec2 t112 = {
+        (nearbyintf((nearbyintf(t111.x) + 699051.0f) * t109.x * 5.9604645e-8f) + (-8388608.0f))
+            * t109.x,
+        (nearbyintf((nearbyintf(t111.y) + 699051.0f) * t109.y * 5.9604645e-8f) + (-8388608.0f))
+            * t109.y
     };
-    const unitpack_vec2 t158 = {
-        nearbyintf(t157.x * 5.9604645e-8f) + (-23302.0f),
-        nearbyintf(t157.y * 5.9604645e-8f) + (-23302.0f)
+    const unitpack_vec2 t113 = {
+        nearbyintf(t112.x * 5.9604645e-8f) + 16777216.0f,
+        nearbyintf(t112.y * 5.9604645e-8f) + 16777216.0f
     };
-    const unitpack_vec2 t159 = {
-        nearbyintf(t158.x * round_t154.x * 5.9604645e-8f),
-        nearbyintf(t158.y * round_t154.y * 5.9604645e-8f)
+    const unitpack_vec2 t114 = {
+        nearbyintf((nearbyintf(-0.0f * t109.x * 5.9604645e-8f) + 46.0f) * t109.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(-0.0f * t109.y * 5.9604645e-8f) + 46.0f) * t109.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t160 = {
-        (t159.x + 699051.0f) * round_t154.x * 5.9604645e-8f,
-        (t159.y + 699051.0f) * round_t154.y * 5.9604645e-8f
+    const unitpack_vec2 t115 = {
+        (nearbyintf((t114.x + (-3329.0f)) * t109.x * 5.9604645e-8f) + 139810.0f)
+            * t109.x
+            * 5.9604645e-8f,
+        (nearbyintf((t114.y + (-3329.0f)) * t109.y * 5.9604645e-8f) + 139810.0f)
+            * t109.y
+            * 5.9604645e-8f
     };
-    const unitpack_vec2 t161 = {
-        (nearbyintf(t160.x) + (-8388608.0f)) * round_t154.x,
-        (nearbyintf(t160.y) + (-8388608.0f)) * round_t154.y
+    const unitpack_vec2 t116 = {
+        t108.x
+            * (
+                nearbyintf((nearbyintf(t115.x) + (-2796203.0f)) * t109.x * 5.9604645e-8f)
+                    + 16777216.0f
+            ),
+        t108.y
+            * (
+                nearbyintf((nearbyintf(t115.y) + (-2796203.0f)) * t109.y * 5.9604645e-8f)
+                    + 16777216.0f
+            )
     };
-    const unitpack_vec2 t162 = {
-        nearbyintf(t161.x * 5.9604645e-8f) + 16777216.0f,
-        nearbyintf(t161.y * 5.9604645e-8f) + 16777216.0f
+    const unitpack_vec2 t117 = {
+        nearbyintf(t116.x * 5.9604645e-8f),
+        nearbyintf(t116.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t163 = {
-        nearbyintf(-0.0f * round_t154.x * 5.9604645e-8f),
-        nearbyintf(-0.0f * round_t154.y * 5.9604645e-8f)
+    const unitpack_vec2 t118 = { t107.x ? t113.x : t117.x, t107.y ? t113.y : t117.y };
+    const unitpack_vec2 t119 = {
+        t104.x < 0.0f ? -t118.x : t118.x,
+        t104.y < 0.0f ? -t118.y : t118.y
     };
-    const unitpack_vec2 t164 = {
-        (t163.x + 46.0f) * round_t154.x * 5.9604645e-8f,
-        (t163.y + 46.0f) * round_t154.y * 5.9604645e-8f
+    const unitpack_vec2 t120 = { t107.x ? t117.x : t113.x, t107.y ? t117.y : t113.y };
+    const unitpack_vec2 t121 = { t105.x ? -t120.x : t120.x, t105.y ? -t120.y : t120.y };
+    const unitpack_vec2 t122 = {
+        floorf(t119.x / t121.x * 2097152.0f),
+        floorf(t119.y / t121.y * 2097152.0f)
     };
-    const unitpack_vec2 t165 = {
-        (nearbyintf(t164.x) + (-3329.0f)) * round_t154.x,
-        (nearbyintf(t164.y) + (-3329.0f)) * round_t154.y
+    const unitpack_vec2 t123 = { t119.x * 2097152.0f, t119.y * 2097152.0f };
+    const unitpack_vec2 t124 = {
+        (t122.x + 1.0f) * t121.x <= t123.x ? 1.0f : (t122.x * t121.x > t123.x ? -1.0f : 0.0f),
+        (t122.y + 1.0f) * t121.y <= t123.y ? 1.0f : (t122.y * t121.y > t123.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t166 = {
-        nearbyintf(t165.x * 5.9604645e-8f) + 139810.0f,
-        nearbyintf(t165.y * 5.9604645e-8f) + 139810.0f
-    };
-    const unitpack_vec2 t167 = {
-        nearbyintf(t166.x * round_t154.x * 5.9604645e-8f),
-        nearbyintf(t166.y * round_t154.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t168 = {
-        (t167.x + (-2796203.0f)) * round_t154.x,
-        (t167.y + (-2796203.0f)) * round_t154.y
-    };
-    const unitpack_vec2 t169 = {
-        nearbyintf(t168.x * 5.9604645e-8f) + 16777216.0f,
-        nearbyintf(t168.y * 5.9604645e-8f) + 16777216.0f
-    };
-    const unitpack_vec2 t170 = {
-        nearbyintf(round_t153.x * t169.x * 5.9604645e-8f),
-        nearbyintf(round_t153.y * t169.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t171 = { t152.x ? t162.x : t170.x, t152.y ? t162.y : t170.y };
-    const unitpack_vec2 t172 = {
-        t149.x < 0.0f ? -t171.x : t171.x,
-        t149.y < 0.0f ? -t171.y : t171.y
-    };
-    const unitpack_vec2 t173 = { t152.x ? t170.x : t162.x, t152.y ? t170.y : t162.y };
-    const unitpack_vec2 t174 = { t150.x ? -t173.x : t173.x, t150.y ? -t173.y : t173.y };
-    const unitpack_vec2 t175 = {
-        floorf(t172.x / t174.x * 2097152.0f),
-        floorf(t172.y / t174.y * 2097152.0f)
-    };
-    const unitpack_vec2 t176 = { t172.x * 2097152.0f, t172.y * 2097152.0f };
-    const unitpack_vec2 t177 = {
-        t175.x * t174.x > t176.x ? -1.0f : 0.0f,
-        t175.y * t174.y > t176.y ? -1.0f : 0.0f
-    };
-    const unitpack_vec2 t178 = {
-        (t175.x + 1.0f) * t174.x <= t176.x ? 1.0f : t177.x,
-        (t175.y + 1.0f) * t174.y <= t176.y ? 1.0f : t177.y
-    };
-    const unitpack_vec2 p3 = { t175.x + t178.x, t175.y + t178.y };
+    const unitpack_vec2 p3 = { t122.x + t124.x, t122.y + t124.y };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
     const float len2_4 = 2097152.0f + q3;
-    const float t179 = len2_4 * 524288.0f;
-    const float root_estimate4 = floorf(sqrtf(t179));
+    const float t125 = len2_4 * 524288.0f;
+    const float root_estimate4 = floorf(sqrtf(t125));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t180 = root_next5 * root_next5 <= t179
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t179 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t180;
+    const float step_down13 = root_estimate4 * root_estimate4 > t125 ? -1.0f : 0.0f;
+    const float step13 = root_next5 * root_next5 <= t125 ? 1.0f : step_down13;
+    const float root_step3 = root_estimate4 + step13;
     const float root_next6 = root_step3 + 1.0f;
-    const float t181 = root_next6 * root_next6 <= t179
-        ? 1.0f
-        : (root_step3 * root_step3 > t179 ? -1.0f : 0.0f);
-    const float root4 = root_step3 + t181;
+    const float step_down14 = root_step3 * root_step3 > t125 ? -1.0f : 0.0f;
+    const float step14 = root_next6 * root_next6 <= t125 ? 1.0f : step_down14;
+    const float root4 = root_step3 + step14;
     const float len4 = root4 * 2.0f;
     const float big7 = len4 * 2097152.0f;
     const float ratio_estimate7 = floorf(len4 / len2_4 * 2097152.0f);
-    const float t182 = (ratio_estimate7 + 1.0f) * len2_4 <= big7
-        ? 1.0f
-        : (ratio_estimate7 * len2_4 > big7 ? -1.0f : 0.0f);
-    const float ratio7 = ratio_estimate7 + t182;
+    const float step_down15 = ratio_estimate7 * len2_4 > big7 ? -1.0f : 0.0f;
+    const float step15 = (ratio_estimate7 + 1.0f) * len2_4 <= big7 ? 1.0f : step_down15;
+    const float ratio7 = ratio_estimate7 + step15;
     const float big8 = p3.x * 2097152.0f;
     const float ratio_estimate8 = floorf(p3.x / len4 * 2097152.0f);
-    const float t183 = (ratio_estimate8 + 1.0f) * len4 <= big8
-        ? 1.0f
-        : (ratio_estimate8 * len4 > big8 ? -1.0f : 0.0f);
-    const float ratio8 = ratio_estimate8 + t183;
+    const float step_down16 = ratio_estimate8 * len4 > big8 ? -1.0f : 0.0f;
+    const float step16 = (ratio_estimate8 + 1.0f) * len4 <= big8 ? 1.0f : step_down16;
+    const float ratio8 = ratio_estimate8 + step16;
     const float big9 = p3.y * 2097152.0f;
     const float ratio_estimate9 = floorf(p3.y / len4 * 2097152.0f);
-    const float t184 = (ratio_estimate9 + 1.0f) * len4 <= big9
-        ? 1.0f
-        : (ratio_estimate9 * len4 > big9 ? -1.0f : 0.0f);
-    const float ratio9 = ratio_estimate9 + t184;
-    const bool t185 = face >= 3.5f;
-    const bool t186 = face >= 1.5f;
-    const float t187 = t185 ? face - 4.0f : (t186 ? face - 2.0f : face);
-    const float t188 = (t187 >= 1.5f ? t187 - 2.0f : t187) > 0.5f ? -ratio7 : ratio7;
-    const unitpack_vec3 t189 = {
-        t185 ? ratio8 : (t186 ? ratio9 : t188),
-        t185 ? ratio9 : (t186 ? t188 : ratio8),
-        t185 ? t188 : (t186 ? ratio8 : ratio9)
+    const float step_down17 = ratio_estimate9 * len4 > big9 ? -1.0f : 0.0f;
+    const float step17 = (ratio_estimate9 + 1.0f) * len4 <= big9 ? 1.0f : step_down17;
+    const float ratio9 = ratio_estimate9 + step17;
+    const bool t126 = face >= 3.5f;
+    const bool t127 = face >= 1.5f;
+    const float t128 = t126 ? face - 4.0f : (t127 ? face - 2.0f : face);
+    const float t129 = (t128 >= 1.5f ? t128 - 2.0f : t128) > 0.5f ? -ratio7 : ratio7;
+    const unitpack_vec3 offset3 = {
+        (t126 ? ratio8 : (t127 ? ratio9 : t129)) - aim.x,
+        (t126 ? ratio9 : (t127 ? t129 : ratio8)) - aim.y,
+        (t126 ? t129 : (t127 ? ratio8 : ratio9)) - aim.z
     };
-    const unitpack_uvec3 t190 = {
-        (uint32_t)fabsf(t189.x - aim.x),
-        (uint32_t)fabsf(t189.y - aim.y),
-        (uint32_t)fabsf(t189.z - aim.z)
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_10 = t190.x >> 12u;
-    const uint32_t limb0_10 = t190.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t190.y >> 12u;
-    const uint32_t limb0_11 = t190.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t190.z >> 12u;
-    const uint32_t limb0_12 = t190.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t191 = (float)hi16 * 16777216.0f;
-    const float dist3 = t191 + (float)lo16;
-    const bool t192 = base.x <= 2047.0f && t146 <= 1023.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t192 ? cand3.x : best.x, t192 ? cand3.y : best.y };
-    const float best_d2 = t192 ? dist3 : best_d;
-    const unitpack_vec2 t193 = { base.x + 1.0f, base.y + 1.0f };
+    const float t130 = (float)hi16 * 16777216.0f;
+    const float dist3 = t130 + (float)lo16;
+    const bool t131 = base.x <= 2047.0f && t_up <= 1023.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t131 ? cand3.x : best.x, t131 ? cand3.y : best.y };
+    const float best_d2 = t131 ? dist3 : best_d;
+    const unitpack_vec2 t132 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t193.x <= 2047.0f ? t193.x : 2047.0f,
-        t193.y <= 1023.0f ? t193.y : 1023.0f
+        t132.x <= 2047.0f ? t132.x : 2047.0f,
+        t132.y <= 1023.0f ? t132.y : 1023.0f
     };
-    const unitpack_vec2 t194 = { cand4.x * 2.0f, cand4.y * 2.0f };
-    const unitpack_vec2 t195 = {
-        floorf((t194.x - 2047.0f) * 2049.0005f),
-        floorf((t194.y - 1023.0f) * 4100.004f)
+    const unitpack_vec2 t133 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t134 = {
+        floorf((t133.x - 2047.0f) * 2049.0005f),
+        floorf((t133.y - 1023.0f) * 4100.004f)
     };
-    const unitpack_vec2 abs_t195 = { fabsf(t195.x), fabsf(t195.y) };
-    const unitpack_bvec2 t196 = { abs_t195.x > 8388608.0f, abs_t195.y > 8388608.0f };
-    const unitpack_vec2 t197 = {
-        t196.x ? 16777216.0f - abs_t195.x : abs_t195.x,
-        t196.y ? 16777216.0f - abs_t195.y : abs_t195.y
+    const unitpack_vec2 abs_t134 = { fabsf(t134.x), fabsf(t134.y) };
+    const unitpack_bvec2 t135 = { abs_t134.x > 8388608.0f, abs_t134.y > 8388608.0f };
+    const unitpack_vec2 t136 = {
+        t135.x ? 16777216.0f - abs_t134.x : abs_t134.x,
+        t135.y ? 16777216.0f - abs_t134.y : abs_t134.y
     };
-    const unitpack_bvec2 t198 = { t197.x > 4194304.0f, t197.y > 4194304.0f };
-    const unitpack_vec2 t199 = {
-        (t198.x ? 8388608.0f - t197.x : t197.x) * 3.1415927f,
-        (t198.y ? 8388608.0f - t197.y : t197.y) * 3.1415927f
+    const unitpack_bvec2 t137 = { t136.x > 4194304.0f, t136.y > 4194304.0f };
+    const unitpack_vec2 t138 = {
+        nearbyintf((t137.x ? 8388608.0f - t136.x : t136.x) * 3.1415927f),
+        nearbyintf((t137.y ? 8388608.0f - t136.y : t136.y) * 3.1415927f)
     };
-    const unitpack_vec2 round_t199 = { nearbyintf(t199.x), nearbyintf(t199.y) };
-    const unitpack_vec2 t200 = {
-        round_t199.x * round_t199.x * 5.9604645e-8f,
-        round_t199.y * round_t199.y * 5.9604645e-8f
+    const unitpack_vec2 t139 = {
+        nearbyintf(t138.x * t138.x * 5.9604645e-8f),
+        nearbyintf(t138.y * t138.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 round_t200 = { nearbyintf(t200.x), nearbyintf(t200.y) };
-    const unitpack_vec2 t201 = {
-        nearbyintf(0.0f * round_t200.x * 5.9604645e-8f),
-        nearbyintf(0.0f * round_t200.y * 5.9604645e-8f)
+    const unitpack_vec2 t140 = {
+        nearbyintf((nearbyintf(0.0f * t139.x * 5.9604645e-8f) + (-5.0f)) * t139.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(0.0f * t139.y * 5.9604645e-8f) + (-5.0f)) * t139.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t202 = {
-        (t201.x + (-5.0f)) * round_t200.x * 5.9604645e-8f,
-        (t201.y + (-5.0f)) * round_t200.y * 5.9604645e-8f
+    const unitpack_vec2 t141 = {
+        (nearbyintf((t140.x + 416.0f) * t139.x * 5.9604645e-8f) + (-23302.0f))
+            * t139.x
+            * 5.9604645e-8f,
+        (nearbyintf((t140.y + 416.0f) * t139.y * 5.9604645e-8f) + (-23302.0f))
+            * t139.y
+            * 5.9604645e-8f
     };
-    const unitpack_vec2 t203 = {
-        (nearbyintf(t202.x) + 416.0f) * round_t200.x,
-        (nearbyintf(t202.y) + 416.0f) * round_t200.y
+    const unitpack_vec2 t142 = {
+        (nearbyintf((nearbyintf(t141.x) + 699051.0f) * t139.x * 5.9604645e-8f) + (-8388608.0f))
+            * t139.x,
+        (nearbyintf((nearbyintf(t141.y) + 699051.0f) * t139.y * 5.9604645e-8f) + (-8388608.0f))
+            * t139.y
     };
-    const unitpack_vec2 t204 = {
-        nearbyintf(t203.x * 5.9604645e-8f) + (-23302.0f),
-        nearbyintf(t203.y * 5.9604645e-8f) + (-23302.0f)
+    const unitpack_vec2 t143 = {
+        nearbyintf(t142.x * 5.9604645e-8f) + 16777216.0f,
+        nearbyintf(t142.y * 5.9604645e-8f) + 16777216.0f
     };
-    const unitpack_vec2 t205 = {
-        nearbyintf(t204.x * round_t200.x * 5.9604645e-8f),
-        nearbyintf(t204.y * round_t200.y * 5.9604645e-8f)
+    const unitpack_vec2 t144 = {
+        nearbyintf((nearbyintf(-0.0f * t139.x * 5.9604645e-8f) + 46.0f) * t139.x * 5.9604645e-8f),
+        nearbyintf((nearbyintf(-0.0f * t139.y * 5.9604645e-8f) + 46.0f) * t139.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t206 = {
-        (t205.x + 699051.0f) * round_t200.x * 5.9604645e-8f,
-        (t205.y + 699051.0f) * round_t200.y * 5.9604645e-8f
+    const unitpack_vec2 t145 = {
+        (nearbyintf((t144.x + (-3329.0f)) * t139.x * 5.9604645e-8f) + 139810.0f)
+            * t139.x
+            * 5.9604645e-8f,
+        (nearbyintf((t144.y + (-3329.0f)) * t139.y * 5.9604645e-8f) + 139810.0f)
+            * t139.y
+            * 5.9604645e-8f
     };
-    const unitpack_vec2 t207 = {
-        (nearbyintf(t206.x) + (-8388608.0f)) * round_t200.x,
-        (nearbyintf(t206.y) + (-8388608.0f)) * round_t200.y
+    const unitpack_vec2 t146 = {
+        t138.x
+            * (
+                nearbyintf((nearbyintf(t145.x) + (-2796203.0f)) * t139.x * 5.9604645e-8f)
+                    + 16777216.0f
+            ),
+        t138.y
+            * (
+                nearbyintf((nearbyintf(t145.y) + (-2796203.0f)) * t139.y * 5.9604645e-8f)
+                    + 16777216.0f
+            )
     };
-    const unitpack_vec2 t208 = {
-        nearbyintf(t207.x * 5.9604645e-8f) + 16777216.0f,
-        nearbyintf(t207.y * 5.9604645e-8f) + 16777216.0f
+    const unitpack_vec2 t147 = {
+        nearbyintf(t146.x * 5.9604645e-8f),
+        nearbyintf(t146.y * 5.9604645e-8f)
     };
-    const unitpack_vec2 t209 = {
-        nearbyintf(-0.0f * round_t200.x * 5.9604645e-8f),
-        nearbyintf(-0.0f * round_t200.y * 5.9604645e-8f)
+    const unitpack_vec2 t148 = { t137.x ? t143.x : t147.x, t137.y ? t143.y : t147.y };
+    const unitpack_vec2 t149 = {
+        t134.x < 0.0f ? -t148.x : t148.x,
+        t134.y < 0.0f ? -t148.y : t148.y
     };
-    const unitpack_vec2 t210 = {
-        (t209.x + 46.0f) * round_t200.x * 5.9604645e-8f,
-        (t209.y + 46.0f) * round_t200.y * 5.9604645e-8f
+    const unitpack_vec2 t150 = { t137.x ? t147.x : t143.x, t137.y ? t147.y : t143.y };
+    const unitpack_vec2 t151 = { t135.x ? -t150.x : t150.x, t135.y ? -t150.y : t150.y };
+    const unitpack_vec2 t152 = {
+        floorf(t149.x / t151.x * 2097152.0f),
+        floorf(t149.y / t151.y * 2097152.0f)
     };
-    const unitpack_vec2 t211 = {
-        (nearbyintf(t210.x) + (-3329.0f)) * round_t200.x,
-        (nearbyintf(t210.y) + (-3329.0f)) * round_t200.y
+    const unitpack_vec2 t153 = { t149.x * 2097152.0f, t149.y * 2097152.0f };
+    const unitpack_vec2 t154 = {
+        (t152.x + 1.0f) * t151.x <= t153.x ? 1.0f : (t152.x * t151.x > t153.x ? -1.0f : 0.0f),
+        (t152.y + 1.0f) * t151.y <= t153.y ? 1.0f : (t152.y * t151.y > t153.y ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t212 = {
-        nearbyintf(t211.x * 5.9604645e-8f) + 139810.0f,
-        nearbyintf(t211.y * 5.9604645e-8f) + 139810.0f
-    };
-    const unitpack_vec2 t213 = {
-        nearbyintf(t212.x * round_t200.x * 5.9604645e-8f),
-        nearbyintf(t212.y * round_t200.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t214 = {
-        (t213.x + (-2796203.0f)) * round_t200.x,
-        (t213.y + (-2796203.0f)) * round_t200.y
-    };
-    const unitpack_vec2 t215 = {
-        nearbyintf(t214.x * 5.9604645e-8f) + 16777216.0f,
-        nearbyintf(t214.y * 5.9604645e-8f) + 16777216.0f
-    };
-    const unitpack_vec2 t216 = {
-        nearbyintf(round_t199.x * t215.x * 5.9604645e-8f),
-        nearbyintf(round_t199.y * t215.y * 5.9604645e-8f)
-    };
-    const unitpack_vec2 t217 = { t198.x ? t208.x : t216.x, t198.y ? t208.y : t216.y };
-    const unitpack_vec2 t218 = {
-        t195.x < 0.0f ? -t217.x : t217.x,
-        t195.y < 0.0f ? -t217.y : t217.y
-    };
-    const unitpack_vec2 t219 = { t198.x ? t216.x : t208.x, t198.y ? t216.y : t208.y };
-    const unitpack_vec2 t220 = { t196.x ? -t219.x : t219.x, t196.y ? -t219.y : t219.y };
-    const unitpack_vec2 t221 = {
-        floorf(t218.x / t220.x * 2097152.0f),
-        floorf(t218.y / t220.y * 2097152.0f)
-    };
-    const unitpack_vec2 t222 = { t218.x * 2097152.0f, t218.y * 2097152.0f };
-    const unitpack_vec2 t223 = {
-        t221.x * t220.x > t222.x ? -1.0f : 0.0f,
-        t221.y * t220.y > t222.y ? -1.0f : 0.0f
-    };
-    const unitpack_vec2 t224 = {
-        (t221.x + 1.0f) * t220.x <= t222.x ? 1.0f : t223.x,
-        (t221.y + 1.0f) * t220.y <= t222.y ? 1.0f : t223.y
-    };
-    const unitpack_vec2 p4 = { t221.x + t224.x, t221.y + t224.y };
+    const unitpack_vec2 p4 = { t152.x + t154.x, t152.y + t154.y };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
     const float len2_5 = 2097152.0f + q4;
-    const float t225 = len2_5 * 524288.0f;
-    const float root_estimate5 = floorf(sqrtf(t225));
+    const float t155 = len2_5 * 524288.0f;
+    const float root_estimate5 = floorf(sqrtf(t155));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t226 = root_next7 * root_next7 <= t225
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t225 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t226;
+    const float step_down18 = root_estimate5 * root_estimate5 > t155 ? -1.0f : 0.0f;
+    const float step18 = root_next7 * root_next7 <= t155 ? 1.0f : step_down18;
+    const float root_step4 = root_estimate5 + step18;
     const float root_next8 = root_step4 + 1.0f;
-    const float t227 = root_next8 * root_next8 <= t225
-        ? 1.0f
-        : (root_step4 * root_step4 > t225 ? -1.0f : 0.0f);
-    const float root5 = root_step4 + t227;
+    const float step_down19 = root_step4 * root_step4 > t155 ? -1.0f : 0.0f;
+    const float step19 = root_next8 * root_next8 <= t155 ? 1.0f : step_down19;
+    const float root5 = root_step4 + step19;
     const float len5 = root5 * 2.0f;
     const float big10 = len5 * 2097152.0f;
     const float ratio_estimate10 = floorf(len5 / len2_5 * 2097152.0f);
-    const float t228 = (ratio_estimate10 + 1.0f) * len2_5 <= big10
-        ? 1.0f
-        : (ratio_estimate10 * len2_5 > big10 ? -1.0f : 0.0f);
-    const float ratio10 = ratio_estimate10 + t228;
+    const float step_down20 = ratio_estimate10 * len2_5 > big10 ? -1.0f : 0.0f;
+    const float step20 = (ratio_estimate10 + 1.0f) * len2_5 <= big10 ? 1.0f : step_down20;
+    const float ratio10 = ratio_estimate10 + step20;
     const float big11 = p4.x * 2097152.0f;
     const float ratio_estimate11 = floorf(p4.x / len5 * 2097152.0f);
-    const float t229 = (ratio_estimate11 + 1.0f) * len5 <= big11
-        ? 1.0f
-        : (ratio_estimate11 * len5 > big11 ? -1.0f : 0.0f);
-    const float ratio11 = ratio_estimate11 + t229;
+    const float step_down21 = ratio_estimate11 * len5 > big11 ? -1.0f : 0.0f;
+    const float step21 = (ratio_estimate11 + 1.0f) * len5 <= big11 ? 1.0f : step_down21;
+    const float ratio11 = ratio_estimate11 + step21;
     const float big12 = p4.y * 2097152.0f;
     const float ratio_estimate12 = floorf(p4.y / len5 * 2097152.0f);
-    const float t230 = (ratio_estimate12 + 1.0f) * len5 <= big12
-        ? 1.0f
-        : (ratio_estimate12 * len5 > big12 ? -1.0f : 0.0f);
-    const float ratio12 = ratio_estimate12 + t230;
-    const bool t231 = face >= 3.5f;
-    const bool t232 = face >= 1.5f;
-    const float t233 = t231 ? face - 4.0f : (t232 ? face - 2.0f : face);
-    const float t234 = (t233 >= 1.5f ? t233 - 2.0f : t233) > 0.5f ? -ratio10 : ratio10;
-    const unitpack_vec3 t235 = {
-        t231 ? ratio11 : (t232 ? ratio12 : t234),
-        t231 ? ratio12 : (t232 ? t234 : ratio11),
-        t231 ? t234 : (t232 ? ratio11 : ratio12)
+    const float step_down22 = ratio_estimate12 * len5 > big12 ? -1.0f : 0.0f;
+    const float step22 = (ratio_estimate12 + 1.0f) * len5 <= big12 ? 1.0f : step_down22;
+    const float ratio12 = ratio_estimate12 + step22;
+    const bool t156 = face >= 3.5f;
+    const bool t157 = face >= 1.5f;
+    const float t158 = t156 ? face - 4.0f : (t157 ? face - 2.0f : face);
+    const float t159 = (t158 >= 1.5f ? t158 - 2.0f : t158) > 0.5f ? -ratio10 : ratio10;
+    const unitpack_vec3 offset4 = {
+        (t156 ? ratio11 : (t157 ? ratio12 : t159)) - aim.x,
+        (t156 ? ratio12 : (t157 ? t159 : ratio11)) - aim.y,
+        (t156 ? t159 : (t157 ? ratio11 : ratio12)) - aim.z
     };
-    const unitpack_uvec3 t236 = {
-        (uint32_t)fabsf(t235.x - aim.x),
-        (uint32_t)fabsf(t235.y - aim.y),
-        (uint32_t)fabsf(t235.z - aim.z)
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_13 = t236.x >> 12u;
-    const uint32_t limb0_13 = t236.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t236.y >> 12u;
-    const uint32_t limb0_14 = t236.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t236.z >> 12u;
-    const uint32_t limb0_15 = t236.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t237 = (float)hi20 * 16777216.0f;
-    const float dist4 = t237 + (float)lo20;
-    const bool t238 = base.x + 1.0f <= 2047.0f && base.y + 1.0f <= 1023.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t238 ? cand4.x : best2.x, t238 ? cand4.y : best2.y };
-    const unitpack_vec3 t239 = { best3.x, best3.y, face };
-    return t239;
+    const float t160 = (float)hi20 * 16777216.0f;
+    const float dist4 = t160 + (float)lo20;
+    const bool t161 = s_up <= 2047.0f && t_up <= 1023.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t161 ? cand4.x : best2.x, t161 ? cand4.y : best2.y };
+    const unitpack_vec3 t162 = { best3.x, best3.y, face };
+    return t162;
 }
 
 // Struct form of unitpack_warpedcube24p_encode_float.

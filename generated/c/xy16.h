@@ -129,13 +129,11 @@ static inline unitpack_vec2 unitpack_xy16_encode_float_v(unitpack_vec3 v) {
     const float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
     const bool t10 = t8 && len2_2 >= 1.0f;
     const float sqrt_len2_2 = sqrtf(len2_2);
-    const unitpack_vec3 t11 = {
+    const unitpack_vec2 t11 = {
         t10 ? scaled2.x / sqrt_len2_2 : 0.0f,
-        t10 ? scaled2.y / sqrt_len2_2 : 0.0f,
-        t10 ? scaled2.z / sqrt_len2_2 : 1.0f
+        t10 ? scaled2.y / sqrt_len2_2 : 0.0f
     };
-    const unitpack_vec2 t12 = { t11.x, t11.y };
-    return t12;
+    return t11;
 }
 
 // unitpack_xy16_encode_float: fast encoder, float form.
@@ -156,49 +154,44 @@ static inline void unitpack_xy16_encode_float(const float v[3], float out[2]) {
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec2 unitpack_xy16_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const float t3 = w.z > 0.0f ? w.z : 0.0f;
+    const float t1 = w.z > 0.0f ? w.z : 0.0f;
     const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 4294963200u);
     const float split_lo = w.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t4 = (split_hi + split_hi) * split_lo;
+    const float t2 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 4294963200u);
     const float split_lo2 = w.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t5 = (split_hi2 + split_hi2) * split_lo2;
+    const float t3 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t3) & 4294963200u);
-    const float split_lo3 = t3 - split_hi3;
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t1) & 4294963200u);
+    const float split_lo3 = t1 - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t6 = (split_hi3 + split_hi3) * split_lo3;
+    const float t4 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t4 + t5 + t6)
+        + (t2 + t3 + t4)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float big = fabsf(w.x * 127.0f);
     const float estimate = nearbyintf(big / sqrtf(len2));
@@ -208,29 +201,28 @@ static inline unitpack_vec2 unitpack_xy16_round_codes_v(unitpack_vec3 a0) {
     const float estimate2 = nearbyintf(big3 / sqrtf(len2));
     const float big2_2 = big3 * big3;
     const float lower2 = estimate2 - 0.5f;
-    const unitpack_vec2 t7 = { fabsf(w.x * 127.0f), fabsf(w.y * 127.0f) };
-    const unitpack_vec2 t8 = { nearbyintf(t7.x / sqrtf(len2)), nearbyintf(t7.y / sqrtf(len2)) };
-    const unitpack_vec2 t9 = { t8.x + 0.5f, t8.y + 0.5f };
-    const unitpack_bvec2 t10 = {
+    const unitpack_vec2 t5 = { fabsf(w.x * 127.0f), fabsf(w.y * 127.0f) };
+    const unitpack_vec2 t6 = { nearbyintf(t5.x / sqrtf(len2)), nearbyintf(t5.y / sqrtf(len2)) };
+    const unitpack_vec2 t7 = { t6.x + 0.5f, t6.y + 0.5f };
+    const unitpack_bvec2 t8 = {
         estimate > 0.0f && big2 < lower * lower * len2,
         estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2
     };
+    const unitpack_vec2 t9 = {
+        t6.x + (t5.x * t5.x >= t7.x * t7.x * len2 ? 1.0f : (t8.x ? -1.0f : 0.0f)),
+        t6.y + (t5.y * t5.y >= t7.y * t7.y * len2 ? 1.0f : (t8.y ? -1.0f : 0.0f))
+    };
+    const unitpack_vec2 t10 = { t9.x >= 0.0f ? t9.x : 0.0f, t9.y >= 0.0f ? t9.y : 0.0f };
     const unitpack_vec2 t11 = {
-        t7.x * t7.x >= t9.x * t9.x * len2 ? 1.0f : (t10.x ? -1.0f : 0.0f),
-        t7.y * t7.y >= t9.y * t9.y * len2 ? 1.0f : (t10.y ? -1.0f : 0.0f)
+        t10.x <= 127.0f ? t10.x : 127.0f,
+        t10.y <= 127.0f ? t10.y : 127.0f
     };
-    const unitpack_vec2 t12 = { t8.x + t11.x, t8.y + t11.y };
-    const unitpack_vec2 t13 = { t12.x >= 0.0f ? t12.x : 0.0f, t12.y >= 0.0f ? t12.y : 0.0f };
-    const unitpack_vec2 t14 = {
-        t13.x <= 127.0f ? t13.x : 127.0f,
-        t13.y <= 127.0f ? t13.y : 127.0f
+    const bool t12 = ok && len2 > 0.0f;
+    const unitpack_vec2 t13 = {
+        t12 ? (w.x < 0.0f ? -t11.x : t11.x) : 0.0f,
+        t12 ? (w.y < 0.0f ? -t11.y : t11.y) : 0.0f
     };
-    const bool t15 = ok && len2 > 0.0f;
-    const unitpack_vec2 t16 = {
-        t15 ? (w.x < 0.0f ? -t14.x : t14.x) : 0.0f,
-        t15 ? (w.y < 0.0f ? -t14.y : t14.y) : 0.0f
-    };
-    return t16;
+    return t13;
 }
 
 // Struct form of unitpack_xy16_encode.

@@ -80,17 +80,17 @@ static inline void unitpack_xy16_rxgb_decode_float(const float params[4], float 
 
 // Struct form of unitpack_xy16_rxgb_decode.
 static inline unitpack_vec3 unitpack_xy16_rxgb_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_xy16_rxgb_decode_float_v(params);
     return decode_float;
@@ -145,55 +145,45 @@ static inline unitpack_vec4 unitpack_xy16_rxgb_encode_float_v(unitpack_vec3 v) {
     const float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
     const bool t10 = t8 && len2_2 >= 1.0f;
     const float sqrt_len2_2 = sqrtf(len2_2);
-    const unitpack_vec3 t11 = {
-        t10 ? scaled2.x / sqrt_len2_2 : 0.0f,
-        t10 ? scaled2.y / sqrt_len2_2 : 0.0f,
-        t10 ? scaled2.z / sqrt_len2_2 : 1.0f
-    };
     const unitpack_vec3 abs_v2 = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const float t12 = abs_v2.x >= abs_v2.y ? abs_v2.x : abs_v2.y;
-    const float largest3 = t12 >= abs_v2.z ? t12 : abs_v2.z;
-    const bool t13 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
-    const float t14 = t13 ? largest3 : 1.0f;
-    const unitpack_vec3 scaled3 = { v.x / t14, v.y / t14, v.z / t14 };
+    const float t11 = abs_v2.x >= abs_v2.y ? abs_v2.x : abs_v2.y;
+    const float largest3 = t11 >= abs_v2.z ? t11 : abs_v2.z;
+    const bool t12 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    const float t13 = t12 ? largest3 : 1.0f;
+    const unitpack_vec3 scaled3 = { v.x / t13, v.y / t13, v.z / t13 };
     const unitpack_vec3 scaled3_sq = {
         scaled3.x * scaled3.x,
         scaled3.y * scaled3.y,
         scaled3.z * scaled3.z
     };
     const float len2_3 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    const bool t15 = t13 && len2_3 >= 1.0f;
+    const bool t14 = t12 && len2_3 >= 1.0f;
     const float sqrt_len2_3 = sqrtf(len2_3);
-    const unitpack_vec3 t16 = {
-        t15 ? scaled3.x / sqrt_len2_3 : 0.0f,
-        t15 ? scaled3.y / sqrt_len2_3 : 0.0f,
-        t15 ? scaled3.z / sqrt_len2_3 : 1.0f
+    const unitpack_vec3 t15 = {
+        t14 ? scaled3.x / sqrt_len2_3 : 0.0f,
+        t14 ? scaled3.y / sqrt_len2_3 : 0.0f,
+        t14 ? scaled3.z / sqrt_len2_3 : 1.0f
     };
-    const unitpack_vec3 t17 = { t16.x, t16.y, t16.z > 0.0f ? t16.z : 0.0f };
-    const unitpack_vec3 abs_t17 = { fabsf(t17.x), fabsf(t17.y), fabsf(t17.z) };
-    const float t18 = abs_t17.x >= abs_t17.y ? abs_t17.x : abs_t17.y;
-    const float largest4 = t18 >= abs_t17.z ? t18 : abs_t17.z;
-    const bool t19 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
-    const float t20 = t19 ? largest4 : 1.0f;
-    const unitpack_vec3 scaled4 = { t17.x / t20, t17.y / t20, t17.z / t20 };
+    const unitpack_vec3 t16 = { t15.x, t15.y, t15.z > 0.0f ? t15.z : 0.0f };
+    const unitpack_vec3 abs_t16 = { fabsf(t16.x), fabsf(t16.y), fabsf(t16.z) };
+    const float t17 = abs_t16.x >= abs_t16.y ? abs_t16.x : abs_t16.y;
+    const float largest4 = t17 >= abs_t16.z ? t17 : abs_t16.z;
+    const bool t18 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    const float t19 = t18 ? largest4 : 1.0f;
+    const unitpack_vec3 scaled4 = { t16.x / t19, t16.y / t19, t16.z / t19 };
     const unitpack_vec3 scaled4_sq = {
         scaled4.x * scaled4.x,
         scaled4.y * scaled4.y,
         scaled4.z * scaled4.z
     };
     const float len2_4 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    const bool t21 = t19 && len2_4 >= 1.0f;
+    const bool t20 = t18 && len2_4 >= 1.0f;
     const float sqrt_len2_4 = sqrtf(len2_4);
-    const unitpack_vec3 t22 = {
-        t21 ? scaled4.x / sqrt_len2_4 : 0.0f,
-        t21 ? scaled4.y / sqrt_len2_4 : 0.0f,
-        t21 ? scaled4.z / sqrt_len2_4 : 1.0f
-    };
-    const float t23 = t22.z * 0.5f;
-    const float t24 = t11.x * 0.5f;
-    const float t25 = t11.y * 0.5f;
-    const unitpack_vec4 t26 = { 1.0f, 0.5f + t25, 0.5f + t23, 0.5f + t24 };
-    return t26;
+    const float t21 = (t20 ? scaled4.z / sqrt_len2_4 : 1.0f) * 0.5f;
+    const float t22 = (t10 ? scaled2.x / sqrt_len2_2 : 0.0f) * 0.5f;
+    const float t23 = (t10 ? scaled2.y / sqrt_len2_2 : 0.0f) * 0.5f;
+    const unitpack_vec4 t24 = { 1.0f, 0.5f + t23, 0.5f + t21, 0.5f + t22 };
+    return t24;
 }
 
 // unitpack_xy16_rxgb_encode_float: fast encoder, float form.
@@ -218,94 +208,81 @@ static inline void unitpack_xy16_rxgb_encode_float(const float v[3], float out[4
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const float t3 = w.z > 0.0f ? w.z : 0.0f;
+    const float t1 = w.z > 0.0f ? w.z : 0.0f;
     const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 4294963200u);
     const float split_lo = w.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t4 = (split_hi + split_hi) * split_lo;
+    const float t2 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 4294963200u);
     const float split_lo2 = w.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t5 = (split_hi2 + split_hi2) * split_lo2;
+    const float t3 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t3) & 4294963200u);
-    const float split_lo3 = t3 - split_hi3;
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t1) & 4294963200u);
+    const float split_lo3 = t1 - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t6 = (split_hi3 + split_hi3) * split_lo3;
+    const float t4 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t4 + t5 + t6)
+        + (t2 + t3 + t4)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
-    const unitpack_vec2 t7 = { w.x / sqrtf(len2) * 127.5f, w.y / sqrtf(len2) * 127.5f };
-    const unitpack_vec2 t8 = { nearbyintf(t7.x + 127.5f), nearbyintf(t7.y + 127.5f) };
-    const unitpack_vec2 t9 = { t8.x >= 0.0f ? t8.x : 0.0f, t8.y >= 0.0f ? t8.y : 0.0f };
-    const unitpack_vec2 t10 = { t9.x <= 255.0f ? t9.x : 255.0f, t9.y <= 255.0f ? t9.y : 255.0f };
-    const unitpack_vec2 t11 = { t10.x - 127.0f, t10.y - 127.0f };
-    const unitpack_vec2 t12 = { w.x * w.x * 16256.25f, w.y * w.y * 16256.25f };
-    const unitpack_vec2 t13 = { t11.x * t11.x * len2, t11.y * t11.y * len2 };
-    const unitpack_vec2 t14 = {
-        t11.x > 0.0f ? (t12.x >= t13.x ? 1.0f : 0.0f) : 1.0f,
-        t11.y > 0.0f ? (t12.y >= t13.y ? 1.0f : 0.0f) : 1.0f
+    const unitpack_vec2 t5 = { w.x / sqrtf(len2) * 127.5f, w.y / sqrtf(len2) * 127.5f };
+    const unitpack_vec2 t6 = { nearbyintf(t5.x + 127.5f), nearbyintf(t5.y + 127.5f) };
+    const unitpack_vec2 t7 = { t6.x >= 0.0f ? t6.x : 0.0f, t6.y >= 0.0f ? t6.y : 0.0f };
+    const unitpack_vec2 t8 = { t7.x <= 255.0f ? t7.x : 255.0f, t7.y <= 255.0f ? t7.y : 255.0f };
+    const unitpack_vec2 t9 = { t8.x - 127.0f, t8.y - 127.0f };
+    const unitpack_vec2 t10 = { w.x * w.x * 16256.25f, w.y * w.y * 16256.25f };
+    const unitpack_vec2 t11 = { t9.x * t9.x * len2, t9.y * t9.y * len2 };
+    const unitpack_vec2 t12 = {
+        w.x >= 0.0f
+            ? (t9.x > 0.0f ? (t10.x >= t11.x ? 1.0f : 0.0f) : 1.0f)
+            : (t9.x < 0.0f ? (t10.x <= t11.x ? 1.0f : 0.0f) : 0.0f),
+        w.y >= 0.0f
+            ? (t9.y > 0.0f ? (t10.y >= t11.y ? 1.0f : 0.0f) : 1.0f)
+            : (t9.y < 0.0f ? (t10.y <= t11.y ? 1.0f : 0.0f) : 0.0f)
     };
+    const unitpack_vec2 t13 = { t8.x - 1.0f - 127.0f, t8.y - 1.0f - 127.0f };
+    const unitpack_vec2 t14 = { t13.x * t13.x * len2, t13.y * t13.y * len2 };
     const unitpack_vec2 t15 = {
-        t11.x < 0.0f ? (t12.x <= t13.x ? 1.0f : 0.0f) : 0.0f,
-        t11.y < 0.0f ? (t12.y <= t13.y ? 1.0f : 0.0f) : 0.0f
+        w.x >= 0.0f
+            ? (t13.x > 0.0f ? (t10.x >= t14.x ? 1.0f : 0.0f) : 1.0f)
+            : (t13.x < 0.0f ? (t10.x <= t14.x ? 1.0f : 0.0f) : 0.0f),
+        w.y >= 0.0f
+            ? (t13.y > 0.0f ? (t10.y >= t14.y ? 1.0f : 0.0f) : 1.0f)
+            : (t13.y < 0.0f ? (t10.y <= t14.y ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec2 t16 = {
-        t10.x < 255.0f ? (w.x >= 0.0f ? t14.x : t15.x) : 0.0f,
-        t10.y < 255.0f ? (w.y >= 0.0f ? t14.y : t15.y) : 0.0f
+        t8.x + (t8.x < 255.0f ? t12.x : 0.0f) + (t8.x > 0.0f ? t15.x - 1.0f : 0.0f),
+        t8.y + (t8.y < 255.0f ? t12.y : 0.0f) + (t8.y > 0.0f ? t15.y - 1.0f : 0.0f)
     };
-    const unitpack_vec2 t17 = { t10.x - 1.0f - 127.0f, t10.y - 1.0f - 127.0f };
-    const unitpack_vec2 t18 = { t17.x * t17.x * len2, t17.y * t17.y * len2 };
-    const unitpack_vec2 t19 = {
-        t17.x > 0.0f ? (t12.x >= t18.x ? 1.0f : 0.0f) : 1.0f,
-        t17.y > 0.0f ? (t12.y >= t18.y ? 1.0f : 0.0f) : 1.0f
+    const bool t17 = ok && len2 > 0.0f;
+    const unitpack_vec2 c = { t17 ? t16.x : 128.0f, t17 ? t16.y : 128.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec2 t20 = {
-        t17.x < 0.0f ? (t12.x <= t18.x ? 1.0f : 0.0f) : 0.0f,
-        t17.y < 0.0f ? (t12.y <= t18.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t21 = {
-        t10.x > 0.0f ? (w.x >= 0.0f ? t19.x : t20.x) - 1.0f : 0.0f,
-        t10.y > 0.0f ? (w.y >= 0.0f ? t19.y : t20.y) - 1.0f : 0.0f
-    };
-    const bool t22 = ok && len2 > 0.0f;
-    const unitpack_vec2 c = {
-        t22 ? t10.x + t16.x + t21.x : 128.0f,
-        t22 ? t10.y + t16.y + t21.y : 128.0f
-    };
-    const unitpack_bvec3 t23 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
-    };
-    const unitpack_vec3 normal2 = { t23.x ? 0.0f : a0.x, t23.y ? 0.0f : a0.y, t23.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -314,28 +291,19 @@ static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t24 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w2 = {
-        t24.x ? 0.0f : scaled2.x,
-        t24.y ? 0.0f : scaled2.y,
-        t24.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w3 = { ok2 ? w2.x : 0.0f, ok2 ? w2.y : 0.0f, ok2 ? w2.z : 2.0f };
-    const unitpack_vec3 t25 = { w3.x, w3.y, w3.z > 0.0f ? w3.z : 0.0f };
-    const unitpack_bvec3 t26 = {
-        fabsf(t25.x) < 1.1754944e-38f,
-        fabsf(t25.y) < 1.1754944e-38f,
-        fabsf(t25.z) < 1.1754944e-38f
-    };
+    const unitpack_vec3 t18 = { w3.x, w3.y, w3.z > 0.0f ? w3.z : 0.0f };
     const unitpack_vec3 normal3 = {
-        t26.x ? 0.0f : t25.x,
-        t26.y ? 0.0f : t25.y,
-        t26.z ? 0.0f : t25.z
+        fabsf(t18.x) < 1.1754944e-38f ? 0.0f : t18.x,
+        fabsf(t18.y) < 1.1754944e-38f ? 0.0f : t18.y,
+        fabsf(t18.z) < 1.1754944e-38f ? 0.0f : t18.z
     };
     const unitpack_vec3 abs_normal3 = { fabsf(normal3.x), fabsf(normal3.y), fabsf(normal3.z) };
     const float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
@@ -345,57 +313,55 @@ static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
     );
     const unitpack_vec3 scaled3 = { normal3.x * scale3, normal3.y * scale3, normal3.z * scale3 };
     const float sum3 = fabsf(scaled3.x) + fabsf(scaled3.y) + fabsf(scaled3.z);
-    const bool ok3 = sum3 >= 2.0f && sum3 < 16.0f;
-    const unitpack_bvec3 t27 = {
-        fabsf(scaled3.x) < 1.8189894e-12f,
-        fabsf(scaled3.y) < 1.8189894e-12f,
-        fabsf(scaled3.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_3 = sum3 < 16.0f;
+    const bool ok3 = sum3 >= 2.0f && sum_below_16_3;
     const unitpack_vec3 w4 = {
-        t27.x ? 0.0f : scaled3.x,
-        t27.y ? 0.0f : scaled3.y,
-        t27.z ? 0.0f : scaled3.z
+        fabsf(scaled3.x) < 1.8189894e-12f ? 0.0f : scaled3.x,
+        fabsf(scaled3.y) < 1.8189894e-12f ? 0.0f : scaled3.y,
+        fabsf(scaled3.z) < 1.8189894e-12f ? 0.0f : scaled3.z
     };
     const unitpack_vec3 w5 = { ok3 ? w4.x : 0.0f, ok3 ? w4.y : 0.0f, ok3 ? w4.z : 2.0f };
     const float split_hi4 = unitpack_float_of(unitpack_bits_of(w5.x) & 4294963200u);
     const float split_lo4 = w5.x - split_hi4;
     const float split_hi4_sq = split_hi4 * split_hi4;
-    const float t28 = (split_hi4 + split_hi4) * split_lo4;
+    const float t19 = (split_hi4 + split_hi4) * split_lo4;
     const float split_lo4_sq = split_lo4 * split_lo4;
     const float split_hi5 = unitpack_float_of(unitpack_bits_of(w5.y) & 4294963200u);
     const float split_lo5 = w5.y - split_hi5;
     const float split_hi5_sq = split_hi5 * split_hi5;
-    const float t29 = (split_hi5 + split_hi5) * split_lo5;
+    const float t20 = (split_hi5 + split_hi5) * split_lo5;
     const float split_lo5_sq = split_lo5 * split_lo5;
     const float split_hi6 = unitpack_float_of(unitpack_bits_of(w5.z) & 4294963200u);
     const float split_lo6 = w5.z - split_hi6;
     const float split_hi6_sq = split_hi6 * split_hi6;
-    const float t30 = (split_hi6 + split_hi6) * split_lo6;
+    const float t21 = (split_hi6 + split_hi6) * split_lo6;
     const float split_lo6_sq = split_lo6 * split_lo6;
     const float len2_2 = split_hi4_sq
         + split_hi5_sq
         + split_hi6_sq
-        + (t28 + t29 + t30)
+        + (t19 + t20 + t21)
         + (split_lo4_sq + split_lo5_sq + split_lo6_sq);
     const float big2 = w5.z * w5.z * 16256.25f;
-    const float t31 = w5.z / sqrtf(len2_2) * 127.5f;
-    const float t32 = nearbyintf(t31 + 127.5f);
-    const float t33 = t32 >= 0.0f ? t32 : 0.0f;
-    const float estimate = t33 <= 255.0f ? t33 : 255.0f;
-    const float t34 = estimate - 127.0f;
-    const float t35 = t34 * t34 * len2_2;
-    const float t36 = w5.z >= 0.0f
-        ? (t34 > 0.0f ? (big2 >= t35 ? 1.0f : 0.0f) : 1.0f)
-        : (t34 < 0.0f ? (big2 <= t35 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 255.0f ? t36 : 0.0f;
-    const float t37 = estimate - 1.0f - 127.0f;
-    const float t38 = t37 * t37 * len2_2;
-    const float t39 = w5.z >= 0.0f
-        ? (t37 > 0.0f ? (big2 >= t38 ? 1.0f : 0.0f) : 1.0f)
-        : (t37 < 0.0f ? (big2 <= t38 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t39 - 1.0f : 0.0f;
-    const unitpack_vec4 t40 = { 255.0f, c.y, estimate + up + down, c.x };
-    return t40;
+    const float t22 = w5.z / sqrtf(len2_2) * 127.5f;
+    const float t23 = nearbyintf(t22 + 127.5f);
+    const float t24 = t23 >= 0.0f ? t23 : 0.0f;
+    const float estimate = t24 <= 255.0f ? t24 : 255.0f;
+    const float t25 = estimate - 127.0f;
+    const float t26 = t25 * t25 * len2_2;
+    const float one_if = big2 >= t26 ? 1.0f : 0.0f;
+    const float one_if2 = big2 <= t26 ? 1.0f : 0.0f;
+    const float up = estimate < 255.0f
+        ? (w5.z >= 0.0f ? (t25 > 0.0f ? one_if : 1.0f) : (t25 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t27 = estimate - 1.0f - 127.0f;
+    const float t28 = t27 * t27 * len2_2;
+    const float one_if3 = big2 >= t28 ? 1.0f : 0.0f;
+    const float one_if4 = big2 <= t28 ? 1.0f : 0.0f;
+    const float t29 = (w5.z >= 0.0f ? (t27 > 0.0f ? one_if3 : 1.0f) : (t27 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t29 : 0.0f;
+    const unitpack_vec4 t30 = { 255.0f, c.y, estimate + up + down, c.x };
+    return t30;
 }
 
 // Struct form of unitpack_xy16_rxgb_encode.

@@ -80,17 +80,17 @@ static inline void unitpack_xy16_xra_decode_float(const float params[4], float o
 
 // Struct form of unitpack_xy16_xra_decode.
 static inline unitpack_vec3 unitpack_xy16_xra_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_xy16_xra_decode_float_v(params);
     return decode_float;
@@ -145,15 +145,10 @@ static inline unitpack_vec4 unitpack_xy16_xra_encode_float_v(unitpack_vec3 v) {
     const float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
     const bool t10 = t8 && len2_2 >= 1.0f;
     const float sqrt_len2_2 = sqrtf(len2_2);
-    const unitpack_vec3 t11 = {
-        t10 ? scaled2.x / sqrt_len2_2 : 0.0f,
-        t10 ? scaled2.y / sqrt_len2_2 : 0.0f,
-        t10 ? scaled2.z / sqrt_len2_2 : 1.0f
-    };
-    const float t12 = t11.x * 0.5f;
-    const float t13 = t11.y * 0.5f;
-    const unitpack_vec4 t14 = { 1.0f, 0.5f + t13, 0.0f, 0.5f + t12 };
-    return t14;
+    const float t11 = (t10 ? scaled2.x / sqrt_len2_2 : 0.0f) * 0.5f;
+    const float t12 = (t10 ? scaled2.y / sqrt_len2_2 : 0.0f) * 0.5f;
+    const unitpack_vec4 t13 = { 1.0f, 0.5f + t12, 0.0f, 0.5f + t11 };
+    return t13;
 }
 
 // unitpack_xy16_xra_encode_float: fast encoder, float form.
@@ -178,90 +173,78 @@ static inline void unitpack_xy16_xra_encode_float(const float v[3], float out[4]
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec4 unitpack_xy16_xra_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
-    const float t3 = w.z > 0.0f ? w.z : 0.0f;
+    const float t1 = w.z > 0.0f ? w.z : 0.0f;
     const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 4294963200u);
     const float split_lo = w.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t4 = (split_hi + split_hi) * split_lo;
+    const float t2 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 4294963200u);
     const float split_lo2 = w.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t5 = (split_hi2 + split_hi2) * split_lo2;
+    const float t3 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t3) & 4294963200u);
-    const float split_lo3 = t3 - split_hi3;
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t1) & 4294963200u);
+    const float split_lo3 = t1 - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t6 = (split_hi3 + split_hi3) * split_lo3;
+    const float t4 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t4 + t5 + t6)
+        + (t2 + t3 + t4)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
-    const unitpack_vec2 t7 = { w.x / sqrtf(len2) * 127.5f, w.y / sqrtf(len2) * 127.5f };
-    const unitpack_vec2 t8 = { nearbyintf(t7.x + 127.5f), nearbyintf(t7.y + 127.5f) };
-    const unitpack_vec2 t9 = { t8.x >= 0.0f ? t8.x : 0.0f, t8.y >= 0.0f ? t8.y : 0.0f };
-    const unitpack_vec2 t10 = { t9.x <= 255.0f ? t9.x : 255.0f, t9.y <= 255.0f ? t9.y : 255.0f };
-    const unitpack_vec2 t11 = { t10.x - 127.0f, t10.y - 127.0f };
-    const unitpack_vec2 t12 = { w.x * w.x * 16256.25f, w.y * w.y * 16256.25f };
-    const unitpack_vec2 t13 = { t11.x * t11.x * len2, t11.y * t11.y * len2 };
-    const unitpack_vec2 t14 = {
-        t11.x > 0.0f ? (t12.x >= t13.x ? 1.0f : 0.0f) : 1.0f,
-        t11.y > 0.0f ? (t12.y >= t13.y ? 1.0f : 0.0f) : 1.0f
+    const unitpack_vec2 t5 = { w.x / sqrtf(len2) * 127.5f, w.y / sqrtf(len2) * 127.5f };
+    const unitpack_vec2 t6 = { nearbyintf(t5.x + 127.5f), nearbyintf(t5.y + 127.5f) };
+    const unitpack_vec2 t7 = { t6.x >= 0.0f ? t6.x : 0.0f, t6.y >= 0.0f ? t6.y : 0.0f };
+    const unitpack_vec2 t8 = { t7.x <= 255.0f ? t7.x : 255.0f, t7.y <= 255.0f ? t7.y : 255.0f };
+    const unitpack_vec2 t9 = { t8.x - 127.0f, t8.y - 127.0f };
+    const unitpack_vec2 t10 = { w.x * w.x * 16256.25f, w.y * w.y * 16256.25f };
+    const unitpack_vec2 t11 = { t9.x * t9.x * len2, t9.y * t9.y * len2 };
+    const unitpack_vec2 t12 = {
+        w.x >= 0.0f
+            ? (t9.x > 0.0f ? (t10.x >= t11.x ? 1.0f : 0.0f) : 1.0f)
+            : (t9.x < 0.0f ? (t10.x <= t11.x ? 1.0f : 0.0f) : 0.0f),
+        w.y >= 0.0f
+            ? (t9.y > 0.0f ? (t10.y >= t11.y ? 1.0f : 0.0f) : 1.0f)
+            : (t9.y < 0.0f ? (t10.y <= t11.y ? 1.0f : 0.0f) : 0.0f)
     };
+    const unitpack_vec2 t13 = { t8.x - 1.0f - 127.0f, t8.y - 1.0f - 127.0f };
+    const unitpack_vec2 t14 = { t13.x * t13.x * len2, t13.y * t13.y * len2 };
     const unitpack_vec2 t15 = {
-        t11.x < 0.0f ? (t12.x <= t13.x ? 1.0f : 0.0f) : 0.0f,
-        t11.y < 0.0f ? (t12.y <= t13.y ? 1.0f : 0.0f) : 0.0f
+        w.x >= 0.0f
+            ? (t13.x > 0.0f ? (t10.x >= t14.x ? 1.0f : 0.0f) : 1.0f)
+            : (t13.x < 0.0f ? (t10.x <= t14.x ? 1.0f : 0.0f) : 0.0f),
+        w.y >= 0.0f
+            ? (t13.y > 0.0f ? (t10.y >= t14.y ? 1.0f : 0.0f) : 1.0f)
+            : (t13.y < 0.0f ? (t10.y <= t14.y ? 1.0f : 0.0f) : 0.0f)
     };
     const unitpack_vec2 t16 = {
-        t10.x < 255.0f ? (w.x >= 0.0f ? t14.x : t15.x) : 0.0f,
-        t10.y < 255.0f ? (w.y >= 0.0f ? t14.y : t15.y) : 0.0f
+        t8.x + (t8.x < 255.0f ? t12.x : 0.0f) + (t8.x > 0.0f ? t15.x - 1.0f : 0.0f),
+        t8.y + (t8.y < 255.0f ? t12.y : 0.0f) + (t8.y > 0.0f ? t15.y - 1.0f : 0.0f)
     };
-    const unitpack_vec2 t17 = { t10.x - 1.0f - 127.0f, t10.y - 1.0f - 127.0f };
-    const unitpack_vec2 t18 = { t17.x * t17.x * len2, t17.y * t17.y * len2 };
-    const unitpack_vec2 t19 = {
-        t17.x > 0.0f ? (t12.x >= t18.x ? 1.0f : 0.0f) : 1.0f,
-        t17.y > 0.0f ? (t12.y >= t18.y ? 1.0f : 0.0f) : 1.0f
-    };
-    const unitpack_vec2 t20 = {
-        t17.x < 0.0f ? (t12.x <= t18.x ? 1.0f : 0.0f) : 0.0f,
-        t17.y < 0.0f ? (t12.y <= t18.y ? 1.0f : 0.0f) : 0.0f
-    };
-    const unitpack_vec2 t21 = {
-        t10.x > 0.0f ? (w.x >= 0.0f ? t19.x : t20.x) - 1.0f : 0.0f,
-        t10.y > 0.0f ? (w.y >= 0.0f ? t19.y : t20.y) - 1.0f : 0.0f
-    };
-    const bool t22 = ok && len2 > 0.0f;
-    const unitpack_vec2 c = {
-        t22 ? t10.x + t16.x + t21.x : 128.0f,
-        t22 ? t10.y + t16.y + t21.y : 128.0f
-    };
-    const unitpack_vec4 t23 = { 255.0f, c.y, 0.0f, c.x };
-    return t23;
+    const bool t17 = ok && len2 > 0.0f;
+    const unitpack_vec2 c = { t17 ? t16.x : 128.0f, t17 ? t16.y : 128.0f };
+    const unitpack_vec4 t18 = { 255.0f, c.y, 0.0f, c.x };
+    return t18;
 }
 
 // Struct form of unitpack_xy16_xra_encode.

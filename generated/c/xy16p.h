@@ -99,37 +99,31 @@ static inline void unitpack_xy16p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec2 unitpack_xy16p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -138,21 +132,20 @@ static inline unitpack_vec2 unitpack_xy16p_encode_codes_v(unitpack_vec3 v) {
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -170,278 +163,263 @@ static inline unitpack_vec2 unitpack_xy16p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
-    const unitpack_vec2 t11 = { floorf(w4.x / root * 127.0f), floorf(w4.y / root * 127.0f) };
-    const unitpack_vec2 t12 = { w4.x * 127.0f, w4.y * 127.0f };
-    const unitpack_vec2 t13 = {
-        t12.x >= (t11.x + 1.0f) * root ? 1.0f : (t12.x < t11.x * root ? -1.0f : 0.0f),
-        t12.y >= (t11.y + 1.0f) * root ? 1.0f : (t12.y < t11.y * root ? -1.0f : 0.0f)
+    const float t3 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t3;
+    const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t4;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t5 = root_k * 4096.0f;
+    const float root = (t5 + root_j) * 4.7683716e-7f;
+    const unitpack_vec2 t6 = { floorf(w4.x / root * 127.0f), floorf(w4.y / root * 127.0f) };
+    const unitpack_vec2 t7 = { w4.x * 127.0f, w4.y * 127.0f };
+    const unitpack_vec2 t8 = {
+        t7.x >= (t6.x + 1.0f) * root ? 1.0f : (t7.x < t6.x * root ? -1.0f : 0.0f),
+        t7.y >= (t6.y + 1.0f) * root ? 1.0f : (t7.y < t6.y * root ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t14 = { t11.x + t13.x, t11.y + t13.y };
-    const unitpack_vec2 t15 = {
-        t14.x >= (-127.0f) ? t14.x : -127.0f,
-        t14.y >= (-127.0f) ? t14.y : -127.0f
+    const unitpack_vec2 t9 = { t6.x + t8.x, t6.y + t8.y };
+    const unitpack_vec2 t10 = {
+        t9.x >= (-127.0f) ? t9.x : -127.0f,
+        t9.y >= (-127.0f) ? t9.y : -127.0f
     };
     const unitpack_vec2 base = {
-        t15.x <= 127.0f ? t15.x : 127.0f,
-        t15.y <= 127.0f ? t15.y : 127.0f
+        t10.x <= 127.0f ? t10.x : 127.0f,
+        t10.y <= 127.0f ? t10.y : 127.0f
     };
-    const unitpack_vec3 t16 = {
+    const unitpack_vec3 t11 = {
         floorf(w4.x / root * 2097152.0f),
         floorf(w4.y / root * 2097152.0f),
         floorf(w4.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t17 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
-    const unitpack_bvec3 t18 = {
-        (t16.x + 1.0f) * root <= t17.x,
-        (t16.y + 1.0f) * root <= t17.y,
-        (t16.z + 1.0f) * root <= t17.z
+    const unitpack_vec3 t12 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
+    const unitpack_vec3 t13 = {
+        (t11.x + 1.0f) * root <= t12.x ? 1.0f : (t11.x * root > t12.x ? -1.0f : 0.0f),
+        (t11.y + 1.0f) * root <= t12.y ? 1.0f : (t11.y * root > t12.y ? -1.0f : 0.0f),
+        (t11.z + 1.0f) * root <= t12.z ? 1.0f : (t11.z * root > t12.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t19 = {
-        t16.x * root > t17.x ? -1.0f : 0.0f,
-        t16.y * root > t17.y ? -1.0f : 0.0f,
-        t16.z * root > t17.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t16.x + (t18.x ? 1.0f : t19.x),
-        t16.y + (t18.y ? 1.0f : t19.y),
-        t16.z + (t18.z ? 1.0f : t19.z)
-    };
+    const unitpack_vec3 aim = { t11.x + t13.x, t11.y + t13.y, t11.z + t13.z };
     const unitpack_vec2 cand = {
         base.x <= 127.0f ? base.x : 127.0f,
         base.y <= 127.0f ? base.y : 127.0f
     };
-    const unitpack_uvec2 t20 = { (uint32_t)fabsf(cand.x), (uint32_t)fabsf(cand.y) };
-    const uint32_t t21 = t20.x * t20.x + t20.y * t20.y;
-    const uint32_t t22 = t21 < 16129u ? 16129u - t21 : 0u;
-    const float t23 = (float)(t22 >> 12u) * 4096.0f;
-    const float r = t23 + (float)(t22 & 4095u);
-    const float t24 = r * 272679420.0f;
-    const float root_estimate2 = floorf(sqrtf(t24));
+    const unitpack_uvec2 t14 = { (uint32_t)fabsf(cand.x), (uint32_t)fabsf(cand.y) };
+    const uint32_t t15 = t14.x * t14.x + t14.y * t14.y;
+    const uint32_t t16 = t15 < 16129u ? 16129u - t15 : 0u;
+    const float t17 = (float)(t16 >> 12u) * 4096.0f;
+    const float r = t17 + (float)(t16 & 4095u);
+    const float t18 = r * 272679420.0f;
+    const float root_estimate2 = floorf(sqrtf(t18));
     const float root_next = root_estimate2 + 1.0f;
-    const float t25 = root_next * root_next <= t24
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t24 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t25;
+    const float step_down3 = root_estimate2 * root_estimate2 > t18 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t18 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t26 = root_next2 * root_next2 <= t24
-        ? 1.0f
-        : (root_step * root_step > t24 ? -1.0f : 0.0f);
-    const float root2 = root_step + t26;
-    const unitpack_vec3 t27 = {
+    const float step_down4 = root_step * root_step > t18 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t18 ? 1.0f : step_down4;
+    const float root2 = root_step + step4;
+    const unitpack_vec3 offset = {
         floorf(cand.x * 16513.008f) - aim.x,
         floorf(cand.y * 16513.008f) - aim.y,
         root2 - aim.z
     };
-    const unitpack_uvec3 t28 = {
-        (uint32_t)fabsf(t27.x),
-        (uint32_t)fabsf(t27.y),
-        (uint32_t)fabsf(t27.z)
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_4 = t28.x >> 12u;
-    const uint32_t limb0_4 = t28.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t28.y >> 12u;
-    const uint32_t limb0_5 = t28.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t28.z >> 12u;
-    const uint32_t limb0_6 = t28.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t29 = (float)hi8 * 16777216.0f;
-    const float dist = t29 + (float)lo8;
-    const float t30 = base.x + 1.0f;
-    const unitpack_vec2 t31 = { t30, base.y };
+    const float t19 = (float)hi8 * 16777216.0f;
+    const float dist = t19 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t20 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t31.x <= 127.0f ? t31.x : 127.0f,
-        t31.y <= 127.0f ? t31.y : 127.0f
+        t20.x <= 127.0f ? t20.x : 127.0f,
+        t20.y <= 127.0f ? t20.y : 127.0f
     };
-    const unitpack_uvec2 t32 = { (uint32_t)fabsf(cand2.x), (uint32_t)fabsf(cand2.y) };
-    const uint32_t t33 = t32.x * t32.x + t32.y * t32.y;
-    const uint32_t t34 = t33 < 16129u ? 16129u - t33 : 0u;
-    const float t35 = (float)(t34 >> 12u) * 4096.0f;
-    const float r2 = t35 + (float)(t34 & 4095u);
-    const float t36 = r2 * 272679420.0f;
-    const float root_estimate3 = floorf(sqrtf(t36));
+    const unitpack_uvec2 t21 = { (uint32_t)fabsf(cand2.x), (uint32_t)fabsf(cand2.y) };
+    const uint32_t t22 = t21.x * t21.x + t21.y * t21.y;
+    const uint32_t t23 = t22 < 16129u ? 16129u - t22 : 0u;
+    const float t24 = (float)(t23 >> 12u) * 4096.0f;
+    const float r2 = t24 + (float)(t23 & 4095u);
+    const float t25 = r2 * 272679420.0f;
+    const float root_estimate3 = floorf(sqrtf(t25));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t37 = root_next3 * root_next3 <= t36
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t36 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t37;
+    const float step_down5 = root_estimate3 * root_estimate3 > t25 ? -1.0f : 0.0f;
+    const float step5 = root_next3 * root_next3 <= t25 ? 1.0f : step_down5;
+    const float root_step2 = root_estimate3 + step5;
     const float root_next4 = root_step2 + 1.0f;
-    const float t38 = root_next4 * root_next4 <= t36
-        ? 1.0f
-        : (root_step2 * root_step2 > t36 ? -1.0f : 0.0f);
-    const float root3 = root_step2 + t38;
-    const unitpack_vec3 t39 = {
+    const float step_down6 = root_step2 * root_step2 > t25 ? -1.0f : 0.0f;
+    const float step6 = root_next4 * root_next4 <= t25 ? 1.0f : step_down6;
+    const float root3 = root_step2 + step6;
+    const unitpack_vec3 offset2 = {
         floorf(cand2.x * 16513.008f) - aim.x,
         floorf(cand2.y * 16513.008f) - aim.y,
         root3 - aim.z
     };
-    const unitpack_uvec3 t40 = {
-        (uint32_t)fabsf(t39.x),
-        (uint32_t)fabsf(t39.y),
-        (uint32_t)fabsf(t39.z)
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const uint32_t limb1_7 = t40.x >> 12u;
-    const uint32_t limb0_7 = t40.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t40.y >> 12u;
-    const uint32_t limb0_8 = t40.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t40.z >> 12u;
-    const uint32_t limb0_9 = t40.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t41 = (float)hi12 * 16777216.0f;
-    const float dist2 = t41 + (float)lo12;
-    const bool t42 = t30 <= 127.0f && base.y <= 127.0f && dist2 < dist;
-    const unitpack_vec2 best = { t42 ? cand2.x : cand.x, t42 ? cand2.y : cand.y };
-    const float best_d = t42 ? dist2 : dist;
-    const float t43 = base.y + 1.0f;
-    const unitpack_vec2 t44 = { base.x, t43 };
+    const float t26 = (float)hi12 * 16777216.0f;
+    const float dist2 = t26 + (float)lo12;
+    const bool t27 = s_up <= 127.0f && base.y <= 127.0f && dist2 < dist;
+    const unitpack_vec2 best = { t27 ? cand2.x : cand.x, t27 ? cand2.y : cand.y };
+    const float best_d = t27 ? dist2 : dist;
+    const unitpack_vec2 t28 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t44.x <= 127.0f ? t44.x : 127.0f,
-        t44.y <= 127.0f ? t44.y : 127.0f
+        t28.x <= 127.0f ? t28.x : 127.0f,
+        t28.y <= 127.0f ? t28.y : 127.0f
     };
-    const unitpack_uvec2 t45 = { (uint32_t)fabsf(cand3.x), (uint32_t)fabsf(cand3.y) };
-    const uint32_t t46 = t45.x * t45.x + t45.y * t45.y;
-    const uint32_t t47 = t46 < 16129u ? 16129u - t46 : 0u;
-    const float t48 = (float)(t47 >> 12u) * 4096.0f;
-    const float r3 = t48 + (float)(t47 & 4095u);
-    const float t49 = r3 * 272679420.0f;
-    const float root_estimate4 = floorf(sqrtf(t49));
+    const unitpack_uvec2 t29 = { (uint32_t)fabsf(cand3.x), (uint32_t)fabsf(cand3.y) };
+    const uint32_t t30 = t29.x * t29.x + t29.y * t29.y;
+    const uint32_t t31 = t30 < 16129u ? 16129u - t30 : 0u;
+    const float t32 = (float)(t31 >> 12u) * 4096.0f;
+    const float r3 = t32 + (float)(t31 & 4095u);
+    const float t33 = r3 * 272679420.0f;
+    const float root_estimate4 = floorf(sqrtf(t33));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t50 = root_next5 * root_next5 <= t49
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t49 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t50;
+    const float step_down7 = root_estimate4 * root_estimate4 > t33 ? -1.0f : 0.0f;
+    const float step7 = root_next5 * root_next5 <= t33 ? 1.0f : step_down7;
+    const float root_step3 = root_estimate4 + step7;
     const float root_next6 = root_step3 + 1.0f;
-    const float t51 = root_next6 * root_next6 <= t49
-        ? 1.0f
-        : (root_step3 * root_step3 > t49 ? -1.0f : 0.0f);
-    const float root4 = root_step3 + t51;
-    const unitpack_vec3 t52 = {
+    const float step_down8 = root_step3 * root_step3 > t33 ? -1.0f : 0.0f;
+    const float step8 = root_next6 * root_next6 <= t33 ? 1.0f : step_down8;
+    const float root4 = root_step3 + step8;
+    const unitpack_vec3 offset3 = {
         floorf(cand3.x * 16513.008f) - aim.x,
         floorf(cand3.y * 16513.008f) - aim.y,
         root4 - aim.z
     };
-    const unitpack_uvec3 t53 = {
-        (uint32_t)fabsf(t52.x),
-        (uint32_t)fabsf(t52.y),
-        (uint32_t)fabsf(t52.z)
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_10 = t53.x >> 12u;
-    const uint32_t limb0_10 = t53.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t53.y >> 12u;
-    const uint32_t limb0_11 = t53.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t53.z >> 12u;
-    const uint32_t limb0_12 = t53.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t54 = (float)hi16 * 16777216.0f;
-    const float dist3 = t54 + (float)lo16;
-    const bool t55 = base.x <= 127.0f && t43 <= 127.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t55 ? cand3.x : best.x, t55 ? cand3.y : best.y };
-    const float best_d2 = t55 ? dist3 : best_d;
-    const unitpack_vec2 t56 = { base.x + 1.0f, base.y + 1.0f };
+    const float t34 = (float)hi16 * 16777216.0f;
+    const float dist3 = t34 + (float)lo16;
+    const bool t35 = base.x <= 127.0f && t_up <= 127.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t35 ? cand3.x : best.x, t35 ? cand3.y : best.y };
+    const float best_d2 = t35 ? dist3 : best_d;
+    const unitpack_vec2 t36 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t56.x <= 127.0f ? t56.x : 127.0f,
-        t56.y <= 127.0f ? t56.y : 127.0f
+        t36.x <= 127.0f ? t36.x : 127.0f,
+        t36.y <= 127.0f ? t36.y : 127.0f
     };
-    const unitpack_uvec2 t57 = { (uint32_t)fabsf(cand4.x), (uint32_t)fabsf(cand4.y) };
-    const uint32_t t58 = t57.x * t57.x + t57.y * t57.y;
-    const uint32_t t59 = t58 < 16129u ? 16129u - t58 : 0u;
-    const float t60 = (float)(t59 >> 12u) * 4096.0f;
-    const float r4 = t60 + (float)(t59 & 4095u);
-    const float t61 = r4 * 272679420.0f;
-    const float root_estimate5 = floorf(sqrtf(t61));
+    const unitpack_uvec2 t37 = { (uint32_t)fabsf(cand4.x), (uint32_t)fabsf(cand4.y) };
+    const uint32_t t38 = t37.x * t37.x + t37.y * t37.y;
+    const uint32_t t39 = t38 < 16129u ? 16129u - t38 : 0u;
+    const float t40 = (float)(t39 >> 12u) * 4096.0f;
+    const float r4 = t40 + (float)(t39 & 4095u);
+    const float t41 = r4 * 272679420.0f;
+    const float root_estimate5 = floorf(sqrtf(t41));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t62 = root_next7 * root_next7 <= t61
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t61 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t62;
+    const float step_down9 = root_estimate5 * root_estimate5 > t41 ? -1.0f : 0.0f;
+    const float step9 = root_next7 * root_next7 <= t41 ? 1.0f : step_down9;
+    const float root_step4 = root_estimate5 + step9;
     const float root_next8 = root_step4 + 1.0f;
-    const float t63 = root_next8 * root_next8 <= t61
-        ? 1.0f
-        : (root_step4 * root_step4 > t61 ? -1.0f : 0.0f);
-    const float root5 = root_step4 + t63;
-    const unitpack_vec3 t64 = {
+    const float step_down10 = root_step4 * root_step4 > t41 ? -1.0f : 0.0f;
+    const float step10 = root_next8 * root_next8 <= t41 ? 1.0f : step_down10;
+    const float root5 = root_step4 + step10;
+    const unitpack_vec3 offset4 = {
         floorf(cand4.x * 16513.008f) - aim.x,
         floorf(cand4.y * 16513.008f) - aim.y,
         root5 - aim.z
     };
-    const unitpack_uvec3 t65 = {
-        (uint32_t)fabsf(t64.x),
-        (uint32_t)fabsf(t64.y),
-        (uint32_t)fabsf(t64.z)
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_13 = t65.x >> 12u;
-    const uint32_t limb0_13 = t65.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t65.y >> 12u;
-    const uint32_t limb0_14 = t65.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t65.z >> 12u;
-    const uint32_t limb0_15 = t65.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t66 = (float)hi20 * 16777216.0f;
-    const float dist4 = t66 + (float)lo20;
-    const bool t67 = base.x + 1.0f <= 127.0f && base.y + 1.0f <= 127.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t67 ? cand4.x : best2.x, t67 ? cand4.y : best2.y };
-    const bool t68 = ok && ok2;
-    const unitpack_vec2 t69 = { t68 ? best3.x : 0.0f, t68 ? best3.y : 0.0f };
-    return t69;
+    const float t42 = (float)hi20 * 16777216.0f;
+    const float dist4 = t42 + (float)lo20;
+    const bool t43 = s_up <= 127.0f && t_up <= 127.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t43 ? cand4.x : best2.x, t43 ? cand4.y : best2.y };
+    const bool t44 = ok && ok2;
+    const unitpack_vec2 t45 = { t44 ? best3.x : 0.0f, t44 ? best3.y : 0.0f };
+    return t45;
 }
 
 // Struct form of unitpack_xy16p_encode_float.

@@ -80,17 +80,17 @@ static inline void unitpack_xy16p_rg_decode_float(const float params[4], float o
 
 // Struct form of unitpack_xy16p_rg_decode.
 static inline unitpack_vec3 unitpack_xy16p_rg_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_xy16p_rg_decode_float_v(params);
     return decode_float;
@@ -115,37 +115,31 @@ static inline void unitpack_xy16p_rg_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec4 unitpack_xy16p_rg_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -154,21 +148,20 @@ static inline unitpack_vec4 unitpack_xy16p_rg_encode_codes_v(unitpack_vec3 v) {
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -186,295 +179,266 @@ static inline unitpack_vec4 unitpack_xy16p_rg_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
-    const unitpack_vec2 t11 = { w4.x * 127.5f, w4.y * 127.5f };
-    const unitpack_vec2 t12 = {
-        nearbyintf(t11.x / root + 127.5f),
-        nearbyintf(t11.y / root + 127.5f)
+    const float t3 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t3;
+    const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t4;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t5 = root_k * 4096.0f;
+    const float root = (t5 + root_j) * 4.7683716e-7f;
+    const unitpack_vec2 t6 = { w4.x * 127.5f, w4.y * 127.5f };
+    const unitpack_vec2 t7 = { nearbyintf(t6.x / root + 127.5f), nearbyintf(t6.y / root + 127.5f) };
+    const unitpack_vec2 t8 = { t7.x >= 0.0f ? t7.x : 0.0f, t7.y >= 0.0f ? t7.y : 0.0f };
+    const unitpack_vec2 t9 = { t8.x <= 255.0f ? t8.x : 255.0f, t8.y <= 255.0f ? t8.y : 255.0f };
+    const unitpack_vec2 t10 = {
+        t9.x + (t9.x < 255.0f ? (t6.x >= (t9.x - 126.5f) * root ? 1.0f : 0.0f) : 0.0f),
+        t9.y + (t9.y < 255.0f ? (t6.y >= (t9.y - 126.5f) * root ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t13 = { t12.x >= 0.0f ? t12.x : 0.0f, t12.y >= 0.0f ? t12.y : 0.0f };
-    const unitpack_vec2 t14 = {
-        t13.x <= 255.0f ? t13.x : 255.0f,
-        t13.y <= 255.0f ? t13.y : 255.0f
+    const unitpack_vec2 t11 = {
+        t9.x > 0.0f ? (t6.x >= (t9.x - 1.0f - 126.5f) * root ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t9.y > 0.0f ? (t6.y >= (t9.y - 1.0f - 126.5f) * root ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t15 = {
-        t11.x >= (t14.x - 126.5f) * root ? 1.0f : 0.0f,
-        t11.y >= (t14.y - 126.5f) * root ? 1.0f : 0.0f
-    };
-    const unitpack_vec2 t16 = {
-        t14.x + (t14.x < 255.0f ? t15.x : 0.0f),
-        t14.y + (t14.y < 255.0f ? t15.y : 0.0f)
-    };
-    const unitpack_bvec2 t17 = {
-        t11.x >= (t14.x - 1.0f - 126.5f) * root,
-        t11.y >= (t14.y - 1.0f - 126.5f) * root
-    };
-    const unitpack_vec2 t18 = {
-        t14.x > 0.0f ? (t17.x ? 1.0f : 0.0f) - 1.0f : 0.0f,
-        t14.y > 0.0f ? (t17.y ? 1.0f : 0.0f) - 1.0f : 0.0f
-    };
-    const unitpack_vec2 base = { t16.x + t18.x, t16.y + t18.y };
-    const unitpack_vec3 t19 = {
+    const unitpack_vec2 base = { t10.x + t11.x, t10.y + t11.y };
+    const unitpack_vec3 t12 = {
         floorf(w4.x / root * 2097152.0f),
         floorf(w4.y / root * 2097152.0f),
         floorf(w4.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t20 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
-    const unitpack_bvec3 t21 = {
-        (t19.x + 1.0f) * root <= t20.x,
-        (t19.y + 1.0f) * root <= t20.y,
-        (t19.z + 1.0f) * root <= t20.z
+    const unitpack_vec3 t13 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
+    const unitpack_vec3 t14 = {
+        (t12.x + 1.0f) * root <= t13.x ? 1.0f : (t12.x * root > t13.x ? -1.0f : 0.0f),
+        (t12.y + 1.0f) * root <= t13.y ? 1.0f : (t12.y * root > t13.y ? -1.0f : 0.0f),
+        (t12.z + 1.0f) * root <= t13.z ? 1.0f : (t12.z * root > t13.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t22 = {
-        t19.x * root > t20.x ? -1.0f : 0.0f,
-        t19.y * root > t20.y ? -1.0f : 0.0f,
-        t19.z * root > t20.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t19.x + (t21.x ? 1.0f : t22.x),
-        t19.y + (t21.y ? 1.0f : t22.y),
-        t19.z + (t21.z ? 1.0f : t22.z)
-    };
+    const unitpack_vec3 aim = { t12.x + t14.x, t12.y + t14.y, t12.z + t14.z };
     const unitpack_vec2 cand = {
         base.x <= 255.0f ? base.x : 255.0f,
         base.y <= 255.0f ? base.y : 255.0f
     };
-    const unitpack_vec2 t23 = { cand.x + cand.x - 255.0f, cand.y + cand.y - 255.0f };
-    const unitpack_uvec2 t24 = { (uint32_t)fabsf(t23.x), (uint32_t)fabsf(t23.y) };
-    const uint32_t t25 = t24.x * t24.x + t24.y * t24.y;
-    const uint32_t t26 = t25 < 65025u ? 65025u - t25 : 0u;
-    const float t27 = (float)(t26 >> 12u) * 4096.0f;
-    const float r = t27 + (float)(t26 & 4095u);
-    const float t28 = r * 67636240.0f;
-    const float root_estimate2 = floorf(sqrtf(t28));
+    const unitpack_vec2 t15 = { cand.x + cand.x - 255.0f, cand.y + cand.y - 255.0f };
+    const unitpack_uvec2 t16 = { (uint32_t)fabsf(t15.x), (uint32_t)fabsf(t15.y) };
+    const uint32_t t17 = t16.x * t16.x + t16.y * t16.y;
+    const uint32_t t18 = t17 < 65025u ? 65025u - t17 : 0u;
+    const float t19 = (float)(t18 >> 12u) * 4096.0f;
+    const float r = t19 + (float)(t18 & 4095u);
+    const float t20 = r * 67636240.0f;
+    const float root_estimate2 = floorf(sqrtf(t20));
     const float root_next = root_estimate2 + 1.0f;
-    const float t29 = root_next * root_next <= t28
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t28 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t29;
+    const float step_down3 = root_estimate2 * root_estimate2 > t20 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t20 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t30 = root_next2 * root_next2 <= t28
-        ? 1.0f
-        : (root_step * root_step > t28 ? -1.0f : 0.0f);
-    const float root2 = root_step + t30;
-    const unitpack_vec3 t31 = {
-        floorf(t23.x * 8224.126f) - aim.x,
-        floorf(t23.y * 8224.126f) - aim.y,
+    const float step_down4 = root_step * root_step > t20 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t20 ? 1.0f : step_down4;
+    const float root2 = root_step + step4;
+    const unitpack_vec3 offset = {
+        floorf(t15.x * 8224.126f) - aim.x,
+        floorf(t15.y * 8224.126f) - aim.y,
         root2 - aim.z
     };
-    const unitpack_uvec3 t32 = {
-        (uint32_t)fabsf(t31.x),
-        (uint32_t)fabsf(t31.y),
-        (uint32_t)fabsf(t31.z)
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const uint32_t limb1_4 = t32.x >> 12u;
-    const uint32_t limb0_4 = t32.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t32.y >> 12u;
-    const uint32_t limb0_5 = t32.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t32.z >> 12u;
-    const uint32_t limb0_6 = t32.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t33 = (float)hi8 * 16777216.0f;
-    const float dist = t33 + (float)lo8;
-    const float t34 = base.x + 1.0f;
-    const unitpack_vec2 t35 = { t34, base.y };
+    const float t21 = (float)hi8 * 16777216.0f;
+    const float dist = t21 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t22 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t35.x <= 255.0f ? t35.x : 255.0f,
-        t35.y <= 255.0f ? t35.y : 255.0f
+        t22.x <= 255.0f ? t22.x : 255.0f,
+        t22.y <= 255.0f ? t22.y : 255.0f
     };
-    const unitpack_vec2 t36 = { cand2.x + cand2.x - 255.0f, cand2.y + cand2.y - 255.0f };
-    const unitpack_uvec2 t37 = { (uint32_t)fabsf(t36.x), (uint32_t)fabsf(t36.y) };
-    const uint32_t t38 = t37.x * t37.x + t37.y * t37.y;
-    const uint32_t t39 = t38 < 65025u ? 65025u - t38 : 0u;
-    const float t40 = (float)(t39 >> 12u) * 4096.0f;
-    const float r2 = t40 + (float)(t39 & 4095u);
-    const float t41 = r2 * 67636240.0f;
-    const float root_estimate3 = floorf(sqrtf(t41));
+    const unitpack_vec2 t23 = { cand2.x + cand2.x - 255.0f, cand2.y + cand2.y - 255.0f };
+    const unitpack_uvec2 t24 = { (uint32_t)fabsf(t23.x), (uint32_t)fabsf(t23.y) };
+    const uint32_t t25 = t24.x * t24.x + t24.y * t24.y;
+    const uint32_t t26 = t25 < 65025u ? 65025u - t25 : 0u;
+    const float t27 = (float)(t26 >> 12u) * 4096.0f;
+    const float r2 = t27 + (float)(t26 & 4095u);
+    const float t28 = r2 * 67636240.0f;
+    const float root_estimate3 = floorf(sqrtf(t28));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t42 = root_next3 * root_next3 <= t41
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t41 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t42;
+    const float step_down5 = root_estimate3 * root_estimate3 > t28 ? -1.0f : 0.0f;
+    const float step5 = root_next3 * root_next3 <= t28 ? 1.0f : step_down5;
+    const float root_step2 = root_estimate3 + step5;
     const float root_next4 = root_step2 + 1.0f;
-    const float t43 = root_next4 * root_next4 <= t41
-        ? 1.0f
-        : (root_step2 * root_step2 > t41 ? -1.0f : 0.0f);
-    const float root3 = root_step2 + t43;
-    const unitpack_vec3 t44 = {
-        floorf(t36.x * 8224.126f) - aim.x,
-        floorf(t36.y * 8224.126f) - aim.y,
+    const float step_down6 = root_step2 * root_step2 > t28 ? -1.0f : 0.0f;
+    const float step6 = root_next4 * root_next4 <= t28 ? 1.0f : step_down6;
+    const float root3 = root_step2 + step6;
+    const unitpack_vec3 offset2 = {
+        floorf(t23.x * 8224.126f) - aim.x,
+        floorf(t23.y * 8224.126f) - aim.y,
         root3 - aim.z
     };
-    const unitpack_uvec3 t45 = {
-        (uint32_t)fabsf(t44.x),
-        (uint32_t)fabsf(t44.y),
-        (uint32_t)fabsf(t44.z)
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const uint32_t limb1_7 = t45.x >> 12u;
-    const uint32_t limb0_7 = t45.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t45.y >> 12u;
-    const uint32_t limb0_8 = t45.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t45.z >> 12u;
-    const uint32_t limb0_9 = t45.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t46 = (float)hi12 * 16777216.0f;
-    const float dist2 = t46 + (float)lo12;
-    const bool t47 = t34 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    const unitpack_vec2 best = { t47 ? cand2.x : cand.x, t47 ? cand2.y : cand.y };
-    const float best_d = t47 ? dist2 : dist;
-    const float t48 = base.y + 1.0f;
-    const unitpack_vec2 t49 = { base.x, t48 };
+    const float t29 = (float)hi12 * 16777216.0f;
+    const float dist2 = t29 + (float)lo12;
+    const bool t30 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    const unitpack_vec2 best = { t30 ? cand2.x : cand.x, t30 ? cand2.y : cand.y };
+    const float best_d = t30 ? dist2 : dist;
+    const unitpack_vec2 t31 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t49.x <= 255.0f ? t49.x : 255.0f,
-        t49.y <= 255.0f ? t49.y : 255.0f
+        t31.x <= 255.0f ? t31.x : 255.0f,
+        t31.y <= 255.0f ? t31.y : 255.0f
     };
-    const unitpack_vec2 t50 = { cand3.x + cand3.x - 255.0f, cand3.y + cand3.y - 255.0f };
-    const unitpack_uvec2 t51 = { (uint32_t)fabsf(t50.x), (uint32_t)fabsf(t50.y) };
-    const uint32_t t52 = t51.x * t51.x + t51.y * t51.y;
-    const uint32_t t53 = t52 < 65025u ? 65025u - t52 : 0u;
-    const float t54 = (float)(t53 >> 12u) * 4096.0f;
-    const float r3 = t54 + (float)(t53 & 4095u);
-    const float t55 = r3 * 67636240.0f;
-    const float root_estimate4 = floorf(sqrtf(t55));
+    const unitpack_vec2 t32 = { cand3.x + cand3.x - 255.0f, cand3.y + cand3.y - 255.0f };
+    const unitpack_uvec2 t33 = { (uint32_t)fabsf(t32.x), (uint32_t)fabsf(t32.y) };
+    const uint32_t t34 = t33.x * t33.x + t33.y * t33.y;
+    const uint32_t t35 = t34 < 65025u ? 65025u - t34 : 0u;
+    const float t36 = (float)(t35 >> 12u) * 4096.0f;
+    const float r3 = t36 + (float)(t35 & 4095u);
+    const float t37 = r3 * 67636240.0f;
+    const float root_estimate4 = floorf(sqrtf(t37));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t56 = root_next5 * root_next5 <= t55
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t55 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t56;
+    const float step_down7 = root_estimate4 * root_estimate4 > t37 ? -1.0f : 0.0f;
+    const float step7 = root_next5 * root_next5 <= t37 ? 1.0f : step_down7;
+    const float root_step3 = root_estimate4 + step7;
     const float root_next6 = root_step3 + 1.0f;
-    const float t57 = root_next6 * root_next6 <= t55
-        ? 1.0f
-        : (root_step3 * root_step3 > t55 ? -1.0f : 0.0f);
-    const float root4 = root_step3 + t57;
-    const unitpack_vec3 t58 = {
-        floorf(t50.x * 8224.126f) - aim.x,
-        floorf(t50.y * 8224.126f) - aim.y,
+    const float step_down8 = root_step3 * root_step3 > t37 ? -1.0f : 0.0f;
+    const float step8 = root_next6 * root_next6 <= t37 ? 1.0f : step_down8;
+    const float root4 = root_step3 + step8;
+    const unitpack_vec3 offset3 = {
+        floorf(t32.x * 8224.126f) - aim.x,
+        floorf(t32.y * 8224.126f) - aim.y,
         root4 - aim.z
     };
-    const unitpack_uvec3 t59 = {
-        (uint32_t)fabsf(t58.x),
-        (uint32_t)fabsf(t58.y),
-        (uint32_t)fabsf(t58.z)
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const uint32_t limb1_10 = t59.x >> 12u;
-    const uint32_t limb0_10 = t59.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t59.y >> 12u;
-    const uint32_t limb0_11 = t59.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t59.z >> 12u;
-    const uint32_t limb0_12 = t59.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t60 = (float)hi16 * 16777216.0f;
-    const float dist3 = t60 + (float)lo16;
-    const bool t61 = base.x <= 255.0f && t48 <= 255.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t61 ? cand3.x : best.x, t61 ? cand3.y : best.y };
-    const float best_d2 = t61 ? dist3 : best_d;
-    const unitpack_vec2 t62 = { base.x + 1.0f, base.y + 1.0f };
+    const float t38 = (float)hi16 * 16777216.0f;
+    const float dist3 = t38 + (float)lo16;
+    const bool t39 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t39 ? cand3.x : best.x, t39 ? cand3.y : best.y };
+    const float best_d2 = t39 ? dist3 : best_d;
+    const unitpack_vec2 t40 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t62.x <= 255.0f ? t62.x : 255.0f,
-        t62.y <= 255.0f ? t62.y : 255.0f
+        t40.x <= 255.0f ? t40.x : 255.0f,
+        t40.y <= 255.0f ? t40.y : 255.0f
     };
-    const unitpack_vec2 t63 = { cand4.x + cand4.x - 255.0f, cand4.y + cand4.y - 255.0f };
-    const unitpack_uvec2 t64 = { (uint32_t)fabsf(t63.x), (uint32_t)fabsf(t63.y) };
-    const uint32_t t65 = t64.x * t64.x + t64.y * t64.y;
-    const uint32_t t66 = t65 < 65025u ? 65025u - t65 : 0u;
-    const float t67 = (float)(t66 >> 12u) * 4096.0f;
-    const float r4 = t67 + (float)(t66 & 4095u);
-    const float t68 = r4 * 67636240.0f;
-    const float root_estimate5 = floorf(sqrtf(t68));
+    const unitpack_vec2 t41 = { cand4.x + cand4.x - 255.0f, cand4.y + cand4.y - 255.0f };
+    const unitpack_uvec2 t42 = { (uint32_t)fabsf(t41.x), (uint32_t)fabsf(t41.y) };
+    const uint32_t t43 = t42.x * t42.x + t42.y * t42.y;
+    const uint32_t t44 = t43 < 65025u ? 65025u - t43 : 0u;
+    const float t45 = (float)(t44 >> 12u) * 4096.0f;
+    const float r4 = t45 + (float)(t44 & 4095u);
+    const float t46 = r4 * 67636240.0f;
+    const float root_estimate5 = floorf(sqrtf(t46));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t69 = root_next7 * root_next7 <= t68
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t68 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t69;
+    const float step_down9 = root_estimate5 * root_estimate5 > t46 ? -1.0f : 0.0f;
+    const float step9 = root_next7 * root_next7 <= t46 ? 1.0f : step_down9;
+    const float root_step4 = root_estimate5 + step9;
     const float root_next8 = root_step4 + 1.0f;
-    const float t70 = root_next8 * root_next8 <= t68
-        ? 1.0f
-        : (root_step4 * root_step4 > t68 ? -1.0f : 0.0f);
-    const float root5 = root_step4 + t70;
-    const unitpack_vec3 t71 = {
-        floorf(t63.x * 8224.126f) - aim.x,
-        floorf(t63.y * 8224.126f) - aim.y,
+    const float step_down10 = root_step4 * root_step4 > t46 ? -1.0f : 0.0f;
+    const float step10 = root_next8 * root_next8 <= t46 ? 1.0f : step_down10;
+    const float root5 = root_step4 + step10;
+    const unitpack_vec3 offset4 = {
+        floorf(t41.x * 8224.126f) - aim.x,
+        floorf(t41.y * 8224.126f) - aim.y,
         root5 - aim.z
     };
-    const unitpack_uvec3 t72 = {
-        (uint32_t)fabsf(t71.x),
-        (uint32_t)fabsf(t71.y),
-        (uint32_t)fabsf(t71.z)
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const uint32_t limb1_13 = t72.x >> 12u;
-    const uint32_t limb0_13 = t72.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t72.y >> 12u;
-    const uint32_t limb0_14 = t72.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t72.z >> 12u;
-    const uint32_t limb0_15 = t72.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t73 = (float)hi20 * 16777216.0f;
-    const float dist4 = t73 + (float)lo20;
-    const bool t74 = base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t74 ? cand4.x : best2.x, t74 ? cand4.y : best2.y };
-    const bool t75 = ok && ok2;
-    const unitpack_vec2 c = { t75 ? best3.x : 128.0f, t75 ? best3.y : 128.0f };
-    const unitpack_vec4 t76 = { c.x, c.y, 0.0f, 255.0f };
-    return t76;
+    const float t47 = (float)hi20 * 16777216.0f;
+    const float dist4 = t47 + (float)lo20;
+    const bool t48 = s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t48 ? cand4.x : best2.x, t48 ? cand4.y : best2.y };
+    const bool t49 = ok && ok2;
+    const unitpack_vec2 c = { t49 ? best3.x : 128.0f, t49 ? best3.y : 128.0f };
+    const unitpack_vec4 t50 = { c.x, c.y, 0.0f, 255.0f };
+    return t50;
 }
 
 // Struct form of unitpack_xy16p_rg_encode_float.

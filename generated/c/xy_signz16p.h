@@ -109,33 +109,31 @@ static inline void unitpack_xy_signz16p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec3 unitpack_xy_signz16p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w2.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w2.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w2.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w2.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -153,258 +151,259 @@ static inline unitpack_vec3 unitpack_xy_signz16p_encode_codes_v(unitpack_vec3 v)
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t3 = (float)hi4 * 16777216.0f;
-    const float len2 = (t3 + (float)lo4) * 2.2737368e-13f;
+    const float t1 = (float)hi4 * 16777216.0f;
+    const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t4 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t4 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t5 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t5;
-    const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t6;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t7 = root_k * 4096.0f;
-    const float root = (t7 + root_j) * 4.7683716e-7f;
-    const float t8 = w2.z < 0.0f ? 1.0f : 0.0f;
-    const unitpack_vec2 t9 = { floorf(w2.x / root * 127.0f), floorf(w2.y / root * 63.0f) };
-    const unitpack_vec2 t10 = { w2.x * 127.0f, w2.y * 63.0f };
-    const unitpack_vec2 t11 = {
-        t10.x >= (t9.x + 1.0f) * root ? 1.0f : (t10.x < t9.x * root ? -1.0f : 0.0f),
-        t10.y >= (t9.y + 1.0f) * root ? 1.0f : (t10.y < t9.y * root ? -1.0f : 0.0f)
+    const float t2 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t2;
+    const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t3;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t4 = root_k * 4096.0f;
+    const float root = (t4 + root_j) * 4.7683716e-7f;
+    const float one_if = w2.z < 0.0f ? 1.0f : 0.0f;
+    const unitpack_vec2 t5 = { floorf(w2.x / root * 127.0f), floorf(w2.y / root * 63.0f) };
+    const unitpack_vec2 t6 = { w2.x * 127.0f, w2.y * 63.0f };
+    const unitpack_vec2 t7 = {
+        t6.x >= (t5.x + 1.0f) * root ? 1.0f : (t6.x < t5.x * root ? -1.0f : 0.0f),
+        t6.y >= (t5.y + 1.0f) * root ? 1.0f : (t6.y < t5.y * root ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t12 = { t9.x + t11.x, t9.y + t11.y };
-    const unitpack_vec2 t13 = {
-        t12.x >= (-127.0f) ? t12.x : -127.0f,
-        t12.y >= (-63.0f) ? t12.y : -63.0f
+    const unitpack_vec2 t8 = { t5.x + t7.x, t5.y + t7.y };
+    const unitpack_vec2 t9 = {
+        t8.x >= (-127.0f) ? t8.x : -127.0f,
+        t8.y >= (-63.0f) ? t8.y : -63.0f
     };
-    const unitpack_vec2 base = { t13.x <= 127.0f ? t13.x : 127.0f, t13.y <= 63.0f ? t13.y : 63.0f };
-    const unitpack_vec3 t14 = {
+    const unitpack_vec2 base = { t9.x <= 127.0f ? t9.x : 127.0f, t9.y <= 63.0f ? t9.y : 63.0f };
+    const unitpack_vec3 t10 = {
         floorf(w2.x / root * 2097152.0f),
         floorf(w2.y / root * 2097152.0f),
         floorf(w2.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t15 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
-    const unitpack_bvec3 t16 = {
-        (t14.x + 1.0f) * root <= t15.x,
-        (t14.y + 1.0f) * root <= t15.y,
-        (t14.z + 1.0f) * root <= t15.z
+    const unitpack_vec3 t11 = { w2.x * 2097152.0f, w2.y * 2097152.0f, w2.z * 2097152.0f };
+    const unitpack_vec3 t12 = {
+        (t10.x + 1.0f) * root <= t11.x ? 1.0f : (t10.x * root > t11.x ? -1.0f : 0.0f),
+        (t10.y + 1.0f) * root <= t11.y ? 1.0f : (t10.y * root > t11.y ? -1.0f : 0.0f),
+        (t10.z + 1.0f) * root <= t11.z ? 1.0f : (t10.z * root > t11.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t17 = {
-        t14.x * root > t15.x ? -1.0f : 0.0f,
-        t14.y * root > t15.y ? -1.0f : 0.0f,
-        t14.z * root > t15.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t14.x + (t16.x ? 1.0f : t17.x),
-        t14.y + (t16.y ? 1.0f : t17.y),
-        t14.z + (t16.z ? 1.0f : t17.z)
-    };
+    const unitpack_vec3 aim = { t10.x + t12.x, t10.y + t12.y, t10.z + t12.z };
     const unitpack_vec2 cand = {
         base.x <= 127.0f ? base.x : 127.0f,
         base.y <= 63.0f ? base.y : 63.0f
     };
     const unitpack_vec2 p = { floorf(cand.x * 16513.008f), floorf(cand.y * 33288.13f) };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
-    const float t18 = 2097152.0f - q;
-    const float rest = t18 >= 0.0f ? t18 : 0.0f;
-    const float t19 = rest * 2097152.0f;
-    const float root_estimate2 = floorf(sqrtf(t19));
+    const float t13 = 2097152.0f - q;
+    const float rest = t13 >= 0.0f ? t13 : 0.0f;
+    const float t14 = rest * 2097152.0f;
+    const float root_estimate2 = floorf(sqrtf(t14));
     const float root_next = root_estimate2 + 1.0f;
-    const float t20 = root_next * root_next <= t19
-        ? 1.0f
-        : (root_estimate2 * root_estimate2 > t19 ? -1.0f : 0.0f);
-    const float root_step = root_estimate2 + t20;
+    const float step_down3 = root_estimate2 * root_estimate2 > t14 ? -1.0f : 0.0f;
+    const float step3 = root_next * root_next <= t14 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + step3;
     const float root_next2 = root_step + 1.0f;
-    const float t21 = root_next2 * root_next2 <= t19
-        ? 1.0f
-        : (root_step * root_step > t19 ? -1.0f : 0.0f);
-    const float root2 = root_step + t21;
-    const unitpack_vec3 t22 = {
-        fabsf(p.x - aim.x),
-        fabsf(p.y - aim.y),
-        fabsf((t8 > 0.5f ? -root2 : root2) - aim.z)
+    const float step_down4 = root_step * root_step > t14 ? -1.0f : 0.0f;
+    const float step4 = root_next2 * root_next2 <= t14 ? 1.0f : step_down4;
+    const float root2 = root_step + step4;
+    const unitpack_vec3 offset = {
+        p.x - aim.x,
+        p.y - aim.y,
+        (one_if > 0.5f ? -root2 : root2) - aim.z
     };
-    const unitpack_uvec3 t23 = { (uint32_t)t22.x, (uint32_t)t22.y, (uint32_t)t22.z };
-    const uint32_t limb1_4 = t23.x >> 12u;
-    const uint32_t limb0_4 = t23.x & 4095u;
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
+    };
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t23.y >> 12u;
-    const uint32_t limb0_5 = t23.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t23.z >> 12u;
-    const uint32_t limb0_6 = t23.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t24 = (float)hi8 * 16777216.0f;
-    const float dist = t24 + (float)lo8;
-    const float t25 = base.x + 1.0f;
-    const unitpack_vec2 t26 = { t25, base.y };
+    const float t15 = (float)hi8 * 16777216.0f;
+    const float dist = t15 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t16 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t26.x <= 127.0f ? t26.x : 127.0f,
-        t26.y <= 63.0f ? t26.y : 63.0f
+        t16.x <= 127.0f ? t16.x : 127.0f,
+        t16.y <= 63.0f ? t16.y : 63.0f
     };
     const unitpack_vec2 p2 = { floorf(cand2.x * 16513.008f), floorf(cand2.y * 33288.13f) };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
-    const float t27 = 2097152.0f - q2;
-    const float rest2 = t27 >= 0.0f ? t27 : 0.0f;
-    const float t28 = rest2 * 2097152.0f;
-    const float root_estimate3 = floorf(sqrtf(t28));
+    const float t17 = 2097152.0f - q2;
+    const float rest2 = t17 >= 0.0f ? t17 : 0.0f;
+    const float t18 = rest2 * 2097152.0f;
+    const float root_estimate3 = floorf(sqrtf(t18));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float t29 = root_next3 * root_next3 <= t28
-        ? 1.0f
-        : (root_estimate3 * root_estimate3 > t28 ? -1.0f : 0.0f);
-    const float root_step2 = root_estimate3 + t29;
+    const float step_down5 = root_estimate3 * root_estimate3 > t18 ? -1.0f : 0.0f;
+    const float step5 = root_next3 * root_next3 <= t18 ? 1.0f : step_down5;
+    const float root_step2 = root_estimate3 + step5;
     const float root_next4 = root_step2 + 1.0f;
-    const float t30 = root_next4 * root_next4 <= t28
-        ? 1.0f
-        : (root_step2 * root_step2 > t28 ? -1.0f : 0.0f);
-    const float root3 = root_step2 + t30;
-    const unitpack_vec3 t31 = {
-        fabsf(p2.x - aim.x),
-        fabsf(p2.y - aim.y),
-        fabsf((t8 > 0.5f ? -root3 : root3) - aim.z)
+    const float step_down6 = root_step2 * root_step2 > t18 ? -1.0f : 0.0f;
+    const float step6 = root_next4 * root_next4 <= t18 ? 1.0f : step_down6;
+    const float root3 = root_step2 + step6;
+    const unitpack_vec3 offset2 = {
+        p2.x - aim.x,
+        p2.y - aim.y,
+        (one_if > 0.5f ? -root3 : root3) - aim.z
     };
-    const unitpack_uvec3 t32 = { (uint32_t)t31.x, (uint32_t)t31.y, (uint32_t)t31.z };
-    const uint32_t limb1_7 = t32.x >> 12u;
-    const uint32_t limb0_7 = t32.x & 4095u;
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
+    };
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t32.y >> 12u;
-    const uint32_t limb0_8 = t32.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t32.z >> 12u;
-    const uint32_t limb0_9 = t32.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t33 = (float)hi12 * 16777216.0f;
-    const float dist2 = t33 + (float)lo12;
-    const bool t34 = t25 <= 127.0f && base.y <= 63.0f && dist2 < dist;
-    const unitpack_vec2 best = { t34 ? cand2.x : cand.x, t34 ? cand2.y : cand.y };
-    const float best_d = t34 ? dist2 : dist;
-    const float t35 = base.y + 1.0f;
-    const unitpack_vec2 t36 = { base.x, t35 };
+    const float t19 = (float)hi12 * 16777216.0f;
+    const float dist2 = t19 + (float)lo12;
+    const bool t20 = s_up <= 127.0f && base.y <= 63.0f && dist2 < dist;
+    const unitpack_vec2 best = { t20 ? cand2.x : cand.x, t20 ? cand2.y : cand.y };
+    const float best_d = t20 ? dist2 : dist;
+    const unitpack_vec2 t21 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t36.x <= 127.0f ? t36.x : 127.0f,
-        t36.y <= 63.0f ? t36.y : 63.0f
+        t21.x <= 127.0f ? t21.x : 127.0f,
+        t21.y <= 63.0f ? t21.y : 63.0f
     };
     const unitpack_vec2 p3 = { floorf(cand3.x * 16513.008f), floorf(cand3.y * 33288.13f) };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
-    const float t37 = 2097152.0f - q3;
-    const float rest3 = t37 >= 0.0f ? t37 : 0.0f;
-    const float t38 = rest3 * 2097152.0f;
-    const float root_estimate4 = floorf(sqrtf(t38));
+    const float t22 = 2097152.0f - q3;
+    const float rest3 = t22 >= 0.0f ? t22 : 0.0f;
+    const float t23 = rest3 * 2097152.0f;
+    const float root_estimate4 = floorf(sqrtf(t23));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float t39 = root_next5 * root_next5 <= t38
-        ? 1.0f
-        : (root_estimate4 * root_estimate4 > t38 ? -1.0f : 0.0f);
-    const float root_step3 = root_estimate4 + t39;
+    const float step_down7 = root_estimate4 * root_estimate4 > t23 ? -1.0f : 0.0f;
+    const float step7 = root_next5 * root_next5 <= t23 ? 1.0f : step_down7;
+    const float root_step3 = root_estimate4 + step7;
     const float root_next6 = root_step3 + 1.0f;
-    const float t40 = root_next6 * root_next6 <= t38
-        ? 1.0f
-        : (root_step3 * root_step3 > t38 ? -1.0f : 0.0f);
-    const float root4 = root_step3 + t40;
-    const unitpack_vec3 t41 = {
-        fabsf(p3.x - aim.x),
-        fabsf(p3.y - aim.y),
-        fabsf((t8 > 0.5f ? -root4 : root4) - aim.z)
+    const float step_down8 = root_step3 * root_step3 > t23 ? -1.0f : 0.0f;
+    const float step8 = root_next6 * root_next6 <= t23 ? 1.0f : step_down8;
+    const float root4 = root_step3 + step8;
+    const unitpack_vec3 offset3 = {
+        p3.x - aim.x,
+        p3.y - aim.y,
+        (one_if > 0.5f ? -root4 : root4) - aim.z
     };
-    const unitpack_uvec3 t42 = { (uint32_t)t41.x, (uint32_t)t41.y, (uint32_t)t41.z };
-    const uint32_t limb1_10 = t42.x >> 12u;
-    const uint32_t limb0_10 = t42.x & 4095u;
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
+    };
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t42.y >> 12u;
-    const uint32_t limb0_11 = t42.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t42.z >> 12u;
-    const uint32_t limb0_12 = t42.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t43 = (float)hi16 * 16777216.0f;
-    const float dist3 = t43 + (float)lo16;
-    const bool t44 = base.x <= 127.0f && t35 <= 63.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t44 ? cand3.x : best.x, t44 ? cand3.y : best.y };
-    const float best_d2 = t44 ? dist3 : best_d;
-    const unitpack_vec2 t45 = { base.x + 1.0f, base.y + 1.0f };
+    const float t24 = (float)hi16 * 16777216.0f;
+    const float dist3 = t24 + (float)lo16;
+    const bool t25 = base.x <= 127.0f && t_up <= 63.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t25 ? cand3.x : best.x, t25 ? cand3.y : best.y };
+    const float best_d2 = t25 ? dist3 : best_d;
+    const unitpack_vec2 t26 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t45.x <= 127.0f ? t45.x : 127.0f,
-        t45.y <= 63.0f ? t45.y : 63.0f
+        t26.x <= 127.0f ? t26.x : 127.0f,
+        t26.y <= 63.0f ? t26.y : 63.0f
     };
     const unitpack_vec2 p4 = { floorf(cand4.x * 16513.008f), floorf(cand4.y * 33288.13f) };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
-    const float t46 = 2097152.0f - q4;
-    const float rest4 = t46 >= 0.0f ? t46 : 0.0f;
-    const float t47 = rest4 * 2097152.0f;
-    const float root_estimate5 = floorf(sqrtf(t47));
+    const float t27 = 2097152.0f - q4;
+    const float rest4 = t27 >= 0.0f ? t27 : 0.0f;
+    const float t28 = rest4 * 2097152.0f;
+    const float root_estimate5 = floorf(sqrtf(t28));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float t48 = root_next7 * root_next7 <= t47
-        ? 1.0f
-        : (root_estimate5 * root_estimate5 > t47 ? -1.0f : 0.0f);
-    const float root_step4 = root_estimate5 + t48;
+    const float step_down9 = root_estimate5 * root_estimate5 > t28 ? -1.0f : 0.0f;
+    const float step9 = root_next7 * root_next7 <= t28 ? 1.0f : step_down9;
+    const float root_step4 = root_estimate5 + step9;
     const float root_next8 = root_step4 + 1.0f;
-    const float t49 = root_next8 * root_next8 <= t47
-        ? 1.0f
-        : (root_step4 * root_step4 > t47 ? -1.0f : 0.0f);
-    const float root5 = root_step4 + t49;
-    const unitpack_vec3 t50 = {
-        fabsf(p4.x - aim.x),
-        fabsf(p4.y - aim.y),
-        fabsf((t8 > 0.5f ? -root5 : root5) - aim.z)
+    const float step_down10 = root_step4 * root_step4 > t28 ? -1.0f : 0.0f;
+    const float step10 = root_next8 * root_next8 <= t28 ? 1.0f : step_down10;
+    const float root5 = root_step4 + step10;
+    const unitpack_vec3 offset4 = {
+        p4.x - aim.x,
+        p4.y - aim.y,
+        (one_if > 0.5f ? -root5 : root5) - aim.z
     };
-    const unitpack_uvec3 t51 = { (uint32_t)t50.x, (uint32_t)t50.y, (uint32_t)t50.z };
-    const uint32_t limb1_13 = t51.x >> 12u;
-    const uint32_t limb0_13 = t51.x & 4095u;
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
+    };
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t51.y >> 12u;
-    const uint32_t limb0_14 = t51.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t51.z >> 12u;
-    const uint32_t limb0_15 = t51.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t52 = (float)hi20 * 16777216.0f;
-    const float dist4 = t52 + (float)lo20;
-    const bool t53 = base.x + 1.0f <= 127.0f && base.y + 1.0f <= 63.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t53 ? cand4.x : best2.x, t53 ? cand4.y : best2.y };
-    const unitpack_vec3 t54 = { best3.x, best3.y, t8 };
-    return t54;
+    const float t29 = (float)hi20 * 16777216.0f;
+    const float dist4 = t29 + (float)lo20;
+    const bool t30 = s_up <= 127.0f && t_up <= 63.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t30 ? cand4.x : best2.x, t30 ? cand4.y : best2.y };
+    const unitpack_vec3 t31 = { best3.x, best3.y, one_if };
+    return t31;
 }
 
 // Struct form of unitpack_xy_signz16p_encode_float.

@@ -119,13 +119,13 @@ static inline unitpack_vec3 unitpack_xy_signz32_encode_float_v(unitpack_vec3 v) 
     const float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
     const bool t4 = t2 && len2 >= 1.0f;
     const float sqrt_len2 = sqrtf(len2);
+    const float one_if = (t4 ? scaled.z / sqrt_len2 : 1.0f) < 0.0f ? 1.0f : 0.0f;
     const unitpack_vec3 t5 = {
         t4 ? scaled.x / sqrt_len2 : 0.0f,
         t4 ? scaled.y / sqrt_len2 : 0.0f,
-        t4 ? scaled.z / sqrt_len2 : 1.0f
+        one_if
     };
-    const unitpack_vec3 t6 = { t5.x, t5.y, t5.z < 0.0f ? 1.0f : 0.0f };
-    return t6;
+    return t5;
 }
 
 // unitpack_xy_signz32_encode_float: fast encoder, float form.
@@ -148,78 +148,71 @@ static inline void unitpack_xy_signz32_encode_float(const float v[3], float out[
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec3 unitpack_xy_signz32_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t3 = (split_hi + split_hi) * split_lo;
+    const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t4 = (split_hi2 + split_hi2) * split_lo2;
+    const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t5 = (split_hi3 + split_hi3) * split_lo3;
+    const float t3 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t3 + t4 + t5)
+        + (t1 + t2 + t3)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float big = fabsf(w2.x * 32767.0f);
     const float estimate = nearbyintf(big / sqrtf(len2));
     const float big2 = big * big;
     const float upper = estimate + 0.5f;
     const float lower = estimate - 0.5f;
-    const float t6 = big2 >= upper * upper * len2
-        ? 1.0f
-        : (estimate > 0.0f && big2 < lower * lower * len2 ? -1.0f : 0.0f);
-    const float t7 = estimate + t6;
-    const float t8 = t7 >= 0.0f ? t7 : 0.0f;
-    const float t9 = t8 <= 32767.0f ? t8 : 32767.0f;
+    const float step_down = estimate > 0.0f && big2 < lower * lower * len2 ? -1.0f : 0.0f;
+    const float step = big2 >= upper * upper * len2 ? 1.0f : step_down;
+    const float t4 = estimate + step;
+    const float t5 = t4 >= 0.0f ? t4 : 0.0f;
+    const float t6 = t5 <= 32767.0f ? t5 : 32767.0f;
     const float big3 = fabsf(w2.y * 16383.0f);
     const float estimate2 = nearbyintf(big3 / sqrtf(len2));
     const float big2_2 = big3 * big3;
     const float upper2 = estimate2 + 0.5f;
     const float lower2 = estimate2 - 0.5f;
-    const float t10 = big2_2 >= upper2 * upper2 * len2
-        ? 1.0f
-        : (estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2 ? -1.0f : 0.0f);
-    const float t11 = estimate2 + t10;
-    const float t12 = t11 >= 0.0f ? t11 : 0.0f;
-    const float t13 = t12 <= 16383.0f ? t12 : 16383.0f;
-    const unitpack_vec3 t14 = {
-        w2.x < 0.0f ? -t9 : t9,
-        w2.y < 0.0f ? -t13 : t13,
+    const float step_down2 = estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2 ? -1.0f : 0.0f;
+    const float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0f : step_down2;
+    const float t7 = estimate2 + step2;
+    const float t8 = t7 >= 0.0f ? t7 : 0.0f;
+    const float t9 = t8 <= 16383.0f ? t8 : 16383.0f;
+    const unitpack_vec3 t10 = {
+        w2.x < 0.0f ? -t6 : t6,
+        w2.y < 0.0f ? -t9 : t9,
         w2.z < 0.0f ? 1.0f : 0.0f
     };
-    return t14;
+    return t10;
 }
 
 // Struct form of unitpack_xy_signz32_encode.

@@ -80,17 +80,17 @@ static inline void unitpack_xy_stereo16_rxgb_decode_float(const float params[4],
 
 // Struct form of unitpack_xy_stereo16_rxgb_decode.
 static inline unitpack_vec3 unitpack_xy_stereo16_rxgb_decode_v(uint32_t code) {
-    const unitpack_vec4 t1 = {
-        (float)(code & 255u),
-        (float)((code >> 8u) & 255u),
-        (float)((code >> 16u) & 255u),
-        (float)(code >> 24u)
+    const unitpack_uvec4 t1 = {
+        code & 255u,
+        (code >> 8u) & 255u,
+        (code >> 16u) & 255u,
+        code >> 24u
     };
     const unitpack_vec4 params = {
-        t1.x * 0.003921569f,
-        t1.y * 0.003921569f,
-        t1.z * 0.003921569f,
-        t1.w * 0.003921569f
+        (float)t1.x * 0.003921569f,
+        (float)t1.y * 0.003921569f,
+        (float)t1.z * 0.003921569f,
+        (float)t1.w * 0.003921569f
     };
     const unitpack_vec3 decode_float = unitpack_xy_stereo16_rxgb_decode_float_v(params);
     return decode_float;
@@ -111,37 +111,31 @@ static inline void unitpack_xy_stereo16_rxgb_decode(uint32_t code, float out[3])
 
 // Struct form of unitpack_xy_stereo16_rxgb_encode_float.
 static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_encode_float_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -150,21 +144,20 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_encode_float_v(unitpack_ve
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -182,72 +175,69 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_encode_float_v(unitpack_ve
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
+    const float t3 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t3;
+    const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t4;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t5 = root_k * 4096.0f;
+    const float root = (t5 + root_j) * 4.7683716e-7f;
     const float a = root + w4.z;
     const unitpack_vec2 p = { w4.x / a, w4.y / a };
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
-    const float t11 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    const float largest3 = t11 >= abs_v.z ? t11 : abs_v.z;
-    const bool t12 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
-    const float t13 = t12 ? largest3 : 1.0f;
-    const unitpack_vec3 scaled3 = { v.x / t13, v.y / t13, v.z / t13 };
+    const float t6 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    const float largest3 = t6 >= abs_v.z ? t6 : abs_v.z;
+    const bool t7 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    const float t8 = t7 ? largest3 : 1.0f;
+    const unitpack_vec3 scaled3 = { v.x / t8, v.y / t8, v.z / t8 };
     const unitpack_vec3 scaled3_sq = {
         scaled3.x * scaled3.x,
         scaled3.y * scaled3.y,
         scaled3.z * scaled3.z
     };
     const float len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    const bool t14 = t12 && len2_2 >= 1.0f;
+    const bool t9 = t7 && len2_2 >= 1.0f;
     const float sqrt_len2_2 = sqrtf(len2_2);
-    const unitpack_vec3 t15 = {
-        t14 ? scaled3.x / sqrt_len2_2 : 0.0f,
-        t14 ? scaled3.y / sqrt_len2_2 : 0.0f,
-        t14 ? scaled3.z / sqrt_len2_2 : 1.0f
+    const unitpack_vec3 t10 = {
+        t9 ? scaled3.x / sqrt_len2_2 : 0.0f,
+        t9 ? scaled3.y / sqrt_len2_2 : 0.0f,
+        t9 ? scaled3.z / sqrt_len2_2 : 1.0f
     };
-    const unitpack_vec3 t16 = { t15.x, t15.y, t15.z > 0.0f ? t15.z : 0.0f };
-    const unitpack_vec3 abs_t16 = { fabsf(t16.x), fabsf(t16.y), fabsf(t16.z) };
-    const float t17 = abs_t16.x >= abs_t16.y ? abs_t16.x : abs_t16.y;
-    const float largest4 = t17 >= abs_t16.z ? t17 : abs_t16.z;
-    const bool t18 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
-    const float t19 = t18 ? largest4 : 1.0f;
-    const unitpack_vec3 scaled4 = { t16.x / t19, t16.y / t19, t16.z / t19 };
+    const unitpack_vec3 t11 = { t10.x, t10.y, t10.z > 0.0f ? t10.z : 0.0f };
+    const unitpack_vec3 abs_t11 = { fabsf(t11.x), fabsf(t11.y), fabsf(t11.z) };
+    const float t12 = abs_t11.x >= abs_t11.y ? abs_t11.x : abs_t11.y;
+    const float largest4 = t12 >= abs_t11.z ? t12 : abs_t11.z;
+    const bool t13 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    const float t14 = t13 ? largest4 : 1.0f;
+    const unitpack_vec3 scaled4 = { t11.x / t14, t11.y / t14, t11.z / t14 };
     const unitpack_vec3 scaled4_sq = {
         scaled4.x * scaled4.x,
         scaled4.y * scaled4.y,
         scaled4.z * scaled4.z
     };
     const float len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    const bool t20 = t18 && len2_3 >= 1.0f;
+    const bool t15 = t13 && len2_3 >= 1.0f;
     const float sqrt_len2_3 = sqrtf(len2_3);
-    const unitpack_vec3 t21 = {
-        t20 ? scaled4.x / sqrt_len2_3 : 0.0f,
-        t20 ? scaled4.y / sqrt_len2_3 : 0.0f,
-        t20 ? scaled4.z / sqrt_len2_3 : 1.0f
-    };
-    const float t22 = t21.z * 0.5f;
-    const float t23 = p.x * 0.5f;
-    const float t24 = p.y * 0.5f;
-    const unitpack_vec4 t25 = { 1.0f, 0.5f + t24, 0.5f + t22, 0.5f + t23 };
-    return t25;
+    const float t16 = (t15 ? scaled4.z / sqrt_len2_3 : 1.0f) * 0.5f;
+    const float t17 = p.x * 0.5f;
+    const float t18 = p.y * 0.5f;
+    const unitpack_vec4 t19 = { 1.0f, 0.5f + t18, 0.5f + t16, 0.5f + t17 };
+    return t19;
 }
 
 // unitpack_xy_stereo16_rxgb_encode_float: fast encoder, float form.
@@ -272,37 +262,31 @@ static inline void unitpack_xy_stereo16_rxgb_encode_float(const float v[3], floa
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
 static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_bvec3 t1 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : a0.x, t1.y ? 0.0f : a0.y, t1.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -311,21 +295,20 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_round_codes_v(unitpack_vec
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -343,58 +326,48 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_round_codes_v(unitpack_vec
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
+    const float t3 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t3;
+    const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t4;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t5 = root_k * 4096.0f;
+    const float root = (t5 + root_j) * 4.7683716e-7f;
     const float a = root + w4.z;
-    const bool t11 = ok && ok2;
-    const unitpack_vec2 t12 = { w4.x * 127.5f, w4.y * 127.5f };
-    const unitpack_vec2 t13 = { nearbyintf(t12.x / a + 127.5f), nearbyintf(t12.y / a + 127.5f) };
-    const unitpack_vec2 t14 = { t13.x >= 0.0f ? t13.x : 0.0f, t13.y >= 0.0f ? t13.y : 0.0f };
-    const unitpack_vec2 t15 = {
-        t14.x <= 255.0f ? t14.x : 255.0f,
-        t14.y <= 255.0f ? t14.y : 255.0f
+    const bool t6 = ok && ok2;
+    const unitpack_vec2 t7 = { w4.x * 127.5f, w4.y * 127.5f };
+    const unitpack_vec2 t8 = { nearbyintf(t7.x / a + 127.5f), nearbyintf(t7.y / a + 127.5f) };
+    const unitpack_vec2 t9 = { t8.x >= 0.0f ? t8.x : 0.0f, t8.y >= 0.0f ? t8.y : 0.0f };
+    const unitpack_vec2 t10 = { t9.x <= 255.0f ? t9.x : 255.0f, t9.y <= 255.0f ? t9.y : 255.0f };
+    const unitpack_vec2 t11 = {
+        t10.x + (t10.x < 255.0f ? (t7.x >= (t10.x - 127.0f) * a ? 1.0f : 0.0f) : 0.0f),
+        t10.y + (t10.y < 255.0f ? (t7.y >= (t10.y - 127.0f) * a ? 1.0f : 0.0f) : 0.0f)
     };
-    const unitpack_vec2 t16 = {
-        t12.x >= (t15.x - 127.0f) * a ? 1.0f : 0.0f,
-        t12.y >= (t15.y - 127.0f) * a ? 1.0f : 0.0f
+    const unitpack_vec2 t12 = {
+        t10.x > 0.0f ? (t7.x >= (t10.x - 1.0f - 127.0f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f,
+        t10.y > 0.0f ? (t7.y >= (t10.y - 1.0f - 127.0f) * a ? 1.0f : 0.0f) - 1.0f : 0.0f
     };
-    const unitpack_vec2 t17 = {
-        t15.x + (t15.x < 255.0f ? t16.x : 0.0f),
-        t15.y + (t15.y < 255.0f ? t16.y : 0.0f)
+    const unitpack_vec2 c = { t6 ? t11.x + t12.x : 128.0f, t6 ? t11.y + t12.y : 128.0f };
+    const unitpack_vec3 normal3 = {
+        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
+        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
+        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
     };
-    const unitpack_vec2 t18 = {
-        t12.x >= (t15.x - 1.0f - 127.0f) * a ? 1.0f : 0.0f,
-        t12.y >= (t15.y - 1.0f - 127.0f) * a ? 1.0f : 0.0f
-    };
-    const unitpack_vec2 t19 = {
-        t17.x + (t15.x > 0.0f ? t18.x - 1.0f : 0.0f),
-        t17.y + (t15.y > 0.0f ? t18.y - 1.0f : 0.0f)
-    };
-    const unitpack_vec2 c = { t11 ? t19.x : 128.0f, t11 ? t19.y : 128.0f };
-    const unitpack_bvec3 t20 = {
-        fabsf(a0.x) < 1.1754944e-38f,
-        fabsf(a0.y) < 1.1754944e-38f,
-        fabsf(a0.z) < 1.1754944e-38f
-    };
-    const unitpack_vec3 normal3 = { t20.x ? 0.0f : a0.x, t20.y ? 0.0f : a0.y, t20.z ? 0.0f : a0.z };
     const unitpack_vec3 abs_normal3 = { fabsf(normal3.x), fabsf(normal3.y), fabsf(normal3.z) };
     const float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     const float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
@@ -403,28 +376,19 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_round_codes_v(unitpack_vec
     );
     const unitpack_vec3 scaled3 = { normal3.x * scale3, normal3.y * scale3, normal3.z * scale3 };
     const float sum3 = fabsf(scaled3.x) + fabsf(scaled3.y) + fabsf(scaled3.z);
-    const bool ok3 = sum3 >= 2.0f && sum3 < 16.0f;
-    const unitpack_bvec3 t21 = {
-        fabsf(scaled3.x) < 1.8189894e-12f,
-        fabsf(scaled3.y) < 1.8189894e-12f,
-        fabsf(scaled3.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_3 = sum3 < 16.0f;
+    const bool ok3 = sum3 >= 2.0f && sum_below_16_3;
     const unitpack_vec3 w5 = {
-        t21.x ? 0.0f : scaled3.x,
-        t21.y ? 0.0f : scaled3.y,
-        t21.z ? 0.0f : scaled3.z
+        fabsf(scaled3.x) < 1.8189894e-12f ? 0.0f : scaled3.x,
+        fabsf(scaled3.y) < 1.8189894e-12f ? 0.0f : scaled3.y,
+        fabsf(scaled3.z) < 1.8189894e-12f ? 0.0f : scaled3.z
     };
     const unitpack_vec3 w6 = { ok3 ? w5.x : 0.0f, ok3 ? w5.y : 0.0f, ok3 ? w5.z : 2.0f };
-    const unitpack_vec3 t22 = { w6.x, w6.y, w6.z > 0.0f ? w6.z : 0.0f };
-    const unitpack_bvec3 t23 = {
-        fabsf(t22.x) < 1.1754944e-38f,
-        fabsf(t22.y) < 1.1754944e-38f,
-        fabsf(t22.z) < 1.1754944e-38f
-    };
+    const unitpack_vec3 t13 = { w6.x, w6.y, w6.z > 0.0f ? w6.z : 0.0f };
     const unitpack_vec3 normal4 = {
-        t23.x ? 0.0f : t22.x,
-        t23.y ? 0.0f : t22.y,
-        t23.z ? 0.0f : t22.z
+        fabsf(t13.x) < 1.1754944e-38f ? 0.0f : t13.x,
+        fabsf(t13.y) < 1.1754944e-38f ? 0.0f : t13.y,
+        fabsf(t13.z) < 1.1754944e-38f ? 0.0f : t13.z
     };
     const unitpack_vec3 abs_normal4 = { fabsf(normal4.x), fabsf(normal4.y), fabsf(normal4.z) };
     const float larger4 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
@@ -434,57 +398,55 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_round_codes_v(unitpack_vec
     );
     const unitpack_vec3 scaled4 = { normal4.x * scale4, normal4.y * scale4, normal4.z * scale4 };
     const float sum4 = fabsf(scaled4.x) + fabsf(scaled4.y) + fabsf(scaled4.z);
-    const bool ok4 = sum4 >= 2.0f && sum4 < 16.0f;
-    const unitpack_bvec3 t24 = {
-        fabsf(scaled4.x) < 1.8189894e-12f,
-        fabsf(scaled4.y) < 1.8189894e-12f,
-        fabsf(scaled4.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_4 = sum4 < 16.0f;
+    const bool ok4 = sum4 >= 2.0f && sum_below_16_4;
     const unitpack_vec3 w7 = {
-        t24.x ? 0.0f : scaled4.x,
-        t24.y ? 0.0f : scaled4.y,
-        t24.z ? 0.0f : scaled4.z
+        fabsf(scaled4.x) < 1.8189894e-12f ? 0.0f : scaled4.x,
+        fabsf(scaled4.y) < 1.8189894e-12f ? 0.0f : scaled4.y,
+        fabsf(scaled4.z) < 1.8189894e-12f ? 0.0f : scaled4.z
     };
     const unitpack_vec3 w8 = { ok4 ? w7.x : 0.0f, ok4 ? w7.y : 0.0f, ok4 ? w7.z : 2.0f };
     const float split_hi = unitpack_float_of(unitpack_bits_of(w8.x) & 4294963200u);
     const float split_lo = w8.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
-    const float t25 = (split_hi + split_hi) * split_lo;
+    const float t14 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
     const float split_hi2 = unitpack_float_of(unitpack_bits_of(w8.y) & 4294963200u);
     const float split_lo2 = w8.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
-    const float t26 = (split_hi2 + split_hi2) * split_lo2;
+    const float t15 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
     const float split_hi3 = unitpack_float_of(unitpack_bits_of(w8.z) & 4294963200u);
     const float split_lo3 = w8.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
-    const float t27 = (split_hi3 + split_hi3) * split_lo3;
+    const float t16 = (split_hi3 + split_hi3) * split_lo3;
     const float split_lo3_sq = split_lo3 * split_lo3;
     const float len2_2 = split_hi_sq
         + split_hi2_sq
         + split_hi3_sq
-        + (t25 + t26 + t27)
+        + (t14 + t15 + t16)
         + (split_lo_sq + split_lo2_sq + split_lo3_sq);
     const float big2 = w8.z * w8.z * 16256.25f;
-    const float t28 = w8.z / sqrtf(len2_2) * 127.5f;
-    const float t29 = nearbyintf(t28 + 127.5f);
-    const float t30 = t29 >= 0.0f ? t29 : 0.0f;
-    const float estimate = t30 <= 255.0f ? t30 : 255.0f;
-    const float t31 = estimate - 127.0f;
-    const float t32 = t31 * t31 * len2_2;
-    const float t33 = w8.z >= 0.0f
-        ? (t31 > 0.0f ? (big2 >= t32 ? 1.0f : 0.0f) : 1.0f)
-        : (t31 < 0.0f ? (big2 <= t32 ? 1.0f : 0.0f) : 0.0f);
-    const float up = estimate < 255.0f ? t33 : 0.0f;
-    const float t34 = estimate - 1.0f - 127.0f;
-    const float t35 = t34 * t34 * len2_2;
-    const float t36 = w8.z >= 0.0f
-        ? (t34 > 0.0f ? (big2 >= t35 ? 1.0f : 0.0f) : 1.0f)
-        : (t34 < 0.0f ? (big2 <= t35 ? 1.0f : 0.0f) : 0.0f);
-    const float down = estimate > 0.0f ? t36 - 1.0f : 0.0f;
-    const unitpack_vec4 t37 = { 255.0f, c.y, estimate + up + down, c.x };
-    return t37;
+    const float t17 = w8.z / sqrtf(len2_2) * 127.5f;
+    const float t18 = nearbyintf(t17 + 127.5f);
+    const float t19 = t18 >= 0.0f ? t18 : 0.0f;
+    const float estimate = t19 <= 255.0f ? t19 : 255.0f;
+    const float t20 = estimate - 127.0f;
+    const float t21 = t20 * t20 * len2_2;
+    const float one_if = big2 >= t21 ? 1.0f : 0.0f;
+    const float one_if2 = big2 <= t21 ? 1.0f : 0.0f;
+    const float up = estimate < 255.0f
+        ? (w8.z >= 0.0f ? (t20 > 0.0f ? one_if : 1.0f) : (t20 < 0.0f ? one_if2 : 0.0f))
+        : 0.0f;
+    const float t22 = estimate - 1.0f - 127.0f;
+    const float t23 = t22 * t22 * len2_2;
+    const float one_if3 = big2 >= t23 ? 1.0f : 0.0f;
+    const float one_if4 = big2 <= t23 ? 1.0f : 0.0f;
+    const float t24 = (w8.z >= 0.0f ? (t22 > 0.0f ? one_if3 : 1.0f) : (t22 < 0.0f ? one_if4 : 0.0f))
+        - 1.0f;
+    const float down = estimate > 0.0f ? t24 : 0.0f;
+    const unitpack_vec4 t25 = { 255.0f, c.y, estimate + up + down, c.x };
+    return t25;
 }
 
 // Struct form of unitpack_xy_stereo16_rxgb_encode.

@@ -104,37 +104,31 @@ static inline void unitpack_xy_stereo16p_decode(uint32_t code, float out[3]) {
 //   on ties.
 
 static inline unitpack_vec2 unitpack_xy_stereo16p_encode_codes_v(unitpack_vec3 v) {
-    const unitpack_bvec3 t1 = {
-        fabsf(v.x) < 1.1754944e-38f,
-        fabsf(v.y) < 1.1754944e-38f,
-        fabsf(v.z) < 1.1754944e-38f
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
-    const unitpack_vec3 normal = { t1.x ? 0.0f : v.x, t1.y ? 0.0f : v.y, t1.z ? 0.0f : v.z };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool ok = sum >= 2.0f && sum < 16.0f;
-    const unitpack_bvec3 t2 = {
-        fabsf(scaled.x) < 1.8189894e-12f,
-        fabsf(scaled.y) < 1.8189894e-12f,
-        fabsf(scaled.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
     const unitpack_vec3 w = {
-        t2.x ? 0.0f : scaled.x,
-        t2.y ? 0.0f : scaled.y,
-        t2.z ? 0.0f : scaled.z
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const unitpack_vec3 t3 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
-    const unitpack_bvec3 t4 = {
-        fabsf(t3.x) < 1.1754944e-38f,
-        fabsf(t3.y) < 1.1754944e-38f,
-        fabsf(t3.z) < 1.1754944e-38f
+    const unitpack_vec3 t1 = { w2.x, w2.y, w2.z > 0.0f ? w2.z : 0.0f };
+    const unitpack_vec3 normal2 = {
+        fabsf(t1.x) < 1.1754944e-38f ? 0.0f : t1.x,
+        fabsf(t1.y) < 1.1754944e-38f ? 0.0f : t1.y,
+        fabsf(t1.z) < 1.1754944e-38f ? 0.0f : t1.z
     };
-    const unitpack_vec3 normal2 = { t4.x ? 0.0f : t3.x, t4.y ? 0.0f : t3.y, t4.z ? 0.0f : t3.z };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
@@ -143,21 +137,20 @@ static inline unitpack_vec2 unitpack_xy_stereo16p_encode_codes_v(unitpack_vec3 v
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
-    const bool ok2 = sum2 >= 2.0f && sum2 < 16.0f;
-    const unitpack_bvec3 t5 = {
-        fabsf(scaled2.x) < 1.8189894e-12f,
-        fabsf(scaled2.y) < 1.8189894e-12f,
-        fabsf(scaled2.z) < 1.8189894e-12f
-    };
+    const bool sum_below_16_2 = sum2 < 16.0f;
+    const bool ok2 = sum2 >= 2.0f && sum_below_16_2;
     const unitpack_vec3 w3 = {
-        t5.x ? 0.0f : scaled2.x,
-        t5.y ? 0.0f : scaled2.y,
-        t5.z ? 0.0f : scaled2.z
+        fabsf(scaled2.x) < 1.8189894e-12f ? 0.0f : scaled2.x,
+        fabsf(scaled2.y) < 1.8189894e-12f ? 0.0f : scaled2.y,
+        fabsf(scaled2.z) < 1.8189894e-12f ? 0.0f : scaled2.z
     };
     const unitpack_vec3 w4 = { ok2 ? w3.x : 0.0f, ok2 ? w3.y : 0.0f, ok2 ? w3.z : 2.0f };
-    const uint32_t fixed2 = (uint32_t)floorf(fabsf(w4.x) * 2097152.0f);
-    const uint32_t fixed3 = (uint32_t)floorf(fabsf(w4.y) * 2097152.0f);
-    const uint32_t fixed4 = (uint32_t)floorf(fabsf(w4.z) * 2097152.0f);
+    const float fixed_f = floorf(fabsf(w4.x) * 2097152.0f);
+    const uint32_t fixed2 = (uint32_t)fixed_f;
+    const float fixed_f2 = floorf(fabsf(w4.y) * 2097152.0f);
+    const uint32_t fixed3 = (uint32_t)fixed_f2;
+    const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
+    const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
     const uint32_t limb0 = fixed2 & 4095u;
     const uint32_t cross = limb1 * limb0;
@@ -175,278 +168,267 @@ static inline unitpack_vec2 unitpack_xy_stereo16p_encode_codes_v(unitpack_vec3 v
     const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
     const uint32_t lo4 = lo3 & 16777215u;
-    const float t6 = (float)hi4 * 16777216.0f;
-    const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
+    const float t2 = (float)hi4 * 16777216.0f;
+    const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
-    const float t7 = floorf(root_estimate * 512.0f);
-    const float root_h0 = t7 * 0.001953125f;
+    const float root_k0 = floorf(root_estimate * 512.0f);
+    const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
-    const float root_k = t7
-        + (root_h1 * root_h1 <= len2 ? 1.0f : (root_h0 * root_h0 > len2 ? -1.0f : 0.0f));
+    const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
+    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + step;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
     const float root_j0 = floorf(root_rest / (root_h + root_estimate) * 2097152.0f);
-    const float t8 = root_j0 * 4.7683716e-7f;
-    const float root_m0 = root_h + t8;
-    const float t9 = (root_j0 + 1.0f) * 4.7683716e-7f;
-    const float root_m1 = root_h + t9;
-    const float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0f : (root_m0 * root_m0 > len2 ? -1.0f : 0.0f));
-    const float t10 = root_k * 4096.0f;
-    const float root = (t10 + root_j) * 4.7683716e-7f;
+    const float t3 = root_j0 * 4.7683716e-7f;
+    const float root_m0 = root_h + t3;
+    const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
+    const float root_m1 = root_h + t4;
+    const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
+    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + step2;
+    const float t5 = root_k * 4096.0f;
+    const float root = (t5 + root_j) * 4.7683716e-7f;
     const float a = root + w4.z;
-    const bool t11 = ok && ok2;
-    const unitpack_vec2 t12 = { floorf(w4.x / a * 127.0f), floorf(w4.y / a * 127.0f) };
-    const unitpack_vec2 t13 = { w4.x * 127.0f, w4.y * 127.0f };
-    const unitpack_vec2 t14 = {
-        t13.x >= (t12.x + 1.0f) * a ? 1.0f : (t13.x < t12.x * a ? -1.0f : 0.0f),
-        t13.y >= (t12.y + 1.0f) * a ? 1.0f : (t13.y < t12.y * a ? -1.0f : 0.0f)
+    const bool t6 = ok && ok2;
+    const unitpack_vec2 t7 = { floorf(w4.x / a * 127.0f), floorf(w4.y / a * 127.0f) };
+    const unitpack_vec2 t8 = { w4.x * 127.0f, w4.y * 127.0f };
+    const unitpack_vec2 t9 = {
+        t8.x >= (t7.x + 1.0f) * a ? 1.0f : (t8.x < t7.x * a ? -1.0f : 0.0f),
+        t8.y >= (t7.y + 1.0f) * a ? 1.0f : (t8.y < t7.y * a ? -1.0f : 0.0f)
     };
-    const unitpack_vec2 t15 = { t12.x + t14.x, t12.y + t14.y };
-    const unitpack_vec2 t16 = {
-        t15.x >= (-127.0f) ? t15.x : -127.0f,
-        t15.y >= (-127.0f) ? t15.y : -127.0f
+    const unitpack_vec2 t10 = { t7.x + t9.x, t7.y + t9.y };
+    const unitpack_vec2 t11 = {
+        t10.x >= (-127.0f) ? t10.x : -127.0f,
+        t10.y >= (-127.0f) ? t10.y : -127.0f
     };
     const unitpack_vec2 base = {
-        t16.x <= 127.0f ? t16.x : 127.0f,
-        t16.y <= 127.0f ? t16.y : 127.0f
+        t11.x <= 127.0f ? t11.x : 127.0f,
+        t11.y <= 127.0f ? t11.y : 127.0f
     };
-    const unitpack_vec3 t17 = {
+    const unitpack_vec3 t12 = {
         floorf(w4.x / root * 2097152.0f),
         floorf(w4.y / root * 2097152.0f),
         floorf(w4.z / root * 2097152.0f)
     };
-    const unitpack_vec3 t18 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
-    const unitpack_bvec3 t19 = {
-        (t17.x + 1.0f) * root <= t18.x,
-        (t17.y + 1.0f) * root <= t18.y,
-        (t17.z + 1.0f) * root <= t18.z
+    const unitpack_vec3 t13 = { w4.x * 2097152.0f, w4.y * 2097152.0f, w4.z * 2097152.0f };
+    const unitpack_vec3 t14 = {
+        (t12.x + 1.0f) * root <= t13.x ? 1.0f : (t12.x * root > t13.x ? -1.0f : 0.0f),
+        (t12.y + 1.0f) * root <= t13.y ? 1.0f : (t12.y * root > t13.y ? -1.0f : 0.0f),
+        (t12.z + 1.0f) * root <= t13.z ? 1.0f : (t12.z * root > t13.z ? -1.0f : 0.0f)
     };
-    const unitpack_vec3 t20 = {
-        t17.x * root > t18.x ? -1.0f : 0.0f,
-        t17.y * root > t18.y ? -1.0f : 0.0f,
-        t17.z * root > t18.z ? -1.0f : 0.0f
-    };
-    const unitpack_vec3 aim = {
-        t17.x + (t19.x ? 1.0f : t20.x),
-        t17.y + (t19.y ? 1.0f : t20.y),
-        t17.z + (t19.z ? 1.0f : t20.z)
-    };
+    const unitpack_vec3 aim = { t12.x + t14.x, t12.y + t14.y, t12.z + t14.z };
     const unitpack_vec2 cand = {
         base.x <= 127.0f ? base.x : 127.0f,
         base.y <= 127.0f ? base.y : 127.0f
     };
     const unitpack_vec2 p = { floorf(cand.x * 16513.008f), floorf(cand.y * 16513.008f) };
     const float q = nearbyintf(p.x * p.x * 4.7683716e-7f) + nearbyintf(p.y * p.y * 4.7683716e-7f);
-    const float t21 = 2097152.0f + q;
-    const unitpack_vec2 t22 = { p.x + p.x, p.y + p.y };
-    const unitpack_vec2 t23 = {
-        floorf(t22.x / t21 * 2097152.0f),
-        floorf(t22.y / t21 * 2097152.0f)
+    const float t15 = 2097152.0f + q;
+    const unitpack_vec2 t16 = { p.x + p.x, p.y + p.y };
+    const unitpack_vec2 t17 = {
+        floorf(t16.x / t15 * 2097152.0f),
+        floorf(t16.y / t15 * 2097152.0f)
     };
-    const unitpack_vec2 t24 = { t22.x * 2097152.0f, t22.y * 2097152.0f };
-    const unitpack_vec2 t25 = {
-        (t23.x + 1.0f) * t21 <= t24.x ? 1.0f : (t23.x * t21 > t24.x ? -1.0f : 0.0f),
-        (t23.y + 1.0f) * t21 <= t24.y ? 1.0f : (t23.y * t21 > t24.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t18 = { t16.x * 2097152.0f, t16.y * 2097152.0f };
+    const unitpack_vec2 t19 = {
+        (t17.x + 1.0f) * t15 <= t18.x ? 1.0f : (t17.x * t15 > t18.x ? -1.0f : 0.0f),
+        (t17.y + 1.0f) * t15 <= t18.y ? 1.0f : (t17.y * t15 > t18.y ? -1.0f : 0.0f)
     };
-    const float t26 = 2097152.0f - q;
-    const float big = t26 * 2097152.0f;
-    const float ratio_estimate = floorf(t26 / t21 * 2097152.0f);
-    const float t27 = (ratio_estimate + 1.0f) * t21 <= big
-        ? 1.0f
-        : (ratio_estimate * t21 > big ? -1.0f : 0.0f);
-    const float ratio = ratio_estimate + t27;
-    const unitpack_vec3 t28 = {
-        fabsf(t23.x + t25.x - aim.x),
-        fabsf(t23.y + t25.y - aim.y),
-        fabsf(ratio - aim.z)
+    const float t20 = 2097152.0f - q;
+    const float big = t20 * 2097152.0f;
+    const float ratio_estimate = floorf(t20 / t15 * 2097152.0f);
+    const float step_down3 = ratio_estimate * t15 > big ? -1.0f : 0.0f;
+    const float step3 = (ratio_estimate + 1.0f) * t15 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + step3;
+    const unitpack_vec3 offset = { t17.x + t19.x - aim.x, t17.y + t19.y - aim.y, ratio - aim.z };
+    const unitpack_uvec3 offset_u = {
+        (uint32_t)fabsf(offset.x),
+        (uint32_t)fabsf(offset.y),
+        (uint32_t)fabsf(offset.z)
     };
-    const unitpack_uvec3 t29 = { (uint32_t)t28.x, (uint32_t)t28.y, (uint32_t)t28.z };
-    const uint32_t limb1_4 = t29.x >> 12u;
-    const uint32_t limb0_4 = t29.x & 4095u;
+    const uint32_t limb1_4 = offset_u.x >> 12u;
+    const uint32_t limb0_4 = offset_u.x & 4095u;
     const uint32_t cross4 = limb1_4 * limb0_4;
     const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    const uint32_t limb1_5 = t29.y >> 12u;
-    const uint32_t limb0_5 = t29.y & 4095u;
+    const uint32_t limb1_5 = offset_u.y >> 12u;
+    const uint32_t limb0_5 = offset_u.y & 4095u;
     const uint32_t cross5 = limb1_5 * limb0_5;
     const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    const uint32_t limb1_6 = t29.z >> 12u;
-    const uint32_t limb0_6 = t29.z & 4095u;
+    const uint32_t limb1_6 = offset_u.z >> 12u;
+    const uint32_t limb0_6 = offset_u.z & 4095u;
     const uint32_t cross6 = limb1_6 * limb0_6;
     const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t30 = (float)hi8 * 16777216.0f;
-    const float dist = t30 + (float)lo8;
-    const float t31 = base.x + 1.0f;
-    const unitpack_vec2 t32 = { t31, base.y };
+    const float t21 = (float)hi8 * 16777216.0f;
+    const float dist = t21 + (float)lo8;
+    const float s_up = base.x + 1.0f;
+    const float t_up = base.y + 1.0f;
+    const unitpack_vec2 t22 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t32.x <= 127.0f ? t32.x : 127.0f,
-        t32.y <= 127.0f ? t32.y : 127.0f
+        t22.x <= 127.0f ? t22.x : 127.0f,
+        t22.y <= 127.0f ? t22.y : 127.0f
     };
     const unitpack_vec2 p2 = { floorf(cand2.x * 16513.008f), floorf(cand2.y * 16513.008f) };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
-    const float t33 = 2097152.0f + q2;
-    const unitpack_vec2 t34 = { p2.x + p2.x, p2.y + p2.y };
-    const unitpack_vec2 t35 = {
-        floorf(t34.x / t33 * 2097152.0f),
-        floorf(t34.y / t33 * 2097152.0f)
+    const float t23 = 2097152.0f + q2;
+    const unitpack_vec2 t24 = { p2.x + p2.x, p2.y + p2.y };
+    const unitpack_vec2 t25 = {
+        floorf(t24.x / t23 * 2097152.0f),
+        floorf(t24.y / t23 * 2097152.0f)
     };
-    const unitpack_vec2 t36 = { t34.x * 2097152.0f, t34.y * 2097152.0f };
-    const unitpack_vec2 t37 = {
-        (t35.x + 1.0f) * t33 <= t36.x ? 1.0f : (t35.x * t33 > t36.x ? -1.0f : 0.0f),
-        (t35.y + 1.0f) * t33 <= t36.y ? 1.0f : (t35.y * t33 > t36.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t26 = { t24.x * 2097152.0f, t24.y * 2097152.0f };
+    const unitpack_vec2 t27 = {
+        (t25.x + 1.0f) * t23 <= t26.x ? 1.0f : (t25.x * t23 > t26.x ? -1.0f : 0.0f),
+        (t25.y + 1.0f) * t23 <= t26.y ? 1.0f : (t25.y * t23 > t26.y ? -1.0f : 0.0f)
     };
-    const float t38 = 2097152.0f - q2;
-    const float big2 = t38 * 2097152.0f;
-    const float ratio_estimate2 = floorf(t38 / t33 * 2097152.0f);
-    const float t39 = (ratio_estimate2 + 1.0f) * t33 <= big2
-        ? 1.0f
-        : (ratio_estimate2 * t33 > big2 ? -1.0f : 0.0f);
-    const float ratio2 = ratio_estimate2 + t39;
-    const unitpack_vec3 t40 = {
-        fabsf(t35.x + t37.x - aim.x),
-        fabsf(t35.y + t37.y - aim.y),
-        fabsf(ratio2 - aim.z)
+    const float t28 = 2097152.0f - q2;
+    const float big2 = t28 * 2097152.0f;
+    const float ratio_estimate2 = floorf(t28 / t23 * 2097152.0f);
+    const float step_down4 = ratio_estimate2 * t23 > big2 ? -1.0f : 0.0f;
+    const float step4 = (ratio_estimate2 + 1.0f) * t23 <= big2 ? 1.0f : step_down4;
+    const float ratio2 = ratio_estimate2 + step4;
+    const unitpack_vec3 offset2 = { t25.x + t27.x - aim.x, t25.y + t27.y - aim.y, ratio2 - aim.z };
+    const unitpack_uvec3 offset_u2 = {
+        (uint32_t)fabsf(offset2.x),
+        (uint32_t)fabsf(offset2.y),
+        (uint32_t)fabsf(offset2.z)
     };
-    const unitpack_uvec3 t41 = { (uint32_t)t40.x, (uint32_t)t40.y, (uint32_t)t40.z };
-    const uint32_t limb1_7 = t41.x >> 12u;
-    const uint32_t limb0_7 = t41.x & 4095u;
+    const uint32_t limb1_7 = offset_u2.x >> 12u;
+    const uint32_t limb0_7 = offset_u2.x & 4095u;
     const uint32_t cross7 = limb1_7 * limb0_7;
     const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    const uint32_t limb1_8 = t41.y >> 12u;
-    const uint32_t limb0_8 = t41.y & 4095u;
+    const uint32_t limb1_8 = offset_u2.y >> 12u;
+    const uint32_t limb0_8 = offset_u2.y & 4095u;
     const uint32_t cross8 = limb1_8 * limb0_8;
     const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    const uint32_t limb1_9 = t41.z >> 12u;
-    const uint32_t limb0_9 = t41.z & 4095u;
+    const uint32_t limb1_9 = offset_u2.z >> 12u;
+    const uint32_t limb0_9 = offset_u2.z & 4095u;
     const uint32_t cross9 = limb1_9 * limb0_9;
     const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t42 = (float)hi12 * 16777216.0f;
-    const float dist2 = t42 + (float)lo12;
-    const bool t43 = t31 <= 127.0f && base.y <= 127.0f && dist2 < dist;
-    const unitpack_vec2 best = { t43 ? cand2.x : cand.x, t43 ? cand2.y : cand.y };
-    const float best_d = t43 ? dist2 : dist;
-    const float t44 = base.y + 1.0f;
-    const unitpack_vec2 t45 = { base.x, t44 };
+    const float t29 = (float)hi12 * 16777216.0f;
+    const float dist2 = t29 + (float)lo12;
+    const bool t30 = s_up <= 127.0f && base.y <= 127.0f && dist2 < dist;
+    const unitpack_vec2 best = { t30 ? cand2.x : cand.x, t30 ? cand2.y : cand.y };
+    const float best_d = t30 ? dist2 : dist;
+    const unitpack_vec2 t31 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t45.x <= 127.0f ? t45.x : 127.0f,
-        t45.y <= 127.0f ? t45.y : 127.0f
+        t31.x <= 127.0f ? t31.x : 127.0f,
+        t31.y <= 127.0f ? t31.y : 127.0f
     };
     const unitpack_vec2 p3 = { floorf(cand3.x * 16513.008f), floorf(cand3.y * 16513.008f) };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
-    const float t46 = 2097152.0f + q3;
-    const unitpack_vec2 t47 = { p3.x + p3.x, p3.y + p3.y };
-    const unitpack_vec2 t48 = {
-        floorf(t47.x / t46 * 2097152.0f),
-        floorf(t47.y / t46 * 2097152.0f)
+    const float t32 = 2097152.0f + q3;
+    const unitpack_vec2 t33 = { p3.x + p3.x, p3.y + p3.y };
+    const unitpack_vec2 t34 = {
+        floorf(t33.x / t32 * 2097152.0f),
+        floorf(t33.y / t32 * 2097152.0f)
     };
-    const unitpack_vec2 t49 = { t47.x * 2097152.0f, t47.y * 2097152.0f };
-    const unitpack_vec2 t50 = {
-        (t48.x + 1.0f) * t46 <= t49.x ? 1.0f : (t48.x * t46 > t49.x ? -1.0f : 0.0f),
-        (t48.y + 1.0f) * t46 <= t49.y ? 1.0f : (t48.y * t46 > t49.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t35 = { t33.x * 2097152.0f, t33.y * 2097152.0f };
+    const unitpack_vec2 t36 = {
+        (t34.x + 1.0f) * t32 <= t35.x ? 1.0f : (t34.x * t32 > t35.x ? -1.0f : 0.0f),
+        (t34.y + 1.0f) * t32 <= t35.y ? 1.0f : (t34.y * t32 > t35.y ? -1.0f : 0.0f)
     };
-    const float t51 = 2097152.0f - q3;
-    const float big3 = t51 * 2097152.0f;
-    const float ratio_estimate3 = floorf(t51 / t46 * 2097152.0f);
-    const float t52 = (ratio_estimate3 + 1.0f) * t46 <= big3
-        ? 1.0f
-        : (ratio_estimate3 * t46 > big3 ? -1.0f : 0.0f);
-    const float ratio3 = ratio_estimate3 + t52;
-    const unitpack_vec3 t53 = {
-        fabsf(t48.x + t50.x - aim.x),
-        fabsf(t48.y + t50.y - aim.y),
-        fabsf(ratio3 - aim.z)
+    const float t37 = 2097152.0f - q3;
+    const float big3 = t37 * 2097152.0f;
+    const float ratio_estimate3 = floorf(t37 / t32 * 2097152.0f);
+    const float step_down5 = ratio_estimate3 * t32 > big3 ? -1.0f : 0.0f;
+    const float step5 = (ratio_estimate3 + 1.0f) * t32 <= big3 ? 1.0f : step_down5;
+    const float ratio3 = ratio_estimate3 + step5;
+    const unitpack_vec3 offset3 = { t34.x + t36.x - aim.x, t34.y + t36.y - aim.y, ratio3 - aim.z };
+    const unitpack_uvec3 offset_u3 = {
+        (uint32_t)fabsf(offset3.x),
+        (uint32_t)fabsf(offset3.y),
+        (uint32_t)fabsf(offset3.z)
     };
-    const unitpack_uvec3 t54 = { (uint32_t)t53.x, (uint32_t)t53.y, (uint32_t)t53.z };
-    const uint32_t limb1_10 = t54.x >> 12u;
-    const uint32_t limb0_10 = t54.x & 4095u;
+    const uint32_t limb1_10 = offset_u3.x >> 12u;
+    const uint32_t limb0_10 = offset_u3.x & 4095u;
     const uint32_t cross10 = limb1_10 * limb0_10;
     const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    const uint32_t limb1_11 = t54.y >> 12u;
-    const uint32_t limb0_11 = t54.y & 4095u;
+    const uint32_t limb1_11 = offset_u3.y >> 12u;
+    const uint32_t limb0_11 = offset_u3.y & 4095u;
     const uint32_t cross11 = limb1_11 * limb0_11;
     const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    const uint32_t limb1_12 = t54.z >> 12u;
-    const uint32_t limb0_12 = t54.z & 4095u;
+    const uint32_t limb1_12 = offset_u3.z >> 12u;
+    const uint32_t limb0_12 = offset_u3.z & 4095u;
     const uint32_t cross12 = limb1_12 * limb0_12;
     const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t55 = (float)hi16 * 16777216.0f;
-    const float dist3 = t55 + (float)lo16;
-    const bool t56 = base.x <= 127.0f && t44 <= 127.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t56 ? cand3.x : best.x, t56 ? cand3.y : best.y };
-    const float best_d2 = t56 ? dist3 : best_d;
-    const unitpack_vec2 t57 = { base.x + 1.0f, base.y + 1.0f };
+    const float t38 = (float)hi16 * 16777216.0f;
+    const float dist3 = t38 + (float)lo16;
+    const bool t39 = base.x <= 127.0f && t_up <= 127.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t39 ? cand3.x : best.x, t39 ? cand3.y : best.y };
+    const float best_d2 = t39 ? dist3 : best_d;
+    const unitpack_vec2 t40 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t57.x <= 127.0f ? t57.x : 127.0f,
-        t57.y <= 127.0f ? t57.y : 127.0f
+        t40.x <= 127.0f ? t40.x : 127.0f,
+        t40.y <= 127.0f ? t40.y : 127.0f
     };
     const unitpack_vec2 p4 = { floorf(cand4.x * 16513.008f), floorf(cand4.y * 16513.008f) };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
-    const float t58 = 2097152.0f + q4;
-    const unitpack_vec2 t59 = { p4.x + p4.x, p4.y + p4.y };
-    const unitpack_vec2 t60 = {
-        floorf(t59.x / t58 * 2097152.0f),
-        floorf(t59.y / t58 * 2097152.0f)
+    const float t41 = 2097152.0f + q4;
+    const unitpack_vec2 t42 = { p4.x + p4.x, p4.y + p4.y };
+    const unitpack_vec2 t43 = {
+        floorf(t42.x / t41 * 2097152.0f),
+        floorf(t42.y / t41 * 2097152.0f)
     };
-    const unitpack_vec2 t61 = { t59.x * 2097152.0f, t59.y * 2097152.0f };
-    const unitpack_vec2 t62 = {
-        (t60.x + 1.0f) * t58 <= t61.x ? 1.0f : (t60.x * t58 > t61.x ? -1.0f : 0.0f),
-        (t60.y + 1.0f) * t58 <= t61.y ? 1.0f : (t60.y * t58 > t61.y ? -1.0f : 0.0f)
+    const unitpack_vec2 t44 = { t42.x * 2097152.0f, t42.y * 2097152.0f };
+    const unitpack_vec2 t45 = {
+        (t43.x + 1.0f) * t41 <= t44.x ? 1.0f : (t43.x * t41 > t44.x ? -1.0f : 0.0f),
+        (t43.y + 1.0f) * t41 <= t44.y ? 1.0f : (t43.y * t41 > t44.y ? -1.0f : 0.0f)
     };
-    const float t63 = 2097152.0f - q4;
-    const float big4 = t63 * 2097152.0f;
-    const float ratio_estimate4 = floorf(t63 / t58 * 2097152.0f);
-    const float t64 = (ratio_estimate4 + 1.0f) * t58 <= big4
-        ? 1.0f
-        : (ratio_estimate4 * t58 > big4 ? -1.0f : 0.0f);
-    const float ratio4 = ratio_estimate4 + t64;
-    const unitpack_vec3 t65 = {
-        fabsf(t60.x + t62.x - aim.x),
-        fabsf(t60.y + t62.y - aim.y),
-        fabsf(ratio4 - aim.z)
+    const float t46 = 2097152.0f - q4;
+    const float big4 = t46 * 2097152.0f;
+    const float ratio_estimate4 = floorf(t46 / t41 * 2097152.0f);
+    const float step_down6 = ratio_estimate4 * t41 > big4 ? -1.0f : 0.0f;
+    const float step6 = (ratio_estimate4 + 1.0f) * t41 <= big4 ? 1.0f : step_down6;
+    const float ratio4 = ratio_estimate4 + step6;
+    const unitpack_vec3 offset4 = { t43.x + t45.x - aim.x, t43.y + t45.y - aim.y, ratio4 - aim.z };
+    const unitpack_uvec3 offset_u4 = {
+        (uint32_t)fabsf(offset4.x),
+        (uint32_t)fabsf(offset4.y),
+        (uint32_t)fabsf(offset4.z)
     };
-    const unitpack_uvec3 t66 = { (uint32_t)t65.x, (uint32_t)t65.y, (uint32_t)t65.z };
-    const uint32_t limb1_13 = t66.x >> 12u;
-    const uint32_t limb0_13 = t66.x & 4095u;
+    const uint32_t limb1_13 = offset_u4.x >> 12u;
+    const uint32_t limb0_13 = offset_u4.x & 4095u;
     const uint32_t cross13 = limb1_13 * limb0_13;
     const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    const uint32_t limb1_14 = t66.y >> 12u;
-    const uint32_t limb0_14 = t66.y & 4095u;
+    const uint32_t limb1_14 = offset_u4.y >> 12u;
+    const uint32_t limb0_14 = offset_u4.y & 4095u;
     const uint32_t cross14 = limb1_14 * limb0_14;
     const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    const uint32_t limb1_15 = t66.z >> 12u;
-    const uint32_t limb0_15 = t66.z & 4095u;
+    const uint32_t limb1_15 = offset_u4.z >> 12u;
+    const uint32_t limb0_15 = offset_u4.z & 4095u;
     const uint32_t cross15 = limb1_15 * limb0_15;
     const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t67 = (float)hi20 * 16777216.0f;
-    const float dist4 = t67 + (float)lo20;
-    const bool t68 = base.x + 1.0f <= 127.0f && base.y + 1.0f <= 127.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t68 ? cand4.x : best2.x, t68 ? cand4.y : best2.y };
-    const unitpack_vec2 t69 = { t11 ? best3.x : 0.0f, t11 ? best3.y : 0.0f };
-    return t69;
+    const float t47 = (float)hi20 * 16777216.0f;
+    const float dist4 = t47 + (float)lo20;
+    const bool t48 = s_up <= 127.0f && t_up <= 127.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t48 ? cand4.x : best2.x, t48 ? cand4.y : best2.y };
+    const unitpack_vec2 t49 = { t6 ? best3.x : 0.0f, t6 ? best3.y : 0.0f };
+    return t49;
 }
 
 // Struct form of unitpack_xy_stereo16p_encode_float.

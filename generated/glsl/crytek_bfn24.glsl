@@ -78,21 +78,24 @@ uvec2 unitpack_crytek_bfn24_fitting_texel(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
     UNITPACK_PRECISE float t1 = abs_w2.x >= abs_w2.y ? abs_w2.x : abs_w2.y;
     UNITPACK_PRECISE float t2 = abs_w2.x <= abs_w2.y ? abs_w2.x : abs_w2.y;
     bool t3 = abs_w2.z >= t1;
-    UNITPACK_PRECISE float t4 = t3 ? t1 : (abs_w2.z >= t2 ? abs_w2.z : t2);
-    UNITPACK_PRECISE float t5 = t3 ? t2 : (abs_w2.z <= t2 ? abs_w2.z : t2);
-    UNITPACK_PRECISE float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t6);
-    UNITPACK_PRECISE float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t7);
-    UNITPACK_PRECISE float t8 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t8);
+    UNITPACK_PRECISE float t4 = abs_w2.z >= t2 ? abs_w2.z : t2;
+    UNITPACK_PRECISE float t5 = t3 ? t1 : t4;
+    UNITPACK_PRECISE float t6 = abs_w2.z <= t2 ? abs_w2.z : t2;
+    UNITPACK_PRECISE float t7 = t3 ? t2 : t6;
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -112,35 +115,35 @@ uvec2 unitpack_crytek_bfn24_fitting_texel(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t9 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t9 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t9
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float l = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float big = t4 * 512.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(t4 / l * 512.0);
-    UNITPACK_PRECISE float t10 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t10;
-    bool t11 = t4 > 0.0;
-    UNITPACK_PRECISE float t12 = t11 ? t4 : 1.0;
-    UNITPACK_PRECISE float big2 = t5 * 512.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t5 / t12 * 512.0);
-    UNITPACK_PRECISE float t13 = (ratio_estimate2 + 1.0) * t12 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t12 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t13;
-    UNITPACK_PRECISE vec2 t14 = vec2(ratio, t11 ? ratio2 : 0.0);
-    return uvec2(mix(vec2(511.0), t14, lessThanEqual(t14, vec2(511.0))));
+    UNITPACK_PRECISE float big = t5 * 512.0;
+    UNITPACK_PRECISE float ratio_estimate = floor(t5 / l * 512.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * l > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    bool t8 = t5 > 0.0;
+    UNITPACK_PRECISE float t9 = t8 ? t5 : 1.0;
+    UNITPACK_PRECISE float big2 = t7 * 512.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t7 / t9 * 512.0);
+    UNITPACK_PRECISE float step_down4 = ratio_estimate2 * t9 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio_estimate2 + 1.0) * t9 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step4;
+    UNITPACK_PRECISE vec2 t10 = vec2(ratio, t8 ? ratio2 : 0.0);
+    return uvec2(mix(vec2(511.0), t10, lessThanEqual(t10, vec2(511.0))));
 }
 
 // unitpack_crytek_bfn24_encode_float: fast encoder, float form.
@@ -153,14 +156,17 @@ vec3 unitpack_crytek_bfn24_encode_float(vec3 v, float fetched) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 abs_t3 = abs(t3);
-    UNITPACK_PRECISE float t4 = abs_t3.x >= abs_t3.y ? abs_t3.x : abs_t3.y;
-    UNITPACK_PRECISE vec3 result = t3 / (t4 >= abs_t3.z ? t4 : abs_t3.z) * fetched * 0.5 + 0.5;
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t6 = t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 abs_t6 = abs(t6);
+    UNITPACK_PRECISE float t7 = abs_t6.x >= abs_t6.y ? abs_t6.x : abs_t6.y;
+    UNITPACK_PRECISE vec3 result = t6 / (t7 >= abs_t6.z ? t7 : abs_t6.z) * fetched * 0.5 + 0.5;
     return result;
 }
 
@@ -183,7 +189,8 @@ uint unitpack_crytek_bfn24_encode(vec3 v, float fetched) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
@@ -191,33 +198,34 @@ uint unitpack_crytek_bfn24_encode(vec3 v, float fetched) {
     UNITPACK_PRECISE float t2 = t1 >= abs_w2.z ? t1 : abs_w2.z;
     UNITPACK_PRECISE float t3 = fetched >= 0.0 ? fetched : 0.0;
     UNITPACK_PRECISE float k = roundEven((t3 <= 1.0 ? t3 : 1.0) * 255.0);
-    uint t4 = uint(k);
+    uint k_u = uint(k);
     UNITPACK_PRECISE float big = abs_w2.x * 1048576.0;
     UNITPACK_PRECISE float ratio_estimate = floor(abs_w2.x / t2 * 1048576.0);
-    UNITPACK_PRECISE float t5 = (ratio_estimate + 1.0) * t2 <= big
-        ? 1.0
-        : (ratio_estimate * t2 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t5;
-    uint t6 = uint(ratio) * t4;
+    UNITPACK_PRECISE float step_down = ratio_estimate * t2 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step;
+    uint t4 = uint(ratio) * k_u;
+    uint t5 = 128u + (t4 >> 21u);
+    uint t6 = 128u - ((t4 + 2097151u) >> 21u);
     UNITPACK_PRECISE float big2 = abs_w2.y * 1048576.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(abs_w2.y / t2 * 1048576.0);
-    UNITPACK_PRECISE float t7 = (ratio_estimate2 + 1.0) * t2 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t2 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t7;
-    uint t8 = uint(ratio2) * t4;
+    UNITPACK_PRECISE float step_down2 = ratio_estimate2 * t2 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = (ratio_estimate2 + 1.0) * t2 <= big2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step2;
+    uint t7 = uint(ratio2) * k_u;
+    uint t8 = 128u + (t7 >> 21u);
+    uint t9 = 128u - ((t7 + 2097151u) >> 21u);
     UNITPACK_PRECISE float big3 = abs_w2.z * 1048576.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(abs_w2.z / t2 * 1048576.0);
-    UNITPACK_PRECISE float t9 = (ratio_estimate3 + 1.0) * t2 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t2 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t9;
-    uint t10 = uint(ratio3) * t4;
-    uint t11 = uint(float(w2.y < 0.0 ? 128u - ((t8 + 2097151u) >> 21u) : 128u + (t8 >> 21u))) << 8u;
-    uint t12 = uint(float(w2.x < 0.0 ? 128u - ((t6 + 2097151u) >> 21u) : 128u + (t6 >> 21u))) | t11;
-    uint t13 = uint(float(w2.z < 0.0 ? 128u - ((t10 + 2097151u) >> 21u) : 128u + (t10 >> 21u)))
-        << 16u;
-    return ok ? t12 | t13 : 16744576u;
+    UNITPACK_PRECISE float step_down3 = ratio_estimate3 * t2 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate3 + 1.0) * t2 <= big3 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step3;
+    uint t10 = uint(ratio3) * k_u;
+    uint t11 = 128u + (t10 >> 21u);
+    uint t12 = 128u - ((t10 + 2097151u) >> 21u);
+    uint t13 = uint(float(w2.x < 0.0 ? t6 : t5)) | (uint(float(w2.y < 0.0 ? t9 : t8)) << 8u);
+    uint t14 = t13 | (uint(float(w2.z < 0.0 ? t12 : t11)) << 16u);
+    return ok ? t14 : 16744576u;
 }
 
 #endif // UNITPACK_CRYTEK_BFN24_GLSL

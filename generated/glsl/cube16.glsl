@@ -50,9 +50,18 @@ vec3 unitpack_cube16_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t2 = params.z >= 0.5;
     bool t3 = params.z >= 0.21428572;
-    UNITPACK_PRECISE float t4 = t2 ? params.z - 0.5714286 : (t3 ? params.z - 0.2857143 : params.z);
-    UNITPACK_PRECISE float t5 = (t4 >= 0.21428572 ? t4 - 0.2857143 : t4) > 0.071428575 ? -u.z : u.z;
-    return t2 ? vec3(u.xy, t5) : (t3 ? vec3(u.y, t5, u.x) : vec3(t5, u.xy));
+    UNITPACK_PRECISE float t4 = params.z - 0.5714286;
+    UNITPACK_PRECISE float t5 = params.z - 0.2857143;
+    UNITPACK_PRECISE float t6 = t3 ? t5 : params.z;
+    UNITPACK_PRECISE float t7 = t2 ? t4 : t6;
+    UNITPACK_PRECISE float t8 = t7 - 0.2857143;
+    UNITPACK_PRECISE float neg_u_z = -u.z;
+    UNITPACK_PRECISE float t9 = (t7 >= 0.21428572 ? t8 : t7) > 0.071428575 ? neg_u_z : u.z;
+    UNITPACK_PRECISE vec3 t10 = vec3(u.xy, t9);
+    UNITPACK_PRECISE vec3 t11 = vec3(u.y, t9, u.x);
+    UNITPACK_PRECISE vec3 t12 = vec3(t9, u.xy);
+    UNITPACK_PRECISE vec3 t13 = t3 ? t11 : t12;
+    return t2 ? t10 : t13;
 }
 
 // unitpack_cube16_decode: decoder.
@@ -87,15 +96,20 @@ vec3 unitpack_cube16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    UNITPACK_PRECISE float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    UNITPACK_PRECISE float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
-    UNITPACK_PRECISE vec2 enc = (t1 ? w2.xy : (t2 ? w2.zx : w2.yz)) / abs(major) * 0.5 + 0.5;
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    UNITPACK_PRECISE float t4 = t3 ? w2.y : w2.x;
+    UNITPACK_PRECISE float major = t2 ? w2.z : t4;
+    UNITPACK_PRECISE float t5 = t3 ? 2.0 : 0.0;
+    UNITPACK_PRECISE float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
+    UNITPACK_PRECISE vec2 t6 = t3 ? w2.zx : w2.yz;
+    UNITPACK_PRECISE vec2 enc = (t2 ? w2.xy : t6) / abs(major) * 0.5 + 0.5;
     UNITPACK_PRECISE vec3 result = vec3(enc, face * 0.14285715);
     return result;
 }
@@ -114,32 +128,37 @@ vec3 unitpack_cube16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    UNITPACK_PRECISE float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    UNITPACK_PRECISE float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    UNITPACK_PRECISE float t4 = t3 ? w2.y : w2.x;
+    UNITPACK_PRECISE float major = t2 ? w2.z : t4;
+    UNITPACK_PRECISE float t5 = t3 ? 2.0 : 0.0;
+    UNITPACK_PRECISE float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     UNITPACK_PRECISE float abs_major = abs(major);
-    UNITPACK_PRECISE vec2 t3 = (t1 ? w2.xy : (t2 ? w2.zx : w2.yz)) * vec2(63.5, 31.5);
-    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / abs_major + vec2(63.5, 31.5));
-    UNITPACK_PRECISE vec2 t5 = mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t6 = mix(vec2(127.0, 63.0), t5, lessThanEqual(t5, vec2(127.0, 63.0)));
-    UNITPACK_PRECISE vec2 t7 = mix(
+    UNITPACK_PRECISE vec2 t6 = t3 ? w2.zx : w2.yz;
+    UNITPACK_PRECISE vec2 t7 = (t2 ? w2.xy : t6) * vec2(63.5, 31.5);
+    UNITPACK_PRECISE vec2 t8 = roundEven(t7 / abs_major + vec2(63.5, 31.5));
+    UNITPACK_PRECISE vec2 t9 = mix(vec2(0.0), t8, greaterThanEqual(t8, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t10 = mix(vec2(127.0, 63.0), t9, lessThanEqual(t9, vec2(127.0, 63.0)));
+    UNITPACK_PRECISE vec2 t11 = t10
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, (t10 - vec2(63.0, 31.0)) * abs_major)),
+            lessThan(t10, vec2(127.0, 63.0))
+        );
+    UNITPACK_PRECISE vec2 t12 = mix(
         vec2(0.0),
-        vec2(1.0),
-        greaterThanEqual(t3, (t6 - vec2(63.0, 31.0)) * abs_major)
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, (t10 - 1.0 - vec2(63.0, 31.0)) * abs_major))
+            - 1.0,
+        greaterThan(t10, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t8 = mix(
-        vec2(0.0),
-        vec2(1.0),
-        greaterThanEqual(t3, (t6 - 1.0 - vec2(63.0, 31.0)) * abs_major)
-    );
-    UNITPACK_PRECISE vec2 st = t6
-        + mix(vec2(0.0), t7, lessThan(t6, vec2(127.0, 63.0)))
-        + mix(vec2(0.0), t8 - 1.0, greaterThan(t6, vec2(0.0)));
+    UNITPACK_PRECISE vec2 st = t11 + t12;
     return vec3(st, face);
 }
 

@@ -51,9 +51,18 @@ vec3 unitpack_cube24p_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t2 = params.z >= 0.5;
     bool t3 = params.z >= 0.21428572;
-    UNITPACK_PRECISE float t4 = t2 ? params.z - 0.5714286 : (t3 ? params.z - 0.2857143 : params.z);
-    UNITPACK_PRECISE float t5 = (t4 >= 0.21428572 ? t4 - 0.2857143 : t4) > 0.071428575 ? -u.z : u.z;
-    return t2 ? vec3(u.xy, t5) : (t3 ? vec3(u.y, t5, u.x) : vec3(t5, u.xy));
+    UNITPACK_PRECISE float t4 = params.z - 0.5714286;
+    UNITPACK_PRECISE float t5 = params.z - 0.2857143;
+    UNITPACK_PRECISE float t6 = t3 ? t5 : params.z;
+    UNITPACK_PRECISE float t7 = t2 ? t4 : t6;
+    UNITPACK_PRECISE float t8 = t7 - 0.2857143;
+    UNITPACK_PRECISE float neg_u_z = -u.z;
+    UNITPACK_PRECISE float t9 = (t7 >= 0.21428572 ? t8 : t7) > 0.071428575 ? neg_u_z : u.z;
+    UNITPACK_PRECISE vec3 t10 = vec3(u.xy, t9);
+    UNITPACK_PRECISE vec3 t11 = vec3(u.y, t9, u.x);
+    UNITPACK_PRECISE vec3 t12 = vec3(t9, u.xy);
+    UNITPACK_PRECISE vec3 t13 = t3 ? t11 : t12;
+    return t2 ? t10 : t13;
 }
 
 // unitpack_cube24p_decode: decoder.
@@ -87,42 +96,55 @@ vec3 unitpack_cube24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    UNITPACK_PRECISE float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    UNITPACK_PRECISE float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    UNITPACK_PRECISE float t4 = t3 ? w2.y : w2.x;
+    UNITPACK_PRECISE float major = t2 ? w2.z : t4;
+    UNITPACK_PRECISE float t5 = t3 ? 2.0 : 0.0;
+    UNITPACK_PRECISE float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     UNITPACK_PRECISE float abs_major = abs(major);
-    UNITPACK_PRECISE vec2 t3 = (t1 ? w2.xy : (t2 ? w2.zx : w2.yz)) * vec2(1023.5, 511.5);
-    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / abs_major + vec2(1023.5, 511.5));
-    UNITPACK_PRECISE vec2 t5 = mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t6 = mix(
+    UNITPACK_PRECISE vec2 t6 = t3 ? w2.zx : w2.yz;
+    UNITPACK_PRECISE vec2 t7 = (t2 ? w2.xy : t6) * vec2(1023.5, 511.5);
+    UNITPACK_PRECISE vec2 t8 = roundEven(t7 / abs_major + vec2(1023.5, 511.5));
+    UNITPACK_PRECISE vec2 t9 = mix(vec2(0.0), t8, greaterThanEqual(t8, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t10 = mix(
         vec2(2047.0, 1023.0),
-        t5,
-        lessThanEqual(t5, vec2(2047.0, 1023.0))
+        t9,
+        lessThanEqual(t9, vec2(2047.0, 1023.0))
     );
-    UNITPACK_PRECISE vec2 t7 = mix(
+    UNITPACK_PRECISE vec2 t11 = t10
+        + mix(
+            vec2(0.0),
+            mix(
+                vec2(0.0),
+                vec2(1.0),
+                greaterThanEqual(t7, (t10 - vec2(1022.5, 510.5)) * abs_major)
+            ),
+            lessThan(t10, vec2(2047.0, 1023.0))
+        );
+    UNITPACK_PRECISE vec2 t12 = mix(
         vec2(0.0),
-        vec2(1.0),
-        greaterThanEqual(t3, (t6 - vec2(1022.5, 510.5)) * abs_major)
+        mix(
+            vec2(0.0),
+            vec2(1.0),
+            greaterThanEqual(t7, (t10 - 1.0 - vec2(1022.5, 510.5)) * abs_major)
+        )
+            - 1.0,
+        greaterThan(t10, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t8 = mix(
-        vec2(0.0),
-        vec2(1.0),
-        greaterThanEqual(t3, (t6 - 1.0 - vec2(1022.5, 510.5)) * abs_major)
-    );
-    UNITPACK_PRECISE vec2 base = t6
-        + mix(vec2(0.0), t7, lessThan(t6, vec2(2047.0, 1023.0)))
-        + mix(vec2(0.0), t8 - 1.0, greaterThan(t6, vec2(0.0)));
-    UNITPACK_PRECISE float t9 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t9);
-    UNITPACK_PRECISE float t10 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t10);
-    UNITPACK_PRECISE float t11 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t11);
+    UNITPACK_PRECISE vec2 base = t11 + t12;
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -142,18 +164,20 @@ vec3 unitpack_cube24p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t12 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t12 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t12
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE vec3 t13 = floor(w2 / root * 2097152.0);
     UNITPACK_PRECISE vec3 t14 = w2 * 2097152.0;
@@ -177,68 +201,72 @@ vec3 unitpack_cube24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t16 = len2_2 * 524288.0;
     UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t16));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t17 = root_next * root_next <= t16
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t16 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t17;
+    UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t16 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_next * root_next <= t16 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t18 = root_next2 * root_next2 <= t16
-        ? 1.0
-        : (root_step * root_step > t16 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root2 = root_step + t18;
+    UNITPACK_PRECISE float step_down4 = root_step * root_step > t16 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t16 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root2 = root_step + step4;
     UNITPACK_PRECISE float len = root2 * 2.0;
     UNITPACK_PRECISE float big = len * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(len / len2_2 * 2097152.0);
-    UNITPACK_PRECISE float t19 = (ratio_estimate + 1.0) * len2_2 <= big
-        ? 1.0
-        : (ratio_estimate * len2_2 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t19;
+    UNITPACK_PRECISE float step_down5 = ratio_estimate * len2_2 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate + 1.0) * len2_2 <= big ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step5;
     UNITPACK_PRECISE float big2 = p.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(p.x / len * 2097152.0);
-    UNITPACK_PRECISE float t20 = (ratio_estimate2 + 1.0) * len <= big2
-        ? 1.0
-        : (ratio_estimate2 * len > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t20;
+    UNITPACK_PRECISE float step_down6 = ratio_estimate2 * len > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio_estimate2 + 1.0) * len <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step6;
     UNITPACK_PRECISE float big3 = p.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(p.y / len * 2097152.0);
-    UNITPACK_PRECISE float t21 = (ratio_estimate3 + 1.0) * len <= big3
-        ? 1.0
-        : (ratio_estimate3 * len > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t21;
-    bool t22 = face >= 3.5;
-    bool t23 = face >= 1.5;
-    UNITPACK_PRECISE float t24 = t22 ? face - 4.0 : (t23 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t25 = (t24 >= 1.5 ? t24 - 2.0 : t24) > 0.5 ? -ratio : ratio;
-    UNITPACK_PRECISE vec3 t26 = t22
-        ? vec3(ratio2, ratio3, t25)
-        : (t23 ? vec3(ratio3, t25, ratio2) : vec3(t25, ratio2, ratio3));
-    UNITPACK_PRECISE vec3 t27 = abs(t26 - aim);
-    uvec3 t28 = uvec3(t27);
-    uint limb1_4 = t28.x >> 12u;
-    uint limb0_4 = t28.x & 4095u;
+    UNITPACK_PRECISE float step_down7 = ratio_estimate3 * len > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = (ratio_estimate3 + 1.0) * len <= big3 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step7;
+    bool t17 = face >= 3.5;
+    bool t18 = face >= 1.5;
+    UNITPACK_PRECISE float t19 = face - 4.0;
+    UNITPACK_PRECISE float t20 = face - 2.0;
+    UNITPACK_PRECISE float t21 = t18 ? t20 : face;
+    UNITPACK_PRECISE float t22 = t17 ? t19 : t21;
+    UNITPACK_PRECISE float t23 = t22 - 2.0;
+    UNITPACK_PRECISE float neg_ratio = -ratio;
+    UNITPACK_PRECISE float t24 = (t22 >= 1.5 ? t23 : t22) > 0.5 ? neg_ratio : ratio;
+    UNITPACK_PRECISE vec3 t25 = vec3(ratio2, ratio3, t24);
+    UNITPACK_PRECISE vec3 t26 = vec3(ratio3, t24, ratio2);
+    UNITPACK_PRECISE vec3 t27 = vec3(t24, ratio2, ratio3);
+    UNITPACK_PRECISE vec3 t28 = t18 ? t26 : t27;
+    UNITPACK_PRECISE vec3 offset = (t17 ? t25 : t28) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t28.y >> 12u;
-    uint limb0_5 = t28.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t28.z >> 12u;
-    uint limb0_6 = t28.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t29 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t30 = vec2(t29, base.y);
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t29 = vec2(s_up, base.y);
     UNITPACK_PRECISE vec2 cand2 = mix(
         vec2(2047.0, 1023.0),
-        t30,
-        lessThanEqual(t30, vec2(2047.0, 1023.0))
+        t29,
+        lessThanEqual(t29, vec2(2047.0, 1023.0))
     );
+    bool t30 = base.y <= 1023.0;
     UNITPACK_PRECISE vec2 p2 = floor(
         (cand2 * 2.0 - vec2(2047.0, 1023.0)) * vec2(1024.5002, 2050.002)
     );
@@ -248,213 +276,219 @@ vec3 unitpack_cube24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t31 = len2_3 * 524288.0;
     UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t31));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t32 = root_next3 * root_next3 <= t31
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t31 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t32;
+    UNITPACK_PRECISE float step_down8 = root_estimate3 * root_estimate3 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next3 * root_next3 <= t31 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step8;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t33 = root_next4 * root_next4 <= t31
-        ? 1.0
-        : (root_step2 * root_step2 > t31 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step2 + t33;
+    UNITPACK_PRECISE float step_down9 = root_step2 * root_step2 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next4 * root_next4 <= t31 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root3 = root_step2 + step9;
     UNITPACK_PRECISE float len3 = root3 * 2.0;
     UNITPACK_PRECISE float big4 = len3 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(len3 / len2_3 * 2097152.0);
-    UNITPACK_PRECISE float t34 = (ratio_estimate4 + 1.0) * len2_3 <= big4
-        ? 1.0
-        : (ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t34;
+    UNITPACK_PRECISE float step_down10 = ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = (ratio_estimate4 + 1.0) * len2_3 <= big4 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step10;
     UNITPACK_PRECISE float big5 = p2.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate5 = floor(p2.x / len3 * 2097152.0);
-    UNITPACK_PRECISE float t35 = (ratio_estimate5 + 1.0) * len3 <= big5
-        ? 1.0
-        : (ratio_estimate5 * len3 > big5 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio5 = ratio_estimate5 + t35;
+    UNITPACK_PRECISE float step_down11 = ratio_estimate5 * len3 > big5 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = (ratio_estimate5 + 1.0) * len3 <= big5 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float ratio5 = ratio_estimate5 + step11;
     UNITPACK_PRECISE float big6 = p2.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate6 = floor(p2.y / len3 * 2097152.0);
-    UNITPACK_PRECISE float t36 = (ratio_estimate6 + 1.0) * len3 <= big6
-        ? 1.0
-        : (ratio_estimate6 * len3 > big6 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio6 = ratio_estimate6 + t36;
-    bool t37 = face >= 3.5;
-    bool t38 = face >= 1.5;
-    UNITPACK_PRECISE float t39 = t37 ? face - 4.0 : (t38 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t40 = (t39 >= 1.5 ? t39 - 2.0 : t39) > 0.5 ? -ratio4 : ratio4;
-    UNITPACK_PRECISE vec3 t41 = t37
-        ? vec3(ratio5, ratio6, t40)
-        : (t38 ? vec3(ratio6, t40, ratio5) : vec3(t40, ratio5, ratio6));
-    UNITPACK_PRECISE vec3 t42 = abs(t41 - aim);
-    uvec3 t43 = uvec3(t42);
-    uint limb1_7 = t43.x >> 12u;
-    uint limb0_7 = t43.x & 4095u;
+    UNITPACK_PRECISE float step_down12 = ratio_estimate6 * len3 > big6 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = (ratio_estimate6 + 1.0) * len3 <= big6 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float ratio6 = ratio_estimate6 + step12;
+    bool t32 = face >= 3.5;
+    bool t33 = face >= 1.5;
+    UNITPACK_PRECISE float t34 = face - 4.0;
+    UNITPACK_PRECISE float t35 = face - 2.0;
+    UNITPACK_PRECISE float t36 = t33 ? t35 : face;
+    UNITPACK_PRECISE float t37 = t32 ? t34 : t36;
+    UNITPACK_PRECISE float t38 = t37 - 2.0;
+    UNITPACK_PRECISE float neg_ratio4 = -ratio4;
+    UNITPACK_PRECISE float t39 = (t37 >= 1.5 ? t38 : t37) > 0.5 ? neg_ratio4 : ratio4;
+    UNITPACK_PRECISE vec3 t40 = vec3(ratio5, ratio6, t39);
+    UNITPACK_PRECISE vec3 t41 = vec3(ratio6, t39, ratio5);
+    UNITPACK_PRECISE vec3 t42 = vec3(t39, ratio5, ratio6);
+    UNITPACK_PRECISE vec3 t43 = t33 ? t41 : t42;
+    UNITPACK_PRECISE vec3 offset2 = (t32 ? t40 : t43) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t43.y >> 12u;
-    uint limb0_8 = t43.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t43.z >> 12u;
-    uint limb0_9 = t43.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t44 = t29 <= 2047.0 && base.y <= 1023.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t44 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t44 ? dist2 : dist;
-    UNITPACK_PRECISE float t45 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t46 = vec2(base.x, t45);
+    bool t44 = dist2 < dist;
+    bool t45 = s_up <= 2047.0 && t30 && t44;
+    UNITPACK_PRECISE vec2 best = t45 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t45 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t46 = vec2(base.x, t_up);
     UNITPACK_PRECISE vec2 cand3 = mix(
         vec2(2047.0, 1023.0),
         t46,
         lessThanEqual(t46, vec2(2047.0, 1023.0))
     );
+    bool t47 = t_up <= 1023.0;
     UNITPACK_PRECISE vec2 p3 = floor(
         (cand3 * 2.0 - vec2(2047.0, 1023.0)) * vec2(1024.5002, 2050.002)
     );
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
     UNITPACK_PRECISE float len2_4 = 2097152.0 + q3;
-    UNITPACK_PRECISE float t47 = len2_4 * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t47));
+    UNITPACK_PRECISE float t48 = len2_4 * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t48));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t48 = root_next5 * root_next5 <= t47
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t47 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t48;
+    UNITPACK_PRECISE float step_down13 = root_estimate4 * root_estimate4 > t48 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step13 = root_next5 * root_next5 <= t48 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step13;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t49 = root_next6 * root_next6 <= t47
-        ? 1.0
-        : (root_step3 * root_step3 > t47 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step3 + t49;
+    UNITPACK_PRECISE float step_down14 = root_step3 * root_step3 > t48 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step14 = root_next6 * root_next6 <= t48 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float root4 = root_step3 + step14;
     UNITPACK_PRECISE float len4 = root4 * 2.0;
     UNITPACK_PRECISE float big7 = len4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate7 = floor(len4 / len2_4 * 2097152.0);
-    UNITPACK_PRECISE float t50 = (ratio_estimate7 + 1.0) * len2_4 <= big7
-        ? 1.0
-        : (ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio7 = ratio_estimate7 + t50;
+    UNITPACK_PRECISE float step_down15 = ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step15 = (ratio_estimate7 + 1.0) * len2_4 <= big7 ? 1.0 : step_down15;
+    UNITPACK_PRECISE float ratio7 = ratio_estimate7 + step15;
     UNITPACK_PRECISE float big8 = p3.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate8 = floor(p3.x / len4 * 2097152.0);
-    UNITPACK_PRECISE float t51 = (ratio_estimate8 + 1.0) * len4 <= big8
-        ? 1.0
-        : (ratio_estimate8 * len4 > big8 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio8 = ratio_estimate8 + t51;
+    UNITPACK_PRECISE float step_down16 = ratio_estimate8 * len4 > big8 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step16 = (ratio_estimate8 + 1.0) * len4 <= big8 ? 1.0 : step_down16;
+    UNITPACK_PRECISE float ratio8 = ratio_estimate8 + step16;
     UNITPACK_PRECISE float big9 = p3.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate9 = floor(p3.y / len4 * 2097152.0);
-    UNITPACK_PRECISE float t52 = (ratio_estimate9 + 1.0) * len4 <= big9
-        ? 1.0
-        : (ratio_estimate9 * len4 > big9 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio9 = ratio_estimate9 + t52;
-    bool t53 = face >= 3.5;
-    bool t54 = face >= 1.5;
-    UNITPACK_PRECISE float t55 = t53 ? face - 4.0 : (t54 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t56 = (t55 >= 1.5 ? t55 - 2.0 : t55) > 0.5 ? -ratio7 : ratio7;
-    UNITPACK_PRECISE vec3 t57 = t53
-        ? vec3(ratio8, ratio9, t56)
-        : (t54 ? vec3(ratio9, t56, ratio8) : vec3(t56, ratio8, ratio9));
-    UNITPACK_PRECISE vec3 t58 = abs(t57 - aim);
-    uvec3 t59 = uvec3(t58);
-    uint limb1_10 = t59.x >> 12u;
-    uint limb0_10 = t59.x & 4095u;
+    UNITPACK_PRECISE float step_down17 = ratio_estimate9 * len4 > big9 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step17 = (ratio_estimate9 + 1.0) * len4 <= big9 ? 1.0 : step_down17;
+    UNITPACK_PRECISE float ratio9 = ratio_estimate9 + step17;
+    bool t49 = face >= 3.5;
+    bool t50 = face >= 1.5;
+    UNITPACK_PRECISE float t51 = face - 4.0;
+    UNITPACK_PRECISE float t52 = face - 2.0;
+    UNITPACK_PRECISE float t53 = t50 ? t52 : face;
+    UNITPACK_PRECISE float t54 = t49 ? t51 : t53;
+    UNITPACK_PRECISE float t55 = t54 - 2.0;
+    UNITPACK_PRECISE float neg_ratio7 = -ratio7;
+    UNITPACK_PRECISE float t56 = (t54 >= 1.5 ? t55 : t54) > 0.5 ? neg_ratio7 : ratio7;
+    UNITPACK_PRECISE vec3 t57 = vec3(ratio8, ratio9, t56);
+    UNITPACK_PRECISE vec3 t58 = vec3(ratio9, t56, ratio8);
+    UNITPACK_PRECISE vec3 t59 = vec3(t56, ratio8, ratio9);
+    UNITPACK_PRECISE vec3 t60 = t50 ? t58 : t59;
+    UNITPACK_PRECISE vec3 offset3 = (t49 ? t57 : t60) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t59.y >> 12u;
-    uint limb0_11 = t59.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t59.z >> 12u;
-    uint limb0_12 = t59.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t60 = base.x <= 2047.0 && t45 <= 1023.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t60 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t60 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t61 = base + 1.0;
+    bool t61 = dist3 < best_d;
+    bool t62 = base.x <= 2047.0 && t47 && t61;
+    UNITPACK_PRECISE vec2 best2 = t62 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t62 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t63 = base + 1.0;
     UNITPACK_PRECISE vec2 cand4 = mix(
         vec2(2047.0, 1023.0),
-        t61,
-        lessThanEqual(t61, vec2(2047.0, 1023.0))
+        t63,
+        lessThanEqual(t63, vec2(2047.0, 1023.0))
     );
+    bool t64 = t_up <= 1023.0;
     UNITPACK_PRECISE vec2 p4 = floor(
         (cand4 * 2.0 - vec2(2047.0, 1023.0)) * vec2(1024.5002, 2050.002)
     );
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
     UNITPACK_PRECISE float len2_5 = 2097152.0 + q4;
-    UNITPACK_PRECISE float t62 = len2_5 * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t62));
+    UNITPACK_PRECISE float t65 = len2_5 * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t65));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t63 = root_next7 * root_next7 <= t62
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t62 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t63;
+    UNITPACK_PRECISE float step_down18 = root_estimate5 * root_estimate5 > t65 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step18 = root_next7 * root_next7 <= t65 ? 1.0 : step_down18;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step18;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t64 = root_next8 * root_next8 <= t62
-        ? 1.0
-        : (root_step4 * root_step4 > t62 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step4 + t64;
+    UNITPACK_PRECISE float step_down19 = root_step4 * root_step4 > t65 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step19 = root_next8 * root_next8 <= t65 ? 1.0 : step_down19;
+    UNITPACK_PRECISE float root5 = root_step4 + step19;
     UNITPACK_PRECISE float len5 = root5 * 2.0;
     UNITPACK_PRECISE float big10 = len5 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate10 = floor(len5 / len2_5 * 2097152.0);
-    UNITPACK_PRECISE float t65 = (ratio_estimate10 + 1.0) * len2_5 <= big10
-        ? 1.0
-        : (ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio10 = ratio_estimate10 + t65;
+    UNITPACK_PRECISE float step_down20 = ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step20 = (ratio_estimate10 + 1.0) * len2_5 <= big10 ? 1.0 : step_down20;
+    UNITPACK_PRECISE float ratio10 = ratio_estimate10 + step20;
     UNITPACK_PRECISE float big11 = p4.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate11 = floor(p4.x / len5 * 2097152.0);
-    UNITPACK_PRECISE float t66 = (ratio_estimate11 + 1.0) * len5 <= big11
-        ? 1.0
-        : (ratio_estimate11 * len5 > big11 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio11 = ratio_estimate11 + t66;
+    UNITPACK_PRECISE float step_down21 = ratio_estimate11 * len5 > big11 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step21 = (ratio_estimate11 + 1.0) * len5 <= big11 ? 1.0 : step_down21;
+    UNITPACK_PRECISE float ratio11 = ratio_estimate11 + step21;
     UNITPACK_PRECISE float big12 = p4.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate12 = floor(p4.y / len5 * 2097152.0);
-    UNITPACK_PRECISE float t67 = (ratio_estimate12 + 1.0) * len5 <= big12
-        ? 1.0
-        : (ratio_estimate12 * len5 > big12 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio12 = ratio_estimate12 + t67;
-    bool t68 = face >= 3.5;
-    bool t69 = face >= 1.5;
-    UNITPACK_PRECISE float t70 = t68 ? face - 4.0 : (t69 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t71 = (t70 >= 1.5 ? t70 - 2.0 : t70) > 0.5 ? -ratio10 : ratio10;
-    UNITPACK_PRECISE vec3 t72 = t68
-        ? vec3(ratio11, ratio12, t71)
-        : (t69 ? vec3(ratio12, t71, ratio11) : vec3(t71, ratio11, ratio12));
-    UNITPACK_PRECISE vec3 t73 = abs(t72 - aim);
-    uvec3 t74 = uvec3(t73);
-    uint limb1_13 = t74.x >> 12u;
-    uint limb0_13 = t74.x & 4095u;
+    UNITPACK_PRECISE float step_down22 = ratio_estimate12 * len5 > big12 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step22 = (ratio_estimate12 + 1.0) * len5 <= big12 ? 1.0 : step_down22;
+    UNITPACK_PRECISE float ratio12 = ratio_estimate12 + step22;
+    bool t66 = face >= 3.5;
+    bool t67 = face >= 1.5;
+    UNITPACK_PRECISE float t68 = face - 4.0;
+    UNITPACK_PRECISE float t69 = face - 2.0;
+    UNITPACK_PRECISE float t70 = t67 ? t69 : face;
+    UNITPACK_PRECISE float t71 = t66 ? t68 : t70;
+    UNITPACK_PRECISE float t72 = t71 - 2.0;
+    UNITPACK_PRECISE float neg_ratio10 = -ratio10;
+    UNITPACK_PRECISE float t73 = (t71 >= 1.5 ? t72 : t71) > 0.5 ? neg_ratio10 : ratio10;
+    UNITPACK_PRECISE vec3 t74 = vec3(ratio11, ratio12, t73);
+    UNITPACK_PRECISE vec3 t75 = vec3(ratio12, t73, ratio11);
+    UNITPACK_PRECISE vec3 t76 = vec3(t73, ratio11, ratio12);
+    UNITPACK_PRECISE vec3 t77 = t67 ? t75 : t76;
+    UNITPACK_PRECISE vec3 offset4 = (t66 ? t74 : t77) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t74.y >> 12u;
-    uint limb0_14 = t74.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t74.z >> 12u;
-    uint limb0_15 = t74.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 2047.0
-        && base.y + 1.0 <= 1023.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t78 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 2047.0 && t64 && t78 ? cand4 : best2;
     return vec3(best3, face);
 }
 

@@ -49,7 +49,8 @@ vec3 unitpack_eqarea16_decode_float(vec3 params) {
     UNITPACK_PRECISE float q = t1 <= 2.0 ? t1 : 2.0;
     UNITPACK_PRECISE float g = sqrt(2.0 - q);
     UNITPACK_PRECISE float t2 = 1.0 - q;
-    UNITPACK_PRECISE vec3 result = vec3(p * g, params.z > 0.5 ? -t2 : t2);
+    UNITPACK_PRECISE float neg_t2 = -t2;
+    UNITPACK_PRECISE vec3 result = vec3(p * g, params.z > 0.5 ? neg_t2 : t2);
     return result;
 }
 
@@ -88,15 +89,16 @@ vec3 unitpack_eqarea16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -116,21 +118,24 @@ vec3 unitpack_eqarea16_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE vec2 enc = w2.xy / sqrt(root * (root + abs(w2.z))) * 0.5 + 0.5;
-    return vec3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return vec3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -147,15 +152,16 @@ vec3 unitpack_eqarea16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -175,58 +181,65 @@ vec3 unitpack_eqarea16_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE float la = root * (root + abs(w2.z));
     UNITPACK_PRECISE float sqrt_la = sqrt(la);
     UNITPACK_PRECISE float big2 = w2.x * w2.x * 16256.25;
-    UNITPACK_PRECISE float t5 = roundEven(w2.x / sqrt_la * 127.5 + 127.5);
-    UNITPACK_PRECISE float t6 = t5 >= 0.0 ? t5 : 0.0;
-    UNITPACK_PRECISE float estimate = t6 <= 255.0 ? t6 : 255.0;
-    UNITPACK_PRECISE float t7 = estimate - 127.0;
-    UNITPACK_PRECISE float t8 = t7 * t7 * la;
-    UNITPACK_PRECISE float t9 = w2.x >= 0.0
-        ? (t7 > 0.0 ? (big2 >= t8 ? 1.0 : 0.0) : 1.0)
-        : (t7 < 0.0 ? (big2 <= t8 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 255.0 ? t9 : 0.0;
-    UNITPACK_PRECISE float t10 = estimate - 1.0 - 127.0;
-    UNITPACK_PRECISE float t11 = t10 * t10 * la;
-    UNITPACK_PRECISE float t12 = w2.x >= 0.0
-        ? (t10 > 0.0 ? (big2 >= t11 ? 1.0 : 0.0) : 1.0)
-        : (t10 < 0.0 ? (big2 <= t11 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t12 - 1.0 : 0.0;
+    UNITPACK_PRECISE float t1 = roundEven(w2.x / sqrt_la * 127.5 + 127.5);
+    UNITPACK_PRECISE float t2 = t1 >= 0.0 ? t1 : 0.0;
+    UNITPACK_PRECISE float estimate = t2 <= 255.0 ? t2 : 255.0;
+    UNITPACK_PRECISE float t3 = estimate - 127.0;
+    UNITPACK_PRECISE float t4 = t3 * t3 * la;
+    UNITPACK_PRECISE float one_if2 = big2 >= t4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t5 = t3 > 0.0 ? one_if2 : 1.0;
+    UNITPACK_PRECISE float one_if3 = big2 <= t4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t6 = t3 < 0.0 ? one_if3 : 0.0;
+    UNITPACK_PRECISE float t7 = w2.x >= 0.0 ? t5 : t6;
+    UNITPACK_PRECISE float up = estimate < 255.0 ? t7 : 0.0;
+    UNITPACK_PRECISE float t8 = estimate - 1.0 - 127.0;
+    UNITPACK_PRECISE float t9 = t8 * t8 * la;
+    UNITPACK_PRECISE float one_if4 = big2 >= t9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t10 = t8 > 0.0 ? one_if4 : 1.0;
+    UNITPACK_PRECISE float one_if5 = big2 <= t9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t11 = t8 < 0.0 ? one_if5 : 0.0;
+    UNITPACK_PRECISE float t12 = (w2.x >= 0.0 ? t10 : t11) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t12 : 0.0;
     UNITPACK_PRECISE float big2_2 = w2.y * w2.y * 4032.25;
     UNITPACK_PRECISE float t13 = roundEven(w2.y / sqrt_la * 63.5 + 63.5);
     UNITPACK_PRECISE float t14 = t13 >= 0.0 ? t13 : 0.0;
     UNITPACK_PRECISE float estimate2 = t14 <= 127.0 ? t14 : 127.0;
     UNITPACK_PRECISE float t15 = estimate2 - 63.0;
     UNITPACK_PRECISE float t16 = t15 * t15 * la;
-    UNITPACK_PRECISE float t17 = w2.y >= 0.0
-        ? (t15 > 0.0 ? (big2_2 >= t16 ? 1.0 : 0.0) : 1.0)
-        : (t15 < 0.0 ? (big2_2 <= t16 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up2 = estimate2 < 127.0 ? t17 : 0.0;
-    UNITPACK_PRECISE float t18 = estimate2 - 1.0 - 63.0;
-    UNITPACK_PRECISE float t19 = t18 * t18 * la;
-    UNITPACK_PRECISE float t20 = w2.y >= 0.0
-        ? (t18 > 0.0 ? (big2_2 >= t19 ? 1.0 : 0.0) : 1.0)
-        : (t18 < 0.0 ? (big2_2 <= t19 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down2 = estimate2 > 0.0 ? t20 - 1.0 : 0.0;
-    UNITPACK_PRECISE vec3 result = vec3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
-    );
+    UNITPACK_PRECISE float one_if6 = big2_2 >= t16 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t17 = t15 > 0.0 ? one_if6 : 1.0;
+    UNITPACK_PRECISE float one_if7 = big2_2 <= t16 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t18 = t15 < 0.0 ? one_if7 : 0.0;
+    UNITPACK_PRECISE float t19 = w2.y >= 0.0 ? t17 : t18;
+    UNITPACK_PRECISE float up2 = estimate2 < 127.0 ? t19 : 0.0;
+    UNITPACK_PRECISE float t20 = estimate2 - 1.0 - 63.0;
+    UNITPACK_PRECISE float t21 = t20 * t20 * la;
+    UNITPACK_PRECISE float one_if8 = big2_2 >= t21 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t22 = t20 > 0.0 ? one_if8 : 1.0;
+    UNITPACK_PRECISE float one_if9 = big2_2 <= t21 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t23 = t20 < 0.0 ? one_if9 : 0.0;
+    UNITPACK_PRECISE float t24 = (w2.y >= 0.0 ? t22 : t23) - 1.0;
+    UNITPACK_PRECISE float down2 = estimate2 > 0.0 ? t24 : 0.0;
+    UNITPACK_PRECISE vec3 result = vec3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

@@ -49,7 +49,8 @@ vec3 unitpack_eqarea32p_decode_float(vec3 params) {
     UNITPACK_PRECISE float q = t1 <= 2.0 ? t1 : 2.0;
     UNITPACK_PRECISE float g = sqrt(2.0 - q);
     UNITPACK_PRECISE float t2 = 1.0 - q;
-    UNITPACK_PRECISE vec3 result = vec3(p * g, params.z > 0.5 ? -t2 : t2);
+    UNITPACK_PRECISE float neg_t2 = -t2;
+    UNITPACK_PRECISE vec3 result = vec3(p * g, params.z > 0.5 ? neg_t2 : t2);
     return result;
 }
 
@@ -83,15 +84,16 @@ vec3 unitpack_eqarea32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -111,74 +113,66 @@ vec3 unitpack_eqarea32p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE float la = root * (root + abs(w2.z));
-    UNITPACK_PRECISE vec2 t6 = roundEven(
+    UNITPACK_PRECISE vec2 t1 = roundEven(
         w2.xy / sqrt(la) * vec2(32767.5, 16383.5) + vec2(32767.5, 16383.5)
     );
-    UNITPACK_PRECISE vec2 t7 = mix(vec2(0.0), t6, greaterThanEqual(t6, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t8 = mix(
+    UNITPACK_PRECISE vec2 t2 = mix(vec2(0.0), t1, greaterThanEqual(t1, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t3 = mix(
         vec2(65535.0, 32767.0),
-        t7,
-        lessThanEqual(t7, vec2(65535.0, 32767.0))
+        t2,
+        lessThanEqual(t2, vec2(65535.0, 32767.0))
     );
-    UNITPACK_PRECISE vec2 t9 = t8 - vec2(32766.5, 16382.5);
-    UNITPACK_PRECISE vec2 t10 = w2.xy * w2.xy * vec2(1073709060.0, 268419070.0);
-    UNITPACK_PRECISE vec2 t11 = t9 * t9 * la;
-    UNITPACK_PRECISE vec2 t12 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t10, t11)),
-        greaterThan(t9, vec2(0.0))
+    UNITPACK_PRECISE vec2 t4 = t3 - vec2(32766.5, 16382.5);
+    UNITPACK_PRECISE vec2 t5 = w2.xy * w2.xy * vec2(1073709060.0, 268419070.0);
+    UNITPACK_PRECISE vec2 t6 = t4 * t4 * la;
+    UNITPACK_PRECISE vec2 t7 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t5, t6)), lessThan(t4, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t5, t6)),
+            greaterThan(t4, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t13 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t10, t11)),
-        lessThan(t9, vec2(0.0))
+    UNITPACK_PRECISE vec2 t8 = t3 - 1.0 - vec2(32766.5, 16382.5);
+    UNITPACK_PRECISE vec2 t9 = t8 * t8 * la;
+    UNITPACK_PRECISE vec2 t10 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t5, t9)), lessThan(t8, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t5, t9)),
+            greaterThan(t8, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t14 = mix(
-        vec2(0.0),
-        mix(t13, t12, greaterThanEqual(w2.xy, vec2(0.0))),
-        lessThan(t8, vec2(65535.0, 32767.0))
-    );
-    UNITPACK_PRECISE vec2 t15 = t8 - 1.0 - vec2(32766.5, 16382.5);
-    UNITPACK_PRECISE vec2 t16 = t15 * t15 * la;
-    UNITPACK_PRECISE vec2 t17 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t10, t16)),
-        greaterThan(t15, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t18 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t10, t16)),
-        lessThan(t15, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t19 = mix(
-        vec2(0.0),
-        mix(t18, t17, greaterThanEqual(w2.xy, vec2(0.0))) - 1.0,
-        greaterThan(t8, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 base = t8 + t14 + t19;
-    UNITPACK_PRECISE vec3 t20 = floor(w2 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t21 = w2 * 2097152.0;
-    UNITPACK_PRECISE vec3 t22 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t20 * root, t21)),
+    UNITPACK_PRECISE vec2 base = t3
+        + mix(vec2(0.0), t7, lessThan(t3, vec2(65535.0, 32767.0)))
+        + mix(vec2(0.0), t10 - 1.0, greaterThan(t3, vec2(0.0)));
+    UNITPACK_PRECISE vec3 t11 = floor(w2 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t12 = w2 * 2097152.0;
+    UNITPACK_PRECISE vec3 t13 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t11 * root, t12)),
         vec3(1.0),
-        lessThanEqual((t20 + 1.0) * root, t21)
+        lessThanEqual((t11 + 1.0) * root, t12)
     );
-    UNITPACK_PRECISE vec3 aim = t20 + t22;
+    UNITPACK_PRECISE vec3 aim = t11 + t13;
     UNITPACK_PRECISE vec2 cand = mix(
         vec2(65535.0, 32767.0),
         base,
@@ -189,195 +183,195 @@ vec3 unitpack_eqarea32p_encode_codes(vec3 v) {
     );
     UNITPACK_PRECISE float q = roundEven(p.x * p.x * 4.7683716e-7)
         + roundEven(p.y * p.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t23 = 4194304.0 - q;
-    UNITPACK_PRECISE float t24 = (t23 >= 0.0 ? t23 : 0.0) * 524288.0;
-    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t24));
+    UNITPACK_PRECISE float t14 = 4194304.0 - q;
+    UNITPACK_PRECISE float t15 = (t14 >= 0.0 ? t14 : 0.0) * 524288.0;
+    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t15));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t25 = root_next * root_next <= t24
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t24 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t25;
+    UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t15 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_next * root_next <= t15 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t26 = root_next2 * root_next2 <= t24
-        ? 1.0
-        : (root_step * root_step > t24 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float g = root_step + t26;
-    UNITPACK_PRECISE float t27 = 2097152.0 - q;
-    UNITPACK_PRECISE vec3 t28 = abs(vec3(floor(p * g * 9.536743e-7), t5 > 0.5 ? -t27 : t27) - aim);
-    uvec3 t29 = uvec3(t28);
-    uint limb1_4 = t29.x >> 12u;
-    uint limb0_4 = t29.x & 4095u;
+    UNITPACK_PRECISE float step_down4 = root_step * root_step > t15 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t15 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float g = root_step + step4;
+    UNITPACK_PRECISE float t16 = 2097152.0 - q;
+    UNITPACK_PRECISE float neg_t16 = -t16;
+    UNITPACK_PRECISE vec3 t17 = vec3(floor(p * g * 9.536743e-7), one_if > 0.5 ? neg_t16 : t16);
+    UNITPACK_PRECISE vec3 offset = t17 - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t29.y >> 12u;
-    uint limb0_5 = t29.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t29.z >> 12u;
-    uint limb0_6 = t29.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t30 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t31 = vec2(t30, base.y);
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t18 = vec2(s_up, base.y);
     UNITPACK_PRECISE vec2 cand2 = mix(
         vec2(65535.0, 32767.0),
-        t31,
-        lessThanEqual(t31, vec2(65535.0, 32767.0))
+        t18,
+        lessThanEqual(t18, vec2(65535.0, 32767.0))
     );
+    bool t19 = base.y <= 32767.0;
     UNITPACK_PRECISE vec2 p2 = floor(
         (cand2 * 2.0 - vec2(65535.0, 32767.0)) * vec2(32.00049, 64.00195)
     );
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t32 = 4194304.0 - q2;
-    UNITPACK_PRECISE float t33 = (t32 >= 0.0 ? t32 : 0.0) * 524288.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t33));
+    UNITPACK_PRECISE float t20 = 4194304.0 - q2;
+    UNITPACK_PRECISE float t21 = (t20 >= 0.0 ? t20 : 0.0) * 524288.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t21));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t34 = root_next3 * root_next3 <= t33
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t33 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t34;
+    UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t21 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = root_next3 * root_next3 <= t21 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step5;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t35 = root_next4 * root_next4 <= t33
-        ? 1.0
-        : (root_step2 * root_step2 > t33 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float g2 = root_step2 + t35;
-    UNITPACK_PRECISE float t36 = 2097152.0 - q2;
-    UNITPACK_PRECISE vec3 t37 = abs(
-        vec3(floor(p2 * g2 * 9.536743e-7), t5 > 0.5 ? -t36 : t36) - aim
-    );
-    uvec3 t38 = uvec3(t37);
-    uint limb1_7 = t38.x >> 12u;
-    uint limb0_7 = t38.x & 4095u;
+    UNITPACK_PRECISE float step_down6 = root_step2 * root_step2 > t21 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next4 * root_next4 <= t21 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float g2 = root_step2 + step6;
+    UNITPACK_PRECISE float t22 = 2097152.0 - q2;
+    UNITPACK_PRECISE float neg_t22 = -t22;
+    UNITPACK_PRECISE vec3 t23 = vec3(floor(p2 * g2 * 9.536743e-7), one_if > 0.5 ? neg_t22 : t22);
+    UNITPACK_PRECISE vec3 offset2 = t23 - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t38.y >> 12u;
-    uint limb0_8 = t38.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t38.z >> 12u;
-    uint limb0_9 = t38.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t39 = t30 <= 65535.0 && base.y <= 32767.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t39 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t39 ? dist2 : dist;
-    UNITPACK_PRECISE float t40 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t41 = vec2(base.x, t40);
+    bool t24 = dist2 < dist;
+    bool t25 = s_up <= 65535.0 && t19 && t24;
+    UNITPACK_PRECISE vec2 best = t25 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t25 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t26 = vec2(base.x, t_up);
     UNITPACK_PRECISE vec2 cand3 = mix(
         vec2(65535.0, 32767.0),
-        t41,
-        lessThanEqual(t41, vec2(65535.0, 32767.0))
+        t26,
+        lessThanEqual(t26, vec2(65535.0, 32767.0))
     );
+    bool t27 = t_up <= 32767.0;
     UNITPACK_PRECISE vec2 p3 = floor(
         (cand3 * 2.0 - vec2(65535.0, 32767.0)) * vec2(32.00049, 64.00195)
     );
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t42 = 4194304.0 - q3;
-    UNITPACK_PRECISE float t43 = (t42 >= 0.0 ? t42 : 0.0) * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t43));
+    UNITPACK_PRECISE float t28 = 4194304.0 - q3;
+    UNITPACK_PRECISE float t29 = (t28 >= 0.0 ? t28 : 0.0) * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t29));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t44 = root_next5 * root_next5 <= t43
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t43 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t44;
+    UNITPACK_PRECISE float step_down7 = root_estimate4 * root_estimate4 > t29 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = root_next5 * root_next5 <= t29 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step7;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t45 = root_next6 * root_next6 <= t43
-        ? 1.0
-        : (root_step3 * root_step3 > t43 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float g3 = root_step3 + t45;
-    UNITPACK_PRECISE float t46 = 2097152.0 - q3;
-    UNITPACK_PRECISE vec3 t47 = abs(
-        vec3(floor(p3 * g3 * 9.536743e-7), t5 > 0.5 ? -t46 : t46) - aim
-    );
-    uvec3 t48 = uvec3(t47);
-    uint limb1_10 = t48.x >> 12u;
-    uint limb0_10 = t48.x & 4095u;
+    UNITPACK_PRECISE float step_down8 = root_step3 * root_step3 > t29 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next6 * root_next6 <= t29 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float g3 = root_step3 + step8;
+    UNITPACK_PRECISE float t30 = 2097152.0 - q3;
+    UNITPACK_PRECISE float neg_t30 = -t30;
+    UNITPACK_PRECISE vec3 t31 = vec3(floor(p3 * g3 * 9.536743e-7), one_if > 0.5 ? neg_t30 : t30);
+    UNITPACK_PRECISE vec3 offset3 = t31 - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t48.y >> 12u;
-    uint limb0_11 = t48.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t48.z >> 12u;
-    uint limb0_12 = t48.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t49 = base.x <= 65535.0 && t40 <= 32767.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t49 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t49 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t50 = base + 1.0;
+    bool t32 = dist3 < best_d;
+    bool t33 = base.x <= 65535.0 && t27 && t32;
+    UNITPACK_PRECISE vec2 best2 = t33 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t33 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t34 = base + 1.0;
     UNITPACK_PRECISE vec2 cand4 = mix(
         vec2(65535.0, 32767.0),
-        t50,
-        lessThanEqual(t50, vec2(65535.0, 32767.0))
+        t34,
+        lessThanEqual(t34, vec2(65535.0, 32767.0))
     );
+    bool t35 = t_up <= 32767.0;
     UNITPACK_PRECISE vec2 p4 = floor(
         (cand4 * 2.0 - vec2(65535.0, 32767.0)) * vec2(32.00049, 64.00195)
     );
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t51 = 4194304.0 - q4;
-    UNITPACK_PRECISE float t52 = (t51 >= 0.0 ? t51 : 0.0) * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t52));
+    UNITPACK_PRECISE float t36 = 4194304.0 - q4;
+    UNITPACK_PRECISE float t37 = (t36 >= 0.0 ? t36 : 0.0) * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t37));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t53 = root_next7 * root_next7 <= t52
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t52 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t53;
+    UNITPACK_PRECISE float step_down9 = root_estimate5 * root_estimate5 > t37 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next7 * root_next7 <= t37 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step9;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t54 = root_next8 * root_next8 <= t52
-        ? 1.0
-        : (root_step4 * root_step4 > t52 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float g4 = root_step4 + t54;
-    UNITPACK_PRECISE float t55 = 2097152.0 - q4;
-    UNITPACK_PRECISE vec3 t56 = abs(
-        vec3(floor(p4 * g4 * 9.536743e-7), t5 > 0.5 ? -t55 : t55) - aim
-    );
-    uvec3 t57 = uvec3(t56);
-    uint limb1_13 = t57.x >> 12u;
-    uint limb0_13 = t57.x & 4095u;
+    UNITPACK_PRECISE float step_down10 = root_step4 * root_step4 > t37 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = root_next8 * root_next8 <= t37 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float g4 = root_step4 + step10;
+    UNITPACK_PRECISE float t38 = 2097152.0 - q4;
+    UNITPACK_PRECISE float neg_t38 = -t38;
+    UNITPACK_PRECISE vec3 t39 = vec3(floor(p4 * g4 * 9.536743e-7), one_if > 0.5 ? neg_t38 : t38);
+    UNITPACK_PRECISE vec3 offset4 = t39 - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t57.y >> 12u;
-    uint limb0_14 = t57.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t57.z >> 12u;
-    uint limb0_15 = t57.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 65535.0
-        && base.y + 1.0 <= 32767.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
-    return vec3(best3, t5);
+    bool t40 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 65535.0 && t35 && t40 ? cand4 : best2;
+    return vec3(best3, one_if);
 }
 
 // unitpack_eqarea32p_encode_float: precise encoder, float form.

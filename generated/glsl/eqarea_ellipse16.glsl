@@ -50,7 +50,8 @@ vec3 unitpack_eqarea_ellipse16_decode_float(vec3 params) {
     UNITPACK_PRECISE float q = t1 <= 2.0 ? t1 : 2.0;
     UNITPACK_PRECISE float g = sqrt(2.0 - q);
     UNITPACK_PRECISE float t2 = 1.0 - q;
-    UNITPACK_PRECISE vec3 result = vec3(disk * g, params.z > 0.5 ? -t2 : t2);
+    UNITPACK_PRECISE float neg_t2 = -t2;
+    UNITPACK_PRECISE vec3 result = vec3(disk * g, params.z > 0.5 ? neg_t2 : t2);
     return result;
 }
 
@@ -86,15 +87,16 @@ vec3 unitpack_eqarea_ellipse16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -114,36 +116,37 @@ vec3 unitpack_eqarea_ellipse16_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec2 t5 = w2.xy * w2.xy;
-    UNITPACK_PRECISE float rho = sqrt(t5.x + t5.y);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE vec2 t1 = w2.xy * w2.xy;
+    UNITPACK_PRECISE float rho = sqrt(t1.x + t1.y);
     UNITPACK_PRECISE float half_r = rho / sqrt(root * (root + abs(w2.z))) * 0.5;
     UNITPACK_PRECISE vec2 disk = w2.xy * (half_r / (rho > 0.0 ? rho : 1.0) * 2.0);
-    UNITPACK_PRECISE vec2 t6 = abs(disk.yx);
-    UNITPACK_PRECISE vec2 t7 = disk + 1.4142135 - t6;
-    UNITPACK_PRECISE vec2 t8 = sqrt(
-        mix(vec2(0.0), t7, greaterThanEqual(t7, vec2(0.0))) * (disk + 1.4142135 + t6)
-    );
-    UNITPACK_PRECISE vec2 t9 = -disk;
-    UNITPACK_PRECISE vec2 t10 = t9 + 1.4142135 - t6;
-    UNITPACK_PRECISE vec2 t11 = sqrt(
-        mix(vec2(0.0), t10, greaterThanEqual(t10, vec2(0.0))) * (t9 + 1.4142135 + t6)
-    );
-    UNITPACK_PRECISE vec2 square = disk / (t8 + t11);
+    UNITPACK_PRECISE vec2 t2 = abs(disk.yx);
+    UNITPACK_PRECISE vec2 t3 = disk + 1.4142135 - t2;
+    UNITPACK_PRECISE vec2 neg_disk = -disk;
+    UNITPACK_PRECISE vec2 t4 = neg_disk + 1.4142135 - t2;
+    UNITPACK_PRECISE vec2 t5 = sqrt(
+        mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0))) * (disk + 1.4142135 + t2)
+    )
+        + sqrt(mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0))) * (neg_disk + 1.4142135 + t2));
+    UNITPACK_PRECISE vec2 square = disk / t5;
     UNITPACK_PRECISE vec2 enc = square * 1.4142135 + 0.5;
-    return vec3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return vec3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -160,15 +163,16 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -188,25 +192,28 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = root * (root + abs(w2.z));
-    bool t6 = w2.x >= 0.0;
-    UNITPACK_PRECISE float t7 = t6 ? 128.0 : 0.0;
-    UNITPACK_PRECISE float t8 = t6 ? 255.0 : 127.0;
-    UNITPACK_PRECISE float mid = floor((t7 + t8 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t = (mid - 1.0 - 127.0) * 2.0;
+    UNITPACK_PRECISE float t1 = root * (root + abs(w2.z));
+    bool t2 = w2.x >= 0.0;
+    UNITPACK_PRECISE float t3 = t2 ? 128.0 : 0.0;
+    UNITPACK_PRECISE float t4 = t2 ? 255.0 : 127.0;
+    UNITPACK_PRECISE float mid = floor((t3 + t4 + 1.0) * 0.5);
+    UNITPACK_PRECISE float mid_below = mid - 1.0;
+    UNITPACK_PRECISE float ell_t = (mid_below - 127.0) * 2.0;
     UNITPACK_PRECISE float ell_h = floor(ell_t * ell_t);
     UNITPACK_PRECISE float ell_g = 130050.0 - ell_h;
     UNITPACK_PRECISE float ell_p = w2.x * w2.x * ell_g;
@@ -214,19 +221,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent = floatBitsToUint(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     uint exponent2 = exponent < 40u ? 40u : exponent;
     uint exponent3 = 254u < exponent2 ? 254u : exponent2;
-    UNITPACK_PRECISE float t9 = uintBitsToFloat((281u - exponent3) << 23u);
-    UNITPACK_PRECISE float ell_s = (floor(ell_p * t9) + floor(ell_q * t9))
-        * uintBitsToFloat((exponent3 - 27u) << 23u);
+    UNITPACK_PRECISE float scale2 = uintBitsToFloat((281u - exponent3) << 23u);
+    UNITPACK_PRECISE float back = uintBitsToFloat((exponent3 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
     UNITPACK_PRECISE float lhs = ell_s * 65025.0;
-    UNITPACK_PRECISE float rhs = ell_h * ell_g * t5;
-    UNITPACK_PRECISE float t10 = ell_t > 0.0
-        ? (w2.x > 0.0 ? (lhs >= rhs ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs <= rhs ? 1.0 : 0.0));
-    bool beyond = t10 > 0.5;
-    UNITPACK_PRECISE float lo5 = beyond ? mid : t7;
-    UNITPACK_PRECISE float hi5 = beyond ? t8 : mid - 1.0;
+    UNITPACK_PRECISE float rhs = ell_h * ell_g * t1;
+    UNITPACK_PRECISE float one_if = lhs >= rhs ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside = w2.x > 0.0 ? one_if : 0.0;
+    UNITPACK_PRECISE float one_if2 = lhs <= rhs ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside = w2.x >= 0.0 ? 1.0 : one_if2;
+    bool beyond = (ell_t > 0.0 ? outside : inside) > 0.5;
+    UNITPACK_PRECISE float lo5 = beyond ? mid : t3;
+    UNITPACK_PRECISE float hi5 = beyond ? t4 : mid_below;
     UNITPACK_PRECISE float mid2 = floor((lo5 + hi5 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t2 = (mid2 - 1.0 - 127.0) * 2.0;
+    UNITPACK_PRECISE float mid_below2 = mid2 - 1.0;
+    UNITPACK_PRECISE float ell_t2 = (mid_below2 - 127.0) * 2.0;
     UNITPACK_PRECISE float ell_h2 = floor(ell_t2 * ell_t2);
     UNITPACK_PRECISE float ell_g2 = 130050.0 - ell_h2;
     UNITPACK_PRECISE float ell_p2 = w2.x * w2.x * ell_g2;
@@ -234,19 +243,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent4 = floatBitsToUint(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     uint exponent5 = exponent4 < 40u ? 40u : exponent4;
     uint exponent6 = 254u < exponent5 ? 254u : exponent5;
-    UNITPACK_PRECISE float t11 = uintBitsToFloat((281u - exponent6) << 23u);
-    UNITPACK_PRECISE float ell_s2 = (floor(ell_p2 * t11) + floor(ell_q2 * t11))
-        * uintBitsToFloat((exponent6 - 27u) << 23u);
+    UNITPACK_PRECISE float scale3 = uintBitsToFloat((281u - exponent6) << 23u);
+    UNITPACK_PRECISE float back2 = uintBitsToFloat((exponent6 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
     UNITPACK_PRECISE float lhs2 = ell_s2 * 65025.0;
-    UNITPACK_PRECISE float rhs2 = ell_h2 * ell_g2 * t5;
-    UNITPACK_PRECISE float t12 = ell_t2 > 0.0
-        ? (w2.x > 0.0 ? (lhs2 >= rhs2 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs2 <= rhs2 ? 1.0 : 0.0));
-    bool beyond2 = t12 > 0.5;
+    UNITPACK_PRECISE float rhs2 = ell_h2 * ell_g2 * t1;
+    UNITPACK_PRECISE float one_if3 = lhs2 >= rhs2 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside2 = w2.x > 0.0 ? one_if3 : 0.0;
+    UNITPACK_PRECISE float one_if4 = lhs2 <= rhs2 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside2 = w2.x >= 0.0 ? 1.0 : one_if4;
+    bool beyond2 = (ell_t2 > 0.0 ? outside2 : inside2) > 0.5;
     UNITPACK_PRECISE float lo6 = beyond2 ? mid2 : lo5;
-    UNITPACK_PRECISE float hi6 = beyond2 ? hi5 : mid2 - 1.0;
+    UNITPACK_PRECISE float hi6 = beyond2 ? hi5 : mid_below2;
     UNITPACK_PRECISE float mid3 = floor((lo6 + hi6 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t3 = (mid3 - 1.0 - 127.0) * 2.0;
+    UNITPACK_PRECISE float mid_below3 = mid3 - 1.0;
+    UNITPACK_PRECISE float ell_t3 = (mid_below3 - 127.0) * 2.0;
     UNITPACK_PRECISE float ell_h3 = floor(ell_t3 * ell_t3);
     UNITPACK_PRECISE float ell_g3 = 130050.0 - ell_h3;
     UNITPACK_PRECISE float ell_p3 = w2.x * w2.x * ell_g3;
@@ -254,19 +265,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent7 = floatBitsToUint(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     uint exponent8 = exponent7 < 40u ? 40u : exponent7;
     uint exponent9 = 254u < exponent8 ? 254u : exponent8;
-    UNITPACK_PRECISE float t13 = uintBitsToFloat((281u - exponent9) << 23u);
-    UNITPACK_PRECISE float ell_s3 = (floor(ell_p3 * t13) + floor(ell_q3 * t13))
-        * uintBitsToFloat((exponent9 - 27u) << 23u);
+    UNITPACK_PRECISE float scale4 = uintBitsToFloat((281u - exponent9) << 23u);
+    UNITPACK_PRECISE float back3 = uintBitsToFloat((exponent9 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
     UNITPACK_PRECISE float lhs3 = ell_s3 * 65025.0;
-    UNITPACK_PRECISE float rhs3 = ell_h3 * ell_g3 * t5;
-    UNITPACK_PRECISE float t14 = ell_t3 > 0.0
-        ? (w2.x > 0.0 ? (lhs3 >= rhs3 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs3 <= rhs3 ? 1.0 : 0.0));
-    bool beyond3 = t14 > 0.5;
+    UNITPACK_PRECISE float rhs3 = ell_h3 * ell_g3 * t1;
+    UNITPACK_PRECISE float one_if5 = lhs3 >= rhs3 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside3 = w2.x > 0.0 ? one_if5 : 0.0;
+    UNITPACK_PRECISE float one_if6 = lhs3 <= rhs3 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside3 = w2.x >= 0.0 ? 1.0 : one_if6;
+    bool beyond3 = (ell_t3 > 0.0 ? outside3 : inside3) > 0.5;
     UNITPACK_PRECISE float lo7 = beyond3 ? mid3 : lo6;
-    UNITPACK_PRECISE float hi7 = beyond3 ? hi6 : mid3 - 1.0;
+    UNITPACK_PRECISE float hi7 = beyond3 ? hi6 : mid_below3;
     UNITPACK_PRECISE float mid4 = floor((lo7 + hi7 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t4 = (mid4 - 1.0 - 127.0) * 2.0;
+    UNITPACK_PRECISE float mid_below4 = mid4 - 1.0;
+    UNITPACK_PRECISE float ell_t4 = (mid_below4 - 127.0) * 2.0;
     UNITPACK_PRECISE float ell_h4 = floor(ell_t4 * ell_t4);
     UNITPACK_PRECISE float ell_g4 = 130050.0 - ell_h4;
     UNITPACK_PRECISE float ell_p4 = w2.x * w2.x * ell_g4;
@@ -274,19 +287,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent10 = floatBitsToUint(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     uint exponent11 = exponent10 < 40u ? 40u : exponent10;
     uint exponent12 = 254u < exponent11 ? 254u : exponent11;
-    UNITPACK_PRECISE float t15 = uintBitsToFloat((281u - exponent12) << 23u);
-    UNITPACK_PRECISE float ell_s4 = (floor(ell_p4 * t15) + floor(ell_q4 * t15))
-        * uintBitsToFloat((exponent12 - 27u) << 23u);
+    UNITPACK_PRECISE float scale5 = uintBitsToFloat((281u - exponent12) << 23u);
+    UNITPACK_PRECISE float back4 = uintBitsToFloat((exponent12 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
     UNITPACK_PRECISE float lhs4 = ell_s4 * 65025.0;
-    UNITPACK_PRECISE float rhs4 = ell_h4 * ell_g4 * t5;
-    UNITPACK_PRECISE float t16 = ell_t4 > 0.0
-        ? (w2.x > 0.0 ? (lhs4 >= rhs4 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs4 <= rhs4 ? 1.0 : 0.0));
-    bool beyond4 = t16 > 0.5;
+    UNITPACK_PRECISE float rhs4 = ell_h4 * ell_g4 * t1;
+    UNITPACK_PRECISE float one_if7 = lhs4 >= rhs4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside4 = w2.x > 0.0 ? one_if7 : 0.0;
+    UNITPACK_PRECISE float one_if8 = lhs4 <= rhs4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside4 = w2.x >= 0.0 ? 1.0 : one_if8;
+    bool beyond4 = (ell_t4 > 0.0 ? outside4 : inside4) > 0.5;
     UNITPACK_PRECISE float lo8 = beyond4 ? mid4 : lo7;
-    UNITPACK_PRECISE float hi8 = beyond4 ? hi7 : mid4 - 1.0;
+    UNITPACK_PRECISE float hi8 = beyond4 ? hi7 : mid_below4;
     UNITPACK_PRECISE float mid5 = floor((lo8 + hi8 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t5 = (mid5 - 1.0 - 127.0) * 2.0;
+    UNITPACK_PRECISE float mid_below5 = mid5 - 1.0;
+    UNITPACK_PRECISE float ell_t5 = (mid_below5 - 127.0) * 2.0;
     UNITPACK_PRECISE float ell_h5 = floor(ell_t5 * ell_t5);
     UNITPACK_PRECISE float ell_g5 = 130050.0 - ell_h5;
     UNITPACK_PRECISE float ell_p5 = w2.x * w2.x * ell_g5;
@@ -294,19 +309,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent13 = floatBitsToUint(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     uint exponent14 = exponent13 < 40u ? 40u : exponent13;
     uint exponent15 = 254u < exponent14 ? 254u : exponent14;
-    UNITPACK_PRECISE float t17 = uintBitsToFloat((281u - exponent15) << 23u);
-    UNITPACK_PRECISE float ell_s5 = (floor(ell_p5 * t17) + floor(ell_q5 * t17))
-        * uintBitsToFloat((exponent15 - 27u) << 23u);
+    UNITPACK_PRECISE float scale6 = uintBitsToFloat((281u - exponent15) << 23u);
+    UNITPACK_PRECISE float back5 = uintBitsToFloat((exponent15 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
     UNITPACK_PRECISE float lhs5 = ell_s5 * 65025.0;
-    UNITPACK_PRECISE float rhs5 = ell_h5 * ell_g5 * t5;
-    UNITPACK_PRECISE float t18 = ell_t5 > 0.0
-        ? (w2.x > 0.0 ? (lhs5 >= rhs5 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs5 <= rhs5 ? 1.0 : 0.0));
-    bool beyond5 = t18 > 0.5;
+    UNITPACK_PRECISE float rhs5 = ell_h5 * ell_g5 * t1;
+    UNITPACK_PRECISE float one_if9 = lhs5 >= rhs5 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside5 = w2.x > 0.0 ? one_if9 : 0.0;
+    UNITPACK_PRECISE float one_if10 = lhs5 <= rhs5 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside5 = w2.x >= 0.0 ? 1.0 : one_if10;
+    bool beyond5 = (ell_t5 > 0.0 ? outside5 : inside5) > 0.5;
     UNITPACK_PRECISE float lo9 = beyond5 ? mid5 : lo8;
-    UNITPACK_PRECISE float hi9 = beyond5 ? hi8 : mid5 - 1.0;
+    UNITPACK_PRECISE float hi9 = beyond5 ? hi8 : mid_below5;
     UNITPACK_PRECISE float mid6 = floor((lo9 + hi9 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t6 = (mid6 - 1.0 - 127.0) * 2.0;
+    UNITPACK_PRECISE float mid_below6 = mid6 - 1.0;
+    UNITPACK_PRECISE float ell_t6 = (mid_below6 - 127.0) * 2.0;
     UNITPACK_PRECISE float ell_h6 = floor(ell_t6 * ell_t6);
     UNITPACK_PRECISE float ell_g6 = 130050.0 - ell_h6;
     UNITPACK_PRECISE float ell_p6 = w2.x * w2.x * ell_g6;
@@ -314,19 +331,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent16 = floatBitsToUint(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     uint exponent17 = exponent16 < 40u ? 40u : exponent16;
     uint exponent18 = 254u < exponent17 ? 254u : exponent17;
-    UNITPACK_PRECISE float t19 = uintBitsToFloat((281u - exponent18) << 23u);
-    UNITPACK_PRECISE float ell_s6 = (floor(ell_p6 * t19) + floor(ell_q6 * t19))
-        * uintBitsToFloat((exponent18 - 27u) << 23u);
+    UNITPACK_PRECISE float scale7 = uintBitsToFloat((281u - exponent18) << 23u);
+    UNITPACK_PRECISE float back6 = uintBitsToFloat((exponent18 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
     UNITPACK_PRECISE float lhs6 = ell_s6 * 65025.0;
-    UNITPACK_PRECISE float rhs6 = ell_h6 * ell_g6 * t5;
-    UNITPACK_PRECISE float t20 = ell_t6 > 0.0
-        ? (w2.x > 0.0 ? (lhs6 >= rhs6 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs6 <= rhs6 ? 1.0 : 0.0));
-    bool beyond6 = t20 > 0.5;
+    UNITPACK_PRECISE float rhs6 = ell_h6 * ell_g6 * t1;
+    UNITPACK_PRECISE float one_if11 = lhs6 >= rhs6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside6 = w2.x > 0.0 ? one_if11 : 0.0;
+    UNITPACK_PRECISE float one_if12 = lhs6 <= rhs6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside6 = w2.x >= 0.0 ? 1.0 : one_if12;
+    bool beyond6 = (ell_t6 > 0.0 ? outside6 : inside6) > 0.5;
     UNITPACK_PRECISE float lo10 = beyond6 ? mid6 : lo9;
-    UNITPACK_PRECISE float hi10 = beyond6 ? hi9 : mid6 - 1.0;
+    UNITPACK_PRECISE float hi10 = beyond6 ? hi9 : mid_below6;
     UNITPACK_PRECISE float mid7 = floor((lo10 + hi10 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t7 = (mid7 - 1.0 - 127.0) * 2.0;
+    UNITPACK_PRECISE float mid_below7 = mid7 - 1.0;
+    UNITPACK_PRECISE float ell_t7 = (mid_below7 - 127.0) * 2.0;
     UNITPACK_PRECISE float ell_h7 = floor(ell_t7 * ell_t7);
     UNITPACK_PRECISE float ell_g7 = 130050.0 - ell_h7;
     UNITPACK_PRECISE float ell_p7 = w2.x * w2.x * ell_g7;
@@ -334,20 +353,22 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent19 = floatBitsToUint(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     uint exponent20 = exponent19 < 40u ? 40u : exponent19;
     uint exponent21 = 254u < exponent20 ? 254u : exponent20;
-    UNITPACK_PRECISE float t21 = uintBitsToFloat((281u - exponent21) << 23u);
-    UNITPACK_PRECISE float ell_s7 = (floor(ell_p7 * t21) + floor(ell_q7 * t21))
-        * uintBitsToFloat((exponent21 - 27u) << 23u);
+    UNITPACK_PRECISE float scale8 = uintBitsToFloat((281u - exponent21) << 23u);
+    UNITPACK_PRECISE float back7 = uintBitsToFloat((exponent21 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
     UNITPACK_PRECISE float lhs7 = ell_s7 * 65025.0;
-    UNITPACK_PRECISE float rhs7 = ell_h7 * ell_g7 * t5;
-    UNITPACK_PRECISE float t22 = ell_t7 > 0.0
-        ? (w2.x > 0.0 ? (lhs7 >= rhs7 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs7 <= rhs7 ? 1.0 : 0.0));
-    bool beyond7 = t22 > 0.5;
-    bool t23 = w2.y >= 0.0;
-    UNITPACK_PRECISE float t24 = t23 ? 64.0 : 0.0;
-    UNITPACK_PRECISE float t25 = t23 ? 127.0 : 63.0;
-    UNITPACK_PRECISE float mid8 = floor((t24 + t25 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t8 = (mid8 - 1.0 - 63.0) * 2.0;
+    UNITPACK_PRECISE float rhs7 = ell_h7 * ell_g7 * t1;
+    UNITPACK_PRECISE float one_if13 = lhs7 >= rhs7 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside7 = w2.x > 0.0 ? one_if13 : 0.0;
+    UNITPACK_PRECISE float one_if14 = lhs7 <= rhs7 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside7 = w2.x >= 0.0 ? 1.0 : one_if14;
+    bool beyond7 = (ell_t7 > 0.0 ? outside7 : inside7) > 0.5;
+    bool t5 = w2.y >= 0.0;
+    UNITPACK_PRECISE float t6 = t5 ? 64.0 : 0.0;
+    UNITPACK_PRECISE float t7 = t5 ? 127.0 : 63.0;
+    UNITPACK_PRECISE float mid8 = floor((t6 + t7 + 1.0) * 0.5);
+    UNITPACK_PRECISE float mid_below8 = mid8 - 1.0;
+    UNITPACK_PRECISE float ell_t8 = (mid_below8 - 63.0) * 2.0;
     UNITPACK_PRECISE float ell_h8 = floor(ell_t8 * ell_t8);
     UNITPACK_PRECISE float ell_g8 = 32258.0 - ell_h8;
     UNITPACK_PRECISE float ell_p8 = w2.y * w2.y * ell_g8;
@@ -355,19 +376,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent22 = floatBitsToUint(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     uint exponent23 = exponent22 < 40u ? 40u : exponent22;
     uint exponent24 = 254u < exponent23 ? 254u : exponent23;
-    UNITPACK_PRECISE float t26 = uintBitsToFloat((281u - exponent24) << 23u);
-    UNITPACK_PRECISE float ell_s8 = (floor(ell_p8 * t26) + floor(ell_q8 * t26))
-        * uintBitsToFloat((exponent24 - 27u) << 23u);
+    UNITPACK_PRECISE float scale9 = uintBitsToFloat((281u - exponent24) << 23u);
+    UNITPACK_PRECISE float back8 = uintBitsToFloat((exponent24 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
     UNITPACK_PRECISE float lhs8 = ell_s8 * 16129.0;
-    UNITPACK_PRECISE float rhs8 = ell_h8 * ell_g8 * t5;
-    UNITPACK_PRECISE float t27 = ell_t8 > 0.0
-        ? (w2.y > 0.0 ? (lhs8 >= rhs8 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs8 <= rhs8 ? 1.0 : 0.0));
-    bool beyond8 = t27 > 0.5;
-    UNITPACK_PRECISE float lo11 = beyond8 ? mid8 : t24;
-    UNITPACK_PRECISE float hi11 = beyond8 ? t25 : mid8 - 1.0;
+    UNITPACK_PRECISE float rhs8 = ell_h8 * ell_g8 * t1;
+    UNITPACK_PRECISE float one_if15 = lhs8 >= rhs8 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside8 = w2.y > 0.0 ? one_if15 : 0.0;
+    UNITPACK_PRECISE float one_if16 = lhs8 <= rhs8 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside8 = w2.y >= 0.0 ? 1.0 : one_if16;
+    bool beyond8 = (ell_t8 > 0.0 ? outside8 : inside8) > 0.5;
+    UNITPACK_PRECISE float lo11 = beyond8 ? mid8 : t6;
+    UNITPACK_PRECISE float hi11 = beyond8 ? t7 : mid_below8;
     UNITPACK_PRECISE float mid9 = floor((lo11 + hi11 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t9 = (mid9 - 1.0 - 63.0) * 2.0;
+    UNITPACK_PRECISE float mid_below9 = mid9 - 1.0;
+    UNITPACK_PRECISE float ell_t9 = (mid_below9 - 63.0) * 2.0;
     UNITPACK_PRECISE float ell_h9 = floor(ell_t9 * ell_t9);
     UNITPACK_PRECISE float ell_g9 = 32258.0 - ell_h9;
     UNITPACK_PRECISE float ell_p9 = w2.y * w2.y * ell_g9;
@@ -375,19 +398,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent25 = floatBitsToUint(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     uint exponent26 = exponent25 < 40u ? 40u : exponent25;
     uint exponent27 = 254u < exponent26 ? 254u : exponent26;
-    UNITPACK_PRECISE float t28 = uintBitsToFloat((281u - exponent27) << 23u);
-    UNITPACK_PRECISE float ell_s9 = (floor(ell_p9 * t28) + floor(ell_q9 * t28))
-        * uintBitsToFloat((exponent27 - 27u) << 23u);
+    UNITPACK_PRECISE float scale10 = uintBitsToFloat((281u - exponent27) << 23u);
+    UNITPACK_PRECISE float back9 = uintBitsToFloat((exponent27 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
     UNITPACK_PRECISE float lhs9 = ell_s9 * 16129.0;
-    UNITPACK_PRECISE float rhs9 = ell_h9 * ell_g9 * t5;
-    UNITPACK_PRECISE float t29 = ell_t9 > 0.0
-        ? (w2.y > 0.0 ? (lhs9 >= rhs9 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs9 <= rhs9 ? 1.0 : 0.0));
-    bool beyond9 = t29 > 0.5;
+    UNITPACK_PRECISE float rhs9 = ell_h9 * ell_g9 * t1;
+    UNITPACK_PRECISE float one_if17 = lhs9 >= rhs9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside9 = w2.y > 0.0 ? one_if17 : 0.0;
+    UNITPACK_PRECISE float one_if18 = lhs9 <= rhs9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside9 = w2.y >= 0.0 ? 1.0 : one_if18;
+    bool beyond9 = (ell_t9 > 0.0 ? outside9 : inside9) > 0.5;
     UNITPACK_PRECISE float lo12 = beyond9 ? mid9 : lo11;
-    UNITPACK_PRECISE float hi12 = beyond9 ? hi11 : mid9 - 1.0;
+    UNITPACK_PRECISE float hi12 = beyond9 ? hi11 : mid_below9;
     UNITPACK_PRECISE float mid10 = floor((lo12 + hi12 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t10 = (mid10 - 1.0 - 63.0) * 2.0;
+    UNITPACK_PRECISE float mid_below10 = mid10 - 1.0;
+    UNITPACK_PRECISE float ell_t10 = (mid_below10 - 63.0) * 2.0;
     UNITPACK_PRECISE float ell_h10 = floor(ell_t10 * ell_t10);
     UNITPACK_PRECISE float ell_g10 = 32258.0 - ell_h10;
     UNITPACK_PRECISE float ell_p10 = w2.y * w2.y * ell_g10;
@@ -395,19 +420,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent28 = floatBitsToUint(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     uint exponent29 = exponent28 < 40u ? 40u : exponent28;
     uint exponent30 = 254u < exponent29 ? 254u : exponent29;
-    UNITPACK_PRECISE float t30 = uintBitsToFloat((281u - exponent30) << 23u);
-    UNITPACK_PRECISE float ell_s10 = (floor(ell_p10 * t30) + floor(ell_q10 * t30))
-        * uintBitsToFloat((exponent30 - 27u) << 23u);
+    UNITPACK_PRECISE float scale11 = uintBitsToFloat((281u - exponent30) << 23u);
+    UNITPACK_PRECISE float back10 = uintBitsToFloat((exponent30 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
     UNITPACK_PRECISE float lhs10 = ell_s10 * 16129.0;
-    UNITPACK_PRECISE float rhs10 = ell_h10 * ell_g10 * t5;
-    UNITPACK_PRECISE float t31 = ell_t10 > 0.0
-        ? (w2.y > 0.0 ? (lhs10 >= rhs10 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs10 <= rhs10 ? 1.0 : 0.0));
-    bool beyond10 = t31 > 0.5;
+    UNITPACK_PRECISE float rhs10 = ell_h10 * ell_g10 * t1;
+    UNITPACK_PRECISE float one_if19 = lhs10 >= rhs10 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside10 = w2.y > 0.0 ? one_if19 : 0.0;
+    UNITPACK_PRECISE float one_if20 = lhs10 <= rhs10 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside10 = w2.y >= 0.0 ? 1.0 : one_if20;
+    bool beyond10 = (ell_t10 > 0.0 ? outside10 : inside10) > 0.5;
     UNITPACK_PRECISE float lo13 = beyond10 ? mid10 : lo12;
-    UNITPACK_PRECISE float hi13 = beyond10 ? hi12 : mid10 - 1.0;
+    UNITPACK_PRECISE float hi13 = beyond10 ? hi12 : mid_below10;
     UNITPACK_PRECISE float mid11 = floor((lo13 + hi13 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t11 = (mid11 - 1.0 - 63.0) * 2.0;
+    UNITPACK_PRECISE float mid_below11 = mid11 - 1.0;
+    UNITPACK_PRECISE float ell_t11 = (mid_below11 - 63.0) * 2.0;
     UNITPACK_PRECISE float ell_h11 = floor(ell_t11 * ell_t11);
     UNITPACK_PRECISE float ell_g11 = 32258.0 - ell_h11;
     UNITPACK_PRECISE float ell_p11 = w2.y * w2.y * ell_g11;
@@ -415,19 +442,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent31 = floatBitsToUint(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     uint exponent32 = exponent31 < 40u ? 40u : exponent31;
     uint exponent33 = 254u < exponent32 ? 254u : exponent32;
-    UNITPACK_PRECISE float t32 = uintBitsToFloat((281u - exponent33) << 23u);
-    UNITPACK_PRECISE float ell_s11 = (floor(ell_p11 * t32) + floor(ell_q11 * t32))
-        * uintBitsToFloat((exponent33 - 27u) << 23u);
+    UNITPACK_PRECISE float scale12 = uintBitsToFloat((281u - exponent33) << 23u);
+    UNITPACK_PRECISE float back11 = uintBitsToFloat((exponent33 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
     UNITPACK_PRECISE float lhs11 = ell_s11 * 16129.0;
-    UNITPACK_PRECISE float rhs11 = ell_h11 * ell_g11 * t5;
-    UNITPACK_PRECISE float t33 = ell_t11 > 0.0
-        ? (w2.y > 0.0 ? (lhs11 >= rhs11 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs11 <= rhs11 ? 1.0 : 0.0));
-    bool beyond11 = t33 > 0.5;
+    UNITPACK_PRECISE float rhs11 = ell_h11 * ell_g11 * t1;
+    UNITPACK_PRECISE float one_if21 = lhs11 >= rhs11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside11 = w2.y > 0.0 ? one_if21 : 0.0;
+    UNITPACK_PRECISE float one_if22 = lhs11 <= rhs11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside11 = w2.y >= 0.0 ? 1.0 : one_if22;
+    bool beyond11 = (ell_t11 > 0.0 ? outside11 : inside11) > 0.5;
     UNITPACK_PRECISE float lo14 = beyond11 ? mid11 : lo13;
-    UNITPACK_PRECISE float hi14 = beyond11 ? hi13 : mid11 - 1.0;
+    UNITPACK_PRECISE float hi14 = beyond11 ? hi13 : mid_below11;
     UNITPACK_PRECISE float mid12 = floor((lo14 + hi14 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t12 = (mid12 - 1.0 - 63.0) * 2.0;
+    UNITPACK_PRECISE float mid_below12 = mid12 - 1.0;
+    UNITPACK_PRECISE float ell_t12 = (mid_below12 - 63.0) * 2.0;
     UNITPACK_PRECISE float ell_h12 = floor(ell_t12 * ell_t12);
     UNITPACK_PRECISE float ell_g12 = 32258.0 - ell_h12;
     UNITPACK_PRECISE float ell_p12 = w2.y * w2.y * ell_g12;
@@ -435,19 +464,21 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent34 = floatBitsToUint(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     uint exponent35 = exponent34 < 40u ? 40u : exponent34;
     uint exponent36 = 254u < exponent35 ? 254u : exponent35;
-    UNITPACK_PRECISE float t34 = uintBitsToFloat((281u - exponent36) << 23u);
-    UNITPACK_PRECISE float ell_s12 = (floor(ell_p12 * t34) + floor(ell_q12 * t34))
-        * uintBitsToFloat((exponent36 - 27u) << 23u);
+    UNITPACK_PRECISE float scale13 = uintBitsToFloat((281u - exponent36) << 23u);
+    UNITPACK_PRECISE float back12 = uintBitsToFloat((exponent36 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
     UNITPACK_PRECISE float lhs12 = ell_s12 * 16129.0;
-    UNITPACK_PRECISE float rhs12 = ell_h12 * ell_g12 * t5;
-    UNITPACK_PRECISE float t35 = ell_t12 > 0.0
-        ? (w2.y > 0.0 ? (lhs12 >= rhs12 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs12 <= rhs12 ? 1.0 : 0.0));
-    bool beyond12 = t35 > 0.5;
+    UNITPACK_PRECISE float rhs12 = ell_h12 * ell_g12 * t1;
+    UNITPACK_PRECISE float one_if23 = lhs12 >= rhs12 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside12 = w2.y > 0.0 ? one_if23 : 0.0;
+    UNITPACK_PRECISE float one_if24 = lhs12 <= rhs12 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside12 = w2.y >= 0.0 ? 1.0 : one_if24;
+    bool beyond12 = (ell_t12 > 0.0 ? outside12 : inside12) > 0.5;
     UNITPACK_PRECISE float lo15 = beyond12 ? mid12 : lo14;
-    UNITPACK_PRECISE float hi15 = beyond12 ? hi14 : mid12 - 1.0;
+    UNITPACK_PRECISE float hi15 = beyond12 ? hi14 : mid_below12;
     UNITPACK_PRECISE float mid13 = floor((lo15 + hi15 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t13 = (mid13 - 1.0 - 63.0) * 2.0;
+    UNITPACK_PRECISE float mid_below13 = mid13 - 1.0;
+    UNITPACK_PRECISE float ell_t13 = (mid_below13 - 63.0) * 2.0;
     UNITPACK_PRECISE float ell_h13 = floor(ell_t13 * ell_t13);
     UNITPACK_PRECISE float ell_g13 = 32258.0 - ell_h13;
     UNITPACK_PRECISE float ell_p13 = w2.y * w2.y * ell_g13;
@@ -455,15 +486,16 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     uint exponent37 = floatBitsToUint(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     uint exponent38 = exponent37 < 40u ? 40u : exponent37;
     uint exponent39 = 254u < exponent38 ? 254u : exponent38;
-    UNITPACK_PRECISE float t36 = uintBitsToFloat((281u - exponent39) << 23u);
-    UNITPACK_PRECISE float ell_s13 = (floor(ell_p13 * t36) + floor(ell_q13 * t36))
-        * uintBitsToFloat((exponent39 - 27u) << 23u);
+    UNITPACK_PRECISE float scale14 = uintBitsToFloat((281u - exponent39) << 23u);
+    UNITPACK_PRECISE float back13 = uintBitsToFloat((exponent39 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
     UNITPACK_PRECISE float lhs13 = ell_s13 * 16129.0;
-    UNITPACK_PRECISE float rhs13 = ell_h13 * ell_g13 * t5;
-    UNITPACK_PRECISE float t37 = ell_t13 > 0.0
-        ? (w2.y > 0.0 ? (lhs13 >= rhs13 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs13 <= rhs13 ? 1.0 : 0.0));
-    bool beyond13 = t37 > 0.5;
+    UNITPACK_PRECISE float rhs13 = ell_h13 * ell_g13 * t1;
+    UNITPACK_PRECISE float one_if25 = lhs13 >= rhs13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside13 = w2.y > 0.0 ? one_if25 : 0.0;
+    UNITPACK_PRECISE float one_if26 = lhs13 <= rhs13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside13 = w2.y >= 0.0 ? 1.0 : one_if26;
+    bool beyond13 = (ell_t13 > 0.0 ? outside13 : inside13) > 0.5;
     return mix(vec3(lo10, lo15, 0.0), vec3(mid7, mid13, 1.0), bvec3(beyond7, beyond13, w2.z < 0.0));
 }
 

@@ -50,7 +50,8 @@ vec3 unitpack_eqarea_ellipse20_decode_float(vec3 params) {
     UNITPACK_PRECISE float q = t1 <= 2.0 ? t1 : 2.0;
     UNITPACK_PRECISE float g = sqrt(2.0 - q);
     UNITPACK_PRECISE float t2 = 1.0 - q;
-    UNITPACK_PRECISE vec3 result = vec3(disk * g, params.z > 0.5 ? -t2 : t2);
+    UNITPACK_PRECISE float neg_t2 = -t2;
+    UNITPACK_PRECISE vec3 result = vec3(disk * g, params.z > 0.5 ? neg_t2 : t2);
     return result;
 }
 
@@ -86,15 +87,16 @@ vec3 unitpack_eqarea_ellipse20_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -114,36 +116,37 @@ vec3 unitpack_eqarea_ellipse20_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec2 t5 = w2.xy * w2.xy;
-    UNITPACK_PRECISE float rho = sqrt(t5.x + t5.y);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE vec2 t1 = w2.xy * w2.xy;
+    UNITPACK_PRECISE float rho = sqrt(t1.x + t1.y);
     UNITPACK_PRECISE float half_r = rho / sqrt(root * (root + abs(w2.z))) * 0.5;
     UNITPACK_PRECISE vec2 disk = w2.xy * (half_r / (rho > 0.0 ? rho : 1.0) * 2.0);
-    UNITPACK_PRECISE vec2 t6 = abs(disk.yx);
-    UNITPACK_PRECISE vec2 t7 = disk + 1.4142135 - t6;
-    UNITPACK_PRECISE vec2 t8 = sqrt(
-        mix(vec2(0.0), t7, greaterThanEqual(t7, vec2(0.0))) * (disk + 1.4142135 + t6)
-    );
-    UNITPACK_PRECISE vec2 t9 = -disk;
-    UNITPACK_PRECISE vec2 t10 = t9 + 1.4142135 - t6;
-    UNITPACK_PRECISE vec2 t11 = sqrt(
-        mix(vec2(0.0), t10, greaterThanEqual(t10, vec2(0.0))) * (t9 + 1.4142135 + t6)
-    );
-    UNITPACK_PRECISE vec2 square = disk / (t8 + t11);
+    UNITPACK_PRECISE vec2 t2 = abs(disk.yx);
+    UNITPACK_PRECISE vec2 t3 = disk + 1.4142135 - t2;
+    UNITPACK_PRECISE vec2 neg_disk = -disk;
+    UNITPACK_PRECISE vec2 t4 = neg_disk + 1.4142135 - t2;
+    UNITPACK_PRECISE vec2 t5 = sqrt(
+        mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0))) * (disk + 1.4142135 + t2)
+    )
+        + sqrt(mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0))) * (neg_disk + 1.4142135 + t2));
+    UNITPACK_PRECISE vec2 square = disk / t5;
     UNITPACK_PRECISE vec2 enc = square * 1.4142135 + 0.5;
-    return vec3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return vec3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -160,15 +163,16 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -188,25 +192,28 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = root * (root + abs(w2.z));
-    bool t6 = w2.x >= 0.0;
-    UNITPACK_PRECISE float t7 = t6 ? 512.0 : 0.0;
-    UNITPACK_PRECISE float t8 = t6 ? 1023.0 : 511.0;
-    UNITPACK_PRECISE float mid = floor((t7 + t8 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t = (mid - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float t1 = root * (root + abs(w2.z));
+    bool t2 = w2.x >= 0.0;
+    UNITPACK_PRECISE float t3 = t2 ? 512.0 : 0.0;
+    UNITPACK_PRECISE float t4 = t2 ? 1023.0 : 511.0;
+    UNITPACK_PRECISE float mid = floor((t3 + t4 + 1.0) * 0.5);
+    UNITPACK_PRECISE float mid_below = mid - 1.0;
+    UNITPACK_PRECISE float ell_t = (mid_below - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h = floor(ell_t * ell_t);
     UNITPACK_PRECISE float ell_g = 2093058.0 - ell_h;
     UNITPACK_PRECISE float ell_p = w2.x * w2.x * ell_g;
@@ -214,19 +221,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent = floatBitsToUint(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     uint exponent2 = exponent < 40u ? 40u : exponent;
     uint exponent3 = 254u < exponent2 ? 254u : exponent2;
-    UNITPACK_PRECISE float t9 = uintBitsToFloat((281u - exponent3) << 23u);
-    UNITPACK_PRECISE float ell_s = (floor(ell_p * t9) + floor(ell_q * t9))
-        * uintBitsToFloat((exponent3 - 27u) << 23u);
+    UNITPACK_PRECISE float scale2 = uintBitsToFloat((281u - exponent3) << 23u);
+    UNITPACK_PRECISE float back = uintBitsToFloat((exponent3 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
     UNITPACK_PRECISE float lhs = ell_s * 1046529.0;
-    UNITPACK_PRECISE float rhs = ell_h * ell_g * t5;
-    UNITPACK_PRECISE float t10 = ell_t > 0.0
-        ? (w2.x > 0.0 ? (lhs >= rhs ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs <= rhs ? 1.0 : 0.0));
-    bool beyond = t10 > 0.5;
-    UNITPACK_PRECISE float lo5 = beyond ? mid : t7;
-    UNITPACK_PRECISE float hi5 = beyond ? t8 : mid - 1.0;
+    UNITPACK_PRECISE float rhs = ell_h * ell_g * t1;
+    UNITPACK_PRECISE float one_if = lhs >= rhs ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside = w2.x > 0.0 ? one_if : 0.0;
+    UNITPACK_PRECISE float one_if2 = lhs <= rhs ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside = w2.x >= 0.0 ? 1.0 : one_if2;
+    bool beyond = (ell_t > 0.0 ? outside : inside) > 0.5;
+    UNITPACK_PRECISE float lo5 = beyond ? mid : t3;
+    UNITPACK_PRECISE float hi5 = beyond ? t4 : mid_below;
     UNITPACK_PRECISE float mid2 = floor((lo5 + hi5 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t2 = (mid2 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below2 = mid2 - 1.0;
+    UNITPACK_PRECISE float ell_t2 = (mid_below2 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h2 = floor(ell_t2 * ell_t2);
     UNITPACK_PRECISE float ell_g2 = 2093058.0 - ell_h2;
     UNITPACK_PRECISE float ell_p2 = w2.x * w2.x * ell_g2;
@@ -234,19 +243,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent4 = floatBitsToUint(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     uint exponent5 = exponent4 < 40u ? 40u : exponent4;
     uint exponent6 = 254u < exponent5 ? 254u : exponent5;
-    UNITPACK_PRECISE float t11 = uintBitsToFloat((281u - exponent6) << 23u);
-    UNITPACK_PRECISE float ell_s2 = (floor(ell_p2 * t11) + floor(ell_q2 * t11))
-        * uintBitsToFloat((exponent6 - 27u) << 23u);
+    UNITPACK_PRECISE float scale3 = uintBitsToFloat((281u - exponent6) << 23u);
+    UNITPACK_PRECISE float back2 = uintBitsToFloat((exponent6 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
     UNITPACK_PRECISE float lhs2 = ell_s2 * 1046529.0;
-    UNITPACK_PRECISE float rhs2 = ell_h2 * ell_g2 * t5;
-    UNITPACK_PRECISE float t12 = ell_t2 > 0.0
-        ? (w2.x > 0.0 ? (lhs2 >= rhs2 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs2 <= rhs2 ? 1.0 : 0.0));
-    bool beyond2 = t12 > 0.5;
+    UNITPACK_PRECISE float rhs2 = ell_h2 * ell_g2 * t1;
+    UNITPACK_PRECISE float one_if3 = lhs2 >= rhs2 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside2 = w2.x > 0.0 ? one_if3 : 0.0;
+    UNITPACK_PRECISE float one_if4 = lhs2 <= rhs2 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside2 = w2.x >= 0.0 ? 1.0 : one_if4;
+    bool beyond2 = (ell_t2 > 0.0 ? outside2 : inside2) > 0.5;
     UNITPACK_PRECISE float lo6 = beyond2 ? mid2 : lo5;
-    UNITPACK_PRECISE float hi6 = beyond2 ? hi5 : mid2 - 1.0;
+    UNITPACK_PRECISE float hi6 = beyond2 ? hi5 : mid_below2;
     UNITPACK_PRECISE float mid3 = floor((lo6 + hi6 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t3 = (mid3 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below3 = mid3 - 1.0;
+    UNITPACK_PRECISE float ell_t3 = (mid_below3 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h3 = floor(ell_t3 * ell_t3);
     UNITPACK_PRECISE float ell_g3 = 2093058.0 - ell_h3;
     UNITPACK_PRECISE float ell_p3 = w2.x * w2.x * ell_g3;
@@ -254,19 +265,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent7 = floatBitsToUint(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     uint exponent8 = exponent7 < 40u ? 40u : exponent7;
     uint exponent9 = 254u < exponent8 ? 254u : exponent8;
-    UNITPACK_PRECISE float t13 = uintBitsToFloat((281u - exponent9) << 23u);
-    UNITPACK_PRECISE float ell_s3 = (floor(ell_p3 * t13) + floor(ell_q3 * t13))
-        * uintBitsToFloat((exponent9 - 27u) << 23u);
+    UNITPACK_PRECISE float scale4 = uintBitsToFloat((281u - exponent9) << 23u);
+    UNITPACK_PRECISE float back3 = uintBitsToFloat((exponent9 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
     UNITPACK_PRECISE float lhs3 = ell_s3 * 1046529.0;
-    UNITPACK_PRECISE float rhs3 = ell_h3 * ell_g3 * t5;
-    UNITPACK_PRECISE float t14 = ell_t3 > 0.0
-        ? (w2.x > 0.0 ? (lhs3 >= rhs3 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs3 <= rhs3 ? 1.0 : 0.0));
-    bool beyond3 = t14 > 0.5;
+    UNITPACK_PRECISE float rhs3 = ell_h3 * ell_g3 * t1;
+    UNITPACK_PRECISE float one_if5 = lhs3 >= rhs3 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside3 = w2.x > 0.0 ? one_if5 : 0.0;
+    UNITPACK_PRECISE float one_if6 = lhs3 <= rhs3 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside3 = w2.x >= 0.0 ? 1.0 : one_if6;
+    bool beyond3 = (ell_t3 > 0.0 ? outside3 : inside3) > 0.5;
     UNITPACK_PRECISE float lo7 = beyond3 ? mid3 : lo6;
-    UNITPACK_PRECISE float hi7 = beyond3 ? hi6 : mid3 - 1.0;
+    UNITPACK_PRECISE float hi7 = beyond3 ? hi6 : mid_below3;
     UNITPACK_PRECISE float mid4 = floor((lo7 + hi7 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t4 = (mid4 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below4 = mid4 - 1.0;
+    UNITPACK_PRECISE float ell_t4 = (mid_below4 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h4 = floor(ell_t4 * ell_t4);
     UNITPACK_PRECISE float ell_g4 = 2093058.0 - ell_h4;
     UNITPACK_PRECISE float ell_p4 = w2.x * w2.x * ell_g4;
@@ -274,19 +287,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent10 = floatBitsToUint(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     uint exponent11 = exponent10 < 40u ? 40u : exponent10;
     uint exponent12 = 254u < exponent11 ? 254u : exponent11;
-    UNITPACK_PRECISE float t15 = uintBitsToFloat((281u - exponent12) << 23u);
-    UNITPACK_PRECISE float ell_s4 = (floor(ell_p4 * t15) + floor(ell_q4 * t15))
-        * uintBitsToFloat((exponent12 - 27u) << 23u);
+    UNITPACK_PRECISE float scale5 = uintBitsToFloat((281u - exponent12) << 23u);
+    UNITPACK_PRECISE float back4 = uintBitsToFloat((exponent12 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
     UNITPACK_PRECISE float lhs4 = ell_s4 * 1046529.0;
-    UNITPACK_PRECISE float rhs4 = ell_h4 * ell_g4 * t5;
-    UNITPACK_PRECISE float t16 = ell_t4 > 0.0
-        ? (w2.x > 0.0 ? (lhs4 >= rhs4 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs4 <= rhs4 ? 1.0 : 0.0));
-    bool beyond4 = t16 > 0.5;
+    UNITPACK_PRECISE float rhs4 = ell_h4 * ell_g4 * t1;
+    UNITPACK_PRECISE float one_if7 = lhs4 >= rhs4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside4 = w2.x > 0.0 ? one_if7 : 0.0;
+    UNITPACK_PRECISE float one_if8 = lhs4 <= rhs4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside4 = w2.x >= 0.0 ? 1.0 : one_if8;
+    bool beyond4 = (ell_t4 > 0.0 ? outside4 : inside4) > 0.5;
     UNITPACK_PRECISE float lo8 = beyond4 ? mid4 : lo7;
-    UNITPACK_PRECISE float hi8 = beyond4 ? hi7 : mid4 - 1.0;
+    UNITPACK_PRECISE float hi8 = beyond4 ? hi7 : mid_below4;
     UNITPACK_PRECISE float mid5 = floor((lo8 + hi8 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t5 = (mid5 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below5 = mid5 - 1.0;
+    UNITPACK_PRECISE float ell_t5 = (mid_below5 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h5 = floor(ell_t5 * ell_t5);
     UNITPACK_PRECISE float ell_g5 = 2093058.0 - ell_h5;
     UNITPACK_PRECISE float ell_p5 = w2.x * w2.x * ell_g5;
@@ -294,19 +309,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent13 = floatBitsToUint(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     uint exponent14 = exponent13 < 40u ? 40u : exponent13;
     uint exponent15 = 254u < exponent14 ? 254u : exponent14;
-    UNITPACK_PRECISE float t17 = uintBitsToFloat((281u - exponent15) << 23u);
-    UNITPACK_PRECISE float ell_s5 = (floor(ell_p5 * t17) + floor(ell_q5 * t17))
-        * uintBitsToFloat((exponent15 - 27u) << 23u);
+    UNITPACK_PRECISE float scale6 = uintBitsToFloat((281u - exponent15) << 23u);
+    UNITPACK_PRECISE float back5 = uintBitsToFloat((exponent15 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
     UNITPACK_PRECISE float lhs5 = ell_s5 * 1046529.0;
-    UNITPACK_PRECISE float rhs5 = ell_h5 * ell_g5 * t5;
-    UNITPACK_PRECISE float t18 = ell_t5 > 0.0
-        ? (w2.x > 0.0 ? (lhs5 >= rhs5 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs5 <= rhs5 ? 1.0 : 0.0));
-    bool beyond5 = t18 > 0.5;
+    UNITPACK_PRECISE float rhs5 = ell_h5 * ell_g5 * t1;
+    UNITPACK_PRECISE float one_if9 = lhs5 >= rhs5 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside5 = w2.x > 0.0 ? one_if9 : 0.0;
+    UNITPACK_PRECISE float one_if10 = lhs5 <= rhs5 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside5 = w2.x >= 0.0 ? 1.0 : one_if10;
+    bool beyond5 = (ell_t5 > 0.0 ? outside5 : inside5) > 0.5;
     UNITPACK_PRECISE float lo9 = beyond5 ? mid5 : lo8;
-    UNITPACK_PRECISE float hi9 = beyond5 ? hi8 : mid5 - 1.0;
+    UNITPACK_PRECISE float hi9 = beyond5 ? hi8 : mid_below5;
     UNITPACK_PRECISE float mid6 = floor((lo9 + hi9 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t6 = (mid6 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below6 = mid6 - 1.0;
+    UNITPACK_PRECISE float ell_t6 = (mid_below6 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h6 = floor(ell_t6 * ell_t6);
     UNITPACK_PRECISE float ell_g6 = 2093058.0 - ell_h6;
     UNITPACK_PRECISE float ell_p6 = w2.x * w2.x * ell_g6;
@@ -314,19 +331,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent16 = floatBitsToUint(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     uint exponent17 = exponent16 < 40u ? 40u : exponent16;
     uint exponent18 = 254u < exponent17 ? 254u : exponent17;
-    UNITPACK_PRECISE float t19 = uintBitsToFloat((281u - exponent18) << 23u);
-    UNITPACK_PRECISE float ell_s6 = (floor(ell_p6 * t19) + floor(ell_q6 * t19))
-        * uintBitsToFloat((exponent18 - 27u) << 23u);
+    UNITPACK_PRECISE float scale7 = uintBitsToFloat((281u - exponent18) << 23u);
+    UNITPACK_PRECISE float back6 = uintBitsToFloat((exponent18 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
     UNITPACK_PRECISE float lhs6 = ell_s6 * 1046529.0;
-    UNITPACK_PRECISE float rhs6 = ell_h6 * ell_g6 * t5;
-    UNITPACK_PRECISE float t20 = ell_t6 > 0.0
-        ? (w2.x > 0.0 ? (lhs6 >= rhs6 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs6 <= rhs6 ? 1.0 : 0.0));
-    bool beyond6 = t20 > 0.5;
+    UNITPACK_PRECISE float rhs6 = ell_h6 * ell_g6 * t1;
+    UNITPACK_PRECISE float one_if11 = lhs6 >= rhs6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside6 = w2.x > 0.0 ? one_if11 : 0.0;
+    UNITPACK_PRECISE float one_if12 = lhs6 <= rhs6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside6 = w2.x >= 0.0 ? 1.0 : one_if12;
+    bool beyond6 = (ell_t6 > 0.0 ? outside6 : inside6) > 0.5;
     UNITPACK_PRECISE float lo10 = beyond6 ? mid6 : lo9;
-    UNITPACK_PRECISE float hi10 = beyond6 ? hi9 : mid6 - 1.0;
+    UNITPACK_PRECISE float hi10 = beyond6 ? hi9 : mid_below6;
     UNITPACK_PRECISE float mid7 = floor((lo10 + hi10 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t7 = (mid7 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below7 = mid7 - 1.0;
+    UNITPACK_PRECISE float ell_t7 = (mid_below7 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h7 = floor(ell_t7 * ell_t7);
     UNITPACK_PRECISE float ell_g7 = 2093058.0 - ell_h7;
     UNITPACK_PRECISE float ell_p7 = w2.x * w2.x * ell_g7;
@@ -334,19 +353,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent19 = floatBitsToUint(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     uint exponent20 = exponent19 < 40u ? 40u : exponent19;
     uint exponent21 = 254u < exponent20 ? 254u : exponent20;
-    UNITPACK_PRECISE float t21 = uintBitsToFloat((281u - exponent21) << 23u);
-    UNITPACK_PRECISE float ell_s7 = (floor(ell_p7 * t21) + floor(ell_q7 * t21))
-        * uintBitsToFloat((exponent21 - 27u) << 23u);
+    UNITPACK_PRECISE float scale8 = uintBitsToFloat((281u - exponent21) << 23u);
+    UNITPACK_PRECISE float back7 = uintBitsToFloat((exponent21 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
     UNITPACK_PRECISE float lhs7 = ell_s7 * 1046529.0;
-    UNITPACK_PRECISE float rhs7 = ell_h7 * ell_g7 * t5;
-    UNITPACK_PRECISE float t22 = ell_t7 > 0.0
-        ? (w2.x > 0.0 ? (lhs7 >= rhs7 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs7 <= rhs7 ? 1.0 : 0.0));
-    bool beyond7 = t22 > 0.5;
+    UNITPACK_PRECISE float rhs7 = ell_h7 * ell_g7 * t1;
+    UNITPACK_PRECISE float one_if13 = lhs7 >= rhs7 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside7 = w2.x > 0.0 ? one_if13 : 0.0;
+    UNITPACK_PRECISE float one_if14 = lhs7 <= rhs7 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside7 = w2.x >= 0.0 ? 1.0 : one_if14;
+    bool beyond7 = (ell_t7 > 0.0 ? outside7 : inside7) > 0.5;
     UNITPACK_PRECISE float lo11 = beyond7 ? mid7 : lo10;
-    UNITPACK_PRECISE float hi11 = beyond7 ? hi10 : mid7 - 1.0;
+    UNITPACK_PRECISE float hi11 = beyond7 ? hi10 : mid_below7;
     UNITPACK_PRECISE float mid8 = floor((lo11 + hi11 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t8 = (mid8 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below8 = mid8 - 1.0;
+    UNITPACK_PRECISE float ell_t8 = (mid_below8 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h8 = floor(ell_t8 * ell_t8);
     UNITPACK_PRECISE float ell_g8 = 2093058.0 - ell_h8;
     UNITPACK_PRECISE float ell_p8 = w2.x * w2.x * ell_g8;
@@ -354,19 +375,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent22 = floatBitsToUint(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     uint exponent23 = exponent22 < 40u ? 40u : exponent22;
     uint exponent24 = 254u < exponent23 ? 254u : exponent23;
-    UNITPACK_PRECISE float t23 = uintBitsToFloat((281u - exponent24) << 23u);
-    UNITPACK_PRECISE float ell_s8 = (floor(ell_p8 * t23) + floor(ell_q8 * t23))
-        * uintBitsToFloat((exponent24 - 27u) << 23u);
+    UNITPACK_PRECISE float scale9 = uintBitsToFloat((281u - exponent24) << 23u);
+    UNITPACK_PRECISE float back8 = uintBitsToFloat((exponent24 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
     UNITPACK_PRECISE float lhs8 = ell_s8 * 1046529.0;
-    UNITPACK_PRECISE float rhs8 = ell_h8 * ell_g8 * t5;
-    UNITPACK_PRECISE float t24 = ell_t8 > 0.0
-        ? (w2.x > 0.0 ? (lhs8 >= rhs8 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs8 <= rhs8 ? 1.0 : 0.0));
-    bool beyond8 = t24 > 0.5;
+    UNITPACK_PRECISE float rhs8 = ell_h8 * ell_g8 * t1;
+    UNITPACK_PRECISE float one_if15 = lhs8 >= rhs8 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside8 = w2.x > 0.0 ? one_if15 : 0.0;
+    UNITPACK_PRECISE float one_if16 = lhs8 <= rhs8 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside8 = w2.x >= 0.0 ? 1.0 : one_if16;
+    bool beyond8 = (ell_t8 > 0.0 ? outside8 : inside8) > 0.5;
     UNITPACK_PRECISE float lo12 = beyond8 ? mid8 : lo11;
-    UNITPACK_PRECISE float hi12 = beyond8 ? hi11 : mid8 - 1.0;
+    UNITPACK_PRECISE float hi12 = beyond8 ? hi11 : mid_below8;
     UNITPACK_PRECISE float mid9 = floor((lo12 + hi12 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t9 = (mid9 - 1.0 - 511.0) * 2.0;
+    UNITPACK_PRECISE float mid_below9 = mid9 - 1.0;
+    UNITPACK_PRECISE float ell_t9 = (mid_below9 - 511.0) * 2.0;
     UNITPACK_PRECISE float ell_h9 = floor(ell_t9 * ell_t9);
     UNITPACK_PRECISE float ell_g9 = 2093058.0 - ell_h9;
     UNITPACK_PRECISE float ell_p9 = w2.x * w2.x * ell_g9;
@@ -374,20 +397,22 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent25 = floatBitsToUint(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     uint exponent26 = exponent25 < 40u ? 40u : exponent25;
     uint exponent27 = 254u < exponent26 ? 254u : exponent26;
-    UNITPACK_PRECISE float t25 = uintBitsToFloat((281u - exponent27) << 23u);
-    UNITPACK_PRECISE float ell_s9 = (floor(ell_p9 * t25) + floor(ell_q9 * t25))
-        * uintBitsToFloat((exponent27 - 27u) << 23u);
+    UNITPACK_PRECISE float scale10 = uintBitsToFloat((281u - exponent27) << 23u);
+    UNITPACK_PRECISE float back9 = uintBitsToFloat((exponent27 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
     UNITPACK_PRECISE float lhs9 = ell_s9 * 1046529.0;
-    UNITPACK_PRECISE float rhs9 = ell_h9 * ell_g9 * t5;
-    UNITPACK_PRECISE float t26 = ell_t9 > 0.0
-        ? (w2.x > 0.0 ? (lhs9 >= rhs9 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs9 <= rhs9 ? 1.0 : 0.0));
-    bool beyond9 = t26 > 0.5;
-    bool t27 = w2.y >= 0.0;
-    UNITPACK_PRECISE float t28 = t27 ? 256.0 : 0.0;
-    UNITPACK_PRECISE float t29 = t27 ? 511.0 : 255.0;
-    UNITPACK_PRECISE float mid10 = floor((t28 + t29 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t10 = (mid10 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float rhs9 = ell_h9 * ell_g9 * t1;
+    UNITPACK_PRECISE float one_if17 = lhs9 >= rhs9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside9 = w2.x > 0.0 ? one_if17 : 0.0;
+    UNITPACK_PRECISE float one_if18 = lhs9 <= rhs9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside9 = w2.x >= 0.0 ? 1.0 : one_if18;
+    bool beyond9 = (ell_t9 > 0.0 ? outside9 : inside9) > 0.5;
+    bool t5 = w2.y >= 0.0;
+    UNITPACK_PRECISE float t6 = t5 ? 256.0 : 0.0;
+    UNITPACK_PRECISE float t7 = t5 ? 511.0 : 255.0;
+    UNITPACK_PRECISE float mid10 = floor((t6 + t7 + 1.0) * 0.5);
+    UNITPACK_PRECISE float mid_below10 = mid10 - 1.0;
+    UNITPACK_PRECISE float ell_t10 = (mid_below10 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h10 = floor(ell_t10 * ell_t10);
     UNITPACK_PRECISE float ell_g10 = 522242.0 - ell_h10;
     UNITPACK_PRECISE float ell_p10 = w2.y * w2.y * ell_g10;
@@ -395,19 +420,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent28 = floatBitsToUint(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     uint exponent29 = exponent28 < 40u ? 40u : exponent28;
     uint exponent30 = 254u < exponent29 ? 254u : exponent29;
-    UNITPACK_PRECISE float t30 = uintBitsToFloat((281u - exponent30) << 23u);
-    UNITPACK_PRECISE float ell_s10 = (floor(ell_p10 * t30) + floor(ell_q10 * t30))
-        * uintBitsToFloat((exponent30 - 27u) << 23u);
+    UNITPACK_PRECISE float scale11 = uintBitsToFloat((281u - exponent30) << 23u);
+    UNITPACK_PRECISE float back10 = uintBitsToFloat((exponent30 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
     UNITPACK_PRECISE float lhs10 = ell_s10 * 261121.0;
-    UNITPACK_PRECISE float rhs10 = ell_h10 * ell_g10 * t5;
-    UNITPACK_PRECISE float t31 = ell_t10 > 0.0
-        ? (w2.y > 0.0 ? (lhs10 >= rhs10 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs10 <= rhs10 ? 1.0 : 0.0));
-    bool beyond10 = t31 > 0.5;
-    UNITPACK_PRECISE float lo13 = beyond10 ? mid10 : t28;
-    UNITPACK_PRECISE float hi13 = beyond10 ? t29 : mid10 - 1.0;
+    UNITPACK_PRECISE float rhs10 = ell_h10 * ell_g10 * t1;
+    UNITPACK_PRECISE float one_if19 = lhs10 >= rhs10 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside10 = w2.y > 0.0 ? one_if19 : 0.0;
+    UNITPACK_PRECISE float one_if20 = lhs10 <= rhs10 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside10 = w2.y >= 0.0 ? 1.0 : one_if20;
+    bool beyond10 = (ell_t10 > 0.0 ? outside10 : inside10) > 0.5;
+    UNITPACK_PRECISE float lo13 = beyond10 ? mid10 : t6;
+    UNITPACK_PRECISE float hi13 = beyond10 ? t7 : mid_below10;
     UNITPACK_PRECISE float mid11 = floor((lo13 + hi13 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t11 = (mid11 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float mid_below11 = mid11 - 1.0;
+    UNITPACK_PRECISE float ell_t11 = (mid_below11 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h11 = floor(ell_t11 * ell_t11);
     UNITPACK_PRECISE float ell_g11 = 522242.0 - ell_h11;
     UNITPACK_PRECISE float ell_p11 = w2.y * w2.y * ell_g11;
@@ -415,19 +442,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent31 = floatBitsToUint(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     uint exponent32 = exponent31 < 40u ? 40u : exponent31;
     uint exponent33 = 254u < exponent32 ? 254u : exponent32;
-    UNITPACK_PRECISE float t32 = uintBitsToFloat((281u - exponent33) << 23u);
-    UNITPACK_PRECISE float ell_s11 = (floor(ell_p11 * t32) + floor(ell_q11 * t32))
-        * uintBitsToFloat((exponent33 - 27u) << 23u);
+    UNITPACK_PRECISE float scale12 = uintBitsToFloat((281u - exponent33) << 23u);
+    UNITPACK_PRECISE float back11 = uintBitsToFloat((exponent33 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
     UNITPACK_PRECISE float lhs11 = ell_s11 * 261121.0;
-    UNITPACK_PRECISE float rhs11 = ell_h11 * ell_g11 * t5;
-    UNITPACK_PRECISE float t33 = ell_t11 > 0.0
-        ? (w2.y > 0.0 ? (lhs11 >= rhs11 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs11 <= rhs11 ? 1.0 : 0.0));
-    bool beyond11 = t33 > 0.5;
+    UNITPACK_PRECISE float rhs11 = ell_h11 * ell_g11 * t1;
+    UNITPACK_PRECISE float one_if21 = lhs11 >= rhs11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside11 = w2.y > 0.0 ? one_if21 : 0.0;
+    UNITPACK_PRECISE float one_if22 = lhs11 <= rhs11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside11 = w2.y >= 0.0 ? 1.0 : one_if22;
+    bool beyond11 = (ell_t11 > 0.0 ? outside11 : inside11) > 0.5;
     UNITPACK_PRECISE float lo14 = beyond11 ? mid11 : lo13;
-    UNITPACK_PRECISE float hi14 = beyond11 ? hi13 : mid11 - 1.0;
+    UNITPACK_PRECISE float hi14 = beyond11 ? hi13 : mid_below11;
     UNITPACK_PRECISE float mid12 = floor((lo14 + hi14 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t12 = (mid12 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float mid_below12 = mid12 - 1.0;
+    UNITPACK_PRECISE float ell_t12 = (mid_below12 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h12 = floor(ell_t12 * ell_t12);
     UNITPACK_PRECISE float ell_g12 = 522242.0 - ell_h12;
     UNITPACK_PRECISE float ell_p12 = w2.y * w2.y * ell_g12;
@@ -435,19 +464,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent34 = floatBitsToUint(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     uint exponent35 = exponent34 < 40u ? 40u : exponent34;
     uint exponent36 = 254u < exponent35 ? 254u : exponent35;
-    UNITPACK_PRECISE float t34 = uintBitsToFloat((281u - exponent36) << 23u);
-    UNITPACK_PRECISE float ell_s12 = (floor(ell_p12 * t34) + floor(ell_q12 * t34))
-        * uintBitsToFloat((exponent36 - 27u) << 23u);
+    UNITPACK_PRECISE float scale13 = uintBitsToFloat((281u - exponent36) << 23u);
+    UNITPACK_PRECISE float back12 = uintBitsToFloat((exponent36 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
     UNITPACK_PRECISE float lhs12 = ell_s12 * 261121.0;
-    UNITPACK_PRECISE float rhs12 = ell_h12 * ell_g12 * t5;
-    UNITPACK_PRECISE float t35 = ell_t12 > 0.0
-        ? (w2.y > 0.0 ? (lhs12 >= rhs12 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs12 <= rhs12 ? 1.0 : 0.0));
-    bool beyond12 = t35 > 0.5;
+    UNITPACK_PRECISE float rhs12 = ell_h12 * ell_g12 * t1;
+    UNITPACK_PRECISE float one_if23 = lhs12 >= rhs12 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside12 = w2.y > 0.0 ? one_if23 : 0.0;
+    UNITPACK_PRECISE float one_if24 = lhs12 <= rhs12 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside12 = w2.y >= 0.0 ? 1.0 : one_if24;
+    bool beyond12 = (ell_t12 > 0.0 ? outside12 : inside12) > 0.5;
     UNITPACK_PRECISE float lo15 = beyond12 ? mid12 : lo14;
-    UNITPACK_PRECISE float hi15 = beyond12 ? hi14 : mid12 - 1.0;
+    UNITPACK_PRECISE float hi15 = beyond12 ? hi14 : mid_below12;
     UNITPACK_PRECISE float mid13 = floor((lo15 + hi15 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t13 = (mid13 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float mid_below13 = mid13 - 1.0;
+    UNITPACK_PRECISE float ell_t13 = (mid_below13 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h13 = floor(ell_t13 * ell_t13);
     UNITPACK_PRECISE float ell_g13 = 522242.0 - ell_h13;
     UNITPACK_PRECISE float ell_p13 = w2.y * w2.y * ell_g13;
@@ -455,19 +486,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent37 = floatBitsToUint(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     uint exponent38 = exponent37 < 40u ? 40u : exponent37;
     uint exponent39 = 254u < exponent38 ? 254u : exponent38;
-    UNITPACK_PRECISE float t36 = uintBitsToFloat((281u - exponent39) << 23u);
-    UNITPACK_PRECISE float ell_s13 = (floor(ell_p13 * t36) + floor(ell_q13 * t36))
-        * uintBitsToFloat((exponent39 - 27u) << 23u);
+    UNITPACK_PRECISE float scale14 = uintBitsToFloat((281u - exponent39) << 23u);
+    UNITPACK_PRECISE float back13 = uintBitsToFloat((exponent39 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
     UNITPACK_PRECISE float lhs13 = ell_s13 * 261121.0;
-    UNITPACK_PRECISE float rhs13 = ell_h13 * ell_g13 * t5;
-    UNITPACK_PRECISE float t37 = ell_t13 > 0.0
-        ? (w2.y > 0.0 ? (lhs13 >= rhs13 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs13 <= rhs13 ? 1.0 : 0.0));
-    bool beyond13 = t37 > 0.5;
+    UNITPACK_PRECISE float rhs13 = ell_h13 * ell_g13 * t1;
+    UNITPACK_PRECISE float one_if25 = lhs13 >= rhs13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside13 = w2.y > 0.0 ? one_if25 : 0.0;
+    UNITPACK_PRECISE float one_if26 = lhs13 <= rhs13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside13 = w2.y >= 0.0 ? 1.0 : one_if26;
+    bool beyond13 = (ell_t13 > 0.0 ? outside13 : inside13) > 0.5;
     UNITPACK_PRECISE float lo16 = beyond13 ? mid13 : lo15;
-    UNITPACK_PRECISE float hi16 = beyond13 ? hi15 : mid13 - 1.0;
+    UNITPACK_PRECISE float hi16 = beyond13 ? hi15 : mid_below13;
     UNITPACK_PRECISE float mid14 = floor((lo16 + hi16 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t14 = (mid14 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float mid_below14 = mid14 - 1.0;
+    UNITPACK_PRECISE float ell_t14 = (mid_below14 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h14 = floor(ell_t14 * ell_t14);
     UNITPACK_PRECISE float ell_g14 = 522242.0 - ell_h14;
     UNITPACK_PRECISE float ell_p14 = w2.y * w2.y * ell_g14;
@@ -475,19 +508,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent40 = floatBitsToUint(ell_p14 >= ell_q14 ? ell_p14 : ell_q14) >> 23u;
     uint exponent41 = exponent40 < 40u ? 40u : exponent40;
     uint exponent42 = 254u < exponent41 ? 254u : exponent41;
-    UNITPACK_PRECISE float t38 = uintBitsToFloat((281u - exponent42) << 23u);
-    UNITPACK_PRECISE float ell_s14 = (floor(ell_p14 * t38) + floor(ell_q14 * t38))
-        * uintBitsToFloat((exponent42 - 27u) << 23u);
+    UNITPACK_PRECISE float scale15 = uintBitsToFloat((281u - exponent42) << 23u);
+    UNITPACK_PRECISE float back14 = uintBitsToFloat((exponent42 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s14 = (floor(ell_p14 * scale15) + floor(ell_q14 * scale15)) * back14;
     UNITPACK_PRECISE float lhs14 = ell_s14 * 261121.0;
-    UNITPACK_PRECISE float rhs14 = ell_h14 * ell_g14 * t5;
-    UNITPACK_PRECISE float t39 = ell_t14 > 0.0
-        ? (w2.y > 0.0 ? (lhs14 >= rhs14 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs14 <= rhs14 ? 1.0 : 0.0));
-    bool beyond14 = t39 > 0.5;
+    UNITPACK_PRECISE float rhs14 = ell_h14 * ell_g14 * t1;
+    UNITPACK_PRECISE float one_if27 = lhs14 >= rhs14 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside14 = w2.y > 0.0 ? one_if27 : 0.0;
+    UNITPACK_PRECISE float one_if28 = lhs14 <= rhs14 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside14 = w2.y >= 0.0 ? 1.0 : one_if28;
+    bool beyond14 = (ell_t14 > 0.0 ? outside14 : inside14) > 0.5;
     UNITPACK_PRECISE float lo17 = beyond14 ? mid14 : lo16;
-    UNITPACK_PRECISE float hi17 = beyond14 ? hi16 : mid14 - 1.0;
+    UNITPACK_PRECISE float hi17 = beyond14 ? hi16 : mid_below14;
     UNITPACK_PRECISE float mid15 = floor((lo17 + hi17 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t15 = (mid15 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float mid_below15 = mid15 - 1.0;
+    UNITPACK_PRECISE float ell_t15 = (mid_below15 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h15 = floor(ell_t15 * ell_t15);
     UNITPACK_PRECISE float ell_g15 = 522242.0 - ell_h15;
     UNITPACK_PRECISE float ell_p15 = w2.y * w2.y * ell_g15;
@@ -495,19 +530,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent43 = floatBitsToUint(ell_p15 >= ell_q15 ? ell_p15 : ell_q15) >> 23u;
     uint exponent44 = exponent43 < 40u ? 40u : exponent43;
     uint exponent45 = 254u < exponent44 ? 254u : exponent44;
-    UNITPACK_PRECISE float t40 = uintBitsToFloat((281u - exponent45) << 23u);
-    UNITPACK_PRECISE float ell_s15 = (floor(ell_p15 * t40) + floor(ell_q15 * t40))
-        * uintBitsToFloat((exponent45 - 27u) << 23u);
+    UNITPACK_PRECISE float scale16 = uintBitsToFloat((281u - exponent45) << 23u);
+    UNITPACK_PRECISE float back15 = uintBitsToFloat((exponent45 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s15 = (floor(ell_p15 * scale16) + floor(ell_q15 * scale16)) * back15;
     UNITPACK_PRECISE float lhs15 = ell_s15 * 261121.0;
-    UNITPACK_PRECISE float rhs15 = ell_h15 * ell_g15 * t5;
-    UNITPACK_PRECISE float t41 = ell_t15 > 0.0
-        ? (w2.y > 0.0 ? (lhs15 >= rhs15 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs15 <= rhs15 ? 1.0 : 0.0));
-    bool beyond15 = t41 > 0.5;
+    UNITPACK_PRECISE float rhs15 = ell_h15 * ell_g15 * t1;
+    UNITPACK_PRECISE float one_if29 = lhs15 >= rhs15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside15 = w2.y > 0.0 ? one_if29 : 0.0;
+    UNITPACK_PRECISE float one_if30 = lhs15 <= rhs15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside15 = w2.y >= 0.0 ? 1.0 : one_if30;
+    bool beyond15 = (ell_t15 > 0.0 ? outside15 : inside15) > 0.5;
     UNITPACK_PRECISE float lo18 = beyond15 ? mid15 : lo17;
-    UNITPACK_PRECISE float hi18 = beyond15 ? hi17 : mid15 - 1.0;
+    UNITPACK_PRECISE float hi18 = beyond15 ? hi17 : mid_below15;
     UNITPACK_PRECISE float mid16 = floor((lo18 + hi18 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t16 = (mid16 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float mid_below16 = mid16 - 1.0;
+    UNITPACK_PRECISE float ell_t16 = (mid_below16 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h16 = floor(ell_t16 * ell_t16);
     UNITPACK_PRECISE float ell_g16 = 522242.0 - ell_h16;
     UNITPACK_PRECISE float ell_p16 = w2.y * w2.y * ell_g16;
@@ -515,19 +552,21 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent46 = floatBitsToUint(ell_p16 >= ell_q16 ? ell_p16 : ell_q16) >> 23u;
     uint exponent47 = exponent46 < 40u ? 40u : exponent46;
     uint exponent48 = 254u < exponent47 ? 254u : exponent47;
-    UNITPACK_PRECISE float t42 = uintBitsToFloat((281u - exponent48) << 23u);
-    UNITPACK_PRECISE float ell_s16 = (floor(ell_p16 * t42) + floor(ell_q16 * t42))
-        * uintBitsToFloat((exponent48 - 27u) << 23u);
+    UNITPACK_PRECISE float scale17 = uintBitsToFloat((281u - exponent48) << 23u);
+    UNITPACK_PRECISE float back16 = uintBitsToFloat((exponent48 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s16 = (floor(ell_p16 * scale17) + floor(ell_q16 * scale17)) * back16;
     UNITPACK_PRECISE float lhs16 = ell_s16 * 261121.0;
-    UNITPACK_PRECISE float rhs16 = ell_h16 * ell_g16 * t5;
-    UNITPACK_PRECISE float t43 = ell_t16 > 0.0
-        ? (w2.y > 0.0 ? (lhs16 >= rhs16 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs16 <= rhs16 ? 1.0 : 0.0));
-    bool beyond16 = t43 > 0.5;
+    UNITPACK_PRECISE float rhs16 = ell_h16 * ell_g16 * t1;
+    UNITPACK_PRECISE float one_if31 = lhs16 >= rhs16 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside16 = w2.y > 0.0 ? one_if31 : 0.0;
+    UNITPACK_PRECISE float one_if32 = lhs16 <= rhs16 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside16 = w2.y >= 0.0 ? 1.0 : one_if32;
+    bool beyond16 = (ell_t16 > 0.0 ? outside16 : inside16) > 0.5;
     UNITPACK_PRECISE float lo19 = beyond16 ? mid16 : lo18;
-    UNITPACK_PRECISE float hi19 = beyond16 ? hi18 : mid16 - 1.0;
+    UNITPACK_PRECISE float hi19 = beyond16 ? hi18 : mid_below16;
     UNITPACK_PRECISE float mid17 = floor((lo19 + hi19 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t17 = (mid17 - 1.0 - 255.0) * 2.0;
+    UNITPACK_PRECISE float mid_below17 = mid17 - 1.0;
+    UNITPACK_PRECISE float ell_t17 = (mid_below17 - 255.0) * 2.0;
     UNITPACK_PRECISE float ell_h17 = floor(ell_t17 * ell_t17);
     UNITPACK_PRECISE float ell_g17 = 522242.0 - ell_h17;
     UNITPACK_PRECISE float ell_p17 = w2.y * w2.y * ell_g17;
@@ -535,15 +574,16 @@ vec3 unitpack_eqarea_ellipse20_round_codes(vec3 a0) {
     uint exponent49 = floatBitsToUint(ell_p17 >= ell_q17 ? ell_p17 : ell_q17) >> 23u;
     uint exponent50 = exponent49 < 40u ? 40u : exponent49;
     uint exponent51 = 254u < exponent50 ? 254u : exponent50;
-    UNITPACK_PRECISE float t44 = uintBitsToFloat((281u - exponent51) << 23u);
-    UNITPACK_PRECISE float ell_s17 = (floor(ell_p17 * t44) + floor(ell_q17 * t44))
-        * uintBitsToFloat((exponent51 - 27u) << 23u);
+    UNITPACK_PRECISE float scale18 = uintBitsToFloat((281u - exponent51) << 23u);
+    UNITPACK_PRECISE float back17 = uintBitsToFloat((exponent51 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s17 = (floor(ell_p17 * scale18) + floor(ell_q17 * scale18)) * back17;
     UNITPACK_PRECISE float lhs17 = ell_s17 * 261121.0;
-    UNITPACK_PRECISE float rhs17 = ell_h17 * ell_g17 * t5;
-    UNITPACK_PRECISE float t45 = ell_t17 > 0.0
-        ? (w2.y > 0.0 ? (lhs17 >= rhs17 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs17 <= rhs17 ? 1.0 : 0.0));
-    bool beyond17 = t45 > 0.5;
+    UNITPACK_PRECISE float rhs17 = ell_h17 * ell_g17 * t1;
+    UNITPACK_PRECISE float one_if33 = lhs17 >= rhs17 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside17 = w2.y > 0.0 ? one_if33 : 0.0;
+    UNITPACK_PRECISE float one_if34 = lhs17 <= rhs17 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside17 = w2.y >= 0.0 ? 1.0 : one_if34;
+    bool beyond17 = (ell_t17 > 0.0 ? outside17 : inside17) > 0.5;
     return mix(vec3(lo12, lo19, 0.0), vec3(mid9, mid17, 1.0), bvec3(beyond9, beyond17, w2.z < 0.0));
 }
 

@@ -41,15 +41,13 @@ vec2 unitpack_eqarea_oct32_sincos_quarter_pi(float a0) {
     UNITPACK_PRECISE float t1 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = a0 * t1;
+        * c2;
+    UNITPACK_PRECISE float s = a0 * (t1 + 3.1415927);
     UNITPACK_PRECISE float t2 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
+        * c2;
+    UNITPACK_PRECISE float co = (t2 + (-4.934802)) * c2 + 1.0;
     return vec2(s, co);
 }
 
@@ -63,7 +61,8 @@ vec3 unitpack_eqarea_oct32_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 abs_params = abs(params);
     UNITPACK_PRECISE float t1 = 1.0 - abs_params.x - abs_params.y;
     bool t2 = t1 < 0.0;
-    UNITPACK_PRECISE vec2 b = t2 ? 1.0 - abs_params.yx : abs_params;
+    UNITPACK_PRECISE vec2 t3 = 1.0 - abs_params.yx;
+    UNITPACK_PRECISE vec2 b = t2 ? t3 : abs_params;
     UNITPACK_PRECISE float r = b.x + b.y;
     UNITPACK_PRECISE vec2 angle = b / (r > 0.0 ? r : 1.0) * 0.5;
     UNITPACK_PRECISE vec2 low = unitpack_eqarea_oct32_sincos_quarter_pi(angle.y);
@@ -71,10 +70,11 @@ vec3 unitpack_eqarea_oct32_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 cs = b.x >= b.y ? low.yx : high;
     UNITPACK_PRECISE float r2 = r * r;
     UNITPACK_PRECISE float k = r * sqrt(2.0 - r2);
-    UNITPACK_PRECISE float t3 = 1.0 - r2;
+    UNITPACK_PRECISE float t4 = 1.0 - r2;
+    UNITPACK_PRECISE float neg_t4 = -t4;
     UNITPACK_PRECISE vec3 result = vec3(
         cs * k * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(params, vec2(0.0))),
-        t2 ? -t3 : t3
+        t2 ? neg_t4 : t4
     );
     return result;
 }
@@ -102,22 +102,24 @@ float unitpack_eqarea_oct32_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -138,15 +140,16 @@ vec2 unitpack_eqarea_oct32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -166,27 +169,30 @@ vec2 unitpack_eqarea_oct32_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec2 t5 = abs(w2.xy);
-    UNITPACK_PRECISE vec2 t6 = w2.xy * w2.xy;
-    UNITPACK_PRECISE float rho = sqrt(t6.x + t6.y);
+    UNITPACK_PRECISE vec2 t1 = abs(w2.xy);
+    UNITPACK_PRECISE vec2 t2 = w2.xy * w2.xy;
+    UNITPACK_PRECISE float rho = sqrt(t2.x + t2.y);
     UNITPACK_PRECISE float r = rho / sqrt(root * (root + abs(w2.z)));
-    UNITPACK_PRECISE float t = unitpack_eqarea_oct32_atan2_pi(t5.y, t5.x);
+    UNITPACK_PRECISE float t = unitpack_eqarea_oct32_atan2_pi(t1.y, t1.x);
     UNITPACK_PRECISE float v2 = r * (t * 2.0);
     UNITPACK_PRECISE vec2 p = vec2(r - v2, v2);
-    UNITPACK_PRECISE vec2 enc = (w2.z <= 0.0 ? 1.0 - p.yx : p)
+    UNITPACK_PRECISE vec2 t3 = 1.0 - p.yx;
+    UNITPACK_PRECISE vec2 enc = (w2.z <= 0.0 ? t3 : p)
         * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(w2.xy, vec2(0.0)));
     return enc;
 }
@@ -205,15 +211,16 @@ vec2 unitpack_eqarea_oct32_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -233,23 +240,25 @@ vec2 unitpack_eqarea_oct32_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t5);
-    UNITPACK_PRECISE float t6 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t6);
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -263,105 +272,105 @@ vec2 unitpack_eqarea_oct32_round_codes(vec3 a0) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    UNITPACK_PRECISE float t7 = root * (root + abs(w2.z));
-    UNITPACK_PRECISE float r = sqrt(rho2 / t7);
-    UNITPACK_PRECISE vec2 t8 = abs(w2.xy);
-    UNITPACK_PRECISE float abs_t8_x = abs(t8.x);
-    UNITPACK_PRECISE float abs_t8_y = abs(t8.y);
-    bool y_major = abs_t8_y > abs_t8_x;
-    UNITPACK_PRECISE float hi8 = y_major ? abs_t8_y : abs_t8_x;
-    UNITPACK_PRECISE float lo8 = y_major ? abs_t8_x : abs_t8_y;
-    UNITPACK_PRECISE float t9 = hi8 > 0.0 ? hi8 : 1.0;
+    UNITPACK_PRECISE float t1 = root * (root + abs(w2.z));
+    UNITPACK_PRECISE float r = sqrt(rho2 / t1);
+    UNITPACK_PRECISE vec2 t2 = abs(w2.xy);
+    UNITPACK_PRECISE float abs_t2_x = abs(t2.x);
+    UNITPACK_PRECISE float abs_t2_y = abs(t2.y);
+    bool y_major = abs_t2_y > abs_t2_x;
+    UNITPACK_PRECISE float hi8 = y_major ? abs_t2_y : abs_t2_x;
+    UNITPACK_PRECISE float lo8 = y_major ? abs_t2_x : abs_t2_y;
+    UNITPACK_PRECISE float t3 = hi8 > 0.0 ? hi8 : 1.0;
     UNITPACK_PRECISE float big = lo8 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo8 / t9 * 8388608.0);
-    UNITPACK_PRECISE float t10 = (ratio_estimate + 1.0) * t9 <= big
-        ? 1.0
-        : (ratio_estimate * t9 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t10;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t9 <= big ? 1.0 : (ratio * t9 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo8 / t3 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t3 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t3 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t11 = t - 8388608.0;
-    UNITPACK_PRECISE float t12 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t11 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t11 / t12 * 8388608.0);
-    UNITPACK_PRECISE float t13 = (ratio_estimate2 + 1.0) * t12 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t12 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t13;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t12 <= big2 ? 1.0 : (ratio2 * t12 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t4 = t - 8388608.0;
+    UNITPACK_PRECISE float t5 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t4 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t5 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t5 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t14 = roundEven(
+    UNITPACK_PRECISE float t6 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t15 = (roundEven((t14 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t7 = (roundEven((t6 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t16 = (
-        roundEven((roundEven(t15) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t17 = (
-        roundEven((roundEven(t16) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t8 = (
+        roundEven((roundEven(t7) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t18 = roundEven(
-        (roundEven(t17 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t9 = roundEven(
+        (roundEven(t8 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r2 = roundEven(z * t18 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t10 = roundEven(
+        (roundEven(t9 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r2 = roundEven(z * (t10 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r2 * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = t8.x < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float t19 = t8.y < 0.0 ? -h4 : h4;
-    UNITPACK_PRECISE vec2 mult = vec2(4194304.0 - t19, t19) * 0.0078122616;
-    UNITPACK_PRECISE vec2 t20 = roundEven(r * mult);
-    UNITPACK_PRECISE vec2 t21 = mix(vec2(-32767.0), t20, greaterThanEqual(t20, vec2(-32767.0)));
-    UNITPACK_PRECISE vec2 t22 = mix(vec2(32767.0), t21, lessThanEqual(t21, vec2(32767.0)));
-    UNITPACK_PRECISE vec2 t23 = t22 + 0.5;
-    UNITPACK_PRECISE vec2 t24 = rho2 * (mult * mult);
-    UNITPACK_PRECISE vec2 t25 = t23 * t23 * t7;
-    UNITPACK_PRECISE vec2 t26 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t24, t25)),
-        greaterThan(t23, vec2(0.0))
+    UNITPACK_PRECISE float t11 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t11 : h;
+    UNITPACK_PRECISE float t12 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t12 : h2;
+    UNITPACK_PRECISE float t13 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = t2.x < 0.0 ? t13 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float t14 = t2.y < 0.0 ? neg_h4 : h4;
+    UNITPACK_PRECISE vec2 mult = vec2(4194304.0 - t14, t14) * 0.0078122616;
+    UNITPACK_PRECISE vec2 t15 = roundEven(r * mult);
+    UNITPACK_PRECISE vec2 t16 = mix(vec2(-32767.0), t15, greaterThanEqual(t15, vec2(-32767.0)));
+    UNITPACK_PRECISE vec2 t17 = mix(vec2(32767.0), t16, lessThanEqual(t16, vec2(32767.0)));
+    UNITPACK_PRECISE vec2 t18 = t17 + 0.5;
+    UNITPACK_PRECISE vec2 t19 = rho2 * (mult * mult);
+    UNITPACK_PRECISE vec2 t20 = t18 * t18 * t1;
+    UNITPACK_PRECISE vec2 t21 = mix(
+        mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), lessThanEqual(t19, t20)),
+            lessThan(t18, vec2(0.0))
+        ),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t19, t20)),
+            greaterThan(t18, vec2(0.0))
+        ),
+        greaterThanEqual(mult, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t27 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t24, t25)),
-        lessThan(t23, vec2(0.0))
+    UNITPACK_PRECISE vec2 t22 = t17 - 1.0 + 0.5;
+    UNITPACK_PRECISE vec2 t23 = rho2 * (mult * mult);
+    UNITPACK_PRECISE vec2 t24 = t22 * t22 * t1;
+    UNITPACK_PRECISE vec2 t25 = mix(
+        mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), lessThanEqual(t23, t24)),
+            lessThan(t22, vec2(0.0))
+        ),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t23, t24)),
+            greaterThan(t22, vec2(0.0))
+        ),
+        greaterThanEqual(mult, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t28 = mix(
-        vec2(0.0),
-        mix(t27, t26, greaterThanEqual(mult, vec2(0.0))),
-        lessThan(t22, vec2(32767.0))
-    );
-    UNITPACK_PRECISE vec2 t29 = t22 - 1.0 + 0.5;
-    UNITPACK_PRECISE vec2 t30 = rho2 * (mult * mult);
-    UNITPACK_PRECISE vec2 t31 = t29 * t29 * t7;
-    UNITPACK_PRECISE vec2 t32 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t30, t31)),
-        greaterThan(t29, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t33 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t30, t31)),
-        lessThan(t29, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t34 = mix(
-        vec2(0.0),
-        mix(t33, t32, greaterThanEqual(mult, vec2(0.0))) - 1.0,
-        greaterThan(t22, vec2(-32767.0))
-    );
-    UNITPACK_PRECISE vec2 c = t22 + t28 + t34;
+    UNITPACK_PRECISE vec2 c = t17
+        + mix(vec2(0.0), t21, lessThan(t17, vec2(32767.0)))
+        + mix(vec2(0.0), t25 - 1.0, greaterThan(t17, vec2(-32767.0)));
     UNITPACK_PRECISE vec2 folded = 32767.0 - c.yx;
-    UNITPACK_PRECISE vec2 t35 = w2.z <= 0.0 ? folded : c;
-    UNITPACK_PRECISE vec2 result = mix(t35, -t35, lessThan(w2.xy, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t26 = w2.z <= 0.0 ? folded : c;
+    UNITPACK_PRECISE vec2 result = mix(t26, -t26, lessThan(w2.xy, vec2(0.0)));
     return result;
 }
 

@@ -56,12 +56,11 @@ vec3 unitpack_eqdist22p_decode_float(vec3 params) {
         ((6.565963e-11 * q + (-6.3866032e-9)) * q + 4.7108747e-7) * q + (-2.5202042e-5)
     )
         * q;
-    UNITPACK_PRECISE float t4 = (
-        (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q + (-1.2337005)
-    )
-        * q;
-    UNITPACK_PRECISE float cosq = t4 + 1.0;
-    UNITPACK_PRECISE vec3 result = vec3(p * sinc, params.z > 0.5 ? -cosq : cosq);
+    UNITPACK_PRECISE float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
+        + (-1.2337005);
+    UNITPACK_PRECISE float cosq = t4 * q + 1.0;
+    UNITPACK_PRECISE float neg_cosq = -cosq;
+    UNITPACK_PRECISE vec3 result = vec3(p * sinc, params.z > 0.5 ? neg_cosq : cosq);
     return result;
 }
 
@@ -96,15 +95,16 @@ vec3 unitpack_eqdist22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -124,24 +124,26 @@ vec3 unitpack_eqdist22p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = w2.z < 0.0 ? 1.0 : 0.0;
-    UNITPACK_PRECISE float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    UNITPACK_PRECISE float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -155,134 +157,137 @@ vec3 unitpack_eqdist22p_encode_codes(vec3 v) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    bool t8 = rho2 > 0.0;
-    UNITPACK_PRECISE float rho2_2 = t8 ? rho2 : 1.0;
+    bool t1 = rho2 > 0.0;
+    UNITPACK_PRECISE float rho2_2 = t1 ? rho2 : 1.0;
     uint half_exponent = ((floatBitsToUint(rho2_2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t9 = rho2_2 * root_down;
-    UNITPACK_PRECISE float root_estimate2 = sqrt(t9);
-    UNITPACK_PRECISE float t10 = floor(root_estimate2 * 512.0);
-    UNITPACK_PRECISE float root_h0_2 = t10 * 0.001953125;
+    UNITPACK_PRECISE float t2 = rho2_2 * root_down;
+    UNITPACK_PRECISE float root_estimate2 = sqrt(t2);
+    UNITPACK_PRECISE float root_k0_2 = floor(root_estimate2 * 512.0);
+    UNITPACK_PRECISE float root_h0_2 = root_k0_2 * 0.001953125;
     UNITPACK_PRECISE float root_h1_2 = root_h0_2 + 0.001953125;
-    UNITPACK_PRECISE float root_k2 = t10
-        + (root_h1_2 * root_h1_2 <= t9 ? 1.0 : (root_h0_2 * root_h0_2 > t9 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down3 = root_h0_2 * root_h0_2 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_h1_2 * root_h1_2 <= t2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_k2 = root_k0_2 + step3;
     UNITPACK_PRECISE float root_h2 = root_k2 * 0.001953125;
-    UNITPACK_PRECISE float root_rest2 = t9 - root_h2 * root_h2;
+    UNITPACK_PRECISE float root_rest2 = t2 - root_h2 * root_h2;
     UNITPACK_PRECISE float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     UNITPACK_PRECISE float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j2 = root_j0_2
-        + (root_m1_2 * root_m1_2 <= t9 ? 1.0 : (root_m0_2 * root_m0_2 > t9 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down4 = root_m0_2 * root_m0_2 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_m1_2 * root_m1_2 <= t2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root_j2 = root_j0_2 + step4;
     UNITPACK_PRECISE float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    UNITPACK_PRECISE float rho = t8 ? root2 * root_up : 0.0;
+    UNITPACK_PRECISE float t3 = root2 * root_up;
+    UNITPACK_PRECISE float rho = t1 ? t3 : 0.0;
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
     UNITPACK_PRECISE float abs_abs_w2_z = abs(abs_w2_z);
     UNITPACK_PRECISE float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_abs_w2_z;
     UNITPACK_PRECISE float hi8 = y_major ? abs_rho : abs_abs_w2_z;
     UNITPACK_PRECISE float lo8 = y_major ? abs_abs_w2_z : abs_rho;
-    UNITPACK_PRECISE float t11 = hi8 > 0.0 ? hi8 : 1.0;
+    UNITPACK_PRECISE float t4 = hi8 > 0.0 ? hi8 : 1.0;
     UNITPACK_PRECISE float big = lo8 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo8 / t11 * 8388608.0);
-    UNITPACK_PRECISE float t12 = (ratio_estimate + 1.0) * t11 <= big
-        ? 1.0
-        : (ratio_estimate * t11 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t12;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t11 <= big ? 1.0 : (ratio * t11 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo8 / t4 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate * t4 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step5;
+    UNITPACK_PRECISE float step_down6 = ratio * t4 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down6;
+    UNITPACK_PRECISE float t = ratio + step6;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t13 = t - 8388608.0;
-    UNITPACK_PRECISE float t14 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t13 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t13 / t14 * 8388608.0);
-    UNITPACK_PRECISE float t15 = (ratio_estimate2 + 1.0) * t14 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t14 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t15;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t14 <= big2 ? 1.0 : (ratio2 * t14 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t5 = t - 8388608.0;
+    UNITPACK_PRECISE float t6 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t5 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
+    UNITPACK_PRECISE float step_down7 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step7;
+    UNITPACK_PRECISE float step_down8 = ratio2 * t6 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step8;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t16 = roundEven(
+    UNITPACK_PRECISE float t7 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t17 = (roundEven((t16 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t8 = (roundEven((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t18 = (
-        roundEven((roundEven(t17) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t19 = (
-        roundEven((roundEven(t18) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t9 = (
+        roundEven((roundEven(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t20 = roundEven(
-        (roundEven(t19 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t10 = roundEven(
+        (roundEven(t9 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t20 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t11 = roundEven(
+        (roundEven(t10 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t11 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = abs_w2_z < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float t21 = rho < 0.0 ? -h4 : h4;
-    UNITPACK_PRECISE vec2 t22 = w2.xy * t21 * vec2(0.00024402142, 0.0001219511);
-    UNITPACK_PRECISE vec2 t23 = roundEven(t22 / sqrt(vec2(rho2_2)) + vec2(1023.5, 511.5));
-    UNITPACK_PRECISE vec2 t24 = mix(vec2(0.0), t23, greaterThanEqual(t23, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t25 = mix(
+    UNITPACK_PRECISE float t12 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t12 : h;
+    UNITPACK_PRECISE float t13 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t13 : h2;
+    UNITPACK_PRECISE float t14 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = abs_w2_z < 0.0 ? t14 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float t15 = rho < 0.0 ? neg_h4 : h4;
+    UNITPACK_PRECISE vec2 t16 = w2.xy * t15 * vec2(0.00024402142, 0.0001219511);
+    UNITPACK_PRECISE vec2 t17 = roundEven(t16 / sqrt(vec2(rho2_2)) + vec2(1023.5, 511.5));
+    UNITPACK_PRECISE vec2 t18 = mix(vec2(0.0), t17, greaterThanEqual(t17, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t19 = mix(
         vec2(2047.0, 1023.0),
-        t24,
-        lessThanEqual(t24, vec2(2047.0, 1023.0))
+        t18,
+        lessThanEqual(t18, vec2(2047.0, 1023.0))
     );
-    UNITPACK_PRECISE vec2 t26 = t25 - vec2(1022.5, 510.5);
-    UNITPACK_PRECISE vec2 abs_t22 = abs(t22);
-    UNITPACK_PRECISE vec2 abs_t22_sq = abs_t22 * abs_t22;
-    UNITPACK_PRECISE vec2 t27 = t26 * t26 * rho2_2;
-    UNITPACK_PRECISE vec2 t28 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(abs_t22_sq, t27)),
-        greaterThan(t26, vec2(0.0))
+    UNITPACK_PRECISE vec2 t20 = t19 - vec2(1022.5, 510.5);
+    UNITPACK_PRECISE vec2 abs_t16 = abs(t16);
+    UNITPACK_PRECISE vec2 abs_t16_sq = abs_t16 * abs_t16;
+    UNITPACK_PRECISE vec2 t21 = t20 * t20 * rho2_2;
+    UNITPACK_PRECISE vec2 t22 = mix(
+        mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), lessThanEqual(abs_t16_sq, t21)),
+            lessThan(t20, vec2(0.0))
+        ),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(abs_t16_sq, t21)),
+            greaterThan(t20, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t29 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(abs_t22_sq, t27)),
-        lessThan(t26, vec2(0.0))
+    UNITPACK_PRECISE vec2 t23 = t19 - 1.0 - vec2(1022.5, 510.5);
+    UNITPACK_PRECISE vec2 abs_t16_sq2 = abs_t16 * abs_t16;
+    UNITPACK_PRECISE vec2 t24 = t23 * t23 * rho2_2;
+    UNITPACK_PRECISE vec2 t25 = mix(
+        mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), lessThanEqual(abs_t16_sq2, t24)),
+            lessThan(t23, vec2(0.0))
+        ),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(abs_t16_sq2, t24)),
+            greaterThan(t23, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t30 = mix(
-        vec2(0.0),
-        mix(t29, t28, greaterThanEqual(w2.xy, vec2(0.0))),
-        lessThan(t25, vec2(2047.0, 1023.0))
-    );
-    UNITPACK_PRECISE vec2 t31 = t25 - 1.0 - vec2(1022.5, 510.5);
-    UNITPACK_PRECISE vec2 abs_t22_sq2 = abs_t22 * abs_t22;
-    UNITPACK_PRECISE vec2 t32 = t31 * t31 * rho2_2;
-    UNITPACK_PRECISE vec2 t33 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(abs_t22_sq2, t32)),
-        greaterThan(t31, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t34 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(abs_t22_sq2, t32)),
-        lessThan(t31, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t35 = mix(
-        vec2(0.0),
-        mix(t34, t33, greaterThanEqual(w2.xy, vec2(0.0))) - 1.0,
-        greaterThan(t25, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 base = t25 + t30 + t35;
-    UNITPACK_PRECISE vec3 t36 = floor(w2 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t37 = w2 * 2097152.0;
-    UNITPACK_PRECISE vec3 t38 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t36 * root, t37)),
+    UNITPACK_PRECISE vec2 base = t19
+        + mix(vec2(0.0), t22, lessThan(t19, vec2(2047.0, 1023.0)))
+        + mix(vec2(0.0), t25 - 1.0, greaterThan(t19, vec2(0.0)));
+    UNITPACK_PRECISE vec3 t26 = floor(w2 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t27 = w2 * 2097152.0;
+    UNITPACK_PRECISE vec3 t28 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t26 * root, t27)),
         vec3(1.0),
-        lessThanEqual((t36 + 1.0) * root, t37)
+        lessThanEqual((t26 + 1.0) * root, t27)
     );
-    UNITPACK_PRECISE vec3 aim = t36 + t38;
+    UNITPACK_PRECISE vec3 aim = t26 + t28;
     UNITPACK_PRECISE vec2 cand = mix(
         vec2(2047.0, 1023.0),
         base,
@@ -293,266 +298,279 @@ vec3 unitpack_eqdist22p_encode_codes(vec3 v) {
     );
     UNITPACK_PRECISE float q = roundEven(p.x * p.x * 4.7683716e-7)
         + roundEven(p.y * p.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t39 = (
-        roundEven((roundEven(0.0 * q * 2.3841858e-7) + (-0.0)) * q * 2.3841858e-7) + 8.0
+    UNITPACK_PRECISE float t29 = roundEven(
+        (roundEven(0.0 * q * 2.3841858e-7) + (-0.0)) * q * 2.3841858e-7
+    );
+    UNITPACK_PRECISE float t30 = (roundEven((t29 + 8.0) * q * 2.3841858e-7) + (-242.0))
+        * q
+        * 2.3841858e-7;
+    UNITPACK_PRECISE float t31 = (
+        roundEven((roundEven(t30) + 5384.0) * q * 2.3841858e-7) + (-78547.0)
     )
         * q;
-    UNITPACK_PRECISE float t40 = roundEven(
-        (roundEven(t39 * 2.3841858e-7) + (-242.0)) * q * 2.3841858e-7
+    UNITPACK_PRECISE float t32 = roundEven(
+        (roundEven(t31 * 2.3841858e-7) + 668510.0) * q * 2.3841858e-7
     )
-        + 5384.0;
-    UNITPACK_PRECISE float t41 = roundEven(
-        (roundEven(t40 * q * 2.3841858e-7) + (-78547.0)) * q * 2.3841858e-7
-    )
-        + 668510.0;
-    UNITPACK_PRECISE float sinc = roundEven(
-        (roundEven(t41 * q * 2.3841858e-7) + (-2709370.0)) * q * 2.3841858e-7
-    )
-        + 3294199.0;
-    UNITPACK_PRECISE float t42 = roundEven(
+        + (-2709370.0);
+    UNITPACK_PRECISE float sinc = roundEven(t32 * q * 2.3841858e-7) + 3294199.0;
+    UNITPACK_PRECISE float t33 = roundEven(
         (roundEven(0.0 * q * 2.3841858e-7) + (-2.0)) * q * 2.3841858e-7
-    )
-        + 63.0;
-    UNITPACK_PRECISE float t43 = roundEven(
-        (roundEven(t42 * q * 2.3841858e-7) + (-1691.0)) * q * 2.3841858e-7
-    )
-        + 30845.0;
-    UNITPACK_PRECISE float t44 = roundEven(
-        (roundEven(t43 * q * 2.3841858e-7) + (-350031.0)) * q * 2.3841858e-7
-    )
-        + 2127934.0;
-    UNITPACK_PRECISE float cosq = roundEven(
-        (roundEven(t44 * q * 2.3841858e-7) + (-5174515.0)) * q * 2.3841858e-7
-    )
-        + 2097152.0;
-    UNITPACK_PRECISE vec3 t45 = abs(
-        vec3(roundEven(p * sinc * 4.7683716e-7), t5 > 0.5 ? -cosq : cosq) - aim
     );
-    uvec3 t46 = uvec3(t45);
-    uint limb1_6 = t46.x >> 12u;
-    uint limb0_6 = t46.x & 4095u;
+    UNITPACK_PRECISE float t34 = (roundEven((t33 + 63.0) * q * 2.3841858e-7) + (-1691.0))
+        * q
+        * 2.3841858e-7;
+    UNITPACK_PRECISE float t35 = (
+        roundEven((roundEven(t34) + 30845.0) * q * 2.3841858e-7) + (-350031.0)
+    )
+        * q;
+    UNITPACK_PRECISE float t36 = roundEven(
+        (roundEven(t35 * 2.3841858e-7) + 2127934.0) * q * 2.3841858e-7
+    )
+        + (-5174515.0);
+    UNITPACK_PRECISE float cosq = roundEven(t36 * q * 2.3841858e-7) + 2097152.0;
+    UNITPACK_PRECISE float neg_cosq = -cosq;
+    UNITPACK_PRECISE vec3 t37 = vec3(
+        roundEven(p * sinc * 4.7683716e-7),
+        one_if > 0.5 ? neg_cosq : cosq
+    );
+    UNITPACK_PRECISE vec3 offset = t37 - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_6 = offset_u.x >> 12u;
+    uint limb0_6 = offset_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi9 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo9 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t46.y >> 12u;
-    uint limb0_7 = t46.y & 4095u;
+    uint limb1_7 = offset_u.y >> 12u;
+    uint limb0_7 = offset_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi10 = hi9 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo10 = lo9 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t46.z >> 12u;
-    uint limb0_8 = t46.z & 4095u;
+    uint limb1_8 = offset_u.z >> 12u;
+    uint limb0_8 = offset_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi12) * 16777216.0 + float(lo12);
-    UNITPACK_PRECISE float t47 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t48 = vec2(t47, base.y);
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t38 = vec2(s_up, base.y);
     UNITPACK_PRECISE vec2 cand2 = mix(
         vec2(2047.0, 1023.0),
-        t48,
-        lessThanEqual(t48, vec2(2047.0, 1023.0))
+        t38,
+        lessThanEqual(t38, vec2(2047.0, 1023.0))
     );
+    bool t39 = base.y <= 1023.0;
     UNITPACK_PRECISE vec2 p2 = floor(
         (cand2 * 2.0 - vec2(2047.0, 1023.0)) * vec2(1024.5002, 2050.002)
     );
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t49 = roundEven(
+    UNITPACK_PRECISE float t40 = roundEven(
         (roundEven(0.0 * q2 * 2.3841858e-7) + (-0.0)) * q2 * 2.3841858e-7
-    )
-        + 8.0;
-    UNITPACK_PRECISE float t50 = roundEven(
-        (roundEven(t49 * q2 * 2.3841858e-7) + (-242.0)) * q2 * 2.3841858e-7
-    )
-        + 5384.0;
-    UNITPACK_PRECISE float t51 = roundEven(
-        (roundEven(t50 * q2 * 2.3841858e-7) + (-78547.0)) * q2 * 2.3841858e-7
-    )
-        + 668510.0;
-    UNITPACK_PRECISE float t52 = roundEven(
-        (roundEven(t51 * q2 * 2.3841858e-7) + (-2709370.0)) * q2 * 2.3841858e-7
     );
-    UNITPACK_PRECISE float sinc2 = t52 + 3294199.0;
-    UNITPACK_PRECISE float t53 = roundEven(
-        (roundEven(0.0 * q2 * 2.3841858e-7) + (-2.0)) * q2 * 2.3841858e-7
-    )
-        + 63.0;
-    UNITPACK_PRECISE float t54 = roundEven(
-        (roundEven(t53 * q2 * 2.3841858e-7) + (-1691.0)) * q2 * 2.3841858e-7
-    )
-        + 30845.0;
-    UNITPACK_PRECISE float t55 = roundEven(
-        (roundEven(t54 * q2 * 2.3841858e-7) + (-350031.0)) * q2 * 2.3841858e-7
-    );
-    UNITPACK_PRECISE float t56 = (roundEven((t55 + 2127934.0) * q2 * 2.3841858e-7) + (-5174515.0))
+    UNITPACK_PRECISE float t41 = (roundEven((t40 + 8.0) * q2 * 2.3841858e-7) + (-242.0))
         * q2
         * 2.3841858e-7;
-    UNITPACK_PRECISE float cosq2 = roundEven(t56) + 2097152.0;
-    UNITPACK_PRECISE vec3 t57 = abs(
-        vec3(roundEven(p2 * sinc2 * 4.7683716e-7), t5 > 0.5 ? -cosq2 : cosq2) - aim
+    UNITPACK_PRECISE float t42 = (
+        roundEven((roundEven(t41) + 5384.0) * q2 * 2.3841858e-7) + (-78547.0)
+    )
+        * q2;
+    UNITPACK_PRECISE float t43 = roundEven(
+        (roundEven(t42 * 2.3841858e-7) + 668510.0) * q2 * 2.3841858e-7
+    )
+        + (-2709370.0);
+    UNITPACK_PRECISE float sinc2 = roundEven(t43 * q2 * 2.3841858e-7) + 3294199.0;
+    UNITPACK_PRECISE float t44 = roundEven(
+        (roundEven(0.0 * q2 * 2.3841858e-7) + (-2.0)) * q2 * 2.3841858e-7
     );
-    uvec3 t58 = uvec3(t57);
-    uint limb1_9 = t58.x >> 12u;
-    uint limb0_9 = t58.x & 4095u;
+    UNITPACK_PRECISE float t45 = (roundEven((t44 + 63.0) * q2 * 2.3841858e-7) + (-1691.0))
+        * q2
+        * 2.3841858e-7;
+    UNITPACK_PRECISE float t46 = (
+        roundEven((roundEven(t45) + 30845.0) * q2 * 2.3841858e-7) + (-350031.0)
+    )
+        * q2;
+    UNITPACK_PRECISE float t47 = roundEven(
+        (roundEven(t46 * 2.3841858e-7) + 2127934.0) * q2 * 2.3841858e-7
+    )
+        + (-5174515.0);
+    UNITPACK_PRECISE float cosq2 = roundEven(t47 * q2 * 2.3841858e-7) + 2097152.0;
+    UNITPACK_PRECISE float neg_cosq2 = -cosq2;
+    UNITPACK_PRECISE vec3 t48 = vec3(
+        roundEven(p2 * sinc2 * 4.7683716e-7),
+        one_if > 0.5 ? neg_cosq2 : cosq2
+    );
+    UNITPACK_PRECISE vec3 offset2 = t48 - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_9 = offset_u2.x >> 12u;
+    uint limb0_9 = offset_u2.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi13 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo13 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t58.y >> 12u;
-    uint limb0_10 = t58.y & 4095u;
+    uint limb1_10 = offset_u2.y >> 12u;
+    uint limb0_10 = offset_u2.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi14 = hi13 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo14 = lo13 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t58.z >> 12u;
-    uint limb0_11 = t58.z & 4095u;
+    uint limb1_11 = offset_u2.z >> 12u;
+    uint limb0_11 = offset_u2.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi16) * 16777216.0 + float(lo16);
-    bool t59 = t47 <= 2047.0 && base.y <= 1023.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t59 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t59 ? dist2 : dist;
-    UNITPACK_PRECISE float t60 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t61 = vec2(base.x, t60);
+    bool t49 = dist2 < dist;
+    bool t50 = s_up <= 2047.0 && t39 && t49;
+    UNITPACK_PRECISE vec2 best = t50 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t50 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t51 = vec2(base.x, t_up);
     UNITPACK_PRECISE vec2 cand3 = mix(
         vec2(2047.0, 1023.0),
-        t61,
-        lessThanEqual(t61, vec2(2047.0, 1023.0))
+        t51,
+        lessThanEqual(t51, vec2(2047.0, 1023.0))
     );
+    bool t52 = t_up <= 1023.0;
     UNITPACK_PRECISE vec2 p3 = floor(
         (cand3 * 2.0 - vec2(2047.0, 1023.0)) * vec2(1024.5002, 2050.002)
     );
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t62 = roundEven(
+    UNITPACK_PRECISE float t53 = roundEven(
         (roundEven(0.0 * q3 * 2.3841858e-7) + (-0.0)) * q3 * 2.3841858e-7
-    )
-        + 8.0;
-    UNITPACK_PRECISE float t63 = roundEven(
-        (roundEven(t62 * q3 * 2.3841858e-7) + (-242.0)) * q3 * 2.3841858e-7
-    )
-        + 5384.0;
-    UNITPACK_PRECISE float t64 = roundEven(
-        (roundEven(t63 * q3 * 2.3841858e-7) + (-78547.0)) * q3 * 2.3841858e-7
-    )
-        + 668510.0;
-    UNITPACK_PRECISE float t65 = roundEven(
-        (roundEven(t64 * q3 * 2.3841858e-7) + (-2709370.0)) * q3 * 2.3841858e-7
     );
-    UNITPACK_PRECISE float sinc3 = t65 + 3294199.0;
-    UNITPACK_PRECISE float t66 = roundEven(
-        (roundEven(0.0 * q3 * 2.3841858e-7) + (-2.0)) * q3 * 2.3841858e-7
-    )
-        + 63.0;
-    UNITPACK_PRECISE float t67 = roundEven(
-        (roundEven(t66 * q3 * 2.3841858e-7) + (-1691.0)) * q3 * 2.3841858e-7
-    )
-        + 30845.0;
-    UNITPACK_PRECISE float t68 = roundEven(
-        (roundEven(t67 * q3 * 2.3841858e-7) + (-350031.0)) * q3 * 2.3841858e-7
-    );
-    UNITPACK_PRECISE float t69 = (roundEven((t68 + 2127934.0) * q3 * 2.3841858e-7) + (-5174515.0))
+    UNITPACK_PRECISE float t54 = (roundEven((t53 + 8.0) * q3 * 2.3841858e-7) + (-242.0))
         * q3
         * 2.3841858e-7;
-    UNITPACK_PRECISE float cosq3 = roundEven(t69) + 2097152.0;
-    UNITPACK_PRECISE vec3 t70 = abs(
-        vec3(roundEven(p3 * sinc3 * 4.7683716e-7), t5 > 0.5 ? -cosq3 : cosq3) - aim
+    UNITPACK_PRECISE float t55 = (
+        roundEven((roundEven(t54) + 5384.0) * q3 * 2.3841858e-7) + (-78547.0)
+    )
+        * q3;
+    UNITPACK_PRECISE float t56 = roundEven(
+        (roundEven(t55 * 2.3841858e-7) + 668510.0) * q3 * 2.3841858e-7
+    )
+        + (-2709370.0);
+    UNITPACK_PRECISE float sinc3 = roundEven(t56 * q3 * 2.3841858e-7) + 3294199.0;
+    UNITPACK_PRECISE float t57 = roundEven(
+        (roundEven(0.0 * q3 * 2.3841858e-7) + (-2.0)) * q3 * 2.3841858e-7
     );
-    uvec3 t71 = uvec3(t70);
-    uint limb1_12 = t71.x >> 12u;
-    uint limb0_12 = t71.x & 4095u;
+    UNITPACK_PRECISE float t58 = (roundEven((t57 + 63.0) * q3 * 2.3841858e-7) + (-1691.0))
+        * q3
+        * 2.3841858e-7;
+    UNITPACK_PRECISE float t59 = (
+        roundEven((roundEven(t58) + 30845.0) * q3 * 2.3841858e-7) + (-350031.0)
+    )
+        * q3;
+    UNITPACK_PRECISE float t60 = roundEven(
+        (roundEven(t59 * 2.3841858e-7) + 2127934.0) * q3 * 2.3841858e-7
+    )
+        + (-5174515.0);
+    UNITPACK_PRECISE float cosq3 = roundEven(t60 * q3 * 2.3841858e-7) + 2097152.0;
+    UNITPACK_PRECISE float neg_cosq3 = -cosq3;
+    UNITPACK_PRECISE vec3 t61 = vec3(
+        roundEven(p3 * sinc3 * 4.7683716e-7),
+        one_if > 0.5 ? neg_cosq3 : cosq3
+    );
+    UNITPACK_PRECISE vec3 offset3 = t61 - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_12 = offset_u3.x >> 12u;
+    uint limb0_12 = offset_u3.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi17 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo17 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t71.y >> 12u;
-    uint limb0_13 = t71.y & 4095u;
+    uint limb1_13 = offset_u3.y >> 12u;
+    uint limb0_13 = offset_u3.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi18 = hi17 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo18 = lo17 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t71.z >> 12u;
-    uint limb0_14 = t71.z & 4095u;
+    uint limb1_14 = offset_u3.z >> 12u;
+    uint limb0_14 = offset_u3.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi20) * 16777216.0 + float(lo20);
-    bool t72 = base.x <= 2047.0 && t60 <= 1023.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t72 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t72 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t73 = base + 1.0;
+    bool t62 = dist3 < best_d;
+    bool t63 = base.x <= 2047.0 && t52 && t62;
+    UNITPACK_PRECISE vec2 best2 = t63 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t63 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t64 = base + 1.0;
     UNITPACK_PRECISE vec2 cand4 = mix(
         vec2(2047.0, 1023.0),
-        t73,
-        lessThanEqual(t73, vec2(2047.0, 1023.0))
+        t64,
+        lessThanEqual(t64, vec2(2047.0, 1023.0))
     );
+    bool t65 = t_up <= 1023.0;
     UNITPACK_PRECISE vec2 p4 = floor(
         (cand4 * 2.0 - vec2(2047.0, 1023.0)) * vec2(1024.5002, 2050.002)
     );
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t74 = roundEven(
+    UNITPACK_PRECISE float t66 = roundEven(
         (roundEven(0.0 * q4 * 2.3841858e-7) + (-0.0)) * q4 * 2.3841858e-7
-    )
-        + 8.0;
-    UNITPACK_PRECISE float t75 = roundEven(
-        (roundEven(t74 * q4 * 2.3841858e-7) + (-242.0)) * q4 * 2.3841858e-7
-    )
-        + 5384.0;
-    UNITPACK_PRECISE float t76 = roundEven(
-        (roundEven(t75 * q4 * 2.3841858e-7) + (-78547.0)) * q4 * 2.3841858e-7
-    )
-        + 668510.0;
-    UNITPACK_PRECISE float t77 = roundEven(
-        (roundEven(t76 * q4 * 2.3841858e-7) + (-2709370.0)) * q4 * 2.3841858e-7
     );
-    UNITPACK_PRECISE float sinc4 = t77 + 3294199.0;
-    UNITPACK_PRECISE float t78 = roundEven(
-        (roundEven(0.0 * q4 * 2.3841858e-7) + (-2.0)) * q4 * 2.3841858e-7
-    )
-        + 63.0;
-    UNITPACK_PRECISE float t79 = roundEven(
-        (roundEven(t78 * q4 * 2.3841858e-7) + (-1691.0)) * q4 * 2.3841858e-7
-    )
-        + 30845.0;
-    UNITPACK_PRECISE float t80 = roundEven(
-        (roundEven(t79 * q4 * 2.3841858e-7) + (-350031.0)) * q4 * 2.3841858e-7
-    );
-    UNITPACK_PRECISE float t81 = (roundEven((t80 + 2127934.0) * q4 * 2.3841858e-7) + (-5174515.0))
+    UNITPACK_PRECISE float t67 = (roundEven((t66 + 8.0) * q4 * 2.3841858e-7) + (-242.0))
         * q4
         * 2.3841858e-7;
-    UNITPACK_PRECISE float cosq4 = roundEven(t81) + 2097152.0;
-    UNITPACK_PRECISE vec3 t82 = abs(
-        vec3(roundEven(p4 * sinc4 * 4.7683716e-7), t5 > 0.5 ? -cosq4 : cosq4) - aim
+    UNITPACK_PRECISE float t68 = (
+        roundEven((roundEven(t67) + 5384.0) * q4 * 2.3841858e-7) + (-78547.0)
+    )
+        * q4;
+    UNITPACK_PRECISE float t69 = roundEven(
+        (roundEven(t68 * 2.3841858e-7) + 668510.0) * q4 * 2.3841858e-7
+    )
+        + (-2709370.0);
+    UNITPACK_PRECISE float sinc4 = roundEven(t69 * q4 * 2.3841858e-7) + 3294199.0;
+    UNITPACK_PRECISE float t70 = roundEven(
+        (roundEven(0.0 * q4 * 2.3841858e-7) + (-2.0)) * q4 * 2.3841858e-7
     );
-    uvec3 t83 = uvec3(t82);
-    uint limb1_15 = t83.x >> 12u;
-    uint limb0_15 = t83.x & 4095u;
+    UNITPACK_PRECISE float t71 = (roundEven((t70 + 63.0) * q4 * 2.3841858e-7) + (-1691.0))
+        * q4
+        * 2.3841858e-7;
+    UNITPACK_PRECISE float t72 = (
+        roundEven((roundEven(t71) + 30845.0) * q4 * 2.3841858e-7) + (-350031.0)
+    )
+        * q4;
+    UNITPACK_PRECISE float t73 = roundEven(
+        (roundEven(t72 * 2.3841858e-7) + 2127934.0) * q4 * 2.3841858e-7
+    )
+        + (-5174515.0);
+    UNITPACK_PRECISE float cosq4 = roundEven(t73 * q4 * 2.3841858e-7) + 2097152.0;
+    UNITPACK_PRECISE float neg_cosq4 = -cosq4;
+    UNITPACK_PRECISE vec3 t74 = vec3(
+        roundEven(p4 * sinc4 * 4.7683716e-7),
+        one_if > 0.5 ? neg_cosq4 : cosq4
+    );
+    UNITPACK_PRECISE vec3 offset4 = t74 - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_15 = offset_u4.x >> 12u;
+    uint limb0_15 = offset_u4.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi21 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo21 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t83.y >> 12u;
-    uint limb0_16 = t83.y & 4095u;
+    uint limb1_16 = offset_u4.y >> 12u;
+    uint limb0_16 = offset_u4.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi22 = hi21 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo22 = lo21 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t83.z >> 12u;
-    uint limb0_17 = t83.z & 4095u;
+    uint limb1_17 = offset_u4.z >> 12u;
+    uint limb0_17 = offset_u4.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi23 = hi22 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo23 = lo22 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi24 = hi23 + (lo23 >> 24u);
     uint lo24 = lo23 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi24) * 16777216.0 + float(lo24);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 2047.0
-        && base.y + 1.0 <= 1023.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
-    return vec3(best3, t5);
+    bool t75 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 2047.0 && t65 && t75 ? cand4 : best2;
+    return vec3(best3, one_if);
 }
 
 // unitpack_eqdist22p_encode_float: precise encoder, float form.

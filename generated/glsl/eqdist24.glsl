@@ -56,12 +56,11 @@ vec3 unitpack_eqdist24_decode_float(vec3 params) {
         ((6.565963e-11 * q + (-6.3866032e-9)) * q + 4.7108747e-7) * q + (-2.5202042e-5)
     )
         * q;
-    UNITPACK_PRECISE float t4 = (
-        (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q + (-1.2337005)
-    )
-        * q;
-    UNITPACK_PRECISE float cosq = t4 + 1.0;
-    UNITPACK_PRECISE vec3 result = vec3(p * sinc, params.z > 0.5 ? -cosq : cosq);
+    UNITPACK_PRECISE float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
+        + (-1.2337005);
+    UNITPACK_PRECISE float cosq = t4 * q + 1.0;
+    UNITPACK_PRECISE float neg_cosq = -cosq;
+    UNITPACK_PRECISE vec3 result = vec3(p * sinc, params.z > 0.5 ? neg_cosq : cosq);
     return result;
 }
 
@@ -92,22 +91,24 @@ float unitpack_eqdist24_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -129,16 +130,18 @@ vec3 unitpack_eqdist24_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE vec2 t1 = w2.xy * w2.xy;
     UNITPACK_PRECISE float rho = sqrt(t1.x + t1.y);
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
     UNITPACK_PRECISE float t = unitpack_eqdist24_atan2_pi(rho, abs_w2_z);
     UNITPACK_PRECISE float s = t / (rho > 0.0 ? rho : 1.0);
     UNITPACK_PRECISE vec2 enc = w2.xy * s + 0.5;
-    return vec3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return vec3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -155,13 +158,15 @@ vec3 unitpack_eqdist24_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -175,123 +180,132 @@ vec3 unitpack_eqdist24_round_codes(vec3 a0) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    UNITPACK_PRECISE float rho2_2 = t3 ? rho2 : 1.0;
+    bool t1 = rho2 > 0.0;
+    UNITPACK_PRECISE float rho2_2 = t1 ? rho2 : 1.0;
     uint half_exponent = ((floatBitsToUint(rho2_2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t4 = rho2_2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t4);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float t2 = rho2_2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= t4 ? 1.0 : (root_h0 * root_h0 > t4 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t4 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t4 ? 1.0 : (root_m0 * root_m0 > t4 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float rho = t3 ? root * root_up : 0.0;
+    UNITPACK_PRECISE float t3 = root * root_up;
+    UNITPACK_PRECISE float rho = t1 ? t3 : 0.0;
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
     UNITPACK_PRECISE float abs_abs_w2_z = abs(abs_w2_z);
     UNITPACK_PRECISE float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_abs_w2_z;
     UNITPACK_PRECISE float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     UNITPACK_PRECISE float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    UNITPACK_PRECISE float t6 = hi4 > 0.0 ? hi4 : 1.0;
+    UNITPACK_PRECISE float t4 = hi4 > 0.0 ? hi4 : 1.0;
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t6 * 8388608.0);
-    UNITPACK_PRECISE float t7 = (ratio_estimate + 1.0) * t6 <= big
-        ? 1.0
-        : (ratio_estimate * t6 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t7;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t6 <= big ? 1.0 : (ratio * t6 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t4 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t4 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t4 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t8 = t - 8388608.0;
-    UNITPACK_PRECISE float t9 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t8 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t8 / t9 * 8388608.0);
-    UNITPACK_PRECISE float t10 = (ratio_estimate2 + 1.0) * t9 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t9 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t10;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t9 <= big2 ? 1.0 : (ratio2 * t9 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t5 = t - 8388608.0;
+    UNITPACK_PRECISE float t6 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t5 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t6 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t11 = roundEven(
+    UNITPACK_PRECISE float t7 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t12 = (roundEven((t11 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t8 = (roundEven((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t13 = (
-        roundEven((roundEven(t12) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t14 = (
-        roundEven((roundEven(t13) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t9 = (
+        roundEven((roundEven(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t15 = roundEven(
-        (roundEven(t14 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t10 = roundEven(
+        (roundEven(t9 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t15 * 1.1920929e-7);
-    UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = abs_w2_z < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float t16 = rho < 0.0 ? -h4 : h4;
-    UNITPACK_PRECISE float big3 = w2.x * t16 * 0.00048816204;
-    UNITPACK_PRECISE float t17 = roundEven(big3 / sqrt(rho2_2) + 2047.5);
-    UNITPACK_PRECISE float abs_big3 = abs(big3);
-    UNITPACK_PRECISE float t18 = t17 >= 0.0 ? t17 : 0.0;
-    UNITPACK_PRECISE float estimate = t18 <= 4095.0 ? t18 : 4095.0;
-    UNITPACK_PRECISE float t19 = estimate - 2047.0;
-    UNITPACK_PRECISE float abs_big3_sq = abs_big3 * abs_big3;
-    UNITPACK_PRECISE float t20 = t19 * t19 * rho2_2;
-    UNITPACK_PRECISE float t21 = w2.x >= 0.0
-        ? (t19 > 0.0 ? (abs_big3_sq >= t20 ? 1.0 : 0.0) : 1.0)
-        : (t19 < 0.0 ? (abs_big3_sq <= t20 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 4095.0 ? t21 : 0.0;
-    UNITPACK_PRECISE float t22 = estimate - 1.0 - 2047.0;
-    UNITPACK_PRECISE float abs_big3_sq2 = abs_big3 * abs_big3;
-    UNITPACK_PRECISE float t23 = t22 * t22 * rho2_2;
-    UNITPACK_PRECISE float t24 = w2.x >= 0.0
-        ? (t22 > 0.0 ? (abs_big3_sq2 >= t23 ? 1.0 : 0.0) : 1.0)
-        : (t22 < 0.0 ? (abs_big3_sq2 <= t23 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t24 - 1.0 : 0.0;
-    UNITPACK_PRECISE float big4 = w2.y * t16 * 0.00024402142;
-    UNITPACK_PRECISE float t25 = roundEven(big4 / sqrt(rho2_2) + 1023.5);
-    UNITPACK_PRECISE float abs_big4 = abs(big4);
-    UNITPACK_PRECISE float t26 = t25 >= 0.0 ? t25 : 0.0;
-    UNITPACK_PRECISE float estimate2 = t26 <= 2047.0 ? t26 : 2047.0;
-    UNITPACK_PRECISE float t27 = estimate2 - 1023.0;
-    UNITPACK_PRECISE float abs_big4_sq = abs_big4 * abs_big4;
-    UNITPACK_PRECISE float t28 = t27 * t27 * rho2_2;
-    UNITPACK_PRECISE float t29 = w2.y >= 0.0
-        ? (t27 > 0.0 ? (abs_big4_sq >= t28 ? 1.0 : 0.0) : 1.0)
-        : (t27 < 0.0 ? (abs_big4_sq <= t28 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up2 = estimate2 < 2047.0 ? t29 : 0.0;
-    UNITPACK_PRECISE float t30 = estimate2 - 1.0 - 1023.0;
-    UNITPACK_PRECISE float abs_big4_sq2 = abs_big4 * abs_big4;
-    UNITPACK_PRECISE float t31 = t30 * t30 * rho2_2;
-    UNITPACK_PRECISE float t32 = w2.y >= 0.0
-        ? (t30 > 0.0 ? (abs_big4_sq2 >= t31 ? 1.0 : 0.0) : 1.0)
-        : (t30 < 0.0 ? (abs_big4_sq2 <= t31 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down2 = estimate2 > 0.0 ? t32 - 1.0 : 0.0;
-    UNITPACK_PRECISE vec3 result = vec3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
+        + 1677722.0;
+    UNITPACK_PRECISE float t11 = roundEven(
+        (roundEven(t10 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
     );
+    UNITPACK_PRECISE float r = roundEven(z * (t11 + 8388608.0) * 1.1920929e-7);
+    UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
+    UNITPACK_PRECISE float t12 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t12 : h;
+    UNITPACK_PRECISE float t13 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t13 : h2;
+    UNITPACK_PRECISE float t14 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = abs_w2_z < 0.0 ? t14 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float t15 = rho < 0.0 ? neg_h4 : h4;
+    UNITPACK_PRECISE float big3 = w2.x * t15 * 0.00048816204;
+    UNITPACK_PRECISE float t16 = roundEven(big3 / sqrt(rho2_2) + 2047.5);
+    UNITPACK_PRECISE float abs_big3 = abs(big3);
+    UNITPACK_PRECISE float t17 = t16 >= 0.0 ? t16 : 0.0;
+    UNITPACK_PRECISE float estimate = t17 <= 4095.0 ? t17 : 4095.0;
+    UNITPACK_PRECISE float t18 = estimate - 2047.0;
+    UNITPACK_PRECISE float abs_big3_sq = abs_big3 * abs_big3;
+    UNITPACK_PRECISE float t19 = t18 * t18 * rho2_2;
+    UNITPACK_PRECISE float one_if2 = abs_big3_sq >= t19 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t20 = t18 > 0.0 ? one_if2 : 1.0;
+    UNITPACK_PRECISE float one_if3 = abs_big3_sq <= t19 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t21 = t18 < 0.0 ? one_if3 : 0.0;
+    UNITPACK_PRECISE float t22 = w2.x >= 0.0 ? t20 : t21;
+    UNITPACK_PRECISE float up = estimate < 4095.0 ? t22 : 0.0;
+    UNITPACK_PRECISE float t23 = estimate - 1.0 - 2047.0;
+    UNITPACK_PRECISE float abs_big3_sq2 = abs_big3 * abs_big3;
+    UNITPACK_PRECISE float t24 = t23 * t23 * rho2_2;
+    UNITPACK_PRECISE float one_if4 = abs_big3_sq2 >= t24 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t25 = t23 > 0.0 ? one_if4 : 1.0;
+    UNITPACK_PRECISE float one_if5 = abs_big3_sq2 <= t24 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t26 = t23 < 0.0 ? one_if5 : 0.0;
+    UNITPACK_PRECISE float t27 = (w2.x >= 0.0 ? t25 : t26) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t27 : 0.0;
+    UNITPACK_PRECISE float big4 = w2.y * t15 * 0.00024402142;
+    UNITPACK_PRECISE float t28 = roundEven(big4 / sqrt(rho2_2) + 1023.5);
+    UNITPACK_PRECISE float abs_big4 = abs(big4);
+    UNITPACK_PRECISE float t29 = t28 >= 0.0 ? t28 : 0.0;
+    UNITPACK_PRECISE float estimate2 = t29 <= 2047.0 ? t29 : 2047.0;
+    UNITPACK_PRECISE float t30 = estimate2 - 1023.0;
+    UNITPACK_PRECISE float abs_big4_sq = abs_big4 * abs_big4;
+    UNITPACK_PRECISE float t31 = t30 * t30 * rho2_2;
+    UNITPACK_PRECISE float one_if6 = abs_big4_sq >= t31 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t32 = t30 > 0.0 ? one_if6 : 1.0;
+    UNITPACK_PRECISE float one_if7 = abs_big4_sq <= t31 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t33 = t30 < 0.0 ? one_if7 : 0.0;
+    UNITPACK_PRECISE float t34 = w2.y >= 0.0 ? t32 : t33;
+    UNITPACK_PRECISE float up2 = estimate2 < 2047.0 ? t34 : 0.0;
+    UNITPACK_PRECISE float t35 = estimate2 - 1.0 - 1023.0;
+    UNITPACK_PRECISE float abs_big4_sq2 = abs_big4 * abs_big4;
+    UNITPACK_PRECISE float t36 = t35 * t35 * rho2_2;
+    UNITPACK_PRECISE float one_if8 = abs_big4_sq2 >= t36 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t37 = t35 > 0.0 ? one_if8 : 1.0;
+    UNITPACK_PRECISE float one_if9 = abs_big4_sq2 <= t36 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t38 = t35 < 0.0 ? one_if9 : 0.0;
+    UNITPACK_PRECISE float t39 = (w2.y >= 0.0 ? t37 : t38) - 1.0;
+    UNITPACK_PRECISE float down2 = estimate2 > 0.0 ? t39 : 0.0;
+    UNITPACK_PRECISE vec3 result = vec3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

@@ -58,12 +58,11 @@ vec3 unitpack_eqdist_ellipse32_decode_float(vec3 params) {
         ((6.565963e-11 * q + (-6.3866032e-9)) * q + 4.7108747e-7) * q + (-2.5202042e-5)
     )
         * q;
-    UNITPACK_PRECISE float t4 = (
-        (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q + (-1.2337005)
-    )
-        * q;
-    UNITPACK_PRECISE float cosq = t4 + 1.0;
-    UNITPACK_PRECISE vec3 result = vec3(disk * sinc, params.z > 0.5 ? -cosq : cosq);
+    UNITPACK_PRECISE float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
+        + (-1.2337005);
+    UNITPACK_PRECISE float cosq = t4 * q + 1.0;
+    UNITPACK_PRECISE float neg_cosq = -cosq;
+    UNITPACK_PRECISE vec3 result = vec3(disk * sinc, params.z > 0.5 ? neg_cosq : cosq);
     return result;
 }
 
@@ -90,22 +89,24 @@ float unitpack_eqdist_ellipse32_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -127,9 +128,11 @@ vec3 unitpack_eqdist_ellipse32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE vec2 t1 = w2.xy * w2.xy;
     UNITPACK_PRECISE float rho = sqrt(t1.x + t1.y);
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
@@ -137,17 +140,15 @@ vec3 unitpack_eqdist_ellipse32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec2 disk = w2.xy * (half_r / (rho > 0.0 ? rho : 1.0) * 2.0);
     UNITPACK_PRECISE vec2 t2 = abs(disk.yx);
     UNITPACK_PRECISE vec2 t3 = disk + 1.4142135 - t2;
-    UNITPACK_PRECISE vec2 t4 = sqrt(
+    UNITPACK_PRECISE vec2 neg_disk = -disk;
+    UNITPACK_PRECISE vec2 t4 = neg_disk + 1.4142135 - t2;
+    UNITPACK_PRECISE vec2 t5 = sqrt(
         mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0))) * (disk + 1.4142135 + t2)
-    );
-    UNITPACK_PRECISE vec2 t5 = -disk;
-    UNITPACK_PRECISE vec2 t6 = t5 + 1.4142135 - t2;
-    UNITPACK_PRECISE vec2 t7 = sqrt(
-        mix(vec2(0.0), t6, greaterThanEqual(t6, vec2(0.0))) * (t5 + 1.4142135 + t2)
-    );
-    UNITPACK_PRECISE vec2 square = disk / (t4 + t7);
+    )
+        + sqrt(mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0))) * (neg_disk + 1.4142135 + t2));
+    UNITPACK_PRECISE vec2 square = disk / t5;
     UNITPACK_PRECISE vec2 enc = square * 1.4142135 + 0.5;
-    return vec3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return vec3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -164,13 +165,14 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -184,85 +186,91 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    UNITPACK_PRECISE float rho2_2 = t3 ? rho2 : 1.0;
+    bool t1 = rho2 > 0.0;
+    UNITPACK_PRECISE float rho2_2 = t1 ? rho2 : 1.0;
     uint half_exponent = ((floatBitsToUint(rho2_2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t4 = rho2_2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t4);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float t2 = rho2_2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= t4 ? 1.0 : (root_h0 * root_h0 > t4 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t4 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t4 ? 1.0 : (root_m0 * root_m0 > t4 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float rho = t3 ? root * root_up : 0.0;
+    UNITPACK_PRECISE float t3 = root * root_up;
+    UNITPACK_PRECISE float rho = t1 ? t3 : 0.0;
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
     UNITPACK_PRECISE float abs_abs_w2_z = abs(abs_w2_z);
     UNITPACK_PRECISE float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_abs_w2_z;
     UNITPACK_PRECISE float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     UNITPACK_PRECISE float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    UNITPACK_PRECISE float t6 = hi4 > 0.0 ? hi4 : 1.0;
+    UNITPACK_PRECISE float t4 = hi4 > 0.0 ? hi4 : 1.0;
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t6 * 8388608.0);
-    UNITPACK_PRECISE float t7 = (ratio_estimate + 1.0) * t6 <= big
-        ? 1.0
-        : (ratio_estimate * t6 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t7;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t6 <= big ? 1.0 : (ratio * t6 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t4 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t4 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t4 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t8 = t - 8388608.0;
-    UNITPACK_PRECISE float t9 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t8 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t8 / t9 * 8388608.0);
-    UNITPACK_PRECISE float t10 = (ratio_estimate2 + 1.0) * t9 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t9 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t10;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t9 <= big2 ? 1.0 : (ratio2 * t9 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t5 = t - 8388608.0;
+    UNITPACK_PRECISE float t6 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t5 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t6 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t11 = roundEven(
+    UNITPACK_PRECISE float t7 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t12 = (roundEven((t11 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t8 = (roundEven((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t13 = (
-        roundEven((roundEven(t12) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t14 = (
-        roundEven((roundEven(t13) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t9 = (
+        roundEven((roundEven(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t15 = roundEven(
-        (roundEven(t14 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t10 = roundEven(
+        (roundEven(t9 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t15 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t11 = roundEven(
+        (roundEven(t10 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t11 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = abs_w2_z < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float t16 = rho < 0.0 ? -h4 : h4;
-    bool t17 = w2.x >= 0.0;
-    UNITPACK_PRECISE float t18 = t17 ? 32768.0 : 0.0;
-    UNITPACK_PRECISE float t19 = t17 ? 65535.0 : 32767.0;
-    UNITPACK_PRECISE float mid = floor((t18 + t19 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t = (mid - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float t12 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t12 : h;
+    UNITPACK_PRECISE float t13 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t13 : h2;
+    UNITPACK_PRECISE float t14 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = abs_w2_z < 0.0 ? t14 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float t15 = rho < 0.0 ? neg_h4 : h4;
+    bool t16 = w2.x >= 0.0;
+    UNITPACK_PRECISE float t17 = t16 ? 32768.0 : 0.0;
+    UNITPACK_PRECISE float t18 = t16 ? 65535.0 : 32767.0;
+    UNITPACK_PRECISE float mid = floor((t17 + t18 + 1.0) * 0.5);
+    UNITPACK_PRECISE float mid_below = mid - 1.0;
+    UNITPACK_PRECISE float ell_t = (mid_below - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h = floor(ell_t * ell_t);
     UNITPACK_PRECISE float ell_g = 8589672400.0 - ell_h;
     UNITPACK_PRECISE float ell_p = w2.x * w2.x * ell_g;
@@ -270,19 +278,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent = floatBitsToUint(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     uint exponent2 = exponent < 40u ? 40u : exponent;
     uint exponent3 = 254u < exponent2 ? 254u : exponent2;
-    UNITPACK_PRECISE float t20 = uintBitsToFloat((281u - exponent3) << 23u);
-    UNITPACK_PRECISE float ell_s = (floor(ell_p * t20) + floor(ell_q * t20))
-        * uintBitsToFloat((exponent3 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs = ell_s * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale2 = uintBitsToFloat((281u - exponent3) << 23u);
+    UNITPACK_PRECISE float back = uintBitsToFloat((exponent3 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
+    UNITPACK_PRECISE float lhs = ell_s * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs = ell_h * ell_g * rho2_2;
-    UNITPACK_PRECISE float t21 = ell_t > 0.0
-        ? (w2.x > 0.0 ? (lhs >= rhs ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs <= rhs ? 1.0 : 0.0));
-    bool beyond = t21 > 0.5;
-    UNITPACK_PRECISE float lo5 = beyond ? mid : t18;
-    UNITPACK_PRECISE float hi5 = beyond ? t19 : mid - 1.0;
+    UNITPACK_PRECISE float one_if = lhs >= rhs ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside = w2.x > 0.0 ? one_if : 0.0;
+    UNITPACK_PRECISE float one_if2 = lhs <= rhs ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside = w2.x >= 0.0 ? 1.0 : one_if2;
+    bool beyond = (ell_t > 0.0 ? outside : inside) > 0.5;
+    UNITPACK_PRECISE float lo5 = beyond ? mid : t17;
+    UNITPACK_PRECISE float hi5 = beyond ? t18 : mid_below;
     UNITPACK_PRECISE float mid2 = floor((lo5 + hi5 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t2 = (mid2 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below2 = mid2 - 1.0;
+    UNITPACK_PRECISE float ell_t2 = (mid_below2 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h2 = floor(ell_t2 * ell_t2);
     UNITPACK_PRECISE float ell_g2 = 8589672400.0 - ell_h2;
     UNITPACK_PRECISE float ell_p2 = w2.x * w2.x * ell_g2;
@@ -290,19 +300,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent4 = floatBitsToUint(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     uint exponent5 = exponent4 < 40u ? 40u : exponent4;
     uint exponent6 = 254u < exponent5 ? 254u : exponent5;
-    UNITPACK_PRECISE float t22 = uintBitsToFloat((281u - exponent6) << 23u);
-    UNITPACK_PRECISE float ell_s2 = (floor(ell_p2 * t22) + floor(ell_q2 * t22))
-        * uintBitsToFloat((exponent6 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs2 = ell_s2 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale3 = uintBitsToFloat((281u - exponent6) << 23u);
+    UNITPACK_PRECISE float back2 = uintBitsToFloat((exponent6 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
+    UNITPACK_PRECISE float lhs2 = ell_s2 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs2 = ell_h2 * ell_g2 * rho2_2;
-    UNITPACK_PRECISE float t23 = ell_t2 > 0.0
-        ? (w2.x > 0.0 ? (lhs2 >= rhs2 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs2 <= rhs2 ? 1.0 : 0.0));
-    bool beyond2 = t23 > 0.5;
+    UNITPACK_PRECISE float one_if3 = lhs2 >= rhs2 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside2 = w2.x > 0.0 ? one_if3 : 0.0;
+    UNITPACK_PRECISE float one_if4 = lhs2 <= rhs2 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside2 = w2.x >= 0.0 ? 1.0 : one_if4;
+    bool beyond2 = (ell_t2 > 0.0 ? outside2 : inside2) > 0.5;
     UNITPACK_PRECISE float lo6 = beyond2 ? mid2 : lo5;
-    UNITPACK_PRECISE float hi6 = beyond2 ? hi5 : mid2 - 1.0;
+    UNITPACK_PRECISE float hi6 = beyond2 ? hi5 : mid_below2;
     UNITPACK_PRECISE float mid3 = floor((lo6 + hi6 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t3 = (mid3 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below3 = mid3 - 1.0;
+    UNITPACK_PRECISE float ell_t3 = (mid_below3 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h3 = floor(ell_t3 * ell_t3);
     UNITPACK_PRECISE float ell_g3 = 8589672400.0 - ell_h3;
     UNITPACK_PRECISE float ell_p3 = w2.x * w2.x * ell_g3;
@@ -310,19 +322,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent7 = floatBitsToUint(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     uint exponent8 = exponent7 < 40u ? 40u : exponent7;
     uint exponent9 = 254u < exponent8 ? 254u : exponent8;
-    UNITPACK_PRECISE float t24 = uintBitsToFloat((281u - exponent9) << 23u);
-    UNITPACK_PRECISE float ell_s3 = (floor(ell_p3 * t24) + floor(ell_q3 * t24))
-        * uintBitsToFloat((exponent9 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs3 = ell_s3 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale4 = uintBitsToFloat((281u - exponent9) << 23u);
+    UNITPACK_PRECISE float back3 = uintBitsToFloat((exponent9 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
+    UNITPACK_PRECISE float lhs3 = ell_s3 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs3 = ell_h3 * ell_g3 * rho2_2;
-    UNITPACK_PRECISE float t25 = ell_t3 > 0.0
-        ? (w2.x > 0.0 ? (lhs3 >= rhs3 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs3 <= rhs3 ? 1.0 : 0.0));
-    bool beyond3 = t25 > 0.5;
+    UNITPACK_PRECISE float one_if5 = lhs3 >= rhs3 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside3 = w2.x > 0.0 ? one_if5 : 0.0;
+    UNITPACK_PRECISE float one_if6 = lhs3 <= rhs3 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside3 = w2.x >= 0.0 ? 1.0 : one_if6;
+    bool beyond3 = (ell_t3 > 0.0 ? outside3 : inside3) > 0.5;
     UNITPACK_PRECISE float lo7 = beyond3 ? mid3 : lo6;
-    UNITPACK_PRECISE float hi7 = beyond3 ? hi6 : mid3 - 1.0;
+    UNITPACK_PRECISE float hi7 = beyond3 ? hi6 : mid_below3;
     UNITPACK_PRECISE float mid4 = floor((lo7 + hi7 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t4 = (mid4 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below4 = mid4 - 1.0;
+    UNITPACK_PRECISE float ell_t4 = (mid_below4 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h4 = floor(ell_t4 * ell_t4);
     UNITPACK_PRECISE float ell_g4 = 8589672400.0 - ell_h4;
     UNITPACK_PRECISE float ell_p4 = w2.x * w2.x * ell_g4;
@@ -330,19 +344,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent10 = floatBitsToUint(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     uint exponent11 = exponent10 < 40u ? 40u : exponent10;
     uint exponent12 = 254u < exponent11 ? 254u : exponent11;
-    UNITPACK_PRECISE float t26 = uintBitsToFloat((281u - exponent12) << 23u);
-    UNITPACK_PRECISE float ell_s4 = (floor(ell_p4 * t26) + floor(ell_q4 * t26))
-        * uintBitsToFloat((exponent12 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs4 = ell_s4 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale5 = uintBitsToFloat((281u - exponent12) << 23u);
+    UNITPACK_PRECISE float back4 = uintBitsToFloat((exponent12 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
+    UNITPACK_PRECISE float lhs4 = ell_s4 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs4 = ell_h4 * ell_g4 * rho2_2;
-    UNITPACK_PRECISE float t27 = ell_t4 > 0.0
-        ? (w2.x > 0.0 ? (lhs4 >= rhs4 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs4 <= rhs4 ? 1.0 : 0.0));
-    bool beyond4 = t27 > 0.5;
+    UNITPACK_PRECISE float one_if7 = lhs4 >= rhs4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside4 = w2.x > 0.0 ? one_if7 : 0.0;
+    UNITPACK_PRECISE float one_if8 = lhs4 <= rhs4 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside4 = w2.x >= 0.0 ? 1.0 : one_if8;
+    bool beyond4 = (ell_t4 > 0.0 ? outside4 : inside4) > 0.5;
     UNITPACK_PRECISE float lo8 = beyond4 ? mid4 : lo7;
-    UNITPACK_PRECISE float hi8 = beyond4 ? hi7 : mid4 - 1.0;
+    UNITPACK_PRECISE float hi8 = beyond4 ? hi7 : mid_below4;
     UNITPACK_PRECISE float mid5 = floor((lo8 + hi8 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t5 = (mid5 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below5 = mid5 - 1.0;
+    UNITPACK_PRECISE float ell_t5 = (mid_below5 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h5 = floor(ell_t5 * ell_t5);
     UNITPACK_PRECISE float ell_g5 = 8589672400.0 - ell_h5;
     UNITPACK_PRECISE float ell_p5 = w2.x * w2.x * ell_g5;
@@ -350,19 +366,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent13 = floatBitsToUint(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     uint exponent14 = exponent13 < 40u ? 40u : exponent13;
     uint exponent15 = 254u < exponent14 ? 254u : exponent14;
-    UNITPACK_PRECISE float t28 = uintBitsToFloat((281u - exponent15) << 23u);
-    UNITPACK_PRECISE float ell_s5 = (floor(ell_p5 * t28) + floor(ell_q5 * t28))
-        * uintBitsToFloat((exponent15 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs5 = ell_s5 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale6 = uintBitsToFloat((281u - exponent15) << 23u);
+    UNITPACK_PRECISE float back5 = uintBitsToFloat((exponent15 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
+    UNITPACK_PRECISE float lhs5 = ell_s5 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs5 = ell_h5 * ell_g5 * rho2_2;
-    UNITPACK_PRECISE float t29 = ell_t5 > 0.0
-        ? (w2.x > 0.0 ? (lhs5 >= rhs5 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs5 <= rhs5 ? 1.0 : 0.0));
-    bool beyond5 = t29 > 0.5;
+    UNITPACK_PRECISE float one_if9 = lhs5 >= rhs5 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside5 = w2.x > 0.0 ? one_if9 : 0.0;
+    UNITPACK_PRECISE float one_if10 = lhs5 <= rhs5 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside5 = w2.x >= 0.0 ? 1.0 : one_if10;
+    bool beyond5 = (ell_t5 > 0.0 ? outside5 : inside5) > 0.5;
     UNITPACK_PRECISE float lo9 = beyond5 ? mid5 : lo8;
-    UNITPACK_PRECISE float hi9 = beyond5 ? hi8 : mid5 - 1.0;
+    UNITPACK_PRECISE float hi9 = beyond5 ? hi8 : mid_below5;
     UNITPACK_PRECISE float mid6 = floor((lo9 + hi9 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t6 = (mid6 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below6 = mid6 - 1.0;
+    UNITPACK_PRECISE float ell_t6 = (mid_below6 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h6 = floor(ell_t6 * ell_t6);
     UNITPACK_PRECISE float ell_g6 = 8589672400.0 - ell_h6;
     UNITPACK_PRECISE float ell_p6 = w2.x * w2.x * ell_g6;
@@ -370,19 +388,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent16 = floatBitsToUint(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     uint exponent17 = exponent16 < 40u ? 40u : exponent16;
     uint exponent18 = 254u < exponent17 ? 254u : exponent17;
-    UNITPACK_PRECISE float t30 = uintBitsToFloat((281u - exponent18) << 23u);
-    UNITPACK_PRECISE float ell_s6 = (floor(ell_p6 * t30) + floor(ell_q6 * t30))
-        * uintBitsToFloat((exponent18 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs6 = ell_s6 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale7 = uintBitsToFloat((281u - exponent18) << 23u);
+    UNITPACK_PRECISE float back6 = uintBitsToFloat((exponent18 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
+    UNITPACK_PRECISE float lhs6 = ell_s6 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs6 = ell_h6 * ell_g6 * rho2_2;
-    UNITPACK_PRECISE float t31 = ell_t6 > 0.0
-        ? (w2.x > 0.0 ? (lhs6 >= rhs6 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs6 <= rhs6 ? 1.0 : 0.0));
-    bool beyond6 = t31 > 0.5;
+    UNITPACK_PRECISE float one_if11 = lhs6 >= rhs6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside6 = w2.x > 0.0 ? one_if11 : 0.0;
+    UNITPACK_PRECISE float one_if12 = lhs6 <= rhs6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside6 = w2.x >= 0.0 ? 1.0 : one_if12;
+    bool beyond6 = (ell_t6 > 0.0 ? outside6 : inside6) > 0.5;
     UNITPACK_PRECISE float lo10 = beyond6 ? mid6 : lo9;
-    UNITPACK_PRECISE float hi10 = beyond6 ? hi9 : mid6 - 1.0;
+    UNITPACK_PRECISE float hi10 = beyond6 ? hi9 : mid_below6;
     UNITPACK_PRECISE float mid7 = floor((lo10 + hi10 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t7 = (mid7 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below7 = mid7 - 1.0;
+    UNITPACK_PRECISE float ell_t7 = (mid_below7 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h7 = floor(ell_t7 * ell_t7);
     UNITPACK_PRECISE float ell_g7 = 8589672400.0 - ell_h7;
     UNITPACK_PRECISE float ell_p7 = w2.x * w2.x * ell_g7;
@@ -390,19 +410,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent19 = floatBitsToUint(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     uint exponent20 = exponent19 < 40u ? 40u : exponent19;
     uint exponent21 = 254u < exponent20 ? 254u : exponent20;
-    UNITPACK_PRECISE float t32 = uintBitsToFloat((281u - exponent21) << 23u);
-    UNITPACK_PRECISE float ell_s7 = (floor(ell_p7 * t32) + floor(ell_q7 * t32))
-        * uintBitsToFloat((exponent21 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs7 = ell_s7 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale8 = uintBitsToFloat((281u - exponent21) << 23u);
+    UNITPACK_PRECISE float back7 = uintBitsToFloat((exponent21 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
+    UNITPACK_PRECISE float lhs7 = ell_s7 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs7 = ell_h7 * ell_g7 * rho2_2;
-    UNITPACK_PRECISE float t33 = ell_t7 > 0.0
-        ? (w2.x > 0.0 ? (lhs7 >= rhs7 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs7 <= rhs7 ? 1.0 : 0.0));
-    bool beyond7 = t33 > 0.5;
+    UNITPACK_PRECISE float one_if13 = lhs7 >= rhs7 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside7 = w2.x > 0.0 ? one_if13 : 0.0;
+    UNITPACK_PRECISE float one_if14 = lhs7 <= rhs7 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside7 = w2.x >= 0.0 ? 1.0 : one_if14;
+    bool beyond7 = (ell_t7 > 0.0 ? outside7 : inside7) > 0.5;
     UNITPACK_PRECISE float lo11 = beyond7 ? mid7 : lo10;
-    UNITPACK_PRECISE float hi11 = beyond7 ? hi10 : mid7 - 1.0;
+    UNITPACK_PRECISE float hi11 = beyond7 ? hi10 : mid_below7;
     UNITPACK_PRECISE float mid8 = floor((lo11 + hi11 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t8 = (mid8 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below8 = mid8 - 1.0;
+    UNITPACK_PRECISE float ell_t8 = (mid_below8 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h8 = floor(ell_t8 * ell_t8);
     UNITPACK_PRECISE float ell_g8 = 8589672400.0 - ell_h8;
     UNITPACK_PRECISE float ell_p8 = w2.x * w2.x * ell_g8;
@@ -410,19 +432,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent22 = floatBitsToUint(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     uint exponent23 = exponent22 < 40u ? 40u : exponent22;
     uint exponent24 = 254u < exponent23 ? 254u : exponent23;
-    UNITPACK_PRECISE float t34 = uintBitsToFloat((281u - exponent24) << 23u);
-    UNITPACK_PRECISE float ell_s8 = (floor(ell_p8 * t34) + floor(ell_q8 * t34))
-        * uintBitsToFloat((exponent24 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs8 = ell_s8 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale9 = uintBitsToFloat((281u - exponent24) << 23u);
+    UNITPACK_PRECISE float back8 = uintBitsToFloat((exponent24 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
+    UNITPACK_PRECISE float lhs8 = ell_s8 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs8 = ell_h8 * ell_g8 * rho2_2;
-    UNITPACK_PRECISE float t35 = ell_t8 > 0.0
-        ? (w2.x > 0.0 ? (lhs8 >= rhs8 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs8 <= rhs8 ? 1.0 : 0.0));
-    bool beyond8 = t35 > 0.5;
+    UNITPACK_PRECISE float one_if15 = lhs8 >= rhs8 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside8 = w2.x > 0.0 ? one_if15 : 0.0;
+    UNITPACK_PRECISE float one_if16 = lhs8 <= rhs8 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside8 = w2.x >= 0.0 ? 1.0 : one_if16;
+    bool beyond8 = (ell_t8 > 0.0 ? outside8 : inside8) > 0.5;
     UNITPACK_PRECISE float lo12 = beyond8 ? mid8 : lo11;
-    UNITPACK_PRECISE float hi12 = beyond8 ? hi11 : mid8 - 1.0;
+    UNITPACK_PRECISE float hi12 = beyond8 ? hi11 : mid_below8;
     UNITPACK_PRECISE float mid9 = floor((lo12 + hi12 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t9 = (mid9 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below9 = mid9 - 1.0;
+    UNITPACK_PRECISE float ell_t9 = (mid_below9 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h9 = floor(ell_t9 * ell_t9);
     UNITPACK_PRECISE float ell_g9 = 8589672400.0 - ell_h9;
     UNITPACK_PRECISE float ell_p9 = w2.x * w2.x * ell_g9;
@@ -430,19 +454,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent25 = floatBitsToUint(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     uint exponent26 = exponent25 < 40u ? 40u : exponent25;
     uint exponent27 = 254u < exponent26 ? 254u : exponent26;
-    UNITPACK_PRECISE float t36 = uintBitsToFloat((281u - exponent27) << 23u);
-    UNITPACK_PRECISE float ell_s9 = (floor(ell_p9 * t36) + floor(ell_q9 * t36))
-        * uintBitsToFloat((exponent27 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs9 = ell_s9 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale10 = uintBitsToFloat((281u - exponent27) << 23u);
+    UNITPACK_PRECISE float back9 = uintBitsToFloat((exponent27 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
+    UNITPACK_PRECISE float lhs9 = ell_s9 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs9 = ell_h9 * ell_g9 * rho2_2;
-    UNITPACK_PRECISE float t37 = ell_t9 > 0.0
-        ? (w2.x > 0.0 ? (lhs9 >= rhs9 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs9 <= rhs9 ? 1.0 : 0.0));
-    bool beyond9 = t37 > 0.5;
+    UNITPACK_PRECISE float one_if17 = lhs9 >= rhs9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside9 = w2.x > 0.0 ? one_if17 : 0.0;
+    UNITPACK_PRECISE float one_if18 = lhs9 <= rhs9 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside9 = w2.x >= 0.0 ? 1.0 : one_if18;
+    bool beyond9 = (ell_t9 > 0.0 ? outside9 : inside9) > 0.5;
     UNITPACK_PRECISE float lo13 = beyond9 ? mid9 : lo12;
-    UNITPACK_PRECISE float hi13 = beyond9 ? hi12 : mid9 - 1.0;
+    UNITPACK_PRECISE float hi13 = beyond9 ? hi12 : mid_below9;
     UNITPACK_PRECISE float mid10 = floor((lo13 + hi13 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t10 = (mid10 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below10 = mid10 - 1.0;
+    UNITPACK_PRECISE float ell_t10 = (mid_below10 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h10 = floor(ell_t10 * ell_t10);
     UNITPACK_PRECISE float ell_g10 = 8589672400.0 - ell_h10;
     UNITPACK_PRECISE float ell_p10 = w2.x * w2.x * ell_g10;
@@ -450,19 +476,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent28 = floatBitsToUint(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     uint exponent29 = exponent28 < 40u ? 40u : exponent28;
     uint exponent30 = 254u < exponent29 ? 254u : exponent29;
-    UNITPACK_PRECISE float t38 = uintBitsToFloat((281u - exponent30) << 23u);
-    UNITPACK_PRECISE float ell_s10 = (floor(ell_p10 * t38) + floor(ell_q10 * t38))
-        * uintBitsToFloat((exponent30 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs10 = ell_s10 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale11 = uintBitsToFloat((281u - exponent30) << 23u);
+    UNITPACK_PRECISE float back10 = uintBitsToFloat((exponent30 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
+    UNITPACK_PRECISE float lhs10 = ell_s10 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs10 = ell_h10 * ell_g10 * rho2_2;
-    UNITPACK_PRECISE float t39 = ell_t10 > 0.0
-        ? (w2.x > 0.0 ? (lhs10 >= rhs10 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs10 <= rhs10 ? 1.0 : 0.0));
-    bool beyond10 = t39 > 0.5;
+    UNITPACK_PRECISE float one_if19 = lhs10 >= rhs10 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside10 = w2.x > 0.0 ? one_if19 : 0.0;
+    UNITPACK_PRECISE float one_if20 = lhs10 <= rhs10 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside10 = w2.x >= 0.0 ? 1.0 : one_if20;
+    bool beyond10 = (ell_t10 > 0.0 ? outside10 : inside10) > 0.5;
     UNITPACK_PRECISE float lo14 = beyond10 ? mid10 : lo13;
-    UNITPACK_PRECISE float hi14 = beyond10 ? hi13 : mid10 - 1.0;
+    UNITPACK_PRECISE float hi14 = beyond10 ? hi13 : mid_below10;
     UNITPACK_PRECISE float mid11 = floor((lo14 + hi14 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t11 = (mid11 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below11 = mid11 - 1.0;
+    UNITPACK_PRECISE float ell_t11 = (mid_below11 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h11 = floor(ell_t11 * ell_t11);
     UNITPACK_PRECISE float ell_g11 = 8589672400.0 - ell_h11;
     UNITPACK_PRECISE float ell_p11 = w2.x * w2.x * ell_g11;
@@ -470,19 +498,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent31 = floatBitsToUint(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     uint exponent32 = exponent31 < 40u ? 40u : exponent31;
     uint exponent33 = 254u < exponent32 ? 254u : exponent32;
-    UNITPACK_PRECISE float t40 = uintBitsToFloat((281u - exponent33) << 23u);
-    UNITPACK_PRECISE float ell_s11 = (floor(ell_p11 * t40) + floor(ell_q11 * t40))
-        * uintBitsToFloat((exponent33 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs11 = ell_s11 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale12 = uintBitsToFloat((281u - exponent33) << 23u);
+    UNITPACK_PRECISE float back11 = uintBitsToFloat((exponent33 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
+    UNITPACK_PRECISE float lhs11 = ell_s11 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs11 = ell_h11 * ell_g11 * rho2_2;
-    UNITPACK_PRECISE float t41 = ell_t11 > 0.0
-        ? (w2.x > 0.0 ? (lhs11 >= rhs11 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs11 <= rhs11 ? 1.0 : 0.0));
-    bool beyond11 = t41 > 0.5;
+    UNITPACK_PRECISE float one_if21 = lhs11 >= rhs11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside11 = w2.x > 0.0 ? one_if21 : 0.0;
+    UNITPACK_PRECISE float one_if22 = lhs11 <= rhs11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside11 = w2.x >= 0.0 ? 1.0 : one_if22;
+    bool beyond11 = (ell_t11 > 0.0 ? outside11 : inside11) > 0.5;
     UNITPACK_PRECISE float lo15 = beyond11 ? mid11 : lo14;
-    UNITPACK_PRECISE float hi15 = beyond11 ? hi14 : mid11 - 1.0;
+    UNITPACK_PRECISE float hi15 = beyond11 ? hi14 : mid_below11;
     UNITPACK_PRECISE float mid12 = floor((lo15 + hi15 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t12 = (mid12 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below12 = mid12 - 1.0;
+    UNITPACK_PRECISE float ell_t12 = (mid_below12 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h12 = floor(ell_t12 * ell_t12);
     UNITPACK_PRECISE float ell_g12 = 8589672400.0 - ell_h12;
     UNITPACK_PRECISE float ell_p12 = w2.x * w2.x * ell_g12;
@@ -490,19 +520,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent34 = floatBitsToUint(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     uint exponent35 = exponent34 < 40u ? 40u : exponent34;
     uint exponent36 = 254u < exponent35 ? 254u : exponent35;
-    UNITPACK_PRECISE float t42 = uintBitsToFloat((281u - exponent36) << 23u);
-    UNITPACK_PRECISE float ell_s12 = (floor(ell_p12 * t42) + floor(ell_q12 * t42))
-        * uintBitsToFloat((exponent36 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs12 = ell_s12 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale13 = uintBitsToFloat((281u - exponent36) << 23u);
+    UNITPACK_PRECISE float back12 = uintBitsToFloat((exponent36 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
+    UNITPACK_PRECISE float lhs12 = ell_s12 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs12 = ell_h12 * ell_g12 * rho2_2;
-    UNITPACK_PRECISE float t43 = ell_t12 > 0.0
-        ? (w2.x > 0.0 ? (lhs12 >= rhs12 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs12 <= rhs12 ? 1.0 : 0.0));
-    bool beyond12 = t43 > 0.5;
+    UNITPACK_PRECISE float one_if23 = lhs12 >= rhs12 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside12 = w2.x > 0.0 ? one_if23 : 0.0;
+    UNITPACK_PRECISE float one_if24 = lhs12 <= rhs12 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside12 = w2.x >= 0.0 ? 1.0 : one_if24;
+    bool beyond12 = (ell_t12 > 0.0 ? outside12 : inside12) > 0.5;
     UNITPACK_PRECISE float lo16 = beyond12 ? mid12 : lo15;
-    UNITPACK_PRECISE float hi16 = beyond12 ? hi15 : mid12 - 1.0;
+    UNITPACK_PRECISE float hi16 = beyond12 ? hi15 : mid_below12;
     UNITPACK_PRECISE float mid13 = floor((lo16 + hi16 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t13 = (mid13 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below13 = mid13 - 1.0;
+    UNITPACK_PRECISE float ell_t13 = (mid_below13 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h13 = floor(ell_t13 * ell_t13);
     UNITPACK_PRECISE float ell_g13 = 8589672400.0 - ell_h13;
     UNITPACK_PRECISE float ell_p13 = w2.x * w2.x * ell_g13;
@@ -510,19 +542,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent37 = floatBitsToUint(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     uint exponent38 = exponent37 < 40u ? 40u : exponent37;
     uint exponent39 = 254u < exponent38 ? 254u : exponent38;
-    UNITPACK_PRECISE float t44 = uintBitsToFloat((281u - exponent39) << 23u);
-    UNITPACK_PRECISE float ell_s13 = (floor(ell_p13 * t44) + floor(ell_q13 * t44))
-        * uintBitsToFloat((exponent39 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs13 = ell_s13 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale14 = uintBitsToFloat((281u - exponent39) << 23u);
+    UNITPACK_PRECISE float back13 = uintBitsToFloat((exponent39 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
+    UNITPACK_PRECISE float lhs13 = ell_s13 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs13 = ell_h13 * ell_g13 * rho2_2;
-    UNITPACK_PRECISE float t45 = ell_t13 > 0.0
-        ? (w2.x > 0.0 ? (lhs13 >= rhs13 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs13 <= rhs13 ? 1.0 : 0.0));
-    bool beyond13 = t45 > 0.5;
+    UNITPACK_PRECISE float one_if25 = lhs13 >= rhs13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside13 = w2.x > 0.0 ? one_if25 : 0.0;
+    UNITPACK_PRECISE float one_if26 = lhs13 <= rhs13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside13 = w2.x >= 0.0 ? 1.0 : one_if26;
+    bool beyond13 = (ell_t13 > 0.0 ? outside13 : inside13) > 0.5;
     UNITPACK_PRECISE float lo17 = beyond13 ? mid13 : lo16;
-    UNITPACK_PRECISE float hi17 = beyond13 ? hi16 : mid13 - 1.0;
+    UNITPACK_PRECISE float hi17 = beyond13 ? hi16 : mid_below13;
     UNITPACK_PRECISE float mid14 = floor((lo17 + hi17 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t14 = (mid14 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below14 = mid14 - 1.0;
+    UNITPACK_PRECISE float ell_t14 = (mid_below14 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h14 = floor(ell_t14 * ell_t14);
     UNITPACK_PRECISE float ell_g14 = 8589672400.0 - ell_h14;
     UNITPACK_PRECISE float ell_p14 = w2.x * w2.x * ell_g14;
@@ -530,19 +564,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent40 = floatBitsToUint(ell_p14 >= ell_q14 ? ell_p14 : ell_q14) >> 23u;
     uint exponent41 = exponent40 < 40u ? 40u : exponent40;
     uint exponent42 = 254u < exponent41 ? 254u : exponent41;
-    UNITPACK_PRECISE float t46 = uintBitsToFloat((281u - exponent42) << 23u);
-    UNITPACK_PRECISE float ell_s14 = (floor(ell_p14 * t46) + floor(ell_q14 * t46))
-        * uintBitsToFloat((exponent42 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs14 = ell_s14 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale15 = uintBitsToFloat((281u - exponent42) << 23u);
+    UNITPACK_PRECISE float back14 = uintBitsToFloat((exponent42 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s14 = (floor(ell_p14 * scale15) + floor(ell_q14 * scale15)) * back14;
+    UNITPACK_PRECISE float lhs14 = ell_s14 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs14 = ell_h14 * ell_g14 * rho2_2;
-    UNITPACK_PRECISE float t47 = ell_t14 > 0.0
-        ? (w2.x > 0.0 ? (lhs14 >= rhs14 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs14 <= rhs14 ? 1.0 : 0.0));
-    bool beyond14 = t47 > 0.5;
+    UNITPACK_PRECISE float one_if27 = lhs14 >= rhs14 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside14 = w2.x > 0.0 ? one_if27 : 0.0;
+    UNITPACK_PRECISE float one_if28 = lhs14 <= rhs14 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside14 = w2.x >= 0.0 ? 1.0 : one_if28;
+    bool beyond14 = (ell_t14 > 0.0 ? outside14 : inside14) > 0.5;
     UNITPACK_PRECISE float lo18 = beyond14 ? mid14 : lo17;
-    UNITPACK_PRECISE float hi18 = beyond14 ? hi17 : mid14 - 1.0;
+    UNITPACK_PRECISE float hi18 = beyond14 ? hi17 : mid_below14;
     UNITPACK_PRECISE float mid15 = floor((lo18 + hi18 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t15 = (mid15 - 1.0 - 32767.0) * 2.0;
+    UNITPACK_PRECISE float mid_below15 = mid15 - 1.0;
+    UNITPACK_PRECISE float ell_t15 = (mid_below15 - 32767.0) * 2.0;
     UNITPACK_PRECISE float ell_h15 = floor(ell_t15 * ell_t15);
     UNITPACK_PRECISE float ell_g15 = 8589672400.0 - ell_h15;
     UNITPACK_PRECISE float ell_p15 = w2.x * w2.x * ell_g15;
@@ -550,20 +586,22 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent43 = floatBitsToUint(ell_p15 >= ell_q15 ? ell_p15 : ell_q15) >> 23u;
     uint exponent44 = exponent43 < 40u ? 40u : exponent43;
     uint exponent45 = 254u < exponent44 ? 254u : exponent44;
-    UNITPACK_PRECISE float t48 = uintBitsToFloat((281u - exponent45) << 23u);
-    UNITPACK_PRECISE float ell_s15 = (floor(ell_p15 * t48) + floor(ell_q15 * t48))
-        * uintBitsToFloat((exponent45 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs15 = ell_s15 * t16 * t16 * 0.00024413317;
+    UNITPACK_PRECISE float scale16 = uintBitsToFloat((281u - exponent45) << 23u);
+    UNITPACK_PRECISE float back15 = uintBitsToFloat((exponent45 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s15 = (floor(ell_p15 * scale16) + floor(ell_q15 * scale16)) * back15;
+    UNITPACK_PRECISE float lhs15 = ell_s15 * t15 * t15 * 0.00024413317;
     UNITPACK_PRECISE float rhs15 = ell_h15 * ell_g15 * rho2_2;
-    UNITPACK_PRECISE float t49 = ell_t15 > 0.0
-        ? (w2.x > 0.0 ? (lhs15 >= rhs15 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs15 <= rhs15 ? 1.0 : 0.0));
-    bool beyond15 = t49 > 0.5;
-    bool t50 = w2.y >= 0.0;
-    UNITPACK_PRECISE float t51 = t50 ? 16384.0 : 0.0;
-    UNITPACK_PRECISE float t52 = t50 ? 32767.0 : 16383.0;
-    UNITPACK_PRECISE float mid16 = floor((t51 + t52 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t16 = (mid16 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float one_if29 = lhs15 >= rhs15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside15 = w2.x > 0.0 ? one_if29 : 0.0;
+    UNITPACK_PRECISE float one_if30 = lhs15 <= rhs15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside15 = w2.x >= 0.0 ? 1.0 : one_if30;
+    bool beyond15 = (ell_t15 > 0.0 ? outside15 : inside15) > 0.5;
+    bool t19 = w2.y >= 0.0;
+    UNITPACK_PRECISE float t20 = t19 ? 16384.0 : 0.0;
+    UNITPACK_PRECISE float t21 = t19 ? 32767.0 : 16383.0;
+    UNITPACK_PRECISE float mid16 = floor((t20 + t21 + 1.0) * 0.5);
+    UNITPACK_PRECISE float mid_below16 = mid16 - 1.0;
+    UNITPACK_PRECISE float ell_t16 = (mid_below16 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h16 = floor(ell_t16 * ell_t16);
     UNITPACK_PRECISE float ell_g16 = 2147352600.0 - ell_h16;
     UNITPACK_PRECISE float ell_p16 = w2.y * w2.y * ell_g16;
@@ -571,19 +609,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent46 = floatBitsToUint(ell_p16 >= ell_q16 ? ell_p16 : ell_q16) >> 23u;
     uint exponent47 = exponent46 < 40u ? 40u : exponent46;
     uint exponent48 = 254u < exponent47 ? 254u : exponent47;
-    UNITPACK_PRECISE float t53 = uintBitsToFloat((281u - exponent48) << 23u);
-    UNITPACK_PRECISE float ell_s16 = (floor(ell_p16 * t53) + floor(ell_q16 * t53))
-        * uintBitsToFloat((exponent48 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs16 = ell_s16 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale17 = uintBitsToFloat((281u - exponent48) << 23u);
+    UNITPACK_PRECISE float back16 = uintBitsToFloat((exponent48 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s16 = (floor(ell_p16 * scale17) + floor(ell_q16 * scale17)) * back16;
+    UNITPACK_PRECISE float lhs16 = ell_s16 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs16 = ell_h16 * ell_g16 * rho2_2;
-    UNITPACK_PRECISE float t54 = ell_t16 > 0.0
-        ? (w2.y > 0.0 ? (lhs16 >= rhs16 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs16 <= rhs16 ? 1.0 : 0.0));
-    bool beyond16 = t54 > 0.5;
-    UNITPACK_PRECISE float lo19 = beyond16 ? mid16 : t51;
-    UNITPACK_PRECISE float hi19 = beyond16 ? t52 : mid16 - 1.0;
+    UNITPACK_PRECISE float one_if31 = lhs16 >= rhs16 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside16 = w2.y > 0.0 ? one_if31 : 0.0;
+    UNITPACK_PRECISE float one_if32 = lhs16 <= rhs16 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside16 = w2.y >= 0.0 ? 1.0 : one_if32;
+    bool beyond16 = (ell_t16 > 0.0 ? outside16 : inside16) > 0.5;
+    UNITPACK_PRECISE float lo19 = beyond16 ? mid16 : t20;
+    UNITPACK_PRECISE float hi19 = beyond16 ? t21 : mid_below16;
     UNITPACK_PRECISE float mid17 = floor((lo19 + hi19 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t17 = (mid17 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below17 = mid17 - 1.0;
+    UNITPACK_PRECISE float ell_t17 = (mid_below17 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h17 = floor(ell_t17 * ell_t17);
     UNITPACK_PRECISE float ell_g17 = 2147352600.0 - ell_h17;
     UNITPACK_PRECISE float ell_p17 = w2.y * w2.y * ell_g17;
@@ -591,19 +631,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent49 = floatBitsToUint(ell_p17 >= ell_q17 ? ell_p17 : ell_q17) >> 23u;
     uint exponent50 = exponent49 < 40u ? 40u : exponent49;
     uint exponent51 = 254u < exponent50 ? 254u : exponent50;
-    UNITPACK_PRECISE float t55 = uintBitsToFloat((281u - exponent51) << 23u);
-    UNITPACK_PRECISE float ell_s17 = (floor(ell_p17 * t55) + floor(ell_q17 * t55))
-        * uintBitsToFloat((exponent51 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs17 = ell_s17 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale18 = uintBitsToFloat((281u - exponent51) << 23u);
+    UNITPACK_PRECISE float back17 = uintBitsToFloat((exponent51 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s17 = (floor(ell_p17 * scale18) + floor(ell_q17 * scale18)) * back17;
+    UNITPACK_PRECISE float lhs17 = ell_s17 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs17 = ell_h17 * ell_g17 * rho2_2;
-    UNITPACK_PRECISE float t56 = ell_t17 > 0.0
-        ? (w2.y > 0.0 ? (lhs17 >= rhs17 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs17 <= rhs17 ? 1.0 : 0.0));
-    bool beyond17 = t56 > 0.5;
+    UNITPACK_PRECISE float one_if33 = lhs17 >= rhs17 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside17 = w2.y > 0.0 ? one_if33 : 0.0;
+    UNITPACK_PRECISE float one_if34 = lhs17 <= rhs17 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside17 = w2.y >= 0.0 ? 1.0 : one_if34;
+    bool beyond17 = (ell_t17 > 0.0 ? outside17 : inside17) > 0.5;
     UNITPACK_PRECISE float lo20 = beyond17 ? mid17 : lo19;
-    UNITPACK_PRECISE float hi20 = beyond17 ? hi19 : mid17 - 1.0;
+    UNITPACK_PRECISE float hi20 = beyond17 ? hi19 : mid_below17;
     UNITPACK_PRECISE float mid18 = floor((lo20 + hi20 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t18 = (mid18 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below18 = mid18 - 1.0;
+    UNITPACK_PRECISE float ell_t18 = (mid_below18 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h18 = floor(ell_t18 * ell_t18);
     UNITPACK_PRECISE float ell_g18 = 2147352600.0 - ell_h18;
     UNITPACK_PRECISE float ell_p18 = w2.y * w2.y * ell_g18;
@@ -611,19 +653,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent52 = floatBitsToUint(ell_p18 >= ell_q18 ? ell_p18 : ell_q18) >> 23u;
     uint exponent53 = exponent52 < 40u ? 40u : exponent52;
     uint exponent54 = 254u < exponent53 ? 254u : exponent53;
-    UNITPACK_PRECISE float t57 = uintBitsToFloat((281u - exponent54) << 23u);
-    UNITPACK_PRECISE float ell_s18 = (floor(ell_p18 * t57) + floor(ell_q18 * t57))
-        * uintBitsToFloat((exponent54 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs18 = ell_s18 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale19 = uintBitsToFloat((281u - exponent54) << 23u);
+    UNITPACK_PRECISE float back18 = uintBitsToFloat((exponent54 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s18 = (floor(ell_p18 * scale19) + floor(ell_q18 * scale19)) * back18;
+    UNITPACK_PRECISE float lhs18 = ell_s18 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs18 = ell_h18 * ell_g18 * rho2_2;
-    UNITPACK_PRECISE float t58 = ell_t18 > 0.0
-        ? (w2.y > 0.0 ? (lhs18 >= rhs18 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs18 <= rhs18 ? 1.0 : 0.0));
-    bool beyond18 = t58 > 0.5;
+    UNITPACK_PRECISE float one_if35 = lhs18 >= rhs18 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside18 = w2.y > 0.0 ? one_if35 : 0.0;
+    UNITPACK_PRECISE float one_if36 = lhs18 <= rhs18 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside18 = w2.y >= 0.0 ? 1.0 : one_if36;
+    bool beyond18 = (ell_t18 > 0.0 ? outside18 : inside18) > 0.5;
     UNITPACK_PRECISE float lo21 = beyond18 ? mid18 : lo20;
-    UNITPACK_PRECISE float hi21 = beyond18 ? hi20 : mid18 - 1.0;
+    UNITPACK_PRECISE float hi21 = beyond18 ? hi20 : mid_below18;
     UNITPACK_PRECISE float mid19 = floor((lo21 + hi21 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t19 = (mid19 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below19 = mid19 - 1.0;
+    UNITPACK_PRECISE float ell_t19 = (mid_below19 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h19 = floor(ell_t19 * ell_t19);
     UNITPACK_PRECISE float ell_g19 = 2147352600.0 - ell_h19;
     UNITPACK_PRECISE float ell_p19 = w2.y * w2.y * ell_g19;
@@ -631,19 +675,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent55 = floatBitsToUint(ell_p19 >= ell_q19 ? ell_p19 : ell_q19) >> 23u;
     uint exponent56 = exponent55 < 40u ? 40u : exponent55;
     uint exponent57 = 254u < exponent56 ? 254u : exponent56;
-    UNITPACK_PRECISE float t59 = uintBitsToFloat((281u - exponent57) << 23u);
-    UNITPACK_PRECISE float ell_s19 = (floor(ell_p19 * t59) + floor(ell_q19 * t59))
-        * uintBitsToFloat((exponent57 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs19 = ell_s19 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale20 = uintBitsToFloat((281u - exponent57) << 23u);
+    UNITPACK_PRECISE float back19 = uintBitsToFloat((exponent57 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s19 = (floor(ell_p19 * scale20) + floor(ell_q19 * scale20)) * back19;
+    UNITPACK_PRECISE float lhs19 = ell_s19 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs19 = ell_h19 * ell_g19 * rho2_2;
-    UNITPACK_PRECISE float t60 = ell_t19 > 0.0
-        ? (w2.y > 0.0 ? (lhs19 >= rhs19 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs19 <= rhs19 ? 1.0 : 0.0));
-    bool beyond19 = t60 > 0.5;
+    UNITPACK_PRECISE float one_if37 = lhs19 >= rhs19 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside19 = w2.y > 0.0 ? one_if37 : 0.0;
+    UNITPACK_PRECISE float one_if38 = lhs19 <= rhs19 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside19 = w2.y >= 0.0 ? 1.0 : one_if38;
+    bool beyond19 = (ell_t19 > 0.0 ? outside19 : inside19) > 0.5;
     UNITPACK_PRECISE float lo22 = beyond19 ? mid19 : lo21;
-    UNITPACK_PRECISE float hi22 = beyond19 ? hi21 : mid19 - 1.0;
+    UNITPACK_PRECISE float hi22 = beyond19 ? hi21 : mid_below19;
     UNITPACK_PRECISE float mid20 = floor((lo22 + hi22 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t20 = (mid20 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below20 = mid20 - 1.0;
+    UNITPACK_PRECISE float ell_t20 = (mid_below20 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h20 = floor(ell_t20 * ell_t20);
     UNITPACK_PRECISE float ell_g20 = 2147352600.0 - ell_h20;
     UNITPACK_PRECISE float ell_p20 = w2.y * w2.y * ell_g20;
@@ -651,19 +697,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent58 = floatBitsToUint(ell_p20 >= ell_q20 ? ell_p20 : ell_q20) >> 23u;
     uint exponent59 = exponent58 < 40u ? 40u : exponent58;
     uint exponent60 = 254u < exponent59 ? 254u : exponent59;
-    UNITPACK_PRECISE float t61 = uintBitsToFloat((281u - exponent60) << 23u);
-    UNITPACK_PRECISE float ell_s20 = (floor(ell_p20 * t61) + floor(ell_q20 * t61))
-        * uintBitsToFloat((exponent60 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs20 = ell_s20 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale21 = uintBitsToFloat((281u - exponent60) << 23u);
+    UNITPACK_PRECISE float back20 = uintBitsToFloat((exponent60 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s20 = (floor(ell_p20 * scale21) + floor(ell_q20 * scale21)) * back20;
+    UNITPACK_PRECISE float lhs20 = ell_s20 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs20 = ell_h20 * ell_g20 * rho2_2;
-    UNITPACK_PRECISE float t62 = ell_t20 > 0.0
-        ? (w2.y > 0.0 ? (lhs20 >= rhs20 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs20 <= rhs20 ? 1.0 : 0.0));
-    bool beyond20 = t62 > 0.5;
+    UNITPACK_PRECISE float one_if39 = lhs20 >= rhs20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside20 = w2.y > 0.0 ? one_if39 : 0.0;
+    UNITPACK_PRECISE float one_if40 = lhs20 <= rhs20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside20 = w2.y >= 0.0 ? 1.0 : one_if40;
+    bool beyond20 = (ell_t20 > 0.0 ? outside20 : inside20) > 0.5;
     UNITPACK_PRECISE float lo23 = beyond20 ? mid20 : lo22;
-    UNITPACK_PRECISE float hi23 = beyond20 ? hi22 : mid20 - 1.0;
+    UNITPACK_PRECISE float hi23 = beyond20 ? hi22 : mid_below20;
     UNITPACK_PRECISE float mid21 = floor((lo23 + hi23 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t21 = (mid21 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below21 = mid21 - 1.0;
+    UNITPACK_PRECISE float ell_t21 = (mid_below21 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h21 = floor(ell_t21 * ell_t21);
     UNITPACK_PRECISE float ell_g21 = 2147352600.0 - ell_h21;
     UNITPACK_PRECISE float ell_p21 = w2.y * w2.y * ell_g21;
@@ -671,19 +719,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent61 = floatBitsToUint(ell_p21 >= ell_q21 ? ell_p21 : ell_q21) >> 23u;
     uint exponent62 = exponent61 < 40u ? 40u : exponent61;
     uint exponent63 = 254u < exponent62 ? 254u : exponent62;
-    UNITPACK_PRECISE float t63 = uintBitsToFloat((281u - exponent63) << 23u);
-    UNITPACK_PRECISE float ell_s21 = (floor(ell_p21 * t63) + floor(ell_q21 * t63))
-        * uintBitsToFloat((exponent63 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs21 = ell_s21 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale22 = uintBitsToFloat((281u - exponent63) << 23u);
+    UNITPACK_PRECISE float back21 = uintBitsToFloat((exponent63 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s21 = (floor(ell_p21 * scale22) + floor(ell_q21 * scale22)) * back21;
+    UNITPACK_PRECISE float lhs21 = ell_s21 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs21 = ell_h21 * ell_g21 * rho2_2;
-    UNITPACK_PRECISE float t64 = ell_t21 > 0.0
-        ? (w2.y > 0.0 ? (lhs21 >= rhs21 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs21 <= rhs21 ? 1.0 : 0.0));
-    bool beyond21 = t64 > 0.5;
+    UNITPACK_PRECISE float one_if41 = lhs21 >= rhs21 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside21 = w2.y > 0.0 ? one_if41 : 0.0;
+    UNITPACK_PRECISE float one_if42 = lhs21 <= rhs21 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside21 = w2.y >= 0.0 ? 1.0 : one_if42;
+    bool beyond21 = (ell_t21 > 0.0 ? outside21 : inside21) > 0.5;
     UNITPACK_PRECISE float lo24 = beyond21 ? mid21 : lo23;
-    UNITPACK_PRECISE float hi24 = beyond21 ? hi23 : mid21 - 1.0;
+    UNITPACK_PRECISE float hi24 = beyond21 ? hi23 : mid_below21;
     UNITPACK_PRECISE float mid22 = floor((lo24 + hi24 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t22 = (mid22 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below22 = mid22 - 1.0;
+    UNITPACK_PRECISE float ell_t22 = (mid_below22 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h22 = floor(ell_t22 * ell_t22);
     UNITPACK_PRECISE float ell_g22 = 2147352600.0 - ell_h22;
     UNITPACK_PRECISE float ell_p22 = w2.y * w2.y * ell_g22;
@@ -691,19 +741,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent64 = floatBitsToUint(ell_p22 >= ell_q22 ? ell_p22 : ell_q22) >> 23u;
     uint exponent65 = exponent64 < 40u ? 40u : exponent64;
     uint exponent66 = 254u < exponent65 ? 254u : exponent65;
-    UNITPACK_PRECISE float t65 = uintBitsToFloat((281u - exponent66) << 23u);
-    UNITPACK_PRECISE float ell_s22 = (floor(ell_p22 * t65) + floor(ell_q22 * t65))
-        * uintBitsToFloat((exponent66 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs22 = ell_s22 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale23 = uintBitsToFloat((281u - exponent66) << 23u);
+    UNITPACK_PRECISE float back22 = uintBitsToFloat((exponent66 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s22 = (floor(ell_p22 * scale23) + floor(ell_q22 * scale23)) * back22;
+    UNITPACK_PRECISE float lhs22 = ell_s22 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs22 = ell_h22 * ell_g22 * rho2_2;
-    UNITPACK_PRECISE float t66 = ell_t22 > 0.0
-        ? (w2.y > 0.0 ? (lhs22 >= rhs22 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs22 <= rhs22 ? 1.0 : 0.0));
-    bool beyond22 = t66 > 0.5;
+    UNITPACK_PRECISE float one_if43 = lhs22 >= rhs22 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside22 = w2.y > 0.0 ? one_if43 : 0.0;
+    UNITPACK_PRECISE float one_if44 = lhs22 <= rhs22 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside22 = w2.y >= 0.0 ? 1.0 : one_if44;
+    bool beyond22 = (ell_t22 > 0.0 ? outside22 : inside22) > 0.5;
     UNITPACK_PRECISE float lo25 = beyond22 ? mid22 : lo24;
-    UNITPACK_PRECISE float hi25 = beyond22 ? hi24 : mid22 - 1.0;
+    UNITPACK_PRECISE float hi25 = beyond22 ? hi24 : mid_below22;
     UNITPACK_PRECISE float mid23 = floor((lo25 + hi25 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t23 = (mid23 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below23 = mid23 - 1.0;
+    UNITPACK_PRECISE float ell_t23 = (mid_below23 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h23 = floor(ell_t23 * ell_t23);
     UNITPACK_PRECISE float ell_g23 = 2147352600.0 - ell_h23;
     UNITPACK_PRECISE float ell_p23 = w2.y * w2.y * ell_g23;
@@ -711,19 +763,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent67 = floatBitsToUint(ell_p23 >= ell_q23 ? ell_p23 : ell_q23) >> 23u;
     uint exponent68 = exponent67 < 40u ? 40u : exponent67;
     uint exponent69 = 254u < exponent68 ? 254u : exponent68;
-    UNITPACK_PRECISE float t67 = uintBitsToFloat((281u - exponent69) << 23u);
-    UNITPACK_PRECISE float ell_s23 = (floor(ell_p23 * t67) + floor(ell_q23 * t67))
-        * uintBitsToFloat((exponent69 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs23 = ell_s23 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale24 = uintBitsToFloat((281u - exponent69) << 23u);
+    UNITPACK_PRECISE float back23 = uintBitsToFloat((exponent69 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s23 = (floor(ell_p23 * scale24) + floor(ell_q23 * scale24)) * back23;
+    UNITPACK_PRECISE float lhs23 = ell_s23 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs23 = ell_h23 * ell_g23 * rho2_2;
-    UNITPACK_PRECISE float t68 = ell_t23 > 0.0
-        ? (w2.y > 0.0 ? (lhs23 >= rhs23 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs23 <= rhs23 ? 1.0 : 0.0));
-    bool beyond23 = t68 > 0.5;
+    UNITPACK_PRECISE float one_if45 = lhs23 >= rhs23 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside23 = w2.y > 0.0 ? one_if45 : 0.0;
+    UNITPACK_PRECISE float one_if46 = lhs23 <= rhs23 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside23 = w2.y >= 0.0 ? 1.0 : one_if46;
+    bool beyond23 = (ell_t23 > 0.0 ? outside23 : inside23) > 0.5;
     UNITPACK_PRECISE float lo26 = beyond23 ? mid23 : lo25;
-    UNITPACK_PRECISE float hi26 = beyond23 ? hi25 : mid23 - 1.0;
+    UNITPACK_PRECISE float hi26 = beyond23 ? hi25 : mid_below23;
     UNITPACK_PRECISE float mid24 = floor((lo26 + hi26 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t24 = (mid24 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below24 = mid24 - 1.0;
+    UNITPACK_PRECISE float ell_t24 = (mid_below24 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h24 = floor(ell_t24 * ell_t24);
     UNITPACK_PRECISE float ell_g24 = 2147352600.0 - ell_h24;
     UNITPACK_PRECISE float ell_p24 = w2.y * w2.y * ell_g24;
@@ -731,19 +785,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent70 = floatBitsToUint(ell_p24 >= ell_q24 ? ell_p24 : ell_q24) >> 23u;
     uint exponent71 = exponent70 < 40u ? 40u : exponent70;
     uint exponent72 = 254u < exponent71 ? 254u : exponent71;
-    UNITPACK_PRECISE float t69 = uintBitsToFloat((281u - exponent72) << 23u);
-    UNITPACK_PRECISE float ell_s24 = (floor(ell_p24 * t69) + floor(ell_q24 * t69))
-        * uintBitsToFloat((exponent72 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs24 = ell_s24 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale25 = uintBitsToFloat((281u - exponent72) << 23u);
+    UNITPACK_PRECISE float back24 = uintBitsToFloat((exponent72 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s24 = (floor(ell_p24 * scale25) + floor(ell_q24 * scale25)) * back24;
+    UNITPACK_PRECISE float lhs24 = ell_s24 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs24 = ell_h24 * ell_g24 * rho2_2;
-    UNITPACK_PRECISE float t70 = ell_t24 > 0.0
-        ? (w2.y > 0.0 ? (lhs24 >= rhs24 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs24 <= rhs24 ? 1.0 : 0.0));
-    bool beyond24 = t70 > 0.5;
+    UNITPACK_PRECISE float one_if47 = lhs24 >= rhs24 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside24 = w2.y > 0.0 ? one_if47 : 0.0;
+    UNITPACK_PRECISE float one_if48 = lhs24 <= rhs24 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside24 = w2.y >= 0.0 ? 1.0 : one_if48;
+    bool beyond24 = (ell_t24 > 0.0 ? outside24 : inside24) > 0.5;
     UNITPACK_PRECISE float lo27 = beyond24 ? mid24 : lo26;
-    UNITPACK_PRECISE float hi27 = beyond24 ? hi26 : mid24 - 1.0;
+    UNITPACK_PRECISE float hi27 = beyond24 ? hi26 : mid_below24;
     UNITPACK_PRECISE float mid25 = floor((lo27 + hi27 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t25 = (mid25 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below25 = mid25 - 1.0;
+    UNITPACK_PRECISE float ell_t25 = (mid_below25 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h25 = floor(ell_t25 * ell_t25);
     UNITPACK_PRECISE float ell_g25 = 2147352600.0 - ell_h25;
     UNITPACK_PRECISE float ell_p25 = w2.y * w2.y * ell_g25;
@@ -751,19 +807,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent73 = floatBitsToUint(ell_p25 >= ell_q25 ? ell_p25 : ell_q25) >> 23u;
     uint exponent74 = exponent73 < 40u ? 40u : exponent73;
     uint exponent75 = 254u < exponent74 ? 254u : exponent74;
-    UNITPACK_PRECISE float t71 = uintBitsToFloat((281u - exponent75) << 23u);
-    UNITPACK_PRECISE float ell_s25 = (floor(ell_p25 * t71) + floor(ell_q25 * t71))
-        * uintBitsToFloat((exponent75 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs25 = ell_s25 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale26 = uintBitsToFloat((281u - exponent75) << 23u);
+    UNITPACK_PRECISE float back25 = uintBitsToFloat((exponent75 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s25 = (floor(ell_p25 * scale26) + floor(ell_q25 * scale26)) * back25;
+    UNITPACK_PRECISE float lhs25 = ell_s25 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs25 = ell_h25 * ell_g25 * rho2_2;
-    UNITPACK_PRECISE float t72 = ell_t25 > 0.0
-        ? (w2.y > 0.0 ? (lhs25 >= rhs25 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs25 <= rhs25 ? 1.0 : 0.0));
-    bool beyond25 = t72 > 0.5;
+    UNITPACK_PRECISE float one_if49 = lhs25 >= rhs25 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside25 = w2.y > 0.0 ? one_if49 : 0.0;
+    UNITPACK_PRECISE float one_if50 = lhs25 <= rhs25 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside25 = w2.y >= 0.0 ? 1.0 : one_if50;
+    bool beyond25 = (ell_t25 > 0.0 ? outside25 : inside25) > 0.5;
     UNITPACK_PRECISE float lo28 = beyond25 ? mid25 : lo27;
-    UNITPACK_PRECISE float hi28 = beyond25 ? hi27 : mid25 - 1.0;
+    UNITPACK_PRECISE float hi28 = beyond25 ? hi27 : mid_below25;
     UNITPACK_PRECISE float mid26 = floor((lo28 + hi28 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t26 = (mid26 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below26 = mid26 - 1.0;
+    UNITPACK_PRECISE float ell_t26 = (mid_below26 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h26 = floor(ell_t26 * ell_t26);
     UNITPACK_PRECISE float ell_g26 = 2147352600.0 - ell_h26;
     UNITPACK_PRECISE float ell_p26 = w2.y * w2.y * ell_g26;
@@ -771,19 +829,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent76 = floatBitsToUint(ell_p26 >= ell_q26 ? ell_p26 : ell_q26) >> 23u;
     uint exponent77 = exponent76 < 40u ? 40u : exponent76;
     uint exponent78 = 254u < exponent77 ? 254u : exponent77;
-    UNITPACK_PRECISE float t73 = uintBitsToFloat((281u - exponent78) << 23u);
-    UNITPACK_PRECISE float ell_s26 = (floor(ell_p26 * t73) + floor(ell_q26 * t73))
-        * uintBitsToFloat((exponent78 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs26 = ell_s26 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale27 = uintBitsToFloat((281u - exponent78) << 23u);
+    UNITPACK_PRECISE float back26 = uintBitsToFloat((exponent78 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s26 = (floor(ell_p26 * scale27) + floor(ell_q26 * scale27)) * back26;
+    UNITPACK_PRECISE float lhs26 = ell_s26 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs26 = ell_h26 * ell_g26 * rho2_2;
-    UNITPACK_PRECISE float t74 = ell_t26 > 0.0
-        ? (w2.y > 0.0 ? (lhs26 >= rhs26 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs26 <= rhs26 ? 1.0 : 0.0));
-    bool beyond26 = t74 > 0.5;
+    UNITPACK_PRECISE float one_if51 = lhs26 >= rhs26 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside26 = w2.y > 0.0 ? one_if51 : 0.0;
+    UNITPACK_PRECISE float one_if52 = lhs26 <= rhs26 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside26 = w2.y >= 0.0 ? 1.0 : one_if52;
+    bool beyond26 = (ell_t26 > 0.0 ? outside26 : inside26) > 0.5;
     UNITPACK_PRECISE float lo29 = beyond26 ? mid26 : lo28;
-    UNITPACK_PRECISE float hi29 = beyond26 ? hi28 : mid26 - 1.0;
+    UNITPACK_PRECISE float hi29 = beyond26 ? hi28 : mid_below26;
     UNITPACK_PRECISE float mid27 = floor((lo29 + hi29 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t27 = (mid27 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below27 = mid27 - 1.0;
+    UNITPACK_PRECISE float ell_t27 = (mid_below27 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h27 = floor(ell_t27 * ell_t27);
     UNITPACK_PRECISE float ell_g27 = 2147352600.0 - ell_h27;
     UNITPACK_PRECISE float ell_p27 = w2.y * w2.y * ell_g27;
@@ -791,19 +851,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent79 = floatBitsToUint(ell_p27 >= ell_q27 ? ell_p27 : ell_q27) >> 23u;
     uint exponent80 = exponent79 < 40u ? 40u : exponent79;
     uint exponent81 = 254u < exponent80 ? 254u : exponent80;
-    UNITPACK_PRECISE float t75 = uintBitsToFloat((281u - exponent81) << 23u);
-    UNITPACK_PRECISE float ell_s27 = (floor(ell_p27 * t75) + floor(ell_q27 * t75))
-        * uintBitsToFloat((exponent81 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs27 = ell_s27 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale28 = uintBitsToFloat((281u - exponent81) << 23u);
+    UNITPACK_PRECISE float back27 = uintBitsToFloat((exponent81 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s27 = (floor(ell_p27 * scale28) + floor(ell_q27 * scale28)) * back27;
+    UNITPACK_PRECISE float lhs27 = ell_s27 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs27 = ell_h27 * ell_g27 * rho2_2;
-    UNITPACK_PRECISE float t76 = ell_t27 > 0.0
-        ? (w2.y > 0.0 ? (lhs27 >= rhs27 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs27 <= rhs27 ? 1.0 : 0.0));
-    bool beyond27 = t76 > 0.5;
+    UNITPACK_PRECISE float one_if53 = lhs27 >= rhs27 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside27 = w2.y > 0.0 ? one_if53 : 0.0;
+    UNITPACK_PRECISE float one_if54 = lhs27 <= rhs27 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside27 = w2.y >= 0.0 ? 1.0 : one_if54;
+    bool beyond27 = (ell_t27 > 0.0 ? outside27 : inside27) > 0.5;
     UNITPACK_PRECISE float lo30 = beyond27 ? mid27 : lo29;
-    UNITPACK_PRECISE float hi30 = beyond27 ? hi29 : mid27 - 1.0;
+    UNITPACK_PRECISE float hi30 = beyond27 ? hi29 : mid_below27;
     UNITPACK_PRECISE float mid28 = floor((lo30 + hi30 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t28 = (mid28 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below28 = mid28 - 1.0;
+    UNITPACK_PRECISE float ell_t28 = (mid_below28 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h28 = floor(ell_t28 * ell_t28);
     UNITPACK_PRECISE float ell_g28 = 2147352600.0 - ell_h28;
     UNITPACK_PRECISE float ell_p28 = w2.y * w2.y * ell_g28;
@@ -811,19 +873,21 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent82 = floatBitsToUint(ell_p28 >= ell_q28 ? ell_p28 : ell_q28) >> 23u;
     uint exponent83 = exponent82 < 40u ? 40u : exponent82;
     uint exponent84 = 254u < exponent83 ? 254u : exponent83;
-    UNITPACK_PRECISE float t77 = uintBitsToFloat((281u - exponent84) << 23u);
-    UNITPACK_PRECISE float ell_s28 = (floor(ell_p28 * t77) + floor(ell_q28 * t77))
-        * uintBitsToFloat((exponent84 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs28 = ell_s28 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale29 = uintBitsToFloat((281u - exponent84) << 23u);
+    UNITPACK_PRECISE float back28 = uintBitsToFloat((exponent84 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s28 = (floor(ell_p28 * scale29) + floor(ell_q28 * scale29)) * back28;
+    UNITPACK_PRECISE float lhs28 = ell_s28 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs28 = ell_h28 * ell_g28 * rho2_2;
-    UNITPACK_PRECISE float t78 = ell_t28 > 0.0
-        ? (w2.y > 0.0 ? (lhs28 >= rhs28 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs28 <= rhs28 ? 1.0 : 0.0));
-    bool beyond28 = t78 > 0.5;
+    UNITPACK_PRECISE float one_if55 = lhs28 >= rhs28 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside28 = w2.y > 0.0 ? one_if55 : 0.0;
+    UNITPACK_PRECISE float one_if56 = lhs28 <= rhs28 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside28 = w2.y >= 0.0 ? 1.0 : one_if56;
+    bool beyond28 = (ell_t28 > 0.0 ? outside28 : inside28) > 0.5;
     UNITPACK_PRECISE float lo31 = beyond28 ? mid28 : lo30;
-    UNITPACK_PRECISE float hi31 = beyond28 ? hi30 : mid28 - 1.0;
+    UNITPACK_PRECISE float hi31 = beyond28 ? hi30 : mid_below28;
     UNITPACK_PRECISE float mid29 = floor((lo31 + hi31 + 1.0) * 0.5);
-    UNITPACK_PRECISE float ell_t29 = (mid29 - 1.0 - 16383.0) * 2.0;
+    UNITPACK_PRECISE float mid_below29 = mid29 - 1.0;
+    UNITPACK_PRECISE float ell_t29 = (mid_below29 - 16383.0) * 2.0;
     UNITPACK_PRECISE float ell_h29 = floor(ell_t29 * ell_t29);
     UNITPACK_PRECISE float ell_g29 = 2147352600.0 - ell_h29;
     UNITPACK_PRECISE float ell_p29 = w2.y * w2.y * ell_g29;
@@ -831,15 +895,16 @@ vec3 unitpack_eqdist_ellipse32_round_codes(vec3 a0) {
     uint exponent85 = floatBitsToUint(ell_p29 >= ell_q29 ? ell_p29 : ell_q29) >> 23u;
     uint exponent86 = exponent85 < 40u ? 40u : exponent85;
     uint exponent87 = 254u < exponent86 ? 254u : exponent86;
-    UNITPACK_PRECISE float t79 = uintBitsToFloat((281u - exponent87) << 23u);
-    UNITPACK_PRECISE float ell_s29 = (floor(ell_p29 * t79) + floor(ell_q29 * t79))
-        * uintBitsToFloat((exponent87 - 27u) << 23u);
-    UNITPACK_PRECISE float lhs29 = ell_s29 * t16 * t16 * 6.103143e-5;
+    UNITPACK_PRECISE float scale30 = uintBitsToFloat((281u - exponent87) << 23u);
+    UNITPACK_PRECISE float back29 = uintBitsToFloat((exponent87 - 27u) << 23u);
+    UNITPACK_PRECISE float ell_s29 = (floor(ell_p29 * scale30) + floor(ell_q29 * scale30)) * back29;
+    UNITPACK_PRECISE float lhs29 = ell_s29 * t15 * t15 * 6.103143e-5;
     UNITPACK_PRECISE float rhs29 = ell_h29 * ell_g29 * rho2_2;
-    UNITPACK_PRECISE float t80 = ell_t29 > 0.0
-        ? (w2.y > 0.0 ? (lhs29 >= rhs29 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs29 <= rhs29 ? 1.0 : 0.0));
-    bool beyond29 = t80 > 0.5;
+    UNITPACK_PRECISE float one_if57 = lhs29 >= rhs29 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float outside29 = w2.y > 0.0 ? one_if57 : 0.0;
+    UNITPACK_PRECISE float one_if58 = lhs29 <= rhs29 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float inside29 = w2.y >= 0.0 ? 1.0 : one_if58;
+    bool beyond29 = (ell_t29 > 0.0 ? outside29 : inside29) > 0.5;
     return mix(
         vec3(lo18, lo31, 0.0),
         vec3(mid15, mid29, 1.0),

@@ -46,15 +46,14 @@ vec3 unitpack_float16x3_decode_float(vec3 params) {
     uvec3 t1 = floatBitsToUint(params) & uvec3(2147483647u);
     bvec3 t2 = lessThan(t1, uvec3(2139095040u));
     bvec3 t3 = lessThan(uvec3(0u), t1);
-    return t2.x && t2.y && t2.z && (t3.x || t3.y || t3.z) ? params : vec3(0.0, 0.0, 1.0);
+    bool t4 = t3.x || t3.y || t3.z;
+    return t2.x && t2.y && t2.z && t4 ? params : vec3(0.0, 0.0, 1.0);
 }
 
 // unitpack_float16x3_decode: decoder.
 // In: a packed code (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2 float16);
 //   other bits are ignored.
-// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
-//   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
-//   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
+// Out: as for unitpack_float16x3_decode_float.
 // Portable as unitpack_float16x3_decode_float is, within the same bound.
 vec3 unitpack_float16x3_decode(uvec2 code) {
     uint t1 = code.x & 65535u;
@@ -69,9 +68,10 @@ vec3 unitpack_float16x3_decode(uvec2 code) {
     uvec3 t10 = t9 + 939524096u;
     uvec3 t11 = uvec3(t6.x ? t8.x : t10.x, t6.y ? t8.y : t10.y, t6.z ? t8.z : t10.z);
     uvec3 t12 = t9 | uvec3(2139095040u);
-    uvec3 t13 = uvec3(t5.x ? t11.x : t12.x, t5.y ? t11.y : t12.y, t5.z ? t11.z : t12.z)
-        | uvec3((t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u);
-    UNITPACK_PRECISE vec3 params = uintBitsToFloat(t13);
+    uvec3 t13 = uvec3((t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u);
+    UNITPACK_PRECISE vec3 params = uintBitsToFloat(
+        uvec3(t5.x ? t11.x : t12.x, t5.y ? t11.y : t12.y, t5.z ? t11.z : t12.z) | t13
+    );
     return unitpack_float16x3_decode_float(params);
 }
 
@@ -86,12 +86,14 @@ vec3 unitpack_float16x3_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 result = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    return result;
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    return t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -108,7 +110,8 @@ vec3 unitpack_float16x3_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
     UNITPACK_PRECISE float split_lo = w.x - split_hi;
@@ -137,64 +140,69 @@ vec3 unitpack_float16x3_round_codes(vec3 a0) {
     UNITPACK_PRECISE float upper = half_code + 0.5;
     UNITPACK_PRECISE float lower = half_code - 0.5;
     UNITPACK_PRECISE float t3 = lower * lower * len2;
-    bool t4 = half_code > 0.0 && big2 < t3;
-    UNITPACK_PRECISE float t5 = half_code
-        + (big2 >= upper * upper * len2 ? 1.0 : (t4 ? -1.0 : 0.0));
-    bool t6 = w.x < 0.0 && t5 > 0.0;
+    bool t4 = big2 < t3;
+    bool t5 = half_code > 0.0 && t4;
+    UNITPACK_PRECISE float step_down = t5 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = big2 >= upper * upper * len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float t6 = half_code + step;
+    bool t7 = t6 > 0.0;
     UNITPACK_PRECISE float abs_w_y = abs(w.y);
     UNITPACK_PRECISE float half_estimate2 = abs_w_y / sqrt(len2);
     uint exponent4 = (floatBitsToUint(half_estimate2) & 2147483647u) >> 23u;
     uint exponent5 = exponent4 < 113u ? 113u : exponent4;
     uint exponent6 = 126u < exponent5 ? 126u : exponent5;
-    uint t7 = (264u - exponent6) << 23u;
-    UNITPACK_PRECISE float half_grid2 = uintBitsToFloat(t7);
+    uint t8 = (264u - exponent6) << 23u;
+    UNITPACK_PRECISE float half_grid2 = uintBitsToFloat(t8);
     UNITPACK_PRECISE float big3 = abs_w_y * half_grid2;
     UNITPACK_PRECISE float big2_2 = big3 * big3;
     UNITPACK_PRECISE float half_code2 = roundEven(half_estimate2 * half_grid2);
     UNITPACK_PRECISE float upper2 = half_code2 + 0.5;
     UNITPACK_PRECISE float lower2 = half_code2 - 0.5;
-    UNITPACK_PRECISE float t8 = lower2 * lower2 * len2;
-    bool t9 = half_code2 > 0.0 && big2_2 < t8;
-    UNITPACK_PRECISE float t10 = half_code2
-        + (big2_2 >= upper2 * upper2 * len2 ? 1.0 : (t9 ? -1.0 : 0.0));
-    bool t11 = w.y < 0.0 && t10 > 0.0;
+    UNITPACK_PRECISE float t9 = lower2 * lower2 * len2;
+    bool t10 = big2_2 < t9;
+    bool t11 = half_code2 > 0.0 && t10;
+    UNITPACK_PRECISE float step_down2 = t11 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t12 = half_code2 + step2;
+    bool t13 = t12 > 0.0;
     UNITPACK_PRECISE float abs_w_z = abs(w.z);
     UNITPACK_PRECISE float half_estimate3 = abs_w_z / sqrt(len2);
     uint exponent7 = (floatBitsToUint(half_estimate3) & 2147483647u) >> 23u;
     uint exponent8 = exponent7 < 113u ? 113u : exponent7;
     uint exponent9 = 126u < exponent8 ? 126u : exponent8;
-    uint t12 = (264u - exponent9) << 23u;
-    UNITPACK_PRECISE float half_grid3 = uintBitsToFloat(t12);
+    uint t14 = (264u - exponent9) << 23u;
+    UNITPACK_PRECISE float half_grid3 = uintBitsToFloat(t14);
     UNITPACK_PRECISE float big4 = abs_w_z * half_grid3;
     UNITPACK_PRECISE float big2_3 = big4 * big4;
     UNITPACK_PRECISE float half_code3 = roundEven(half_estimate3 * half_grid3);
     UNITPACK_PRECISE float upper3 = half_code3 + 0.5;
     UNITPACK_PRECISE float lower3 = half_code3 - 0.5;
-    UNITPACK_PRECISE float t13 = lower3 * lower3 * len2;
-    bool t14 = half_code3 > 0.0 && big2_3 < t13;
-    UNITPACK_PRECISE float t15 = half_code3
-        + (big2_3 >= upper3 * upper3 * len2 ? 1.0 : (t14 ? -1.0 : 0.0));
-    bool t16 = w.z < 0.0 && t15 > 0.0;
+    UNITPACK_PRECISE float t15 = lower3 * lower3 * len2;
+    bool t16 = big2_3 < t15;
+    bool t17 = half_code3 > 0.0 && t16;
+    UNITPACK_PRECISE float step_down3 = t17 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = big2_3 >= upper3 * upper3 * len2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float t18 = half_code3 + step3;
+    bool t19 = t18 > 0.0;
+    bvec3 t20 = bvec3(w.x < 0.0 && t7, w.y < 0.0 && t13, w.z < 0.0 && t19);
     UNITPACK_PRECISE vec3 abs_w = abs(w);
-    UNITPACK_PRECISE vec3 t17 = uintBitsToFloat(uvec3(t2, t7, t12));
-    UNITPACK_PRECISE vec3 t18 = roundEven(abs_w / sqrt(vec3(len2)) * t17);
-    UNITPACK_PRECISE vec3 t19 = abs_w * t17;
-    UNITPACK_PRECISE vec3 t20 = t18 + 0.5;
-    UNITPACK_PRECISE vec3 t21 = mix(
-        mix(vec3(0.0), vec3(-1.0), bvec3(t4, t9, t14)),
+    UNITPACK_PRECISE vec3 t21 = uintBitsToFloat(uvec3(t2, t8, t14));
+    UNITPACK_PRECISE vec3 t22 = roundEven(abs_w / sqrt(vec3(len2)) * t21);
+    UNITPACK_PRECISE vec3 t23 = abs_w * t21;
+    UNITPACK_PRECISE vec3 t24 = t22 + 0.5;
+    UNITPACK_PRECISE vec3 t25 = mix(
+        mix(vec3(0.0), vec3(-1.0), bvec3(t5, t11, t17)),
         vec3(1.0),
-        greaterThanEqual(t19 * t19, t20 * t20 * len2)
+        greaterThanEqual(t23 * t23, t24 * t24 * len2)
     );
-    uvec3 t22 = uvec3((exponent3 - 10u) << 23u, (exponent6 - 10u) << 23u, (exponent9 - 10u) << 23u);
-    UNITPACK_PRECISE vec3 t23 = (t18 + t21) * uintBitsToFloat(t22);
-    UNITPACK_PRECISE vec3 result = ok ? mix(t23, -t23, bvec3(t6, t11, t16)) : vec3(0.0, 0.0, 1.0);
-    return result;
+    uvec3 t26 = uvec3((exponent3 - 10u) << 23u, (exponent6 - 10u) << 23u, (exponent9 - 10u) << 23u);
+    UNITPACK_PRECISE vec3 t27 = (t22 + t25) * uintBitsToFloat(t26);
+    UNITPACK_PRECISE vec3 t28 = mix(t27, -t27, t20);
+    return ok ? t28 : vec3(0.0, 0.0, 1.0);
 }
 
 // unitpack_float16x3_encode: fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16
-//   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
-//   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
+// In: as for unitpack_float16x3_encode_float.
 // Out: the packed code, uvec2 (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2
 //   float16).
 // Portable (as the header says): the same code on every such implementation; denormal input
@@ -203,32 +211,33 @@ uvec2 unitpack_float16x3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 round_codes = unitpack_float16x3_round_codes(v);
     uint t1 = floatBitsToUint(round_codes.x);
     uint t2 = t1 & 2147483647u;
-    bool t3 = t2 < 947912704u;
-    uint t4 = t2 < 1199566848u
-        ? (t2 - 939524096u + 4095u + ((t2 >> 13u) & 1u)) >> 13u
-        : (2139095040u < t2 ? 32256u : 31744u);
-    UNITPACK_PRECISE float t5 = roundEven(uintBitsToFloat(t3 ? t2 : 0u) * 16777216.0);
-    uint t6 = (t3 ? uint(t5) : t4) | ((t1 >> 16u) & 32768u);
-    uint t7 = floatBitsToUint(round_codes.y);
-    uint t8 = t7 & 2147483647u;
-    bool t9 = t8 < 947912704u;
-    uint t10 = t8 < 1199566848u
-        ? (t8 - 939524096u + 4095u + ((t8 >> 13u) & 1u)) >> 13u
-        : (2139095040u < t8 ? 32256u : 31744u);
-    UNITPACK_PRECISE float t11 = roundEven(uintBitsToFloat(t9 ? t8 : 0u) * 16777216.0);
-    uint t12 = (t9 ? uint(t11) : t10) | ((t7 >> 16u) & 32768u);
-    uint t13 = floatBitsToUint(round_codes.z);
-    uint t14 = t13 & 2147483647u;
-    bool t15 = t14 < 947912704u;
-    uint t16 = t14 < 1199566848u
-        ? (t14 - 939524096u + 4095u + ((t14 >> 13u) & 1u)) >> 13u
-        : (2139095040u < t14 ? 32256u : 31744u);
-    UNITPACK_PRECISE float t17 = roundEven(uintBitsToFloat(t15 ? t14 : 0u) * 16777216.0);
-    uint t18 = (t15 ? uint(t17) : t16) | ((t13 >> 16u) & 32768u);
-    return uvec2(
-        ((t6 & 32767u) < 1u ? 0u : t6) | (((t12 & 32767u) < 1u ? 0u : t12) << 16u),
-        (t18 & 32767u) < 1u ? 0u : t18
-    );
+    uint t3 = (t2 - 939524096u + 4095u + ((t2 >> 13u) & 1u)) >> 13u;
+    bool t4 = t2 < 947912704u;
+    UNITPACK_PRECISE float t5 = roundEven(uintBitsToFloat(t4 ? t2 : 0u) * 16777216.0);
+    uint t5_u = uint(t5);
+    uint t6 = 2139095040u < t2 ? 32256u : 31744u;
+    uint t7 = t2 < 1199566848u ? t3 : t6;
+    uint t8 = (t4 ? t5_u : t7) | ((t1 >> 16u) & 32768u);
+    uint t9 = floatBitsToUint(round_codes.y);
+    uint t10 = t9 & 2147483647u;
+    uint t11 = (t10 - 939524096u + 4095u + ((t10 >> 13u) & 1u)) >> 13u;
+    bool t12 = t10 < 947912704u;
+    UNITPACK_PRECISE float t13 = roundEven(uintBitsToFloat(t12 ? t10 : 0u) * 16777216.0);
+    uint t13_u = uint(t13);
+    uint t14 = 2139095040u < t10 ? 32256u : 31744u;
+    uint t15 = t10 < 1199566848u ? t11 : t14;
+    uint t16 = (t12 ? t13_u : t15) | ((t9 >> 16u) & 32768u);
+    uint t17 = ((t8 & 32767u) < 1u ? 0u : t8) | (((t16 & 32767u) < 1u ? 0u : t16) << 16u);
+    uint t18 = floatBitsToUint(round_codes.z);
+    uint t19 = t18 & 2147483647u;
+    uint t20 = (t19 - 939524096u + 4095u + ((t19 >> 13u) & 1u)) >> 13u;
+    bool t21 = t19 < 947912704u;
+    UNITPACK_PRECISE float t22 = roundEven(uintBitsToFloat(t21 ? t19 : 0u) * 16777216.0);
+    uint t22_u = uint(t22);
+    uint t23 = 2139095040u < t19 ? 32256u : 31744u;
+    uint t24 = t19 < 1199566848u ? t20 : t23;
+    uint t25 = (t21 ? t22_u : t24) | ((t18 >> 16u) & 32768u);
+    return uvec2(t17, (t25 & 32767u) < 1u ? 0u : t25);
 }
 
 #endif // UNITPACK_FLOAT16X3_GLSL

@@ -46,28 +46,27 @@ vec3 unitpack_float32x3_decode_float(vec3 params) {
     uvec3 t1 = floatBitsToUint(params) & uvec3(2147483647u);
     bvec3 t2 = lessThan(t1, uvec3(2139095040u));
     bvec3 t3 = lessThan(uvec3(8388607u), t1);
-    return t2.x && t2.y && t2.z && (t3.x || t3.y || t3.z)
-        ? mix(vec3(0.0), params, t3)
-        : vec3(0.0, 0.0, 1.0);
+    bool t4 = t3.x || t3.y || t3.z;
+    UNITPACK_PRECISE vec3 t5 = mix(vec3(0.0), params, t3);
+    return t2.x && t2.y && t2.z && t4 ? t5 : vec3(0.0, 0.0, 1.0);
 }
 
 // unitpack_float32x3_decode: decoder.
 // In: a packed code (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2 bits 0–31: p2
 //   float32); other bits are ignored.
-// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
-//   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
-//   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
+// Out: as for unitpack_float32x3_decode_float.
 // Portable (as the header says): each output component equals what this function computes here, for
 //   every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack
 //   verify --portable prints it).
 vec3 unitpack_float32x3_decode(uvec3 code) {
     bvec3 t1 = lessThan(code & uvec3(2139095040u), uvec3(1u));
-    uvec3 t2 = uvec3(
-        t1.x ? (uvec3(0u)).x : code.x,
-        t1.y ? (uvec3(0u)).y : code.y,
-        t1.z ? (uvec3(0u)).z : code.z
+    UNITPACK_PRECISE vec3 params = uintBitsToFloat(
+        uvec3(
+            t1.x ? (uvec3(0u)).x : code.x,
+            t1.y ? (uvec3(0u)).y : code.y,
+            t1.z ? (uvec3(0u)).z : code.z
+        )
     );
-    UNITPACK_PRECISE vec3 params = uintBitsToFloat(t2);
     return unitpack_float32x3_decode_float(params);
 }
 
@@ -82,12 +81,14 @@ vec3 unitpack_float32x3_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 result = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    return result;
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    return t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -104,121 +105,130 @@ vec3 unitpack_float32x3_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = floor(abs(w2) * 2097152.0);
-    uvec3 t2 = uvec3(t1);
-    uint limb1 = t2.x >> 12u;
-    uint limb0 = t2.x & 4095u;
+    uvec3 t1_u = uvec3(t1);
+    uint limb1 = t1_u.x >> 12u;
+    uint limb0 = t1_u.x & 4095u;
     uint cross = limb1 * limb0;
     uint hi = 0u + limb1 * limb1 + (cross >> 11u);
     uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
-    uint limb1_2 = t2.y >> 12u;
-    uint limb0_2 = t2.y & 4095u;
+    uint limb1_2 = t1_u.y >> 12u;
+    uint limb0_2 = t1_u.y & 4095u;
     uint cross2 = limb1_2 * limb0_2;
     uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
     uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
-    uint limb1_3 = t2.z >> 12u;
-    uint limb0_3 = t2.z & 4095u;
+    uint limb1_3 = t1_u.z >> 12u;
+    uint limb0_3 = t1_u.z & 4095u;
     uint cross3 = limb1_3 * limb0_3;
     uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
     uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     uint hi4 = hi3 + (lo3 >> 24u);
     uint lo4 = lo3 & 16777215u;
-    UNITPACK_PRECISE float t3 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
-    UNITPACK_PRECISE float root_estimate = sqrt(t3);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float t2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= t3 ? 1.0 : (root_h0 * root_h0 > t3 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t3 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t3 ? 1.0 : (root_m0 * root_m0 > t3 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float length = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = length * 2097152.0;
-    uint t6 = uint(t5);
+    UNITPACK_PRECISE float t3 = length * 2097152.0;
+    uint t3_u = uint(t3);
     uint wide = (hi4 << 24u) + lo4;
-    uint rest = wide - t6 * t6 + 1073741824u;
-    uint n = 1073741824u + t6 < rest ? t6 + 1u : (rest < 1073741824u - t6 + 1u ? t6 - 1u : t6);
+    uint rest = wide - t3_u * t3_u + 1073741824u;
+    uint t4 = t3_u + 1u;
+    uint t5 = t3_u - 1u;
+    uint t6 = rest < 1073741824u - t3_u + 1u ? t5 : t3_u;
+    uint n = 1073741824u + t3_u < rest ? t4 : t6;
     uint rest2 = wide - n * n + 1073741824u;
-    uint n2 = 1073741824u + n < rest2 ? n + 1u : (rest2 < 1073741824u - n + 1u ? n - 1u : n);
+    uint t7 = n + 1u;
+    uint t8 = n - 1u;
+    uint t9 = rest2 < 1073741824u - n + 1u ? t8 : n;
+    uint n2 = 1073741824u + n < rest2 ? t7 : t9;
     UNITPACK_PRECISE float nf = float(n2);
-    UNITPACK_PRECISE float t7 = roundEven(float(t2.x) / nf * 16777216.0);
-    uint k0 = uint(t7);
-    uint r = (t2.x << 24u) - k0 * n2;
-    uint t8 = r << 1u;
-    uint t9 = n2 << 4u;
-    uint t = t8 + n2 + t9;
+    UNITPACK_PRECISE float t10 = roundEven(float(t1_u.x) / nf * 16777216.0);
+    uint k0 = uint(t10);
+    uint r = (t1_u.x << 24u) - k0 * n2;
+    uint t11 = r << 1u;
+    uint t12 = n2 << 4u;
+    uint t = t11 + n2 + t12;
     uint two_n = n2 << 1u;
-    uint t10 = t >> 12u;
-    UNITPACK_PRECISE float t11 = floor((float(t10) * 4096.0 + float(t & 4095u)) / (nf * 2.0));
-    uint q0 = uint(t11);
+    uint t13 = t >> 12u;
+    UNITPACK_PRECISE float t14 = (float(t13) * 4096.0 + float(t & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float floor_t14 = floor(t14);
+    uint q0 = uint(floor_t14);
     uint rest3 = t - q0 * two_n;
     bool negative = !(rest3 < 2147483648u);
-    UNITPACK_PRECISE float t12 = roundEven(float(t2.y) / nf * 16777216.0);
-    uint k0_2 = uint(t12);
-    uint r2 = (t2.y << 24u) - k0_2 * n2;
-    uint t13 = r2 << 1u;
-    uint t14 = n2 << 4u;
-    uint t15 = t13 + n2 + t14;
+    bool t15 = !negative;
+    UNITPACK_PRECISE float t16 = roundEven(float(t1_u.y) / nf * 16777216.0);
+    uint k0_2 = uint(t16);
+    uint r2 = (t1_u.y << 24u) - k0_2 * n2;
+    uint t17 = r2 << 1u;
+    uint t18 = n2 << 4u;
+    uint t19 = t17 + n2 + t18;
     uint two_n2 = n2 << 1u;
-    uint t16 = t15 >> 12u;
-    UNITPACK_PRECISE float t17 = floor((float(t16) * 4096.0 + float(t15 & 4095u)) / (nf * 2.0));
-    uint q0_2 = uint(t17);
-    uint rest4 = t15 - q0_2 * two_n2;
+    uint t20 = t19 >> 12u;
+    UNITPACK_PRECISE float t21 = (float(t20) * 4096.0 + float(t19 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float floor_t21 = floor(t21);
+    uint q0_2 = uint(floor_t21);
+    uint rest4 = t19 - q0_2 * two_n2;
     bool negative2 = !(rest4 < 2147483648u);
-    UNITPACK_PRECISE float t18 = roundEven(float(t2.z) / nf * 16777216.0);
-    uint k0_3 = uint(t18);
-    uint r3 = (t2.z << 24u) - k0_3 * n2;
-    uint t19 = r3 << 1u;
-    uint t20 = n2 << 4u;
-    uint t21 = t19 + n2 + t20;
+    bool t22 = !negative2;
+    UNITPACK_PRECISE float t23 = roundEven(float(t1_u.z) / nf * 16777216.0);
+    uint k0_3 = uint(t23);
+    uint r3 = (t1_u.z << 24u) - k0_3 * n2;
+    uint t24 = r3 << 1u;
+    uint t25 = n2 << 4u;
+    uint t26 = t24 + n2 + t25;
     uint two_n3 = n2 << 1u;
-    uint t22 = t21 >> 12u;
-    UNITPACK_PRECISE float t23 = floor((float(t22) * 4096.0 + float(t21 & 4095u)) / (nf * 2.0));
-    uint q0_3 = uint(t23);
-    uint rest5 = t21 - q0_3 * two_n3;
+    uint t27 = t26 >> 12u;
+    UNITPACK_PRECISE float t28 = (float(t27) * 4096.0 + float(t26 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float floor_t28 = floor(t28);
+    uint q0_3 = uint(floor_t28);
+    uint rest5 = t26 - q0_3 * two_n3;
     bool negative3 = !(rest5 < 2147483648u);
-    bvec3 t24 = bvec3(
-        !(rest3 < two_n) && !negative,
-        !(rest4 < two_n2) && !negative2,
-        !(rest5 < two_n3) && !negative3
-    );
-    UNITPACK_PRECISE vec3 t25 = vec3(uvec3(t10, t16, t22)) * 4096.0
-        + vec3((uvec3(t8, t13, t19) + n2 + uvec3(t9, t14, t20)) & uvec3(4095u));
-    UNITPACK_PRECISE vec3 t26 = floor(t25 / (nf * vec3(2.0)));
-    uvec3 t27 = uvec3(t26);
-    uvec3 t28 = t27 + 1u;
-    bvec3 t29 = bvec3(negative, negative2, negative3);
-    uvec3 t30 = t27 - 1u;
-    uvec3 t31 = uvec3(t29.x ? t30.x : t27.x, t29.y ? t30.y : t27.y, t29.z ? t30.z : t27.z);
-    UNITPACK_PRECISE vec3 t32 = roundEven(vec3(t2) / nf * 16777216.0);
-    uvec3 t33 = uvec3(t32)
-        + uvec3(t24.x ? t28.x : t31.x, t24.y ? t28.y : t31.y, t24.z ? t28.z : t31.z);
-    uvec3 t34 = t33 - 8u;
-    bvec3 t35 = lessThan(uvec3(16777216u), t34);
-    uvec3 t36 = uvec3(
-        t35.x ? (uvec3(16777216u)).x : t34.x,
-        t35.y ? (uvec3(16777216u)).y : t34.y,
-        t35.z ? (uvec3(16777216u)).z : t34.z
-    );
-    UNITPACK_PRECISE vec3 t37 = vec3(t36) * 5.9604645e-8;
-    UNITPACK_PRECISE vec3 result = ok
-        ? mix(t37, -t37, lessThan(w2, vec3(0.0)))
-        : vec3(0.0, 0.0, 1.0);
-    return result;
+    bool t29 = !negative3;
+    bvec3 t30 = bvec3(!(rest3 < two_n) && t15, !(rest4 < two_n2) && t22, !(rest5 < two_n3) && t29);
+    UNITPACK_PRECISE vec3 t31 = vec3(uvec3(t13, t20, t27)) * 4096.0
+        + vec3((uvec3(t11, t17, t24) + n2 + uvec3(t12, t18, t25)) & uvec3(4095u));
+    UNITPACK_PRECISE vec3 t32 = floor(t31 / (nf * vec3(2.0)));
+    uvec3 t32_u = uvec3(t32);
+    uvec3 t33 = t32_u + 1u;
+    bvec3 t34 = bvec3(negative, negative2, negative3);
+    uvec3 t35 = t32_u - 1u;
+    uvec3 t36 = uvec3(t34.x ? t35.x : t32_u.x, t34.y ? t35.y : t32_u.y, t34.z ? t35.z : t32_u.z);
+    UNITPACK_PRECISE vec3 t37 = roundEven(vec3(t1_u) / nf * 16777216.0);
+    uvec3 t38 = uvec3(t37)
+        + uvec3(t30.x ? t33.x : t36.x, t30.y ? t33.y : t36.y, t30.z ? t33.z : t36.z);
+    uvec3 t39 = t38 - 8u;
+    bvec3 t40 = lessThan(uvec3(16777216u), t39);
+    UNITPACK_PRECISE vec3 t41 = vec3(
+        uvec3(
+            t40.x ? (uvec3(16777216u)).x : t39.x,
+            t40.y ? (uvec3(16777216u)).y : t39.y,
+            t40.z ? (uvec3(16777216u)).z : t39.z
+        )
+    )
+        * 5.9604645e-8;
+    UNITPACK_PRECISE vec3 t42 = mix(t41, -t41, lessThan(w2, vec3(0.0)));
+    return ok ? t42 : vec3(0.0, 0.0, 1.0);
 }
 
 // unitpack_float32x3_encode: fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16
-//   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
-//   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
+// In: as for unitpack_float32x3_encode_float.
 // Out: the packed code, uvec3 (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2 bits
 //   0–31: p2 float32).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -71,16 +71,14 @@ vec2 unitpack_hemioct16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(vec3(v.xy, v.z < 0.0 ? 0.0 : v.z));
     UNITPACK_PRECISE float l1 = t1.x + t1.y + t1.z;
     UNITPACK_PRECISE vec2 p = v.xy / l1;
-    UNITPACK_PRECISE vec2 result = l1 > 0.0 && l1 <= 3.4028235e38 && v.z >= (-3.4028235e38)
-        ? vec2(p.x + p.y, p.x - p.y)
-        : vec2(0.0);
-    return result;
+    bool t2 = v.z >= (-3.4028235e38);
+    bool t3 = l1 <= 3.4028235e38;
+    UNITPACK_PRECISE vec2 t4 = vec2(p.x + p.y, p.x - p.y);
+    return l1 > 0.0 && t3 && t2 ? t4 : vec2(0.0);
 }
 
 // unitpack_hemioct16_ieee_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_ieee_encode_float.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's
 //   complement)).
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round

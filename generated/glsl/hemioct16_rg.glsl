@@ -56,10 +56,8 @@ vec3 unitpack_hemioct16_rg_decode_float(vec4 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16_rg_decode_float is, within the same bound.
 vec3 unitpack_hemioct16_rg_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_hemioct16_rg_decode_float(params);
 }
 
@@ -75,15 +73,17 @@ vec3 unitpack_hemioct16_rg_decode(uint code) {
 vec4 unitpack_hemioct16_rg_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = vec3(v.xy, v.z < 0.0 ? 0.0 : v.z);
     UNITPACK_PRECISE vec3 abs_t1 = abs(t1);
-    UNITPACK_PRECISE float t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    UNITPACK_PRECISE vec3 w = t1
-        * (t2 <= 3.4028235e38 ? (t2 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    UNITPACK_PRECISE float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    UNITPACK_PRECISE float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    UNITPACK_PRECISE float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    UNITPACK_PRECISE vec3 w = t1 * fit;
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
     UNITPACK_PRECISE vec2 p = w.xy / l1;
-    UNITPACK_PRECISE vec2 p2 = l1 > 0.0 && l1 <= 3.4028235e38 && v.z >= (-3.4028235e38)
-        ? vec2(p.x + p.y, p.x - p.y)
-        : vec2(0.0);
+    bool t3 = v.z >= (-3.4028235e38);
+    bool t4 = l1 <= 3.4028235e38;
+    UNITPACK_PRECISE vec2 t5 = vec2(p.x + p.y, p.x - p.y);
+    UNITPACK_PRECISE vec2 p2 = l1 > 0.0 && t4 && t3 ? t5 : vec2(0.0);
     UNITPACK_PRECISE vec4 result = vec4(0.5 + p2.x * 0.5, 0.5 + p2.y * 0.5, 0.0, 1.0);
     return result;
 }
@@ -102,43 +102,43 @@ vec4 unitpack_hemioct16_rg_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 t1 = abs(vec3(w.xy, w.z > 0.0 ? w.z : 0.0));
     UNITPACK_PRECISE float l1 = t1.x + t1.y + t1.z;
     UNITPACK_PRECISE vec2 n = vec2(w.x + w.y, w.x - w.y);
-    UNITPACK_PRECISE vec2 t2 = n * 127.5;
-    UNITPACK_PRECISE vec2 t3 = roundEven(t2 / l1 + 127.5);
-    UNITPACK_PRECISE vec2 t4 = mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t5 = mix(vec2(255.0), t4, lessThanEqual(t4, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t6 = mix(
+    bool t2 = l1 > 0.0;
+    UNITPACK_PRECISE vec2 t3 = n * 127.5;
+    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / l1 + 127.5);
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t6 = mix(vec2(255.0), t5, lessThanEqual(t5, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t7 = t6
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 127.0) * l1)),
+            lessThan(t6, vec2(255.0))
+        );
+    UNITPACK_PRECISE vec2 t8 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 127.0) * l1)),
-        lessThan(t5, vec2(255.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 1.0 - 127.0) * l1)) - 1.0,
+        greaterThan(t6, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t7 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 1.0 - 127.0) * l1)) - 1.0,
-        greaterThan(t5, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 c = ok && l1 > 0.0 ? t5 + t6 + t7 : vec2(128.0);
+    UNITPACK_PRECISE vec2 t9 = t7 + t8;
+    UNITPACK_PRECISE vec2 c = ok && t2 ? t9 : vec2(128.0);
     return vec4(c, 0.0, 255.0);
 }
 
 // unitpack_hemioct16_rg_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_rg_encode_float.
 // Out: the RGBA8 texel as a uint (R bits 0–7, G 8–15, B 16–23, A 24–31): R = x, G = y, B = 0, A =
 //   255; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128).
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 uint unitpack_hemioct16_rg_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_hemioct16_rg_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_HEMIOCT16_RG_GLSL

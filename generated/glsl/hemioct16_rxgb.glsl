@@ -56,10 +56,8 @@ vec3 unitpack_hemioct16_rxgb_decode_float(vec4 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16_rxgb_decode_float is, within the same bound.
 vec3 unitpack_hemioct16_rxgb_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_hemioct16_rxgb_decode_float(params);
 }
 
@@ -75,34 +73,45 @@ vec3 unitpack_hemioct16_rxgb_decode(uint code) {
 vec4 unitpack_hemioct16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = vec3(v.xy, v.z < 0.0 ? 0.0 : v.z);
     UNITPACK_PRECISE vec3 abs_t1 = abs(t1);
-    UNITPACK_PRECISE float t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    UNITPACK_PRECISE vec3 w = t1
-        * (t2 <= 3.4028235e38 ? (t2 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    UNITPACK_PRECISE float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    UNITPACK_PRECISE float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    UNITPACK_PRECISE float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    UNITPACK_PRECISE vec3 w = t1 * fit;
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
     UNITPACK_PRECISE vec2 p = w.xy / l1;
-    UNITPACK_PRECISE vec2 p2 = l1 > 0.0 && l1 <= 3.4028235e38 && v.z >= (-3.4028235e38)
-        ? vec2(p.x + p.y, p.x - p.y)
-        : vec2(0.0);
+    bool t3 = v.z >= (-3.4028235e38);
+    bool t4 = l1 <= 3.4028235e38;
+    UNITPACK_PRECISE vec2 t5 = vec2(p.x + p.y, p.x - p.y);
+    UNITPACK_PRECISE vec2 p2 = l1 > 0.0 && t4 && t3 ? t5 : vec2(0.0);
     UNITPACK_PRECISE vec3 abs_v = abs(v);
-    UNITPACK_PRECISE float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    UNITPACK_PRECISE float largest = t3 >= abs_v.z ? t3 : abs_v.z;
-    bool t4 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t4 ? largest : 1.0);
+    UNITPACK_PRECISE float t6 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    UNITPACK_PRECISE float largest = t6 >= abs_v.z ? t6 : abs_v.z;
+    bool t7 = largest <= 3.4028235e38;
+    bool t8 = largest > 0.0 && t7;
+    UNITPACK_PRECISE vec3 scaled = v / (t8 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t5 = t4 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 t6 = vec3(t5.xy, t5.z > 0.0 ? t5.z : 0.0);
-    UNITPACK_PRECISE vec3 abs_t6 = abs(t6);
-    UNITPACK_PRECISE float t7 = abs_t6.x >= abs_t6.y ? abs_t6.x : abs_t6.y;
-    UNITPACK_PRECISE float largest2 = t7 >= abs_t6.z ? t7 : abs_t6.z;
-    bool t8 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled2 = t6 / (t8 ? largest2 : 1.0);
+    bool t9 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t10 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t11 = t8 && t9 ? t10 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 t12 = vec3(t11.xy, t11.z > 0.0 ? t11.z : 0.0);
+    UNITPACK_PRECISE vec3 abs_t12 = abs(t12);
+    UNITPACK_PRECISE float t13 = abs_t12.x >= abs_t12.y ? abs_t12.x : abs_t12.y;
+    UNITPACK_PRECISE float largest2 = t13 >= abs_t12.z ? t13 : abs_t12.z;
+    bool t14 = largest2 <= 3.4028235e38;
+    bool t15 = largest2 > 0.0 && t14;
+    UNITPACK_PRECISE vec3 scaled2 = t12 / (t15 ? largest2 : 1.0);
     UNITPACK_PRECISE vec3 scaled2_sq = scaled2 * scaled2;
     UNITPACK_PRECISE float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    UNITPACK_PRECISE float t9 = 0.5
-        + (t8 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : vec3(0.0, 0.0, 1.0)).z * 0.5;
-    UNITPACK_PRECISE vec4 result = vec4(1.0, 0.5 + p2.y * 0.5, t9, 0.5 + p2.x * 0.5);
+    bool t16 = len2_2 >= 1.0;
+    UNITPACK_PRECISE vec3 t17 = scaled2 / sqrt(len2_2);
+    UNITPACK_PRECISE vec4 result = vec4(
+        1.0,
+        0.5 + p2.y * 0.5,
+        0.5 + (t15 && t16 ? t17 : vec3(0.0, 0.0, 1.0)).z * 0.5,
+        0.5 + p2.x * 0.5
+    );
     return result;
 }
 
@@ -120,26 +129,30 @@ vec4 unitpack_hemioct16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 t1 = abs(vec3(w.xy, w.z > 0.0 ? w.z : 0.0));
     UNITPACK_PRECISE float l1 = t1.x + t1.y + t1.z;
     UNITPACK_PRECISE vec2 n = vec2(w.x + w.y, w.x - w.y);
-    UNITPACK_PRECISE vec2 t2 = n * 127.5;
-    UNITPACK_PRECISE vec2 t3 = roundEven(t2 / l1 + 127.5);
-    UNITPACK_PRECISE vec2 t4 = mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t5 = mix(vec2(255.0), t4, lessThanEqual(t4, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t6 = mix(
+    bool t2 = l1 > 0.0;
+    UNITPACK_PRECISE vec2 t3 = n * 127.5;
+    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / l1 + 127.5);
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t6 = mix(vec2(255.0), t5, lessThanEqual(t5, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t7 = t6
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 127.0) * l1)),
+            lessThan(t6, vec2(255.0))
+        );
+    UNITPACK_PRECISE vec2 t8 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 127.0) * l1)),
-        lessThan(t5, vec2(255.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 1.0 - 127.0) * l1)) - 1.0,
+        greaterThan(t6, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t7 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 1.0 - 127.0) * l1)) - 1.0,
-        greaterThan(t5, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 c = ok && l1 > 0.0 ? t5 + t6 + t7 : vec2(128.0);
+    UNITPACK_PRECISE vec2 t9 = t7 + t8;
+    UNITPACK_PRECISE vec2 c = ok && t2 ? t9 : vec2(128.0);
     UNITPACK_PRECISE vec3 normal2 = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal2 = abs(normal2);
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
@@ -150,11 +163,12 @@ vec4 unitpack_hemioct16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w2 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w3 = ok2 ? w2 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE vec3 t8 = vec3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
-    UNITPACK_PRECISE vec3 normal3 = mix(t8, vec3(0.0), lessThan(abs(t8), vec3(1.1754944e-38)));
+    UNITPACK_PRECISE vec3 t10 = vec3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
+    UNITPACK_PRECISE vec3 normal3 = mix(t10, vec3(0.0), lessThan(abs(t10), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal3 = abs(normal3);
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     UNITPACK_PRECISE float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
@@ -164,7 +178,8 @@ vec4 unitpack_hemioct16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
     UNITPACK_PRECISE float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_3 = sum3 < 16.0;
+    bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     UNITPACK_PRECISE vec3 w4 = mix(scaled3, vec3(0.0), lessThan(abs(scaled3), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w5 = ok3 ? w4 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w5.x) & 4294963200u);
@@ -173,38 +188,40 @@ vec4 unitpack_hemioct16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE float split_lo2 = w5.y - split_hi2;
     UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w5.z) & 4294963200u);
     UNITPACK_PRECISE float split_lo3 = w5.z - split_hi3;
-    UNITPACK_PRECISE float t9 = (split_hi + split_hi) * split_lo
+    UNITPACK_PRECISE float t11 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     UNITPACK_PRECISE float len2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t9
+        + t11
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     UNITPACK_PRECISE float big2 = w5.z * w5.z * 16256.25;
-    UNITPACK_PRECISE float t10 = roundEven(w5.z / sqrt(len2) * 127.5 + 127.5);
-    UNITPACK_PRECISE float t11 = t10 >= 0.0 ? t10 : 0.0;
-    UNITPACK_PRECISE float estimate = t11 <= 255.0 ? t11 : 255.0;
-    UNITPACK_PRECISE float t12 = estimate - 127.0;
-    UNITPACK_PRECISE float t13 = t12 * t12 * len2;
-    UNITPACK_PRECISE float t14 = w5.z >= 0.0
-        ? (t12 > 0.0 ? (big2 >= t13 ? 1.0 : 0.0) : 1.0)
-        : (t12 < 0.0 ? (big2 <= t13 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 255.0 ? t14 : 0.0;
-    UNITPACK_PRECISE float t15 = estimate - 1.0 - 127.0;
-    UNITPACK_PRECISE float t16 = t15 * t15 * len2;
-    UNITPACK_PRECISE float t17 = w5.z >= 0.0
-        ? (t15 > 0.0 ? (big2 >= t16 ? 1.0 : 0.0) : 1.0)
-        : (t15 < 0.0 ? (big2 <= t16 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t17 - 1.0 : 0.0;
+    UNITPACK_PRECISE float t12 = roundEven(w5.z / sqrt(len2) * 127.5 + 127.5);
+    UNITPACK_PRECISE float t13 = t12 >= 0.0 ? t12 : 0.0;
+    UNITPACK_PRECISE float estimate = t13 <= 255.0 ? t13 : 255.0;
+    UNITPACK_PRECISE float t14 = estimate - 127.0;
+    UNITPACK_PRECISE float t15 = t14 * t14 * len2;
+    UNITPACK_PRECISE float one_if = big2 >= t15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t16 = t14 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2 <= t15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t17 = t14 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t18 = w5.z >= 0.0 ? t16 : t17;
+    UNITPACK_PRECISE float up = estimate < 255.0 ? t18 : 0.0;
+    UNITPACK_PRECISE float t19 = estimate - 1.0 - 127.0;
+    UNITPACK_PRECISE float t20 = t19 * t19 * len2;
+    UNITPACK_PRECISE float one_if3 = big2 >= t20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t21 = t19 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2 <= t20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t22 = t19 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t23 = (w5.z >= 0.0 ? t21 : t22) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t23 : 0.0;
     UNITPACK_PRECISE vec4 result = vec4(255.0, c.y, estimate + up + down, c.x);
     return result;
 }
 
 // unitpack_hemioct16_rxgb_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_rxgb_encode_float.
 // Out: the RGBA8 texel as a uint (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B = the
 //   input's z (z·½ + ½), A = x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is
 //   stored as x = y = 128).
@@ -212,10 +229,8 @@ vec4 unitpack_hemioct16_rxgb_round_codes(vec3 a0) {
 //   components count as zero.
 uint unitpack_hemioct16_rxgb_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_hemioct16_rxgb_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_HEMIOCT16_RXGB_GLSL

@@ -57,10 +57,8 @@ vec3 unitpack_hemioct16p_rxgb_decode_float(vec4 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16p_rxgb_decode_float is, within the same bound.
 vec3 unitpack_hemioct16p_rxgb_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_hemioct16p_rxgb_decode_float(params);
 }
 
@@ -79,23 +77,26 @@ vec4 unitpack_hemioct16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 t1 = abs(vec3(w.xy, w.z > 0.0 ? w.z : 0.0));
     UNITPACK_PRECISE float sum2 = t1.x + t1.y + t1.z;
-    bool t2 = ok && sum2 > 0.0;
-    UNITPACK_PRECISE vec3 a = t2 ? t1 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float l1 = t2 ? sum2 : 2.0;
-    UNITPACK_PRECISE float t3 = a.x + a.y;
-    UNITPACK_PRECISE float t = t3 * 127.5;
-    UNITPACK_PRECISE float t4 = roundEven(t / l1 + 127.5);
-    UNITPACK_PRECISE float t5 = t4 >= 0.0 ? t4 : 0.0;
-    UNITPACK_PRECISE float estimate = t5 <= 255.0 ? t5 : 255.0;
-    bool t6 = estimate < 255.0;
-    UNITPACK_PRECISE float t7 = t >= (estimate - 126.5) * l1 ? 1.0 : 0.0;
-    UNITPACK_PRECISE float up = t6 ? t7 : 0.0;
+    bool t2 = sum2 > 0.0;
+    bool t3 = ok && t2;
+    UNITPACK_PRECISE vec3 a = t3 ? t1 : vec3(0.0, 0.0, 2.0);
+    UNITPACK_PRECISE float l1 = t3 ? sum2 : 2.0;
+    UNITPACK_PRECISE float t4 = a.x + a.y;
+    UNITPACK_PRECISE float t = t4 * 127.5;
+    UNITPACK_PRECISE float t5 = roundEven(t / l1 + 127.5);
+    UNITPACK_PRECISE float t6 = t5 >= 0.0 ? t5 : 0.0;
+    UNITPACK_PRECISE float estimate = t6 <= 255.0 ? t6 : 255.0;
+    bool t7 = estimate < 255.0;
+    UNITPACK_PRECISE float one_if = t >= (estimate - 126.5) * l1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float up = t7 ? one_if : 0.0;
     bool t8 = estimate > 0.0;
-    UNITPACK_PRECISE float t9 = (t >= (estimate - 1.0 - 126.5) * l1 ? 1.0 : 0.0) - 1.0;
+    UNITPACK_PRECISE float one_if2 = t >= (estimate - 1.0 - 126.5) * l1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t9 = one_if2 - 1.0;
     UNITPACK_PRECISE float down = t8 ? t9 : 0.0;
     UNITPACK_PRECISE float t10 = estimate + up;
     UNITPACK_PRECISE float s0 = t10 + down;
@@ -105,183 +106,207 @@ vec4 unitpack_hemioct16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t14 = t13 >= 0.0 ? t13 : 0.0;
     UNITPACK_PRECISE float estimate2 = t14 <= 255.0 ? t14 : 255.0;
     bool t15 = estimate2 < 255.0;
-    UNITPACK_PRECISE float t16 = t12 >= (estimate2 - 126.5) * l1 ? 1.0 : 0.0;
-    UNITPACK_PRECISE float up2 = t15 ? t16 : 0.0;
-    bool t17 = estimate2 > 0.0;
-    UNITPACK_PRECISE float t18 = (t12 >= (estimate2 - 1.0 - 126.5) * l1 ? 1.0 : 0.0) - 1.0;
-    UNITPACK_PRECISE float down2 = t17 ? t18 : 0.0;
-    UNITPACK_PRECISE float t19 = estimate2 + up2;
-    UNITPACK_PRECISE float t0 = t19 + down2;
-    UNITPACK_PRECISE vec3 t20 = floor(a * 4194304.0);
-    uvec3 afix = uvec3(t20);
-    UNITPACK_PRECISE vec2 t21 = vec2(t11, t3) * 127.5;
-    UNITPACK_PRECISE vec2 t22 = roundEven(t21 / l1 + 127.5);
-    UNITPACK_PRECISE vec2 t23 = mix(vec2(0.0), t22, greaterThanEqual(t22, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t24 = mix(vec2(255.0), t23, lessThanEqual(t23, vec2(255.0)));
+    UNITPACK_PRECISE float one_if3 = t12 >= (estimate2 - 126.5) * l1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float up2 = t15 ? one_if3 : 0.0;
+    bool t16 = estimate2 > 0.0;
+    UNITPACK_PRECISE float one_if4 = t12 >= (estimate2 - 1.0 - 126.5) * l1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t17 = one_if4 - 1.0;
+    UNITPACK_PRECISE float down2 = t16 ? t17 : 0.0;
+    UNITPACK_PRECISE float t18 = estimate2 + up2;
+    UNITPACK_PRECISE float t0 = t18 + down2;
+    UNITPACK_PRECISE vec3 t19 = floor(a * 4194304.0);
+    uvec3 afix = uvec3(t19);
+    UNITPACK_PRECISE vec2 t20 = vec2(t11, t4) * 127.5;
+    UNITPACK_PRECISE vec2 t21 = roundEven(t20 / l1 + 127.5);
+    UNITPACK_PRECISE vec2 t22 = mix(vec2(0.0), t21, greaterThanEqual(t21, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t23 = mix(vec2(255.0), t22, lessThanEqual(t22, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t24 = t23
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t20, (t23 - 126.5) * l1)),
+            lessThan(t23, vec2(255.0))
+        );
     UNITPACK_PRECISE vec2 t25 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t21, (t24 - 126.5) * l1)),
-        lessThan(t24, vec2(255.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t20, (t23 - 1.0 - 126.5) * l1)) - 1.0,
+        greaterThan(t23, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t26 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t21, (t24 - 1.0 - 126.5) * l1)) - 1.0,
-        greaterThan(t24, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t27 = t24 + t25 + t26;
-    UNITPACK_PRECISE vec2 t28 = vec2(t3, t11) * 127.5;
+    UNITPACK_PRECISE vec2 t26 = t24 + t25;
+    UNITPACK_PRECISE vec2 t27 = -(t26 + t26 - 255.0);
+    UNITPACK_PRECISE vec2 t28 = vec2(t4, t11) * 127.5;
     UNITPACK_PRECISE vec2 t29 = roundEven(t28 / l1 + 127.5);
     UNITPACK_PRECISE vec2 t30 = mix(vec2(0.0), t29, greaterThanEqual(t29, vec2(0.0)));
     UNITPACK_PRECISE vec2 t31 = mix(vec2(255.0), t30, lessThanEqual(t30, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t32 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t28, (t31 - 126.5) * l1)),
-        lessThan(t31, vec2(255.0))
-    );
+    UNITPACK_PRECISE vec2 t32 = t31
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t28, (t31 - 126.5) * l1)),
+            lessThan(t31, vec2(255.0))
+        );
     UNITPACK_PRECISE vec2 t33 = mix(
         vec2(0.0),
         mix(vec2(0.0), vec2(1.0), greaterThanEqual(t28, (t31 - 1.0 - 126.5) * l1)) - 1.0,
         greaterThan(t31, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t34 = t31 + t32 + t33;
-    UNITPACK_PRECISE vec2 t35 = s0 + s0 - 255.0 + (t0 + t0 - 255.0) < 0.0
-        ? -(t27 + t27 - 255.0)
-        : t34 + t34 - 255.0;
-    UNITPACK_PRECISE vec2 cand = t35.x < t35.y ? t35.yx : t35;
-    UNITPACK_PRECISE float t36 = 510.0 - cand.x - cand.x;
-    UNITPACK_PRECISE float t37 = t36 >= 0.0 ? t36 : 0.0;
-    UNITPACK_PRECISE float t38 = cand.x + cand.y;
-    uint t39 = uint(t38);
+    UNITPACK_PRECISE vec2 t34 = t32 + t33;
+    UNITPACK_PRECISE vec2 t35 = t34 + t34 - 255.0;
+    UNITPACK_PRECISE vec2 t36 = s0 + s0 - 255.0 + (t0 + t0 - 255.0) < 0.0 ? t27 : t35;
+    UNITPACK_PRECISE vec2 cand = t36.x < t36.y ? t36.yx : t36;
+    UNITPACK_PRECISE float t37 = 510.0 - cand.x - cand.x;
+    UNITPACK_PRECISE float t38 = t37 >= 0.0 ? t37 : 0.0;
+    UNITPACK_PRECISE float t39 = cand.x + cand.y;
+    uint t39_u = uint(t39);
     UNITPACK_PRECISE float t40 = cand.x - cand.y;
-    uint t41 = uint(t40);
-    uint t42 = uint(t37);
-    uvec3 cross = afix.yzx * uvec3(vec3(t37, t38, t40)) - afix.zxy * uvec3(vec3(t40, t37, t38));
-    uint t43 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
-    uint t44 = t43 >> 16u;
-    uint t45 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    uint t40_u = uint(t40);
+    uint t38_u = uint(t38);
+    uvec3 cross = afix.yzx * uvec3(vec3(t38, t39, t40)) - afix.zxy * uvec3(vec3(t40, t38, t39));
+    uint t41 = 0u - cross.x;
+    uint t42 = cross.x < 2147483648u ? cross.x : t41;
+    uint t43 = t42 >> 16u;
+    uint t44 = 0u - cross.y;
+    uint t45 = cross.y < 2147483648u ? cross.y : t44;
     uint t46 = t45 >> 16u;
-    uint t47 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    uint t48 = t47 >> 16u;
-    uvec3 t49 = uvec3(
-        (t44 * (t43 & 65535u)) >> 12u,
+    uint t47 = 0u - cross.z;
+    uint t48 = cross.z < 2147483648u ? cross.z : t47;
+    uint t49 = t48 >> 16u;
+    uvec3 t50 = uvec3((t43 * t43) << 3u, (t46 * t46) << 3u, (t49 * t49) << 3u);
+    uvec3 t51 = uvec3(
+        (t43 * (t42 & 65535u)) >> 12u,
         (t46 * (t45 & 65535u)) >> 12u,
-        (t48 * (t47 & 65535u)) >> 12u
+        (t49 * (t48 & 65535u)) >> 12u
     );
-    uvec3 t50 = uvec3((t44 * t44) << 3u, (t46 * t46) << 3u, (t48 * t48) << 3u) + t49;
-    UNITPACK_PRECISE float e = float(t50.x + t50.y + t50.z);
-    UNITPACK_PRECISE float n = float(t39 * t39 + t41 * t41 + t42 * t42);
-    UNITPACK_PRECISE float t51 = s0 + 1.0;
-    UNITPACK_PRECISE vec2 t52 = vec2(estimate2, t10)
-        + mix(vec2(0.0), vec2(t16, t9), bvec2(t15, t8))
+    uvec3 t52 = t50 + t51;
+    UNITPACK_PRECISE float e = float(t52.x + t52.y + t52.z);
+    UNITPACK_PRECISE float n = float(t39_u * t39_u + t40_u * t40_u + t38_u * t38_u);
+    UNITPACK_PRECISE float s_up = s0 + 1.0;
+    UNITPACK_PRECISE float t_up = t0 + 1.0;
+    UNITPACK_PRECISE vec2 t53 = vec2(estimate2, t10)
+        + mix(vec2(0.0), vec2(one_if3, t9), bvec2(t15, t8))
         + vec2(down2, 1.0);
-    UNITPACK_PRECISE vec2 t53 = vec2(t10, estimate2)
-        + mix(vec2(0.0), vec2(t9, t16), bvec2(t8, t15))
+    UNITPACK_PRECISE vec2 t54 = -(t53 + t53 - 255.0);
+    UNITPACK_PRECISE vec2 t55 = vec2(t10, estimate2)
+        + mix(vec2(0.0), vec2(t9, one_if3), bvec2(t8, t15))
         + vec2(1.0, down2);
-    UNITPACK_PRECISE vec2 t54 = t51 + t51 - 255.0 + (t0 + t0 - 255.0) < 0.0
-        ? -(t52 + t52 - 255.0)
-        : t53 + t53 - 255.0;
-    UNITPACK_PRECISE vec2 cand2 = t54.x < t54.y ? t54.yx : t54;
-    UNITPACK_PRECISE float t55 = 510.0 - cand2.x - cand2.x;
-    UNITPACK_PRECISE float t56 = t55 >= 0.0 ? t55 : 0.0;
-    UNITPACK_PRECISE float t57 = cand2.x + cand2.y;
-    uint t58 = uint(t57);
-    UNITPACK_PRECISE float t59 = cand2.x - cand2.y;
-    uint t60 = uint(t59);
-    uint t61 = uint(t56);
-    uvec3 cross2 = afix.yzx * uvec3(vec3(t56, t57, t59)) - afix.zxy * uvec3(vec3(t59, t56, t57));
-    uint t62 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
-    uint t63 = t62 >> 16u;
-    uint t64 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    uint t65 = t64 >> 16u;
-    uint t66 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
+    UNITPACK_PRECISE vec2 t56 = t55 + t55 - 255.0;
+    UNITPACK_PRECISE vec2 t57 = s_up + s_up - 255.0 + (t0 + t0 - 255.0) < 0.0 ? t54 : t56;
+    UNITPACK_PRECISE vec2 cand2 = t57.x < t57.y ? t57.yx : t57;
+    UNITPACK_PRECISE float t58 = 510.0 - cand2.x - cand2.x;
+    UNITPACK_PRECISE float t59 = t58 >= 0.0 ? t58 : 0.0;
+    UNITPACK_PRECISE float t60 = cand2.x + cand2.y;
+    uint t60_u = uint(t60);
+    UNITPACK_PRECISE float t61 = cand2.x - cand2.y;
+    uint t61_u = uint(t61);
+    uint t59_u = uint(t59);
+    uvec3 cross2 = afix.yzx * uvec3(vec3(t59, t60, t61)) - afix.zxy * uvec3(vec3(t61, t59, t60));
+    uint t62 = 0u - cross2.x;
+    uint t63 = cross2.x < 2147483648u ? cross2.x : t62;
+    uint t64 = t63 >> 16u;
+    uint t65 = 0u - cross2.y;
+    uint t66 = cross2.y < 2147483648u ? cross2.y : t65;
     uint t67 = t66 >> 16u;
-    uvec3 t68 = uvec3(
-        (t63 * (t62 & 65535u)) >> 12u,
-        (t65 * (t64 & 65535u)) >> 12u,
-        (t67 * (t66 & 65535u)) >> 12u
+    uint t68 = 0u - cross2.z;
+    uint t69 = cross2.z < 2147483648u ? cross2.z : t68;
+    uint t70 = t69 >> 16u;
+    uvec3 t71 = uvec3((t64 * t64) << 3u, (t67 * t67) << 3u, (t70 * t70) << 3u);
+    uvec3 t72 = uvec3(
+        (t64 * (t63 & 65535u)) >> 12u,
+        (t67 * (t66 & 65535u)) >> 12u,
+        (t70 * (t69 & 65535u)) >> 12u
     );
-    uvec3 t69 = uvec3((t63 * t63) << 3u, (t65 * t65) << 3u, (t67 * t67) << 3u) + t68;
-    UNITPACK_PRECISE float e2 = float(t69.x + t69.y + t69.z);
-    UNITPACK_PRECISE float n2 = float(t58 * t58 + t60 * t60 + t61 * t61);
-    UNITPACK_PRECISE float t70 = e2 * n;
-    UNITPACK_PRECISE float t71 = e * n2;
-    bool t72 = cand2.x <= 255.0 && t70 < t71;
-    UNITPACK_PRECISE vec2 best = t72 ? cand2 : cand;
-    UNITPACK_PRECISE float best_e = t72 ? e2 : e;
-    UNITPACK_PRECISE float best_n = t72 ? n2 : n;
-    UNITPACK_PRECISE float t73 = t0 + 1.0;
-    UNITPACK_PRECISE vec2 t74 = vec2(t19, estimate)
-        + mix(vec2(0.0), vec2(t18, t7), bvec2(t17, t6))
+    uvec3 t73 = t71 + t72;
+    UNITPACK_PRECISE float e2 = float(t73.x + t73.y + t73.z);
+    UNITPACK_PRECISE float n2 = float(t60_u * t60_u + t61_u * t61_u + t59_u * t59_u);
+    UNITPACK_PRECISE float t74 = e2 * n;
+    UNITPACK_PRECISE float t75 = e * n2;
+    bool t76 = t74 < t75;
+    bool t77 = cand2.x <= 255.0 && t76;
+    UNITPACK_PRECISE vec2 best = t77 ? cand2 : cand;
+    UNITPACK_PRECISE float best_e = t77 ? e2 : e;
+    UNITPACK_PRECISE float best_n = t77 ? n2 : n;
+    UNITPACK_PRECISE vec2 t78 = vec2(t18, estimate)
+        + mix(vec2(0.0), vec2(t17, one_if), bvec2(t16, t7))
         + vec2(1.0, down);
-    UNITPACK_PRECISE vec2 t75 = vec2(estimate, t19)
-        + mix(vec2(0.0), vec2(t7, t18), bvec2(t6, t17))
+    UNITPACK_PRECISE vec2 t79 = -(t78 + t78 - 255.0);
+    UNITPACK_PRECISE vec2 t80 = vec2(estimate, t18)
+        + mix(vec2(0.0), vec2(one_if, t17), bvec2(t7, t16))
         + vec2(down, 1.0);
-    UNITPACK_PRECISE vec2 t76 = s0 + s0 - 255.0 + (t73 + t73 - 255.0) < 0.0
-        ? -(t74 + t74 - 255.0)
-        : t75 + t75 - 255.0;
-    UNITPACK_PRECISE vec2 cand3 = t76.x < t76.y ? t76.yx : t76;
-    UNITPACK_PRECISE float t77 = 510.0 - cand3.x - cand3.x;
-    UNITPACK_PRECISE float t78 = t77 >= 0.0 ? t77 : 0.0;
-    UNITPACK_PRECISE float t79 = cand3.x + cand3.y;
-    uint t80 = uint(t79);
-    UNITPACK_PRECISE float t81 = cand3.x - cand3.y;
-    uint t82 = uint(t81);
-    uint t83 = uint(t78);
-    uvec3 cross3 = afix.yzx * uvec3(vec3(t78, t79, t81)) - afix.zxy * uvec3(vec3(t81, t78, t79));
-    uint t84 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    uint t85 = t84 >> 16u;
-    uint t86 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
-    uint t87 = t86 >> 16u;
-    uint t88 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
+    UNITPACK_PRECISE vec2 t81 = t80 + t80 - 255.0;
+    UNITPACK_PRECISE vec2 t82 = s0 + s0 - 255.0 + (t_up + t_up - 255.0) < 0.0 ? t79 : t81;
+    UNITPACK_PRECISE vec2 cand3 = t82.x < t82.y ? t82.yx : t82;
+    UNITPACK_PRECISE float t83 = 510.0 - cand3.x - cand3.x;
+    UNITPACK_PRECISE float t84 = t83 >= 0.0 ? t83 : 0.0;
+    UNITPACK_PRECISE float t85 = cand3.x + cand3.y;
+    uint t85_u = uint(t85);
+    UNITPACK_PRECISE float t86 = cand3.x - cand3.y;
+    uint t86_u = uint(t86);
+    uint t84_u = uint(t84);
+    uvec3 cross3 = afix.yzx * uvec3(vec3(t84, t85, t86)) - afix.zxy * uvec3(vec3(t86, t84, t85));
+    uint t87 = 0u - cross3.x;
+    uint t88 = cross3.x < 2147483648u ? cross3.x : t87;
     uint t89 = t88 >> 16u;
-    uvec3 t90 = uvec3(
-        (t85 * (t84 & 65535u)) >> 12u,
-        (t87 * (t86 & 65535u)) >> 12u,
-        (t89 * (t88 & 65535u)) >> 12u
+    uint t90 = 0u - cross3.y;
+    uint t91 = cross3.y < 2147483648u ? cross3.y : t90;
+    uint t92 = t91 >> 16u;
+    uint t93 = 0u - cross3.z;
+    uint t94 = cross3.z < 2147483648u ? cross3.z : t93;
+    uint t95 = t94 >> 16u;
+    uvec3 t96 = uvec3((t89 * t89) << 3u, (t92 * t92) << 3u, (t95 * t95) << 3u);
+    uvec3 t97 = uvec3(
+        (t89 * (t88 & 65535u)) >> 12u,
+        (t92 * (t91 & 65535u)) >> 12u,
+        (t95 * (t94 & 65535u)) >> 12u
     );
-    uvec3 t91 = uvec3((t85 * t85) << 3u, (t87 * t87) << 3u, (t89 * t89) << 3u) + t90;
-    UNITPACK_PRECISE float e3 = float(t91.x + t91.y + t91.z);
-    UNITPACK_PRECISE float n3 = float(t80 * t80 + t82 * t82 + t83 * t83);
-    UNITPACK_PRECISE float t92 = e3 * best_n;
-    UNITPACK_PRECISE float t93 = best_e * n3;
-    bool t94 = cand3.x <= 255.0 && t92 < t93;
-    UNITPACK_PRECISE vec2 best2 = t94 ? cand3 : best;
-    UNITPACK_PRECISE float best_e2 = t94 ? e3 : best_e;
-    UNITPACK_PRECISE float best_n2 = t94 ? n3 : best_n;
-    UNITPACK_PRECISE float t95 = s0 + 1.0;
-    UNITPACK_PRECISE float t96 = t0 + 1.0;
-    UNITPACK_PRECISE vec2 t97 = t27 + 1.0;
-    UNITPACK_PRECISE vec2 t98 = t34 + 1.0;
-    UNITPACK_PRECISE vec2 t99 = t95 + t95 - 255.0 + (t96 + t96 - 255.0) < 0.0
-        ? -(t97 + t97 - 255.0)
-        : t98 + t98 - 255.0;
-    UNITPACK_PRECISE vec2 cand4 = t99.x < t99.y ? t99.yx : t99;
-    UNITPACK_PRECISE float t100 = 510.0 - cand4.x - cand4.x;
-    UNITPACK_PRECISE float t101 = t100 >= 0.0 ? t100 : 0.0;
-    UNITPACK_PRECISE float t102 = cand4.x + cand4.y;
-    uint t103 = uint(t102);
-    UNITPACK_PRECISE float t104 = cand4.x - cand4.y;
-    uint t105 = uint(t104);
-    uint t106 = uint(t101);
-    uvec3 cross4 = afix.yzx * uvec3(vec3(t101, t102, t104))
-        - afix.zxy * uvec3(vec3(t104, t101, t102));
-    uint t107 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
-    uint t108 = t107 >> 16u;
-    uint t109 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    uint t110 = t109 >> 16u;
-    uint t111 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    uint t112 = t111 >> 16u;
-    uvec3 t113 = uvec3(
-        (t108 * (t107 & 65535u)) >> 12u,
-        (t110 * (t109 & 65535u)) >> 12u,
-        (t112 * (t111 & 65535u)) >> 12u
+    uvec3 t98 = t96 + t97;
+    UNITPACK_PRECISE float e3 = float(t98.x + t98.y + t98.z);
+    UNITPACK_PRECISE float n3 = float(t85_u * t85_u + t86_u * t86_u + t84_u * t84_u);
+    UNITPACK_PRECISE float t99 = e3 * best_n;
+    UNITPACK_PRECISE float t100 = best_e * n3;
+    bool t101 = t99 < t100;
+    bool t102 = cand3.x <= 255.0 && t101;
+    UNITPACK_PRECISE vec2 best2 = t102 ? cand3 : best;
+    UNITPACK_PRECISE float best_e2 = t102 ? e3 : best_e;
+    UNITPACK_PRECISE float best_n2 = t102 ? n3 : best_n;
+    UNITPACK_PRECISE vec2 t103 = t26 + 1.0;
+    UNITPACK_PRECISE vec2 t104 = -(t103 + t103 - 255.0);
+    UNITPACK_PRECISE vec2 t105 = t34 + 1.0;
+    UNITPACK_PRECISE vec2 t106 = t105 + t105 - 255.0;
+    UNITPACK_PRECISE vec2 t107 = s_up + s_up - 255.0 + (t_up + t_up - 255.0) < 0.0 ? t104 : t106;
+    UNITPACK_PRECISE vec2 cand4 = t107.x < t107.y ? t107.yx : t107;
+    UNITPACK_PRECISE float t108 = 510.0 - cand4.x - cand4.x;
+    UNITPACK_PRECISE float t109 = t108 >= 0.0 ? t108 : 0.0;
+    UNITPACK_PRECISE float t110 = cand4.x + cand4.y;
+    uint t110_u = uint(t110);
+    UNITPACK_PRECISE float t111 = cand4.x - cand4.y;
+    uint t111_u = uint(t111);
+    uint t109_u = uint(t109);
+    uvec3 cross4 = afix.yzx * uvec3(vec3(t109, t110, t111))
+        - afix.zxy * uvec3(vec3(t111, t109, t110));
+    uint t112 = 0u - cross4.x;
+    uint t113 = cross4.x < 2147483648u ? cross4.x : t112;
+    uint t114 = t113 >> 16u;
+    uint t115 = 0u - cross4.y;
+    uint t116 = cross4.y < 2147483648u ? cross4.y : t115;
+    uint t117 = t116 >> 16u;
+    uint t118 = 0u - cross4.z;
+    uint t119 = cross4.z < 2147483648u ? cross4.z : t118;
+    uint t120 = t119 >> 16u;
+    uvec3 t121 = uvec3((t114 * t114) << 3u, (t117 * t117) << 3u, (t120 * t120) << 3u);
+    uvec3 t122 = uvec3(
+        (t114 * (t113 & 65535u)) >> 12u,
+        (t117 * (t116 & 65535u)) >> 12u,
+        (t120 * (t119 & 65535u)) >> 12u
     );
-    uvec3 t114 = uvec3((t108 * t108) << 3u, (t110 * t110) << 3u, (t112 * t112) << 3u) + t113;
-    UNITPACK_PRECISE float e4 = float(t114.x + t114.y + t114.z);
-    UNITPACK_PRECISE float n4 = float(t103 * t103 + t105 * t105 + t106 * t106);
-    UNITPACK_PRECISE vec2 best3 = cand4.x <= 255.0 && e4 * best_n2 < best_e2 * n4 ? cand4 : best2;
-    UNITPACK_PRECISE vec2 t115 = w.x < 0.0 ? -best3.yx : best3;
-    UNITPACK_PRECISE vec2 c = t2 ? ((w.y < 0.0 ? t115.yx : t115) + 255.0) * 0.5 : vec2(128.0);
+    uvec3 t123 = t121 + t122;
+    UNITPACK_PRECISE float e4 = float(t123.x + t123.y + t123.z);
+    UNITPACK_PRECISE float n4 = float(t110_u * t110_u + t111_u * t111_u + t109_u * t109_u);
+    UNITPACK_PRECISE float t124 = e4 * best_n2;
+    UNITPACK_PRECISE float t125 = best_e2 * n4;
+    bool t126 = t124 < t125;
+    UNITPACK_PRECISE vec2 best3 = cand4.x <= 255.0 && t126 ? cand4 : best2;
+    UNITPACK_PRECISE vec2 t127 = -best3.yx;
+    UNITPACK_PRECISE vec2 t128 = w.x < 0.0 ? t127 : best3;
+    UNITPACK_PRECISE vec2 t129 = ((w.y < 0.0 ? t128.yx : t128) + 255.0) * 0.5;
+    UNITPACK_PRECISE vec2 c = t3 ? t129 : vec2(128.0);
     UNITPACK_PRECISE vec3 normal2 = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal2 = abs(normal2);
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
@@ -292,11 +317,12 @@ vec4 unitpack_hemioct16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum3 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_2 = sum3 < 16.0;
+    bool ok2 = sum3 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w2 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w3 = ok2 ? w2 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE vec3 t116 = vec3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
-    UNITPACK_PRECISE vec3 normal3 = mix(t116, vec3(0.0), lessThan(abs(t116), vec3(1.1754944e-38)));
+    UNITPACK_PRECISE vec3 t130 = vec3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
+    UNITPACK_PRECISE vec3 normal3 = mix(t130, vec3(0.0), lessThan(abs(t130), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal3 = abs(normal3);
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     UNITPACK_PRECISE float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
@@ -306,7 +332,8 @@ vec4 unitpack_hemioct16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
     UNITPACK_PRECISE float sum4 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum4 >= 2.0 && sum4 < 16.0;
+    bool sum_below_16_3 = sum4 < 16.0;
+    bool ok3 = sum4 >= 2.0 && sum_below_16_3;
     UNITPACK_PRECISE vec3 w4 = mix(scaled3, vec3(0.0), lessThan(abs(scaled3), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w5 = ok3 ? w4 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w5.x) & 4294963200u);
@@ -315,30 +342,34 @@ vec4 unitpack_hemioct16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float split_lo2 = w5.y - split_hi2;
     UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w5.z) & 4294963200u);
     UNITPACK_PRECISE float split_lo3 = w5.z - split_hi3;
-    UNITPACK_PRECISE float t117 = (split_hi + split_hi) * split_lo
+    UNITPACK_PRECISE float t131 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     UNITPACK_PRECISE float len2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t117
+        + t131
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     UNITPACK_PRECISE float big2 = w5.z * w5.z * 16256.25;
-    UNITPACK_PRECISE float t118 = roundEven(w5.z / sqrt(len2) * 127.5 + 127.5);
-    UNITPACK_PRECISE float t119 = t118 >= 0.0 ? t118 : 0.0;
-    UNITPACK_PRECISE float estimate3 = t119 <= 255.0 ? t119 : 255.0;
-    UNITPACK_PRECISE float t120 = estimate3 - 127.0;
-    UNITPACK_PRECISE float t121 = t120 * t120 * len2;
-    UNITPACK_PRECISE float t122 = w5.z >= 0.0
-        ? (t120 > 0.0 ? (big2 >= t121 ? 1.0 : 0.0) : 1.0)
-        : (t120 < 0.0 ? (big2 <= t121 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up3 = estimate3 < 255.0 ? t122 : 0.0;
-    UNITPACK_PRECISE float t123 = estimate3 - 1.0 - 127.0;
-    UNITPACK_PRECISE float t124 = t123 * t123 * len2;
-    UNITPACK_PRECISE float t125 = w5.z >= 0.0
-        ? (t123 > 0.0 ? (big2 >= t124 ? 1.0 : 0.0) : 1.0)
-        : (t123 < 0.0 ? (big2 <= t124 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down3 = estimate3 > 0.0 ? t125 - 1.0 : 0.0;
+    UNITPACK_PRECISE float t132 = roundEven(w5.z / sqrt(len2) * 127.5 + 127.5);
+    UNITPACK_PRECISE float t133 = t132 >= 0.0 ? t132 : 0.0;
+    UNITPACK_PRECISE float estimate3 = t133 <= 255.0 ? t133 : 255.0;
+    UNITPACK_PRECISE float t134 = estimate3 - 127.0;
+    UNITPACK_PRECISE float t135 = t134 * t134 * len2;
+    UNITPACK_PRECISE float one_if5 = big2 >= t135 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t136 = t134 > 0.0 ? one_if5 : 1.0;
+    UNITPACK_PRECISE float one_if6 = big2 <= t135 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t137 = t134 < 0.0 ? one_if6 : 0.0;
+    UNITPACK_PRECISE float t138 = w5.z >= 0.0 ? t136 : t137;
+    UNITPACK_PRECISE float up3 = estimate3 < 255.0 ? t138 : 0.0;
+    UNITPACK_PRECISE float t139 = estimate3 - 1.0 - 127.0;
+    UNITPACK_PRECISE float t140 = t139 * t139 * len2;
+    UNITPACK_PRECISE float one_if7 = big2 >= t140 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t141 = t139 > 0.0 ? one_if7 : 1.0;
+    UNITPACK_PRECISE float one_if8 = big2 <= t140 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t142 = t139 < 0.0 ? one_if8 : 0.0;
+    UNITPACK_PRECISE float t143 = (w5.z >= 0.0 ? t141 : t142) - 1.0;
+    UNITPACK_PRECISE float down3 = estimate3 > 0.0 ? t143 : 0.0;
     UNITPACK_PRECISE vec4 result = vec4(255.0, c.y, estimate3 + up3 + down3, c.x);
     return result;
 }
@@ -358,9 +389,7 @@ vec4 unitpack_hemioct16p_rxgb_encode_float(vec3 v) {
 }
 
 // unitpack_hemioct16p_rxgb_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16p_rxgb_encode_float.
 // Out: the RGBA8 texel as a uint (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B = the
 //   input's z (z·½ + ½), A = x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is
 //   stored as x = y = 128).

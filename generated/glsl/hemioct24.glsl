@@ -70,16 +70,17 @@ vec3 unitpack_hemioct24_decode(uint code) {
 vec2 unitpack_hemioct24_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = vec3(v.xy, v.z < 0.0 ? 0.0 : v.z);
     UNITPACK_PRECISE vec3 abs_t1 = abs(t1);
-    UNITPACK_PRECISE float t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    UNITPACK_PRECISE vec3 w = t1
-        * (t2 <= 3.4028235e38 ? (t2 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    UNITPACK_PRECISE float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    UNITPACK_PRECISE float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    UNITPACK_PRECISE float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    UNITPACK_PRECISE vec3 w = t1 * fit;
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
     UNITPACK_PRECISE vec2 p = w.xy / l1;
-    UNITPACK_PRECISE vec2 result = l1 > 0.0 && l1 <= 3.4028235e38 && v.z >= (-3.4028235e38)
-        ? vec2(p.x + p.y, p.x - p.y)
-        : vec2(0.0);
-    return result;
+    bool t3 = v.z >= (-3.4028235e38);
+    bool t4 = l1 <= 3.4028235e38;
+    UNITPACK_PRECISE vec2 t5 = vec2(p.x + p.y, p.x - p.y);
+    return l1 > 0.0 && t4 && t3 ? t5 : vec2(0.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -96,30 +97,28 @@ vec2 unitpack_hemioct24_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 t1 = abs(vec3(w.xy, w.z > 0.0 ? w.z : 0.0));
     UNITPACK_PRECISE float l1 = t1.x + t1.y + t1.z;
     UNITPACK_PRECISE vec2 n = vec2(w.x + w.y, w.x - w.y);
+    bool t2 = l1 > 0.0;
     UNITPACK_PRECISE vec2 abs_n = abs(n);
-    UNITPACK_PRECISE vec2 t2 = roundEven(abs_n / l1 * 2047.0);
-    UNITPACK_PRECISE vec2 t3 = abs_n * 2047.0;
-    UNITPACK_PRECISE vec2 t4 = mix(
-        mix(vec2(0.0), vec2(-1.0), lessThan(t3, (t2 - 0.5) * l1)),
+    UNITPACK_PRECISE vec2 t3 = roundEven(abs_n / l1 * 2047.0);
+    UNITPACK_PRECISE vec2 t4 = abs_n * 2047.0;
+    UNITPACK_PRECISE vec2 t5 = mix(
+        mix(vec2(0.0), vec2(-1.0), lessThan(t4, (t3 - 0.5) * l1)),
         vec2(1.0),
-        greaterThanEqual(t3, (t2 + 0.5) * l1)
+        greaterThanEqual(t4, (t3 + 0.5) * l1)
     );
-    UNITPACK_PRECISE vec2 t5 = t2 + t4;
-    UNITPACK_PRECISE vec2 result = ok && l1 > 0.0
-        ? mix(t5, -t5, lessThan(n, vec2(0.0)))
-        : vec2(0.0);
-    return result;
+    UNITPACK_PRECISE vec2 t6 = t3 + t5;
+    UNITPACK_PRECISE vec2 t7 = mix(t6, -t6, lessThan(n, vec2(0.0)));
+    return ok && t2 ? t7 : vec2(0.0);
 }
 
 // unitpack_hemioct24_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct24_encode_float.
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12
 //   (two's complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

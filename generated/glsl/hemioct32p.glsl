@@ -75,164 +75,198 @@ vec2 unitpack_hemioct32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 t1 = abs(vec3(w.xy, w.z > 0.0 ? w.z : 0.0));
     UNITPACK_PRECISE float sum2 = t1.x + t1.y + t1.z;
-    bool t2 = ok && sum2 > 0.0;
-    UNITPACK_PRECISE vec3 a = t2 ? t1 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float l1 = t2 ? sum2 : 2.0;
-    UNITPACK_PRECISE float t3 = a.x + a.y;
-    UNITPACK_PRECISE float estimate = floor(t3 / l1 * 32767.0);
-    UNITPACK_PRECISE float big = t3 * 32767.0;
-    UNITPACK_PRECISE float t4 = estimate
-        + (big >= (estimate + 1.0) * l1 ? 1.0 : (big < estimate * l1 ? -1.0 : 0.0));
-    UNITPACK_PRECISE float t5 = t4 >= (-32767.0) ? t4 : -32767.0;
-    UNITPACK_PRECISE float s0 = t5 <= 32767.0 ? t5 : 32767.0;
-    UNITPACK_PRECISE float t6 = a.x - a.y;
-    UNITPACK_PRECISE float estimate2 = floor(t6 / l1 * 32767.0);
-    UNITPACK_PRECISE float big2 = t6 * 32767.0;
-    UNITPACK_PRECISE float t7 = estimate2
-        + (big2 >= (estimate2 + 1.0) * l1 ? 1.0 : (big2 < estimate2 * l1 ? -1.0 : 0.0));
-    UNITPACK_PRECISE float t8 = t7 >= (-32767.0) ? t7 : -32767.0;
-    UNITPACK_PRECISE float t0 = t8 <= 32767.0 ? t8 : 32767.0;
-    UNITPACK_PRECISE vec3 t9 = floor(a * 4194304.0);
-    uvec3 afix = uvec3(t9);
-    UNITPACK_PRECISE vec2 t10 = vec2(t6, t3);
-    UNITPACK_PRECISE vec2 t11 = floor(t10 / l1 * 32767.0);
-    UNITPACK_PRECISE vec2 t12 = t10 * 32767.0;
-    UNITPACK_PRECISE vec2 t13 = mix(
-        mix(vec2(0.0), vec2(-1.0), lessThan(t12, t11 * l1)),
+    bool t2 = sum2 > 0.0;
+    bool t3 = ok && t2;
+    UNITPACK_PRECISE vec3 a = t3 ? t1 : vec3(0.0, 0.0, 2.0);
+    UNITPACK_PRECISE float l1 = t3 ? sum2 : 2.0;
+    UNITPACK_PRECISE float t4 = a.x + a.y;
+    UNITPACK_PRECISE float estimate = floor(t4 / l1 * 32767.0);
+    UNITPACK_PRECISE float big = t4 * 32767.0;
+    UNITPACK_PRECISE float step_down = big < estimate * l1 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
+    UNITPACK_PRECISE float t5 = estimate + step;
+    UNITPACK_PRECISE float t6 = t5 >= (-32767.0) ? t5 : -32767.0;
+    UNITPACK_PRECISE float s0 = t6 <= 32767.0 ? t6 : 32767.0;
+    UNITPACK_PRECISE float t7 = a.x - a.y;
+    UNITPACK_PRECISE float estimate2 = floor(t7 / l1 * 32767.0);
+    UNITPACK_PRECISE float big2 = t7 * 32767.0;
+    UNITPACK_PRECISE float step_down2 = big2 < estimate2 * l1 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t8 = estimate2 + step2;
+    UNITPACK_PRECISE float t9 = t8 >= (-32767.0) ? t8 : -32767.0;
+    UNITPACK_PRECISE float t0 = t9 <= 32767.0 ? t9 : 32767.0;
+    UNITPACK_PRECISE vec3 t10 = floor(a * 4194304.0);
+    uvec3 afix = uvec3(t10);
+    UNITPACK_PRECISE vec2 t11 = vec2(t7, t4);
+    UNITPACK_PRECISE vec2 t12 = floor(t11 / l1 * 32767.0);
+    UNITPACK_PRECISE vec2 t13 = t11 * 32767.0;
+    UNITPACK_PRECISE vec2 t14 = mix(
+        mix(vec2(0.0), vec2(-1.0), lessThan(t13, t12 * l1)),
         vec2(1.0),
-        greaterThanEqual(t12, (t11 + 1.0) * l1)
+        greaterThanEqual(t13, (t12 + 1.0) * l1)
     );
-    UNITPACK_PRECISE vec2 t14 = t11 + t13;
-    UNITPACK_PRECISE vec2 t15 = mix(vec2(-32767.0), t14, greaterThanEqual(t14, vec2(-32767.0)));
-    UNITPACK_PRECISE vec2 t16 = mix(vec2(32767.0), t15, lessThanEqual(t15, vec2(32767.0)));
-    UNITPACK_PRECISE vec2 t17 = vec2(t3, t6);
-    UNITPACK_PRECISE vec2 t18 = floor(t17 / l1 * 32767.0);
-    UNITPACK_PRECISE vec2 t19 = t17 * 32767.0;
-    UNITPACK_PRECISE vec2 t20 = mix(
-        mix(vec2(0.0), vec2(-1.0), lessThan(t19, t18 * l1)),
+    UNITPACK_PRECISE vec2 t15 = t12 + t14;
+    UNITPACK_PRECISE vec2 t16 = mix(vec2(-32767.0), t15, greaterThanEqual(t15, vec2(-32767.0)));
+    UNITPACK_PRECISE vec2 t17 = mix(vec2(32767.0), t16, lessThanEqual(t16, vec2(32767.0)));
+    UNITPACK_PRECISE vec2 neg_t17 = -t17;
+    UNITPACK_PRECISE vec2 t18 = vec2(t4, t7);
+    UNITPACK_PRECISE vec2 t19 = floor(t18 / l1 * 32767.0);
+    UNITPACK_PRECISE vec2 t20 = t18 * 32767.0;
+    UNITPACK_PRECISE vec2 t21 = mix(
+        mix(vec2(0.0), vec2(-1.0), lessThan(t20, t19 * l1)),
         vec2(1.0),
-        greaterThanEqual(t19, (t18 + 1.0) * l1)
+        greaterThanEqual(t20, (t19 + 1.0) * l1)
     );
-    UNITPACK_PRECISE vec2 t21 = t18 + t20;
-    UNITPACK_PRECISE vec2 t22 = mix(vec2(-32767.0), t21, greaterThanEqual(t21, vec2(-32767.0)));
-    UNITPACK_PRECISE vec2 t23 = mix(vec2(32767.0), t22, lessThanEqual(t22, vec2(32767.0)));
-    UNITPACK_PRECISE vec2 t24 = s0 + t0 < 0.0 ? -t16 : t23;
-    UNITPACK_PRECISE vec2 cand = t24.x < t24.y ? t24.yx : t24;
-    UNITPACK_PRECISE float t25 = 65534.0 - cand.x - cand.x;
-    UNITPACK_PRECISE float t26 = t25 >= 0.0 ? t25 : 0.0;
-    UNITPACK_PRECISE float t27 = cand.x + cand.y;
-    uint t28 = uint(t27);
+    UNITPACK_PRECISE vec2 t22 = t19 + t21;
+    UNITPACK_PRECISE vec2 t23 = mix(vec2(-32767.0), t22, greaterThanEqual(t22, vec2(-32767.0)));
+    UNITPACK_PRECISE vec2 t24 = mix(vec2(32767.0), t23, lessThanEqual(t23, vec2(32767.0)));
+    UNITPACK_PRECISE vec2 t25 = s0 + t0 < 0.0 ? neg_t17 : t24;
+    UNITPACK_PRECISE vec2 cand = t25.x < t25.y ? t25.yx : t25;
+    UNITPACK_PRECISE float t26 = 65534.0 - cand.x - cand.x;
+    UNITPACK_PRECISE float t27 = t26 >= 0.0 ? t26 : 0.0;
+    UNITPACK_PRECISE float t28 = cand.x + cand.y;
+    uint t28_u = uint(t28);
     UNITPACK_PRECISE float t29 = cand.x - cand.y;
-    uint t30 = uint(t29);
-    uint t31 = uint(t26);
-    uvec3 cross = afix.yzx * uvec3(vec3(t26, t27, t29)) - afix.zxy * uvec3(vec3(t29, t26, t27));
-    uint t32 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
-    uint t33 = t32 >> 16u;
-    uint t34 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    uint t29_u = uint(t29);
+    uint t27_u = uint(t27);
+    uvec3 cross = afix.yzx * uvec3(vec3(t27, t28, t29)) - afix.zxy * uvec3(vec3(t29, t27, t28));
+    uint t30 = 0u - cross.x;
+    uint t31 = cross.x < 2147483648u ? cross.x : t30;
+    uint t32 = t31 >> 16u;
+    uint t33 = 0u - cross.y;
+    uint t34 = cross.y < 2147483648u ? cross.y : t33;
     uint t35 = t34 >> 16u;
-    uint t36 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    uint t37 = t36 >> 16u;
-    uvec3 t38 = uvec3(
-        (t33 * (t32 & 65535u)) >> 12u,
+    uint t36 = 0u - cross.z;
+    uint t37 = cross.z < 2147483648u ? cross.z : t36;
+    uint t38 = t37 >> 16u;
+    uvec3 t39 = uvec3((t32 * t32) << 3u, (t35 * t35) << 3u, (t38 * t38) << 3u);
+    uvec3 t40 = uvec3(
+        (t32 * (t31 & 65535u)) >> 12u,
         (t35 * (t34 & 65535u)) >> 12u,
-        (t37 * (t36 & 65535u)) >> 12u
+        (t38 * (t37 & 65535u)) >> 12u
     );
-    uvec3 t39 = uvec3((t33 * t33) << 3u, (t35 * t35) << 3u, (t37 * t37) << 3u) + t38;
-    UNITPACK_PRECISE float e = float(t39.x + t39.y + t39.z);
-    UNITPACK_PRECISE float n = float((t28 * t28 + t30 * t30 + t31 * t31) >> 8u);
-    UNITPACK_PRECISE float t40 = s0 + 1.0;
-    UNITPACK_PRECISE vec2 t41 = t40 + t0 < 0.0 ? -vec2(t0, t40) : vec2(t40, t0);
-    UNITPACK_PRECISE vec2 cand2 = t41.x < t41.y ? t41.yx : t41;
-    UNITPACK_PRECISE float t42 = 65534.0 - cand2.x - cand2.x;
-    UNITPACK_PRECISE float t43 = t42 >= 0.0 ? t42 : 0.0;
-    UNITPACK_PRECISE float t44 = cand2.x + cand2.y;
-    uint t45 = uint(t44);
-    UNITPACK_PRECISE float t46 = cand2.x - cand2.y;
-    uint t47 = uint(t46);
-    uint t48 = uint(t43);
-    uvec3 cross2 = afix.yzx * uvec3(vec3(t43, t44, t46)) - afix.zxy * uvec3(vec3(t46, t43, t44));
-    uint t49 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
-    uint t50 = t49 >> 16u;
-    uint t51 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    uint t52 = t51 >> 16u;
-    uint t53 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
+    uvec3 t41 = t39 + t40;
+    UNITPACK_PRECISE float e = float(t41.x + t41.y + t41.z);
+    UNITPACK_PRECISE float n = float((t28_u * t28_u + t29_u * t29_u + t27_u * t27_u) >> 8u);
+    UNITPACK_PRECISE float s_up = s0 + 1.0;
+    UNITPACK_PRECISE float t_up = t0 + 1.0;
+    UNITPACK_PRECISE vec2 t42 = -vec2(t0, s_up);
+    UNITPACK_PRECISE vec2 t43 = vec2(s_up, t0);
+    UNITPACK_PRECISE vec2 t44 = s_up + t0 < 0.0 ? t42 : t43;
+    UNITPACK_PRECISE vec2 cand2 = t44.x < t44.y ? t44.yx : t44;
+    UNITPACK_PRECISE float t45 = 65534.0 - cand2.x - cand2.x;
+    UNITPACK_PRECISE float t46 = t45 >= 0.0 ? t45 : 0.0;
+    UNITPACK_PRECISE float t47 = cand2.x + cand2.y;
+    uint t47_u = uint(t47);
+    UNITPACK_PRECISE float t48 = cand2.x - cand2.y;
+    uint t48_u = uint(t48);
+    uint t46_u = uint(t46);
+    uvec3 cross2 = afix.yzx * uvec3(vec3(t46, t47, t48)) - afix.zxy * uvec3(vec3(t48, t46, t47));
+    uint t49 = 0u - cross2.x;
+    uint t50 = cross2.x < 2147483648u ? cross2.x : t49;
+    uint t51 = t50 >> 16u;
+    uint t52 = 0u - cross2.y;
+    uint t53 = cross2.y < 2147483648u ? cross2.y : t52;
     uint t54 = t53 >> 16u;
-    uvec3 t55 = uvec3(
-        (t50 * (t49 & 65535u)) >> 12u,
-        (t52 * (t51 & 65535u)) >> 12u,
-        (t54 * (t53 & 65535u)) >> 12u
+    uint t55 = 0u - cross2.z;
+    uint t56 = cross2.z < 2147483648u ? cross2.z : t55;
+    uint t57 = t56 >> 16u;
+    uvec3 t58 = uvec3((t51 * t51) << 3u, (t54 * t54) << 3u, (t57 * t57) << 3u);
+    uvec3 t59 = uvec3(
+        (t51 * (t50 & 65535u)) >> 12u,
+        (t54 * (t53 & 65535u)) >> 12u,
+        (t57 * (t56 & 65535u)) >> 12u
     );
-    uvec3 t56 = uvec3((t50 * t50) << 3u, (t52 * t52) << 3u, (t54 * t54) << 3u) + t55;
-    UNITPACK_PRECISE float e2 = float(t56.x + t56.y + t56.z);
-    UNITPACK_PRECISE float n2 = float((t45 * t45 + t47 * t47 + t48 * t48) >> 8u);
-    UNITPACK_PRECISE float t57 = e2 * n;
-    UNITPACK_PRECISE float t58 = e * n2;
-    bool t59 = cand2.x <= 32767.0 && t57 < t58;
-    UNITPACK_PRECISE vec2 best = t59 ? cand2 : cand;
-    UNITPACK_PRECISE float best_e = t59 ? e2 : e;
-    UNITPACK_PRECISE float best_n = t59 ? n2 : n;
-    UNITPACK_PRECISE float t60 = t0 + 1.0;
-    UNITPACK_PRECISE vec2 t61 = s0 + t60 < 0.0 ? -vec2(t60, s0) : vec2(s0, t60);
-    UNITPACK_PRECISE vec2 cand3 = t61.x < t61.y ? t61.yx : t61;
-    UNITPACK_PRECISE float t62 = 65534.0 - cand3.x - cand3.x;
-    UNITPACK_PRECISE float t63 = t62 >= 0.0 ? t62 : 0.0;
-    UNITPACK_PRECISE float t64 = cand3.x + cand3.y;
-    uint t65 = uint(t64);
-    UNITPACK_PRECISE float t66 = cand3.x - cand3.y;
-    uint t67 = uint(t66);
-    uint t68 = uint(t63);
-    uvec3 cross3 = afix.yzx * uvec3(vec3(t63, t64, t66)) - afix.zxy * uvec3(vec3(t66, t63, t64));
-    uint t69 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    uint t70 = t69 >> 16u;
-    uint t71 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
-    uint t72 = t71 >> 16u;
-    uint t73 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
+    uvec3 t60 = t58 + t59;
+    UNITPACK_PRECISE float e2 = float(t60.x + t60.y + t60.z);
+    UNITPACK_PRECISE float n2 = float((t47_u * t47_u + t48_u * t48_u + t46_u * t46_u) >> 8u);
+    UNITPACK_PRECISE float t61 = e2 * n;
+    UNITPACK_PRECISE float t62 = e * n2;
+    bool t63 = t61 < t62;
+    bool t64 = cand2.x <= 32767.0 && t63;
+    UNITPACK_PRECISE vec2 best = t64 ? cand2 : cand;
+    UNITPACK_PRECISE float best_e = t64 ? e2 : e;
+    UNITPACK_PRECISE float best_n = t64 ? n2 : n;
+    UNITPACK_PRECISE vec2 t65 = -vec2(t_up, s0);
+    UNITPACK_PRECISE vec2 t66 = vec2(s0, t_up);
+    UNITPACK_PRECISE vec2 t67 = s0 + t_up < 0.0 ? t65 : t66;
+    UNITPACK_PRECISE vec2 cand3 = t67.x < t67.y ? t67.yx : t67;
+    UNITPACK_PRECISE float t68 = 65534.0 - cand3.x - cand3.x;
+    UNITPACK_PRECISE float t69 = t68 >= 0.0 ? t68 : 0.0;
+    UNITPACK_PRECISE float t70 = cand3.x + cand3.y;
+    uint t70_u = uint(t70);
+    UNITPACK_PRECISE float t71 = cand3.x - cand3.y;
+    uint t71_u = uint(t71);
+    uint t69_u = uint(t69);
+    uvec3 cross3 = afix.yzx * uvec3(vec3(t69, t70, t71)) - afix.zxy * uvec3(vec3(t71, t69, t70));
+    uint t72 = 0u - cross3.x;
+    uint t73 = cross3.x < 2147483648u ? cross3.x : t72;
     uint t74 = t73 >> 16u;
-    uvec3 t75 = uvec3(
-        (t70 * (t69 & 65535u)) >> 12u,
-        (t72 * (t71 & 65535u)) >> 12u,
-        (t74 * (t73 & 65535u)) >> 12u
+    uint t75 = 0u - cross3.y;
+    uint t76 = cross3.y < 2147483648u ? cross3.y : t75;
+    uint t77 = t76 >> 16u;
+    uint t78 = 0u - cross3.z;
+    uint t79 = cross3.z < 2147483648u ? cross3.z : t78;
+    uint t80 = t79 >> 16u;
+    uvec3 t81 = uvec3((t74 * t74) << 3u, (t77 * t77) << 3u, (t80 * t80) << 3u);
+    uvec3 t82 = uvec3(
+        (t74 * (t73 & 65535u)) >> 12u,
+        (t77 * (t76 & 65535u)) >> 12u,
+        (t80 * (t79 & 65535u)) >> 12u
     );
-    uvec3 t76 = uvec3((t70 * t70) << 3u, (t72 * t72) << 3u, (t74 * t74) << 3u) + t75;
-    UNITPACK_PRECISE float e3 = float(t76.x + t76.y + t76.z);
-    UNITPACK_PRECISE float n3 = float((t65 * t65 + t67 * t67 + t68 * t68) >> 8u);
-    UNITPACK_PRECISE float t77 = e3 * best_n;
-    UNITPACK_PRECISE float t78 = best_e * n3;
-    bool t79 = cand3.x <= 32767.0 && t77 < t78;
-    UNITPACK_PRECISE vec2 best2 = t79 ? cand3 : best;
-    UNITPACK_PRECISE float best_e2 = t79 ? e3 : best_e;
-    UNITPACK_PRECISE float best_n2 = t79 ? n3 : best_n;
-    UNITPACK_PRECISE vec2 t80 = s0 + 1.0 + (t0 + 1.0) < 0.0 ? -(t16 + 1.0) : t23 + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = t80.x < t80.y ? t80.yx : t80;
-    UNITPACK_PRECISE float t81 = 65534.0 - cand4.x - cand4.x;
-    UNITPACK_PRECISE float t82 = t81 >= 0.0 ? t81 : 0.0;
-    UNITPACK_PRECISE float t83 = cand4.x + cand4.y;
-    uint t84 = uint(t83);
-    UNITPACK_PRECISE float t85 = cand4.x - cand4.y;
-    uint t86 = uint(t85);
-    uint t87 = uint(t82);
-    uvec3 cross4 = afix.yzx * uvec3(vec3(t82, t83, t85)) - afix.zxy * uvec3(vec3(t85, t82, t83));
-    uint t88 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
-    uint t89 = t88 >> 16u;
-    uint t90 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    uint t91 = t90 >> 16u;
-    uint t92 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    uint t93 = t92 >> 16u;
-    uvec3 t94 = uvec3(
-        (t89 * (t88 & 65535u)) >> 12u,
-        (t91 * (t90 & 65535u)) >> 12u,
-        (t93 * (t92 & 65535u)) >> 12u
+    uvec3 t83 = t81 + t82;
+    UNITPACK_PRECISE float e3 = float(t83.x + t83.y + t83.z);
+    UNITPACK_PRECISE float n3 = float((t70_u * t70_u + t71_u * t71_u + t69_u * t69_u) >> 8u);
+    UNITPACK_PRECISE float t84 = e3 * best_n;
+    UNITPACK_PRECISE float t85 = best_e * n3;
+    bool t86 = t84 < t85;
+    bool t87 = cand3.x <= 32767.0 && t86;
+    UNITPACK_PRECISE vec2 best2 = t87 ? cand3 : best;
+    UNITPACK_PRECISE float best_e2 = t87 ? e3 : best_e;
+    UNITPACK_PRECISE float best_n2 = t87 ? n3 : best_n;
+    UNITPACK_PRECISE vec2 t88 = -(t17 + 1.0);
+    UNITPACK_PRECISE vec2 t89 = t24 + 1.0;
+    UNITPACK_PRECISE vec2 t90 = s_up + t_up < 0.0 ? t88 : t89;
+    UNITPACK_PRECISE vec2 cand4 = t90.x < t90.y ? t90.yx : t90;
+    UNITPACK_PRECISE float t91 = 65534.0 - cand4.x - cand4.x;
+    UNITPACK_PRECISE float t92 = t91 >= 0.0 ? t91 : 0.0;
+    UNITPACK_PRECISE float t93 = cand4.x + cand4.y;
+    uint t93_u = uint(t93);
+    UNITPACK_PRECISE float t94 = cand4.x - cand4.y;
+    uint t94_u = uint(t94);
+    uint t92_u = uint(t92);
+    uvec3 cross4 = afix.yzx * uvec3(vec3(t92, t93, t94)) - afix.zxy * uvec3(vec3(t94, t92, t93));
+    uint t95 = 0u - cross4.x;
+    uint t96 = cross4.x < 2147483648u ? cross4.x : t95;
+    uint t97 = t96 >> 16u;
+    uint t98 = 0u - cross4.y;
+    uint t99 = cross4.y < 2147483648u ? cross4.y : t98;
+    uint t100 = t99 >> 16u;
+    uint t101 = 0u - cross4.z;
+    uint t102 = cross4.z < 2147483648u ? cross4.z : t101;
+    uint t103 = t102 >> 16u;
+    uvec3 t104 = uvec3((t97 * t97) << 3u, (t100 * t100) << 3u, (t103 * t103) << 3u);
+    uvec3 t105 = uvec3(
+        (t97 * (t96 & 65535u)) >> 12u,
+        (t100 * (t99 & 65535u)) >> 12u,
+        (t103 * (t102 & 65535u)) >> 12u
     );
-    uvec3 t95 = uvec3((t89 * t89) << 3u, (t91 * t91) << 3u, (t93 * t93) << 3u) + t94;
-    UNITPACK_PRECISE float e4 = float(t95.x + t95.y + t95.z);
-    UNITPACK_PRECISE float n4 = float((t84 * t84 + t86 * t86 + t87 * t87) >> 8u);
-    UNITPACK_PRECISE vec2 best3 = cand4.x <= 32767.0 && e4 * best_n2 < best_e2 * n4 ? cand4 : best2;
-    UNITPACK_PRECISE vec2 t96 = w.x < 0.0 ? -best3.yx : best3;
-    return t2 ? (w.y < 0.0 ? t96.yx : t96) : vec2(0.0);
+    uvec3 t106 = t104 + t105;
+    UNITPACK_PRECISE float e4 = float(t106.x + t106.y + t106.z);
+    UNITPACK_PRECISE float n4 = float((t93_u * t93_u + t94_u * t94_u + t92_u * t92_u) >> 8u);
+    UNITPACK_PRECISE float t107 = e4 * best_n2;
+    UNITPACK_PRECISE float t108 = best_e2 * n4;
+    bool t109 = t107 < t108;
+    UNITPACK_PRECISE vec2 best3 = cand4.x <= 32767.0 && t109 ? cand4 : best2;
+    UNITPACK_PRECISE vec2 t110 = -best3.yx;
+    UNITPACK_PRECISE vec2 t111 = w.x < 0.0 ? t110 : best3;
+    UNITPACK_PRECISE vec2 t112 = w.y < 0.0 ? t111.yx : t111;
+    return t3 ? t112 : vec2(0.0);
 }
 
 // unitpack_hemioct32p_encode_float: precise encoder, float form.
@@ -248,9 +282,7 @@ vec2 unitpack_hemioct32p_encode_float(vec3 v) {
 }
 
 // unitpack_hemioct32p_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct32p_encode_float.
 // Out: the packed code, uint (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16
 //   (two's complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

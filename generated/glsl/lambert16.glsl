@@ -75,15 +75,16 @@ vec2 unitpack_lambert16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -103,24 +104,27 @@ vec2 unitpack_lambert16_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    bool t5 = w2.z >= 0.0;
-    UNITPACK_PRECISE float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    UNITPACK_PRECISE float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    bool t1 = w2.z >= 0.0;
+    UNITPACK_PRECISE float t2 = root + w2.z;
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -134,13 +138,13 @@ vec2 unitpack_lambert16_encode_float(vec3 v) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    UNITPACK_PRECISE float opz_a = t5 ? root + w2.z : rho2;
-    UNITPACK_PRECISE float opz_b = t5 ? 1.0 : root - w2.z;
+    UNITPACK_PRECISE float opz_a = t1 ? t2 : rho2;
+    UNITPACK_PRECISE float t3 = root - w2.z;
+    UNITPACK_PRECISE float opz_b = t1 ? 1.0 : t3;
     UNITPACK_PRECISE float g = sqrt(root * opz_a / opz_b * 8.0);
-    UNITPACK_PRECISE vec2 result = ok
-        ? (opz_a <= 0.0 ? vec2(1.0, 0.5) : w2.xy / g + 0.5)
-        : vec2(0.5);
-    return result;
+    UNITPACK_PRECISE vec2 t4 = w2.xy / g + 0.5;
+    UNITPACK_PRECISE vec2 t5 = opz_a <= 0.0 ? vec2(1.0, 0.5) : t4;
+    return ok ? t5 : vec2(0.5);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -157,15 +161,16 @@ vec2 unitpack_lambert16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -185,24 +190,27 @@ vec2 unitpack_lambert16_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    bool t5 = w2.z >= 0.0;
-    UNITPACK_PRECISE float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    UNITPACK_PRECISE float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    bool t1 = w2.z >= 0.0;
+    UNITPACK_PRECISE float t2 = root + w2.z;
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -216,51 +224,41 @@ vec2 unitpack_lambert16_round_codes(vec3 a0) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    UNITPACK_PRECISE float opz_a = t5 ? root + w2.z : rho2;
-    UNITPACK_PRECISE float opz_b = t5 ? 1.0 : root - w2.z;
+    UNITPACK_PRECISE float opz_a = t1 ? t2 : rho2;
+    UNITPACK_PRECISE float t3 = root - w2.z;
+    UNITPACK_PRECISE float opz_b = t1 ? 1.0 : t3;
     UNITPACK_PRECISE float la = root * opz_a;
-    UNITPACK_PRECISE vec2 t8 = roundEven(w2.xy / (sqrt(la / opz_b) * 0.011091871) + 127.5);
-    UNITPACK_PRECISE vec2 t9 = mix(vec2(0.0), t8, greaterThanEqual(t8, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t10 = mix(vec2(255.0), t9, lessThanEqual(t9, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t11 = t10 - 127.0;
-    UNITPACK_PRECISE vec2 t12 = w2.xy * w2.xy * opz_b * 8128.125;
-    UNITPACK_PRECISE vec2 t13 = t11 * t11 * la;
-    UNITPACK_PRECISE vec2 t14 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t12, t13)),
-        greaterThan(t11, vec2(0.0))
+    UNITPACK_PRECISE vec2 t4 = roundEven(w2.xy / (sqrt(la / opz_b) * 0.011091871) + 127.5);
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t6 = mix(vec2(255.0), t5, lessThanEqual(t5, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t7 = t6 - 127.0;
+    UNITPACK_PRECISE vec2 t8 = w2.xy * w2.xy * opz_b * 8128.125;
+    UNITPACK_PRECISE vec2 t9 = t7 * t7 * la;
+    UNITPACK_PRECISE vec2 t10 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t8, t9)), lessThan(t7, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t8, t9)),
+            greaterThan(t7, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t15 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t12, t13)),
-        lessThan(t11, vec2(0.0))
+    UNITPACK_PRECISE vec2 t11 = t6 - 1.0 - 127.0;
+    UNITPACK_PRECISE vec2 t12 = t11 * t11 * la;
+    UNITPACK_PRECISE vec2 t13 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t8, t12)), lessThan(t11, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t8, t12)),
+            greaterThan(t11, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t16 = mix(
-        vec2(0.0),
-        mix(t15, t14, greaterThanEqual(w2.xy, vec2(0.0))),
-        lessThan(t10, vec2(255.0))
-    );
-    UNITPACK_PRECISE vec2 t17 = t10 - 1.0 - 127.0;
-    UNITPACK_PRECISE vec2 t18 = t17 * t17 * la;
-    UNITPACK_PRECISE vec2 t19 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t12, t18)),
-        greaterThan(t17, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t20 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t12, t18)),
-        lessThan(t17, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t21 = mix(
-        vec2(0.0),
-        mix(t20, t19, greaterThanEqual(w2.xy, vec2(0.0))) - 1.0,
-        greaterThan(t10, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 result = ok
-        ? (opz_a <= 0.0 ? vec2(255.0, 128.0) : t10 + t16 + t21)
-        : vec2(128.0);
-    return result;
+    UNITPACK_PRECISE vec2 t14 = t6
+        + mix(vec2(0.0), t10, lessThan(t6, vec2(255.0)))
+        + mix(vec2(0.0), t13 - 1.0, greaterThan(t6, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t15 = opz_a <= 0.0 ? vec2(255.0, 128.0) : t14;
+    return ok ? t15 : vec2(128.0);
 }
 
 // unitpack_lambert16_encode: fast encoder.

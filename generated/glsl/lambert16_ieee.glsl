@@ -67,12 +67,12 @@ vec3 unitpack_lambert16_ieee_decode(uint code) {
 vec2 unitpack_lambert16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE float len2 = v_sq.x + v_sq.y + v_sq.z;
+    bool t1 = len2 <= 3.4028235e38;
     UNITPACK_PRECISE vec3 n = v / sqrt(len2);
     UNITPACK_PRECISE float f = sqrt(n.z * 8.0 + 8.0);
-    UNITPACK_PRECISE vec2 result = len2 > 0.0 && len2 <= 3.4028235e38
-        ? (f > 0.0 ? n.xy / f + 0.5 : vec2(1.0, 0.5))
-        : vec2(0.5);
-    return result;
+    UNITPACK_PRECISE vec2 t2 = n.xy / f + 0.5;
+    UNITPACK_PRECISE vec2 t3 = f > 0.0 ? t2 : vec2(1.0, 0.5);
+    return len2 > 0.0 && t1 ? t3 : vec2(0.5);
 }
 
 // unitpack_lambert16_ieee_encode: fast encoder.

@@ -38,24 +38,26 @@ precision highp int;
 vec2 unitpack_latlongd24_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -90,13 +92,14 @@ uint unitpack_latlongd24_encode_ring(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -110,82 +113,87 @@ uint unitpack_latlongd24_encode_ring(vec3 v) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? rho2 : 1.0;
-    uint half_exponent = ((floatBitsToUint(t4) >> 23u) + 1u) >> 1u;
+    bool t1 = rho2 > 0.0;
+    UNITPACK_PRECISE float t2 = t1 ? rho2 : 1.0;
+    uint half_exponent = ((floatBitsToUint(t2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = t4 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t3 = t2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t3);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t3 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float rho = t3 ? root * root_up : 0.0;
+    UNITPACK_PRECISE float t4 = root * root_up;
+    UNITPACK_PRECISE float rho = t1 ? t4 : 0.0;
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
     UNITPACK_PRECISE float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_w2_z;
     UNITPACK_PRECISE float hi4 = y_major ? abs_rho : abs_w2_z;
     UNITPACK_PRECISE float lo4 = y_major ? abs_w2_z : abs_rho;
-    UNITPACK_PRECISE float t7 = hi4 > 0.0 ? hi4 : 1.0;
+    UNITPACK_PRECISE float t5 = hi4 > 0.0 ? hi4 : 1.0;
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t7 * 8388608.0);
-    UNITPACK_PRECISE float t8 = (ratio_estimate + 1.0) * t7 <= big
-        ? 1.0
-        : (ratio_estimate * t7 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t8;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t7 <= big ? 1.0 : (ratio * t7 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t5 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t9 = t - 8388608.0;
-    UNITPACK_PRECISE float t10 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t9 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t9 / t10 * 8388608.0);
-    UNITPACK_PRECISE float t11 = (ratio_estimate2 + 1.0) * t10 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t10 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t11;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t10 <= big2 ? 1.0 : (ratio2 * t10 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t6 = t - 8388608.0;
+    UNITPACK_PRECISE float t7 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t6 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t12 = roundEven(
+    UNITPACK_PRECISE float t8 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t13 = (roundEven((t12 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t9 = (roundEven((t8 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t14 = (
-        roundEven((roundEven(t13) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t15 = (
-        roundEven((roundEven(t14) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t10 = (
+        roundEven((roundEven(t9) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t16 = roundEven(
-        (roundEven(t15 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t11 = roundEven(
+        (roundEven(t10 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t16 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t12 = roundEven(
+        (roundEven(t11 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t12 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = w2.z < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float angle = rho < 0.0 ? -h4 : h4;
+    UNITPACK_PRECISE float t13 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t13 : h;
+    UNITPACK_PRECISE float t14 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t14 : h2;
+    UNITPACK_PRECISE float t15 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = w2.z < 0.0 ? t15 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float angle = rho < 0.0 ? neg_h4 : h4;
     UNITPACK_PRECISE float theta = angle * 2.0 - 8388608.0;
-    UNITPACK_PRECISE float t17 = roundEven((theta + 8388608.0) * 0.00021624565);
-    return uint(t17);
+    UNITPACK_PRECISE float t16 = roundEven((theta + 8388608.0) * 0.00021624565);
+    return uint(t16);
 }
 
 // unitpack_latlongd24_encode: fast encoder.
@@ -205,7 +213,8 @@ uint unitpack_latlongd24_encode(vec3 v, uvec2 ring) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float abs_w2_x = abs(w2.x);
@@ -216,53 +225,56 @@ uint unitpack_latlongd24_encode(vec3 v, uvec2 ring) {
     UNITPACK_PRECISE float t1 = hi > 0.0 ? hi : 1.0;
     UNITPACK_PRECISE float big = lo * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo / t1 * 8388608.0);
-    UNITPACK_PRECISE float t2 = (ratio_estimate + 1.0) * t1 <= big
-        ? 1.0
-        : (ratio_estimate * t1 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t2;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t1 <= big ? 1.0 : (ratio * t1 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = ratio_estimate * t1 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step;
+    UNITPACK_PRECISE float step_down2 = ratio * t1 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t = ratio + step2;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t3 = t - 8388608.0;
-    UNITPACK_PRECISE float t4 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t3 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t3 / t4 * 8388608.0);
-    UNITPACK_PRECISE float t5 = (ratio_estimate2 + 1.0) * t4 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t4 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t5;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t4 <= big2 ? 1.0 : (ratio2 * t4 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t2 = t - 8388608.0;
+    UNITPACK_PRECISE float t3 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t2 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t2 / t3 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate2 * t3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step3;
+    UNITPACK_PRECISE float step_down4 = ratio2 * t3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step4;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t6 = roundEven(
+    UNITPACK_PRECISE float t4 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t7 = (roundEven((t6 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t5 = (roundEven((t4 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t8 = (
-        roundEven((roundEven(t7) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
+    UNITPACK_PRECISE float t6 = (
+        roundEven((roundEven(t5) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t9 = (
-        roundEven((roundEven(t8) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+        * z2;
+    UNITPACK_PRECISE float t7 = roundEven(
+        (roundEven(t6 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t10 = z
-        * (roundEven((roundEven(t9) + (-2796203.0)) * z2 * 1.1920929e-7) + 8388608.0)
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float r = roundEven(t10);
+        + 1677722.0;
+    UNITPACK_PRECISE float t8 = roundEven(
+        (roundEven(t7 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t8 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = w2.x < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float phi = w2.y < 0.0 ? -h4 : h4;
-    UNITPACK_PRECISE float t11 = roundEven((phi + 8388608.0) * float(ring.y) * 5.9604645e-8);
-    uint t12 = uint(t11);
-    return ok ? ring.x + (t12 < ring.y ? t12 : 0u) : 0u;
+    UNITPACK_PRECISE float t9 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t9 : h;
+    UNITPACK_PRECISE float t10 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t10 : h2;
+    UNITPACK_PRECISE float t11 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = w2.x < 0.0 ? t11 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float phi = w2.y < 0.0 ? neg_h4 : h4;
+    UNITPACK_PRECISE float t12 = roundEven((phi + 8388608.0) * float(ring.y) * 5.9604645e-8);
+    uint t12_u = uint(t12);
+    uint t13 = ring.x + (t12_u < ring.y ? t12_u : 0u);
+    return ok ? t13 : 0u;
 }
 
 // unitpack_latlongd24_encode_float: fast encoder, float form.
@@ -286,88 +298,95 @@ uint unitpack_latlongd24_decode_ring(uint code) {
     uint t1 = code & 16777215u;
     uint t2 = t1 < 16777215u ? t1 : 16777215u;
     bool t3 = !(t2 < 8388608u);
-    uint t4 = t3 ? 16777215u - t2 : t2;
-    uint t5 = t4 + t4 + 1u;
-    uint t6 = 16777215u - t4;
-    uint t7 = 16777215u - (t4 + t4);
-    UNITPACK_PRECISE float t8 = float(t7 >> 12u) * 4096.0 + float(t7 & 4095u);
-    UNITPACK_PRECISE float t9 = (float(t5 >> 12u) * 4096.0 + float(t5 & 4095u))
-        * ((float(t6 >> 12u) * 4096.0 + float(t6 & 4095u)) * 2.0 + 1.0);
-    uint half_exponent = ((floatBitsToUint(t9) >> 23u) + 1u) >> 1u;
+    uint t4 = 16777215u - t2;
+    uint t5 = t3 ? t4 : t2;
+    uint t6 = t5 + t5 + 1u;
+    uint t7 = 16777215u - t5;
+    UNITPACK_PRECISE float t8 = (float(t7 >> 12u) * 4096.0 + float(t7 & 4095u)) * 2.0;
+    uint t9 = 16777215u - (t5 + t5);
+    UNITPACK_PRECISE float t10 = float(t9 >> 12u) * 4096.0 + float(t9 & 4095u);
+    UNITPACK_PRECISE float t11 = (float(t6 >> 12u) * 4096.0 + float(t6 & 4095u)) * (t8 + 1.0);
+    uint half_exponent = ((floatBitsToUint(t11) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t10 = t9 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t10);
-    UNITPACK_PRECISE float t11 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t11 * 0.001953125;
+    UNITPACK_PRECISE float t12 = t11 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t12);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t11
-        + (root_h1 * root_h1 <= t10 ? 1.0 : (root_h0 * root_h0 > t10 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t12 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t12 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t10 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t12 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t10 ? 1.0 : (root_m0 * root_m0 > t10 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t12 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t12 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t12 = root * root_up;
-    UNITPACK_PRECISE float abs_t8 = abs(t8);
-    UNITPACK_PRECISE float abs_t12 = abs(t12);
-    bool y_major = abs_t12 > abs_t8;
-    UNITPACK_PRECISE float hi = y_major ? abs_t12 : abs_t8;
-    UNITPACK_PRECISE float lo = y_major ? abs_t8 : abs_t12;
-    UNITPACK_PRECISE float t13 = hi > 0.0 ? hi : 1.0;
+    UNITPACK_PRECISE float t13 = root * root_up;
+    UNITPACK_PRECISE float abs_t10 = abs(t10);
+    UNITPACK_PRECISE float abs_t13 = abs(t13);
+    bool y_major = abs_t13 > abs_t10;
+    UNITPACK_PRECISE float hi = y_major ? abs_t13 : abs_t10;
+    UNITPACK_PRECISE float lo = y_major ? abs_t10 : abs_t13;
+    UNITPACK_PRECISE float t14 = hi > 0.0 ? hi : 1.0;
     UNITPACK_PRECISE float big = lo * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo / t13 * 8388608.0);
-    UNITPACK_PRECISE float t14 = (ratio_estimate + 1.0) * t13 <= big
-        ? 1.0
-        : (ratio_estimate * t13 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t14;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t13 <= big ? 1.0 : (ratio * t13 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo / t14 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t14 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t14 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t14 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t14 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
     UNITPACK_PRECISE float t15 = t - 8388608.0;
     UNITPACK_PRECISE float t16 = t + 8388608.0;
     UNITPACK_PRECISE float big2 = t15 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t15 / t16 * 8388608.0);
-    UNITPACK_PRECISE float t17 = (ratio_estimate2 + 1.0) * t16 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t16 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t17;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t16 <= big2 ? 1.0 : (ratio2 * t16 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t16 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t16 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t16 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t16 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t18 = roundEven(
+    UNITPACK_PRECISE float t17 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t19 = (roundEven((t18 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t18 = (roundEven((t17 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t20 = (
-        roundEven((roundEven(t19) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t21 = (
-        roundEven((roundEven(t20) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t19 = (
+        roundEven((roundEven(t18) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t22 = roundEven(
-        (roundEven(t21 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t20 = roundEven(
+        (roundEven(t19 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t22 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t21 = roundEven(
+        (roundEven(t20 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t21 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = t8 < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float angle = t12 < 0.0 ? -h4 : h4;
-    UNITPACK_PRECISE float t23 = angle * 0.0004324913;
-    UNITPACK_PRECISE float t24 = t3 ? 3628.0 + floor(0.0 - t23) : floor(t23);
-    UNITPACK_PRECISE float t25 = t24 >= 0.0 ? t24 : 0.0;
-    return uint(t25 <= 3627.0 ? t25 : 3627.0);
+    UNITPACK_PRECISE float t22 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t22 : h;
+    UNITPACK_PRECISE float t23 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t23 : h2;
+    UNITPACK_PRECISE float t24 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = t10 < 0.0 ? t24 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float angle = t13 < 0.0 ? neg_h4 : h4;
+    UNITPACK_PRECISE float t25 = angle * 0.0004324913;
+    UNITPACK_PRECISE float floor_t25 = floor(t25);
+    UNITPACK_PRECISE float t26 = 3628.0 + floor(0.0 - t25);
+    UNITPACK_PRECISE float t27 = t3 ? t26 : floor_t25;
+    UNITPACK_PRECISE float t28 = t27 >= 0.0 ? t27 : 0.0;
+    return uint(t28 <= 3627.0 ? t28 : 3627.0);
 }
 
 // unitpack_latlongd24_decode_params: lookup texel.
@@ -380,19 +399,21 @@ vec2 unitpack_latlongd24_decode_params(uint code, uint g, uvec2 ring0, uvec2 rin
     uint t1 = code & 16777215u;
     uint t2 = t1 < 16777215u ? t1 : 16777215u;
     bool t3 = !(t2 < ring1.x);
-    UNITPACK_PRECISE float t4 = float(t2 - (t3 ? ring1.x : ring0.x));
-    UNITPACK_PRECISE float t5 = float(t3 ? ring1.y : ring0.y);
-    UNITPACK_PRECISE float big = t4 * 16777216.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(t4 / t5 * 16777216.0);
-    UNITPACK_PRECISE float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t6;
-    UNITPACK_PRECISE float ratio2 = ratio
-        + ((ratio + 1.0) * t5 <= big ? 1.0 : (ratio * t5 > big ? -1.0 : 0.0));
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t5 <= big ? 1.0 : (ratio2 * t5 > big ? -1.0 : 0.0));
-    UNITPACK_PRECISE vec2 result = vec2(uvec2(uint(ratio3), t3 ? g + 1u : g))
+    uint t4 = g + 1u;
+    UNITPACK_PRECISE float t5 = float(t2 - (t3 ? ring1.x : ring0.x));
+    UNITPACK_PRECISE float t6 = float(t3 ? ring1.y : ring0.y);
+    UNITPACK_PRECISE float big = t5 * 16777216.0;
+    UNITPACK_PRECISE float ratio_estimate = floor(t5 / t6 * 16777216.0);
+    UNITPACK_PRECISE float step_down = ratio_estimate * t6 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t6 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step;
+    UNITPACK_PRECISE float step_down2 = ratio * t6 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = (ratio + 1.0) * t6 <= big ? 1.0 : step_down2;
+    UNITPACK_PRECISE float ratio2 = ratio + step2;
+    UNITPACK_PRECISE float step_down3 = ratio2 * t6 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio2 + 1.0) * t6 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step3;
+    UNITPACK_PRECISE vec2 result = vec2(uvec2(uint(ratio3), t3 ? t4 : g))
         * vec2(5.9604645e-8, 0.00027563397);
     return result;
 }

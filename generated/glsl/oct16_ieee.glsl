@@ -42,9 +42,9 @@ precision highp int;
 vec3 unitpack_oct16_ieee_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 abs_params = abs(params);
     UNITPACK_PRECISE float z = 1.0 - abs_params.x - abs_params.y;
-    UNITPACK_PRECISE vec2 t1 = (1.0 - abs(params.yx))
+    UNITPACK_PRECISE vec2 folded = (1.0 - abs(params.yx))
         * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(params, vec2(0.0)));
-    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? t1 : params, z);
+    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? folded : params, z);
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE vec3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -72,10 +72,10 @@ vec2 unitpack_oct16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE float l1 = abs_v.x + abs_v.y + abs_v.z;
     UNITPACK_PRECISE vec2 p = v.xy / l1;
     UNITPACK_PRECISE vec2 abs_p = abs(p);
-    UNITPACK_PRECISE vec2 t1 = v.z <= 0.0
-        ? (1.0 - abs_p.yx) * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)))
-        : p;
-    UNITPACK_PRECISE vec2 result = abs_p.x + l1 <= 3.4028235e38 ? t1 : vec2(0.0);
+    UNITPACK_PRECISE vec2 t1 = (1.0 - abs_p.yx)
+        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t2 = v.z <= 0.0 ? t1 : p;
+    UNITPACK_PRECISE vec2 result = abs_p.x + l1 <= 3.4028235e38 ? t2 : vec2(0.0);
     return result;
 }
 

@@ -42,9 +42,9 @@ precision highp int;
 vec3 unitpack_oct20_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 abs_params = abs(params);
     UNITPACK_PRECISE float z = 1.0 - abs_params.x - abs_params.y;
-    UNITPACK_PRECISE vec2 t1 = (1.0 - abs(params.yx))
+    UNITPACK_PRECISE vec2 folded = (1.0 - abs(params.yx))
         * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(params, vec2(0.0)));
-    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? t1 : params, z);
+    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? folded : params, z);
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE vec3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -69,16 +69,18 @@ vec3 unitpack_oct20_decode(uint code) {
 //   measures how far); the packed encoder is the portable form.
 vec2 unitpack_oct20_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
-    UNITPACK_PRECISE float t1 = abs_v.x + abs_v.y + abs_v.z;
-    UNITPACK_PRECISE vec3 w = v
-        * (t1 <= 3.4028235e38 ? (t1 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    UNITPACK_PRECISE float norm1 = abs_v.x + abs_v.y + abs_v.z;
+    UNITPACK_PRECISE float t1 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    UNITPACK_PRECISE float fit = norm1 <= 3.4028235e38 ? t1 : 0.25;
+    UNITPACK_PRECISE vec3 w = v * fit;
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
+    bool t2 = l1 <= 3.4028235e38;
     UNITPACK_PRECISE vec2 p = w.xy / l1;
-    UNITPACK_PRECISE vec2 t2 = w.z <= 0.0
-        ? (1.0 - abs(p.yx)) * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)))
-        : p;
-    return l1 > 0.0 && l1 <= 3.4028235e38 ? t2 : vec2(0.0);
+    UNITPACK_PRECISE vec2 folded = (1.0 - abs(p.yx))
+        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t3 = w.z <= 0.0 ? folded : p;
+    return l1 > 0.0 && t2 ? t3 : vec2(0.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -95,7 +97,8 @@ vec2 unitpack_oct20_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
@@ -111,8 +114,8 @@ vec2 unitpack_oct20_round_codes(vec3 a0) {
         greaterThanEqual(t3, (t2 + 0.5) * l1)
     );
     UNITPACK_PRECISE vec2 t5 = t2 + t4;
-    UNITPACK_PRECISE vec2 result = ok ? mix(t5, -t5, lessThan(n, vec2(0.0))) : vec2(0.0);
-    return result;
+    UNITPACK_PRECISE vec2 t6 = mix(t5, -t5, lessThan(n, vec2(0.0)));
+    return ok ? t6 : vec2(0.0);
 }
 
 // unitpack_oct20_encode: fast encoder.

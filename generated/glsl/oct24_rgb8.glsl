@@ -50,10 +50,9 @@ vec2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(vec3 a0) {
 vec3 unitpack_oct24_rgb8_oct24_decode_float(vec2 a0) {
     UNITPACK_PRECISE vec2 abs_a0 = abs(a0);
     UNITPACK_PRECISE float z = 1.0 - abs_a0.x - abs_a0.y;
-    UNITPACK_PRECISE vec2 t1 = z < 0.0
-        ? (1.0 - abs(a0.yx)) * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(a0, vec2(0.0)))
-        : a0;
-    UNITPACK_PRECISE vec3 v = vec3(t1, z);
+    UNITPACK_PRECISE vec2 folded = (1.0 - abs(a0.yx))
+        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(a0, vec2(0.0)));
+    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? folded : a0, z);
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE vec3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -106,7 +105,8 @@ vec3 unitpack_oct24_rgb8_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
@@ -122,11 +122,12 @@ vec3 unitpack_oct24_rgb8_round_codes(vec3 a0) {
         greaterThanEqual(t3, (t2 + 0.5) * l1)
     );
     UNITPACK_PRECISE vec2 t5 = t2 + t4;
-    UNITPACK_PRECISE vec2 t6 = (ok ? mix(t5, -t5, lessThan(n, vec2(0.0))) : vec2(0.0)) + 2047.0;
-    UNITPACK_PRECISE float x16 = t6.x * 0.0625;
+    UNITPACK_PRECISE vec2 t6 = mix(t5, -t5, lessThan(n, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t7 = (ok ? t6 : vec2(0.0)) + 2047.0;
+    UNITPACK_PRECISE float x16 = t7.x * 0.0625;
     UNITPACK_PRECISE float hi = floor(x16);
-    UNITPACK_PRECISE float t = floor(t6.y * 0.00390625);
-    UNITPACK_PRECISE vec3 result = vec3(hi, (x16 - hi) * 256.0 + t, t6.y - t * 256.0);
+    UNITPACK_PRECISE float t = floor(t7.y * 0.00390625);
+    UNITPACK_PRECISE vec3 result = vec3(hi, (x16 - hi) * 256.0 + t, t7.y - t * 256.0);
     return result;
 }
 

@@ -42,9 +42,9 @@ precision highp int;
 vec3 unitpack_oct24p_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 abs_params = abs(params);
     UNITPACK_PRECISE float z = 1.0 - abs_params.x - abs_params.y;
-    UNITPACK_PRECISE vec2 t1 = (1.0 - abs(params.yx))
+    UNITPACK_PRECISE vec2 folded = (1.0 - abs(params.yx))
         * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(params, vec2(0.0)));
-    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? t1 : params, z);
+    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? folded : params, z);
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE vec3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -77,22 +77,26 @@ vec2 unitpack_oct24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
-    UNITPACK_PRECISE vec3 a = ok ? abs(w) : vec3(0.0, 0.0, 2.0);
+    UNITPACK_PRECISE vec3 abs_w = abs(w);
+    UNITPACK_PRECISE vec3 a = ok ? abs_w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float l1 = a.x + a.y + a.z;
     UNITPACK_PRECISE float estimate = floor(a.x / l1 * 2047.0);
     UNITPACK_PRECISE float big = a.x * 2047.0;
-    UNITPACK_PRECISE float t1 = estimate
-        + (big >= (estimate + 1.0) * l1 ? 1.0 : (big < estimate * l1 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = big < estimate * l1 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
+    UNITPACK_PRECISE float t1 = estimate + step;
     bool t2 = t1 >= (-2047.0);
     UNITPACK_PRECISE float t3 = t2 ? t1 : -2047.0;
     bool t4 = t3 <= 2047.0;
     UNITPACK_PRECISE float s0 = t4 ? t3 : 2047.0;
     UNITPACK_PRECISE float estimate2 = floor(a.y / l1 * 2047.0);
     UNITPACK_PRECISE float big2 = a.y * 2047.0;
-    UNITPACK_PRECISE float t5 = estimate2
-        + (big2 >= (estimate2 + 1.0) * l1 ? 1.0 : (big2 < estimate2 * l1 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = big2 < estimate2 * l1 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t5 = estimate2 + step2;
     UNITPACK_PRECISE float t6 = t5 >= (-2047.0) ? t5 : -2047.0;
     bool t7 = t6 <= 2047.0;
     UNITPACK_PRECISE float t8 = t7 ? t6 : 2047.0;
@@ -103,116 +107,135 @@ vec2 unitpack_oct24p_encode_codes(vec3 v) {
     uvec3 afix = uvec3(t11);
     UNITPACK_PRECISE float t12 = 2047.0 - s0 - t0;
     bool t13 = t12 >= 0.0;
-    uint t14 = uint(s0);
-    uint t15 = uint(t0);
-    uint t16 = uint(t13 ? t12 : 0.0);
-    uvec3 t17 = afix.yzx
-        * uvec3(mix(vec3(0.0, 2047.0, t9), vec3(t12, t3, t8), bvec3(t13, t4, t10)));
-    uvec3 t18 = afix.zxy
-        * uvec3(mix(vec3(t9, 0.0, 2047.0), vec3(t8, t12, t3), bvec3(t10, t13, t4)));
-    uvec3 cross = t17 - t18;
-    uint t19 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
+    uint s0_u = uint(s0);
+    uint t0_u = uint(t0);
+    uint t14 = uint(t13 ? t12 : 0.0);
+    uvec3 cross = afix.yzx
+        * uvec3(mix(vec3(0.0, 2047.0, t9), vec3(t12, t3, t8), bvec3(t13, t4, t10)))
+        - afix.zxy * uvec3(mix(vec3(t9, 0.0, 2047.0), vec3(t8, t12, t3), bvec3(t10, t13, t4)));
+    uint t15 = 0u - cross.x;
+    uint t16 = cross.x < 2147483648u ? cross.x : t15;
+    uint t17 = t16 >> 16u;
+    uint t18 = 0u - cross.y;
+    uint t19 = cross.y < 2147483648u ? cross.y : t18;
     uint t20 = t19 >> 16u;
-    uint t21 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
-    uint t22 = t21 >> 16u;
-    uint t23 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    uint t24 = t23 >> 16u;
+    uint t21 = 0u - cross.z;
+    uint t22 = cross.z < 2147483648u ? cross.z : t21;
+    uint t23 = t22 >> 16u;
+    uvec3 t24 = uvec3((t17 * t17) << 3u, (t20 * t20) << 3u, (t23 * t23) << 3u);
     uvec3 t25 = uvec3(
+        (t17 * (t16 & 65535u)) >> 12u,
         (t20 * (t19 & 65535u)) >> 12u,
-        (t22 * (t21 & 65535u)) >> 12u,
-        (t24 * (t23 & 65535u)) >> 12u
+        (t23 * (t22 & 65535u)) >> 12u
     );
-    uvec3 t26 = uvec3((t20 * t20) << 3u, (t22 * t22) << 3u, (t24 * t24) << 3u) + t25;
+    uvec3 t26 = t24 + t25;
     UNITPACK_PRECISE float e = float(t26.x + t26.y + t26.z);
-    UNITPACK_PRECISE float n = float(t14 * t14 + t15 * t15 + t16 * t16);
-    UNITPACK_PRECISE float t27 = s0 + 1.0;
-    UNITPACK_PRECISE float t28 = 2047.0 - t27 - t0;
-    UNITPACK_PRECISE float t29 = t28 >= 0.0 ? t28 : 0.0;
-    uint t30 = uint(t27);
-    uint t31 = uint(t0);
-    uint t32 = uint(t29);
-    uvec3 cross2 = afix.yzx * uvec3(vec3(t29, t27, t0)) - afix.zxy * uvec3(vec3(t0, t29, t27));
-    uint t33 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
+    UNITPACK_PRECISE float n = float(s0_u * s0_u + t0_u * t0_u + t14 * t14);
+    UNITPACK_PRECISE float s_up = s0 + 1.0;
+    UNITPACK_PRECISE float t_up = t0 + 1.0;
+    UNITPACK_PRECISE float t27 = 2047.0 - s_up - t0;
+    UNITPACK_PRECISE float t28 = t27 >= 0.0 ? t27 : 0.0;
+    uint s_up_u = uint(s_up);
+    uint t0_u2 = uint(t0);
+    uint t28_u = uint(t28);
+    uvec3 cross2 = afix.yzx * uvec3(vec3(t28, s_up, t0)) - afix.zxy * uvec3(vec3(t0, t28, s_up));
+    uint t29 = 0u - cross2.x;
+    uint t30 = cross2.x < 2147483648u ? cross2.x : t29;
+    uint t31 = t30 >> 16u;
+    uint t32 = 0u - cross2.y;
+    uint t33 = cross2.y < 2147483648u ? cross2.y : t32;
     uint t34 = t33 >> 16u;
-    uint t35 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    uint t36 = t35 >> 16u;
-    uint t37 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
-    uint t38 = t37 >> 16u;
+    uint t35 = 0u - cross2.z;
+    uint t36 = cross2.z < 2147483648u ? cross2.z : t35;
+    uint t37 = t36 >> 16u;
+    uvec3 t38 = uvec3((t31 * t31) << 3u, (t34 * t34) << 3u, (t37 * t37) << 3u);
     uvec3 t39 = uvec3(
+        (t31 * (t30 & 65535u)) >> 12u,
         (t34 * (t33 & 65535u)) >> 12u,
-        (t36 * (t35 & 65535u)) >> 12u,
-        (t38 * (t37 & 65535u)) >> 12u
+        (t37 * (t36 & 65535u)) >> 12u
     );
-    uvec3 t40 = uvec3((t34 * t34) << 3u, (t36 * t36) << 3u, (t38 * t38) << 3u) + t39;
+    uvec3 t40 = t38 + t39;
     UNITPACK_PRECISE float e2 = float(t40.x + t40.y + t40.z);
-    UNITPACK_PRECISE float n2 = float(t30 * t30 + t31 * t31 + t32 * t32);
-    UNITPACK_PRECISE float t41 = t27 + t0;
-    UNITPACK_PRECISE float t42 = e2 * n;
-    UNITPACK_PRECISE float t43 = e * n2;
-    bool t44 = t41 <= 2047.0 && t42 < t43;
-    UNITPACK_PRECISE vec2 t45 = mix(vec2(-2047.0, 2047.0), vec2(t1, t6), bvec2(t2, t7));
-    UNITPACK_PRECISE vec2 t46 = vec2(2047.0, t9);
-    UNITPACK_PRECISE vec2 t47 = mix(t46, t45, lessThanEqual(t45, t46));
-    UNITPACK_PRECISE vec2 best = t44 ? vec2(t27, t0) : t47;
-    UNITPACK_PRECISE float best_e = t44 ? e2 : e;
-    UNITPACK_PRECISE float best_n = t44 ? n2 : n;
-    UNITPACK_PRECISE float t48 = t0 + 1.0;
-    UNITPACK_PRECISE float t49 = 2047.0 - s0 - t48;
-    UNITPACK_PRECISE float t50 = t49 >= 0.0 ? t49 : 0.0;
-    uint t51 = uint(s0);
-    uint t52 = uint(t48);
-    uint t53 = uint(t50);
-    uvec3 cross3 = afix.yzx * uvec3(vec3(t50, s0, t48)) - afix.zxy * uvec3(vec3(t48, t50, s0));
-    uint t54 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    uint t55 = t54 >> 16u;
-    uint t56 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
+    UNITPACK_PRECISE float n2 = float(s_up_u * s_up_u + t0_u2 * t0_u2 + t28_u * t28_u);
+    UNITPACK_PRECISE float t41 = e2 * n;
+    UNITPACK_PRECISE float t42 = e * n2;
+    bool t43 = t41 < t42;
+    UNITPACK_PRECISE float t44 = s_up + t0;
+    bool t45 = t44 <= 2047.0 && t43;
+    UNITPACK_PRECISE vec2 t46 = vec2(s_up, t0);
+    UNITPACK_PRECISE vec2 t47 = mix(vec2(-2047.0, 2047.0), vec2(t1, t6), bvec2(t2, t7));
+    UNITPACK_PRECISE vec2 t48 = vec2(2047.0, t9);
+    UNITPACK_PRECISE vec2 t49 = mix(t48, t47, lessThanEqual(t47, t48));
+    UNITPACK_PRECISE vec2 best = t45 ? t46 : t49;
+    UNITPACK_PRECISE float best_e = t45 ? e2 : e;
+    UNITPACK_PRECISE float best_n = t45 ? n2 : n;
+    UNITPACK_PRECISE float t50 = 2047.0 - s0 - t_up;
+    UNITPACK_PRECISE float t51 = t50 >= 0.0 ? t50 : 0.0;
+    uint s0_u2 = uint(s0);
+    uint t_up_u = uint(t_up);
+    uint t51_u = uint(t51);
+    uvec3 cross3 = afix.yzx * uvec3(vec3(t51, s0, t_up)) - afix.zxy * uvec3(vec3(t_up, t51, s0));
+    uint t52 = 0u - cross3.x;
+    uint t53 = cross3.x < 2147483648u ? cross3.x : t52;
+    uint t54 = t53 >> 16u;
+    uint t55 = 0u - cross3.y;
+    uint t56 = cross3.y < 2147483648u ? cross3.y : t55;
     uint t57 = t56 >> 16u;
-    uint t58 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
-    uint t59 = t58 >> 16u;
-    uvec3 t60 = uvec3(
-        (t55 * (t54 & 65535u)) >> 12u,
+    uint t58 = 0u - cross3.z;
+    uint t59 = cross3.z < 2147483648u ? cross3.z : t58;
+    uint t60 = t59 >> 16u;
+    uvec3 t61 = uvec3((t54 * t54) << 3u, (t57 * t57) << 3u, (t60 * t60) << 3u);
+    uvec3 t62 = uvec3(
+        (t54 * (t53 & 65535u)) >> 12u,
         (t57 * (t56 & 65535u)) >> 12u,
-        (t59 * (t58 & 65535u)) >> 12u
+        (t60 * (t59 & 65535u)) >> 12u
     );
-    uvec3 t61 = uvec3((t55 * t55) << 3u, (t57 * t57) << 3u, (t59 * t59) << 3u) + t60;
-    UNITPACK_PRECISE float e3 = float(t61.x + t61.y + t61.z);
-    UNITPACK_PRECISE float n3 = float(t51 * t51 + t52 * t52 + t53 * t53);
-    UNITPACK_PRECISE float t62 = s0 + t48;
-    UNITPACK_PRECISE float t63 = e3 * best_n;
-    UNITPACK_PRECISE float t64 = best_e * n3;
-    bool t65 = t62 <= 2047.0 && t63 < t64;
-    UNITPACK_PRECISE vec2 best2 = t65 ? vec2(s0, t48) : best;
-    UNITPACK_PRECISE float best_e2 = t65 ? e3 : best_e;
-    UNITPACK_PRECISE float best_n2 = t65 ? n3 : best_n;
-    UNITPACK_PRECISE float t66 = s0 + 1.0;
-    UNITPACK_PRECISE float t67 = t0 + 1.0;
-    UNITPACK_PRECISE float t68 = 2047.0 - t66 - t67;
-    UNITPACK_PRECISE float t69 = t68 >= 0.0 ? t68 : 0.0;
-    uint t70 = uint(t66);
-    uint t71 = uint(t67);
-    uint t72 = uint(t69);
-    uvec3 cross4 = afix.yzx * uvec3(vec3(t69, t66, t67)) - afix.zxy * uvec3(vec3(t67, t69, t66));
-    uint t73 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
+    uvec3 t63 = t61 + t62;
+    UNITPACK_PRECISE float e3 = float(t63.x + t63.y + t63.z);
+    UNITPACK_PRECISE float n3 = float(s0_u2 * s0_u2 + t_up_u * t_up_u + t51_u * t51_u);
+    UNITPACK_PRECISE float t64 = e3 * best_n;
+    UNITPACK_PRECISE float t65 = best_e * n3;
+    bool t66 = t64 < t65;
+    UNITPACK_PRECISE float t67 = s0 + t_up;
+    bool t68 = t67 <= 2047.0 && t66;
+    UNITPACK_PRECISE vec2 t69 = vec2(s0, t_up);
+    UNITPACK_PRECISE vec2 best2 = t68 ? t69 : best;
+    UNITPACK_PRECISE float best_e2 = t68 ? e3 : best_e;
+    UNITPACK_PRECISE float best_n2 = t68 ? n3 : best_n;
+    UNITPACK_PRECISE float t70 = 2047.0 - s_up - t_up;
+    UNITPACK_PRECISE float t71 = t70 >= 0.0 ? t70 : 0.0;
+    uint s_up_u2 = uint(s_up);
+    uint t_up_u2 = uint(t_up);
+    uint t71_u = uint(t71);
+    uvec3 cross4 = afix.yzx * uvec3(vec3(t71, s_up, t_up))
+        - afix.zxy * uvec3(vec3(t_up, t71, s_up));
+    uint t72 = 0u - cross4.x;
+    uint t73 = cross4.x < 2147483648u ? cross4.x : t72;
     uint t74 = t73 >> 16u;
-    uint t75 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    uint t76 = t75 >> 16u;
-    uint t77 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    uint t78 = t77 >> 16u;
-    uvec3 t79 = uvec3(
+    uint t75 = 0u - cross4.y;
+    uint t76 = cross4.y < 2147483648u ? cross4.y : t75;
+    uint t77 = t76 >> 16u;
+    uint t78 = 0u - cross4.z;
+    uint t79 = cross4.z < 2147483648u ? cross4.z : t78;
+    uint t80 = t79 >> 16u;
+    uvec3 t81 = uvec3((t74 * t74) << 3u, (t77 * t77) << 3u, (t80 * t80) << 3u);
+    uvec3 t82 = uvec3(
         (t74 * (t73 & 65535u)) >> 12u,
-        (t76 * (t75 & 65535u)) >> 12u,
-        (t78 * (t77 & 65535u)) >> 12u
+        (t77 * (t76 & 65535u)) >> 12u,
+        (t80 * (t79 & 65535u)) >> 12u
     );
-    uvec3 t80 = uvec3((t74 * t74) << 3u, (t76 * t76) << 3u, (t78 * t78) << 3u) + t79;
-    UNITPACK_PRECISE float e4 = float(t80.x + t80.y + t80.z);
-    UNITPACK_PRECISE float n4 = float(t70 * t70 + t71 * t71 + t72 * t72);
-    UNITPACK_PRECISE vec2 best3 = t66 + t67 <= 2047.0 && e4 * best_n2 < best_e2 * n4
-        ? t47 + 1.0
-        : best2;
+    uvec3 t83 = t81 + t82;
+    UNITPACK_PRECISE float e4 = float(t83.x + t83.y + t83.z);
+    UNITPACK_PRECISE float n4 = float(s_up_u2 * s_up_u2 + t_up_u2 * t_up_u2 + t71_u * t71_u);
+    UNITPACK_PRECISE float t84 = e4 * best_n2;
+    UNITPACK_PRECISE float t85 = best_e2 * n4;
+    bool t86 = t84 < t85;
+    UNITPACK_PRECISE vec2 t87 = t49 + 1.0;
+    UNITPACK_PRECISE vec2 best3 = s_up + t_up <= 2047.0 && t86 ? t87 : best2;
     UNITPACK_PRECISE vec2 folded = 2047.0 - best3.yx;
-    UNITPACK_PRECISE vec2 t81 = w.z < 0.0 ? folded : best3;
-    UNITPACK_PRECISE vec2 result = ok ? mix(t81, -t81, lessThan(w.xy, vec2(0.0))) : vec2(0.0);
-    return result;
+    UNITPACK_PRECISE vec2 t88 = w.z < 0.0 ? folded : best3;
+    UNITPACK_PRECISE vec2 t89 = mix(t88, -t88, lessThan(w.xy, vec2(0.0)));
+    return ok ? t89 : vec2(0.0);
 }
 
 // unitpack_oct24p_encode_float: precise encoder, float form.

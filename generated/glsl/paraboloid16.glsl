@@ -80,7 +80,8 @@ vec2 unitpack_paraboloid16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -94,16 +95,17 @@ vec2 unitpack_paraboloid16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 halved = vec3(w4.xy, w4.z * 0.5);
-    UNITPACK_PRECISE float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -125,20 +127,22 @@ vec2 unitpack_paraboloid16_encode_float(vec3 v) {
     uint half_exponent = ((floatBitsToUint(len2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = len2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t2 = len2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root * root_up + halved.z;
     UNITPACK_PRECISE vec2 result = w4.xy / a;
@@ -159,7 +163,8 @@ vec2 unitpack_paraboloid16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -173,16 +178,17 @@ vec2 unitpack_paraboloid16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 halved = vec3(w4.xy, w4.z * 0.5);
-    UNITPACK_PRECISE float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -204,37 +210,37 @@ vec2 unitpack_paraboloid16_round_codes(vec3 a0) {
     uint half_exponent = ((floatBitsToUint(len2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = len2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t2 = len2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root * root_up + halved.z;
-    UNITPACK_PRECISE vec2 t7 = abs(w4.xy);
-    UNITPACK_PRECISE vec2 t8 = roundEven(t7 / a * 127.0);
-    UNITPACK_PRECISE vec2 t9 = t7 * 127.0;
-    UNITPACK_PRECISE vec2 t10 = mix(
-        mix(vec2(0.0), vec2(-1.0), lessThan(t9, (t8 - 0.5) * a)),
+    UNITPACK_PRECISE vec2 t3 = abs(w4.xy);
+    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / a * 127.0);
+    UNITPACK_PRECISE vec2 t5 = t3 * 127.0;
+    UNITPACK_PRECISE vec2 t6 = mix(
+        mix(vec2(0.0), vec2(-1.0), lessThan(t5, (t4 - 0.5) * a)),
         vec2(1.0),
-        greaterThanEqual(t9, (t8 + 0.5) * a)
+        greaterThanEqual(t5, (t4 + 0.5) * a)
     );
-    UNITPACK_PRECISE vec2 t11 = t8 + t10;
-    UNITPACK_PRECISE vec2 t12 = mix(vec2(0.0), t11, greaterThanEqual(t11, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t13 = mix(vec2(127.0), t12, lessThanEqual(t12, vec2(127.0)));
-    UNITPACK_PRECISE vec2 result = ok && ok2
-        ? mix(t13, -t13, lessThan(w4.xy, vec2(0.0)))
-        : vec2(0.0);
-    return result;
+    UNITPACK_PRECISE vec2 t7 = t4 + t6;
+    UNITPACK_PRECISE vec2 t8 = mix(vec2(0.0), t7, greaterThanEqual(t7, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t9 = mix(vec2(127.0), t8, lessThanEqual(t8, vec2(127.0)));
+    UNITPACK_PRECISE vec2 t10 = mix(t9, -t9, lessThan(w4.xy, vec2(0.0)));
+    return ok && ok2 ? t10 : vec2(0.0);
 }
 
 // unitpack_paraboloid16_encode: fast encoder.

@@ -59,10 +59,8 @@ vec3 unitpack_paraboloid16_rxgb_decode_float(vec4 params) {
 //   the horizon.
 // Portable as unitpack_paraboloid16_rxgb_decode_float is, within the same bound.
 vec3 unitpack_paraboloid16_rxgb_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_paraboloid16_rxgb_decode_float(params);
 }
 
@@ -85,7 +83,8 @@ vec4 unitpack_paraboloid16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -99,16 +98,17 @@ vec4 unitpack_paraboloid16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 halved = vec3(w4.xy, w4.z * 0.5);
-    UNITPACK_PRECISE float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -130,42 +130,53 @@ vec4 unitpack_paraboloid16_rxgb_encode_float(vec3 v) {
     uint half_exponent = ((floatBitsToUint(len2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = len2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t2 = len2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root * root_up + halved.z;
     UNITPACK_PRECISE vec2 p = w4.xy / a;
     UNITPACK_PRECISE vec3 abs_v = abs(v);
-    UNITPACK_PRECISE float t7 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    UNITPACK_PRECISE float largest3 = t7 >= abs_v.z ? t7 : abs_v.z;
-    bool t8 = largest3 > 0.0 && largest3 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled3 = v / (t8 ? largest3 : 1.0);
+    UNITPACK_PRECISE float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    UNITPACK_PRECISE float largest3 = t3 >= abs_v.z ? t3 : abs_v.z;
+    bool t4 = largest3 <= 3.4028235e38;
+    bool t5 = largest3 > 0.0 && t4;
+    UNITPACK_PRECISE vec3 scaled3 = v / (t5 ? largest3 : 1.0);
     UNITPACK_PRECISE vec3 scaled3_sq = scaled3 * scaled3;
     UNITPACK_PRECISE float len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    UNITPACK_PRECISE vec3 t9 = t8 && len2_2 >= 1.0 ? scaled3 / sqrt(len2_2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 t10 = vec3(t9.xy, t9.z > 0.0 ? t9.z : 0.0);
-    UNITPACK_PRECISE vec3 abs_t10 = abs(t10);
-    UNITPACK_PRECISE float t11 = abs_t10.x >= abs_t10.y ? abs_t10.x : abs_t10.y;
-    UNITPACK_PRECISE float largest4 = t11 >= abs_t10.z ? t11 : abs_t10.z;
-    bool t12 = largest4 > 0.0 && largest4 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled4 = t10 / (t12 ? largest4 : 1.0);
+    bool t6 = len2_2 >= 1.0;
+    UNITPACK_PRECISE vec3 t7 = scaled3 / sqrt(len2_2);
+    UNITPACK_PRECISE vec3 t8 = t5 && t6 ? t7 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 t9 = vec3(t8.xy, t8.z > 0.0 ? t8.z : 0.0);
+    UNITPACK_PRECISE vec3 abs_t9 = abs(t9);
+    UNITPACK_PRECISE float t10 = abs_t9.x >= abs_t9.y ? abs_t9.x : abs_t9.y;
+    UNITPACK_PRECISE float largest4 = t10 >= abs_t9.z ? t10 : abs_t9.z;
+    bool t11 = largest4 <= 3.4028235e38;
+    bool t12 = largest4 > 0.0 && t11;
+    UNITPACK_PRECISE vec3 scaled4 = t9 / (t12 ? largest4 : 1.0);
     UNITPACK_PRECISE vec3 scaled4_sq = scaled4 * scaled4;
     UNITPACK_PRECISE float len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    UNITPACK_PRECISE float t13 = 0.5
-        + (t12 && len2_3 >= 1.0 ? scaled4 / sqrt(len2_3) : vec3(0.0, 0.0, 1.0)).z * 0.5;
-    UNITPACK_PRECISE vec4 result = vec4(1.0, 0.5 + p.y * 0.5, t13, 0.5 + p.x * 0.5);
+    bool t13 = len2_3 >= 1.0;
+    UNITPACK_PRECISE vec3 t14 = scaled4 / sqrt(len2_3);
+    UNITPACK_PRECISE vec4 result = vec4(
+        1.0,
+        0.5 + p.y * 0.5,
+        0.5 + (t12 && t13 ? t14 : vec3(0.0, 0.0, 1.0)).z * 0.5,
+        0.5 + p.x * 0.5
+    );
     return result;
 }
 
@@ -183,7 +194,8 @@ vec4 unitpack_paraboloid16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -197,16 +209,17 @@ vec4 unitpack_paraboloid16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 halved = vec3(w4.xy, w4.z * 0.5);
-    UNITPACK_PRECISE float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -228,37 +241,41 @@ vec4 unitpack_paraboloid16_rxgb_round_codes(vec3 a0) {
     uint half_exponent = ((floatBitsToUint(len2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = len2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t2 = len2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root * root_up + halved.z;
-    UNITPACK_PRECISE vec2 t7 = w4.xy * 127.5;
-    UNITPACK_PRECISE vec2 t8 = roundEven(t7 / a + 127.5);
-    UNITPACK_PRECISE vec2 t9 = mix(vec2(0.0), t8, greaterThanEqual(t8, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t10 = mix(vec2(255.0), t9, lessThanEqual(t9, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t11 = mix(
+    UNITPACK_PRECISE vec2 t3 = w4.xy * 127.5;
+    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / a + 127.5);
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t6 = mix(vec2(255.0), t5, lessThanEqual(t5, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t7 = t6
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 127.0) * a)),
+            lessThan(t6, vec2(255.0))
+        );
+    UNITPACK_PRECISE vec2 t8 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, (t10 - 127.0) * a)),
-        lessThan(t10, vec2(255.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 1.0 - 127.0) * a)) - 1.0,
+        greaterThan(t6, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t12 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, (t10 - 1.0 - 127.0) * a)) - 1.0,
-        greaterThan(t10, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 c = ok && ok2 ? t10 + t11 + t12 : vec2(128.0);
+    UNITPACK_PRECISE vec2 t9 = t7 + t8;
+    UNITPACK_PRECISE vec2 c = ok && ok2 ? t9 : vec2(128.0);
     UNITPACK_PRECISE vec3 normal3 = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal3 = abs(normal3);
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
@@ -269,11 +286,12 @@ vec4 unitpack_paraboloid16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
     UNITPACK_PRECISE float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_3 = sum3 < 16.0;
+    bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     UNITPACK_PRECISE vec3 w5 = mix(scaled3, vec3(0.0), lessThan(abs(scaled3), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w6 = ok3 ? w5 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE vec3 t13 = vec3(w6.xy, w6.z > 0.0 ? w6.z : 0.0);
-    UNITPACK_PRECISE vec3 normal4 = mix(t13, vec3(0.0), lessThan(abs(t13), vec3(1.1754944e-38)));
+    UNITPACK_PRECISE vec3 t10 = vec3(w6.xy, w6.z > 0.0 ? w6.z : 0.0);
+    UNITPACK_PRECISE vec3 normal4 = mix(t10, vec3(0.0), lessThan(abs(t10), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal4 = abs(normal4);
     UNITPACK_PRECISE float larger4 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
     UNITPACK_PRECISE float largest4 = larger4 >= abs_normal4.z ? larger4 : abs_normal4.z;
@@ -283,7 +301,8 @@ vec4 unitpack_paraboloid16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled4 = normal4 * scale4;
     UNITPACK_PRECISE vec3 abs_scaled4 = abs(scaled4);
     UNITPACK_PRECISE float sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
-    bool ok4 = sum4 >= 2.0 && sum4 < 16.0;
+    bool sum_below_16_4 = sum4 < 16.0;
+    bool ok4 = sum4 >= 2.0 && sum_below_16_4;
     UNITPACK_PRECISE vec3 w7 = mix(scaled4, vec3(0.0), lessThan(abs(scaled4), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w8 = ok4 ? w7 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w8.x) & 4294963200u);
@@ -292,30 +311,34 @@ vec4 unitpack_paraboloid16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE float split_lo2 = w8.y - split_hi2;
     UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w8.z) & 4294963200u);
     UNITPACK_PRECISE float split_lo3 = w8.z - split_hi3;
-    UNITPACK_PRECISE float t14 = (split_hi + split_hi) * split_lo
+    UNITPACK_PRECISE float t11 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     UNITPACK_PRECISE float len2_2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t14
+        + t11
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     UNITPACK_PRECISE float big2 = w8.z * w8.z * 16256.25;
-    UNITPACK_PRECISE float t15 = roundEven(w8.z / sqrt(len2_2) * 127.5 + 127.5);
-    UNITPACK_PRECISE float t16 = t15 >= 0.0 ? t15 : 0.0;
-    UNITPACK_PRECISE float estimate = t16 <= 255.0 ? t16 : 255.0;
-    UNITPACK_PRECISE float t17 = estimate - 127.0;
-    UNITPACK_PRECISE float t18 = t17 * t17 * len2_2;
-    UNITPACK_PRECISE float t19 = w8.z >= 0.0
-        ? (t17 > 0.0 ? (big2 >= t18 ? 1.0 : 0.0) : 1.0)
-        : (t17 < 0.0 ? (big2 <= t18 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 255.0 ? t19 : 0.0;
-    UNITPACK_PRECISE float t20 = estimate - 1.0 - 127.0;
-    UNITPACK_PRECISE float t21 = t20 * t20 * len2_2;
-    UNITPACK_PRECISE float t22 = w8.z >= 0.0
-        ? (t20 > 0.0 ? (big2 >= t21 ? 1.0 : 0.0) : 1.0)
-        : (t20 < 0.0 ? (big2 <= t21 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t22 - 1.0 : 0.0;
+    UNITPACK_PRECISE float t12 = roundEven(w8.z / sqrt(len2_2) * 127.5 + 127.5);
+    UNITPACK_PRECISE float t13 = t12 >= 0.0 ? t12 : 0.0;
+    UNITPACK_PRECISE float estimate = t13 <= 255.0 ? t13 : 255.0;
+    UNITPACK_PRECISE float t14 = estimate - 127.0;
+    UNITPACK_PRECISE float t15 = t14 * t14 * len2_2;
+    UNITPACK_PRECISE float one_if = big2 >= t15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t16 = t14 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2 <= t15 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t17 = t14 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t18 = w8.z >= 0.0 ? t16 : t17;
+    UNITPACK_PRECISE float up = estimate < 255.0 ? t18 : 0.0;
+    UNITPACK_PRECISE float t19 = estimate - 1.0 - 127.0;
+    UNITPACK_PRECISE float t20 = t19 * t19 * len2_2;
+    UNITPACK_PRECISE float one_if3 = big2 >= t20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t21 = t19 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2 <= t20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t22 = t19 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t23 = (w8.z >= 0.0 ? t21 : t22) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t23 : 0.0;
     UNITPACK_PRECISE vec4 result = vec4(255.0, c.y, estimate + up + down, c.x);
     return result;
 }
@@ -330,10 +353,8 @@ vec4 unitpack_paraboloid16_rxgb_round_codes(vec3 a0) {
 //   components count as zero.
 uint unitpack_paraboloid16_rxgb_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_paraboloid16_rxgb_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_PARABOLOID16_RXGB_GLSL

@@ -59,10 +59,8 @@ vec3 unitpack_paraboloid16p_xra_decode_float(vec4 params) {
 //   the horizon.
 // Portable as unitpack_paraboloid16p_xra_decode_float is, within the same bound.
 vec3 unitpack_paraboloid16p_xra_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_paraboloid16p_xra_decode_float(params);
 }
 
@@ -81,7 +79,8 @@ vec4 unitpack_paraboloid16p_xra_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -95,16 +94,17 @@ vec4 unitpack_paraboloid16p_xra_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 halved = vec3(w4.xy, w4.z * 0.5);
-    UNITPACK_PRECISE float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -126,43 +126,46 @@ vec4 unitpack_paraboloid16p_xra_encode_codes(vec3 v) {
     uint half_exponent = ((floatBitsToUint(len2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = len2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t2 = len2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root * root_up + halved.z;
-    UNITPACK_PRECISE vec2 t7 = w4.xy * 127.5;
-    UNITPACK_PRECISE vec2 t8 = roundEven(t7 / a + 127.5);
-    UNITPACK_PRECISE vec2 t9 = mix(vec2(0.0), t8, greaterThanEqual(t8, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t10 = mix(vec2(255.0), t9, lessThanEqual(t9, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t11 = mix(
+    UNITPACK_PRECISE vec2 t3 = w4.xy * 127.5;
+    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / a + 127.5);
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(0.0), t4, greaterThanEqual(t4, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t6 = mix(vec2(255.0), t5, lessThanEqual(t5, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t7 = t6
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 126.5) * a)),
+            lessThan(t6, vec2(255.0))
+        );
+    UNITPACK_PRECISE vec2 t8 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, (t10 - 126.5) * a)),
-        lessThan(t10, vec2(255.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t3, (t6 - 1.0 - 126.5) * a)) - 1.0,
+        greaterThan(t6, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t12 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, (t10 - 1.0 - 126.5) * a)) - 1.0,
-        greaterThan(t10, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 base = t10 + t11 + t12;
-    UNITPACK_PRECISE float t13 = floor(abs(w4.x) * 2097152.0);
-    uint fixed5 = uint(t13);
-    UNITPACK_PRECISE float t14 = floor(abs(w4.y) * 2097152.0);
-    uint fixed6 = uint(t14);
-    UNITPACK_PRECISE float t15 = floor(abs(w4.z) * 2097152.0);
-    uint fixed7 = uint(t15);
+    UNITPACK_PRECISE vec2 base = t7 + t8;
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w4.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w4.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
+    UNITPACK_PRECISE float fixed_f6 = floor(abs(w4.z) * 2097152.0);
+    uint fixed7 = uint(fixed_f6);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -182,269 +185,263 @@ vec4 unitpack_paraboloid16p_xra_encode_codes(vec3 v) {
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float len2_2 = (float(hi8) * 16777216.0 + float(lo8)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate2 = sqrt(len2_2);
-    UNITPACK_PRECISE float t16 = floor(root_estimate2 * 512.0);
-    UNITPACK_PRECISE float root_h0_2 = t16 * 0.001953125;
+    UNITPACK_PRECISE float root_k0_2 = floor(root_estimate2 * 512.0);
+    UNITPACK_PRECISE float root_h0_2 = root_k0_2 * 0.001953125;
     UNITPACK_PRECISE float root_h1_2 = root_h0_2 + 0.001953125;
-    UNITPACK_PRECISE float t17 = root_h1_2 * root_h1_2 <= len2_2
-        ? 1.0
-        : (root_h0_2 * root_h0_2 > len2_2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_k2 = t16 + t17;
+    UNITPACK_PRECISE float step_down3 = root_h0_2 * root_h0_2 > len2_2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_h1_2 * root_h1_2 <= len2_2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_k2 = root_k0_2 + step3;
     UNITPACK_PRECISE float root_h2 = root_k2 * 0.001953125;
     UNITPACK_PRECISE float root_rest2 = len2_2 - root_h2 * root_h2;
     UNITPACK_PRECISE float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     UNITPACK_PRECISE float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float t18 = root_m1_2 * root_m1_2 <= len2_2
-        ? 1.0
-        : (root_m0_2 * root_m0_2 > len2_2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_j2 = root_j0_2 + t18;
+    UNITPACK_PRECISE float step_down4 = root_m0_2 * root_m0_2 > len2_2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_m1_2 * root_m1_2 <= len2_2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root_j2 = root_j0_2 + step4;
     UNITPACK_PRECISE float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t19 = floor(w4 / root2 * 2097152.0);
-    UNITPACK_PRECISE vec3 t20 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t21 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t19 * root2, t20)),
+    UNITPACK_PRECISE vec3 t9 = floor(w4 / root2 * 2097152.0);
+    UNITPACK_PRECISE vec3 t10 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t11 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t9 * root2, t10)),
         vec3(1.0),
-        lessThanEqual((t19 + 1.0) * root2, t20)
+        lessThanEqual((t9 + 1.0) * root2, t10)
     );
-    UNITPACK_PRECISE vec3 aim = t19 + t21;
+    UNITPACK_PRECISE vec3 aim = t9 + t11;
     UNITPACK_PRECISE vec2 cand = mix(vec2(255.0), base, lessThanEqual(base, vec2(255.0)));
     UNITPACK_PRECISE vec2 p = floor((cand + cand - 255.0) * 8224.126);
     UNITPACK_PRECISE float q = roundEven(p.x * p.x * 4.7683716e-7)
         + roundEven(p.y * p.y * 4.7683716e-7);
     UNITPACK_PRECISE float z = 2097152.0 - (q <= 2097152.0 ? q : 2097152.0);
     UNITPACK_PRECISE float l2 = q + roundEven(z * z * 4.7683716e-7);
-    UNITPACK_PRECISE float t22 = l2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t22));
+    UNITPACK_PRECISE float t12 = l2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t12));
     UNITPACK_PRECISE float root_next = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t23 = root_next * root_next <= t22
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t22 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate3 + t23;
+    UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t12 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = root_next * root_next <= t12 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_step = root_estimate3 + step5;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t24 = root_next2 * root_next2 <= t22
-        ? 1.0
-        : (root_step * root_step > t22 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step + t24;
-    UNITPACK_PRECISE float t25 = root3 * 2.0;
+    UNITPACK_PRECISE float step_down6 = root_step * root_step > t12 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next2 * root_next2 <= t12 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root3 = root_step + step6;
+    UNITPACK_PRECISE float t13 = root3 * 2.0;
     UNITPACK_PRECISE vec2 abs_p = abs(p);
-    UNITPACK_PRECISE float t26 = t25 >= abs_p.x ? t25 : abs_p.x;
-    UNITPACK_PRECISE float t27 = t26 >= abs_p.y ? t26 : abs_p.y;
-    UNITPACK_PRECISE float l = t27 >= z ? t27 : z;
-    UNITPACK_PRECISE vec2 t28 = floor(p / l * 2097152.0);
-    UNITPACK_PRECISE vec2 t29 = p * 2097152.0;
-    UNITPACK_PRECISE vec2 t30 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t28 * l, t29)),
+    UNITPACK_PRECISE float t14 = t13 >= abs_p.x ? t13 : abs_p.x;
+    UNITPACK_PRECISE float t15 = t14 >= abs_p.y ? t14 : abs_p.y;
+    UNITPACK_PRECISE float l = t15 >= z ? t15 : z;
+    UNITPACK_PRECISE vec2 t16 = floor(p / l * 2097152.0);
+    UNITPACK_PRECISE vec2 t17 = p * 2097152.0;
+    UNITPACK_PRECISE vec2 t18 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t16 * l, t17)),
         vec2(1.0),
-        lessThanEqual((t28 + 1.0) * l, t29)
+        lessThanEqual((t16 + 1.0) * l, t17)
     );
     UNITPACK_PRECISE float big = z * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(z / l * 2097152.0);
-    UNITPACK_PRECISE float t31 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t31;
-    UNITPACK_PRECISE vec3 t32 = abs(vec3(t28 + t30, ratio) - aim);
-    uvec3 t33 = uvec3(t32);
-    uint limb1_7 = t33.x >> 12u;
-    uint limb0_7 = t33.x & 4095u;
+    UNITPACK_PRECISE float step_down7 = ratio_estimate * l > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step7;
+    UNITPACK_PRECISE vec3 offset = vec3(t16 + t18, ratio) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_7 = offset_u.x >> 12u;
+    uint limb0_7 = offset_u.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t33.y >> 12u;
-    uint limb0_8 = t33.y & 4095u;
+    uint limb1_8 = offset_u.y >> 12u;
+    uint limb0_8 = offset_u.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t33.z >> 12u;
-    uint limb0_9 = t33.z & 4095u;
+    uint limb1_9 = offset_u.z >> 12u;
+    uint limb0_9 = offset_u.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi12) * 16777216.0 + float(lo12);
-    UNITPACK_PRECISE float t34 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t35 = vec2(t34, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(255.0), t35, lessThanEqual(t35, vec2(255.0)));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t19 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(255.0), t19, lessThanEqual(t19, vec2(255.0)));
+    bool t20 = base.y <= 255.0;
     UNITPACK_PRECISE vec2 p2 = floor((cand2 + cand2 - 255.0) * 8224.126);
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
     UNITPACK_PRECISE float z2 = 2097152.0 - (q2 <= 2097152.0 ? q2 : 2097152.0);
     UNITPACK_PRECISE float l2_2 = q2 + roundEven(z2 * z2 * 4.7683716e-7);
-    UNITPACK_PRECISE float t36 = l2_2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t36));
+    UNITPACK_PRECISE float t21 = l2_2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t21));
     UNITPACK_PRECISE float root_next3 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t37 = root_next3 * root_next3 <= t36
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t36 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate4 + t37;
+    UNITPACK_PRECISE float step_down8 = root_estimate4 * root_estimate4 > t21 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next3 * root_next3 <= t21 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float root_step2 = root_estimate4 + step8;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t38 = root_next4 * root_next4 <= t36
-        ? 1.0
-        : (root_step2 * root_step2 > t36 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step2 + t38;
-    UNITPACK_PRECISE float t39 = root4 * 2.0;
+    UNITPACK_PRECISE float step_down9 = root_step2 * root_step2 > t21 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next4 * root_next4 <= t21 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root4 = root_step2 + step9;
+    UNITPACK_PRECISE float t22 = root4 * 2.0;
     UNITPACK_PRECISE vec2 abs_p2 = abs(p2);
-    UNITPACK_PRECISE float t40 = t39 >= abs_p2.x ? t39 : abs_p2.x;
-    UNITPACK_PRECISE float t41 = t40 >= abs_p2.y ? t40 : abs_p2.y;
-    UNITPACK_PRECISE float l3 = t41 >= z2 ? t41 : z2;
-    UNITPACK_PRECISE vec2 t42 = floor(p2 / l3 * 2097152.0);
-    UNITPACK_PRECISE vec2 t43 = p2 * 2097152.0;
-    UNITPACK_PRECISE vec2 t44 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t42 * l3, t43)),
+    UNITPACK_PRECISE float t23 = t22 >= abs_p2.x ? t22 : abs_p2.x;
+    UNITPACK_PRECISE float t24 = t23 >= abs_p2.y ? t23 : abs_p2.y;
+    UNITPACK_PRECISE float l3 = t24 >= z2 ? t24 : z2;
+    UNITPACK_PRECISE vec2 t25 = floor(p2 / l3 * 2097152.0);
+    UNITPACK_PRECISE vec2 t26 = p2 * 2097152.0;
+    UNITPACK_PRECISE vec2 t27 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t25 * l3, t26)),
         vec2(1.0),
-        lessThanEqual((t42 + 1.0) * l3, t43)
+        lessThanEqual((t25 + 1.0) * l3, t26)
     );
     UNITPACK_PRECISE float big2 = z2 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(z2 / l3 * 2097152.0);
-    UNITPACK_PRECISE float t45 = (ratio_estimate2 + 1.0) * l3 <= big2
-        ? 1.0
-        : (ratio_estimate2 * l3 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t45;
-    UNITPACK_PRECISE vec3 t46 = abs(vec3(t42 + t44, ratio2) - aim);
-    uvec3 t47 = uvec3(t46);
-    uint limb1_10 = t47.x >> 12u;
-    uint limb0_10 = t47.x & 4095u;
+    UNITPACK_PRECISE float step_down10 = ratio_estimate2 * l3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = (ratio_estimate2 + 1.0) * l3 <= big2 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step10;
+    UNITPACK_PRECISE vec3 offset2 = vec3(t25 + t27, ratio2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_10 = offset_u2.x >> 12u;
+    uint limb0_10 = offset_u2.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t47.y >> 12u;
-    uint limb0_11 = t47.y & 4095u;
+    uint limb1_11 = offset_u2.y >> 12u;
+    uint limb0_11 = offset_u2.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t47.z >> 12u;
-    uint limb0_12 = t47.z & 4095u;
+    uint limb1_12 = offset_u2.z >> 12u;
+    uint limb0_12 = offset_u2.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi16) * 16777216.0 + float(lo16);
-    bool t48 = t34 <= 255.0 && base.y <= 255.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t48 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t48 ? dist2 : dist;
-    UNITPACK_PRECISE float t49 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t50 = vec2(base.x, t49);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(255.0), t50, lessThanEqual(t50, vec2(255.0)));
+    bool t28 = dist2 < dist;
+    bool t29 = s_up <= 255.0 && t20 && t28;
+    UNITPACK_PRECISE vec2 best = t29 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t29 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t30 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(255.0), t30, lessThanEqual(t30, vec2(255.0)));
+    bool t31 = t_up <= 255.0;
     UNITPACK_PRECISE vec2 p3 = floor((cand3 + cand3 - 255.0) * 8224.126);
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
     UNITPACK_PRECISE float z3 = 2097152.0 - (q3 <= 2097152.0 ? q3 : 2097152.0);
     UNITPACK_PRECISE float l2_3 = q3 + roundEven(z3 * z3 * 4.7683716e-7);
-    UNITPACK_PRECISE float t51 = l2_3 * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t51));
+    UNITPACK_PRECISE float t32 = l2_3 * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t32));
     UNITPACK_PRECISE float root_next5 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t52 = root_next5 * root_next5 <= t51
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t51 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate5 + t52;
+    UNITPACK_PRECISE float step_down11 = root_estimate5 * root_estimate5 > t32 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = root_next5 * root_next5 <= t32 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float root_step3 = root_estimate5 + step11;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t53 = root_next6 * root_next6 <= t51
-        ? 1.0
-        : (root_step3 * root_step3 > t51 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step3 + t53;
-    UNITPACK_PRECISE float t54 = root5 * 2.0;
+    UNITPACK_PRECISE float step_down12 = root_step3 * root_step3 > t32 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = root_next6 * root_next6 <= t32 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float root5 = root_step3 + step12;
+    UNITPACK_PRECISE float t33 = root5 * 2.0;
     UNITPACK_PRECISE vec2 abs_p3 = abs(p3);
-    UNITPACK_PRECISE float t55 = t54 >= abs_p3.x ? t54 : abs_p3.x;
-    UNITPACK_PRECISE float t56 = t55 >= abs_p3.y ? t55 : abs_p3.y;
-    UNITPACK_PRECISE float l4 = t56 >= z3 ? t56 : z3;
-    UNITPACK_PRECISE vec2 t57 = floor(p3 / l4 * 2097152.0);
-    UNITPACK_PRECISE vec2 t58 = p3 * 2097152.0;
-    UNITPACK_PRECISE vec2 t59 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t57 * l4, t58)),
+    UNITPACK_PRECISE float t34 = t33 >= abs_p3.x ? t33 : abs_p3.x;
+    UNITPACK_PRECISE float t35 = t34 >= abs_p3.y ? t34 : abs_p3.y;
+    UNITPACK_PRECISE float l4 = t35 >= z3 ? t35 : z3;
+    UNITPACK_PRECISE vec2 t36 = floor(p3 / l4 * 2097152.0);
+    UNITPACK_PRECISE vec2 t37 = p3 * 2097152.0;
+    UNITPACK_PRECISE vec2 t38 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t36 * l4, t37)),
         vec2(1.0),
-        lessThanEqual((t57 + 1.0) * l4, t58)
+        lessThanEqual((t36 + 1.0) * l4, t37)
     );
     UNITPACK_PRECISE float big3 = z3 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(z3 / l4 * 2097152.0);
-    UNITPACK_PRECISE float t60 = (ratio_estimate3 + 1.0) * l4 <= big3
-        ? 1.0
-        : (ratio_estimate3 * l4 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t60;
-    UNITPACK_PRECISE vec3 t61 = abs(vec3(t57 + t59, ratio3) - aim);
-    uvec3 t62 = uvec3(t61);
-    uint limb1_13 = t62.x >> 12u;
-    uint limb0_13 = t62.x & 4095u;
+    UNITPACK_PRECISE float step_down13 = ratio_estimate3 * l4 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step13 = (ratio_estimate3 + 1.0) * l4 <= big3 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step13;
+    UNITPACK_PRECISE vec3 offset3 = vec3(t36 + t38, ratio3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_13 = offset_u3.x >> 12u;
+    uint limb0_13 = offset_u3.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t62.y >> 12u;
-    uint limb0_14 = t62.y & 4095u;
+    uint limb1_14 = offset_u3.y >> 12u;
+    uint limb0_14 = offset_u3.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t62.z >> 12u;
-    uint limb0_15 = t62.z & 4095u;
+    uint limb1_15 = offset_u3.z >> 12u;
+    uint limb0_15 = offset_u3.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi20) * 16777216.0 + float(lo20);
-    bool t63 = base.x <= 255.0 && t49 <= 255.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t63 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t63 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t64 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(255.0), t64, lessThanEqual(t64, vec2(255.0)));
+    bool t39 = dist3 < best_d;
+    bool t40 = base.x <= 255.0 && t31 && t39;
+    UNITPACK_PRECISE vec2 best2 = t40 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t40 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t41 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(255.0), t41, lessThanEqual(t41, vec2(255.0)));
+    bool t42 = t_up <= 255.0;
     UNITPACK_PRECISE vec2 p4 = floor((cand4 + cand4 - 255.0) * 8224.126);
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
     UNITPACK_PRECISE float z4 = 2097152.0 - (q4 <= 2097152.0 ? q4 : 2097152.0);
     UNITPACK_PRECISE float l2_4 = q4 + roundEven(z4 * z4 * 4.7683716e-7);
-    UNITPACK_PRECISE float t65 = l2_4 * 524288.0;
-    UNITPACK_PRECISE float root_estimate6 = floor(sqrt(t65));
+    UNITPACK_PRECISE float t43 = l2_4 * 524288.0;
+    UNITPACK_PRECISE float root_estimate6 = floor(sqrt(t43));
     UNITPACK_PRECISE float root_next7 = root_estimate6 + 1.0;
-    UNITPACK_PRECISE float t66 = root_next7 * root_next7 <= t65
-        ? 1.0
-        : (root_estimate6 * root_estimate6 > t65 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate6 + t66;
+    UNITPACK_PRECISE float step_down14 = root_estimate6 * root_estimate6 > t43 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step14 = root_next7 * root_next7 <= t43 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float root_step4 = root_estimate6 + step14;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t67 = root_next8 * root_next8 <= t65
-        ? 1.0
-        : (root_step4 * root_step4 > t65 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root6 = root_step4 + t67;
-    UNITPACK_PRECISE float t68 = root6 * 2.0;
+    UNITPACK_PRECISE float step_down15 = root_step4 * root_step4 > t43 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step15 = root_next8 * root_next8 <= t43 ? 1.0 : step_down15;
+    UNITPACK_PRECISE float root6 = root_step4 + step15;
+    UNITPACK_PRECISE float t44 = root6 * 2.0;
     UNITPACK_PRECISE vec2 abs_p4 = abs(p4);
-    UNITPACK_PRECISE float t69 = t68 >= abs_p4.x ? t68 : abs_p4.x;
-    UNITPACK_PRECISE float t70 = t69 >= abs_p4.y ? t69 : abs_p4.y;
-    UNITPACK_PRECISE float l5 = t70 >= z4 ? t70 : z4;
-    UNITPACK_PRECISE vec2 t71 = floor(p4 / l5 * 2097152.0);
-    UNITPACK_PRECISE vec2 t72 = p4 * 2097152.0;
-    UNITPACK_PRECISE vec2 t73 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t71 * l5, t72)),
+    UNITPACK_PRECISE float t45 = t44 >= abs_p4.x ? t44 : abs_p4.x;
+    UNITPACK_PRECISE float t46 = t45 >= abs_p4.y ? t45 : abs_p4.y;
+    UNITPACK_PRECISE float l5 = t46 >= z4 ? t46 : z4;
+    UNITPACK_PRECISE vec2 t47 = floor(p4 / l5 * 2097152.0);
+    UNITPACK_PRECISE vec2 t48 = p4 * 2097152.0;
+    UNITPACK_PRECISE vec2 t49 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t47 * l5, t48)),
         vec2(1.0),
-        lessThanEqual((t71 + 1.0) * l5, t72)
+        lessThanEqual((t47 + 1.0) * l5, t48)
     );
     UNITPACK_PRECISE float big4 = z4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(z4 / l5 * 2097152.0);
-    UNITPACK_PRECISE float t74 = (ratio_estimate4 + 1.0) * l5 <= big4
-        ? 1.0
-        : (ratio_estimate4 * l5 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t74;
-    UNITPACK_PRECISE vec3 t75 = abs(vec3(t71 + t73, ratio4) - aim);
-    uvec3 t76 = uvec3(t75);
-    uint limb1_16 = t76.x >> 12u;
-    uint limb0_16 = t76.x & 4095u;
+    UNITPACK_PRECISE float step_down16 = ratio_estimate4 * l5 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step16 = (ratio_estimate4 + 1.0) * l5 <= big4 ? 1.0 : step_down16;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step16;
+    UNITPACK_PRECISE vec3 offset4 = vec3(t47 + t49, ratio4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_16 = offset_u4.x >> 12u;
+    uint limb0_16 = offset_u4.x & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = 0u + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = 0u + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t76.y >> 12u;
-    uint limb0_17 = t76.y & 4095u;
+    uint limb1_17 = offset_u4.y >> 12u;
+    uint limb0_17 = offset_u4.y & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
-    uint limb1_18 = t76.z >> 12u;
-    uint limb0_18 = t76.z & 4095u;
+    uint limb1_18 = offset_u4.z >> 12u;
+    uint limb0_18 = offset_u4.z & 4095u;
     uint cross18 = limb1_18 * limb0_18;
     uint hi23 = hi22 + limb1_18 * limb1_18 + (cross18 >> 11u);
     uint lo23 = lo22 + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
     uint hi24 = hi23 + (lo23 >> 24u);
     uint lo24 = lo23 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi24) * 16777216.0 + float(lo24);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 255.0 && base.y + 1.0 <= 255.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t50 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 255.0 && t42 && t50 ? cand4 : best2;
     UNITPACK_PRECISE vec2 c = ok && ok2 ? best3 : vec2(128.0);
     return vec4(255.0, c.y, 0.0, c.x);
 }

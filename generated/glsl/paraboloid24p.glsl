@@ -78,7 +78,8 @@ vec2 unitpack_paraboloid24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -92,16 +93,17 @@ vec2 unitpack_paraboloid24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 halved = vec3(w4.xy, w4.z * 0.5);
-    UNITPACK_PRECISE float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -123,38 +125,40 @@ vec2 unitpack_paraboloid24p_encode_codes(vec3 v) {
     uint half_exponent = ((floatBitsToUint(len2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = len2 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t2 = len2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t2);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root * root_up + halved.z;
-    UNITPACK_PRECISE vec2 t7 = floor(w4.xy / a * 2047.0);
-    UNITPACK_PRECISE vec2 t8 = w4.xy * 2047.0;
-    UNITPACK_PRECISE vec2 t9 = mix(
-        mix(vec2(0.0), vec2(-1.0), lessThan(t8, t7 * a)),
+    UNITPACK_PRECISE vec2 t3 = floor(w4.xy / a * 2047.0);
+    UNITPACK_PRECISE vec2 t4 = w4.xy * 2047.0;
+    UNITPACK_PRECISE vec2 t5 = mix(
+        mix(vec2(0.0), vec2(-1.0), lessThan(t4, t3 * a)),
         vec2(1.0),
-        greaterThanEqual(t8, (t7 + 1.0) * a)
+        greaterThanEqual(t4, (t3 + 1.0) * a)
     );
-    UNITPACK_PRECISE vec2 t10 = t7 + t9;
-    UNITPACK_PRECISE vec2 t11 = mix(vec2(-2047.0), t10, greaterThanEqual(t10, vec2(-2047.0)));
-    UNITPACK_PRECISE vec2 base = mix(vec2(2047.0), t11, lessThanEqual(t11, vec2(2047.0)));
-    UNITPACK_PRECISE float t12 = floor(abs(w4.x) * 2097152.0);
-    uint fixed5 = uint(t12);
-    UNITPACK_PRECISE float t13 = floor(abs(w4.y) * 2097152.0);
-    uint fixed6 = uint(t13);
-    UNITPACK_PRECISE float t14 = floor(abs(w4.z) * 2097152.0);
-    uint fixed7 = uint(t14);
+    UNITPACK_PRECISE vec2 t6 = t3 + t5;
+    UNITPACK_PRECISE vec2 t7 = mix(vec2(-2047.0), t6, greaterThanEqual(t6, vec2(-2047.0)));
+    UNITPACK_PRECISE vec2 base = mix(vec2(2047.0), t7, lessThanEqual(t7, vec2(2047.0)));
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w4.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w4.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
+    UNITPACK_PRECISE float fixed_f6 = floor(abs(w4.z) * 2097152.0);
+    uint fixed7 = uint(fixed_f6);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -174,271 +178,263 @@ vec2 unitpack_paraboloid24p_encode_codes(vec3 v) {
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float len2_2 = (float(hi8) * 16777216.0 + float(lo8)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate2 = sqrt(len2_2);
-    UNITPACK_PRECISE float t15 = floor(root_estimate2 * 512.0);
-    UNITPACK_PRECISE float root_h0_2 = t15 * 0.001953125;
+    UNITPACK_PRECISE float root_k0_2 = floor(root_estimate2 * 512.0);
+    UNITPACK_PRECISE float root_h0_2 = root_k0_2 * 0.001953125;
     UNITPACK_PRECISE float root_h1_2 = root_h0_2 + 0.001953125;
-    UNITPACK_PRECISE float t16 = root_h1_2 * root_h1_2 <= len2_2
-        ? 1.0
-        : (root_h0_2 * root_h0_2 > len2_2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_k2 = t15 + t16;
+    UNITPACK_PRECISE float step_down3 = root_h0_2 * root_h0_2 > len2_2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_h1_2 * root_h1_2 <= len2_2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_k2 = root_k0_2 + step3;
     UNITPACK_PRECISE float root_h2 = root_k2 * 0.001953125;
     UNITPACK_PRECISE float root_rest2 = len2_2 - root_h2 * root_h2;
     UNITPACK_PRECISE float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     UNITPACK_PRECISE float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float t17 = root_m1_2 * root_m1_2 <= len2_2
-        ? 1.0
-        : (root_m0_2 * root_m0_2 > len2_2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_j2 = root_j0_2 + t17;
+    UNITPACK_PRECISE float step_down4 = root_m0_2 * root_m0_2 > len2_2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_m1_2 * root_m1_2 <= len2_2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root_j2 = root_j0_2 + step4;
     UNITPACK_PRECISE float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t18 = floor(w4 / root2 * 2097152.0);
-    UNITPACK_PRECISE vec3 t19 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t20 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t18 * root2, t19)),
+    UNITPACK_PRECISE vec3 t8 = floor(w4 / root2 * 2097152.0);
+    UNITPACK_PRECISE vec3 t9 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t10 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t8 * root2, t9)),
         vec3(1.0),
-        lessThanEqual((t18 + 1.0) * root2, t19)
+        lessThanEqual((t8 + 1.0) * root2, t9)
     );
-    UNITPACK_PRECISE vec3 aim = t18 + t20;
+    UNITPACK_PRECISE vec3 aim = t8 + t10;
     UNITPACK_PRECISE vec2 cand = mix(vec2(2047.0), base, lessThanEqual(base, vec2(2047.0)));
     UNITPACK_PRECISE vec2 p = floor(cand * 1024.5002);
     UNITPACK_PRECISE float q = roundEven(p.x * p.x * 4.7683716e-7)
         + roundEven(p.y * p.y * 4.7683716e-7);
     UNITPACK_PRECISE float z = 2097152.0 - (q <= 2097152.0 ? q : 2097152.0);
     UNITPACK_PRECISE float l2 = q + roundEven(z * z * 4.7683716e-7);
-    UNITPACK_PRECISE float t21 = l2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t21));
+    UNITPACK_PRECISE float t11 = l2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t11));
     UNITPACK_PRECISE float root_next = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t22 = root_next * root_next <= t21
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t21 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate3 + t22;
+    UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t11 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = root_next * root_next <= t11 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_step = root_estimate3 + step5;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t23 = root_next2 * root_next2 <= t21
-        ? 1.0
-        : (root_step * root_step > t21 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step + t23;
-    UNITPACK_PRECISE float t24 = root3 * 2.0;
+    UNITPACK_PRECISE float step_down6 = root_step * root_step > t11 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next2 * root_next2 <= t11 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root3 = root_step + step6;
+    UNITPACK_PRECISE float t12 = root3 * 2.0;
     UNITPACK_PRECISE vec2 abs_p = abs(p);
-    UNITPACK_PRECISE float t25 = t24 >= abs_p.x ? t24 : abs_p.x;
-    UNITPACK_PRECISE float t26 = t25 >= abs_p.y ? t25 : abs_p.y;
-    UNITPACK_PRECISE float l = t26 >= z ? t26 : z;
-    UNITPACK_PRECISE vec2 t27 = floor(p / l * 2097152.0);
-    UNITPACK_PRECISE vec2 t28 = p * 2097152.0;
-    UNITPACK_PRECISE vec2 t29 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t27 * l, t28)),
+    UNITPACK_PRECISE float t13 = t12 >= abs_p.x ? t12 : abs_p.x;
+    UNITPACK_PRECISE float t14 = t13 >= abs_p.y ? t13 : abs_p.y;
+    UNITPACK_PRECISE float l = t14 >= z ? t14 : z;
+    UNITPACK_PRECISE vec2 t15 = floor(p / l * 2097152.0);
+    UNITPACK_PRECISE vec2 t16 = p * 2097152.0;
+    UNITPACK_PRECISE vec2 t17 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t15 * l, t16)),
         vec2(1.0),
-        lessThanEqual((t27 + 1.0) * l, t28)
+        lessThanEqual((t15 + 1.0) * l, t16)
     );
     UNITPACK_PRECISE float big = z * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(z / l * 2097152.0);
-    UNITPACK_PRECISE float t30 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t30;
-    UNITPACK_PRECISE vec3 t31 = abs(vec3(t27 + t29, ratio) - aim);
-    uvec3 t32 = uvec3(t31);
-    uint limb1_7 = t32.x >> 12u;
-    uint limb0_7 = t32.x & 4095u;
+    UNITPACK_PRECISE float step_down7 = ratio_estimate * l > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step7;
+    UNITPACK_PRECISE vec3 offset = vec3(t15 + t17, ratio) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_7 = offset_u.x >> 12u;
+    uint limb0_7 = offset_u.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t32.y >> 12u;
-    uint limb0_8 = t32.y & 4095u;
+    uint limb1_8 = offset_u.y >> 12u;
+    uint limb0_8 = offset_u.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t32.z >> 12u;
-    uint limb0_9 = t32.z & 4095u;
+    uint limb1_9 = offset_u.z >> 12u;
+    uint limb0_9 = offset_u.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi12) * 16777216.0 + float(lo12);
-    UNITPACK_PRECISE float t33 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t34 = vec2(t33, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(2047.0), t34, lessThanEqual(t34, vec2(2047.0)));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t18 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(2047.0), t18, lessThanEqual(t18, vec2(2047.0)));
+    bool t19 = base.y <= 2047.0;
     UNITPACK_PRECISE vec2 p2 = floor(cand2 * 1024.5002);
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
     UNITPACK_PRECISE float z2 = 2097152.0 - (q2 <= 2097152.0 ? q2 : 2097152.0);
     UNITPACK_PRECISE float l2_2 = q2 + roundEven(z2 * z2 * 4.7683716e-7);
-    UNITPACK_PRECISE float t35 = l2_2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t35));
+    UNITPACK_PRECISE float t20 = l2_2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t20));
     UNITPACK_PRECISE float root_next3 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t36 = root_next3 * root_next3 <= t35
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t35 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate4 + t36;
+    UNITPACK_PRECISE float step_down8 = root_estimate4 * root_estimate4 > t20 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next3 * root_next3 <= t20 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float root_step2 = root_estimate4 + step8;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t37 = root_next4 * root_next4 <= t35
-        ? 1.0
-        : (root_step2 * root_step2 > t35 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step2 + t37;
-    UNITPACK_PRECISE float t38 = root4 * 2.0;
+    UNITPACK_PRECISE float step_down9 = root_step2 * root_step2 > t20 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next4 * root_next4 <= t20 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root4 = root_step2 + step9;
+    UNITPACK_PRECISE float t21 = root4 * 2.0;
     UNITPACK_PRECISE vec2 abs_p2 = abs(p2);
-    UNITPACK_PRECISE float t39 = t38 >= abs_p2.x ? t38 : abs_p2.x;
-    UNITPACK_PRECISE float t40 = t39 >= abs_p2.y ? t39 : abs_p2.y;
-    UNITPACK_PRECISE float l3 = t40 >= z2 ? t40 : z2;
-    UNITPACK_PRECISE vec2 t41 = floor(p2 / l3 * 2097152.0);
-    UNITPACK_PRECISE vec2 t42 = p2 * 2097152.0;
-    UNITPACK_PRECISE vec2 t43 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t41 * l3, t42)),
+    UNITPACK_PRECISE float t22 = t21 >= abs_p2.x ? t21 : abs_p2.x;
+    UNITPACK_PRECISE float t23 = t22 >= abs_p2.y ? t22 : abs_p2.y;
+    UNITPACK_PRECISE float l3 = t23 >= z2 ? t23 : z2;
+    UNITPACK_PRECISE vec2 t24 = floor(p2 / l3 * 2097152.0);
+    UNITPACK_PRECISE vec2 t25 = p2 * 2097152.0;
+    UNITPACK_PRECISE vec2 t26 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t24 * l3, t25)),
         vec2(1.0),
-        lessThanEqual((t41 + 1.0) * l3, t42)
+        lessThanEqual((t24 + 1.0) * l3, t25)
     );
     UNITPACK_PRECISE float big2 = z2 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(z2 / l3 * 2097152.0);
-    UNITPACK_PRECISE float t44 = (ratio_estimate2 + 1.0) * l3 <= big2
-        ? 1.0
-        : (ratio_estimate2 * l3 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t44;
-    UNITPACK_PRECISE vec3 t45 = abs(vec3(t41 + t43, ratio2) - aim);
-    uvec3 t46 = uvec3(t45);
-    uint limb1_10 = t46.x >> 12u;
-    uint limb0_10 = t46.x & 4095u;
+    UNITPACK_PRECISE float step_down10 = ratio_estimate2 * l3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = (ratio_estimate2 + 1.0) * l3 <= big2 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step10;
+    UNITPACK_PRECISE vec3 offset2 = vec3(t24 + t26, ratio2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_10 = offset_u2.x >> 12u;
+    uint limb0_10 = offset_u2.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t46.y >> 12u;
-    uint limb0_11 = t46.y & 4095u;
+    uint limb1_11 = offset_u2.y >> 12u;
+    uint limb0_11 = offset_u2.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t46.z >> 12u;
-    uint limb0_12 = t46.z & 4095u;
+    uint limb1_12 = offset_u2.z >> 12u;
+    uint limb0_12 = offset_u2.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi16) * 16777216.0 + float(lo16);
-    bool t47 = t33 <= 2047.0 && base.y <= 2047.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t47 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t47 ? dist2 : dist;
-    UNITPACK_PRECISE float t48 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t49 = vec2(base.x, t48);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(2047.0), t49, lessThanEqual(t49, vec2(2047.0)));
+    bool t27 = dist2 < dist;
+    bool t28 = s_up <= 2047.0 && t19 && t27;
+    UNITPACK_PRECISE vec2 best = t28 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t28 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t29 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(2047.0), t29, lessThanEqual(t29, vec2(2047.0)));
+    bool t30 = t_up <= 2047.0;
     UNITPACK_PRECISE vec2 p3 = floor(cand3 * 1024.5002);
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
     UNITPACK_PRECISE float z3 = 2097152.0 - (q3 <= 2097152.0 ? q3 : 2097152.0);
     UNITPACK_PRECISE float l2_3 = q3 + roundEven(z3 * z3 * 4.7683716e-7);
-    UNITPACK_PRECISE float t50 = l2_3 * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t50));
+    UNITPACK_PRECISE float t31 = l2_3 * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t31));
     UNITPACK_PRECISE float root_next5 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t51 = root_next5 * root_next5 <= t50
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t50 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate5 + t51;
+    UNITPACK_PRECISE float step_down11 = root_estimate5 * root_estimate5 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = root_next5 * root_next5 <= t31 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float root_step3 = root_estimate5 + step11;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t52 = root_next6 * root_next6 <= t50
-        ? 1.0
-        : (root_step3 * root_step3 > t50 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step3 + t52;
-    UNITPACK_PRECISE float t53 = root5 * 2.0;
+    UNITPACK_PRECISE float step_down12 = root_step3 * root_step3 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = root_next6 * root_next6 <= t31 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float root5 = root_step3 + step12;
+    UNITPACK_PRECISE float t32 = root5 * 2.0;
     UNITPACK_PRECISE vec2 abs_p3 = abs(p3);
-    UNITPACK_PRECISE float t54 = t53 >= abs_p3.x ? t53 : abs_p3.x;
-    UNITPACK_PRECISE float t55 = t54 >= abs_p3.y ? t54 : abs_p3.y;
-    UNITPACK_PRECISE float l4 = t55 >= z3 ? t55 : z3;
-    UNITPACK_PRECISE vec2 t56 = floor(p3 / l4 * 2097152.0);
-    UNITPACK_PRECISE vec2 t57 = p3 * 2097152.0;
-    UNITPACK_PRECISE vec2 t58 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t56 * l4, t57)),
+    UNITPACK_PRECISE float t33 = t32 >= abs_p3.x ? t32 : abs_p3.x;
+    UNITPACK_PRECISE float t34 = t33 >= abs_p3.y ? t33 : abs_p3.y;
+    UNITPACK_PRECISE float l4 = t34 >= z3 ? t34 : z3;
+    UNITPACK_PRECISE vec2 t35 = floor(p3 / l4 * 2097152.0);
+    UNITPACK_PRECISE vec2 t36 = p3 * 2097152.0;
+    UNITPACK_PRECISE vec2 t37 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t35 * l4, t36)),
         vec2(1.0),
-        lessThanEqual((t56 + 1.0) * l4, t57)
+        lessThanEqual((t35 + 1.0) * l4, t36)
     );
     UNITPACK_PRECISE float big3 = z3 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(z3 / l4 * 2097152.0);
-    UNITPACK_PRECISE float t59 = (ratio_estimate3 + 1.0) * l4 <= big3
-        ? 1.0
-        : (ratio_estimate3 * l4 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t59;
-    UNITPACK_PRECISE vec3 t60 = abs(vec3(t56 + t58, ratio3) - aim);
-    uvec3 t61 = uvec3(t60);
-    uint limb1_13 = t61.x >> 12u;
-    uint limb0_13 = t61.x & 4095u;
+    UNITPACK_PRECISE float step_down13 = ratio_estimate3 * l4 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step13 = (ratio_estimate3 + 1.0) * l4 <= big3 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step13;
+    UNITPACK_PRECISE vec3 offset3 = vec3(t35 + t37, ratio3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_13 = offset_u3.x >> 12u;
+    uint limb0_13 = offset_u3.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t61.y >> 12u;
-    uint limb0_14 = t61.y & 4095u;
+    uint limb1_14 = offset_u3.y >> 12u;
+    uint limb0_14 = offset_u3.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t61.z >> 12u;
-    uint limb0_15 = t61.z & 4095u;
+    uint limb1_15 = offset_u3.z >> 12u;
+    uint limb0_15 = offset_u3.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi20) * 16777216.0 + float(lo20);
-    bool t62 = base.x <= 2047.0 && t48 <= 2047.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t62 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t62 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t63 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(2047.0), t63, lessThanEqual(t63, vec2(2047.0)));
+    bool t38 = dist3 < best_d;
+    bool t39 = base.x <= 2047.0 && t30 && t38;
+    UNITPACK_PRECISE vec2 best2 = t39 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t39 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t40 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(2047.0), t40, lessThanEqual(t40, vec2(2047.0)));
+    bool t41 = t_up <= 2047.0;
     UNITPACK_PRECISE vec2 p4 = floor(cand4 * 1024.5002);
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
     UNITPACK_PRECISE float z4 = 2097152.0 - (q4 <= 2097152.0 ? q4 : 2097152.0);
     UNITPACK_PRECISE float l2_4 = q4 + roundEven(z4 * z4 * 4.7683716e-7);
-    UNITPACK_PRECISE float t64 = l2_4 * 524288.0;
-    UNITPACK_PRECISE float root_estimate6 = floor(sqrt(t64));
+    UNITPACK_PRECISE float t42 = l2_4 * 524288.0;
+    UNITPACK_PRECISE float root_estimate6 = floor(sqrt(t42));
     UNITPACK_PRECISE float root_next7 = root_estimate6 + 1.0;
-    UNITPACK_PRECISE float t65 = root_next7 * root_next7 <= t64
-        ? 1.0
-        : (root_estimate6 * root_estimate6 > t64 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate6 + t65;
+    UNITPACK_PRECISE float step_down14 = root_estimate6 * root_estimate6 > t42 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step14 = root_next7 * root_next7 <= t42 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float root_step4 = root_estimate6 + step14;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t66 = root_next8 * root_next8 <= t64
-        ? 1.0
-        : (root_step4 * root_step4 > t64 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root6 = root_step4 + t66;
-    UNITPACK_PRECISE float t67 = root6 * 2.0;
+    UNITPACK_PRECISE float step_down15 = root_step4 * root_step4 > t42 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step15 = root_next8 * root_next8 <= t42 ? 1.0 : step_down15;
+    UNITPACK_PRECISE float root6 = root_step4 + step15;
+    UNITPACK_PRECISE float t43 = root6 * 2.0;
     UNITPACK_PRECISE vec2 abs_p4 = abs(p4);
-    UNITPACK_PRECISE float t68 = t67 >= abs_p4.x ? t67 : abs_p4.x;
-    UNITPACK_PRECISE float t69 = t68 >= abs_p4.y ? t68 : abs_p4.y;
-    UNITPACK_PRECISE float l5 = t69 >= z4 ? t69 : z4;
-    UNITPACK_PRECISE vec2 t70 = floor(p4 / l5 * 2097152.0);
-    UNITPACK_PRECISE vec2 t71 = p4 * 2097152.0;
-    UNITPACK_PRECISE vec2 t72 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t70 * l5, t71)),
+    UNITPACK_PRECISE float t44 = t43 >= abs_p4.x ? t43 : abs_p4.x;
+    UNITPACK_PRECISE float t45 = t44 >= abs_p4.y ? t44 : abs_p4.y;
+    UNITPACK_PRECISE float l5 = t45 >= z4 ? t45 : z4;
+    UNITPACK_PRECISE vec2 t46 = floor(p4 / l5 * 2097152.0);
+    UNITPACK_PRECISE vec2 t47 = p4 * 2097152.0;
+    UNITPACK_PRECISE vec2 t48 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t46 * l5, t47)),
         vec2(1.0),
-        lessThanEqual((t70 + 1.0) * l5, t71)
+        lessThanEqual((t46 + 1.0) * l5, t47)
     );
     UNITPACK_PRECISE float big4 = z4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(z4 / l5 * 2097152.0);
-    UNITPACK_PRECISE float t73 = (ratio_estimate4 + 1.0) * l5 <= big4
-        ? 1.0
-        : (ratio_estimate4 * l5 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t73;
-    UNITPACK_PRECISE vec3 t74 = abs(vec3(t70 + t72, ratio4) - aim);
-    uvec3 t75 = uvec3(t74);
-    uint limb1_16 = t75.x >> 12u;
-    uint limb0_16 = t75.x & 4095u;
+    UNITPACK_PRECISE float step_down16 = ratio_estimate4 * l5 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step16 = (ratio_estimate4 + 1.0) * l5 <= big4 ? 1.0 : step_down16;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step16;
+    UNITPACK_PRECISE vec3 offset4 = vec3(t46 + t48, ratio4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_16 = offset_u4.x >> 12u;
+    uint limb0_16 = offset_u4.x & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = 0u + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = 0u + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t75.y >> 12u;
-    uint limb0_17 = t75.y & 4095u;
+    uint limb1_17 = offset_u4.y >> 12u;
+    uint limb0_17 = offset_u4.y & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
-    uint limb1_18 = t75.z >> 12u;
-    uint limb0_18 = t75.z & 4095u;
+    uint limb1_18 = offset_u4.z >> 12u;
+    uint limb0_18 = offset_u4.z & 4095u;
     uint cross18 = limb1_18 * limb0_18;
     uint hi23 = hi22 + limb1_18 * limb1_18 + (cross18 >> 11u);
     uint lo23 = lo22 + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
     uint hi24 = hi23 + (lo23 >> 24u);
     uint lo24 = lo23 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi24) * 16777216.0 + float(lo24);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 2047.0
-        && base.y + 1.0 <= 2047.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t49 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 2047.0 && t41 && t49 ? cand4 : best2;
     return ok && ok2 ? best3 : vec2(0.0);
 }
 

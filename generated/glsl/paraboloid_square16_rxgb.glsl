@@ -59,10 +59,8 @@ vec3 unitpack_paraboloid_square16_rxgb_decode_float(vec4 params) {
 //   horizon.
 // Portable as unitpack_paraboloid_square16_rxgb_decode_float is, within the same bound.
 vec3 unitpack_paraboloid_square16_rxgb_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_paraboloid_square16_rxgb_decode_float(params);
 }
 
@@ -77,8 +75,9 @@ float unitpack_paraboloid_square16_rxgb_square_step(float a0, float a1, vec3 a2)
     UNITPACK_PRECISE float surface = roundEven(t2);
     UNITPACK_PRECISE float t3 = roundEven(surface * a2.x * 4.7683716e-7);
     UNITPACK_PRECISE float t4 = roundEven(a2.z * t * 4.7683716e-7);
-    bool t5 = t3 >= t4 && t <= 2097152.0;
-    return t5 ? t : a0;
+    bool t5 = t3 >= t4;
+    bool t6 = t <= 2097152.0;
+    return t5 && t6 ? t : a0;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -92,10 +91,9 @@ vec2 unitpack_paraboloid_square16_rxgb_square_point(vec3 a0) {
     UNITPACK_PRECISE float t5 = t3 >= 1.0 ? t3 : 1.0;
     UNITPACK_PRECISE float big = t4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(t4 / t5 * 2097152.0);
-    UNITPACK_PRECISE float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r = ratio_estimate + t6;
+    UNITPACK_PRECISE float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float r = ratio_estimate + step;
     UNITPACK_PRECISE vec3 k = vec3(t3, roundEven(r * r * 4.7683716e-7), a0.z);
     UNITPACK_PRECISE float s = unitpack_paraboloid_square16_rxgb_square_step(0.0, 2097152.0, k);
     UNITPACK_PRECISE float s2 = unitpack_paraboloid_square16_rxgb_square_step(s, 1048576.0, k);
@@ -119,9 +117,11 @@ vec2 unitpack_paraboloid_square16_rxgb_square_point(vec3 a0) {
     UNITPACK_PRECISE float s20 = unitpack_paraboloid_square16_rxgb_square_step(s19, 4.0, k);
     UNITPACK_PRECISE float s21 = unitpack_paraboloid_square16_rxgb_square_step(s20, 2.0, k);
     UNITPACK_PRECISE float s22 = unitpack_paraboloid_square16_rxgb_square_step(s21, 1.0, k);
-    UNITPACK_PRECISE float t7 = roundEven(r * s22 * 4.7683716e-7);
-    UNITPACK_PRECISE vec2 t8 = t2 ? vec2(s22, t7) : vec2(t7, s22);
-    UNITPACK_PRECISE vec2 result = mix(t8, -t8, lessThan(a0.xy, vec2(0.0)));
+    UNITPACK_PRECISE float t6 = roundEven(r * s22 * 4.7683716e-7);
+    UNITPACK_PRECISE vec2 t7 = vec2(s22, t6);
+    UNITPACK_PRECISE vec2 t8 = vec2(t6, s22);
+    UNITPACK_PRECISE vec2 t9 = t2 ? t7 : t8;
+    UNITPACK_PRECISE vec2 result = mix(t9, -t9, lessThan(a0.xy, vec2(0.0)));
     return result;
 }
 
@@ -144,7 +144,8 @@ vec4 unitpack_paraboloid_square16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -158,15 +159,16 @@ vec4 unitpack_paraboloid_square16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -186,48 +188,59 @@ vec4 unitpack_paraboloid_square16_rxgb_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t6 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t7 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t8 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t6 * root, t7)),
+    UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t4 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t2 * root, t3)),
         vec3(1.0),
-        lessThanEqual((t6 + 1.0) * root, t7)
+        lessThanEqual((t2 + 1.0) * root, t3)
     );
-    UNITPACK_PRECISE vec3 aim = t6 + t8;
+    UNITPACK_PRECISE vec3 aim = t2 + t4;
     UNITPACK_PRECISE vec2 p = unitpack_paraboloid_square16_rxgb_square_point(aim);
     UNITPACK_PRECISE vec2 p2 = p * 4.7683716e-7;
     UNITPACK_PRECISE vec3 abs_v = abs(v);
-    UNITPACK_PRECISE float t9 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    UNITPACK_PRECISE float largest3 = t9 >= abs_v.z ? t9 : abs_v.z;
-    bool t10 = largest3 > 0.0 && largest3 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled3 = v / (t10 ? largest3 : 1.0);
+    UNITPACK_PRECISE float t5 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    UNITPACK_PRECISE float largest3 = t5 >= abs_v.z ? t5 : abs_v.z;
+    bool t6 = largest3 <= 3.4028235e38;
+    bool t7 = largest3 > 0.0 && t6;
+    UNITPACK_PRECISE vec3 scaled3 = v / (t7 ? largest3 : 1.0);
     UNITPACK_PRECISE vec3 scaled3_sq = scaled3 * scaled3;
     UNITPACK_PRECISE float len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    UNITPACK_PRECISE vec3 t11 = t10 && len2_2 >= 1.0 ? scaled3 / sqrt(len2_2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 t12 = vec3(t11.xy, t11.z > 0.0 ? t11.z : 0.0);
-    UNITPACK_PRECISE vec3 abs_t12 = abs(t12);
-    UNITPACK_PRECISE float t13 = abs_t12.x >= abs_t12.y ? abs_t12.x : abs_t12.y;
-    UNITPACK_PRECISE float largest4 = t13 >= abs_t12.z ? t13 : abs_t12.z;
-    bool t14 = largest4 > 0.0 && largest4 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled4 = t12 / (t14 ? largest4 : 1.0);
+    bool t8 = len2_2 >= 1.0;
+    UNITPACK_PRECISE vec3 t9 = scaled3 / sqrt(len2_2);
+    UNITPACK_PRECISE vec3 t10 = t7 && t8 ? t9 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 t11 = vec3(t10.xy, t10.z > 0.0 ? t10.z : 0.0);
+    UNITPACK_PRECISE vec3 abs_t11 = abs(t11);
+    UNITPACK_PRECISE float t12 = abs_t11.x >= abs_t11.y ? abs_t11.x : abs_t11.y;
+    UNITPACK_PRECISE float largest4 = t12 >= abs_t11.z ? t12 : abs_t11.z;
+    bool t13 = largest4 <= 3.4028235e38;
+    bool t14 = largest4 > 0.0 && t13;
+    UNITPACK_PRECISE vec3 scaled4 = t11 / (t14 ? largest4 : 1.0);
     UNITPACK_PRECISE vec3 scaled4_sq = scaled4 * scaled4;
     UNITPACK_PRECISE float len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    UNITPACK_PRECISE float t15 = 0.5
-        + (t14 && len2_3 >= 1.0 ? scaled4 / sqrt(len2_3) : vec3(0.0, 0.0, 1.0)).z * 0.5;
-    UNITPACK_PRECISE vec4 result = vec4(1.0, 0.5 + p2.y * 0.5, t15, 0.5 + p2.x * 0.5);
+    bool t15 = len2_3 >= 1.0;
+    UNITPACK_PRECISE vec3 t16 = scaled4 / sqrt(len2_3);
+    UNITPACK_PRECISE vec4 result = vec4(
+        1.0,
+        0.5 + p2.y * 0.5,
+        0.5 + (t14 && t15 ? t16 : vec3(0.0, 0.0, 1.0)).z * 0.5,
+        0.5 + p2.x * 0.5
+    );
     return result;
 }
 
@@ -245,7 +258,8 @@ vec4 unitpack_paraboloid_square16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -259,15 +273,16 @@ vec4 unitpack_paraboloid_square16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -287,32 +302,34 @@ vec4 unitpack_paraboloid_square16_rxgb_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t6 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t7 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t8 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t6 * root, t7)),
+    UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t4 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t2 * root, t3)),
         vec3(1.0),
-        lessThanEqual((t6 + 1.0) * root, t7)
+        lessThanEqual((t2 + 1.0) * root, t3)
     );
-    UNITPACK_PRECISE vec3 aim = t6 + t8;
+    UNITPACK_PRECISE vec3 aim = t2 + t4;
     UNITPACK_PRECISE vec2 p = unitpack_paraboloid_square16_rxgb_square_point(aim);
-    UNITPACK_PRECISE float t9 = p.x + 2097152.0;
-    UNITPACK_PRECISE float t10 = p.y + 2097152.0;
-    uvec2 t11 = uvec2((uint(t9) * 255u + 2097152u) >> 22u, (uint(t10) * 255u + 2097152u) >> 22u);
-    UNITPACK_PRECISE vec2 c = vec2(t11);
+    UNITPACK_PRECISE float t5 = p.x + 2097152.0;
+    UNITPACK_PRECISE float t6 = p.y + 2097152.0;
+    uvec2 t7 = uvec2((uint(t5) * 255u + 2097152u) >> 22u, (uint(t6) * 255u + 2097152u) >> 22u);
+    UNITPACK_PRECISE vec2 c = vec2(t7);
     UNITPACK_PRECISE vec3 normal3 = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal3 = abs(normal3);
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
@@ -323,11 +340,12 @@ vec4 unitpack_paraboloid_square16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
     UNITPACK_PRECISE float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_3 = sum3 < 16.0;
+    bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     UNITPACK_PRECISE vec3 w5 = mix(scaled3, vec3(0.0), lessThan(abs(scaled3), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w6 = ok3 ? w5 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE vec3 t12 = vec3(w6.xy, w6.z > 0.0 ? w6.z : 0.0);
-    UNITPACK_PRECISE vec3 normal4 = mix(t12, vec3(0.0), lessThan(abs(t12), vec3(1.1754944e-38)));
+    UNITPACK_PRECISE vec3 t8 = vec3(w6.xy, w6.z > 0.0 ? w6.z : 0.0);
+    UNITPACK_PRECISE vec3 normal4 = mix(t8, vec3(0.0), lessThan(abs(t8), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal4 = abs(normal4);
     UNITPACK_PRECISE float larger4 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
     UNITPACK_PRECISE float largest4 = larger4 >= abs_normal4.z ? larger4 : abs_normal4.z;
@@ -337,7 +355,8 @@ vec4 unitpack_paraboloid_square16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled4 = normal4 * scale4;
     UNITPACK_PRECISE vec3 abs_scaled4 = abs(scaled4);
     UNITPACK_PRECISE float sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
-    bool ok4 = sum4 >= 2.0 && sum4 < 16.0;
+    bool sum_below_16_4 = sum4 < 16.0;
+    bool ok4 = sum4 >= 2.0 && sum_below_16_4;
     UNITPACK_PRECISE vec3 w7 = mix(scaled4, vec3(0.0), lessThan(abs(scaled4), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w8 = ok4 ? w7 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w8.x) & 4294963200u);
@@ -346,30 +365,34 @@ vec4 unitpack_paraboloid_square16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE float split_lo2 = w8.y - split_hi2;
     UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w8.z) & 4294963200u);
     UNITPACK_PRECISE float split_lo3 = w8.z - split_hi3;
-    UNITPACK_PRECISE float t13 = (split_hi + split_hi) * split_lo
+    UNITPACK_PRECISE float t9 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     UNITPACK_PRECISE float len2_2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t13
+        + t9
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     UNITPACK_PRECISE float big2 = w8.z * w8.z * 16256.25;
-    UNITPACK_PRECISE float t14 = roundEven(w8.z / sqrt(len2_2) * 127.5 + 127.5);
-    UNITPACK_PRECISE float t15 = t14 >= 0.0 ? t14 : 0.0;
-    UNITPACK_PRECISE float estimate = t15 <= 255.0 ? t15 : 255.0;
-    UNITPACK_PRECISE float t16 = estimate - 127.0;
-    UNITPACK_PRECISE float t17 = t16 * t16 * len2_2;
-    UNITPACK_PRECISE float t18 = w8.z >= 0.0
-        ? (t16 > 0.0 ? (big2 >= t17 ? 1.0 : 0.0) : 1.0)
-        : (t16 < 0.0 ? (big2 <= t17 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 255.0 ? t18 : 0.0;
-    UNITPACK_PRECISE float t19 = estimate - 1.0 - 127.0;
-    UNITPACK_PRECISE float t20 = t19 * t19 * len2_2;
-    UNITPACK_PRECISE float t21 = w8.z >= 0.0
-        ? (t19 > 0.0 ? (big2 >= t20 ? 1.0 : 0.0) : 1.0)
-        : (t19 < 0.0 ? (big2 <= t20 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t21 - 1.0 : 0.0;
+    UNITPACK_PRECISE float t10 = roundEven(w8.z / sqrt(len2_2) * 127.5 + 127.5);
+    UNITPACK_PRECISE float t11 = t10 >= 0.0 ? t10 : 0.0;
+    UNITPACK_PRECISE float estimate = t11 <= 255.0 ? t11 : 255.0;
+    UNITPACK_PRECISE float t12 = estimate - 127.0;
+    UNITPACK_PRECISE float t13 = t12 * t12 * len2_2;
+    UNITPACK_PRECISE float one_if = big2 >= t13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t14 = t12 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2 <= t13 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t15 = t12 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t16 = w8.z >= 0.0 ? t14 : t15;
+    UNITPACK_PRECISE float up = estimate < 255.0 ? t16 : 0.0;
+    UNITPACK_PRECISE float t17 = estimate - 1.0 - 127.0;
+    UNITPACK_PRECISE float t18 = t17 * t17 * len2_2;
+    UNITPACK_PRECISE float one_if3 = big2 >= t18 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t19 = t17 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2 <= t18 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t20 = t17 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t21 = (w8.z >= 0.0 ? t19 : t20) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t21 : 0.0;
     UNITPACK_PRECISE vec4 result = vec4(255.0, c.y, estimate + up + down, c.x);
     return result;
 }
@@ -384,10 +407,8 @@ vec4 unitpack_paraboloid_square16_rxgb_round_codes(vec3 a0) {
 //   components count as zero.
 uint unitpack_paraboloid_square16_rxgb_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_paraboloid_square16_rxgb_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_PARABOLOID_SQUARE16_RXGB_GLSL

@@ -59,10 +59,8 @@ vec3 unitpack_paraboloid_square16_xra_decode_float(vec4 params) {
 //   horizon.
 // Portable as unitpack_paraboloid_square16_xra_decode_float is, within the same bound.
 vec3 unitpack_paraboloid_square16_xra_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_paraboloid_square16_xra_decode_float(params);
 }
 
@@ -77,8 +75,9 @@ float unitpack_paraboloid_square16_xra_square_step(float a0, float a1, vec3 a2) 
     UNITPACK_PRECISE float surface = roundEven(t2);
     UNITPACK_PRECISE float t3 = roundEven(surface * a2.x * 4.7683716e-7);
     UNITPACK_PRECISE float t4 = roundEven(a2.z * t * 4.7683716e-7);
-    bool t5 = t3 >= t4 && t <= 2097152.0;
-    return t5 ? t : a0;
+    bool t5 = t3 >= t4;
+    bool t6 = t <= 2097152.0;
+    return t5 && t6 ? t : a0;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -92,10 +91,9 @@ vec2 unitpack_paraboloid_square16_xra_square_point(vec3 a0) {
     UNITPACK_PRECISE float t5 = t3 >= 1.0 ? t3 : 1.0;
     UNITPACK_PRECISE float big = t4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(t4 / t5 * 2097152.0);
-    UNITPACK_PRECISE float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r = ratio_estimate + t6;
+    UNITPACK_PRECISE float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float r = ratio_estimate + step;
     UNITPACK_PRECISE vec3 k = vec3(t3, roundEven(r * r * 4.7683716e-7), a0.z);
     UNITPACK_PRECISE float s = unitpack_paraboloid_square16_xra_square_step(0.0, 2097152.0, k);
     UNITPACK_PRECISE float s2 = unitpack_paraboloid_square16_xra_square_step(s, 1048576.0, k);
@@ -119,9 +117,11 @@ vec2 unitpack_paraboloid_square16_xra_square_point(vec3 a0) {
     UNITPACK_PRECISE float s20 = unitpack_paraboloid_square16_xra_square_step(s19, 4.0, k);
     UNITPACK_PRECISE float s21 = unitpack_paraboloid_square16_xra_square_step(s20, 2.0, k);
     UNITPACK_PRECISE float s22 = unitpack_paraboloid_square16_xra_square_step(s21, 1.0, k);
-    UNITPACK_PRECISE float t7 = roundEven(r * s22 * 4.7683716e-7);
-    UNITPACK_PRECISE vec2 t8 = t2 ? vec2(s22, t7) : vec2(t7, s22);
-    UNITPACK_PRECISE vec2 result = mix(t8, -t8, lessThan(a0.xy, vec2(0.0)));
+    UNITPACK_PRECISE float t6 = roundEven(r * s22 * 4.7683716e-7);
+    UNITPACK_PRECISE vec2 t7 = vec2(s22, t6);
+    UNITPACK_PRECISE vec2 t8 = vec2(t6, s22);
+    UNITPACK_PRECISE vec2 t9 = t2 ? t7 : t8;
+    UNITPACK_PRECISE vec2 result = mix(t9, -t9, lessThan(a0.xy, vec2(0.0)));
     return result;
 }
 
@@ -144,7 +144,8 @@ vec4 unitpack_paraboloid_square16_xra_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -158,15 +159,16 @@ vec4 unitpack_paraboloid_square16_xra_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -186,27 +188,29 @@ vec4 unitpack_paraboloid_square16_xra_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t6 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t7 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t8 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t6 * root, t7)),
+    UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t4 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t2 * root, t3)),
         vec3(1.0),
-        lessThanEqual((t6 + 1.0) * root, t7)
+        lessThanEqual((t2 + 1.0) * root, t3)
     );
-    UNITPACK_PRECISE vec3 aim = t6 + t8;
+    UNITPACK_PRECISE vec3 aim = t2 + t4;
     UNITPACK_PRECISE vec2 p = unitpack_paraboloid_square16_xra_square_point(aim);
     UNITPACK_PRECISE vec2 p2 = p * 4.7683716e-7;
     UNITPACK_PRECISE vec4 result = vec4(1.0, 0.5 + p2.y * 0.5, 0.0, 0.5 + p2.x * 0.5);
@@ -227,7 +231,8 @@ vec4 unitpack_paraboloid_square16_xra_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -241,15 +246,16 @@ vec4 unitpack_paraboloid_square16_xra_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -269,32 +275,34 @@ vec4 unitpack_paraboloid_square16_xra_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t6 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t7 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t8 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t6 * root, t7)),
+    UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t4 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t2 * root, t3)),
         vec3(1.0),
-        lessThanEqual((t6 + 1.0) * root, t7)
+        lessThanEqual((t2 + 1.0) * root, t3)
     );
-    UNITPACK_PRECISE vec3 aim = t6 + t8;
+    UNITPACK_PRECISE vec3 aim = t2 + t4;
     UNITPACK_PRECISE vec2 p = unitpack_paraboloid_square16_xra_square_point(aim);
-    UNITPACK_PRECISE float t9 = p.x + 2097152.0;
-    UNITPACK_PRECISE float t10 = p.y + 2097152.0;
-    uvec2 t11 = uvec2((uint(t9) * 255u + 2097152u) >> 22u, (uint(t10) * 255u + 2097152u) >> 22u);
-    UNITPACK_PRECISE vec2 c = vec2(t11);
+    UNITPACK_PRECISE float t5 = p.x + 2097152.0;
+    UNITPACK_PRECISE float t6 = p.y + 2097152.0;
+    uvec2 t7 = uvec2((uint(t5) * 255u + 2097152u) >> 22u, (uint(t6) * 255u + 2097152u) >> 22u);
+    UNITPACK_PRECISE vec2 c = vec2(t7);
     return vec4(255.0, c.y, 0.0, c.x);
 }
 
@@ -307,10 +315,8 @@ vec4 unitpack_paraboloid_square16_xra_round_codes(vec3 a0) {
 //   components count as zero.
 uint unitpack_paraboloid_square16_xra_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_paraboloid_square16_xra_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 // unitpack_paraboloid_square16_xra_encode_dxt1: fast encoder.

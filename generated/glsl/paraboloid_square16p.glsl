@@ -74,8 +74,9 @@ float unitpack_paraboloid_square16p_square_step(float a0, float a1, vec3 a2) {
     UNITPACK_PRECISE float surface = roundEven(t2);
     UNITPACK_PRECISE float t3 = roundEven(surface * a2.x * 4.7683716e-7);
     UNITPACK_PRECISE float t4 = roundEven(a2.z * t * 4.7683716e-7);
-    bool t5 = t3 >= t4 && t <= 2097152.0;
-    return t5 ? t : a0;
+    bool t5 = t3 >= t4;
+    bool t6 = t <= 2097152.0;
+    return t5 && t6 ? t : a0;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -89,10 +90,9 @@ vec2 unitpack_paraboloid_square16p_square_point(vec3 a0) {
     UNITPACK_PRECISE float t5 = t3 >= 1.0 ? t3 : 1.0;
     UNITPACK_PRECISE float big = t4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(t4 / t5 * 2097152.0);
-    UNITPACK_PRECISE float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r = ratio_estimate + t6;
+    UNITPACK_PRECISE float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float r = ratio_estimate + step;
     UNITPACK_PRECISE vec3 k = vec3(t3, roundEven(r * r * 4.7683716e-7), a0.z);
     UNITPACK_PRECISE float s = unitpack_paraboloid_square16p_square_step(0.0, 2097152.0, k);
     UNITPACK_PRECISE float s2 = unitpack_paraboloid_square16p_square_step(s, 1048576.0, k);
@@ -116,9 +116,11 @@ vec2 unitpack_paraboloid_square16p_square_point(vec3 a0) {
     UNITPACK_PRECISE float s20 = unitpack_paraboloid_square16p_square_step(s19, 4.0, k);
     UNITPACK_PRECISE float s21 = unitpack_paraboloid_square16p_square_step(s20, 2.0, k);
     UNITPACK_PRECISE float s22 = unitpack_paraboloid_square16p_square_step(s21, 1.0, k);
-    UNITPACK_PRECISE float t7 = roundEven(r * s22 * 4.7683716e-7);
-    UNITPACK_PRECISE vec2 t8 = t2 ? vec2(s22, t7) : vec2(t7, s22);
-    UNITPACK_PRECISE vec2 result = mix(t8, -t8, lessThan(a0.xy, vec2(0.0)));
+    UNITPACK_PRECISE float t6 = roundEven(r * s22 * 4.7683716e-7);
+    UNITPACK_PRECISE vec2 t7 = vec2(s22, t6);
+    UNITPACK_PRECISE vec2 t8 = vec2(t6, s22);
+    UNITPACK_PRECISE vec2 t9 = t2 ? t7 : t8;
+    UNITPACK_PRECISE vec2 result = mix(t9, -t9, lessThan(a0.xy, vec2(0.0)));
     return result;
 }
 
@@ -137,7 +139,8 @@ vec2 unitpack_paraboloid_square16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -151,15 +154,16 @@ vec2 unitpack_paraboloid_square16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -179,267 +183,265 @@ vec2 unitpack_paraboloid_square16p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t6 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t7 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t8 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t6 * root, t7)),
+    UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t4 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t2 * root, t3)),
         vec3(1.0),
-        lessThanEqual((t6 + 1.0) * root, t7)
+        lessThanEqual((t2 + 1.0) * root, t3)
     );
-    UNITPACK_PRECISE vec3 aim = t6 + t8;
+    UNITPACK_PRECISE vec3 aim = t2 + t4;
     UNITPACK_PRECISE vec2 p = unitpack_paraboloid_square16p_square_point(aim);
     UNITPACK_PRECISE vec2 base = floor(p * 6.055832e-5);
     UNITPACK_PRECISE vec2 cand = mix(vec2(127.0), base, lessThanEqual(base, vec2(127.0)));
     UNITPACK_PRECISE vec2 p2 = floor(cand * 16513.008);
-    UNITPACK_PRECISE float t9 = roundEven(p2.x * p2.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t10 = roundEven(p2.y * p2.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z = roundEven((2097152.0 - t9) * (2097152.0 - t10) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2 = t9 + t10 + roundEven(z * z * 4.7683716e-7);
-    UNITPACK_PRECISE float t11 = l2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t11));
+    UNITPACK_PRECISE float t5 = roundEven(p2.x * p2.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t6 = roundEven(p2.y * p2.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z = roundEven((2097152.0 - t5) * (2097152.0 - t6) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2 = t5 + t6 + roundEven(z * z * 4.7683716e-7);
+    UNITPACK_PRECISE float t7 = l2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t7));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t12 = root_next * root_next <= t11
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t11 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t12;
+    UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t7 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_next * root_next <= t7 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t13 = root_next2 * root_next2 <= t11
-        ? 1.0
-        : (root_step * root_step > t11 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root2 = root_step + t13;
-    UNITPACK_PRECISE float t14 = root2 * 2.0;
+    UNITPACK_PRECISE float step_down4 = root_step * root_step > t7 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t7 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root2 = root_step + step4;
+    UNITPACK_PRECISE float t8 = root2 * 2.0;
     UNITPACK_PRECISE vec2 abs_p2 = abs(p2);
-    UNITPACK_PRECISE float t15 = t14 >= abs_p2.x ? t14 : abs_p2.x;
-    UNITPACK_PRECISE float t16 = t15 >= abs_p2.y ? t15 : abs_p2.y;
-    UNITPACK_PRECISE float l = t16 >= z ? t16 : z;
-    UNITPACK_PRECISE vec2 t17 = floor(p2 / l * 2097152.0);
-    UNITPACK_PRECISE vec2 t18 = p2 * 2097152.0;
-    UNITPACK_PRECISE vec2 t19 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t17 * l, t18)),
+    UNITPACK_PRECISE float t9 = t8 >= abs_p2.x ? t8 : abs_p2.x;
+    UNITPACK_PRECISE float t10 = t9 >= abs_p2.y ? t9 : abs_p2.y;
+    UNITPACK_PRECISE float l = t10 >= z ? t10 : z;
+    UNITPACK_PRECISE vec2 t11 = floor(p2 / l * 2097152.0);
+    UNITPACK_PRECISE vec2 t12 = p2 * 2097152.0;
+    UNITPACK_PRECISE vec2 t13 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t11 * l, t12)),
         vec2(1.0),
-        lessThanEqual((t17 + 1.0) * l, t18)
+        lessThanEqual((t11 + 1.0) * l, t12)
     );
     UNITPACK_PRECISE float big = z * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(z / l * 2097152.0);
-    UNITPACK_PRECISE float t20 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t20;
-    UNITPACK_PRECISE vec3 t21 = abs(vec3(t17 + t19, ratio) - aim);
-    uvec3 t22 = uvec3(t21);
-    uint limb1_4 = t22.x >> 12u;
-    uint limb0_4 = t22.x & 4095u;
+    UNITPACK_PRECISE float step_down5 = ratio_estimate * l > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step5;
+    UNITPACK_PRECISE vec3 offset = vec3(t11 + t13, ratio) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t22.y >> 12u;
-    uint limb0_5 = t22.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t22.z >> 12u;
-    uint limb0_6 = t22.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t23 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t24 = vec2(t23, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(127.0), t24, lessThanEqual(t24, vec2(127.0)));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t14 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(127.0), t14, lessThanEqual(t14, vec2(127.0)));
+    bool t15 = base.y <= 127.0;
     UNITPACK_PRECISE vec2 p3 = floor(cand2 * 16513.008);
-    UNITPACK_PRECISE float t25 = roundEven(p3.x * p3.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t26 = roundEven(p3.y * p3.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z2 = roundEven((2097152.0 - t25) * (2097152.0 - t26) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2_2 = t25 + t26 + roundEven(z2 * z2 * 4.7683716e-7);
-    UNITPACK_PRECISE float t27 = l2_2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t27));
+    UNITPACK_PRECISE float t16 = roundEven(p3.x * p3.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t17 = roundEven(p3.y * p3.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z2 = roundEven((2097152.0 - t16) * (2097152.0 - t17) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2_2 = t16 + t17 + roundEven(z2 * z2 * 4.7683716e-7);
+    UNITPACK_PRECISE float t18 = l2_2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t18));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t28 = root_next3 * root_next3 <= t27
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t27 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t28;
+    UNITPACK_PRECISE float step_down6 = root_estimate3 * root_estimate3 > t18 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next3 * root_next3 <= t18 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step6;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t29 = root_next4 * root_next4 <= t27
-        ? 1.0
-        : (root_step2 * root_step2 > t27 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step2 + t29;
-    UNITPACK_PRECISE float t30 = root3 * 2.0;
+    UNITPACK_PRECISE float step_down7 = root_step2 * root_step2 > t18 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = root_next4 * root_next4 <= t18 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root3 = root_step2 + step7;
+    UNITPACK_PRECISE float t19 = root3 * 2.0;
     UNITPACK_PRECISE vec2 abs_p3 = abs(p3);
-    UNITPACK_PRECISE float t31 = t30 >= abs_p3.x ? t30 : abs_p3.x;
-    UNITPACK_PRECISE float t32 = t31 >= abs_p3.y ? t31 : abs_p3.y;
-    UNITPACK_PRECISE float l3 = t32 >= z2 ? t32 : z2;
-    UNITPACK_PRECISE vec2 t33 = floor(p3 / l3 * 2097152.0);
-    UNITPACK_PRECISE vec2 t34 = p3 * 2097152.0;
-    UNITPACK_PRECISE vec2 t35 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t33 * l3, t34)),
+    UNITPACK_PRECISE float t20 = t19 >= abs_p3.x ? t19 : abs_p3.x;
+    UNITPACK_PRECISE float t21 = t20 >= abs_p3.y ? t20 : abs_p3.y;
+    UNITPACK_PRECISE float l3 = t21 >= z2 ? t21 : z2;
+    UNITPACK_PRECISE vec2 t22 = floor(p3 / l3 * 2097152.0);
+    UNITPACK_PRECISE vec2 t23 = p3 * 2097152.0;
+    UNITPACK_PRECISE vec2 t24 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t22 * l3, t23)),
         vec2(1.0),
-        lessThanEqual((t33 + 1.0) * l3, t34)
+        lessThanEqual((t22 + 1.0) * l3, t23)
     );
     UNITPACK_PRECISE float big2 = z2 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(z2 / l3 * 2097152.0);
-    UNITPACK_PRECISE float t36 = (ratio_estimate2 + 1.0) * l3 <= big2
-        ? 1.0
-        : (ratio_estimate2 * l3 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t36;
-    UNITPACK_PRECISE vec3 t37 = abs(vec3(t33 + t35, ratio2) - aim);
-    uvec3 t38 = uvec3(t37);
-    uint limb1_7 = t38.x >> 12u;
-    uint limb0_7 = t38.x & 4095u;
+    UNITPACK_PRECISE float step_down8 = ratio_estimate2 * l3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = (ratio_estimate2 + 1.0) * l3 <= big2 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step8;
+    UNITPACK_PRECISE vec3 offset2 = vec3(t22 + t24, ratio2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t38.y >> 12u;
-    uint limb0_8 = t38.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t38.z >> 12u;
-    uint limb0_9 = t38.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t39 = t23 <= 127.0 && base.y <= 127.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t39 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t39 ? dist2 : dist;
-    UNITPACK_PRECISE float t40 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t41 = vec2(base.x, t40);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(127.0), t41, lessThanEqual(t41, vec2(127.0)));
+    bool t25 = dist2 < dist;
+    bool t26 = s_up <= 127.0 && t15 && t25;
+    UNITPACK_PRECISE vec2 best = t26 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t26 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t27 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(127.0), t27, lessThanEqual(t27, vec2(127.0)));
+    bool t28 = t_up <= 127.0;
     UNITPACK_PRECISE vec2 p4 = floor(cand3 * 16513.008);
-    UNITPACK_PRECISE float t42 = roundEven(p4.x * p4.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t43 = roundEven(p4.y * p4.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z3 = roundEven((2097152.0 - t42) * (2097152.0 - t43) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2_3 = t42 + t43 + roundEven(z3 * z3 * 4.7683716e-7);
-    UNITPACK_PRECISE float t44 = l2_3 * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t44));
+    UNITPACK_PRECISE float t29 = roundEven(p4.x * p4.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t30 = roundEven(p4.y * p4.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z3 = roundEven((2097152.0 - t29) * (2097152.0 - t30) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2_3 = t29 + t30 + roundEven(z3 * z3 * 4.7683716e-7);
+    UNITPACK_PRECISE float t31 = l2_3 * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t31));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t45 = root_next5 * root_next5 <= t44
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t44 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t45;
+    UNITPACK_PRECISE float step_down9 = root_estimate4 * root_estimate4 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next5 * root_next5 <= t31 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step9;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t46 = root_next6 * root_next6 <= t44
-        ? 1.0
-        : (root_step3 * root_step3 > t44 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step3 + t46;
-    UNITPACK_PRECISE float t47 = root4 * 2.0;
+    UNITPACK_PRECISE float step_down10 = root_step3 * root_step3 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = root_next6 * root_next6 <= t31 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float root4 = root_step3 + step10;
+    UNITPACK_PRECISE float t32 = root4 * 2.0;
     UNITPACK_PRECISE vec2 abs_p4 = abs(p4);
-    UNITPACK_PRECISE float t48 = t47 >= abs_p4.x ? t47 : abs_p4.x;
-    UNITPACK_PRECISE float t49 = t48 >= abs_p4.y ? t48 : abs_p4.y;
-    UNITPACK_PRECISE float l4 = t49 >= z3 ? t49 : z3;
-    UNITPACK_PRECISE vec2 t50 = floor(p4 / l4 * 2097152.0);
-    UNITPACK_PRECISE vec2 t51 = p4 * 2097152.0;
-    UNITPACK_PRECISE vec2 t52 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t50 * l4, t51)),
+    UNITPACK_PRECISE float t33 = t32 >= abs_p4.x ? t32 : abs_p4.x;
+    UNITPACK_PRECISE float t34 = t33 >= abs_p4.y ? t33 : abs_p4.y;
+    UNITPACK_PRECISE float l4 = t34 >= z3 ? t34 : z3;
+    UNITPACK_PRECISE vec2 t35 = floor(p4 / l4 * 2097152.0);
+    UNITPACK_PRECISE vec2 t36 = p4 * 2097152.0;
+    UNITPACK_PRECISE vec2 t37 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t35 * l4, t36)),
         vec2(1.0),
-        lessThanEqual((t50 + 1.0) * l4, t51)
+        lessThanEqual((t35 + 1.0) * l4, t36)
     );
     UNITPACK_PRECISE float big3 = z3 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(z3 / l4 * 2097152.0);
-    UNITPACK_PRECISE float t53 = (ratio_estimate3 + 1.0) * l4 <= big3
-        ? 1.0
-        : (ratio_estimate3 * l4 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t53;
-    UNITPACK_PRECISE vec3 t54 = abs(vec3(t50 + t52, ratio3) - aim);
-    uvec3 t55 = uvec3(t54);
-    uint limb1_10 = t55.x >> 12u;
-    uint limb0_10 = t55.x & 4095u;
+    UNITPACK_PRECISE float step_down11 = ratio_estimate3 * l4 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = (ratio_estimate3 + 1.0) * l4 <= big3 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step11;
+    UNITPACK_PRECISE vec3 offset3 = vec3(t35 + t37, ratio3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t55.y >> 12u;
-    uint limb0_11 = t55.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t55.z >> 12u;
-    uint limb0_12 = t55.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t56 = base.x <= 127.0 && t40 <= 127.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t56 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t56 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t57 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(127.0), t57, lessThanEqual(t57, vec2(127.0)));
+    bool t38 = dist3 < best_d;
+    bool t39 = base.x <= 127.0 && t28 && t38;
+    UNITPACK_PRECISE vec2 best2 = t39 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t39 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t40 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(127.0), t40, lessThanEqual(t40, vec2(127.0)));
+    bool t41 = t_up <= 127.0;
     UNITPACK_PRECISE vec2 p5 = floor(cand4 * 16513.008);
-    UNITPACK_PRECISE float t58 = roundEven(p5.x * p5.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t59 = roundEven(p5.y * p5.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z4 = roundEven((2097152.0 - t58) * (2097152.0 - t59) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2_4 = t58 + t59 + roundEven(z4 * z4 * 4.7683716e-7);
-    UNITPACK_PRECISE float t60 = l2_4 * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t60));
+    UNITPACK_PRECISE float t42 = roundEven(p5.x * p5.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t43 = roundEven(p5.y * p5.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z4 = roundEven((2097152.0 - t42) * (2097152.0 - t43) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2_4 = t42 + t43 + roundEven(z4 * z4 * 4.7683716e-7);
+    UNITPACK_PRECISE float t44 = l2_4 * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t44));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t61 = root_next7 * root_next7 <= t60
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t60 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t61;
+    UNITPACK_PRECISE float step_down12 = root_estimate5 * root_estimate5 > t44 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = root_next7 * root_next7 <= t44 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step12;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t62 = root_next8 * root_next8 <= t60
-        ? 1.0
-        : (root_step4 * root_step4 > t60 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step4 + t62;
-    UNITPACK_PRECISE float t63 = root5 * 2.0;
+    UNITPACK_PRECISE float step_down13 = root_step4 * root_step4 > t44 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step13 = root_next8 * root_next8 <= t44 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float root5 = root_step4 + step13;
+    UNITPACK_PRECISE float t45 = root5 * 2.0;
     UNITPACK_PRECISE vec2 abs_p5 = abs(p5);
-    UNITPACK_PRECISE float t64 = t63 >= abs_p5.x ? t63 : abs_p5.x;
-    UNITPACK_PRECISE float t65 = t64 >= abs_p5.y ? t64 : abs_p5.y;
-    UNITPACK_PRECISE float l5 = t65 >= z4 ? t65 : z4;
-    UNITPACK_PRECISE vec2 t66 = floor(p5 / l5 * 2097152.0);
-    UNITPACK_PRECISE vec2 t67 = p5 * 2097152.0;
-    UNITPACK_PRECISE vec2 t68 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t66 * l5, t67)),
+    UNITPACK_PRECISE float t46 = t45 >= abs_p5.x ? t45 : abs_p5.x;
+    UNITPACK_PRECISE float t47 = t46 >= abs_p5.y ? t46 : abs_p5.y;
+    UNITPACK_PRECISE float l5 = t47 >= z4 ? t47 : z4;
+    UNITPACK_PRECISE vec2 t48 = floor(p5 / l5 * 2097152.0);
+    UNITPACK_PRECISE vec2 t49 = p5 * 2097152.0;
+    UNITPACK_PRECISE vec2 t50 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t48 * l5, t49)),
         vec2(1.0),
-        lessThanEqual((t66 + 1.0) * l5, t67)
+        lessThanEqual((t48 + 1.0) * l5, t49)
     );
     UNITPACK_PRECISE float big4 = z4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(z4 / l5 * 2097152.0);
-    UNITPACK_PRECISE float t69 = (ratio_estimate4 + 1.0) * l5 <= big4
-        ? 1.0
-        : (ratio_estimate4 * l5 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t69;
-    UNITPACK_PRECISE vec3 t70 = abs(vec3(t66 + t68, ratio4) - aim);
-    uvec3 t71 = uvec3(t70);
-    uint limb1_13 = t71.x >> 12u;
-    uint limb0_13 = t71.x & 4095u;
+    UNITPACK_PRECISE float step_down14 = ratio_estimate4 * l5 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step14 = (ratio_estimate4 + 1.0) * l5 <= big4 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step14;
+    UNITPACK_PRECISE vec3 offset4 = vec3(t48 + t50, ratio4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t71.y >> 12u;
-    uint limb0_14 = t71.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t71.z >> 12u;
-    uint limb0_15 = t71.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 127.0 && base.y + 1.0 <= 127.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t51 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 127.0 && t41 && t51 ? cand4 : best2;
     return best3;
 }
 

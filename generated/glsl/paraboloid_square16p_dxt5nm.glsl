@@ -59,10 +59,8 @@ vec3 unitpack_paraboloid_square16p_dxt5nm_decode_float(vec4 params) {
 //   horizon.
 // Portable as unitpack_paraboloid_square16p_dxt5nm_decode_float is, within the same bound.
 vec3 unitpack_paraboloid_square16p_dxt5nm_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_paraboloid_square16p_dxt5nm_decode_float(params);
 }
 
@@ -77,8 +75,9 @@ float unitpack_paraboloid_square16p_dxt5nm_square_step(float a0, float a1, vec3 
     UNITPACK_PRECISE float surface = roundEven(t2);
     UNITPACK_PRECISE float t3 = roundEven(surface * a2.x * 4.7683716e-7);
     UNITPACK_PRECISE float t4 = roundEven(a2.z * t * 4.7683716e-7);
-    bool t5 = t3 >= t4 && t <= 2097152.0;
-    return t5 ? t : a0;
+    bool t5 = t3 >= t4;
+    bool t6 = t <= 2097152.0;
+    return t5 && t6 ? t : a0;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -92,10 +91,9 @@ vec2 unitpack_paraboloid_square16p_dxt5nm_square_point(vec3 a0) {
     UNITPACK_PRECISE float t5 = t3 >= 1.0 ? t3 : 1.0;
     UNITPACK_PRECISE float big = t4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(t4 / t5 * 2097152.0);
-    UNITPACK_PRECISE float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r = ratio_estimate + t6;
+    UNITPACK_PRECISE float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float r = ratio_estimate + step;
     UNITPACK_PRECISE vec3 k = vec3(t3, roundEven(r * r * 4.7683716e-7), a0.z);
     UNITPACK_PRECISE float s = unitpack_paraboloid_square16p_dxt5nm_square_step(0.0, 2097152.0, k);
     UNITPACK_PRECISE float s2 = unitpack_paraboloid_square16p_dxt5nm_square_step(s, 1048576.0, k);
@@ -119,9 +117,11 @@ vec2 unitpack_paraboloid_square16p_dxt5nm_square_point(vec3 a0) {
     UNITPACK_PRECISE float s20 = unitpack_paraboloid_square16p_dxt5nm_square_step(s19, 4.0, k);
     UNITPACK_PRECISE float s21 = unitpack_paraboloid_square16p_dxt5nm_square_step(s20, 2.0, k);
     UNITPACK_PRECISE float s22 = unitpack_paraboloid_square16p_dxt5nm_square_step(s21, 1.0, k);
-    UNITPACK_PRECISE float t7 = roundEven(r * s22 * 4.7683716e-7);
-    UNITPACK_PRECISE vec2 t8 = t2 ? vec2(s22, t7) : vec2(t7, s22);
-    UNITPACK_PRECISE vec2 result = mix(t8, -t8, lessThan(a0.xy, vec2(0.0)));
+    UNITPACK_PRECISE float t6 = roundEven(r * s22 * 4.7683716e-7);
+    UNITPACK_PRECISE vec2 t7 = vec2(s22, t6);
+    UNITPACK_PRECISE vec2 t8 = vec2(t6, s22);
+    UNITPACK_PRECISE vec2 t9 = t2 ? t7 : t8;
+    UNITPACK_PRECISE vec2 result = mix(t9, -t9, lessThan(a0.xy, vec2(0.0)));
     return result;
 }
 
@@ -140,7 +140,8 @@ vec4 unitpack_paraboloid_square16p_dxt5nm_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -154,15 +155,16 @@ vec4 unitpack_paraboloid_square16p_dxt5nm_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -182,270 +184,268 @@ vec4 unitpack_paraboloid_square16p_dxt5nm_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t6 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t7 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t8 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t6 * root, t7)),
+    UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t4 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t2 * root, t3)),
         vec3(1.0),
-        lessThanEqual((t6 + 1.0) * root, t7)
+        lessThanEqual((t2 + 1.0) * root, t3)
     );
-    UNITPACK_PRECISE vec3 aim = t6 + t8;
+    UNITPACK_PRECISE vec3 aim = t2 + t4;
     UNITPACK_PRECISE vec2 p = unitpack_paraboloid_square16p_dxt5nm_square_point(aim);
-    UNITPACK_PRECISE float t9 = p.x + 2097152.0;
-    UNITPACK_PRECISE float t10 = p.y + 2097152.0;
-    uvec2 t11 = uvec2((uint(t9) * 255u) >> 22u, (uint(t10) * 255u) >> 22u);
-    UNITPACK_PRECISE vec2 base = vec2(t11);
+    UNITPACK_PRECISE float t5 = p.x + 2097152.0;
+    UNITPACK_PRECISE float t6 = p.y + 2097152.0;
+    uvec2 t7 = uvec2((uint(t5) * 255u) >> 22u, (uint(t6) * 255u) >> 22u);
+    UNITPACK_PRECISE vec2 base = vec2(t7);
     UNITPACK_PRECISE vec2 cand = mix(vec2(255.0), base, lessThanEqual(base, vec2(255.0)));
     UNITPACK_PRECISE vec2 p2 = floor((cand + cand - 255.0) * 8224.126);
-    UNITPACK_PRECISE float t12 = roundEven(p2.x * p2.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t13 = roundEven(p2.y * p2.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z = roundEven((2097152.0 - t12) * (2097152.0 - t13) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2 = t12 + t13 + roundEven(z * z * 4.7683716e-7);
-    UNITPACK_PRECISE float t14 = l2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t14));
+    UNITPACK_PRECISE float t8 = roundEven(p2.x * p2.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t9 = roundEven(p2.y * p2.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z = roundEven((2097152.0 - t8) * (2097152.0 - t9) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2 = t8 + t9 + roundEven(z * z * 4.7683716e-7);
+    UNITPACK_PRECISE float t10 = l2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t10));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t15 = root_next * root_next <= t14
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t14 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t15;
+    UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t10 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_next * root_next <= t10 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t16 = root_next2 * root_next2 <= t14
-        ? 1.0
-        : (root_step * root_step > t14 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root2 = root_step + t16;
-    UNITPACK_PRECISE float t17 = root2 * 2.0;
+    UNITPACK_PRECISE float step_down4 = root_step * root_step > t10 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t10 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root2 = root_step + step4;
+    UNITPACK_PRECISE float t11 = root2 * 2.0;
     UNITPACK_PRECISE vec2 abs_p2 = abs(p2);
-    UNITPACK_PRECISE float t18 = t17 >= abs_p2.x ? t17 : abs_p2.x;
-    UNITPACK_PRECISE float t19 = t18 >= abs_p2.y ? t18 : abs_p2.y;
-    UNITPACK_PRECISE float l = t19 >= z ? t19 : z;
-    UNITPACK_PRECISE vec2 t20 = floor(p2 / l * 2097152.0);
-    UNITPACK_PRECISE vec2 t21 = p2 * 2097152.0;
-    UNITPACK_PRECISE vec2 t22 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t20 * l, t21)),
+    UNITPACK_PRECISE float t12 = t11 >= abs_p2.x ? t11 : abs_p2.x;
+    UNITPACK_PRECISE float t13 = t12 >= abs_p2.y ? t12 : abs_p2.y;
+    UNITPACK_PRECISE float l = t13 >= z ? t13 : z;
+    UNITPACK_PRECISE vec2 t14 = floor(p2 / l * 2097152.0);
+    UNITPACK_PRECISE vec2 t15 = p2 * 2097152.0;
+    UNITPACK_PRECISE vec2 t16 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t14 * l, t15)),
         vec2(1.0),
-        lessThanEqual((t20 + 1.0) * l, t21)
+        lessThanEqual((t14 + 1.0) * l, t15)
     );
     UNITPACK_PRECISE float big = z * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(z / l * 2097152.0);
-    UNITPACK_PRECISE float t23 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t23;
-    UNITPACK_PRECISE vec3 t24 = abs(vec3(t20 + t22, ratio) - aim);
-    uvec3 t25 = uvec3(t24);
-    uint limb1_4 = t25.x >> 12u;
-    uint limb0_4 = t25.x & 4095u;
+    UNITPACK_PRECISE float step_down5 = ratio_estimate * l > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step5;
+    UNITPACK_PRECISE vec3 offset = vec3(t14 + t16, ratio) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t25.y >> 12u;
-    uint limb0_5 = t25.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t25.z >> 12u;
-    uint limb0_6 = t25.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t26 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t27 = vec2(t26, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(255.0), t27, lessThanEqual(t27, vec2(255.0)));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t17 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(255.0), t17, lessThanEqual(t17, vec2(255.0)));
+    bool t18 = base.y <= 255.0;
     UNITPACK_PRECISE vec2 p3 = floor((cand2 + cand2 - 255.0) * 8224.126);
-    UNITPACK_PRECISE float t28 = roundEven(p3.x * p3.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t29 = roundEven(p3.y * p3.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z2 = roundEven((2097152.0 - t28) * (2097152.0 - t29) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2_2 = t28 + t29 + roundEven(z2 * z2 * 4.7683716e-7);
-    UNITPACK_PRECISE float t30 = l2_2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t30));
+    UNITPACK_PRECISE float t19 = roundEven(p3.x * p3.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t20 = roundEven(p3.y * p3.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z2 = roundEven((2097152.0 - t19) * (2097152.0 - t20) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2_2 = t19 + t20 + roundEven(z2 * z2 * 4.7683716e-7);
+    UNITPACK_PRECISE float t21 = l2_2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t21));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t31 = root_next3 * root_next3 <= t30
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t30 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t31;
+    UNITPACK_PRECISE float step_down6 = root_estimate3 * root_estimate3 > t21 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next3 * root_next3 <= t21 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step6;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t32 = root_next4 * root_next4 <= t30
-        ? 1.0
-        : (root_step2 * root_step2 > t30 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step2 + t32;
-    UNITPACK_PRECISE float t33 = root3 * 2.0;
+    UNITPACK_PRECISE float step_down7 = root_step2 * root_step2 > t21 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = root_next4 * root_next4 <= t21 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root3 = root_step2 + step7;
+    UNITPACK_PRECISE float t22 = root3 * 2.0;
     UNITPACK_PRECISE vec2 abs_p3 = abs(p3);
-    UNITPACK_PRECISE float t34 = t33 >= abs_p3.x ? t33 : abs_p3.x;
-    UNITPACK_PRECISE float t35 = t34 >= abs_p3.y ? t34 : abs_p3.y;
-    UNITPACK_PRECISE float l3 = t35 >= z2 ? t35 : z2;
-    UNITPACK_PRECISE vec2 t36 = floor(p3 / l3 * 2097152.0);
-    UNITPACK_PRECISE vec2 t37 = p3 * 2097152.0;
-    UNITPACK_PRECISE vec2 t38 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t36 * l3, t37)),
+    UNITPACK_PRECISE float t23 = t22 >= abs_p3.x ? t22 : abs_p3.x;
+    UNITPACK_PRECISE float t24 = t23 >= abs_p3.y ? t23 : abs_p3.y;
+    UNITPACK_PRECISE float l3 = t24 >= z2 ? t24 : z2;
+    UNITPACK_PRECISE vec2 t25 = floor(p3 / l3 * 2097152.0);
+    UNITPACK_PRECISE vec2 t26 = p3 * 2097152.0;
+    UNITPACK_PRECISE vec2 t27 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t25 * l3, t26)),
         vec2(1.0),
-        lessThanEqual((t36 + 1.0) * l3, t37)
+        lessThanEqual((t25 + 1.0) * l3, t26)
     );
     UNITPACK_PRECISE float big2 = z2 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(z2 / l3 * 2097152.0);
-    UNITPACK_PRECISE float t39 = (ratio_estimate2 + 1.0) * l3 <= big2
-        ? 1.0
-        : (ratio_estimate2 * l3 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t39;
-    UNITPACK_PRECISE vec3 t40 = abs(vec3(t36 + t38, ratio2) - aim);
-    uvec3 t41 = uvec3(t40);
-    uint limb1_7 = t41.x >> 12u;
-    uint limb0_7 = t41.x & 4095u;
+    UNITPACK_PRECISE float step_down8 = ratio_estimate2 * l3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = (ratio_estimate2 + 1.0) * l3 <= big2 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step8;
+    UNITPACK_PRECISE vec3 offset2 = vec3(t25 + t27, ratio2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t41.y >> 12u;
-    uint limb0_8 = t41.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t41.z >> 12u;
-    uint limb0_9 = t41.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t42 = t26 <= 255.0 && base.y <= 255.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t42 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t42 ? dist2 : dist;
-    UNITPACK_PRECISE float t43 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t44 = vec2(base.x, t43);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(255.0), t44, lessThanEqual(t44, vec2(255.0)));
+    bool t28 = dist2 < dist;
+    bool t29 = s_up <= 255.0 && t18 && t28;
+    UNITPACK_PRECISE vec2 best = t29 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t29 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t30 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(255.0), t30, lessThanEqual(t30, vec2(255.0)));
+    bool t31 = t_up <= 255.0;
     UNITPACK_PRECISE vec2 p4 = floor((cand3 + cand3 - 255.0) * 8224.126);
-    UNITPACK_PRECISE float t45 = roundEven(p4.x * p4.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t46 = roundEven(p4.y * p4.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z3 = roundEven((2097152.0 - t45) * (2097152.0 - t46) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2_3 = t45 + t46 + roundEven(z3 * z3 * 4.7683716e-7);
-    UNITPACK_PRECISE float t47 = l2_3 * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t47));
+    UNITPACK_PRECISE float t32 = roundEven(p4.x * p4.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t33 = roundEven(p4.y * p4.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z3 = roundEven((2097152.0 - t32) * (2097152.0 - t33) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2_3 = t32 + t33 + roundEven(z3 * z3 * 4.7683716e-7);
+    UNITPACK_PRECISE float t34 = l2_3 * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t34));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t48 = root_next5 * root_next5 <= t47
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t47 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t48;
+    UNITPACK_PRECISE float step_down9 = root_estimate4 * root_estimate4 > t34 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next5 * root_next5 <= t34 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step9;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t49 = root_next6 * root_next6 <= t47
-        ? 1.0
-        : (root_step3 * root_step3 > t47 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step3 + t49;
-    UNITPACK_PRECISE float t50 = root4 * 2.0;
+    UNITPACK_PRECISE float step_down10 = root_step3 * root_step3 > t34 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = root_next6 * root_next6 <= t34 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float root4 = root_step3 + step10;
+    UNITPACK_PRECISE float t35 = root4 * 2.0;
     UNITPACK_PRECISE vec2 abs_p4 = abs(p4);
-    UNITPACK_PRECISE float t51 = t50 >= abs_p4.x ? t50 : abs_p4.x;
-    UNITPACK_PRECISE float t52 = t51 >= abs_p4.y ? t51 : abs_p4.y;
-    UNITPACK_PRECISE float l4 = t52 >= z3 ? t52 : z3;
-    UNITPACK_PRECISE vec2 t53 = floor(p4 / l4 * 2097152.0);
-    UNITPACK_PRECISE vec2 t54 = p4 * 2097152.0;
-    UNITPACK_PRECISE vec2 t55 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t53 * l4, t54)),
+    UNITPACK_PRECISE float t36 = t35 >= abs_p4.x ? t35 : abs_p4.x;
+    UNITPACK_PRECISE float t37 = t36 >= abs_p4.y ? t36 : abs_p4.y;
+    UNITPACK_PRECISE float l4 = t37 >= z3 ? t37 : z3;
+    UNITPACK_PRECISE vec2 t38 = floor(p4 / l4 * 2097152.0);
+    UNITPACK_PRECISE vec2 t39 = p4 * 2097152.0;
+    UNITPACK_PRECISE vec2 t40 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t38 * l4, t39)),
         vec2(1.0),
-        lessThanEqual((t53 + 1.0) * l4, t54)
+        lessThanEqual((t38 + 1.0) * l4, t39)
     );
     UNITPACK_PRECISE float big3 = z3 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(z3 / l4 * 2097152.0);
-    UNITPACK_PRECISE float t56 = (ratio_estimate3 + 1.0) * l4 <= big3
-        ? 1.0
-        : (ratio_estimate3 * l4 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t56;
-    UNITPACK_PRECISE vec3 t57 = abs(vec3(t53 + t55, ratio3) - aim);
-    uvec3 t58 = uvec3(t57);
-    uint limb1_10 = t58.x >> 12u;
-    uint limb0_10 = t58.x & 4095u;
+    UNITPACK_PRECISE float step_down11 = ratio_estimate3 * l4 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = (ratio_estimate3 + 1.0) * l4 <= big3 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step11;
+    UNITPACK_PRECISE vec3 offset3 = vec3(t38 + t40, ratio3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t58.y >> 12u;
-    uint limb0_11 = t58.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t58.z >> 12u;
-    uint limb0_12 = t58.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t59 = base.x <= 255.0 && t43 <= 255.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t59 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t59 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t60 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(255.0), t60, lessThanEqual(t60, vec2(255.0)));
+    bool t41 = dist3 < best_d;
+    bool t42 = base.x <= 255.0 && t31 && t41;
+    UNITPACK_PRECISE vec2 best2 = t42 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t42 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t43 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(255.0), t43, lessThanEqual(t43, vec2(255.0)));
+    bool t44 = t_up <= 255.0;
     UNITPACK_PRECISE vec2 p5 = floor((cand4 + cand4 - 255.0) * 8224.126);
-    UNITPACK_PRECISE float t61 = roundEven(p5.x * p5.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t62 = roundEven(p5.y * p5.y * 4.7683716e-7);
-    UNITPACK_PRECISE float z4 = roundEven((2097152.0 - t61) * (2097152.0 - t62) * 4.7683716e-7);
-    UNITPACK_PRECISE float l2_4 = t61 + t62 + roundEven(z4 * z4 * 4.7683716e-7);
-    UNITPACK_PRECISE float t63 = l2_4 * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t63));
+    UNITPACK_PRECISE float t45 = roundEven(p5.x * p5.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t46 = roundEven(p5.y * p5.y * 4.7683716e-7);
+    UNITPACK_PRECISE float z4 = roundEven((2097152.0 - t45) * (2097152.0 - t46) * 4.7683716e-7);
+    UNITPACK_PRECISE float l2_4 = t45 + t46 + roundEven(z4 * z4 * 4.7683716e-7);
+    UNITPACK_PRECISE float t47 = l2_4 * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t47));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t64 = root_next7 * root_next7 <= t63
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t63 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t64;
+    UNITPACK_PRECISE float step_down12 = root_estimate5 * root_estimate5 > t47 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = root_next7 * root_next7 <= t47 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step12;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t65 = root_next8 * root_next8 <= t63
-        ? 1.0
-        : (root_step4 * root_step4 > t63 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step4 + t65;
-    UNITPACK_PRECISE float t66 = root5 * 2.0;
+    UNITPACK_PRECISE float step_down13 = root_step4 * root_step4 > t47 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step13 = root_next8 * root_next8 <= t47 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float root5 = root_step4 + step13;
+    UNITPACK_PRECISE float t48 = root5 * 2.0;
     UNITPACK_PRECISE vec2 abs_p5 = abs(p5);
-    UNITPACK_PRECISE float t67 = t66 >= abs_p5.x ? t66 : abs_p5.x;
-    UNITPACK_PRECISE float t68 = t67 >= abs_p5.y ? t67 : abs_p5.y;
-    UNITPACK_PRECISE float l5 = t68 >= z4 ? t68 : z4;
-    UNITPACK_PRECISE vec2 t69 = floor(p5 / l5 * 2097152.0);
-    UNITPACK_PRECISE vec2 t70 = p5 * 2097152.0;
-    UNITPACK_PRECISE vec2 t71 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t69 * l5, t70)),
+    UNITPACK_PRECISE float t49 = t48 >= abs_p5.x ? t48 : abs_p5.x;
+    UNITPACK_PRECISE float t50 = t49 >= abs_p5.y ? t49 : abs_p5.y;
+    UNITPACK_PRECISE float l5 = t50 >= z4 ? t50 : z4;
+    UNITPACK_PRECISE vec2 t51 = floor(p5 / l5 * 2097152.0);
+    UNITPACK_PRECISE vec2 t52 = p5 * 2097152.0;
+    UNITPACK_PRECISE vec2 t53 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t51 * l5, t52)),
         vec2(1.0),
-        lessThanEqual((t69 + 1.0) * l5, t70)
+        lessThanEqual((t51 + 1.0) * l5, t52)
     );
     UNITPACK_PRECISE float big4 = z4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(z4 / l5 * 2097152.0);
-    UNITPACK_PRECISE float t72 = (ratio_estimate4 + 1.0) * l5 <= big4
-        ? 1.0
-        : (ratio_estimate4 * l5 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t72;
-    UNITPACK_PRECISE vec3 t73 = abs(vec3(t69 + t71, ratio4) - aim);
-    uvec3 t74 = uvec3(t73);
-    uint limb1_13 = t74.x >> 12u;
-    uint limb0_13 = t74.x & 4095u;
+    UNITPACK_PRECISE float step_down14 = ratio_estimate4 * l5 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step14 = (ratio_estimate4 + 1.0) * l5 <= big4 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step14;
+    UNITPACK_PRECISE vec3 offset4 = vec3(t51 + t53, ratio4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t74.y >> 12u;
-    uint limb0_14 = t74.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t74.z >> 12u;
-    uint limb0_15 = t74.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 c = base.x + 1.0 <= 255.0 && base.y + 1.0 <= 255.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t54 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 c = s_up <= 255.0 && t44 && t54 ? cand4 : best2;
     return vec4(255.0, c.y, 0.0, c.x);
 }
 

@@ -37,24 +37,26 @@ precision highp int;
 vec2 unitpack_sfib16_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -62,22 +64,24 @@ vec2 unitpack_sfib16_sincos_pi(float a0) {
 //   1))` in 64-bit fixed point from 32-bit products.
 vec3 unitpack_sfib16_index_direction(uint a0) {
     bool t1 = a0 < 32768u;
-    uint k = t1 ? a0 : 65535u - a0;
+    uint t2 = 65535u - a0;
+    uint k = t1 ? a0 : t2;
     UNITPACK_PRECISE float fine = float(k & 255u) * 3.051781e-5;
     UNITPACK_PRECISE float u = float(k >> 8u) * 0.00781256 + (7.629453e-6 + fine);
-    UNITPACK_PRECISE float t2 = 1.0 - u;
+    UNITPACK_PRECISE float t3 = 1.0 - u;
+    UNITPACK_PRECISE float neg_t3 = -t3;
     UNITPACK_PRECISE float r = sqrt(u * (2.0 - u));
     uint il = a0 & 65535u;
     uint ih = a0 >> 16u;
-    uint t3 = il * 32586u;
-    uint t4 = ih * 31765u;
-    uint mid = ((il * 31765u) >> 16u) + (t3 & 65535u) + (t4 & 65535u);
-    uint high = ih * 32586u + (t3 >> 16u) + (t4 >> 16u) + (mid >> 16u);
+    uint t4 = il * 32586u;
+    uint t5 = ih * 31765u;
+    uint mid = ((il * 31765u) >> 16u) + (t4 & 65535u) + (t5 & 65535u);
+    uint high = ih * 32586u + (t4 >> 16u) + (t5 >> 16u) + (mid >> 16u);
     uint turns = a0 * 2654435769u + high;
     uint longitude = (turns + 2147483776u) >> 8u;
-    UNITPACK_PRECISE float t5 = -1.0 + float(longitude) * 1.1920929e-7;
-    UNITPACK_PRECISE vec2 sc = unitpack_sfib16_sincos_pi(t5);
-    UNITPACK_PRECISE vec3 result = vec3(r * sc.y, r * sc.x, t1 ? t2 : -t2);
+    UNITPACK_PRECISE float t6 = -1.0 + float(longitude) * 1.1920929e-7;
+    UNITPACK_PRECISE vec2 sc = unitpack_sfib16_sincos_pi(t6);
+    UNITPACK_PRECISE vec3 result = vec3(r * sc.y, r * sc.x, t1 ? t3 : neg_t3);
     return result;
 }
 
@@ -114,22 +118,24 @@ float unitpack_sfib16_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -138,35 +144,36 @@ float unitpack_sfib16_atan2_pi(float a0, float a1) {
 vec2 unitpack_sfib16_fixed_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 8388608.0;
-    UNITPACK_PRECISE float b = back ? 16777216.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 16777216.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 4194304.0;
-    UNITPACK_PRECISE float u = roundEven((swap ? 8388608.0 - b : b) * 3.1415927);
+    UNITPACK_PRECISE float t2 = 8388608.0 - b;
+    UNITPACK_PRECISE float u = roundEven((swap ? t2 : b) * 3.1415927);
     UNITPACK_PRECISE float u2 = roundEven(u * u * 5.9604645e-8);
-    UNITPACK_PRECISE float t1 = roundEven(
-        (roundEven(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t2 = roundEven(
-        (roundEven(t1 * u2 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8
-    )
-        + (-2796203.0);
-    UNITPACK_PRECISE float s = roundEven(
-        u * (roundEven(t2 * u2 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8
-    );
     UNITPACK_PRECISE float t3 = roundEven(
-        (roundEven(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t4 = roundEven(
-        (roundEven(t3 * u2 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8
-    )
-        + 699051.0;
-    UNITPACK_PRECISE float t5 = roundEven(
-        (roundEven(t4 * u2 * 5.9604645e-8) + (-8388608.0)) * u2 * 5.9604645e-8
+        (roundEven(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float co = t5 + 16777216.0;
-    UNITPACK_PRECISE vec2 t6 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t6, -t6, bvec2(a0 < 0.0, back));
+    UNITPACK_PRECISE float t4 = (roundEven((t3 + (-3329.0)) * u2 * 5.9604645e-8) + 139810.0)
+        * u2
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t5 = u
+        * (roundEven((roundEven(t4) + (-2796203.0)) * u2 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s = roundEven(t5 * 5.9604645e-8);
+    UNITPACK_PRECISE float t6 = roundEven(
+        (roundEven(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE float t7 = (roundEven((t6 + 416.0) * u2 * 5.9604645e-8) + (-23302.0))
+        * u2
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t8 = (
+        roundEven((roundEven(t7) + 699051.0) * u2 * 5.9604645e-8) + (-8388608.0)
+    )
+        * u2;
+    UNITPACK_PRECISE float co = roundEven(t8 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE vec2 t9 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t10 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t11 = swap ? t9 : t10;
+    UNITPACK_PRECISE vec2 result = mix(t11, -t11, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -175,37 +182,39 @@ vec2 unitpack_sfib16_fixed_sincos_pi(float a0) {
 //   decoder's point.
 vec3 unitpack_sfib16_fixed_point(uint a0) {
     bool t1 = a0 < 32768u;
-    uint k = t1 ? a0 : 65535u - a0;
-    UNITPACK_PRECISE float near = (0.25 + (float(k >> 12u) * 4096.0 + float(k & 4095u)))
-        * 3.051781e-5;
-    uint t2 = 65535u - k;
-    UNITPACK_PRECISE float far = (0.25 + (float(t2 >> 12u) * 4096.0 + float(t2 & 4095u)))
-        * 3.051781e-5;
-    UNITPACK_PRECISE float t3 = near * far * 4398046500000.0;
-    UNITPACK_PRECISE float root_estimate = floor(sqrt(t3));
+    uint t2 = 65535u - a0;
+    uint k = t1 ? a0 : t2;
+    UNITPACK_PRECISE float t3 = 0.25 + (float(k >> 12u) * 4096.0 + float(k & 4095u));
+    UNITPACK_PRECISE float near = t3 * 3.051781e-5;
+    uint t4 = 65535u - k;
+    UNITPACK_PRECISE float t5 = 0.25 + (float(t4 >> 12u) * 4096.0 + float(t4 & 4095u));
+    UNITPACK_PRECISE float far = t5 * 3.051781e-5;
+    UNITPACK_PRECISE float t6 = near * far * 4398046500000.0;
+    UNITPACK_PRECISE float root_estimate = floor(sqrt(t6));
     UNITPACK_PRECISE float root_next = root_estimate + 1.0;
-    UNITPACK_PRECISE float t4 = root_next * root_next <= t3
-        ? 1.0
-        : (root_estimate * root_estimate > t3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate + t4;
+    UNITPACK_PRECISE float step_down = root_estimate * root_estimate > t6 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_next * root_next <= t6 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_step = root_estimate + step;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float rho = root_step
-        + (root_next2 * root_next2 <= t3 ? 1.0 : (root_step * root_step > t3 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_step * root_step > t6 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_next2 * root_next2 <= t6 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float rho = root_step + step2;
     UNITPACK_PRECISE float zm = 2097152.0 - floor(near * 2097152.0);
+    UNITPACK_PRECISE float neg_zm = -zm;
     uint il = a0 & 65535u;
     uint ih = a0 >> 16u;
-    uint t5 = il * 32586u;
-    uint t6 = ih * 31765u;
-    uint mid = ((il * 31765u) >> 16u) + (t5 & 65535u) + (t6 & 65535u);
-    uint high = ih * 32586u + (t5 >> 16u) + (t6 >> 16u) + (mid >> 16u);
+    uint t7 = il * 32586u;
+    uint t8 = ih * 31765u;
+    uint mid = ((il * 31765u) >> 16u) + (t7 & 65535u) + (t8 & 65535u);
+    uint high = ih * 32586u + (t7 >> 16u) + (t8 >> 16u) + (mid >> 16u);
     uint turns = a0 * 2654435769u + high;
     uint longitude = (turns + 2147483776u) >> 8u;
-    UNITPACK_PRECISE float t7 = -16777216.0 + float(longitude) * 2.0;
-    UNITPACK_PRECISE vec2 sc = unitpack_sfib16_fixed_sincos_pi(t7);
+    UNITPACK_PRECISE float t9 = -16777216.0 + float(longitude) * 2.0;
+    UNITPACK_PRECISE vec2 sc = unitpack_sfib16_fixed_sincos_pi(t9);
     UNITPACK_PRECISE vec3 result = vec3(
         roundEven(rho * sc.y * 5.9604645e-8),
         roundEven(rho * sc.x * 5.9604645e-8),
-        t1 ? zm : -zm
+        t1 ? zm : neg_zm
     );
     return result;
 }
@@ -225,15 +234,16 @@ uint unitpack_sfib16_encode_index(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -253,324 +263,393 @@ uint unitpack_sfib16_encode_index(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t5 = floor(w2 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t6 = w2 * 2097152.0;
-    UNITPACK_PRECISE vec3 t7 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t5 * root, t6)),
+    UNITPACK_PRECISE vec3 t1 = floor(w2 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t2 = w2 * 2097152.0;
+    UNITPACK_PRECISE vec3 t3 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t1 * root, t2)),
         vec3(1.0),
-        lessThanEqual((t5 + 1.0) * root, t6)
+        lessThanEqual((t1 + 1.0) * root, t2)
     );
-    UNITPACK_PRECISE vec3 aim = t5 + t7;
+    UNITPACK_PRECISE vec3 aim = t1 + t3;
     UNITPACK_PRECISE vec3 u = w2 / root;
-    UNITPACK_PRECISE vec2 t8 = u.xy * u.xy;
-    UNITPACK_PRECISE float rho2 = t8.x + t8.y;
+    UNITPACK_PRECISE vec2 t4 = u.xy * u.xy;
+    UNITPACK_PRECISE float rho2 = t4.x + t4.y;
     UNITPACK_PRECISE vec3 abs_aim = abs(aim);
-    uvec3 t9 = uvec3(abs_aim);
-    uint limb1_4 = t9.x >> 12u;
-    uint limb0_4 = t9.x & 4095u;
+    uvec3 abs_aim_u = uvec3(abs_aim);
+    uint limb1_4 = abs_aim_u.x >> 12u;
+    uint limb0_4 = abs_aim_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t9.y >> 12u;
-    uint limb0_5 = t9.y & 4095u;
+    uint limb1_5 = abs_aim_u.y >> 12u;
+    uint limb0_5 = abs_aim_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     UNITPACK_PRECISE float rho2_fixed = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    bool t10 = aim.z < 0.0;
+    bool t5 = aim.z < 0.0;
     UNITPACK_PRECISE float below = rho2 / (1.0 + abs(u.z));
     UNITPACK_PRECISE float dz = 7.629453e-6 - below;
     UNITPACK_PRECISE float t = unitpack_sfib16_atan2_pi(u.y, u.x);
-    UNITPACK_PRECISE float tn = t10 ? -0.28509456 - t : t;
-    bool t11 = rho2_fixed >= 3.8977236e-5;
-    bool t12 = rho2_fixed >= 0.00010204373;
-    bool t13 = rho2_fixed >= 0.00026715396;
-    bool t14 = rho2_fixed >= 0.00069941813;
-    UNITPACK_PRECISE float t15 = t14
-        ? -1128.582
-        : (t13 ? -1826.0841 : (t12 ? -2954.6663 : (t11 ? -4780.7505 : -7735.4165)));
-    UNITPACK_PRECISE float t16 = t14
-        ? -1826.0841
-        : (t13 ? -2954.6663 : (t12 ? -4780.7505 : (t11 ? -7735.4165 : -12516.167)));
-    bool t17 = rho2_fixed >= 0.0018311004;
-    bool t18 = rho2_fixed >= 0.0047938833;
-    uint t19 = t18 ? 34u : (t17 ? 21u : (t14 ? 13u : (t13 ? 8u : (t12 ? 5u : (t11 ? 3u : 2u)))));
-    UNITPACK_PRECISE float t20 = t18
-        ? -17.0
-        : (t17 ? 10.5 : (t14 ? -6.5 : (t13 ? 4.0 : (t12 ? -2.5 : (t11 ? 1.5 : -1.0)))));
-    UNITPACK_PRECISE float t21 = t18
-        ? 10.5
-        : (t17 ? -6.5 : (t14 ? 4.0 : (t13 ? -2.5 : (t12 ? 1.5 : (t11 ? -1.0 : 0.5)))));
-    bool t22 = rho2_fixed >= 0.012550549;
-    uint t23 = t22
-        ? 34u
-        : (t18 ? 21u : (t17 ? 13u : (t14 ? 8u : (t13 ? 5u : (t12 ? 3u : (t11 ? 2u : 1u))))));
-    bool t24 = rho2_fixed >= 0.032857765;
-    bool t25 = rho2_fixed >= 0.08602274;
-    UNITPACK_PRECISE float t26 = t25
-        ? -101.76418
-        : (t24 ? -164.6579 : (t22 ? -266.4221 : (t18 ? -431.08 : (t17 ? -697.5021 : t15))));
-    UNITPACK_PRECISE float t27 = t25
-        ? -164.6579
-        : (t24 ? -266.4221 : (t22 ? -431.08 : (t18 ? -697.5021 : (t17 ? -1128.582 : t16))));
-    bool t28 = rho2_fixed >= 0.22521046;
-    bool t29 = rho2_fixed >= 0.58960867;
-    uint t30 = t29 ? 233u : (t28 ? 144u : (t25 ? 89u : (t24 ? 55u : t23)));
-    uint t31 = t29 ? 377u : (t28 ? 233u : (t25 ? 144u : (t24 ? 89u : (t22 ? 55u : t19))));
-    UNITPACK_PRECISE float t32 = tn
-        * (t29 ? 188.5 : (t28 ? -116.5 : (t25 ? 72.0 : (t24 ? -44.5 : (t22 ? 27.5 : t20)))));
-    UNITPACK_PRECISE float t33 = 4194303.0
-        + roundEven(t32 + dz * (t29 ? -38.870457 : (t28 ? -62.893723 : t26)));
-    uint t34 = uint(t33);
-    UNITPACK_PRECISE float t35 = tn
-        * (t29 ? -116.5 : (t28 ? 72.0 : (t25 ? -44.5 : (t24 ? 27.5 : (t22 ? -17.0 : t21)))));
-    UNITPACK_PRECISE float t36 = 4194303.0
-        + roundEven(t35 + dz * (t29 ? -62.893723 : (t28 ? -101.76418 : t27)));
-    uint t37 = uint(t36);
-    uint corner = t34 * t30 + t37 * t31 - ((t30 + t31) << 22u);
-    uint t38 = 3221225471u < corner ? 4294967295u - corner : corner;
-    uint t39 = (t10 ? 65535u - t38 : t38) & 65535u;
-    UNITPACK_PRECISE vec3 t40 = abs(unitpack_sfib16_fixed_point(t39) - aim);
-    uvec3 t41 = uvec3(t40);
-    uint limb1_6 = t41.x >> 12u;
-    uint limb0_6 = t41.x & 4095u;
+    UNITPACK_PRECISE float t6 = -0.28509456 - t;
+    UNITPACK_PRECISE float tn = t5 ? t6 : t;
+    bool t7 = rho2_fixed >= 3.8977236e-5;
+    uint t8 = t7 ? 2u : 1u;
+    uint t9 = t7 ? 3u : 2u;
+    UNITPACK_PRECISE float t10 = t7 ? 1.5 : -1.0;
+    UNITPACK_PRECISE float t11 = t7 ? -4780.7505 : -7735.4165;
+    UNITPACK_PRECISE float t12 = t7 ? -1.0 : 0.5;
+    UNITPACK_PRECISE float t13 = t7 ? -7735.4165 : -12516.167;
+    bool t14 = rho2_fixed >= 0.00010204373;
+    uint t15 = t14 ? 3u : t8;
+    uint t16 = t14 ? 5u : t9;
+    UNITPACK_PRECISE float t17 = t14 ? -2.5 : t10;
+    UNITPACK_PRECISE float t18 = t14 ? -2954.6663 : t11;
+    UNITPACK_PRECISE float t19 = t14 ? 1.5 : t12;
+    UNITPACK_PRECISE float t20 = t14 ? -4780.7505 : t13;
+    bool t21 = rho2_fixed >= 0.00026715396;
+    uint t22 = t21 ? 5u : t15;
+    uint t23 = t21 ? 8u : t16;
+    UNITPACK_PRECISE float t24 = t21 ? 4.0 : t17;
+    UNITPACK_PRECISE float t25 = t21 ? -1826.0841 : t18;
+    UNITPACK_PRECISE float t26 = t21 ? -2.5 : t19;
+    UNITPACK_PRECISE float t27 = t21 ? -2954.6663 : t20;
+    bool t28 = rho2_fixed >= 0.00069941813;
+    uint t29 = t28 ? 8u : t22;
+    uint t30 = t28 ? 13u : t23;
+    UNITPACK_PRECISE float t31 = t28 ? -6.5 : t24;
+    UNITPACK_PRECISE float t32 = t28 ? -1128.582 : t25;
+    UNITPACK_PRECISE float t33 = t28 ? 4.0 : t26;
+    UNITPACK_PRECISE float t34 = t28 ? -1826.0841 : t27;
+    bool t35 = rho2_fixed >= 0.0018311004;
+    uint t36 = t35 ? 13u : t29;
+    uint t37 = t35 ? 21u : t30;
+    UNITPACK_PRECISE float t38 = t35 ? 10.5 : t31;
+    UNITPACK_PRECISE float t39 = t35 ? -697.5021 : t32;
+    UNITPACK_PRECISE float t40 = t35 ? -6.5 : t33;
+    UNITPACK_PRECISE float t41 = t35 ? -1128.582 : t34;
+    bool t42 = rho2_fixed >= 0.0047938833;
+    uint t43 = t42 ? 21u : t36;
+    uint t44 = t42 ? 34u : t37;
+    UNITPACK_PRECISE float t45 = t42 ? -17.0 : t38;
+    UNITPACK_PRECISE float t46 = t42 ? -431.08 : t39;
+    UNITPACK_PRECISE float t47 = t42 ? 10.5 : t40;
+    UNITPACK_PRECISE float t48 = t42 ? -697.5021 : t41;
+    bool t49 = rho2_fixed >= 0.012550549;
+    uint t50 = t49 ? 34u : t43;
+    uint t51 = t49 ? 55u : t44;
+    UNITPACK_PRECISE float t52 = t49 ? 27.5 : t45;
+    UNITPACK_PRECISE float t53 = t49 ? -266.4221 : t46;
+    UNITPACK_PRECISE float t54 = t49 ? -17.0 : t47;
+    UNITPACK_PRECISE float t55 = t49 ? -431.08 : t48;
+    bool t56 = rho2_fixed >= 0.032857765;
+    uint t57 = t56 ? 55u : t50;
+    uint t58 = t56 ? 89u : t51;
+    UNITPACK_PRECISE float t59 = t56 ? -44.5 : t52;
+    UNITPACK_PRECISE float t60 = t56 ? -164.6579 : t53;
+    UNITPACK_PRECISE float t61 = t56 ? 27.5 : t54;
+    UNITPACK_PRECISE float t62 = t56 ? -266.4221 : t55;
+    bool t63 = rho2_fixed >= 0.08602274;
+    uint t64 = t63 ? 89u : t57;
+    uint t65 = t63 ? 144u : t58;
+    UNITPACK_PRECISE float t66 = t63 ? 72.0 : t59;
+    UNITPACK_PRECISE float t67 = t63 ? -101.76418 : t60;
+    UNITPACK_PRECISE float t68 = t63 ? -44.5 : t61;
+    UNITPACK_PRECISE float t69 = t63 ? -164.6579 : t62;
+    bool t70 = rho2_fixed >= 0.22521046;
+    uint t71 = t70 ? 144u : t64;
+    uint t72 = t70 ? 233u : t65;
+    UNITPACK_PRECISE float t73 = t70 ? -116.5 : t66;
+    UNITPACK_PRECISE float t74 = t70 ? -62.893723 : t67;
+    UNITPACK_PRECISE float t75 = t70 ? 72.0 : t68;
+    UNITPACK_PRECISE float t76 = t70 ? -101.76418 : t69;
+    bool t77 = rho2_fixed >= 0.58960867;
+    uint t78 = t77 ? 233u : t71;
+    uint t79 = t77 ? 377u : t72;
+    UNITPACK_PRECISE float t80 = 4194303.0
+        + roundEven(tn * (t77 ? 188.5 : t73) + dz * (t77 ? -38.870457 : t74));
+    UNITPACK_PRECISE float t81 = 4194303.0
+        + roundEven(tn * (t77 ? -116.5 : t75) + dz * (t77 ? -62.893723 : t76));
+    uint corner = uint(t80) * t78 + uint(t81) * t79 - ((t78 + t79) << 22u);
+    uint t82 = 4294967295u - corner;
+    uint t83 = 3221225471u < corner ? t82 : corner;
+    uint t84 = 65535u - t83;
+    uint t85 = (t5 ? t84 : t83) & 65535u;
+    UNITPACK_PRECISE vec3 t86 = abs(unitpack_sfib16_fixed_point(t85) - aim);
+    uvec3 t86_u = uvec3(t86);
+    uint limb1_6 = t86_u.x >> 12u;
+    uint limb0_6 = t86_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t41.y >> 12u;
-    uint limb0_7 = t41.y & 4095u;
+    uint limb1_7 = t86_u.y >> 12u;
+    uint limb0_7 = t86_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t41.z >> 12u;
-    uint limb0_8 = t41.z & 4095u;
+    uint limb1_8 = t86_u.z >> 12u;
+    uint limb0_8 = t86_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi11 = hi10 + (lo10 >> 24u);
     uint lo11 = lo10 & 16777215u;
     UNITPACK_PRECISE float d = float(hi11) * 16777216.0 + float(lo11);
-    uint t42 = corner + t30;
-    uint t43 = 3221225471u < t42 ? 4294967295u - t42 : t42;
-    uint t44 = (t10 ? 65535u - t43 : t43) & 65535u;
-    UNITPACK_PRECISE vec3 t45 = abs(unitpack_sfib16_fixed_point(t44) - aim);
-    uvec3 t46 = uvec3(t45);
-    uint limb1_9 = t46.x >> 12u;
-    uint limb0_9 = t46.x & 4095u;
+    uint t87 = corner + t78;
+    uint t88 = 4294967295u - t87;
+    uint t89 = 3221225471u < t87 ? t88 : t87;
+    uint t90 = 65535u - t89;
+    uint t91 = (t5 ? t90 : t89) & 65535u;
+    UNITPACK_PRECISE vec3 t92 = abs(unitpack_sfib16_fixed_point(t91) - aim);
+    uvec3 t92_u = uvec3(t92);
+    uint limb1_9 = t92_u.x >> 12u;
+    uint limb0_9 = t92_u.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t46.y >> 12u;
-    uint limb0_10 = t46.y & 4095u;
+    uint limb1_10 = t92_u.y >> 12u;
+    uint limb0_10 = t92_u.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t46.z >> 12u;
-    uint limb0_11 = t46.z & 4095u;
+    uint limb1_11 = t92_u.z >> 12u;
+    uint limb0_11 = t92_u.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi15 = hi14 + (lo14 >> 24u);
     uint lo15 = lo14 & 16777215u;
     UNITPACK_PRECISE float d2 = float(hi15) * 16777216.0 + float(lo15);
-    bool t47 = d2 < d || (d2 == d && t44 < t39);
-    UNITPACK_PRECISE float t48 = t47 ? d2 : d;
-    uint t49 = t47 ? t44 : t39;
-    uint t50 = corner + t30 + t30;
-    uint t51 = 3221225471u < t50 ? 4294967295u - t50 : t50;
-    uint t52 = (t10 ? 65535u - t51 : t51) & 65535u;
-    UNITPACK_PRECISE vec3 t53 = abs(unitpack_sfib16_fixed_point(t52) - aim);
-    uvec3 t54 = uvec3(t53);
-    uint limb1_12 = t54.x >> 12u;
-    uint limb0_12 = t54.x & 4095u;
+    bool t93 = t91 < t85;
+    bool t94 = d2 == d && t93;
+    bool t95 = d2 < d || t94;
+    UNITPACK_PRECISE float t96 = t95 ? d2 : d;
+    uint t97 = t95 ? t91 : t85;
+    uint t98 = corner + t78 + t78;
+    uint t99 = 4294967295u - t98;
+    uint t100 = 3221225471u < t98 ? t99 : t98;
+    uint t101 = 65535u - t100;
+    uint t102 = (t5 ? t101 : t100) & 65535u;
+    UNITPACK_PRECISE vec3 t103 = abs(unitpack_sfib16_fixed_point(t102) - aim);
+    uvec3 t103_u = uvec3(t103);
+    uint limb1_12 = t103_u.x >> 12u;
+    uint limb0_12 = t103_u.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t54.y >> 12u;
-    uint limb0_13 = t54.y & 4095u;
+    uint limb1_13 = t103_u.y >> 12u;
+    uint limb0_13 = t103_u.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t54.z >> 12u;
-    uint limb0_14 = t54.z & 4095u;
+    uint limb1_14 = t103_u.z >> 12u;
+    uint limb0_14 = t103_u.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi19 = hi18 + (lo18 >> 24u);
     uint lo19 = lo18 & 16777215u;
     UNITPACK_PRECISE float d3 = float(hi19) * 16777216.0 + float(lo19);
-    bool t55 = d3 < t48 || (d3 == t48 && t52 < t49);
-    UNITPACK_PRECISE float t56 = t55 ? d3 : t48;
-    uint t57 = t55 ? t52 : t49;
-    uint t58 = corner + t31;
-    uint t59 = 3221225471u < t58 ? 4294967295u - t58 : t58;
-    uint t60 = (t10 ? 65535u - t59 : t59) & 65535u;
-    UNITPACK_PRECISE vec3 t61 = abs(unitpack_sfib16_fixed_point(t60) - aim);
-    uvec3 t62 = uvec3(t61);
-    uint limb1_15 = t62.x >> 12u;
-    uint limb0_15 = t62.x & 4095u;
+    bool t104 = t102 < t97;
+    bool t105 = d3 == t96 && t104;
+    bool t106 = d3 < t96 || t105;
+    UNITPACK_PRECISE float t107 = t106 ? d3 : t96;
+    uint t108 = t106 ? t102 : t97;
+    uint t109 = corner + t79;
+    uint t110 = 4294967295u - t109;
+    uint t111 = 3221225471u < t109 ? t110 : t109;
+    uint t112 = 65535u - t111;
+    uint t113 = (t5 ? t112 : t111) & 65535u;
+    UNITPACK_PRECISE vec3 t114 = abs(unitpack_sfib16_fixed_point(t113) - aim);
+    uvec3 t114_u = uvec3(t114);
+    uint limb1_15 = t114_u.x >> 12u;
+    uint limb0_15 = t114_u.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t62.y >> 12u;
-    uint limb0_16 = t62.y & 4095u;
+    uint limb1_16 = t114_u.y >> 12u;
+    uint limb0_16 = t114_u.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t62.z >> 12u;
-    uint limb0_17 = t62.z & 4095u;
+    uint limb1_17 = t114_u.z >> 12u;
+    uint limb0_17 = t114_u.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi23 = hi22 + (lo22 >> 24u);
     uint lo23 = lo22 & 16777215u;
     UNITPACK_PRECISE float d4 = float(hi23) * 16777216.0 + float(lo23);
-    bool t63 = d4 < t56 || (d4 == t56 && t60 < t57);
-    UNITPACK_PRECISE float t64 = t63 ? d4 : t56;
-    uint t65 = t63 ? t60 : t57;
-    uint t66 = corner + t30 + t31;
-    uint t67 = 3221225471u < t66 ? 4294967295u - t66 : t66;
-    uint t68 = (t10 ? 65535u - t67 : t67) & 65535u;
-    UNITPACK_PRECISE vec3 t69 = abs(unitpack_sfib16_fixed_point(t68) - aim);
-    uvec3 t70 = uvec3(t69);
-    uint limb1_18 = t70.x >> 12u;
-    uint limb0_18 = t70.x & 4095u;
+    bool t115 = t113 < t108;
+    bool t116 = d4 == t107 && t115;
+    bool t117 = d4 < t107 || t116;
+    UNITPACK_PRECISE float t118 = t117 ? d4 : t107;
+    uint t119 = t117 ? t113 : t108;
+    uint t120 = corner + t78 + t79;
+    uint t121 = 4294967295u - t120;
+    uint t122 = 3221225471u < t120 ? t121 : t120;
+    uint t123 = 65535u - t122;
+    uint t124 = (t5 ? t123 : t122) & 65535u;
+    UNITPACK_PRECISE vec3 t125 = abs(unitpack_sfib16_fixed_point(t124) - aim);
+    uvec3 t125_u = uvec3(t125);
+    uint limb1_18 = t125_u.x >> 12u;
+    uint limb0_18 = t125_u.x & 4095u;
     uint cross18 = limb1_18 * limb0_18;
     uint hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     uint lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    uint limb1_19 = t70.y >> 12u;
-    uint limb0_19 = t70.y & 4095u;
+    uint limb1_19 = t125_u.y >> 12u;
+    uint limb0_19 = t125_u.y & 4095u;
     uint cross19 = limb1_19 * limb0_19;
     uint hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     uint lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    uint limb1_20 = t70.z >> 12u;
-    uint limb0_20 = t70.z & 4095u;
+    uint limb1_20 = t125_u.z >> 12u;
+    uint limb0_20 = t125_u.z & 4095u;
     uint cross20 = limb1_20 * limb0_20;
     uint hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     uint lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     uint hi27 = hi26 + (lo26 >> 24u);
     uint lo27 = lo26 & 16777215u;
     UNITPACK_PRECISE float d5 = float(hi27) * 16777216.0 + float(lo27);
-    bool t71 = d5 < t64 || (d5 == t64 && t68 < t65);
-    UNITPACK_PRECISE float t72 = t71 ? d5 : t64;
-    uint t73 = t71 ? t68 : t65;
-    uint t74 = corner + t30 + t30 + t31;
-    uint t75 = 3221225471u < t74 ? 4294967295u - t74 : t74;
-    uint t76 = (t10 ? 65535u - t75 : t75) & 65535u;
-    UNITPACK_PRECISE vec3 t77 = abs(unitpack_sfib16_fixed_point(t76) - aim);
-    uvec3 t78 = uvec3(t77);
-    uint limb1_21 = t78.x >> 12u;
-    uint limb0_21 = t78.x & 4095u;
+    bool t126 = t124 < t119;
+    bool t127 = d5 == t118 && t126;
+    bool t128 = d5 < t118 || t127;
+    UNITPACK_PRECISE float t129 = t128 ? d5 : t118;
+    uint t130 = t128 ? t124 : t119;
+    uint t131 = corner + t78 + t78 + t79;
+    uint t132 = 4294967295u - t131;
+    uint t133 = 3221225471u < t131 ? t132 : t131;
+    uint t134 = 65535u - t133;
+    uint t135 = (t5 ? t134 : t133) & 65535u;
+    UNITPACK_PRECISE vec3 t136 = abs(unitpack_sfib16_fixed_point(t135) - aim);
+    uvec3 t136_u = uvec3(t136);
+    uint limb1_21 = t136_u.x >> 12u;
+    uint limb0_21 = t136_u.x & 4095u;
     uint cross21 = limb1_21 * limb0_21;
     uint hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     uint lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    uint limb1_22 = t78.y >> 12u;
-    uint limb0_22 = t78.y & 4095u;
+    uint limb1_22 = t136_u.y >> 12u;
+    uint limb0_22 = t136_u.y & 4095u;
     uint cross22 = limb1_22 * limb0_22;
     uint hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     uint lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    uint limb1_23 = t78.z >> 12u;
-    uint limb0_23 = t78.z & 4095u;
+    uint limb1_23 = t136_u.z >> 12u;
+    uint limb0_23 = t136_u.z & 4095u;
     uint cross23 = limb1_23 * limb0_23;
     uint hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     uint lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     uint hi31 = hi30 + (lo30 >> 24u);
     uint lo31 = lo30 & 16777215u;
     UNITPACK_PRECISE float d6 = float(hi31) * 16777216.0 + float(lo31);
-    bool t79 = d6 < t72 || (d6 == t72 && t76 < t73);
-    UNITPACK_PRECISE float t80 = t79 ? d6 : t72;
-    uint t81 = t79 ? t76 : t73;
-    uint t82 = corner + t31 + t31;
-    uint t83 = 3221225471u < t82 ? 4294967295u - t82 : t82;
-    uint t84 = (t10 ? 65535u - t83 : t83) & 65535u;
-    UNITPACK_PRECISE vec3 t85 = abs(unitpack_sfib16_fixed_point(t84) - aim);
-    uvec3 t86 = uvec3(t85);
-    uint limb1_24 = t86.x >> 12u;
-    uint limb0_24 = t86.x & 4095u;
+    bool t137 = t135 < t130;
+    bool t138 = d6 == t129 && t137;
+    bool t139 = d6 < t129 || t138;
+    UNITPACK_PRECISE float t140 = t139 ? d6 : t129;
+    uint t141 = t139 ? t135 : t130;
+    uint t142 = corner + t79 + t79;
+    uint t143 = 4294967295u - t142;
+    uint t144 = 3221225471u < t142 ? t143 : t142;
+    uint t145 = 65535u - t144;
+    uint t146 = (t5 ? t145 : t144) & 65535u;
+    UNITPACK_PRECISE vec3 t147 = abs(unitpack_sfib16_fixed_point(t146) - aim);
+    uvec3 t147_u = uvec3(t147);
+    uint limb1_24 = t147_u.x >> 12u;
+    uint limb0_24 = t147_u.x & 4095u;
     uint cross24 = limb1_24 * limb0_24;
     uint hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     uint lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    uint limb1_25 = t86.y >> 12u;
-    uint limb0_25 = t86.y & 4095u;
+    uint limb1_25 = t147_u.y >> 12u;
+    uint limb0_25 = t147_u.y & 4095u;
     uint cross25 = limb1_25 * limb0_25;
     uint hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     uint lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    uint limb1_26 = t86.z >> 12u;
-    uint limb0_26 = t86.z & 4095u;
+    uint limb1_26 = t147_u.z >> 12u;
+    uint limb0_26 = t147_u.z & 4095u;
     uint cross26 = limb1_26 * limb0_26;
     uint hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     uint lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     uint hi35 = hi34 + (lo34 >> 24u);
     uint lo35 = lo34 & 16777215u;
     UNITPACK_PRECISE float d7 = float(hi35) * 16777216.0 + float(lo35);
-    bool t87 = d7 < t80 || (d7 == t80 && t84 < t81);
-    UNITPACK_PRECISE float t88 = t87 ? d7 : t80;
-    uint t89 = t87 ? t84 : t81;
-    uint t90 = corner + t30 + t31 + t31;
-    uint t91 = 3221225471u < t90 ? 4294967295u - t90 : t90;
-    uint t92 = (t10 ? 65535u - t91 : t91) & 65535u;
-    UNITPACK_PRECISE vec3 t93 = abs(unitpack_sfib16_fixed_point(t92) - aim);
-    uvec3 t94 = uvec3(t93);
-    uint limb1_27 = t94.x >> 12u;
-    uint limb0_27 = t94.x & 4095u;
+    bool t148 = t146 < t141;
+    bool t149 = d7 == t140 && t148;
+    bool t150 = d7 < t140 || t149;
+    UNITPACK_PRECISE float t151 = t150 ? d7 : t140;
+    uint t152 = t150 ? t146 : t141;
+    uint t153 = corner + t78 + t79 + t79;
+    uint t154 = 4294967295u - t153;
+    uint t155 = 3221225471u < t153 ? t154 : t153;
+    uint t156 = 65535u - t155;
+    uint t157 = (t5 ? t156 : t155) & 65535u;
+    UNITPACK_PRECISE vec3 t158 = abs(unitpack_sfib16_fixed_point(t157) - aim);
+    uvec3 t158_u = uvec3(t158);
+    uint limb1_27 = t158_u.x >> 12u;
+    uint limb0_27 = t158_u.x & 4095u;
     uint cross27 = limb1_27 * limb0_27;
     uint hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     uint lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    uint limb1_28 = t94.y >> 12u;
-    uint limb0_28 = t94.y & 4095u;
+    uint limb1_28 = t158_u.y >> 12u;
+    uint limb0_28 = t158_u.y & 4095u;
     uint cross28 = limb1_28 * limb0_28;
     uint hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     uint lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    uint limb1_29 = t94.z >> 12u;
-    uint limb0_29 = t94.z & 4095u;
+    uint limb1_29 = t158_u.z >> 12u;
+    uint limb0_29 = t158_u.z & 4095u;
     uint cross29 = limb1_29 * limb0_29;
     uint hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     uint lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     uint hi39 = hi38 + (lo38 >> 24u);
     uint lo39 = lo38 & 16777215u;
     UNITPACK_PRECISE float d8 = float(hi39) * 16777216.0 + float(lo39);
-    bool t95 = d8 < t88 || (d8 == t88 && t92 < t89);
-    UNITPACK_PRECISE float t96 = t95 ? d8 : t88;
-    uint t97 = t95 ? t92 : t89;
-    uint t98 = corner + t30 + t30 + t31 + t31;
-    uint t99 = 3221225471u < t98 ? 4294967295u - t98 : t98;
-    uint t100 = (t10 ? 65535u - t99 : t99) & 65535u;
-    UNITPACK_PRECISE vec3 t101 = abs(unitpack_sfib16_fixed_point(t100) - aim);
-    uvec3 t102 = uvec3(t101);
-    uint limb1_30 = t102.x >> 12u;
-    uint limb0_30 = t102.x & 4095u;
+    bool t159 = t157 < t152;
+    bool t160 = d8 == t151 && t159;
+    bool t161 = d8 < t151 || t160;
+    UNITPACK_PRECISE float t162 = t161 ? d8 : t151;
+    uint t163 = t161 ? t157 : t152;
+    uint t164 = corner + t78 + t78 + t79 + t79;
+    uint t165 = 4294967295u - t164;
+    uint t166 = 3221225471u < t164 ? t165 : t164;
+    uint t167 = 65535u - t166;
+    uint t168 = (t5 ? t167 : t166) & 65535u;
+    UNITPACK_PRECISE vec3 t169 = abs(unitpack_sfib16_fixed_point(t168) - aim);
+    uvec3 t169_u = uvec3(t169);
+    uint limb1_30 = t169_u.x >> 12u;
+    uint limb0_30 = t169_u.x & 4095u;
     uint cross30 = limb1_30 * limb0_30;
     uint hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     uint lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    uint limb1_31 = t102.y >> 12u;
-    uint limb0_31 = t102.y & 4095u;
+    uint limb1_31 = t169_u.y >> 12u;
+    uint limb0_31 = t169_u.y & 4095u;
     uint cross31 = limb1_31 * limb0_31;
     uint hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     uint lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    uint limb1_32 = t102.z >> 12u;
-    uint limb0_32 = t102.z & 4095u;
+    uint limb1_32 = t169_u.z >> 12u;
+    uint limb0_32 = t169_u.z & 4095u;
     uint cross32 = limb1_32 * limb0_32;
     uint hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     uint lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     uint hi43 = hi42 + (lo42 >> 24u);
     uint lo43 = lo42 & 16777215u;
     UNITPACK_PRECISE float d9 = float(hi43) * 16777216.0 + float(lo43);
-    return d9 < t96 || (d9 == t96 && t100 < t97) ? t100 : t97;
+    bool t170 = t168 < t163;
+    bool t171 = d9 == t162 && t170;
+    return d9 < t162 || t171 ? t168 : t163;
 }
 
 // unitpack_sfib16_encode_float: fast encoder, float form.

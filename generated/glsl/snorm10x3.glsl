@@ -44,8 +44,8 @@ vec3 unitpack_snorm10x3_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 params_sq = params * params;
     UNITPACK_PRECISE float len2 = params_sq.x + params_sq.y + params_sq.z;
     bool t1 = len2 > 0.0;
-    UNITPACK_PRECISE vec3 result = t1 ? params / sqrt(t1 ? len2 : 1.0) : vec3(0.0, 0.0, 1.0);
-    return result;
+    UNITPACK_PRECISE vec3 t2 = params / sqrt(t1 ? len2 : 1.0);
+    return t1 ? t2 : vec3(0.0, 0.0, 1.0);
 }
 
 // unitpack_snorm10x3_decode: decoder.
@@ -69,12 +69,14 @@ vec3 unitpack_snorm10x3_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 result = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    return result;
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    return t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -91,7 +93,8 @@ vec3 unitpack_snorm10x3_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
     UNITPACK_PRECISE float split_lo = w.x - split_hi;
@@ -111,37 +114,34 @@ vec3 unitpack_snorm10x3_round_codes(vec3 a0) {
     UNITPACK_PRECISE float estimate = roundEven(big / sqrt(len2));
     UNITPACK_PRECISE float big2 = big * big;
     UNITPACK_PRECISE float lower = estimate - 0.5;
+    UNITPACK_PRECISE float t2 = lower * lower * len2;
+    bool t3 = big2 < t2;
     UNITPACK_PRECISE float big3 = abs(w.y * 511.0);
     UNITPACK_PRECISE float estimate2 = roundEven(big3 / sqrt(len2));
     UNITPACK_PRECISE float big2_2 = big3 * big3;
     UNITPACK_PRECISE float lower2 = estimate2 - 0.5;
+    UNITPACK_PRECISE float t4 = lower2 * lower2 * len2;
+    bool t5 = big2_2 < t4;
     UNITPACK_PRECISE float big4 = abs(w.z * 511.0);
     UNITPACK_PRECISE float estimate3 = roundEven(big4 / sqrt(len2));
     UNITPACK_PRECISE float big2_3 = big4 * big4;
     UNITPACK_PRECISE float lower3 = estimate3 - 0.5;
-    UNITPACK_PRECISE vec3 t2 = abs(w * 511.0);
-    UNITPACK_PRECISE vec3 t3 = roundEven(t2 / sqrt(vec3(len2)));
-    UNITPACK_PRECISE vec3 t4 = t3 + 0.5;
-    UNITPACK_PRECISE float t5 = lower * lower * len2;
-    UNITPACK_PRECISE float t6 = lower2 * lower2 * len2;
-    UNITPACK_PRECISE float t7 = lower3 * lower3 * len2;
-    bvec3 t8 = bvec3(
-        estimate > 0.0 && big2 < t5,
-        estimate2 > 0.0 && big2_2 < t6,
-        estimate3 > 0.0 && big2_3 < t7
-    );
-    UNITPACK_PRECISE vec3 t9 = mix(
-        mix(vec3(0.0), vec3(-1.0), t8),
-        vec3(1.0),
-        greaterThanEqual(t2 * t2, t4 * t4 * len2)
-    );
-    UNITPACK_PRECISE vec3 t10 = t3 + t9;
-    UNITPACK_PRECISE vec3 t11 = mix(vec3(0.0), t10, greaterThanEqual(t10, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t12 = mix(vec3(511.0), t11, lessThanEqual(t11, vec3(511.0)));
-    UNITPACK_PRECISE vec3 result = ok
-        ? mix(t12, -t12, lessThan(w, vec3(0.0)))
-        : vec3(0.0, 0.0, 511.0);
-    return result;
+    UNITPACK_PRECISE float t6 = lower3 * lower3 * len2;
+    bool t7 = big2_3 < t6;
+    UNITPACK_PRECISE vec3 t8 = abs(w * 511.0);
+    UNITPACK_PRECISE vec3 t9 = roundEven(t8 / sqrt(vec3(len2)));
+    UNITPACK_PRECISE vec3 t10 = t9 + 0.5;
+    bvec3 t11 = bvec3(estimate > 0.0 && t3, estimate2 > 0.0 && t5, estimate3 > 0.0 && t7);
+    UNITPACK_PRECISE vec3 t12 = t9
+        + mix(
+            mix(vec3(0.0), vec3(-1.0), t11),
+            vec3(1.0),
+            greaterThanEqual(t8 * t8, t10 * t10 * len2)
+        );
+    UNITPACK_PRECISE vec3 t13 = mix(vec3(0.0), t12, greaterThanEqual(t12, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t14 = mix(vec3(511.0), t13, lessThanEqual(t13, vec3(511.0)));
+    UNITPACK_PRECISE vec3 t15 = mix(t14, -t14, lessThan(w, vec3(0.0)));
+    return ok ? t15 : vec3(0.0, 0.0, 511.0);
 }
 
 // unitpack_snorm10x3_encode: fast encoder.

@@ -49,11 +49,9 @@ vec3 unitpack_snorm12x2_to_unorm8x3_int(vec2 f) {
     UNITPACK_PRECISE vec2 u = roundEven(
         mix(vec2(1.0), t1, lessThanEqual(t1, vec2(1.0))) * 2047.0 + 2047.0
     );
-    uvec2 t2 = uvec2(u);
-    UNITPACK_PRECISE vec3 result = vec3(
-        uvec3(t2.x >> 4u, ((t2.x & 15u) << 4u) | (t2.y >> 8u), t2.y & 255u)
-    )
-        * 0.003921569;
+    uvec2 u_u = uvec2(u);
+    uvec3 t2 = uvec3(u_u.x >> 4u, ((u_u.x & 15u) << 4u) | (u_u.y >> 8u), u_u.y & 255u);
+    UNITPACK_PRECISE vec3 result = vec3(t2) * 0.003921569;
     return result;
 }
 
@@ -77,11 +75,9 @@ vec2 unitpack_unorm8x3_to_snorm12x2(vec3 u) {
 vec2 unitpack_unorm8x3_to_snorm12x2_int(vec3 u) {
     UNITPACK_PRECISE vec3 t1 = roundEven(u * 255.0);
     uvec3 b = uvec3(t1);
-    UNITPACK_PRECISE vec2 t2 = (
-        vec2(uvec2(b.x << 4u, (b.y & 15u) << 8u) | uvec2(b.y >> 4u, b.z)) - 2047.0
-    )
-        * 0.0004885198;
-    return mix(vec2(1.0), t2, lessThanEqual(t2, vec2(1.0)));
+    uvec2 t2 = uvec2(b.x << 4u, (b.y & 15u) << 8u) | uvec2(b.y >> 4u, b.z);
+    UNITPACK_PRECISE vec2 t3 = (vec2(t2) - 2047.0) * 0.0004885198;
+    return mix(vec2(1.0), t3, lessThanEqual(t3, vec2(1.0)));
 }
 
 #endif // UNITPACK_SNORM12X2_GLSL

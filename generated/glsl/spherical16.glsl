@@ -37,24 +37,26 @@ precision highp int;
 vec2 unitpack_spherical16_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -95,22 +97,24 @@ float unitpack_spherical16_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -123,15 +127,18 @@ vec2 unitpack_spherical16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec2 t4 = t3.xy * t3.xy;
-    UNITPACK_PRECISE float rho = sqrt(t4.x + t4.y);
-    UNITPACK_PRECISE float theta = unitpack_spherical16_atan2_pi(rho, t3.z);
-    UNITPACK_PRECISE float phi = unitpack_spherical16_atan2_pi(t3.y, t3.x);
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t6 = t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec2 t7 = t6.xy * t6.xy;
+    UNITPACK_PRECISE float rho = sqrt(t7.x + t7.y);
+    UNITPACK_PRECISE float theta = unitpack_spherical16_atan2_pi(rho, t6.z);
+    UNITPACK_PRECISE float phi = unitpack_spherical16_atan2_pi(t6.y, t6.x);
     UNITPACK_PRECISE vec2 result = vec2(theta * 2.0 - 1.0, phi);
     return result;
 }
@@ -150,13 +157,14 @@ vec2 unitpack_spherical16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -170,129 +178,138 @@ vec2 unitpack_spherical16_round_codes(vec3 a0) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? rho2 : 1.0;
-    uint half_exponent = ((floatBitsToUint(t4) >> 23u) + 1u) >> 1u;
+    bool t1 = rho2 > 0.0;
+    UNITPACK_PRECISE float t2 = t1 ? rho2 : 1.0;
+    uint half_exponent = ((floatBitsToUint(t2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = t4 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t3 = t2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t3);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t3 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float rho = t3 ? root * root_up : 0.0;
+    UNITPACK_PRECISE float t4 = root * root_up;
+    UNITPACK_PRECISE float rho = t1 ? t4 : 0.0;
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
     UNITPACK_PRECISE float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_w2_z;
     UNITPACK_PRECISE float hi4 = y_major ? abs_rho : abs_w2_z;
     UNITPACK_PRECISE float lo4 = y_major ? abs_w2_z : abs_rho;
-    UNITPACK_PRECISE float t7 = hi4 > 0.0 ? hi4 : 1.0;
+    UNITPACK_PRECISE float t5 = hi4 > 0.0 ? hi4 : 1.0;
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t7 * 8388608.0);
-    UNITPACK_PRECISE float t8 = (ratio_estimate + 1.0) * t7 <= big
-        ? 1.0
-        : (ratio_estimate * t7 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t8;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t7 <= big ? 1.0 : (ratio * t7 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t5 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t9 = t - 8388608.0;
-    UNITPACK_PRECISE float t10 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t9 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t9 / t10 * 8388608.0);
-    UNITPACK_PRECISE float t11 = (ratio_estimate2 + 1.0) * t10 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t10 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t11;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t10 <= big2 ? 1.0 : (ratio2 * t10 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t6 = t - 8388608.0;
+    UNITPACK_PRECISE float t7 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t6 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t12 = roundEven(
+    UNITPACK_PRECISE float t8 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t13 = (roundEven((t12 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t9 = (roundEven((t8 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t14 = (
-        roundEven((roundEven(t13) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t15 = (
-        roundEven((roundEven(t14) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t10 = (
+        roundEven((roundEven(t9) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t16 = roundEven(
-        (roundEven(t15 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t11 = roundEven(
+        (roundEven(t10 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t16 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t12 = roundEven(
+        (roundEven(t11 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t12 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = w2.z < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float angle = rho < 0.0 ? -h4 : h4;
+    UNITPACK_PRECISE float t13 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t13 : h;
+    UNITPACK_PRECISE float t14 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t14 : h2;
+    UNITPACK_PRECISE float t15 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = w2.z < 0.0 ? t15 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float angle = rho < 0.0 ? neg_h4 : h4;
     UNITPACK_PRECISE float abs_w2_x = abs(w2.x);
     UNITPACK_PRECISE float abs_w2_y = abs(w2.y);
     bool y_major2 = abs_w2_y > abs_w2_x;
     UNITPACK_PRECISE float hi5 = y_major2 ? abs_w2_y : abs_w2_x;
     UNITPACK_PRECISE float lo5 = y_major2 ? abs_w2_x : abs_w2_y;
-    UNITPACK_PRECISE float t17 = hi5 > 0.0 ? hi5 : 1.0;
+    UNITPACK_PRECISE float t16 = hi5 > 0.0 ? hi5 : 1.0;
     UNITPACK_PRECISE float big3 = lo5 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate3 = floor(lo5 / t17 * 8388608.0);
-    UNITPACK_PRECISE float t18 = (ratio_estimate3 + 1.0) * t17 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t17 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + t18;
-    UNITPACK_PRECISE float t19 = ratio4
-        + ((ratio4 + 1.0) * t17 <= big3 ? 1.0 : (ratio4 * t17 > big3 ? -1.0 : 0.0));
-    bool far2 = t19 > 3474675.0;
-    UNITPACK_PRECISE float t20 = t19 - 8388608.0;
-    UNITPACK_PRECISE float t21 = t19 + 8388608.0;
-    UNITPACK_PRECISE float big4 = t20 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate4 = floor(t20 / t21 * 8388608.0);
-    UNITPACK_PRECISE float t22 = (ratio_estimate4 + 1.0) * t21 <= big4
-        ? 1.0
-        : (ratio_estimate4 * t21 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + t22;
-    UNITPACK_PRECISE float ratio6 = ratio5
-        + ((ratio5 + 1.0) * t21 <= big4 ? 1.0 : (ratio5 * t21 > big4 ? -1.0 : 0.0));
-    UNITPACK_PRECISE float z3 = far2 ? ratio6 : t19;
+    UNITPACK_PRECISE float ratio_estimate3 = floor(lo5 / t16 * 8388608.0);
+    UNITPACK_PRECISE float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + step7;
+    UNITPACK_PRECISE float step_down8 = ratio4 * t16 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float t17 = ratio4 + step8;
+    bool far2 = t17 > 3474675.0;
+    UNITPACK_PRECISE float t18 = t17 - 8388608.0;
+    UNITPACK_PRECISE float t19 = t17 + 8388608.0;
+    UNITPACK_PRECISE float big4 = t18 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate4 = floor(t18 / t19 * 8388608.0);
+    UNITPACK_PRECISE float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + step9;
+    UNITPACK_PRECISE float step_down10 = ratio5 * t19 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio6 = ratio5 + step10;
+    UNITPACK_PRECISE float z3 = far2 ? ratio6 : t17;
     UNITPACK_PRECISE float z2_2 = roundEven(z3 * z3 * 1.1920929e-7);
-    UNITPACK_PRECISE float t23 = roundEven(
+    UNITPACK_PRECISE float t20 = roundEven(
         (roundEven(-441506.0 * z2_2 * 1.1920929e-7) + 493448.0) * z2_2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t24 = (roundEven((t23 + (-559241.0)) * z2_2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t21 = (roundEven((t20 + (-559241.0)) * z2_2 * 1.1920929e-7) + 645278.0)
         * z2_2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t25 = (
-        roundEven((roundEven(t24) + (-762601.0)) * z2_2 * 1.1920929e-7) + 932068.0
+    UNITPACK_PRECISE float t22 = (
+        roundEven((roundEven(t21) + (-762601.0)) * z2_2 * 1.1920929e-7) + 932068.0
     )
         * z2_2;
-    UNITPACK_PRECISE float t26 = roundEven(
-        (roundEven(t25 * 1.1920929e-7) + (-1198373.0)) * z2_2 * 1.1920929e-7
+    UNITPACK_PRECISE float t23 = roundEven(
+        (roundEven(t22 * 1.1920929e-7) + (-1198373.0)) * z2_2 * 1.1920929e-7
     )
         + 1677722.0;
-    UNITPACK_PRECISE float t27 = roundEven(
-        (roundEven(t26 * z2_2 * 1.1920929e-7) + (-2796203.0)) * z2_2 * 1.1920929e-7
+    UNITPACK_PRECISE float t24 = roundEven(
+        (roundEven(t23 * z2_2 * 1.1920929e-7) + (-2796203.0)) * z2_2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float r2 = roundEven(z3 * (t27 + 8388608.0) * 1.1920929e-7);
+    UNITPACK_PRECISE float r2 = roundEven(z3 * (t24 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h5 = roundEven(r2 * 0.31830987);
-    UNITPACK_PRECISE float h6 = far2 ? h5 + 2097152.0 : h5;
-    UNITPACK_PRECISE float h7 = y_major2 ? 4194304.0 - h6 : h6;
-    UNITPACK_PRECISE float h8 = w2.x < 0.0 ? 8388608.0 - h7 : h7;
-    UNITPACK_PRECISE float phi = w2.y < 0.0 ? -h8 : h8;
+    UNITPACK_PRECISE float t25 = h5 + 2097152.0;
+    UNITPACK_PRECISE float h6 = far2 ? t25 : h5;
+    UNITPACK_PRECISE float t26 = 4194304.0 - h6;
+    UNITPACK_PRECISE float h7 = y_major2 ? t26 : h6;
+    UNITPACK_PRECISE float t27 = 8388608.0 - h7;
+    UNITPACK_PRECISE float h8 = w2.x < 0.0 ? t27 : h7;
+    UNITPACK_PRECISE float neg_h8 = -h8;
+    UNITPACK_PRECISE float phi = w2.y < 0.0 ? neg_h8 : h8;
     UNITPACK_PRECISE float theta = angle * 2.0 - 8388608.0;
     UNITPACK_PRECISE vec2 result = roundEven(vec2(theta, phi) * 1.513958e-5);
     return result;

@@ -37,24 +37,26 @@ precision highp int;
 vec2 unitpack_spherical20p_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -99,13 +101,14 @@ vec2 unitpack_spherical20p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -119,137 +122,146 @@ vec2 unitpack_spherical20p_encode_codes(vec3 v) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    UNITPACK_PRECISE float t4 = t3 ? rho2 : 1.0;
-    uint half_exponent = ((floatBitsToUint(t4) >> 23u) + 1u) >> 1u;
+    bool t1 = rho2 > 0.0;
+    UNITPACK_PRECISE float t2 = t1 ? rho2 : 1.0;
+    uint half_exponent = ((floatBitsToUint(t2) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
     UNITPACK_PRECISE float root_up = uintBitsToFloat((62u + half_exponent) << 23u);
-    UNITPACK_PRECISE float t5 = t4 * root_down;
-    UNITPACK_PRECISE float root_estimate = sqrt(t5);
-    UNITPACK_PRECISE float t6 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t6 * 0.001953125;
+    UNITPACK_PRECISE float t3 = t2 * root_down;
+    UNITPACK_PRECISE float root_estimate = sqrt(t3);
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
-    UNITPACK_PRECISE float root_rest = t5 - root_h * root_h;
+    UNITPACK_PRECISE float root_rest = t3 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float rho = t3 ? root * root_up : 0.0;
+    UNITPACK_PRECISE float t4 = root * root_up;
+    UNITPACK_PRECISE float rho = t1 ? t4 : 0.0;
     UNITPACK_PRECISE float abs_w2_z = abs(w2.z);
     UNITPACK_PRECISE float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_w2_z;
     UNITPACK_PRECISE float hi4 = y_major ? abs_rho : abs_w2_z;
     UNITPACK_PRECISE float lo4 = y_major ? abs_w2_z : abs_rho;
-    UNITPACK_PRECISE float t7 = hi4 > 0.0 ? hi4 : 1.0;
+    UNITPACK_PRECISE float t5 = hi4 > 0.0 ? hi4 : 1.0;
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t7 * 8388608.0);
-    UNITPACK_PRECISE float t8 = (ratio_estimate + 1.0) * t7 <= big
-        ? 1.0
-        : (ratio_estimate * t7 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t8;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t7 <= big ? 1.0 : (ratio * t7 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t5 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t9 = t - 8388608.0;
-    UNITPACK_PRECISE float t10 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t9 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t9 / t10 * 8388608.0);
-    UNITPACK_PRECISE float t11 = (ratio_estimate2 + 1.0) * t10 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t10 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t11;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t10 <= big2 ? 1.0 : (ratio2 * t10 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t6 = t - 8388608.0;
+    UNITPACK_PRECISE float t7 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t6 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t12 = roundEven(
+    UNITPACK_PRECISE float t8 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t13 = (roundEven((t12 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t9 = (roundEven((t8 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t14 = (
-        roundEven((roundEven(t13) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t15 = (
-        roundEven((roundEven(t14) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t10 = (
+        roundEven((roundEven(t9) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t16 = roundEven(
-        (roundEven(t15 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t11 = roundEven(
+        (roundEven(t10 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t16 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t12 = roundEven(
+        (roundEven(t11 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t12 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = w2.z < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float angle = rho < 0.0 ? -h4 : h4;
+    UNITPACK_PRECISE float t13 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t13 : h;
+    UNITPACK_PRECISE float t14 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t14 : h2;
+    UNITPACK_PRECISE float t15 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = w2.z < 0.0 ? t15 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float angle = rho < 0.0 ? neg_h4 : h4;
     UNITPACK_PRECISE float abs_w2_x = abs(w2.x);
     UNITPACK_PRECISE float abs_w2_y = abs(w2.y);
     bool y_major2 = abs_w2_y > abs_w2_x;
     UNITPACK_PRECISE float hi5 = y_major2 ? abs_w2_y : abs_w2_x;
     UNITPACK_PRECISE float lo5 = y_major2 ? abs_w2_x : abs_w2_y;
-    UNITPACK_PRECISE float t17 = hi5 > 0.0 ? hi5 : 1.0;
+    UNITPACK_PRECISE float t16 = hi5 > 0.0 ? hi5 : 1.0;
     UNITPACK_PRECISE float big3 = lo5 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate3 = floor(lo5 / t17 * 8388608.0);
-    UNITPACK_PRECISE float t18 = (ratio_estimate3 + 1.0) * t17 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t17 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + t18;
-    UNITPACK_PRECISE float t19 = ratio4
-        + ((ratio4 + 1.0) * t17 <= big3 ? 1.0 : (ratio4 * t17 > big3 ? -1.0 : 0.0));
-    bool far2 = t19 > 3474675.0;
-    UNITPACK_PRECISE float t20 = t19 - 8388608.0;
-    UNITPACK_PRECISE float t21 = t19 + 8388608.0;
-    UNITPACK_PRECISE float big4 = t20 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate4 = floor(t20 / t21 * 8388608.0);
-    UNITPACK_PRECISE float t22 = (ratio_estimate4 + 1.0) * t21 <= big4
-        ? 1.0
-        : (ratio_estimate4 * t21 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + t22;
-    UNITPACK_PRECISE float ratio6 = ratio5
-        + ((ratio5 + 1.0) * t21 <= big4 ? 1.0 : (ratio5 * t21 > big4 ? -1.0 : 0.0));
-    UNITPACK_PRECISE float z3 = far2 ? ratio6 : t19;
+    UNITPACK_PRECISE float ratio_estimate3 = floor(lo5 / t16 * 8388608.0);
+    UNITPACK_PRECISE float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + step7;
+    UNITPACK_PRECISE float step_down8 = ratio4 * t16 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float t17 = ratio4 + step8;
+    bool far2 = t17 > 3474675.0;
+    UNITPACK_PRECISE float t18 = t17 - 8388608.0;
+    UNITPACK_PRECISE float t19 = t17 + 8388608.0;
+    UNITPACK_PRECISE float big4 = t18 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate4 = floor(t18 / t19 * 8388608.0);
+    UNITPACK_PRECISE float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + step9;
+    UNITPACK_PRECISE float step_down10 = ratio5 * t19 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio6 = ratio5 + step10;
+    UNITPACK_PRECISE float z3 = far2 ? ratio6 : t17;
     UNITPACK_PRECISE float z2_2 = roundEven(z3 * z3 * 1.1920929e-7);
-    UNITPACK_PRECISE float t23 = roundEven(
+    UNITPACK_PRECISE float t20 = roundEven(
         (roundEven(-441506.0 * z2_2 * 1.1920929e-7) + 493448.0) * z2_2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t24 = (roundEven((t23 + (-559241.0)) * z2_2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t21 = (roundEven((t20 + (-559241.0)) * z2_2 * 1.1920929e-7) + 645278.0)
         * z2_2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t25 = (
-        roundEven((roundEven(t24) + (-762601.0)) * z2_2 * 1.1920929e-7) + 932068.0
+    UNITPACK_PRECISE float t22 = (
+        roundEven((roundEven(t21) + (-762601.0)) * z2_2 * 1.1920929e-7) + 932068.0
     )
         * z2_2;
-    UNITPACK_PRECISE float t26 = roundEven(
-        (roundEven(t25 * 1.1920929e-7) + (-1198373.0)) * z2_2 * 1.1920929e-7
+    UNITPACK_PRECISE float t23 = roundEven(
+        (roundEven(t22 * 1.1920929e-7) + (-1198373.0)) * z2_2 * 1.1920929e-7
     )
         + 1677722.0;
-    UNITPACK_PRECISE float t27 = roundEven(
-        (roundEven(t26 * z2_2 * 1.1920929e-7) + (-2796203.0)) * z2_2 * 1.1920929e-7
+    UNITPACK_PRECISE float t24 = roundEven(
+        (roundEven(t23 * z2_2 * 1.1920929e-7) + (-2796203.0)) * z2_2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float r2 = roundEven(z3 * (t27 + 8388608.0) * 1.1920929e-7);
+    UNITPACK_PRECISE float r2 = roundEven(z3 * (t24 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h5 = roundEven(r2 * 0.31830987);
-    UNITPACK_PRECISE float h6 = far2 ? h5 + 2097152.0 : h5;
-    UNITPACK_PRECISE float h7 = y_major2 ? 4194304.0 - h6 : h6;
-    UNITPACK_PRECISE float h8 = w2.x < 0.0 ? 8388608.0 - h7 : h7;
-    UNITPACK_PRECISE float phi = w2.y < 0.0 ? -h8 : h8;
+    UNITPACK_PRECISE float t25 = h5 + 2097152.0;
+    UNITPACK_PRECISE float h6 = far2 ? t25 : h5;
+    UNITPACK_PRECISE float t26 = 4194304.0 - h6;
+    UNITPACK_PRECISE float h7 = y_major2 ? t26 : h6;
+    UNITPACK_PRECISE float t27 = 8388608.0 - h7;
+    UNITPACK_PRECISE float h8 = w2.x < 0.0 ? t27 : h7;
+    UNITPACK_PRECISE float neg_h8 = -h8;
+    UNITPACK_PRECISE float phi = w2.y < 0.0 ? neg_h8 : h8;
     UNITPACK_PRECISE float theta = angle * 2.0 - 8388608.0;
     UNITPACK_PRECISE vec2 base = floor(vec2(theta, phi) * 6.0915947e-5);
-    UNITPACK_PRECISE float t28 = floor(abs(w2.x) * 2097152.0);
-    uint fixed4 = uint(t28);
-    UNITPACK_PRECISE float t29 = floor(abs(w2.y) * 2097152.0);
-    uint fixed5 = uint(t29);
-    UNITPACK_PRECISE float t30 = floor(abs(w2.z) * 2097152.0);
-    uint fixed6 = uint(t30);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.x) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w2.y) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.z) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_3 = fixed4 >> 12u;
     uint limb0_3 = fixed4 & 4095u;
     uint cross3 = limb1_3 * limb0_3;
@@ -269,414 +281,429 @@ vec2 unitpack_spherical20p_encode_codes(vec3 v) {
     uint lo9 = lo8 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi9) * 16777216.0 + float(lo9)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate2 = sqrt(len2);
-    UNITPACK_PRECISE float t31 = floor(root_estimate2 * 512.0);
-    UNITPACK_PRECISE float root_h0_2 = t31 * 0.001953125;
+    UNITPACK_PRECISE float root_k0_2 = floor(root_estimate2 * 512.0);
+    UNITPACK_PRECISE float root_h0_2 = root_k0_2 * 0.001953125;
     UNITPACK_PRECISE float root_h1_2 = root_h0_2 + 0.001953125;
-    UNITPACK_PRECISE float t32 = root_h1_2 * root_h1_2 <= len2
-        ? 1.0
-        : (root_h0_2 * root_h0_2 > len2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_k2 = t31 + t32;
+    UNITPACK_PRECISE float step_down11 = root_h0_2 * root_h0_2 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = root_h1_2 * root_h1_2 <= len2 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float root_k2 = root_k0_2 + step11;
     UNITPACK_PRECISE float root_h2 = root_k2 * 0.001953125;
     UNITPACK_PRECISE float root_rest2 = len2 - root_h2 * root_h2;
     UNITPACK_PRECISE float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     UNITPACK_PRECISE float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float t33 = root_m1_2 * root_m1_2 <= len2
-        ? 1.0
-        : (root_m0_2 * root_m0_2 > len2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_j2 = root_j0_2 + t33;
+    UNITPACK_PRECISE float step_down12 = root_m0_2 * root_m0_2 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = root_m1_2 * root_m1_2 <= len2 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float root_j2 = root_j0_2 + step12;
     UNITPACK_PRECISE float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t34 = floor(w2 / root2 * 8388608.0);
-    UNITPACK_PRECISE vec3 t35 = w2 * 8388608.0;
-    UNITPACK_PRECISE vec3 t36 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t34 * root2, t35)),
+    UNITPACK_PRECISE vec3 t28 = floor(w2 / root2 * 8388608.0);
+    UNITPACK_PRECISE vec3 t29 = w2 * 8388608.0;
+    UNITPACK_PRECISE vec3 t30 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t28 * root2, t29)),
         vec3(1.0),
-        lessThanEqual((t34 + 1.0) * root2, t35)
+        lessThanEqual((t28 + 1.0) * root2, t29)
     );
-    UNITPACK_PRECISE vec3 t37 = t34 + t36;
-    UNITPACK_PRECISE vec3 t38 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t37 * root2, t35)),
+    UNITPACK_PRECISE vec3 t31 = t28 + t30;
+    UNITPACK_PRECISE vec3 t32 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t31 * root2, t29)),
         vec3(1.0),
-        lessThanEqual((t37 + 1.0) * root2, t35)
+        lessThanEqual((t31 + 1.0) * root2, t29)
     );
-    UNITPACK_PRECISE vec3 aim = t37 + t38;
+    UNITPACK_PRECISE vec3 aim = t31 + t32;
     UNITPACK_PRECISE vec2 cand = mix(vec2(511.0), base, lessThanEqual(base, vec2(511.0)));
-    UNITPACK_PRECISE float t39 = roundEven((cand.x + 511.0) * 16416.063);
-    UNITPACK_PRECISE float abs_t39 = abs(t39);
-    bool back = abs_t39 > 8388608.0;
-    UNITPACK_PRECISE float b = back ? 16777216.0 - abs_t39 : abs_t39;
+    UNITPACK_PRECISE float t33 = roundEven((cand.x + 511.0) * 16416.063);
+    UNITPACK_PRECISE float abs_t33 = abs(t33);
+    bool back = abs_t33 > 8388608.0;
+    UNITPACK_PRECISE float t34 = 16777216.0 - abs_t33;
+    UNITPACK_PRECISE float b = back ? t34 : abs_t33;
     bool swap = b > 4194304.0;
-    UNITPACK_PRECISE float u = roundEven((swap ? 8388608.0 - b : b) * 3.1415927);
+    UNITPACK_PRECISE float t35 = 8388608.0 - b;
+    UNITPACK_PRECISE float u = roundEven((swap ? t35 : b) * 3.1415927);
     UNITPACK_PRECISE float u2 = roundEven(u * u * 5.9604645e-8);
-    UNITPACK_PRECISE float t40 = roundEven(
+    UNITPACK_PRECISE float t36 = roundEven(
         (roundEven(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t41 = roundEven(
-        (roundEven(t40 * u2 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8
-    )
-        + (-2796203.0);
-    UNITPACK_PRECISE float s = roundEven(
-        u * (roundEven(t41 * u2 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t42 = roundEven(
-        (roundEven(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t43 = roundEven(
-        (roundEven(t42 * u2 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8
-    )
-        + 699051.0;
-    UNITPACK_PRECISE float t44 = roundEven(
-        (roundEven(t43 * u2 * 5.9604645e-8) + (-8388608.0)) * u2 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float co = t44 + 16777216.0;
-    UNITPACK_PRECISE float t45 = swap ? co : s;
-    UNITPACK_PRECISE float t46 = swap ? s : co;
-    UNITPACK_PRECISE float t47 = t39 < 0.0 ? -t45 : t45;
-    UNITPACK_PRECISE float t48 = roundEven(cand.y * 32832.125);
-    UNITPACK_PRECISE float abs_t48 = abs(t48);
-    bool back2 = abs_t48 > 8388608.0;
-    UNITPACK_PRECISE float b2 = back2 ? 16777216.0 - abs_t48 : abs_t48;
-    bool swap2 = b2 > 4194304.0;
-    UNITPACK_PRECISE float u3 = roundEven((swap2 ? 8388608.0 - b2 : b2) * 3.1415927);
-    UNITPACK_PRECISE float u2_2 = roundEven(u3 * u3 * 5.9604645e-8);
-    UNITPACK_PRECISE float t49 = roundEven(
-        (roundEven(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t50 = roundEven(
-        (roundEven(t49 * u2_2 * 5.9604645e-8) + 139810.0) * u2_2 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float t51 = u3
-        * (roundEven((t50 + (-2796203.0)) * u2_2 * 5.9604645e-8) + 16777216.0)
+    UNITPACK_PRECISE float t37 = (roundEven((t36 + (-3329.0)) * u2 * 5.9604645e-8) + 139810.0)
+        * u2
         * 5.9604645e-8;
-    UNITPACK_PRECISE float s2 = roundEven(t51);
-    UNITPACK_PRECISE float t52 = roundEven(
-        (roundEven(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t53 = roundEven(
-        (roundEven(t52 * u2_2 * 5.9604645e-8) + (-23302.0)) * u2_2 * 5.9604645e-8
+    UNITPACK_PRECISE float t38 = u
+        * (roundEven((roundEven(t37) + (-2796203.0)) * u2 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s = roundEven(t38 * 5.9604645e-8);
+    UNITPACK_PRECISE float t39 = roundEven(
+        (roundEven(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t54 = (roundEven((t53 + 699051.0) * u2_2 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE float t40 = (roundEven((t39 + 416.0) * u2 * 5.9604645e-8) + (-23302.0))
+        * u2
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t41 = (
+        roundEven((roundEven(t40) + 699051.0) * u2 * 5.9604645e-8) + (-8388608.0)
+    )
+        * u2;
+    UNITPACK_PRECISE float co = roundEven(t41 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t42 = swap ? co : s;
+    UNITPACK_PRECISE float t43 = swap ? s : co;
+    UNITPACK_PRECISE float neg_t43 = -t43;
+    UNITPACK_PRECISE float neg_t42 = -t42;
+    UNITPACK_PRECISE float t44 = t33 < 0.0 ? neg_t42 : t42;
+    UNITPACK_PRECISE float t45 = roundEven(cand.y * 32832.125);
+    UNITPACK_PRECISE float abs_t45 = abs(t45);
+    bool back2 = abs_t45 > 8388608.0;
+    UNITPACK_PRECISE float t46 = 16777216.0 - abs_t45;
+    UNITPACK_PRECISE float b2 = back2 ? t46 : abs_t45;
+    bool swap2 = b2 > 4194304.0;
+    UNITPACK_PRECISE float t47 = 8388608.0 - b2;
+    UNITPACK_PRECISE float u3 = roundEven((swap2 ? t47 : b2) * 3.1415927);
+    UNITPACK_PRECISE float u2_2 = roundEven(u3 * u3 * 5.9604645e-8);
+    UNITPACK_PRECISE float t48 = roundEven(
+        (roundEven(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE float t49 = (roundEven((t48 + (-3329.0)) * u2_2 * 5.9604645e-8) + 139810.0)
         * u2_2
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co2 = roundEven(t54) + 16777216.0;
-    UNITPACK_PRECISE float t55 = swap2 ? co2 : s2;
-    UNITPACK_PRECISE float t56 = swap2 ? s2 : co2;
-    UNITPACK_PRECISE vec3 t57 = vec3(
-        (back2 ? -t56 : t56) * t47,
-        (t48 < 0.0 ? -t55 : t55) * t47,
-        back ? -t46 : t46
+    UNITPACK_PRECISE float t50 = u3
+        * (roundEven((roundEven(t49) + (-2796203.0)) * u2_2 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s2 = roundEven(t50 * 5.9604645e-8);
+    UNITPACK_PRECISE float t51 = roundEven(
+        (roundEven(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec3 t58 = abs(roundEven(t57 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uvec3 t59 = uvec3(t58);
-    uint limb1_6 = t59.x >> 12u;
-    uint limb0_6 = t59.x & 4095u;
+    UNITPACK_PRECISE float t52 = (roundEven((t51 + 416.0) * u2_2 * 5.9604645e-8) + (-23302.0))
+        * u2_2
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t53 = (
+        roundEven((roundEven(t52) + 699051.0) * u2_2 * 5.9604645e-8) + (-8388608.0)
+    )
+        * u2_2;
+    UNITPACK_PRECISE float co2 = roundEven(t53 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t54 = swap2 ? co2 : s2;
+    UNITPACK_PRECISE float t55 = swap2 ? s2 : co2;
+    UNITPACK_PRECISE float neg_t55 = -t55;
+    UNITPACK_PRECISE float neg_t54 = -t54;
+    UNITPACK_PRECISE vec3 t56 = vec3(
+        (back2 ? neg_t55 : t55) * t44,
+        (t45 < 0.0 ? neg_t54 : t54) * t44,
+        back ? neg_t43 : t43
+    );
+    UNITPACK_PRECISE vec3 offset = roundEven(t56 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_6 = offset_u.x >> 12u;
+    uint limb0_6 = offset_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi10 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo10 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t59.y >> 12u;
-    uint limb0_7 = t59.y & 4095u;
+    uint limb1_7 = offset_u.y >> 12u;
+    uint limb0_7 = offset_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi11 = hi10 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo11 = lo10 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t59.z >> 12u;
-    uint limb0_8 = t59.z & 4095u;
+    uint limb1_8 = offset_u.z >> 12u;
+    uint limb0_8 = offset_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi12 = hi11 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo12 = lo11 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi13 = hi12 + (lo12 >> 24u);
     uint lo13 = lo12 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi13) * 16777216.0 + float(lo13);
-    UNITPACK_PRECISE float t60 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t61 = vec2(t60, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(511.0), t61, lessThanEqual(t61, vec2(511.0)));
-    UNITPACK_PRECISE float t62 = roundEven((cand2.x + 511.0) * 16416.063);
-    UNITPACK_PRECISE float abs_t62 = abs(t62);
-    bool back3 = abs_t62 > 8388608.0;
-    UNITPACK_PRECISE float b3 = back3 ? 16777216.0 - abs_t62 : abs_t62;
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t57 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(511.0), t57, lessThanEqual(t57, vec2(511.0)));
+    bool t58 = base.y <= 511.0;
+    UNITPACK_PRECISE float t59 = roundEven((cand2.x + 511.0) * 16416.063);
+    UNITPACK_PRECISE float abs_t59 = abs(t59);
+    bool back3 = abs_t59 > 8388608.0;
+    UNITPACK_PRECISE float t60 = 16777216.0 - abs_t59;
+    UNITPACK_PRECISE float b3 = back3 ? t60 : abs_t59;
     bool swap3 = b3 > 4194304.0;
-    UNITPACK_PRECISE float u4 = roundEven((swap3 ? 8388608.0 - b3 : b3) * 3.1415927);
+    UNITPACK_PRECISE float t61 = 8388608.0 - b3;
+    UNITPACK_PRECISE float u4 = roundEven((swap3 ? t61 : b3) * 3.1415927);
     UNITPACK_PRECISE float u2_3 = roundEven(u4 * u4 * 5.9604645e-8);
-    UNITPACK_PRECISE float t63 = roundEven(
+    UNITPACK_PRECISE float t62 = roundEven(
         (roundEven(-0.0 * u2_3 * 5.9604645e-8) + 46.0) * u2_3 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t64 = roundEven(
-        (roundEven(t63 * u2_3 * 5.9604645e-8) + 139810.0) * u2_3 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t65 = u4
-        * (roundEven((t64 + (-2796203.0)) * u2_3 * 5.9604645e-8) + 16777216.0)
-        * 5.9604645e-8;
-    UNITPACK_PRECISE float s3 = roundEven(t65);
-    UNITPACK_PRECISE float t66 = roundEven(
-        (roundEven(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t67 = roundEven(
-        (roundEven(t66 * u2_3 * 5.9604645e-8) + (-23302.0)) * u2_3 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float t68 = (roundEven((t67 + 699051.0) * u2_3 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE float t63 = (roundEven((t62 + (-3329.0)) * u2_3 * 5.9604645e-8) + 139810.0)
         * u2_3
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co3 = roundEven(t68) + 16777216.0;
-    UNITPACK_PRECISE float t69 = swap3 ? co3 : s3;
-    UNITPACK_PRECISE float t70 = swap3 ? s3 : co3;
-    UNITPACK_PRECISE float t71 = t62 < 0.0 ? -t69 : t69;
-    UNITPACK_PRECISE float t72 = roundEven(cand2.y * 32832.125);
-    UNITPACK_PRECISE float abs_t72 = abs(t72);
-    bool back4 = abs_t72 > 8388608.0;
-    UNITPACK_PRECISE float b4 = back4 ? 16777216.0 - abs_t72 : abs_t72;
-    bool swap4 = b4 > 4194304.0;
-    UNITPACK_PRECISE float u5 = roundEven((swap4 ? 8388608.0 - b4 : b4) * 3.1415927);
-    UNITPACK_PRECISE float u2_4 = roundEven(u5 * u5 * 5.9604645e-8);
-    UNITPACK_PRECISE float t73 = roundEven(
-        (roundEven(-0.0 * u2_4 * 5.9604645e-8) + 46.0) * u2_4 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t74 = roundEven(
-        (roundEven(t73 * u2_4 * 5.9604645e-8) + 139810.0) * u2_4 * 5.9604645e-8
+    UNITPACK_PRECISE float t64 = u4
+        * (roundEven((roundEven(t63) + (-2796203.0)) * u2_3 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s3 = roundEven(t64 * 5.9604645e-8);
+    UNITPACK_PRECISE float t65 = roundEven(
+        (roundEven(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t75 = u5
-        * (roundEven((t74 + (-2796203.0)) * u2_4 * 5.9604645e-8) + 16777216.0)
+    UNITPACK_PRECISE float t66 = (roundEven((t65 + 416.0) * u2_3 * 5.9604645e-8) + (-23302.0))
+        * u2_3
         * 5.9604645e-8;
-    UNITPACK_PRECISE float s4 = roundEven(t75);
-    UNITPACK_PRECISE float t76 = roundEven(
-        (roundEven(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8
+    UNITPACK_PRECISE float t67 = (
+        roundEven((roundEven(t66) + 699051.0) * u2_3 * 5.9604645e-8) + (-8388608.0)
     )
-        + 416.0;
-    UNITPACK_PRECISE float t77 = roundEven(
-        (roundEven(t76 * u2_4 * 5.9604645e-8) + (-23302.0)) * u2_4 * 5.9604645e-8
+        * u2_3;
+    UNITPACK_PRECISE float co3 = roundEven(t67 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t68 = swap3 ? co3 : s3;
+    UNITPACK_PRECISE float t69 = swap3 ? s3 : co3;
+    UNITPACK_PRECISE float neg_t69 = -t69;
+    UNITPACK_PRECISE float neg_t68 = -t68;
+    UNITPACK_PRECISE float t70 = t59 < 0.0 ? neg_t68 : t68;
+    UNITPACK_PRECISE float t71 = roundEven(cand2.y * 32832.125);
+    UNITPACK_PRECISE float abs_t71 = abs(t71);
+    bool back4 = abs_t71 > 8388608.0;
+    UNITPACK_PRECISE float t72 = 16777216.0 - abs_t71;
+    UNITPACK_PRECISE float b4 = back4 ? t72 : abs_t71;
+    bool swap4 = b4 > 4194304.0;
+    UNITPACK_PRECISE float t73 = 8388608.0 - b4;
+    UNITPACK_PRECISE float u5 = roundEven((swap4 ? t73 : b4) * 3.1415927);
+    UNITPACK_PRECISE float u2_4 = roundEven(u5 * u5 * 5.9604645e-8);
+    UNITPACK_PRECISE float t74 = roundEven(
+        (roundEven(-0.0 * u2_4 * 5.9604645e-8) + 46.0) * u2_4 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t78 = (roundEven((t77 + 699051.0) * u2_4 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE float t75 = (roundEven((t74 + (-3329.0)) * u2_4 * 5.9604645e-8) + 139810.0)
         * u2_4
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co4 = roundEven(t78) + 16777216.0;
-    UNITPACK_PRECISE float t79 = swap4 ? co4 : s4;
-    UNITPACK_PRECISE float t80 = swap4 ? s4 : co4;
-    UNITPACK_PRECISE vec3 t81 = vec3(
-        (back4 ? -t80 : t80) * t71,
-        (t72 < 0.0 ? -t79 : t79) * t71,
-        back3 ? -t70 : t70
+    UNITPACK_PRECISE float t76 = u5
+        * (roundEven((roundEven(t75) + (-2796203.0)) * u2_4 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s4 = roundEven(t76 * 5.9604645e-8);
+    UNITPACK_PRECISE float t77 = roundEven(
+        (roundEven(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec3 t82 = abs(roundEven(t81 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uvec3 t83 = uvec3(t82);
-    uint limb1_9 = t83.x >> 12u;
-    uint limb0_9 = t83.x & 4095u;
+    UNITPACK_PRECISE float t78 = (roundEven((t77 + 416.0) * u2_4 * 5.9604645e-8) + (-23302.0))
+        * u2_4
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t79 = (
+        roundEven((roundEven(t78) + 699051.0) * u2_4 * 5.9604645e-8) + (-8388608.0)
+    )
+        * u2_4;
+    UNITPACK_PRECISE float co4 = roundEven(t79 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t80 = swap4 ? co4 : s4;
+    UNITPACK_PRECISE float t81 = swap4 ? s4 : co4;
+    UNITPACK_PRECISE float neg_t81 = -t81;
+    UNITPACK_PRECISE float neg_t80 = -t80;
+    UNITPACK_PRECISE vec3 t82 = vec3(
+        (back4 ? neg_t81 : t81) * t70,
+        (t71 < 0.0 ? neg_t80 : t80) * t70,
+        back3 ? neg_t69 : t69
+    );
+    UNITPACK_PRECISE vec3 offset2 = roundEven(t82 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_9 = offset_u2.x >> 12u;
+    uint limb0_9 = offset_u2.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi14 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo14 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t83.y >> 12u;
-    uint limb0_10 = t83.y & 4095u;
+    uint limb1_10 = offset_u2.y >> 12u;
+    uint limb0_10 = offset_u2.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi15 = hi14 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo15 = lo14 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t83.z >> 12u;
-    uint limb0_11 = t83.z & 4095u;
+    uint limb1_11 = offset_u2.z >> 12u;
+    uint limb0_11 = offset_u2.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi16 = hi15 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo16 = lo15 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi17 = hi16 + (lo16 >> 24u);
     uint lo17 = lo16 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi17) * 16777216.0 + float(lo17);
-    bool t84 = t60 <= 511.0 && base.y <= 511.0 && dist2 < dist;
+    bool t83 = dist2 < dist;
+    bool t84 = s_up <= 511.0 && t58 && t83;
     UNITPACK_PRECISE vec2 best = t84 ? cand2 : cand;
     UNITPACK_PRECISE float best_d = t84 ? dist2 : dist;
-    UNITPACK_PRECISE float t85 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t86 = vec2(base.x, t85);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(511.0), t86, lessThanEqual(t86, vec2(511.0)));
+    UNITPACK_PRECISE vec2 t85 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(511.0), t85, lessThanEqual(t85, vec2(511.0)));
+    bool t86 = t_up <= 511.0;
     UNITPACK_PRECISE float t87 = roundEven((cand3.x + 511.0) * 16416.063);
     UNITPACK_PRECISE float abs_t87 = abs(t87);
     bool back5 = abs_t87 > 8388608.0;
-    UNITPACK_PRECISE float b5 = back5 ? 16777216.0 - abs_t87 : abs_t87;
+    UNITPACK_PRECISE float t88 = 16777216.0 - abs_t87;
+    UNITPACK_PRECISE float b5 = back5 ? t88 : abs_t87;
     bool swap5 = b5 > 4194304.0;
-    UNITPACK_PRECISE float u6 = roundEven((swap5 ? 8388608.0 - b5 : b5) * 3.1415927);
+    UNITPACK_PRECISE float t89 = 8388608.0 - b5;
+    UNITPACK_PRECISE float u6 = roundEven((swap5 ? t89 : b5) * 3.1415927);
     UNITPACK_PRECISE float u2_5 = roundEven(u6 * u6 * 5.9604645e-8);
-    UNITPACK_PRECISE float t88 = roundEven(
+    UNITPACK_PRECISE float t90 = roundEven(
         (roundEven(-0.0 * u2_5 * 5.9604645e-8) + 46.0) * u2_5 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t89 = roundEven(
-        (roundEven(t88 * u2_5 * 5.9604645e-8) + 139810.0) * u2_5 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t90 = u6
-        * (roundEven((t89 + (-2796203.0)) * u2_5 * 5.9604645e-8) + 16777216.0)
-        * 5.9604645e-8;
-    UNITPACK_PRECISE float s5 = roundEven(t90);
-    UNITPACK_PRECISE float t91 = roundEven(
-        (roundEven(0.0 * u2_5 * 5.9604645e-8) + (-5.0)) * u2_5 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t92 = roundEven(
-        (roundEven(t91 * u2_5 * 5.9604645e-8) + (-23302.0)) * u2_5 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float t93 = (roundEven((t92 + 699051.0) * u2_5 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE float t91 = (roundEven((t90 + (-3329.0)) * u2_5 * 5.9604645e-8) + 139810.0)
         * u2_5
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co5 = roundEven(t93) + 16777216.0;
-    UNITPACK_PRECISE float t94 = swap5 ? co5 : s5;
-    UNITPACK_PRECISE float t95 = swap5 ? s5 : co5;
-    UNITPACK_PRECISE float t96 = t87 < 0.0 ? -t94 : t94;
-    UNITPACK_PRECISE float t97 = roundEven(cand3.y * 32832.125);
-    UNITPACK_PRECISE float abs_t97 = abs(t97);
-    bool back6 = abs_t97 > 8388608.0;
-    UNITPACK_PRECISE float b6 = back6 ? 16777216.0 - abs_t97 : abs_t97;
-    bool swap6 = b6 > 4194304.0;
-    UNITPACK_PRECISE float u7 = roundEven((swap6 ? 8388608.0 - b6 : b6) * 3.1415927);
-    UNITPACK_PRECISE float u2_6 = roundEven(u7 * u7 * 5.9604645e-8);
-    UNITPACK_PRECISE float t98 = roundEven(
-        (roundEven(-0.0 * u2_6 * 5.9604645e-8) + 46.0) * u2_6 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t99 = roundEven(
-        (roundEven(t98 * u2_6 * 5.9604645e-8) + 139810.0) * u2_6 * 5.9604645e-8
+    UNITPACK_PRECISE float t92 = u6
+        * (roundEven((roundEven(t91) + (-2796203.0)) * u2_5 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s5 = roundEven(t92 * 5.9604645e-8);
+    UNITPACK_PRECISE float t93 = roundEven(
+        (roundEven(0.0 * u2_5 * 5.9604645e-8) + (-5.0)) * u2_5 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t100 = u7
-        * (roundEven((t99 + (-2796203.0)) * u2_6 * 5.9604645e-8) + 16777216.0)
+    UNITPACK_PRECISE float t94 = (roundEven((t93 + 416.0) * u2_5 * 5.9604645e-8) + (-23302.0))
+        * u2_5
         * 5.9604645e-8;
-    UNITPACK_PRECISE float s6 = roundEven(t100);
-    UNITPACK_PRECISE float t101 = roundEven(
-        (roundEven(0.0 * u2_6 * 5.9604645e-8) + (-5.0)) * u2_6 * 5.9604645e-8
+    UNITPACK_PRECISE float t95 = (
+        roundEven((roundEven(t94) + 699051.0) * u2_5 * 5.9604645e-8) + (-8388608.0)
     )
-        + 416.0;
+        * u2_5;
+    UNITPACK_PRECISE float co5 = roundEven(t95 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t96 = swap5 ? co5 : s5;
+    UNITPACK_PRECISE float t97 = swap5 ? s5 : co5;
+    UNITPACK_PRECISE float neg_t97 = -t97;
+    UNITPACK_PRECISE float neg_t96 = -t96;
+    UNITPACK_PRECISE float t98 = t87 < 0.0 ? neg_t96 : t96;
+    UNITPACK_PRECISE float t99 = roundEven(cand3.y * 32832.125);
+    UNITPACK_PRECISE float abs_t99 = abs(t99);
+    bool back6 = abs_t99 > 8388608.0;
+    UNITPACK_PRECISE float t100 = 16777216.0 - abs_t99;
+    UNITPACK_PRECISE float b6 = back6 ? t100 : abs_t99;
+    bool swap6 = b6 > 4194304.0;
+    UNITPACK_PRECISE float t101 = 8388608.0 - b6;
+    UNITPACK_PRECISE float u7 = roundEven((swap6 ? t101 : b6) * 3.1415927);
+    UNITPACK_PRECISE float u2_6 = roundEven(u7 * u7 * 5.9604645e-8);
     UNITPACK_PRECISE float t102 = roundEven(
-        (roundEven(t101 * u2_6 * 5.9604645e-8) + (-23302.0)) * u2_6 * 5.9604645e-8
+        (roundEven(-0.0 * u2_6 * 5.9604645e-8) + 46.0) * u2_6 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t103 = (
-        roundEven((t102 + 699051.0) * u2_6 * 5.9604645e-8) + (-8388608.0)
-    )
+    UNITPACK_PRECISE float t103 = (roundEven((t102 + (-3329.0)) * u2_6 * 5.9604645e-8) + 139810.0)
         * u2_6
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co6 = roundEven(t103) + 16777216.0;
-    UNITPACK_PRECISE float t104 = swap6 ? co6 : s6;
-    UNITPACK_PRECISE float t105 = swap6 ? s6 : co6;
-    UNITPACK_PRECISE vec3 t106 = vec3(
-        (back6 ? -t105 : t105) * t96,
-        (t97 < 0.0 ? -t104 : t104) * t96,
-        back5 ? -t95 : t95
+    UNITPACK_PRECISE float t104 = u7
+        * (roundEven((roundEven(t103) + (-2796203.0)) * u2_6 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s6 = roundEven(t104 * 5.9604645e-8);
+    UNITPACK_PRECISE float t105 = roundEven(
+        (roundEven(0.0 * u2_6 * 5.9604645e-8) + (-5.0)) * u2_6 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec3 t107 = abs(roundEven(t106 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uvec3 t108 = uvec3(t107);
-    uint limb1_12 = t108.x >> 12u;
-    uint limb0_12 = t108.x & 4095u;
+    UNITPACK_PRECISE float t106 = (roundEven((t105 + 416.0) * u2_6 * 5.9604645e-8) + (-23302.0))
+        * u2_6
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t107 = (
+        roundEven((roundEven(t106) + 699051.0) * u2_6 * 5.9604645e-8) + (-8388608.0)
+    )
+        * u2_6;
+    UNITPACK_PRECISE float co6 = roundEven(t107 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t108 = swap6 ? co6 : s6;
+    UNITPACK_PRECISE float t109 = swap6 ? s6 : co6;
+    UNITPACK_PRECISE float neg_t109 = -t109;
+    UNITPACK_PRECISE float neg_t108 = -t108;
+    UNITPACK_PRECISE vec3 t110 = vec3(
+        (back6 ? neg_t109 : t109) * t98,
+        (t99 < 0.0 ? neg_t108 : t108) * t98,
+        back5 ? neg_t97 : t97
+    );
+    UNITPACK_PRECISE vec3 offset3 = roundEven(t110 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_12 = offset_u3.x >> 12u;
+    uint limb0_12 = offset_u3.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi18 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo18 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t108.y >> 12u;
-    uint limb0_13 = t108.y & 4095u;
+    uint limb1_13 = offset_u3.y >> 12u;
+    uint limb0_13 = offset_u3.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi19 = hi18 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo19 = lo18 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t108.z >> 12u;
-    uint limb0_14 = t108.z & 4095u;
+    uint limb1_14 = offset_u3.z >> 12u;
+    uint limb0_14 = offset_u3.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi20 = hi19 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo20 = lo19 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi21 = hi20 + (lo20 >> 24u);
     uint lo21 = lo20 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi21) * 16777216.0 + float(lo21);
-    bool t109 = base.x <= 511.0 && t85 <= 511.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t109 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t109 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t110 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(511.0), t110, lessThanEqual(t110, vec2(511.0)));
-    UNITPACK_PRECISE float t111 = roundEven((cand4.x + 511.0) * 16416.063);
-    UNITPACK_PRECISE float abs_t111 = abs(t111);
-    bool back7 = abs_t111 > 8388608.0;
-    UNITPACK_PRECISE float b7 = back7 ? 16777216.0 - abs_t111 : abs_t111;
+    bool t111 = dist3 < best_d;
+    bool t112 = base.x <= 511.0 && t86 && t111;
+    UNITPACK_PRECISE vec2 best2 = t112 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t112 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t113 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(511.0), t113, lessThanEqual(t113, vec2(511.0)));
+    bool t114 = t_up <= 511.0;
+    UNITPACK_PRECISE float t115 = roundEven((cand4.x + 511.0) * 16416.063);
+    UNITPACK_PRECISE float abs_t115 = abs(t115);
+    bool back7 = abs_t115 > 8388608.0;
+    UNITPACK_PRECISE float t116 = 16777216.0 - abs_t115;
+    UNITPACK_PRECISE float b7 = back7 ? t116 : abs_t115;
     bool swap7 = b7 > 4194304.0;
-    UNITPACK_PRECISE float u8 = roundEven((swap7 ? 8388608.0 - b7 : b7) * 3.1415927);
+    UNITPACK_PRECISE float t117 = 8388608.0 - b7;
+    UNITPACK_PRECISE float u8 = roundEven((swap7 ? t117 : b7) * 3.1415927);
     UNITPACK_PRECISE float u2_7 = roundEven(u8 * u8 * 5.9604645e-8);
-    UNITPACK_PRECISE float t112 = roundEven(
+    UNITPACK_PRECISE float t118 = roundEven(
         (roundEven(-0.0 * u2_7 * 5.9604645e-8) + 46.0) * u2_7 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t113 = roundEven(
-        (roundEven(t112 * u2_7 * 5.9604645e-8) + 139810.0) * u2_7 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t114 = u8
-        * (roundEven((t113 + (-2796203.0)) * u2_7 * 5.9604645e-8) + 16777216.0)
-        * 5.9604645e-8;
-    UNITPACK_PRECISE float s7 = roundEven(t114);
-    UNITPACK_PRECISE float t115 = roundEven(
-        (roundEven(0.0 * u2_7 * 5.9604645e-8) + (-5.0)) * u2_7 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t116 = roundEven(
-        (roundEven(t115 * u2_7 * 5.9604645e-8) + (-23302.0)) * u2_7 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float t117 = (
-        roundEven((t116 + 699051.0) * u2_7 * 5.9604645e-8) + (-8388608.0)
-    )
+    UNITPACK_PRECISE float t119 = (roundEven((t118 + (-3329.0)) * u2_7 * 5.9604645e-8) + 139810.0)
         * u2_7
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co7 = roundEven(t117) + 16777216.0;
-    UNITPACK_PRECISE float t118 = swap7 ? co7 : s7;
-    UNITPACK_PRECISE float t119 = swap7 ? s7 : co7;
-    UNITPACK_PRECISE float t120 = t111 < 0.0 ? -t118 : t118;
-    UNITPACK_PRECISE float t121 = roundEven(cand4.y * 32832.125);
-    UNITPACK_PRECISE float abs_t121 = abs(t121);
-    bool back8 = abs_t121 > 8388608.0;
-    UNITPACK_PRECISE float b8 = back8 ? 16777216.0 - abs_t121 : abs_t121;
-    bool swap8 = b8 > 4194304.0;
-    UNITPACK_PRECISE float u9 = roundEven((swap8 ? 8388608.0 - b8 : b8) * 3.1415927);
-    UNITPACK_PRECISE float u2_8 = roundEven(u9 * u9 * 5.9604645e-8);
-    UNITPACK_PRECISE float t122 = roundEven(
-        (roundEven(-0.0 * u2_8 * 5.9604645e-8) + 46.0) * u2_8 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t123 = roundEven(
-        (roundEven(t122 * u2_8 * 5.9604645e-8) + 139810.0) * u2_8 * 5.9604645e-8
+    UNITPACK_PRECISE float t120 = u8
+        * (roundEven((roundEven(t119) + (-2796203.0)) * u2_7 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s7 = roundEven(t120 * 5.9604645e-8);
+    UNITPACK_PRECISE float t121 = roundEven(
+        (roundEven(0.0 * u2_7 * 5.9604645e-8) + (-5.0)) * u2_7 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t124 = u9
-        * (roundEven((t123 + (-2796203.0)) * u2_8 * 5.9604645e-8) + 16777216.0)
+    UNITPACK_PRECISE float t122 = (roundEven((t121 + 416.0) * u2_7 * 5.9604645e-8) + (-23302.0))
+        * u2_7
         * 5.9604645e-8;
-    UNITPACK_PRECISE float s8 = roundEven(t124);
-    UNITPACK_PRECISE float t125 = roundEven(
-        (roundEven(0.0 * u2_8 * 5.9604645e-8) + (-5.0)) * u2_8 * 5.9604645e-8
+    UNITPACK_PRECISE float t123 = (
+        roundEven((roundEven(t122) + 699051.0) * u2_7 * 5.9604645e-8) + (-8388608.0)
     )
-        + 416.0;
-    UNITPACK_PRECISE float t126 = roundEven(
-        (roundEven(t125 * u2_8 * 5.9604645e-8) + (-23302.0)) * u2_8 * 5.9604645e-8
+        * u2_7;
+    UNITPACK_PRECISE float co7 = roundEven(t123 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t124 = swap7 ? co7 : s7;
+    UNITPACK_PRECISE float t125 = swap7 ? s7 : co7;
+    UNITPACK_PRECISE float neg_t125 = -t125;
+    UNITPACK_PRECISE float neg_t124 = -t124;
+    UNITPACK_PRECISE float t126 = t115 < 0.0 ? neg_t124 : t124;
+    UNITPACK_PRECISE float t127 = roundEven(cand4.y * 32832.125);
+    UNITPACK_PRECISE float abs_t127 = abs(t127);
+    bool back8 = abs_t127 > 8388608.0;
+    UNITPACK_PRECISE float t128 = 16777216.0 - abs_t127;
+    UNITPACK_PRECISE float b8 = back8 ? t128 : abs_t127;
+    bool swap8 = b8 > 4194304.0;
+    UNITPACK_PRECISE float t129 = 8388608.0 - b8;
+    UNITPACK_PRECISE float u9 = roundEven((swap8 ? t129 : b8) * 3.1415927);
+    UNITPACK_PRECISE float u2_8 = roundEven(u9 * u9 * 5.9604645e-8);
+    UNITPACK_PRECISE float t130 = roundEven(
+        (roundEven(-0.0 * u2_8 * 5.9604645e-8) + 46.0) * u2_8 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t127 = (
-        roundEven((t126 + 699051.0) * u2_8 * 5.9604645e-8) + (-8388608.0)
-    )
+    UNITPACK_PRECISE float t131 = (roundEven((t130 + (-3329.0)) * u2_8 * 5.9604645e-8) + 139810.0)
         * u2_8
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co8 = roundEven(t127) + 16777216.0;
-    UNITPACK_PRECISE float t128 = swap8 ? co8 : s8;
-    UNITPACK_PRECISE float t129 = swap8 ? s8 : co8;
-    UNITPACK_PRECISE vec3 t130 = vec3(
-        (back8 ? -t129 : t129) * t120,
-        (t121 < 0.0 ? -t128 : t128) * t120,
-        back7 ? -t119 : t119
+    UNITPACK_PRECISE float t132 = u9
+        * (roundEven((roundEven(t131) + (-2796203.0)) * u2_8 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s8 = roundEven(t132 * 5.9604645e-8);
+    UNITPACK_PRECISE float t133 = roundEven(
+        (roundEven(0.0 * u2_8 * 5.9604645e-8) + (-5.0)) * u2_8 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec3 t131 = abs(roundEven(t130 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uvec3 t132 = uvec3(t131);
-    uint limb1_15 = t132.x >> 12u;
-    uint limb0_15 = t132.x & 4095u;
+    UNITPACK_PRECISE float t134 = (roundEven((t133 + 416.0) * u2_8 * 5.9604645e-8) + (-23302.0))
+        * u2_8
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t135 = (
+        roundEven((roundEven(t134) + 699051.0) * u2_8 * 5.9604645e-8) + (-8388608.0)
+    )
+        * u2_8;
+    UNITPACK_PRECISE float co8 = roundEven(t135 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE float t136 = swap8 ? co8 : s8;
+    UNITPACK_PRECISE float t137 = swap8 ? s8 : co8;
+    UNITPACK_PRECISE float neg_t137 = -t137;
+    UNITPACK_PRECISE float neg_t136 = -t136;
+    UNITPACK_PRECISE vec3 t138 = vec3(
+        (back8 ? neg_t137 : t137) * t126,
+        (t127 < 0.0 ? neg_t136 : t136) * t126,
+        back7 ? neg_t125 : t125
+    );
+    UNITPACK_PRECISE vec3 offset4 = roundEven(t138 * vec3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_15 = offset_u4.x >> 12u;
+    uint limb0_15 = offset_u4.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi22 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo22 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t132.y >> 12u;
-    uint limb0_16 = t132.y & 4095u;
+    uint limb1_16 = offset_u4.y >> 12u;
+    uint limb0_16 = offset_u4.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi23 = hi22 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo23 = lo22 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t132.z >> 12u;
-    uint limb0_17 = t132.z & 4095u;
+    uint limb1_17 = offset_u4.z >> 12u;
+    uint limb0_17 = offset_u4.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi24 = hi23 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo24 = lo23 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi25 = hi24 + (lo24 >> 24u);
     uint lo25 = lo24 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi25) * 16777216.0 + float(lo25);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 511.0 && base.y + 1.0 <= 511.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t139 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 511.0 && t114 && t139 ? cand4 : best2;
     return best3;
 }
 

@@ -71,7 +71,8 @@ uvec2 unitpack_spherical_lut16_matched_atan_texel(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
@@ -95,39 +96,29 @@ uvec2 unitpack_spherical_lut16_matched_atan_texel(vec3 v) {
     UNITPACK_PRECISE vec2 t6 = w2.xy * w2.xy * 16384.0;
     UNITPACK_PRECISE vec2 t7 = t5 * t5 * s;
     UNITPACK_PRECISE vec2 t8 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t7)),
-        greaterThan(t5, vec2(0.0))
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t7)), lessThan(t5, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t7)),
+            greaterThan(t5, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t9 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t7)),
-        lessThan(t5, vec2(0.0))
+    UNITPACK_PRECISE vec2 t9 = t4 - 1.0 - 127.0;
+    UNITPACK_PRECISE vec2 t10 = t9 * t9 * s;
+    UNITPACK_PRECISE vec2 t11 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t10)), lessThan(t9, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t10)),
+            greaterThan(t9, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t10 = mix(
-        vec2(0.0),
-        mix(t9, t8, greaterThanEqual(w2.xy, vec2(0.0))),
-        lessThan(t4, vec2(255.0))
-    );
-    UNITPACK_PRECISE vec2 t11 = t4 - 1.0 - 127.0;
-    UNITPACK_PRECISE vec2 t12 = t11 * t11 * s;
-    UNITPACK_PRECISE vec2 t13 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t12)),
-        greaterThan(t11, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t14 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t12)),
-        lessThan(t11, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t15 = mix(
-        vec2(0.0),
-        mix(t14, t13, greaterThanEqual(w2.xy, vec2(0.0))) - 1.0,
-        greaterThan(t4, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t16 = t4 + t10 + t15;
-    return uvec2(t16);
+    UNITPACK_PRECISE vec2 t12 = t4
+        + mix(vec2(0.0), t8, lessThan(t4, vec2(255.0)))
+        + mix(vec2(0.0), t11 - 1.0, greaterThan(t4, vec2(0.0)));
+    return uvec2(t12);
 }
 
 // unitpack_spherical_lut16_matched_encode_float: fast encoder, float form.
@@ -139,13 +130,16 @@ vec2 unitpack_spherical_lut16_matched_encode_float(vec3 v, float fetched) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
     UNITPACK_PRECISE vec2 result = vec2(
         fetched,
-        ((t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0)).z + 1.0) * 0.5
+        ((t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0)).z + 1.0) * 0.5
     );
     return result;
 }
@@ -168,7 +162,8 @@ uint unitpack_spherical_lut16_matched_encode(vec3 v, float fetched) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
@@ -192,19 +187,23 @@ uint unitpack_spherical_lut16_matched_encode(vec3 v, float fetched) {
     UNITPACK_PRECISE float estimate = t4 <= 255.0 ? t4 : 255.0;
     UNITPACK_PRECISE float t5 = estimate - 127.0;
     UNITPACK_PRECISE float t6 = t5 * t5 * len2;
-    UNITPACK_PRECISE float t7 = w2.z >= 0.0
-        ? (t5 > 0.0 ? (big2 >= t6 ? 1.0 : 0.0) : 1.0)
-        : (t5 < 0.0 ? (big2 <= t6 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 255.0 ? t7 : 0.0;
-    UNITPACK_PRECISE float t8 = estimate - 1.0 - 127.0;
-    UNITPACK_PRECISE float t9 = t8 * t8 * len2;
-    UNITPACK_PRECISE float t10 = w2.z >= 0.0
-        ? (t8 > 0.0 ? (big2 >= t9 ? 1.0 : 0.0) : 1.0)
-        : (t8 < 0.0 ? (big2 <= t9 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t10 - 1.0 : 0.0;
-    UNITPACK_PRECISE float t11 = roundEven((t2 <= 1.0 ? t2 : 1.0) * 255.0);
-    UNITPACK_PRECISE float t12 = estimate + up + down;
-    return uint(t11) | (uint(t12) << 8u);
+    UNITPACK_PRECISE float one_if = big2 >= t6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t7 = t5 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2 <= t6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t8 = t5 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t9 = w2.z >= 0.0 ? t7 : t8;
+    UNITPACK_PRECISE float up = estimate < 255.0 ? t9 : 0.0;
+    UNITPACK_PRECISE float t10 = estimate - 1.0 - 127.0;
+    UNITPACK_PRECISE float t11 = t10 * t10 * len2;
+    UNITPACK_PRECISE float one_if3 = big2 >= t11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t12 = t10 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2 <= t11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t13 = t10 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t14 = (w2.z >= 0.0 ? t12 : t13) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t14 : 0.0;
+    UNITPACK_PRECISE float t15 = roundEven((t2 <= 1.0 ? t2 : 1.0) * 255.0);
+    UNITPACK_PRECISE float t16 = estimate + up + down;
+    return uint(t15) | (uint(t16) << 8u);
 }
 
 #endif // UNITPACK_SPHERICAL_LUT16_MATCHED_GLSL

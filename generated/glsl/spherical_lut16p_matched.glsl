@@ -71,7 +71,8 @@ uvec2 unitpack_spherical_lut16p_matched_atan_texel(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
@@ -95,39 +96,29 @@ uvec2 unitpack_spherical_lut16p_matched_atan_texel(vec3 v) {
     UNITPACK_PRECISE vec2 t6 = w2.xy * w2.xy * 16384.0;
     UNITPACK_PRECISE vec2 t7 = t5 * t5 * s;
     UNITPACK_PRECISE vec2 t8 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t7)),
-        greaterThan(t5, vec2(0.0))
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t7)), lessThan(t5, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t7)),
+            greaterThan(t5, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t9 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t7)),
-        lessThan(t5, vec2(0.0))
+    UNITPACK_PRECISE vec2 t9 = t4 - 1.0 - 127.0;
+    UNITPACK_PRECISE vec2 t10 = t9 * t9 * s;
+    UNITPACK_PRECISE vec2 t11 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t10)), lessThan(t9, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t10)),
+            greaterThan(t9, vec2(0.0))
+        ),
+        greaterThanEqual(w2.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t10 = mix(
-        vec2(0.0),
-        mix(t9, t8, greaterThanEqual(w2.xy, vec2(0.0))),
-        lessThan(t4, vec2(255.0))
-    );
-    UNITPACK_PRECISE vec2 t11 = t4 - 1.0 - 127.0;
-    UNITPACK_PRECISE vec2 t12 = t11 * t11 * s;
-    UNITPACK_PRECISE vec2 t13 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, t12)),
-        greaterThan(t11, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t14 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t6, t12)),
-        lessThan(t11, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t15 = mix(
-        vec2(0.0),
-        mix(t14, t13, greaterThanEqual(w2.xy, vec2(0.0))) - 1.0,
-        greaterThan(t4, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t16 = t4 + t10 + t15;
-    return uvec2(t16);
+    UNITPACK_PRECISE vec2 t12 = t4
+        + mix(vec2(0.0), t8, lessThan(t4, vec2(255.0)))
+        + mix(vec2(0.0), t11 - 1.0, greaterThan(t4, vec2(0.0)));
+    return uvec2(t12);
 }
 
 // unitpack_spherical_lut16p_matched_encode_fast: fast encoder (the precise search's first step).
@@ -148,7 +139,8 @@ uint unitpack_spherical_lut16p_matched_encode_fast(vec3 v, float fetched) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
@@ -172,19 +164,23 @@ uint unitpack_spherical_lut16p_matched_encode_fast(vec3 v, float fetched) {
     UNITPACK_PRECISE float estimate = t4 <= 255.0 ? t4 : 255.0;
     UNITPACK_PRECISE float t5 = estimate - 127.0;
     UNITPACK_PRECISE float t6 = t5 * t5 * len2;
-    UNITPACK_PRECISE float t7 = w2.z >= 0.0
-        ? (t5 > 0.0 ? (big2 >= t6 ? 1.0 : 0.0) : 1.0)
-        : (t5 < 0.0 ? (big2 <= t6 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 255.0 ? t7 : 0.0;
-    UNITPACK_PRECISE float t8 = estimate - 1.0 - 127.0;
-    UNITPACK_PRECISE float t9 = t8 * t8 * len2;
-    UNITPACK_PRECISE float t10 = w2.z >= 0.0
-        ? (t8 > 0.0 ? (big2 >= t9 ? 1.0 : 0.0) : 1.0)
-        : (t8 < 0.0 ? (big2 <= t9 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t10 - 1.0 : 0.0;
-    UNITPACK_PRECISE float t11 = roundEven((t2 <= 1.0 ? t2 : 1.0) * 255.0);
-    UNITPACK_PRECISE float t12 = estimate + up + down;
-    return uint(t11) | (uint(t12) << 8u);
+    UNITPACK_PRECISE float one_if = big2 >= t6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t7 = t5 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2 <= t6 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t8 = t5 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t9 = w2.z >= 0.0 ? t7 : t8;
+    UNITPACK_PRECISE float up = estimate < 255.0 ? t9 : 0.0;
+    UNITPACK_PRECISE float t10 = estimate - 1.0 - 127.0;
+    UNITPACK_PRECISE float t11 = t10 * t10 * len2;
+    UNITPACK_PRECISE float one_if3 = big2 >= t11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t12 = t10 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2 <= t11 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t13 = t10 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t14 = (w2.z >= 0.0 ? t12 : t13) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t14 : 0.0;
+    UNITPACK_PRECISE float t15 = roundEven((t2 <= 1.0 ? t2 : 1.0) * 255.0);
+    UNITPACK_PRECISE float t16 = estimate + up + down;
+    return uint(t15) | (uint(t16) << 8u);
 }
 
 // unitpack_spherical_lut16p_matched_precise_texel: lookup texel.
@@ -195,10 +191,11 @@ uint unitpack_spherical_lut16p_matched_encode_fast(vec3 v, float fetched) {
 //   candidate's code is the texel's x | y << 8.
 uvec2 unitpack_spherical_lut16p_matched_precise_texel(uint code, uint k) {
     uint t1 = k < 9u ? k : 8u;
-    uint t2 = t1 < 3u ? 0u : (t1 < 6u ? 1u : 2u);
-    uint t3 = ((code >> 8u) & 255u) + t2;
-    uint t4 = (t3 < 1u ? 1u : t3) - 1u;
-    return uvec2(((code & 255u) + (t1 - t2 * 3u) + 255u) & 255u, t4 < 256u ? t4 : 255u);
+    uint t2 = t1 < 6u ? 1u : 2u;
+    uint t3 = t1 < 3u ? 0u : t2;
+    uint t4 = ((code >> 8u) & 255u) + t3;
+    uint t5 = (t4 < 1u ? 1u : t4) - 1u;
+    return uvec2(((code & 255u) + (t1 - t3 * 3u) + 255u) & 255u, t5 < 256u ? t5 : 255u);
 }
 
 // unitpack_spherical_lut16p_matched_encode: precise encoder.
@@ -234,374 +231,369 @@ uint unitpack_spherical_lut16p_matched_encode(
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     bvec3 t1 = lessThan(w2, vec3(0.0));
     UNITPACK_PRECISE vec3 t2 = floor(abs(w2) * 4096.0);
-    uvec3 t3 = uvec3(t2);
-    uvec3 t4 = 0u - t3;
-    uvec3 afix = uvec3(t1.x ? t4.x : t3.x, t1.y ? t4.y : t3.y, t1.z ? t4.z : t3.z);
-    uint t5 = code & 65535u;
-    UNITPACK_PRECISE vec3 t6 = mix(vec3(0.0), s4, greaterThanEqual(s4, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t7 = roundEven(mix(vec3(1.0), t6, lessThanEqual(t6, vec3(1.0))) * 255.0);
-    uvec3 t8 = uvec3(t7);
-    uvec3 t9 = t8 + t8 - 255u;
-    uvec3 cross = afix.yzx * t9.zxy - afix.zxy * t9.yzx;
-    bvec3 t10 = lessThan(cross, uvec3(2147483648u));
-    uvec3 t11 = 0u - cross;
-    uvec3 t12 = uvec3(t10.x ? cross.x : t11.x, t10.y ? cross.y : t11.y, t10.z ? cross.z : t11.z);
-    uint limb1 = t12.x >> 12u;
-    uint limb0 = t12.x & 4095u;
+    uvec3 t2_u = uvec3(t2);
+    uvec3 t3 = 0u - t2_u;
+    uvec3 afix = uvec3(t1.x ? t3.x : t2_u.x, t1.y ? t3.y : t2_u.y, t1.z ? t3.z : t2_u.z);
+    uint t4 = code & 65535u;
+    UNITPACK_PRECISE vec3 t5 = mix(vec3(0.0), s4, greaterThanEqual(s4, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t6 = roundEven(mix(vec3(1.0), t5, lessThanEqual(t5, vec3(1.0))) * 255.0);
+    uvec3 t6_u = uvec3(t6);
+    uvec3 t7 = t6_u + t6_u - 255u;
+    uvec3 cross = afix.yzx * t7.zxy - afix.zxy * t7.yzx;
+    bvec3 t8 = lessThan(cross, uvec3(2147483648u));
+    uvec3 t9 = 0u - cross;
+    uvec3 t10 = uvec3(t8.x ? cross.x : t9.x, t8.y ? cross.y : t9.y, t8.z ? cross.z : t9.z);
+    uint limb1 = t10.x >> 12u;
+    uint limb0 = t10.x & 4095u;
     uint cross2 = limb1 * limb0;
     uint hi = 0u + limb1 * limb1 + (cross2 >> 11u);
     uint lo = 0u + limb0 * limb0 + ((cross2 << 13u) & 16777215u);
-    uint limb1_2 = t12.y >> 12u;
-    uint limb0_2 = t12.y & 4095u;
+    uint limb1_2 = t10.y >> 12u;
+    uint limb0_2 = t10.y & 4095u;
     uint cross3 = limb1_2 * limb0_2;
     uint hi2 = hi + limb1_2 * limb1_2 + (cross3 >> 11u);
     uint lo2 = lo + limb0_2 * limb0_2 + ((cross3 << 13u) & 16777215u);
-    uint limb1_3 = t12.z >> 12u;
-    uint limb0_3 = t12.z & 4095u;
+    uint limb1_3 = t10.z >> 12u;
+    uint limb0_3 = t10.z & 4095u;
     uint cross4 = limb1_3 * limb0_3;
     uint hi3 = hi2 + limb1_3 * limb1_3 + (cross4 >> 11u);
     uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross4 << 13u) & 16777215u);
     uint hi4 = hi3 + (lo3 >> 24u);
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float e = float(hi4) * 16777216.0 + float(lo4);
-    UNITPACK_PRECISE float n = float(t9.x * t9.x + t9.y * t9.y + t9.z * t9.z);
-    uint t13 = ((code >> 8u) & 255u) + 0u;
-    uint t14 = (t13 < 1u ? 1u : t13) - 1u;
-    UNITPACK_PRECISE vec3 t15 = mix(vec3(0.0), s0, greaterThanEqual(s0, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t16 = roundEven(
-        mix(vec3(1.0), t15, lessThanEqual(t15, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n = float(t7.x * t7.x + t7.y * t7.y + t7.z * t7.z);
+    uint t11 = ((code >> 8u) & 255u) + 0u;
+    uint t12 = (t11 < 1u ? 1u : t11) - 1u;
+    uint t13 = (((code & 255u) + 0u + 255u) & 255u) | ((t12 < 256u ? t12 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t14 = mix(vec3(0.0), s0, greaterThanEqual(s0, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t15 = roundEven(
+        mix(vec3(1.0), t14, lessThanEqual(t14, vec3(1.0))) * 255.0
     );
-    uvec3 t17 = uvec3(t16);
-    uvec3 t18 = t17 + t17 - 255u;
-    uvec3 cross5 = afix.yzx * t18.zxy - afix.zxy * t18.yzx;
-    bvec3 t19 = lessThan(cross5, uvec3(2147483648u));
-    uvec3 t20 = 0u - cross5;
-    uvec3 t21 = uvec3(t19.x ? cross5.x : t20.x, t19.y ? cross5.y : t20.y, t19.z ? cross5.z : t20.z);
-    uint limb1_4 = t21.x >> 12u;
-    uint limb0_4 = t21.x & 4095u;
+    uvec3 t15_u = uvec3(t15);
+    uvec3 t16 = t15_u + t15_u - 255u;
+    uvec3 cross5 = afix.yzx * t16.zxy - afix.zxy * t16.yzx;
+    bvec3 t17 = lessThan(cross5, uvec3(2147483648u));
+    uvec3 t18 = 0u - cross5;
+    uvec3 t19 = uvec3(t17.x ? cross5.x : t18.x, t17.y ? cross5.y : t18.y, t17.z ? cross5.z : t18.z);
+    uint limb1_4 = t19.x >> 12u;
+    uint limb0_4 = t19.x & 4095u;
     uint cross6 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
-    uint limb1_5 = t21.y >> 12u;
-    uint limb0_5 = t21.y & 4095u;
+    uint limb1_5 = t19.y >> 12u;
+    uint limb0_5 = t19.y & 4095u;
     uint cross7 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
-    uint limb1_6 = t21.z >> 12u;
-    uint limb0_6 = t21.z & 4095u;
+    uint limb1_6 = t19.z >> 12u;
+    uint limb0_6 = t19.z & 4095u;
     uint cross8 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float e2 = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float n2 = float(t18.x * t18.x + t18.y * t18.y + t18.z * t18.z);
-    UNITPACK_PRECISE float t22 = e2 * n;
-    UNITPACK_PRECISE float t23 = e * n2;
-    bool t24 = t22 < t23;
-    uint best = t24 ? (((code & 255u) + 0u + 255u) & 255u) | ((t14 < 256u ? t14 : 255u) << 8u) : t5;
-    UNITPACK_PRECISE float best_e = t24 ? e2 : e;
-    UNITPACK_PRECISE float best_n = t24 ? n2 : n;
-    uint t25 = ((code >> 8u) & 255u) + 0u;
-    uint t26 = (t25 < 1u ? 1u : t25) - 1u;
-    UNITPACK_PRECISE vec3 t27 = mix(vec3(0.0), s1, greaterThanEqual(s1, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t28 = roundEven(
-        mix(vec3(1.0), t27, lessThanEqual(t27, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n2 = float(t16.x * t16.x + t16.y * t16.y + t16.z * t16.z);
+    UNITPACK_PRECISE float t20 = e2 * n;
+    UNITPACK_PRECISE float t21 = e * n2;
+    bool t22 = t20 < t21;
+    uint best = t22 ? t13 : t4;
+    UNITPACK_PRECISE float best_e = t22 ? e2 : e;
+    UNITPACK_PRECISE float best_n = t22 ? n2 : n;
+    uint t23 = ((code >> 8u) & 255u) + 0u;
+    uint t24 = (t23 < 1u ? 1u : t23) - 1u;
+    uint t25 = (((code & 255u) + 1u + 255u) & 255u) | ((t24 < 256u ? t24 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t26 = mix(vec3(0.0), s1, greaterThanEqual(s1, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t27 = roundEven(
+        mix(vec3(1.0), t26, lessThanEqual(t26, vec3(1.0))) * 255.0
     );
-    uvec3 t29 = uvec3(t28);
-    uvec3 t30 = t29 + t29 - 255u;
-    uvec3 cross9 = afix.yzx * t30.zxy - afix.zxy * t30.yzx;
-    bvec3 t31 = lessThan(cross9, uvec3(2147483648u));
-    uvec3 t32 = 0u - cross9;
-    uvec3 t33 = uvec3(t31.x ? cross9.x : t32.x, t31.y ? cross9.y : t32.y, t31.z ? cross9.z : t32.z);
-    uint limb1_7 = t33.x >> 12u;
-    uint limb0_7 = t33.x & 4095u;
+    uvec3 t27_u = uvec3(t27);
+    uvec3 t28 = t27_u + t27_u - 255u;
+    uvec3 cross9 = afix.yzx * t28.zxy - afix.zxy * t28.yzx;
+    bvec3 t29 = lessThan(cross9, uvec3(2147483648u));
+    uvec3 t30 = 0u - cross9;
+    uvec3 t31 = uvec3(t29.x ? cross9.x : t30.x, t29.y ? cross9.y : t30.y, t29.z ? cross9.z : t30.z);
+    uint limb1_7 = t31.x >> 12u;
+    uint limb0_7 = t31.x & 4095u;
     uint cross10 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
-    uint limb1_8 = t33.y >> 12u;
-    uint limb0_8 = t33.y & 4095u;
+    uint limb1_8 = t31.y >> 12u;
+    uint limb0_8 = t31.y & 4095u;
     uint cross11 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
-    uint limb1_9 = t33.z >> 12u;
-    uint limb0_9 = t33.z & 4095u;
+    uint limb1_9 = t31.z >> 12u;
+    uint limb0_9 = t31.z & 4095u;
     uint cross12 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float e3 = float(hi12) * 16777216.0 + float(lo12);
-    UNITPACK_PRECISE float n3 = float(t30.x * t30.x + t30.y * t30.y + t30.z * t30.z);
-    UNITPACK_PRECISE float t34 = e3 * best_n;
-    UNITPACK_PRECISE float t35 = best_e * n3;
-    bool t36 = t34 < t35;
-    uint best2 = t36
-        ? (((code & 255u) + 1u + 255u) & 255u) | ((t26 < 256u ? t26 : 255u) << 8u)
-        : best;
-    UNITPACK_PRECISE float best_e2 = t36 ? e3 : best_e;
-    UNITPACK_PRECISE float best_n2 = t36 ? n3 : best_n;
-    uint t37 = ((code >> 8u) & 255u) + 0u;
-    uint t38 = (t37 < 1u ? 1u : t37) - 1u;
-    UNITPACK_PRECISE vec3 t39 = mix(vec3(0.0), s2, greaterThanEqual(s2, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t40 = roundEven(
-        mix(vec3(1.0), t39, lessThanEqual(t39, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n3 = float(t28.x * t28.x + t28.y * t28.y + t28.z * t28.z);
+    UNITPACK_PRECISE float t32 = e3 * best_n;
+    UNITPACK_PRECISE float t33 = best_e * n3;
+    bool t34 = t32 < t33;
+    uint best2 = t34 ? t25 : best;
+    UNITPACK_PRECISE float best_e2 = t34 ? e3 : best_e;
+    UNITPACK_PRECISE float best_n2 = t34 ? n3 : best_n;
+    uint t35 = ((code >> 8u) & 255u) + 0u;
+    uint t36 = (t35 < 1u ? 1u : t35) - 1u;
+    uint t37 = (((code & 255u) + 2u + 255u) & 255u) | ((t36 < 256u ? t36 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t38 = mix(vec3(0.0), s2, greaterThanEqual(s2, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t39 = roundEven(
+        mix(vec3(1.0), t38, lessThanEqual(t38, vec3(1.0))) * 255.0
     );
-    uvec3 t41 = uvec3(t40);
-    uvec3 t42 = t41 + t41 - 255u;
-    uvec3 cross13 = afix.yzx * t42.zxy - afix.zxy * t42.yzx;
-    bvec3 t43 = lessThan(cross13, uvec3(2147483648u));
-    uvec3 t44 = 0u - cross13;
-    uvec3 t45 = uvec3(
-        t43.x ? cross13.x : t44.x,
-        t43.y ? cross13.y : t44.y,
-        t43.z ? cross13.z : t44.z
+    uvec3 t39_u = uvec3(t39);
+    uvec3 t40 = t39_u + t39_u - 255u;
+    uvec3 cross13 = afix.yzx * t40.zxy - afix.zxy * t40.yzx;
+    bvec3 t41 = lessThan(cross13, uvec3(2147483648u));
+    uvec3 t42 = 0u - cross13;
+    uvec3 t43 = uvec3(
+        t41.x ? cross13.x : t42.x,
+        t41.y ? cross13.y : t42.y,
+        t41.z ? cross13.z : t42.z
     );
-    uint limb1_10 = t45.x >> 12u;
-    uint limb0_10 = t45.x & 4095u;
+    uint limb1_10 = t43.x >> 12u;
+    uint limb0_10 = t43.x & 4095u;
     uint cross14 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
-    uint limb1_11 = t45.y >> 12u;
-    uint limb0_11 = t45.y & 4095u;
+    uint limb1_11 = t43.y >> 12u;
+    uint limb0_11 = t43.y & 4095u;
     uint cross15 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
-    uint limb1_12 = t45.z >> 12u;
-    uint limb0_12 = t45.z & 4095u;
+    uint limb1_12 = t43.z >> 12u;
+    uint limb0_12 = t43.z & 4095u;
     uint cross16 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float e4 = float(hi16) * 16777216.0 + float(lo16);
-    UNITPACK_PRECISE float n4 = float(t42.x * t42.x + t42.y * t42.y + t42.z * t42.z);
-    UNITPACK_PRECISE float t46 = e4 * best_n2;
-    UNITPACK_PRECISE float t47 = best_e2 * n4;
-    bool t48 = t46 < t47;
-    uint best3 = t48
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t38 < 256u ? t38 : 255u) << 8u)
-        : best2;
-    UNITPACK_PRECISE float best_e3 = t48 ? e4 : best_e2;
-    UNITPACK_PRECISE float best_n3 = t48 ? n4 : best_n2;
-    uint t49 = ((code >> 8u) & 255u) + 1u;
-    uint t50 = (t49 < 1u ? 1u : t49) - 1u;
-    UNITPACK_PRECISE vec3 t51 = mix(vec3(0.0), s3, greaterThanEqual(s3, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t52 = roundEven(
-        mix(vec3(1.0), t51, lessThanEqual(t51, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n4 = float(t40.x * t40.x + t40.y * t40.y + t40.z * t40.z);
+    UNITPACK_PRECISE float t44 = e4 * best_n2;
+    UNITPACK_PRECISE float t45 = best_e2 * n4;
+    bool t46 = t44 < t45;
+    uint best3 = t46 ? t37 : best2;
+    UNITPACK_PRECISE float best_e3 = t46 ? e4 : best_e2;
+    UNITPACK_PRECISE float best_n3 = t46 ? n4 : best_n2;
+    uint t47 = ((code >> 8u) & 255u) + 1u;
+    uint t48 = (t47 < 1u ? 1u : t47) - 1u;
+    uint t49 = (((code & 255u) + 0u + 255u) & 255u) | ((t48 < 256u ? t48 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t50 = mix(vec3(0.0), s3, greaterThanEqual(s3, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t51 = roundEven(
+        mix(vec3(1.0), t50, lessThanEqual(t50, vec3(1.0))) * 255.0
     );
-    uvec3 t53 = uvec3(t52);
-    uvec3 t54 = t53 + t53 - 255u;
-    uvec3 cross17 = afix.yzx * t54.zxy - afix.zxy * t54.yzx;
-    bvec3 t55 = lessThan(cross17, uvec3(2147483648u));
-    uvec3 t56 = 0u - cross17;
-    uvec3 t57 = uvec3(
-        t55.x ? cross17.x : t56.x,
-        t55.y ? cross17.y : t56.y,
-        t55.z ? cross17.z : t56.z
+    uvec3 t51_u = uvec3(t51);
+    uvec3 t52 = t51_u + t51_u - 255u;
+    uvec3 cross17 = afix.yzx * t52.zxy - afix.zxy * t52.yzx;
+    bvec3 t53 = lessThan(cross17, uvec3(2147483648u));
+    uvec3 t54 = 0u - cross17;
+    uvec3 t55 = uvec3(
+        t53.x ? cross17.x : t54.x,
+        t53.y ? cross17.y : t54.y,
+        t53.z ? cross17.z : t54.z
     );
-    uint limb1_13 = t57.x >> 12u;
-    uint limb0_13 = t57.x & 4095u;
+    uint limb1_13 = t55.x >> 12u;
+    uint limb0_13 = t55.x & 4095u;
     uint cross18 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
-    uint limb1_14 = t57.y >> 12u;
-    uint limb0_14 = t57.y & 4095u;
+    uint limb1_14 = t55.y >> 12u;
+    uint limb0_14 = t55.y & 4095u;
     uint cross19 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
-    uint limb1_15 = t57.z >> 12u;
-    uint limb0_15 = t57.z & 4095u;
+    uint limb1_15 = t55.z >> 12u;
+    uint limb0_15 = t55.z & 4095u;
     uint cross20 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float e5 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE float n5 = float(t54.x * t54.x + t54.y * t54.y + t54.z * t54.z);
-    UNITPACK_PRECISE float t58 = e5 * best_n3;
-    UNITPACK_PRECISE float t59 = best_e3 * n5;
-    bool t60 = t58 < t59;
-    uint best4 = t60
-        ? (((code & 255u) + 0u + 255u) & 255u) | ((t50 < 256u ? t50 : 255u) << 8u)
-        : best3;
-    UNITPACK_PRECISE float best_e4 = t60 ? e5 : best_e3;
-    UNITPACK_PRECISE float best_n4 = t60 ? n5 : best_n3;
-    uint t61 = ((code >> 8u) & 255u) + 1u;
-    uint t62 = (t61 < 1u ? 1u : t61) - 1u;
-    UNITPACK_PRECISE vec3 t63 = mix(vec3(0.0), s5, greaterThanEqual(s5, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t64 = roundEven(
-        mix(vec3(1.0), t63, lessThanEqual(t63, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n5 = float(t52.x * t52.x + t52.y * t52.y + t52.z * t52.z);
+    UNITPACK_PRECISE float t56 = e5 * best_n3;
+    UNITPACK_PRECISE float t57 = best_e3 * n5;
+    bool t58 = t56 < t57;
+    uint best4 = t58 ? t49 : best3;
+    UNITPACK_PRECISE float best_e4 = t58 ? e5 : best_e3;
+    UNITPACK_PRECISE float best_n4 = t58 ? n5 : best_n3;
+    uint t59 = ((code >> 8u) & 255u) + 1u;
+    uint t60 = (t59 < 1u ? 1u : t59) - 1u;
+    uint t61 = (((code & 255u) + 2u + 255u) & 255u) | ((t60 < 256u ? t60 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t62 = mix(vec3(0.0), s5, greaterThanEqual(s5, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t63 = roundEven(
+        mix(vec3(1.0), t62, lessThanEqual(t62, vec3(1.0))) * 255.0
     );
-    uvec3 t65 = uvec3(t64);
-    uvec3 t66 = t65 + t65 - 255u;
-    uvec3 cross21 = afix.yzx * t66.zxy - afix.zxy * t66.yzx;
-    bvec3 t67 = lessThan(cross21, uvec3(2147483648u));
-    uvec3 t68 = 0u - cross21;
-    uvec3 t69 = uvec3(
-        t67.x ? cross21.x : t68.x,
-        t67.y ? cross21.y : t68.y,
-        t67.z ? cross21.z : t68.z
+    uvec3 t63_u = uvec3(t63);
+    uvec3 t64 = t63_u + t63_u - 255u;
+    uvec3 cross21 = afix.yzx * t64.zxy - afix.zxy * t64.yzx;
+    bvec3 t65 = lessThan(cross21, uvec3(2147483648u));
+    uvec3 t66 = 0u - cross21;
+    uvec3 t67 = uvec3(
+        t65.x ? cross21.x : t66.x,
+        t65.y ? cross21.y : t66.y,
+        t65.z ? cross21.z : t66.z
     );
-    uint limb1_16 = t69.x >> 12u;
-    uint limb0_16 = t69.x & 4095u;
+    uint limb1_16 = t67.x >> 12u;
+    uint limb0_16 = t67.x & 4095u;
     uint cross22 = limb1_16 * limb0_16;
     uint hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
     uint lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
-    uint limb1_17 = t69.y >> 12u;
-    uint limb0_17 = t69.y & 4095u;
+    uint limb1_17 = t67.y >> 12u;
+    uint limb0_17 = t67.y & 4095u;
     uint cross23 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
-    uint limb1_18 = t69.z >> 12u;
-    uint limb0_18 = t69.z & 4095u;
+    uint limb1_18 = t67.z >> 12u;
+    uint limb0_18 = t67.z & 4095u;
     uint cross24 = limb1_18 * limb0_18;
     uint hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
     uint lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
     uint hi24 = hi23 + (lo23 >> 24u);
     uint lo24 = lo23 & 16777215u;
     UNITPACK_PRECISE float e6 = float(hi24) * 16777216.0 + float(lo24);
-    UNITPACK_PRECISE float n6 = float(t66.x * t66.x + t66.y * t66.y + t66.z * t66.z);
-    UNITPACK_PRECISE float t70 = e6 * best_n4;
-    UNITPACK_PRECISE float t71 = best_e4 * n6;
-    bool t72 = t70 < t71;
-    uint best5 = t72
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t62 < 256u ? t62 : 255u) << 8u)
-        : best4;
-    UNITPACK_PRECISE float best_e5 = t72 ? e6 : best_e4;
-    UNITPACK_PRECISE float best_n5 = t72 ? n6 : best_n4;
-    uint t73 = ((code >> 8u) & 255u) + 2u;
-    uint t74 = (t73 < 1u ? 1u : t73) - 1u;
-    UNITPACK_PRECISE vec3 t75 = mix(vec3(0.0), s6, greaterThanEqual(s6, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t76 = roundEven(
-        mix(vec3(1.0), t75, lessThanEqual(t75, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n6 = float(t64.x * t64.x + t64.y * t64.y + t64.z * t64.z);
+    UNITPACK_PRECISE float t68 = e6 * best_n4;
+    UNITPACK_PRECISE float t69 = best_e4 * n6;
+    bool t70 = t68 < t69;
+    uint best5 = t70 ? t61 : best4;
+    UNITPACK_PRECISE float best_e5 = t70 ? e6 : best_e4;
+    UNITPACK_PRECISE float best_n5 = t70 ? n6 : best_n4;
+    uint t71 = ((code >> 8u) & 255u) + 2u;
+    uint t72 = (t71 < 1u ? 1u : t71) - 1u;
+    uint t73 = (((code & 255u) + 0u + 255u) & 255u) | ((t72 < 256u ? t72 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t74 = mix(vec3(0.0), s6, greaterThanEqual(s6, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t75 = roundEven(
+        mix(vec3(1.0), t74, lessThanEqual(t74, vec3(1.0))) * 255.0
     );
-    uvec3 t77 = uvec3(t76);
-    uvec3 t78 = t77 + t77 - 255u;
-    uvec3 cross25 = afix.yzx * t78.zxy - afix.zxy * t78.yzx;
-    bvec3 t79 = lessThan(cross25, uvec3(2147483648u));
-    uvec3 t80 = 0u - cross25;
-    uvec3 t81 = uvec3(
-        t79.x ? cross25.x : t80.x,
-        t79.y ? cross25.y : t80.y,
-        t79.z ? cross25.z : t80.z
+    uvec3 t75_u = uvec3(t75);
+    uvec3 t76 = t75_u + t75_u - 255u;
+    uvec3 cross25 = afix.yzx * t76.zxy - afix.zxy * t76.yzx;
+    bvec3 t77 = lessThan(cross25, uvec3(2147483648u));
+    uvec3 t78 = 0u - cross25;
+    uvec3 t79 = uvec3(
+        t77.x ? cross25.x : t78.x,
+        t77.y ? cross25.y : t78.y,
+        t77.z ? cross25.z : t78.z
     );
-    uint limb1_19 = t81.x >> 12u;
-    uint limb0_19 = t81.x & 4095u;
+    uint limb1_19 = t79.x >> 12u;
+    uint limb0_19 = t79.x & 4095u;
     uint cross26 = limb1_19 * limb0_19;
     uint hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
     uint lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
-    uint limb1_20 = t81.y >> 12u;
-    uint limb0_20 = t81.y & 4095u;
+    uint limb1_20 = t79.y >> 12u;
+    uint limb0_20 = t79.y & 4095u;
     uint cross27 = limb1_20 * limb0_20;
     uint hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
     uint lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
-    uint limb1_21 = t81.z >> 12u;
-    uint limb0_21 = t81.z & 4095u;
+    uint limb1_21 = t79.z >> 12u;
+    uint limb0_21 = t79.z & 4095u;
     uint cross28 = limb1_21 * limb0_21;
     uint hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
     uint lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
     uint hi28 = hi27 + (lo27 >> 24u);
     uint lo28 = lo27 & 16777215u;
     UNITPACK_PRECISE float e7 = float(hi28) * 16777216.0 + float(lo28);
-    UNITPACK_PRECISE float n7 = float(t78.x * t78.x + t78.y * t78.y + t78.z * t78.z);
-    UNITPACK_PRECISE float t82 = e7 * best_n5;
-    UNITPACK_PRECISE float t83 = best_e5 * n7;
-    bool t84 = t82 < t83;
-    uint best6 = t84
-        ? (((code & 255u) + 0u + 255u) & 255u) | ((t74 < 256u ? t74 : 255u) << 8u)
-        : best5;
-    UNITPACK_PRECISE float best_e6 = t84 ? e7 : best_e5;
-    UNITPACK_PRECISE float best_n6 = t84 ? n7 : best_n5;
-    uint t85 = ((code >> 8u) & 255u) + 2u;
-    uint t86 = (t85 < 1u ? 1u : t85) - 1u;
-    UNITPACK_PRECISE vec3 t87 = mix(vec3(0.0), s7, greaterThanEqual(s7, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t88 = roundEven(
-        mix(vec3(1.0), t87, lessThanEqual(t87, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n7 = float(t76.x * t76.x + t76.y * t76.y + t76.z * t76.z);
+    UNITPACK_PRECISE float t80 = e7 * best_n5;
+    UNITPACK_PRECISE float t81 = best_e5 * n7;
+    bool t82 = t80 < t81;
+    uint best6 = t82 ? t73 : best5;
+    UNITPACK_PRECISE float best_e6 = t82 ? e7 : best_e5;
+    UNITPACK_PRECISE float best_n6 = t82 ? n7 : best_n5;
+    uint t83 = ((code >> 8u) & 255u) + 2u;
+    uint t84 = (t83 < 1u ? 1u : t83) - 1u;
+    uint t85 = (((code & 255u) + 1u + 255u) & 255u) | ((t84 < 256u ? t84 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t86 = mix(vec3(0.0), s7, greaterThanEqual(s7, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t87 = roundEven(
+        mix(vec3(1.0), t86, lessThanEqual(t86, vec3(1.0))) * 255.0
     );
-    uvec3 t89 = uvec3(t88);
-    uvec3 t90 = t89 + t89 - 255u;
-    uvec3 cross29 = afix.yzx * t90.zxy - afix.zxy * t90.yzx;
-    bvec3 t91 = lessThan(cross29, uvec3(2147483648u));
-    uvec3 t92 = 0u - cross29;
-    uvec3 t93 = uvec3(
-        t91.x ? cross29.x : t92.x,
-        t91.y ? cross29.y : t92.y,
-        t91.z ? cross29.z : t92.z
+    uvec3 t87_u = uvec3(t87);
+    uvec3 t88 = t87_u + t87_u - 255u;
+    uvec3 cross29 = afix.yzx * t88.zxy - afix.zxy * t88.yzx;
+    bvec3 t89 = lessThan(cross29, uvec3(2147483648u));
+    uvec3 t90 = 0u - cross29;
+    uvec3 t91 = uvec3(
+        t89.x ? cross29.x : t90.x,
+        t89.y ? cross29.y : t90.y,
+        t89.z ? cross29.z : t90.z
     );
-    uint limb1_22 = t93.x >> 12u;
-    uint limb0_22 = t93.x & 4095u;
+    uint limb1_22 = t91.x >> 12u;
+    uint limb0_22 = t91.x & 4095u;
     uint cross30 = limb1_22 * limb0_22;
     uint hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
     uint lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
-    uint limb1_23 = t93.y >> 12u;
-    uint limb0_23 = t93.y & 4095u;
+    uint limb1_23 = t91.y >> 12u;
+    uint limb0_23 = t91.y & 4095u;
     uint cross31 = limb1_23 * limb0_23;
     uint hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
     uint lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
-    uint limb1_24 = t93.z >> 12u;
-    uint limb0_24 = t93.z & 4095u;
+    uint limb1_24 = t91.z >> 12u;
+    uint limb0_24 = t91.z & 4095u;
     uint cross32 = limb1_24 * limb0_24;
     uint hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
     uint lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
     uint hi32 = hi31 + (lo31 >> 24u);
     uint lo32 = lo31 & 16777215u;
     UNITPACK_PRECISE float e8 = float(hi32) * 16777216.0 + float(lo32);
-    UNITPACK_PRECISE float n8 = float(t90.x * t90.x + t90.y * t90.y + t90.z * t90.z);
-    UNITPACK_PRECISE float t94 = e8 * best_n6;
-    UNITPACK_PRECISE float t95 = best_e6 * n8;
-    bool t96 = t94 < t95;
-    uint best7 = t96
-        ? (((code & 255u) + 1u + 255u) & 255u) | ((t86 < 256u ? t86 : 255u) << 8u)
-        : best6;
-    UNITPACK_PRECISE float best_e7 = t96 ? e8 : best_e6;
-    UNITPACK_PRECISE float best_n7 = t96 ? n8 : best_n6;
-    uint t97 = ((code >> 8u) & 255u) + 2u;
-    uint t98 = (t97 < 1u ? 1u : t97) - 1u;
-    UNITPACK_PRECISE vec3 t99 = mix(vec3(0.0), s8, greaterThanEqual(s8, vec3(0.0)));
-    UNITPACK_PRECISE vec3 t100 = roundEven(
-        mix(vec3(1.0), t99, lessThanEqual(t99, vec3(1.0))) * 255.0
+    UNITPACK_PRECISE float n8 = float(t88.x * t88.x + t88.y * t88.y + t88.z * t88.z);
+    UNITPACK_PRECISE float t92 = e8 * best_n6;
+    UNITPACK_PRECISE float t93 = best_e6 * n8;
+    bool t94 = t92 < t93;
+    uint best7 = t94 ? t85 : best6;
+    UNITPACK_PRECISE float best_e7 = t94 ? e8 : best_e6;
+    UNITPACK_PRECISE float best_n7 = t94 ? n8 : best_n6;
+    uint t95 = ((code >> 8u) & 255u) + 2u;
+    uint t96 = (t95 < 1u ? 1u : t95) - 1u;
+    uint t97 = (((code & 255u) + 2u + 255u) & 255u) | ((t96 < 256u ? t96 : 255u) << 8u);
+    UNITPACK_PRECISE vec3 t98 = mix(vec3(0.0), s8, greaterThanEqual(s8, vec3(0.0)));
+    UNITPACK_PRECISE vec3 t99 = roundEven(
+        mix(vec3(1.0), t98, lessThanEqual(t98, vec3(1.0))) * 255.0
     );
-    uvec3 t101 = uvec3(t100);
-    uvec3 t102 = t101 + t101 - 255u;
-    uvec3 cross33 = afix.yzx * t102.zxy - afix.zxy * t102.yzx;
-    bvec3 t103 = lessThan(cross33, uvec3(2147483648u));
-    uvec3 t104 = 0u - cross33;
-    uvec3 t105 = uvec3(
-        t103.x ? cross33.x : t104.x,
-        t103.y ? cross33.y : t104.y,
-        t103.z ? cross33.z : t104.z
+    uvec3 t99_u = uvec3(t99);
+    uvec3 t100 = t99_u + t99_u - 255u;
+    uvec3 cross33 = afix.yzx * t100.zxy - afix.zxy * t100.yzx;
+    bvec3 t101 = lessThan(cross33, uvec3(2147483648u));
+    uvec3 t102 = 0u - cross33;
+    uvec3 t103 = uvec3(
+        t101.x ? cross33.x : t102.x,
+        t101.y ? cross33.y : t102.y,
+        t101.z ? cross33.z : t102.z
     );
-    uint limb1_25 = t105.x >> 12u;
-    uint limb0_25 = t105.x & 4095u;
+    uint limb1_25 = t103.x >> 12u;
+    uint limb0_25 = t103.x & 4095u;
     uint cross34 = limb1_25 * limb0_25;
     uint hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
     uint lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
-    uint limb1_26 = t105.y >> 12u;
-    uint limb0_26 = t105.y & 4095u;
+    uint limb1_26 = t103.y >> 12u;
+    uint limb0_26 = t103.y & 4095u;
     uint cross35 = limb1_26 * limb0_26;
     uint hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
     uint lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
-    uint limb1_27 = t105.z >> 12u;
-    uint limb0_27 = t105.z & 4095u;
+    uint limb1_27 = t103.z >> 12u;
+    uint limb0_27 = t103.z & 4095u;
     uint cross36 = limb1_27 * limb0_27;
     uint hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
     uint lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
     uint hi36 = hi35 + (lo35 >> 24u);
     uint lo36 = lo35 & 16777215u;
     UNITPACK_PRECISE float e9 = float(hi36) * 16777216.0 + float(lo36);
-    UNITPACK_PRECISE float n9 = float(t102.x * t102.x + t102.y * t102.y + t102.z * t102.z);
-    UNITPACK_PRECISE float t106 = e9 * best_n7;
-    UNITPACK_PRECISE float t107 = best_e7 * n9;
-    uint best8 = t106 < t107
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t98 < 256u ? t98 : 255u) << 8u)
-        : best7;
-    return ok ? best8 : t5;
+    UNITPACK_PRECISE float n9 = float(t100.x * t100.x + t100.y * t100.y + t100.z * t100.z);
+    UNITPACK_PRECISE float t104 = e9 * best_n7;
+    UNITPACK_PRECISE float t105 = best_e7 * n9;
+    uint best8 = t104 < t105 ? t97 : best7;
+    return ok ? best8 : t4;
 }
 
 // unitpack_spherical_lut16p_matched_encode_float: precise encoder, float form.

@@ -37,24 +37,26 @@ precision highp int;
 vec2 unitpack_spherical_z16_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -95,22 +97,24 @@ float unitpack_spherical_z16_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -123,13 +127,16 @@ vec2 unitpack_spherical_z16_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE float phi = unitpack_spherical_z16_atan2_pi(t3.y, t3.x);
-    UNITPACK_PRECISE vec2 result = (vec2(phi, t3.z) + 1.0) * 0.5;
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t6 = t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE float phi = unitpack_spherical_z16_atan2_pi(t6.y, t6.x);
+    UNITPACK_PRECISE vec2 result = (vec2(phi, t6.z) + 1.0) * 0.5;
     return result;
 }
 
@@ -147,7 +154,8 @@ vec2 unitpack_spherical_z16_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
@@ -172,69 +180,75 @@ vec2 unitpack_spherical_z16_round_codes(vec3 a0) {
     UNITPACK_PRECISE float t2 = hi > 0.0 ? hi : 1.0;
     UNITPACK_PRECISE float big = lo * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo / t2 * 8388608.0);
-    UNITPACK_PRECISE float t3 = (ratio_estimate + 1.0) * t2 <= big
-        ? 1.0
-        : (ratio_estimate * t2 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t3;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t2 <= big ? 1.0 : (ratio * t2 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = ratio_estimate * t2 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step;
+    UNITPACK_PRECISE float step_down2 = ratio * t2 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = (ratio + 1.0) * t2 <= big ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t = ratio + step2;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t4 = t - 8388608.0;
-    UNITPACK_PRECISE float t5 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t4 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
-    UNITPACK_PRECISE float t6 = (ratio_estimate2 + 1.0) * t5 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t5 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t6;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t5 <= big2 ? 1.0 : (ratio2 * t5 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t3 = t - 8388608.0;
+    UNITPACK_PRECISE float t4 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t3 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t3 / t4 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate2 * t4 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate2 + 1.0) * t4 <= big2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step3;
+    UNITPACK_PRECISE float step_down4 = ratio2 * t4 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio2 + 1.0) * t4 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step4;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t7 = roundEven(
+    UNITPACK_PRECISE float t5 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t8 = (roundEven((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t6 = (roundEven((t5 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t9 = (
-        roundEven((roundEven(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
+    UNITPACK_PRECISE float t7 = (
+        roundEven((roundEven(t6) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t10 = (
-        roundEven((roundEven(t9) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+        * z2;
+    UNITPACK_PRECISE float t8 = roundEven(
+        (roundEven(t7 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t11 = z
-        * (roundEven((roundEven(t10) + (-2796203.0)) * z2 * 1.1920929e-7) + 8388608.0)
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float r = roundEven(t11);
+        + 1677722.0;
+    UNITPACK_PRECISE float t9 = roundEven(
+        (roundEven(t8 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t9 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = w2.x < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float angle = w2.y < 0.0 ? -h4 : h4;
-    UNITPACK_PRECISE float t12 = roundEven((angle + 8388608.0) * 1.5199184e-5);
-    UNITPACK_PRECISE float t13 = t12 >= 0.0 ? t12 : 0.0;
+    UNITPACK_PRECISE float t10 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t10 : h;
+    UNITPACK_PRECISE float t11 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t11 : h2;
+    UNITPACK_PRECISE float t12 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = w2.x < 0.0 ? t12 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float angle = w2.y < 0.0 ? neg_h4 : h4;
+    UNITPACK_PRECISE float t13 = roundEven((angle + 8388608.0) * 1.5199184e-5);
+    UNITPACK_PRECISE float t14 = t13 >= 0.0 ? t13 : 0.0;
     UNITPACK_PRECISE float big2_2 = w2.z * w2.z * 16256.25;
-    UNITPACK_PRECISE float t14 = roundEven(w2.z / sqrt(len2) * 127.5 + 127.5);
-    UNITPACK_PRECISE float t15 = t14 >= 0.0 ? t14 : 0.0;
-    UNITPACK_PRECISE float estimate = t15 <= 255.0 ? t15 : 255.0;
-    UNITPACK_PRECISE float t16 = estimate - 127.0;
-    UNITPACK_PRECISE float t17 = t16 * t16 * len2;
-    UNITPACK_PRECISE float t18 = w2.z >= 0.0
-        ? (t16 > 0.0 ? (big2_2 >= t17 ? 1.0 : 0.0) : 1.0)
-        : (t16 < 0.0 ? (big2_2 <= t17 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 255.0 ? t18 : 0.0;
-    UNITPACK_PRECISE float t19 = estimate - 1.0 - 127.0;
-    UNITPACK_PRECISE float t20 = t19 * t19 * len2;
-    UNITPACK_PRECISE float t21 = w2.z >= 0.0
-        ? (t19 > 0.0 ? (big2_2 >= t20 ? 1.0 : 0.0) : 1.0)
-        : (t19 < 0.0 ? (big2_2 <= t20 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t21 - 1.0 : 0.0;
-    UNITPACK_PRECISE vec2 result = vec2(t13 <= 255.0 ? t13 : 255.0, estimate + up + down);
+    UNITPACK_PRECISE float t15 = roundEven(w2.z / sqrt(len2) * 127.5 + 127.5);
+    UNITPACK_PRECISE float t16 = t15 >= 0.0 ? t15 : 0.0;
+    UNITPACK_PRECISE float estimate = t16 <= 255.0 ? t16 : 255.0;
+    UNITPACK_PRECISE float t17 = estimate - 127.0;
+    UNITPACK_PRECISE float t18 = t17 * t17 * len2;
+    UNITPACK_PRECISE float one_if = big2_2 >= t18 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t19 = t17 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2_2 <= t18 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t20 = t17 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t21 = w2.z >= 0.0 ? t19 : t20;
+    UNITPACK_PRECISE float up = estimate < 255.0 ? t21 : 0.0;
+    UNITPACK_PRECISE float t22 = estimate - 1.0 - 127.0;
+    UNITPACK_PRECISE float t23 = t22 * t22 * len2;
+    UNITPACK_PRECISE float one_if3 = big2_2 >= t23 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t24 = t22 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2_2 <= t23 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t25 = t22 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t26 = (w2.z >= 0.0 ? t24 : t25) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t26 : 0.0;
+    UNITPACK_PRECISE vec2 result = vec2(t14 <= 255.0 ? t14 : 255.0, estimate + up + down);
     return result;
 }
 

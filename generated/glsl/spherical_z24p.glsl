@@ -38,24 +38,26 @@ precision highp int;
 vec2 unitpack_spherical_z24p_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -100,15 +102,16 @@ vec2 unitpack_spherical_z24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -132,391 +135,396 @@ vec2 unitpack_spherical_z24p_encode_codes(vec3 v) {
     bool y_major = abs_w2_y > abs_w2_x;
     UNITPACK_PRECISE float hi5 = y_major ? abs_w2_y : abs_w2_x;
     UNITPACK_PRECISE float lo5 = y_major ? abs_w2_x : abs_w2_y;
-    UNITPACK_PRECISE float t4 = hi5 > 0.0 ? hi5 : 1.0;
+    UNITPACK_PRECISE float t1 = hi5 > 0.0 ? hi5 : 1.0;
     UNITPACK_PRECISE float big = lo5 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo5 / t4 * 8388608.0);
-    UNITPACK_PRECISE float t5 = (ratio_estimate + 1.0) * t4 <= big
-        ? 1.0
-        : (ratio_estimate * t4 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t5;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t4 <= big ? 1.0 : (ratio * t4 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo5 / t1 * 8388608.0);
+    UNITPACK_PRECISE float step_down = ratio_estimate * t1 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step;
+    UNITPACK_PRECISE float step_down2 = ratio * t1 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t = ratio + step2;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t6 = t - 8388608.0;
-    UNITPACK_PRECISE float t7 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t6 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
-    UNITPACK_PRECISE float t8 = (ratio_estimate2 + 1.0) * t7 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t7 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t8;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t7 <= big2 ? 1.0 : (ratio2 * t7 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t2 = t - 8388608.0;
+    UNITPACK_PRECISE float t3 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t2 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t2 / t3 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate2 * t3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step3;
+    UNITPACK_PRECISE float step_down4 = ratio2 * t3 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step4;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t9 = roundEven(
+    UNITPACK_PRECISE float t4 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t10 = (roundEven((t9 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t5 = (roundEven((t4 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t11 = (
-        roundEven((roundEven(t10) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t12 = (
-        roundEven((roundEven(t11) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t6 = (
+        roundEven((roundEven(t5) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t13 = roundEven(
-        (roundEven(t12 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t7 = roundEven(
+        (roundEven(t6 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r = roundEven(z * t13 * 1.1920929e-7);
+        + 1677722.0;
+    UNITPACK_PRECISE float t8 = roundEven(
+        (roundEven(t7 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    );
+    UNITPACK_PRECISE float r = roundEven(z * (t8 + 8388608.0) * 1.1920929e-7);
     UNITPACK_PRECISE float h = roundEven(r * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = w2.x < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float angle = w2.y < 0.0 ? -h4 : h4;
-    UNITPACK_PRECISE float t14 = floor((angle + 8388608.0) * 0.00024408102);
-    UNITPACK_PRECISE float t15 = t14 >= 0.0 ? t14 : 0.0;
+    UNITPACK_PRECISE float t9 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t9 : h;
+    UNITPACK_PRECISE float t10 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t10 : h2;
+    UNITPACK_PRECISE float t11 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = w2.x < 0.0 ? t11 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float angle = w2.y < 0.0 ? neg_h4 : h4;
+    UNITPACK_PRECISE float t12 = floor((angle + 8388608.0) * 0.00024408102);
+    UNITPACK_PRECISE float t13 = t12 >= 0.0 ? t12 : 0.0;
     UNITPACK_PRECISE float big2_2 = w2.z * w2.z * 4192256.3;
-    UNITPACK_PRECISE float t16 = roundEven(w2.z / sqrt(len2) * 2047.5 + 2047.5);
-    UNITPACK_PRECISE float t17 = t16 >= 0.0 ? t16 : 0.0;
-    UNITPACK_PRECISE float estimate = t17 <= 4095.0 ? t17 : 4095.0;
-    UNITPACK_PRECISE float t18 = estimate - 2046.5;
-    UNITPACK_PRECISE float t19 = t18 * t18 * len2;
-    UNITPACK_PRECISE float t20 = w2.z >= 0.0
-        ? (t18 > 0.0 ? (big2_2 >= t19 ? 1.0 : 0.0) : 1.0)
-        : (t18 < 0.0 ? (big2_2 <= t19 ? 1.0 : 0.0) : 0.0);
+    UNITPACK_PRECISE float t14 = roundEven(w2.z / sqrt(len2) * 2047.5 + 2047.5);
+    UNITPACK_PRECISE float t15 = t14 >= 0.0 ? t14 : 0.0;
+    UNITPACK_PRECISE float estimate = t15 <= 4095.0 ? t15 : 4095.0;
+    UNITPACK_PRECISE float t16 = estimate - 2046.5;
+    UNITPACK_PRECISE float t17 = t16 * t16 * len2;
+    UNITPACK_PRECISE float one_if = big2_2 >= t17 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t18 = t16 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2_2 <= t17 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t19 = t16 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t20 = w2.z >= 0.0 ? t18 : t19;
     UNITPACK_PRECISE float up = estimate < 4095.0 ? t20 : 0.0;
     UNITPACK_PRECISE float t21 = estimate - 1.0 - 2046.5;
     UNITPACK_PRECISE float t22 = t21 * t21 * len2;
-    UNITPACK_PRECISE float t23 = w2.z >= 0.0
-        ? (t21 > 0.0 ? (big2_2 >= t22 ? 1.0 : 0.0) : 1.0)
-        : (t21 < 0.0 ? (big2_2 <= t22 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t23 - 1.0 : 0.0;
-    UNITPACK_PRECISE vec2 base = vec2(t15 <= 4095.0 ? t15 : 4095.0, estimate + up + down);
+    UNITPACK_PRECISE float one_if3 = big2_2 >= t22 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t23 = t21 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2_2 <= t22 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t24 = t21 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t25 = (w2.z >= 0.0 ? t23 : t24) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t25 : 0.0;
+    UNITPACK_PRECISE vec2 base = vec2(t13 <= 4095.0 ? t13 : 4095.0, estimate + up + down);
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t24 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t24 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t24
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down5 = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = root_h1 * root_h1 <= len2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_k = root_k0 + step5;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down6 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_m1 * root_m1 <= len2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root_j = root_j0 + step6;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec3 t25 = floor(w2 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t26 = w2 * 2097152.0;
-    UNITPACK_PRECISE vec3 t27 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t25 * root, t26)),
+    UNITPACK_PRECISE vec3 t26 = floor(w2 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t27 = w2 * 2097152.0;
+    UNITPACK_PRECISE vec3 t28 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t26 * root, t27)),
         vec3(1.0),
-        lessThanEqual((t25 + 1.0) * root, t26)
+        lessThanEqual((t26 + 1.0) * root, t27)
     );
-    UNITPACK_PRECISE vec3 aim = t25 + t27;
+    UNITPACK_PRECISE vec3 aim = t26 + t28;
     UNITPACK_PRECISE vec2 cand = mix(vec2(4095.0), base, lessThanEqual(base, vec2(4095.0)));
     UNITPACK_PRECISE float z3 = floor((cand.y * 2.0 - 4095.0) * 512.12506);
-    UNITPACK_PRECISE float t28 = 2097152.0 - roundEven(z3 * z3 * 4.7683716e-7);
-    UNITPACK_PRECISE float t29 = (t28 >= 0.0 ? t28 : 0.0) * 2097152.0;
-    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t29));
+    UNITPACK_PRECISE float t29 = 2097152.0 - roundEven(z3 * z3 * 4.7683716e-7);
+    UNITPACK_PRECISE float t30 = (t29 >= 0.0 ? t29 : 0.0) * 2097152.0;
+    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t30));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t30 = root_next * root_next <= t29
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t29 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t30;
+    UNITPACK_PRECISE float step_down7 = root_estimate2 * root_estimate2 > t30 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = root_next * root_next <= t30 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step7;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t31 = root_next2 * root_next2 <= t29
-        ? 1.0
-        : (root_step * root_step > t29 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r2 = root_step + t31;
-    UNITPACK_PRECISE float t32 = floor((cand.x * 2.0 - 4095.0) * 4097.0005);
-    UNITPACK_PRECISE float abs_t32 = abs(t32);
-    bool back = abs_t32 > 8388608.0;
-    UNITPACK_PRECISE float b = back ? 16777216.0 - abs_t32 : abs_t32;
+    UNITPACK_PRECISE float step_down8 = root_step * root_step > t30 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next2 * root_next2 <= t30 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float r2 = root_step + step8;
+    UNITPACK_PRECISE float t31 = floor((cand.x * 2.0 - 4095.0) * 4097.0005);
+    UNITPACK_PRECISE float abs_t31 = abs(t31);
+    bool back = abs_t31 > 8388608.0;
+    UNITPACK_PRECISE float t32 = 16777216.0 - abs_t31;
+    UNITPACK_PRECISE float b = back ? t32 : abs_t31;
     bool swap = b > 4194304.0;
-    UNITPACK_PRECISE float u = roundEven((swap ? 8388608.0 - b : b) * 3.1415927);
+    UNITPACK_PRECISE float t33 = 8388608.0 - b;
+    UNITPACK_PRECISE float u = roundEven((swap ? t33 : b) * 3.1415927);
     UNITPACK_PRECISE float u2 = roundEven(u * u * 5.9604645e-8);
-    UNITPACK_PRECISE float t33 = roundEven(
-        (roundEven(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8
-    )
-        + (-3329.0);
     UNITPACK_PRECISE float t34 = roundEven(
-        (roundEven(t33 * u2 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8
-    )
-        + (-2796203.0);
-    UNITPACK_PRECISE float s = roundEven(
-        u * (roundEven(t34 * u2 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8
+        (roundEven(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t35 = roundEven(
-        (roundEven(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t36 = roundEven(
-        (roundEven(t35 * u2 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8
-    )
-        + 699051.0;
+    UNITPACK_PRECISE float t35 = (roundEven((t34 + (-3329.0)) * u2 * 5.9604645e-8) + 139810.0)
+        * u2
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t36 = u
+        * (roundEven((roundEven(t35) + (-2796203.0)) * u2 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s = roundEven(t36 * 5.9604645e-8);
     UNITPACK_PRECISE float t37 = roundEven(
-        (roundEven(t36 * u2 * 5.9604645e-8) + (-8388608.0)) * u2 * 5.9604645e-8
+        (roundEven(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float co = t37 + 16777216.0;
-    UNITPACK_PRECISE vec2 t38 = swap ? vec2(s, co) : vec2(co, s);
-    UNITPACK_PRECISE vec3 t39 = vec3(
-        roundEven(mix(t38, -t38, bvec2(back, t32 < 0.0)) * r2 * 5.9604645e-8),
-        z3
+    UNITPACK_PRECISE float t38 = (roundEven((t37 + 416.0) * u2 * 5.9604645e-8) + (-23302.0))
+        * u2
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t39 = (
+        roundEven((roundEven(t38) + 699051.0) * u2 * 5.9604645e-8) + (-8388608.0)
     )
-        - aim;
-    UNITPACK_PRECISE vec3 abs_t39 = abs(t39);
-    uvec3 t40 = uvec3(abs_t39);
-    uint limb1_4 = t40.x >> 12u;
-    uint limb0_4 = t40.x & 4095u;
+        * u2;
+    UNITPACK_PRECISE float co = roundEven(t39 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE vec2 t40 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t41 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t42 = swap ? t40 : t41;
+    UNITPACK_PRECISE vec2 t43 = roundEven(
+        mix(t42, -t42, bvec2(back, t31 < 0.0)) * r2 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE vec3 offset = vec3(t43, z3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi6 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo6 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t40.y >> 12u;
-    uint limb0_5 = t40.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi7 = hi6 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo7 = lo6 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t40.z >> 12u;
-    uint limb0_6 = t40.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi8 = hi7 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo8 = lo7 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi9 = hi8 + (lo8 >> 24u);
     uint lo9 = lo8 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi9) * 16777216.0 + float(lo9);
-    UNITPACK_PRECISE float t41 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t42 = vec2(t41, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(4095.0), t42, lessThanEqual(t42, vec2(4095.0)));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t44 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(4095.0), t44, lessThanEqual(t44, vec2(4095.0)));
+    bool t45 = base.y <= 4095.0;
     UNITPACK_PRECISE float z4 = floor((cand2.y * 2.0 - 4095.0) * 512.12506);
-    UNITPACK_PRECISE float t43 = 2097152.0 - roundEven(z4 * z4 * 4.7683716e-7);
-    UNITPACK_PRECISE float t44 = (t43 >= 0.0 ? t43 : 0.0) * 2097152.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t44));
+    UNITPACK_PRECISE float t46 = 2097152.0 - roundEven(z4 * z4 * 4.7683716e-7);
+    UNITPACK_PRECISE float t47 = (t46 >= 0.0 ? t46 : 0.0) * 2097152.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t47));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t45 = root_next3 * root_next3 <= t44
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t44 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t45;
+    UNITPACK_PRECISE float step_down9 = root_estimate3 * root_estimate3 > t47 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next3 * root_next3 <= t47 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step9;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t46 = root_next4 * root_next4 <= t44
-        ? 1.0
-        : (root_step2 * root_step2 > t44 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r3 = root_step2 + t46;
-    UNITPACK_PRECISE float t47 = floor((cand2.x * 2.0 - 4095.0) * 4097.0005);
-    UNITPACK_PRECISE float abs_t47 = abs(t47);
-    bool back2 = abs_t47 > 8388608.0;
-    UNITPACK_PRECISE float b2 = back2 ? 16777216.0 - abs_t47 : abs_t47;
+    UNITPACK_PRECISE float step_down10 = root_step2 * root_step2 > t47 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = root_next4 * root_next4 <= t47 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float r3 = root_step2 + step10;
+    UNITPACK_PRECISE float t48 = floor((cand2.x * 2.0 - 4095.0) * 4097.0005);
+    UNITPACK_PRECISE float abs_t48 = abs(t48);
+    bool back2 = abs_t48 > 8388608.0;
+    UNITPACK_PRECISE float t49 = 16777216.0 - abs_t48;
+    UNITPACK_PRECISE float b2 = back2 ? t49 : abs_t48;
     bool swap2 = b2 > 4194304.0;
-    UNITPACK_PRECISE float u3 = roundEven((swap2 ? 8388608.0 - b2 : b2) * 3.1415927);
+    UNITPACK_PRECISE float t50 = 8388608.0 - b2;
+    UNITPACK_PRECISE float u3 = roundEven((swap2 ? t50 : b2) * 3.1415927);
     UNITPACK_PRECISE float u2_2 = roundEven(u3 * u3 * 5.9604645e-8);
-    UNITPACK_PRECISE float t48 = roundEven(
-        (roundEven(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t49 = roundEven(
-        (roundEven(t48 * u2_2 * 5.9604645e-8) + 139810.0) * u2_2 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float t50 = u3
-        * (roundEven((t49 + (-2796203.0)) * u2_2 * 5.9604645e-8) + 16777216.0)
-        * 5.9604645e-8;
-    UNITPACK_PRECISE float s2 = roundEven(t50);
     UNITPACK_PRECISE float t51 = roundEven(
-        (roundEven(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t52 = roundEven(
-        (roundEven(t51 * u2_2 * 5.9604645e-8) + (-23302.0)) * u2_2 * 5.9604645e-8
+        (roundEven(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t53 = (roundEven((t52 + 699051.0) * u2_2 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE float t52 = (roundEven((t51 + (-3329.0)) * u2_2 * 5.9604645e-8) + 139810.0)
         * u2_2
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co2 = roundEven(t53) + 16777216.0;
-    UNITPACK_PRECISE vec2 t54 = swap2 ? vec2(s2, co2) : vec2(co2, s2);
-    UNITPACK_PRECISE vec3 t55 = vec3(
-        roundEven(mix(t54, -t54, bvec2(back2, t47 < 0.0)) * r3 * 5.9604645e-8),
-        z4
+    UNITPACK_PRECISE float t53 = u3
+        * (roundEven((roundEven(t52) + (-2796203.0)) * u2_2 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s2 = roundEven(t53 * 5.9604645e-8);
+    UNITPACK_PRECISE float t54 = roundEven(
+        (roundEven(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE float t55 = (roundEven((t54 + 416.0) * u2_2 * 5.9604645e-8) + (-23302.0))
+        * u2_2
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t56 = (
+        roundEven((roundEven(t55) + 699051.0) * u2_2 * 5.9604645e-8) + (-8388608.0)
     )
-        - aim;
-    UNITPACK_PRECISE vec3 abs_t55 = abs(t55);
-    uvec3 t56 = uvec3(abs_t55);
-    uint limb1_7 = t56.x >> 12u;
-    uint limb0_7 = t56.x & 4095u;
+        * u2_2;
+    UNITPACK_PRECISE float co2 = roundEven(t56 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE vec2 t57 = vec2(s2, co2);
+    UNITPACK_PRECISE vec2 t58 = vec2(co2, s2);
+    UNITPACK_PRECISE vec2 t59 = swap2 ? t57 : t58;
+    UNITPACK_PRECISE vec2 t60 = roundEven(
+        mix(t59, -t59, bvec2(back2, t48 < 0.0)) * r3 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE vec3 offset2 = vec3(t60, z4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi10 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo10 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t56.y >> 12u;
-    uint limb0_8 = t56.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t56.z >> 12u;
-    uint limb0_9 = t56.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi12 = hi11 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo12 = lo11 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi13 = hi12 + (lo12 >> 24u);
     uint lo13 = lo12 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi13) * 16777216.0 + float(lo13);
-    bool t57 = t41 <= 4095.0 && base.y <= 4095.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t57 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t57 ? dist2 : dist;
-    UNITPACK_PRECISE float t58 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t59 = vec2(base.x, t58);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(4095.0), t59, lessThanEqual(t59, vec2(4095.0)));
+    bool t61 = dist2 < dist;
+    bool t62 = s_up <= 4095.0 && t45 && t61;
+    UNITPACK_PRECISE vec2 best = t62 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t62 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t63 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(4095.0), t63, lessThanEqual(t63, vec2(4095.0)));
+    bool t64 = t_up <= 4095.0;
     UNITPACK_PRECISE float z5 = floor((cand3.y * 2.0 - 4095.0) * 512.12506);
-    UNITPACK_PRECISE float t60 = 2097152.0 - roundEven(z5 * z5 * 4.7683716e-7);
-    UNITPACK_PRECISE float t61 = (t60 >= 0.0 ? t60 : 0.0) * 2097152.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t61));
+    UNITPACK_PRECISE float t65 = 2097152.0 - roundEven(z5 * z5 * 4.7683716e-7);
+    UNITPACK_PRECISE float t66 = (t65 >= 0.0 ? t65 : 0.0) * 2097152.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t66));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t62 = root_next5 * root_next5 <= t61
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t61 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t62;
+    UNITPACK_PRECISE float step_down11 = root_estimate4 * root_estimate4 > t66 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = root_next5 * root_next5 <= t66 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step11;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t63 = root_next6 * root_next6 <= t61
-        ? 1.0
-        : (root_step3 * root_step3 > t61 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r4 = root_step3 + t63;
-    UNITPACK_PRECISE float t64 = floor((cand3.x * 2.0 - 4095.0) * 4097.0005);
-    UNITPACK_PRECISE float abs_t64 = abs(t64);
-    bool back3 = abs_t64 > 8388608.0;
-    UNITPACK_PRECISE float b3 = back3 ? 16777216.0 - abs_t64 : abs_t64;
+    UNITPACK_PRECISE float step_down12 = root_step3 * root_step3 > t66 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = root_next6 * root_next6 <= t66 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float r4 = root_step3 + step12;
+    UNITPACK_PRECISE float t67 = floor((cand3.x * 2.0 - 4095.0) * 4097.0005);
+    UNITPACK_PRECISE float abs_t67 = abs(t67);
+    bool back3 = abs_t67 > 8388608.0;
+    UNITPACK_PRECISE float t68 = 16777216.0 - abs_t67;
+    UNITPACK_PRECISE float b3 = back3 ? t68 : abs_t67;
     bool swap3 = b3 > 4194304.0;
-    UNITPACK_PRECISE float u4 = roundEven((swap3 ? 8388608.0 - b3 : b3) * 3.1415927);
+    UNITPACK_PRECISE float t69 = 8388608.0 - b3;
+    UNITPACK_PRECISE float u4 = roundEven((swap3 ? t69 : b3) * 3.1415927);
     UNITPACK_PRECISE float u2_3 = roundEven(u4 * u4 * 5.9604645e-8);
-    UNITPACK_PRECISE float t65 = roundEven(
+    UNITPACK_PRECISE float t70 = roundEven(
         (roundEven(-0.0 * u2_3 * 5.9604645e-8) + 46.0) * u2_3 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t66 = roundEven(
-        (roundEven(t65 * u2_3 * 5.9604645e-8) + 139810.0) * u2_3 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t67 = u4
-        * (roundEven((t66 + (-2796203.0)) * u2_3 * 5.9604645e-8) + 16777216.0)
-        * 5.9604645e-8;
-    UNITPACK_PRECISE float s3 = roundEven(t67);
-    UNITPACK_PRECISE float t68 = roundEven(
-        (roundEven(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t69 = roundEven(
-        (roundEven(t68 * u2_3 * 5.9604645e-8) + (-23302.0)) * u2_3 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float t70 = (roundEven((t69 + 699051.0) * u2_3 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE float t71 = (roundEven((t70 + (-3329.0)) * u2_3 * 5.9604645e-8) + 139810.0)
         * u2_3
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co3 = roundEven(t70) + 16777216.0;
-    UNITPACK_PRECISE vec2 t71 = swap3 ? vec2(s3, co3) : vec2(co3, s3);
-    UNITPACK_PRECISE vec3 t72 = vec3(
-        roundEven(mix(t71, -t71, bvec2(back3, t64 < 0.0)) * r4 * 5.9604645e-8),
-        z5
+    UNITPACK_PRECISE float t72 = u4
+        * (roundEven((roundEven(t71) + (-2796203.0)) * u2_3 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s3 = roundEven(t72 * 5.9604645e-8);
+    UNITPACK_PRECISE float t73 = roundEven(
+        (roundEven(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE float t74 = (roundEven((t73 + 416.0) * u2_3 * 5.9604645e-8) + (-23302.0))
+        * u2_3
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t75 = (
+        roundEven((roundEven(t74) + 699051.0) * u2_3 * 5.9604645e-8) + (-8388608.0)
     )
-        - aim;
-    UNITPACK_PRECISE vec3 abs_t72 = abs(t72);
-    uvec3 t73 = uvec3(abs_t72);
-    uint limb1_10 = t73.x >> 12u;
-    uint limb0_10 = t73.x & 4095u;
+        * u2_3;
+    UNITPACK_PRECISE float co3 = roundEven(t75 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE vec2 t76 = vec2(s3, co3);
+    UNITPACK_PRECISE vec2 t77 = vec2(co3, s3);
+    UNITPACK_PRECISE vec2 t78 = swap3 ? t76 : t77;
+    UNITPACK_PRECISE vec2 t79 = roundEven(
+        mix(t78, -t78, bvec2(back3, t67 < 0.0)) * r4 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE vec3 offset3 = vec3(t79, z5) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi14 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo14 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t73.y >> 12u;
-    uint limb0_11 = t73.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t73.z >> 12u;
-    uint limb0_12 = t73.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi16 = hi15 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo16 = lo15 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi17 = hi16 + (lo16 >> 24u);
     uint lo17 = lo16 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi17) * 16777216.0 + float(lo17);
-    bool t74 = base.x <= 4095.0 && t58 <= 4095.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t74 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t74 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t75 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(4095.0), t75, lessThanEqual(t75, vec2(4095.0)));
+    bool t80 = dist3 < best_d;
+    bool t81 = base.x <= 4095.0 && t64 && t80;
+    UNITPACK_PRECISE vec2 best2 = t81 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t81 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t82 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(4095.0), t82, lessThanEqual(t82, vec2(4095.0)));
+    bool t83 = t_up <= 4095.0;
     UNITPACK_PRECISE float z6 = floor((cand4.y * 2.0 - 4095.0) * 512.12506);
-    UNITPACK_PRECISE float t76 = 2097152.0 - roundEven(z6 * z6 * 4.7683716e-7);
-    UNITPACK_PRECISE float t77 = (t76 >= 0.0 ? t76 : 0.0) * 2097152.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t77));
+    UNITPACK_PRECISE float t84 = 2097152.0 - roundEven(z6 * z6 * 4.7683716e-7);
+    UNITPACK_PRECISE float t85 = (t84 >= 0.0 ? t84 : 0.0) * 2097152.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t85));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t78 = root_next7 * root_next7 <= t77
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t77 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t78;
+    UNITPACK_PRECISE float step_down13 = root_estimate5 * root_estimate5 > t85 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step13 = root_next7 * root_next7 <= t85 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step13;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t79 = root_next8 * root_next8 <= t77
-        ? 1.0
-        : (root_step4 * root_step4 > t77 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float r5 = root_step4 + t79;
-    UNITPACK_PRECISE float t80 = floor((cand4.x * 2.0 - 4095.0) * 4097.0005);
-    UNITPACK_PRECISE float abs_t80 = abs(t80);
-    bool back4 = abs_t80 > 8388608.0;
-    UNITPACK_PRECISE float b4 = back4 ? 16777216.0 - abs_t80 : abs_t80;
+    UNITPACK_PRECISE float step_down14 = root_step4 * root_step4 > t85 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step14 = root_next8 * root_next8 <= t85 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float r5 = root_step4 + step14;
+    UNITPACK_PRECISE float t86 = floor((cand4.x * 2.0 - 4095.0) * 4097.0005);
+    UNITPACK_PRECISE float abs_t86 = abs(t86);
+    bool back4 = abs_t86 > 8388608.0;
+    UNITPACK_PRECISE float t87 = 16777216.0 - abs_t86;
+    UNITPACK_PRECISE float b4 = back4 ? t87 : abs_t86;
     bool swap4 = b4 > 4194304.0;
-    UNITPACK_PRECISE float u5 = roundEven((swap4 ? 8388608.0 - b4 : b4) * 3.1415927);
+    UNITPACK_PRECISE float t88 = 8388608.0 - b4;
+    UNITPACK_PRECISE float u5 = roundEven((swap4 ? t88 : b4) * 3.1415927);
     UNITPACK_PRECISE float u2_4 = roundEven(u5 * u5 * 5.9604645e-8);
-    UNITPACK_PRECISE float t81 = roundEven(
+    UNITPACK_PRECISE float t89 = roundEven(
         (roundEven(-0.0 * u2_4 * 5.9604645e-8) + 46.0) * u2_4 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE float t82 = roundEven(
-        (roundEven(t81 * u2_4 * 5.9604645e-8) + 139810.0) * u2_4 * 5.9604645e-8
     );
-    UNITPACK_PRECISE float t83 = u5
-        * (roundEven((t82 + (-2796203.0)) * u2_4 * 5.9604645e-8) + 16777216.0)
-        * 5.9604645e-8;
-    UNITPACK_PRECISE float s4 = roundEven(t83);
-    UNITPACK_PRECISE float t84 = roundEven(
-        (roundEven(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE float t85 = roundEven(
-        (roundEven(t84 * u2_4 * 5.9604645e-8) + (-23302.0)) * u2_4 * 5.9604645e-8
-    );
-    UNITPACK_PRECISE float t86 = (roundEven((t85 + 699051.0) * u2_4 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE float t90 = (roundEven((t89 + (-3329.0)) * u2_4 * 5.9604645e-8) + 139810.0)
         * u2_4
         * 5.9604645e-8;
-    UNITPACK_PRECISE float co4 = roundEven(t86) + 16777216.0;
-    UNITPACK_PRECISE vec2 t87 = swap4 ? vec2(s4, co4) : vec2(co4, s4);
-    UNITPACK_PRECISE vec3 t88 = vec3(
-        roundEven(mix(t87, -t87, bvec2(back4, t80 < 0.0)) * r5 * 5.9604645e-8),
-        z6
+    UNITPACK_PRECISE float t91 = u5
+        * (roundEven((roundEven(t90) + (-2796203.0)) * u2_4 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE float s4 = roundEven(t91 * 5.9604645e-8);
+    UNITPACK_PRECISE float t92 = roundEven(
+        (roundEven(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE float t93 = (roundEven((t92 + 416.0) * u2_4 * 5.9604645e-8) + (-23302.0))
+        * u2_4
+        * 5.9604645e-8;
+    UNITPACK_PRECISE float t94 = (
+        roundEven((roundEven(t93) + 699051.0) * u2_4 * 5.9604645e-8) + (-8388608.0)
     )
-        - aim;
-    UNITPACK_PRECISE vec3 abs_t88 = abs(t88);
-    uvec3 t89 = uvec3(abs_t88);
-    uint limb1_13 = t89.x >> 12u;
-    uint limb0_13 = t89.x & 4095u;
+        * u2_4;
+    UNITPACK_PRECISE float co4 = roundEven(t94 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE vec2 t95 = vec2(s4, co4);
+    UNITPACK_PRECISE vec2 t96 = vec2(co4, s4);
+    UNITPACK_PRECISE vec2 t97 = swap4 ? t95 : t96;
+    UNITPACK_PRECISE vec2 t98 = roundEven(
+        mix(t97, -t97, bvec2(back4, t86 < 0.0)) * r5 * 5.9604645e-8
+    );
+    UNITPACK_PRECISE vec3 offset4 = vec3(t98, z6) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi18 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo18 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t89.y >> 12u;
-    uint limb0_14 = t89.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t89.z >> 12u;
-    uint limb0_15 = t89.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi20 = hi19 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo20 = lo19 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi21 = hi20 + (lo20 >> 24u);
     uint lo21 = lo20 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi21) * 16777216.0 + float(lo21);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 4095.0
-        && base.y + 1.0 <= 4095.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t99 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 4095.0 && t83 && t99 ? cand4 : best2;
     return best3;
 }
 

@@ -47,7 +47,8 @@ vec3 unitpack_stereo16p_decode_float(vec3 params) {
     UNITPACK_PRECISE float q = p_sq.x + p_sq.y;
     UNITPACK_PRECISE float d = q + 1.0;
     UNITPACK_PRECISE float t1 = (1.0 - q) / d;
-    UNITPACK_PRECISE vec3 result = vec3((p + p) / d, params.z > 0.5 ? -t1 : t1);
+    UNITPACK_PRECISE float neg_t1 = -t1;
+    UNITPACK_PRECISE vec3 result = vec3((p + p) / d, params.z > 0.5 ? neg_t1 : t1);
     return result;
 }
 
@@ -82,15 +83,16 @@ vec3 unitpack_stereo16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -110,44 +112,47 @@ vec3 unitpack_stereo16p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = root + abs(w2.z);
-    UNITPACK_PRECISE float t6 = w2.z < 0.0 ? 1.0 : 0.0;
-    UNITPACK_PRECISE vec2 t7 = w2.xy * vec2(127.5, 63.5);
-    UNITPACK_PRECISE vec2 t8 = roundEven(t7 / t5 + vec2(127.5, 63.5));
-    UNITPACK_PRECISE vec2 t9 = mix(vec2(0.0), t8, greaterThanEqual(t8, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t10 = mix(vec2(255.0, 127.0), t9, lessThanEqual(t9, vec2(255.0, 127.0)));
-    UNITPACK_PRECISE vec2 t11 = mix(
+    UNITPACK_PRECISE float t1 = root + abs(w2.z);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE vec2 t2 = w2.xy * vec2(127.5, 63.5);
+    UNITPACK_PRECISE vec2 t3 = roundEven(t2 / t1 + vec2(127.5, 63.5));
+    UNITPACK_PRECISE vec2 t4 = mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(255.0, 127.0), t4, lessThanEqual(t4, vec2(255.0, 127.0)));
+    UNITPACK_PRECISE vec2 t6 = t5
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - vec2(126.5, 62.5)) * t1)),
+            lessThan(t5, vec2(255.0, 127.0))
+        );
+    UNITPACK_PRECISE vec2 t7 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, (t10 - vec2(126.5, 62.5)) * t5)),
-        lessThan(t10, vec2(255.0, 127.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 1.0 - vec2(126.5, 62.5)) * t1)) - 1.0,
+        greaterThan(t5, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t12 = mix(
-        vec2(0.0),
-        vec2(1.0),
-        greaterThanEqual(t7, (t10 - 1.0 - vec2(126.5, 62.5)) * t5)
-    );
-    UNITPACK_PRECISE vec2 base = t10 + t11 + mix(vec2(0.0), t12 - 1.0, greaterThan(t10, vec2(0.0)));
-    UNITPACK_PRECISE vec3 t13 = floor(w2 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t14 = w2 * 2097152.0;
-    UNITPACK_PRECISE vec3 t15 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t13 * root, t14)),
+    UNITPACK_PRECISE vec2 base = t6 + t7;
+    UNITPACK_PRECISE vec3 t8 = floor(w2 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t9 = w2 * 2097152.0;
+    UNITPACK_PRECISE vec3 t10 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t8 * root, t9)),
         vec3(1.0),
-        lessThanEqual((t13 + 1.0) * root, t14)
+        lessThanEqual((t8 + 1.0) * root, t9)
     );
-    UNITPACK_PRECISE vec3 aim = t13 + t15;
+    UNITPACK_PRECISE vec3 aim = t8 + t10;
     UNITPACK_PRECISE vec2 cand = mix(
         vec2(255.0, 127.0),
         base,
@@ -156,107 +161,165 @@ vec3 unitpack_stereo16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec2 p = floor((cand * 2.0 - vec2(255.0, 127.0)) * vec2(8224.126, 16513.008));
     UNITPACK_PRECISE float q = roundEven(p.x * p.x * 4.7683716e-7)
         + roundEven(p.y * p.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t16 = 2097152.0 + q;
-    UNITPACK_PRECISE vec2 t17 = p + p;
-    UNITPACK_PRECISE vec2 t18 = floor(t17 / t16 * 2097152.0);
-    UNITPACK_PRECISE vec2 t19 = t17 * 2097152.0;
-    UNITPACK_PRECISE vec2 t20 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t18 * t16, t19)),
+    UNITPACK_PRECISE float t11 = 2097152.0 + q;
+    UNITPACK_PRECISE vec2 t12 = p + p;
+    UNITPACK_PRECISE vec2 t13 = floor(t12 / t11 * 2097152.0);
+    UNITPACK_PRECISE vec2 t14 = t12 * 2097152.0;
+    UNITPACK_PRECISE vec2 t15 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t13 * t11, t14)),
         vec2(1.0),
-        lessThanEqual((t18 + 1.0) * t16, t19)
+        lessThanEqual((t13 + 1.0) * t11, t14)
     );
-    UNITPACK_PRECISE float t21 = 2097152.0 - q;
-    UNITPACK_PRECISE float big = t21 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(t21 / t16 * 2097152.0);
-    UNITPACK_PRECISE float t22 = (ratio_estimate + 1.0) * t16 <= big
-        ? 1.0
-        : (ratio_estimate * t16 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t22;
-    UNITPACK_PRECISE vec3 t23 = abs(vec3(t18 + t20, t6 > 0.5 ? -ratio : ratio) - aim);
-    uvec3 t24 = uvec3(t23);
-    uint limb1_4 = t24.x >> 12u;
-    uint limb0_4 = t24.x & 4095u;
+    UNITPACK_PRECISE float t16 = 2097152.0 - q;
+    UNITPACK_PRECISE float big = t16 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate = floor(t16 / t11 * 2097152.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t11 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t11 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float neg_ratio = -ratio;
+    UNITPACK_PRECISE vec3 offset = vec3(t13 + t15, one_if > 0.5 ? neg_ratio : ratio) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t24.y >> 12u;
-    uint limb0_5 = t24.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t24.z >> 12u;
-    uint limb0_6 = t24.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t25 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t26 = vec2(t25, base.y);
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t17 = vec2(s_up, base.y);
     UNITPACK_PRECISE vec2 cand2 = mix(
         vec2(255.0, 127.0),
-        t26,
-        lessThanEqual(t26, vec2(255.0, 127.0))
+        t17,
+        lessThanEqual(t17, vec2(255.0, 127.0))
     );
+    bool t18 = base.y <= 127.0;
     UNITPACK_PRECISE vec2 p2 = floor(
         (cand2 * 2.0 - vec2(255.0, 127.0)) * vec2(8224.126, 16513.008)
     );
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t27 = 2097152.0 + q2;
-    UNITPACK_PRECISE vec2 t28 = p2 + p2;
-    UNITPACK_PRECISE vec2 t29 = floor(t28 / t27 * 2097152.0);
-    UNITPACK_PRECISE vec2 t30 = t28 * 2097152.0;
-    UNITPACK_PRECISE vec2 t31 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t29 * t27, t30)),
+    UNITPACK_PRECISE float t19 = 2097152.0 + q2;
+    UNITPACK_PRECISE vec2 t20 = p2 + p2;
+    UNITPACK_PRECISE vec2 t21 = floor(t20 / t19 * 2097152.0);
+    UNITPACK_PRECISE vec2 t22 = t20 * 2097152.0;
+    UNITPACK_PRECISE vec2 t23 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t21 * t19, t22)),
         vec2(1.0),
-        lessThanEqual((t29 + 1.0) * t27, t30)
+        lessThanEqual((t21 + 1.0) * t19, t22)
     );
-    UNITPACK_PRECISE float t32 = 2097152.0 - q2;
-    UNITPACK_PRECISE float big2 = t32 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t32 / t27 * 2097152.0);
-    UNITPACK_PRECISE float t33 = (ratio_estimate2 + 1.0) * t27 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t27 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t33;
-    UNITPACK_PRECISE vec3 t34 = abs(vec3(t29 + t31, t6 > 0.5 ? -ratio2 : ratio2) - aim);
-    uvec3 t35 = uvec3(t34);
-    uint limb1_7 = t35.x >> 12u;
-    uint limb0_7 = t35.x & 4095u;
+    UNITPACK_PRECISE float t24 = 2097152.0 - q2;
+    UNITPACK_PRECISE float big2 = t24 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t24 / t19 * 2097152.0);
+    UNITPACK_PRECISE float step_down4 = ratio_estimate2 * t19 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio_estimate2 + 1.0) * t19 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step4;
+    UNITPACK_PRECISE float neg_ratio2 = -ratio2;
+    UNITPACK_PRECISE vec3 offset2 = vec3(t21 + t23, one_if > 0.5 ? neg_ratio2 : ratio2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t35.y >> 12u;
-    uint limb0_8 = t35.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t35.z >> 12u;
-    uint limb0_9 = t35.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t36 = t25 <= 255.0 && base.y <= 127.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t36 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t36 ? dist2 : dist;
-    UNITPACK_PRECISE float t37 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t38 = vec2(base.x, t37);
+    bool t25 = dist2 < dist;
+    bool t26 = s_up <= 255.0 && t18 && t25;
+    UNITPACK_PRECISE vec2 best = t26 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t26 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t27 = vec2(base.x, t_up);
     UNITPACK_PRECISE vec2 cand3 = mix(
         vec2(255.0, 127.0),
-        t38,
-        lessThanEqual(t38, vec2(255.0, 127.0))
+        t27,
+        lessThanEqual(t27, vec2(255.0, 127.0))
     );
+    bool t28 = t_up <= 127.0;
     UNITPACK_PRECISE vec2 p3 = floor(
         (cand3 * 2.0 - vec2(255.0, 127.0)) * vec2(8224.126, 16513.008)
     );
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t39 = 2097152.0 + q3;
-    UNITPACK_PRECISE vec2 t40 = p3 + p3;
+    UNITPACK_PRECISE float t29 = 2097152.0 + q3;
+    UNITPACK_PRECISE vec2 t30 = p3 + p3;
+    UNITPACK_PRECISE vec2 t31 = floor(t30 / t29 * 2097152.0);
+    UNITPACK_PRECISE vec2 t32 = t30 * 2097152.0;
+    UNITPACK_PRECISE vec2 t33 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t31 * t29, t32)),
+        vec2(1.0),
+        lessThanEqual((t31 + 1.0) * t29, t32)
+    );
+    UNITPACK_PRECISE float t34 = 2097152.0 - q3;
+    UNITPACK_PRECISE float big3 = t34 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate3 = floor(t34 / t29 * 2097152.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate3 * t29 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate3 + 1.0) * t29 <= big3 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step5;
+    UNITPACK_PRECISE float neg_ratio3 = -ratio3;
+    UNITPACK_PRECISE vec3 offset3 = vec3(t31 + t33, one_if > 0.5 ? neg_ratio3 : ratio3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
+    uint cross10 = limb1_10 * limb0_10;
+    uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
+    uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
+    uint cross11 = limb1_11 * limb0_11;
+    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
+    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
+    uint cross12 = limb1_12 * limb0_12;
+    uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
+    uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint hi16 = hi15 + (lo15 >> 24u);
+    uint lo16 = lo15 & 16777215u;
+    UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
+    bool t35 = dist3 < best_d;
+    bool t36 = base.x <= 255.0 && t28 && t35;
+    UNITPACK_PRECISE vec2 best2 = t36 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t36 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t37 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(
+        vec2(255.0, 127.0),
+        t37,
+        lessThanEqual(t37, vec2(255.0, 127.0))
+    );
+    bool t38 = t_up <= 127.0;
+    UNITPACK_PRECISE vec2 p4 = floor(
+        (cand4 * 2.0 - vec2(255.0, 127.0)) * vec2(8224.126, 16513.008)
+    );
+    UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
+        + roundEven(p4.y * p4.y * 4.7683716e-7);
+    UNITPACK_PRECISE float t39 = 2097152.0 + q4;
+    UNITPACK_PRECISE vec2 t40 = p4 + p4;
     UNITPACK_PRECISE vec2 t41 = floor(t40 / t39 * 2097152.0);
     UNITPACK_PRECISE vec2 t42 = t40 * 2097152.0;
     UNITPACK_PRECISE vec2 t43 = mix(
@@ -264,87 +327,37 @@ vec3 unitpack_stereo16p_encode_codes(vec3 v) {
         vec2(1.0),
         lessThanEqual((t41 + 1.0) * t39, t42)
     );
-    UNITPACK_PRECISE float t44 = 2097152.0 - q3;
-    UNITPACK_PRECISE float big3 = t44 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate3 = floor(t44 / t39 * 2097152.0);
-    UNITPACK_PRECISE float t45 = (ratio_estimate3 + 1.0) * t39 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t39 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t45;
-    UNITPACK_PRECISE vec3 t46 = abs(vec3(t41 + t43, t6 > 0.5 ? -ratio3 : ratio3) - aim);
-    uvec3 t47 = uvec3(t46);
-    uint limb1_10 = t47.x >> 12u;
-    uint limb0_10 = t47.x & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t47.y >> 12u;
-    uint limb0_11 = t47.y & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t47.z >> 12u;
-    uint limb0_12 = t47.z & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint hi16 = hi15 + (lo15 >> 24u);
-    uint lo16 = lo15 & 16777215u;
-    UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t48 = base.x <= 255.0 && t37 <= 127.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t48 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t48 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t49 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(
-        vec2(255.0, 127.0),
-        t49,
-        lessThanEqual(t49, vec2(255.0, 127.0))
-    );
-    UNITPACK_PRECISE vec2 p4 = floor(
-        (cand4 * 2.0 - vec2(255.0, 127.0)) * vec2(8224.126, 16513.008)
-    );
-    UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
-        + roundEven(p4.y * p4.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t50 = 2097152.0 + q4;
-    UNITPACK_PRECISE vec2 t51 = p4 + p4;
-    UNITPACK_PRECISE vec2 t52 = floor(t51 / t50 * 2097152.0);
-    UNITPACK_PRECISE vec2 t53 = t51 * 2097152.0;
-    UNITPACK_PRECISE vec2 t54 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t52 * t50, t53)),
-        vec2(1.0),
-        lessThanEqual((t52 + 1.0) * t50, t53)
-    );
-    UNITPACK_PRECISE float t55 = 2097152.0 - q4;
-    UNITPACK_PRECISE float big4 = t55 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate4 = floor(t55 / t50 * 2097152.0);
-    UNITPACK_PRECISE float t56 = (ratio_estimate4 + 1.0) * t50 <= big4
-        ? 1.0
-        : (ratio_estimate4 * t50 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t56;
-    UNITPACK_PRECISE vec3 t57 = abs(vec3(t52 + t54, t6 > 0.5 ? -ratio4 : ratio4) - aim);
-    uvec3 t58 = uvec3(t57);
-    uint limb1_13 = t58.x >> 12u;
-    uint limb0_13 = t58.x & 4095u;
+    UNITPACK_PRECISE float t44 = 2097152.0 - q4;
+    UNITPACK_PRECISE float big4 = t44 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate4 = floor(t44 / t39 * 2097152.0);
+    UNITPACK_PRECISE float step_down6 = ratio_estimate4 * t39 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio_estimate4 + 1.0) * t39 <= big4 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step6;
+    UNITPACK_PRECISE float neg_ratio4 = -ratio4;
+    UNITPACK_PRECISE vec3 offset4 = vec3(t41 + t43, one_if > 0.5 ? neg_ratio4 : ratio4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t58.y >> 12u;
-    uint limb0_14 = t58.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t58.z >> 12u;
-    uint limb0_15 = t58.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 255.0 && base.y + 1.0 <= 127.0 && dist4 < best_d2
-        ? cand4
-        : best2;
-    return vec3(best3, t6);
+    bool t45 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 255.0 && t38 && t45 ? cand4 : best2;
+    return vec3(best3, one_if);
 }
 
 // unitpack_stereo16p_encode_float: precise encoder, float form.

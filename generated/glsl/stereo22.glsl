@@ -47,7 +47,8 @@ vec3 unitpack_stereo22_decode_float(vec3 params) {
     UNITPACK_PRECISE float q = p_sq.x + p_sq.y;
     UNITPACK_PRECISE float d = q + 1.0;
     UNITPACK_PRECISE float t1 = (1.0 - q) / d;
-    UNITPACK_PRECISE vec3 result = vec3((p + p) / d, params.z > 0.5 ? -t1 : t1);
+    UNITPACK_PRECISE float neg_t1 = -t1;
+    UNITPACK_PRECISE vec3 result = vec3((p + p) / d, params.z > 0.5 ? neg_t1 : t1);
     return result;
 }
 
@@ -85,15 +86,16 @@ vec3 unitpack_stereo22_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -113,21 +115,24 @@ vec3 unitpack_stereo22_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE vec2 enc = w2.xy / (root + abs(w2.z)) * 0.5 + 0.5;
-    return vec3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return vec3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -144,15 +149,16 @@ vec3 unitpack_stereo22_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -172,45 +178,42 @@ vec3 unitpack_stereo22_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = root + abs(w2.z);
+    UNITPACK_PRECISE float t1 = root + abs(w2.z);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE float t = w2.x * 1023.5;
-    UNITPACK_PRECISE float t6 = roundEven(t / t5 + 1023.5);
+    UNITPACK_PRECISE float t2 = roundEven(t / t1 + 1023.5);
+    UNITPACK_PRECISE float t3 = t2 >= 0.0 ? t2 : 0.0;
+    UNITPACK_PRECISE float estimate = t3 <= 2047.0 ? t3 : 2047.0;
+    UNITPACK_PRECISE float one_if2 = t >= (estimate - 1023.0) * t1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float up = estimate < 2047.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float one_if3 = t >= (estimate - 1.0 - 1023.0) * t1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t4 = one_if3 - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t4 : 0.0;
+    UNITPACK_PRECISE float t5 = w2.y * 511.5;
+    UNITPACK_PRECISE float t6 = roundEven(t5 / t1 + 511.5);
     UNITPACK_PRECISE float t7 = t6 >= 0.0 ? t6 : 0.0;
-    UNITPACK_PRECISE float estimate = t7 <= 2047.0 ? t7 : 2047.0;
-    UNITPACK_PRECISE float up = estimate < 2047.0
-        ? (t >= (estimate - 1023.0) * t5 ? 1.0 : 0.0)
-        : 0.0;
-    UNITPACK_PRECISE float down = estimate > 0.0
-        ? (t >= (estimate - 1.0 - 1023.0) * t5 ? 1.0 : 0.0) - 1.0
-        : 0.0;
-    UNITPACK_PRECISE float t8 = w2.y * 511.5;
-    UNITPACK_PRECISE float t9 = roundEven(t8 / t5 + 511.5);
-    UNITPACK_PRECISE float t10 = t9 >= 0.0 ? t9 : 0.0;
-    UNITPACK_PRECISE float estimate2 = t10 <= 1023.0 ? t10 : 1023.0;
-    UNITPACK_PRECISE float up2 = estimate2 < 1023.0
-        ? (t8 >= (estimate2 - 511.0) * t5 ? 1.0 : 0.0)
-        : 0.0;
-    UNITPACK_PRECISE float down2 = estimate2 > 0.0
-        ? (t8 >= (estimate2 - 1.0 - 511.0) * t5 ? 1.0 : 0.0) - 1.0
-        : 0.0;
-    UNITPACK_PRECISE vec3 result = vec3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
-    );
+    UNITPACK_PRECISE float estimate2 = t7 <= 1023.0 ? t7 : 1023.0;
+    UNITPACK_PRECISE float one_if4 = t5 >= (estimate2 - 511.0) * t1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float up2 = estimate2 < 1023.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float one_if5 = t5 >= (estimate2 - 1.0 - 511.0) * t1 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t8 = one_if5 - 1.0;
+    UNITPACK_PRECISE float down2 = estimate2 > 0.0 ? t8 : 0.0;
+    UNITPACK_PRECISE vec3 result = vec3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

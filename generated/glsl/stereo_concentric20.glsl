@@ -42,15 +42,13 @@ vec2 unitpack_stereo_concentric20_sincos_quarter_pi(float a0) {
     UNITPACK_PRECISE float t1 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = a0 * t1;
+        * c2;
+    UNITPACK_PRECISE float s = a0 * (t1 + 3.1415927);
     UNITPACK_PRECISE float t2 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
+        * c2;
+    UNITPACK_PRECISE float co = (t2 + (-4.934802)) * c2 + 1.0;
     return vec2(s, co);
 }
 
@@ -69,14 +67,15 @@ vec3 unitpack_stereo_concentric20_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 angle = s / (r > 0.0 ? r : 1.0) * 0.25;
     UNITPACK_PRECISE vec2 on_x = unitpack_stereo_concentric20_sincos_quarter_pi(angle.y);
     UNITPACK_PRECISE vec2 on_y = unitpack_stereo_concentric20_sincos_quarter_pi(angle.x);
-    UNITPACK_PRECISE vec2 disk = abs(s.x) >= abs(s.y)
-        ? vec2(s.x, r) * on_x.yx
-        : vec2(r, s.y) * on_y;
+    UNITPACK_PRECISE vec2 t1 = vec2(s.x, r) * on_x.yx;
+    UNITPACK_PRECISE vec2 t2 = vec2(r, s.y) * on_y;
+    UNITPACK_PRECISE vec2 disk = abs(s.x) >= abs(s.y) ? t1 : t2;
     UNITPACK_PRECISE vec2 disk_sq = disk * disk;
     UNITPACK_PRECISE float q = disk_sq.x + disk_sq.y;
     UNITPACK_PRECISE float d = q + 1.0;
-    UNITPACK_PRECISE float t1 = (1.0 - q) / d;
-    UNITPACK_PRECISE vec3 result = vec3((disk + disk) / d, params.z > 0.5 ? -t1 : t1);
+    UNITPACK_PRECISE float t3 = (1.0 - q) / d;
+    UNITPACK_PRECISE float neg_t3 = -t3;
+    UNITPACK_PRECISE vec3 result = vec3((disk + disk) / d, params.z > 0.5 ? neg_t3 : t3);
     return result;
 }
 
@@ -105,22 +104,24 @@ float unitpack_stereo_concentric20_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -142,15 +143,16 @@ vec3 unitpack_stereo_concentric20_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -170,33 +172,39 @@ vec3 unitpack_stereo_concentric20_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec2 t5 = w2.xy * w2.xy;
-    UNITPACK_PRECISE float rho = sqrt(t5.x + t5.y);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE vec2 t1 = w2.xy * w2.xy;
+    UNITPACK_PRECISE float rho = sqrt(t1.x + t1.y);
     UNITPACK_PRECISE float half_r = rho / (root + abs(w2.z)) * 0.5;
     UNITPACK_PRECISE float abs_w2_x = abs(w2.x);
     UNITPACK_PRECISE float abs_w2_y = abs(w2.y);
-    bool t6 = abs_w2_x >= abs_w2_y;
-    UNITPACK_PRECISE float major = t6 ? w2.x : w2.y;
-    UNITPACK_PRECISE float minor = t6 ? w2.y : w2.x;
+    bool t2 = abs_w2_x >= abs_w2_y;
+    UNITPACK_PRECISE float major = t2 ? w2.x : w2.y;
+    UNITPACK_PRECISE float minor = t2 ? w2.y : w2.x;
     UNITPACK_PRECISE float abs_major = abs(major);
     UNITPACK_PRECISE float t = unitpack_stereo_concentric20_atan2_pi(minor, abs_major);
-    UNITPACK_PRECISE float t7 = major < 0.0 ? -half_r : half_r;
-    UNITPACK_PRECISE float t8 = half_r * t * 4.0;
-    UNITPACK_PRECISE vec2 enc = (t6 ? vec2(t7, t8) : vec2(t8, t7)) + 0.5;
-    return vec3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    UNITPACK_PRECISE float neg_half_r = -half_r;
+    UNITPACK_PRECISE float t3 = major < 0.0 ? neg_half_r : half_r;
+    UNITPACK_PRECISE float t4 = half_r * t * 4.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(t3, t4);
+    UNITPACK_PRECISE vec2 t6 = vec2(t4, t3);
+    UNITPACK_PRECISE vec2 enc = (t2 ? t5 : t6) + 0.5;
+    return vec3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -213,15 +221,16 @@ vec3 unitpack_stereo_concentric20_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    UNITPACK_PRECISE float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -241,24 +250,27 @@ vec3 unitpack_stereo_concentric20_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t4 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t4 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t5 = root + abs(w2.z);
-    UNITPACK_PRECISE float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    UNITPACK_PRECISE float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    UNITPACK_PRECISE float t1 = root + abs(w2.z);
+    UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -272,108 +284,118 @@ vec3 unitpack_stereo_concentric20_round_codes(vec3 a0) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     UNITPACK_PRECISE float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    UNITPACK_PRECISE float t5_sq = t5 * t5;
-    UNITPACK_PRECISE float r = sqrt(rho2 / t5_sq);
+    UNITPACK_PRECISE float t1_sq = t1 * t1;
+    UNITPACK_PRECISE float r = sqrt(rho2 / t1_sq);
     UNITPACK_PRECISE float abs_w2_x = abs(w2.x);
     UNITPACK_PRECISE float abs_w2_y = abs(w2.y);
-    bool t8 = abs_w2_x >= abs_w2_y;
-    UNITPACK_PRECISE float major = t8 ? w2.x : w2.y;
-    UNITPACK_PRECISE float minor = t8 ? w2.y : w2.x;
+    bool t2 = abs_w2_x >= abs_w2_y;
+    UNITPACK_PRECISE float major = t2 ? w2.x : w2.y;
+    UNITPACK_PRECISE float minor = t2 ? w2.y : w2.x;
     UNITPACK_PRECISE float abs_major = abs(major);
     UNITPACK_PRECISE float abs_abs_major = abs(abs_major);
     UNITPACK_PRECISE float abs_minor = abs(minor);
     bool y_major = abs_minor > abs_abs_major;
     UNITPACK_PRECISE float hi8 = y_major ? abs_minor : abs_abs_major;
     UNITPACK_PRECISE float lo8 = y_major ? abs_abs_major : abs_minor;
-    UNITPACK_PRECISE float t9 = hi8 > 0.0 ? hi8 : 1.0;
+    UNITPACK_PRECISE float t3 = hi8 > 0.0 ? hi8 : 1.0;
     UNITPACK_PRECISE float big = lo8 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(lo8 / t9 * 8388608.0);
-    UNITPACK_PRECISE float t10 = (ratio_estimate + 1.0) * t9 <= big
-        ? 1.0
-        : (ratio_estimate * t9 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t10;
-    UNITPACK_PRECISE float t = ratio
-        + ((ratio + 1.0) * t9 <= big ? 1.0 : (ratio * t9 > big ? -1.0 : 0.0));
+    UNITPACK_PRECISE float ratio_estimate = floor(lo8 / t3 * 8388608.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t3 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float step_down4 = ratio * t3 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + step4;
     bool far = t > 3474675.0;
-    UNITPACK_PRECISE float t11 = t - 8388608.0;
-    UNITPACK_PRECISE float t12 = t + 8388608.0;
-    UNITPACK_PRECISE float big2 = t11 * 8388608.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t11 / t12 * 8388608.0);
-    UNITPACK_PRECISE float t13 = (ratio_estimate2 + 1.0) * t12 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t12 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t13;
-    UNITPACK_PRECISE float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t12 <= big2 ? 1.0 : (ratio2 * t12 > big2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float t4 = t - 8388608.0;
+    UNITPACK_PRECISE float t5 = t + 8388608.0;
+    UNITPACK_PRECISE float big2 = t4 * 8388608.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t5 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float step_down6 = ratio2 * t5 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
-    UNITPACK_PRECISE float t14 = roundEven(
+    UNITPACK_PRECISE float t6 = roundEven(
         (roundEven(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
     );
-    UNITPACK_PRECISE float t15 = (roundEven((t14 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+    UNITPACK_PRECISE float t7 = (roundEven((t6 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
         * z2
         * 1.1920929e-7;
-    UNITPACK_PRECISE float t16 = (
-        roundEven((roundEven(t15) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
-    )
-        * z2
-        * 1.1920929e-7;
-    UNITPACK_PRECISE float t17 = (
-        roundEven((roundEven(t16) + (-1198373.0)) * z2 * 1.1920929e-7) + 1677722.0
+    UNITPACK_PRECISE float t8 = (
+        roundEven((roundEven(t7) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0
     )
         * z2;
-    UNITPACK_PRECISE float t18 = roundEven(
-        (roundEven(t17 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
+    UNITPACK_PRECISE float t9 = roundEven(
+        (roundEven(t8 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7
     )
-        + 8388608.0;
-    UNITPACK_PRECISE float r2 = roundEven(z * t18 * 1.1920929e-7);
-    UNITPACK_PRECISE float h = roundEven(r2 * 0.31830987);
-    UNITPACK_PRECISE float h2 = far ? h + 2097152.0 : h;
-    UNITPACK_PRECISE float h3 = y_major ? 4194304.0 - h2 : h2;
-    UNITPACK_PRECISE float h4 = abs_major < 0.0 ? 8388608.0 - h3 : h3;
-    UNITPACK_PRECISE float t19 = minor < 0.0 ? -h4 : h4;
-    bool t20 = major < 0.0;
-    UNITPACK_PRECISE float x = t8 ? (t20 ? -511.5 : 511.5) : t19 * 0.0002439022;
-    UNITPACK_PRECISE float t21 = roundEven(r * x + 511.5);
-    UNITPACK_PRECISE float t22 = t21 >= 0.0 ? t21 : 0.0;
-    UNITPACK_PRECISE float estimate = t22 <= 1023.0 ? t22 : 1023.0;
-    UNITPACK_PRECISE float t23 = estimate - 511.0;
-    UNITPACK_PRECISE float t24 = rho2 * (x * x);
-    UNITPACK_PRECISE float t25 = t23 * t23 * t5_sq;
-    UNITPACK_PRECISE float t26 = x >= 0.0
-        ? (t23 > 0.0 ? (t24 >= t25 ? 1.0 : 0.0) : 1.0)
-        : (t23 < 0.0 ? (t24 <= t25 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up = estimate < 1023.0 ? t26 : 0.0;
-    UNITPACK_PRECISE float t27 = estimate - 1.0 - 511.0;
-    UNITPACK_PRECISE float t28 = rho2 * (x * x);
-    UNITPACK_PRECISE float t29 = t27 * t27 * t5_sq;
-    UNITPACK_PRECISE float t30 = x >= 0.0
-        ? (t27 > 0.0 ? (t28 >= t29 ? 1.0 : 0.0) : 1.0)
-        : (t27 < 0.0 ? (t28 <= t29 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t30 - 1.0 : 0.0;
-    UNITPACK_PRECISE float x2 = t8 ? t19 * 0.000121831894 : (t20 ? -255.5 : 255.5);
-    UNITPACK_PRECISE float t31 = roundEven(r * x2 + 255.5);
-    UNITPACK_PRECISE float t32 = t31 >= 0.0 ? t31 : 0.0;
-    UNITPACK_PRECISE float estimate2 = t32 <= 511.0 ? t32 : 511.0;
-    UNITPACK_PRECISE float t33 = estimate2 - 255.0;
-    UNITPACK_PRECISE float t34 = rho2 * (x2 * x2);
-    UNITPACK_PRECISE float t35 = t33 * t33 * t5_sq;
-    UNITPACK_PRECISE float t36 = x2 >= 0.0
-        ? (t33 > 0.0 ? (t34 >= t35 ? 1.0 : 0.0) : 1.0)
-        : (t33 < 0.0 ? (t34 <= t35 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float up2 = estimate2 < 511.0 ? t36 : 0.0;
-    UNITPACK_PRECISE float t37 = estimate2 - 1.0 - 255.0;
-    UNITPACK_PRECISE float t38 = rho2 * (x2 * x2);
-    UNITPACK_PRECISE float t39 = t37 * t37 * t5_sq;
-    UNITPACK_PRECISE float t40 = x2 >= 0.0
-        ? (t37 > 0.0 ? (t38 >= t39 ? 1.0 : 0.0) : 1.0)
-        : (t37 < 0.0 ? (t38 <= t39 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down2 = estimate2 > 0.0 ? t40 - 1.0 : 0.0;
-    UNITPACK_PRECISE vec3 result = vec3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
+        + 1677722.0;
+    UNITPACK_PRECISE float t10 = roundEven(
+        (roundEven(t9 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7
     );
+    UNITPACK_PRECISE float r2 = roundEven(z * (t10 + 8388608.0) * 1.1920929e-7);
+    UNITPACK_PRECISE float h = roundEven(r2 * 0.31830987);
+    UNITPACK_PRECISE float t11 = h + 2097152.0;
+    UNITPACK_PRECISE float h2 = far ? t11 : h;
+    UNITPACK_PRECISE float t12 = 4194304.0 - h2;
+    UNITPACK_PRECISE float h3 = y_major ? t12 : h2;
+    UNITPACK_PRECISE float t13 = 8388608.0 - h3;
+    UNITPACK_PRECISE float h4 = abs_major < 0.0 ? t13 : h3;
+    UNITPACK_PRECISE float neg_h4 = -h4;
+    UNITPACK_PRECISE float t14 = minor < 0.0 ? neg_h4 : h4;
+    bool t15 = major < 0.0;
+    UNITPACK_PRECISE float t16 = t15 ? -511.5 : 511.5;
+    UNITPACK_PRECISE float t17 = t14 * 0.0002439022;
+    UNITPACK_PRECISE float x = t2 ? t16 : t17;
+    UNITPACK_PRECISE float t18 = roundEven(r * x + 511.5);
+    UNITPACK_PRECISE float t19 = t18 >= 0.0 ? t18 : 0.0;
+    UNITPACK_PRECISE float estimate = t19 <= 1023.0 ? t19 : 1023.0;
+    UNITPACK_PRECISE float t20 = estimate - 511.0;
+    UNITPACK_PRECISE float t21 = rho2 * (x * x);
+    UNITPACK_PRECISE float t22 = t20 * t20 * t1_sq;
+    UNITPACK_PRECISE float one_if2 = t21 >= t22 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t23 = t20 > 0.0 ? one_if2 : 1.0;
+    UNITPACK_PRECISE float one_if3 = t21 <= t22 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t24 = t20 < 0.0 ? one_if3 : 0.0;
+    UNITPACK_PRECISE float t25 = x >= 0.0 ? t23 : t24;
+    UNITPACK_PRECISE float up = estimate < 1023.0 ? t25 : 0.0;
+    UNITPACK_PRECISE float t26 = estimate - 1.0 - 511.0;
+    UNITPACK_PRECISE float t27 = rho2 * (x * x);
+    UNITPACK_PRECISE float t28 = t26 * t26 * t1_sq;
+    UNITPACK_PRECISE float one_if4 = t27 >= t28 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t29 = t26 > 0.0 ? one_if4 : 1.0;
+    UNITPACK_PRECISE float one_if5 = t27 <= t28 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t30 = t26 < 0.0 ? one_if5 : 0.0;
+    UNITPACK_PRECISE float t31 = (x >= 0.0 ? t29 : t30) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t31 : 0.0;
+    UNITPACK_PRECISE float t32 = t15 ? -255.5 : 255.5;
+    UNITPACK_PRECISE float t33 = t14 * 0.000121831894;
+    UNITPACK_PRECISE float x2 = t2 ? t33 : t32;
+    UNITPACK_PRECISE float t34 = roundEven(r * x2 + 255.5);
+    UNITPACK_PRECISE float t35 = t34 >= 0.0 ? t34 : 0.0;
+    UNITPACK_PRECISE float estimate2 = t35 <= 511.0 ? t35 : 511.0;
+    UNITPACK_PRECISE float t36 = estimate2 - 255.0;
+    UNITPACK_PRECISE float t37 = rho2 * (x2 * x2);
+    UNITPACK_PRECISE float t38 = t36 * t36 * t1_sq;
+    UNITPACK_PRECISE float one_if6 = t37 >= t38 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t39 = t36 > 0.0 ? one_if6 : 1.0;
+    UNITPACK_PRECISE float one_if7 = t37 <= t38 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t40 = t36 < 0.0 ? one_if7 : 0.0;
+    UNITPACK_PRECISE float t41 = x2 >= 0.0 ? t39 : t40;
+    UNITPACK_PRECISE float up2 = estimate2 < 511.0 ? t41 : 0.0;
+    UNITPACK_PRECISE float t42 = estimate2 - 1.0 - 255.0;
+    UNITPACK_PRECISE float t43 = rho2 * (x2 * x2);
+    UNITPACK_PRECISE float t44 = t42 * t42 * t1_sq;
+    UNITPACK_PRECISE float one_if8 = t43 >= t44 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t45 = t42 > 0.0 ? one_if8 : 1.0;
+    UNITPACK_PRECISE float one_if9 = t43 <= t44 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t46 = t42 < 0.0 ? one_if9 : 0.0;
+    UNITPACK_PRECISE float t47 = (x2 >= 0.0 ? t45 : t46) - 1.0;
+    UNITPACK_PRECISE float down2 = estimate2 > 0.0 ? t47 : 0.0;
+    UNITPACK_PRECISE vec3 result = vec3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

@@ -69,18 +69,16 @@ vec3 unitpack_stereo_scaled16_ieee_decode(uint code) {
 vec2 unitpack_stereo_scaled16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE float len2 = v_sq.x + v_sq.y + v_sq.z;
+    bool t1 = len2 <= 3.4028235e38;
     UNITPACK_PRECISE vec3 n = v / sqrt(len2);
     UNITPACK_PRECISE vec2 enc = n.xy / (n.z + 1.0) * 0.2812623 + 0.5;
-    UNITPACK_PRECISE vec2 t1 = mix(vec2(0.0), enc, greaterThanEqual(enc, vec2(0.0)));
-    return len2 > 0.0 && len2 <= 3.4028235e38
-        ? mix(vec2(1.0), t1, lessThanEqual(t1, vec2(1.0)))
-        : vec2(0.5);
+    UNITPACK_PRECISE vec2 t2 = mix(vec2(0.0), enc, greaterThanEqual(enc, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t3 = mix(vec2(1.0), t2, lessThanEqual(t2, vec2(1.0)));
+    return len2 > 0.0 && t1 ? t3 : vec2(0.5);
 }
 
 // unitpack_stereo_scaled16_ieee_encode: fast encoder.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
-//   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
-//   encodes as (0, 0), the corner nearest it.
+// In: as for unitpack_stereo_scaled16_ieee_encode_float.
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
 //   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C

@@ -69,13 +69,14 @@ vec3 unitpack_unorm3_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 result = (t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0))
-        * 0.5
-        + 0.5;
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 result = (t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0)) * 0.5 + 0.5;
     return result;
 }
 
@@ -93,7 +94,8 @@ vec3 unitpack_unorm3_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
@@ -117,38 +119,28 @@ vec3 unitpack_unorm3_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 t6 = w2 * w2 * 16256.25;
     UNITPACK_PRECISE vec3 t7 = t5 * t5 * len2;
     UNITPACK_PRECISE vec3 t8 = mix(
-        vec3(1.0),
-        mix(vec3(0.0), vec3(1.0), greaterThanEqual(t6, t7)),
-        greaterThan(t5, vec3(0.0))
+        mix(vec3(0.0), mix(vec3(0.0), vec3(1.0), lessThanEqual(t6, t7)), lessThan(t5, vec3(0.0))),
+        mix(
+            vec3(1.0),
+            mix(vec3(0.0), vec3(1.0), greaterThanEqual(t6, t7)),
+            greaterThan(t5, vec3(0.0))
+        ),
+        greaterThanEqual(w2, vec3(0.0))
     );
-    UNITPACK_PRECISE vec3 t9 = mix(
-        vec3(0.0),
-        mix(vec3(0.0), vec3(1.0), lessThanEqual(t6, t7)),
-        lessThan(t5, vec3(0.0))
+    UNITPACK_PRECISE vec3 t9 = t4 - 1.0 - 127.0;
+    UNITPACK_PRECISE vec3 t10 = t9 * t9 * len2;
+    UNITPACK_PRECISE vec3 t11 = mix(
+        mix(vec3(0.0), mix(vec3(0.0), vec3(1.0), lessThanEqual(t6, t10)), lessThan(t9, vec3(0.0))),
+        mix(
+            vec3(1.0),
+            mix(vec3(0.0), vec3(1.0), greaterThanEqual(t6, t10)),
+            greaterThan(t9, vec3(0.0))
+        ),
+        greaterThanEqual(w2, vec3(0.0))
     );
-    UNITPACK_PRECISE vec3 t10 = mix(
-        vec3(0.0),
-        mix(t9, t8, greaterThanEqual(w2, vec3(0.0))),
-        lessThan(t4, vec3(255.0))
-    );
-    UNITPACK_PRECISE vec3 t11 = t4 - 1.0 - 127.0;
-    UNITPACK_PRECISE vec3 t12 = t11 * t11 * len2;
-    UNITPACK_PRECISE vec3 t13 = mix(
-        vec3(1.0),
-        mix(vec3(0.0), vec3(1.0), greaterThanEqual(t6, t12)),
-        greaterThan(t11, vec3(0.0))
-    );
-    UNITPACK_PRECISE vec3 t14 = mix(
-        vec3(0.0),
-        mix(vec3(0.0), vec3(1.0), lessThanEqual(t6, t12)),
-        lessThan(t11, vec3(0.0))
-    );
-    UNITPACK_PRECISE vec3 t15 = mix(
-        vec3(0.0),
-        mix(t14, t13, greaterThanEqual(w2, vec3(0.0))) - 1.0,
-        greaterThan(t4, vec3(0.0))
-    );
-    UNITPACK_PRECISE vec3 result = t4 + t10 + t15;
+    UNITPACK_PRECISE vec3 result = t4
+        + mix(vec3(0.0), t8, lessThan(t4, vec3(255.0)))
+        + mix(vec3(0.0), t11 - 1.0, greaterThan(t4, vec3(0.0)));
     return result;
 }
 

@@ -38,24 +38,26 @@ precision highp int;
 vec2 unitpack_warpedcube24_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -77,9 +79,18 @@ vec3 unitpack_warpedcube24_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t3 = params.z >= 0.5;
     bool t4 = params.z >= 0.21428572;
-    UNITPACK_PRECISE float t5 = t3 ? params.z - 0.5714286 : (t4 ? params.z - 0.2857143 : params.z);
-    UNITPACK_PRECISE float t6 = (t5 >= 0.21428572 ? t5 - 0.2857143 : t5) > 0.071428575 ? -u.z : u.z;
-    return t3 ? vec3(u.xy, t6) : (t4 ? vec3(u.y, t6, u.x) : vec3(t6, u.xy));
+    UNITPACK_PRECISE float t5 = params.z - 0.5714286;
+    UNITPACK_PRECISE float t6 = params.z - 0.2857143;
+    UNITPACK_PRECISE float t7 = t4 ? t6 : params.z;
+    UNITPACK_PRECISE float t8 = t3 ? t5 : t7;
+    UNITPACK_PRECISE float t9 = t8 - 0.2857143;
+    UNITPACK_PRECISE float neg_u_z = -u.z;
+    UNITPACK_PRECISE float t10 = (t8 >= 0.21428572 ? t9 : t8) > 0.071428575 ? neg_u_z : u.z;
+    UNITPACK_PRECISE vec3 t11 = vec3(u.xy, t10);
+    UNITPACK_PRECISE vec3 t12 = vec3(u.y, t10, u.x);
+    UNITPACK_PRECISE vec3 t13 = vec3(t10, u.xy);
+    UNITPACK_PRECISE vec3 t14 = t4 ? t12 : t13;
+    return t3 ? t11 : t14;
 }
 
 // unitpack_warpedcube24_decode: decoder.
@@ -109,22 +120,24 @@ float unitpack_warpedcube24_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float hi2 = hi * up;
     UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    UNITPACK_PRECISE float z = far ? (t - 1.0) / (t + 1.0) : t;
+    UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
+    UNITPACK_PRECISE float z = far ? t1 : t;
     UNITPACK_PRECISE float z2 = z * z;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t2 = (
         ((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308
     )
-        * z2
-        + (-0.09090909);
-    UNITPACK_PRECISE float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
         * z2;
-    UNITPACK_PRECISE float r = z * (t2 + 1.0);
-    UNITPACK_PRECISE float r2 = far ? r + 0.7853982 : r;
-    UNITPACK_PRECISE float r3 = y_major ? 1.5707964 - r2 : r2;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2
+        + 0.2;
+    UNITPACK_PRECISE float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    UNITPACK_PRECISE float t4 = r + 0.7853982;
+    UNITPACK_PRECISE float r2 = far ? t4 : r;
+    UNITPACK_PRECISE float t5 = 1.5707964 - r2;
+    UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
+    UNITPACK_PRECISE float t6 = 3.1415927 - r3;
+    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float neg_r4 = -r4;
+    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -146,22 +159,29 @@ vec3 unitpack_warpedcube24_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    UNITPACK_PRECISE float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    UNITPACK_PRECISE float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
-    UNITPACK_PRECISE float s = t1 ? w2.x : (t2 ? w2.z : w2.y);
-    UNITPACK_PRECISE float t = t1 ? w2.y : (t2 ? w2.x : w2.z);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    UNITPACK_PRECISE float t4 = t3 ? w2.y : w2.x;
+    UNITPACK_PRECISE float major = t2 ? w2.z : t4;
+    UNITPACK_PRECISE float t5 = t3 ? 2.0 : 0.0;
+    UNITPACK_PRECISE float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
+    UNITPACK_PRECISE float t6 = t3 ? w2.z : w2.y;
+    UNITPACK_PRECISE float s = t2 ? w2.x : t6;
+    UNITPACK_PRECISE float t7 = t3 ? w2.x : w2.z;
+    UNITPACK_PRECISE float t = t2 ? w2.y : t7;
     UNITPACK_PRECISE float abs_major = abs(major);
-    UNITPACK_PRECISE vec2 t3 = vec2(
+    UNITPACK_PRECISE vec2 enc = vec2(
         unitpack_warpedcube24_atan2_pi(s, abs_major),
         unitpack_warpedcube24_atan2_pi(t, abs_major)
-    );
-    UNITPACK_PRECISE vec2 enc = t3 * 2.0 + 0.5;
+    )
+        * 2.0
+        + 0.5;
     UNITPACK_PRECISE vec3 result = vec3(enc, face * 0.14285715);
     return result;
 }
@@ -180,85 +200,91 @@ vec3 unitpack_warpedcube24_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    UNITPACK_PRECISE float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    UNITPACK_PRECISE float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    UNITPACK_PRECISE float t4 = t3 ? w2.y : w2.x;
+    UNITPACK_PRECISE float major = t2 ? w2.z : t4;
+    UNITPACK_PRECISE float t5 = t3 ? 2.0 : 0.0;
+    UNITPACK_PRECISE float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     UNITPACK_PRECISE float abs_major = abs(major);
-    UNITPACK_PRECISE vec2 t3 = t1 ? w2.xy : (t2 ? w2.zx : w2.yz);
-    UNITPACK_PRECISE vec2 abs_t3 = abs(t3);
-    UNITPACK_PRECISE vec2 t4 = abs(vec2(abs_major));
-    bvec2 t5 = greaterThan(abs_t3, t4);
-    UNITPACK_PRECISE vec2 t6 = mix(abs_t3, t4, t5);
-    UNITPACK_PRECISE vec2 t7 = mix(t4, abs_t3, t5);
-    UNITPACK_PRECISE vec2 t8 = mix(vec2(1.0), t7, greaterThan(t7, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t9 = floor(t6 / t8 * 8388608.0);
-    UNITPACK_PRECISE vec2 t10 = t6 * 8388608.0;
-    UNITPACK_PRECISE vec2 t11 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t9 * t8, t10)),
+    UNITPACK_PRECISE vec2 t6 = t3 ? w2.zx : w2.yz;
+    UNITPACK_PRECISE vec2 t7 = t2 ? w2.xy : t6;
+    UNITPACK_PRECISE vec2 abs_t7 = abs(t7);
+    UNITPACK_PRECISE vec2 t8 = abs(vec2(abs_major));
+    bvec2 t9 = greaterThan(abs_t7, t8);
+    UNITPACK_PRECISE vec2 t10 = mix(abs_t7, t8, t9);
+    UNITPACK_PRECISE vec2 t11 = mix(t8, abs_t7, t9);
+    UNITPACK_PRECISE vec2 t12 = mix(vec2(1.0), t11, greaterThan(t11, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t13 = floor(t10 / t12 * 8388608.0);
+    UNITPACK_PRECISE vec2 t14 = t10 * 8388608.0;
+    UNITPACK_PRECISE vec2 t15 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t13 * t12, t14)),
         vec2(1.0),
-        lessThanEqual((t9 + 1.0) * t8, t10)
+        lessThanEqual((t13 + 1.0) * t12, t14)
     );
-    UNITPACK_PRECISE vec2 t12 = t9 + t11;
-    UNITPACK_PRECISE vec2 t13 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t12 * t8, t10)),
+    UNITPACK_PRECISE vec2 t16 = t13 + t15;
+    UNITPACK_PRECISE vec2 t17 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t16 * t12, t14)),
         vec2(1.0),
-        lessThanEqual((t12 + 1.0) * t8, t10)
+        lessThanEqual((t16 + 1.0) * t12, t14)
     );
-    UNITPACK_PRECISE vec2 t14 = t12 + t13;
-    bvec2 t15 = greaterThan(t14, vec2(3474675.0));
-    UNITPACK_PRECISE vec2 t16 = t14 - 8388608.0;
-    UNITPACK_PRECISE vec2 t17 = t14 + 8388608.0;
-    UNITPACK_PRECISE vec2 t18 = floor(t16 / t17 * 8388608.0);
-    UNITPACK_PRECISE vec2 t19 = t16 * 8388608.0;
-    UNITPACK_PRECISE vec2 t20 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t18 * t17, t19)),
+    UNITPACK_PRECISE vec2 t18 = t16 + t17;
+    bvec2 t19 = greaterThan(t18, vec2(3474675.0));
+    UNITPACK_PRECISE vec2 t20 = t18 - 8388608.0;
+    UNITPACK_PRECISE vec2 t21 = t18 + 8388608.0;
+    UNITPACK_PRECISE vec2 t22 = floor(t20 / t21 * 8388608.0);
+    UNITPACK_PRECISE vec2 t23 = t20 * 8388608.0;
+    UNITPACK_PRECISE vec2 t24 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t22 * t21, t23)),
         vec2(1.0),
-        lessThanEqual((t18 + 1.0) * t17, t19)
+        lessThanEqual((t22 + 1.0) * t21, t23)
     );
-    UNITPACK_PRECISE vec2 t21 = t18 + t20;
-    UNITPACK_PRECISE vec2 t22 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t21 * t17, t19)),
+    UNITPACK_PRECISE vec2 t25 = t22 + t24;
+    UNITPACK_PRECISE vec2 t26 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t25 * t21, t23)),
         vec2(1.0),
-        lessThanEqual((t21 + 1.0) * t17, t19)
+        lessThanEqual((t25 + 1.0) * t21, t23)
     );
-    UNITPACK_PRECISE vec2 t23 = mix(t14, t21 + t22, t15);
-    UNITPACK_PRECISE vec2 t24 = roundEven(t23 * t23 * 1.1920929e-7);
-    UNITPACK_PRECISE vec2 t25 = roundEven(
-        (roundEven(-441506.0 * t24 * 1.1920929e-7) + 493448.0) * t24 * 1.1920929e-7
+    UNITPACK_PRECISE vec2 t27 = mix(t18, t25 + t26, t19);
+    UNITPACK_PRECISE vec2 t28 = roundEven(t27 * t27 * 1.1920929e-7);
+    UNITPACK_PRECISE vec2 t29 = roundEven(
+        (roundEven(-441506.0 * t28 * 1.1920929e-7) + 493448.0) * t28 * 1.1920929e-7
     );
-    UNITPACK_PRECISE vec2 t26 = (roundEven((t25 + (-559241.0)) * t24 * 1.1920929e-7) + 645278.0)
-        * t24
+    UNITPACK_PRECISE vec2 t30 = (roundEven((t29 + (-559241.0)) * t28 * 1.1920929e-7) + 645278.0)
+        * t28
         * 1.1920929e-7;
-    UNITPACK_PRECISE vec2 t27 = (
-        roundEven((roundEven(t26) + (-762601.0)) * t24 * 1.1920929e-7) + 932068.0
+    UNITPACK_PRECISE vec2 t31 = (
+        roundEven((roundEven(t30) + (-762601.0)) * t28 * 1.1920929e-7) + 932068.0
     )
-        * t24;
-    UNITPACK_PRECISE vec2 t28 = roundEven(
-        (roundEven(t27 * 1.1920929e-7) + (-1198373.0)) * t24 * 1.1920929e-7
+        * t28;
+    UNITPACK_PRECISE vec2 t32 = roundEven(
+        (roundEven(t31 * 1.1920929e-7) + (-1198373.0)) * t28 * 1.1920929e-7
     )
         + 1677722.0;
-    UNITPACK_PRECISE vec2 t29 = roundEven(
-        (roundEven(t28 * t24 * 1.1920929e-7) + (-2796203.0)) * t24 * 1.1920929e-7
+    UNITPACK_PRECISE vec2 t33 = roundEven(
+        (roundEven(t32 * t28 * 1.1920929e-7) + (-2796203.0)) * t28 * 1.1920929e-7
     );
-    UNITPACK_PRECISE vec2 t30 = roundEven(
-        roundEven(t23 * (t29 + 8388608.0) * 1.1920929e-7) * 0.31830987
+    UNITPACK_PRECISE vec2 t34 = roundEven(
+        roundEven(t27 * (t33 + 8388608.0) * 1.1920929e-7) * 0.31830987
     );
-    UNITPACK_PRECISE vec2 t31 = mix(t30, t30 + 2097152.0, t15);
-    UNITPACK_PRECISE vec2 t32 = mix(t31, 4194304.0 - t31, t5);
-    UNITPACK_PRECISE vec2 t33 = mix(t32, 8388608.0 - t32, lessThan(vec2(abs_major), vec2(0.0)));
-    UNITPACK_PRECISE vec2 t34 = (mix(t33, -t33, lessThan(t3, vec2(0.0))) * 4.0 + 8388608.0)
-        * vec2(0.00012201071, 6.097555e-5);
-    UNITPACK_PRECISE vec2 round_t34 = roundEven(t34);
-    UNITPACK_PRECISE vec2 t35 = mix(vec2(0.0), round_t34, greaterThanEqual(round_t34, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t35 = mix(t34, t34 + 2097152.0, t19);
+    UNITPACK_PRECISE vec2 t36 = mix(t35, 4194304.0 - t35, t9);
+    UNITPACK_PRECISE vec2 t37 = mix(t36, 8388608.0 - t36, lessThan(vec2(abs_major), vec2(0.0)));
+    UNITPACK_PRECISE vec2 t38 = roundEven(
+        (mix(t37, -t37, lessThan(t7, vec2(0.0))) * 4.0 + 8388608.0)
+            * vec2(0.00012201071, 6.097555e-5)
+    );
+    UNITPACK_PRECISE vec2 t39 = mix(vec2(0.0), t38, greaterThanEqual(t38, vec2(0.0)));
     UNITPACK_PRECISE vec2 st = mix(
         vec2(2047.0, 1023.0),
-        t35,
-        lessThanEqual(t35, vec2(2047.0, 1023.0))
+        t39,
+        lessThanEqual(t39, vec2(2047.0, 1023.0))
     );
     return vec3(st, face);
 }

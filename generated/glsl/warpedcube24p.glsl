@@ -38,24 +38,26 @@ precision highp int;
 vec2 unitpack_warpedcube24p_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float b = back ? 1.0 - abs_a0 : abs_a0;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
+    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    UNITPACK_PRECISE float c = swap ? 0.5 - b : b;
+    UNITPACK_PRECISE float t2 = 0.5 - b;
+    UNITPACK_PRECISE float c = swap ? t2 : b;
     UNITPACK_PRECISE float c2 = c * c;
-    UNITPACK_PRECISE float t1 = (
+    UNITPACK_PRECISE float t3 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
-        * c2
-        + 3.1415927;
-    UNITPACK_PRECISE float s = c * t1;
-    UNITPACK_PRECISE float t2 = (
+        * c2;
+    UNITPACK_PRECISE float s = c * (t3 + 3.1415927);
+    UNITPACK_PRECISE float t4 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
-        * c2
-        + (-4.934802);
-    UNITPACK_PRECISE float co = t2 * c2 + 1.0;
-    UNITPACK_PRECISE vec2 t3 = swap ? vec2(co, s) : vec2(s, co);
-    UNITPACK_PRECISE vec2 result = mix(t3, -t3, bvec2(a0 < 0.0, back));
+        * c2;
+    UNITPACK_PRECISE float co = (t4 + (-4.934802)) * c2 + 1.0;
+    UNITPACK_PRECISE vec2 t5 = vec2(co, s);
+    UNITPACK_PRECISE vec2 t6 = vec2(s, co);
+    UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
     return result;
 }
 
@@ -77,9 +79,18 @@ vec3 unitpack_warpedcube24p_decode_float(vec3 params) {
     UNITPACK_PRECISE vec3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t3 = params.z >= 0.5;
     bool t4 = params.z >= 0.21428572;
-    UNITPACK_PRECISE float t5 = t3 ? params.z - 0.5714286 : (t4 ? params.z - 0.2857143 : params.z);
-    UNITPACK_PRECISE float t6 = (t5 >= 0.21428572 ? t5 - 0.2857143 : t5) > 0.071428575 ? -u.z : u.z;
-    return t3 ? vec3(u.xy, t6) : (t4 ? vec3(u.y, t6, u.x) : vec3(t6, u.xy));
+    UNITPACK_PRECISE float t5 = params.z - 0.5714286;
+    UNITPACK_PRECISE float t6 = params.z - 0.2857143;
+    UNITPACK_PRECISE float t7 = t4 ? t6 : params.z;
+    UNITPACK_PRECISE float t8 = t3 ? t5 : t7;
+    UNITPACK_PRECISE float t9 = t8 - 0.2857143;
+    UNITPACK_PRECISE float neg_u_z = -u.z;
+    UNITPACK_PRECISE float t10 = (t8 >= 0.21428572 ? t9 : t8) > 0.071428575 ? neg_u_z : u.z;
+    UNITPACK_PRECISE vec3 t11 = vec3(u.xy, t10);
+    UNITPACK_PRECISE vec3 t12 = vec3(u.y, t10, u.x);
+    UNITPACK_PRECISE vec3 t13 = vec3(t10, u.xy);
+    UNITPACK_PRECISE vec3 t14 = t4 ? t12 : t13;
+    return t3 ? t11 : t14;
 }
 
 // unitpack_warpedcube24p_decode: decoder.
@@ -113,92 +124,98 @@ vec3 unitpack_warpedcube24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    UNITPACK_PRECISE float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    UNITPACK_PRECISE float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    UNITPACK_PRECISE float t4 = t3 ? w2.y : w2.x;
+    UNITPACK_PRECISE float major = t2 ? w2.z : t4;
+    UNITPACK_PRECISE float t5 = t3 ? 2.0 : 0.0;
+    UNITPACK_PRECISE float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     UNITPACK_PRECISE float abs_major = abs(major);
-    UNITPACK_PRECISE vec2 t3 = t1 ? w2.xy : (t2 ? w2.zx : w2.yz);
-    UNITPACK_PRECISE vec2 abs_t3 = abs(t3);
-    UNITPACK_PRECISE vec2 t4 = abs(vec2(abs_major));
-    bvec2 t5 = greaterThan(abs_t3, t4);
-    UNITPACK_PRECISE vec2 t6 = mix(abs_t3, t4, t5);
-    UNITPACK_PRECISE vec2 t7 = mix(t4, abs_t3, t5);
-    UNITPACK_PRECISE vec2 t8 = mix(vec2(1.0), t7, greaterThan(t7, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t9 = floor(t6 / t8 * 8388608.0);
-    UNITPACK_PRECISE vec2 t10 = t6 * 8388608.0;
-    UNITPACK_PRECISE vec2 t11 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t9 * t8, t10)),
+    UNITPACK_PRECISE vec2 t6 = t3 ? w2.zx : w2.yz;
+    UNITPACK_PRECISE vec2 t7 = t2 ? w2.xy : t6;
+    UNITPACK_PRECISE vec2 abs_t7 = abs(t7);
+    UNITPACK_PRECISE vec2 t8 = abs(vec2(abs_major));
+    bvec2 t9 = greaterThan(abs_t7, t8);
+    UNITPACK_PRECISE vec2 t10 = mix(abs_t7, t8, t9);
+    UNITPACK_PRECISE vec2 t11 = mix(t8, abs_t7, t9);
+    UNITPACK_PRECISE vec2 t12 = mix(vec2(1.0), t11, greaterThan(t11, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t13 = floor(t10 / t12 * 8388608.0);
+    UNITPACK_PRECISE vec2 t14 = t10 * 8388608.0;
+    UNITPACK_PRECISE vec2 t15 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t13 * t12, t14)),
         vec2(1.0),
-        lessThanEqual((t9 + 1.0) * t8, t10)
+        lessThanEqual((t13 + 1.0) * t12, t14)
     );
-    UNITPACK_PRECISE vec2 t12 = t9 + t11;
-    UNITPACK_PRECISE vec2 t13 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t12 * t8, t10)),
+    UNITPACK_PRECISE vec2 t16 = t13 + t15;
+    UNITPACK_PRECISE vec2 t17 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t16 * t12, t14)),
         vec2(1.0),
-        lessThanEqual((t12 + 1.0) * t8, t10)
+        lessThanEqual((t16 + 1.0) * t12, t14)
     );
-    UNITPACK_PRECISE vec2 t14 = t12 + t13;
-    bvec2 t15 = greaterThan(t14, vec2(3474675.0));
-    UNITPACK_PRECISE vec2 t16 = t14 - 8388608.0;
-    UNITPACK_PRECISE vec2 t17 = t14 + 8388608.0;
-    UNITPACK_PRECISE vec2 t18 = floor(t16 / t17 * 8388608.0);
-    UNITPACK_PRECISE vec2 t19 = t16 * 8388608.0;
-    UNITPACK_PRECISE vec2 t20 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t18 * t17, t19)),
+    UNITPACK_PRECISE vec2 t18 = t16 + t17;
+    bvec2 t19 = greaterThan(t18, vec2(3474675.0));
+    UNITPACK_PRECISE vec2 t20 = t18 - 8388608.0;
+    UNITPACK_PRECISE vec2 t21 = t18 + 8388608.0;
+    UNITPACK_PRECISE vec2 t22 = floor(t20 / t21 * 8388608.0);
+    UNITPACK_PRECISE vec2 t23 = t20 * 8388608.0;
+    UNITPACK_PRECISE vec2 t24 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t22 * t21, t23)),
         vec2(1.0),
-        lessThanEqual((t18 + 1.0) * t17, t19)
+        lessThanEqual((t22 + 1.0) * t21, t23)
     );
-    UNITPACK_PRECISE vec2 t21 = t18 + t20;
-    UNITPACK_PRECISE vec2 t22 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t21 * t17, t19)),
+    UNITPACK_PRECISE vec2 t25 = t22 + t24;
+    UNITPACK_PRECISE vec2 t26 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t25 * t21, t23)),
         vec2(1.0),
-        lessThanEqual((t21 + 1.0) * t17, t19)
+        lessThanEqual((t25 + 1.0) * t21, t23)
     );
-    UNITPACK_PRECISE vec2 t23 = mix(t14, t21 + t22, t15);
-    UNITPACK_PRECISE vec2 t24 = roundEven(t23 * t23 * 1.1920929e-7);
-    UNITPACK_PRECISE vec2 t25 = roundEven(
-        (roundEven(-441506.0 * t24 * 1.1920929e-7) + 493448.0) * t24 * 1.1920929e-7
+    UNITPACK_PRECISE vec2 t27 = mix(t18, t25 + t26, t19);
+    UNITPACK_PRECISE vec2 t28 = roundEven(t27 * t27 * 1.1920929e-7);
+    UNITPACK_PRECISE vec2 t29 = roundEven(
+        (roundEven(-441506.0 * t28 * 1.1920929e-7) + 493448.0) * t28 * 1.1920929e-7
     );
-    UNITPACK_PRECISE vec2 t26 = (roundEven((t25 + (-559241.0)) * t24 * 1.1920929e-7) + 645278.0)
-        * t24
+    UNITPACK_PRECISE vec2 t30 = (roundEven((t29 + (-559241.0)) * t28 * 1.1920929e-7) + 645278.0)
+        * t28
         * 1.1920929e-7;
-    UNITPACK_PRECISE vec2 t27 = (
-        roundEven((roundEven(t26) + (-762601.0)) * t24 * 1.1920929e-7) + 932068.0
+    UNITPACK_PRECISE vec2 t31 = (
+        roundEven((roundEven(t30) + (-762601.0)) * t28 * 1.1920929e-7) + 932068.0
     )
-        * t24;
-    UNITPACK_PRECISE vec2 t28 = roundEven(
-        (roundEven(t27 * 1.1920929e-7) + (-1198373.0)) * t24 * 1.1920929e-7
+        * t28;
+    UNITPACK_PRECISE vec2 t32 = roundEven(
+        (roundEven(t31 * 1.1920929e-7) + (-1198373.0)) * t28 * 1.1920929e-7
     )
         + 1677722.0;
-    UNITPACK_PRECISE vec2 t29 = roundEven(
-        (roundEven(t28 * t24 * 1.1920929e-7) + (-2796203.0)) * t24 * 1.1920929e-7
+    UNITPACK_PRECISE vec2 t33 = roundEven(
+        (roundEven(t32 * t28 * 1.1920929e-7) + (-2796203.0)) * t28 * 1.1920929e-7
     );
-    UNITPACK_PRECISE vec2 t30 = roundEven(
-        roundEven(t23 * (t29 + 8388608.0) * 1.1920929e-7) * 0.31830987
+    UNITPACK_PRECISE vec2 t34 = roundEven(
+        roundEven(t27 * (t33 + 8388608.0) * 1.1920929e-7) * 0.31830987
     );
-    UNITPACK_PRECISE vec2 t31 = mix(t30, t30 + 2097152.0, t15);
-    UNITPACK_PRECISE vec2 t32 = mix(t31, 4194304.0 - t31, t5);
-    UNITPACK_PRECISE vec2 t33 = mix(t32, 8388608.0 - t32, lessThan(vec2(abs_major), vec2(0.0)));
-    UNITPACK_PRECISE vec2 t34 = (mix(t33, -t33, lessThan(t3, vec2(0.0))) * 4.0 + 8388608.0)
-        * vec2(0.00012201071, 6.097555e-5);
-    UNITPACK_PRECISE vec2 floor_t34 = floor(t34);
-    UNITPACK_PRECISE vec2 t35 = mix(vec2(0.0), floor_t34, greaterThanEqual(floor_t34, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t35 = mix(t34, t34 + 2097152.0, t19);
+    UNITPACK_PRECISE vec2 t36 = mix(t35, 4194304.0 - t35, t9);
+    UNITPACK_PRECISE vec2 t37 = mix(t36, 8388608.0 - t36, lessThan(vec2(abs_major), vec2(0.0)));
+    UNITPACK_PRECISE vec2 t38 = floor(
+        (mix(t37, -t37, lessThan(t7, vec2(0.0))) * 4.0 + 8388608.0)
+            * vec2(0.00012201071, 6.097555e-5)
+    );
+    UNITPACK_PRECISE vec2 t39 = mix(vec2(0.0), t38, greaterThanEqual(t38, vec2(0.0)));
     UNITPACK_PRECISE vec2 base = mix(
         vec2(2047.0, 1023.0),
-        t35,
-        lessThanEqual(t35, vec2(2047.0, 1023.0))
+        t39,
+        lessThanEqual(t39, vec2(2047.0, 1023.0))
     );
-    UNITPACK_PRECISE float t36 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t36);
-    UNITPACK_PRECISE float t37 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t37);
-    UNITPACK_PRECISE float t38 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t38);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -218,18 +235,20 @@ vec3 unitpack_warpedcube24p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t39 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t39 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t39
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE vec3 t40 = floor(w2 / root * 2097152.0);
     UNITPACK_PRECISE vec3 t41 = w2 * 2097152.0;
@@ -255,442 +274,444 @@ vec3 unitpack_warpedcube24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec2 t48 = roundEven(t47 * t47 * 5.9604645e-8);
     UNITPACK_PRECISE vec2 t49 = roundEven(
         (roundEven(0.0 * t48 * 5.9604645e-8) + (-5.0)) * t48 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE vec2 t50 = roundEven(
-        (roundEven(t49 * t48 * 5.9604645e-8) + (-23302.0)) * t48 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t51 = (roundEven((t50 + 699051.0) * t48 * 5.9604645e-8) + (-8388608.0))
+    UNITPACK_PRECISE vec2 t50 = (roundEven((t49 + 416.0) * t48 * 5.9604645e-8) + (-23302.0))
         * t48
         * 5.9604645e-8;
-    UNITPACK_PRECISE vec2 t52 = roundEven(t51) + 16777216.0;
+    UNITPACK_PRECISE vec2 t51 = (
+        roundEven((roundEven(t50) + 699051.0) * t48 * 5.9604645e-8) + (-8388608.0)
+    )
+        * t48;
+    UNITPACK_PRECISE vec2 t52 = roundEven(t51 * 5.9604645e-8) + 16777216.0;
     UNITPACK_PRECISE vec2 t53 = roundEven(
         (roundEven(-0.0 * t48 * 5.9604645e-8) + 46.0) * t48 * 5.9604645e-8
-    )
-        + (-3329.0);
-    UNITPACK_PRECISE vec2 t54 = roundEven(
-        (roundEven(t53 * t48 * 5.9604645e-8) + 139810.0) * t48 * 5.9604645e-8
-    )
-        + (-2796203.0);
-    UNITPACK_PRECISE vec2 t55 = roundEven(
-        t47 * (roundEven(t54 * t48 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t56 = mix(t55, t52, t46);
-    UNITPACK_PRECISE vec2 t57 = mix(t56, -t56, lessThan(t43, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t58 = mix(t52, t55, t46);
-    UNITPACK_PRECISE vec2 t59 = mix(t58, -t58, t44);
-    UNITPACK_PRECISE vec2 t60 = floor(t57 / t59 * 2097152.0);
-    UNITPACK_PRECISE vec2 t61 = t57 * 2097152.0;
-    UNITPACK_PRECISE vec2 t62 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t60 * t59, t61)),
+    UNITPACK_PRECISE vec2 t54 = (roundEven((t53 + (-3329.0)) * t48 * 5.9604645e-8) + 139810.0)
+        * t48
+        * 5.9604645e-8;
+    UNITPACK_PRECISE vec2 t55 = t47
+        * (roundEven((roundEven(t54) + (-2796203.0)) * t48 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE vec2 t56 = roundEven(t55 * 5.9604645e-8);
+    UNITPACK_PRECISE vec2 t57 = mix(t56, t52, t46);
+    UNITPACK_PRECISE vec2 t58 = mix(t57, -t57, lessThan(t43, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t59 = mix(t52, t56, t46);
+    UNITPACK_PRECISE vec2 t60 = mix(t59, -t59, t44);
+    UNITPACK_PRECISE vec2 t61 = floor(t58 / t60 * 2097152.0);
+    UNITPACK_PRECISE vec2 t62 = t58 * 2097152.0;
+    UNITPACK_PRECISE vec2 t63 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t61 * t60, t62)),
         vec2(1.0),
-        lessThanEqual((t60 + 1.0) * t59, t61)
+        lessThanEqual((t61 + 1.0) * t60, t62)
     );
-    UNITPACK_PRECISE vec2 p = t60 + t62;
+    UNITPACK_PRECISE vec2 p = t61 + t63;
     UNITPACK_PRECISE float q = roundEven(p.x * p.x * 4.7683716e-7)
         + roundEven(p.y * p.y * 4.7683716e-7);
     UNITPACK_PRECISE float len2_2 = 2097152.0 + q;
-    UNITPACK_PRECISE float t63 = len2_2 * 524288.0;
-    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t63));
+    UNITPACK_PRECISE float t64 = len2_2 * 524288.0;
+    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t64));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t64 = root_next * root_next <= t63
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t63 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t64;
+    UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t64 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_next * root_next <= t64 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t65 = root_next2 * root_next2 <= t63
-        ? 1.0
-        : (root_step * root_step > t63 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root2 = root_step + t65;
+    UNITPACK_PRECISE float step_down4 = root_step * root_step > t64 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t64 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root2 = root_step + step4;
     UNITPACK_PRECISE float len = root2 * 2.0;
     UNITPACK_PRECISE float big = len * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(len / len2_2 * 2097152.0);
-    UNITPACK_PRECISE float t66 = (ratio_estimate + 1.0) * len2_2 <= big
-        ? 1.0
-        : (ratio_estimate * len2_2 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t66;
+    UNITPACK_PRECISE float step_down5 = ratio_estimate * len2_2 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate + 1.0) * len2_2 <= big ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step5;
     UNITPACK_PRECISE float big2 = p.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(p.x / len * 2097152.0);
-    UNITPACK_PRECISE float t67 = (ratio_estimate2 + 1.0) * len <= big2
-        ? 1.0
-        : (ratio_estimate2 * len > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t67;
+    UNITPACK_PRECISE float step_down6 = ratio_estimate2 * len > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio_estimate2 + 1.0) * len <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step6;
     UNITPACK_PRECISE float big3 = p.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(p.y / len * 2097152.0);
-    UNITPACK_PRECISE float t68 = (ratio_estimate3 + 1.0) * len <= big3
-        ? 1.0
-        : (ratio_estimate3 * len > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t68;
-    bool t69 = face >= 3.5;
-    bool t70 = face >= 1.5;
-    UNITPACK_PRECISE float t71 = t69 ? face - 4.0 : (t70 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t72 = (t71 >= 1.5 ? t71 - 2.0 : t71) > 0.5 ? -ratio : ratio;
-    UNITPACK_PRECISE vec3 t73 = t69
-        ? vec3(ratio2, ratio3, t72)
-        : (t70 ? vec3(ratio3, t72, ratio2) : vec3(t72, ratio2, ratio3));
-    UNITPACK_PRECISE vec3 t74 = abs(t73 - aim);
-    uvec3 t75 = uvec3(t74);
-    uint limb1_4 = t75.x >> 12u;
-    uint limb0_4 = t75.x & 4095u;
+    UNITPACK_PRECISE float step_down7 = ratio_estimate3 * len > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = (ratio_estimate3 + 1.0) * len <= big3 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step7;
+    bool t65 = face >= 3.5;
+    bool t66 = face >= 1.5;
+    UNITPACK_PRECISE float t67 = face - 4.0;
+    UNITPACK_PRECISE float t68 = face - 2.0;
+    UNITPACK_PRECISE float t69 = t66 ? t68 : face;
+    UNITPACK_PRECISE float t70 = t65 ? t67 : t69;
+    UNITPACK_PRECISE float t71 = t70 - 2.0;
+    UNITPACK_PRECISE float neg_ratio = -ratio;
+    UNITPACK_PRECISE float t72 = (t70 >= 1.5 ? t71 : t70) > 0.5 ? neg_ratio : ratio;
+    UNITPACK_PRECISE vec3 t73 = vec3(ratio2, ratio3, t72);
+    UNITPACK_PRECISE vec3 t74 = vec3(ratio3, t72, ratio2);
+    UNITPACK_PRECISE vec3 t75 = vec3(t72, ratio2, ratio3);
+    UNITPACK_PRECISE vec3 t76 = t66 ? t74 : t75;
+    UNITPACK_PRECISE vec3 offset = (t65 ? t73 : t76) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t75.y >> 12u;
-    uint limb0_5 = t75.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t75.z >> 12u;
-    uint limb0_6 = t75.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t76 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t77 = vec2(t76, base.y);
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t77 = vec2(s_up, base.y);
     UNITPACK_PRECISE vec2 cand2 = mix(
         vec2(2047.0, 1023.0),
         t77,
         lessThanEqual(t77, vec2(2047.0, 1023.0))
     );
-    UNITPACK_PRECISE vec2 t78 = floor(
+    bool t78 = base.y <= 1023.0;
+    UNITPACK_PRECISE vec2 t79 = floor(
         (cand2 * 2.0 - vec2(2047.0, 1023.0)) * vec2(2049.0005, 4100.004)
     );
-    UNITPACK_PRECISE vec2 abs_t78 = abs(t78);
-    bvec2 t79 = greaterThan(abs_t78, vec2(8388608.0));
-    UNITPACK_PRECISE vec2 t80 = mix(abs_t78, 16777216.0 - abs_t78, t79);
-    bvec2 t81 = greaterThan(t80, vec2(4194304.0));
-    UNITPACK_PRECISE vec2 t82 = roundEven(mix(t80, 8388608.0 - t80, t81) * 3.1415927);
-    UNITPACK_PRECISE vec2 t83 = roundEven(t82 * t82 * 5.9604645e-8);
-    UNITPACK_PRECISE vec2 t84 = roundEven(
-        (roundEven(0.0 * t83 * 5.9604645e-8) + (-5.0)) * t83 * 5.9604645e-8
-    )
-        + 416.0;
+    UNITPACK_PRECISE vec2 abs_t79 = abs(t79);
+    bvec2 t80 = greaterThan(abs_t79, vec2(8388608.0));
+    UNITPACK_PRECISE vec2 t81 = mix(abs_t79, 16777216.0 - abs_t79, t80);
+    bvec2 t82 = greaterThan(t81, vec2(4194304.0));
+    UNITPACK_PRECISE vec2 t83 = roundEven(mix(t81, 8388608.0 - t81, t82) * 3.1415927);
+    UNITPACK_PRECISE vec2 t84 = roundEven(t83 * t83 * 5.9604645e-8);
     UNITPACK_PRECISE vec2 t85 = roundEven(
-        (roundEven(t84 * t83 * 5.9604645e-8) + (-23302.0)) * t83 * 5.9604645e-8
+        (roundEven(0.0 * t84 * 5.9604645e-8) + (-5.0)) * t84 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t86 = (roundEven((t85 + 699051.0) * t83 * 5.9604645e-8) + (-8388608.0))
-        * t83
+    UNITPACK_PRECISE vec2 t86 = (roundEven((t85 + 416.0) * t84 * 5.9604645e-8) + (-23302.0))
+        * t84
         * 5.9604645e-8;
-    UNITPACK_PRECISE vec2 t87 = roundEven(t86) + 16777216.0;
-    UNITPACK_PRECISE vec2 t88 = roundEven(
-        (roundEven(-0.0 * t83 * 5.9604645e-8) + 46.0) * t83 * 5.9604645e-8
+    UNITPACK_PRECISE vec2 t87 = (
+        roundEven((roundEven(t86) + 699051.0) * t84 * 5.9604645e-8) + (-8388608.0)
     )
-        + (-3329.0);
+        * t84;
+    UNITPACK_PRECISE vec2 t88 = roundEven(t87 * 5.9604645e-8) + 16777216.0;
     UNITPACK_PRECISE vec2 t89 = roundEven(
-        (roundEven(t88 * t83 * 5.9604645e-8) + 139810.0) * t83 * 5.9604645e-8
-    )
-        + (-2796203.0);
-    UNITPACK_PRECISE vec2 t90 = roundEven(
-        t82 * (roundEven(t89 * t83 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8
+        (roundEven(-0.0 * t84 * 5.9604645e-8) + 46.0) * t84 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t91 = mix(t90, t87, t81);
-    UNITPACK_PRECISE vec2 t92 = mix(t91, -t91, lessThan(t78, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t93 = mix(t87, t90, t81);
-    UNITPACK_PRECISE vec2 t94 = mix(t93, -t93, t79);
-    UNITPACK_PRECISE vec2 t95 = floor(t92 / t94 * 2097152.0);
-    UNITPACK_PRECISE vec2 t96 = t92 * 2097152.0;
-    UNITPACK_PRECISE vec2 t97 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t95 * t94, t96)),
+    UNITPACK_PRECISE vec2 t90 = (roundEven((t89 + (-3329.0)) * t84 * 5.9604645e-8) + 139810.0)
+        * t84
+        * 5.9604645e-8;
+    UNITPACK_PRECISE vec2 t91 = t83
+        * (roundEven((roundEven(t90) + (-2796203.0)) * t84 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE vec2 t92 = roundEven(t91 * 5.9604645e-8);
+    UNITPACK_PRECISE vec2 t93 = mix(t92, t88, t82);
+    UNITPACK_PRECISE vec2 t94 = mix(t93, -t93, lessThan(t79, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t95 = mix(t88, t92, t82);
+    UNITPACK_PRECISE vec2 t96 = mix(t95, -t95, t80);
+    UNITPACK_PRECISE vec2 t97 = floor(t94 / t96 * 2097152.0);
+    UNITPACK_PRECISE vec2 t98 = t94 * 2097152.0;
+    UNITPACK_PRECISE vec2 t99 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t97 * t96, t98)),
         vec2(1.0),
-        lessThanEqual((t95 + 1.0) * t94, t96)
+        lessThanEqual((t97 + 1.0) * t96, t98)
     );
-    UNITPACK_PRECISE vec2 p2 = t95 + t97;
+    UNITPACK_PRECISE vec2 p2 = t97 + t99;
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
     UNITPACK_PRECISE float len2_3 = 2097152.0 + q2;
-    UNITPACK_PRECISE float t98 = len2_3 * 524288.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t98));
+    UNITPACK_PRECISE float t100 = len2_3 * 524288.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t100));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t99 = root_next3 * root_next3 <= t98
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t98 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t99;
+    UNITPACK_PRECISE float step_down8 = root_estimate3 * root_estimate3 > t100 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next3 * root_next3 <= t100 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step8;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t100 = root_next4 * root_next4 <= t98
-        ? 1.0
-        : (root_step2 * root_step2 > t98 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step2 + t100;
+    UNITPACK_PRECISE float step_down9 = root_step2 * root_step2 > t100 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next4 * root_next4 <= t100 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root3 = root_step2 + step9;
     UNITPACK_PRECISE float len3 = root3 * 2.0;
     UNITPACK_PRECISE float big4 = len3 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(len3 / len2_3 * 2097152.0);
-    UNITPACK_PRECISE float t101 = (ratio_estimate4 + 1.0) * len2_3 <= big4
-        ? 1.0
-        : (ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t101;
+    UNITPACK_PRECISE float step_down10 = ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = (ratio_estimate4 + 1.0) * len2_3 <= big4 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step10;
     UNITPACK_PRECISE float big5 = p2.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate5 = floor(p2.x / len3 * 2097152.0);
-    UNITPACK_PRECISE float t102 = (ratio_estimate5 + 1.0) * len3 <= big5
-        ? 1.0
-        : (ratio_estimate5 * len3 > big5 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio5 = ratio_estimate5 + t102;
+    UNITPACK_PRECISE float step_down11 = ratio_estimate5 * len3 > big5 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step11 = (ratio_estimate5 + 1.0) * len3 <= big5 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float ratio5 = ratio_estimate5 + step11;
     UNITPACK_PRECISE float big6 = p2.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate6 = floor(p2.y / len3 * 2097152.0);
-    UNITPACK_PRECISE float t103 = (ratio_estimate6 + 1.0) * len3 <= big6
-        ? 1.0
-        : (ratio_estimate6 * len3 > big6 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio6 = ratio_estimate6 + t103;
-    bool t104 = face >= 3.5;
-    bool t105 = face >= 1.5;
-    UNITPACK_PRECISE float t106 = t104 ? face - 4.0 : (t105 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t107 = (t106 >= 1.5 ? t106 - 2.0 : t106) > 0.5 ? -ratio4 : ratio4;
-    UNITPACK_PRECISE vec3 t108 = t104
-        ? vec3(ratio5, ratio6, t107)
-        : (t105 ? vec3(ratio6, t107, ratio5) : vec3(t107, ratio5, ratio6));
-    UNITPACK_PRECISE vec3 t109 = abs(t108 - aim);
-    uvec3 t110 = uvec3(t109);
-    uint limb1_7 = t110.x >> 12u;
-    uint limb0_7 = t110.x & 4095u;
+    UNITPACK_PRECISE float step_down12 = ratio_estimate6 * len3 > big6 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step12 = (ratio_estimate6 + 1.0) * len3 <= big6 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float ratio6 = ratio_estimate6 + step12;
+    bool t101 = face >= 3.5;
+    bool t102 = face >= 1.5;
+    UNITPACK_PRECISE float t103 = face - 4.0;
+    UNITPACK_PRECISE float t104 = face - 2.0;
+    UNITPACK_PRECISE float t105 = t102 ? t104 : face;
+    UNITPACK_PRECISE float t106 = t101 ? t103 : t105;
+    UNITPACK_PRECISE float t107 = t106 - 2.0;
+    UNITPACK_PRECISE float neg_ratio4 = -ratio4;
+    UNITPACK_PRECISE float t108 = (t106 >= 1.5 ? t107 : t106) > 0.5 ? neg_ratio4 : ratio4;
+    UNITPACK_PRECISE vec3 t109 = vec3(ratio5, ratio6, t108);
+    UNITPACK_PRECISE vec3 t110 = vec3(ratio6, t108, ratio5);
+    UNITPACK_PRECISE vec3 t111 = vec3(t108, ratio5, ratio6);
+    UNITPACK_PRECISE vec3 t112 = t102 ? t110 : t111;
+    UNITPACK_PRECISE vec3 offset2 = (t101 ? t109 : t112) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t110.y >> 12u;
-    uint limb0_8 = t110.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t110.z >> 12u;
-    uint limb0_9 = t110.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t111 = t76 <= 2047.0 && base.y <= 1023.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t111 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t111 ? dist2 : dist;
-    UNITPACK_PRECISE float t112 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t113 = vec2(base.x, t112);
+    bool t113 = dist2 < dist;
+    bool t114 = s_up <= 2047.0 && t78 && t113;
+    UNITPACK_PRECISE vec2 best = t114 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t114 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t115 = vec2(base.x, t_up);
     UNITPACK_PRECISE vec2 cand3 = mix(
         vec2(2047.0, 1023.0),
-        t113,
-        lessThanEqual(t113, vec2(2047.0, 1023.0))
+        t115,
+        lessThanEqual(t115, vec2(2047.0, 1023.0))
     );
-    UNITPACK_PRECISE vec2 t114 = floor(
+    bool t116 = t_up <= 1023.0;
+    UNITPACK_PRECISE vec2 t117 = floor(
         (cand3 * 2.0 - vec2(2047.0, 1023.0)) * vec2(2049.0005, 4100.004)
     );
-    UNITPACK_PRECISE vec2 abs_t114 = abs(t114);
-    bvec2 t115 = greaterThan(abs_t114, vec2(8388608.0));
-    UNITPACK_PRECISE vec2 t116 = mix(abs_t114, 16777216.0 - abs_t114, t115);
-    bvec2 t117 = greaterThan(t116, vec2(4194304.0));
-    UNITPACK_PRECISE vec2 t118 = roundEven(mix(t116, 8388608.0 - t116, t117) * 3.1415927);
-    UNITPACK_PRECISE vec2 t119 = roundEven(t118 * t118 * 5.9604645e-8);
-    UNITPACK_PRECISE vec2 t120 = roundEven(
-        (roundEven(0.0 * t119 * 5.9604645e-8) + (-5.0)) * t119 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE vec2 t121 = roundEven(
-        (roundEven(t120 * t119 * 5.9604645e-8) + (-23302.0)) * t119 * 5.9604645e-8
+    UNITPACK_PRECISE vec2 abs_t117 = abs(t117);
+    bvec2 t118 = greaterThan(abs_t117, vec2(8388608.0));
+    UNITPACK_PRECISE vec2 t119 = mix(abs_t117, 16777216.0 - abs_t117, t118);
+    bvec2 t120 = greaterThan(t119, vec2(4194304.0));
+    UNITPACK_PRECISE vec2 t121 = roundEven(mix(t119, 8388608.0 - t119, t120) * 3.1415927);
+    UNITPACK_PRECISE vec2 t122 = roundEven(t121 * t121 * 5.9604645e-8);
+    UNITPACK_PRECISE vec2 t123 = roundEven(
+        (roundEven(0.0 * t122 * 5.9604645e-8) + (-5.0)) * t122 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t122 = (roundEven((t121 + 699051.0) * t119 * 5.9604645e-8) + (-8388608.0))
-        * t119
+    UNITPACK_PRECISE vec2 t124 = (roundEven((t123 + 416.0) * t122 * 5.9604645e-8) + (-23302.0))
+        * t122
         * 5.9604645e-8;
-    UNITPACK_PRECISE vec2 t123 = roundEven(t122) + 16777216.0;
-    UNITPACK_PRECISE vec2 t124 = roundEven(
-        (roundEven(-0.0 * t119 * 5.9604645e-8) + 46.0) * t119 * 5.9604645e-8
+    UNITPACK_PRECISE vec2 t125 = (
+        roundEven((roundEven(t124) + 699051.0) * t122 * 5.9604645e-8) + (-8388608.0)
     )
-        + (-3329.0);
-    UNITPACK_PRECISE vec2 t125 = roundEven(
-        (roundEven(t124 * t119 * 5.9604645e-8) + 139810.0) * t119 * 5.9604645e-8
+        * t122;
+    UNITPACK_PRECISE vec2 t126 = roundEven(t125 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE vec2 t127 = roundEven(
+        (roundEven(-0.0 * t122 * 5.9604645e-8) + 46.0) * t122 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t126 = t118
-        * (roundEven((t125 + (-2796203.0)) * t119 * 5.9604645e-8) + 16777216.0)
+    UNITPACK_PRECISE vec2 t128 = (roundEven((t127 + (-3329.0)) * t122 * 5.9604645e-8) + 139810.0)
+        * t122
         * 5.9604645e-8;
-    UNITPACK_PRECISE vec2 round_t126 = roundEven(t126);
-    UNITPACK_PRECISE vec2 t127 = mix(round_t126, t123, t117);
-    UNITPACK_PRECISE vec2 t128 = mix(t127, -t127, lessThan(t114, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t129 = mix(t123, round_t126, t117);
-    UNITPACK_PRECISE vec2 t130 = mix(t129, -t129, t115);
-    UNITPACK_PRECISE vec2 t131 = floor(t128 / t130 * 2097152.0);
-    UNITPACK_PRECISE vec2 t132 = t128 * 2097152.0;
-    UNITPACK_PRECISE vec2 t133 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t131 * t130, t132)),
+    UNITPACK_PRECISE vec2 t129 = t121
+        * (roundEven((roundEven(t128) + (-2796203.0)) * t122 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE vec2 t130 = roundEven(t129 * 5.9604645e-8);
+    UNITPACK_PRECISE vec2 t131 = mix(t130, t126, t120);
+    UNITPACK_PRECISE vec2 t132 = mix(t131, -t131, lessThan(t117, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t133 = mix(t126, t130, t120);
+    UNITPACK_PRECISE vec2 t134 = mix(t133, -t133, t118);
+    UNITPACK_PRECISE vec2 t135 = floor(t132 / t134 * 2097152.0);
+    UNITPACK_PRECISE vec2 t136 = t132 * 2097152.0;
+    UNITPACK_PRECISE vec2 t137 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t135 * t134, t136)),
         vec2(1.0),
-        lessThanEqual((t131 + 1.0) * t130, t132)
+        lessThanEqual((t135 + 1.0) * t134, t136)
     );
-    UNITPACK_PRECISE vec2 p3 = t131 + t133;
+    UNITPACK_PRECISE vec2 p3 = t135 + t137;
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
     UNITPACK_PRECISE float len2_4 = 2097152.0 + q3;
-    UNITPACK_PRECISE float t134 = len2_4 * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t134));
+    UNITPACK_PRECISE float t138 = len2_4 * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t138));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t135 = root_next5 * root_next5 <= t134
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t134 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t135;
+    UNITPACK_PRECISE float step_down13 = root_estimate4 * root_estimate4 > t138 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step13 = root_next5 * root_next5 <= t138 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step13;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t136 = root_next6 * root_next6 <= t134
-        ? 1.0
-        : (root_step3 * root_step3 > t134 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step3 + t136;
+    UNITPACK_PRECISE float step_down14 = root_step3 * root_step3 > t138 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step14 = root_next6 * root_next6 <= t138 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float root4 = root_step3 + step14;
     UNITPACK_PRECISE float len4 = root4 * 2.0;
     UNITPACK_PRECISE float big7 = len4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate7 = floor(len4 / len2_4 * 2097152.0);
-    UNITPACK_PRECISE float t137 = (ratio_estimate7 + 1.0) * len2_4 <= big7
-        ? 1.0
-        : (ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio7 = ratio_estimate7 + t137;
+    UNITPACK_PRECISE float step_down15 = ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step15 = (ratio_estimate7 + 1.0) * len2_4 <= big7 ? 1.0 : step_down15;
+    UNITPACK_PRECISE float ratio7 = ratio_estimate7 + step15;
     UNITPACK_PRECISE float big8 = p3.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate8 = floor(p3.x / len4 * 2097152.0);
-    UNITPACK_PRECISE float t138 = (ratio_estimate8 + 1.0) * len4 <= big8
-        ? 1.0
-        : (ratio_estimate8 * len4 > big8 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio8 = ratio_estimate8 + t138;
+    UNITPACK_PRECISE float step_down16 = ratio_estimate8 * len4 > big8 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step16 = (ratio_estimate8 + 1.0) * len4 <= big8 ? 1.0 : step_down16;
+    UNITPACK_PRECISE float ratio8 = ratio_estimate8 + step16;
     UNITPACK_PRECISE float big9 = p3.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate9 = floor(p3.y / len4 * 2097152.0);
-    UNITPACK_PRECISE float t139 = (ratio_estimate9 + 1.0) * len4 <= big9
-        ? 1.0
-        : (ratio_estimate9 * len4 > big9 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio9 = ratio_estimate9 + t139;
-    bool t140 = face >= 3.5;
-    bool t141 = face >= 1.5;
-    UNITPACK_PRECISE float t142 = t140 ? face - 4.0 : (t141 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t143 = (t142 >= 1.5 ? t142 - 2.0 : t142) > 0.5 ? -ratio7 : ratio7;
-    UNITPACK_PRECISE vec3 t144 = t140
-        ? vec3(ratio8, ratio9, t143)
-        : (t141 ? vec3(ratio9, t143, ratio8) : vec3(t143, ratio8, ratio9));
-    UNITPACK_PRECISE vec3 t145 = abs(t144 - aim);
-    uvec3 t146 = uvec3(t145);
-    uint limb1_10 = t146.x >> 12u;
-    uint limb0_10 = t146.x & 4095u;
+    UNITPACK_PRECISE float step_down17 = ratio_estimate9 * len4 > big9 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step17 = (ratio_estimate9 + 1.0) * len4 <= big9 ? 1.0 : step_down17;
+    UNITPACK_PRECISE float ratio9 = ratio_estimate9 + step17;
+    bool t139 = face >= 3.5;
+    bool t140 = face >= 1.5;
+    UNITPACK_PRECISE float t141 = face - 4.0;
+    UNITPACK_PRECISE float t142 = face - 2.0;
+    UNITPACK_PRECISE float t143 = t140 ? t142 : face;
+    UNITPACK_PRECISE float t144 = t139 ? t141 : t143;
+    UNITPACK_PRECISE float t145 = t144 - 2.0;
+    UNITPACK_PRECISE float neg_ratio7 = -ratio7;
+    UNITPACK_PRECISE float t146 = (t144 >= 1.5 ? t145 : t144) > 0.5 ? neg_ratio7 : ratio7;
+    UNITPACK_PRECISE vec3 t147 = vec3(ratio8, ratio9, t146);
+    UNITPACK_PRECISE vec3 t148 = vec3(ratio9, t146, ratio8);
+    UNITPACK_PRECISE vec3 t149 = vec3(t146, ratio8, ratio9);
+    UNITPACK_PRECISE vec3 t150 = t140 ? t148 : t149;
+    UNITPACK_PRECISE vec3 offset3 = (t139 ? t147 : t150) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t146.y >> 12u;
-    uint limb0_11 = t146.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t146.z >> 12u;
-    uint limb0_12 = t146.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t147 = base.x <= 2047.0 && t112 <= 1023.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t147 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t147 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t148 = base + 1.0;
+    bool t151 = dist3 < best_d;
+    bool t152 = base.x <= 2047.0 && t116 && t151;
+    UNITPACK_PRECISE vec2 best2 = t152 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t152 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t153 = base + 1.0;
     UNITPACK_PRECISE vec2 cand4 = mix(
         vec2(2047.0, 1023.0),
-        t148,
-        lessThanEqual(t148, vec2(2047.0, 1023.0))
+        t153,
+        lessThanEqual(t153, vec2(2047.0, 1023.0))
     );
-    UNITPACK_PRECISE vec2 t149 = floor(
+    bool t154 = t_up <= 1023.0;
+    UNITPACK_PRECISE vec2 t155 = floor(
         (cand4 * 2.0 - vec2(2047.0, 1023.0)) * vec2(2049.0005, 4100.004)
     );
-    UNITPACK_PRECISE vec2 abs_t149 = abs(t149);
-    bvec2 t150 = greaterThan(abs_t149, vec2(8388608.0));
-    UNITPACK_PRECISE vec2 t151 = mix(abs_t149, 16777216.0 - abs_t149, t150);
-    bvec2 t152 = greaterThan(t151, vec2(4194304.0));
-    UNITPACK_PRECISE vec2 t153 = roundEven(mix(t151, 8388608.0 - t151, t152) * 3.1415927);
-    UNITPACK_PRECISE vec2 t154 = roundEven(t153 * t153 * 5.9604645e-8);
-    UNITPACK_PRECISE vec2 t155 = roundEven(
-        (roundEven(0.0 * t154 * 5.9604645e-8) + (-5.0)) * t154 * 5.9604645e-8
-    )
-        + 416.0;
-    UNITPACK_PRECISE vec2 t156 = roundEven(
-        (roundEven(t155 * t154 * 5.9604645e-8) + (-23302.0)) * t154 * 5.9604645e-8
+    UNITPACK_PRECISE vec2 abs_t155 = abs(t155);
+    bvec2 t156 = greaterThan(abs_t155, vec2(8388608.0));
+    UNITPACK_PRECISE vec2 t157 = mix(abs_t155, 16777216.0 - abs_t155, t156);
+    bvec2 t158 = greaterThan(t157, vec2(4194304.0));
+    UNITPACK_PRECISE vec2 t159 = roundEven(mix(t157, 8388608.0 - t157, t158) * 3.1415927);
+    UNITPACK_PRECISE vec2 t160 = roundEven(t159 * t159 * 5.9604645e-8);
+    UNITPACK_PRECISE vec2 t161 = roundEven(
+        (roundEven(0.0 * t160 * 5.9604645e-8) + (-5.0)) * t160 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t157 = (roundEven((t156 + 699051.0) * t154 * 5.9604645e-8) + (-8388608.0))
-        * t154
+    UNITPACK_PRECISE vec2 t162 = (roundEven((t161 + 416.0) * t160 * 5.9604645e-8) + (-23302.0))
+        * t160
         * 5.9604645e-8;
-    UNITPACK_PRECISE vec2 t158 = roundEven(t157) + 16777216.0;
-    UNITPACK_PRECISE vec2 t159 = roundEven(
-        (roundEven(-0.0 * t154 * 5.9604645e-8) + 46.0) * t154 * 5.9604645e-8
+    UNITPACK_PRECISE vec2 t163 = (
+        roundEven((roundEven(t162) + 699051.0) * t160 * 5.9604645e-8) + (-8388608.0)
     )
-        + (-3329.0);
-    UNITPACK_PRECISE vec2 t160 = roundEven(
-        (roundEven(t159 * t154 * 5.9604645e-8) + 139810.0) * t154 * 5.9604645e-8
+        * t160;
+    UNITPACK_PRECISE vec2 t164 = roundEven(t163 * 5.9604645e-8) + 16777216.0;
+    UNITPACK_PRECISE vec2 t165 = roundEven(
+        (roundEven(-0.0 * t160 * 5.9604645e-8) + 46.0) * t160 * 5.9604645e-8
     );
-    UNITPACK_PRECISE vec2 t161 = t153
-        * (roundEven((t160 + (-2796203.0)) * t154 * 5.9604645e-8) + 16777216.0)
+    UNITPACK_PRECISE vec2 t166 = (roundEven((t165 + (-3329.0)) * t160 * 5.9604645e-8) + 139810.0)
+        * t160
         * 5.9604645e-8;
-    UNITPACK_PRECISE vec2 round_t161 = roundEven(t161);
-    UNITPACK_PRECISE vec2 t162 = mix(round_t161, t158, t152);
-    UNITPACK_PRECISE vec2 t163 = mix(t162, -t162, lessThan(t149, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t164 = mix(t158, round_t161, t152);
-    UNITPACK_PRECISE vec2 t165 = mix(t164, -t164, t150);
-    UNITPACK_PRECISE vec2 t166 = floor(t163 / t165 * 2097152.0);
-    UNITPACK_PRECISE vec2 t167 = t163 * 2097152.0;
-    UNITPACK_PRECISE vec2 t168 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t166 * t165, t167)),
+    UNITPACK_PRECISE vec2 t167 = t159
+        * (roundEven((roundEven(t166) + (-2796203.0)) * t160 * 5.9604645e-8) + 16777216.0);
+    UNITPACK_PRECISE vec2 t168 = roundEven(t167 * 5.9604645e-8);
+    UNITPACK_PRECISE vec2 t169 = mix(t168, t164, t158);
+    UNITPACK_PRECISE vec2 t170 = mix(t169, -t169, lessThan(t155, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t171 = mix(t164, t168, t158);
+    UNITPACK_PRECISE vec2 t172 = mix(t171, -t171, t156);
+    UNITPACK_PRECISE vec2 t173 = floor(t170 / t172 * 2097152.0);
+    UNITPACK_PRECISE vec2 t174 = t170 * 2097152.0;
+    UNITPACK_PRECISE vec2 t175 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t173 * t172, t174)),
         vec2(1.0),
-        lessThanEqual((t166 + 1.0) * t165, t167)
+        lessThanEqual((t173 + 1.0) * t172, t174)
     );
-    UNITPACK_PRECISE vec2 p4 = t166 + t168;
+    UNITPACK_PRECISE vec2 p4 = t173 + t175;
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
     UNITPACK_PRECISE float len2_5 = 2097152.0 + q4;
-    UNITPACK_PRECISE float t169 = len2_5 * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t169));
+    UNITPACK_PRECISE float t176 = len2_5 * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t176));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t170 = root_next7 * root_next7 <= t169
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t169 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t170;
+    UNITPACK_PRECISE float step_down18 = root_estimate5 * root_estimate5 > t176 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step18 = root_next7 * root_next7 <= t176 ? 1.0 : step_down18;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step18;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t171 = root_next8 * root_next8 <= t169
-        ? 1.0
-        : (root_step4 * root_step4 > t169 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step4 + t171;
+    UNITPACK_PRECISE float step_down19 = root_step4 * root_step4 > t176 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step19 = root_next8 * root_next8 <= t176 ? 1.0 : step_down19;
+    UNITPACK_PRECISE float root5 = root_step4 + step19;
     UNITPACK_PRECISE float len5 = root5 * 2.0;
     UNITPACK_PRECISE float big10 = len5 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate10 = floor(len5 / len2_5 * 2097152.0);
-    UNITPACK_PRECISE float t172 = (ratio_estimate10 + 1.0) * len2_5 <= big10
-        ? 1.0
-        : (ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio10 = ratio_estimate10 + t172;
+    UNITPACK_PRECISE float step_down20 = ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step20 = (ratio_estimate10 + 1.0) * len2_5 <= big10 ? 1.0 : step_down20;
+    UNITPACK_PRECISE float ratio10 = ratio_estimate10 + step20;
     UNITPACK_PRECISE float big11 = p4.x * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate11 = floor(p4.x / len5 * 2097152.0);
-    UNITPACK_PRECISE float t173 = (ratio_estimate11 + 1.0) * len5 <= big11
-        ? 1.0
-        : (ratio_estimate11 * len5 > big11 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio11 = ratio_estimate11 + t173;
+    UNITPACK_PRECISE float step_down21 = ratio_estimate11 * len5 > big11 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step21 = (ratio_estimate11 + 1.0) * len5 <= big11 ? 1.0 : step_down21;
+    UNITPACK_PRECISE float ratio11 = ratio_estimate11 + step21;
     UNITPACK_PRECISE float big12 = p4.y * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate12 = floor(p4.y / len5 * 2097152.0);
-    UNITPACK_PRECISE float t174 = (ratio_estimate12 + 1.0) * len5 <= big12
-        ? 1.0
-        : (ratio_estimate12 * len5 > big12 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio12 = ratio_estimate12 + t174;
-    bool t175 = face >= 3.5;
-    bool t176 = face >= 1.5;
-    UNITPACK_PRECISE float t177 = t175 ? face - 4.0 : (t176 ? face - 2.0 : face);
-    UNITPACK_PRECISE float t178 = (t177 >= 1.5 ? t177 - 2.0 : t177) > 0.5 ? -ratio10 : ratio10;
-    UNITPACK_PRECISE vec3 t179 = t175
-        ? vec3(ratio11, ratio12, t178)
-        : (t176 ? vec3(ratio12, t178, ratio11) : vec3(t178, ratio11, ratio12));
-    UNITPACK_PRECISE vec3 t180 = abs(t179 - aim);
-    uvec3 t181 = uvec3(t180);
-    uint limb1_13 = t181.x >> 12u;
-    uint limb0_13 = t181.x & 4095u;
+    UNITPACK_PRECISE float step_down22 = ratio_estimate12 * len5 > big12 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step22 = (ratio_estimate12 + 1.0) * len5 <= big12 ? 1.0 : step_down22;
+    UNITPACK_PRECISE float ratio12 = ratio_estimate12 + step22;
+    bool t177 = face >= 3.5;
+    bool t178 = face >= 1.5;
+    UNITPACK_PRECISE float t179 = face - 4.0;
+    UNITPACK_PRECISE float t180 = face - 2.0;
+    UNITPACK_PRECISE float t181 = t178 ? t180 : face;
+    UNITPACK_PRECISE float t182 = t177 ? t179 : t181;
+    UNITPACK_PRECISE float t183 = t182 - 2.0;
+    UNITPACK_PRECISE float neg_ratio10 = -ratio10;
+    UNITPACK_PRECISE float t184 = (t182 >= 1.5 ? t183 : t182) > 0.5 ? neg_ratio10 : ratio10;
+    UNITPACK_PRECISE vec3 t185 = vec3(ratio11, ratio12, t184);
+    UNITPACK_PRECISE vec3 t186 = vec3(ratio12, t184, ratio11);
+    UNITPACK_PRECISE vec3 t187 = vec3(t184, ratio11, ratio12);
+    UNITPACK_PRECISE vec3 t188 = t178 ? t186 : t187;
+    UNITPACK_PRECISE vec3 offset4 = (t177 ? t185 : t188) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t181.y >> 12u;
-    uint limb0_14 = t181.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t181.z >> 12u;
-    uint limb0_15 = t181.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 2047.0
-        && base.y + 1.0 <= 1023.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t189 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 2047.0 && t154 && t189 ? cand4 : best2;
     return vec3(best3, face);
 }
 

@@ -57,10 +57,8 @@ vec3 unitpack_xy16_rg_decode_float(vec4 params) {
 //   1.
 // Portable as unitpack_xy16_rg_decode_float is, within the same bound.
 vec3 unitpack_xy16_rg_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_xy16_rg_decode_float(params);
 }
 
@@ -76,21 +74,27 @@ vec4 unitpack_xy16_rg_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 t4 = vec3(t3.xy, t3.z > 0.0 ? t3.z : 0.0);
-    UNITPACK_PRECISE vec3 abs_t4 = abs(t4);
-    UNITPACK_PRECISE float t5 = abs_t4.x >= abs_t4.y ? abs_t4.x : abs_t4.y;
-    UNITPACK_PRECISE float largest2 = t5 >= abs_t4.z ? t5 : abs_t4.z;
-    bool t6 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled2 = t4 / (t6 ? largest2 : 1.0);
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t6 = t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 t7 = vec3(t6.xy, t6.z > 0.0 ? t6.z : 0.0);
+    UNITPACK_PRECISE vec3 abs_t7 = abs(t7);
+    UNITPACK_PRECISE float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
+    UNITPACK_PRECISE float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
+    bool t9 = largest2 <= 3.4028235e38;
+    bool t10 = largest2 > 0.0 && t9;
+    UNITPACK_PRECISE vec3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     UNITPACK_PRECISE vec3 scaled2_sq = scaled2 * scaled2;
     UNITPACK_PRECISE float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    UNITPACK_PRECISE vec3 t7 = t6 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec4 result = vec4(0.5 + t7.xy.x * 0.5, 0.5 + t7.xy.y * 0.5, 0.0, 1.0);
+    bool t11 = len2_2 >= 1.0;
+    UNITPACK_PRECISE vec3 t12 = scaled2 / sqrt(len2_2);
+    UNITPACK_PRECISE vec3 t13 = t10 && t11 ? t12 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec4 result = vec4(0.5 + t13.xy.x * 0.5, 0.5 + t13.xy.y * 0.5, 0.0, 1.0);
     return result;
 }
 
@@ -108,7 +112,8 @@ vec4 unitpack_xy16_rg_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float t1 = w.z > 0.0 ? w.z : 0.0;
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
@@ -132,38 +137,30 @@ vec4 unitpack_xy16_rg_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec2 t7 = w.xy * w.xy * 16256.25;
     UNITPACK_PRECISE vec2 t8 = t6 * t6 * len2;
     UNITPACK_PRECISE vec2 t9 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t8)),
-        greaterThan(t6, vec2(0.0))
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t8)), lessThan(t6, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t8)),
+            greaterThan(t6, vec2(0.0))
+        ),
+        greaterThanEqual(w.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t10 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t8)),
-        lessThan(t6, vec2(0.0))
+    UNITPACK_PRECISE vec2 t10 = t5 - 1.0 - 127.0;
+    UNITPACK_PRECISE vec2 t11 = t10 * t10 * len2;
+    UNITPACK_PRECISE vec2 t12 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t11)), lessThan(t10, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t11)),
+            greaterThan(t10, vec2(0.0))
+        ),
+        greaterThanEqual(w.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t11 = mix(
-        vec2(0.0),
-        mix(t10, t9, greaterThanEqual(w.xy, vec2(0.0))),
-        lessThan(t5, vec2(255.0))
-    );
-    UNITPACK_PRECISE vec2 t12 = t5 - 1.0 - 127.0;
-    UNITPACK_PRECISE vec2 t13 = t12 * t12 * len2;
-    UNITPACK_PRECISE vec2 t14 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t13)),
-        greaterThan(t12, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t15 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t13)),
-        lessThan(t12, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t16 = mix(
-        vec2(0.0),
-        mix(t15, t14, greaterThanEqual(w.xy, vec2(0.0))) - 1.0,
-        greaterThan(t5, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 c = ok && len2 > 0.0 ? t5 + t11 + t16 : vec2(128.0);
+    UNITPACK_PRECISE vec2 t13 = t5
+        + mix(vec2(0.0), t9, lessThan(t5, vec2(255.0)))
+        + mix(vec2(0.0), t12 - 1.0, greaterThan(t5, vec2(0.0)));
+    bool t14 = len2 > 0.0;
+    UNITPACK_PRECISE vec2 c = ok && t14 ? t13 : vec2(128.0);
     return vec4(c, 0.0, 255.0);
 }
 
@@ -176,10 +173,8 @@ vec4 unitpack_xy16_rg_round_codes(vec3 a0) {
 //   components count as zero.
 uint unitpack_xy16_rg_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_xy16_rg_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_XY16_RG_GLSL

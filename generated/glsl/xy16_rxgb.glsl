@@ -58,10 +58,8 @@ vec3 unitpack_xy16_rxgb_decode_float(vec4 params) {
 //   1.
 // Portable as unitpack_xy16_rxgb_decode_float is, within the same bound.
 vec3 unitpack_xy16_rxgb_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_xy16_rxgb_decode_float(params);
 }
 
@@ -77,39 +75,54 @@ vec4 unitpack_xy16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 t4 = vec3(t3.xy, t3.z > 0.0 ? t3.z : 0.0);
-    UNITPACK_PRECISE vec3 abs_t4 = abs(t4);
-    UNITPACK_PRECISE float t5 = abs_t4.x >= abs_t4.y ? abs_t4.x : abs_t4.y;
-    UNITPACK_PRECISE float largest2 = t5 >= abs_t4.z ? t5 : abs_t4.z;
-    bool t6 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled2 = t4 / (t6 ? largest2 : 1.0);
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t6 = t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 t7 = vec3(t6.xy, t6.z > 0.0 ? t6.z : 0.0);
+    UNITPACK_PRECISE vec3 abs_t7 = abs(t7);
+    UNITPACK_PRECISE float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
+    UNITPACK_PRECISE float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
+    bool t9 = largest2 <= 3.4028235e38;
+    bool t10 = largest2 > 0.0 && t9;
+    UNITPACK_PRECISE vec3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     UNITPACK_PRECISE vec3 scaled2_sq = scaled2 * scaled2;
     UNITPACK_PRECISE float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    UNITPACK_PRECISE vec3 t7 = t6 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : vec3(0.0, 0.0, 1.0);
+    bool t11 = len2_2 >= 1.0;
+    UNITPACK_PRECISE vec3 t12 = scaled2 / sqrt(len2_2);
+    UNITPACK_PRECISE vec3 t13 = t10 && t11 ? t12 : vec3(0.0, 0.0, 1.0);
     UNITPACK_PRECISE vec3 abs_v2 = abs(v);
-    UNITPACK_PRECISE float t8 = abs_v2.x >= abs_v2.y ? abs_v2.x : abs_v2.y;
-    UNITPACK_PRECISE float largest3 = t8 >= abs_v2.z ? t8 : abs_v2.z;
-    bool t9 = largest3 > 0.0 && largest3 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled3 = v / (t9 ? largest3 : 1.0);
+    UNITPACK_PRECISE float t14 = abs_v2.x >= abs_v2.y ? abs_v2.x : abs_v2.y;
+    UNITPACK_PRECISE float largest3 = t14 >= abs_v2.z ? t14 : abs_v2.z;
+    bool t15 = largest3 <= 3.4028235e38;
+    bool t16 = largest3 > 0.0 && t15;
+    UNITPACK_PRECISE vec3 scaled3 = v / (t16 ? largest3 : 1.0);
     UNITPACK_PRECISE vec3 scaled3_sq = scaled3 * scaled3;
     UNITPACK_PRECISE float len2_3 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    UNITPACK_PRECISE vec3 t10 = t9 && len2_3 >= 1.0 ? scaled3 / sqrt(len2_3) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 t11 = vec3(t10.xy, t10.z > 0.0 ? t10.z : 0.0);
-    UNITPACK_PRECISE vec3 abs_t11 = abs(t11);
-    UNITPACK_PRECISE float t12 = abs_t11.x >= abs_t11.y ? abs_t11.x : abs_t11.y;
-    UNITPACK_PRECISE float largest4 = t12 >= abs_t11.z ? t12 : abs_t11.z;
-    bool t13 = largest4 > 0.0 && largest4 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled4 = t11 / (t13 ? largest4 : 1.0);
+    bool t17 = len2_3 >= 1.0;
+    UNITPACK_PRECISE vec3 t18 = scaled3 / sqrt(len2_3);
+    UNITPACK_PRECISE vec3 t19 = t16 && t17 ? t18 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 t20 = vec3(t19.xy, t19.z > 0.0 ? t19.z : 0.0);
+    UNITPACK_PRECISE vec3 abs_t20 = abs(t20);
+    UNITPACK_PRECISE float t21 = abs_t20.x >= abs_t20.y ? abs_t20.x : abs_t20.y;
+    UNITPACK_PRECISE float largest4 = t21 >= abs_t20.z ? t21 : abs_t20.z;
+    bool t22 = largest4 <= 3.4028235e38;
+    bool t23 = largest4 > 0.0 && t22;
+    UNITPACK_PRECISE vec3 scaled4 = t20 / (t23 ? largest4 : 1.0);
     UNITPACK_PRECISE vec3 scaled4_sq = scaled4 * scaled4;
     UNITPACK_PRECISE float len2_4 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    UNITPACK_PRECISE float t14 = 0.5
-        + (t13 && len2_4 >= 1.0 ? scaled4 / sqrt(len2_4) : vec3(0.0, 0.0, 1.0)).z * 0.5;
-    UNITPACK_PRECISE vec4 result = vec4(1.0, 0.5 + t7.xy.y * 0.5, t14, 0.5 + t7.xy.x * 0.5);
+    bool t24 = len2_4 >= 1.0;
+    UNITPACK_PRECISE vec3 t25 = scaled4 / sqrt(len2_4);
+    UNITPACK_PRECISE vec4 result = vec4(
+        1.0,
+        0.5 + t13.xy.y * 0.5,
+        0.5 + (t23 && t24 ? t25 : vec3(0.0, 0.0, 1.0)).z * 0.5,
+        0.5 + t13.xy.x * 0.5
+    );
     return result;
 }
 
@@ -127,7 +140,8 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float t1 = w.z > 0.0 ? w.z : 0.0;
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
@@ -151,38 +165,30 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec2 t7 = w.xy * w.xy * 16256.25;
     UNITPACK_PRECISE vec2 t8 = t6 * t6 * len2;
     UNITPACK_PRECISE vec2 t9 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t8)),
-        greaterThan(t6, vec2(0.0))
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t8)), lessThan(t6, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t8)),
+            greaterThan(t6, vec2(0.0))
+        ),
+        greaterThanEqual(w.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t10 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t8)),
-        lessThan(t6, vec2(0.0))
+    UNITPACK_PRECISE vec2 t10 = t5 - 1.0 - 127.0;
+    UNITPACK_PRECISE vec2 t11 = t10 * t10 * len2;
+    UNITPACK_PRECISE vec2 t12 = mix(
+        mix(vec2(0.0), mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t11)), lessThan(t10, vec2(0.0))),
+        mix(
+            vec2(1.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t11)),
+            greaterThan(t10, vec2(0.0))
+        ),
+        greaterThanEqual(w.xy, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t11 = mix(
-        vec2(0.0),
-        mix(t10, t9, greaterThanEqual(w.xy, vec2(0.0))),
-        lessThan(t5, vec2(255.0))
-    );
-    UNITPACK_PRECISE vec2 t12 = t5 - 1.0 - 127.0;
-    UNITPACK_PRECISE vec2 t13 = t12 * t12 * len2;
-    UNITPACK_PRECISE vec2 t14 = mix(
-        vec2(1.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t7, t13)),
-        greaterThan(t12, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t15 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), lessThanEqual(t7, t13)),
-        lessThan(t12, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 t16 = mix(
-        vec2(0.0),
-        mix(t15, t14, greaterThanEqual(w.xy, vec2(0.0))) - 1.0,
-        greaterThan(t5, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 c = ok && len2 > 0.0 ? t5 + t11 + t16 : vec2(128.0);
+    UNITPACK_PRECISE vec2 t13 = t5
+        + mix(vec2(0.0), t9, lessThan(t5, vec2(255.0)))
+        + mix(vec2(0.0), t12 - 1.0, greaterThan(t5, vec2(0.0)));
+    bool t14 = len2 > 0.0;
+    UNITPACK_PRECISE vec2 c = ok && t14 ? t13 : vec2(128.0);
     UNITPACK_PRECISE vec3 normal2 = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal2 = abs(normal2);
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
@@ -193,11 +199,12 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w2 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w3 = ok2 ? w2 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE vec3 t17 = vec3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
-    UNITPACK_PRECISE vec3 normal3 = mix(t17, vec3(0.0), lessThan(abs(t17), vec3(1.1754944e-38)));
+    UNITPACK_PRECISE vec3 t15 = vec3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
+    UNITPACK_PRECISE vec3 normal3 = mix(t15, vec3(0.0), lessThan(abs(t15), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal3 = abs(normal3);
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     UNITPACK_PRECISE float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
@@ -207,7 +214,8 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
     UNITPACK_PRECISE float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_3 = sum3 < 16.0;
+    bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     UNITPACK_PRECISE vec3 w4 = mix(scaled3, vec3(0.0), lessThan(abs(scaled3), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w5 = ok3 ? w4 : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi4 = uintBitsToFloat(floatBitsToUint(w5.x) & 4294963200u);
@@ -216,30 +224,34 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE float split_lo5 = w5.y - split_hi5;
     UNITPACK_PRECISE float split_hi6 = uintBitsToFloat(floatBitsToUint(w5.z) & 4294963200u);
     UNITPACK_PRECISE float split_lo6 = w5.z - split_hi6;
-    UNITPACK_PRECISE float t18 = (split_hi4 + split_hi4) * split_lo4
+    UNITPACK_PRECISE float t16 = (split_hi4 + split_hi4) * split_lo4
         + (split_hi5 + split_hi5) * split_lo5
         + (split_hi6 + split_hi6) * split_lo6;
     UNITPACK_PRECISE float len2_2 = split_hi4 * split_hi4
         + split_hi5 * split_hi5
         + split_hi6 * split_hi6
-        + t18
+        + t16
         + (split_lo4 * split_lo4 + split_lo5 * split_lo5 + split_lo6 * split_lo6);
     UNITPACK_PRECISE float big2 = w5.z * w5.z * 16256.25;
-    UNITPACK_PRECISE float t19 = roundEven(w5.z / sqrt(len2_2) * 127.5 + 127.5);
-    UNITPACK_PRECISE float t20 = t19 >= 0.0 ? t19 : 0.0;
-    UNITPACK_PRECISE float estimate = t20 <= 255.0 ? t20 : 255.0;
-    UNITPACK_PRECISE float t21 = estimate - 127.0;
-    UNITPACK_PRECISE float t22 = t21 * t21 * len2_2;
-    UNITPACK_PRECISE float t23 = w5.z >= 0.0
-        ? (t21 > 0.0 ? (big2 >= t22 ? 1.0 : 0.0) : 1.0)
-        : (t21 < 0.0 ? (big2 <= t22 ? 1.0 : 0.0) : 0.0);
+    UNITPACK_PRECISE float t17 = roundEven(w5.z / sqrt(len2_2) * 127.5 + 127.5);
+    UNITPACK_PRECISE float t18 = t17 >= 0.0 ? t17 : 0.0;
+    UNITPACK_PRECISE float estimate = t18 <= 255.0 ? t18 : 255.0;
+    UNITPACK_PRECISE float t19 = estimate - 127.0;
+    UNITPACK_PRECISE float t20 = t19 * t19 * len2_2;
+    UNITPACK_PRECISE float one_if = big2 >= t20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t21 = t19 > 0.0 ? one_if : 1.0;
+    UNITPACK_PRECISE float one_if2 = big2 <= t20 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t22 = t19 < 0.0 ? one_if2 : 0.0;
+    UNITPACK_PRECISE float t23 = w5.z >= 0.0 ? t21 : t22;
     UNITPACK_PRECISE float up = estimate < 255.0 ? t23 : 0.0;
     UNITPACK_PRECISE float t24 = estimate - 1.0 - 127.0;
     UNITPACK_PRECISE float t25 = t24 * t24 * len2_2;
-    UNITPACK_PRECISE float t26 = w5.z >= 0.0
-        ? (t24 > 0.0 ? (big2 >= t25 ? 1.0 : 0.0) : 1.0)
-        : (t24 < 0.0 ? (big2 <= t25 ? 1.0 : 0.0) : 0.0);
-    UNITPACK_PRECISE float down = estimate > 0.0 ? t26 - 1.0 : 0.0;
+    UNITPACK_PRECISE float one_if3 = big2 >= t25 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t26 = t24 > 0.0 ? one_if3 : 1.0;
+    UNITPACK_PRECISE float one_if4 = big2 <= t25 ? 1.0 : 0.0;
+    UNITPACK_PRECISE float t27 = t24 < 0.0 ? one_if4 : 0.0;
+    UNITPACK_PRECISE float t28 = (w5.z >= 0.0 ? t26 : t27) - 1.0;
+    UNITPACK_PRECISE float down = estimate > 0.0 ? t28 : 0.0;
     UNITPACK_PRECISE vec4 result = vec4(255.0, c.y, estimate + up + down, c.x);
     return result;
 }
@@ -254,10 +266,8 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
 //   components count as zero.
 uint unitpack_xy16_rxgb_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_xy16_rxgb_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_XY16_RXGB_GLSL

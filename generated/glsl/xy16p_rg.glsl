@@ -58,10 +58,8 @@ vec3 unitpack_xy16p_rg_decode_float(vec4 params) {
 //   1.
 // Portable as unitpack_xy16p_rg_decode_float is, within the same bound.
 vec3 unitpack_xy16p_rg_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_xy16p_rg_decode_float(params);
 }
 
@@ -80,7 +78,8 @@ vec4 unitpack_xy16p_rg_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -94,15 +93,16 @@ vec4 unitpack_xy16p_rg_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -122,212 +122,219 @@ vec4 unitpack_xy16p_rg_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec2 t6 = w4.xy * 127.5;
-    UNITPACK_PRECISE vec2 t7 = roundEven(t6 / root + 127.5);
-    UNITPACK_PRECISE vec2 t8 = mix(vec2(0.0), t7, greaterThanEqual(t7, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t9 = mix(vec2(255.0), t8, lessThanEqual(t8, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t10 = mix(
+    UNITPACK_PRECISE vec2 t2 = w4.xy * 127.5;
+    UNITPACK_PRECISE vec2 t3 = roundEven(t2 / root + 127.5);
+    UNITPACK_PRECISE vec2 t4 = mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(255.0), t4, lessThanEqual(t4, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t6 = t5
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 126.5) * root)),
+            lessThan(t5, vec2(255.0))
+        );
+    UNITPACK_PRECISE vec2 t7 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, (t9 - 126.5) * root)),
-        lessThan(t9, vec2(255.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 1.0 - 126.5) * root)) - 1.0,
+        greaterThan(t5, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t11 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, (t9 - 1.0 - 126.5) * root)) - 1.0,
-        greaterThan(t9, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 base = t9 + t10 + t11;
-    UNITPACK_PRECISE vec3 t12 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t13 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t14 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t12 * root, t13)),
+    UNITPACK_PRECISE vec2 base = t6 + t7;
+    UNITPACK_PRECISE vec3 t8 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t9 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t10 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t8 * root, t9)),
         vec3(1.0),
-        lessThanEqual((t12 + 1.0) * root, t13)
+        lessThanEqual((t8 + 1.0) * root, t9)
     );
-    UNITPACK_PRECISE vec3 aim = t12 + t14;
+    UNITPACK_PRECISE vec3 aim = t8 + t10;
     UNITPACK_PRECISE vec2 cand = mix(vec2(255.0), base, lessThanEqual(base, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t15 = cand + cand - 255.0;
-    UNITPACK_PRECISE vec2 abs_t15 = abs(t15);
-    uvec2 t16 = uvec2(abs_t15);
-    uint t17 = t16.x * t16.x + t16.y * t16.y;
-    uint t18 = t17 < 65025u ? 65025u - t17 : 0u;
-    UNITPACK_PRECISE float r = float(t18 >> 12u) * 4096.0 + float(t18 & 4095u);
-    UNITPACK_PRECISE float t19 = r * 67636240.0;
-    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t19));
+    UNITPACK_PRECISE vec2 t11 = cand + cand - 255.0;
+    UNITPACK_PRECISE vec2 abs_t11 = abs(t11);
+    uvec2 abs_t11_u = uvec2(abs_t11);
+    uint t12 = abs_t11_u.x * abs_t11_u.x + abs_t11_u.y * abs_t11_u.y;
+    uint t13 = 65025u - t12;
+    uint t14 = t12 < 65025u ? t13 : 0u;
+    UNITPACK_PRECISE float r = float(t14 >> 12u) * 4096.0 + float(t14 & 4095u);
+    UNITPACK_PRECISE float t15 = r * 67636240.0;
+    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t15));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t20 = root_next * root_next <= t19
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t19 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t20;
+    UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t15 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_next * root_next <= t15 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t21 = root_next2 * root_next2 <= t19
-        ? 1.0
-        : (root_step * root_step > t19 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root2 = root_step + t21;
-    UNITPACK_PRECISE vec3 t22 = abs(vec3(floor(t15 * 8224.126), root2) - aim);
-    uvec3 t23 = uvec3(t22);
-    uint limb1_4 = t23.x >> 12u;
-    uint limb0_4 = t23.x & 4095u;
+    UNITPACK_PRECISE float step_down4 = root_step * root_step > t15 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t15 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root2 = root_step + step4;
+    UNITPACK_PRECISE vec3 offset = vec3(floor(t11 * 8224.126), root2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t23.y >> 12u;
-    uint limb0_5 = t23.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t23.z >> 12u;
-    uint limb0_6 = t23.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t24 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t25 = vec2(t24, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(255.0), t25, lessThanEqual(t25, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t26 = cand2 + cand2 - 255.0;
-    UNITPACK_PRECISE vec2 abs_t26 = abs(t26);
-    uvec2 t27 = uvec2(abs_t26);
-    uint t28 = t27.x * t27.x + t27.y * t27.y;
-    uint t29 = t28 < 65025u ? 65025u - t28 : 0u;
-    UNITPACK_PRECISE float r2 = float(t29 >> 12u) * 4096.0 + float(t29 & 4095u);
-    UNITPACK_PRECISE float t30 = r2 * 67636240.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t30));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t16 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(255.0), t16, lessThanEqual(t16, vec2(255.0)));
+    bool t17 = base.y <= 255.0;
+    UNITPACK_PRECISE vec2 t18 = cand2 + cand2 - 255.0;
+    UNITPACK_PRECISE vec2 abs_t18 = abs(t18);
+    uvec2 abs_t18_u = uvec2(abs_t18);
+    uint t19 = abs_t18_u.x * abs_t18_u.x + abs_t18_u.y * abs_t18_u.y;
+    uint t20 = 65025u - t19;
+    uint t21 = t19 < 65025u ? t20 : 0u;
+    UNITPACK_PRECISE float r2 = float(t21 >> 12u) * 4096.0 + float(t21 & 4095u);
+    UNITPACK_PRECISE float t22 = r2 * 67636240.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t22));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t31 = root_next3 * root_next3 <= t30
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t30 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t31;
+    UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t22 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = root_next3 * root_next3 <= t22 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step5;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t32 = root_next4 * root_next4 <= t30
-        ? 1.0
-        : (root_step2 * root_step2 > t30 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step2 + t32;
-    UNITPACK_PRECISE vec3 t33 = abs(vec3(floor(t26 * 8224.126), root3) - aim);
-    uvec3 t34 = uvec3(t33);
-    uint limb1_7 = t34.x >> 12u;
-    uint limb0_7 = t34.x & 4095u;
+    UNITPACK_PRECISE float step_down6 = root_step2 * root_step2 > t22 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next4 * root_next4 <= t22 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root3 = root_step2 + step6;
+    UNITPACK_PRECISE vec3 offset2 = vec3(floor(t18 * 8224.126), root3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t34.y >> 12u;
-    uint limb0_8 = t34.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t34.z >> 12u;
-    uint limb0_9 = t34.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t35 = t24 <= 255.0 && base.y <= 255.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t35 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t35 ? dist2 : dist;
-    UNITPACK_PRECISE float t36 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t37 = vec2(base.x, t36);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(255.0), t37, lessThanEqual(t37, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t38 = cand3 + cand3 - 255.0;
-    UNITPACK_PRECISE vec2 abs_t38 = abs(t38);
-    uvec2 t39 = uvec2(abs_t38);
-    uint t40 = t39.x * t39.x + t39.y * t39.y;
-    uint t41 = t40 < 65025u ? 65025u - t40 : 0u;
-    UNITPACK_PRECISE float r3 = float(t41 >> 12u) * 4096.0 + float(t41 & 4095u);
-    UNITPACK_PRECISE float t42 = r3 * 67636240.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t42));
+    bool t23 = dist2 < dist;
+    bool t24 = s_up <= 255.0 && t17 && t23;
+    UNITPACK_PRECISE vec2 best = t24 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t24 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t25 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(255.0), t25, lessThanEqual(t25, vec2(255.0)));
+    bool t26 = t_up <= 255.0;
+    UNITPACK_PRECISE vec2 t27 = cand3 + cand3 - 255.0;
+    UNITPACK_PRECISE vec2 abs_t27 = abs(t27);
+    uvec2 abs_t27_u = uvec2(abs_t27);
+    uint t28 = abs_t27_u.x * abs_t27_u.x + abs_t27_u.y * abs_t27_u.y;
+    uint t29 = 65025u - t28;
+    uint t30 = t28 < 65025u ? t29 : 0u;
+    UNITPACK_PRECISE float r3 = float(t30 >> 12u) * 4096.0 + float(t30 & 4095u);
+    UNITPACK_PRECISE float t31 = r3 * 67636240.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t31));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t43 = root_next5 * root_next5 <= t42
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t42 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t43;
+    UNITPACK_PRECISE float step_down7 = root_estimate4 * root_estimate4 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = root_next5 * root_next5 <= t31 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step7;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t44 = root_next6 * root_next6 <= t42
-        ? 1.0
-        : (root_step3 * root_step3 > t42 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step3 + t44;
-    UNITPACK_PRECISE vec3 t45 = abs(vec3(floor(t38 * 8224.126), root4) - aim);
-    uvec3 t46 = uvec3(t45);
-    uint limb1_10 = t46.x >> 12u;
-    uint limb0_10 = t46.x & 4095u;
+    UNITPACK_PRECISE float step_down8 = root_step3 * root_step3 > t31 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next6 * root_next6 <= t31 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float root4 = root_step3 + step8;
+    UNITPACK_PRECISE vec3 offset3 = vec3(floor(t27 * 8224.126), root4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t46.y >> 12u;
-    uint limb0_11 = t46.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t46.z >> 12u;
-    uint limb0_12 = t46.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t47 = base.x <= 255.0 && t36 <= 255.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t47 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t47 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t48 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(255.0), t48, lessThanEqual(t48, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t49 = cand4 + cand4 - 255.0;
-    UNITPACK_PRECISE vec2 abs_t49 = abs(t49);
-    uvec2 t50 = uvec2(abs_t49);
-    uint t51 = t50.x * t50.x + t50.y * t50.y;
-    uint t52 = t51 < 65025u ? 65025u - t51 : 0u;
-    UNITPACK_PRECISE float r4 = float(t52 >> 12u) * 4096.0 + float(t52 & 4095u);
-    UNITPACK_PRECISE float t53 = r4 * 67636240.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t53));
+    bool t32 = dist3 < best_d;
+    bool t33 = base.x <= 255.0 && t26 && t32;
+    UNITPACK_PRECISE vec2 best2 = t33 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t33 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t34 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(255.0), t34, lessThanEqual(t34, vec2(255.0)));
+    bool t35 = t_up <= 255.0;
+    UNITPACK_PRECISE vec2 t36 = cand4 + cand4 - 255.0;
+    UNITPACK_PRECISE vec2 abs_t36 = abs(t36);
+    uvec2 abs_t36_u = uvec2(abs_t36);
+    uint t37 = abs_t36_u.x * abs_t36_u.x + abs_t36_u.y * abs_t36_u.y;
+    uint t38 = 65025u - t37;
+    uint t39 = t37 < 65025u ? t38 : 0u;
+    UNITPACK_PRECISE float r4 = float(t39 >> 12u) * 4096.0 + float(t39 & 4095u);
+    UNITPACK_PRECISE float t40 = r4 * 67636240.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t40));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t54 = root_next7 * root_next7 <= t53
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t53 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t54;
+    UNITPACK_PRECISE float step_down9 = root_estimate5 * root_estimate5 > t40 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next7 * root_next7 <= t40 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step9;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t55 = root_next8 * root_next8 <= t53
-        ? 1.0
-        : (root_step4 * root_step4 > t53 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step4 + t55;
-    UNITPACK_PRECISE vec3 t56 = abs(vec3(floor(t49 * 8224.126), root5) - aim);
-    uvec3 t57 = uvec3(t56);
-    uint limb1_13 = t57.x >> 12u;
-    uint limb0_13 = t57.x & 4095u;
+    UNITPACK_PRECISE float step_down10 = root_step4 * root_step4 > t40 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = root_next8 * root_next8 <= t40 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float root5 = root_step4 + step10;
+    UNITPACK_PRECISE vec3 offset4 = vec3(floor(t36 * 8224.126), root5) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t57.y >> 12u;
-    uint limb0_14 = t57.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t57.z >> 12u;
-    uint limb0_15 = t57.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 255.0 && base.y + 1.0 <= 255.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t41 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 255.0 && t35 && t41 ? cand4 : best2;
     UNITPACK_PRECISE vec2 c = ok && ok2 ? best3 : vec2(128.0);
     return vec4(c, 0.0, 255.0);
 }

@@ -76,7 +76,8 @@ vec2 unitpack_xy24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -90,15 +91,16 @@ vec2 unitpack_xy24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -118,205 +120,209 @@ vec2 unitpack_xy24p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE vec2 t6 = floor(w4.xy / root * 2047.0);
-    UNITPACK_PRECISE vec2 t7 = w4.xy * 2047.0;
-    UNITPACK_PRECISE vec2 t8 = mix(
-        mix(vec2(0.0), vec2(-1.0), lessThan(t7, t6 * root)),
+    UNITPACK_PRECISE vec2 t2 = floor(w4.xy / root * 2047.0);
+    UNITPACK_PRECISE vec2 t3 = w4.xy * 2047.0;
+    UNITPACK_PRECISE vec2 t4 = mix(
+        mix(vec2(0.0), vec2(-1.0), lessThan(t3, t2 * root)),
         vec2(1.0),
-        greaterThanEqual(t7, (t6 + 1.0) * root)
+        greaterThanEqual(t3, (t2 + 1.0) * root)
     );
-    UNITPACK_PRECISE vec2 t9 = t6 + t8;
-    UNITPACK_PRECISE vec2 t10 = mix(vec2(-2047.0), t9, greaterThanEqual(t9, vec2(-2047.0)));
-    UNITPACK_PRECISE vec2 base = mix(vec2(2047.0), t10, lessThanEqual(t10, vec2(2047.0)));
-    UNITPACK_PRECISE vec3 t11 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t12 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t13 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t11 * root, t12)),
+    UNITPACK_PRECISE vec2 t5 = t2 + t4;
+    UNITPACK_PRECISE vec2 t6 = mix(vec2(-2047.0), t5, greaterThanEqual(t5, vec2(-2047.0)));
+    UNITPACK_PRECISE vec2 base = mix(vec2(2047.0), t6, lessThanEqual(t6, vec2(2047.0)));
+    UNITPACK_PRECISE vec3 t7 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t8 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t9 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t7 * root, t8)),
         vec3(1.0),
-        lessThanEqual((t11 + 1.0) * root, t12)
+        lessThanEqual((t7 + 1.0) * root, t8)
     );
-    UNITPACK_PRECISE vec3 aim = t11 + t13;
+    UNITPACK_PRECISE vec3 aim = t7 + t9;
     UNITPACK_PRECISE vec2 cand = mix(vec2(2047.0), base, lessThanEqual(base, vec2(2047.0)));
     UNITPACK_PRECISE vec2 abs_cand = abs(cand);
-    uvec2 t14 = uvec2(abs_cand);
-    uint t15 = t14.x * t14.x + t14.y * t14.y;
-    uint t16 = t15 < 4190209u ? 4190209u - t15 : 0u;
-    UNITPACK_PRECISE float r = float(t16 >> 12u) * 4096.0 + float(t16 & 4095u);
-    UNITPACK_PRECISE float t17 = r * 1049600.8;
-    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t17));
+    uvec2 abs_cand_u = uvec2(abs_cand);
+    uint t10 = abs_cand_u.x * abs_cand_u.x + abs_cand_u.y * abs_cand_u.y;
+    uint t11 = 4190209u - t10;
+    uint t12 = t10 < 4190209u ? t11 : 0u;
+    UNITPACK_PRECISE float r = float(t12 >> 12u) * 4096.0 + float(t12 & 4095u);
+    UNITPACK_PRECISE float t13 = r * 1049600.8;
+    UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t13));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
-    UNITPACK_PRECISE float t18 = root_next * root_next <= t17
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t17 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step = root_estimate2 + t18;
+    UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t13 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = root_next * root_next <= t13 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
-    UNITPACK_PRECISE float t19 = root_next2 * root_next2 <= t17
-        ? 1.0
-        : (root_step * root_step > t17 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root2 = root_step + t19;
-    UNITPACK_PRECISE vec3 t20 = abs(vec3(floor(cand * 1024.5002), root2) - aim);
-    uvec3 t21 = uvec3(t20);
-    uint limb1_4 = t21.x >> 12u;
-    uint limb0_4 = t21.x & 4095u;
+    UNITPACK_PRECISE float step_down4 = root_step * root_step > t13 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t13 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root2 = root_step + step4;
+    UNITPACK_PRECISE vec3 offset = vec3(floor(cand * 1024.5002), root2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t21.y >> 12u;
-    uint limb0_5 = t21.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t21.z >> 12u;
-    uint limb0_6 = t21.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t22 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t23 = vec2(t22, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(2047.0), t23, lessThanEqual(t23, vec2(2047.0)));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t14 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(2047.0), t14, lessThanEqual(t14, vec2(2047.0)));
+    bool t15 = base.y <= 2047.0;
     UNITPACK_PRECISE vec2 abs_cand2 = abs(cand2);
-    uvec2 t24 = uvec2(abs_cand2);
-    uint t25 = t24.x * t24.x + t24.y * t24.y;
-    uint t26 = t25 < 4190209u ? 4190209u - t25 : 0u;
-    UNITPACK_PRECISE float r2 = float(t26 >> 12u) * 4096.0 + float(t26 & 4095u);
-    UNITPACK_PRECISE float t27 = r2 * 1049600.8;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t27));
+    uvec2 abs_cand2_u = uvec2(abs_cand2);
+    uint t16 = abs_cand2_u.x * abs_cand2_u.x + abs_cand2_u.y * abs_cand2_u.y;
+    uint t17 = 4190209u - t16;
+    uint t18 = t16 < 4190209u ? t17 : 0u;
+    UNITPACK_PRECISE float r2 = float(t18 >> 12u) * 4096.0 + float(t18 & 4095u);
+    UNITPACK_PRECISE float t19 = r2 * 1049600.8;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t19));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float t28 = root_next3 * root_next3 <= t27
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t27 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + t28;
+    UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t19 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = root_next3 * root_next3 <= t19 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + step5;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float t29 = root_next4 * root_next4 <= t27
-        ? 1.0
-        : (root_step2 * root_step2 > t27 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root3 = root_step2 + t29;
-    UNITPACK_PRECISE vec3 t30 = abs(vec3(floor(cand2 * 1024.5002), root3) - aim);
-    uvec3 t31 = uvec3(t30);
-    uint limb1_7 = t31.x >> 12u;
-    uint limb0_7 = t31.x & 4095u;
+    UNITPACK_PRECISE float step_down6 = root_step2 * root_step2 > t19 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next4 * root_next4 <= t19 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root3 = root_step2 + step6;
+    UNITPACK_PRECISE vec3 offset2 = vec3(floor(cand2 * 1024.5002), root3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t31.y >> 12u;
-    uint limb0_8 = t31.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t31.z >> 12u;
-    uint limb0_9 = t31.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t32 = t22 <= 2047.0 && base.y <= 2047.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t32 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t32 ? dist2 : dist;
-    UNITPACK_PRECISE float t33 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t34 = vec2(base.x, t33);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(2047.0), t34, lessThanEqual(t34, vec2(2047.0)));
+    bool t20 = dist2 < dist;
+    bool t21 = s_up <= 2047.0 && t15 && t20;
+    UNITPACK_PRECISE vec2 best = t21 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t21 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t22 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(2047.0), t22, lessThanEqual(t22, vec2(2047.0)));
+    bool t23 = t_up <= 2047.0;
     UNITPACK_PRECISE vec2 abs_cand3 = abs(cand3);
-    uvec2 t35 = uvec2(abs_cand3);
-    uint t36 = t35.x * t35.x + t35.y * t35.y;
-    uint t37 = t36 < 4190209u ? 4190209u - t36 : 0u;
-    UNITPACK_PRECISE float r3 = float(t37 >> 12u) * 4096.0 + float(t37 & 4095u);
-    UNITPACK_PRECISE float t38 = r3 * 1049600.8;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t38));
+    uvec2 abs_cand3_u = uvec2(abs_cand3);
+    uint t24 = abs_cand3_u.x * abs_cand3_u.x + abs_cand3_u.y * abs_cand3_u.y;
+    uint t25 = 4190209u - t24;
+    uint t26 = t24 < 4190209u ? t25 : 0u;
+    UNITPACK_PRECISE float r3 = float(t26 >> 12u) * 4096.0 + float(t26 & 4095u);
+    UNITPACK_PRECISE float t27 = r3 * 1049600.8;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t27));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float t39 = root_next5 * root_next5 <= t38
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t38 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + t39;
+    UNITPACK_PRECISE float step_down7 = root_estimate4 * root_estimate4 > t27 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = root_next5 * root_next5 <= t27 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + step7;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float t40 = root_next6 * root_next6 <= t38
-        ? 1.0
-        : (root_step3 * root_step3 > t38 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root4 = root_step3 + t40;
-    UNITPACK_PRECISE vec3 t41 = abs(vec3(floor(cand3 * 1024.5002), root4) - aim);
-    uvec3 t42 = uvec3(t41);
-    uint limb1_10 = t42.x >> 12u;
-    uint limb0_10 = t42.x & 4095u;
+    UNITPACK_PRECISE float step_down8 = root_step3 * root_step3 > t27 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next6 * root_next6 <= t27 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float root4 = root_step3 + step8;
+    UNITPACK_PRECISE vec3 offset3 = vec3(floor(cand3 * 1024.5002), root4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t42.y >> 12u;
-    uint limb0_11 = t42.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t42.z >> 12u;
-    uint limb0_12 = t42.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t43 = base.x <= 2047.0 && t33 <= 2047.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t43 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t43 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t44 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(2047.0), t44, lessThanEqual(t44, vec2(2047.0)));
+    bool t28 = dist3 < best_d;
+    bool t29 = base.x <= 2047.0 && t23 && t28;
+    UNITPACK_PRECISE vec2 best2 = t29 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t29 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t30 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(2047.0), t30, lessThanEqual(t30, vec2(2047.0)));
+    bool t31 = t_up <= 2047.0;
     UNITPACK_PRECISE vec2 abs_cand4 = abs(cand4);
-    uvec2 t45 = uvec2(abs_cand4);
-    uint t46 = t45.x * t45.x + t45.y * t45.y;
-    uint t47 = t46 < 4190209u ? 4190209u - t46 : 0u;
-    UNITPACK_PRECISE float r4 = float(t47 >> 12u) * 4096.0 + float(t47 & 4095u);
-    UNITPACK_PRECISE float t48 = r4 * 1049600.8;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t48));
+    uvec2 abs_cand4_u = uvec2(abs_cand4);
+    uint t32 = abs_cand4_u.x * abs_cand4_u.x + abs_cand4_u.y * abs_cand4_u.y;
+    uint t33 = 4190209u - t32;
+    uint t34 = t32 < 4190209u ? t33 : 0u;
+    UNITPACK_PRECISE float r4 = float(t34 >> 12u) * 4096.0 + float(t34 & 4095u);
+    UNITPACK_PRECISE float t35 = r4 * 1049600.8;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t35));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float t49 = root_next7 * root_next7 <= t48
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t48 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + t49;
+    UNITPACK_PRECISE float step_down9 = root_estimate5 * root_estimate5 > t35 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next7 * root_next7 <= t35 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + step9;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float t50 = root_next8 * root_next8 <= t48
-        ? 1.0
-        : (root_step4 * root_step4 > t48 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float root5 = root_step4 + t50;
-    UNITPACK_PRECISE vec3 t51 = abs(vec3(floor(cand4 * 1024.5002), root5) - aim);
-    uvec3 t52 = uvec3(t51);
-    uint limb1_13 = t52.x >> 12u;
-    uint limb0_13 = t52.x & 4095u;
+    UNITPACK_PRECISE float step_down10 = root_step4 * root_step4 > t35 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = root_next8 * root_next8 <= t35 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float root5 = root_step4 + step10;
+    UNITPACK_PRECISE vec3 offset4 = vec3(floor(cand4 * 1024.5002), root5) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t52.y >> 12u;
-    uint limb0_14 = t52.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t52.z >> 12u;
-    uint limb0_15 = t52.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 2047.0
-        && base.y + 1.0 <= 2047.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t36 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 2047.0 && t31 && t36 ? cand4 : best2;
     return ok && ok2 ? best3 : vec2(0.0);
 }
 

@@ -71,21 +71,26 @@ vec2 unitpack_xy32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    UNITPACK_PRECISE vec3 t4 = vec3(t3.xy, t3.z > 0.0 ? t3.z : 0.0);
-    UNITPACK_PRECISE vec3 abs_t4 = abs(t4);
-    UNITPACK_PRECISE float t5 = abs_t4.x >= abs_t4.y ? abs_t4.x : abs_t4.y;
-    UNITPACK_PRECISE float largest2 = t5 >= abs_t4.z ? t5 : abs_t4.z;
-    bool t6 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled2 = t4 / (t6 ? largest2 : 1.0);
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t6 = t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE vec3 t7 = vec3(t6.xy, t6.z > 0.0 ? t6.z : 0.0);
+    UNITPACK_PRECISE vec3 abs_t7 = abs(t7);
+    UNITPACK_PRECISE float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
+    UNITPACK_PRECISE float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
+    bool t9 = largest2 <= 3.4028235e38;
+    bool t10 = largest2 > 0.0 && t9;
+    UNITPACK_PRECISE vec3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     UNITPACK_PRECISE vec3 scaled2_sq = scaled2 * scaled2;
     UNITPACK_PRECISE float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    UNITPACK_PRECISE vec3 t7 = t6 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : vec3(0.0, 0.0, 1.0);
-    return t7.xy;
+    bool t11 = len2_2 >= 1.0;
+    UNITPACK_PRECISE vec3 t12 = scaled2 / sqrt(len2_2);
+    return (t10 && t11 ? t12 : vec3(0.0, 0.0, 1.0)).xy;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -102,7 +107,8 @@ vec2 unitpack_xy32_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float t1 = w.z > 0.0 ? w.z : 0.0;
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
@@ -123,28 +129,28 @@ vec2 unitpack_xy32_round_codes(vec3 a0) {
     UNITPACK_PRECISE float estimate = roundEven(big / sqrt(len2));
     UNITPACK_PRECISE float big2 = big * big;
     UNITPACK_PRECISE float lower = estimate - 0.5;
+    UNITPACK_PRECISE float t3 = lower * lower * len2;
+    bool t4 = big2 < t3;
     UNITPACK_PRECISE float big3 = abs(w.xy.y * 32767.0);
     UNITPACK_PRECISE float estimate2 = roundEven(big3 / sqrt(len2));
     UNITPACK_PRECISE float big2_2 = big3 * big3;
     UNITPACK_PRECISE float lower2 = estimate2 - 0.5;
-    UNITPACK_PRECISE vec2 t3 = abs(w.xy * 32767.0);
-    UNITPACK_PRECISE vec2 t4 = roundEven(t3 / sqrt(vec2(len2)));
-    UNITPACK_PRECISE vec2 t5 = t4 + 0.5;
-    UNITPACK_PRECISE float t6 = lower * lower * len2;
-    UNITPACK_PRECISE float t7 = lower2 * lower2 * len2;
-    bvec2 t8 = bvec2(estimate > 0.0 && big2 < t6, estimate2 > 0.0 && big2_2 < t7);
-    UNITPACK_PRECISE vec2 t9 = mix(
-        mix(vec2(0.0), vec2(-1.0), t8),
+    UNITPACK_PRECISE float t5 = lower2 * lower2 * len2;
+    bool t6 = big2_2 < t5;
+    UNITPACK_PRECISE vec2 t7 = abs(w.xy * 32767.0);
+    UNITPACK_PRECISE vec2 t8 = roundEven(t7 / sqrt(vec2(len2)));
+    UNITPACK_PRECISE vec2 t9 = t8 + 0.5;
+    UNITPACK_PRECISE vec2 t10 = mix(
+        mix(vec2(0.0), vec2(-1.0), bvec2(estimate > 0.0 && t4, estimate2 > 0.0 && t6)),
         vec2(1.0),
-        greaterThanEqual(t3 * t3, t5 * t5 * len2)
+        greaterThanEqual(t7 * t7, t9 * t9 * len2)
     );
-    UNITPACK_PRECISE vec2 t10 = t4 + t9;
-    UNITPACK_PRECISE vec2 t11 = mix(vec2(0.0), t10, greaterThanEqual(t10, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t12 = mix(vec2(32767.0), t11, lessThanEqual(t11, vec2(32767.0)));
-    UNITPACK_PRECISE vec2 result = ok && len2 > 0.0
-        ? mix(t12, -t12, lessThan(w.xy, vec2(0.0)))
-        : vec2(0.0);
-    return result;
+    UNITPACK_PRECISE vec2 t11 = t8 + t10;
+    UNITPACK_PRECISE vec2 t12 = mix(vec2(0.0), t11, greaterThanEqual(t11, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t13 = mix(vec2(32767.0), t12, lessThanEqual(t12, vec2(32767.0)));
+    UNITPACK_PRECISE vec2 t14 = mix(t13, -t13, lessThan(w.xy, vec2(0.0)));
+    bool t15 = len2 > 0.0;
+    return ok && t15 ? t14 : vec2(0.0);
 }
 
 // unitpack_xy32_encode: fast encoder.

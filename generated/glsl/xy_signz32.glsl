@@ -46,8 +46,8 @@ vec3 unitpack_xy_signz32_decode_float(vec3 params) {
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
     UNITPACK_PRECISE float d = t2 < 1.0 ? t2 : 1.0;
     UNITPACK_PRECISE float t3 = sqrt(1.0 - d);
-    UNITPACK_PRECISE vec3 result = vec3(params.xy, params.z > 0.5 ? -t3 : t3);
-    return result;
+    UNITPACK_PRECISE float neg_t3 = -t3;
+    return vec3(params.xy, params.z > 0.5 ? neg_t3 : t3);
 }
 
 // unitpack_xy_signz32_decode: decoder.
@@ -58,18 +58,20 @@ vec3 unitpack_xy_signz32_decode_float(vec3 params) {
 // Portable as unitpack_xy_signz32_decode_float is, within the same bound.
 vec3 unitpack_xy_signz32_decode(uint code) {
     UNITPACK_PRECISE float t1 = float(code & 65535u);
-    UNITPACK_PRECISE float t2 = float((code >> 16u) & 32767u);
-    UNITPACK_PRECISE vec3 t3 = vec3(
-        t1 > 32767.0 ? t1 - 65536.0 : t1,
-        t2 > 16383.0 ? t2 - 32768.0 : t2,
+    UNITPACK_PRECISE float t2 = t1 - 65536.0;
+    UNITPACK_PRECISE float t3 = float((code >> 16u) & 32767u);
+    UNITPACK_PRECISE float t4 = t3 - 32768.0;
+    UNITPACK_PRECISE vec3 t5 = vec3(
+        t1 > 32767.0 ? t2 : t1,
+        t3 > 16383.0 ? t4 : t3,
         float(code >> 31u)
     );
-    UNITPACK_PRECISE float t4 = t3.x * 3.051851e-5;
-    UNITPACK_PRECISE float t5 = t3.y * 6.103888e-5;
+    UNITPACK_PRECISE float t6 = t5.x * 3.051851e-5;
+    UNITPACK_PRECISE float t7 = t5.y * 6.103888e-5;
     UNITPACK_PRECISE vec3 params = vec3(
-        t4 >= (-1.0) ? t4 : -1.0,
-        t5 >= (-1.0) ? t5 : -1.0,
-        t3.z * 1.0
+        t6 >= (-1.0) ? t6 : -1.0,
+        t7 >= (-1.0) ? t7 : -1.0,
+        t5.z * 1.0
     );
     return unitpack_xy_signz32_decode_float(params);
 }
@@ -85,12 +87,16 @@ vec3 unitpack_xy_signz32_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    UNITPACK_PRECISE vec3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    UNITPACK_PRECISE vec3 scaled = v / (t3 ? largest : 1.0);
     UNITPACK_PRECISE vec3 scaled_sq = scaled * scaled;
     UNITPACK_PRECISE float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    UNITPACK_PRECISE vec3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : vec3(0.0, 0.0, 1.0);
-    return vec3(t3.xy, t3.z < 0.0 ? 1.0 : 0.0);
+    bool t4 = len2 >= 1.0;
+    UNITPACK_PRECISE vec3 t5 = scaled / sqrt(len2);
+    UNITPACK_PRECISE vec3 t6 = t3 && t4 ? t5 : vec3(0.0, 0.0, 1.0);
+    UNITPACK_PRECISE float one_if = t6.z < 0.0 ? 1.0 : 0.0;
+    return vec3(t6.xy, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -107,7 +113,8 @@ vec3 unitpack_xy_signz32_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
@@ -129,26 +136,28 @@ vec3 unitpack_xy_signz32_round_codes(vec3 a0) {
     UNITPACK_PRECISE float big2 = big * big;
     UNITPACK_PRECISE float upper = estimate + 0.5;
     UNITPACK_PRECISE float lower = estimate - 0.5;
-    UNITPACK_PRECISE float t2 = big2 >= upper * upper * len2
-        ? 1.0
-        : (estimate > 0.0 && big2 < lower * lower * len2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float t3 = estimate + t2;
-    UNITPACK_PRECISE float t4 = t3 >= 0.0 ? t3 : 0.0;
-    UNITPACK_PRECISE float t5 = t4 <= 32767.0 ? t4 : 32767.0;
+    UNITPACK_PRECISE float t2 = lower * lower * len2;
+    bool t3 = big2 < t2;
+    UNITPACK_PRECISE float step_down = estimate > 0.0 && t3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = big2 >= upper * upper * len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float t4 = estimate + step;
+    UNITPACK_PRECISE float t5 = t4 >= 0.0 ? t4 : 0.0;
+    UNITPACK_PRECISE float t6 = t5 <= 32767.0 ? t5 : 32767.0;
     UNITPACK_PRECISE float big3 = abs(w2.y * 16383.0);
     UNITPACK_PRECISE float estimate2 = roundEven(big3 / sqrt(len2));
     UNITPACK_PRECISE float big2_2 = big3 * big3;
     UNITPACK_PRECISE float upper2 = estimate2 + 0.5;
     UNITPACK_PRECISE float lower2 = estimate2 - 0.5;
-    UNITPACK_PRECISE float t6 = big2_2 >= upper2 * upper2 * len2
-        ? 1.0
-        : (estimate2 > 0.0 && big2_2 < lower2 * lower2 * len2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float t7 = estimate2 + t6;
-    UNITPACK_PRECISE float t8 = t7 >= 0.0 ? t7 : 0.0;
-    UNITPACK_PRECISE float t9 = t8 <= 16383.0 ? t8 : 16383.0;
+    UNITPACK_PRECISE float t7 = lower2 * lower2 * len2;
+    bool t8 = big2_2 < t7;
+    UNITPACK_PRECISE float step_down2 = estimate2 > 0.0 && t8 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t9 = estimate2 + step2;
+    UNITPACK_PRECISE float t10 = t9 >= 0.0 ? t9 : 0.0;
+    UNITPACK_PRECISE float t11 = t10 <= 16383.0 ? t10 : 16383.0;
     UNITPACK_PRECISE vec3 result = mix(
-        vec3(t5, t9, 0.0),
-        vec3(-t5, -t9, 1.0),
+        vec3(t6, t11, 0.0),
+        vec3(-t6, -t11, 1.0),
         lessThan(w2, vec3(0.0))
     );
     return result;

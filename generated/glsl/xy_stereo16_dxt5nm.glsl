@@ -58,10 +58,8 @@ vec3 unitpack_xy_stereo16_dxt5nm_decode_float(vec4 params) {
 //   below the horizon.
 // Portable as unitpack_xy_stereo16_dxt5nm_decode_float is, within the same bound.
 vec3 unitpack_xy_stereo16_dxt5nm_decode(uint code) {
-    UNITPACK_PRECISE vec4 params = vec4(
-        uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    )
-        * 0.003921569;
+    uvec4 t1 = uvec4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    UNITPACK_PRECISE vec4 params = vec4(t1) * 0.003921569;
     return unitpack_xy_stereo16_dxt5nm_decode_float(params);
 }
 
@@ -84,7 +82,8 @@ vec4 unitpack_xy_stereo16_dxt5nm_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -98,15 +97,16 @@ vec4 unitpack_xy_stereo16_dxt5nm_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -126,18 +126,20 @@ vec4 unitpack_xy_stereo16_dxt5nm_encode_float(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root + w4.z;
     UNITPACK_PRECISE vec2 p = w4.xy / a;
@@ -159,7 +161,8 @@ vec4 unitpack_xy_stereo16_dxt5nm_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -173,15 +176,16 @@ vec4 unitpack_xy_stereo16_dxt5nm_round_codes(vec3 a0) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -201,35 +205,39 @@ vec4 unitpack_xy_stereo16_dxt5nm_round_codes(vec3 a0) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root + w4.z;
-    UNITPACK_PRECISE vec2 t6 = w4.xy * 127.5;
-    UNITPACK_PRECISE vec2 t7 = roundEven(t6 / a + 127.5);
-    UNITPACK_PRECISE vec2 t8 = mix(vec2(0.0), t7, greaterThanEqual(t7, vec2(0.0)));
-    UNITPACK_PRECISE vec2 t9 = mix(vec2(255.0), t8, lessThanEqual(t8, vec2(255.0)));
-    UNITPACK_PRECISE vec2 t10 = mix(
+    UNITPACK_PRECISE vec2 t2 = w4.xy * 127.5;
+    UNITPACK_PRECISE vec2 t3 = roundEven(t2 / a + 127.5);
+    UNITPACK_PRECISE vec2 t4 = mix(vec2(0.0), t3, greaterThanEqual(t3, vec2(0.0)));
+    UNITPACK_PRECISE vec2 t5 = mix(vec2(255.0), t4, lessThanEqual(t4, vec2(255.0)));
+    UNITPACK_PRECISE vec2 t6 = t5
+        + mix(
+            vec2(0.0),
+            mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 127.0) * a)),
+            lessThan(t5, vec2(255.0))
+        );
+    UNITPACK_PRECISE vec2 t7 = mix(
         vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, (t9 - 127.0) * a)),
-        lessThan(t9, vec2(255.0))
+        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t2, (t5 - 1.0 - 127.0) * a)) - 1.0,
+        greaterThan(t5, vec2(0.0))
     );
-    UNITPACK_PRECISE vec2 t11 = mix(
-        vec2(0.0),
-        mix(vec2(0.0), vec2(1.0), greaterThanEqual(t6, (t9 - 1.0 - 127.0) * a)) - 1.0,
-        greaterThan(t9, vec2(0.0))
-    );
-    UNITPACK_PRECISE vec2 c = ok && ok2 ? t9 + t10 + t11 : vec2(128.0);
+    UNITPACK_PRECISE vec2 t8 = t6 + t7;
+    UNITPACK_PRECISE vec2 c = ok && ok2 ? t8 : vec2(128.0);
     return vec4(255.0, c.y, 0.0, c.x);
 }
 
@@ -242,10 +250,8 @@ vec4 unitpack_xy_stereo16_dxt5nm_round_codes(vec3 a0) {
 //   components count as zero.
 uint unitpack_xy_stereo16_dxt5nm_encode(vec3 v) {
     UNITPACK_PRECISE vec4 round_codes = unitpack_xy_stereo16_dxt5nm_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_XY_STEREO16_DXT5NM_GLSL

@@ -77,7 +77,8 @@ vec2 unitpack_xy_stereo32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
     UNITPACK_PRECISE float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
     UNITPACK_PRECISE vec3 t1 = vec3(w2.xy, w2.z > 0.0 ? w2.z : 0.0);
@@ -91,15 +92,16 @@ vec2 unitpack_xy_stereo32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
     UNITPACK_PRECISE float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     UNITPACK_PRECISE vec3 w3 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w4 = ok2 ? w3 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    UNITPACK_PRECISE float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    UNITPACK_PRECISE float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    UNITPACK_PRECISE float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    UNITPACK_PRECISE float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -119,214 +121,218 @@ vec2 unitpack_xy_stereo32p_encode_codes(vec3 v) {
     uint lo4 = lo3 & 16777215u;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
-    UNITPACK_PRECISE float t5 = floor(root_estimate * 512.0);
-    UNITPACK_PRECISE float root_h0 = t5 * 0.001953125;
+    UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
+    UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
-    UNITPACK_PRECISE float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + step;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    UNITPACK_PRECISE float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + step2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root + w4.z;
-    UNITPACK_PRECISE vec2 t6 = floor(w4.xy / a * 32767.0);
-    UNITPACK_PRECISE vec2 t7 = w4.xy * 32767.0;
-    UNITPACK_PRECISE vec2 t8 = mix(
-        mix(vec2(0.0), vec2(-1.0), lessThan(t7, t6 * a)),
+    UNITPACK_PRECISE vec2 t2 = floor(w4.xy / a * 32767.0);
+    UNITPACK_PRECISE vec2 t3 = w4.xy * 32767.0;
+    UNITPACK_PRECISE vec2 t4 = mix(
+        mix(vec2(0.0), vec2(-1.0), lessThan(t3, t2 * a)),
         vec2(1.0),
-        greaterThanEqual(t7, (t6 + 1.0) * a)
+        greaterThanEqual(t3, (t2 + 1.0) * a)
     );
-    UNITPACK_PRECISE vec2 t9 = t6 + t8;
-    UNITPACK_PRECISE vec2 t10 = mix(vec2(-32767.0), t9, greaterThanEqual(t9, vec2(-32767.0)));
-    UNITPACK_PRECISE vec2 base = mix(vec2(32767.0), t10, lessThanEqual(t10, vec2(32767.0)));
-    UNITPACK_PRECISE vec3 t11 = floor(w4 / root * 2097152.0);
-    UNITPACK_PRECISE vec3 t12 = w4 * 2097152.0;
-    UNITPACK_PRECISE vec3 t13 = mix(
-        mix(vec3(0.0), vec3(-1.0), greaterThan(t11 * root, t12)),
+    UNITPACK_PRECISE vec2 t5 = t2 + t4;
+    UNITPACK_PRECISE vec2 t6 = mix(vec2(-32767.0), t5, greaterThanEqual(t5, vec2(-32767.0)));
+    UNITPACK_PRECISE vec2 base = mix(vec2(32767.0), t6, lessThanEqual(t6, vec2(32767.0)));
+    UNITPACK_PRECISE vec3 t7 = floor(w4 / root * 2097152.0);
+    UNITPACK_PRECISE vec3 t8 = w4 * 2097152.0;
+    UNITPACK_PRECISE vec3 t9 = mix(
+        mix(vec3(0.0), vec3(-1.0), greaterThan(t7 * root, t8)),
         vec3(1.0),
-        lessThanEqual((t11 + 1.0) * root, t12)
+        lessThanEqual((t7 + 1.0) * root, t8)
     );
-    UNITPACK_PRECISE vec3 aim = t11 + t13;
+    UNITPACK_PRECISE vec3 aim = t7 + t9;
     UNITPACK_PRECISE vec2 cand = mix(vec2(32767.0), base, lessThanEqual(base, vec2(32767.0)));
     UNITPACK_PRECISE vec2 p = floor(cand * 64.00195);
     UNITPACK_PRECISE float q = roundEven(p.x * p.x * 4.7683716e-7)
         + roundEven(p.y * p.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t14 = 2097152.0 + q;
-    UNITPACK_PRECISE vec2 t15 = p + p;
-    UNITPACK_PRECISE vec2 t16 = floor(t15 / t14 * 2097152.0);
-    UNITPACK_PRECISE vec2 t17 = t15 * 2097152.0;
-    UNITPACK_PRECISE vec2 t18 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t16 * t14, t17)),
+    UNITPACK_PRECISE float t10 = 2097152.0 + q;
+    UNITPACK_PRECISE vec2 t11 = p + p;
+    UNITPACK_PRECISE vec2 t12 = floor(t11 / t10 * 2097152.0);
+    UNITPACK_PRECISE vec2 t13 = t11 * 2097152.0;
+    UNITPACK_PRECISE vec2 t14 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t12 * t10, t13)),
         vec2(1.0),
-        lessThanEqual((t16 + 1.0) * t14, t17)
+        lessThanEqual((t12 + 1.0) * t10, t13)
     );
-    UNITPACK_PRECISE float t19 = 2097152.0 - q;
-    UNITPACK_PRECISE float big = t19 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate = floor(t19 / t14 * 2097152.0);
-    UNITPACK_PRECISE float t20 = (ratio_estimate + 1.0) * t14 <= big
-        ? 1.0
-        : (ratio_estimate * t14 > big ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio = ratio_estimate + t20;
-    UNITPACK_PRECISE vec3 t21 = abs(vec3(t16 + t18, ratio) - aim);
-    uvec3 t22 = uvec3(t21);
-    uint limb1_4 = t22.x >> 12u;
-    uint limb0_4 = t22.x & 4095u;
+    UNITPACK_PRECISE float t15 = 2097152.0 - q;
+    UNITPACK_PRECISE float big = t15 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate = floor(t15 / t10 * 2097152.0);
+    UNITPACK_PRECISE float step_down3 = ratio_estimate * t10 > big ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t10 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE vec3 offset = vec3(t12 + t14, ratio) - aim;
+    UNITPACK_PRECISE vec3 abs_offset = abs(offset);
+    uvec3 offset_u = uvec3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t22.y >> 12u;
-    uint limb0_5 = t22.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t22.z >> 12u;
-    uint limb0_6 = t22.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE float t23 = base.x + 1.0;
-    UNITPACK_PRECISE vec2 t24 = vec2(t23, base.y);
-    UNITPACK_PRECISE vec2 cand2 = mix(vec2(32767.0), t24, lessThanEqual(t24, vec2(32767.0)));
+    UNITPACK_PRECISE float s_up = base.x + 1.0;
+    UNITPACK_PRECISE float t_up = base.y + 1.0;
+    UNITPACK_PRECISE vec2 t16 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 cand2 = mix(vec2(32767.0), t16, lessThanEqual(t16, vec2(32767.0)));
+    bool t17 = base.y <= 32767.0;
     UNITPACK_PRECISE vec2 p2 = floor(cand2 * 64.00195);
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t25 = 2097152.0 + q2;
-    UNITPACK_PRECISE vec2 t26 = p2 + p2;
-    UNITPACK_PRECISE vec2 t27 = floor(t26 / t25 * 2097152.0);
-    UNITPACK_PRECISE vec2 t28 = t26 * 2097152.0;
-    UNITPACK_PRECISE vec2 t29 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t27 * t25, t28)),
+    UNITPACK_PRECISE float t18 = 2097152.0 + q2;
+    UNITPACK_PRECISE vec2 t19 = p2 + p2;
+    UNITPACK_PRECISE vec2 t20 = floor(t19 / t18 * 2097152.0);
+    UNITPACK_PRECISE vec2 t21 = t19 * 2097152.0;
+    UNITPACK_PRECISE vec2 t22 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t20 * t18, t21)),
         vec2(1.0),
-        lessThanEqual((t27 + 1.0) * t25, t28)
+        lessThanEqual((t20 + 1.0) * t18, t21)
     );
-    UNITPACK_PRECISE float t30 = 2097152.0 - q2;
-    UNITPACK_PRECISE float big2 = t30 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate2 = floor(t30 / t25 * 2097152.0);
-    UNITPACK_PRECISE float t31 = (ratio_estimate2 + 1.0) * t25 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t25 > big2 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + t31;
-    UNITPACK_PRECISE vec3 t32 = abs(vec3(t27 + t29, ratio2) - aim);
-    uvec3 t33 = uvec3(t32);
-    uint limb1_7 = t33.x >> 12u;
-    uint limb0_7 = t33.x & 4095u;
+    UNITPACK_PRECISE float t23 = 2097152.0 - q2;
+    UNITPACK_PRECISE float big2 = t23 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate2 = floor(t23 / t18 * 2097152.0);
+    UNITPACK_PRECISE float step_down4 = ratio_estimate2 * t18 > big2 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step4 = (ratio_estimate2 + 1.0) * t18 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step4;
+    UNITPACK_PRECISE vec3 offset2 = vec3(t20 + t22, ratio2) - aim;
+    UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
+    uvec3 offset_u2 = uvec3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t33.y >> 12u;
-    uint limb0_8 = t33.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t33.z >> 12u;
-    uint limb0_9 = t33.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t34 = t23 <= 32767.0 && base.y <= 32767.0 && dist2 < dist;
-    UNITPACK_PRECISE vec2 best = t34 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t34 ? dist2 : dist;
-    UNITPACK_PRECISE float t35 = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t36 = vec2(base.x, t35);
-    UNITPACK_PRECISE vec2 cand3 = mix(vec2(32767.0), t36, lessThanEqual(t36, vec2(32767.0)));
+    bool t24 = dist2 < dist;
+    bool t25 = s_up <= 32767.0 && t17 && t24;
+    UNITPACK_PRECISE vec2 best = t25 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t25 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t26 = vec2(base.x, t_up);
+    UNITPACK_PRECISE vec2 cand3 = mix(vec2(32767.0), t26, lessThanEqual(t26, vec2(32767.0)));
+    bool t27 = t_up <= 32767.0;
     UNITPACK_PRECISE vec2 p3 = floor(cand3 * 64.00195);
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t37 = 2097152.0 + q3;
-    UNITPACK_PRECISE vec2 t38 = p3 + p3;
-    UNITPACK_PRECISE vec2 t39 = floor(t38 / t37 * 2097152.0);
-    UNITPACK_PRECISE vec2 t40 = t38 * 2097152.0;
-    UNITPACK_PRECISE vec2 t41 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t39 * t37, t40)),
+    UNITPACK_PRECISE float t28 = 2097152.0 + q3;
+    UNITPACK_PRECISE vec2 t29 = p3 + p3;
+    UNITPACK_PRECISE vec2 t30 = floor(t29 / t28 * 2097152.0);
+    UNITPACK_PRECISE vec2 t31 = t29 * 2097152.0;
+    UNITPACK_PRECISE vec2 t32 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t30 * t28, t31)),
         vec2(1.0),
-        lessThanEqual((t39 + 1.0) * t37, t40)
+        lessThanEqual((t30 + 1.0) * t28, t31)
     );
-    UNITPACK_PRECISE float t42 = 2097152.0 - q3;
-    UNITPACK_PRECISE float big3 = t42 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate3 = floor(t42 / t37 * 2097152.0);
-    UNITPACK_PRECISE float t43 = (ratio_estimate3 + 1.0) * t37 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t37 > big3 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + t43;
-    UNITPACK_PRECISE vec3 t44 = abs(vec3(t39 + t41, ratio3) - aim);
-    uvec3 t45 = uvec3(t44);
-    uint limb1_10 = t45.x >> 12u;
-    uint limb0_10 = t45.x & 4095u;
+    UNITPACK_PRECISE float t33 = 2097152.0 - q3;
+    UNITPACK_PRECISE float big3 = t33 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate3 = floor(t33 / t28 * 2097152.0);
+    UNITPACK_PRECISE float step_down5 = ratio_estimate3 * t28 > big3 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = (ratio_estimate3 + 1.0) * t28 <= big3 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step5;
+    UNITPACK_PRECISE vec3 offset3 = vec3(t30 + t32, ratio3) - aim;
+    UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
+    uvec3 offset_u3 = uvec3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t45.y >> 12u;
-    uint limb0_11 = t45.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t45.z >> 12u;
-    uint limb0_12 = t45.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t46 = base.x <= 32767.0 && t35 <= 32767.0 && dist3 < best_d;
-    UNITPACK_PRECISE vec2 best2 = t46 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t46 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t47 = base + 1.0;
-    UNITPACK_PRECISE vec2 cand4 = mix(vec2(32767.0), t47, lessThanEqual(t47, vec2(32767.0)));
+    bool t34 = dist3 < best_d;
+    bool t35 = base.x <= 32767.0 && t27 && t34;
+    UNITPACK_PRECISE vec2 best2 = t35 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t35 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t36 = base + 1.0;
+    UNITPACK_PRECISE vec2 cand4 = mix(vec2(32767.0), t36, lessThanEqual(t36, vec2(32767.0)));
+    bool t37 = t_up <= 32767.0;
     UNITPACK_PRECISE vec2 p4 = floor(cand4 * 64.00195);
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t48 = 2097152.0 + q4;
-    UNITPACK_PRECISE vec2 t49 = p4 + p4;
-    UNITPACK_PRECISE vec2 t50 = floor(t49 / t48 * 2097152.0);
-    UNITPACK_PRECISE vec2 t51 = t49 * 2097152.0;
-    UNITPACK_PRECISE vec2 t52 = mix(
-        mix(vec2(0.0), vec2(-1.0), greaterThan(t50 * t48, t51)),
+    UNITPACK_PRECISE float t38 = 2097152.0 + q4;
+    UNITPACK_PRECISE vec2 t39 = p4 + p4;
+    UNITPACK_PRECISE vec2 t40 = floor(t39 / t38 * 2097152.0);
+    UNITPACK_PRECISE vec2 t41 = t39 * 2097152.0;
+    UNITPACK_PRECISE vec2 t42 = mix(
+        mix(vec2(0.0), vec2(-1.0), greaterThan(t40 * t38, t41)),
         vec2(1.0),
-        lessThanEqual((t50 + 1.0) * t48, t51)
+        lessThanEqual((t40 + 1.0) * t38, t41)
     );
-    UNITPACK_PRECISE float t53 = 2097152.0 - q4;
-    UNITPACK_PRECISE float big4 = t53 * 2097152.0;
-    UNITPACK_PRECISE float ratio_estimate4 = floor(t53 / t48 * 2097152.0);
-    UNITPACK_PRECISE float t54 = (ratio_estimate4 + 1.0) * t48 <= big4
-        ? 1.0
-        : (ratio_estimate4 * t48 > big4 ? -1.0 : 0.0);
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + t54;
-    UNITPACK_PRECISE vec3 t55 = abs(vec3(t50 + t52, ratio4) - aim);
-    uvec3 t56 = uvec3(t55);
-    uint limb1_13 = t56.x >> 12u;
-    uint limb0_13 = t56.x & 4095u;
+    UNITPACK_PRECISE float t43 = 2097152.0 - q4;
+    UNITPACK_PRECISE float big4 = t43 * 2097152.0;
+    UNITPACK_PRECISE float ratio_estimate4 = floor(t43 / t38 * 2097152.0);
+    UNITPACK_PRECISE float step_down6 = ratio_estimate4 * t38 > big4 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = (ratio_estimate4 + 1.0) * t38 <= big4 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step6;
+    UNITPACK_PRECISE vec3 offset4 = vec3(t40 + t42, ratio4) - aim;
+    UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
+    uvec3 offset_u4 = uvec3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t56.y >> 12u;
-    uint limb0_14 = t56.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t56.z >> 12u;
-    uint limb0_15 = t56.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    UNITPACK_PRECISE vec2 best3 = base.x + 1.0 <= 32767.0
-        && base.y + 1.0 <= 32767.0
-        && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t44 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 32767.0 && t37 && t44 ? cand4 : best2;
     return ok && ok2 ? best3 : vec2(0.0);
 }
 

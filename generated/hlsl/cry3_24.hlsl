@@ -47,10 +47,8 @@ float3 unitpack_cry3_24_decode_float(float2 params) {
     precise float2 fenc_sq2 = fenc * fenc;
     precise float len2 = fenc_sq2.x + fenc_sq2.y;
     bool t1 = len2 > 0.0;
-    precise float3 result = float3(
-        (t1 ? fenc / sqrt(t1 ? len2 : 1.0) : float2(0.0, 0.0)) * sqrt(abs(1.0 - z * z)),
-        z
-    );
+    precise float2 t2 = fenc / sqrt(t1 ? len2 : 1.0);
+    precise float3 result = float3((t1 ? t2 : float2(0.0, 0.0)) * sqrt(abs(1.0 - z * z)), z);
     return result;
 }
 
@@ -84,19 +82,20 @@ float2 unitpack_cry3_24_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -116,24 +115,27 @@ float2 unitpack_cry3_24_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    bool t5 = w2.z >= 0.0;
-    precise float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    precise float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    bool t1 = w2.z >= 0.0;
+    precise float t2 = root + w2.z;
+    precise float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -147,13 +149,13 @@ float2 unitpack_cry3_24_encode_float(float3 v) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    precise float opz_a = t5 ? root + w2.z : rho2;
-    precise float opz_b = t5 ? 1.0 : root - w2.z;
+    precise float opz_a = t1 ? t2 : rho2;
+    precise float t3 = root - w2.z;
+    precise float opz_b = t1 ? 1.0 : t3;
     precise float g = sqrt(root * opz_a / opz_b * 8.0);
-    precise float2 result = ok
-        ? (opz_a <= 0.0 ? float2(1.0, 0.5) : w2.xy / g + 0.5)
-        : float2(0.5, 0.5);
-    return result;
+    precise float2 t4 = w2.xy / g + 0.5;
+    precise float2 t5 = opz_a <= 0.0 ? float2(1.0, 0.5) : t4;
+    return ok ? t5 : float2(0.5, 0.5);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -172,19 +174,20 @@ float2 unitpack_cry3_24_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -204,24 +207,27 @@ float2 unitpack_cry3_24_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    bool t5 = w2.z >= 0.0;
-    precise float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    precise float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    bool t1 = w2.z >= 0.0;
+    precise float t2 = root + w2.z;
+    precise float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -235,51 +241,49 @@ float2 unitpack_cry3_24_round_codes(float3 a0) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    precise float opz_a = t5 ? root + w2.z : rho2;
-    precise float opz_b = t5 ? 1.0 : root - w2.z;
+    precise float opz_a = t1 ? t2 : rho2;
+    precise float t3 = root - w2.z;
+    precise float opz_b = t1 ? 1.0 : t3;
     precise float la = root * opz_a;
-    precise float2 t8 = round(w2.xy / (sqrt(la / opz_b) * 0.0006907026) + 2047.5);
-    precise float2 t9 = UNITPACK_SELECT(t8 >= float2(0.0, 0.0), t8, float2(0.0, 0.0));
-    precise float2 t10 = UNITPACK_SELECT(t9 <= float2(4095.0, 4095.0), t9, float2(4095.0, 4095.0));
-    precise float2 t11 = t10 - 2047.0;
-    precise float2 t12 = w2.xy * w2.xy * opz_b * 2096128.1;
-    precise float2 t13 = t11 * t11 * la;
-    precise float2 t14 = UNITPACK_SELECT(
-        t11 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t12 >= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+    precise float2 t4 = round(w2.xy / (sqrt(la / opz_b) * 0.0006907026) + 2047.5);
+    precise float2 t5 = UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0));
+    precise float2 t6 = UNITPACK_SELECT(t5 <= float2(4095.0, 4095.0), t5, float2(4095.0, 4095.0));
+    precise float2 t7 = t6 - 2047.0;
+    precise float2 t8 = w2.xy * w2.xy * opz_b * 2096128.1;
+    precise float2 t9 = t7 * t7 * la;
+    precise float2 t10 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t7 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t8 >= t9, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t7 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t8 <= t9, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t15 = UNITPACK_SELECT(
-        t11 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t12 <= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t11 = t6 - 1.0 - 2047.0;
+    precise float2 t12 = t11 * t11 * la;
+    precise float2 t13 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t11 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t8 >= t12, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t11 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t8 <= t12, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t16 = UNITPACK_SELECT(
-        t10 < float2(4095.0, 4095.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t14, t15),
-        float2(0.0, 0.0)
-    );
-    precise float2 t17 = t10 - 1.0 - 2047.0;
-    precise float2 t18 = t17 * t17 * la;
-    precise float2 t19 = UNITPACK_SELECT(
-        t17 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t12 >= t18, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t20 = UNITPACK_SELECT(
-        t17 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t12 <= t18, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t21 = UNITPACK_SELECT(
-        t10 > float2(0.0, 0.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t19, t20) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 result = ok
-        ? (opz_a <= 0.0 ? float2(4095.0, 2048.0) : t10 + t16 + t21)
-        : float2(2048.0, 2048.0);
-    return result;
+    precise float2 t14 = t6
+        + UNITPACK_SELECT(t6 < float2(4095.0, 4095.0), t10, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t6 > float2(0.0, 0.0), t13 - 1.0, float2(0.0, 0.0));
+    precise float2 t15 = opz_a <= 0.0 ? float2(4095.0, 2048.0) : t14;
+    return ok ? t15 : float2(2048.0, 2048.0);
 }
 
 // unitpack_cry3_24_encode: fast encoder.

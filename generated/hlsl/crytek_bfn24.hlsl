@@ -80,7 +80,8 @@ uint2 unitpack_crytek_bfn24_fitting_texel(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -91,14 +92,16 @@ uint2 unitpack_crytek_bfn24_fitting_texel(float3 v) {
     precise float t1 = abs_w2.x >= abs_w2.y ? abs_w2.x : abs_w2.y;
     precise float t2 = abs_w2.x <= abs_w2.y ? abs_w2.x : abs_w2.y;
     bool t3 = abs_w2.z >= t1;
-    precise float t4 = t3 ? t1 : (abs_w2.z >= t2 ? abs_w2.z : t2);
-    precise float t5 = t3 ? t2 : (abs_w2.z <= t2 ? abs_w2.z : t2);
-    precise float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t6);
-    precise float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t7);
-    precise float t8 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t8);
+    precise float t4 = abs_w2.z >= t2 ? abs_w2.z : t2;
+    precise float t5 = t3 ? t1 : t4;
+    precise float t6 = abs_w2.z <= t2 ? abs_w2.z : t2;
+    precise float t7 = t3 ? t2 : t6;
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -118,35 +121,35 @@ uint2 unitpack_crytek_bfn24_fitting_texel(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t9 = floor(root_estimate * 512.0);
-    precise float root_h0 = t9 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t9
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float l = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float big = t4 * 512.0;
-    precise float ratio_estimate = floor(t4 / l * 512.0);
-    precise float t10 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t10;
-    bool t11 = t4 > 0.0;
-    precise float t12 = t11 ? t4 : 1.0;
-    precise float big2 = t5 * 512.0;
-    precise float ratio_estimate2 = floor(t5 / t12 * 512.0);
-    precise float t13 = (ratio_estimate2 + 1.0) * t12 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t12 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t13;
-    precise float2 t14 = float2(ratio, t11 ? ratio2 : 0.0);
-    return uint2(UNITPACK_SELECT(t14 <= float2(511.0, 511.0), t14, float2(511.0, 511.0)));
+    precise float big = t5 * 512.0;
+    precise float ratio_estimate = floor(t5 / l * 512.0);
+    precise float step_down3 = ratio_estimate * l > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    bool t8 = t5 > 0.0;
+    precise float t9 = t8 ? t5 : 1.0;
+    precise float big2 = t7 * 512.0;
+    precise float ratio_estimate2 = floor(t7 / t9 * 512.0);
+    precise float step_down4 = ratio_estimate2 * t9 > big2 ? -1.0 : 0.0;
+    precise float step4 = (ratio_estimate2 + 1.0) * t9 <= big2 ? 1.0 : step_down4;
+    precise float ratio2 = ratio_estimate2 + step4;
+    precise float2 t10 = float2(ratio, t8 ? ratio2 : 0.0);
+    return uint2(UNITPACK_SELECT(t10 <= float2(511.0, 511.0), t10, float2(511.0, 511.0)));
 }
 
 // unitpack_crytek_bfn24_encode_float: fast encoder, float form.
@@ -159,14 +162,17 @@ float3 unitpack_crytek_bfn24_encode_float(float3 v, float fetched) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    precise float3 abs_t3 = abs(t3);
-    precise float t4 = abs_t3.x >= abs_t3.y ? abs_t3.x : abs_t3.y;
-    precise float3 result = t3 / (t4 >= abs_t3.z ? t4 : abs_t3.z) * fetched * 0.5 + 0.5;
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 t6 = t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
+    precise float3 abs_t6 = abs(t6);
+    precise float t7 = abs_t6.x >= abs_t6.y ? abs_t6.x : abs_t6.y;
+    precise float3 result = t6 / (t7 >= abs_t6.z ? t7 : abs_t6.z) * fetched * 0.5 + 0.5;
     return result;
 }
 
@@ -191,7 +197,8 @@ uint unitpack_crytek_bfn24_encode(float3 v, float fetched) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -203,33 +210,34 @@ uint unitpack_crytek_bfn24_encode(float3 v, float fetched) {
     precise float t2 = t1 >= abs_w2.z ? t1 : abs_w2.z;
     precise float t3 = fetched >= 0.0 ? fetched : 0.0;
     precise float k = round((t3 <= 1.0 ? t3 : 1.0) * 255.0);
-    uint t4 = uint(k);
+    uint k_u = uint(k);
     precise float big = abs_w2.x * 1048576.0;
     precise float ratio_estimate = floor(abs_w2.x / t2 * 1048576.0);
-    precise float t5 = (ratio_estimate + 1.0) * t2 <= big
-        ? 1.0
-        : (ratio_estimate * t2 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t5;
-    uint t6 = uint(ratio) * t4;
+    precise float step_down = ratio_estimate * t2 > big ? -1.0 : 0.0;
+    precise float step = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + step;
+    uint t4 = uint(ratio) * k_u;
+    uint t5 = 128u + (t4 >> 21u);
+    uint t6 = 128u - ((t4 + 2097151u) >> 21u);
     precise float big2 = abs_w2.y * 1048576.0;
     precise float ratio_estimate2 = floor(abs_w2.y / t2 * 1048576.0);
-    precise float t7 = (ratio_estimate2 + 1.0) * t2 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t2 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t7;
-    uint t8 = uint(ratio2) * t4;
+    precise float step_down2 = ratio_estimate2 * t2 > big2 ? -1.0 : 0.0;
+    precise float step2 = (ratio_estimate2 + 1.0) * t2 <= big2 ? 1.0 : step_down2;
+    precise float ratio2 = ratio_estimate2 + step2;
+    uint t7 = uint(ratio2) * k_u;
+    uint t8 = 128u + (t7 >> 21u);
+    uint t9 = 128u - ((t7 + 2097151u) >> 21u);
     precise float big3 = abs_w2.z * 1048576.0;
     precise float ratio_estimate3 = floor(abs_w2.z / t2 * 1048576.0);
-    precise float t9 = (ratio_estimate3 + 1.0) * t2 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t2 > big3 ? -1.0 : 0.0);
-    precise float ratio3 = ratio_estimate3 + t9;
-    uint t10 = uint(ratio3) * t4;
-    uint t11 = uint(float(w2.y < 0.0 ? 128u - ((t8 + 2097151u) >> 21u) : 128u + (t8 >> 21u))) << 8u;
-    uint t12 = uint(float(w2.x < 0.0 ? 128u - ((t6 + 2097151u) >> 21u) : 128u + (t6 >> 21u))) | t11;
-    uint t13 = uint(float(w2.z < 0.0 ? 128u - ((t10 + 2097151u) >> 21u) : 128u + (t10 >> 21u)))
-        << 16u;
-    return ok ? t12 | t13 : 16744576u;
+    precise float step_down3 = ratio_estimate3 * t2 > big3 ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate3 + 1.0) * t2 <= big3 ? 1.0 : step_down3;
+    precise float ratio3 = ratio_estimate3 + step3;
+    uint t10 = uint(ratio3) * k_u;
+    uint t11 = 128u + (t10 >> 21u);
+    uint t12 = 128u - ((t10 + 2097151u) >> 21u);
+    uint t13 = uint(float(w2.x < 0.0 ? t6 : t5)) | (uint(float(w2.y < 0.0 ? t9 : t8)) << 8u);
+    uint t14 = t13 | (uint(float(w2.z < 0.0 ? t12 : t11)) << 16u);
+    return ok ? t14 : 16744576u;
 }
 
 #endif // UNITPACK_CRYTEK_BFN24_HLSL

@@ -51,9 +51,18 @@ float3 unitpack_cube16p_decode_float(float3 params) {
     precise float3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t2 = params.z >= 0.5;
     bool t3 = params.z >= 0.21428572;
-    precise float t4 = t2 ? params.z - 0.5714286 : (t3 ? params.z - 0.2857143 : params.z);
-    precise float t5 = (t4 >= 0.21428572 ? t4 - 0.2857143 : t4) > 0.071428575 ? -u.z : u.z;
-    return t2 ? float3(u.xy, t5) : (t3 ? float3(u.y, t5, u.x) : float3(t5, u.xy));
+    precise float t4 = params.z - 0.5714286;
+    precise float t5 = params.z - 0.2857143;
+    precise float t6 = t3 ? t5 : params.z;
+    precise float t7 = t2 ? t4 : t6;
+    precise float t8 = t7 - 0.2857143;
+    precise float neg_u_z = -u.z;
+    precise float t9 = (t7 >= 0.21428572 ? t8 : t7) > 0.071428575 ? neg_u_z : u.z;
+    precise float3 t10 = float3(u.xy, t9);
+    precise float3 t11 = float3(u.y, t9, u.x);
+    precise float3 t12 = float3(t9, u.xy);
+    precise float3 t13 = t3 ? t11 : t12;
+    return t2 ? t10 : t13;
 }
 
 // unitpack_cube16p_decode: decoder.
@@ -87,7 +96,8 @@ float3 unitpack_cube16p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -95,34 +105,46 @@ float3 unitpack_cube16p_encode_codes(float3 v) {
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    precise float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    precise float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    precise float t4 = t3 ? w2.y : w2.x;
+    precise float major = t2 ? w2.z : t4;
+    precise float t5 = t3 ? 2.0 : 0.0;
+    precise float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     precise float abs_major = abs(major);
-    precise float2 t3 = (t1 ? w2.xy : (t2 ? w2.zx : w2.yz)) * float2(63.5, 31.5);
-    precise float2 t4 = round(t3 / abs_major + float2(63.5, 31.5));
-    precise float2 t5 = UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0));
-    precise float2 t6 = UNITPACK_SELECT(t5 <= float2(127.0, 63.0), t5, float2(127.0, 63.0));
-    precise float2 t7 = UNITPACK_SELECT(
-        t3 >= (t6 - float2(62.5, 30.5)) * abs_major,
-        float2(1.0, 1.0),
+    precise float2 t6 = t3 ? w2.zx : w2.yz;
+    precise float2 t7 = (t2 ? w2.xy : t6) * float2(63.5, 31.5);
+    precise float2 t8 = round(t7 / abs_major + float2(63.5, 31.5));
+    precise float2 t9 = UNITPACK_SELECT(t8 >= float2(0.0, 0.0), t8, float2(0.0, 0.0));
+    precise float2 t10 = UNITPACK_SELECT(t9 <= float2(127.0, 63.0), t9, float2(127.0, 63.0));
+    precise float2 t11 = t10
+        + UNITPACK_SELECT(
+            t10 < float2(127.0, 63.0),
+            UNITPACK_SELECT(
+                t7 >= (t10 - float2(62.5, 30.5)) * abs_major,
+                float2(1.0, 1.0),
+                float2(0.0, 0.0)
+            ),
+            float2(0.0, 0.0)
+        );
+    precise float2 t12 = UNITPACK_SELECT(
+        t10 > float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t7 >= (t10 - 1.0 - float2(62.5, 30.5)) * abs_major,
+            float2(1.0, 1.0),
+            float2(0.0, 0.0)
+        )
+            - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t8 = UNITPACK_SELECT(
-        t3 >= (t6 - 1.0 - float2(62.5, 30.5)) * abs_major,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
-    );
-    precise float2 base = t6
-        + UNITPACK_SELECT(t6 < float2(127.0, 63.0), t7, float2(0.0, 0.0))
-        + UNITPACK_SELECT(t6 > float2(0.0, 0.0), t8 - 1.0, float2(0.0, 0.0));
-    precise float t9 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t9);
-    precise float t10 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t10);
-    precise float t11 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t11);
+    precise float2 base = t11 + t12;
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -142,28 +164,29 @@ float3 unitpack_cube16p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t12 = floor(root_estimate * 512.0);
-    precise float root_h0 = t12 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t12
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float3 t13 = floor(w2 / root * 2097152.0);
     precise float3 t14 = w2 * 2097152.0;
     precise float3 t15 = UNITPACK_SELECT(
-        t13 * root > t14,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+        (t13 + 1.0) * root <= t14,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t13 * root > t14, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t13
-        + UNITPACK_SELECT((t13 + 1.0) * root <= t14, float3(1.0, 1.0, 1.0), t15);
+    precise float3 aim = t13 + t15;
     precise float2 cand = UNITPACK_SELECT(base <= float2(127.0, 63.0), base, float2(127.0, 63.0));
     precise float2 p = floor((cand * 2.0 - float2(127.0, 63.0)) * float2(16513.008, 33288.13));
     precise float q = round(p.x * p.x * 4.7683716e-7) + round(p.y * p.y * 4.7683716e-7);
@@ -171,261 +194,273 @@ float3 unitpack_cube16p_encode_codes(float3 v) {
     precise float t16 = len2_2 * 524288.0;
     precise float root_estimate2 = floor(sqrt(t16));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t17 = root_next * root_next <= t16
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t16 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t17;
+    precise float step_down3 = root_estimate2 * root_estimate2 > t16 ? -1.0 : 0.0;
+    precise float step3 = root_next * root_next <= t16 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + step3;
     precise float root_next2 = root_step + 1.0;
-    precise float t18 = root_next2 * root_next2 <= t16
-        ? 1.0
-        : (root_step * root_step > t16 ? -1.0 : 0.0);
-    precise float root2 = root_step + t18;
+    precise float step_down4 = root_step * root_step > t16 ? -1.0 : 0.0;
+    precise float step4 = root_next2 * root_next2 <= t16 ? 1.0 : step_down4;
+    precise float root2 = root_step + step4;
     precise float len = root2 * 2.0;
     precise float big = len * 2097152.0;
     precise float ratio_estimate = floor(len / len2_2 * 2097152.0);
-    precise float t19 = (ratio_estimate + 1.0) * len2_2 <= big
-        ? 1.0
-        : (ratio_estimate * len2_2 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t19;
+    precise float step_down5 = ratio_estimate * len2_2 > big ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate + 1.0) * len2_2 <= big ? 1.0 : step_down5;
+    precise float ratio = ratio_estimate + step5;
     precise float big2 = p.x * 2097152.0;
     precise float ratio_estimate2 = floor(p.x / len * 2097152.0);
-    precise float t20 = (ratio_estimate2 + 1.0) * len <= big2
-        ? 1.0
-        : (ratio_estimate2 * len > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t20;
+    precise float step_down6 = ratio_estimate2 * len > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio_estimate2 + 1.0) * len <= big2 ? 1.0 : step_down6;
+    precise float ratio2 = ratio_estimate2 + step6;
     precise float big3 = p.y * 2097152.0;
     precise float ratio_estimate3 = floor(p.y / len * 2097152.0);
-    precise float t21 = (ratio_estimate3 + 1.0) * len <= big3
-        ? 1.0
-        : (ratio_estimate3 * len > big3 ? -1.0 : 0.0);
-    precise float ratio3 = ratio_estimate3 + t21;
-    bool t22 = face >= 3.5;
-    bool t23 = face >= 1.5;
-    precise float t24 = t22 ? face - 4.0 : (t23 ? face - 2.0 : face);
-    precise float t25 = (t24 >= 1.5 ? t24 - 2.0 : t24) > 0.5 ? -ratio : ratio;
-    precise float3 t26 = t22
-        ? float3(ratio2, ratio3, t25)
-        : (t23 ? float3(ratio3, t25, ratio2) : float3(t25, ratio2, ratio3));
-    precise float3 t27 = abs(t26 - aim);
-    uint3 t28 = uint3(t27);
-    uint limb1_4 = t28.x >> 12u;
-    uint limb0_4 = t28.x & 4095u;
+    precise float step_down7 = ratio_estimate3 * len > big3 ? -1.0 : 0.0;
+    precise float step7 = (ratio_estimate3 + 1.0) * len <= big3 ? 1.0 : step_down7;
+    precise float ratio3 = ratio_estimate3 + step7;
+    bool t17 = face >= 3.5;
+    bool t18 = face >= 1.5;
+    precise float t19 = face - 4.0;
+    precise float t20 = face - 2.0;
+    precise float t21 = t18 ? t20 : face;
+    precise float t22 = t17 ? t19 : t21;
+    precise float t23 = t22 - 2.0;
+    precise float neg_ratio = -ratio;
+    precise float t24 = (t22 >= 1.5 ? t23 : t22) > 0.5 ? neg_ratio : ratio;
+    precise float3 t25 = float3(ratio2, ratio3, t24);
+    precise float3 t26 = float3(ratio3, t24, ratio2);
+    precise float3 t27 = float3(t24, ratio2, ratio3);
+    precise float3 t28 = t18 ? t26 : t27;
+    precise float3 offset = (t17 ? t25 : t28) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t28.y >> 12u;
-    uint limb0_5 = t28.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t28.z >> 12u;
-    uint limb0_6 = t28.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    precise float t29 = base.x + 1.0;
-    precise float2 t30 = float2(t29, base.y);
-    precise float2 cand2 = UNITPACK_SELECT(t30 <= float2(127.0, 63.0), t30, float2(127.0, 63.0));
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t29 = float2(s_up, base.y);
+    precise float2 cand2 = UNITPACK_SELECT(t29 <= float2(127.0, 63.0), t29, float2(127.0, 63.0));
+    bool t30 = base.y <= 63.0;
     precise float2 p2 = floor((cand2 * 2.0 - float2(127.0, 63.0)) * float2(16513.008, 33288.13));
     precise float q2 = round(p2.x * p2.x * 4.7683716e-7) + round(p2.y * p2.y * 4.7683716e-7);
     precise float len2_3 = 2097152.0 + q2;
     precise float t31 = len2_3 * 524288.0;
     precise float root_estimate3 = floor(sqrt(t31));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t32 = root_next3 * root_next3 <= t31
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t31 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t32;
+    precise float step_down8 = root_estimate3 * root_estimate3 > t31 ? -1.0 : 0.0;
+    precise float step8 = root_next3 * root_next3 <= t31 ? 1.0 : step_down8;
+    precise float root_step2 = root_estimate3 + step8;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t33 = root_next4 * root_next4 <= t31
-        ? 1.0
-        : (root_step2 * root_step2 > t31 ? -1.0 : 0.0);
-    precise float root3 = root_step2 + t33;
+    precise float step_down9 = root_step2 * root_step2 > t31 ? -1.0 : 0.0;
+    precise float step9 = root_next4 * root_next4 <= t31 ? 1.0 : step_down9;
+    precise float root3 = root_step2 + step9;
     precise float len3 = root3 * 2.0;
     precise float big4 = len3 * 2097152.0;
     precise float ratio_estimate4 = floor(len3 / len2_3 * 2097152.0);
-    precise float t34 = (ratio_estimate4 + 1.0) * len2_3 <= big4
-        ? 1.0
-        : (ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0);
-    precise float ratio4 = ratio_estimate4 + t34;
+    precise float step_down10 = ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0;
+    precise float step10 = (ratio_estimate4 + 1.0) * len2_3 <= big4 ? 1.0 : step_down10;
+    precise float ratio4 = ratio_estimate4 + step10;
     precise float big5 = p2.x * 2097152.0;
     precise float ratio_estimate5 = floor(p2.x / len3 * 2097152.0);
-    precise float t35 = (ratio_estimate5 + 1.0) * len3 <= big5
-        ? 1.0
-        : (ratio_estimate5 * len3 > big5 ? -1.0 : 0.0);
-    precise float ratio5 = ratio_estimate5 + t35;
+    precise float step_down11 = ratio_estimate5 * len3 > big5 ? -1.0 : 0.0;
+    precise float step11 = (ratio_estimate5 + 1.0) * len3 <= big5 ? 1.0 : step_down11;
+    precise float ratio5 = ratio_estimate5 + step11;
     precise float big6 = p2.y * 2097152.0;
     precise float ratio_estimate6 = floor(p2.y / len3 * 2097152.0);
-    precise float t36 = (ratio_estimate6 + 1.0) * len3 <= big6
-        ? 1.0
-        : (ratio_estimate6 * len3 > big6 ? -1.0 : 0.0);
-    precise float ratio6 = ratio_estimate6 + t36;
-    bool t37 = face >= 3.5;
-    bool t38 = face >= 1.5;
-    precise float t39 = t37 ? face - 4.0 : (t38 ? face - 2.0 : face);
-    precise float t40 = (t39 >= 1.5 ? t39 - 2.0 : t39) > 0.5 ? -ratio4 : ratio4;
-    precise float3 t41 = t37
-        ? float3(ratio5, ratio6, t40)
-        : (t38 ? float3(ratio6, t40, ratio5) : float3(t40, ratio5, ratio6));
-    precise float3 t42 = abs(t41 - aim);
-    uint3 t43 = uint3(t42);
-    uint limb1_7 = t43.x >> 12u;
-    uint limb0_7 = t43.x & 4095u;
+    precise float step_down12 = ratio_estimate6 * len3 > big6 ? -1.0 : 0.0;
+    precise float step12 = (ratio_estimate6 + 1.0) * len3 <= big6 ? 1.0 : step_down12;
+    precise float ratio6 = ratio_estimate6 + step12;
+    bool t32 = face >= 3.5;
+    bool t33 = face >= 1.5;
+    precise float t34 = face - 4.0;
+    precise float t35 = face - 2.0;
+    precise float t36 = t33 ? t35 : face;
+    precise float t37 = t32 ? t34 : t36;
+    precise float t38 = t37 - 2.0;
+    precise float neg_ratio4 = -ratio4;
+    precise float t39 = (t37 >= 1.5 ? t38 : t37) > 0.5 ? neg_ratio4 : ratio4;
+    precise float3 t40 = float3(ratio5, ratio6, t39);
+    precise float3 t41 = float3(ratio6, t39, ratio5);
+    precise float3 t42 = float3(t39, ratio5, ratio6);
+    precise float3 t43 = t33 ? t41 : t42;
+    precise float3 offset2 = (t32 ? t40 : t43) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t43.y >> 12u;
-    uint limb0_8 = t43.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t43.z >> 12u;
-    uint limb0_9 = t43.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t44 = t29 <= 127.0 && base.y <= 63.0 && dist2 < dist;
-    precise float2 best = t44 ? cand2 : cand;
-    precise float best_d = t44 ? dist2 : dist;
-    precise float t45 = base.y + 1.0;
-    precise float2 t46 = float2(base.x, t45);
+    bool t44 = dist2 < dist;
+    bool t45 = s_up <= 127.0 && t30 && t44;
+    precise float2 best = t45 ? cand2 : cand;
+    precise float best_d = t45 ? dist2 : dist;
+    precise float2 t46 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(t46 <= float2(127.0, 63.0), t46, float2(127.0, 63.0));
+    bool t47 = t_up <= 63.0;
     precise float2 p3 = floor((cand3 * 2.0 - float2(127.0, 63.0)) * float2(16513.008, 33288.13));
     precise float q3 = round(p3.x * p3.x * 4.7683716e-7) + round(p3.y * p3.y * 4.7683716e-7);
     precise float len2_4 = 2097152.0 + q3;
-    precise float t47 = len2_4 * 524288.0;
-    precise float root_estimate4 = floor(sqrt(t47));
+    precise float t48 = len2_4 * 524288.0;
+    precise float root_estimate4 = floor(sqrt(t48));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t48 = root_next5 * root_next5 <= t47
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t47 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t48;
+    precise float step_down13 = root_estimate4 * root_estimate4 > t48 ? -1.0 : 0.0;
+    precise float step13 = root_next5 * root_next5 <= t48 ? 1.0 : step_down13;
+    precise float root_step3 = root_estimate4 + step13;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t49 = root_next6 * root_next6 <= t47
-        ? 1.0
-        : (root_step3 * root_step3 > t47 ? -1.0 : 0.0);
-    precise float root4 = root_step3 + t49;
+    precise float step_down14 = root_step3 * root_step3 > t48 ? -1.0 : 0.0;
+    precise float step14 = root_next6 * root_next6 <= t48 ? 1.0 : step_down14;
+    precise float root4 = root_step3 + step14;
     precise float len4 = root4 * 2.0;
     precise float big7 = len4 * 2097152.0;
     precise float ratio_estimate7 = floor(len4 / len2_4 * 2097152.0);
-    precise float t50 = (ratio_estimate7 + 1.0) * len2_4 <= big7
-        ? 1.0
-        : (ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0);
-    precise float ratio7 = ratio_estimate7 + t50;
+    precise float step_down15 = ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0;
+    precise float step15 = (ratio_estimate7 + 1.0) * len2_4 <= big7 ? 1.0 : step_down15;
+    precise float ratio7 = ratio_estimate7 + step15;
     precise float big8 = p3.x * 2097152.0;
     precise float ratio_estimate8 = floor(p3.x / len4 * 2097152.0);
-    precise float t51 = (ratio_estimate8 + 1.0) * len4 <= big8
-        ? 1.0
-        : (ratio_estimate8 * len4 > big8 ? -1.0 : 0.0);
-    precise float ratio8 = ratio_estimate8 + t51;
+    precise float step_down16 = ratio_estimate8 * len4 > big8 ? -1.0 : 0.0;
+    precise float step16 = (ratio_estimate8 + 1.0) * len4 <= big8 ? 1.0 : step_down16;
+    precise float ratio8 = ratio_estimate8 + step16;
     precise float big9 = p3.y * 2097152.0;
     precise float ratio_estimate9 = floor(p3.y / len4 * 2097152.0);
-    precise float t52 = (ratio_estimate9 + 1.0) * len4 <= big9
-        ? 1.0
-        : (ratio_estimate9 * len4 > big9 ? -1.0 : 0.0);
-    precise float ratio9 = ratio_estimate9 + t52;
-    bool t53 = face >= 3.5;
-    bool t54 = face >= 1.5;
-    precise float t55 = t53 ? face - 4.0 : (t54 ? face - 2.0 : face);
-    precise float t56 = (t55 >= 1.5 ? t55 - 2.0 : t55) > 0.5 ? -ratio7 : ratio7;
-    precise float3 t57 = t53
-        ? float3(ratio8, ratio9, t56)
-        : (t54 ? float3(ratio9, t56, ratio8) : float3(t56, ratio8, ratio9));
-    precise float3 t58 = abs(t57 - aim);
-    uint3 t59 = uint3(t58);
-    uint limb1_10 = t59.x >> 12u;
-    uint limb0_10 = t59.x & 4095u;
+    precise float step_down17 = ratio_estimate9 * len4 > big9 ? -1.0 : 0.0;
+    precise float step17 = (ratio_estimate9 + 1.0) * len4 <= big9 ? 1.0 : step_down17;
+    precise float ratio9 = ratio_estimate9 + step17;
+    bool t49 = face >= 3.5;
+    bool t50 = face >= 1.5;
+    precise float t51 = face - 4.0;
+    precise float t52 = face - 2.0;
+    precise float t53 = t50 ? t52 : face;
+    precise float t54 = t49 ? t51 : t53;
+    precise float t55 = t54 - 2.0;
+    precise float neg_ratio7 = -ratio7;
+    precise float t56 = (t54 >= 1.5 ? t55 : t54) > 0.5 ? neg_ratio7 : ratio7;
+    precise float3 t57 = float3(ratio8, ratio9, t56);
+    precise float3 t58 = float3(ratio9, t56, ratio8);
+    precise float3 t59 = float3(t56, ratio8, ratio9);
+    precise float3 t60 = t50 ? t58 : t59;
+    precise float3 offset3 = (t49 ? t57 : t60) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t59.y >> 12u;
-    uint limb0_11 = t59.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t59.z >> 12u;
-    uint limb0_12 = t59.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t60 = base.x <= 127.0 && t45 <= 63.0 && dist3 < best_d;
-    precise float2 best2 = t60 ? cand3 : best;
-    precise float best_d2 = t60 ? dist3 : best_d;
-    precise float2 t61 = base + 1.0;
-    precise float2 cand4 = UNITPACK_SELECT(t61 <= float2(127.0, 63.0), t61, float2(127.0, 63.0));
+    bool t61 = dist3 < best_d;
+    bool t62 = base.x <= 127.0 && t47 && t61;
+    precise float2 best2 = t62 ? cand3 : best;
+    precise float best_d2 = t62 ? dist3 : best_d;
+    precise float2 t63 = base + 1.0;
+    precise float2 cand4 = UNITPACK_SELECT(t63 <= float2(127.0, 63.0), t63, float2(127.0, 63.0));
+    bool t64 = t_up <= 63.0;
     precise float2 p4 = floor((cand4 * 2.0 - float2(127.0, 63.0)) * float2(16513.008, 33288.13));
     precise float q4 = round(p4.x * p4.x * 4.7683716e-7) + round(p4.y * p4.y * 4.7683716e-7);
     precise float len2_5 = 2097152.0 + q4;
-    precise float t62 = len2_5 * 524288.0;
-    precise float root_estimate5 = floor(sqrt(t62));
+    precise float t65 = len2_5 * 524288.0;
+    precise float root_estimate5 = floor(sqrt(t65));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t63 = root_next7 * root_next7 <= t62
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t62 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t63;
+    precise float step_down18 = root_estimate5 * root_estimate5 > t65 ? -1.0 : 0.0;
+    precise float step18 = root_next7 * root_next7 <= t65 ? 1.0 : step_down18;
+    precise float root_step4 = root_estimate5 + step18;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t64 = root_next8 * root_next8 <= t62
-        ? 1.0
-        : (root_step4 * root_step4 > t62 ? -1.0 : 0.0);
-    precise float root5 = root_step4 + t64;
+    precise float step_down19 = root_step4 * root_step4 > t65 ? -1.0 : 0.0;
+    precise float step19 = root_next8 * root_next8 <= t65 ? 1.0 : step_down19;
+    precise float root5 = root_step4 + step19;
     precise float len5 = root5 * 2.0;
     precise float big10 = len5 * 2097152.0;
     precise float ratio_estimate10 = floor(len5 / len2_5 * 2097152.0);
-    precise float t65 = (ratio_estimate10 + 1.0) * len2_5 <= big10
-        ? 1.0
-        : (ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0);
-    precise float ratio10 = ratio_estimate10 + t65;
+    precise float step_down20 = ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0;
+    precise float step20 = (ratio_estimate10 + 1.0) * len2_5 <= big10 ? 1.0 : step_down20;
+    precise float ratio10 = ratio_estimate10 + step20;
     precise float big11 = p4.x * 2097152.0;
     precise float ratio_estimate11 = floor(p4.x / len5 * 2097152.0);
-    precise float t66 = (ratio_estimate11 + 1.0) * len5 <= big11
-        ? 1.0
-        : (ratio_estimate11 * len5 > big11 ? -1.0 : 0.0);
-    precise float ratio11 = ratio_estimate11 + t66;
+    precise float step_down21 = ratio_estimate11 * len5 > big11 ? -1.0 : 0.0;
+    precise float step21 = (ratio_estimate11 + 1.0) * len5 <= big11 ? 1.0 : step_down21;
+    precise float ratio11 = ratio_estimate11 + step21;
     precise float big12 = p4.y * 2097152.0;
     precise float ratio_estimate12 = floor(p4.y / len5 * 2097152.0);
-    precise float t67 = (ratio_estimate12 + 1.0) * len5 <= big12
-        ? 1.0
-        : (ratio_estimate12 * len5 > big12 ? -1.0 : 0.0);
-    precise float ratio12 = ratio_estimate12 + t67;
-    bool t68 = face >= 3.5;
-    bool t69 = face >= 1.5;
-    precise float t70 = t68 ? face - 4.0 : (t69 ? face - 2.0 : face);
-    precise float t71 = (t70 >= 1.5 ? t70 - 2.0 : t70) > 0.5 ? -ratio10 : ratio10;
-    precise float3 t72 = t68
-        ? float3(ratio11, ratio12, t71)
-        : (t69 ? float3(ratio12, t71, ratio11) : float3(t71, ratio11, ratio12));
-    precise float3 t73 = abs(t72 - aim);
-    uint3 t74 = uint3(t73);
-    uint limb1_13 = t74.x >> 12u;
-    uint limb0_13 = t74.x & 4095u;
+    precise float step_down22 = ratio_estimate12 * len5 > big12 ? -1.0 : 0.0;
+    precise float step22 = (ratio_estimate12 + 1.0) * len5 <= big12 ? 1.0 : step_down22;
+    precise float ratio12 = ratio_estimate12 + step22;
+    bool t66 = face >= 3.5;
+    bool t67 = face >= 1.5;
+    precise float t68 = face - 4.0;
+    precise float t69 = face - 2.0;
+    precise float t70 = t67 ? t69 : face;
+    precise float t71 = t66 ? t68 : t70;
+    precise float t72 = t71 - 2.0;
+    precise float neg_ratio10 = -ratio10;
+    precise float t73 = (t71 >= 1.5 ? t72 : t71) > 0.5 ? neg_ratio10 : ratio10;
+    precise float3 t74 = float3(ratio11, ratio12, t73);
+    precise float3 t75 = float3(ratio12, t73, ratio11);
+    precise float3 t76 = float3(t73, ratio11, ratio12);
+    precise float3 t77 = t67 ? t75 : t76;
+    precise float3 offset4 = (t66 ? t74 : t77) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t74.y >> 12u;
-    uint limb0_14 = t74.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t74.z >> 12u;
-    uint limb0_15 = t74.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    precise float2 best3 = base.x + 1.0 <= 127.0 && base.y + 1.0 <= 63.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t78 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 127.0 && t64 && t78 ? cand4 : best2;
     return float3(best3, face);
 }
 

@@ -50,9 +50,18 @@ float3 unitpack_cube32_decode_float(float3 params) {
     precise float3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t2 = params.z >= 0.5;
     bool t3 = params.z >= 0.21428572;
-    precise float t4 = t2 ? params.z - 0.5714286 : (t3 ? params.z - 0.2857143 : params.z);
-    precise float t5 = (t4 >= 0.21428572 ? t4 - 0.2857143 : t4) > 0.071428575 ? -u.z : u.z;
-    return t2 ? float3(u.xy, t5) : (t3 ? float3(u.y, t5, u.x) : float3(t5, u.xy));
+    precise float t4 = params.z - 0.5714286;
+    precise float t5 = params.z - 0.2857143;
+    precise float t6 = t3 ? t5 : params.z;
+    precise float t7 = t2 ? t4 : t6;
+    precise float t8 = t7 - 0.2857143;
+    precise float neg_u_z = -u.z;
+    precise float t9 = (t7 >= 0.21428572 ? t8 : t7) > 0.071428575 ? neg_u_z : u.z;
+    precise float3 t10 = float3(u.xy, t9);
+    precise float3 t11 = float3(u.y, t9, u.x);
+    precise float3 t12 = float3(t9, u.xy);
+    precise float3 t13 = t3 ? t11 : t12;
+    return t2 ? t10 : t13;
 }
 
 // unitpack_cube32_decode: decoder.
@@ -87,7 +96,8 @@ float3 unitpack_cube32_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -95,11 +105,15 @@ float3 unitpack_cube32_encode_float(float3 v) {
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    precise float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    precise float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
-    precise float2 enc = (t1 ? w2.xy : (t2 ? w2.zx : w2.yz)) / abs(major) * 0.5 + 0.5;
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    precise float t4 = t3 ? w2.y : w2.x;
+    precise float major = t2 ? w2.z : t4;
+    precise float t5 = t3 ? 2.0 : 0.0;
+    precise float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
+    precise float2 t6 = t3 ? w2.zx : w2.yz;
+    precise float2 enc = (t2 ? w2.xy : t6) / abs(major) * 0.5 + 0.5;
     precise float3 result = float3(enc, face * 0.14285715);
     return result;
 }
@@ -120,7 +134,8 @@ float3 unitpack_cube32_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -128,32 +143,44 @@ float3 unitpack_cube32_round_codes(float3 a0) {
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    precise float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    precise float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    precise float t4 = t3 ? w2.y : w2.x;
+    precise float major = t2 ? w2.z : t4;
+    precise float t5 = t3 ? 2.0 : 0.0;
+    precise float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     precise float abs_major = abs(major);
-    precise float2 t3 = (t1 ? w2.xy : (t2 ? w2.zx : w2.yz)) * float2(16383.5, 8191.5);
-    precise float2 t4 = round(t3 / abs_major + float2(16383.5, 8191.5));
-    precise float2 t5 = UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0));
-    precise float2 t6 = UNITPACK_SELECT(
-        t5 <= float2(32767.0, 16383.0),
-        t5,
+    precise float2 t6 = t3 ? w2.zx : w2.yz;
+    precise float2 t7 = (t2 ? w2.xy : t6) * float2(16383.5, 8191.5);
+    precise float2 t8 = round(t7 / abs_major + float2(16383.5, 8191.5));
+    precise float2 t9 = UNITPACK_SELECT(t8 >= float2(0.0, 0.0), t8, float2(0.0, 0.0));
+    precise float2 t10 = UNITPACK_SELECT(
+        t9 <= float2(32767.0, 16383.0),
+        t9,
         float2(32767.0, 16383.0)
     );
-    precise float2 t7 = UNITPACK_SELECT(
-        t3 >= (t6 - float2(16383.0, 8191.0)) * abs_major,
-        float2(1.0, 1.0),
+    precise float2 t11 = t10
+        + UNITPACK_SELECT(
+            t10 < float2(32767.0, 16383.0),
+            UNITPACK_SELECT(
+                t7 >= (t10 - float2(16383.0, 8191.0)) * abs_major,
+                float2(1.0, 1.0),
+                float2(0.0, 0.0)
+            ),
+            float2(0.0, 0.0)
+        );
+    precise float2 t12 = UNITPACK_SELECT(
+        t10 > float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t7 >= (t10 - 1.0 - float2(16383.0, 8191.0)) * abs_major,
+            float2(1.0, 1.0),
+            float2(0.0, 0.0)
+        )
+            - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t8 = UNITPACK_SELECT(
-        t3 >= (t6 - 1.0 - float2(16383.0, 8191.0)) * abs_major,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
-    );
-    precise float2 st = t6
-        + UNITPACK_SELECT(t6 < float2(32767.0, 16383.0), t7, float2(0.0, 0.0))
-        + UNITPACK_SELECT(t6 > float2(0.0, 0.0), t8 - 1.0, float2(0.0, 0.0));
+    precise float2 st = t11 + t12;
     return float3(st, face);
 }
 

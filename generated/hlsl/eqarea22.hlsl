@@ -49,7 +49,8 @@ float3 unitpack_eqarea22_decode_float(float3 params) {
     precise float q = t1 <= 2.0 ? t1 : 2.0;
     precise float g = sqrt(2.0 - q);
     precise float t2 = 1.0 - q;
-    precise float3 result = float3(p * g, params.z > 0.5 ? -t2 : t2);
+    precise float neg_t2 = -t2;
+    precise float3 result = float3(p * g, params.z > 0.5 ? neg_t2 : t2);
     return result;
 }
 
@@ -88,19 +89,20 @@ float3 unitpack_eqarea22_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -120,21 +122,24 @@ float3 unitpack_eqarea22_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float2 enc = w2.xy / sqrt(root * (root + abs(w2.z))) * 0.5 + 0.5;
-    return float3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return float3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -153,19 +158,20 @@ float3 unitpack_eqarea22_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -185,58 +191,65 @@ float3 unitpack_eqarea22_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float la = root * (root + abs(w2.z));
     precise float sqrt_la = sqrt(la);
     precise float big2 = w2.x * w2.x * 1047552.25;
-    precise float t5 = round(w2.x / sqrt_la * 1023.5 + 1023.5);
-    precise float t6 = t5 >= 0.0 ? t5 : 0.0;
-    precise float estimate = t6 <= 2047.0 ? t6 : 2047.0;
-    precise float t7 = estimate - 1023.0;
-    precise float t8 = t7 * t7 * la;
-    precise float t9 = w2.x >= 0.0
-        ? (t7 > 0.0 ? (big2 >= t8 ? 1.0 : 0.0) : 1.0)
-        : (t7 < 0.0 ? (big2 <= t8 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 2047.0 ? t9 : 0.0;
-    precise float t10 = estimate - 1.0 - 1023.0;
-    precise float t11 = t10 * t10 * la;
-    precise float t12 = w2.x >= 0.0
-        ? (t10 > 0.0 ? (big2 >= t11 ? 1.0 : 0.0) : 1.0)
-        : (t10 < 0.0 ? (big2 <= t11 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t12 - 1.0 : 0.0;
+    precise float t1 = round(w2.x / sqrt_la * 1023.5 + 1023.5);
+    precise float t2 = t1 >= 0.0 ? t1 : 0.0;
+    precise float estimate = t2 <= 2047.0 ? t2 : 2047.0;
+    precise float t3 = estimate - 1023.0;
+    precise float t4 = t3 * t3 * la;
+    precise float one_if2 = big2 >= t4 ? 1.0 : 0.0;
+    precise float t5 = t3 > 0.0 ? one_if2 : 1.0;
+    precise float one_if3 = big2 <= t4 ? 1.0 : 0.0;
+    precise float t6 = t3 < 0.0 ? one_if3 : 0.0;
+    precise float t7 = w2.x >= 0.0 ? t5 : t6;
+    precise float up = estimate < 2047.0 ? t7 : 0.0;
+    precise float t8 = estimate - 1.0 - 1023.0;
+    precise float t9 = t8 * t8 * la;
+    precise float one_if4 = big2 >= t9 ? 1.0 : 0.0;
+    precise float t10 = t8 > 0.0 ? one_if4 : 1.0;
+    precise float one_if5 = big2 <= t9 ? 1.0 : 0.0;
+    precise float t11 = t8 < 0.0 ? one_if5 : 0.0;
+    precise float t12 = (w2.x >= 0.0 ? t10 : t11) - 1.0;
+    precise float down = estimate > 0.0 ? t12 : 0.0;
     precise float big2_2 = w2.y * w2.y * 261632.25;
     precise float t13 = round(w2.y / sqrt_la * 511.5 + 511.5);
     precise float t14 = t13 >= 0.0 ? t13 : 0.0;
     precise float estimate2 = t14 <= 1023.0 ? t14 : 1023.0;
     precise float t15 = estimate2 - 511.0;
     precise float t16 = t15 * t15 * la;
-    precise float t17 = w2.y >= 0.0
-        ? (t15 > 0.0 ? (big2_2 >= t16 ? 1.0 : 0.0) : 1.0)
-        : (t15 < 0.0 ? (big2_2 <= t16 ? 1.0 : 0.0) : 0.0);
-    precise float up2 = estimate2 < 1023.0 ? t17 : 0.0;
-    precise float t18 = estimate2 - 1.0 - 511.0;
-    precise float t19 = t18 * t18 * la;
-    precise float t20 = w2.y >= 0.0
-        ? (t18 > 0.0 ? (big2_2 >= t19 ? 1.0 : 0.0) : 1.0)
-        : (t18 < 0.0 ? (big2_2 <= t19 ? 1.0 : 0.0) : 0.0);
-    precise float down2 = estimate2 > 0.0 ? t20 - 1.0 : 0.0;
-    precise float3 result = float3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
-    );
+    precise float one_if6 = big2_2 >= t16 ? 1.0 : 0.0;
+    precise float t17 = t15 > 0.0 ? one_if6 : 1.0;
+    precise float one_if7 = big2_2 <= t16 ? 1.0 : 0.0;
+    precise float t18 = t15 < 0.0 ? one_if7 : 0.0;
+    precise float t19 = w2.y >= 0.0 ? t17 : t18;
+    precise float up2 = estimate2 < 1023.0 ? t19 : 0.0;
+    precise float t20 = estimate2 - 1.0 - 511.0;
+    precise float t21 = t20 * t20 * la;
+    precise float one_if8 = big2_2 >= t21 ? 1.0 : 0.0;
+    precise float t22 = t20 > 0.0 ? one_if8 : 1.0;
+    precise float one_if9 = big2_2 <= t21 ? 1.0 : 0.0;
+    precise float t23 = t20 < 0.0 ? one_if9 : 0.0;
+    precise float t24 = (w2.y >= 0.0 ? t22 : t23) - 1.0;
+    precise float down2 = estimate2 > 0.0 ? t24 : 0.0;
+    precise float3 result = float3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

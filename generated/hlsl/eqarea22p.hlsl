@@ -49,7 +49,8 @@ float3 unitpack_eqarea22p_decode_float(float3 params) {
     precise float q = t1 <= 2.0 ? t1 : 2.0;
     precise float g = sqrt(2.0 - q);
     precise float t2 = 1.0 - q;
-    precise float3 result = float3(p * g, params.z > 0.5 ? -t2 : t2);
+    precise float neg_t2 = -t2;
+    precise float3 result = float3(p * g, params.z > 0.5 ? neg_t2 : t2);
     return result;
 }
 
@@ -85,19 +86,20 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -117,69 +119,68 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float la = root * (root + abs(w2.z));
-    precise float2 t6 = round(w2.xy / sqrt(la) * float2(1023.5, 511.5) + float2(1023.5, 511.5));
-    precise float2 t7 = UNITPACK_SELECT(t6 >= float2(0.0, 0.0), t6, float2(0.0, 0.0));
-    precise float2 t8 = UNITPACK_SELECT(t7 <= float2(2047.0, 1023.0), t7, float2(2047.0, 1023.0));
-    precise float2 t9 = t8 - float2(1022.5, 510.5);
-    precise float2 t10 = w2.xy * w2.xy * float2(1047552.25, 261632.25);
-    precise float2 t11 = t9 * t9 * la;
-    precise float2 t12 = UNITPACK_SELECT(
-        t9 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t10 >= t11, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+    precise float2 t1 = round(w2.xy / sqrt(la) * float2(1023.5, 511.5) + float2(1023.5, 511.5));
+    precise float2 t2 = UNITPACK_SELECT(t1 >= float2(0.0, 0.0), t1, float2(0.0, 0.0));
+    precise float2 t3 = UNITPACK_SELECT(t2 <= float2(2047.0, 1023.0), t2, float2(2047.0, 1023.0));
+    precise float2 t4 = t3 - float2(1022.5, 510.5);
+    precise float2 t5 = w2.xy * w2.xy * float2(1047552.25, 261632.25);
+    precise float2 t6 = t4 * t4 * la;
+    precise float2 t7 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t4 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t5 >= t6, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t4 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t5 <= t6, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t13 = UNITPACK_SELECT(
-        t9 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t10 <= t11, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t8 = t3 - 1.0 - float2(1022.5, 510.5);
+    precise float2 t9 = t8 * t8 * la;
+    precise float2 t10 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t8 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t5 >= t9, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t8 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t5 <= t9, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t14 = UNITPACK_SELECT(
-        t8 < float2(2047.0, 1023.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t12, t13),
-        float2(0.0, 0.0)
+    precise float2 base = t3
+        + UNITPACK_SELECT(t3 < float2(2047.0, 1023.0), t7, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t3 > float2(0.0, 0.0), t10 - 1.0, float2(0.0, 0.0));
+    precise float3 t11 = floor(w2 / root * 2097152.0);
+    precise float3 t12 = w2 * 2097152.0;
+    precise float3 t13 = UNITPACK_SELECT(
+        (t11 + 1.0) * root <= t12,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t11 * root > t12, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float2 t15 = t8 - 1.0 - float2(1022.5, 510.5);
-    precise float2 t16 = t15 * t15 * la;
-    precise float2 t17 = UNITPACK_SELECT(
-        t15 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t10 >= t16, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t18 = UNITPACK_SELECT(
-        t15 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t10 <= t16, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t19 = UNITPACK_SELECT(
-        t8 > float2(0.0, 0.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t17, t18) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 base = t8 + t14 + t19;
-    precise float3 t20 = floor(w2 / root * 2097152.0);
-    precise float3 t21 = w2 * 2097152.0;
-    precise float3 t22 = UNITPACK_SELECT(
-        t20 * root > t21,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
-    );
-    precise float3 aim = t20
-        + UNITPACK_SELECT((t20 + 1.0) * root <= t21, float3(1.0, 1.0, 1.0), t22);
+    precise float3 aim = t11 + t13;
     precise float2 cand = UNITPACK_SELECT(
         base <= float2(2047.0, 1023.0),
         base,
@@ -187,178 +188,186 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     );
     precise float2 p = floor((cand * 2.0 - float2(2047.0, 1023.0)) * float2(1024.5002, 2050.002));
     precise float q = round(p.x * p.x * 4.7683716e-7) + round(p.y * p.y * 4.7683716e-7);
-    precise float t23 = 4194304.0 - q;
-    precise float t24 = (t23 >= 0.0 ? t23 : 0.0) * 524288.0;
-    precise float root_estimate2 = floor(sqrt(t24));
+    precise float t14 = 4194304.0 - q;
+    precise float t15 = (t14 >= 0.0 ? t14 : 0.0) * 524288.0;
+    precise float root_estimate2 = floor(sqrt(t15));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t25 = root_next * root_next <= t24
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t24 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t25;
+    precise float step_down3 = root_estimate2 * root_estimate2 > t15 ? -1.0 : 0.0;
+    precise float step3 = root_next * root_next <= t15 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + step3;
     precise float root_next2 = root_step + 1.0;
-    precise float t26 = root_next2 * root_next2 <= t24
-        ? 1.0
-        : (root_step * root_step > t24 ? -1.0 : 0.0);
-    precise float g = root_step + t26;
-    precise float t27 = 2097152.0 - q;
-    precise float3 t28 = abs(float3(floor(p * g * 9.536743e-7), t5 > 0.5 ? -t27 : t27) - aim);
-    uint3 t29 = uint3(t28);
-    uint limb1_4 = t29.x >> 12u;
-    uint limb0_4 = t29.x & 4095u;
+    precise float step_down4 = root_step * root_step > t15 ? -1.0 : 0.0;
+    precise float step4 = root_next2 * root_next2 <= t15 ? 1.0 : step_down4;
+    precise float g = root_step + step4;
+    precise float t16 = 2097152.0 - q;
+    precise float neg_t16 = -t16;
+    precise float3 t17 = float3(floor(p * g * 9.536743e-7), one_if > 0.5 ? neg_t16 : t16);
+    precise float3 offset = t17 - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t29.y >> 12u;
-    uint limb0_5 = t29.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t29.z >> 12u;
-    uint limb0_6 = t29.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    precise float t30 = base.x + 1.0;
-    precise float2 t31 = float2(t30, base.y);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t18 = float2(s_up, base.y);
     precise float2 cand2 = UNITPACK_SELECT(
-        t31 <= float2(2047.0, 1023.0),
-        t31,
+        t18 <= float2(2047.0, 1023.0),
+        t18,
         float2(2047.0, 1023.0)
     );
+    bool t19 = base.y <= 1023.0;
     precise float2 p2 = floor((cand2 * 2.0 - float2(2047.0, 1023.0)) * float2(1024.5002, 2050.002));
     precise float q2 = round(p2.x * p2.x * 4.7683716e-7) + round(p2.y * p2.y * 4.7683716e-7);
-    precise float t32 = 4194304.0 - q2;
-    precise float t33 = (t32 >= 0.0 ? t32 : 0.0) * 524288.0;
-    precise float root_estimate3 = floor(sqrt(t33));
+    precise float t20 = 4194304.0 - q2;
+    precise float t21 = (t20 >= 0.0 ? t20 : 0.0) * 524288.0;
+    precise float root_estimate3 = floor(sqrt(t21));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t34 = root_next3 * root_next3 <= t33
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t33 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t34;
+    precise float step_down5 = root_estimate3 * root_estimate3 > t21 ? -1.0 : 0.0;
+    precise float step5 = root_next3 * root_next3 <= t21 ? 1.0 : step_down5;
+    precise float root_step2 = root_estimate3 + step5;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t35 = root_next4 * root_next4 <= t33
-        ? 1.0
-        : (root_step2 * root_step2 > t33 ? -1.0 : 0.0);
-    precise float g2 = root_step2 + t35;
-    precise float t36 = 2097152.0 - q2;
-    precise float3 t37 = abs(float3(floor(p2 * g2 * 9.536743e-7), t5 > 0.5 ? -t36 : t36) - aim);
-    uint3 t38 = uint3(t37);
-    uint limb1_7 = t38.x >> 12u;
-    uint limb0_7 = t38.x & 4095u;
+    precise float step_down6 = root_step2 * root_step2 > t21 ? -1.0 : 0.0;
+    precise float step6 = root_next4 * root_next4 <= t21 ? 1.0 : step_down6;
+    precise float g2 = root_step2 + step6;
+    precise float t22 = 2097152.0 - q2;
+    precise float neg_t22 = -t22;
+    precise float3 t23 = float3(floor(p2 * g2 * 9.536743e-7), one_if > 0.5 ? neg_t22 : t22);
+    precise float3 offset2 = t23 - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t38.y >> 12u;
-    uint limb0_8 = t38.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t38.z >> 12u;
-    uint limb0_9 = t38.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t39 = t30 <= 2047.0 && base.y <= 1023.0 && dist2 < dist;
-    precise float2 best = t39 ? cand2 : cand;
-    precise float best_d = t39 ? dist2 : dist;
-    precise float t40 = base.y + 1.0;
-    precise float2 t41 = float2(base.x, t40);
+    bool t24 = dist2 < dist;
+    bool t25 = s_up <= 2047.0 && t19 && t24;
+    precise float2 best = t25 ? cand2 : cand;
+    precise float best_d = t25 ? dist2 : dist;
+    precise float2 t26 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(
-        t41 <= float2(2047.0, 1023.0),
-        t41,
+        t26 <= float2(2047.0, 1023.0),
+        t26,
         float2(2047.0, 1023.0)
     );
+    bool t27 = t_up <= 1023.0;
     precise float2 p3 = floor((cand3 * 2.0 - float2(2047.0, 1023.0)) * float2(1024.5002, 2050.002));
     precise float q3 = round(p3.x * p3.x * 4.7683716e-7) + round(p3.y * p3.y * 4.7683716e-7);
-    precise float t42 = 4194304.0 - q3;
-    precise float t43 = (t42 >= 0.0 ? t42 : 0.0) * 524288.0;
-    precise float root_estimate4 = floor(sqrt(t43));
+    precise float t28 = 4194304.0 - q3;
+    precise float t29 = (t28 >= 0.0 ? t28 : 0.0) * 524288.0;
+    precise float root_estimate4 = floor(sqrt(t29));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t44 = root_next5 * root_next5 <= t43
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t43 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t44;
+    precise float step_down7 = root_estimate4 * root_estimate4 > t29 ? -1.0 : 0.0;
+    precise float step7 = root_next5 * root_next5 <= t29 ? 1.0 : step_down7;
+    precise float root_step3 = root_estimate4 + step7;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t45 = root_next6 * root_next6 <= t43
-        ? 1.0
-        : (root_step3 * root_step3 > t43 ? -1.0 : 0.0);
-    precise float g3 = root_step3 + t45;
-    precise float t46 = 2097152.0 - q3;
-    precise float3 t47 = abs(float3(floor(p3 * g3 * 9.536743e-7), t5 > 0.5 ? -t46 : t46) - aim);
-    uint3 t48 = uint3(t47);
-    uint limb1_10 = t48.x >> 12u;
-    uint limb0_10 = t48.x & 4095u;
+    precise float step_down8 = root_step3 * root_step3 > t29 ? -1.0 : 0.0;
+    precise float step8 = root_next6 * root_next6 <= t29 ? 1.0 : step_down8;
+    precise float g3 = root_step3 + step8;
+    precise float t30 = 2097152.0 - q3;
+    precise float neg_t30 = -t30;
+    precise float3 t31 = float3(floor(p3 * g3 * 9.536743e-7), one_if > 0.5 ? neg_t30 : t30);
+    precise float3 offset3 = t31 - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t48.y >> 12u;
-    uint limb0_11 = t48.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t48.z >> 12u;
-    uint limb0_12 = t48.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t49 = base.x <= 2047.0 && t40 <= 1023.0 && dist3 < best_d;
-    precise float2 best2 = t49 ? cand3 : best;
-    precise float best_d2 = t49 ? dist3 : best_d;
-    precise float2 t50 = base + 1.0;
+    bool t32 = dist3 < best_d;
+    bool t33 = base.x <= 2047.0 && t27 && t32;
+    precise float2 best2 = t33 ? cand3 : best;
+    precise float best_d2 = t33 ? dist3 : best_d;
+    precise float2 t34 = base + 1.0;
     precise float2 cand4 = UNITPACK_SELECT(
-        t50 <= float2(2047.0, 1023.0),
-        t50,
+        t34 <= float2(2047.0, 1023.0),
+        t34,
         float2(2047.0, 1023.0)
     );
+    bool t35 = t_up <= 1023.0;
     precise float2 p4 = floor((cand4 * 2.0 - float2(2047.0, 1023.0)) * float2(1024.5002, 2050.002));
     precise float q4 = round(p4.x * p4.x * 4.7683716e-7) + round(p4.y * p4.y * 4.7683716e-7);
-    precise float t51 = 4194304.0 - q4;
-    precise float t52 = (t51 >= 0.0 ? t51 : 0.0) * 524288.0;
-    precise float root_estimate5 = floor(sqrt(t52));
+    precise float t36 = 4194304.0 - q4;
+    precise float t37 = (t36 >= 0.0 ? t36 : 0.0) * 524288.0;
+    precise float root_estimate5 = floor(sqrt(t37));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t53 = root_next7 * root_next7 <= t52
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t52 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t53;
+    precise float step_down9 = root_estimate5 * root_estimate5 > t37 ? -1.0 : 0.0;
+    precise float step9 = root_next7 * root_next7 <= t37 ? 1.0 : step_down9;
+    precise float root_step4 = root_estimate5 + step9;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t54 = root_next8 * root_next8 <= t52
-        ? 1.0
-        : (root_step4 * root_step4 > t52 ? -1.0 : 0.0);
-    precise float g4 = root_step4 + t54;
-    precise float t55 = 2097152.0 - q4;
-    precise float3 t56 = abs(float3(floor(p4 * g4 * 9.536743e-7), t5 > 0.5 ? -t55 : t55) - aim);
-    uint3 t57 = uint3(t56);
-    uint limb1_13 = t57.x >> 12u;
-    uint limb0_13 = t57.x & 4095u;
+    precise float step_down10 = root_step4 * root_step4 > t37 ? -1.0 : 0.0;
+    precise float step10 = root_next8 * root_next8 <= t37 ? 1.0 : step_down10;
+    precise float g4 = root_step4 + step10;
+    precise float t38 = 2097152.0 - q4;
+    precise float neg_t38 = -t38;
+    precise float3 t39 = float3(floor(p4 * g4 * 9.536743e-7), one_if > 0.5 ? neg_t38 : t38);
+    precise float3 offset4 = t39 - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t57.y >> 12u;
-    uint limb0_14 = t57.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t57.z >> 12u;
-    uint limb0_15 = t57.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    precise float2 best3 = base.x + 1.0 <= 2047.0 && base.y + 1.0 <= 1023.0 && dist4 < best_d2
-        ? cand4
-        : best2;
-    return float3(best3, t5);
+    bool t40 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 2047.0 && t35 && t40 ? cand4 : best2;
+    return float3(best3, one_if);
 }
 
 // unitpack_eqarea22p_encode_float: precise encoder, float form.

@@ -50,7 +50,8 @@ float3 unitpack_eqarea_ellipse24_decode_float(float3 params) {
     precise float q = t1 <= 2.0 ? t1 : 2.0;
     precise float g = sqrt(2.0 - q);
     precise float t2 = 1.0 - q;
-    precise float3 result = float3(disk * g, params.z > 0.5 ? -t2 : t2);
+    precise float neg_t2 = -t2;
+    precise float3 result = float3(disk * g, params.z > 0.5 ? neg_t2 : t2);
     return result;
 }
 
@@ -86,19 +87,20 @@ float3 unitpack_eqarea_ellipse24_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -118,34 +120,40 @@ float3 unitpack_eqarea_ellipse24_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float2 t5 = w2.xy * w2.xy;
-    precise float rho = sqrt(t5.x + t5.y);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float2 t1 = w2.xy * w2.xy;
+    precise float rho = sqrt(t1.x + t1.y);
     precise float half_r = rho / sqrt(root * (root + abs(w2.z))) * 0.5;
     precise float2 disk = w2.xy * (half_r / (rho > 0.0 ? rho : 1.0) * 2.0);
-    precise float2 t6 = abs(disk.yx);
-    precise float2 t7 = disk + 1.4142135 - t6;
-    precise float2 t8 = UNITPACK_SELECT(t7 >= float2(0.0, 0.0), t7, float2(0.0, 0.0))
-        * (disk + 1.4142135 + t6);
-    precise float2 t9 = -disk;
-    precise float2 t10 = t9 + 1.4142135 - t6;
-    precise float2 t11 = UNITPACK_SELECT(t10 >= float2(0.0, 0.0), t10, float2(0.0, 0.0))
-        * (t9 + 1.4142135 + t6);
-    precise float2 square = disk / (sqrt(t8) + sqrt(t11));
+    precise float2 t2 = abs(disk.yx);
+    precise float2 t3 = disk + 1.4142135 - t2;
+    precise float2 neg_disk = -disk;
+    precise float2 t4 = neg_disk + 1.4142135 - t2;
+    precise float2 t5 = sqrt(
+        UNITPACK_SELECT(t3 >= float2(0.0, 0.0), t3, float2(0.0, 0.0)) * (disk + 1.4142135 + t2)
+    )
+        + sqrt(
+            UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0))
+                * (neg_disk + 1.4142135 + t2)
+        );
+    precise float2 square = disk / t5;
     precise float2 enc = square * 1.4142135 + 0.5;
-    return float3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return float3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -164,19 +172,20 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -196,25 +205,28 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = root * (root + abs(w2.z));
-    bool t6 = w2.x >= 0.0;
-    precise float t7 = t6 ? 2048.0 : 0.0;
-    precise float t8 = t6 ? 4095.0 : 2047.0;
-    precise float mid = floor((t7 + t8 + 1.0) * 0.5);
-    precise float ell_t = (mid - 1.0 - 2047.0) * 2.0;
+    precise float t1 = root * (root + abs(w2.z));
+    bool t2 = w2.x >= 0.0;
+    precise float t3 = t2 ? 2048.0 : 0.0;
+    precise float t4 = t2 ? 4095.0 : 2047.0;
+    precise float mid = floor((t3 + t4 + 1.0) * 0.5);
+    precise float mid_below = mid - 1.0;
+    precise float ell_t = (mid_below - 2047.0) * 2.0;
     precise float ell_h = floor(ell_t * ell_t);
     precise float ell_g = 33538050.0 - ell_h;
     precise float ell_p = w2.x * w2.x * ell_g;
@@ -222,19 +234,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent = asuint(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     uint exponent2 = exponent < 40u ? 40u : exponent;
     uint exponent3 = 254u < exponent2 ? 254u : exponent2;
-    precise float t9 = asfloat((281u - exponent3) << 23u);
-    precise float ell_s = (floor(ell_p * t9) + floor(ell_q * t9))
-        * asfloat((exponent3 - 27u) << 23u);
+    precise float scale2 = asfloat((281u - exponent3) << 23u);
+    precise float back = asfloat((exponent3 - 27u) << 23u);
+    precise float ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
     precise float lhs = ell_s * 16769025.0;
-    precise float rhs = ell_h * ell_g * t5;
-    precise float t10 = ell_t > 0.0
-        ? (w2.x > 0.0 ? (lhs >= rhs ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs <= rhs ? 1.0 : 0.0));
-    bool beyond = t10 > 0.5;
-    precise float lo5 = beyond ? mid : t7;
-    precise float hi5 = beyond ? t8 : mid - 1.0;
+    precise float rhs = ell_h * ell_g * t1;
+    precise float one_if = lhs >= rhs ? 1.0 : 0.0;
+    precise float outside = w2.x > 0.0 ? one_if : 0.0;
+    precise float one_if2 = lhs <= rhs ? 1.0 : 0.0;
+    precise float inside = w2.x >= 0.0 ? 1.0 : one_if2;
+    bool beyond = (ell_t > 0.0 ? outside : inside) > 0.5;
+    precise float lo5 = beyond ? mid : t3;
+    precise float hi5 = beyond ? t4 : mid_below;
     precise float mid2 = floor((lo5 + hi5 + 1.0) * 0.5);
-    precise float ell_t2 = (mid2 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below2 = mid2 - 1.0;
+    precise float ell_t2 = (mid_below2 - 2047.0) * 2.0;
     precise float ell_h2 = floor(ell_t2 * ell_t2);
     precise float ell_g2 = 33538050.0 - ell_h2;
     precise float ell_p2 = w2.x * w2.x * ell_g2;
@@ -242,19 +256,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent4 = asuint(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     uint exponent5 = exponent4 < 40u ? 40u : exponent4;
     uint exponent6 = 254u < exponent5 ? 254u : exponent5;
-    precise float t11 = asfloat((281u - exponent6) << 23u);
-    precise float ell_s2 = (floor(ell_p2 * t11) + floor(ell_q2 * t11))
-        * asfloat((exponent6 - 27u) << 23u);
+    precise float scale3 = asfloat((281u - exponent6) << 23u);
+    precise float back2 = asfloat((exponent6 - 27u) << 23u);
+    precise float ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
     precise float lhs2 = ell_s2 * 16769025.0;
-    precise float rhs2 = ell_h2 * ell_g2 * t5;
-    precise float t12 = ell_t2 > 0.0
-        ? (w2.x > 0.0 ? (lhs2 >= rhs2 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs2 <= rhs2 ? 1.0 : 0.0));
-    bool beyond2 = t12 > 0.5;
+    precise float rhs2 = ell_h2 * ell_g2 * t1;
+    precise float one_if3 = lhs2 >= rhs2 ? 1.0 : 0.0;
+    precise float outside2 = w2.x > 0.0 ? one_if3 : 0.0;
+    precise float one_if4 = lhs2 <= rhs2 ? 1.0 : 0.0;
+    precise float inside2 = w2.x >= 0.0 ? 1.0 : one_if4;
+    bool beyond2 = (ell_t2 > 0.0 ? outside2 : inside2) > 0.5;
     precise float lo6 = beyond2 ? mid2 : lo5;
-    precise float hi6 = beyond2 ? hi5 : mid2 - 1.0;
+    precise float hi6 = beyond2 ? hi5 : mid_below2;
     precise float mid3 = floor((lo6 + hi6 + 1.0) * 0.5);
-    precise float ell_t3 = (mid3 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below3 = mid3 - 1.0;
+    precise float ell_t3 = (mid_below3 - 2047.0) * 2.0;
     precise float ell_h3 = floor(ell_t3 * ell_t3);
     precise float ell_g3 = 33538050.0 - ell_h3;
     precise float ell_p3 = w2.x * w2.x * ell_g3;
@@ -262,19 +278,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent7 = asuint(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     uint exponent8 = exponent7 < 40u ? 40u : exponent7;
     uint exponent9 = 254u < exponent8 ? 254u : exponent8;
-    precise float t13 = asfloat((281u - exponent9) << 23u);
-    precise float ell_s3 = (floor(ell_p3 * t13) + floor(ell_q3 * t13))
-        * asfloat((exponent9 - 27u) << 23u);
+    precise float scale4 = asfloat((281u - exponent9) << 23u);
+    precise float back3 = asfloat((exponent9 - 27u) << 23u);
+    precise float ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
     precise float lhs3 = ell_s3 * 16769025.0;
-    precise float rhs3 = ell_h3 * ell_g3 * t5;
-    precise float t14 = ell_t3 > 0.0
-        ? (w2.x > 0.0 ? (lhs3 >= rhs3 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs3 <= rhs3 ? 1.0 : 0.0));
-    bool beyond3 = t14 > 0.5;
+    precise float rhs3 = ell_h3 * ell_g3 * t1;
+    precise float one_if5 = lhs3 >= rhs3 ? 1.0 : 0.0;
+    precise float outside3 = w2.x > 0.0 ? one_if5 : 0.0;
+    precise float one_if6 = lhs3 <= rhs3 ? 1.0 : 0.0;
+    precise float inside3 = w2.x >= 0.0 ? 1.0 : one_if6;
+    bool beyond3 = (ell_t3 > 0.0 ? outside3 : inside3) > 0.5;
     precise float lo7 = beyond3 ? mid3 : lo6;
-    precise float hi7 = beyond3 ? hi6 : mid3 - 1.0;
+    precise float hi7 = beyond3 ? hi6 : mid_below3;
     precise float mid4 = floor((lo7 + hi7 + 1.0) * 0.5);
-    precise float ell_t4 = (mid4 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below4 = mid4 - 1.0;
+    precise float ell_t4 = (mid_below4 - 2047.0) * 2.0;
     precise float ell_h4 = floor(ell_t4 * ell_t4);
     precise float ell_g4 = 33538050.0 - ell_h4;
     precise float ell_p4 = w2.x * w2.x * ell_g4;
@@ -282,19 +300,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent10 = asuint(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     uint exponent11 = exponent10 < 40u ? 40u : exponent10;
     uint exponent12 = 254u < exponent11 ? 254u : exponent11;
-    precise float t15 = asfloat((281u - exponent12) << 23u);
-    precise float ell_s4 = (floor(ell_p4 * t15) + floor(ell_q4 * t15))
-        * asfloat((exponent12 - 27u) << 23u);
+    precise float scale5 = asfloat((281u - exponent12) << 23u);
+    precise float back4 = asfloat((exponent12 - 27u) << 23u);
+    precise float ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
     precise float lhs4 = ell_s4 * 16769025.0;
-    precise float rhs4 = ell_h4 * ell_g4 * t5;
-    precise float t16 = ell_t4 > 0.0
-        ? (w2.x > 0.0 ? (lhs4 >= rhs4 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs4 <= rhs4 ? 1.0 : 0.0));
-    bool beyond4 = t16 > 0.5;
+    precise float rhs4 = ell_h4 * ell_g4 * t1;
+    precise float one_if7 = lhs4 >= rhs4 ? 1.0 : 0.0;
+    precise float outside4 = w2.x > 0.0 ? one_if7 : 0.0;
+    precise float one_if8 = lhs4 <= rhs4 ? 1.0 : 0.0;
+    precise float inside4 = w2.x >= 0.0 ? 1.0 : one_if8;
+    bool beyond4 = (ell_t4 > 0.0 ? outside4 : inside4) > 0.5;
     precise float lo8 = beyond4 ? mid4 : lo7;
-    precise float hi8 = beyond4 ? hi7 : mid4 - 1.0;
+    precise float hi8 = beyond4 ? hi7 : mid_below4;
     precise float mid5 = floor((lo8 + hi8 + 1.0) * 0.5);
-    precise float ell_t5 = (mid5 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below5 = mid5 - 1.0;
+    precise float ell_t5 = (mid_below5 - 2047.0) * 2.0;
     precise float ell_h5 = floor(ell_t5 * ell_t5);
     precise float ell_g5 = 33538050.0 - ell_h5;
     precise float ell_p5 = w2.x * w2.x * ell_g5;
@@ -302,19 +322,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent13 = asuint(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     uint exponent14 = exponent13 < 40u ? 40u : exponent13;
     uint exponent15 = 254u < exponent14 ? 254u : exponent14;
-    precise float t17 = asfloat((281u - exponent15) << 23u);
-    precise float ell_s5 = (floor(ell_p5 * t17) + floor(ell_q5 * t17))
-        * asfloat((exponent15 - 27u) << 23u);
+    precise float scale6 = asfloat((281u - exponent15) << 23u);
+    precise float back5 = asfloat((exponent15 - 27u) << 23u);
+    precise float ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
     precise float lhs5 = ell_s5 * 16769025.0;
-    precise float rhs5 = ell_h5 * ell_g5 * t5;
-    precise float t18 = ell_t5 > 0.0
-        ? (w2.x > 0.0 ? (lhs5 >= rhs5 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs5 <= rhs5 ? 1.0 : 0.0));
-    bool beyond5 = t18 > 0.5;
+    precise float rhs5 = ell_h5 * ell_g5 * t1;
+    precise float one_if9 = lhs5 >= rhs5 ? 1.0 : 0.0;
+    precise float outside5 = w2.x > 0.0 ? one_if9 : 0.0;
+    precise float one_if10 = lhs5 <= rhs5 ? 1.0 : 0.0;
+    precise float inside5 = w2.x >= 0.0 ? 1.0 : one_if10;
+    bool beyond5 = (ell_t5 > 0.0 ? outside5 : inside5) > 0.5;
     precise float lo9 = beyond5 ? mid5 : lo8;
-    precise float hi9 = beyond5 ? hi8 : mid5 - 1.0;
+    precise float hi9 = beyond5 ? hi8 : mid_below5;
     precise float mid6 = floor((lo9 + hi9 + 1.0) * 0.5);
-    precise float ell_t6 = (mid6 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below6 = mid6 - 1.0;
+    precise float ell_t6 = (mid_below6 - 2047.0) * 2.0;
     precise float ell_h6 = floor(ell_t6 * ell_t6);
     precise float ell_g6 = 33538050.0 - ell_h6;
     precise float ell_p6 = w2.x * w2.x * ell_g6;
@@ -322,19 +344,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent16 = asuint(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     uint exponent17 = exponent16 < 40u ? 40u : exponent16;
     uint exponent18 = 254u < exponent17 ? 254u : exponent17;
-    precise float t19 = asfloat((281u - exponent18) << 23u);
-    precise float ell_s6 = (floor(ell_p6 * t19) + floor(ell_q6 * t19))
-        * asfloat((exponent18 - 27u) << 23u);
+    precise float scale7 = asfloat((281u - exponent18) << 23u);
+    precise float back6 = asfloat((exponent18 - 27u) << 23u);
+    precise float ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
     precise float lhs6 = ell_s6 * 16769025.0;
-    precise float rhs6 = ell_h6 * ell_g6 * t5;
-    precise float t20 = ell_t6 > 0.0
-        ? (w2.x > 0.0 ? (lhs6 >= rhs6 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs6 <= rhs6 ? 1.0 : 0.0));
-    bool beyond6 = t20 > 0.5;
+    precise float rhs6 = ell_h6 * ell_g6 * t1;
+    precise float one_if11 = lhs6 >= rhs6 ? 1.0 : 0.0;
+    precise float outside6 = w2.x > 0.0 ? one_if11 : 0.0;
+    precise float one_if12 = lhs6 <= rhs6 ? 1.0 : 0.0;
+    precise float inside6 = w2.x >= 0.0 ? 1.0 : one_if12;
+    bool beyond6 = (ell_t6 > 0.0 ? outside6 : inside6) > 0.5;
     precise float lo10 = beyond6 ? mid6 : lo9;
-    precise float hi10 = beyond6 ? hi9 : mid6 - 1.0;
+    precise float hi10 = beyond6 ? hi9 : mid_below6;
     precise float mid7 = floor((lo10 + hi10 + 1.0) * 0.5);
-    precise float ell_t7 = (mid7 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below7 = mid7 - 1.0;
+    precise float ell_t7 = (mid_below7 - 2047.0) * 2.0;
     precise float ell_h7 = floor(ell_t7 * ell_t7);
     precise float ell_g7 = 33538050.0 - ell_h7;
     precise float ell_p7 = w2.x * w2.x * ell_g7;
@@ -342,19 +366,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent19 = asuint(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     uint exponent20 = exponent19 < 40u ? 40u : exponent19;
     uint exponent21 = 254u < exponent20 ? 254u : exponent20;
-    precise float t21 = asfloat((281u - exponent21) << 23u);
-    precise float ell_s7 = (floor(ell_p7 * t21) + floor(ell_q7 * t21))
-        * asfloat((exponent21 - 27u) << 23u);
+    precise float scale8 = asfloat((281u - exponent21) << 23u);
+    precise float back7 = asfloat((exponent21 - 27u) << 23u);
+    precise float ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
     precise float lhs7 = ell_s7 * 16769025.0;
-    precise float rhs7 = ell_h7 * ell_g7 * t5;
-    precise float t22 = ell_t7 > 0.0
-        ? (w2.x > 0.0 ? (lhs7 >= rhs7 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs7 <= rhs7 ? 1.0 : 0.0));
-    bool beyond7 = t22 > 0.5;
+    precise float rhs7 = ell_h7 * ell_g7 * t1;
+    precise float one_if13 = lhs7 >= rhs7 ? 1.0 : 0.0;
+    precise float outside7 = w2.x > 0.0 ? one_if13 : 0.0;
+    precise float one_if14 = lhs7 <= rhs7 ? 1.0 : 0.0;
+    precise float inside7 = w2.x >= 0.0 ? 1.0 : one_if14;
+    bool beyond7 = (ell_t7 > 0.0 ? outside7 : inside7) > 0.5;
     precise float lo11 = beyond7 ? mid7 : lo10;
-    precise float hi11 = beyond7 ? hi10 : mid7 - 1.0;
+    precise float hi11 = beyond7 ? hi10 : mid_below7;
     precise float mid8 = floor((lo11 + hi11 + 1.0) * 0.5);
-    precise float ell_t8 = (mid8 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below8 = mid8 - 1.0;
+    precise float ell_t8 = (mid_below8 - 2047.0) * 2.0;
     precise float ell_h8 = floor(ell_t8 * ell_t8);
     precise float ell_g8 = 33538050.0 - ell_h8;
     precise float ell_p8 = w2.x * w2.x * ell_g8;
@@ -362,19 +388,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent22 = asuint(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     uint exponent23 = exponent22 < 40u ? 40u : exponent22;
     uint exponent24 = 254u < exponent23 ? 254u : exponent23;
-    precise float t23 = asfloat((281u - exponent24) << 23u);
-    precise float ell_s8 = (floor(ell_p8 * t23) + floor(ell_q8 * t23))
-        * asfloat((exponent24 - 27u) << 23u);
+    precise float scale9 = asfloat((281u - exponent24) << 23u);
+    precise float back8 = asfloat((exponent24 - 27u) << 23u);
+    precise float ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
     precise float lhs8 = ell_s8 * 16769025.0;
-    precise float rhs8 = ell_h8 * ell_g8 * t5;
-    precise float t24 = ell_t8 > 0.0
-        ? (w2.x > 0.0 ? (lhs8 >= rhs8 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs8 <= rhs8 ? 1.0 : 0.0));
-    bool beyond8 = t24 > 0.5;
+    precise float rhs8 = ell_h8 * ell_g8 * t1;
+    precise float one_if15 = lhs8 >= rhs8 ? 1.0 : 0.0;
+    precise float outside8 = w2.x > 0.0 ? one_if15 : 0.0;
+    precise float one_if16 = lhs8 <= rhs8 ? 1.0 : 0.0;
+    precise float inside8 = w2.x >= 0.0 ? 1.0 : one_if16;
+    bool beyond8 = (ell_t8 > 0.0 ? outside8 : inside8) > 0.5;
     precise float lo12 = beyond8 ? mid8 : lo11;
-    precise float hi12 = beyond8 ? hi11 : mid8 - 1.0;
+    precise float hi12 = beyond8 ? hi11 : mid_below8;
     precise float mid9 = floor((lo12 + hi12 + 1.0) * 0.5);
-    precise float ell_t9 = (mid9 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below9 = mid9 - 1.0;
+    precise float ell_t9 = (mid_below9 - 2047.0) * 2.0;
     precise float ell_h9 = floor(ell_t9 * ell_t9);
     precise float ell_g9 = 33538050.0 - ell_h9;
     precise float ell_p9 = w2.x * w2.x * ell_g9;
@@ -382,19 +410,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent25 = asuint(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     uint exponent26 = exponent25 < 40u ? 40u : exponent25;
     uint exponent27 = 254u < exponent26 ? 254u : exponent26;
-    precise float t25 = asfloat((281u - exponent27) << 23u);
-    precise float ell_s9 = (floor(ell_p9 * t25) + floor(ell_q9 * t25))
-        * asfloat((exponent27 - 27u) << 23u);
+    precise float scale10 = asfloat((281u - exponent27) << 23u);
+    precise float back9 = asfloat((exponent27 - 27u) << 23u);
+    precise float ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
     precise float lhs9 = ell_s9 * 16769025.0;
-    precise float rhs9 = ell_h9 * ell_g9 * t5;
-    precise float t26 = ell_t9 > 0.0
-        ? (w2.x > 0.0 ? (lhs9 >= rhs9 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs9 <= rhs9 ? 1.0 : 0.0));
-    bool beyond9 = t26 > 0.5;
+    precise float rhs9 = ell_h9 * ell_g9 * t1;
+    precise float one_if17 = lhs9 >= rhs9 ? 1.0 : 0.0;
+    precise float outside9 = w2.x > 0.0 ? one_if17 : 0.0;
+    precise float one_if18 = lhs9 <= rhs9 ? 1.0 : 0.0;
+    precise float inside9 = w2.x >= 0.0 ? 1.0 : one_if18;
+    bool beyond9 = (ell_t9 > 0.0 ? outside9 : inside9) > 0.5;
     precise float lo13 = beyond9 ? mid9 : lo12;
-    precise float hi13 = beyond9 ? hi12 : mid9 - 1.0;
+    precise float hi13 = beyond9 ? hi12 : mid_below9;
     precise float mid10 = floor((lo13 + hi13 + 1.0) * 0.5);
-    precise float ell_t10 = (mid10 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below10 = mid10 - 1.0;
+    precise float ell_t10 = (mid_below10 - 2047.0) * 2.0;
     precise float ell_h10 = floor(ell_t10 * ell_t10);
     precise float ell_g10 = 33538050.0 - ell_h10;
     precise float ell_p10 = w2.x * w2.x * ell_g10;
@@ -402,19 +432,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent28 = asuint(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     uint exponent29 = exponent28 < 40u ? 40u : exponent28;
     uint exponent30 = 254u < exponent29 ? 254u : exponent29;
-    precise float t27 = asfloat((281u - exponent30) << 23u);
-    precise float ell_s10 = (floor(ell_p10 * t27) + floor(ell_q10 * t27))
-        * asfloat((exponent30 - 27u) << 23u);
+    precise float scale11 = asfloat((281u - exponent30) << 23u);
+    precise float back10 = asfloat((exponent30 - 27u) << 23u);
+    precise float ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
     precise float lhs10 = ell_s10 * 16769025.0;
-    precise float rhs10 = ell_h10 * ell_g10 * t5;
-    precise float t28 = ell_t10 > 0.0
-        ? (w2.x > 0.0 ? (lhs10 >= rhs10 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs10 <= rhs10 ? 1.0 : 0.0));
-    bool beyond10 = t28 > 0.5;
+    precise float rhs10 = ell_h10 * ell_g10 * t1;
+    precise float one_if19 = lhs10 >= rhs10 ? 1.0 : 0.0;
+    precise float outside10 = w2.x > 0.0 ? one_if19 : 0.0;
+    precise float one_if20 = lhs10 <= rhs10 ? 1.0 : 0.0;
+    precise float inside10 = w2.x >= 0.0 ? 1.0 : one_if20;
+    bool beyond10 = (ell_t10 > 0.0 ? outside10 : inside10) > 0.5;
     precise float lo14 = beyond10 ? mid10 : lo13;
-    precise float hi14 = beyond10 ? hi13 : mid10 - 1.0;
+    precise float hi14 = beyond10 ? hi13 : mid_below10;
     precise float mid11 = floor((lo14 + hi14 + 1.0) * 0.5);
-    precise float ell_t11 = (mid11 - 1.0 - 2047.0) * 2.0;
+    precise float mid_below11 = mid11 - 1.0;
+    precise float ell_t11 = (mid_below11 - 2047.0) * 2.0;
     precise float ell_h11 = floor(ell_t11 * ell_t11);
     precise float ell_g11 = 33538050.0 - ell_h11;
     precise float ell_p11 = w2.x * w2.x * ell_g11;
@@ -422,20 +454,22 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent31 = asuint(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     uint exponent32 = exponent31 < 40u ? 40u : exponent31;
     uint exponent33 = 254u < exponent32 ? 254u : exponent32;
-    precise float t29 = asfloat((281u - exponent33) << 23u);
-    precise float ell_s11 = (floor(ell_p11 * t29) + floor(ell_q11 * t29))
-        * asfloat((exponent33 - 27u) << 23u);
+    precise float scale12 = asfloat((281u - exponent33) << 23u);
+    precise float back11 = asfloat((exponent33 - 27u) << 23u);
+    precise float ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
     precise float lhs11 = ell_s11 * 16769025.0;
-    precise float rhs11 = ell_h11 * ell_g11 * t5;
-    precise float t30 = ell_t11 > 0.0
-        ? (w2.x > 0.0 ? (lhs11 >= rhs11 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs11 <= rhs11 ? 1.0 : 0.0));
-    bool beyond11 = t30 > 0.5;
-    bool t31 = w2.y >= 0.0;
-    precise float t32 = t31 ? 1024.0 : 0.0;
-    precise float t33 = t31 ? 2047.0 : 1023.0;
-    precise float mid12 = floor((t32 + t33 + 1.0) * 0.5);
-    precise float ell_t12 = (mid12 - 1.0 - 1023.0) * 2.0;
+    precise float rhs11 = ell_h11 * ell_g11 * t1;
+    precise float one_if21 = lhs11 >= rhs11 ? 1.0 : 0.0;
+    precise float outside11 = w2.x > 0.0 ? one_if21 : 0.0;
+    precise float one_if22 = lhs11 <= rhs11 ? 1.0 : 0.0;
+    precise float inside11 = w2.x >= 0.0 ? 1.0 : one_if22;
+    bool beyond11 = (ell_t11 > 0.0 ? outside11 : inside11) > 0.5;
+    bool t5 = w2.y >= 0.0;
+    precise float t6 = t5 ? 1024.0 : 0.0;
+    precise float t7 = t5 ? 2047.0 : 1023.0;
+    precise float mid12 = floor((t6 + t7 + 1.0) * 0.5);
+    precise float mid_below12 = mid12 - 1.0;
+    precise float ell_t12 = (mid_below12 - 1023.0) * 2.0;
     precise float ell_h12 = floor(ell_t12 * ell_t12);
     precise float ell_g12 = 8380418.0 - ell_h12;
     precise float ell_p12 = w2.y * w2.y * ell_g12;
@@ -443,19 +477,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent34 = asuint(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     uint exponent35 = exponent34 < 40u ? 40u : exponent34;
     uint exponent36 = 254u < exponent35 ? 254u : exponent35;
-    precise float t34 = asfloat((281u - exponent36) << 23u);
-    precise float ell_s12 = (floor(ell_p12 * t34) + floor(ell_q12 * t34))
-        * asfloat((exponent36 - 27u) << 23u);
+    precise float scale13 = asfloat((281u - exponent36) << 23u);
+    precise float back12 = asfloat((exponent36 - 27u) << 23u);
+    precise float ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
     precise float lhs12 = ell_s12 * 4190209.0;
-    precise float rhs12 = ell_h12 * ell_g12 * t5;
-    precise float t35 = ell_t12 > 0.0
-        ? (w2.y > 0.0 ? (lhs12 >= rhs12 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs12 <= rhs12 ? 1.0 : 0.0));
-    bool beyond12 = t35 > 0.5;
-    precise float lo15 = beyond12 ? mid12 : t32;
-    precise float hi15 = beyond12 ? t33 : mid12 - 1.0;
+    precise float rhs12 = ell_h12 * ell_g12 * t1;
+    precise float one_if23 = lhs12 >= rhs12 ? 1.0 : 0.0;
+    precise float outside12 = w2.y > 0.0 ? one_if23 : 0.0;
+    precise float one_if24 = lhs12 <= rhs12 ? 1.0 : 0.0;
+    precise float inside12 = w2.y >= 0.0 ? 1.0 : one_if24;
+    bool beyond12 = (ell_t12 > 0.0 ? outside12 : inside12) > 0.5;
+    precise float lo15 = beyond12 ? mid12 : t6;
+    precise float hi15 = beyond12 ? t7 : mid_below12;
     precise float mid13 = floor((lo15 + hi15 + 1.0) * 0.5);
-    precise float ell_t13 = (mid13 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below13 = mid13 - 1.0;
+    precise float ell_t13 = (mid_below13 - 1023.0) * 2.0;
     precise float ell_h13 = floor(ell_t13 * ell_t13);
     precise float ell_g13 = 8380418.0 - ell_h13;
     precise float ell_p13 = w2.y * w2.y * ell_g13;
@@ -463,19 +499,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent37 = asuint(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     uint exponent38 = exponent37 < 40u ? 40u : exponent37;
     uint exponent39 = 254u < exponent38 ? 254u : exponent38;
-    precise float t36 = asfloat((281u - exponent39) << 23u);
-    precise float ell_s13 = (floor(ell_p13 * t36) + floor(ell_q13 * t36))
-        * asfloat((exponent39 - 27u) << 23u);
+    precise float scale14 = asfloat((281u - exponent39) << 23u);
+    precise float back13 = asfloat((exponent39 - 27u) << 23u);
+    precise float ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
     precise float lhs13 = ell_s13 * 4190209.0;
-    precise float rhs13 = ell_h13 * ell_g13 * t5;
-    precise float t37 = ell_t13 > 0.0
-        ? (w2.y > 0.0 ? (lhs13 >= rhs13 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs13 <= rhs13 ? 1.0 : 0.0));
-    bool beyond13 = t37 > 0.5;
+    precise float rhs13 = ell_h13 * ell_g13 * t1;
+    precise float one_if25 = lhs13 >= rhs13 ? 1.0 : 0.0;
+    precise float outside13 = w2.y > 0.0 ? one_if25 : 0.0;
+    precise float one_if26 = lhs13 <= rhs13 ? 1.0 : 0.0;
+    precise float inside13 = w2.y >= 0.0 ? 1.0 : one_if26;
+    bool beyond13 = (ell_t13 > 0.0 ? outside13 : inside13) > 0.5;
     precise float lo16 = beyond13 ? mid13 : lo15;
-    precise float hi16 = beyond13 ? hi15 : mid13 - 1.0;
+    precise float hi16 = beyond13 ? hi15 : mid_below13;
     precise float mid14 = floor((lo16 + hi16 + 1.0) * 0.5);
-    precise float ell_t14 = (mid14 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below14 = mid14 - 1.0;
+    precise float ell_t14 = (mid_below14 - 1023.0) * 2.0;
     precise float ell_h14 = floor(ell_t14 * ell_t14);
     precise float ell_g14 = 8380418.0 - ell_h14;
     precise float ell_p14 = w2.y * w2.y * ell_g14;
@@ -483,19 +521,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent40 = asuint(ell_p14 >= ell_q14 ? ell_p14 : ell_q14) >> 23u;
     uint exponent41 = exponent40 < 40u ? 40u : exponent40;
     uint exponent42 = 254u < exponent41 ? 254u : exponent41;
-    precise float t38 = asfloat((281u - exponent42) << 23u);
-    precise float ell_s14 = (floor(ell_p14 * t38) + floor(ell_q14 * t38))
-        * asfloat((exponent42 - 27u) << 23u);
+    precise float scale15 = asfloat((281u - exponent42) << 23u);
+    precise float back14 = asfloat((exponent42 - 27u) << 23u);
+    precise float ell_s14 = (floor(ell_p14 * scale15) + floor(ell_q14 * scale15)) * back14;
     precise float lhs14 = ell_s14 * 4190209.0;
-    precise float rhs14 = ell_h14 * ell_g14 * t5;
-    precise float t39 = ell_t14 > 0.0
-        ? (w2.y > 0.0 ? (lhs14 >= rhs14 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs14 <= rhs14 ? 1.0 : 0.0));
-    bool beyond14 = t39 > 0.5;
+    precise float rhs14 = ell_h14 * ell_g14 * t1;
+    precise float one_if27 = lhs14 >= rhs14 ? 1.0 : 0.0;
+    precise float outside14 = w2.y > 0.0 ? one_if27 : 0.0;
+    precise float one_if28 = lhs14 <= rhs14 ? 1.0 : 0.0;
+    precise float inside14 = w2.y >= 0.0 ? 1.0 : one_if28;
+    bool beyond14 = (ell_t14 > 0.0 ? outside14 : inside14) > 0.5;
     precise float lo17 = beyond14 ? mid14 : lo16;
-    precise float hi17 = beyond14 ? hi16 : mid14 - 1.0;
+    precise float hi17 = beyond14 ? hi16 : mid_below14;
     precise float mid15 = floor((lo17 + hi17 + 1.0) * 0.5);
-    precise float ell_t15 = (mid15 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below15 = mid15 - 1.0;
+    precise float ell_t15 = (mid_below15 - 1023.0) * 2.0;
     precise float ell_h15 = floor(ell_t15 * ell_t15);
     precise float ell_g15 = 8380418.0 - ell_h15;
     precise float ell_p15 = w2.y * w2.y * ell_g15;
@@ -503,19 +543,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent43 = asuint(ell_p15 >= ell_q15 ? ell_p15 : ell_q15) >> 23u;
     uint exponent44 = exponent43 < 40u ? 40u : exponent43;
     uint exponent45 = 254u < exponent44 ? 254u : exponent44;
-    precise float t40 = asfloat((281u - exponent45) << 23u);
-    precise float ell_s15 = (floor(ell_p15 * t40) + floor(ell_q15 * t40))
-        * asfloat((exponent45 - 27u) << 23u);
+    precise float scale16 = asfloat((281u - exponent45) << 23u);
+    precise float back15 = asfloat((exponent45 - 27u) << 23u);
+    precise float ell_s15 = (floor(ell_p15 * scale16) + floor(ell_q15 * scale16)) * back15;
     precise float lhs15 = ell_s15 * 4190209.0;
-    precise float rhs15 = ell_h15 * ell_g15 * t5;
-    precise float t41 = ell_t15 > 0.0
-        ? (w2.y > 0.0 ? (lhs15 >= rhs15 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs15 <= rhs15 ? 1.0 : 0.0));
-    bool beyond15 = t41 > 0.5;
+    precise float rhs15 = ell_h15 * ell_g15 * t1;
+    precise float one_if29 = lhs15 >= rhs15 ? 1.0 : 0.0;
+    precise float outside15 = w2.y > 0.0 ? one_if29 : 0.0;
+    precise float one_if30 = lhs15 <= rhs15 ? 1.0 : 0.0;
+    precise float inside15 = w2.y >= 0.0 ? 1.0 : one_if30;
+    bool beyond15 = (ell_t15 > 0.0 ? outside15 : inside15) > 0.5;
     precise float lo18 = beyond15 ? mid15 : lo17;
-    precise float hi18 = beyond15 ? hi17 : mid15 - 1.0;
+    precise float hi18 = beyond15 ? hi17 : mid_below15;
     precise float mid16 = floor((lo18 + hi18 + 1.0) * 0.5);
-    precise float ell_t16 = (mid16 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below16 = mid16 - 1.0;
+    precise float ell_t16 = (mid_below16 - 1023.0) * 2.0;
     precise float ell_h16 = floor(ell_t16 * ell_t16);
     precise float ell_g16 = 8380418.0 - ell_h16;
     precise float ell_p16 = w2.y * w2.y * ell_g16;
@@ -523,19 +565,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent46 = asuint(ell_p16 >= ell_q16 ? ell_p16 : ell_q16) >> 23u;
     uint exponent47 = exponent46 < 40u ? 40u : exponent46;
     uint exponent48 = 254u < exponent47 ? 254u : exponent47;
-    precise float t42 = asfloat((281u - exponent48) << 23u);
-    precise float ell_s16 = (floor(ell_p16 * t42) + floor(ell_q16 * t42))
-        * asfloat((exponent48 - 27u) << 23u);
+    precise float scale17 = asfloat((281u - exponent48) << 23u);
+    precise float back16 = asfloat((exponent48 - 27u) << 23u);
+    precise float ell_s16 = (floor(ell_p16 * scale17) + floor(ell_q16 * scale17)) * back16;
     precise float lhs16 = ell_s16 * 4190209.0;
-    precise float rhs16 = ell_h16 * ell_g16 * t5;
-    precise float t43 = ell_t16 > 0.0
-        ? (w2.y > 0.0 ? (lhs16 >= rhs16 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs16 <= rhs16 ? 1.0 : 0.0));
-    bool beyond16 = t43 > 0.5;
+    precise float rhs16 = ell_h16 * ell_g16 * t1;
+    precise float one_if31 = lhs16 >= rhs16 ? 1.0 : 0.0;
+    precise float outside16 = w2.y > 0.0 ? one_if31 : 0.0;
+    precise float one_if32 = lhs16 <= rhs16 ? 1.0 : 0.0;
+    precise float inside16 = w2.y >= 0.0 ? 1.0 : one_if32;
+    bool beyond16 = (ell_t16 > 0.0 ? outside16 : inside16) > 0.5;
     precise float lo19 = beyond16 ? mid16 : lo18;
-    precise float hi19 = beyond16 ? hi18 : mid16 - 1.0;
+    precise float hi19 = beyond16 ? hi18 : mid_below16;
     precise float mid17 = floor((lo19 + hi19 + 1.0) * 0.5);
-    precise float ell_t17 = (mid17 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below17 = mid17 - 1.0;
+    precise float ell_t17 = (mid_below17 - 1023.0) * 2.0;
     precise float ell_h17 = floor(ell_t17 * ell_t17);
     precise float ell_g17 = 8380418.0 - ell_h17;
     precise float ell_p17 = w2.y * w2.y * ell_g17;
@@ -543,19 +587,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent49 = asuint(ell_p17 >= ell_q17 ? ell_p17 : ell_q17) >> 23u;
     uint exponent50 = exponent49 < 40u ? 40u : exponent49;
     uint exponent51 = 254u < exponent50 ? 254u : exponent50;
-    precise float t44 = asfloat((281u - exponent51) << 23u);
-    precise float ell_s17 = (floor(ell_p17 * t44) + floor(ell_q17 * t44))
-        * asfloat((exponent51 - 27u) << 23u);
+    precise float scale18 = asfloat((281u - exponent51) << 23u);
+    precise float back17 = asfloat((exponent51 - 27u) << 23u);
+    precise float ell_s17 = (floor(ell_p17 * scale18) + floor(ell_q17 * scale18)) * back17;
     precise float lhs17 = ell_s17 * 4190209.0;
-    precise float rhs17 = ell_h17 * ell_g17 * t5;
-    precise float t45 = ell_t17 > 0.0
-        ? (w2.y > 0.0 ? (lhs17 >= rhs17 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs17 <= rhs17 ? 1.0 : 0.0));
-    bool beyond17 = t45 > 0.5;
+    precise float rhs17 = ell_h17 * ell_g17 * t1;
+    precise float one_if33 = lhs17 >= rhs17 ? 1.0 : 0.0;
+    precise float outside17 = w2.y > 0.0 ? one_if33 : 0.0;
+    precise float one_if34 = lhs17 <= rhs17 ? 1.0 : 0.0;
+    precise float inside17 = w2.y >= 0.0 ? 1.0 : one_if34;
+    bool beyond17 = (ell_t17 > 0.0 ? outside17 : inside17) > 0.5;
     precise float lo20 = beyond17 ? mid17 : lo19;
-    precise float hi20 = beyond17 ? hi19 : mid17 - 1.0;
+    precise float hi20 = beyond17 ? hi19 : mid_below17;
     precise float mid18 = floor((lo20 + hi20 + 1.0) * 0.5);
-    precise float ell_t18 = (mid18 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below18 = mid18 - 1.0;
+    precise float ell_t18 = (mid_below18 - 1023.0) * 2.0;
     precise float ell_h18 = floor(ell_t18 * ell_t18);
     precise float ell_g18 = 8380418.0 - ell_h18;
     precise float ell_p18 = w2.y * w2.y * ell_g18;
@@ -563,19 +609,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent52 = asuint(ell_p18 >= ell_q18 ? ell_p18 : ell_q18) >> 23u;
     uint exponent53 = exponent52 < 40u ? 40u : exponent52;
     uint exponent54 = 254u < exponent53 ? 254u : exponent53;
-    precise float t46 = asfloat((281u - exponent54) << 23u);
-    precise float ell_s18 = (floor(ell_p18 * t46) + floor(ell_q18 * t46))
-        * asfloat((exponent54 - 27u) << 23u);
+    precise float scale19 = asfloat((281u - exponent54) << 23u);
+    precise float back18 = asfloat((exponent54 - 27u) << 23u);
+    precise float ell_s18 = (floor(ell_p18 * scale19) + floor(ell_q18 * scale19)) * back18;
     precise float lhs18 = ell_s18 * 4190209.0;
-    precise float rhs18 = ell_h18 * ell_g18 * t5;
-    precise float t47 = ell_t18 > 0.0
-        ? (w2.y > 0.0 ? (lhs18 >= rhs18 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs18 <= rhs18 ? 1.0 : 0.0));
-    bool beyond18 = t47 > 0.5;
+    precise float rhs18 = ell_h18 * ell_g18 * t1;
+    precise float one_if35 = lhs18 >= rhs18 ? 1.0 : 0.0;
+    precise float outside18 = w2.y > 0.0 ? one_if35 : 0.0;
+    precise float one_if36 = lhs18 <= rhs18 ? 1.0 : 0.0;
+    precise float inside18 = w2.y >= 0.0 ? 1.0 : one_if36;
+    bool beyond18 = (ell_t18 > 0.0 ? outside18 : inside18) > 0.5;
     precise float lo21 = beyond18 ? mid18 : lo20;
-    precise float hi21 = beyond18 ? hi20 : mid18 - 1.0;
+    precise float hi21 = beyond18 ? hi20 : mid_below18;
     precise float mid19 = floor((lo21 + hi21 + 1.0) * 0.5);
-    precise float ell_t19 = (mid19 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below19 = mid19 - 1.0;
+    precise float ell_t19 = (mid_below19 - 1023.0) * 2.0;
     precise float ell_h19 = floor(ell_t19 * ell_t19);
     precise float ell_g19 = 8380418.0 - ell_h19;
     precise float ell_p19 = w2.y * w2.y * ell_g19;
@@ -583,19 +631,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent55 = asuint(ell_p19 >= ell_q19 ? ell_p19 : ell_q19) >> 23u;
     uint exponent56 = exponent55 < 40u ? 40u : exponent55;
     uint exponent57 = 254u < exponent56 ? 254u : exponent56;
-    precise float t48 = asfloat((281u - exponent57) << 23u);
-    precise float ell_s19 = (floor(ell_p19 * t48) + floor(ell_q19 * t48))
-        * asfloat((exponent57 - 27u) << 23u);
+    precise float scale20 = asfloat((281u - exponent57) << 23u);
+    precise float back19 = asfloat((exponent57 - 27u) << 23u);
+    precise float ell_s19 = (floor(ell_p19 * scale20) + floor(ell_q19 * scale20)) * back19;
     precise float lhs19 = ell_s19 * 4190209.0;
-    precise float rhs19 = ell_h19 * ell_g19 * t5;
-    precise float t49 = ell_t19 > 0.0
-        ? (w2.y > 0.0 ? (lhs19 >= rhs19 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs19 <= rhs19 ? 1.0 : 0.0));
-    bool beyond19 = t49 > 0.5;
+    precise float rhs19 = ell_h19 * ell_g19 * t1;
+    precise float one_if37 = lhs19 >= rhs19 ? 1.0 : 0.0;
+    precise float outside19 = w2.y > 0.0 ? one_if37 : 0.0;
+    precise float one_if38 = lhs19 <= rhs19 ? 1.0 : 0.0;
+    precise float inside19 = w2.y >= 0.0 ? 1.0 : one_if38;
+    bool beyond19 = (ell_t19 > 0.0 ? outside19 : inside19) > 0.5;
     precise float lo22 = beyond19 ? mid19 : lo21;
-    precise float hi22 = beyond19 ? hi21 : mid19 - 1.0;
+    precise float hi22 = beyond19 ? hi21 : mid_below19;
     precise float mid20 = floor((lo22 + hi22 + 1.0) * 0.5);
-    precise float ell_t20 = (mid20 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below20 = mid20 - 1.0;
+    precise float ell_t20 = (mid_below20 - 1023.0) * 2.0;
     precise float ell_h20 = floor(ell_t20 * ell_t20);
     precise float ell_g20 = 8380418.0 - ell_h20;
     precise float ell_p20 = w2.y * w2.y * ell_g20;
@@ -603,19 +653,21 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent58 = asuint(ell_p20 >= ell_q20 ? ell_p20 : ell_q20) >> 23u;
     uint exponent59 = exponent58 < 40u ? 40u : exponent58;
     uint exponent60 = 254u < exponent59 ? 254u : exponent59;
-    precise float t50 = asfloat((281u - exponent60) << 23u);
-    precise float ell_s20 = (floor(ell_p20 * t50) + floor(ell_q20 * t50))
-        * asfloat((exponent60 - 27u) << 23u);
+    precise float scale21 = asfloat((281u - exponent60) << 23u);
+    precise float back20 = asfloat((exponent60 - 27u) << 23u);
+    precise float ell_s20 = (floor(ell_p20 * scale21) + floor(ell_q20 * scale21)) * back20;
     precise float lhs20 = ell_s20 * 4190209.0;
-    precise float rhs20 = ell_h20 * ell_g20 * t5;
-    precise float t51 = ell_t20 > 0.0
-        ? (w2.y > 0.0 ? (lhs20 >= rhs20 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs20 <= rhs20 ? 1.0 : 0.0));
-    bool beyond20 = t51 > 0.5;
+    precise float rhs20 = ell_h20 * ell_g20 * t1;
+    precise float one_if39 = lhs20 >= rhs20 ? 1.0 : 0.0;
+    precise float outside20 = w2.y > 0.0 ? one_if39 : 0.0;
+    precise float one_if40 = lhs20 <= rhs20 ? 1.0 : 0.0;
+    precise float inside20 = w2.y >= 0.0 ? 1.0 : one_if40;
+    bool beyond20 = (ell_t20 > 0.0 ? outside20 : inside20) > 0.5;
     precise float lo23 = beyond20 ? mid20 : lo22;
-    precise float hi23 = beyond20 ? hi22 : mid20 - 1.0;
+    precise float hi23 = beyond20 ? hi22 : mid_below20;
     precise float mid21 = floor((lo23 + hi23 + 1.0) * 0.5);
-    precise float ell_t21 = (mid21 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below21 = mid21 - 1.0;
+    precise float ell_t21 = (mid_below21 - 1023.0) * 2.0;
     precise float ell_h21 = floor(ell_t21 * ell_t21);
     precise float ell_g21 = 8380418.0 - ell_h21;
     precise float ell_p21 = w2.y * w2.y * ell_g21;
@@ -623,15 +675,16 @@ float3 unitpack_eqarea_ellipse24_round_codes(float3 a0) {
     uint exponent61 = asuint(ell_p21 >= ell_q21 ? ell_p21 : ell_q21) >> 23u;
     uint exponent62 = exponent61 < 40u ? 40u : exponent61;
     uint exponent63 = 254u < exponent62 ? 254u : exponent62;
-    precise float t52 = asfloat((281u - exponent63) << 23u);
-    precise float ell_s21 = (floor(ell_p21 * t52) + floor(ell_q21 * t52))
-        * asfloat((exponent63 - 27u) << 23u);
+    precise float scale22 = asfloat((281u - exponent63) << 23u);
+    precise float back21 = asfloat((exponent63 - 27u) << 23u);
+    precise float ell_s21 = (floor(ell_p21 * scale22) + floor(ell_q21 * scale22)) * back21;
     precise float lhs21 = ell_s21 * 4190209.0;
-    precise float rhs21 = ell_h21 * ell_g21 * t5;
-    precise float t53 = ell_t21 > 0.0
-        ? (w2.y > 0.0 ? (lhs21 >= rhs21 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs21 <= rhs21 ? 1.0 : 0.0));
-    bool beyond21 = t53 > 0.5;
+    precise float rhs21 = ell_h21 * ell_g21 * t1;
+    precise float one_if41 = lhs21 >= rhs21 ? 1.0 : 0.0;
+    precise float outside21 = w2.y > 0.0 ? one_if41 : 0.0;
+    precise float one_if42 = lhs21 <= rhs21 ? 1.0 : 0.0;
+    precise float inside21 = w2.y >= 0.0 ? 1.0 : one_if42;
+    bool beyond21 = (ell_t21 > 0.0 ? outside21 : inside21) > 0.5;
     return UNITPACK_SELECT(
         bool3(beyond11, beyond21, w2.z < 0.0),
         float3(mid11, mid21, 1.0),

@@ -39,12 +39,10 @@
 float2 unitpack_eqarea_oct16_sincos_quarter_pi(float a0) {
     precise float c2 = a0 * a0;
     precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = a0 * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
+        * c2;
+    precise float s = a0 * (t1 + 3.1415927);
+    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t2 + (-4.934802)) * c2 + 1.0;
     return float2(s, co);
 }
 
@@ -58,7 +56,8 @@ float3 unitpack_eqarea_oct16_decode_float(float2 params) {
     precise float2 abs_params = abs(params);
     precise float t1 = 1.0 - abs_params.x - abs_params.y;
     bool t2 = t1 < 0.0;
-    precise float2 b = t2 ? 1.0 - abs_params.yx : abs_params;
+    precise float2 t3 = 1.0 - abs_params.yx;
+    precise float2 b = t2 ? t3 : abs_params;
     precise float r = b.x + b.y;
     precise float2 angle = b / (r > 0.0 ? r : 1.0) * 0.5;
     precise float2 low = unitpack_eqarea_oct16_sincos_quarter_pi(angle.y);
@@ -66,13 +65,12 @@ float3 unitpack_eqarea_oct16_decode_float(float2 params) {
     precise float2 cs = b.x >= b.y ? low.yx : high;
     precise float r2 = r * r;
     precise float k = r * sqrt(2.0 - r2);
-    precise float2 t3 = UNITPACK_SELECT(
-        params >= float2(0.0, 0.0),
-        float2(1.0, 1.0),
-        float2(-1.0, -1.0)
-    );
     precise float t4 = 1.0 - r2;
-    precise float3 result = float3(cs * k * t3, t2 ? -t4 : t4);
+    precise float neg_t4 = -t4;
+    precise float3 result = float3(
+        cs * k * UNITPACK_SELECT(params >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0)),
+        t2 ? neg_t4 : t4
+    );
     return result;
 }
 
@@ -99,20 +97,21 @@ float unitpack_eqarea_oct16_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -135,19 +134,20 @@ float2 unitpack_eqarea_oct16_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -167,27 +167,30 @@ float2 unitpack_eqarea_oct16_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float2 t5 = abs(w2.xy);
-    precise float2 t6 = w2.xy * w2.xy;
-    precise float rho = sqrt(t6.x + t6.y);
+    precise float2 t1 = abs(w2.xy);
+    precise float2 t2 = w2.xy * w2.xy;
+    precise float rho = sqrt(t2.x + t2.y);
     precise float r = rho / sqrt(root * (root + abs(w2.z)));
-    precise float t = unitpack_eqarea_oct16_atan2_pi(t5.y, t5.x);
+    precise float t = unitpack_eqarea_oct16_atan2_pi(t1.y, t1.x);
     precise float v2 = r * (t * 2.0);
     precise float2 p = float2(r - v2, v2);
-    precise float2 enc = (w2.z <= 0.0 ? 1.0 - p.yx : p)
+    precise float2 t3 = 1.0 - p.yx;
+    precise float2 enc = (w2.z <= 0.0 ? t3 : p)
         * UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
     return enc;
 }
@@ -208,19 +211,20 @@ float2 unitpack_eqarea_oct16_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -240,23 +244,25 @@ float2 unitpack_eqarea_oct16_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t5);
-    precise float t6 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t6);
+    precise float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -270,97 +276,100 @@ float2 unitpack_eqarea_oct16_round_codes(float3 a0) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    precise float t7 = root * (root + abs(w2.z));
-    precise float r = sqrt(rho2 / t7);
-    precise float2 t8 = abs(w2.xy);
-    precise float abs_t8_x = abs(t8.x);
-    precise float abs_t8_y = abs(t8.y);
-    bool y_major = abs_t8_y > abs_t8_x;
-    precise float hi8 = y_major ? abs_t8_y : abs_t8_x;
-    precise float lo8 = y_major ? abs_t8_x : abs_t8_y;
-    precise float t9 = hi8 > 0.0 ? hi8 : 1.0;
+    precise float t1 = root * (root + abs(w2.z));
+    precise float r = sqrt(rho2 / t1);
+    precise float2 t2 = abs(w2.xy);
+    precise float abs_t2_x = abs(t2.x);
+    precise float abs_t2_y = abs(t2.y);
+    bool y_major = abs_t2_y > abs_t2_x;
+    precise float hi8 = y_major ? abs_t2_y : abs_t2_x;
+    precise float lo8 = y_major ? abs_t2_x : abs_t2_y;
+    precise float t3 = hi8 > 0.0 ? hi8 : 1.0;
     precise float big = lo8 * 8388608.0;
-    precise float ratio_estimate = floor(lo8 / t9 * 8388608.0);
-    precise float t10 = (ratio_estimate + 1.0) * t9 <= big
-        ? 1.0
-        : (ratio_estimate * t9 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t10;
-    precise float t = ratio + ((ratio + 1.0) * t9 <= big ? 1.0 : (ratio * t9 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo8 / t3 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t3 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t3 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t11 = t - 8388608.0;
-    precise float t12 = t + 8388608.0;
-    precise float big2 = t11 * 8388608.0;
-    precise float ratio_estimate2 = floor(t11 / t12 * 8388608.0);
-    precise float t13 = (ratio_estimate2 + 1.0) * t12 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t12 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t13;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t12 <= big2 ? 1.0 : (ratio2 * t12 > big2 ? -1.0 : 0.0));
+    precise float t4 = t - 8388608.0;
+    precise float t5 = t + 8388608.0;
+    precise float big2 = t4 * 8388608.0;
+    precise float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t5 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t5 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t14 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t15 = round((round(t14 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t16 = round((round(t15 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t17 = round((round(t16 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r2 = round(z * (round(t17 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t6 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t7 = (round((t6 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t8 = (round((round(t7) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t9 = round((round(t8 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t10 = round((round(t9 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r2 = round(z * (t10 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r2 * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = t8.x < 0.0 ? 8388608.0 - h3 : h3;
-    precise float t18 = t8.y < 0.0 ? -h4 : h4;
-    precise float2 mult = float2(4194304.0 - t18, t18) * 3.027916e-5;
-    precise float2 t19 = round(r * mult);
-    precise float2 t20 = UNITPACK_SELECT(
-        t19 >= float2(-127.0, -127.0),
-        t19,
+    precise float t11 = h + 2097152.0;
+    precise float h2 = far ? t11 : h;
+    precise float t12 = 4194304.0 - h2;
+    precise float h3 = y_major ? t12 : h2;
+    precise float t13 = 8388608.0 - h3;
+    precise float h4 = t2.x < 0.0 ? t13 : h3;
+    precise float neg_h4 = -h4;
+    precise float t14 = t2.y < 0.0 ? neg_h4 : h4;
+    precise float2 mult = float2(4194304.0 - t14, t14) * 3.027916e-5;
+    precise float2 t15 = round(r * mult);
+    precise float2 t16 = UNITPACK_SELECT(
+        t15 >= float2(-127.0, -127.0),
+        t15,
         float2(-127.0, -127.0)
     );
-    precise float2 t21 = UNITPACK_SELECT(t20 <= float2(127.0, 127.0), t20, float2(127.0, 127.0));
-    precise float2 t22 = t21 + 0.5;
+    precise float2 t17 = UNITPACK_SELECT(t16 <= float2(127.0, 127.0), t16, float2(127.0, 127.0));
+    precise float2 t18 = t17 + 0.5;
+    precise float2 t19 = rho2 * (mult * mult);
+    precise float2 t20 = t18 * t18 * t1;
+    precise float2 t21 = UNITPACK_SELECT(
+        mult >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t18 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t19 >= t20, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t18 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t19 <= t20, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
+    );
+    precise float2 t22 = t17 - 1.0 + 0.5;
     precise float2 t23 = rho2 * (mult * mult);
-    precise float2 t24 = t22 * t22 * t7;
+    precise float2 t24 = t22 * t22 * t1;
     precise float2 t25 = UNITPACK_SELECT(
-        t22 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t23 >= t24, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+        mult >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t22 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t23 >= t24, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t22 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t23 <= t24, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t26 = UNITPACK_SELECT(
-        t22 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t23 <= t24, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t27 = UNITPACK_SELECT(
-        t21 < float2(127.0, 127.0),
-        UNITPACK_SELECT(mult >= float2(0.0, 0.0), t25, t26),
-        float2(0.0, 0.0)
-    );
-    precise float2 t28 = t21 - 1.0 + 0.5;
-    precise float2 t29 = rho2 * (mult * mult);
-    precise float2 t30 = t28 * t28 * t7;
-    precise float2 t31 = UNITPACK_SELECT(
-        t28 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t29 >= t30, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t32 = UNITPACK_SELECT(
-        t28 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t29 <= t30, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t33 = UNITPACK_SELECT(
-        t21 > float2(-127.0, -127.0),
-        UNITPACK_SELECT(mult >= float2(0.0, 0.0), t31, t32) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 c = t21 + t27 + t33;
+    precise float2 c = t17
+        + UNITPACK_SELECT(t17 < float2(127.0, 127.0), t21, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t17 > float2(-127.0, -127.0), t25 - 1.0, float2(0.0, 0.0));
     precise float2 folded = 127.0 - c.yx;
-    precise float2 t34 = w2.z <= 0.0 ? folded : c;
-    precise float2 result = UNITPACK_SELECT(w2.xy < float2(0.0, 0.0), -t34, t34);
+    precise float2 t26 = w2.z <= 0.0 ? folded : c;
+    precise float2 result = UNITPACK_SELECT(w2.xy < float2(0.0, 0.0), -t26, t26);
     return result;
 }
 

@@ -56,12 +56,11 @@ float3 unitpack_eqdist20_decode_float(float3 params) {
         ((6.565963e-11 * q + (-6.3866032e-9)) * q + 4.7108747e-7) * q + (-2.5202042e-5)
     )
         * q;
-    precise float t4 = (
-        (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q + (-1.2337005)
-    )
-        * q;
-    precise float cosq = t4 + 1.0;
-    precise float3 result = float3(p * sinc, params.z > 0.5 ? -cosq : cosq);
+    precise float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
+        + (-1.2337005);
+    precise float cosq = t4 * q + 1.0;
+    precise float neg_cosq = -cosq;
+    precise float3 result = float3(p * sinc, params.z > 0.5 ? neg_cosq : cosq);
     return result;
 }
 
@@ -90,20 +89,21 @@ float unitpack_eqdist20_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -127,20 +127,22 @@ float3 unitpack_eqdist20_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float2 t1 = w2.xy * w2.xy;
     precise float rho = sqrt(t1.x + t1.y);
     precise float abs_w2_z = abs(w2.z);
     precise float t = unitpack_eqdist20_atan2_pi(rho, abs_w2_z);
     precise float s = t / (rho > 0.0 ? rho : 1.0);
     precise float2 enc = w2.xy * s + 0.5;
-    return float3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return float3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -159,17 +161,19 @@ float3 unitpack_eqdist20_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -183,68 +187,76 @@ float3 unitpack_eqdist20_round_codes(float3 a0) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     precise float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    precise float rho2_2 = t3 ? rho2 : 1.0;
+    bool t1 = rho2 > 0.0;
+    precise float rho2_2 = t1 ? rho2 : 1.0;
     uint half_exponent = ((asuint(rho2_2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t4 = rho2_2 * root_down;
-    precise float root_estimate = sqrt(t4);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float t2 = rho2_2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= t4 ? 1.0 : (root_h0 * root_h0 > t4 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t4 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t4 ? 1.0 : (root_m0 * root_m0 > t4 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float rho = t3 ? root * root_up : 0.0;
+    precise float t3 = root * root_up;
+    precise float rho = t1 ? t3 : 0.0;
     precise float abs_w2_z = abs(w2.z);
     precise float abs_abs_w2_z = abs(abs_w2_z);
     precise float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_abs_w2_z;
     precise float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     precise float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    precise float t6 = hi4 > 0.0 ? hi4 : 1.0;
+    precise float t4 = hi4 > 0.0 ? hi4 : 1.0;
     precise float big = lo4 * 8388608.0;
-    precise float ratio_estimate = floor(lo4 / t6 * 8388608.0);
-    precise float t7 = (ratio_estimate + 1.0) * t6 <= big
-        ? 1.0
-        : (ratio_estimate * t6 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t7;
-    precise float t = ratio + ((ratio + 1.0) * t6 <= big ? 1.0 : (ratio * t6 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo4 / t4 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t4 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t4 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t8 = t - 8388608.0;
-    precise float t9 = t + 8388608.0;
-    precise float big2 = t8 * 8388608.0;
-    precise float ratio_estimate2 = floor(t8 / t9 * 8388608.0);
-    precise float t10 = (ratio_estimate2 + 1.0) * t9 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t9 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t10;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t9 <= big2 ? 1.0 : (ratio2 * t9 > big2 ? -1.0 : 0.0));
+    precise float t5 = t - 8388608.0;
+    precise float t6 = t + 8388608.0;
+    precise float big2 = t5 * 8388608.0;
+    precise float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t11 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t12 = round((round(t11 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t13 = round((round(t12 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t14 = round((round(t13 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t14 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t7 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t8 = (round((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t9 = (round((round(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t10 = round((round(t9 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t11 = round((round(t10 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t11 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = abs_w2_z < 0.0 ? 8388608.0 - h3 : h3;
-    precise float t15 = rho < 0.0 ? -h4 : h4;
+    precise float t12 = h + 2097152.0;
+    precise float h2 = far ? t12 : h;
+    precise float t13 = 4194304.0 - h2;
+    precise float h3 = y_major ? t13 : h2;
+    precise float t14 = 8388608.0 - h3;
+    precise float h4 = abs_w2_z < 0.0 ? t14 : h3;
+    precise float neg_h4 = -h4;
+    precise float t15 = rho < 0.0 ? neg_h4 : h4;
     precise float big3 = w2.x * t15 * 0.0001219511;
     precise float t16 = round(big3 / sqrt(rho2_2) + 511.5);
     precise float abs_big3 = abs(big3);
@@ -253,41 +265,45 @@ float3 unitpack_eqdist20_round_codes(float3 a0) {
     precise float t18 = estimate - 511.0;
     precise float abs_big3_sq = abs_big3 * abs_big3;
     precise float t19 = t18 * t18 * rho2_2;
-    precise float t20 = w2.x >= 0.0
-        ? (t18 > 0.0 ? (abs_big3_sq >= t19 ? 1.0 : 0.0) : 1.0)
-        : (t18 < 0.0 ? (abs_big3_sq <= t19 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 1023.0 ? t20 : 0.0;
-    precise float t21 = estimate - 1.0 - 511.0;
+    precise float one_if2 = abs_big3_sq >= t19 ? 1.0 : 0.0;
+    precise float t20 = t18 > 0.0 ? one_if2 : 1.0;
+    precise float one_if3 = abs_big3_sq <= t19 ? 1.0 : 0.0;
+    precise float t21 = t18 < 0.0 ? one_if3 : 0.0;
+    precise float t22 = w2.x >= 0.0 ? t20 : t21;
+    precise float up = estimate < 1023.0 ? t22 : 0.0;
+    precise float t23 = estimate - 1.0 - 511.0;
     precise float abs_big3_sq2 = abs_big3 * abs_big3;
-    precise float t22 = t21 * t21 * rho2_2;
-    precise float t23 = w2.x >= 0.0
-        ? (t21 > 0.0 ? (abs_big3_sq2 >= t22 ? 1.0 : 0.0) : 1.0)
-        : (t21 < 0.0 ? (abs_big3_sq2 <= t22 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t23 - 1.0 : 0.0;
+    precise float t24 = t23 * t23 * rho2_2;
+    precise float one_if4 = abs_big3_sq2 >= t24 ? 1.0 : 0.0;
+    precise float t25 = t23 > 0.0 ? one_if4 : 1.0;
+    precise float one_if5 = abs_big3_sq2 <= t24 ? 1.0 : 0.0;
+    precise float t26 = t23 < 0.0 ? one_if5 : 0.0;
+    precise float t27 = (w2.x >= 0.0 ? t25 : t26) - 1.0;
+    precise float down = estimate > 0.0 ? t27 : 0.0;
     precise float big4 = w2.y * t15 * 6.0915947e-5;
-    precise float t24 = round(big4 / sqrt(rho2_2) + 255.5);
+    precise float t28 = round(big4 / sqrt(rho2_2) + 255.5);
     precise float abs_big4 = abs(big4);
-    precise float t25 = t24 >= 0.0 ? t24 : 0.0;
-    precise float estimate2 = t25 <= 511.0 ? t25 : 511.0;
-    precise float t26 = estimate2 - 255.0;
+    precise float t29 = t28 >= 0.0 ? t28 : 0.0;
+    precise float estimate2 = t29 <= 511.0 ? t29 : 511.0;
+    precise float t30 = estimate2 - 255.0;
     precise float abs_big4_sq = abs_big4 * abs_big4;
-    precise float t27 = t26 * t26 * rho2_2;
-    precise float t28 = w2.y >= 0.0
-        ? (t26 > 0.0 ? (abs_big4_sq >= t27 ? 1.0 : 0.0) : 1.0)
-        : (t26 < 0.0 ? (abs_big4_sq <= t27 ? 1.0 : 0.0) : 0.0);
-    precise float up2 = estimate2 < 511.0 ? t28 : 0.0;
-    precise float t29 = estimate2 - 1.0 - 255.0;
+    precise float t31 = t30 * t30 * rho2_2;
+    precise float one_if6 = abs_big4_sq >= t31 ? 1.0 : 0.0;
+    precise float t32 = t30 > 0.0 ? one_if6 : 1.0;
+    precise float one_if7 = abs_big4_sq <= t31 ? 1.0 : 0.0;
+    precise float t33 = t30 < 0.0 ? one_if7 : 0.0;
+    precise float t34 = w2.y >= 0.0 ? t32 : t33;
+    precise float up2 = estimate2 < 511.0 ? t34 : 0.0;
+    precise float t35 = estimate2 - 1.0 - 255.0;
     precise float abs_big4_sq2 = abs_big4 * abs_big4;
-    precise float t30 = t29 * t29 * rho2_2;
-    precise float t31 = w2.y >= 0.0
-        ? (t29 > 0.0 ? (abs_big4_sq2 >= t30 ? 1.0 : 0.0) : 1.0)
-        : (t29 < 0.0 ? (abs_big4_sq2 <= t30 ? 1.0 : 0.0) : 0.0);
-    precise float down2 = estimate2 > 0.0 ? t31 - 1.0 : 0.0;
-    precise float3 result = float3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
-    );
+    precise float t36 = t35 * t35 * rho2_2;
+    precise float one_if8 = abs_big4_sq2 >= t36 ? 1.0 : 0.0;
+    precise float t37 = t35 > 0.0 ? one_if8 : 1.0;
+    precise float one_if9 = abs_big4_sq2 <= t36 ? 1.0 : 0.0;
+    precise float t38 = t35 < 0.0 ? one_if9 : 0.0;
+    precise float t39 = (w2.y >= 0.0 ? t37 : t38) - 1.0;
+    precise float down2 = estimate2 > 0.0 ? t39 : 0.0;
+    precise float3 result = float3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

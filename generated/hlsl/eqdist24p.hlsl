@@ -56,12 +56,11 @@ float3 unitpack_eqdist24p_decode_float(float3 params) {
         ((6.565963e-11 * q + (-6.3866032e-9)) * q + 4.7108747e-7) * q + (-2.5202042e-5)
     )
         * q;
-    precise float t4 = (
-        (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q + (-1.2337005)
-    )
-        * q;
-    precise float cosq = t4 + 1.0;
-    precise float3 result = float3(p * sinc, params.z > 0.5 ? -cosq : cosq);
+    precise float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
+        + (-1.2337005);
+    precise float cosq = t4 * q + 1.0;
+    precise float neg_cosq = -cosq;
+    precise float3 result = float3(p * sinc, params.z > 0.5 ? neg_cosq : cosq);
     return result;
 }
 
@@ -96,19 +95,20 @@ float3 unitpack_eqdist24p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -128,24 +128,26 @@ float3 unitpack_eqdist24p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = w2.z < 0.0 ? 1.0 : 0.0;
-    precise float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    precise float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -159,123 +161,128 @@ float3 unitpack_eqdist24p_encode_codes(float3 v) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    bool t8 = rho2 > 0.0;
-    precise float rho2_2 = t8 ? rho2 : 1.0;
+    bool t1 = rho2 > 0.0;
+    precise float rho2_2 = t1 ? rho2 : 1.0;
     uint half_exponent = ((asuint(rho2_2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t9 = rho2_2 * root_down;
-    precise float root_estimate2 = sqrt(t9);
-    precise float t10 = floor(root_estimate2 * 512.0);
-    precise float root_h0_2 = t10 * 0.001953125;
+    precise float t2 = rho2_2 * root_down;
+    precise float root_estimate2 = sqrt(t2);
+    precise float root_k0_2 = floor(root_estimate2 * 512.0);
+    precise float root_h0_2 = root_k0_2 * 0.001953125;
     precise float root_h1_2 = root_h0_2 + 0.001953125;
-    precise float root_k2 = t10
-        + (root_h1_2 * root_h1_2 <= t9 ? 1.0 : (root_h0_2 * root_h0_2 > t9 ? -1.0 : 0.0));
+    precise float step_down3 = root_h0_2 * root_h0_2 > t2 ? -1.0 : 0.0;
+    precise float step3 = root_h1_2 * root_h1_2 <= t2 ? 1.0 : step_down3;
+    precise float root_k2 = root_k0_2 + step3;
     precise float root_h2 = root_k2 * 0.001953125;
-    precise float root_rest2 = t9 - root_h2 * root_h2;
+    precise float root_rest2 = t2 - root_h2 * root_h2;
     precise float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     precise float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     precise float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
-    precise float root_j2 = root_j0_2
-        + (root_m1_2 * root_m1_2 <= t9 ? 1.0 : (root_m0_2 * root_m0_2 > t9 ? -1.0 : 0.0));
+    precise float step_down4 = root_m0_2 * root_m0_2 > t2 ? -1.0 : 0.0;
+    precise float step4 = root_m1_2 * root_m1_2 <= t2 ? 1.0 : step_down4;
+    precise float root_j2 = root_j0_2 + step4;
     precise float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    precise float rho = t8 ? root2 * root_up : 0.0;
+    precise float t3 = root2 * root_up;
+    precise float rho = t1 ? t3 : 0.0;
     precise float abs_w2_z = abs(w2.z);
     precise float abs_abs_w2_z = abs(abs_w2_z);
     precise float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_abs_w2_z;
     precise float hi8 = y_major ? abs_rho : abs_abs_w2_z;
     precise float lo8 = y_major ? abs_abs_w2_z : abs_rho;
-    precise float t11 = hi8 > 0.0 ? hi8 : 1.0;
+    precise float t4 = hi8 > 0.0 ? hi8 : 1.0;
     precise float big = lo8 * 8388608.0;
-    precise float ratio_estimate = floor(lo8 / t11 * 8388608.0);
-    precise float t12 = (ratio_estimate + 1.0) * t11 <= big
-        ? 1.0
-        : (ratio_estimate * t11 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t12;
-    precise float t = ratio + ((ratio + 1.0) * t11 <= big ? 1.0 : (ratio * t11 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo8 / t4 * 8388608.0);
+    precise float step_down5 = ratio_estimate * t4 > big ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down5;
+    precise float ratio = ratio_estimate + step5;
+    precise float step_down6 = ratio * t4 > big ? -1.0 : 0.0;
+    precise float step6 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down6;
+    precise float t = ratio + step6;
     bool far = t > 3474675.0;
-    precise float t13 = t - 8388608.0;
-    precise float t14 = t + 8388608.0;
-    precise float big2 = t13 * 8388608.0;
-    precise float ratio_estimate2 = floor(t13 / t14 * 8388608.0);
-    precise float t15 = (ratio_estimate2 + 1.0) * t14 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t14 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t15;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t14 <= big2 ? 1.0 : (ratio2 * t14 > big2 ? -1.0 : 0.0));
+    precise float t5 = t - 8388608.0;
+    precise float t6 = t + 8388608.0;
+    precise float big2 = t5 * 8388608.0;
+    precise float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
+    precise float step_down7 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step7 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down7;
+    precise float ratio2 = ratio_estimate2 + step7;
+    precise float step_down8 = ratio2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step8 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down8;
+    precise float ratio3 = ratio2 + step8;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t16 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t17 = round((round(t16 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t18 = round((round(t17 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t19 = round((round(t18 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t19 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t7 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t8 = (round((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t9 = (round((round(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t10 = round((round(t9 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t11 = round((round(t10 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t11 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = abs_w2_z < 0.0 ? 8388608.0 - h3 : h3;
-    precise float t20 = rho < 0.0 ? -h4 : h4;
-    precise float2 t21 = w2.xy * t20 * float2(0.00048816204, 0.00024402142);
-    precise float2 t22 = round(t21 / sqrt(float2(rho2_2, rho2_2)) + float2(2047.5, 1023.5));
-    precise float2 t23 = UNITPACK_SELECT(t22 >= float2(0.0, 0.0), t22, float2(0.0, 0.0));
-    precise float2 t24 = UNITPACK_SELECT(
-        t23 <= float2(4095.0, 2047.0),
-        t23,
+    precise float t12 = h + 2097152.0;
+    precise float h2 = far ? t12 : h;
+    precise float t13 = 4194304.0 - h2;
+    precise float h3 = y_major ? t13 : h2;
+    precise float t14 = 8388608.0 - h3;
+    precise float h4 = abs_w2_z < 0.0 ? t14 : h3;
+    precise float neg_h4 = -h4;
+    precise float t15 = rho < 0.0 ? neg_h4 : h4;
+    precise float2 t16 = w2.xy * t15 * float2(0.00048816204, 0.00024402142);
+    precise float2 t17 = round(t16 / sqrt(float2(rho2_2, rho2_2)) + float2(2047.5, 1023.5));
+    precise float2 t18 = UNITPACK_SELECT(t17 >= float2(0.0, 0.0), t17, float2(0.0, 0.0));
+    precise float2 t19 = UNITPACK_SELECT(
+        t18 <= float2(4095.0, 2047.0),
+        t18,
         float2(4095.0, 2047.0)
     );
-    precise float2 t25 = t24 - float2(2046.5, 1022.5);
-    precise float2 abs_t21 = abs(t21);
-    precise float2 abs_t21_sq = abs_t21 * abs_t21;
-    precise float2 t26 = t25 * t25 * rho2_2;
-    precise float2 t27 = UNITPACK_SELECT(
-        t25 > float2(0.0, 0.0),
-        UNITPACK_SELECT(abs_t21_sq >= t26, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+    precise float2 t20 = t19 - float2(2046.5, 1022.5);
+    precise float2 abs_t16 = abs(t16);
+    precise float2 abs_t16_sq = abs_t16 * abs_t16;
+    precise float2 t21 = t20 * t20 * rho2_2;
+    precise float2 t22 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t20 > float2(0.0, 0.0),
+            UNITPACK_SELECT(abs_t16_sq >= t21, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t20 < float2(0.0, 0.0),
+            UNITPACK_SELECT(abs_t16_sq <= t21, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t28 = UNITPACK_SELECT(
-        t25 < float2(0.0, 0.0),
-        UNITPACK_SELECT(abs_t21_sq <= t26, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t23 = t19 - 1.0 - float2(2046.5, 1022.5);
+    precise float2 abs_t16_sq2 = abs_t16 * abs_t16;
+    precise float2 t24 = t23 * t23 * rho2_2;
+    precise float2 t25 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t23 > float2(0.0, 0.0),
+            UNITPACK_SELECT(abs_t16_sq2 >= t24, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t23 < float2(0.0, 0.0),
+            UNITPACK_SELECT(abs_t16_sq2 <= t24, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t29 = UNITPACK_SELECT(
-        t24 < float2(4095.0, 2047.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t27, t28),
-        float2(0.0, 0.0)
+    precise float2 base = t19
+        + UNITPACK_SELECT(t19 < float2(4095.0, 2047.0), t22, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t19 > float2(0.0, 0.0), t25 - 1.0, float2(0.0, 0.0));
+    precise float3 t26 = floor(w2 / root * 2097152.0);
+    precise float3 t27 = w2 * 2097152.0;
+    precise float3 t28 = UNITPACK_SELECT(
+        (t26 + 1.0) * root <= t27,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t26 * root > t27, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float2 t30 = t24 - 1.0 - float2(2046.5, 1022.5);
-    precise float2 abs_t21_sq2 = abs_t21 * abs_t21;
-    precise float2 t31 = t30 * t30 * rho2_2;
-    precise float2 t32 = UNITPACK_SELECT(
-        t30 > float2(0.0, 0.0),
-        UNITPACK_SELECT(abs_t21_sq2 >= t31, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t33 = UNITPACK_SELECT(
-        t30 < float2(0.0, 0.0),
-        UNITPACK_SELECT(abs_t21_sq2 <= t31, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t34 = UNITPACK_SELECT(
-        t24 > float2(0.0, 0.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t32, t33) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 base = t24 + t29 + t34;
-    precise float3 t35 = floor(w2 / root * 2097152.0);
-    precise float3 t36 = w2 * 2097152.0;
-    precise float3 t37 = UNITPACK_SELECT(
-        t35 * root > t36,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
-    );
-    precise float3 aim = t35
-        + UNITPACK_SELECT((t35 + 1.0) * root <= t36, float3(1.0, 1.0, 1.0), t37);
+    precise float3 aim = t26 + t28;
     precise float2 cand = UNITPACK_SELECT(
         base <= float2(4095.0, 2047.0),
         base,
@@ -283,226 +290,192 @@ float3 unitpack_eqdist24p_encode_codes(float3 v) {
     );
     precise float2 p = floor((cand * 2.0 - float2(4095.0, 2047.0)) * float2(512.12506, 1024.5002));
     precise float q = round(p.x * p.x * 4.7683716e-7) + round(p.y * p.y * 4.7683716e-7);
-    precise float t38 = (round((round(0.0 * q * 2.3841858e-7) + (-0.0)) * q * 2.3841858e-7) + 8.0)
-        * q
-        * 2.3841858e-7;
-    precise float t39 = round(
-        (round((round(t38) + (-242.0)) * q * 2.3841858e-7) + 5384.0) * q * 2.3841858e-7
-    );
-    precise float t40 = round(
-        (round((t39 + (-78547.0)) * q * 2.3841858e-7) + 668510.0) * q * 2.3841858e-7
-    );
-    precise float sinc = round((t40 + (-2709370.0)) * q * 2.3841858e-7) + 3294199.0;
-    precise float t41 = (round((round(0.0 * q * 2.3841858e-7) + (-2.0)) * q * 2.3841858e-7) + 63.0)
-        * q
-        * 2.3841858e-7;
-    precise float t42 = (round((round(t41) + (-1691.0)) * q * 2.3841858e-7) + 30845.0)
-        * q
-        * 2.3841858e-7;
-    precise float t43 = (round((round(t42) + (-350031.0)) * q * 2.3841858e-7) + 2127934.0)
-        * q
-        * 2.3841858e-7;
-    precise float cosq = round((round(t43) + (-5174515.0)) * q * 2.3841858e-7) + 2097152.0;
-    precise float3 t44 = abs(float3(round(p * sinc * 4.7683716e-7), t5 > 0.5 ? -cosq : cosq) - aim);
-    uint3 t45 = uint3(t44);
-    uint limb1_6 = t45.x >> 12u;
-    uint limb0_6 = t45.x & 4095u;
+    precise float t29 = round((round(0.0 * q * 2.3841858e-7) + (-0.0)) * q * 2.3841858e-7);
+    precise float t30 = (round((t29 + 8.0) * q * 2.3841858e-7) + (-242.0)) * q * 2.3841858e-7;
+    precise float t31 = (round((round(t30) + 5384.0) * q * 2.3841858e-7) + (-78547.0)) * q;
+    precise float t32 = round((round(t31 * 2.3841858e-7) + 668510.0) * q * 2.3841858e-7)
+        + (-2709370.0);
+    precise float sinc = round(t32 * q * 2.3841858e-7) + 3294199.0;
+    precise float t33 = round((round(0.0 * q * 2.3841858e-7) + (-2.0)) * q * 2.3841858e-7);
+    precise float t34 = (round((t33 + 63.0) * q * 2.3841858e-7) + (-1691.0)) * q * 2.3841858e-7;
+    precise float t35 = (round((round(t34) + 30845.0) * q * 2.3841858e-7) + (-350031.0)) * q;
+    precise float t36 = round((round(t35 * 2.3841858e-7) + 2127934.0) * q * 2.3841858e-7)
+        + (-5174515.0);
+    precise float cosq = round(t36 * q * 2.3841858e-7) + 2097152.0;
+    precise float neg_cosq = -cosq;
+    precise float3 t37 = float3(round(p * sinc * 4.7683716e-7), one_if > 0.5 ? neg_cosq : cosq);
+    precise float3 offset = t37 - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_6 = offset_u.x >> 12u;
+    uint limb0_6 = offset_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi9 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo9 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t45.y >> 12u;
-    uint limb0_7 = t45.y & 4095u;
+    uint limb1_7 = offset_u.y >> 12u;
+    uint limb0_7 = offset_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi10 = hi9 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo10 = lo9 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t45.z >> 12u;
-    uint limb0_8 = t45.z & 4095u;
+    uint limb1_8 = offset_u.z >> 12u;
+    uint limb0_8 = offset_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist = float(hi12) * 16777216.0 + float(lo12);
-    precise float t46 = base.x + 1.0;
-    precise float2 t47 = float2(t46, base.y);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t38 = float2(s_up, base.y);
     precise float2 cand2 = UNITPACK_SELECT(
-        t47 <= float2(4095.0, 2047.0),
-        t47,
+        t38 <= float2(4095.0, 2047.0),
+        t38,
         float2(4095.0, 2047.0)
     );
+    bool t39 = base.y <= 2047.0;
     precise float2 p2 = floor(
         (cand2 * 2.0 - float2(4095.0, 2047.0)) * float2(512.12506, 1024.5002)
     );
     precise float q2 = round(p2.x * p2.x * 4.7683716e-7) + round(p2.y * p2.y * 4.7683716e-7);
-    precise float t48 = (round((round(0.0 * q2 * 2.3841858e-7) + (-0.0)) * q2 * 2.3841858e-7) + 8.0)
-        * q2;
-    precise float t49 = (round((round(t48 * 2.3841858e-7) + (-242.0)) * q2 * 2.3841858e-7) + 5384.0)
-        * q2;
-    precise float t50 = (
-        round((round(t49 * 2.3841858e-7) + (-78547.0)) * q2 * 2.3841858e-7) + 668510.0
-    )
-        * q2;
-    precise float sinc2 = round((round(t50 * 2.3841858e-7) + (-2709370.0)) * q2 * 2.3841858e-7)
-        + 3294199.0;
-    precise float t51 = (
-        round((round(0.0 * q2 * 2.3841858e-7) + (-2.0)) * q2 * 2.3841858e-7) + 63.0
-    )
-        * q2;
-    precise float t52 = (
-        round((round(t51 * 2.3841858e-7) + (-1691.0)) * q2 * 2.3841858e-7) + 30845.0
-    )
-        * q2;
-    precise float t53 = (
-        round((round(t52 * 2.3841858e-7) + (-350031.0)) * q2 * 2.3841858e-7) + 2127934.0
-    )
-        * q2;
-    precise float cosq2 = round((round(t53 * 2.3841858e-7) + (-5174515.0)) * q2 * 2.3841858e-7)
-        + 2097152.0;
-    precise float3 t54 = abs(
-        float3(round(p2 * sinc2 * 4.7683716e-7), t5 > 0.5 ? -cosq2 : cosq2) - aim
-    );
-    uint3 t55 = uint3(t54);
-    uint limb1_9 = t55.x >> 12u;
-    uint limb0_9 = t55.x & 4095u;
+    precise float t40 = round((round(0.0 * q2 * 2.3841858e-7) + (-0.0)) * q2 * 2.3841858e-7);
+    precise float t41 = (round((t40 + 8.0) * q2 * 2.3841858e-7) + (-242.0)) * q2 * 2.3841858e-7;
+    precise float t42 = (round((round(t41) + 5384.0) * q2 * 2.3841858e-7) + (-78547.0)) * q2;
+    precise float t43 = round((round(t42 * 2.3841858e-7) + 668510.0) * q2 * 2.3841858e-7)
+        + (-2709370.0);
+    precise float sinc2 = round(t43 * q2 * 2.3841858e-7) + 3294199.0;
+    precise float t44 = round((round(0.0 * q2 * 2.3841858e-7) + (-2.0)) * q2 * 2.3841858e-7);
+    precise float t45 = (round((t44 + 63.0) * q2 * 2.3841858e-7) + (-1691.0)) * q2 * 2.3841858e-7;
+    precise float t46 = (round((round(t45) + 30845.0) * q2 * 2.3841858e-7) + (-350031.0)) * q2;
+    precise float t47 = round((round(t46 * 2.3841858e-7) + 2127934.0) * q2 * 2.3841858e-7)
+        + (-5174515.0);
+    precise float cosq2 = round(t47 * q2 * 2.3841858e-7) + 2097152.0;
+    precise float neg_cosq2 = -cosq2;
+    precise float3 t48 = float3(round(p2 * sinc2 * 4.7683716e-7), one_if > 0.5 ? neg_cosq2 : cosq2);
+    precise float3 offset2 = t48 - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_9 = offset_u2.x >> 12u;
+    uint limb0_9 = offset_u2.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi13 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo13 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t55.y >> 12u;
-    uint limb0_10 = t55.y & 4095u;
+    uint limb1_10 = offset_u2.y >> 12u;
+    uint limb0_10 = offset_u2.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi14 = hi13 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo14 = lo13 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t55.z >> 12u;
-    uint limb0_11 = t55.z & 4095u;
+    uint limb1_11 = offset_u2.z >> 12u;
+    uint limb0_11 = offset_u2.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist2 = float(hi16) * 16777216.0 + float(lo16);
-    bool t56 = t46 <= 4095.0 && base.y <= 2047.0 && dist2 < dist;
-    precise float2 best = t56 ? cand2 : cand;
-    precise float best_d = t56 ? dist2 : dist;
-    precise float t57 = base.y + 1.0;
-    precise float2 t58 = float2(base.x, t57);
+    bool t49 = dist2 < dist;
+    bool t50 = s_up <= 4095.0 && t39 && t49;
+    precise float2 best = t50 ? cand2 : cand;
+    precise float best_d = t50 ? dist2 : dist;
+    precise float2 t51 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(
-        t58 <= float2(4095.0, 2047.0),
-        t58,
+        t51 <= float2(4095.0, 2047.0),
+        t51,
         float2(4095.0, 2047.0)
     );
+    bool t52 = t_up <= 2047.0;
     precise float2 p3 = floor(
         (cand3 * 2.0 - float2(4095.0, 2047.0)) * float2(512.12506, 1024.5002)
     );
     precise float q3 = round(p3.x * p3.x * 4.7683716e-7) + round(p3.y * p3.y * 4.7683716e-7);
-    precise float t59 = (round((round(0.0 * q3 * 2.3841858e-7) + (-0.0)) * q3 * 2.3841858e-7) + 8.0)
-        * q3;
-    precise float t60 = (round((round(t59 * 2.3841858e-7) + (-242.0)) * q3 * 2.3841858e-7) + 5384.0)
-        * q3;
-    precise float t61 = (
-        round((round(t60 * 2.3841858e-7) + (-78547.0)) * q3 * 2.3841858e-7) + 668510.0
-    )
-        * q3;
-    precise float sinc3 = round((round(t61 * 2.3841858e-7) + (-2709370.0)) * q3 * 2.3841858e-7)
-        + 3294199.0;
-    precise float t62 = (
-        round((round(0.0 * q3 * 2.3841858e-7) + (-2.0)) * q3 * 2.3841858e-7) + 63.0
-    )
-        * q3;
-    precise float t63 = (
-        round((round(t62 * 2.3841858e-7) + (-1691.0)) * q3 * 2.3841858e-7) + 30845.0
-    )
-        * q3;
-    precise float t64 = (
-        round((round(t63 * 2.3841858e-7) + (-350031.0)) * q3 * 2.3841858e-7) + 2127934.0
-    )
-        * q3;
-    precise float cosq3 = round((round(t64 * 2.3841858e-7) + (-5174515.0)) * q3 * 2.3841858e-7)
-        + 2097152.0;
-    precise float3 t65 = abs(
-        float3(round(p3 * sinc3 * 4.7683716e-7), t5 > 0.5 ? -cosq3 : cosq3) - aim
-    );
-    uint3 t66 = uint3(t65);
-    uint limb1_12 = t66.x >> 12u;
-    uint limb0_12 = t66.x & 4095u;
+    precise float t53 = round((round(0.0 * q3 * 2.3841858e-7) + (-0.0)) * q3 * 2.3841858e-7);
+    precise float t54 = (round((t53 + 8.0) * q3 * 2.3841858e-7) + (-242.0)) * q3 * 2.3841858e-7;
+    precise float t55 = (round((round(t54) + 5384.0) * q3 * 2.3841858e-7) + (-78547.0)) * q3;
+    precise float t56 = round((round(t55 * 2.3841858e-7) + 668510.0) * q3 * 2.3841858e-7)
+        + (-2709370.0);
+    precise float sinc3 = round(t56 * q3 * 2.3841858e-7) + 3294199.0;
+    precise float t57 = round((round(0.0 * q3 * 2.3841858e-7) + (-2.0)) * q3 * 2.3841858e-7);
+    precise float t58 = (round((t57 + 63.0) * q3 * 2.3841858e-7) + (-1691.0)) * q3 * 2.3841858e-7;
+    precise float t59 = (round((round(t58) + 30845.0) * q3 * 2.3841858e-7) + (-350031.0)) * q3;
+    precise float t60 = round((round(t59 * 2.3841858e-7) + 2127934.0) * q3 * 2.3841858e-7)
+        + (-5174515.0);
+    precise float cosq3 = round(t60 * q3 * 2.3841858e-7) + 2097152.0;
+    precise float neg_cosq3 = -cosq3;
+    precise float3 t61 = float3(round(p3 * sinc3 * 4.7683716e-7), one_if > 0.5 ? neg_cosq3 : cosq3);
+    precise float3 offset3 = t61 - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_12 = offset_u3.x >> 12u;
+    uint limb0_12 = offset_u3.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi17 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo17 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t66.y >> 12u;
-    uint limb0_13 = t66.y & 4095u;
+    uint limb1_13 = offset_u3.y >> 12u;
+    uint limb0_13 = offset_u3.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi18 = hi17 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo18 = lo17 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t66.z >> 12u;
-    uint limb0_14 = t66.z & 4095u;
+    uint limb1_14 = offset_u3.z >> 12u;
+    uint limb0_14 = offset_u3.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist3 = float(hi20) * 16777216.0 + float(lo20);
-    bool t67 = base.x <= 4095.0 && t57 <= 2047.0 && dist3 < best_d;
-    precise float2 best2 = t67 ? cand3 : best;
-    precise float best_d2 = t67 ? dist3 : best_d;
-    precise float2 t68 = base + 1.0;
+    bool t62 = dist3 < best_d;
+    bool t63 = base.x <= 4095.0 && t52 && t62;
+    precise float2 best2 = t63 ? cand3 : best;
+    precise float best_d2 = t63 ? dist3 : best_d;
+    precise float2 t64 = base + 1.0;
     precise float2 cand4 = UNITPACK_SELECT(
-        t68 <= float2(4095.0, 2047.0),
-        t68,
+        t64 <= float2(4095.0, 2047.0),
+        t64,
         float2(4095.0, 2047.0)
     );
+    bool t65 = t_up <= 2047.0;
     precise float2 p4 = floor(
         (cand4 * 2.0 - float2(4095.0, 2047.0)) * float2(512.12506, 1024.5002)
     );
     precise float q4 = round(p4.x * p4.x * 4.7683716e-7) + round(p4.y * p4.y * 4.7683716e-7);
-    precise float t69 = (round((round(0.0 * q4 * 2.3841858e-7) + (-0.0)) * q4 * 2.3841858e-7) + 8.0)
-        * q4;
-    precise float t70 = (round((round(t69 * 2.3841858e-7) + (-242.0)) * q4 * 2.3841858e-7) + 5384.0)
-        * q4;
-    precise float t71 = (
-        round((round(t70 * 2.3841858e-7) + (-78547.0)) * q4 * 2.3841858e-7) + 668510.0
-    )
-        * q4;
-    precise float sinc4 = round((round(t71 * 2.3841858e-7) + (-2709370.0)) * q4 * 2.3841858e-7)
-        + 3294199.0;
-    precise float t72 = (
-        round((round(0.0 * q4 * 2.3841858e-7) + (-2.0)) * q4 * 2.3841858e-7) + 63.0
-    )
-        * q4;
-    precise float t73 = (
-        round((round(t72 * 2.3841858e-7) + (-1691.0)) * q4 * 2.3841858e-7) + 30845.0
-    )
-        * q4;
-    precise float t74 = (
-        round((round(t73 * 2.3841858e-7) + (-350031.0)) * q4 * 2.3841858e-7) + 2127934.0
-    )
-        * q4;
-    precise float cosq4 = round((round(t74 * 2.3841858e-7) + (-5174515.0)) * q4 * 2.3841858e-7)
-        + 2097152.0;
-    precise float3 t75 = abs(
-        float3(round(p4 * sinc4 * 4.7683716e-7), t5 > 0.5 ? -cosq4 : cosq4) - aim
-    );
-    uint3 t76 = uint3(t75);
-    uint limb1_15 = t76.x >> 12u;
-    uint limb0_15 = t76.x & 4095u;
+    precise float t66 = round((round(0.0 * q4 * 2.3841858e-7) + (-0.0)) * q4 * 2.3841858e-7);
+    precise float t67 = (round((t66 + 8.0) * q4 * 2.3841858e-7) + (-242.0)) * q4 * 2.3841858e-7;
+    precise float t68 = (round((round(t67) + 5384.0) * q4 * 2.3841858e-7) + (-78547.0)) * q4;
+    precise float t69 = round((round(t68 * 2.3841858e-7) + 668510.0) * q4 * 2.3841858e-7)
+        + (-2709370.0);
+    precise float sinc4 = round(t69 * q4 * 2.3841858e-7) + 3294199.0;
+    precise float t70 = round((round(0.0 * q4 * 2.3841858e-7) + (-2.0)) * q4 * 2.3841858e-7);
+    precise float t71 = (round((t70 + 63.0) * q4 * 2.3841858e-7) + (-1691.0)) * q4 * 2.3841858e-7;
+    precise float t72 = (round((round(t71) + 30845.0) * q4 * 2.3841858e-7) + (-350031.0)) * q4;
+    precise float t73 = round((round(t72 * 2.3841858e-7) + 2127934.0) * q4 * 2.3841858e-7)
+        + (-5174515.0);
+    precise float cosq4 = round(t73 * q4 * 2.3841858e-7) + 2097152.0;
+    precise float neg_cosq4 = -cosq4;
+    precise float3 t74 = float3(round(p4 * sinc4 * 4.7683716e-7), one_if > 0.5 ? neg_cosq4 : cosq4);
+    precise float3 offset4 = t74 - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_15 = offset_u4.x >> 12u;
+    uint limb0_15 = offset_u4.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi21 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo21 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t76.y >> 12u;
-    uint limb0_16 = t76.y & 4095u;
+    uint limb1_16 = offset_u4.y >> 12u;
+    uint limb0_16 = offset_u4.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi22 = hi21 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo22 = lo21 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t76.z >> 12u;
-    uint limb0_17 = t76.z & 4095u;
+    uint limb1_17 = offset_u4.z >> 12u;
+    uint limb0_17 = offset_u4.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi23 = hi22 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo23 = lo22 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi24 = hi23 + (lo23 >> 24u);
     uint lo24 = lo23 & 16777215u;
     precise float dist4 = float(hi24) * 16777216.0 + float(lo24);
-    precise float2 best3 = base.x + 1.0 <= 4095.0 && base.y + 1.0 <= 2047.0 && dist4 < best_d2
-        ? cand4
-        : best2;
-    return float3(best3, t5);
+    bool t75 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 4095.0 && t65 && t75 ? cand4 : best2;
+    return float3(best3, one_if);
 }
 
 // unitpack_eqdist24p_encode_float: precise encoder, float form.

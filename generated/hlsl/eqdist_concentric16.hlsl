@@ -40,12 +40,10 @@
 float2 unitpack_eqdist_concentric16_sincos_quarter_pi(float a0) {
     precise float c2 = a0 * a0;
     precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = a0 * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
+        * c2;
+    precise float s = a0 * (t1 + 3.1415927);
+    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t2 + (-4.934802)) * c2 + 1.0;
     return float2(s, co);
 }
 
@@ -64,26 +62,27 @@ float3 unitpack_eqdist_concentric16_decode_float(float3 params) {
     precise float2 angle = s / (r > 0.0 ? r : 1.0) * 0.25;
     precise float2 on_x = unitpack_eqdist_concentric16_sincos_quarter_pi(angle.y);
     precise float2 on_y = unitpack_eqdist_concentric16_sincos_quarter_pi(angle.x);
-    precise float2 disk = abs(s.x) >= abs(s.y) ? float2(s.x, r) * on_x.yx : float2(r, s.y) * on_y;
+    precise float2 t1 = float2(s.x, r) * on_x.yx;
+    precise float2 t2 = float2(r, s.y) * on_y;
+    precise float2 disk = abs(s.x) >= abs(s.y) ? t1 : t2;
     precise float2 disk_sq = disk * disk;
     precise float q = disk_sq.x + disk_sq.y;
-    precise float t1 = (
+    precise float t3 = (
         ((6.0669356e-12 * q + (-6.688035e-10)) * q + 5.6921728e-8) * q + (-3.5988433e-6)
     )
         * q;
-    precise float t2 = (((t1 + 0.00016044118) * q + (-0.004681754)) * q + 0.079692625) * q
+    precise float t4 = (((t3 + 0.00016044118) * q + (-0.004681754)) * q + 0.079692625) * q
         + (-0.6459641);
-    precise float sinc = t2 * q + 1.5707964;
-    precise float t3 = (
+    precise float sinc = t4 * q + 1.5707964;
+    precise float t5 = (
         ((6.565963e-11 * q + (-6.3866032e-9)) * q + 4.7108747e-7) * q + (-2.5202042e-5)
     )
         * q;
-    precise float t4 = (
-        (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q + (-1.2337005)
-    )
-        * q;
-    precise float cosq = t4 + 1.0;
-    precise float3 result = float3(disk * sinc, params.z > 0.5 ? -cosq : cosq);
+    precise float t6 = (((t5 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
+        + (-1.2337005);
+    precise float cosq = t6 * q + 1.0;
+    precise float neg_cosq = -cosq;
+    precise float3 result = float3(disk * sinc, params.z > 0.5 ? neg_cosq : cosq);
     return result;
 }
 
@@ -110,20 +109,21 @@ float unitpack_eqdist_concentric16_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -147,13 +147,15 @@ float3 unitpack_eqdist_concentric16_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float2 t1 = w2.xy * w2.xy;
     precise float rho = sqrt(t1.x + t1.y);
     precise float abs_w2_z = abs(w2.z);
@@ -165,10 +167,13 @@ float3 unitpack_eqdist_concentric16_encode_float(float3 v) {
     precise float minor = t2 ? w2.y : w2.x;
     precise float abs_major = abs(major);
     precise float t = unitpack_eqdist_concentric16_atan2_pi(minor, abs_major);
-    precise float t3 = major < 0.0 ? -half_r : half_r;
+    precise float neg_half_r = -half_r;
+    precise float t3 = major < 0.0 ? neg_half_r : half_r;
     precise float t4 = half_r * t * 4.0;
-    precise float2 enc = (t2 ? float2(t3, t4) : float2(t4, t3)) + 0.5;
-    return float3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    precise float2 t5 = float2(t3, t4);
+    precise float2 t6 = float2(t4, t3);
+    precise float2 enc = (t2 ? t5 : t6) + 0.5;
+    return float3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -187,17 +192,19 @@ float3 unitpack_eqdist_concentric16_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -211,68 +218,76 @@ float3 unitpack_eqdist_concentric16_round_codes(float3 a0) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     precise float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    precise float rho2_2 = t3 ? rho2 : 1.0;
+    bool t1 = rho2 > 0.0;
+    precise float rho2_2 = t1 ? rho2 : 1.0;
     uint half_exponent = ((asuint(rho2_2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t4 = rho2_2 * root_down;
-    precise float root_estimate = sqrt(t4);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float t2 = rho2_2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= t4 ? 1.0 : (root_h0 * root_h0 > t4 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t4 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t4 ? 1.0 : (root_m0 * root_m0 > t4 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float rho = t3 ? root * root_up : 0.0;
+    precise float t3 = root * root_up;
+    precise float rho = t1 ? t3 : 0.0;
     precise float abs_w2_z = abs(w2.z);
     precise float abs_abs_w2_z = abs(abs_w2_z);
     precise float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_abs_w2_z;
     precise float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     precise float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    precise float t6 = hi4 > 0.0 ? hi4 : 1.0;
+    precise float t4 = hi4 > 0.0 ? hi4 : 1.0;
     precise float big = lo4 * 8388608.0;
-    precise float ratio_estimate = floor(lo4 / t6 * 8388608.0);
-    precise float t7 = (ratio_estimate + 1.0) * t6 <= big
-        ? 1.0
-        : (ratio_estimate * t6 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t7;
-    precise float t = ratio + ((ratio + 1.0) * t6 <= big ? 1.0 : (ratio * t6 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo4 / t4 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t4 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t4 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t8 = t - 8388608.0;
-    precise float t9 = t + 8388608.0;
-    precise float big2 = t8 * 8388608.0;
-    precise float ratio_estimate2 = floor(t8 / t9 * 8388608.0);
-    precise float t10 = (ratio_estimate2 + 1.0) * t9 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t9 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t10;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t9 <= big2 ? 1.0 : (ratio2 * t9 > big2 ? -1.0 : 0.0));
+    precise float t5 = t - 8388608.0;
+    precise float t6 = t + 8388608.0;
+    precise float big2 = t5 * 8388608.0;
+    precise float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t11 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t12 = round((round(t11 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t13 = round((round(t12 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t14 = round((round(t13 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t14 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t7 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t8 = (round((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t9 = (round((round(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t10 = round((round(t9 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t11 = round((round(t10 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t11 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = abs_w2_z < 0.0 ? 8388608.0 - h3 : h3;
-    precise float t15 = rho < 0.0 ? -h4 : h4;
+    precise float t12 = h + 2097152.0;
+    precise float h2 = far ? t12 : h;
+    precise float t13 = 4194304.0 - h2;
+    precise float h3 = y_major ? t13 : h2;
+    precise float t14 = 8388608.0 - h3;
+    precise float h4 = abs_w2_z < 0.0 ? t14 : h3;
+    precise float neg_h4 = -h4;
+    precise float t15 = rho < 0.0 ? neg_h4 : h4;
     precise float r2 = t15 * 2.3841858e-7;
     precise float abs_w2_x = abs(w2.x);
     precise float abs_w2_y = abs(w2.y);
@@ -288,67 +303,71 @@ float3 unitpack_eqdist_concentric16_round_codes(float3 a0) {
     precise float t17 = hi5 > 0.0 ? hi5 : 1.0;
     precise float big3 = lo5 * 8388608.0;
     precise float ratio_estimate3 = floor(lo5 / t17 * 8388608.0);
-    precise float t18 = (ratio_estimate3 + 1.0) * t17 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t17 > big3 ? -1.0 : 0.0);
-    precise float ratio4 = ratio_estimate3 + t18;
-    precise float t19 = ratio4
-        + ((ratio4 + 1.0) * t17 <= big3 ? 1.0 : (ratio4 * t17 > big3 ? -1.0 : 0.0));
-    bool far2 = t19 > 3474675.0;
-    precise float t20 = t19 - 8388608.0;
-    precise float t21 = t19 + 8388608.0;
-    precise float big4 = t20 * 8388608.0;
-    precise float ratio_estimate4 = floor(t20 / t21 * 8388608.0);
-    precise float t22 = (ratio_estimate4 + 1.0) * t21 <= big4
-        ? 1.0
-        : (ratio_estimate4 * t21 > big4 ? -1.0 : 0.0);
-    precise float ratio5 = ratio_estimate4 + t22;
-    precise float ratio6 = ratio5
-        + ((ratio5 + 1.0) * t21 <= big4 ? 1.0 : (ratio5 * t21 > big4 ? -1.0 : 0.0));
-    precise float z3 = far2 ? ratio6 : t19;
+    precise float step_down7 = ratio_estimate3 * t17 > big3 ? -1.0 : 0.0;
+    precise float step7 = (ratio_estimate3 + 1.0) * t17 <= big3 ? 1.0 : step_down7;
+    precise float ratio4 = ratio_estimate3 + step7;
+    precise float step_down8 = ratio4 * t17 > big3 ? -1.0 : 0.0;
+    precise float step8 = (ratio4 + 1.0) * t17 <= big3 ? 1.0 : step_down8;
+    precise float t18 = ratio4 + step8;
+    bool far2 = t18 > 3474675.0;
+    precise float t19 = t18 - 8388608.0;
+    precise float t20 = t18 + 8388608.0;
+    precise float big4 = t19 * 8388608.0;
+    precise float ratio_estimate4 = floor(t19 / t20 * 8388608.0);
+    precise float step_down9 = ratio_estimate4 * t20 > big4 ? -1.0 : 0.0;
+    precise float step9 = (ratio_estimate4 + 1.0) * t20 <= big4 ? 1.0 : step_down9;
+    precise float ratio5 = ratio_estimate4 + step9;
+    precise float step_down10 = ratio5 * t20 > big4 ? -1.0 : 0.0;
+    precise float step10 = (ratio5 + 1.0) * t20 <= big4 ? 1.0 : step_down10;
+    precise float ratio6 = ratio5 + step10;
+    precise float z3 = far2 ? ratio6 : t18;
     precise float z2_2 = round(z3 * z3 * 1.1920929e-7);
-    precise float t23 = round(
+    precise float t21 = round(
         (round(-441506.0 * z2_2 * 1.1920929e-7) + 493448.0) * z2_2 * 1.1920929e-7
-    )
-        + (-559241.0);
-    precise float t24 = round((round(t23 * z2_2 * 1.1920929e-7) + 645278.0) * z2_2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t25 = round((round(t24 * z2_2 * 1.1920929e-7) + 932068.0) * z2_2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t26 = round((round(t25 * z2_2 * 1.1920929e-7) + 1677722.0) * z2_2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r3 = round(z3 * (round(t26 * z2_2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
-    precise float h5 = round(r3 * 0.31830987);
-    precise float h6 = far2 ? h5 + 2097152.0 : h5;
-    precise float h7 = y_major2 ? 4194304.0 - h6 : h6;
-    precise float h8 = abs_major < 0.0 ? 8388608.0 - h7 : h7;
-    precise float t27 = minor < 0.0 ? -h8 : h8;
-    bool t28 = major < 0.0;
-    precise float x = t16 ? (t28 ? -127.5 : 127.5) : t27 * 6.0796738e-5;
-    precise float t29 = round(r2 * x + 127.5);
-    precise float t30 = t29 >= 0.0 ? t29 : 0.0;
-    precise float estimate = t30 <= 255.0 ? t30 : 255.0;
-    precise float up = estimate < 255.0
-        ? (t15 * x * 2.3841858e-7 >= estimate - 127.0 ? 1.0 : 0.0)
-        : 0.0;
-    precise float down = estimate > 0.0
-        ? (t15 * x * 2.3841858e-7 >= estimate - 1.0 - 127.0 ? 1.0 : 0.0) - 1.0
-        : 0.0;
-    precise float x2 = t16 ? t27 * 3.027916e-5 : (t28 ? -63.5 : 63.5);
-    precise float t31 = round(r2 * x2 + 63.5);
-    precise float t32 = t31 >= 0.0 ? t31 : 0.0;
-    precise float estimate2 = t32 <= 127.0 ? t32 : 127.0;
-    precise float up2 = estimate2 < 127.0
-        ? (t15 * x2 * 2.3841858e-7 >= estimate2 - 63.0 ? 1.0 : 0.0)
-        : 0.0;
-    precise float down2 = estimate2 > 0.0
-        ? (t15 * x2 * 2.3841858e-7 >= estimate2 - 1.0 - 63.0 ? 1.0 : 0.0) - 1.0
-        : 0.0;
-    precise float3 result = float3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
     );
+    precise float t22 = (round((t21 + (-559241.0)) * z2_2 * 1.1920929e-7) + 645278.0)
+        * z2_2
+        * 1.1920929e-7;
+    precise float t23 = (round((round(t22) + (-762601.0)) * z2_2 * 1.1920929e-7) + 932068.0) * z2_2;
+    precise float t24 = round((round(t23 * 1.1920929e-7) + (-1198373.0)) * z2_2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t25 = round(
+        (round(t24 * z2_2 * 1.1920929e-7) + (-2796203.0)) * z2_2 * 1.1920929e-7
+    );
+    precise float r3 = round(z3 * (t25 + 8388608.0) * 1.1920929e-7);
+    precise float h5 = round(r3 * 0.31830987);
+    precise float t26 = h5 + 2097152.0;
+    precise float h6 = far2 ? t26 : h5;
+    precise float t27 = 4194304.0 - h6;
+    precise float h7 = y_major2 ? t27 : h6;
+    precise float t28 = 8388608.0 - h7;
+    precise float h8 = abs_major < 0.0 ? t28 : h7;
+    precise float neg_h8 = -h8;
+    precise float t29 = minor < 0.0 ? neg_h8 : h8;
+    bool t30 = major < 0.0;
+    precise float t31 = t30 ? -127.5 : 127.5;
+    precise float t32 = t29 * 6.0796738e-5;
+    precise float x = t16 ? t31 : t32;
+    precise float t33 = round(r2 * x + 127.5);
+    precise float t34 = t33 >= 0.0 ? t33 : 0.0;
+    precise float estimate = t34 <= 255.0 ? t34 : 255.0;
+    precise float one_if2 = t15 * x * 2.3841858e-7 >= estimate - 127.0 ? 1.0 : 0.0;
+    precise float up = estimate < 255.0 ? one_if2 : 0.0;
+    precise float one_if3 = t15 * x * 2.3841858e-7 >= estimate - 1.0 - 127.0 ? 1.0 : 0.0;
+    precise float t35 = one_if3 - 1.0;
+    precise float down = estimate > 0.0 ? t35 : 0.0;
+    precise float t36 = t30 ? -63.5 : 63.5;
+    precise float t37 = t29 * 3.027916e-5;
+    precise float x2 = t16 ? t37 : t36;
+    precise float t38 = round(r2 * x2 + 63.5);
+    precise float t39 = t38 >= 0.0 ? t38 : 0.0;
+    precise float estimate2 = t39 <= 127.0 ? t39 : 127.0;
+    precise float one_if4 = t15 * x2 * 2.3841858e-7 >= estimate2 - 63.0 ? 1.0 : 0.0;
+    precise float up2 = estimate2 < 127.0 ? one_if4 : 0.0;
+    precise float one_if5 = t15 * x2 * 2.3841858e-7 >= estimate2 - 1.0 - 63.0 ? 1.0 : 0.0;
+    precise float t40 = one_if5 - 1.0;
+    precise float down2 = estimate2 > 0.0 ? t40 : 0.0;
+    precise float3 result = float3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

@@ -58,12 +58,11 @@ float3 unitpack_eqdist_ellipse22_decode_float(float3 params) {
         ((6.565963e-11 * q + (-6.3866032e-9)) * q + 4.7108747e-7) * q + (-2.5202042e-5)
     )
         * q;
-    precise float t4 = (
-        (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q + (-1.2337005)
-    )
-        * q;
-    precise float cosq = t4 + 1.0;
-    precise float3 result = float3(disk * sinc, params.z > 0.5 ? -cosq : cosq);
+    precise float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
+        + (-1.2337005);
+    precise float cosq = t4 * q + 1.0;
+    precise float neg_cosq = -cosq;
+    precise float3 result = float3(disk * sinc, params.z > 0.5 ? neg_cosq : cosq);
     return result;
 }
 
@@ -90,20 +89,21 @@ float unitpack_eqdist_ellipse22_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -127,13 +127,15 @@ float3 unitpack_eqdist_ellipse22_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float2 t1 = w2.xy * w2.xy;
     precise float rho = sqrt(t1.x + t1.y);
     precise float abs_w2_z = abs(w2.z);
@@ -141,15 +143,18 @@ float3 unitpack_eqdist_ellipse22_encode_float(float3 v) {
     precise float2 disk = w2.xy * (half_r / (rho > 0.0 ? rho : 1.0) * 2.0);
     precise float2 t2 = abs(disk.yx);
     precise float2 t3 = disk + 1.4142135 - t2;
-    precise float2 t4 = UNITPACK_SELECT(t3 >= float2(0.0, 0.0), t3, float2(0.0, 0.0))
-        * (disk + 1.4142135 + t2);
-    precise float2 t5 = -disk;
-    precise float2 t6 = t5 + 1.4142135 - t2;
-    precise float2 t7 = UNITPACK_SELECT(t6 >= float2(0.0, 0.0), t6, float2(0.0, 0.0))
-        * (t5 + 1.4142135 + t2);
-    precise float2 square = disk / (sqrt(t4) + sqrt(t7));
+    precise float2 neg_disk = -disk;
+    precise float2 t4 = neg_disk + 1.4142135 - t2;
+    precise float2 t5 = sqrt(
+        UNITPACK_SELECT(t3 >= float2(0.0, 0.0), t3, float2(0.0, 0.0)) * (disk + 1.4142135 + t2)
+    )
+        + sqrt(
+            UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0))
+                * (neg_disk + 1.4142135 + t2)
+        );
+    precise float2 square = disk / t5;
     precise float2 enc = square * 1.4142135 + 0.5;
-    return float3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return float3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -168,17 +173,18 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -192,73 +198,82 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     precise float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    precise float rho2_2 = t3 ? rho2 : 1.0;
+    bool t1 = rho2 > 0.0;
+    precise float rho2_2 = t1 ? rho2 : 1.0;
     uint half_exponent = ((asuint(rho2_2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t4 = rho2_2 * root_down;
-    precise float root_estimate = sqrt(t4);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float t2 = rho2_2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= t4 ? 1.0 : (root_h0 * root_h0 > t4 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t4 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t4 ? 1.0 : (root_m0 * root_m0 > t4 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float rho = t3 ? root * root_up : 0.0;
+    precise float t3 = root * root_up;
+    precise float rho = t1 ? t3 : 0.0;
     precise float abs_w2_z = abs(w2.z);
     precise float abs_abs_w2_z = abs(abs_w2_z);
     precise float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_abs_w2_z;
     precise float hi4 = y_major ? abs_rho : abs_abs_w2_z;
     precise float lo4 = y_major ? abs_abs_w2_z : abs_rho;
-    precise float t6 = hi4 > 0.0 ? hi4 : 1.0;
+    precise float t4 = hi4 > 0.0 ? hi4 : 1.0;
     precise float big = lo4 * 8388608.0;
-    precise float ratio_estimate = floor(lo4 / t6 * 8388608.0);
-    precise float t7 = (ratio_estimate + 1.0) * t6 <= big
-        ? 1.0
-        : (ratio_estimate * t6 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t7;
-    precise float t = ratio + ((ratio + 1.0) * t6 <= big ? 1.0 : (ratio * t6 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo4 / t4 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t4 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t4 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t8 = t - 8388608.0;
-    precise float t9 = t + 8388608.0;
-    precise float big2 = t8 * 8388608.0;
-    precise float ratio_estimate2 = floor(t8 / t9 * 8388608.0);
-    precise float t10 = (ratio_estimate2 + 1.0) * t9 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t9 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t10;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t9 <= big2 ? 1.0 : (ratio2 * t9 > big2 ? -1.0 : 0.0));
+    precise float t5 = t - 8388608.0;
+    precise float t6 = t + 8388608.0;
+    precise float big2 = t5 * 8388608.0;
+    precise float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t6 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t11 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t12 = round((round(t11 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t13 = round((round(t12 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t14 = round((round(t13 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t14 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t7 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t8 = (round((t7 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t9 = (round((round(t8) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t10 = round((round(t9 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t11 = round((round(t10 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t11 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = abs_w2_z < 0.0 ? 8388608.0 - h3 : h3;
-    precise float t15 = rho < 0.0 ? -h4 : h4;
+    precise float t12 = h + 2097152.0;
+    precise float h2 = far ? t12 : h;
+    precise float t13 = 4194304.0 - h2;
+    precise float h3 = y_major ? t13 : h2;
+    precise float t14 = 8388608.0 - h3;
+    precise float h4 = abs_w2_z < 0.0 ? t14 : h3;
+    precise float neg_h4 = -h4;
+    precise float t15 = rho < 0.0 ? neg_h4 : h4;
     bool t16 = w2.x >= 0.0;
     precise float t17 = t16 ? 1024.0 : 0.0;
     precise float t18 = t16 ? 2047.0 : 1023.0;
     precise float mid = floor((t17 + t18 + 1.0) * 0.5);
-    precise float ell_t = (mid - 1.0 - 1023.0) * 2.0;
+    precise float mid_below = mid - 1.0;
+    precise float ell_t = (mid_below - 1023.0) * 2.0;
     precise float ell_h = floor(ell_t * ell_t);
     precise float ell_g = 8380418.0 - ell_h;
     precise float ell_p = w2.x * w2.x * ell_g;
@@ -266,19 +281,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent = asuint(ell_p >= ell_q ? ell_p : ell_q) >> 23u;
     uint exponent2 = exponent < 40u ? 40u : exponent;
     uint exponent3 = 254u < exponent2 ? 254u : exponent2;
-    precise float t19 = asfloat((281u - exponent3) << 23u);
-    precise float ell_s = (floor(ell_p * t19) + floor(ell_q * t19))
-        * asfloat((exponent3 - 27u) << 23u);
+    precise float scale2 = asfloat((281u - exponent3) << 23u);
+    precise float back = asfloat((exponent3 - 27u) << 23u);
+    precise float ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
     precise float lhs = ell_s * t15 * t15 * 2.381858e-7;
     precise float rhs = ell_h * ell_g * rho2_2;
-    precise float t20 = ell_t > 0.0
-        ? (w2.x > 0.0 ? (lhs >= rhs ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs <= rhs ? 1.0 : 0.0));
-    bool beyond = t20 > 0.5;
+    precise float one_if = lhs >= rhs ? 1.0 : 0.0;
+    precise float outside = w2.x > 0.0 ? one_if : 0.0;
+    precise float one_if2 = lhs <= rhs ? 1.0 : 0.0;
+    precise float inside = w2.x >= 0.0 ? 1.0 : one_if2;
+    bool beyond = (ell_t > 0.0 ? outside : inside) > 0.5;
     precise float lo5 = beyond ? mid : t17;
-    precise float hi5 = beyond ? t18 : mid - 1.0;
+    precise float hi5 = beyond ? t18 : mid_below;
     precise float mid2 = floor((lo5 + hi5 + 1.0) * 0.5);
-    precise float ell_t2 = (mid2 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below2 = mid2 - 1.0;
+    precise float ell_t2 = (mid_below2 - 1023.0) * 2.0;
     precise float ell_h2 = floor(ell_t2 * ell_t2);
     precise float ell_g2 = 8380418.0 - ell_h2;
     precise float ell_p2 = w2.x * w2.x * ell_g2;
@@ -286,19 +303,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent4 = asuint(ell_p2 >= ell_q2 ? ell_p2 : ell_q2) >> 23u;
     uint exponent5 = exponent4 < 40u ? 40u : exponent4;
     uint exponent6 = 254u < exponent5 ? 254u : exponent5;
-    precise float t21 = asfloat((281u - exponent6) << 23u);
-    precise float ell_s2 = (floor(ell_p2 * t21) + floor(ell_q2 * t21))
-        * asfloat((exponent6 - 27u) << 23u);
+    precise float scale3 = asfloat((281u - exponent6) << 23u);
+    precise float back2 = asfloat((exponent6 - 27u) << 23u);
+    precise float ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
     precise float lhs2 = ell_s2 * t15 * t15 * 2.381858e-7;
     precise float rhs2 = ell_h2 * ell_g2 * rho2_2;
-    precise float t22 = ell_t2 > 0.0
-        ? (w2.x > 0.0 ? (lhs2 >= rhs2 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs2 <= rhs2 ? 1.0 : 0.0));
-    bool beyond2 = t22 > 0.5;
+    precise float one_if3 = lhs2 >= rhs2 ? 1.0 : 0.0;
+    precise float outside2 = w2.x > 0.0 ? one_if3 : 0.0;
+    precise float one_if4 = lhs2 <= rhs2 ? 1.0 : 0.0;
+    precise float inside2 = w2.x >= 0.0 ? 1.0 : one_if4;
+    bool beyond2 = (ell_t2 > 0.0 ? outside2 : inside2) > 0.5;
     precise float lo6 = beyond2 ? mid2 : lo5;
-    precise float hi6 = beyond2 ? hi5 : mid2 - 1.0;
+    precise float hi6 = beyond2 ? hi5 : mid_below2;
     precise float mid3 = floor((lo6 + hi6 + 1.0) * 0.5);
-    precise float ell_t3 = (mid3 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below3 = mid3 - 1.0;
+    precise float ell_t3 = (mid_below3 - 1023.0) * 2.0;
     precise float ell_h3 = floor(ell_t3 * ell_t3);
     precise float ell_g3 = 8380418.0 - ell_h3;
     precise float ell_p3 = w2.x * w2.x * ell_g3;
@@ -306,19 +325,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent7 = asuint(ell_p3 >= ell_q3 ? ell_p3 : ell_q3) >> 23u;
     uint exponent8 = exponent7 < 40u ? 40u : exponent7;
     uint exponent9 = 254u < exponent8 ? 254u : exponent8;
-    precise float t23 = asfloat((281u - exponent9) << 23u);
-    precise float ell_s3 = (floor(ell_p3 * t23) + floor(ell_q3 * t23))
-        * asfloat((exponent9 - 27u) << 23u);
+    precise float scale4 = asfloat((281u - exponent9) << 23u);
+    precise float back3 = asfloat((exponent9 - 27u) << 23u);
+    precise float ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
     precise float lhs3 = ell_s3 * t15 * t15 * 2.381858e-7;
     precise float rhs3 = ell_h3 * ell_g3 * rho2_2;
-    precise float t24 = ell_t3 > 0.0
-        ? (w2.x > 0.0 ? (lhs3 >= rhs3 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs3 <= rhs3 ? 1.0 : 0.0));
-    bool beyond3 = t24 > 0.5;
+    precise float one_if5 = lhs3 >= rhs3 ? 1.0 : 0.0;
+    precise float outside3 = w2.x > 0.0 ? one_if5 : 0.0;
+    precise float one_if6 = lhs3 <= rhs3 ? 1.0 : 0.0;
+    precise float inside3 = w2.x >= 0.0 ? 1.0 : one_if6;
+    bool beyond3 = (ell_t3 > 0.0 ? outside3 : inside3) > 0.5;
     precise float lo7 = beyond3 ? mid3 : lo6;
-    precise float hi7 = beyond3 ? hi6 : mid3 - 1.0;
+    precise float hi7 = beyond3 ? hi6 : mid_below3;
     precise float mid4 = floor((lo7 + hi7 + 1.0) * 0.5);
-    precise float ell_t4 = (mid4 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below4 = mid4 - 1.0;
+    precise float ell_t4 = (mid_below4 - 1023.0) * 2.0;
     precise float ell_h4 = floor(ell_t4 * ell_t4);
     precise float ell_g4 = 8380418.0 - ell_h4;
     precise float ell_p4 = w2.x * w2.x * ell_g4;
@@ -326,19 +347,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent10 = asuint(ell_p4 >= ell_q4 ? ell_p4 : ell_q4) >> 23u;
     uint exponent11 = exponent10 < 40u ? 40u : exponent10;
     uint exponent12 = 254u < exponent11 ? 254u : exponent11;
-    precise float t25 = asfloat((281u - exponent12) << 23u);
-    precise float ell_s4 = (floor(ell_p4 * t25) + floor(ell_q4 * t25))
-        * asfloat((exponent12 - 27u) << 23u);
+    precise float scale5 = asfloat((281u - exponent12) << 23u);
+    precise float back4 = asfloat((exponent12 - 27u) << 23u);
+    precise float ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
     precise float lhs4 = ell_s4 * t15 * t15 * 2.381858e-7;
     precise float rhs4 = ell_h4 * ell_g4 * rho2_2;
-    precise float t26 = ell_t4 > 0.0
-        ? (w2.x > 0.0 ? (lhs4 >= rhs4 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs4 <= rhs4 ? 1.0 : 0.0));
-    bool beyond4 = t26 > 0.5;
+    precise float one_if7 = lhs4 >= rhs4 ? 1.0 : 0.0;
+    precise float outside4 = w2.x > 0.0 ? one_if7 : 0.0;
+    precise float one_if8 = lhs4 <= rhs4 ? 1.0 : 0.0;
+    precise float inside4 = w2.x >= 0.0 ? 1.0 : one_if8;
+    bool beyond4 = (ell_t4 > 0.0 ? outside4 : inside4) > 0.5;
     precise float lo8 = beyond4 ? mid4 : lo7;
-    precise float hi8 = beyond4 ? hi7 : mid4 - 1.0;
+    precise float hi8 = beyond4 ? hi7 : mid_below4;
     precise float mid5 = floor((lo8 + hi8 + 1.0) * 0.5);
-    precise float ell_t5 = (mid5 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below5 = mid5 - 1.0;
+    precise float ell_t5 = (mid_below5 - 1023.0) * 2.0;
     precise float ell_h5 = floor(ell_t5 * ell_t5);
     precise float ell_g5 = 8380418.0 - ell_h5;
     precise float ell_p5 = w2.x * w2.x * ell_g5;
@@ -346,19 +369,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent13 = asuint(ell_p5 >= ell_q5 ? ell_p5 : ell_q5) >> 23u;
     uint exponent14 = exponent13 < 40u ? 40u : exponent13;
     uint exponent15 = 254u < exponent14 ? 254u : exponent14;
-    precise float t27 = asfloat((281u - exponent15) << 23u);
-    precise float ell_s5 = (floor(ell_p5 * t27) + floor(ell_q5 * t27))
-        * asfloat((exponent15 - 27u) << 23u);
+    precise float scale6 = asfloat((281u - exponent15) << 23u);
+    precise float back5 = asfloat((exponent15 - 27u) << 23u);
+    precise float ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
     precise float lhs5 = ell_s5 * t15 * t15 * 2.381858e-7;
     precise float rhs5 = ell_h5 * ell_g5 * rho2_2;
-    precise float t28 = ell_t5 > 0.0
-        ? (w2.x > 0.0 ? (lhs5 >= rhs5 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs5 <= rhs5 ? 1.0 : 0.0));
-    bool beyond5 = t28 > 0.5;
+    precise float one_if9 = lhs5 >= rhs5 ? 1.0 : 0.0;
+    precise float outside5 = w2.x > 0.0 ? one_if9 : 0.0;
+    precise float one_if10 = lhs5 <= rhs5 ? 1.0 : 0.0;
+    precise float inside5 = w2.x >= 0.0 ? 1.0 : one_if10;
+    bool beyond5 = (ell_t5 > 0.0 ? outside5 : inside5) > 0.5;
     precise float lo9 = beyond5 ? mid5 : lo8;
-    precise float hi9 = beyond5 ? hi8 : mid5 - 1.0;
+    precise float hi9 = beyond5 ? hi8 : mid_below5;
     precise float mid6 = floor((lo9 + hi9 + 1.0) * 0.5);
-    precise float ell_t6 = (mid6 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below6 = mid6 - 1.0;
+    precise float ell_t6 = (mid_below6 - 1023.0) * 2.0;
     precise float ell_h6 = floor(ell_t6 * ell_t6);
     precise float ell_g6 = 8380418.0 - ell_h6;
     precise float ell_p6 = w2.x * w2.x * ell_g6;
@@ -366,19 +391,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent16 = asuint(ell_p6 >= ell_q6 ? ell_p6 : ell_q6) >> 23u;
     uint exponent17 = exponent16 < 40u ? 40u : exponent16;
     uint exponent18 = 254u < exponent17 ? 254u : exponent17;
-    precise float t29 = asfloat((281u - exponent18) << 23u);
-    precise float ell_s6 = (floor(ell_p6 * t29) + floor(ell_q6 * t29))
-        * asfloat((exponent18 - 27u) << 23u);
+    precise float scale7 = asfloat((281u - exponent18) << 23u);
+    precise float back6 = asfloat((exponent18 - 27u) << 23u);
+    precise float ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
     precise float lhs6 = ell_s6 * t15 * t15 * 2.381858e-7;
     precise float rhs6 = ell_h6 * ell_g6 * rho2_2;
-    precise float t30 = ell_t6 > 0.0
-        ? (w2.x > 0.0 ? (lhs6 >= rhs6 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs6 <= rhs6 ? 1.0 : 0.0));
-    bool beyond6 = t30 > 0.5;
+    precise float one_if11 = lhs6 >= rhs6 ? 1.0 : 0.0;
+    precise float outside6 = w2.x > 0.0 ? one_if11 : 0.0;
+    precise float one_if12 = lhs6 <= rhs6 ? 1.0 : 0.0;
+    precise float inside6 = w2.x >= 0.0 ? 1.0 : one_if12;
+    bool beyond6 = (ell_t6 > 0.0 ? outside6 : inside6) > 0.5;
     precise float lo10 = beyond6 ? mid6 : lo9;
-    precise float hi10 = beyond6 ? hi9 : mid6 - 1.0;
+    precise float hi10 = beyond6 ? hi9 : mid_below6;
     precise float mid7 = floor((lo10 + hi10 + 1.0) * 0.5);
-    precise float ell_t7 = (mid7 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below7 = mid7 - 1.0;
+    precise float ell_t7 = (mid_below7 - 1023.0) * 2.0;
     precise float ell_h7 = floor(ell_t7 * ell_t7);
     precise float ell_g7 = 8380418.0 - ell_h7;
     precise float ell_p7 = w2.x * w2.x * ell_g7;
@@ -386,19 +413,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent19 = asuint(ell_p7 >= ell_q7 ? ell_p7 : ell_q7) >> 23u;
     uint exponent20 = exponent19 < 40u ? 40u : exponent19;
     uint exponent21 = 254u < exponent20 ? 254u : exponent20;
-    precise float t31 = asfloat((281u - exponent21) << 23u);
-    precise float ell_s7 = (floor(ell_p7 * t31) + floor(ell_q7 * t31))
-        * asfloat((exponent21 - 27u) << 23u);
+    precise float scale8 = asfloat((281u - exponent21) << 23u);
+    precise float back7 = asfloat((exponent21 - 27u) << 23u);
+    precise float ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
     precise float lhs7 = ell_s7 * t15 * t15 * 2.381858e-7;
     precise float rhs7 = ell_h7 * ell_g7 * rho2_2;
-    precise float t32 = ell_t7 > 0.0
-        ? (w2.x > 0.0 ? (lhs7 >= rhs7 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs7 <= rhs7 ? 1.0 : 0.0));
-    bool beyond7 = t32 > 0.5;
+    precise float one_if13 = lhs7 >= rhs7 ? 1.0 : 0.0;
+    precise float outside7 = w2.x > 0.0 ? one_if13 : 0.0;
+    precise float one_if14 = lhs7 <= rhs7 ? 1.0 : 0.0;
+    precise float inside7 = w2.x >= 0.0 ? 1.0 : one_if14;
+    bool beyond7 = (ell_t7 > 0.0 ? outside7 : inside7) > 0.5;
     precise float lo11 = beyond7 ? mid7 : lo10;
-    precise float hi11 = beyond7 ? hi10 : mid7 - 1.0;
+    precise float hi11 = beyond7 ? hi10 : mid_below7;
     precise float mid8 = floor((lo11 + hi11 + 1.0) * 0.5);
-    precise float ell_t8 = (mid8 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below8 = mid8 - 1.0;
+    precise float ell_t8 = (mid_below8 - 1023.0) * 2.0;
     precise float ell_h8 = floor(ell_t8 * ell_t8);
     precise float ell_g8 = 8380418.0 - ell_h8;
     precise float ell_p8 = w2.x * w2.x * ell_g8;
@@ -406,19 +435,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent22 = asuint(ell_p8 >= ell_q8 ? ell_p8 : ell_q8) >> 23u;
     uint exponent23 = exponent22 < 40u ? 40u : exponent22;
     uint exponent24 = 254u < exponent23 ? 254u : exponent23;
-    precise float t33 = asfloat((281u - exponent24) << 23u);
-    precise float ell_s8 = (floor(ell_p8 * t33) + floor(ell_q8 * t33))
-        * asfloat((exponent24 - 27u) << 23u);
+    precise float scale9 = asfloat((281u - exponent24) << 23u);
+    precise float back8 = asfloat((exponent24 - 27u) << 23u);
+    precise float ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
     precise float lhs8 = ell_s8 * t15 * t15 * 2.381858e-7;
     precise float rhs8 = ell_h8 * ell_g8 * rho2_2;
-    precise float t34 = ell_t8 > 0.0
-        ? (w2.x > 0.0 ? (lhs8 >= rhs8 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs8 <= rhs8 ? 1.0 : 0.0));
-    bool beyond8 = t34 > 0.5;
+    precise float one_if15 = lhs8 >= rhs8 ? 1.0 : 0.0;
+    precise float outside8 = w2.x > 0.0 ? one_if15 : 0.0;
+    precise float one_if16 = lhs8 <= rhs8 ? 1.0 : 0.0;
+    precise float inside8 = w2.x >= 0.0 ? 1.0 : one_if16;
+    bool beyond8 = (ell_t8 > 0.0 ? outside8 : inside8) > 0.5;
     precise float lo12 = beyond8 ? mid8 : lo11;
-    precise float hi12 = beyond8 ? hi11 : mid8 - 1.0;
+    precise float hi12 = beyond8 ? hi11 : mid_below8;
     precise float mid9 = floor((lo12 + hi12 + 1.0) * 0.5);
-    precise float ell_t9 = (mid9 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below9 = mid9 - 1.0;
+    precise float ell_t9 = (mid_below9 - 1023.0) * 2.0;
     precise float ell_h9 = floor(ell_t9 * ell_t9);
     precise float ell_g9 = 8380418.0 - ell_h9;
     precise float ell_p9 = w2.x * w2.x * ell_g9;
@@ -426,19 +457,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent25 = asuint(ell_p9 >= ell_q9 ? ell_p9 : ell_q9) >> 23u;
     uint exponent26 = exponent25 < 40u ? 40u : exponent25;
     uint exponent27 = 254u < exponent26 ? 254u : exponent26;
-    precise float t35 = asfloat((281u - exponent27) << 23u);
-    precise float ell_s9 = (floor(ell_p9 * t35) + floor(ell_q9 * t35))
-        * asfloat((exponent27 - 27u) << 23u);
+    precise float scale10 = asfloat((281u - exponent27) << 23u);
+    precise float back9 = asfloat((exponent27 - 27u) << 23u);
+    precise float ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
     precise float lhs9 = ell_s9 * t15 * t15 * 2.381858e-7;
     precise float rhs9 = ell_h9 * ell_g9 * rho2_2;
-    precise float t36 = ell_t9 > 0.0
-        ? (w2.x > 0.0 ? (lhs9 >= rhs9 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs9 <= rhs9 ? 1.0 : 0.0));
-    bool beyond9 = t36 > 0.5;
+    precise float one_if17 = lhs9 >= rhs9 ? 1.0 : 0.0;
+    precise float outside9 = w2.x > 0.0 ? one_if17 : 0.0;
+    precise float one_if18 = lhs9 <= rhs9 ? 1.0 : 0.0;
+    precise float inside9 = w2.x >= 0.0 ? 1.0 : one_if18;
+    bool beyond9 = (ell_t9 > 0.0 ? outside9 : inside9) > 0.5;
     precise float lo13 = beyond9 ? mid9 : lo12;
-    precise float hi13 = beyond9 ? hi12 : mid9 - 1.0;
+    precise float hi13 = beyond9 ? hi12 : mid_below9;
     precise float mid10 = floor((lo13 + hi13 + 1.0) * 0.5);
-    precise float ell_t10 = (mid10 - 1.0 - 1023.0) * 2.0;
+    precise float mid_below10 = mid10 - 1.0;
+    precise float ell_t10 = (mid_below10 - 1023.0) * 2.0;
     precise float ell_h10 = floor(ell_t10 * ell_t10);
     precise float ell_g10 = 8380418.0 - ell_h10;
     precise float ell_p10 = w2.x * w2.x * ell_g10;
@@ -446,20 +479,22 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent28 = asuint(ell_p10 >= ell_q10 ? ell_p10 : ell_q10) >> 23u;
     uint exponent29 = exponent28 < 40u ? 40u : exponent28;
     uint exponent30 = 254u < exponent29 ? 254u : exponent29;
-    precise float t37 = asfloat((281u - exponent30) << 23u);
-    precise float ell_s10 = (floor(ell_p10 * t37) + floor(ell_q10 * t37))
-        * asfloat((exponent30 - 27u) << 23u);
+    precise float scale11 = asfloat((281u - exponent30) << 23u);
+    precise float back10 = asfloat((exponent30 - 27u) << 23u);
+    precise float ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
     precise float lhs10 = ell_s10 * t15 * t15 * 2.381858e-7;
     precise float rhs10 = ell_h10 * ell_g10 * rho2_2;
-    precise float t38 = ell_t10 > 0.0
-        ? (w2.x > 0.0 ? (lhs10 >= rhs10 ? 1.0 : 0.0) : 0.0)
-        : (w2.x >= 0.0 ? 1.0 : (lhs10 <= rhs10 ? 1.0 : 0.0));
-    bool beyond10 = t38 > 0.5;
-    bool t39 = w2.y >= 0.0;
-    precise float t40 = t39 ? 512.0 : 0.0;
-    precise float t41 = t39 ? 1023.0 : 511.0;
-    precise float mid11 = floor((t40 + t41 + 1.0) * 0.5);
-    precise float ell_t11 = (mid11 - 1.0 - 511.0) * 2.0;
+    precise float one_if19 = lhs10 >= rhs10 ? 1.0 : 0.0;
+    precise float outside10 = w2.x > 0.0 ? one_if19 : 0.0;
+    precise float one_if20 = lhs10 <= rhs10 ? 1.0 : 0.0;
+    precise float inside10 = w2.x >= 0.0 ? 1.0 : one_if20;
+    bool beyond10 = (ell_t10 > 0.0 ? outside10 : inside10) > 0.5;
+    bool t19 = w2.y >= 0.0;
+    precise float t20 = t19 ? 512.0 : 0.0;
+    precise float t21 = t19 ? 1023.0 : 511.0;
+    precise float mid11 = floor((t20 + t21 + 1.0) * 0.5);
+    precise float mid_below11 = mid11 - 1.0;
+    precise float ell_t11 = (mid_below11 - 511.0) * 2.0;
     precise float ell_h11 = floor(ell_t11 * ell_t11);
     precise float ell_g11 = 2093058.0 - ell_h11;
     precise float ell_p11 = w2.y * w2.y * ell_g11;
@@ -467,19 +502,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent31 = asuint(ell_p11 >= ell_q11 ? ell_p11 : ell_q11) >> 23u;
     uint exponent32 = exponent31 < 40u ? 40u : exponent31;
     uint exponent33 = 254u < exponent32 ? 254u : exponent32;
-    precise float t42 = asfloat((281u - exponent33) << 23u);
-    precise float ell_s11 = (floor(ell_p11 * t42) + floor(ell_q11 * t42))
-        * asfloat((exponent33 - 27u) << 23u);
+    precise float scale12 = asfloat((281u - exponent33) << 23u);
+    precise float back11 = asfloat((exponent33 - 27u) << 23u);
+    precise float ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
     precise float lhs11 = ell_s11 * t15 * t15 * 5.9488286e-8;
     precise float rhs11 = ell_h11 * ell_g11 * rho2_2;
-    precise float t43 = ell_t11 > 0.0
-        ? (w2.y > 0.0 ? (lhs11 >= rhs11 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs11 <= rhs11 ? 1.0 : 0.0));
-    bool beyond11 = t43 > 0.5;
-    precise float lo14 = beyond11 ? mid11 : t40;
-    precise float hi14 = beyond11 ? t41 : mid11 - 1.0;
+    precise float one_if21 = lhs11 >= rhs11 ? 1.0 : 0.0;
+    precise float outside11 = w2.y > 0.0 ? one_if21 : 0.0;
+    precise float one_if22 = lhs11 <= rhs11 ? 1.0 : 0.0;
+    precise float inside11 = w2.y >= 0.0 ? 1.0 : one_if22;
+    bool beyond11 = (ell_t11 > 0.0 ? outside11 : inside11) > 0.5;
+    precise float lo14 = beyond11 ? mid11 : t20;
+    precise float hi14 = beyond11 ? t21 : mid_below11;
     precise float mid12 = floor((lo14 + hi14 + 1.0) * 0.5);
-    precise float ell_t12 = (mid12 - 1.0 - 511.0) * 2.0;
+    precise float mid_below12 = mid12 - 1.0;
+    precise float ell_t12 = (mid_below12 - 511.0) * 2.0;
     precise float ell_h12 = floor(ell_t12 * ell_t12);
     precise float ell_g12 = 2093058.0 - ell_h12;
     precise float ell_p12 = w2.y * w2.y * ell_g12;
@@ -487,19 +524,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent34 = asuint(ell_p12 >= ell_q12 ? ell_p12 : ell_q12) >> 23u;
     uint exponent35 = exponent34 < 40u ? 40u : exponent34;
     uint exponent36 = 254u < exponent35 ? 254u : exponent35;
-    precise float t44 = asfloat((281u - exponent36) << 23u);
-    precise float ell_s12 = (floor(ell_p12 * t44) + floor(ell_q12 * t44))
-        * asfloat((exponent36 - 27u) << 23u);
+    precise float scale13 = asfloat((281u - exponent36) << 23u);
+    precise float back12 = asfloat((exponent36 - 27u) << 23u);
+    precise float ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
     precise float lhs12 = ell_s12 * t15 * t15 * 5.9488286e-8;
     precise float rhs12 = ell_h12 * ell_g12 * rho2_2;
-    precise float t45 = ell_t12 > 0.0
-        ? (w2.y > 0.0 ? (lhs12 >= rhs12 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs12 <= rhs12 ? 1.0 : 0.0));
-    bool beyond12 = t45 > 0.5;
+    precise float one_if23 = lhs12 >= rhs12 ? 1.0 : 0.0;
+    precise float outside12 = w2.y > 0.0 ? one_if23 : 0.0;
+    precise float one_if24 = lhs12 <= rhs12 ? 1.0 : 0.0;
+    precise float inside12 = w2.y >= 0.0 ? 1.0 : one_if24;
+    bool beyond12 = (ell_t12 > 0.0 ? outside12 : inside12) > 0.5;
     precise float lo15 = beyond12 ? mid12 : lo14;
-    precise float hi15 = beyond12 ? hi14 : mid12 - 1.0;
+    precise float hi15 = beyond12 ? hi14 : mid_below12;
     precise float mid13 = floor((lo15 + hi15 + 1.0) * 0.5);
-    precise float ell_t13 = (mid13 - 1.0 - 511.0) * 2.0;
+    precise float mid_below13 = mid13 - 1.0;
+    precise float ell_t13 = (mid_below13 - 511.0) * 2.0;
     precise float ell_h13 = floor(ell_t13 * ell_t13);
     precise float ell_g13 = 2093058.0 - ell_h13;
     precise float ell_p13 = w2.y * w2.y * ell_g13;
@@ -507,19 +546,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent37 = asuint(ell_p13 >= ell_q13 ? ell_p13 : ell_q13) >> 23u;
     uint exponent38 = exponent37 < 40u ? 40u : exponent37;
     uint exponent39 = 254u < exponent38 ? 254u : exponent38;
-    precise float t46 = asfloat((281u - exponent39) << 23u);
-    precise float ell_s13 = (floor(ell_p13 * t46) + floor(ell_q13 * t46))
-        * asfloat((exponent39 - 27u) << 23u);
+    precise float scale14 = asfloat((281u - exponent39) << 23u);
+    precise float back13 = asfloat((exponent39 - 27u) << 23u);
+    precise float ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
     precise float lhs13 = ell_s13 * t15 * t15 * 5.9488286e-8;
     precise float rhs13 = ell_h13 * ell_g13 * rho2_2;
-    precise float t47 = ell_t13 > 0.0
-        ? (w2.y > 0.0 ? (lhs13 >= rhs13 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs13 <= rhs13 ? 1.0 : 0.0));
-    bool beyond13 = t47 > 0.5;
+    precise float one_if25 = lhs13 >= rhs13 ? 1.0 : 0.0;
+    precise float outside13 = w2.y > 0.0 ? one_if25 : 0.0;
+    precise float one_if26 = lhs13 <= rhs13 ? 1.0 : 0.0;
+    precise float inside13 = w2.y >= 0.0 ? 1.0 : one_if26;
+    bool beyond13 = (ell_t13 > 0.0 ? outside13 : inside13) > 0.5;
     precise float lo16 = beyond13 ? mid13 : lo15;
-    precise float hi16 = beyond13 ? hi15 : mid13 - 1.0;
+    precise float hi16 = beyond13 ? hi15 : mid_below13;
     precise float mid14 = floor((lo16 + hi16 + 1.0) * 0.5);
-    precise float ell_t14 = (mid14 - 1.0 - 511.0) * 2.0;
+    precise float mid_below14 = mid14 - 1.0;
+    precise float ell_t14 = (mid_below14 - 511.0) * 2.0;
     precise float ell_h14 = floor(ell_t14 * ell_t14);
     precise float ell_g14 = 2093058.0 - ell_h14;
     precise float ell_p14 = w2.y * w2.y * ell_g14;
@@ -527,19 +568,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent40 = asuint(ell_p14 >= ell_q14 ? ell_p14 : ell_q14) >> 23u;
     uint exponent41 = exponent40 < 40u ? 40u : exponent40;
     uint exponent42 = 254u < exponent41 ? 254u : exponent41;
-    precise float t48 = asfloat((281u - exponent42) << 23u);
-    precise float ell_s14 = (floor(ell_p14 * t48) + floor(ell_q14 * t48))
-        * asfloat((exponent42 - 27u) << 23u);
+    precise float scale15 = asfloat((281u - exponent42) << 23u);
+    precise float back14 = asfloat((exponent42 - 27u) << 23u);
+    precise float ell_s14 = (floor(ell_p14 * scale15) + floor(ell_q14 * scale15)) * back14;
     precise float lhs14 = ell_s14 * t15 * t15 * 5.9488286e-8;
     precise float rhs14 = ell_h14 * ell_g14 * rho2_2;
-    precise float t49 = ell_t14 > 0.0
-        ? (w2.y > 0.0 ? (lhs14 >= rhs14 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs14 <= rhs14 ? 1.0 : 0.0));
-    bool beyond14 = t49 > 0.5;
+    precise float one_if27 = lhs14 >= rhs14 ? 1.0 : 0.0;
+    precise float outside14 = w2.y > 0.0 ? one_if27 : 0.0;
+    precise float one_if28 = lhs14 <= rhs14 ? 1.0 : 0.0;
+    precise float inside14 = w2.y >= 0.0 ? 1.0 : one_if28;
+    bool beyond14 = (ell_t14 > 0.0 ? outside14 : inside14) > 0.5;
     precise float lo17 = beyond14 ? mid14 : lo16;
-    precise float hi17 = beyond14 ? hi16 : mid14 - 1.0;
+    precise float hi17 = beyond14 ? hi16 : mid_below14;
     precise float mid15 = floor((lo17 + hi17 + 1.0) * 0.5);
-    precise float ell_t15 = (mid15 - 1.0 - 511.0) * 2.0;
+    precise float mid_below15 = mid15 - 1.0;
+    precise float ell_t15 = (mid_below15 - 511.0) * 2.0;
     precise float ell_h15 = floor(ell_t15 * ell_t15);
     precise float ell_g15 = 2093058.0 - ell_h15;
     precise float ell_p15 = w2.y * w2.y * ell_g15;
@@ -547,19 +590,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent43 = asuint(ell_p15 >= ell_q15 ? ell_p15 : ell_q15) >> 23u;
     uint exponent44 = exponent43 < 40u ? 40u : exponent43;
     uint exponent45 = 254u < exponent44 ? 254u : exponent44;
-    precise float t50 = asfloat((281u - exponent45) << 23u);
-    precise float ell_s15 = (floor(ell_p15 * t50) + floor(ell_q15 * t50))
-        * asfloat((exponent45 - 27u) << 23u);
+    precise float scale16 = asfloat((281u - exponent45) << 23u);
+    precise float back15 = asfloat((exponent45 - 27u) << 23u);
+    precise float ell_s15 = (floor(ell_p15 * scale16) + floor(ell_q15 * scale16)) * back15;
     precise float lhs15 = ell_s15 * t15 * t15 * 5.9488286e-8;
     precise float rhs15 = ell_h15 * ell_g15 * rho2_2;
-    precise float t51 = ell_t15 > 0.0
-        ? (w2.y > 0.0 ? (lhs15 >= rhs15 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs15 <= rhs15 ? 1.0 : 0.0));
-    bool beyond15 = t51 > 0.5;
+    precise float one_if29 = lhs15 >= rhs15 ? 1.0 : 0.0;
+    precise float outside15 = w2.y > 0.0 ? one_if29 : 0.0;
+    precise float one_if30 = lhs15 <= rhs15 ? 1.0 : 0.0;
+    precise float inside15 = w2.y >= 0.0 ? 1.0 : one_if30;
+    bool beyond15 = (ell_t15 > 0.0 ? outside15 : inside15) > 0.5;
     precise float lo18 = beyond15 ? mid15 : lo17;
-    precise float hi18 = beyond15 ? hi17 : mid15 - 1.0;
+    precise float hi18 = beyond15 ? hi17 : mid_below15;
     precise float mid16 = floor((lo18 + hi18 + 1.0) * 0.5);
-    precise float ell_t16 = (mid16 - 1.0 - 511.0) * 2.0;
+    precise float mid_below16 = mid16 - 1.0;
+    precise float ell_t16 = (mid_below16 - 511.0) * 2.0;
     precise float ell_h16 = floor(ell_t16 * ell_t16);
     precise float ell_g16 = 2093058.0 - ell_h16;
     precise float ell_p16 = w2.y * w2.y * ell_g16;
@@ -567,19 +612,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent46 = asuint(ell_p16 >= ell_q16 ? ell_p16 : ell_q16) >> 23u;
     uint exponent47 = exponent46 < 40u ? 40u : exponent46;
     uint exponent48 = 254u < exponent47 ? 254u : exponent47;
-    precise float t52 = asfloat((281u - exponent48) << 23u);
-    precise float ell_s16 = (floor(ell_p16 * t52) + floor(ell_q16 * t52))
-        * asfloat((exponent48 - 27u) << 23u);
+    precise float scale17 = asfloat((281u - exponent48) << 23u);
+    precise float back16 = asfloat((exponent48 - 27u) << 23u);
+    precise float ell_s16 = (floor(ell_p16 * scale17) + floor(ell_q16 * scale17)) * back16;
     precise float lhs16 = ell_s16 * t15 * t15 * 5.9488286e-8;
     precise float rhs16 = ell_h16 * ell_g16 * rho2_2;
-    precise float t53 = ell_t16 > 0.0
-        ? (w2.y > 0.0 ? (lhs16 >= rhs16 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs16 <= rhs16 ? 1.0 : 0.0));
-    bool beyond16 = t53 > 0.5;
+    precise float one_if31 = lhs16 >= rhs16 ? 1.0 : 0.0;
+    precise float outside16 = w2.y > 0.0 ? one_if31 : 0.0;
+    precise float one_if32 = lhs16 <= rhs16 ? 1.0 : 0.0;
+    precise float inside16 = w2.y >= 0.0 ? 1.0 : one_if32;
+    bool beyond16 = (ell_t16 > 0.0 ? outside16 : inside16) > 0.5;
     precise float lo19 = beyond16 ? mid16 : lo18;
-    precise float hi19 = beyond16 ? hi18 : mid16 - 1.0;
+    precise float hi19 = beyond16 ? hi18 : mid_below16;
     precise float mid17 = floor((lo19 + hi19 + 1.0) * 0.5);
-    precise float ell_t17 = (mid17 - 1.0 - 511.0) * 2.0;
+    precise float mid_below17 = mid17 - 1.0;
+    precise float ell_t17 = (mid_below17 - 511.0) * 2.0;
     precise float ell_h17 = floor(ell_t17 * ell_t17);
     precise float ell_g17 = 2093058.0 - ell_h17;
     precise float ell_p17 = w2.y * w2.y * ell_g17;
@@ -587,19 +634,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent49 = asuint(ell_p17 >= ell_q17 ? ell_p17 : ell_q17) >> 23u;
     uint exponent50 = exponent49 < 40u ? 40u : exponent49;
     uint exponent51 = 254u < exponent50 ? 254u : exponent50;
-    precise float t54 = asfloat((281u - exponent51) << 23u);
-    precise float ell_s17 = (floor(ell_p17 * t54) + floor(ell_q17 * t54))
-        * asfloat((exponent51 - 27u) << 23u);
+    precise float scale18 = asfloat((281u - exponent51) << 23u);
+    precise float back17 = asfloat((exponent51 - 27u) << 23u);
+    precise float ell_s17 = (floor(ell_p17 * scale18) + floor(ell_q17 * scale18)) * back17;
     precise float lhs17 = ell_s17 * t15 * t15 * 5.9488286e-8;
     precise float rhs17 = ell_h17 * ell_g17 * rho2_2;
-    precise float t55 = ell_t17 > 0.0
-        ? (w2.y > 0.0 ? (lhs17 >= rhs17 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs17 <= rhs17 ? 1.0 : 0.0));
-    bool beyond17 = t55 > 0.5;
+    precise float one_if33 = lhs17 >= rhs17 ? 1.0 : 0.0;
+    precise float outside17 = w2.y > 0.0 ? one_if33 : 0.0;
+    precise float one_if34 = lhs17 <= rhs17 ? 1.0 : 0.0;
+    precise float inside17 = w2.y >= 0.0 ? 1.0 : one_if34;
+    bool beyond17 = (ell_t17 > 0.0 ? outside17 : inside17) > 0.5;
     precise float lo20 = beyond17 ? mid17 : lo19;
-    precise float hi20 = beyond17 ? hi19 : mid17 - 1.0;
+    precise float hi20 = beyond17 ? hi19 : mid_below17;
     precise float mid18 = floor((lo20 + hi20 + 1.0) * 0.5);
-    precise float ell_t18 = (mid18 - 1.0 - 511.0) * 2.0;
+    precise float mid_below18 = mid18 - 1.0;
+    precise float ell_t18 = (mid_below18 - 511.0) * 2.0;
     precise float ell_h18 = floor(ell_t18 * ell_t18);
     precise float ell_g18 = 2093058.0 - ell_h18;
     precise float ell_p18 = w2.y * w2.y * ell_g18;
@@ -607,19 +656,21 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent52 = asuint(ell_p18 >= ell_q18 ? ell_p18 : ell_q18) >> 23u;
     uint exponent53 = exponent52 < 40u ? 40u : exponent52;
     uint exponent54 = 254u < exponent53 ? 254u : exponent53;
-    precise float t56 = asfloat((281u - exponent54) << 23u);
-    precise float ell_s18 = (floor(ell_p18 * t56) + floor(ell_q18 * t56))
-        * asfloat((exponent54 - 27u) << 23u);
+    precise float scale19 = asfloat((281u - exponent54) << 23u);
+    precise float back18 = asfloat((exponent54 - 27u) << 23u);
+    precise float ell_s18 = (floor(ell_p18 * scale19) + floor(ell_q18 * scale19)) * back18;
     precise float lhs18 = ell_s18 * t15 * t15 * 5.9488286e-8;
     precise float rhs18 = ell_h18 * ell_g18 * rho2_2;
-    precise float t57 = ell_t18 > 0.0
-        ? (w2.y > 0.0 ? (lhs18 >= rhs18 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs18 <= rhs18 ? 1.0 : 0.0));
-    bool beyond18 = t57 > 0.5;
+    precise float one_if35 = lhs18 >= rhs18 ? 1.0 : 0.0;
+    precise float outside18 = w2.y > 0.0 ? one_if35 : 0.0;
+    precise float one_if36 = lhs18 <= rhs18 ? 1.0 : 0.0;
+    precise float inside18 = w2.y >= 0.0 ? 1.0 : one_if36;
+    bool beyond18 = (ell_t18 > 0.0 ? outside18 : inside18) > 0.5;
     precise float lo21 = beyond18 ? mid18 : lo20;
-    precise float hi21 = beyond18 ? hi20 : mid18 - 1.0;
+    precise float hi21 = beyond18 ? hi20 : mid_below18;
     precise float mid19 = floor((lo21 + hi21 + 1.0) * 0.5);
-    precise float ell_t19 = (mid19 - 1.0 - 511.0) * 2.0;
+    precise float mid_below19 = mid19 - 1.0;
+    precise float ell_t19 = (mid_below19 - 511.0) * 2.0;
     precise float ell_h19 = floor(ell_t19 * ell_t19);
     precise float ell_g19 = 2093058.0 - ell_h19;
     precise float ell_p19 = w2.y * w2.y * ell_g19;
@@ -627,15 +678,16 @@ float3 unitpack_eqdist_ellipse22_round_codes(float3 a0) {
     uint exponent55 = asuint(ell_p19 >= ell_q19 ? ell_p19 : ell_q19) >> 23u;
     uint exponent56 = exponent55 < 40u ? 40u : exponent55;
     uint exponent57 = 254u < exponent56 ? 254u : exponent56;
-    precise float t58 = asfloat((281u - exponent57) << 23u);
-    precise float ell_s19 = (floor(ell_p19 * t58) + floor(ell_q19 * t58))
-        * asfloat((exponent57 - 27u) << 23u);
+    precise float scale20 = asfloat((281u - exponent57) << 23u);
+    precise float back19 = asfloat((exponent57 - 27u) << 23u);
+    precise float ell_s19 = (floor(ell_p19 * scale20) + floor(ell_q19 * scale20)) * back19;
     precise float lhs19 = ell_s19 * t15 * t15 * 5.9488286e-8;
     precise float rhs19 = ell_h19 * ell_g19 * rho2_2;
-    precise float t59 = ell_t19 > 0.0
-        ? (w2.y > 0.0 ? (lhs19 >= rhs19 ? 1.0 : 0.0) : 0.0)
-        : (w2.y >= 0.0 ? 1.0 : (lhs19 <= rhs19 ? 1.0 : 0.0));
-    bool beyond19 = t59 > 0.5;
+    precise float one_if37 = lhs19 >= rhs19 ? 1.0 : 0.0;
+    precise float outside19 = w2.y > 0.0 ? one_if37 : 0.0;
+    precise float one_if38 = lhs19 <= rhs19 ? 1.0 : 0.0;
+    precise float inside19 = w2.y >= 0.0 ? 1.0 : one_if38;
+    bool beyond19 = (ell_t19 > 0.0 ? outside19 : inside19) > 0.5;
     return UNITPACK_SELECT(
         bool3(beyond10, beyond19, w2.z < 0.0),
         float3(mid10, mid19, 1.0),

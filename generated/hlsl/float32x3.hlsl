@@ -46,27 +46,26 @@ float3 unitpack_float32x3_decode_float(float3 params) {
     uint3 t1 = asuint(params) & uint3(2147483647u, 2147483647u, 2147483647u);
     bool3 t2 = t1 < uint3(2139095040u, 2139095040u, 2139095040u);
     bool3 t3 = uint3(8388607u, 8388607u, 8388607u) < t1;
-    return t2.x && t2.y && t2.z && (t3.x || t3.y || t3.z)
-        ? UNITPACK_SELECT(t3, params, float3(0.0, 0.0, 0.0))
-        : float3(0.0, 0.0, 1.0);
+    bool t4 = t3.x || t3.y || t3.z;
+    precise float3 t5 = UNITPACK_SELECT(t3, params, float3(0.0, 0.0, 0.0));
+    return t2.x && t2.y && t2.z && t4 ? t5 : float3(0.0, 0.0, 1.0);
 }
 
 // unitpack_float32x3_decode: decoder.
 // In: a packed code (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2 bits 0–31: p2
 //   float32); other bits are ignored.
-// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
-//   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
-//   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
+// Out: as for unitpack_float32x3_decode_float.
 // Portable (as the header says): each output component equals what this function computes here, for
 //   every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack
 //   verify --portable prints it).
 float3 unitpack_float32x3_decode(uint3 code) {
-    uint3 t1 = UNITPACK_SELECT(
-        (code & uint3(2139095040u, 2139095040u, 2139095040u)) < uint3(1u, 1u, 1u),
-        uint3(0u, 0u, 0u),
-        code
+    precise float3 params = asfloat(
+        UNITPACK_SELECT(
+            (code & uint3(2139095040u, 2139095040u, 2139095040u)) < uint3(1u, 1u, 1u),
+            uint3(0u, 0u, 0u),
+            code
+        )
     );
-    precise float3 params = asfloat(t1);
     return unitpack_float32x3_decode_float(params);
 }
 
@@ -81,12 +80,14 @@ float3 unitpack_float32x3_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 result = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    return result;
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    return t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -105,7 +106,8 @@ float3 unitpack_float32x3_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -113,118 +115,124 @@ float3 unitpack_float32x3_round_codes(float3 a0) {
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 t1 = floor(abs(w2) * 2097152.0);
-    uint3 t2 = uint3(t1);
-    uint limb1 = t2.x >> 12u;
-    uint limb0 = t2.x & 4095u;
+    uint3 t1_u = uint3(t1);
+    uint limb1 = t1_u.x >> 12u;
+    uint limb0 = t1_u.x & 4095u;
     uint cross = limb1 * limb0;
     uint hi = 0u + limb1 * limb1 + (cross >> 11u);
     uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
-    uint limb1_2 = t2.y >> 12u;
-    uint limb0_2 = t2.y & 4095u;
+    uint limb1_2 = t1_u.y >> 12u;
+    uint limb0_2 = t1_u.y & 4095u;
     uint cross2 = limb1_2 * limb0_2;
     uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
     uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
-    uint limb1_3 = t2.z >> 12u;
-    uint limb0_3 = t2.z & 4095u;
+    uint limb1_3 = t1_u.z >> 12u;
+    uint limb0_3 = t1_u.z & 4095u;
     uint cross3 = limb1_3 * limb0_3;
     uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
     uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     uint hi4 = hi3 + (lo3 >> 24u);
     uint lo4 = lo3 & 16777215u;
-    precise float t3 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
-    precise float root_estimate = sqrt(t3);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float t2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= t3 ? 1.0 : (root_h0 * root_h0 > t3 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t3 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t3 ? 1.0 : (root_m0 * root_m0 > t3 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float length = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = length * 2097152.0;
-    uint t6 = uint(t5);
+    precise float t3 = length * 2097152.0;
+    uint t3_u = uint(t3);
     uint wide = (hi4 << 24u) + lo4;
-    uint rest = wide - t6 * t6 + 1073741824u;
-    uint n = 1073741824u + t6 < rest ? t6 + 1u : (rest < 1073741824u - t6 + 1u ? t6 - 1u : t6);
+    uint rest = wide - t3_u * t3_u + 1073741824u;
+    uint t4 = t3_u + 1u;
+    uint t5 = t3_u - 1u;
+    uint t6 = rest < 1073741824u - t3_u + 1u ? t5 : t3_u;
+    uint n = 1073741824u + t3_u < rest ? t4 : t6;
     uint rest2 = wide - n * n + 1073741824u;
-    uint n2 = 1073741824u + n < rest2 ? n + 1u : (rest2 < 1073741824u - n + 1u ? n - 1u : n);
+    uint t7 = n + 1u;
+    uint t8 = n - 1u;
+    uint t9 = rest2 < 1073741824u - n + 1u ? t8 : n;
+    uint n2 = 1073741824u + n < rest2 ? t7 : t9;
     precise float nf = float(n2);
-    precise float t7 = round(float(t2.x) / nf * 16777216.0);
-    uint k0 = uint(t7);
-    uint r = (t2.x << 24u) - k0 * n2;
-    uint t8 = r << 1u;
-    uint t9 = n2 << 4u;
-    uint t = t8 + n2 + t9;
+    precise float t10 = round(float(t1_u.x) / nf * 16777216.0);
+    uint k0 = uint(t10);
+    uint r = (t1_u.x << 24u) - k0 * n2;
+    uint t11 = r << 1u;
+    uint t12 = n2 << 4u;
+    uint t = t11 + n2 + t12;
     uint two_n = n2 << 1u;
-    uint t10 = t >> 12u;
-    precise float t11 = floor((float(t10) * 4096.0 + float(t & 4095u)) / (nf * 2.0));
-    uint q0 = uint(t11);
+    uint t13 = t >> 12u;
+    precise float t14 = (float(t13) * 4096.0 + float(t & 4095u)) / (nf * 2.0);
+    precise float floor_t14 = floor(t14);
+    uint q0 = uint(floor_t14);
     uint rest3 = t - q0 * two_n;
     bool negative = !(rest3 < 2147483648u);
-    precise float t12 = round(float(t2.y) / nf * 16777216.0);
-    uint k0_2 = uint(t12);
-    uint r2 = (t2.y << 24u) - k0_2 * n2;
-    uint t13 = r2 << 1u;
-    uint t14 = n2 << 4u;
-    uint t15 = t13 + n2 + t14;
+    bool t15 = !negative;
+    precise float t16 = round(float(t1_u.y) / nf * 16777216.0);
+    uint k0_2 = uint(t16);
+    uint r2 = (t1_u.y << 24u) - k0_2 * n2;
+    uint t17 = r2 << 1u;
+    uint t18 = n2 << 4u;
+    uint t19 = t17 + n2 + t18;
     uint two_n2 = n2 << 1u;
-    uint t16 = t15 >> 12u;
-    precise float t17 = floor((float(t16) * 4096.0 + float(t15 & 4095u)) / (nf * 2.0));
-    uint q0_2 = uint(t17);
-    uint rest4 = t15 - q0_2 * two_n2;
+    uint t20 = t19 >> 12u;
+    precise float t21 = (float(t20) * 4096.0 + float(t19 & 4095u)) / (nf * 2.0);
+    precise float floor_t21 = floor(t21);
+    uint q0_2 = uint(floor_t21);
+    uint rest4 = t19 - q0_2 * two_n2;
     bool negative2 = !(rest4 < 2147483648u);
-    precise float t18 = round(float(t2.z) / nf * 16777216.0);
-    uint k0_3 = uint(t18);
-    uint r3 = (t2.z << 24u) - k0_3 * n2;
-    uint t19 = r3 << 1u;
-    uint t20 = n2 << 4u;
-    uint t21 = t19 + n2 + t20;
+    bool t22 = !negative2;
+    precise float t23 = round(float(t1_u.z) / nf * 16777216.0);
+    uint k0_3 = uint(t23);
+    uint r3 = (t1_u.z << 24u) - k0_3 * n2;
+    uint t24 = r3 << 1u;
+    uint t25 = n2 << 4u;
+    uint t26 = t24 + n2 + t25;
     uint two_n3 = n2 << 1u;
-    uint t22 = t21 >> 12u;
-    precise float t23 = floor((float(t22) * 4096.0 + float(t21 & 4095u)) / (nf * 2.0));
-    uint q0_3 = uint(t23);
-    uint rest5 = t21 - q0_3 * two_n3;
+    uint t27 = t26 >> 12u;
+    precise float t28 = (float(t27) * 4096.0 + float(t26 & 4095u)) / (nf * 2.0);
+    precise float floor_t28 = floor(t28);
+    uint q0_3 = uint(floor_t28);
+    uint rest5 = t26 - q0_3 * two_n3;
     bool negative3 = !(rest5 < 2147483648u);
-    bool3 t24 = bool3(
-        !(rest3 < two_n) && !negative,
-        !(rest4 < two_n2) && !negative2,
-        !(rest5 < two_n3) && !negative3
-    );
-    precise float3 t25 = float3(
-        (uint3(t8, t13, t19) + n2 + uint3(t9, t14, t20)) & uint3(4095u, 4095u, 4095u)
-    );
-    precise float3 t26 = floor(
-        (float3(uint3(t10, t16, t22)) * 4096.0 + t25) / (nf * float3(2.0, 2.0, 2.0))
-    );
-    uint3 t27 = uint3(t26);
-    uint3 t28 = UNITPACK_SELECT(
-        t24,
-        t27 + 1u,
-        UNITPACK_SELECT(bool3(negative, negative2, negative3), t27 - 1u, t27)
-    );
-    precise float3 t29 = round(float3(t2) / nf * 16777216.0);
-    uint3 t30 = uint3(t29) + t28 - 8u;
-    uint3 t31 = UNITPACK_SELECT(
-        uint3(16777216u, 16777216u, 16777216u) < t30,
-        uint3(16777216u, 16777216u, 16777216u),
-        t30
-    );
-    precise float3 t32 = float3(t31) * 5.9604645e-8;
-    precise float3 result = ok
-        ? UNITPACK_SELECT(w2 < float3(0.0, 0.0, 0.0), -t32, t32)
-        : float3(0.0, 0.0, 1.0);
-    return result;
+    bool t29 = !negative3;
+    bool3 t30 = bool3(!(rest3 < two_n) && t15, !(rest4 < two_n2) && t22, !(rest5 < two_n3) && t29);
+    precise float3 t31 = float3(uint3(t13, t20, t27)) * 4096.0
+        + float3((uint3(t11, t17, t24) + n2 + uint3(t12, t18, t25)) & uint3(4095u, 4095u, 4095u));
+    precise float3 t32 = floor(t31 / (nf * float3(2.0, 2.0, 2.0)));
+    uint3 t32_u = uint3(t32);
+    precise float3 t33 = round(float3(t1_u) / nf * 16777216.0);
+    uint3 t34 = uint3(t33)
+        + UNITPACK_SELECT(
+            t30,
+            t32_u + 1u,
+            UNITPACK_SELECT(bool3(negative, negative2, negative3), t32_u - 1u, t32_u)
+        );
+    uint3 t35 = t34 - 8u;
+    precise float3 t36 = float3(
+        UNITPACK_SELECT(
+            uint3(16777216u, 16777216u, 16777216u) < t35,
+            uint3(16777216u, 16777216u, 16777216u),
+            t35
+        )
+    )
+        * 5.9604645e-8;
+    precise float3 t37 = UNITPACK_SELECT(w2 < float3(0.0, 0.0, 0.0), -t36, t36);
+    return ok ? t37 : float3(0.0, 0.0, 1.0);
 }
 
 // unitpack_float32x3_encode: fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16
-//   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
-//   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
+// In: as for unitpack_float32x3_encode_float.
 // Out: the packed code, uint3 (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2 bits
 //   0–31: p2 float32).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -70,15 +70,17 @@ float3 unitpack_hemioct16_decode(uint code) {
 float2 unitpack_hemioct16_encode_float(float3 v) {
     precise float3 t1 = float3(v.xy, v.z < 0.0 ? 0.0 : v.z);
     precise float3 abs_t1 = abs(t1);
-    precise float t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    precise float3 w = t1 * (t2 <= 3.4028235e38 ? (t2 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    precise float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    precise float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    precise float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    precise float3 w = t1 * fit;
     precise float3 abs_w = abs(w);
     precise float l1 = abs_w.x + abs_w.y + abs_w.z;
     precise float2 p = w.xy / l1;
-    precise float2 result = l1 > 0.0 && l1 <= 3.4028235e38 && v.z >= (-3.4028235e38)
-        ? float2(p.x + p.y, p.x - p.y)
-        : float2(0.0, 0.0);
-    return result;
+    bool t3 = v.z >= (-3.4028235e38);
+    bool t4 = l1 <= 3.4028235e38;
+    precise float2 t5 = float2(p.x + p.y, p.x - p.y);
+    return l1 > 0.0 && t4 && t3 ? t5 : float2(0.0, 0.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -97,7 +99,8 @@ float2 unitpack_hemioct16_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -106,25 +109,22 @@ float2 unitpack_hemioct16_round_codes(float3 a0) {
     precise float3 t1 = abs(float3(w.xy, w.z > 0.0 ? w.z : 0.0));
     precise float l1 = t1.x + t1.y + t1.z;
     precise float2 n = float2(w.x + w.y, w.x - w.y);
+    bool t2 = l1 > 0.0;
     precise float2 abs_n = abs(n);
-    precise float2 t2 = round(abs_n / l1 * 127.0);
-    precise float2 t3 = abs_n * 127.0;
-    precise float2 t4 = UNITPACK_SELECT(
-        t3 >= (t2 + 0.5) * l1,
+    precise float2 t3 = round(abs_n / l1 * 127.0);
+    precise float2 t4 = abs_n * 127.0;
+    precise float2 t5 = UNITPACK_SELECT(
+        t4 >= (t3 + 0.5) * l1,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t3 < (t2 - 0.5) * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t4 < (t3 - 0.5) * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t5 = t2 + t4;
-    precise float2 result = ok && l1 > 0.0
-        ? UNITPACK_SELECT(n < float2(0.0, 0.0), -t5, t5)
-        : float2(0.0, 0.0);
-    return result;
+    precise float2 t6 = t3 + t5;
+    precise float2 t7 = UNITPACK_SELECT(n < float2(0.0, 0.0), -t6, t6);
+    return ok && t2 ? t7 : float2(0.0, 0.0);
 }
 
 // unitpack_hemioct16_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_encode_float.
 // Out: the packed code, uint (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's
 //   complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -56,10 +56,8 @@ float3 unitpack_hemioct16_dxt5nm_decode_float(float4 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16_dxt5nm_decode_float is, within the same bound.
 float3 unitpack_hemioct16_dxt5nm_decode(uint code) {
-    precise float4 t1 = float4(
-        uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    precise float4 params = t1 * 0.003921569;
+    uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    precise float4 params = float4(t1) * 0.003921569;
     return unitpack_hemioct16_dxt5nm_decode_float(params);
 }
 
@@ -75,14 +73,17 @@ float3 unitpack_hemioct16_dxt5nm_decode(uint code) {
 float4 unitpack_hemioct16_dxt5nm_encode_float(float3 v) {
     precise float3 t1 = float3(v.xy, v.z < 0.0 ? 0.0 : v.z);
     precise float3 abs_t1 = abs(t1);
-    precise float t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    precise float3 w = t1 * (t2 <= 3.4028235e38 ? (t2 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    precise float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    precise float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    precise float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    precise float3 w = t1 * fit;
     precise float3 abs_w = abs(w);
     precise float l1 = abs_w.x + abs_w.y + abs_w.z;
     precise float2 p = w.xy / l1;
-    precise float2 p2 = l1 > 0.0 && l1 <= 3.4028235e38 && v.z >= (-3.4028235e38)
-        ? float2(p.x + p.y, p.x - p.y)
-        : float2(0.0, 0.0);
+    bool t3 = v.z >= (-3.4028235e38);
+    bool t4 = l1 <= 3.4028235e38;
+    precise float2 t5 = float2(p.x + p.y, p.x - p.y);
+    precise float2 p2 = l1 > 0.0 && t4 && t3 ? t5 : float2(0.0, 0.0);
     precise float4 result = float4(1.0, 0.5 + p2.y * 0.5, 0.0, 0.5 + p2.x * 0.5);
     return result;
 }
@@ -103,7 +104,8 @@ float4 unitpack_hemioct16_dxt5nm_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -112,40 +114,37 @@ float4 unitpack_hemioct16_dxt5nm_round_codes(float3 a0) {
     precise float3 t1 = abs(float3(w.xy, w.z > 0.0 ? w.z : 0.0));
     precise float l1 = t1.x + t1.y + t1.z;
     precise float2 n = float2(w.x + w.y, w.x - w.y);
-    precise float2 t2 = n * 127.5;
-    precise float2 t3 = round(t2 / l1 + 127.5);
-    precise float2 t4 = UNITPACK_SELECT(t3 >= float2(0.0, 0.0), t3, float2(0.0, 0.0));
-    precise float2 t5 = UNITPACK_SELECT(t4 <= float2(255.0, 255.0), t4, float2(255.0, 255.0));
-    precise float2 t6 = UNITPACK_SELECT(
-        t5 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t2 >= (t5 - 127.0) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
+    bool t2 = l1 > 0.0;
+    precise float2 t3 = n * 127.5;
+    precise float2 t4 = round(t3 / l1 + 127.5);
+    precise float2 t5 = UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0));
+    precise float2 t6 = UNITPACK_SELECT(t5 <= float2(255.0, 255.0), t5, float2(255.0, 255.0));
+    precise float2 t7 = t6
+        + UNITPACK_SELECT(
+            t6 < float2(255.0, 255.0),
+            UNITPACK_SELECT(t3 >= (t6 - 127.0) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        );
+    precise float2 t8 = UNITPACK_SELECT(
+        t6 > float2(0.0, 0.0),
+        UNITPACK_SELECT(t3 >= (t6 - 1.0 - 127.0) * l1, float2(1.0, 1.0), float2(0.0, 0.0)) - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t7 = UNITPACK_SELECT(
-        t2 >= (t5 - 1.0 - 127.0) * l1,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
-    );
-    precise float2 c = ok && l1 > 0.0
-        ? t5 + t6 + UNITPACK_SELECT(t5 > float2(0.0, 0.0), t7 - 1.0, float2(0.0, 0.0))
-        : float2(128.0, 128.0);
+    precise float2 t9 = t7 + t8;
+    precise float2 c = ok && t2 ? t9 : float2(128.0, 128.0);
     return float4(255.0, c.y, 0.0, c.x);
 }
 
 // unitpack_hemioct16_dxt5nm_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_dxt5nm_encode_float.
 // Out: the RGBA8 texel as a uint (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B = 0, A =
 //   x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128).
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 uint unitpack_hemioct16_dxt5nm_encode(float3 v) {
     precise float4 round_codes = unitpack_hemioct16_dxt5nm_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_HEMIOCT16_DXT5NM_HLSL

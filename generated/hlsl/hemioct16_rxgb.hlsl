@@ -56,10 +56,8 @@ float3 unitpack_hemioct16_rxgb_decode_float(float4 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16_rxgb_decode_float is, within the same bound.
 float3 unitpack_hemioct16_rxgb_decode(uint code) {
-    precise float4 t1 = float4(
-        uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    precise float4 params = t1 * 0.003921569;
+    uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    precise float4 params = float4(t1) * 0.003921569;
     return unitpack_hemioct16_rxgb_decode_float(params);
 }
 
@@ -75,33 +73,45 @@ float3 unitpack_hemioct16_rxgb_decode(uint code) {
 float4 unitpack_hemioct16_rxgb_encode_float(float3 v) {
     precise float3 t1 = float3(v.xy, v.z < 0.0 ? 0.0 : v.z);
     precise float3 abs_t1 = abs(t1);
-    precise float t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    precise float3 w = t1 * (t2 <= 3.4028235e38 ? (t2 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    precise float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    precise float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    precise float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    precise float3 w = t1 * fit;
     precise float3 abs_w = abs(w);
     precise float l1 = abs_w.x + abs_w.y + abs_w.z;
     precise float2 p = w.xy / l1;
-    precise float2 p2 = l1 > 0.0 && l1 <= 3.4028235e38 && v.z >= (-3.4028235e38)
-        ? float2(p.x + p.y, p.x - p.y)
-        : float2(0.0, 0.0);
+    bool t3 = v.z >= (-3.4028235e38);
+    bool t4 = l1 <= 3.4028235e38;
+    precise float2 t5 = float2(p.x + p.y, p.x - p.y);
+    precise float2 p2 = l1 > 0.0 && t4 && t3 ? t5 : float2(0.0, 0.0);
     precise float3 abs_v = abs(v);
-    precise float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    precise float largest = t3 >= abs_v.z ? t3 : abs_v.z;
-    bool t4 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t4 ? largest : 1.0);
+    precise float t6 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    precise float largest = t6 >= abs_v.z ? t6 : abs_v.z;
+    bool t7 = largest <= 3.4028235e38;
+    bool t8 = largest > 0.0 && t7;
+    precise float3 scaled = v / (t8 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t5 = t4 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    precise float3 t6 = float3(t5.xy, t5.z > 0.0 ? t5.z : 0.0);
-    precise float3 abs_t6 = abs(t6);
-    precise float t7 = abs_t6.x >= abs_t6.y ? abs_t6.x : abs_t6.y;
-    precise float largest2 = t7 >= abs_t6.z ? t7 : abs_t6.z;
-    bool t8 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    precise float3 scaled2 = t6 / (t8 ? largest2 : 1.0);
+    bool t9 = len2 >= 1.0;
+    precise float3 t10 = scaled / sqrt(len2);
+    precise float3 t11 = t8 && t9 ? t10 : float3(0.0, 0.0, 1.0);
+    precise float3 t12 = float3(t11.xy, t11.z > 0.0 ? t11.z : 0.0);
+    precise float3 abs_t12 = abs(t12);
+    precise float t13 = abs_t12.x >= abs_t12.y ? abs_t12.x : abs_t12.y;
+    precise float largest2 = t13 >= abs_t12.z ? t13 : abs_t12.z;
+    bool t14 = largest2 <= 3.4028235e38;
+    bool t15 = largest2 > 0.0 && t14;
+    precise float3 scaled2 = t12 / (t15 ? largest2 : 1.0);
     precise float3 scaled2_sq = scaled2 * scaled2;
     precise float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    precise float t9 = 0.5
-        + (t8 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : float3(0.0, 0.0, 1.0)).z * 0.5;
-    precise float4 result = float4(1.0, 0.5 + p2.y * 0.5, t9, 0.5 + p2.x * 0.5);
+    bool t16 = len2_2 >= 1.0;
+    precise float3 t17 = scaled2 / sqrt(len2_2);
+    precise float4 result = float4(
+        1.0,
+        0.5 + p2.y * 0.5,
+        0.5 + (t15 && t16 ? t17 : float3(0.0, 0.0, 1.0)).z * 0.5,
+        0.5 + p2.x * 0.5
+    );
     return result;
 }
 
@@ -121,7 +131,8 @@ float4 unitpack_hemioct16_rxgb_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -130,23 +141,24 @@ float4 unitpack_hemioct16_rxgb_round_codes(float3 a0) {
     precise float3 t1 = abs(float3(w.xy, w.z > 0.0 ? w.z : 0.0));
     precise float l1 = t1.x + t1.y + t1.z;
     precise float2 n = float2(w.x + w.y, w.x - w.y);
-    precise float2 t2 = n * 127.5;
-    precise float2 t3 = round(t2 / l1 + 127.5);
-    precise float2 t4 = UNITPACK_SELECT(t3 >= float2(0.0, 0.0), t3, float2(0.0, 0.0));
-    precise float2 t5 = UNITPACK_SELECT(t4 <= float2(255.0, 255.0), t4, float2(255.0, 255.0));
-    precise float2 t6 = UNITPACK_SELECT(
-        t5 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t2 >= (t5 - 127.0) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
+    bool t2 = l1 > 0.0;
+    precise float2 t3 = n * 127.5;
+    precise float2 t4 = round(t3 / l1 + 127.5);
+    precise float2 t5 = UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0));
+    precise float2 t6 = UNITPACK_SELECT(t5 <= float2(255.0, 255.0), t5, float2(255.0, 255.0));
+    precise float2 t7 = t6
+        + UNITPACK_SELECT(
+            t6 < float2(255.0, 255.0),
+            UNITPACK_SELECT(t3 >= (t6 - 127.0) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        );
+    precise float2 t8 = UNITPACK_SELECT(
+        t6 > float2(0.0, 0.0),
+        UNITPACK_SELECT(t3 >= (t6 - 1.0 - 127.0) * l1, float2(1.0, 1.0), float2(0.0, 0.0)) - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t7 = UNITPACK_SELECT(
-        t2 >= (t5 - 1.0 - 127.0) * l1,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
-    );
-    precise float2 c = ok && l1 > 0.0
-        ? t5 + t6 + UNITPACK_SELECT(t5 > float2(0.0, 0.0), t7 - 1.0, float2(0.0, 0.0))
-        : float2(128.0, 128.0);
+    precise float2 t9 = t7 + t8;
+    precise float2 c = ok && t2 ? t9 : float2(128.0, 128.0);
     precise float3 normal2 = UNITPACK_SELECT(
         abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
@@ -159,18 +171,19 @@ float4 unitpack_hemioct16_rxgb_round_codes(float3 a0) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w2 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w3 = ok2 ? w2 : float3(0.0, 0.0, 2.0);
-    precise float3 t8 = float3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
+    precise float3 t10 = float3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
     precise float3 normal3 = UNITPACK_SELECT(
-        abs(t8) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(t10) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        t8
+        t10
     );
     precise float3 abs_normal3 = abs(normal3);
     precise float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
@@ -179,7 +192,8 @@ float4 unitpack_hemioct16_rxgb_round_codes(float3 a0) {
     precise float3 scaled3 = normal3 * scale3;
     precise float3 abs_scaled3 = abs(scaled3);
     precise float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_3 = sum3 < 16.0;
+    bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     precise float3 w4 = UNITPACK_SELECT(
         abs(scaled3) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -192,38 +206,40 @@ float4 unitpack_hemioct16_rxgb_round_codes(float3 a0) {
     precise float split_lo2 = w5.y - split_hi2;
     precise float split_hi3 = asfloat(asuint(w5.z) & 4294963200u);
     precise float split_lo3 = w5.z - split_hi3;
-    precise float t9 = (split_hi + split_hi) * split_lo
+    precise float t11 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     precise float len2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t9
+        + t11
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     precise float big2 = w5.z * w5.z * 16256.25;
-    precise float t10 = round(w5.z / sqrt(len2) * 127.5 + 127.5);
-    precise float t11 = t10 >= 0.0 ? t10 : 0.0;
-    precise float estimate = t11 <= 255.0 ? t11 : 255.0;
-    precise float t12 = estimate - 127.0;
-    precise float t13 = t12 * t12 * len2;
-    precise float t14 = w5.z >= 0.0
-        ? (t12 > 0.0 ? (big2 >= t13 ? 1.0 : 0.0) : 1.0)
-        : (t12 < 0.0 ? (big2 <= t13 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 255.0 ? t14 : 0.0;
-    precise float t15 = estimate - 1.0 - 127.0;
-    precise float t16 = t15 * t15 * len2;
-    precise float t17 = w5.z >= 0.0
-        ? (t15 > 0.0 ? (big2 >= t16 ? 1.0 : 0.0) : 1.0)
-        : (t15 < 0.0 ? (big2 <= t16 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t17 - 1.0 : 0.0;
+    precise float t12 = round(w5.z / sqrt(len2) * 127.5 + 127.5);
+    precise float t13 = t12 >= 0.0 ? t12 : 0.0;
+    precise float estimate = t13 <= 255.0 ? t13 : 255.0;
+    precise float t14 = estimate - 127.0;
+    precise float t15 = t14 * t14 * len2;
+    precise float one_if = big2 >= t15 ? 1.0 : 0.0;
+    precise float t16 = t14 > 0.0 ? one_if : 1.0;
+    precise float one_if2 = big2 <= t15 ? 1.0 : 0.0;
+    precise float t17 = t14 < 0.0 ? one_if2 : 0.0;
+    precise float t18 = w5.z >= 0.0 ? t16 : t17;
+    precise float up = estimate < 255.0 ? t18 : 0.0;
+    precise float t19 = estimate - 1.0 - 127.0;
+    precise float t20 = t19 * t19 * len2;
+    precise float one_if3 = big2 >= t20 ? 1.0 : 0.0;
+    precise float t21 = t19 > 0.0 ? one_if3 : 1.0;
+    precise float one_if4 = big2 <= t20 ? 1.0 : 0.0;
+    precise float t22 = t19 < 0.0 ? one_if4 : 0.0;
+    precise float t23 = (w5.z >= 0.0 ? t21 : t22) - 1.0;
+    precise float down = estimate > 0.0 ? t23 : 0.0;
     precise float4 result = float4(255.0, c.y, estimate + up + down, c.x);
     return result;
 }
 
 // unitpack_hemioct16_rxgb_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_rxgb_encode_float.
 // Out: the RGBA8 texel as a uint (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B = the
 //   input's z (z·½ + ½), A = x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is
 //   stored as x = y = 128).
@@ -231,10 +247,8 @@ float4 unitpack_hemioct16_rxgb_round_codes(float3 a0) {
 //   components count as zero.
 uint unitpack_hemioct16_rxgb_encode(float3 v) {
     precise float4 round_codes = unitpack_hemioct16_rxgb_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_HEMIOCT16_RXGB_HLSL

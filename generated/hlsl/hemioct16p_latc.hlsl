@@ -57,10 +57,8 @@ float3 unitpack_hemioct16p_latc_decode_float(float4 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16p_latc_decode_float is, within the same bound.
 float3 unitpack_hemioct16p_latc_decode(uint code) {
-    precise float4 t1 = float4(
-        uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    precise float4 params = t1 * 0.003921569;
+    uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    precise float4 params = float4(t1) * 0.003921569;
     return unitpack_hemioct16p_latc_decode_float(params);
 }
 
@@ -81,7 +79,8 @@ float4 unitpack_hemioct16p_latc_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -89,19 +88,21 @@ float4 unitpack_hemioct16p_latc_encode_codes(float3 v) {
     );
     precise float3 t1 = abs(float3(w.xy, w.z > 0.0 ? w.z : 0.0));
     precise float sum2 = t1.x + t1.y + t1.z;
-    bool t2 = ok && sum2 > 0.0;
-    precise float3 a = t2 ? t1 : float3(0.0, 0.0, 2.0);
-    precise float l1 = t2 ? sum2 : 2.0;
-    precise float t3 = a.x + a.y;
-    precise float t = t3 * 127.5;
-    precise float t4 = round(t / l1 + 127.5);
-    precise float t5 = t4 >= 0.0 ? t4 : 0.0;
-    precise float estimate = t5 <= 255.0 ? t5 : 255.0;
-    bool t6 = estimate < 255.0;
-    precise float t7 = t >= (estimate - 126.5) * l1 ? 1.0 : 0.0;
-    precise float up = t6 ? t7 : 0.0;
+    bool t2 = sum2 > 0.0;
+    bool t3 = ok && t2;
+    precise float3 a = t3 ? t1 : float3(0.0, 0.0, 2.0);
+    precise float l1 = t3 ? sum2 : 2.0;
+    precise float t4 = a.x + a.y;
+    precise float t = t4 * 127.5;
+    precise float t5 = round(t / l1 + 127.5);
+    precise float t6 = t5 >= 0.0 ? t5 : 0.0;
+    precise float estimate = t6 <= 255.0 ? t6 : 255.0;
+    bool t7 = estimate < 255.0;
+    precise float one_if = t >= (estimate - 126.5) * l1 ? 1.0 : 0.0;
+    precise float up = t7 ? one_if : 0.0;
     bool t8 = estimate > 0.0;
-    precise float t9 = (t >= (estimate - 1.0 - 126.5) * l1 ? 1.0 : 0.0) - 1.0;
+    precise float one_if2 = t >= (estimate - 1.0 - 126.5) * l1 ? 1.0 : 0.0;
+    precise float t9 = one_if2 - 1.0;
     precise float down = t8 ? t9 : 0.0;
     precise float t10 = estimate + up;
     precise float s0 = t10 + down;
@@ -111,189 +112,209 @@ float4 unitpack_hemioct16p_latc_encode_codes(float3 v) {
     precise float t14 = t13 >= 0.0 ? t13 : 0.0;
     precise float estimate2 = t14 <= 255.0 ? t14 : 255.0;
     bool t15 = estimate2 < 255.0;
-    precise float t16 = t12 >= (estimate2 - 126.5) * l1 ? 1.0 : 0.0;
-    precise float up2 = t15 ? t16 : 0.0;
-    bool t17 = estimate2 > 0.0;
-    precise float t18 = (t12 >= (estimate2 - 1.0 - 126.5) * l1 ? 1.0 : 0.0) - 1.0;
-    precise float down2 = t17 ? t18 : 0.0;
-    precise float t19 = estimate2 + up2;
-    precise float t0 = t19 + down2;
-    precise float3 t20 = floor(a * 4194304.0);
-    uint3 afix = uint3(t20);
-    precise float2 t21 = float2(t11, t3) * 127.5;
-    precise float2 t22 = round(t21 / l1 + 127.5);
-    precise float2 t23 = UNITPACK_SELECT(t22 >= float2(0.0, 0.0), t22, float2(0.0, 0.0));
-    precise float2 t24 = UNITPACK_SELECT(t23 <= float2(255.0, 255.0), t23, float2(255.0, 255.0));
+    precise float one_if3 = t12 >= (estimate2 - 126.5) * l1 ? 1.0 : 0.0;
+    precise float up2 = t15 ? one_if3 : 0.0;
+    bool t16 = estimate2 > 0.0;
+    precise float one_if4 = t12 >= (estimate2 - 1.0 - 126.5) * l1 ? 1.0 : 0.0;
+    precise float t17 = one_if4 - 1.0;
+    precise float down2 = t16 ? t17 : 0.0;
+    precise float t18 = estimate2 + up2;
+    precise float t0 = t18 + down2;
+    precise float3 t19 = floor(a * 4194304.0);
+    uint3 afix = uint3(t19);
+    precise float2 t20 = float2(t11, t4) * 127.5;
+    precise float2 t21 = round(t20 / l1 + 127.5);
+    precise float2 t22 = UNITPACK_SELECT(t21 >= float2(0.0, 0.0), t21, float2(0.0, 0.0));
+    precise float2 t23 = UNITPACK_SELECT(t22 <= float2(255.0, 255.0), t22, float2(255.0, 255.0));
+    precise float2 t24 = t23
+        + UNITPACK_SELECT(
+            t23 < float2(255.0, 255.0),
+            UNITPACK_SELECT(t20 >= (t23 - 126.5) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        );
     precise float2 t25 = UNITPACK_SELECT(
-        t24 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t21 >= (t24 - 126.5) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
+        t23 > float2(0.0, 0.0),
+        UNITPACK_SELECT(t20 >= (t23 - 1.0 - 126.5) * l1, float2(1.0, 1.0), float2(0.0, 0.0)) - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t26 = UNITPACK_SELECT(
-        t21 >= (t24 - 1.0 - 126.5) * l1,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
-    );
-    precise float2 t27 = t24
-        + t25
-        + UNITPACK_SELECT(t24 > float2(0.0, 0.0), t26 - 1.0, float2(0.0, 0.0));
-    precise float2 t28 = float2(t3, t11) * 127.5;
+    precise float2 t26 = t24 + t25;
+    precise float2 t27 = -(t26 + t26 - 255.0);
+    precise float2 t28 = float2(t4, t11) * 127.5;
     precise float2 t29 = round(t28 / l1 + 127.5);
     precise float2 t30 = UNITPACK_SELECT(t29 >= float2(0.0, 0.0), t29, float2(0.0, 0.0));
     precise float2 t31 = UNITPACK_SELECT(t30 <= float2(255.0, 255.0), t30, float2(255.0, 255.0));
-    precise float2 t32 = UNITPACK_SELECT(
-        t31 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t28 >= (t31 - 126.5) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
+    precise float2 t32 = t31
+        + UNITPACK_SELECT(
+            t31 < float2(255.0, 255.0),
+            UNITPACK_SELECT(t28 >= (t31 - 126.5) * l1, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        );
     precise float2 t33 = UNITPACK_SELECT(
-        t28 >= (t31 - 1.0 - 126.5) * l1,
-        float2(1.0, 1.0),
+        t31 > float2(0.0, 0.0),
+        UNITPACK_SELECT(t28 >= (t31 - 1.0 - 126.5) * l1, float2(1.0, 1.0), float2(0.0, 0.0)) - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t34 = t31
-        + t32
-        + UNITPACK_SELECT(t31 > float2(0.0, 0.0), t33 - 1.0, float2(0.0, 0.0));
-    precise float2 t35 = s0 + s0 - 255.0 + (t0 + t0 - 255.0) < 0.0
-        ? -(t27 + t27 - 255.0)
-        : t34 + t34 - 255.0;
-    precise float2 cand = t35.x < t35.y ? t35.yx : t35;
-    precise float t36 = 510.0 - cand.x - cand.x;
-    precise float t37 = t36 >= 0.0 ? t36 : 0.0;
-    precise float t38 = cand.x + cand.y;
-    uint t39 = uint(t38);
+    precise float2 t34 = t32 + t33;
+    precise float2 t35 = t34 + t34 - 255.0;
+    precise float2 t36 = s0 + s0 - 255.0 + (t0 + t0 - 255.0) < 0.0 ? t27 : t35;
+    precise float2 cand = t36.x < t36.y ? t36.yx : t36;
+    precise float t37 = 510.0 - cand.x - cand.x;
+    precise float t38 = t37 >= 0.0 ? t37 : 0.0;
+    precise float t39 = cand.x + cand.y;
+    uint t39_u = uint(t39);
     precise float t40 = cand.x - cand.y;
-    uint t41 = uint(t40);
-    uint t42 = uint(t37);
-    uint3 cross = afix.yzx * uint3(float3(t37, t38, t40)) - afix.zxy * uint3(float3(t40, t37, t38));
-    uint t43 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
-    uint t44 = t43 >> 16u;
-    uint t45 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    uint t40_u = uint(t40);
+    uint t38_u = uint(t38);
+    uint3 cross = afix.yzx * uint3(float3(t38, t39, t40)) - afix.zxy * uint3(float3(t40, t38, t39));
+    uint t41 = 0u - cross.x;
+    uint t42 = cross.x < 2147483648u ? cross.x : t41;
+    uint t43 = t42 >> 16u;
+    uint t44 = 0u - cross.y;
+    uint t45 = cross.y < 2147483648u ? cross.y : t44;
     uint t46 = t45 >> 16u;
-    uint t47 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    uint t48 = t47 >> 16u;
-    uint3 t49 = uint3(
-        (t44 * (t43 & 65535u)) >> 12u,
+    uint t47 = 0u - cross.z;
+    uint t48 = cross.z < 2147483648u ? cross.z : t47;
+    uint t49 = t48 >> 16u;
+    uint3 t50 = uint3((t43 * t43) << 3u, (t46 * t46) << 3u, (t49 * t49) << 3u);
+    uint3 t51 = uint3(
+        (t43 * (t42 & 65535u)) >> 12u,
         (t46 * (t45 & 65535u)) >> 12u,
-        (t48 * (t47 & 65535u)) >> 12u
+        (t49 * (t48 & 65535u)) >> 12u
     );
-    uint3 t50 = uint3((t44 * t44) << 3u, (t46 * t46) << 3u, (t48 * t48) << 3u) + t49;
-    precise float e = float(t50.x + t50.y + t50.z);
-    precise float n = float(t39 * t39 + t41 * t41 + t42 * t42);
-    precise float t51 = s0 + 1.0;
-    precise float2 t52 = float2(estimate2, t10)
-        + UNITPACK_SELECT(bool2(t15, t8), float2(t16, t9), float2(0.0, 0.0));
-    precise float2 t53 = t52 + float2(down2, 1.0);
-    precise float2 t54 = float2(t10, estimate2)
-        + UNITPACK_SELECT(bool2(t8, t15), float2(t9, t16), float2(0.0, 0.0));
-    precise float2 t55 = t54 + float2(1.0, down2);
-    precise float2 t56 = t51 + t51 - 255.0 + (t0 + t0 - 255.0) < 0.0
-        ? -(t53 + t53 - 255.0)
-        : t55 + t55 - 255.0;
-    precise float2 cand2 = t56.x < t56.y ? t56.yx : t56;
-    precise float t57 = 510.0 - cand2.x - cand2.x;
-    precise float t58 = t57 >= 0.0 ? t57 : 0.0;
-    precise float t59 = cand2.x + cand2.y;
-    uint t60 = uint(t59);
+    uint3 t52 = t50 + t51;
+    precise float e = float(t52.x + t52.y + t52.z);
+    precise float n = float(t39_u * t39_u + t40_u * t40_u + t38_u * t38_u);
+    precise float s_up = s0 + 1.0;
+    precise float t_up = t0 + 1.0;
+    precise float2 t53 = float2(estimate2, t10)
+        + UNITPACK_SELECT(bool2(t15, t8), float2(one_if3, t9), float2(0.0, 0.0))
+        + float2(down2, 1.0);
+    precise float2 t54 = -(t53 + t53 - 255.0);
+    precise float2 t55 = float2(t10, estimate2)
+        + UNITPACK_SELECT(bool2(t8, t15), float2(t9, one_if3), float2(0.0, 0.0))
+        + float2(1.0, down2);
+    precise float2 t56 = t55 + t55 - 255.0;
+    precise float2 t57 = s_up + s_up - 255.0 + (t0 + t0 - 255.0) < 0.0 ? t54 : t56;
+    precise float2 cand2 = t57.x < t57.y ? t57.yx : t57;
+    precise float t58 = 510.0 - cand2.x - cand2.x;
+    precise float t59 = t58 >= 0.0 ? t58 : 0.0;
+    precise float t60 = cand2.x + cand2.y;
+    uint t60_u = uint(t60);
     precise float t61 = cand2.x - cand2.y;
-    uint t62 = uint(t61);
-    uint t63 = uint(t58);
-    uint3 cross2 = afix.yzx * uint3(float3(t58, t59, t61))
-        - afix.zxy * uint3(float3(t61, t58, t59));
-    uint t64 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
-    uint t65 = t64 >> 16u;
-    uint t66 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
+    uint t61_u = uint(t61);
+    uint t59_u = uint(t59);
+    uint3 cross2 = afix.yzx * uint3(float3(t59, t60, t61))
+        - afix.zxy * uint3(float3(t61, t59, t60));
+    uint t62 = 0u - cross2.x;
+    uint t63 = cross2.x < 2147483648u ? cross2.x : t62;
+    uint t64 = t63 >> 16u;
+    uint t65 = 0u - cross2.y;
+    uint t66 = cross2.y < 2147483648u ? cross2.y : t65;
     uint t67 = t66 >> 16u;
-    uint t68 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
-    uint t69 = t68 >> 16u;
-    uint3 t70 = uint3(
-        (t65 * (t64 & 65535u)) >> 12u,
+    uint t68 = 0u - cross2.z;
+    uint t69 = cross2.z < 2147483648u ? cross2.z : t68;
+    uint t70 = t69 >> 16u;
+    uint3 t71 = uint3((t64 * t64) << 3u, (t67 * t67) << 3u, (t70 * t70) << 3u);
+    uint3 t72 = uint3(
+        (t64 * (t63 & 65535u)) >> 12u,
         (t67 * (t66 & 65535u)) >> 12u,
-        (t69 * (t68 & 65535u)) >> 12u
+        (t70 * (t69 & 65535u)) >> 12u
     );
-    uint3 t71 = uint3((t65 * t65) << 3u, (t67 * t67) << 3u, (t69 * t69) << 3u) + t70;
-    precise float e2 = float(t71.x + t71.y + t71.z);
-    precise float n2 = float(t60 * t60 + t62 * t62 + t63 * t63);
-    precise float t72 = e2 * n;
-    precise float t73 = e * n2;
-    bool t74 = cand2.x <= 255.0 && t72 < t73;
-    precise float2 best = t74 ? cand2 : cand;
-    precise float best_e = t74 ? e2 : e;
-    precise float best_n = t74 ? n2 : n;
-    precise float t75 = t0 + 1.0;
-    precise float2 t76 = float2(t19, estimate)
-        + UNITPACK_SELECT(bool2(t17, t6), float2(t18, t7), float2(0.0, 0.0));
-    precise float2 t77 = t76 + float2(1.0, down);
-    precise float2 t78 = float2(estimate, t19)
-        + UNITPACK_SELECT(bool2(t6, t17), float2(t7, t18), float2(0.0, 0.0));
-    precise float2 t79 = t78 + float2(down, 1.0);
-    precise float2 t80 = s0 + s0 - 255.0 + (t75 + t75 - 255.0) < 0.0
-        ? -(t77 + t77 - 255.0)
-        : t79 + t79 - 255.0;
-    precise float2 cand3 = t80.x < t80.y ? t80.yx : t80;
-    precise float t81 = 510.0 - cand3.x - cand3.x;
-    precise float t82 = t81 >= 0.0 ? t81 : 0.0;
-    precise float t83 = cand3.x + cand3.y;
-    uint t84 = uint(t83);
-    precise float t85 = cand3.x - cand3.y;
-    uint t86 = uint(t85);
-    uint t87 = uint(t82);
-    uint3 cross3 = afix.yzx * uint3(float3(t82, t83, t85))
-        - afix.zxy * uint3(float3(t85, t82, t83));
-    uint t88 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
+    uint3 t73 = t71 + t72;
+    precise float e2 = float(t73.x + t73.y + t73.z);
+    precise float n2 = float(t60_u * t60_u + t61_u * t61_u + t59_u * t59_u);
+    precise float t74 = e2 * n;
+    precise float t75 = e * n2;
+    bool t76 = t74 < t75;
+    bool t77 = cand2.x <= 255.0 && t76;
+    precise float2 best = t77 ? cand2 : cand;
+    precise float best_e = t77 ? e2 : e;
+    precise float best_n = t77 ? n2 : n;
+    precise float2 t78 = float2(t18, estimate)
+        + UNITPACK_SELECT(bool2(t16, t7), float2(t17, one_if), float2(0.0, 0.0))
+        + float2(1.0, down);
+    precise float2 t79 = -(t78 + t78 - 255.0);
+    precise float2 t80 = float2(estimate, t18)
+        + UNITPACK_SELECT(bool2(t7, t16), float2(one_if, t17), float2(0.0, 0.0))
+        + float2(down, 1.0);
+    precise float2 t81 = t80 + t80 - 255.0;
+    precise float2 t82 = s0 + s0 - 255.0 + (t_up + t_up - 255.0) < 0.0 ? t79 : t81;
+    precise float2 cand3 = t82.x < t82.y ? t82.yx : t82;
+    precise float t83 = 510.0 - cand3.x - cand3.x;
+    precise float t84 = t83 >= 0.0 ? t83 : 0.0;
+    precise float t85 = cand3.x + cand3.y;
+    uint t85_u = uint(t85);
+    precise float t86 = cand3.x - cand3.y;
+    uint t86_u = uint(t86);
+    uint t84_u = uint(t84);
+    uint3 cross3 = afix.yzx * uint3(float3(t84, t85, t86))
+        - afix.zxy * uint3(float3(t86, t84, t85));
+    uint t87 = 0u - cross3.x;
+    uint t88 = cross3.x < 2147483648u ? cross3.x : t87;
     uint t89 = t88 >> 16u;
-    uint t90 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
-    uint t91 = t90 >> 16u;
-    uint t92 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
-    uint t93 = t92 >> 16u;
-    uint3 t94 = uint3(
+    uint t90 = 0u - cross3.y;
+    uint t91 = cross3.y < 2147483648u ? cross3.y : t90;
+    uint t92 = t91 >> 16u;
+    uint t93 = 0u - cross3.z;
+    uint t94 = cross3.z < 2147483648u ? cross3.z : t93;
+    uint t95 = t94 >> 16u;
+    uint3 t96 = uint3((t89 * t89) << 3u, (t92 * t92) << 3u, (t95 * t95) << 3u);
+    uint3 t97 = uint3(
         (t89 * (t88 & 65535u)) >> 12u,
-        (t91 * (t90 & 65535u)) >> 12u,
-        (t93 * (t92 & 65535u)) >> 12u
+        (t92 * (t91 & 65535u)) >> 12u,
+        (t95 * (t94 & 65535u)) >> 12u
     );
-    uint3 t95 = uint3((t89 * t89) << 3u, (t91 * t91) << 3u, (t93 * t93) << 3u) + t94;
-    precise float e3 = float(t95.x + t95.y + t95.z);
-    precise float n3 = float(t84 * t84 + t86 * t86 + t87 * t87);
-    precise float t96 = e3 * best_n;
-    precise float t97 = best_e * n3;
-    bool t98 = cand3.x <= 255.0 && t96 < t97;
-    precise float2 best2 = t98 ? cand3 : best;
-    precise float best_e2 = t98 ? e3 : best_e;
-    precise float best_n2 = t98 ? n3 : best_n;
-    precise float t99 = s0 + 1.0;
-    precise float t100 = t0 + 1.0;
-    precise float2 t101 = t27 + 1.0;
-    precise float2 t102 = t34 + 1.0;
-    precise float2 t103 = t99 + t99 - 255.0 + (t100 + t100 - 255.0) < 0.0
-        ? -(t101 + t101 - 255.0)
-        : t102 + t102 - 255.0;
-    precise float2 cand4 = t103.x < t103.y ? t103.yx : t103;
-    precise float t104 = 510.0 - cand4.x - cand4.x;
-    precise float t105 = t104 >= 0.0 ? t104 : 0.0;
-    precise float t106 = cand4.x + cand4.y;
-    uint t107 = uint(t106);
-    precise float t108 = cand4.x - cand4.y;
-    uint t109 = uint(t108);
-    uint t110 = uint(t105);
-    uint3 cross4 = afix.yzx * uint3(float3(t105, t106, t108))
-        - afix.zxy * uint3(float3(t108, t105, t106));
-    uint t111 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
-    uint t112 = t111 >> 16u;
-    uint t113 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
+    uint3 t98 = t96 + t97;
+    precise float e3 = float(t98.x + t98.y + t98.z);
+    precise float n3 = float(t85_u * t85_u + t86_u * t86_u + t84_u * t84_u);
+    precise float t99 = e3 * best_n;
+    precise float t100 = best_e * n3;
+    bool t101 = t99 < t100;
+    bool t102 = cand3.x <= 255.0 && t101;
+    precise float2 best2 = t102 ? cand3 : best;
+    precise float best_e2 = t102 ? e3 : best_e;
+    precise float best_n2 = t102 ? n3 : best_n;
+    precise float2 t103 = t26 + 1.0;
+    precise float2 t104 = -(t103 + t103 - 255.0);
+    precise float2 t105 = t34 + 1.0;
+    precise float2 t106 = t105 + t105 - 255.0;
+    precise float2 t107 = s_up + s_up - 255.0 + (t_up + t_up - 255.0) < 0.0 ? t104 : t106;
+    precise float2 cand4 = t107.x < t107.y ? t107.yx : t107;
+    precise float t108 = 510.0 - cand4.x - cand4.x;
+    precise float t109 = t108 >= 0.0 ? t108 : 0.0;
+    precise float t110 = cand4.x + cand4.y;
+    uint t110_u = uint(t110);
+    precise float t111 = cand4.x - cand4.y;
+    uint t111_u = uint(t111);
+    uint t109_u = uint(t109);
+    uint3 cross4 = afix.yzx * uint3(float3(t109, t110, t111))
+        - afix.zxy * uint3(float3(t111, t109, t110));
+    uint t112 = 0u - cross4.x;
+    uint t113 = cross4.x < 2147483648u ? cross4.x : t112;
     uint t114 = t113 >> 16u;
-    uint t115 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    uint t116 = t115 >> 16u;
-    uint3 t117 = uint3(
-        (t112 * (t111 & 65535u)) >> 12u,
+    uint t115 = 0u - cross4.y;
+    uint t116 = cross4.y < 2147483648u ? cross4.y : t115;
+    uint t117 = t116 >> 16u;
+    uint t118 = 0u - cross4.z;
+    uint t119 = cross4.z < 2147483648u ? cross4.z : t118;
+    uint t120 = t119 >> 16u;
+    uint3 t121 = uint3((t114 * t114) << 3u, (t117 * t117) << 3u, (t120 * t120) << 3u);
+    uint3 t122 = uint3(
         (t114 * (t113 & 65535u)) >> 12u,
-        (t116 * (t115 & 65535u)) >> 12u
+        (t117 * (t116 & 65535u)) >> 12u,
+        (t120 * (t119 & 65535u)) >> 12u
     );
-    uint3 t118 = uint3((t112 * t112) << 3u, (t114 * t114) << 3u, (t116 * t116) << 3u) + t117;
-    precise float e4 = float(t118.x + t118.y + t118.z);
-    precise float n4 = float(t107 * t107 + t109 * t109 + t110 * t110);
-    precise float2 best3 = cand4.x <= 255.0 && e4 * best_n2 < best_e2 * n4 ? cand4 : best2;
-    precise float2 t119 = w.x < 0.0 ? -best3.yx : best3;
-    precise float2 c = t2 ? ((w.y < 0.0 ? t119.yx : t119) + 255.0) * 0.5 : float2(128.0, 128.0);
+    uint3 t123 = t121 + t122;
+    precise float e4 = float(t123.x + t123.y + t123.z);
+    precise float n4 = float(t110_u * t110_u + t111_u * t111_u + t109_u * t109_u);
+    precise float t124 = e4 * best_n2;
+    precise float t125 = best_e2 * n4;
+    bool t126 = t124 < t125;
+    precise float2 best3 = cand4.x <= 255.0 && t126 ? cand4 : best2;
+    precise float2 t127 = -best3.yx;
+    precise float2 t128 = w.x < 0.0 ? t127 : best3;
+    precise float2 t129 = ((w.y < 0.0 ? t128.yx : t128) + 255.0) * 0.5;
+    precise float2 c = t3 ? t129 : float2(128.0, 128.0);
     return c.yyyx;
 }
 
@@ -312,9 +333,7 @@ float4 unitpack_hemioct16p_latc_encode_float(float3 v) {
 }
 
 // unitpack_hemioct16p_latc_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16p_latc_encode_float.
 // Out: the RGBA8 texel as a uint (R bits 0–7, G 8–15, B 16–23, A 24–31): R = G = B = y, A = x; x, y
 //   the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -78,7 +78,8 @@ float2 unitpack_hemioct24p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -86,179 +87,212 @@ float2 unitpack_hemioct24p_encode_codes(float3 v) {
     );
     precise float3 t1 = abs(float3(w.xy, w.z > 0.0 ? w.z : 0.0));
     precise float sum2 = t1.x + t1.y + t1.z;
-    bool t2 = ok && sum2 > 0.0;
-    precise float3 a = t2 ? t1 : float3(0.0, 0.0, 2.0);
-    precise float l1 = t2 ? sum2 : 2.0;
-    precise float t3 = a.x + a.y;
-    precise float estimate = floor(t3 / l1 * 2047.0);
-    precise float big = t3 * 2047.0;
-    precise float t4 = estimate
-        + (big >= (estimate + 1.0) * l1 ? 1.0 : (big < estimate * l1 ? -1.0 : 0.0));
-    precise float t5 = t4 >= (-2047.0) ? t4 : -2047.0;
-    precise float s0 = t5 <= 2047.0 ? t5 : 2047.0;
-    precise float t6 = a.x - a.y;
-    precise float estimate2 = floor(t6 / l1 * 2047.0);
-    precise float big2 = t6 * 2047.0;
-    precise float t7 = estimate2
-        + (big2 >= (estimate2 + 1.0) * l1 ? 1.0 : (big2 < estimate2 * l1 ? -1.0 : 0.0));
-    precise float t8 = t7 >= (-2047.0) ? t7 : -2047.0;
-    precise float t0 = t8 <= 2047.0 ? t8 : 2047.0;
-    precise float3 t9 = floor(a * 4194304.0);
-    uint3 afix = uint3(t9);
-    precise float2 t10 = float2(t6, t3);
-    precise float2 t11 = floor(t10 / l1 * 2047.0);
-    precise float2 t12 = t10 * 2047.0;
-    precise float2 t13 = UNITPACK_SELECT(
-        t12 >= (t11 + 1.0) * l1,
+    bool t2 = sum2 > 0.0;
+    bool t3 = ok && t2;
+    precise float3 a = t3 ? t1 : float3(0.0, 0.0, 2.0);
+    precise float l1 = t3 ? sum2 : 2.0;
+    precise float t4 = a.x + a.y;
+    precise float estimate = floor(t4 / l1 * 2047.0);
+    precise float big = t4 * 2047.0;
+    precise float step_down = big < estimate * l1 ? -1.0 : 0.0;
+    precise float step = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
+    precise float t5 = estimate + step;
+    precise float t6 = t5 >= (-2047.0) ? t5 : -2047.0;
+    precise float s0 = t6 <= 2047.0 ? t6 : 2047.0;
+    precise float t7 = a.x - a.y;
+    precise float estimate2 = floor(t7 / l1 * 2047.0);
+    precise float big2 = t7 * 2047.0;
+    precise float step_down2 = big2 < estimate2 * l1 ? -1.0 : 0.0;
+    precise float step2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
+    precise float t8 = estimate2 + step2;
+    precise float t9 = t8 >= (-2047.0) ? t8 : -2047.0;
+    precise float t0 = t9 <= 2047.0 ? t9 : 2047.0;
+    precise float3 t10 = floor(a * 4194304.0);
+    uint3 afix = uint3(t10);
+    precise float2 t11 = float2(t7, t4);
+    precise float2 t12 = floor(t11 / l1 * 2047.0);
+    precise float2 t13 = t11 * 2047.0;
+    precise float2 t14 = UNITPACK_SELECT(
+        t13 >= (t12 + 1.0) * l1,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t12 < t11 * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t13 < t12 * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t14 = t11 + t13;
-    precise float2 t15 = UNITPACK_SELECT(
-        t14 >= float2(-2047.0, -2047.0),
-        t14,
-        float2(-2047.0, -2047.0)
-    );
+    precise float2 t15 = t12 + t14;
     precise float2 t16 = UNITPACK_SELECT(
-        t15 <= float2(2047.0, 2047.0),
+        t15 >= float2(-2047.0, -2047.0),
         t15,
-        float2(2047.0, 2047.0)
-    );
-    precise float2 t17 = float2(t3, t6);
-    precise float2 t18 = floor(t17 / l1 * 2047.0);
-    precise float2 t19 = t17 * 2047.0;
-    precise float2 t20 = UNITPACK_SELECT(
-        t19 >= (t18 + 1.0) * l1,
-        float2(1.0, 1.0),
-        UNITPACK_SELECT(t19 < t18 * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
-    );
-    precise float2 t21 = t18 + t20;
-    precise float2 t22 = UNITPACK_SELECT(
-        t21 >= float2(-2047.0, -2047.0),
-        t21,
         float2(-2047.0, -2047.0)
     );
-    precise float2 t23 = UNITPACK_SELECT(
-        t22 <= float2(2047.0, 2047.0),
-        t22,
+    precise float2 t17 = UNITPACK_SELECT(
+        t16 <= float2(2047.0, 2047.0),
+        t16,
         float2(2047.0, 2047.0)
     );
-    precise float2 t24 = s0 + t0 < 0.0 ? -t16 : t23;
-    precise float2 cand = t24.x < t24.y ? t24.yx : t24;
-    precise float t25 = 4094.0 - cand.x - cand.x;
-    precise float t26 = t25 >= 0.0 ? t25 : 0.0;
-    precise float t27 = cand.x + cand.y;
-    uint t28 = uint(t27);
+    precise float2 neg_t17 = -t17;
+    precise float2 t18 = float2(t4, t7);
+    precise float2 t19 = floor(t18 / l1 * 2047.0);
+    precise float2 t20 = t18 * 2047.0;
+    precise float2 t21 = UNITPACK_SELECT(
+        t20 >= (t19 + 1.0) * l1,
+        float2(1.0, 1.0),
+        UNITPACK_SELECT(t20 < t19 * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
+    );
+    precise float2 t22 = t19 + t21;
+    precise float2 t23 = UNITPACK_SELECT(
+        t22 >= float2(-2047.0, -2047.0),
+        t22,
+        float2(-2047.0, -2047.0)
+    );
+    precise float2 t24 = UNITPACK_SELECT(
+        t23 <= float2(2047.0, 2047.0),
+        t23,
+        float2(2047.0, 2047.0)
+    );
+    precise float2 t25 = s0 + t0 < 0.0 ? neg_t17 : t24;
+    precise float2 cand = t25.x < t25.y ? t25.yx : t25;
+    precise float t26 = 4094.0 - cand.x - cand.x;
+    precise float t27 = t26 >= 0.0 ? t26 : 0.0;
+    precise float t28 = cand.x + cand.y;
+    uint t28_u = uint(t28);
     precise float t29 = cand.x - cand.y;
-    uint t30 = uint(t29);
-    uint t31 = uint(t26);
-    uint3 cross = afix.yzx * uint3(float3(t26, t27, t29)) - afix.zxy * uint3(float3(t29, t26, t27));
-    uint t32 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
-    uint t33 = t32 >> 16u;
-    uint t34 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    uint t29_u = uint(t29);
+    uint t27_u = uint(t27);
+    uint3 cross = afix.yzx * uint3(float3(t27, t28, t29)) - afix.zxy * uint3(float3(t29, t27, t28));
+    uint t30 = 0u - cross.x;
+    uint t31 = cross.x < 2147483648u ? cross.x : t30;
+    uint t32 = t31 >> 16u;
+    uint t33 = 0u - cross.y;
+    uint t34 = cross.y < 2147483648u ? cross.y : t33;
     uint t35 = t34 >> 16u;
-    uint t36 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    uint t37 = t36 >> 16u;
-    uint3 t38 = uint3(
-        (t33 * (t32 & 65535u)) >> 12u,
+    uint t36 = 0u - cross.z;
+    uint t37 = cross.z < 2147483648u ? cross.z : t36;
+    uint t38 = t37 >> 16u;
+    uint3 t39 = uint3((t32 * t32) << 3u, (t35 * t35) << 3u, (t38 * t38) << 3u);
+    uint3 t40 = uint3(
+        (t32 * (t31 & 65535u)) >> 12u,
         (t35 * (t34 & 65535u)) >> 12u,
-        (t37 * (t36 & 65535u)) >> 12u
+        (t38 * (t37 & 65535u)) >> 12u
     );
-    uint3 t39 = uint3((t33 * t33) << 3u, (t35 * t35) << 3u, (t37 * t37) << 3u) + t38;
-    precise float e = float(t39.x + t39.y + t39.z);
-    precise float n = float(t28 * t28 + t30 * t30 + t31 * t31);
-    precise float t40 = s0 + 1.0;
-    precise float2 t41 = t40 + t0 < 0.0 ? -float2(t0, t40) : float2(t40, t0);
-    precise float2 cand2 = t41.x < t41.y ? t41.yx : t41;
-    precise float t42 = 4094.0 - cand2.x - cand2.x;
-    precise float t43 = t42 >= 0.0 ? t42 : 0.0;
-    precise float t44 = cand2.x + cand2.y;
-    uint t45 = uint(t44);
-    precise float t46 = cand2.x - cand2.y;
-    uint t47 = uint(t46);
-    uint t48 = uint(t43);
-    uint3 cross2 = afix.yzx * uint3(float3(t43, t44, t46))
-        - afix.zxy * uint3(float3(t46, t43, t44));
-    uint t49 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
-    uint t50 = t49 >> 16u;
-    uint t51 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    uint t52 = t51 >> 16u;
-    uint t53 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
+    uint3 t41 = t39 + t40;
+    precise float e = float(t41.x + t41.y + t41.z);
+    precise float n = float(t28_u * t28_u + t29_u * t29_u + t27_u * t27_u);
+    precise float s_up = s0 + 1.0;
+    precise float t_up = t0 + 1.0;
+    precise float2 t42 = -float2(t0, s_up);
+    precise float2 t43 = float2(s_up, t0);
+    precise float2 t44 = s_up + t0 < 0.0 ? t42 : t43;
+    precise float2 cand2 = t44.x < t44.y ? t44.yx : t44;
+    precise float t45 = 4094.0 - cand2.x - cand2.x;
+    precise float t46 = t45 >= 0.0 ? t45 : 0.0;
+    precise float t47 = cand2.x + cand2.y;
+    uint t47_u = uint(t47);
+    precise float t48 = cand2.x - cand2.y;
+    uint t48_u = uint(t48);
+    uint t46_u = uint(t46);
+    uint3 cross2 = afix.yzx * uint3(float3(t46, t47, t48))
+        - afix.zxy * uint3(float3(t48, t46, t47));
+    uint t49 = 0u - cross2.x;
+    uint t50 = cross2.x < 2147483648u ? cross2.x : t49;
+    uint t51 = t50 >> 16u;
+    uint t52 = 0u - cross2.y;
+    uint t53 = cross2.y < 2147483648u ? cross2.y : t52;
     uint t54 = t53 >> 16u;
-    uint3 t55 = uint3(
-        (t50 * (t49 & 65535u)) >> 12u,
-        (t52 * (t51 & 65535u)) >> 12u,
-        (t54 * (t53 & 65535u)) >> 12u
+    uint t55 = 0u - cross2.z;
+    uint t56 = cross2.z < 2147483648u ? cross2.z : t55;
+    uint t57 = t56 >> 16u;
+    uint3 t58 = uint3((t51 * t51) << 3u, (t54 * t54) << 3u, (t57 * t57) << 3u);
+    uint3 t59 = uint3(
+        (t51 * (t50 & 65535u)) >> 12u,
+        (t54 * (t53 & 65535u)) >> 12u,
+        (t57 * (t56 & 65535u)) >> 12u
     );
-    uint3 t56 = uint3((t50 * t50) << 3u, (t52 * t52) << 3u, (t54 * t54) << 3u) + t55;
-    precise float e2 = float(t56.x + t56.y + t56.z);
-    precise float n2 = float(t45 * t45 + t47 * t47 + t48 * t48);
-    precise float t57 = e2 * n;
-    precise float t58 = e * n2;
-    bool t59 = cand2.x <= 2047.0 && t57 < t58;
-    precise float2 best = t59 ? cand2 : cand;
-    precise float best_e = t59 ? e2 : e;
-    precise float best_n = t59 ? n2 : n;
-    precise float t60 = t0 + 1.0;
-    precise float2 t61 = s0 + t60 < 0.0 ? -float2(t60, s0) : float2(s0, t60);
-    precise float2 cand3 = t61.x < t61.y ? t61.yx : t61;
-    precise float t62 = 4094.0 - cand3.x - cand3.x;
-    precise float t63 = t62 >= 0.0 ? t62 : 0.0;
-    precise float t64 = cand3.x + cand3.y;
-    uint t65 = uint(t64);
-    precise float t66 = cand3.x - cand3.y;
-    uint t67 = uint(t66);
-    uint t68 = uint(t63);
-    uint3 cross3 = afix.yzx * uint3(float3(t63, t64, t66))
-        - afix.zxy * uint3(float3(t66, t63, t64));
-    uint t69 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    uint t70 = t69 >> 16u;
-    uint t71 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
-    uint t72 = t71 >> 16u;
-    uint t73 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
+    uint3 t60 = t58 + t59;
+    precise float e2 = float(t60.x + t60.y + t60.z);
+    precise float n2 = float(t47_u * t47_u + t48_u * t48_u + t46_u * t46_u);
+    precise float t61 = e2 * n;
+    precise float t62 = e * n2;
+    bool t63 = t61 < t62;
+    bool t64 = cand2.x <= 2047.0 && t63;
+    precise float2 best = t64 ? cand2 : cand;
+    precise float best_e = t64 ? e2 : e;
+    precise float best_n = t64 ? n2 : n;
+    precise float2 t65 = -float2(t_up, s0);
+    precise float2 t66 = float2(s0, t_up);
+    precise float2 t67 = s0 + t_up < 0.0 ? t65 : t66;
+    precise float2 cand3 = t67.x < t67.y ? t67.yx : t67;
+    precise float t68 = 4094.0 - cand3.x - cand3.x;
+    precise float t69 = t68 >= 0.0 ? t68 : 0.0;
+    precise float t70 = cand3.x + cand3.y;
+    uint t70_u = uint(t70);
+    precise float t71 = cand3.x - cand3.y;
+    uint t71_u = uint(t71);
+    uint t69_u = uint(t69);
+    uint3 cross3 = afix.yzx * uint3(float3(t69, t70, t71))
+        - afix.zxy * uint3(float3(t71, t69, t70));
+    uint t72 = 0u - cross3.x;
+    uint t73 = cross3.x < 2147483648u ? cross3.x : t72;
     uint t74 = t73 >> 16u;
-    uint3 t75 = uint3(
-        (t70 * (t69 & 65535u)) >> 12u,
-        (t72 * (t71 & 65535u)) >> 12u,
-        (t74 * (t73 & 65535u)) >> 12u
+    uint t75 = 0u - cross3.y;
+    uint t76 = cross3.y < 2147483648u ? cross3.y : t75;
+    uint t77 = t76 >> 16u;
+    uint t78 = 0u - cross3.z;
+    uint t79 = cross3.z < 2147483648u ? cross3.z : t78;
+    uint t80 = t79 >> 16u;
+    uint3 t81 = uint3((t74 * t74) << 3u, (t77 * t77) << 3u, (t80 * t80) << 3u);
+    uint3 t82 = uint3(
+        (t74 * (t73 & 65535u)) >> 12u,
+        (t77 * (t76 & 65535u)) >> 12u,
+        (t80 * (t79 & 65535u)) >> 12u
     );
-    uint3 t76 = uint3((t70 * t70) << 3u, (t72 * t72) << 3u, (t74 * t74) << 3u) + t75;
-    precise float e3 = float(t76.x + t76.y + t76.z);
-    precise float n3 = float(t65 * t65 + t67 * t67 + t68 * t68);
-    precise float t77 = e3 * best_n;
-    precise float t78 = best_e * n3;
-    bool t79 = cand3.x <= 2047.0 && t77 < t78;
-    precise float2 best2 = t79 ? cand3 : best;
-    precise float best_e2 = t79 ? e3 : best_e;
-    precise float best_n2 = t79 ? n3 : best_n;
-    precise float2 t80 = s0 + 1.0 + (t0 + 1.0) < 0.0 ? -(t16 + 1.0) : t23 + 1.0;
-    precise float2 cand4 = t80.x < t80.y ? t80.yx : t80;
-    precise float t81 = 4094.0 - cand4.x - cand4.x;
-    precise float t82 = t81 >= 0.0 ? t81 : 0.0;
-    precise float t83 = cand4.x + cand4.y;
-    uint t84 = uint(t83);
-    precise float t85 = cand4.x - cand4.y;
-    uint t86 = uint(t85);
-    uint t87 = uint(t82);
-    uint3 cross4 = afix.yzx * uint3(float3(t82, t83, t85))
-        - afix.zxy * uint3(float3(t85, t82, t83));
-    uint t88 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
-    uint t89 = t88 >> 16u;
-    uint t90 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    uint t91 = t90 >> 16u;
-    uint t92 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    uint t93 = t92 >> 16u;
-    uint3 t94 = uint3(
-        (t89 * (t88 & 65535u)) >> 12u,
-        (t91 * (t90 & 65535u)) >> 12u,
-        (t93 * (t92 & 65535u)) >> 12u
+    uint3 t83 = t81 + t82;
+    precise float e3 = float(t83.x + t83.y + t83.z);
+    precise float n3 = float(t70_u * t70_u + t71_u * t71_u + t69_u * t69_u);
+    precise float t84 = e3 * best_n;
+    precise float t85 = best_e * n3;
+    bool t86 = t84 < t85;
+    bool t87 = cand3.x <= 2047.0 && t86;
+    precise float2 best2 = t87 ? cand3 : best;
+    precise float best_e2 = t87 ? e3 : best_e;
+    precise float best_n2 = t87 ? n3 : best_n;
+    precise float2 t88 = -(t17 + 1.0);
+    precise float2 t89 = t24 + 1.0;
+    precise float2 t90 = s_up + t_up < 0.0 ? t88 : t89;
+    precise float2 cand4 = t90.x < t90.y ? t90.yx : t90;
+    precise float t91 = 4094.0 - cand4.x - cand4.x;
+    precise float t92 = t91 >= 0.0 ? t91 : 0.0;
+    precise float t93 = cand4.x + cand4.y;
+    uint t93_u = uint(t93);
+    precise float t94 = cand4.x - cand4.y;
+    uint t94_u = uint(t94);
+    uint t92_u = uint(t92);
+    uint3 cross4 = afix.yzx * uint3(float3(t92, t93, t94))
+        - afix.zxy * uint3(float3(t94, t92, t93));
+    uint t95 = 0u - cross4.x;
+    uint t96 = cross4.x < 2147483648u ? cross4.x : t95;
+    uint t97 = t96 >> 16u;
+    uint t98 = 0u - cross4.y;
+    uint t99 = cross4.y < 2147483648u ? cross4.y : t98;
+    uint t100 = t99 >> 16u;
+    uint t101 = 0u - cross4.z;
+    uint t102 = cross4.z < 2147483648u ? cross4.z : t101;
+    uint t103 = t102 >> 16u;
+    uint3 t104 = uint3((t97 * t97) << 3u, (t100 * t100) << 3u, (t103 * t103) << 3u);
+    uint3 t105 = uint3(
+        (t97 * (t96 & 65535u)) >> 12u,
+        (t100 * (t99 & 65535u)) >> 12u,
+        (t103 * (t102 & 65535u)) >> 12u
     );
-    uint3 t95 = uint3((t89 * t89) << 3u, (t91 * t91) << 3u, (t93 * t93) << 3u) + t94;
-    precise float e4 = float(t95.x + t95.y + t95.z);
-    precise float n4 = float(t84 * t84 + t86 * t86 + t87 * t87);
-    precise float2 best3 = cand4.x <= 2047.0 && e4 * best_n2 < best_e2 * n4 ? cand4 : best2;
-    precise float2 t96 = w.x < 0.0 ? -best3.yx : best3;
-    return t2 ? (w.y < 0.0 ? t96.yx : t96) : float2(0.0, 0.0);
+    uint3 t106 = t104 + t105;
+    precise float e4 = float(t106.x + t106.y + t106.z);
+    precise float n4 = float(t93_u * t93_u + t94_u * t94_u + t92_u * t92_u);
+    precise float t107 = e4 * best_n2;
+    precise float t108 = best_e2 * n4;
+    bool t109 = t107 < t108;
+    precise float2 best3 = cand4.x <= 2047.0 && t109 ? cand4 : best2;
+    precise float2 t110 = -best3.yx;
+    precise float2 t111 = w.x < 0.0 ? t110 : best3;
+    precise float2 t112 = w.y < 0.0 ? t111.yx : t111;
+    return t3 ? t112 : float2(0.0, 0.0);
 }
 
 // unitpack_hemioct24p_encode_float: precise encoder, float form.
@@ -274,9 +308,7 @@ float2 unitpack_hemioct24p_encode_float(float3 v) {
 }
 
 // unitpack_hemioct24p_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct24p_encode_float.
 // Out: the packed code, uint (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12
 //   (two's complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

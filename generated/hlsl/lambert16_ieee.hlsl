@@ -67,12 +67,12 @@ float3 unitpack_lambert16_ieee_decode(uint code) {
 float2 unitpack_lambert16_ieee_encode_float(float3 v) {
     precise float3 v_sq = v * v;
     precise float len2 = v_sq.x + v_sq.y + v_sq.z;
+    bool t1 = len2 <= 3.4028235e38;
     precise float3 n = v / sqrt(len2);
     precise float f = sqrt(n.z * 8.0 + 8.0);
-    precise float2 result = len2 > 0.0 && len2 <= 3.4028235e38
-        ? (f > 0.0 ? n.xy / f + 0.5 : float2(1.0, 0.5))
-        : float2(0.5, 0.5);
-    return result;
+    precise float2 t2 = n.xy / f + 0.5;
+    precise float2 t3 = f > 0.0 ? t2 : float2(1.0, 0.5);
+    return len2 > 0.0 && t1 ? t3 : float2(0.5, 0.5);
 }
 
 // unitpack_lambert16_ieee_encode: fast encoder.

@@ -38,19 +38,21 @@
 float2 unitpack_latlong24_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -88,20 +90,21 @@ float unitpack_latlong24_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -114,15 +117,18 @@ float2 unitpack_latlong24_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    precise float2 t4 = t3.xy * t3.xy;
-    precise float rho = sqrt(t4.x + t4.y);
-    precise float theta = unitpack_latlong24_atan2_pi(rho, t3.z);
-    precise float phi = unitpack_latlong24_atan2_pi(t3.y, t3.x);
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 t6 = t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
+    precise float2 t7 = t6.xy * t6.xy;
+    precise float rho = sqrt(t7.x + t7.y);
+    precise float theta = unitpack_latlong24_atan2_pi(rho, t6.z);
+    precise float phi = unitpack_latlong24_atan2_pi(t6.y, t6.x);
     precise float2 result = float2(phi * 0.5 + 0.5, theta);
     return result;
 }
@@ -143,17 +149,18 @@ float2 unitpack_latlong24_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -167,67 +174,75 @@ float2 unitpack_latlong24_round_codes(float3 a0) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     precise float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    precise float t4 = t3 ? rho2 : 1.0;
-    uint half_exponent = ((asuint(t4) >> 23u) + 1u) >> 1u;
+    bool t1 = rho2 > 0.0;
+    precise float t2 = t1 ? rho2 : 1.0;
+    uint half_exponent = ((asuint(t2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = t4 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t3 = t2 * root_down;
+    precise float root_estimate = sqrt(t3);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t3 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float rho = t3 ? root * root_up : 0.0;
+    precise float t4 = root * root_up;
+    precise float rho = t1 ? t4 : 0.0;
     precise float abs_w2_z = abs(w2.z);
     precise float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_w2_z;
     precise float hi4 = y_major ? abs_rho : abs_w2_z;
     precise float lo4 = y_major ? abs_w2_z : abs_rho;
-    precise float t7 = hi4 > 0.0 ? hi4 : 1.0;
+    precise float t5 = hi4 > 0.0 ? hi4 : 1.0;
     precise float big = lo4 * 8388608.0;
-    precise float ratio_estimate = floor(lo4 / t7 * 8388608.0);
-    precise float t8 = (ratio_estimate + 1.0) * t7 <= big
-        ? 1.0
-        : (ratio_estimate * t7 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t8;
-    precise float t = ratio + ((ratio + 1.0) * t7 <= big ? 1.0 : (ratio * t7 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo4 / t5 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t9 = t - 8388608.0;
-    precise float t10 = t + 8388608.0;
-    precise float big2 = t9 * 8388608.0;
-    precise float ratio_estimate2 = floor(t9 / t10 * 8388608.0);
-    precise float t11 = (ratio_estimate2 + 1.0) * t10 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t10 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t11;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t10 <= big2 ? 1.0 : (ratio2 * t10 > big2 ? -1.0 : 0.0));
+    precise float t6 = t - 8388608.0;
+    precise float t7 = t + 8388608.0;
+    precise float big2 = t6 * 8388608.0;
+    precise float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t12 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t13 = round((round(t12 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t14 = round((round(t13 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t15 = round((round(t14 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t15 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t8 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t9 = (round((t8 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t10 = (round((round(t9) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t11 = round((round(t10 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t12 = round((round(t11 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t12 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = w2.z < 0.0 ? 8388608.0 - h3 : h3;
-    precise float angle = rho < 0.0 ? -h4 : h4;
+    precise float t13 = h + 2097152.0;
+    precise float h2 = far ? t13 : h;
+    precise float t14 = 4194304.0 - h2;
+    precise float h3 = y_major ? t14 : h2;
+    precise float t15 = 8388608.0 - h3;
+    precise float h4 = w2.z < 0.0 ? t15 : h3;
+    precise float neg_h4 = -h4;
+    precise float angle = rho < 0.0 ? neg_h4 : h4;
     precise float abs_w2_x = abs(w2.x);
     precise float abs_w2_y = abs(w2.y);
     bool y_major2 = abs_w2_y > abs_w2_x;
@@ -236,45 +251,51 @@ float2 unitpack_latlong24_round_codes(float3 a0) {
     precise float t16 = hi5 > 0.0 ? hi5 : 1.0;
     precise float big3 = lo5 * 8388608.0;
     precise float ratio_estimate3 = floor(lo5 / t16 * 8388608.0);
-    precise float t17 = (ratio_estimate3 + 1.0) * t16 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t16 > big3 ? -1.0 : 0.0);
-    precise float ratio4 = ratio_estimate3 + t17;
-    precise float t18 = ratio4
-        + ((ratio4 + 1.0) * t16 <= big3 ? 1.0 : (ratio4 * t16 > big3 ? -1.0 : 0.0));
-    bool far2 = t18 > 3474675.0;
-    precise float t19 = t18 - 8388608.0;
-    precise float t20 = t18 + 8388608.0;
-    precise float big4 = t19 * 8388608.0;
-    precise float ratio_estimate4 = floor(t19 / t20 * 8388608.0);
-    precise float t21 = (ratio_estimate4 + 1.0) * t20 <= big4
-        ? 1.0
-        : (ratio_estimate4 * t20 > big4 ? -1.0 : 0.0);
-    precise float ratio5 = ratio_estimate4 + t21;
-    precise float ratio6 = ratio5
-        + ((ratio5 + 1.0) * t20 <= big4 ? 1.0 : (ratio5 * t20 > big4 ? -1.0 : 0.0));
-    precise float z3 = far2 ? ratio6 : t18;
+    precise float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0 : 0.0;
+    precise float step7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
+    precise float ratio4 = ratio_estimate3 + step7;
+    precise float step_down8 = ratio4 * t16 > big3 ? -1.0 : 0.0;
+    precise float step8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
+    precise float t17 = ratio4 + step8;
+    bool far2 = t17 > 3474675.0;
+    precise float t18 = t17 - 8388608.0;
+    precise float t19 = t17 + 8388608.0;
+    precise float big4 = t18 * 8388608.0;
+    precise float ratio_estimate4 = floor(t18 / t19 * 8388608.0);
+    precise float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0 : 0.0;
+    precise float step9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
+    precise float ratio5 = ratio_estimate4 + step9;
+    precise float step_down10 = ratio5 * t19 > big4 ? -1.0 : 0.0;
+    precise float step10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
+    precise float ratio6 = ratio5 + step10;
+    precise float z3 = far2 ? ratio6 : t17;
     precise float z2_2 = round(z3 * z3 * 1.1920929e-7);
-    precise float t22 = round(
+    precise float t20 = round(
         (round(-441506.0 * z2_2 * 1.1920929e-7) + 493448.0) * z2_2 * 1.1920929e-7
-    )
-        + (-559241.0);
-    precise float t23 = round((round(t22 * z2_2 * 1.1920929e-7) + 645278.0) * z2_2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t24 = round((round(t23 * z2_2 * 1.1920929e-7) + 932068.0) * z2_2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t25 = round((round(t24 * z2_2 * 1.1920929e-7) + 1677722.0) * z2_2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r2 = round(z3 * (round(t25 * z2_2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    );
+    precise float t21 = (round((t20 + (-559241.0)) * z2_2 * 1.1920929e-7) + 645278.0)
+        * z2_2
+        * 1.1920929e-7;
+    precise float t22 = (round((round(t21) + (-762601.0)) * z2_2 * 1.1920929e-7) + 932068.0) * z2_2;
+    precise float t23 = round((round(t22 * 1.1920929e-7) + (-1198373.0)) * z2_2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t24 = round(
+        (round(t23 * z2_2 * 1.1920929e-7) + (-2796203.0)) * z2_2 * 1.1920929e-7
+    );
+    precise float r2 = round(z3 * (t24 + 8388608.0) * 1.1920929e-7);
     precise float h5 = round(r2 * 0.31830987);
-    precise float h6 = far2 ? h5 + 2097152.0 : h5;
-    precise float h7 = y_major2 ? 4194304.0 - h6 : h6;
-    precise float h8 = w2.x < 0.0 ? 8388608.0 - h7 : h7;
-    precise float phi = w2.y < 0.0 ? -h8 : h8;
+    precise float t25 = h5 + 2097152.0;
+    precise float h6 = far2 ? t25 : h5;
+    precise float t26 = 4194304.0 - h6;
+    precise float h7 = y_major2 ? t26 : h6;
+    precise float t27 = 8388608.0 - h7;
+    precise float h8 = w2.x < 0.0 ? t27 : h7;
+    precise float neg_h8 = -h8;
+    precise float phi = w2.y < 0.0 ? neg_h8 : h8;
     precise float theta = angle * 2.0 - 8388608.0;
-    precise float2 t26 = round((float2(phi, theta) + 8388608.0) * 0.00024408102);
-    precise float2 t27 = UNITPACK_SELECT(t26 >= float2(0.0, 0.0), t26, float2(0.0, 0.0));
-    return UNITPACK_SELECT(t27 <= float2(4095.0, 4095.0), t27, float2(4095.0, 4095.0));
+    precise float2 t28 = round((float2(phi, theta) + 8388608.0) * 0.00024408102);
+    precise float2 t29 = UNITPACK_SELECT(t28 >= float2(0.0, 0.0), t28, float2(0.0, 0.0));
+    return UNITPACK_SELECT(t29 <= float2(4095.0, 4095.0), t29, float2(4095.0, 4095.0));
 }
 
 // unitpack_latlong24_encode: fast encoder.

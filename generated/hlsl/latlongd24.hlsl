@@ -38,19 +38,21 @@
 float2 unitpack_latlongd24_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -87,17 +89,18 @@ uint unitpack_latlongd24_encode_ring(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -111,67 +114,75 @@ uint unitpack_latlongd24_encode_ring(float3 v) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     precise float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    precise float t4 = t3 ? rho2 : 1.0;
-    uint half_exponent = ((asuint(t4) >> 23u) + 1u) >> 1u;
+    bool t1 = rho2 > 0.0;
+    precise float t2 = t1 ? rho2 : 1.0;
+    uint half_exponent = ((asuint(t2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = t4 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t3 = t2 * root_down;
+    precise float root_estimate = sqrt(t3);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t3 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float rho = t3 ? root * root_up : 0.0;
+    precise float t4 = root * root_up;
+    precise float rho = t1 ? t4 : 0.0;
     precise float abs_w2_z = abs(w2.z);
     precise float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_w2_z;
     precise float hi4 = y_major ? abs_rho : abs_w2_z;
     precise float lo4 = y_major ? abs_w2_z : abs_rho;
-    precise float t7 = hi4 > 0.0 ? hi4 : 1.0;
+    precise float t5 = hi4 > 0.0 ? hi4 : 1.0;
     precise float big = lo4 * 8388608.0;
-    precise float ratio_estimate = floor(lo4 / t7 * 8388608.0);
-    precise float t8 = (ratio_estimate + 1.0) * t7 <= big
-        ? 1.0
-        : (ratio_estimate * t7 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t8;
-    precise float t = ratio + ((ratio + 1.0) * t7 <= big ? 1.0 : (ratio * t7 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo4 / t5 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t9 = t - 8388608.0;
-    precise float t10 = t + 8388608.0;
-    precise float big2 = t9 * 8388608.0;
-    precise float ratio_estimate2 = floor(t9 / t10 * 8388608.0);
-    precise float t11 = (ratio_estimate2 + 1.0) * t10 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t10 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t11;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t10 <= big2 ? 1.0 : (ratio2 * t10 > big2 ? -1.0 : 0.0));
+    precise float t6 = t - 8388608.0;
+    precise float t7 = t + 8388608.0;
+    precise float big2 = t6 * 8388608.0;
+    precise float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t12 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t13 = round((round(t12 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t14 = round((round(t13 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t15 = round((round(t14 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t15 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t8 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t9 = (round((t8 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t10 = (round((round(t9) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t11 = round((round(t10 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t12 = round((round(t11 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t12 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = w2.z < 0.0 ? 8388608.0 - h3 : h3;
-    precise float angle = rho < 0.0 ? -h4 : h4;
+    precise float t13 = h + 2097152.0;
+    precise float h2 = far ? t13 : h;
+    precise float t14 = 4194304.0 - h2;
+    precise float h3 = y_major ? t14 : h2;
+    precise float t15 = 8388608.0 - h3;
+    precise float h4 = w2.z < 0.0 ? t15 : h3;
+    precise float neg_h4 = -h4;
+    precise float angle = rho < 0.0 ? neg_h4 : h4;
     precise float theta = angle * 2.0 - 8388608.0;
     precise float t16 = round((theta + 8388608.0) * 0.00021624565);
     return uint(t16);
@@ -196,7 +207,8 @@ uint unitpack_latlongd24_encode(float3 v, uint2 ring) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -211,41 +223,47 @@ uint unitpack_latlongd24_encode(float3 v, uint2 ring) {
     precise float t1 = hi > 0.0 ? hi : 1.0;
     precise float big = lo * 8388608.0;
     precise float ratio_estimate = floor(lo / t1 * 8388608.0);
-    precise float t2 = (ratio_estimate + 1.0) * t1 <= big
-        ? 1.0
-        : (ratio_estimate * t1 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t2;
-    precise float t = ratio + ((ratio + 1.0) * t1 <= big ? 1.0 : (ratio * t1 > big ? -1.0 : 0.0));
+    precise float step_down = ratio_estimate * t1 > big ? -1.0 : 0.0;
+    precise float step = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + step;
+    precise float step_down2 = ratio * t1 > big ? -1.0 : 0.0;
+    precise float step2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
+    precise float t = ratio + step2;
     bool far = t > 3474675.0;
-    precise float t3 = t - 8388608.0;
-    precise float t4 = t + 8388608.0;
-    precise float big2 = t3 * 8388608.0;
-    precise float ratio_estimate2 = floor(t3 / t4 * 8388608.0);
-    precise float t5 = (ratio_estimate2 + 1.0) * t4 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t4 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t5;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t4 <= big2 ? 1.0 : (ratio2 * t4 > big2 ? -1.0 : 0.0));
+    precise float t2 = t - 8388608.0;
+    precise float t3 = t + 8388608.0;
+    precise float big2 = t2 * 8388608.0;
+    precise float ratio_estimate2 = floor(t2 / t3 * 8388608.0);
+    precise float step_down3 = ratio_estimate2 * t3 > big2 ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
+    precise float ratio2 = ratio_estimate2 + step3;
+    precise float step_down4 = ratio2 * t3 > big2 ? -1.0 : 0.0;
+    precise float step4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
+    precise float ratio3 = ratio2 + step4;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t6 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t7 = round((round(t6 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t8 = round((round(t7 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t9 = round((round(t8 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t9 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t4 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t5 = (round((t4 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t6 = (round((round(t5) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t7 = round((round(t6 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t8 = round((round(t7 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t8 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = w2.x < 0.0 ? 8388608.0 - h3 : h3;
-    precise float phi = w2.y < 0.0 ? -h4 : h4;
-    precise float t10 = round((phi + 8388608.0) * float(ring.y) * 5.9604645e-8);
-    uint t11 = uint(t10);
-    return ok ? ring.x + (t11 < ring.y ? t11 : 0u) : 0u;
+    precise float t9 = h + 2097152.0;
+    precise float h2 = far ? t9 : h;
+    precise float t10 = 4194304.0 - h2;
+    precise float h3 = y_major ? t10 : h2;
+    precise float t11 = 8388608.0 - h3;
+    precise float h4 = w2.x < 0.0 ? t11 : h3;
+    precise float neg_h4 = -h4;
+    precise float phi = w2.y < 0.0 ? neg_h4 : h4;
+    precise float t12 = round((phi + 8388608.0) * float(ring.y) * 5.9604645e-8);
+    uint t12_u = uint(t12);
+    uint t13 = ring.x + (t12_u < ring.y ? t12_u : 0u);
+    return ok ? t13 : 0u;
 }
 
 // unitpack_latlongd24_encode_float: fast encoder, float form.
@@ -269,76 +287,88 @@ uint unitpack_latlongd24_decode_ring(uint code) {
     uint t1 = code & 16777215u;
     uint t2 = t1 < 16777215u ? t1 : 16777215u;
     bool t3 = !(t2 < 8388608u);
-    uint t4 = t3 ? 16777215u - t2 : t2;
-    uint t5 = t4 + t4 + 1u;
-    uint t6 = 16777215u - t4;
-    uint t7 = 16777215u - (t4 + t4);
-    precise float t8 = float(t7 >> 12u) * 4096.0 + float(t7 & 4095u);
-    precise float t9 = (float(t5 >> 12u) * 4096.0 + float(t5 & 4095u))
-        * ((float(t6 >> 12u) * 4096.0 + float(t6 & 4095u)) * 2.0 + 1.0);
-    uint half_exponent = ((asuint(t9) >> 23u) + 1u) >> 1u;
+    uint t4 = 16777215u - t2;
+    uint t5 = t3 ? t4 : t2;
+    uint t6 = t5 + t5 + 1u;
+    uint t7 = 16777215u - t5;
+    precise float t8 = (float(t7 >> 12u) * 4096.0 + float(t7 & 4095u)) * 2.0;
+    uint t9 = 16777215u - (t5 + t5);
+    precise float t10 = float(t9 >> 12u) * 4096.0 + float(t9 & 4095u);
+    precise float t11 = (float(t6 >> 12u) * 4096.0 + float(t6 & 4095u)) * (t8 + 1.0);
+    uint half_exponent = ((asuint(t11) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t10 = t9 * root_down;
-    precise float root_estimate = sqrt(t10);
-    precise float t11 = floor(root_estimate * 512.0);
-    precise float root_h0 = t11 * 0.001953125;
+    precise float t12 = t11 * root_down;
+    precise float root_estimate = sqrt(t12);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t11
-        + (root_h1 * root_h1 <= t10 ? 1.0 : (root_h0 * root_h0 > t10 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t12 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t12 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t10 - root_h * root_h;
+    precise float root_rest = t12 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t10 ? 1.0 : (root_m0 * root_m0 > t10 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t12 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t12 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t12 = root * root_up;
-    precise float abs_t8 = abs(t8);
-    precise float abs_t12 = abs(t12);
-    bool y_major = abs_t12 > abs_t8;
-    precise float hi = y_major ? abs_t12 : abs_t8;
-    precise float lo = y_major ? abs_t8 : abs_t12;
-    precise float t13 = hi > 0.0 ? hi : 1.0;
+    precise float t13 = root * root_up;
+    precise float abs_t10 = abs(t10);
+    precise float abs_t13 = abs(t13);
+    bool y_major = abs_t13 > abs_t10;
+    precise float hi = y_major ? abs_t13 : abs_t10;
+    precise float lo = y_major ? abs_t10 : abs_t13;
+    precise float t14 = hi > 0.0 ? hi : 1.0;
     precise float big = lo * 8388608.0;
-    precise float ratio_estimate = floor(lo / t13 * 8388608.0);
-    precise float t14 = (ratio_estimate + 1.0) * t13 <= big
-        ? 1.0
-        : (ratio_estimate * t13 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t14;
-    precise float t = ratio + ((ratio + 1.0) * t13 <= big ? 1.0 : (ratio * t13 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo / t14 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t14 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t14 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t14 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t14 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
     precise float t15 = t - 8388608.0;
     precise float t16 = t + 8388608.0;
     precise float big2 = t15 * 8388608.0;
     precise float ratio_estimate2 = floor(t15 / t16 * 8388608.0);
-    precise float t17 = (ratio_estimate2 + 1.0) * t16 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t16 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t17;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t16 <= big2 ? 1.0 : (ratio2 * t16 > big2 ? -1.0 : 0.0));
+    precise float step_down5 = ratio_estimate2 * t16 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t16 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t16 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t16 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t18 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t19 = round((round(t18 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t20 = round((round(t19 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t21 = round((round(t20 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t21 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t17 = round(
+        (round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7
+    );
+    precise float t18 = (round((t17 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t19 = (round((round(t18) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t20 = round((round(t19 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t21 = round((round(t20 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t21 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = t8 < 0.0 ? 8388608.0 - h3 : h3;
-    precise float angle = t12 < 0.0 ? -h4 : h4;
-    precise float t22 = angle * 0.0004324913;
-    precise float t23 = t3 ? 3628.0 + floor(0.0 - t22) : floor(t22);
-    precise float t24 = t23 >= 0.0 ? t23 : 0.0;
-    return uint(t24 <= 3627.0 ? t24 : 3627.0);
+    precise float t22 = h + 2097152.0;
+    precise float h2 = far ? t22 : h;
+    precise float t23 = 4194304.0 - h2;
+    precise float h3 = y_major ? t23 : h2;
+    precise float t24 = 8388608.0 - h3;
+    precise float h4 = t10 < 0.0 ? t24 : h3;
+    precise float neg_h4 = -h4;
+    precise float angle = t13 < 0.0 ? neg_h4 : h4;
+    precise float t25 = angle * 0.0004324913;
+    precise float floor_t25 = floor(t25);
+    precise float t26 = 3628.0 + floor(0.0 - t25);
+    precise float t27 = t3 ? t26 : floor_t25;
+    precise float t28 = t27 >= 0.0 ? t27 : 0.0;
+    return uint(t28 <= 3627.0 ? t28 : 3627.0);
 }
 
 // unitpack_latlongd24_decode_params: lookup texel.
@@ -351,19 +381,21 @@ float2 unitpack_latlongd24_decode_params(uint code, uint g, uint2 ring0, uint2 r
     uint t1 = code & 16777215u;
     uint t2 = t1 < 16777215u ? t1 : 16777215u;
     bool t3 = !(t2 < ring1.x);
-    precise float t4 = float(t2 - (t3 ? ring1.x : ring0.x));
-    precise float t5 = float(t3 ? ring1.y : ring0.y);
-    precise float big = t4 * 16777216.0;
-    precise float ratio_estimate = floor(t4 / t5 * 16777216.0);
-    precise float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t6;
-    precise float ratio2 = ratio
-        + ((ratio + 1.0) * t5 <= big ? 1.0 : (ratio * t5 > big ? -1.0 : 0.0));
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t5 <= big ? 1.0 : (ratio2 * t5 > big ? -1.0 : 0.0));
-    precise float2 result = float2(uint2(uint(ratio3), t3 ? g + 1u : g))
+    uint t4 = g + 1u;
+    precise float t5 = float(t2 - (t3 ? ring1.x : ring0.x));
+    precise float t6 = float(t3 ? ring1.y : ring0.y);
+    precise float big = t5 * 16777216.0;
+    precise float ratio_estimate = floor(t5 / t6 * 16777216.0);
+    precise float step_down = ratio_estimate * t6 > big ? -1.0 : 0.0;
+    precise float step = (ratio_estimate + 1.0) * t6 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + step;
+    precise float step_down2 = ratio * t6 > big ? -1.0 : 0.0;
+    precise float step2 = (ratio + 1.0) * t6 <= big ? 1.0 : step_down2;
+    precise float ratio2 = ratio + step2;
+    precise float step_down3 = ratio2 * t6 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio2 + 1.0) * t6 <= big ? 1.0 : step_down3;
+    precise float ratio3 = ratio2 + step3;
+    precise float2 result = float2(uint2(uint(ratio3), t3 ? t4 : g))
         * float2(5.9604645e-8, 0.00027563397);
     return result;
 }

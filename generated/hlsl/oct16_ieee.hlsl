@@ -42,12 +42,9 @@
 float3 unitpack_oct16_ieee_decode_float(float2 params) {
     precise float2 abs_params = abs(params);
     precise float z = 1.0 - abs_params.x - abs_params.y;
-    precise float2 t1 = UNITPACK_SELECT(
-        params >= float2(0.0, 0.0),
-        float2(1.0, 1.0),
-        float2(-1.0, -1.0)
-    );
-    precise float3 v = float3(z < 0.0 ? (1.0 - abs(params.yx)) * t1 : params, z);
+    precise float2 folded = (1.0 - abs(params.yx))
+        * UNITPACK_SELECT(params >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float3 v = float3(z < 0.0 ? folded : params, z);
     precise float3 v_sq = v * v;
     precise float3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -77,7 +74,8 @@ float2 unitpack_oct16_ieee_encode_float(float3 v) {
     precise float2 abs_p = abs(p);
     precise float2 t1 = (1.0 - abs_p.yx)
         * UNITPACK_SELECT(p >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
-    precise float2 result = abs_p.x + l1 <= 3.4028235e38 ? (v.z <= 0.0 ? t1 : p) : float2(0.0, 0.0);
+    precise float2 t2 = v.z <= 0.0 ? t1 : p;
+    precise float2 result = abs_p.x + l1 <= 3.4028235e38 ? t2 : float2(0.0, 0.0);
     return result;
 }
 

@@ -42,12 +42,9 @@
 float3 unitpack_oct16p_decode_float(float2 params) {
     precise float2 abs_params = abs(params);
     precise float z = 1.0 - abs_params.x - abs_params.y;
-    precise float2 t1 = UNITPACK_SELECT(
-        params >= float2(0.0, 0.0),
-        float2(1.0, 1.0),
-        float2(-1.0, -1.0)
-    );
-    precise float3 v = float3(z < 0.0 ? (1.0 - abs(params.yx)) * t1 : params, z);
+    precise float2 folded = (1.0 - abs(params.yx))
+        * UNITPACK_SELECT(params >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float3 v = float3(z < 0.0 ? folded : params, z);
     precise float3 v_sq = v * v;
     precise float3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -82,26 +79,30 @@ float2 unitpack_oct16p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
-    precise float3 a = ok ? abs(w) : float3(0.0, 0.0, 2.0);
+    precise float3 abs_w = abs(w);
+    precise float3 a = ok ? abs_w : float3(0.0, 0.0, 2.0);
     precise float l1 = a.x + a.y + a.z;
     precise float estimate = floor(a.x / l1 * 127.0);
     precise float big = a.x * 127.0;
-    precise float t1 = estimate
-        + (big >= (estimate + 1.0) * l1 ? 1.0 : (big < estimate * l1 ? -1.0 : 0.0));
+    precise float step_down = big < estimate * l1 ? -1.0 : 0.0;
+    precise float step = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
+    precise float t1 = estimate + step;
     bool t2 = t1 >= (-127.0);
     precise float t3 = t2 ? t1 : -127.0;
     bool t4 = t3 <= 127.0;
     precise float s0 = t4 ? t3 : 127.0;
     precise float estimate2 = floor(a.y / l1 * 127.0);
     precise float big2 = a.y * 127.0;
-    precise float t5 = estimate2
-        + (big2 >= (estimate2 + 1.0) * l1 ? 1.0 : (big2 < estimate2 * l1 ? -1.0 : 0.0));
+    precise float step_down2 = big2 < estimate2 * l1 ? -1.0 : 0.0;
+    precise float step2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
+    precise float t5 = estimate2 + step2;
     precise float t6 = t5 >= (-127.0) ? t5 : -127.0;
     bool t7 = t6 <= 127.0;
     precise float t8 = t7 ? t6 : 127.0;
@@ -112,123 +113,140 @@ float2 unitpack_oct16p_encode_codes(float3 v) {
     uint3 afix = uint3(t11);
     precise float t12 = 127.0 - s0 - t0;
     bool t13 = t12 >= 0.0;
-    uint t14 = uint(s0);
-    uint t15 = uint(t0);
-    uint t16 = uint(t13 ? t12 : 0.0);
-    precise float3 t17 = UNITPACK_SELECT(
-        bool3(t13, t4, t10),
-        float3(t12, t3, t8),
-        float3(0.0, 127.0, t9)
-    );
-    precise float3 t18 = UNITPACK_SELECT(
-        bool3(t10, t13, t4),
-        float3(t8, t12, t3),
-        float3(t9, 0.0, 127.0)
-    );
-    uint3 cross = afix.yzx * uint3(t17) - afix.zxy * uint3(t18);
-    uint t19 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
+    uint s0_u = uint(s0);
+    uint t0_u = uint(t0);
+    uint t14 = uint(t13 ? t12 : 0.0);
+    uint3 cross = afix.yzx
+        * uint3(UNITPACK_SELECT(bool3(t13, t4, t10), float3(t12, t3, t8), float3(0.0, 127.0, t9)))
+        - afix.zxy
+            * uint3(
+                UNITPACK_SELECT(bool3(t10, t13, t4), float3(t8, t12, t3), float3(t9, 0.0, 127.0))
+            );
+    uint t15 = 0u - cross.x;
+    uint t16 = cross.x < 2147483648u ? cross.x : t15;
+    uint t17 = t16 >> 16u;
+    uint t18 = 0u - cross.y;
+    uint t19 = cross.y < 2147483648u ? cross.y : t18;
     uint t20 = t19 >> 16u;
-    uint t21 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
-    uint t22 = t21 >> 16u;
-    uint t23 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
-    uint t24 = t23 >> 16u;
+    uint t21 = 0u - cross.z;
+    uint t22 = cross.z < 2147483648u ? cross.z : t21;
+    uint t23 = t22 >> 16u;
+    uint3 t24 = uint3((t17 * t17) << 3u, (t20 * t20) << 3u, (t23 * t23) << 3u);
     uint3 t25 = uint3(
+        (t17 * (t16 & 65535u)) >> 12u,
         (t20 * (t19 & 65535u)) >> 12u,
-        (t22 * (t21 & 65535u)) >> 12u,
-        (t24 * (t23 & 65535u)) >> 12u
+        (t23 * (t22 & 65535u)) >> 12u
     );
-    uint3 t26 = uint3((t20 * t20) << 3u, (t22 * t22) << 3u, (t24 * t24) << 3u) + t25;
+    uint3 t26 = t24 + t25;
     precise float e = float(t26.x + t26.y + t26.z);
-    precise float n = float(t14 * t14 + t15 * t15 + t16 * t16);
-    precise float t27 = s0 + 1.0;
-    precise float t28 = 127.0 - t27 - t0;
-    precise float t29 = t28 >= 0.0 ? t28 : 0.0;
-    uint t30 = uint(t27);
-    uint t31 = uint(t0);
-    uint t32 = uint(t29);
-    uint3 cross2 = afix.yzx * uint3(float3(t29, t27, t0)) - afix.zxy * uint3(float3(t0, t29, t27));
-    uint t33 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
+    precise float n = float(s0_u * s0_u + t0_u * t0_u + t14 * t14);
+    precise float s_up = s0 + 1.0;
+    precise float t_up = t0 + 1.0;
+    precise float t27 = 127.0 - s_up - t0;
+    precise float t28 = t27 >= 0.0 ? t27 : 0.0;
+    uint s_up_u = uint(s_up);
+    uint t0_u2 = uint(t0);
+    uint t28_u = uint(t28);
+    uint3 cross2 = afix.yzx * uint3(float3(t28, s_up, t0))
+        - afix.zxy * uint3(float3(t0, t28, s_up));
+    uint t29 = 0u - cross2.x;
+    uint t30 = cross2.x < 2147483648u ? cross2.x : t29;
+    uint t31 = t30 >> 16u;
+    uint t32 = 0u - cross2.y;
+    uint t33 = cross2.y < 2147483648u ? cross2.y : t32;
     uint t34 = t33 >> 16u;
-    uint t35 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
-    uint t36 = t35 >> 16u;
-    uint t37 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
-    uint t38 = t37 >> 16u;
+    uint t35 = 0u - cross2.z;
+    uint t36 = cross2.z < 2147483648u ? cross2.z : t35;
+    uint t37 = t36 >> 16u;
+    uint3 t38 = uint3((t31 * t31) << 3u, (t34 * t34) << 3u, (t37 * t37) << 3u);
     uint3 t39 = uint3(
+        (t31 * (t30 & 65535u)) >> 12u,
         (t34 * (t33 & 65535u)) >> 12u,
-        (t36 * (t35 & 65535u)) >> 12u,
-        (t38 * (t37 & 65535u)) >> 12u
+        (t37 * (t36 & 65535u)) >> 12u
     );
-    uint3 t40 = uint3((t34 * t34) << 3u, (t36 * t36) << 3u, (t38 * t38) << 3u) + t39;
+    uint3 t40 = t38 + t39;
     precise float e2 = float(t40.x + t40.y + t40.z);
-    precise float n2 = float(t30 * t30 + t31 * t31 + t32 * t32);
-    precise float t41 = t27 + t0;
-    precise float t42 = e2 * n;
-    precise float t43 = e * n2;
-    bool t44 = t41 <= 127.0 && t42 < t43;
-    precise float2 t45 = UNITPACK_SELECT(bool2(t2, t7), float2(t1, t6), float2(-127.0, 127.0));
-    precise float2 t46 = float2(127.0, t9);
-    precise float2 t47 = UNITPACK_SELECT(t45 <= t46, t45, t46);
-    precise float2 best = t44 ? float2(t27, t0) : t47;
-    precise float best_e = t44 ? e2 : e;
-    precise float best_n = t44 ? n2 : n;
-    precise float t48 = t0 + 1.0;
-    precise float t49 = 127.0 - s0 - t48;
-    precise float t50 = t49 >= 0.0 ? t49 : 0.0;
-    uint t51 = uint(s0);
-    uint t52 = uint(t48);
-    uint t53 = uint(t50);
-    uint3 cross3 = afix.yzx * uint3(float3(t50, s0, t48)) - afix.zxy * uint3(float3(t48, t50, s0));
-    uint t54 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
-    uint t55 = t54 >> 16u;
-    uint t56 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
+    precise float n2 = float(s_up_u * s_up_u + t0_u2 * t0_u2 + t28_u * t28_u);
+    precise float t41 = e2 * n;
+    precise float t42 = e * n2;
+    bool t43 = t41 < t42;
+    precise float t44 = s_up + t0;
+    bool t45 = t44 <= 127.0 && t43;
+    precise float2 t46 = float2(s_up, t0);
+    precise float2 t47 = UNITPACK_SELECT(bool2(t2, t7), float2(t1, t6), float2(-127.0, 127.0));
+    precise float2 t48 = float2(127.0, t9);
+    precise float2 t49 = UNITPACK_SELECT(t47 <= t48, t47, t48);
+    precise float2 best = t45 ? t46 : t49;
+    precise float best_e = t45 ? e2 : e;
+    precise float best_n = t45 ? n2 : n;
+    precise float t50 = 127.0 - s0 - t_up;
+    precise float t51 = t50 >= 0.0 ? t50 : 0.0;
+    uint s0_u2 = uint(s0);
+    uint t_up_u = uint(t_up);
+    uint t51_u = uint(t51);
+    uint3 cross3 = afix.yzx * uint3(float3(t51, s0, t_up))
+        - afix.zxy * uint3(float3(t_up, t51, s0));
+    uint t52 = 0u - cross3.x;
+    uint t53 = cross3.x < 2147483648u ? cross3.x : t52;
+    uint t54 = t53 >> 16u;
+    uint t55 = 0u - cross3.y;
+    uint t56 = cross3.y < 2147483648u ? cross3.y : t55;
     uint t57 = t56 >> 16u;
-    uint t58 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
-    uint t59 = t58 >> 16u;
-    uint3 t60 = uint3(
-        (t55 * (t54 & 65535u)) >> 12u,
+    uint t58 = 0u - cross3.z;
+    uint t59 = cross3.z < 2147483648u ? cross3.z : t58;
+    uint t60 = t59 >> 16u;
+    uint3 t61 = uint3((t54 * t54) << 3u, (t57 * t57) << 3u, (t60 * t60) << 3u);
+    uint3 t62 = uint3(
+        (t54 * (t53 & 65535u)) >> 12u,
         (t57 * (t56 & 65535u)) >> 12u,
-        (t59 * (t58 & 65535u)) >> 12u
+        (t60 * (t59 & 65535u)) >> 12u
     );
-    uint3 t61 = uint3((t55 * t55) << 3u, (t57 * t57) << 3u, (t59 * t59) << 3u) + t60;
-    precise float e3 = float(t61.x + t61.y + t61.z);
-    precise float n3 = float(t51 * t51 + t52 * t52 + t53 * t53);
-    precise float t62 = s0 + t48;
-    precise float t63 = e3 * best_n;
-    precise float t64 = best_e * n3;
-    bool t65 = t62 <= 127.0 && t63 < t64;
-    precise float2 best2 = t65 ? float2(s0, t48) : best;
-    precise float best_e2 = t65 ? e3 : best_e;
-    precise float best_n2 = t65 ? n3 : best_n;
-    precise float t66 = s0 + 1.0;
-    precise float t67 = t0 + 1.0;
-    precise float t68 = 127.0 - t66 - t67;
-    precise float t69 = t68 >= 0.0 ? t68 : 0.0;
-    uint t70 = uint(t66);
-    uint t71 = uint(t67);
-    uint t72 = uint(t69);
-    uint3 cross4 = afix.yzx * uint3(float3(t69, t66, t67))
-        - afix.zxy * uint3(float3(t67, t69, t66));
-    uint t73 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
+    uint3 t63 = t61 + t62;
+    precise float e3 = float(t63.x + t63.y + t63.z);
+    precise float n3 = float(s0_u2 * s0_u2 + t_up_u * t_up_u + t51_u * t51_u);
+    precise float t64 = e3 * best_n;
+    precise float t65 = best_e * n3;
+    bool t66 = t64 < t65;
+    precise float t67 = s0 + t_up;
+    bool t68 = t67 <= 127.0 && t66;
+    precise float2 t69 = float2(s0, t_up);
+    precise float2 best2 = t68 ? t69 : best;
+    precise float best_e2 = t68 ? e3 : best_e;
+    precise float best_n2 = t68 ? n3 : best_n;
+    precise float t70 = 127.0 - s_up - t_up;
+    precise float t71 = t70 >= 0.0 ? t70 : 0.0;
+    uint s_up_u2 = uint(s_up);
+    uint t_up_u2 = uint(t_up);
+    uint t71_u = uint(t71);
+    uint3 cross4 = afix.yzx * uint3(float3(t71, s_up, t_up))
+        - afix.zxy * uint3(float3(t_up, t71, s_up));
+    uint t72 = 0u - cross4.x;
+    uint t73 = cross4.x < 2147483648u ? cross4.x : t72;
     uint t74 = t73 >> 16u;
-    uint t75 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
-    uint t76 = t75 >> 16u;
-    uint t77 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
-    uint t78 = t77 >> 16u;
-    uint3 t79 = uint3(
+    uint t75 = 0u - cross4.y;
+    uint t76 = cross4.y < 2147483648u ? cross4.y : t75;
+    uint t77 = t76 >> 16u;
+    uint t78 = 0u - cross4.z;
+    uint t79 = cross4.z < 2147483648u ? cross4.z : t78;
+    uint t80 = t79 >> 16u;
+    uint3 t81 = uint3((t74 * t74) << 3u, (t77 * t77) << 3u, (t80 * t80) << 3u);
+    uint3 t82 = uint3(
         (t74 * (t73 & 65535u)) >> 12u,
-        (t76 * (t75 & 65535u)) >> 12u,
-        (t78 * (t77 & 65535u)) >> 12u
+        (t77 * (t76 & 65535u)) >> 12u,
+        (t80 * (t79 & 65535u)) >> 12u
     );
-    uint3 t80 = uint3((t74 * t74) << 3u, (t76 * t76) << 3u, (t78 * t78) << 3u) + t79;
-    precise float e4 = float(t80.x + t80.y + t80.z);
-    precise float n4 = float(t70 * t70 + t71 * t71 + t72 * t72);
-    precise float2 best3 = t66 + t67 <= 127.0 && e4 * best_n2 < best_e2 * n4 ? t47 + 1.0 : best2;
+    uint3 t83 = t81 + t82;
+    precise float e4 = float(t83.x + t83.y + t83.z);
+    precise float n4 = float(s_up_u2 * s_up_u2 + t_up_u2 * t_up_u2 + t71_u * t71_u);
+    precise float t84 = e4 * best_n2;
+    precise float t85 = best_e2 * n4;
+    bool t86 = t84 < t85;
+    precise float2 t87 = t49 + 1.0;
+    precise float2 best3 = s_up + t_up <= 127.0 && t86 ? t87 : best2;
     precise float2 folded = 127.0 - best3.yx;
-    precise float2 t81 = w.z < 0.0 ? folded : best3;
-    precise float2 result = ok
-        ? UNITPACK_SELECT(w.xy < float2(0.0, 0.0), -t81, t81)
-        : float2(0.0, 0.0);
-    return result;
+    precise float2 t88 = w.z < 0.0 ? folded : best3;
+    precise float2 t89 = UNITPACK_SELECT(w.xy < float2(0.0, 0.0), -t88, t88);
+    return ok ? t89 : float2(0.0, 0.0);
 }
 
 // unitpack_oct16p_encode_float: precise encoder, float form.

@@ -50,9 +50,9 @@ float2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(float3 a0) {
 float3 unitpack_oct24_rgb8_oct24_decode_float(float2 a0) {
     precise float2 abs_a0 = abs(a0);
     precise float z = 1.0 - abs_a0.x - abs_a0.y;
-    precise float2 t1 = (1.0 - abs(a0.yx))
+    precise float2 folded = (1.0 - abs(a0.yx))
         * UNITPACK_SELECT(a0 >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
-    precise float3 v = float3(z < 0.0 ? t1 : a0, z);
+    precise float3 v = float3(z < 0.0 ? folded : a0, z);
     precise float3 v_sq = v * v;
     precise float3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -107,7 +107,8 @@ float3 unitpack_oct24_rgb8_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -127,12 +128,12 @@ float3 unitpack_oct24_rgb8_round_codes(float3 a0) {
         UNITPACK_SELECT(t3 < (t2 - 0.5) * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float2 t5 = t2 + t4;
-    precise float2 t6 = (ok ? UNITPACK_SELECT(n < float2(0.0, 0.0), -t5, t5) : float2(0.0, 0.0))
-        + 2047.0;
-    precise float x16 = t6.x * 0.0625;
+    precise float2 t6 = UNITPACK_SELECT(n < float2(0.0, 0.0), -t5, t5);
+    precise float2 t7 = (ok ? t6 : float2(0.0, 0.0)) + 2047.0;
+    precise float x16 = t7.x * 0.0625;
     precise float hi = floor(x16);
-    precise float t = floor(t6.y * 0.00390625);
-    precise float3 result = float3(hi, (x16 - hi) * 256.0 + t, t6.y - t * 256.0);
+    precise float t = floor(t7.y * 0.00390625);
+    precise float3 result = float3(hi, (x16 - hi) * 256.0 + t, t7.y - t * 256.0);
     return result;
 }
 

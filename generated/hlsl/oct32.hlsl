@@ -42,12 +42,9 @@
 float3 unitpack_oct32_decode_float(float2 params) {
     precise float2 abs_params = abs(params);
     precise float z = 1.0 - abs_params.x - abs_params.y;
-    precise float2 t1 = UNITPACK_SELECT(
-        params >= float2(0.0, 0.0),
-        float2(1.0, 1.0),
-        float2(-1.0, -1.0)
-    );
-    precise float3 v = float3(z < 0.0 ? (1.0 - abs(params.yx)) * t1 : params, z);
+    precise float2 folded = (1.0 - abs(params.yx))
+        * UNITPACK_SELECT(params >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float3 v = float3(z < 0.0 ? folded : params, z);
     precise float3 v_sq = v * v;
     precise float3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -73,14 +70,18 @@ float3 unitpack_oct32_decode(uint code) {
 //   measures how far); the packed encoder is the portable form.
 float2 unitpack_oct32_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
-    precise float t1 = abs_v.x + abs_v.y + abs_v.z;
-    precise float3 w = v * (t1 <= 3.4028235e38 ? (t1 < 7.888609e-31 ? 1.2676506e30 : 1.0) : 0.25);
+    precise float norm1 = abs_v.x + abs_v.y + abs_v.z;
+    precise float t1 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
+    precise float fit = norm1 <= 3.4028235e38 ? t1 : 0.25;
+    precise float3 w = v * fit;
     precise float3 abs_w = abs(w);
     precise float l1 = abs_w.x + abs_w.y + abs_w.z;
+    bool t2 = l1 <= 3.4028235e38;
     precise float2 p = w.xy / l1;
-    precise float2 t2 = (1.0 - abs(p.yx))
+    precise float2 folded = (1.0 - abs(p.yx))
         * UNITPACK_SELECT(p >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
-    return l1 > 0.0 && l1 <= 3.4028235e38 ? (w.z <= 0.0 ? t2 : p) : float2(0.0, 0.0);
+    precise float2 t3 = w.z <= 0.0 ? folded : p;
+    return l1 > 0.0 && t2 ? t3 : float2(0.0, 0.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -99,7 +100,8 @@ float2 unitpack_oct32_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -119,8 +121,8 @@ float2 unitpack_oct32_round_codes(float3 a0) {
         UNITPACK_SELECT(t3 < (t2 - 0.5) * l1, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float2 t5 = t2 + t4;
-    precise float2 result = ok ? UNITPACK_SELECT(n < float2(0.0, 0.0), -t5, t5) : float2(0.0, 0.0);
-    return result;
+    precise float2 t6 = UNITPACK_SELECT(n < float2(0.0, 0.0), -t5, t5);
+    return ok ? t6 : float2(0.0, 0.0);
 }
 
 // unitpack_oct32_encode: fast encoder.

@@ -59,10 +59,8 @@ float3 unitpack_paraboloid16_rxgb_decode_float(float4 params) {
 //   the horizon.
 // Portable as unitpack_paraboloid16_rxgb_decode_float is, within the same bound.
 float3 unitpack_paraboloid16_rxgb_decode(uint code) {
-    precise float4 t1 = float4(
-        uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    precise float4 params = t1 * 0.003921569;
+    uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    precise float4 params = float4(t1) * 0.003921569;
     return unitpack_paraboloid16_rxgb_decode_float(params);
 }
 
@@ -87,7 +85,8 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -107,7 +106,8 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -115,12 +115,12 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
     precise float3 halved = float3(w4.xy, w4.z * 0.5);
-    precise float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -142,42 +142,53 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = len2 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t2 = len2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
     precise float2 p = w4.xy / a;
     precise float3 abs_v = abs(v);
-    precise float t7 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
-    precise float largest3 = t7 >= abs_v.z ? t7 : abs_v.z;
-    bool t8 = largest3 > 0.0 && largest3 <= 3.4028235e38;
-    precise float3 scaled3 = v / (t8 ? largest3 : 1.0);
+    precise float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
+    precise float largest3 = t3 >= abs_v.z ? t3 : abs_v.z;
+    bool t4 = largest3 <= 3.4028235e38;
+    bool t5 = largest3 > 0.0 && t4;
+    precise float3 scaled3 = v / (t5 ? largest3 : 1.0);
     precise float3 scaled3_sq = scaled3 * scaled3;
     precise float len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    precise float3 t9 = t8 && len2_2 >= 1.0 ? scaled3 / sqrt(len2_2) : float3(0.0, 0.0, 1.0);
-    precise float3 t10 = float3(t9.xy, t9.z > 0.0 ? t9.z : 0.0);
-    precise float3 abs_t10 = abs(t10);
-    precise float t11 = abs_t10.x >= abs_t10.y ? abs_t10.x : abs_t10.y;
-    precise float largest4 = t11 >= abs_t10.z ? t11 : abs_t10.z;
-    bool t12 = largest4 > 0.0 && largest4 <= 3.4028235e38;
-    precise float3 scaled4 = t10 / (t12 ? largest4 : 1.0);
+    bool t6 = len2_2 >= 1.0;
+    precise float3 t7 = scaled3 / sqrt(len2_2);
+    precise float3 t8 = t5 && t6 ? t7 : float3(0.0, 0.0, 1.0);
+    precise float3 t9 = float3(t8.xy, t8.z > 0.0 ? t8.z : 0.0);
+    precise float3 abs_t9 = abs(t9);
+    precise float t10 = abs_t9.x >= abs_t9.y ? abs_t9.x : abs_t9.y;
+    precise float largest4 = t10 >= abs_t9.z ? t10 : abs_t9.z;
+    bool t11 = largest4 <= 3.4028235e38;
+    bool t12 = largest4 > 0.0 && t11;
+    precise float3 scaled4 = t9 / (t12 ? largest4 : 1.0);
     precise float3 scaled4_sq = scaled4 * scaled4;
     precise float len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    precise float t13 = 0.5
-        + (t12 && len2_3 >= 1.0 ? scaled4 / sqrt(len2_3) : float3(0.0, 0.0, 1.0)).z * 0.5;
-    precise float4 result = float4(1.0, 0.5 + p.y * 0.5, t13, 0.5 + p.x * 0.5);
+    bool t13 = len2_3 >= 1.0;
+    precise float3 t14 = scaled4 / sqrt(len2_3);
+    precise float4 result = float4(
+        1.0,
+        0.5 + p.y * 0.5,
+        0.5 + (t12 && t13 ? t14 : float3(0.0, 0.0, 1.0)).z * 0.5,
+        0.5 + p.x * 0.5
+    );
     return result;
 }
 
@@ -197,7 +208,8 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -217,7 +229,8 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -225,12 +238,12 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
     precise float3 halved = float3(w4.xy, w4.z * 0.5);
-    precise float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -252,39 +265,41 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = len2 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t2 = len2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
-    precise float2 t7 = w4.xy * 127.5;
-    precise float2 t8 = round(t7 / a + 127.5);
-    precise float2 t9 = UNITPACK_SELECT(t8 >= float2(0.0, 0.0), t8, float2(0.0, 0.0));
-    precise float2 t10 = UNITPACK_SELECT(t9 <= float2(255.0, 255.0), t9, float2(255.0, 255.0));
-    precise float2 t11 = UNITPACK_SELECT(
-        t10 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t7 >= (t10 - 127.0) * a, float2(1.0, 1.0), float2(0.0, 0.0)),
+    precise float2 t3 = w4.xy * 127.5;
+    precise float2 t4 = round(t3 / a + 127.5);
+    precise float2 t5 = UNITPACK_SELECT(t4 >= float2(0.0, 0.0), t4, float2(0.0, 0.0));
+    precise float2 t6 = UNITPACK_SELECT(t5 <= float2(255.0, 255.0), t5, float2(255.0, 255.0));
+    precise float2 t7 = t6
+        + UNITPACK_SELECT(
+            t6 < float2(255.0, 255.0),
+            UNITPACK_SELECT(t3 >= (t6 - 127.0) * a, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        );
+    precise float2 t8 = UNITPACK_SELECT(
+        t6 > float2(0.0, 0.0),
+        UNITPACK_SELECT(t3 >= (t6 - 1.0 - 127.0) * a, float2(1.0, 1.0), float2(0.0, 0.0)) - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t12 = UNITPACK_SELECT(
-        t7 >= (t10 - 1.0 - 127.0) * a,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
-    );
-    precise float2 c = ok && ok2
-        ? t10 + t11 + UNITPACK_SELECT(t10 > float2(0.0, 0.0), t12 - 1.0, float2(0.0, 0.0))
-        : float2(128.0, 128.0);
+    precise float2 t9 = t7 + t8;
+    precise float2 c = ok && ok2 ? t9 : float2(128.0, 128.0);
     precise float3 normal3 = UNITPACK_SELECT(
         abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
@@ -297,18 +312,19 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float3 scaled3 = normal3 * scale3;
     precise float3 abs_scaled3 = abs(scaled3);
     precise float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_3 = sum3 < 16.0;
+    bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     precise float3 w5 = UNITPACK_SELECT(
         abs(scaled3) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled3
     );
     precise float3 w6 = ok3 ? w5 : float3(0.0, 0.0, 2.0);
-    precise float3 t13 = float3(w6.xy, w6.z > 0.0 ? w6.z : 0.0);
+    precise float3 t10 = float3(w6.xy, w6.z > 0.0 ? w6.z : 0.0);
     precise float3 normal4 = UNITPACK_SELECT(
-        abs(t13) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(t10) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        t13
+        t10
     );
     precise float3 abs_normal4 = abs(normal4);
     precise float larger4 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
@@ -317,7 +333,8 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float3 scaled4 = normal4 * scale4;
     precise float3 abs_scaled4 = abs(scaled4);
     precise float sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
-    bool ok4 = sum4 >= 2.0 && sum4 < 16.0;
+    bool sum_below_16_4 = sum4 < 16.0;
+    bool ok4 = sum4 >= 2.0 && sum_below_16_4;
     precise float3 w7 = UNITPACK_SELECT(
         abs(scaled4) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -330,30 +347,34 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float split_lo2 = w8.y - split_hi2;
     precise float split_hi3 = asfloat(asuint(w8.z) & 4294963200u);
     precise float split_lo3 = w8.z - split_hi3;
-    precise float t14 = (split_hi + split_hi) * split_lo
+    precise float t11 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     precise float len2_2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t14
+        + t11
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     precise float big2 = w8.z * w8.z * 16256.25;
-    precise float t15 = round(w8.z / sqrt(len2_2) * 127.5 + 127.5);
-    precise float t16 = t15 >= 0.0 ? t15 : 0.0;
-    precise float estimate = t16 <= 255.0 ? t16 : 255.0;
-    precise float t17 = estimate - 127.0;
-    precise float t18 = t17 * t17 * len2_2;
-    precise float t19 = w8.z >= 0.0
-        ? (t17 > 0.0 ? (big2 >= t18 ? 1.0 : 0.0) : 1.0)
-        : (t17 < 0.0 ? (big2 <= t18 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 255.0 ? t19 : 0.0;
-    precise float t20 = estimate - 1.0 - 127.0;
-    precise float t21 = t20 * t20 * len2_2;
-    precise float t22 = w8.z >= 0.0
-        ? (t20 > 0.0 ? (big2 >= t21 ? 1.0 : 0.0) : 1.0)
-        : (t20 < 0.0 ? (big2 <= t21 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t22 - 1.0 : 0.0;
+    precise float t12 = round(w8.z / sqrt(len2_2) * 127.5 + 127.5);
+    precise float t13 = t12 >= 0.0 ? t12 : 0.0;
+    precise float estimate = t13 <= 255.0 ? t13 : 255.0;
+    precise float t14 = estimate - 127.0;
+    precise float t15 = t14 * t14 * len2_2;
+    precise float one_if = big2 >= t15 ? 1.0 : 0.0;
+    precise float t16 = t14 > 0.0 ? one_if : 1.0;
+    precise float one_if2 = big2 <= t15 ? 1.0 : 0.0;
+    precise float t17 = t14 < 0.0 ? one_if2 : 0.0;
+    precise float t18 = w8.z >= 0.0 ? t16 : t17;
+    precise float up = estimate < 255.0 ? t18 : 0.0;
+    precise float t19 = estimate - 1.0 - 127.0;
+    precise float t20 = t19 * t19 * len2_2;
+    precise float one_if3 = big2 >= t20 ? 1.0 : 0.0;
+    precise float t21 = t19 > 0.0 ? one_if3 : 1.0;
+    precise float one_if4 = big2 <= t20 ? 1.0 : 0.0;
+    precise float t22 = t19 < 0.0 ? one_if4 : 0.0;
+    precise float t23 = (w8.z >= 0.0 ? t21 : t22) - 1.0;
+    precise float down = estimate > 0.0 ? t23 : 0.0;
     precise float4 result = float4(255.0, c.y, estimate + up + down, c.x);
     return result;
 }
@@ -368,10 +389,8 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
 //   components count as zero.
 uint unitpack_paraboloid16_rxgb_encode(float3 v) {
     precise float4 round_codes = unitpack_paraboloid16_rxgb_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_PARABOLOID16_RXGB_HLSL

@@ -83,7 +83,8 @@ float2 unitpack_paraboloid24_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -103,7 +104,8 @@ float2 unitpack_paraboloid24_encode_float(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -111,12 +113,12 @@ float2 unitpack_paraboloid24_encode_float(float3 v) {
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
     precise float3 halved = float3(w4.xy, w4.z * 0.5);
-    precise float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -138,20 +140,22 @@ float2 unitpack_paraboloid24_encode_float(float3 v) {
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = len2 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t2 = len2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
     precise float2 result = w4.xy / a;
@@ -174,7 +178,8 @@ float2 unitpack_paraboloid24_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -194,7 +199,8 @@ float2 unitpack_paraboloid24_round_codes(float3 a0) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -202,12 +208,12 @@ float2 unitpack_paraboloid24_round_codes(float3 a0) {
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
     precise float3 halved = float3(w4.xy, w4.z * 0.5);
-    precise float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -229,41 +235,37 @@ float2 unitpack_paraboloid24_round_codes(float3 a0) {
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = len2 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t2 = len2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
-    precise float2 t7 = abs(w4.xy);
-    precise float2 t8 = round(t7 / a * 2047.0);
-    precise float2 t9 = t7 * 2047.0;
-    precise float2 t10 = UNITPACK_SELECT(
-        t9 >= (t8 + 0.5) * a,
+    precise float2 t3 = abs(w4.xy);
+    precise float2 t4 = round(t3 / a * 2047.0);
+    precise float2 t5 = t3 * 2047.0;
+    precise float2 t6 = UNITPACK_SELECT(
+        t5 >= (t4 + 0.5) * a,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t9 < (t8 - 0.5) * a, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t5 < (t4 - 0.5) * a, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t11 = t8 + t10;
-    precise float2 t12 = UNITPACK_SELECT(t11 >= float2(0.0, 0.0), t11, float2(0.0, 0.0));
-    precise float2 t13 = UNITPACK_SELECT(
-        t12 <= float2(2047.0, 2047.0),
-        t12,
-        float2(2047.0, 2047.0)
-    );
-    precise float2 result = ok && ok2
-        ? UNITPACK_SELECT(w4.xy < float2(0.0, 0.0), -t13, t13)
-        : float2(0.0, 0.0);
-    return result;
+    precise float2 t7 = t4 + t6;
+    precise float2 t8 = UNITPACK_SELECT(t7 >= float2(0.0, 0.0), t7, float2(0.0, 0.0));
+    precise float2 t9 = UNITPACK_SELECT(t8 <= float2(2047.0, 2047.0), t8, float2(2047.0, 2047.0));
+    precise float2 t10 = UNITPACK_SELECT(w4.xy < float2(0.0, 0.0), -t9, t9);
+    return ok && ok2 ? t10 : float2(0.0, 0.0);
 }
 
 // unitpack_paraboloid24_encode: fast encoder.

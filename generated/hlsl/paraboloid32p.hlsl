@@ -81,7 +81,8 @@ float2 unitpack_paraboloid32p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -101,7 +102,8 @@ float2 unitpack_paraboloid32p_encode_codes(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -109,12 +111,12 @@ float2 unitpack_paraboloid32p_encode_codes(float3 v) {
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
     precise float3 halved = float3(w4.xy, w4.z * 0.5);
-    precise float t2 = floor(abs(halved.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(halved.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(halved.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(halved.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(halved.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -136,46 +138,48 @@ float2 unitpack_paraboloid32p_encode_codes(float3 v) {
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = len2 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t2 = len2 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
-    precise float2 t7 = floor(w4.xy / a * 32767.0);
-    precise float2 t8 = w4.xy * 32767.0;
-    precise float2 t9 = UNITPACK_SELECT(
-        t8 >= (t7 + 1.0) * a,
+    precise float2 t3 = floor(w4.xy / a * 32767.0);
+    precise float2 t4 = w4.xy * 32767.0;
+    precise float2 t5 = UNITPACK_SELECT(
+        t4 >= (t3 + 1.0) * a,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t8 < t7 * a, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t4 < t3 * a, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t10 = t7 + t9;
-    precise float2 t11 = UNITPACK_SELECT(
-        t10 >= float2(-32767.0, -32767.0),
-        t10,
+    precise float2 t6 = t3 + t5;
+    precise float2 t7 = UNITPACK_SELECT(
+        t6 >= float2(-32767.0, -32767.0),
+        t6,
         float2(-32767.0, -32767.0)
     );
     precise float2 base = UNITPACK_SELECT(
-        t11 <= float2(32767.0, 32767.0),
-        t11,
+        t7 <= float2(32767.0, 32767.0),
+        t7,
         float2(32767.0, 32767.0)
     );
-    precise float t12 = floor(abs(w4.x) * 2097152.0);
-    uint fixed5 = uint(t12);
-    precise float t13 = floor(abs(w4.y) * 2097152.0);
-    uint fixed6 = uint(t13);
-    precise float t14 = floor(abs(w4.z) * 2097152.0);
-    uint fixed7 = uint(t14);
+    precise float fixed_f4 = floor(abs(w4.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w4.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
+    precise float fixed_f6 = floor(abs(w4.z) * 2097152.0);
+    uint fixed7 = uint(fixed_f6);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -195,32 +199,29 @@ float2 unitpack_paraboloid32p_encode_codes(float3 v) {
     uint lo8 = lo7 & 16777215u;
     precise float len2_2 = (float(hi8) * 16777216.0 + float(lo8)) * 2.2737368e-13;
     precise float root_estimate2 = sqrt(len2_2);
-    precise float t15 = floor(root_estimate2 * 512.0);
-    precise float root_h0_2 = t15 * 0.001953125;
+    precise float root_k0_2 = floor(root_estimate2 * 512.0);
+    precise float root_h0_2 = root_k0_2 * 0.001953125;
     precise float root_h1_2 = root_h0_2 + 0.001953125;
-    precise float t16 = root_h1_2 * root_h1_2 <= len2_2
-        ? 1.0
-        : (root_h0_2 * root_h0_2 > len2_2 ? -1.0 : 0.0);
-    precise float root_k2 = t15 + t16;
+    precise float step_down3 = root_h0_2 * root_h0_2 > len2_2 ? -1.0 : 0.0;
+    precise float step3 = root_h1_2 * root_h1_2 <= len2_2 ? 1.0 : step_down3;
+    precise float root_k2 = root_k0_2 + step3;
     precise float root_h2 = root_k2 * 0.001953125;
     precise float root_rest2 = len2_2 - root_h2 * root_h2;
     precise float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     precise float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     precise float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
-    precise float t17 = root_m1_2 * root_m1_2 <= len2_2
-        ? 1.0
-        : (root_m0_2 * root_m0_2 > len2_2 ? -1.0 : 0.0);
-    precise float root_j2 = root_j0_2 + t17;
+    precise float step_down4 = root_m0_2 * root_m0_2 > len2_2 ? -1.0 : 0.0;
+    precise float step4 = root_m1_2 * root_m1_2 <= len2_2 ? 1.0 : step_down4;
+    precise float root_j2 = root_j0_2 + step4;
     precise float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    precise float3 t18 = floor(w4 / root2 * 2097152.0);
-    precise float3 t19 = w4 * 2097152.0;
-    precise float3 t20 = UNITPACK_SELECT(
-        t18 * root2 > t19,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t8 = floor(w4 / root2 * 2097152.0);
+    precise float3 t9 = w4 * 2097152.0;
+    precise float3 t10 = UNITPACK_SELECT(
+        (t8 + 1.0) * root2 <= t9,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t8 * root2 > t9, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t18
-        + UNITPACK_SELECT((t18 + 1.0) * root2 <= t19, float3(1.0, 1.0, 1.0), t20);
+    precise float3 aim = t8 + t10;
     precise float2 cand = UNITPACK_SELECT(
         base <= float2(32767.0, 32767.0),
         base,
@@ -230,247 +231,243 @@ float2 unitpack_paraboloid32p_encode_codes(float3 v) {
     precise float q = round(p.x * p.x * 4.7683716e-7) + round(p.y * p.y * 4.7683716e-7);
     precise float z = 2097152.0 - (q <= 2097152.0 ? q : 2097152.0);
     precise float l2 = q + round(z * z * 4.7683716e-7);
-    precise float t21 = l2 * 524288.0;
-    precise float root_estimate3 = floor(sqrt(t21));
+    precise float t11 = l2 * 524288.0;
+    precise float root_estimate3 = floor(sqrt(t11));
     precise float root_next = root_estimate3 + 1.0;
-    precise float t22 = root_next * root_next <= t21
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t21 ? -1.0 : 0.0);
-    precise float root_step = root_estimate3 + t22;
+    precise float step_down5 = root_estimate3 * root_estimate3 > t11 ? -1.0 : 0.0;
+    precise float step5 = root_next * root_next <= t11 ? 1.0 : step_down5;
+    precise float root_step = root_estimate3 + step5;
     precise float root_next2 = root_step + 1.0;
-    precise float t23 = root_next2 * root_next2 <= t21
-        ? 1.0
-        : (root_step * root_step > t21 ? -1.0 : 0.0);
-    precise float root3 = root_step + t23;
-    precise float t24 = root3 * 2.0;
+    precise float step_down6 = root_step * root_step > t11 ? -1.0 : 0.0;
+    precise float step6 = root_next2 * root_next2 <= t11 ? 1.0 : step_down6;
+    precise float root3 = root_step + step6;
+    precise float t12 = root3 * 2.0;
     precise float2 abs_p = abs(p);
-    precise float t25 = t24 >= abs_p.x ? t24 : abs_p.x;
-    precise float t26 = t25 >= abs_p.y ? t25 : abs_p.y;
-    precise float l = t26 >= z ? t26 : z;
-    precise float2 t27 = floor(p / l * 2097152.0);
-    precise float2 t28 = p * 2097152.0;
-    precise float2 t29 = UNITPACK_SELECT(
-        (t27 + 1.0) * l <= t28,
+    precise float t13 = t12 >= abs_p.x ? t12 : abs_p.x;
+    precise float t14 = t13 >= abs_p.y ? t13 : abs_p.y;
+    precise float l = t14 >= z ? t14 : z;
+    precise float2 t15 = floor(p / l * 2097152.0);
+    precise float2 t16 = p * 2097152.0;
+    precise float2 t17 = UNITPACK_SELECT(
+        (t15 + 1.0) * l <= t16,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t27 * l > t28, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t15 * l > t16, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big = z * 2097152.0;
     precise float ratio_estimate = floor(z / l * 2097152.0);
-    precise float t30 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t30;
-    precise float3 t31 = abs(float3(t27 + t29, ratio) - aim);
-    uint3 t32 = uint3(t31);
-    uint limb1_7 = t32.x >> 12u;
-    uint limb0_7 = t32.x & 4095u;
+    precise float step_down7 = ratio_estimate * l > big ? -1.0 : 0.0;
+    precise float step7 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down7;
+    precise float ratio = ratio_estimate + step7;
+    precise float3 offset = float3(t15 + t17, ratio) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_7 = offset_u.x >> 12u;
+    uint limb0_7 = offset_u.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t32.y >> 12u;
-    uint limb0_8 = t32.y & 4095u;
+    uint limb1_8 = offset_u.y >> 12u;
+    uint limb0_8 = offset_u.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t32.z >> 12u;
-    uint limb0_9 = t32.z & 4095u;
+    uint limb1_9 = offset_u.z >> 12u;
+    uint limb0_9 = offset_u.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist = float(hi12) * 16777216.0 + float(lo12);
-    precise float t33 = base.x + 1.0;
-    precise float2 t34 = float2(t33, base.y);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t18 = float2(s_up, base.y);
     precise float2 cand2 = UNITPACK_SELECT(
-        t34 <= float2(32767.0, 32767.0),
-        t34,
+        t18 <= float2(32767.0, 32767.0),
+        t18,
         float2(32767.0, 32767.0)
     );
+    bool t19 = base.y <= 32767.0;
     precise float2 p2 = floor(cand2 * 64.00195);
     precise float q2 = round(p2.x * p2.x * 4.7683716e-7) + round(p2.y * p2.y * 4.7683716e-7);
     precise float z2 = 2097152.0 - (q2 <= 2097152.0 ? q2 : 2097152.0);
     precise float l2_2 = q2 + round(z2 * z2 * 4.7683716e-7);
-    precise float t35 = l2_2 * 524288.0;
-    precise float root_estimate4 = floor(sqrt(t35));
+    precise float t20 = l2_2 * 524288.0;
+    precise float root_estimate4 = floor(sqrt(t20));
     precise float root_next3 = root_estimate4 + 1.0;
-    precise float t36 = root_next3 * root_next3 <= t35
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t35 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate4 + t36;
+    precise float step_down8 = root_estimate4 * root_estimate4 > t20 ? -1.0 : 0.0;
+    precise float step8 = root_next3 * root_next3 <= t20 ? 1.0 : step_down8;
+    precise float root_step2 = root_estimate4 + step8;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t37 = root_next4 * root_next4 <= t35
-        ? 1.0
-        : (root_step2 * root_step2 > t35 ? -1.0 : 0.0);
-    precise float root4 = root_step2 + t37;
-    precise float t38 = root4 * 2.0;
+    precise float step_down9 = root_step2 * root_step2 > t20 ? -1.0 : 0.0;
+    precise float step9 = root_next4 * root_next4 <= t20 ? 1.0 : step_down9;
+    precise float root4 = root_step2 + step9;
+    precise float t21 = root4 * 2.0;
     precise float2 abs_p2 = abs(p2);
-    precise float t39 = t38 >= abs_p2.x ? t38 : abs_p2.x;
-    precise float t40 = t39 >= abs_p2.y ? t39 : abs_p2.y;
-    precise float l3 = t40 >= z2 ? t40 : z2;
-    precise float2 t41 = floor(p2 / l3 * 2097152.0);
-    precise float2 t42 = p2 * 2097152.0;
-    precise float2 t43 = UNITPACK_SELECT(
-        (t41 + 1.0) * l3 <= t42,
+    precise float t22 = t21 >= abs_p2.x ? t21 : abs_p2.x;
+    precise float t23 = t22 >= abs_p2.y ? t22 : abs_p2.y;
+    precise float l3 = t23 >= z2 ? t23 : z2;
+    precise float2 t24 = floor(p2 / l3 * 2097152.0);
+    precise float2 t25 = p2 * 2097152.0;
+    precise float2 t26 = UNITPACK_SELECT(
+        (t24 + 1.0) * l3 <= t25,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t41 * l3 > t42, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t24 * l3 > t25, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big2 = z2 * 2097152.0;
     precise float ratio_estimate2 = floor(z2 / l3 * 2097152.0);
-    precise float t44 = (ratio_estimate2 + 1.0) * l3 <= big2
-        ? 1.0
-        : (ratio_estimate2 * l3 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t44;
-    precise float3 t45 = abs(float3(t41 + t43, ratio2) - aim);
-    uint3 t46 = uint3(t45);
-    uint limb1_10 = t46.x >> 12u;
-    uint limb0_10 = t46.x & 4095u;
+    precise float step_down10 = ratio_estimate2 * l3 > big2 ? -1.0 : 0.0;
+    precise float step10 = (ratio_estimate2 + 1.0) * l3 <= big2 ? 1.0 : step_down10;
+    precise float ratio2 = ratio_estimate2 + step10;
+    precise float3 offset2 = float3(t24 + t26, ratio2) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_10 = offset_u2.x >> 12u;
+    uint limb0_10 = offset_u2.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t46.y >> 12u;
-    uint limb0_11 = t46.y & 4095u;
+    uint limb1_11 = offset_u2.y >> 12u;
+    uint limb0_11 = offset_u2.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t46.z >> 12u;
-    uint limb0_12 = t46.z & 4095u;
+    uint limb1_12 = offset_u2.z >> 12u;
+    uint limb0_12 = offset_u2.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist2 = float(hi16) * 16777216.0 + float(lo16);
-    bool t47 = t33 <= 32767.0 && base.y <= 32767.0 && dist2 < dist;
-    precise float2 best = t47 ? cand2 : cand;
-    precise float best_d = t47 ? dist2 : dist;
-    precise float t48 = base.y + 1.0;
-    precise float2 t49 = float2(base.x, t48);
+    bool t27 = dist2 < dist;
+    bool t28 = s_up <= 32767.0 && t19 && t27;
+    precise float2 best = t28 ? cand2 : cand;
+    precise float best_d = t28 ? dist2 : dist;
+    precise float2 t29 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(
-        t49 <= float2(32767.0, 32767.0),
-        t49,
+        t29 <= float2(32767.0, 32767.0),
+        t29,
         float2(32767.0, 32767.0)
     );
+    bool t30 = t_up <= 32767.0;
     precise float2 p3 = floor(cand3 * 64.00195);
     precise float q3 = round(p3.x * p3.x * 4.7683716e-7) + round(p3.y * p3.y * 4.7683716e-7);
     precise float z3 = 2097152.0 - (q3 <= 2097152.0 ? q3 : 2097152.0);
     precise float l2_3 = q3 + round(z3 * z3 * 4.7683716e-7);
-    precise float t50 = l2_3 * 524288.0;
-    precise float root_estimate5 = floor(sqrt(t50));
+    precise float t31 = l2_3 * 524288.0;
+    precise float root_estimate5 = floor(sqrt(t31));
     precise float root_next5 = root_estimate5 + 1.0;
-    precise float t51 = root_next5 * root_next5 <= t50
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t50 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate5 + t51;
+    precise float step_down11 = root_estimate5 * root_estimate5 > t31 ? -1.0 : 0.0;
+    precise float step11 = root_next5 * root_next5 <= t31 ? 1.0 : step_down11;
+    precise float root_step3 = root_estimate5 + step11;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t52 = root_next6 * root_next6 <= t50
-        ? 1.0
-        : (root_step3 * root_step3 > t50 ? -1.0 : 0.0);
-    precise float root5 = root_step3 + t52;
-    precise float t53 = root5 * 2.0;
+    precise float step_down12 = root_step3 * root_step3 > t31 ? -1.0 : 0.0;
+    precise float step12 = root_next6 * root_next6 <= t31 ? 1.0 : step_down12;
+    precise float root5 = root_step3 + step12;
+    precise float t32 = root5 * 2.0;
     precise float2 abs_p3 = abs(p3);
-    precise float t54 = t53 >= abs_p3.x ? t53 : abs_p3.x;
-    precise float t55 = t54 >= abs_p3.y ? t54 : abs_p3.y;
-    precise float l4 = t55 >= z3 ? t55 : z3;
-    precise float2 t56 = floor(p3 / l4 * 2097152.0);
-    precise float2 t57 = p3 * 2097152.0;
-    precise float2 t58 = UNITPACK_SELECT(
-        (t56 + 1.0) * l4 <= t57,
+    precise float t33 = t32 >= abs_p3.x ? t32 : abs_p3.x;
+    precise float t34 = t33 >= abs_p3.y ? t33 : abs_p3.y;
+    precise float l4 = t34 >= z3 ? t34 : z3;
+    precise float2 t35 = floor(p3 / l4 * 2097152.0);
+    precise float2 t36 = p3 * 2097152.0;
+    precise float2 t37 = UNITPACK_SELECT(
+        (t35 + 1.0) * l4 <= t36,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t56 * l4 > t57, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t35 * l4 > t36, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big3 = z3 * 2097152.0;
     precise float ratio_estimate3 = floor(z3 / l4 * 2097152.0);
-    precise float t59 = (ratio_estimate3 + 1.0) * l4 <= big3
-        ? 1.0
-        : (ratio_estimate3 * l4 > big3 ? -1.0 : 0.0);
-    precise float ratio3 = ratio_estimate3 + t59;
-    precise float3 t60 = abs(float3(t56 + t58, ratio3) - aim);
-    uint3 t61 = uint3(t60);
-    uint limb1_13 = t61.x >> 12u;
-    uint limb0_13 = t61.x & 4095u;
+    precise float step_down13 = ratio_estimate3 * l4 > big3 ? -1.0 : 0.0;
+    precise float step13 = (ratio_estimate3 + 1.0) * l4 <= big3 ? 1.0 : step_down13;
+    precise float ratio3 = ratio_estimate3 + step13;
+    precise float3 offset3 = float3(t35 + t37, ratio3) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_13 = offset_u3.x >> 12u;
+    uint limb0_13 = offset_u3.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t61.y >> 12u;
-    uint limb0_14 = t61.y & 4095u;
+    uint limb1_14 = offset_u3.y >> 12u;
+    uint limb0_14 = offset_u3.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t61.z >> 12u;
-    uint limb0_15 = t61.z & 4095u;
+    uint limb1_15 = offset_u3.z >> 12u;
+    uint limb0_15 = offset_u3.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist3 = float(hi20) * 16777216.0 + float(lo20);
-    bool t62 = base.x <= 32767.0 && t48 <= 32767.0 && dist3 < best_d;
-    precise float2 best2 = t62 ? cand3 : best;
-    precise float best_d2 = t62 ? dist3 : best_d;
-    precise float2 t63 = base + 1.0;
+    bool t38 = dist3 < best_d;
+    bool t39 = base.x <= 32767.0 && t30 && t38;
+    precise float2 best2 = t39 ? cand3 : best;
+    precise float best_d2 = t39 ? dist3 : best_d;
+    precise float2 t40 = base + 1.0;
     precise float2 cand4 = UNITPACK_SELECT(
-        t63 <= float2(32767.0, 32767.0),
-        t63,
+        t40 <= float2(32767.0, 32767.0),
+        t40,
         float2(32767.0, 32767.0)
     );
+    bool t41 = t_up <= 32767.0;
     precise float2 p4 = floor(cand4 * 64.00195);
     precise float q4 = round(p4.x * p4.x * 4.7683716e-7) + round(p4.y * p4.y * 4.7683716e-7);
     precise float z4 = 2097152.0 - (q4 <= 2097152.0 ? q4 : 2097152.0);
     precise float l2_4 = q4 + round(z4 * z4 * 4.7683716e-7);
-    precise float t64 = l2_4 * 524288.0;
-    precise float root_estimate6 = floor(sqrt(t64));
+    precise float t42 = l2_4 * 524288.0;
+    precise float root_estimate6 = floor(sqrt(t42));
     precise float root_next7 = root_estimate6 + 1.0;
-    precise float t65 = root_next7 * root_next7 <= t64
-        ? 1.0
-        : (root_estimate6 * root_estimate6 > t64 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate6 + t65;
+    precise float step_down14 = root_estimate6 * root_estimate6 > t42 ? -1.0 : 0.0;
+    precise float step14 = root_next7 * root_next7 <= t42 ? 1.0 : step_down14;
+    precise float root_step4 = root_estimate6 + step14;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t66 = root_next8 * root_next8 <= t64
-        ? 1.0
-        : (root_step4 * root_step4 > t64 ? -1.0 : 0.0);
-    precise float root6 = root_step4 + t66;
-    precise float t67 = root6 * 2.0;
+    precise float step_down15 = root_step4 * root_step4 > t42 ? -1.0 : 0.0;
+    precise float step15 = root_next8 * root_next8 <= t42 ? 1.0 : step_down15;
+    precise float root6 = root_step4 + step15;
+    precise float t43 = root6 * 2.0;
     precise float2 abs_p4 = abs(p4);
-    precise float t68 = t67 >= abs_p4.x ? t67 : abs_p4.x;
-    precise float t69 = t68 >= abs_p4.y ? t68 : abs_p4.y;
-    precise float l5 = t69 >= z4 ? t69 : z4;
-    precise float2 t70 = floor(p4 / l5 * 2097152.0);
-    precise float2 t71 = p4 * 2097152.0;
-    precise float2 t72 = UNITPACK_SELECT(
-        (t70 + 1.0) * l5 <= t71,
+    precise float t44 = t43 >= abs_p4.x ? t43 : abs_p4.x;
+    precise float t45 = t44 >= abs_p4.y ? t44 : abs_p4.y;
+    precise float l5 = t45 >= z4 ? t45 : z4;
+    precise float2 t46 = floor(p4 / l5 * 2097152.0);
+    precise float2 t47 = p4 * 2097152.0;
+    precise float2 t48 = UNITPACK_SELECT(
+        (t46 + 1.0) * l5 <= t47,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t70 * l5 > t71, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t46 * l5 > t47, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big4 = z4 * 2097152.0;
     precise float ratio_estimate4 = floor(z4 / l5 * 2097152.0);
-    precise float t73 = (ratio_estimate4 + 1.0) * l5 <= big4
-        ? 1.0
-        : (ratio_estimate4 * l5 > big4 ? -1.0 : 0.0);
-    precise float ratio4 = ratio_estimate4 + t73;
-    precise float3 t74 = abs(float3(t70 + t72, ratio4) - aim);
-    uint3 t75 = uint3(t74);
-    uint limb1_16 = t75.x >> 12u;
-    uint limb0_16 = t75.x & 4095u;
+    precise float step_down16 = ratio_estimate4 * l5 > big4 ? -1.0 : 0.0;
+    precise float step16 = (ratio_estimate4 + 1.0) * l5 <= big4 ? 1.0 : step_down16;
+    precise float ratio4 = ratio_estimate4 + step16;
+    precise float3 offset4 = float3(t46 + t48, ratio4) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_16 = offset_u4.x >> 12u;
+    uint limb0_16 = offset_u4.x & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = 0u + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = 0u + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t75.y >> 12u;
-    uint limb0_17 = t75.y & 4095u;
+    uint limb1_17 = offset_u4.y >> 12u;
+    uint limb0_17 = offset_u4.y & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
-    uint limb1_18 = t75.z >> 12u;
-    uint limb0_18 = t75.z & 4095u;
+    uint limb1_18 = offset_u4.z >> 12u;
+    uint limb0_18 = offset_u4.z & 4095u;
     uint cross18 = limb1_18 * limb0_18;
     uint hi23 = hi22 + limb1_18 * limb1_18 + (cross18 >> 11u);
     uint lo23 = lo22 + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
     uint hi24 = hi23 + (lo23 >> 24u);
     uint lo24 = lo23 & 16777215u;
     precise float dist4 = float(hi24) * 16777216.0 + float(lo24);
-    precise float2 best3 = base.x + 1.0 <= 32767.0 && base.y + 1.0 <= 32767.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t49 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 32767.0 && t41 && t49 ? cand4 : best2;
     return ok && ok2 ? best3 : float2(0.0, 0.0);
 }
 

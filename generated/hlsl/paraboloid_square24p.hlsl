@@ -69,13 +69,15 @@ float3 unitpack_paraboloid_square24p_decode(uint code) {
 float unitpack_paraboloid_square24p_square_step(float a0, float a1, float3 a2) {
     precise float t = a0 + a1;
     precise float t1 = round(t * t * 4.7683716e-7);
-    precise float surface = round(
-        (2097152.0 - t1) * (2097152.0 - round(a2.y * t1 * 4.7683716e-7)) * 4.7683716e-7
-    );
-    precise float t2 = round(surface * a2.x * 4.7683716e-7);
-    precise float t3 = round(a2.z * t * 4.7683716e-7);
-    bool t4 = t2 >= t3 && t <= 2097152.0;
-    return t4 ? t : a0;
+    precise float t2 = (2097152.0 - t1)
+        * (2097152.0 - round(a2.y * t1 * 4.7683716e-7))
+        * 4.7683716e-7;
+    precise float surface = round(t2);
+    precise float t3 = round(surface * a2.x * 4.7683716e-7);
+    precise float t4 = round(a2.z * t * 4.7683716e-7);
+    bool t5 = t3 >= t4;
+    bool t6 = t <= 2097152.0;
+    return t5 && t6 ? t : a0;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -89,10 +91,9 @@ float2 unitpack_paraboloid_square24p_square_point(float3 a0) {
     precise float t5 = t3 >= 1.0 ? t3 : 1.0;
     precise float big = t4 * 2097152.0;
     precise float ratio_estimate = floor(t4 / t5 * 2097152.0);
-    precise float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    precise float r = ratio_estimate + t6;
+    precise float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    precise float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    precise float r = ratio_estimate + step;
     precise float3 k = float3(t3, round(r * r * 4.7683716e-7), a0.z);
     precise float s = unitpack_paraboloid_square24p_square_step(0.0, 2097152.0, k);
     precise float s2 = unitpack_paraboloid_square24p_square_step(s, 1048576.0, k);
@@ -116,9 +117,11 @@ float2 unitpack_paraboloid_square24p_square_point(float3 a0) {
     precise float s20 = unitpack_paraboloid_square24p_square_step(s19, 4.0, k);
     precise float s21 = unitpack_paraboloid_square24p_square_step(s20, 2.0, k);
     precise float s22 = unitpack_paraboloid_square24p_square_step(s21, 1.0, k);
-    precise float t7 = round(r * s22 * 4.7683716e-7);
-    precise float2 t8 = t2 ? float2(s22, t7) : float2(t7, s22);
-    precise float2 result = UNITPACK_SELECT(a0.xy < float2(0.0, 0.0), -t8, t8);
+    precise float t6 = round(r * s22 * 4.7683716e-7);
+    precise float2 t7 = float2(s22, t6);
+    precise float2 t8 = float2(t6, s22);
+    precise float2 t9 = t2 ? t7 : t8;
+    precise float2 result = UNITPACK_SELECT(a0.xy < float2(0.0, 0.0), -t9, t9);
     return result;
 }
 
@@ -139,7 +142,8 @@ float2 unitpack_paraboloid_square24p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -159,19 +163,20 @@ float2 unitpack_paraboloid_square24p_encode_codes(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -191,27 +196,29 @@ float2 unitpack_paraboloid_square24p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t6 = floor(w4 / root * 2097152.0);
-    precise float3 t7 = w4 * 2097152.0;
-    precise float3 t8 = UNITPACK_SELECT(
-        (t6 + 1.0) * root <= t7,
+    precise float3 t2 = floor(w4 / root * 2097152.0);
+    precise float3 t3 = w4 * 2097152.0;
+    precise float3 t4 = UNITPACK_SELECT(
+        (t2 + 1.0) * root <= t3,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t6 * root > t7, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t2 * root > t3, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t6 + t8;
+    precise float3 aim = t2 + t4;
     precise float2 p = unitpack_paraboloid_square24p_square_point(aim);
     precise float2 base = floor(p * 0.00097608566);
     precise float2 cand = UNITPACK_SELECT(
@@ -220,254 +227,250 @@ float2 unitpack_paraboloid_square24p_encode_codes(float3 v) {
         float2(2047.0, 2047.0)
     );
     precise float2 p2 = floor(cand * 1024.5002);
-    precise float t9 = round(p2.x * p2.x * 4.7683716e-7);
-    precise float t10 = round(p2.y * p2.y * 4.7683716e-7);
-    precise float z = round((2097152.0 - t9) * (2097152.0 - t10) * 4.7683716e-7);
-    precise float l2 = t9 + t10 + round(z * z * 4.7683716e-7);
-    precise float t11 = l2 * 524288.0;
-    precise float root_estimate2 = floor(sqrt(t11));
+    precise float t5 = round(p2.x * p2.x * 4.7683716e-7);
+    precise float t6 = round(p2.y * p2.y * 4.7683716e-7);
+    precise float z = round((2097152.0 - t5) * (2097152.0 - t6) * 4.7683716e-7);
+    precise float l2 = t5 + t6 + round(z * z * 4.7683716e-7);
+    precise float t7 = l2 * 524288.0;
+    precise float root_estimate2 = floor(sqrt(t7));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t12 = root_next * root_next <= t11
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t11 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t12;
+    precise float step_down3 = root_estimate2 * root_estimate2 > t7 ? -1.0 : 0.0;
+    precise float step3 = root_next * root_next <= t7 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + step3;
     precise float root_next2 = root_step + 1.0;
-    precise float t13 = root_next2 * root_next2 <= t11
-        ? 1.0
-        : (root_step * root_step > t11 ? -1.0 : 0.0);
-    precise float root2 = root_step + t13;
-    precise float t14 = root2 * 2.0;
+    precise float step_down4 = root_step * root_step > t7 ? -1.0 : 0.0;
+    precise float step4 = root_next2 * root_next2 <= t7 ? 1.0 : step_down4;
+    precise float root2 = root_step + step4;
+    precise float t8 = root2 * 2.0;
     precise float2 abs_p2 = abs(p2);
-    precise float t15 = t14 >= abs_p2.x ? t14 : abs_p2.x;
-    precise float t16 = t15 >= abs_p2.y ? t15 : abs_p2.y;
-    precise float l = t16 >= z ? t16 : z;
-    precise float2 t17 = floor(p2 / l * 2097152.0);
-    precise float2 t18 = p2 * 2097152.0;
-    precise float2 t19 = UNITPACK_SELECT(
-        (t17 + 1.0) * l <= t18,
+    precise float t9 = t8 >= abs_p2.x ? t8 : abs_p2.x;
+    precise float t10 = t9 >= abs_p2.y ? t9 : abs_p2.y;
+    precise float l = t10 >= z ? t10 : z;
+    precise float2 t11 = floor(p2 / l * 2097152.0);
+    precise float2 t12 = p2 * 2097152.0;
+    precise float2 t13 = UNITPACK_SELECT(
+        (t11 + 1.0) * l <= t12,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t17 * l > t18, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t11 * l > t12, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big = z * 2097152.0;
     precise float ratio_estimate = floor(z / l * 2097152.0);
-    precise float t20 = (ratio_estimate + 1.0) * l <= big
-        ? 1.0
-        : (ratio_estimate * l > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t20;
-    precise float3 t21 = abs(float3(t17 + t19, ratio) - aim);
-    uint3 t22 = uint3(t21);
-    uint limb1_4 = t22.x >> 12u;
-    uint limb0_4 = t22.x & 4095u;
+    precise float step_down5 = ratio_estimate * l > big ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down5;
+    precise float ratio = ratio_estimate + step5;
+    precise float3 offset = float3(t11 + t13, ratio) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t22.y >> 12u;
-    uint limb0_5 = t22.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t22.z >> 12u;
-    uint limb0_6 = t22.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    precise float t23 = base.x + 1.0;
-    precise float2 t24 = float2(t23, base.y);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t14 = float2(s_up, base.y);
     precise float2 cand2 = UNITPACK_SELECT(
-        t24 <= float2(2047.0, 2047.0),
-        t24,
+        t14 <= float2(2047.0, 2047.0),
+        t14,
         float2(2047.0, 2047.0)
     );
+    bool t15 = base.y <= 2047.0;
     precise float2 p3 = floor(cand2 * 1024.5002);
-    precise float t25 = round(p3.x * p3.x * 4.7683716e-7);
-    precise float t26 = round(p3.y * p3.y * 4.7683716e-7);
-    precise float z2 = round((2097152.0 - t25) * (2097152.0 - t26) * 4.7683716e-7);
-    precise float l2_2 = t25 + t26 + round(z2 * z2 * 4.7683716e-7);
-    precise float t27 = l2_2 * 524288.0;
-    precise float root_estimate3 = floor(sqrt(t27));
+    precise float t16 = round(p3.x * p3.x * 4.7683716e-7);
+    precise float t17 = round(p3.y * p3.y * 4.7683716e-7);
+    precise float z2 = round((2097152.0 - t16) * (2097152.0 - t17) * 4.7683716e-7);
+    precise float l2_2 = t16 + t17 + round(z2 * z2 * 4.7683716e-7);
+    precise float t18 = l2_2 * 524288.0;
+    precise float root_estimate3 = floor(sqrt(t18));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t28 = root_next3 * root_next3 <= t27
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t27 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t28;
+    precise float step_down6 = root_estimate3 * root_estimate3 > t18 ? -1.0 : 0.0;
+    precise float step6 = root_next3 * root_next3 <= t18 ? 1.0 : step_down6;
+    precise float root_step2 = root_estimate3 + step6;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t29 = root_next4 * root_next4 <= t27
-        ? 1.0
-        : (root_step2 * root_step2 > t27 ? -1.0 : 0.0);
-    precise float root3 = root_step2 + t29;
-    precise float t30 = root3 * 2.0;
+    precise float step_down7 = root_step2 * root_step2 > t18 ? -1.0 : 0.0;
+    precise float step7 = root_next4 * root_next4 <= t18 ? 1.0 : step_down7;
+    precise float root3 = root_step2 + step7;
+    precise float t19 = root3 * 2.0;
     precise float2 abs_p3 = abs(p3);
-    precise float t31 = t30 >= abs_p3.x ? t30 : abs_p3.x;
-    precise float t32 = t31 >= abs_p3.y ? t31 : abs_p3.y;
-    precise float l3 = t32 >= z2 ? t32 : z2;
-    precise float2 t33 = floor(p3 / l3 * 2097152.0);
-    precise float2 t34 = p3 * 2097152.0;
-    precise float2 t35 = UNITPACK_SELECT(
-        (t33 + 1.0) * l3 <= t34,
+    precise float t20 = t19 >= abs_p3.x ? t19 : abs_p3.x;
+    precise float t21 = t20 >= abs_p3.y ? t20 : abs_p3.y;
+    precise float l3 = t21 >= z2 ? t21 : z2;
+    precise float2 t22 = floor(p3 / l3 * 2097152.0);
+    precise float2 t23 = p3 * 2097152.0;
+    precise float2 t24 = UNITPACK_SELECT(
+        (t22 + 1.0) * l3 <= t23,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t33 * l3 > t34, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t22 * l3 > t23, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big2 = z2 * 2097152.0;
     precise float ratio_estimate2 = floor(z2 / l3 * 2097152.0);
-    precise float t36 = (ratio_estimate2 + 1.0) * l3 <= big2
-        ? 1.0
-        : (ratio_estimate2 * l3 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t36;
-    precise float3 t37 = abs(float3(t33 + t35, ratio2) - aim);
-    uint3 t38 = uint3(t37);
-    uint limb1_7 = t38.x >> 12u;
-    uint limb0_7 = t38.x & 4095u;
+    precise float step_down8 = ratio_estimate2 * l3 > big2 ? -1.0 : 0.0;
+    precise float step8 = (ratio_estimate2 + 1.0) * l3 <= big2 ? 1.0 : step_down8;
+    precise float ratio2 = ratio_estimate2 + step8;
+    precise float3 offset2 = float3(t22 + t24, ratio2) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t38.y >> 12u;
-    uint limb0_8 = t38.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t38.z >> 12u;
-    uint limb0_9 = t38.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t39 = t23 <= 2047.0 && base.y <= 2047.0 && dist2 < dist;
-    precise float2 best = t39 ? cand2 : cand;
-    precise float best_d = t39 ? dist2 : dist;
-    precise float t40 = base.y + 1.0;
-    precise float2 t41 = float2(base.x, t40);
+    bool t25 = dist2 < dist;
+    bool t26 = s_up <= 2047.0 && t15 && t25;
+    precise float2 best = t26 ? cand2 : cand;
+    precise float best_d = t26 ? dist2 : dist;
+    precise float2 t27 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(
-        t41 <= float2(2047.0, 2047.0),
-        t41,
+        t27 <= float2(2047.0, 2047.0),
+        t27,
         float2(2047.0, 2047.0)
     );
+    bool t28 = t_up <= 2047.0;
     precise float2 p4 = floor(cand3 * 1024.5002);
-    precise float t42 = round(p4.x * p4.x * 4.7683716e-7);
-    precise float t43 = round(p4.y * p4.y * 4.7683716e-7);
-    precise float z3 = round((2097152.0 - t42) * (2097152.0 - t43) * 4.7683716e-7);
-    precise float l2_3 = t42 + t43 + round(z3 * z3 * 4.7683716e-7);
-    precise float t44 = l2_3 * 524288.0;
-    precise float root_estimate4 = floor(sqrt(t44));
+    precise float t29 = round(p4.x * p4.x * 4.7683716e-7);
+    precise float t30 = round(p4.y * p4.y * 4.7683716e-7);
+    precise float z3 = round((2097152.0 - t29) * (2097152.0 - t30) * 4.7683716e-7);
+    precise float l2_3 = t29 + t30 + round(z3 * z3 * 4.7683716e-7);
+    precise float t31 = l2_3 * 524288.0;
+    precise float root_estimate4 = floor(sqrt(t31));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t45 = root_next5 * root_next5 <= t44
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t44 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t45;
+    precise float step_down9 = root_estimate4 * root_estimate4 > t31 ? -1.0 : 0.0;
+    precise float step9 = root_next5 * root_next5 <= t31 ? 1.0 : step_down9;
+    precise float root_step3 = root_estimate4 + step9;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t46 = root_next6 * root_next6 <= t44
-        ? 1.0
-        : (root_step3 * root_step3 > t44 ? -1.0 : 0.0);
-    precise float root4 = root_step3 + t46;
-    precise float t47 = root4 * 2.0;
+    precise float step_down10 = root_step3 * root_step3 > t31 ? -1.0 : 0.0;
+    precise float step10 = root_next6 * root_next6 <= t31 ? 1.0 : step_down10;
+    precise float root4 = root_step3 + step10;
+    precise float t32 = root4 * 2.0;
     precise float2 abs_p4 = abs(p4);
-    precise float t48 = t47 >= abs_p4.x ? t47 : abs_p4.x;
-    precise float t49 = t48 >= abs_p4.y ? t48 : abs_p4.y;
-    precise float l4 = t49 >= z3 ? t49 : z3;
-    precise float2 t50 = floor(p4 / l4 * 2097152.0);
-    precise float2 t51 = p4 * 2097152.0;
-    precise float2 t52 = UNITPACK_SELECT(
-        (t50 + 1.0) * l4 <= t51,
+    precise float t33 = t32 >= abs_p4.x ? t32 : abs_p4.x;
+    precise float t34 = t33 >= abs_p4.y ? t33 : abs_p4.y;
+    precise float l4 = t34 >= z3 ? t34 : z3;
+    precise float2 t35 = floor(p4 / l4 * 2097152.0);
+    precise float2 t36 = p4 * 2097152.0;
+    precise float2 t37 = UNITPACK_SELECT(
+        (t35 + 1.0) * l4 <= t36,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t50 * l4 > t51, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t35 * l4 > t36, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big3 = z3 * 2097152.0;
     precise float ratio_estimate3 = floor(z3 / l4 * 2097152.0);
-    precise float t53 = (ratio_estimate3 + 1.0) * l4 <= big3
-        ? 1.0
-        : (ratio_estimate3 * l4 > big3 ? -1.0 : 0.0);
-    precise float ratio3 = ratio_estimate3 + t53;
-    precise float3 t54 = abs(float3(t50 + t52, ratio3) - aim);
-    uint3 t55 = uint3(t54);
-    uint limb1_10 = t55.x >> 12u;
-    uint limb0_10 = t55.x & 4095u;
+    precise float step_down11 = ratio_estimate3 * l4 > big3 ? -1.0 : 0.0;
+    precise float step11 = (ratio_estimate3 + 1.0) * l4 <= big3 ? 1.0 : step_down11;
+    precise float ratio3 = ratio_estimate3 + step11;
+    precise float3 offset3 = float3(t35 + t37, ratio3) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t55.y >> 12u;
-    uint limb0_11 = t55.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t55.z >> 12u;
-    uint limb0_12 = t55.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t56 = base.x <= 2047.0 && t40 <= 2047.0 && dist3 < best_d;
-    precise float2 best2 = t56 ? cand3 : best;
-    precise float best_d2 = t56 ? dist3 : best_d;
-    precise float2 t57 = base + 1.0;
+    bool t38 = dist3 < best_d;
+    bool t39 = base.x <= 2047.0 && t28 && t38;
+    precise float2 best2 = t39 ? cand3 : best;
+    precise float best_d2 = t39 ? dist3 : best_d;
+    precise float2 t40 = base + 1.0;
     precise float2 cand4 = UNITPACK_SELECT(
-        t57 <= float2(2047.0, 2047.0),
-        t57,
+        t40 <= float2(2047.0, 2047.0),
+        t40,
         float2(2047.0, 2047.0)
     );
+    bool t41 = t_up <= 2047.0;
     precise float2 p5 = floor(cand4 * 1024.5002);
-    precise float t58 = round(p5.x * p5.x * 4.7683716e-7);
-    precise float t59 = round(p5.y * p5.y * 4.7683716e-7);
-    precise float z4 = round((2097152.0 - t58) * (2097152.0 - t59) * 4.7683716e-7);
-    precise float l2_4 = t58 + t59 + round(z4 * z4 * 4.7683716e-7);
-    precise float t60 = l2_4 * 524288.0;
-    precise float root_estimate5 = floor(sqrt(t60));
+    precise float t42 = round(p5.x * p5.x * 4.7683716e-7);
+    precise float t43 = round(p5.y * p5.y * 4.7683716e-7);
+    precise float z4 = round((2097152.0 - t42) * (2097152.0 - t43) * 4.7683716e-7);
+    precise float l2_4 = t42 + t43 + round(z4 * z4 * 4.7683716e-7);
+    precise float t44 = l2_4 * 524288.0;
+    precise float root_estimate5 = floor(sqrt(t44));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t61 = root_next7 * root_next7 <= t60
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t60 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t61;
+    precise float step_down12 = root_estimate5 * root_estimate5 > t44 ? -1.0 : 0.0;
+    precise float step12 = root_next7 * root_next7 <= t44 ? 1.0 : step_down12;
+    precise float root_step4 = root_estimate5 + step12;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t62 = root_next8 * root_next8 <= t60
-        ? 1.0
-        : (root_step4 * root_step4 > t60 ? -1.0 : 0.0);
-    precise float root5 = root_step4 + t62;
-    precise float t63 = root5 * 2.0;
+    precise float step_down13 = root_step4 * root_step4 > t44 ? -1.0 : 0.0;
+    precise float step13 = root_next8 * root_next8 <= t44 ? 1.0 : step_down13;
+    precise float root5 = root_step4 + step13;
+    precise float t45 = root5 * 2.0;
     precise float2 abs_p5 = abs(p5);
-    precise float t64 = t63 >= abs_p5.x ? t63 : abs_p5.x;
-    precise float t65 = t64 >= abs_p5.y ? t64 : abs_p5.y;
-    precise float l5 = t65 >= z4 ? t65 : z4;
-    precise float2 t66 = floor(p5 / l5 * 2097152.0);
-    precise float2 t67 = p5 * 2097152.0;
-    precise float2 t68 = UNITPACK_SELECT(
-        (t66 + 1.0) * l5 <= t67,
+    precise float t46 = t45 >= abs_p5.x ? t45 : abs_p5.x;
+    precise float t47 = t46 >= abs_p5.y ? t46 : abs_p5.y;
+    precise float l5 = t47 >= z4 ? t47 : z4;
+    precise float2 t48 = floor(p5 / l5 * 2097152.0);
+    precise float2 t49 = p5 * 2097152.0;
+    precise float2 t50 = UNITPACK_SELECT(
+        (t48 + 1.0) * l5 <= t49,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t66 * l5 > t67, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t48 * l5 > t49, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
     precise float big4 = z4 * 2097152.0;
     precise float ratio_estimate4 = floor(z4 / l5 * 2097152.0);
-    precise float t69 = (ratio_estimate4 + 1.0) * l5 <= big4
-        ? 1.0
-        : (ratio_estimate4 * l5 > big4 ? -1.0 : 0.0);
-    precise float ratio4 = ratio_estimate4 + t69;
-    precise float3 t70 = abs(float3(t66 + t68, ratio4) - aim);
-    uint3 t71 = uint3(t70);
-    uint limb1_13 = t71.x >> 12u;
-    uint limb0_13 = t71.x & 4095u;
+    precise float step_down14 = ratio_estimate4 * l5 > big4 ? -1.0 : 0.0;
+    precise float step14 = (ratio_estimate4 + 1.0) * l5 <= big4 ? 1.0 : step_down14;
+    precise float ratio4 = ratio_estimate4 + step14;
+    precise float3 offset4 = float3(t48 + t50, ratio4) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t71.y >> 12u;
-    uint limb0_14 = t71.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t71.z >> 12u;
-    uint limb0_15 = t71.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    precise float2 best3 = base.x + 1.0 <= 2047.0 && base.y + 1.0 <= 2047.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t51 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 2047.0 && t41 && t51 ? cand4 : best2;
     return best3;
 }
 

@@ -69,13 +69,15 @@ float3 unitpack_paraboloid_square32_decode(uint code) {
 float unitpack_paraboloid_square32_square_step(float a0, float a1, float3 a2) {
     precise float t = a0 + a1;
     precise float t1 = round(t * t * 4.7683716e-7);
-    precise float surface = round(
-        (2097152.0 - t1) * (2097152.0 - round(a2.y * t1 * 4.7683716e-7)) * 4.7683716e-7
-    );
-    precise float t2 = round(surface * a2.x * 4.7683716e-7);
-    precise float t3 = round(a2.z * t * 4.7683716e-7);
-    bool t4 = t2 >= t3 && t <= 2097152.0;
-    return t4 ? t : a0;
+    precise float t2 = (2097152.0 - t1)
+        * (2097152.0 - round(a2.y * t1 * 4.7683716e-7))
+        * 4.7683716e-7;
+    precise float surface = round(t2);
+    precise float t3 = round(surface * a2.x * 4.7683716e-7);
+    precise float t4 = round(a2.z * t * 4.7683716e-7);
+    bool t5 = t3 >= t4;
+    bool t6 = t <= 2097152.0;
+    return t5 && t6 ? t : a0;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -89,10 +91,9 @@ float2 unitpack_paraboloid_square32_square_point(float3 a0) {
     precise float t5 = t3 >= 1.0 ? t3 : 1.0;
     precise float big = t4 * 2097152.0;
     precise float ratio_estimate = floor(t4 / t5 * 2097152.0);
-    precise float t6 = (ratio_estimate + 1.0) * t5 <= big
-        ? 1.0
-        : (ratio_estimate * t5 > big ? -1.0 : 0.0);
-    precise float r = ratio_estimate + t6;
+    precise float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    precise float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    precise float r = ratio_estimate + step;
     precise float3 k = float3(t3, round(r * r * 4.7683716e-7), a0.z);
     precise float s = unitpack_paraboloid_square32_square_step(0.0, 2097152.0, k);
     precise float s2 = unitpack_paraboloid_square32_square_step(s, 1048576.0, k);
@@ -116,9 +117,11 @@ float2 unitpack_paraboloid_square32_square_point(float3 a0) {
     precise float s20 = unitpack_paraboloid_square32_square_step(s19, 4.0, k);
     precise float s21 = unitpack_paraboloid_square32_square_step(s20, 2.0, k);
     precise float s22 = unitpack_paraboloid_square32_square_step(s21, 1.0, k);
-    precise float t7 = round(r * s22 * 4.7683716e-7);
-    precise float2 t8 = t2 ? float2(s22, t7) : float2(t7, s22);
-    precise float2 result = UNITPACK_SELECT(a0.xy < float2(0.0, 0.0), -t8, t8);
+    precise float t6 = round(r * s22 * 4.7683716e-7);
+    precise float2 t7 = float2(s22, t6);
+    precise float2 t8 = float2(t6, s22);
+    precise float2 t9 = t2 ? t7 : t8;
+    precise float2 result = UNITPACK_SELECT(a0.xy < float2(0.0, 0.0), -t9, t9);
     return result;
 }
 
@@ -141,7 +144,8 @@ float2 unitpack_paraboloid_square32_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -161,19 +165,20 @@ float2 unitpack_paraboloid_square32_encode_float(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -193,27 +198,29 @@ float2 unitpack_paraboloid_square32_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t6 = floor(w4 / root * 2097152.0);
-    precise float3 t7 = w4 * 2097152.0;
-    precise float3 t8 = UNITPACK_SELECT(
-        (t6 + 1.0) * root <= t7,
+    precise float3 t2 = floor(w4 / root * 2097152.0);
+    precise float3 t3 = w4 * 2097152.0;
+    precise float3 t4 = UNITPACK_SELECT(
+        (t2 + 1.0) * root <= t3,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t6 * root > t7, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t2 * root > t3, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t6 + t8;
+    precise float3 aim = t2 + t4;
     precise float2 p = unitpack_paraboloid_square32_square_point(aim);
     precise float2 result = p * 4.7683716e-7;
     return result;
@@ -235,7 +242,8 @@ float2 unitpack_paraboloid_square32_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -255,19 +263,20 @@ float2 unitpack_paraboloid_square32_round_codes(float3 a0) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -287,27 +296,29 @@ float2 unitpack_paraboloid_square32_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t6 = floor(w4 / root * 2097152.0);
-    precise float3 t7 = w4 * 2097152.0;
-    precise float3 t8 = UNITPACK_SELECT(
-        (t6 + 1.0) * root <= t7,
+    precise float3 t2 = floor(w4 / root * 2097152.0);
+    precise float3 t3 = w4 * 2097152.0;
+    precise float3 t4 = UNITPACK_SELECT(
+        (t2 + 1.0) * root <= t3,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t6 * root > t7, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t2 * root > t3, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t6 + t8;
+    precise float3 aim = t2 + t4;
     precise float2 p = unitpack_paraboloid_square32_square_point(aim);
     precise float2 result = round(p * 0.015624523);
     return result;

@@ -37,19 +37,21 @@
 float2 unitpack_sfib24_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -57,22 +59,24 @@ float2 unitpack_sfib24_sincos_pi(float a0) {
 //   1))` in 64-bit fixed point from 32-bit products.
 float3 unitpack_sfib24_index_direction(uint a0) {
     bool t1 = a0 < 8388608u;
-    uint k = t1 ? a0 : 16777215u - a0;
+    uint t2 = 16777215u - a0;
+    uint k = t1 ? a0 : t2;
     precise float fine = float(k & 255u) * 1.1920929e-7;
     precise float u = float(k >> 8u) * 3.0517578e-5 + (2.9802322e-8 + fine);
-    precise float t2 = 1.0 - u;
+    precise float t3 = 1.0 - u;
+    precise float neg_t3 = -t3;
     precise float r = sqrt(u * (2.0 - u));
     uint il = a0 & 65535u;
     uint ih = a0 >> 16u;
-    uint t3 = il * 32586u;
-    uint t4 = ih * 31765u;
-    uint mid = ((il * 31765u) >> 16u) + (t3 & 65535u) + (t4 & 65535u);
-    uint high = ih * 32586u + (t3 >> 16u) + (t4 >> 16u) + (mid >> 16u);
+    uint t4 = il * 32586u;
+    uint t5 = ih * 31765u;
+    uint mid = ((il * 31765u) >> 16u) + (t4 & 65535u) + (t5 & 65535u);
+    uint high = ih * 32586u + (t4 >> 16u) + (t5 >> 16u) + (mid >> 16u);
     uint turns = a0 * 2654435769u + high;
     uint longitude = (turns + 2147483776u) >> 8u;
-    precise float t5 = -1.0 + float(longitude) * 1.1920929e-7;
-    precise float2 sc = unitpack_sfib24_sincos_pi(t5);
-    precise float3 result = float3(r * sc.y, r * sc.x, t1 ? t2 : -t2);
+    precise float t6 = -1.0 + float(longitude) * 1.1920929e-7;
+    precise float2 sc = unitpack_sfib24_sincos_pi(t6);
+    precise float3 result = float3(r * sc.y, r * sc.x, t1 ? t3 : neg_t3);
     return result;
 }
 
@@ -109,20 +113,21 @@ float unitpack_sfib24_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -131,31 +136,24 @@ float unitpack_sfib24_atan2_pi(float a0, float a1) {
 float2 unitpack_sfib24_fixed_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 8388608.0;
-    precise float b = back ? 16777216.0 - abs_a0 : abs_a0;
+    precise float t1 = 16777216.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 4194304.0;
-    precise float u = round((swap ? 8388608.0 - b : b) * 3.1415927);
+    precise float t2 = 8388608.0 - b;
+    precise float u = round((swap ? t2 : b) * 3.1415927);
     precise float u2 = round(u * u * 5.9604645e-8);
-    precise float t1 = (
-        round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8) + (-3329.0)
-    )
-        * u2;
-    precise float t2 = (
-        round((round(t1 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8) + (-2796203.0)
-    )
-        * u2;
-    precise float s = round(u * (round(t2 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t3 = (
-        round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8) + 416.0
-    )
-        * u2;
-    precise float t4 = (
-        round((round(t3 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8) + 699051.0
-    )
-        * u2;
-    precise float co = round((round(t4 * 5.9604645e-8) + (-8388608.0)) * u2 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t5 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t5, t5);
+    precise float t3 = round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8);
+    precise float t4 = (round((t3 + (-3329.0)) * u2 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8;
+    precise float t5 = u * (round((round(t4) + (-2796203.0)) * u2 * 5.9604645e-8) + 16777216.0);
+    precise float s = round(t5 * 5.9604645e-8);
+    precise float t6 = round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8);
+    precise float t7 = (round((t6 + 416.0) * u2 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8;
+    precise float t8 = (round((round(t7) + 699051.0) * u2 * 5.9604645e-8) + (-8388608.0)) * u2;
+    precise float co = round(t8 * 5.9604645e-8) + 16777216.0;
+    precise float2 t9 = float2(co, s);
+    precise float2 t10 = float2(s, co);
+    precise float2 t11 = swap ? t9 : t10;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t11, t11);
     return result;
 }
 
@@ -164,35 +162,39 @@ float2 unitpack_sfib24_fixed_sincos_pi(float a0) {
 //   decoder's point.
 float3 unitpack_sfib24_fixed_point(uint a0) {
     bool t1 = a0 < 8388608u;
-    uint k = t1 ? a0 : 16777215u - a0;
-    precise float near = (0.25 + (float(k >> 12u) * 4096.0 + float(k & 4095u))) * 1.1920929e-7;
-    uint t2 = 16777215u - k;
-    precise float far = (0.25 + (float(t2 >> 12u) * 4096.0 + float(t2 & 4095u))) * 1.1920929e-7;
-    precise float t3 = near * far * 4398046500000.0;
-    precise float root_estimate = floor(sqrt(t3));
+    uint t2 = 16777215u - a0;
+    uint k = t1 ? a0 : t2;
+    precise float t3 = 0.25 + (float(k >> 12u) * 4096.0 + float(k & 4095u));
+    precise float near = t3 * 1.1920929e-7;
+    uint t4 = 16777215u - k;
+    precise float t5 = 0.25 + (float(t4 >> 12u) * 4096.0 + float(t4 & 4095u));
+    precise float far = t5 * 1.1920929e-7;
+    precise float t6 = near * far * 4398046500000.0;
+    precise float root_estimate = floor(sqrt(t6));
     precise float root_next = root_estimate + 1.0;
-    precise float t4 = root_next * root_next <= t3
-        ? 1.0
-        : (root_estimate * root_estimate > t3 ? -1.0 : 0.0);
-    precise float root_step = root_estimate + t4;
+    precise float step_down = root_estimate * root_estimate > t6 ? -1.0 : 0.0;
+    precise float step = root_next * root_next <= t6 ? 1.0 : step_down;
+    precise float root_step = root_estimate + step;
     precise float root_next2 = root_step + 1.0;
-    precise float rho = root_step
-        + (root_next2 * root_next2 <= t3 ? 1.0 : (root_step * root_step > t3 ? -1.0 : 0.0));
+    precise float step_down2 = root_step * root_step > t6 ? -1.0 : 0.0;
+    precise float step2 = root_next2 * root_next2 <= t6 ? 1.0 : step_down2;
+    precise float rho = root_step + step2;
     precise float zm = 2097152.0 - floor(near * 2097152.0);
+    precise float neg_zm = -zm;
     uint il = a0 & 65535u;
     uint ih = a0 >> 16u;
-    uint t5 = il * 32586u;
-    uint t6 = ih * 31765u;
-    uint mid = ((il * 31765u) >> 16u) + (t5 & 65535u) + (t6 & 65535u);
-    uint high = ih * 32586u + (t5 >> 16u) + (t6 >> 16u) + (mid >> 16u);
+    uint t7 = il * 32586u;
+    uint t8 = ih * 31765u;
+    uint mid = ((il * 31765u) >> 16u) + (t7 & 65535u) + (t8 & 65535u);
+    uint high = ih * 32586u + (t7 >> 16u) + (t8 >> 16u) + (mid >> 16u);
     uint turns = a0 * 2654435769u + high;
     uint longitude = (turns + 2147483776u) >> 8u;
-    precise float t7 = -16777216.0 + float(longitude) * 2.0;
-    precise float2 sc = unitpack_sfib24_fixed_sincos_pi(t7);
+    precise float t9 = -16777216.0 + float(longitude) * 2.0;
+    precise float2 sc = unitpack_sfib24_fixed_sincos_pi(t9);
     precise float3 result = float3(
         round(rho * sc.y * 5.9604645e-8),
         round(rho * sc.x * 5.9604645e-8),
-        t1 ? zm : -zm
+        t1 ? zm : neg_zm
     );
     return result;
 }
@@ -214,19 +216,20 @@ uint unitpack_sfib24_encode_index(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -246,353 +249,435 @@ uint unitpack_sfib24_encode_index(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t5 = floor(w2 / root * 2097152.0);
-    precise float3 t6 = w2 * 2097152.0;
-    precise float3 t7 = UNITPACK_SELECT(
-        (t5 + 1.0) * root <= t6,
+    precise float3 t1 = floor(w2 / root * 2097152.0);
+    precise float3 t2 = w2 * 2097152.0;
+    precise float3 t3 = UNITPACK_SELECT(
+        (t1 + 1.0) * root <= t2,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t5 * root > t6, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t1 * root > t2, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t5 + t7;
+    precise float3 aim = t1 + t3;
     precise float3 u = w2 / root;
-    precise float2 t8 = u.xy * u.xy;
-    precise float rho2 = t8.x + t8.y;
+    precise float2 t4 = u.xy * u.xy;
+    precise float rho2 = t4.x + t4.y;
     precise float3 abs_aim = abs(aim);
-    uint3 t9 = uint3(abs_aim);
-    uint limb1_4 = t9.x >> 12u;
-    uint limb0_4 = t9.x & 4095u;
+    uint3 abs_aim_u = uint3(abs_aim);
+    uint limb1_4 = abs_aim_u.x >> 12u;
+    uint limb0_4 = abs_aim_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t9.y >> 12u;
-    uint limb0_5 = t9.y & 4095u;
+    uint limb1_5 = abs_aim_u.y >> 12u;
+    uint limb0_5 = abs_aim_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2_fixed = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    bool t10 = aim.z < 0.0;
+    bool t5 = aim.z < 0.0;
     precise float below = rho2 / (1.0 + abs(u.z));
     precise float dz = 2.9802322e-8 - below;
     precise float t = unitpack_sfib24_atan2_pi(u.y, u.x);
-    precise float tn = t10 ? 0.21312913 - t : t;
-    bool t11 = rho2_fixed >= 1.5225483e-7;
-    bool t12 = rho2_fixed >= 3.986083e-7;
-    bool t13 = rho2_fixed >= 1.0435701e-6;
-    bool t14 = rho2_fixed >= 2.732102e-6;
-    precise float t15 = t14
-        ? -288919.2
-        : (t13 ? -467481.1 : (t12 ? -756400.3 : (t11 ? -1223881.4 : -1980281.6)));
-    precise float t16 = t14
-        ? -467481.1
-        : (t13 ? -756400.3 : (t12 ? -1223881.4 : (t11 ? -1980281.6 : -3204163.0)));
-    bool t17 = rho2_fixed >= 7.152736e-6;
-    bool t18 = rho2_fixed >= 1.8726107e-5;
-    uint t19 = t18 ? 34u : (t17 ? 21u : (t14 ? 13u : (t13 ? 8u : (t12 ? 5u : (t11 ? 3u : 2u)))));
-    precise float t20 = t18
-        ? -17.0
-        : (t17 ? 10.5 : (t14 ? -6.5 : (t13 ? 4.0 : (t12 ? -2.5 : (t11 ? 1.5 : -1.0)))));
-    precise float t21 = t18
-        ? 10.5
-        : (t17 ? -6.5 : (t14 ? 4.0 : (t13 ? -2.5 : (t12 ? 1.5 : (t11 ? -1.0 : 0.5)))));
-    bool t22 = rho2_fixed >= 4.902558e-5;
-    uint t23 = t22
-        ? 34u
-        : (t18 ? 21u : (t17 ? 13u : (t14 ? 8u : (t13 ? 5u : (t12 ? 3u : (t11 ? 2u : 1u))))));
-    bool t24 = rho2_fixed >= 0.00012835064;
-    precise float t25 = t24
-        ? -42152.742
-        : (t22 ? -68204.57 : (t18 ? -110357.31 : (t17 ? -178561.89 : t15)));
-    precise float t26 = t24
-        ? -68204.57
-        : (t22 ? -110357.31 : (t18 ? -178561.89 : (t17 ? -288919.2 : t16)));
-    bool t27 = rho2_fixed >= 0.00033602634;
-    bool t28 = rho2_fixed >= 0.00087972835;
-    bool t29 = rho2_fixed >= 0.0023031589;
-    bool t30 = rho2_fixed >= 0.006029748;
-    uint t31 = t30
-        ? 610u
-        : (t29 ? 377u : (t28 ? 233u : (t27 ? 144u : (t24 ? 89u : (t22 ? 55u : t19)))));
-    precise float t32 = t30
-        ? -305.0
-        : (t29 ? 188.5 : (t28 ? -116.5 : (t27 ? 72.0 : (t24 ? -44.5 : (t22 ? 27.5 : t20)))));
-    precise float t33 = t30
-        ? -6150.0024
-        : (t29 ? -9950.913 : (t28 ? -16100.915 : (t27 ? -26051.828 : t25)));
-    precise float t34 = t30
-        ? 188.5
-        : (t29 ? -116.5 : (t28 ? 72.0 : (t27 ? -44.5 : (t24 ? 27.5 : (t22 ? -17.0 : t21)))));
-    precise float t35 = t30
-        ? -9950.913
-        : (t29 ? -16100.915 : (t28 ? -26051.828 : (t27 ? -42152.742 : t26)));
-    bool t36 = rho2_fixed >= 0.015786085;
-    uint t37 = t36
-        ? 610u
-        : (t30 ? 377u : (t29 ? 233u : (t28 ? 144u : (t27 ? 89u : (t24 ? 55u : t23)))));
-    bool t38 = rho2_fixed >= 0.04132851;
-    bool t39 = rho2_fixed >= 0.10819943;
-    bool t40 = rho2_fixed >= 0.2832698;
-    precise float t41 = t40
-        ? -897.27325
-        : (t39 ? -1451.8186 : (t38 ? -2349.0918 : (t36 ? -3800.9104 : t33)));
-    precise float t42 = t40
-        ? -1451.8186
-        : (t39 ? -2349.0918 : (t38 ? -3800.9104 : (t36 ? -6150.0024 : t35)));
-    bool t43 = rho2_fixed >= 0.74161;
-    uint t44 = t43 ? 4181u : (t40 ? 2584u : (t39 ? 1597u : (t38 ? 987u : t37)));
-    uint t45 = t43 ? 6765u : (t40 ? 4181u : (t39 ? 2584u : (t38 ? 1597u : (t36 ? 987u : t31))));
-    precise float t46 = t43
-        ? 3382.5
-        : (t40 ? -2090.5 : (t39 ? 1292.0 : (t38 ? -798.5 : (t36 ? 493.5 : t32))));
-    precise float t47 = t43
-        ? -2090.5
-        : (t40 ? 1292.0 : (t39 ? -798.5 : (t38 ? 493.5 : (t36 ? -305.0 : t34))));
-    precise float t48 = 4194303.0 + round(tn * t46 + dz * (t43 ? -554.54535 : t41));
-    precise float t49 = 4194303.0 + round(tn * t47 + dz * (t43 ? -897.27325 : t42));
-    uint t50 = uint(t48) * t44 + uint(t49) * t45;
-    uint corner = t50 - ((t44 + t45) << 22u);
-    uint t51 = 3221225471u < corner ? 4294967295u - corner : corner;
-    uint t52 = (t10 ? 16777215u - t51 : t51) & 16777215u;
-    precise float3 t53 = abs(unitpack_sfib24_fixed_point(t52) - aim);
-    uint3 t54 = uint3(t53);
-    uint limb1_6 = t54.x >> 12u;
-    uint limb0_6 = t54.x & 4095u;
+    precise float t6 = 0.21312913 - t;
+    precise float tn = t5 ? t6 : t;
+    bool t7 = rho2_fixed >= 1.5225483e-7;
+    uint t8 = t7 ? 2u : 1u;
+    uint t9 = t7 ? 3u : 2u;
+    precise float t10 = t7 ? 1.5 : -1.0;
+    precise float t11 = t7 ? -1223881.4 : -1980281.6;
+    precise float t12 = t7 ? -1.0 : 0.5;
+    precise float t13 = t7 ? -1980281.6 : -3204163.0;
+    bool t14 = rho2_fixed >= 3.986083e-7;
+    uint t15 = t14 ? 3u : t8;
+    uint t16 = t14 ? 5u : t9;
+    precise float t17 = t14 ? -2.5 : t10;
+    precise float t18 = t14 ? -756400.3 : t11;
+    precise float t19 = t14 ? 1.5 : t12;
+    precise float t20 = t14 ? -1223881.4 : t13;
+    bool t21 = rho2_fixed >= 1.0435701e-6;
+    uint t22 = t21 ? 5u : t15;
+    uint t23 = t21 ? 8u : t16;
+    precise float t24 = t21 ? 4.0 : t17;
+    precise float t25 = t21 ? -467481.1 : t18;
+    precise float t26 = t21 ? -2.5 : t19;
+    precise float t27 = t21 ? -756400.3 : t20;
+    bool t28 = rho2_fixed >= 2.732102e-6;
+    uint t29 = t28 ? 8u : t22;
+    uint t30 = t28 ? 13u : t23;
+    precise float t31 = t28 ? -6.5 : t24;
+    precise float t32 = t28 ? -288919.2 : t25;
+    precise float t33 = t28 ? 4.0 : t26;
+    precise float t34 = t28 ? -467481.1 : t27;
+    bool t35 = rho2_fixed >= 7.152736e-6;
+    uint t36 = t35 ? 13u : t29;
+    uint t37 = t35 ? 21u : t30;
+    precise float t38 = t35 ? 10.5 : t31;
+    precise float t39 = t35 ? -178561.89 : t32;
+    precise float t40 = t35 ? -6.5 : t33;
+    precise float t41 = t35 ? -288919.2 : t34;
+    bool t42 = rho2_fixed >= 1.8726107e-5;
+    uint t43 = t42 ? 21u : t36;
+    uint t44 = t42 ? 34u : t37;
+    precise float t45 = t42 ? -17.0 : t38;
+    precise float t46 = t42 ? -110357.31 : t39;
+    precise float t47 = t42 ? 10.5 : t40;
+    precise float t48 = t42 ? -178561.89 : t41;
+    bool t49 = rho2_fixed >= 4.902558e-5;
+    uint t50 = t49 ? 34u : t43;
+    uint t51 = t49 ? 55u : t44;
+    precise float t52 = t49 ? 27.5 : t45;
+    precise float t53 = t49 ? -68204.57 : t46;
+    precise float t54 = t49 ? -17.0 : t47;
+    precise float t55 = t49 ? -110357.31 : t48;
+    bool t56 = rho2_fixed >= 0.00012835064;
+    uint t57 = t56 ? 55u : t50;
+    uint t58 = t56 ? 89u : t51;
+    precise float t59 = t56 ? -44.5 : t52;
+    precise float t60 = t56 ? -42152.742 : t53;
+    precise float t61 = t56 ? 27.5 : t54;
+    precise float t62 = t56 ? -68204.57 : t55;
+    bool t63 = rho2_fixed >= 0.00033602634;
+    uint t64 = t63 ? 89u : t57;
+    uint t65 = t63 ? 144u : t58;
+    precise float t66 = t63 ? 72.0 : t59;
+    precise float t67 = t63 ? -26051.828 : t60;
+    precise float t68 = t63 ? -44.5 : t61;
+    precise float t69 = t63 ? -42152.742 : t62;
+    bool t70 = rho2_fixed >= 0.00087972835;
+    uint t71 = t70 ? 144u : t64;
+    uint t72 = t70 ? 233u : t65;
+    precise float t73 = t70 ? -116.5 : t66;
+    precise float t74 = t70 ? -16100.915 : t67;
+    precise float t75 = t70 ? 72.0 : t68;
+    precise float t76 = t70 ? -26051.828 : t69;
+    bool t77 = rho2_fixed >= 0.0023031589;
+    uint t78 = t77 ? 233u : t71;
+    uint t79 = t77 ? 377u : t72;
+    precise float t80 = t77 ? 188.5 : t73;
+    precise float t81 = t77 ? -9950.913 : t74;
+    precise float t82 = t77 ? -116.5 : t75;
+    precise float t83 = t77 ? -16100.915 : t76;
+    bool t84 = rho2_fixed >= 0.006029748;
+    uint t85 = t84 ? 377u : t78;
+    uint t86 = t84 ? 610u : t79;
+    precise float t87 = t84 ? -305.0 : t80;
+    precise float t88 = t84 ? -6150.0024 : t81;
+    precise float t89 = t84 ? 188.5 : t82;
+    precise float t90 = t84 ? -9950.913 : t83;
+    bool t91 = rho2_fixed >= 0.015786085;
+    uint t92 = t91 ? 610u : t85;
+    uint t93 = t91 ? 987u : t86;
+    precise float t94 = t91 ? 493.5 : t87;
+    precise float t95 = t91 ? -3800.9104 : t88;
+    precise float t96 = t91 ? -305.0 : t89;
+    precise float t97 = t91 ? -6150.0024 : t90;
+    bool t98 = rho2_fixed >= 0.04132851;
+    uint t99 = t98 ? 987u : t92;
+    uint t100 = t98 ? 1597u : t93;
+    precise float t101 = t98 ? -798.5 : t94;
+    precise float t102 = t98 ? -2349.0918 : t95;
+    precise float t103 = t98 ? 493.5 : t96;
+    precise float t104 = t98 ? -3800.9104 : t97;
+    bool t105 = rho2_fixed >= 0.10819943;
+    uint t106 = t105 ? 1597u : t99;
+    uint t107 = t105 ? 2584u : t100;
+    precise float t108 = t105 ? 1292.0 : t101;
+    precise float t109 = t105 ? -1451.8186 : t102;
+    precise float t110 = t105 ? -798.5 : t103;
+    precise float t111 = t105 ? -2349.0918 : t104;
+    bool t112 = rho2_fixed >= 0.2832698;
+    uint t113 = t112 ? 2584u : t106;
+    uint t114 = t112 ? 4181u : t107;
+    precise float t115 = t112 ? -2090.5 : t108;
+    precise float t116 = t112 ? -897.27325 : t109;
+    precise float t117 = t112 ? 1292.0 : t110;
+    precise float t118 = t112 ? -1451.8186 : t111;
+    bool t119 = rho2_fixed >= 0.74161;
+    uint t120 = t119 ? 4181u : t113;
+    uint t121 = t119 ? 6765u : t114;
+    precise float t122 = 4194303.0
+        + round(tn * (t119 ? 3382.5 : t115) + dz * (t119 ? -554.54535 : t116));
+    precise float t123 = 4194303.0
+        + round(tn * (t119 ? -2090.5 : t117) + dz * (t119 ? -897.27325 : t118));
+    uint corner = uint(t122) * t120 + uint(t123) * t121 - ((t120 + t121) << 22u);
+    uint t124 = 4294967295u - corner;
+    uint t125 = 3221225471u < corner ? t124 : corner;
+    uint t126 = 16777215u - t125;
+    uint t127 = (t5 ? t126 : t125) & 16777215u;
+    precise float3 t128 = abs(unitpack_sfib24_fixed_point(t127) - aim);
+    uint3 t128_u = uint3(t128);
+    uint limb1_6 = t128_u.x >> 12u;
+    uint limb0_6 = t128_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t54.y >> 12u;
-    uint limb0_7 = t54.y & 4095u;
+    uint limb1_7 = t128_u.y >> 12u;
+    uint limb0_7 = t128_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t54.z >> 12u;
-    uint limb0_8 = t54.z & 4095u;
+    uint limb1_8 = t128_u.z >> 12u;
+    uint limb0_8 = t128_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi11 = hi10 + (lo10 >> 24u);
     uint lo11 = lo10 & 16777215u;
     precise float d = float(hi11) * 16777216.0 + float(lo11);
-    uint t55 = corner + t44;
-    uint t56 = 3221225471u < t55 ? 4294967295u - t55 : t55;
-    uint t57 = (t10 ? 16777215u - t56 : t56) & 16777215u;
-    precise float3 t58 = abs(unitpack_sfib24_fixed_point(t57) - aim);
-    uint3 t59 = uint3(t58);
-    uint limb1_9 = t59.x >> 12u;
-    uint limb0_9 = t59.x & 4095u;
+    uint t129 = corner + t120;
+    uint t130 = 4294967295u - t129;
+    uint t131 = 3221225471u < t129 ? t130 : t129;
+    uint t132 = 16777215u - t131;
+    uint t133 = (t5 ? t132 : t131) & 16777215u;
+    precise float3 t134 = abs(unitpack_sfib24_fixed_point(t133) - aim);
+    uint3 t134_u = uint3(t134);
+    uint limb1_9 = t134_u.x >> 12u;
+    uint limb0_9 = t134_u.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t59.y >> 12u;
-    uint limb0_10 = t59.y & 4095u;
+    uint limb1_10 = t134_u.y >> 12u;
+    uint limb0_10 = t134_u.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t59.z >> 12u;
-    uint limb0_11 = t59.z & 4095u;
+    uint limb1_11 = t134_u.z >> 12u;
+    uint limb0_11 = t134_u.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi15 = hi14 + (lo14 >> 24u);
     uint lo15 = lo14 & 16777215u;
     precise float d2 = float(hi15) * 16777216.0 + float(lo15);
-    bool t60 = d2 < d || (d2 == d && t57 < t52);
-    precise float t61 = t60 ? d2 : d;
-    uint t62 = t60 ? t57 : t52;
-    uint t63 = corner + t44 + t44;
-    uint t64 = 3221225471u < t63 ? 4294967295u - t63 : t63;
-    uint t65 = (t10 ? 16777215u - t64 : t64) & 16777215u;
-    precise float3 t66 = abs(unitpack_sfib24_fixed_point(t65) - aim);
-    uint3 t67 = uint3(t66);
-    uint limb1_12 = t67.x >> 12u;
-    uint limb0_12 = t67.x & 4095u;
+    bool t135 = t133 < t127;
+    bool t136 = d2 == d && t135;
+    bool t137 = d2 < d || t136;
+    precise float t138 = t137 ? d2 : d;
+    uint t139 = t137 ? t133 : t127;
+    uint t140 = corner + t120 + t120;
+    uint t141 = 4294967295u - t140;
+    uint t142 = 3221225471u < t140 ? t141 : t140;
+    uint t143 = 16777215u - t142;
+    uint t144 = (t5 ? t143 : t142) & 16777215u;
+    precise float3 t145 = abs(unitpack_sfib24_fixed_point(t144) - aim);
+    uint3 t145_u = uint3(t145);
+    uint limb1_12 = t145_u.x >> 12u;
+    uint limb0_12 = t145_u.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t67.y >> 12u;
-    uint limb0_13 = t67.y & 4095u;
+    uint limb1_13 = t145_u.y >> 12u;
+    uint limb0_13 = t145_u.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t67.z >> 12u;
-    uint limb0_14 = t67.z & 4095u;
+    uint limb1_14 = t145_u.z >> 12u;
+    uint limb0_14 = t145_u.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi19 = hi18 + (lo18 >> 24u);
     uint lo19 = lo18 & 16777215u;
     precise float d3 = float(hi19) * 16777216.0 + float(lo19);
-    bool t68 = d3 < t61 || (d3 == t61 && t65 < t62);
-    precise float t69 = t68 ? d3 : t61;
-    uint t70 = t68 ? t65 : t62;
-    uint t71 = corner + t45;
-    uint t72 = 3221225471u < t71 ? 4294967295u - t71 : t71;
-    uint t73 = (t10 ? 16777215u - t72 : t72) & 16777215u;
-    precise float3 t74 = abs(unitpack_sfib24_fixed_point(t73) - aim);
-    uint3 t75 = uint3(t74);
-    uint limb1_15 = t75.x >> 12u;
-    uint limb0_15 = t75.x & 4095u;
+    bool t146 = t144 < t139;
+    bool t147 = d3 == t138 && t146;
+    bool t148 = d3 < t138 || t147;
+    precise float t149 = t148 ? d3 : t138;
+    uint t150 = t148 ? t144 : t139;
+    uint t151 = corner + t121;
+    uint t152 = 4294967295u - t151;
+    uint t153 = 3221225471u < t151 ? t152 : t151;
+    uint t154 = 16777215u - t153;
+    uint t155 = (t5 ? t154 : t153) & 16777215u;
+    precise float3 t156 = abs(unitpack_sfib24_fixed_point(t155) - aim);
+    uint3 t156_u = uint3(t156);
+    uint limb1_15 = t156_u.x >> 12u;
+    uint limb0_15 = t156_u.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t75.y >> 12u;
-    uint limb0_16 = t75.y & 4095u;
+    uint limb1_16 = t156_u.y >> 12u;
+    uint limb0_16 = t156_u.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t75.z >> 12u;
-    uint limb0_17 = t75.z & 4095u;
+    uint limb1_17 = t156_u.z >> 12u;
+    uint limb0_17 = t156_u.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi23 = hi22 + (lo22 >> 24u);
     uint lo23 = lo22 & 16777215u;
     precise float d4 = float(hi23) * 16777216.0 + float(lo23);
-    bool t76 = d4 < t69 || (d4 == t69 && t73 < t70);
-    precise float t77 = t76 ? d4 : t69;
-    uint t78 = t76 ? t73 : t70;
-    uint t79 = corner + t44 + t45;
-    uint t80 = 3221225471u < t79 ? 4294967295u - t79 : t79;
-    uint t81 = (t10 ? 16777215u - t80 : t80) & 16777215u;
-    precise float3 t82 = abs(unitpack_sfib24_fixed_point(t81) - aim);
-    uint3 t83 = uint3(t82);
-    uint limb1_18 = t83.x >> 12u;
-    uint limb0_18 = t83.x & 4095u;
+    bool t157 = t155 < t150;
+    bool t158 = d4 == t149 && t157;
+    bool t159 = d4 < t149 || t158;
+    precise float t160 = t159 ? d4 : t149;
+    uint t161 = t159 ? t155 : t150;
+    uint t162 = corner + t120 + t121;
+    uint t163 = 4294967295u - t162;
+    uint t164 = 3221225471u < t162 ? t163 : t162;
+    uint t165 = 16777215u - t164;
+    uint t166 = (t5 ? t165 : t164) & 16777215u;
+    precise float3 t167 = abs(unitpack_sfib24_fixed_point(t166) - aim);
+    uint3 t167_u = uint3(t167);
+    uint limb1_18 = t167_u.x >> 12u;
+    uint limb0_18 = t167_u.x & 4095u;
     uint cross18 = limb1_18 * limb0_18;
     uint hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     uint lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    uint limb1_19 = t83.y >> 12u;
-    uint limb0_19 = t83.y & 4095u;
+    uint limb1_19 = t167_u.y >> 12u;
+    uint limb0_19 = t167_u.y & 4095u;
     uint cross19 = limb1_19 * limb0_19;
     uint hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     uint lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    uint limb1_20 = t83.z >> 12u;
-    uint limb0_20 = t83.z & 4095u;
+    uint limb1_20 = t167_u.z >> 12u;
+    uint limb0_20 = t167_u.z & 4095u;
     uint cross20 = limb1_20 * limb0_20;
     uint hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     uint lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     uint hi27 = hi26 + (lo26 >> 24u);
     uint lo27 = lo26 & 16777215u;
     precise float d5 = float(hi27) * 16777216.0 + float(lo27);
-    bool t84 = d5 < t77 || (d5 == t77 && t81 < t78);
-    precise float t85 = t84 ? d5 : t77;
-    uint t86 = t84 ? t81 : t78;
-    uint t87 = corner + t44 + t44 + t45;
-    uint t88 = 3221225471u < t87 ? 4294967295u - t87 : t87;
-    uint t89 = (t10 ? 16777215u - t88 : t88) & 16777215u;
-    precise float3 t90 = abs(unitpack_sfib24_fixed_point(t89) - aim);
-    uint3 t91 = uint3(t90);
-    uint limb1_21 = t91.x >> 12u;
-    uint limb0_21 = t91.x & 4095u;
+    bool t168 = t166 < t161;
+    bool t169 = d5 == t160 && t168;
+    bool t170 = d5 < t160 || t169;
+    precise float t171 = t170 ? d5 : t160;
+    uint t172 = t170 ? t166 : t161;
+    uint t173 = corner + t120 + t120 + t121;
+    uint t174 = 4294967295u - t173;
+    uint t175 = 3221225471u < t173 ? t174 : t173;
+    uint t176 = 16777215u - t175;
+    uint t177 = (t5 ? t176 : t175) & 16777215u;
+    precise float3 t178 = abs(unitpack_sfib24_fixed_point(t177) - aim);
+    uint3 t178_u = uint3(t178);
+    uint limb1_21 = t178_u.x >> 12u;
+    uint limb0_21 = t178_u.x & 4095u;
     uint cross21 = limb1_21 * limb0_21;
     uint hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     uint lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    uint limb1_22 = t91.y >> 12u;
-    uint limb0_22 = t91.y & 4095u;
+    uint limb1_22 = t178_u.y >> 12u;
+    uint limb0_22 = t178_u.y & 4095u;
     uint cross22 = limb1_22 * limb0_22;
     uint hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     uint lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    uint limb1_23 = t91.z >> 12u;
-    uint limb0_23 = t91.z & 4095u;
+    uint limb1_23 = t178_u.z >> 12u;
+    uint limb0_23 = t178_u.z & 4095u;
     uint cross23 = limb1_23 * limb0_23;
     uint hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     uint lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     uint hi31 = hi30 + (lo30 >> 24u);
     uint lo31 = lo30 & 16777215u;
     precise float d6 = float(hi31) * 16777216.0 + float(lo31);
-    bool t92 = d6 < t85 || (d6 == t85 && t89 < t86);
-    precise float t93 = t92 ? d6 : t85;
-    uint t94 = t92 ? t89 : t86;
-    uint t95 = corner + t45 + t45;
-    uint t96 = 3221225471u < t95 ? 4294967295u - t95 : t95;
-    uint t97 = (t10 ? 16777215u - t96 : t96) & 16777215u;
-    precise float3 t98 = abs(unitpack_sfib24_fixed_point(t97) - aim);
-    uint3 t99 = uint3(t98);
-    uint limb1_24 = t99.x >> 12u;
-    uint limb0_24 = t99.x & 4095u;
+    bool t179 = t177 < t172;
+    bool t180 = d6 == t171 && t179;
+    bool t181 = d6 < t171 || t180;
+    precise float t182 = t181 ? d6 : t171;
+    uint t183 = t181 ? t177 : t172;
+    uint t184 = corner + t121 + t121;
+    uint t185 = 4294967295u - t184;
+    uint t186 = 3221225471u < t184 ? t185 : t184;
+    uint t187 = 16777215u - t186;
+    uint t188 = (t5 ? t187 : t186) & 16777215u;
+    precise float3 t189 = abs(unitpack_sfib24_fixed_point(t188) - aim);
+    uint3 t189_u = uint3(t189);
+    uint limb1_24 = t189_u.x >> 12u;
+    uint limb0_24 = t189_u.x & 4095u;
     uint cross24 = limb1_24 * limb0_24;
     uint hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     uint lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    uint limb1_25 = t99.y >> 12u;
-    uint limb0_25 = t99.y & 4095u;
+    uint limb1_25 = t189_u.y >> 12u;
+    uint limb0_25 = t189_u.y & 4095u;
     uint cross25 = limb1_25 * limb0_25;
     uint hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     uint lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    uint limb1_26 = t99.z >> 12u;
-    uint limb0_26 = t99.z & 4095u;
+    uint limb1_26 = t189_u.z >> 12u;
+    uint limb0_26 = t189_u.z & 4095u;
     uint cross26 = limb1_26 * limb0_26;
     uint hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     uint lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     uint hi35 = hi34 + (lo34 >> 24u);
     uint lo35 = lo34 & 16777215u;
     precise float d7 = float(hi35) * 16777216.0 + float(lo35);
-    bool t100 = d7 < t93 || (d7 == t93 && t97 < t94);
-    precise float t101 = t100 ? d7 : t93;
-    uint t102 = t100 ? t97 : t94;
-    uint t103 = corner + t44 + t45 + t45;
-    uint t104 = 3221225471u < t103 ? 4294967295u - t103 : t103;
-    uint t105 = (t10 ? 16777215u - t104 : t104) & 16777215u;
-    precise float3 t106 = abs(unitpack_sfib24_fixed_point(t105) - aim);
-    uint3 t107 = uint3(t106);
-    uint limb1_27 = t107.x >> 12u;
-    uint limb0_27 = t107.x & 4095u;
+    bool t190 = t188 < t183;
+    bool t191 = d7 == t182 && t190;
+    bool t192 = d7 < t182 || t191;
+    precise float t193 = t192 ? d7 : t182;
+    uint t194 = t192 ? t188 : t183;
+    uint t195 = corner + t120 + t121 + t121;
+    uint t196 = 4294967295u - t195;
+    uint t197 = 3221225471u < t195 ? t196 : t195;
+    uint t198 = 16777215u - t197;
+    uint t199 = (t5 ? t198 : t197) & 16777215u;
+    precise float3 t200 = abs(unitpack_sfib24_fixed_point(t199) - aim);
+    uint3 t200_u = uint3(t200);
+    uint limb1_27 = t200_u.x >> 12u;
+    uint limb0_27 = t200_u.x & 4095u;
     uint cross27 = limb1_27 * limb0_27;
     uint hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     uint lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    uint limb1_28 = t107.y >> 12u;
-    uint limb0_28 = t107.y & 4095u;
+    uint limb1_28 = t200_u.y >> 12u;
+    uint limb0_28 = t200_u.y & 4095u;
     uint cross28 = limb1_28 * limb0_28;
     uint hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     uint lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    uint limb1_29 = t107.z >> 12u;
-    uint limb0_29 = t107.z & 4095u;
+    uint limb1_29 = t200_u.z >> 12u;
+    uint limb0_29 = t200_u.z & 4095u;
     uint cross29 = limb1_29 * limb0_29;
     uint hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     uint lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     uint hi39 = hi38 + (lo38 >> 24u);
     uint lo39 = lo38 & 16777215u;
     precise float d8 = float(hi39) * 16777216.0 + float(lo39);
-    bool t108 = d8 < t101 || (d8 == t101 && t105 < t102);
-    precise float t109 = t108 ? d8 : t101;
-    uint t110 = t108 ? t105 : t102;
-    uint t111 = corner + t44 + t44 + t45 + t45;
-    uint t112 = 3221225471u < t111 ? 4294967295u - t111 : t111;
-    uint t113 = (t10 ? 16777215u - t112 : t112) & 16777215u;
-    precise float3 t114 = abs(unitpack_sfib24_fixed_point(t113) - aim);
-    uint3 t115 = uint3(t114);
-    uint limb1_30 = t115.x >> 12u;
-    uint limb0_30 = t115.x & 4095u;
+    bool t201 = t199 < t194;
+    bool t202 = d8 == t193 && t201;
+    bool t203 = d8 < t193 || t202;
+    precise float t204 = t203 ? d8 : t193;
+    uint t205 = t203 ? t199 : t194;
+    uint t206 = corner + t120 + t120 + t121 + t121;
+    uint t207 = 4294967295u - t206;
+    uint t208 = 3221225471u < t206 ? t207 : t206;
+    uint t209 = 16777215u - t208;
+    uint t210 = (t5 ? t209 : t208) & 16777215u;
+    precise float3 t211 = abs(unitpack_sfib24_fixed_point(t210) - aim);
+    uint3 t211_u = uint3(t211);
+    uint limb1_30 = t211_u.x >> 12u;
+    uint limb0_30 = t211_u.x & 4095u;
     uint cross30 = limb1_30 * limb0_30;
     uint hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     uint lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    uint limb1_31 = t115.y >> 12u;
-    uint limb0_31 = t115.y & 4095u;
+    uint limb1_31 = t211_u.y >> 12u;
+    uint limb0_31 = t211_u.y & 4095u;
     uint cross31 = limb1_31 * limb0_31;
     uint hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     uint lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    uint limb1_32 = t115.z >> 12u;
-    uint limb0_32 = t115.z & 4095u;
+    uint limb1_32 = t211_u.z >> 12u;
+    uint limb0_32 = t211_u.z & 4095u;
     uint cross32 = limb1_32 * limb0_32;
     uint hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     uint lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     uint hi43 = hi42 + (lo42 >> 24u);
     uint lo43 = lo42 & 16777215u;
     precise float d9 = float(hi43) * 16777216.0 + float(lo43);
-    return d9 < t109 || (d9 == t109 && t113 < t110) ? t113 : t110;
+    bool t212 = t210 < t205;
+    bool t213 = d9 == t204 && t212;
+    return d9 < t204 || t213 ? t210 : t205;
 }
 
 // unitpack_sfib24_encode_float: fast encoder, float form.

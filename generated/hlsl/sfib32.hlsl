@@ -37,19 +37,21 @@
 float2 unitpack_sfib32_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -57,22 +59,24 @@ float2 unitpack_sfib32_sincos_pi(float a0) {
 //   1))` in 64-bit fixed point from 32-bit products.
 float3 unitpack_sfib32_index_direction(uint a0) {
     bool t1 = a0 < 2147483648u;
-    uint k = t1 ? a0 : 4294967295u - a0;
+    uint t2 = 4294967295u - a0;
+    uint k = t1 ? a0 : t2;
     precise float fine = float(k & 255u) * 4.656613e-10;
     precise float u = float(k >> 8u) * 1.1920929e-7 + (1.1641532e-10 + fine);
-    precise float t2 = 1.0 - u;
+    precise float t3 = 1.0 - u;
+    precise float neg_t3 = -t3;
     precise float r = sqrt(u * (2.0 - u));
     uint il = a0 & 65535u;
     uint ih = a0 >> 16u;
-    uint t3 = il * 32586u;
-    uint t4 = ih * 31765u;
-    uint mid = ((il * 31765u) >> 16u) + (t3 & 65535u) + (t4 & 65535u);
-    uint high = ih * 32586u + (t3 >> 16u) + (t4 >> 16u) + (mid >> 16u);
+    uint t4 = il * 32586u;
+    uint t5 = ih * 31765u;
+    uint mid = ((il * 31765u) >> 16u) + (t4 & 65535u) + (t5 & 65535u);
+    uint high = ih * 32586u + (t4 >> 16u) + (t5 >> 16u) + (mid >> 16u);
     uint turns = a0 * 2654435769u + high;
     uint longitude = (turns + 2147483776u) >> 8u;
-    precise float t5 = -1.0 + float(longitude) * 1.1920929e-7;
-    precise float2 sc = unitpack_sfib32_sincos_pi(t5);
-    precise float3 result = float3(r * sc.y, r * sc.x, t1 ? t2 : -t2);
+    precise float t6 = -1.0 + float(longitude) * 1.1920929e-7;
+    precise float2 sc = unitpack_sfib32_sincos_pi(t6);
+    precise float3 result = float3(r * sc.y, r * sc.x, t1 ? t3 : neg_t3);
     return result;
 }
 
@@ -109,20 +113,21 @@ float unitpack_sfib32_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -131,31 +136,24 @@ float unitpack_sfib32_atan2_pi(float a0, float a1) {
 float2 unitpack_sfib32_fixed_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 8388608.0;
-    precise float b = back ? 16777216.0 - abs_a0 : abs_a0;
+    precise float t1 = 16777216.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 4194304.0;
-    precise float u = round((swap ? 8388608.0 - b : b) * 3.1415927);
+    precise float t2 = 8388608.0 - b;
+    precise float u = round((swap ? t2 : b) * 3.1415927);
     precise float u2 = round(u * u * 5.9604645e-8);
-    precise float t1 = (
-        round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8) + (-3329.0)
-    )
-        * u2;
-    precise float t2 = (
-        round((round(t1 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8) + (-2796203.0)
-    )
-        * u2;
-    precise float s = round(u * (round(t2 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t3 = (
-        round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8) + 416.0
-    )
-        * u2;
-    precise float t4 = (
-        round((round(t3 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8) + 699051.0
-    )
-        * u2;
-    precise float co = round((round(t4 * 5.9604645e-8) + (-8388608.0)) * u2 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t5 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t5, t5);
+    precise float t3 = round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8);
+    precise float t4 = (round((t3 + (-3329.0)) * u2 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8;
+    precise float t5 = u * (round((round(t4) + (-2796203.0)) * u2 * 5.9604645e-8) + 16777216.0);
+    precise float s = round(t5 * 5.9604645e-8);
+    precise float t6 = round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8);
+    precise float t7 = (round((t6 + 416.0) * u2 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8;
+    precise float t8 = (round((round(t7) + 699051.0) * u2 * 5.9604645e-8) + (-8388608.0)) * u2;
+    precise float co = round(t8 * 5.9604645e-8) + 16777216.0;
+    precise float2 t9 = float2(co, s);
+    precise float2 t10 = float2(s, co);
+    precise float2 t11 = swap ? t9 : t10;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t11, t11);
     return result;
 }
 
@@ -164,35 +162,39 @@ float2 unitpack_sfib32_fixed_sincos_pi(float a0) {
 //   decoder's point.
 float3 unitpack_sfib32_fixed_point(uint a0) {
     bool t1 = a0 < 2147483648u;
-    uint k = t1 ? a0 : 4294967295u - a0;
-    precise float near = (0.25 + (float(k >> 12u) * 4096.0 + float(k & 4095u))) * 4.656613e-10;
-    uint t2 = 4294967295u - k;
-    precise float far = (0.25 + (float(t2 >> 12u) * 4096.0 + float(t2 & 4095u))) * 4.656613e-10;
-    precise float t3 = near * far * 4398046500000.0;
-    precise float root_estimate = floor(sqrt(t3));
+    uint t2 = 4294967295u - a0;
+    uint k = t1 ? a0 : t2;
+    precise float t3 = 0.25 + (float(k >> 12u) * 4096.0 + float(k & 4095u));
+    precise float near = t3 * 4.656613e-10;
+    uint t4 = 4294967295u - k;
+    precise float t5 = 0.25 + (float(t4 >> 12u) * 4096.0 + float(t4 & 4095u));
+    precise float far = t5 * 4.656613e-10;
+    precise float t6 = near * far * 4398046500000.0;
+    precise float root_estimate = floor(sqrt(t6));
     precise float root_next = root_estimate + 1.0;
-    precise float t4 = root_next * root_next <= t3
-        ? 1.0
-        : (root_estimate * root_estimate > t3 ? -1.0 : 0.0);
-    precise float root_step = root_estimate + t4;
+    precise float step_down = root_estimate * root_estimate > t6 ? -1.0 : 0.0;
+    precise float step = root_next * root_next <= t6 ? 1.0 : step_down;
+    precise float root_step = root_estimate + step;
     precise float root_next2 = root_step + 1.0;
-    precise float rho = root_step
-        + (root_next2 * root_next2 <= t3 ? 1.0 : (root_step * root_step > t3 ? -1.0 : 0.0));
+    precise float step_down2 = root_step * root_step > t6 ? -1.0 : 0.0;
+    precise float step2 = root_next2 * root_next2 <= t6 ? 1.0 : step_down2;
+    precise float rho = root_step + step2;
     precise float zm = 2097152.0 - floor(near * 2097152.0);
+    precise float neg_zm = -zm;
     uint il = a0 & 65535u;
     uint ih = a0 >> 16u;
-    uint t5 = il * 32586u;
-    uint t6 = ih * 31765u;
-    uint mid = ((il * 31765u) >> 16u) + (t5 & 65535u) + (t6 & 65535u);
-    uint high = ih * 32586u + (t5 >> 16u) + (t6 >> 16u) + (mid >> 16u);
+    uint t7 = il * 32586u;
+    uint t8 = ih * 31765u;
+    uint mid = ((il * 31765u) >> 16u) + (t7 & 65535u) + (t8 & 65535u);
+    uint high = ih * 32586u + (t7 >> 16u) + (t8 >> 16u) + (mid >> 16u);
     uint turns = a0 * 2654435769u + high;
     uint longitude = (turns + 2147483776u) >> 8u;
-    precise float t7 = -16777216.0 + float(longitude) * 2.0;
-    precise float2 sc = unitpack_sfib32_fixed_sincos_pi(t7);
+    precise float t9 = -16777216.0 + float(longitude) * 2.0;
+    precise float2 sc = unitpack_sfib32_fixed_sincos_pi(t9);
     precise float3 result = float3(
         round(rho * sc.y * 5.9604645e-8),
         round(rho * sc.x * 5.9604645e-8),
-        t1 ? zm : -zm
+        t1 ? zm : neg_zm
     );
     return result;
 }
@@ -214,19 +216,20 @@ uint unitpack_sfib32_encode_index(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -246,382 +249,477 @@ uint unitpack_sfib32_encode_index(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t5 = floor(w2 / root * 2097152.0);
-    precise float3 t6 = w2 * 2097152.0;
-    precise float3 t7 = UNITPACK_SELECT(
-        (t5 + 1.0) * root <= t6,
+    precise float3 t1 = floor(w2 / root * 2097152.0);
+    precise float3 t2 = w2 * 2097152.0;
+    precise float3 t3 = UNITPACK_SELECT(
+        (t1 + 1.0) * root <= t2,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t5 * root > t6, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t1 * root > t2, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t5 + t7;
+    precise float3 aim = t1 + t3;
     precise float3 u = w2 / root;
-    precise float2 t8 = u.xy * u.xy;
-    precise float rho2 = t8.x + t8.y;
+    precise float2 t4 = u.xy * u.xy;
+    precise float rho2 = t4.x + t4.y;
     precise float3 abs_aim = abs(aim);
-    uint3 t9 = uint3(abs_aim);
-    uint limb1_4 = t9.x >> 12u;
-    uint limb0_4 = t9.x & 4095u;
+    uint3 abs_aim_u = uint3(abs_aim);
+    uint limb1_4 = abs_aim_u.x >> 12u;
+    uint limb0_4 = abs_aim_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t9.y >> 12u;
-    uint limb0_5 = t9.y & 4095u;
+    uint limb1_5 = abs_aim_u.y >> 12u;
+    uint limb0_5 = abs_aim_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2_fixed = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    bool t10 = aim.z < 0.0;
+    bool t5 = aim.z < 0.0;
     precise float below = rho2 / (1.0 + abs(u.z));
     precise float dz = 1.1641532e-10 - below;
     precise float t = unitpack_sfib32_atan2_pi(u.y, u.x);
-    precise float tn = t10 ? -0.24160738 - t : t;
-    bool t11 = rho2_fixed >= 5.947454e-10;
-    bool t12 = rho2_fixed >= 1.5570637e-9;
-    bool t13 = rho2_fixed >= 4.076446e-9;
-    bool t14 = rho2_fixed >= 1.0672274e-8;
-    precise float t15 = t14
-        ? -73963320.0
-        : (t13 ? -119675160.0 : (t12 ? -193638480.0 : (t11 ? -313313630.0 : -506952130.0)));
-    precise float t16 = t14
-        ? -119675160.0
-        : (t13 ? -193638480.0 : (t12 ? -313313630.0 : (t11 ? -506952130.0 : -820265800.0)));
-    bool t17 = rho2_fixed >= 2.7940375e-8;
-    bool t18 = rho2_fixed >= 7.3148854e-8;
-    uint t19 = t18 ? 34u : (t17 ? 21u : (t14 ? 13u : (t13 ? 8u : (t12 ? 5u : (t11 ? 3u : 2u)))));
-    precise float t20 = t18
-        ? -17.0
-        : (t17 ? 10.5 : (t14 ? -6.5 : (t13 ? 4.0 : (t12 ? -2.5 : (t11 ? 1.5 : -1.0)))));
-    precise float t21 = t18
-        ? 10.5
-        : (t17 ? -6.5 : (t14 ? 4.0 : (t13 ? -2.5 : (t12 ? 1.5 : (t11 ? -1.0 : 0.5)))));
-    bool t22 = rho2_fixed >= 1.9150617e-7;
-    uint t23 = t22
-        ? 34u
-        : (t18 ? 21u : (t17 ? 13u : (t14 ? 8u : (t13 ? 5u : (t12 ? 3u : (t11 ? 2u : 1u))))));
-    bool t24 = rho2_fixed >= 5.013697e-7;
-    precise float t25 = t24
-        ? -10791103.0
-        : (t22 ? -17460370.0 : (t18 ? -28251474.0 : (t17 ? -45711844.0 : t15)));
-    precise float t26 = t24
-        ? -17460370.0
-        : (t22 ? -28251474.0 : (t18 ? -45711844.0 : (t17 ? -73963320.0 : t16)));
-    bool t27 = rho2_fixed >= 1.3126029e-6;
-    bool t28 = rho2_fixed >= 3.4364389e-6;
-    bool t29 = rho2_fixed >= 8.996714e-6;
-    bool t30 = rho2_fixed >= 2.3553703e-5;
-    uint t31 = t30
-        ? 610u
-        : (t29 ? 377u : (t28 ? 233u : (t27 ? 144u : (t24 ? 89u : (t22 ? 55u : t19)))));
-    precise float t32 = t30
-        ? -305.0
-        : (t29 ? 188.5 : (t28 ? -116.5 : (t27 ? 72.0 : (t24 ? -44.5 : (t22 ? 27.5 : t20)))));
-    precise float t33 = t30
-        ? -1574400.6
-        : (t29 ? -2547433.8 : (t28 ? -4121834.5 : (t27 ? -6669268.0 : t25)));
-    precise float t34 = t30
-        ? 188.5
-        : (t29 ? -116.5 : (t28 ? 72.0 : (t27 ? -44.5 : (t24 ? 27.5 : (t22 ? -17.0 : t21)))));
-    precise float t35 = t30
-        ? -2547433.8
-        : (t29 ? -4121834.5 : (t28 ? -6669268.0 : (t27 ? -10791103.0 : t26)));
-    bool t36 = rho2_fixed >= 6.1664396e-5;
-    uint t37 = t36
-        ? 610u
-        : (t30 ? 377u : (t29 ? 233u : (t28 ? 144u : (t27 ? 89u : (t24 ? 55u : t23)))));
-    bool t38 = rho2_fixed >= 0.00016143949;
-    bool t39 = rho2_fixed >= 0.00042265403;
-    bool t40 = rho2_fixed >= 0.0011065226;
-    precise float t41 = t40
-        ? -229701.95
-        : (t39 ? -371665.56 : (t38 ? -601367.56 : (t36 ? -973033.1 : t33)));
-    precise float t42 = t40
-        ? -371665.6
-        : (t39 ? -601367.56 : (t38 ? -973033.1 : (t36 ? -1574400.6 : t35)));
-    bool t43 = rho2_fixed >= 0.002896914;
-    precise float t44 = t43
-        ? 3382.5
-        : (t40 ? -2090.5 : (t39 ? 1292.0 : (t38 ? -798.5 : (t36 ? 493.5 : t32))));
-    precise float t45 = t43
-        ? -2090.5
-        : (t40 ? 1292.0 : (t39 ? -798.5 : (t38 ? 493.5 : (t36 ? -305.0 : t34))));
-    bool t46 = rho2_fixed >= 0.0075842193;
-    uint t47 = t46
-        ? 10946u
-        : (t43 ? 6765u : (t40 ? 4181u : (t39 ? 2584u : (t38 ? 1597u : (t36 ? 987u : t31)))));
-    bool t48 = rho2_fixed >= 0.019855743;
-    uint t49 = t48
-        ? 10946u
-        : (t46 ? 6765u : (t43 ? 4181u : (t40 ? 2584u : (t39 ? 1597u : (t38 ? 987u : t37)))));
-    bool t50 = rho2_fixed >= 0.05198301;
-    precise float t51 = t50
-        ? -33513.07
-        : (t48 ? -54225.273 : (t46 ? -87738.34 : (t43 ? -141963.63 : t41)));
-    precise float t52 = t50
-        ? -54225.273
-        : (t48 ? -87738.34 : (t46 ? -141963.63 : (t43 ? -229701.95 : t42)));
-    bool t53 = rho2_fixed >= 0.13609329;
-    bool t54 = rho2_fixed >= 0.35629687;
-    precise float t55 = t54
-        ? -37512.496
-        : (t53 ? 23183.998 : (t50 ? -14328.5 : (t48 ? 8855.5 : (t46 ? -5473.0 : t44))));
-    precise float t56 = t54
-        ? 23183.998
-        : (t53 ? -14328.498 : (t50 ? 8855.5 : (t48 ? -5473.0 : (t46 ? 3382.5 : t45))));
-    bool t57 = rho2_fixed >= 0.9327973;
-    uint t58 = t57 ? 75025u : (t54 ? 46368u : (t53 ? 28657u : (t50 ? 17711u : t49)));
-    uint t59 = t57
-        ? 121393u
-        : (t54 ? 75025u : (t53 ? 46368u : (t50 ? 28657u : (t48 ? 17711u : t47))));
-    precise float t60 = tn * (t57 ? 60696.51 : t55)
-        + dz * (t57 ? -7911.345 : (t54 ? -12800.858 : (t53 ? -20712.209 : t51)));
-    precise float t61 = tn * (t57 ? -37512.508 : t56)
-        + dz * (t57 ? -12800.861 : (t54 ? -20712.209 : (t53 ? -33513.066 : t52)));
-    precise float t62 = 4194303.0 + round(t60);
-    precise float t63 = 4194303.0 + round(t61);
-    uint corner = uint(t62) * t58 + uint(t63) * t59 - ((t58 + t59) << 22u);
-    uint t64 = 3221225471u < corner ? 4294967295u - corner : corner;
-    uint t65 = (t10 ? 4294967295u - t64 : t64) & 4294967295u;
-    precise float3 t66 = abs(unitpack_sfib32_fixed_point(t65) - aim);
-    uint3 t67 = uint3(t66);
-    uint limb1_6 = t67.x >> 12u;
-    uint limb0_6 = t67.x & 4095u;
+    precise float t6 = -0.24160738 - t;
+    precise float tn = t5 ? t6 : t;
+    bool t7 = rho2_fixed >= 5.947454e-10;
+    uint t8 = t7 ? 2u : 1u;
+    uint t9 = t7 ? 3u : 2u;
+    precise float t10 = t7 ? 1.5 : -1.0;
+    precise float t11 = t7 ? -313313630.0 : -506952130.0;
+    precise float t12 = t7 ? -1.0 : 0.5;
+    precise float t13 = t7 ? -506952130.0 : -820265800.0;
+    bool t14 = rho2_fixed >= 1.5570637e-9;
+    uint t15 = t14 ? 3u : t8;
+    uint t16 = t14 ? 5u : t9;
+    precise float t17 = t14 ? -2.5 : t10;
+    precise float t18 = t14 ? -193638480.0 : t11;
+    precise float t19 = t14 ? 1.5 : t12;
+    precise float t20 = t14 ? -313313630.0 : t13;
+    bool t21 = rho2_fixed >= 4.076446e-9;
+    uint t22 = t21 ? 5u : t15;
+    uint t23 = t21 ? 8u : t16;
+    precise float t24 = t21 ? 4.0 : t17;
+    precise float t25 = t21 ? -119675160.0 : t18;
+    precise float t26 = t21 ? -2.5 : t19;
+    precise float t27 = t21 ? -193638480.0 : t20;
+    bool t28 = rho2_fixed >= 1.0672274e-8;
+    uint t29 = t28 ? 8u : t22;
+    uint t30 = t28 ? 13u : t23;
+    precise float t31 = t28 ? -6.5 : t24;
+    precise float t32 = t28 ? -73963320.0 : t25;
+    precise float t33 = t28 ? 4.0 : t26;
+    precise float t34 = t28 ? -119675160.0 : t27;
+    bool t35 = rho2_fixed >= 2.7940375e-8;
+    uint t36 = t35 ? 13u : t29;
+    uint t37 = t35 ? 21u : t30;
+    precise float t38 = t35 ? 10.5 : t31;
+    precise float t39 = t35 ? -45711844.0 : t32;
+    precise float t40 = t35 ? -6.5 : t33;
+    precise float t41 = t35 ? -73963320.0 : t34;
+    bool t42 = rho2_fixed >= 7.3148854e-8;
+    uint t43 = t42 ? 21u : t36;
+    uint t44 = t42 ? 34u : t37;
+    precise float t45 = t42 ? -17.0 : t38;
+    precise float t46 = t42 ? -28251474.0 : t39;
+    precise float t47 = t42 ? 10.5 : t40;
+    precise float t48 = t42 ? -45711844.0 : t41;
+    bool t49 = rho2_fixed >= 1.9150617e-7;
+    uint t50 = t49 ? 34u : t43;
+    uint t51 = t49 ? 55u : t44;
+    precise float t52 = t49 ? 27.5 : t45;
+    precise float t53 = t49 ? -17460370.0 : t46;
+    precise float t54 = t49 ? -17.0 : t47;
+    precise float t55 = t49 ? -28251474.0 : t48;
+    bool t56 = rho2_fixed >= 5.013697e-7;
+    uint t57 = t56 ? 55u : t50;
+    uint t58 = t56 ? 89u : t51;
+    precise float t59 = t56 ? -44.5 : t52;
+    precise float t60 = t56 ? -10791103.0 : t53;
+    precise float t61 = t56 ? 27.5 : t54;
+    precise float t62 = t56 ? -17460370.0 : t55;
+    bool t63 = rho2_fixed >= 1.3126029e-6;
+    uint t64 = t63 ? 89u : t57;
+    uint t65 = t63 ? 144u : t58;
+    precise float t66 = t63 ? 72.0 : t59;
+    precise float t67 = t63 ? -6669268.0 : t60;
+    precise float t68 = t63 ? -44.5 : t61;
+    precise float t69 = t63 ? -10791103.0 : t62;
+    bool t70 = rho2_fixed >= 3.4364389e-6;
+    uint t71 = t70 ? 144u : t64;
+    uint t72 = t70 ? 233u : t65;
+    precise float t73 = t70 ? -116.5 : t66;
+    precise float t74 = t70 ? -4121834.5 : t67;
+    precise float t75 = t70 ? 72.0 : t68;
+    precise float t76 = t70 ? -6669268.0 : t69;
+    bool t77 = rho2_fixed >= 8.996714e-6;
+    uint t78 = t77 ? 233u : t71;
+    uint t79 = t77 ? 377u : t72;
+    precise float t80 = t77 ? 188.5 : t73;
+    precise float t81 = t77 ? -2547433.8 : t74;
+    precise float t82 = t77 ? -116.5 : t75;
+    precise float t83 = t77 ? -4121834.5 : t76;
+    bool t84 = rho2_fixed >= 2.3553703e-5;
+    uint t85 = t84 ? 377u : t78;
+    uint t86 = t84 ? 610u : t79;
+    precise float t87 = t84 ? -305.0 : t80;
+    precise float t88 = t84 ? -1574400.6 : t81;
+    precise float t89 = t84 ? 188.5 : t82;
+    precise float t90 = t84 ? -2547433.8 : t83;
+    bool t91 = rho2_fixed >= 6.1664396e-5;
+    uint t92 = t91 ? 610u : t85;
+    uint t93 = t91 ? 987u : t86;
+    precise float t94 = t91 ? 493.5 : t87;
+    precise float t95 = t91 ? -973033.1 : t88;
+    precise float t96 = t91 ? -305.0 : t89;
+    precise float t97 = t91 ? -1574400.6 : t90;
+    bool t98 = rho2_fixed >= 0.00016143949;
+    uint t99 = t98 ? 987u : t92;
+    uint t100 = t98 ? 1597u : t93;
+    precise float t101 = t98 ? -798.5 : t94;
+    precise float t102 = t98 ? -601367.56 : t95;
+    precise float t103 = t98 ? 493.5 : t96;
+    precise float t104 = t98 ? -973033.1 : t97;
+    bool t105 = rho2_fixed >= 0.00042265403;
+    uint t106 = t105 ? 1597u : t99;
+    uint t107 = t105 ? 2584u : t100;
+    precise float t108 = t105 ? 1292.0 : t101;
+    precise float t109 = t105 ? -371665.56 : t102;
+    precise float t110 = t105 ? -798.5 : t103;
+    precise float t111 = t105 ? -601367.56 : t104;
+    bool t112 = rho2_fixed >= 0.0011065226;
+    uint t113 = t112 ? 2584u : t106;
+    uint t114 = t112 ? 4181u : t107;
+    precise float t115 = t112 ? -2090.5 : t108;
+    precise float t116 = t112 ? -229701.95 : t109;
+    precise float t117 = t112 ? 1292.0 : t110;
+    precise float t118 = t112 ? -371665.6 : t111;
+    bool t119 = rho2_fixed >= 0.002896914;
+    uint t120 = t119 ? 4181u : t113;
+    uint t121 = t119 ? 6765u : t114;
+    precise float t122 = t119 ? 3382.5 : t115;
+    precise float t123 = t119 ? -141963.63 : t116;
+    precise float t124 = t119 ? -2090.5 : t117;
+    precise float t125 = t119 ? -229701.95 : t118;
+    bool t126 = rho2_fixed >= 0.0075842193;
+    uint t127 = t126 ? 6765u : t120;
+    uint t128 = t126 ? 10946u : t121;
+    precise float t129 = t126 ? -5473.0 : t122;
+    precise float t130 = t126 ? -87738.34 : t123;
+    precise float t131 = t126 ? 3382.5 : t124;
+    precise float t132 = t126 ? -141963.63 : t125;
+    bool t133 = rho2_fixed >= 0.019855743;
+    uint t134 = t133 ? 10946u : t127;
+    uint t135 = t133 ? 17711u : t128;
+    precise float t136 = t133 ? 8855.5 : t129;
+    precise float t137 = t133 ? -54225.273 : t130;
+    precise float t138 = t133 ? -5473.0 : t131;
+    precise float t139 = t133 ? -87738.34 : t132;
+    bool t140 = rho2_fixed >= 0.05198301;
+    uint t141 = t140 ? 17711u : t134;
+    uint t142 = t140 ? 28657u : t135;
+    precise float t143 = t140 ? -14328.5 : t136;
+    precise float t144 = t140 ? -33513.07 : t137;
+    precise float t145 = t140 ? 8855.5 : t138;
+    precise float t146 = t140 ? -54225.273 : t139;
+    bool t147 = rho2_fixed >= 0.13609329;
+    uint t148 = t147 ? 28657u : t141;
+    uint t149 = t147 ? 46368u : t142;
+    precise float t150 = t147 ? 23183.998 : t143;
+    precise float t151 = t147 ? -20712.209 : t144;
+    precise float t152 = t147 ? -14328.498 : t145;
+    precise float t153 = t147 ? -33513.066 : t146;
+    bool t154 = rho2_fixed >= 0.35629687;
+    uint t155 = t154 ? 46368u : t148;
+    uint t156 = t154 ? 75025u : t149;
+    precise float t157 = t154 ? -37512.496 : t150;
+    precise float t158 = t154 ? -12800.858 : t151;
+    precise float t159 = t154 ? 23183.998 : t152;
+    precise float t160 = t154 ? -20712.209 : t153;
+    bool t161 = rho2_fixed >= 0.9327973;
+    uint t162 = t161 ? 75025u : t155;
+    uint t163 = t161 ? 121393u : t156;
+    precise float t164 = 4194303.0
+        + round(tn * (t161 ? 60696.51 : t157) + dz * (t161 ? -7911.345 : t158));
+    precise float t165 = 4194303.0
+        + round(tn * (t161 ? -37512.508 : t159) + dz * (t161 ? -12800.861 : t160));
+    uint corner = uint(t164) * t162 + uint(t165) * t163 - ((t162 + t163) << 22u);
+    uint t166 = 4294967295u - corner;
+    uint t167 = 3221225471u < corner ? t166 : corner;
+    uint t168 = 4294967295u - t167;
+    uint t169 = (t5 ? t168 : t167) & 4294967295u;
+    precise float3 t170 = abs(unitpack_sfib32_fixed_point(t169) - aim);
+    uint3 t170_u = uint3(t170);
+    uint limb1_6 = t170_u.x >> 12u;
+    uint limb0_6 = t170_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t67.y >> 12u;
-    uint limb0_7 = t67.y & 4095u;
+    uint limb1_7 = t170_u.y >> 12u;
+    uint limb0_7 = t170_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t67.z >> 12u;
-    uint limb0_8 = t67.z & 4095u;
+    uint limb1_8 = t170_u.z >> 12u;
+    uint limb0_8 = t170_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi11 = hi10 + (lo10 >> 24u);
     uint lo11 = lo10 & 16777215u;
     precise float d = float(hi11) * 16777216.0 + float(lo11);
-    uint t68 = corner + t58;
-    uint t69 = 3221225471u < t68 ? 4294967295u - t68 : t68;
-    uint t70 = (t10 ? 4294967295u - t69 : t69) & 4294967295u;
-    precise float3 t71 = abs(unitpack_sfib32_fixed_point(t70) - aim);
-    uint3 t72 = uint3(t71);
-    uint limb1_9 = t72.x >> 12u;
-    uint limb0_9 = t72.x & 4095u;
+    uint t171 = corner + t162;
+    uint t172 = 4294967295u - t171;
+    uint t173 = 3221225471u < t171 ? t172 : t171;
+    uint t174 = 4294967295u - t173;
+    uint t175 = (t5 ? t174 : t173) & 4294967295u;
+    precise float3 t176 = abs(unitpack_sfib32_fixed_point(t175) - aim);
+    uint3 t176_u = uint3(t176);
+    uint limb1_9 = t176_u.x >> 12u;
+    uint limb0_9 = t176_u.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t72.y >> 12u;
-    uint limb0_10 = t72.y & 4095u;
+    uint limb1_10 = t176_u.y >> 12u;
+    uint limb0_10 = t176_u.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t72.z >> 12u;
-    uint limb0_11 = t72.z & 4095u;
+    uint limb1_11 = t176_u.z >> 12u;
+    uint limb0_11 = t176_u.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi15 = hi14 + (lo14 >> 24u);
     uint lo15 = lo14 & 16777215u;
     precise float d2 = float(hi15) * 16777216.0 + float(lo15);
-    bool t73 = d2 < d || (d2 == d && t70 < t65);
-    precise float t74 = t73 ? d2 : d;
-    uint t75 = t73 ? t70 : t65;
-    uint t76 = corner + t58 + t58;
-    uint t77 = 3221225471u < t76 ? 4294967295u - t76 : t76;
-    uint t78 = (t10 ? 4294967295u - t77 : t77) & 4294967295u;
-    precise float3 t79 = abs(unitpack_sfib32_fixed_point(t78) - aim);
-    uint3 t80 = uint3(t79);
-    uint limb1_12 = t80.x >> 12u;
-    uint limb0_12 = t80.x & 4095u;
+    bool t177 = t175 < t169;
+    bool t178 = d2 == d && t177;
+    bool t179 = d2 < d || t178;
+    precise float t180 = t179 ? d2 : d;
+    uint t181 = t179 ? t175 : t169;
+    uint t182 = corner + t162 + t162;
+    uint t183 = 4294967295u - t182;
+    uint t184 = 3221225471u < t182 ? t183 : t182;
+    uint t185 = 4294967295u - t184;
+    uint t186 = (t5 ? t185 : t184) & 4294967295u;
+    precise float3 t187 = abs(unitpack_sfib32_fixed_point(t186) - aim);
+    uint3 t187_u = uint3(t187);
+    uint limb1_12 = t187_u.x >> 12u;
+    uint limb0_12 = t187_u.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t80.y >> 12u;
-    uint limb0_13 = t80.y & 4095u;
+    uint limb1_13 = t187_u.y >> 12u;
+    uint limb0_13 = t187_u.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t80.z >> 12u;
-    uint limb0_14 = t80.z & 4095u;
+    uint limb1_14 = t187_u.z >> 12u;
+    uint limb0_14 = t187_u.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi19 = hi18 + (lo18 >> 24u);
     uint lo19 = lo18 & 16777215u;
     precise float d3 = float(hi19) * 16777216.0 + float(lo19);
-    bool t81 = d3 < t74 || (d3 == t74 && t78 < t75);
-    precise float t82 = t81 ? d3 : t74;
-    uint t83 = t81 ? t78 : t75;
-    uint t84 = corner + t59;
-    uint t85 = 3221225471u < t84 ? 4294967295u - t84 : t84;
-    uint t86 = (t10 ? 4294967295u - t85 : t85) & 4294967295u;
-    precise float3 t87 = abs(unitpack_sfib32_fixed_point(t86) - aim);
-    uint3 t88 = uint3(t87);
-    uint limb1_15 = t88.x >> 12u;
-    uint limb0_15 = t88.x & 4095u;
+    bool t188 = t186 < t181;
+    bool t189 = d3 == t180 && t188;
+    bool t190 = d3 < t180 || t189;
+    precise float t191 = t190 ? d3 : t180;
+    uint t192 = t190 ? t186 : t181;
+    uint t193 = corner + t163;
+    uint t194 = 4294967295u - t193;
+    uint t195 = 3221225471u < t193 ? t194 : t193;
+    uint t196 = 4294967295u - t195;
+    uint t197 = (t5 ? t196 : t195) & 4294967295u;
+    precise float3 t198 = abs(unitpack_sfib32_fixed_point(t197) - aim);
+    uint3 t198_u = uint3(t198);
+    uint limb1_15 = t198_u.x >> 12u;
+    uint limb0_15 = t198_u.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t88.y >> 12u;
-    uint limb0_16 = t88.y & 4095u;
+    uint limb1_16 = t198_u.y >> 12u;
+    uint limb0_16 = t198_u.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t88.z >> 12u;
-    uint limb0_17 = t88.z & 4095u;
+    uint limb1_17 = t198_u.z >> 12u;
+    uint limb0_17 = t198_u.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi23 = hi22 + (lo22 >> 24u);
     uint lo23 = lo22 & 16777215u;
     precise float d4 = float(hi23) * 16777216.0 + float(lo23);
-    bool t89 = d4 < t82 || (d4 == t82 && t86 < t83);
-    precise float t90 = t89 ? d4 : t82;
-    uint t91 = t89 ? t86 : t83;
-    uint t92 = corner + t58 + t59;
-    uint t93 = 3221225471u < t92 ? 4294967295u - t92 : t92;
-    uint t94 = (t10 ? 4294967295u - t93 : t93) & 4294967295u;
-    precise float3 t95 = abs(unitpack_sfib32_fixed_point(t94) - aim);
-    uint3 t96 = uint3(t95);
-    uint limb1_18 = t96.x >> 12u;
-    uint limb0_18 = t96.x & 4095u;
+    bool t199 = t197 < t192;
+    bool t200 = d4 == t191 && t199;
+    bool t201 = d4 < t191 || t200;
+    precise float t202 = t201 ? d4 : t191;
+    uint t203 = t201 ? t197 : t192;
+    uint t204 = corner + t162 + t163;
+    uint t205 = 4294967295u - t204;
+    uint t206 = 3221225471u < t204 ? t205 : t204;
+    uint t207 = 4294967295u - t206;
+    uint t208 = (t5 ? t207 : t206) & 4294967295u;
+    precise float3 t209 = abs(unitpack_sfib32_fixed_point(t208) - aim);
+    uint3 t209_u = uint3(t209);
+    uint limb1_18 = t209_u.x >> 12u;
+    uint limb0_18 = t209_u.x & 4095u;
     uint cross18 = limb1_18 * limb0_18;
     uint hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     uint lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    uint limb1_19 = t96.y >> 12u;
-    uint limb0_19 = t96.y & 4095u;
+    uint limb1_19 = t209_u.y >> 12u;
+    uint limb0_19 = t209_u.y & 4095u;
     uint cross19 = limb1_19 * limb0_19;
     uint hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     uint lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    uint limb1_20 = t96.z >> 12u;
-    uint limb0_20 = t96.z & 4095u;
+    uint limb1_20 = t209_u.z >> 12u;
+    uint limb0_20 = t209_u.z & 4095u;
     uint cross20 = limb1_20 * limb0_20;
     uint hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     uint lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     uint hi27 = hi26 + (lo26 >> 24u);
     uint lo27 = lo26 & 16777215u;
     precise float d5 = float(hi27) * 16777216.0 + float(lo27);
-    bool t97 = d5 < t90 || (d5 == t90 && t94 < t91);
-    precise float t98 = t97 ? d5 : t90;
-    uint t99 = t97 ? t94 : t91;
-    uint t100 = corner + t58 + t58 + t59;
-    uint t101 = 3221225471u < t100 ? 4294967295u - t100 : t100;
-    uint t102 = (t10 ? 4294967295u - t101 : t101) & 4294967295u;
-    precise float3 t103 = abs(unitpack_sfib32_fixed_point(t102) - aim);
-    uint3 t104 = uint3(t103);
-    uint limb1_21 = t104.x >> 12u;
-    uint limb0_21 = t104.x & 4095u;
+    bool t210 = t208 < t203;
+    bool t211 = d5 == t202 && t210;
+    bool t212 = d5 < t202 || t211;
+    precise float t213 = t212 ? d5 : t202;
+    uint t214 = t212 ? t208 : t203;
+    uint t215 = corner + t162 + t162 + t163;
+    uint t216 = 4294967295u - t215;
+    uint t217 = 3221225471u < t215 ? t216 : t215;
+    uint t218 = 4294967295u - t217;
+    uint t219 = (t5 ? t218 : t217) & 4294967295u;
+    precise float3 t220 = abs(unitpack_sfib32_fixed_point(t219) - aim);
+    uint3 t220_u = uint3(t220);
+    uint limb1_21 = t220_u.x >> 12u;
+    uint limb0_21 = t220_u.x & 4095u;
     uint cross21 = limb1_21 * limb0_21;
     uint hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     uint lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    uint limb1_22 = t104.y >> 12u;
-    uint limb0_22 = t104.y & 4095u;
+    uint limb1_22 = t220_u.y >> 12u;
+    uint limb0_22 = t220_u.y & 4095u;
     uint cross22 = limb1_22 * limb0_22;
     uint hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     uint lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    uint limb1_23 = t104.z >> 12u;
-    uint limb0_23 = t104.z & 4095u;
+    uint limb1_23 = t220_u.z >> 12u;
+    uint limb0_23 = t220_u.z & 4095u;
     uint cross23 = limb1_23 * limb0_23;
     uint hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     uint lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     uint hi31 = hi30 + (lo30 >> 24u);
     uint lo31 = lo30 & 16777215u;
     precise float d6 = float(hi31) * 16777216.0 + float(lo31);
-    bool t105 = d6 < t98 || (d6 == t98 && t102 < t99);
-    precise float t106 = t105 ? d6 : t98;
-    uint t107 = t105 ? t102 : t99;
-    uint t108 = corner + t59 + t59;
-    uint t109 = 3221225471u < t108 ? 4294967295u - t108 : t108;
-    uint t110 = (t10 ? 4294967295u - t109 : t109) & 4294967295u;
-    precise float3 t111 = abs(unitpack_sfib32_fixed_point(t110) - aim);
-    uint3 t112 = uint3(t111);
-    uint limb1_24 = t112.x >> 12u;
-    uint limb0_24 = t112.x & 4095u;
+    bool t221 = t219 < t214;
+    bool t222 = d6 == t213 && t221;
+    bool t223 = d6 < t213 || t222;
+    precise float t224 = t223 ? d6 : t213;
+    uint t225 = t223 ? t219 : t214;
+    uint t226 = corner + t163 + t163;
+    uint t227 = 4294967295u - t226;
+    uint t228 = 3221225471u < t226 ? t227 : t226;
+    uint t229 = 4294967295u - t228;
+    uint t230 = (t5 ? t229 : t228) & 4294967295u;
+    precise float3 t231 = abs(unitpack_sfib32_fixed_point(t230) - aim);
+    uint3 t231_u = uint3(t231);
+    uint limb1_24 = t231_u.x >> 12u;
+    uint limb0_24 = t231_u.x & 4095u;
     uint cross24 = limb1_24 * limb0_24;
     uint hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     uint lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    uint limb1_25 = t112.y >> 12u;
-    uint limb0_25 = t112.y & 4095u;
+    uint limb1_25 = t231_u.y >> 12u;
+    uint limb0_25 = t231_u.y & 4095u;
     uint cross25 = limb1_25 * limb0_25;
     uint hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     uint lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    uint limb1_26 = t112.z >> 12u;
-    uint limb0_26 = t112.z & 4095u;
+    uint limb1_26 = t231_u.z >> 12u;
+    uint limb0_26 = t231_u.z & 4095u;
     uint cross26 = limb1_26 * limb0_26;
     uint hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     uint lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     uint hi35 = hi34 + (lo34 >> 24u);
     uint lo35 = lo34 & 16777215u;
     precise float d7 = float(hi35) * 16777216.0 + float(lo35);
-    bool t113 = d7 < t106 || (d7 == t106 && t110 < t107);
-    precise float t114 = t113 ? d7 : t106;
-    uint t115 = t113 ? t110 : t107;
-    uint t116 = corner + t58 + t59 + t59;
-    uint t117 = 3221225471u < t116 ? 4294967295u - t116 : t116;
-    uint t118 = (t10 ? 4294967295u - t117 : t117) & 4294967295u;
-    precise float3 t119 = abs(unitpack_sfib32_fixed_point(t118) - aim);
-    uint3 t120 = uint3(t119);
-    uint limb1_27 = t120.x >> 12u;
-    uint limb0_27 = t120.x & 4095u;
+    bool t232 = t230 < t225;
+    bool t233 = d7 == t224 && t232;
+    bool t234 = d7 < t224 || t233;
+    precise float t235 = t234 ? d7 : t224;
+    uint t236 = t234 ? t230 : t225;
+    uint t237 = corner + t162 + t163 + t163;
+    uint t238 = 4294967295u - t237;
+    uint t239 = 3221225471u < t237 ? t238 : t237;
+    uint t240 = 4294967295u - t239;
+    uint t241 = (t5 ? t240 : t239) & 4294967295u;
+    precise float3 t242 = abs(unitpack_sfib32_fixed_point(t241) - aim);
+    uint3 t242_u = uint3(t242);
+    uint limb1_27 = t242_u.x >> 12u;
+    uint limb0_27 = t242_u.x & 4095u;
     uint cross27 = limb1_27 * limb0_27;
     uint hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     uint lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    uint limb1_28 = t120.y >> 12u;
-    uint limb0_28 = t120.y & 4095u;
+    uint limb1_28 = t242_u.y >> 12u;
+    uint limb0_28 = t242_u.y & 4095u;
     uint cross28 = limb1_28 * limb0_28;
     uint hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     uint lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    uint limb1_29 = t120.z >> 12u;
-    uint limb0_29 = t120.z & 4095u;
+    uint limb1_29 = t242_u.z >> 12u;
+    uint limb0_29 = t242_u.z & 4095u;
     uint cross29 = limb1_29 * limb0_29;
     uint hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     uint lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     uint hi39 = hi38 + (lo38 >> 24u);
     uint lo39 = lo38 & 16777215u;
     precise float d8 = float(hi39) * 16777216.0 + float(lo39);
-    bool t121 = d8 < t114 || (d8 == t114 && t118 < t115);
-    precise float t122 = t121 ? d8 : t114;
-    uint t123 = t121 ? t118 : t115;
-    uint t124 = corner + t58 + t58 + t59 + t59;
-    uint t125 = 3221225471u < t124 ? 4294967295u - t124 : t124;
-    uint t126 = (t10 ? 4294967295u - t125 : t125) & 4294967295u;
-    precise float3 t127 = abs(unitpack_sfib32_fixed_point(t126) - aim);
-    uint3 t128 = uint3(t127);
-    uint limb1_30 = t128.x >> 12u;
-    uint limb0_30 = t128.x & 4095u;
+    bool t243 = t241 < t236;
+    bool t244 = d8 == t235 && t243;
+    bool t245 = d8 < t235 || t244;
+    precise float t246 = t245 ? d8 : t235;
+    uint t247 = t245 ? t241 : t236;
+    uint t248 = corner + t162 + t162 + t163 + t163;
+    uint t249 = 4294967295u - t248;
+    uint t250 = 3221225471u < t248 ? t249 : t248;
+    uint t251 = 4294967295u - t250;
+    uint t252 = (t5 ? t251 : t250) & 4294967295u;
+    precise float3 t253 = abs(unitpack_sfib32_fixed_point(t252) - aim);
+    uint3 t253_u = uint3(t253);
+    uint limb1_30 = t253_u.x >> 12u;
+    uint limb0_30 = t253_u.x & 4095u;
     uint cross30 = limb1_30 * limb0_30;
     uint hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     uint lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    uint limb1_31 = t128.y >> 12u;
-    uint limb0_31 = t128.y & 4095u;
+    uint limb1_31 = t253_u.y >> 12u;
+    uint limb0_31 = t253_u.y & 4095u;
     uint cross31 = limb1_31 * limb0_31;
     uint hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     uint lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    uint limb1_32 = t128.z >> 12u;
-    uint limb0_32 = t128.z & 4095u;
+    uint limb1_32 = t253_u.z >> 12u;
+    uint limb0_32 = t253_u.z & 4095u;
     uint cross32 = limb1_32 * limb0_32;
     uint hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     uint lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     uint hi43 = hi42 + (lo42 >> 24u);
     uint lo43 = lo42 & 16777215u;
     precise float d9 = float(hi43) * 16777216.0 + float(lo43);
-    return d9 < t122 || (d9 == t122 && t126 < t123) ? t126 : t123;
+    bool t254 = t252 < t247;
+    bool t255 = d9 == t246 && t254;
+    return d9 < t246 || t255 ? t252 : t247;
 }
 
 // unitpack_sfib32_encode_float: fast encoder, float form.

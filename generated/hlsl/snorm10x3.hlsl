@@ -44,8 +44,8 @@ float3 unitpack_snorm10x3_decode_float(float3 params) {
     precise float3 params_sq = params * params;
     precise float len2 = params_sq.x + params_sq.y + params_sq.z;
     bool t1 = len2 > 0.0;
-    precise float3 result = t1 ? params / sqrt(t1 ? len2 : 1.0) : float3(0.0, 0.0, 1.0);
-    return result;
+    precise float3 t2 = params / sqrt(t1 ? len2 : 1.0);
+    return t1 ? t2 : float3(0.0, 0.0, 1.0);
 }
 
 // unitpack_snorm10x3_decode: decoder.
@@ -74,12 +74,14 @@ float3 unitpack_snorm10x3_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 result = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    return result;
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    return t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -98,7 +100,8 @@ float3 unitpack_snorm10x3_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -122,41 +125,38 @@ float3 unitpack_snorm10x3_round_codes(float3 a0) {
     precise float estimate = round(big / sqrt(len2));
     precise float big2 = big * big;
     precise float lower = estimate - 0.5;
+    precise float t2 = lower * lower * len2;
+    bool t3 = big2 < t2;
     precise float big3 = abs(w.y * 511.0);
     precise float estimate2 = round(big3 / sqrt(len2));
     precise float big2_2 = big3 * big3;
     precise float lower2 = estimate2 - 0.5;
+    precise float t4 = lower2 * lower2 * len2;
+    bool t5 = big2_2 < t4;
     precise float big4 = abs(w.z * 511.0);
     precise float estimate3 = round(big4 / sqrt(len2));
     precise float big2_3 = big4 * big4;
     precise float lower3 = estimate3 - 0.5;
-    precise float3 t2 = abs(w * 511.0);
-    precise float3 t3 = round(t2 / sqrt(float3(len2, len2, len2)));
-    precise float3 t4 = t3 + 0.5;
-    precise float t5 = lower * lower * len2;
-    precise float t6 = lower2 * lower2 * len2;
-    precise float t7 = lower3 * lower3 * len2;
-    bool3 t8 = bool3(
-        estimate > 0.0 && big2 < t5,
-        estimate2 > 0.0 && big2_2 < t6,
-        estimate3 > 0.0 && big2_3 < t7
-    );
-    precise float3 t9 = UNITPACK_SELECT(
-        t2 * t2 >= t4 * t4 * len2,
-        float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t8, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
-    );
-    precise float3 t10 = t3 + t9;
-    precise float3 t11 = UNITPACK_SELECT(t10 >= float3(0.0, 0.0, 0.0), t10, float3(0.0, 0.0, 0.0));
-    precise float3 t12 = UNITPACK_SELECT(
-        t11 <= float3(511.0, 511.0, 511.0),
-        t11,
+    precise float t6 = lower3 * lower3 * len2;
+    bool t7 = big2_3 < t6;
+    precise float3 t8 = abs(w * 511.0);
+    precise float3 t9 = round(t8 / sqrt(float3(len2, len2, len2)));
+    precise float3 t10 = t9 + 0.5;
+    bool3 t11 = bool3(estimate > 0.0 && t3, estimate2 > 0.0 && t5, estimate3 > 0.0 && t7);
+    precise float3 t12 = t9
+        + UNITPACK_SELECT(
+            t8 * t8 >= t10 * t10 * len2,
+            float3(1.0, 1.0, 1.0),
+            UNITPACK_SELECT(t11, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        );
+    precise float3 t13 = UNITPACK_SELECT(t12 >= float3(0.0, 0.0, 0.0), t12, float3(0.0, 0.0, 0.0));
+    precise float3 t14 = UNITPACK_SELECT(
+        t13 <= float3(511.0, 511.0, 511.0),
+        t13,
         float3(511.0, 511.0, 511.0)
     );
-    precise float3 result = ok
-        ? UNITPACK_SELECT(w < float3(0.0, 0.0, 0.0), -t12, t12)
-        : float3(0.0, 0.0, 511.0);
-    return result;
+    precise float3 t15 = UNITPACK_SELECT(w < float3(0.0, 0.0, 0.0), -t14, t14);
+    return ok ? t15 : float3(0.0, 0.0, 511.0);
 }
 
 // unitpack_snorm10x3_encode: fast encoder.

@@ -49,11 +49,9 @@ float3 unitpack_snorm12x2_to_unorm8x3_int(float2 f) {
     precise float2 u = round(
         UNITPACK_SELECT(t1 <= float2(1.0, 1.0), t1, float2(1.0, 1.0)) * 2047.0 + 2047.0
     );
-    uint2 t2 = uint2(u);
-    precise float3 result = float3(
-        uint3(t2.x >> 4u, ((t2.x & 15u) << 4u) | (t2.y >> 8u), t2.y & 255u)
-    )
-        * 0.003921569;
+    uint2 u_u = uint2(u);
+    uint3 t2 = uint3(u_u.x >> 4u, ((u_u.x & 15u) << 4u) | (u_u.y >> 8u), u_u.y & 255u);
+    precise float3 result = float3(t2) * 0.003921569;
     return result;
 }
 
@@ -77,11 +75,9 @@ float2 unitpack_unorm8x3_to_snorm12x2(float3 u) {
 float2 unitpack_unorm8x3_to_snorm12x2_int(float3 u) {
     precise float3 t1 = round(u * 255.0);
     uint3 b = uint3(t1);
-    precise float2 t2 = (
-        float2(uint2(b.x << 4u, (b.y & 15u) << 8u) | uint2(b.y >> 4u, b.z)) - 2047.0
-    )
-        * 0.0004885198;
-    return UNITPACK_SELECT(t2 <= float2(1.0, 1.0), t2, float2(1.0, 1.0));
+    uint2 t2 = uint2(b.x << 4u, (b.y & 15u) << 8u) | uint2(b.y >> 4u, b.z);
+    precise float2 t3 = (float2(t2) - 2047.0) * 0.0004885198;
+    return UNITPACK_SELECT(t3 <= float2(1.0, 1.0), t3, float2(1.0, 1.0));
 }
 
 #endif // UNITPACK_SNORM12X2_HLSL

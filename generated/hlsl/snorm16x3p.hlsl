@@ -44,8 +44,8 @@ float3 unitpack_snorm16x3p_decode_float(float3 params) {
     precise float3 params_sq = params * params;
     precise float len2 = params_sq.x + params_sq.y + params_sq.z;
     bool t1 = len2 > 0.0;
-    precise float3 result = t1 ? params / sqrt(t1 ? len2 : 1.0) : float3(0.0, 0.0, 1.0);
-    return result;
+    precise float3 t2 = params / sqrt(t1 ? len2 : 1.0);
+    return t1 ? t2 : float3(0.0, 0.0, 1.0);
 }
 
 // unitpack_snorm16x3p_decode: decoder.
@@ -69,74 +69,78 @@ float3 unitpack_snorm16x3p_decode(uint2 code) {
 //   fixed-point direction is strictly nearer the input's than the best so far.
 float2 unitpack_snorm16x3p_bfn_step(float2 a0, float a1, float3 a2, float3 a3) {
     precise float3 c = round(a2 * 4.7683716e-7 * a1);
-    uint3 t1 = uint3(c);
-    uint limb1 = t1.x >> 12u;
-    uint limb0 = t1.x & 4095u;
+    uint3 c_u = uint3(c);
+    uint limb1 = c_u.x >> 12u;
+    uint limb0 = c_u.x & 4095u;
     uint cross = limb1 * limb0;
     uint hi = 0u + limb1 * limb1 + (cross >> 11u);
     uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
-    uint limb1_2 = t1.y >> 12u;
-    uint limb0_2 = t1.y & 4095u;
+    uint limb1_2 = c_u.y >> 12u;
+    uint limb0_2 = c_u.y & 4095u;
     uint cross2 = limb1_2 * limb0_2;
     uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
     uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
-    uint limb1_3 = t1.z >> 12u;
-    uint limb0_3 = t1.z & 4095u;
+    uint limb1_3 = c_u.z >> 12u;
+    uint limb0_3 = c_u.z & 4095u;
     uint cross3 = limb1_3 * limb0_3;
     uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
     uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     uint hi4 = hi3 + (lo3 >> 24u);
     uint lo4 = lo3 & 16777215u;
-    precise float t2 = float(hi4) * 16777216.0 + float(lo4);
-    uint half_exponent = ((asuint(t2) >> 23u) + 1u) >> 1u;
+    precise float t1 = float(hi4) * 16777216.0 + float(lo4);
+    uint half_exponent = ((asuint(t1) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t3 = t2 * root_down;
-    precise float root_estimate = sqrt(t3);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float t2 = t1 * root_down;
+    precise float root_estimate = sqrt(t2);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= t3 ? 1.0 : (root_h0 * root_h0 > t3 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t3 - root_h * root_h;
+    precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t3 ? 1.0 : (root_m0 * root_m0 > t3 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = root * root_up;
-    precise float l = t5 >= a1 ? t5 : a1;
-    precise float3 t6 = floor(c / l * 2097152.0);
-    precise float3 t7 = c * 2097152.0;
-    precise float3 t8 = UNITPACK_SELECT(
-        (t6 + 1.0) * l <= t7,
+    precise float t3 = root * root_up;
+    precise float l = t3 >= a1 ? t3 : a1;
+    precise float3 t4 = floor(c / l * 2097152.0);
+    precise float3 t5 = c * 2097152.0;
+    precise float3 t6 = UNITPACK_SELECT(
+        (t4 + 1.0) * l <= t5,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t6 * l > t7, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t4 * l > t5, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 d = t6 + t8;
-    precise float3 t9 = abs(d - abs(a3));
-    uint3 t10 = uint3(t9);
-    uint limb1_4 = t10.x >> 12u;
-    uint limb0_4 = t10.x & 4095u;
+    precise float3 d = t4 + t6;
+    precise float3 offset = d - abs(a3);
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t10.y >> 12u;
-    uint limb0_5 = t10.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t10.z >> 12u;
-    uint limb0_6 = t10.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    return dist < a0.y ? float2(a1, dist) : a0;
+    precise float2 t7 = float2(a1, dist);
+    return dist < a0.y ? t7 : a0;
 }
 
 // Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales
@@ -156,19 +160,20 @@ float3 unitpack_snorm16x3p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -188,38 +193,40 @@ float3 unitpack_snorm16x3p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t5 = floor(w2 / root * 2097152.0);
-    precise float3 t6 = w2 * 2097152.0;
-    precise float3 t7 = UNITPACK_SELECT(
-        (t5 + 1.0) * root <= t6,
+    precise float3 t1 = floor(w2 / root * 2097152.0);
+    precise float3 t2 = w2 * 2097152.0;
+    precise float3 t3 = UNITPACK_SELECT(
+        (t1 + 1.0) * root <= t2,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t5 * root > t6, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t1 * root > t2, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t5 + t7;
+    precise float3 aim = t1 + t3;
     precise float3 abs_aim = abs(aim);
-    precise float t8 = abs_aim.x >= abs_aim.y ? abs_aim.x : abs_aim.y;
-    precise float t9 = t8 >= abs_aim.z ? t8 : abs_aim.z;
-    precise float3 t10 = floor(abs_aim / t9 * 2097152.0);
-    precise float3 t11 = abs_aim * 2097152.0;
-    precise float3 t12 = UNITPACK_SELECT(
-        (t10 + 1.0) * t9 <= t11,
+    precise float t4 = abs_aim.x >= abs_aim.y ? abs_aim.x : abs_aim.y;
+    precise float t5 = t4 >= abs_aim.z ? t4 : abs_aim.z;
+    precise float3 t6 = floor(abs_aim / t5 * 2097152.0);
+    precise float3 t7 = abs_aim * 2097152.0;
+    precise float3 t8 = UNITPACK_SELECT(
+        (t6 + 1.0) * t5 <= t7,
         float3(1.0, 1.0, 1.0),
-        UNITPACK_SELECT(t10 * t9 > t11, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
+        UNITPACK_SELECT(t6 * t5 > t7, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 r = t10 + t12;
+    precise float3 r = t6 + t8;
     precise float2 best = unitpack_snorm16x3p_bfn_step(float2(0.0, 1e30), 32767.0, r, aim);
     precise float2 best2 = unitpack_snorm16x3p_bfn_step(best, 32766.0, r, aim);
     precise float2 best3 = unitpack_snorm16x3p_bfn_step(best2, 32765.0, r, aim);

@@ -77,19 +77,20 @@ float2 unitpack_spheremap16p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -109,24 +110,27 @@ float2 unitpack_spheremap16p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    bool t5 = w2.z >= 0.0;
-    precise float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    precise float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    bool t1 = w2.z >= 0.0;
+    precise float t2 = root + w2.z;
+    precise float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -140,240 +144,239 @@ float2 unitpack_spheremap16p_encode_codes(float3 v) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    precise float opz_a = t5 ? root + w2.z : rho2;
-    precise float opz_b = t5 ? 1.0 : root - w2.z;
-    bool t8 = opz_a <= 0.0;
-    precise float3 t9 = t8 ? float3(0.0, 0.0, 2.0) : w2;
-    precise float t10 = t8 ? 2.0 : root;
-    precise float t11 = t8 ? 1.0 : opz_b;
-    precise float la = t10 * (t8 ? 4.0 : opz_a);
-    precise float2 t12 = round(t9.xy / (sqrt(la / t11) * 0.011091871) + 127.5);
-    precise float2 t13 = UNITPACK_SELECT(t12 >= float2(0.0, 0.0), t12, float2(0.0, 0.0));
-    precise float2 t14 = UNITPACK_SELECT(t13 <= float2(255.0, 255.0), t13, float2(255.0, 255.0));
-    precise float2 t15 = t14 - 126.5;
-    precise float2 t16 = t9.xy * t9.xy * t11 * 8128.125;
-    precise float2 t17 = t15 * t15 * la;
-    precise float2 t18 = UNITPACK_SELECT(
-        t15 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t16 >= t17, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+    precise float opz_a = t1 ? t2 : rho2;
+    precise float t3 = root - w2.z;
+    precise float opz_b = t1 ? 1.0 : t3;
+    bool t4 = opz_a <= 0.0;
+    precise float3 t5 = t4 ? float3(0.0, 0.0, 2.0) : w2;
+    precise float t6 = t4 ? 2.0 : root;
+    precise float t7 = t4 ? 1.0 : opz_b;
+    precise float la = t6 * (t4 ? 4.0 : opz_a);
+    precise float2 t8 = round(t5.xy / (sqrt(la / t7) * 0.011091871) + 127.5);
+    precise float2 t9 = UNITPACK_SELECT(t8 >= float2(0.0, 0.0), t8, float2(0.0, 0.0));
+    precise float2 t10 = UNITPACK_SELECT(t9 <= float2(255.0, 255.0), t9, float2(255.0, 255.0));
+    precise float2 t11 = t10 - 126.5;
+    precise float2 t12 = t5.xy * t5.xy * t7 * 8128.125;
+    precise float2 t13 = t11 * t11 * la;
+    precise float2 t14 = UNITPACK_SELECT(
+        t5.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t11 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t12 >= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t11 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t12 <= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t19 = UNITPACK_SELECT(
-        t15 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t16 <= t17, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t15 = t10 - 1.0 - 126.5;
+    precise float2 t16 = t15 * t15 * la;
+    precise float2 t17 = UNITPACK_SELECT(
+        t5.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t15 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t12 >= t16, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t15 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t12 <= t16, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t20 = UNITPACK_SELECT(
-        t14 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t9.xy >= float2(0.0, 0.0), t18, t19),
-        float2(0.0, 0.0)
+    precise float2 base = t10
+        + UNITPACK_SELECT(t10 < float2(255.0, 255.0), t14, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t10 > float2(0.0, 0.0), t17 - 1.0, float2(0.0, 0.0));
+    precise float3 t18 = floor(t5 / t6 * 2097152.0);
+    precise float3 t19 = t5 * 2097152.0;
+    precise float3 t20 = UNITPACK_SELECT(
+        (t18 + 1.0) * t6 <= t19,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t18 * t6 > t19, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float2 t21 = t14 - 1.0 - 126.5;
-    precise float2 t22 = t21 * t21 * la;
-    precise float2 t23 = UNITPACK_SELECT(
-        t21 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t16 >= t22, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t24 = UNITPACK_SELECT(
-        t21 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t16 <= t22, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t25 = UNITPACK_SELECT(
-        t14 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t9.xy >= float2(0.0, 0.0), t23, t24) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 base = t14 + t20 + t25;
-    precise float3 t26 = floor(t9 / t10 * 2097152.0);
-    precise float3 t27 = t9 * 2097152.0;
-    precise float3 t28 = UNITPACK_SELECT(
-        t26 * t10 > t27,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
-    );
-    precise float3 aim = t26
-        + UNITPACK_SELECT((t26 + 1.0) * t10 <= t27, float3(1.0, 1.0, 1.0), t28);
+    precise float3 aim = t18 + t20;
     precise float2 cand = UNITPACK_SELECT(base <= float2(255.0, 255.0), base, float2(255.0, 255.0));
     precise float2 t = cand * 2.0 - 255.0;
     precise float2 abs_t = abs(t);
-    uint2 t29 = uint2(abs_t);
-    uint t30 = ((t29.x * t29.x) >> 2u) + ((t29.y * t29.y) >> 2u);
-    uint t31 = !(16255u < t30) ? ((16255u - t30) << 2u) + 3u : 0u;
-    precise float r = float(t31 >> 12u) * 4096.0 + float(t31 & 4095u);
-    precise float t32 = r * 17041940.0;
-    precise float root_estimate2 = floor(sqrt(t32));
+    uint2 abs_t_u = uint2(abs_t);
+    uint t21 = ((abs_t_u.x * abs_t_u.x) >> 2u) + ((abs_t_u.y * abs_t_u.y) >> 2u);
+    uint t22 = ((16255u - t21) << 2u) + 3u;
+    uint t23 = !(16255u < t21) ? t22 : 0u;
+    precise float r = float(t23 >> 12u) * 4096.0 + float(t23 & 4095u);
+    precise float t24 = r * 17041940.0;
+    precise float root_estimate2 = floor(sqrt(t24));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t33 = root_next * root_next <= t32
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t32 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t33;
+    precise float step_down3 = root_estimate2 * root_estimate2 > t24 ? -1.0 : 0.0;
+    precise float step3 = root_next * root_next <= t24 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + step3;
     precise float root_next2 = root_step + 1.0;
-    precise float t34 = root_next2 * root_next2 <= t32
-        ? 1.0
-        : (root_step * root_step > t32 ? -1.0 : 0.0);
-    precise float g = root_step + t34;
-    precise float3 t35 = abs(
-        float3(floor(t * g * 0.015625), floor(r * 64.502945) - 2097152.0) - aim
-    );
-    uint3 t36 = uint3(t35);
-    uint limb1_6 = t36.x >> 12u;
-    uint limb0_6 = t36.x & 4095u;
+    precise float step_down4 = root_step * root_step > t24 ? -1.0 : 0.0;
+    precise float step4 = root_next2 * root_next2 <= t24 ? 1.0 : step_down4;
+    precise float g = root_step + step4;
+    precise float3 t25 = float3(floor(t * g * 0.015625), floor(r * 64.502945) - 2097152.0);
+    precise float3 offset = t25 - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_6 = offset_u.x >> 12u;
+    uint limb0_6 = offset_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t36.y >> 12u;
-    uint limb0_7 = t36.y & 4095u;
+    uint limb1_7 = offset_u.y >> 12u;
+    uint limb0_7 = offset_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t36.z >> 12u;
-    uint limb0_8 = t36.z & 4095u;
+    uint limb1_8 = offset_u.z >> 12u;
+    uint limb0_8 = offset_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi11 = hi10 + (lo10 >> 24u);
     uint lo11 = lo10 & 16777215u;
     precise float dist = float(hi11) * 16777216.0 + float(lo11);
-    precise float t37 = base.x + 1.0;
-    precise float2 t38 = float2(t37, base.y);
-    precise float2 cand2 = UNITPACK_SELECT(t38 <= float2(255.0, 255.0), t38, float2(255.0, 255.0));
-    precise float2 t39 = cand2 * 2.0 - 255.0;
-    precise float2 abs_t39 = abs(t39);
-    uint2 t40 = uint2(abs_t39);
-    uint t41 = ((t40.x * t40.x) >> 2u) + ((t40.y * t40.y) >> 2u);
-    uint t42 = !(16255u < t41) ? ((16255u - t41) << 2u) + 3u : 0u;
-    precise float r2 = float(t42 >> 12u) * 4096.0 + float(t42 & 4095u);
-    precise float t43 = r2 * 17041940.0;
-    precise float root_estimate3 = floor(sqrt(t43));
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t26 = float2(s_up, base.y);
+    precise float2 cand2 = UNITPACK_SELECT(t26 <= float2(255.0, 255.0), t26, float2(255.0, 255.0));
+    bool t27 = base.y <= 255.0;
+    precise float2 t28 = cand2 * 2.0 - 255.0;
+    precise float2 abs_t28 = abs(t28);
+    uint2 abs_t28_u = uint2(abs_t28);
+    uint t29 = ((abs_t28_u.x * abs_t28_u.x) >> 2u) + ((abs_t28_u.y * abs_t28_u.y) >> 2u);
+    uint t30 = ((16255u - t29) << 2u) + 3u;
+    uint t31 = !(16255u < t29) ? t30 : 0u;
+    precise float r2 = float(t31 >> 12u) * 4096.0 + float(t31 & 4095u);
+    precise float t32 = r2 * 17041940.0;
+    precise float root_estimate3 = floor(sqrt(t32));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t44 = root_next3 * root_next3 <= t43
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t43 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t44;
+    precise float step_down5 = root_estimate3 * root_estimate3 > t32 ? -1.0 : 0.0;
+    precise float step5 = root_next3 * root_next3 <= t32 ? 1.0 : step_down5;
+    precise float root_step2 = root_estimate3 + step5;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t45 = root_next4 * root_next4 <= t43
-        ? 1.0
-        : (root_step2 * root_step2 > t43 ? -1.0 : 0.0);
-    precise float g2 = root_step2 + t45;
-    precise float3 t46 = abs(
-        float3(floor(t39 * g2 * 0.015625), floor(r2 * 64.502945) - 2097152.0) - aim
-    );
-    uint3 t47 = uint3(t46);
-    uint limb1_9 = t47.x >> 12u;
-    uint limb0_9 = t47.x & 4095u;
+    precise float step_down6 = root_step2 * root_step2 > t32 ? -1.0 : 0.0;
+    precise float step6 = root_next4 * root_next4 <= t32 ? 1.0 : step_down6;
+    precise float g2 = root_step2 + step6;
+    precise float3 t33 = float3(floor(t28 * g2 * 0.015625), floor(r2 * 64.502945) - 2097152.0);
+    precise float3 offset2 = t33 - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_9 = offset_u2.x >> 12u;
+    uint limb0_9 = offset_u2.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t47.y >> 12u;
-    uint limb0_10 = t47.y & 4095u;
+    uint limb1_10 = offset_u2.y >> 12u;
+    uint limb0_10 = offset_u2.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t47.z >> 12u;
-    uint limb0_11 = t47.z & 4095u;
+    uint limb1_11 = offset_u2.z >> 12u;
+    uint limb0_11 = offset_u2.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi15 = hi14 + (lo14 >> 24u);
     uint lo15 = lo14 & 16777215u;
     precise float dist2 = float(hi15) * 16777216.0 + float(lo15);
-    bool t48 = t37 <= 255.0 && base.y <= 255.0 && dist2 < dist;
-    precise float2 best = t48 ? cand2 : cand;
-    precise float best_d = t48 ? dist2 : dist;
-    precise float t49 = base.y + 1.0;
-    precise float2 t50 = float2(base.x, t49);
-    precise float2 cand3 = UNITPACK_SELECT(t50 <= float2(255.0, 255.0), t50, float2(255.0, 255.0));
-    precise float2 t51 = cand3 * 2.0 - 255.0;
-    precise float2 abs_t51 = abs(t51);
-    uint2 t52 = uint2(abs_t51);
-    uint t53 = ((t52.x * t52.x) >> 2u) + ((t52.y * t52.y) >> 2u);
-    uint t54 = !(16255u < t53) ? ((16255u - t53) << 2u) + 3u : 0u;
-    precise float r3 = float(t54 >> 12u) * 4096.0 + float(t54 & 4095u);
-    precise float t55 = r3 * 17041940.0;
-    precise float root_estimate4 = floor(sqrt(t55));
+    bool t34 = dist2 < dist;
+    bool t35 = s_up <= 255.0 && t27 && t34;
+    precise float2 best = t35 ? cand2 : cand;
+    precise float best_d = t35 ? dist2 : dist;
+    precise float2 t36 = float2(base.x, t_up);
+    precise float2 cand3 = UNITPACK_SELECT(t36 <= float2(255.0, 255.0), t36, float2(255.0, 255.0));
+    bool t37 = t_up <= 255.0;
+    precise float2 t38 = cand3 * 2.0 - 255.0;
+    precise float2 abs_t38 = abs(t38);
+    uint2 abs_t38_u = uint2(abs_t38);
+    uint t39 = ((abs_t38_u.x * abs_t38_u.x) >> 2u) + ((abs_t38_u.y * abs_t38_u.y) >> 2u);
+    uint t40 = ((16255u - t39) << 2u) + 3u;
+    uint t41 = !(16255u < t39) ? t40 : 0u;
+    precise float r3 = float(t41 >> 12u) * 4096.0 + float(t41 & 4095u);
+    precise float t42 = r3 * 17041940.0;
+    precise float root_estimate4 = floor(sqrt(t42));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t56 = root_next5 * root_next5 <= t55
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t55 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t56;
+    precise float step_down7 = root_estimate4 * root_estimate4 > t42 ? -1.0 : 0.0;
+    precise float step7 = root_next5 * root_next5 <= t42 ? 1.0 : step_down7;
+    precise float root_step3 = root_estimate4 + step7;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t57 = root_next6 * root_next6 <= t55
-        ? 1.0
-        : (root_step3 * root_step3 > t55 ? -1.0 : 0.0);
-    precise float g3 = root_step3 + t57;
-    precise float3 t58 = abs(
-        float3(floor(t51 * g3 * 0.015625), floor(r3 * 64.502945) - 2097152.0) - aim
-    );
-    uint3 t59 = uint3(t58);
-    uint limb1_12 = t59.x >> 12u;
-    uint limb0_12 = t59.x & 4095u;
+    precise float step_down8 = root_step3 * root_step3 > t42 ? -1.0 : 0.0;
+    precise float step8 = root_next6 * root_next6 <= t42 ? 1.0 : step_down8;
+    precise float g3 = root_step3 + step8;
+    precise float3 t43 = float3(floor(t38 * g3 * 0.015625), floor(r3 * 64.502945) - 2097152.0);
+    precise float3 offset3 = t43 - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_12 = offset_u3.x >> 12u;
+    uint limb0_12 = offset_u3.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t59.y >> 12u;
-    uint limb0_13 = t59.y & 4095u;
+    uint limb1_13 = offset_u3.y >> 12u;
+    uint limb0_13 = offset_u3.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t59.z >> 12u;
-    uint limb0_14 = t59.z & 4095u;
+    uint limb1_14 = offset_u3.z >> 12u;
+    uint limb0_14 = offset_u3.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi19 = hi18 + (lo18 >> 24u);
     uint lo19 = lo18 & 16777215u;
     precise float dist3 = float(hi19) * 16777216.0 + float(lo19);
-    bool t60 = base.x <= 255.0 && t49 <= 255.0 && dist3 < best_d;
-    precise float2 best2 = t60 ? cand3 : best;
-    precise float best_d2 = t60 ? dist3 : best_d;
-    precise float2 t61 = base + 1.0;
-    precise float2 cand4 = UNITPACK_SELECT(t61 <= float2(255.0, 255.0), t61, float2(255.0, 255.0));
-    precise float2 t62 = cand4 * 2.0 - 255.0;
-    precise float2 abs_t62 = abs(t62);
-    uint2 t63 = uint2(abs_t62);
-    uint t64 = ((t63.x * t63.x) >> 2u) + ((t63.y * t63.y) >> 2u);
-    uint t65 = !(16255u < t64) ? ((16255u - t64) << 2u) + 3u : 0u;
-    precise float r4 = float(t65 >> 12u) * 4096.0 + float(t65 & 4095u);
-    precise float t66 = r4 * 17041940.0;
-    precise float root_estimate5 = floor(sqrt(t66));
+    bool t44 = dist3 < best_d;
+    bool t45 = base.x <= 255.0 && t37 && t44;
+    precise float2 best2 = t45 ? cand3 : best;
+    precise float best_d2 = t45 ? dist3 : best_d;
+    precise float2 t46 = base + 1.0;
+    precise float2 cand4 = UNITPACK_SELECT(t46 <= float2(255.0, 255.0), t46, float2(255.0, 255.0));
+    bool t47 = t_up <= 255.0;
+    precise float2 t48 = cand4 * 2.0 - 255.0;
+    precise float2 abs_t48 = abs(t48);
+    uint2 abs_t48_u = uint2(abs_t48);
+    uint t49 = ((abs_t48_u.x * abs_t48_u.x) >> 2u) + ((abs_t48_u.y * abs_t48_u.y) >> 2u);
+    uint t50 = ((16255u - t49) << 2u) + 3u;
+    uint t51 = !(16255u < t49) ? t50 : 0u;
+    precise float r4 = float(t51 >> 12u) * 4096.0 + float(t51 & 4095u);
+    precise float t52 = r4 * 17041940.0;
+    precise float root_estimate5 = floor(sqrt(t52));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t67 = root_next7 * root_next7 <= t66
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t66 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t67;
+    precise float step_down9 = root_estimate5 * root_estimate5 > t52 ? -1.0 : 0.0;
+    precise float step9 = root_next7 * root_next7 <= t52 ? 1.0 : step_down9;
+    precise float root_step4 = root_estimate5 + step9;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t68 = root_next8 * root_next8 <= t66
-        ? 1.0
-        : (root_step4 * root_step4 > t66 ? -1.0 : 0.0);
-    precise float g4 = root_step4 + t68;
-    precise float3 t69 = abs(
-        float3(floor(t62 * g4 * 0.015625), floor(r4 * 64.502945) - 2097152.0) - aim
-    );
-    uint3 t70 = uint3(t69);
-    uint limb1_15 = t70.x >> 12u;
-    uint limb0_15 = t70.x & 4095u;
+    precise float step_down10 = root_step4 * root_step4 > t52 ? -1.0 : 0.0;
+    precise float step10 = root_next8 * root_next8 <= t52 ? 1.0 : step_down10;
+    precise float g4 = root_step4 + step10;
+    precise float3 t53 = float3(floor(t48 * g4 * 0.015625), floor(r4 * 64.502945) - 2097152.0);
+    precise float3 offset4 = t53 - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_15 = offset_u4.x >> 12u;
+    uint limb0_15 = offset_u4.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t70.y >> 12u;
-    uint limb0_16 = t70.y & 4095u;
+    uint limb1_16 = offset_u4.y >> 12u;
+    uint limb0_16 = offset_u4.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t70.z >> 12u;
-    uint limb0_17 = t70.z & 4095u;
+    uint limb1_17 = offset_u4.z >> 12u;
+    uint limb0_17 = offset_u4.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi23 = hi22 + (lo22 >> 24u);
     uint lo23 = lo22 & 16777215u;
     precise float dist4 = float(hi23) * 16777216.0 + float(lo23);
-    precise float2 best3 = base.x + 1.0 <= 255.0 && base.y + 1.0 <= 255.0 && dist4 < best_d2
-        ? cand4
-        : best2;
-    return ok ? (opz_a <= 0.0 ? float2(255.0, 128.0) : best3) : float2(128.0, 128.0);
+    bool t54 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 255.0 && t47 && t54 ? cand4 : best2;
+    precise float2 t55 = opz_a <= 0.0 ? float2(255.0, 128.0) : best3;
+    return ok ? t55 : float2(128.0, 128.0);
 }
 
 // unitpack_spheremap16p_encode_float: precise encoder, float form.

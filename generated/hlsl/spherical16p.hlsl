@@ -37,19 +37,21 @@
 float2 unitpack_spherical16p_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -96,17 +98,18 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -120,67 +123,75 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     uint hi3 = hi2 + (lo2 >> 24u);
     uint lo3 = lo2 & 16777215u;
     precise float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
-    bool t3 = rho2 > 0.0;
-    precise float t4 = t3 ? rho2 : 1.0;
-    uint half_exponent = ((asuint(t4) >> 23u) + 1u) >> 1u;
+    bool t1 = rho2 > 0.0;
+    precise float t2 = t1 ? rho2 : 1.0;
+    uint half_exponent = ((asuint(t2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
     precise float root_up = asfloat((62u + half_exponent) << 23u);
-    precise float t5 = t4 * root_down;
-    precise float root_estimate = sqrt(t5);
-    precise float t6 = floor(root_estimate * 512.0);
-    precise float root_h0 = t6 * 0.001953125;
+    precise float t3 = t2 * root_down;
+    precise float root_estimate = sqrt(t3);
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t6
-        + (root_h1 * root_h1 <= t5 ? 1.0 : (root_h0 * root_h0 > t5 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
-    precise float root_rest = t5 - root_h * root_h;
+    precise float root_rest = t3 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= t5 ? 1.0 : (root_m0 * root_m0 > t5 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float rho = t3 ? root * root_up : 0.0;
+    precise float t4 = root * root_up;
+    precise float rho = t1 ? t4 : 0.0;
     precise float abs_w2_z = abs(w2.z);
     precise float abs_rho = abs(rho);
     bool y_major = abs_rho > abs_w2_z;
     precise float hi4 = y_major ? abs_rho : abs_w2_z;
     precise float lo4 = y_major ? abs_w2_z : abs_rho;
-    precise float t7 = hi4 > 0.0 ? hi4 : 1.0;
+    precise float t5 = hi4 > 0.0 ? hi4 : 1.0;
     precise float big = lo4 * 8388608.0;
-    precise float ratio_estimate = floor(lo4 / t7 * 8388608.0);
-    precise float t8 = (ratio_estimate + 1.0) * t7 <= big
-        ? 1.0
-        : (ratio_estimate * t7 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t8;
-    precise float t = ratio + ((ratio + 1.0) * t7 <= big ? 1.0 : (ratio * t7 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo4 / t5 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t9 = t - 8388608.0;
-    precise float t10 = t + 8388608.0;
-    precise float big2 = t9 * 8388608.0;
-    precise float ratio_estimate2 = floor(t9 / t10 * 8388608.0);
-    precise float t11 = (ratio_estimate2 + 1.0) * t10 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t10 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t11;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t10 <= big2 ? 1.0 : (ratio2 * t10 > big2 ? -1.0 : 0.0));
+    precise float t6 = t - 8388608.0;
+    precise float t7 = t + 8388608.0;
+    precise float big2 = t6 * 8388608.0;
+    precise float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t12 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t13 = round((round(t12 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t14 = round((round(t13 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t15 = round((round(t14 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t15 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t8 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t9 = (round((t8 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t10 = (round((round(t9) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t11 = round((round(t10 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t12 = round((round(t11 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t12 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = w2.z < 0.0 ? 8388608.0 - h3 : h3;
-    precise float angle = rho < 0.0 ? -h4 : h4;
+    precise float t13 = h + 2097152.0;
+    precise float h2 = far ? t13 : h;
+    precise float t14 = 4194304.0 - h2;
+    precise float h3 = y_major ? t14 : h2;
+    precise float t15 = 8388608.0 - h3;
+    precise float h4 = w2.z < 0.0 ? t15 : h3;
+    precise float neg_h4 = -h4;
+    precise float angle = rho < 0.0 ? neg_h4 : h4;
     precise float abs_w2_x = abs(w2.x);
     precise float abs_w2_y = abs(w2.y);
     bool y_major2 = abs_w2_y > abs_w2_x;
@@ -189,49 +200,55 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     precise float t16 = hi5 > 0.0 ? hi5 : 1.0;
     precise float big3 = lo5 * 8388608.0;
     precise float ratio_estimate3 = floor(lo5 / t16 * 8388608.0);
-    precise float t17 = (ratio_estimate3 + 1.0) * t16 <= big3
-        ? 1.0
-        : (ratio_estimate3 * t16 > big3 ? -1.0 : 0.0);
-    precise float ratio4 = ratio_estimate3 + t17;
-    precise float t18 = ratio4
-        + ((ratio4 + 1.0) * t16 <= big3 ? 1.0 : (ratio4 * t16 > big3 ? -1.0 : 0.0));
-    bool far2 = t18 > 3474675.0;
-    precise float t19 = t18 - 8388608.0;
-    precise float t20 = t18 + 8388608.0;
-    precise float big4 = t19 * 8388608.0;
-    precise float ratio_estimate4 = floor(t19 / t20 * 8388608.0);
-    precise float t21 = (ratio_estimate4 + 1.0) * t20 <= big4
-        ? 1.0
-        : (ratio_estimate4 * t20 > big4 ? -1.0 : 0.0);
-    precise float ratio5 = ratio_estimate4 + t21;
-    precise float ratio6 = ratio5
-        + ((ratio5 + 1.0) * t20 <= big4 ? 1.0 : (ratio5 * t20 > big4 ? -1.0 : 0.0));
-    precise float z3 = far2 ? ratio6 : t18;
+    precise float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0 : 0.0;
+    precise float step7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
+    precise float ratio4 = ratio_estimate3 + step7;
+    precise float step_down8 = ratio4 * t16 > big3 ? -1.0 : 0.0;
+    precise float step8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
+    precise float t17 = ratio4 + step8;
+    bool far2 = t17 > 3474675.0;
+    precise float t18 = t17 - 8388608.0;
+    precise float t19 = t17 + 8388608.0;
+    precise float big4 = t18 * 8388608.0;
+    precise float ratio_estimate4 = floor(t18 / t19 * 8388608.0);
+    precise float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0 : 0.0;
+    precise float step9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
+    precise float ratio5 = ratio_estimate4 + step9;
+    precise float step_down10 = ratio5 * t19 > big4 ? -1.0 : 0.0;
+    precise float step10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
+    precise float ratio6 = ratio5 + step10;
+    precise float z3 = far2 ? ratio6 : t17;
     precise float z2_2 = round(z3 * z3 * 1.1920929e-7);
-    precise float t22 = round(
+    precise float t20 = round(
         (round(-441506.0 * z2_2 * 1.1920929e-7) + 493448.0) * z2_2 * 1.1920929e-7
-    )
-        + (-559241.0);
-    precise float t23 = round((round(t22 * z2_2 * 1.1920929e-7) + 645278.0) * z2_2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t24 = round((round(t23 * z2_2 * 1.1920929e-7) + 932068.0) * z2_2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t25 = round((round(t24 * z2_2 * 1.1920929e-7) + 1677722.0) * z2_2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r2 = round(z3 * (round(t25 * z2_2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    );
+    precise float t21 = (round((t20 + (-559241.0)) * z2_2 * 1.1920929e-7) + 645278.0)
+        * z2_2
+        * 1.1920929e-7;
+    precise float t22 = (round((round(t21) + (-762601.0)) * z2_2 * 1.1920929e-7) + 932068.0) * z2_2;
+    precise float t23 = round((round(t22 * 1.1920929e-7) + (-1198373.0)) * z2_2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t24 = round(
+        (round(t23 * z2_2 * 1.1920929e-7) + (-2796203.0)) * z2_2 * 1.1920929e-7
+    );
+    precise float r2 = round(z3 * (t24 + 8388608.0) * 1.1920929e-7);
     precise float h5 = round(r2 * 0.31830987);
-    precise float h6 = far2 ? h5 + 2097152.0 : h5;
-    precise float h7 = y_major2 ? 4194304.0 - h6 : h6;
-    precise float h8 = w2.x < 0.0 ? 8388608.0 - h7 : h7;
-    precise float phi = w2.y < 0.0 ? -h8 : h8;
+    precise float t25 = h5 + 2097152.0;
+    precise float h6 = far2 ? t25 : h5;
+    precise float t26 = 4194304.0 - h6;
+    precise float h7 = y_major2 ? t26 : h6;
+    precise float t27 = 8388608.0 - h7;
+    precise float h8 = w2.x < 0.0 ? t27 : h7;
+    precise float neg_h8 = -h8;
+    precise float phi = w2.y < 0.0 ? neg_h8 : h8;
     precise float theta = angle * 2.0 - 8388608.0;
     precise float2 base = floor(float2(theta, phi) * 1.513958e-5);
-    precise float t26 = floor(abs(w2.x) * 2097152.0);
-    uint fixed4 = uint(t26);
-    precise float t27 = floor(abs(w2.y) * 2097152.0);
-    uint fixed5 = uint(t27);
-    precise float t28 = floor(abs(w2.z) * 2097152.0);
-    uint fixed6 = uint(t28);
+    precise float fixed_f3 = floor(abs(w2.x) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
+    precise float fixed_f4 = floor(abs(w2.y) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.z) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_3 = fixed4 >> 12u;
     uint limb0_3 = fixed4 & 4095u;
     uint cross3 = limb1_3 * limb0_3;
@@ -251,357 +268,381 @@ float2 unitpack_spherical16p_encode_codes(float3 v) {
     uint lo9 = lo8 & 16777215u;
     precise float len2 = (float(hi9) * 16777216.0 + float(lo9)) * 2.2737368e-13;
     precise float root_estimate2 = sqrt(len2);
-    precise float t29 = floor(root_estimate2 * 512.0);
-    precise float root_h0_2 = t29 * 0.001953125;
+    precise float root_k0_2 = floor(root_estimate2 * 512.0);
+    precise float root_h0_2 = root_k0_2 * 0.001953125;
     precise float root_h1_2 = root_h0_2 + 0.001953125;
-    precise float t30 = root_h1_2 * root_h1_2 <= len2
-        ? 1.0
-        : (root_h0_2 * root_h0_2 > len2 ? -1.0 : 0.0);
-    precise float root_k2 = t29 + t30;
+    precise float step_down11 = root_h0_2 * root_h0_2 > len2 ? -1.0 : 0.0;
+    precise float step11 = root_h1_2 * root_h1_2 <= len2 ? 1.0 : step_down11;
+    precise float root_k2 = root_k0_2 + step11;
     precise float root_h2 = root_k2 * 0.001953125;
     precise float root_rest2 = len2 - root_h2 * root_h2;
     precise float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     precise float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     precise float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
-    precise float t31 = root_m1_2 * root_m1_2 <= len2
-        ? 1.0
-        : (root_m0_2 * root_m0_2 > len2 ? -1.0 : 0.0);
-    precise float root_j2 = root_j0_2 + t31;
+    precise float step_down12 = root_m0_2 * root_m0_2 > len2 ? -1.0 : 0.0;
+    precise float step12 = root_m1_2 * root_m1_2 <= len2 ? 1.0 : step_down12;
+    precise float root_j2 = root_j0_2 + step12;
     precise float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    precise float3 t32 = floor(w2 / root2 * 8388608.0);
-    precise float3 t33 = w2 * 8388608.0;
-    precise float3 t34 = UNITPACK_SELECT(
-        t32 * root2 > t33,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t28 = floor(w2 / root2 * 8388608.0);
+    precise float3 t29 = w2 * 8388608.0;
+    precise float3 t30 = UNITPACK_SELECT(
+        (t28 + 1.0) * root2 <= t29,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t28 * root2 > t29, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 t35 = t32
-        + UNITPACK_SELECT((t32 + 1.0) * root2 <= t33, float3(1.0, 1.0, 1.0), t34);
-    precise float3 t36 = UNITPACK_SELECT(
-        t35 * root2 > t33,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t31 = t28 + t30;
+    precise float3 t32 = UNITPACK_SELECT(
+        (t31 + 1.0) * root2 <= t29,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t31 * root2 > t29, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t35
-        + UNITPACK_SELECT((t35 + 1.0) * root2 <= t33, float3(1.0, 1.0, 1.0), t36);
+    precise float3 aim = t31 + t32;
     precise float2 cand = UNITPACK_SELECT(base <= float2(127.0, 127.0), base, float2(127.0, 127.0));
-    precise float t37 = round((cand.x + 127.0) * 66052.03);
-    precise float abs_t37 = abs(t37);
-    bool back = abs_t37 > 8388608.0;
-    precise float b = back ? 16777216.0 - abs_t37 : abs_t37;
+    precise float t33 = round((cand.x + 127.0) * 66052.03);
+    precise float abs_t33 = abs(t33);
+    bool back = abs_t33 > 8388608.0;
+    precise float t34 = 16777216.0 - abs_t33;
+    precise float b = back ? t34 : abs_t33;
     bool swap = b > 4194304.0;
-    precise float u = round((swap ? 8388608.0 - b : b) * 3.1415927);
+    precise float t35 = 8388608.0 - b;
+    precise float u = round((swap ? t35 : b) * 3.1415927);
     precise float u2 = round(u * u * 5.9604645e-8);
-    precise float t38 = (
-        round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8) + (-3329.0)
-    )
-        * u2;
-    precise float t39 = (
-        round((round(t38 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8) + (-2796203.0)
-    )
-        * u2;
-    precise float s = round(u * (round(t39 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t40 = (
-        round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8) + 416.0
-    )
-        * u2;
-    precise float t41 = (
-        round((round(t40 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8) + 699051.0
-    )
-        * u2;
-    precise float co = round((round(t41 * 5.9604645e-8) + (-8388608.0)) * u2 * 5.9604645e-8)
-        + 16777216.0;
+    precise float t36 = round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8);
+    precise float t37 = (round((t36 + (-3329.0)) * u2 * 5.9604645e-8) + 139810.0)
+        * u2
+        * 5.9604645e-8;
+    precise float t38 = u * (round((round(t37) + (-2796203.0)) * u2 * 5.9604645e-8) + 16777216.0);
+    precise float s = round(t38 * 5.9604645e-8);
+    precise float t39 = round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8);
+    precise float t40 = (round((t39 + 416.0) * u2 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8;
+    precise float t41 = (round((round(t40) + 699051.0) * u2 * 5.9604645e-8) + (-8388608.0)) * u2;
+    precise float co = round(t41 * 5.9604645e-8) + 16777216.0;
     precise float t42 = swap ? co : s;
     precise float t43 = swap ? s : co;
-    precise float t44 = t37 < 0.0 ? -t42 : t42;
+    precise float neg_t43 = -t43;
+    precise float neg_t42 = -t42;
+    precise float t44 = t33 < 0.0 ? neg_t42 : t42;
     precise float t45 = round(cand.y * 132104.06);
     precise float abs_t45 = abs(t45);
     bool back2 = abs_t45 > 8388608.0;
-    precise float b2 = back2 ? 16777216.0 - abs_t45 : abs_t45;
+    precise float t46 = 16777216.0 - abs_t45;
+    precise float b2 = back2 ? t46 : abs_t45;
     bool swap2 = b2 > 4194304.0;
-    precise float u3 = round((swap2 ? 8388608.0 - b2 : b2) * 3.1415927);
+    precise float t47 = 8388608.0 - b2;
+    precise float u3 = round((swap2 ? t47 : b2) * 3.1415927);
     precise float u2_2 = round(u3 * u3 * 5.9604645e-8);
-    precise float t46 = round((round(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t47 = round((round(t46 * u2_2 * 5.9604645e-8) + 139810.0) * u2_2 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s2 = round(u3 * (round(t47 * u2_2 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t48 = (
-        round((round(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8) + 416.0
-    )
+    precise float t48 = round((round(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8);
+    precise float t49 = (round((t48 + (-3329.0)) * u2_2 * 5.9604645e-8) + 139810.0)
+        * u2_2
+        * 5.9604645e-8;
+    precise float t50 = u3
+        * (round((round(t49) + (-2796203.0)) * u2_2 * 5.9604645e-8) + 16777216.0);
+    precise float s2 = round(t50 * 5.9604645e-8);
+    precise float t51 = round((round(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8);
+    precise float t52 = (round((t51 + 416.0) * u2_2 * 5.9604645e-8) + (-23302.0))
+        * u2_2
+        * 5.9604645e-8;
+    precise float t53 = (round((round(t52) + 699051.0) * u2_2 * 5.9604645e-8) + (-8388608.0))
         * u2_2;
-    precise float t49 = (
-        round((round(t48 * 5.9604645e-8) + (-23302.0)) * u2_2 * 5.9604645e-8) + 699051.0
-    )
-        * u2_2;
-    precise float co2 = round((round(t49 * 5.9604645e-8) + (-8388608.0)) * u2_2 * 5.9604645e-8)
-        + 16777216.0;
-    precise float t50 = swap2 ? co2 : s2;
-    precise float t51 = swap2 ? s2 : co2;
-    precise float3 t52 = float3(
-        (back2 ? -t51 : t51) * t44,
-        (t45 < 0.0 ? -t50 : t50) * t44,
-        back ? -t43 : t43
+    precise float co2 = round(t53 * 5.9604645e-8) + 16777216.0;
+    precise float t54 = swap2 ? co2 : s2;
+    precise float t55 = swap2 ? s2 : co2;
+    precise float neg_t55 = -t55;
+    precise float neg_t54 = -t54;
+    precise float3 t56 = float3(
+        (back2 ? neg_t55 : t55) * t44,
+        (t45 < 0.0 ? neg_t54 : t54) * t44,
+        back ? neg_t43 : t43
     );
-    precise float3 t53 = abs(round(t52 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uint3 t54 = uint3(t53);
-    uint limb1_6 = t54.x >> 12u;
-    uint limb0_6 = t54.x & 4095u;
+    precise float3 offset = round(t56 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_6 = offset_u.x >> 12u;
+    uint limb0_6 = offset_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi10 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo10 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t54.y >> 12u;
-    uint limb0_7 = t54.y & 4095u;
+    uint limb1_7 = offset_u.y >> 12u;
+    uint limb0_7 = offset_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi11 = hi10 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo11 = lo10 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t54.z >> 12u;
-    uint limb0_8 = t54.z & 4095u;
+    uint limb1_8 = offset_u.z >> 12u;
+    uint limb0_8 = offset_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi12 = hi11 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo12 = lo11 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi13 = hi12 + (lo12 >> 24u);
     uint lo13 = lo12 & 16777215u;
     precise float dist = float(hi13) * 16777216.0 + float(lo13);
-    precise float t55 = base.x + 1.0;
-    precise float2 t56 = float2(t55, base.y);
-    precise float2 cand2 = UNITPACK_SELECT(t56 <= float2(127.0, 127.0), t56, float2(127.0, 127.0));
-    precise float t57 = round((cand2.x + 127.0) * 66052.03);
-    precise float abs_t57 = abs(t57);
-    bool back3 = abs_t57 > 8388608.0;
-    precise float b3 = back3 ? 16777216.0 - abs_t57 : abs_t57;
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t57 = float2(s_up, base.y);
+    precise float2 cand2 = UNITPACK_SELECT(t57 <= float2(127.0, 127.0), t57, float2(127.0, 127.0));
+    bool t58 = base.y <= 127.0;
+    precise float t59 = round((cand2.x + 127.0) * 66052.03);
+    precise float abs_t59 = abs(t59);
+    bool back3 = abs_t59 > 8388608.0;
+    precise float t60 = 16777216.0 - abs_t59;
+    precise float b3 = back3 ? t60 : abs_t59;
     bool swap3 = b3 > 4194304.0;
-    precise float u4 = round((swap3 ? 8388608.0 - b3 : b3) * 3.1415927);
+    precise float t61 = 8388608.0 - b3;
+    precise float u4 = round((swap3 ? t61 : b3) * 3.1415927);
     precise float u2_3 = round(u4 * u4 * 5.9604645e-8);
-    precise float t58 = round((round(-0.0 * u2_3 * 5.9604645e-8) + 46.0) * u2_3 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t59 = round((round(t58 * u2_3 * 5.9604645e-8) + 139810.0) * u2_3 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s3 = round(u4 * (round(t59 * u2_3 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t60 = (
-        round((round(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8) + 416.0
-    )
+    precise float t62 = round((round(-0.0 * u2_3 * 5.9604645e-8) + 46.0) * u2_3 * 5.9604645e-8);
+    precise float t63 = (round((t62 + (-3329.0)) * u2_3 * 5.9604645e-8) + 139810.0)
+        * u2_3
+        * 5.9604645e-8;
+    precise float t64 = u4
+        * (round((round(t63) + (-2796203.0)) * u2_3 * 5.9604645e-8) + 16777216.0);
+    precise float s3 = round(t64 * 5.9604645e-8);
+    precise float t65 = round((round(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8);
+    precise float t66 = (round((t65 + 416.0) * u2_3 * 5.9604645e-8) + (-23302.0))
+        * u2_3
+        * 5.9604645e-8;
+    precise float t67 = (round((round(t66) + 699051.0) * u2_3 * 5.9604645e-8) + (-8388608.0))
         * u2_3;
-    precise float t61 = (
-        round((round(t60 * 5.9604645e-8) + (-23302.0)) * u2_3 * 5.9604645e-8) + 699051.0
-    )
-        * u2_3;
-    precise float co3 = round((round(t61 * 5.9604645e-8) + (-8388608.0)) * u2_3 * 5.9604645e-8)
-        + 16777216.0;
-    precise float t62 = swap3 ? co3 : s3;
-    precise float t63 = swap3 ? s3 : co3;
-    precise float t64 = t57 < 0.0 ? -t62 : t62;
-    precise float t65 = round(cand2.y * 132104.06);
-    precise float abs_t65 = abs(t65);
-    bool back4 = abs_t65 > 8388608.0;
-    precise float b4 = back4 ? 16777216.0 - abs_t65 : abs_t65;
+    precise float co3 = round(t67 * 5.9604645e-8) + 16777216.0;
+    precise float t68 = swap3 ? co3 : s3;
+    precise float t69 = swap3 ? s3 : co3;
+    precise float neg_t69 = -t69;
+    precise float neg_t68 = -t68;
+    precise float t70 = t59 < 0.0 ? neg_t68 : t68;
+    precise float t71 = round(cand2.y * 132104.06);
+    precise float abs_t71 = abs(t71);
+    bool back4 = abs_t71 > 8388608.0;
+    precise float t72 = 16777216.0 - abs_t71;
+    precise float b4 = back4 ? t72 : abs_t71;
     bool swap4 = b4 > 4194304.0;
-    precise float u5 = round((swap4 ? 8388608.0 - b4 : b4) * 3.1415927);
+    precise float t73 = 8388608.0 - b4;
+    precise float u5 = round((swap4 ? t73 : b4) * 3.1415927);
     precise float u2_4 = round(u5 * u5 * 5.9604645e-8);
-    precise float t66 = round((round(-0.0 * u2_4 * 5.9604645e-8) + 46.0) * u2_4 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t67 = round((round(t66 * u2_4 * 5.9604645e-8) + 139810.0) * u2_4 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s4 = round(u5 * (round(t67 * u2_4 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t68 = (
-        round((round(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8) + 416.0
-    )
+    precise float t74 = round((round(-0.0 * u2_4 * 5.9604645e-8) + 46.0) * u2_4 * 5.9604645e-8);
+    precise float t75 = (round((t74 + (-3329.0)) * u2_4 * 5.9604645e-8) + 139810.0)
+        * u2_4
+        * 5.9604645e-8;
+    precise float t76 = u5
+        * (round((round(t75) + (-2796203.0)) * u2_4 * 5.9604645e-8) + 16777216.0);
+    precise float s4 = round(t76 * 5.9604645e-8);
+    precise float t77 = round((round(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8);
+    precise float t78 = (round((t77 + 416.0) * u2_4 * 5.9604645e-8) + (-23302.0))
+        * u2_4
+        * 5.9604645e-8;
+    precise float t79 = (round((round(t78) + 699051.0) * u2_4 * 5.9604645e-8) + (-8388608.0))
         * u2_4;
-    precise float t69 = (
-        round((round(t68 * 5.9604645e-8) + (-23302.0)) * u2_4 * 5.9604645e-8) + 699051.0
-    )
-        * u2_4;
-    precise float co4 = round((round(t69 * 5.9604645e-8) + (-8388608.0)) * u2_4 * 5.9604645e-8)
-        + 16777216.0;
-    precise float t70 = swap4 ? co4 : s4;
-    precise float t71 = swap4 ? s4 : co4;
-    precise float3 t72 = float3(
-        (back4 ? -t71 : t71) * t64,
-        (t65 < 0.0 ? -t70 : t70) * t64,
-        back3 ? -t63 : t63
+    precise float co4 = round(t79 * 5.9604645e-8) + 16777216.0;
+    precise float t80 = swap4 ? co4 : s4;
+    precise float t81 = swap4 ? s4 : co4;
+    precise float neg_t81 = -t81;
+    precise float neg_t80 = -t80;
+    precise float3 t82 = float3(
+        (back4 ? neg_t81 : t81) * t70,
+        (t71 < 0.0 ? neg_t80 : t80) * t70,
+        back3 ? neg_t69 : t69
     );
-    precise float3 t73 = abs(round(t72 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uint3 t74 = uint3(t73);
-    uint limb1_9 = t74.x >> 12u;
-    uint limb0_9 = t74.x & 4095u;
+    precise float3 offset2 = round(t82 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_9 = offset_u2.x >> 12u;
+    uint limb0_9 = offset_u2.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi14 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo14 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t74.y >> 12u;
-    uint limb0_10 = t74.y & 4095u;
+    uint limb1_10 = offset_u2.y >> 12u;
+    uint limb0_10 = offset_u2.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi15 = hi14 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo15 = lo14 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t74.z >> 12u;
-    uint limb0_11 = t74.z & 4095u;
+    uint limb1_11 = offset_u2.z >> 12u;
+    uint limb0_11 = offset_u2.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi16 = hi15 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo16 = lo15 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi17 = hi16 + (lo16 >> 24u);
     uint lo17 = lo16 & 16777215u;
     precise float dist2 = float(hi17) * 16777216.0 + float(lo17);
-    bool t75 = t55 <= 127.0 && base.y <= 127.0 && dist2 < dist;
-    precise float2 best = t75 ? cand2 : cand;
-    precise float best_d = t75 ? dist2 : dist;
-    precise float t76 = base.y + 1.0;
-    precise float2 t77 = float2(base.x, t76);
-    precise float2 cand3 = UNITPACK_SELECT(t77 <= float2(127.0, 127.0), t77, float2(127.0, 127.0));
-    precise float t78 = round((cand3.x + 127.0) * 66052.03);
-    precise float abs_t78 = abs(t78);
-    bool back5 = abs_t78 > 8388608.0;
-    precise float b5 = back5 ? 16777216.0 - abs_t78 : abs_t78;
+    bool t83 = dist2 < dist;
+    bool t84 = s_up <= 127.0 && t58 && t83;
+    precise float2 best = t84 ? cand2 : cand;
+    precise float best_d = t84 ? dist2 : dist;
+    precise float2 t85 = float2(base.x, t_up);
+    precise float2 cand3 = UNITPACK_SELECT(t85 <= float2(127.0, 127.0), t85, float2(127.0, 127.0));
+    bool t86 = t_up <= 127.0;
+    precise float t87 = round((cand3.x + 127.0) * 66052.03);
+    precise float abs_t87 = abs(t87);
+    bool back5 = abs_t87 > 8388608.0;
+    precise float t88 = 16777216.0 - abs_t87;
+    precise float b5 = back5 ? t88 : abs_t87;
     bool swap5 = b5 > 4194304.0;
-    precise float u6 = round((swap5 ? 8388608.0 - b5 : b5) * 3.1415927);
+    precise float t89 = 8388608.0 - b5;
+    precise float u6 = round((swap5 ? t89 : b5) * 3.1415927);
     precise float u2_5 = round(u6 * u6 * 5.9604645e-8);
-    precise float t79 = round((round(-0.0 * u2_5 * 5.9604645e-8) + 46.0) * u2_5 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t80 = round((round(t79 * u2_5 * 5.9604645e-8) + 139810.0) * u2_5 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s5 = round(u6 * (round(t80 * u2_5 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t81 = (
-        round((round(0.0 * u2_5 * 5.9604645e-8) + (-5.0)) * u2_5 * 5.9604645e-8) + 416.0
-    )
+    precise float t90 = round((round(-0.0 * u2_5 * 5.9604645e-8) + 46.0) * u2_5 * 5.9604645e-8);
+    precise float t91 = (round((t90 + (-3329.0)) * u2_5 * 5.9604645e-8) + 139810.0)
+        * u2_5
+        * 5.9604645e-8;
+    precise float t92 = u6
+        * (round((round(t91) + (-2796203.0)) * u2_5 * 5.9604645e-8) + 16777216.0);
+    precise float s5 = round(t92 * 5.9604645e-8);
+    precise float t93 = round((round(0.0 * u2_5 * 5.9604645e-8) + (-5.0)) * u2_5 * 5.9604645e-8);
+    precise float t94 = (round((t93 + 416.0) * u2_5 * 5.9604645e-8) + (-23302.0))
+        * u2_5
+        * 5.9604645e-8;
+    precise float t95 = (round((round(t94) + 699051.0) * u2_5 * 5.9604645e-8) + (-8388608.0))
         * u2_5;
-    precise float t82 = (
-        round((round(t81 * 5.9604645e-8) + (-23302.0)) * u2_5 * 5.9604645e-8) + 699051.0
-    )
-        * u2_5;
-    precise float co5 = round((round(t82 * 5.9604645e-8) + (-8388608.0)) * u2_5 * 5.9604645e-8)
-        + 16777216.0;
-    precise float t83 = swap5 ? co5 : s5;
-    precise float t84 = swap5 ? s5 : co5;
-    precise float t85 = t78 < 0.0 ? -t83 : t83;
-    precise float t86 = round(cand3.y * 132104.06);
-    precise float abs_t86 = abs(t86);
-    bool back6 = abs_t86 > 8388608.0;
-    precise float b6 = back6 ? 16777216.0 - abs_t86 : abs_t86;
+    precise float co5 = round(t95 * 5.9604645e-8) + 16777216.0;
+    precise float t96 = swap5 ? co5 : s5;
+    precise float t97 = swap5 ? s5 : co5;
+    precise float neg_t97 = -t97;
+    precise float neg_t96 = -t96;
+    precise float t98 = t87 < 0.0 ? neg_t96 : t96;
+    precise float t99 = round(cand3.y * 132104.06);
+    precise float abs_t99 = abs(t99);
+    bool back6 = abs_t99 > 8388608.0;
+    precise float t100 = 16777216.0 - abs_t99;
+    precise float b6 = back6 ? t100 : abs_t99;
     bool swap6 = b6 > 4194304.0;
-    precise float u7 = round((swap6 ? 8388608.0 - b6 : b6) * 3.1415927);
+    precise float t101 = 8388608.0 - b6;
+    precise float u7 = round((swap6 ? t101 : b6) * 3.1415927);
     precise float u2_6 = round(u7 * u7 * 5.9604645e-8);
-    precise float t87 = round((round(-0.0 * u2_6 * 5.9604645e-8) + 46.0) * u2_6 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t88 = round((round(t87 * u2_6 * 5.9604645e-8) + 139810.0) * u2_6 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s6 = round(u7 * (round(t88 * u2_6 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t89 = (
-        round((round(0.0 * u2_6 * 5.9604645e-8) + (-5.0)) * u2_6 * 5.9604645e-8) + 416.0
-    )
+    precise float t102 = round((round(-0.0 * u2_6 * 5.9604645e-8) + 46.0) * u2_6 * 5.9604645e-8);
+    precise float t103 = (round((t102 + (-3329.0)) * u2_6 * 5.9604645e-8) + 139810.0)
+        * u2_6
+        * 5.9604645e-8;
+    precise float t104 = u7
+        * (round((round(t103) + (-2796203.0)) * u2_6 * 5.9604645e-8) + 16777216.0);
+    precise float s6 = round(t104 * 5.9604645e-8);
+    precise float t105 = round((round(0.0 * u2_6 * 5.9604645e-8) + (-5.0)) * u2_6 * 5.9604645e-8);
+    precise float t106 = (round((t105 + 416.0) * u2_6 * 5.9604645e-8) + (-23302.0))
+        * u2_6
+        * 5.9604645e-8;
+    precise float t107 = (round((round(t106) + 699051.0) * u2_6 * 5.9604645e-8) + (-8388608.0))
         * u2_6;
-    precise float t90 = (
-        round((round(t89 * 5.9604645e-8) + (-23302.0)) * u2_6 * 5.9604645e-8) + 699051.0
-    )
-        * u2_6;
-    precise float co6 = round((round(t90 * 5.9604645e-8) + (-8388608.0)) * u2_6 * 5.9604645e-8)
-        + 16777216.0;
-    precise float t91 = swap6 ? co6 : s6;
-    precise float t92 = swap6 ? s6 : co6;
-    precise float3 t93 = float3(
-        (back6 ? -t92 : t92) * t85,
-        (t86 < 0.0 ? -t91 : t91) * t85,
-        back5 ? -t84 : t84
+    precise float co6 = round(t107 * 5.9604645e-8) + 16777216.0;
+    precise float t108 = swap6 ? co6 : s6;
+    precise float t109 = swap6 ? s6 : co6;
+    precise float neg_t109 = -t109;
+    precise float neg_t108 = -t108;
+    precise float3 t110 = float3(
+        (back6 ? neg_t109 : t109) * t98,
+        (t99 < 0.0 ? neg_t108 : t108) * t98,
+        back5 ? neg_t97 : t97
     );
-    precise float3 t94 = abs(round(t93 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uint3 t95 = uint3(t94);
-    uint limb1_12 = t95.x >> 12u;
-    uint limb0_12 = t95.x & 4095u;
+    precise float3 offset3 = round(t110 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_12 = offset_u3.x >> 12u;
+    uint limb0_12 = offset_u3.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi18 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo18 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t95.y >> 12u;
-    uint limb0_13 = t95.y & 4095u;
+    uint limb1_13 = offset_u3.y >> 12u;
+    uint limb0_13 = offset_u3.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi19 = hi18 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo19 = lo18 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t95.z >> 12u;
-    uint limb0_14 = t95.z & 4095u;
+    uint limb1_14 = offset_u3.z >> 12u;
+    uint limb0_14 = offset_u3.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi20 = hi19 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo20 = lo19 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi21 = hi20 + (lo20 >> 24u);
     uint lo21 = lo20 & 16777215u;
     precise float dist3 = float(hi21) * 16777216.0 + float(lo21);
-    bool t96 = base.x <= 127.0 && t76 <= 127.0 && dist3 < best_d;
-    precise float2 best2 = t96 ? cand3 : best;
-    precise float best_d2 = t96 ? dist3 : best_d;
-    precise float2 t97 = base + 1.0;
-    precise float2 cand4 = UNITPACK_SELECT(t97 <= float2(127.0, 127.0), t97, float2(127.0, 127.0));
-    precise float t98 = round((cand4.x + 127.0) * 66052.03);
-    precise float abs_t98 = abs(t98);
-    bool back7 = abs_t98 > 8388608.0;
-    precise float b7 = back7 ? 16777216.0 - abs_t98 : abs_t98;
-    bool swap7 = b7 > 4194304.0;
-    precise float u8 = round((swap7 ? 8388608.0 - b7 : b7) * 3.1415927);
-    precise float u2_7 = round(u8 * u8 * 5.9604645e-8);
-    precise float t99 = round((round(-0.0 * u2_7 * 5.9604645e-8) + 46.0) * u2_7 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t100 = round((round(t99 * u2_7 * 5.9604645e-8) + 139810.0) * u2_7 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s7 = round(u8 * (round(t100 * u2_7 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t101 = (
-        round((round(0.0 * u2_7 * 5.9604645e-8) + (-5.0)) * u2_7 * 5.9604645e-8) + 416.0
-    )
-        * u2_7;
-    precise float t102 = round((round(t101 * 5.9604645e-8) + (-23302.0)) * u2_7 * 5.9604645e-8)
-        + 699051.0;
-    precise float co7 = round(
-        (round(t102 * u2_7 * 5.9604645e-8) + (-8388608.0)) * u2_7 * 5.9604645e-8
-    )
-        + 16777216.0;
-    precise float t103 = swap7 ? co7 : s7;
-    precise float t104 = swap7 ? s7 : co7;
-    precise float t105 = t98 < 0.0 ? -t103 : t103;
-    precise float t106 = round(cand4.y * 132104.06);
-    precise float abs_t106 = abs(t106);
-    bool back8 = abs_t106 > 8388608.0;
-    precise float b8 = back8 ? 16777216.0 - abs_t106 : abs_t106;
-    bool swap8 = b8 > 4194304.0;
-    precise float u9 = round((swap8 ? 8388608.0 - b8 : b8) * 3.1415927);
-    precise float u2_8 = round(u9 * u9 * 5.9604645e-8);
-    precise float t107 = round((round(-0.0 * u2_8 * 5.9604645e-8) + 46.0) * u2_8 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t108 = round((round(t107 * u2_8 * 5.9604645e-8) + 139810.0) * u2_8 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s8 = round(u9 * (round(t108 * u2_8 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t109 = (
-        round((round(0.0 * u2_8 * 5.9604645e-8) + (-5.0)) * u2_8 * 5.9604645e-8) + 416.0
-    )
-        * u2_8;
-    precise float t110 = round((round(t109 * 5.9604645e-8) + (-23302.0)) * u2_8 * 5.9604645e-8)
-        + 699051.0;
-    precise float co8 = round(
-        (round(t110 * u2_8 * 5.9604645e-8) + (-8388608.0)) * u2_8 * 5.9604645e-8
-    )
-        + 16777216.0;
-    precise float t111 = swap8 ? co8 : s8;
-    precise float t112 = swap8 ? s8 : co8;
-    precise float3 t113 = float3(
-        (back8 ? -t112 : t112) * t105,
-        (t106 < 0.0 ? -t111 : t111) * t105,
-        back7 ? -t104 : t104
+    bool t111 = dist3 < best_d;
+    bool t112 = base.x <= 127.0 && t86 && t111;
+    precise float2 best2 = t112 ? cand3 : best;
+    precise float best_d2 = t112 ? dist3 : best_d;
+    precise float2 t113 = base + 1.0;
+    precise float2 cand4 = UNITPACK_SELECT(
+        t113 <= float2(127.0, 127.0),
+        t113,
+        float2(127.0, 127.0)
     );
-    precise float3 t114 = abs(round(t113 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim);
-    uint3 t115 = uint3(t114);
-    uint limb1_15 = t115.x >> 12u;
-    uint limb0_15 = t115.x & 4095u;
+    bool t114 = t_up <= 127.0;
+    precise float t115 = round((cand4.x + 127.0) * 66052.03);
+    precise float abs_t115 = abs(t115);
+    bool back7 = abs_t115 > 8388608.0;
+    precise float t116 = 16777216.0 - abs_t115;
+    precise float b7 = back7 ? t116 : abs_t115;
+    bool swap7 = b7 > 4194304.0;
+    precise float t117 = 8388608.0 - b7;
+    precise float u8 = round((swap7 ? t117 : b7) * 3.1415927);
+    precise float u2_7 = round(u8 * u8 * 5.9604645e-8);
+    precise float t118 = round((round(-0.0 * u2_7 * 5.9604645e-8) + 46.0) * u2_7 * 5.9604645e-8);
+    precise float t119 = (round((t118 + (-3329.0)) * u2_7 * 5.9604645e-8) + 139810.0)
+        * u2_7
+        * 5.9604645e-8;
+    precise float t120 = u8
+        * (round((round(t119) + (-2796203.0)) * u2_7 * 5.9604645e-8) + 16777216.0);
+    precise float s7 = round(t120 * 5.9604645e-8);
+    precise float t121 = round((round(0.0 * u2_7 * 5.9604645e-8) + (-5.0)) * u2_7 * 5.9604645e-8);
+    precise float t122 = (round((t121 + 416.0) * u2_7 * 5.9604645e-8) + (-23302.0))
+        * u2_7
+        * 5.9604645e-8;
+    precise float t123 = (round((round(t122) + 699051.0) * u2_7 * 5.9604645e-8) + (-8388608.0))
+        * u2_7;
+    precise float co7 = round(t123 * 5.9604645e-8) + 16777216.0;
+    precise float t124 = swap7 ? co7 : s7;
+    precise float t125 = swap7 ? s7 : co7;
+    precise float neg_t125 = -t125;
+    precise float neg_t124 = -t124;
+    precise float t126 = t115 < 0.0 ? neg_t124 : t124;
+    precise float t127 = round(cand4.y * 132104.06);
+    precise float abs_t127 = abs(t127);
+    bool back8 = abs_t127 > 8388608.0;
+    precise float t128 = 16777216.0 - abs_t127;
+    precise float b8 = back8 ? t128 : abs_t127;
+    bool swap8 = b8 > 4194304.0;
+    precise float t129 = 8388608.0 - b8;
+    precise float u9 = round((swap8 ? t129 : b8) * 3.1415927);
+    precise float u2_8 = round(u9 * u9 * 5.9604645e-8);
+    precise float t130 = round((round(-0.0 * u2_8 * 5.9604645e-8) + 46.0) * u2_8 * 5.9604645e-8);
+    precise float t131 = (round((t130 + (-3329.0)) * u2_8 * 5.9604645e-8) + 139810.0)
+        * u2_8
+        * 5.9604645e-8;
+    precise float t132 = u9
+        * (round((round(t131) + (-2796203.0)) * u2_8 * 5.9604645e-8) + 16777216.0);
+    precise float s8 = round(t132 * 5.9604645e-8);
+    precise float t133 = round((round(0.0 * u2_8 * 5.9604645e-8) + (-5.0)) * u2_8 * 5.9604645e-8);
+    precise float t134 = (round((t133 + 416.0) * u2_8 * 5.9604645e-8) + (-23302.0))
+        * u2_8
+        * 5.9604645e-8;
+    precise float t135 = (round((round(t134) + 699051.0) * u2_8 * 5.9604645e-8) + (-8388608.0))
+        * u2_8;
+    precise float co8 = round(t135 * 5.9604645e-8) + 16777216.0;
+    precise float t136 = swap8 ? co8 : s8;
+    precise float t137 = swap8 ? s8 : co8;
+    precise float neg_t137 = -t137;
+    precise float neg_t136 = -t136;
+    precise float3 t138 = float3(
+        (back8 ? neg_t137 : t137) * t126,
+        (t127 < 0.0 ? neg_t136 : t136) * t126,
+        back7 ? neg_t125 : t125
+    );
+    precise float3 offset4 = round(t138 * float3(2.9802322e-8, 2.9802322e-8, 0.5)) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_15 = offset_u4.x >> 12u;
+    uint limb0_15 = offset_u4.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi22 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo22 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t115.y >> 12u;
-    uint limb0_16 = t115.y & 4095u;
+    uint limb1_16 = offset_u4.y >> 12u;
+    uint limb0_16 = offset_u4.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi23 = hi22 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo23 = lo22 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t115.z >> 12u;
-    uint limb0_17 = t115.z & 4095u;
+    uint limb1_17 = offset_u4.z >> 12u;
+    uint limb0_17 = offset_u4.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi24 = hi23 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo24 = lo23 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi25 = hi24 + (lo24 >> 24u);
     uint lo25 = lo24 & 16777215u;
     precise float dist4 = float(hi25) * 16777216.0 + float(lo25);
-    precise float2 best3 = base.x + 1.0 <= 127.0 && base.y + 1.0 <= 127.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t139 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 127.0 && t114 && t139 ? cand4 : best2;
     return best3;
 }
 

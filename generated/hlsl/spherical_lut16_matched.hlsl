@@ -73,7 +73,8 @@ uint2 unitpack_spherical_lut16_matched_atan_texel(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -101,39 +102,37 @@ uint2 unitpack_spherical_lut16_matched_atan_texel(float3 v) {
     precise float2 t6 = w2.xy * w2.xy * 16384.0;
     precise float2 t7 = t5 * t5 * s;
     precise float2 t8 = UNITPACK_SELECT(
-        t5 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 >= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t5 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 >= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t5 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 <= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t9 = UNITPACK_SELECT(
-        t5 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 <= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t9 = t4 - 1.0 - 127.0;
+    precise float2 t10 = t9 * t9 * s;
+    precise float2 t11 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t9 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 >= t10, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t9 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 <= t10, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t10 = UNITPACK_SELECT(
-        t4 < float2(255.0, 255.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t8, t9),
-        float2(0.0, 0.0)
-    );
-    precise float2 t11 = t4 - 1.0 - 127.0;
-    precise float2 t12 = t11 * t11 * s;
-    precise float2 t13 = UNITPACK_SELECT(
-        t11 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 >= t12, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t14 = UNITPACK_SELECT(
-        t11 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 <= t12, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t15 = UNITPACK_SELECT(
-        t4 > float2(0.0, 0.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t13, t14) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 t16 = t4 + t10 + t15;
-    return uint2(t16);
+    precise float2 t12 = t4
+        + UNITPACK_SELECT(t4 < float2(255.0, 255.0), t8, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t4 > float2(0.0, 0.0), t11 - 1.0, float2(0.0, 0.0));
+    return uint2(t12);
 }
 
 // unitpack_spherical_lut16_matched_encode_float: fast encoder, float form.
@@ -145,13 +144,18 @@ float2 unitpack_spherical_lut16_matched_encode_float(float3 v, float fetched) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float t3 = ((t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0)).z + 1.0)
-        * 0.5;
-    return float2(fetched, t3);
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float2 result = float2(
+        fetched,
+        ((t3 && t4 ? t5 : float3(0.0, 0.0, 1.0)).z + 1.0) * 0.5
+    );
+    return result;
 }
 
 // unitpack_spherical_lut16_matched_encode: fast encoder.
@@ -174,7 +178,8 @@ uint unitpack_spherical_lut16_matched_encode(float3 v, float fetched) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -202,19 +207,23 @@ uint unitpack_spherical_lut16_matched_encode(float3 v, float fetched) {
     precise float estimate = t4 <= 255.0 ? t4 : 255.0;
     precise float t5 = estimate - 127.0;
     precise float t6 = t5 * t5 * len2;
-    precise float t7 = w2.z >= 0.0
-        ? (t5 > 0.0 ? (big2 >= t6 ? 1.0 : 0.0) : 1.0)
-        : (t5 < 0.0 ? (big2 <= t6 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 255.0 ? t7 : 0.0;
-    precise float t8 = estimate - 1.0 - 127.0;
-    precise float t9 = t8 * t8 * len2;
-    precise float t10 = w2.z >= 0.0
-        ? (t8 > 0.0 ? (big2 >= t9 ? 1.0 : 0.0) : 1.0)
-        : (t8 < 0.0 ? (big2 <= t9 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t10 - 1.0 : 0.0;
-    precise float t11 = round((t2 <= 1.0 ? t2 : 1.0) * 255.0);
-    precise float t12 = estimate + up + down;
-    return uint(t11) | (uint(t12) << 8u);
+    precise float one_if = big2 >= t6 ? 1.0 : 0.0;
+    precise float t7 = t5 > 0.0 ? one_if : 1.0;
+    precise float one_if2 = big2 <= t6 ? 1.0 : 0.0;
+    precise float t8 = t5 < 0.0 ? one_if2 : 0.0;
+    precise float t9 = w2.z >= 0.0 ? t7 : t8;
+    precise float up = estimate < 255.0 ? t9 : 0.0;
+    precise float t10 = estimate - 1.0 - 127.0;
+    precise float t11 = t10 * t10 * len2;
+    precise float one_if3 = big2 >= t11 ? 1.0 : 0.0;
+    precise float t12 = t10 > 0.0 ? one_if3 : 1.0;
+    precise float one_if4 = big2 <= t11 ? 1.0 : 0.0;
+    precise float t13 = t10 < 0.0 ? one_if4 : 0.0;
+    precise float t14 = (w2.z >= 0.0 ? t12 : t13) - 1.0;
+    precise float down = estimate > 0.0 ? t14 : 0.0;
+    precise float t15 = round((t2 <= 1.0 ? t2 : 1.0) * 255.0);
+    precise float t16 = estimate + up + down;
+    return uint(t15) | (uint(t16) << 8u);
 }
 
 #endif // UNITPACK_SPHERICAL_LUT16_MATCHED_HLSL

@@ -73,7 +73,8 @@ uint2 unitpack_spherical_lut16p_atan_texel(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -101,39 +102,37 @@ uint2 unitpack_spherical_lut16p_atan_texel(float3 v) {
     precise float2 t6 = w2.xy * w2.xy * 16384.0;
     precise float2 t7 = t5 * t5 * s;
     precise float2 t8 = UNITPACK_SELECT(
-        t5 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 >= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t5 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 >= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t5 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 <= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t9 = UNITPACK_SELECT(
-        t5 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 <= t7, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t9 = t4 - 1.0 - 127.0;
+    precise float2 t10 = t9 * t9 * s;
+    precise float2 t11 = UNITPACK_SELECT(
+        w2.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t9 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 >= t10, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t9 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t6 <= t10, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t10 = UNITPACK_SELECT(
-        t4 < float2(255.0, 255.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t8, t9),
-        float2(0.0, 0.0)
-    );
-    precise float2 t11 = t4 - 1.0 - 127.0;
-    precise float2 t12 = t11 * t11 * s;
-    precise float2 t13 = UNITPACK_SELECT(
-        t11 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 >= t12, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t14 = UNITPACK_SELECT(
-        t11 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t6 <= t12, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t15 = UNITPACK_SELECT(
-        t4 > float2(0.0, 0.0),
-        UNITPACK_SELECT(w2.xy >= float2(0.0, 0.0), t13, t14) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 t16 = t4 + t10 + t15;
-    return uint2(t16);
+    precise float2 t12 = t4
+        + UNITPACK_SELECT(t4 < float2(255.0, 255.0), t8, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t4 > float2(0.0, 0.0), t11 - 1.0, float2(0.0, 0.0));
+    return uint2(t12);
 }
 
 // unitpack_spherical_lut16p_encode_fast: fast encoder (the precise search's first step).
@@ -156,7 +155,8 @@ uint unitpack_spherical_lut16p_encode_fast(float3 v, float fetched) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -184,19 +184,23 @@ uint unitpack_spherical_lut16p_encode_fast(float3 v, float fetched) {
     precise float estimate = t4 <= 255.0 ? t4 : 255.0;
     precise float t5 = estimate - 127.0;
     precise float t6 = t5 * t5 * len2;
-    precise float t7 = w2.z >= 0.0
-        ? (t5 > 0.0 ? (big2 >= t6 ? 1.0 : 0.0) : 1.0)
-        : (t5 < 0.0 ? (big2 <= t6 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 255.0 ? t7 : 0.0;
-    precise float t8 = estimate - 1.0 - 127.0;
-    precise float t9 = t8 * t8 * len2;
-    precise float t10 = w2.z >= 0.0
-        ? (t8 > 0.0 ? (big2 >= t9 ? 1.0 : 0.0) : 1.0)
-        : (t8 < 0.0 ? (big2 <= t9 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t10 - 1.0 : 0.0;
-    precise float t11 = round((t2 <= 1.0 ? t2 : 1.0) * 255.0);
-    precise float t12 = estimate + up + down;
-    return uint(t11) | (uint(t12) << 8u);
+    precise float one_if = big2 >= t6 ? 1.0 : 0.0;
+    precise float t7 = t5 > 0.0 ? one_if : 1.0;
+    precise float one_if2 = big2 <= t6 ? 1.0 : 0.0;
+    precise float t8 = t5 < 0.0 ? one_if2 : 0.0;
+    precise float t9 = w2.z >= 0.0 ? t7 : t8;
+    precise float up = estimate < 255.0 ? t9 : 0.0;
+    precise float t10 = estimate - 1.0 - 127.0;
+    precise float t11 = t10 * t10 * len2;
+    precise float one_if3 = big2 >= t11 ? 1.0 : 0.0;
+    precise float t12 = t10 > 0.0 ? one_if3 : 1.0;
+    precise float one_if4 = big2 <= t11 ? 1.0 : 0.0;
+    precise float t13 = t10 < 0.0 ? one_if4 : 0.0;
+    precise float t14 = (w2.z >= 0.0 ? t12 : t13) - 1.0;
+    precise float down = estimate > 0.0 ? t14 : 0.0;
+    precise float t15 = round((t2 <= 1.0 ? t2 : 1.0) * 255.0);
+    precise float t16 = estimate + up + down;
+    return uint(t15) | (uint(t16) << 8u);
 }
 
 // unitpack_spherical_lut16p_precise_texel: lookup texel.
@@ -207,10 +211,11 @@ uint unitpack_spherical_lut16p_encode_fast(float3 v, float fetched) {
 //   candidate's code is the texel's x | y << 8.
 uint2 unitpack_spherical_lut16p_precise_texel(uint code, uint k) {
     uint t1 = k < 9u ? k : 8u;
-    uint t2 = t1 < 3u ? 0u : (t1 < 6u ? 1u : 2u);
-    uint t3 = ((code >> 8u) & 255u) + t2;
-    uint t4 = (t3 < 1u ? 1u : t3) - 1u;
-    return uint2(((code & 255u) + (t1 - t2 * 3u) + 255u) & 255u, t4 < 256u ? t4 : 255u);
+    uint t2 = t1 < 6u ? 1u : 2u;
+    uint t3 = t1 < 3u ? 0u : t2;
+    uint t4 = ((code >> 8u) & 255u) + t3;
+    uint t5 = (t4 < 1u ? 1u : t4) - 1u;
+    return uint2(((code & 255u) + (t1 - t3 * 3u) + 255u) & 255u, t5 < 256u ? t5 : 255u);
 }
 
 // unitpack_spherical_lut16p_encode: precise encoder.
@@ -248,7 +253,8 @@ uint unitpack_spherical_lut16p_encode(
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -256,364 +262,358 @@ uint unitpack_spherical_lut16p_encode(
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 t1 = floor(abs(w2) * 4096.0);
-    uint3 t2 = uint3(t1);
-    uint3 afix = UNITPACK_SELECT(w2 < float3(0.0, 0.0, 0.0), 0u - t2, t2);
-    uint t3 = code & 65535u;
-    precise float3 t4 = UNITPACK_SELECT(s4 >= float3(0.0, 0.0, 0.0), s4, float3(0.0, 0.0, 0.0));
-    precise float3 t5 = round(
-        UNITPACK_SELECT(t4 <= float3(1.0, 1.0, 1.0), t4, float3(1.0, 1.0, 1.0)) * 255.0
+    uint3 t1_u = uint3(t1);
+    uint3 afix = UNITPACK_SELECT(w2 < float3(0.0, 0.0, 0.0), 0u - t1_u, t1_u);
+    uint t2 = code & 65535u;
+    precise float3 t3 = UNITPACK_SELECT(s4 >= float3(0.0, 0.0, 0.0), s4, float3(0.0, 0.0, 0.0));
+    precise float3 t4 = round(
+        UNITPACK_SELECT(t3 <= float3(1.0, 1.0, 1.0), t3, float3(1.0, 1.0, 1.0)) * 255.0
     );
-    uint3 t6 = uint3(t5);
-    uint3 t7 = t6 + t6 - 255u;
-    uint3 cross = afix.yzx * t7.zxy - afix.zxy * t7.yzx;
-    uint3 t8 = UNITPACK_SELECT(
+    uint3 t4_u = uint3(t4);
+    uint3 t5 = t4_u + t4_u - 255u;
+    uint3 cross = afix.yzx * t5.zxy - afix.zxy * t5.yzx;
+    uint3 t6 = UNITPACK_SELECT(
         cross < uint3(2147483648u, 2147483648u, 2147483648u),
         cross,
         0u - cross
     );
-    uint limb1 = t8.x >> 12u;
-    uint limb0 = t8.x & 4095u;
+    uint limb1 = t6.x >> 12u;
+    uint limb0 = t6.x & 4095u;
     uint cross2 = limb1 * limb0;
     uint hi = 0u + limb1 * limb1 + (cross2 >> 11u);
     uint lo = 0u + limb0 * limb0 + ((cross2 << 13u) & 16777215u);
-    uint limb1_2 = t8.y >> 12u;
-    uint limb0_2 = t8.y & 4095u;
+    uint limb1_2 = t6.y >> 12u;
+    uint limb0_2 = t6.y & 4095u;
     uint cross3 = limb1_2 * limb0_2;
     uint hi2 = hi + limb1_2 * limb1_2 + (cross3 >> 11u);
     uint lo2 = lo + limb0_2 * limb0_2 + ((cross3 << 13u) & 16777215u);
-    uint limb1_3 = t8.z >> 12u;
-    uint limb0_3 = t8.z & 4095u;
+    uint limb1_3 = t6.z >> 12u;
+    uint limb0_3 = t6.z & 4095u;
     uint cross4 = limb1_3 * limb0_3;
     uint hi3 = hi2 + limb1_3 * limb1_3 + (cross4 >> 11u);
     uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross4 << 13u) & 16777215u);
     uint hi4 = hi3 + (lo3 >> 24u);
     uint lo4 = lo3 & 16777215u;
     precise float e = float(hi4) * 16777216.0 + float(lo4);
-    precise float n = float(t7.x * t7.x + t7.y * t7.y + t7.z * t7.z);
-    uint t9 = ((code >> 8u) & 255u) + 0u;
-    uint t10 = (t9 < 1u ? 1u : t9) - 1u;
-    precise float3 t11 = UNITPACK_SELECT(s0 >= float3(0.0, 0.0, 0.0), s0, float3(0.0, 0.0, 0.0));
-    precise float3 t12 = UNITPACK_SELECT(t11 <= float3(1.0, 1.0, 1.0), t11, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t12 = round(t12);
-    uint3 t13 = uint3(round_t12);
-    uint3 t14 = t13 + t13 - 255u;
-    uint3 cross5 = afix.yzx * t14.zxy - afix.zxy * t14.yzx;
-    uint3 t15 = UNITPACK_SELECT(
+    precise float n = float(t5.x * t5.x + t5.y * t5.y + t5.z * t5.z);
+    uint t7 = ((code >> 8u) & 255u) + 0u;
+    uint t8 = (t7 < 1u ? 1u : t7) - 1u;
+    uint t9 = (((code & 255u) + 0u + 255u) & 255u) | ((t8 < 256u ? t8 : 255u) << 8u);
+    precise float3 t10 = UNITPACK_SELECT(s0 >= float3(0.0, 0.0, 0.0), s0, float3(0.0, 0.0, 0.0));
+    precise float3 t11 = round(
+        UNITPACK_SELECT(t10 <= float3(1.0, 1.0, 1.0), t10, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t11_u = uint3(t11);
+    uint3 t12 = t11_u + t11_u - 255u;
+    uint3 cross5 = afix.yzx * t12.zxy - afix.zxy * t12.yzx;
+    uint3 t13 = UNITPACK_SELECT(
         cross5 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross5,
         0u - cross5
     );
-    uint limb1_4 = t15.x >> 12u;
-    uint limb0_4 = t15.x & 4095u;
+    uint limb1_4 = t13.x >> 12u;
+    uint limb0_4 = t13.x & 4095u;
     uint cross6 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
-    uint limb1_5 = t15.y >> 12u;
-    uint limb0_5 = t15.y & 4095u;
+    uint limb1_5 = t13.y >> 12u;
+    uint limb0_5 = t13.y & 4095u;
     uint cross7 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
-    uint limb1_6 = t15.z >> 12u;
-    uint limb0_6 = t15.z & 4095u;
+    uint limb1_6 = t13.z >> 12u;
+    uint limb0_6 = t13.z & 4095u;
     uint cross8 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float e2 = float(hi8) * 16777216.0 + float(lo8);
-    precise float n2 = float(t14.x * t14.x + t14.y * t14.y + t14.z * t14.z);
-    precise float t16 = e2 * n;
-    precise float t17 = e * n2;
-    bool t18 = t16 < t17;
-    uint best = t18 ? (((code & 255u) + 0u + 255u) & 255u) | ((t10 < 256u ? t10 : 255u) << 8u) : t3;
-    precise float best_e = t18 ? e2 : e;
-    precise float best_n = t18 ? n2 : n;
-    uint t19 = ((code >> 8u) & 255u) + 0u;
-    uint t20 = (t19 < 1u ? 1u : t19) - 1u;
-    precise float3 t21 = UNITPACK_SELECT(s1 >= float3(0.0, 0.0, 0.0), s1, float3(0.0, 0.0, 0.0));
-    precise float3 t22 = UNITPACK_SELECT(t21 <= float3(1.0, 1.0, 1.0), t21, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t22 = round(t22);
-    uint3 t23 = uint3(round_t22);
-    uint3 t24 = t23 + t23 - 255u;
-    uint3 cross9 = afix.yzx * t24.zxy - afix.zxy * t24.yzx;
-    uint3 t25 = UNITPACK_SELECT(
+    precise float n2 = float(t12.x * t12.x + t12.y * t12.y + t12.z * t12.z);
+    precise float t14 = e2 * n;
+    precise float t15 = e * n2;
+    bool t16 = t14 < t15;
+    uint best = t16 ? t9 : t2;
+    precise float best_e = t16 ? e2 : e;
+    precise float best_n = t16 ? n2 : n;
+    uint t17 = ((code >> 8u) & 255u) + 0u;
+    uint t18 = (t17 < 1u ? 1u : t17) - 1u;
+    uint t19 = (((code & 255u) + 1u + 255u) & 255u) | ((t18 < 256u ? t18 : 255u) << 8u);
+    precise float3 t20 = UNITPACK_SELECT(s1 >= float3(0.0, 0.0, 0.0), s1, float3(0.0, 0.0, 0.0));
+    precise float3 t21 = round(
+        UNITPACK_SELECT(t20 <= float3(1.0, 1.0, 1.0), t20, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t21_u = uint3(t21);
+    uint3 t22 = t21_u + t21_u - 255u;
+    uint3 cross9 = afix.yzx * t22.zxy - afix.zxy * t22.yzx;
+    uint3 t23 = UNITPACK_SELECT(
         cross9 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross9,
         0u - cross9
     );
-    uint limb1_7 = t25.x >> 12u;
-    uint limb0_7 = t25.x & 4095u;
+    uint limb1_7 = t23.x >> 12u;
+    uint limb0_7 = t23.x & 4095u;
     uint cross10 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
-    uint limb1_8 = t25.y >> 12u;
-    uint limb0_8 = t25.y & 4095u;
+    uint limb1_8 = t23.y >> 12u;
+    uint limb0_8 = t23.y & 4095u;
     uint cross11 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
-    uint limb1_9 = t25.z >> 12u;
-    uint limb0_9 = t25.z & 4095u;
+    uint limb1_9 = t23.z >> 12u;
+    uint limb0_9 = t23.z & 4095u;
     uint cross12 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float e3 = float(hi12) * 16777216.0 + float(lo12);
-    precise float n3 = float(t24.x * t24.x + t24.y * t24.y + t24.z * t24.z);
-    precise float t26 = e3 * best_n;
-    precise float t27 = best_e * n3;
-    bool t28 = t26 < t27;
-    uint best2 = t28
-        ? (((code & 255u) + 1u + 255u) & 255u) | ((t20 < 256u ? t20 : 255u) << 8u)
-        : best;
-    precise float best_e2 = t28 ? e3 : best_e;
-    precise float best_n2 = t28 ? n3 : best_n;
-    uint t29 = ((code >> 8u) & 255u) + 0u;
-    uint t30 = (t29 < 1u ? 1u : t29) - 1u;
-    precise float3 t31 = UNITPACK_SELECT(s2 >= float3(0.0, 0.0, 0.0), s2, float3(0.0, 0.0, 0.0));
-    precise float3 t32 = UNITPACK_SELECT(t31 <= float3(1.0, 1.0, 1.0), t31, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t32 = round(t32);
-    uint3 t33 = uint3(round_t32);
-    uint3 t34 = t33 + t33 - 255u;
-    uint3 cross13 = afix.yzx * t34.zxy - afix.zxy * t34.yzx;
-    uint3 t35 = UNITPACK_SELECT(
+    precise float n3 = float(t22.x * t22.x + t22.y * t22.y + t22.z * t22.z);
+    precise float t24 = e3 * best_n;
+    precise float t25 = best_e * n3;
+    bool t26 = t24 < t25;
+    uint best2 = t26 ? t19 : best;
+    precise float best_e2 = t26 ? e3 : best_e;
+    precise float best_n2 = t26 ? n3 : best_n;
+    uint t27 = ((code >> 8u) & 255u) + 0u;
+    uint t28 = (t27 < 1u ? 1u : t27) - 1u;
+    uint t29 = (((code & 255u) + 2u + 255u) & 255u) | ((t28 < 256u ? t28 : 255u) << 8u);
+    precise float3 t30 = UNITPACK_SELECT(s2 >= float3(0.0, 0.0, 0.0), s2, float3(0.0, 0.0, 0.0));
+    precise float3 t31 = round(
+        UNITPACK_SELECT(t30 <= float3(1.0, 1.0, 1.0), t30, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t31_u = uint3(t31);
+    uint3 t32 = t31_u + t31_u - 255u;
+    uint3 cross13 = afix.yzx * t32.zxy - afix.zxy * t32.yzx;
+    uint3 t33 = UNITPACK_SELECT(
         cross13 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross13,
         0u - cross13
     );
-    uint limb1_10 = t35.x >> 12u;
-    uint limb0_10 = t35.x & 4095u;
+    uint limb1_10 = t33.x >> 12u;
+    uint limb0_10 = t33.x & 4095u;
     uint cross14 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
-    uint limb1_11 = t35.y >> 12u;
-    uint limb0_11 = t35.y & 4095u;
+    uint limb1_11 = t33.y >> 12u;
+    uint limb0_11 = t33.y & 4095u;
     uint cross15 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
-    uint limb1_12 = t35.z >> 12u;
-    uint limb0_12 = t35.z & 4095u;
+    uint limb1_12 = t33.z >> 12u;
+    uint limb0_12 = t33.z & 4095u;
     uint cross16 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float e4 = float(hi16) * 16777216.0 + float(lo16);
-    precise float n4 = float(t34.x * t34.x + t34.y * t34.y + t34.z * t34.z);
-    precise float t36 = e4 * best_n2;
-    precise float t37 = best_e2 * n4;
-    bool t38 = t36 < t37;
-    uint best3 = t38
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t30 < 256u ? t30 : 255u) << 8u)
-        : best2;
-    precise float best_e3 = t38 ? e4 : best_e2;
-    precise float best_n3 = t38 ? n4 : best_n2;
-    uint t39 = ((code >> 8u) & 255u) + 1u;
-    uint t40 = (t39 < 1u ? 1u : t39) - 1u;
-    precise float3 t41 = UNITPACK_SELECT(s3 >= float3(0.0, 0.0, 0.0), s3, float3(0.0, 0.0, 0.0));
-    precise float3 t42 = UNITPACK_SELECT(t41 <= float3(1.0, 1.0, 1.0), t41, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t42 = round(t42);
-    uint3 t43 = uint3(round_t42);
-    uint3 t44 = t43 + t43 - 255u;
-    uint3 cross17 = afix.yzx * t44.zxy - afix.zxy * t44.yzx;
-    uint3 t45 = UNITPACK_SELECT(
+    precise float n4 = float(t32.x * t32.x + t32.y * t32.y + t32.z * t32.z);
+    precise float t34 = e4 * best_n2;
+    precise float t35 = best_e2 * n4;
+    bool t36 = t34 < t35;
+    uint best3 = t36 ? t29 : best2;
+    precise float best_e3 = t36 ? e4 : best_e2;
+    precise float best_n3 = t36 ? n4 : best_n2;
+    uint t37 = ((code >> 8u) & 255u) + 1u;
+    uint t38 = (t37 < 1u ? 1u : t37) - 1u;
+    uint t39 = (((code & 255u) + 0u + 255u) & 255u) | ((t38 < 256u ? t38 : 255u) << 8u);
+    precise float3 t40 = UNITPACK_SELECT(s3 >= float3(0.0, 0.0, 0.0), s3, float3(0.0, 0.0, 0.0));
+    precise float3 t41 = round(
+        UNITPACK_SELECT(t40 <= float3(1.0, 1.0, 1.0), t40, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t41_u = uint3(t41);
+    uint3 t42 = t41_u + t41_u - 255u;
+    uint3 cross17 = afix.yzx * t42.zxy - afix.zxy * t42.yzx;
+    uint3 t43 = UNITPACK_SELECT(
         cross17 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross17,
         0u - cross17
     );
-    uint limb1_13 = t45.x >> 12u;
-    uint limb0_13 = t45.x & 4095u;
+    uint limb1_13 = t43.x >> 12u;
+    uint limb0_13 = t43.x & 4095u;
     uint cross18 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
-    uint limb1_14 = t45.y >> 12u;
-    uint limb0_14 = t45.y & 4095u;
+    uint limb1_14 = t43.y >> 12u;
+    uint limb0_14 = t43.y & 4095u;
     uint cross19 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
-    uint limb1_15 = t45.z >> 12u;
-    uint limb0_15 = t45.z & 4095u;
+    uint limb1_15 = t43.z >> 12u;
+    uint limb0_15 = t43.z & 4095u;
     uint cross20 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float e5 = float(hi20) * 16777216.0 + float(lo20);
-    precise float n5 = float(t44.x * t44.x + t44.y * t44.y + t44.z * t44.z);
-    precise float t46 = e5 * best_n3;
-    precise float t47 = best_e3 * n5;
-    bool t48 = t46 < t47;
-    uint best4 = t48
-        ? (((code & 255u) + 0u + 255u) & 255u) | ((t40 < 256u ? t40 : 255u) << 8u)
-        : best3;
-    precise float best_e4 = t48 ? e5 : best_e3;
-    precise float best_n4 = t48 ? n5 : best_n3;
-    uint t49 = ((code >> 8u) & 255u) + 1u;
-    uint t50 = (t49 < 1u ? 1u : t49) - 1u;
-    precise float3 t51 = UNITPACK_SELECT(s5 >= float3(0.0, 0.0, 0.0), s5, float3(0.0, 0.0, 0.0));
-    precise float3 t52 = UNITPACK_SELECT(t51 <= float3(1.0, 1.0, 1.0), t51, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t52 = round(t52);
-    uint3 t53 = uint3(round_t52);
-    uint3 t54 = t53 + t53 - 255u;
-    uint3 cross21 = afix.yzx * t54.zxy - afix.zxy * t54.yzx;
-    uint3 t55 = UNITPACK_SELECT(
+    precise float n5 = float(t42.x * t42.x + t42.y * t42.y + t42.z * t42.z);
+    precise float t44 = e5 * best_n3;
+    precise float t45 = best_e3 * n5;
+    bool t46 = t44 < t45;
+    uint best4 = t46 ? t39 : best3;
+    precise float best_e4 = t46 ? e5 : best_e3;
+    precise float best_n4 = t46 ? n5 : best_n3;
+    uint t47 = ((code >> 8u) & 255u) + 1u;
+    uint t48 = (t47 < 1u ? 1u : t47) - 1u;
+    uint t49 = (((code & 255u) + 2u + 255u) & 255u) | ((t48 < 256u ? t48 : 255u) << 8u);
+    precise float3 t50 = UNITPACK_SELECT(s5 >= float3(0.0, 0.0, 0.0), s5, float3(0.0, 0.0, 0.0));
+    precise float3 t51 = round(
+        UNITPACK_SELECT(t50 <= float3(1.0, 1.0, 1.0), t50, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t51_u = uint3(t51);
+    uint3 t52 = t51_u + t51_u - 255u;
+    uint3 cross21 = afix.yzx * t52.zxy - afix.zxy * t52.yzx;
+    uint3 t53 = UNITPACK_SELECT(
         cross21 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross21,
         0u - cross21
     );
-    uint limb1_16 = t55.x >> 12u;
-    uint limb0_16 = t55.x & 4095u;
+    uint limb1_16 = t53.x >> 12u;
+    uint limb0_16 = t53.x & 4095u;
     uint cross22 = limb1_16 * limb0_16;
     uint hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
     uint lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
-    uint limb1_17 = t55.y >> 12u;
-    uint limb0_17 = t55.y & 4095u;
+    uint limb1_17 = t53.y >> 12u;
+    uint limb0_17 = t53.y & 4095u;
     uint cross23 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
-    uint limb1_18 = t55.z >> 12u;
-    uint limb0_18 = t55.z & 4095u;
+    uint limb1_18 = t53.z >> 12u;
+    uint limb0_18 = t53.z & 4095u;
     uint cross24 = limb1_18 * limb0_18;
     uint hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
     uint lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
     uint hi24 = hi23 + (lo23 >> 24u);
     uint lo24 = lo23 & 16777215u;
     precise float e6 = float(hi24) * 16777216.0 + float(lo24);
-    precise float n6 = float(t54.x * t54.x + t54.y * t54.y + t54.z * t54.z);
-    precise float t56 = e6 * best_n4;
-    precise float t57 = best_e4 * n6;
-    bool t58 = t56 < t57;
-    uint best5 = t58
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t50 < 256u ? t50 : 255u) << 8u)
-        : best4;
-    precise float best_e5 = t58 ? e6 : best_e4;
-    precise float best_n5 = t58 ? n6 : best_n4;
-    uint t59 = ((code >> 8u) & 255u) + 2u;
-    uint t60 = (t59 < 1u ? 1u : t59) - 1u;
-    precise float3 t61 = UNITPACK_SELECT(s6 >= float3(0.0, 0.0, 0.0), s6, float3(0.0, 0.0, 0.0));
-    precise float3 t62 = UNITPACK_SELECT(t61 <= float3(1.0, 1.0, 1.0), t61, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t62 = round(t62);
-    uint3 t63 = uint3(round_t62);
-    uint3 t64 = t63 + t63 - 255u;
-    uint3 cross25 = afix.yzx * t64.zxy - afix.zxy * t64.yzx;
-    uint3 t65 = UNITPACK_SELECT(
+    precise float n6 = float(t52.x * t52.x + t52.y * t52.y + t52.z * t52.z);
+    precise float t54 = e6 * best_n4;
+    precise float t55 = best_e4 * n6;
+    bool t56 = t54 < t55;
+    uint best5 = t56 ? t49 : best4;
+    precise float best_e5 = t56 ? e6 : best_e4;
+    precise float best_n5 = t56 ? n6 : best_n4;
+    uint t57 = ((code >> 8u) & 255u) + 2u;
+    uint t58 = (t57 < 1u ? 1u : t57) - 1u;
+    uint t59 = (((code & 255u) + 0u + 255u) & 255u) | ((t58 < 256u ? t58 : 255u) << 8u);
+    precise float3 t60 = UNITPACK_SELECT(s6 >= float3(0.0, 0.0, 0.0), s6, float3(0.0, 0.0, 0.0));
+    precise float3 t61 = round(
+        UNITPACK_SELECT(t60 <= float3(1.0, 1.0, 1.0), t60, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t61_u = uint3(t61);
+    uint3 t62 = t61_u + t61_u - 255u;
+    uint3 cross25 = afix.yzx * t62.zxy - afix.zxy * t62.yzx;
+    uint3 t63 = UNITPACK_SELECT(
         cross25 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross25,
         0u - cross25
     );
-    uint limb1_19 = t65.x >> 12u;
-    uint limb0_19 = t65.x & 4095u;
+    uint limb1_19 = t63.x >> 12u;
+    uint limb0_19 = t63.x & 4095u;
     uint cross26 = limb1_19 * limb0_19;
     uint hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
     uint lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
-    uint limb1_20 = t65.y >> 12u;
-    uint limb0_20 = t65.y & 4095u;
+    uint limb1_20 = t63.y >> 12u;
+    uint limb0_20 = t63.y & 4095u;
     uint cross27 = limb1_20 * limb0_20;
     uint hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
     uint lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
-    uint limb1_21 = t65.z >> 12u;
-    uint limb0_21 = t65.z & 4095u;
+    uint limb1_21 = t63.z >> 12u;
+    uint limb0_21 = t63.z & 4095u;
     uint cross28 = limb1_21 * limb0_21;
     uint hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
     uint lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
     uint hi28 = hi27 + (lo27 >> 24u);
     uint lo28 = lo27 & 16777215u;
     precise float e7 = float(hi28) * 16777216.0 + float(lo28);
-    precise float n7 = float(t64.x * t64.x + t64.y * t64.y + t64.z * t64.z);
-    precise float t66 = e7 * best_n5;
-    precise float t67 = best_e5 * n7;
-    bool t68 = t66 < t67;
-    uint best6 = t68
-        ? (((code & 255u) + 0u + 255u) & 255u) | ((t60 < 256u ? t60 : 255u) << 8u)
-        : best5;
-    precise float best_e6 = t68 ? e7 : best_e5;
-    precise float best_n6 = t68 ? n7 : best_n5;
-    uint t69 = ((code >> 8u) & 255u) + 2u;
-    uint t70 = (t69 < 1u ? 1u : t69) - 1u;
-    precise float3 t71 = UNITPACK_SELECT(s7 >= float3(0.0, 0.0, 0.0), s7, float3(0.0, 0.0, 0.0));
-    precise float3 t72 = UNITPACK_SELECT(t71 <= float3(1.0, 1.0, 1.0), t71, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t72 = round(t72);
-    uint3 t73 = uint3(round_t72);
-    uint3 t74 = t73 + t73 - 255u;
-    uint3 cross29 = afix.yzx * t74.zxy - afix.zxy * t74.yzx;
-    uint3 t75 = UNITPACK_SELECT(
+    precise float n7 = float(t62.x * t62.x + t62.y * t62.y + t62.z * t62.z);
+    precise float t64 = e7 * best_n5;
+    precise float t65 = best_e5 * n7;
+    bool t66 = t64 < t65;
+    uint best6 = t66 ? t59 : best5;
+    precise float best_e6 = t66 ? e7 : best_e5;
+    precise float best_n6 = t66 ? n7 : best_n5;
+    uint t67 = ((code >> 8u) & 255u) + 2u;
+    uint t68 = (t67 < 1u ? 1u : t67) - 1u;
+    uint t69 = (((code & 255u) + 1u + 255u) & 255u) | ((t68 < 256u ? t68 : 255u) << 8u);
+    precise float3 t70 = UNITPACK_SELECT(s7 >= float3(0.0, 0.0, 0.0), s7, float3(0.0, 0.0, 0.0));
+    precise float3 t71 = round(
+        UNITPACK_SELECT(t70 <= float3(1.0, 1.0, 1.0), t70, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t71_u = uint3(t71);
+    uint3 t72 = t71_u + t71_u - 255u;
+    uint3 cross29 = afix.yzx * t72.zxy - afix.zxy * t72.yzx;
+    uint3 t73 = UNITPACK_SELECT(
         cross29 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross29,
         0u - cross29
     );
-    uint limb1_22 = t75.x >> 12u;
-    uint limb0_22 = t75.x & 4095u;
+    uint limb1_22 = t73.x >> 12u;
+    uint limb0_22 = t73.x & 4095u;
     uint cross30 = limb1_22 * limb0_22;
     uint hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
     uint lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
-    uint limb1_23 = t75.y >> 12u;
-    uint limb0_23 = t75.y & 4095u;
+    uint limb1_23 = t73.y >> 12u;
+    uint limb0_23 = t73.y & 4095u;
     uint cross31 = limb1_23 * limb0_23;
     uint hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
     uint lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
-    uint limb1_24 = t75.z >> 12u;
-    uint limb0_24 = t75.z & 4095u;
+    uint limb1_24 = t73.z >> 12u;
+    uint limb0_24 = t73.z & 4095u;
     uint cross32 = limb1_24 * limb0_24;
     uint hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
     uint lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
     uint hi32 = hi31 + (lo31 >> 24u);
     uint lo32 = lo31 & 16777215u;
     precise float e8 = float(hi32) * 16777216.0 + float(lo32);
-    precise float n8 = float(t74.x * t74.x + t74.y * t74.y + t74.z * t74.z);
-    precise float t76 = e8 * best_n6;
-    precise float t77 = best_e6 * n8;
-    bool t78 = t76 < t77;
-    uint best7 = t78
-        ? (((code & 255u) + 1u + 255u) & 255u) | ((t70 < 256u ? t70 : 255u) << 8u)
-        : best6;
-    precise float best_e7 = t78 ? e8 : best_e6;
-    precise float best_n7 = t78 ? n8 : best_n6;
-    uint t79 = ((code >> 8u) & 255u) + 2u;
-    uint t80 = (t79 < 1u ? 1u : t79) - 1u;
-    precise float3 t81 = UNITPACK_SELECT(s8 >= float3(0.0, 0.0, 0.0), s8, float3(0.0, 0.0, 0.0));
-    precise float3 t82 = UNITPACK_SELECT(t81 <= float3(1.0, 1.0, 1.0), t81, float3(1.0, 1.0, 1.0))
-        * 255.0;
-    precise float3 round_t82 = round(t82);
-    uint3 t83 = uint3(round_t82);
-    uint3 t84 = t83 + t83 - 255u;
-    uint3 cross33 = afix.yzx * t84.zxy - afix.zxy * t84.yzx;
-    uint3 t85 = UNITPACK_SELECT(
+    precise float n8 = float(t72.x * t72.x + t72.y * t72.y + t72.z * t72.z);
+    precise float t74 = e8 * best_n6;
+    precise float t75 = best_e6 * n8;
+    bool t76 = t74 < t75;
+    uint best7 = t76 ? t69 : best6;
+    precise float best_e7 = t76 ? e8 : best_e6;
+    precise float best_n7 = t76 ? n8 : best_n6;
+    uint t77 = ((code >> 8u) & 255u) + 2u;
+    uint t78 = (t77 < 1u ? 1u : t77) - 1u;
+    uint t79 = (((code & 255u) + 2u + 255u) & 255u) | ((t78 < 256u ? t78 : 255u) << 8u);
+    precise float3 t80 = UNITPACK_SELECT(s8 >= float3(0.0, 0.0, 0.0), s8, float3(0.0, 0.0, 0.0));
+    precise float3 t81 = round(
+        UNITPACK_SELECT(t80 <= float3(1.0, 1.0, 1.0), t80, float3(1.0, 1.0, 1.0)) * 255.0
+    );
+    uint3 t81_u = uint3(t81);
+    uint3 t82 = t81_u + t81_u - 255u;
+    uint3 cross33 = afix.yzx * t82.zxy - afix.zxy * t82.yzx;
+    uint3 t83 = UNITPACK_SELECT(
         cross33 < uint3(2147483648u, 2147483648u, 2147483648u),
         cross33,
         0u - cross33
     );
-    uint limb1_25 = t85.x >> 12u;
-    uint limb0_25 = t85.x & 4095u;
+    uint limb1_25 = t83.x >> 12u;
+    uint limb0_25 = t83.x & 4095u;
     uint cross34 = limb1_25 * limb0_25;
     uint hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
     uint lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
-    uint limb1_26 = t85.y >> 12u;
-    uint limb0_26 = t85.y & 4095u;
+    uint limb1_26 = t83.y >> 12u;
+    uint limb0_26 = t83.y & 4095u;
     uint cross35 = limb1_26 * limb0_26;
     uint hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
     uint lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
-    uint limb1_27 = t85.z >> 12u;
-    uint limb0_27 = t85.z & 4095u;
+    uint limb1_27 = t83.z >> 12u;
+    uint limb0_27 = t83.z & 4095u;
     uint cross36 = limb1_27 * limb0_27;
     uint hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
     uint lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
     uint hi36 = hi35 + (lo35 >> 24u);
     uint lo36 = lo35 & 16777215u;
     precise float e9 = float(hi36) * 16777216.0 + float(lo36);
-    precise float n9 = float(t84.x * t84.x + t84.y * t84.y + t84.z * t84.z);
-    precise float t86 = e9 * best_n7;
-    precise float t87 = best_e7 * n9;
-    uint best8 = t86 < t87
-        ? (((code & 255u) + 2u + 255u) & 255u) | ((t80 < 256u ? t80 : 255u) << 8u)
-        : best7;
-    return ok ? best8 : t3;
+    precise float n9 = float(t82.x * t82.x + t82.y * t82.y + t82.z * t82.z);
+    precise float t84 = e9 * best_n7;
+    precise float t85 = best_e7 * n9;
+    uint best8 = t84 < t85 ? t79 : best7;
+    return ok ? best8 : t2;
 }
 
 // unitpack_spherical_lut16p_encode_float: precise encoder, float form.

@@ -37,19 +37,21 @@
 float2 unitpack_spherical_z32_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -90,20 +92,21 @@ float unitpack_spherical_z32_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -116,13 +119,16 @@ float2 unitpack_spherical_z32_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    precise float phi = unitpack_spherical_z32_atan2_pi(t3.y, t3.x);
-    precise float2 result = (float2(phi, t3.z) + 1.0) * 0.5;
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 t6 = t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
+    precise float phi = unitpack_spherical_z32_atan2_pi(t6.y, t6.x);
+    precise float2 result = (float2(phi, t6.z) + 1.0) * 0.5;
     return result;
 }
 
@@ -142,7 +148,8 @@ float2 unitpack_spherical_z32_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -171,57 +178,66 @@ float2 unitpack_spherical_z32_round_codes(float3 a0) {
     precise float t2 = hi > 0.0 ? hi : 1.0;
     precise float big = lo * 8388608.0;
     precise float ratio_estimate = floor(lo / t2 * 8388608.0);
-    precise float t3 = (ratio_estimate + 1.0) * t2 <= big
-        ? 1.0
-        : (ratio_estimate * t2 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t3;
-    precise float t = ratio + ((ratio + 1.0) * t2 <= big ? 1.0 : (ratio * t2 > big ? -1.0 : 0.0));
+    precise float step_down = ratio_estimate * t2 > big ? -1.0 : 0.0;
+    precise float step = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + step;
+    precise float step_down2 = ratio * t2 > big ? -1.0 : 0.0;
+    precise float step2 = (ratio + 1.0) * t2 <= big ? 1.0 : step_down2;
+    precise float t = ratio + step2;
     bool far = t > 3474675.0;
-    precise float t4 = t - 8388608.0;
-    precise float t5 = t + 8388608.0;
-    precise float big2 = t4 * 8388608.0;
-    precise float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
-    precise float t6 = (ratio_estimate2 + 1.0) * t5 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t5 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t6;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t5 <= big2 ? 1.0 : (ratio2 * t5 > big2 ? -1.0 : 0.0));
+    precise float t3 = t - 8388608.0;
+    precise float t4 = t + 8388608.0;
+    precise float big2 = t3 * 8388608.0;
+    precise float ratio_estimate2 = floor(t3 / t4 * 8388608.0);
+    precise float step_down3 = ratio_estimate2 * t4 > big2 ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate2 + 1.0) * t4 <= big2 ? 1.0 : step_down3;
+    precise float ratio2 = ratio_estimate2 + step3;
+    precise float step_down4 = ratio2 * t4 > big2 ? -1.0 : 0.0;
+    precise float step4 = (ratio2 + 1.0) * t4 <= big2 ? 1.0 : step_down4;
+    precise float ratio3 = ratio2 + step4;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t7 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t8 = round((round(t7 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t9 = round((round(t8 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t10 = round((round(t9 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t10 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t5 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t6 = (round((t5 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t7 = (round((round(t6) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t8 = round((round(t7 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t9 = round((round(t8 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t9 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = w2.x < 0.0 ? 8388608.0 - h3 : h3;
-    precise float angle = w2.y < 0.0 ? -h4 : h4;
-    precise float t11 = round((angle + 8388608.0) * 0.0039061904);
-    precise float t12 = t11 >= 0.0 ? t11 : 0.0;
-    precise float big2_2 = w2.z * w2.z * 1073709060.0;
-    precise float t13 = round(w2.z / sqrt(len2) * 32767.5 + 32767.5);
+    precise float t10 = h + 2097152.0;
+    precise float h2 = far ? t10 : h;
+    precise float t11 = 4194304.0 - h2;
+    precise float h3 = y_major ? t11 : h2;
+    precise float t12 = 8388608.0 - h3;
+    precise float h4 = w2.x < 0.0 ? t12 : h3;
+    precise float neg_h4 = -h4;
+    precise float angle = w2.y < 0.0 ? neg_h4 : h4;
+    precise float t13 = round((angle + 8388608.0) * 0.0039061904);
     precise float t14 = t13 >= 0.0 ? t13 : 0.0;
-    precise float estimate = t14 <= 65535.0 ? t14 : 65535.0;
-    precise float t15 = estimate - 32767.0;
-    precise float t16 = t15 * t15 * len2;
-    precise float t17 = w2.z >= 0.0
-        ? (t15 > 0.0 ? (big2_2 >= t16 ? 1.0 : 0.0) : 1.0)
-        : (t15 < 0.0 ? (big2_2 <= t16 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 65535.0 ? t17 : 0.0;
-    precise float t18 = estimate - 1.0 - 32767.0;
-    precise float t19 = t18 * t18 * len2;
-    precise float t20 = w2.z >= 0.0
-        ? (t18 > 0.0 ? (big2_2 >= t19 ? 1.0 : 0.0) : 1.0)
-        : (t18 < 0.0 ? (big2_2 <= t19 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t20 - 1.0 : 0.0;
-    precise float2 result = float2(t12 <= 65535.0 ? t12 : 65535.0, estimate + up + down);
+    precise float big2_2 = w2.z * w2.z * 1073709060.0;
+    precise float t15 = round(w2.z / sqrt(len2) * 32767.5 + 32767.5);
+    precise float t16 = t15 >= 0.0 ? t15 : 0.0;
+    precise float estimate = t16 <= 65535.0 ? t16 : 65535.0;
+    precise float t17 = estimate - 32767.0;
+    precise float t18 = t17 * t17 * len2;
+    precise float one_if = big2_2 >= t18 ? 1.0 : 0.0;
+    precise float t19 = t17 > 0.0 ? one_if : 1.0;
+    precise float one_if2 = big2_2 <= t18 ? 1.0 : 0.0;
+    precise float t20 = t17 < 0.0 ? one_if2 : 0.0;
+    precise float t21 = w2.z >= 0.0 ? t19 : t20;
+    precise float up = estimate < 65535.0 ? t21 : 0.0;
+    precise float t22 = estimate - 1.0 - 32767.0;
+    precise float t23 = t22 * t22 * len2;
+    precise float one_if3 = big2_2 >= t23 ? 1.0 : 0.0;
+    precise float t24 = t22 > 0.0 ? one_if3 : 1.0;
+    precise float one_if4 = big2_2 <= t23 ? 1.0 : 0.0;
+    precise float t25 = t22 < 0.0 ? one_if4 : 0.0;
+    precise float t26 = (w2.z >= 0.0 ? t24 : t25) - 1.0;
+    precise float down = estimate > 0.0 ? t26 : 0.0;
+    precise float2 result = float2(t14 <= 65535.0 ? t14 : 65535.0, estimate + up + down);
     return result;
 }
 

@@ -38,19 +38,21 @@
 float2 unitpack_spherical_z32p_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -97,19 +99,20 @@ float2 unitpack_spherical_z32p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -133,365 +136,375 @@ float2 unitpack_spherical_z32p_encode_codes(float3 v) {
     bool y_major = abs_w2_y > abs_w2_x;
     precise float hi5 = y_major ? abs_w2_y : abs_w2_x;
     precise float lo5 = y_major ? abs_w2_x : abs_w2_y;
-    precise float t4 = hi5 > 0.0 ? hi5 : 1.0;
+    precise float t1 = hi5 > 0.0 ? hi5 : 1.0;
     precise float big = lo5 * 8388608.0;
-    precise float ratio_estimate = floor(lo5 / t4 * 8388608.0);
-    precise float t5 = (ratio_estimate + 1.0) * t4 <= big
-        ? 1.0
-        : (ratio_estimate * t4 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t5;
-    precise float t = ratio + ((ratio + 1.0) * t4 <= big ? 1.0 : (ratio * t4 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo5 / t1 * 8388608.0);
+    precise float step_down = ratio_estimate * t1 > big ? -1.0 : 0.0;
+    precise float step = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + step;
+    precise float step_down2 = ratio * t1 > big ? -1.0 : 0.0;
+    precise float step2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
+    precise float t = ratio + step2;
     bool far = t > 3474675.0;
-    precise float t6 = t - 8388608.0;
-    precise float t7 = t + 8388608.0;
-    precise float big2 = t6 * 8388608.0;
-    precise float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
-    precise float t8 = (ratio_estimate2 + 1.0) * t7 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t7 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t8;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t7 <= big2 ? 1.0 : (ratio2 * t7 > big2 ? -1.0 : 0.0));
+    precise float t2 = t - 8388608.0;
+    precise float t3 = t + 8388608.0;
+    precise float big2 = t2 * 8388608.0;
+    precise float ratio_estimate2 = floor(t2 / t3 * 8388608.0);
+    precise float step_down3 = ratio_estimate2 * t3 > big2 ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
+    precise float ratio2 = ratio_estimate2 + step3;
+    precise float step_down4 = ratio2 * t3 > big2 ? -1.0 : 0.0;
+    precise float step4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
+    precise float ratio3 = ratio2 + step4;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t9 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t10 = round((round(t9 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t11 = round((round(t10 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t12 = round((round(t11 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r = round(z * (round(t12 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t4 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t5 = (round((t4 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t6 = (round((round(t5) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t7 = round((round(t6 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t8 = round((round(t7 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r = round(z * (t8 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = w2.x < 0.0 ? 8388608.0 - h3 : h3;
-    precise float angle = w2.y < 0.0 ? -h4 : h4;
-    precise float t13 = floor((angle + 8388608.0) * 0.0039061904);
-    precise float t14 = t13 >= 0.0 ? t13 : 0.0;
+    precise float t9 = h + 2097152.0;
+    precise float h2 = far ? t9 : h;
+    precise float t10 = 4194304.0 - h2;
+    precise float h3 = y_major ? t10 : h2;
+    precise float t11 = 8388608.0 - h3;
+    precise float h4 = w2.x < 0.0 ? t11 : h3;
+    precise float neg_h4 = -h4;
+    precise float angle = w2.y < 0.0 ? neg_h4 : h4;
+    precise float t12 = floor((angle + 8388608.0) * 0.0039061904);
+    precise float t13 = t12 >= 0.0 ? t12 : 0.0;
     precise float big2_2 = w2.z * w2.z * 1073709060.0;
-    precise float t15 = round(w2.z / sqrt(len2) * 32767.5 + 32767.5);
-    precise float t16 = t15 >= 0.0 ? t15 : 0.0;
-    precise float estimate = t16 <= 65535.0 ? t16 : 65535.0;
-    precise float t17 = estimate - 32766.5;
-    precise float t18 = t17 * t17 * len2;
-    precise float t19 = w2.z >= 0.0
-        ? (t17 > 0.0 ? (big2_2 >= t18 ? 1.0 : 0.0) : 1.0)
-        : (t17 < 0.0 ? (big2_2 <= t18 ? 1.0 : 0.0) : 0.0);
-    precise float up = estimate < 65535.0 ? t19 : 0.0;
-    precise float t20 = estimate - 1.0 - 32766.5;
-    precise float t21 = t20 * t20 * len2;
-    precise float t22 = w2.z >= 0.0
-        ? (t20 > 0.0 ? (big2_2 >= t21 ? 1.0 : 0.0) : 1.0)
-        : (t20 < 0.0 ? (big2_2 <= t21 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t22 - 1.0 : 0.0;
-    precise float2 base = float2(t14 <= 65535.0 ? t14 : 65535.0, estimate + up + down);
+    precise float t14 = round(w2.z / sqrt(len2) * 32767.5 + 32767.5);
+    precise float t15 = t14 >= 0.0 ? t14 : 0.0;
+    precise float estimate = t15 <= 65535.0 ? t15 : 65535.0;
+    precise float t16 = estimate - 32766.5;
+    precise float t17 = t16 * t16 * len2;
+    precise float one_if = big2_2 >= t17 ? 1.0 : 0.0;
+    precise float t18 = t16 > 0.0 ? one_if : 1.0;
+    precise float one_if2 = big2_2 <= t17 ? 1.0 : 0.0;
+    precise float t19 = t16 < 0.0 ? one_if2 : 0.0;
+    precise float t20 = w2.z >= 0.0 ? t18 : t19;
+    precise float up = estimate < 65535.0 ? t20 : 0.0;
+    precise float t21 = estimate - 1.0 - 32766.5;
+    precise float t22 = t21 * t21 * len2;
+    precise float one_if3 = big2_2 >= t22 ? 1.0 : 0.0;
+    precise float t23 = t21 > 0.0 ? one_if3 : 1.0;
+    precise float one_if4 = big2_2 <= t22 ? 1.0 : 0.0;
+    precise float t24 = t21 < 0.0 ? one_if4 : 0.0;
+    precise float t25 = (w2.z >= 0.0 ? t23 : t24) - 1.0;
+    precise float down = estimate > 0.0 ? t25 : 0.0;
+    precise float2 base = float2(t13 <= 65535.0 ? t13 : 65535.0, estimate + up + down);
     precise float root_estimate = sqrt(len2);
-    precise float t23 = floor(root_estimate * 512.0);
-    precise float root_h0 = t23 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t23
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down5 = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step5 = root_h1 * root_h1 <= len2 ? 1.0 : step_down5;
+    precise float root_k = root_k0 + step5;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down6 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step6 = root_m1 * root_m1 <= len2 ? 1.0 : step_down6;
+    precise float root_j = root_j0 + step6;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t24 = floor(w2 / root * 2097152.0);
-    precise float3 t25 = w2 * 2097152.0;
-    precise float3 t26 = UNITPACK_SELECT(
-        t24 * root > t25,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t26 = floor(w2 / root * 2097152.0);
+    precise float3 t27 = w2 * 2097152.0;
+    precise float3 t28 = UNITPACK_SELECT(
+        (t26 + 1.0) * root <= t27,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t26 * root > t27, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t24
-        + UNITPACK_SELECT((t24 + 1.0) * root <= t25, float3(1.0, 1.0, 1.0), t26);
+    precise float3 aim = t26 + t28;
     precise float2 cand = UNITPACK_SELECT(
         base <= float2(65535.0, 65535.0),
         base,
         float2(65535.0, 65535.0)
     );
     precise float z3 = floor((cand.y * 2.0 - 65535.0) * 32.00049);
-    precise float t27 = 2097152.0 - round(z3 * z3 * 4.7683716e-7);
-    precise float t28 = (t27 >= 0.0 ? t27 : 0.0) * 2097152.0;
-    precise float root_estimate2 = floor(sqrt(t28));
+    precise float t29 = 2097152.0 - round(z3 * z3 * 4.7683716e-7);
+    precise float t30 = (t29 >= 0.0 ? t29 : 0.0) * 2097152.0;
+    precise float root_estimate2 = floor(sqrt(t30));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t29 = root_next * root_next <= t28
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t28 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t29;
+    precise float step_down7 = root_estimate2 * root_estimate2 > t30 ? -1.0 : 0.0;
+    precise float step7 = root_next * root_next <= t30 ? 1.0 : step_down7;
+    precise float root_step = root_estimate2 + step7;
     precise float root_next2 = root_step + 1.0;
-    precise float t30 = root_next2 * root_next2 <= t28
-        ? 1.0
-        : (root_step * root_step > t28 ? -1.0 : 0.0);
-    precise float r2 = root_step + t30;
+    precise float step_down8 = root_step * root_step > t30 ? -1.0 : 0.0;
+    precise float step8 = root_next2 * root_next2 <= t30 ? 1.0 : step_down8;
+    precise float r2 = root_step + step8;
     precise float t31 = floor((cand.x * 2.0 - 65535.0) * 256.0039);
     precise float abs_t31 = abs(t31);
     bool back = abs_t31 > 8388608.0;
-    precise float b = back ? 16777216.0 - abs_t31 : abs_t31;
+    precise float t32 = 16777216.0 - abs_t31;
+    precise float b = back ? t32 : abs_t31;
     bool swap = b > 4194304.0;
-    precise float u = round((swap ? 8388608.0 - b : b) * 3.1415927);
+    precise float t33 = 8388608.0 - b;
+    precise float u = round((swap ? t33 : b) * 3.1415927);
     precise float u2 = round(u * u * 5.9604645e-8);
-    precise float t32 = (
-        round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8) + (-3329.0)
-    )
-        * u2;
-    precise float t33 = (
-        round((round(t32 * 5.9604645e-8) + 139810.0) * u2 * 5.9604645e-8) + (-2796203.0)
-    )
-        * u2;
-    precise float s = round(u * (round(t33 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t34 = (
-        round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8) + 416.0
-    )
-        * u2;
-    precise float t35 = (
-        round((round(t34 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8) + 699051.0
-    )
-        * u2;
-    precise float co = round((round(t35 * 5.9604645e-8) + (-8388608.0)) * u2 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t36 = swap ? float2(s, co) : float2(co, s);
-    precise float3 t37 = float3(
-        round(UNITPACK_SELECT(bool2(back, t31 < 0.0), -t36, t36) * r2 * 5.9604645e-8),
-        z3
+    precise float t34 = round((round(-0.0 * u2 * 5.9604645e-8) + 46.0) * u2 * 5.9604645e-8);
+    precise float t35 = (round((t34 + (-3329.0)) * u2 * 5.9604645e-8) + 139810.0)
+        * u2
+        * 5.9604645e-8;
+    precise float t36 = u * (round((round(t35) + (-2796203.0)) * u2 * 5.9604645e-8) + 16777216.0);
+    precise float s = round(t36 * 5.9604645e-8);
+    precise float t37 = round((round(0.0 * u2 * 5.9604645e-8) + (-5.0)) * u2 * 5.9604645e-8);
+    precise float t38 = (round((t37 + 416.0) * u2 * 5.9604645e-8) + (-23302.0)) * u2 * 5.9604645e-8;
+    precise float t39 = (round((round(t38) + 699051.0) * u2 * 5.9604645e-8) + (-8388608.0)) * u2;
+    precise float co = round(t39 * 5.9604645e-8) + 16777216.0;
+    precise float2 t40 = float2(s, co);
+    precise float2 t41 = float2(co, s);
+    precise float2 t42 = swap ? t40 : t41;
+    precise float2 t43 = round(
+        UNITPACK_SELECT(bool2(back, t31 < 0.0), -t42, t42) * r2 * 5.9604645e-8
     );
-    precise float3 t38 = abs(t37 - aim);
-    uint3 t39 = uint3(t38);
-    uint limb1_4 = t39.x >> 12u;
-    uint limb0_4 = t39.x & 4095u;
+    precise float3 offset = float3(t43, z3) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi6 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo6 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t39.y >> 12u;
-    uint limb0_5 = t39.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi7 = hi6 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo7 = lo6 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t39.z >> 12u;
-    uint limb0_6 = t39.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi8 = hi7 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo8 = lo7 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi9 = hi8 + (lo8 >> 24u);
     uint lo9 = lo8 & 16777215u;
     precise float dist = float(hi9) * 16777216.0 + float(lo9);
-    precise float t40 = base.x + 1.0;
-    precise float2 t41 = float2(t40, base.y);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t44 = float2(s_up, base.y);
     precise float2 cand2 = UNITPACK_SELECT(
-        t41 <= float2(65535.0, 65535.0),
-        t41,
+        t44 <= float2(65535.0, 65535.0),
+        t44,
         float2(65535.0, 65535.0)
     );
+    bool t45 = base.y <= 65535.0;
     precise float z4 = floor((cand2.y * 2.0 - 65535.0) * 32.00049);
-    precise float t42 = 2097152.0 - round(z4 * z4 * 4.7683716e-7);
-    precise float t43 = (t42 >= 0.0 ? t42 : 0.0) * 2097152.0;
-    precise float root_estimate3 = floor(sqrt(t43));
+    precise float t46 = 2097152.0 - round(z4 * z4 * 4.7683716e-7);
+    precise float t47 = (t46 >= 0.0 ? t46 : 0.0) * 2097152.0;
+    precise float root_estimate3 = floor(sqrt(t47));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t44 = root_next3 * root_next3 <= t43
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t43 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t44;
+    precise float step_down9 = root_estimate3 * root_estimate3 > t47 ? -1.0 : 0.0;
+    precise float step9 = root_next3 * root_next3 <= t47 ? 1.0 : step_down9;
+    precise float root_step2 = root_estimate3 + step9;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t45 = root_next4 * root_next4 <= t43
-        ? 1.0
-        : (root_step2 * root_step2 > t43 ? -1.0 : 0.0);
-    precise float r3 = root_step2 + t45;
-    precise float t46 = floor((cand2.x * 2.0 - 65535.0) * 256.0039);
-    precise float abs_t46 = abs(t46);
-    bool back2 = abs_t46 > 8388608.0;
-    precise float b2 = back2 ? 16777216.0 - abs_t46 : abs_t46;
+    precise float step_down10 = root_step2 * root_step2 > t47 ? -1.0 : 0.0;
+    precise float step10 = root_next4 * root_next4 <= t47 ? 1.0 : step_down10;
+    precise float r3 = root_step2 + step10;
+    precise float t48 = floor((cand2.x * 2.0 - 65535.0) * 256.0039);
+    precise float abs_t48 = abs(t48);
+    bool back2 = abs_t48 > 8388608.0;
+    precise float t49 = 16777216.0 - abs_t48;
+    precise float b2 = back2 ? t49 : abs_t48;
     bool swap2 = b2 > 4194304.0;
-    precise float u3 = round((swap2 ? 8388608.0 - b2 : b2) * 3.1415927);
+    precise float t50 = 8388608.0 - b2;
+    precise float u3 = round((swap2 ? t50 : b2) * 3.1415927);
     precise float u2_2 = round(u3 * u3 * 5.9604645e-8);
-    precise float t47 = round((round(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t48 = round((round(t47 * u2_2 * 5.9604645e-8) + 139810.0) * u2_2 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s2 = round(u3 * (round(t48 * u2_2 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t49 = (
-        round((round(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8) + 416.0
-    )
+    precise float t51 = round((round(-0.0 * u2_2 * 5.9604645e-8) + 46.0) * u2_2 * 5.9604645e-8);
+    precise float t52 = (round((t51 + (-3329.0)) * u2_2 * 5.9604645e-8) + 139810.0)
+        * u2_2
+        * 5.9604645e-8;
+    precise float t53 = u3
+        * (round((round(t52) + (-2796203.0)) * u2_2 * 5.9604645e-8) + 16777216.0);
+    precise float s2 = round(t53 * 5.9604645e-8);
+    precise float t54 = round((round(0.0 * u2_2 * 5.9604645e-8) + (-5.0)) * u2_2 * 5.9604645e-8);
+    precise float t55 = (round((t54 + 416.0) * u2_2 * 5.9604645e-8) + (-23302.0))
+        * u2_2
+        * 5.9604645e-8;
+    precise float t56 = (round((round(t55) + 699051.0) * u2_2 * 5.9604645e-8) + (-8388608.0))
         * u2_2;
-    precise float t50 = (
-        round((round(t49 * 5.9604645e-8) + (-23302.0)) * u2_2 * 5.9604645e-8) + 699051.0
-    )
-        * u2_2;
-    precise float co2 = round((round(t50 * 5.9604645e-8) + (-8388608.0)) * u2_2 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t51 = swap2 ? float2(s2, co2) : float2(co2, s2);
-    precise float3 t52 = float3(
-        round(UNITPACK_SELECT(bool2(back2, t46 < 0.0), -t51, t51) * r3 * 5.9604645e-8),
-        z4
+    precise float co2 = round(t56 * 5.9604645e-8) + 16777216.0;
+    precise float2 t57 = float2(s2, co2);
+    precise float2 t58 = float2(co2, s2);
+    precise float2 t59 = swap2 ? t57 : t58;
+    precise float2 t60 = round(
+        UNITPACK_SELECT(bool2(back2, t48 < 0.0), -t59, t59) * r3 * 5.9604645e-8
     );
-    precise float3 t53 = abs(t52 - aim);
-    uint3 t54 = uint3(t53);
-    uint limb1_7 = t54.x >> 12u;
-    uint limb0_7 = t54.x & 4095u;
+    precise float3 offset2 = float3(t60, z4) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi10 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo10 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t54.y >> 12u;
-    uint limb0_8 = t54.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t54.z >> 12u;
-    uint limb0_9 = t54.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi12 = hi11 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo12 = lo11 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi13 = hi12 + (lo12 >> 24u);
     uint lo13 = lo12 & 16777215u;
     precise float dist2 = float(hi13) * 16777216.0 + float(lo13);
-    bool t55 = t40 <= 65535.0 && base.y <= 65535.0 && dist2 < dist;
-    precise float2 best = t55 ? cand2 : cand;
-    precise float best_d = t55 ? dist2 : dist;
-    precise float t56 = base.y + 1.0;
-    precise float2 t57 = float2(base.x, t56);
+    bool t61 = dist2 < dist;
+    bool t62 = s_up <= 65535.0 && t45 && t61;
+    precise float2 best = t62 ? cand2 : cand;
+    precise float best_d = t62 ? dist2 : dist;
+    precise float2 t63 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(
-        t57 <= float2(65535.0, 65535.0),
-        t57,
+        t63 <= float2(65535.0, 65535.0),
+        t63,
         float2(65535.0, 65535.0)
     );
+    bool t64 = t_up <= 65535.0;
     precise float z5 = floor((cand3.y * 2.0 - 65535.0) * 32.00049);
-    precise float t58 = 2097152.0 - round(z5 * z5 * 4.7683716e-7);
-    precise float t59 = (t58 >= 0.0 ? t58 : 0.0) * 2097152.0;
-    precise float root_estimate4 = floor(sqrt(t59));
+    precise float t65 = 2097152.0 - round(z5 * z5 * 4.7683716e-7);
+    precise float t66 = (t65 >= 0.0 ? t65 : 0.0) * 2097152.0;
+    precise float root_estimate4 = floor(sqrt(t66));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t60 = root_next5 * root_next5 <= t59
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t59 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t60;
+    precise float step_down11 = root_estimate4 * root_estimate4 > t66 ? -1.0 : 0.0;
+    precise float step11 = root_next5 * root_next5 <= t66 ? 1.0 : step_down11;
+    precise float root_step3 = root_estimate4 + step11;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t61 = root_next6 * root_next6 <= t59
-        ? 1.0
-        : (root_step3 * root_step3 > t59 ? -1.0 : 0.0);
-    precise float r4 = root_step3 + t61;
-    precise float t62 = floor((cand3.x * 2.0 - 65535.0) * 256.0039);
-    precise float abs_t62 = abs(t62);
-    bool back3 = abs_t62 > 8388608.0;
-    precise float b3 = back3 ? 16777216.0 - abs_t62 : abs_t62;
+    precise float step_down12 = root_step3 * root_step3 > t66 ? -1.0 : 0.0;
+    precise float step12 = root_next6 * root_next6 <= t66 ? 1.0 : step_down12;
+    precise float r4 = root_step3 + step12;
+    precise float t67 = floor((cand3.x * 2.0 - 65535.0) * 256.0039);
+    precise float abs_t67 = abs(t67);
+    bool back3 = abs_t67 > 8388608.0;
+    precise float t68 = 16777216.0 - abs_t67;
+    precise float b3 = back3 ? t68 : abs_t67;
     bool swap3 = b3 > 4194304.0;
-    precise float u4 = round((swap3 ? 8388608.0 - b3 : b3) * 3.1415927);
+    precise float t69 = 8388608.0 - b3;
+    precise float u4 = round((swap3 ? t69 : b3) * 3.1415927);
     precise float u2_3 = round(u4 * u4 * 5.9604645e-8);
-    precise float t63 = round((round(-0.0 * u2_3 * 5.9604645e-8) + 46.0) * u2_3 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t64 = round((round(t63 * u2_3 * 5.9604645e-8) + 139810.0) * u2_3 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s3 = round(u4 * (round(t64 * u2_3 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t65 = (
-        round((round(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8) + 416.0
-    )
+    precise float t70 = round((round(-0.0 * u2_3 * 5.9604645e-8) + 46.0) * u2_3 * 5.9604645e-8);
+    precise float t71 = (round((t70 + (-3329.0)) * u2_3 * 5.9604645e-8) + 139810.0)
+        * u2_3
+        * 5.9604645e-8;
+    precise float t72 = u4
+        * (round((round(t71) + (-2796203.0)) * u2_3 * 5.9604645e-8) + 16777216.0);
+    precise float s3 = round(t72 * 5.9604645e-8);
+    precise float t73 = round((round(0.0 * u2_3 * 5.9604645e-8) + (-5.0)) * u2_3 * 5.9604645e-8);
+    precise float t74 = (round((t73 + 416.0) * u2_3 * 5.9604645e-8) + (-23302.0))
+        * u2_3
+        * 5.9604645e-8;
+    precise float t75 = (round((round(t74) + 699051.0) * u2_3 * 5.9604645e-8) + (-8388608.0))
         * u2_3;
-    precise float t66 = (
-        round((round(t65 * 5.9604645e-8) + (-23302.0)) * u2_3 * 5.9604645e-8) + 699051.0
-    )
-        * u2_3;
-    precise float co3 = round((round(t66 * 5.9604645e-8) + (-8388608.0)) * u2_3 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t67 = swap3 ? float2(s3, co3) : float2(co3, s3);
-    precise float3 t68 = float3(
-        round(UNITPACK_SELECT(bool2(back3, t62 < 0.0), -t67, t67) * r4 * 5.9604645e-8),
-        z5
+    precise float co3 = round(t75 * 5.9604645e-8) + 16777216.0;
+    precise float2 t76 = float2(s3, co3);
+    precise float2 t77 = float2(co3, s3);
+    precise float2 t78 = swap3 ? t76 : t77;
+    precise float2 t79 = round(
+        UNITPACK_SELECT(bool2(back3, t67 < 0.0), -t78, t78) * r4 * 5.9604645e-8
     );
-    precise float3 t69 = abs(t68 - aim);
-    uint3 t70 = uint3(t69);
-    uint limb1_10 = t70.x >> 12u;
-    uint limb0_10 = t70.x & 4095u;
+    precise float3 offset3 = float3(t79, z5) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi14 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo14 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t70.y >> 12u;
-    uint limb0_11 = t70.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t70.z >> 12u;
-    uint limb0_12 = t70.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi16 = hi15 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo16 = lo15 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi17 = hi16 + (lo16 >> 24u);
     uint lo17 = lo16 & 16777215u;
     precise float dist3 = float(hi17) * 16777216.0 + float(lo17);
-    bool t71 = base.x <= 65535.0 && t56 <= 65535.0 && dist3 < best_d;
-    precise float2 best2 = t71 ? cand3 : best;
-    precise float best_d2 = t71 ? dist3 : best_d;
-    precise float2 t72 = base + 1.0;
+    bool t80 = dist3 < best_d;
+    bool t81 = base.x <= 65535.0 && t64 && t80;
+    precise float2 best2 = t81 ? cand3 : best;
+    precise float best_d2 = t81 ? dist3 : best_d;
+    precise float2 t82 = base + 1.0;
     precise float2 cand4 = UNITPACK_SELECT(
-        t72 <= float2(65535.0, 65535.0),
-        t72,
+        t82 <= float2(65535.0, 65535.0),
+        t82,
         float2(65535.0, 65535.0)
     );
+    bool t83 = t_up <= 65535.0;
     precise float z6 = floor((cand4.y * 2.0 - 65535.0) * 32.00049);
-    precise float t73 = 2097152.0 - round(z6 * z6 * 4.7683716e-7);
-    precise float t74 = (t73 >= 0.0 ? t73 : 0.0) * 2097152.0;
-    precise float root_estimate5 = floor(sqrt(t74));
+    precise float t84 = 2097152.0 - round(z6 * z6 * 4.7683716e-7);
+    precise float t85 = (t84 >= 0.0 ? t84 : 0.0) * 2097152.0;
+    precise float root_estimate5 = floor(sqrt(t85));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t75 = root_next7 * root_next7 <= t74
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t74 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t75;
+    precise float step_down13 = root_estimate5 * root_estimate5 > t85 ? -1.0 : 0.0;
+    precise float step13 = root_next7 * root_next7 <= t85 ? 1.0 : step_down13;
+    precise float root_step4 = root_estimate5 + step13;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t76 = root_next8 * root_next8 <= t74
-        ? 1.0
-        : (root_step4 * root_step4 > t74 ? -1.0 : 0.0);
-    precise float r5 = root_step4 + t76;
-    precise float t77 = floor((cand4.x * 2.0 - 65535.0) * 256.0039);
-    precise float abs_t77 = abs(t77);
-    bool back4 = abs_t77 > 8388608.0;
-    precise float b4 = back4 ? 16777216.0 - abs_t77 : abs_t77;
+    precise float step_down14 = root_step4 * root_step4 > t85 ? -1.0 : 0.0;
+    precise float step14 = root_next8 * root_next8 <= t85 ? 1.0 : step_down14;
+    precise float r5 = root_step4 + step14;
+    precise float t86 = floor((cand4.x * 2.0 - 65535.0) * 256.0039);
+    precise float abs_t86 = abs(t86);
+    bool back4 = abs_t86 > 8388608.0;
+    precise float t87 = 16777216.0 - abs_t86;
+    precise float b4 = back4 ? t87 : abs_t86;
     bool swap4 = b4 > 4194304.0;
-    precise float u5 = round((swap4 ? 8388608.0 - b4 : b4) * 3.1415927);
+    precise float t88 = 8388608.0 - b4;
+    precise float u5 = round((swap4 ? t88 : b4) * 3.1415927);
     precise float u2_4 = round(u5 * u5 * 5.9604645e-8);
-    precise float t78 = round((round(-0.0 * u2_4 * 5.9604645e-8) + 46.0) * u2_4 * 5.9604645e-8)
-        + (-3329.0);
-    precise float t79 = round((round(t78 * u2_4 * 5.9604645e-8) + 139810.0) * u2_4 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float s4 = round(u5 * (round(t79 * u2_4 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float t80 = (
-        round((round(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8) + 416.0
-    )
+    precise float t89 = round((round(-0.0 * u2_4 * 5.9604645e-8) + 46.0) * u2_4 * 5.9604645e-8);
+    precise float t90 = (round((t89 + (-3329.0)) * u2_4 * 5.9604645e-8) + 139810.0)
+        * u2_4
+        * 5.9604645e-8;
+    precise float t91 = u5
+        * (round((round(t90) + (-2796203.0)) * u2_4 * 5.9604645e-8) + 16777216.0);
+    precise float s4 = round(t91 * 5.9604645e-8);
+    precise float t92 = round((round(0.0 * u2_4 * 5.9604645e-8) + (-5.0)) * u2_4 * 5.9604645e-8);
+    precise float t93 = (round((t92 + 416.0) * u2_4 * 5.9604645e-8) + (-23302.0))
+        * u2_4
+        * 5.9604645e-8;
+    precise float t94 = (round((round(t93) + 699051.0) * u2_4 * 5.9604645e-8) + (-8388608.0))
         * u2_4;
-    precise float t81 = (
-        round((round(t80 * 5.9604645e-8) + (-23302.0)) * u2_4 * 5.9604645e-8) + 699051.0
-    )
-        * u2_4;
-    precise float co4 = round((round(t81 * 5.9604645e-8) + (-8388608.0)) * u2_4 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t82 = swap4 ? float2(s4, co4) : float2(co4, s4);
-    precise float3 t83 = float3(
-        round(UNITPACK_SELECT(bool2(back4, t77 < 0.0), -t82, t82) * r5 * 5.9604645e-8),
-        z6
+    precise float co4 = round(t94 * 5.9604645e-8) + 16777216.0;
+    precise float2 t95 = float2(s4, co4);
+    precise float2 t96 = float2(co4, s4);
+    precise float2 t97 = swap4 ? t95 : t96;
+    precise float2 t98 = round(
+        UNITPACK_SELECT(bool2(back4, t86 < 0.0), -t97, t97) * r5 * 5.9604645e-8
     );
-    precise float3 t84 = abs(t83 - aim);
-    uint3 t85 = uint3(t84);
-    uint limb1_13 = t85.x >> 12u;
-    uint limb0_13 = t85.x & 4095u;
+    precise float3 offset4 = float3(t98, z6) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi18 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo18 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t85.y >> 12u;
-    uint limb0_14 = t85.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t85.z >> 12u;
-    uint limb0_15 = t85.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi20 = hi19 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo20 = lo19 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi21 = hi20 + (lo20 >> 24u);
     uint lo21 = lo20 & 16777215u;
     precise float dist4 = float(hi21) * 16777216.0 + float(lo21);
-    precise float2 best3 = base.x + 1.0 <= 65535.0 && base.y + 1.0 <= 65535.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t99 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 65535.0 && t83 && t99 ? cand4 : best2;
     return best3;
 }
 

@@ -47,7 +47,8 @@ float3 unitpack_stereo24_decode_float(float3 params) {
     precise float q = p_sq.x + p_sq.y;
     precise float d = q + 1.0;
     precise float t1 = (1.0 - q) / d;
-    precise float3 result = float3((p + p) / d, params.z > 0.5 ? -t1 : t1);
+    precise float neg_t1 = -t1;
+    precise float3 result = float3((p + p) / d, params.z > 0.5 ? neg_t1 : t1);
     return result;
 }
 
@@ -85,19 +86,20 @@ float3 unitpack_stereo24_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -117,21 +119,24 @@ float3 unitpack_stereo24_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float2 enc = w2.xy / (root + abs(w2.z)) * 0.5 + 0.5;
-    return float3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    return float3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -150,19 +155,20 @@ float3 unitpack_stereo24_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -182,41 +188,42 @@ float3 unitpack_stereo24_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = root + abs(w2.z);
+    precise float t1 = root + abs(w2.z);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float t = w2.x * 2047.5;
-    precise float t6 = round(t / t5 + 2047.5);
+    precise float t2 = round(t / t1 + 2047.5);
+    precise float t3 = t2 >= 0.0 ? t2 : 0.0;
+    precise float estimate = t3 <= 4095.0 ? t3 : 4095.0;
+    precise float one_if2 = t >= (estimate - 2047.0) * t1 ? 1.0 : 0.0;
+    precise float up = estimate < 4095.0 ? one_if2 : 0.0;
+    precise float one_if3 = t >= (estimate - 1.0 - 2047.0) * t1 ? 1.0 : 0.0;
+    precise float t4 = one_if3 - 1.0;
+    precise float down = estimate > 0.0 ? t4 : 0.0;
+    precise float t5 = w2.y * 1023.5;
+    precise float t6 = round(t5 / t1 + 1023.5);
     precise float t7 = t6 >= 0.0 ? t6 : 0.0;
-    precise float estimate = t7 <= 4095.0 ? t7 : 4095.0;
-    precise float up = estimate < 4095.0 ? (t >= (estimate - 2047.0) * t5 ? 1.0 : 0.0) : 0.0;
-    precise float down = estimate > 0.0
-        ? (t >= (estimate - 1.0 - 2047.0) * t5 ? 1.0 : 0.0) - 1.0
-        : 0.0;
-    precise float t8 = w2.y * 1023.5;
-    precise float t9 = round(t8 / t5 + 1023.5);
-    precise float t10 = t9 >= 0.0 ? t9 : 0.0;
-    precise float estimate2 = t10 <= 2047.0 ? t10 : 2047.0;
-    precise float up2 = estimate2 < 2047.0 ? (t8 >= (estimate2 - 1023.0) * t5 ? 1.0 : 0.0) : 0.0;
-    precise float down2 = estimate2 > 0.0
-        ? (t8 >= (estimate2 - 1.0 - 1023.0) * t5 ? 1.0 : 0.0) - 1.0
-        : 0.0;
-    precise float3 result = float3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
-    );
+    precise float estimate2 = t7 <= 2047.0 ? t7 : 2047.0;
+    precise float one_if4 = t5 >= (estimate2 - 1023.0) * t1 ? 1.0 : 0.0;
+    precise float up2 = estimate2 < 2047.0 ? one_if4 : 0.0;
+    precise float one_if5 = t5 >= (estimate2 - 1.0 - 1023.0) * t1 ? 1.0 : 0.0;
+    precise float t8 = one_if5 - 1.0;
+    precise float down2 = estimate2 > 0.0 ? t8 : 0.0;
+    precise float3 result = float3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

@@ -40,12 +40,10 @@
 float2 unitpack_stereo_concentric22_sincos_quarter_pi(float a0) {
     precise float c2 = a0 * a0;
     precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = a0 * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
+        * c2;
+    precise float s = a0 * (t1 + 3.1415927);
+    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t2 + (-4.934802)) * c2 + 1.0;
     return float2(s, co);
 }
 
@@ -64,12 +62,15 @@ float3 unitpack_stereo_concentric22_decode_float(float3 params) {
     precise float2 angle = s / (r > 0.0 ? r : 1.0) * 0.25;
     precise float2 on_x = unitpack_stereo_concentric22_sincos_quarter_pi(angle.y);
     precise float2 on_y = unitpack_stereo_concentric22_sincos_quarter_pi(angle.x);
-    precise float2 disk = abs(s.x) >= abs(s.y) ? float2(s.x, r) * on_x.yx : float2(r, s.y) * on_y;
+    precise float2 t1 = float2(s.x, r) * on_x.yx;
+    precise float2 t2 = float2(r, s.y) * on_y;
+    precise float2 disk = abs(s.x) >= abs(s.y) ? t1 : t2;
     precise float2 disk_sq = disk * disk;
     precise float q = disk_sq.x + disk_sq.y;
     precise float d = q + 1.0;
-    precise float t1 = (1.0 - q) / d;
-    precise float3 result = float3((disk + disk) / d, params.z > 0.5 ? -t1 : t1);
+    precise float t3 = (1.0 - q) / d;
+    precise float neg_t3 = -t3;
+    precise float3 result = float3((disk + disk) / d, params.z > 0.5 ? neg_t3 : t3);
     return result;
 }
 
@@ -96,20 +97,21 @@ float unitpack_stereo_concentric22_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -133,19 +135,20 @@ float3 unitpack_stereo_concentric22_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -165,33 +168,39 @@ float3 unitpack_stereo_concentric22_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float2 t5 = w2.xy * w2.xy;
-    precise float rho = sqrt(t5.x + t5.y);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float2 t1 = w2.xy * w2.xy;
+    precise float rho = sqrt(t1.x + t1.y);
     precise float half_r = rho / (root + abs(w2.z)) * 0.5;
     precise float abs_w2_x = abs(w2.x);
     precise float abs_w2_y = abs(w2.y);
-    bool t6 = abs_w2_x >= abs_w2_y;
-    precise float major = t6 ? w2.x : w2.y;
-    precise float minor = t6 ? w2.y : w2.x;
+    bool t2 = abs_w2_x >= abs_w2_y;
+    precise float major = t2 ? w2.x : w2.y;
+    precise float minor = t2 ? w2.y : w2.x;
     precise float abs_major = abs(major);
     precise float t = unitpack_stereo_concentric22_atan2_pi(minor, abs_major);
-    precise float t7 = major < 0.0 ? -half_r : half_r;
-    precise float t8 = half_r * t * 4.0;
-    precise float2 enc = (t6 ? float2(t7, t8) : float2(t8, t7)) + 0.5;
-    return float3(enc, w2.z < 0.0 ? 1.0 : 0.0);
+    precise float neg_half_r = -half_r;
+    precise float t3 = major < 0.0 ? neg_half_r : half_r;
+    precise float t4 = half_r * t * 4.0;
+    precise float2 t5 = float2(t3, t4);
+    precise float2 t6 = float2(t4, t3);
+    precise float2 enc = (t2 ? t5 : t6) + 0.5;
+    return float3(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -210,19 +219,20 @@ float3 unitpack_stereo_concentric22_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -242,24 +252,27 @@ float3 unitpack_stereo_concentric22_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = root + abs(w2.z);
-    precise float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    precise float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    precise float t1 = root + abs(w2.z);
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -273,96 +286,109 @@ float3 unitpack_stereo_concentric22_round_codes(float3 a0) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    precise float t5_sq = t5 * t5;
-    precise float r = sqrt(rho2 / t5_sq);
+    precise float t1_sq = t1 * t1;
+    precise float r = sqrt(rho2 / t1_sq);
     precise float abs_w2_x = abs(w2.x);
     precise float abs_w2_y = abs(w2.y);
-    bool t8 = abs_w2_x >= abs_w2_y;
-    precise float major = t8 ? w2.x : w2.y;
-    precise float minor = t8 ? w2.y : w2.x;
+    bool t2 = abs_w2_x >= abs_w2_y;
+    precise float major = t2 ? w2.x : w2.y;
+    precise float minor = t2 ? w2.y : w2.x;
     precise float abs_major = abs(major);
     precise float abs_abs_major = abs(abs_major);
     precise float abs_minor = abs(minor);
     bool y_major = abs_minor > abs_abs_major;
     precise float hi8 = y_major ? abs_minor : abs_abs_major;
     precise float lo8 = y_major ? abs_abs_major : abs_minor;
-    precise float t9 = hi8 > 0.0 ? hi8 : 1.0;
+    precise float t3 = hi8 > 0.0 ? hi8 : 1.0;
     precise float big = lo8 * 8388608.0;
-    precise float ratio_estimate = floor(lo8 / t9 * 8388608.0);
-    precise float t10 = (ratio_estimate + 1.0) * t9 <= big
-        ? 1.0
-        : (ratio_estimate * t9 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t10;
-    precise float t = ratio + ((ratio + 1.0) * t9 <= big ? 1.0 : (ratio * t9 > big ? -1.0 : 0.0));
+    precise float ratio_estimate = floor(lo8 / t3 * 8388608.0);
+    precise float step_down3 = ratio_estimate * t3 > big ? -1.0 : 0.0;
+    precise float step3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + step3;
+    precise float step_down4 = ratio * t3 > big ? -1.0 : 0.0;
+    precise float step4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
+    precise float t = ratio + step4;
     bool far = t > 3474675.0;
-    precise float t11 = t - 8388608.0;
-    precise float t12 = t + 8388608.0;
-    precise float big2 = t11 * 8388608.0;
-    precise float ratio_estimate2 = floor(t11 / t12 * 8388608.0);
-    precise float t13 = (ratio_estimate2 + 1.0) * t12 <= big2
-        ? 1.0
-        : (ratio_estimate2 * t12 > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t13;
-    precise float ratio3 = ratio2
-        + ((ratio2 + 1.0) * t12 <= big2 ? 1.0 : (ratio2 * t12 > big2 ? -1.0 : 0.0));
+    precise float t4 = t - 8388608.0;
+    precise float t5 = t + 8388608.0;
+    precise float big2 = t4 * 8388608.0;
+    precise float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
+    precise float step_down5 = ratio_estimate2 * t5 > big2 ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + step5;
+    precise float step_down6 = ratio2 * t5 > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + step6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
-    precise float t14 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7)
-        + (-559241.0);
-    precise float t15 = round((round(t14 * z2 * 1.1920929e-7) + 645278.0) * z2 * 1.1920929e-7)
-        + (-762601.0);
-    precise float t16 = round((round(t15 * z2 * 1.1920929e-7) + 932068.0) * z2 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float t17 = round((round(t16 * z2 * 1.1920929e-7) + 1677722.0) * z2 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float r2 = round(z * (round(t17 * z2 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7);
+    precise float t6 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
+    precise float t7 = (round((t6 + (-559241.0)) * z2 * 1.1920929e-7) + 645278.0)
+        * z2
+        * 1.1920929e-7;
+    precise float t8 = (round((round(t7) + (-762601.0)) * z2 * 1.1920929e-7) + 932068.0) * z2;
+    precise float t9 = round((round(t8 * 1.1920929e-7) + (-1198373.0)) * z2 * 1.1920929e-7)
+        + 1677722.0;
+    precise float t10 = round((round(t9 * z2 * 1.1920929e-7) + (-2796203.0)) * z2 * 1.1920929e-7);
+    precise float r2 = round(z * (t10 + 8388608.0) * 1.1920929e-7);
     precise float h = round(r2 * 0.31830987);
-    precise float h2 = far ? h + 2097152.0 : h;
-    precise float h3 = y_major ? 4194304.0 - h2 : h2;
-    precise float h4 = abs_major < 0.0 ? 8388608.0 - h3 : h3;
-    precise float t18 = minor < 0.0 ? -h4 : h4;
-    bool t19 = major < 0.0;
-    precise float x = t8 ? (t19 ? -1023.5 : 1023.5) : t18 * 0.00048804283;
-    precise float t20 = round(r * x + 1023.5);
-    precise float t21 = t20 >= 0.0 ? t20 : 0.0;
-    precise float estimate = t21 <= 2047.0 ? t21 : 2047.0;
-    precise float t22 = estimate - 1023.0;
-    precise float t23 = rho2 * (x * x);
-    precise float t24 = t22 * t22 * t5_sq;
-    precise float t25 = x >= 0.0
-        ? (t22 > 0.0 ? (t23 >= t24 ? 1.0 : 0.0) : 1.0)
-        : (t22 < 0.0 ? (t23 <= t24 ? 1.0 : 0.0) : 0.0);
+    precise float t11 = h + 2097152.0;
+    precise float h2 = far ? t11 : h;
+    precise float t12 = 4194304.0 - h2;
+    precise float h3 = y_major ? t12 : h2;
+    precise float t13 = 8388608.0 - h3;
+    precise float h4 = abs_major < 0.0 ? t13 : h3;
+    precise float neg_h4 = -h4;
+    precise float t14 = minor < 0.0 ? neg_h4 : h4;
+    bool t15 = major < 0.0;
+    precise float t16 = t15 ? -1023.5 : 1023.5;
+    precise float t17 = t14 * 0.00048804283;
+    precise float x = t2 ? t16 : t17;
+    precise float t18 = round(r * x + 1023.5);
+    precise float t19 = t18 >= 0.0 ? t18 : 0.0;
+    precise float estimate = t19 <= 2047.0 ? t19 : 2047.0;
+    precise float t20 = estimate - 1023.0;
+    precise float t21 = rho2 * (x * x);
+    precise float t22 = t20 * t20 * t1_sq;
+    precise float one_if2 = t21 >= t22 ? 1.0 : 0.0;
+    precise float t23 = t20 > 0.0 ? one_if2 : 1.0;
+    precise float one_if3 = t21 <= t22 ? 1.0 : 0.0;
+    precise float t24 = t20 < 0.0 ? one_if3 : 0.0;
+    precise float t25 = x >= 0.0 ? t23 : t24;
     precise float up = estimate < 2047.0 ? t25 : 0.0;
     precise float t26 = estimate - 1.0 - 1023.0;
     precise float t27 = rho2 * (x * x);
-    precise float t28 = t26 * t26 * t5_sq;
-    precise float t29 = x >= 0.0
-        ? (t26 > 0.0 ? (t27 >= t28 ? 1.0 : 0.0) : 1.0)
-        : (t26 < 0.0 ? (t27 <= t28 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t29 - 1.0 : 0.0;
-    precise float x2 = t8 ? t18 * 0.0002439022 : (t19 ? -511.5 : 511.5);
-    precise float t30 = round(r * x2 + 511.5);
-    precise float t31 = t30 >= 0.0 ? t30 : 0.0;
-    precise float estimate2 = t31 <= 1023.0 ? t31 : 1023.0;
-    precise float t32 = estimate2 - 511.0;
-    precise float t33 = rho2 * (x2 * x2);
-    precise float t34 = t32 * t32 * t5_sq;
-    precise float t35 = x2 >= 0.0
-        ? (t32 > 0.0 ? (t33 >= t34 ? 1.0 : 0.0) : 1.0)
-        : (t32 < 0.0 ? (t33 <= t34 ? 1.0 : 0.0) : 0.0);
-    precise float up2 = estimate2 < 1023.0 ? t35 : 0.0;
-    precise float t36 = estimate2 - 1.0 - 511.0;
+    precise float t28 = t26 * t26 * t1_sq;
+    precise float one_if4 = t27 >= t28 ? 1.0 : 0.0;
+    precise float t29 = t26 > 0.0 ? one_if4 : 1.0;
+    precise float one_if5 = t27 <= t28 ? 1.0 : 0.0;
+    precise float t30 = t26 < 0.0 ? one_if5 : 0.0;
+    precise float t31 = (x >= 0.0 ? t29 : t30) - 1.0;
+    precise float down = estimate > 0.0 ? t31 : 0.0;
+    precise float t32 = t15 ? -511.5 : 511.5;
+    precise float t33 = t14 * 0.0002439022;
+    precise float x2 = t2 ? t33 : t32;
+    precise float t34 = round(r * x2 + 511.5);
+    precise float t35 = t34 >= 0.0 ? t34 : 0.0;
+    precise float estimate2 = t35 <= 1023.0 ? t35 : 1023.0;
+    precise float t36 = estimate2 - 511.0;
     precise float t37 = rho2 * (x2 * x2);
-    precise float t38 = t36 * t36 * t5_sq;
-    precise float t39 = x2 >= 0.0
-        ? (t36 > 0.0 ? (t37 >= t38 ? 1.0 : 0.0) : 1.0)
-        : (t36 < 0.0 ? (t37 <= t38 ? 1.0 : 0.0) : 0.0);
-    precise float down2 = estimate2 > 0.0 ? t39 - 1.0 : 0.0;
-    precise float3 result = float3(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        w2.z < 0.0 ? 1.0 : 0.0
-    );
+    precise float t38 = t36 * t36 * t1_sq;
+    precise float one_if6 = t37 >= t38 ? 1.0 : 0.0;
+    precise float t39 = t36 > 0.0 ? one_if6 : 1.0;
+    precise float one_if7 = t37 <= t38 ? 1.0 : 0.0;
+    precise float t40 = t36 < 0.0 ? one_if7 : 0.0;
+    precise float t41 = x2 >= 0.0 ? t39 : t40;
+    precise float up2 = estimate2 < 1023.0 ? t41 : 0.0;
+    precise float t42 = estimate2 - 1.0 - 511.0;
+    precise float t43 = rho2 * (x2 * x2);
+    precise float t44 = t42 * t42 * t1_sq;
+    precise float one_if8 = t43 >= t44 ? 1.0 : 0.0;
+    precise float t45 = t42 > 0.0 ? one_if8 : 1.0;
+    precise float one_if9 = t43 <= t44 ? 1.0 : 0.0;
+    precise float t46 = t42 < 0.0 ? one_if9 : 0.0;
+    precise float t47 = (x2 >= 0.0 ? t45 : t46) - 1.0;
+    precise float down2 = estimate2 > 0.0 ? t47 : 0.0;
+    precise float3 result = float3(estimate + up + down, estimate2 + up2 + down2, one_if);
     return result;
 }
 

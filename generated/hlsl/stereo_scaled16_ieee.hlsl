@@ -69,18 +69,16 @@ float3 unitpack_stereo_scaled16_ieee_decode(uint code) {
 float2 unitpack_stereo_scaled16_ieee_encode_float(float3 v) {
     precise float3 v_sq = v * v;
     precise float len2 = v_sq.x + v_sq.y + v_sq.z;
+    bool t1 = len2 <= 3.4028235e38;
     precise float3 n = v / sqrt(len2);
     precise float2 enc = n.xy / (n.z + 1.0) * 0.2812623 + 0.5;
-    precise float2 t1 = UNITPACK_SELECT(enc >= float2(0.0, 0.0), enc, float2(0.0, 0.0));
-    return len2 > 0.0 && len2 <= 3.4028235e38
-        ? UNITPACK_SELECT(t1 <= float2(1.0, 1.0), t1, float2(1.0, 1.0))
-        : float2(0.5, 0.5);
+    precise float2 t2 = UNITPACK_SELECT(enc >= float2(0.0, 0.0), enc, float2(0.0, 0.0));
+    precise float2 t3 = UNITPACK_SELECT(t2 <= float2(1.0, 1.0), t2, float2(1.0, 1.0));
+    return len2 > 0.0 && t1 ? t3 : float2(0.5, 0.5);
 }
 
 // unitpack_stereo_scaled16_ieee_encode: fast encoder.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
-//   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
-//   encodes as (0, 0), the corner nearest it.
+// In: as for unitpack_stereo_scaled16_ieee_encode_float.
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
 //   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C

@@ -76,19 +76,20 @@ float2 unitpack_stereo_scaled16p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -108,24 +109,27 @@ float2 unitpack_stereo_scaled16p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    bool t5 = w2.z >= 0.0;
-    precise float t6 = floor(abs(w2.x) * 2097152.0);
-    uint fixed5 = uint(t6);
-    precise float t7 = floor(abs(w2.y) * 2097152.0);
-    uint fixed6 = uint(t7);
+    bool t1 = w2.z >= 0.0;
+    precise float t2 = root + w2.z;
+    precise float fixed_f4 = floor(abs(w2.x) * 2097152.0);
+    uint fixed5 = uint(fixed_f4);
+    precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
+    uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
     uint limb0_4 = fixed5 & 4095u;
     uint cross4 = limb1_4 * limb0_4;
@@ -139,205 +143,201 @@ float2 unitpack_stereo_scaled16p_encode_codes(float3 v) {
     uint hi7 = hi6 + (lo6 >> 24u);
     uint lo7 = lo6 & 16777215u;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
-    precise float opz_a = t5 ? root + w2.z : rho2;
-    precise float opz_b = t5 ? 1.0 : root - w2.z;
-    bool t8 = opz_a <= 0.0;
-    precise float3 t9 = t8 ? float3(0.0, 0.0, 2.0) : w2;
-    precise float t10 = t8 ? 2.0 : root;
-    precise float t11 = t8 ? 4.0 : opz_a;
-    precise float2 t12 = t9.xy * (t8 ? 1.0 : opz_b) * 71.72189;
-    precise float2 t13 = round(t12 / t11 + 127.5);
-    precise float2 t14 = UNITPACK_SELECT(t13 >= float2(0.0, 0.0), t13, float2(0.0, 0.0));
-    precise float2 t15 = UNITPACK_SELECT(t14 <= float2(255.0, 255.0), t14, float2(255.0, 255.0));
-    precise float2 t16 = UNITPACK_SELECT(
-        t15 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t12 >= (t15 - 126.5) * t11, float2(1.0, 1.0), float2(0.0, 0.0)),
+    precise float opz_a = t1 ? t2 : rho2;
+    precise float t3 = root - w2.z;
+    precise float opz_b = t1 ? 1.0 : t3;
+    bool t4 = opz_a <= 0.0;
+    precise float3 t5 = t4 ? float3(0.0, 0.0, 2.0) : w2;
+    precise float t6 = t4 ? 2.0 : root;
+    precise float t7 = t4 ? 4.0 : opz_a;
+    precise float2 t8 = t5.xy * (t4 ? 1.0 : opz_b) * 71.72189;
+    precise float2 t9 = round(t8 / t7 + 127.5);
+    precise float2 t10 = UNITPACK_SELECT(t9 >= float2(0.0, 0.0), t9, float2(0.0, 0.0));
+    precise float2 t11 = UNITPACK_SELECT(t10 <= float2(255.0, 255.0), t10, float2(255.0, 255.0));
+    precise float2 t12 = t11
+        + UNITPACK_SELECT(
+            t11 < float2(255.0, 255.0),
+            UNITPACK_SELECT(t8 >= (t11 - 126.5) * t7, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        );
+    precise float2 t13 = UNITPACK_SELECT(
+        t11 > float2(0.0, 0.0),
+        UNITPACK_SELECT(t8 >= (t11 - 1.0 - 126.5) * t7, float2(1.0, 1.0), float2(0.0, 0.0)) - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t17 = UNITPACK_SELECT(
-        t12 >= (t15 - 1.0 - 126.5) * t11,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
+    precise float2 base = t12 + t13;
+    precise float3 t14 = floor(t5 / t6 * 2097152.0);
+    precise float3 t15 = t5 * 2097152.0;
+    precise float3 t16 = UNITPACK_SELECT(
+        (t14 + 1.0) * t6 <= t15,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t14 * t6 > t15, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float2 base = t15
-        + t16
-        + UNITPACK_SELECT(t15 > float2(0.0, 0.0), t17 - 1.0, float2(0.0, 0.0));
-    precise float3 t18 = floor(t9 / t10 * 2097152.0);
-    precise float3 t19 = t9 * 2097152.0;
-    precise float3 t20 = UNITPACK_SELECT(
-        t18 * t10 > t19,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
-    );
-    precise float3 aim = t18
-        + UNITPACK_SELECT((t18 + 1.0) * t10 <= t19, float3(1.0, 1.0, 1.0), t20);
+    precise float3 aim = t14 + t16;
     precise float2 cand = UNITPACK_SELECT(base <= float2(255.0, 255.0), base, float2(255.0, 255.0));
     precise float2 t = cand * 2.0 - 255.0;
     precise float2 abs_t = abs(t);
-    uint2 t21 = uint2(abs_t);
-    uint t22 = ((t21.x * t21.x) >> 2u) + ((t21.y * t21.y) >> 2u);
-    precise float quarter = float(t22 >> 12u) * 4096.0 + float(t22 & 4095u);
+    uint2 abs_t_u = uint2(abs_t);
+    uint t17 = ((abs_t_u.x * abs_t_u.x) >> 2u) + ((abs_t_u.y * abs_t_u.y) >> 2u);
+    precise float quarter = float(t17 >> 12u) * 4096.0 + float(t17 & 4095u);
     precise float den = quarter + 5144.5293;
-    precise float3 t23 = float3(t * 71.72189, 5143.5293 - quarter);
-    precise float3 t24 = floor(t23 / den * 2097152.0);
-    precise float3 t25 = t23 * 2097152.0;
-    precise float3 t26 = UNITPACK_SELECT(
-        t24 * den > t25,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t18 = float3(t * 71.72189, 5143.5293 - quarter);
+    precise float3 t19 = floor(t18 / den * 2097152.0);
+    precise float3 t20 = t18 * 2097152.0;
+    precise float3 t21 = UNITPACK_SELECT(
+        (t19 + 1.0) * den <= t20,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t19 * den > t20, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 t27 = t24
-        + UNITPACK_SELECT((t24 + 1.0) * den <= t25, float3(1.0, 1.0, 1.0), t26)
-        - aim;
-    precise float3 abs_t27 = abs(t27);
-    uint3 t28 = uint3(abs_t27);
-    uint limb1_6 = t28.x >> 12u;
-    uint limb0_6 = t28.x & 4095u;
+    precise float3 offset = t19 + t21 - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_6 = offset_u.x >> 12u;
+    uint limb0_6 = offset_u.x & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    uint limb1_7 = t28.y >> 12u;
-    uint limb0_7 = t28.y & 4095u;
+    uint limb1_7 = offset_u.y >> 12u;
+    uint limb0_7 = offset_u.y & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t28.z >> 12u;
-    uint limb0_8 = t28.z & 4095u;
+    uint limb1_8 = offset_u.z >> 12u;
+    uint limb0_8 = offset_u.z & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     uint hi11 = hi10 + (lo10 >> 24u);
     uint lo11 = lo10 & 16777215u;
     precise float dist = float(hi11) * 16777216.0 + float(lo11);
-    precise float t29 = base.x + 1.0;
-    precise float2 t30 = float2(t29, base.y);
-    precise float2 cand2 = UNITPACK_SELECT(t30 <= float2(255.0, 255.0), t30, float2(255.0, 255.0));
-    precise float2 t31 = cand2 * 2.0 - 255.0;
-    precise float2 abs_t31 = abs(t31);
-    uint2 t32 = uint2(abs_t31);
-    uint t33 = ((t32.x * t32.x) >> 2u) + ((t32.y * t32.y) >> 2u);
-    precise float quarter2 = float(t33 >> 12u) * 4096.0 + float(t33 & 4095u);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t22 = float2(s_up, base.y);
+    precise float2 cand2 = UNITPACK_SELECT(t22 <= float2(255.0, 255.0), t22, float2(255.0, 255.0));
+    bool t23 = base.y <= 255.0;
+    precise float2 t24 = cand2 * 2.0 - 255.0;
+    precise float2 abs_t24 = abs(t24);
+    uint2 abs_t24_u = uint2(abs_t24);
+    uint t25 = ((abs_t24_u.x * abs_t24_u.x) >> 2u) + ((abs_t24_u.y * abs_t24_u.y) >> 2u);
+    precise float quarter2 = float(t25 >> 12u) * 4096.0 + float(t25 & 4095u);
     precise float den2 = quarter2 + 5144.5293;
-    precise float3 t34 = float3(t31 * 71.72189, 5143.5293 - quarter2);
-    precise float3 t35 = floor(t34 / den2 * 2097152.0);
-    precise float3 t36 = t34 * 2097152.0;
-    precise float3 t37 = UNITPACK_SELECT(
-        t35 * den2 > t36,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t26 = float3(t24 * 71.72189, 5143.5293 - quarter2);
+    precise float3 t27 = floor(t26 / den2 * 2097152.0);
+    precise float3 t28 = t26 * 2097152.0;
+    precise float3 t29 = UNITPACK_SELECT(
+        (t27 + 1.0) * den2 <= t28,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t27 * den2 > t28, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 t38 = t35
-        + UNITPACK_SELECT((t35 + 1.0) * den2 <= t36, float3(1.0, 1.0, 1.0), t37)
-        - aim;
-    precise float3 abs_t38 = abs(t38);
-    uint3 t39 = uint3(abs_t38);
-    uint limb1_9 = t39.x >> 12u;
-    uint limb0_9 = t39.x & 4095u;
+    precise float3 offset2 = t27 + t29 - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_9 = offset_u2.x >> 12u;
+    uint limb0_9 = offset_u2.x & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    uint limb1_10 = t39.y >> 12u;
-    uint limb0_10 = t39.y & 4095u;
+    uint limb1_10 = offset_u2.y >> 12u;
+    uint limb0_10 = offset_u2.y & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t39.z >> 12u;
-    uint limb0_11 = t39.z & 4095u;
+    uint limb1_11 = offset_u2.z >> 12u;
+    uint limb0_11 = offset_u2.z & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     uint hi15 = hi14 + (lo14 >> 24u);
     uint lo15 = lo14 & 16777215u;
     precise float dist2 = float(hi15) * 16777216.0 + float(lo15);
-    bool t40 = t29 <= 255.0 && base.y <= 255.0 && dist2 < dist;
-    precise float2 best = t40 ? cand2 : cand;
-    precise float best_d = t40 ? dist2 : dist;
-    precise float t41 = base.y + 1.0;
-    precise float2 t42 = float2(base.x, t41);
-    precise float2 cand3 = UNITPACK_SELECT(t42 <= float2(255.0, 255.0), t42, float2(255.0, 255.0));
-    precise float2 t43 = cand3 * 2.0 - 255.0;
-    precise float2 abs_t43 = abs(t43);
-    uint2 t44 = uint2(abs_t43);
-    uint t45 = ((t44.x * t44.x) >> 2u) + ((t44.y * t44.y) >> 2u);
-    precise float quarter3 = float(t45 >> 12u) * 4096.0 + float(t45 & 4095u);
+    bool t30 = dist2 < dist;
+    bool t31 = s_up <= 255.0 && t23 && t30;
+    precise float2 best = t31 ? cand2 : cand;
+    precise float best_d = t31 ? dist2 : dist;
+    precise float2 t32 = float2(base.x, t_up);
+    precise float2 cand3 = UNITPACK_SELECT(t32 <= float2(255.0, 255.0), t32, float2(255.0, 255.0));
+    bool t33 = t_up <= 255.0;
+    precise float2 t34 = cand3 * 2.0 - 255.0;
+    precise float2 abs_t34 = abs(t34);
+    uint2 abs_t34_u = uint2(abs_t34);
+    uint t35 = ((abs_t34_u.x * abs_t34_u.x) >> 2u) + ((abs_t34_u.y * abs_t34_u.y) >> 2u);
+    precise float quarter3 = float(t35 >> 12u) * 4096.0 + float(t35 & 4095u);
     precise float den3 = quarter3 + 5144.5293;
-    precise float3 t46 = float3(t43 * 71.72189, 5143.5293 - quarter3);
-    precise float3 t47 = floor(t46 / den3 * 2097152.0);
-    precise float3 t48 = t46 * 2097152.0;
-    precise float3 t49 = UNITPACK_SELECT(
-        t47 * den3 > t48,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t36 = float3(t34 * 71.72189, 5143.5293 - quarter3);
+    precise float3 t37 = floor(t36 / den3 * 2097152.0);
+    precise float3 t38 = t36 * 2097152.0;
+    precise float3 t39 = UNITPACK_SELECT(
+        (t37 + 1.0) * den3 <= t38,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t37 * den3 > t38, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 t50 = t47
-        + UNITPACK_SELECT((t47 + 1.0) * den3 <= t48, float3(1.0, 1.0, 1.0), t49)
-        - aim;
-    precise float3 abs_t50 = abs(t50);
-    uint3 t51 = uint3(abs_t50);
-    uint limb1_12 = t51.x >> 12u;
-    uint limb0_12 = t51.x & 4095u;
+    precise float3 offset3 = t37 + t39 - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_12 = offset_u3.x >> 12u;
+    uint limb0_12 = offset_u3.x & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    uint limb1_13 = t51.y >> 12u;
-    uint limb0_13 = t51.y & 4095u;
+    uint limb1_13 = offset_u3.y >> 12u;
+    uint limb0_13 = offset_u3.y & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t51.z >> 12u;
-    uint limb0_14 = t51.z & 4095u;
+    uint limb1_14 = offset_u3.z >> 12u;
+    uint limb0_14 = offset_u3.z & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     uint hi19 = hi18 + (lo18 >> 24u);
     uint lo19 = lo18 & 16777215u;
     precise float dist3 = float(hi19) * 16777216.0 + float(lo19);
-    bool t52 = base.x <= 255.0 && t41 <= 255.0 && dist3 < best_d;
-    precise float2 best2 = t52 ? cand3 : best;
-    precise float best_d2 = t52 ? dist3 : best_d;
-    precise float2 t53 = base + 1.0;
-    precise float2 cand4 = UNITPACK_SELECT(t53 <= float2(255.0, 255.0), t53, float2(255.0, 255.0));
-    precise float2 t54 = cand4 * 2.0 - 255.0;
-    precise float2 abs_t54 = abs(t54);
-    uint2 t55 = uint2(abs_t54);
-    uint t56 = ((t55.x * t55.x) >> 2u) + ((t55.y * t55.y) >> 2u);
-    precise float quarter4 = float(t56 >> 12u) * 4096.0 + float(t56 & 4095u);
+    bool t40 = dist3 < best_d;
+    bool t41 = base.x <= 255.0 && t33 && t40;
+    precise float2 best2 = t41 ? cand3 : best;
+    precise float best_d2 = t41 ? dist3 : best_d;
+    precise float2 t42 = base + 1.0;
+    precise float2 cand4 = UNITPACK_SELECT(t42 <= float2(255.0, 255.0), t42, float2(255.0, 255.0));
+    bool t43 = t_up <= 255.0;
+    precise float2 t44 = cand4 * 2.0 - 255.0;
+    precise float2 abs_t44 = abs(t44);
+    uint2 abs_t44_u = uint2(abs_t44);
+    uint t45 = ((abs_t44_u.x * abs_t44_u.x) >> 2u) + ((abs_t44_u.y * abs_t44_u.y) >> 2u);
+    precise float quarter4 = float(t45 >> 12u) * 4096.0 + float(t45 & 4095u);
     precise float den4 = quarter4 + 5144.5293;
-    precise float3 t57 = float3(t54 * 71.72189, 5143.5293 - quarter4);
-    precise float3 t58 = floor(t57 / den4 * 2097152.0);
-    precise float3 t59 = t57 * 2097152.0;
-    precise float3 t60 = UNITPACK_SELECT(
-        t58 * den4 > t59,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t46 = float3(t44 * 71.72189, 5143.5293 - quarter4);
+    precise float3 t47 = floor(t46 / den4 * 2097152.0);
+    precise float3 t48 = t46 * 2097152.0;
+    precise float3 t49 = UNITPACK_SELECT(
+        (t47 + 1.0) * den4 <= t48,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t47 * den4 > t48, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 t61 = t58
-        + UNITPACK_SELECT((t58 + 1.0) * den4 <= t59, float3(1.0, 1.0, 1.0), t60)
-        - aim;
-    precise float3 abs_t61 = abs(t61);
-    uint3 t62 = uint3(abs_t61);
-    uint limb1_15 = t62.x >> 12u;
-    uint limb0_15 = t62.x & 4095u;
+    precise float3 offset4 = t47 + t49 - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_15 = offset_u4.x >> 12u;
+    uint limb0_15 = offset_u4.x & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    uint limb1_16 = t62.y >> 12u;
-    uint limb0_16 = t62.y & 4095u;
+    uint limb1_16 = offset_u4.y >> 12u;
+    uint limb0_16 = offset_u4.y & 4095u;
     uint cross16 = limb1_16 * limb0_16;
     uint hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     uint lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    uint limb1_17 = t62.z >> 12u;
-    uint limb0_17 = t62.z & 4095u;
+    uint limb1_17 = offset_u4.z >> 12u;
+    uint limb0_17 = offset_u4.z & 4095u;
     uint cross17 = limb1_17 * limb0_17;
     uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     uint hi23 = hi22 + (lo22 >> 24u);
     uint lo23 = lo22 & 16777215u;
     precise float dist4 = float(hi23) * 16777216.0 + float(lo23);
-    precise float2 best3 = base.x + 1.0 <= 255.0 && base.y + 1.0 <= 255.0 && dist4 < best_d2
-        ? cand4
-        : best2;
-    return ok ? (opz_a <= 0.0 ? float2(0.0, 0.0) : best3) : float2(128.0, 128.0);
+    bool t50 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 255.0 && t43 && t50 ? cand4 : best2;
+    precise float2 t51 = opz_a <= 0.0 ? float2(0.0, 0.0) : best3;
+    return ok ? t51 : float2(128.0, 128.0);
 }
 
 // unitpack_stereo_scaled16p_encode_float: precise encoder, float form.
@@ -353,9 +353,7 @@ float2 unitpack_stereo_scaled16p_encode_float(float3 v) {
 }
 
 // unitpack_stereo_scaled16p_encode: precise encoder.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
-//   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
-//   encodes as (0, 0), the corner nearest it.
+// In: as for unitpack_stereo_scaled16p_encode_float.
 // Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.

@@ -69,12 +69,14 @@ float3 unitpack_unorm3_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 result = (t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0)) * 0.5
-        + 0.5;
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 result = (t3 && t4 ? t5 : float3(0.0, 0.0, 1.0)) * 0.5 + 0.5;
     return result;
 }
 
@@ -94,7 +96,8 @@ float3 unitpack_unorm3_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -126,38 +129,36 @@ float3 unitpack_unorm3_round_codes(float3 a0) {
     precise float3 t6 = w2 * w2 * 16256.25;
     precise float3 t7 = t5 * t5 * len2;
     precise float3 t8 = UNITPACK_SELECT(
-        t5 > float3(0.0, 0.0, 0.0),
-        UNITPACK_SELECT(t6 >= t7, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
-        float3(1.0, 1.0, 1.0)
+        w2 >= float3(0.0, 0.0, 0.0),
+        UNITPACK_SELECT(
+            t5 > float3(0.0, 0.0, 0.0),
+            UNITPACK_SELECT(t6 >= t7, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
+            float3(1.0, 1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t5 < float3(0.0, 0.0, 0.0),
+            UNITPACK_SELECT(t6 <= t7, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
+            float3(0.0, 0.0, 0.0)
+        )
     );
-    precise float3 t9 = UNITPACK_SELECT(
-        t5 < float3(0.0, 0.0, 0.0),
-        UNITPACK_SELECT(t6 <= t7, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t9 = t4 - 1.0 - 127.0;
+    precise float3 t10 = t9 * t9 * len2;
+    precise float3 t11 = UNITPACK_SELECT(
+        w2 >= float3(0.0, 0.0, 0.0),
+        UNITPACK_SELECT(
+            t9 > float3(0.0, 0.0, 0.0),
+            UNITPACK_SELECT(t6 >= t10, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
+            float3(1.0, 1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t9 < float3(0.0, 0.0, 0.0),
+            UNITPACK_SELECT(t6 <= t10, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
+            float3(0.0, 0.0, 0.0)
+        )
     );
-    precise float3 t10 = UNITPACK_SELECT(
-        t4 < float3(255.0, 255.0, 255.0),
-        UNITPACK_SELECT(w2 >= float3(0.0, 0.0, 0.0), t8, t9),
-        float3(0.0, 0.0, 0.0)
-    );
-    precise float3 t11 = t4 - 1.0 - 127.0;
-    precise float3 t12 = t11 * t11 * len2;
-    precise float3 t13 = UNITPACK_SELECT(
-        t11 > float3(0.0, 0.0, 0.0),
-        UNITPACK_SELECT(t6 >= t12, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
-        float3(1.0, 1.0, 1.0)
-    );
-    precise float3 t14 = UNITPACK_SELECT(
-        t11 < float3(0.0, 0.0, 0.0),
-        UNITPACK_SELECT(t6 <= t12, float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0)),
-        float3(0.0, 0.0, 0.0)
-    );
-    precise float3 t15 = UNITPACK_SELECT(
-        t4 > float3(0.0, 0.0, 0.0),
-        UNITPACK_SELECT(w2 >= float3(0.0, 0.0, 0.0), t13, t14) - 1.0,
-        float3(0.0, 0.0, 0.0)
-    );
-    precise float3 result = t4 + t10 + t15;
+    precise float3 result = t4
+        + UNITPACK_SELECT(t4 < float3(255.0, 255.0, 255.0), t8, float3(0.0, 0.0, 0.0))
+        + UNITPACK_SELECT(t4 > float3(0.0, 0.0, 0.0), t11 - 1.0, float3(0.0, 0.0, 0.0));
     return result;
 }
 

@@ -38,19 +38,21 @@
 float2 unitpack_warpedcube16_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -72,9 +74,18 @@ float3 unitpack_warpedcube16_decode_float(float3 params) {
     precise float3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t3 = params.z >= 0.5;
     bool t4 = params.z >= 0.21428572;
-    precise float t5 = t3 ? params.z - 0.5714286 : (t4 ? params.z - 0.2857143 : params.z);
-    precise float t6 = (t5 >= 0.21428572 ? t5 - 0.2857143 : t5) > 0.071428575 ? -u.z : u.z;
-    return t3 ? float3(u.xy, t6) : (t4 ? float3(u.y, t6, u.x) : float3(t6, u.xy));
+    precise float t5 = params.z - 0.5714286;
+    precise float t6 = params.z - 0.2857143;
+    precise float t7 = t4 ? t6 : params.z;
+    precise float t8 = t3 ? t5 : t7;
+    precise float t9 = t8 - 0.2857143;
+    precise float neg_u_z = -u.z;
+    precise float t10 = (t8 >= 0.21428572 ? t9 : t8) > 0.071428575 ? neg_u_z : u.z;
+    precise float3 t11 = float3(u.xy, t10);
+    precise float3 t12 = float3(u.y, t10, u.x);
+    precise float3 t13 = float3(t10, u.xy);
+    precise float3 t14 = t4 ? t12 : t13;
+    return t3 ? t11 : t14;
 }
 
 // unitpack_warpedcube16_decode: decoder.
@@ -102,20 +113,21 @@ float unitpack_warpedcube16_atan2_pi(float a0, float a1) {
     precise float hi2 = hi * up;
     precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
-    precise float z = far ? (t - 1.0) / (t + 1.0) : t;
+    precise float t1 = (t - 1.0) / (t + 1.0);
+    precise float z = far ? t1 : t;
     precise float z2 = z * z;
-    precise float t1 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
-        * z2
-        + (-0.09090909);
-    precise float t2 = (
-        (((t1 * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2) * z2 + (-0.33333334)
-    )
+    precise float t2 = (((-0.05263158 * z2 + 0.05882353) * z2 + (-0.06666667)) * z2 + 0.07692308)
         * z2;
-    precise float r = z * (t2 + 1.0);
-    precise float r2 = far ? r + 0.7853982 : r;
-    precise float r3 = y_major ? 1.5707964 - r2 : r2;
-    precise float r4 = a1 < 0.0 ? 3.1415927 - r3 : r3;
-    precise float result = (a0 < 0.0 ? -r4 : r4) * 0.31830987;
+    precise float t3 = (((t2 + (-0.09090909)) * z2 + 0.11111111) * z2 + (-0.14285715)) * z2 + 0.2;
+    precise float r = z * ((t3 * z2 + (-0.33333334)) * z2 + 1.0);
+    precise float t4 = r + 0.7853982;
+    precise float r2 = far ? t4 : r;
+    precise float t5 = 1.5707964 - r2;
+    precise float r3 = y_major ? t5 : r2;
+    precise float t6 = 3.1415927 - r3;
+    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float neg_r4 = -r4;
+    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -139,7 +151,8 @@ float3 unitpack_warpedcube16_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -147,18 +160,24 @@ float3 unitpack_warpedcube16_encode_float(float3 v) {
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    precise float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    precise float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
-    precise float s = t1 ? w2.x : (t2 ? w2.z : w2.y);
-    precise float t = t1 ? w2.y : (t2 ? w2.x : w2.z);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    precise float t4 = t3 ? w2.y : w2.x;
+    precise float major = t2 ? w2.z : t4;
+    precise float t5 = t3 ? 2.0 : 0.0;
+    precise float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
+    precise float t6 = t3 ? w2.z : w2.y;
+    precise float s = t2 ? w2.x : t6;
+    precise float t7 = t3 ? w2.x : w2.z;
+    precise float t = t2 ? w2.y : t7;
     precise float abs_major = abs(major);
-    precise float2 t3 = float2(
+    precise float2 enc = float2(
         unitpack_warpedcube16_atan2_pi(s, abs_major),
         unitpack_warpedcube16_atan2_pi(t, abs_major)
-    );
-    precise float2 enc = t3 * 2.0 + 0.5;
+    )
+        * 2.0
+        + 0.5;
     precise float3 result = float3(enc, face * 0.14285715);
     return result;
 }
@@ -179,7 +198,8 @@ float3 unitpack_warpedcube16_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -187,79 +207,80 @@ float3 unitpack_warpedcube16_round_codes(float3 a0) {
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    precise float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    precise float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    precise float t4 = t3 ? w2.y : w2.x;
+    precise float major = t2 ? w2.z : t4;
+    precise float t5 = t3 ? 2.0 : 0.0;
+    precise float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     precise float abs_major = abs(major);
-    precise float2 t3 = t1 ? w2.xy : (t2 ? w2.zx : w2.yz);
-    precise float2 abs_t3 = abs(t3);
-    precise float2 t4 = abs(float2(abs_major, abs_major));
-    bool2 t5 = abs_t3 > t4;
-    precise float2 t6 = UNITPACK_SELECT(t5, t4, abs_t3);
-    precise float2 t7 = UNITPACK_SELECT(t5, abs_t3, t4);
-    precise float2 t8 = UNITPACK_SELECT(t7 > float2(0.0, 0.0), t7, float2(1.0, 1.0));
-    precise float2 t9 = floor(t6 / t8 * 8388608.0);
-    precise float2 t10 = t6 * 8388608.0;
-    precise float2 t11 = UNITPACK_SELECT(
-        (t9 + 1.0) * t8 <= t10,
+    precise float2 t6 = t3 ? w2.zx : w2.yz;
+    precise float2 t7 = t2 ? w2.xy : t6;
+    precise float2 abs_t7 = abs(t7);
+    precise float2 t8 = abs(float2(abs_major, abs_major));
+    bool2 t9 = abs_t7 > t8;
+    precise float2 t10 = UNITPACK_SELECT(t9, t8, abs_t7);
+    precise float2 t11 = UNITPACK_SELECT(t9, abs_t7, t8);
+    precise float2 t12 = UNITPACK_SELECT(t11 > float2(0.0, 0.0), t11, float2(1.0, 1.0));
+    precise float2 t13 = floor(t10 / t12 * 8388608.0);
+    precise float2 t14 = t10 * 8388608.0;
+    precise float2 t15 = UNITPACK_SELECT(
+        (t13 + 1.0) * t12 <= t14,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t9 * t8 > t10, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t13 * t12 > t14, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t12 = t9 + t11;
-    precise float2 t13 = UNITPACK_SELECT(
-        (t12 + 1.0) * t8 <= t10,
+    precise float2 t16 = t13 + t15;
+    precise float2 t17 = UNITPACK_SELECT(
+        (t16 + 1.0) * t12 <= t14,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t12 * t8 > t10, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t16 * t12 > t14, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t14 = t12 + t13;
-    bool2 t15 = t14 > float2(3474675.0, 3474675.0);
-    precise float2 t16 = t14 - 8388608.0;
-    precise float2 t17 = t14 + 8388608.0;
-    precise float2 t18 = floor(t16 / t17 * 8388608.0);
-    precise float2 t19 = t16 * 8388608.0;
-    precise float2 t20 = UNITPACK_SELECT(
-        (t18 + 1.0) * t17 <= t19,
+    precise float2 t18 = t16 + t17;
+    bool2 t19 = t18 > float2(3474675.0, 3474675.0);
+    precise float2 t20 = t18 - 8388608.0;
+    precise float2 t21 = t18 + 8388608.0;
+    precise float2 t22 = floor(t20 / t21 * 8388608.0);
+    precise float2 t23 = t20 * 8388608.0;
+    precise float2 t24 = UNITPACK_SELECT(
+        (t22 + 1.0) * t21 <= t23,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t18 * t17 > t19, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t22 * t21 > t23, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t21 = t18 + t20;
-    precise float2 t22 = UNITPACK_SELECT(
-        (t21 + 1.0) * t17 <= t19,
+    precise float2 t25 = t22 + t24;
+    precise float2 t26 = UNITPACK_SELECT(
+        (t25 + 1.0) * t21 <= t23,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t21 * t17 > t19, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t25 * t21 > t23, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t23 = UNITPACK_SELECT(t15, t21 + t22, t14);
-    precise float2 t24 = round(t23 * t23 * 1.1920929e-7);
-    precise float2 t25 = round(
-        (round(-441506.0 * t24 * 1.1920929e-7) + 493448.0) * t24 * 1.1920929e-7
-    )
-        + (-559241.0);
-    precise float2 t26 = round((round(t25 * t24 * 1.1920929e-7) + 645278.0) * t24 * 1.1920929e-7)
-        + (-762601.0);
-    precise float2 t27 = round((round(t26 * t24 * 1.1920929e-7) + 932068.0) * t24 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float2 t28 = round((round(t27 * t24 * 1.1920929e-7) + 1677722.0) * t24 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float2 t29 = round(t23 * (round(t28 * t24 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7)
-        * 0.31830987;
-    precise float2 round_t29 = round(t29);
-    precise float2 t30 = UNITPACK_SELECT(t15, round_t29 + 2097152.0, round_t29);
-    precise float2 t31 = UNITPACK_SELECT(t5, 4194304.0 - t30, t30);
-    precise float2 t32 = UNITPACK_SELECT(
+    precise float2 t27 = UNITPACK_SELECT(t19, t25 + t26, t18);
+    precise float2 t28 = round(t27 * t27 * 1.1920929e-7);
+    precise float2 t29 = round(
+        (round(-441506.0 * t28 * 1.1920929e-7) + 493448.0) * t28 * 1.1920929e-7
+    );
+    precise float2 t30 = (round((t29 + (-559241.0)) * t28 * 1.1920929e-7) + 645278.0)
+        * t28
+        * 1.1920929e-7;
+    precise float2 t31 = (round((round(t30) + (-762601.0)) * t28 * 1.1920929e-7) + 932068.0) * t28;
+    precise float2 t32 = round((round(t31 * 1.1920929e-7) + (-1198373.0)) * t28 * 1.1920929e-7)
+        + 1677722.0;
+    precise float2 t33 = round(
+        (round(t32 * t28 * 1.1920929e-7) + (-2796203.0)) * t28 * 1.1920929e-7
+    );
+    precise float2 t34 = round(round(t27 * (t33 + 8388608.0) * 1.1920929e-7) * 0.31830987);
+    precise float2 t35 = UNITPACK_SELECT(t19, t34 + 2097152.0, t34);
+    precise float2 t36 = UNITPACK_SELECT(t9, 4194304.0 - t35, t35);
+    precise float2 t37 = UNITPACK_SELECT(
         float2(abs_major, abs_major) < float2(0.0, 0.0),
-        8388608.0 - t31,
-        t31
+        8388608.0 - t36,
+        t36
     );
-    precise float2 t33 = (UNITPACK_SELECT(t3 < float2(0.0, 0.0), -t32, t32) * 4.0 + 8388608.0)
-        * float2(7.56979e-6, 3.7550926e-6);
-    precise float2 round_t33 = round(t33);
-    precise float2 t34 = UNITPACK_SELECT(
-        round_t33 >= float2(0.0, 0.0),
-        round_t33,
-        float2(0.0, 0.0)
+    precise float2 t38 = round(
+        (UNITPACK_SELECT(t7 < float2(0.0, 0.0), -t37, t37) * 4.0 + 8388608.0)
+            * float2(7.56979e-6, 3.7550926e-6)
     );
-    precise float2 st = UNITPACK_SELECT(t34 <= float2(127.0, 63.0), t34, float2(127.0, 63.0));
+    precise float2 t39 = UNITPACK_SELECT(t38 >= float2(0.0, 0.0), t38, float2(0.0, 0.0));
+    precise float2 st = UNITPACK_SELECT(t39 <= float2(127.0, 63.0), t39, float2(127.0, 63.0));
     return float3(st, face);
 }
 

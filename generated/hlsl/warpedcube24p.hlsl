@@ -38,19 +38,21 @@
 float2 unitpack_warpedcube24p_sincos_pi(float a0) {
     precise float abs_a0 = abs(a0);
     bool back = abs_a0 > 0.5;
-    precise float b = back ? 1.0 - abs_a0 : abs_a0;
+    precise float t1 = 1.0 - abs_a0;
+    precise float b = back ? t1 : abs_a0;
     bool swap = b > 0.25;
-    precise float c = swap ? 0.5 - b : b;
+    precise float t2 = 0.5 - b;
+    precise float c = swap ? t2 : b;
     precise float c2 = c * c;
-    precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
-        * c2
-        + 3.1415927;
-    precise float s = c * t1;
-    precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2
-        + (-4.934802);
-    precise float co = t2 * c2 + 1.0;
-    precise float2 t3 = swap ? float2(co, s) : float2(s, co);
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t3, t3);
+    precise float t3 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
+        * c2;
+    precise float s = c * (t3 + 3.1415927);
+    precise float t4 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
+    precise float co = (t4 + (-4.934802)) * c2 + 1.0;
+    precise float2 t5 = float2(co, s);
+    precise float2 t6 = float2(s, co);
+    precise float2 t7 = swap ? t5 : t6;
+    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -72,9 +74,18 @@ float3 unitpack_warpedcube24p_decode_float(float3 params) {
     precise float3 u = d / sqrt(d_sq.x + d_sq.y + d_sq.z);
     bool t3 = params.z >= 0.5;
     bool t4 = params.z >= 0.21428572;
-    precise float t5 = t3 ? params.z - 0.5714286 : (t4 ? params.z - 0.2857143 : params.z);
-    precise float t6 = (t5 >= 0.21428572 ? t5 - 0.2857143 : t5) > 0.071428575 ? -u.z : u.z;
-    return t3 ? float3(u.xy, t6) : (t4 ? float3(u.y, t6, u.x) : float3(t6, u.xy));
+    precise float t5 = params.z - 0.5714286;
+    precise float t6 = params.z - 0.2857143;
+    precise float t7 = t4 ? t6 : params.z;
+    precise float t8 = t3 ? t5 : t7;
+    precise float t9 = t8 - 0.2857143;
+    precise float neg_u_z = -u.z;
+    precise float t10 = (t8 >= 0.21428572 ? t9 : t8) > 0.071428575 ? neg_u_z : u.z;
+    precise float3 t11 = float3(u.xy, t10);
+    precise float3 t12 = float3(u.y, t10, u.x);
+    precise float3 t13 = float3(t10, u.xy);
+    precise float3 t14 = t4 ? t12 : t13;
+    return t3 ? t11 : t14;
 }
 
 // unitpack_warpedcube24p_decode: decoder.
@@ -108,7 +119,8 @@ float3 unitpack_warpedcube24p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -116,89 +128,90 @@ float3 unitpack_warpedcube24p_encode_codes(float3 v) {
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
     precise float3 abs_w2 = abs(w2);
-    bool t1 = abs_w2.z >= abs_w2.x && abs_w2.z >= abs_w2.y;
-    bool t2 = abs_w2.y >= abs_w2.x;
-    precise float major = t1 ? w2.z : (t2 ? w2.y : w2.x);
-    precise float face = (t1 ? 4.0 : (t2 ? 2.0 : 0.0)) + (major < 0.0 ? 1.0 : 0.0);
+    bool t1 = abs_w2.z >= abs_w2.y;
+    bool t2 = abs_w2.z >= abs_w2.x && t1;
+    bool t3 = abs_w2.y >= abs_w2.x;
+    precise float t4 = t3 ? w2.y : w2.x;
+    precise float major = t2 ? w2.z : t4;
+    precise float t5 = t3 ? 2.0 : 0.0;
+    precise float face = (t2 ? 4.0 : t5) + (major < 0.0 ? 1.0 : 0.0);
     precise float abs_major = abs(major);
-    precise float2 t3 = t1 ? w2.xy : (t2 ? w2.zx : w2.yz);
-    precise float2 abs_t3 = abs(t3);
-    precise float2 t4 = abs(float2(abs_major, abs_major));
-    bool2 t5 = abs_t3 > t4;
-    precise float2 t6 = UNITPACK_SELECT(t5, t4, abs_t3);
-    precise float2 t7 = UNITPACK_SELECT(t5, abs_t3, t4);
-    precise float2 t8 = UNITPACK_SELECT(t7 > float2(0.0, 0.0), t7, float2(1.0, 1.0));
-    precise float2 t9 = floor(t6 / t8 * 8388608.0);
-    precise float2 t10 = t6 * 8388608.0;
-    precise float2 t11 = UNITPACK_SELECT(
-        (t9 + 1.0) * t8 <= t10,
+    precise float2 t6 = t3 ? w2.zx : w2.yz;
+    precise float2 t7 = t2 ? w2.xy : t6;
+    precise float2 abs_t7 = abs(t7);
+    precise float2 t8 = abs(float2(abs_major, abs_major));
+    bool2 t9 = abs_t7 > t8;
+    precise float2 t10 = UNITPACK_SELECT(t9, t8, abs_t7);
+    precise float2 t11 = UNITPACK_SELECT(t9, abs_t7, t8);
+    precise float2 t12 = UNITPACK_SELECT(t11 > float2(0.0, 0.0), t11, float2(1.0, 1.0));
+    precise float2 t13 = floor(t10 / t12 * 8388608.0);
+    precise float2 t14 = t10 * 8388608.0;
+    precise float2 t15 = UNITPACK_SELECT(
+        (t13 + 1.0) * t12 <= t14,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t9 * t8 > t10, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t13 * t12 > t14, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t12 = t9 + t11;
-    precise float2 t13 = UNITPACK_SELECT(
-        (t12 + 1.0) * t8 <= t10,
+    precise float2 t16 = t13 + t15;
+    precise float2 t17 = UNITPACK_SELECT(
+        (t16 + 1.0) * t12 <= t14,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t12 * t8 > t10, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t16 * t12 > t14, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t14 = t12 + t13;
-    bool2 t15 = t14 > float2(3474675.0, 3474675.0);
-    precise float2 t16 = t14 - 8388608.0;
-    precise float2 t17 = t14 + 8388608.0;
-    precise float2 t18 = floor(t16 / t17 * 8388608.0);
-    precise float2 t19 = t16 * 8388608.0;
-    precise float2 t20 = UNITPACK_SELECT(
-        (t18 + 1.0) * t17 <= t19,
+    precise float2 t18 = t16 + t17;
+    bool2 t19 = t18 > float2(3474675.0, 3474675.0);
+    precise float2 t20 = t18 - 8388608.0;
+    precise float2 t21 = t18 + 8388608.0;
+    precise float2 t22 = floor(t20 / t21 * 8388608.0);
+    precise float2 t23 = t20 * 8388608.0;
+    precise float2 t24 = UNITPACK_SELECT(
+        (t22 + 1.0) * t21 <= t23,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t18 * t17 > t19, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t22 * t21 > t23, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t21 = t18 + t20;
-    precise float2 t22 = UNITPACK_SELECT(
-        (t21 + 1.0) * t17 <= t19,
+    precise float2 t25 = t22 + t24;
+    precise float2 t26 = UNITPACK_SELECT(
+        (t25 + 1.0) * t21 <= t23,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t21 * t17 > t19, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t25 * t21 > t23, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t23 = UNITPACK_SELECT(t15, t21 + t22, t14);
-    precise float2 t24 = round(t23 * t23 * 1.1920929e-7);
-    precise float2 t25 = round(
-        (round(-441506.0 * t24 * 1.1920929e-7) + 493448.0) * t24 * 1.1920929e-7
-    )
-        + (-559241.0);
-    precise float2 t26 = round((round(t25 * t24 * 1.1920929e-7) + 645278.0) * t24 * 1.1920929e-7)
-        + (-762601.0);
-    precise float2 t27 = round((round(t26 * t24 * 1.1920929e-7) + 932068.0) * t24 * 1.1920929e-7)
-        + (-1198373.0);
-    precise float2 t28 = round((round(t27 * t24 * 1.1920929e-7) + 1677722.0) * t24 * 1.1920929e-7)
-        + (-2796203.0);
-    precise float2 t29 = round(t23 * (round(t28 * t24 * 1.1920929e-7) + 8388608.0) * 1.1920929e-7)
-        * 0.31830987;
-    precise float2 round_t29 = round(t29);
-    precise float2 t30 = UNITPACK_SELECT(t15, round_t29 + 2097152.0, round_t29);
-    precise float2 t31 = UNITPACK_SELECT(t5, 4194304.0 - t30, t30);
-    precise float2 t32 = UNITPACK_SELECT(
+    precise float2 t27 = UNITPACK_SELECT(t19, t25 + t26, t18);
+    precise float2 t28 = round(t27 * t27 * 1.1920929e-7);
+    precise float2 t29 = round(
+        (round(-441506.0 * t28 * 1.1920929e-7) + 493448.0) * t28 * 1.1920929e-7
+    );
+    precise float2 t30 = (round((t29 + (-559241.0)) * t28 * 1.1920929e-7) + 645278.0)
+        * t28
+        * 1.1920929e-7;
+    precise float2 t31 = (round((round(t30) + (-762601.0)) * t28 * 1.1920929e-7) + 932068.0) * t28;
+    precise float2 t32 = round((round(t31 * 1.1920929e-7) + (-1198373.0)) * t28 * 1.1920929e-7)
+        + 1677722.0;
+    precise float2 t33 = round(
+        (round(t32 * t28 * 1.1920929e-7) + (-2796203.0)) * t28 * 1.1920929e-7
+    );
+    precise float2 t34 = round(round(t27 * (t33 + 8388608.0) * 1.1920929e-7) * 0.31830987);
+    precise float2 t35 = UNITPACK_SELECT(t19, t34 + 2097152.0, t34);
+    precise float2 t36 = UNITPACK_SELECT(t9, 4194304.0 - t35, t35);
+    precise float2 t37 = UNITPACK_SELECT(
         float2(abs_major, abs_major) < float2(0.0, 0.0),
-        8388608.0 - t31,
-        t31
+        8388608.0 - t36,
+        t36
     );
-    precise float2 t33 = (UNITPACK_SELECT(t3 < float2(0.0, 0.0), -t32, t32) * 4.0 + 8388608.0)
-        * float2(0.00012201071, 6.097555e-5);
-    precise float2 floor_t33 = floor(t33);
-    precise float2 t34 = UNITPACK_SELECT(
-        floor_t33 >= float2(0.0, 0.0),
-        floor_t33,
-        float2(0.0, 0.0)
+    precise float2 t38 = floor(
+        (UNITPACK_SELECT(t7 < float2(0.0, 0.0), -t37, t37) * 4.0 + 8388608.0)
+            * float2(0.00012201071, 6.097555e-5)
     );
+    precise float2 t39 = UNITPACK_SELECT(t38 >= float2(0.0, 0.0), t38, float2(0.0, 0.0));
     precise float2 base = UNITPACK_SELECT(
-        t34 <= float2(2047.0, 1023.0),
-        t34,
+        t39 <= float2(2047.0, 1023.0),
+        t39,
         float2(2047.0, 1023.0)
     );
-    precise float t35 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t35);
-    precise float t36 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t36);
-    precise float t37 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t37);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -218,452 +231,451 @@ float3 unitpack_warpedcube24p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t38 = floor(root_estimate * 512.0);
-    precise float root_h0 = t38 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t38
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float3 t39 = floor(w2 / root * 2097152.0);
-    precise float3 t40 = w2 * 2097152.0;
-    precise float3 t41 = UNITPACK_SELECT(
-        t39 * root > t40,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t40 = floor(w2 / root * 2097152.0);
+    precise float3 t41 = w2 * 2097152.0;
+    precise float3 t42 = UNITPACK_SELECT(
+        (t40 + 1.0) * root <= t41,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t40 * root > t41, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t39
-        + UNITPACK_SELECT((t39 + 1.0) * root <= t40, float3(1.0, 1.0, 1.0), t41);
+    precise float3 aim = t40 + t42;
     precise float2 cand = UNITPACK_SELECT(
         base <= float2(2047.0, 1023.0),
         base,
         float2(2047.0, 1023.0)
     );
-    precise float2 t42 = floor((cand * 2.0 - float2(2047.0, 1023.0)) * float2(2049.0005, 4100.004));
-    precise float2 abs_t42 = abs(t42);
-    bool2 t43 = abs_t42 > float2(8388608.0, 8388608.0);
-    precise float2 t44 = UNITPACK_SELECT(t43, 16777216.0 - abs_t42, abs_t42);
-    bool2 t45 = t44 > float2(4194304.0, 4194304.0);
-    precise float2 t46 = round(UNITPACK_SELECT(t45, 8388608.0 - t44, t44) * 3.1415927);
-    precise float2 t47 = round(t46 * t46 * 5.9604645e-8);
-    precise float2 t48 = (
-        round((round(0.0 * t47 * 5.9604645e-8) + (-5.0)) * t47 * 5.9604645e-8) + 416.0
-    )
-        * t47;
-    precise float2 t49 = (
-        round((round(t48 * 5.9604645e-8) + (-23302.0)) * t47 * 5.9604645e-8) + 699051.0
-    )
-        * t47;
-    precise float2 t50 = round((round(t49 * 5.9604645e-8) + (-8388608.0)) * t47 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t51 = round((round(-0.0 * t47 * 5.9604645e-8) + 46.0) * t47 * 5.9604645e-8)
-        + (-3329.0);
-    precise float2 t52 = round((round(t51 * t47 * 5.9604645e-8) + 139810.0) * t47 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float2 t53 = round(t46 * (round(t52 * t47 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float2 t54 = UNITPACK_SELECT(t45, t50, t53);
-    precise float2 t55 = UNITPACK_SELECT(t42 < float2(0.0, 0.0), -t54, t54);
-    precise float2 t56 = UNITPACK_SELECT(t45, t53, t50);
-    precise float2 t57 = UNITPACK_SELECT(t43, -t56, t56);
-    precise float2 t58 = floor(t55 / t57 * 2097152.0);
-    precise float2 t59 = t55 * 2097152.0;
-    precise float2 t60 = UNITPACK_SELECT(
-        (t58 + 1.0) * t57 <= t59,
+    precise float2 t43 = floor((cand * 2.0 - float2(2047.0, 1023.0)) * float2(2049.0005, 4100.004));
+    precise float2 abs_t43 = abs(t43);
+    bool2 t44 = abs_t43 > float2(8388608.0, 8388608.0);
+    precise float2 t45 = UNITPACK_SELECT(t44, 16777216.0 - abs_t43, abs_t43);
+    bool2 t46 = t45 > float2(4194304.0, 4194304.0);
+    precise float2 t47 = round(UNITPACK_SELECT(t46, 8388608.0 - t45, t45) * 3.1415927);
+    precise float2 t48 = round(t47 * t47 * 5.9604645e-8);
+    precise float2 t49 = round((round(0.0 * t48 * 5.9604645e-8) + (-5.0)) * t48 * 5.9604645e-8);
+    precise float2 t50 = (round((t49 + 416.0) * t48 * 5.9604645e-8) + (-23302.0))
+        * t48
+        * 5.9604645e-8;
+    precise float2 t51 = (round((round(t50) + 699051.0) * t48 * 5.9604645e-8) + (-8388608.0)) * t48;
+    precise float2 t52 = round(t51 * 5.9604645e-8) + 16777216.0;
+    precise float2 t53 = round((round(-0.0 * t48 * 5.9604645e-8) + 46.0) * t48 * 5.9604645e-8);
+    precise float2 t54 = (round((t53 + (-3329.0)) * t48 * 5.9604645e-8) + 139810.0)
+        * t48
+        * 5.9604645e-8;
+    precise float2 t55 = t47
+        * (round((round(t54) + (-2796203.0)) * t48 * 5.9604645e-8) + 16777216.0);
+    precise float2 t56 = round(t55 * 5.9604645e-8);
+    precise float2 t57 = UNITPACK_SELECT(t46, t52, t56);
+    precise float2 t58 = UNITPACK_SELECT(t43 < float2(0.0, 0.0), -t57, t57);
+    precise float2 t59 = UNITPACK_SELECT(t46, t56, t52);
+    precise float2 t60 = UNITPACK_SELECT(t44, -t59, t59);
+    precise float2 t61 = floor(t58 / t60 * 2097152.0);
+    precise float2 t62 = t58 * 2097152.0;
+    precise float2 t63 = UNITPACK_SELECT(
+        (t61 + 1.0) * t60 <= t62,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t58 * t57 > t59, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t61 * t60 > t62, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 p = t58 + t60;
+    precise float2 p = t61 + t63;
     precise float q = round(p.x * p.x * 4.7683716e-7) + round(p.y * p.y * 4.7683716e-7);
     precise float len2_2 = 2097152.0 + q;
-    precise float t61 = len2_2 * 524288.0;
-    precise float root_estimate2 = floor(sqrt(t61));
+    precise float t64 = len2_2 * 524288.0;
+    precise float root_estimate2 = floor(sqrt(t64));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t62 = root_next * root_next <= t61
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t61 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t62;
+    precise float step_down3 = root_estimate2 * root_estimate2 > t64 ? -1.0 : 0.0;
+    precise float step3 = root_next * root_next <= t64 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + step3;
     precise float root_next2 = root_step + 1.0;
-    precise float t63 = root_next2 * root_next2 <= t61
-        ? 1.0
-        : (root_step * root_step > t61 ? -1.0 : 0.0);
-    precise float root2 = root_step + t63;
+    precise float step_down4 = root_step * root_step > t64 ? -1.0 : 0.0;
+    precise float step4 = root_next2 * root_next2 <= t64 ? 1.0 : step_down4;
+    precise float root2 = root_step + step4;
     precise float len = root2 * 2.0;
     precise float big = len * 2097152.0;
     precise float ratio_estimate = floor(len / len2_2 * 2097152.0);
-    precise float t64 = (ratio_estimate + 1.0) * len2_2 <= big
-        ? 1.0
-        : (ratio_estimate * len2_2 > big ? -1.0 : 0.0);
-    precise float ratio = ratio_estimate + t64;
+    precise float step_down5 = ratio_estimate * len2_2 > big ? -1.0 : 0.0;
+    precise float step5 = (ratio_estimate + 1.0) * len2_2 <= big ? 1.0 : step_down5;
+    precise float ratio = ratio_estimate + step5;
     precise float big2 = p.x * 2097152.0;
     precise float ratio_estimate2 = floor(p.x / len * 2097152.0);
-    precise float t65 = (ratio_estimate2 + 1.0) * len <= big2
-        ? 1.0
-        : (ratio_estimate2 * len > big2 ? -1.0 : 0.0);
-    precise float ratio2 = ratio_estimate2 + t65;
+    precise float step_down6 = ratio_estimate2 * len > big2 ? -1.0 : 0.0;
+    precise float step6 = (ratio_estimate2 + 1.0) * len <= big2 ? 1.0 : step_down6;
+    precise float ratio2 = ratio_estimate2 + step6;
     precise float big3 = p.y * 2097152.0;
     precise float ratio_estimate3 = floor(p.y / len * 2097152.0);
-    precise float t66 = (ratio_estimate3 + 1.0) * len <= big3
-        ? 1.0
-        : (ratio_estimate3 * len > big3 ? -1.0 : 0.0);
-    precise float ratio3 = ratio_estimate3 + t66;
-    bool t67 = face >= 3.5;
-    bool t68 = face >= 1.5;
-    precise float t69 = t67 ? face - 4.0 : (t68 ? face - 2.0 : face);
-    precise float t70 = (t69 >= 1.5 ? t69 - 2.0 : t69) > 0.5 ? -ratio : ratio;
-    precise float3 t71 = t67
-        ? float3(ratio2, ratio3, t70)
-        : (t68 ? float3(ratio3, t70, ratio2) : float3(t70, ratio2, ratio3));
-    precise float3 t72 = abs(t71 - aim);
-    uint3 t73 = uint3(t72);
-    uint limb1_4 = t73.x >> 12u;
-    uint limb0_4 = t73.x & 4095u;
+    precise float step_down7 = ratio_estimate3 * len > big3 ? -1.0 : 0.0;
+    precise float step7 = (ratio_estimate3 + 1.0) * len <= big3 ? 1.0 : step_down7;
+    precise float ratio3 = ratio_estimate3 + step7;
+    bool t65 = face >= 3.5;
+    bool t66 = face >= 1.5;
+    precise float t67 = face - 4.0;
+    precise float t68 = face - 2.0;
+    precise float t69 = t66 ? t68 : face;
+    precise float t70 = t65 ? t67 : t69;
+    precise float t71 = t70 - 2.0;
+    precise float neg_ratio = -ratio;
+    precise float t72 = (t70 >= 1.5 ? t71 : t70) > 0.5 ? neg_ratio : ratio;
+    precise float3 t73 = float3(ratio2, ratio3, t72);
+    precise float3 t74 = float3(ratio3, t72, ratio2);
+    precise float3 t75 = float3(t72, ratio2, ratio3);
+    precise float3 t76 = t66 ? t74 : t75;
+    precise float3 offset = (t65 ? t73 : t76) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t73.y >> 12u;
-    uint limb0_5 = t73.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t73.z >> 12u;
-    uint limb0_6 = t73.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    precise float t74 = base.x + 1.0;
-    precise float2 t75 = float2(t74, base.y);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t77 = float2(s_up, base.y);
     precise float2 cand2 = UNITPACK_SELECT(
-        t75 <= float2(2047.0, 1023.0),
-        t75,
+        t77 <= float2(2047.0, 1023.0),
+        t77,
         float2(2047.0, 1023.0)
     );
-    precise float2 t76 = floor(
+    bool t78 = base.y <= 1023.0;
+    precise float2 t79 = floor(
         (cand2 * 2.0 - float2(2047.0, 1023.0)) * float2(2049.0005, 4100.004)
     );
-    precise float2 abs_t76 = abs(t76);
-    bool2 t77 = abs_t76 > float2(8388608.0, 8388608.0);
-    precise float2 t78 = UNITPACK_SELECT(t77, 16777216.0 - abs_t76, abs_t76);
-    bool2 t79 = t78 > float2(4194304.0, 4194304.0);
-    precise float2 t80 = round(UNITPACK_SELECT(t79, 8388608.0 - t78, t78) * 3.1415927);
-    precise float2 t81 = round(t80 * t80 * 5.9604645e-8);
-    precise float2 t82 = (
-        round((round(0.0 * t81 * 5.9604645e-8) + (-5.0)) * t81 * 5.9604645e-8) + 416.0
-    )
-        * t81;
-    precise float2 t83 = (
-        round((round(t82 * 5.9604645e-8) + (-23302.0)) * t81 * 5.9604645e-8) + 699051.0
-    )
-        * t81;
-    precise float2 t84 = round((round(t83 * 5.9604645e-8) + (-8388608.0)) * t81 * 5.9604645e-8)
-        + 16777216.0;
-    precise float2 t85 = round((round(-0.0 * t81 * 5.9604645e-8) + 46.0) * t81 * 5.9604645e-8)
-        + (-3329.0);
-    precise float2 t86 = round((round(t85 * t81 * 5.9604645e-8) + 139810.0) * t81 * 5.9604645e-8)
-        + (-2796203.0);
-    precise float2 t87 = round(t80 * (round(t86 * t81 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8);
-    precise float2 t88 = UNITPACK_SELECT(t79, t84, t87);
-    precise float2 t89 = UNITPACK_SELECT(t76 < float2(0.0, 0.0), -t88, t88);
-    precise float2 t90 = UNITPACK_SELECT(t79, t87, t84);
-    precise float2 t91 = UNITPACK_SELECT(t77, -t90, t90);
-    precise float2 t92 = floor(t89 / t91 * 2097152.0);
-    precise float2 t93 = t89 * 2097152.0;
-    precise float2 t94 = UNITPACK_SELECT(
-        (t92 + 1.0) * t91 <= t93,
+    precise float2 abs_t79 = abs(t79);
+    bool2 t80 = abs_t79 > float2(8388608.0, 8388608.0);
+    precise float2 t81 = UNITPACK_SELECT(t80, 16777216.0 - abs_t79, abs_t79);
+    bool2 t82 = t81 > float2(4194304.0, 4194304.0);
+    precise float2 t83 = round(UNITPACK_SELECT(t82, 8388608.0 - t81, t81) * 3.1415927);
+    precise float2 t84 = round(t83 * t83 * 5.9604645e-8);
+    precise float2 t85 = round((round(0.0 * t84 * 5.9604645e-8) + (-5.0)) * t84 * 5.9604645e-8);
+    precise float2 t86 = (round((t85 + 416.0) * t84 * 5.9604645e-8) + (-23302.0))
+        * t84
+        * 5.9604645e-8;
+    precise float2 t87 = (round((round(t86) + 699051.0) * t84 * 5.9604645e-8) + (-8388608.0)) * t84;
+    precise float2 t88 = round(t87 * 5.9604645e-8) + 16777216.0;
+    precise float2 t89 = round((round(-0.0 * t84 * 5.9604645e-8) + 46.0) * t84 * 5.9604645e-8);
+    precise float2 t90 = (round((t89 + (-3329.0)) * t84 * 5.9604645e-8) + 139810.0)
+        * t84
+        * 5.9604645e-8;
+    precise float2 t91 = t83
+        * (round((round(t90) + (-2796203.0)) * t84 * 5.9604645e-8) + 16777216.0);
+    precise float2 t92 = round(t91 * 5.9604645e-8);
+    precise float2 t93 = UNITPACK_SELECT(t82, t88, t92);
+    precise float2 t94 = UNITPACK_SELECT(t79 < float2(0.0, 0.0), -t93, t93);
+    precise float2 t95 = UNITPACK_SELECT(t82, t92, t88);
+    precise float2 t96 = UNITPACK_SELECT(t80, -t95, t95);
+    precise float2 t97 = floor(t94 / t96 * 2097152.0);
+    precise float2 t98 = t94 * 2097152.0;
+    precise float2 t99 = UNITPACK_SELECT(
+        (t97 + 1.0) * t96 <= t98,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t92 * t91 > t93, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t97 * t96 > t98, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 p2 = t92 + t94;
+    precise float2 p2 = t97 + t99;
     precise float q2 = round(p2.x * p2.x * 4.7683716e-7) + round(p2.y * p2.y * 4.7683716e-7);
     precise float len2_3 = 2097152.0 + q2;
-    precise float t95 = len2_3 * 524288.0;
-    precise float root_estimate3 = floor(sqrt(t95));
+    precise float t100 = len2_3 * 524288.0;
+    precise float root_estimate3 = floor(sqrt(t100));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t96 = root_next3 * root_next3 <= t95
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t95 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t96;
+    precise float step_down8 = root_estimate3 * root_estimate3 > t100 ? -1.0 : 0.0;
+    precise float step8 = root_next3 * root_next3 <= t100 ? 1.0 : step_down8;
+    precise float root_step2 = root_estimate3 + step8;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t97 = root_next4 * root_next4 <= t95
-        ? 1.0
-        : (root_step2 * root_step2 > t95 ? -1.0 : 0.0);
-    precise float root3 = root_step2 + t97;
+    precise float step_down9 = root_step2 * root_step2 > t100 ? -1.0 : 0.0;
+    precise float step9 = root_next4 * root_next4 <= t100 ? 1.0 : step_down9;
+    precise float root3 = root_step2 + step9;
     precise float len3 = root3 * 2.0;
     precise float big4 = len3 * 2097152.0;
     precise float ratio_estimate4 = floor(len3 / len2_3 * 2097152.0);
-    precise float t98 = (ratio_estimate4 + 1.0) * len2_3 <= big4
-        ? 1.0
-        : (ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0);
-    precise float ratio4 = ratio_estimate4 + t98;
+    precise float step_down10 = ratio_estimate4 * len2_3 > big4 ? -1.0 : 0.0;
+    precise float step10 = (ratio_estimate4 + 1.0) * len2_3 <= big4 ? 1.0 : step_down10;
+    precise float ratio4 = ratio_estimate4 + step10;
     precise float big5 = p2.x * 2097152.0;
     precise float ratio_estimate5 = floor(p2.x / len3 * 2097152.0);
-    precise float t99 = (ratio_estimate5 + 1.0) * len3 <= big5
-        ? 1.0
-        : (ratio_estimate5 * len3 > big5 ? -1.0 : 0.0);
-    precise float ratio5 = ratio_estimate5 + t99;
+    precise float step_down11 = ratio_estimate5 * len3 > big5 ? -1.0 : 0.0;
+    precise float step11 = (ratio_estimate5 + 1.0) * len3 <= big5 ? 1.0 : step_down11;
+    precise float ratio5 = ratio_estimate5 + step11;
     precise float big6 = p2.y * 2097152.0;
     precise float ratio_estimate6 = floor(p2.y / len3 * 2097152.0);
-    precise float t100 = (ratio_estimate6 + 1.0) * len3 <= big6
-        ? 1.0
-        : (ratio_estimate6 * len3 > big6 ? -1.0 : 0.0);
-    precise float ratio6 = ratio_estimate6 + t100;
+    precise float step_down12 = ratio_estimate6 * len3 > big6 ? -1.0 : 0.0;
+    precise float step12 = (ratio_estimate6 + 1.0) * len3 <= big6 ? 1.0 : step_down12;
+    precise float ratio6 = ratio_estimate6 + step12;
     bool t101 = face >= 3.5;
     bool t102 = face >= 1.5;
-    precise float t103 = t101 ? face - 4.0 : (t102 ? face - 2.0 : face);
-    precise float t104 = (t103 >= 1.5 ? t103 - 2.0 : t103) > 0.5 ? -ratio4 : ratio4;
-    precise float3 t105 = t101
-        ? float3(ratio5, ratio6, t104)
-        : (t102 ? float3(ratio6, t104, ratio5) : float3(t104, ratio5, ratio6));
-    precise float3 t106 = abs(t105 - aim);
-    uint3 t107 = uint3(t106);
-    uint limb1_7 = t107.x >> 12u;
-    uint limb0_7 = t107.x & 4095u;
+    precise float t103 = face - 4.0;
+    precise float t104 = face - 2.0;
+    precise float t105 = t102 ? t104 : face;
+    precise float t106 = t101 ? t103 : t105;
+    precise float t107 = t106 - 2.0;
+    precise float neg_ratio4 = -ratio4;
+    precise float t108 = (t106 >= 1.5 ? t107 : t106) > 0.5 ? neg_ratio4 : ratio4;
+    precise float3 t109 = float3(ratio5, ratio6, t108);
+    precise float3 t110 = float3(ratio6, t108, ratio5);
+    precise float3 t111 = float3(t108, ratio5, ratio6);
+    precise float3 t112 = t102 ? t110 : t111;
+    precise float3 offset2 = (t101 ? t109 : t112) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t107.y >> 12u;
-    uint limb0_8 = t107.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t107.z >> 12u;
-    uint limb0_9 = t107.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t108 = t74 <= 2047.0 && base.y <= 1023.0 && dist2 < dist;
-    precise float2 best = t108 ? cand2 : cand;
-    precise float best_d = t108 ? dist2 : dist;
-    precise float t109 = base.y + 1.0;
-    precise float2 t110 = float2(base.x, t109);
+    bool t113 = dist2 < dist;
+    bool t114 = s_up <= 2047.0 && t78 && t113;
+    precise float2 best = t114 ? cand2 : cand;
+    precise float best_d = t114 ? dist2 : dist;
+    precise float2 t115 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(
-        t110 <= float2(2047.0, 1023.0),
-        t110,
+        t115 <= float2(2047.0, 1023.0),
+        t115,
         float2(2047.0, 1023.0)
     );
-    precise float2 t111 = floor(
+    bool t116 = t_up <= 1023.0;
+    precise float2 t117 = floor(
         (cand3 * 2.0 - float2(2047.0, 1023.0)) * float2(2049.0005, 4100.004)
     );
-    precise float2 abs_t111 = abs(t111);
-    bool2 t112 = abs_t111 > float2(8388608.0, 8388608.0);
-    precise float2 t113 = UNITPACK_SELECT(t112, 16777216.0 - abs_t111, abs_t111);
-    bool2 t114 = t113 > float2(4194304.0, 4194304.0);
-    precise float2 t115 = round(UNITPACK_SELECT(t114, 8388608.0 - t113, t113) * 3.1415927);
-    precise float2 t116 = round(t115 * t115 * 5.9604645e-8);
-    precise float2 t117 = (
-        round((round(0.0 * t116 * 5.9604645e-8) + (-5.0)) * t116 * 5.9604645e-8) + 416.0
-    )
-        * t116;
-    precise float2 t118 = round((round(t117 * 5.9604645e-8) + (-23302.0)) * t116 * 5.9604645e-8)
-        + 699051.0;
-    precise float2 t119 = round(
-        (round(t118 * t116 * 5.9604645e-8) + (-8388608.0)) * t116 * 5.9604645e-8
-    )
-        + 16777216.0;
-    precise float2 t120 = round((round(-0.0 * t116 * 5.9604645e-8) + 46.0) * t116 * 5.9604645e-8)
-        + (-3329.0);
-    precise float2 t121 = round(
-        (round(t120 * t116 * 5.9604645e-8) + 139810.0) * t116 * 5.9604645e-8
-    )
-        + (-2796203.0);
-    precise float2 t122 = round(
-        t115 * (round(t121 * t116 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8
-    );
-    precise float2 t123 = UNITPACK_SELECT(t114, t119, t122);
-    precise float2 t124 = UNITPACK_SELECT(t111 < float2(0.0, 0.0), -t123, t123);
-    precise float2 t125 = UNITPACK_SELECT(t114, t122, t119);
-    precise float2 t126 = UNITPACK_SELECT(t112, -t125, t125);
-    precise float2 t127 = floor(t124 / t126 * 2097152.0);
-    precise float2 t128 = t124 * 2097152.0;
-    precise float2 t129 = UNITPACK_SELECT(
-        (t127 + 1.0) * t126 <= t128,
+    precise float2 abs_t117 = abs(t117);
+    bool2 t118 = abs_t117 > float2(8388608.0, 8388608.0);
+    precise float2 t119 = UNITPACK_SELECT(t118, 16777216.0 - abs_t117, abs_t117);
+    bool2 t120 = t119 > float2(4194304.0, 4194304.0);
+    precise float2 t121 = round(UNITPACK_SELECT(t120, 8388608.0 - t119, t119) * 3.1415927);
+    precise float2 t122 = round(t121 * t121 * 5.9604645e-8);
+    precise float2 t123 = round((round(0.0 * t122 * 5.9604645e-8) + (-5.0)) * t122 * 5.9604645e-8);
+    precise float2 t124 = (round((t123 + 416.0) * t122 * 5.9604645e-8) + (-23302.0))
+        * t122
+        * 5.9604645e-8;
+    precise float2 t125 = (round((round(t124) + 699051.0) * t122 * 5.9604645e-8) + (-8388608.0))
+        * t122;
+    precise float2 t126 = round(t125 * 5.9604645e-8) + 16777216.0;
+    precise float2 t127 = round((round(-0.0 * t122 * 5.9604645e-8) + 46.0) * t122 * 5.9604645e-8);
+    precise float2 t128 = (round((t127 + (-3329.0)) * t122 * 5.9604645e-8) + 139810.0)
+        * t122
+        * 5.9604645e-8;
+    precise float2 t129 = t121
+        * (round((round(t128) + (-2796203.0)) * t122 * 5.9604645e-8) + 16777216.0);
+    precise float2 t130 = round(t129 * 5.9604645e-8);
+    precise float2 t131 = UNITPACK_SELECT(t120, t126, t130);
+    precise float2 t132 = UNITPACK_SELECT(t117 < float2(0.0, 0.0), -t131, t131);
+    precise float2 t133 = UNITPACK_SELECT(t120, t130, t126);
+    precise float2 t134 = UNITPACK_SELECT(t118, -t133, t133);
+    precise float2 t135 = floor(t132 / t134 * 2097152.0);
+    precise float2 t136 = t132 * 2097152.0;
+    precise float2 t137 = UNITPACK_SELECT(
+        (t135 + 1.0) * t134 <= t136,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t127 * t126 > t128, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t135 * t134 > t136, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 p3 = t127 + t129;
+    precise float2 p3 = t135 + t137;
     precise float q3 = round(p3.x * p3.x * 4.7683716e-7) + round(p3.y * p3.y * 4.7683716e-7);
     precise float len2_4 = 2097152.0 + q3;
-    precise float t130 = len2_4 * 524288.0;
-    precise float root_estimate4 = floor(sqrt(t130));
+    precise float t138 = len2_4 * 524288.0;
+    precise float root_estimate4 = floor(sqrt(t138));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t131 = root_next5 * root_next5 <= t130
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t130 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t131;
+    precise float step_down13 = root_estimate4 * root_estimate4 > t138 ? -1.0 : 0.0;
+    precise float step13 = root_next5 * root_next5 <= t138 ? 1.0 : step_down13;
+    precise float root_step3 = root_estimate4 + step13;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t132 = root_next6 * root_next6 <= t130
-        ? 1.0
-        : (root_step3 * root_step3 > t130 ? -1.0 : 0.0);
-    precise float root4 = root_step3 + t132;
+    precise float step_down14 = root_step3 * root_step3 > t138 ? -1.0 : 0.0;
+    precise float step14 = root_next6 * root_next6 <= t138 ? 1.0 : step_down14;
+    precise float root4 = root_step3 + step14;
     precise float len4 = root4 * 2.0;
     precise float big7 = len4 * 2097152.0;
     precise float ratio_estimate7 = floor(len4 / len2_4 * 2097152.0);
-    precise float t133 = (ratio_estimate7 + 1.0) * len2_4 <= big7
-        ? 1.0
-        : (ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0);
-    precise float ratio7 = ratio_estimate7 + t133;
+    precise float step_down15 = ratio_estimate7 * len2_4 > big7 ? -1.0 : 0.0;
+    precise float step15 = (ratio_estimate7 + 1.0) * len2_4 <= big7 ? 1.0 : step_down15;
+    precise float ratio7 = ratio_estimate7 + step15;
     precise float big8 = p3.x * 2097152.0;
     precise float ratio_estimate8 = floor(p3.x / len4 * 2097152.0);
-    precise float t134 = (ratio_estimate8 + 1.0) * len4 <= big8
-        ? 1.0
-        : (ratio_estimate8 * len4 > big8 ? -1.0 : 0.0);
-    precise float ratio8 = ratio_estimate8 + t134;
+    precise float step_down16 = ratio_estimate8 * len4 > big8 ? -1.0 : 0.0;
+    precise float step16 = (ratio_estimate8 + 1.0) * len4 <= big8 ? 1.0 : step_down16;
+    precise float ratio8 = ratio_estimate8 + step16;
     precise float big9 = p3.y * 2097152.0;
     precise float ratio_estimate9 = floor(p3.y / len4 * 2097152.0);
-    precise float t135 = (ratio_estimate9 + 1.0) * len4 <= big9
-        ? 1.0
-        : (ratio_estimate9 * len4 > big9 ? -1.0 : 0.0);
-    precise float ratio9 = ratio_estimate9 + t135;
-    bool t136 = face >= 3.5;
-    bool t137 = face >= 1.5;
-    precise float t138 = t136 ? face - 4.0 : (t137 ? face - 2.0 : face);
-    precise float t139 = (t138 >= 1.5 ? t138 - 2.0 : t138) > 0.5 ? -ratio7 : ratio7;
-    precise float3 t140 = t136
-        ? float3(ratio8, ratio9, t139)
-        : (t137 ? float3(ratio9, t139, ratio8) : float3(t139, ratio8, ratio9));
-    precise float3 t141 = abs(t140 - aim);
-    uint3 t142 = uint3(t141);
-    uint limb1_10 = t142.x >> 12u;
-    uint limb0_10 = t142.x & 4095u;
+    precise float step_down17 = ratio_estimate9 * len4 > big9 ? -1.0 : 0.0;
+    precise float step17 = (ratio_estimate9 + 1.0) * len4 <= big9 ? 1.0 : step_down17;
+    precise float ratio9 = ratio_estimate9 + step17;
+    bool t139 = face >= 3.5;
+    bool t140 = face >= 1.5;
+    precise float t141 = face - 4.0;
+    precise float t142 = face - 2.0;
+    precise float t143 = t140 ? t142 : face;
+    precise float t144 = t139 ? t141 : t143;
+    precise float t145 = t144 - 2.0;
+    precise float neg_ratio7 = -ratio7;
+    precise float t146 = (t144 >= 1.5 ? t145 : t144) > 0.5 ? neg_ratio7 : ratio7;
+    precise float3 t147 = float3(ratio8, ratio9, t146);
+    precise float3 t148 = float3(ratio9, t146, ratio8);
+    precise float3 t149 = float3(t146, ratio8, ratio9);
+    precise float3 t150 = t140 ? t148 : t149;
+    precise float3 offset3 = (t139 ? t147 : t150) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t142.y >> 12u;
-    uint limb0_11 = t142.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t142.z >> 12u;
-    uint limb0_12 = t142.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t143 = base.x <= 2047.0 && t109 <= 1023.0 && dist3 < best_d;
-    precise float2 best2 = t143 ? cand3 : best;
-    precise float best_d2 = t143 ? dist3 : best_d;
-    precise float2 t144 = base + 1.0;
+    bool t151 = dist3 < best_d;
+    bool t152 = base.x <= 2047.0 && t116 && t151;
+    precise float2 best2 = t152 ? cand3 : best;
+    precise float best_d2 = t152 ? dist3 : best_d;
+    precise float2 t153 = base + 1.0;
     precise float2 cand4 = UNITPACK_SELECT(
-        t144 <= float2(2047.0, 1023.0),
-        t144,
+        t153 <= float2(2047.0, 1023.0),
+        t153,
         float2(2047.0, 1023.0)
     );
-    precise float2 t145 = floor(
+    bool t154 = t_up <= 1023.0;
+    precise float2 t155 = floor(
         (cand4 * 2.0 - float2(2047.0, 1023.0)) * float2(2049.0005, 4100.004)
     );
-    precise float2 abs_t145 = abs(t145);
-    bool2 t146 = abs_t145 > float2(8388608.0, 8388608.0);
-    precise float2 t147 = UNITPACK_SELECT(t146, 16777216.0 - abs_t145, abs_t145);
-    bool2 t148 = t147 > float2(4194304.0, 4194304.0);
-    precise float2 t149 = round(UNITPACK_SELECT(t148, 8388608.0 - t147, t147) * 3.1415927);
-    precise float2 t150 = round(t149 * t149 * 5.9604645e-8);
-    precise float2 t151 = (
-        round((round(0.0 * t150 * 5.9604645e-8) + (-5.0)) * t150 * 5.9604645e-8) + 416.0
-    )
-        * t150;
-    precise float2 t152 = round((round(t151 * 5.9604645e-8) + (-23302.0)) * t150 * 5.9604645e-8)
-        + 699051.0;
-    precise float2 t153 = round(
-        (round(t152 * t150 * 5.9604645e-8) + (-8388608.0)) * t150 * 5.9604645e-8
-    )
-        + 16777216.0;
-    precise float2 t154 = round((round(-0.0 * t150 * 5.9604645e-8) + 46.0) * t150 * 5.9604645e-8)
-        + (-3329.0);
-    precise float2 t155 = round(
-        (round(t154 * t150 * 5.9604645e-8) + 139810.0) * t150 * 5.9604645e-8
-    )
-        + (-2796203.0);
-    precise float2 t156 = round(
-        t149 * (round(t155 * t150 * 5.9604645e-8) + 16777216.0) * 5.9604645e-8
-    );
-    precise float2 t157 = UNITPACK_SELECT(t148, t153, t156);
-    precise float2 t158 = UNITPACK_SELECT(t145 < float2(0.0, 0.0), -t157, t157);
-    precise float2 t159 = UNITPACK_SELECT(t148, t156, t153);
-    precise float2 t160 = UNITPACK_SELECT(t146, -t159, t159);
-    precise float2 t161 = floor(t158 / t160 * 2097152.0);
-    precise float2 t162 = t158 * 2097152.0;
-    precise float2 t163 = UNITPACK_SELECT(
-        (t161 + 1.0) * t160 <= t162,
+    precise float2 abs_t155 = abs(t155);
+    bool2 t156 = abs_t155 > float2(8388608.0, 8388608.0);
+    precise float2 t157 = UNITPACK_SELECT(t156, 16777216.0 - abs_t155, abs_t155);
+    bool2 t158 = t157 > float2(4194304.0, 4194304.0);
+    precise float2 t159 = round(UNITPACK_SELECT(t158, 8388608.0 - t157, t157) * 3.1415927);
+    precise float2 t160 = round(t159 * t159 * 5.9604645e-8);
+    precise float2 t161 = round((round(0.0 * t160 * 5.9604645e-8) + (-5.0)) * t160 * 5.9604645e-8);
+    precise float2 t162 = (round((t161 + 416.0) * t160 * 5.9604645e-8) + (-23302.0))
+        * t160
+        * 5.9604645e-8;
+    precise float2 t163 = (round((round(t162) + 699051.0) * t160 * 5.9604645e-8) + (-8388608.0))
+        * t160;
+    precise float2 t164 = round(t163 * 5.9604645e-8) + 16777216.0;
+    precise float2 t165 = round((round(-0.0 * t160 * 5.9604645e-8) + 46.0) * t160 * 5.9604645e-8);
+    precise float2 t166 = (round((t165 + (-3329.0)) * t160 * 5.9604645e-8) + 139810.0)
+        * t160
+        * 5.9604645e-8;
+    precise float2 t167 = t159
+        * (round((round(t166) + (-2796203.0)) * t160 * 5.9604645e-8) + 16777216.0);
+    precise float2 t168 = round(t167 * 5.9604645e-8);
+    precise float2 t169 = UNITPACK_SELECT(t158, t164, t168);
+    precise float2 t170 = UNITPACK_SELECT(t155 < float2(0.0, 0.0), -t169, t169);
+    precise float2 t171 = UNITPACK_SELECT(t158, t168, t164);
+    precise float2 t172 = UNITPACK_SELECT(t156, -t171, t171);
+    precise float2 t173 = floor(t170 / t172 * 2097152.0);
+    precise float2 t174 = t170 * 2097152.0;
+    precise float2 t175 = UNITPACK_SELECT(
+        (t173 + 1.0) * t172 <= t174,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t161 * t160 > t162, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t173 * t172 > t174, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 p4 = t161 + t163;
+    precise float2 p4 = t173 + t175;
     precise float q4 = round(p4.x * p4.x * 4.7683716e-7) + round(p4.y * p4.y * 4.7683716e-7);
     precise float len2_5 = 2097152.0 + q4;
-    precise float t164 = len2_5 * 524288.0;
-    precise float root_estimate5 = floor(sqrt(t164));
+    precise float t176 = len2_5 * 524288.0;
+    precise float root_estimate5 = floor(sqrt(t176));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t165 = root_next7 * root_next7 <= t164
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t164 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t165;
+    precise float step_down18 = root_estimate5 * root_estimate5 > t176 ? -1.0 : 0.0;
+    precise float step18 = root_next7 * root_next7 <= t176 ? 1.0 : step_down18;
+    precise float root_step4 = root_estimate5 + step18;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t166 = root_next8 * root_next8 <= t164
-        ? 1.0
-        : (root_step4 * root_step4 > t164 ? -1.0 : 0.0);
-    precise float root5 = root_step4 + t166;
+    precise float step_down19 = root_step4 * root_step4 > t176 ? -1.0 : 0.0;
+    precise float step19 = root_next8 * root_next8 <= t176 ? 1.0 : step_down19;
+    precise float root5 = root_step4 + step19;
     precise float len5 = root5 * 2.0;
     precise float big10 = len5 * 2097152.0;
     precise float ratio_estimate10 = floor(len5 / len2_5 * 2097152.0);
-    precise float t167 = (ratio_estimate10 + 1.0) * len2_5 <= big10
-        ? 1.0
-        : (ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0);
-    precise float ratio10 = ratio_estimate10 + t167;
+    precise float step_down20 = ratio_estimate10 * len2_5 > big10 ? -1.0 : 0.0;
+    precise float step20 = (ratio_estimate10 + 1.0) * len2_5 <= big10 ? 1.0 : step_down20;
+    precise float ratio10 = ratio_estimate10 + step20;
     precise float big11 = p4.x * 2097152.0;
     precise float ratio_estimate11 = floor(p4.x / len5 * 2097152.0);
-    precise float t168 = (ratio_estimate11 + 1.0) * len5 <= big11
-        ? 1.0
-        : (ratio_estimate11 * len5 > big11 ? -1.0 : 0.0);
-    precise float ratio11 = ratio_estimate11 + t168;
+    precise float step_down21 = ratio_estimate11 * len5 > big11 ? -1.0 : 0.0;
+    precise float step21 = (ratio_estimate11 + 1.0) * len5 <= big11 ? 1.0 : step_down21;
+    precise float ratio11 = ratio_estimate11 + step21;
     precise float big12 = p4.y * 2097152.0;
     precise float ratio_estimate12 = floor(p4.y / len5 * 2097152.0);
-    precise float t169 = (ratio_estimate12 + 1.0) * len5 <= big12
-        ? 1.0
-        : (ratio_estimate12 * len5 > big12 ? -1.0 : 0.0);
-    precise float ratio12 = ratio_estimate12 + t169;
-    bool t170 = face >= 3.5;
-    bool t171 = face >= 1.5;
-    precise float t172 = t170 ? face - 4.0 : (t171 ? face - 2.0 : face);
-    precise float t173 = (t172 >= 1.5 ? t172 - 2.0 : t172) > 0.5 ? -ratio10 : ratio10;
-    precise float3 t174 = t170
-        ? float3(ratio11, ratio12, t173)
-        : (t171 ? float3(ratio12, t173, ratio11) : float3(t173, ratio11, ratio12));
-    precise float3 t175 = abs(t174 - aim);
-    uint3 t176 = uint3(t175);
-    uint limb1_13 = t176.x >> 12u;
-    uint limb0_13 = t176.x & 4095u;
+    precise float step_down22 = ratio_estimate12 * len5 > big12 ? -1.0 : 0.0;
+    precise float step22 = (ratio_estimate12 + 1.0) * len5 <= big12 ? 1.0 : step_down22;
+    precise float ratio12 = ratio_estimate12 + step22;
+    bool t177 = face >= 3.5;
+    bool t178 = face >= 1.5;
+    precise float t179 = face - 4.0;
+    precise float t180 = face - 2.0;
+    precise float t181 = t178 ? t180 : face;
+    precise float t182 = t177 ? t179 : t181;
+    precise float t183 = t182 - 2.0;
+    precise float neg_ratio10 = -ratio10;
+    precise float t184 = (t182 >= 1.5 ? t183 : t182) > 0.5 ? neg_ratio10 : ratio10;
+    precise float3 t185 = float3(ratio11, ratio12, t184);
+    precise float3 t186 = float3(ratio12, t184, ratio11);
+    precise float3 t187 = float3(t184, ratio11, ratio12);
+    precise float3 t188 = t178 ? t186 : t187;
+    precise float3 offset4 = (t177 ? t185 : t188) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t176.y >> 12u;
-    uint limb0_14 = t176.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t176.z >> 12u;
-    uint limb0_15 = t176.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    precise float2 best3 = base.x + 1.0 <= 2047.0 && base.y + 1.0 <= 1023.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t189 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 2047.0 && t154 && t189 ? cand4 : best2;
     return float3(best3, face);
 }
 

@@ -58,10 +58,8 @@ float3 unitpack_xy16_latc_decode_float(float4 params) {
 //   1.
 // Portable as unitpack_xy16_latc_decode_float is, within the same bound.
 float3 unitpack_xy16_latc_decode(uint code) {
-    precise float4 t1 = float4(
-        uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    precise float4 params = t1 * 0.003921569;
+    uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    precise float4 params = float4(t1) * 0.003921569;
     return unitpack_xy16_latc_decode_float(params);
 }
 
@@ -77,22 +75,28 @@ float4 unitpack_xy16_latc_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    precise float3 t4 = float3(t3.xy, t3.z > 0.0 ? t3.z : 0.0);
-    precise float3 abs_t4 = abs(t4);
-    precise float t5 = abs_t4.x >= abs_t4.y ? abs_t4.x : abs_t4.y;
-    precise float largest2 = t5 >= abs_t4.z ? t5 : abs_t4.z;
-    bool t6 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    precise float3 scaled2 = t4 / (t6 ? largest2 : 1.0);
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 t6 = t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
+    precise float3 t7 = float3(t6.xy, t6.z > 0.0 ? t6.z : 0.0);
+    precise float3 abs_t7 = abs(t7);
+    precise float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
+    precise float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
+    bool t9 = largest2 <= 3.4028235e38;
+    bool t10 = largest2 > 0.0 && t9;
+    precise float3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     precise float3 scaled2_sq = scaled2 * scaled2;
     precise float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    precise float3 t7 = t6 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : float3(0.0, 0.0, 1.0);
-    precise float t8 = 0.5 + t7.xy.y * 0.5;
-    precise float4 result = float4(t8, t8, t8, 0.5 + t7.xy.x * 0.5);
+    bool t11 = len2_2 >= 1.0;
+    precise float3 t12 = scaled2 / sqrt(len2_2);
+    precise float3 t13 = t10 && t11 ? t12 : float3(0.0, 0.0, 1.0);
+    precise float t14 = 0.5 + t13.xy.y * 0.5;
+    precise float4 result = float4(t14, t14, t14, 0.5 + t13.xy.x * 0.5);
     return result;
 }
 
@@ -112,7 +116,8 @@ float4 unitpack_xy16_latc_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -140,38 +145,38 @@ float4 unitpack_xy16_latc_round_codes(float3 a0) {
     precise float2 t7 = w.xy * w.xy * 16256.25;
     precise float2 t8 = t6 * t6 * len2;
     precise float2 t9 = UNITPACK_SELECT(
-        t6 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 >= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+        w.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t6 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 >= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t6 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 <= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t10 = UNITPACK_SELECT(
-        t6 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 <= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t10 = t5 - 1.0 - 127.0;
+    precise float2 t11 = t10 * t10 * len2;
+    precise float2 t12 = UNITPACK_SELECT(
+        w.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t10 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 >= t11, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t10 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 <= t11, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t11 = UNITPACK_SELECT(
-        t5 < float2(255.0, 255.0),
-        UNITPACK_SELECT(w.xy >= float2(0.0, 0.0), t9, t10),
-        float2(0.0, 0.0)
-    );
-    precise float2 t12 = t5 - 1.0 - 127.0;
-    precise float2 t13 = t12 * t12 * len2;
-    precise float2 t14 = UNITPACK_SELECT(
-        t12 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 >= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t15 = UNITPACK_SELECT(
-        t12 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 <= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t16 = UNITPACK_SELECT(
-        t5 > float2(0.0, 0.0),
-        UNITPACK_SELECT(w.xy >= float2(0.0, 0.0), t14, t15) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 c = ok && len2 > 0.0 ? t5 + t11 + t16 : float2(128.0, 128.0);
+    precise float2 t13 = t5
+        + UNITPACK_SELECT(t5 < float2(255.0, 255.0), t9, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t5 > float2(0.0, 0.0), t12 - 1.0, float2(0.0, 0.0));
+    bool t14 = len2 > 0.0;
+    precise float2 c = ok && t14 ? t13 : float2(128.0, 128.0);
     return c.yyyx;
 }
 
@@ -184,10 +189,8 @@ float4 unitpack_xy16_latc_round_codes(float3 a0) {
 //   components count as zero.
 uint unitpack_xy16_latc_encode(float3 v) {
     precise float4 round_codes = unitpack_xy16_latc_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_XY16_LATC_HLSL

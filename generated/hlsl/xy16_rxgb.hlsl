@@ -58,10 +58,8 @@ float3 unitpack_xy16_rxgb_decode_float(float4 params) {
 //   1.
 // Portable as unitpack_xy16_rxgb_decode_float is, within the same bound.
 float3 unitpack_xy16_rxgb_decode(uint code) {
-    precise float4 t1 = float4(
-        uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    precise float4 params = t1 * 0.003921569;
+    uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    precise float4 params = float4(t1) * 0.003921569;
     return unitpack_xy16_rxgb_decode_float(params);
 }
 
@@ -77,39 +75,54 @@ float4 unitpack_xy16_rxgb_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    precise float3 t4 = float3(t3.xy, t3.z > 0.0 ? t3.z : 0.0);
-    precise float3 abs_t4 = abs(t4);
-    precise float t5 = abs_t4.x >= abs_t4.y ? abs_t4.x : abs_t4.y;
-    precise float largest2 = t5 >= abs_t4.z ? t5 : abs_t4.z;
-    bool t6 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    precise float3 scaled2 = t4 / (t6 ? largest2 : 1.0);
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 t6 = t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
+    precise float3 t7 = float3(t6.xy, t6.z > 0.0 ? t6.z : 0.0);
+    precise float3 abs_t7 = abs(t7);
+    precise float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
+    precise float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
+    bool t9 = largest2 <= 3.4028235e38;
+    bool t10 = largest2 > 0.0 && t9;
+    precise float3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     precise float3 scaled2_sq = scaled2 * scaled2;
     precise float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    precise float3 t7 = t6 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : float3(0.0, 0.0, 1.0);
+    bool t11 = len2_2 >= 1.0;
+    precise float3 t12 = scaled2 / sqrt(len2_2);
+    precise float3 t13 = t10 && t11 ? t12 : float3(0.0, 0.0, 1.0);
     precise float3 abs_v2 = abs(v);
-    precise float t8 = abs_v2.x >= abs_v2.y ? abs_v2.x : abs_v2.y;
-    precise float largest3 = t8 >= abs_v2.z ? t8 : abs_v2.z;
-    bool t9 = largest3 > 0.0 && largest3 <= 3.4028235e38;
-    precise float3 scaled3 = v / (t9 ? largest3 : 1.0);
+    precise float t14 = abs_v2.x >= abs_v2.y ? abs_v2.x : abs_v2.y;
+    precise float largest3 = t14 >= abs_v2.z ? t14 : abs_v2.z;
+    bool t15 = largest3 <= 3.4028235e38;
+    bool t16 = largest3 > 0.0 && t15;
+    precise float3 scaled3 = v / (t16 ? largest3 : 1.0);
     precise float3 scaled3_sq = scaled3 * scaled3;
     precise float len2_3 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    precise float3 t10 = t9 && len2_3 >= 1.0 ? scaled3 / sqrt(len2_3) : float3(0.0, 0.0, 1.0);
-    precise float3 t11 = float3(t10.xy, t10.z > 0.0 ? t10.z : 0.0);
-    precise float3 abs_t11 = abs(t11);
-    precise float t12 = abs_t11.x >= abs_t11.y ? abs_t11.x : abs_t11.y;
-    precise float largest4 = t12 >= abs_t11.z ? t12 : abs_t11.z;
-    bool t13 = largest4 > 0.0 && largest4 <= 3.4028235e38;
-    precise float3 scaled4 = t11 / (t13 ? largest4 : 1.0);
+    bool t17 = len2_3 >= 1.0;
+    precise float3 t18 = scaled3 / sqrt(len2_3);
+    precise float3 t19 = t16 && t17 ? t18 : float3(0.0, 0.0, 1.0);
+    precise float3 t20 = float3(t19.xy, t19.z > 0.0 ? t19.z : 0.0);
+    precise float3 abs_t20 = abs(t20);
+    precise float t21 = abs_t20.x >= abs_t20.y ? abs_t20.x : abs_t20.y;
+    precise float largest4 = t21 >= abs_t20.z ? t21 : abs_t20.z;
+    bool t22 = largest4 <= 3.4028235e38;
+    bool t23 = largest4 > 0.0 && t22;
+    precise float3 scaled4 = t20 / (t23 ? largest4 : 1.0);
     precise float3 scaled4_sq = scaled4 * scaled4;
     precise float len2_4 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    precise float t14 = 0.5
-        + (t13 && len2_4 >= 1.0 ? scaled4 / sqrt(len2_4) : float3(0.0, 0.0, 1.0)).z * 0.5;
-    precise float4 result = float4(1.0, 0.5 + t7.xy.y * 0.5, t14, 0.5 + t7.xy.x * 0.5);
+    bool t24 = len2_4 >= 1.0;
+    precise float3 t25 = scaled4 / sqrt(len2_4);
+    precise float4 result = float4(
+        1.0,
+        0.5 + t13.xy.y * 0.5,
+        0.5 + (t23 && t24 ? t25 : float3(0.0, 0.0, 1.0)).z * 0.5,
+        0.5 + t13.xy.x * 0.5
+    );
     return result;
 }
 
@@ -129,7 +142,8 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -157,38 +171,38 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
     precise float2 t7 = w.xy * w.xy * 16256.25;
     precise float2 t8 = t6 * t6 * len2;
     precise float2 t9 = UNITPACK_SELECT(
-        t6 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 >= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
+        w.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t6 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 >= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t6 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 <= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t10 = UNITPACK_SELECT(
-        t6 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 <= t8, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
+    precise float2 t10 = t5 - 1.0 - 127.0;
+    precise float2 t11 = t10 * t10 * len2;
+    precise float2 t12 = UNITPACK_SELECT(
+        w.xy >= float2(0.0, 0.0),
+        UNITPACK_SELECT(
+            t10 > float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 >= t11, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(1.0, 1.0)
+        ),
+        UNITPACK_SELECT(
+            t10 < float2(0.0, 0.0),
+            UNITPACK_SELECT(t7 <= t11, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t11 = UNITPACK_SELECT(
-        t5 < float2(255.0, 255.0),
-        UNITPACK_SELECT(w.xy >= float2(0.0, 0.0), t9, t10),
-        float2(0.0, 0.0)
-    );
-    precise float2 t12 = t5 - 1.0 - 127.0;
-    precise float2 t13 = t12 * t12 * len2;
-    precise float2 t14 = UNITPACK_SELECT(
-        t12 > float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 >= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(1.0, 1.0)
-    );
-    precise float2 t15 = UNITPACK_SELECT(
-        t12 < float2(0.0, 0.0),
-        UNITPACK_SELECT(t7 <= t13, float2(1.0, 1.0), float2(0.0, 0.0)),
-        float2(0.0, 0.0)
-    );
-    precise float2 t16 = UNITPACK_SELECT(
-        t5 > float2(0.0, 0.0),
-        UNITPACK_SELECT(w.xy >= float2(0.0, 0.0), t14, t15) - 1.0,
-        float2(0.0, 0.0)
-    );
-    precise float2 c = ok && len2 > 0.0 ? t5 + t11 + t16 : float2(128.0, 128.0);
+    precise float2 t13 = t5
+        + UNITPACK_SELECT(t5 < float2(255.0, 255.0), t9, float2(0.0, 0.0))
+        + UNITPACK_SELECT(t5 > float2(0.0, 0.0), t12 - 1.0, float2(0.0, 0.0));
+    bool t14 = len2 > 0.0;
+    precise float2 c = ok && t14 ? t13 : float2(128.0, 128.0);
     precise float3 normal2 = UNITPACK_SELECT(
         abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
@@ -201,18 +215,19 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w2 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w3 = ok2 ? w2 : float3(0.0, 0.0, 2.0);
-    precise float3 t17 = float3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
+    precise float3 t15 = float3(w3.xy, w3.z > 0.0 ? w3.z : 0.0);
     precise float3 normal3 = UNITPACK_SELECT(
-        abs(t17) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(t15) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        t17
+        t15
     );
     precise float3 abs_normal3 = abs(normal3);
     precise float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
@@ -221,7 +236,8 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
     precise float3 scaled3 = normal3 * scale3;
     precise float3 abs_scaled3 = abs(scaled3);
     precise float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    bool ok3 = sum3 >= 2.0 && sum3 < 16.0;
+    bool sum_below_16_3 = sum3 < 16.0;
+    bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     precise float3 w4 = UNITPACK_SELECT(
         abs(scaled3) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -234,30 +250,34 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
     precise float split_lo5 = w5.y - split_hi5;
     precise float split_hi6 = asfloat(asuint(w5.z) & 4294963200u);
     precise float split_lo6 = w5.z - split_hi6;
-    precise float t18 = (split_hi4 + split_hi4) * split_lo4
+    precise float t16 = (split_hi4 + split_hi4) * split_lo4
         + (split_hi5 + split_hi5) * split_lo5
         + (split_hi6 + split_hi6) * split_lo6;
     precise float len2_2 = split_hi4 * split_hi4
         + split_hi5 * split_hi5
         + split_hi6 * split_hi6
-        + t18
+        + t16
         + (split_lo4 * split_lo4 + split_lo5 * split_lo5 + split_lo6 * split_lo6);
     precise float big2 = w5.z * w5.z * 16256.25;
-    precise float t19 = round(w5.z / sqrt(len2_2) * 127.5 + 127.5);
-    precise float t20 = t19 >= 0.0 ? t19 : 0.0;
-    precise float estimate = t20 <= 255.0 ? t20 : 255.0;
-    precise float t21 = estimate - 127.0;
-    precise float t22 = t21 * t21 * len2_2;
-    precise float t23 = w5.z >= 0.0
-        ? (t21 > 0.0 ? (big2 >= t22 ? 1.0 : 0.0) : 1.0)
-        : (t21 < 0.0 ? (big2 <= t22 ? 1.0 : 0.0) : 0.0);
+    precise float t17 = round(w5.z / sqrt(len2_2) * 127.5 + 127.5);
+    precise float t18 = t17 >= 0.0 ? t17 : 0.0;
+    precise float estimate = t18 <= 255.0 ? t18 : 255.0;
+    precise float t19 = estimate - 127.0;
+    precise float t20 = t19 * t19 * len2_2;
+    precise float one_if = big2 >= t20 ? 1.0 : 0.0;
+    precise float t21 = t19 > 0.0 ? one_if : 1.0;
+    precise float one_if2 = big2 <= t20 ? 1.0 : 0.0;
+    precise float t22 = t19 < 0.0 ? one_if2 : 0.0;
+    precise float t23 = w5.z >= 0.0 ? t21 : t22;
     precise float up = estimate < 255.0 ? t23 : 0.0;
     precise float t24 = estimate - 1.0 - 127.0;
     precise float t25 = t24 * t24 * len2_2;
-    precise float t26 = w5.z >= 0.0
-        ? (t24 > 0.0 ? (big2 >= t25 ? 1.0 : 0.0) : 1.0)
-        : (t24 < 0.0 ? (big2 <= t25 ? 1.0 : 0.0) : 0.0);
-    precise float down = estimate > 0.0 ? t26 - 1.0 : 0.0;
+    precise float one_if3 = big2 >= t25 ? 1.0 : 0.0;
+    precise float t26 = t24 > 0.0 ? one_if3 : 1.0;
+    precise float one_if4 = big2 <= t25 ? 1.0 : 0.0;
+    precise float t27 = t24 < 0.0 ? one_if4 : 0.0;
+    precise float t28 = (w5.z >= 0.0 ? t26 : t27) - 1.0;
+    precise float down = estimate > 0.0 ? t28 : 0.0;
     precise float4 result = float4(255.0, c.y, estimate + up + down, c.x);
     return result;
 }
@@ -272,10 +292,8 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
 //   components count as zero.
 uint unitpack_xy16_rxgb_encode(float3 v) {
     precise float4 round_codes = unitpack_xy16_rxgb_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_XY16_RXGB_HLSL

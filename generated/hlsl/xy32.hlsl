@@ -72,21 +72,26 @@ float2 unitpack_xy32_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    precise float3 t4 = float3(t3.xy, t3.z > 0.0 ? t3.z : 0.0);
-    precise float3 abs_t4 = abs(t4);
-    precise float t5 = abs_t4.x >= abs_t4.y ? abs_t4.x : abs_t4.y;
-    precise float largest2 = t5 >= abs_t4.z ? t5 : abs_t4.z;
-    bool t6 = largest2 > 0.0 && largest2 <= 3.4028235e38;
-    precise float3 scaled2 = t4 / (t6 ? largest2 : 1.0);
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 t6 = t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
+    precise float3 t7 = float3(t6.xy, t6.z > 0.0 ? t6.z : 0.0);
+    precise float3 abs_t7 = abs(t7);
+    precise float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
+    precise float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
+    bool t9 = largest2 <= 3.4028235e38;
+    bool t10 = largest2 > 0.0 && t9;
+    precise float3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     precise float3 scaled2_sq = scaled2 * scaled2;
     precise float len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    precise float3 t7 = t6 && len2_2 >= 1.0 ? scaled2 / sqrt(len2_2) : float3(0.0, 0.0, 1.0);
-    return t7.xy;
+    bool t11 = len2_2 >= 1.0;
+    precise float3 t12 = scaled2 / sqrt(len2_2);
+    return (t10 && t11 ? t12 : float3(0.0, 0.0, 1.0)).xy;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -105,7 +110,8 @@ float2 unitpack_xy32_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -130,32 +136,36 @@ float2 unitpack_xy32_round_codes(float3 a0) {
     precise float estimate = round(big / sqrt(len2));
     precise float big2 = big * big;
     precise float lower = estimate - 0.5;
+    precise float t3 = lower * lower * len2;
+    bool t4 = big2 < t3;
     precise float big3 = abs(w.xy.y * 32767.0);
     precise float estimate2 = round(big3 / sqrt(len2));
     precise float big2_2 = big3 * big3;
     precise float lower2 = estimate2 - 0.5;
-    precise float2 t3 = abs(w.xy * 32767.0);
-    precise float2 t4 = round(t3 / sqrt(float2(len2, len2)));
-    precise float2 t5 = t4 + 0.5;
-    precise float t6 = lower * lower * len2;
-    precise float t7 = lower2 * lower2 * len2;
-    bool2 t8 = bool2(estimate > 0.0 && big2 < t6, estimate2 > 0.0 && big2_2 < t7);
-    precise float2 t9 = UNITPACK_SELECT(
-        t3 * t3 >= t5 * t5 * len2,
+    precise float t5 = lower2 * lower2 * len2;
+    bool t6 = big2_2 < t5;
+    precise float2 t7 = abs(w.xy * 32767.0);
+    precise float2 t8 = round(t7 / sqrt(float2(len2, len2)));
+    precise float2 t9 = t8 + 0.5;
+    precise float2 t10 = UNITPACK_SELECT(
+        t7 * t7 >= t9 * t9 * len2,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t8, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(
+            bool2(estimate > 0.0 && t4, estimate2 > 0.0 && t6),
+            float2(-1.0, -1.0),
+            float2(0.0, 0.0)
+        )
     );
-    precise float2 t10 = t4 + t9;
-    precise float2 t11 = UNITPACK_SELECT(t10 >= float2(0.0, 0.0), t10, float2(0.0, 0.0));
-    precise float2 t12 = UNITPACK_SELECT(
-        t11 <= float2(32767.0, 32767.0),
-        t11,
+    precise float2 t11 = t8 + t10;
+    precise float2 t12 = UNITPACK_SELECT(t11 >= float2(0.0, 0.0), t11, float2(0.0, 0.0));
+    precise float2 t13 = UNITPACK_SELECT(
+        t12 <= float2(32767.0, 32767.0),
+        t12,
         float2(32767.0, 32767.0)
     );
-    precise float2 result = ok && len2 > 0.0
-        ? UNITPACK_SELECT(w.xy < float2(0.0, 0.0), -t12, t12)
-        : float2(0.0, 0.0);
-    return result;
+    precise float2 t14 = UNITPACK_SELECT(w.xy < float2(0.0, 0.0), -t13, t13);
+    bool t15 = len2 > 0.0;
+    return ok && t15 ? t14 : float2(0.0, 0.0);
 }
 
 // unitpack_xy32_encode: fast encoder.

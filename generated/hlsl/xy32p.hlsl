@@ -79,7 +79,8 @@ float2 unitpack_xy32p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -99,19 +100,20 @@ float2 unitpack_xy32p_encode_codes(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -131,228 +133,233 @@ float2 unitpack_xy32p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float2 t6 = floor(w4.xy / root * 32767.0);
-    precise float2 t7 = w4.xy * 32767.0;
-    precise float2 t8 = UNITPACK_SELECT(
-        t7 >= (t6 + 1.0) * root,
+    precise float2 t2 = floor(w4.xy / root * 32767.0);
+    precise float2 t3 = w4.xy * 32767.0;
+    precise float2 t4 = UNITPACK_SELECT(
+        t3 >= (t2 + 1.0) * root,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t7 < t6 * root, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t3 < t2 * root, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t9 = t6 + t8;
-    precise float2 t10 = UNITPACK_SELECT(
-        t9 >= float2(-32767.0, -32767.0),
-        t9,
+    precise float2 t5 = t2 + t4;
+    precise float2 t6 = UNITPACK_SELECT(
+        t5 >= float2(-32767.0, -32767.0),
+        t5,
         float2(-32767.0, -32767.0)
     );
     precise float2 base = UNITPACK_SELECT(
-        t10 <= float2(32767.0, 32767.0),
-        t10,
+        t6 <= float2(32767.0, 32767.0),
+        t6,
         float2(32767.0, 32767.0)
     );
-    precise float3 t11 = floor(w4 / root * 2097152.0);
-    precise float3 t12 = w4 * 2097152.0;
-    precise float3 t13 = UNITPACK_SELECT(
-        t11 * root > t12,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float3 t7 = floor(w4 / root * 2097152.0);
+    precise float3 t8 = w4 * 2097152.0;
+    precise float3 t9 = UNITPACK_SELECT(
+        (t7 + 1.0) * root <= t8,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t7 * root > t8, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t11
-        + UNITPACK_SELECT((t11 + 1.0) * root <= t12, float3(1.0, 1.0, 1.0), t13);
+    precise float3 aim = t7 + t9;
     precise float2 cand = UNITPACK_SELECT(
         base <= float2(32767.0, 32767.0),
         base,
         float2(32767.0, 32767.0)
     );
     precise float2 abs_cand = abs(cand);
-    uint2 t14 = uint2(abs_cand);
-    uint t15 = t14.x * t14.x + t14.y * t14.y;
-    uint t16 = t15 < 1073676289u ? 1073676289u - t15 : 0u;
-    precise float r = float(t16 >> 12u) * 4096.0 + float(t16 & 4095u);
-    precise float t17 = r * 4096.25;
-    precise float root_estimate2 = floor(sqrt(t17));
+    uint2 abs_cand_u = uint2(abs_cand);
+    uint t10 = abs_cand_u.x * abs_cand_u.x + abs_cand_u.y * abs_cand_u.y;
+    uint t11 = 1073676289u - t10;
+    uint t12 = t10 < 1073676289u ? t11 : 0u;
+    precise float r = float(t12 >> 12u) * 4096.0 + float(t12 & 4095u);
+    precise float t13 = r * 4096.25;
+    precise float root_estimate2 = floor(sqrt(t13));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t18 = root_next * root_next <= t17
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t17 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t18;
+    precise float step_down3 = root_estimate2 * root_estimate2 > t13 ? -1.0 : 0.0;
+    precise float step3 = root_next * root_next <= t13 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + step3;
     precise float root_next2 = root_step + 1.0;
-    precise float t19 = root_next2 * root_next2 <= t17
-        ? 1.0
-        : (root_step * root_step > t17 ? -1.0 : 0.0);
-    precise float root2 = root_step + t19;
-    precise float3 t20 = abs(float3(floor(cand * 64.00195), root2) - aim);
-    uint3 t21 = uint3(t20);
-    uint limb1_4 = t21.x >> 12u;
-    uint limb0_4 = t21.x & 4095u;
+    precise float step_down4 = root_step * root_step > t13 ? -1.0 : 0.0;
+    precise float step4 = root_next2 * root_next2 <= t13 ? 1.0 : step_down4;
+    precise float root2 = root_step + step4;
+    precise float3 offset = float3(floor(cand * 64.00195), root2) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t21.y >> 12u;
-    uint limb0_5 = t21.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t21.z >> 12u;
-    uint limb0_6 = t21.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    precise float t22 = base.x + 1.0;
-    precise float2 t23 = float2(t22, base.y);
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t14 = float2(s_up, base.y);
     precise float2 cand2 = UNITPACK_SELECT(
-        t23 <= float2(32767.0, 32767.0),
-        t23,
+        t14 <= float2(32767.0, 32767.0),
+        t14,
         float2(32767.0, 32767.0)
     );
+    bool t15 = base.y <= 32767.0;
     precise float2 abs_cand2 = abs(cand2);
-    uint2 t24 = uint2(abs_cand2);
-    uint t25 = t24.x * t24.x + t24.y * t24.y;
-    uint t26 = t25 < 1073676289u ? 1073676289u - t25 : 0u;
-    precise float r2 = float(t26 >> 12u) * 4096.0 + float(t26 & 4095u);
-    precise float t27 = r2 * 4096.25;
-    precise float root_estimate3 = floor(sqrt(t27));
+    uint2 abs_cand2_u = uint2(abs_cand2);
+    uint t16 = abs_cand2_u.x * abs_cand2_u.x + abs_cand2_u.y * abs_cand2_u.y;
+    uint t17 = 1073676289u - t16;
+    uint t18 = t16 < 1073676289u ? t17 : 0u;
+    precise float r2 = float(t18 >> 12u) * 4096.0 + float(t18 & 4095u);
+    precise float t19 = r2 * 4096.25;
+    precise float root_estimate3 = floor(sqrt(t19));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t28 = root_next3 * root_next3 <= t27
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t27 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t28;
+    precise float step_down5 = root_estimate3 * root_estimate3 > t19 ? -1.0 : 0.0;
+    precise float step5 = root_next3 * root_next3 <= t19 ? 1.0 : step_down5;
+    precise float root_step2 = root_estimate3 + step5;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t29 = root_next4 * root_next4 <= t27
-        ? 1.0
-        : (root_step2 * root_step2 > t27 ? -1.0 : 0.0);
-    precise float root3 = root_step2 + t29;
-    precise float3 t30 = abs(float3(floor(cand2 * 64.00195), root3) - aim);
-    uint3 t31 = uint3(t30);
-    uint limb1_7 = t31.x >> 12u;
-    uint limb0_7 = t31.x & 4095u;
+    precise float step_down6 = root_step2 * root_step2 > t19 ? -1.0 : 0.0;
+    precise float step6 = root_next4 * root_next4 <= t19 ? 1.0 : step_down6;
+    precise float root3 = root_step2 + step6;
+    precise float3 offset2 = float3(floor(cand2 * 64.00195), root3) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t31.y >> 12u;
-    uint limb0_8 = t31.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t31.z >> 12u;
-    uint limb0_9 = t31.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t32 = t22 <= 32767.0 && base.y <= 32767.0 && dist2 < dist;
-    precise float2 best = t32 ? cand2 : cand;
-    precise float best_d = t32 ? dist2 : dist;
-    precise float t33 = base.y + 1.0;
-    precise float2 t34 = float2(base.x, t33);
+    bool t20 = dist2 < dist;
+    bool t21 = s_up <= 32767.0 && t15 && t20;
+    precise float2 best = t21 ? cand2 : cand;
+    precise float best_d = t21 ? dist2 : dist;
+    precise float2 t22 = float2(base.x, t_up);
     precise float2 cand3 = UNITPACK_SELECT(
-        t34 <= float2(32767.0, 32767.0),
-        t34,
+        t22 <= float2(32767.0, 32767.0),
+        t22,
         float2(32767.0, 32767.0)
     );
+    bool t23 = t_up <= 32767.0;
     precise float2 abs_cand3 = abs(cand3);
-    uint2 t35 = uint2(abs_cand3);
-    uint t36 = t35.x * t35.x + t35.y * t35.y;
-    uint t37 = t36 < 1073676289u ? 1073676289u - t36 : 0u;
-    precise float r3 = float(t37 >> 12u) * 4096.0 + float(t37 & 4095u);
-    precise float t38 = r3 * 4096.25;
-    precise float root_estimate4 = floor(sqrt(t38));
+    uint2 abs_cand3_u = uint2(abs_cand3);
+    uint t24 = abs_cand3_u.x * abs_cand3_u.x + abs_cand3_u.y * abs_cand3_u.y;
+    uint t25 = 1073676289u - t24;
+    uint t26 = t24 < 1073676289u ? t25 : 0u;
+    precise float r3 = float(t26 >> 12u) * 4096.0 + float(t26 & 4095u);
+    precise float t27 = r3 * 4096.25;
+    precise float root_estimate4 = floor(sqrt(t27));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t39 = root_next5 * root_next5 <= t38
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t38 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t39;
+    precise float step_down7 = root_estimate4 * root_estimate4 > t27 ? -1.0 : 0.0;
+    precise float step7 = root_next5 * root_next5 <= t27 ? 1.0 : step_down7;
+    precise float root_step3 = root_estimate4 + step7;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t40 = root_next6 * root_next6 <= t38
-        ? 1.0
-        : (root_step3 * root_step3 > t38 ? -1.0 : 0.0);
-    precise float root4 = root_step3 + t40;
-    precise float3 t41 = abs(float3(floor(cand3 * 64.00195), root4) - aim);
-    uint3 t42 = uint3(t41);
-    uint limb1_10 = t42.x >> 12u;
-    uint limb0_10 = t42.x & 4095u;
+    precise float step_down8 = root_step3 * root_step3 > t27 ? -1.0 : 0.0;
+    precise float step8 = root_next6 * root_next6 <= t27 ? 1.0 : step_down8;
+    precise float root4 = root_step3 + step8;
+    precise float3 offset3 = float3(floor(cand3 * 64.00195), root4) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t42.y >> 12u;
-    uint limb0_11 = t42.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t42.z >> 12u;
-    uint limb0_12 = t42.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t43 = base.x <= 32767.0 && t33 <= 32767.0 && dist3 < best_d;
-    precise float2 best2 = t43 ? cand3 : best;
-    precise float best_d2 = t43 ? dist3 : best_d;
-    precise float2 t44 = base + 1.0;
+    bool t28 = dist3 < best_d;
+    bool t29 = base.x <= 32767.0 && t23 && t28;
+    precise float2 best2 = t29 ? cand3 : best;
+    precise float best_d2 = t29 ? dist3 : best_d;
+    precise float2 t30 = base + 1.0;
     precise float2 cand4 = UNITPACK_SELECT(
-        t44 <= float2(32767.0, 32767.0),
-        t44,
+        t30 <= float2(32767.0, 32767.0),
+        t30,
         float2(32767.0, 32767.0)
     );
+    bool t31 = t_up <= 32767.0;
     precise float2 abs_cand4 = abs(cand4);
-    uint2 t45 = uint2(abs_cand4);
-    uint t46 = t45.x * t45.x + t45.y * t45.y;
-    uint t47 = t46 < 1073676289u ? 1073676289u - t46 : 0u;
-    precise float r4 = float(t47 >> 12u) * 4096.0 + float(t47 & 4095u);
-    precise float t48 = r4 * 4096.25;
-    precise float root_estimate5 = floor(sqrt(t48));
+    uint2 abs_cand4_u = uint2(abs_cand4);
+    uint t32 = abs_cand4_u.x * abs_cand4_u.x + abs_cand4_u.y * abs_cand4_u.y;
+    uint t33 = 1073676289u - t32;
+    uint t34 = t32 < 1073676289u ? t33 : 0u;
+    precise float r4 = float(t34 >> 12u) * 4096.0 + float(t34 & 4095u);
+    precise float t35 = r4 * 4096.25;
+    precise float root_estimate5 = floor(sqrt(t35));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t49 = root_next7 * root_next7 <= t48
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t48 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t49;
+    precise float step_down9 = root_estimate5 * root_estimate5 > t35 ? -1.0 : 0.0;
+    precise float step9 = root_next7 * root_next7 <= t35 ? 1.0 : step_down9;
+    precise float root_step4 = root_estimate5 + step9;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t50 = root_next8 * root_next8 <= t48
-        ? 1.0
-        : (root_step4 * root_step4 > t48 ? -1.0 : 0.0);
-    precise float root5 = root_step4 + t50;
-    precise float3 t51 = abs(float3(floor(cand4 * 64.00195), root5) - aim);
-    uint3 t52 = uint3(t51);
-    uint limb1_13 = t52.x >> 12u;
-    uint limb0_13 = t52.x & 4095u;
+    precise float step_down10 = root_step4 * root_step4 > t35 ? -1.0 : 0.0;
+    precise float step10 = root_next8 * root_next8 <= t35 ? 1.0 : step_down10;
+    precise float root5 = root_step4 + step10;
+    precise float3 offset4 = float3(floor(cand4 * 64.00195), root5) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t52.y >> 12u;
-    uint limb0_14 = t52.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t52.z >> 12u;
-    uint limb0_15 = t52.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    precise float2 best3 = base.x + 1.0 <= 32767.0 && base.y + 1.0 <= 32767.0 && dist4 < best_d2
-        ? cand4
-        : best2;
+    bool t36 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 32767.0 && t31 && t36 ? cand4 : best2;
     return ok && ok2 ? best3 : float2(0.0, 0.0);
 }
 

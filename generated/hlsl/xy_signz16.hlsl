@@ -46,8 +46,8 @@ float3 unitpack_xy_signz16_decode_float(float3 params) {
     precise float t2 = t1.x + t1.y;
     precise float d = t2 < 1.0 ? t2 : 1.0;
     precise float t3 = sqrt(1.0 - d);
-    precise float3 result = float3(params.xy, params.z > 0.5 ? -t3 : t3);
-    return result;
+    precise float neg_t3 = -t3;
+    return float3(params.xy, params.z > 0.5 ? neg_t3 : t3);
 }
 
 // unitpack_xy_signz16_decode: decoder.
@@ -58,15 +58,17 @@ float3 unitpack_xy_signz16_decode_float(float3 params) {
 // Portable as unitpack_xy_signz16_decode_float is, within the same bound.
 float3 unitpack_xy_signz16_decode(uint code) {
     precise float t1 = float(code & 255u);
-    precise float t2 = float((code >> 8u) & 127u);
-    precise float3 t3 = float3(
-        t1 > 127.0 ? t1 - 256.0 : t1,
-        t2 > 63.0 ? t2 - 128.0 : t2,
+    precise float t2 = t1 - 256.0;
+    precise float t3 = float((code >> 8u) & 127u);
+    precise float t4 = t3 - 128.0;
+    precise float3 t5 = float3(
+        t1 > 127.0 ? t2 : t1,
+        t3 > 63.0 ? t4 : t3,
         float((code >> 15u) & 1u)
     );
-    precise float t4 = t3.x * 0.007874016;
-    precise float t5 = t3.y * 0.015873017;
-    precise float3 params = float3(t4 >= (-1.0) ? t4 : -1.0, t5 >= (-1.0) ? t5 : -1.0, t3.z * 1.0);
+    precise float t6 = t5.x * 0.007874016;
+    precise float t7 = t5.y * 0.015873017;
+    precise float3 params = float3(t6 >= (-1.0) ? t6 : -1.0, t7 >= (-1.0) ? t7 : -1.0, t5.z * 1.0);
     return unitpack_xy_signz16_decode_float(params);
 }
 
@@ -81,12 +83,16 @@ float3 unitpack_xy_signz16_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest > 0.0 && largest <= 3.4028235e38;
-    precise float3 scaled = v / (t2 ? largest : 1.0);
+    bool t2 = largest <= 3.4028235e38;
+    bool t3 = largest > 0.0 && t2;
+    precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
     precise float len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    precise float3 t3 = t2 && len2 >= 1.0 ? scaled / sqrt(len2) : float3(0.0, 0.0, 1.0);
-    return float3(t3.xy, t3.z < 0.0 ? 1.0 : 0.0);
+    bool t4 = len2 >= 1.0;
+    precise float3 t5 = scaled / sqrt(len2);
+    precise float3 t6 = t3 && t4 ? t5 : float3(0.0, 0.0, 1.0);
+    precise float one_if = t6.z < 0.0 ? 1.0 : 0.0;
+    return float3(t6.xy, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -105,7 +111,8 @@ float3 unitpack_xy_signz16_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -131,27 +138,29 @@ float3 unitpack_xy_signz16_round_codes(float3 a0) {
     precise float big2 = big * big;
     precise float upper = estimate + 0.5;
     precise float lower = estimate - 0.5;
-    precise float t2 = big2 >= upper * upper * len2
-        ? 1.0
-        : (estimate > 0.0 && big2 < lower * lower * len2 ? -1.0 : 0.0);
-    precise float t3 = estimate + t2;
-    precise float t4 = t3 >= 0.0 ? t3 : 0.0;
-    precise float t5 = t4 <= 127.0 ? t4 : 127.0;
+    precise float t2 = lower * lower * len2;
+    bool t3 = big2 < t2;
+    precise float step_down = estimate > 0.0 && t3 ? -1.0 : 0.0;
+    precise float step = big2 >= upper * upper * len2 ? 1.0 : step_down;
+    precise float t4 = estimate + step;
+    precise float t5 = t4 >= 0.0 ? t4 : 0.0;
+    precise float t6 = t5 <= 127.0 ? t5 : 127.0;
     precise float big3 = abs(w2.y * 63.0);
     precise float estimate2 = round(big3 / sqrt(len2));
     precise float big2_2 = big3 * big3;
     precise float upper2 = estimate2 + 0.5;
     precise float lower2 = estimate2 - 0.5;
-    precise float t6 = big2_2 >= upper2 * upper2 * len2
-        ? 1.0
-        : (estimate2 > 0.0 && big2_2 < lower2 * lower2 * len2 ? -1.0 : 0.0);
-    precise float t7 = estimate2 + t6;
-    precise float t8 = t7 >= 0.0 ? t7 : 0.0;
-    precise float t9 = t8 <= 63.0 ? t8 : 63.0;
+    precise float t7 = lower2 * lower2 * len2;
+    bool t8 = big2_2 < t7;
+    precise float step_down2 = estimate2 > 0.0 && t8 ? -1.0 : 0.0;
+    precise float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
+    precise float t9 = estimate2 + step2;
+    precise float t10 = t9 >= 0.0 ? t9 : 0.0;
+    precise float t11 = t10 <= 63.0 ? t10 : 63.0;
     precise float3 result = UNITPACK_SELECT(
         w2 < float3(0.0, 0.0, 0.0),
-        float3(-t5, -t9, 1.0),
-        float3(t5, t9, 0.0)
+        float3(-t6, -t11, 1.0),
+        float3(t6, t11, 0.0)
     );
     return result;
 }

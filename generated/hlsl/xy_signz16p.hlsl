@@ -46,8 +46,8 @@ float3 unitpack_xy_signz16p_decode_float(float3 params) {
     precise float t2 = t1.x + t1.y;
     precise float d = t2 < 1.0 ? t2 : 1.0;
     precise float t3 = sqrt(1.0 - d);
-    precise float3 result = float3(params.xy, params.z > 0.5 ? -t3 : t3);
-    return result;
+    precise float neg_t3 = -t3;
+    return float3(params.xy, params.z > 0.5 ? neg_t3 : t3);
 }
 
 // unitpack_xy_signz16p_decode: decoder.
@@ -58,15 +58,17 @@ float3 unitpack_xy_signz16p_decode_float(float3 params) {
 // Portable as unitpack_xy_signz16p_decode_float is, within the same bound.
 float3 unitpack_xy_signz16p_decode(uint code) {
     precise float t1 = float(code & 255u);
-    precise float t2 = float((code >> 8u) & 127u);
-    precise float3 t3 = float3(
-        t1 > 127.0 ? t1 - 256.0 : t1,
-        t2 > 63.0 ? t2 - 128.0 : t2,
+    precise float t2 = t1 - 256.0;
+    precise float t3 = float((code >> 8u) & 127u);
+    precise float t4 = t3 - 128.0;
+    precise float3 t5 = float3(
+        t1 > 127.0 ? t2 : t1,
+        t3 > 63.0 ? t4 : t3,
         float((code >> 15u) & 1u)
     );
-    precise float t4 = t3.x * 0.007874016;
-    precise float t5 = t3.y * 0.015873017;
-    precise float3 params = float3(t4 >= (-1.0) ? t4 : -1.0, t5 >= (-1.0) ? t5 : -1.0, t3.z * 1.0);
+    precise float t6 = t5.x * 0.007874016;
+    precise float t7 = t5.y * 0.015873017;
+    precise float3 params = float3(t6 >= (-1.0) ? t6 : -1.0, t7 >= (-1.0) ? t7 : -1.0, t5.z * 1.0);
     return unitpack_xy_signz16p_decode_float(params);
 }
 
@@ -87,19 +89,20 @@ float3 unitpack_xy_signz16p_encode_codes(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = floor(abs(w2.x) * 2097152.0);
-    uint fixed2 = uint(t1);
-    precise float t2 = floor(abs(w2.y) * 2097152.0);
-    uint fixed3 = uint(t2);
-    precise float t3 = floor(abs(w2.z) * 2097152.0);
-    uint fixed4 = uint(t3);
+    precise float fixed_f = floor(abs(w2.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -119,202 +122,207 @@ float3 unitpack_xy_signz16p_encode_codes(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t4 = floor(root_estimate * 512.0);
-    precise float root_h0 = t4 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t4
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t5 = w2.z < 0.0 ? 1.0 : 0.0;
-    precise float2 t6 = floor(w2.xy / root * float2(127.0, 63.0));
-    precise float2 t7 = w2.xy * float2(127.0, 63.0);
-    precise float2 t8 = UNITPACK_SELECT(
-        t7 >= (t6 + 1.0) * root,
+    precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
+    precise float2 t1 = floor(w2.xy / root * float2(127.0, 63.0));
+    precise float2 t2 = w2.xy * float2(127.0, 63.0);
+    precise float2 t3 = UNITPACK_SELECT(
+        t2 >= (t1 + 1.0) * root,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t7 < t6 * root, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t2 < t1 * root, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t9 = t6 + t8;
-    precise float2 t10 = UNITPACK_SELECT(t9 >= float2(-127.0, -63.0), t9, float2(-127.0, -63.0));
-    precise float2 base = UNITPACK_SELECT(t10 <= float2(127.0, 63.0), t10, float2(127.0, 63.0));
-    precise float3 t11 = floor(w2 / root * 2097152.0);
-    precise float3 t12 = w2 * 2097152.0;
-    precise float3 t13 = UNITPACK_SELECT(
-        t11 * root > t12,
-        float3(-1.0, -1.0, -1.0),
-        float3(0.0, 0.0, 0.0)
+    precise float2 t4 = t1 + t3;
+    precise float2 t5 = UNITPACK_SELECT(t4 >= float2(-127.0, -63.0), t4, float2(-127.0, -63.0));
+    precise float2 base = UNITPACK_SELECT(t5 <= float2(127.0, 63.0), t5, float2(127.0, 63.0));
+    precise float3 t6 = floor(w2 / root * 2097152.0);
+    precise float3 t7 = w2 * 2097152.0;
+    precise float3 t8 = UNITPACK_SELECT(
+        (t6 + 1.0) * root <= t7,
+        float3(1.0, 1.0, 1.0),
+        UNITPACK_SELECT(t6 * root > t7, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
-    precise float3 aim = t11
-        + UNITPACK_SELECT((t11 + 1.0) * root <= t12, float3(1.0, 1.0, 1.0), t13);
+    precise float3 aim = t6 + t8;
     precise float2 cand = UNITPACK_SELECT(base <= float2(127.0, 63.0), base, float2(127.0, 63.0));
     precise float2 p = floor(cand * float2(16513.008, 33288.13));
     precise float q = round(p.x * p.x * 4.7683716e-7) + round(p.y * p.y * 4.7683716e-7);
-    precise float t14 = 2097152.0 - q;
-    precise float rest = t14 >= 0.0 ? t14 : 0.0;
-    precise float t15 = rest * 2097152.0;
-    precise float root_estimate2 = floor(sqrt(t15));
+    precise float t9 = 2097152.0 - q;
+    precise float rest = t9 >= 0.0 ? t9 : 0.0;
+    precise float t10 = rest * 2097152.0;
+    precise float root_estimate2 = floor(sqrt(t10));
     precise float root_next = root_estimate2 + 1.0;
-    precise float t16 = root_next * root_next <= t15
-        ? 1.0
-        : (root_estimate2 * root_estimate2 > t15 ? -1.0 : 0.0);
-    precise float root_step = root_estimate2 + t16;
+    precise float step_down3 = root_estimate2 * root_estimate2 > t10 ? -1.0 : 0.0;
+    precise float step3 = root_next * root_next <= t10 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + step3;
     precise float root_next2 = root_step + 1.0;
-    precise float t17 = root_next2 * root_next2 <= t15
-        ? 1.0
-        : (root_step * root_step > t15 ? -1.0 : 0.0);
-    precise float root2 = root_step + t17;
-    precise float3 t18 = abs(float3(p, t5 > 0.5 ? -root2 : root2) - aim);
-    uint3 t19 = uint3(t18);
-    uint limb1_4 = t19.x >> 12u;
-    uint limb0_4 = t19.x & 4095u;
+    precise float step_down4 = root_step * root_step > t10 ? -1.0 : 0.0;
+    precise float step4 = root_next2 * root_next2 <= t10 ? 1.0 : step_down4;
+    precise float root2 = root_step + step4;
+    precise float neg_root2 = -root2;
+    precise float3 offset = float3(p, one_if > 0.5 ? neg_root2 : root2) - aim;
+    precise float3 abs_offset = abs(offset);
+    uint3 offset_u = uint3(abs_offset);
+    uint limb1_4 = offset_u.x >> 12u;
+    uint limb0_4 = offset_u.x & 4095u;
     uint cross4 = limb1_4 * limb0_4;
     uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    uint limb1_5 = t19.y >> 12u;
-    uint limb0_5 = t19.y & 4095u;
+    uint limb1_5 = offset_u.y >> 12u;
+    uint limb0_5 = offset_u.y & 4095u;
     uint cross5 = limb1_5 * limb0_5;
     uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    uint limb1_6 = t19.z >> 12u;
-    uint limb0_6 = t19.z & 4095u;
+    uint limb1_6 = offset_u.z >> 12u;
+    uint limb0_6 = offset_u.z & 4095u;
     uint cross6 = limb1_6 * limb0_6;
     uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     uint hi8 = hi7 + (lo7 >> 24u);
     uint lo8 = lo7 & 16777215u;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    precise float t20 = base.x + 1.0;
-    precise float2 t21 = float2(t20, base.y);
-    precise float2 cand2 = UNITPACK_SELECT(t21 <= float2(127.0, 63.0), t21, float2(127.0, 63.0));
+    precise float s_up = base.x + 1.0;
+    precise float t_up = base.y + 1.0;
+    precise float2 t11 = float2(s_up, base.y);
+    precise float2 cand2 = UNITPACK_SELECT(t11 <= float2(127.0, 63.0), t11, float2(127.0, 63.0));
+    bool t12 = base.y <= 63.0;
     precise float2 p2 = floor(cand2 * float2(16513.008, 33288.13));
     precise float q2 = round(p2.x * p2.x * 4.7683716e-7) + round(p2.y * p2.y * 4.7683716e-7);
-    precise float t22 = 2097152.0 - q2;
-    precise float rest2 = t22 >= 0.0 ? t22 : 0.0;
-    precise float t23 = rest2 * 2097152.0;
-    precise float root_estimate3 = floor(sqrt(t23));
+    precise float t13 = 2097152.0 - q2;
+    precise float rest2 = t13 >= 0.0 ? t13 : 0.0;
+    precise float t14 = rest2 * 2097152.0;
+    precise float root_estimate3 = floor(sqrt(t14));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float t24 = root_next3 * root_next3 <= t23
-        ? 1.0
-        : (root_estimate3 * root_estimate3 > t23 ? -1.0 : 0.0);
-    precise float root_step2 = root_estimate3 + t24;
+    precise float step_down5 = root_estimate3 * root_estimate3 > t14 ? -1.0 : 0.0;
+    precise float step5 = root_next3 * root_next3 <= t14 ? 1.0 : step_down5;
+    precise float root_step2 = root_estimate3 + step5;
     precise float root_next4 = root_step2 + 1.0;
-    precise float t25 = root_next4 * root_next4 <= t23
-        ? 1.0
-        : (root_step2 * root_step2 > t23 ? -1.0 : 0.0);
-    precise float root3 = root_step2 + t25;
-    precise float3 t26 = abs(float3(p2, t5 > 0.5 ? -root3 : root3) - aim);
-    uint3 t27 = uint3(t26);
-    uint limb1_7 = t27.x >> 12u;
-    uint limb0_7 = t27.x & 4095u;
+    precise float step_down6 = root_step2 * root_step2 > t14 ? -1.0 : 0.0;
+    precise float step6 = root_next4 * root_next4 <= t14 ? 1.0 : step_down6;
+    precise float root3 = root_step2 + step6;
+    precise float neg_root3 = -root3;
+    precise float3 offset2 = float3(p2, one_if > 0.5 ? neg_root3 : root3) - aim;
+    precise float3 abs_offset2 = abs(offset2);
+    uint3 offset_u2 = uint3(abs_offset2);
+    uint limb1_7 = offset_u2.x >> 12u;
+    uint limb0_7 = offset_u2.x & 4095u;
     uint cross7 = limb1_7 * limb0_7;
     uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    uint limb1_8 = t27.y >> 12u;
-    uint limb0_8 = t27.y & 4095u;
+    uint limb1_8 = offset_u2.y >> 12u;
+    uint limb0_8 = offset_u2.y & 4095u;
     uint cross8 = limb1_8 * limb0_8;
     uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    uint limb1_9 = t27.z >> 12u;
-    uint limb0_9 = t27.z & 4095u;
+    uint limb1_9 = offset_u2.z >> 12u;
+    uint limb0_9 = offset_u2.z & 4095u;
     uint cross9 = limb1_9 * limb0_9;
     uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t28 = t20 <= 127.0 && base.y <= 63.0 && dist2 < dist;
-    precise float2 best = t28 ? cand2 : cand;
-    precise float best_d = t28 ? dist2 : dist;
-    precise float t29 = base.y + 1.0;
-    precise float2 t30 = float2(base.x, t29);
-    precise float2 cand3 = UNITPACK_SELECT(t30 <= float2(127.0, 63.0), t30, float2(127.0, 63.0));
+    bool t15 = dist2 < dist;
+    bool t16 = s_up <= 127.0 && t12 && t15;
+    precise float2 best = t16 ? cand2 : cand;
+    precise float best_d = t16 ? dist2 : dist;
+    precise float2 t17 = float2(base.x, t_up);
+    precise float2 cand3 = UNITPACK_SELECT(t17 <= float2(127.0, 63.0), t17, float2(127.0, 63.0));
+    bool t18 = t_up <= 63.0;
     precise float2 p3 = floor(cand3 * float2(16513.008, 33288.13));
     precise float q3 = round(p3.x * p3.x * 4.7683716e-7) + round(p3.y * p3.y * 4.7683716e-7);
-    precise float t31 = 2097152.0 - q3;
-    precise float rest3 = t31 >= 0.0 ? t31 : 0.0;
-    precise float t32 = rest3 * 2097152.0;
-    precise float root_estimate4 = floor(sqrt(t32));
+    precise float t19 = 2097152.0 - q3;
+    precise float rest3 = t19 >= 0.0 ? t19 : 0.0;
+    precise float t20 = rest3 * 2097152.0;
+    precise float root_estimate4 = floor(sqrt(t20));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float t33 = root_next5 * root_next5 <= t32
-        ? 1.0
-        : (root_estimate4 * root_estimate4 > t32 ? -1.0 : 0.0);
-    precise float root_step3 = root_estimate4 + t33;
+    precise float step_down7 = root_estimate4 * root_estimate4 > t20 ? -1.0 : 0.0;
+    precise float step7 = root_next5 * root_next5 <= t20 ? 1.0 : step_down7;
+    precise float root_step3 = root_estimate4 + step7;
     precise float root_next6 = root_step3 + 1.0;
-    precise float t34 = root_next6 * root_next6 <= t32
-        ? 1.0
-        : (root_step3 * root_step3 > t32 ? -1.0 : 0.0);
-    precise float root4 = root_step3 + t34;
-    precise float3 t35 = abs(float3(p3, t5 > 0.5 ? -root4 : root4) - aim);
-    uint3 t36 = uint3(t35);
-    uint limb1_10 = t36.x >> 12u;
-    uint limb0_10 = t36.x & 4095u;
+    precise float step_down8 = root_step3 * root_step3 > t20 ? -1.0 : 0.0;
+    precise float step8 = root_next6 * root_next6 <= t20 ? 1.0 : step_down8;
+    precise float root4 = root_step3 + step8;
+    precise float neg_root4 = -root4;
+    precise float3 offset3 = float3(p3, one_if > 0.5 ? neg_root4 : root4) - aim;
+    precise float3 abs_offset3 = abs(offset3);
+    uint3 offset_u3 = uint3(abs_offset3);
+    uint limb1_10 = offset_u3.x >> 12u;
+    uint limb0_10 = offset_u3.x & 4095u;
     uint cross10 = limb1_10 * limb0_10;
     uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    uint limb1_11 = t36.y >> 12u;
-    uint limb0_11 = t36.y & 4095u;
+    uint limb1_11 = offset_u3.y >> 12u;
+    uint limb0_11 = offset_u3.y & 4095u;
     uint cross11 = limb1_11 * limb0_11;
     uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    uint limb1_12 = t36.z >> 12u;
-    uint limb0_12 = t36.z & 4095u;
+    uint limb1_12 = offset_u3.z >> 12u;
+    uint limb0_12 = offset_u3.z & 4095u;
     uint cross12 = limb1_12 * limb0_12;
     uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t37 = base.x <= 127.0 && t29 <= 63.0 && dist3 < best_d;
-    precise float2 best2 = t37 ? cand3 : best;
-    precise float best_d2 = t37 ? dist3 : best_d;
-    precise float2 t38 = base + 1.0;
-    precise float2 cand4 = UNITPACK_SELECT(t38 <= float2(127.0, 63.0), t38, float2(127.0, 63.0));
+    bool t21 = dist3 < best_d;
+    bool t22 = base.x <= 127.0 && t18 && t21;
+    precise float2 best2 = t22 ? cand3 : best;
+    precise float best_d2 = t22 ? dist3 : best_d;
+    precise float2 t23 = base + 1.0;
+    precise float2 cand4 = UNITPACK_SELECT(t23 <= float2(127.0, 63.0), t23, float2(127.0, 63.0));
+    bool t24 = t_up <= 63.0;
     precise float2 p4 = floor(cand4 * float2(16513.008, 33288.13));
     precise float q4 = round(p4.x * p4.x * 4.7683716e-7) + round(p4.y * p4.y * 4.7683716e-7);
-    precise float t39 = 2097152.0 - q4;
-    precise float rest4 = t39 >= 0.0 ? t39 : 0.0;
-    precise float t40 = rest4 * 2097152.0;
-    precise float root_estimate5 = floor(sqrt(t40));
+    precise float t25 = 2097152.0 - q4;
+    precise float rest4 = t25 >= 0.0 ? t25 : 0.0;
+    precise float t26 = rest4 * 2097152.0;
+    precise float root_estimate5 = floor(sqrt(t26));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float t41 = root_next7 * root_next7 <= t40
-        ? 1.0
-        : (root_estimate5 * root_estimate5 > t40 ? -1.0 : 0.0);
-    precise float root_step4 = root_estimate5 + t41;
+    precise float step_down9 = root_estimate5 * root_estimate5 > t26 ? -1.0 : 0.0;
+    precise float step9 = root_next7 * root_next7 <= t26 ? 1.0 : step_down9;
+    precise float root_step4 = root_estimate5 + step9;
     precise float root_next8 = root_step4 + 1.0;
-    precise float t42 = root_next8 * root_next8 <= t40
-        ? 1.0
-        : (root_step4 * root_step4 > t40 ? -1.0 : 0.0);
-    precise float root5 = root_step4 + t42;
-    precise float3 t43 = abs(float3(p4, t5 > 0.5 ? -root5 : root5) - aim);
-    uint3 t44 = uint3(t43);
-    uint limb1_13 = t44.x >> 12u;
-    uint limb0_13 = t44.x & 4095u;
+    precise float step_down10 = root_step4 * root_step4 > t26 ? -1.0 : 0.0;
+    precise float step10 = root_next8 * root_next8 <= t26 ? 1.0 : step_down10;
+    precise float root5 = root_step4 + step10;
+    precise float neg_root5 = -root5;
+    precise float3 offset4 = float3(p4, one_if > 0.5 ? neg_root5 : root5) - aim;
+    precise float3 abs_offset4 = abs(offset4);
+    uint3 offset_u4 = uint3(abs_offset4);
+    uint limb1_13 = offset_u4.x >> 12u;
+    uint limb0_13 = offset_u4.x & 4095u;
     uint cross13 = limb1_13 * limb0_13;
     uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    uint limb1_14 = t44.y >> 12u;
-    uint limb0_14 = t44.y & 4095u;
+    uint limb1_14 = offset_u4.y >> 12u;
+    uint limb0_14 = offset_u4.y & 4095u;
     uint cross14 = limb1_14 * limb0_14;
     uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    uint limb1_15 = t44.z >> 12u;
-    uint limb0_15 = t44.z & 4095u;
+    uint limb1_15 = offset_u4.z >> 12u;
+    uint limb0_15 = offset_u4.z & 4095u;
     uint cross15 = limb1_15 * limb0_15;
     uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    precise float2 best3 = base.x + 1.0 <= 127.0 && base.y + 1.0 <= 63.0 && dist4 < best_d2
-        ? cand4
-        : best2;
-    return float3(best3, t5);
+    bool t27 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 127.0 && t24 && t27 ? cand4 : best2;
+    return float3(best3, one_if);
 }
 
 // unitpack_xy_signz16p_encode_float: precise encoder, float form.

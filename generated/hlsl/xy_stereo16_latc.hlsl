@@ -58,10 +58,8 @@ float3 unitpack_xy_stereo16_latc_decode_float(float4 params) {
 //   below the horizon.
 // Portable as unitpack_xy_stereo16_latc_decode_float is, within the same bound.
 float3 unitpack_xy_stereo16_latc_decode(uint code) {
-    precise float4 t1 = float4(
-        uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    precise float4 params = t1 * 0.003921569;
+    uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    precise float4 params = float4(t1) * 0.003921569;
     return unitpack_xy_stereo16_latc_decode_float(params);
 }
 
@@ -86,7 +84,8 @@ float4 unitpack_xy_stereo16_latc_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -106,19 +105,20 @@ float4 unitpack_xy_stereo16_latc_encode_float(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -138,23 +138,25 @@ float4 unitpack_xy_stereo16_latc_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root + w4.z;
     precise float2 p = w4.xy / a;
-    precise float t6 = 0.5 + p.y * 0.5;
-    precise float4 result = float4(t6, t6, t6, 0.5 + p.x * 0.5);
+    precise float t2 = 0.5 + p.y * 0.5;
+    precise float4 result = float4(t2, t2, t2, 0.5 + p.x * 0.5);
     return result;
 }
 
@@ -174,7 +176,8 @@ float4 unitpack_xy_stereo16_latc_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -194,19 +197,20 @@ float4 unitpack_xy_stereo16_latc_round_codes(float3 a0) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -226,37 +230,39 @@ float4 unitpack_xy_stereo16_latc_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root + w4.z;
-    precise float2 t6 = w4.xy * 127.5;
-    precise float2 t7 = round(t6 / a + 127.5);
-    precise float2 t8 = UNITPACK_SELECT(t7 >= float2(0.0, 0.0), t7, float2(0.0, 0.0));
-    precise float2 t9 = UNITPACK_SELECT(t8 <= float2(255.0, 255.0), t8, float2(255.0, 255.0));
-    precise float2 t10 = UNITPACK_SELECT(
-        t9 < float2(255.0, 255.0),
-        UNITPACK_SELECT(t6 >= (t9 - 127.0) * a, float2(1.0, 1.0), float2(0.0, 0.0)),
+    precise float2 t2 = w4.xy * 127.5;
+    precise float2 t3 = round(t2 / a + 127.5);
+    precise float2 t4 = UNITPACK_SELECT(t3 >= float2(0.0, 0.0), t3, float2(0.0, 0.0));
+    precise float2 t5 = UNITPACK_SELECT(t4 <= float2(255.0, 255.0), t4, float2(255.0, 255.0));
+    precise float2 t6 = t5
+        + UNITPACK_SELECT(
+            t5 < float2(255.0, 255.0),
+            UNITPACK_SELECT(t2 >= (t5 - 127.0) * a, float2(1.0, 1.0), float2(0.0, 0.0)),
+            float2(0.0, 0.0)
+        );
+    precise float2 t7 = UNITPACK_SELECT(
+        t5 > float2(0.0, 0.0),
+        UNITPACK_SELECT(t2 >= (t5 - 1.0 - 127.0) * a, float2(1.0, 1.0), float2(0.0, 0.0)) - 1.0,
         float2(0.0, 0.0)
     );
-    precise float2 t11 = UNITPACK_SELECT(
-        t6 >= (t9 - 1.0 - 127.0) * a,
-        float2(1.0, 1.0),
-        float2(0.0, 0.0)
-    );
-    precise float2 c = ok && ok2
-        ? t9 + t10 + UNITPACK_SELECT(t9 > float2(0.0, 0.0), t11 - 1.0, float2(0.0, 0.0))
-        : float2(128.0, 128.0);
+    precise float2 t8 = t6 + t7;
+    precise float2 c = ok && ok2 ? t8 : float2(128.0, 128.0);
     return c.yyyx;
 }
 
@@ -269,10 +275,8 @@ float4 unitpack_xy_stereo16_latc_round_codes(float3 a0) {
 //   components count as zero.
 uint unitpack_xy_stereo16_latc_encode(float3 v) {
     precise float4 round_codes = unitpack_xy_stereo16_latc_round_codes(v);
-    return uint(round_codes.x)
-        | (uint(round_codes.y) << 8u)
-        | (uint(round_codes.z) << 16u)
-        | (uint(round_codes.w) << 24u);
+    uint t1 = uint(round_codes.x) | (uint(round_codes.y) << 8u) | (uint(round_codes.z) << 16u);
+    return t1 | (uint(round_codes.w) << 24u);
 }
 
 #endif // UNITPACK_XY_STEREO16_LATC_HLSL

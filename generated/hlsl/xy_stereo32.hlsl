@@ -82,7 +82,8 @@ float2 unitpack_xy_stereo32_encode_float(float3 v) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -102,19 +103,20 @@ float2 unitpack_xy_stereo32_encode_float(float3 v) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -134,18 +136,20 @@ float2 unitpack_xy_stereo32_encode_float(float3 v) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root + w4.z;
     precise float2 result = w4.xy / a;
@@ -168,7 +172,8 @@ float2 unitpack_xy_stereo32_round_codes(float3 a0) {
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool ok = sum >= 2.0 && sum < 16.0;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
     precise float3 w = UNITPACK_SELECT(
         abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
@@ -188,19 +193,20 @@ float2 unitpack_xy_stereo32_round_codes(float3 a0) {
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    bool ok2 = sum2 >= 2.0 && sum2 < 16.0;
+    bool sum_below_16_2 = sum2 < 16.0;
+    bool ok2 = sum2 >= 2.0 && sum_below_16_2;
     precise float3 w3 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
         float3(0.0, 0.0, 0.0),
         scaled2
     );
     precise float3 w4 = ok2 ? w3 : float3(0.0, 0.0, 2.0);
-    precise float t2 = floor(abs(w4.x) * 2097152.0);
-    uint fixed2 = uint(t2);
-    precise float t3 = floor(abs(w4.y) * 2097152.0);
-    uint fixed3 = uint(t3);
-    precise float t4 = floor(abs(w4.z) * 2097152.0);
-    uint fixed4 = uint(t4);
+    precise float fixed_f = floor(abs(w4.x) * 2097152.0);
+    uint fixed2 = uint(fixed_f);
+    precise float fixed_f2 = floor(abs(w4.y) * 2097152.0);
+    uint fixed3 = uint(fixed_f2);
+    precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
+    uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
     uint limb0 = fixed2 & 4095u;
     uint cross = limb1 * limb0;
@@ -220,39 +226,39 @@ float2 unitpack_xy_stereo32_round_codes(float3 a0) {
     uint lo4 = lo3 & 16777215u;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
-    precise float t5 = floor(root_estimate * 512.0);
-    precise float root_h0 = t5 * 0.001953125;
+    precise float root_k0 = floor(root_estimate * 512.0);
+    precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
-    precise float root_k = t5
-        + (root_h1 * root_h1 <= len2 ? 1.0 : (root_h0 * root_h0 > len2 ? -1.0 : 0.0));
+    precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
+    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + step;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
-    precise float root_j = root_j0
-        + (root_m1 * root_m1 <= len2 ? 1.0 : (root_m0 * root_m0 > len2 ? -1.0 : 0.0));
+    precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
+    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + step2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root + w4.z;
-    precise float2 t6 = abs(w4.xy);
-    precise float2 t7 = round(t6 / a * 32767.0);
-    precise float2 t8 = t6 * 32767.0;
-    precise float2 t9 = UNITPACK_SELECT(
-        t8 >= (t7 + 0.5) * a,
+    precise float2 t2 = abs(w4.xy);
+    precise float2 t3 = round(t2 / a * 32767.0);
+    precise float2 t4 = t2 * 32767.0;
+    precise float2 t5 = UNITPACK_SELECT(
+        t4 >= (t3 + 0.5) * a,
         float2(1.0, 1.0),
-        UNITPACK_SELECT(t8 < (t7 - 0.5) * a, float2(-1.0, -1.0), float2(0.0, 0.0))
+        UNITPACK_SELECT(t4 < (t3 - 0.5) * a, float2(-1.0, -1.0), float2(0.0, 0.0))
     );
-    precise float2 t10 = t7 + t9;
-    precise float2 t11 = UNITPACK_SELECT(t10 >= float2(0.0, 0.0), t10, float2(0.0, 0.0));
-    precise float2 t12 = UNITPACK_SELECT(
-        t11 <= float2(32767.0, 32767.0),
-        t11,
+    precise float2 t6 = t3 + t5;
+    precise float2 t7 = UNITPACK_SELECT(t6 >= float2(0.0, 0.0), t6, float2(0.0, 0.0));
+    precise float2 t8 = UNITPACK_SELECT(
+        t7 <= float2(32767.0, 32767.0),
+        t7,
         float2(32767.0, 32767.0)
     );
-    precise float2 result = ok && ok2
-        ? UNITPACK_SELECT(w4.xy < float2(0.0, 0.0), -t12, t12)
-        : float2(0.0, 0.0);
-    return result;
+    precise float2 t9 = UNITPACK_SELECT(w4.xy < float2(0.0, 0.0), -t8, t8);
+    return ok && ok2 ? t9 : float2(0.0, 0.0);
 }
 
 // unitpack_xy_stereo32_encode: fast encoder.

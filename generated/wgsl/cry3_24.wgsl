@@ -62,12 +62,16 @@ fn unitpack_cry3_24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -87,22 +91,26 @@ fn unitpack_cry3_24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = w2.z >= 0.0f;
-    let fixed5 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w2.y) * 2097152.0f));
+    let t1 = w2.z >= 0.0f;
+    let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -116,8 +124,8 @@ fn unitpack_cry3_24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2 = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let opz_a = select(rho2, root + w2.z, t4);
-    let opz_b = select(root - w2.z, 1.0f, t4);
+    let opz_a = select(rho2, root + w2.z, t1);
+    let opz_b = select(root - w2.z, 1.0f, t1);
     let g = sqrt(root * opz_a / opz_b * 8.0f);
     return select(
         vec2<f32>(0.5f),
@@ -138,12 +146,16 @@ fn unitpack_cry3_24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -163,22 +175,26 @@ fn unitpack_cry3_24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = w2.z >= 0.0f;
-    let fixed5 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w2.y) * 2097152.0f));
+    let t1 = w2.z >= 0.0f;
+    let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -192,52 +208,47 @@ fn unitpack_cry3_24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2 = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let opz_a = select(rho2, root + w2.z, t4);
-    let opz_b = select(root - w2.z, 1.0f, t4);
+    let opz_a = select(rho2, root + w2.z, t1);
+    let opz_b = select(root - w2.z, 1.0f, t1);
     let la = root * opz_a;
-    let t5 = round(w2.xy / (sqrt(la / opz_b) * 0.0006907026f) + 2047.5f);
-    let t6 = select(vec2<f32>(0.0f), t5, t5 >= vec2<f32>(0.0f));
-    let t7 = select(vec2<f32>(4095.0f), t6, t6 <= vec2<f32>(4095.0f));
-    let t8 = t7 - 2047.0f;
-    let t9 = w2.xy * w2.xy * opz_b * 2096128.1f;
-    let t10 = t8 * t8 * la;
+    let t2 = round(w2.xy / (sqrt(la / opz_b) * 0.0006907026f) + 2047.5f);
+    let t3 = select(vec2<f32>(0.0f), t2, t2 >= vec2<f32>(0.0f));
+    let t4 = select(vec2<f32>(4095.0f), t3, t3 <= vec2<f32>(4095.0f));
+    let t5 = t4 - 2047.0f;
+    let t6 = w2.xy * w2.xy * opz_b * 2096128.1f;
+    let t7 = t5 * t5 * la;
+    let t8 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
+            t5 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t7),
+            t5 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
+    );
+    let t9 = t4 - 1.0f - 2047.0f;
+    let t10 = t9 * t9 * la;
     let t11 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t9 >= t10),
-        t8 > vec2<f32>(0.0f)
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t10),
+            t9 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t10),
+            t9 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
     );
-    let t12 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t9 <= t10),
-        t8 < vec2<f32>(0.0f)
-    );
-    let t13 = select(
-        vec2<f32>(0.0f),
-        select(t12, t11, w2.xy >= vec2<f32>(0.0f)),
-        t7 < vec2<f32>(4095.0f)
-    );
-    let t14 = t7 - 1.0f - 2047.0f;
-    let t15 = t14 * t14 * la;
-    let t16 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t9 >= t15),
-        t14 > vec2<f32>(0.0f)
-    );
-    let t17 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t9 <= t15),
-        t14 < vec2<f32>(0.0f)
-    );
-    let t18 = select(
-        vec2<f32>(0.0f),
-        select(t17, t16, w2.xy >= vec2<f32>(0.0f)) - 1.0f,
-        t7 > vec2<f32>(0.0f)
-    );
-    return select(
-        vec2<f32>(2048.0f),
-        select(t7 + t13 + t18, vec2<f32>(4095.0f, 2048.0f), opz_a <= 0.0f),
-        ok
-    );
+    let t12 = t4
+        + select(vec2<f32>(0.0f), t8, t4 < vec2<f32>(4095.0f))
+        + select(vec2<f32>(0.0f), t11 - 1.0f, t4 > vec2<f32>(0.0f));
+    return select(vec2<f32>(2048.0f), select(t12, vec2<f32>(4095.0f, 2048.0f), opz_a <= 0.0f), ok);
 }
 
 // unitpack_cry3_24_encode: fast encoder.

@@ -59,7 +59,8 @@ fn unitpack_crytek_bfn24_fitting_texel(v: vec3<f32>) -> vec2<u32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -68,9 +69,12 @@ fn unitpack_crytek_bfn24_fitting_texel(v: vec3<f32>) -> vec2<u32> {
     let t3 = abs_w2.z >= t1;
     let t4 = select(select(t2, abs_w2.z, abs_w2.z >= t2), t1, t3);
     let t5 = select(select(t2, abs_w2.z, abs_w2.z <= t2), t2, t3);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -90,39 +94,35 @@ fn unitpack_crytek_bfn24_fitting_texel(v: vec3<f32>) -> vec2<u32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t6 = floor(root_estimate * 512.0f);
-    let root_h0 = t6 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t7 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t6 + t7;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t8 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t8;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let l = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let big = t4 * 512.0f;
     let ratio_estimate = floor(t4 / l * 512.0f);
-    let t9 = select(
-        select(0.0f, -1.0f, ratio_estimate * l > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * l <= big
-    );
-    let ratio = ratio_estimate + t9;
-    let t10 = t4 > 0.0f;
-    let t11 = select(1.0f, t4, t10);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * l > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * l <= big);
+    let ratio = ratio_estimate + step3;
+    let t6 = t4 > 0.0f;
+    let t7 = select(1.0f, t4, t6);
     let big2 = t5 * 512.0f;
-    let ratio_estimate2 = floor(t5 / t11 * 512.0f);
-    let t12 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t11 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t11 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t12;
-    let t13 = vec2<f32>(ratio, select(0.0f, ratio2, t10));
-    return vec2<u32>(select(vec2<f32>(511.0f), t13, t13 <= vec2<f32>(511.0f)));
+    let ratio_estimate2 = floor(t5 / t7 * 512.0f);
+    let step_down4 = select(0.0f, -1.0f, ratio_estimate2 * t7 > big2);
+    let step4 = select(step_down4, 1.0f, (ratio_estimate2 + 1.0f) * t7 <= big2);
+    let ratio2 = ratio_estimate2 + step4;
+    let t8 = vec2<f32>(ratio, select(0.0f, ratio2, t6));
+    return vec2<u32>(select(vec2<f32>(511.0f), t8, t8 <= vec2<f32>(511.0f)));
 }
 
 // unitpack_crytek_bfn24_encode_float: fast encoder, float form.
@@ -162,7 +162,8 @@ fn unitpack_crytek_bfn24_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -170,36 +171,28 @@ fn unitpack_crytek_bfn24_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let t2 = select(abs_w2.z, t1, t1 >= abs_w2.z);
     let t3 = select(0.0f, fetched, fetched >= 0.0f);
     let k = round(select(1.0f, t3, t3 <= 1.0f) * 255.0f);
-    let t4 = u32(k);
+    let k_u = u32(k);
     let big = abs_w2.x * 1048576.0f;
     let ratio_estimate = floor(abs_w2.x / t2 * 1048576.0f);
-    let t5 = select(
-        select(0.0f, -1.0f, ratio_estimate * t2 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t2 <= big
-    );
-    let ratio = ratio_estimate + t5;
-    let t6 = u32(ratio) * t4;
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t2 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t2 <= big);
+    let ratio = ratio_estimate + step;
+    let t4 = u32(ratio) * k_u;
+    let t5 = select(128u + (t4 >> 21u), 128u - ((t4 + 2097151u) >> 21u), w2.x < 0.0f);
     let big2 = abs_w2.y * 1048576.0f;
     let ratio_estimate2 = floor(abs_w2.y / t2 * 1048576.0f);
-    let t7 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t2 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t2 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t7;
-    let t8 = u32(ratio2) * t4;
+    let step_down2 = select(0.0f, -1.0f, ratio_estimate2 * t2 > big2);
+    let step2 = select(step_down2, 1.0f, (ratio_estimate2 + 1.0f) * t2 <= big2);
+    let ratio2 = ratio_estimate2 + step2;
+    let t6 = u32(ratio2) * k_u;
+    let t7 = select(128u + (t6 >> 21u), 128u - ((t6 + 2097151u) >> 21u), w2.y < 0.0f);
     let big3 = abs_w2.z * 1048576.0f;
     let ratio_estimate3 = floor(abs_w2.z / t2 * 1048576.0f);
-    let t9 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * t2 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * t2 <= big3
-    );
-    let ratio3 = ratio_estimate3 + t9;
-    let t10 = u32(ratio3) * t4;
-    let t11 = u32(f32(select(128u + (t6 >> 21u), 128u - ((t6 + 2097151u) >> 21u), w2.x < 0.0f)));
-    let t12 = u32(f32(select(128u + (t8 >> 21u), 128u - ((t8 + 2097151u) >> 21u), w2.y < 0.0f)));
-    let t13 = u32(f32(select(128u + (t10 >> 21u), 128u - ((t10 + 2097151u) >> 21u), w2.z < 0.0f)));
-    return select(16744576u, t11 | (t12 << 8u) | (t13 << 16u), ok);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate3 * t2 > big3);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate3 + 1.0f) * t2 <= big3);
+    let ratio3 = ratio_estimate3 + step3;
+    let t8 = u32(ratio3) * k_u;
+    let t9 = select(128u + (t8 >> 21u), 128u - ((t8 + 2097151u) >> 21u), w2.z < 0.0f);
+    let t10 = u32(f32(t5)) | (u32(f32(t7)) << 8u) | (u32(f32(t9)) << 16u);
+    return select(16744576u, t10, ok);
 }

@@ -52,8 +52,8 @@ fn unitpack_cube24_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_cube24_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 7u));
-    let params = t1 * vec3<f32>(0.0004885198f, 0.0009775171f, 0.14285715f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 7u))
+        * vec3<f32>(0.0004885198f, 0.0009775171f, 0.14285715f);
     return unitpack_cube24_decode_float(params);
 }
 
@@ -73,7 +73,8 @@ fn unitpack_cube24_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -97,7 +98,8 @@ fn unitpack_cube24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -110,19 +112,27 @@ fn unitpack_cube24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let t4 = round(t3 / abs_major + vec2<f32>(1023.5f, 511.5f));
     let t5 = select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f));
     let t6 = select(vec2<f32>(2047.0f, 1023.0f), t5, t5 <= vec2<f32>(2047.0f, 1023.0f));
-    let t7 = select(
-        vec2<f32>(0.0f),
-        vec2<f32>(1.0f),
-        t3 >= (t6 - vec2<f32>(1023.0f, 511.0f)) * abs_major
-    );
+    let t7 = t6
+        + select(
+            vec2<f32>(0.0f),
+            select(
+                vec2<f32>(0.0f),
+                vec2<f32>(1.0f),
+                t3 >= (t6 - vec2<f32>(1023.0f, 511.0f)) * abs_major
+            ),
+            t6 < vec2<f32>(2047.0f, 1023.0f)
+        );
     let t8 = select(
         vec2<f32>(0.0f),
-        vec2<f32>(1.0f),
-        t3 >= (t6 - 1.0f - vec2<f32>(1023.0f, 511.0f)) * abs_major
+        select(
+            vec2<f32>(0.0f),
+            vec2<f32>(1.0f),
+            t3 >= (t6 - 1.0f - vec2<f32>(1023.0f, 511.0f)) * abs_major
+        )
+            - 1.0f,
+        t6 > vec2<f32>(0.0f)
     );
-    let st = t6
-        + select(vec2<f32>(0.0f), t7, t6 < vec2<f32>(2047.0f, 1023.0f))
-        + select(vec2<f32>(0.0f), t8 - 1.0f, t6 > vec2<f32>(0.0f));
+    let st = t7 + t8;
     return vec3<f32>(st, face);
 }
 

@@ -53,8 +53,8 @@ fn unitpack_cube24p_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_cube24p_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 7u));
-    let params = t1 * vec3<f32>(0.0004885198f, 0.0009775171f, 0.14285715f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 7u))
+        * vec3<f32>(0.0004885198f, 0.0009775171f, 0.14285715f);
     return unitpack_cube24p_decode_float(params);
 }
 
@@ -71,7 +71,8 @@ fn unitpack_cube24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -84,22 +85,33 @@ fn unitpack_cube24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t4 = round(t3 / abs_major + vec2<f32>(1023.5f, 511.5f));
     let t5 = select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f));
     let t6 = select(vec2<f32>(2047.0f, 1023.0f), t5, t5 <= vec2<f32>(2047.0f, 1023.0f));
-    let t7 = select(
-        vec2<f32>(0.0f),
-        vec2<f32>(1.0f),
-        t3 >= (t6 - vec2<f32>(1022.5f, 510.5f)) * abs_major
-    );
+    let t7 = t6
+        + select(
+            vec2<f32>(0.0f),
+            select(
+                vec2<f32>(0.0f),
+                vec2<f32>(1.0f),
+                t3 >= (t6 - vec2<f32>(1022.5f, 510.5f)) * abs_major
+            ),
+            t6 < vec2<f32>(2047.0f, 1023.0f)
+        );
     let t8 = select(
         vec2<f32>(0.0f),
-        vec2<f32>(1.0f),
-        t3 >= (t6 - 1.0f - vec2<f32>(1022.5f, 510.5f)) * abs_major
+        select(
+            vec2<f32>(0.0f),
+            vec2<f32>(1.0f),
+            t3 >= (t6 - 1.0f - vec2<f32>(1022.5f, 510.5f)) * abs_major
+        )
+            - 1.0f,
+        t6 > vec2<f32>(0.0f)
     );
-    let base = t6
-        + select(vec2<f32>(0.0f), t7, t6 < vec2<f32>(2047.0f, 1023.0f))
-        + select(vec2<f32>(0.0f), t8 - 1.0f, t6 > vec2<f32>(0.0f));
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let base = t7 + t8;
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -119,343 +131,277 @@ fn unitpack_cube24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t9 = floor(root_estimate * 512.0f);
-    let root_h0 = t9 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t10 = select(
-        select(0.0f, -1.0f, root_h0 * root_h0 > len2),
-        1.0f,
-        root_h1 * root_h1 <= len2
-    );
-    let root_k = t9 + t10;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t11 = select(
-        select(0.0f, -1.0f, root_m0 * root_m0 > len2),
-        1.0f,
-        root_m1 * root_m1 <= len2
-    );
-    let root_j = root_j0 + t11;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t12 = floor(w2 / root * 2097152.0f);
-    let t13 = w2 * 2097152.0f;
-    let t14 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t12 * root > t13),
+    let t9 = floor(w2 / root * 2097152.0f);
+    let t10 = w2 * 2097152.0f;
+    let t11 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t9 * root > t10),
         vec3<f32>(1.0f),
-        (t12 + 1.0f) * root <= t13
+        (t9 + 1.0f) * root <= t10
     );
-    let aim = t12 + t14;
+    let aim = t9 + t11;
     let cand = select(vec2<f32>(2047.0f, 1023.0f), base, base <= vec2<f32>(2047.0f, 1023.0f));
     let p = floor((cand * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
     let len2_2 = 2097152.0f + q;
-    let t15 = len2_2 * 524288.0f;
-    let root_estimate2 = floor(sqrt(t15));
+    let t12 = len2_2 * 524288.0f;
+    let root_estimate2 = floor(sqrt(t12));
     let root_next = root_estimate2 + 1.0f;
-    let t16 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t15),
-        1.0f,
-        root_next * root_next <= t15
-    );
-    let root_step = root_estimate2 + t16;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t12);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t12);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t17 = select(
-        select(0.0f, -1.0f, root_step * root_step > t15),
-        1.0f,
-        root_next2 * root_next2 <= t15
-    );
-    let root2 = root_step + t17;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t12);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t12);
+    let root2 = root_step + step4;
     let len = root2 * 2.0f;
     let big = len * 2097152.0f;
     let ratio_estimate = floor(len / len2_2 * 2097152.0f);
-    let t18 = select(
-        select(0.0f, -1.0f, ratio_estimate * len2_2 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * len2_2 <= big
-    );
-    let ratio = ratio_estimate + t18;
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate * len2_2 > big);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate + 1.0f) * len2_2 <= big);
+    let ratio = ratio_estimate + step5;
     let big2 = p.x * 2097152.0f;
     let ratio_estimate2 = floor(p.x / len * 2097152.0f);
-    let t19 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * len > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * len <= big2
-    );
-    let ratio2 = ratio_estimate2 + t19;
+    let step_down6 = select(0.0f, -1.0f, ratio_estimate2 * len > big2);
+    let step6 = select(step_down6, 1.0f, (ratio_estimate2 + 1.0f) * len <= big2);
+    let ratio2 = ratio_estimate2 + step6;
     let big3 = p.y * 2097152.0f;
     let ratio_estimate3 = floor(p.y / len * 2097152.0f);
-    let t20 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * len > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * len <= big3
-    );
-    let ratio3 = ratio_estimate3 + t20;
-    let t21 = face >= 3.5f;
-    let t22 = face >= 1.5f;
-    let t23 = select(select(face, face - 2.0f, t22), face - 4.0f, t21);
-    let t24 = select(ratio, -ratio, select(t23, t23 - 2.0f, t23 >= 1.5f) > 0.5f);
-    let t25 = select(
-        select(vec3<f32>(t24, ratio2, ratio3), vec3<f32>(ratio3, t24, ratio2), t22),
-        vec3<f32>(ratio2, ratio3, t24),
-        t21
-    );
-    let t26 = vec3<u32>(abs(t25 - aim));
-    let limb1_4 = t26.x >> 12u;
-    let limb0_4 = t26.x & 4095u;
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate3 * len > big3);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate3 + 1.0f) * len <= big3);
+    let ratio3 = ratio_estimate3 + step7;
+    let t13 = face >= 3.5f;
+    let t14 = face >= 1.5f;
+    let t15 = select(select(face, face - 2.0f, t14), face - 4.0f, t13);
+    let t16 = select(ratio, -ratio, select(t15, t15 - 2.0f, t15 >= 1.5f) > 0.5f);
+    let offset = select(
+        select(vec3<f32>(t16, ratio2, ratio3), vec3<f32>(ratio3, t16, ratio2), t14),
+        vec3<f32>(ratio2, ratio3, t16),
+        t13
+    )
+        - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t26.y >> 12u;
-    let limb0_5 = t26.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t26.z >> 12u;
-    let limb0_6 = t26.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t27 = base.x + 1.0f;
-    let t28 = vec2<f32>(t27, base.y);
-    let cand2 = select(vec2<f32>(2047.0f, 1023.0f), t28, t28 <= vec2<f32>(2047.0f, 1023.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t17 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(2047.0f, 1023.0f), t17, t17 <= vec2<f32>(2047.0f, 1023.0f));
     let p2 = floor((cand2 * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
     let len2_3 = 2097152.0f + q2;
-    let t29 = len2_3 * 524288.0f;
-    let root_estimate3 = floor(sqrt(t29));
+    let t18 = len2_3 * 524288.0f;
+    let root_estimate3 = floor(sqrt(t18));
     let root_next3 = root_estimate3 + 1.0f;
-    let t30 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t29),
-        1.0f,
-        root_next3 * root_next3 <= t29
-    );
-    let root_step2 = root_estimate3 + t30;
+    let step_down8 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t18);
+    let step8 = select(step_down8, 1.0f, root_next3 * root_next3 <= t18);
+    let root_step2 = root_estimate3 + step8;
     let root_next4 = root_step2 + 1.0f;
-    let t31 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t29),
-        1.0f,
-        root_next4 * root_next4 <= t29
-    );
-    let root3 = root_step2 + t31;
+    let step_down9 = select(0.0f, -1.0f, root_step2 * root_step2 > t18);
+    let step9 = select(step_down9, 1.0f, root_next4 * root_next4 <= t18);
+    let root3 = root_step2 + step9;
     let len3 = root3 * 2.0f;
     let big4 = len3 * 2097152.0f;
     let ratio_estimate4 = floor(len3 / len2_3 * 2097152.0f);
-    let t32 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * len2_3 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * len2_3 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t32;
+    let step_down10 = select(0.0f, -1.0f, ratio_estimate4 * len2_3 > big4);
+    let step10 = select(step_down10, 1.0f, (ratio_estimate4 + 1.0f) * len2_3 <= big4);
+    let ratio4 = ratio_estimate4 + step10;
     let big5 = p2.x * 2097152.0f;
     let ratio_estimate5 = floor(p2.x / len3 * 2097152.0f);
-    let t33 = select(
-        select(0.0f, -1.0f, ratio_estimate5 * len3 > big5),
-        1.0f,
-        (ratio_estimate5 + 1.0f) * len3 <= big5
-    );
-    let ratio5 = ratio_estimate5 + t33;
+    let step_down11 = select(0.0f, -1.0f, ratio_estimate5 * len3 > big5);
+    let step11 = select(step_down11, 1.0f, (ratio_estimate5 + 1.0f) * len3 <= big5);
+    let ratio5 = ratio_estimate5 + step11;
     let big6 = p2.y * 2097152.0f;
     let ratio_estimate6 = floor(p2.y / len3 * 2097152.0f);
-    let t34 = select(
-        select(0.0f, -1.0f, ratio_estimate6 * len3 > big6),
-        1.0f,
-        (ratio_estimate6 + 1.0f) * len3 <= big6
-    );
-    let ratio6 = ratio_estimate6 + t34;
-    let t35 = face >= 3.5f;
-    let t36 = face >= 1.5f;
-    let t37 = select(select(face, face - 2.0f, t36), face - 4.0f, t35);
-    let t38 = select(ratio4, -ratio4, select(t37, t37 - 2.0f, t37 >= 1.5f) > 0.5f);
-    let t39 = select(
-        select(vec3<f32>(t38, ratio5, ratio6), vec3<f32>(ratio6, t38, ratio5), t36),
-        vec3<f32>(ratio5, ratio6, t38),
-        t35
-    );
-    let t40 = vec3<u32>(abs(t39 - aim));
-    let limb1_7 = t40.x >> 12u;
-    let limb0_7 = t40.x & 4095u;
+    let step_down12 = select(0.0f, -1.0f, ratio_estimate6 * len3 > big6);
+    let step12 = select(step_down12, 1.0f, (ratio_estimate6 + 1.0f) * len3 <= big6);
+    let ratio6 = ratio_estimate6 + step12;
+    let t19 = face >= 3.5f;
+    let t20 = face >= 1.5f;
+    let t21 = select(select(face, face - 2.0f, t20), face - 4.0f, t19);
+    let t22 = select(ratio4, -ratio4, select(t21, t21 - 2.0f, t21 >= 1.5f) > 0.5f);
+    let offset2 = select(
+        select(vec3<f32>(t22, ratio5, ratio6), vec3<f32>(ratio6, t22, ratio5), t20),
+        vec3<f32>(ratio5, ratio6, t22),
+        t19
+    )
+        - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t40.y >> 12u;
-    let limb0_8 = t40.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t40.z >> 12u;
-    let limb0_9 = t40.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t41 = t27 <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
-    let best = select(cand, cand2, t41);
-    let best_d = select(dist, dist2, t41);
-    let t42 = base.y + 1.0f;
-    let t43 = vec2<f32>(base.x, t42);
-    let cand3 = select(vec2<f32>(2047.0f, 1023.0f), t43, t43 <= vec2<f32>(2047.0f, 1023.0f));
+    let t23 = s_up <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
+    let best = select(cand, cand2, t23);
+    let best_d = select(dist, dist2, t23);
+    let t24 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(2047.0f, 1023.0f), t24, t24 <= vec2<f32>(2047.0f, 1023.0f));
     let p3 = floor((cand3 * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
     let len2_4 = 2097152.0f + q3;
-    let t44 = len2_4 * 524288.0f;
-    let root_estimate4 = floor(sqrt(t44));
+    let t25 = len2_4 * 524288.0f;
+    let root_estimate4 = floor(sqrt(t25));
     let root_next5 = root_estimate4 + 1.0f;
-    let t45 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t44),
-        1.0f,
-        root_next5 * root_next5 <= t44
-    );
-    let root_step3 = root_estimate4 + t45;
+    let step_down13 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t25);
+    let step13 = select(step_down13, 1.0f, root_next5 * root_next5 <= t25);
+    let root_step3 = root_estimate4 + step13;
     let root_next6 = root_step3 + 1.0f;
-    let t46 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t44),
-        1.0f,
-        root_next6 * root_next6 <= t44
-    );
-    let root4 = root_step3 + t46;
+    let step_down14 = select(0.0f, -1.0f, root_step3 * root_step3 > t25);
+    let step14 = select(step_down14, 1.0f, root_next6 * root_next6 <= t25);
+    let root4 = root_step3 + step14;
     let len4 = root4 * 2.0f;
     let big7 = len4 * 2097152.0f;
     let ratio_estimate7 = floor(len4 / len2_4 * 2097152.0f);
-    let t47 = select(
-        select(0.0f, -1.0f, ratio_estimate7 * len2_4 > big7),
-        1.0f,
-        (ratio_estimate7 + 1.0f) * len2_4 <= big7
-    );
-    let ratio7 = ratio_estimate7 + t47;
+    let step_down15 = select(0.0f, -1.0f, ratio_estimate7 * len2_4 > big7);
+    let step15 = select(step_down15, 1.0f, (ratio_estimate7 + 1.0f) * len2_4 <= big7);
+    let ratio7 = ratio_estimate7 + step15;
     let big8 = p3.x * 2097152.0f;
     let ratio_estimate8 = floor(p3.x / len4 * 2097152.0f);
-    let t48 = select(
-        select(0.0f, -1.0f, ratio_estimate8 * len4 > big8),
-        1.0f,
-        (ratio_estimate8 + 1.0f) * len4 <= big8
-    );
-    let ratio8 = ratio_estimate8 + t48;
+    let step_down16 = select(0.0f, -1.0f, ratio_estimate8 * len4 > big8);
+    let step16 = select(step_down16, 1.0f, (ratio_estimate8 + 1.0f) * len4 <= big8);
+    let ratio8 = ratio_estimate8 + step16;
     let big9 = p3.y * 2097152.0f;
     let ratio_estimate9 = floor(p3.y / len4 * 2097152.0f);
-    let t49 = select(
-        select(0.0f, -1.0f, ratio_estimate9 * len4 > big9),
-        1.0f,
-        (ratio_estimate9 + 1.0f) * len4 <= big9
-    );
-    let ratio9 = ratio_estimate9 + t49;
-    let t50 = face >= 3.5f;
-    let t51 = face >= 1.5f;
-    let t52 = select(select(face, face - 2.0f, t51), face - 4.0f, t50);
-    let t53 = select(ratio7, -ratio7, select(t52, t52 - 2.0f, t52 >= 1.5f) > 0.5f);
-    let t54 = select(
-        select(vec3<f32>(t53, ratio8, ratio9), vec3<f32>(ratio9, t53, ratio8), t51),
-        vec3<f32>(ratio8, ratio9, t53),
-        t50
-    );
-    let t55 = vec3<u32>(abs(t54 - aim));
-    let limb1_10 = t55.x >> 12u;
-    let limb0_10 = t55.x & 4095u;
+    let step_down17 = select(0.0f, -1.0f, ratio_estimate9 * len4 > big9);
+    let step17 = select(step_down17, 1.0f, (ratio_estimate9 + 1.0f) * len4 <= big9);
+    let ratio9 = ratio_estimate9 + step17;
+    let t26 = face >= 3.5f;
+    let t27 = face >= 1.5f;
+    let t28 = select(select(face, face - 2.0f, t27), face - 4.0f, t26);
+    let t29 = select(ratio7, -ratio7, select(t28, t28 - 2.0f, t28 >= 1.5f) > 0.5f);
+    let offset3 = select(
+        select(vec3<f32>(t29, ratio8, ratio9), vec3<f32>(ratio9, t29, ratio8), t27),
+        vec3<f32>(ratio8, ratio9, t29),
+        t26
+    )
+        - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t55.y >> 12u;
-    let limb0_11 = t55.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t55.z >> 12u;
-    let limb0_12 = t55.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t56 = base.x <= 2047.0f && t42 <= 1023.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t56);
-    let best_d2 = select(best_d, dist3, t56);
-    let t57 = base + 1.0f;
-    let cand4 = select(vec2<f32>(2047.0f, 1023.0f), t57, t57 <= vec2<f32>(2047.0f, 1023.0f));
+    let t30 = base.x <= 2047.0f && t_up <= 1023.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t30);
+    let best_d2 = select(best_d, dist3, t30);
+    let t31 = base + 1.0f;
+    let cand4 = select(vec2<f32>(2047.0f, 1023.0f), t31, t31 <= vec2<f32>(2047.0f, 1023.0f));
     let p4 = floor((cand4 * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
     let len2_5 = 2097152.0f + q4;
-    let t58 = len2_5 * 524288.0f;
-    let root_estimate5 = floor(sqrt(t58));
+    let t32 = len2_5 * 524288.0f;
+    let root_estimate5 = floor(sqrt(t32));
     let root_next7 = root_estimate5 + 1.0f;
-    let t59 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t58),
-        1.0f,
-        root_next7 * root_next7 <= t58
-    );
-    let root_step4 = root_estimate5 + t59;
+    let step_down18 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t32);
+    let step18 = select(step_down18, 1.0f, root_next7 * root_next7 <= t32);
+    let root_step4 = root_estimate5 + step18;
     let root_next8 = root_step4 + 1.0f;
-    let t60 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t58),
-        1.0f,
-        root_next8 * root_next8 <= t58
-    );
-    let root5 = root_step4 + t60;
+    let step_down19 = select(0.0f, -1.0f, root_step4 * root_step4 > t32);
+    let step19 = select(step_down19, 1.0f, root_next8 * root_next8 <= t32);
+    let root5 = root_step4 + step19;
     let len5 = root5 * 2.0f;
     let big10 = len5 * 2097152.0f;
     let ratio_estimate10 = floor(len5 / len2_5 * 2097152.0f);
-    let t61 = select(
-        select(0.0f, -1.0f, ratio_estimate10 * len2_5 > big10),
-        1.0f,
-        (ratio_estimate10 + 1.0f) * len2_5 <= big10
-    );
-    let ratio10 = ratio_estimate10 + t61;
+    let step_down20 = select(0.0f, -1.0f, ratio_estimate10 * len2_5 > big10);
+    let step20 = select(step_down20, 1.0f, (ratio_estimate10 + 1.0f) * len2_5 <= big10);
+    let ratio10 = ratio_estimate10 + step20;
     let big11 = p4.x * 2097152.0f;
     let ratio_estimate11 = floor(p4.x / len5 * 2097152.0f);
-    let t62 = select(
-        select(0.0f, -1.0f, ratio_estimate11 * len5 > big11),
-        1.0f,
-        (ratio_estimate11 + 1.0f) * len5 <= big11
-    );
-    let ratio11 = ratio_estimate11 + t62;
+    let step_down21 = select(0.0f, -1.0f, ratio_estimate11 * len5 > big11);
+    let step21 = select(step_down21, 1.0f, (ratio_estimate11 + 1.0f) * len5 <= big11);
+    let ratio11 = ratio_estimate11 + step21;
     let big12 = p4.y * 2097152.0f;
     let ratio_estimate12 = floor(p4.y / len5 * 2097152.0f);
-    let t63 = select(
-        select(0.0f, -1.0f, ratio_estimate12 * len5 > big12),
-        1.0f,
-        (ratio_estimate12 + 1.0f) * len5 <= big12
-    );
-    let ratio12 = ratio_estimate12 + t63;
-    let t64 = face >= 3.5f;
-    let t65 = face >= 1.5f;
-    let t66 = select(select(face, face - 2.0f, t65), face - 4.0f, t64);
-    let t67 = select(ratio10, -ratio10, select(t66, t66 - 2.0f, t66 >= 1.5f) > 0.5f);
-    let t68 = select(
-        select(vec3<f32>(t67, ratio11, ratio12), vec3<f32>(ratio12, t67, ratio11), t65),
-        vec3<f32>(ratio11, ratio12, t67),
-        t64
-    );
-    let t69 = vec3<u32>(abs(t68 - aim));
-    let limb1_13 = t69.x >> 12u;
-    let limb0_13 = t69.x & 4095u;
+    let step_down22 = select(0.0f, -1.0f, ratio_estimate12 * len5 > big12);
+    let step22 = select(step_down22, 1.0f, (ratio_estimate12 + 1.0f) * len5 <= big12);
+    let ratio12 = ratio_estimate12 + step22;
+    let t33 = face >= 3.5f;
+    let t34 = face >= 1.5f;
+    let t35 = select(select(face, face - 2.0f, t34), face - 4.0f, t33);
+    let t36 = select(ratio10, -ratio10, select(t35, t35 - 2.0f, t35 >= 1.5f) > 0.5f);
+    let offset4 = select(
+        select(vec3<f32>(t36, ratio11, ratio12), vec3<f32>(ratio12, t36, ratio11), t34),
+        vec3<f32>(ratio11, ratio12, t36),
+        t33
+    )
+        - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t69.y >> 12u;
-    let limb0_14 = t69.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t69.z >> 12u;
-    let limb0_15 = t69.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 2047.0f && base.y + 1.0f <= 1023.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 2047.0f && t_up <= 1023.0f && dist4 < best_d2);
     return vec3<f32>(best3, face);
 }
 

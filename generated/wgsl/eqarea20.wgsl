@@ -46,8 +46,8 @@ fn unitpack_eqarea20_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   (1.42e-3) of what this function computes here, for every code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 fn unitpack_eqarea20_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 10u, code >> 19u) & vec3<u32>(1023u, 511u, 1u));
-    let params = t1 * vec3<f32>(0.0009775171f, 0.0019569471f, 1.0f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 10u, code >> 19u) & vec3<u32>(1023u, 511u, 1u))
+        * vec3<f32>(0.0009775171f, 0.0019569471f, 1.0f);
     return unitpack_eqarea20_decode_float(params);
 }
 
@@ -67,12 +67,16 @@ fn unitpack_eqarea20_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -92,21 +96,24 @@ fn unitpack_eqarea20_encode_float(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let enc = w2.xy / sqrt(root * (root + abs(w2.z))) * 0.5f + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -121,12 +128,16 @@ fn unitpack_eqarea20_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -146,66 +157,73 @@ fn unitpack_eqarea20_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let la = root * (root + abs(w2.z));
     let sqrt_la = sqrt(la);
     let big2 = w2.x * w2.x * 261632.25f;
-    let t4 = round(w2.x / sqrt_la * 511.5f + 511.5f);
-    let t5 = select(0.0f, t4, t4 >= 0.0f);
-    let estimate = select(1023.0f, t5, t5 <= 1023.0f);
-    let t6 = estimate - 511.0f;
-    let t7 = t6 * t6 * la;
-    let t8 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t7), t6 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t7), t6 > 0.0f),
-        w2.x >= 0.0f
+    let t1 = round(w2.x / sqrt_la * 511.5f + 511.5f);
+    let t2 = select(0.0f, t1, t1 >= 0.0f);
+    let estimate = select(1023.0f, t2, t2 <= 1023.0f);
+    let t3 = estimate - 511.0f;
+    let t4 = t3 * t3 * la;
+    let one_if2 = select(0.0f, 1.0f, big2 >= t4);
+    let one_if3 = select(0.0f, 1.0f, big2 <= t4);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if3, t3 < 0.0f), select(1.0f, one_if2, t3 > 0.0f), w2.x >= 0.0f),
+        estimate < 1023.0f
     );
-    let up = select(0.0f, t8, estimate < 1023.0f);
-    let t9 = estimate - 1.0f - 511.0f;
-    let t10 = t9 * t9 * la;
-    let t11 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t10), t9 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t10), t9 > 0.0f),
+    let t5 = estimate - 1.0f - 511.0f;
+    let t6 = t5 * t5 * la;
+    let one_if4 = select(0.0f, 1.0f, big2 >= t6);
+    let one_if5 = select(0.0f, 1.0f, big2 <= t6);
+    let t7 = select(
+        select(0.0f, one_if5, t5 < 0.0f),
+        select(1.0f, one_if4, t5 > 0.0f),
         w2.x >= 0.0f
-    );
-    let down = select(0.0f, t11 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t7, estimate > 0.0f);
     let big2_2 = w2.y * w2.y * 65280.25f;
-    let t12 = round(w2.y / sqrt_la * 255.5f + 255.5f);
-    let t13 = select(0.0f, t12, t12 >= 0.0f);
-    let estimate2 = select(511.0f, t13, t13 <= 511.0f);
-    let t14 = estimate2 - 255.0f;
-    let t15 = t14 * t14 * la;
-    let t16 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t15), t14 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t15), t14 > 0.0f),
+    let t8 = round(w2.y / sqrt_la * 255.5f + 255.5f);
+    let t9 = select(0.0f, t8, t8 >= 0.0f);
+    let estimate2 = select(511.0f, t9, t9 <= 511.0f);
+    let t10 = estimate2 - 255.0f;
+    let t11 = t10 * t10 * la;
+    let one_if6 = select(0.0f, 1.0f, big2_2 >= t11);
+    let one_if7 = select(0.0f, 1.0f, big2_2 <= t11);
+    let up2 = select(
+        0.0f,
+        select(select(0.0f, one_if7, t10 < 0.0f), select(1.0f, one_if6, t10 > 0.0f), w2.y >= 0.0f),
+        estimate2 < 511.0f
+    );
+    let t12 = estimate2 - 1.0f - 255.0f;
+    let t13 = t12 * t12 * la;
+    let one_if8 = select(0.0f, 1.0f, big2_2 >= t13);
+    let one_if9 = select(0.0f, 1.0f, big2_2 <= t13);
+    let t14 = select(
+        select(0.0f, one_if9, t12 < 0.0f),
+        select(1.0f, one_if8, t12 > 0.0f),
         w2.y >= 0.0f
-    );
-    let up2 = select(0.0f, t16, estimate2 < 511.0f);
-    let t17 = estimate2 - 1.0f - 255.0f;
-    let t18 = t17 * t17 * la;
-    let t19 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t18), t17 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t18), t17 > 0.0f),
-        w2.y >= 0.0f
-    );
-    let down2 = select(0.0f, t19 - 1.0f, estimate2 > 0.0f);
-    return vec3<f32>(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        select(0.0f, 1.0f, w2.z < 0.0f)
-    );
+    )
+        - 1.0f;
+    let down2 = select(0.0f, t14, estimate2 > 0.0f);
+    return vec3<f32>(estimate + up + down, estimate2 + up2 + down2, one_if);
 }
 
 // unitpack_eqarea20_encode: fast encoder.

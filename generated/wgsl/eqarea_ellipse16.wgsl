@@ -65,12 +65,16 @@ fn unitpack_eqarea_ellipse16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -90,32 +94,35 @@ fn unitpack_eqarea_ellipse16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = w2.xy * w2.xy;
-    let rho = sqrt(t4.x + t4.y);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let t1 = w2.xy * w2.xy;
+    let rho = sqrt(t1.x + t1.y);
     let half_r = rho / sqrt(root * (root + abs(w2.z))) * 0.5f;
     let disk = w2.xy * (half_r / select(1.0f, rho, rho > 0.0f) * 2.0f);
-    let t5 = abs(disk.yx);
-    let t6 = disk + 1.4142135f - t5;
-    let t7 = sqrt(select(vec2<f32>(0.0f), t6, t6 >= vec2<f32>(0.0f)) * (disk + 1.4142135f + t5));
-    let t8 = -disk;
-    let t9 = t8 + 1.4142135f - t5;
-    let t10 = sqrt(select(vec2<f32>(0.0f), t9, t9 >= vec2<f32>(0.0f)) * (t8 + 1.4142135f + t5));
-    let square = disk / (t7 + t10);
+    let t2 = abs(disk.yx);
+    let t3 = disk + 1.4142135f - t2;
+    let neg_disk = -disk;
+    let t4 = neg_disk + 1.4142135f - t2;
+    let t5 = sqrt(select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f)) * (disk + 1.4142135f + t2))
+        + sqrt(select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f)) * (neg_disk + 1.4142135f + t2));
+    let square = disk / t5;
     let enc = square * 1.4142135f + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -130,12 +137,16 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -155,25 +166,28 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = root * (root + abs(w2.z));
-    let t5 = w2.x >= 0.0f;
-    let t6 = select(0.0f, 128.0f, t5);
-    let t7 = select(127.0f, 255.0f, t5);
-    let mid = floor((t6 + t7 + 1.0f) * 0.5f);
-    let ell_t = (mid - 1.0f - 127.0f) * 2.0f;
+    let t1 = root * (root + abs(w2.z));
+    let t2 = w2.x >= 0.0f;
+    let t3 = select(0.0f, 128.0f, t2);
+    let t4 = select(127.0f, 255.0f, t2);
+    let mid = floor((t3 + t4 + 1.0f) * 0.5f);
+    let mid_below = mid - 1.0f;
+    let ell_t = (mid_below - 127.0f) * 2.0f;
     let ell_h = floor(ell_t * ell_t);
     let ell_g = 130050.0f - ell_h;
     let ell_p = w2.x * w2.x * ell_g;
@@ -181,20 +195,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent = bitcast<u32>(select(ell_q, ell_p, ell_p >= ell_q)) >> 23u;
     let exponent2 = select(exponent, 40u, exponent < 40u);
     let exponent3 = select(exponent2, 254u, 254u < exponent2);
-    let t8 = bitcast<f32>((281u - exponent3) << 23u);
-    let ell_s = (floor(ell_p * t8) + floor(ell_q * t8)) * bitcast<f32>((exponent3 - 27u) << 23u);
+    let scale2 = bitcast<f32>((281u - exponent3) << 23u);
+    let back = bitcast<f32>((exponent3 - 27u) << 23u);
+    let ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
     let lhs = ell_s * 65025.0f;
-    let rhs = ell_h * ell_g * t4;
-    let t9 = select(
-        select(select(0.0f, 1.0f, lhs <= rhs), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs >= rhs), w2.x > 0.0f),
-        ell_t > 0.0f
-    );
-    let beyond = t9 > 0.5f;
-    let lo5 = select(t6, mid, beyond);
-    let hi5 = select(mid - 1.0f, t7, beyond);
+    let rhs = ell_h * ell_g * t1;
+    let one_if = select(0.0f, 1.0f, lhs >= rhs);
+    let outside = select(0.0f, one_if, w2.x > 0.0f);
+    let one_if2 = select(0.0f, 1.0f, lhs <= rhs);
+    let inside = select(one_if2, 1.0f, w2.x >= 0.0f);
+    let beyond = select(inside, outside, ell_t > 0.0f) > 0.5f;
+    let lo5 = select(t3, mid, beyond);
+    let hi5 = select(mid_below, t4, beyond);
     let mid2 = floor((lo5 + hi5 + 1.0f) * 0.5f);
-    let ell_t2 = (mid2 - 1.0f - 127.0f) * 2.0f;
+    let mid_below2 = mid2 - 1.0f;
+    let ell_t2 = (mid_below2 - 127.0f) * 2.0f;
     let ell_h2 = floor(ell_t2 * ell_t2);
     let ell_g2 = 130050.0f - ell_h2;
     let ell_p2 = w2.x * w2.x * ell_g2;
@@ -202,21 +217,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent4 = bitcast<u32>(select(ell_q2, ell_p2, ell_p2 >= ell_q2)) >> 23u;
     let exponent5 = select(exponent4, 40u, exponent4 < 40u);
     let exponent6 = select(exponent5, 254u, 254u < exponent5);
-    let t10 = bitcast<f32>((281u - exponent6) << 23u);
-    let ell_s2 = (floor(ell_p2 * t10) + floor(ell_q2 * t10))
-        * bitcast<f32>((exponent6 - 27u) << 23u);
+    let scale3 = bitcast<f32>((281u - exponent6) << 23u);
+    let back2 = bitcast<f32>((exponent6 - 27u) << 23u);
+    let ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
     let lhs2 = ell_s2 * 65025.0f;
-    let rhs2 = ell_h2 * ell_g2 * t4;
-    let t11 = select(
-        select(select(0.0f, 1.0f, lhs2 <= rhs2), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs2 >= rhs2), w2.x > 0.0f),
-        ell_t2 > 0.0f
-    );
-    let beyond2 = t11 > 0.5f;
+    let rhs2 = ell_h2 * ell_g2 * t1;
+    let one_if3 = select(0.0f, 1.0f, lhs2 >= rhs2);
+    let outside2 = select(0.0f, one_if3, w2.x > 0.0f);
+    let one_if4 = select(0.0f, 1.0f, lhs2 <= rhs2);
+    let inside2 = select(one_if4, 1.0f, w2.x >= 0.0f);
+    let beyond2 = select(inside2, outside2, ell_t2 > 0.0f) > 0.5f;
     let lo6 = select(lo5, mid2, beyond2);
-    let hi6 = select(mid2 - 1.0f, hi5, beyond2);
+    let hi6 = select(mid_below2, hi5, beyond2);
     let mid3 = floor((lo6 + hi6 + 1.0f) * 0.5f);
-    let ell_t3 = (mid3 - 1.0f - 127.0f) * 2.0f;
+    let mid_below3 = mid3 - 1.0f;
+    let ell_t3 = (mid_below3 - 127.0f) * 2.0f;
     let ell_h3 = floor(ell_t3 * ell_t3);
     let ell_g3 = 130050.0f - ell_h3;
     let ell_p3 = w2.x * w2.x * ell_g3;
@@ -224,21 +239,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent7 = bitcast<u32>(select(ell_q3, ell_p3, ell_p3 >= ell_q3)) >> 23u;
     let exponent8 = select(exponent7, 40u, exponent7 < 40u);
     let exponent9 = select(exponent8, 254u, 254u < exponent8);
-    let t12 = bitcast<f32>((281u - exponent9) << 23u);
-    let ell_s3 = (floor(ell_p3 * t12) + floor(ell_q3 * t12))
-        * bitcast<f32>((exponent9 - 27u) << 23u);
+    let scale4 = bitcast<f32>((281u - exponent9) << 23u);
+    let back3 = bitcast<f32>((exponent9 - 27u) << 23u);
+    let ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
     let lhs3 = ell_s3 * 65025.0f;
-    let rhs3 = ell_h3 * ell_g3 * t4;
-    let t13 = select(
-        select(select(0.0f, 1.0f, lhs3 <= rhs3), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs3 >= rhs3), w2.x > 0.0f),
-        ell_t3 > 0.0f
-    );
-    let beyond3 = t13 > 0.5f;
+    let rhs3 = ell_h3 * ell_g3 * t1;
+    let one_if5 = select(0.0f, 1.0f, lhs3 >= rhs3);
+    let outside3 = select(0.0f, one_if5, w2.x > 0.0f);
+    let one_if6 = select(0.0f, 1.0f, lhs3 <= rhs3);
+    let inside3 = select(one_if6, 1.0f, w2.x >= 0.0f);
+    let beyond3 = select(inside3, outside3, ell_t3 > 0.0f) > 0.5f;
     let lo7 = select(lo6, mid3, beyond3);
-    let hi7 = select(mid3 - 1.0f, hi6, beyond3);
+    let hi7 = select(mid_below3, hi6, beyond3);
     let mid4 = floor((lo7 + hi7 + 1.0f) * 0.5f);
-    let ell_t4 = (mid4 - 1.0f - 127.0f) * 2.0f;
+    let mid_below4 = mid4 - 1.0f;
+    let ell_t4 = (mid_below4 - 127.0f) * 2.0f;
     let ell_h4 = floor(ell_t4 * ell_t4);
     let ell_g4 = 130050.0f - ell_h4;
     let ell_p4 = w2.x * w2.x * ell_g4;
@@ -246,21 +261,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent10 = bitcast<u32>(select(ell_q4, ell_p4, ell_p4 >= ell_q4)) >> 23u;
     let exponent11 = select(exponent10, 40u, exponent10 < 40u);
     let exponent12 = select(exponent11, 254u, 254u < exponent11);
-    let t14 = bitcast<f32>((281u - exponent12) << 23u);
-    let ell_s4 = (floor(ell_p4 * t14) + floor(ell_q4 * t14))
-        * bitcast<f32>((exponent12 - 27u) << 23u);
+    let scale5 = bitcast<f32>((281u - exponent12) << 23u);
+    let back4 = bitcast<f32>((exponent12 - 27u) << 23u);
+    let ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
     let lhs4 = ell_s4 * 65025.0f;
-    let rhs4 = ell_h4 * ell_g4 * t4;
-    let t15 = select(
-        select(select(0.0f, 1.0f, lhs4 <= rhs4), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs4 >= rhs4), w2.x > 0.0f),
-        ell_t4 > 0.0f
-    );
-    let beyond4 = t15 > 0.5f;
+    let rhs4 = ell_h4 * ell_g4 * t1;
+    let one_if7 = select(0.0f, 1.0f, lhs4 >= rhs4);
+    let outside4 = select(0.0f, one_if7, w2.x > 0.0f);
+    let one_if8 = select(0.0f, 1.0f, lhs4 <= rhs4);
+    let inside4 = select(one_if8, 1.0f, w2.x >= 0.0f);
+    let beyond4 = select(inside4, outside4, ell_t4 > 0.0f) > 0.5f;
     let lo8 = select(lo7, mid4, beyond4);
-    let hi8 = select(mid4 - 1.0f, hi7, beyond4);
+    let hi8 = select(mid_below4, hi7, beyond4);
     let mid5 = floor((lo8 + hi8 + 1.0f) * 0.5f);
-    let ell_t5 = (mid5 - 1.0f - 127.0f) * 2.0f;
+    let mid_below5 = mid5 - 1.0f;
+    let ell_t5 = (mid_below5 - 127.0f) * 2.0f;
     let ell_h5 = floor(ell_t5 * ell_t5);
     let ell_g5 = 130050.0f - ell_h5;
     let ell_p5 = w2.x * w2.x * ell_g5;
@@ -268,21 +283,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent13 = bitcast<u32>(select(ell_q5, ell_p5, ell_p5 >= ell_q5)) >> 23u;
     let exponent14 = select(exponent13, 40u, exponent13 < 40u);
     let exponent15 = select(exponent14, 254u, 254u < exponent14);
-    let t16 = bitcast<f32>((281u - exponent15) << 23u);
-    let ell_s5 = (floor(ell_p5 * t16) + floor(ell_q5 * t16))
-        * bitcast<f32>((exponent15 - 27u) << 23u);
+    let scale6 = bitcast<f32>((281u - exponent15) << 23u);
+    let back5 = bitcast<f32>((exponent15 - 27u) << 23u);
+    let ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
     let lhs5 = ell_s5 * 65025.0f;
-    let rhs5 = ell_h5 * ell_g5 * t4;
-    let t17 = select(
-        select(select(0.0f, 1.0f, lhs5 <= rhs5), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs5 >= rhs5), w2.x > 0.0f),
-        ell_t5 > 0.0f
-    );
-    let beyond5 = t17 > 0.5f;
+    let rhs5 = ell_h5 * ell_g5 * t1;
+    let one_if9 = select(0.0f, 1.0f, lhs5 >= rhs5);
+    let outside5 = select(0.0f, one_if9, w2.x > 0.0f);
+    let one_if10 = select(0.0f, 1.0f, lhs5 <= rhs5);
+    let inside5 = select(one_if10, 1.0f, w2.x >= 0.0f);
+    let beyond5 = select(inside5, outside5, ell_t5 > 0.0f) > 0.5f;
     let lo9 = select(lo8, mid5, beyond5);
-    let hi9 = select(mid5 - 1.0f, hi8, beyond5);
+    let hi9 = select(mid_below5, hi8, beyond5);
     let mid6 = floor((lo9 + hi9 + 1.0f) * 0.5f);
-    let ell_t6 = (mid6 - 1.0f - 127.0f) * 2.0f;
+    let mid_below6 = mid6 - 1.0f;
+    let ell_t6 = (mid_below6 - 127.0f) * 2.0f;
     let ell_h6 = floor(ell_t6 * ell_t6);
     let ell_g6 = 130050.0f - ell_h6;
     let ell_p6 = w2.x * w2.x * ell_g6;
@@ -290,21 +305,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent16 = bitcast<u32>(select(ell_q6, ell_p6, ell_p6 >= ell_q6)) >> 23u;
     let exponent17 = select(exponent16, 40u, exponent16 < 40u);
     let exponent18 = select(exponent17, 254u, 254u < exponent17);
-    let t18 = bitcast<f32>((281u - exponent18) << 23u);
-    let ell_s6 = (floor(ell_p6 * t18) + floor(ell_q6 * t18))
-        * bitcast<f32>((exponent18 - 27u) << 23u);
+    let scale7 = bitcast<f32>((281u - exponent18) << 23u);
+    let back6 = bitcast<f32>((exponent18 - 27u) << 23u);
+    let ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
     let lhs6 = ell_s6 * 65025.0f;
-    let rhs6 = ell_h6 * ell_g6 * t4;
-    let t19 = select(
-        select(select(0.0f, 1.0f, lhs6 <= rhs6), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs6 >= rhs6), w2.x > 0.0f),
-        ell_t6 > 0.0f
-    );
-    let beyond6 = t19 > 0.5f;
+    let rhs6 = ell_h6 * ell_g6 * t1;
+    let one_if11 = select(0.0f, 1.0f, lhs6 >= rhs6);
+    let outside6 = select(0.0f, one_if11, w2.x > 0.0f);
+    let one_if12 = select(0.0f, 1.0f, lhs6 <= rhs6);
+    let inside6 = select(one_if12, 1.0f, w2.x >= 0.0f);
+    let beyond6 = select(inside6, outside6, ell_t6 > 0.0f) > 0.5f;
     let lo10 = select(lo9, mid6, beyond6);
-    let hi10 = select(mid6 - 1.0f, hi9, beyond6);
+    let hi10 = select(mid_below6, hi9, beyond6);
     let mid7 = floor((lo10 + hi10 + 1.0f) * 0.5f);
-    let ell_t7 = (mid7 - 1.0f - 127.0f) * 2.0f;
+    let mid_below7 = mid7 - 1.0f;
+    let ell_t7 = (mid_below7 - 127.0f) * 2.0f;
     let ell_h7 = floor(ell_t7 * ell_t7);
     let ell_g7 = 130050.0f - ell_h7;
     let ell_p7 = w2.x * w2.x * ell_g7;
@@ -312,22 +327,22 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent19 = bitcast<u32>(select(ell_q7, ell_p7, ell_p7 >= ell_q7)) >> 23u;
     let exponent20 = select(exponent19, 40u, exponent19 < 40u);
     let exponent21 = select(exponent20, 254u, 254u < exponent20);
-    let t20 = bitcast<f32>((281u - exponent21) << 23u);
-    let ell_s7 = (floor(ell_p7 * t20) + floor(ell_q7 * t20))
-        * bitcast<f32>((exponent21 - 27u) << 23u);
+    let scale8 = bitcast<f32>((281u - exponent21) << 23u);
+    let back7 = bitcast<f32>((exponent21 - 27u) << 23u);
+    let ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
     let lhs7 = ell_s7 * 65025.0f;
-    let rhs7 = ell_h7 * ell_g7 * t4;
-    let t21 = select(
-        select(select(0.0f, 1.0f, lhs7 <= rhs7), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs7 >= rhs7), w2.x > 0.0f),
-        ell_t7 > 0.0f
-    );
-    let beyond7 = t21 > 0.5f;
-    let t22 = w2.y >= 0.0f;
-    let t23 = select(0.0f, 64.0f, t22);
-    let t24 = select(63.0f, 127.0f, t22);
-    let mid8 = floor((t23 + t24 + 1.0f) * 0.5f);
-    let ell_t8 = (mid8 - 1.0f - 63.0f) * 2.0f;
+    let rhs7 = ell_h7 * ell_g7 * t1;
+    let one_if13 = select(0.0f, 1.0f, lhs7 >= rhs7);
+    let outside7 = select(0.0f, one_if13, w2.x > 0.0f);
+    let one_if14 = select(0.0f, 1.0f, lhs7 <= rhs7);
+    let inside7 = select(one_if14, 1.0f, w2.x >= 0.0f);
+    let beyond7 = select(inside7, outside7, ell_t7 > 0.0f) > 0.5f;
+    let t5 = w2.y >= 0.0f;
+    let t6 = select(0.0f, 64.0f, t5);
+    let t7 = select(63.0f, 127.0f, t5);
+    let mid8 = floor((t6 + t7 + 1.0f) * 0.5f);
+    let mid_below8 = mid8 - 1.0f;
+    let ell_t8 = (mid_below8 - 63.0f) * 2.0f;
     let ell_h8 = floor(ell_t8 * ell_t8);
     let ell_g8 = 32258.0f - ell_h8;
     let ell_p8 = w2.y * w2.y * ell_g8;
@@ -335,21 +350,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent22 = bitcast<u32>(select(ell_q8, ell_p8, ell_p8 >= ell_q8)) >> 23u;
     let exponent23 = select(exponent22, 40u, exponent22 < 40u);
     let exponent24 = select(exponent23, 254u, 254u < exponent23);
-    let t25 = bitcast<f32>((281u - exponent24) << 23u);
-    let ell_s8 = (floor(ell_p8 * t25) + floor(ell_q8 * t25))
-        * bitcast<f32>((exponent24 - 27u) << 23u);
+    let scale9 = bitcast<f32>((281u - exponent24) << 23u);
+    let back8 = bitcast<f32>((exponent24 - 27u) << 23u);
+    let ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
     let lhs8 = ell_s8 * 16129.0f;
-    let rhs8 = ell_h8 * ell_g8 * t4;
-    let t26 = select(
-        select(select(0.0f, 1.0f, lhs8 <= rhs8), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs8 >= rhs8), w2.y > 0.0f),
-        ell_t8 > 0.0f
-    );
-    let beyond8 = t26 > 0.5f;
-    let lo11 = select(t23, mid8, beyond8);
-    let hi11 = select(mid8 - 1.0f, t24, beyond8);
+    let rhs8 = ell_h8 * ell_g8 * t1;
+    let one_if15 = select(0.0f, 1.0f, lhs8 >= rhs8);
+    let outside8 = select(0.0f, one_if15, w2.y > 0.0f);
+    let one_if16 = select(0.0f, 1.0f, lhs8 <= rhs8);
+    let inside8 = select(one_if16, 1.0f, w2.y >= 0.0f);
+    let beyond8 = select(inside8, outside8, ell_t8 > 0.0f) > 0.5f;
+    let lo11 = select(t6, mid8, beyond8);
+    let hi11 = select(mid_below8, t7, beyond8);
     let mid9 = floor((lo11 + hi11 + 1.0f) * 0.5f);
-    let ell_t9 = (mid9 - 1.0f - 63.0f) * 2.0f;
+    let mid_below9 = mid9 - 1.0f;
+    let ell_t9 = (mid_below9 - 63.0f) * 2.0f;
     let ell_h9 = floor(ell_t9 * ell_t9);
     let ell_g9 = 32258.0f - ell_h9;
     let ell_p9 = w2.y * w2.y * ell_g9;
@@ -357,21 +372,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent25 = bitcast<u32>(select(ell_q9, ell_p9, ell_p9 >= ell_q9)) >> 23u;
     let exponent26 = select(exponent25, 40u, exponent25 < 40u);
     let exponent27 = select(exponent26, 254u, 254u < exponent26);
-    let t27 = bitcast<f32>((281u - exponent27) << 23u);
-    let ell_s9 = (floor(ell_p9 * t27) + floor(ell_q9 * t27))
-        * bitcast<f32>((exponent27 - 27u) << 23u);
+    let scale10 = bitcast<f32>((281u - exponent27) << 23u);
+    let back9 = bitcast<f32>((exponent27 - 27u) << 23u);
+    let ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
     let lhs9 = ell_s9 * 16129.0f;
-    let rhs9 = ell_h9 * ell_g9 * t4;
-    let t28 = select(
-        select(select(0.0f, 1.0f, lhs9 <= rhs9), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs9 >= rhs9), w2.y > 0.0f),
-        ell_t9 > 0.0f
-    );
-    let beyond9 = t28 > 0.5f;
+    let rhs9 = ell_h9 * ell_g9 * t1;
+    let one_if17 = select(0.0f, 1.0f, lhs9 >= rhs9);
+    let outside9 = select(0.0f, one_if17, w2.y > 0.0f);
+    let one_if18 = select(0.0f, 1.0f, lhs9 <= rhs9);
+    let inside9 = select(one_if18, 1.0f, w2.y >= 0.0f);
+    let beyond9 = select(inside9, outside9, ell_t9 > 0.0f) > 0.5f;
     let lo12 = select(lo11, mid9, beyond9);
-    let hi12 = select(mid9 - 1.0f, hi11, beyond9);
+    let hi12 = select(mid_below9, hi11, beyond9);
     let mid10 = floor((lo12 + hi12 + 1.0f) * 0.5f);
-    let ell_t10 = (mid10 - 1.0f - 63.0f) * 2.0f;
+    let mid_below10 = mid10 - 1.0f;
+    let ell_t10 = (mid_below10 - 63.0f) * 2.0f;
     let ell_h10 = floor(ell_t10 * ell_t10);
     let ell_g10 = 32258.0f - ell_h10;
     let ell_p10 = w2.y * w2.y * ell_g10;
@@ -379,21 +394,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent28 = bitcast<u32>(select(ell_q10, ell_p10, ell_p10 >= ell_q10)) >> 23u;
     let exponent29 = select(exponent28, 40u, exponent28 < 40u);
     let exponent30 = select(exponent29, 254u, 254u < exponent29);
-    let t29 = bitcast<f32>((281u - exponent30) << 23u);
-    let ell_s10 = (floor(ell_p10 * t29) + floor(ell_q10 * t29))
-        * bitcast<f32>((exponent30 - 27u) << 23u);
+    let scale11 = bitcast<f32>((281u - exponent30) << 23u);
+    let back10 = bitcast<f32>((exponent30 - 27u) << 23u);
+    let ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
     let lhs10 = ell_s10 * 16129.0f;
-    let rhs10 = ell_h10 * ell_g10 * t4;
-    let t30 = select(
-        select(select(0.0f, 1.0f, lhs10 <= rhs10), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs10 >= rhs10), w2.y > 0.0f),
-        ell_t10 > 0.0f
-    );
-    let beyond10 = t30 > 0.5f;
+    let rhs10 = ell_h10 * ell_g10 * t1;
+    let one_if19 = select(0.0f, 1.0f, lhs10 >= rhs10);
+    let outside10 = select(0.0f, one_if19, w2.y > 0.0f);
+    let one_if20 = select(0.0f, 1.0f, lhs10 <= rhs10);
+    let inside10 = select(one_if20, 1.0f, w2.y >= 0.0f);
+    let beyond10 = select(inside10, outside10, ell_t10 > 0.0f) > 0.5f;
     let lo13 = select(lo12, mid10, beyond10);
-    let hi13 = select(mid10 - 1.0f, hi12, beyond10);
+    let hi13 = select(mid_below10, hi12, beyond10);
     let mid11 = floor((lo13 + hi13 + 1.0f) * 0.5f);
-    let ell_t11 = (mid11 - 1.0f - 63.0f) * 2.0f;
+    let mid_below11 = mid11 - 1.0f;
+    let ell_t11 = (mid_below11 - 63.0f) * 2.0f;
     let ell_h11 = floor(ell_t11 * ell_t11);
     let ell_g11 = 32258.0f - ell_h11;
     let ell_p11 = w2.y * w2.y * ell_g11;
@@ -401,21 +416,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent31 = bitcast<u32>(select(ell_q11, ell_p11, ell_p11 >= ell_q11)) >> 23u;
     let exponent32 = select(exponent31, 40u, exponent31 < 40u);
     let exponent33 = select(exponent32, 254u, 254u < exponent32);
-    let t31 = bitcast<f32>((281u - exponent33) << 23u);
-    let ell_s11 = (floor(ell_p11 * t31) + floor(ell_q11 * t31))
-        * bitcast<f32>((exponent33 - 27u) << 23u);
+    let scale12 = bitcast<f32>((281u - exponent33) << 23u);
+    let back11 = bitcast<f32>((exponent33 - 27u) << 23u);
+    let ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
     let lhs11 = ell_s11 * 16129.0f;
-    let rhs11 = ell_h11 * ell_g11 * t4;
-    let t32 = select(
-        select(select(0.0f, 1.0f, lhs11 <= rhs11), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs11 >= rhs11), w2.y > 0.0f),
-        ell_t11 > 0.0f
-    );
-    let beyond11 = t32 > 0.5f;
+    let rhs11 = ell_h11 * ell_g11 * t1;
+    let one_if21 = select(0.0f, 1.0f, lhs11 >= rhs11);
+    let outside11 = select(0.0f, one_if21, w2.y > 0.0f);
+    let one_if22 = select(0.0f, 1.0f, lhs11 <= rhs11);
+    let inside11 = select(one_if22, 1.0f, w2.y >= 0.0f);
+    let beyond11 = select(inside11, outside11, ell_t11 > 0.0f) > 0.5f;
     let lo14 = select(lo13, mid11, beyond11);
-    let hi14 = select(mid11 - 1.0f, hi13, beyond11);
+    let hi14 = select(mid_below11, hi13, beyond11);
     let mid12 = floor((lo14 + hi14 + 1.0f) * 0.5f);
-    let ell_t12 = (mid12 - 1.0f - 63.0f) * 2.0f;
+    let mid_below12 = mid12 - 1.0f;
+    let ell_t12 = (mid_below12 - 63.0f) * 2.0f;
     let ell_h12 = floor(ell_t12 * ell_t12);
     let ell_g12 = 32258.0f - ell_h12;
     let ell_p12 = w2.y * w2.y * ell_g12;
@@ -423,21 +438,21 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent34 = bitcast<u32>(select(ell_q12, ell_p12, ell_p12 >= ell_q12)) >> 23u;
     let exponent35 = select(exponent34, 40u, exponent34 < 40u);
     let exponent36 = select(exponent35, 254u, 254u < exponent35);
-    let t33 = bitcast<f32>((281u - exponent36) << 23u);
-    let ell_s12 = (floor(ell_p12 * t33) + floor(ell_q12 * t33))
-        * bitcast<f32>((exponent36 - 27u) << 23u);
+    let scale13 = bitcast<f32>((281u - exponent36) << 23u);
+    let back12 = bitcast<f32>((exponent36 - 27u) << 23u);
+    let ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
     let lhs12 = ell_s12 * 16129.0f;
-    let rhs12 = ell_h12 * ell_g12 * t4;
-    let t34 = select(
-        select(select(0.0f, 1.0f, lhs12 <= rhs12), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs12 >= rhs12), w2.y > 0.0f),
-        ell_t12 > 0.0f
-    );
-    let beyond12 = t34 > 0.5f;
+    let rhs12 = ell_h12 * ell_g12 * t1;
+    let one_if23 = select(0.0f, 1.0f, lhs12 >= rhs12);
+    let outside12 = select(0.0f, one_if23, w2.y > 0.0f);
+    let one_if24 = select(0.0f, 1.0f, lhs12 <= rhs12);
+    let inside12 = select(one_if24, 1.0f, w2.y >= 0.0f);
+    let beyond12 = select(inside12, outside12, ell_t12 > 0.0f) > 0.5f;
     let lo15 = select(lo14, mid12, beyond12);
-    let hi15 = select(mid12 - 1.0f, hi14, beyond12);
+    let hi15 = select(mid_below12, hi14, beyond12);
     let mid13 = floor((lo15 + hi15 + 1.0f) * 0.5f);
-    let ell_t13 = (mid13 - 1.0f - 63.0f) * 2.0f;
+    let mid_below13 = mid13 - 1.0f;
+    let ell_t13 = (mid_below13 - 63.0f) * 2.0f;
     let ell_h13 = floor(ell_t13 * ell_t13);
     let ell_g13 = 32258.0f - ell_h13;
     let ell_p13 = w2.y * w2.y * ell_g13;
@@ -445,17 +460,16 @@ fn unitpack_eqarea_ellipse16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent37 = bitcast<u32>(select(ell_q13, ell_p13, ell_p13 >= ell_q13)) >> 23u;
     let exponent38 = select(exponent37, 40u, exponent37 < 40u);
     let exponent39 = select(exponent38, 254u, 254u < exponent38);
-    let t35 = bitcast<f32>((281u - exponent39) << 23u);
-    let ell_s13 = (floor(ell_p13 * t35) + floor(ell_q13 * t35))
-        * bitcast<f32>((exponent39 - 27u) << 23u);
+    let scale14 = bitcast<f32>((281u - exponent39) << 23u);
+    let back13 = bitcast<f32>((exponent39 - 27u) << 23u);
+    let ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
     let lhs13 = ell_s13 * 16129.0f;
-    let rhs13 = ell_h13 * ell_g13 * t4;
-    let t36 = select(
-        select(select(0.0f, 1.0f, lhs13 <= rhs13), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs13 >= rhs13), w2.y > 0.0f),
-        ell_t13 > 0.0f
-    );
-    let beyond13 = t36 > 0.5f;
+    let rhs13 = ell_h13 * ell_g13 * t1;
+    let one_if25 = select(0.0f, 1.0f, lhs13 >= rhs13);
+    let outside13 = select(0.0f, one_if25, w2.y > 0.0f);
+    let one_if26 = select(0.0f, 1.0f, lhs13 <= rhs13);
+    let inside13 = select(one_if26, 1.0f, w2.y >= 0.0f);
+    let beyond13 = select(inside13, outside13, ell_t13 > 0.0f) > 0.5f;
     return select(
         vec3<f32>(lo10, lo15, 0.0f),
         vec3<f32>(mid7, mid13, 1.0f),

@@ -65,12 +65,16 @@ fn unitpack_eqarea_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -90,32 +94,35 @@ fn unitpack_eqarea_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = w2.xy * w2.xy;
-    let rho = sqrt(t4.x + t4.y);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let t1 = w2.xy * w2.xy;
+    let rho = sqrt(t1.x + t1.y);
     let half_r = rho / sqrt(root * (root + abs(w2.z))) * 0.5f;
     let disk = w2.xy * (half_r / select(1.0f, rho, rho > 0.0f) * 2.0f);
-    let t5 = abs(disk.yx);
-    let t6 = disk + 1.4142135f - t5;
-    let t7 = sqrt(select(vec2<f32>(0.0f), t6, t6 >= vec2<f32>(0.0f)) * (disk + 1.4142135f + t5));
-    let t8 = -disk;
-    let t9 = t8 + 1.4142135f - t5;
-    let t10 = sqrt(select(vec2<f32>(0.0f), t9, t9 >= vec2<f32>(0.0f)) * (t8 + 1.4142135f + t5));
-    let square = disk / (t7 + t10);
+    let t2 = abs(disk.yx);
+    let t3 = disk + 1.4142135f - t2;
+    let neg_disk = -disk;
+    let t4 = neg_disk + 1.4142135f - t2;
+    let t5 = sqrt(select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f)) * (disk + 1.4142135f + t2))
+        + sqrt(select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f)) * (neg_disk + 1.4142135f + t2));
+    let square = disk / t5;
     let enc = square * 1.4142135f + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -130,12 +137,16 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -155,25 +166,28 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = root * (root + abs(w2.z));
-    let t5 = w2.x >= 0.0f;
-    let t6 = select(0.0f, 32768.0f, t5);
-    let t7 = select(32767.0f, 65535.0f, t5);
-    let mid = floor((t6 + t7 + 1.0f) * 0.5f);
-    let ell_t = (mid - 1.0f - 32767.0f) * 2.0f;
+    let t1 = root * (root + abs(w2.z));
+    let t2 = w2.x >= 0.0f;
+    let t3 = select(0.0f, 32768.0f, t2);
+    let t4 = select(32767.0f, 65535.0f, t2);
+    let mid = floor((t3 + t4 + 1.0f) * 0.5f);
+    let mid_below = mid - 1.0f;
+    let ell_t = (mid_below - 32767.0f) * 2.0f;
     let ell_h = floor(ell_t * ell_t);
     let ell_g = 8589672400.0f - ell_h;
     let ell_p = w2.x * w2.x * ell_g;
@@ -181,20 +195,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent = bitcast<u32>(select(ell_q, ell_p, ell_p >= ell_q)) >> 23u;
     let exponent2 = select(exponent, 40u, exponent < 40u);
     let exponent3 = select(exponent2, 254u, 254u < exponent2);
-    let t8 = bitcast<f32>((281u - exponent3) << 23u);
-    let ell_s = (floor(ell_p * t8) + floor(ell_q * t8)) * bitcast<f32>((exponent3 - 27u) << 23u);
+    let scale2 = bitcast<f32>((281u - exponent3) << 23u);
+    let back = bitcast<f32>((exponent3 - 27u) << 23u);
+    let ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
     let lhs = ell_s * 4294836200.0f;
-    let rhs = ell_h * ell_g * t4;
-    let t9 = select(
-        select(select(0.0f, 1.0f, lhs <= rhs), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs >= rhs), w2.x > 0.0f),
-        ell_t > 0.0f
-    );
-    let beyond = t9 > 0.5f;
-    let lo5 = select(t6, mid, beyond);
-    let hi5 = select(mid - 1.0f, t7, beyond);
+    let rhs = ell_h * ell_g * t1;
+    let one_if = select(0.0f, 1.0f, lhs >= rhs);
+    let outside = select(0.0f, one_if, w2.x > 0.0f);
+    let one_if2 = select(0.0f, 1.0f, lhs <= rhs);
+    let inside = select(one_if2, 1.0f, w2.x >= 0.0f);
+    let beyond = select(inside, outside, ell_t > 0.0f) > 0.5f;
+    let lo5 = select(t3, mid, beyond);
+    let hi5 = select(mid_below, t4, beyond);
     let mid2 = floor((lo5 + hi5 + 1.0f) * 0.5f);
-    let ell_t2 = (mid2 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below2 = mid2 - 1.0f;
+    let ell_t2 = (mid_below2 - 32767.0f) * 2.0f;
     let ell_h2 = floor(ell_t2 * ell_t2);
     let ell_g2 = 8589672400.0f - ell_h2;
     let ell_p2 = w2.x * w2.x * ell_g2;
@@ -202,21 +217,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent4 = bitcast<u32>(select(ell_q2, ell_p2, ell_p2 >= ell_q2)) >> 23u;
     let exponent5 = select(exponent4, 40u, exponent4 < 40u);
     let exponent6 = select(exponent5, 254u, 254u < exponent5);
-    let t10 = bitcast<f32>((281u - exponent6) << 23u);
-    let ell_s2 = (floor(ell_p2 * t10) + floor(ell_q2 * t10))
-        * bitcast<f32>((exponent6 - 27u) << 23u);
+    let scale3 = bitcast<f32>((281u - exponent6) << 23u);
+    let back2 = bitcast<f32>((exponent6 - 27u) << 23u);
+    let ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
     let lhs2 = ell_s2 * 4294836200.0f;
-    let rhs2 = ell_h2 * ell_g2 * t4;
-    let t11 = select(
-        select(select(0.0f, 1.0f, lhs2 <= rhs2), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs2 >= rhs2), w2.x > 0.0f),
-        ell_t2 > 0.0f
-    );
-    let beyond2 = t11 > 0.5f;
+    let rhs2 = ell_h2 * ell_g2 * t1;
+    let one_if3 = select(0.0f, 1.0f, lhs2 >= rhs2);
+    let outside2 = select(0.0f, one_if3, w2.x > 0.0f);
+    let one_if4 = select(0.0f, 1.0f, lhs2 <= rhs2);
+    let inside2 = select(one_if4, 1.0f, w2.x >= 0.0f);
+    let beyond2 = select(inside2, outside2, ell_t2 > 0.0f) > 0.5f;
     let lo6 = select(lo5, mid2, beyond2);
-    let hi6 = select(mid2 - 1.0f, hi5, beyond2);
+    let hi6 = select(mid_below2, hi5, beyond2);
     let mid3 = floor((lo6 + hi6 + 1.0f) * 0.5f);
-    let ell_t3 = (mid3 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below3 = mid3 - 1.0f;
+    let ell_t3 = (mid_below3 - 32767.0f) * 2.0f;
     let ell_h3 = floor(ell_t3 * ell_t3);
     let ell_g3 = 8589672400.0f - ell_h3;
     let ell_p3 = w2.x * w2.x * ell_g3;
@@ -224,21 +239,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent7 = bitcast<u32>(select(ell_q3, ell_p3, ell_p3 >= ell_q3)) >> 23u;
     let exponent8 = select(exponent7, 40u, exponent7 < 40u);
     let exponent9 = select(exponent8, 254u, 254u < exponent8);
-    let t12 = bitcast<f32>((281u - exponent9) << 23u);
-    let ell_s3 = (floor(ell_p3 * t12) + floor(ell_q3 * t12))
-        * bitcast<f32>((exponent9 - 27u) << 23u);
+    let scale4 = bitcast<f32>((281u - exponent9) << 23u);
+    let back3 = bitcast<f32>((exponent9 - 27u) << 23u);
+    let ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
     let lhs3 = ell_s3 * 4294836200.0f;
-    let rhs3 = ell_h3 * ell_g3 * t4;
-    let t13 = select(
-        select(select(0.0f, 1.0f, lhs3 <= rhs3), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs3 >= rhs3), w2.x > 0.0f),
-        ell_t3 > 0.0f
-    );
-    let beyond3 = t13 > 0.5f;
+    let rhs3 = ell_h3 * ell_g3 * t1;
+    let one_if5 = select(0.0f, 1.0f, lhs3 >= rhs3);
+    let outside3 = select(0.0f, one_if5, w2.x > 0.0f);
+    let one_if6 = select(0.0f, 1.0f, lhs3 <= rhs3);
+    let inside3 = select(one_if6, 1.0f, w2.x >= 0.0f);
+    let beyond3 = select(inside3, outside3, ell_t3 > 0.0f) > 0.5f;
     let lo7 = select(lo6, mid3, beyond3);
-    let hi7 = select(mid3 - 1.0f, hi6, beyond3);
+    let hi7 = select(mid_below3, hi6, beyond3);
     let mid4 = floor((lo7 + hi7 + 1.0f) * 0.5f);
-    let ell_t4 = (mid4 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below4 = mid4 - 1.0f;
+    let ell_t4 = (mid_below4 - 32767.0f) * 2.0f;
     let ell_h4 = floor(ell_t4 * ell_t4);
     let ell_g4 = 8589672400.0f - ell_h4;
     let ell_p4 = w2.x * w2.x * ell_g4;
@@ -246,21 +261,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent10 = bitcast<u32>(select(ell_q4, ell_p4, ell_p4 >= ell_q4)) >> 23u;
     let exponent11 = select(exponent10, 40u, exponent10 < 40u);
     let exponent12 = select(exponent11, 254u, 254u < exponent11);
-    let t14 = bitcast<f32>((281u - exponent12) << 23u);
-    let ell_s4 = (floor(ell_p4 * t14) + floor(ell_q4 * t14))
-        * bitcast<f32>((exponent12 - 27u) << 23u);
+    let scale5 = bitcast<f32>((281u - exponent12) << 23u);
+    let back4 = bitcast<f32>((exponent12 - 27u) << 23u);
+    let ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
     let lhs4 = ell_s4 * 4294836200.0f;
-    let rhs4 = ell_h4 * ell_g4 * t4;
-    let t15 = select(
-        select(select(0.0f, 1.0f, lhs4 <= rhs4), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs4 >= rhs4), w2.x > 0.0f),
-        ell_t4 > 0.0f
-    );
-    let beyond4 = t15 > 0.5f;
+    let rhs4 = ell_h4 * ell_g4 * t1;
+    let one_if7 = select(0.0f, 1.0f, lhs4 >= rhs4);
+    let outside4 = select(0.0f, one_if7, w2.x > 0.0f);
+    let one_if8 = select(0.0f, 1.0f, lhs4 <= rhs4);
+    let inside4 = select(one_if8, 1.0f, w2.x >= 0.0f);
+    let beyond4 = select(inside4, outside4, ell_t4 > 0.0f) > 0.5f;
     let lo8 = select(lo7, mid4, beyond4);
-    let hi8 = select(mid4 - 1.0f, hi7, beyond4);
+    let hi8 = select(mid_below4, hi7, beyond4);
     let mid5 = floor((lo8 + hi8 + 1.0f) * 0.5f);
-    let ell_t5 = (mid5 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below5 = mid5 - 1.0f;
+    let ell_t5 = (mid_below5 - 32767.0f) * 2.0f;
     let ell_h5 = floor(ell_t5 * ell_t5);
     let ell_g5 = 8589672400.0f - ell_h5;
     let ell_p5 = w2.x * w2.x * ell_g5;
@@ -268,21 +283,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent13 = bitcast<u32>(select(ell_q5, ell_p5, ell_p5 >= ell_q5)) >> 23u;
     let exponent14 = select(exponent13, 40u, exponent13 < 40u);
     let exponent15 = select(exponent14, 254u, 254u < exponent14);
-    let t16 = bitcast<f32>((281u - exponent15) << 23u);
-    let ell_s5 = (floor(ell_p5 * t16) + floor(ell_q5 * t16))
-        * bitcast<f32>((exponent15 - 27u) << 23u);
+    let scale6 = bitcast<f32>((281u - exponent15) << 23u);
+    let back5 = bitcast<f32>((exponent15 - 27u) << 23u);
+    let ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
     let lhs5 = ell_s5 * 4294836200.0f;
-    let rhs5 = ell_h5 * ell_g5 * t4;
-    let t17 = select(
-        select(select(0.0f, 1.0f, lhs5 <= rhs5), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs5 >= rhs5), w2.x > 0.0f),
-        ell_t5 > 0.0f
-    );
-    let beyond5 = t17 > 0.5f;
+    let rhs5 = ell_h5 * ell_g5 * t1;
+    let one_if9 = select(0.0f, 1.0f, lhs5 >= rhs5);
+    let outside5 = select(0.0f, one_if9, w2.x > 0.0f);
+    let one_if10 = select(0.0f, 1.0f, lhs5 <= rhs5);
+    let inside5 = select(one_if10, 1.0f, w2.x >= 0.0f);
+    let beyond5 = select(inside5, outside5, ell_t5 > 0.0f) > 0.5f;
     let lo9 = select(lo8, mid5, beyond5);
-    let hi9 = select(mid5 - 1.0f, hi8, beyond5);
+    let hi9 = select(mid_below5, hi8, beyond5);
     let mid6 = floor((lo9 + hi9 + 1.0f) * 0.5f);
-    let ell_t6 = (mid6 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below6 = mid6 - 1.0f;
+    let ell_t6 = (mid_below6 - 32767.0f) * 2.0f;
     let ell_h6 = floor(ell_t6 * ell_t6);
     let ell_g6 = 8589672400.0f - ell_h6;
     let ell_p6 = w2.x * w2.x * ell_g6;
@@ -290,21 +305,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent16 = bitcast<u32>(select(ell_q6, ell_p6, ell_p6 >= ell_q6)) >> 23u;
     let exponent17 = select(exponent16, 40u, exponent16 < 40u);
     let exponent18 = select(exponent17, 254u, 254u < exponent17);
-    let t18 = bitcast<f32>((281u - exponent18) << 23u);
-    let ell_s6 = (floor(ell_p6 * t18) + floor(ell_q6 * t18))
-        * bitcast<f32>((exponent18 - 27u) << 23u);
+    let scale7 = bitcast<f32>((281u - exponent18) << 23u);
+    let back6 = bitcast<f32>((exponent18 - 27u) << 23u);
+    let ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
     let lhs6 = ell_s6 * 4294836200.0f;
-    let rhs6 = ell_h6 * ell_g6 * t4;
-    let t19 = select(
-        select(select(0.0f, 1.0f, lhs6 <= rhs6), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs6 >= rhs6), w2.x > 0.0f),
-        ell_t6 > 0.0f
-    );
-    let beyond6 = t19 > 0.5f;
+    let rhs6 = ell_h6 * ell_g6 * t1;
+    let one_if11 = select(0.0f, 1.0f, lhs6 >= rhs6);
+    let outside6 = select(0.0f, one_if11, w2.x > 0.0f);
+    let one_if12 = select(0.0f, 1.0f, lhs6 <= rhs6);
+    let inside6 = select(one_if12, 1.0f, w2.x >= 0.0f);
+    let beyond6 = select(inside6, outside6, ell_t6 > 0.0f) > 0.5f;
     let lo10 = select(lo9, mid6, beyond6);
-    let hi10 = select(mid6 - 1.0f, hi9, beyond6);
+    let hi10 = select(mid_below6, hi9, beyond6);
     let mid7 = floor((lo10 + hi10 + 1.0f) * 0.5f);
-    let ell_t7 = (mid7 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below7 = mid7 - 1.0f;
+    let ell_t7 = (mid_below7 - 32767.0f) * 2.0f;
     let ell_h7 = floor(ell_t7 * ell_t7);
     let ell_g7 = 8589672400.0f - ell_h7;
     let ell_p7 = w2.x * w2.x * ell_g7;
@@ -312,21 +327,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent19 = bitcast<u32>(select(ell_q7, ell_p7, ell_p7 >= ell_q7)) >> 23u;
     let exponent20 = select(exponent19, 40u, exponent19 < 40u);
     let exponent21 = select(exponent20, 254u, 254u < exponent20);
-    let t20 = bitcast<f32>((281u - exponent21) << 23u);
-    let ell_s7 = (floor(ell_p7 * t20) + floor(ell_q7 * t20))
-        * bitcast<f32>((exponent21 - 27u) << 23u);
+    let scale8 = bitcast<f32>((281u - exponent21) << 23u);
+    let back7 = bitcast<f32>((exponent21 - 27u) << 23u);
+    let ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
     let lhs7 = ell_s7 * 4294836200.0f;
-    let rhs7 = ell_h7 * ell_g7 * t4;
-    let t21 = select(
-        select(select(0.0f, 1.0f, lhs7 <= rhs7), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs7 >= rhs7), w2.x > 0.0f),
-        ell_t7 > 0.0f
-    );
-    let beyond7 = t21 > 0.5f;
+    let rhs7 = ell_h7 * ell_g7 * t1;
+    let one_if13 = select(0.0f, 1.0f, lhs7 >= rhs7);
+    let outside7 = select(0.0f, one_if13, w2.x > 0.0f);
+    let one_if14 = select(0.0f, 1.0f, lhs7 <= rhs7);
+    let inside7 = select(one_if14, 1.0f, w2.x >= 0.0f);
+    let beyond7 = select(inside7, outside7, ell_t7 > 0.0f) > 0.5f;
     let lo11 = select(lo10, mid7, beyond7);
-    let hi11 = select(mid7 - 1.0f, hi10, beyond7);
+    let hi11 = select(mid_below7, hi10, beyond7);
     let mid8 = floor((lo11 + hi11 + 1.0f) * 0.5f);
-    let ell_t8 = (mid8 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below8 = mid8 - 1.0f;
+    let ell_t8 = (mid_below8 - 32767.0f) * 2.0f;
     let ell_h8 = floor(ell_t8 * ell_t8);
     let ell_g8 = 8589672400.0f - ell_h8;
     let ell_p8 = w2.x * w2.x * ell_g8;
@@ -334,21 +349,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent22 = bitcast<u32>(select(ell_q8, ell_p8, ell_p8 >= ell_q8)) >> 23u;
     let exponent23 = select(exponent22, 40u, exponent22 < 40u);
     let exponent24 = select(exponent23, 254u, 254u < exponent23);
-    let t22 = bitcast<f32>((281u - exponent24) << 23u);
-    let ell_s8 = (floor(ell_p8 * t22) + floor(ell_q8 * t22))
-        * bitcast<f32>((exponent24 - 27u) << 23u);
+    let scale9 = bitcast<f32>((281u - exponent24) << 23u);
+    let back8 = bitcast<f32>((exponent24 - 27u) << 23u);
+    let ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
     let lhs8 = ell_s8 * 4294836200.0f;
-    let rhs8 = ell_h8 * ell_g8 * t4;
-    let t23 = select(
-        select(select(0.0f, 1.0f, lhs8 <= rhs8), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs8 >= rhs8), w2.x > 0.0f),
-        ell_t8 > 0.0f
-    );
-    let beyond8 = t23 > 0.5f;
+    let rhs8 = ell_h8 * ell_g8 * t1;
+    let one_if15 = select(0.0f, 1.0f, lhs8 >= rhs8);
+    let outside8 = select(0.0f, one_if15, w2.x > 0.0f);
+    let one_if16 = select(0.0f, 1.0f, lhs8 <= rhs8);
+    let inside8 = select(one_if16, 1.0f, w2.x >= 0.0f);
+    let beyond8 = select(inside8, outside8, ell_t8 > 0.0f) > 0.5f;
     let lo12 = select(lo11, mid8, beyond8);
-    let hi12 = select(mid8 - 1.0f, hi11, beyond8);
+    let hi12 = select(mid_below8, hi11, beyond8);
     let mid9 = floor((lo12 + hi12 + 1.0f) * 0.5f);
-    let ell_t9 = (mid9 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below9 = mid9 - 1.0f;
+    let ell_t9 = (mid_below9 - 32767.0f) * 2.0f;
     let ell_h9 = floor(ell_t9 * ell_t9);
     let ell_g9 = 8589672400.0f - ell_h9;
     let ell_p9 = w2.x * w2.x * ell_g9;
@@ -356,21 +371,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent25 = bitcast<u32>(select(ell_q9, ell_p9, ell_p9 >= ell_q9)) >> 23u;
     let exponent26 = select(exponent25, 40u, exponent25 < 40u);
     let exponent27 = select(exponent26, 254u, 254u < exponent26);
-    let t24 = bitcast<f32>((281u - exponent27) << 23u);
-    let ell_s9 = (floor(ell_p9 * t24) + floor(ell_q9 * t24))
-        * bitcast<f32>((exponent27 - 27u) << 23u);
+    let scale10 = bitcast<f32>((281u - exponent27) << 23u);
+    let back9 = bitcast<f32>((exponent27 - 27u) << 23u);
+    let ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
     let lhs9 = ell_s9 * 4294836200.0f;
-    let rhs9 = ell_h9 * ell_g9 * t4;
-    let t25 = select(
-        select(select(0.0f, 1.0f, lhs9 <= rhs9), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs9 >= rhs9), w2.x > 0.0f),
-        ell_t9 > 0.0f
-    );
-    let beyond9 = t25 > 0.5f;
+    let rhs9 = ell_h9 * ell_g9 * t1;
+    let one_if17 = select(0.0f, 1.0f, lhs9 >= rhs9);
+    let outside9 = select(0.0f, one_if17, w2.x > 0.0f);
+    let one_if18 = select(0.0f, 1.0f, lhs9 <= rhs9);
+    let inside9 = select(one_if18, 1.0f, w2.x >= 0.0f);
+    let beyond9 = select(inside9, outside9, ell_t9 > 0.0f) > 0.5f;
     let lo13 = select(lo12, mid9, beyond9);
-    let hi13 = select(mid9 - 1.0f, hi12, beyond9);
+    let hi13 = select(mid_below9, hi12, beyond9);
     let mid10 = floor((lo13 + hi13 + 1.0f) * 0.5f);
-    let ell_t10 = (mid10 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below10 = mid10 - 1.0f;
+    let ell_t10 = (mid_below10 - 32767.0f) * 2.0f;
     let ell_h10 = floor(ell_t10 * ell_t10);
     let ell_g10 = 8589672400.0f - ell_h10;
     let ell_p10 = w2.x * w2.x * ell_g10;
@@ -378,21 +393,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent28 = bitcast<u32>(select(ell_q10, ell_p10, ell_p10 >= ell_q10)) >> 23u;
     let exponent29 = select(exponent28, 40u, exponent28 < 40u);
     let exponent30 = select(exponent29, 254u, 254u < exponent29);
-    let t26 = bitcast<f32>((281u - exponent30) << 23u);
-    let ell_s10 = (floor(ell_p10 * t26) + floor(ell_q10 * t26))
-        * bitcast<f32>((exponent30 - 27u) << 23u);
+    let scale11 = bitcast<f32>((281u - exponent30) << 23u);
+    let back10 = bitcast<f32>((exponent30 - 27u) << 23u);
+    let ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
     let lhs10 = ell_s10 * 4294836200.0f;
-    let rhs10 = ell_h10 * ell_g10 * t4;
-    let t27 = select(
-        select(select(0.0f, 1.0f, lhs10 <= rhs10), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs10 >= rhs10), w2.x > 0.0f),
-        ell_t10 > 0.0f
-    );
-    let beyond10 = t27 > 0.5f;
+    let rhs10 = ell_h10 * ell_g10 * t1;
+    let one_if19 = select(0.0f, 1.0f, lhs10 >= rhs10);
+    let outside10 = select(0.0f, one_if19, w2.x > 0.0f);
+    let one_if20 = select(0.0f, 1.0f, lhs10 <= rhs10);
+    let inside10 = select(one_if20, 1.0f, w2.x >= 0.0f);
+    let beyond10 = select(inside10, outside10, ell_t10 > 0.0f) > 0.5f;
     let lo14 = select(lo13, mid10, beyond10);
-    let hi14 = select(mid10 - 1.0f, hi13, beyond10);
+    let hi14 = select(mid_below10, hi13, beyond10);
     let mid11 = floor((lo14 + hi14 + 1.0f) * 0.5f);
-    let ell_t11 = (mid11 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below11 = mid11 - 1.0f;
+    let ell_t11 = (mid_below11 - 32767.0f) * 2.0f;
     let ell_h11 = floor(ell_t11 * ell_t11);
     let ell_g11 = 8589672400.0f - ell_h11;
     let ell_p11 = w2.x * w2.x * ell_g11;
@@ -400,21 +415,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent31 = bitcast<u32>(select(ell_q11, ell_p11, ell_p11 >= ell_q11)) >> 23u;
     let exponent32 = select(exponent31, 40u, exponent31 < 40u);
     let exponent33 = select(exponent32, 254u, 254u < exponent32);
-    let t28 = bitcast<f32>((281u - exponent33) << 23u);
-    let ell_s11 = (floor(ell_p11 * t28) + floor(ell_q11 * t28))
-        * bitcast<f32>((exponent33 - 27u) << 23u);
+    let scale12 = bitcast<f32>((281u - exponent33) << 23u);
+    let back11 = bitcast<f32>((exponent33 - 27u) << 23u);
+    let ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
     let lhs11 = ell_s11 * 4294836200.0f;
-    let rhs11 = ell_h11 * ell_g11 * t4;
-    let t29 = select(
-        select(select(0.0f, 1.0f, lhs11 <= rhs11), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs11 >= rhs11), w2.x > 0.0f),
-        ell_t11 > 0.0f
-    );
-    let beyond11 = t29 > 0.5f;
+    let rhs11 = ell_h11 * ell_g11 * t1;
+    let one_if21 = select(0.0f, 1.0f, lhs11 >= rhs11);
+    let outside11 = select(0.0f, one_if21, w2.x > 0.0f);
+    let one_if22 = select(0.0f, 1.0f, lhs11 <= rhs11);
+    let inside11 = select(one_if22, 1.0f, w2.x >= 0.0f);
+    let beyond11 = select(inside11, outside11, ell_t11 > 0.0f) > 0.5f;
     let lo15 = select(lo14, mid11, beyond11);
-    let hi15 = select(mid11 - 1.0f, hi14, beyond11);
+    let hi15 = select(mid_below11, hi14, beyond11);
     let mid12 = floor((lo15 + hi15 + 1.0f) * 0.5f);
-    let ell_t12 = (mid12 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below12 = mid12 - 1.0f;
+    let ell_t12 = (mid_below12 - 32767.0f) * 2.0f;
     let ell_h12 = floor(ell_t12 * ell_t12);
     let ell_g12 = 8589672400.0f - ell_h12;
     let ell_p12 = w2.x * w2.x * ell_g12;
@@ -422,21 +437,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent34 = bitcast<u32>(select(ell_q12, ell_p12, ell_p12 >= ell_q12)) >> 23u;
     let exponent35 = select(exponent34, 40u, exponent34 < 40u);
     let exponent36 = select(exponent35, 254u, 254u < exponent35);
-    let t30 = bitcast<f32>((281u - exponent36) << 23u);
-    let ell_s12 = (floor(ell_p12 * t30) + floor(ell_q12 * t30))
-        * bitcast<f32>((exponent36 - 27u) << 23u);
+    let scale13 = bitcast<f32>((281u - exponent36) << 23u);
+    let back12 = bitcast<f32>((exponent36 - 27u) << 23u);
+    let ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
     let lhs12 = ell_s12 * 4294836200.0f;
-    let rhs12 = ell_h12 * ell_g12 * t4;
-    let t31 = select(
-        select(select(0.0f, 1.0f, lhs12 <= rhs12), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs12 >= rhs12), w2.x > 0.0f),
-        ell_t12 > 0.0f
-    );
-    let beyond12 = t31 > 0.5f;
+    let rhs12 = ell_h12 * ell_g12 * t1;
+    let one_if23 = select(0.0f, 1.0f, lhs12 >= rhs12);
+    let outside12 = select(0.0f, one_if23, w2.x > 0.0f);
+    let one_if24 = select(0.0f, 1.0f, lhs12 <= rhs12);
+    let inside12 = select(one_if24, 1.0f, w2.x >= 0.0f);
+    let beyond12 = select(inside12, outside12, ell_t12 > 0.0f) > 0.5f;
     let lo16 = select(lo15, mid12, beyond12);
-    let hi16 = select(mid12 - 1.0f, hi15, beyond12);
+    let hi16 = select(mid_below12, hi15, beyond12);
     let mid13 = floor((lo16 + hi16 + 1.0f) * 0.5f);
-    let ell_t13 = (mid13 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below13 = mid13 - 1.0f;
+    let ell_t13 = (mid_below13 - 32767.0f) * 2.0f;
     let ell_h13 = floor(ell_t13 * ell_t13);
     let ell_g13 = 8589672400.0f - ell_h13;
     let ell_p13 = w2.x * w2.x * ell_g13;
@@ -444,21 +459,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent37 = bitcast<u32>(select(ell_q13, ell_p13, ell_p13 >= ell_q13)) >> 23u;
     let exponent38 = select(exponent37, 40u, exponent37 < 40u);
     let exponent39 = select(exponent38, 254u, 254u < exponent38);
-    let t32 = bitcast<f32>((281u - exponent39) << 23u);
-    let ell_s13 = (floor(ell_p13 * t32) + floor(ell_q13 * t32))
-        * bitcast<f32>((exponent39 - 27u) << 23u);
+    let scale14 = bitcast<f32>((281u - exponent39) << 23u);
+    let back13 = bitcast<f32>((exponent39 - 27u) << 23u);
+    let ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
     let lhs13 = ell_s13 * 4294836200.0f;
-    let rhs13 = ell_h13 * ell_g13 * t4;
-    let t33 = select(
-        select(select(0.0f, 1.0f, lhs13 <= rhs13), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs13 >= rhs13), w2.x > 0.0f),
-        ell_t13 > 0.0f
-    );
-    let beyond13 = t33 > 0.5f;
+    let rhs13 = ell_h13 * ell_g13 * t1;
+    let one_if25 = select(0.0f, 1.0f, lhs13 >= rhs13);
+    let outside13 = select(0.0f, one_if25, w2.x > 0.0f);
+    let one_if26 = select(0.0f, 1.0f, lhs13 <= rhs13);
+    let inside13 = select(one_if26, 1.0f, w2.x >= 0.0f);
+    let beyond13 = select(inside13, outside13, ell_t13 > 0.0f) > 0.5f;
     let lo17 = select(lo16, mid13, beyond13);
-    let hi17 = select(mid13 - 1.0f, hi16, beyond13);
+    let hi17 = select(mid_below13, hi16, beyond13);
     let mid14 = floor((lo17 + hi17 + 1.0f) * 0.5f);
-    let ell_t14 = (mid14 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below14 = mid14 - 1.0f;
+    let ell_t14 = (mid_below14 - 32767.0f) * 2.0f;
     let ell_h14 = floor(ell_t14 * ell_t14);
     let ell_g14 = 8589672400.0f - ell_h14;
     let ell_p14 = w2.x * w2.x * ell_g14;
@@ -466,21 +481,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent40 = bitcast<u32>(select(ell_q14, ell_p14, ell_p14 >= ell_q14)) >> 23u;
     let exponent41 = select(exponent40, 40u, exponent40 < 40u);
     let exponent42 = select(exponent41, 254u, 254u < exponent41);
-    let t34 = bitcast<f32>((281u - exponent42) << 23u);
-    let ell_s14 = (floor(ell_p14 * t34) + floor(ell_q14 * t34))
-        * bitcast<f32>((exponent42 - 27u) << 23u);
+    let scale15 = bitcast<f32>((281u - exponent42) << 23u);
+    let back14 = bitcast<f32>((exponent42 - 27u) << 23u);
+    let ell_s14 = (floor(ell_p14 * scale15) + floor(ell_q14 * scale15)) * back14;
     let lhs14 = ell_s14 * 4294836200.0f;
-    let rhs14 = ell_h14 * ell_g14 * t4;
-    let t35 = select(
-        select(select(0.0f, 1.0f, lhs14 <= rhs14), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs14 >= rhs14), w2.x > 0.0f),
-        ell_t14 > 0.0f
-    );
-    let beyond14 = t35 > 0.5f;
+    let rhs14 = ell_h14 * ell_g14 * t1;
+    let one_if27 = select(0.0f, 1.0f, lhs14 >= rhs14);
+    let outside14 = select(0.0f, one_if27, w2.x > 0.0f);
+    let one_if28 = select(0.0f, 1.0f, lhs14 <= rhs14);
+    let inside14 = select(one_if28, 1.0f, w2.x >= 0.0f);
+    let beyond14 = select(inside14, outside14, ell_t14 > 0.0f) > 0.5f;
     let lo18 = select(lo17, mid14, beyond14);
-    let hi18 = select(mid14 - 1.0f, hi17, beyond14);
+    let hi18 = select(mid_below14, hi17, beyond14);
     let mid15 = floor((lo18 + hi18 + 1.0f) * 0.5f);
-    let ell_t15 = (mid15 - 1.0f - 32767.0f) * 2.0f;
+    let mid_below15 = mid15 - 1.0f;
+    let ell_t15 = (mid_below15 - 32767.0f) * 2.0f;
     let ell_h15 = floor(ell_t15 * ell_t15);
     let ell_g15 = 8589672400.0f - ell_h15;
     let ell_p15 = w2.x * w2.x * ell_g15;
@@ -488,22 +503,22 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent43 = bitcast<u32>(select(ell_q15, ell_p15, ell_p15 >= ell_q15)) >> 23u;
     let exponent44 = select(exponent43, 40u, exponent43 < 40u);
     let exponent45 = select(exponent44, 254u, 254u < exponent44);
-    let t36 = bitcast<f32>((281u - exponent45) << 23u);
-    let ell_s15 = (floor(ell_p15 * t36) + floor(ell_q15 * t36))
-        * bitcast<f32>((exponent45 - 27u) << 23u);
+    let scale16 = bitcast<f32>((281u - exponent45) << 23u);
+    let back15 = bitcast<f32>((exponent45 - 27u) << 23u);
+    let ell_s15 = (floor(ell_p15 * scale16) + floor(ell_q15 * scale16)) * back15;
     let lhs15 = ell_s15 * 4294836200.0f;
-    let rhs15 = ell_h15 * ell_g15 * t4;
-    let t37 = select(
-        select(select(0.0f, 1.0f, lhs15 <= rhs15), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs15 >= rhs15), w2.x > 0.0f),
-        ell_t15 > 0.0f
-    );
-    let beyond15 = t37 > 0.5f;
-    let t38 = w2.y >= 0.0f;
-    let t39 = select(0.0f, 16384.0f, t38);
-    let t40 = select(16383.0f, 32767.0f, t38);
-    let mid16 = floor((t39 + t40 + 1.0f) * 0.5f);
-    let ell_t16 = (mid16 - 1.0f - 16383.0f) * 2.0f;
+    let rhs15 = ell_h15 * ell_g15 * t1;
+    let one_if29 = select(0.0f, 1.0f, lhs15 >= rhs15);
+    let outside15 = select(0.0f, one_if29, w2.x > 0.0f);
+    let one_if30 = select(0.0f, 1.0f, lhs15 <= rhs15);
+    let inside15 = select(one_if30, 1.0f, w2.x >= 0.0f);
+    let beyond15 = select(inside15, outside15, ell_t15 > 0.0f) > 0.5f;
+    let t5 = w2.y >= 0.0f;
+    let t6 = select(0.0f, 16384.0f, t5);
+    let t7 = select(16383.0f, 32767.0f, t5);
+    let mid16 = floor((t6 + t7 + 1.0f) * 0.5f);
+    let mid_below16 = mid16 - 1.0f;
+    let ell_t16 = (mid_below16 - 16383.0f) * 2.0f;
     let ell_h16 = floor(ell_t16 * ell_t16);
     let ell_g16 = 2147352600.0f - ell_h16;
     let ell_p16 = w2.y * w2.y * ell_g16;
@@ -511,21 +526,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent46 = bitcast<u32>(select(ell_q16, ell_p16, ell_p16 >= ell_q16)) >> 23u;
     let exponent47 = select(exponent46, 40u, exponent46 < 40u);
     let exponent48 = select(exponent47, 254u, 254u < exponent47);
-    let t41 = bitcast<f32>((281u - exponent48) << 23u);
-    let ell_s16 = (floor(ell_p16 * t41) + floor(ell_q16 * t41))
-        * bitcast<f32>((exponent48 - 27u) << 23u);
+    let scale17 = bitcast<f32>((281u - exponent48) << 23u);
+    let back16 = bitcast<f32>((exponent48 - 27u) << 23u);
+    let ell_s16 = (floor(ell_p16 * scale17) + floor(ell_q16 * scale17)) * back16;
     let lhs16 = ell_s16 * 1073676300.0f;
-    let rhs16 = ell_h16 * ell_g16 * t4;
-    let t42 = select(
-        select(select(0.0f, 1.0f, lhs16 <= rhs16), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs16 >= rhs16), w2.y > 0.0f),
-        ell_t16 > 0.0f
-    );
-    let beyond16 = t42 > 0.5f;
-    let lo19 = select(t39, mid16, beyond16);
-    let hi19 = select(mid16 - 1.0f, t40, beyond16);
+    let rhs16 = ell_h16 * ell_g16 * t1;
+    let one_if31 = select(0.0f, 1.0f, lhs16 >= rhs16);
+    let outside16 = select(0.0f, one_if31, w2.y > 0.0f);
+    let one_if32 = select(0.0f, 1.0f, lhs16 <= rhs16);
+    let inside16 = select(one_if32, 1.0f, w2.y >= 0.0f);
+    let beyond16 = select(inside16, outside16, ell_t16 > 0.0f) > 0.5f;
+    let lo19 = select(t6, mid16, beyond16);
+    let hi19 = select(mid_below16, t7, beyond16);
     let mid17 = floor((lo19 + hi19 + 1.0f) * 0.5f);
-    let ell_t17 = (mid17 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below17 = mid17 - 1.0f;
+    let ell_t17 = (mid_below17 - 16383.0f) * 2.0f;
     let ell_h17 = floor(ell_t17 * ell_t17);
     let ell_g17 = 2147352600.0f - ell_h17;
     let ell_p17 = w2.y * w2.y * ell_g17;
@@ -533,21 +548,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent49 = bitcast<u32>(select(ell_q17, ell_p17, ell_p17 >= ell_q17)) >> 23u;
     let exponent50 = select(exponent49, 40u, exponent49 < 40u);
     let exponent51 = select(exponent50, 254u, 254u < exponent50);
-    let t43 = bitcast<f32>((281u - exponent51) << 23u);
-    let ell_s17 = (floor(ell_p17 * t43) + floor(ell_q17 * t43))
-        * bitcast<f32>((exponent51 - 27u) << 23u);
+    let scale18 = bitcast<f32>((281u - exponent51) << 23u);
+    let back17 = bitcast<f32>((exponent51 - 27u) << 23u);
+    let ell_s17 = (floor(ell_p17 * scale18) + floor(ell_q17 * scale18)) * back17;
     let lhs17 = ell_s17 * 1073676300.0f;
-    let rhs17 = ell_h17 * ell_g17 * t4;
-    let t44 = select(
-        select(select(0.0f, 1.0f, lhs17 <= rhs17), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs17 >= rhs17), w2.y > 0.0f),
-        ell_t17 > 0.0f
-    );
-    let beyond17 = t44 > 0.5f;
+    let rhs17 = ell_h17 * ell_g17 * t1;
+    let one_if33 = select(0.0f, 1.0f, lhs17 >= rhs17);
+    let outside17 = select(0.0f, one_if33, w2.y > 0.0f);
+    let one_if34 = select(0.0f, 1.0f, lhs17 <= rhs17);
+    let inside17 = select(one_if34, 1.0f, w2.y >= 0.0f);
+    let beyond17 = select(inside17, outside17, ell_t17 > 0.0f) > 0.5f;
     let lo20 = select(lo19, mid17, beyond17);
-    let hi20 = select(mid17 - 1.0f, hi19, beyond17);
+    let hi20 = select(mid_below17, hi19, beyond17);
     let mid18 = floor((lo20 + hi20 + 1.0f) * 0.5f);
-    let ell_t18 = (mid18 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below18 = mid18 - 1.0f;
+    let ell_t18 = (mid_below18 - 16383.0f) * 2.0f;
     let ell_h18 = floor(ell_t18 * ell_t18);
     let ell_g18 = 2147352600.0f - ell_h18;
     let ell_p18 = w2.y * w2.y * ell_g18;
@@ -555,21 +570,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent52 = bitcast<u32>(select(ell_q18, ell_p18, ell_p18 >= ell_q18)) >> 23u;
     let exponent53 = select(exponent52, 40u, exponent52 < 40u);
     let exponent54 = select(exponent53, 254u, 254u < exponent53);
-    let t45 = bitcast<f32>((281u - exponent54) << 23u);
-    let ell_s18 = (floor(ell_p18 * t45) + floor(ell_q18 * t45))
-        * bitcast<f32>((exponent54 - 27u) << 23u);
+    let scale19 = bitcast<f32>((281u - exponent54) << 23u);
+    let back18 = bitcast<f32>((exponent54 - 27u) << 23u);
+    let ell_s18 = (floor(ell_p18 * scale19) + floor(ell_q18 * scale19)) * back18;
     let lhs18 = ell_s18 * 1073676300.0f;
-    let rhs18 = ell_h18 * ell_g18 * t4;
-    let t46 = select(
-        select(select(0.0f, 1.0f, lhs18 <= rhs18), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs18 >= rhs18), w2.y > 0.0f),
-        ell_t18 > 0.0f
-    );
-    let beyond18 = t46 > 0.5f;
+    let rhs18 = ell_h18 * ell_g18 * t1;
+    let one_if35 = select(0.0f, 1.0f, lhs18 >= rhs18);
+    let outside18 = select(0.0f, one_if35, w2.y > 0.0f);
+    let one_if36 = select(0.0f, 1.0f, lhs18 <= rhs18);
+    let inside18 = select(one_if36, 1.0f, w2.y >= 0.0f);
+    let beyond18 = select(inside18, outside18, ell_t18 > 0.0f) > 0.5f;
     let lo21 = select(lo20, mid18, beyond18);
-    let hi21 = select(mid18 - 1.0f, hi20, beyond18);
+    let hi21 = select(mid_below18, hi20, beyond18);
     let mid19 = floor((lo21 + hi21 + 1.0f) * 0.5f);
-    let ell_t19 = (mid19 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below19 = mid19 - 1.0f;
+    let ell_t19 = (mid_below19 - 16383.0f) * 2.0f;
     let ell_h19 = floor(ell_t19 * ell_t19);
     let ell_g19 = 2147352600.0f - ell_h19;
     let ell_p19 = w2.y * w2.y * ell_g19;
@@ -577,21 +592,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent55 = bitcast<u32>(select(ell_q19, ell_p19, ell_p19 >= ell_q19)) >> 23u;
     let exponent56 = select(exponent55, 40u, exponent55 < 40u);
     let exponent57 = select(exponent56, 254u, 254u < exponent56);
-    let t47 = bitcast<f32>((281u - exponent57) << 23u);
-    let ell_s19 = (floor(ell_p19 * t47) + floor(ell_q19 * t47))
-        * bitcast<f32>((exponent57 - 27u) << 23u);
+    let scale20 = bitcast<f32>((281u - exponent57) << 23u);
+    let back19 = bitcast<f32>((exponent57 - 27u) << 23u);
+    let ell_s19 = (floor(ell_p19 * scale20) + floor(ell_q19 * scale20)) * back19;
     let lhs19 = ell_s19 * 1073676300.0f;
-    let rhs19 = ell_h19 * ell_g19 * t4;
-    let t48 = select(
-        select(select(0.0f, 1.0f, lhs19 <= rhs19), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs19 >= rhs19), w2.y > 0.0f),
-        ell_t19 > 0.0f
-    );
-    let beyond19 = t48 > 0.5f;
+    let rhs19 = ell_h19 * ell_g19 * t1;
+    let one_if37 = select(0.0f, 1.0f, lhs19 >= rhs19);
+    let outside19 = select(0.0f, one_if37, w2.y > 0.0f);
+    let one_if38 = select(0.0f, 1.0f, lhs19 <= rhs19);
+    let inside19 = select(one_if38, 1.0f, w2.y >= 0.0f);
+    let beyond19 = select(inside19, outside19, ell_t19 > 0.0f) > 0.5f;
     let lo22 = select(lo21, mid19, beyond19);
-    let hi22 = select(mid19 - 1.0f, hi21, beyond19);
+    let hi22 = select(mid_below19, hi21, beyond19);
     let mid20 = floor((lo22 + hi22 + 1.0f) * 0.5f);
-    let ell_t20 = (mid20 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below20 = mid20 - 1.0f;
+    let ell_t20 = (mid_below20 - 16383.0f) * 2.0f;
     let ell_h20 = floor(ell_t20 * ell_t20);
     let ell_g20 = 2147352600.0f - ell_h20;
     let ell_p20 = w2.y * w2.y * ell_g20;
@@ -599,21 +614,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent58 = bitcast<u32>(select(ell_q20, ell_p20, ell_p20 >= ell_q20)) >> 23u;
     let exponent59 = select(exponent58, 40u, exponent58 < 40u);
     let exponent60 = select(exponent59, 254u, 254u < exponent59);
-    let t49 = bitcast<f32>((281u - exponent60) << 23u);
-    let ell_s20 = (floor(ell_p20 * t49) + floor(ell_q20 * t49))
-        * bitcast<f32>((exponent60 - 27u) << 23u);
+    let scale21 = bitcast<f32>((281u - exponent60) << 23u);
+    let back20 = bitcast<f32>((exponent60 - 27u) << 23u);
+    let ell_s20 = (floor(ell_p20 * scale21) + floor(ell_q20 * scale21)) * back20;
     let lhs20 = ell_s20 * 1073676300.0f;
-    let rhs20 = ell_h20 * ell_g20 * t4;
-    let t50 = select(
-        select(select(0.0f, 1.0f, lhs20 <= rhs20), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs20 >= rhs20), w2.y > 0.0f),
-        ell_t20 > 0.0f
-    );
-    let beyond20 = t50 > 0.5f;
+    let rhs20 = ell_h20 * ell_g20 * t1;
+    let one_if39 = select(0.0f, 1.0f, lhs20 >= rhs20);
+    let outside20 = select(0.0f, one_if39, w2.y > 0.0f);
+    let one_if40 = select(0.0f, 1.0f, lhs20 <= rhs20);
+    let inside20 = select(one_if40, 1.0f, w2.y >= 0.0f);
+    let beyond20 = select(inside20, outside20, ell_t20 > 0.0f) > 0.5f;
     let lo23 = select(lo22, mid20, beyond20);
-    let hi23 = select(mid20 - 1.0f, hi22, beyond20);
+    let hi23 = select(mid_below20, hi22, beyond20);
     let mid21 = floor((lo23 + hi23 + 1.0f) * 0.5f);
-    let ell_t21 = (mid21 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below21 = mid21 - 1.0f;
+    let ell_t21 = (mid_below21 - 16383.0f) * 2.0f;
     let ell_h21 = floor(ell_t21 * ell_t21);
     let ell_g21 = 2147352600.0f - ell_h21;
     let ell_p21 = w2.y * w2.y * ell_g21;
@@ -621,21 +636,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent61 = bitcast<u32>(select(ell_q21, ell_p21, ell_p21 >= ell_q21)) >> 23u;
     let exponent62 = select(exponent61, 40u, exponent61 < 40u);
     let exponent63 = select(exponent62, 254u, 254u < exponent62);
-    let t51 = bitcast<f32>((281u - exponent63) << 23u);
-    let ell_s21 = (floor(ell_p21 * t51) + floor(ell_q21 * t51))
-        * bitcast<f32>((exponent63 - 27u) << 23u);
+    let scale22 = bitcast<f32>((281u - exponent63) << 23u);
+    let back21 = bitcast<f32>((exponent63 - 27u) << 23u);
+    let ell_s21 = (floor(ell_p21 * scale22) + floor(ell_q21 * scale22)) * back21;
     let lhs21 = ell_s21 * 1073676300.0f;
-    let rhs21 = ell_h21 * ell_g21 * t4;
-    let t52 = select(
-        select(select(0.0f, 1.0f, lhs21 <= rhs21), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs21 >= rhs21), w2.y > 0.0f),
-        ell_t21 > 0.0f
-    );
-    let beyond21 = t52 > 0.5f;
+    let rhs21 = ell_h21 * ell_g21 * t1;
+    let one_if41 = select(0.0f, 1.0f, lhs21 >= rhs21);
+    let outside21 = select(0.0f, one_if41, w2.y > 0.0f);
+    let one_if42 = select(0.0f, 1.0f, lhs21 <= rhs21);
+    let inside21 = select(one_if42, 1.0f, w2.y >= 0.0f);
+    let beyond21 = select(inside21, outside21, ell_t21 > 0.0f) > 0.5f;
     let lo24 = select(lo23, mid21, beyond21);
-    let hi24 = select(mid21 - 1.0f, hi23, beyond21);
+    let hi24 = select(mid_below21, hi23, beyond21);
     let mid22 = floor((lo24 + hi24 + 1.0f) * 0.5f);
-    let ell_t22 = (mid22 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below22 = mid22 - 1.0f;
+    let ell_t22 = (mid_below22 - 16383.0f) * 2.0f;
     let ell_h22 = floor(ell_t22 * ell_t22);
     let ell_g22 = 2147352600.0f - ell_h22;
     let ell_p22 = w2.y * w2.y * ell_g22;
@@ -643,21 +658,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent64 = bitcast<u32>(select(ell_q22, ell_p22, ell_p22 >= ell_q22)) >> 23u;
     let exponent65 = select(exponent64, 40u, exponent64 < 40u);
     let exponent66 = select(exponent65, 254u, 254u < exponent65);
-    let t53 = bitcast<f32>((281u - exponent66) << 23u);
-    let ell_s22 = (floor(ell_p22 * t53) + floor(ell_q22 * t53))
-        * bitcast<f32>((exponent66 - 27u) << 23u);
+    let scale23 = bitcast<f32>((281u - exponent66) << 23u);
+    let back22 = bitcast<f32>((exponent66 - 27u) << 23u);
+    let ell_s22 = (floor(ell_p22 * scale23) + floor(ell_q22 * scale23)) * back22;
     let lhs22 = ell_s22 * 1073676300.0f;
-    let rhs22 = ell_h22 * ell_g22 * t4;
-    let t54 = select(
-        select(select(0.0f, 1.0f, lhs22 <= rhs22), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs22 >= rhs22), w2.y > 0.0f),
-        ell_t22 > 0.0f
-    );
-    let beyond22 = t54 > 0.5f;
+    let rhs22 = ell_h22 * ell_g22 * t1;
+    let one_if43 = select(0.0f, 1.0f, lhs22 >= rhs22);
+    let outside22 = select(0.0f, one_if43, w2.y > 0.0f);
+    let one_if44 = select(0.0f, 1.0f, lhs22 <= rhs22);
+    let inside22 = select(one_if44, 1.0f, w2.y >= 0.0f);
+    let beyond22 = select(inside22, outside22, ell_t22 > 0.0f) > 0.5f;
     let lo25 = select(lo24, mid22, beyond22);
-    let hi25 = select(mid22 - 1.0f, hi24, beyond22);
+    let hi25 = select(mid_below22, hi24, beyond22);
     let mid23 = floor((lo25 + hi25 + 1.0f) * 0.5f);
-    let ell_t23 = (mid23 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below23 = mid23 - 1.0f;
+    let ell_t23 = (mid_below23 - 16383.0f) * 2.0f;
     let ell_h23 = floor(ell_t23 * ell_t23);
     let ell_g23 = 2147352600.0f - ell_h23;
     let ell_p23 = w2.y * w2.y * ell_g23;
@@ -665,21 +680,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent67 = bitcast<u32>(select(ell_q23, ell_p23, ell_p23 >= ell_q23)) >> 23u;
     let exponent68 = select(exponent67, 40u, exponent67 < 40u);
     let exponent69 = select(exponent68, 254u, 254u < exponent68);
-    let t55 = bitcast<f32>((281u - exponent69) << 23u);
-    let ell_s23 = (floor(ell_p23 * t55) + floor(ell_q23 * t55))
-        * bitcast<f32>((exponent69 - 27u) << 23u);
+    let scale24 = bitcast<f32>((281u - exponent69) << 23u);
+    let back23 = bitcast<f32>((exponent69 - 27u) << 23u);
+    let ell_s23 = (floor(ell_p23 * scale24) + floor(ell_q23 * scale24)) * back23;
     let lhs23 = ell_s23 * 1073676300.0f;
-    let rhs23 = ell_h23 * ell_g23 * t4;
-    let t56 = select(
-        select(select(0.0f, 1.0f, lhs23 <= rhs23), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs23 >= rhs23), w2.y > 0.0f),
-        ell_t23 > 0.0f
-    );
-    let beyond23 = t56 > 0.5f;
+    let rhs23 = ell_h23 * ell_g23 * t1;
+    let one_if45 = select(0.0f, 1.0f, lhs23 >= rhs23);
+    let outside23 = select(0.0f, one_if45, w2.y > 0.0f);
+    let one_if46 = select(0.0f, 1.0f, lhs23 <= rhs23);
+    let inside23 = select(one_if46, 1.0f, w2.y >= 0.0f);
+    let beyond23 = select(inside23, outside23, ell_t23 > 0.0f) > 0.5f;
     let lo26 = select(lo25, mid23, beyond23);
-    let hi26 = select(mid23 - 1.0f, hi25, beyond23);
+    let hi26 = select(mid_below23, hi25, beyond23);
     let mid24 = floor((lo26 + hi26 + 1.0f) * 0.5f);
-    let ell_t24 = (mid24 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below24 = mid24 - 1.0f;
+    let ell_t24 = (mid_below24 - 16383.0f) * 2.0f;
     let ell_h24 = floor(ell_t24 * ell_t24);
     let ell_g24 = 2147352600.0f - ell_h24;
     let ell_p24 = w2.y * w2.y * ell_g24;
@@ -687,21 +702,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent70 = bitcast<u32>(select(ell_q24, ell_p24, ell_p24 >= ell_q24)) >> 23u;
     let exponent71 = select(exponent70, 40u, exponent70 < 40u);
     let exponent72 = select(exponent71, 254u, 254u < exponent71);
-    let t57 = bitcast<f32>((281u - exponent72) << 23u);
-    let ell_s24 = (floor(ell_p24 * t57) + floor(ell_q24 * t57))
-        * bitcast<f32>((exponent72 - 27u) << 23u);
+    let scale25 = bitcast<f32>((281u - exponent72) << 23u);
+    let back24 = bitcast<f32>((exponent72 - 27u) << 23u);
+    let ell_s24 = (floor(ell_p24 * scale25) + floor(ell_q24 * scale25)) * back24;
     let lhs24 = ell_s24 * 1073676300.0f;
-    let rhs24 = ell_h24 * ell_g24 * t4;
-    let t58 = select(
-        select(select(0.0f, 1.0f, lhs24 <= rhs24), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs24 >= rhs24), w2.y > 0.0f),
-        ell_t24 > 0.0f
-    );
-    let beyond24 = t58 > 0.5f;
+    let rhs24 = ell_h24 * ell_g24 * t1;
+    let one_if47 = select(0.0f, 1.0f, lhs24 >= rhs24);
+    let outside24 = select(0.0f, one_if47, w2.y > 0.0f);
+    let one_if48 = select(0.0f, 1.0f, lhs24 <= rhs24);
+    let inside24 = select(one_if48, 1.0f, w2.y >= 0.0f);
+    let beyond24 = select(inside24, outside24, ell_t24 > 0.0f) > 0.5f;
     let lo27 = select(lo26, mid24, beyond24);
-    let hi27 = select(mid24 - 1.0f, hi26, beyond24);
+    let hi27 = select(mid_below24, hi26, beyond24);
     let mid25 = floor((lo27 + hi27 + 1.0f) * 0.5f);
-    let ell_t25 = (mid25 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below25 = mid25 - 1.0f;
+    let ell_t25 = (mid_below25 - 16383.0f) * 2.0f;
     let ell_h25 = floor(ell_t25 * ell_t25);
     let ell_g25 = 2147352600.0f - ell_h25;
     let ell_p25 = w2.y * w2.y * ell_g25;
@@ -709,21 +724,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent73 = bitcast<u32>(select(ell_q25, ell_p25, ell_p25 >= ell_q25)) >> 23u;
     let exponent74 = select(exponent73, 40u, exponent73 < 40u);
     let exponent75 = select(exponent74, 254u, 254u < exponent74);
-    let t59 = bitcast<f32>((281u - exponent75) << 23u);
-    let ell_s25 = (floor(ell_p25 * t59) + floor(ell_q25 * t59))
-        * bitcast<f32>((exponent75 - 27u) << 23u);
+    let scale26 = bitcast<f32>((281u - exponent75) << 23u);
+    let back25 = bitcast<f32>((exponent75 - 27u) << 23u);
+    let ell_s25 = (floor(ell_p25 * scale26) + floor(ell_q25 * scale26)) * back25;
     let lhs25 = ell_s25 * 1073676300.0f;
-    let rhs25 = ell_h25 * ell_g25 * t4;
-    let t60 = select(
-        select(select(0.0f, 1.0f, lhs25 <= rhs25), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs25 >= rhs25), w2.y > 0.0f),
-        ell_t25 > 0.0f
-    );
-    let beyond25 = t60 > 0.5f;
+    let rhs25 = ell_h25 * ell_g25 * t1;
+    let one_if49 = select(0.0f, 1.0f, lhs25 >= rhs25);
+    let outside25 = select(0.0f, one_if49, w2.y > 0.0f);
+    let one_if50 = select(0.0f, 1.0f, lhs25 <= rhs25);
+    let inside25 = select(one_if50, 1.0f, w2.y >= 0.0f);
+    let beyond25 = select(inside25, outside25, ell_t25 > 0.0f) > 0.5f;
     let lo28 = select(lo27, mid25, beyond25);
-    let hi28 = select(mid25 - 1.0f, hi27, beyond25);
+    let hi28 = select(mid_below25, hi27, beyond25);
     let mid26 = floor((lo28 + hi28 + 1.0f) * 0.5f);
-    let ell_t26 = (mid26 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below26 = mid26 - 1.0f;
+    let ell_t26 = (mid_below26 - 16383.0f) * 2.0f;
     let ell_h26 = floor(ell_t26 * ell_t26);
     let ell_g26 = 2147352600.0f - ell_h26;
     let ell_p26 = w2.y * w2.y * ell_g26;
@@ -731,21 +746,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent76 = bitcast<u32>(select(ell_q26, ell_p26, ell_p26 >= ell_q26)) >> 23u;
     let exponent77 = select(exponent76, 40u, exponent76 < 40u);
     let exponent78 = select(exponent77, 254u, 254u < exponent77);
-    let t61 = bitcast<f32>((281u - exponent78) << 23u);
-    let ell_s26 = (floor(ell_p26 * t61) + floor(ell_q26 * t61))
-        * bitcast<f32>((exponent78 - 27u) << 23u);
+    let scale27 = bitcast<f32>((281u - exponent78) << 23u);
+    let back26 = bitcast<f32>((exponent78 - 27u) << 23u);
+    let ell_s26 = (floor(ell_p26 * scale27) + floor(ell_q26 * scale27)) * back26;
     let lhs26 = ell_s26 * 1073676300.0f;
-    let rhs26 = ell_h26 * ell_g26 * t4;
-    let t62 = select(
-        select(select(0.0f, 1.0f, lhs26 <= rhs26), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs26 >= rhs26), w2.y > 0.0f),
-        ell_t26 > 0.0f
-    );
-    let beyond26 = t62 > 0.5f;
+    let rhs26 = ell_h26 * ell_g26 * t1;
+    let one_if51 = select(0.0f, 1.0f, lhs26 >= rhs26);
+    let outside26 = select(0.0f, one_if51, w2.y > 0.0f);
+    let one_if52 = select(0.0f, 1.0f, lhs26 <= rhs26);
+    let inside26 = select(one_if52, 1.0f, w2.y >= 0.0f);
+    let beyond26 = select(inside26, outside26, ell_t26 > 0.0f) > 0.5f;
     let lo29 = select(lo28, mid26, beyond26);
-    let hi29 = select(mid26 - 1.0f, hi28, beyond26);
+    let hi29 = select(mid_below26, hi28, beyond26);
     let mid27 = floor((lo29 + hi29 + 1.0f) * 0.5f);
-    let ell_t27 = (mid27 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below27 = mid27 - 1.0f;
+    let ell_t27 = (mid_below27 - 16383.0f) * 2.0f;
     let ell_h27 = floor(ell_t27 * ell_t27);
     let ell_g27 = 2147352600.0f - ell_h27;
     let ell_p27 = w2.y * w2.y * ell_g27;
@@ -753,21 +768,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent79 = bitcast<u32>(select(ell_q27, ell_p27, ell_p27 >= ell_q27)) >> 23u;
     let exponent80 = select(exponent79, 40u, exponent79 < 40u);
     let exponent81 = select(exponent80, 254u, 254u < exponent80);
-    let t63 = bitcast<f32>((281u - exponent81) << 23u);
-    let ell_s27 = (floor(ell_p27 * t63) + floor(ell_q27 * t63))
-        * bitcast<f32>((exponent81 - 27u) << 23u);
+    let scale28 = bitcast<f32>((281u - exponent81) << 23u);
+    let back27 = bitcast<f32>((exponent81 - 27u) << 23u);
+    let ell_s27 = (floor(ell_p27 * scale28) + floor(ell_q27 * scale28)) * back27;
     let lhs27 = ell_s27 * 1073676300.0f;
-    let rhs27 = ell_h27 * ell_g27 * t4;
-    let t64 = select(
-        select(select(0.0f, 1.0f, lhs27 <= rhs27), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs27 >= rhs27), w2.y > 0.0f),
-        ell_t27 > 0.0f
-    );
-    let beyond27 = t64 > 0.5f;
+    let rhs27 = ell_h27 * ell_g27 * t1;
+    let one_if53 = select(0.0f, 1.0f, lhs27 >= rhs27);
+    let outside27 = select(0.0f, one_if53, w2.y > 0.0f);
+    let one_if54 = select(0.0f, 1.0f, lhs27 <= rhs27);
+    let inside27 = select(one_if54, 1.0f, w2.y >= 0.0f);
+    let beyond27 = select(inside27, outside27, ell_t27 > 0.0f) > 0.5f;
     let lo30 = select(lo29, mid27, beyond27);
-    let hi30 = select(mid27 - 1.0f, hi29, beyond27);
+    let hi30 = select(mid_below27, hi29, beyond27);
     let mid28 = floor((lo30 + hi30 + 1.0f) * 0.5f);
-    let ell_t28 = (mid28 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below28 = mid28 - 1.0f;
+    let ell_t28 = (mid_below28 - 16383.0f) * 2.0f;
     let ell_h28 = floor(ell_t28 * ell_t28);
     let ell_g28 = 2147352600.0f - ell_h28;
     let ell_p28 = w2.y * w2.y * ell_g28;
@@ -775,21 +790,21 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent82 = bitcast<u32>(select(ell_q28, ell_p28, ell_p28 >= ell_q28)) >> 23u;
     let exponent83 = select(exponent82, 40u, exponent82 < 40u);
     let exponent84 = select(exponent83, 254u, 254u < exponent83);
-    let t65 = bitcast<f32>((281u - exponent84) << 23u);
-    let ell_s28 = (floor(ell_p28 * t65) + floor(ell_q28 * t65))
-        * bitcast<f32>((exponent84 - 27u) << 23u);
+    let scale29 = bitcast<f32>((281u - exponent84) << 23u);
+    let back28 = bitcast<f32>((exponent84 - 27u) << 23u);
+    let ell_s28 = (floor(ell_p28 * scale29) + floor(ell_q28 * scale29)) * back28;
     let lhs28 = ell_s28 * 1073676300.0f;
-    let rhs28 = ell_h28 * ell_g28 * t4;
-    let t66 = select(
-        select(select(0.0f, 1.0f, lhs28 <= rhs28), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs28 >= rhs28), w2.y > 0.0f),
-        ell_t28 > 0.0f
-    );
-    let beyond28 = t66 > 0.5f;
+    let rhs28 = ell_h28 * ell_g28 * t1;
+    let one_if55 = select(0.0f, 1.0f, lhs28 >= rhs28);
+    let outside28 = select(0.0f, one_if55, w2.y > 0.0f);
+    let one_if56 = select(0.0f, 1.0f, lhs28 <= rhs28);
+    let inside28 = select(one_if56, 1.0f, w2.y >= 0.0f);
+    let beyond28 = select(inside28, outside28, ell_t28 > 0.0f) > 0.5f;
     let lo31 = select(lo30, mid28, beyond28);
-    let hi31 = select(mid28 - 1.0f, hi30, beyond28);
+    let hi31 = select(mid_below28, hi30, beyond28);
     let mid29 = floor((lo31 + hi31 + 1.0f) * 0.5f);
-    let ell_t29 = (mid29 - 1.0f - 16383.0f) * 2.0f;
+    let mid_below29 = mid29 - 1.0f;
+    let ell_t29 = (mid_below29 - 16383.0f) * 2.0f;
     let ell_h29 = floor(ell_t29 * ell_t29);
     let ell_g29 = 2147352600.0f - ell_h29;
     let ell_p29 = w2.y * w2.y * ell_g29;
@@ -797,17 +812,16 @@ fn unitpack_eqarea_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent85 = bitcast<u32>(select(ell_q29, ell_p29, ell_p29 >= ell_q29)) >> 23u;
     let exponent86 = select(exponent85, 40u, exponent85 < 40u);
     let exponent87 = select(exponent86, 254u, 254u < exponent86);
-    let t67 = bitcast<f32>((281u - exponent87) << 23u);
-    let ell_s29 = (floor(ell_p29 * t67) + floor(ell_q29 * t67))
-        * bitcast<f32>((exponent87 - 27u) << 23u);
+    let scale30 = bitcast<f32>((281u - exponent87) << 23u);
+    let back29 = bitcast<f32>((exponent87 - 27u) << 23u);
+    let ell_s29 = (floor(ell_p29 * scale30) + floor(ell_q29 * scale30)) * back29;
     let lhs29 = ell_s29 * 1073676300.0f;
-    let rhs29 = ell_h29 * ell_g29 * t4;
-    let t68 = select(
-        select(select(0.0f, 1.0f, lhs29 <= rhs29), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs29 >= rhs29), w2.y > 0.0f),
-        ell_t29 > 0.0f
-    );
-    let beyond29 = t68 > 0.5f;
+    let rhs29 = ell_h29 * ell_g29 * t1;
+    let one_if57 = select(0.0f, 1.0f, lhs29 >= rhs29);
+    let outside29 = select(0.0f, one_if57, w2.y > 0.0f);
+    let one_if58 = select(0.0f, 1.0f, lhs29 <= rhs29);
+    let inside29 = select(one_if58, 1.0f, w2.y >= 0.0f);
+    let beyond29 = select(inside29, outside29, ell_t29 > 0.0f) > 0.5f;
     return select(
         vec3<f32>(lo18, lo31, 0.0f),
         vec3<f32>(mid15, mid29, 1.0f),

@@ -29,13 +29,13 @@ fn unitpack_eqdist22p_decode_float(params: vec3<f32>) -> vec3<f32> {
     let p = (params.xy - 0.5f) * 2.0f;
     let p_sq = p * p;
     let q = p_sq.x + p_sq.y;
-    let t1 = ((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f);
-    let t2 = (((t1 * q + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q
-        + (-0.6459641f);
+    let t1 = (((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f))
+        * q;
+    let t2 = (((t1 + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q + (-0.6459641f);
     let sinc = t2 * q + 1.5707964f;
-    let t3 = ((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f);
-    let t4 = (((t3 * q + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q
-        + (-1.2337005f);
+    let t3 = (((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f))
+        * q;
+    let t4 = (((t3 + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q + (-1.2337005f);
     let cosq = t4 * q + 1.0f;
     return vec3<f32>(p * sinc, select(cosq, -cosq, params.z > 0.5f));
 }
@@ -49,8 +49,8 @@ fn unitpack_eqdist22p_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_eqdist22p_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 1u));
-    let params = t1 * vec3<f32>(0.0004885198f, 0.0009775171f, 1.0f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 1u))
+        * vec3<f32>(0.0004885198f, 0.0009775171f, 1.0f);
     return unitpack_eqdist22p_decode_float(params);
 }
 
@@ -67,12 +67,16 @@ fn unitpack_eqdist22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -92,22 +96,26 @@ fn unitpack_eqdist22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = select(0.0f, 1.0f, w2.z < 0.0f);
-    let fixed5 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w2.y) * 2097152.0f));
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -121,289 +129,265 @@ fn unitpack_eqdist22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2 = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t5 = rho2 > 0.0f;
-    let rho2_2 = select(1.0f, rho2, t5);
+    let t1 = rho2 > 0.0f;
+    let rho2_2 = select(1.0f, rho2, t1);
     let half_exponent = ((bitcast<u32>(rho2_2) >> 23u) + 1u) >> 1u;
     let root_down = bitcast<f32>((257u - (half_exponent << 1u)) << 23u);
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
-    let t6 = rho2_2 * root_down;
-    let root_estimate2 = sqrt(t6);
-    let t7 = floor(root_estimate2 * 512.0f);
-    let root_h0_2 = t7 * 0.001953125f;
+    let t2 = rho2_2 * root_down;
+    let root_estimate2 = sqrt(t2);
+    let root_k0_2 = floor(root_estimate2 * 512.0f);
+    let root_h0_2 = root_k0_2 * 0.001953125f;
     let root_h1_2 = root_h0_2 + 0.001953125f;
-    let t8 = select(
-        select(0.0f, -1.0f, root_h0_2 * root_h0_2 > t6),
-        1.0f,
-        root_h1_2 * root_h1_2 <= t6
-    );
-    let root_k2 = t7 + t8;
+    let step_down3 = select(0.0f, -1.0f, root_h0_2 * root_h0_2 > t2);
+    let step3 = select(step_down3, 1.0f, root_h1_2 * root_h1_2 <= t2);
+    let root_k2 = root_k0_2 + step3;
     let root_h2 = root_k2 * 0.001953125f;
-    let root_rest2 = t6 - root_h2 * root_h2;
+    let root_rest2 = t2 - root_h2 * root_h2;
     let root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
     let root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7f;
     let root_m1_2 = root_h2 + (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    let t9 = select(
-        select(0.0f, -1.0f, root_m0_2 * root_m0_2 > t6),
-        1.0f,
-        root_m1_2 * root_m1_2 <= t6
-    );
-    let root_j2 = root_j0_2 + t9;
+    let step_down4 = select(0.0f, -1.0f, root_m0_2 * root_m0_2 > t2);
+    let step4 = select(step_down4, 1.0f, root_m1_2 * root_m1_2 <= t2);
+    let root_j2 = root_j0_2 + step4;
     let root2 = (root_k2 * 4096.0f + root_j2) * 4.7683716e-7f;
-    let rho = select(0.0f, root2 * root_up, t5);
+    let rho = select(0.0f, root2 * root_up, t1);
     let abs_w2_z = abs(w2.z);
     let abs_abs_w2_z = abs(abs_w2_z);
     let abs_rho = abs(rho);
     let y_major = abs_rho > abs_abs_w2_z;
     let hi8 = select(abs_abs_w2_z, abs_rho, y_major);
     let lo8 = select(abs_rho, abs_abs_w2_z, y_major);
-    let t10 = select(1.0f, hi8, hi8 > 0.0f);
+    let t3 = select(1.0f, hi8, hi8 > 0.0f);
     let big = lo8 * 8388608.0f;
-    let ratio_estimate = floor(lo8 / t10 * 8388608.0f);
-    let t11 = select(
-        select(0.0f, -1.0f, ratio_estimate * t10 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t10 <= big
-    );
-    let ratio = ratio_estimate + t11;
-    let t12 = select(select(0.0f, -1.0f, ratio * t10 > big), 1.0f, (ratio + 1.0f) * t10 <= big);
-    let t = ratio + t12;
+    let ratio_estimate = floor(lo8 / t3 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate * t3 > big);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
+    let ratio = ratio_estimate + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio * t3 > big);
+    let step6 = select(step_down6, 1.0f, (ratio + 1.0f) * t3 <= big);
+    let t = ratio + step6;
     let far = t > 3474675.0f;
-    let t13 = t - 8388608.0f;
-    let t14 = t + 8388608.0f;
-    let big2 = t13 * 8388608.0f;
-    let ratio_estimate2 = floor(t13 / t14 * 8388608.0f);
-    let t15 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t14 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t14 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t15;
-    let t16 = select(select(0.0f, -1.0f, ratio2 * t14 > big2), 1.0f, (ratio2 + 1.0f) * t14 <= big2);
-    let ratio3 = ratio2 + t16;
+    let t4 = t - 8388608.0f;
+    let t5 = t + 8388608.0f;
+    let big2 = t4 * 8388608.0f;
+    let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate2 * t5 > big2);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
+    let ratio2 = ratio_estimate2 + step7;
+    let step_down8 = select(0.0f, -1.0f, ratio2 * t5 > big2);
+    let step8 = select(step_down8, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
+    let ratio3 = ratio2 + step8;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t17 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t18 = round((round(t17 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t19 = round((round(t18 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t20 = round((round(t19 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t20 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t6 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t7 = (round((t6 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t8 = (round((round(t7) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t9 = round((round(t8 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t10 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, abs_w2_z < 0.0f);
-    let t21 = select(h4, -h4, rho < 0.0f);
-    let t22 = w2.xy * t21 * vec2<f32>(0.00024402142f, 0.0001219511f);
-    let t23 = round(t22 / sqrt(vec2<f32>(rho2_2)) + vec2<f32>(1023.5f, 511.5f));
-    let t24 = select(vec2<f32>(0.0f), t23, t23 >= vec2<f32>(0.0f));
-    let t25 = select(vec2<f32>(2047.0f, 1023.0f), t24, t24 <= vec2<f32>(2047.0f, 1023.0f));
-    let t26 = t25 - vec2<f32>(1022.5f, 510.5f);
-    let abs_t22 = abs(t22);
-    let abs_t22_sq = abs_t22 * abs_t22;
-    let t27 = t26 * t26 * rho2_2;
-    let t28 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t22_sq >= t27),
-        t26 > vec2<f32>(0.0f)
+    let t11 = select(h4, -h4, rho < 0.0f);
+    let t12 = w2.xy * t11 * vec2<f32>(0.00024402142f, 0.0001219511f);
+    let t13 = round(t12 / sqrt(vec2<f32>(rho2_2)) + vec2<f32>(1023.5f, 511.5f));
+    let t14 = select(vec2<f32>(0.0f), t13, t13 >= vec2<f32>(0.0f));
+    let t15 = select(vec2<f32>(2047.0f, 1023.0f), t14, t14 <= vec2<f32>(2047.0f, 1023.0f));
+    let t16 = t15 - vec2<f32>(1022.5f, 510.5f);
+    let abs_t12 = abs(t12);
+    let abs_t12_sq = abs_t12 * abs_t12;
+    let t17 = t16 * t16 * rho2_2;
+    let t18 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t12_sq <= t17),
+            t16 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t12_sq >= t17),
+            t16 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
     );
-    let t29 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t22_sq <= t27),
-        t26 < vec2<f32>(0.0f)
+    let t19 = t15 - 1.0f - vec2<f32>(1022.5f, 510.5f);
+    let abs_t12_sq2 = abs_t12 * abs_t12;
+    let t20 = t19 * t19 * rho2_2;
+    let t21 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t12_sq2 <= t20),
+            t19 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t12_sq2 >= t20),
+            t19 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
     );
-    let t30 = select(
-        vec2<f32>(0.0f),
-        select(t29, t28, w2.xy >= vec2<f32>(0.0f)),
-        t25 < vec2<f32>(2047.0f, 1023.0f)
-    );
-    let t31 = t25 - 1.0f - vec2<f32>(1022.5f, 510.5f);
-    let abs_t22_sq2 = abs_t22 * abs_t22;
-    let t32 = t31 * t31 * rho2_2;
-    let t33 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t22_sq2 >= t32),
-        t31 > vec2<f32>(0.0f)
-    );
-    let t34 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t22_sq2 <= t32),
-        t31 < vec2<f32>(0.0f)
-    );
-    let t35 = select(
-        vec2<f32>(0.0f),
-        select(t34, t33, w2.xy >= vec2<f32>(0.0f)) - 1.0f,
-        t25 > vec2<f32>(0.0f)
-    );
-    let base = t25 + t30 + t35;
-    let t36 = floor(w2 / root * 2097152.0f);
-    let t37 = w2 * 2097152.0f;
-    let t38 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t36 * root > t37),
+    let base = t15
+        + select(vec2<f32>(0.0f), t18, t15 < vec2<f32>(2047.0f, 1023.0f))
+        + select(vec2<f32>(0.0f), t21 - 1.0f, t15 > vec2<f32>(0.0f));
+    let t22 = floor(w2 / root * 2097152.0f);
+    let t23 = w2 * 2097152.0f;
+    let t24 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t22 * root > t23),
         vec3<f32>(1.0f),
-        (t36 + 1.0f) * root <= t37
+        (t22 + 1.0f) * root <= t23
     );
-    let aim = t36 + t38;
+    let aim = t22 + t24;
     let cand = select(vec2<f32>(2047.0f, 1023.0f), base, base <= vec2<f32>(2047.0f, 1023.0f));
     let p = floor((cand * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
-    let t39 = (round((round(0.0f * q * 2.3841858e-7f) + (-0.0f)) * q * 2.3841858e-7f) + 8.0f) * q;
-    let t40 = (round((round(t39 * 2.3841858e-7f) + (-242.0f)) * q * 2.3841858e-7f) + 5384.0f) * q;
-    let t41 = round((round(t40 * 2.3841858e-7f) + (-78547.0f)) * q * 2.3841858e-7f) + 668510.0f;
-    let sinc = round((round(t41 * q * 2.3841858e-7f) + (-2709370.0f)) * q * 2.3841858e-7f)
-        + 3294199.0f;
-    let t42 = (round((round(0.0f * q * 2.3841858e-7f) + (-2.0f)) * q * 2.3841858e-7f) + 63.0f) * q;
-    let t43 = (round((round(t42 * 2.3841858e-7f) + (-1691.0f)) * q * 2.3841858e-7f) + 30845.0f) * q;
-    let t44 = round((round(t43 * 2.3841858e-7f) + (-350031.0f)) * q * 2.3841858e-7f) + 2127934.0f;
-    let cosq = round((round(t44 * q * 2.3841858e-7f) + (-5174515.0f)) * q * 2.3841858e-7f)
-        + 2097152.0f;
-    let t45 = abs(vec3<f32>(round(p * sinc * 4.7683716e-7f), select(cosq, -cosq, t4 > 0.5f)) - aim);
-    let t46 = vec3<u32>(t45);
-    let limb1_6 = t46.x >> 12u;
-    let limb0_6 = t46.x & 4095u;
+    let t25 = round((round(0.0f * q * 2.3841858e-7f) + (-0.0f)) * q * 2.3841858e-7f);
+    let t26 = (round((t25 + 8.0f) * q * 2.3841858e-7f) + (-242.0f)) * q * 2.3841858e-7f;
+    let t27 = (round((round(t26) + 5384.0f) * q * 2.3841858e-7f) + (-78547.0f)) * q;
+    let t28 = round((round(t27 * 2.3841858e-7f) + 668510.0f) * q * 2.3841858e-7f) + (-2709370.0f);
+    let sinc = round(t28 * q * 2.3841858e-7f) + 3294199.0f;
+    let t29 = round((round(0.0f * q * 2.3841858e-7f) + (-2.0f)) * q * 2.3841858e-7f);
+    let t30 = (round((t29 + 63.0f) * q * 2.3841858e-7f) + (-1691.0f)) * q * 2.3841858e-7f;
+    let t31 = (round((round(t30) + 30845.0f) * q * 2.3841858e-7f) + (-350031.0f)) * q;
+    let t32 = round((round(t31 * 2.3841858e-7f) + 2127934.0f) * q * 2.3841858e-7f) + (-5174515.0f);
+    let cosq = round(t32 * q * 2.3841858e-7f) + 2097152.0f;
+    let t33 = vec3<f32>(round(p * sinc * 4.7683716e-7f), select(cosq, -cosq, one_if > 0.5f));
+    let offset = t33 - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_6 = offset_u.x >> 12u;
+    let limb0_6 = offset_u.x & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi9 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo9 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    let limb1_7 = t46.y >> 12u;
-    let limb0_7 = t46.y & 4095u;
+    let limb1_7 = offset_u.y >> 12u;
+    let limb0_7 = offset_u.y & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi10 = hi9 + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo10 = lo9 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t46.z >> 12u;
-    let limb0_8 = t46.z & 4095u;
+    let limb1_8 = offset_u.z >> 12u;
+    let limb0_8 = offset_u.z & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist = f32(hi12) * 16777216.0f + f32(lo12);
-    let t47 = base.x + 1.0f;
-    let t48 = vec2<f32>(t47, base.y);
-    let cand2 = select(vec2<f32>(2047.0f, 1023.0f), t48, t48 <= vec2<f32>(2047.0f, 1023.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t34 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(2047.0f, 1023.0f), t34, t34 <= vec2<f32>(2047.0f, 1023.0f));
     let p2 = floor((cand2 * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
-    let t49 = (round((round(0.0f * q2 * 2.3841858e-7f) + (-0.0f)) * q2 * 2.3841858e-7f) + 8.0f)
-        * q2;
-    let t50 = (round((round(t49 * 2.3841858e-7f) + (-242.0f)) * q2 * 2.3841858e-7f) + 5384.0f) * q2;
-    let t51 = round((round(t50 * 2.3841858e-7f) + (-78547.0f)) * q2 * 2.3841858e-7f) + 668510.0f;
-    let sinc2 = round((round(t51 * q2 * 2.3841858e-7f) + (-2709370.0f)) * q2 * 2.3841858e-7f)
-        + 3294199.0f;
-    let t52 = (round((round(0.0f * q2 * 2.3841858e-7f) + (-2.0f)) * q2 * 2.3841858e-7f) + 63.0f)
-        * q2;
-    let t53 = (round((round(t52 * 2.3841858e-7f) + (-1691.0f)) * q2 * 2.3841858e-7f) + 30845.0f)
-        * q2;
-    let t54 = round((round(t53 * 2.3841858e-7f) + (-350031.0f)) * q2 * 2.3841858e-7f) + 2127934.0f;
-    let cosq2 = round((round(t54 * q2 * 2.3841858e-7f) + (-5174515.0f)) * q2 * 2.3841858e-7f)
-        + 2097152.0f;
-    let t55 = vec3<f32>(round(p2 * sinc2 * 4.7683716e-7f), select(cosq2, -cosq2, t4 > 0.5f)) - aim;
-    let t56 = vec3<u32>(abs(t55));
-    let limb1_9 = t56.x >> 12u;
-    let limb0_9 = t56.x & 4095u;
+    let t35 = round((round(0.0f * q2 * 2.3841858e-7f) + (-0.0f)) * q2 * 2.3841858e-7f);
+    let t36 = (round((t35 + 8.0f) * q2 * 2.3841858e-7f) + (-242.0f)) * q2 * 2.3841858e-7f;
+    let t37 = (round((round(t36) + 5384.0f) * q2 * 2.3841858e-7f) + (-78547.0f)) * q2;
+    let t38 = round((round(t37 * 2.3841858e-7f) + 668510.0f) * q2 * 2.3841858e-7f) + (-2709370.0f);
+    let sinc2 = round(t38 * q2 * 2.3841858e-7f) + 3294199.0f;
+    let t39 = round((round(0.0f * q2 * 2.3841858e-7f) + (-2.0f)) * q2 * 2.3841858e-7f);
+    let t40 = (round((t39 + 63.0f) * q2 * 2.3841858e-7f) + (-1691.0f)) * q2 * 2.3841858e-7f;
+    let t41 = (round((round(t40) + 30845.0f) * q2 * 2.3841858e-7f) + (-350031.0f)) * q2;
+    let t42 = round((round(t41 * 2.3841858e-7f) + 2127934.0f) * q2 * 2.3841858e-7f) + (-5174515.0f);
+    let cosq2 = round(t42 * q2 * 2.3841858e-7f) + 2097152.0f;
+    let t43 = vec3<f32>(round(p2 * sinc2 * 4.7683716e-7f), select(cosq2, -cosq2, one_if > 0.5f));
+    let offset2 = t43 - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_9 = offset_u2.x >> 12u;
+    let limb0_9 = offset_u2.x & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi13 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo13 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    let limb1_10 = t56.y >> 12u;
-    let limb0_10 = t56.y & 4095u;
+    let limb1_10 = offset_u2.y >> 12u;
+    let limb0_10 = offset_u2.y & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi14 = hi13 + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo14 = lo13 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t56.z >> 12u;
-    let limb0_11 = t56.z & 4095u;
+    let limb1_11 = offset_u2.z >> 12u;
+    let limb0_11 = offset_u2.z & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist2 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t57 = t47 <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
-    let best = select(cand, cand2, t57);
-    let best_d = select(dist, dist2, t57);
-    let t58 = base.y + 1.0f;
-    let t59 = vec2<f32>(base.x, t58);
-    let cand3 = select(vec2<f32>(2047.0f, 1023.0f), t59, t59 <= vec2<f32>(2047.0f, 1023.0f));
+    let t44 = s_up <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
+    let best = select(cand, cand2, t44);
+    let best_d = select(dist, dist2, t44);
+    let t45 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(2047.0f, 1023.0f), t45, t45 <= vec2<f32>(2047.0f, 1023.0f));
     let p3 = floor((cand3 * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
-    let t60 = (round((round(0.0f * q3 * 2.3841858e-7f) + (-0.0f)) * q3 * 2.3841858e-7f) + 8.0f)
-        * q3;
-    let t61 = (round((round(t60 * 2.3841858e-7f) + (-242.0f)) * q3 * 2.3841858e-7f) + 5384.0f) * q3;
-    let t62 = round((round(t61 * 2.3841858e-7f) + (-78547.0f)) * q3 * 2.3841858e-7f) + 668510.0f;
-    let sinc3 = round((round(t62 * q3 * 2.3841858e-7f) + (-2709370.0f)) * q3 * 2.3841858e-7f)
-        + 3294199.0f;
-    let t63 = (round((round(0.0f * q3 * 2.3841858e-7f) + (-2.0f)) * q3 * 2.3841858e-7f) + 63.0f)
-        * q3;
-    let t64 = (round((round(t63 * 2.3841858e-7f) + (-1691.0f)) * q3 * 2.3841858e-7f) + 30845.0f)
-        * q3;
-    let t65 = round((round(t64 * 2.3841858e-7f) + (-350031.0f)) * q3 * 2.3841858e-7f) + 2127934.0f;
-    let cosq3 = round((round(t65 * q3 * 2.3841858e-7f) + (-5174515.0f)) * q3 * 2.3841858e-7f)
-        + 2097152.0f;
-    let t66 = vec3<f32>(round(p3 * sinc3 * 4.7683716e-7f), select(cosq3, -cosq3, t4 > 0.5f)) - aim;
-    let t67 = vec3<u32>(abs(t66));
-    let limb1_12 = t67.x >> 12u;
-    let limb0_12 = t67.x & 4095u;
+    let t46 = round((round(0.0f * q3 * 2.3841858e-7f) + (-0.0f)) * q3 * 2.3841858e-7f);
+    let t47 = (round((t46 + 8.0f) * q3 * 2.3841858e-7f) + (-242.0f)) * q3 * 2.3841858e-7f;
+    let t48 = (round((round(t47) + 5384.0f) * q3 * 2.3841858e-7f) + (-78547.0f)) * q3;
+    let t49 = round((round(t48 * 2.3841858e-7f) + 668510.0f) * q3 * 2.3841858e-7f) + (-2709370.0f);
+    let sinc3 = round(t49 * q3 * 2.3841858e-7f) + 3294199.0f;
+    let t50 = round((round(0.0f * q3 * 2.3841858e-7f) + (-2.0f)) * q3 * 2.3841858e-7f);
+    let t51 = (round((t50 + 63.0f) * q3 * 2.3841858e-7f) + (-1691.0f)) * q3 * 2.3841858e-7f;
+    let t52 = (round((round(t51) + 30845.0f) * q3 * 2.3841858e-7f) + (-350031.0f)) * q3;
+    let t53 = round((round(t52 * 2.3841858e-7f) + 2127934.0f) * q3 * 2.3841858e-7f) + (-5174515.0f);
+    let cosq3 = round(t53 * q3 * 2.3841858e-7f) + 2097152.0f;
+    let t54 = vec3<f32>(round(p3 * sinc3 * 4.7683716e-7f), select(cosq3, -cosq3, one_if > 0.5f));
+    let offset3 = t54 - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_12 = offset_u3.x >> 12u;
+    let limb0_12 = offset_u3.x & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi17 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo17 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    let limb1_13 = t67.y >> 12u;
-    let limb0_13 = t67.y & 4095u;
+    let limb1_13 = offset_u3.y >> 12u;
+    let limb0_13 = offset_u3.y & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi18 = hi17 + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo18 = lo17 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t67.z >> 12u;
-    let limb0_14 = t67.z & 4095u;
+    let limb1_14 = offset_u3.z >> 12u;
+    let limb0_14 = offset_u3.z & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist3 = f32(hi20) * 16777216.0f + f32(lo20);
-    let t68 = base.x <= 2047.0f && t58 <= 1023.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t68);
-    let best_d2 = select(best_d, dist3, t68);
-    let t69 = base + 1.0f;
-    let cand4 = select(vec2<f32>(2047.0f, 1023.0f), t69, t69 <= vec2<f32>(2047.0f, 1023.0f));
+    let t55 = base.x <= 2047.0f && t_up <= 1023.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t55);
+    let best_d2 = select(best_d, dist3, t55);
+    let t56 = base + 1.0f;
+    let cand4 = select(vec2<f32>(2047.0f, 1023.0f), t56, t56 <= vec2<f32>(2047.0f, 1023.0f));
     let p4 = floor((cand4 * 2.0f - vec2<f32>(2047.0f, 1023.0f)) * vec2<f32>(1024.5002f, 2050.002f));
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
-    let t70 = (round((round(0.0f * q4 * 2.3841858e-7f) + (-0.0f)) * q4 * 2.3841858e-7f) + 8.0f)
-        * q4;
-    let t71 = (round((round(t70 * 2.3841858e-7f) + (-242.0f)) * q4 * 2.3841858e-7f) + 5384.0f) * q4;
-    let t72 = round((round(t71 * 2.3841858e-7f) + (-78547.0f)) * q4 * 2.3841858e-7f) + 668510.0f;
-    let sinc4 = round((round(t72 * q4 * 2.3841858e-7f) + (-2709370.0f)) * q4 * 2.3841858e-7f)
-        + 3294199.0f;
-    let t73 = (round((round(0.0f * q4 * 2.3841858e-7f) + (-2.0f)) * q4 * 2.3841858e-7f) + 63.0f)
-        * q4;
-    let t74 = (round((round(t73 * 2.3841858e-7f) + (-1691.0f)) * q4 * 2.3841858e-7f) + 30845.0f)
-        * q4;
-    let t75 = round((round(t74 * 2.3841858e-7f) + (-350031.0f)) * q4 * 2.3841858e-7f) + 2127934.0f;
-    let cosq4 = round((round(t75 * q4 * 2.3841858e-7f) + (-5174515.0f)) * q4 * 2.3841858e-7f)
-        + 2097152.0f;
-    let t76 = vec3<f32>(round(p4 * sinc4 * 4.7683716e-7f), select(cosq4, -cosq4, t4 > 0.5f)) - aim;
-    let t77 = vec3<u32>(abs(t76));
-    let limb1_15 = t77.x >> 12u;
-    let limb0_15 = t77.x & 4095u;
+    let t57 = round((round(0.0f * q4 * 2.3841858e-7f) + (-0.0f)) * q4 * 2.3841858e-7f);
+    let t58 = (round((t57 + 8.0f) * q4 * 2.3841858e-7f) + (-242.0f)) * q4 * 2.3841858e-7f;
+    let t59 = (round((round(t58) + 5384.0f) * q4 * 2.3841858e-7f) + (-78547.0f)) * q4;
+    let t60 = round((round(t59 * 2.3841858e-7f) + 668510.0f) * q4 * 2.3841858e-7f) + (-2709370.0f);
+    let sinc4 = round(t60 * q4 * 2.3841858e-7f) + 3294199.0f;
+    let t61 = round((round(0.0f * q4 * 2.3841858e-7f) + (-2.0f)) * q4 * 2.3841858e-7f);
+    let t62 = (round((t61 + 63.0f) * q4 * 2.3841858e-7f) + (-1691.0f)) * q4 * 2.3841858e-7f;
+    let t63 = (round((round(t62) + 30845.0f) * q4 * 2.3841858e-7f) + (-350031.0f)) * q4;
+    let t64 = round((round(t63 * 2.3841858e-7f) + 2127934.0f) * q4 * 2.3841858e-7f) + (-5174515.0f);
+    let cosq4 = round(t64 * q4 * 2.3841858e-7f) + 2097152.0f;
+    let t65 = vec3<f32>(round(p4 * sinc4 * 4.7683716e-7f), select(cosq4, -cosq4, one_if > 0.5f));
+    let offset4 = t65 - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_15 = offset_u4.x >> 12u;
+    let limb0_15 = offset_u4.x & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi21 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo21 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    let limb1_16 = t77.y >> 12u;
-    let limb0_16 = t77.y & 4095u;
+    let limb1_16 = offset_u4.y >> 12u;
+    let limb0_16 = offset_u4.y & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi22 = hi21 + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo22 = lo21 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t77.z >> 12u;
-    let limb0_17 = t77.z & 4095u;
+    let limb1_17 = offset_u4.z >> 12u;
+    let limb0_17 = offset_u4.z & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi23 = hi22 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo23 = lo22 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     let hi24 = hi23 + (lo23 >> 24u);
     let lo24 = lo23 & 16777215u;
     let dist4 = f32(hi24) * 16777216.0f + f32(lo24);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 2047.0f && base.y + 1.0f <= 1023.0f && dist4 < best_d2
-    );
-    return vec3<f32>(best3, t4);
+    let best3 = select(best2, cand4, s_up <= 2047.0f && t_up <= 1023.0f && dist4 < best_d2);
+    return vec3<f32>(best3, one_if);
 }
 
 // unitpack_eqdist22p_encode_float: precise encoder, float form.

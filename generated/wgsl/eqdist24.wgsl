@@ -29,13 +29,13 @@ fn unitpack_eqdist24_decode_float(params: vec3<f32>) -> vec3<f32> {
     let p = (params.xy - 0.5f) * 2.0f;
     let p_sq = p * p;
     let q = p_sq.x + p_sq.y;
-    let t1 = ((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f);
-    let t2 = (((t1 * q + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q
-        + (-0.6459641f);
+    let t1 = (((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f))
+        * q;
+    let t2 = (((t1 + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q + (-0.6459641f);
     let sinc = t2 * q + 1.5707964f;
-    let t3 = ((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f);
-    let t4 = (((t3 * q + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q
-        + (-1.2337005f);
+    let t3 = (((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f))
+        * q;
+    let t4 = (((t3 + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q + (-1.2337005f);
     let cosq = t4 * q + 1.0f;
     return vec3<f32>(p * sinc, select(cosq, -cosq, params.z > 0.5f));
 }
@@ -49,8 +49,8 @@ fn unitpack_eqdist24_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_eqdist24_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 12u, code >> 23u) & vec3<u32>(4095u, 2047u, 1u));
-    let params = t1 * vec3<f32>(0.00024420026f, 0.0004885198f, 1.0f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 12u, code >> 23u) & vec3<u32>(4095u, 2047u, 1u))
+        * vec3<f32>(0.00024420026f, 0.0004885198f, 1.0f);
     return unitpack_eqdist24_decode_float(params);
 }
 
@@ -68,8 +68,8 @@ fn unitpack_eqdist24_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -92,15 +92,17 @@ fn unitpack_eqdist24_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let t1 = w2.xy * w2.xy;
     let rho = sqrt(t1.x + t1.y);
     let t = unitpack_eqdist24_atan2_pi(rho, abs(w2.z));
     let s = t / select(1.0f, rho, rho > 0.0f);
     let enc = w2.xy * s + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -115,11 +117,15 @@ fn unitpack_eqdist24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -140,18 +146,20 @@ fn unitpack_eqdist24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = rho2_2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let rho = select(0.0f, root * root_up, t1);
     let abs_w2_z = abs(w2.z);
@@ -160,96 +168,94 @@ fn unitpack_eqdist24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let y_major = abs_rho > abs_abs_w2_z;
     let hi4 = select(abs_abs_w2_z, abs_rho, y_major);
     let lo4 = select(abs_rho, abs_abs_w2_z, y_major);
-    let t6 = select(1.0f, hi4, hi4 > 0.0f);
+    let t3 = select(1.0f, hi4, hi4 > 0.0f);
     let big = lo4 * 8388608.0f;
-    let ratio_estimate = floor(lo4 / t6 * 8388608.0f);
-    let t7 = select(
-        select(0.0f, -1.0f, ratio_estimate * t6 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t6 <= big
-    );
-    let ratio = ratio_estimate + t7;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t6 > big), 1.0f, (ratio + 1.0f) * t6 <= big);
+    let ratio_estimate = floor(lo4 / t3 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t3 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t3 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t8 = t - 8388608.0f;
-    let t9 = t + 8388608.0f;
-    let big2 = t8 * 8388608.0f;
-    let ratio_estimate2 = floor(t8 / t9 * 8388608.0f);
-    let t10 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t9 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t9 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t10;
-    let t11 = select(select(0.0f, -1.0f, ratio2 * t9 > big2), 1.0f, (ratio2 + 1.0f) * t9 <= big2);
-    let ratio3 = ratio2 + t11;
+    let t4 = t - 8388608.0f;
+    let t5 = t + 8388608.0f;
+    let big2 = t4 * 8388608.0f;
+    let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t5 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t5 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t12 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t13 = round((round(t12 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t14 = round((round(t13 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t15 = round((round(t14 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t15 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t6 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t7 = (round((t6 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t8 = (round((round(t7) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t9 = round((round(t8 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t10 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, abs_w2_z < 0.0f);
-    let t16 = select(h4, -h4, rho < 0.0f);
-    let big3 = w2.x * t16 * 0.00048816204f;
-    let t17 = round(big3 / sqrt(rho2_2) + 2047.5f);
+    let t11 = select(h4, -h4, rho < 0.0f);
+    let big3 = w2.x * t11 * 0.00048816204f;
+    let t12 = round(big3 / sqrt(rho2_2) + 2047.5f);
     let abs_big3 = abs(big3);
-    let t18 = select(0.0f, t17, t17 >= 0.0f);
-    let estimate = select(4095.0f, t18, t18 <= 4095.0f);
-    let t19 = estimate - 2047.0f;
+    let t13 = select(0.0f, t12, t12 >= 0.0f);
+    let estimate = select(4095.0f, t13, t13 <= 4095.0f);
+    let t14 = estimate - 2047.0f;
     let abs_big3_sq = abs_big3 * abs_big3;
-    let t20 = t19 * t19 * rho2_2;
-    let t21 = select(
-        select(0.0f, select(0.0f, 1.0f, abs_big3_sq <= t20), t19 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, abs_big3_sq >= t20), t19 > 0.0f),
-        w2.x >= 0.0f
+    let t15 = t14 * t14 * rho2_2;
+    let one_if2 = select(0.0f, 1.0f, abs_big3_sq >= t15);
+    let one_if3 = select(0.0f, 1.0f, abs_big3_sq <= t15);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if3, t14 < 0.0f), select(1.0f, one_if2, t14 > 0.0f), w2.x >= 0.0f),
+        estimate < 4095.0f
     );
-    let up = select(0.0f, t21, estimate < 4095.0f);
-    let t22 = estimate - 1.0f - 2047.0f;
+    let t16 = estimate - 1.0f - 2047.0f;
     let abs_big3_sq2 = abs_big3 * abs_big3;
-    let t23 = t22 * t22 * rho2_2;
-    let t24 = select(
-        select(0.0f, select(0.0f, 1.0f, abs_big3_sq2 <= t23), t22 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, abs_big3_sq2 >= t23), t22 > 0.0f),
+    let t17 = t16 * t16 * rho2_2;
+    let one_if4 = select(0.0f, 1.0f, abs_big3_sq2 >= t17);
+    let one_if5 = select(0.0f, 1.0f, abs_big3_sq2 <= t17);
+    let t18 = select(
+        select(0.0f, one_if5, t16 < 0.0f),
+        select(1.0f, one_if4, t16 > 0.0f),
         w2.x >= 0.0f
-    );
-    let down = select(0.0f, t24 - 1.0f, estimate > 0.0f);
-    let big4 = w2.y * t16 * 0.00024402142f;
-    let t25 = round(big4 / sqrt(rho2_2) + 1023.5f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t18, estimate > 0.0f);
+    let big4 = w2.y * t11 * 0.00024402142f;
+    let t19 = round(big4 / sqrt(rho2_2) + 1023.5f);
     let abs_big4 = abs(big4);
-    let t26 = select(0.0f, t25, t25 >= 0.0f);
-    let estimate2 = select(2047.0f, t26, t26 <= 2047.0f);
-    let t27 = estimate2 - 1023.0f;
+    let t20 = select(0.0f, t19, t19 >= 0.0f);
+    let estimate2 = select(2047.0f, t20, t20 <= 2047.0f);
+    let t21 = estimate2 - 1023.0f;
     let abs_big4_sq = abs_big4 * abs_big4;
-    let t28 = t27 * t27 * rho2_2;
-    let t29 = select(
-        select(0.0f, select(0.0f, 1.0f, abs_big4_sq <= t28), t27 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, abs_big4_sq >= t28), t27 > 0.0f),
-        w2.y >= 0.0f
+    let t22 = t21 * t21 * rho2_2;
+    let one_if6 = select(0.0f, 1.0f, abs_big4_sq >= t22);
+    let one_if7 = select(0.0f, 1.0f, abs_big4_sq <= t22);
+    let up2 = select(
+        0.0f,
+        select(select(0.0f, one_if7, t21 < 0.0f), select(1.0f, one_if6, t21 > 0.0f), w2.y >= 0.0f),
+        estimate2 < 2047.0f
     );
-    let up2 = select(0.0f, t29, estimate2 < 2047.0f);
-    let t30 = estimate2 - 1.0f - 1023.0f;
+    let t23 = estimate2 - 1.0f - 1023.0f;
     let abs_big4_sq2 = abs_big4 * abs_big4;
-    let t31 = t30 * t30 * rho2_2;
-    let t32 = select(
-        select(0.0f, select(0.0f, 1.0f, abs_big4_sq2 <= t31), t30 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, abs_big4_sq2 >= t31), t30 > 0.0f),
+    let t24 = t23 * t23 * rho2_2;
+    let one_if8 = select(0.0f, 1.0f, abs_big4_sq2 >= t24);
+    let one_if9 = select(0.0f, 1.0f, abs_big4_sq2 <= t24);
+    let t25 = select(
+        select(0.0f, one_if9, t23 < 0.0f),
+        select(1.0f, one_if8, t23 > 0.0f),
         w2.y >= 0.0f
-    );
-    let down2 = select(0.0f, t32 - 1.0f, estimate2 > 0.0f);
-    return vec3<f32>(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        select(0.0f, 1.0f, w2.z < 0.0f)
-    );
+    )
+        - 1.0f;
+    let down2 = select(0.0f, t25, estimate2 > 0.0f);
+    return vec3<f32>(estimate + up + down, estimate2 + up2 + down2, one_if);
 }
 
 // unitpack_eqdist24_encode: fast encoder.

@@ -25,9 +25,8 @@ fn unitpack_eqdist_concentric22_sincos_quarter_pi(a0: f32) -> vec2<f32> {
     let c2 = a0 * a0;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = a0 * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     return vec2<f32>(s, co);
 }
 
@@ -49,13 +48,13 @@ fn unitpack_eqdist_concentric22_decode_float(params: vec3<f32>) -> vec3<f32> {
     let disk = select(vec2<f32>(r, s.y) * on_y, vec2<f32>(s.x, r) * on_x.yx, abs(s.x) >= abs(s.y));
     let disk_sq = disk * disk;
     let q = disk_sq.x + disk_sq.y;
-    let t1 = ((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f);
-    let t2 = (((t1 * q + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q
-        + (-0.6459641f);
+    let t1 = (((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f))
+        * q;
+    let t2 = (((t1 + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q + (-0.6459641f);
     let sinc = t2 * q + 1.5707964f;
-    let t3 = ((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f);
-    let t4 = (((t3 * q + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q
-        + (-1.2337005f);
+    let t3 = (((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f))
+        * q;
+    let t4 = (((t3 + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q + (-1.2337005f);
     let cosq = t4 * q + 1.0f;
     return vec3<f32>(disk * sinc, select(cosq, -cosq, params.z > 0.5f));
 }
@@ -67,8 +66,8 @@ fn unitpack_eqdist_concentric22_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   rounding.
 // Portable as unitpack_eqdist_concentric22_decode_float is, within the same bound.
 fn unitpack_eqdist_concentric22_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 1u));
-    let params = t1 * vec3<f32>(0.0004885198f, 0.0009775171f, 1.0f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 1u))
+        * vec3<f32>(0.0004885198f, 0.0009775171f, 1.0f);
     return unitpack_eqdist_concentric22_decode_float(params);
 }
 
@@ -86,8 +85,8 @@ fn unitpack_eqdist_concentric22_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -110,9 +109,11 @@ fn unitpack_eqdist_concentric22_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let t1 = w2.xy * w2.xy;
     let rho = sqrt(t1.x + t1.y);
     let half_r = unitpack_eqdist_concentric22_atan2_pi(rho, abs(w2.z));
@@ -123,7 +124,7 @@ fn unitpack_eqdist_concentric22_encode_float(v: vec3<f32>) -> vec3<f32> {
     let t3 = select(half_r, -half_r, major < 0.0f);
     let t4 = half_r * t * 4.0f;
     let enc = select(vec2<f32>(t4, t3), vec2<f32>(t3, t4), t2) + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -138,11 +139,15 @@ fn unitpack_eqdist_concentric22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -163,18 +168,20 @@ fn unitpack_eqdist_concentric22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = rho2_2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let rho = select(0.0f, root * root_up, t1);
     let abs_w2_z = abs(w2.z);
@@ -183,134 +190,103 @@ fn unitpack_eqdist_concentric22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let y_major = abs_rho > abs_abs_w2_z;
     let hi4 = select(abs_abs_w2_z, abs_rho, y_major);
     let lo4 = select(abs_rho, abs_abs_w2_z, y_major);
-    let t6 = select(1.0f, hi4, hi4 > 0.0f);
+    let t3 = select(1.0f, hi4, hi4 > 0.0f);
     let big = lo4 * 8388608.0f;
-    let ratio_estimate = floor(lo4 / t6 * 8388608.0f);
-    let t7 = select(
-        select(0.0f, -1.0f, ratio_estimate * t6 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t6 <= big
-    );
-    let ratio = ratio_estimate + t7;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t6 > big), 1.0f, (ratio + 1.0f) * t6 <= big);
+    let ratio_estimate = floor(lo4 / t3 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t3 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t3 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t8 = t - 8388608.0f;
-    let t9 = t + 8388608.0f;
-    let big2 = t8 * 8388608.0f;
-    let ratio_estimate2 = floor(t8 / t9 * 8388608.0f);
-    let t10 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t9 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t9 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t10;
-    let t11 = select(select(0.0f, -1.0f, ratio2 * t9 > big2), 1.0f, (ratio2 + 1.0f) * t9 <= big2);
-    let ratio3 = ratio2 + t11;
+    let t4 = t - 8388608.0f;
+    let t5 = t + 8388608.0f;
+    let big2 = t4 * 8388608.0f;
+    let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t5 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t5 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t12 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t13 = round((round(t12 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t14 = round((round(t13 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t15 = round((round(t14 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t15 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t6 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t7 = (round((t6 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t8 = (round((round(t7) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t9 = round((round(t8 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t10 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, abs_w2_z < 0.0f);
-    let t16 = select(h4, -h4, rho < 0.0f);
-    let r2 = t16 * 2.3841858e-7f;
-    let t17 = abs(w2.x) >= abs(w2.y);
-    let major = select(w2.y, w2.x, t17);
-    let minor = select(w2.x, w2.y, t17);
+    let t11 = select(h4, -h4, rho < 0.0f);
+    let r2 = t11 * 2.3841858e-7f;
+    let t12 = abs(w2.x) >= abs(w2.y);
+    let major = select(w2.y, w2.x, t12);
+    let minor = select(w2.x, w2.y, t12);
     let abs_major = abs(major);
     let abs_abs_major = abs(abs_major);
     let abs_minor = abs(minor);
     let y_major2 = abs_minor > abs_abs_major;
     let hi5 = select(abs_abs_major, abs_minor, y_major2);
     let lo5 = select(abs_minor, abs_abs_major, y_major2);
-    let t18 = select(1.0f, hi5, hi5 > 0.0f);
+    let t13 = select(1.0f, hi5, hi5 > 0.0f);
     let big3 = lo5 * 8388608.0f;
-    let ratio_estimate3 = floor(lo5 / t18 * 8388608.0f);
-    let t19 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * t18 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * t18 <= big3
-    );
-    let ratio4 = ratio_estimate3 + t19;
-    let t20 = select(select(0.0f, -1.0f, ratio4 * t18 > big3), 1.0f, (ratio4 + 1.0f) * t18 <= big3);
-    let t21 = ratio4 + t20;
-    let far2 = t21 > 3474675.0f;
-    let t22 = t21 - 8388608.0f;
-    let t23 = t21 + 8388608.0f;
-    let big4 = t22 * 8388608.0f;
-    let ratio_estimate4 = floor(t22 / t23 * 8388608.0f);
-    let t24 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * t23 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * t23 <= big4
-    );
-    let ratio5 = ratio_estimate4 + t24;
-    let t25 = select(select(0.0f, -1.0f, ratio5 * t23 > big4), 1.0f, (ratio5 + 1.0f) * t23 <= big4);
-    let ratio6 = ratio5 + t25;
-    let z3 = select(t21, ratio6, far2);
+    let ratio_estimate3 = floor(lo5 / t13 * 8388608.0f);
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate3 * t13 > big3);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate3 + 1.0f) * t13 <= big3);
+    let ratio4 = ratio_estimate3 + step7;
+    let step_down8 = select(0.0f, -1.0f, ratio4 * t13 > big3);
+    let step8 = select(step_down8, 1.0f, (ratio4 + 1.0f) * t13 <= big3);
+    let t14 = ratio4 + step8;
+    let far2 = t14 > 3474675.0f;
+    let t15 = t14 - 8388608.0f;
+    let t16 = t14 + 8388608.0f;
+    let big4 = t15 * 8388608.0f;
+    let ratio_estimate4 = floor(t15 / t16 * 8388608.0f);
+    let step_down9 = select(0.0f, -1.0f, ratio_estimate4 * t16 > big4);
+    let step9 = select(step_down9, 1.0f, (ratio_estimate4 + 1.0f) * t16 <= big4);
+    let ratio5 = ratio_estimate4 + step9;
+    let step_down10 = select(0.0f, -1.0f, ratio5 * t16 > big4);
+    let step10 = select(step_down10, 1.0f, (ratio5 + 1.0f) * t16 <= big4);
+    let ratio6 = ratio5 + step10;
+    let z3 = select(t14, ratio6, far2);
     let z2_2 = round(z3 * z3 * 1.1920929e-7f);
-    let t26 = round((round(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f);
-    let t27 = (round((t26 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
+    let t17 = round((round(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f);
+    let t18 = (round((t17 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
         * z2_2
         * 1.1920929e-7f;
-    let t28 = (round((round(t27) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f)
-        * z2_2
-        * 1.1920929e-7f;
-    let t29 = (round((round(t28) + (-1198373.0f)) * z2_2 * 1.1920929e-7f) + 1677722.0f)
-        * z2_2
-        * 1.1920929e-7f;
-    let t30 = z3
-        * (round((round(t29) + (-2796203.0f)) * z2_2 * 1.1920929e-7f) + 8388608.0f)
-        * 1.1920929e-7f;
-    let r3 = round(t30);
+    let t19 = (round((round(t18) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f) * z2_2;
+    let t20 = round((round(t19 * 1.1920929e-7f) + (-1198373.0f)) * z2_2 * 1.1920929e-7f)
+        + 1677722.0f;
+    let t21 = round((round(t20 * z2_2 * 1.1920929e-7f) + (-2796203.0f)) * z2_2 * 1.1920929e-7f);
+    let r3 = round(z3 * (t21 + 8388608.0f) * 1.1920929e-7f);
     let h5 = round(r3 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
     let h8 = select(h7, 8388608.0f - h7, abs_major < 0.0f);
-    let t31 = select(h8, -h8, minor < 0.0f);
-    let t32 = major < 0.0f;
-    let x = select(t31 * 0.00048804283f, select(1023.5f, -1023.5f, t32), t17);
-    let t33 = round(r2 * x + 1023.5f);
-    let t34 = select(0.0f, t33, t33 >= 0.0f);
-    let estimate = select(2047.0f, t34, t34 <= 2047.0f);
-    let up = select(
-        0.0f,
-        select(0.0f, 1.0f, t16 * x * 2.3841858e-7f >= estimate - 1023.0f),
-        estimate < 2047.0f
-    );
-    let down = select(
-        0.0f,
-        select(0.0f, 1.0f, t16 * x * 2.3841858e-7f >= estimate - 1.0f - 1023.0f) - 1.0f,
-        estimate > 0.0f
-    );
-    let x2 = select(select(511.5f, -511.5f, t32), t31 * 0.0002439022f, t17);
-    let t35 = round(r2 * x2 + 511.5f);
-    let t36 = select(0.0f, t35, t35 >= 0.0f);
-    let estimate2 = select(1023.0f, t36, t36 <= 1023.0f);
-    let up2 = select(
-        0.0f,
-        select(0.0f, 1.0f, t16 * x2 * 2.3841858e-7f >= estimate2 - 511.0f),
-        estimate2 < 1023.0f
-    );
-    let down2 = select(
-        0.0f,
-        select(0.0f, 1.0f, t16 * x2 * 2.3841858e-7f >= estimate2 - 1.0f - 511.0f) - 1.0f,
-        estimate2 > 0.0f
-    );
-    return vec3<f32>(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        select(0.0f, 1.0f, w2.z < 0.0f)
-    );
+    let t22 = select(h8, -h8, minor < 0.0f);
+    let t23 = major < 0.0f;
+    let x = select(t22 * 0.00048804283f, select(1023.5f, -1023.5f, t23), t12);
+    let t24 = round(r2 * x + 1023.5f);
+    let t25 = select(0.0f, t24, t24 >= 0.0f);
+    let estimate = select(2047.0f, t25, t25 <= 2047.0f);
+    let one_if2 = select(0.0f, 1.0f, t11 * x * 2.3841858e-7f >= estimate - 1023.0f);
+    let up = select(0.0f, one_if2, estimate < 2047.0f);
+    let one_if3 = select(0.0f, 1.0f, t11 * x * 2.3841858e-7f >= estimate - 1.0f - 1023.0f);
+    let down = select(0.0f, one_if3 - 1.0f, estimate > 0.0f);
+    let x2 = select(select(511.5f, -511.5f, t23), t22 * 0.0002439022f, t12);
+    let t26 = round(r2 * x2 + 511.5f);
+    let t27 = select(0.0f, t26, t26 >= 0.0f);
+    let estimate2 = select(1023.0f, t27, t27 <= 1023.0f);
+    let one_if4 = select(0.0f, 1.0f, t11 * x2 * 2.3841858e-7f >= estimate2 - 511.0f);
+    let up2 = select(0.0f, one_if4, estimate2 < 1023.0f);
+    let one_if5 = select(0.0f, 1.0f, t11 * x2 * 2.3841858e-7f >= estimate2 - 1.0f - 511.0f);
+    let down2 = select(0.0f, one_if5 - 1.0f, estimate2 > 0.0f);
+    return vec3<f32>(estimate + up + down, estimate2 + up2 + down2, one_if);
 }
 
 // unitpack_eqdist_concentric22_encode: fast encoder.

@@ -31,13 +31,13 @@ fn unitpack_eqdist_ellipse22_decode_float(params: vec3<f32>) -> vec3<f32> {
     let disk = s * sqrt(1.0f - s.yx * s.yx * 0.5f);
     let disk_sq = disk * disk;
     let q = disk_sq.x + disk_sq.y;
-    let t1 = ((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f);
-    let t2 = (((t1 * q + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q
-        + (-0.6459641f);
+    let t1 = (((6.0669356e-12f * q + (-6.688035e-10f)) * q + 5.6921728e-8f) * q + (-3.5988433e-6f))
+        * q;
+    let t2 = (((t1 + 0.00016044118f) * q + (-0.004681754f)) * q + 0.079692625f) * q + (-0.6459641f);
     let sinc = t2 * q + 1.5707964f;
-    let t3 = ((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f);
-    let t4 = (((t3 * q + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q
-        + (-1.2337005f);
+    let t3 = (((6.565963e-11f * q + (-6.3866032e-9f)) * q + 4.7108747e-7f) * q + (-2.5202042e-5f))
+        * q;
+    let t4 = (((t3 + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q + (-1.2337005f);
     let cosq = t4 * q + 1.0f;
     return vec3<f32>(disk * sinc, select(cosq, -cosq, params.z > 0.5f));
 }
@@ -49,8 +49,8 @@ fn unitpack_eqdist_ellipse22_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   rounding.
 // Portable as unitpack_eqdist_ellipse22_decode_float is, within the same bound.
 fn unitpack_eqdist_ellipse22_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 1u));
-    let params = t1 * vec3<f32>(0.0004885198f, 0.0009775171f, 1.0f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 1u))
+        * vec3<f32>(0.0004885198f, 0.0009775171f, 1.0f);
     return unitpack_eqdist_ellipse22_decode_float(params);
 }
 
@@ -68,8 +68,8 @@ fn unitpack_eqdist_ellipse22_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -92,22 +92,24 @@ fn unitpack_eqdist_ellipse22_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let t1 = w2.xy * w2.xy;
     let rho = sqrt(t1.x + t1.y);
     let half_r = unitpack_eqdist_ellipse22_atan2_pi(rho, abs(w2.z));
     let disk = w2.xy * (half_r / select(1.0f, rho, rho > 0.0f) * 2.0f);
     let t2 = abs(disk.yx);
     let t3 = disk + 1.4142135f - t2;
-    let t4 = sqrt(select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f)) * (disk + 1.4142135f + t2));
-    let t5 = -disk;
-    let t6 = t5 + 1.4142135f - t2;
-    let t7 = sqrt(select(vec2<f32>(0.0f), t6, t6 >= vec2<f32>(0.0f)) * (t5 + 1.4142135f + t2));
-    let square = disk / (t4 + t7);
+    let neg_disk = -disk;
+    let t4 = neg_disk + 1.4142135f - t2;
+    let t5 = sqrt(select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f)) * (disk + 1.4142135f + t2))
+        + sqrt(select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f)) * (neg_disk + 1.4142135f + t2));
+    let square = disk / t5;
     let enc = square * 1.4142135f + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -122,11 +124,14 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -147,18 +152,20 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = rho2_2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let rho = select(0.0f, root * root_up, t1);
     let abs_w2_z = abs(w2.z);
@@ -167,50 +174,45 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let y_major = abs_rho > abs_abs_w2_z;
     let hi4 = select(abs_abs_w2_z, abs_rho, y_major);
     let lo4 = select(abs_rho, abs_abs_w2_z, y_major);
-    let t6 = select(1.0f, hi4, hi4 > 0.0f);
+    let t3 = select(1.0f, hi4, hi4 > 0.0f);
     let big = lo4 * 8388608.0f;
-    let ratio_estimate = floor(lo4 / t6 * 8388608.0f);
-    let t7 = select(
-        select(0.0f, -1.0f, ratio_estimate * t6 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t6 <= big
-    );
-    let ratio = ratio_estimate + t7;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t6 > big), 1.0f, (ratio + 1.0f) * t6 <= big);
+    let ratio_estimate = floor(lo4 / t3 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t3 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t3 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t8 = t - 8388608.0f;
-    let t9 = t + 8388608.0f;
-    let big2 = t8 * 8388608.0f;
-    let ratio_estimate2 = floor(t8 / t9 * 8388608.0f);
-    let t10 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t9 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t9 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t10;
-    let t11 = select(select(0.0f, -1.0f, ratio2 * t9 > big2), 1.0f, (ratio2 + 1.0f) * t9 <= big2);
-    let ratio3 = ratio2 + t11;
+    let t4 = t - 8388608.0f;
+    let t5 = t + 8388608.0f;
+    let big2 = t4 * 8388608.0f;
+    let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t5 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t5 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t12 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t13 = round((round(t12 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t14 = round((round(t13 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t15 = round((round(t14 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t15 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t6 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t7 = (round((t6 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t8 = (round((round(t7) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t9 = round((round(t8 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t10 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, abs_w2_z < 0.0f);
-    let t16 = select(h4, -h4, rho < 0.0f);
-    let t17 = w2.x >= 0.0f;
-    let t18 = select(0.0f, 1024.0f, t17);
-    let t19 = select(1023.0f, 2047.0f, t17);
-    let mid = floor((t18 + t19 + 1.0f) * 0.5f);
-    let ell_t = (mid - 1.0f - 1023.0f) * 2.0f;
+    let t11 = select(h4, -h4, rho < 0.0f);
+    let t12 = w2.x >= 0.0f;
+    let t13 = select(0.0f, 1024.0f, t12);
+    let t14 = select(1023.0f, 2047.0f, t12);
+    let mid = floor((t13 + t14 + 1.0f) * 0.5f);
+    let mid_below = mid - 1.0f;
+    let ell_t = (mid_below - 1023.0f) * 2.0f;
     let ell_h = floor(ell_t * ell_t);
     let ell_g = 8380418.0f - ell_h;
     let ell_p = w2.x * w2.x * ell_g;
@@ -218,20 +220,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent = bitcast<u32>(select(ell_q, ell_p, ell_p >= ell_q)) >> 23u;
     let exponent2 = select(exponent, 40u, exponent < 40u);
     let exponent3 = select(exponent2, 254u, 254u < exponent2);
-    let t20 = bitcast<f32>((281u - exponent3) << 23u);
-    let ell_s = (floor(ell_p * t20) + floor(ell_q * t20)) * bitcast<f32>((exponent3 - 27u) << 23u);
-    let lhs = ell_s * t16 * t16 * 2.381858e-7f;
+    let scale2 = bitcast<f32>((281u - exponent3) << 23u);
+    let back = bitcast<f32>((exponent3 - 27u) << 23u);
+    let ell_s = (floor(ell_p * scale2) + floor(ell_q * scale2)) * back;
+    let lhs = ell_s * t11 * t11 * 2.381858e-7f;
     let rhs = ell_h * ell_g * rho2_2;
-    let t21 = select(
-        select(select(0.0f, 1.0f, lhs <= rhs), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs >= rhs), w2.x > 0.0f),
-        ell_t > 0.0f
-    );
-    let beyond = t21 > 0.5f;
-    let lo5 = select(t18, mid, beyond);
-    let hi5 = select(mid - 1.0f, t19, beyond);
+    let one_if = select(0.0f, 1.0f, lhs >= rhs);
+    let outside = select(0.0f, one_if, w2.x > 0.0f);
+    let one_if2 = select(0.0f, 1.0f, lhs <= rhs);
+    let inside = select(one_if2, 1.0f, w2.x >= 0.0f);
+    let beyond = select(inside, outside, ell_t > 0.0f) > 0.5f;
+    let lo5 = select(t13, mid, beyond);
+    let hi5 = select(mid_below, t14, beyond);
     let mid2 = floor((lo5 + hi5 + 1.0f) * 0.5f);
-    let ell_t2 = (mid2 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below2 = mid2 - 1.0f;
+    let ell_t2 = (mid_below2 - 1023.0f) * 2.0f;
     let ell_h2 = floor(ell_t2 * ell_t2);
     let ell_g2 = 8380418.0f - ell_h2;
     let ell_p2 = w2.x * w2.x * ell_g2;
@@ -239,21 +242,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent4 = bitcast<u32>(select(ell_q2, ell_p2, ell_p2 >= ell_q2)) >> 23u;
     let exponent5 = select(exponent4, 40u, exponent4 < 40u);
     let exponent6 = select(exponent5, 254u, 254u < exponent5);
-    let t22 = bitcast<f32>((281u - exponent6) << 23u);
-    let ell_s2 = (floor(ell_p2 * t22) + floor(ell_q2 * t22))
-        * bitcast<f32>((exponent6 - 27u) << 23u);
-    let lhs2 = ell_s2 * t16 * t16 * 2.381858e-7f;
+    let scale3 = bitcast<f32>((281u - exponent6) << 23u);
+    let back2 = bitcast<f32>((exponent6 - 27u) << 23u);
+    let ell_s2 = (floor(ell_p2 * scale3) + floor(ell_q2 * scale3)) * back2;
+    let lhs2 = ell_s2 * t11 * t11 * 2.381858e-7f;
     let rhs2 = ell_h2 * ell_g2 * rho2_2;
-    let t23 = select(
-        select(select(0.0f, 1.0f, lhs2 <= rhs2), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs2 >= rhs2), w2.x > 0.0f),
-        ell_t2 > 0.0f
-    );
-    let beyond2 = t23 > 0.5f;
+    let one_if3 = select(0.0f, 1.0f, lhs2 >= rhs2);
+    let outside2 = select(0.0f, one_if3, w2.x > 0.0f);
+    let one_if4 = select(0.0f, 1.0f, lhs2 <= rhs2);
+    let inside2 = select(one_if4, 1.0f, w2.x >= 0.0f);
+    let beyond2 = select(inside2, outside2, ell_t2 > 0.0f) > 0.5f;
     let lo6 = select(lo5, mid2, beyond2);
-    let hi6 = select(mid2 - 1.0f, hi5, beyond2);
+    let hi6 = select(mid_below2, hi5, beyond2);
     let mid3 = floor((lo6 + hi6 + 1.0f) * 0.5f);
-    let ell_t3 = (mid3 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below3 = mid3 - 1.0f;
+    let ell_t3 = (mid_below3 - 1023.0f) * 2.0f;
     let ell_h3 = floor(ell_t3 * ell_t3);
     let ell_g3 = 8380418.0f - ell_h3;
     let ell_p3 = w2.x * w2.x * ell_g3;
@@ -261,21 +264,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent7 = bitcast<u32>(select(ell_q3, ell_p3, ell_p3 >= ell_q3)) >> 23u;
     let exponent8 = select(exponent7, 40u, exponent7 < 40u);
     let exponent9 = select(exponent8, 254u, 254u < exponent8);
-    let t24 = bitcast<f32>((281u - exponent9) << 23u);
-    let ell_s3 = (floor(ell_p3 * t24) + floor(ell_q3 * t24))
-        * bitcast<f32>((exponent9 - 27u) << 23u);
-    let lhs3 = ell_s3 * t16 * t16 * 2.381858e-7f;
+    let scale4 = bitcast<f32>((281u - exponent9) << 23u);
+    let back3 = bitcast<f32>((exponent9 - 27u) << 23u);
+    let ell_s3 = (floor(ell_p3 * scale4) + floor(ell_q3 * scale4)) * back3;
+    let lhs3 = ell_s3 * t11 * t11 * 2.381858e-7f;
     let rhs3 = ell_h3 * ell_g3 * rho2_2;
-    let t25 = select(
-        select(select(0.0f, 1.0f, lhs3 <= rhs3), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs3 >= rhs3), w2.x > 0.0f),
-        ell_t3 > 0.0f
-    );
-    let beyond3 = t25 > 0.5f;
+    let one_if5 = select(0.0f, 1.0f, lhs3 >= rhs3);
+    let outside3 = select(0.0f, one_if5, w2.x > 0.0f);
+    let one_if6 = select(0.0f, 1.0f, lhs3 <= rhs3);
+    let inside3 = select(one_if6, 1.0f, w2.x >= 0.0f);
+    let beyond3 = select(inside3, outside3, ell_t3 > 0.0f) > 0.5f;
     let lo7 = select(lo6, mid3, beyond3);
-    let hi7 = select(mid3 - 1.0f, hi6, beyond3);
+    let hi7 = select(mid_below3, hi6, beyond3);
     let mid4 = floor((lo7 + hi7 + 1.0f) * 0.5f);
-    let ell_t4 = (mid4 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below4 = mid4 - 1.0f;
+    let ell_t4 = (mid_below4 - 1023.0f) * 2.0f;
     let ell_h4 = floor(ell_t4 * ell_t4);
     let ell_g4 = 8380418.0f - ell_h4;
     let ell_p4 = w2.x * w2.x * ell_g4;
@@ -283,21 +286,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent10 = bitcast<u32>(select(ell_q4, ell_p4, ell_p4 >= ell_q4)) >> 23u;
     let exponent11 = select(exponent10, 40u, exponent10 < 40u);
     let exponent12 = select(exponent11, 254u, 254u < exponent11);
-    let t26 = bitcast<f32>((281u - exponent12) << 23u);
-    let ell_s4 = (floor(ell_p4 * t26) + floor(ell_q4 * t26))
-        * bitcast<f32>((exponent12 - 27u) << 23u);
-    let lhs4 = ell_s4 * t16 * t16 * 2.381858e-7f;
+    let scale5 = bitcast<f32>((281u - exponent12) << 23u);
+    let back4 = bitcast<f32>((exponent12 - 27u) << 23u);
+    let ell_s4 = (floor(ell_p4 * scale5) + floor(ell_q4 * scale5)) * back4;
+    let lhs4 = ell_s4 * t11 * t11 * 2.381858e-7f;
     let rhs4 = ell_h4 * ell_g4 * rho2_2;
-    let t27 = select(
-        select(select(0.0f, 1.0f, lhs4 <= rhs4), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs4 >= rhs4), w2.x > 0.0f),
-        ell_t4 > 0.0f
-    );
-    let beyond4 = t27 > 0.5f;
+    let one_if7 = select(0.0f, 1.0f, lhs4 >= rhs4);
+    let outside4 = select(0.0f, one_if7, w2.x > 0.0f);
+    let one_if8 = select(0.0f, 1.0f, lhs4 <= rhs4);
+    let inside4 = select(one_if8, 1.0f, w2.x >= 0.0f);
+    let beyond4 = select(inside4, outside4, ell_t4 > 0.0f) > 0.5f;
     let lo8 = select(lo7, mid4, beyond4);
-    let hi8 = select(mid4 - 1.0f, hi7, beyond4);
+    let hi8 = select(mid_below4, hi7, beyond4);
     let mid5 = floor((lo8 + hi8 + 1.0f) * 0.5f);
-    let ell_t5 = (mid5 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below5 = mid5 - 1.0f;
+    let ell_t5 = (mid_below5 - 1023.0f) * 2.0f;
     let ell_h5 = floor(ell_t5 * ell_t5);
     let ell_g5 = 8380418.0f - ell_h5;
     let ell_p5 = w2.x * w2.x * ell_g5;
@@ -305,21 +308,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent13 = bitcast<u32>(select(ell_q5, ell_p5, ell_p5 >= ell_q5)) >> 23u;
     let exponent14 = select(exponent13, 40u, exponent13 < 40u);
     let exponent15 = select(exponent14, 254u, 254u < exponent14);
-    let t28 = bitcast<f32>((281u - exponent15) << 23u);
-    let ell_s5 = (floor(ell_p5 * t28) + floor(ell_q5 * t28))
-        * bitcast<f32>((exponent15 - 27u) << 23u);
-    let lhs5 = ell_s5 * t16 * t16 * 2.381858e-7f;
+    let scale6 = bitcast<f32>((281u - exponent15) << 23u);
+    let back5 = bitcast<f32>((exponent15 - 27u) << 23u);
+    let ell_s5 = (floor(ell_p5 * scale6) + floor(ell_q5 * scale6)) * back5;
+    let lhs5 = ell_s5 * t11 * t11 * 2.381858e-7f;
     let rhs5 = ell_h5 * ell_g5 * rho2_2;
-    let t29 = select(
-        select(select(0.0f, 1.0f, lhs5 <= rhs5), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs5 >= rhs5), w2.x > 0.0f),
-        ell_t5 > 0.0f
-    );
-    let beyond5 = t29 > 0.5f;
+    let one_if9 = select(0.0f, 1.0f, lhs5 >= rhs5);
+    let outside5 = select(0.0f, one_if9, w2.x > 0.0f);
+    let one_if10 = select(0.0f, 1.0f, lhs5 <= rhs5);
+    let inside5 = select(one_if10, 1.0f, w2.x >= 0.0f);
+    let beyond5 = select(inside5, outside5, ell_t5 > 0.0f) > 0.5f;
     let lo9 = select(lo8, mid5, beyond5);
-    let hi9 = select(mid5 - 1.0f, hi8, beyond5);
+    let hi9 = select(mid_below5, hi8, beyond5);
     let mid6 = floor((lo9 + hi9 + 1.0f) * 0.5f);
-    let ell_t6 = (mid6 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below6 = mid6 - 1.0f;
+    let ell_t6 = (mid_below6 - 1023.0f) * 2.0f;
     let ell_h6 = floor(ell_t6 * ell_t6);
     let ell_g6 = 8380418.0f - ell_h6;
     let ell_p6 = w2.x * w2.x * ell_g6;
@@ -327,21 +330,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent16 = bitcast<u32>(select(ell_q6, ell_p6, ell_p6 >= ell_q6)) >> 23u;
     let exponent17 = select(exponent16, 40u, exponent16 < 40u);
     let exponent18 = select(exponent17, 254u, 254u < exponent17);
-    let t30 = bitcast<f32>((281u - exponent18) << 23u);
-    let ell_s6 = (floor(ell_p6 * t30) + floor(ell_q6 * t30))
-        * bitcast<f32>((exponent18 - 27u) << 23u);
-    let lhs6 = ell_s6 * t16 * t16 * 2.381858e-7f;
+    let scale7 = bitcast<f32>((281u - exponent18) << 23u);
+    let back6 = bitcast<f32>((exponent18 - 27u) << 23u);
+    let ell_s6 = (floor(ell_p6 * scale7) + floor(ell_q6 * scale7)) * back6;
+    let lhs6 = ell_s6 * t11 * t11 * 2.381858e-7f;
     let rhs6 = ell_h6 * ell_g6 * rho2_2;
-    let t31 = select(
-        select(select(0.0f, 1.0f, lhs6 <= rhs6), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs6 >= rhs6), w2.x > 0.0f),
-        ell_t6 > 0.0f
-    );
-    let beyond6 = t31 > 0.5f;
+    let one_if11 = select(0.0f, 1.0f, lhs6 >= rhs6);
+    let outside6 = select(0.0f, one_if11, w2.x > 0.0f);
+    let one_if12 = select(0.0f, 1.0f, lhs6 <= rhs6);
+    let inside6 = select(one_if12, 1.0f, w2.x >= 0.0f);
+    let beyond6 = select(inside6, outside6, ell_t6 > 0.0f) > 0.5f;
     let lo10 = select(lo9, mid6, beyond6);
-    let hi10 = select(mid6 - 1.0f, hi9, beyond6);
+    let hi10 = select(mid_below6, hi9, beyond6);
     let mid7 = floor((lo10 + hi10 + 1.0f) * 0.5f);
-    let ell_t7 = (mid7 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below7 = mid7 - 1.0f;
+    let ell_t7 = (mid_below7 - 1023.0f) * 2.0f;
     let ell_h7 = floor(ell_t7 * ell_t7);
     let ell_g7 = 8380418.0f - ell_h7;
     let ell_p7 = w2.x * w2.x * ell_g7;
@@ -349,21 +352,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent19 = bitcast<u32>(select(ell_q7, ell_p7, ell_p7 >= ell_q7)) >> 23u;
     let exponent20 = select(exponent19, 40u, exponent19 < 40u);
     let exponent21 = select(exponent20, 254u, 254u < exponent20);
-    let t32 = bitcast<f32>((281u - exponent21) << 23u);
-    let ell_s7 = (floor(ell_p7 * t32) + floor(ell_q7 * t32))
-        * bitcast<f32>((exponent21 - 27u) << 23u);
-    let lhs7 = ell_s7 * t16 * t16 * 2.381858e-7f;
+    let scale8 = bitcast<f32>((281u - exponent21) << 23u);
+    let back7 = bitcast<f32>((exponent21 - 27u) << 23u);
+    let ell_s7 = (floor(ell_p7 * scale8) + floor(ell_q7 * scale8)) * back7;
+    let lhs7 = ell_s7 * t11 * t11 * 2.381858e-7f;
     let rhs7 = ell_h7 * ell_g7 * rho2_2;
-    let t33 = select(
-        select(select(0.0f, 1.0f, lhs7 <= rhs7), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs7 >= rhs7), w2.x > 0.0f),
-        ell_t7 > 0.0f
-    );
-    let beyond7 = t33 > 0.5f;
+    let one_if13 = select(0.0f, 1.0f, lhs7 >= rhs7);
+    let outside7 = select(0.0f, one_if13, w2.x > 0.0f);
+    let one_if14 = select(0.0f, 1.0f, lhs7 <= rhs7);
+    let inside7 = select(one_if14, 1.0f, w2.x >= 0.0f);
+    let beyond7 = select(inside7, outside7, ell_t7 > 0.0f) > 0.5f;
     let lo11 = select(lo10, mid7, beyond7);
-    let hi11 = select(mid7 - 1.0f, hi10, beyond7);
+    let hi11 = select(mid_below7, hi10, beyond7);
     let mid8 = floor((lo11 + hi11 + 1.0f) * 0.5f);
-    let ell_t8 = (mid8 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below8 = mid8 - 1.0f;
+    let ell_t8 = (mid_below8 - 1023.0f) * 2.0f;
     let ell_h8 = floor(ell_t8 * ell_t8);
     let ell_g8 = 8380418.0f - ell_h8;
     let ell_p8 = w2.x * w2.x * ell_g8;
@@ -371,21 +374,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent22 = bitcast<u32>(select(ell_q8, ell_p8, ell_p8 >= ell_q8)) >> 23u;
     let exponent23 = select(exponent22, 40u, exponent22 < 40u);
     let exponent24 = select(exponent23, 254u, 254u < exponent23);
-    let t34 = bitcast<f32>((281u - exponent24) << 23u);
-    let ell_s8 = (floor(ell_p8 * t34) + floor(ell_q8 * t34))
-        * bitcast<f32>((exponent24 - 27u) << 23u);
-    let lhs8 = ell_s8 * t16 * t16 * 2.381858e-7f;
+    let scale9 = bitcast<f32>((281u - exponent24) << 23u);
+    let back8 = bitcast<f32>((exponent24 - 27u) << 23u);
+    let ell_s8 = (floor(ell_p8 * scale9) + floor(ell_q8 * scale9)) * back8;
+    let lhs8 = ell_s8 * t11 * t11 * 2.381858e-7f;
     let rhs8 = ell_h8 * ell_g8 * rho2_2;
-    let t35 = select(
-        select(select(0.0f, 1.0f, lhs8 <= rhs8), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs8 >= rhs8), w2.x > 0.0f),
-        ell_t8 > 0.0f
-    );
-    let beyond8 = t35 > 0.5f;
+    let one_if15 = select(0.0f, 1.0f, lhs8 >= rhs8);
+    let outside8 = select(0.0f, one_if15, w2.x > 0.0f);
+    let one_if16 = select(0.0f, 1.0f, lhs8 <= rhs8);
+    let inside8 = select(one_if16, 1.0f, w2.x >= 0.0f);
+    let beyond8 = select(inside8, outside8, ell_t8 > 0.0f) > 0.5f;
     let lo12 = select(lo11, mid8, beyond8);
-    let hi12 = select(mid8 - 1.0f, hi11, beyond8);
+    let hi12 = select(mid_below8, hi11, beyond8);
     let mid9 = floor((lo12 + hi12 + 1.0f) * 0.5f);
-    let ell_t9 = (mid9 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below9 = mid9 - 1.0f;
+    let ell_t9 = (mid_below9 - 1023.0f) * 2.0f;
     let ell_h9 = floor(ell_t9 * ell_t9);
     let ell_g9 = 8380418.0f - ell_h9;
     let ell_p9 = w2.x * w2.x * ell_g9;
@@ -393,21 +396,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent25 = bitcast<u32>(select(ell_q9, ell_p9, ell_p9 >= ell_q9)) >> 23u;
     let exponent26 = select(exponent25, 40u, exponent25 < 40u);
     let exponent27 = select(exponent26, 254u, 254u < exponent26);
-    let t36 = bitcast<f32>((281u - exponent27) << 23u);
-    let ell_s9 = (floor(ell_p9 * t36) + floor(ell_q9 * t36))
-        * bitcast<f32>((exponent27 - 27u) << 23u);
-    let lhs9 = ell_s9 * t16 * t16 * 2.381858e-7f;
+    let scale10 = bitcast<f32>((281u - exponent27) << 23u);
+    let back9 = bitcast<f32>((exponent27 - 27u) << 23u);
+    let ell_s9 = (floor(ell_p9 * scale10) + floor(ell_q9 * scale10)) * back9;
+    let lhs9 = ell_s9 * t11 * t11 * 2.381858e-7f;
     let rhs9 = ell_h9 * ell_g9 * rho2_2;
-    let t37 = select(
-        select(select(0.0f, 1.0f, lhs9 <= rhs9), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs9 >= rhs9), w2.x > 0.0f),
-        ell_t9 > 0.0f
-    );
-    let beyond9 = t37 > 0.5f;
+    let one_if17 = select(0.0f, 1.0f, lhs9 >= rhs9);
+    let outside9 = select(0.0f, one_if17, w2.x > 0.0f);
+    let one_if18 = select(0.0f, 1.0f, lhs9 <= rhs9);
+    let inside9 = select(one_if18, 1.0f, w2.x >= 0.0f);
+    let beyond9 = select(inside9, outside9, ell_t9 > 0.0f) > 0.5f;
     let lo13 = select(lo12, mid9, beyond9);
-    let hi13 = select(mid9 - 1.0f, hi12, beyond9);
+    let hi13 = select(mid_below9, hi12, beyond9);
     let mid10 = floor((lo13 + hi13 + 1.0f) * 0.5f);
-    let ell_t10 = (mid10 - 1.0f - 1023.0f) * 2.0f;
+    let mid_below10 = mid10 - 1.0f;
+    let ell_t10 = (mid_below10 - 1023.0f) * 2.0f;
     let ell_h10 = floor(ell_t10 * ell_t10);
     let ell_g10 = 8380418.0f - ell_h10;
     let ell_p10 = w2.x * w2.x * ell_g10;
@@ -415,22 +418,22 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent28 = bitcast<u32>(select(ell_q10, ell_p10, ell_p10 >= ell_q10)) >> 23u;
     let exponent29 = select(exponent28, 40u, exponent28 < 40u);
     let exponent30 = select(exponent29, 254u, 254u < exponent29);
-    let t38 = bitcast<f32>((281u - exponent30) << 23u);
-    let ell_s10 = (floor(ell_p10 * t38) + floor(ell_q10 * t38))
-        * bitcast<f32>((exponent30 - 27u) << 23u);
-    let lhs10 = ell_s10 * t16 * t16 * 2.381858e-7f;
+    let scale11 = bitcast<f32>((281u - exponent30) << 23u);
+    let back10 = bitcast<f32>((exponent30 - 27u) << 23u);
+    let ell_s10 = (floor(ell_p10 * scale11) + floor(ell_q10 * scale11)) * back10;
+    let lhs10 = ell_s10 * t11 * t11 * 2.381858e-7f;
     let rhs10 = ell_h10 * ell_g10 * rho2_2;
-    let t39 = select(
-        select(select(0.0f, 1.0f, lhs10 <= rhs10), 1.0f, w2.x >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs10 >= rhs10), w2.x > 0.0f),
-        ell_t10 > 0.0f
-    );
-    let beyond10 = t39 > 0.5f;
-    let t40 = w2.y >= 0.0f;
-    let t41 = select(0.0f, 512.0f, t40);
-    let t42 = select(511.0f, 1023.0f, t40);
-    let mid11 = floor((t41 + t42 + 1.0f) * 0.5f);
-    let ell_t11 = (mid11 - 1.0f - 511.0f) * 2.0f;
+    let one_if19 = select(0.0f, 1.0f, lhs10 >= rhs10);
+    let outside10 = select(0.0f, one_if19, w2.x > 0.0f);
+    let one_if20 = select(0.0f, 1.0f, lhs10 <= rhs10);
+    let inside10 = select(one_if20, 1.0f, w2.x >= 0.0f);
+    let beyond10 = select(inside10, outside10, ell_t10 > 0.0f) > 0.5f;
+    let t15 = w2.y >= 0.0f;
+    let t16 = select(0.0f, 512.0f, t15);
+    let t17 = select(511.0f, 1023.0f, t15);
+    let mid11 = floor((t16 + t17 + 1.0f) * 0.5f);
+    let mid_below11 = mid11 - 1.0f;
+    let ell_t11 = (mid_below11 - 511.0f) * 2.0f;
     let ell_h11 = floor(ell_t11 * ell_t11);
     let ell_g11 = 2093058.0f - ell_h11;
     let ell_p11 = w2.y * w2.y * ell_g11;
@@ -438,21 +441,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent31 = bitcast<u32>(select(ell_q11, ell_p11, ell_p11 >= ell_q11)) >> 23u;
     let exponent32 = select(exponent31, 40u, exponent31 < 40u);
     let exponent33 = select(exponent32, 254u, 254u < exponent32);
-    let t43 = bitcast<f32>((281u - exponent33) << 23u);
-    let ell_s11 = (floor(ell_p11 * t43) + floor(ell_q11 * t43))
-        * bitcast<f32>((exponent33 - 27u) << 23u);
-    let lhs11 = ell_s11 * t16 * t16 * 5.9488286e-8f;
+    let scale12 = bitcast<f32>((281u - exponent33) << 23u);
+    let back11 = bitcast<f32>((exponent33 - 27u) << 23u);
+    let ell_s11 = (floor(ell_p11 * scale12) + floor(ell_q11 * scale12)) * back11;
+    let lhs11 = ell_s11 * t11 * t11 * 5.9488286e-8f;
     let rhs11 = ell_h11 * ell_g11 * rho2_2;
-    let t44 = select(
-        select(select(0.0f, 1.0f, lhs11 <= rhs11), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs11 >= rhs11), w2.y > 0.0f),
-        ell_t11 > 0.0f
-    );
-    let beyond11 = t44 > 0.5f;
-    let lo14 = select(t41, mid11, beyond11);
-    let hi14 = select(mid11 - 1.0f, t42, beyond11);
+    let one_if21 = select(0.0f, 1.0f, lhs11 >= rhs11);
+    let outside11 = select(0.0f, one_if21, w2.y > 0.0f);
+    let one_if22 = select(0.0f, 1.0f, lhs11 <= rhs11);
+    let inside11 = select(one_if22, 1.0f, w2.y >= 0.0f);
+    let beyond11 = select(inside11, outside11, ell_t11 > 0.0f) > 0.5f;
+    let lo14 = select(t16, mid11, beyond11);
+    let hi14 = select(mid_below11, t17, beyond11);
     let mid12 = floor((lo14 + hi14 + 1.0f) * 0.5f);
-    let ell_t12 = (mid12 - 1.0f - 511.0f) * 2.0f;
+    let mid_below12 = mid12 - 1.0f;
+    let ell_t12 = (mid_below12 - 511.0f) * 2.0f;
     let ell_h12 = floor(ell_t12 * ell_t12);
     let ell_g12 = 2093058.0f - ell_h12;
     let ell_p12 = w2.y * w2.y * ell_g12;
@@ -460,21 +463,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent34 = bitcast<u32>(select(ell_q12, ell_p12, ell_p12 >= ell_q12)) >> 23u;
     let exponent35 = select(exponent34, 40u, exponent34 < 40u);
     let exponent36 = select(exponent35, 254u, 254u < exponent35);
-    let t45 = bitcast<f32>((281u - exponent36) << 23u);
-    let ell_s12 = (floor(ell_p12 * t45) + floor(ell_q12 * t45))
-        * bitcast<f32>((exponent36 - 27u) << 23u);
-    let lhs12 = ell_s12 * t16 * t16 * 5.9488286e-8f;
+    let scale13 = bitcast<f32>((281u - exponent36) << 23u);
+    let back12 = bitcast<f32>((exponent36 - 27u) << 23u);
+    let ell_s12 = (floor(ell_p12 * scale13) + floor(ell_q12 * scale13)) * back12;
+    let lhs12 = ell_s12 * t11 * t11 * 5.9488286e-8f;
     let rhs12 = ell_h12 * ell_g12 * rho2_2;
-    let t46 = select(
-        select(select(0.0f, 1.0f, lhs12 <= rhs12), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs12 >= rhs12), w2.y > 0.0f),
-        ell_t12 > 0.0f
-    );
-    let beyond12 = t46 > 0.5f;
+    let one_if23 = select(0.0f, 1.0f, lhs12 >= rhs12);
+    let outside12 = select(0.0f, one_if23, w2.y > 0.0f);
+    let one_if24 = select(0.0f, 1.0f, lhs12 <= rhs12);
+    let inside12 = select(one_if24, 1.0f, w2.y >= 0.0f);
+    let beyond12 = select(inside12, outside12, ell_t12 > 0.0f) > 0.5f;
     let lo15 = select(lo14, mid12, beyond12);
-    let hi15 = select(mid12 - 1.0f, hi14, beyond12);
+    let hi15 = select(mid_below12, hi14, beyond12);
     let mid13 = floor((lo15 + hi15 + 1.0f) * 0.5f);
-    let ell_t13 = (mid13 - 1.0f - 511.0f) * 2.0f;
+    let mid_below13 = mid13 - 1.0f;
+    let ell_t13 = (mid_below13 - 511.0f) * 2.0f;
     let ell_h13 = floor(ell_t13 * ell_t13);
     let ell_g13 = 2093058.0f - ell_h13;
     let ell_p13 = w2.y * w2.y * ell_g13;
@@ -482,21 +485,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent37 = bitcast<u32>(select(ell_q13, ell_p13, ell_p13 >= ell_q13)) >> 23u;
     let exponent38 = select(exponent37, 40u, exponent37 < 40u);
     let exponent39 = select(exponent38, 254u, 254u < exponent38);
-    let t47 = bitcast<f32>((281u - exponent39) << 23u);
-    let ell_s13 = (floor(ell_p13 * t47) + floor(ell_q13 * t47))
-        * bitcast<f32>((exponent39 - 27u) << 23u);
-    let lhs13 = ell_s13 * t16 * t16 * 5.9488286e-8f;
+    let scale14 = bitcast<f32>((281u - exponent39) << 23u);
+    let back13 = bitcast<f32>((exponent39 - 27u) << 23u);
+    let ell_s13 = (floor(ell_p13 * scale14) + floor(ell_q13 * scale14)) * back13;
+    let lhs13 = ell_s13 * t11 * t11 * 5.9488286e-8f;
     let rhs13 = ell_h13 * ell_g13 * rho2_2;
-    let t48 = select(
-        select(select(0.0f, 1.0f, lhs13 <= rhs13), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs13 >= rhs13), w2.y > 0.0f),
-        ell_t13 > 0.0f
-    );
-    let beyond13 = t48 > 0.5f;
+    let one_if25 = select(0.0f, 1.0f, lhs13 >= rhs13);
+    let outside13 = select(0.0f, one_if25, w2.y > 0.0f);
+    let one_if26 = select(0.0f, 1.0f, lhs13 <= rhs13);
+    let inside13 = select(one_if26, 1.0f, w2.y >= 0.0f);
+    let beyond13 = select(inside13, outside13, ell_t13 > 0.0f) > 0.5f;
     let lo16 = select(lo15, mid13, beyond13);
-    let hi16 = select(mid13 - 1.0f, hi15, beyond13);
+    let hi16 = select(mid_below13, hi15, beyond13);
     let mid14 = floor((lo16 + hi16 + 1.0f) * 0.5f);
-    let ell_t14 = (mid14 - 1.0f - 511.0f) * 2.0f;
+    let mid_below14 = mid14 - 1.0f;
+    let ell_t14 = (mid_below14 - 511.0f) * 2.0f;
     let ell_h14 = floor(ell_t14 * ell_t14);
     let ell_g14 = 2093058.0f - ell_h14;
     let ell_p14 = w2.y * w2.y * ell_g14;
@@ -504,21 +507,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent40 = bitcast<u32>(select(ell_q14, ell_p14, ell_p14 >= ell_q14)) >> 23u;
     let exponent41 = select(exponent40, 40u, exponent40 < 40u);
     let exponent42 = select(exponent41, 254u, 254u < exponent41);
-    let t49 = bitcast<f32>((281u - exponent42) << 23u);
-    let ell_s14 = (floor(ell_p14 * t49) + floor(ell_q14 * t49))
-        * bitcast<f32>((exponent42 - 27u) << 23u);
-    let lhs14 = ell_s14 * t16 * t16 * 5.9488286e-8f;
+    let scale15 = bitcast<f32>((281u - exponent42) << 23u);
+    let back14 = bitcast<f32>((exponent42 - 27u) << 23u);
+    let ell_s14 = (floor(ell_p14 * scale15) + floor(ell_q14 * scale15)) * back14;
+    let lhs14 = ell_s14 * t11 * t11 * 5.9488286e-8f;
     let rhs14 = ell_h14 * ell_g14 * rho2_2;
-    let t50 = select(
-        select(select(0.0f, 1.0f, lhs14 <= rhs14), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs14 >= rhs14), w2.y > 0.0f),
-        ell_t14 > 0.0f
-    );
-    let beyond14 = t50 > 0.5f;
+    let one_if27 = select(0.0f, 1.0f, lhs14 >= rhs14);
+    let outside14 = select(0.0f, one_if27, w2.y > 0.0f);
+    let one_if28 = select(0.0f, 1.0f, lhs14 <= rhs14);
+    let inside14 = select(one_if28, 1.0f, w2.y >= 0.0f);
+    let beyond14 = select(inside14, outside14, ell_t14 > 0.0f) > 0.5f;
     let lo17 = select(lo16, mid14, beyond14);
-    let hi17 = select(mid14 - 1.0f, hi16, beyond14);
+    let hi17 = select(mid_below14, hi16, beyond14);
     let mid15 = floor((lo17 + hi17 + 1.0f) * 0.5f);
-    let ell_t15 = (mid15 - 1.0f - 511.0f) * 2.0f;
+    let mid_below15 = mid15 - 1.0f;
+    let ell_t15 = (mid_below15 - 511.0f) * 2.0f;
     let ell_h15 = floor(ell_t15 * ell_t15);
     let ell_g15 = 2093058.0f - ell_h15;
     let ell_p15 = w2.y * w2.y * ell_g15;
@@ -526,21 +529,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent43 = bitcast<u32>(select(ell_q15, ell_p15, ell_p15 >= ell_q15)) >> 23u;
     let exponent44 = select(exponent43, 40u, exponent43 < 40u);
     let exponent45 = select(exponent44, 254u, 254u < exponent44);
-    let t51 = bitcast<f32>((281u - exponent45) << 23u);
-    let ell_s15 = (floor(ell_p15 * t51) + floor(ell_q15 * t51))
-        * bitcast<f32>((exponent45 - 27u) << 23u);
-    let lhs15 = ell_s15 * t16 * t16 * 5.9488286e-8f;
+    let scale16 = bitcast<f32>((281u - exponent45) << 23u);
+    let back15 = bitcast<f32>((exponent45 - 27u) << 23u);
+    let ell_s15 = (floor(ell_p15 * scale16) + floor(ell_q15 * scale16)) * back15;
+    let lhs15 = ell_s15 * t11 * t11 * 5.9488286e-8f;
     let rhs15 = ell_h15 * ell_g15 * rho2_2;
-    let t52 = select(
-        select(select(0.0f, 1.0f, lhs15 <= rhs15), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs15 >= rhs15), w2.y > 0.0f),
-        ell_t15 > 0.0f
-    );
-    let beyond15 = t52 > 0.5f;
+    let one_if29 = select(0.0f, 1.0f, lhs15 >= rhs15);
+    let outside15 = select(0.0f, one_if29, w2.y > 0.0f);
+    let one_if30 = select(0.0f, 1.0f, lhs15 <= rhs15);
+    let inside15 = select(one_if30, 1.0f, w2.y >= 0.0f);
+    let beyond15 = select(inside15, outside15, ell_t15 > 0.0f) > 0.5f;
     let lo18 = select(lo17, mid15, beyond15);
-    let hi18 = select(mid15 - 1.0f, hi17, beyond15);
+    let hi18 = select(mid_below15, hi17, beyond15);
     let mid16 = floor((lo18 + hi18 + 1.0f) * 0.5f);
-    let ell_t16 = (mid16 - 1.0f - 511.0f) * 2.0f;
+    let mid_below16 = mid16 - 1.0f;
+    let ell_t16 = (mid_below16 - 511.0f) * 2.0f;
     let ell_h16 = floor(ell_t16 * ell_t16);
     let ell_g16 = 2093058.0f - ell_h16;
     let ell_p16 = w2.y * w2.y * ell_g16;
@@ -548,21 +551,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent46 = bitcast<u32>(select(ell_q16, ell_p16, ell_p16 >= ell_q16)) >> 23u;
     let exponent47 = select(exponent46, 40u, exponent46 < 40u);
     let exponent48 = select(exponent47, 254u, 254u < exponent47);
-    let t53 = bitcast<f32>((281u - exponent48) << 23u);
-    let ell_s16 = (floor(ell_p16 * t53) + floor(ell_q16 * t53))
-        * bitcast<f32>((exponent48 - 27u) << 23u);
-    let lhs16 = ell_s16 * t16 * t16 * 5.9488286e-8f;
+    let scale17 = bitcast<f32>((281u - exponent48) << 23u);
+    let back16 = bitcast<f32>((exponent48 - 27u) << 23u);
+    let ell_s16 = (floor(ell_p16 * scale17) + floor(ell_q16 * scale17)) * back16;
+    let lhs16 = ell_s16 * t11 * t11 * 5.9488286e-8f;
     let rhs16 = ell_h16 * ell_g16 * rho2_2;
-    let t54 = select(
-        select(select(0.0f, 1.0f, lhs16 <= rhs16), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs16 >= rhs16), w2.y > 0.0f),
-        ell_t16 > 0.0f
-    );
-    let beyond16 = t54 > 0.5f;
+    let one_if31 = select(0.0f, 1.0f, lhs16 >= rhs16);
+    let outside16 = select(0.0f, one_if31, w2.y > 0.0f);
+    let one_if32 = select(0.0f, 1.0f, lhs16 <= rhs16);
+    let inside16 = select(one_if32, 1.0f, w2.y >= 0.0f);
+    let beyond16 = select(inside16, outside16, ell_t16 > 0.0f) > 0.5f;
     let lo19 = select(lo18, mid16, beyond16);
-    let hi19 = select(mid16 - 1.0f, hi18, beyond16);
+    let hi19 = select(mid_below16, hi18, beyond16);
     let mid17 = floor((lo19 + hi19 + 1.0f) * 0.5f);
-    let ell_t17 = (mid17 - 1.0f - 511.0f) * 2.0f;
+    let mid_below17 = mid17 - 1.0f;
+    let ell_t17 = (mid_below17 - 511.0f) * 2.0f;
     let ell_h17 = floor(ell_t17 * ell_t17);
     let ell_g17 = 2093058.0f - ell_h17;
     let ell_p17 = w2.y * w2.y * ell_g17;
@@ -570,21 +573,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent49 = bitcast<u32>(select(ell_q17, ell_p17, ell_p17 >= ell_q17)) >> 23u;
     let exponent50 = select(exponent49, 40u, exponent49 < 40u);
     let exponent51 = select(exponent50, 254u, 254u < exponent50);
-    let t55 = bitcast<f32>((281u - exponent51) << 23u);
-    let ell_s17 = (floor(ell_p17 * t55) + floor(ell_q17 * t55))
-        * bitcast<f32>((exponent51 - 27u) << 23u);
-    let lhs17 = ell_s17 * t16 * t16 * 5.9488286e-8f;
+    let scale18 = bitcast<f32>((281u - exponent51) << 23u);
+    let back17 = bitcast<f32>((exponent51 - 27u) << 23u);
+    let ell_s17 = (floor(ell_p17 * scale18) + floor(ell_q17 * scale18)) * back17;
+    let lhs17 = ell_s17 * t11 * t11 * 5.9488286e-8f;
     let rhs17 = ell_h17 * ell_g17 * rho2_2;
-    let t56 = select(
-        select(select(0.0f, 1.0f, lhs17 <= rhs17), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs17 >= rhs17), w2.y > 0.0f),
-        ell_t17 > 0.0f
-    );
-    let beyond17 = t56 > 0.5f;
+    let one_if33 = select(0.0f, 1.0f, lhs17 >= rhs17);
+    let outside17 = select(0.0f, one_if33, w2.y > 0.0f);
+    let one_if34 = select(0.0f, 1.0f, lhs17 <= rhs17);
+    let inside17 = select(one_if34, 1.0f, w2.y >= 0.0f);
+    let beyond17 = select(inside17, outside17, ell_t17 > 0.0f) > 0.5f;
     let lo20 = select(lo19, mid17, beyond17);
-    let hi20 = select(mid17 - 1.0f, hi19, beyond17);
+    let hi20 = select(mid_below17, hi19, beyond17);
     let mid18 = floor((lo20 + hi20 + 1.0f) * 0.5f);
-    let ell_t18 = (mid18 - 1.0f - 511.0f) * 2.0f;
+    let mid_below18 = mid18 - 1.0f;
+    let ell_t18 = (mid_below18 - 511.0f) * 2.0f;
     let ell_h18 = floor(ell_t18 * ell_t18);
     let ell_g18 = 2093058.0f - ell_h18;
     let ell_p18 = w2.y * w2.y * ell_g18;
@@ -592,21 +595,21 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent52 = bitcast<u32>(select(ell_q18, ell_p18, ell_p18 >= ell_q18)) >> 23u;
     let exponent53 = select(exponent52, 40u, exponent52 < 40u);
     let exponent54 = select(exponent53, 254u, 254u < exponent53);
-    let t57 = bitcast<f32>((281u - exponent54) << 23u);
-    let ell_s18 = (floor(ell_p18 * t57) + floor(ell_q18 * t57))
-        * bitcast<f32>((exponent54 - 27u) << 23u);
-    let lhs18 = ell_s18 * t16 * t16 * 5.9488286e-8f;
+    let scale19 = bitcast<f32>((281u - exponent54) << 23u);
+    let back18 = bitcast<f32>((exponent54 - 27u) << 23u);
+    let ell_s18 = (floor(ell_p18 * scale19) + floor(ell_q18 * scale19)) * back18;
+    let lhs18 = ell_s18 * t11 * t11 * 5.9488286e-8f;
     let rhs18 = ell_h18 * ell_g18 * rho2_2;
-    let t58 = select(
-        select(select(0.0f, 1.0f, lhs18 <= rhs18), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs18 >= rhs18), w2.y > 0.0f),
-        ell_t18 > 0.0f
-    );
-    let beyond18 = t58 > 0.5f;
+    let one_if35 = select(0.0f, 1.0f, lhs18 >= rhs18);
+    let outside18 = select(0.0f, one_if35, w2.y > 0.0f);
+    let one_if36 = select(0.0f, 1.0f, lhs18 <= rhs18);
+    let inside18 = select(one_if36, 1.0f, w2.y >= 0.0f);
+    let beyond18 = select(inside18, outside18, ell_t18 > 0.0f) > 0.5f;
     let lo21 = select(lo20, mid18, beyond18);
-    let hi21 = select(mid18 - 1.0f, hi20, beyond18);
+    let hi21 = select(mid_below18, hi20, beyond18);
     let mid19 = floor((lo21 + hi21 + 1.0f) * 0.5f);
-    let ell_t19 = (mid19 - 1.0f - 511.0f) * 2.0f;
+    let mid_below19 = mid19 - 1.0f;
+    let ell_t19 = (mid_below19 - 511.0f) * 2.0f;
     let ell_h19 = floor(ell_t19 * ell_t19);
     let ell_g19 = 2093058.0f - ell_h19;
     let ell_p19 = w2.y * w2.y * ell_g19;
@@ -614,17 +617,16 @@ fn unitpack_eqdist_ellipse22_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let exponent55 = bitcast<u32>(select(ell_q19, ell_p19, ell_p19 >= ell_q19)) >> 23u;
     let exponent56 = select(exponent55, 40u, exponent55 < 40u);
     let exponent57 = select(exponent56, 254u, 254u < exponent56);
-    let t59 = bitcast<f32>((281u - exponent57) << 23u);
-    let ell_s19 = (floor(ell_p19 * t59) + floor(ell_q19 * t59))
-        * bitcast<f32>((exponent57 - 27u) << 23u);
-    let lhs19 = ell_s19 * t16 * t16 * 5.9488286e-8f;
+    let scale20 = bitcast<f32>((281u - exponent57) << 23u);
+    let back19 = bitcast<f32>((exponent57 - 27u) << 23u);
+    let ell_s19 = (floor(ell_p19 * scale20) + floor(ell_q19 * scale20)) * back19;
+    let lhs19 = ell_s19 * t11 * t11 * 5.9488286e-8f;
     let rhs19 = ell_h19 * ell_g19 * rho2_2;
-    let t60 = select(
-        select(select(0.0f, 1.0f, lhs19 <= rhs19), 1.0f, w2.y >= 0.0f),
-        select(0.0f, select(0.0f, 1.0f, lhs19 >= rhs19), w2.y > 0.0f),
-        ell_t19 > 0.0f
-    );
-    let beyond19 = t60 > 0.5f;
+    let one_if37 = select(0.0f, 1.0f, lhs19 >= rhs19);
+    let outside19 = select(0.0f, one_if37, w2.y > 0.0f);
+    let one_if38 = select(0.0f, 1.0f, lhs19 <= rhs19);
+    let inside19 = select(one_if38, 1.0f, w2.y >= 0.0f);
+    let beyond19 = select(inside19, outside19, ell_t19 > 0.0f) > 0.5f;
     return select(
         vec3<f32>(lo13, lo21, 0.0f),
         vec3<f32>(mid10, mid19, 1.0f),

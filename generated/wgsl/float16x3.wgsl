@@ -40,9 +40,7 @@ fn unitpack_float16x3_decode_float(params: vec3<f32>) -> vec3<f32> {
 // unitpack_float16x3_decode: decoder.
 // In: a packed code (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15: p2 float16);
 //   other bits are ignored.
-// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
-//   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
-//   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
+// Out: as for unitpack_float16x3_decode_float.
 // Portable as unitpack_float16x3_decode_float is, within the same bound.
 fn unitpack_float16x3_decode(code: vec2<u32>) -> vec3<f32> {
     let t1 = code.x & 65535u;
@@ -51,13 +49,16 @@ fn unitpack_float16x3_decode(code: vec2<u32>) -> vec3<f32> {
     let t4 = vec3<u32>(t1, t2, t3) & vec3<u32>(32767u);
     let t5 = vec3<u32>((t1 & 32767u) << 13u, (t2 & 32767u) << 13u, (t3 & 32767u) << 13u);
     let t6 = select(
-        t5 + 939524096u,
-        bitcast<vec3<u32>>(vec3<f32>(t4) * 5.9604645e-8f),
-        t4 < vec3<u32>(1024u)
+        t5 | vec3<u32>(2139095040u),
+        select(
+            t5 + 939524096u,
+            bitcast<vec3<u32>>(vec3<f32>(t4) * 5.9604645e-8f),
+            t4 < vec3<u32>(1024u)
+        ),
+        t4 < vec3<u32>(31744u)
     );
-    let t7 = select(t5 | vec3<u32>(2139095040u), t6, t4 < vec3<u32>(31744u))
-        | vec3<u32>((t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u);
-    let params = bitcast<vec3<f32>>(t7);
+    let t7 = vec3<u32>((t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u);
+    let params = bitcast<vec3<f32>>(t6 | t7);
     return unitpack_float16x3_decode_float(params);
 }
 
@@ -91,7 +92,8 @@ fn unitpack_float16x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 4294963200u);
     let split_lo = w.x - split_hi;
@@ -120,59 +122,64 @@ fn unitpack_float16x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let upper = half_code + 0.5f;
     let lower = half_code - 0.5f;
     let t3 = half_code > 0.0f && big2 < lower * lower * len2;
-    let t4 = half_code + select(select(0.0f, -1.0f, t3), 1.0f, big2 >= upper * upper * len2) > 0.0f;
+    let step_down = select(0.0f, -1.0f, t3);
+    let step = select(step_down, 1.0f, big2 >= upper * upper * len2);
     let abs_w_y = abs(w.y);
     let half_estimate2 = abs_w_y / sqrt(len2);
     let exponent4 = (bitcast<u32>(half_estimate2) & 2147483647u) >> 23u;
     let exponent5 = select(exponent4, 113u, exponent4 < 113u);
     let exponent6 = select(exponent5, 126u, 126u < exponent5);
-    let t5 = (264u - exponent6) << 23u;
-    let half_grid2 = bitcast<f32>(t5);
+    let t4 = (264u - exponent6) << 23u;
+    let half_grid2 = bitcast<f32>(t4);
     let big3 = abs_w_y * half_grid2;
     let big2_2 = big3 * big3;
     let half_code2 = round(half_estimate2 * half_grid2);
     let upper2 = half_code2 + 0.5f;
     let lower2 = half_code2 - 0.5f;
-    let t6 = half_code2 > 0.0f && big2_2 < lower2 * lower2 * len2;
-    let t7 = half_code2 + select(select(0.0f, -1.0f, t6), 1.0f, big2_2 >= upper2 * upper2 * len2);
+    let t5 = half_code2 > 0.0f && big2_2 < lower2 * lower2 * len2;
+    let step_down2 = select(0.0f, -1.0f, t5);
+    let step2 = select(step_down2, 1.0f, big2_2 >= upper2 * upper2 * len2);
     let abs_w_z = abs(w.z);
     let half_estimate3 = abs_w_z / sqrt(len2);
     let exponent7 = (bitcast<u32>(half_estimate3) & 2147483647u) >> 23u;
     let exponent8 = select(exponent7, 113u, exponent7 < 113u);
     let exponent9 = select(exponent8, 126u, 126u < exponent8);
-    let t8 = (264u - exponent9) << 23u;
-    let half_grid3 = bitcast<f32>(t8);
+    let t6 = (264u - exponent9) << 23u;
+    let half_grid3 = bitcast<f32>(t6);
     let big4 = abs_w_z * half_grid3;
     let big2_3 = big4 * big4;
     let half_code3 = round(half_estimate3 * half_grid3);
     let upper3 = half_code3 + 0.5f;
     let lower3 = half_code3 - 0.5f;
-    let t9 = half_code3 > 0.0f && big2_3 < lower3 * lower3 * len2;
-    let t10 = half_code3 + select(select(0.0f, -1.0f, t9), 1.0f, big2_3 >= upper3 * upper3 * len2);
-    let t11 = vec3<bool>((w.x < 0.0f && t4), (w.y < 0.0f && t7 > 0.0f), w.z < 0.0f && t10 > 0.0f);
-    let abs_w = abs(w);
-    let t12 = bitcast<vec3<f32>>(vec3<u32>(t2, t5, t8));
-    let t13 = round(abs_w / sqrt(vec3<f32>(len2)) * t12);
-    let t14 = abs_w * t12;
-    let t15 = t13 + 0.5f;
-    let t16 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), vec3<bool>(t3, t6, t9)),
-        vec3<f32>(1.0f),
-        t14 * t14 >= t15 * t15 * len2
+    let t7 = half_code3 > 0.0f && big2_3 < lower3 * lower3 * len2;
+    let step_down3 = select(0.0f, -1.0f, t7);
+    let step3 = select(step_down3, 1.0f, big2_3 >= upper3 * upper3 * len2);
+    let t8 = vec3<bool>(
+        (w.x < 0.0f && half_code + step > 0.0f),
+        (w.y < 0.0f && half_code2 + step2 > 0.0f),
+        w.z < 0.0f && half_code3 + step3 > 0.0f
     );
-    let t17 = vec3<u32>(
+    let abs_w = abs(w);
+    let t9 = bitcast<vec3<f32>>(vec3<u32>(t2, t4, t6));
+    let t10 = round(abs_w / sqrt(vec3<f32>(len2)) * t9);
+    let t11 = abs_w * t9;
+    let t12 = t10 + 0.5f;
+    let t13 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), vec3<bool>(t3, t5, t7)),
+        vec3<f32>(1.0f),
+        t11 * t11 >= t12 * t12 * len2
+    );
+    let t14 = vec3<u32>(
         (exponent3 - 10u) << 23u,
         (exponent6 - 10u) << 23u,
         (exponent9 - 10u) << 23u
     );
-    let t18 = (t13 + t16) * bitcast<vec3<f32>>(t17);
-    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t18, -t18, t11), ok);
+    let t15 = (t10 + t13) * bitcast<vec3<f32>>(t14);
+    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t15, -t15, t8), ok);
 }
 
 // unitpack_float16x3_encode: fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16
-//   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
-//   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
+// In: as for unitpack_float16x3_encode_float.
 // Out: the packed code, vec2<u32> (bits 0–15: p0 float16, bits 16–31: p1 float16, word 1 bits 0–15:
 //   p2 float16).
 // Portable (as the header says): the same code on every such implementation; denormal input

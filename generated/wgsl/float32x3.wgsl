@@ -40,9 +40,7 @@ fn unitpack_float32x3_decode_float(params: vec3<f32>) -> vec3<f32> {
 // unitpack_float32x3_decode: decoder.
 // In: a packed code (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2 bits 0–31: p2
 //   float32); other bits are ignored.
-// Out: the three stored floats, exactly, without normalizing (unit length to within 2^-11 for
-//   float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component,
-//   or with every component zero, decodes as +Z; a denormal float32 component is read as +0.
+// Out: as for unitpack_float32x3_decode_float.
 // Portable (as the header says): each output component equals what this function computes here, for
 //   every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack
 //   verify --portable prints it).
@@ -83,7 +81,8 @@ fn unitpack_float32x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<u32>(floor(abs(w2) * 2097152.0f));
@@ -106,26 +105,28 @@ fn unitpack_float32x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let t2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let length = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t6 = u32(length * 2097152.0f);
+    let t3 = u32(length * 2097152.0f);
     let wide = (hi4 << 24u) + lo4;
-    let rest = wide - t6 * t6 + 1073741824u;
+    let rest = wide - t3 * t3 + 1073741824u;
     let n = select(
-        select(t6, t6 - 1u, rest < 1073741824u - t6 + 1u),
-        t6 + 1u,
-        1073741824u + t6 < rest
+        select(t3, t3 - 1u, rest < 1073741824u - t3 + 1u),
+        t3 + 1u,
+        1073741824u + t3 < rest
     );
     let rest2 = wide - n * n + 1073741824u;
     let n2 = select(
@@ -136,59 +137,55 @@ fn unitpack_float32x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let nf = f32(n2);
     let k0 = u32(round(f32(t1.x) / nf * 16777216.0f));
     let r = (t1.x << 24u) - k0 * n2;
-    let t7 = r << 1u;
-    let t8 = n2 << 4u;
-    let t = t7 + n2 + t8;
+    let t4 = r << 1u;
+    let t5 = n2 << 4u;
+    let t = t4 + n2 + t5;
     let two_n = n2 << 1u;
-    let t9 = t >> 12u;
-    let q0 = u32(floor((f32(t9) * 4096.0f + f32(t & 4095u)) / (nf * 2.0f)));
+    let t6 = t >> 12u;
+    let t7 = (f32(t6) * 4096.0f + f32(t & 4095u)) / (nf * 2.0f);
+    let q0 = u32(floor(t7));
     let rest3 = t - q0 * two_n;
     let negative = !(rest3 < 2147483648u);
     let k0_2 = u32(round(f32(t1.y) / nf * 16777216.0f));
     let r2 = (t1.y << 24u) - k0_2 * n2;
-    let t10 = r2 << 1u;
-    let t11 = n2 << 4u;
-    let t12 = t10 + n2 + t11;
+    let t8 = r2 << 1u;
+    let t9 = n2 << 4u;
+    let t10 = t8 + n2 + t9;
     let two_n2 = n2 << 1u;
-    let t13 = t12 >> 12u;
-    let q0_2 = u32(floor((f32(t13) * 4096.0f + f32(t12 & 4095u)) / (nf * 2.0f)));
-    let rest4 = t12 - q0_2 * two_n2;
+    let t11 = t10 >> 12u;
+    let t12 = (f32(t11) * 4096.0f + f32(t10 & 4095u)) / (nf * 2.0f);
+    let q0_2 = u32(floor(t12));
+    let rest4 = t10 - q0_2 * two_n2;
     let negative2 = !(rest4 < 2147483648u);
     let k0_3 = u32(round(f32(t1.z) / nf * 16777216.0f));
     let r3 = (t1.z << 24u) - k0_3 * n2;
-    let t14 = r3 << 1u;
-    let t15 = n2 << 4u;
-    let t16 = t14 + n2 + t15;
+    let t13 = r3 << 1u;
+    let t14 = n2 << 4u;
+    let t15 = t13 + n2 + t14;
     let two_n3 = n2 << 1u;
-    let t17 = t16 >> 12u;
-    let q0_3 = u32(floor((f32(t17) * 4096.0f + f32(t16 & 4095u)) / (nf * 2.0f)));
-    let rest5 = t16 - q0_3 * two_n3;
+    let t16 = t15 >> 12u;
+    let t17 = (f32(t16) * 4096.0f + f32(t15 & 4095u)) / (nf * 2.0f);
+    let q0_3 = u32(floor(t17));
+    let rest5 = t15 - q0_3 * two_n3;
     let negative3 = !(rest5 < 2147483648u);
     let t18 = vec3<bool>(
         !(rest3 < two_n) && !negative,
         !(rest4 < two_n2) && !negative2,
         !(rest5 < two_n3) && !negative3
     );
-    let t19 = vec3<f32>(
-        (vec3<u32>(t7, t10, t14) + n2 + vec3<u32>(t8, t11, t15)) & vec3<u32>(4095u)
-    );
-    let t20 = floor((vec3<f32>(vec3<u32>(t9, t13, t17)) * 4096.0f + t19) / (nf * vec3<f32>(2.0f)));
-    let t21 = vec3<u32>(t20);
-    let t22 = select(
-        select(t21, t21 - 1u, vec3<bool>(negative, negative2, negative3)),
-        t21 + 1u,
-        t18
-    );
-    let t23 = vec3<u32>(round(vec3<f32>(t1) / nf * 16777216.0f)) + t22 - 8u;
-    let t24 = vec3<f32>(select(t23, vec3<u32>(16777216u), vec3<u32>(16777216u) < t23))
+    let t19 = vec3<f32>(vec3<u32>(t6, t11, t16)) * 4096.0f
+        + vec3<f32>((vec3<u32>(t4, t8, t13) + n2 + vec3<u32>(t5, t9, t14)) & vec3<u32>(4095u));
+    let t20 = vec3<u32>(floor(t19 / (nf * vec3<f32>(2.0f))));
+    let t21 = vec3<u32>(round(vec3<f32>(t1) / nf * 16777216.0f))
+        + select(select(t20, t20 - 1u, vec3<bool>(negative, negative2, negative3)), t20 + 1u, t18);
+    let t22 = t21 - 8u;
+    let t23 = vec3<f32>(select(t22, vec3<u32>(16777216u), vec3<u32>(16777216u) < t22))
         * 5.9604645e-8f;
-    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t24, -t24, w2 < vec3<f32>(0.0f)), ok);
+    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t23, -t23, w2 < vec3<f32>(0.0f)), ok);
 }
 
 // unitpack_float32x3_encode: fast encoder.
-// In: any vector; input is normalized first, then each component is rounded to the nearest f16
-//   (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's
-//   binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z.
+// In: as for unitpack_float32x3_encode_float.
 // Out: the packed code, vec3<u32> (bits 0–31: p0 float32, word 1 bits 0–31: p1 float32, word 2 bits
 //   0–31: p2 float32).
 // Portable (as the header says): the same code on every such implementation; denormal input

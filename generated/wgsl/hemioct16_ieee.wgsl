@@ -62,9 +62,7 @@ fn unitpack_hemioct16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
 }
 
 // unitpack_hemioct16_ieee_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_ieee_encode_float.
 // Out: the packed code, u32 (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's
 //   complement)).
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round

@@ -39,10 +39,8 @@ fn unitpack_hemioct16_rxgb_decode_float(params: vec4<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16_rxgb_decode_float is, within the same bound.
 fn unitpack_hemioct16_rxgb_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_hemioct16_rxgb_decode_float(params);
 }
 
@@ -58,9 +56,13 @@ fn unitpack_hemioct16_rxgb_decode(code: u32) -> vec3<f32> {
 fn unitpack_hemioct16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let t1 = vec3<f32>(v.xy, select(v.z, 0.0f, v.z < 0.0f));
     let abs_t1 = abs(t1);
-    let t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    let t3 = select(0.25f, select(1.0f, 1.2676506e30f, t2 < 7.888609e-31f), t2 <= 3.4028235e38f);
-    let w = t1 * t3;
+    let norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    let fit = select(
+        0.25f,
+        select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
+        norm1 <= 3.4028235e38f
+    );
+    let w = t1 * fit;
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
     let p = w.xy / l1;
@@ -70,23 +72,25 @@ fn unitpack_hemioct16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
         l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f)
     );
     let abs_v = abs(v);
-    let t4 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
-    let largest = select(abs_v.z, t4, t4 >= abs_v.z);
-    let t5 = largest > 0.0f && largest <= 3.4028235e38f;
-    let scaled = v / select(1.0f, largest, t5);
+    let t2 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
+    let largest = select(abs_v.z, t2, t2 >= abs_v.z);
+    let t3 = largest > 0.0f && largest <= 3.4028235e38f;
+    let scaled = v / select(1.0f, largest, t3);
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    let t6 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t5 && len2 >= 1.0f);
-    let t7 = vec3<f32>(t6.xy, select(0.0f, t6.z, t6.z > 0.0f));
-    let abs_t7 = abs(t7);
-    let t8 = select(abs_t7.y, abs_t7.x, abs_t7.x >= abs_t7.y);
-    let largest2 = select(abs_t7.z, t8, t8 >= abs_t7.z);
-    let t9 = largest2 > 0.0f && largest2 <= 3.4028235e38f;
-    let scaled2 = t7 / select(1.0f, largest2, t9);
+    let t4 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t3 && len2 >= 1.0f);
+    let t5 = vec3<f32>(t4.xy, select(0.0f, t4.z, t4.z > 0.0f));
+    let abs_t5 = abs(t5);
+    let t6 = select(abs_t5.y, abs_t5.x, abs_t5.x >= abs_t5.y);
+    let largest2 = select(abs_t5.z, t6, t6 >= abs_t5.z);
+    let t7 = largest2 > 0.0f && largest2 <= 3.4028235e38f;
+    let scaled2 = t5 / select(1.0f, largest2, t7);
     let scaled2_sq = scaled2 * scaled2;
     let len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
-    let t10 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled2 / sqrt(len2_2), t9 && len2_2 >= 1.0f);
-    return vec4<f32>(1.0f, 0.5f + p2.y * 0.5f, 0.5f + t10.z * 0.5f, 0.5f + p2.x * 0.5f);
+    let t8 = 0.5f
+        + select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled2 / sqrt(len2_2), t7 && len2_2 >= 1.0f).z
+            * 0.5f;
+    return vec4<f32>(1.0f, 0.5f + p2.y * 0.5f, t8, 0.5f + p2.x * 0.5f);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -101,7 +105,8 @@ fn unitpack_hemioct16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let l1 = t1.x + t1.y + t1.z;
@@ -110,17 +115,18 @@ fn unitpack_hemioct16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let t3 = round(t2 / l1 + 127.5f);
     let t4 = select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f));
     let t5 = select(vec2<f32>(255.0f), t4, t4 <= vec2<f32>(255.0f));
-    let t6 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 127.0f) * l1),
-        t5 < vec2<f32>(255.0f)
-    );
+    let t6 = t5
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 127.0f) * l1),
+            t5 < vec2<f32>(255.0f)
+        );
     let t7 = select(
         vec2<f32>(0.0f),
         select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 1.0f - 127.0f) * l1) - 1.0f,
         t5 > vec2<f32>(0.0f)
     );
-    let c = select(vec2<f32>(128.0f), t5 + t6 + t7, ok && l1 > 0.0f);
+    let c = select(vec2<f32>(128.0f), t6 + t7, ok && l1 > 0.0f);
     let normal2 = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
@@ -129,7 +135,8 @@ fn unitpack_hemioct16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w2 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w3 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w2, ok2);
     let t8 = vec3<f32>(w3.xy, select(0.0f, w3.z, w3.z > 0.0f));
@@ -141,7 +148,8 @@ fn unitpack_hemioct16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let ok3 = sum3 >= 2.0f && sum3 < 16.0f;
+    let sum_below_16_3 = sum3 < 16.0f;
+    let ok3 = sum3 >= 2.0f && sum_below_16_3;
     let w4 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
     let w5 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w4, ok3);
     let split_hi = bitcast<f32>(bitcast<u32>(w5.x) & 4294963200u);
@@ -164,27 +172,29 @@ fn unitpack_hemioct16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let estimate = select(255.0f, t11, t11 <= 255.0f);
     let t12 = estimate - 127.0f;
     let t13 = t12 * t12 * len2;
-    let t14 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t13), t12 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t13), t12 > 0.0f),
-        w5.z >= 0.0f
+    let one_if = select(0.0f, 1.0f, big2 >= t13);
+    let one_if2 = select(0.0f, 1.0f, big2 <= t13);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t12 < 0.0f), select(1.0f, one_if, t12 > 0.0f), w5.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t14, estimate < 255.0f);
-    let t15 = estimate - 1.0f - 127.0f;
-    let t16 = t15 * t15 * len2;
-    let t17 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t16), t15 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t16), t15 > 0.0f),
+    let t14 = estimate - 1.0f - 127.0f;
+    let t15 = t14 * t14 * len2;
+    let one_if3 = select(0.0f, 1.0f, big2 >= t15);
+    let one_if4 = select(0.0f, 1.0f, big2 <= t15);
+    let t16 = select(
+        select(0.0f, one_if4, t14 < 0.0f),
+        select(1.0f, one_if3, t14 > 0.0f),
         w5.z >= 0.0f
-    );
-    let down = select(0.0f, t17 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t16, estimate > 0.0f);
     return vec4<f32>(255.0f, c.y, estimate + up + down, c.x);
 }
 
 // unitpack_hemioct16_rxgb_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_rxgb_encode_float.
 // Out: the RGBA8 texel as a u32 (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B = the
 //   input's z (z·½ + ½), A = x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is
 //   stored as x = y = 128).
@@ -192,8 +202,6 @@ fn unitpack_hemioct16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_hemioct16_rxgb_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_hemioct16_rxgb_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }

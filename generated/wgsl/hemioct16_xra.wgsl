@@ -39,10 +39,8 @@ fn unitpack_hemioct16_xra_decode_float(params: vec4<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16_xra_decode_float is, within the same bound.
 fn unitpack_hemioct16_xra_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_hemioct16_xra_decode_float(params);
 }
 
@@ -58,9 +56,13 @@ fn unitpack_hemioct16_xra_decode(code: u32) -> vec3<f32> {
 fn unitpack_hemioct16_xra_encode_float(v: vec3<f32>) -> vec4<f32> {
     let t1 = vec3<f32>(v.xy, select(v.z, 0.0f, v.z < 0.0f));
     let abs_t1 = abs(t1);
-    let t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    let t3 = select(0.25f, select(1.0f, 1.2676506e30f, t2 < 7.888609e-31f), t2 <= 3.4028235e38f);
-    let w = t1 * t3;
+    let norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    let fit = select(
+        0.25f,
+        select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
+        norm1 <= 3.4028235e38f
+    );
+    let w = t1 * fit;
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
     let p = w.xy / l1;
@@ -84,7 +86,8 @@ fn unitpack_hemioct16_xra_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let l1 = t1.x + t1.y + t1.z;
@@ -93,40 +96,35 @@ fn unitpack_hemioct16_xra_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let t3 = round(t2 / l1 + 127.5f);
     let t4 = select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f));
     let t5 = select(vec2<f32>(255.0f), t4, t4 <= vec2<f32>(255.0f));
-    let t6 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 127.0f) * l1),
-        t5 < vec2<f32>(255.0f)
-    );
+    let t6 = t5
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 127.0f) * l1),
+            t5 < vec2<f32>(255.0f)
+        );
     let t7 = select(
         vec2<f32>(0.0f),
         select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 1.0f - 127.0f) * l1) - 1.0f,
         t5 > vec2<f32>(0.0f)
     );
-    let c = select(vec2<f32>(128.0f), t5 + t6 + t7, ok && l1 > 0.0f);
+    let c = select(vec2<f32>(128.0f), t6 + t7, ok && l1 > 0.0f);
     return vec4<f32>(255.0f, c.y, 0.0f, c.x);
 }
 
 // unitpack_hemioct16_xra_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_xra_encode_float.
 // Out: the RGBA8 texel as a u32 (R bits 0–7, G 8–15, B 16–23, A 24–31): R = 255, G = y, B = 0, A =
 //   x; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128).
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_hemioct16_xra_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_hemioct16_xra_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }
 
 // unitpack_hemioct16_xra_encode_dxt1: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16_xra_encode_float.
 // Out: the RGBA8 texel as a u32 (R bits 0–7, G 8–15, B 16–23, A 24–31): R = x, G = y, B = 0, A =
 //   255 (the DXT1 texel); x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as
 //   x = y = 128).

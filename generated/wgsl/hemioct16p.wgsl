@@ -56,7 +56,8 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let sum2 = t1.x + t1.y + t1.z;
@@ -66,157 +67,159 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t3 = a.x + a.y;
     let estimate = floor(t3 / l1 * 127.0f);
     let big = t3 * 127.0f;
-    let t4 = select(select(0.0f, -1.0f, big < estimate * l1), 1.0f, big >= (estimate + 1.0f) * l1);
-    let t5 = estimate + t4;
-    let t6 = select(-127.0f, t5, t5 >= (-127.0f));
-    let s0 = select(127.0f, t6, t6 <= 127.0f);
-    let t7 = a.x - a.y;
-    let estimate2 = floor(t7 / l1 * 127.0f);
-    let big2 = t7 * 127.0f;
-    let t8 = select(
-        select(0.0f, -1.0f, big2 < estimate2 * l1),
-        1.0f,
-        big2 >= (estimate2 + 1.0f) * l1
-    );
-    let t9 = estimate2 + t8;
-    let t10 = select(-127.0f, t9, t9 >= (-127.0f));
-    let t0 = select(127.0f, t10, t10 <= 127.0f);
+    let step_down = select(0.0f, -1.0f, big < estimate * l1);
+    let step = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
+    let t4 = estimate + step;
+    let t5 = select(-127.0f, t4, t4 >= (-127.0f));
+    let s0 = select(127.0f, t5, t5 <= 127.0f);
+    let t6 = a.x - a.y;
+    let estimate2 = floor(t6 / l1 * 127.0f);
+    let big2 = t6 * 127.0f;
+    let step_down2 = select(0.0f, -1.0f, big2 < estimate2 * l1);
+    let step2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
+    let t7 = estimate2 + step2;
+    let t8 = select(-127.0f, t7, t7 >= (-127.0f));
+    let t0 = select(127.0f, t8, t8 <= 127.0f);
     let afix = vec3<u32>(floor(a * 4194304.0f));
-    let t11 = vec2<f32>(t7, t3);
-    let t12 = floor(t11 / l1 * 127.0f);
-    let t13 = t11 * 127.0f;
-    let t14 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t13 < t12 * l1),
+    let t9 = vec2<f32>(t6, t3);
+    let t10 = floor(t9 / l1 * 127.0f);
+    let t11 = t9 * 127.0f;
+    let t12 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t11 < t10 * l1),
         vec2<f32>(1.0f),
-        t13 >= (t12 + 1.0f) * l1
+        t11 >= (t10 + 1.0f) * l1
     );
-    let t15 = t12 + t14;
-    let t16 = select(vec2<f32>(-127.0f), t15, t15 >= vec2<f32>(-127.0f));
-    let t17 = select(vec2<f32>(127.0f), t16, t16 <= vec2<f32>(127.0f));
-    let t18 = vec2<f32>(t3, t7);
-    let t19 = floor(t18 / l1 * 127.0f);
-    let t20 = t18 * 127.0f;
-    let t21 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t20 < t19 * l1),
+    let t13 = t10 + t12;
+    let t14 = select(vec2<f32>(-127.0f), t13, t13 >= vec2<f32>(-127.0f));
+    let t15 = select(vec2<f32>(127.0f), t14, t14 <= vec2<f32>(127.0f));
+    let t16 = vec2<f32>(t3, t6);
+    let t17 = floor(t16 / l1 * 127.0f);
+    let t18 = t16 * 127.0f;
+    let t19 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t18 < t17 * l1),
         vec2<f32>(1.0f),
-        t20 >= (t19 + 1.0f) * l1
+        t18 >= (t17 + 1.0f) * l1
     );
-    let t22 = t19 + t21;
-    let t23 = select(vec2<f32>(-127.0f), t22, t22 >= vec2<f32>(-127.0f));
-    let t24 = select(vec2<f32>(127.0f), t23, t23 <= vec2<f32>(127.0f));
-    let t25 = select(t24, -t17, s0 + t0 < 0.0f);
-    let cand = select(t25, t25.yx, t25.x < t25.y);
-    let t26 = 254.0f - cand.x - cand.x;
-    let t27 = select(0.0f, t26, t26 >= 0.0f);
-    let t28 = cand.x + cand.y;
-    let t29 = u32(t28);
-    let t30 = cand.x - cand.y;
-    let t31 = u32(t30);
-    let t32 = u32(t27);
-    let cross = afix.yzx * vec3<u32>(vec3<f32>(t27, t28, t30))
-        - afix.zxy * vec3<u32>(vec3<f32>(t30, t27, t28));
-    let t33 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
-    let t34 = t33 >> 16u;
-    let t35 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
-    let t36 = t35 >> 16u;
-    let t37 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
-    let t38 = t37 >> 16u;
-    let t39 = vec3<u32>(
-        (t34 * (t33 & 65535u)) >> 12u,
-        (t36 * (t35 & 65535u)) >> 12u,
-        (t38 * (t37 & 65535u)) >> 12u
+    let t20 = t17 + t19;
+    let t21 = select(vec2<f32>(-127.0f), t20, t20 >= vec2<f32>(-127.0f));
+    let t22 = select(vec2<f32>(127.0f), t21, t21 <= vec2<f32>(127.0f));
+    let t23 = select(t22, -t15, s0 + t0 < 0.0f);
+    let cand = select(t23, t23.yx, t23.x < t23.y);
+    let t24 = 254.0f - cand.x - cand.x;
+    let t25 = select(0.0f, t24, t24 >= 0.0f);
+    let t26 = cand.x + cand.y;
+    let t26_u = u32(t26);
+    let t27 = cand.x - cand.y;
+    let t27_u = u32(t27);
+    let t25_u = u32(t25);
+    let cross = afix.yzx * vec3<u32>(vec3<f32>(t25, t26, t27))
+        - afix.zxy * vec3<u32>(vec3<f32>(t27, t25, t26));
+    let t28 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
+    let t29 = t28 >> 16u;
+    let t30 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
+    let t31 = t30 >> 16u;
+    let t32 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
+    let t33 = t32 >> 16u;
+    let t34 = vec3<u32>((t29 * t29) << 3u, (t31 * t31) << 3u, (t33 * t33) << 3u);
+    let t35 = vec3<u32>(
+        (t29 * (t28 & 65535u)) >> 12u,
+        (t31 * (t30 & 65535u)) >> 12u,
+        (t33 * (t32 & 65535u)) >> 12u
     );
-    let t40 = vec3<u32>((t34 * t34) << 3u, (t36 * t36) << 3u, (t38 * t38) << 3u) + t39;
-    let e = f32(t40.x + t40.y + t40.z);
-    let n = f32(t29 * t29 + t31 * t31 + t32 * t32);
-    let t41 = s0 + 1.0f;
-    let t42 = select(vec2<f32>(t41, t0), -vec2<f32>(t0, t41), t41 + t0 < 0.0f);
-    let cand2 = select(t42, t42.yx, t42.x < t42.y);
-    let t43 = 254.0f - cand2.x - cand2.x;
-    let t44 = select(0.0f, t43, t43 >= 0.0f);
-    let t45 = cand2.x + cand2.y;
-    let t46 = u32(t45);
-    let t47 = cand2.x - cand2.y;
-    let t48 = u32(t47);
-    let t49 = u32(t44);
-    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t44, t45, t47))
-        - afix.zxy * vec3<u32>(vec3<f32>(t47, t44, t45));
-    let t50 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
-    let t51 = t50 >> 16u;
-    let t52 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
-    let t53 = t52 >> 16u;
-    let t54 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
-    let t55 = t54 >> 16u;
-    let t56 = vec3<u32>(
-        (t51 * (t50 & 65535u)) >> 12u,
-        (t53 * (t52 & 65535u)) >> 12u,
-        (t55 * (t54 & 65535u)) >> 12u
+    let t36 = t34 + t35;
+    let e = f32(t36.x + t36.y + t36.z);
+    let n = f32(t26_u * t26_u + t27_u * t27_u + t25_u * t25_u);
+    let s_up = s0 + 1.0f;
+    let t_up = t0 + 1.0f;
+    let t37 = select(vec2<f32>(s_up, t0), -vec2<f32>(t0, s_up), s_up + t0 < 0.0f);
+    let cand2 = select(t37, t37.yx, t37.x < t37.y);
+    let t38 = 254.0f - cand2.x - cand2.x;
+    let t39 = select(0.0f, t38, t38 >= 0.0f);
+    let t40 = cand2.x + cand2.y;
+    let t40_u = u32(t40);
+    let t41 = cand2.x - cand2.y;
+    let t41_u = u32(t41);
+    let t39_u = u32(t39);
+    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t39, t40, t41))
+        - afix.zxy * vec3<u32>(vec3<f32>(t41, t39, t40));
+    let t42 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
+    let t43 = t42 >> 16u;
+    let t44 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
+    let t45 = t44 >> 16u;
+    let t46 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
+    let t47 = t46 >> 16u;
+    let t48 = vec3<u32>((t43 * t43) << 3u, (t45 * t45) << 3u, (t47 * t47) << 3u);
+    let t49 = vec3<u32>(
+        (t43 * (t42 & 65535u)) >> 12u,
+        (t45 * (t44 & 65535u)) >> 12u,
+        (t47 * (t46 & 65535u)) >> 12u
     );
-    let t57 = vec3<u32>((t51 * t51) << 3u, (t53 * t53) << 3u, (t55 * t55) << 3u) + t56;
-    let e2 = f32(t57.x + t57.y + t57.z);
-    let n2 = f32(t46 * t46 + t48 * t48 + t49 * t49);
-    let t58 = cand2.x <= 127.0f && e2 * n < e * n2;
-    let best = select(cand, cand2, t58);
-    let best_e = select(e, e2, t58);
-    let best_n = select(n, n2, t58);
-    let t59 = t0 + 1.0f;
-    let t60 = select(vec2<f32>(s0, t59), -vec2<f32>(t59, s0), s0 + t59 < 0.0f);
-    let cand3 = select(t60, t60.yx, t60.x < t60.y);
-    let t61 = 254.0f - cand3.x - cand3.x;
-    let t62 = select(0.0f, t61, t61 >= 0.0f);
-    let t63 = cand3.x + cand3.y;
-    let t64 = u32(t63);
-    let t65 = cand3.x - cand3.y;
-    let t66 = u32(t65);
-    let t67 = u32(t62);
-    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t62, t63, t65))
-        - afix.zxy * vec3<u32>(vec3<f32>(t65, t62, t63));
-    let t68 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
-    let t69 = t68 >> 16u;
-    let t70 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
-    let t71 = t70 >> 16u;
-    let t72 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t50 = t48 + t49;
+    let e2 = f32(t50.x + t50.y + t50.z);
+    let n2 = f32(t40_u * t40_u + t41_u * t41_u + t39_u * t39_u);
+    let t51 = cand2.x <= 127.0f && e2 * n < e * n2;
+    let best = select(cand, cand2, t51);
+    let best_e = select(e, e2, t51);
+    let best_n = select(n, n2, t51);
+    let t52 = select(vec2<f32>(s0, t_up), -vec2<f32>(t_up, s0), s0 + t_up < 0.0f);
+    let cand3 = select(t52, t52.yx, t52.x < t52.y);
+    let t53 = 254.0f - cand3.x - cand3.x;
+    let t54 = select(0.0f, t53, t53 >= 0.0f);
+    let t55 = cand3.x + cand3.y;
+    let t55_u = u32(t55);
+    let t56 = cand3.x - cand3.y;
+    let t56_u = u32(t56);
+    let t54_u = u32(t54);
+    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t54, t55, t56))
+        - afix.zxy * vec3<u32>(vec3<f32>(t56, t54, t55));
+    let t57 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
+    let t58 = t57 >> 16u;
+    let t59 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
+    let t60 = t59 >> 16u;
+    let t61 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t62 = t61 >> 16u;
+    let t63 = vec3<u32>((t58 * t58) << 3u, (t60 * t60) << 3u, (t62 * t62) << 3u);
+    let t64 = vec3<u32>(
+        (t58 * (t57 & 65535u)) >> 12u,
+        (t60 * (t59 & 65535u)) >> 12u,
+        (t62 * (t61 & 65535u)) >> 12u
+    );
+    let t65 = t63 + t64;
+    let e3 = f32(t65.x + t65.y + t65.z);
+    let n3 = f32(t55_u * t55_u + t56_u * t56_u + t54_u * t54_u);
+    let t66 = cand3.x <= 127.0f && e3 * best_n < best_e * n3;
+    let best2 = select(best, cand3, t66);
+    let best_e2 = select(best_e, e3, t66);
+    let best_n2 = select(best_n, n3, t66);
+    let t67 = select(t22 + 1.0f, -(t15 + 1.0f), s_up + t_up < 0.0f);
+    let cand4 = select(t67, t67.yx, t67.x < t67.y);
+    let t68 = 254.0f - cand4.x - cand4.x;
+    let t69 = select(0.0f, t68, t68 >= 0.0f);
+    let t70 = cand4.x + cand4.y;
+    let t70_u = u32(t70);
+    let t71 = cand4.x - cand4.y;
+    let t71_u = u32(t71);
+    let t69_u = u32(t69);
+    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t69, t70, t71))
+        - afix.zxy * vec3<u32>(vec3<f32>(t71, t69, t70));
+    let t72 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
     let t73 = t72 >> 16u;
-    let t74 = vec3<u32>(
-        (t69 * (t68 & 65535u)) >> 12u,
-        (t71 * (t70 & 65535u)) >> 12u,
-        (t73 * (t72 & 65535u)) >> 12u
+    let t74 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
+    let t75 = t74 >> 16u;
+    let t76 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
+    let t77 = t76 >> 16u;
+    let t78 = vec3<u32>((t73 * t73) << 3u, (t75 * t75) << 3u, (t77 * t77) << 3u);
+    let t79 = vec3<u32>(
+        (t73 * (t72 & 65535u)) >> 12u,
+        (t75 * (t74 & 65535u)) >> 12u,
+        (t77 * (t76 & 65535u)) >> 12u
     );
-    let t75 = vec3<u32>((t69 * t69) << 3u, (t71 * t71) << 3u, (t73 * t73) << 3u) + t74;
-    let e3 = f32(t75.x + t75.y + t75.z);
-    let n3 = f32(t64 * t64 + t66 * t66 + t67 * t67);
-    let t76 = cand3.x <= 127.0f && e3 * best_n < best_e * n3;
-    let best2 = select(best, cand3, t76);
-    let best_e2 = select(best_e, e3, t76);
-    let best_n2 = select(best_n, n3, t76);
-    let t77 = select(t24 + 1.0f, -(t17 + 1.0f), s0 + 1.0f + (t0 + 1.0f) < 0.0f);
-    let cand4 = select(t77, t77.yx, t77.x < t77.y);
-    let t78 = 254.0f - cand4.x - cand4.x;
-    let t79 = select(0.0f, t78, t78 >= 0.0f);
-    let t80 = cand4.x + cand4.y;
-    let t81 = u32(t80);
-    let t82 = cand4.x - cand4.y;
-    let t83 = u32(t82);
-    let t84 = u32(t79);
-    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t79, t80, t82))
-        - afix.zxy * vec3<u32>(vec3<f32>(t82, t79, t80));
-    let t85 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
-    let t86 = t85 >> 16u;
-    let t87 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
-    let t88 = t87 >> 16u;
-    let t89 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
-    let t90 = t89 >> 16u;
-    let t91 = vec3<u32>(
-        (t86 * (t85 & 65535u)) >> 12u,
-        (t88 * (t87 & 65535u)) >> 12u,
-        (t90 * (t89 & 65535u)) >> 12u
-    );
-    let t92 = vec3<u32>((t86 * t86) << 3u, (t88 * t88) << 3u, (t90 * t90) << 3u) + t91;
-    let e4 = f32(t92.x + t92.y + t92.z);
-    let n4 = f32(t81 * t81 + t83 * t83 + t84 * t84);
+    let t80 = t78 + t79;
+    let e4 = f32(t80.x + t80.y + t80.z);
+    let n4 = f32(t70_u * t70_u + t71_u * t71_u + t69_u * t69_u);
     let best3 = select(best2, cand4, cand4.x <= 127.0f && e4 * best_n2 < best_e2 * n4);
-    let t93 = select(best3, -best3.yx, w.x < 0.0f);
-    return select(vec2<f32>(0.0f), select(t93, t93.yx, w.y < 0.0f), t2);
+    let t81 = select(best3, -best3.yx, w.x < 0.0f);
+    return select(vec2<f32>(0.0f), select(t81, t81.yx, w.y < 0.0f), t2);
 }
 
 // unitpack_hemioct16p_encode_float: precise encoder, float form.
@@ -232,9 +235,7 @@ fn unitpack_hemioct16p_encode_float(v: vec3<f32>) -> vec2<f32> {
 }
 
 // unitpack_hemioct16p_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16p_encode_float.
 // Out: the packed code, u32 (bits 0–7: p0 snorm8 (two's complement), bits 8–15: p1 snorm8 (two's
 //   complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -40,10 +40,8 @@ fn unitpack_hemioct16p_rg_decode_float(params: vec4<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct16p_rg_decode_float is, within the same bound.
 fn unitpack_hemioct16p_rg_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_hemioct16p_rg_decode_float(params);
 }
 
@@ -60,7 +58,8 @@ fn unitpack_hemioct16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let sum2 = t1.x + t1.y + t1.z;
@@ -73,194 +72,208 @@ fn unitpack_hemioct16p_rg_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let t5 = select(0.0f, t4, t4 >= 0.0f);
     let estimate = select(255.0f, t5, t5 <= 255.0f);
     let t6 = estimate < 255.0f;
-    let t7 = select(0.0f, 1.0f, t >= (estimate - 126.5f) * l1);
-    let up = select(0.0f, t7, t6);
-    let t8 = estimate > 0.0f;
-    let t9 = select(0.0f, 1.0f, t >= (estimate - 1.0f - 126.5f) * l1) - 1.0f;
-    let down = select(0.0f, t9, t8);
-    let t10 = estimate + up;
-    let s0 = t10 + down;
-    let t11 = a.x - a.y;
-    let t12 = t11 * 127.5f;
-    let t13 = round(t12 / l1 + 127.5f);
-    let t14 = select(0.0f, t13, t13 >= 0.0f);
-    let estimate2 = select(255.0f, t14, t14 <= 255.0f);
-    let t15 = estimate2 < 255.0f;
-    let t16 = select(0.0f, 1.0f, t12 >= (estimate2 - 126.5f) * l1);
-    let up2 = select(0.0f, t16, t15);
-    let t17 = estimate2 > 0.0f;
-    let t18 = select(0.0f, 1.0f, t12 >= (estimate2 - 1.0f - 126.5f) * l1) - 1.0f;
-    let down2 = select(0.0f, t18, t17);
-    let t19 = estimate2 + up2;
-    let t0 = t19 + down2;
+    let one_if = select(0.0f, 1.0f, t >= (estimate - 126.5f) * l1);
+    let up = select(0.0f, one_if, t6);
+    let t7 = estimate > 0.0f;
+    let one_if2 = select(0.0f, 1.0f, t >= (estimate - 1.0f - 126.5f) * l1);
+    let t8 = one_if2 - 1.0f;
+    let down = select(0.0f, t8, t7);
+    let t9 = estimate + up;
+    let s0 = t9 + down;
+    let t10 = a.x - a.y;
+    let t11 = t10 * 127.5f;
+    let t12 = round(t11 / l1 + 127.5f);
+    let t13 = select(0.0f, t12, t12 >= 0.0f);
+    let estimate2 = select(255.0f, t13, t13 <= 255.0f);
+    let t14 = estimate2 < 255.0f;
+    let one_if3 = select(0.0f, 1.0f, t11 >= (estimate2 - 126.5f) * l1);
+    let up2 = select(0.0f, one_if3, t14);
+    let t15 = estimate2 > 0.0f;
+    let one_if4 = select(0.0f, 1.0f, t11 >= (estimate2 - 1.0f - 126.5f) * l1);
+    let t16 = one_if4 - 1.0f;
+    let down2 = select(0.0f, t16, t15);
+    let t17 = estimate2 + up2;
+    let t0 = t17 + down2;
     let afix = vec3<u32>(floor(a * 4194304.0f));
-    let t20 = vec2<f32>(t11, t3) * 127.5f;
-    let t21 = round(t20 / l1 + 127.5f);
-    let t22 = select(vec2<f32>(0.0f), t21, t21 >= vec2<f32>(0.0f));
-    let t23 = select(vec2<f32>(255.0f), t22, t22 <= vec2<f32>(255.0f));
-    let t24 = select(
+    let t18 = vec2<f32>(t10, t3) * 127.5f;
+    let t19 = round(t18 / l1 + 127.5f);
+    let t20 = select(vec2<f32>(0.0f), t19, t19 >= vec2<f32>(0.0f));
+    let t21 = select(vec2<f32>(255.0f), t20, t20 <= vec2<f32>(255.0f));
+    let t22 = t21
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t18 >= (t21 - 126.5f) * l1),
+            t21 < vec2<f32>(255.0f)
+        );
+    let t23 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t20 >= (t23 - 126.5f) * l1),
-        t23 < vec2<f32>(255.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t18 >= (t21 - 1.0f - 126.5f) * l1) - 1.0f,
+        t21 > vec2<f32>(0.0f)
     );
-    let t25 = select(vec2<f32>(0.0f), vec2<f32>(1.0f), t20 >= (t23 - 1.0f - 126.5f) * l1) - 1.0f;
-    let t26 = t23 + t24 + select(vec2<f32>(0.0f), t25, t23 > vec2<f32>(0.0f));
-    let t27 = vec2<f32>(t3, t11) * 127.5f;
-    let t28 = round(t27 / l1 + 127.5f);
-    let t29 = select(vec2<f32>(0.0f), t28, t28 >= vec2<f32>(0.0f));
-    let t30 = select(vec2<f32>(255.0f), t29, t29 <= vec2<f32>(255.0f));
-    let t31 = select(
+    let t24 = t22 + t23;
+    let t25 = vec2<f32>(t3, t10) * 127.5f;
+    let t26 = round(t25 / l1 + 127.5f);
+    let t27 = select(vec2<f32>(0.0f), t26, t26 >= vec2<f32>(0.0f));
+    let t28 = select(vec2<f32>(255.0f), t27, t27 <= vec2<f32>(255.0f));
+    let t29 = t28
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t25 >= (t28 - 126.5f) * l1),
+            t28 < vec2<f32>(255.0f)
+        );
+    let t30 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t27 >= (t30 - 126.5f) * l1),
-        t30 < vec2<f32>(255.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t25 >= (t28 - 1.0f - 126.5f) * l1) - 1.0f,
+        t28 > vec2<f32>(0.0f)
     );
-    let t32 = select(vec2<f32>(0.0f), vec2<f32>(1.0f), t27 >= (t30 - 1.0f - 126.5f) * l1) - 1.0f;
-    let t33 = t30 + t31 + select(vec2<f32>(0.0f), t32, t30 > vec2<f32>(0.0f));
-    let t34 = select(
-        t33 + t33 - 255.0f,
-        -(t26 + t26 - 255.0f),
+    let t31 = t29 + t30;
+    let t32 = select(
+        t31 + t31 - 255.0f,
+        -(t24 + t24 - 255.0f),
         s0 + s0 - 255.0f + (t0 + t0 - 255.0f) < 0.0f
     );
-    let cand = select(t34, t34.yx, t34.x < t34.y);
-    let t35 = 510.0f - cand.x - cand.x;
-    let t36 = select(0.0f, t35, t35 >= 0.0f);
-    let t37 = cand.x + cand.y;
-    let t38 = u32(t37);
-    let t39 = cand.x - cand.y;
-    let t40 = u32(t39);
-    let t41 = u32(t36);
-    let cross = afix.yzx * vec3<u32>(vec3<f32>(t36, t37, t39))
-        - afix.zxy * vec3<u32>(vec3<f32>(t39, t36, t37));
-    let t42 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
-    let t43 = t42 >> 16u;
-    let t44 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
-    let t45 = t44 >> 16u;
-    let t46 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
-    let t47 = t46 >> 16u;
-    let t48 = vec3<u32>(
-        (t43 * (t42 & 65535u)) >> 12u,
-        (t45 * (t44 & 65535u)) >> 12u,
-        (t47 * (t46 & 65535u)) >> 12u
+    let cand = select(t32, t32.yx, t32.x < t32.y);
+    let t33 = 510.0f - cand.x - cand.x;
+    let t34 = select(0.0f, t33, t33 >= 0.0f);
+    let t35 = cand.x + cand.y;
+    let t35_u = u32(t35);
+    let t36 = cand.x - cand.y;
+    let t36_u = u32(t36);
+    let t34_u = u32(t34);
+    let cross = afix.yzx * vec3<u32>(vec3<f32>(t34, t35, t36))
+        - afix.zxy * vec3<u32>(vec3<f32>(t36, t34, t35));
+    let t37 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
+    let t38 = t37 >> 16u;
+    let t39 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
+    let t40 = t39 >> 16u;
+    let t41 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
+    let t42 = t41 >> 16u;
+    let t43 = vec3<u32>((t38 * t38) << 3u, (t40 * t40) << 3u, (t42 * t42) << 3u);
+    let t44 = vec3<u32>(
+        (t38 * (t37 & 65535u)) >> 12u,
+        (t40 * (t39 & 65535u)) >> 12u,
+        (t42 * (t41 & 65535u)) >> 12u
     );
-    let t49 = vec3<u32>((t43 * t43) << 3u, (t45 * t45) << 3u, (t47 * t47) << 3u) + t48;
-    let e = f32(t49.x + t49.y + t49.z);
-    let n = f32(t38 * t38 + t40 * t40 + t41 * t41);
-    let t50 = s0 + 1.0f;
-    let t51 = vec2<f32>(estimate2, t10)
-        + select(vec2<f32>(0.0f), vec2<f32>(t16, t9), vec2<bool>(t15, t8));
-    let t52 = t51 + vec2<f32>(down2, 1.0f);
-    let t53 = vec2<f32>(t10, estimate2)
-        + select(vec2<f32>(0.0f), vec2<f32>(t9, t16), vec2<bool>(t8, t15));
-    let t54 = t53 + vec2<f32>(1.0f, down2);
-    let t55 = select(
-        t54 + t54 - 255.0f,
-        -(t52 + t52 - 255.0f),
-        t50 + t50 - 255.0f + (t0 + t0 - 255.0f) < 0.0f
+    let t45 = t43 + t44;
+    let e = f32(t45.x + t45.y + t45.z);
+    let n = f32(t35_u * t35_u + t36_u * t36_u + t34_u * t34_u);
+    let s_up = s0 + 1.0f;
+    let t_up = t0 + 1.0f;
+    let t46 = vec2<f32>(estimate2, t9)
+        + select(vec2<f32>(0.0f), vec2<f32>(one_if3, t8), vec2<bool>(t14, t7))
+        + vec2<f32>(down2, 1.0f);
+    let t47 = vec2<f32>(t9, estimate2)
+        + select(vec2<f32>(0.0f), vec2<f32>(t8, one_if3), vec2<bool>(t7, t14))
+        + vec2<f32>(1.0f, down2);
+    let t48 = select(
+        t47 + t47 - 255.0f,
+        -(t46 + t46 - 255.0f),
+        s_up + s_up - 255.0f + (t0 + t0 - 255.0f) < 0.0f
     );
-    let cand2 = select(t55, t55.yx, t55.x < t55.y);
-    let t56 = 510.0f - cand2.x - cand2.x;
-    let t57 = select(0.0f, t56, t56 >= 0.0f);
-    let t58 = cand2.x + cand2.y;
-    let t59 = u32(t58);
-    let t60 = cand2.x - cand2.y;
-    let t61 = u32(t60);
-    let t62 = u32(t57);
-    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t57, t58, t60))
-        - afix.zxy * vec3<u32>(vec3<f32>(t60, t57, t58));
-    let t63 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
-    let t64 = t63 >> 16u;
-    let t65 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
-    let t66 = t65 >> 16u;
-    let t67 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
-    let t68 = t67 >> 16u;
-    let t69 = vec3<u32>(
-        (t64 * (t63 & 65535u)) >> 12u,
-        (t66 * (t65 & 65535u)) >> 12u,
-        (t68 * (t67 & 65535u)) >> 12u
+    let cand2 = select(t48, t48.yx, t48.x < t48.y);
+    let t49 = 510.0f - cand2.x - cand2.x;
+    let t50 = select(0.0f, t49, t49 >= 0.0f);
+    let t51 = cand2.x + cand2.y;
+    let t51_u = u32(t51);
+    let t52 = cand2.x - cand2.y;
+    let t52_u = u32(t52);
+    let t50_u = u32(t50);
+    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t50, t51, t52))
+        - afix.zxy * vec3<u32>(vec3<f32>(t52, t50, t51));
+    let t53 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
+    let t54 = t53 >> 16u;
+    let t55 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
+    let t56 = t55 >> 16u;
+    let t57 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
+    let t58 = t57 >> 16u;
+    let t59 = vec3<u32>((t54 * t54) << 3u, (t56 * t56) << 3u, (t58 * t58) << 3u);
+    let t60 = vec3<u32>(
+        (t54 * (t53 & 65535u)) >> 12u,
+        (t56 * (t55 & 65535u)) >> 12u,
+        (t58 * (t57 & 65535u)) >> 12u
     );
-    let t70 = vec3<u32>((t64 * t64) << 3u, (t66 * t66) << 3u, (t68 * t68) << 3u) + t69;
-    let e2 = f32(t70.x + t70.y + t70.z);
-    let n2 = f32(t59 * t59 + t61 * t61 + t62 * t62);
-    let t71 = cand2.x <= 255.0f && e2 * n < e * n2;
-    let best = select(cand, cand2, t71);
-    let best_e = select(e, e2, t71);
-    let best_n = select(n, n2, t71);
-    let t72 = t0 + 1.0f;
-    let t73 = vec2<f32>(t19, estimate)
-        + select(vec2<f32>(0.0f), vec2<f32>(t18, t7), vec2<bool>(t17, t6));
-    let t74 = t73 + vec2<f32>(1.0f, down);
-    let t75 = vec2<f32>(estimate, t19)
-        + select(vec2<f32>(0.0f), vec2<f32>(t7, t18), vec2<bool>(t6, t17));
-    let t76 = t75 + vec2<f32>(down, 1.0f);
-    let t77 = select(
-        t76 + t76 - 255.0f,
-        -(t74 + t74 - 255.0f),
-        s0 + s0 - 255.0f + (t72 + t72 - 255.0f) < 0.0f
+    let t61 = t59 + t60;
+    let e2 = f32(t61.x + t61.y + t61.z);
+    let n2 = f32(t51_u * t51_u + t52_u * t52_u + t50_u * t50_u);
+    let t62 = cand2.x <= 255.0f && e2 * n < e * n2;
+    let best = select(cand, cand2, t62);
+    let best_e = select(e, e2, t62);
+    let best_n = select(n, n2, t62);
+    let t63 = vec2<f32>(t17, estimate)
+        + select(vec2<f32>(0.0f), vec2<f32>(t16, one_if), vec2<bool>(t15, t6))
+        + vec2<f32>(1.0f, down);
+    let t64 = vec2<f32>(estimate, t17)
+        + select(vec2<f32>(0.0f), vec2<f32>(one_if, t16), vec2<bool>(t6, t15))
+        + vec2<f32>(down, 1.0f);
+    let t65 = select(
+        t64 + t64 - 255.0f,
+        -(t63 + t63 - 255.0f),
+        s0 + s0 - 255.0f + (t_up + t_up - 255.0f) < 0.0f
     );
-    let cand3 = select(t77, t77.yx, t77.x < t77.y);
-    let t78 = 510.0f - cand3.x - cand3.x;
-    let t79 = select(0.0f, t78, t78 >= 0.0f);
-    let t80 = cand3.x + cand3.y;
-    let t81 = u32(t80);
-    let t82 = cand3.x - cand3.y;
-    let t83 = u32(t82);
-    let t84 = u32(t79);
-    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t79, t80, t82))
-        - afix.zxy * vec3<u32>(vec3<f32>(t82, t79, t80));
-    let t85 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
-    let t86 = t85 >> 16u;
-    let t87 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
+    let cand3 = select(t65, t65.yx, t65.x < t65.y);
+    let t66 = 510.0f - cand3.x - cand3.x;
+    let t67 = select(0.0f, t66, t66 >= 0.0f);
+    let t68 = cand3.x + cand3.y;
+    let t68_u = u32(t68);
+    let t69 = cand3.x - cand3.y;
+    let t69_u = u32(t69);
+    let t67_u = u32(t67);
+    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t67, t68, t69))
+        - afix.zxy * vec3<u32>(vec3<f32>(t69, t67, t68));
+    let t70 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
+    let t71 = t70 >> 16u;
+    let t72 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
+    let t73 = t72 >> 16u;
+    let t74 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t75 = t74 >> 16u;
+    let t76 = vec3<u32>((t71 * t71) << 3u, (t73 * t73) << 3u, (t75 * t75) << 3u);
+    let t77 = vec3<u32>(
+        (t71 * (t70 & 65535u)) >> 12u,
+        (t73 * (t72 & 65535u)) >> 12u,
+        (t75 * (t74 & 65535u)) >> 12u
+    );
+    let t78 = t76 + t77;
+    let e3 = f32(t78.x + t78.y + t78.z);
+    let n3 = f32(t68_u * t68_u + t69_u * t69_u + t67_u * t67_u);
+    let t79 = cand3.x <= 255.0f && e3 * best_n < best_e * n3;
+    let best2 = select(best, cand3, t79);
+    let best_e2 = select(best_e, e3, t79);
+    let best_n2 = select(best_n, n3, t79);
+    let t80 = t24 + 1.0f;
+    let t81 = t31 + 1.0f;
+    let t82 = select(
+        t81 + t81 - 255.0f,
+        -(t80 + t80 - 255.0f),
+        s_up + s_up - 255.0f + (t_up + t_up - 255.0f) < 0.0f
+    );
+    let cand4 = select(t82, t82.yx, t82.x < t82.y);
+    let t83 = 510.0f - cand4.x - cand4.x;
+    let t84 = select(0.0f, t83, t83 >= 0.0f);
+    let t85 = cand4.x + cand4.y;
+    let t85_u = u32(t85);
+    let t86 = cand4.x - cand4.y;
+    let t86_u = u32(t86);
+    let t84_u = u32(t84);
+    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t84, t85, t86))
+        - afix.zxy * vec3<u32>(vec3<f32>(t86, t84, t85));
+    let t87 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
     let t88 = t87 >> 16u;
-    let t89 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t89 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
     let t90 = t89 >> 16u;
-    let t91 = vec3<u32>(
-        (t86 * (t85 & 65535u)) >> 12u,
+    let t91 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
+    let t92 = t91 >> 16u;
+    let t93 = vec3<u32>((t88 * t88) << 3u, (t90 * t90) << 3u, (t92 * t92) << 3u);
+    let t94 = vec3<u32>(
         (t88 * (t87 & 65535u)) >> 12u,
-        (t90 * (t89 & 65535u)) >> 12u
+        (t90 * (t89 & 65535u)) >> 12u,
+        (t92 * (t91 & 65535u)) >> 12u
     );
-    let t92 = vec3<u32>((t86 * t86) << 3u, (t88 * t88) << 3u, (t90 * t90) << 3u) + t91;
-    let e3 = f32(t92.x + t92.y + t92.z);
-    let n3 = f32(t81 * t81 + t83 * t83 + t84 * t84);
-    let t93 = cand3.x <= 255.0f && e3 * best_n < best_e * n3;
-    let best2 = select(best, cand3, t93);
-    let best_e2 = select(best_e, e3, t93);
-    let best_n2 = select(best_n, n3, t93);
-    let t94 = s0 + 1.0f;
-    let t95 = t0 + 1.0f;
-    let t96 = t26 + 1.0f;
-    let t97 = t33 + 1.0f;
-    let t98 = select(
-        t97 + t97 - 255.0f,
-        -(t96 + t96 - 255.0f),
-        t94 + t94 - 255.0f + (t95 + t95 - 255.0f) < 0.0f
-    );
-    let cand4 = select(t98, t98.yx, t98.x < t98.y);
-    let t99 = 510.0f - cand4.x - cand4.x;
-    let t100 = select(0.0f, t99, t99 >= 0.0f);
-    let t101 = cand4.x + cand4.y;
-    let t102 = u32(t101);
-    let t103 = cand4.x - cand4.y;
-    let t104 = u32(t103);
-    let t105 = u32(t100);
-    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t100, t101, t103))
-        - afix.zxy * vec3<u32>(vec3<f32>(t103, t100, t101));
-    let t106 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
-    let t107 = t106 >> 16u;
-    let t108 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
-    let t109 = t108 >> 16u;
-    let t110 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
-    let t111 = t110 >> 16u;
-    let t112 = vec3<u32>(
-        (t107 * (t106 & 65535u)) >> 12u,
-        (t109 * (t108 & 65535u)) >> 12u,
-        (t111 * (t110 & 65535u)) >> 12u
-    );
-    let t113 = vec3<u32>((t107 * t107) << 3u, (t109 * t109) << 3u, (t111 * t111) << 3u) + t112;
-    let e4 = f32(t113.x + t113.y + t113.z);
-    let n4 = f32(t102 * t102 + t104 * t104 + t105 * t105);
+    let t95 = t93 + t94;
+    let e4 = f32(t95.x + t95.y + t95.z);
+    let n4 = f32(t85_u * t85_u + t86_u * t86_u + t84_u * t84_u);
     let best3 = select(best2, cand4, cand4.x <= 255.0f && e4 * best_n2 < best_e2 * n4);
-    let t114 = select(best3, -best3.yx, w.x < 0.0f);
-    let c = select(vec2<f32>(128.0f), (select(t114, t114.yx, w.y < 0.0f) + 255.0f) * 0.5f, t2);
+    let t96 = select(best3, -best3.yx, w.x < 0.0f);
+    let c = select(vec2<f32>(128.0f), (select(t96, t96.yx, w.y < 0.0f) + 255.0f) * 0.5f, t2);
     return vec4<f32>(c, 0.0f, 255.0f);
 }
 
@@ -278,17 +291,13 @@ fn unitpack_hemioct16p_rg_encode_float(v: vec3<f32>) -> vec4<f32> {
 }
 
 // unitpack_hemioct16p_rg_encode: precise encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct16p_rg_encode_float.
 // Out: the RGBA8 texel as a u32 (R bits 0–7, G 8–15, B 16–23, A 24–31): R = x, G = y, B = 0, A =
 //   255; x, y the parameters as unorm8 p·½ + ½ (p = 0 has no code: +Z is stored as x = y = 128).
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.
 fn unitpack_hemioct16p_rg_encode(v: vec3<f32>) -> u32 {
     let encode_codes = unitpack_hemioct16p_rg_encode_codes(v);
-    return u32(encode_codes.x)
-        | (u32(encode_codes.y) << 8u)
-        | (u32(encode_codes.z) << 16u)
-        | (u32(encode_codes.w) << 24u);
+    let t1 = u32(encode_codes.x) | (u32(encode_codes.y) << 8u) | (u32(encode_codes.z) << 16u);
+    return t1 | (u32(encode_codes.w) << 24u);
 }

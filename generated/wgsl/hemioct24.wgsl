@@ -53,9 +53,13 @@ fn unitpack_hemioct24_decode(code: u32) -> vec3<f32> {
 fn unitpack_hemioct24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let t1 = vec3<f32>(v.xy, select(v.z, 0.0f, v.z < 0.0f));
     let abs_t1 = abs(t1);
-    let t2 = abs_t1.x + abs_t1.y + abs_t1.z;
-    let t3 = select(0.25f, select(1.0f, 1.2676506e30f, t2 < 7.888609e-31f), t2 <= 3.4028235e38f);
-    let w = t1 * t3;
+    let norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
+    let fit = select(
+        0.25f,
+        select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
+        norm1 <= 3.4028235e38f
+    );
+    let w = t1 * fit;
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
     let p = w.xy / l1;
@@ -78,7 +82,8 @@ fn unitpack_hemioct24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = abs(vec3<f32>(w.xy, select(0.0f, w.z, w.z > 0.0f)));
     let l1 = t1.x + t1.y + t1.z;
@@ -96,9 +101,7 @@ fn unitpack_hemioct24_round_codes(a0: vec3<f32>) -> vec2<f32> {
 }
 
 // unitpack_hemioct24_encode: fast encoder.
-// In: any vector; input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and
-//   infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of
-//   |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon).
+// In: as for unitpack_hemioct24_encode_float.
 // Out: the packed code, u32 (bits 0–11: p0 snorm12 (two's complement), bits 12–23: p1 snorm12
 //   (two's complement)).
 // Portable (as the header says): the same code on every such implementation; denormal input

@@ -54,12 +54,16 @@ fn unitpack_lambert16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -79,22 +83,26 @@ fn unitpack_lambert16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = w2.z >= 0.0f;
-    let fixed5 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w2.y) * 2097152.0f));
+    let t1 = w2.z >= 0.0f;
+    let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -108,244 +116,218 @@ fn unitpack_lambert16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2 = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let opz_a = select(rho2, root + w2.z, t4);
-    let opz_b = select(root - w2.z, 1.0f, t4);
-    let t5 = opz_a <= 0.0f;
-    let t6 = select(w2, vec3<f32>(0.0f, 0.0f, 2.0f), t5);
-    let t7 = select(root, 2.0f, t5);
-    let t8 = select(opz_b, 1.0f, t5);
-    let la = t7 * select(opz_a, 4.0f, t5);
-    let t9 = round(t6.xy / (sqrt(la / t8) * 0.011091871f) + 127.5f);
-    let t10 = select(vec2<f32>(0.0f), t9, t9 >= vec2<f32>(0.0f));
-    let t11 = select(vec2<f32>(255.0f), t10, t10 <= vec2<f32>(255.0f));
-    let t12 = t11 - 126.5f;
-    let t13 = t6.xy * t6.xy * t8 * 8128.125f;
-    let t14 = t12 * t12 * la;
+    let opz_a = select(rho2, root + w2.z, t1);
+    let opz_b = select(root - w2.z, 1.0f, t1);
+    let t2 = opz_a <= 0.0f;
+    let t3 = select(w2, vec3<f32>(0.0f, 0.0f, 2.0f), t2);
+    let t4 = select(root, 2.0f, t2);
+    let t5 = select(opz_b, 1.0f, t2);
+    let la = t4 * select(opz_a, 4.0f, t2);
+    let t6 = round(t3.xy / (sqrt(la / t5) * 0.011091871f) + 127.5f);
+    let t7 = select(vec2<f32>(0.0f), t6, t6 >= vec2<f32>(0.0f));
+    let t8 = select(vec2<f32>(255.0f), t7, t7 <= vec2<f32>(255.0f));
+    let t9 = t8 - 126.5f;
+    let t10 = t3.xy * t3.xy * t5 * 8128.125f;
+    let t11 = t9 * t9 * la;
+    let t12 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t10 <= t11),
+            t9 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t10 >= t11),
+            t9 > vec2<f32>(0.0f)
+        ),
+        t3.xy >= vec2<f32>(0.0f)
+    );
+    let t13 = t8 - 1.0f - 126.5f;
+    let t14 = t13 * t13 * la;
     let t15 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t13 >= t14),
-        t12 > vec2<f32>(0.0f)
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t10 <= t14),
+            t13 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t10 >= t14),
+            t13 > vec2<f32>(0.0f)
+        ),
+        t3.xy >= vec2<f32>(0.0f)
     );
-    let t16 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t13 <= t14),
-        t12 < vec2<f32>(0.0f)
-    );
-    let t17 = select(
-        vec2<f32>(0.0f),
-        select(t16, t15, t6.xy >= vec2<f32>(0.0f)),
-        t11 < vec2<f32>(255.0f)
-    );
-    let t18 = t11 - 1.0f - 126.5f;
-    let t19 = t18 * t18 * la;
-    let t20 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t13 >= t19),
-        t18 > vec2<f32>(0.0f)
-    );
-    let t21 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t13 <= t19),
-        t18 < vec2<f32>(0.0f)
-    );
-    let t22 = select(
-        vec2<f32>(0.0f),
-        select(t21, t20, t6.xy >= vec2<f32>(0.0f)) - 1.0f,
-        t11 > vec2<f32>(0.0f)
-    );
-    let base = t11 + t17 + t22;
-    let t23 = floor(t6 / t7 * 2097152.0f);
-    let t24 = t6 * 2097152.0f;
-    let t25 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t23 * t7 > t24),
+    let base = t8
+        + select(vec2<f32>(0.0f), t12, t8 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t15 - 1.0f, t8 > vec2<f32>(0.0f));
+    let t16 = floor(t3 / t4 * 2097152.0f);
+    let t17 = t3 * 2097152.0f;
+    let t18 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t16 * t4 > t17),
         vec3<f32>(1.0f),
-        (t23 + 1.0f) * t7 <= t24
+        (t16 + 1.0f) * t4 <= t17
     );
-    let aim = t23 + t25;
+    let aim = t16 + t18;
     let cand = select(vec2<f32>(255.0f), base, base <= vec2<f32>(255.0f));
     let t = cand * 2.0f - 255.0f;
-    let t26 = vec2<u32>(abs(t));
-    let t27 = ((t26.x * t26.x) >> 2u) + ((t26.y * t26.y) >> 2u);
-    let t28 = select(0u, ((16255u - t27) << 2u) + 3u, !(16255u < t27));
-    let r = f32(t28 >> 12u) * 4096.0f + f32(t28 & 4095u);
-    let t29 = r * 17041940.0f;
-    let root_estimate2 = floor(sqrt(t29));
+    let t19 = vec2<u32>(abs(t));
+    let t20 = ((t19.x * t19.x) >> 2u) + ((t19.y * t19.y) >> 2u);
+    let t21 = select(0u, ((16255u - t20) << 2u) + 3u, !(16255u < t20));
+    let r = f32(t21 >> 12u) * 4096.0f + f32(t21 & 4095u);
+    let t22 = r * 17041940.0f;
+    let root_estimate2 = floor(sqrt(t22));
     let root_next = root_estimate2 + 1.0f;
-    let t30 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t29),
-        1.0f,
-        root_next * root_next <= t29
-    );
-    let root_step = root_estimate2 + t30;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t22);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t22);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t31 = select(
-        select(0.0f, -1.0f, root_step * root_step > t29),
-        1.0f,
-        root_next2 * root_next2 <= t29
-    );
-    let g = root_step + t31;
-    let t32 = abs(vec3<f32>(floor(t * g * 0.015625f), floor(r * 64.502945f) - 2097152.0f) - aim);
-    let t33 = vec3<u32>(t32);
-    let limb1_6 = t33.x >> 12u;
-    let limb0_6 = t33.x & 4095u;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t22);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t22);
+    let g = root_step + step4;
+    let t23 = vec3<f32>(floor(t * g * 0.015625f), floor(r * 64.502945f) - 2097152.0f);
+    let offset = t23 - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_6 = offset_u.x >> 12u;
+    let limb0_6 = offset_u.x & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    let limb1_7 = t33.y >> 12u;
-    let limb0_7 = t33.y & 4095u;
+    let limb1_7 = offset_u.y >> 12u;
+    let limb0_7 = offset_u.y & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t33.z >> 12u;
-    let limb0_8 = t33.z & 4095u;
+    let limb1_8 = offset_u.z >> 12u;
+    let limb0_8 = offset_u.z & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     let hi11 = hi10 + (lo10 >> 24u);
     let lo11 = lo10 & 16777215u;
     let dist = f32(hi11) * 16777216.0f + f32(lo11);
-    let t34 = base.x + 1.0f;
-    let t35 = vec2<f32>(t34, base.y);
-    let cand2 = select(vec2<f32>(255.0f), t35, t35 <= vec2<f32>(255.0f));
-    let t36 = cand2 * 2.0f - 255.0f;
-    let t37 = vec2<u32>(abs(t36));
-    let t38 = ((t37.x * t37.x) >> 2u) + ((t37.y * t37.y) >> 2u);
-    let t39 = select(0u, ((16255u - t38) << 2u) + 3u, !(16255u < t38));
-    let r2 = f32(t39 >> 12u) * 4096.0f + f32(t39 & 4095u);
-    let t40 = r2 * 17041940.0f;
-    let root_estimate3 = floor(sqrt(t40));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t24 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(255.0f), t24, t24 <= vec2<f32>(255.0f));
+    let t25 = cand2 * 2.0f - 255.0f;
+    let t26 = vec2<u32>(abs(t25));
+    let t27 = ((t26.x * t26.x) >> 2u) + ((t26.y * t26.y) >> 2u);
+    let t28 = select(0u, ((16255u - t27) << 2u) + 3u, !(16255u < t27));
+    let r2 = f32(t28 >> 12u) * 4096.0f + f32(t28 & 4095u);
+    let t29 = r2 * 17041940.0f;
+    let root_estimate3 = floor(sqrt(t29));
     let root_next3 = root_estimate3 + 1.0f;
-    let t41 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t40),
-        1.0f,
-        root_next3 * root_next3 <= t40
-    );
-    let root_step2 = root_estimate3 + t41;
+    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t29);
+    let step5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t29);
+    let root_step2 = root_estimate3 + step5;
     let root_next4 = root_step2 + 1.0f;
-    let t42 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t40),
-        1.0f,
-        root_next4 * root_next4 <= t40
-    );
-    let g2 = root_step2 + t42;
-    let t43 = vec3<f32>(floor(t36 * g2 * 0.015625f), floor(r2 * 64.502945f) - 2097152.0f) - aim;
-    let t44 = vec3<u32>(abs(t43));
-    let limb1_9 = t44.x >> 12u;
-    let limb0_9 = t44.x & 4095u;
+    let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t29);
+    let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t29);
+    let g2 = root_step2 + step6;
+    let t30 = vec3<f32>(floor(t25 * g2 * 0.015625f), floor(r2 * 64.502945f) - 2097152.0f);
+    let offset2 = t30 - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_9 = offset_u2.x >> 12u;
+    let limb0_9 = offset_u2.x & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    let limb1_10 = t44.y >> 12u;
-    let limb0_10 = t44.y & 4095u;
+    let limb1_10 = offset_u2.y >> 12u;
+    let limb0_10 = offset_u2.y & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t44.z >> 12u;
-    let limb0_11 = t44.z & 4095u;
+    let limb1_11 = offset_u2.z >> 12u;
+    let limb0_11 = offset_u2.z & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 16777215u;
     let dist2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t45 = t34 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    let best = select(cand, cand2, t45);
-    let best_d = select(dist, dist2, t45);
-    let t46 = base.y + 1.0f;
-    let t47 = vec2<f32>(base.x, t46);
-    let cand3 = select(vec2<f32>(255.0f), t47, t47 <= vec2<f32>(255.0f));
-    let t48 = cand3 * 2.0f - 255.0f;
-    let t49 = vec2<u32>(abs(t48));
-    let t50 = ((t49.x * t49.x) >> 2u) + ((t49.y * t49.y) >> 2u);
-    let t51 = select(0u, ((16255u - t50) << 2u) + 3u, !(16255u < t50));
-    let r3 = f32(t51 >> 12u) * 4096.0f + f32(t51 & 4095u);
-    let t52 = r3 * 17041940.0f;
-    let root_estimate4 = floor(sqrt(t52));
+    let t31 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    let best = select(cand, cand2, t31);
+    let best_d = select(dist, dist2, t31);
+    let t32 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(255.0f), t32, t32 <= vec2<f32>(255.0f));
+    let t33 = cand3 * 2.0f - 255.0f;
+    let t34 = vec2<u32>(abs(t33));
+    let t35 = ((t34.x * t34.x) >> 2u) + ((t34.y * t34.y) >> 2u);
+    let t36 = select(0u, ((16255u - t35) << 2u) + 3u, !(16255u < t35));
+    let r3 = f32(t36 >> 12u) * 4096.0f + f32(t36 & 4095u);
+    let t37 = r3 * 17041940.0f;
+    let root_estimate4 = floor(sqrt(t37));
     let root_next5 = root_estimate4 + 1.0f;
-    let t53 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t52),
-        1.0f,
-        root_next5 * root_next5 <= t52
-    );
-    let root_step3 = root_estimate4 + t53;
+    let step_down7 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t37);
+    let step7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t37);
+    let root_step3 = root_estimate4 + step7;
     let root_next6 = root_step3 + 1.0f;
-    let t54 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t52),
-        1.0f,
-        root_next6 * root_next6 <= t52
-    );
-    let g3 = root_step3 + t54;
-    let t55 = vec3<f32>(floor(t48 * g3 * 0.015625f), floor(r3 * 64.502945f) - 2097152.0f) - aim;
-    let t56 = vec3<u32>(abs(t55));
-    let limb1_12 = t56.x >> 12u;
-    let limb0_12 = t56.x & 4095u;
+    let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t37);
+    let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t37);
+    let g3 = root_step3 + step8;
+    let t38 = vec3<f32>(floor(t33 * g3 * 0.015625f), floor(r3 * 64.502945f) - 2097152.0f);
+    let offset3 = t38 - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_12 = offset_u3.x >> 12u;
+    let limb0_12 = offset_u3.x & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    let limb1_13 = t56.y >> 12u;
-    let limb0_13 = t56.y & 4095u;
+    let limb1_13 = offset_u3.y >> 12u;
+    let limb0_13 = offset_u3.y & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t56.z >> 12u;
-    let limb0_14 = t56.z & 4095u;
+    let limb1_14 = offset_u3.z >> 12u;
+    let limb0_14 = offset_u3.z & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 16777215u;
     let dist3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t57 = base.x <= 255.0f && t46 <= 255.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t57);
-    let best_d2 = select(best_d, dist3, t57);
-    let t58 = base + 1.0f;
-    let cand4 = select(vec2<f32>(255.0f), t58, t58 <= vec2<f32>(255.0f));
-    let t59 = cand4 * 2.0f - 255.0f;
-    let t60 = vec2<u32>(abs(t59));
-    let t61 = ((t60.x * t60.x) >> 2u) + ((t60.y * t60.y) >> 2u);
-    let t62 = select(0u, ((16255u - t61) << 2u) + 3u, !(16255u < t61));
-    let r4 = f32(t62 >> 12u) * 4096.0f + f32(t62 & 4095u);
-    let t63 = r4 * 17041940.0f;
-    let root_estimate5 = floor(sqrt(t63));
+    let t39 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t39);
+    let best_d2 = select(best_d, dist3, t39);
+    let t40 = base + 1.0f;
+    let cand4 = select(vec2<f32>(255.0f), t40, t40 <= vec2<f32>(255.0f));
+    let t41 = cand4 * 2.0f - 255.0f;
+    let t42 = vec2<u32>(abs(t41));
+    let t43 = ((t42.x * t42.x) >> 2u) + ((t42.y * t42.y) >> 2u);
+    let t44 = select(0u, ((16255u - t43) << 2u) + 3u, !(16255u < t43));
+    let r4 = f32(t44 >> 12u) * 4096.0f + f32(t44 & 4095u);
+    let t45 = r4 * 17041940.0f;
+    let root_estimate5 = floor(sqrt(t45));
     let root_next7 = root_estimate5 + 1.0f;
-    let t64 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t63),
-        1.0f,
-        root_next7 * root_next7 <= t63
-    );
-    let root_step4 = root_estimate5 + t64;
+    let step_down9 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t45);
+    let step9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t45);
+    let root_step4 = root_estimate5 + step9;
     let root_next8 = root_step4 + 1.0f;
-    let t65 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t63),
-        1.0f,
-        root_next8 * root_next8 <= t63
-    );
-    let g4 = root_step4 + t65;
-    let t66 = vec3<f32>(floor(t59 * g4 * 0.015625f), floor(r4 * 64.502945f) - 2097152.0f) - aim;
-    let t67 = vec3<u32>(abs(t66));
-    let limb1_15 = t67.x >> 12u;
-    let limb0_15 = t67.x & 4095u;
+    let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t45);
+    let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t45);
+    let g4 = root_step4 + step10;
+    let t46 = vec3<f32>(floor(t41 * g4 * 0.015625f), floor(r4 * 64.502945f) - 2097152.0f);
+    let offset4 = t46 - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_15 = offset_u4.x >> 12u;
+    let limb0_15 = offset_u4.x & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    let limb1_16 = t67.y >> 12u;
-    let limb0_16 = t67.y & 4095u;
+    let limb1_16 = offset_u4.y >> 12u;
+    let limb0_16 = offset_u4.y & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t67.z >> 12u;
-    let limb0_17 = t67.z & 4095u;
+    let limb1_17 = offset_u4.z >> 12u;
+    let limb0_17 = offset_u4.z & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 16777215u;
     let dist4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2);
     return select(vec2<f32>(128.0f), select(best3, vec2<f32>(255.0f, 128.0f), opz_a <= 0.0f), ok);
 }
 

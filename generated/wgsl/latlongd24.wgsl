@@ -28,9 +28,8 @@ fn unitpack_latlongd24_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -63,11 +62,14 @@ fn unitpack_latlongd24_encode_ring(v: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -88,18 +90,20 @@ fn unitpack_latlongd24_encode_ring(v: vec3<f32>) -> u32 {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t3 = t2 * root_down;
     let root_estimate = sqrt(t3);
-    let t4 = floor(root_estimate * 512.0f);
-    let root_h0 = t4 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t5 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t3), 1.0f, root_h1 * root_h1 <= t3);
-    let root_k = t4 + t5;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t3);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t3);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t3 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t6 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t3), 1.0f, root_m1 * root_m1 <= t3);
-    let root_j = root_j0 + t6;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t3);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t3);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let rho = select(0.0f, root * root_up, t1);
     let abs_w2_z = abs(w2.z);
@@ -107,40 +111,34 @@ fn unitpack_latlongd24_encode_ring(v: vec3<f32>) -> u32 {
     let y_major = abs_rho > abs_w2_z;
     let hi4 = select(abs_w2_z, abs_rho, y_major);
     let lo4 = select(abs_rho, abs_w2_z, y_major);
-    let t7 = select(1.0f, hi4, hi4 > 0.0f);
+    let t4 = select(1.0f, hi4, hi4 > 0.0f);
     let big = lo4 * 8388608.0f;
-    let ratio_estimate = floor(lo4 / t7 * 8388608.0f);
-    let t8 = select(
-        select(0.0f, -1.0f, ratio_estimate * t7 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t7 <= big
-    );
-    let ratio = ratio_estimate + t8;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t7 > big), 1.0f, (ratio + 1.0f) * t7 <= big);
+    let ratio_estimate = floor(lo4 / t4 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t4 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t4 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t4 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t4 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t9 = t - 8388608.0f;
-    let t10 = t + 8388608.0f;
-    let big2 = t9 * 8388608.0f;
-    let ratio_estimate2 = floor(t9 / t10 * 8388608.0f);
-    let t11 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t10 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t10 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t11;
-    let t12 = select(select(0.0f, -1.0f, ratio2 * t10 > big2), 1.0f, (ratio2 + 1.0f) * t10 <= big2);
-    let ratio3 = ratio2 + t12;
+    let t5 = t - 8388608.0f;
+    let t6 = t + 8388608.0f;
+    let big2 = t5 * 8388608.0f;
+    let ratio_estimate2 = floor(t5 / t6 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t6 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t6 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t6 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t6 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t13 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t14 = round((round(t13 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t15 = round((round(t14 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t16 = round((round(t15 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t16 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t7 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t8 = (round((t7 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t9 = (round((round(t8) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t10 = round((round(t9 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t11 = round((round(t10 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t11 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
@@ -165,7 +163,8 @@ fn unitpack_latlongd24_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2_x = abs(w2.x);
@@ -176,44 +175,38 @@ fn unitpack_latlongd24_encode(v: vec3<f32>, ring: vec2<u32>) -> u32 {
     let t1 = select(1.0f, hi, hi > 0.0f);
     let big = lo * 8388608.0f;
     let ratio_estimate = floor(lo / t1 * 8388608.0f);
-    let t2 = select(
-        select(0.0f, -1.0f, ratio_estimate * t1 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t1 <= big
-    );
-    let ratio = ratio_estimate + t2;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t1 > big), 1.0f, (ratio + 1.0f) * t1 <= big);
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t1 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t1 <= big);
+    let ratio = ratio_estimate + step;
+    let step_down2 = select(0.0f, -1.0f, ratio * t1 > big);
+    let step2 = select(step_down2, 1.0f, (ratio + 1.0f) * t1 <= big);
+    let t = ratio + step2;
     let far = t > 3474675.0f;
-    let t3 = t - 8388608.0f;
-    let t4 = t + 8388608.0f;
-    let big2 = t3 * 8388608.0f;
-    let ratio_estimate2 = floor(t3 / t4 * 8388608.0f);
-    let t5 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t4 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t4 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t5;
-    let t6 = select(select(0.0f, -1.0f, ratio2 * t4 > big2), 1.0f, (ratio2 + 1.0f) * t4 <= big2);
-    let ratio3 = ratio2 + t6;
+    let t2 = t - 8388608.0f;
+    let t3 = t + 8388608.0f;
+    let big2 = t2 * 8388608.0f;
+    let ratio_estimate2 = floor(t2 / t3 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate2 * t3 > big2);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate2 + 1.0f) * t3 <= big2);
+    let ratio2 = ratio_estimate2 + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio2 * t3 > big2);
+    let step4 = select(step_down4, 1.0f, (ratio2 + 1.0f) * t3 <= big2);
+    let ratio3 = ratio2 + step4;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t7 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t8 = round((round(t7 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t9 = round((round(t8 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t10 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t4 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t5 = (round((t4 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t6 = (round((round(t5) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t7 = round((round(t6 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t8 = round((round(t7 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t8 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, w2.x < 0.0f);
     let phi = select(h4, -h4, w2.y < 0.0f);
-    let t11 = u32(round((phi + 8388608.0f) * f32(ring.y) * 5.9604645e-8f));
-    return select(0u, ring.x + select(0u, t11, t11 < ring.y), ok);
+    let t9 = u32(round((phi + 8388608.0f) * f32(ring.y) * 5.9604645e-8f));
+    return select(0u, ring.x + select(0u, t9, t9 < ring.y), ok);
 }
 
 // unitpack_latlongd24_encode_float: fast encoder, float form.
@@ -238,78 +231,73 @@ fn unitpack_latlongd24_decode_ring(code: u32) -> u32 {
     let t4 = select(t2, 16777215u - t2, t3);
     let t5 = t4 + t4 + 1u;
     let t6 = 16777215u - t4;
-    let t7 = 16777215u - (t4 + t4);
-    let t8 = f32(t7 >> 12u) * 4096.0f + f32(t7 & 4095u);
-    let t9 = (f32(t5 >> 12u) * 4096.0f + f32(t5 & 4095u))
-        * ((f32(t6 >> 12u) * 4096.0f + f32(t6 & 4095u)) * 2.0f + 1.0f);
-    let half_exponent = ((bitcast<u32>(t9) >> 23u) + 1u) >> 1u;
+    let t7 = (f32(t6 >> 12u) * 4096.0f + f32(t6 & 4095u)) * 2.0f;
+    let t8 = 16777215u - (t4 + t4);
+    let t9 = f32(t8 >> 12u) * 4096.0f + f32(t8 & 4095u);
+    let t10 = (f32(t5 >> 12u) * 4096.0f + f32(t5 & 4095u)) * (t7 + 1.0f);
+    let half_exponent = ((bitcast<u32>(t10) >> 23u) + 1u) >> 1u;
     let root_down = bitcast<f32>((257u - (half_exponent << 1u)) << 23u);
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
-    let t10 = t9 * root_down;
-    let root_estimate = sqrt(t10);
-    let t11 = floor(root_estimate * 512.0f);
-    let root_h0 = t11 * 0.001953125f;
+    let t11 = t10 * root_down;
+    let root_estimate = sqrt(t11);
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t12 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t10), 1.0f, root_h1 * root_h1 <= t10);
-    let root_k = t11 + t12;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t11);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t11);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
-    let root_rest = t10 - root_h * root_h;
+    let root_rest = t11 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t13 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t10), 1.0f, root_m1 * root_m1 <= t10);
-    let root_j = root_j0 + t13;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t11);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t11);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t14 = root * root_up;
-    let abs_t8 = abs(t8);
-    let abs_t14 = abs(t14);
-    let y_major = abs_t14 > abs_t8;
-    let hi = select(abs_t8, abs_t14, y_major);
-    let lo = select(abs_t14, abs_t8, y_major);
-    let t15 = select(1.0f, hi, hi > 0.0f);
+    let t12 = root * root_up;
+    let abs_t9 = abs(t9);
+    let abs_t12 = abs(t12);
+    let y_major = abs_t12 > abs_t9;
+    let hi = select(abs_t9, abs_t12, y_major);
+    let lo = select(abs_t12, abs_t9, y_major);
+    let t13 = select(1.0f, hi, hi > 0.0f);
     let big = lo * 8388608.0f;
-    let ratio_estimate = floor(lo / t15 * 8388608.0f);
-    let t16 = select(
-        select(0.0f, -1.0f, ratio_estimate * t15 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t15 <= big
-    );
-    let ratio = ratio_estimate + t16;
-    let t17 = select(select(0.0f, -1.0f, ratio * t15 > big), 1.0f, (ratio + 1.0f) * t15 <= big);
-    let t = ratio + t17;
+    let ratio_estimate = floor(lo / t13 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t13 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t13 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t13 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t13 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t18 = t - 8388608.0f;
-    let t19 = t + 8388608.0f;
-    let big2 = t18 * 8388608.0f;
-    let ratio_estimate2 = floor(t18 / t19 * 8388608.0f);
-    let t20 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t19 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t19 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t20;
-    let t21 = select(select(0.0f, -1.0f, ratio2 * t19 > big2), 1.0f, (ratio2 + 1.0f) * t19 <= big2);
-    let ratio3 = ratio2 + t21;
+    let t14 = t - 8388608.0f;
+    let t15 = t + 8388608.0f;
+    let big2 = t14 * 8388608.0f;
+    let ratio_estimate2 = floor(t14 / t15 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t15 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t15 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t15 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t15 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t22 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t23 = round((round(t22 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t24 = round((round(t23 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t25 = round((round(t24 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t25 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t16 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t17 = (round((t16 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t18 = (round((round(t17) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t19 = round((round(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t20 = round((round(t19 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t20 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
-    let h4 = select(h3, 8388608.0f - h3, t8 < 0.0f);
-    let angle = select(h4, -h4, t14 < 0.0f);
-    let t26 = angle * 0.0004324913f;
-    let t27 = select(floor(t26), 3628.0f + floor(0.0f - t26), t3);
-    let t28 = select(0.0f, t27, t27 >= 0.0f);
-    return u32(select(3627.0f, t28, t28 <= 3627.0f));
+    let h4 = select(h3, 8388608.0f - h3, t9 < 0.0f);
+    let angle = select(h4, -h4, t12 < 0.0f);
+    let t21 = angle * 0.0004324913f;
+    let t22 = select(floor(t21), 3628.0f + floor(0.0f - t21), t3);
+    let t23 = select(0.0f, t22, t22 >= 0.0f);
+    return u32(select(3627.0f, t23, t23 <= 3627.0f));
 }
 
 // unitpack_latlongd24_decode_params: lookup texel.
@@ -331,16 +319,15 @@ fn unitpack_latlongd24_decode_params(
     let t5 = f32(select(ring0.y, ring1.y, t3));
     let big = t4 * 16777216.0f;
     let ratio_estimate = floor(t4 / t5 * 16777216.0f);
-    let t6 = select(
-        select(0.0f, -1.0f, ratio_estimate * t5 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t5 <= big
-    );
-    let ratio = ratio_estimate + t6;
-    let ratio2 = ratio
-        + select(select(0.0f, -1.0f, ratio * t5 > big), 1.0f, (ratio + 1.0f) * t5 <= big);
-    let t7 = select(select(0.0f, -1.0f, ratio2 * t5 > big), 1.0f, (ratio2 + 1.0f) * t5 <= big);
-    let ratio3 = ratio2 + t7;
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t5 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t5 <= big);
+    let ratio = ratio_estimate + step;
+    let step_down2 = select(0.0f, -1.0f, ratio * t5 > big);
+    let step2 = select(step_down2, 1.0f, (ratio + 1.0f) * t5 <= big);
+    let ratio2 = ratio + step2;
+    let step_down3 = select(0.0f, -1.0f, ratio2 * t5 > big);
+    let step3 = select(step_down3, 1.0f, (ratio2 + 1.0f) * t5 <= big);
+    let ratio3 = ratio2 + step3;
     return vec2<f32>(vec2<u32>(u32(ratio3), select(g, g + 1u, t3)))
         * vec2<f32>(5.9604645e-8f, 0.00027563397f);
 }

@@ -26,9 +26,9 @@
 fn unitpack_oct16_ieee_decode_float(params: vec2<f32>) -> vec3<f32> {
     let abs_params = abs(params);
     let z = 1.0f - abs_params.x - abs_params.y;
-    let t1 = (1.0f - abs(params.yx))
+    let folded = (1.0f - abs(params.yx))
         * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), params >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(params, t1, z < 0.0f), z);
+    let v = vec3<f32>(select(params, folded, z < 0.0f), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -55,8 +55,15 @@ fn unitpack_oct16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
     let l1 = abs_v.x + abs_v.y + abs_v.z;
     let p = v.xy / l1;
     let abs_p = abs(p);
-    let t1 = (1.0f - abs_p.yx) * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), p >= vec2<f32>(0.0f));
-    return select(vec2<f32>(0.0f), select(p, t1, v.z <= 0.0f), abs_p.x + l1 <= 3.4028235e38f);
+    return select(
+        vec2<f32>(0.0f),
+        select(
+            p,
+            (1.0f - abs_p.yx) * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), p >= vec2<f32>(0.0f)),
+            v.z <= 0.0f
+        ),
+        abs_p.x + l1 <= 3.4028235e38f
+    );
 }
 
 // unitpack_oct16_ieee_encode: fast encoder.

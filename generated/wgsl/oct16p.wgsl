@@ -26,9 +26,9 @@
 fn unitpack_oct16p_decode_float(params: vec2<f32>) -> vec3<f32> {
     let abs_params = abs(params);
     let z = 1.0f - abs_params.x - abs_params.y;
-    let t1 = (1.0f - abs(params.yx))
+    let folded = (1.0f - abs(params.yx))
         * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), params >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(params, t1, z < 0.0f), z);
+    let v = vec3<f32>(select(params, folded, z < 0.0f), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -58,145 +58,147 @@ fn unitpack_oct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let a = select(vec3<f32>(0.0f, 0.0f, 2.0f), abs(w), ok);
     let l1 = a.x + a.y + a.z;
     let estimate = floor(a.x / l1 * 127.0f);
     let big = a.x * 127.0f;
-    let t1 = select(select(0.0f, -1.0f, big < estimate * l1), 1.0f, big >= (estimate + 1.0f) * l1);
-    let t2 = estimate + t1;
-    let t3 = t2 >= (-127.0f);
-    let t4 = select(-127.0f, t2, t3);
-    let t5 = t4 <= 127.0f;
-    let s0 = select(127.0f, t4, t5);
+    let step_down = select(0.0f, -1.0f, big < estimate * l1);
+    let step = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
+    let t1 = estimate + step;
+    let t2 = t1 >= (-127.0f);
+    let t3 = select(-127.0f, t1, t2);
+    let t4 = t3 <= 127.0f;
+    let s0 = select(127.0f, t3, t4);
     let estimate2 = floor(a.y / l1 * 127.0f);
     let big2 = a.y * 127.0f;
-    let t6 = select(
-        select(0.0f, -1.0f, big2 < estimate2 * l1),
-        1.0f,
-        big2 >= (estimate2 + 1.0f) * l1
-    );
-    let t7 = estimate2 + t6;
-    let t8 = select(-127.0f, t7, t7 >= (-127.0f));
-    let t9 = t8 <= 127.0f;
-    let t10 = select(127.0f, t8, t9);
-    let t11 = 127.0f - s0;
-    let t12 = t10 <= t11;
-    let t0 = select(t11, t10, t12);
+    let step_down2 = select(0.0f, -1.0f, big2 < estimate2 * l1);
+    let step2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
+    let t5 = estimate2 + step2;
+    let t6 = select(-127.0f, t5, t5 >= (-127.0f));
+    let t7 = t6 <= 127.0f;
+    let t8 = select(127.0f, t6, t7);
+    let t9 = 127.0f - s0;
+    let t10 = t8 <= t9;
+    let t0 = select(t9, t8, t10);
     let afix = vec3<u32>(floor(a * 4194304.0f));
-    let t13 = 127.0f - s0 - t0;
-    let t14 = t13 >= 0.0f;
-    let t15 = u32(s0);
-    let t16 = u32(t0);
-    let t17 = u32(select(0.0f, t13, t14));
-    let t18 = select(
-        vec3<f32>(0.0f, 127.0f, t11),
-        vec3<f32>(t13, t4, t10),
-        vec3<bool>(t14, t5, t12)
+    let t11 = 127.0f - s0 - t0;
+    let t12 = t11 >= 0.0f;
+    let s0_u = u32(s0);
+    let t0_u = u32(t0);
+    let t13 = u32(select(0.0f, t11, t12));
+    let cross = afix.yzx
+        * vec3<u32>(
+            select(vec3<f32>(0.0f, 127.0f, t9), vec3<f32>(t11, t3, t8), vec3<bool>(t12, t4, t10))
+        )
+        - afix.zxy
+            * vec3<u32>(
+                select(
+                    vec3<f32>(t9, 0.0f, 127.0f),
+                    vec3<f32>(t8, t11, t3),
+                    vec3<bool>(t10, t12, t4)
+                )
+            );
+    let t14 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
+    let t15 = t14 >> 16u;
+    let t16 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
+    let t17 = t16 >> 16u;
+    let t18 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
+    let t19 = t18 >> 16u;
+    let t20 = vec3<u32>((t15 * t15) << 3u, (t17 * t17) << 3u, (t19 * t19) << 3u);
+    let t21 = vec3<u32>(
+        (t15 * (t14 & 65535u)) >> 12u,
+        (t17 * (t16 & 65535u)) >> 12u,
+        (t19 * (t18 & 65535u)) >> 12u
     );
-    let t19 = select(
-        vec3<f32>(t11, 0.0f, 127.0f),
-        vec3<f32>(t10, t13, t4),
-        vec3<bool>(t12, t14, t5)
+    let t22 = t20 + t21;
+    let e = f32(t22.x + t22.y + t22.z);
+    let n = f32(s0_u * s0_u + t0_u * t0_u + t13 * t13);
+    let s_up = s0 + 1.0f;
+    let t_up = t0 + 1.0f;
+    let t23 = 127.0f - s_up - t0;
+    let t24 = select(0.0f, t23, t23 >= 0.0f);
+    let s_up_u = u32(s_up);
+    let t0_u2 = u32(t0);
+    let t24_u = u32(t24);
+    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t24, s_up, t0))
+        - afix.zxy * vec3<u32>(vec3<f32>(t0, t24, s_up));
+    let t25 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
+    let t26 = t25 >> 16u;
+    let t27 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
+    let t28 = t27 >> 16u;
+    let t29 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
+    let t30 = t29 >> 16u;
+    let t31 = vec3<u32>((t26 * t26) << 3u, (t28 * t28) << 3u, (t30 * t30) << 3u);
+    let t32 = vec3<u32>(
+        (t26 * (t25 & 65535u)) >> 12u,
+        (t28 * (t27 & 65535u)) >> 12u,
+        (t30 * (t29 & 65535u)) >> 12u
     );
-    let cross = afix.yzx * vec3<u32>(t18) - afix.zxy * vec3<u32>(t19);
-    let t20 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
-    let t21 = t20 >> 16u;
-    let t22 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
-    let t23 = t22 >> 16u;
-    let t24 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
-    let t25 = t24 >> 16u;
-    let t26 = vec3<u32>(
-        (t21 * (t20 & 65535u)) >> 12u,
-        (t23 * (t22 & 65535u)) >> 12u,
-        (t25 * (t24 & 65535u)) >> 12u
+    let t33 = t31 + t32;
+    let e2 = f32(t33.x + t33.y + t33.z);
+    let n2 = f32(s_up_u * s_up_u + t0_u2 * t0_u2 + t24_u * t24_u);
+    let t34 = s_up + t0 <= 127.0f && e2 * n < e * n2;
+    let t35 = select(vec2<f32>(-127.0f, 127.0f), vec2<f32>(t1, t6), vec2<bool>(t2, t7));
+    let t36 = vec2<f32>(127.0f, t9);
+    let t37 = select(t36, t35, t35 <= t36);
+    let best = select(t37, vec2<f32>(s_up, t0), t34);
+    let best_e = select(e, e2, t34);
+    let best_n = select(n, n2, t34);
+    let t38 = 127.0f - s0 - t_up;
+    let t39 = select(0.0f, t38, t38 >= 0.0f);
+    let s0_u2 = u32(s0);
+    let t_up_u = u32(t_up);
+    let t39_u = u32(t39);
+    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t39, s0, t_up))
+        - afix.zxy * vec3<u32>(vec3<f32>(t_up, t39, s0));
+    let t40 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
+    let t41 = t40 >> 16u;
+    let t42 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
+    let t43 = t42 >> 16u;
+    let t44 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t45 = t44 >> 16u;
+    let t46 = vec3<u32>((t41 * t41) << 3u, (t43 * t43) << 3u, (t45 * t45) << 3u);
+    let t47 = vec3<u32>(
+        (t41 * (t40 & 65535u)) >> 12u,
+        (t43 * (t42 & 65535u)) >> 12u,
+        (t45 * (t44 & 65535u)) >> 12u
     );
-    let t27 = vec3<u32>((t21 * t21) << 3u, (t23 * t23) << 3u, (t25 * t25) << 3u) + t26;
-    let e = f32(t27.x + t27.y + t27.z);
-    let n = f32(t15 * t15 + t16 * t16 + t17 * t17);
-    let t28 = s0 + 1.0f;
-    let t29 = 127.0f - t28 - t0;
-    let t30 = select(0.0f, t29, t29 >= 0.0f);
-    let t31 = u32(t28);
-    let t32 = u32(t0);
-    let t33 = u32(t30);
-    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t30, t28, t0))
-        - afix.zxy * vec3<u32>(vec3<f32>(t0, t30, t28));
-    let t34 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
-    let t35 = t34 >> 16u;
-    let t36 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
-    let t37 = t36 >> 16u;
-    let t38 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
-    let t39 = t38 >> 16u;
-    let t40 = vec3<u32>(
-        (t35 * (t34 & 65535u)) >> 12u,
-        (t37 * (t36 & 65535u)) >> 12u,
-        (t39 * (t38 & 65535u)) >> 12u
-    );
-    let t41 = vec3<u32>((t35 * t35) << 3u, (t37 * t37) << 3u, (t39 * t39) << 3u) + t40;
-    let e2 = f32(t41.x + t41.y + t41.z);
-    let n2 = f32(t31 * t31 + t32 * t32 + t33 * t33);
-    let t42 = t28 + t0 <= 127.0f && e2 * n < e * n2;
-    let t43 = select(vec2<f32>(-127.0f, 127.0f), vec2<f32>(t2, t8), vec2<bool>(t3, t9));
-    let t44 = vec2<f32>(127.0f, t11);
-    let t45 = select(t44, t43, t43 <= t44);
-    let best = select(t45, vec2<f32>(t28, t0), t42);
-    let best_e = select(e, e2, t42);
-    let best_n = select(n, n2, t42);
-    let t46 = t0 + 1.0f;
-    let t47 = 127.0f - s0 - t46;
-    let t48 = select(0.0f, t47, t47 >= 0.0f);
-    let t49 = u32(s0);
-    let t50 = u32(t46);
-    let t51 = u32(t48);
-    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t48, s0, t46))
-        - afix.zxy * vec3<u32>(vec3<f32>(t46, t48, s0));
-    let t52 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
+    let t48 = t46 + t47;
+    let e3 = f32(t48.x + t48.y + t48.z);
+    let n3 = f32(s0_u2 * s0_u2 + t_up_u * t_up_u + t39_u * t39_u);
+    let t49 = s0 + t_up <= 127.0f && e3 * best_n < best_e * n3;
+    let best2 = select(best, vec2<f32>(s0, t_up), t49);
+    let best_e2 = select(best_e, e3, t49);
+    let best_n2 = select(best_n, n3, t49);
+    let t50 = 127.0f - s_up - t_up;
+    let t51 = select(0.0f, t50, t50 >= 0.0f);
+    let s_up_u2 = u32(s_up);
+    let t_up_u2 = u32(t_up);
+    let t51_u = u32(t51);
+    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t51, s_up, t_up))
+        - afix.zxy * vec3<u32>(vec3<f32>(t_up, t51, s_up));
+    let t52 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
     let t53 = t52 >> 16u;
-    let t54 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
+    let t54 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
     let t55 = t54 >> 16u;
-    let t56 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t56 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
     let t57 = t56 >> 16u;
-    let t58 = vec3<u32>(
+    let t58 = vec3<u32>((t53 * t53) << 3u, (t55 * t55) << 3u, (t57 * t57) << 3u);
+    let t59 = vec3<u32>(
         (t53 * (t52 & 65535u)) >> 12u,
         (t55 * (t54 & 65535u)) >> 12u,
         (t57 * (t56 & 65535u)) >> 12u
     );
-    let t59 = vec3<u32>((t53 * t53) << 3u, (t55 * t55) << 3u, (t57 * t57) << 3u) + t58;
-    let e3 = f32(t59.x + t59.y + t59.z);
-    let n3 = f32(t49 * t49 + t50 * t50 + t51 * t51);
-    let t60 = s0 + t46 <= 127.0f && e3 * best_n < best_e * n3;
-    let best2 = select(best, vec2<f32>(s0, t46), t60);
-    let best_e2 = select(best_e, e3, t60);
-    let best_n2 = select(best_n, n3, t60);
-    let t61 = s0 + 1.0f;
-    let t62 = t0 + 1.0f;
-    let t63 = 127.0f - t61 - t62;
-    let t64 = select(0.0f, t63, t63 >= 0.0f);
-    let t65 = u32(t61);
-    let t66 = u32(t62);
-    let t67 = u32(t64);
-    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t64, t61, t62))
-        - afix.zxy * vec3<u32>(vec3<f32>(t62, t64, t61));
-    let t68 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
-    let t69 = t68 >> 16u;
-    let t70 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
-    let t71 = t70 >> 16u;
-    let t72 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
-    let t73 = t72 >> 16u;
-    let t74 = vec3<u32>(
-        (t69 * (t68 & 65535u)) >> 12u,
-        (t71 * (t70 & 65535u)) >> 12u,
-        (t73 * (t72 & 65535u)) >> 12u
-    );
-    let t75 = vec3<u32>((t69 * t69) << 3u, (t71 * t71) << 3u, (t73 * t73) << 3u) + t74;
-    let e4 = f32(t75.x + t75.y + t75.z);
-    let n4 = f32(t65 * t65 + t66 * t66 + t67 * t67);
-    let best3 = select(best2, t45 + 1.0f, t61 + t62 <= 127.0f && e4 * best_n2 < best_e2 * n4);
+    let t60 = t58 + t59;
+    let e4 = f32(t60.x + t60.y + t60.z);
+    let n4 = f32(s_up_u2 * s_up_u2 + t_up_u2 * t_up_u2 + t51_u * t51_u);
+    let best3 = select(best2, t37 + 1.0f, s_up + t_up <= 127.0f && e4 * best_n2 < best_e2 * n4);
     let folded = 127.0f - best3.yx;
-    let t76 = select(best3, folded, w.z < 0.0f);
-    return select(vec2<f32>(0.0f), select(t76, -t76, w.xy < vec2<f32>(0.0f)), ok);
+    let t61 = select(best3, folded, w.z < 0.0f);
+    return select(vec2<f32>(0.0f), select(t61, -t61, w.xy < vec2<f32>(0.0f)), ok);
 }
 
 // unitpack_oct16p_encode_float: precise encoder, float form.

@@ -26,9 +26,9 @@
 fn unitpack_oct24_decode_float(params: vec2<f32>) -> vec3<f32> {
     let abs_params = abs(params);
     let z = 1.0f - abs_params.x - abs_params.y;
-    let t1 = (1.0f - abs(params.yx))
+    let folded = (1.0f - abs(params.yx))
         * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), params >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(params, t1, z < 0.0f), z);
+    let v = vec3<f32>(select(params, folded, z < 0.0f), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -52,14 +52,23 @@ fn unitpack_oct24_decode(code: u32) -> vec3<f32> {
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_oct24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let abs_v = abs(v);
-    let t1 = abs_v.x + abs_v.y + abs_v.z;
-    let t2 = select(0.25f, select(1.0f, 1.2676506e30f, t1 < 7.888609e-31f), t1 <= 3.4028235e38f);
-    let w = v * t2;
+    let norm1 = abs_v.x + abs_v.y + abs_v.z;
+    let fit = select(
+        0.25f,
+        select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
+        norm1 <= 3.4028235e38f
+    );
+    let w = v * fit;
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
     let p = w.xy / l1;
-    let t3 = (1.0f - abs(p.yx)) * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), p >= vec2<f32>(0.0f));
-    return select(vec2<f32>(0.0f), select(p, t3, w.z <= 0.0f), l1 > 0.0f && l1 <= 3.4028235e38f);
+    let folded = (1.0f - abs(p.yx))
+        * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), p >= vec2<f32>(0.0f));
+    return select(
+        vec2<f32>(0.0f),
+        select(p, folded, w.z <= 0.0f),
+        l1 > 0.0f && l1 <= 3.4028235e38f
+    );
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -74,23 +83,26 @@ fn unitpack_oct24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
-    let t1 = (l1 - abs_w.xy.yx)
-        * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), w.xy >= vec2<f32>(0.0f));
-    let n = select(w.xy, t1, w.z <= 0.0f);
-    let abs_n = abs(n);
-    let t2 = round(abs_n / l1 * 2047.0f);
-    let t3 = abs_n * 2047.0f;
-    let t4 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t3 < (t2 - 0.5f) * l1),
-        vec2<f32>(1.0f),
-        t3 >= (t2 + 0.5f) * l1
+    let n = select(
+        w.xy,
+        (l1 - abs_w.xy.yx) * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), w.xy >= vec2<f32>(0.0f)),
+        w.z <= 0.0f
     );
-    let t5 = t2 + t4;
-    return select(vec2<f32>(0.0f), select(t5, -t5, n < vec2<f32>(0.0f)), ok);
+    let abs_n = abs(n);
+    let t1 = round(abs_n / l1 * 2047.0f);
+    let t2 = abs_n * 2047.0f;
+    let t3 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 < (t1 - 0.5f) * l1),
+        vec2<f32>(1.0f),
+        t2 >= (t1 + 0.5f) * l1
+    );
+    let t4 = t1 + t3;
+    return select(vec2<f32>(0.0f), select(t4, -t4, n < vec2<f32>(0.0f)), ok);
 }
 
 // unitpack_oct24_encode: fast encoder.

@@ -25,17 +25,18 @@ fn unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
     let b = round(a0 * 255.0f);
     let y16 = b.y * 0.0625f;
     let hi = floor(y16);
-    let t1 = vec2<f32>(b.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, b.z) - 2047.0f;
-    let t2 = t1 * 0.0004885198f;
-    return select(vec2<f32>(1.0f), t2, t2 <= vec2<f32>(1.0f));
+    let t1 = (vec2<f32>(b.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, b.z) - 2047.0f)
+        * 0.0004885198f;
+    return select(vec2<f32>(1.0f), t1, t1 <= vec2<f32>(1.0f));
 }
 
 // oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.
 fn unitpack_oct24_rgb8_oct24_decode_float(a0: vec2<f32>) -> vec3<f32> {
     let abs_a0 = abs(a0);
     let z = 1.0f - abs_a0.x - abs_a0.y;
-    let t1 = (1.0f - abs(a0.yx)) * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), a0 >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(a0, t1, z < 0.0f), z);
+    let folded = (1.0f - abs(a0.yx))
+        * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), a0 >= vec2<f32>(0.0f));
+    let v = vec3<f32>(select(a0, folded, z < 0.0f), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -56,9 +57,9 @@ fn unitpack_oct24_rgb8_decode_float(params: vec3<f32>) -> vec3<f32> {
 fn unitpack_oct24_rgb8_bytes_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
     let y16 = a0.y * 0.0625f;
     let hi = floor(y16);
-    let t1 = vec2<f32>(a0.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, a0.z) - 2047.0f;
-    let t2 = t1 * 0.0004885198f;
-    return select(vec2<f32>(1.0f), t2, t2 <= vec2<f32>(1.0f));
+    let t1 = (vec2<f32>(a0.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, a0.z) - 2047.0f)
+        * 0.0004885198f;
+    return select(vec2<f32>(1.0f), t1, t1 <= vec2<f32>(1.0f));
 }
 
 // unitpack_oct24_rgb8_decode: decoder.
@@ -85,27 +86,30 @@ fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let abs_w = abs(w);
     let l1 = abs_w.x + abs_w.y + abs_w.z;
-    let t1 = (l1 - abs_w.xy.yx)
-        * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), w.xy >= vec2<f32>(0.0f));
-    let n = select(w.xy, t1, w.z <= 0.0f);
-    let abs_n = abs(n);
-    let t2 = round(abs_n / l1 * 2047.0f);
-    let t3 = abs_n * 2047.0f;
-    let t4 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t3 < (t2 - 0.5f) * l1),
-        vec2<f32>(1.0f),
-        t3 >= (t2 + 0.5f) * l1
+    let n = select(
+        w.xy,
+        (l1 - abs_w.xy.yx) * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), w.xy >= vec2<f32>(0.0f)),
+        w.z <= 0.0f
     );
-    let t5 = t2 + t4;
-    let t6 = select(vec2<f32>(0.0f), select(t5, -t5, n < vec2<f32>(0.0f)), ok) + 2047.0f;
-    let x16 = t6.x * 0.0625f;
+    let abs_n = abs(n);
+    let t1 = round(abs_n / l1 * 2047.0f);
+    let t2 = abs_n * 2047.0f;
+    let t3 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 < (t1 - 0.5f) * l1),
+        vec2<f32>(1.0f),
+        t2 >= (t1 + 0.5f) * l1
+    );
+    let t4 = t1 + t3;
+    let t5 = select(vec2<f32>(0.0f), select(t4, -t4, n < vec2<f32>(0.0f)), ok) + 2047.0f;
+    let x16 = t5.x * 0.0625f;
     let hi = floor(x16);
-    let t = floor(t6.y * 0.00390625f);
-    return vec3<f32>(hi, (x16 - hi) * 256.0f + t, t6.y - t * 256.0f);
+    let t = floor(t5.y * 0.00390625f);
+    return vec3<f32>(hi, (x16 - hi) * 256.0f + t, t5.y - t * 256.0f);
 }
 
 // unitpack_oct24_rgb8_encode_float: fast encoder, float form.

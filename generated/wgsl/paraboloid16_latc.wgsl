@@ -42,10 +42,8 @@ fn unitpack_paraboloid16_latc_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   the horizon.
 // Portable as unitpack_paraboloid16_latc_decode_float is, within the same bound.
 fn unitpack_paraboloid16_latc_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_paraboloid16_latc_decode_float(params);
 }
 
@@ -66,7 +64,8 @@ fn unitpack_paraboloid16_latc_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -78,13 +77,17 @@ fn unitpack_paraboloid16_latc_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let halved = vec3<f32>(w4.xy, w4.z * 0.5f);
-    let fixed2 = u32(floor(abs(halved.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(halved.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(halved.z) * 2097152.0f));
+    let fixed_f = floor(abs(halved.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(halved.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -108,23 +111,25 @@ fn unitpack_paraboloid16_latc_encode_float(v: vec3<f32>) -> vec4<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = len2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
     let p = w4.xy / a;
-    let t6 = 0.5f + p.y * 0.5f;
-    return vec4<f32>(t6, t6, t6, 0.5f + p.x * 0.5f);
+    let t3 = 0.5f + p.y * 0.5f;
+    return vec4<f32>(t3, t3, t3, 0.5f + p.x * 0.5f);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -139,7 +144,8 @@ fn unitpack_paraboloid16_latc_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -151,13 +157,17 @@ fn unitpack_paraboloid16_latc_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let halved = vec3<f32>(w4.xy, w4.z * 0.5f);
-    let fixed2 = u32(floor(abs(halved.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(halved.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(halved.z) * 2097152.0f));
+    let fixed_f = floor(abs(halved.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(halved.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -181,35 +191,38 @@ fn unitpack_paraboloid16_latc_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = len2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
-    let t6 = w4.xy * 127.5f;
-    let t7 = round(t6 / a + 127.5f);
-    let t8 = select(vec2<f32>(0.0f), t7, t7 >= vec2<f32>(0.0f));
-    let t9 = select(vec2<f32>(255.0f), t8, t8 <= vec2<f32>(255.0f));
-    let t10 = select(
+    let t3 = w4.xy * 127.5f;
+    let t4 = round(t3 / a + 127.5f);
+    let t5 = select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f));
+    let t6 = select(vec2<f32>(255.0f), t5, t5 <= vec2<f32>(255.0f));
+    let t7 = t6
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t3 >= (t6 - 127.0f) * a),
+            t6 < vec2<f32>(255.0f)
+        );
+    let t8 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 127.0f) * a),
-        t9 < vec2<f32>(255.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t3 >= (t6 - 1.0f - 127.0f) * a) - 1.0f,
+        t6 > vec2<f32>(0.0f)
     );
-    let t11 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 1.0f - 127.0f) * a) - 1.0f,
-        t9 > vec2<f32>(0.0f)
-    );
-    let c = select(vec2<f32>(128.0f), t9 + t10 + t11, ok && ok2);
+    let c = select(vec2<f32>(128.0f), t7 + t8, ok && ok2);
     return c.yyyx;
 }
 
@@ -222,8 +235,6 @@ fn unitpack_paraboloid16_latc_round_codes(a0: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_paraboloid16_latc_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_paraboloid16_latc_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }

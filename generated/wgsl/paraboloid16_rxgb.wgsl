@@ -42,10 +42,8 @@ fn unitpack_paraboloid16_rxgb_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   the horizon.
 // Portable as unitpack_paraboloid16_rxgb_decode_float is, within the same bound.
 fn unitpack_paraboloid16_rxgb_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_paraboloid16_rxgb_decode_float(params);
 }
 
@@ -66,7 +64,8 @@ fn unitpack_paraboloid16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -78,13 +77,17 @@ fn unitpack_paraboloid16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let halved = vec3<f32>(w4.xy, w4.z * 0.5f);
-    let fixed2 = u32(floor(abs(halved.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(halved.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(halved.z) * 2097152.0f));
+    let fixed_f = floor(abs(halved.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(halved.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -108,39 +111,43 @@ fn unitpack_paraboloid16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = len2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
     let p = w4.xy / a;
     let abs_v = abs(v);
-    let t6 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
-    let largest3 = select(abs_v.z, t6, t6 >= abs_v.z);
-    let t7 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
-    let scaled3 = v / select(1.0f, largest3, t7);
+    let t3 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
+    let largest3 = select(abs_v.z, t3, t3 >= abs_v.z);
+    let t4 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    let scaled3 = v / select(1.0f, largest3, t4);
     let scaled3_sq = scaled3 * scaled3;
     let len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    let t8 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled3 / sqrt(len2_2), t7 && len2_2 >= 1.0f);
-    let t9 = vec3<f32>(t8.xy, select(0.0f, t8.z, t8.z > 0.0f));
-    let abs_t9 = abs(t9);
-    let t10 = select(abs_t9.y, abs_t9.x, abs_t9.x >= abs_t9.y);
-    let largest4 = select(abs_t9.z, t10, t10 >= abs_t9.z);
-    let t11 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
-    let scaled4 = t9 / select(1.0f, largest4, t11);
+    let t5 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled3 / sqrt(len2_2), t4 && len2_2 >= 1.0f);
+    let t6 = vec3<f32>(t5.xy, select(0.0f, t5.z, t5.z > 0.0f));
+    let abs_t6 = abs(t6);
+    let t7 = select(abs_t6.y, abs_t6.x, abs_t6.x >= abs_t6.y);
+    let largest4 = select(abs_t6.z, t7, t7 >= abs_t6.z);
+    let t8 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    let scaled4 = t6 / select(1.0f, largest4, t8);
     let scaled4_sq = scaled4 * scaled4;
     let len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    let t12 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled4 / sqrt(len2_3), t11 && len2_3 >= 1.0f);
-    return vec4<f32>(1.0f, 0.5f + p.y * 0.5f, 0.5f + t12.z * 0.5f, 0.5f + p.x * 0.5f);
+    let t9 = 0.5f
+        + select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled4 / sqrt(len2_3), t8 && len2_3 >= 1.0f).z
+            * 0.5f;
+    return vec4<f32>(1.0f, 0.5f + p.y * 0.5f, t9, 0.5f + p.x * 0.5f);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -155,7 +162,8 @@ fn unitpack_paraboloid16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -167,13 +175,17 @@ fn unitpack_paraboloid16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let halved = vec3<f32>(w4.xy, w4.z * 0.5f);
-    let fixed2 = u32(floor(abs(halved.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(halved.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(halved.z) * 2097152.0f));
+    let fixed_f = floor(abs(halved.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(halved.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -197,35 +209,38 @@ fn unitpack_paraboloid16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = len2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
-    let t6 = w4.xy * 127.5f;
-    let t7 = round(t6 / a + 127.5f);
-    let t8 = select(vec2<f32>(0.0f), t7, t7 >= vec2<f32>(0.0f));
-    let t9 = select(vec2<f32>(255.0f), t8, t8 <= vec2<f32>(255.0f));
-    let t10 = select(
+    let t3 = w4.xy * 127.5f;
+    let t4 = round(t3 / a + 127.5f);
+    let t5 = select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f));
+    let t6 = select(vec2<f32>(255.0f), t5, t5 <= vec2<f32>(255.0f));
+    let t7 = t6
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t3 >= (t6 - 127.0f) * a),
+            t6 < vec2<f32>(255.0f)
+        );
+    let t8 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 127.0f) * a),
-        t9 < vec2<f32>(255.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t3 >= (t6 - 1.0f - 127.0f) * a) - 1.0f,
+        t6 > vec2<f32>(0.0f)
     );
-    let t11 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 1.0f - 127.0f) * a) - 1.0f,
-        t9 > vec2<f32>(0.0f)
-    );
-    let c = select(vec2<f32>(128.0f), t9 + t10 + t11, ok && ok2);
+    let c = select(vec2<f32>(128.0f), t7 + t8, ok && ok2);
     let normal3 = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
@@ -234,11 +249,12 @@ fn unitpack_paraboloid16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let ok3 = sum3 >= 2.0f && sum3 < 16.0f;
+    let sum_below_16_3 = sum3 < 16.0f;
+    let ok3 = sum3 >= 2.0f && sum_below_16_3;
     let w5 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
     let w6 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w5, ok3);
-    let t12 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
-    let normal4 = select(t12, vec3<f32>(0.0f), abs(t12) < vec3<f32>(1.1754944e-38f));
+    let t9 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
+    let normal4 = select(t9, vec3<f32>(0.0f), abs(t9) < vec3<f32>(1.1754944e-38f));
     let abs_normal4 = abs(normal4);
     let larger4 = select(abs_normal4.y, abs_normal4.x, abs_normal4.x >= abs_normal4.y);
     let largest4 = select(abs_normal4.z, larger4, larger4 >= abs_normal4.z);
@@ -246,7 +262,8 @@ fn unitpack_paraboloid16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled4 = normal4 * scale4;
     let abs_scaled4 = abs(scaled4);
     let sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
-    let ok4 = sum4 >= 2.0f && sum4 < 16.0f;
+    let sum_below_16_4 = sum4 < 16.0f;
+    let ok4 = sum4 >= 2.0f && sum_below_16_4;
     let w7 = select(scaled4, vec3<f32>(0.0f), abs(scaled4) < vec3<f32>(1.8189894e-12f));
     let w8 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w7, ok4);
     let split_hi = bitcast<f32>(bitcast<u32>(w8.x) & 4294963200u);
@@ -255,34 +272,38 @@ fn unitpack_paraboloid16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let split_lo2 = w8.y - split_hi2;
     let split_hi3 = bitcast<f32>(bitcast<u32>(w8.z) & 4294963200u);
     let split_lo3 = w8.z - split_hi3;
-    let t13 = (split_hi + split_hi) * split_lo
+    let t10 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     let len2_2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t13
+        + t10
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     let big2 = w8.z * w8.z * 16256.25f;
-    let t14 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
-    let t15 = select(0.0f, t14, t14 >= 0.0f);
-    let estimate = select(255.0f, t15, t15 <= 255.0f);
-    let t16 = estimate - 127.0f;
-    let t17 = t16 * t16 * len2_2;
-    let t18 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t17), t16 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t17), t16 > 0.0f),
-        w8.z >= 0.0f
+    let t11 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
+    let t12 = select(0.0f, t11, t11 >= 0.0f);
+    let estimate = select(255.0f, t12, t12 <= 255.0f);
+    let t13 = estimate - 127.0f;
+    let t14 = t13 * t13 * len2_2;
+    let one_if = select(0.0f, 1.0f, big2 >= t14);
+    let one_if2 = select(0.0f, 1.0f, big2 <= t14);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t13 < 0.0f), select(1.0f, one_if, t13 > 0.0f), w8.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t18, estimate < 255.0f);
-    let t19 = estimate - 1.0f - 127.0f;
-    let t20 = t19 * t19 * len2_2;
-    let t21 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t20), t19 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t20), t19 > 0.0f),
+    let t15 = estimate - 1.0f - 127.0f;
+    let t16 = t15 * t15 * len2_2;
+    let one_if3 = select(0.0f, 1.0f, big2 >= t16);
+    let one_if4 = select(0.0f, 1.0f, big2 <= t16);
+    let t17 = select(
+        select(0.0f, one_if4, t15 < 0.0f),
+        select(1.0f, one_if3, t15 > 0.0f),
         w8.z >= 0.0f
-    );
-    let down = select(0.0f, t21 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t17, estimate > 0.0f);
     return vec4<f32>(255.0f, c.y, estimate + up + down, c.x);
 }
 
@@ -296,8 +317,6 @@ fn unitpack_paraboloid16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_paraboloid16_rxgb_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_paraboloid16_rxgb_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }

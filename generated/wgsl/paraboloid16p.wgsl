@@ -59,7 +59,8 @@ fn unitpack_paraboloid16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -71,13 +72,17 @@ fn unitpack_paraboloid16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let halved = vec3<f32>(w4.xy, w4.z * 0.5f);
-    let fixed2 = u32(floor(abs(halved.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(halved.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(halved.z) * 2097152.0f));
+    let fixed_f = floor(abs(halved.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(halved.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -101,33 +106,38 @@ fn unitpack_paraboloid16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = len2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
-    let t6 = floor(w4.xy / a * 127.0f);
-    let t7 = w4.xy * 127.0f;
-    let t8 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t7 < t6 * a),
+    let t3 = floor(w4.xy / a * 127.0f);
+    let t4 = w4.xy * 127.0f;
+    let t5 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t4 < t3 * a),
         vec2<f32>(1.0f),
-        t7 >= (t6 + 1.0f) * a
+        t4 >= (t3 + 1.0f) * a
     );
-    let t9 = t6 + t8;
-    let t10 = select(vec2<f32>(-127.0f), t9, t9 >= vec2<f32>(-127.0f));
-    let base = select(vec2<f32>(127.0f), t10, t10 <= vec2<f32>(127.0f));
-    let fixed5 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed7 = u32(floor(abs(w4.z) * 2097152.0f));
+    let t6 = t3 + t5;
+    let t7 = select(vec2<f32>(-127.0f), t6, t6 >= vec2<f32>(-127.0f));
+    let base = select(vec2<f32>(127.0f), t7, t7 <= vec2<f32>(127.0f));
+    let fixed_f4 = floor(abs(w4.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w4.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
+    let fixed_f6 = floor(abs(w4.z) * 2097152.0f);
+    let fixed7 = u32(fixed_f6);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -147,291 +157,249 @@ fn unitpack_paraboloid16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let lo8 = lo7 & 16777215u;
     let len2_2 = (f32(hi8) * 16777216.0f + f32(lo8)) * 2.2737368e-13f;
     let root_estimate2 = sqrt(len2_2);
-    let t11 = floor(root_estimate2 * 512.0f);
-    let root_h0_2 = t11 * 0.001953125f;
+    let root_k0_2 = floor(root_estimate2 * 512.0f);
+    let root_h0_2 = root_k0_2 * 0.001953125f;
     let root_h1_2 = root_h0_2 + 0.001953125f;
-    let t12 = select(
-        select(0.0f, -1.0f, root_h0_2 * root_h0_2 > len2_2),
-        1.0f,
-        root_h1_2 * root_h1_2 <= len2_2
-    );
-    let root_k2 = t11 + t12;
+    let step_down3 = select(0.0f, -1.0f, root_h0_2 * root_h0_2 > len2_2);
+    let step3 = select(step_down3, 1.0f, root_h1_2 * root_h1_2 <= len2_2);
+    let root_k2 = root_k0_2 + step3;
     let root_h2 = root_k2 * 0.001953125f;
     let root_rest2 = len2_2 - root_h2 * root_h2;
     let root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
     let root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7f;
     let root_m1_2 = root_h2 + (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    let t13 = select(
-        select(0.0f, -1.0f, root_m0_2 * root_m0_2 > len2_2),
-        1.0f,
-        root_m1_2 * root_m1_2 <= len2_2
-    );
-    let root_j2 = root_j0_2 + t13;
+    let step_down4 = select(0.0f, -1.0f, root_m0_2 * root_m0_2 > len2_2);
+    let step4 = select(step_down4, 1.0f, root_m1_2 * root_m1_2 <= len2_2);
+    let root_j2 = root_j0_2 + step4;
     let root2 = (root_k2 * 4096.0f + root_j2) * 4.7683716e-7f;
-    let t14 = floor(w4 / root2 * 2097152.0f);
-    let t15 = w4 * 2097152.0f;
-    let t16 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t14 * root2 > t15),
+    let t8 = floor(w4 / root2 * 2097152.0f);
+    let t9 = w4 * 2097152.0f;
+    let t10 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t8 * root2 > t9),
         vec3<f32>(1.0f),
-        (t14 + 1.0f) * root2 <= t15
+        (t8 + 1.0f) * root2 <= t9
     );
-    let aim = t14 + t16;
+    let aim = t8 + t10;
     let cand = select(vec2<f32>(127.0f), base, base <= vec2<f32>(127.0f));
     let p = floor(cand * 16513.008f);
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
     let z = 2097152.0f - select(2097152.0f, q, q <= 2097152.0f);
     let l2 = q + round(z * z * 4.7683716e-7f);
-    let t17 = l2 * 524288.0f;
-    let root_estimate3 = floor(sqrt(t17));
+    let t11 = l2 * 524288.0f;
+    let root_estimate3 = floor(sqrt(t11));
     let root_next = root_estimate3 + 1.0f;
-    let t18 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t17),
-        1.0f,
-        root_next * root_next <= t17
-    );
-    let root_step = root_estimate3 + t18;
+    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t11);
+    let step5 = select(step_down5, 1.0f, root_next * root_next <= t11);
+    let root_step = root_estimate3 + step5;
     let root_next2 = root_step + 1.0f;
-    let t19 = select(
-        select(0.0f, -1.0f, root_step * root_step > t17),
-        1.0f,
-        root_next2 * root_next2 <= t17
-    );
-    let root3 = root_step + t19;
-    let t20 = root3 * 2.0f;
+    let step_down6 = select(0.0f, -1.0f, root_step * root_step > t11);
+    let step6 = select(step_down6, 1.0f, root_next2 * root_next2 <= t11);
+    let root3 = root_step + step6;
+    let t12 = root3 * 2.0f;
     let abs_p = abs(p);
-    let t21 = select(abs_p.x, t20, t20 >= abs_p.x);
-    let t22 = select(abs_p.y, t21, t21 >= abs_p.y);
-    let l = select(z, t22, t22 >= z);
-    let t23 = floor(p / l * 2097152.0f);
-    let t24 = p * 2097152.0f;
-    let t25 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t23 * l > t24),
+    let t13 = select(abs_p.x, t12, t12 >= abs_p.x);
+    let t14 = select(abs_p.y, t13, t13 >= abs_p.y);
+    let l = select(z, t14, t14 >= z);
+    let t15 = floor(p / l * 2097152.0f);
+    let t16 = p * 2097152.0f;
+    let t17 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t15 * l > t16),
         vec2<f32>(1.0f),
-        (t23 + 1.0f) * l <= t24
+        (t15 + 1.0f) * l <= t16
     );
     let big = z * 2097152.0f;
     let ratio_estimate = floor(z / l * 2097152.0f);
-    let t26 = select(
-        select(0.0f, -1.0f, ratio_estimate * l > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * l <= big
-    );
-    let ratio = ratio_estimate + t26;
-    let t27 = vec3<u32>(abs(vec3<f32>(t23 + t25, ratio) - aim));
-    let limb1_7 = t27.x >> 12u;
-    let limb0_7 = t27.x & 4095u;
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate * l > big);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate + 1.0f) * l <= big);
+    let ratio = ratio_estimate + step7;
+    let offset = vec3<f32>(t15 + t17, ratio) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_7 = offset_u.x >> 12u;
+    let limb0_7 = offset_u.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t27.y >> 12u;
-    let limb0_8 = t27.y & 4095u;
+    let limb1_8 = offset_u.y >> 12u;
+    let limb0_8 = offset_u.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t27.z >> 12u;
-    let limb0_9 = t27.z & 4095u;
+    let limb1_9 = offset_u.z >> 12u;
+    let limb0_9 = offset_u.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist = f32(hi12) * 16777216.0f + f32(lo12);
-    let t28 = base.x + 1.0f;
-    let t29 = vec2<f32>(t28, base.y);
-    let cand2 = select(vec2<f32>(127.0f), t29, t29 <= vec2<f32>(127.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t18 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(127.0f), t18, t18 <= vec2<f32>(127.0f));
     let p2 = floor(cand2 * 16513.008f);
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
     let z2 = 2097152.0f - select(2097152.0f, q2, q2 <= 2097152.0f);
     let l2_2 = q2 + round(z2 * z2 * 4.7683716e-7f);
-    let t30 = l2_2 * 524288.0f;
-    let root_estimate4 = floor(sqrt(t30));
+    let t19 = l2_2 * 524288.0f;
+    let root_estimate4 = floor(sqrt(t19));
     let root_next3 = root_estimate4 + 1.0f;
-    let t31 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t30),
-        1.0f,
-        root_next3 * root_next3 <= t30
-    );
-    let root_step2 = root_estimate4 + t31;
+    let step_down8 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t19);
+    let step8 = select(step_down8, 1.0f, root_next3 * root_next3 <= t19);
+    let root_step2 = root_estimate4 + step8;
     let root_next4 = root_step2 + 1.0f;
-    let t32 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t30),
-        1.0f,
-        root_next4 * root_next4 <= t30
-    );
-    let root4 = root_step2 + t32;
-    let t33 = root4 * 2.0f;
+    let step_down9 = select(0.0f, -1.0f, root_step2 * root_step2 > t19);
+    let step9 = select(step_down9, 1.0f, root_next4 * root_next4 <= t19);
+    let root4 = root_step2 + step9;
+    let t20 = root4 * 2.0f;
     let abs_p2 = abs(p2);
-    let t34 = select(abs_p2.x, t33, t33 >= abs_p2.x);
-    let t35 = select(abs_p2.y, t34, t34 >= abs_p2.y);
-    let l3 = select(z2, t35, t35 >= z2);
-    let t36 = floor(p2 / l3 * 2097152.0f);
-    let t37 = p2 * 2097152.0f;
-    let t38 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t36 * l3 > t37),
+    let t21 = select(abs_p2.x, t20, t20 >= abs_p2.x);
+    let t22 = select(abs_p2.y, t21, t21 >= abs_p2.y);
+    let l3 = select(z2, t22, t22 >= z2);
+    let t23 = floor(p2 / l3 * 2097152.0f);
+    let t24 = p2 * 2097152.0f;
+    let t25 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t23 * l3 > t24),
         vec2<f32>(1.0f),
-        (t36 + 1.0f) * l3 <= t37
+        (t23 + 1.0f) * l3 <= t24
     );
     let big2 = z2 * 2097152.0f;
     let ratio_estimate2 = floor(z2 / l3 * 2097152.0f);
-    let t39 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * l3 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * l3 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t39;
-    let t40 = vec3<u32>(abs(vec3<f32>(t36 + t38, ratio2) - aim));
-    let limb1_10 = t40.x >> 12u;
-    let limb0_10 = t40.x & 4095u;
+    let step_down10 = select(0.0f, -1.0f, ratio_estimate2 * l3 > big2);
+    let step10 = select(step_down10, 1.0f, (ratio_estimate2 + 1.0f) * l3 <= big2);
+    let ratio2 = ratio_estimate2 + step10;
+    let offset2 = vec3<f32>(t23 + t25, ratio2) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_10 = offset_u2.x >> 12u;
+    let limb0_10 = offset_u2.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t40.y >> 12u;
-    let limb0_11 = t40.y & 4095u;
+    let limb1_11 = offset_u2.y >> 12u;
+    let limb0_11 = offset_u2.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t40.z >> 12u;
-    let limb0_12 = t40.z & 4095u;
+    let limb1_12 = offset_u2.z >> 12u;
+    let limb0_12 = offset_u2.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist2 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t41 = t28 <= 127.0f && base.y <= 127.0f && dist2 < dist;
-    let best = select(cand, cand2, t41);
-    let best_d = select(dist, dist2, t41);
-    let t42 = base.y + 1.0f;
-    let t43 = vec2<f32>(base.x, t42);
-    let cand3 = select(vec2<f32>(127.0f), t43, t43 <= vec2<f32>(127.0f));
+    let t26 = s_up <= 127.0f && base.y <= 127.0f && dist2 < dist;
+    let best = select(cand, cand2, t26);
+    let best_d = select(dist, dist2, t26);
+    let t27 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(127.0f), t27, t27 <= vec2<f32>(127.0f));
     let p3 = floor(cand3 * 16513.008f);
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
     let z3 = 2097152.0f - select(2097152.0f, q3, q3 <= 2097152.0f);
     let l2_3 = q3 + round(z3 * z3 * 4.7683716e-7f);
-    let t44 = l2_3 * 524288.0f;
-    let root_estimate5 = floor(sqrt(t44));
+    let t28 = l2_3 * 524288.0f;
+    let root_estimate5 = floor(sqrt(t28));
     let root_next5 = root_estimate5 + 1.0f;
-    let t45 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t44),
-        1.0f,
-        root_next5 * root_next5 <= t44
-    );
-    let root_step3 = root_estimate5 + t45;
+    let step_down11 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t28);
+    let step11 = select(step_down11, 1.0f, root_next5 * root_next5 <= t28);
+    let root_step3 = root_estimate5 + step11;
     let root_next6 = root_step3 + 1.0f;
-    let t46 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t44),
-        1.0f,
-        root_next6 * root_next6 <= t44
-    );
-    let root5 = root_step3 + t46;
-    let t47 = root5 * 2.0f;
+    let step_down12 = select(0.0f, -1.0f, root_step3 * root_step3 > t28);
+    let step12 = select(step_down12, 1.0f, root_next6 * root_next6 <= t28);
+    let root5 = root_step3 + step12;
+    let t29 = root5 * 2.0f;
     let abs_p3 = abs(p3);
-    let t48 = select(abs_p3.x, t47, t47 >= abs_p3.x);
-    let t49 = select(abs_p3.y, t48, t48 >= abs_p3.y);
-    let l4 = select(z3, t49, t49 >= z3);
-    let t50 = floor(p3 / l4 * 2097152.0f);
-    let t51 = p3 * 2097152.0f;
-    let t52 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t50 * l4 > t51),
+    let t30 = select(abs_p3.x, t29, t29 >= abs_p3.x);
+    let t31 = select(abs_p3.y, t30, t30 >= abs_p3.y);
+    let l4 = select(z3, t31, t31 >= z3);
+    let t32 = floor(p3 / l4 * 2097152.0f);
+    let t33 = p3 * 2097152.0f;
+    let t34 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t32 * l4 > t33),
         vec2<f32>(1.0f),
-        (t50 + 1.0f) * l4 <= t51
+        (t32 + 1.0f) * l4 <= t33
     );
     let big3 = z3 * 2097152.0f;
     let ratio_estimate3 = floor(z3 / l4 * 2097152.0f);
-    let t53 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * l4 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * l4 <= big3
-    );
-    let ratio3 = ratio_estimate3 + t53;
-    let t54 = vec3<u32>(abs(vec3<f32>(t50 + t52, ratio3) - aim));
-    let limb1_13 = t54.x >> 12u;
-    let limb0_13 = t54.x & 4095u;
+    let step_down13 = select(0.0f, -1.0f, ratio_estimate3 * l4 > big3);
+    let step13 = select(step_down13, 1.0f, (ratio_estimate3 + 1.0f) * l4 <= big3);
+    let ratio3 = ratio_estimate3 + step13;
+    let offset3 = vec3<f32>(t32 + t34, ratio3) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_13 = offset_u3.x >> 12u;
+    let limb0_13 = offset_u3.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t54.y >> 12u;
-    let limb0_14 = t54.y & 4095u;
+    let limb1_14 = offset_u3.y >> 12u;
+    let limb0_14 = offset_u3.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t54.z >> 12u;
-    let limb0_15 = t54.z & 4095u;
+    let limb1_15 = offset_u3.z >> 12u;
+    let limb0_15 = offset_u3.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist3 = f32(hi20) * 16777216.0f + f32(lo20);
-    let t55 = base.x <= 127.0f && t42 <= 127.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t55);
-    let best_d2 = select(best_d, dist3, t55);
-    let t56 = base + 1.0f;
-    let cand4 = select(vec2<f32>(127.0f), t56, t56 <= vec2<f32>(127.0f));
+    let t35 = base.x <= 127.0f && t_up <= 127.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t35);
+    let best_d2 = select(best_d, dist3, t35);
+    let t36 = base + 1.0f;
+    let cand4 = select(vec2<f32>(127.0f), t36, t36 <= vec2<f32>(127.0f));
     let p4 = floor(cand4 * 16513.008f);
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
     let z4 = 2097152.0f - select(2097152.0f, q4, q4 <= 2097152.0f);
     let l2_4 = q4 + round(z4 * z4 * 4.7683716e-7f);
-    let t57 = l2_4 * 524288.0f;
-    let root_estimate6 = floor(sqrt(t57));
+    let t37 = l2_4 * 524288.0f;
+    let root_estimate6 = floor(sqrt(t37));
     let root_next7 = root_estimate6 + 1.0f;
-    let t58 = select(
-        select(0.0f, -1.0f, root_estimate6 * root_estimate6 > t57),
-        1.0f,
-        root_next7 * root_next7 <= t57
-    );
-    let root_step4 = root_estimate6 + t58;
+    let step_down14 = select(0.0f, -1.0f, root_estimate6 * root_estimate6 > t37);
+    let step14 = select(step_down14, 1.0f, root_next7 * root_next7 <= t37);
+    let root_step4 = root_estimate6 + step14;
     let root_next8 = root_step4 + 1.0f;
-    let t59 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t57),
-        1.0f,
-        root_next8 * root_next8 <= t57
-    );
-    let root6 = root_step4 + t59;
-    let t60 = root6 * 2.0f;
+    let step_down15 = select(0.0f, -1.0f, root_step4 * root_step4 > t37);
+    let step15 = select(step_down15, 1.0f, root_next8 * root_next8 <= t37);
+    let root6 = root_step4 + step15;
+    let t38 = root6 * 2.0f;
     let abs_p4 = abs(p4);
-    let t61 = select(abs_p4.x, t60, t60 >= abs_p4.x);
-    let t62 = select(abs_p4.y, t61, t61 >= abs_p4.y);
-    let l5 = select(z4, t62, t62 >= z4);
-    let t63 = floor(p4 / l5 * 2097152.0f);
-    let t64 = p4 * 2097152.0f;
-    let t65 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t63 * l5 > t64),
+    let t39 = select(abs_p4.x, t38, t38 >= abs_p4.x);
+    let t40 = select(abs_p4.y, t39, t39 >= abs_p4.y);
+    let l5 = select(z4, t40, t40 >= z4);
+    let t41 = floor(p4 / l5 * 2097152.0f);
+    let t42 = p4 * 2097152.0f;
+    let t43 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t41 * l5 > t42),
         vec2<f32>(1.0f),
-        (t63 + 1.0f) * l5 <= t64
+        (t41 + 1.0f) * l5 <= t42
     );
     let big4 = z4 * 2097152.0f;
     let ratio_estimate4 = floor(z4 / l5 * 2097152.0f);
-    let t66 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * l5 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * l5 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t66;
-    let t67 = vec3<u32>(abs(vec3<f32>(t63 + t65, ratio4) - aim));
-    let limb1_16 = t67.x >> 12u;
-    let limb0_16 = t67.x & 4095u;
+    let step_down16 = select(0.0f, -1.0f, ratio_estimate4 * l5 > big4);
+    let step16 = select(step_down16, 1.0f, (ratio_estimate4 + 1.0f) * l5 <= big4);
+    let ratio4 = ratio_estimate4 + step16;
+    let offset4 = vec3<f32>(t41 + t43, ratio4) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_16 = offset_u4.x >> 12u;
+    let limb0_16 = offset_u4.x & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi21 = 0u + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo21 = 0u + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t67.y >> 12u;
-    let limb0_17 = t67.y & 4095u;
+    let limb1_17 = offset_u4.y >> 12u;
+    let limb0_17 = offset_u4.y & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
-    let limb1_18 = t67.z >> 12u;
-    let limb0_18 = t67.z & 4095u;
+    let limb1_18 = offset_u4.z >> 12u;
+    let limb0_18 = offset_u4.z & 4095u;
     let cross18 = limb1_18 * limb0_18;
     let hi23 = hi22 + limb1_18 * limb1_18 + (cross18 >> 11u);
     let lo23 = lo22 + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
     let hi24 = hi23 + (lo23 >> 24u);
     let lo24 = lo23 & 16777215u;
     let dist4 = f32(hi24) * 16777216.0f + f32(lo24);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 127.0f && base.y + 1.0f <= 127.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 127.0f && dist4 < best_d2);
     return select(vec2<f32>(0.0f), best3, ok && ok2);
 }
 

@@ -42,10 +42,8 @@ fn unitpack_paraboloid16p_xra_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   the horizon.
 // Portable as unitpack_paraboloid16p_xra_decode_float is, within the same bound.
 fn unitpack_paraboloid16p_xra_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_paraboloid16p_xra_decode_float(params);
 }
 
@@ -62,7 +60,8 @@ fn unitpack_paraboloid16p_xra_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -74,13 +73,17 @@ fn unitpack_paraboloid16p_xra_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
     let halved = vec3<f32>(w4.xy, w4.z * 0.5f);
-    let fixed2 = u32(floor(abs(halved.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(halved.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(halved.z) * 2097152.0f));
+    let fixed_f = floor(abs(halved.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(halved.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -104,38 +107,44 @@ fn unitpack_paraboloid16p_xra_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t2 = len2 * root_down;
     let root_estimate = sqrt(t2);
-    let t3 = floor(root_estimate * 512.0f);
-    let root_h0 = t3 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t4 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t2), 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = t3 + t4;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t5 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t2), 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + t5;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
-    let t6 = w4.xy * 127.5f;
-    let t7 = round(t6 / a + 127.5f);
-    let t8 = select(vec2<f32>(0.0f), t7, t7 >= vec2<f32>(0.0f));
-    let t9 = select(vec2<f32>(255.0f), t8, t8 <= vec2<f32>(255.0f));
-    let t10 = select(
+    let t3 = w4.xy * 127.5f;
+    let t4 = round(t3 / a + 127.5f);
+    let t5 = select(vec2<f32>(0.0f), t4, t4 >= vec2<f32>(0.0f));
+    let t6 = select(vec2<f32>(255.0f), t5, t5 <= vec2<f32>(255.0f));
+    let t7 = t6
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t3 >= (t6 - 126.5f) * a),
+            t6 < vec2<f32>(255.0f)
+        );
+    let t8 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 126.5f) * a),
-        t9 < vec2<f32>(255.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t3 >= (t6 - 1.0f - 126.5f) * a) - 1.0f,
+        t6 > vec2<f32>(0.0f)
     );
-    let t11 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 1.0f - 126.5f) * a) - 1.0f,
-        t9 > vec2<f32>(0.0f)
-    );
-    let base = t9 + t10 + t11;
-    let fixed5 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed7 = u32(floor(abs(w4.z) * 2097152.0f));
+    let base = t7 + t8;
+    let fixed_f4 = floor(abs(w4.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w4.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
+    let fixed_f6 = floor(abs(w4.z) * 2097152.0f);
+    let fixed7 = u32(fixed_f6);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -155,291 +164,249 @@ fn unitpack_paraboloid16p_xra_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let lo8 = lo7 & 16777215u;
     let len2_2 = (f32(hi8) * 16777216.0f + f32(lo8)) * 2.2737368e-13f;
     let root_estimate2 = sqrt(len2_2);
-    let t12 = floor(root_estimate2 * 512.0f);
-    let root_h0_2 = t12 * 0.001953125f;
+    let root_k0_2 = floor(root_estimate2 * 512.0f);
+    let root_h0_2 = root_k0_2 * 0.001953125f;
     let root_h1_2 = root_h0_2 + 0.001953125f;
-    let t13 = select(
-        select(0.0f, -1.0f, root_h0_2 * root_h0_2 > len2_2),
-        1.0f,
-        root_h1_2 * root_h1_2 <= len2_2
-    );
-    let root_k2 = t12 + t13;
+    let step_down3 = select(0.0f, -1.0f, root_h0_2 * root_h0_2 > len2_2);
+    let step3 = select(step_down3, 1.0f, root_h1_2 * root_h1_2 <= len2_2);
+    let root_k2 = root_k0_2 + step3;
     let root_h2 = root_k2 * 0.001953125f;
     let root_rest2 = len2_2 - root_h2 * root_h2;
     let root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
     let root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7f;
     let root_m1_2 = root_h2 + (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    let t14 = select(
-        select(0.0f, -1.0f, root_m0_2 * root_m0_2 > len2_2),
-        1.0f,
-        root_m1_2 * root_m1_2 <= len2_2
-    );
-    let root_j2 = root_j0_2 + t14;
+    let step_down4 = select(0.0f, -1.0f, root_m0_2 * root_m0_2 > len2_2);
+    let step4 = select(step_down4, 1.0f, root_m1_2 * root_m1_2 <= len2_2);
+    let root_j2 = root_j0_2 + step4;
     let root2 = (root_k2 * 4096.0f + root_j2) * 4.7683716e-7f;
-    let t15 = floor(w4 / root2 * 2097152.0f);
-    let t16 = w4 * 2097152.0f;
-    let t17 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t15 * root2 > t16),
+    let t9 = floor(w4 / root2 * 2097152.0f);
+    let t10 = w4 * 2097152.0f;
+    let t11 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t9 * root2 > t10),
         vec3<f32>(1.0f),
-        (t15 + 1.0f) * root2 <= t16
+        (t9 + 1.0f) * root2 <= t10
     );
-    let aim = t15 + t17;
+    let aim = t9 + t11;
     let cand = select(vec2<f32>(255.0f), base, base <= vec2<f32>(255.0f));
     let p = floor((cand + cand - 255.0f) * 8224.126f);
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
     let z = 2097152.0f - select(2097152.0f, q, q <= 2097152.0f);
     let l2 = q + round(z * z * 4.7683716e-7f);
-    let t18 = l2 * 524288.0f;
-    let root_estimate3 = floor(sqrt(t18));
+    let t12 = l2 * 524288.0f;
+    let root_estimate3 = floor(sqrt(t12));
     let root_next = root_estimate3 + 1.0f;
-    let t19 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t18),
-        1.0f,
-        root_next * root_next <= t18
-    );
-    let root_step = root_estimate3 + t19;
+    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t12);
+    let step5 = select(step_down5, 1.0f, root_next * root_next <= t12);
+    let root_step = root_estimate3 + step5;
     let root_next2 = root_step + 1.0f;
-    let t20 = select(
-        select(0.0f, -1.0f, root_step * root_step > t18),
-        1.0f,
-        root_next2 * root_next2 <= t18
-    );
-    let root3 = root_step + t20;
-    let t21 = root3 * 2.0f;
+    let step_down6 = select(0.0f, -1.0f, root_step * root_step > t12);
+    let step6 = select(step_down6, 1.0f, root_next2 * root_next2 <= t12);
+    let root3 = root_step + step6;
+    let t13 = root3 * 2.0f;
     let abs_p = abs(p);
-    let t22 = select(abs_p.x, t21, t21 >= abs_p.x);
-    let t23 = select(abs_p.y, t22, t22 >= abs_p.y);
-    let l = select(z, t23, t23 >= z);
-    let t24 = floor(p / l * 2097152.0f);
-    let t25 = p * 2097152.0f;
-    let t26 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t24 * l > t25),
+    let t14 = select(abs_p.x, t13, t13 >= abs_p.x);
+    let t15 = select(abs_p.y, t14, t14 >= abs_p.y);
+    let l = select(z, t15, t15 >= z);
+    let t16 = floor(p / l * 2097152.0f);
+    let t17 = p * 2097152.0f;
+    let t18 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t16 * l > t17),
         vec2<f32>(1.0f),
-        (t24 + 1.0f) * l <= t25
+        (t16 + 1.0f) * l <= t17
     );
     let big = z * 2097152.0f;
     let ratio_estimate = floor(z / l * 2097152.0f);
-    let t27 = select(
-        select(0.0f, -1.0f, ratio_estimate * l > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * l <= big
-    );
-    let ratio = ratio_estimate + t27;
-    let t28 = vec3<u32>(abs(vec3<f32>(t24 + t26, ratio) - aim));
-    let limb1_7 = t28.x >> 12u;
-    let limb0_7 = t28.x & 4095u;
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate * l > big);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate + 1.0f) * l <= big);
+    let ratio = ratio_estimate + step7;
+    let offset = vec3<f32>(t16 + t18, ratio) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_7 = offset_u.x >> 12u;
+    let limb0_7 = offset_u.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t28.y >> 12u;
-    let limb0_8 = t28.y & 4095u;
+    let limb1_8 = offset_u.y >> 12u;
+    let limb0_8 = offset_u.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t28.z >> 12u;
-    let limb0_9 = t28.z & 4095u;
+    let limb1_9 = offset_u.z >> 12u;
+    let limb0_9 = offset_u.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist = f32(hi12) * 16777216.0f + f32(lo12);
-    let t29 = base.x + 1.0f;
-    let t30 = vec2<f32>(t29, base.y);
-    let cand2 = select(vec2<f32>(255.0f), t30, t30 <= vec2<f32>(255.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t19 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(255.0f), t19, t19 <= vec2<f32>(255.0f));
     let p2 = floor((cand2 + cand2 - 255.0f) * 8224.126f);
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
     let z2 = 2097152.0f - select(2097152.0f, q2, q2 <= 2097152.0f);
     let l2_2 = q2 + round(z2 * z2 * 4.7683716e-7f);
-    let t31 = l2_2 * 524288.0f;
-    let root_estimate4 = floor(sqrt(t31));
+    let t20 = l2_2 * 524288.0f;
+    let root_estimate4 = floor(sqrt(t20));
     let root_next3 = root_estimate4 + 1.0f;
-    let t32 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t31),
-        1.0f,
-        root_next3 * root_next3 <= t31
-    );
-    let root_step2 = root_estimate4 + t32;
+    let step_down8 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t20);
+    let step8 = select(step_down8, 1.0f, root_next3 * root_next3 <= t20);
+    let root_step2 = root_estimate4 + step8;
     let root_next4 = root_step2 + 1.0f;
-    let t33 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t31),
-        1.0f,
-        root_next4 * root_next4 <= t31
-    );
-    let root4 = root_step2 + t33;
-    let t34 = root4 * 2.0f;
+    let step_down9 = select(0.0f, -1.0f, root_step2 * root_step2 > t20);
+    let step9 = select(step_down9, 1.0f, root_next4 * root_next4 <= t20);
+    let root4 = root_step2 + step9;
+    let t21 = root4 * 2.0f;
     let abs_p2 = abs(p2);
-    let t35 = select(abs_p2.x, t34, t34 >= abs_p2.x);
-    let t36 = select(abs_p2.y, t35, t35 >= abs_p2.y);
-    let l3 = select(z2, t36, t36 >= z2);
-    let t37 = floor(p2 / l3 * 2097152.0f);
-    let t38 = p2 * 2097152.0f;
-    let t39 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t37 * l3 > t38),
+    let t22 = select(abs_p2.x, t21, t21 >= abs_p2.x);
+    let t23 = select(abs_p2.y, t22, t22 >= abs_p2.y);
+    let l3 = select(z2, t23, t23 >= z2);
+    let t24 = floor(p2 / l3 * 2097152.0f);
+    let t25 = p2 * 2097152.0f;
+    let t26 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t24 * l3 > t25),
         vec2<f32>(1.0f),
-        (t37 + 1.0f) * l3 <= t38
+        (t24 + 1.0f) * l3 <= t25
     );
     let big2 = z2 * 2097152.0f;
     let ratio_estimate2 = floor(z2 / l3 * 2097152.0f);
-    let t40 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * l3 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * l3 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t40;
-    let t41 = vec3<u32>(abs(vec3<f32>(t37 + t39, ratio2) - aim));
-    let limb1_10 = t41.x >> 12u;
-    let limb0_10 = t41.x & 4095u;
+    let step_down10 = select(0.0f, -1.0f, ratio_estimate2 * l3 > big2);
+    let step10 = select(step_down10, 1.0f, (ratio_estimate2 + 1.0f) * l3 <= big2);
+    let ratio2 = ratio_estimate2 + step10;
+    let offset2 = vec3<f32>(t24 + t26, ratio2) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_10 = offset_u2.x >> 12u;
+    let limb0_10 = offset_u2.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t41.y >> 12u;
-    let limb0_11 = t41.y & 4095u;
+    let limb1_11 = offset_u2.y >> 12u;
+    let limb0_11 = offset_u2.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t41.z >> 12u;
-    let limb0_12 = t41.z & 4095u;
+    let limb1_12 = offset_u2.z >> 12u;
+    let limb0_12 = offset_u2.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist2 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t42 = t29 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    let best = select(cand, cand2, t42);
-    let best_d = select(dist, dist2, t42);
-    let t43 = base.y + 1.0f;
-    let t44 = vec2<f32>(base.x, t43);
-    let cand3 = select(vec2<f32>(255.0f), t44, t44 <= vec2<f32>(255.0f));
+    let t27 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    let best = select(cand, cand2, t27);
+    let best_d = select(dist, dist2, t27);
+    let t28 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(255.0f), t28, t28 <= vec2<f32>(255.0f));
     let p3 = floor((cand3 + cand3 - 255.0f) * 8224.126f);
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
     let z3 = 2097152.0f - select(2097152.0f, q3, q3 <= 2097152.0f);
     let l2_3 = q3 + round(z3 * z3 * 4.7683716e-7f);
-    let t45 = l2_3 * 524288.0f;
-    let root_estimate5 = floor(sqrt(t45));
+    let t29 = l2_3 * 524288.0f;
+    let root_estimate5 = floor(sqrt(t29));
     let root_next5 = root_estimate5 + 1.0f;
-    let t46 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t45),
-        1.0f,
-        root_next5 * root_next5 <= t45
-    );
-    let root_step3 = root_estimate5 + t46;
+    let step_down11 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t29);
+    let step11 = select(step_down11, 1.0f, root_next5 * root_next5 <= t29);
+    let root_step3 = root_estimate5 + step11;
     let root_next6 = root_step3 + 1.0f;
-    let t47 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t45),
-        1.0f,
-        root_next6 * root_next6 <= t45
-    );
-    let root5 = root_step3 + t47;
-    let t48 = root5 * 2.0f;
+    let step_down12 = select(0.0f, -1.0f, root_step3 * root_step3 > t29);
+    let step12 = select(step_down12, 1.0f, root_next6 * root_next6 <= t29);
+    let root5 = root_step3 + step12;
+    let t30 = root5 * 2.0f;
     let abs_p3 = abs(p3);
-    let t49 = select(abs_p3.x, t48, t48 >= abs_p3.x);
-    let t50 = select(abs_p3.y, t49, t49 >= abs_p3.y);
-    let l4 = select(z3, t50, t50 >= z3);
-    let t51 = floor(p3 / l4 * 2097152.0f);
-    let t52 = p3 * 2097152.0f;
-    let t53 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t51 * l4 > t52),
+    let t31 = select(abs_p3.x, t30, t30 >= abs_p3.x);
+    let t32 = select(abs_p3.y, t31, t31 >= abs_p3.y);
+    let l4 = select(z3, t32, t32 >= z3);
+    let t33 = floor(p3 / l4 * 2097152.0f);
+    let t34 = p3 * 2097152.0f;
+    let t35 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t33 * l4 > t34),
         vec2<f32>(1.0f),
-        (t51 + 1.0f) * l4 <= t52
+        (t33 + 1.0f) * l4 <= t34
     );
     let big3 = z3 * 2097152.0f;
     let ratio_estimate3 = floor(z3 / l4 * 2097152.0f);
-    let t54 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * l4 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * l4 <= big3
-    );
-    let ratio3 = ratio_estimate3 + t54;
-    let t55 = vec3<u32>(abs(vec3<f32>(t51 + t53, ratio3) - aim));
-    let limb1_13 = t55.x >> 12u;
-    let limb0_13 = t55.x & 4095u;
+    let step_down13 = select(0.0f, -1.0f, ratio_estimate3 * l4 > big3);
+    let step13 = select(step_down13, 1.0f, (ratio_estimate3 + 1.0f) * l4 <= big3);
+    let ratio3 = ratio_estimate3 + step13;
+    let offset3 = vec3<f32>(t33 + t35, ratio3) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_13 = offset_u3.x >> 12u;
+    let limb0_13 = offset_u3.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t55.y >> 12u;
-    let limb0_14 = t55.y & 4095u;
+    let limb1_14 = offset_u3.y >> 12u;
+    let limb0_14 = offset_u3.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t55.z >> 12u;
-    let limb0_15 = t55.z & 4095u;
+    let limb1_15 = offset_u3.z >> 12u;
+    let limb0_15 = offset_u3.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist3 = f32(hi20) * 16777216.0f + f32(lo20);
-    let t56 = base.x <= 255.0f && t43 <= 255.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t56);
-    let best_d2 = select(best_d, dist3, t56);
-    let t57 = base + 1.0f;
-    let cand4 = select(vec2<f32>(255.0f), t57, t57 <= vec2<f32>(255.0f));
+    let t36 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t36);
+    let best_d2 = select(best_d, dist3, t36);
+    let t37 = base + 1.0f;
+    let cand4 = select(vec2<f32>(255.0f), t37, t37 <= vec2<f32>(255.0f));
     let p4 = floor((cand4 + cand4 - 255.0f) * 8224.126f);
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
     let z4 = 2097152.0f - select(2097152.0f, q4, q4 <= 2097152.0f);
     let l2_4 = q4 + round(z4 * z4 * 4.7683716e-7f);
-    let t58 = l2_4 * 524288.0f;
-    let root_estimate6 = floor(sqrt(t58));
+    let t38 = l2_4 * 524288.0f;
+    let root_estimate6 = floor(sqrt(t38));
     let root_next7 = root_estimate6 + 1.0f;
-    let t59 = select(
-        select(0.0f, -1.0f, root_estimate6 * root_estimate6 > t58),
-        1.0f,
-        root_next7 * root_next7 <= t58
-    );
-    let root_step4 = root_estimate6 + t59;
+    let step_down14 = select(0.0f, -1.0f, root_estimate6 * root_estimate6 > t38);
+    let step14 = select(step_down14, 1.0f, root_next7 * root_next7 <= t38);
+    let root_step4 = root_estimate6 + step14;
     let root_next8 = root_step4 + 1.0f;
-    let t60 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t58),
-        1.0f,
-        root_next8 * root_next8 <= t58
-    );
-    let root6 = root_step4 + t60;
-    let t61 = root6 * 2.0f;
+    let step_down15 = select(0.0f, -1.0f, root_step4 * root_step4 > t38);
+    let step15 = select(step_down15, 1.0f, root_next8 * root_next8 <= t38);
+    let root6 = root_step4 + step15;
+    let t39 = root6 * 2.0f;
     let abs_p4 = abs(p4);
-    let t62 = select(abs_p4.x, t61, t61 >= abs_p4.x);
-    let t63 = select(abs_p4.y, t62, t62 >= abs_p4.y);
-    let l5 = select(z4, t63, t63 >= z4);
-    let t64 = floor(p4 / l5 * 2097152.0f);
-    let t65 = p4 * 2097152.0f;
-    let t66 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t64 * l5 > t65),
+    let t40 = select(abs_p4.x, t39, t39 >= abs_p4.x);
+    let t41 = select(abs_p4.y, t40, t40 >= abs_p4.y);
+    let l5 = select(z4, t41, t41 >= z4);
+    let t42 = floor(p4 / l5 * 2097152.0f);
+    let t43 = p4 * 2097152.0f;
+    let t44 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t42 * l5 > t43),
         vec2<f32>(1.0f),
-        (t64 + 1.0f) * l5 <= t65
+        (t42 + 1.0f) * l5 <= t43
     );
     let big4 = z4 * 2097152.0f;
     let ratio_estimate4 = floor(z4 / l5 * 2097152.0f);
-    let t67 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * l5 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * l5 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t67;
-    let t68 = vec3<u32>(abs(vec3<f32>(t64 + t66, ratio4) - aim));
-    let limb1_16 = t68.x >> 12u;
-    let limb0_16 = t68.x & 4095u;
+    let step_down16 = select(0.0f, -1.0f, ratio_estimate4 * l5 > big4);
+    let step16 = select(step_down16, 1.0f, (ratio_estimate4 + 1.0f) * l5 <= big4);
+    let ratio4 = ratio_estimate4 + step16;
+    let offset4 = vec3<f32>(t42 + t44, ratio4) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_16 = offset_u4.x >> 12u;
+    let limb0_16 = offset_u4.x & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi21 = 0u + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo21 = 0u + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t68.y >> 12u;
-    let limb0_17 = t68.y & 4095u;
+    let limb1_17 = offset_u4.y >> 12u;
+    let limb0_17 = offset_u4.y & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
-    let limb1_18 = t68.z >> 12u;
-    let limb0_18 = t68.z & 4095u;
+    let limb1_18 = offset_u4.z >> 12u;
+    let limb0_18 = offset_u4.z & 4095u;
     let cross18 = limb1_18 * limb0_18;
     let hi23 = hi22 + limb1_18 * limb1_18 + (cross18 >> 11u);
     let lo23 = lo22 + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
     let hi24 = hi23 + (lo23 >> 24u);
     let lo24 = lo23 & 16777215u;
     let dist4 = f32(hi24) * 16777216.0f + f32(lo24);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2);
     let c = select(vec2<f32>(128.0f), best3, ok && ok2);
     return vec4<f32>(255.0f, c.y, 0.0f, c.x);
 }
@@ -465,10 +432,8 @@ fn unitpack_paraboloid16p_xra_encode_float(v: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_paraboloid16p_xra_encode(v: vec3<f32>) -> u32 {
     let encode_codes = unitpack_paraboloid16p_xra_encode_codes(v);
-    return u32(encode_codes.x)
-        | (u32(encode_codes.y) << 8u)
-        | (u32(encode_codes.z) << 16u)
-        | (u32(encode_codes.w) << 24u);
+    let t1 = u32(encode_codes.x) | (u32(encode_codes.y) << 8u) | (u32(encode_codes.z) << 16u);
+    return t1 | (u32(encode_codes.w) << 24u);
 }
 
 // unitpack_paraboloid16p_xra_encode_dxt1: precise encoder.

@@ -42,10 +42,8 @@ fn unitpack_paraboloid_square16_xra_decode_float(params: vec4<f32>) -> vec3<f32>
 //   horizon.
 // Portable as unitpack_paraboloid_square16_xra_decode_float is, within the same bound.
 fn unitpack_paraboloid_square16_xra_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_paraboloid_square16_xra_decode_float(params);
 }
 
@@ -56,9 +54,8 @@ fn unitpack_paraboloid_square16_xra_square_step(a0: f32, a1: f32, a2: vec3<f32>)
     let t1 = round(t * t * 4.7683716e-7f);
     let t2 = (2097152.0f - t1) * (2097152.0f - round(a2.y * t1 * 4.7683716e-7f)) * 4.7683716e-7f;
     let surface = round(t2);
-    let t3 = round(surface * a2.x * 4.7683716e-7f) >= round(a2.z * t * 4.7683716e-7f)
-        && t <= 2097152.0f;
-    return select(a0, t, t3);
+    let t3 = round(surface * a2.x * 4.7683716e-7f) >= round(a2.z * t * 4.7683716e-7f);
+    return select(a0, t, t3 && t <= 2097152.0f);
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -72,12 +69,9 @@ fn unitpack_paraboloid_square16_xra_square_point(a0: vec3<f32>) -> vec2<f32> {
     let t5 = select(1.0f, t3, t3 >= 1.0f);
     let big = t4 * 2097152.0f;
     let ratio_estimate = floor(t4 / t5 * 2097152.0f);
-    let t6 = select(
-        select(0.0f, -1.0f, ratio_estimate * t5 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t5 <= big
-    );
-    let r = ratio_estimate + t6;
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t5 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t5 <= big);
+    let r = ratio_estimate + step;
     let k = vec3<f32>(t3, round(r * r * 4.7683716e-7f), a0.z);
     let s = unitpack_paraboloid_square16_xra_square_step(0.0f, 2097152.0f, k);
     let s2 = unitpack_paraboloid_square16_xra_square_step(s, 1048576.0f, k);
@@ -101,9 +95,9 @@ fn unitpack_paraboloid_square16_xra_square_point(a0: vec3<f32>) -> vec2<f32> {
     let s20 = unitpack_paraboloid_square16_xra_square_step(s19, 4.0f, k);
     let s21 = unitpack_paraboloid_square16_xra_square_step(s20, 2.0f, k);
     let s22 = unitpack_paraboloid_square16_xra_square_step(s21, 1.0f, k);
-    let t7 = round(r * s22 * 4.7683716e-7f);
-    let t8 = select(vec2<f32>(t7, s22), vec2<f32>(s22, t7), t2);
-    return select(t8, -t8, a0.xy < vec2<f32>(0.0f));
+    let t6 = round(r * s22 * 4.7683716e-7f);
+    let t7 = select(vec2<f32>(t6, s22), vec2<f32>(s22, t6), t2);
+    return select(t7, -t7, a0.xy < vec2<f32>(0.0f));
 }
 
 // unitpack_paraboloid_square16_xra_encode_float: fast encoder, float form.
@@ -123,7 +117,8 @@ fn unitpack_paraboloid_square16_xra_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -135,12 +130,16 @@ fn unitpack_paraboloid_square16_xra_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -160,27 +159,29 @@ fn unitpack_paraboloid_square16_xra_encode_float(v: vec3<f32>) -> vec4<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t5 = floor(w4 / root * 2097152.0f);
-    let t6 = w4 * 2097152.0f;
-    let t7 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t5 * root > t6),
+    let t2 = floor(w4 / root * 2097152.0f);
+    let t3 = w4 * 2097152.0f;
+    let t4 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t2 * root > t3),
         vec3<f32>(1.0f),
-        (t5 + 1.0f) * root <= t6
+        (t2 + 1.0f) * root <= t3
     );
-    let aim = t5 + t7;
+    let aim = t2 + t4;
     let p = unitpack_paraboloid_square16_xra_square_point(aim);
     let p2 = p * 4.7683716e-7f;
     return vec4<f32>(1.0f, 0.5f + p2.y * 0.5f, 0.0f, 0.5f + p2.x * 0.5f);
@@ -198,7 +199,8 @@ fn unitpack_paraboloid_square16_xra_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -210,12 +212,16 @@ fn unitpack_paraboloid_square16_xra_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -235,33 +241,35 @@ fn unitpack_paraboloid_square16_xra_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t5 = floor(w4 / root * 2097152.0f);
-    let t6 = w4 * 2097152.0f;
-    let t7 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t5 * root > t6),
+    let t2 = floor(w4 / root * 2097152.0f);
+    let t3 = w4 * 2097152.0f;
+    let t4 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t2 * root > t3),
         vec3<f32>(1.0f),
-        (t5 + 1.0f) * root <= t6
+        (t2 + 1.0f) * root <= t3
     );
-    let aim = t5 + t7;
+    let aim = t2 + t4;
     let p = unitpack_paraboloid_square16_xra_square_point(aim);
-    let t8 = vec2<u32>(
+    let t5 = vec2<u32>(
         (u32(p.x + 2097152.0f) * 255u + 2097152u) >> 22u,
         (u32(p.y + 2097152.0f) * 255u + 2097152u) >> 22u
     );
-    let c = vec2<f32>(t8);
+    let c = vec2<f32>(t5);
     return vec4<f32>(255.0f, c.y, 0.0f, c.x);
 }
 
@@ -274,10 +282,8 @@ fn unitpack_paraboloid_square16_xra_round_codes(a0: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_paraboloid_square16_xra_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_paraboloid_square16_xra_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }
 
 // unitpack_paraboloid_square16_xra_encode_dxt1: fast encoder.

@@ -53,9 +53,8 @@ fn unitpack_paraboloid_square16p_square_step(a0: f32, a1: f32, a2: vec3<f32>) ->
     let t1 = round(t * t * 4.7683716e-7f);
     let t2 = (2097152.0f - t1) * (2097152.0f - round(a2.y * t1 * 4.7683716e-7f)) * 4.7683716e-7f;
     let surface = round(t2);
-    let t3 = round(surface * a2.x * 4.7683716e-7f) >= round(a2.z * t * 4.7683716e-7f)
-        && t <= 2097152.0f;
-    return select(a0, t, t3);
+    let t3 = round(surface * a2.x * 4.7683716e-7f) >= round(a2.z * t * 4.7683716e-7f);
+    return select(a0, t, t3 && t <= 2097152.0f);
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -69,12 +68,9 @@ fn unitpack_paraboloid_square16p_square_point(a0: vec3<f32>) -> vec2<f32> {
     let t5 = select(1.0f, t3, t3 >= 1.0f);
     let big = t4 * 2097152.0f;
     let ratio_estimate = floor(t4 / t5 * 2097152.0f);
-    let t6 = select(
-        select(0.0f, -1.0f, ratio_estimate * t5 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t5 <= big
-    );
-    let r = ratio_estimate + t6;
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t5 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t5 <= big);
+    let r = ratio_estimate + step;
     let k = vec3<f32>(t3, round(r * r * 4.7683716e-7f), a0.z);
     let s = unitpack_paraboloid_square16p_square_step(0.0f, 2097152.0f, k);
     let s2 = unitpack_paraboloid_square16p_square_step(s, 1048576.0f, k);
@@ -98,9 +94,9 @@ fn unitpack_paraboloid_square16p_square_point(a0: vec3<f32>) -> vec2<f32> {
     let s20 = unitpack_paraboloid_square16p_square_step(s19, 4.0f, k);
     let s21 = unitpack_paraboloid_square16p_square_step(s20, 2.0f, k);
     let s22 = unitpack_paraboloid_square16p_square_step(s21, 1.0f, k);
-    let t7 = round(r * s22 * 4.7683716e-7f);
-    let t8 = select(vec2<f32>(t7, s22), vec2<f32>(s22, t7), t2);
-    return select(t8, -t8, a0.xy < vec2<f32>(0.0f));
+    let t6 = round(r * s22 * 4.7683716e-7f);
+    let t7 = select(vec2<f32>(t6, s22), vec2<f32>(s22, t6), t2);
+    return select(t7, -t7, a0.xy < vec2<f32>(0.0f));
 }
 
 // Precise search, decided in fixed point: among the four codes around the exact parameters, the one
@@ -116,7 +112,8 @@ fn unitpack_paraboloid_square16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -128,12 +125,16 @@ fn unitpack_paraboloid_square16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -153,289 +154,255 @@ fn unitpack_paraboloid_square16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t5 = floor(w4 / root * 2097152.0f);
-    let t6 = w4 * 2097152.0f;
-    let t7 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t5 * root > t6),
+    let t2 = floor(w4 / root * 2097152.0f);
+    let t3 = w4 * 2097152.0f;
+    let t4 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t2 * root > t3),
         vec3<f32>(1.0f),
-        (t5 + 1.0f) * root <= t6
+        (t2 + 1.0f) * root <= t3
     );
-    let aim = t5 + t7;
+    let aim = t2 + t4;
     let p = unitpack_paraboloid_square16p_square_point(aim);
     let base = floor(p * 6.055832e-5f);
     let cand = select(vec2<f32>(127.0f), base, base <= vec2<f32>(127.0f));
     let p2 = floor(cand * 16513.008f);
-    let t8 = round(p2.x * p2.x * 4.7683716e-7f);
-    let t9 = round(p2.y * p2.y * 4.7683716e-7f);
-    let z = round((2097152.0f - t8) * (2097152.0f - t9) * 4.7683716e-7f);
-    let l2 = t8 + t9 + round(z * z * 4.7683716e-7f);
-    let t10 = l2 * 524288.0f;
-    let root_estimate2 = floor(sqrt(t10));
+    let t5 = round(p2.x * p2.x * 4.7683716e-7f);
+    let t6 = round(p2.y * p2.y * 4.7683716e-7f);
+    let z = round((2097152.0f - t5) * (2097152.0f - t6) * 4.7683716e-7f);
+    let l2 = t5 + t6 + round(z * z * 4.7683716e-7f);
+    let t7 = l2 * 524288.0f;
+    let root_estimate2 = floor(sqrt(t7));
     let root_next = root_estimate2 + 1.0f;
-    let t11 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t10),
-        1.0f,
-        root_next * root_next <= t10
-    );
-    let root_step = root_estimate2 + t11;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t7);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t7);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t12 = select(
-        select(0.0f, -1.0f, root_step * root_step > t10),
-        1.0f,
-        root_next2 * root_next2 <= t10
-    );
-    let root2 = root_step + t12;
-    let t13 = root2 * 2.0f;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t7);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t7);
+    let root2 = root_step + step4;
+    let t8 = root2 * 2.0f;
     let abs_p2 = abs(p2);
-    let t14 = select(abs_p2.x, t13, t13 >= abs_p2.x);
-    let t15 = select(abs_p2.y, t14, t14 >= abs_p2.y);
-    let l = select(z, t15, t15 >= z);
-    let t16 = floor(p2 / l * 2097152.0f);
-    let t17 = p2 * 2097152.0f;
-    let t18 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t16 * l > t17),
+    let t9 = select(abs_p2.x, t8, t8 >= abs_p2.x);
+    let t10 = select(abs_p2.y, t9, t9 >= abs_p2.y);
+    let l = select(z, t10, t10 >= z);
+    let t11 = floor(p2 / l * 2097152.0f);
+    let t12 = p2 * 2097152.0f;
+    let t13 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t11 * l > t12),
         vec2<f32>(1.0f),
-        (t16 + 1.0f) * l <= t17
+        (t11 + 1.0f) * l <= t12
     );
     let big = z * 2097152.0f;
     let ratio_estimate = floor(z / l * 2097152.0f);
-    let t19 = select(
-        select(0.0f, -1.0f, ratio_estimate * l > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * l <= big
-    );
-    let ratio = ratio_estimate + t19;
-    let t20 = vec3<u32>(abs(vec3<f32>(t16 + t18, ratio) - aim));
-    let limb1_4 = t20.x >> 12u;
-    let limb0_4 = t20.x & 4095u;
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate * l > big);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate + 1.0f) * l <= big);
+    let ratio = ratio_estimate + step5;
+    let offset = vec3<f32>(t11 + t13, ratio) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t20.y >> 12u;
-    let limb0_5 = t20.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t20.z >> 12u;
-    let limb0_6 = t20.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t21 = base.x + 1.0f;
-    let t22 = vec2<f32>(t21, base.y);
-    let cand2 = select(vec2<f32>(127.0f), t22, t22 <= vec2<f32>(127.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t14 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(127.0f), t14, t14 <= vec2<f32>(127.0f));
     let p3 = floor(cand2 * 16513.008f);
-    let t23 = round(p3.x * p3.x * 4.7683716e-7f);
-    let t24 = round(p3.y * p3.y * 4.7683716e-7f);
-    let z2 = round((2097152.0f - t23) * (2097152.0f - t24) * 4.7683716e-7f);
-    let l2_2 = t23 + t24 + round(z2 * z2 * 4.7683716e-7f);
-    let t25 = l2_2 * 524288.0f;
-    let root_estimate3 = floor(sqrt(t25));
+    let t15 = round(p3.x * p3.x * 4.7683716e-7f);
+    let t16 = round(p3.y * p3.y * 4.7683716e-7f);
+    let z2 = round((2097152.0f - t15) * (2097152.0f - t16) * 4.7683716e-7f);
+    let l2_2 = t15 + t16 + round(z2 * z2 * 4.7683716e-7f);
+    let t17 = l2_2 * 524288.0f;
+    let root_estimate3 = floor(sqrt(t17));
     let root_next3 = root_estimate3 + 1.0f;
-    let t26 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t25),
-        1.0f,
-        root_next3 * root_next3 <= t25
-    );
-    let root_step2 = root_estimate3 + t26;
+    let step_down6 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t17);
+    let step6 = select(step_down6, 1.0f, root_next3 * root_next3 <= t17);
+    let root_step2 = root_estimate3 + step6;
     let root_next4 = root_step2 + 1.0f;
-    let t27 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t25),
-        1.0f,
-        root_next4 * root_next4 <= t25
-    );
-    let root3 = root_step2 + t27;
-    let t28 = root3 * 2.0f;
+    let step_down7 = select(0.0f, -1.0f, root_step2 * root_step2 > t17);
+    let step7 = select(step_down7, 1.0f, root_next4 * root_next4 <= t17);
+    let root3 = root_step2 + step7;
+    let t18 = root3 * 2.0f;
     let abs_p3 = abs(p3);
-    let t29 = select(abs_p3.x, t28, t28 >= abs_p3.x);
-    let t30 = select(abs_p3.y, t29, t29 >= abs_p3.y);
-    let l3 = select(z2, t30, t30 >= z2);
-    let t31 = floor(p3 / l3 * 2097152.0f);
-    let t32 = p3 * 2097152.0f;
-    let t33 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t31 * l3 > t32),
+    let t19 = select(abs_p3.x, t18, t18 >= abs_p3.x);
+    let t20 = select(abs_p3.y, t19, t19 >= abs_p3.y);
+    let l3 = select(z2, t20, t20 >= z2);
+    let t21 = floor(p3 / l3 * 2097152.0f);
+    let t22 = p3 * 2097152.0f;
+    let t23 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t21 * l3 > t22),
         vec2<f32>(1.0f),
-        (t31 + 1.0f) * l3 <= t32
+        (t21 + 1.0f) * l3 <= t22
     );
     let big2 = z2 * 2097152.0f;
     let ratio_estimate2 = floor(z2 / l3 * 2097152.0f);
-    let t34 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * l3 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * l3 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t34;
-    let t35 = vec3<u32>(abs(vec3<f32>(t31 + t33, ratio2) - aim));
-    let limb1_7 = t35.x >> 12u;
-    let limb0_7 = t35.x & 4095u;
+    let step_down8 = select(0.0f, -1.0f, ratio_estimate2 * l3 > big2);
+    let step8 = select(step_down8, 1.0f, (ratio_estimate2 + 1.0f) * l3 <= big2);
+    let ratio2 = ratio_estimate2 + step8;
+    let offset2 = vec3<f32>(t21 + t23, ratio2) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t35.y >> 12u;
-    let limb0_8 = t35.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t35.z >> 12u;
-    let limb0_9 = t35.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t36 = t21 <= 127.0f && base.y <= 127.0f && dist2 < dist;
-    let best = select(cand, cand2, t36);
-    let best_d = select(dist, dist2, t36);
-    let t37 = base.y + 1.0f;
-    let t38 = vec2<f32>(base.x, t37);
-    let cand3 = select(vec2<f32>(127.0f), t38, t38 <= vec2<f32>(127.0f));
+    let t24 = s_up <= 127.0f && base.y <= 127.0f && dist2 < dist;
+    let best = select(cand, cand2, t24);
+    let best_d = select(dist, dist2, t24);
+    let t25 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(127.0f), t25, t25 <= vec2<f32>(127.0f));
     let p4 = floor(cand3 * 16513.008f);
-    let t39 = round(p4.x * p4.x * 4.7683716e-7f);
-    let t40 = round(p4.y * p4.y * 4.7683716e-7f);
-    let z3 = round((2097152.0f - t39) * (2097152.0f - t40) * 4.7683716e-7f);
-    let l2_3 = t39 + t40 + round(z3 * z3 * 4.7683716e-7f);
-    let t41 = l2_3 * 524288.0f;
-    let root_estimate4 = floor(sqrt(t41));
+    let t26 = round(p4.x * p4.x * 4.7683716e-7f);
+    let t27 = round(p4.y * p4.y * 4.7683716e-7f);
+    let z3 = round((2097152.0f - t26) * (2097152.0f - t27) * 4.7683716e-7f);
+    let l2_3 = t26 + t27 + round(z3 * z3 * 4.7683716e-7f);
+    let t28 = l2_3 * 524288.0f;
+    let root_estimate4 = floor(sqrt(t28));
     let root_next5 = root_estimate4 + 1.0f;
-    let t42 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t41),
-        1.0f,
-        root_next5 * root_next5 <= t41
-    );
-    let root_step3 = root_estimate4 + t42;
+    let step_down9 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t28);
+    let step9 = select(step_down9, 1.0f, root_next5 * root_next5 <= t28);
+    let root_step3 = root_estimate4 + step9;
     let root_next6 = root_step3 + 1.0f;
-    let t43 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t41),
-        1.0f,
-        root_next6 * root_next6 <= t41
-    );
-    let root4 = root_step3 + t43;
-    let t44 = root4 * 2.0f;
+    let step_down10 = select(0.0f, -1.0f, root_step3 * root_step3 > t28);
+    let step10 = select(step_down10, 1.0f, root_next6 * root_next6 <= t28);
+    let root4 = root_step3 + step10;
+    let t29 = root4 * 2.0f;
     let abs_p4 = abs(p4);
-    let t45 = select(abs_p4.x, t44, t44 >= abs_p4.x);
-    let t46 = select(abs_p4.y, t45, t45 >= abs_p4.y);
-    let l4 = select(z3, t46, t46 >= z3);
-    let t47 = floor(p4 / l4 * 2097152.0f);
-    let t48 = p4 * 2097152.0f;
-    let t49 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t47 * l4 > t48),
+    let t30 = select(abs_p4.x, t29, t29 >= abs_p4.x);
+    let t31 = select(abs_p4.y, t30, t30 >= abs_p4.y);
+    let l4 = select(z3, t31, t31 >= z3);
+    let t32 = floor(p4 / l4 * 2097152.0f);
+    let t33 = p4 * 2097152.0f;
+    let t34 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t32 * l4 > t33),
         vec2<f32>(1.0f),
-        (t47 + 1.0f) * l4 <= t48
+        (t32 + 1.0f) * l4 <= t33
     );
     let big3 = z3 * 2097152.0f;
     let ratio_estimate3 = floor(z3 / l4 * 2097152.0f);
-    let t50 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * l4 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * l4 <= big3
-    );
-    let ratio3 = ratio_estimate3 + t50;
-    let t51 = vec3<u32>(abs(vec3<f32>(t47 + t49, ratio3) - aim));
-    let limb1_10 = t51.x >> 12u;
-    let limb0_10 = t51.x & 4095u;
+    let step_down11 = select(0.0f, -1.0f, ratio_estimate3 * l4 > big3);
+    let step11 = select(step_down11, 1.0f, (ratio_estimate3 + 1.0f) * l4 <= big3);
+    let ratio3 = ratio_estimate3 + step11;
+    let offset3 = vec3<f32>(t32 + t34, ratio3) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t51.y >> 12u;
-    let limb0_11 = t51.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t51.z >> 12u;
-    let limb0_12 = t51.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t52 = base.x <= 127.0f && t37 <= 127.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t52);
-    let best_d2 = select(best_d, dist3, t52);
-    let t53 = base + 1.0f;
-    let cand4 = select(vec2<f32>(127.0f), t53, t53 <= vec2<f32>(127.0f));
+    let t35 = base.x <= 127.0f && t_up <= 127.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t35);
+    let best_d2 = select(best_d, dist3, t35);
+    let t36 = base + 1.0f;
+    let cand4 = select(vec2<f32>(127.0f), t36, t36 <= vec2<f32>(127.0f));
     let p5 = floor(cand4 * 16513.008f);
-    let t54 = round(p5.x * p5.x * 4.7683716e-7f);
-    let t55 = round(p5.y * p5.y * 4.7683716e-7f);
-    let z4 = round((2097152.0f - t54) * (2097152.0f - t55) * 4.7683716e-7f);
-    let l2_4 = t54 + t55 + round(z4 * z4 * 4.7683716e-7f);
-    let t56 = l2_4 * 524288.0f;
-    let root_estimate5 = floor(sqrt(t56));
+    let t37 = round(p5.x * p5.x * 4.7683716e-7f);
+    let t38 = round(p5.y * p5.y * 4.7683716e-7f);
+    let z4 = round((2097152.0f - t37) * (2097152.0f - t38) * 4.7683716e-7f);
+    let l2_4 = t37 + t38 + round(z4 * z4 * 4.7683716e-7f);
+    let t39 = l2_4 * 524288.0f;
+    let root_estimate5 = floor(sqrt(t39));
     let root_next7 = root_estimate5 + 1.0f;
-    let t57 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t56),
-        1.0f,
-        root_next7 * root_next7 <= t56
-    );
-    let root_step4 = root_estimate5 + t57;
+    let step_down12 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t39);
+    let step12 = select(step_down12, 1.0f, root_next7 * root_next7 <= t39);
+    let root_step4 = root_estimate5 + step12;
     let root_next8 = root_step4 + 1.0f;
-    let t58 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t56),
-        1.0f,
-        root_next8 * root_next8 <= t56
-    );
-    let root5 = root_step4 + t58;
-    let t59 = root5 * 2.0f;
+    let step_down13 = select(0.0f, -1.0f, root_step4 * root_step4 > t39);
+    let step13 = select(step_down13, 1.0f, root_next8 * root_next8 <= t39);
+    let root5 = root_step4 + step13;
+    let t40 = root5 * 2.0f;
     let abs_p5 = abs(p5);
-    let t60 = select(abs_p5.x, t59, t59 >= abs_p5.x);
-    let t61 = select(abs_p5.y, t60, t60 >= abs_p5.y);
-    let l5 = select(z4, t61, t61 >= z4);
-    let t62 = floor(p5 / l5 * 2097152.0f);
-    let t63 = p5 * 2097152.0f;
-    let t64 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t62 * l5 > t63),
+    let t41 = select(abs_p5.x, t40, t40 >= abs_p5.x);
+    let t42 = select(abs_p5.y, t41, t41 >= abs_p5.y);
+    let l5 = select(z4, t42, t42 >= z4);
+    let t43 = floor(p5 / l5 * 2097152.0f);
+    let t44 = p5 * 2097152.0f;
+    let t45 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t43 * l5 > t44),
         vec2<f32>(1.0f),
-        (t62 + 1.0f) * l5 <= t63
+        (t43 + 1.0f) * l5 <= t44
     );
     let big4 = z4 * 2097152.0f;
     let ratio_estimate4 = floor(z4 / l5 * 2097152.0f);
-    let t65 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * l5 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * l5 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t65;
-    let t66 = vec3<u32>(abs(vec3<f32>(t62 + t64, ratio4) - aim));
-    let limb1_13 = t66.x >> 12u;
-    let limb0_13 = t66.x & 4095u;
+    let step_down14 = select(0.0f, -1.0f, ratio_estimate4 * l5 > big4);
+    let step14 = select(step_down14, 1.0f, (ratio_estimate4 + 1.0f) * l5 <= big4);
+    let ratio4 = ratio_estimate4 + step14;
+    let offset4 = vec3<f32>(t43 + t45, ratio4) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t66.y >> 12u;
-    let limb0_14 = t66.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t66.z >> 12u;
-    let limb0_15 = t66.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 127.0f && base.y + 1.0f <= 127.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 127.0f && dist4 < best_d2);
     return best3;
 }
 

@@ -42,10 +42,8 @@ fn unitpack_paraboloid_square16p_rxgb_decode_float(params: vec4<f32>) -> vec3<f3
 //   horizon.
 // Portable as unitpack_paraboloid_square16p_rxgb_decode_float is, within the same bound.
 fn unitpack_paraboloid_square16p_rxgb_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_paraboloid_square16p_rxgb_decode_float(params);
 }
 
@@ -56,9 +54,8 @@ fn unitpack_paraboloid_square16p_rxgb_square_step(a0: f32, a1: f32, a2: vec3<f32
     let t1 = round(t * t * 4.7683716e-7f);
     let t2 = (2097152.0f - t1) * (2097152.0f - round(a2.y * t1 * 4.7683716e-7f)) * 4.7683716e-7f;
     let surface = round(t2);
-    let t3 = round(surface * a2.x * 4.7683716e-7f) >= round(a2.z * t * 4.7683716e-7f)
-        && t <= 2097152.0f;
-    return select(a0, t, t3);
+    let t3 = round(surface * a2.x * 4.7683716e-7f) >= round(a2.z * t * 4.7683716e-7f);
+    return select(a0, t, t3 && t <= 2097152.0f);
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
@@ -72,12 +69,9 @@ fn unitpack_paraboloid_square16p_rxgb_square_point(a0: vec3<f32>) -> vec2<f32> {
     let t5 = select(1.0f, t3, t3 >= 1.0f);
     let big = t4 * 2097152.0f;
     let ratio_estimate = floor(t4 / t5 * 2097152.0f);
-    let t6 = select(
-        select(0.0f, -1.0f, ratio_estimate * t5 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t5 <= big
-    );
-    let r = ratio_estimate + t6;
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t5 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t5 <= big);
+    let r = ratio_estimate + step;
     let k = vec3<f32>(t3, round(r * r * 4.7683716e-7f), a0.z);
     let s = unitpack_paraboloid_square16p_rxgb_square_step(0.0f, 2097152.0f, k);
     let s2 = unitpack_paraboloid_square16p_rxgb_square_step(s, 1048576.0f, k);
@@ -101,9 +95,9 @@ fn unitpack_paraboloid_square16p_rxgb_square_point(a0: vec3<f32>) -> vec2<f32> {
     let s20 = unitpack_paraboloid_square16p_rxgb_square_step(s19, 4.0f, k);
     let s21 = unitpack_paraboloid_square16p_rxgb_square_step(s20, 2.0f, k);
     let s22 = unitpack_paraboloid_square16p_rxgb_square_step(s21, 1.0f, k);
-    let t7 = round(r * s22 * 4.7683716e-7f);
-    let t8 = select(vec2<f32>(t7, s22), vec2<f32>(s22, t7), t2);
-    return select(t8, -t8, a0.xy < vec2<f32>(0.0f));
+    let t6 = round(r * s22 * 4.7683716e-7f);
+    let t7 = select(vec2<f32>(t6, s22), vec2<f32>(s22, t6), t2);
+    return select(t7, -t7, a0.xy < vec2<f32>(0.0f));
 }
 
 // Precise search, decided in fixed point: among the four codes around the exact parameters, the one
@@ -119,7 +113,8 @@ fn unitpack_paraboloid_square16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -131,12 +126,16 @@ fn unitpack_paraboloid_square16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -156,293 +155,259 @@ fn unitpack_paraboloid_square16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t5 = floor(w4 / root * 2097152.0f);
-    let t6 = w4 * 2097152.0f;
-    let t7 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t5 * root > t6),
+    let t2 = floor(w4 / root * 2097152.0f);
+    let t3 = w4 * 2097152.0f;
+    let t4 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t2 * root > t3),
         vec3<f32>(1.0f),
-        (t5 + 1.0f) * root <= t6
+        (t2 + 1.0f) * root <= t3
     );
-    let aim = t5 + t7;
+    let aim = t2 + t4;
     let p = unitpack_paraboloid_square16p_rxgb_square_point(aim);
-    let t8 = vec2<u32>(
+    let t5 = vec2<u32>(
         (u32(p.x + 2097152.0f) * 255u) >> 22u,
         (u32(p.y + 2097152.0f) * 255u) >> 22u
     );
-    let base = vec2<f32>(t8);
+    let base = vec2<f32>(t5);
     let cand = select(vec2<f32>(255.0f), base, base <= vec2<f32>(255.0f));
     let p2 = floor((cand + cand - 255.0f) * 8224.126f);
-    let t9 = round(p2.x * p2.x * 4.7683716e-7f);
-    let t10 = round(p2.y * p2.y * 4.7683716e-7f);
-    let z = round((2097152.0f - t9) * (2097152.0f - t10) * 4.7683716e-7f);
-    let l2 = t9 + t10 + round(z * z * 4.7683716e-7f);
-    let t11 = l2 * 524288.0f;
-    let root_estimate2 = floor(sqrt(t11));
+    let t6 = round(p2.x * p2.x * 4.7683716e-7f);
+    let t7 = round(p2.y * p2.y * 4.7683716e-7f);
+    let z = round((2097152.0f - t6) * (2097152.0f - t7) * 4.7683716e-7f);
+    let l2 = t6 + t7 + round(z * z * 4.7683716e-7f);
+    let t8 = l2 * 524288.0f;
+    let root_estimate2 = floor(sqrt(t8));
     let root_next = root_estimate2 + 1.0f;
-    let t12 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t11),
-        1.0f,
-        root_next * root_next <= t11
-    );
-    let root_step = root_estimate2 + t12;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t8);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t8);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t13 = select(
-        select(0.0f, -1.0f, root_step * root_step > t11),
-        1.0f,
-        root_next2 * root_next2 <= t11
-    );
-    let root2 = root_step + t13;
-    let t14 = root2 * 2.0f;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t8);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t8);
+    let root2 = root_step + step4;
+    let t9 = root2 * 2.0f;
     let abs_p2 = abs(p2);
-    let t15 = select(abs_p2.x, t14, t14 >= abs_p2.x);
-    let t16 = select(abs_p2.y, t15, t15 >= abs_p2.y);
-    let l = select(z, t16, t16 >= z);
-    let t17 = floor(p2 / l * 2097152.0f);
-    let t18 = p2 * 2097152.0f;
-    let t19 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t17 * l > t18),
+    let t10 = select(abs_p2.x, t9, t9 >= abs_p2.x);
+    let t11 = select(abs_p2.y, t10, t10 >= abs_p2.y);
+    let l = select(z, t11, t11 >= z);
+    let t12 = floor(p2 / l * 2097152.0f);
+    let t13 = p2 * 2097152.0f;
+    let t14 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t12 * l > t13),
         vec2<f32>(1.0f),
-        (t17 + 1.0f) * l <= t18
+        (t12 + 1.0f) * l <= t13
     );
     let big = z * 2097152.0f;
     let ratio_estimate = floor(z / l * 2097152.0f);
-    let t20 = select(
-        select(0.0f, -1.0f, ratio_estimate * l > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * l <= big
-    );
-    let ratio = ratio_estimate + t20;
-    let t21 = vec3<u32>(abs(vec3<f32>(t17 + t19, ratio) - aim));
-    let limb1_4 = t21.x >> 12u;
-    let limb0_4 = t21.x & 4095u;
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate * l > big);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate + 1.0f) * l <= big);
+    let ratio = ratio_estimate + step5;
+    let offset = vec3<f32>(t12 + t14, ratio) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t21.y >> 12u;
-    let limb0_5 = t21.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t21.z >> 12u;
-    let limb0_6 = t21.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t22 = base.x + 1.0f;
-    let t23 = vec2<f32>(t22, base.y);
-    let cand2 = select(vec2<f32>(255.0f), t23, t23 <= vec2<f32>(255.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t15 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(255.0f), t15, t15 <= vec2<f32>(255.0f));
     let p3 = floor((cand2 + cand2 - 255.0f) * 8224.126f);
-    let t24 = round(p3.x * p3.x * 4.7683716e-7f);
-    let t25 = round(p3.y * p3.y * 4.7683716e-7f);
-    let z2 = round((2097152.0f - t24) * (2097152.0f - t25) * 4.7683716e-7f);
-    let l2_2 = t24 + t25 + round(z2 * z2 * 4.7683716e-7f);
-    let t26 = l2_2 * 524288.0f;
-    let root_estimate3 = floor(sqrt(t26));
+    let t16 = round(p3.x * p3.x * 4.7683716e-7f);
+    let t17 = round(p3.y * p3.y * 4.7683716e-7f);
+    let z2 = round((2097152.0f - t16) * (2097152.0f - t17) * 4.7683716e-7f);
+    let l2_2 = t16 + t17 + round(z2 * z2 * 4.7683716e-7f);
+    let t18 = l2_2 * 524288.0f;
+    let root_estimate3 = floor(sqrt(t18));
     let root_next3 = root_estimate3 + 1.0f;
-    let t27 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t26),
-        1.0f,
-        root_next3 * root_next3 <= t26
-    );
-    let root_step2 = root_estimate3 + t27;
+    let step_down6 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t18);
+    let step6 = select(step_down6, 1.0f, root_next3 * root_next3 <= t18);
+    let root_step2 = root_estimate3 + step6;
     let root_next4 = root_step2 + 1.0f;
-    let t28 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t26),
-        1.0f,
-        root_next4 * root_next4 <= t26
-    );
-    let root3 = root_step2 + t28;
-    let t29 = root3 * 2.0f;
+    let step_down7 = select(0.0f, -1.0f, root_step2 * root_step2 > t18);
+    let step7 = select(step_down7, 1.0f, root_next4 * root_next4 <= t18);
+    let root3 = root_step2 + step7;
+    let t19 = root3 * 2.0f;
     let abs_p3 = abs(p3);
-    let t30 = select(abs_p3.x, t29, t29 >= abs_p3.x);
-    let t31 = select(abs_p3.y, t30, t30 >= abs_p3.y);
-    let l3 = select(z2, t31, t31 >= z2);
-    let t32 = floor(p3 / l3 * 2097152.0f);
-    let t33 = p3 * 2097152.0f;
-    let t34 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t32 * l3 > t33),
+    let t20 = select(abs_p3.x, t19, t19 >= abs_p3.x);
+    let t21 = select(abs_p3.y, t20, t20 >= abs_p3.y);
+    let l3 = select(z2, t21, t21 >= z2);
+    let t22 = floor(p3 / l3 * 2097152.0f);
+    let t23 = p3 * 2097152.0f;
+    let t24 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t22 * l3 > t23),
         vec2<f32>(1.0f),
-        (t32 + 1.0f) * l3 <= t33
+        (t22 + 1.0f) * l3 <= t23
     );
     let big2 = z2 * 2097152.0f;
     let ratio_estimate2 = floor(z2 / l3 * 2097152.0f);
-    let t35 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * l3 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * l3 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t35;
-    let t36 = vec3<u32>(abs(vec3<f32>(t32 + t34, ratio2) - aim));
-    let limb1_7 = t36.x >> 12u;
-    let limb0_7 = t36.x & 4095u;
+    let step_down8 = select(0.0f, -1.0f, ratio_estimate2 * l3 > big2);
+    let step8 = select(step_down8, 1.0f, (ratio_estimate2 + 1.0f) * l3 <= big2);
+    let ratio2 = ratio_estimate2 + step8;
+    let offset2 = vec3<f32>(t22 + t24, ratio2) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t36.y >> 12u;
-    let limb0_8 = t36.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t36.z >> 12u;
-    let limb0_9 = t36.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t37 = t22 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    let best = select(cand, cand2, t37);
-    let best_d = select(dist, dist2, t37);
-    let t38 = base.y + 1.0f;
-    let t39 = vec2<f32>(base.x, t38);
-    let cand3 = select(vec2<f32>(255.0f), t39, t39 <= vec2<f32>(255.0f));
+    let t25 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    let best = select(cand, cand2, t25);
+    let best_d = select(dist, dist2, t25);
+    let t26 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(255.0f), t26, t26 <= vec2<f32>(255.0f));
     let p4 = floor((cand3 + cand3 - 255.0f) * 8224.126f);
-    let t40 = round(p4.x * p4.x * 4.7683716e-7f);
-    let t41 = round(p4.y * p4.y * 4.7683716e-7f);
-    let z3 = round((2097152.0f - t40) * (2097152.0f - t41) * 4.7683716e-7f);
-    let l2_3 = t40 + t41 + round(z3 * z3 * 4.7683716e-7f);
-    let t42 = l2_3 * 524288.0f;
-    let root_estimate4 = floor(sqrt(t42));
+    let t27 = round(p4.x * p4.x * 4.7683716e-7f);
+    let t28 = round(p4.y * p4.y * 4.7683716e-7f);
+    let z3 = round((2097152.0f - t27) * (2097152.0f - t28) * 4.7683716e-7f);
+    let l2_3 = t27 + t28 + round(z3 * z3 * 4.7683716e-7f);
+    let t29 = l2_3 * 524288.0f;
+    let root_estimate4 = floor(sqrt(t29));
     let root_next5 = root_estimate4 + 1.0f;
-    let t43 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t42),
-        1.0f,
-        root_next5 * root_next5 <= t42
-    );
-    let root_step3 = root_estimate4 + t43;
+    let step_down9 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t29);
+    let step9 = select(step_down9, 1.0f, root_next5 * root_next5 <= t29);
+    let root_step3 = root_estimate4 + step9;
     let root_next6 = root_step3 + 1.0f;
-    let t44 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t42),
-        1.0f,
-        root_next6 * root_next6 <= t42
-    );
-    let root4 = root_step3 + t44;
-    let t45 = root4 * 2.0f;
+    let step_down10 = select(0.0f, -1.0f, root_step3 * root_step3 > t29);
+    let step10 = select(step_down10, 1.0f, root_next6 * root_next6 <= t29);
+    let root4 = root_step3 + step10;
+    let t30 = root4 * 2.0f;
     let abs_p4 = abs(p4);
-    let t46 = select(abs_p4.x, t45, t45 >= abs_p4.x);
-    let t47 = select(abs_p4.y, t46, t46 >= abs_p4.y);
-    let l4 = select(z3, t47, t47 >= z3);
-    let t48 = floor(p4 / l4 * 2097152.0f);
-    let t49 = p4 * 2097152.0f;
-    let t50 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t48 * l4 > t49),
+    let t31 = select(abs_p4.x, t30, t30 >= abs_p4.x);
+    let t32 = select(abs_p4.y, t31, t31 >= abs_p4.y);
+    let l4 = select(z3, t32, t32 >= z3);
+    let t33 = floor(p4 / l4 * 2097152.0f);
+    let t34 = p4 * 2097152.0f;
+    let t35 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t33 * l4 > t34),
         vec2<f32>(1.0f),
-        (t48 + 1.0f) * l4 <= t49
+        (t33 + 1.0f) * l4 <= t34
     );
     let big3 = z3 * 2097152.0f;
     let ratio_estimate3 = floor(z3 / l4 * 2097152.0f);
-    let t51 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * l4 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * l4 <= big3
-    );
-    let ratio3 = ratio_estimate3 + t51;
-    let t52 = vec3<u32>(abs(vec3<f32>(t48 + t50, ratio3) - aim));
-    let limb1_10 = t52.x >> 12u;
-    let limb0_10 = t52.x & 4095u;
+    let step_down11 = select(0.0f, -1.0f, ratio_estimate3 * l4 > big3);
+    let step11 = select(step_down11, 1.0f, (ratio_estimate3 + 1.0f) * l4 <= big3);
+    let ratio3 = ratio_estimate3 + step11;
+    let offset3 = vec3<f32>(t33 + t35, ratio3) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t52.y >> 12u;
-    let limb0_11 = t52.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t52.z >> 12u;
-    let limb0_12 = t52.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t53 = base.x <= 255.0f && t38 <= 255.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t53);
-    let best_d2 = select(best_d, dist3, t53);
-    let t54 = base + 1.0f;
-    let cand4 = select(vec2<f32>(255.0f), t54, t54 <= vec2<f32>(255.0f));
+    let t36 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t36);
+    let best_d2 = select(best_d, dist3, t36);
+    let t37 = base + 1.0f;
+    let cand4 = select(vec2<f32>(255.0f), t37, t37 <= vec2<f32>(255.0f));
     let p5 = floor((cand4 + cand4 - 255.0f) * 8224.126f);
-    let t55 = round(p5.x * p5.x * 4.7683716e-7f);
-    let t56 = round(p5.y * p5.y * 4.7683716e-7f);
-    let z4 = round((2097152.0f - t55) * (2097152.0f - t56) * 4.7683716e-7f);
-    let l2_4 = t55 + t56 + round(z4 * z4 * 4.7683716e-7f);
-    let t57 = l2_4 * 524288.0f;
-    let root_estimate5 = floor(sqrt(t57));
+    let t38 = round(p5.x * p5.x * 4.7683716e-7f);
+    let t39 = round(p5.y * p5.y * 4.7683716e-7f);
+    let z4 = round((2097152.0f - t38) * (2097152.0f - t39) * 4.7683716e-7f);
+    let l2_4 = t38 + t39 + round(z4 * z4 * 4.7683716e-7f);
+    let t40 = l2_4 * 524288.0f;
+    let root_estimate5 = floor(sqrt(t40));
     let root_next7 = root_estimate5 + 1.0f;
-    let t58 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t57),
-        1.0f,
-        root_next7 * root_next7 <= t57
-    );
-    let root_step4 = root_estimate5 + t58;
+    let step_down12 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t40);
+    let step12 = select(step_down12, 1.0f, root_next7 * root_next7 <= t40);
+    let root_step4 = root_estimate5 + step12;
     let root_next8 = root_step4 + 1.0f;
-    let t59 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t57),
-        1.0f,
-        root_next8 * root_next8 <= t57
-    );
-    let root5 = root_step4 + t59;
-    let t60 = root5 * 2.0f;
+    let step_down13 = select(0.0f, -1.0f, root_step4 * root_step4 > t40);
+    let step13 = select(step_down13, 1.0f, root_next8 * root_next8 <= t40);
+    let root5 = root_step4 + step13;
+    let t41 = root5 * 2.0f;
     let abs_p5 = abs(p5);
-    let t61 = select(abs_p5.x, t60, t60 >= abs_p5.x);
-    let t62 = select(abs_p5.y, t61, t61 >= abs_p5.y);
-    let l5 = select(z4, t62, t62 >= z4);
-    let t63 = floor(p5 / l5 * 2097152.0f);
-    let t64 = p5 * 2097152.0f;
-    let t65 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t63 * l5 > t64),
+    let t42 = select(abs_p5.x, t41, t41 >= abs_p5.x);
+    let t43 = select(abs_p5.y, t42, t42 >= abs_p5.y);
+    let l5 = select(z4, t43, t43 >= z4);
+    let t44 = floor(p5 / l5 * 2097152.0f);
+    let t45 = p5 * 2097152.0f;
+    let t46 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t44 * l5 > t45),
         vec2<f32>(1.0f),
-        (t63 + 1.0f) * l5 <= t64
+        (t44 + 1.0f) * l5 <= t45
     );
     let big4 = z4 * 2097152.0f;
     let ratio_estimate4 = floor(z4 / l5 * 2097152.0f);
-    let t66 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * l5 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * l5 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t66;
-    let t67 = vec3<u32>(abs(vec3<f32>(t63 + t65, ratio4) - aim));
-    let limb1_13 = t67.x >> 12u;
-    let limb0_13 = t67.x & 4095u;
+    let step_down14 = select(0.0f, -1.0f, ratio_estimate4 * l5 > big4);
+    let step14 = select(step_down14, 1.0f, (ratio_estimate4 + 1.0f) * l5 <= big4);
+    let ratio4 = ratio_estimate4 + step14;
+    let offset4 = vec3<f32>(t44 + t46, ratio4) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t67.y >> 12u;
-    let limb0_14 = t67.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t67.z >> 12u;
-    let limb0_15 = t67.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let c = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2
-    );
+    let c = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2);
     let normal3 = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
@@ -451,11 +416,12 @@ fn unitpack_paraboloid_square16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let ok3 = sum3 >= 2.0f && sum3 < 16.0f;
+    let sum_below_16_3 = sum3 < 16.0f;
+    let ok3 = sum3 >= 2.0f && sum_below_16_3;
     let w5 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
     let w6 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w5, ok3);
-    let t68 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
-    let normal4 = select(t68, vec3<f32>(0.0f), abs(t68) < vec3<f32>(1.1754944e-38f));
+    let t47 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
+    let normal4 = select(t47, vec3<f32>(0.0f), abs(t47) < vec3<f32>(1.1754944e-38f));
     let abs_normal4 = abs(normal4);
     let larger4 = select(abs_normal4.y, abs_normal4.x, abs_normal4.x >= abs_normal4.y);
     let largest4 = select(abs_normal4.z, larger4, larger4 >= abs_normal4.z);
@@ -463,7 +429,8 @@ fn unitpack_paraboloid_square16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled4 = normal4 * scale4;
     let abs_scaled4 = abs(scaled4);
     let sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
-    let ok4 = sum4 >= 2.0f && sum4 < 16.0f;
+    let sum_below_16_4 = sum4 < 16.0f;
+    let ok4 = sum4 >= 2.0f && sum_below_16_4;
     let w7 = select(scaled4, vec3<f32>(0.0f), abs(scaled4) < vec3<f32>(1.8189894e-12f));
     let w8 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w7, ok4);
     let split_hi = bitcast<f32>(bitcast<u32>(w8.x) & 4294963200u);
@@ -472,34 +439,38 @@ fn unitpack_paraboloid_square16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let split_lo2 = w8.y - split_hi2;
     let split_hi3 = bitcast<f32>(bitcast<u32>(w8.z) & 4294963200u);
     let split_lo3 = w8.z - split_hi3;
-    let t69 = (split_hi + split_hi) * split_lo
+    let t48 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     let len2_2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t69
+        + t48
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     let big2_2 = w8.z * w8.z * 16256.25f;
-    let t70 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
-    let t71 = select(0.0f, t70, t70 >= 0.0f);
-    let estimate = select(255.0f, t71, t71 <= 255.0f);
-    let t72 = estimate - 127.0f;
-    let t73 = t72 * t72 * len2_2;
-    let t74 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t73), t72 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t73), t72 > 0.0f),
-        w8.z >= 0.0f
+    let t49 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
+    let t50 = select(0.0f, t49, t49 >= 0.0f);
+    let estimate = select(255.0f, t50, t50 <= 255.0f);
+    let t51 = estimate - 127.0f;
+    let t52 = t51 * t51 * len2_2;
+    let one_if = select(0.0f, 1.0f, big2_2 >= t52);
+    let one_if2 = select(0.0f, 1.0f, big2_2 <= t52);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t51 < 0.0f), select(1.0f, one_if, t51 > 0.0f), w8.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t74, estimate < 255.0f);
-    let t75 = estimate - 1.0f - 127.0f;
-    let t76 = t75 * t75 * len2_2;
-    let t77 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t76), t75 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t76), t75 > 0.0f),
+    let t53 = estimate - 1.0f - 127.0f;
+    let t54 = t53 * t53 * len2_2;
+    let one_if3 = select(0.0f, 1.0f, big2_2 >= t54);
+    let one_if4 = select(0.0f, 1.0f, big2_2 <= t54);
+    let t55 = select(
+        select(0.0f, one_if4, t53 < 0.0f),
+        select(1.0f, one_if3, t53 > 0.0f),
         w8.z >= 0.0f
-    );
-    let down = select(0.0f, t77 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t55, estimate > 0.0f);
     return vec4<f32>(255.0f, c.y, estimate + up + down, c.x);
 }
 
@@ -525,8 +496,6 @@ fn unitpack_paraboloid_square16p_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_paraboloid_square16p_rxgb_encode(v: vec3<f32>) -> u32 {
     let encode_codes = unitpack_paraboloid_square16p_rxgb_encode_codes(v);
-    return u32(encode_codes.x)
-        | (u32(encode_codes.y) << 8u)
-        | (u32(encode_codes.z) << 16u)
-        | (u32(encode_codes.w) << 24u);
+    let t1 = u32(encode_codes.x) | (u32(encode_codes.y) << 8u) | (u32(encode_codes.z) << 16u);
+    return t1 | (u32(encode_codes.w) << 24u);
 }

@@ -27,9 +27,8 @@ fn unitpack_sfib16_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -91,8 +90,8 @@ fn unitpack_sfib16_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -108,16 +107,16 @@ fn unitpack_sfib16_fixed_sincos_pi(a0: f32) -> vec2<f32> {
     let swap = b > 4194304.0f;
     let u = round(select(b, 8388608.0f - b, swap) * 3.1415927f);
     let u2 = round(u * u * 5.9604645e-8f);
-    let t1 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f) + (-3329.0f);
-    let t2 = round((round(t1 * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s = round(u * (round(t2 * u2 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t3 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f) + 416.0f;
-    let t4 = round((round(t3 * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f) + 699051.0f;
-    let co = round((round(t4 * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2 * 5.9604645e-8f)
-        + 16777216.0f;
-    let t5 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t5, -t5, vec2<bool>((a0 < 0.0f), back));
+    let t1 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f);
+    let t2 = (round((t1 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f;
+    let t3 = u * (round((round(t2) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
+    let s = round(t3 * 5.9604645e-8f);
+    let t4 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f);
+    let t5 = (round((t4 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f;
+    let t6 = (round((round(t5) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
+    let co = round(t6 * 5.9604645e-8f) + 16777216.0f;
+    let t7 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
+    return select(t7, -t7, vec2<bool>((a0 < 0.0f), back));
 }
 
 // Point `i` in fixed point (units of 2^-21), its root decided by comparing squares and every
@@ -126,25 +125,21 @@ fn unitpack_sfib16_fixed_sincos_pi(a0: f32) -> vec2<f32> {
 fn unitpack_sfib16_fixed_point(a0: u32) -> vec3<f32> {
     let t1 = a0 < 32768u;
     let k = select(65535u - a0, a0, t1);
-    let near = (0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 4095u))) * 3.051781e-5f;
-    let t2 = 65535u - k;
-    let far = (0.25f + (f32(t2 >> 12u) * 4096.0f + f32(t2 & 4095u))) * 3.051781e-5f;
-    let t3 = near * far * 4398046500000.0f;
-    let root_estimate = floor(sqrt(t3));
+    let t2 = 0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 4095u));
+    let near = t2 * 3.051781e-5f;
+    let t3 = 65535u - k;
+    let t4 = 0.25f + (f32(t3 >> 12u) * 4096.0f + f32(t3 & 4095u));
+    let far = t4 * 3.051781e-5f;
+    let t5 = near * far * 4398046500000.0f;
+    let root_estimate = floor(sqrt(t5));
     let root_next = root_estimate + 1.0f;
-    let t4 = select(
-        select(0.0f, -1.0f, root_estimate * root_estimate > t3),
-        1.0f,
-        root_next * root_next <= t3
-    );
-    let root_step = root_estimate + t4;
+    let step_down = select(0.0f, -1.0f, root_estimate * root_estimate > t5);
+    let step = select(step_down, 1.0f, root_next * root_next <= t5);
+    let root_step = root_estimate + step;
     let root_next2 = root_step + 1.0f;
-    let t5 = select(
-        select(0.0f, -1.0f, root_step * root_step > t3),
-        1.0f,
-        root_next2 * root_next2 <= t3
-    );
-    let rho = root_step + t5;
+    let step_down2 = select(0.0f, -1.0f, root_step * root_step > t5);
+    let step2 = select(step_down2, 1.0f, root_next2 * root_next2 <= t5);
+    let rho = root_step + step2;
     let zm = 2097152.0f - floor(near * 2097152.0f);
     let il = a0 & 65535u;
     let ih = a0 >> 16u;
@@ -175,12 +170,16 @@ fn unitpack_sfib16_encode_index(a0: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -200,340 +199,387 @@ fn unitpack_sfib16_encode_index(a0: vec3<f32>) -> u32 {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = floor(w2 / root * 2097152.0f);
-    let t5 = w2 * 2097152.0f;
-    let t6 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t4 * root > t5),
+    let t1 = floor(w2 / root * 2097152.0f);
+    let t2 = w2 * 2097152.0f;
+    let t3 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t1 * root > t2),
         vec3<f32>(1.0f),
-        (t4 + 1.0f) * root <= t5
+        (t1 + 1.0f) * root <= t2
     );
-    let aim = t4 + t6;
+    let aim = t1 + t3;
     let u = w2 / root;
-    let t7 = u.xy * u.xy;
-    let rho2 = t7.x + t7.y;
-    let t8 = vec3<u32>(abs(aim));
-    let limb1_4 = t8.x >> 12u;
-    let limb0_4 = t8.x & 4095u;
+    let t4 = u.xy * u.xy;
+    let rho2 = t4.x + t4.y;
+    let t5 = vec3<u32>(abs(aim));
+    let limb1_4 = t5.x >> 12u;
+    let limb0_4 = t5.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t8.y >> 12u;
-    let limb0_5 = t8.y & 4095u;
+    let limb1_5 = t5.y >> 12u;
+    let limb0_5 = t5.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2_fixed = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t9 = aim.z < 0.0f;
+    let t6 = aim.z < 0.0f;
     let below = rho2 / (1.0f + abs(u.z));
     let dz = 7.629453e-6f - below;
     let t = unitpack_sfib16_atan2_pi(u.y, u.x);
-    let tn = select(t, -0.28509456f - t, t9);
-    let t10 = rho2_fixed >= 3.8977236e-5f;
-    let t11 = rho2_fixed >= 0.00010204373f;
-    let t12 = rho2_fixed >= 0.00026715396f;
-    let t13 = select(
-        select(select(-7735.4165f, -4780.7505f, t10), -2954.6663f, t11),
-        -1826.0841f,
-        t12
-    );
+    let tn = select(t, -0.28509456f - t, t6);
+    let t7 = rho2_fixed >= 3.8977236e-5f;
+    let t8 = rho2_fixed >= 0.00010204373f;
+    let t9 = rho2_fixed >= 0.00026715396f;
+    let t10 = rho2_fixed >= 0.00069941813f;
+    let t11 = rho2_fixed >= 0.0018311004f;
+    let t12 = rho2_fixed >= 0.0047938833f;
+    let t13 = rho2_fixed >= 0.012550549f;
     let t14 = select(
-        select(select(-12516.167f, -7735.4165f, t10), -4780.7505f, t11),
-        -2954.6663f,
-        t12
+        select(
+            select(select(select(select(select(1u, 2u, t7), 3u, t8), 5u, t9), 8u, t10), 13u, t11),
+            21u,
+            t12
+        ),
+        34u,
+        t13
     );
-    let t15 = rho2_fixed >= 0.00069941813f;
-    let t16 = select(select(select(select(-1.0f, 1.5f, t10), -2.5f, t11), 4.0f, t12), -6.5f, t15);
-    let t17 = select(select(select(select(0.5f, -1.0f, t10), 1.5f, t11), -2.5f, t12), 4.0f, t15);
-    let t18 = rho2_fixed >= 0.0018311004f;
-    let t19 = select(
-        select(select(select(select(1u, 2u, t10), 3u, t11), 5u, t12), 8u, t15),
-        13u,
-        t18
+    let t15 = select(
+        select(
+            select(select(select(select(select(2u, 3u, t7), 5u, t8), 8u, t9), 13u, t10), 21u, t11),
+            34u,
+            t12
+        ),
+        55u,
+        t13
     );
-    let t20 = select(
-        select(select(select(select(2u, 3u, t10), 5u, t11), 8u, t12), 13u, t15),
-        21u,
-        t18
+    let t16 = select(
+        select(
+            select(
+                select(select(select(select(-1.0f, 1.5f, t7), -2.5f, t8), 4.0f, t9), -6.5f, t10),
+                10.5f,
+                t11
+            ),
+            -17.0f,
+            t12
+        ),
+        27.5f,
+        t13
     );
-    let t21 = rho2_fixed >= 0.0047938833f;
-    let t22 = rho2_fixed >= 0.012550549f;
-    let t23 = select(
-        select(select(select(t13, -1128.582f, t15), -697.5021f, t18), -431.08f, t21),
+    let t17 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(-7735.4165f, -4780.7505f, t7), -2954.6663f, t8),
+                        -1826.0841f,
+                        t9
+                    ),
+                    -1128.582f,
+                    t10
+                ),
+                -697.5021f,
+                t11
+            ),
+            -431.08f,
+            t12
+        ),
         -266.4221f,
-        t22
+        t13
     );
-    let t24 = select(
-        select(select(select(t14, -1826.0841f, t15), -1128.582f, t18), -697.5021f, t21),
+    let t18 = select(
+        select(
+            select(
+                select(select(select(select(0.5f, -1.0f, t7), 1.5f, t8), -2.5f, t9), 4.0f, t10),
+                -6.5f,
+                t11
+            ),
+            10.5f,
+            t12
+        ),
+        -17.0f,
+        t13
+    );
+    let t19 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(-12516.167f, -7735.4165f, t7), -4780.7505f, t8),
+                        -2954.6663f,
+                        t9
+                    ),
+                    -1826.0841f,
+                    t10
+                ),
+                -1128.582f,
+                t11
+            ),
+            -697.5021f,
+            t12
+        ),
         -431.08f,
-        t22
+        t13
     );
-    let t25 = rho2_fixed >= 0.032857765f;
-    let t26 = select(select(select(select(t16, 10.5f, t18), -17.0f, t21), 27.5f, t22), -44.5f, t25);
-    let t27 = select(select(select(select(t17, -6.5f, t18), 10.5f, t21), -17.0f, t22), 27.5f, t25);
-    let t28 = rho2_fixed >= 0.08602274f;
-    let t29 = rho2_fixed >= 0.22521046f;
-    let t30 = select(
-        select(select(select(select(t19, 21u, t21), 34u, t22), 55u, t25), 89u, t28),
-        144u,
-        t29
-    );
-    let t31 = select(
-        select(select(select(select(t20, 34u, t21), 55u, t22), 89u, t25), 144u, t28),
-        233u,
-        t29
-    );
-    let t32 = rho2_fixed >= 0.58960867f;
-    let t33 = select(t30, 233u, t32);
-    let t34 = select(t31, 377u, t32);
-    let t35 = select(
-        select(select(select(t23, -164.6579f, t25), -101.76418f, t28), -62.893723f, t29),
-        -38.870457f,
-        t32
-    );
-    let t36 = select(
-        select(select(select(t24, -266.4221f, t25), -164.6579f, t28), -101.76418f, t29),
-        -62.893723f,
-        t32
-    );
-    let t37 = tn * select(select(select(t26, 72.0f, t28), -116.5f, t29), 188.5f, t32) + dz * t35;
-    let t38 = tn * select(select(select(t27, -44.5f, t28), 72.0f, t29), -116.5f, t32) + dz * t36;
-    let corner = u32(4194303.0f + round(t37)) * t33
-        + u32(4194303.0f + round(t38)) * t34
-        - ((t33 + t34) << 22u);
-    let t39 = select(corner, 4294967295u - corner, 3221225471u < corner);
-    let t40 = select(t39, 65535u - t39, t9) & 65535u;
-    let t41 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t40) - aim));
-    let limb1_6 = t41.x >> 12u;
-    let limb0_6 = t41.x & 4095u;
+    let t20 = rho2_fixed >= 0.032857765f;
+    let t21 = rho2_fixed >= 0.08602274f;
+    let t22 = rho2_fixed >= 0.22521046f;
+    let t23 = rho2_fixed >= 0.58960867f;
+    let t24 = select(select(select(select(t14, 55u, t20), 89u, t21), 144u, t22), 233u, t23);
+    let t25 = select(select(select(select(t15, 89u, t20), 144u, t21), 233u, t22), 377u, t23);
+    let t26 = tn
+        * select(select(select(select(t16, -44.5f, t20), 72.0f, t21), -116.5f, t22), 188.5f, t23)
+        + dz
+            * select(
+                select(select(select(t17, -164.6579f, t20), -101.76418f, t21), -62.893723f, t22),
+                -38.870457f,
+                t23
+            );
+    let t27 = tn
+        * select(select(select(select(t18, 27.5f, t20), -44.5f, t21), 72.0f, t22), -116.5f, t23)
+        + dz
+            * select(
+                select(select(select(t19, -266.4221f, t20), -164.6579f, t21), -101.76418f, t22),
+                -62.893723f,
+                t23
+            );
+    let t28 = u32(4194303.0f + round(t26)) * t24 + u32(4194303.0f + round(t27)) * t25;
+    let corner = t28 - ((t24 + t25) << 22u);
+    let t29 = select(corner, 4294967295u - corner, 3221225471u < corner);
+    let t30 = select(t29, 65535u - t29, t6) & 65535u;
+    let t31 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t30) - aim));
+    let limb1_6 = t31.x >> 12u;
+    let limb0_6 = t31.x & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    let limb1_7 = t41.y >> 12u;
-    let limb0_7 = t41.y & 4095u;
+    let limb1_7 = t31.y >> 12u;
+    let limb0_7 = t31.y & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t41.z >> 12u;
-    let limb0_8 = t41.z & 4095u;
+    let limb1_8 = t31.z >> 12u;
+    let limb0_8 = t31.z & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     let hi11 = hi10 + (lo10 >> 24u);
     let lo11 = lo10 & 16777215u;
     let d = f32(hi11) * 16777216.0f + f32(lo11);
-    let t42 = corner + t33;
-    let t43 = select(t42, 4294967295u - t42, 3221225471u < t42);
-    let t44 = select(t43, 65535u - t43, t9) & 65535u;
-    let t45 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t44) - aim));
-    let limb1_9 = t45.x >> 12u;
-    let limb0_9 = t45.x & 4095u;
+    let t32 = corner + t24;
+    let t33 = select(t32, 4294967295u - t32, 3221225471u < t32);
+    let t34 = select(t33, 65535u - t33, t6) & 65535u;
+    let t35 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t34) - aim));
+    let limb1_9 = t35.x >> 12u;
+    let limb0_9 = t35.x & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    let limb1_10 = t45.y >> 12u;
-    let limb0_10 = t45.y & 4095u;
+    let limb1_10 = t35.y >> 12u;
+    let limb0_10 = t35.y & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t45.z >> 12u;
-    let limb0_11 = t45.z & 4095u;
+    let limb1_11 = t35.z >> 12u;
+    let limb0_11 = t35.z & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 16777215u;
     let d2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t46 = d2 < d || (d2 == d && t44 < t40);
-    let t47 = select(d, d2, t46);
-    let t48 = select(t40, t44, t46);
-    let t49 = corner + t33 + t33;
-    let t50 = select(t49, 4294967295u - t49, 3221225471u < t49);
-    let t51 = select(t50, 65535u - t50, t9) & 65535u;
-    let t52 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t51) - aim));
-    let limb1_12 = t52.x >> 12u;
-    let limb0_12 = t52.x & 4095u;
+    let t36 = d2 < d || (d2 == d && t34 < t30);
+    let t37 = select(d, d2, t36);
+    let t38 = select(t30, t34, t36);
+    let t39 = corner + t24 + t24;
+    let t40 = select(t39, 4294967295u - t39, 3221225471u < t39);
+    let t41 = select(t40, 65535u - t40, t6) & 65535u;
+    let t42 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t41) - aim));
+    let limb1_12 = t42.x >> 12u;
+    let limb0_12 = t42.x & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    let limb1_13 = t52.y >> 12u;
-    let limb0_13 = t52.y & 4095u;
+    let limb1_13 = t42.y >> 12u;
+    let limb0_13 = t42.y & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t52.z >> 12u;
-    let limb0_14 = t52.z & 4095u;
+    let limb1_14 = t42.z >> 12u;
+    let limb0_14 = t42.z & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 16777215u;
     let d3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t53 = d3 < t47 || (d3 == t47 && t51 < t48);
-    let t54 = select(t47, d3, t53);
-    let t55 = select(t48, t51, t53);
-    let t56 = corner + t34;
-    let t57 = select(t56, 4294967295u - t56, 3221225471u < t56);
-    let t58 = select(t57, 65535u - t57, t9) & 65535u;
-    let t59 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t58) - aim));
-    let limb1_15 = t59.x >> 12u;
-    let limb0_15 = t59.x & 4095u;
+    let t43 = d3 < t37 || (d3 == t37 && t41 < t38);
+    let t44 = select(t37, d3, t43);
+    let t45 = select(t38, t41, t43);
+    let t46 = corner + t25;
+    let t47 = select(t46, 4294967295u - t46, 3221225471u < t46);
+    let t48 = select(t47, 65535u - t47, t6) & 65535u;
+    let t49 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t48) - aim));
+    let limb1_15 = t49.x >> 12u;
+    let limb0_15 = t49.x & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    let limb1_16 = t59.y >> 12u;
-    let limb0_16 = t59.y & 4095u;
+    let limb1_16 = t49.y >> 12u;
+    let limb0_16 = t49.y & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t59.z >> 12u;
-    let limb0_17 = t59.z & 4095u;
+    let limb1_17 = t49.z >> 12u;
+    let limb0_17 = t49.z & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 16777215u;
     let d4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let t60 = d4 < t54 || (d4 == t54 && t58 < t55);
-    let t61 = select(t54, d4, t60);
-    let t62 = select(t55, t58, t60);
-    let t63 = corner + t33 + t34;
-    let t64 = select(t63, 4294967295u - t63, 3221225471u < t63);
-    let t65 = select(t64, 65535u - t64, t9) & 65535u;
-    let t66 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t65) - aim));
-    let limb1_18 = t66.x >> 12u;
-    let limb0_18 = t66.x & 4095u;
+    let t50 = d4 < t44 || (d4 == t44 && t48 < t45);
+    let t51 = select(t44, d4, t50);
+    let t52 = select(t45, t48, t50);
+    let t53 = corner + t24 + t25;
+    let t54 = select(t53, 4294967295u - t53, 3221225471u < t53);
+    let t55 = select(t54, 65535u - t54, t6) & 65535u;
+    let t56 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t55) - aim));
+    let limb1_18 = t56.x >> 12u;
+    let limb0_18 = t56.x & 4095u;
     let cross18 = limb1_18 * limb0_18;
     let hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     let lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    let limb1_19 = t66.y >> 12u;
-    let limb0_19 = t66.y & 4095u;
+    let limb1_19 = t56.y >> 12u;
+    let limb0_19 = t56.y & 4095u;
     let cross19 = limb1_19 * limb0_19;
     let hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     let lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    let limb1_20 = t66.z >> 12u;
-    let limb0_20 = t66.z & 4095u;
+    let limb1_20 = t56.z >> 12u;
+    let limb0_20 = t56.z & 4095u;
     let cross20 = limb1_20 * limb0_20;
     let hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     let lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     let hi27 = hi26 + (lo26 >> 24u);
     let lo27 = lo26 & 16777215u;
     let d5 = f32(hi27) * 16777216.0f + f32(lo27);
-    let t67 = d5 < t61 || (d5 == t61 && t65 < t62);
-    let t68 = select(t61, d5, t67);
-    let t69 = select(t62, t65, t67);
-    let t70 = corner + t33 + t33 + t34;
-    let t71 = select(t70, 4294967295u - t70, 3221225471u < t70);
-    let t72 = select(t71, 65535u - t71, t9) & 65535u;
-    let t73 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t72) - aim));
-    let limb1_21 = t73.x >> 12u;
-    let limb0_21 = t73.x & 4095u;
+    let t57 = d5 < t51 || (d5 == t51 && t55 < t52);
+    let t58 = select(t51, d5, t57);
+    let t59 = select(t52, t55, t57);
+    let t60 = corner + t24 + t24 + t25;
+    let t61 = select(t60, 4294967295u - t60, 3221225471u < t60);
+    let t62 = select(t61, 65535u - t61, t6) & 65535u;
+    let t63 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t62) - aim));
+    let limb1_21 = t63.x >> 12u;
+    let limb0_21 = t63.x & 4095u;
     let cross21 = limb1_21 * limb0_21;
     let hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     let lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    let limb1_22 = t73.y >> 12u;
-    let limb0_22 = t73.y & 4095u;
+    let limb1_22 = t63.y >> 12u;
+    let limb0_22 = t63.y & 4095u;
     let cross22 = limb1_22 * limb0_22;
     let hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     let lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    let limb1_23 = t73.z >> 12u;
-    let limb0_23 = t73.z & 4095u;
+    let limb1_23 = t63.z >> 12u;
+    let limb0_23 = t63.z & 4095u;
     let cross23 = limb1_23 * limb0_23;
     let hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     let lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     let hi31 = hi30 + (lo30 >> 24u);
     let lo31 = lo30 & 16777215u;
     let d6 = f32(hi31) * 16777216.0f + f32(lo31);
-    let t74 = d6 < t68 || (d6 == t68 && t72 < t69);
-    let t75 = select(t68, d6, t74);
-    let t76 = select(t69, t72, t74);
-    let t77 = corner + t34 + t34;
-    let t78 = select(t77, 4294967295u - t77, 3221225471u < t77);
-    let t79 = select(t78, 65535u - t78, t9) & 65535u;
-    let t80 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t79) - aim));
-    let limb1_24 = t80.x >> 12u;
-    let limb0_24 = t80.x & 4095u;
+    let t64 = d6 < t58 || (d6 == t58 && t62 < t59);
+    let t65 = select(t58, d6, t64);
+    let t66 = select(t59, t62, t64);
+    let t67 = corner + t25 + t25;
+    let t68 = select(t67, 4294967295u - t67, 3221225471u < t67);
+    let t69 = select(t68, 65535u - t68, t6) & 65535u;
+    let t70 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t69) - aim));
+    let limb1_24 = t70.x >> 12u;
+    let limb0_24 = t70.x & 4095u;
     let cross24 = limb1_24 * limb0_24;
     let hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     let lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    let limb1_25 = t80.y >> 12u;
-    let limb0_25 = t80.y & 4095u;
+    let limb1_25 = t70.y >> 12u;
+    let limb0_25 = t70.y & 4095u;
     let cross25 = limb1_25 * limb0_25;
     let hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     let lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    let limb1_26 = t80.z >> 12u;
-    let limb0_26 = t80.z & 4095u;
+    let limb1_26 = t70.z >> 12u;
+    let limb0_26 = t70.z & 4095u;
     let cross26 = limb1_26 * limb0_26;
     let hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     let lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     let hi35 = hi34 + (lo34 >> 24u);
     let lo35 = lo34 & 16777215u;
     let d7 = f32(hi35) * 16777216.0f + f32(lo35);
-    let t81 = d7 < t75 || (d7 == t75 && t79 < t76);
-    let t82 = select(t75, d7, t81);
-    let t83 = select(t76, t79, t81);
-    let t84 = corner + t33 + t34 + t34;
-    let t85 = select(t84, 4294967295u - t84, 3221225471u < t84);
-    let t86 = select(t85, 65535u - t85, t9) & 65535u;
-    let t87 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t86) - aim));
-    let limb1_27 = t87.x >> 12u;
-    let limb0_27 = t87.x & 4095u;
+    let t71 = d7 < t65 || (d7 == t65 && t69 < t66);
+    let t72 = select(t65, d7, t71);
+    let t73 = select(t66, t69, t71);
+    let t74 = corner + t24 + t25 + t25;
+    let t75 = select(t74, 4294967295u - t74, 3221225471u < t74);
+    let t76 = select(t75, 65535u - t75, t6) & 65535u;
+    let t77 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t76) - aim));
+    let limb1_27 = t77.x >> 12u;
+    let limb0_27 = t77.x & 4095u;
     let cross27 = limb1_27 * limb0_27;
     let hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     let lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    let limb1_28 = t87.y >> 12u;
-    let limb0_28 = t87.y & 4095u;
+    let limb1_28 = t77.y >> 12u;
+    let limb0_28 = t77.y & 4095u;
     let cross28 = limb1_28 * limb0_28;
     let hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     let lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    let limb1_29 = t87.z >> 12u;
-    let limb0_29 = t87.z & 4095u;
+    let limb1_29 = t77.z >> 12u;
+    let limb0_29 = t77.z & 4095u;
     let cross29 = limb1_29 * limb0_29;
     let hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     let lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     let hi39 = hi38 + (lo38 >> 24u);
     let lo39 = lo38 & 16777215u;
     let d8 = f32(hi39) * 16777216.0f + f32(lo39);
-    let t88 = d8 < t82 || (d8 == t82 && t86 < t83);
-    let t89 = select(t82, d8, t88);
-    let t90 = select(t83, t86, t88);
-    let t91 = corner + t33 + t33 + t34 + t34;
-    let t92 = select(t91, 4294967295u - t91, 3221225471u < t91);
-    let t93 = select(t92, 65535u - t92, t9) & 65535u;
-    let t94 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t93) - aim));
-    let limb1_30 = t94.x >> 12u;
-    let limb0_30 = t94.x & 4095u;
+    let t78 = d8 < t72 || (d8 == t72 && t76 < t73);
+    let t79 = select(t72, d8, t78);
+    let t80 = select(t73, t76, t78);
+    let t81 = corner + t24 + t24 + t25 + t25;
+    let t82 = select(t81, 4294967295u - t81, 3221225471u < t81);
+    let t83 = select(t82, 65535u - t82, t6) & 65535u;
+    let t84 = vec3<u32>(abs(unitpack_sfib16_fixed_point(t83) - aim));
+    let limb1_30 = t84.x >> 12u;
+    let limb0_30 = t84.x & 4095u;
     let cross30 = limb1_30 * limb0_30;
     let hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     let lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    let limb1_31 = t94.y >> 12u;
-    let limb0_31 = t94.y & 4095u;
+    let limb1_31 = t84.y >> 12u;
+    let limb0_31 = t84.y & 4095u;
     let cross31 = limb1_31 * limb0_31;
     let hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     let lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    let limb1_32 = t94.z >> 12u;
-    let limb0_32 = t94.z & 4095u;
+    let limb1_32 = t84.z >> 12u;
+    let limb0_32 = t84.z & 4095u;
     let cross32 = limb1_32 * limb0_32;
     let hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     let lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     let hi43 = hi42 + (lo42 >> 24u);
     let lo43 = lo42 & 16777215u;
     let d9 = f32(hi43) * 16777216.0f + f32(lo43);
-    return select(t90, t93, d9 < t89 || (d9 == t89 && t93 < t90));
+    return select(t80, t83, d9 < t79 || (d9 == t79 && t83 < t80));
 }
 
 // unitpack_sfib16_encode_float: fast encoder, float form.

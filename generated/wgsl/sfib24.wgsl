@@ -27,9 +27,8 @@ fn unitpack_sfib24_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -91,8 +90,8 @@ fn unitpack_sfib24_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -108,16 +107,16 @@ fn unitpack_sfib24_fixed_sincos_pi(a0: f32) -> vec2<f32> {
     let swap = b > 4194304.0f;
     let u = round(select(b, 8388608.0f - b, swap) * 3.1415927f);
     let u2 = round(u * u * 5.9604645e-8f);
-    let t1 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f) + (-3329.0f);
-    let t2 = round((round(t1 * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s = round(u * (round(t2 * u2 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t3 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f) + 416.0f;
-    let t4 = round((round(t3 * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f) + 699051.0f;
-    let co = round((round(t4 * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2 * 5.9604645e-8f)
-        + 16777216.0f;
-    let t5 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t5, -t5, vec2<bool>((a0 < 0.0f), back));
+    let t1 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f);
+    let t2 = (round((t1 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f;
+    let t3 = u * (round((round(t2) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
+    let s = round(t3 * 5.9604645e-8f);
+    let t4 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f);
+    let t5 = (round((t4 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f;
+    let t6 = (round((round(t5) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
+    let co = round(t6 * 5.9604645e-8f) + 16777216.0f;
+    let t7 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
+    return select(t7, -t7, vec2<bool>((a0 < 0.0f), back));
 }
 
 // Point `i` in fixed point (units of 2^-21), its root decided by comparing squares and every
@@ -126,25 +125,21 @@ fn unitpack_sfib24_fixed_sincos_pi(a0: f32) -> vec2<f32> {
 fn unitpack_sfib24_fixed_point(a0: u32) -> vec3<f32> {
     let t1 = a0 < 8388608u;
     let k = select(16777215u - a0, a0, t1);
-    let near = (0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 4095u))) * 1.1920929e-7f;
-    let t2 = 16777215u - k;
-    let far = (0.25f + (f32(t2 >> 12u) * 4096.0f + f32(t2 & 4095u))) * 1.1920929e-7f;
-    let t3 = near * far * 4398046500000.0f;
-    let root_estimate = floor(sqrt(t3));
+    let t2 = 0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 4095u));
+    let near = t2 * 1.1920929e-7f;
+    let t3 = 16777215u - k;
+    let t4 = 0.25f + (f32(t3 >> 12u) * 4096.0f + f32(t3 & 4095u));
+    let far = t4 * 1.1920929e-7f;
+    let t5 = near * far * 4398046500000.0f;
+    let root_estimate = floor(sqrt(t5));
     let root_next = root_estimate + 1.0f;
-    let t4 = select(
-        select(0.0f, -1.0f, root_estimate * root_estimate > t3),
-        1.0f,
-        root_next * root_next <= t3
-    );
-    let root_step = root_estimate + t4;
+    let step_down = select(0.0f, -1.0f, root_estimate * root_estimate > t5);
+    let step = select(step_down, 1.0f, root_next * root_next <= t5);
+    let root_step = root_estimate + step;
     let root_next2 = root_step + 1.0f;
-    let t5 = select(
-        select(0.0f, -1.0f, root_step * root_step > t3),
-        1.0f,
-        root_next2 * root_next2 <= t3
-    );
-    let rho = root_step + t5;
+    let step_down2 = select(0.0f, -1.0f, root_step * root_step > t5);
+    let step2 = select(step_down2, 1.0f, root_next2 * root_next2 <= t5);
+    let rho = root_step + step2;
     let zm = 2097152.0f - floor(near * 2097152.0f);
     let il = a0 & 65535u;
     let ih = a0 >> 16u;
@@ -175,12 +170,16 @@ fn unitpack_sfib24_encode_index(a0: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -200,383 +199,483 @@ fn unitpack_sfib24_encode_index(a0: vec3<f32>) -> u32 {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = floor(w2 / root * 2097152.0f);
-    let t5 = w2 * 2097152.0f;
-    let t6 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t4 * root > t5),
+    let t1 = floor(w2 / root * 2097152.0f);
+    let t2 = w2 * 2097152.0f;
+    let t3 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t1 * root > t2),
         vec3<f32>(1.0f),
-        (t4 + 1.0f) * root <= t5
+        (t1 + 1.0f) * root <= t2
     );
-    let aim = t4 + t6;
+    let aim = t1 + t3;
     let u = w2 / root;
-    let t7 = u.xy * u.xy;
-    let rho2 = t7.x + t7.y;
-    let t8 = vec3<u32>(abs(aim));
-    let limb1_4 = t8.x >> 12u;
-    let limb0_4 = t8.x & 4095u;
+    let t4 = u.xy * u.xy;
+    let rho2 = t4.x + t4.y;
+    let t5 = vec3<u32>(abs(aim));
+    let limb1_4 = t5.x >> 12u;
+    let limb0_4 = t5.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t8.y >> 12u;
-    let limb0_5 = t8.y & 4095u;
+    let limb1_5 = t5.y >> 12u;
+    let limb0_5 = t5.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2_fixed = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t9 = aim.z < 0.0f;
+    let t6 = aim.z < 0.0f;
     let below = rho2 / (1.0f + abs(u.z));
     let dz = 2.9802322e-8f - below;
     let t = unitpack_sfib24_atan2_pi(u.y, u.x);
-    let tn = select(t, 0.21312913f - t, t9);
-    let t10 = rho2_fixed >= 1.5225483e-7f;
-    let t11 = rho2_fixed >= 3.986083e-7f;
-    let t12 = rho2_fixed >= 1.0435701e-6f;
-    let t13 = select(
-        select(select(-1980281.6f, -1223881.4f, t10), -756400.3f, t11),
-        -467481.1f,
-        t12
-    );
+    let tn = select(t, 0.21312913f - t, t6);
+    let t7 = rho2_fixed >= 1.5225483e-7f;
+    let t8 = rho2_fixed >= 3.986083e-7f;
+    let t9 = rho2_fixed >= 1.0435701e-6f;
+    let t10 = rho2_fixed >= 2.732102e-6f;
+    let t11 = rho2_fixed >= 7.152736e-6f;
+    let t12 = rho2_fixed >= 1.8726107e-5f;
+    let t13 = rho2_fixed >= 4.902558e-5f;
     let t14 = select(
-        select(select(-3204163.0f, -1980281.6f, t10), -1223881.4f, t11),
-        -756400.3f,
-        t12
+        select(
+            select(select(select(select(select(1u, 2u, t7), 3u, t8), 5u, t9), 8u, t10), 13u, t11),
+            21u,
+            t12
+        ),
+        34u,
+        t13
     );
-    let t15 = rho2_fixed >= 2.732102e-6f;
-    let t16 = select(select(select(select(-1.0f, 1.5f, t10), -2.5f, t11), 4.0f, t12), -6.5f, t15);
-    let t17 = select(select(select(select(0.5f, -1.0f, t10), 1.5f, t11), -2.5f, t12), 4.0f, t15);
-    let t18 = rho2_fixed >= 7.152736e-6f;
-    let t19 = select(
-        select(select(select(select(1u, 2u, t10), 3u, t11), 5u, t12), 8u, t15),
-        13u,
-        t18
+    let t15 = select(
+        select(
+            select(select(select(select(select(2u, 3u, t7), 5u, t8), 8u, t9), 13u, t10), 21u, t11),
+            34u,
+            t12
+        ),
+        55u,
+        t13
     );
-    let t20 = select(
-        select(select(select(select(2u, 3u, t10), 5u, t11), 8u, t12), 13u, t15),
-        21u,
-        t18
+    let t16 = select(
+        select(
+            select(
+                select(select(select(select(-1.0f, 1.5f, t7), -2.5f, t8), 4.0f, t9), -6.5f, t10),
+                10.5f,
+                t11
+            ),
+            -17.0f,
+            t12
+        ),
+        27.5f,
+        t13
     );
-    let t21 = rho2_fixed >= 1.8726107e-5f;
-    let t22 = rho2_fixed >= 4.902558e-5f;
-    let t23 = select(
-        select(select(select(t13, -288919.2f, t15), -178561.89f, t18), -110357.31f, t21),
+    let t17 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(-1980281.6f, -1223881.4f, t7), -756400.3f, t8),
+                        -467481.1f,
+                        t9
+                    ),
+                    -288919.2f,
+                    t10
+                ),
+                -178561.89f,
+                t11
+            ),
+            -110357.31f,
+            t12
+        ),
         -68204.57f,
-        t22
+        t13
     );
-    let t24 = select(
-        select(select(select(t14, -467481.1f, t15), -288919.2f, t18), -178561.89f, t21),
+    let t18 = select(
+        select(
+            select(
+                select(select(select(select(0.5f, -1.0f, t7), 1.5f, t8), -2.5f, t9), 4.0f, t10),
+                -6.5f,
+                t11
+            ),
+            10.5f,
+            t12
+        ),
+        -17.0f,
+        t13
+    );
+    let t19 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(-3204163.0f, -1980281.6f, t7), -1223881.4f, t8),
+                        -756400.3f,
+                        t9
+                    ),
+                    -467481.1f,
+                    t10
+                ),
+                -288919.2f,
+                t11
+            ),
+            -178561.89f,
+            t12
+        ),
         -110357.31f,
-        t22
+        t13
     );
-    let t25 = rho2_fixed >= 0.00012835064f;
-    let t26 = select(select(select(select(t16, 10.5f, t18), -17.0f, t21), 27.5f, t22), -44.5f, t25);
-    let t27 = select(select(select(select(t17, -6.5f, t18), 10.5f, t21), -17.0f, t22), 27.5f, t25);
-    let t28 = rho2_fixed >= 0.00033602634f;
-    let t29 = rho2_fixed >= 0.00087972835f;
+    let t20 = rho2_fixed >= 0.00012835064f;
+    let t21 = rho2_fixed >= 0.00033602634f;
+    let t22 = rho2_fixed >= 0.00087972835f;
+    let t23 = rho2_fixed >= 0.0023031589f;
+    let t24 = rho2_fixed >= 0.006029748f;
+    let t25 = rho2_fixed >= 0.015786085f;
+    let t26 = rho2_fixed >= 0.04132851f;
+    let t27 = select(
+        select(
+            select(
+                select(select(select(select(t14, 55u, t20), 89u, t21), 144u, t22), 233u, t23),
+                377u,
+                t24
+            ),
+            610u,
+            t25
+        ),
+        987u,
+        t26
+    );
+    let t28 = select(
+        select(
+            select(
+                select(select(select(select(t15, 89u, t20), 144u, t21), 233u, t22), 377u, t23),
+                610u,
+                t24
+            ),
+            987u,
+            t25
+        ),
+        1597u,
+        t26
+    );
+    let t29 = select(
+        select(
+            select(
+                select(
+                    select(select(select(t16, -44.5f, t20), 72.0f, t21), -116.5f, t22),
+                    188.5f,
+                    t23
+                ),
+                -305.0f,
+                t24
+            ),
+            493.5f,
+            t25
+        ),
+        -798.5f,
+        t26
+    );
     let t30 = select(
-        select(select(select(select(t19, 21u, t21), 34u, t22), 55u, t25), 89u, t28),
-        144u,
-        t29
+        select(
+            select(
+                select(
+                    select(
+                        select(select(t17, -42152.742f, t20), -26051.828f, t21),
+                        -16100.915f,
+                        t22
+                    ),
+                    -9950.913f,
+                    t23
+                ),
+                -6150.0024f,
+                t24
+            ),
+            -3800.9104f,
+            t25
+        ),
+        -2349.0918f,
+        t26
     );
     let t31 = select(
-        select(select(select(select(t20, 34u, t21), 55u, t22), 89u, t25), 144u, t28),
-        233u,
-        t29
+        select(
+            select(
+                select(
+                    select(select(select(t18, 27.5f, t20), -44.5f, t21), 72.0f, t22),
+                    -116.5f,
+                    t23
+                ),
+                188.5f,
+                t24
+            ),
+            -305.0f,
+            t25
+        ),
+        493.5f,
+        t26
     );
-    let t32 = select(select(select(t23, -42152.742f, t25), -26051.828f, t28), -16100.915f, t29);
-    let t33 = rho2_fixed >= 0.0023031589f;
-    let t34 = select(
-        select(select(select(t24, -68204.57f, t25), -42152.742f, t28), -26051.828f, t29),
-        -16100.915f,
-        t33
+    let t32 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(t19, -68204.57f, t20), -42152.742f, t21),
+                        -26051.828f,
+                        t22
+                    ),
+                    -16100.915f,
+                    t23
+                ),
+                -9950.913f,
+                t24
+            ),
+            -6150.0024f,
+            t25
+        ),
+        -3800.9104f,
+        t26
     );
-    let t35 = rho2_fixed >= 0.006029748f;
-    let t36 = select(
-        select(select(select(t26, 72.0f, t28), -116.5f, t29), 188.5f, t33),
-        -305.0f,
-        t35
-    );
-    let t37 = select(
-        select(select(select(t27, -44.5f, t28), 72.0f, t29), -116.5f, t33),
-        188.5f,
-        t35
-    );
-    let t38 = rho2_fixed >= 0.015786085f;
-    let t39 = rho2_fixed >= 0.04132851f;
-    let t40 = select(
-        select(select(select(t32, -9950.913f, t33), -6150.0024f, t35), -3800.9104f, t38),
-        -2349.0918f,
-        t39
-    );
-    let t41 = rho2_fixed >= 0.10819943f;
-    let t42 = select(
-        select(select(select(select(t30, 233u, t33), 377u, t35), 610u, t38), 987u, t39),
-        1597u,
-        t41
-    );
-    let t43 = select(
-        select(select(select(select(t31, 377u, t33), 610u, t35), 987u, t38), 1597u, t39),
-        2584u,
-        t41
-    );
-    let t44 = select(
-        select(select(select(t34, -9950.913f, t35), -6150.0024f, t38), -3800.9104f, t39),
-        -2349.0918f,
-        t41
-    );
-    let t45 = rho2_fixed >= 0.2832698f;
-    let t46 = select(
-        select(select(select(t36, 493.5f, t38), -798.5f, t39), 1292.0f, t41),
-        -2090.5f,
-        t45
-    );
-    let t47 = select(
-        select(select(select(t37, -305.0f, t38), 493.5f, t39), -798.5f, t41),
-        1292.0f,
-        t45
-    );
-    let t48 = rho2_fixed >= 0.74161f;
-    let t49 = select(select(t42, 2584u, t45), 4181u, t48);
-    let t50 = select(select(t43, 4181u, t45), 6765u, t48);
-    let t51 = select(select(select(t40, -1451.8186f, t41), -897.27325f, t45), -554.54535f, t48);
-    let t52 = tn * select(t47, -2090.5f, t48)
-        + dz * select(select(t44, -1451.8186f, t45), -897.27325f, t48);
-    let t53 = u32(4194303.0f + round(tn * select(t46, 3382.5f, t48) + dz * t51)) * t49
-        + u32(4194303.0f + round(t52)) * t50;
-    let corner = t53 - ((t49 + t50) << 22u);
-    let t54 = select(corner, 4294967295u - corner, 3221225471u < corner);
-    let t55 = select(t54, 16777215u - t54, t9) & 16777215u;
-    let t56 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t55) - aim));
-    let limb1_6 = t56.x >> 12u;
-    let limb0_6 = t56.x & 4095u;
+    let t33 = rho2_fixed >= 0.10819943f;
+    let t34 = rho2_fixed >= 0.2832698f;
+    let t35 = rho2_fixed >= 0.74161f;
+    let t36 = select(select(select(t27, 1597u, t33), 2584u, t34), 4181u, t35);
+    let t37 = select(select(select(t28, 2584u, t33), 4181u, t34), 6765u, t35);
+    let t38 = tn * select(select(select(t29, 1292.0f, t33), -2090.5f, t34), 3382.5f, t35)
+        + dz * select(select(select(t30, -1451.8186f, t33), -897.27325f, t34), -554.54535f, t35);
+    let t39 = tn * select(select(select(t31, -798.5f, t33), 1292.0f, t34), -2090.5f, t35)
+        + dz * select(select(select(t32, -2349.0918f, t33), -1451.8186f, t34), -897.27325f, t35);
+    let t40 = u32(4194303.0f + round(t38)) * t36 + u32(4194303.0f + round(t39)) * t37;
+    let corner = t40 - ((t36 + t37) << 22u);
+    let t41 = select(corner, 4294967295u - corner, 3221225471u < corner);
+    let t42 = select(t41, 16777215u - t41, t6) & 16777215u;
+    let t43 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t42) - aim));
+    let limb1_6 = t43.x >> 12u;
+    let limb0_6 = t43.x & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    let limb1_7 = t56.y >> 12u;
-    let limb0_7 = t56.y & 4095u;
+    let limb1_7 = t43.y >> 12u;
+    let limb0_7 = t43.y & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t56.z >> 12u;
-    let limb0_8 = t56.z & 4095u;
+    let limb1_8 = t43.z >> 12u;
+    let limb0_8 = t43.z & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     let hi11 = hi10 + (lo10 >> 24u);
     let lo11 = lo10 & 16777215u;
     let d = f32(hi11) * 16777216.0f + f32(lo11);
-    let t57 = corner + t49;
-    let t58 = select(t57, 4294967295u - t57, 3221225471u < t57);
-    let t59 = select(t58, 16777215u - t58, t9) & 16777215u;
-    let t60 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t59) - aim));
-    let limb1_9 = t60.x >> 12u;
-    let limb0_9 = t60.x & 4095u;
+    let t44 = corner + t36;
+    let t45 = select(t44, 4294967295u - t44, 3221225471u < t44);
+    let t46 = select(t45, 16777215u - t45, t6) & 16777215u;
+    let t47 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t46) - aim));
+    let limb1_9 = t47.x >> 12u;
+    let limb0_9 = t47.x & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    let limb1_10 = t60.y >> 12u;
-    let limb0_10 = t60.y & 4095u;
+    let limb1_10 = t47.y >> 12u;
+    let limb0_10 = t47.y & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t60.z >> 12u;
-    let limb0_11 = t60.z & 4095u;
+    let limb1_11 = t47.z >> 12u;
+    let limb0_11 = t47.z & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 16777215u;
     let d2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t61 = d2 < d || (d2 == d && t59 < t55);
-    let t62 = select(d, d2, t61);
-    let t63 = select(t55, t59, t61);
-    let t64 = corner + t49 + t49;
-    let t65 = select(t64, 4294967295u - t64, 3221225471u < t64);
-    let t66 = select(t65, 16777215u - t65, t9) & 16777215u;
-    let t67 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t66) - aim));
-    let limb1_12 = t67.x >> 12u;
-    let limb0_12 = t67.x & 4095u;
+    let t48 = d2 < d || (d2 == d && t46 < t42);
+    let t49 = select(d, d2, t48);
+    let t50 = select(t42, t46, t48);
+    let t51 = corner + t36 + t36;
+    let t52 = select(t51, 4294967295u - t51, 3221225471u < t51);
+    let t53 = select(t52, 16777215u - t52, t6) & 16777215u;
+    let t54 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t53) - aim));
+    let limb1_12 = t54.x >> 12u;
+    let limb0_12 = t54.x & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    let limb1_13 = t67.y >> 12u;
-    let limb0_13 = t67.y & 4095u;
+    let limb1_13 = t54.y >> 12u;
+    let limb0_13 = t54.y & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t67.z >> 12u;
-    let limb0_14 = t67.z & 4095u;
+    let limb1_14 = t54.z >> 12u;
+    let limb0_14 = t54.z & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 16777215u;
     let d3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t68 = d3 < t62 || (d3 == t62 && t66 < t63);
-    let t69 = select(t62, d3, t68);
-    let t70 = select(t63, t66, t68);
-    let t71 = corner + t50;
-    let t72 = select(t71, 4294967295u - t71, 3221225471u < t71);
-    let t73 = select(t72, 16777215u - t72, t9) & 16777215u;
-    let t74 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t73) - aim));
-    let limb1_15 = t74.x >> 12u;
-    let limb0_15 = t74.x & 4095u;
+    let t55 = d3 < t49 || (d3 == t49 && t53 < t50);
+    let t56 = select(t49, d3, t55);
+    let t57 = select(t50, t53, t55);
+    let t58 = corner + t37;
+    let t59 = select(t58, 4294967295u - t58, 3221225471u < t58);
+    let t60 = select(t59, 16777215u - t59, t6) & 16777215u;
+    let t61 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t60) - aim));
+    let limb1_15 = t61.x >> 12u;
+    let limb0_15 = t61.x & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    let limb1_16 = t74.y >> 12u;
-    let limb0_16 = t74.y & 4095u;
+    let limb1_16 = t61.y >> 12u;
+    let limb0_16 = t61.y & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t74.z >> 12u;
-    let limb0_17 = t74.z & 4095u;
+    let limb1_17 = t61.z >> 12u;
+    let limb0_17 = t61.z & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 16777215u;
     let d4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let t75 = d4 < t69 || (d4 == t69 && t73 < t70);
-    let t76 = select(t69, d4, t75);
-    let t77 = select(t70, t73, t75);
-    let t78 = corner + t49 + t50;
-    let t79 = select(t78, 4294967295u - t78, 3221225471u < t78);
-    let t80 = select(t79, 16777215u - t79, t9) & 16777215u;
-    let t81 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t80) - aim));
-    let limb1_18 = t81.x >> 12u;
-    let limb0_18 = t81.x & 4095u;
+    let t62 = d4 < t56 || (d4 == t56 && t60 < t57);
+    let t63 = select(t56, d4, t62);
+    let t64 = select(t57, t60, t62);
+    let t65 = corner + t36 + t37;
+    let t66 = select(t65, 4294967295u - t65, 3221225471u < t65);
+    let t67 = select(t66, 16777215u - t66, t6) & 16777215u;
+    let t68 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t67) - aim));
+    let limb1_18 = t68.x >> 12u;
+    let limb0_18 = t68.x & 4095u;
     let cross18 = limb1_18 * limb0_18;
     let hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     let lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    let limb1_19 = t81.y >> 12u;
-    let limb0_19 = t81.y & 4095u;
+    let limb1_19 = t68.y >> 12u;
+    let limb0_19 = t68.y & 4095u;
     let cross19 = limb1_19 * limb0_19;
     let hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     let lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    let limb1_20 = t81.z >> 12u;
-    let limb0_20 = t81.z & 4095u;
+    let limb1_20 = t68.z >> 12u;
+    let limb0_20 = t68.z & 4095u;
     let cross20 = limb1_20 * limb0_20;
     let hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     let lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     let hi27 = hi26 + (lo26 >> 24u);
     let lo27 = lo26 & 16777215u;
     let d5 = f32(hi27) * 16777216.0f + f32(lo27);
-    let t82 = d5 < t76 || (d5 == t76 && t80 < t77);
-    let t83 = select(t76, d5, t82);
-    let t84 = select(t77, t80, t82);
-    let t85 = corner + t49 + t49 + t50;
-    let t86 = select(t85, 4294967295u - t85, 3221225471u < t85);
-    let t87 = select(t86, 16777215u - t86, t9) & 16777215u;
-    let t88 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t87) - aim));
-    let limb1_21 = t88.x >> 12u;
-    let limb0_21 = t88.x & 4095u;
+    let t69 = d5 < t63 || (d5 == t63 && t67 < t64);
+    let t70 = select(t63, d5, t69);
+    let t71 = select(t64, t67, t69);
+    let t72 = corner + t36 + t36 + t37;
+    let t73 = select(t72, 4294967295u - t72, 3221225471u < t72);
+    let t74 = select(t73, 16777215u - t73, t6) & 16777215u;
+    let t75 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t74) - aim));
+    let limb1_21 = t75.x >> 12u;
+    let limb0_21 = t75.x & 4095u;
     let cross21 = limb1_21 * limb0_21;
     let hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     let lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    let limb1_22 = t88.y >> 12u;
-    let limb0_22 = t88.y & 4095u;
+    let limb1_22 = t75.y >> 12u;
+    let limb0_22 = t75.y & 4095u;
     let cross22 = limb1_22 * limb0_22;
     let hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     let lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    let limb1_23 = t88.z >> 12u;
-    let limb0_23 = t88.z & 4095u;
+    let limb1_23 = t75.z >> 12u;
+    let limb0_23 = t75.z & 4095u;
     let cross23 = limb1_23 * limb0_23;
     let hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     let lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     let hi31 = hi30 + (lo30 >> 24u);
     let lo31 = lo30 & 16777215u;
     let d6 = f32(hi31) * 16777216.0f + f32(lo31);
-    let t89 = d6 < t83 || (d6 == t83 && t87 < t84);
-    let t90 = select(t83, d6, t89);
-    let t91 = select(t84, t87, t89);
-    let t92 = corner + t50 + t50;
-    let t93 = select(t92, 4294967295u - t92, 3221225471u < t92);
-    let t94 = select(t93, 16777215u - t93, t9) & 16777215u;
-    let t95 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t94) - aim));
-    let limb1_24 = t95.x >> 12u;
-    let limb0_24 = t95.x & 4095u;
+    let t76 = d6 < t70 || (d6 == t70 && t74 < t71);
+    let t77 = select(t70, d6, t76);
+    let t78 = select(t71, t74, t76);
+    let t79 = corner + t37 + t37;
+    let t80 = select(t79, 4294967295u - t79, 3221225471u < t79);
+    let t81 = select(t80, 16777215u - t80, t6) & 16777215u;
+    let t82 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t81) - aim));
+    let limb1_24 = t82.x >> 12u;
+    let limb0_24 = t82.x & 4095u;
     let cross24 = limb1_24 * limb0_24;
     let hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     let lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    let limb1_25 = t95.y >> 12u;
-    let limb0_25 = t95.y & 4095u;
+    let limb1_25 = t82.y >> 12u;
+    let limb0_25 = t82.y & 4095u;
     let cross25 = limb1_25 * limb0_25;
     let hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     let lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    let limb1_26 = t95.z >> 12u;
-    let limb0_26 = t95.z & 4095u;
+    let limb1_26 = t82.z >> 12u;
+    let limb0_26 = t82.z & 4095u;
     let cross26 = limb1_26 * limb0_26;
     let hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     let lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     let hi35 = hi34 + (lo34 >> 24u);
     let lo35 = lo34 & 16777215u;
     let d7 = f32(hi35) * 16777216.0f + f32(lo35);
-    let t96 = d7 < t90 || (d7 == t90 && t94 < t91);
-    let t97 = select(t90, d7, t96);
-    let t98 = select(t91, t94, t96);
-    let t99 = corner + t49 + t50 + t50;
-    let t100 = select(t99, 4294967295u - t99, 3221225471u < t99);
-    let t101 = select(t100, 16777215u - t100, t9) & 16777215u;
-    let t102 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t101) - aim));
-    let limb1_27 = t102.x >> 12u;
-    let limb0_27 = t102.x & 4095u;
+    let t83 = d7 < t77 || (d7 == t77 && t81 < t78);
+    let t84 = select(t77, d7, t83);
+    let t85 = select(t78, t81, t83);
+    let t86 = corner + t36 + t37 + t37;
+    let t87 = select(t86, 4294967295u - t86, 3221225471u < t86);
+    let t88 = select(t87, 16777215u - t87, t6) & 16777215u;
+    let t89 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t88) - aim));
+    let limb1_27 = t89.x >> 12u;
+    let limb0_27 = t89.x & 4095u;
     let cross27 = limb1_27 * limb0_27;
     let hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     let lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    let limb1_28 = t102.y >> 12u;
-    let limb0_28 = t102.y & 4095u;
+    let limb1_28 = t89.y >> 12u;
+    let limb0_28 = t89.y & 4095u;
     let cross28 = limb1_28 * limb0_28;
     let hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     let lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    let limb1_29 = t102.z >> 12u;
-    let limb0_29 = t102.z & 4095u;
+    let limb1_29 = t89.z >> 12u;
+    let limb0_29 = t89.z & 4095u;
     let cross29 = limb1_29 * limb0_29;
     let hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     let lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     let hi39 = hi38 + (lo38 >> 24u);
     let lo39 = lo38 & 16777215u;
     let d8 = f32(hi39) * 16777216.0f + f32(lo39);
-    let t103 = d8 < t97 || (d8 == t97 && t101 < t98);
-    let t104 = select(t97, d8, t103);
-    let t105 = select(t98, t101, t103);
-    let t106 = corner + t49 + t49 + t50 + t50;
-    let t107 = select(t106, 4294967295u - t106, 3221225471u < t106);
-    let t108 = select(t107, 16777215u - t107, t9) & 16777215u;
-    let t109 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t108) - aim));
-    let limb1_30 = t109.x >> 12u;
-    let limb0_30 = t109.x & 4095u;
+    let t90 = d8 < t84 || (d8 == t84 && t88 < t85);
+    let t91 = select(t84, d8, t90);
+    let t92 = select(t85, t88, t90);
+    let t93 = corner + t36 + t36 + t37 + t37;
+    let t94 = select(t93, 4294967295u - t93, 3221225471u < t93);
+    let t95 = select(t94, 16777215u - t94, t6) & 16777215u;
+    let t96 = vec3<u32>(abs(unitpack_sfib24_fixed_point(t95) - aim));
+    let limb1_30 = t96.x >> 12u;
+    let limb0_30 = t96.x & 4095u;
     let cross30 = limb1_30 * limb0_30;
     let hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     let lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    let limb1_31 = t109.y >> 12u;
-    let limb0_31 = t109.y & 4095u;
+    let limb1_31 = t96.y >> 12u;
+    let limb0_31 = t96.y & 4095u;
     let cross31 = limb1_31 * limb0_31;
     let hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     let lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    let limb1_32 = t109.z >> 12u;
-    let limb0_32 = t109.z & 4095u;
+    let limb1_32 = t96.z >> 12u;
+    let limb0_32 = t96.z & 4095u;
     let cross32 = limb1_32 * limb0_32;
     let hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     let lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     let hi43 = hi42 + (lo42 >> 24u);
     let lo43 = lo42 & 16777215u;
     let d9 = f32(hi43) * 16777216.0f + f32(lo43);
-    return select(t105, t108, d9 < t104 || (d9 == t104 && t108 < t105));
+    return select(t92, t95, d9 < t91 || (d9 == t91 && t95 < t92));
 }
 
 // unitpack_sfib24_encode_float: fast encoder, float form.

@@ -27,9 +27,8 @@ fn unitpack_sfib32_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -91,8 +90,8 @@ fn unitpack_sfib32_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -108,16 +107,16 @@ fn unitpack_sfib32_fixed_sincos_pi(a0: f32) -> vec2<f32> {
     let swap = b > 4194304.0f;
     let u = round(select(b, 8388608.0f - b, swap) * 3.1415927f);
     let u2 = round(u * u * 5.9604645e-8f);
-    let t1 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f) + (-3329.0f);
-    let t2 = round((round(t1 * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s = round(u * (round(t2 * u2 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t3 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f) + 416.0f;
-    let t4 = round((round(t3 * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f) + 699051.0f;
-    let co = round((round(t4 * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2 * 5.9604645e-8f)
-        + 16777216.0f;
-    let t5 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t5, -t5, vec2<bool>((a0 < 0.0f), back));
+    let t1 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f);
+    let t2 = (round((t1 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f;
+    let t3 = u * (round((round(t2) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
+    let s = round(t3 * 5.9604645e-8f);
+    let t4 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f);
+    let t5 = (round((t4 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f;
+    let t6 = (round((round(t5) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
+    let co = round(t6 * 5.9604645e-8f) + 16777216.0f;
+    let t7 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
+    return select(t7, -t7, vec2<bool>((a0 < 0.0f), back));
 }
 
 // Point `i` in fixed point (units of 2^-21), its root decided by comparing squares and every
@@ -126,25 +125,21 @@ fn unitpack_sfib32_fixed_sincos_pi(a0: f32) -> vec2<f32> {
 fn unitpack_sfib32_fixed_point(a0: u32) -> vec3<f32> {
     let t1 = a0 < 2147483648u;
     let k = select(4294967295u - a0, a0, t1);
-    let near = (0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 4095u))) * 4.656613e-10f;
-    let t2 = 4294967295u - k;
-    let far = (0.25f + (f32(t2 >> 12u) * 4096.0f + f32(t2 & 4095u))) * 4.656613e-10f;
-    let t3 = near * far * 4398046500000.0f;
-    let root_estimate = floor(sqrt(t3));
+    let t2 = 0.25f + (f32(k >> 12u) * 4096.0f + f32(k & 4095u));
+    let near = t2 * 4.656613e-10f;
+    let t3 = 4294967295u - k;
+    let t4 = 0.25f + (f32(t3 >> 12u) * 4096.0f + f32(t3 & 4095u));
+    let far = t4 * 4.656613e-10f;
+    let t5 = near * far * 4398046500000.0f;
+    let root_estimate = floor(sqrt(t5));
     let root_next = root_estimate + 1.0f;
-    let t4 = select(
-        select(0.0f, -1.0f, root_estimate * root_estimate > t3),
-        1.0f,
-        root_next * root_next <= t3
-    );
-    let root_step = root_estimate + t4;
+    let step_down = select(0.0f, -1.0f, root_estimate * root_estimate > t5);
+    let step = select(step_down, 1.0f, root_next * root_next <= t5);
+    let root_step = root_estimate + step;
     let root_next2 = root_step + 1.0f;
-    let t5 = select(
-        select(0.0f, -1.0f, root_step * root_step > t3),
-        1.0f,
-        root_next2 * root_next2 <= t3
-    );
-    let rho = root_step + t5;
+    let step_down2 = select(0.0f, -1.0f, root_step * root_step > t5);
+    let step2 = select(step_down2, 1.0f, root_next2 * root_next2 <= t5);
+    let rho = root_step + step2;
     let zm = 2097152.0f - floor(near * 2097152.0f);
     let il = a0 & 65535u;
     let ih = a0 >> 16u;
@@ -175,12 +170,16 @@ fn unitpack_sfib32_encode_index(a0: vec3<f32>) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -200,410 +199,595 @@ fn unitpack_sfib32_encode_index(a0: vec3<f32>) -> u32 {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = floor(w2 / root * 2097152.0f);
-    let t5 = w2 * 2097152.0f;
-    let t6 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t4 * root > t5),
+    let t1 = floor(w2 / root * 2097152.0f);
+    let t2 = w2 * 2097152.0f;
+    let t3 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t1 * root > t2),
         vec3<f32>(1.0f),
-        (t4 + 1.0f) * root <= t5
+        (t1 + 1.0f) * root <= t2
     );
-    let aim = t4 + t6;
+    let aim = t1 + t3;
     let u = w2 / root;
-    let t7 = u.xy * u.xy;
-    let rho2 = t7.x + t7.y;
-    let t8 = vec3<u32>(abs(aim));
-    let limb1_4 = t8.x >> 12u;
-    let limb0_4 = t8.x & 4095u;
+    let t4 = u.xy * u.xy;
+    let rho2 = t4.x + t4.y;
+    let t5 = vec3<u32>(abs(aim));
+    let limb1_4 = t5.x >> 12u;
+    let limb0_4 = t5.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t8.y >> 12u;
-    let limb0_5 = t8.y & 4095u;
+    let limb1_5 = t5.y >> 12u;
+    let limb0_5 = t5.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2_fixed = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t9 = aim.z < 0.0f;
+    let t6 = aim.z < 0.0f;
     let below = rho2 / (1.0f + abs(u.z));
     let dz = 1.1641532e-10f - below;
     let t = unitpack_sfib32_atan2_pi(u.y, u.x);
-    let tn = select(t, -0.24160738f - t, t9);
-    let t10 = rho2_fixed >= 5.947454e-10f;
-    let t11 = rho2_fixed >= 1.5570637e-9f;
-    let t12 = rho2_fixed >= 4.076446e-9f;
-    let t13 = select(
-        select(select(-506952130.0f, -313313630.0f, t10), -193638480.0f, t11),
-        -119675160.0f,
-        t12
-    );
+    let tn = select(t, -0.24160738f - t, t6);
+    let t7 = rho2_fixed >= 5.947454e-10f;
+    let t8 = rho2_fixed >= 1.5570637e-9f;
+    let t9 = rho2_fixed >= 4.076446e-9f;
+    let t10 = rho2_fixed >= 1.0672274e-8f;
+    let t11 = rho2_fixed >= 2.7940375e-8f;
+    let t12 = rho2_fixed >= 7.3148854e-8f;
+    let t13 = rho2_fixed >= 1.9150617e-7f;
     let t14 = select(
-        select(select(-820265800.0f, -506952130.0f, t10), -313313630.0f, t11),
-        -193638480.0f,
-        t12
+        select(
+            select(select(select(select(select(1u, 2u, t7), 3u, t8), 5u, t9), 8u, t10), 13u, t11),
+            21u,
+            t12
+        ),
+        34u,
+        t13
     );
-    let t15 = rho2_fixed >= 1.0672274e-8f;
-    let t16 = select(select(select(select(-1.0f, 1.5f, t10), -2.5f, t11), 4.0f, t12), -6.5f, t15);
-    let t17 = select(select(select(select(0.5f, -1.0f, t10), 1.5f, t11), -2.5f, t12), 4.0f, t15);
-    let t18 = rho2_fixed >= 2.7940375e-8f;
+    let t15 = select(
+        select(
+            select(select(select(select(select(2u, 3u, t7), 5u, t8), 8u, t9), 13u, t10), 21u, t11),
+            34u,
+            t12
+        ),
+        55u,
+        t13
+    );
+    let t16 = select(
+        select(
+            select(
+                select(select(select(select(-1.0f, 1.5f, t7), -2.5f, t8), 4.0f, t9), -6.5f, t10),
+                10.5f,
+                t11
+            ),
+            -17.0f,
+            t12
+        ),
+        27.5f,
+        t13
+    );
+    let t17 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(-506952130.0f, -313313630.0f, t7), -193638480.0f, t8),
+                        -119675160.0f,
+                        t9
+                    ),
+                    -73963320.0f,
+                    t10
+                ),
+                -45711844.0f,
+                t11
+            ),
+            -28251474.0f,
+            t12
+        ),
+        -17460370.0f,
+        t13
+    );
+    let t18 = select(
+        select(
+            select(
+                select(select(select(select(0.5f, -1.0f, t7), 1.5f, t8), -2.5f, t9), 4.0f, t10),
+                -6.5f,
+                t11
+            ),
+            10.5f,
+            t12
+        ),
+        -17.0f,
+        t13
+    );
     let t19 = select(
-        select(select(select(select(1u, 2u, t10), 3u, t11), 5u, t12), 8u, t15),
-        13u,
-        t18
+        select(
+            select(
+                select(
+                    select(
+                        select(select(-820265800.0f, -506952130.0f, t7), -313313630.0f, t8),
+                        -193638480.0f,
+                        t9
+                    ),
+                    -119675160.0f,
+                    t10
+                ),
+                -73963320.0f,
+                t11
+            ),
+            -45711844.0f,
+            t12
+        ),
+        -28251474.0f,
+        t13
     );
-    let t20 = select(
-        select(select(select(select(2u, 3u, t10), 5u, t11), 8u, t12), 13u, t15),
-        21u,
-        t18
+    let t20 = rho2_fixed >= 5.013697e-7f;
+    let t21 = rho2_fixed >= 1.3126029e-6f;
+    let t22 = rho2_fixed >= 3.4364389e-6f;
+    let t23 = rho2_fixed >= 8.996714e-6f;
+    let t24 = rho2_fixed >= 2.3553703e-5f;
+    let t25 = rho2_fixed >= 6.1664396e-5f;
+    let t26 = rho2_fixed >= 0.00016143949f;
+    let t27 = select(
+        select(
+            select(
+                select(select(select(select(t14, 55u, t20), 89u, t21), 144u, t22), 233u, t23),
+                377u,
+                t24
+            ),
+            610u,
+            t25
+        ),
+        987u,
+        t26
     );
-    let t21 = rho2_fixed >= 7.3148854e-8f;
-    let t22 = select(select(select(t13, -73963320.0f, t15), -45711844.0f, t18), -28251474.0f, t21);
-    let t23 = select(select(select(t14, -119675160.0f, t15), -73963320.0f, t18), -45711844.0f, t21);
-    let t24 = rho2_fixed >= 1.9150617e-7f;
-    let t25 = rho2_fixed >= 5.013697e-7f;
-    let t26 = select(select(select(select(t16, 10.5f, t18), -17.0f, t21), 27.5f, t24), -44.5f, t25);
-    let t27 = select(select(select(select(t17, -6.5f, t18), 10.5f, t21), -17.0f, t24), 27.5f, t25);
-    let t28 = rho2_fixed >= 1.3126029e-6f;
-    let t29 = select(select(select(t22, -17460370.0f, t24), -10791103.0f, t25), -6669268.0f, t28);
-    let t30 = select(select(select(t23, -28251474.0f, t24), -17460370.0f, t25), -10791103.0f, t28);
-    let t31 = rho2_fixed >= 3.4364389e-6f;
-    let t32 = select(
-        select(select(select(select(t19, 21u, t21), 34u, t24), 55u, t25), 89u, t28),
-        144u,
-        t31
-    );
-    let t33 = select(
-        select(select(select(select(t20, 34u, t21), 55u, t24), 89u, t25), 144u, t28),
-        233u,
-        t31
-    );
-    let t34 = rho2_fixed >= 8.996714e-6f;
-    let t35 = rho2_fixed >= 2.3553703e-5f;
-    let t36 = select(
-        select(select(select(t26, 72.0f, t28), -116.5f, t31), 188.5f, t34),
-        -305.0f,
-        t35
-    );
-    let t37 = select(select(select(t29, -4121834.5f, t31), -2547433.8f, t34), -1574400.6f, t35);
-    let t38 = select(
-        select(select(select(t27, -44.5f, t28), 72.0f, t31), -116.5f, t34),
-        188.5f,
-        t35
-    );
-    let t39 = select(select(select(t30, -6669268.0f, t31), -4121834.5f, t34), -2547433.8f, t35);
-    let t40 = rho2_fixed >= 6.1664396e-5f;
-    let t41 = rho2_fixed >= 0.00016143949f;
-    let t42 = rho2_fixed >= 0.00042265403f;
-    let t43 = select(
-        select(select(select(select(t32, 233u, t34), 377u, t35), 610u, t40), 987u, t41),
+    let t28 = select(
+        select(
+            select(
+                select(select(select(select(t15, 89u, t20), 144u, t21), 233u, t22), 377u, t23),
+                610u,
+                t24
+            ),
+            987u,
+            t25
+        ),
         1597u,
-        t42
+        t26
+    );
+    let t29 = select(
+        select(
+            select(
+                select(
+                    select(select(select(t16, -44.5f, t20), 72.0f, t21), -116.5f, t22),
+                    188.5f,
+                    t23
+                ),
+                -305.0f,
+                t24
+            ),
+            493.5f,
+            t25
+        ),
+        -798.5f,
+        t26
+    );
+    let t30 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(t17, -10791103.0f, t20), -6669268.0f, t21),
+                        -4121834.5f,
+                        t22
+                    ),
+                    -2547433.8f,
+                    t23
+                ),
+                -1574400.6f,
+                t24
+            ),
+            -973033.1f,
+            t25
+        ),
+        -601367.56f,
+        t26
+    );
+    let t31 = select(
+        select(
+            select(
+                select(
+                    select(select(select(t18, 27.5f, t20), -44.5f, t21), 72.0f, t22),
+                    -116.5f,
+                    t23
+                ),
+                188.5f,
+                t24
+            ),
+            -305.0f,
+            t25
+        ),
+        493.5f,
+        t26
+    );
+    let t32 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(t19, -17460370.0f, t20), -10791103.0f, t21),
+                        -6669268.0f,
+                        t22
+                    ),
+                    -4121834.5f,
+                    t23
+                ),
+                -2547433.8f,
+                t24
+            ),
+            -1574400.6f,
+            t25
+        ),
+        -973033.1f,
+        t26
+    );
+    let t33 = rho2_fixed >= 0.00042265403f;
+    let t34 = rho2_fixed >= 0.0011065226f;
+    let t35 = rho2_fixed >= 0.002896914f;
+    let t36 = rho2_fixed >= 0.0075842193f;
+    let t37 = rho2_fixed >= 0.019855743f;
+    let t38 = rho2_fixed >= 0.05198301f;
+    let t39 = rho2_fixed >= 0.13609329f;
+    let t40 = select(
+        select(
+            select(
+                select(select(select(select(t27, 1597u, t33), 2584u, t34), 4181u, t35), 6765u, t36),
+                10946u,
+                t37
+            ),
+            17711u,
+            t38
+        ),
+        28657u,
+        t39
+    );
+    let t41 = select(
+        select(
+            select(
+                select(
+                    select(select(select(t28, 2584u, t33), 4181u, t34), 6765u, t35),
+                    10946u,
+                    t36
+                ),
+                17711u,
+                t37
+            ),
+            28657u,
+            t38
+        ),
+        46368u,
+        t39
+    );
+    let t42 = select(
+        select(
+            select(
+                select(
+                    select(select(select(t29, 1292.0f, t33), -2090.5f, t34), 3382.5f, t35),
+                    -5473.0f,
+                    t36
+                ),
+                8855.5f,
+                t37
+            ),
+            -14328.5f,
+            t38
+        ),
+        23183.998f,
+        t39
+    );
+    let t43 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(t30, -371665.56f, t33), -229701.95f, t34),
+                        -141963.63f,
+                        t35
+                    ),
+                    -87738.34f,
+                    t36
+                ),
+                -54225.273f,
+                t37
+            ),
+            -33513.07f,
+            t38
+        ),
+        -20712.209f,
+        t39
     );
     let t44 = select(
-        select(select(select(select(t33, 377u, t34), 610u, t35), 987u, t40), 1597u, t41),
-        2584u,
-        t42
+        select(
+            select(
+                select(
+                    select(select(select(t31, -798.5f, t33), 1292.0f, t34), -2090.5f, t35),
+                    3382.5f,
+                    t36
+                ),
+                -5473.0f,
+                t37
+            ),
+            8855.5f,
+            t38
+        ),
+        -14328.498f,
+        t39
     );
-    let t45 = rho2_fixed >= 0.0011065226f;
-    let t46 = select(
-        select(select(select(t36, 493.5f, t40), -798.5f, t41), 1292.0f, t42),
-        -2090.5f,
-        t45
+    let t45 = select(
+        select(
+            select(
+                select(
+                    select(
+                        select(select(t32, -601367.56f, t33), -371665.6f, t34),
+                        -229701.95f,
+                        t35
+                    ),
+                    -141963.63f,
+                    t36
+                ),
+                -87738.34f,
+                t37
+            ),
+            -54225.273f,
+            t38
+        ),
+        -33513.066f,
+        t39
     );
-    let t47 = select(
-        select(select(select(t37, -973033.1f, t40), -601367.56f, t41), -371665.56f, t42),
-        -229701.95f,
-        t45
-    );
-    let t48 = select(
-        select(select(select(t38, -305.0f, t40), 493.5f, t41), -798.5f, t42),
-        1292.0f,
-        t45
-    );
-    let t49 = select(
-        select(select(select(t39, -1574400.6f, t40), -973033.1f, t41), -601367.56f, t42),
-        -371665.6f,
-        t45
-    );
-    let t50 = rho2_fixed >= 0.002896914f;
-    let t51 = rho2_fixed >= 0.0075842193f;
-    let t52 = rho2_fixed >= 0.019855743f;
-    let t53 = select(select(select(select(t43, 2584u, t45), 4181u, t50), 6765u, t51), 10946u, t52);
-    let t54 = select(select(select(select(t44, 4181u, t45), 6765u, t50), 10946u, t51), 17711u, t52);
-    let t55 = rho2_fixed >= 0.05198301f;
-    let t56 = select(
-        select(select(select(t46, 3382.5f, t50), -5473.0f, t51), 8855.5f, t52),
-        -14328.5f,
-        t55
-    );
-    let t57 = select(
-        select(select(select(t47, -141963.63f, t50), -87738.34f, t51), -54225.273f, t52),
-        -33513.07f,
-        t55
-    );
-    let t58 = select(
-        select(select(select(t48, -2090.5f, t50), 3382.5f, t51), -5473.0f, t52),
-        8855.5f,
-        t55
-    );
-    let t59 = select(
-        select(select(select(t49, -229701.95f, t50), -141963.63f, t51), -87738.34f, t52),
-        -54225.273f,
-        t55
-    );
-    let t60 = rho2_fixed >= 0.13609329f;
-    let t61 = rho2_fixed >= 0.35629687f;
-    let t62 = rho2_fixed >= 0.9327973f;
-    let t63 = select(
-        select(select(select(t53, 17711u, t55), 28657u, t60), 46368u, t61),
-        75025u,
-        t62
-    );
-    let t64 = select(
-        select(select(select(t54, 28657u, t55), 46368u, t60), 75025u, t61),
-        121393u,
-        t62
-    );
-    let t65 = select(select(select(t59, -33513.066f, t60), -20712.209f, t61), -12800.861f, t62);
-    let t66 = tn * select(select(select(t56, 23183.998f, t60), -37512.496f, t61), 60696.51f, t62);
-    let t67 = dz * select(select(select(t57, -20712.209f, t60), -12800.858f, t61), -7911.345f, t62);
-    let t68 = tn * select(select(select(t58, -14328.498f, t60), 23183.998f, t61), -37512.508f, t62);
-    let t69 = u32(4194303.0f + round(t66 + t67)) * t63
-        + u32(4194303.0f + round(t68 + dz * t65)) * t64;
-    let corner = t69 - ((t63 + t64) << 22u);
-    let t70 = select(corner, 4294967295u - corner, 3221225471u < corner);
-    let t71 = select(t70, 4294967295u - t70, t9) & 4294967295u;
-    let t72 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t71) - aim));
-    let limb1_6 = t72.x >> 12u;
-    let limb0_6 = t72.x & 4095u;
+    let t46 = rho2_fixed >= 0.35629687f;
+    let t47 = rho2_fixed >= 0.9327973f;
+    let t48 = select(select(t40, 46368u, t46), 75025u, t47);
+    let t49 = select(select(t41, 75025u, t46), 121393u, t47);
+    let t50 = tn * select(select(t42, -37512.496f, t46), 60696.51f, t47)
+        + dz * select(select(t43, -12800.858f, t46), -7911.345f, t47);
+    let t51 = tn * select(select(t44, 23183.998f, t46), -37512.508f, t47)
+        + dz * select(select(t45, -20712.209f, t46), -12800.861f, t47);
+    let t52 = u32(4194303.0f + round(t50)) * t48 + u32(4194303.0f + round(t51)) * t49;
+    let corner = t52 - ((t48 + t49) << 22u);
+    let t53 = select(corner, 4294967295u - corner, 3221225471u < corner);
+    let t54 = select(t53, 4294967295u - t53, t6) & 4294967295u;
+    let t55 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t54) - aim));
+    let limb1_6 = t55.x >> 12u;
+    let limb0_6 = t55.x & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    let limb1_7 = t72.y >> 12u;
-    let limb0_7 = t72.y & 4095u;
+    let limb1_7 = t55.y >> 12u;
+    let limb0_7 = t55.y & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t72.z >> 12u;
-    let limb0_8 = t72.z & 4095u;
+    let limb1_8 = t55.z >> 12u;
+    let limb0_8 = t55.z & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     let hi11 = hi10 + (lo10 >> 24u);
     let lo11 = lo10 & 16777215u;
     let d = f32(hi11) * 16777216.0f + f32(lo11);
-    let t73 = corner + t63;
-    let t74 = select(t73, 4294967295u - t73, 3221225471u < t73);
-    let t75 = select(t74, 4294967295u - t74, t9) & 4294967295u;
-    let t76 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t75) - aim));
-    let limb1_9 = t76.x >> 12u;
-    let limb0_9 = t76.x & 4095u;
+    let t56 = corner + t48;
+    let t57 = select(t56, 4294967295u - t56, 3221225471u < t56);
+    let t58 = select(t57, 4294967295u - t57, t6) & 4294967295u;
+    let t59 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t58) - aim));
+    let limb1_9 = t59.x >> 12u;
+    let limb0_9 = t59.x & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    let limb1_10 = t76.y >> 12u;
-    let limb0_10 = t76.y & 4095u;
+    let limb1_10 = t59.y >> 12u;
+    let limb0_10 = t59.y & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t76.z >> 12u;
-    let limb0_11 = t76.z & 4095u;
+    let limb1_11 = t59.z >> 12u;
+    let limb0_11 = t59.z & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 16777215u;
     let d2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t77 = d2 < d || (d2 == d && t75 < t71);
-    let t78 = select(d, d2, t77);
-    let t79 = select(t71, t75, t77);
-    let t80 = corner + t63 + t63;
-    let t81 = select(t80, 4294967295u - t80, 3221225471u < t80);
-    let t82 = select(t81, 4294967295u - t81, t9) & 4294967295u;
-    let t83 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t82) - aim));
-    let limb1_12 = t83.x >> 12u;
-    let limb0_12 = t83.x & 4095u;
+    let t60 = d2 < d || (d2 == d && t58 < t54);
+    let t61 = select(d, d2, t60);
+    let t62 = select(t54, t58, t60);
+    let t63 = corner + t48 + t48;
+    let t64 = select(t63, 4294967295u - t63, 3221225471u < t63);
+    let t65 = select(t64, 4294967295u - t64, t6) & 4294967295u;
+    let t66 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t65) - aim));
+    let limb1_12 = t66.x >> 12u;
+    let limb0_12 = t66.x & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    let limb1_13 = t83.y >> 12u;
-    let limb0_13 = t83.y & 4095u;
+    let limb1_13 = t66.y >> 12u;
+    let limb0_13 = t66.y & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t83.z >> 12u;
-    let limb0_14 = t83.z & 4095u;
+    let limb1_14 = t66.z >> 12u;
+    let limb0_14 = t66.z & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 16777215u;
     let d3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t84 = d3 < t78 || (d3 == t78 && t82 < t79);
-    let t85 = select(t78, d3, t84);
-    let t86 = select(t79, t82, t84);
-    let t87 = corner + t64;
-    let t88 = select(t87, 4294967295u - t87, 3221225471u < t87);
-    let t89 = select(t88, 4294967295u - t88, t9) & 4294967295u;
-    let t90 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t89) - aim));
-    let limb1_15 = t90.x >> 12u;
-    let limb0_15 = t90.x & 4095u;
+    let t67 = d3 < t61 || (d3 == t61 && t65 < t62);
+    let t68 = select(t61, d3, t67);
+    let t69 = select(t62, t65, t67);
+    let t70 = corner + t49;
+    let t71 = select(t70, 4294967295u - t70, 3221225471u < t70);
+    let t72 = select(t71, 4294967295u - t71, t6) & 4294967295u;
+    let t73 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t72) - aim));
+    let limb1_15 = t73.x >> 12u;
+    let limb0_15 = t73.x & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    let limb1_16 = t90.y >> 12u;
-    let limb0_16 = t90.y & 4095u;
+    let limb1_16 = t73.y >> 12u;
+    let limb0_16 = t73.y & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t90.z >> 12u;
-    let limb0_17 = t90.z & 4095u;
+    let limb1_17 = t73.z >> 12u;
+    let limb0_17 = t73.z & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 16777215u;
     let d4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let t91 = d4 < t85 || (d4 == t85 && t89 < t86);
-    let t92 = select(t85, d4, t91);
-    let t93 = select(t86, t89, t91);
-    let t94 = corner + t63 + t64;
-    let t95 = select(t94, 4294967295u - t94, 3221225471u < t94);
-    let t96 = select(t95, 4294967295u - t95, t9) & 4294967295u;
-    let t97 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t96) - aim));
-    let limb1_18 = t97.x >> 12u;
-    let limb0_18 = t97.x & 4095u;
+    let t74 = d4 < t68 || (d4 == t68 && t72 < t69);
+    let t75 = select(t68, d4, t74);
+    let t76 = select(t69, t72, t74);
+    let t77 = corner + t48 + t49;
+    let t78 = select(t77, 4294967295u - t77, 3221225471u < t77);
+    let t79 = select(t78, 4294967295u - t78, t6) & 4294967295u;
+    let t80 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t79) - aim));
+    let limb1_18 = t80.x >> 12u;
+    let limb0_18 = t80.x & 4095u;
     let cross18 = limb1_18 * limb0_18;
     let hi24 = 0u + limb1_18 * limb1_18 + (cross18 >> 11u);
     let lo24 = 0u + limb0_18 * limb0_18 + ((cross18 << 13u) & 16777215u);
-    let limb1_19 = t97.y >> 12u;
-    let limb0_19 = t97.y & 4095u;
+    let limb1_19 = t80.y >> 12u;
+    let limb0_19 = t80.y & 4095u;
     let cross19 = limb1_19 * limb0_19;
     let hi25 = hi24 + limb1_19 * limb1_19 + (cross19 >> 11u);
     let lo25 = lo24 + limb0_19 * limb0_19 + ((cross19 << 13u) & 16777215u);
-    let limb1_20 = t97.z >> 12u;
-    let limb0_20 = t97.z & 4095u;
+    let limb1_20 = t80.z >> 12u;
+    let limb0_20 = t80.z & 4095u;
     let cross20 = limb1_20 * limb0_20;
     let hi26 = hi25 + limb1_20 * limb1_20 + (cross20 >> 11u);
     let lo26 = lo25 + limb0_20 * limb0_20 + ((cross20 << 13u) & 16777215u);
     let hi27 = hi26 + (lo26 >> 24u);
     let lo27 = lo26 & 16777215u;
     let d5 = f32(hi27) * 16777216.0f + f32(lo27);
-    let t98 = d5 < t92 || (d5 == t92 && t96 < t93);
-    let t99 = select(t92, d5, t98);
-    let t100 = select(t93, t96, t98);
-    let t101 = corner + t63 + t63 + t64;
-    let t102 = select(t101, 4294967295u - t101, 3221225471u < t101);
-    let t103 = select(t102, 4294967295u - t102, t9) & 4294967295u;
-    let t104 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t103) - aim));
-    let limb1_21 = t104.x >> 12u;
-    let limb0_21 = t104.x & 4095u;
+    let t81 = d5 < t75 || (d5 == t75 && t79 < t76);
+    let t82 = select(t75, d5, t81);
+    let t83 = select(t76, t79, t81);
+    let t84 = corner + t48 + t48 + t49;
+    let t85 = select(t84, 4294967295u - t84, 3221225471u < t84);
+    let t86 = select(t85, 4294967295u - t85, t6) & 4294967295u;
+    let t87 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t86) - aim));
+    let limb1_21 = t87.x >> 12u;
+    let limb0_21 = t87.x & 4095u;
     let cross21 = limb1_21 * limb0_21;
     let hi28 = 0u + limb1_21 * limb1_21 + (cross21 >> 11u);
     let lo28 = 0u + limb0_21 * limb0_21 + ((cross21 << 13u) & 16777215u);
-    let limb1_22 = t104.y >> 12u;
-    let limb0_22 = t104.y & 4095u;
+    let limb1_22 = t87.y >> 12u;
+    let limb0_22 = t87.y & 4095u;
     let cross22 = limb1_22 * limb0_22;
     let hi29 = hi28 + limb1_22 * limb1_22 + (cross22 >> 11u);
     let lo29 = lo28 + limb0_22 * limb0_22 + ((cross22 << 13u) & 16777215u);
-    let limb1_23 = t104.z >> 12u;
-    let limb0_23 = t104.z & 4095u;
+    let limb1_23 = t87.z >> 12u;
+    let limb0_23 = t87.z & 4095u;
     let cross23 = limb1_23 * limb0_23;
     let hi30 = hi29 + limb1_23 * limb1_23 + (cross23 >> 11u);
     let lo30 = lo29 + limb0_23 * limb0_23 + ((cross23 << 13u) & 16777215u);
     let hi31 = hi30 + (lo30 >> 24u);
     let lo31 = lo30 & 16777215u;
     let d6 = f32(hi31) * 16777216.0f + f32(lo31);
-    let t105 = d6 < t99 || (d6 == t99 && t103 < t100);
-    let t106 = select(t99, d6, t105);
-    let t107 = select(t100, t103, t105);
-    let t108 = corner + t64 + t64;
-    let t109 = select(t108, 4294967295u - t108, 3221225471u < t108);
-    let t110 = select(t109, 4294967295u - t109, t9) & 4294967295u;
-    let t111 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t110) - aim));
-    let limb1_24 = t111.x >> 12u;
-    let limb0_24 = t111.x & 4095u;
+    let t88 = d6 < t82 || (d6 == t82 && t86 < t83);
+    let t89 = select(t82, d6, t88);
+    let t90 = select(t83, t86, t88);
+    let t91 = corner + t49 + t49;
+    let t92 = select(t91, 4294967295u - t91, 3221225471u < t91);
+    let t93 = select(t92, 4294967295u - t92, t6) & 4294967295u;
+    let t94 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t93) - aim));
+    let limb1_24 = t94.x >> 12u;
+    let limb0_24 = t94.x & 4095u;
     let cross24 = limb1_24 * limb0_24;
     let hi32 = 0u + limb1_24 * limb1_24 + (cross24 >> 11u);
     let lo32 = 0u + limb0_24 * limb0_24 + ((cross24 << 13u) & 16777215u);
-    let limb1_25 = t111.y >> 12u;
-    let limb0_25 = t111.y & 4095u;
+    let limb1_25 = t94.y >> 12u;
+    let limb0_25 = t94.y & 4095u;
     let cross25 = limb1_25 * limb0_25;
     let hi33 = hi32 + limb1_25 * limb1_25 + (cross25 >> 11u);
     let lo33 = lo32 + limb0_25 * limb0_25 + ((cross25 << 13u) & 16777215u);
-    let limb1_26 = t111.z >> 12u;
-    let limb0_26 = t111.z & 4095u;
+    let limb1_26 = t94.z >> 12u;
+    let limb0_26 = t94.z & 4095u;
     let cross26 = limb1_26 * limb0_26;
     let hi34 = hi33 + limb1_26 * limb1_26 + (cross26 >> 11u);
     let lo34 = lo33 + limb0_26 * limb0_26 + ((cross26 << 13u) & 16777215u);
     let hi35 = hi34 + (lo34 >> 24u);
     let lo35 = lo34 & 16777215u;
     let d7 = f32(hi35) * 16777216.0f + f32(lo35);
-    let t112 = d7 < t106 || (d7 == t106 && t110 < t107);
-    let t113 = select(t106, d7, t112);
-    let t114 = select(t107, t110, t112);
-    let t115 = corner + t63 + t64 + t64;
-    let t116 = select(t115, 4294967295u - t115, 3221225471u < t115);
-    let t117 = select(t116, 4294967295u - t116, t9) & 4294967295u;
-    let t118 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t117) - aim));
-    let limb1_27 = t118.x >> 12u;
-    let limb0_27 = t118.x & 4095u;
+    let t95 = d7 < t89 || (d7 == t89 && t93 < t90);
+    let t96 = select(t89, d7, t95);
+    let t97 = select(t90, t93, t95);
+    let t98 = corner + t48 + t49 + t49;
+    let t99 = select(t98, 4294967295u - t98, 3221225471u < t98);
+    let t100 = select(t99, 4294967295u - t99, t6) & 4294967295u;
+    let t101 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t100) - aim));
+    let limb1_27 = t101.x >> 12u;
+    let limb0_27 = t101.x & 4095u;
     let cross27 = limb1_27 * limb0_27;
     let hi36 = 0u + limb1_27 * limb1_27 + (cross27 >> 11u);
     let lo36 = 0u + limb0_27 * limb0_27 + ((cross27 << 13u) & 16777215u);
-    let limb1_28 = t118.y >> 12u;
-    let limb0_28 = t118.y & 4095u;
+    let limb1_28 = t101.y >> 12u;
+    let limb0_28 = t101.y & 4095u;
     let cross28 = limb1_28 * limb0_28;
     let hi37 = hi36 + limb1_28 * limb1_28 + (cross28 >> 11u);
     let lo37 = lo36 + limb0_28 * limb0_28 + ((cross28 << 13u) & 16777215u);
-    let limb1_29 = t118.z >> 12u;
-    let limb0_29 = t118.z & 4095u;
+    let limb1_29 = t101.z >> 12u;
+    let limb0_29 = t101.z & 4095u;
     let cross29 = limb1_29 * limb0_29;
     let hi38 = hi37 + limb1_29 * limb1_29 + (cross29 >> 11u);
     let lo38 = lo37 + limb0_29 * limb0_29 + ((cross29 << 13u) & 16777215u);
     let hi39 = hi38 + (lo38 >> 24u);
     let lo39 = lo38 & 16777215u;
     let d8 = f32(hi39) * 16777216.0f + f32(lo39);
-    let t119 = d8 < t113 || (d8 == t113 && t117 < t114);
-    let t120 = select(t113, d8, t119);
-    let t121 = select(t114, t117, t119);
-    let t122 = corner + t63 + t63 + t64 + t64;
-    let t123 = select(t122, 4294967295u - t122, 3221225471u < t122);
-    let t124 = select(t123, 4294967295u - t123, t9) & 4294967295u;
-    let t125 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t124) - aim));
-    let limb1_30 = t125.x >> 12u;
-    let limb0_30 = t125.x & 4095u;
+    let t102 = d8 < t96 || (d8 == t96 && t100 < t97);
+    let t103 = select(t96, d8, t102);
+    let t104 = select(t97, t100, t102);
+    let t105 = corner + t48 + t48 + t49 + t49;
+    let t106 = select(t105, 4294967295u - t105, 3221225471u < t105);
+    let t107 = select(t106, 4294967295u - t106, t6) & 4294967295u;
+    let t108 = vec3<u32>(abs(unitpack_sfib32_fixed_point(t107) - aim));
+    let limb1_30 = t108.x >> 12u;
+    let limb0_30 = t108.x & 4095u;
     let cross30 = limb1_30 * limb0_30;
     let hi40 = 0u + limb1_30 * limb1_30 + (cross30 >> 11u);
     let lo40 = 0u + limb0_30 * limb0_30 + ((cross30 << 13u) & 16777215u);
-    let limb1_31 = t125.y >> 12u;
-    let limb0_31 = t125.y & 4095u;
+    let limb1_31 = t108.y >> 12u;
+    let limb0_31 = t108.y & 4095u;
     let cross31 = limb1_31 * limb0_31;
     let hi41 = hi40 + limb1_31 * limb1_31 + (cross31 >> 11u);
     let lo41 = lo40 + limb0_31 * limb0_31 + ((cross31 << 13u) & 16777215u);
-    let limb1_32 = t125.z >> 12u;
-    let limb0_32 = t125.z & 4095u;
+    let limb1_32 = t108.z >> 12u;
+    let limb0_32 = t108.z & 4095u;
     let cross32 = limb1_32 * limb0_32;
     let hi42 = hi41 + limb1_32 * limb1_32 + (cross32 >> 11u);
     let lo42 = lo41 + limb0_32 * limb0_32 + ((cross32 << 13u) & 16777215u);
     let hi43 = hi42 + (lo42 >> 24u);
     let lo43 = lo42 & 16777215u;
     let d9 = f32(hi43) * 16777216.0f + f32(lo43);
-    return select(t121, t124, d9 < t120 || (d9 == t120 && t124 < t121));
+    return select(t104, t107, d9 < t103 || (d9 == t103 && t107 < t104));
 }
 
 // unitpack_sfib32_encode_float: fast encoder, float form.

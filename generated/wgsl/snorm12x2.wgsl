@@ -28,9 +28,9 @@ fn unitpack_snorm12x2_to_unorm8x3(f: vec2<f32>) -> vec3<f32> {
 fn unitpack_snorm12x2_to_unorm8x3_int(f: vec2<f32>) -> vec3<f32> {
     let t1 = select(vec2<f32>(-1.0f), f, f >= vec2<f32>(-1.0f));
     let u = round(select(vec2<f32>(1.0f), t1, t1 <= vec2<f32>(1.0f)) * 2047.0f + 2047.0f);
-    let t2 = vec2<u32>(u);
-    let t3 = vec3<f32>(vec3<u32>(t2.x >> 4u, ((t2.x & 15u) << 4u) | (t2.y >> 8u), t2.y & 255u));
-    return t3 * 0.003921569f;
+    let u_u = vec2<u32>(u);
+    let t2 = vec3<u32>(u_u.x >> 4u, ((u_u.x & 15u) << 4u) | (u_u.y >> 8u), u_u.y & 255u);
+    return vec3<f32>(t2) * 0.003921569f;
 }
 
 // Float-only unpack of three unorm8 values (as an RGB8 fetch returns them) into two snorm12 values
@@ -41,9 +41,9 @@ fn unitpack_unorm8x3_to_snorm12x2(u: vec3<f32>) -> vec2<f32> {
     let b = round(u * 255.0f);
     let y16 = b.y * 0.0625f;
     let hi = floor(y16);
-    let t1 = vec2<f32>(b.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, b.z) - 2047.0f;
-    let t2 = t1 * 0.0004885198f;
-    return select(vec2<f32>(1.0f), t2, t2 <= vec2<f32>(1.0f));
+    let t1 = (vec2<f32>(b.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, b.z) - 2047.0f)
+        * 0.0004885198f;
+    return select(vec2<f32>(1.0f), t1, t1 <= vec2<f32>(1.0f));
 }
 
 // Integer unpack of three unorm8 values into two snorm12 values; equal to the float-only form on
@@ -52,8 +52,7 @@ fn unitpack_unorm8x3_to_snorm12x2(u: vec3<f32>) -> vec2<f32> {
 //   inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
 fn unitpack_unorm8x3_to_snorm12x2_int(u: vec3<f32>) -> vec2<f32> {
     let b = vec3<u32>(round(u * 255.0f));
-    let t1 = vec2<f32>(vec2<u32>(b.x << 4u, (b.y & 15u) << 8u) | vec2<u32>(b.y >> 4u, b.z))
-        - 2047.0f;
-    let t2 = t1 * 0.0004885198f;
+    let t1 = vec2<u32>(b.x << 4u, (b.y & 15u) << 8u) | vec2<u32>(b.y >> 4u, b.z);
+    let t2 = (vec2<f32>(t1) - 2047.0f) * 0.0004885198f;
     return select(vec2<f32>(1.0f), t2, t2 <= vec2<f32>(1.0f));
 }

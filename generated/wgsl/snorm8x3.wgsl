@@ -71,7 +71,8 @@ fn unitpack_snorm8x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 4294963200u);
     let split_lo = w.x - split_hi;
@@ -107,15 +108,15 @@ fn unitpack_snorm8x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
         (estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2),
         estimate3 > 0.0f && big2_3 < lower3 * lower3 * len2
     );
-    let t6 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t5),
-        vec3<f32>(1.0f),
-        t2 * t2 >= t4 * t4 * len2
-    );
-    let t7 = t3 + t6;
-    let t8 = select(vec3<f32>(0.0f), t7, t7 >= vec3<f32>(0.0f));
-    let t9 = select(vec3<f32>(127.0f), t8, t8 <= vec3<f32>(127.0f));
-    return select(vec3<f32>(0.0f, 0.0f, 127.0f), select(t9, -t9, w < vec3<f32>(0.0f)), ok);
+    let t6 = t3
+        + select(
+            select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t5),
+            vec3<f32>(1.0f),
+            t2 * t2 >= t4 * t4 * len2
+        );
+    let t7 = select(vec3<f32>(0.0f), t6, t6 >= vec3<f32>(0.0f));
+    let t8 = select(vec3<f32>(127.0f), t7, t7 <= vec3<f32>(127.0f));
+    return select(vec3<f32>(0.0f, 0.0f, 127.0f), select(t8, -t8, w < vec3<f32>(0.0f)), ok);
 }
 
 // unitpack_snorm8x3_encode: fast encoder.

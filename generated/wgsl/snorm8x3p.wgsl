@@ -47,66 +47,69 @@ fn unitpack_snorm8x3p_decode(code: u32) -> vec3<f32> {
 //   fixed-point direction is strictly nearer the input's than the best so far.
 fn unitpack_snorm8x3p_bfn_step(a0: vec2<f32>, a1: f32, a2: vec3<f32>, a3: vec3<f32>) -> vec2<f32> {
     let c = round(a2 * 4.7683716e-7f * a1);
-    let t1 = vec3<u32>(c);
-    let limb1 = t1.x >> 12u;
-    let limb0 = t1.x & 4095u;
+    let c_u = vec3<u32>(c);
+    let limb1 = c_u.x >> 12u;
+    let limb0 = c_u.x & 4095u;
     let cross = limb1 * limb0;
     let hi = 0u + limb1 * limb1 + (cross >> 11u);
     let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
-    let limb1_2 = t1.y >> 12u;
-    let limb0_2 = t1.y & 4095u;
+    let limb1_2 = c_u.y >> 12u;
+    let limb0_2 = c_u.y & 4095u;
     let cross2 = limb1_2 * limb0_2;
     let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
     let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
-    let limb1_3 = t1.z >> 12u;
-    let limb0_3 = t1.z & 4095u;
+    let limb1_3 = c_u.z >> 12u;
+    let limb0_3 = c_u.z & 4095u;
     let cross3 = limb1_3 * limb0_3;
     let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
     let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
     let hi4 = hi3 + (lo3 >> 24u);
     let lo4 = lo3 & 16777215u;
-    let t2 = f32(hi4) * 16777216.0f + f32(lo4);
-    let half_exponent = ((bitcast<u32>(t2) >> 23u) + 1u) >> 1u;
+    let t1 = f32(hi4) * 16777216.0f + f32(lo4);
+    let half_exponent = ((bitcast<u32>(t1) >> 23u) + 1u) >> 1u;
     let root_down = bitcast<f32>((257u - (half_exponent << 1u)) << 23u);
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
-    let t3 = t2 * root_down;
-    let root_estimate = sqrt(t3);
-    let t4 = floor(root_estimate * 512.0f);
-    let root_h0 = t4 * 0.001953125f;
+    let t2 = t1 * root_down;
+    let root_estimate = sqrt(t2);
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t5 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t3), 1.0f, root_h1 * root_h1 <= t3);
-    let root_k = t4 + t5;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
-    let root_rest = t3 - root_h * root_h;
+    let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t6 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t3), 1.0f, root_m1 * root_m1 <= t3);
-    let root_j = root_j0 + t6;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t7 = root * root_up;
-    let l = select(a1, t7, t7 >= a1);
-    let t8 = floor(c / l * 2097152.0f);
-    let t9 = c * 2097152.0f;
-    let t10 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t8 * l > t9),
+    let t3 = root * root_up;
+    let l = select(a1, t3, t3 >= a1);
+    let t4 = floor(c / l * 2097152.0f);
+    let t5 = c * 2097152.0f;
+    let t6 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t4 * l > t5),
         vec3<f32>(1.0f),
-        (t8 + 1.0f) * l <= t9
+        (t4 + 1.0f) * l <= t5
     );
-    let d = t8 + t10;
-    let t11 = vec3<u32>(abs(d - abs(a3)));
-    let limb1_4 = t11.x >> 12u;
-    let limb0_4 = t11.x & 4095u;
+    let d = t4 + t6;
+    let offset = d - abs(a3);
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t11.y >> 12u;
-    let limb0_5 = t11.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t11.z >> 12u;
-    let limb0_6 = t11.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
@@ -129,12 +132,16 @@ fn unitpack_snorm8x3p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -154,38 +161,40 @@ fn unitpack_snorm8x3p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = floor(w2 / root * 2097152.0f);
-    let t5 = w2 * 2097152.0f;
-    let t6 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t4 * root > t5),
+    let t1 = floor(w2 / root * 2097152.0f);
+    let t2 = w2 * 2097152.0f;
+    let t3 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t1 * root > t2),
         vec3<f32>(1.0f),
-        (t4 + 1.0f) * root <= t5
+        (t1 + 1.0f) * root <= t2
     );
-    let aim = t4 + t6;
+    let aim = t1 + t3;
     let abs_aim = abs(aim);
-    let t7 = select(abs_aim.y, abs_aim.x, abs_aim.x >= abs_aim.y);
-    let t8 = select(abs_aim.z, t7, t7 >= abs_aim.z);
-    let t9 = floor(abs_aim / t8 * 2097152.0f);
-    let t10 = abs_aim * 2097152.0f;
-    let t11 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t9 * t8 > t10),
+    let t4 = select(abs_aim.y, abs_aim.x, abs_aim.x >= abs_aim.y);
+    let t5 = select(abs_aim.z, t4, t4 >= abs_aim.z);
+    let t6 = floor(abs_aim / t5 * 2097152.0f);
+    let t7 = abs_aim * 2097152.0f;
+    let t8 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t6 * t5 > t7),
         vec3<f32>(1.0f),
-        (t9 + 1.0f) * t8 <= t10
+        (t6 + 1.0f) * t5 <= t7
     );
-    let r = t9 + t11;
+    let r = t6 + t8;
     let best = unitpack_snorm8x3p_bfn_step(vec2<f32>(0.0f, 1e30f), 127.0f, r, aim);
     let best2 = unitpack_snorm8x3p_bfn_step(best, 126.0f, r, aim);
     let best3 = unitpack_snorm8x3p_bfn_step(best2, 125.0f, r, aim);

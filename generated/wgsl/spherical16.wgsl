@@ -27,9 +27,8 @@ fn unitpack_spherical16_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -73,8 +72,8 @@ fn unitpack_spherical16_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -114,11 +113,14 @@ fn unitpack_spherical16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -139,18 +141,20 @@ fn unitpack_spherical16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t3 = t2 * root_down;
     let root_estimate = sqrt(t3);
-    let t4 = floor(root_estimate * 512.0f);
-    let root_h0 = t4 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t5 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t3), 1.0f, root_h1 * root_h1 <= t3);
-    let root_k = t4 + t5;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t3);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t3);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t3 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t6 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t3), 1.0f, root_m1 * root_m1 <= t3);
-    let root_j = root_j0 + t6;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t3);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t3);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let rho = select(0.0f, root * root_up, t1);
     let abs_w2_z = abs(w2.z);
@@ -158,40 +162,34 @@ fn unitpack_spherical16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let y_major = abs_rho > abs_w2_z;
     let hi4 = select(abs_w2_z, abs_rho, y_major);
     let lo4 = select(abs_rho, abs_w2_z, y_major);
-    let t7 = select(1.0f, hi4, hi4 > 0.0f);
+    let t4 = select(1.0f, hi4, hi4 > 0.0f);
     let big = lo4 * 8388608.0f;
-    let ratio_estimate = floor(lo4 / t7 * 8388608.0f);
-    let t8 = select(
-        select(0.0f, -1.0f, ratio_estimate * t7 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t7 <= big
-    );
-    let ratio = ratio_estimate + t8;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t7 > big), 1.0f, (ratio + 1.0f) * t7 <= big);
+    let ratio_estimate = floor(lo4 / t4 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t4 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t4 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t4 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t4 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t9 = t - 8388608.0f;
-    let t10 = t + 8388608.0f;
-    let big2 = t9 * 8388608.0f;
-    let ratio_estimate2 = floor(t9 / t10 * 8388608.0f);
-    let t11 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t10 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t10 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t11;
-    let t12 = select(select(0.0f, -1.0f, ratio2 * t10 > big2), 1.0f, (ratio2 + 1.0f) * t10 <= big2);
-    let ratio3 = ratio2 + t12;
+    let t5 = t - 8388608.0f;
+    let t6 = t + 8388608.0f;
+    let big2 = t5 * 8388608.0f;
+    let ratio_estimate2 = floor(t5 / t6 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t6 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t6 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t6 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t6 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t13 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t14 = round((round(t13 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t15 = round((round(t14 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t16 = round((round(t15 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t16 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t7 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t8 = (round((t7 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t9 = (round((round(t8) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t10 = round((round(t9 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t11 = round((round(t10 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t11 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
@@ -202,46 +200,37 @@ fn unitpack_spherical16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let y_major2 = abs_w2_y > abs_w2_x;
     let hi5 = select(abs_w2_x, abs_w2_y, y_major2);
     let lo5 = select(abs_w2_y, abs_w2_x, y_major2);
-    let t17 = select(1.0f, hi5, hi5 > 0.0f);
+    let t12 = select(1.0f, hi5, hi5 > 0.0f);
     let big3 = lo5 * 8388608.0f;
-    let ratio_estimate3 = floor(lo5 / t17 * 8388608.0f);
-    let t18 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * t17 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * t17 <= big3
-    );
-    let ratio4 = ratio_estimate3 + t18;
-    let t19 = select(select(0.0f, -1.0f, ratio4 * t17 > big3), 1.0f, (ratio4 + 1.0f) * t17 <= big3);
-    let t20 = ratio4 + t19;
-    let far2 = t20 > 3474675.0f;
-    let t21 = t20 - 8388608.0f;
-    let t22 = t20 + 8388608.0f;
-    let big4 = t21 * 8388608.0f;
-    let ratio_estimate4 = floor(t21 / t22 * 8388608.0f);
-    let t23 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * t22 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * t22 <= big4
-    );
-    let ratio5 = ratio_estimate4 + t23;
-    let t24 = select(select(0.0f, -1.0f, ratio5 * t22 > big4), 1.0f, (ratio5 + 1.0f) * t22 <= big4);
-    let ratio6 = ratio5 + t24;
-    let z3 = select(t20, ratio6, far2);
+    let ratio_estimate3 = floor(lo5 / t12 * 8388608.0f);
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate3 * t12 > big3);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate3 + 1.0f) * t12 <= big3);
+    let ratio4 = ratio_estimate3 + step7;
+    let step_down8 = select(0.0f, -1.0f, ratio4 * t12 > big3);
+    let step8 = select(step_down8, 1.0f, (ratio4 + 1.0f) * t12 <= big3);
+    let t13 = ratio4 + step8;
+    let far2 = t13 > 3474675.0f;
+    let t14 = t13 - 8388608.0f;
+    let t15 = t13 + 8388608.0f;
+    let big4 = t14 * 8388608.0f;
+    let ratio_estimate4 = floor(t14 / t15 * 8388608.0f);
+    let step_down9 = select(0.0f, -1.0f, ratio_estimate4 * t15 > big4);
+    let step9 = select(step_down9, 1.0f, (ratio_estimate4 + 1.0f) * t15 <= big4);
+    let ratio5 = ratio_estimate4 + step9;
+    let step_down10 = select(0.0f, -1.0f, ratio5 * t15 > big4);
+    let step10 = select(step_down10, 1.0f, (ratio5 + 1.0f) * t15 <= big4);
+    let ratio6 = ratio5 + step10;
+    let z3 = select(t13, ratio6, far2);
     let z2_2 = round(z3 * z3 * 1.1920929e-7f);
-    let t25 = round((round(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f);
-    let t26 = (round((t25 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
+    let t16 = round((round(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f);
+    let t17 = (round((t16 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
         * z2_2
         * 1.1920929e-7f;
-    let t27 = (round((round(t26) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f)
-        * z2_2
-        * 1.1920929e-7f;
-    let t28 = (round((round(t27) + (-1198373.0f)) * z2_2 * 1.1920929e-7f) + 1677722.0f)
-        * z2_2
-        * 1.1920929e-7f;
-    let t29 = z3
-        * (round((round(t28) + (-2796203.0f)) * z2_2 * 1.1920929e-7f) + 8388608.0f)
-        * 1.1920929e-7f;
-    let r2 = round(t29);
+    let t18 = (round((round(t17) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f) * z2_2;
+    let t19 = round((round(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2_2 * 1.1920929e-7f)
+        + 1677722.0f;
+    let t20 = round((round(t19 * z2_2 * 1.1920929e-7f) + (-2796203.0f)) * z2_2 * 1.1920929e-7f);
+    let r2 = round(z3 * (t20 + 8388608.0f) * 1.1920929e-7f);
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);

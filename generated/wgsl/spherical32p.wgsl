@@ -27,9 +27,8 @@ fn unitpack_spherical32p_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -72,11 +71,14 @@ fn unitpack_spherical32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -97,18 +99,20 @@ fn unitpack_spherical32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let root_up = bitcast<f32>((62u + half_exponent) << 23u);
     let t3 = t2 * root_down;
     let root_estimate = sqrt(t3);
-    let t4 = floor(root_estimate * 512.0f);
-    let root_h0 = t4 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t5 = select(select(0.0f, -1.0f, root_h0 * root_h0 > t3), 1.0f, root_h1 * root_h1 <= t3);
-    let root_k = t4 + t5;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t3);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t3);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = t3 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t6 = select(select(0.0f, -1.0f, root_m0 * root_m0 > t3), 1.0f, root_m1 * root_m1 <= t3);
-    let root_j = root_j0 + t6;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t3);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t3);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let rho = select(0.0f, root * root_up, t1);
     let abs_w2_z = abs(w2.z);
@@ -116,40 +120,34 @@ fn unitpack_spherical32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let y_major = abs_rho > abs_w2_z;
     let hi4 = select(abs_w2_z, abs_rho, y_major);
     let lo4 = select(abs_rho, abs_w2_z, y_major);
-    let t7 = select(1.0f, hi4, hi4 > 0.0f);
+    let t4 = select(1.0f, hi4, hi4 > 0.0f);
     let big = lo4 * 8388608.0f;
-    let ratio_estimate = floor(lo4 / t7 * 8388608.0f);
-    let t8 = select(
-        select(0.0f, -1.0f, ratio_estimate * t7 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t7 <= big
-    );
-    let ratio = ratio_estimate + t8;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t7 > big), 1.0f, (ratio + 1.0f) * t7 <= big);
+    let ratio_estimate = floor(lo4 / t4 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t4 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t4 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t4 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t4 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t9 = t - 8388608.0f;
-    let t10 = t + 8388608.0f;
-    let big2 = t9 * 8388608.0f;
-    let ratio_estimate2 = floor(t9 / t10 * 8388608.0f);
-    let t11 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t10 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t10 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t11;
-    let t12 = select(select(0.0f, -1.0f, ratio2 * t10 > big2), 1.0f, (ratio2 + 1.0f) * t10 <= big2);
-    let ratio3 = ratio2 + t12;
+    let t5 = t - 8388608.0f;
+    let t6 = t + 8388608.0f;
+    let big2 = t5 * 8388608.0f;
+    let ratio_estimate2 = floor(t5 / t6 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t6 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t6 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t6 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t6 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t13 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t14 = round((round(t13 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t15 = round((round(t14 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t16 = round((round(t15 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t16 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t7 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t8 = (round((t7 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t9 = (round((round(t8) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t10 = round((round(t9 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t11 = round((round(t10 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t11 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
@@ -160,46 +158,37 @@ fn unitpack_spherical32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let y_major2 = abs_w2_y > abs_w2_x;
     let hi5 = select(abs_w2_x, abs_w2_y, y_major2);
     let lo5 = select(abs_w2_y, abs_w2_x, y_major2);
-    let t17 = select(1.0f, hi5, hi5 > 0.0f);
+    let t12 = select(1.0f, hi5, hi5 > 0.0f);
     let big3 = lo5 * 8388608.0f;
-    let ratio_estimate3 = floor(lo5 / t17 * 8388608.0f);
-    let t18 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * t17 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * t17 <= big3
-    );
-    let ratio4 = ratio_estimate3 + t18;
-    let t19 = select(select(0.0f, -1.0f, ratio4 * t17 > big3), 1.0f, (ratio4 + 1.0f) * t17 <= big3);
-    let t20 = ratio4 + t19;
-    let far2 = t20 > 3474675.0f;
-    let t21 = t20 - 8388608.0f;
-    let t22 = t20 + 8388608.0f;
-    let big4 = t21 * 8388608.0f;
-    let ratio_estimate4 = floor(t21 / t22 * 8388608.0f);
-    let t23 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * t22 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * t22 <= big4
-    );
-    let ratio5 = ratio_estimate4 + t23;
-    let t24 = select(select(0.0f, -1.0f, ratio5 * t22 > big4), 1.0f, (ratio5 + 1.0f) * t22 <= big4);
-    let ratio6 = ratio5 + t24;
-    let z3 = select(t20, ratio6, far2);
+    let ratio_estimate3 = floor(lo5 / t12 * 8388608.0f);
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate3 * t12 > big3);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate3 + 1.0f) * t12 <= big3);
+    let ratio4 = ratio_estimate3 + step7;
+    let step_down8 = select(0.0f, -1.0f, ratio4 * t12 > big3);
+    let step8 = select(step_down8, 1.0f, (ratio4 + 1.0f) * t12 <= big3);
+    let t13 = ratio4 + step8;
+    let far2 = t13 > 3474675.0f;
+    let t14 = t13 - 8388608.0f;
+    let t15 = t13 + 8388608.0f;
+    let big4 = t14 * 8388608.0f;
+    let ratio_estimate4 = floor(t14 / t15 * 8388608.0f);
+    let step_down9 = select(0.0f, -1.0f, ratio_estimate4 * t15 > big4);
+    let step9 = select(step_down9, 1.0f, (ratio_estimate4 + 1.0f) * t15 <= big4);
+    let ratio5 = ratio_estimate4 + step9;
+    let step_down10 = select(0.0f, -1.0f, ratio5 * t15 > big4);
+    let step10 = select(step_down10, 1.0f, (ratio5 + 1.0f) * t15 <= big4);
+    let ratio6 = ratio5 + step10;
+    let z3 = select(t13, ratio6, far2);
     let z2_2 = round(z3 * z3 * 1.1920929e-7f);
-    let t25 = round((round(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f);
-    let t26 = (round((t25 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
+    let t16 = round((round(-441506.0f * z2_2 * 1.1920929e-7f) + 493448.0f) * z2_2 * 1.1920929e-7f);
+    let t17 = (round((t16 + (-559241.0f)) * z2_2 * 1.1920929e-7f) + 645278.0f)
         * z2_2
         * 1.1920929e-7f;
-    let t27 = (round((round(t26) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f)
-        * z2_2
-        * 1.1920929e-7f;
-    let t28 = (round((round(t27) + (-1198373.0f)) * z2_2 * 1.1920929e-7f) + 1677722.0f)
-        * z2_2
-        * 1.1920929e-7f;
-    let t29 = z3
-        * (round((round(t28) + (-2796203.0f)) * z2_2 * 1.1920929e-7f) + 8388608.0f)
-        * 1.1920929e-7f;
-    let r2 = round(t29);
+    let t18 = (round((round(t17) + (-762601.0f)) * z2_2 * 1.1920929e-7f) + 932068.0f) * z2_2;
+    let t19 = round((round(t18 * 1.1920929e-7f) + (-1198373.0f)) * z2_2 * 1.1920929e-7f)
+        + 1677722.0f;
+    let t20 = round((round(t19 * z2_2 * 1.1920929e-7f) + (-2796203.0f)) * z2_2 * 1.1920929e-7f);
+    let r2 = round(z3 * (t20 + 8388608.0f) * 1.1920929e-7f);
     let h5 = round(r2 * 0.31830987f);
     let h6 = select(h5, h5 + 2097152.0f, far2);
     let h7 = select(h6, 4194304.0f - h6, y_major2);
@@ -207,9 +196,12 @@ fn unitpack_spherical32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let phi = select(h8, -h8, w2.y < 0.0f);
     let theta = angle * 2.0f - 8388608.0f;
     let base = floor(vec2<f32>(theta, phi) * 0.0039061308f);
-    let fixed4 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed5 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f3 = floor(abs(w2.x) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
+    let fixed_f4 = floor(abs(w2.y) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w2.z) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
     let limb1_3 = fixed4 >> 12u;
     let limb0_3 = fixed4 & 4095u;
     let cross3 = limb1_3 * limb0_3;
@@ -229,314 +221,293 @@ fn unitpack_spherical32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let lo9 = lo8 & 16777215u;
     let len2 = (f32(hi9) * 16777216.0f + f32(lo9)) * 2.2737368e-13f;
     let root_estimate2 = sqrt(len2);
-    let t30 = floor(root_estimate2 * 512.0f);
-    let root_h0_2 = t30 * 0.001953125f;
+    let root_k0_2 = floor(root_estimate2 * 512.0f);
+    let root_h0_2 = root_k0_2 * 0.001953125f;
     let root_h1_2 = root_h0_2 + 0.001953125f;
-    let t31 = select(
-        select(0.0f, -1.0f, root_h0_2 * root_h0_2 > len2),
-        1.0f,
-        root_h1_2 * root_h1_2 <= len2
-    );
-    let root_k2 = t30 + t31;
+    let step_down11 = select(0.0f, -1.0f, root_h0_2 * root_h0_2 > len2);
+    let step11 = select(step_down11, 1.0f, root_h1_2 * root_h1_2 <= len2);
+    let root_k2 = root_k0_2 + step11;
     let root_h2 = root_k2 * 0.001953125f;
     let root_rest2 = len2 - root_h2 * root_h2;
     let root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
     let root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7f;
     let root_m1_2 = root_h2 + (root_j0_2 + 1.0f) * 4.7683716e-7f;
-    let t32 = select(
-        select(0.0f, -1.0f, root_m0_2 * root_m0_2 > len2),
-        1.0f,
-        root_m1_2 * root_m1_2 <= len2
-    );
-    let root_j2 = root_j0_2 + t32;
+    let step_down12 = select(0.0f, -1.0f, root_m0_2 * root_m0_2 > len2);
+    let step12 = select(step_down12, 1.0f, root_m1_2 * root_m1_2 <= len2);
+    let root_j2 = root_j0_2 + step12;
     let root2 = (root_k2 * 4096.0f + root_j2) * 4.7683716e-7f;
-    let t33 = floor(w2 / root2 * 8388608.0f);
-    let t34 = w2 * 8388608.0f;
-    let t35 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t33 * root2 > t34),
+    let t21 = floor(w2 / root2 * 8388608.0f);
+    let t22 = w2 * 8388608.0f;
+    let t23 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t21 * root2 > t22),
         vec3<f32>(1.0f),
-        (t33 + 1.0f) * root2 <= t34
+        (t21 + 1.0f) * root2 <= t22
     );
-    let t36 = t33 + t35;
-    let t37 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t36 * root2 > t34),
+    let t24 = t21 + t23;
+    let t25 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t24 * root2 > t22),
         vec3<f32>(1.0f),
-        (t36 + 1.0f) * root2 <= t34
+        (t24 + 1.0f) * root2 <= t22
     );
-    let aim = t36 + t37;
+    let aim = t24 + t25;
     let cand = select(vec2<f32>(32767.0f), base, base <= vec2<f32>(32767.0f));
-    let t38 = round((cand.x + 32767.0f) * 256.0078f);
-    let abs_t38 = abs(t38);
-    let back = abs_t38 > 8388608.0f;
-    let b = select(abs_t38, 16777216.0f - abs_t38, back);
+    let t26 = round((cand.x + 32767.0f) * 256.0078f);
+    let abs_t26 = abs(t26);
+    let back = abs_t26 > 8388608.0f;
+    let b = select(abs_t26, 16777216.0f - abs_t26, back);
     let swap = b > 4194304.0f;
     let u = round(select(b, 8388608.0f - b, swap) * 3.1415927f);
     let u2 = round(u * u * 5.9604645e-8f);
-    let t39 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f) + (-3329.0f);
-    let t40 = round((round(t39 * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s = round(u * (round(t40 * u2 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t41 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f) + 416.0f;
-    let t42 = round((round(t41 * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f)
-        + 699051.0f;
-    let co = round((round(t42 * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2 * 5.9604645e-8f)
-        + 16777216.0f;
-    let t43 = select(s, co, swap);
-    let t44 = select(co, s, swap);
-    let t45 = select(t43, -t43, t38 < 0.0f);
-    let t46 = round(cand.y * 512.0156f);
-    let abs_t46 = abs(t46);
-    let back2 = abs_t46 > 8388608.0f;
-    let b2 = select(abs_t46, 16777216.0f - abs_t46, back2);
+    let t27 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f);
+    let t28 = (round((t27 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f;
+    let t29 = u * (round((round(t28) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
+    let s = round(t29 * 5.9604645e-8f);
+    let t30 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f);
+    let t31 = (round((t30 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f;
+    let t32 = (round((round(t31) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
+    let co = round(t32 * 5.9604645e-8f) + 16777216.0f;
+    let t33 = select(s, co, swap);
+    let t34 = select(co, s, swap);
+    let t35 = select(t33, -t33, t26 < 0.0f);
+    let t36 = round(cand.y * 512.0156f);
+    let abs_t36 = abs(t36);
+    let back2 = abs_t36 > 8388608.0f;
+    let b2 = select(abs_t36, 16777216.0f - abs_t36, back2);
     let swap2 = b2 > 4194304.0f;
     let u3 = round(select(b2, 8388608.0f - b2, swap2) * 3.1415927f);
     let u2_2 = round(u3 * u3 * 5.9604645e-8f);
-    let t47 = round((round(-0.0f * u2_2 * 5.9604645e-8f) + 46.0f) * u2_2 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t48 = round((round(t47 * u2_2 * 5.9604645e-8f) + 139810.0f) * u2_2 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s2 = round(u3 * (round(t48 * u2_2 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t49 = round((round(0.0f * u2_2 * 5.9604645e-8f) + (-5.0f)) * u2_2 * 5.9604645e-8f) + 416.0f;
-    let t50 = round((round(t49 * u2_2 * 5.9604645e-8f) + (-23302.0f)) * u2_2 * 5.9604645e-8f)
-        + 699051.0f;
-    let t51 = round((round(t50 * u2_2 * 5.9604645e-8f) + (-8388608.0f)) * u2_2 * 5.9604645e-8f);
-    let co2 = t51 + 16777216.0f;
-    let t52 = select(s2, co2, swap2);
-    let t53 = select(co2, s2, swap2);
-    let t54 = vec3<f32>(
-        select(t53, -t53, back2) * t45,
-        select(t52, -t52, t46 < 0.0f) * t45,
-        select(t44, -t44, back)
+    let t37 = round((round(-0.0f * u2_2 * 5.9604645e-8f) + 46.0f) * u2_2 * 5.9604645e-8f);
+    let t38 = (round((t37 + (-3329.0f)) * u2_2 * 5.9604645e-8f) + 139810.0f) * u2_2 * 5.9604645e-8f;
+    let t39 = u3 * (round((round(t38) + (-2796203.0f)) * u2_2 * 5.9604645e-8f) + 16777216.0f);
+    let s2 = round(t39 * 5.9604645e-8f);
+    let t40 = round((round(0.0f * u2_2 * 5.9604645e-8f) + (-5.0f)) * u2_2 * 5.9604645e-8f);
+    let t41 = (round((t40 + 416.0f) * u2_2 * 5.9604645e-8f) + (-23302.0f)) * u2_2 * 5.9604645e-8f;
+    let t42 = (round((round(t41) + 699051.0f) * u2_2 * 5.9604645e-8f) + (-8388608.0f)) * u2_2;
+    let co2 = round(t42 * 5.9604645e-8f) + 16777216.0f;
+    let t43 = select(s2, co2, swap2);
+    let t44 = select(co2, s2, swap2);
+    let t45 = vec3<f32>(
+        select(t44, -t44, back2) * t35,
+        select(t43, -t43, t36 < 0.0f) * t35,
+        select(t34, -t34, back)
     );
-    let t55 = vec3<u32>(abs(round(t54 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim));
-    let limb1_6 = t55.x >> 12u;
-    let limb0_6 = t55.x & 4095u;
+    let offset = round(t45 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_6 = offset_u.x >> 12u;
+    let limb0_6 = offset_u.x & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi10 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo10 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    let limb1_7 = t55.y >> 12u;
-    let limb0_7 = t55.y & 4095u;
+    let limb1_7 = offset_u.y >> 12u;
+    let limb0_7 = offset_u.y & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi11 = hi10 + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo11 = lo10 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t55.z >> 12u;
-    let limb0_8 = t55.z & 4095u;
+    let limb1_8 = offset_u.z >> 12u;
+    let limb0_8 = offset_u.z & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi12 = hi11 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo12 = lo11 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     let hi13 = hi12 + (lo12 >> 24u);
     let lo13 = lo12 & 16777215u;
     let dist = f32(hi13) * 16777216.0f + f32(lo13);
-    let t56 = base.x + 1.0f;
-    let t57 = vec2<f32>(t56, base.y);
-    let cand2 = select(vec2<f32>(32767.0f), t57, t57 <= vec2<f32>(32767.0f));
-    let t58 = round((cand2.x + 32767.0f) * 256.0078f);
-    let abs_t58 = abs(t58);
-    let back3 = abs_t58 > 8388608.0f;
-    let b3 = select(abs_t58, 16777216.0f - abs_t58, back3);
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t46 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(32767.0f), t46, t46 <= vec2<f32>(32767.0f));
+    let t47 = round((cand2.x + 32767.0f) * 256.0078f);
+    let abs_t47 = abs(t47);
+    let back3 = abs_t47 > 8388608.0f;
+    let b3 = select(abs_t47, 16777216.0f - abs_t47, back3);
     let swap3 = b3 > 4194304.0f;
     let u4 = round(select(b3, 8388608.0f - b3, swap3) * 3.1415927f);
     let u2_3 = round(u4 * u4 * 5.9604645e-8f);
-    let t59 = round((round(-0.0f * u2_3 * 5.9604645e-8f) + 46.0f) * u2_3 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t60 = round((round(t59 * u2_3 * 5.9604645e-8f) + 139810.0f) * u2_3 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s3 = round(u4 * (round(t60 * u2_3 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t61 = round((round(0.0f * u2_3 * 5.9604645e-8f) + (-5.0f)) * u2_3 * 5.9604645e-8f) + 416.0f;
-    let t62 = round((round(t61 * u2_3 * 5.9604645e-8f) + (-23302.0f)) * u2_3 * 5.9604645e-8f)
-        + 699051.0f;
-    let t63 = round((round(t62 * u2_3 * 5.9604645e-8f) + (-8388608.0f)) * u2_3 * 5.9604645e-8f);
-    let co3 = t63 + 16777216.0f;
-    let t64 = select(s3, co3, swap3);
-    let t65 = select(co3, s3, swap3);
-    let t66 = select(t64, -t64, t58 < 0.0f);
-    let t67 = round(cand2.y * 512.0156f);
-    let abs_t67 = abs(t67);
-    let back4 = abs_t67 > 8388608.0f;
-    let b4 = select(abs_t67, 16777216.0f - abs_t67, back4);
+    let t48 = round((round(-0.0f * u2_3 * 5.9604645e-8f) + 46.0f) * u2_3 * 5.9604645e-8f);
+    let t49 = (round((t48 + (-3329.0f)) * u2_3 * 5.9604645e-8f) + 139810.0f) * u2_3 * 5.9604645e-8f;
+    let t50 = u4 * (round((round(t49) + (-2796203.0f)) * u2_3 * 5.9604645e-8f) + 16777216.0f);
+    let s3 = round(t50 * 5.9604645e-8f);
+    let t51 = round((round(0.0f * u2_3 * 5.9604645e-8f) + (-5.0f)) * u2_3 * 5.9604645e-8f);
+    let t52 = (round((t51 + 416.0f) * u2_3 * 5.9604645e-8f) + (-23302.0f)) * u2_3 * 5.9604645e-8f;
+    let t53 = (round((round(t52) + 699051.0f) * u2_3 * 5.9604645e-8f) + (-8388608.0f)) * u2_3;
+    let co3 = round(t53 * 5.9604645e-8f) + 16777216.0f;
+    let t54 = select(s3, co3, swap3);
+    let t55 = select(co3, s3, swap3);
+    let t56 = select(t54, -t54, t47 < 0.0f);
+    let t57 = round(cand2.y * 512.0156f);
+    let abs_t57 = abs(t57);
+    let back4 = abs_t57 > 8388608.0f;
+    let b4 = select(abs_t57, 16777216.0f - abs_t57, back4);
     let swap4 = b4 > 4194304.0f;
     let u5 = round(select(b4, 8388608.0f - b4, swap4) * 3.1415927f);
     let u2_4 = round(u5 * u5 * 5.9604645e-8f);
-    let t68 = round((round(-0.0f * u2_4 * 5.9604645e-8f) + 46.0f) * u2_4 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t69 = round((round(t68 * u2_4 * 5.9604645e-8f) + 139810.0f) * u2_4 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s4 = round(u5 * (round(t69 * u2_4 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t70 = round((round(0.0f * u2_4 * 5.9604645e-8f) + (-5.0f)) * u2_4 * 5.9604645e-8f) + 416.0f;
-    let t71 = round((round(t70 * u2_4 * 5.9604645e-8f) + (-23302.0f)) * u2_4 * 5.9604645e-8f)
-        + 699051.0f;
-    let t72 = round((round(t71 * u2_4 * 5.9604645e-8f) + (-8388608.0f)) * u2_4 * 5.9604645e-8f);
-    let co4 = t72 + 16777216.0f;
-    let t73 = select(s4, co4, swap4);
-    let t74 = select(co4, s4, swap4);
-    let t75 = vec3<f32>(
-        select(t74, -t74, back4) * t66,
-        select(t73, -t73, t67 < 0.0f) * t66,
-        select(t65, -t65, back3)
+    let t58 = round((round(-0.0f * u2_4 * 5.9604645e-8f) + 46.0f) * u2_4 * 5.9604645e-8f);
+    let t59 = (round((t58 + (-3329.0f)) * u2_4 * 5.9604645e-8f) + 139810.0f) * u2_4 * 5.9604645e-8f;
+    let t60 = u5 * (round((round(t59) + (-2796203.0f)) * u2_4 * 5.9604645e-8f) + 16777216.0f);
+    let s4 = round(t60 * 5.9604645e-8f);
+    let t61 = round((round(0.0f * u2_4 * 5.9604645e-8f) + (-5.0f)) * u2_4 * 5.9604645e-8f);
+    let t62 = (round((t61 + 416.0f) * u2_4 * 5.9604645e-8f) + (-23302.0f)) * u2_4 * 5.9604645e-8f;
+    let t63 = (round((round(t62) + 699051.0f) * u2_4 * 5.9604645e-8f) + (-8388608.0f)) * u2_4;
+    let co4 = round(t63 * 5.9604645e-8f) + 16777216.0f;
+    let t64 = select(s4, co4, swap4);
+    let t65 = select(co4, s4, swap4);
+    let t66 = vec3<f32>(
+        select(t65, -t65, back4) * t56,
+        select(t64, -t64, t57 < 0.0f) * t56,
+        select(t55, -t55, back3)
     );
-    let t76 = vec3<u32>(abs(round(t75 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim));
-    let limb1_9 = t76.x >> 12u;
-    let limb0_9 = t76.x & 4095u;
+    let offset2 = round(t66 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_9 = offset_u2.x >> 12u;
+    let limb0_9 = offset_u2.x & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi14 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo14 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    let limb1_10 = t76.y >> 12u;
-    let limb0_10 = t76.y & 4095u;
+    let limb1_10 = offset_u2.y >> 12u;
+    let limb0_10 = offset_u2.y & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi15 = hi14 + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo15 = lo14 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t76.z >> 12u;
-    let limb0_11 = t76.z & 4095u;
+    let limb1_11 = offset_u2.z >> 12u;
+    let limb0_11 = offset_u2.z & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi16 = hi15 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo16 = lo15 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     let hi17 = hi16 + (lo16 >> 24u);
     let lo17 = lo16 & 16777215u;
     let dist2 = f32(hi17) * 16777216.0f + f32(lo17);
-    let t77 = t56 <= 32767.0f && base.y <= 32767.0f && dist2 < dist;
-    let best = select(cand, cand2, t77);
-    let best_d = select(dist, dist2, t77);
-    let t78 = base.y + 1.0f;
-    let t79 = vec2<f32>(base.x, t78);
-    let cand3 = select(vec2<f32>(32767.0f), t79, t79 <= vec2<f32>(32767.0f));
-    let t80 = round((cand3.x + 32767.0f) * 256.0078f);
-    let abs_t80 = abs(t80);
-    let back5 = abs_t80 > 8388608.0f;
-    let b5 = select(abs_t80, 16777216.0f - abs_t80, back5);
+    let t67 = s_up <= 32767.0f && base.y <= 32767.0f && dist2 < dist;
+    let best = select(cand, cand2, t67);
+    let best_d = select(dist, dist2, t67);
+    let t68 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(32767.0f), t68, t68 <= vec2<f32>(32767.0f));
+    let t69 = round((cand3.x + 32767.0f) * 256.0078f);
+    let abs_t69 = abs(t69);
+    let back5 = abs_t69 > 8388608.0f;
+    let b5 = select(abs_t69, 16777216.0f - abs_t69, back5);
     let swap5 = b5 > 4194304.0f;
     let u6 = round(select(b5, 8388608.0f - b5, swap5) * 3.1415927f);
     let u2_5 = round(u6 * u6 * 5.9604645e-8f);
-    let t81 = round((round(-0.0f * u2_5 * 5.9604645e-8f) + 46.0f) * u2_5 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t82 = round((round(t81 * u2_5 * 5.9604645e-8f) + 139810.0f) * u2_5 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s5 = round(u6 * (round(t82 * u2_5 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t83 = round((round(0.0f * u2_5 * 5.9604645e-8f) + (-5.0f)) * u2_5 * 5.9604645e-8f) + 416.0f;
-    let t84 = round((round(t83 * u2_5 * 5.9604645e-8f) + (-23302.0f)) * u2_5 * 5.9604645e-8f)
-        + 699051.0f;
-    let t85 = round((round(t84 * u2_5 * 5.9604645e-8f) + (-8388608.0f)) * u2_5 * 5.9604645e-8f);
-    let co5 = t85 + 16777216.0f;
-    let t86 = select(s5, co5, swap5);
-    let t87 = select(co5, s5, swap5);
-    let t88 = select(t86, -t86, t80 < 0.0f);
-    let t89 = round(cand3.y * 512.0156f);
-    let abs_t89 = abs(t89);
-    let back6 = abs_t89 > 8388608.0f;
-    let b6 = select(abs_t89, 16777216.0f - abs_t89, back6);
+    let t70 = round((round(-0.0f * u2_5 * 5.9604645e-8f) + 46.0f) * u2_5 * 5.9604645e-8f);
+    let t71 = (round((t70 + (-3329.0f)) * u2_5 * 5.9604645e-8f) + 139810.0f) * u2_5 * 5.9604645e-8f;
+    let t72 = u6 * (round((round(t71) + (-2796203.0f)) * u2_5 * 5.9604645e-8f) + 16777216.0f);
+    let s5 = round(t72 * 5.9604645e-8f);
+    let t73 = round((round(0.0f * u2_5 * 5.9604645e-8f) + (-5.0f)) * u2_5 * 5.9604645e-8f);
+    let t74 = (round((t73 + 416.0f) * u2_5 * 5.9604645e-8f) + (-23302.0f)) * u2_5 * 5.9604645e-8f;
+    let t75 = (round((round(t74) + 699051.0f) * u2_5 * 5.9604645e-8f) + (-8388608.0f)) * u2_5;
+    let co5 = round(t75 * 5.9604645e-8f) + 16777216.0f;
+    let t76 = select(s5, co5, swap5);
+    let t77 = select(co5, s5, swap5);
+    let t78 = select(t76, -t76, t69 < 0.0f);
+    let t79 = round(cand3.y * 512.0156f);
+    let abs_t79 = abs(t79);
+    let back6 = abs_t79 > 8388608.0f;
+    let b6 = select(abs_t79, 16777216.0f - abs_t79, back6);
     let swap6 = b6 > 4194304.0f;
     let u7 = round(select(b6, 8388608.0f - b6, swap6) * 3.1415927f);
     let u2_6 = round(u7 * u7 * 5.9604645e-8f);
-    let t90 = round((round(-0.0f * u2_6 * 5.9604645e-8f) + 46.0f) * u2_6 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t91 = round((round(t90 * u2_6 * 5.9604645e-8f) + 139810.0f) * u2_6 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s6 = round(u7 * (round(t91 * u2_6 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t92 = round((round(0.0f * u2_6 * 5.9604645e-8f) + (-5.0f)) * u2_6 * 5.9604645e-8f) + 416.0f;
-    let t93 = round((round(t92 * u2_6 * 5.9604645e-8f) + (-23302.0f)) * u2_6 * 5.9604645e-8f)
-        + 699051.0f;
-    let t94 = round((round(t93 * u2_6 * 5.9604645e-8f) + (-8388608.0f)) * u2_6 * 5.9604645e-8f);
-    let co6 = t94 + 16777216.0f;
-    let t95 = select(s6, co6, swap6);
-    let t96 = select(co6, s6, swap6);
-    let t97 = vec3<f32>(
-        select(t96, -t96, back6) * t88,
-        select(t95, -t95, t89 < 0.0f) * t88,
-        select(t87, -t87, back5)
+    let t80 = round((round(-0.0f * u2_6 * 5.9604645e-8f) + 46.0f) * u2_6 * 5.9604645e-8f);
+    let t81 = (round((t80 + (-3329.0f)) * u2_6 * 5.9604645e-8f) + 139810.0f) * u2_6 * 5.9604645e-8f;
+    let t82 = u7 * (round((round(t81) + (-2796203.0f)) * u2_6 * 5.9604645e-8f) + 16777216.0f);
+    let s6 = round(t82 * 5.9604645e-8f);
+    let t83 = round((round(0.0f * u2_6 * 5.9604645e-8f) + (-5.0f)) * u2_6 * 5.9604645e-8f);
+    let t84 = (round((t83 + 416.0f) * u2_6 * 5.9604645e-8f) + (-23302.0f)) * u2_6 * 5.9604645e-8f;
+    let t85 = (round((round(t84) + 699051.0f) * u2_6 * 5.9604645e-8f) + (-8388608.0f)) * u2_6;
+    let co6 = round(t85 * 5.9604645e-8f) + 16777216.0f;
+    let t86 = select(s6, co6, swap6);
+    let t87 = select(co6, s6, swap6);
+    let t88 = vec3<f32>(
+        select(t87, -t87, back6) * t78,
+        select(t86, -t86, t79 < 0.0f) * t78,
+        select(t77, -t77, back5)
     );
-    let t98 = vec3<u32>(abs(round(t97 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim));
-    let limb1_12 = t98.x >> 12u;
-    let limb0_12 = t98.x & 4095u;
+    let offset3 = round(t88 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_12 = offset_u3.x >> 12u;
+    let limb0_12 = offset_u3.x & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi18 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo18 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    let limb1_13 = t98.y >> 12u;
-    let limb0_13 = t98.y & 4095u;
+    let limb1_13 = offset_u3.y >> 12u;
+    let limb0_13 = offset_u3.y & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi19 = hi18 + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo19 = lo18 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t98.z >> 12u;
-    let limb0_14 = t98.z & 4095u;
+    let limb1_14 = offset_u3.z >> 12u;
+    let limb0_14 = offset_u3.z & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi20 = hi19 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo20 = lo19 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     let hi21 = hi20 + (lo20 >> 24u);
     let lo21 = lo20 & 16777215u;
     let dist3 = f32(hi21) * 16777216.0f + f32(lo21);
-    let t99 = base.x <= 32767.0f && t78 <= 32767.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t99);
-    let best_d2 = select(best_d, dist3, t99);
-    let t100 = base + 1.0f;
-    let cand4 = select(vec2<f32>(32767.0f), t100, t100 <= vec2<f32>(32767.0f));
-    let t101 = round((cand4.x + 32767.0f) * 256.0078f);
-    let abs_t101 = abs(t101);
-    let back7 = abs_t101 > 8388608.0f;
-    let b7 = select(abs_t101, 16777216.0f - abs_t101, back7);
+    let t89 = base.x <= 32767.0f && t_up <= 32767.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t89);
+    let best_d2 = select(best_d, dist3, t89);
+    let t90 = base + 1.0f;
+    let cand4 = select(vec2<f32>(32767.0f), t90, t90 <= vec2<f32>(32767.0f));
+    let t91 = round((cand4.x + 32767.0f) * 256.0078f);
+    let abs_t91 = abs(t91);
+    let back7 = abs_t91 > 8388608.0f;
+    let b7 = select(abs_t91, 16777216.0f - abs_t91, back7);
     let swap7 = b7 > 4194304.0f;
     let u8 = round(select(b7, 8388608.0f - b7, swap7) * 3.1415927f);
     let u2_7 = round(u8 * u8 * 5.9604645e-8f);
-    let t102 = round((round(-0.0f * u2_7 * 5.9604645e-8f) + 46.0f) * u2_7 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t103 = round((round(t102 * u2_7 * 5.9604645e-8f) + 139810.0f) * u2_7 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s7 = round(u8 * (round(t103 * u2_7 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t104 = round((round(0.0f * u2_7 * 5.9604645e-8f) + (-5.0f)) * u2_7 * 5.9604645e-8f)
-        + 416.0f;
-    let t105 = round((round(t104 * u2_7 * 5.9604645e-8f) + (-23302.0f)) * u2_7 * 5.9604645e-8f)
-        + 699051.0f;
-    let t106 = round((round(t105 * u2_7 * 5.9604645e-8f) + (-8388608.0f)) * u2_7 * 5.9604645e-8f);
-    let co7 = t106 + 16777216.0f;
-    let t107 = select(s7, co7, swap7);
-    let t108 = select(co7, s7, swap7);
-    let t109 = select(t107, -t107, t101 < 0.0f);
-    let t110 = round(cand4.y * 512.0156f);
-    let abs_t110 = abs(t110);
-    let back8 = abs_t110 > 8388608.0f;
-    let b8 = select(abs_t110, 16777216.0f - abs_t110, back8);
+    let t92 = round((round(-0.0f * u2_7 * 5.9604645e-8f) + 46.0f) * u2_7 * 5.9604645e-8f);
+    let t93 = (round((t92 + (-3329.0f)) * u2_7 * 5.9604645e-8f) + 139810.0f) * u2_7 * 5.9604645e-8f;
+    let t94 = u8 * (round((round(t93) + (-2796203.0f)) * u2_7 * 5.9604645e-8f) + 16777216.0f);
+    let s7 = round(t94 * 5.9604645e-8f);
+    let t95 = round((round(0.0f * u2_7 * 5.9604645e-8f) + (-5.0f)) * u2_7 * 5.9604645e-8f);
+    let t96 = (round((t95 + 416.0f) * u2_7 * 5.9604645e-8f) + (-23302.0f)) * u2_7 * 5.9604645e-8f;
+    let t97 = (round((round(t96) + 699051.0f) * u2_7 * 5.9604645e-8f) + (-8388608.0f)) * u2_7;
+    let co7 = round(t97 * 5.9604645e-8f) + 16777216.0f;
+    let t98 = select(s7, co7, swap7);
+    let t99 = select(co7, s7, swap7);
+    let t100 = select(t98, -t98, t91 < 0.0f);
+    let t101 = round(cand4.y * 512.0156f);
+    let abs_t101 = abs(t101);
+    let back8 = abs_t101 > 8388608.0f;
+    let b8 = select(abs_t101, 16777216.0f - abs_t101, back8);
     let swap8 = b8 > 4194304.0f;
     let u9 = round(select(b8, 8388608.0f - b8, swap8) * 3.1415927f);
     let u2_8 = round(u9 * u9 * 5.9604645e-8f);
-    let t111 = round((round(-0.0f * u2_8 * 5.9604645e-8f) + 46.0f) * u2_8 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t112 = round((round(t111 * u2_8 * 5.9604645e-8f) + 139810.0f) * u2_8 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s8 = round(u9 * (round(t112 * u2_8 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t113 = round((round(0.0f * u2_8 * 5.9604645e-8f) + (-5.0f)) * u2_8 * 5.9604645e-8f)
-        + 416.0f;
-    let t114 = round((round(t113 * u2_8 * 5.9604645e-8f) + (-23302.0f)) * u2_8 * 5.9604645e-8f)
-        + 699051.0f;
-    let t115 = round((round(t114 * u2_8 * 5.9604645e-8f) + (-8388608.0f)) * u2_8 * 5.9604645e-8f);
-    let co8 = t115 + 16777216.0f;
-    let t116 = select(s8, co8, swap8);
-    let t117 = select(co8, s8, swap8);
-    let t118 = vec3<f32>(
-        select(t117, -t117, back8) * t109,
-        select(t116, -t116, t110 < 0.0f) * t109,
-        select(t108, -t108, back7)
+    let t102 = round((round(-0.0f * u2_8 * 5.9604645e-8f) + 46.0f) * u2_8 * 5.9604645e-8f);
+    let t103 = (round((t102 + (-3329.0f)) * u2_8 * 5.9604645e-8f) + 139810.0f)
+        * u2_8
+        * 5.9604645e-8f;
+    let t104 = u9 * (round((round(t103) + (-2796203.0f)) * u2_8 * 5.9604645e-8f) + 16777216.0f);
+    let s8 = round(t104 * 5.9604645e-8f);
+    let t105 = round((round(0.0f * u2_8 * 5.9604645e-8f) + (-5.0f)) * u2_8 * 5.9604645e-8f);
+    let t106 = (round((t105 + 416.0f) * u2_8 * 5.9604645e-8f) + (-23302.0f)) * u2_8 * 5.9604645e-8f;
+    let t107 = (round((round(t106) + 699051.0f) * u2_8 * 5.9604645e-8f) + (-8388608.0f)) * u2_8;
+    let co8 = round(t107 * 5.9604645e-8f) + 16777216.0f;
+    let t108 = select(s8, co8, swap8);
+    let t109 = select(co8, s8, swap8);
+    let t110 = vec3<f32>(
+        select(t109, -t109, back8) * t100,
+        select(t108, -t108, t101 < 0.0f) * t100,
+        select(t99, -t99, back7)
     );
-    let t119 = vec3<u32>(abs(round(t118 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim));
-    let limb1_15 = t119.x >> 12u;
-    let limb0_15 = t119.x & 4095u;
+    let offset4 = round(t110 * vec3<f32>(2.9802322e-8f, 2.9802322e-8f, 0.5f)) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_15 = offset_u4.x >> 12u;
+    let limb0_15 = offset_u4.x & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi22 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo22 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    let limb1_16 = t119.y >> 12u;
-    let limb0_16 = t119.y & 4095u;
+    let limb1_16 = offset_u4.y >> 12u;
+    let limb0_16 = offset_u4.y & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi23 = hi22 + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo23 = lo22 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t119.z >> 12u;
-    let limb0_17 = t119.z & 4095u;
+    let limb1_17 = offset_u4.z >> 12u;
+    let limb0_17 = offset_u4.z & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi24 = hi23 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo24 = lo23 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     let hi25 = hi24 + (lo24 >> 24u);
     let lo25 = lo24 & 16777215u;
     let dist4 = f32(hi25) * 16777216.0f + f32(lo25);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 32767.0f && base.y + 1.0f <= 32767.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 32767.0f && t_up <= 32767.0f && dist4 < best_d2);
     return best3;
 }
 

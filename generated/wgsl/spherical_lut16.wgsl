@@ -52,7 +52,8 @@ fn unitpack_spherical_lut16_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
@@ -76,38 +77,37 @@ fn unitpack_spherical_lut16_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let t6 = w2.xy * w2.xy * 16384.0f;
     let t7 = t5 * t5 * s;
     let t8 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t7),
-        t5 > vec2<f32>(0.0f)
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
+            t5 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t7),
+            t5 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
     );
-    let t9 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
-        t5 < vec2<f32>(0.0f)
+    let t9 = t4 - 1.0f - 127.0f;
+    let t10 = t9 * t9 * s;
+    let t11 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t10),
+            t9 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t10),
+            t9 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
     );
-    let t10 = select(
-        vec2<f32>(0.0f),
-        select(t9, t8, w2.xy >= vec2<f32>(0.0f)),
-        t4 < vec2<f32>(255.0f)
-    );
-    let t11 = t4 - 1.0f - 127.0f;
-    let t12 = t11 * t11 * s;
-    let t13 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t12),
-        t11 > vec2<f32>(0.0f)
-    );
-    let t14 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t12),
-        t11 < vec2<f32>(0.0f)
-    );
-    let t15 = select(
-        vec2<f32>(0.0f),
-        select(t14, t13, w2.xy >= vec2<f32>(0.0f)) - 1.0f,
-        t4 > vec2<f32>(0.0f)
-    );
-    return vec2<u32>(t4 + t10 + t15);
+    let t12 = t4
+        + select(vec2<f32>(0.0f), t8, t4 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t11 - 1.0f, t4 > vec2<f32>(0.0f));
+    return vec2<u32>(t12);
 }
 
 // unitpack_spherical_lut16_encode_float: fast encoder, float form.
@@ -123,8 +123,9 @@ fn unitpack_spherical_lut16_encode_float(v: vec3<f32>, fetched: f32) -> vec2<f32
     let scaled = v / select(1.0f, largest, t2);
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    let t3 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t2 && len2 >= 1.0f).z + 1.0f;
-    return vec2<f32>(fetched, t3 * 0.5f);
+    let t3 = (select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t2 && len2 >= 1.0f).z + 1.0f)
+        * 0.5f;
+    return vec2<f32>(fetched, t3);
 }
 
 // unitpack_spherical_lut16_encode: fast encoder.
@@ -143,7 +144,8 @@ fn unitpack_spherical_lut16_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
@@ -167,19 +169,23 @@ fn unitpack_spherical_lut16_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let estimate = select(255.0f, t4, t4 <= 255.0f);
     let t5 = estimate - 127.0f;
     let t6 = t5 * t5 * len2;
-    let t7 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t6), t5 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t6), t5 > 0.0f),
-        w2.z >= 0.0f
+    let one_if = select(0.0f, 1.0f, big2 >= t6);
+    let one_if2 = select(0.0f, 1.0f, big2 <= t6);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t5 < 0.0f), select(1.0f, one_if, t5 > 0.0f), w2.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t7, estimate < 255.0f);
-    let t8 = estimate - 1.0f - 127.0f;
-    let t9 = t8 * t8 * len2;
-    let t10 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t9), t8 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t9), t8 > 0.0f),
+    let t7 = estimate - 1.0f - 127.0f;
+    let t8 = t7 * t7 * len2;
+    let one_if3 = select(0.0f, 1.0f, big2 >= t8);
+    let one_if4 = select(0.0f, 1.0f, big2 <= t8);
+    let t9 = select(
+        select(0.0f, one_if4, t7 < 0.0f),
+        select(1.0f, one_if3, t7 > 0.0f),
         w2.z >= 0.0f
-    );
-    let down = select(0.0f, t10 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t9, estimate > 0.0f);
     return u32(round(select(1.0f, t2, t2 <= 1.0f) * 255.0f)) | (u32(estimate + up + down) << 8u);
 }

@@ -52,7 +52,8 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
@@ -76,38 +77,37 @@ fn unitpack_spherical_lut16p_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let t6 = w2.xy * w2.xy * 16384.0f;
     let t7 = t5 * t5 * s;
     let t8 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t7),
-        t5 > vec2<f32>(0.0f)
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
+            t5 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t7),
+            t5 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
     );
-    let t9 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t7),
-        t5 < vec2<f32>(0.0f)
+    let t9 = t4 - 1.0f - 127.0f;
+    let t10 = t9 * t9 * s;
+    let t11 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t10),
+            t9 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t10),
+            t9 > vec2<f32>(0.0f)
+        ),
+        w2.xy >= vec2<f32>(0.0f)
     );
-    let t10 = select(
-        vec2<f32>(0.0f),
-        select(t9, t8, w2.xy >= vec2<f32>(0.0f)),
-        t4 < vec2<f32>(255.0f)
-    );
-    let t11 = t4 - 1.0f - 127.0f;
-    let t12 = t11 * t11 * s;
-    let t13 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= t12),
-        t11 > vec2<f32>(0.0f)
-    );
-    let t14 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 <= t12),
-        t11 < vec2<f32>(0.0f)
-    );
-    let t15 = select(
-        vec2<f32>(0.0f),
-        select(t14, t13, w2.xy >= vec2<f32>(0.0f)) - 1.0f,
-        t4 > vec2<f32>(0.0f)
-    );
-    return vec2<u32>(t4 + t10 + t15);
+    let t12 = t4
+        + select(vec2<f32>(0.0f), t8, t4 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t11 - 1.0f, t4 > vec2<f32>(0.0f));
+    return vec2<u32>(t12);
 }
 
 // unitpack_spherical_lut16p_encode_fast: fast encoder (the precise search's first step).
@@ -126,7 +126,8 @@ fn unitpack_spherical_lut16p_encode_fast(v: vec3<f32>, fetched: f32) -> u32 {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
@@ -150,20 +151,24 @@ fn unitpack_spherical_lut16p_encode_fast(v: vec3<f32>, fetched: f32) -> u32 {
     let estimate = select(255.0f, t4, t4 <= 255.0f);
     let t5 = estimate - 127.0f;
     let t6 = t5 * t5 * len2;
-    let t7 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t6), t5 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t6), t5 > 0.0f),
-        w2.z >= 0.0f
+    let one_if = select(0.0f, 1.0f, big2 >= t6);
+    let one_if2 = select(0.0f, 1.0f, big2 <= t6);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t5 < 0.0f), select(1.0f, one_if, t5 > 0.0f), w2.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t7, estimate < 255.0f);
-    let t8 = estimate - 1.0f - 127.0f;
-    let t9 = t8 * t8 * len2;
-    let t10 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t9), t8 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t9), t8 > 0.0f),
+    let t7 = estimate - 1.0f - 127.0f;
+    let t8 = t7 * t7 * len2;
+    let one_if3 = select(0.0f, 1.0f, big2 >= t8);
+    let one_if4 = select(0.0f, 1.0f, big2 <= t8);
+    let t9 = select(
+        select(0.0f, one_if4, t7 < 0.0f),
+        select(1.0f, one_if3, t7 > 0.0f),
         w2.z >= 0.0f
-    );
-    let down = select(0.0f, t10 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t9, estimate > 0.0f);
     return u32(round(select(1.0f, t2, t2 <= 1.0f) * 255.0f)) | (u32(estimate + up + down) << 8u);
 }
 
@@ -212,7 +217,8 @@ fn unitpack_spherical_lut16p_encode(
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<u32>(floor(abs(w2) * 4096.0f));
@@ -244,273 +250,249 @@ fn unitpack_spherical_lut16p_encode(
     let n = f32(t5.x * t5.x + t5.y * t5.y + t5.z * t5.z);
     let t7 = ((code >> 8u) & 255u) + 0u;
     let t8 = select(t7, 1u, t7 < 1u) - 1u;
-    let t9 = select(vec3<f32>(0.0f), s0, s0 >= vec3<f32>(0.0f));
-    let t10 = vec3<u32>(round(select(vec3<f32>(1.0f), t9, t9 <= vec3<f32>(1.0f)) * 255.0f));
-    let t11 = t10 + t10 - 255u;
-    let cross5 = afix.yzx * t11.zxy - afix.zxy * t11.yzx;
-    let t12 = select(0u - cross5, cross5, cross5 < vec3<u32>(2147483648u));
-    let limb1_4 = t12.x >> 12u;
-    let limb0_4 = t12.x & 4095u;
+    let t9 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t8, t8 < 256u) << 8u);
+    let t10 = select(vec3<f32>(0.0f), s0, s0 >= vec3<f32>(0.0f));
+    let t11 = vec3<u32>(round(select(vec3<f32>(1.0f), t10, t10 <= vec3<f32>(1.0f)) * 255.0f));
+    let t12 = t11 + t11 - 255u;
+    let cross5 = afix.yzx * t12.zxy - afix.zxy * t12.yzx;
+    let t13 = select(0u - cross5, cross5, cross5 < vec3<u32>(2147483648u));
+    let limb1_4 = t13.x >> 12u;
+    let limb0_4 = t13.x & 4095u;
     let cross6 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
-    let limb1_5 = t12.y >> 12u;
-    let limb0_5 = t12.y & 4095u;
+    let limb1_5 = t13.y >> 12u;
+    let limb0_5 = t13.y & 4095u;
     let cross7 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
-    let limb1_6 = t12.z >> 12u;
-    let limb0_6 = t12.z & 4095u;
+    let limb1_6 = t13.z >> 12u;
+    let limb0_6 = t13.z & 4095u;
     let cross8 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let e2 = f32(hi8) * 16777216.0f + f32(lo8);
-    let n2 = f32(t11.x * t11.x + t11.y * t11.y + t11.z * t11.z);
-    let t13 = e2 * n < e * n2;
-    let best = select(
-        t2,
-        (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t8, t8 < 256u) << 8u),
-        t13
-    );
-    let best_e = select(e, e2, t13);
-    let best_n = select(n, n2, t13);
-    let t14 = ((code >> 8u) & 255u) + 0u;
-    let t15 = select(t14, 1u, t14 < 1u) - 1u;
-    let t16 = select(vec3<f32>(0.0f), s1, s1 >= vec3<f32>(0.0f));
-    let t17 = vec3<u32>(round(select(vec3<f32>(1.0f), t16, t16 <= vec3<f32>(1.0f)) * 255.0f));
-    let t18 = t17 + t17 - 255u;
-    let cross9 = afix.yzx * t18.zxy - afix.zxy * t18.yzx;
-    let t19 = select(0u - cross9, cross9, cross9 < vec3<u32>(2147483648u));
-    let limb1_7 = t19.x >> 12u;
-    let limb0_7 = t19.x & 4095u;
+    let n2 = f32(t12.x * t12.x + t12.y * t12.y + t12.z * t12.z);
+    let t14 = e2 * n < e * n2;
+    let best = select(t2, t9, t14);
+    let best_e = select(e, e2, t14);
+    let best_n = select(n, n2, t14);
+    let t15 = ((code >> 8u) & 255u) + 0u;
+    let t16 = select(t15, 1u, t15 < 1u) - 1u;
+    let t17 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t16, t16 < 256u) << 8u);
+    let t18 = select(vec3<f32>(0.0f), s1, s1 >= vec3<f32>(0.0f));
+    let t19 = vec3<u32>(round(select(vec3<f32>(1.0f), t18, t18 <= vec3<f32>(1.0f)) * 255.0f));
+    let t20 = t19 + t19 - 255u;
+    let cross9 = afix.yzx * t20.zxy - afix.zxy * t20.yzx;
+    let t21 = select(0u - cross9, cross9, cross9 < vec3<u32>(2147483648u));
+    let limb1_7 = t21.x >> 12u;
+    let limb0_7 = t21.x & 4095u;
     let cross10 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
-    let limb1_8 = t19.y >> 12u;
-    let limb0_8 = t19.y & 4095u;
+    let limb1_8 = t21.y >> 12u;
+    let limb0_8 = t21.y & 4095u;
     let cross11 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
-    let limb1_9 = t19.z >> 12u;
-    let limb0_9 = t19.z & 4095u;
+    let limb1_9 = t21.z >> 12u;
+    let limb0_9 = t21.z & 4095u;
     let cross12 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let e3 = f32(hi12) * 16777216.0f + f32(lo12);
-    let n3 = f32(t18.x * t18.x + t18.y * t18.y + t18.z * t18.z);
-    let t20 = e3 * best_n < best_e * n3;
-    let best2 = select(
-        best,
-        (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t15, t15 < 256u) << 8u),
-        t20
-    );
-    let best_e2 = select(best_e, e3, t20);
-    let best_n2 = select(best_n, n3, t20);
-    let t21 = ((code >> 8u) & 255u) + 0u;
-    let t22 = select(t21, 1u, t21 < 1u) - 1u;
-    let t23 = select(vec3<f32>(0.0f), s2, s2 >= vec3<f32>(0.0f));
-    let t24 = vec3<u32>(round(select(vec3<f32>(1.0f), t23, t23 <= vec3<f32>(1.0f)) * 255.0f));
-    let t25 = t24 + t24 - 255u;
-    let cross13 = afix.yzx * t25.zxy - afix.zxy * t25.yzx;
-    let t26 = select(0u - cross13, cross13, cross13 < vec3<u32>(2147483648u));
-    let limb1_10 = t26.x >> 12u;
-    let limb0_10 = t26.x & 4095u;
+    let n3 = f32(t20.x * t20.x + t20.y * t20.y + t20.z * t20.z);
+    let t22 = e3 * best_n < best_e * n3;
+    let best2 = select(best, t17, t22);
+    let best_e2 = select(best_e, e3, t22);
+    let best_n2 = select(best_n, n3, t22);
+    let t23 = ((code >> 8u) & 255u) + 0u;
+    let t24 = select(t23, 1u, t23 < 1u) - 1u;
+    let t25 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t24, t24 < 256u) << 8u);
+    let t26 = select(vec3<f32>(0.0f), s2, s2 >= vec3<f32>(0.0f));
+    let t27 = vec3<u32>(round(select(vec3<f32>(1.0f), t26, t26 <= vec3<f32>(1.0f)) * 255.0f));
+    let t28 = t27 + t27 - 255u;
+    let cross13 = afix.yzx * t28.zxy - afix.zxy * t28.yzx;
+    let t29 = select(0u - cross13, cross13, cross13 < vec3<u32>(2147483648u));
+    let limb1_10 = t29.x >> 12u;
+    let limb0_10 = t29.x & 4095u;
     let cross14 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
-    let limb1_11 = t26.y >> 12u;
-    let limb0_11 = t26.y & 4095u;
+    let limb1_11 = t29.y >> 12u;
+    let limb0_11 = t29.y & 4095u;
     let cross15 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
-    let limb1_12 = t26.z >> 12u;
-    let limb0_12 = t26.z & 4095u;
+    let limb1_12 = t29.z >> 12u;
+    let limb0_12 = t29.z & 4095u;
     let cross16 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let e4 = f32(hi16) * 16777216.0f + f32(lo16);
-    let n4 = f32(t25.x * t25.x + t25.y * t25.y + t25.z * t25.z);
-    let t27 = e4 * best_n2 < best_e2 * n4;
-    let best3 = select(
-        best2,
-        (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t22, t22 < 256u) << 8u),
-        t27
-    );
-    let best_e3 = select(best_e2, e4, t27);
-    let best_n3 = select(best_n2, n4, t27);
-    let t28 = ((code >> 8u) & 255u) + 1u;
-    let t29 = select(t28, 1u, t28 < 1u) - 1u;
-    let t30 = select(vec3<f32>(0.0f), s3, s3 >= vec3<f32>(0.0f));
-    let t31 = vec3<u32>(round(select(vec3<f32>(1.0f), t30, t30 <= vec3<f32>(1.0f)) * 255.0f));
-    let t32 = t31 + t31 - 255u;
-    let cross17 = afix.yzx * t32.zxy - afix.zxy * t32.yzx;
-    let t33 = select(0u - cross17, cross17, cross17 < vec3<u32>(2147483648u));
-    let limb1_13 = t33.x >> 12u;
-    let limb0_13 = t33.x & 4095u;
+    let n4 = f32(t28.x * t28.x + t28.y * t28.y + t28.z * t28.z);
+    let t30 = e4 * best_n2 < best_e2 * n4;
+    let best3 = select(best2, t25, t30);
+    let best_e3 = select(best_e2, e4, t30);
+    let best_n3 = select(best_n2, n4, t30);
+    let t31 = ((code >> 8u) & 255u) + 1u;
+    let t32 = select(t31, 1u, t31 < 1u) - 1u;
+    let t33 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t32, t32 < 256u) << 8u);
+    let t34 = select(vec3<f32>(0.0f), s3, s3 >= vec3<f32>(0.0f));
+    let t35 = vec3<u32>(round(select(vec3<f32>(1.0f), t34, t34 <= vec3<f32>(1.0f)) * 255.0f));
+    let t36 = t35 + t35 - 255u;
+    let cross17 = afix.yzx * t36.zxy - afix.zxy * t36.yzx;
+    let t37 = select(0u - cross17, cross17, cross17 < vec3<u32>(2147483648u));
+    let limb1_13 = t37.x >> 12u;
+    let limb0_13 = t37.x & 4095u;
     let cross18 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
-    let limb1_14 = t33.y >> 12u;
-    let limb0_14 = t33.y & 4095u;
+    let limb1_14 = t37.y >> 12u;
+    let limb0_14 = t37.y & 4095u;
     let cross19 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
-    let limb1_15 = t33.z >> 12u;
-    let limb0_15 = t33.z & 4095u;
+    let limb1_15 = t37.z >> 12u;
+    let limb0_15 = t37.z & 4095u;
     let cross20 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let e5 = f32(hi20) * 16777216.0f + f32(lo20);
-    let n5 = f32(t32.x * t32.x + t32.y * t32.y + t32.z * t32.z);
-    let t34 = e5 * best_n3 < best_e3 * n5;
-    let best4 = select(
-        best3,
-        (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t29, t29 < 256u) << 8u),
-        t34
-    );
-    let best_e4 = select(best_e3, e5, t34);
-    let best_n4 = select(best_n3, n5, t34);
-    let t35 = ((code >> 8u) & 255u) + 1u;
-    let t36 = select(t35, 1u, t35 < 1u) - 1u;
-    let t37 = select(vec3<f32>(0.0f), s5, s5 >= vec3<f32>(0.0f));
-    let t38 = vec3<u32>(round(select(vec3<f32>(1.0f), t37, t37 <= vec3<f32>(1.0f)) * 255.0f));
-    let t39 = t38 + t38 - 255u;
-    let cross21 = afix.yzx * t39.zxy - afix.zxy * t39.yzx;
-    let t40 = select(0u - cross21, cross21, cross21 < vec3<u32>(2147483648u));
-    let limb1_16 = t40.x >> 12u;
-    let limb0_16 = t40.x & 4095u;
+    let n5 = f32(t36.x * t36.x + t36.y * t36.y + t36.z * t36.z);
+    let t38 = e5 * best_n3 < best_e3 * n5;
+    let best4 = select(best3, t33, t38);
+    let best_e4 = select(best_e3, e5, t38);
+    let best_n4 = select(best_n3, n5, t38);
+    let t39 = ((code >> 8u) & 255u) + 1u;
+    let t40 = select(t39, 1u, t39 < 1u) - 1u;
+    let t41 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t40, t40 < 256u) << 8u);
+    let t42 = select(vec3<f32>(0.0f), s5, s5 >= vec3<f32>(0.0f));
+    let t43 = vec3<u32>(round(select(vec3<f32>(1.0f), t42, t42 <= vec3<f32>(1.0f)) * 255.0f));
+    let t44 = t43 + t43 - 255u;
+    let cross21 = afix.yzx * t44.zxy - afix.zxy * t44.yzx;
+    let t45 = select(0u - cross21, cross21, cross21 < vec3<u32>(2147483648u));
+    let limb1_16 = t45.x >> 12u;
+    let limb0_16 = t45.x & 4095u;
     let cross22 = limb1_16 * limb0_16;
     let hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
     let lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
-    let limb1_17 = t40.y >> 12u;
-    let limb0_17 = t40.y & 4095u;
+    let limb1_17 = t45.y >> 12u;
+    let limb0_17 = t45.y & 4095u;
     let cross23 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
-    let limb1_18 = t40.z >> 12u;
-    let limb0_18 = t40.z & 4095u;
+    let limb1_18 = t45.z >> 12u;
+    let limb0_18 = t45.z & 4095u;
     let cross24 = limb1_18 * limb0_18;
     let hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
     let lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
     let hi24 = hi23 + (lo23 >> 24u);
     let lo24 = lo23 & 16777215u;
     let e6 = f32(hi24) * 16777216.0f + f32(lo24);
-    let n6 = f32(t39.x * t39.x + t39.y * t39.y + t39.z * t39.z);
-    let t41 = e6 * best_n4 < best_e4 * n6;
-    let best5 = select(
-        best4,
-        (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t36, t36 < 256u) << 8u),
-        t41
-    );
-    let best_e5 = select(best_e4, e6, t41);
-    let best_n5 = select(best_n4, n6, t41);
-    let t42 = ((code >> 8u) & 255u) + 2u;
-    let t43 = select(t42, 1u, t42 < 1u) - 1u;
-    let t44 = select(vec3<f32>(0.0f), s6, s6 >= vec3<f32>(0.0f));
-    let t45 = vec3<u32>(round(select(vec3<f32>(1.0f), t44, t44 <= vec3<f32>(1.0f)) * 255.0f));
-    let t46 = t45 + t45 - 255u;
-    let cross25 = afix.yzx * t46.zxy - afix.zxy * t46.yzx;
-    let t47 = select(0u - cross25, cross25, cross25 < vec3<u32>(2147483648u));
-    let limb1_19 = t47.x >> 12u;
-    let limb0_19 = t47.x & 4095u;
+    let n6 = f32(t44.x * t44.x + t44.y * t44.y + t44.z * t44.z);
+    let t46 = e6 * best_n4 < best_e4 * n6;
+    let best5 = select(best4, t41, t46);
+    let best_e5 = select(best_e4, e6, t46);
+    let best_n5 = select(best_n4, n6, t46);
+    let t47 = ((code >> 8u) & 255u) + 2u;
+    let t48 = select(t47, 1u, t47 < 1u) - 1u;
+    let t49 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t48, t48 < 256u) << 8u);
+    let t50 = select(vec3<f32>(0.0f), s6, s6 >= vec3<f32>(0.0f));
+    let t51 = vec3<u32>(round(select(vec3<f32>(1.0f), t50, t50 <= vec3<f32>(1.0f)) * 255.0f));
+    let t52 = t51 + t51 - 255u;
+    let cross25 = afix.yzx * t52.zxy - afix.zxy * t52.yzx;
+    let t53 = select(0u - cross25, cross25, cross25 < vec3<u32>(2147483648u));
+    let limb1_19 = t53.x >> 12u;
+    let limb0_19 = t53.x & 4095u;
     let cross26 = limb1_19 * limb0_19;
     let hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
     let lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
-    let limb1_20 = t47.y >> 12u;
-    let limb0_20 = t47.y & 4095u;
+    let limb1_20 = t53.y >> 12u;
+    let limb0_20 = t53.y & 4095u;
     let cross27 = limb1_20 * limb0_20;
     let hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
     let lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
-    let limb1_21 = t47.z >> 12u;
-    let limb0_21 = t47.z & 4095u;
+    let limb1_21 = t53.z >> 12u;
+    let limb0_21 = t53.z & 4095u;
     let cross28 = limb1_21 * limb0_21;
     let hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
     let lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
     let hi28 = hi27 + (lo27 >> 24u);
     let lo28 = lo27 & 16777215u;
     let e7 = f32(hi28) * 16777216.0f + f32(lo28);
-    let n7 = f32(t46.x * t46.x + t46.y * t46.y + t46.z * t46.z);
-    let t48 = e7 * best_n5 < best_e5 * n7;
-    let best6 = select(
-        best5,
-        (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t43, t43 < 256u) << 8u),
-        t48
-    );
-    let best_e6 = select(best_e5, e7, t48);
-    let best_n6 = select(best_n5, n7, t48);
-    let t49 = ((code >> 8u) & 255u) + 2u;
-    let t50 = select(t49, 1u, t49 < 1u) - 1u;
-    let t51 = select(vec3<f32>(0.0f), s7, s7 >= vec3<f32>(0.0f));
-    let t52 = vec3<u32>(round(select(vec3<f32>(1.0f), t51, t51 <= vec3<f32>(1.0f)) * 255.0f));
-    let t53 = t52 + t52 - 255u;
-    let cross29 = afix.yzx * t53.zxy - afix.zxy * t53.yzx;
-    let t54 = select(0u - cross29, cross29, cross29 < vec3<u32>(2147483648u));
-    let limb1_22 = t54.x >> 12u;
-    let limb0_22 = t54.x & 4095u;
+    let n7 = f32(t52.x * t52.x + t52.y * t52.y + t52.z * t52.z);
+    let t54 = e7 * best_n5 < best_e5 * n7;
+    let best6 = select(best5, t49, t54);
+    let best_e6 = select(best_e5, e7, t54);
+    let best_n6 = select(best_n5, n7, t54);
+    let t55 = ((code >> 8u) & 255u) + 2u;
+    let t56 = select(t55, 1u, t55 < 1u) - 1u;
+    let t57 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t56, t56 < 256u) << 8u);
+    let t58 = select(vec3<f32>(0.0f), s7, s7 >= vec3<f32>(0.0f));
+    let t59 = vec3<u32>(round(select(vec3<f32>(1.0f), t58, t58 <= vec3<f32>(1.0f)) * 255.0f));
+    let t60 = t59 + t59 - 255u;
+    let cross29 = afix.yzx * t60.zxy - afix.zxy * t60.yzx;
+    let t61 = select(0u - cross29, cross29, cross29 < vec3<u32>(2147483648u));
+    let limb1_22 = t61.x >> 12u;
+    let limb0_22 = t61.x & 4095u;
     let cross30 = limb1_22 * limb0_22;
     let hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
     let lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
-    let limb1_23 = t54.y >> 12u;
-    let limb0_23 = t54.y & 4095u;
+    let limb1_23 = t61.y >> 12u;
+    let limb0_23 = t61.y & 4095u;
     let cross31 = limb1_23 * limb0_23;
     let hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
     let lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
-    let limb1_24 = t54.z >> 12u;
-    let limb0_24 = t54.z & 4095u;
+    let limb1_24 = t61.z >> 12u;
+    let limb0_24 = t61.z & 4095u;
     let cross32 = limb1_24 * limb0_24;
     let hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
     let lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
     let hi32 = hi31 + (lo31 >> 24u);
     let lo32 = lo31 & 16777215u;
     let e8 = f32(hi32) * 16777216.0f + f32(lo32);
-    let n8 = f32(t53.x * t53.x + t53.y * t53.y + t53.z * t53.z);
-    let t55 = e8 * best_n6 < best_e6 * n8;
-    let best7 = select(
-        best6,
-        (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t50, t50 < 256u) << 8u),
-        t55
-    );
-    let best_e7 = select(best_e6, e8, t55);
-    let best_n7 = select(best_n6, n8, t55);
-    let t56 = ((code >> 8u) & 255u) + 2u;
-    let t57 = select(t56, 1u, t56 < 1u) - 1u;
-    let t58 = select(vec3<f32>(0.0f), s8, s8 >= vec3<f32>(0.0f));
-    let t59 = vec3<u32>(round(select(vec3<f32>(1.0f), t58, t58 <= vec3<f32>(1.0f)) * 255.0f));
-    let t60 = t59 + t59 - 255u;
-    let cross33 = afix.yzx * t60.zxy - afix.zxy * t60.yzx;
-    let t61 = select(0u - cross33, cross33, cross33 < vec3<u32>(2147483648u));
-    let limb1_25 = t61.x >> 12u;
-    let limb0_25 = t61.x & 4095u;
+    let n8 = f32(t60.x * t60.x + t60.y * t60.y + t60.z * t60.z);
+    let t62 = e8 * best_n6 < best_e6 * n8;
+    let best7 = select(best6, t57, t62);
+    let best_e7 = select(best_e6, e8, t62);
+    let best_n7 = select(best_n6, n8, t62);
+    let t63 = ((code >> 8u) & 255u) + 2u;
+    let t64 = select(t63, 1u, t63 < 1u) - 1u;
+    let t65 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t64, t64 < 256u) << 8u);
+    let t66 = select(vec3<f32>(0.0f), s8, s8 >= vec3<f32>(0.0f));
+    let t67 = vec3<u32>(round(select(vec3<f32>(1.0f), t66, t66 <= vec3<f32>(1.0f)) * 255.0f));
+    let t68 = t67 + t67 - 255u;
+    let cross33 = afix.yzx * t68.zxy - afix.zxy * t68.yzx;
+    let t69 = select(0u - cross33, cross33, cross33 < vec3<u32>(2147483648u));
+    let limb1_25 = t69.x >> 12u;
+    let limb0_25 = t69.x & 4095u;
     let cross34 = limb1_25 * limb0_25;
     let hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
     let lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
-    let limb1_26 = t61.y >> 12u;
-    let limb0_26 = t61.y & 4095u;
+    let limb1_26 = t69.y >> 12u;
+    let limb0_26 = t69.y & 4095u;
     let cross35 = limb1_26 * limb0_26;
     let hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
     let lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
-    let limb1_27 = t61.z >> 12u;
-    let limb0_27 = t61.z & 4095u;
+    let limb1_27 = t69.z >> 12u;
+    let limb0_27 = t69.z & 4095u;
     let cross36 = limb1_27 * limb0_27;
     let hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
     let lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
     let hi36 = hi35 + (lo35 >> 24u);
     let lo36 = lo35 & 16777215u;
     let e9 = f32(hi36) * 16777216.0f + f32(lo36);
-    let n9 = f32(t60.x * t60.x + t60.y * t60.y + t60.z * t60.z);
-    let best8 = select(
-        best7,
-        (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t57, t57 < 256u) << 8u),
-        e9 * best_n7 < best_e7 * n9
-    );
+    let n9 = f32(t68.x * t68.x + t68.y * t68.y + t68.z * t68.z);
+    let best8 = select(best7, t65, e9 * best_n7 < best_e7 * n9);
     return select(t2, best8, ok);
 }
 

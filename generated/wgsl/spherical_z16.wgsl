@@ -27,9 +27,8 @@ fn unitpack_spherical_z16_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -73,8 +72,8 @@ fn unitpack_spherical_z16_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -111,7 +110,8 @@ fn unitpack_spherical_z16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
@@ -136,65 +136,63 @@ fn unitpack_spherical_z16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let t2 = select(1.0f, hi, hi > 0.0f);
     let big = lo * 8388608.0f;
     let ratio_estimate = floor(lo / t2 * 8388608.0f);
-    let t3 = select(
-        select(0.0f, -1.0f, ratio_estimate * t2 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t2 <= big
-    );
-    let ratio = ratio_estimate + t3;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t2 > big), 1.0f, (ratio + 1.0f) * t2 <= big);
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t2 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t2 <= big);
+    let ratio = ratio_estimate + step;
+    let step_down2 = select(0.0f, -1.0f, ratio * t2 > big);
+    let step2 = select(step_down2, 1.0f, (ratio + 1.0f) * t2 <= big);
+    let t = ratio + step2;
     let far = t > 3474675.0f;
-    let t4 = t - 8388608.0f;
-    let t5 = t + 8388608.0f;
-    let big2 = t4 * 8388608.0f;
-    let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
-    let t6 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t5 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t5 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t6;
-    let t7 = select(select(0.0f, -1.0f, ratio2 * t5 > big2), 1.0f, (ratio2 + 1.0f) * t5 <= big2);
-    let ratio3 = ratio2 + t7;
+    let t3 = t - 8388608.0f;
+    let t4 = t + 8388608.0f;
+    let big2 = t3 * 8388608.0f;
+    let ratio_estimate2 = floor(t3 / t4 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate2 * t4 > big2);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate2 + 1.0f) * t4 <= big2);
+    let ratio2 = ratio_estimate2 + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio2 * t4 > big2);
+    let step4 = select(step_down4, 1.0f, (ratio2 + 1.0f) * t4 <= big2);
+    let ratio3 = ratio2 + step4;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t8 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t9 = round((round(t8 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t11 = round((round(t10 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t11 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t5 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t6 = (round((t5 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t7 = (round((round(t6) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t8 = round((round(t7 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t9 = round((round(t8 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t9 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, w2.x < 0.0f);
     let angle = select(h4, -h4, w2.y < 0.0f);
-    let t12 = round((angle + 8388608.0f) * 1.5199184e-5f);
-    let t13 = select(0.0f, t12, t12 >= 0.0f);
+    let t10 = round((angle + 8388608.0f) * 1.5199184e-5f);
+    let t11 = select(0.0f, t10, t10 >= 0.0f);
     let big2_2 = w2.z * w2.z * 16256.25f;
-    let t14 = round(w2.z / sqrt(len2) * 127.5f + 127.5f);
-    let t15 = select(0.0f, t14, t14 >= 0.0f);
-    let estimate = select(255.0f, t15, t15 <= 255.0f);
-    let t16 = estimate - 127.0f;
+    let t12 = round(w2.z / sqrt(len2) * 127.5f + 127.5f);
+    let t13 = select(0.0f, t12, t12 >= 0.0f);
+    let estimate = select(255.0f, t13, t13 <= 255.0f);
+    let t14 = estimate - 127.0f;
+    let t15 = t14 * t14 * len2;
+    let one_if = select(0.0f, 1.0f, big2_2 >= t15);
+    let one_if2 = select(0.0f, 1.0f, big2_2 <= t15);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t14 < 0.0f), select(1.0f, one_if, t14 > 0.0f), w2.z >= 0.0f),
+        estimate < 255.0f
+    );
+    let t16 = estimate - 1.0f - 127.0f;
     let t17 = t16 * t16 * len2;
+    let one_if3 = select(0.0f, 1.0f, big2_2 >= t17);
+    let one_if4 = select(0.0f, 1.0f, big2_2 <= t17);
     let t18 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t17), t16 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t17), t16 > 0.0f),
+        select(0.0f, one_if4, t16 < 0.0f),
+        select(1.0f, one_if3, t16 > 0.0f),
         w2.z >= 0.0f
-    );
-    let up = select(0.0f, t18, estimate < 255.0f);
-    let t19 = estimate - 1.0f - 127.0f;
-    let t20 = t19 * t19 * len2;
-    let t21 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t20), t19 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t20), t19 > 0.0f),
-        w2.z >= 0.0f
-    );
-    let down = select(0.0f, t21 - 1.0f, estimate > 0.0f);
-    return vec2<f32>(select(255.0f, t13, t13 <= 255.0f), estimate + up + down);
+    )
+        - 1.0f;
+    let down = select(0.0f, t18, estimate > 0.0f);
+    return vec2<f32>(select(255.0f, t11, t11 <= 255.0f), estimate + up + down);
 }
 
 // unitpack_spherical_z16_encode: fast encoder.

@@ -28,9 +28,8 @@ fn unitpack_spherical_z16p_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -73,12 +72,16 @@ fn unitpack_spherical_z16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -105,350 +108,299 @@ fn unitpack_spherical_z16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t1 = select(1.0f, hi5, hi5 > 0.0f);
     let big = lo5 * 8388608.0f;
     let ratio_estimate = floor(lo5 / t1 * 8388608.0f);
-    let t2 = select(
-        select(0.0f, -1.0f, ratio_estimate * t1 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t1 <= big
-    );
-    let ratio = ratio_estimate + t2;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t1 > big), 1.0f, (ratio + 1.0f) * t1 <= big);
+    let step_down = select(0.0f, -1.0f, ratio_estimate * t1 > big);
+    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t1 <= big);
+    let ratio = ratio_estimate + step;
+    let step_down2 = select(0.0f, -1.0f, ratio * t1 > big);
+    let step2 = select(step_down2, 1.0f, (ratio + 1.0f) * t1 <= big);
+    let t = ratio + step2;
     let far = t > 3474675.0f;
-    let t3 = t - 8388608.0f;
-    let t4 = t + 8388608.0f;
-    let big2 = t3 * 8388608.0f;
-    let ratio_estimate2 = floor(t3 / t4 * 8388608.0f);
-    let t5 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t4 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t4 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t5;
-    let t6 = select(select(0.0f, -1.0f, ratio2 * t4 > big2), 1.0f, (ratio2 + 1.0f) * t4 <= big2);
-    let ratio3 = ratio2 + t6;
+    let t2 = t - 8388608.0f;
+    let t3 = t + 8388608.0f;
+    let big2 = t2 * 8388608.0f;
+    let ratio_estimate2 = floor(t2 / t3 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate2 * t3 > big2);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate2 + 1.0f) * t3 <= big2);
+    let ratio2 = ratio_estimate2 + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio2 * t3 > big2);
+    let step4 = select(step_down4, 1.0f, (ratio2 + 1.0f) * t3 <= big2);
+    let ratio3 = ratio2 + step4;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t7 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t8 = round((round(t7 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t9 = round((round(t8 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r = round(z * (round(t10 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t4 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t5 = (round((t4 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t6 = (round((round(t5) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t7 = round((round(t6 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t8 = round((round(t7 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r = round(z * (t8 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, w2.x < 0.0f);
     let angle = select(h4, -h4, w2.y < 0.0f);
-    let t11 = floor((angle + 8388608.0f) * 1.5199184e-5f);
-    let t12 = select(0.0f, t11, t11 >= 0.0f);
+    let t9 = floor((angle + 8388608.0f) * 1.5199184e-5f);
+    let t10 = select(0.0f, t9, t9 >= 0.0f);
     let big2_2 = w2.z * w2.z * 16256.25f;
-    let t13 = round(w2.z / sqrt(len2) * 127.5f + 127.5f);
-    let t14 = select(0.0f, t13, t13 >= 0.0f);
-    let estimate = select(255.0f, t14, t14 <= 255.0f);
-    let t15 = estimate - 126.5f;
+    let t11 = round(w2.z / sqrt(len2) * 127.5f + 127.5f);
+    let t12 = select(0.0f, t11, t11 >= 0.0f);
+    let estimate = select(255.0f, t12, t12 <= 255.0f);
+    let t13 = estimate - 126.5f;
+    let t14 = t13 * t13 * len2;
+    let one_if = select(0.0f, 1.0f, big2_2 >= t14);
+    let one_if2 = select(0.0f, 1.0f, big2_2 <= t14);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t13 < 0.0f), select(1.0f, one_if, t13 > 0.0f), w2.z >= 0.0f),
+        estimate < 255.0f
+    );
+    let t15 = estimate - 1.0f - 126.5f;
     let t16 = t15 * t15 * len2;
+    let one_if3 = select(0.0f, 1.0f, big2_2 >= t16);
+    let one_if4 = select(0.0f, 1.0f, big2_2 <= t16);
     let t17 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t16), t15 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t16), t15 > 0.0f),
+        select(0.0f, one_if4, t15 < 0.0f),
+        select(1.0f, one_if3, t15 > 0.0f),
         w2.z >= 0.0f
-    );
-    let up = select(0.0f, t17, estimate < 255.0f);
-    let t18 = estimate - 1.0f - 126.5f;
-    let t19 = t18 * t18 * len2;
-    let t20 = select(
-        select(0.0f, select(0.0f, 1.0f, big2_2 <= t19), t18 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2_2 >= t19), t18 > 0.0f),
-        w2.z >= 0.0f
-    );
-    let down = select(0.0f, t20 - 1.0f, estimate > 0.0f);
-    let base = vec2<f32>(select(255.0f, t12, t12 <= 255.0f), estimate + up + down);
+    )
+        - 1.0f;
+    let down = select(0.0f, t17, estimate > 0.0f);
+    let base = vec2<f32>(select(255.0f, t10, t10 <= 255.0f), estimate + up + down);
     let root_estimate = sqrt(len2);
-    let t21 = floor(root_estimate * 512.0f);
-    let root_h0 = t21 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t22 = select(
-        select(0.0f, -1.0f, root_h0 * root_h0 > len2),
-        1.0f,
-        root_h1 * root_h1 <= len2
-    );
-    let root_k = t21 + t22;
+    let step_down5 = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step5 = select(step_down5, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step5;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t23 = select(
-        select(0.0f, -1.0f, root_m0 * root_m0 > len2),
-        1.0f,
-        root_m1 * root_m1 <= len2
-    );
-    let root_j = root_j0 + t23;
+    let step_down6 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step6 = select(step_down6, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step6;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t24 = floor(w2 / root * 2097152.0f);
-    let t25 = w2 * 2097152.0f;
-    let t26 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t24 * root > t25),
+    let t18 = floor(w2 / root * 2097152.0f);
+    let t19 = w2 * 2097152.0f;
+    let t20 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t18 * root > t19),
         vec3<f32>(1.0f),
-        (t24 + 1.0f) * root <= t25
+        (t18 + 1.0f) * root <= t19
     );
-    let aim = t24 + t26;
+    let aim = t18 + t20;
     let cand = select(vec2<f32>(255.0f), base, base <= vec2<f32>(255.0f));
     let z3 = floor((cand.y * 2.0f - 255.0f) * 8224.126f);
-    let t27 = 2097152.0f - round(z3 * z3 * 4.7683716e-7f);
-    let t28 = select(0.0f, t27, t27 >= 0.0f) * 2097152.0f;
-    let root_estimate2 = floor(sqrt(t28));
+    let t21 = 2097152.0f - round(z3 * z3 * 4.7683716e-7f);
+    let t22 = select(0.0f, t21, t21 >= 0.0f) * 2097152.0f;
+    let root_estimate2 = floor(sqrt(t22));
     let root_next = root_estimate2 + 1.0f;
-    let t29 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t28),
-        1.0f,
-        root_next * root_next <= t28
-    );
-    let root_step = root_estimate2 + t29;
+    let step_down7 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t22);
+    let step7 = select(step_down7, 1.0f, root_next * root_next <= t22);
+    let root_step = root_estimate2 + step7;
     let root_next2 = root_step + 1.0f;
-    let t30 = select(
-        select(0.0f, -1.0f, root_step * root_step > t28),
-        1.0f,
-        root_next2 * root_next2 <= t28
-    );
-    let r2 = root_step + t30;
-    let t31 = floor((cand.x * 2.0f - 255.0f) * 65793.01f);
-    let abs_t31 = abs(t31);
-    let back = abs_t31 > 8388608.0f;
-    let b = select(abs_t31, 16777216.0f - abs_t31, back);
+    let step_down8 = select(0.0f, -1.0f, root_step * root_step > t22);
+    let step8 = select(step_down8, 1.0f, root_next2 * root_next2 <= t22);
+    let r2 = root_step + step8;
+    let t23 = floor((cand.x * 2.0f - 255.0f) * 65793.01f);
+    let abs_t23 = abs(t23);
+    let back = abs_t23 > 8388608.0f;
+    let b = select(abs_t23, 16777216.0f - abs_t23, back);
     let swap = b > 4194304.0f;
     let u = round(select(b, 8388608.0f - b, swap) * 3.1415927f);
     let u2 = round(u * u * 5.9604645e-8f);
-    let t32 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f) + (-3329.0f);
-    let t33 = round((round(t32 * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s = round(u * (round(t33 * u2 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t34 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f) + 416.0f;
-    let t35 = round((round(t34 * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f)
-        + 699051.0f;
-    let co = round((round(t35 * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2 * 5.9604645e-8f)
-        + 16777216.0f;
-    let t36 = select(vec2<f32>(co, s), vec2<f32>(s, co), swap);
-    let t37 = vec3<f32>(
-        round(select(t36, -t36, vec2<bool>(back, t31 < 0.0f)) * r2 * 5.9604645e-8f),
-        z3
-    );
-    let t38 = vec3<u32>(abs(t37 - aim));
-    let limb1_4 = t38.x >> 12u;
-    let limb0_4 = t38.x & 4095u;
+    let t24 = round((round(-0.0f * u2 * 5.9604645e-8f) + 46.0f) * u2 * 5.9604645e-8f);
+    let t25 = (round((t24 + (-3329.0f)) * u2 * 5.9604645e-8f) + 139810.0f) * u2 * 5.9604645e-8f;
+    let t26 = u * (round((round(t25) + (-2796203.0f)) * u2 * 5.9604645e-8f) + 16777216.0f);
+    let s = round(t26 * 5.9604645e-8f);
+    let t27 = round((round(0.0f * u2 * 5.9604645e-8f) + (-5.0f)) * u2 * 5.9604645e-8f);
+    let t28 = (round((t27 + 416.0f) * u2 * 5.9604645e-8f) + (-23302.0f)) * u2 * 5.9604645e-8f;
+    let t29 = (round((round(t28) + 699051.0f) * u2 * 5.9604645e-8f) + (-8388608.0f)) * u2;
+    let co = round(t29 * 5.9604645e-8f) + 16777216.0f;
+    let t30 = select(vec2<f32>(co, s), vec2<f32>(s, co), swap);
+    let t31 = round(select(t30, -t30, vec2<bool>(back, t23 < 0.0f)) * r2 * 5.9604645e-8f);
+    let offset = vec3<f32>(t31, z3) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi6 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo6 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t38.y >> 12u;
-    let limb0_5 = t38.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi7 = hi6 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo7 = lo6 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t38.z >> 12u;
-    let limb0_6 = t38.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi8 = hi7 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo8 = lo7 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi9 = hi8 + (lo8 >> 24u);
     let lo9 = lo8 & 16777215u;
     let dist = f32(hi9) * 16777216.0f + f32(lo9);
-    let t39 = base.x + 1.0f;
-    let t40 = vec2<f32>(t39, base.y);
-    let cand2 = select(vec2<f32>(255.0f), t40, t40 <= vec2<f32>(255.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t32 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(255.0f), t32, t32 <= vec2<f32>(255.0f));
     let z4 = floor((cand2.y * 2.0f - 255.0f) * 8224.126f);
-    let t41 = 2097152.0f - round(z4 * z4 * 4.7683716e-7f);
-    let t42 = select(0.0f, t41, t41 >= 0.0f) * 2097152.0f;
-    let root_estimate3 = floor(sqrt(t42));
+    let t33 = 2097152.0f - round(z4 * z4 * 4.7683716e-7f);
+    let t34 = select(0.0f, t33, t33 >= 0.0f) * 2097152.0f;
+    let root_estimate3 = floor(sqrt(t34));
     let root_next3 = root_estimate3 + 1.0f;
-    let t43 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t42),
-        1.0f,
-        root_next3 * root_next3 <= t42
-    );
-    let root_step2 = root_estimate3 + t43;
+    let step_down9 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t34);
+    let step9 = select(step_down9, 1.0f, root_next3 * root_next3 <= t34);
+    let root_step2 = root_estimate3 + step9;
     let root_next4 = root_step2 + 1.0f;
-    let t44 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t42),
-        1.0f,
-        root_next4 * root_next4 <= t42
-    );
-    let r3 = root_step2 + t44;
-    let t45 = floor((cand2.x * 2.0f - 255.0f) * 65793.01f);
-    let abs_t45 = abs(t45);
-    let back2 = abs_t45 > 8388608.0f;
-    let b2 = select(abs_t45, 16777216.0f - abs_t45, back2);
+    let step_down10 = select(0.0f, -1.0f, root_step2 * root_step2 > t34);
+    let step10 = select(step_down10, 1.0f, root_next4 * root_next4 <= t34);
+    let r3 = root_step2 + step10;
+    let t35 = floor((cand2.x * 2.0f - 255.0f) * 65793.01f);
+    let abs_t35 = abs(t35);
+    let back2 = abs_t35 > 8388608.0f;
+    let b2 = select(abs_t35, 16777216.0f - abs_t35, back2);
     let swap2 = b2 > 4194304.0f;
     let u3 = round(select(b2, 8388608.0f - b2, swap2) * 3.1415927f);
     let u2_2 = round(u3 * u3 * 5.9604645e-8f);
-    let t46 = round((round(-0.0f * u2_2 * 5.9604645e-8f) + 46.0f) * u2_2 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t47 = round((round(t46 * u2_2 * 5.9604645e-8f) + 139810.0f) * u2_2 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s2 = round(u3 * (round(t47 * u2_2 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t48 = round((round(0.0f * u2_2 * 5.9604645e-8f) + (-5.0f)) * u2_2 * 5.9604645e-8f) + 416.0f;
-    let t49 = round((round(t48 * u2_2 * 5.9604645e-8f) + (-23302.0f)) * u2_2 * 5.9604645e-8f)
-        + 699051.0f;
-    let t50 = round((round(t49 * u2_2 * 5.9604645e-8f) + (-8388608.0f)) * u2_2 * 5.9604645e-8f);
-    let co2 = t50 + 16777216.0f;
-    let t51 = select(vec2<f32>(co2, s2), vec2<f32>(s2, co2), swap2);
-    let t52 = vec3<f32>(
-        round(select(t51, -t51, vec2<bool>(back2, t45 < 0.0f)) * r3 * 5.9604645e-8f),
-        z4
-    );
-    let t53 = vec3<u32>(abs(t52 - aim));
-    let limb1_7 = t53.x >> 12u;
-    let limb0_7 = t53.x & 4095u;
+    let t36 = round((round(-0.0f * u2_2 * 5.9604645e-8f) + 46.0f) * u2_2 * 5.9604645e-8f);
+    let t37 = (round((t36 + (-3329.0f)) * u2_2 * 5.9604645e-8f) + 139810.0f) * u2_2 * 5.9604645e-8f;
+    let t38 = u3 * (round((round(t37) + (-2796203.0f)) * u2_2 * 5.9604645e-8f) + 16777216.0f);
+    let s2 = round(t38 * 5.9604645e-8f);
+    let t39 = round((round(0.0f * u2_2 * 5.9604645e-8f) + (-5.0f)) * u2_2 * 5.9604645e-8f);
+    let t40 = (round((t39 + 416.0f) * u2_2 * 5.9604645e-8f) + (-23302.0f)) * u2_2 * 5.9604645e-8f;
+    let t41 = (round((round(t40) + 699051.0f) * u2_2 * 5.9604645e-8f) + (-8388608.0f)) * u2_2;
+    let co2 = round(t41 * 5.9604645e-8f) + 16777216.0f;
+    let t42 = select(vec2<f32>(co2, s2), vec2<f32>(s2, co2), swap2);
+    let t43 = round(select(t42, -t42, vec2<bool>(back2, t35 < 0.0f)) * r3 * 5.9604645e-8f);
+    let offset2 = vec3<f32>(t43, z4) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi10 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo10 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t53.y >> 12u;
-    let limb0_8 = t53.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t53.z >> 12u;
-    let limb0_9 = t53.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi12 = hi11 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo12 = lo11 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi13 = hi12 + (lo12 >> 24u);
     let lo13 = lo12 & 16777215u;
     let dist2 = f32(hi13) * 16777216.0f + f32(lo13);
-    let t54 = t39 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    let best = select(cand, cand2, t54);
-    let best_d = select(dist, dist2, t54);
-    let t55 = base.y + 1.0f;
-    let t56 = vec2<f32>(base.x, t55);
-    let cand3 = select(vec2<f32>(255.0f), t56, t56 <= vec2<f32>(255.0f));
+    let t44 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    let best = select(cand, cand2, t44);
+    let best_d = select(dist, dist2, t44);
+    let t45 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(255.0f), t45, t45 <= vec2<f32>(255.0f));
     let z5 = floor((cand3.y * 2.0f - 255.0f) * 8224.126f);
-    let t57 = 2097152.0f - round(z5 * z5 * 4.7683716e-7f);
-    let t58 = select(0.0f, t57, t57 >= 0.0f) * 2097152.0f;
-    let root_estimate4 = floor(sqrt(t58));
+    let t46 = 2097152.0f - round(z5 * z5 * 4.7683716e-7f);
+    let t47 = select(0.0f, t46, t46 >= 0.0f) * 2097152.0f;
+    let root_estimate4 = floor(sqrt(t47));
     let root_next5 = root_estimate4 + 1.0f;
-    let t59 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t58),
-        1.0f,
-        root_next5 * root_next5 <= t58
-    );
-    let root_step3 = root_estimate4 + t59;
+    let step_down11 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t47);
+    let step11 = select(step_down11, 1.0f, root_next5 * root_next5 <= t47);
+    let root_step3 = root_estimate4 + step11;
     let root_next6 = root_step3 + 1.0f;
-    let t60 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t58),
-        1.0f,
-        root_next6 * root_next6 <= t58
-    );
-    let r4 = root_step3 + t60;
-    let t61 = floor((cand3.x * 2.0f - 255.0f) * 65793.01f);
-    let abs_t61 = abs(t61);
-    let back3 = abs_t61 > 8388608.0f;
-    let b3 = select(abs_t61, 16777216.0f - abs_t61, back3);
+    let step_down12 = select(0.0f, -1.0f, root_step3 * root_step3 > t47);
+    let step12 = select(step_down12, 1.0f, root_next6 * root_next6 <= t47);
+    let r4 = root_step3 + step12;
+    let t48 = floor((cand3.x * 2.0f - 255.0f) * 65793.01f);
+    let abs_t48 = abs(t48);
+    let back3 = abs_t48 > 8388608.0f;
+    let b3 = select(abs_t48, 16777216.0f - abs_t48, back3);
     let swap3 = b3 > 4194304.0f;
     let u4 = round(select(b3, 8388608.0f - b3, swap3) * 3.1415927f);
     let u2_3 = round(u4 * u4 * 5.9604645e-8f);
-    let t62 = round((round(-0.0f * u2_3 * 5.9604645e-8f) + 46.0f) * u2_3 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t63 = round((round(t62 * u2_3 * 5.9604645e-8f) + 139810.0f) * u2_3 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s3 = round(u4 * (round(t63 * u2_3 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t64 = round((round(0.0f * u2_3 * 5.9604645e-8f) + (-5.0f)) * u2_3 * 5.9604645e-8f) + 416.0f;
-    let t65 = round((round(t64 * u2_3 * 5.9604645e-8f) + (-23302.0f)) * u2_3 * 5.9604645e-8f)
-        + 699051.0f;
-    let t66 = round((round(t65 * u2_3 * 5.9604645e-8f) + (-8388608.0f)) * u2_3 * 5.9604645e-8f);
-    let co3 = t66 + 16777216.0f;
-    let t67 = select(vec2<f32>(co3, s3), vec2<f32>(s3, co3), swap3);
-    let t68 = vec3<f32>(
-        round(select(t67, -t67, vec2<bool>(back3, t61 < 0.0f)) * r4 * 5.9604645e-8f),
-        z5
-    );
-    let t69 = vec3<u32>(abs(t68 - aim));
-    let limb1_10 = t69.x >> 12u;
-    let limb0_10 = t69.x & 4095u;
+    let t49 = round((round(-0.0f * u2_3 * 5.9604645e-8f) + 46.0f) * u2_3 * 5.9604645e-8f);
+    let t50 = (round((t49 + (-3329.0f)) * u2_3 * 5.9604645e-8f) + 139810.0f) * u2_3 * 5.9604645e-8f;
+    let t51 = u4 * (round((round(t50) + (-2796203.0f)) * u2_3 * 5.9604645e-8f) + 16777216.0f);
+    let s3 = round(t51 * 5.9604645e-8f);
+    let t52 = round((round(0.0f * u2_3 * 5.9604645e-8f) + (-5.0f)) * u2_3 * 5.9604645e-8f);
+    let t53 = (round((t52 + 416.0f) * u2_3 * 5.9604645e-8f) + (-23302.0f)) * u2_3 * 5.9604645e-8f;
+    let t54 = (round((round(t53) + 699051.0f) * u2_3 * 5.9604645e-8f) + (-8388608.0f)) * u2_3;
+    let co3 = round(t54 * 5.9604645e-8f) + 16777216.0f;
+    let t55 = select(vec2<f32>(co3, s3), vec2<f32>(s3, co3), swap3);
+    let t56 = round(select(t55, -t55, vec2<bool>(back3, t48 < 0.0f)) * r4 * 5.9604645e-8f);
+    let offset3 = vec3<f32>(t56, z5) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi14 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo14 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t69.y >> 12u;
-    let limb0_11 = t69.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t69.z >> 12u;
-    let limb0_12 = t69.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi16 = hi15 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo16 = lo15 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi17 = hi16 + (lo16 >> 24u);
     let lo17 = lo16 & 16777215u;
     let dist3 = f32(hi17) * 16777216.0f + f32(lo17);
-    let t70 = base.x <= 255.0f && t55 <= 255.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t70);
-    let best_d2 = select(best_d, dist3, t70);
-    let t71 = base + 1.0f;
-    let cand4 = select(vec2<f32>(255.0f), t71, t71 <= vec2<f32>(255.0f));
+    let t57 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t57);
+    let best_d2 = select(best_d, dist3, t57);
+    let t58 = base + 1.0f;
+    let cand4 = select(vec2<f32>(255.0f), t58, t58 <= vec2<f32>(255.0f));
     let z6 = floor((cand4.y * 2.0f - 255.0f) * 8224.126f);
-    let t72 = 2097152.0f - round(z6 * z6 * 4.7683716e-7f);
-    let t73 = select(0.0f, t72, t72 >= 0.0f) * 2097152.0f;
-    let root_estimate5 = floor(sqrt(t73));
+    let t59 = 2097152.0f - round(z6 * z6 * 4.7683716e-7f);
+    let t60 = select(0.0f, t59, t59 >= 0.0f) * 2097152.0f;
+    let root_estimate5 = floor(sqrt(t60));
     let root_next7 = root_estimate5 + 1.0f;
-    let t74 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t73),
-        1.0f,
-        root_next7 * root_next7 <= t73
-    );
-    let root_step4 = root_estimate5 + t74;
+    let step_down13 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t60);
+    let step13 = select(step_down13, 1.0f, root_next7 * root_next7 <= t60);
+    let root_step4 = root_estimate5 + step13;
     let root_next8 = root_step4 + 1.0f;
-    let t75 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t73),
-        1.0f,
-        root_next8 * root_next8 <= t73
-    );
-    let r5 = root_step4 + t75;
-    let t76 = floor((cand4.x * 2.0f - 255.0f) * 65793.01f);
-    let abs_t76 = abs(t76);
-    let back4 = abs_t76 > 8388608.0f;
-    let b4 = select(abs_t76, 16777216.0f - abs_t76, back4);
+    let step_down14 = select(0.0f, -1.0f, root_step4 * root_step4 > t60);
+    let step14 = select(step_down14, 1.0f, root_next8 * root_next8 <= t60);
+    let r5 = root_step4 + step14;
+    let t61 = floor((cand4.x * 2.0f - 255.0f) * 65793.01f);
+    let abs_t61 = abs(t61);
+    let back4 = abs_t61 > 8388608.0f;
+    let b4 = select(abs_t61, 16777216.0f - abs_t61, back4);
     let swap4 = b4 > 4194304.0f;
     let u5 = round(select(b4, 8388608.0f - b4, swap4) * 3.1415927f);
     let u2_4 = round(u5 * u5 * 5.9604645e-8f);
-    let t77 = round((round(-0.0f * u2_4 * 5.9604645e-8f) + 46.0f) * u2_4 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t78 = round((round(t77 * u2_4 * 5.9604645e-8f) + 139810.0f) * u2_4 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let s4 = round(u5 * (round(t78 * u2_4 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t79 = round((round(0.0f * u2_4 * 5.9604645e-8f) + (-5.0f)) * u2_4 * 5.9604645e-8f) + 416.0f;
-    let t80 = round((round(t79 * u2_4 * 5.9604645e-8f) + (-23302.0f)) * u2_4 * 5.9604645e-8f)
-        + 699051.0f;
-    let t81 = round((round(t80 * u2_4 * 5.9604645e-8f) + (-8388608.0f)) * u2_4 * 5.9604645e-8f);
-    let co4 = t81 + 16777216.0f;
-    let t82 = select(vec2<f32>(co4, s4), vec2<f32>(s4, co4), swap4);
-    let t83 = vec3<f32>(
-        round(select(t82, -t82, vec2<bool>(back4, t76 < 0.0f)) * r5 * 5.9604645e-8f),
-        z6
-    );
-    let t84 = vec3<u32>(abs(t83 - aim));
-    let limb1_13 = t84.x >> 12u;
-    let limb0_13 = t84.x & 4095u;
+    let t62 = round((round(-0.0f * u2_4 * 5.9604645e-8f) + 46.0f) * u2_4 * 5.9604645e-8f);
+    let t63 = (round((t62 + (-3329.0f)) * u2_4 * 5.9604645e-8f) + 139810.0f) * u2_4 * 5.9604645e-8f;
+    let t64 = u5 * (round((round(t63) + (-2796203.0f)) * u2_4 * 5.9604645e-8f) + 16777216.0f);
+    let s4 = round(t64 * 5.9604645e-8f);
+    let t65 = round((round(0.0f * u2_4 * 5.9604645e-8f) + (-5.0f)) * u2_4 * 5.9604645e-8f);
+    let t66 = (round((t65 + 416.0f) * u2_4 * 5.9604645e-8f) + (-23302.0f)) * u2_4 * 5.9604645e-8f;
+    let t67 = (round((round(t66) + 699051.0f) * u2_4 * 5.9604645e-8f) + (-8388608.0f)) * u2_4;
+    let co4 = round(t67 * 5.9604645e-8f) + 16777216.0f;
+    let t68 = select(vec2<f32>(co4, s4), vec2<f32>(s4, co4), swap4);
+    let t69 = round(select(t68, -t68, vec2<bool>(back4, t61 < 0.0f)) * r5 * 5.9604645e-8f);
+    let offset4 = vec3<f32>(t69, z6) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi18 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo18 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t84.y >> 12u;
-    let limb0_14 = t84.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t84.z >> 12u;
-    let limb0_15 = t84.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi20 = hi19 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo20 = lo19 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi21 = hi20 + (lo20 >> 24u);
     let lo21 = lo20 & 16777215u;
     let dist4 = f32(hi21) * 16777216.0f + f32(lo21);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2);
     return best3;
 }
 

@@ -64,12 +64,16 @@ fn unitpack_stereo16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -89,21 +93,24 @@ fn unitpack_stereo16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let enc = w2.xy / (root + abs(w2.z)) * 0.5f + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -118,12 +125,16 @@ fn unitpack_stereo16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -143,45 +154,40 @@ fn unitpack_stereo16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = root + abs(w2.z);
+    let t1 = root + abs(w2.z);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let t = w2.x * 127.5f;
-    let t5 = round(t / t4 + 127.5f);
+    let t2 = round(t / t1 + 127.5f);
+    let t3 = select(0.0f, t2, t2 >= 0.0f);
+    let estimate = select(255.0f, t3, t3 <= 255.0f);
+    let one_if2 = select(0.0f, 1.0f, t >= (estimate - 127.0f) * t1);
+    let up = select(0.0f, one_if2, estimate < 255.0f);
+    let one_if3 = select(0.0f, 1.0f, t >= (estimate - 1.0f - 127.0f) * t1);
+    let down = select(0.0f, one_if3 - 1.0f, estimate > 0.0f);
+    let t4 = w2.y * 63.5f;
+    let t5 = round(t4 / t1 + 63.5f);
     let t6 = select(0.0f, t5, t5 >= 0.0f);
-    let estimate = select(255.0f, t6, t6 <= 255.0f);
-    let up = select(0.0f, select(0.0f, 1.0f, t >= (estimate - 127.0f) * t4), estimate < 255.0f);
-    let down = select(
-        0.0f,
-        select(0.0f, 1.0f, t >= (estimate - 1.0f - 127.0f) * t4) - 1.0f,
-        estimate > 0.0f
-    );
-    let t7 = w2.y * 63.5f;
-    let t8 = round(t7 / t4 + 63.5f);
-    let t9 = select(0.0f, t8, t8 >= 0.0f);
-    let estimate2 = select(127.0f, t9, t9 <= 127.0f);
-    let up2 = select(0.0f, select(0.0f, 1.0f, t7 >= (estimate2 - 63.0f) * t4), estimate2 < 127.0f);
-    let down2 = select(
-        0.0f,
-        select(0.0f, 1.0f, t7 >= (estimate2 - 1.0f - 63.0f) * t4) - 1.0f,
-        estimate2 > 0.0f
-    );
-    return vec3<f32>(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        select(0.0f, 1.0f, w2.z < 0.0f)
-    );
+    let estimate2 = select(127.0f, t6, t6 <= 127.0f);
+    let one_if4 = select(0.0f, 1.0f, t4 >= (estimate2 - 63.0f) * t1);
+    let up2 = select(0.0f, one_if4, estimate2 < 127.0f);
+    let one_if5 = select(0.0f, 1.0f, t4 >= (estimate2 - 1.0f - 63.0f) * t1);
+    let down2 = select(0.0f, one_if5 - 1.0f, estimate2 > 0.0f);
+    return vec3<f32>(estimate + up + down, estimate2 + up2 + down2, one_if);
 }
 
 // unitpack_stereo16_encode: fast encoder.

@@ -61,12 +61,16 @@ fn unitpack_stereo16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -86,219 +90,213 @@ fn unitpack_stereo16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = root + abs(w2.z);
-    let t5 = select(0.0f, 1.0f, w2.z < 0.0f);
-    let t6 = w2.xy * vec2<f32>(127.5f, 63.5f);
-    let t7 = round(t6 / t4 + vec2<f32>(127.5f, 63.5f));
-    let t8 = select(vec2<f32>(0.0f), t7, t7 >= vec2<f32>(0.0f));
-    let t9 = select(vec2<f32>(255.0f, 127.0f), t8, t8 <= vec2<f32>(255.0f, 127.0f));
-    let t10 = select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - vec2<f32>(126.5f, 62.5f)) * t4);
-    let t11 = select(
+    let t1 = root + abs(w2.z);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let t2 = w2.xy * vec2<f32>(127.5f, 63.5f);
+    let t3 = round(t2 / t1 + vec2<f32>(127.5f, 63.5f));
+    let t4 = select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f));
+    let t5 = select(vec2<f32>(255.0f, 127.0f), t4, t4 <= vec2<f32>(255.0f, 127.0f));
+    let t6 = t5
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - vec2<f32>(126.5f, 62.5f)) * t1),
+            t5 < vec2<f32>(255.0f, 127.0f)
+        );
+    let t7 = select(
         vec2<f32>(0.0f),
-        vec2<f32>(1.0f),
-        t6 >= (t9 - 1.0f - vec2<f32>(126.5f, 62.5f)) * t4
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 1.0f - vec2<f32>(126.5f, 62.5f)) * t1)
+            - 1.0f,
+        t5 > vec2<f32>(0.0f)
     );
-    let base = t9
-        + select(vec2<f32>(0.0f), t10, t9 < vec2<f32>(255.0f, 127.0f))
-        + select(vec2<f32>(0.0f), t11 - 1.0f, t9 > vec2<f32>(0.0f));
-    let t12 = floor(w2 / root * 2097152.0f);
-    let t13 = w2 * 2097152.0f;
-    let t14 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t12 * root > t13),
+    let base = t6 + t7;
+    let t8 = floor(w2 / root * 2097152.0f);
+    let t9 = w2 * 2097152.0f;
+    let t10 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t8 * root > t9),
         vec3<f32>(1.0f),
-        (t12 + 1.0f) * root <= t13
+        (t8 + 1.0f) * root <= t9
     );
-    let aim = t12 + t14;
+    let aim = t8 + t10;
     let cand = select(vec2<f32>(255.0f, 127.0f), base, base <= vec2<f32>(255.0f, 127.0f));
     let p = floor((cand * 2.0f - vec2<f32>(255.0f, 127.0f)) * vec2<f32>(8224.126f, 16513.008f));
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
-    let t15 = 2097152.0f + q;
-    let t16 = p + p;
-    let t17 = floor(t16 / t15 * 2097152.0f);
-    let t18 = t16 * 2097152.0f;
-    let t19 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t17 * t15 > t18),
+    let t11 = 2097152.0f + q;
+    let t12 = p + p;
+    let t13 = floor(t12 / t11 * 2097152.0f);
+    let t14 = t12 * 2097152.0f;
+    let t15 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t13 * t11 > t14),
         vec2<f32>(1.0f),
-        (t17 + 1.0f) * t15 <= t18
+        (t13 + 1.0f) * t11 <= t14
     );
-    let t20 = 2097152.0f - q;
-    let big = t20 * 2097152.0f;
-    let ratio_estimate = floor(t20 / t15 * 2097152.0f);
-    let t21 = select(
-        select(0.0f, -1.0f, ratio_estimate * t15 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t15 <= big
-    );
-    let ratio = ratio_estimate + t21;
-    let t22 = vec3<u32>(abs(vec3<f32>(t17 + t19, select(ratio, -ratio, t5 > 0.5f)) - aim));
-    let limb1_4 = t22.x >> 12u;
-    let limb0_4 = t22.x & 4095u;
+    let t16 = 2097152.0f - q;
+    let big = t16 * 2097152.0f;
+    let ratio_estimate = floor(t16 / t11 * 2097152.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t11 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t11 <= big);
+    let ratio = ratio_estimate + step3;
+    let offset = vec3<f32>(t13 + t15, select(ratio, -ratio, one_if > 0.5f)) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t22.y >> 12u;
-    let limb0_5 = t22.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t22.z >> 12u;
-    let limb0_6 = t22.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t23 = base.x + 1.0f;
-    let t24 = vec2<f32>(t23, base.y);
-    let cand2 = select(vec2<f32>(255.0f, 127.0f), t24, t24 <= vec2<f32>(255.0f, 127.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t17 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(255.0f, 127.0f), t17, t17 <= vec2<f32>(255.0f, 127.0f));
     let p2 = floor((cand2 * 2.0f - vec2<f32>(255.0f, 127.0f)) * vec2<f32>(8224.126f, 16513.008f));
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
-    let t25 = 2097152.0f + q2;
-    let t26 = p2 + p2;
-    let t27 = floor(t26 / t25 * 2097152.0f);
-    let t28 = t26 * 2097152.0f;
-    let t29 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t27 * t25 > t28),
+    let t18 = 2097152.0f + q2;
+    let t19 = p2 + p2;
+    let t20 = floor(t19 / t18 * 2097152.0f);
+    let t21 = t19 * 2097152.0f;
+    let t22 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t20 * t18 > t21),
         vec2<f32>(1.0f),
-        (t27 + 1.0f) * t25 <= t28
+        (t20 + 1.0f) * t18 <= t21
     );
-    let t30 = 2097152.0f - q2;
-    let big2 = t30 * 2097152.0f;
-    let ratio_estimate2 = floor(t30 / t25 * 2097152.0f);
-    let t31 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t25 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t25 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t31;
-    let t32 = vec3<u32>(abs(vec3<f32>(t27 + t29, select(ratio2, -ratio2, t5 > 0.5f)) - aim));
-    let limb1_7 = t32.x >> 12u;
-    let limb0_7 = t32.x & 4095u;
+    let t23 = 2097152.0f - q2;
+    let big2 = t23 * 2097152.0f;
+    let ratio_estimate2 = floor(t23 / t18 * 2097152.0f);
+    let step_down4 = select(0.0f, -1.0f, ratio_estimate2 * t18 > big2);
+    let step4 = select(step_down4, 1.0f, (ratio_estimate2 + 1.0f) * t18 <= big2);
+    let ratio2 = ratio_estimate2 + step4;
+    let offset2 = vec3<f32>(t20 + t22, select(ratio2, -ratio2, one_if > 0.5f)) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t32.y >> 12u;
-    let limb0_8 = t32.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t32.z >> 12u;
-    let limb0_9 = t32.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t33 = t23 <= 255.0f && base.y <= 127.0f && dist2 < dist;
-    let best = select(cand, cand2, t33);
-    let best_d = select(dist, dist2, t33);
-    let t34 = base.y + 1.0f;
-    let t35 = vec2<f32>(base.x, t34);
-    let cand3 = select(vec2<f32>(255.0f, 127.0f), t35, t35 <= vec2<f32>(255.0f, 127.0f));
+    let t24 = s_up <= 255.0f && base.y <= 127.0f && dist2 < dist;
+    let best = select(cand, cand2, t24);
+    let best_d = select(dist, dist2, t24);
+    let t25 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(255.0f, 127.0f), t25, t25 <= vec2<f32>(255.0f, 127.0f));
     let p3 = floor((cand3 * 2.0f - vec2<f32>(255.0f, 127.0f)) * vec2<f32>(8224.126f, 16513.008f));
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
-    let t36 = 2097152.0f + q3;
-    let t37 = p3 + p3;
-    let t38 = floor(t37 / t36 * 2097152.0f);
-    let t39 = t37 * 2097152.0f;
-    let t40 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t38 * t36 > t39),
+    let t26 = 2097152.0f + q3;
+    let t27 = p3 + p3;
+    let t28 = floor(t27 / t26 * 2097152.0f);
+    let t29 = t27 * 2097152.0f;
+    let t30 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t28 * t26 > t29),
         vec2<f32>(1.0f),
-        (t38 + 1.0f) * t36 <= t39
+        (t28 + 1.0f) * t26 <= t29
     );
-    let t41 = 2097152.0f - q3;
-    let big3 = t41 * 2097152.0f;
-    let ratio_estimate3 = floor(t41 / t36 * 2097152.0f);
-    let t42 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * t36 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * t36 <= big3
-    );
-    let ratio3 = ratio_estimate3 + t42;
-    let t43 = vec3<u32>(abs(vec3<f32>(t38 + t40, select(ratio3, -ratio3, t5 > 0.5f)) - aim));
-    let limb1_10 = t43.x >> 12u;
-    let limb0_10 = t43.x & 4095u;
+    let t31 = 2097152.0f - q3;
+    let big3 = t31 * 2097152.0f;
+    let ratio_estimate3 = floor(t31 / t26 * 2097152.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate3 * t26 > big3);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate3 + 1.0f) * t26 <= big3);
+    let ratio3 = ratio_estimate3 + step5;
+    let offset3 = vec3<f32>(t28 + t30, select(ratio3, -ratio3, one_if > 0.5f)) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t43.y >> 12u;
-    let limb0_11 = t43.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t43.z >> 12u;
-    let limb0_12 = t43.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t44 = base.x <= 255.0f && t34 <= 127.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t44);
-    let best_d2 = select(best_d, dist3, t44);
-    let t45 = base + 1.0f;
-    let cand4 = select(vec2<f32>(255.0f, 127.0f), t45, t45 <= vec2<f32>(255.0f, 127.0f));
+    let t32 = base.x <= 255.0f && t_up <= 127.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t32);
+    let best_d2 = select(best_d, dist3, t32);
+    let t33 = base + 1.0f;
+    let cand4 = select(vec2<f32>(255.0f, 127.0f), t33, t33 <= vec2<f32>(255.0f, 127.0f));
     let p4 = floor((cand4 * 2.0f - vec2<f32>(255.0f, 127.0f)) * vec2<f32>(8224.126f, 16513.008f));
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
-    let t46 = 2097152.0f + q4;
-    let t47 = p4 + p4;
-    let t48 = floor(t47 / t46 * 2097152.0f);
-    let t49 = t47 * 2097152.0f;
-    let t50 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t48 * t46 > t49),
+    let t34 = 2097152.0f + q4;
+    let t35 = p4 + p4;
+    let t36 = floor(t35 / t34 * 2097152.0f);
+    let t37 = t35 * 2097152.0f;
+    let t38 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t36 * t34 > t37),
         vec2<f32>(1.0f),
-        (t48 + 1.0f) * t46 <= t49
+        (t36 + 1.0f) * t34 <= t37
     );
-    let t51 = 2097152.0f - q4;
-    let big4 = t51 * 2097152.0f;
-    let ratio_estimate4 = floor(t51 / t46 * 2097152.0f);
-    let t52 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * t46 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * t46 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t52;
-    let t53 = vec3<u32>(abs(vec3<f32>(t48 + t50, select(ratio4, -ratio4, t5 > 0.5f)) - aim));
-    let limb1_13 = t53.x >> 12u;
-    let limb0_13 = t53.x & 4095u;
+    let t39 = 2097152.0f - q4;
+    let big4 = t39 * 2097152.0f;
+    let ratio_estimate4 = floor(t39 / t34 * 2097152.0f);
+    let step_down6 = select(0.0f, -1.0f, ratio_estimate4 * t34 > big4);
+    let step6 = select(step_down6, 1.0f, (ratio_estimate4 + 1.0f) * t34 <= big4);
+    let ratio4 = ratio_estimate4 + step6;
+    let offset4 = vec3<f32>(t36 + t38, select(ratio4, -ratio4, one_if > 0.5f)) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t53.y >> 12u;
-    let limb0_14 = t53.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t53.z >> 12u;
-    let limb0_15 = t53.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 255.0f && base.y + 1.0f <= 127.0f && dist4 < best_d2
-    );
-    return vec3<f32>(best3, t5);
+    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 127.0f && dist4 < best_d2);
+    return vec3<f32>(best3, one_if);
 }
 
 // unitpack_stereo16p_encode_float: precise encoder, float form.

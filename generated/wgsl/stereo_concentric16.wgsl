@@ -25,9 +25,8 @@ fn unitpack_stereo_concentric16_sincos_quarter_pi(a0: f32) -> vec2<f32> {
     let c2 = a0 * a0;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = a0 * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     return vec2<f32>(s, co);
 }
 
@@ -80,8 +79,8 @@ fn unitpack_stereo_concentric16_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -104,12 +103,16 @@ fn unitpack_stereo_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -129,30 +132,33 @@ fn unitpack_stereo_concentric16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = w2.xy * w2.xy;
-    let rho = sqrt(t4.x + t4.y);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let t1 = w2.xy * w2.xy;
+    let rho = sqrt(t1.x + t1.y);
     let half_r = rho / (root + abs(w2.z)) * 0.5f;
-    let t5 = abs(w2.x) >= abs(w2.y);
-    let major = select(w2.y, w2.x, t5);
-    let minor = select(w2.x, w2.y, t5);
+    let t2 = abs(w2.x) >= abs(w2.y);
+    let major = select(w2.y, w2.x, t2);
+    let minor = select(w2.x, w2.y, t2);
     let t = unitpack_stereo_concentric16_atan2_pi(minor, abs(major));
-    let t6 = select(half_r, -half_r, major < 0.0f);
-    let t7 = half_r * t * 4.0f;
-    let enc = select(vec2<f32>(t7, t6), vec2<f32>(t6, t7), t5) + 0.5f;
-    return vec3<f32>(enc, select(0.0f, 1.0f, w2.z < 0.0f));
+    let t3 = select(half_r, -half_r, major < 0.0f);
+    let t4 = half_r * t * 4.0f;
+    let enc = select(vec2<f32>(t4, t3), vec2<f32>(t3, t4), t2) + 0.5f;
+    return vec3<f32>(enc, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -167,12 +173,16 @@ fn unitpack_stereo_concentric16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -192,22 +202,27 @@ fn unitpack_stereo_concentric16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = root + abs(w2.z);
-    let fixed5 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w2.y) * 2097152.0f));
+    let t1 = root + abs(w2.z);
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -221,106 +236,104 @@ fn unitpack_stereo_concentric16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2 = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let t4_sq = t4 * t4;
-    let r = sqrt(rho2 / t4_sq);
-    let t5 = abs(w2.x) >= abs(w2.y);
-    let major = select(w2.y, w2.x, t5);
-    let minor = select(w2.x, w2.y, t5);
+    let t1_sq = t1 * t1;
+    let r = sqrt(rho2 / t1_sq);
+    let t2 = abs(w2.x) >= abs(w2.y);
+    let major = select(w2.y, w2.x, t2);
+    let minor = select(w2.x, w2.y, t2);
     let abs_major = abs(major);
     let abs_abs_major = abs(abs_major);
     let abs_minor = abs(minor);
     let y_major = abs_minor > abs_abs_major;
     let hi8 = select(abs_abs_major, abs_minor, y_major);
     let lo8 = select(abs_minor, abs_abs_major, y_major);
-    let t6 = select(1.0f, hi8, hi8 > 0.0f);
+    let t3 = select(1.0f, hi8, hi8 > 0.0f);
     let big = lo8 * 8388608.0f;
-    let ratio_estimate = floor(lo8 / t6 * 8388608.0f);
-    let t7 = select(
-        select(0.0f, -1.0f, ratio_estimate * t6 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t6 <= big
-    );
-    let ratio = ratio_estimate + t7;
-    let t = ratio + select(select(0.0f, -1.0f, ratio * t6 > big), 1.0f, (ratio + 1.0f) * t6 <= big);
+    let ratio_estimate = floor(lo8 / t3 * 8388608.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t3 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
+    let ratio = ratio_estimate + step3;
+    let step_down4 = select(0.0f, -1.0f, ratio * t3 > big);
+    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
+    let t = ratio + step4;
     let far = t > 3474675.0f;
-    let t8 = t - 8388608.0f;
-    let t9 = t + 8388608.0f;
-    let big2 = t8 * 8388608.0f;
-    let ratio_estimate2 = floor(t8 / t9 * 8388608.0f);
-    let t10 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t9 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t9 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t10;
-    let t11 = select(select(0.0f, -1.0f, ratio2 * t9 > big2), 1.0f, (ratio2 + 1.0f) * t9 <= big2);
-    let ratio3 = ratio2 + t11;
+    let t4 = t - 8388608.0f;
+    let t5 = t + 8388608.0f;
+    let big2 = t4 * 8388608.0f;
+    let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t5 > big2);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
+    let ratio2 = ratio_estimate2 + step5;
+    let step_down6 = select(0.0f, -1.0f, ratio2 * t5 > big2);
+    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
+    let ratio3 = ratio2 + step6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
-    let t12 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f)
-        + (-559241.0f);
-    let t13 = round((round(t12 * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f)
-        + (-762601.0f);
-    let t14 = round((round(t13 * z2 * 1.1920929e-7f) + 932068.0f) * z2 * 1.1920929e-7f)
-        + (-1198373.0f);
-    let t15 = round((round(t14 * z2 * 1.1920929e-7f) + 1677722.0f) * z2 * 1.1920929e-7f)
-        + (-2796203.0f);
-    let r2 = round(z * (round(t15 * z2 * 1.1920929e-7f) + 8388608.0f) * 1.1920929e-7f);
+    let t6 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
+    let t7 = (round((t6 + (-559241.0f)) * z2 * 1.1920929e-7f) + 645278.0f) * z2 * 1.1920929e-7f;
+    let t8 = (round((round(t7) + (-762601.0f)) * z2 * 1.1920929e-7f) + 932068.0f) * z2;
+    let t9 = round((round(t8 * 1.1920929e-7f) + (-1198373.0f)) * z2 * 1.1920929e-7f) + 1677722.0f;
+    let t10 = round((round(t9 * z2 * 1.1920929e-7f) + (-2796203.0f)) * z2 * 1.1920929e-7f);
+    let r2 = round(z * (t10 + 8388608.0f) * 1.1920929e-7f);
     let h = round(r2 * 0.31830987f);
     let h2 = select(h, h + 2097152.0f, far);
     let h3 = select(h2, 4194304.0f - h2, y_major);
     let h4 = select(h3, 8388608.0f - h3, abs_major < 0.0f);
-    let t16 = select(h4, -h4, minor < 0.0f);
-    let t17 = major < 0.0f;
-    let x = select(t16 * 6.0796738e-5f, select(127.5f, -127.5f, t17), t5);
-    let t18 = round(r * x + 127.5f);
-    let t19 = select(0.0f, t18, t18 >= 0.0f);
-    let estimate = select(255.0f, t19, t19 <= 255.0f);
-    let t20 = estimate - 127.0f;
-    let t21 = rho2 * (x * x);
-    let t22 = t20 * t20 * t4_sq;
-    let t23 = select(
-        select(0.0f, select(0.0f, 1.0f, t21 <= t22), t20 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, t21 >= t22), t20 > 0.0f),
+    let t11 = select(h4, -h4, minor < 0.0f);
+    let t12 = major < 0.0f;
+    let x = select(t11 * 6.0796738e-5f, select(127.5f, -127.5f, t12), t2);
+    let t13 = round(r * x + 127.5f);
+    let t14 = select(0.0f, t13, t13 >= 0.0f);
+    let estimate = select(255.0f, t14, t14 <= 255.0f);
+    let t15 = estimate - 127.0f;
+    let t16 = rho2 * (x * x);
+    let t17 = t15 * t15 * t1_sq;
+    let one_if2 = select(0.0f, 1.0f, t16 >= t17);
+    let one_if3 = select(0.0f, 1.0f, t16 <= t17);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if3, t15 < 0.0f), select(1.0f, one_if2, t15 > 0.0f), x >= 0.0f),
+        estimate < 255.0f
+    );
+    let t18 = estimate - 1.0f - 127.0f;
+    let t19 = rho2 * (x * x);
+    let t20 = t18 * t18 * t1_sq;
+    let one_if4 = select(0.0f, 1.0f, t19 >= t20);
+    let one_if5 = select(0.0f, 1.0f, t19 <= t20);
+    let t21 = select(
+        select(0.0f, one_if5, t18 < 0.0f),
+        select(1.0f, one_if4, t18 > 0.0f),
         x >= 0.0f
+    )
+        - 1.0f;
+    let down = select(0.0f, t21, estimate > 0.0f);
+    let x2 = select(select(63.5f, -63.5f, t12), t11 * 3.027916e-5f, t2);
+    let t22 = round(r * x2 + 63.5f);
+    let t23 = select(0.0f, t22, t22 >= 0.0f);
+    let estimate2 = select(127.0f, t23, t23 <= 127.0f);
+    let t24 = estimate2 - 63.0f;
+    let t25 = rho2 * (x2 * x2);
+    let t26 = t24 * t24 * t1_sq;
+    let one_if6 = select(0.0f, 1.0f, t25 >= t26);
+    let one_if7 = select(0.0f, 1.0f, t25 <= t26);
+    let up2 = select(
+        0.0f,
+        select(select(0.0f, one_if7, t24 < 0.0f), select(1.0f, one_if6, t24 > 0.0f), x2 >= 0.0f),
+        estimate2 < 127.0f
     );
-    let up = select(0.0f, t23, estimate < 255.0f);
-    let t24 = estimate - 1.0f - 127.0f;
-    let t25 = rho2 * (x * x);
-    let t26 = t24 * t24 * t4_sq;
-    let t27 = select(
-        select(0.0f, select(0.0f, 1.0f, t25 <= t26), t24 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, t25 >= t26), t24 > 0.0f),
-        x >= 0.0f
-    );
-    let down = select(0.0f, t27 - 1.0f, estimate > 0.0f);
-    let x2 = select(select(63.5f, -63.5f, t17), t16 * 3.027916e-5f, t5);
-    let t28 = round(r * x2 + 63.5f);
-    let t29 = select(0.0f, t28, t28 >= 0.0f);
-    let estimate2 = select(127.0f, t29, t29 <= 127.0f);
-    let t30 = estimate2 - 63.0f;
-    let t31 = rho2 * (x2 * x2);
-    let t32 = t30 * t30 * t4_sq;
-    let t33 = select(
-        select(0.0f, select(0.0f, 1.0f, t31 <= t32), t30 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, t31 >= t32), t30 > 0.0f),
+    let t27 = estimate2 - 1.0f - 63.0f;
+    let t28 = rho2 * (x2 * x2);
+    let t29 = t27 * t27 * t1_sq;
+    let one_if8 = select(0.0f, 1.0f, t28 >= t29);
+    let one_if9 = select(0.0f, 1.0f, t28 <= t29);
+    let t30 = select(
+        select(0.0f, one_if9, t27 < 0.0f),
+        select(1.0f, one_if8, t27 > 0.0f),
         x2 >= 0.0f
-    );
-    let up2 = select(0.0f, t33, estimate2 < 127.0f);
-    let t34 = estimate2 - 1.0f - 63.0f;
-    let t35 = rho2 * (x2 * x2);
-    let t36 = t34 * t34 * t4_sq;
-    let t37 = select(
-        select(0.0f, select(0.0f, 1.0f, t35 <= t36), t34 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, t35 >= t36), t34 > 0.0f),
-        x2 >= 0.0f
-    );
-    let down2 = select(0.0f, t37 - 1.0f, estimate2 > 0.0f);
-    return vec3<f32>(
-        estimate + up + down,
-        estimate2 + up2 + down2,
-        select(0.0f, 1.0f, w2.z < 0.0f)
-    );
+    )
+        - 1.0f;
+    let down2 = select(0.0f, t30, estimate2 > 0.0f);
+    return vec3<f32>(estimate + up + down, estimate2 + up2 + down2, one_if);
 }
 
 // unitpack_stereo_concentric16_encode: fast encoder.

@@ -63,9 +63,7 @@ fn unitpack_stereo_scaled16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
 }
 
 // unitpack_stereo_scaled16_ieee_encode: fast encoder.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
-//   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
-//   encodes as (0, 0), the corner nearest it.
+// In: as for unitpack_stereo_scaled16_ieee_encode_float.
 // Out: the packed code, u32 (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
 //   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C

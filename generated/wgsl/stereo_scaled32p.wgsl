@@ -55,12 +55,16 @@ fn unitpack_stereo_scaled32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -80,22 +84,26 @@ fn unitpack_stereo_scaled32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = w2.z >= 0.0f;
-    let fixed5 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed6 = u32(floor(abs(w2.y) * 2097152.0f));
+    let t1 = w2.z >= 0.0f;
+    let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
+    let fixed5 = u32(fixed_f4);
+    let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
+    let fixed6 = u32(fixed_f5);
     let limb1_4 = fixed5 >> 12u;
     let limb0_4 = fixed5 & 4095u;
     let cross4 = limb1_4 * limb0_4;
@@ -109,179 +117,184 @@ fn unitpack_stereo_scaled32p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let hi7 = hi6 + (lo6 >> 24u);
     let lo7 = lo6 & 16777215u;
     let rho2 = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
-    let opz_a = select(rho2, root + w2.z, t4);
-    let opz_b = select(root - w2.z, 1.0f, t4);
-    let t5 = opz_a <= 0.0f;
-    let t6 = select(w2, vec3<f32>(0.0f, 0.0f, 2.0f), t5);
-    let t7 = select(root, 2.0f, t5);
-    let t8 = select(opz_a, 4.0f, t5);
-    let t9 = t6.xy * select(opz_b, 1.0f, t5) * 18432.525f;
-    let t10 = round(t9 / t8 + 32767.5f);
-    let t11 = select(vec2<f32>(0.0f), t10, t10 >= vec2<f32>(0.0f));
-    let t12 = select(vec2<f32>(65535.0f), t11, t11 <= vec2<f32>(65535.0f));
-    let t13 = select(
+    let opz_a = select(rho2, root + w2.z, t1);
+    let opz_b = select(root - w2.z, 1.0f, t1);
+    let t2 = opz_a <= 0.0f;
+    let t3 = select(w2, vec3<f32>(0.0f, 0.0f, 2.0f), t2);
+    let t4 = select(root, 2.0f, t2);
+    let t5 = select(opz_a, 4.0f, t2);
+    let t6 = t3.xy * select(opz_b, 1.0f, t2) * 18432.525f;
+    let t7 = round(t6 / t5 + 32767.5f);
+    let t8 = select(vec2<f32>(0.0f), t7, t7 >= vec2<f32>(0.0f));
+    let t9 = select(vec2<f32>(65535.0f), t8, t8 <= vec2<f32>(65535.0f));
+    let t10 = t9
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 32766.5f) * t5),
+            t9 < vec2<f32>(65535.0f)
+        );
+    let t11 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t9 >= (t12 - 32766.5f) * t8),
-        t12 < vec2<f32>(65535.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t6 >= (t9 - 1.0f - 32766.5f) * t5) - 1.0f,
+        t9 > vec2<f32>(0.0f)
     );
-    let t14 = select(vec2<f32>(0.0f), vec2<f32>(1.0f), t9 >= (t12 - 1.0f - 32766.5f) * t8) - 1.0f;
-    let base = t12 + t13 + select(vec2<f32>(0.0f), t14, t12 > vec2<f32>(0.0f));
-    let t15 = floor(t6 / t7 * 2097152.0f);
-    let t16 = t6 * 2097152.0f;
-    let t17 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t15 * t7 > t16),
+    let base = t10 + t11;
+    let t12 = floor(t3 / t4 * 2097152.0f);
+    let t13 = t3 * 2097152.0f;
+    let t14 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t12 * t4 > t13),
         vec3<f32>(1.0f),
-        (t15 + 1.0f) * t7 <= t16
+        (t12 + 1.0f) * t4 <= t13
     );
-    let aim = t15 + t17;
+    let aim = t12 + t14;
     let cand = select(vec2<f32>(65535.0f), base, base <= vec2<f32>(65535.0f));
     let t = cand * 2.0f - 65535.0f;
-    let t18 = vec2<u32>(abs(t));
-    let t19 = ((t18.x * t18.x) >> 2u) + ((t18.y * t18.y) >> 2u);
-    let quarter = f32(t19 >> 12u) * 4096.0f + f32(t19 & 4095u);
+    let t15 = vec2<u32>(abs(t));
+    let t16 = ((t15.x * t15.x) >> 2u) + ((t15.y * t15.y) >> 2u);
+    let quarter = f32(t16 >> 12u) * 4096.0f + f32(t16 & 4095u);
     let den = quarter + 339758000.0f;
-    let t20 = vec3<f32>(t * 18432.525f, 339758000.0f - quarter);
-    let t21 = floor(t20 / den * 2097152.0f);
-    let t22 = t20 * 2097152.0f;
-    let t23 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t21 * den > t22),
+    let t17 = vec3<f32>(t * 18432.525f, 339758000.0f - quarter);
+    let t18 = floor(t17 / den * 2097152.0f);
+    let t19 = t17 * 2097152.0f;
+    let t20 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t18 * den > t19),
         vec3<f32>(1.0f),
-        (t21 + 1.0f) * den <= t22
+        (t18 + 1.0f) * den <= t19
     );
-    let t24 = vec3<u32>(abs(t21 + t23 - aim));
-    let limb1_6 = t24.x >> 12u;
-    let limb0_6 = t24.x & 4095u;
+    let offset = t18 + t20 - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_6 = offset_u.x >> 12u;
+    let limb0_6 = offset_u.x & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
-    let limb1_7 = t24.y >> 12u;
-    let limb0_7 = t24.y & 4095u;
+    let limb1_7 = offset_u.y >> 12u;
+    let limb0_7 = offset_u.y & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t24.z >> 12u;
-    let limb0_8 = t24.z & 4095u;
+    let limb1_8 = offset_u.z >> 12u;
+    let limb0_8 = offset_u.z & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
     let hi11 = hi10 + (lo10 >> 24u);
     let lo11 = lo10 & 16777215u;
     let dist = f32(hi11) * 16777216.0f + f32(lo11);
-    let t25 = base.x + 1.0f;
-    let t26 = vec2<f32>(t25, base.y);
-    let cand2 = select(vec2<f32>(65535.0f), t26, t26 <= vec2<f32>(65535.0f));
-    let t27 = cand2 * 2.0f - 65535.0f;
-    let t28 = vec2<u32>(abs(t27));
-    let t29 = ((t28.x * t28.x) >> 2u) + ((t28.y * t28.y) >> 2u);
-    let quarter2 = f32(t29 >> 12u) * 4096.0f + f32(t29 & 4095u);
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t21 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(65535.0f), t21, t21 <= vec2<f32>(65535.0f));
+    let t22 = cand2 * 2.0f - 65535.0f;
+    let t23 = vec2<u32>(abs(t22));
+    let t24 = ((t23.x * t23.x) >> 2u) + ((t23.y * t23.y) >> 2u);
+    let quarter2 = f32(t24 >> 12u) * 4096.0f + f32(t24 & 4095u);
     let den2 = quarter2 + 339758000.0f;
-    let t30 = vec3<f32>(t27 * 18432.525f, 339758000.0f - quarter2);
-    let t31 = floor(t30 / den2 * 2097152.0f);
-    let t32 = t30 * 2097152.0f;
-    let t33 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t31 * den2 > t32),
+    let t25 = vec3<f32>(t22 * 18432.525f, 339758000.0f - quarter2);
+    let t26 = floor(t25 / den2 * 2097152.0f);
+    let t27 = t25 * 2097152.0f;
+    let t28 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t26 * den2 > t27),
         vec3<f32>(1.0f),
-        (t31 + 1.0f) * den2 <= t32
+        (t26 + 1.0f) * den2 <= t27
     );
-    let t34 = vec3<u32>(abs(t31 + t33 - aim));
-    let limb1_9 = t34.x >> 12u;
-    let limb0_9 = t34.x & 4095u;
+    let offset2 = t26 + t28 - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_9 = offset_u2.x >> 12u;
+    let limb0_9 = offset_u2.x & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
-    let limb1_10 = t34.y >> 12u;
-    let limb0_10 = t34.y & 4095u;
+    let limb1_10 = offset_u2.y >> 12u;
+    let limb0_10 = offset_u2.y & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t34.z >> 12u;
-    let limb0_11 = t34.z & 4095u;
+    let limb1_11 = offset_u2.z >> 12u;
+    let limb0_11 = offset_u2.z & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
     let hi15 = hi14 + (lo14 >> 24u);
     let lo15 = lo14 & 16777215u;
     let dist2 = f32(hi15) * 16777216.0f + f32(lo15);
-    let t35 = t25 <= 65535.0f && base.y <= 65535.0f && dist2 < dist;
-    let best = select(cand, cand2, t35);
-    let best_d = select(dist, dist2, t35);
-    let t36 = base.y + 1.0f;
-    let t37 = vec2<f32>(base.x, t36);
-    let cand3 = select(vec2<f32>(65535.0f), t37, t37 <= vec2<f32>(65535.0f));
-    let t38 = cand3 * 2.0f - 65535.0f;
-    let t39 = vec2<u32>(abs(t38));
-    let t40 = ((t39.x * t39.x) >> 2u) + ((t39.y * t39.y) >> 2u);
-    let quarter3 = f32(t40 >> 12u) * 4096.0f + f32(t40 & 4095u);
+    let t29 = s_up <= 65535.0f && base.y <= 65535.0f && dist2 < dist;
+    let best = select(cand, cand2, t29);
+    let best_d = select(dist, dist2, t29);
+    let t30 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(65535.0f), t30, t30 <= vec2<f32>(65535.0f));
+    let t31 = cand3 * 2.0f - 65535.0f;
+    let t32 = vec2<u32>(abs(t31));
+    let t33 = ((t32.x * t32.x) >> 2u) + ((t32.y * t32.y) >> 2u);
+    let quarter3 = f32(t33 >> 12u) * 4096.0f + f32(t33 & 4095u);
     let den3 = quarter3 + 339758000.0f;
-    let t41 = vec3<f32>(t38 * 18432.525f, 339758000.0f - quarter3);
-    let t42 = floor(t41 / den3 * 2097152.0f);
-    let t43 = t41 * 2097152.0f;
-    let t44 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t42 * den3 > t43),
+    let t34 = vec3<f32>(t31 * 18432.525f, 339758000.0f - quarter3);
+    let t35 = floor(t34 / den3 * 2097152.0f);
+    let t36 = t34 * 2097152.0f;
+    let t37 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t35 * den3 > t36),
         vec3<f32>(1.0f),
-        (t42 + 1.0f) * den3 <= t43
+        (t35 + 1.0f) * den3 <= t36
     );
-    let t45 = vec3<u32>(abs(t42 + t44 - aim));
-    let limb1_12 = t45.x >> 12u;
-    let limb0_12 = t45.x & 4095u;
+    let offset3 = t35 + t37 - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_12 = offset_u3.x >> 12u;
+    let limb0_12 = offset_u3.x & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
-    let limb1_13 = t45.y >> 12u;
-    let limb0_13 = t45.y & 4095u;
+    let limb1_13 = offset_u3.y >> 12u;
+    let limb0_13 = offset_u3.y & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t45.z >> 12u;
-    let limb0_14 = t45.z & 4095u;
+    let limb1_14 = offset_u3.z >> 12u;
+    let limb0_14 = offset_u3.z & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
     let hi19 = hi18 + (lo18 >> 24u);
     let lo19 = lo18 & 16777215u;
     let dist3 = f32(hi19) * 16777216.0f + f32(lo19);
-    let t46 = base.x <= 65535.0f && t36 <= 65535.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t46);
-    let best_d2 = select(best_d, dist3, t46);
-    let t47 = base + 1.0f;
-    let cand4 = select(vec2<f32>(65535.0f), t47, t47 <= vec2<f32>(65535.0f));
-    let t48 = cand4 * 2.0f - 65535.0f;
-    let t49 = vec2<u32>(abs(t48));
-    let t50 = ((t49.x * t49.x) >> 2u) + ((t49.y * t49.y) >> 2u);
-    let quarter4 = f32(t50 >> 12u) * 4096.0f + f32(t50 & 4095u);
+    let t38 = base.x <= 65535.0f && t_up <= 65535.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t38);
+    let best_d2 = select(best_d, dist3, t38);
+    let t39 = base + 1.0f;
+    let cand4 = select(vec2<f32>(65535.0f), t39, t39 <= vec2<f32>(65535.0f));
+    let t40 = cand4 * 2.0f - 65535.0f;
+    let t41 = vec2<u32>(abs(t40));
+    let t42 = ((t41.x * t41.x) >> 2u) + ((t41.y * t41.y) >> 2u);
+    let quarter4 = f32(t42 >> 12u) * 4096.0f + f32(t42 & 4095u);
     let den4 = quarter4 + 339758000.0f;
-    let t51 = vec3<f32>(t48 * 18432.525f, 339758000.0f - quarter4);
-    let t52 = floor(t51 / den4 * 2097152.0f);
-    let t53 = t51 * 2097152.0f;
-    let t54 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t52 * den4 > t53),
+    let t43 = vec3<f32>(t40 * 18432.525f, 339758000.0f - quarter4);
+    let t44 = floor(t43 / den4 * 2097152.0f);
+    let t45 = t43 * 2097152.0f;
+    let t46 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t44 * den4 > t45),
         vec3<f32>(1.0f),
-        (t52 + 1.0f) * den4 <= t53
+        (t44 + 1.0f) * den4 <= t45
     );
-    let t55 = vec3<u32>(abs(t52 + t54 - aim));
-    let limb1_15 = t55.x >> 12u;
-    let limb0_15 = t55.x & 4095u;
+    let offset4 = t44 + t46 - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_15 = offset_u4.x >> 12u;
+    let limb0_15 = offset_u4.x & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
-    let limb1_16 = t55.y >> 12u;
-    let limb0_16 = t55.y & 4095u;
+    let limb1_16 = offset_u4.y >> 12u;
+    let limb0_16 = offset_u4.y & 4095u;
     let cross16 = limb1_16 * limb0_16;
     let hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
     let lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
-    let limb1_17 = t55.z >> 12u;
-    let limb0_17 = t55.z & 4095u;
+    let limb1_17 = offset_u4.z >> 12u;
+    let limb0_17 = offset_u4.z & 4095u;
     let cross17 = limb1_17 * limb0_17;
     let hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
     let lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
     let hi23 = hi22 + (lo22 >> 24u);
     let lo23 = lo22 & 16777215u;
     let dist4 = f32(hi23) * 16777216.0f + f32(lo23);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 65535.0f && base.y + 1.0f <= 65535.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 65535.0f && t_up <= 65535.0f && dist4 < best_d2);
     return select(vec2<f32>(32768.0f), select(best3, vec2<f32>(0.0f), opz_a <= 0.0f), ok);
 }
 
@@ -297,9 +310,7 @@ fn unitpack_stereo_scaled32p_encode_float(v: vec3<f32>) -> vec2<f32> {
 }
 
 // unitpack_stereo_scaled32p_encode: precise encoder.
-// In: any vector; input is normalized first; zero, NaN and infinite input encode as +Z; directions
-//   beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined,
-//   encodes as (0, 0), the corner nearest it.
+// In: as for unitpack_stereo_scaled32p_encode_float.
 // Out: the packed code, u32 (bits 0–15: p0 unorm16, bits 16–31: p1 unorm16).
 // Portable (as the header says): the same code on every such implementation; denormal input
 //   components count as zero.

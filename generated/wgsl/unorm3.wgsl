@@ -56,8 +56,8 @@ fn unitpack_unorm3_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = v / select(1.0f, largest, t2);
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
-    let t3 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t2 && len2 >= 1.0f) * 0.5f;
-    return t3 + 0.5f;
+    return select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t2 && len2 >= 1.0f) * 0.5f
+        + 0.5f;
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -72,7 +72,8 @@ fn unitpack_unorm3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
@@ -96,38 +97,36 @@ fn unitpack_unorm3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let t6 = w2 * w2 * 16256.25f;
     let t7 = t5 * t5 * len2;
     let t8 = select(
-        vec3<f32>(1.0f),
-        select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 >= t7),
-        t5 > vec3<f32>(0.0f)
+        select(
+            vec3<f32>(0.0f),
+            select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 <= t7),
+            t5 < vec3<f32>(0.0f)
+        ),
+        select(
+            vec3<f32>(1.0f),
+            select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 >= t7),
+            t5 > vec3<f32>(0.0f)
+        ),
+        w2 >= vec3<f32>(0.0f)
     );
-    let t9 = select(
-        vec3<f32>(0.0f),
-        select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 <= t7),
-        t5 < vec3<f32>(0.0f)
+    let t9 = t4 - 1.0f - 127.0f;
+    let t10 = t9 * t9 * len2;
+    let t11 = select(
+        select(
+            vec3<f32>(0.0f),
+            select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 <= t10),
+            t9 < vec3<f32>(0.0f)
+        ),
+        select(
+            vec3<f32>(1.0f),
+            select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 >= t10),
+            t9 > vec3<f32>(0.0f)
+        ),
+        w2 >= vec3<f32>(0.0f)
     );
-    let t10 = select(
-        vec3<f32>(0.0f),
-        select(t9, t8, w2 >= vec3<f32>(0.0f)),
-        t4 < vec3<f32>(255.0f)
-    );
-    let t11 = t4 - 1.0f - 127.0f;
-    let t12 = t11 * t11 * len2;
-    let t13 = select(
-        vec3<f32>(1.0f),
-        select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 >= t12),
-        t11 > vec3<f32>(0.0f)
-    );
-    let t14 = select(
-        vec3<f32>(0.0f),
-        select(vec3<f32>(0.0f), vec3<f32>(1.0f), t6 <= t12),
-        t11 < vec3<f32>(0.0f)
-    );
-    let t15 = select(
-        vec3<f32>(0.0f),
-        select(t14, t13, w2 >= vec3<f32>(0.0f)) - 1.0f,
-        t4 > vec3<f32>(0.0f)
-    );
-    return t4 + t10 + t15;
+    return t4
+        + select(vec3<f32>(0.0f), t8, t4 < vec3<f32>(255.0f))
+        + select(vec3<f32>(0.0f), t11 - 1.0f, t4 > vec3<f32>(0.0f));
 }
 
 // unitpack_unorm3_encode: fast encoder.

@@ -28,9 +28,8 @@ fn unitpack_warpedcube24_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -69,8 +68,8 @@ fn unitpack_warpedcube24_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_warpedcube24_decode(code: u32) -> vec3<f32> {
-    let t1 = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 7u));
-    let params = t1 * vec3<f32>(0.0004885198f, 0.0009775171f, 0.14285715f);
+    let params = vec3<f32>(vec3<u32>(code, code >> 11u, code >> 21u) & vec3<u32>(2047u, 1023u, 7u))
+        * vec3<f32>(0.0004885198f, 0.0009775171f, 0.14285715f);
     return unitpack_warpedcube24_decode_float(params);
 }
 
@@ -88,8 +87,8 @@ fn unitpack_warpedcube24_atan2_pi(a0: f32, a1: f32) -> f32 {
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
     let t1 = (((-0.05263158f * z2 + 0.05882353f) * z2 + (-0.06666667f)) * z2 + 0.07692308f) * z2;
-    let t2 = ((((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f) * z2;
-    let r = z * ((t2 + (-0.33333334f)) * z2 + 1.0f);
+    let t2 = (((t1 + (-0.09090909f)) * z2 + 0.11111111f) * z2 + (-0.14285715f)) * z2 + 0.2f;
+    let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
     let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
@@ -112,7 +111,8 @@ fn unitpack_warpedcube24_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -123,11 +123,12 @@ fn unitpack_warpedcube24_encode_float(v: vec3<f32>) -> vec3<f32> {
     let s = select(select(w2.y, w2.z, t2), w2.x, t1);
     let t = select(select(w2.z, w2.x, t2), w2.y, t1);
     let abs_major = abs(major);
-    let t3 = vec2<f32>(
+    let enc = vec2<f32>(
         unitpack_warpedcube24_atan2_pi(s, abs_major),
         unitpack_warpedcube24_atan2_pi(t, abs_major)
-    );
-    let enc = t3 * 2.0f + 0.5f;
+    )
+        * 2.0f
+        + 0.5f;
     return vec3<f32>(enc, face * 0.14285715f);
 }
 
@@ -143,7 +144,8 @@ fn unitpack_warpedcube24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -193,23 +195,19 @@ fn unitpack_warpedcube24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let t24 = round(t23 * t23 * 1.1920929e-7f);
     let t25 = round((round(-441506.0f * t24 * 1.1920929e-7f) + 493448.0f) * t24 * 1.1920929e-7f);
     let t26 = (round((t25 + (-559241.0f)) * t24 * 1.1920929e-7f) + 645278.0f) * t24 * 1.1920929e-7f;
-    let t27 = (round((round(t26) + (-762601.0f)) * t24 * 1.1920929e-7f) + 932068.0f)
-        * t24
-        * 1.1920929e-7f;
-    let t28 = (round((round(t27) + (-1198373.0f)) * t24 * 1.1920929e-7f) + 1677722.0f)
-        * t24
-        * 1.1920929e-7f;
-    let t29 = t23
-        * (round((round(t28) + (-2796203.0f)) * t24 * 1.1920929e-7f) + 8388608.0f)
-        * 1.1920929e-7f;
-    let t30 = round(round(t29) * 0.31830987f);
+    let t27 = (round((round(t26) + (-762601.0f)) * t24 * 1.1920929e-7f) + 932068.0f) * t24;
+    let t28 = round((round(t27 * 1.1920929e-7f) + (-1198373.0f)) * t24 * 1.1920929e-7f)
+        + 1677722.0f;
+    let t29 = round((round(t28 * t24 * 1.1920929e-7f) + (-2796203.0f)) * t24 * 1.1920929e-7f);
+    let t30 = round(round(t23 * (t29 + 8388608.0f) * 1.1920929e-7f) * 0.31830987f);
     let t31 = select(t30, t30 + 2097152.0f, t15);
     let t32 = select(t31, 4194304.0f - t31, t5);
     let t33 = select(t32, 8388608.0f - t32, vec2<f32>(abs_major) < vec2<f32>(0.0f));
-    let t34 = (select(t33, -t33, t3 < vec2<f32>(0.0f)) * 4.0f + 8388608.0f)
-        * vec2<f32>(0.00012201071f, 6.097555e-5f);
-    let round_t34 = round(t34);
-    let t35 = select(vec2<f32>(0.0f), round_t34, round_t34 >= vec2<f32>(0.0f));
+    let t34 = round(
+        (select(t33, -t33, t3 < vec2<f32>(0.0f)) * 4.0f + 8388608.0f)
+            * vec2<f32>(0.00012201071f, 6.097555e-5f)
+    );
+    let t35 = select(vec2<f32>(0.0f), t34, t34 >= vec2<f32>(0.0f));
     let st = select(vec2<f32>(2047.0f, 1023.0f), t35, t35 <= vec2<f32>(2047.0f, 1023.0f));
     return vec3<f32>(st, face);
 }

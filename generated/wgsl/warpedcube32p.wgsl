@@ -28,9 +28,8 @@ fn unitpack_warpedcube32p_sincos_pi(a0: f32) -> vec2<f32> {
     let c2 = c * c;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
     let s = c * (t1 + 3.1415927f);
-    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2
-        + (-4.934802f);
-    let co = t2 * c2 + 1.0f;
+    let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
+    let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
     return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
 }
@@ -87,7 +86,8 @@ fn unitpack_warpedcube32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let abs_w2 = abs(w2);
@@ -137,27 +137,26 @@ fn unitpack_warpedcube32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let t24 = round(t23 * t23 * 1.1920929e-7f);
     let t25 = round((round(-441506.0f * t24 * 1.1920929e-7f) + 493448.0f) * t24 * 1.1920929e-7f);
     let t26 = (round((t25 + (-559241.0f)) * t24 * 1.1920929e-7f) + 645278.0f) * t24 * 1.1920929e-7f;
-    let t27 = (round((round(t26) + (-762601.0f)) * t24 * 1.1920929e-7f) + 932068.0f)
-        * t24
-        * 1.1920929e-7f;
-    let t28 = (round((round(t27) + (-1198373.0f)) * t24 * 1.1920929e-7f) + 1677722.0f)
-        * t24
-        * 1.1920929e-7f;
-    let t29 = t23
-        * (round((round(t28) + (-2796203.0f)) * t24 * 1.1920929e-7f) + 8388608.0f)
-        * 1.1920929e-7f;
-    let t30 = round(round(t29) * 0.31830987f);
+    let t27 = (round((round(t26) + (-762601.0f)) * t24 * 1.1920929e-7f) + 932068.0f) * t24;
+    let t28 = round((round(t27 * 1.1920929e-7f) + (-1198373.0f)) * t24 * 1.1920929e-7f)
+        + 1677722.0f;
+    let t29 = round((round(t28 * t24 * 1.1920929e-7f) + (-2796203.0f)) * t24 * 1.1920929e-7f);
+    let t30 = round(round(t23 * (t29 + 8388608.0f) * 1.1920929e-7f) * 0.31830987f);
     let t31 = select(t30, t30 + 2097152.0f, t15);
     let t32 = select(t31, 4194304.0f - t31, t5);
     let t33 = select(t32, 8388608.0f - t32, vec2<f32>(abs_major) < vec2<f32>(0.0f));
-    let t34 = (select(t33, -t33, t3 < vec2<f32>(0.0f)) * 4.0f + 8388608.0f)
-        * vec2<f32>(0.0019530654f, 0.0009765029f);
-    let floor_t34 = floor(t34);
-    let t35 = select(vec2<f32>(0.0f), floor_t34, floor_t34 >= vec2<f32>(0.0f));
+    let t34 = floor(
+        (select(t33, -t33, t3 < vec2<f32>(0.0f)) * 4.0f + 8388608.0f)
+            * vec2<f32>(0.0019530654f, 0.0009765029f)
+    );
+    let t35 = select(vec2<f32>(0.0f), t34, t34 >= vec2<f32>(0.0f));
     let base = select(vec2<f32>(32767.0f, 16383.0f), t35, t35 <= vec2<f32>(32767.0f, 16383.0f));
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -177,458 +176,391 @@ fn unitpack_warpedcube32p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t36 = floor(root_estimate * 512.0f);
-    let root_h0 = t36 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t37 = select(
-        select(0.0f, -1.0f, root_h0 * root_h0 > len2),
-        1.0f,
-        root_h1 * root_h1 <= len2
-    );
-    let root_k = t36 + t37;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t38 = select(
-        select(0.0f, -1.0f, root_m0 * root_m0 > len2),
-        1.0f,
-        root_m1 * root_m1 <= len2
-    );
-    let root_j = root_j0 + t38;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t39 = floor(w2 / root * 2097152.0f);
-    let t40 = w2 * 2097152.0f;
-    let t41 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t39 * root > t40),
+    let t36 = floor(w2 / root * 2097152.0f);
+    let t37 = w2 * 2097152.0f;
+    let t38 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t36 * root > t37),
         vec3<f32>(1.0f),
-        (t39 + 1.0f) * root <= t40
+        (t36 + 1.0f) * root <= t37
     );
-    let aim = t39 + t41;
+    let aim = t36 + t38;
     let cand = select(vec2<f32>(32767.0f, 16383.0f), base, base <= vec2<f32>(32767.0f, 16383.0f));
-    let t42 = floor(
+    let t39 = floor(
         (cand * 2.0f - vec2<f32>(32767.0f, 16383.0f)) * vec2<f32>(128.0039f, 256.01563f)
     );
-    let abs_t42 = abs(t42);
-    let t43 = abs_t42 > vec2<f32>(8388608.0f);
-    let t44 = select(abs_t42, 16777216.0f - abs_t42, t43);
-    let t45 = t44 > vec2<f32>(4194304.0f);
-    let t46 = round(select(t44, 8388608.0f - t44, t45) * 3.1415927f);
-    let t47 = round(t46 * t46 * 5.9604645e-8f);
-    let t48 = round((round(0.0f * t47 * 5.9604645e-8f) + (-5.0f)) * t47 * 5.9604645e-8f) + 416.0f;
-    let t49 = round((round(t48 * t47 * 5.9604645e-8f) + (-23302.0f)) * t47 * 5.9604645e-8f)
-        + 699051.0f;
-    let t50 = round((round(t49 * t47 * 5.9604645e-8f) + (-8388608.0f)) * t47 * 5.9604645e-8f)
-        + 16777216.0f;
-    let t51 = round((round(-0.0f * t47 * 5.9604645e-8f) + 46.0f) * t47 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t52 = round((round(t51 * t47 * 5.9604645e-8f) + 139810.0f) * t47 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let t53 = round(t46 * (round(t52 * t47 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t54 = select(t53, t50, t45);
-    let t55 = select(t54, -t54, t42 < vec2<f32>(0.0f));
-    let t56 = select(t50, t53, t45);
-    let t57 = select(t56, -t56, t43);
-    let t58 = floor(t55 / t57 * 2097152.0f);
-    let t59 = t55 * 2097152.0f;
-    let t60 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t58 * t57 > t59),
+    let abs_t39 = abs(t39);
+    let t40 = abs_t39 > vec2<f32>(8388608.0f);
+    let t41 = select(abs_t39, 16777216.0f - abs_t39, t40);
+    let t42 = t41 > vec2<f32>(4194304.0f);
+    let t43 = round(select(t41, 8388608.0f - t41, t42) * 3.1415927f);
+    let t44 = round(t43 * t43 * 5.9604645e-8f);
+    let t45 = round((round(0.0f * t44 * 5.9604645e-8f) + (-5.0f)) * t44 * 5.9604645e-8f);
+    let t46 = (round((t45 + 416.0f) * t44 * 5.9604645e-8f) + (-23302.0f)) * t44 * 5.9604645e-8f;
+    let t47 = (round((round(t46) + 699051.0f) * t44 * 5.9604645e-8f) + (-8388608.0f)) * t44;
+    let t48 = round(t47 * 5.9604645e-8f) + 16777216.0f;
+    let t49 = round((round(-0.0f * t44 * 5.9604645e-8f) + 46.0f) * t44 * 5.9604645e-8f);
+    let t50 = (round((t49 + (-3329.0f)) * t44 * 5.9604645e-8f) + 139810.0f) * t44 * 5.9604645e-8f;
+    let t51 = t43 * (round((round(t50) + (-2796203.0f)) * t44 * 5.9604645e-8f) + 16777216.0f);
+    let t52 = round(t51 * 5.9604645e-8f);
+    let t53 = select(t52, t48, t42);
+    let t54 = select(t53, -t53, t39 < vec2<f32>(0.0f));
+    let t55 = select(t48, t52, t42);
+    let t56 = select(t55, -t55, t40);
+    let t57 = floor(t54 / t56 * 2097152.0f);
+    let t58 = t54 * 2097152.0f;
+    let t59 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t57 * t56 > t58),
         vec2<f32>(1.0f),
-        (t58 + 1.0f) * t57 <= t59
+        (t57 + 1.0f) * t56 <= t58
     );
-    let p = t58 + t60;
+    let p = t57 + t59;
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
     let len2_2 = 2097152.0f + q;
-    let t61 = len2_2 * 524288.0f;
-    let root_estimate2 = floor(sqrt(t61));
+    let t60 = len2_2 * 524288.0f;
+    let root_estimate2 = floor(sqrt(t60));
     let root_next = root_estimate2 + 1.0f;
-    let t62 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t61),
-        1.0f,
-        root_next * root_next <= t61
-    );
-    let root_step = root_estimate2 + t62;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t60);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t60);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t63 = select(
-        select(0.0f, -1.0f, root_step * root_step > t61),
-        1.0f,
-        root_next2 * root_next2 <= t61
-    );
-    let root2 = root_step + t63;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t60);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t60);
+    let root2 = root_step + step4;
     let len = root2 * 2.0f;
     let big = len * 2097152.0f;
     let ratio_estimate = floor(len / len2_2 * 2097152.0f);
-    let t64 = select(
-        select(0.0f, -1.0f, ratio_estimate * len2_2 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * len2_2 <= big
-    );
-    let ratio = ratio_estimate + t64;
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate * len2_2 > big);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate + 1.0f) * len2_2 <= big);
+    let ratio = ratio_estimate + step5;
     let big2 = p.x * 2097152.0f;
     let ratio_estimate2 = floor(p.x / len * 2097152.0f);
-    let t65 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * len > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * len <= big2
-    );
-    let ratio2 = ratio_estimate2 + t65;
+    let step_down6 = select(0.0f, -1.0f, ratio_estimate2 * len > big2);
+    let step6 = select(step_down6, 1.0f, (ratio_estimate2 + 1.0f) * len <= big2);
+    let ratio2 = ratio_estimate2 + step6;
     let big3 = p.y * 2097152.0f;
     let ratio_estimate3 = floor(p.y / len * 2097152.0f);
-    let t66 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * len > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * len <= big3
-    );
-    let ratio3 = ratio_estimate3 + t66;
-    let t67 = face >= 3.5f;
-    let t68 = face >= 1.5f;
-    let t69 = select(select(face, face - 2.0f, t68), face - 4.0f, t67);
-    let t70 = select(ratio, -ratio, select(t69, t69 - 2.0f, t69 >= 1.5f) > 0.5f);
-    let t71 = select(
-        select(vec3<f32>(t70, ratio2, ratio3), vec3<f32>(ratio3, t70, ratio2), t68),
-        vec3<f32>(ratio2, ratio3, t70),
-        t67
-    );
-    let t72 = vec3<u32>(abs(t71 - aim));
-    let limb1_4 = t72.x >> 12u;
-    let limb0_4 = t72.x & 4095u;
+    let step_down7 = select(0.0f, -1.0f, ratio_estimate3 * len > big3);
+    let step7 = select(step_down7, 1.0f, (ratio_estimate3 + 1.0f) * len <= big3);
+    let ratio3 = ratio_estimate3 + step7;
+    let t61 = face >= 3.5f;
+    let t62 = face >= 1.5f;
+    let t63 = select(select(face, face - 2.0f, t62), face - 4.0f, t61);
+    let t64 = select(ratio, -ratio, select(t63, t63 - 2.0f, t63 >= 1.5f) > 0.5f);
+    let offset = select(
+        select(vec3<f32>(t64, ratio2, ratio3), vec3<f32>(ratio3, t64, ratio2), t62),
+        vec3<f32>(ratio2, ratio3, t64),
+        t61
+    )
+        - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t72.y >> 12u;
-    let limb0_5 = t72.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t72.z >> 12u;
-    let limb0_6 = t72.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t73 = base.x + 1.0f;
-    let t74 = vec2<f32>(t73, base.y);
-    let cand2 = select(vec2<f32>(32767.0f, 16383.0f), t74, t74 <= vec2<f32>(32767.0f, 16383.0f));
-    let t75 = (cand2 * 2.0f - vec2<f32>(32767.0f, 16383.0f)) * vec2<f32>(128.0039f, 256.01563f);
-    let floor_t75 = floor(t75);
-    let abs_floor_t75 = abs(floor_t75);
-    let t76 = abs_floor_t75 > vec2<f32>(8388608.0f);
-    let t77 = select(abs_floor_t75, 16777216.0f - abs_floor_t75, t76);
-    let t78 = t77 > vec2<f32>(4194304.0f);
-    let t79 = round(select(t77, 8388608.0f - t77, t78) * 3.1415927f);
-    let t80 = round(t79 * t79 * 5.9604645e-8f);
-    let t81 = round((round(0.0f * t80 * 5.9604645e-8f) + (-5.0f)) * t80 * 5.9604645e-8f) + 416.0f;
-    let t82 = round((round(t81 * t80 * 5.9604645e-8f) + (-23302.0f)) * t80 * 5.9604645e-8f)
-        + 699051.0f;
-    let t83 = round((round(t82 * t80 * 5.9604645e-8f) + (-8388608.0f)) * t80 * 5.9604645e-8f)
-        + 16777216.0f;
-    let t84 = round((round(-0.0f * t80 * 5.9604645e-8f) + 46.0f) * t80 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t85 = round((round(t84 * t80 * 5.9604645e-8f) + 139810.0f) * t80 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let t86 = round(t79 * (round(t85 * t80 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t87 = select(t86, t83, t78);
-    let t88 = select(t87, -t87, floor_t75 < vec2<f32>(0.0f));
-    let t89 = select(t83, t86, t78);
-    let t90 = select(t89, -t89, t76);
-    let t91 = floor(t88 / t90 * 2097152.0f);
-    let t92 = t88 * 2097152.0f;
-    let t93 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t91 * t90 > t92),
-        vec2<f32>(1.0f),
-        (t91 + 1.0f) * t90 <= t92
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t65 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(32767.0f, 16383.0f), t65, t65 <= vec2<f32>(32767.0f, 16383.0f));
+    let t66 = floor(
+        (cand2 * 2.0f - vec2<f32>(32767.0f, 16383.0f)) * vec2<f32>(128.0039f, 256.01563f)
     );
-    let p2 = t91 + t93;
+    let abs_t66 = abs(t66);
+    let t67 = abs_t66 > vec2<f32>(8388608.0f);
+    let t68 = select(abs_t66, 16777216.0f - abs_t66, t67);
+    let t69 = t68 > vec2<f32>(4194304.0f);
+    let t70 = round(select(t68, 8388608.0f - t68, t69) * 3.1415927f);
+    let t71 = round(t70 * t70 * 5.9604645e-8f);
+    let t72 = round((round(0.0f * t71 * 5.9604645e-8f) + (-5.0f)) * t71 * 5.9604645e-8f);
+    let t73 = (round((t72 + 416.0f) * t71 * 5.9604645e-8f) + (-23302.0f)) * t71 * 5.9604645e-8f;
+    let t74 = (round((round(t73) + 699051.0f) * t71 * 5.9604645e-8f) + (-8388608.0f)) * t71;
+    let t75 = round(t74 * 5.9604645e-8f) + 16777216.0f;
+    let t76 = round((round(-0.0f * t71 * 5.9604645e-8f) + 46.0f) * t71 * 5.9604645e-8f);
+    let t77 = (round((t76 + (-3329.0f)) * t71 * 5.9604645e-8f) + 139810.0f) * t71 * 5.9604645e-8f;
+    let t78 = t70 * (round((round(t77) + (-2796203.0f)) * t71 * 5.9604645e-8f) + 16777216.0f);
+    let t79 = round(t78 * 5.9604645e-8f);
+    let t80 = select(t79, t75, t69);
+    let t81 = select(t80, -t80, t66 < vec2<f32>(0.0f));
+    let t82 = select(t75, t79, t69);
+    let t83 = select(t82, -t82, t67);
+    let t84 = floor(t81 / t83 * 2097152.0f);
+    let t85 = t81 * 2097152.0f;
+    let t86 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t84 * t83 > t85),
+        vec2<f32>(1.0f),
+        (t84 + 1.0f) * t83 <= t85
+    );
+    let p2 = t84 + t86;
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
     let len2_3 = 2097152.0f + q2;
-    let t94 = len2_3 * 524288.0f;
-    let root_estimate3 = floor(sqrt(t94));
+    let t87 = len2_3 * 524288.0f;
+    let root_estimate3 = floor(sqrt(t87));
     let root_next3 = root_estimate3 + 1.0f;
-    let t95 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t94),
-        1.0f,
-        root_next3 * root_next3 <= t94
-    );
-    let root_step2 = root_estimate3 + t95;
+    let step_down8 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t87);
+    let step8 = select(step_down8, 1.0f, root_next3 * root_next3 <= t87);
+    let root_step2 = root_estimate3 + step8;
     let root_next4 = root_step2 + 1.0f;
-    let t96 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t94),
-        1.0f,
-        root_next4 * root_next4 <= t94
-    );
-    let root3 = root_step2 + t96;
+    let step_down9 = select(0.0f, -1.0f, root_step2 * root_step2 > t87);
+    let step9 = select(step_down9, 1.0f, root_next4 * root_next4 <= t87);
+    let root3 = root_step2 + step9;
     let len3 = root3 * 2.0f;
     let big4 = len3 * 2097152.0f;
     let ratio_estimate4 = floor(len3 / len2_3 * 2097152.0f);
-    let t97 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * len2_3 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * len2_3 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t97;
+    let step_down10 = select(0.0f, -1.0f, ratio_estimate4 * len2_3 > big4);
+    let step10 = select(step_down10, 1.0f, (ratio_estimate4 + 1.0f) * len2_3 <= big4);
+    let ratio4 = ratio_estimate4 + step10;
     let big5 = p2.x * 2097152.0f;
     let ratio_estimate5 = floor(p2.x / len3 * 2097152.0f);
-    let t98 = select(
-        select(0.0f, -1.0f, ratio_estimate5 * len3 > big5),
-        1.0f,
-        (ratio_estimate5 + 1.0f) * len3 <= big5
-    );
-    let ratio5 = ratio_estimate5 + t98;
+    let step_down11 = select(0.0f, -1.0f, ratio_estimate5 * len3 > big5);
+    let step11 = select(step_down11, 1.0f, (ratio_estimate5 + 1.0f) * len3 <= big5);
+    let ratio5 = ratio_estimate5 + step11;
     let big6 = p2.y * 2097152.0f;
     let ratio_estimate6 = floor(p2.y / len3 * 2097152.0f);
-    let t99 = select(
-        select(0.0f, -1.0f, ratio_estimate6 * len3 > big6),
-        1.0f,
-        (ratio_estimate6 + 1.0f) * len3 <= big6
-    );
-    let ratio6 = ratio_estimate6 + t99;
-    let t100 = face >= 3.5f;
-    let t101 = face >= 1.5f;
-    let t102 = select(select(face, face - 2.0f, t101), face - 4.0f, t100);
-    let t103 = select(ratio4, -ratio4, select(t102, t102 - 2.0f, t102 >= 1.5f) > 0.5f);
-    let t104 = select(
-        select(vec3<f32>(t103, ratio5, ratio6), vec3<f32>(ratio6, t103, ratio5), t101),
-        vec3<f32>(ratio5, ratio6, t103),
-        t100
-    );
-    let t105 = vec3<u32>(abs(t104 - aim));
-    let limb1_7 = t105.x >> 12u;
-    let limb0_7 = t105.x & 4095u;
+    let step_down12 = select(0.0f, -1.0f, ratio_estimate6 * len3 > big6);
+    let step12 = select(step_down12, 1.0f, (ratio_estimate6 + 1.0f) * len3 <= big6);
+    let ratio6 = ratio_estimate6 + step12;
+    let t88 = face >= 3.5f;
+    let t89 = face >= 1.5f;
+    let t90 = select(select(face, face - 2.0f, t89), face - 4.0f, t88);
+    let t91 = select(ratio4, -ratio4, select(t90, t90 - 2.0f, t90 >= 1.5f) > 0.5f);
+    let offset2 = select(
+        select(vec3<f32>(t91, ratio5, ratio6), vec3<f32>(ratio6, t91, ratio5), t89),
+        vec3<f32>(ratio5, ratio6, t91),
+        t88
+    )
+        - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t105.y >> 12u;
-    let limb0_8 = t105.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t105.z >> 12u;
-    let limb0_9 = t105.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t106 = t73 <= 32767.0f && base.y <= 16383.0f && dist2 < dist;
-    let best = select(cand, cand2, t106);
-    let best_d = select(dist, dist2, t106);
-    let t107 = base.y + 1.0f;
-    let t108 = vec2<f32>(base.x, t107);
-    let cand3 = select(vec2<f32>(32767.0f, 16383.0f), t108, t108 <= vec2<f32>(32767.0f, 16383.0f));
-    let t109 = (cand3 * 2.0f - vec2<f32>(32767.0f, 16383.0f)) * vec2<f32>(128.0039f, 256.01563f);
-    let floor_t109 = floor(t109);
-    let abs_floor_t109 = abs(floor_t109);
-    let t110 = abs_floor_t109 > vec2<f32>(8388608.0f);
-    let t111 = select(abs_floor_t109, 16777216.0f - abs_floor_t109, t110);
-    let t112 = t111 > vec2<f32>(4194304.0f);
-    let t113 = round(select(t111, 8388608.0f - t111, t112) * 3.1415927f);
-    let t114 = round(t113 * t113 * 5.9604645e-8f);
-    let t115 = round((round(0.0f * t114 * 5.9604645e-8f) + (-5.0f)) * t114 * 5.9604645e-8f)
-        + 416.0f;
-    let t116 = round((round(t115 * t114 * 5.9604645e-8f) + (-23302.0f)) * t114 * 5.9604645e-8f)
-        + 699051.0f;
-    let t117 = round((round(t116 * t114 * 5.9604645e-8f) + (-8388608.0f)) * t114 * 5.9604645e-8f);
-    let t118 = t117 + 16777216.0f;
-    let t119 = round((round(-0.0f * t114 * 5.9604645e-8f) + 46.0f) * t114 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t120 = round((round(t119 * t114 * 5.9604645e-8f) + 139810.0f) * t114 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let t121 = round(t113 * (round(t120 * t114 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t122 = select(t121, t118, t112);
-    let t123 = select(t122, -t122, floor_t109 < vec2<f32>(0.0f));
-    let t124 = select(t118, t121, t112);
-    let t125 = select(t124, -t124, t110);
-    let t126 = floor(t123 / t125 * 2097152.0f);
-    let t127 = t123 * 2097152.0f;
-    let t128 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t126 * t125 > t127),
-        vec2<f32>(1.0f),
-        (t126 + 1.0f) * t125 <= t127
+    let t92 = s_up <= 32767.0f && base.y <= 16383.0f && dist2 < dist;
+    let best = select(cand, cand2, t92);
+    let best_d = select(dist, dist2, t92);
+    let t93 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(32767.0f, 16383.0f), t93, t93 <= vec2<f32>(32767.0f, 16383.0f));
+    let t94 = floor(
+        (cand3 * 2.0f - vec2<f32>(32767.0f, 16383.0f)) * vec2<f32>(128.0039f, 256.01563f)
     );
-    let p3 = t126 + t128;
+    let abs_t94 = abs(t94);
+    let t95 = abs_t94 > vec2<f32>(8388608.0f);
+    let t96 = select(abs_t94, 16777216.0f - abs_t94, t95);
+    let t97 = t96 > vec2<f32>(4194304.0f);
+    let t98 = round(select(t96, 8388608.0f - t96, t97) * 3.1415927f);
+    let t99 = round(t98 * t98 * 5.9604645e-8f);
+    let t100 = round((round(0.0f * t99 * 5.9604645e-8f) + (-5.0f)) * t99 * 5.9604645e-8f);
+    let t101 = (round((t100 + 416.0f) * t99 * 5.9604645e-8f) + (-23302.0f)) * t99 * 5.9604645e-8f;
+    let t102 = (round((round(t101) + 699051.0f) * t99 * 5.9604645e-8f) + (-8388608.0f)) * t99;
+    let t103 = round(t102 * 5.9604645e-8f) + 16777216.0f;
+    let t104 = round((round(-0.0f * t99 * 5.9604645e-8f) + 46.0f) * t99 * 5.9604645e-8f);
+    let t105 = (round((t104 + (-3329.0f)) * t99 * 5.9604645e-8f) + 139810.0f) * t99 * 5.9604645e-8f;
+    let t106 = t98 * (round((round(t105) + (-2796203.0f)) * t99 * 5.9604645e-8f) + 16777216.0f);
+    let t107 = round(t106 * 5.9604645e-8f);
+    let t108 = select(t107, t103, t97);
+    let t109 = select(t108, -t108, t94 < vec2<f32>(0.0f));
+    let t110 = select(t103, t107, t97);
+    let t111 = select(t110, -t110, t95);
+    let t112 = floor(t109 / t111 * 2097152.0f);
+    let t113 = t109 * 2097152.0f;
+    let t114 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t112 * t111 > t113),
+        vec2<f32>(1.0f),
+        (t112 + 1.0f) * t111 <= t113
+    );
+    let p3 = t112 + t114;
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
     let len2_4 = 2097152.0f + q3;
-    let t129 = len2_4 * 524288.0f;
-    let root_estimate4 = floor(sqrt(t129));
+    let t115 = len2_4 * 524288.0f;
+    let root_estimate4 = floor(sqrt(t115));
     let root_next5 = root_estimate4 + 1.0f;
-    let t130 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t129),
-        1.0f,
-        root_next5 * root_next5 <= t129
-    );
-    let root_step3 = root_estimate4 + t130;
+    let step_down13 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t115);
+    let step13 = select(step_down13, 1.0f, root_next5 * root_next5 <= t115);
+    let root_step3 = root_estimate4 + step13;
     let root_next6 = root_step3 + 1.0f;
-    let t131 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t129),
-        1.0f,
-        root_next6 * root_next6 <= t129
-    );
-    let root4 = root_step3 + t131;
+    let step_down14 = select(0.0f, -1.0f, root_step3 * root_step3 > t115);
+    let step14 = select(step_down14, 1.0f, root_next6 * root_next6 <= t115);
+    let root4 = root_step3 + step14;
     let len4 = root4 * 2.0f;
     let big7 = len4 * 2097152.0f;
     let ratio_estimate7 = floor(len4 / len2_4 * 2097152.0f);
-    let t132 = select(
-        select(0.0f, -1.0f, ratio_estimate7 * len2_4 > big7),
-        1.0f,
-        (ratio_estimate7 + 1.0f) * len2_4 <= big7
-    );
-    let ratio7 = ratio_estimate7 + t132;
+    let step_down15 = select(0.0f, -1.0f, ratio_estimate7 * len2_4 > big7);
+    let step15 = select(step_down15, 1.0f, (ratio_estimate7 + 1.0f) * len2_4 <= big7);
+    let ratio7 = ratio_estimate7 + step15;
     let big8 = p3.x * 2097152.0f;
     let ratio_estimate8 = floor(p3.x / len4 * 2097152.0f);
-    let t133 = select(
-        select(0.0f, -1.0f, ratio_estimate8 * len4 > big8),
-        1.0f,
-        (ratio_estimate8 + 1.0f) * len4 <= big8
-    );
-    let ratio8 = ratio_estimate8 + t133;
+    let step_down16 = select(0.0f, -1.0f, ratio_estimate8 * len4 > big8);
+    let step16 = select(step_down16, 1.0f, (ratio_estimate8 + 1.0f) * len4 <= big8);
+    let ratio8 = ratio_estimate8 + step16;
     let big9 = p3.y * 2097152.0f;
     let ratio_estimate9 = floor(p3.y / len4 * 2097152.0f);
-    let t134 = select(
-        select(0.0f, -1.0f, ratio_estimate9 * len4 > big9),
-        1.0f,
-        (ratio_estimate9 + 1.0f) * len4 <= big9
-    );
-    let ratio9 = ratio_estimate9 + t134;
-    let t135 = face >= 3.5f;
-    let t136 = face >= 1.5f;
-    let t137 = select(select(face, face - 2.0f, t136), face - 4.0f, t135);
-    let t138 = select(ratio7, -ratio7, select(t137, t137 - 2.0f, t137 >= 1.5f) > 0.5f);
-    let t139 = select(
-        select(vec3<f32>(t138, ratio8, ratio9), vec3<f32>(ratio9, t138, ratio8), t136),
-        vec3<f32>(ratio8, ratio9, t138),
-        t135
-    );
-    let t140 = vec3<u32>(abs(t139 - aim));
-    let limb1_10 = t140.x >> 12u;
-    let limb0_10 = t140.x & 4095u;
+    let step_down17 = select(0.0f, -1.0f, ratio_estimate9 * len4 > big9);
+    let step17 = select(step_down17, 1.0f, (ratio_estimate9 + 1.0f) * len4 <= big9);
+    let ratio9 = ratio_estimate9 + step17;
+    let t116 = face >= 3.5f;
+    let t117 = face >= 1.5f;
+    let t118 = select(select(face, face - 2.0f, t117), face - 4.0f, t116);
+    let t119 = select(ratio7, -ratio7, select(t118, t118 - 2.0f, t118 >= 1.5f) > 0.5f);
+    let offset3 = select(
+        select(vec3<f32>(t119, ratio8, ratio9), vec3<f32>(ratio9, t119, ratio8), t117),
+        vec3<f32>(ratio8, ratio9, t119),
+        t116
+    )
+        - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t140.y >> 12u;
-    let limb0_11 = t140.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t140.z >> 12u;
-    let limb0_12 = t140.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t141 = base.x <= 32767.0f && t107 <= 16383.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t141);
-    let best_d2 = select(best_d, dist3, t141);
-    let t142 = base + 1.0f;
-    let cand4 = select(vec2<f32>(32767.0f, 16383.0f), t142, t142 <= vec2<f32>(32767.0f, 16383.0f));
-    let t143 = (cand4 * 2.0f - vec2<f32>(32767.0f, 16383.0f)) * vec2<f32>(128.0039f, 256.01563f);
-    let floor_t143 = floor(t143);
-    let abs_floor_t143 = abs(floor_t143);
-    let t144 = abs_floor_t143 > vec2<f32>(8388608.0f);
-    let t145 = select(abs_floor_t143, 16777216.0f - abs_floor_t143, t144);
-    let t146 = t145 > vec2<f32>(4194304.0f);
-    let t147 = round(select(t145, 8388608.0f - t145, t146) * 3.1415927f);
-    let t148 = round(t147 * t147 * 5.9604645e-8f);
-    let t149 = round((round(0.0f * t148 * 5.9604645e-8f) + (-5.0f)) * t148 * 5.9604645e-8f)
-        + 416.0f;
-    let t150 = round((round(t149 * t148 * 5.9604645e-8f) + (-23302.0f)) * t148 * 5.9604645e-8f)
-        + 699051.0f;
-    let t151 = round((round(t150 * t148 * 5.9604645e-8f) + (-8388608.0f)) * t148 * 5.9604645e-8f);
-    let t152 = t151 + 16777216.0f;
-    let t153 = round((round(-0.0f * t148 * 5.9604645e-8f) + 46.0f) * t148 * 5.9604645e-8f)
-        + (-3329.0f);
-    let t154 = round((round(t153 * t148 * 5.9604645e-8f) + 139810.0f) * t148 * 5.9604645e-8f)
-        + (-2796203.0f);
-    let t155 = round(t147 * (round(t154 * t148 * 5.9604645e-8f) + 16777216.0f) * 5.9604645e-8f);
-    let t156 = select(t155, t152, t146);
-    let t157 = select(t156, -t156, floor_t143 < vec2<f32>(0.0f));
-    let t158 = select(t152, t155, t146);
-    let t159 = select(t158, -t158, t144);
-    let t160 = floor(t157 / t159 * 2097152.0f);
-    let t161 = t157 * 2097152.0f;
-    let t162 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t160 * t159 > t161),
-        vec2<f32>(1.0f),
-        (t160 + 1.0f) * t159 <= t161
+    let t120 = base.x <= 32767.0f && t_up <= 16383.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t120);
+    let best_d2 = select(best_d, dist3, t120);
+    let t121 = base + 1.0f;
+    let cand4 = select(vec2<f32>(32767.0f, 16383.0f), t121, t121 <= vec2<f32>(32767.0f, 16383.0f));
+    let t122 = floor(
+        (cand4 * 2.0f - vec2<f32>(32767.0f, 16383.0f)) * vec2<f32>(128.0039f, 256.01563f)
     );
-    let p4 = t160 + t162;
+    let abs_t122 = abs(t122);
+    let t123 = abs_t122 > vec2<f32>(8388608.0f);
+    let t124 = select(abs_t122, 16777216.0f - abs_t122, t123);
+    let t125 = t124 > vec2<f32>(4194304.0f);
+    let t126 = round(select(t124, 8388608.0f - t124, t125) * 3.1415927f);
+    let t127 = round(t126 * t126 * 5.9604645e-8f);
+    let t128 = round((round(0.0f * t127 * 5.9604645e-8f) + (-5.0f)) * t127 * 5.9604645e-8f);
+    let t129 = (round((t128 + 416.0f) * t127 * 5.9604645e-8f) + (-23302.0f)) * t127 * 5.9604645e-8f;
+    let t130 = (round((round(t129) + 699051.0f) * t127 * 5.9604645e-8f) + (-8388608.0f)) * t127;
+    let t131 = round(t130 * 5.9604645e-8f) + 16777216.0f;
+    let t132 = round((round(-0.0f * t127 * 5.9604645e-8f) + 46.0f) * t127 * 5.9604645e-8f);
+    let t133 = (round((t132 + (-3329.0f)) * t127 * 5.9604645e-8f) + 139810.0f)
+        * t127
+        * 5.9604645e-8f;
+    let t134 = t126 * (round((round(t133) + (-2796203.0f)) * t127 * 5.9604645e-8f) + 16777216.0f);
+    let t135 = round(t134 * 5.9604645e-8f);
+    let t136 = select(t135, t131, t125);
+    let t137 = select(t136, -t136, t122 < vec2<f32>(0.0f));
+    let t138 = select(t131, t135, t125);
+    let t139 = select(t138, -t138, t123);
+    let t140 = floor(t137 / t139 * 2097152.0f);
+    let t141 = t137 * 2097152.0f;
+    let t142 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t140 * t139 > t141),
+        vec2<f32>(1.0f),
+        (t140 + 1.0f) * t139 <= t141
+    );
+    let p4 = t140 + t142;
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
     let len2_5 = 2097152.0f + q4;
-    let t163 = len2_5 * 524288.0f;
-    let root_estimate5 = floor(sqrt(t163));
+    let t143 = len2_5 * 524288.0f;
+    let root_estimate5 = floor(sqrt(t143));
     let root_next7 = root_estimate5 + 1.0f;
-    let t164 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t163),
-        1.0f,
-        root_next7 * root_next7 <= t163
-    );
-    let root_step4 = root_estimate5 + t164;
+    let step_down18 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t143);
+    let step18 = select(step_down18, 1.0f, root_next7 * root_next7 <= t143);
+    let root_step4 = root_estimate5 + step18;
     let root_next8 = root_step4 + 1.0f;
-    let t165 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t163),
-        1.0f,
-        root_next8 * root_next8 <= t163
-    );
-    let root5 = root_step4 + t165;
+    let step_down19 = select(0.0f, -1.0f, root_step4 * root_step4 > t143);
+    let step19 = select(step_down19, 1.0f, root_next8 * root_next8 <= t143);
+    let root5 = root_step4 + step19;
     let len5 = root5 * 2.0f;
     let big10 = len5 * 2097152.0f;
     let ratio_estimate10 = floor(len5 / len2_5 * 2097152.0f);
-    let t166 = select(
-        select(0.0f, -1.0f, ratio_estimate10 * len2_5 > big10),
-        1.0f,
-        (ratio_estimate10 + 1.0f) * len2_5 <= big10
-    );
-    let ratio10 = ratio_estimate10 + t166;
+    let step_down20 = select(0.0f, -1.0f, ratio_estimate10 * len2_5 > big10);
+    let step20 = select(step_down20, 1.0f, (ratio_estimate10 + 1.0f) * len2_5 <= big10);
+    let ratio10 = ratio_estimate10 + step20;
     let big11 = p4.x * 2097152.0f;
     let ratio_estimate11 = floor(p4.x / len5 * 2097152.0f);
-    let t167 = select(
-        select(0.0f, -1.0f, ratio_estimate11 * len5 > big11),
-        1.0f,
-        (ratio_estimate11 + 1.0f) * len5 <= big11
-    );
-    let ratio11 = ratio_estimate11 + t167;
+    let step_down21 = select(0.0f, -1.0f, ratio_estimate11 * len5 > big11);
+    let step21 = select(step_down21, 1.0f, (ratio_estimate11 + 1.0f) * len5 <= big11);
+    let ratio11 = ratio_estimate11 + step21;
     let big12 = p4.y * 2097152.0f;
     let ratio_estimate12 = floor(p4.y / len5 * 2097152.0f);
-    let t168 = select(
-        select(0.0f, -1.0f, ratio_estimate12 * len5 > big12),
-        1.0f,
-        (ratio_estimate12 + 1.0f) * len5 <= big12
-    );
-    let ratio12 = ratio_estimate12 + t168;
-    let t169 = face >= 3.5f;
-    let t170 = face >= 1.5f;
-    let t171 = select(select(face, face - 2.0f, t170), face - 4.0f, t169);
-    let t172 = select(ratio10, -ratio10, select(t171, t171 - 2.0f, t171 >= 1.5f) > 0.5f);
-    let t173 = select(vec3<f32>(t172, ratio11, ratio12), vec3<f32>(ratio12, t172, ratio11), t170);
-    let t174 = vec3<u32>(abs(select(t173, vec3<f32>(ratio11, ratio12, t172), t169) - aim));
-    let limb1_13 = t174.x >> 12u;
-    let limb0_13 = t174.x & 4095u;
+    let step_down22 = select(0.0f, -1.0f, ratio_estimate12 * len5 > big12);
+    let step22 = select(step_down22, 1.0f, (ratio_estimate12 + 1.0f) * len5 <= big12);
+    let ratio12 = ratio_estimate12 + step22;
+    let t144 = face >= 3.5f;
+    let t145 = face >= 1.5f;
+    let t146 = select(select(face, face - 2.0f, t145), face - 4.0f, t144);
+    let t147 = select(ratio10, -ratio10, select(t146, t146 - 2.0f, t146 >= 1.5f) > 0.5f);
+    let offset4 = select(
+        select(vec3<f32>(t147, ratio11, ratio12), vec3<f32>(ratio12, t147, ratio11), t145),
+        vec3<f32>(ratio11, ratio12, t147),
+        t144
+    )
+        - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t174.y >> 12u;
-    let limb0_14 = t174.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t174.z >> 12u;
-    let limb0_15 = t174.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 32767.0f && base.y + 1.0f <= 16383.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 32767.0f && t_up <= 16383.0f && dist4 < best_d2);
     return vec3<f32>(best3, face);
 }
 

@@ -82,7 +82,8 @@ fn unitpack_xy16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = select(0.0f, w.z, w.z > 0.0f);
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 4294963200u);
@@ -114,15 +115,15 @@ fn unitpack_xy16_round_codes(a0: vec3<f32>) -> vec2<f32> {
         (estimate > 0.0f && big2 < lower * lower * len2),
         estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2
     );
-    let t7 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t6),
-        vec2<f32>(1.0f),
-        t3 * t3 >= t5 * t5 * len2
-    );
-    let t8 = t4 + t7;
-    let t9 = select(vec2<f32>(0.0f), t8, t8 >= vec2<f32>(0.0f));
-    let t10 = select(vec2<f32>(127.0f), t9, t9 <= vec2<f32>(127.0f));
-    return select(vec2<f32>(0.0f), select(t10, -t10, w.xy < vec2<f32>(0.0f)), ok && len2 > 0.0f);
+    let t7 = t4
+        + select(
+            select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t6),
+            vec2<f32>(1.0f),
+            t3 * t3 >= t5 * t5 * len2
+        );
+    let t8 = select(vec2<f32>(0.0f), t7, t7 >= vec2<f32>(0.0f));
+    let t9 = select(vec2<f32>(127.0f), t8, t8 <= vec2<f32>(127.0f));
+    return select(vec2<f32>(0.0f), select(t9, -t9, w.xy < vec2<f32>(0.0f)), ok && len2 > 0.0f);
 }
 
 // unitpack_xy16_encode: fast encoder.

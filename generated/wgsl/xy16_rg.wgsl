@@ -40,10 +40,8 @@ fn unitpack_xy16_rg_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   1.
 // Portable as unitpack_xy16_rg_decode_float is, within the same bound.
 fn unitpack_xy16_rg_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_xy16_rg_decode_float(params);
 }
 
@@ -88,7 +86,8 @@ fn unitpack_xy16_rg_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = select(0.0f, w.z, w.z > 0.0f);
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 4294963200u);
@@ -112,38 +111,37 @@ fn unitpack_xy16_rg_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let t7 = w.xy * w.xy * 16256.25f;
     let t8 = t6 * t6 * len2;
     let t9 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t8),
-        t6 > vec2<f32>(0.0f)
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t8),
+            t6 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t8),
+            t6 > vec2<f32>(0.0f)
+        ),
+        w.xy >= vec2<f32>(0.0f)
     );
-    let t10 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t8),
-        t6 < vec2<f32>(0.0f)
+    let t10 = t5 - 1.0f - 127.0f;
+    let t11 = t10 * t10 * len2;
+    let t12 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t11),
+            t10 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t11),
+            t10 > vec2<f32>(0.0f)
+        ),
+        w.xy >= vec2<f32>(0.0f)
     );
-    let t11 = select(
-        vec2<f32>(0.0f),
-        select(t10, t9, w.xy >= vec2<f32>(0.0f)),
-        t5 < vec2<f32>(255.0f)
-    );
-    let t12 = t5 - 1.0f - 127.0f;
-    let t13 = t12 * t12 * len2;
-    let t14 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t13),
-        t12 > vec2<f32>(0.0f)
-    );
-    let t15 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t13),
-        t12 < vec2<f32>(0.0f)
-    );
-    let t16 = select(
-        vec2<f32>(0.0f),
-        select(t15, t14, w.xy >= vec2<f32>(0.0f)) - 1.0f,
-        t5 > vec2<f32>(0.0f)
-    );
-    let c = select(vec2<f32>(128.0f), t5 + t11 + t16, ok && len2 > 0.0f);
+    let t13 = t5
+        + select(vec2<f32>(0.0f), t9, t5 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t12 - 1.0f, t5 > vec2<f32>(0.0f));
+    let c = select(vec2<f32>(128.0f), t13, ok && len2 > 0.0f);
     return vec4<f32>(c, 0.0f, 255.0f);
 }
 
@@ -156,8 +154,6 @@ fn unitpack_xy16_rg_round_codes(a0: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_xy16_rg_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_xy16_rg_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }

@@ -41,10 +41,8 @@ fn unitpack_xy16_rxgb_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   1.
 // Portable as unitpack_xy16_rxgb_decode_float is, within the same bound.
 fn unitpack_xy16_rxgb_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_xy16_rxgb_decode_float(params);
 }
 
@@ -90,8 +88,10 @@ fn unitpack_xy16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled4 = t11 / select(1.0f, largest4, t13);
     let scaled4_sq = scaled4 * scaled4;
     let len2_4 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    let t14 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled4 / sqrt(len2_4), t13 && len2_4 >= 1.0f);
-    return vec4<f32>(1.0f, 0.5f + t7.xy.y * 0.5f, 0.5f + t14.z * 0.5f, 0.5f + t7.xy.x * 0.5f);
+    let t14 = 0.5f
+        + select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled4 / sqrt(len2_4), t13 && len2_4 >= 1.0f).z
+            * 0.5f;
+    return vec4<f32>(1.0f, 0.5f + t7.xy.y * 0.5f, t14, 0.5f + t7.xy.x * 0.5f);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -106,7 +106,8 @@ fn unitpack_xy16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = select(0.0f, w.z, w.z > 0.0f);
     let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 4294963200u);
@@ -130,38 +131,37 @@ fn unitpack_xy16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let t7 = w.xy * w.xy * 16256.25f;
     let t8 = t6 * t6 * len2;
     let t9 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t8),
-        t6 > vec2<f32>(0.0f)
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t8),
+            t6 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t8),
+            t6 > vec2<f32>(0.0f)
+        ),
+        w.xy >= vec2<f32>(0.0f)
     );
-    let t10 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t8),
-        t6 < vec2<f32>(0.0f)
+    let t10 = t5 - 1.0f - 127.0f;
+    let t11 = t10 * t10 * len2;
+    let t12 = select(
+        select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t11),
+            t10 < vec2<f32>(0.0f)
+        ),
+        select(
+            vec2<f32>(1.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t11),
+            t10 > vec2<f32>(0.0f)
+        ),
+        w.xy >= vec2<f32>(0.0f)
     );
-    let t11 = select(
-        vec2<f32>(0.0f),
-        select(t10, t9, w.xy >= vec2<f32>(0.0f)),
-        t5 < vec2<f32>(255.0f)
-    );
-    let t12 = t5 - 1.0f - 127.0f;
-    let t13 = t12 * t12 * len2;
-    let t14 = select(
-        vec2<f32>(1.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 >= t13),
-        t12 > vec2<f32>(0.0f)
-    );
-    let t15 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t7 <= t13),
-        t12 < vec2<f32>(0.0f)
-    );
-    let t16 = select(
-        vec2<f32>(0.0f),
-        select(t15, t14, w.xy >= vec2<f32>(0.0f)) - 1.0f,
-        t5 > vec2<f32>(0.0f)
-    );
-    let c = select(vec2<f32>(128.0f), t5 + t11 + t16, ok && len2 > 0.0f);
+    let t13 = t5
+        + select(vec2<f32>(0.0f), t9, t5 < vec2<f32>(255.0f))
+        + select(vec2<f32>(0.0f), t12 - 1.0f, t5 > vec2<f32>(0.0f));
+    let c = select(vec2<f32>(128.0f), t13, ok && len2 > 0.0f);
     let normal2 = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
@@ -170,11 +170,12 @@ fn unitpack_xy16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w2 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w3 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w2, ok2);
-    let t17 = vec3<f32>(w3.xy, select(0.0f, w3.z, w3.z > 0.0f));
-    let normal3 = select(t17, vec3<f32>(0.0f), abs(t17) < vec3<f32>(1.1754944e-38f));
+    let t14 = vec3<f32>(w3.xy, select(0.0f, w3.z, w3.z > 0.0f));
+    let normal3 = select(t14, vec3<f32>(0.0f), abs(t14) < vec3<f32>(1.1754944e-38f));
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
     let largest3 = select(abs_normal3.z, larger3, larger3 >= abs_normal3.z);
@@ -182,7 +183,8 @@ fn unitpack_xy16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let ok3 = sum3 >= 2.0f && sum3 < 16.0f;
+    let sum_below_16_3 = sum3 < 16.0f;
+    let ok3 = sum3 >= 2.0f && sum_below_16_3;
     let w4 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
     let w5 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w4, ok3);
     let split_hi4 = bitcast<f32>(bitcast<u32>(w5.x) & 4294963200u);
@@ -191,34 +193,38 @@ fn unitpack_xy16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let split_lo5 = w5.y - split_hi5;
     let split_hi6 = bitcast<f32>(bitcast<u32>(w5.z) & 4294963200u);
     let split_lo6 = w5.z - split_hi6;
-    let t18 = (split_hi4 + split_hi4) * split_lo4
+    let t15 = (split_hi4 + split_hi4) * split_lo4
         + (split_hi5 + split_hi5) * split_lo5
         + (split_hi6 + split_hi6) * split_lo6;
     let len2_2 = split_hi4 * split_hi4
         + split_hi5 * split_hi5
         + split_hi6 * split_hi6
-        + t18
+        + t15
         + (split_lo4 * split_lo4 + split_lo5 * split_lo5 + split_lo6 * split_lo6);
     let big2 = w5.z * w5.z * 16256.25f;
-    let t19 = round(w5.z / sqrt(len2_2) * 127.5f + 127.5f);
-    let t20 = select(0.0f, t19, t19 >= 0.0f);
-    let estimate = select(255.0f, t20, t20 <= 255.0f);
-    let t21 = estimate - 127.0f;
-    let t22 = t21 * t21 * len2_2;
-    let t23 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t22), t21 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t22), t21 > 0.0f),
-        w5.z >= 0.0f
+    let t16 = round(w5.z / sqrt(len2_2) * 127.5f + 127.5f);
+    let t17 = select(0.0f, t16, t16 >= 0.0f);
+    let estimate = select(255.0f, t17, t17 <= 255.0f);
+    let t18 = estimate - 127.0f;
+    let t19 = t18 * t18 * len2_2;
+    let one_if = select(0.0f, 1.0f, big2 >= t19);
+    let one_if2 = select(0.0f, 1.0f, big2 <= t19);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t18 < 0.0f), select(1.0f, one_if, t18 > 0.0f), w5.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t23, estimate < 255.0f);
-    let t24 = estimate - 1.0f - 127.0f;
-    let t25 = t24 * t24 * len2_2;
-    let t26 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t25), t24 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t25), t24 > 0.0f),
+    let t20 = estimate - 1.0f - 127.0f;
+    let t21 = t20 * t20 * len2_2;
+    let one_if3 = select(0.0f, 1.0f, big2 >= t21);
+    let one_if4 = select(0.0f, 1.0f, big2 <= t21);
+    let t22 = select(
+        select(0.0f, one_if4, t20 < 0.0f),
+        select(1.0f, one_if3, t20 > 0.0f),
         w5.z >= 0.0f
-    );
-    let down = select(0.0f, t26 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t22, estimate > 0.0f);
     return vec4<f32>(255.0f, c.y, estimate + up + down, c.x);
 }
 
@@ -232,8 +238,6 @@ fn unitpack_xy16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_xy16_rxgb_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_xy16_rxgb_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }

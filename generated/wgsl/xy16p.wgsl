@@ -57,7 +57,8 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -69,12 +70,16 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -94,213 +99,191 @@ fn unitpack_xy16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t5 = floor(w4.xy / root * 127.0f);
-    let t6 = w4.xy * 127.0f;
-    let t7 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t6 < t5 * root),
+    let t2 = floor(w4.xy / root * 127.0f);
+    let t3 = w4.xy * 127.0f;
+    let t4 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t3 < t2 * root),
         vec2<f32>(1.0f),
-        t6 >= (t5 + 1.0f) * root
+        t3 >= (t2 + 1.0f) * root
     );
-    let t8 = t5 + t7;
-    let t9 = select(vec2<f32>(-127.0f), t8, t8 >= vec2<f32>(-127.0f));
-    let base = select(vec2<f32>(127.0f), t9, t9 <= vec2<f32>(127.0f));
-    let t10 = floor(w4 / root * 2097152.0f);
-    let t11 = w4 * 2097152.0f;
-    let t12 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t10 * root > t11),
+    let t5 = t2 + t4;
+    let t6 = select(vec2<f32>(-127.0f), t5, t5 >= vec2<f32>(-127.0f));
+    let base = select(vec2<f32>(127.0f), t6, t6 <= vec2<f32>(127.0f));
+    let t7 = floor(w4 / root * 2097152.0f);
+    let t8 = w4 * 2097152.0f;
+    let t9 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t7 * root > t8),
         vec3<f32>(1.0f),
-        (t10 + 1.0f) * root <= t11
+        (t7 + 1.0f) * root <= t8
     );
-    let aim = t10 + t12;
+    let aim = t7 + t9;
     let cand = select(vec2<f32>(127.0f), base, base <= vec2<f32>(127.0f));
-    let t13 = vec2<u32>(abs(cand));
-    let t14 = t13.x * t13.x + t13.y * t13.y;
-    let t15 = select(0u, 16129u - t14, t14 < 16129u);
-    let r = f32(t15 >> 12u) * 4096.0f + f32(t15 & 4095u);
-    let t16 = r * 272679420.0f;
-    let root_estimate2 = floor(sqrt(t16));
+    let t10 = vec2<u32>(abs(cand));
+    let t11 = t10.x * t10.x + t10.y * t10.y;
+    let t12 = select(0u, 16129u - t11, t11 < 16129u);
+    let r = f32(t12 >> 12u) * 4096.0f + f32(t12 & 4095u);
+    let t13 = r * 272679420.0f;
+    let root_estimate2 = floor(sqrt(t13));
     let root_next = root_estimate2 + 1.0f;
-    let t17 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t16),
-        1.0f,
-        root_next * root_next <= t16
-    );
-    let root_step = root_estimate2 + t17;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t13);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t13);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t18 = select(
-        select(0.0f, -1.0f, root_step * root_step > t16),
-        1.0f,
-        root_next2 * root_next2 <= t16
-    );
-    let root2 = root_step + t18;
-    let t19 = vec3<u32>(abs(vec3<f32>(floor(cand * 16513.008f), root2) - aim));
-    let limb1_4 = t19.x >> 12u;
-    let limb0_4 = t19.x & 4095u;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t13);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t13);
+    let root2 = root_step + step4;
+    let offset = vec3<f32>(floor(cand * 16513.008f), root2) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t19.y >> 12u;
-    let limb0_5 = t19.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t19.z >> 12u;
-    let limb0_6 = t19.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t20 = base.x + 1.0f;
-    let t21 = vec2<f32>(t20, base.y);
-    let cand2 = select(vec2<f32>(127.0f), t21, t21 <= vec2<f32>(127.0f));
-    let t22 = vec2<u32>(abs(cand2));
-    let t23 = t22.x * t22.x + t22.y * t22.y;
-    let t24 = select(0u, 16129u - t23, t23 < 16129u);
-    let r2 = f32(t24 >> 12u) * 4096.0f + f32(t24 & 4095u);
-    let t25 = r2 * 272679420.0f;
-    let root_estimate3 = floor(sqrt(t25));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t14 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(127.0f), t14, t14 <= vec2<f32>(127.0f));
+    let t15 = vec2<u32>(abs(cand2));
+    let t16 = t15.x * t15.x + t15.y * t15.y;
+    let t17 = select(0u, 16129u - t16, t16 < 16129u);
+    let r2 = f32(t17 >> 12u) * 4096.0f + f32(t17 & 4095u);
+    let t18 = r2 * 272679420.0f;
+    let root_estimate3 = floor(sqrt(t18));
     let root_next3 = root_estimate3 + 1.0f;
-    let t26 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t25),
-        1.0f,
-        root_next3 * root_next3 <= t25
-    );
-    let root_step2 = root_estimate3 + t26;
+    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t18);
+    let step5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t18);
+    let root_step2 = root_estimate3 + step5;
     let root_next4 = root_step2 + 1.0f;
-    let t27 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t25),
-        1.0f,
-        root_next4 * root_next4 <= t25
-    );
-    let root3 = root_step2 + t27;
-    let t28 = vec3<u32>(abs(vec3<f32>(floor(cand2 * 16513.008f), root3) - aim));
-    let limb1_7 = t28.x >> 12u;
-    let limb0_7 = t28.x & 4095u;
+    let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t18);
+    let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t18);
+    let root3 = root_step2 + step6;
+    let offset2 = vec3<f32>(floor(cand2 * 16513.008f), root3) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t28.y >> 12u;
-    let limb0_8 = t28.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t28.z >> 12u;
-    let limb0_9 = t28.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t29 = t20 <= 127.0f && base.y <= 127.0f && dist2 < dist;
-    let best = select(cand, cand2, t29);
-    let best_d = select(dist, dist2, t29);
-    let t30 = base.y + 1.0f;
-    let t31 = vec2<f32>(base.x, t30);
-    let cand3 = select(vec2<f32>(127.0f), t31, t31 <= vec2<f32>(127.0f));
-    let t32 = vec2<u32>(abs(cand3));
-    let t33 = t32.x * t32.x + t32.y * t32.y;
-    let t34 = select(0u, 16129u - t33, t33 < 16129u);
-    let r3 = f32(t34 >> 12u) * 4096.0f + f32(t34 & 4095u);
-    let t35 = r3 * 272679420.0f;
-    let root_estimate4 = floor(sqrt(t35));
+    let t19 = s_up <= 127.0f && base.y <= 127.0f && dist2 < dist;
+    let best = select(cand, cand2, t19);
+    let best_d = select(dist, dist2, t19);
+    let t20 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(127.0f), t20, t20 <= vec2<f32>(127.0f));
+    let t21 = vec2<u32>(abs(cand3));
+    let t22 = t21.x * t21.x + t21.y * t21.y;
+    let t23 = select(0u, 16129u - t22, t22 < 16129u);
+    let r3 = f32(t23 >> 12u) * 4096.0f + f32(t23 & 4095u);
+    let t24 = r3 * 272679420.0f;
+    let root_estimate4 = floor(sqrt(t24));
     let root_next5 = root_estimate4 + 1.0f;
-    let t36 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t35),
-        1.0f,
-        root_next5 * root_next5 <= t35
-    );
-    let root_step3 = root_estimate4 + t36;
+    let step_down7 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t24);
+    let step7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t24);
+    let root_step3 = root_estimate4 + step7;
     let root_next6 = root_step3 + 1.0f;
-    let t37 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t35),
-        1.0f,
-        root_next6 * root_next6 <= t35
-    );
-    let root4 = root_step3 + t37;
-    let t38 = vec3<u32>(abs(vec3<f32>(floor(cand3 * 16513.008f), root4) - aim));
-    let limb1_10 = t38.x >> 12u;
-    let limb0_10 = t38.x & 4095u;
+    let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t24);
+    let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t24);
+    let root4 = root_step3 + step8;
+    let offset3 = vec3<f32>(floor(cand3 * 16513.008f), root4) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t38.y >> 12u;
-    let limb0_11 = t38.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t38.z >> 12u;
-    let limb0_12 = t38.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t39 = base.x <= 127.0f && t30 <= 127.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t39);
-    let best_d2 = select(best_d, dist3, t39);
-    let t40 = base + 1.0f;
-    let cand4 = select(vec2<f32>(127.0f), t40, t40 <= vec2<f32>(127.0f));
-    let t41 = vec2<u32>(abs(cand4));
-    let t42 = t41.x * t41.x + t41.y * t41.y;
-    let t43 = select(0u, 16129u - t42, t42 < 16129u);
-    let r4 = f32(t43 >> 12u) * 4096.0f + f32(t43 & 4095u);
-    let t44 = r4 * 272679420.0f;
-    let root_estimate5 = floor(sqrt(t44));
+    let t25 = base.x <= 127.0f && t_up <= 127.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t25);
+    let best_d2 = select(best_d, dist3, t25);
+    let t26 = base + 1.0f;
+    let cand4 = select(vec2<f32>(127.0f), t26, t26 <= vec2<f32>(127.0f));
+    let t27 = vec2<u32>(abs(cand4));
+    let t28 = t27.x * t27.x + t27.y * t27.y;
+    let t29 = select(0u, 16129u - t28, t28 < 16129u);
+    let r4 = f32(t29 >> 12u) * 4096.0f + f32(t29 & 4095u);
+    let t30 = r4 * 272679420.0f;
+    let root_estimate5 = floor(sqrt(t30));
     let root_next7 = root_estimate5 + 1.0f;
-    let t45 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t44),
-        1.0f,
-        root_next7 * root_next7 <= t44
-    );
-    let root_step4 = root_estimate5 + t45;
+    let step_down9 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t30);
+    let step9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t30);
+    let root_step4 = root_estimate5 + step9;
     let root_next8 = root_step4 + 1.0f;
-    let t46 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t44),
-        1.0f,
-        root_next8 * root_next8 <= t44
-    );
-    let root5 = root_step4 + t46;
-    let t47 = vec3<u32>(abs(vec3<f32>(floor(cand4 * 16513.008f), root5) - aim));
-    let limb1_13 = t47.x >> 12u;
-    let limb0_13 = t47.x & 4095u;
+    let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t30);
+    let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t30);
+    let root5 = root_step4 + step10;
+    let offset4 = vec3<f32>(floor(cand4 * 16513.008f), root5) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t47.y >> 12u;
-    let limb0_14 = t47.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t47.z >> 12u;
-    let limb0_15 = t47.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 127.0f && base.y + 1.0f <= 127.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 127.0f && dist4 < best_d2);
     return select(vec2<f32>(0.0f), best3, ok && ok2);
 }
 

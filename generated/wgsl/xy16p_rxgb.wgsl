@@ -41,10 +41,8 @@ fn unitpack_xy16p_rxgb_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   1.
 // Portable as unitpack_xy16p_rxgb_decode_float is, within the same bound.
 fn unitpack_xy16p_rxgb_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_xy16p_rxgb_decode_float(params);
 }
 
@@ -61,7 +59,8 @@ fn unitpack_xy16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -73,12 +72,16 @@ fn unitpack_xy16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -98,218 +101,201 @@ fn unitpack_xy16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t5 = w4.xy * 127.5f;
-    let t6 = round(t5 / root + 127.5f);
-    let t7 = select(vec2<f32>(0.0f), t6, t6 >= vec2<f32>(0.0f));
-    let t8 = select(vec2<f32>(255.0f), t7, t7 <= vec2<f32>(255.0f));
-    let t9 = select(
+    let t2 = w4.xy * 127.5f;
+    let t3 = round(t2 / root + 127.5f);
+    let t4 = select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f));
+    let t5 = select(vec2<f32>(255.0f), t4, t4 <= vec2<f32>(255.0f));
+    let t6 = t5
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 126.5f) * root),
+            t5 < vec2<f32>(255.0f)
+        );
+    let t7 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t5 >= (t8 - 126.5f) * root),
-        t8 < vec2<f32>(255.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 1.0f - 126.5f) * root) - 1.0f,
+        t5 > vec2<f32>(0.0f)
     );
-    let t10 = select(vec2<f32>(0.0f), vec2<f32>(1.0f), t5 >= (t8 - 1.0f - 126.5f) * root) - 1.0f;
-    let base = t8 + t9 + select(vec2<f32>(0.0f), t10, t8 > vec2<f32>(0.0f));
-    let t11 = floor(w4 / root * 2097152.0f);
-    let t12 = w4 * 2097152.0f;
-    let t13 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t11 * root > t12),
+    let base = t6 + t7;
+    let t8 = floor(w4 / root * 2097152.0f);
+    let t9 = w4 * 2097152.0f;
+    let t10 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t8 * root > t9),
         vec3<f32>(1.0f),
-        (t11 + 1.0f) * root <= t12
+        (t8 + 1.0f) * root <= t9
     );
-    let aim = t11 + t13;
+    let aim = t8 + t10;
     let cand = select(vec2<f32>(255.0f), base, base <= vec2<f32>(255.0f));
-    let t14 = cand + cand - 255.0f;
-    let t15 = vec2<u32>(abs(t14));
-    let t16 = t15.x * t15.x + t15.y * t15.y;
-    let t17 = select(0u, 65025u - t16, t16 < 65025u);
-    let r = f32(t17 >> 12u) * 4096.0f + f32(t17 & 4095u);
-    let t18 = r * 67636240.0f;
-    let root_estimate2 = floor(sqrt(t18));
+    let t11 = cand + cand - 255.0f;
+    let t12 = vec2<u32>(abs(t11));
+    let t13 = t12.x * t12.x + t12.y * t12.y;
+    let t14 = select(0u, 65025u - t13, t13 < 65025u);
+    let r = f32(t14 >> 12u) * 4096.0f + f32(t14 & 4095u);
+    let t15 = r * 67636240.0f;
+    let root_estimate2 = floor(sqrt(t15));
     let root_next = root_estimate2 + 1.0f;
-    let t19 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t18),
-        1.0f,
-        root_next * root_next <= t18
-    );
-    let root_step = root_estimate2 + t19;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t15);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t15);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t20 = select(
-        select(0.0f, -1.0f, root_step * root_step > t18),
-        1.0f,
-        root_next2 * root_next2 <= t18
-    );
-    let root2 = root_step + t20;
-    let t21 = vec3<u32>(abs(vec3<f32>(floor(t14 * 8224.126f), root2) - aim));
-    let limb1_4 = t21.x >> 12u;
-    let limb0_4 = t21.x & 4095u;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t15);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t15);
+    let root2 = root_step + step4;
+    let offset = vec3<f32>(floor(t11 * 8224.126f), root2) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t21.y >> 12u;
-    let limb0_5 = t21.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t21.z >> 12u;
-    let limb0_6 = t21.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t22 = base.x + 1.0f;
-    let t23 = vec2<f32>(t22, base.y);
-    let cand2 = select(vec2<f32>(255.0f), t23, t23 <= vec2<f32>(255.0f));
-    let t24 = cand2 + cand2 - 255.0f;
-    let t25 = vec2<u32>(abs(t24));
-    let t26 = t25.x * t25.x + t25.y * t25.y;
-    let t27 = select(0u, 65025u - t26, t26 < 65025u);
-    let r2 = f32(t27 >> 12u) * 4096.0f + f32(t27 & 4095u);
-    let t28 = r2 * 67636240.0f;
-    let root_estimate3 = floor(sqrt(t28));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t16 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(255.0f), t16, t16 <= vec2<f32>(255.0f));
+    let t17 = cand2 + cand2 - 255.0f;
+    let t18 = vec2<u32>(abs(t17));
+    let t19 = t18.x * t18.x + t18.y * t18.y;
+    let t20 = select(0u, 65025u - t19, t19 < 65025u);
+    let r2 = f32(t20 >> 12u) * 4096.0f + f32(t20 & 4095u);
+    let t21 = r2 * 67636240.0f;
+    let root_estimate3 = floor(sqrt(t21));
     let root_next3 = root_estimate3 + 1.0f;
-    let t29 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t28),
-        1.0f,
-        root_next3 * root_next3 <= t28
-    );
-    let root_step2 = root_estimate3 + t29;
+    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t21);
+    let step5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t21);
+    let root_step2 = root_estimate3 + step5;
     let root_next4 = root_step2 + 1.0f;
-    let t30 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t28),
-        1.0f,
-        root_next4 * root_next4 <= t28
-    );
-    let root3 = root_step2 + t30;
-    let t31 = vec3<u32>(abs(vec3<f32>(floor(t24 * 8224.126f), root3) - aim));
-    let limb1_7 = t31.x >> 12u;
-    let limb0_7 = t31.x & 4095u;
+    let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t21);
+    let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t21);
+    let root3 = root_step2 + step6;
+    let offset2 = vec3<f32>(floor(t17 * 8224.126f), root3) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t31.y >> 12u;
-    let limb0_8 = t31.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t31.z >> 12u;
-    let limb0_9 = t31.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t32 = t22 <= 255.0f && base.y <= 255.0f && dist2 < dist;
-    let best = select(cand, cand2, t32);
-    let best_d = select(dist, dist2, t32);
-    let t33 = base.y + 1.0f;
-    let t34 = vec2<f32>(base.x, t33);
-    let cand3 = select(vec2<f32>(255.0f), t34, t34 <= vec2<f32>(255.0f));
-    let t35 = cand3 + cand3 - 255.0f;
-    let t36 = vec2<u32>(abs(t35));
-    let t37 = t36.x * t36.x + t36.y * t36.y;
-    let t38 = select(0u, 65025u - t37, t37 < 65025u);
-    let r3 = f32(t38 >> 12u) * 4096.0f + f32(t38 & 4095u);
-    let t39 = r3 * 67636240.0f;
-    let root_estimate4 = floor(sqrt(t39));
+    let t22 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
+    let best = select(cand, cand2, t22);
+    let best_d = select(dist, dist2, t22);
+    let t23 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(255.0f), t23, t23 <= vec2<f32>(255.0f));
+    let t24 = cand3 + cand3 - 255.0f;
+    let t25 = vec2<u32>(abs(t24));
+    let t26 = t25.x * t25.x + t25.y * t25.y;
+    let t27 = select(0u, 65025u - t26, t26 < 65025u);
+    let r3 = f32(t27 >> 12u) * 4096.0f + f32(t27 & 4095u);
+    let t28 = r3 * 67636240.0f;
+    let root_estimate4 = floor(sqrt(t28));
     let root_next5 = root_estimate4 + 1.0f;
-    let t40 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t39),
-        1.0f,
-        root_next5 * root_next5 <= t39
-    );
-    let root_step3 = root_estimate4 + t40;
+    let step_down7 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t28);
+    let step7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t28);
+    let root_step3 = root_estimate4 + step7;
     let root_next6 = root_step3 + 1.0f;
-    let t41 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t39),
-        1.0f,
-        root_next6 * root_next6 <= t39
-    );
-    let root4 = root_step3 + t41;
-    let t42 = vec3<u32>(abs(vec3<f32>(floor(t35 * 8224.126f), root4) - aim));
-    let limb1_10 = t42.x >> 12u;
-    let limb0_10 = t42.x & 4095u;
+    let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t28);
+    let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t28);
+    let root4 = root_step3 + step8;
+    let offset3 = vec3<f32>(floor(t24 * 8224.126f), root4) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t42.y >> 12u;
-    let limb0_11 = t42.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t42.z >> 12u;
-    let limb0_12 = t42.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t43 = base.x <= 255.0f && t33 <= 255.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t43);
-    let best_d2 = select(best_d, dist3, t43);
-    let t44 = base + 1.0f;
-    let cand4 = select(vec2<f32>(255.0f), t44, t44 <= vec2<f32>(255.0f));
-    let t45 = cand4 + cand4 - 255.0f;
-    let t46 = vec2<u32>(abs(t45));
-    let t47 = t46.x * t46.x + t46.y * t46.y;
-    let t48 = select(0u, 65025u - t47, t47 < 65025u);
-    let r4 = f32(t48 >> 12u) * 4096.0f + f32(t48 & 4095u);
-    let t49 = r4 * 67636240.0f;
-    let root_estimate5 = floor(sqrt(t49));
+    let t29 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t29);
+    let best_d2 = select(best_d, dist3, t29);
+    let t30 = base + 1.0f;
+    let cand4 = select(vec2<f32>(255.0f), t30, t30 <= vec2<f32>(255.0f));
+    let t31 = cand4 + cand4 - 255.0f;
+    let t32 = vec2<u32>(abs(t31));
+    let t33 = t32.x * t32.x + t32.y * t32.y;
+    let t34 = select(0u, 65025u - t33, t33 < 65025u);
+    let r4 = f32(t34 >> 12u) * 4096.0f + f32(t34 & 4095u);
+    let t35 = r4 * 67636240.0f;
+    let root_estimate5 = floor(sqrt(t35));
     let root_next7 = root_estimate5 + 1.0f;
-    let t50 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t49),
-        1.0f,
-        root_next7 * root_next7 <= t49
-    );
-    let root_step4 = root_estimate5 + t50;
+    let step_down9 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t35);
+    let step9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t35);
+    let root_step4 = root_estimate5 + step9;
     let root_next8 = root_step4 + 1.0f;
-    let t51 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t49),
-        1.0f,
-        root_next8 * root_next8 <= t49
-    );
-    let root5 = root_step4 + t51;
-    let t52 = vec3<u32>(abs(vec3<f32>(floor(t45 * 8224.126f), root5) - aim));
-    let limb1_13 = t52.x >> 12u;
-    let limb0_13 = t52.x & 4095u;
+    let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t35);
+    let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t35);
+    let root5 = root_step4 + step10;
+    let offset4 = vec3<f32>(floor(t31 * 8224.126f), root5) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t52.y >> 12u;
-    let limb0_14 = t52.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t52.z >> 12u;
-    let limb0_15 = t52.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 255.0f && base.y + 1.0f <= 255.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2);
     let c = select(vec2<f32>(128.0f), best3, ok && ok2);
     let normal3 = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal3 = abs(normal3);
@@ -319,11 +305,12 @@ fn unitpack_xy16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let ok3 = sum3 >= 2.0f && sum3 < 16.0f;
+    let sum_below_16_3 = sum3 < 16.0f;
+    let ok3 = sum3 >= 2.0f && sum_below_16_3;
     let w5 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
     let w6 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w5, ok3);
-    let t53 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
-    let normal4 = select(t53, vec3<f32>(0.0f), abs(t53) < vec3<f32>(1.1754944e-38f));
+    let t36 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
+    let normal4 = select(t36, vec3<f32>(0.0f), abs(t36) < vec3<f32>(1.1754944e-38f));
     let abs_normal4 = abs(normal4);
     let larger4 = select(abs_normal4.y, abs_normal4.x, abs_normal4.x >= abs_normal4.y);
     let largest4 = select(abs_normal4.z, larger4, larger4 >= abs_normal4.z);
@@ -331,7 +318,8 @@ fn unitpack_xy16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let scaled4 = normal4 * scale4;
     let abs_scaled4 = abs(scaled4);
     let sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
-    let ok4 = sum4 >= 2.0f && sum4 < 16.0f;
+    let sum_below_16_4 = sum4 < 16.0f;
+    let ok4 = sum4 >= 2.0f && sum_below_16_4;
     let w7 = select(scaled4, vec3<f32>(0.0f), abs(scaled4) < vec3<f32>(1.8189894e-12f));
     let w8 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w7, ok4);
     let split_hi = bitcast<f32>(bitcast<u32>(w8.x) & 4294963200u);
@@ -340,34 +328,38 @@ fn unitpack_xy16p_rxgb_encode_codes(v: vec3<f32>) -> vec4<f32> {
     let split_lo2 = w8.y - split_hi2;
     let split_hi3 = bitcast<f32>(bitcast<u32>(w8.z) & 4294963200u);
     let split_lo3 = w8.z - split_hi3;
-    let t54 = (split_hi + split_hi) * split_lo
+    let t37 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     let len2_2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t54
+        + t37
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     let big2 = w8.z * w8.z * 16256.25f;
-    let t55 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
-    let t56 = select(0.0f, t55, t55 >= 0.0f);
-    let estimate = select(255.0f, t56, t56 <= 255.0f);
-    let t57 = estimate - 127.0f;
-    let t58 = t57 * t57 * len2_2;
-    let t59 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t58), t57 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t58), t57 > 0.0f),
-        w8.z >= 0.0f
+    let t38 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
+    let t39 = select(0.0f, t38, t38 >= 0.0f);
+    let estimate = select(255.0f, t39, t39 <= 255.0f);
+    let t40 = estimate - 127.0f;
+    let t41 = t40 * t40 * len2_2;
+    let one_if = select(0.0f, 1.0f, big2 >= t41);
+    let one_if2 = select(0.0f, 1.0f, big2 <= t41);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t40 < 0.0f), select(1.0f, one_if, t40 > 0.0f), w8.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t59, estimate < 255.0f);
-    let t60 = estimate - 1.0f - 127.0f;
-    let t61 = t60 * t60 * len2_2;
-    let t62 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t61), t60 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t61), t60 > 0.0f),
+    let t42 = estimate - 1.0f - 127.0f;
+    let t43 = t42 * t42 * len2_2;
+    let one_if3 = select(0.0f, 1.0f, big2 >= t43);
+    let one_if4 = select(0.0f, 1.0f, big2 <= t43);
+    let t44 = select(
+        select(0.0f, one_if4, t42 < 0.0f),
+        select(1.0f, one_if3, t42 > 0.0f),
         w8.z >= 0.0f
-    );
-    let down = select(0.0f, t62 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t44, estimate > 0.0f);
     return vec4<f32>(255.0f, c.y, estimate + up + down, c.x);
 }
 
@@ -393,8 +385,6 @@ fn unitpack_xy16p_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_xy16p_rxgb_encode(v: vec3<f32>) -> u32 {
     let encode_codes = unitpack_xy16p_rxgb_encode_codes(v);
-    return u32(encode_codes.x)
-        | (u32(encode_codes.y) << 8u)
-        | (u32(encode_codes.z) << 16u)
-        | (u32(encode_codes.w) << 24u);
+    let t1 = u32(encode_codes.x) | (u32(encode_codes.y) << 8u) | (u32(encode_codes.z) << 16u);
+    return t1 | (u32(encode_codes.w) << 24u);
 }

@@ -73,7 +73,8 @@ fn unitpack_xy_signz16_encode_float(v: vec3<f32>) -> vec3<f32> {
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
     let t3 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled / sqrt(len2), t2 && len2 >= 1.0f);
-    return vec3<f32>(t3.xy, select(0.0f, 1.0f, t3.z < 0.0f));
+    let one_if = select(0.0f, 1.0f, t3.z < 0.0f);
+    return vec3<f32>(t3.xy, one_if);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -88,7 +89,8 @@ fn unitpack_xy_signz16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
@@ -110,28 +112,22 @@ fn unitpack_xy_signz16_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let big2 = big * big;
     let upper = estimate + 0.5f;
     let lower = estimate - 0.5f;
-    let t2 = select(
-        select(0.0f, -1.0f, estimate > 0.0f && big2 < lower * lower * len2),
-        1.0f,
-        big2 >= upper * upper * len2
-    );
-    let t3 = estimate + t2;
-    let t4 = select(0.0f, t3, t3 >= 0.0f);
-    let t5 = select(127.0f, t4, t4 <= 127.0f);
+    let step_down = select(0.0f, -1.0f, estimate > 0.0f && big2 < lower * lower * len2);
+    let step = select(step_down, 1.0f, big2 >= upper * upper * len2);
+    let t2 = estimate + step;
+    let t3 = select(0.0f, t2, t2 >= 0.0f);
+    let t4 = select(127.0f, t3, t3 <= 127.0f);
     let big3 = abs(w2.y * 63.0f);
     let estimate2 = round(big3 / sqrt(len2));
     let big2_2 = big3 * big3;
     let upper2 = estimate2 + 0.5f;
     let lower2 = estimate2 - 0.5f;
-    let t6 = select(
-        select(0.0f, -1.0f, estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2),
-        1.0f,
-        big2_2 >= upper2 * upper2 * len2
-    );
-    let t7 = estimate2 + t6;
-    let t8 = select(0.0f, t7, t7 >= 0.0f);
-    let t9 = select(63.0f, t8, t8 <= 63.0f);
-    return select(vec3<f32>(t5, t9, 0.0f), vec3<f32>(-t5, -t9, 1.0f), w2 < vec3<f32>(0.0f));
+    let step_down2 = select(0.0f, -1.0f, estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2);
+    let step2 = select(step_down2, 1.0f, big2_2 >= upper2 * upper2 * len2);
+    let t5 = estimate2 + step2;
+    let t6 = select(0.0f, t5, t5 >= 0.0f);
+    let t7 = select(63.0f, t6, t6 <= 63.0f);
+    return select(vec3<f32>(t4, t7, 0.0f), vec3<f32>(-t4, -t7, 1.0f), w2 < vec3<f32>(0.0f));
 }
 
 // unitpack_xy_signz16_encode: fast encoder.

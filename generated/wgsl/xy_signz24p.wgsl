@@ -70,12 +70,16 @@ fn unitpack_xy_signz24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let fixed2 = u32(floor(abs(w2.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w2.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w2.z) * 2097152.0f));
+    let fixed_f = floor(abs(w2.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -95,215 +99,193 @@ fn unitpack_xy_signz24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t1 = floor(root_estimate * 512.0f);
-    let root_h0 = t1 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t2 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t1 + t2;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t3 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t3;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t4 = select(0.0f, 1.0f, w2.z < 0.0f);
-    let t5 = floor(w2.xy / root * vec2<f32>(2047.0f, 1023.0f));
-    let t6 = w2.xy * vec2<f32>(2047.0f, 1023.0f);
-    let t7 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t6 < t5 * root),
+    let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
+    let t1 = floor(w2.xy / root * vec2<f32>(2047.0f, 1023.0f));
+    let t2 = w2.xy * vec2<f32>(2047.0f, 1023.0f);
+    let t3 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t2 < t1 * root),
         vec2<f32>(1.0f),
-        t6 >= (t5 + 1.0f) * root
+        t2 >= (t1 + 1.0f) * root
     );
-    let t8 = t5 + t7;
-    let t9 = select(vec2<f32>(-2047.0f, -1023.0f), t8, t8 >= vec2<f32>(-2047.0f, -1023.0f));
-    let base = select(vec2<f32>(2047.0f, 1023.0f), t9, t9 <= vec2<f32>(2047.0f, 1023.0f));
-    let t10 = floor(w2 / root * 2097152.0f);
-    let t11 = w2 * 2097152.0f;
-    let t12 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t10 * root > t11),
+    let t4 = t1 + t3;
+    let t5 = select(vec2<f32>(-2047.0f, -1023.0f), t4, t4 >= vec2<f32>(-2047.0f, -1023.0f));
+    let base = select(vec2<f32>(2047.0f, 1023.0f), t5, t5 <= vec2<f32>(2047.0f, 1023.0f));
+    let t6 = floor(w2 / root * 2097152.0f);
+    let t7 = w2 * 2097152.0f;
+    let t8 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t6 * root > t7),
         vec3<f32>(1.0f),
-        (t10 + 1.0f) * root <= t11
+        (t6 + 1.0f) * root <= t7
     );
-    let aim = t10 + t12;
+    let aim = t6 + t8;
     let cand = select(vec2<f32>(2047.0f, 1023.0f), base, base <= vec2<f32>(2047.0f, 1023.0f));
     let p = floor(cand * vec2<f32>(1024.5002f, 2050.002f));
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
-    let t13 = 2097152.0f - q;
-    let rest = select(0.0f, t13, t13 >= 0.0f);
-    let t14 = rest * 2097152.0f;
-    let root_estimate2 = floor(sqrt(t14));
+    let t9 = 2097152.0f - q;
+    let rest = select(0.0f, t9, t9 >= 0.0f);
+    let t10 = rest * 2097152.0f;
+    let root_estimate2 = floor(sqrt(t10));
     let root_next = root_estimate2 + 1.0f;
-    let t15 = select(
-        select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t14),
-        1.0f,
-        root_next * root_next <= t14
-    );
-    let root_step = root_estimate2 + t15;
+    let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t10);
+    let step3 = select(step_down3, 1.0f, root_next * root_next <= t10);
+    let root_step = root_estimate2 + step3;
     let root_next2 = root_step + 1.0f;
-    let t16 = select(
-        select(0.0f, -1.0f, root_step * root_step > t14),
-        1.0f,
-        root_next2 * root_next2 <= t14
-    );
-    let root2 = root_step + t16;
-    let t17 = vec3<u32>(abs(vec3<f32>(p, select(root2, -root2, t4 > 0.5f)) - aim));
-    let limb1_4 = t17.x >> 12u;
-    let limb0_4 = t17.x & 4095u;
+    let step_down4 = select(0.0f, -1.0f, root_step * root_step > t10);
+    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t10);
+    let root2 = root_step + step4;
+    let offset = vec3<f32>(p, select(root2, -root2, one_if > 0.5f)) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t17.y >> 12u;
-    let limb0_5 = t17.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t17.z >> 12u;
-    let limb0_6 = t17.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t18 = base.x + 1.0f;
-    let t19 = vec2<f32>(t18, base.y);
-    let cand2 = select(vec2<f32>(2047.0f, 1023.0f), t19, t19 <= vec2<f32>(2047.0f, 1023.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t11 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(2047.0f, 1023.0f), t11, t11 <= vec2<f32>(2047.0f, 1023.0f));
     let p2 = floor(cand2 * vec2<f32>(1024.5002f, 2050.002f));
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
-    let t20 = 2097152.0f - q2;
-    let rest2 = select(0.0f, t20, t20 >= 0.0f);
-    let t21 = rest2 * 2097152.0f;
-    let root_estimate3 = floor(sqrt(t21));
+    let t12 = 2097152.0f - q2;
+    let rest2 = select(0.0f, t12, t12 >= 0.0f);
+    let t13 = rest2 * 2097152.0f;
+    let root_estimate3 = floor(sqrt(t13));
     let root_next3 = root_estimate3 + 1.0f;
-    let t22 = select(
-        select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t21),
-        1.0f,
-        root_next3 * root_next3 <= t21
-    );
-    let root_step2 = root_estimate3 + t22;
+    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t13);
+    let step5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t13);
+    let root_step2 = root_estimate3 + step5;
     let root_next4 = root_step2 + 1.0f;
-    let t23 = select(
-        select(0.0f, -1.0f, root_step2 * root_step2 > t21),
-        1.0f,
-        root_next4 * root_next4 <= t21
-    );
-    let root3 = root_step2 + t23;
-    let t24 = vec3<u32>(abs(vec3<f32>(p2, select(root3, -root3, t4 > 0.5f)) - aim));
-    let limb1_7 = t24.x >> 12u;
-    let limb0_7 = t24.x & 4095u;
+    let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t13);
+    let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t13);
+    let root3 = root_step2 + step6;
+    let offset2 = vec3<f32>(p2, select(root3, -root3, one_if > 0.5f)) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t24.y >> 12u;
-    let limb0_8 = t24.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t24.z >> 12u;
-    let limb0_9 = t24.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t25 = t18 <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
-    let best = select(cand, cand2, t25);
-    let best_d = select(dist, dist2, t25);
-    let t26 = base.y + 1.0f;
-    let t27 = vec2<f32>(base.x, t26);
-    let cand3 = select(vec2<f32>(2047.0f, 1023.0f), t27, t27 <= vec2<f32>(2047.0f, 1023.0f));
+    let t14 = s_up <= 2047.0f && base.y <= 1023.0f && dist2 < dist;
+    let best = select(cand, cand2, t14);
+    let best_d = select(dist, dist2, t14);
+    let t15 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(2047.0f, 1023.0f), t15, t15 <= vec2<f32>(2047.0f, 1023.0f));
     let p3 = floor(cand3 * vec2<f32>(1024.5002f, 2050.002f));
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
-    let t28 = 2097152.0f - q3;
-    let rest3 = select(0.0f, t28, t28 >= 0.0f);
-    let t29 = rest3 * 2097152.0f;
-    let root_estimate4 = floor(sqrt(t29));
+    let t16 = 2097152.0f - q3;
+    let rest3 = select(0.0f, t16, t16 >= 0.0f);
+    let t17 = rest3 * 2097152.0f;
+    let root_estimate4 = floor(sqrt(t17));
     let root_next5 = root_estimate4 + 1.0f;
-    let t30 = select(
-        select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t29),
-        1.0f,
-        root_next5 * root_next5 <= t29
-    );
-    let root_step3 = root_estimate4 + t30;
+    let step_down7 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t17);
+    let step7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t17);
+    let root_step3 = root_estimate4 + step7;
     let root_next6 = root_step3 + 1.0f;
-    let t31 = select(
-        select(0.0f, -1.0f, root_step3 * root_step3 > t29),
-        1.0f,
-        root_next6 * root_next6 <= t29
-    );
-    let root4 = root_step3 + t31;
-    let t32 = vec3<u32>(abs(vec3<f32>(p3, select(root4, -root4, t4 > 0.5f)) - aim));
-    let limb1_10 = t32.x >> 12u;
-    let limb0_10 = t32.x & 4095u;
+    let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t17);
+    let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t17);
+    let root4 = root_step3 + step8;
+    let offset3 = vec3<f32>(p3, select(root4, -root4, one_if > 0.5f)) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t32.y >> 12u;
-    let limb0_11 = t32.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t32.z >> 12u;
-    let limb0_12 = t32.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t33 = base.x <= 2047.0f && t26 <= 1023.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t33);
-    let best_d2 = select(best_d, dist3, t33);
-    let t34 = base + 1.0f;
-    let cand4 = select(vec2<f32>(2047.0f, 1023.0f), t34, t34 <= vec2<f32>(2047.0f, 1023.0f));
+    let t18 = base.x <= 2047.0f && t_up <= 1023.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t18);
+    let best_d2 = select(best_d, dist3, t18);
+    let t19 = base + 1.0f;
+    let cand4 = select(vec2<f32>(2047.0f, 1023.0f), t19, t19 <= vec2<f32>(2047.0f, 1023.0f));
     let p4 = floor(cand4 * vec2<f32>(1024.5002f, 2050.002f));
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
-    let t35 = 2097152.0f - q4;
-    let rest4 = select(0.0f, t35, t35 >= 0.0f);
-    let t36 = rest4 * 2097152.0f;
-    let root_estimate5 = floor(sqrt(t36));
+    let t20 = 2097152.0f - q4;
+    let rest4 = select(0.0f, t20, t20 >= 0.0f);
+    let t21 = rest4 * 2097152.0f;
+    let root_estimate5 = floor(sqrt(t21));
     let root_next7 = root_estimate5 + 1.0f;
-    let t37 = select(
-        select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t36),
-        1.0f,
-        root_next7 * root_next7 <= t36
-    );
-    let root_step4 = root_estimate5 + t37;
+    let step_down9 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t21);
+    let step9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t21);
+    let root_step4 = root_estimate5 + step9;
     let root_next8 = root_step4 + 1.0f;
-    let t38 = select(
-        select(0.0f, -1.0f, root_step4 * root_step4 > t36),
-        1.0f,
-        root_next8 * root_next8 <= t36
-    );
-    let root5 = root_step4 + t38;
-    let t39 = vec3<u32>(abs(vec3<f32>(p4, select(root5, -root5, t4 > 0.5f)) - aim));
-    let limb1_13 = t39.x >> 12u;
-    let limb0_13 = t39.x & 4095u;
+    let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t21);
+    let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t21);
+    let root5 = root_step4 + step10;
+    let offset4 = vec3<f32>(p4, select(root5, -root5, one_if > 0.5f)) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t39.y >> 12u;
-    let limb0_14 = t39.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t39.z >> 12u;
-    let limb0_15 = t39.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 2047.0f && base.y + 1.0f <= 1023.0f && dist4 < best_d2
-    );
-    return vec3<f32>(best3, t4);
+    let best3 = select(best2, cand4, s_up <= 2047.0f && t_up <= 1023.0f && dist4 < best_d2);
+    return vec3<f32>(best3, one_if);
 }
 
 // unitpack_xy_signz24p_encode_float: precise encoder, float form.

@@ -41,10 +41,8 @@ fn unitpack_xy_stereo16_rxgb_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   below the horizon.
 // Portable as unitpack_xy_stereo16_rxgb_decode_float is, within the same bound.
 fn unitpack_xy_stereo16_rxgb_decode(code: u32) -> vec3<f32> {
-    let t1 = vec4<f32>(
-        vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u)
-    );
-    let params = t1 * 0.003921569f;
+    let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
+    let params = vec4<f32>(t1) * 0.003921569f;
     return unitpack_xy_stereo16_rxgb_decode_float(params);
 }
 
@@ -65,7 +63,8 @@ fn unitpack_xy_stereo16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -77,12 +76,16 @@ fn unitpack_xy_stereo16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -102,39 +105,43 @@ fn unitpack_xy_stereo16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root + w4.z;
     let p = w4.xy / a;
     let abs_v = abs(v);
-    let t5 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
-    let largest3 = select(abs_v.z, t5, t5 >= abs_v.z);
-    let t6 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
-    let scaled3 = v / select(1.0f, largest3, t6);
+    let t2 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
+    let largest3 = select(abs_v.z, t2, t2 >= abs_v.z);
+    let t3 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    let scaled3 = v / select(1.0f, largest3, t3);
     let scaled3_sq = scaled3 * scaled3;
     let len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
-    let t7 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled3 / sqrt(len2_2), t6 && len2_2 >= 1.0f);
-    let t8 = vec3<f32>(t7.xy, select(0.0f, t7.z, t7.z > 0.0f));
-    let abs_t8 = abs(t8);
-    let t9 = select(abs_t8.y, abs_t8.x, abs_t8.x >= abs_t8.y);
-    let largest4 = select(abs_t8.z, t9, t9 >= abs_t8.z);
-    let t10 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
-    let scaled4 = t8 / select(1.0f, largest4, t10);
+    let t4 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled3 / sqrt(len2_2), t3 && len2_2 >= 1.0f);
+    let t5 = vec3<f32>(t4.xy, select(0.0f, t4.z, t4.z > 0.0f));
+    let abs_t5 = abs(t5);
+    let t6 = select(abs_t5.y, abs_t5.x, abs_t5.x >= abs_t5.y);
+    let largest4 = select(abs_t5.z, t6, t6 >= abs_t5.z);
+    let t7 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    let scaled4 = t5 / select(1.0f, largest4, t7);
     let scaled4_sq = scaled4 * scaled4;
     let len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;
-    let t11 = select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled4 / sqrt(len2_3), t10 && len2_3 >= 1.0f);
-    return vec4<f32>(1.0f, 0.5f + p.y * 0.5f, 0.5f + t11.z * 0.5f, 0.5f + p.x * 0.5f);
+    let t8 = 0.5f
+        + select(vec3<f32>(0.0f, 0.0f, 1.0f), scaled4 / sqrt(len2_3), t7 && len2_3 >= 1.0f).z
+            * 0.5f;
+    return vec4<f32>(1.0f, 0.5f + p.y * 0.5f, t8, 0.5f + p.x * 0.5f);
 }
 
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
@@ -149,7 +156,8 @@ fn unitpack_xy_stereo16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -161,12 +169,16 @@ fn unitpack_xy_stereo16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -186,35 +198,38 @@ fn unitpack_xy_stereo16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root + w4.z;
-    let t5 = w4.xy * 127.5f;
-    let t6 = round(t5 / a + 127.5f);
-    let t7 = select(vec2<f32>(0.0f), t6, t6 >= vec2<f32>(0.0f));
-    let t8 = select(vec2<f32>(255.0f), t7, t7 <= vec2<f32>(255.0f));
-    let t9 = select(
+    let t2 = w4.xy * 127.5f;
+    let t3 = round(t2 / a + 127.5f);
+    let t4 = select(vec2<f32>(0.0f), t3, t3 >= vec2<f32>(0.0f));
+    let t5 = select(vec2<f32>(255.0f), t4, t4 <= vec2<f32>(255.0f));
+    let t6 = t5
+        + select(
+            vec2<f32>(0.0f),
+            select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 127.0f) * a),
+            t5 < vec2<f32>(255.0f)
+        );
+    let t7 = select(
         vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t5 >= (t8 - 127.0f) * a),
-        t8 < vec2<f32>(255.0f)
+        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t2 >= (t5 - 1.0f - 127.0f) * a) - 1.0f,
+        t5 > vec2<f32>(0.0f)
     );
-    let t10 = select(
-        vec2<f32>(0.0f),
-        select(vec2<f32>(0.0f), vec2<f32>(1.0f), t5 >= (t8 - 1.0f - 127.0f) * a) - 1.0f,
-        t8 > vec2<f32>(0.0f)
-    );
-    let c = select(vec2<f32>(128.0f), t8 + t9 + t10, ok && ok2);
+    let c = select(vec2<f32>(128.0f), t6 + t7, ok && ok2);
     let normal3 = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
@@ -223,11 +238,12 @@ fn unitpack_xy_stereo16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
-    let ok3 = sum3 >= 2.0f && sum3 < 16.0f;
+    let sum_below_16_3 = sum3 < 16.0f;
+    let ok3 = sum3 >= 2.0f && sum_below_16_3;
     let w5 = select(scaled3, vec3<f32>(0.0f), abs(scaled3) < vec3<f32>(1.8189894e-12f));
     let w6 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w5, ok3);
-    let t11 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
-    let normal4 = select(t11, vec3<f32>(0.0f), abs(t11) < vec3<f32>(1.1754944e-38f));
+    let t8 = vec3<f32>(w6.xy, select(0.0f, w6.z, w6.z > 0.0f));
+    let normal4 = select(t8, vec3<f32>(0.0f), abs(t8) < vec3<f32>(1.1754944e-38f));
     let abs_normal4 = abs(normal4);
     let larger4 = select(abs_normal4.y, abs_normal4.x, abs_normal4.x >= abs_normal4.y);
     let largest4 = select(abs_normal4.z, larger4, larger4 >= abs_normal4.z);
@@ -235,7 +251,8 @@ fn unitpack_xy_stereo16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let scaled4 = normal4 * scale4;
     let abs_scaled4 = abs(scaled4);
     let sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
-    let ok4 = sum4 >= 2.0f && sum4 < 16.0f;
+    let sum_below_16_4 = sum4 < 16.0f;
+    let ok4 = sum4 >= 2.0f && sum_below_16_4;
     let w7 = select(scaled4, vec3<f32>(0.0f), abs(scaled4) < vec3<f32>(1.8189894e-12f));
     let w8 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w7, ok4);
     let split_hi = bitcast<f32>(bitcast<u32>(w8.x) & 4294963200u);
@@ -244,34 +261,38 @@ fn unitpack_xy_stereo16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
     let split_lo2 = w8.y - split_hi2;
     let split_hi3 = bitcast<f32>(bitcast<u32>(w8.z) & 4294963200u);
     let split_lo3 = w8.z - split_hi3;
-    let t12 = (split_hi + split_hi) * split_lo
+    let t9 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
         + (split_hi3 + split_hi3) * split_lo3;
     let len2_2 = split_hi * split_hi
         + split_hi2 * split_hi2
         + split_hi3 * split_hi3
-        + t12
+        + t9
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     let big2 = w8.z * w8.z * 16256.25f;
-    let t13 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
-    let t14 = select(0.0f, t13, t13 >= 0.0f);
-    let estimate = select(255.0f, t14, t14 <= 255.0f);
-    let t15 = estimate - 127.0f;
-    let t16 = t15 * t15 * len2_2;
-    let t17 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t16), t15 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t16), t15 > 0.0f),
-        w8.z >= 0.0f
+    let t10 = round(w8.z / sqrt(len2_2) * 127.5f + 127.5f);
+    let t11 = select(0.0f, t10, t10 >= 0.0f);
+    let estimate = select(255.0f, t11, t11 <= 255.0f);
+    let t12 = estimate - 127.0f;
+    let t13 = t12 * t12 * len2_2;
+    let one_if = select(0.0f, 1.0f, big2 >= t13);
+    let one_if2 = select(0.0f, 1.0f, big2 <= t13);
+    let up = select(
+        0.0f,
+        select(select(0.0f, one_if2, t12 < 0.0f), select(1.0f, one_if, t12 > 0.0f), w8.z >= 0.0f),
+        estimate < 255.0f
     );
-    let up = select(0.0f, t17, estimate < 255.0f);
-    let t18 = estimate - 1.0f - 127.0f;
-    let t19 = t18 * t18 * len2_2;
-    let t20 = select(
-        select(0.0f, select(0.0f, 1.0f, big2 <= t19), t18 < 0.0f),
-        select(1.0f, select(0.0f, 1.0f, big2 >= t19), t18 > 0.0f),
+    let t14 = estimate - 1.0f - 127.0f;
+    let t15 = t14 * t14 * len2_2;
+    let one_if3 = select(0.0f, 1.0f, big2 >= t15);
+    let one_if4 = select(0.0f, 1.0f, big2 <= t15);
+    let t16 = select(
+        select(0.0f, one_if4, t14 < 0.0f),
+        select(1.0f, one_if3, t14 > 0.0f),
         w8.z >= 0.0f
-    );
-    let down = select(0.0f, t20 - 1.0f, estimate > 0.0f);
+    )
+        - 1.0f;
+    let down = select(0.0f, t16, estimate > 0.0f);
     return vec4<f32>(255.0f, c.y, estimate + up + down, c.x);
 }
 
@@ -285,8 +306,6 @@ fn unitpack_xy_stereo16_rxgb_round_codes(a0: vec3<f32>) -> vec4<f32> {
 //   components count as zero.
 fn unitpack_xy_stereo16_rxgb_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_xy_stereo16_rxgb_round_codes(v);
-    return u32(round_codes.x)
-        | (u32(round_codes.y) << 8u)
-        | (u32(round_codes.z) << 16u)
-        | (u32(round_codes.w) << 24u);
+    let t1 = u32(round_codes.x) | (u32(round_codes.y) << 8u) | (u32(round_codes.z) << 16u);
+    return t1 | (u32(round_codes.w) << 24u);
 }

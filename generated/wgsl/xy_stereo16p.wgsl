@@ -58,7 +58,8 @@ fn unitpack_xy_stereo16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -70,12 +71,16 @@ fn unitpack_xy_stereo16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -95,214 +100,204 @@ fn unitpack_xy_stereo16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root + w4.z;
-    let t5 = floor(w4.xy / a * 127.0f);
-    let t6 = w4.xy * 127.0f;
-    let t7 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t6 < t5 * a),
+    let t2 = floor(w4.xy / a * 127.0f);
+    let t3 = w4.xy * 127.0f;
+    let t4 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t3 < t2 * a),
         vec2<f32>(1.0f),
-        t6 >= (t5 + 1.0f) * a
+        t3 >= (t2 + 1.0f) * a
     );
-    let t8 = t5 + t7;
-    let t9 = select(vec2<f32>(-127.0f), t8, t8 >= vec2<f32>(-127.0f));
-    let base = select(vec2<f32>(127.0f), t9, t9 <= vec2<f32>(127.0f));
-    let t10 = floor(w4 / root * 2097152.0f);
-    let t11 = w4 * 2097152.0f;
-    let t12 = select(
-        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t10 * root > t11),
+    let t5 = t2 + t4;
+    let t6 = select(vec2<f32>(-127.0f), t5, t5 >= vec2<f32>(-127.0f));
+    let base = select(vec2<f32>(127.0f), t6, t6 <= vec2<f32>(127.0f));
+    let t7 = floor(w4 / root * 2097152.0f);
+    let t8 = w4 * 2097152.0f;
+    let t9 = select(
+        select(vec3<f32>(0.0f), vec3<f32>(-1.0f), t7 * root > t8),
         vec3<f32>(1.0f),
-        (t10 + 1.0f) * root <= t11
+        (t7 + 1.0f) * root <= t8
     );
-    let aim = t10 + t12;
+    let aim = t7 + t9;
     let cand = select(vec2<f32>(127.0f), base, base <= vec2<f32>(127.0f));
     let p = floor(cand * 16513.008f);
     let q = round(p.x * p.x * 4.7683716e-7f) + round(p.y * p.y * 4.7683716e-7f);
-    let t13 = 2097152.0f + q;
-    let t14 = p + p;
-    let t15 = floor(t14 / t13 * 2097152.0f);
-    let t16 = t14 * 2097152.0f;
-    let t17 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t15 * t13 > t16),
+    let t10 = 2097152.0f + q;
+    let t11 = p + p;
+    let t12 = floor(t11 / t10 * 2097152.0f);
+    let t13 = t11 * 2097152.0f;
+    let t14 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t12 * t10 > t13),
         vec2<f32>(1.0f),
-        (t15 + 1.0f) * t13 <= t16
+        (t12 + 1.0f) * t10 <= t13
     );
-    let t18 = 2097152.0f - q;
-    let big = t18 * 2097152.0f;
-    let ratio_estimate = floor(t18 / t13 * 2097152.0f);
-    let t19 = select(
-        select(0.0f, -1.0f, ratio_estimate * t13 > big),
-        1.0f,
-        (ratio_estimate + 1.0f) * t13 <= big
-    );
-    let ratio = ratio_estimate + t19;
-    let t20 = vec3<u32>(abs(vec3<f32>(t15 + t17, ratio) - aim));
-    let limb1_4 = t20.x >> 12u;
-    let limb0_4 = t20.x & 4095u;
+    let t15 = 2097152.0f - q;
+    let big = t15 * 2097152.0f;
+    let ratio_estimate = floor(t15 / t10 * 2097152.0f);
+    let step_down3 = select(0.0f, -1.0f, ratio_estimate * t10 > big);
+    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t10 <= big);
+    let ratio = ratio_estimate + step3;
+    let offset = vec3<f32>(t12 + t14, ratio) - aim;
+    let offset_u = vec3<u32>(abs(offset));
+    let limb1_4 = offset_u.x >> 12u;
+    let limb0_4 = offset_u.x & 4095u;
     let cross4 = limb1_4 * limb0_4;
     let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
     let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
-    let limb1_5 = t20.y >> 12u;
-    let limb0_5 = t20.y & 4095u;
+    let limb1_5 = offset_u.y >> 12u;
+    let limb0_5 = offset_u.y & 4095u;
     let cross5 = limb1_5 * limb0_5;
     let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
     let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
-    let limb1_6 = t20.z >> 12u;
-    let limb0_6 = t20.z & 4095u;
+    let limb1_6 = offset_u.z >> 12u;
+    let limb0_6 = offset_u.z & 4095u;
     let cross6 = limb1_6 * limb0_6;
     let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
     let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     let hi8 = hi7 + (lo7 >> 24u);
     let lo8 = lo7 & 16777215u;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
-    let t21 = base.x + 1.0f;
-    let t22 = vec2<f32>(t21, base.y);
-    let cand2 = select(vec2<f32>(127.0f), t22, t22 <= vec2<f32>(127.0f));
+    let s_up = base.x + 1.0f;
+    let t_up = base.y + 1.0f;
+    let t16 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(127.0f), t16, t16 <= vec2<f32>(127.0f));
     let p2 = floor(cand2 * 16513.008f);
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
-    let t23 = 2097152.0f + q2;
-    let t24 = p2 + p2;
-    let t25 = floor(t24 / t23 * 2097152.0f);
-    let t26 = t24 * 2097152.0f;
-    let t27 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t25 * t23 > t26),
+    let t17 = 2097152.0f + q2;
+    let t18 = p2 + p2;
+    let t19 = floor(t18 / t17 * 2097152.0f);
+    let t20 = t18 * 2097152.0f;
+    let t21 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t19 * t17 > t20),
         vec2<f32>(1.0f),
-        (t25 + 1.0f) * t23 <= t26
+        (t19 + 1.0f) * t17 <= t20
     );
-    let t28 = 2097152.0f - q2;
-    let big2 = t28 * 2097152.0f;
-    let ratio_estimate2 = floor(t28 / t23 * 2097152.0f);
-    let t29 = select(
-        select(0.0f, -1.0f, ratio_estimate2 * t23 > big2),
-        1.0f,
-        (ratio_estimate2 + 1.0f) * t23 <= big2
-    );
-    let ratio2 = ratio_estimate2 + t29;
-    let t30 = vec3<u32>(abs(vec3<f32>(t25 + t27, ratio2) - aim));
-    let limb1_7 = t30.x >> 12u;
-    let limb0_7 = t30.x & 4095u;
+    let t22 = 2097152.0f - q2;
+    let big2 = t22 * 2097152.0f;
+    let ratio_estimate2 = floor(t22 / t17 * 2097152.0f);
+    let step_down4 = select(0.0f, -1.0f, ratio_estimate2 * t17 > big2);
+    let step4 = select(step_down4, 1.0f, (ratio_estimate2 + 1.0f) * t17 <= big2);
+    let ratio2 = ratio_estimate2 + step4;
+    let offset2 = vec3<f32>(t19 + t21, ratio2) - aim;
+    let offset_u2 = vec3<u32>(abs(offset2));
+    let limb1_7 = offset_u2.x >> 12u;
+    let limb0_7 = offset_u2.x & 4095u;
     let cross7 = limb1_7 * limb0_7;
     let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
     let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
-    let limb1_8 = t30.y >> 12u;
-    let limb0_8 = t30.y & 4095u;
+    let limb1_8 = offset_u2.y >> 12u;
+    let limb0_8 = offset_u2.y & 4095u;
     let cross8 = limb1_8 * limb0_8;
     let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
     let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
-    let limb1_9 = t30.z >> 12u;
-    let limb0_9 = t30.z & 4095u;
+    let limb1_9 = offset_u2.z >> 12u;
+    let limb0_9 = offset_u2.z & 4095u;
     let cross9 = limb1_9 * limb0_9;
     let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
     let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t31 = t21 <= 127.0f && base.y <= 127.0f && dist2 < dist;
-    let best = select(cand, cand2, t31);
-    let best_d = select(dist, dist2, t31);
-    let t32 = base.y + 1.0f;
-    let t33 = vec2<f32>(base.x, t32);
-    let cand3 = select(vec2<f32>(127.0f), t33, t33 <= vec2<f32>(127.0f));
+    let t23 = s_up <= 127.0f && base.y <= 127.0f && dist2 < dist;
+    let best = select(cand, cand2, t23);
+    let best_d = select(dist, dist2, t23);
+    let t24 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(127.0f), t24, t24 <= vec2<f32>(127.0f));
     let p3 = floor(cand3 * 16513.008f);
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
-    let t34 = 2097152.0f + q3;
-    let t35 = p3 + p3;
-    let t36 = floor(t35 / t34 * 2097152.0f);
-    let t37 = t35 * 2097152.0f;
-    let t38 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t36 * t34 > t37),
+    let t25 = 2097152.0f + q3;
+    let t26 = p3 + p3;
+    let t27 = floor(t26 / t25 * 2097152.0f);
+    let t28 = t26 * 2097152.0f;
+    let t29 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t27 * t25 > t28),
         vec2<f32>(1.0f),
-        (t36 + 1.0f) * t34 <= t37
+        (t27 + 1.0f) * t25 <= t28
     );
-    let t39 = 2097152.0f - q3;
-    let big3 = t39 * 2097152.0f;
-    let ratio_estimate3 = floor(t39 / t34 * 2097152.0f);
-    let t40 = select(
-        select(0.0f, -1.0f, ratio_estimate3 * t34 > big3),
-        1.0f,
-        (ratio_estimate3 + 1.0f) * t34 <= big3
-    );
-    let ratio3 = ratio_estimate3 + t40;
-    let t41 = vec3<u32>(abs(vec3<f32>(t36 + t38, ratio3) - aim));
-    let limb1_10 = t41.x >> 12u;
-    let limb0_10 = t41.x & 4095u;
+    let t30 = 2097152.0f - q3;
+    let big3 = t30 * 2097152.0f;
+    let ratio_estimate3 = floor(t30 / t25 * 2097152.0f);
+    let step_down5 = select(0.0f, -1.0f, ratio_estimate3 * t25 > big3);
+    let step5 = select(step_down5, 1.0f, (ratio_estimate3 + 1.0f) * t25 <= big3);
+    let ratio3 = ratio_estimate3 + step5;
+    let offset3 = vec3<f32>(t27 + t29, ratio3) - aim;
+    let offset_u3 = vec3<u32>(abs(offset3));
+    let limb1_10 = offset_u3.x >> 12u;
+    let limb0_10 = offset_u3.x & 4095u;
     let cross10 = limb1_10 * limb0_10;
     let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
     let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
-    let limb1_11 = t41.y >> 12u;
-    let limb0_11 = t41.y & 4095u;
+    let limb1_11 = offset_u3.y >> 12u;
+    let limb0_11 = offset_u3.y & 4095u;
     let cross11 = limb1_11 * limb0_11;
     let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
     let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
-    let limb1_12 = t41.z >> 12u;
-    let limb0_12 = t41.z & 4095u;
+    let limb1_12 = offset_u3.z >> 12u;
+    let limb0_12 = offset_u3.z & 4095u;
     let cross12 = limb1_12 * limb0_12;
     let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
     let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t42 = base.x <= 127.0f && t32 <= 127.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t42);
-    let best_d2 = select(best_d, dist3, t42);
-    let t43 = base + 1.0f;
-    let cand4 = select(vec2<f32>(127.0f), t43, t43 <= vec2<f32>(127.0f));
+    let t31 = base.x <= 127.0f && t_up <= 127.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t31);
+    let best_d2 = select(best_d, dist3, t31);
+    let t32 = base + 1.0f;
+    let cand4 = select(vec2<f32>(127.0f), t32, t32 <= vec2<f32>(127.0f));
     let p4 = floor(cand4 * 16513.008f);
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
-    let t44 = 2097152.0f + q4;
-    let t45 = p4 + p4;
-    let t46 = floor(t45 / t44 * 2097152.0f);
-    let t47 = t45 * 2097152.0f;
-    let t48 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t46 * t44 > t47),
+    let t33 = 2097152.0f + q4;
+    let t34 = p4 + p4;
+    let t35 = floor(t34 / t33 * 2097152.0f);
+    let t36 = t34 * 2097152.0f;
+    let t37 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t35 * t33 > t36),
         vec2<f32>(1.0f),
-        (t46 + 1.0f) * t44 <= t47
+        (t35 + 1.0f) * t33 <= t36
     );
-    let t49 = 2097152.0f - q4;
-    let big4 = t49 * 2097152.0f;
-    let ratio_estimate4 = floor(t49 / t44 * 2097152.0f);
-    let t50 = select(
-        select(0.0f, -1.0f, ratio_estimate4 * t44 > big4),
-        1.0f,
-        (ratio_estimate4 + 1.0f) * t44 <= big4
-    );
-    let ratio4 = ratio_estimate4 + t50;
-    let t51 = vec3<u32>(abs(vec3<f32>(t46 + t48, ratio4) - aim));
-    let limb1_13 = t51.x >> 12u;
-    let limb0_13 = t51.x & 4095u;
+    let t38 = 2097152.0f - q4;
+    let big4 = t38 * 2097152.0f;
+    let ratio_estimate4 = floor(t38 / t33 * 2097152.0f);
+    let step_down6 = select(0.0f, -1.0f, ratio_estimate4 * t33 > big4);
+    let step6 = select(step_down6, 1.0f, (ratio_estimate4 + 1.0f) * t33 <= big4);
+    let ratio4 = ratio_estimate4 + step6;
+    let offset4 = vec3<f32>(t35 + t37, ratio4) - aim;
+    let offset_u4 = vec3<u32>(abs(offset4));
+    let limb1_13 = offset_u4.x >> 12u;
+    let limb0_13 = offset_u4.x & 4095u;
     let cross13 = limb1_13 * limb0_13;
     let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
     let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
-    let limb1_14 = t51.y >> 12u;
-    let limb0_14 = t51.y & 4095u;
+    let limb1_14 = offset_u4.y >> 12u;
+    let limb0_14 = offset_u4.y & 4095u;
     let cross14 = limb1_14 * limb0_14;
     let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
     let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
-    let limb1_15 = t51.z >> 12u;
-    let limb0_15 = t51.z & 4095u;
+    let limb1_15 = offset_u4.z >> 12u;
+    let limb0_15 = offset_u4.z & 4095u;
     let cross15 = limb1_15 * limb0_15;
     let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
     let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     let hi20 = hi19 + (lo19 >> 24u);
     let lo20 = lo19 & 16777215u;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
-    let best3 = select(
-        best2,
-        cand4,
-        base.x + 1.0f <= 127.0f && base.y + 1.0f <= 127.0f && dist4 < best_d2
-    );
+    let best3 = select(best2, cand4, s_up <= 127.0f && t_up <= 127.0f && dist4 < best_d2);
     return select(vec2<f32>(0.0f), best3, ok && ok2);
 }
 

@@ -60,7 +60,8 @@ fn unitpack_xy_stereo32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -72,12 +73,16 @@ fn unitpack_xy_stereo32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -97,18 +102,20 @@ fn unitpack_xy_stereo32_encode_float(v: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root + w4.z;
     return w4.xy / a;
@@ -126,7 +133,8 @@ fn unitpack_xy_stereo32_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let ok = sum >= 2.0f && sum < 16.0f;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<f32>(w2.xy, select(0.0f, w2.z, w2.z > 0.0f));
@@ -138,12 +146,16 @@ fn unitpack_xy_stereo32_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
-    let ok2 = sum2 >= 2.0f && sum2 < 16.0f;
+    let sum_below_16_2 = sum2 < 16.0f;
+    let ok2 = sum2 >= 2.0f && sum_below_16_2;
     let w3 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let w4 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w3, ok2);
-    let fixed2 = u32(floor(abs(w4.x) * 2097152.0f));
-    let fixed3 = u32(floor(abs(w4.y) * 2097152.0f));
-    let fixed4 = u32(floor(abs(w4.z) * 2097152.0f));
+    let fixed_f = floor(abs(w4.x) * 2097152.0f);
+    let fixed2 = u32(fixed_f);
+    let fixed_f2 = floor(abs(w4.y) * 2097152.0f);
+    let fixed3 = u32(fixed_f2);
+    let fixed_f3 = floor(abs(w4.z) * 2097152.0f);
+    let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
     let limb0 = fixed2 & 4095u;
     let cross = limb1 * limb0;
@@ -163,32 +175,34 @@ fn unitpack_xy_stereo32_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let lo4 = lo3 & 16777215u;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
-    let t2 = floor(root_estimate * 512.0f);
-    let root_h0 = t2 * 0.001953125f;
+    let root_k0 = floor(root_estimate * 512.0f);
+    let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
-    let t3 = select(select(0.0f, -1.0f, root_h0 * root_h0 > len2), 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = t2 + t3;
+    let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
+    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + step;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
-    let t4 = select(select(0.0f, -1.0f, root_m0 * root_m0 > len2), 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + t4;
+    let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
+    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + step2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root + w4.z;
-    let t5 = abs(w4.xy);
-    let t6 = round(t5 / a * 32767.0f);
-    let t7 = t5 * 32767.0f;
-    let t8 = select(
-        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t7 < (t6 - 0.5f) * a),
+    let t2 = abs(w4.xy);
+    let t3 = round(t2 / a * 32767.0f);
+    let t4 = t2 * 32767.0f;
+    let t5 = select(
+        select(vec2<f32>(0.0f), vec2<f32>(-1.0f), t4 < (t3 - 0.5f) * a),
         vec2<f32>(1.0f),
-        t7 >= (t6 + 0.5f) * a
+        t4 >= (t3 + 0.5f) * a
     );
-    let t9 = t6 + t8;
-    let t10 = select(vec2<f32>(0.0f), t9, t9 >= vec2<f32>(0.0f));
-    let t11 = select(vec2<f32>(32767.0f), t10, t10 <= vec2<f32>(32767.0f));
-    return select(vec2<f32>(0.0f), select(t11, -t11, w4.xy < vec2<f32>(0.0f)), ok && ok2);
+    let t6 = t3 + t5;
+    let t7 = select(vec2<f32>(0.0f), t6, t6 >= vec2<f32>(0.0f));
+    let t8 = select(vec2<f32>(32767.0f), t7, t7 <= vec2<f32>(32767.0f));
+    return select(vec2<f32>(0.0f), select(t8, -t8, w4.xy < vec2<f32>(0.0f)), ok && ok2);
 }
 
 // unitpack_xy_stereo32_encode: fast encoder.

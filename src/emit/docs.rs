@@ -1,5 +1,8 @@
 //! Doc comments: what a user needs at the call site (codec, bit budget, bit layout,
-//! ranges, the zero/NaN policy and the measured error), in every language alike.
+//! ranges, the zero/NaN policy and the measured error), in every language alike. What a
+//! file's functions share is said once: the exactness statement and what "Portable" means
+//! in the file header, a spec's source and measured error under its title; a function's
+//! comment says what is its own (docs/design/printer.md).
 
 use super::printer::Printed;
 use crate::codecs::Spec;

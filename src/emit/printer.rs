@@ -7,8 +7,8 @@
 //! behind). What changes between operations is only how they are written down:
 //! - a value the model names (`Float::named`) is declared under its name;
 //! - an unnamed value used once is folded into the expression that uses it, with the
-//!   parentheses the languages' precedence needs, when its text stays short
-//!   ([`FOLD_WIDTH`]);
+//!   parentheses the languages' precedence needs, when it holds few operations
+//!   ([`FOLD_OPERATIONS`]);
 //! - an unnamed value used more than once is declared as a temporary `t1`, `t2`, …;
 //! - literals, parameters, swizzles and literal vectors are written where they are used.
 //!
@@ -38,9 +38,10 @@ pub struct Printed {
     pub body: Vec<String>,
 }
 
-/// The longest expression folded into another: longer ones are declared, so that a
-/// statement reads as one line and a reader can name its parts.
-pub const FOLD_WIDTH: usize = 80;
+/// The most operations a value folded into another may hold: a larger one is declared, so
+/// that a statement reads as one line and a reader can name its parts. Counted in
+/// operations rather than characters, so that a name prefix changes no folding.
+pub const FOLD_OPERATIONS: usize = 6;
 
 const LANE: [char; 4] = ['x', 'y', 'z', 'w'];
 
@@ -474,6 +475,20 @@ impl Ctx<'_> {
         }
     }
 
+    /// The operations the value's text, as folded now, holds: its own and its folded
+    /// operands'.
+    fn operations(&self, id: usize) -> usize {
+        let n = &self.f.nodes[id];
+        let own = usize::from(!self.inline(id));
+        own + n
+            .args
+            .iter()
+            .map(|a| a.node as usize)
+            .filter(|&a| self.names[a].is_none())
+            .map(|a| self.operations(a))
+            .sum::<usize>()
+    }
+
     /// Whether the value's text, as folded now, holds a float operation that a `precise`
     /// declaration must cover.
     fn carries_float_op(&self, id: usize) -> bool {
@@ -572,7 +587,8 @@ struct Body {
 impl Ctx<'_> {
     /// The name a value takes from what computes it, where the model gives it none: a
     /// helper's result takes the helper's name (`round_codes`, `abs_normal` for
-    /// `abs(normal)`), a named value squared its name and `_sq`.
+    /// `abs(normal)`), a named value squared its name and `_sq`, negated `neg_` and its
+    /// name, converted its name and `_u` or `_f`.
     fn derived_name(&self, id: usize) -> Option<String> {
         let n = &self.f.nodes[id];
         let named = |r: Ref| -> Option<String> {
@@ -599,6 +615,15 @@ impl Ctx<'_> {
             }
             Op::Bin(BinOp::Mul) if n.args[0] == n.args[1] => {
                 Some(format!("{}_sq", named(n.args[0])?))
+            }
+            Op::Un(UnOp::Neg) => Some(format!("neg_{}", named(n.args[0])?)),
+            Op::Convert => {
+                let to = match n.ty.kind {
+                    Kind::F32 => "f",
+                    Kind::U32 => "u",
+                    Kind::Bool => "b",
+                };
+                Some(format!("{}_{to}", named(n.args[0])?))
             }
             _ => None,
         }
@@ -735,7 +760,7 @@ pub fn print_as(
         if style == Style::Folded && may_fold(&ctx, id, &uses[id]) {
             ctx.folded[id] = true;
             // `return x;` is no longer than `let t = x;`.
-            if uses[id].users == [User::Return] || ctx.expr(id).len() <= FOLD_WIDTH {
+            if uses[id].users == [User::Return] || ctx.operations(id) <= FOLD_OPERATIONS {
                 continue;
             }
         }
@@ -786,5 +811,21 @@ fn may_fold(ctx: &Ctx, id: usize, uses: &Uses) -> bool {
             ),
             User::Return => false,
         });
-    once && !braced && !contracted
+    // Through an inline swizzle or literal vector, an operand is still this value.
+    let refers = |r: &Ref| {
+        let a = r.node as usize;
+        a == id || (ctx.inline(a) && ctx.f.nodes[a].args.iter().any(|b| b.node as usize == id))
+    };
+    let lazy = uses.users.iter().any(|u| match u {
+        User::Node(c) => {
+            let c = &ctx.f.nodes[*c];
+            let mask_is_vector = c.args.first().is_some_and(|m| ctx.f.ty_of(*m).lanes > 1);
+            ctx.lang
+                .lazy_operands(&c.op, c.ty, mask_is_vector)
+                .iter()
+                .any(|&i| refers(&c.args[i]))
+        }
+        User::Return => false,
+    });
+    once && !braced && !contracted && !lazy
 }

@@ -557,6 +557,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
                 HlslOpt::Default,
             )?;
             tools::spirv_val(&spv)?;
+            tools::spirv_float_ops_precise(&spv)?;
             Some(spv)
         }
         Path::HlslGlslangOd | Path::HlslGlslangDefault => {
@@ -574,6 +575,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
                 opt,
             )?;
             tools::spirv_val(&spv)?;
+            tools::spirv_float_ops_precise(&spv)?;
             Some(spv)
         }
         Path::HlslSlangO0 | Path::HlslSlang | Path::HlslSlangO3 | Path::HlslSlangViaGlsl => {

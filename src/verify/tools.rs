@@ -198,6 +198,40 @@ pub fn spirv_val(words: &[u32]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Checks that every float addition, subtraction, multiplication and division in the
+/// SPIR-V carries `NoContraction`: what `precise` on every float declaration must give, now
+/// that one declaration's initializer holds several operations (docs/design/printer.md).
+/// The error names the first instruction without it, by its result id.
+pub fn spirv_float_ops_precise(words: &[u32]) -> anyhow::Result<()> {
+    const OP_DECORATE: u32 = 71;
+    const NO_CONTRACTION: u32 = 42;
+    // OpFAdd, OpFSub, OpFMul, OpFDiv, OpVectorTimesScalar.
+    const ARITHMETIC: [u32; 5] = [129, 131, 133, 136, 142];
+    let mut decorated = std::collections::HashSet::new();
+    let mut arithmetic = Vec::new();
+    let mut at = 5;
+    while at < words.len() {
+        let count = (words[at] >> 16) as usize;
+        let op = words[at] & 0xffff;
+        if count == 0 || at + count > words.len() {
+            bail!("malformed SPIR-V at word {at}");
+        }
+        let inst = &words[at..at + count];
+        if op == OP_DECORATE && count >= 3 && inst[2] == NO_CONTRACTION {
+            decorated.insert(inst[1]);
+        } else if ARITHMETIC.contains(&op) && count >= 3 {
+            arithmetic.push((op, inst[2]));
+        }
+        at += count;
+    }
+    match arithmetic.iter().find(|(_, id)| !decorated.contains(id)) {
+        Some((op, id)) => bail!(
+            "float operation %{id} (opcode {op}) has no NoContraction: a float declaration's `precise` does not cover it"
+        ),
+        None => Ok(()),
+    }
+}
+
 /// naga's validator with every check on. `Capabilities::all()` because this is a syntax and
 /// typing gate for emitted code, not a portability check: the kernels only use core features,
 /// and a capability error would hide the real diagnostics behind an unrelated one. (wgpu

@@ -137,5 +137,5 @@ fn the_lean_encoders_doc_comment_says_not_portable() {
     assert!(lean.contains("uint unitpack_oct16_ieee_encode(vec3 v)"));
     let portable = include("oct16");
     assert!(!portable.contains("guarantee=ieee"));
-    assert!(portable.contains("Portable: the same code on every implementation"));
+    assert!(portable.contains("Portable (as the header says): the same code on every such"));
 }

@@ -136,8 +136,8 @@ fn passed<F: Float>(q: Quant, r: &Radius<F>, along: F, across: F, c: F) -> F {
     let (lhs, rhs) = r.square_sides(s, h * g, m * m);
     let (lhs, rhs) = (lhs.named("lhs"), rhs.named("rhs"));
     let up = big_t.gt(F::c(0.0));
-    let outside = F::sel(along.gt(F::c(0.0)), one_if(lhs.ge(rhs)), F::c(0.0));
-    let inside = F::sel(along.ge(F::c(0.0)), F::c(1.0), one_if(lhs.le(rhs)));
+    let outside = F::sel(along.gt(F::c(0.0)), one_if(lhs.ge(rhs)), F::c(0.0)).named("outside");
+    let inside = F::sel(along.ge(F::c(0.0)), F::c(1.0), one_if(lhs.le(rhs))).named("inside");
     F::sel(up, outside, inside)
 }
 

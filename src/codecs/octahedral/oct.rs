@@ -100,7 +100,7 @@ pub struct Oct {
 /// Folds a point of the square across the diagonals: `(1 - |p.yx|) · sign_not_zero(p)`.
 #[inline(always)]
 fn fold<F: Float>(p: V2<F>) -> V2<F> {
-    (V2::splat(F::c(1.0)) - p.yx().abs()) * sign_not_zero(p)
+    ((V2::splat(F::c(1.0)) - p.yx().abs()) * sign_not_zero(p)).named("folded")
 }
 
 /// Sphere → square. Folds on encode when `z <= 0`. Input need not be unit length: when
@@ -142,9 +142,9 @@ pub fn oct_params_ieee<F: Float>(v: V3<F>) -> V2<F> {
 #[inline(always)]
 pub fn fit_l1<F: Float>(v: V3<F>) -> V3<F> {
     let a = v.abs();
-    let l1 = a.x + a.y + a.z;
+    let l1 = (a.x + a.y + a.z).named("norm1");
     let up = crate::codecs::toolkit::exact::denormal_proof_scale(l1);
-    v * F::sel(l1.le(F::c(f32::MAX)), up, F::c(0.25))
+    v * F::sel(l1.le(F::c(f32::MAX)), up, F::c(0.25)).named("fit")
 }
 
 /// Square → unit vector. Unfolds when `z < 0`; the result is normalized as `v / sqrt(v·v)`.

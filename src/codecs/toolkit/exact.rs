@@ -70,7 +70,10 @@ pub fn canonical<F: Float>(v: V3<F>) -> (V3<F>, F::B) {
     let w = (v * scale).named("scaled");
     let b = w.abs();
     let sum = (b.x + b.y + b.z).named("sum");
-    let ok = sum.ge(F::c(2.0)).and(sum.lt(F::c(16.0))).named("ok");
+    let ok = sum
+        .ge(F::c(2.0))
+        .and(sum.lt(F::c(16.0)).named("sum_below_16"))
+        .named("ok");
     (
         w.map(
             #[inline(always)]
@@ -138,7 +141,13 @@ fn fixed_sum_of_squares<F: Float, const N: usize>(x: [F; N]) -> F {
     let a = each(
         x,
         #[inline(always)]
-        |x| (x.abs() * F::c(FIXED_SCALE)).floor().to_u().named("fixed"),
+        |x| {
+            (x.abs() * F::c(FIXED_SCALE))
+                .floor()
+                .named("fixed_f")
+                .to_u()
+                .named("fixed")
+        },
     );
     sum_of_squares::<F, N>(a) * F::c(1.0 / (FIXED_SCALE * FIXED_SCALE))
 }
@@ -326,7 +335,7 @@ const ROOT_LOW: f32 = 1.0 / (1u32 << 21) as f32;
 pub fn root<F: Float>(s: F) -> F {
     let (u, v) = (F::c(ROOT_HIGH), F::c(ROOT_LOW));
     let estimate = s.sqrt().named("root_estimate");
-    let k0 = (estimate * F::c(1.0 / ROOT_HIGH)).floor();
+    let k0 = (estimate * F::c(1.0 / ROOT_HIGH)).floor().named("root_k0");
     let h0 = (k0 * u).named("root_h0");
     let h1 = (h0 + u).named("root_h1");
     let up = (h1 * h1).le(s);
@@ -485,8 +494,8 @@ pub fn settled_sum<F: Float>(p: F, q: F) -> F {
     let e = F::U::sel(e.lt(u(40)), u(40), e).named("exponent");
     let e = F::U::sel(u(254).lt(e), u(254), e).named("exponent");
     // 2^(154 - e) and its inverse as exponent fields: 27 ..= 241 and 13 ..= 227.
-    let scale = u(281).wrapping_sub(e).shl(23).as_float();
-    let back = e.wrapping_sub(u(27)).shl(23).as_float();
+    let scale = u(281).wrapping_sub(e).shl(23).as_float().named("scale");
+    let back = e.wrapping_sub(u(27)).shl(23).as_float().named("back");
     ((p * scale).floor() + (q * scale).floor()) * back
 }
 
@@ -524,9 +533,10 @@ pub fn bisected<F: Float>(q: Quant, middle: F::B, past: impl Fn(F) -> F) -> F {
     // The codes lo ..= hi are 2^k in number, halved each round.
     for _ in 1..q.bits() {
         let mid = ((lo + hi + F::c(1.0)) * F::c(0.5)).floor().named("mid");
-        let beyond = past(mid - F::c(1.0)).gt(F::c(0.5)).named("beyond");
+        let below = (mid - F::c(1.0)).named("mid_below");
+        let beyond = past(below).gt(F::c(0.5)).named("beyond");
         lo = F::sel(beyond, mid, lo).named("lo");
-        hi = F::sel(beyond, hi, mid - F::c(1.0)).named("hi");
+        hi = F::sel(beyond, hi, below).named("hi");
     }
     lo
 }
@@ -534,7 +544,7 @@ pub fn bisected<F: Float>(q: Quant, middle: F::B, past: impl Fn(F) -> F) -> F {
 /// `1` where `m`, else `0`.
 #[inline(always)]
 pub fn one_if<F: Float>(m: F::B) -> F {
-    F::sel(m, F::c(1.0), F::c(0.0))
+    F::sel(m, F::c(1.0), F::c(0.0)).named("one_if")
 }
 
 /// The unorm code of the parameter `x / a · ½ + ½` (`a > 0`, `|x| ≤ a` up to rounding)
@@ -748,7 +758,8 @@ fn corrected<F: Float>(q: Quant, estimate: F, up: F::B, down: F::B) -> F {
 /// The estimate stepped by one where a comparison says so.
 #[inline(always)]
 fn stepped<F: Float>(estimate: F, up: F::B, down: F::B) -> F {
-    estimate + F::sel(up, F::c(1.0), F::sel(down, F::c(-1.0), F::c(0.0)))
+    let step_down = F::sel(down, F::c(-1.0), F::c(0.0)).named("step_down");
+    estimate + F::sel(up, F::c(1.0), step_down).named("step")
 }
 
 /// `c` with the sign of `n`; a zero `n` gives `c` (which is then 0).

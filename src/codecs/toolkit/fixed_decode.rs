@@ -58,10 +58,13 @@ impl<F> Distance<F> {
 /// for a candidate next to the target, in units of `2^-23`).
 #[inline(always)]
 pub fn distance<F: Float>(d: V3<F>, u: V3<F>) -> Distance<F> {
-    let e = (d - u).map(
-        #[inline(always)]
-        |x| x.abs().to_u(),
-    );
+    let e = (d - u)
+        .named("offset")
+        .map(
+            #[inline(always)]
+            |x| x.abs().to_u(),
+        )
+        .named("offset_u");
     Distance(sum_of_squares::<F, 3>([e.x, e.y, e.z]).named("dist"))
 }
 

@@ -155,9 +155,14 @@ pub fn nearest<F: Float, M: Measure<F>>(
     candidate: impl Fn(F, F) -> (V2<F>, F::B, M),
 ) -> V2<F> {
     let (mut best, _, mut best_c) = candidate(s0, t0);
+    // The steps up are shared by the candidates that take them.
+    let (s1, t1) = (
+        (s0 + F::c(1.0)).named("s_up"),
+        (t0 + F::c(1.0)).named("t_up"),
+    );
     for (up_s, up_t) in [(true, false), (false, true), (true, true)] {
-        let s = if up_s { s0 + F::c(1.0) } else { s0 };
-        let t = if up_t { t0 + F::c(1.0) } else { t0 };
+        let s = if up_s { s1 } else { s0 };
+        let t = if up_t { t1 } else { t0 };
         let (codes, valid, c) = candidate(s, t);
         let better = valid.and(c.closer(best_c));
         best = V2::sel_all(better, codes, best).named("best");

@@ -9,7 +9,7 @@ use super::{
 };
 use crate::emit::SpecView;
 use crate::model::Kind;
-use crate::model::trace::{BinOp, Ty, UnOp};
+use crate::model::trace::{BinOp, Op, Ty, UnOp};
 use askama::Template;
 
 /// What a selecting kernel is compiled for: SPIR-V for Vulkan (glslang, naga), with the
@@ -191,6 +191,14 @@ impl Backend for Glsl {
     }
     fn precise_declarations(&self) -> bool {
         true
+    }
+    /// `?:` (scalar selects, integer lanes) and `&&`, `||`: GLSL evaluates them lazily.
+    fn lazy_operands(&self, op: &Op, t: Ty, mask_is_vector: bool) -> &'static [usize] {
+        match op {
+            Op::Select if !mask_is_vector || t.kind != Kind::F32 => &[1, 2],
+            Op::Bin(BinOp::And | BinOp::Or) => &[1],
+            _ => &[],
+        }
     }
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
         File {

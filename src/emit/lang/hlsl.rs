@@ -8,7 +8,7 @@ use super::{
 };
 use crate::emit::SpecView;
 use crate::model::Kind;
-use crate::model::trace::Ty;
+use crate::model::trace::{BinOp, Op, Ty};
 use askama::Template;
 
 pub struct Hlsl {
@@ -61,6 +61,14 @@ impl Backend for Hlsl {
     }
     fn precise_declarations(&self) -> bool {
         true
+    }
+    /// Scalar `?:` and `&&`, `||`: HLSL 2021 evaluates them lazily, as glslang does.
+    fn lazy_operands(&self, op: &Op, _t: Ty, mask_is_vector: bool) -> &'static [usize] {
+        match op {
+            Op::Select if !mask_is_vector => &[1, 2],
+            Op::Bin(BinOp::And | BinOp::Or) => &[1],
+            _ => &[],
+        }
     }
     fn declare(&self, name: &str, t: Ty, expr: &str) -> String {
         let q = if t.kind == Kind::F32 { "precise " } else { "" };

@@ -10,7 +10,7 @@ pub mod wgsl;
 
 use super::SpecView;
 use crate::model::Kind;
-use crate::model::trace::{BinOp, Ty, UnOp};
+use crate::model::trace::{BinOp, Op, Ty, UnOp};
 
 /// What a file template needs besides the functions.
 pub struct FileOptions<'a> {
@@ -77,6 +77,13 @@ pub trait Backend {
     /// covers, rather than in a call's argument, a non-float declaration or a `return`.
     fn precise_declarations(&self) -> bool {
         false
+    }
+    /// The operands of operation `op` (of type `t`) that the language evaluates only on
+    /// demand: a `?:`'s two values, `&&`'s and `||`'s right operand. glslang compiles such
+    /// an operand to a branch unless it is a name or a literal, so the printer folds
+    /// nothing into one (docs/design/printer.md).
+    fn lazy_operands(&self, _op: &Op, _t: Ty, _mask_is_vector: bool) -> &'static [usize] {
+        &[]
     }
     /// Whether the compiler may contract `a*b + c` written as one expression but not
     /// across statements (C: clang's default `-ffp-contract=on`).
