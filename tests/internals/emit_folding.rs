@@ -31,10 +31,7 @@ struct Graph<'a> {
     /// The value last stored into each local variable, in program order.
     locals: HashMap<Handle<naga::LocalVariable>, Handle<Expression>>,
     /// Local variables assigned in the two branches of an `if`: `condition ? accept : reject`.
-    chosen: HashMap<
-        Handle<naga::LocalVariable>,
-        (Handle<Expression>, Handle<Expression>, Handle<Expression>),
-    >,
+    chosen: HashMap<Handle<naga::LocalVariable>, [Handle<Expression>; 3]>,
     calls: HashMap<Handle<Expression>, (String, Vec<Handle<Expression>>)>,
     memo: HashMap<Handle<Expression>, usize>,
     ret: Option<Handle<Expression>>,
@@ -96,7 +93,7 @@ impl<'a> Graph<'a> {
                     self.walk(accept);
                     self.walk(reject);
                     let l = self.local_of(p);
-                    self.chosen.insert(l, (*condition, a, r));
+                    self.chosen.insert(l, [*condition, a, r]);
                 }
                 Statement::Call {
                     function,
@@ -129,7 +126,7 @@ impl<'a> Graph<'a> {
                 return id;
             }
             Expression::LocalVariable(l) => {
-                let id = if let Some((c, a, r)) = self.chosen.get(l).copied() {
+                let id = if let Some([c, a, r]) = self.chosen.get(l).copied() {
                     let k = format!(
                         "select({},{},{})",
                         self.canon(c, ids),
