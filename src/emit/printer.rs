@@ -22,8 +22,9 @@
 //!   `-ffp-contract=on`), never across statements: in C a product is not folded into a sum,
 //!   difference or negation.
 //!
-//! `tests/internals/emit_folding.rs` proves that folding changed no operation: naga reads the folded and
-//! the one-operation-per-statement WGSL of every function into the same expression graph.
+//! `tests/internals/emit_folding.rs` proves that folding changed no operation: naga reads
+//! the folded and the one-operation-per-statement text of every function, in WGSL and in
+//! GLSL, into the same expression graph.
 
 use super::lang::Backend;
 use crate::model::Kind;
@@ -170,7 +171,8 @@ pub fn operand(text: String, max: u8) -> String {
 }
 
 /// Whether the printer folds single-use values into their users, or writes every operation
-/// as a statement of its own (the form `tests/internals/emit_folding.rs` compares the folded one with).
+/// as a statement of its own (the form `tests/internals/emit_folding.rs` compares the
+/// folded one with).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Style {
     Folded,
