@@ -66,6 +66,11 @@ pub const BLOCKS: &[Block] = &[
         test: "figures/tables",
     },
     Block {
+        name: "recommendations",
+        file: "README.md",
+        test: "readme",
+    },
+    Block {
         name: "block_compression",
         file: "docs/design/block-compression.md",
         test: "block_compression",

@@ -51,6 +51,9 @@ pub mod sampling;
 pub mod atomic;
 #[doc(hidden)]
 #[cfg(feature = "cli")]
+pub mod choice;
+#[doc(hidden)]
+#[cfg(feature = "cli")]
 pub mod cli;
 #[doc(hidden)]
 pub mod decode_bound;
@@ -65,6 +68,9 @@ pub mod model;
 pub mod par;
 #[doc(hidden)]
 pub mod portability;
+#[doc(hidden)]
+#[cfg(feature = "cli")]
+pub mod report;
 #[doc(hidden)]
 #[cfg(feature = "verify")]
 pub mod verify;

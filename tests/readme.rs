@@ -10,8 +10,8 @@
 //!   `$ `) is run with the built `unitpack` and must print what the block shows (a line
 //!   `...` stands for any number of lines, a line ending in `…` for any line starting with
 //!   the text before it);
-//! - the README's figures are the tools': the codec recommendations are rows of the
-//!   generated error table, the crate count is what `cargo tree` counts;
+//! - the README's figures are the tools': the codec recommendations are what `choose`
+//!   ranks first (a generated block), the crate count is what `cargo tree` counts;
 //! - each generated block is in the file `src/doc_tables.rs` names, once;
 //! - every relative link resolves, to a file and to a heading;
 //! - the README stays a user's guide of at most 400 lines.
@@ -310,64 +310,25 @@ fn example_sessions_print_what_the_docs_show() {
     assert!(sessions >= 10, "only {sessions} example commands found");
 }
 
-/// The cells of each table row that starts with a spec in backquotes, by spec.
-fn rows(text: &str) -> std::collections::BTreeMap<String, Vec<String>> {
-    text.lines()
-        .filter(|l| l.starts_with("| "))
-        .filter_map(|l| {
-            let cells: Vec<String> = l
-                .trim()
-                .trim_matches('|')
-                .split(" | ")
-                .map(|c| c.trim().to_string())
-                .collect();
-            let spec = cells
-                .first()?
-                .strip_prefix('`')?
-                .strip_suffix('`')?
-                .to_string();
-            Some((spec, cells))
-        })
-        .collect()
-}
-
 #[test]
 fn readme_figures_are_the_tools() {
     let readme = read(&root().join("README.md"));
-    let errors = rows(&read(&root().join("docs/codecs.md")));
-    // The recommendations: use, spec, bits, mean, sample max, encode / decode ALU.
-    let section = readme
-        .split("## Choosing a codec")
-        .nth(1)
-        .expect("README.md has a \"Choosing a codec\" section");
-    let section = section.split("\n## ").next().unwrap();
-    let mut recommended = 0;
-    for line in section.lines().filter(|l| l.starts_with("| ")) {
-        let cells: Vec<&str> = line.trim().trim_matches('|').split(" | ").collect();
-        let Some(spec) = cells.get(1).and_then(|c| c.trim().strip_prefix('`')) else {
-            continue;
-        };
-        let spec = spec.trim_end_matches('`');
-        let row = errors
-            .get(spec)
-            .unwrap_or_else(|| panic!("README recommends {spec}, which docs/codecs.md lacks"));
-        let want = [
-            row[1].clone(),
-            row[3].clone(),
-            row[4].clone(),
-            format!("{} / {}", row[7], row[8]),
-        ];
-        let have: Vec<String> = cells[2..].iter().map(|c| c.trim().to_string()).collect();
-        assert_eq!(
-            have, want,
-            "README's figures for {spec} are not docs/codecs.md's: run `cargo test --release --test readme` after refreshing, and copy them"
+    // The recommendations: what `choose` ranks first for each case, from the catalogue
+    // compiled into the binary (tests/cli/choose.rs runs each command).
+    let table = unitpack::choice::recommend::table(&unitpack::choice::catalogue::Catalogue::load());
+    let fresh = unitpack::doc_tables::replace_block(&readme, "readme", "recommendations", &table)
+        .expect("README.md has the recommendations block");
+    if unitpack::doc_tables::refreshing() {
+        if fresh != readme {
+            std::fs::write(root().join("README.md"), &fresh).unwrap();
+        }
+    } else {
+        assert!(
+            fresh == readme,
+            "README.md's recommendations are not what `choose` answers: run \
+             `UNITPACK_REFRESH=1 cargo test --release --test readme`"
         );
-        recommended += 1;
     }
-    assert!(
-        recommended >= 4,
-        "the recommendation table has {recommended} rows"
-    );
 
     // The crate count of a build-script user, with the command the README quotes.
     let out = Command::new(env!("CARGO"))

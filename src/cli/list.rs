@@ -1,5 +1,6 @@
 //! `list`: every family with the specs a user types, as a table or as JSON.
 
+use crate::choice::catalogue::{Catalogue, Entry};
 use crate::codecs::FAMILIES;
 use crate::codecs::core::info::OptKind;
 use serde::Serialize;
@@ -7,8 +8,10 @@ use serde::Serialize;
 /// The spec grammar in one line, as every SPEC argument's help gives it.
 pub const GRAMMAR: &str = "NAME[BITS][p][:key=value,...]";
 
-/// The `list` table: each family with the specs a user types.
+/// The `list` table: each family with the specs a user types, then each of its
+/// catalogue's specs with the figures a choice needs.
 pub fn list_text() -> String {
+    let catalogue = Catalogue::load();
     // The family column is as wide as the longest name.
     let w = FAMILIES
         .iter()
@@ -34,10 +37,22 @@ pub fn list_text() -> String {
         for o in c.options {
             s.push_str(&format!("{:<w$} option {}\n", "", o.usage()));
         }
+        let rows: Vec<&Entry> = catalogue
+            .specs
+            .iter()
+            .filter(|e| e.family == c.name)
+            .collect();
+        if !rows.is_empty() {
+            s.push_str(&format!("{:<w$}   {}\n", "", super::choose::header()));
+            for e in rows {
+                s.push_str(&format!("{:<w$}   {}\n", "", super::choose::row(e)));
+            }
+        }
     }
     s.push_str(&format!(
         "\nA spec is {GRAMMAR}: oct24p, snorm8x3, stereo_scaled16:scale=2, oct24:layout=rgb8.\n"
     ));
+    s.push_str(&super::choose::legend(&catalogue));
     s
 }
 
@@ -45,6 +60,17 @@ pub fn list_text() -> String {
 struct ListJson {
     grammar: &'static str,
     families: Vec<FamilyJson>,
+    /// Vectors behind each spec's error figures, and their seed.
+    samples: usize,
+    vector_seed: String,
+    /// The filtering sample's seed and its size per separation.
+    filter_seed: String,
+    filter_pairs: usize,
+    /// The separation whose 99th percentile `choose --filterable` reads, degrees.
+    filter_deciding_separation: f64,
+    /// Every spec of the catalogue (`generate` writes one include for each), by id,
+    /// with its figures.
+    specs: Vec<Entry>,
 }
 
 #[derive(Serialize)]
@@ -122,9 +148,16 @@ pub fn list_json() -> String {
             }
         })
         .collect();
+    let c = Catalogue::load();
     let mut s = serde_json::to_string_pretty(&ListJson {
         grammar: GRAMMAR,
         families,
+        samples: c.samples,
+        vector_seed: c.vector_seed,
+        filter_seed: c.filter_seed,
+        filter_pairs: c.filter_pairs,
+        filter_deciding_separation: crate::choice::filtering::DECIDING_SEPARATION,
+        specs: c.specs,
     })
     .expect("list serializes");
     s.push('\n');

@@ -1,10 +1,11 @@
-//! The `unitpack` command line: list, gen, generate, encode, decode, verify,
-//! convert-normal-map.
+//! The `unitpack` command line: list, choose, report, gen, generate, encode, decode,
+//! verify, convert-normal-map.
 //!
 //! Output never goes through `print!` (it panics on a closed or full stdout): see
 //! [`output`]. Files are replaced atomically and only when they are the user's to replace:
 //! see [`crate::atomic`] and `manifest`.
 
+mod choose;
 mod convert;
 pub mod figure_cache;
 mod generate;
@@ -13,7 +14,8 @@ mod include;
 mod list;
 mod manifest;
 pub mod output;
-mod png_file;
+pub(crate) mod png_file;
+mod report;
 pub mod runtime_dir;
 mod stream;
 mod verify;
@@ -80,6 +82,56 @@ pub enum Command {
         /// Print JSON instead of the table.
         #[arg(long)]
         json: bool,
+    },
+    /// Rank the specs that meet constraints: the figures of `list`, best first.
+    ///
+    /// Constraints apply in this order: --bits, --format, --domain, --filterable,
+    /// --max-encode-alu, --max-decode-alu, --portable; when nothing is left, the error
+    /// names the constraint that emptied the list and what was left before it. Each row
+    /// is followed by a line saying why the spec is there.
+    Choose {
+        /// Total bits of the packed code.
+        #[arg(long, value_name = "N")]
+        bits: Option<u32>,
+        /// A storage format the code or float form is written to, in any API's spelling:
+        /// rg8snorm, snorm16x2, VK_FORMAT_R16G16_UNORM, DXGI_FORMAT_R8G8_UNORM, bc5-rg-unorm.
+        #[arg(long, value_name = "F")]
+        format: Option<String>,
+        /// The codec's domain.
+        #[arg(long, value_parser = ["sphere", "hemisphere"])]
+        domain: Option<String>,
+        /// Only specs whose float form survives linear filtering and four-sample resolves:
+        /// the 99th percentile of the filtering error at 5° apart at most DEG degrees.
+        #[arg(long, value_name = "DEG", num_args = 0..=1, require_equals = true, default_missing_value = "1")]
+        filterable: Option<f64>,
+        /// At most N ALU instructions in the packed encoder.
+        #[arg(long, value_name = "N")]
+        max_encode_alu: Option<u32>,
+        /// At most N ALU instructions in the packed decoder.
+        #[arg(long, value_name = "N")]
+        max_decode_alu: Option<u32>,
+        /// Only packed encoders that give the same code on every conformant GPU.
+        #[arg(long)]
+        portable: bool,
+        /// What to rank by, best first.
+        #[arg(long, value_enum, default_value = "max")]
+        by: crate::choice::choose::Order,
+        /// Print JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Show at most N specs (0: all).
+        #[arg(long, value_name = "N", default_value_t = 10)]
+        limit: usize,
+    },
+    /// Write an HTML report of the catalogue that a browser opens from disk: trade-off
+    /// charts, every spec's figures, and a page per family with sphere error maps, error
+    /// histograms, filtering figures, guarantees, formats and signatures.
+    ///
+    /// DIR must be new, empty, or hold an earlier report (its .unitpack-report manifest);
+    /// only the files that report wrote are replaced, each atomically.
+    Report {
+        #[arg(long, value_name = "DIR", default_value = "unitpack-report")]
+        out: PathBuf,
     },
     /// Print the include for one or more specs.
     ///
@@ -263,6 +315,42 @@ pub fn run(cli: Cli) -> Result<i32> {
     match cli.command {
         Command::List { json } => {
             output::print(&if json { list_json() } else { list_text() })?;
+            Ok(0)
+        }
+        Command::Choose {
+            bits,
+            format,
+            domain,
+            filterable,
+            max_encode_alu,
+            max_decode_alu,
+            portable,
+            by,
+            json,
+            limit,
+        } => {
+            if let Some(d) = filterable
+                && !(d.is_finite() && d > 0.0)
+            {
+                anyhow::bail!("--filterable takes a positive number of degrees, not {d}");
+            }
+            let query = crate::choice::choose::Query {
+                bits,
+                format,
+                domain,
+                filterable,
+                max_encode_alu,
+                max_decode_alu,
+                portable,
+            };
+            output::print(&choose::run(&query, by, json, limit)?)?;
+            Ok(0)
+        }
+        Command::Report { out } => {
+            if output::is_stdout(&out) {
+                anyhow::bail!("report writes a folder of files: name a folder, not -");
+            }
+            output::print(&report::run(&out)?)?;
             Ok(0)
         }
         Command::Gen {

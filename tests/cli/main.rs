@@ -4,12 +4,14 @@
 //! One test binary with a module per verb: every test binary links the whole library
 //! (wgpu and naga included), so one link serves all of them.
 
+mod choose;
 mod common;
 mod convert;
 mod generate;
 mod help;
 mod include;
 mod list;
+mod report;
 mod spec;
 mod stdout;
 mod stream;

@@ -118,6 +118,39 @@ fn generated_tables_are_fresh() {
     );
 }
 
+/// The catalogue `list`, `choose` and `report` read (`src/choice/catalogue.json`, compiled
+/// into the binary) holds exactly the figures measured here: the same error statistics
+/// and ALU counts as the tables above, the proven bounds, the formats and the filtering
+/// sample.
+#[test]
+fn the_choice_catalogue_is_fresh() {
+    use unitpack::choice::catalogue::{self, Catalogue};
+    let specs = codec_specs();
+    let stats = crate::stats(&specs, README_SAMPLES);
+    let fresh = catalogue::compute(&specs, &stats, &counts().four).to_json();
+    let path = root().join(catalogue::PATH);
+    let text = std::fs::read_to_string(&path).unwrap_or_default();
+    if refreshing() {
+        if fresh != text {
+            std::fs::write(&path, &fresh).unwrap();
+            eprintln!("{} rewritten: rebuild to compile it in", catalogue::PATH);
+        }
+        return;
+    }
+    assert!(
+        fresh == text,
+        "{} is stale: run `{REFRESH_COMMAND}` (or `UNITPACK_REFRESH=1 cargo test --release \
+         --test figures`) and rebuild",
+        catalogue::PATH
+    );
+    // And the binary holds the file as it is on disk.
+    assert!(
+        Catalogue::load().to_json() == text,
+        "the compiled-in catalogue differs from {}: rebuild",
+        catalogue::PATH
+    );
+}
+
 /// The lean tier's point: oct16's packed encoder in the instructions of its octahedral
 /// core and packing (issue 44's figure, the README's counting), against the default
 /// tier's, which must stay dearer (or the lean tier has nothing to offer).

@@ -4,6 +4,7 @@
 //! compiled once for the suite: a unit-test target would compile all of it a second time
 //! (`[lib] test = false` in Cargo.toml).
 
+mod choice_filtering;
 mod cli_figure_cache;
 mod cli_grammar;
 mod codecs_exact;

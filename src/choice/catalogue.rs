@@ -1,0 +1,189 @@
+//! The figures a choice needs, for every spec of the catalogue, as one tool-written file
+//! (`src/choice/catalogue.json`) compiled into the binary.
+//!
+//! Every figure here is expensive or needs tools a user may not have: the error sample
+//! (2^20 vectors a spec), the ALU counts (glslang and spirv-opt), the proven decoder bounds
+//! (branch and bound), the filtering sample. `list`, `choose` and `report` read them from
+//! this file, so that they answer at once and agree with each other and with the
+//! documentation's tables, which are computed in the same test run from the same
+//! figures. `tests/figures/tables.rs` recomputes the file and fails when it is stale;
+//! `UNITPACK_REFRESH=1` rewrites it.
+
+use super::filtering::{self, Filtering};
+use super::formats::{self, Format};
+use crate::codecs::Spec;
+use crate::quality::ErrorStats;
+use serde::{Deserialize, Serialize};
+
+/// The file, as compiled in.
+const FILE: &str = include_str!("catalogue.json");
+/// Where the file lives, relative to the repository root.
+pub const PATH: &str = "src/choice/catalogue.json";
+
+/// ALU instructions of a spec's four functions (counted as `src/verify/alu.rs` says).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Alu {
+    pub encode: u32,
+    pub encode_float: u32,
+    pub decode: u32,
+    pub decode_float: u32,
+}
+
+/// The proven bound of a decoder, in units of 2^-24 (`None`: no bound is proven).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Bounds {
+    pub decode: Option<f64>,
+    pub decode_float: Option<f64>,
+}
+
+/// One spec's figures.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Entry {
+    /// The spec's id: the name of its include and its functions, itself a spec.
+    pub spec: String,
+    pub family: String,
+    /// Total bits of the packed code.
+    pub bits: u32,
+    /// `sphere` or `hemisphere`.
+    pub domain: String,
+    /// Round-trip angular error of the packed code over the catalogue's sample, degrees.
+    pub mean: f64,
+    /// The largest error of that sample: a sample maximum, not a bound.
+    pub max: f64,
+    pub mse: f64,
+    pub alu: Alu,
+    /// Whether the packed encoder gives the same code on every conformant implementation.
+    pub portable: bool,
+    pub bounds: Bounds,
+    pub formats: Vec<Format>,
+    /// The float form's filtering figures (`None`: no float form of a vector alone).
+    pub filtering: Option<Filtering>,
+    /// Why the float form cannot be filtered whatever its figures, when that is so.
+    pub not_filterable: Option<String>,
+}
+
+impl Entry {
+    /// Whether the float form filters with at most `deg` degrees at the deciding
+    /// separation's 99th percentile (lerp and resolve alike).
+    pub fn filterable_within(&self, deg: f64) -> bool {
+        self.not_filterable.is_none()
+            && self
+                .filtering
+                .as_ref()
+                .is_some_and(|f| f.deciding_p99() <= deg)
+    }
+
+    /// The figure `--by filter` orders by (infinite when not filterable).
+    pub fn filter_figure(&self) -> f64 {
+        match (&self.not_filterable, &self.filtering) {
+            (None, Some(f)) => f.deciding_p99(),
+            _ => f64::INFINITY,
+        }
+    }
+}
+
+/// The catalogue's figures.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Catalogue {
+    /// Vectors behind each spec's error figures.
+    pub samples: usize,
+    /// The error sample's seed, hexadecimal.
+    pub vector_seed: String,
+    /// The filtering sample's seed, hexadecimal, and its size per separation.
+    pub filter_seed: String,
+    pub filter_pairs: usize,
+    pub specs: Vec<Entry>,
+}
+
+impl Catalogue {
+    /// The compiled-in catalogue.
+    pub fn load() -> Catalogue {
+        serde_json::from_str(FILE).expect("src/choice/catalogue.json is the tool's own file")
+    }
+
+    /// The file's text.
+    pub fn to_json(&self) -> String {
+        let mut s = serde_json::to_string_pretty(self).expect("the catalogue serializes");
+        s.push('\n');
+        s
+    }
+
+    /// The entry of the spec with this id.
+    pub fn get(&self, id: &str) -> Option<&Entry> {
+        self.specs.iter().find(|e| e.spec == id)
+    }
+}
+
+/// Computes the catalogue for `specs` (the codecs, in catalogue order) from their error
+/// statistics and ALU counts (`[encode, encode_float, decode, decode_float]`), proving
+/// the decoder bounds and measuring the filtering here.
+pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -> Catalogue {
+    assert_eq!(specs.len(), stats.len());
+    assert_eq!(specs.len(), alu.len());
+    crate::decode_bound::prove_all(specs);
+    let rows = crate::par::map(specs, |spec| {
+        let e = spec.emitted();
+        let domain = spec.info().domain.expect("a codec spec has a domain");
+        let bound = |name: &str| {
+            e.functions
+                .iter()
+                .find(|f| f.name == name)
+                .and_then(|f| crate::decode_bound::cached(&e.module, f))
+                .map(|b| b.units)
+        };
+        (
+            e.portable_encoder,
+            Bounds {
+                decode: bound("decode"),
+                decode_float: bound("decode_float"),
+            },
+            formats::formats(spec, &e),
+            filtering::measure(&e, domain),
+        )
+    });
+    let samples = stats
+        .iter()
+        .flatten()
+        .next()
+        .map_or(0, |s: &ErrorStats| s.samples);
+    let specs = specs
+        .iter()
+        .zip(stats)
+        .zip(alu)
+        .zip(rows)
+        .map(|(((spec, st), a), (portable, bounds, formats, filtering))| {
+            let st = st.expect("a codec spec has error statistics");
+            Entry {
+                spec: spec.id(),
+                family: spec.info().name.to_string(),
+                bits: spec.bits(),
+                domain: spec.info().domain.map_or("", |d| d.name()).to_string(),
+                mean: st.mean,
+                max: st.max,
+                mse: st.mse,
+                alu: Alu {
+                    encode: a[0],
+                    encode_float: a[1],
+                    decode: a[2],
+                    decode_float: a[3],
+                },
+                portable,
+                bounds,
+                formats,
+                not_filterable: filtering::not_filterable(spec)
+                    .or(filtering.is_none().then_some(
+                        "its float form is not a vector's parameters alone: it reads a lookup table's texel",
+                    ))
+                    .map(str::to_string),
+                filtering,
+            }
+        })
+        .collect();
+    Catalogue {
+        samples,
+        vector_seed: format!("{:#x}", crate::quality::VECTOR_SEED),
+        filter_seed: format!("{:#x}", filtering::SEED),
+        filter_pairs: filtering::PAIRS,
+        specs,
+    }
+}

@@ -1,0 +1,510 @@
+//! `unitpack report`: a static HTML report of the catalogue that a browser opens from
+//! disk. The index holds the trade-off charts and every spec's figures; one page per
+//! family holds, for each spec, its sphere error maps ([`maps`]), an error histogram,
+//! the filtering figures, the guarantees, the formats and the include's signatures.
+//!
+//! Every number comes from the compiled-in catalogue ([`crate::choice::catalogue`]), the
+//! one `list` and `choose` print, and sits in a `data-value` attribute beside its rounded
+//! text, so a test can hold the two to each other. Only the maps and histograms are
+//! computed here, seeded. The output is deterministic: the same build writes the same
+//! bytes.
+//!
+//! The folder is the report's own: `report` writes into a new or empty folder, or into
+//! one holding an earlier report (its `.unitpack-report` manifest), and replaces only the
+//! files that manifest lists. Every file is prepared before any is written, each is
+//! replaced atomically.
+
+pub mod charts;
+pub mod maps;
+
+use crate::choice::catalogue::{Catalogue, Entry};
+use crate::choice::filtering::{self, DECIDING_SEPARATION, FilterStats};
+use crate::codecs::{FAMILIES, Spec};
+use crate::emit::Lang;
+use crate::emit::printer;
+use anyhow::{Context, Result, bail};
+use askama::Template;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The manifest of the files a report wrote, in the report's folder.
+pub const MANIFEST: &str = ".unitpack-report";
+
+#[derive(Template)]
+#[template(path = "report/index.html")]
+struct Index<'a> {
+    intro: String,
+    filtering_note: String,
+    families: Vec<FamilyLink<'a>>,
+    charts: Vec<String>,
+    deciding: f64,
+    rows: Vec<String>,
+}
+
+struct FamilyLink<'a> {
+    name: &'a str,
+    title: &'a str,
+}
+
+#[derive(Template)]
+#[template(path = "report/family.html")]
+struct FamilyPage<'a> {
+    name: &'a str,
+    title: &'a str,
+    source: &'a str,
+    per_cell: usize,
+    equirect_w: usize,
+    equirect_h: usize,
+    oct_w: usize,
+    specs: Vec<SpecSection>,
+}
+
+struct SpecSection {
+    id: String,
+    figures: Vec<String>,
+    top: f64,
+    top_text: String,
+    histogram: String,
+    not_filterable: Option<String>,
+    filtering: Option<Vec<String>>,
+    seam: String,
+    signatures: String,
+}
+
+/// Pixels per map cell in the images (one: the page scales them up, pixelated).
+const SCALE: usize = 1;
+/// How much larger than its pixels the page shows a map.
+const SHOWN: usize = 2;
+
+/// A table cell of a number: its full value in `data-value`, `digits` decimals shown.
+fn num(v: f64, digits: usize) -> String {
+    format!("<td class=\"n\" data-value=\"{v}\">{v:.digits$}</td>")
+}
+
+fn int(v: u32) -> String {
+    format!("<td class=\"n\" data-value=\"{v}\">{v}</td>")
+}
+
+fn text(s: &str) -> String {
+    format!("<td>{}</td>", escape(s))
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn bound(b: Option<f64>) -> String {
+    match b {
+        Some(u) => num(u, 1),
+        None => "<td>—</td>".to_string(),
+    }
+}
+
+fn filter_cell(e: &Entry) -> String {
+    match e.filter_figure() {
+        f if f.is_finite() => num(f, 4),
+        _ => "<td>not filterable</td>".to_string(),
+    }
+}
+
+fn formats_text(e: &Entry) -> String {
+    let names: Vec<&str> = e.formats.iter().map(|f| f.name()).collect();
+    names.join(", ")
+}
+
+/// The index's row of a spec.
+fn index_row(e: &Entry) -> String {
+    format!(
+        "<tr data-spec=\"{id}\"><td><a href=\"family/{fam}.html#{id}\">{id}</a></td>{}{}{}{}{}{}{}{}{}{}</tr>",
+        int(e.bits),
+        text(&e.domain),
+        num(e.mean, 5),
+        num(e.max, 5),
+        int(e.alu.encode),
+        int(e.alu.decode),
+        text(if e.portable { "yes" } else { "no" }),
+        bound(e.bounds.decode),
+        filter_cell(e),
+        text(&formats_text(e)),
+        id = escape(&e.spec),
+        fam = escape(&e.family),
+    )
+}
+
+/// The figure rows of a spec's section: a name and a value each.
+fn figure_rows(e: &Entry, samples: usize) -> Vec<String> {
+    let row = |name: &str, cell: String| format!("<tr><th>{name}</th>{cell}</tr>");
+    let mut rows = vec![
+        row("bits", int(e.bits)),
+        row("domain", text(&e.domain)),
+        row(
+            &format!("mean error (°, {samples} vectors)"),
+            num(e.mean, 5),
+        ),
+        row("sample max (°)", num(e.max, 5)),
+        row("MSE", num(e.mse, 9)),
+        row("encode ALU", int(e.alu.encode)),
+        row("encode_float ALU", int(e.alu.encode_float)),
+        row("decode ALU", int(e.alu.decode)),
+        row("decode_float ALU", int(e.alu.decode_float)),
+        row(
+            "packed encoder",
+            text(if e.portable {
+                "portable: the same code on every conformant GPU"
+            } else {
+                "not portable"
+            }),
+        ),
+        row("proven decode bound (2^-24)", bound(e.bounds.decode)),
+        row(
+            "proven decode_float bound (2^-24)",
+            bound(e.bounds.decode_float),
+        ),
+        row(
+            &format!("filtering p99 at {DECIDING_SEPARATION}° (°)"),
+            filter_cell(e),
+        ),
+    ];
+    for f in &e.formats {
+        let unused = match f.unused_channels {
+            0 => String::new(),
+            n => format!(" ({n} channel{} unused)", if n == 1 { "" } else { "s" }),
+        };
+        rows.push(row(
+            &format!("format ({})", f.holds.name()),
+            text(&format!("{}{unused}", f.spellings().join(" · "))),
+        ));
+    }
+    rows
+}
+
+fn filter_rows(kind: &str, stats: &[FilterStats]) -> Vec<String> {
+    stats
+        .iter()
+        .map(|s| {
+            format!(
+                "<tr>{}{}{}{}{}{}</tr>",
+                num(s.separation, 0),
+                text(kind),
+                num(s.mean, 4),
+                num(s.p99, 4),
+                num(s.max, 4),
+                num(s.over_1deg, 4),
+            )
+        })
+        .collect()
+}
+
+/// Where a spec's float form breaks, when pairs of neighbours 1° apart err by more than
+/// their separation.
+fn seam(e: &Entry) -> String {
+    let Some(f) = &e.filtering else {
+        return String::new();
+    };
+    let Some(near) = f
+        .lerp
+        .iter()
+        .find(|s| s.separation == filtering::SEPARATIONS[0])
+    else {
+        return String::new();
+    };
+    if near.over_1deg == 0.0 {
+        return String::new();
+    }
+    format!(
+        "{:.2}% of pairs {}° apart err by more than 1° when filtered: {}.",
+        near.over_1deg * 100.0,
+        near.separation,
+        filtering::seam_location(&e.family)
+    )
+}
+
+/// The WGSL and GLSL signatures of a spec's public functions.
+fn signatures(spec: &Spec) -> String {
+    let e = spec.emitted();
+    let ns = if e.namespace.is_empty() {
+        String::new()
+    } else {
+        format!("{}_", e.namespace)
+    };
+    let mut out = String::new();
+    for lang in [Lang::Wgsl, Lang::Glsl] {
+        let backend = lang.backend(crate::emit::DEFAULT_PREFIX);
+        let name = |local: &str| format!("{}{ns}{local}", crate::emit::DEFAULT_PREFIX);
+        for pf in &e.functions {
+            let Some(f) = e.module.funcs.iter().find(|f| f.name == pf.name) else {
+                continue;
+            };
+            let p = printer::print(backend.as_ref(), f, &name);
+            let line = match lang {
+                Lang::Wgsl => {
+                    let params: Vec<String> =
+                        p.params.iter().map(|(n, t)| format!("{n}: {t}")).collect();
+                    format!("fn {}({}) -> {}", p.name, params.join(", "), p.ret_ty)
+                }
+                _ => {
+                    let params: Vec<String> =
+                        p.params.iter().map(|(n, t)| format!("{t} {n}")).collect();
+                    format!("{} {}({})", p.ret_ty, p.name, params.join(", "))
+                }
+            };
+            out.push_str(&line);
+            out.push('\n');
+        }
+        out.push('\n');
+    }
+    out.trim_end().to_string()
+}
+
+/// The files of a report: path relative to its folder → bytes.
+type Files = BTreeMap<PathBuf, Vec<u8>>;
+
+fn png(px: (u32, u32, Vec<u8>)) -> Result<Vec<u8>> {
+    crate::cli::png_file::encode(px.0, px.1, png::ColorType::Rgb, png::BitDepth::Eight, &px.2)
+}
+
+/// Every file of the report, with `progress` told of each spec measured.
+pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Files> {
+    let specs: Vec<Spec> = catalogue
+        .specs
+        .iter()
+        .map(|e| {
+            e.spec
+                .parse::<Spec>()
+                .with_context(|| format!("the catalogue's {} is not a spec", e.spec))
+        })
+        .collect::<Result<_>>()?;
+    let measured = crate::par::map(&specs, |s| {
+        let m = maps::measure(s);
+        progress();
+        m
+    });
+    let mut files = Files::new();
+    files.insert(
+        "style.css".into(),
+        include_bytes!("../../templates/report/style.css").to_vec(),
+    );
+    files.insert(
+        "check.js".into(),
+        include_bytes!("../../templates/report/check.js").to_vec(),
+    );
+    files.insert("maps/legend.png".into(), png(maps::legend(256, 12))?);
+
+    let mut sections: BTreeMap<&str, Vec<SpecSection>> = BTreeMap::new();
+    for ((e, spec), m) in catalogue.specs.iter().zip(&specs).zip(&measured) {
+        // One scale for both views of a spec, so that they can be compared.
+        let top = m.equirect.max().max(m.octahedral.max());
+        files.insert(
+            format!("maps/{}_equirect.png", e.spec).into(),
+            png(maps::pixels(&m.equirect, top, SCALE))?,
+        );
+        files.insert(
+            format!("maps/{}_octahedral.png", e.spec).into(),
+            png(maps::pixels(&m.octahedral, top, SCALE))?,
+        );
+        let histogram = charts::histogram(
+            &format!("{}: error of {} vectors", e.spec, maps::HISTOGRAM_SAMPLES),
+            &m.histogram,
+        )?;
+        let filtering = e.filtering.as_ref().map(|f| {
+            let mut rows = filter_rows("lerp of two", &f.lerp);
+            rows.extend(filter_rows("resolve of four", &f.resolve));
+            rows
+        });
+        sections
+            .entry(e.family.as_str())
+            .or_default()
+            .push(SpecSection {
+                id: e.spec.clone(),
+                figures: figure_rows(e, catalogue.samples),
+                top,
+                top_text: format!("{top:.4}"),
+                histogram,
+                not_filterable: e.not_filterable.clone(),
+                filtering,
+                seam: seam(e),
+                signatures: signatures(spec),
+            });
+    }
+    let mut links = Vec::new();
+    for f in FAMILIES {
+        let info = f.info();
+        let Some(specs) = sections.remove(info.name) else {
+            continue;
+        };
+        links.push(FamilyLink {
+            name: info.name,
+            title: info.title,
+        });
+        let page = FamilyPage {
+            name: info.name,
+            title: info.title,
+            source: info.source,
+            per_cell: maps::PER_CELL,
+            equirect_w: maps::EQUIRECT.0 * SCALE * SHOWN,
+            equirect_h: maps::EQUIRECT.1 * SCALE * SHOWN,
+            oct_w: maps::OCTAHEDRAL * SCALE * SHOWN,
+            specs,
+        };
+        files.insert(
+            format!("family/{}.html", info.name).into(),
+            page.render()
+                .context("cannot render a family page")?
+                .into_bytes(),
+        );
+    }
+    let index = Index {
+        intro: format!(
+            "Every spec of the catalogue: round-trip angular error of the packed code over \
+             {} seeded unit vectors (seed {}; hemisphere codecs over +Z), the mean and the \
+             sample maximum (the largest error of that sample, not a bound); ALU \
+             instructions of the packed encoder and decoder; whether the packed encoder \
+             is portable; the proven bound of the decoder; the formats each writes to. \
+             The same figures as `unitpack list --json`.",
+            catalogue.samples, catalogue.vector_seed
+        ),
+        filtering_note: format!(
+            "Filtering: the angle between a filtered texel's decoded direction and the \
+             renormalized lerp of the decoded neighbours, over {} pairs per separation \
+             (seed {}); p99 is the 99th percentile, at {DECIDING_SEPARATION}° apart \
+             (the larger of a two-texel lerp and a four-sample resolve).",
+            catalogue.filter_pairs, catalogue.filter_seed
+        ),
+        families: links,
+        charts: index_charts(catalogue)?,
+        deciding: DECIDING_SEPARATION,
+        rows: catalogue.specs.iter().map(index_row).collect(),
+    };
+    files.insert(
+        "index.html".into(),
+        index
+            .render()
+            .context("cannot render the index")?
+            .into_bytes(),
+    );
+    Ok(files)
+}
+
+/// The index's trade-off charts.
+fn index_charts(c: &Catalogue) -> Result<Vec<String>> {
+    let by_domain = |f: &dyn Fn(&Entry) -> Option<(f64, f64)>| -> Vec<charts::Series> {
+        [
+            ("sphere", charts::SPHERE),
+            ("hemisphere", charts::HEMISPHERE),
+        ]
+        .into_iter()
+        .map(|(d, colour)| charts::Series {
+            name: d,
+            colour,
+            points: c
+                .specs
+                .iter()
+                .filter(|e| e.domain == d)
+                .filter_map(f)
+                .collect(),
+        })
+        .collect()
+    };
+    Ok(vec![
+        charts::scatter(
+            "Mean error against bits",
+            "bits",
+            "mean error (degrees)",
+            false,
+            true,
+            &by_domain(&|e| Some((f64::from(e.bits), e.mean))),
+        )?,
+        charts::scatter(
+            "Sample max against bits",
+            "bits",
+            "sample max (degrees)",
+            false,
+            true,
+            &by_domain(&|e| Some((f64::from(e.bits), e.max))),
+        )?,
+        charts::scatter(
+            "Decode ALU against mean error",
+            "mean error (degrees)",
+            "decode ALU instructions",
+            true,
+            false,
+            &by_domain(&|e| Some((e.mean, f64::from(e.alu.decode)))),
+        )?,
+        charts::scatter(
+            "Encode ALU against mean error",
+            "mean error (degrees)",
+            "encode ALU instructions",
+            true,
+            true,
+            &by_domain(&|e| Some((e.mean, f64::from(e.alu.encode)))),
+        )?,
+        charts::scatter(
+            &format!("Filtering p99 at {DECIDING_SEPARATION}° against bits"),
+            "bits",
+            "filtering p99 (degrees)",
+            false,
+            true,
+            &by_domain(&|e| {
+                let f = e.filter_figure();
+                f.is_finite().then(|| (f64::from(e.bits), f.max(1e-6)))
+            }),
+        )?,
+    ])
+}
+
+/// Writes `files` into `dir` under the folder policy above. Returns how many files it
+/// wrote.
+pub fn write(dir: &Path, files: &Files) -> Result<usize> {
+    let manifest = dir.join(MANIFEST);
+    let listed: Vec<PathBuf> = match std::fs::read_to_string(&manifest) {
+        Ok(t) => t.lines().skip(1).map(PathBuf::from).collect(),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            match std::fs::read_dir(dir) {
+                Ok(mut entries) => {
+                    if entries.next().is_some() {
+                        bail!(
+                            "{} is not empty and holds no earlier report ({MANIFEST}): name a new or empty folder",
+                            dir.display()
+                        );
+                    }
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                Err(e) => {
+                    return Err(e).with_context(|| format!("cannot read {}", dir.display()));
+                }
+            }
+            Vec::new()
+        }
+        Err(e) => return Err(e).with_context(|| format!("cannot read {}", manifest.display())),
+    };
+    for rel in files.keys() {
+        let path = dir.join(rel);
+        if path.symlink_metadata().is_ok() && !listed.contains(rel) {
+            bail!(
+                "{} exists and an earlier report did not write it: nothing was written",
+                path.display()
+            );
+        }
+    }
+    for (rel, bytes) in files {
+        let path = dir.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("cannot create {}", parent.display()))?;
+        }
+        // Unchanged files are left as they are.
+        if std::fs::read(&path).is_ok_and(|old| old == *bytes) {
+            continue;
+        }
+        crate::atomic::write_atomic(&path, bytes)?;
+    }
+    let mut text = String::from("# Files written by `unitpack report`.\n");
+    for rel in files.keys() {
+        text.push_str(&format!("{}\n", rel.display()));
+    }
+    crate::atomic::write_atomic(&manifest, text.as_bytes())?;
+    Ok(files.len())
+}

@@ -1,0 +1,228 @@
+//! `report`: the whole catalogue's HTML report, its numbers held to `list --json`, its
+//! folder policy, its determinism, and its pages opened in headless Chromium.
+
+use crate::common::*;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+/// One report of the whole catalogue, written once for every test here.
+fn report() -> &'static Path {
+    static DIR: OnceLock<tempfile::TempDir> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = tempdir();
+        let out = dir.path().join("report");
+        let r = ok(&["report", "--out", out.to_str().unwrap()]);
+        assert!(r.stdout.contains("index.html"), "{r:?}");
+        dir
+    })
+    .path()
+}
+
+fn page(rel: &str) -> String {
+    std::fs::read_to_string(report().join("report").join(rel))
+        .unwrap_or_else(|e| panic!("the report has {rel}: {e}"))
+}
+
+/// The `data-value` attributes of a row's cells, in order.
+fn values(row: &str) -> Vec<String> {
+    row.split("data-value=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn the_report_has_an_index_and_a_page_per_family_with_maps_and_charts() {
+    let dir = report().join("report");
+    let index = page("index.html");
+    let list: Value = serde_json::from_str(&ok(&["list", "--json"]).stdout).unwrap();
+    let mut families: Vec<&str> = list["specs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["family"].as_str().unwrap())
+        .collect();
+    families.dedup();
+    for fam in &families {
+        assert!(
+            index.contains(&format!("href=\"family/{fam}.html\"")),
+            "{fam}"
+        );
+        let p = page(&format!("family/{fam}.html"));
+        assert!(p.contains("<svg"), "{fam}: a histogram");
+        assert!(
+            p.contains("_equirect.png") && p.contains("_octahedral.png"),
+            "{fam}"
+        );
+    }
+    // Five trade-off charts.
+    assert_eq!(index.matches("<svg").count(), 5);
+    for e in list["specs"].as_array().unwrap() {
+        let id = e["spec"].as_str().unwrap();
+        for view in ["equirect", "octahedral"] {
+            let png = dir.join(format!("maps/{id}_{view}.png"));
+            let bytes = std::fs::read(&png).unwrap_or_else(|_| panic!("{}", png.display()));
+            assert!(bytes.starts_with(b"\x89PNG"), "{}", png.display());
+        }
+    }
+}
+
+/// Every number of the index's table is `list --json`'s, value for value.
+#[test]
+fn the_reports_numbers_equal_list_json() {
+    let index = page("index.html");
+    let list: Value = serde_json::from_str(&ok(&["list", "--json"]).stdout).unwrap();
+    let specs = list["specs"].as_array().unwrap();
+    let rows: Vec<&str> = index
+        .lines()
+        .filter(|l| l.starts_with("<tr data-spec="))
+        .collect();
+    assert_eq!(rows.len(), specs.len());
+    for (row, e) in rows.iter().zip(specs) {
+        let id = e["spec"].as_str().unwrap();
+        assert!(row.starts_with(&format!("<tr data-spec=\"{id}\"")), "{row}");
+        let v = values(row);
+        let num = |i: usize| v[i].parse::<f64>().unwrap();
+        assert_eq!(num(0), e["bits"].as_f64().unwrap(), "{id} bits");
+        assert_eq!(num(1), e["mean"].as_f64().unwrap(), "{id} mean");
+        assert_eq!(num(2), e["max"].as_f64().unwrap(), "{id} max");
+        assert_eq!(num(3), e["alu"]["encode"].as_f64().unwrap(), "{id} encode");
+        assert_eq!(num(4), e["alu"]["decode"].as_f64().unwrap(), "{id} decode");
+        if let Some(b) = e["bounds"]["decode"].as_f64() {
+            assert_eq!(num(5), b, "{id} bound");
+        }
+    }
+    // A family page's figures too: oct16's mean.
+    let oct = page("family/oct.html");
+    let mean = specs.iter().find(|e| e["spec"] == "oct16").unwrap()["mean"]
+        .as_f64()
+        .unwrap();
+    let section = &oct[oct.find("id=\"oct16\"").unwrap()..];
+    let row = section.lines().find(|l| l.contains("mean error")).unwrap();
+    assert_eq!(values(row)[0].parse::<f64>().unwrap(), mean);
+}
+
+/// A second run writes the same bytes (and so leaves every file as it was).
+#[test]
+fn the_report_is_deterministic_and_keeps_to_its_folder() {
+    let first = report().join("report");
+    let again = tempdir();
+    let second = again.path().join("report");
+    ok(&["report", "--out", second.to_str().unwrap()]);
+    let (a, b) = (tree(&first), tree(&second));
+    assert_eq!(a, b);
+    for rel in &a {
+        assert!(
+            std::fs::read(first.join(rel)).unwrap() == std::fs::read(second.join(rel)).unwrap(),
+            "{} differs between two runs",
+            rel.display()
+        );
+    }
+    // Into the same folder again: allowed (its manifest lists every file).
+    ok(&["report", "--out", second.to_str().unwrap()]);
+    // A folder with a file of someone else's is refused, and the file kept.
+    let other = tempdir();
+    std::fs::write(other.path().join("notes.txt"), "mine").unwrap();
+    let err = fails(&["report", "--out", other.path().to_str().unwrap()], "");
+    assert!(err.contains("holds no earlier report"), "{err}");
+    assert_eq!(tree(other.path()).len(), 1);
+    assert_eq!(
+        std::fs::read_to_string(other.path().join("notes.txt")).unwrap(),
+        "mine"
+    );
+}
+
+/// Debian's Chromium.
+fn chromium() -> PathBuf {
+    let path = PathBuf::from("/usr/bin/chromium");
+    assert!(
+        path.exists(),
+        "the report's browser test needs Chromium: install the Debian package `chromium`"
+    );
+    path
+}
+
+/// Runs headless Chromium on a file of the report with `args`; returns (stdout, stderr).
+fn browse(rel: &str, args: &[&str]) -> (String, String) {
+    let profile = tempdir();
+    let url = format!("file://{}", report().join("report").join(rel).display());
+    let out = Command::new(chromium())
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--enable-logging=stderr",
+            "--v=0",
+            "--virtual-time-budget=10000",
+            &format!("--user-data-dir={}", profile.path().display()),
+        ])
+        .args(args)
+        .arg(&url)
+        .output()
+        .expect("chromium runs");
+    assert!(out.status.success(), "chromium on {rel}: {out:?}");
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// The index and a family page render in Chromium with no console message, every
+/// image loaded, the charts in the DOM and a screenshot that is not blank.
+#[test]
+fn the_report_renders_in_chromium() {
+    for (rel, images) in [("index.html", 0), ("family/oct.html", 1)] {
+        let (dom, log) = browse(rel, &["--dump-dom"]);
+        let console: Vec<&str> = log.lines().filter(|l| l.contains("CONSOLE")).collect();
+        assert!(console.is_empty(), "{rel}: console messages {console:?}");
+        let loaded = dom
+            .split("data-images-loaded=\"")
+            .nth(1)
+            .and_then(|s| s.split('"').next())
+            .unwrap_or_else(|| panic!("{rel}: check.js ran: {dom:.400}"));
+        assert!(
+            dom.contains("data-images-broken=\"0\""),
+            "{rel}: a broken image"
+        );
+        let n: usize = loaded.parse().unwrap();
+        assert!(n >= images, "{rel}: {n} images loaded");
+        if images > 0 {
+            // Two maps and a legend for each spec of the page.
+            assert_eq!(n, dom.matches("<img").count(), "{rel}");
+            assert!(n >= 3, "{rel}");
+        }
+        assert!(dom.contains("<svg"), "{rel}: the charts are in the DOM");
+        let shot = tempdir();
+        let png_path = shot.path().join("shot.png");
+        browse(
+            rel,
+            &[
+                &format!("--screenshot={}", png_path.display()),
+                "--window-size=1200,900",
+                "--hide-scrollbars",
+            ],
+        );
+        let decoder = png::Decoder::new(std::io::BufReader::new(
+            std::fs::File::open(&png_path).expect("a screenshot"),
+        ));
+        let mut reader = decoder.read_info().unwrap();
+        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut buf).unwrap();
+        let px = &buf[..info.buffer_size()];
+        let channels = info.color_type.samples();
+        let colours: std::collections::BTreeSet<&[u8]> =
+            px.chunks_exact(channels).map(|p| &p[..3]).collect();
+        assert!(
+            colours.len() > 50,
+            "{rel}: the screenshot is blank ({} colours)",
+            colours.len()
+        );
+    }
+}
