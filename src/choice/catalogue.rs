@@ -151,33 +151,31 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
         .zip(stats)
         .zip(alu)
         .zip(rows)
-        .map(|(((spec, st), a), (portable, bounds, formats, filtering))| {
-            let st = st.expect("a codec spec has error statistics");
-            Entry {
-                spec: spec.id(),
-                family: spec.info().name.to_string(),
-                bits: spec.bits(),
-                domain: spec.info().domain.map_or("", |d| d.name()).to_string(),
-                mean: st.mean,
-                max: st.max,
-                mse: st.mse,
-                alu: Alu {
-                    encode: a[0],
-                    encode_float: a[1],
-                    decode: a[2],
-                    decode_float: a[3],
-                },
-                portable,
-                bounds,
-                formats,
-                not_filterable: filtering::not_filterable(spec)
-                    .or(filtering.is_none().then_some(
-                        "its float form is not a vector's parameters alone: it reads a lookup table's texel",
-                    ))
-                    .map(str::to_string),
-                filtering,
-            }
-        })
+        .map(
+            |(((spec, st), a), (portable, bounds, formats, filtering))| {
+                let st = st.expect("a codec spec has error statistics");
+                Entry {
+                    spec: spec.id(),
+                    family: spec.info().name.to_string(),
+                    bits: spec.bits(),
+                    domain: spec.info().domain.map_or("", |d| d.name()).to_string(),
+                    mean: st.mean,
+                    max: st.max,
+                    mse: st.mse,
+                    alu: Alu {
+                        encode: a[0],
+                        encode_float: a[1],
+                        decode: a[2],
+                        decode_float: a[3],
+                    },
+                    portable,
+                    bounds,
+                    formats,
+                    not_filterable: filtering::not_filterable(spec).map(str::to_string),
+                    filtering,
+                }
+            },
+        )
         .collect();
     Catalogue {
         samples,

@@ -18,7 +18,8 @@
 //! codec arithmetic is the model's, in f32, on the CPU lanes.
 
 use crate::codecs::core::codec::Domain;
-use crate::codecs::core::function::{Emitted, Function, Role};
+use crate::codecs::core::function::{Emitted, Function, Inputs, Role};
+use crate::codecs::toolkit::quant::Quant;
 use crate::quality::angle_deg;
 use rand_core::Rng;
 use rand_pcg::Pcg64Mcg;
@@ -194,12 +195,15 @@ fn weights(seed_offset: u64, k: usize) -> Vec<f64> {
         .collect()
 }
 
+/// Parameters (the float form's words, any number of items) → three words a vector.
+pub type Decoder<'a> = &'a (dyn Fn(&[u32], &mut [u32]) + Sync);
+
 /// The filtering error of each group of `k` vectors of `vs` (`weights` one per vector,
 /// summing to 1 in each group): the angle in degrees between the decoded filtered
 /// parameters and the renormalized weighted sum of the decoded vectors.
 pub fn errors(
     enc: &Function,
-    dec: &Function,
+    dec: Decoder,
     k: usize,
     vs: &[[f32; 3]],
     weights: &[f64],
@@ -210,7 +214,7 @@ pub fn errors(
     let mut params = vec![0u32; vs.len() * words];
     enc.eval_many(&input, &mut params);
     let mut decoded = vec![0u32; vs.len() * 3];
-    dec.eval_many(&params, &mut decoded);
+    dec(&params, &mut decoded);
     // The filtered parameters of each group, in f64, rounded once.
     let mut filtered = vec![0u32; groups * words];
     for g in 0..groups {
@@ -225,7 +229,7 @@ pub fn errors(
         }
     }
     let mut out = vec![0u32; groups * 3];
-    dec.eval_many(&filtered, &mut out);
+    dec(&filtered, &mut out);
     (0..groups)
         .map(|g| {
             let mut want = [0f64; 3];
@@ -260,7 +264,7 @@ fn stats(separation: f64, errors: &mut [f64]) -> FilterStats {
 
 /// The filtering figures of a spec whose float form is `enc` (vector → parameters) and
 /// `dec` (parameters → vector) on `domain`.
-pub fn measure_functions(enc: &Function, dec: &Function, domain: Domain) -> Filtering {
+pub fn measure_functions(enc: &Function, dec: Decoder, domain: Domain) -> Filtering {
     let hemisphere = domain == Domain::Hemisphere;
     let run = |k: usize, kind: u64| -> Vec<FilterStats> {
         SEPARATIONS
@@ -282,9 +286,47 @@ pub fn measure_functions(enc: &Function, dec: &Function, domain: Domain) -> Filt
 
 /// The filtering figures of a spec ([`Emitted`] is its traced functions), or `None` when
 /// it has no CPU float form that takes a vector alone.
+///
+/// A float form whose decoder reads a lookup table's texel beside the parameters
+/// (`spherical_lut`: the texel of the sin/cos table at the code) is read as a shader
+/// reads a filtered texel of it: the filtered parameters rounded to the nearest code of
+/// each unorm field, and that code decoded through the table.
 pub fn measure(e: &Emitted, domain: Domain) -> Option<Filtering> {
     let enc = e.cpu_function(Role::EncodeFloat)?;
+    if enc.in_words != 3 {
+        return None;
+    }
     let dec = e.cpu_function(Role::DecodeFloat)?;
-    (enc.in_words == 3 && dec.in_words == enc.out_words && dec.out_words == 3)
-        .then(|| measure_functions(enc, dec, domain))
+    if dec.in_words == enc.out_words && dec.out_words == 3 {
+        return Some(measure_functions(enc, &|p, o| dec.eval_many(p, o), domain));
+    }
+    let code_dec = e.cpu_function(Role::Decode)?;
+    let Inputs::Codes(fields) = &code_dec.inputs else {
+        return None;
+    };
+    if code_dec.in_words != 1
+        || fields.len() != enc.out_words
+        || !fields.iter().all(|q| matches!(q, Quant::Unorm(_)))
+    {
+        return None;
+    }
+    let through_table = |params: &[u32], out: &mut [u32]| {
+        // First field in the lowest bits, as every packed code.
+        let codes: Vec<u32> = params
+            .chunks_exact(fields.len())
+            .map(|p| {
+                let mut code = 0u32;
+                let mut shift = 0;
+                for (word, q) in p.iter().zip(fields) {
+                    let m = q.max_code();
+                    let c = (f32::from_bits(*word).clamp(0.0, 1.0) * m).round_ties_even();
+                    code |= (c as u32) << shift;
+                    shift += q.bits();
+                }
+                code
+            })
+            .collect();
+        code_dec.eval_many(&codes, out)
+    };
+    Some(measure_functions(enc, &through_table, domain))
 }

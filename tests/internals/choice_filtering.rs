@@ -26,7 +26,8 @@ fn unit(v: [f64; 3]) -> [f32; 3] {
 fn pair(spec: &str, a: [f64; 3], b: [f64; 3], w: f64) -> f64 {
     let e = emitted(spec);
     let (enc, dec) = float_form(&e);
-    errors(enc, dec, 2, &[unit(a), unit(b)], &[1.0 - w, w])[0]
+    let decode = |p: &[u32], o: &mut [u32]| dec.eval_many(p, o);
+    errors(enc, &decode, 2, &[unit(a), unit(b)], &[1.0 - w, w])[0]
 }
 
 #[test]
@@ -84,6 +85,33 @@ fn the_sample_figures_are_seeded_and_show_the_seams() {
         assert_eq!(s.separation, sep);
         assert!(s.mean <= s.max && s.p99 <= s.max && s.max <= 180.0, "{s:?}");
     }
+}
+
+/// A float form decoded through a lookup table is filtered as a shader reads it: the
+/// filtered texel's nearest code, through the table. Its azimuth wraps at ±180°.
+#[test]
+fn every_codec_with_a_float_form_has_filtering_figures() {
+    let lut = measured("spherical_lut16");
+    assert!(lut.lerp[0].mean < 1.0, "{:?}", lut.lerp[0]);
+    assert!(
+        lut.lerp[0].max > 90.0,
+        "the wrap at ±180°: {:?}",
+        lut.lerp[0]
+    );
+    // The compiled-in catalogue (held fresh by tests/figures/tables.rs) has them for
+    // every codec: every one has a float form.
+    let catalogue = unitpack::choice::catalogue::Catalogue::load();
+    assert_eq!(
+        catalogue.specs.len(),
+        unitpack::doc_tables::codec_specs().len()
+    );
+    for e in &catalogue.specs {
+        assert!(e.filtering.is_some(), "{} has no filtering figures", e.spec);
+    }
+    assert_eq!(
+        catalogue.get("spherical_lut16").unwrap().filtering.as_ref(),
+        Some(&lut)
+    );
 }
 
 #[test]
