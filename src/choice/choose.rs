@@ -50,16 +50,37 @@ impl Order {
     }
 }
 
-/// A user's constraints.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// A user's constraints, as `choose` takes them.
+#[derive(Clone, Debug, Default, PartialEq, clap::Args)]
 pub struct Query {
+    /// Total bits of the packed code.
+    #[arg(long, value_name = "N")]
     pub bits: Option<u32>,
+    /// A storage format the code or float form is written to, in any API's spelling:
+    /// rg8snorm, snorm16x2, VK_FORMAT_R16G16_UNORM, DXGI_FORMAT_R8G8_UNORM, bc5-rg-unorm.
+    #[arg(long, value_name = "F")]
     pub format: Option<String>,
+    /// The codec's domain.
+    #[arg(long, value_parser = ["sphere", "hemisphere"])]
     pub domain: Option<String>,
-    /// Filterable within this many degrees (99th percentile at the deciding separation).
+    /// Only specs whose float form survives linear filtering and four-sample resolves:
+    /// the 99th percentile of the filtering error at 5° apart at most DEG degrees.
+    #[arg(
+        long,
+        value_name = "DEG",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "1"
+    )]
     pub filterable: Option<f64>,
+    /// At most N ALU instructions in the packed encoder.
+    #[arg(long, value_name = "N")]
     pub max_encode_alu: Option<u32>,
+    /// At most N ALU instructions in the packed decoder.
+    #[arg(long, value_name = "N")]
     pub max_decode_alu: Option<u32>,
+    /// Only packed encoders that give the same code on every conformant GPU.
+    #[arg(long)]
     pub portable: bool,
 }
 

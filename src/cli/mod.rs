@@ -90,29 +90,8 @@ pub enum Command {
     /// names the constraint that emptied the list and what was left before it. Each row
     /// is followed by a line saying why the spec is there.
     Choose {
-        /// Total bits of the packed code.
-        #[arg(long, value_name = "N")]
-        bits: Option<u32>,
-        /// A storage format the code or float form is written to, in any API's spelling:
-        /// rg8snorm, snorm16x2, VK_FORMAT_R16G16_UNORM, DXGI_FORMAT_R8G8_UNORM, bc5-rg-unorm.
-        #[arg(long, value_name = "F")]
-        format: Option<String>,
-        /// The codec's domain.
-        #[arg(long, value_parser = ["sphere", "hemisphere"])]
-        domain: Option<String>,
-        /// Only specs whose float form survives linear filtering and four-sample resolves:
-        /// the 99th percentile of the filtering error at 5° apart at most DEG degrees.
-        #[arg(long, value_name = "DEG", num_args = 0..=1, require_equals = true, default_missing_value = "1")]
-        filterable: Option<f64>,
-        /// At most N ALU instructions in the packed encoder.
-        #[arg(long, value_name = "N")]
-        max_encode_alu: Option<u32>,
-        /// At most N ALU instructions in the packed decoder.
-        #[arg(long, value_name = "N")]
-        max_decode_alu: Option<u32>,
-        /// Only packed encoders that give the same code on every conformant GPU.
-        #[arg(long)]
-        portable: bool,
+        #[command(flatten)]
+        query: crate::choice::choose::Query,
         /// What to rank by, best first.
         #[arg(long, value_enum, default_value = "max")]
         by: crate::choice::choose::Order,
@@ -318,31 +297,16 @@ pub fn run(cli: Cli) -> Result<i32> {
             Ok(0)
         }
         Command::Choose {
-            bits,
-            format,
-            domain,
-            filterable,
-            max_encode_alu,
-            max_decode_alu,
-            portable,
+            query,
             by,
             json,
             limit,
         } => {
-            if let Some(d) = filterable
+            if let Some(d) = query.filterable
                 && !(d.is_finite() && d > 0.0)
             {
                 anyhow::bail!("--filterable takes a positive number of degrees, not {d}");
             }
-            let query = crate::choice::choose::Query {
-                bits,
-                format,
-                domain,
-                filterable,
-                max_encode_alu,
-                max_decode_alu,
-                portable,
-            };
             output::print(&choose::run(&query, by, json, limit)?)?;
             Ok(0)
         }

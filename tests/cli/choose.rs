@@ -197,6 +197,11 @@ fn an_impossible_request_names_the_constraint_that_empties_the_list() {
     assert!(err.contains("16 bits, sphere"), "says what was left: {err}");
     let err = fails(&["choose", "--format", "no-such-format"], "");
     assert!(err.contains("--format no-such-format"), "{err}");
+    // A filter bound must be a positive number of degrees.
+    for bad in ["--filterable=0", "--filterable=-1", "--filterable=nan"] {
+        let err = fails(&["choose", bad], "");
+        assert!(err.contains("positive number of degrees"), "{bad}: {err}");
+    }
 }
 
 #[test]
