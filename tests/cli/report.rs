@@ -7,17 +7,19 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-/// One report of the whole catalogue, written once for every test here.
+/// One report of the whole catalogue, written once for every test here, in the test
+/// binary's folder under `target/` (a temporary folder in a static is never removed).
 fn report() -> &'static Path {
-    static DIR: OnceLock<tempfile::TempDir> = OnceLock::new();
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
-        let dir = tempdir();
-        let out = dir.path().join("report");
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-test");
+        // The last run's report, if any: this test's own folder.
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = dir.join("report");
         let r = ok(&["report", "--out", out.to_str().unwrap()]);
         assert!(r.stdout.contains("index.html"), "{r:?}");
         dir
     })
-    .path()
 }
 
 fn page(rel: &str) -> String {
