@@ -508,8 +508,34 @@ impl<K> T<K> {
     }
 }
 
+/// Records one operation. Every traced operation of every codec comes here: kept out of
+/// line, a codec's traced body is a row of calls rather than this recording inlined at
+/// each operation, which made tracing most of the library's machine code and compile time.
+#[inline(never)]
+fn record(op: Op, args: &[Ref], kind: Kind) -> Ref {
+    with(|r| r.record(op, args.to_vec(), kind))
+}
+
 fn rec<K>(op: Op, args: &[Ref], kind: Kind) -> T<K> {
-    T::new(with(|r| r.record(op, args.to_vec(), kind)))
+    T::new(record(op, args, kind))
+}
+
+/// Records a literal of type `ty` ([`record`], for constants).
+#[inline(never)]
+fn constant(op: Op, ty: Ty) -> Ref {
+    with(|r| r.push(op, vec![], ty))
+}
+
+/// [`Lane::fuse`]'s recording, out of line as [`record`] is.
+#[inline(never)]
+fn fuse_refs(refs: &[Ref]) -> Vec<Ref> {
+    with(|r| r.fuse(refs))
+}
+
+/// [`Lane::named`]'s recording, out of line as [`record`] is.
+#[inline(never)]
+fn name_ref(at: Ref, name: &'static str) {
+    with(|r| r.name(at, name))
 }
 
 macro_rules! lane_impl {
@@ -517,28 +543,25 @@ macro_rules! lane_impl {
         impl Lane for T<$K> {
             const KIND: Kind = $kind;
             fn fuse<const L: usize>(lanes: [Self; L]) -> [Self; L] {
-                let refs: Vec<Ref> = lanes.iter().map(|t| t.0).collect();
-                let out = with(|r| r.fuse(&refs));
+                let out = fuse_refs(&lanes.map(|t| t.0));
                 std::array::from_fn(|i| T::new(out[i]))
             }
             fn named(self, name: &'static str) -> Self {
                 // A lane of a vector has no statement of its own to name.
                 if self.0.lane.is_none() {
-                    with(|r| r.name(self.0, name));
+                    name_ref(self.0, name);
                 }
                 self
             }
             fn named_lanes<const L: usize>(lanes: [Self; L], name: &'static str) -> [Self; L] {
                 let v = Self::fuse(lanes);
-                with(|r| {
-                    r.name(
-                        Ref {
-                            node: v[0].0.node,
-                            lane: None,
-                        },
-                        name,
-                    )
-                });
+                name_ref(
+                    Ref {
+                        node: v[0].0.node,
+                        lane: None,
+                    },
+                    name,
+                );
                 v
             }
         }
@@ -601,9 +624,7 @@ impl Uint for Tu {
     type F = Tf;
     type B = Tb;
     fn c(v: u32) -> Self {
-        T::new(with(|r| {
-            r.push(Op::ConstU(v), vec![], Ty::scalar(Kind::U32))
-        }))
+        T::new(constant(Op::ConstU(v), Ty::scalar(Kind::U32)))
     }
     fn shl(self, n: u32) -> Self {
         rec(Op::Shl(n), &[self.0], Kind::U32)
@@ -638,9 +659,7 @@ impl Float for Tf {
     type U = Tu;
     type B = Tb;
     fn c(v: f32) -> Self {
-        T::new(with(|r| {
-            r.push(Op::ConstF(v), vec![], Ty::scalar(Kind::F32))
-        }))
+        T::new(constant(Op::ConstF(v), Ty::scalar(Kind::F32)))
     }
     fn abs(self) -> Self {
         rec(Op::Un(UnOp::Abs), &[self.0], Kind::F32)
@@ -680,15 +699,20 @@ impl Float for Tf {
     }
     fn call<A: Value, R: Value>(name: &'static str, a: A, f: impl FnOnce(A) -> R) -> R {
         define(name, &[], f);
-        let args = a.refs();
-        let rty = R::tys();
-        assert_eq!(rty.len(), 1, "helpers return one value");
-        let r = with(|r| {
-            r.check_call(name, &args);
-            r.push(Op::Call(name.to_string()), args, rty[0])
-        });
+        let r = record_call(name, a.refs(), R::tys());
         R::from_refs(&mut std::iter::once(r))
     }
+}
+
+/// Records a call of the helper `name` on `args`, returning a value of type `rty`:
+/// [`Float::call`]'s recording, compiled once rather than per helper.
+#[inline(never)]
+fn record_call(name: &'static str, args: Vec<Ref>, rty: Vec<Ty>) -> Ref {
+    assert_eq!(rty.len(), 1, "helpers return one value");
+    with(|r| {
+        r.check_call(name, &args);
+        r.push(Op::Call(name.to_string()), args, rty[0])
+    })
 }
 
 macro_rules! value_vec {
@@ -726,7 +750,23 @@ value_vec!(V4, 4);
 
 /// Traces `f` into a function called `name` (once per module; later calls are no-ops).
 /// `param_names` name the parameters in order; missing names default to `a0`, `a1`, ...
+///
+/// Only the conversions between values and references are generic: every codec function
+/// and helper instantiates this once per closure, and the recording around it
+/// ([`begin_define`], [`end_define`]) is compiled once for all of them.
 pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOnce(A) -> R) {
+    let tys = A::tys();
+    let Some(param_refs) = begin_define(name, &tys) else {
+        return;
+    };
+    let out = f(A::from_refs(&mut param_refs.into_iter()));
+    end_define(name, param_names, tys, out.refs());
+}
+
+/// Opens the function `name` with parameters of types `tys`, returning their references;
+/// `None` when the module already has it (with the same parameter types).
+#[inline(never)]
+fn begin_define(name: &str, tys: &[Ty]) -> Option<Vec<Ref>> {
     let existing = with(|r| {
         r.module
             .func(name)
@@ -736,26 +776,12 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
         // Helpers are keyed by name: a second, different helper under the same name would
         // silently be replaced by the first.
         assert_eq!(
-            params,
-            A::tys(),
+            params, tys,
             "two different helpers are both called `{name}`"
         );
-        return;
+        return None;
     }
-    let tys = A::tys();
-    let params: Vec<(String, Ty)> = tys
-        .iter()
-        .enumerate()
-        .map(|(i, t)| {
-            (
-                param_names
-                    .get(i)
-                    .map_or_else(|| format!("a{i}"), |s| s.to_string()),
-                *t,
-            )
-        })
-        .collect();
-    let param_refs: Vec<Ref> = with(|r| {
+    Some(with(|r| {
         r.stack.push(Vec::new());
         r.scaled.push(vec![false; tys.len()]);
         r.memo_stack.push(std::mem::take(&mut r.memo));
@@ -763,11 +789,24 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
             .enumerate()
             .map(|(i, t)| r.push(Op::Param(i), vec![], *t))
             .collect()
-    });
-    let a = A::from_refs(&mut param_refs.into_iter());
-    let out = f(a);
-    let ret = out.refs();
+    }))
+}
+
+/// Closes the function [`begin_define`] opened, with parameters of types `tys`,
+/// returning `ret`.
+#[inline(never)]
+fn end_define(name: &str, param_names: &[&str], tys: Vec<Ty>, ret: Vec<Ref>) {
     assert_eq!(ret.len(), 1, "functions return one value");
+    let params = tys
+        .into_iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let name = param_names
+                .get(i)
+                .map_or_else(|| format!("a{i}"), |s| s.to_string());
+            (name, t)
+        })
+        .collect();
     with(|r| {
         let ret_ty = r.ty(ret[0]);
         let returns_scaled = r.is_scaled(ret[0]);

@@ -6,9 +6,12 @@
 //! `precise` forbids it. That is where a NaN test written as a float comparison was
 //! folded away (`docs/design/portability.md`), so both forms run here.
 //!
-//! A few contexts of one share group serve the threads of a run: a caller takes a free
-//! one, makes it current for one compile or run and releases it, so compiles proceed
-//! in parallel; programs are shared, and llvmpipe spreads each dispatch over the cores.
+//! A few independent contexts serve the threads of a run: a caller takes a free one to
+//! compile a program, so compiles proceed in parallel, and the program is run and deleted
+//! in that context only, and llvmpipe spreads each dispatch over the cores. Programs are not
+//! shared between contexts: with one share group, a program linked in one context and
+//! dispatched in another crashed some full verify runs on the 2-core machine (a SIGSEGV
+//! inside llvmpipe's `swrast_dri.so`, under `Gl::run_selected`).
 
 use anyhow::{Context as _, Result, anyhow, bail};
 use glow::HasContext;
@@ -33,7 +36,7 @@ struct State {
     gl: glow::Context,
 }
 
-/// OpenGL 4.3 core contexts of one share group, shared by the threads of a verify run.
+/// Independent OpenGL 4.3 core contexts, shared by the threads of a verify run.
 pub struct Gl {
     egl: Egl,
     display: egl::Display,
@@ -47,16 +50,20 @@ pub struct Gl {
 unsafe impl Send for Gl {}
 unsafe impl Sync for Gl {}
 
-/// A compiled selecting kernel: one program, its selector uniform.
+/// A compiled selecting kernel: one program, its selector uniform, and the context that
+/// owns it (the only one it is used in).
 pub struct Program {
     program: glow::Program,
     selector: Option<glow::UniformLocation>,
+    context: usize,
 }
 
 /// A context made current on this thread for as long as the guard lives.
 struct Current<'a> {
     gl: &'a Gl,
     state: std::sync::MutexGuard<'a, State>,
+    /// Which of [`Gl::states`] this is.
+    index: usize,
 }
 
 impl Drop for Current<'_> {
@@ -140,11 +147,8 @@ impl Gl {
         let mut states = Vec::new();
         let mut renderer = String::new();
         for _ in 0..contexts.max(1) {
-            let share = states
-                .first()
-                .map(|s: &Mutex<State>| s.lock().expect("not yet shared").context);
             let context = egl
-                .create_context(display, config, share, &attributes)
+                .create_context(display, config, None, &attributes)
                 .context(NO_GL)?;
             egl.make_current(display, None, None, Some(context))
                 .context(NO_GL)?;
@@ -184,15 +188,38 @@ impl Gl {
 
     /// A free context (or the first, once it is free) made current on this thread.
     fn current(&self) -> Result<Current<'_>> {
-        let poisoned = |_| anyhow!("an OpenGL call panicked on another thread");
-        let state = match self.states.iter().find_map(|m| m.try_lock().ok()) {
-            Some(s) => s,
-            None => self.states[0].lock().map_err(poisoned)?,
-        };
+        let free = self
+            .states
+            .iter()
+            .enumerate()
+            .find_map(|(i, m)| m.try_lock().ok().map(|s| (i, s)));
+        match free {
+            Some((index, state)) => self.make_current(index, state),
+            None => self.current_at(0),
+        }
+    }
+
+    /// Context `index`, once it is free, made current on this thread.
+    fn current_at(&self, index: usize) -> Result<Current<'_>> {
+        let state = self.states[index]
+            .lock()
+            .map_err(|_| anyhow!("an OpenGL call panicked on another thread"))?;
+        self.make_current(index, state)
+    }
+
+    fn make_current<'a>(
+        &'a self,
+        index: usize,
+        state: std::sync::MutexGuard<'a, State>,
+    ) -> Result<Current<'a>> {
         self.egl
             .make_current(self.display, None, None, Some(state.context))
             .context("making the OpenGL context current")?;
-        Ok(Current { gl: self, state })
+        Ok(Current {
+            gl: self,
+            state,
+            index,
+        })
     }
 
     /// Compiles and links a compute shader; the driver's log is the error.
@@ -223,7 +250,11 @@ impl Gl {
                 bail!("linking the kernel failed:\n{log}");
             }
             let selector = gl.get_uniform_location(program, selector);
-            Ok(Program { program, selector })
+            Ok(Program {
+                program,
+                selector,
+                context: cur.index,
+            })
         }
     }
 
@@ -244,7 +275,7 @@ impl Gl {
                 input.len()
             );
         }
-        let cur = self.current()?;
+        let cur = self.current_at(p.context)?;
         let gl = &cur.state.gl;
         let n = input.len() / in_words;
         // SAFETY: the context is current; buffers are sized before they are bound.
@@ -313,7 +344,7 @@ impl Gl {
 impl Program {
     /// Frees the program now (a run compiles one per spec and form).
     pub fn delete(self, gl: &Gl) -> Result<()> {
-        let cur = gl.current()?;
+        let cur = gl.current_at(self.context)?;
         // SAFETY: the context that made the program is current.
         unsafe { cur.state.gl.delete_program(self.program) };
         Ok(())
