@@ -307,31 +307,75 @@ where
         inputs,
         in_words: A::WORDS,
         out_words: R::WORDS,
-        eval: Arc::new(move |i, o| f(A::read(i)).write(o)),
-        eval_dev: Arc::new(move |i, o| f_dev(AD::read(i)).write(o)),
-        eval_lanes: Arc::new(move |i, o| in_groups::<F4, _, _, 4>(&f_lanes, i, o)),
-        eval_lanes8: Arc::new(move |i, o| {
-            assert!(
-                avx2_lanes::available(),
-                "{name}: the eight-lane evaluation needs a processor with AVX2"
-            );
-            // SAFETY: the processor has AVX2 (checked just above).
-            unsafe { on_avx2(&f_lanes8, i, o) }
-        }),
+        eval: per_item::eval(f),
+        eval_dev: per_item::eval(f_dev),
+        eval_lanes: four::eval(f_lanes),
+        eval_lanes8: eight::eval(name, f_lanes8),
         enclose: None,
         parts: Vec::new(),
     }
 }
 
-/// [`in_groups`] of `f` on eight lanes, compiled for AVX2: `f` and everything it calls
-/// inline here (the lane operations are `#[inline(always)]`), so the [`F8`] operations
-/// become AVX2 instructions rather than calls.
-///
-/// # Safety
-/// The processor must have AVX2.
-#[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
-unsafe fn on_avx2<A: Bits<Lanes8>, R: Bits<Lanes8>>(f: &impl Fn(A) -> R, i: &[u32], o: &mut [u32]) {
-    in_groups::<F8, _, _, WIDTH>(f, i, o)
+// The evaluations are built in modules of their own because rustc compiles a generic
+// function's instances, and its closures', in the codegen unit of the module that defines
+// it, and never splits a module's unit: built in `function` itself, every codec's
+// evaluations made one unit that kept the library's build on a single core for most of
+// its length. Apart, the units compile on every core.
+
+/// The per-item evaluations, `f32` and [`Dev`].
+mod per_item {
+    use super::*;
+
+    pub(super) fn eval<A: Bits + 'static, R: Bits + 'static>(
+        f: impl Fn(A) -> R + Send + Sync + 'static,
+    ) -> crate::codecs::core::function::Eval {
+        Arc::new(move |i, o| f(A::read(i)).write(o))
+    }
+}
+
+/// The four-lane evaluation.
+mod four {
+    use super::*;
+
+    pub(super) fn eval<A: Bits<Lanes> + 'static, R: Bits<Lanes> + 'static>(
+        f: impl Fn(A) -> R + Send + Sync + 'static,
+    ) -> crate::codecs::core::function::LanesEval {
+        Arc::new(move |i, o| in_groups::<F4, _, _, 4>(&f, i, o))
+    }
+}
+
+/// The eight-lane evaluation, compiled for AVX2.
+mod eight {
+    use super::*;
+
+    pub(super) fn eval<A: Bits<Lanes8> + 'static, R: Bits<Lanes8> + 'static>(
+        name: &'static str,
+        f: impl Fn(A) -> R + Send + Sync + 'static,
+    ) -> crate::codecs::core::function::LanesEval {
+        Arc::new(move |i, o| {
+            assert!(
+                avx2_lanes::available(),
+                "{name}: the eight-lane evaluation needs a processor with AVX2"
+            );
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { on_avx2(&f, i, o) }
+        })
+    }
+
+    /// [`in_groups`] of `f` on eight lanes, compiled for AVX2: `f` and everything it calls
+    /// inline here (the lane operations are `#[inline(always)]`), so the [`F8`] operations
+    /// become AVX2 instructions rather than calls.
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg_attr(target_arch = "x86_64", target_feature(enable = "avx2"))]
+    unsafe fn on_avx2<A: Bits<Lanes8>, R: Bits<Lanes8>>(
+        f: &impl Fn(A) -> R,
+        i: &[u32],
+        o: &mut [u32],
+    ) {
+        in_groups::<F8, _, _, WIDTH>(f, i, o)
+    }
 }
 
 /// `generic_function!(name, role, inputs, <F> [captures] |x: Type<F>| body)`: a [`Function`]
