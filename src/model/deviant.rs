@@ -674,7 +674,6 @@ fn sum(d: Deviation, a: Dev, b: Dev) -> Dev {
 
 impl Add for Dev {
     type Output = Dev;
-    #[inline(never)]
     fn add(self, o: Dev) -> Dev {
         site();
         let dev = deviation();
@@ -695,7 +694,6 @@ impl Add for Dev {
 /// product, so `c - a*b` may fuse as `fma(-a, b, c)`.
 impl Sub for Dev {
     type Output = Dev;
-    #[inline(never)]
     fn sub(self, o: Dev) -> Dev {
         self + -o
     }
@@ -703,7 +701,6 @@ impl Sub for Dev {
 
 impl Mul for Dev {
     type Output = Dev;
-    #[inline(never)]
     fn mul(self, o: Dev) -> Dev {
         site();
         let dev = deviation();
@@ -762,7 +759,6 @@ impl Div for Dev {
     /// Under `div`, a quotient within [`DIV_ULP`]; under `div` and `contract` together also
     /// `a · (1/b)`, the reciprocal multiply a driver divides with, remembered as a product
     /// that a following add or comparison may take whole.
-    #[inline(never)]
     fn div(self, o: Dev) -> Dev {
         site();
         if let Some(mode) = active(Class::Div) {
@@ -855,11 +851,6 @@ impl Dev {
     }
 }
 
-// The float operations of `Dev` that decide a deviation are kept out of line
-// (`#[inline(never)]`), here and in the arithmetic impls above: inlined into each codec's
-// adversarial evaluation, they made it one of the largest parts of the library's machine
-// code, compiled on a single core. Each is a whole deviation decision already, so the call
-// costs little beside it; the trivial ones (literals, integers, masks) stay inlinable.
 impl Float for Dev {
     type U = DevU;
     type B = DevB;
@@ -867,7 +858,6 @@ impl Float for Dev {
         Dev::new(v)
     }
     /// Exact, so kept wide under `excess`; a zero result may lose its sign under `zero`.
-    #[inline(never)]
     fn abs(self) -> Self {
         site();
         match self.ext {
@@ -881,7 +871,6 @@ impl Float for Dev {
             },
         }
     }
-    #[inline(never)]
     fn sqrt(self) -> Self {
         site();
         if let Some(mode) = active(Class::Sqrt) {
@@ -890,37 +879,29 @@ impl Float for Dev {
         }
         Dev::arith([self], |[a]| a.sqrt(), |[a]| a.sqrt())
     }
-    #[inline(never)]
     fn floor(self) -> Self {
         self.integral(f32::floor)
     }
-    #[inline(never)]
     fn round(self) -> Self {
         self.integral(f32::round_ties_even)
     }
-    #[inline(never)]
     fn lt(self, o: Self) -> DevB {
         self.compare(o, |a, b| a < b)
     }
-    #[inline(never)]
     fn le(self, o: Self) -> DevB {
         self.compare(o, |a, b| a <= b)
     }
-    #[inline(never)]
     fn gt(self, o: Self) -> DevB {
         self.compare(o, |a, b| a > b)
     }
-    #[inline(never)]
     fn ge(self, o: Self) -> DevB {
         self.compare(o, |a, b| a >= b)
     }
-    #[inline(never)]
     fn eq(self, o: Self) -> DevB {
         self.compare(o, |a, b| a == b)
     }
     /// The chosen value rounded (a select is where excess precision ends and where a
     /// product can no longer fuse); a zero may lose its sign under `zero`.
-    #[inline(never)]
     fn sel(m: DevB, t: Self, f: Self) -> Self {
         site();
         let r = if m.0 { t.x } else { f.x };
@@ -929,12 +910,10 @@ impl Float for Dev {
             None => Dev::new(r),
         }
     }
-    #[inline(never)]
     fn to_u(self) -> DevU {
         DevU(self.x as u32)
     }
     /// The stored bits: a bitcast is no arithmetic, so nothing deviates.
-    #[inline(never)]
     fn to_bits(self) -> DevU {
         DevU(self.x.to_bits())
     }
