@@ -510,7 +510,7 @@ impl<K> T<K> {
 
 /// Records one operation. Every traced operation of every codec comes here: kept out of
 /// line, a codec's traced body is a row of calls rather than this recording inlined at
-/// each operation, which made tracing most of the library's machine code and compile time.
+/// each operation (docs/design/speed.md, "What the build spends").
 #[inline(never)]
 fn record(op: Op, args: &[Ref], kind: Kind) -> Ref {
     with(|r| r.record(op, args.to_vec(), kind))
