@@ -47,18 +47,26 @@ fn unitpack_float16x3_decode(code: vec2<u32>) -> vec3<f32> {
     let t2 = code.x >> 16u;
     let t3 = code.y & 65535u;
     let t4 = vec3<u32>(t1, t2, t3) & vec3<u32>(32767u);
-    let t5 = vec3<u32>((t1 & 32767u) << 13u, (t2 & 32767u) << 13u, (t3 & 32767u) << 13u);
-    let t6 = select(
-        t5 | vec3<u32>(2139095040u),
-        select(
-            t5 + 939524096u,
-            bitcast<vec3<u32>>(vec3<f32>(t4) * 5.9604645e-8f),
-            t4 < vec3<u32>(1024u)
-        ),
-        t4 < vec3<u32>(31744u)
+    let t5 = t4 < vec3<u32>(31744u);
+    let t6 = t4 < vec3<u32>(1024u);
+    let t7 = bitcast<vec3<u32>>(vec3<f32>(t4) * 5.9604645e-8f);
+    let t8 = vec3<u32>((t1 & 32767u) << 13u, (t2 & 32767u) << 13u, (t3 & 32767u) << 13u);
+    let t9 = t8 + 939524096u;
+    let t10 = vec3<u32>(
+        select(t9.x, t7.x, t6.x),
+        select(t9.y, t7.y, t6.y),
+        select(t9.z, t7.z, t6.z)
     );
-    let t7 = vec3<u32>((t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u);
-    let params = bitcast<vec3<f32>>(t6 | t7);
+    let t11 = t8 | vec3<u32>(2139095040u);
+    let t12 = vec3<u32>((t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u);
+    let params = bitcast<vec3<f32>>(
+        vec3<u32>(
+            select(t11.x, t10.x, t5.x),
+            select(t11.y, t10.y, t5.y),
+            select(t11.z, t10.z, t5.z)
+        )
+            | t12
+    );
     return unitpack_float16x3_decode_float(params);
 }
 

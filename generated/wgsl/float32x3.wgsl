@@ -45,8 +45,13 @@ fn unitpack_float32x3_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack
 //   verify --portable prints it).
 fn unitpack_float32x3_decode(code: vec3<u32>) -> vec3<f32> {
+    let t1 = (code & vec3<u32>(2139095040u)) < vec3<u32>(1u);
     let params = bitcast<vec3<f32>>(
-        select(code, vec3<u32>(0u), (code & vec3<u32>(2139095040u)) < vec3<u32>(1u))
+        vec3<u32>(
+            select(code.x, (vec3<u32>(0u)).x, t1.x),
+            select(code.y, (vec3<u32>(0u)).y, t1.y),
+            select(code.z, (vec3<u32>(0u)).z, t1.z)
+        )
     );
     return unitpack_float32x3_decode_float(params);
 }
@@ -176,12 +181,31 @@ fn unitpack_float32x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let t19 = vec3<f32>(vec3<u32>(t6, t11, t16)) * 4096.0f
         + vec3<f32>((vec3<u32>(t4, t8, t13) + n2 + vec3<u32>(t5, t9, t14)) & vec3<u32>(4095u));
     let t20 = vec3<u32>(floor(t19 / (nf * vec3<f32>(2.0f))));
-    let t21 = vec3<u32>(round(vec3<f32>(t1) / nf * 16777216.0f))
-        + select(select(t20, t20 - 1u, vec3<bool>(negative, negative2, negative3)), t20 + 1u, t18);
-    let t22 = t21 - 8u;
-    let t23 = vec3<f32>(select(t22, vec3<u32>(16777216u), vec3<u32>(16777216u) < t22))
+    let t21 = t20 + 1u;
+    let t22 = vec3<bool>(negative, negative2, negative3);
+    let t23 = t20 - 1u;
+    let t24 = vec3<u32>(
+        select(t20.x, t23.x, t22.x),
+        select(t20.y, t23.y, t22.y),
+        select(t20.z, t23.z, t22.z)
+    );
+    let t25 = vec3<u32>(round(vec3<f32>(t1) / nf * 16777216.0f))
+        + vec3<u32>(
+            select(t24.x, t21.x, t18.x),
+            select(t24.y, t21.y, t18.y),
+            select(t24.z, t21.z, t18.z)
+        );
+    let t26 = t25 - 8u;
+    let t27 = vec3<u32>(16777216u) < t26;
+    let t28 = vec3<f32>(
+        vec3<u32>(
+            select(t26.x, (vec3<u32>(16777216u)).x, t27.x),
+            select(t26.y, (vec3<u32>(16777216u)).y, t27.y),
+            select(t26.z, (vec3<u32>(16777216u)).z, t27.z)
+        )
+    )
         * 5.9604645e-8f;
-    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t23, -t23, w2 < vec3<f32>(0.0f)), ok);
+    return select(vec3<f32>(0.0f, 0.0f, 1.0f), select(t28, -t28, w2 < vec3<f32>(0.0f)), ok);
 }
 
 // unitpack_float32x3_encode: fast encoder.
@@ -192,5 +216,10 @@ fn unitpack_float32x3_round_codes(a0: vec3<f32>) -> vec3<f32> {
 //   components count as zero.
 fn unitpack_float32x3_encode(v: vec3<f32>) -> vec3<u32> {
     let t1 = bitcast<vec3<u32>>(unitpack_float32x3_round_codes(v));
-    return select(t1, vec3<u32>(0u), (t1 & vec3<u32>(2139095040u)) < vec3<u32>(1u));
+    let t2 = (t1 & vec3<u32>(2139095040u)) < vec3<u32>(1u);
+    return vec3<u32>(
+        select(t1.x, (vec3<u32>(0u)).x, t2.x),
+        select(t1.y, (vec3<u32>(0u)).y, t2.y),
+        select(t1.z, (vec3<u32>(0u)).z, t2.z)
+    );
 }

@@ -236,13 +236,16 @@ pub fn spirv_float_ops_precise(words: &[u32]) -> anyhow::Result<()> {
 /// typing gate for emitted code, not a portability check: the kernels only use core features,
 /// and a capability error would hide the real diagnostics behind an unrelated one. (wgpu
 /// itself validates against the device's real capabilities when the shader is run.)
-fn validate(module: &naga::Module, language: &str, source: &str) -> anyhow::Result<()> {
+fn validate(
+    module: &naga::Module,
+    language: &str,
+    source: &str,
+) -> anyhow::Result<naga::valid::ModuleInfo> {
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::all(),
     )
     .validate(module)
-    .map(drop)
     .map_err(|e| {
         anyhow!(
             "naga {language} validation error:\n{}",
@@ -254,9 +257,71 @@ fn validate(module: &naga::Module, language: &str, source: &str) -> anyhow::Resu
 /// naga: parses and validates WGSL. The error is naga's rendered diagnostic, which quotes
 /// the source around the problem.
 pub fn naga_wgsl(source: &str) -> anyhow::Result<()> {
+    naga_wgsl_module(source).map(drop)
+}
+
+fn naga_wgsl_module(source: &str) -> anyhow::Result<(naga::Module, naga::valid::ModuleInfo)> {
     let module = naga::front::wgsl::parse_str(source)
         .map_err(|e| anyhow!("naga WGSL parse error:\n{}", e.emit_to_string(source)))?;
-    validate(&module, "WGSL", source)
+    let info = validate(&module, "WGSL", source)?;
+    Ok((module, info))
+}
+
+/// The GLSL versions [`naga_glsl_out`] has naga write: 4.30 and ES 3.10, the first with
+/// compute shaders and the oldest that naga's GLSL back end (wgpu's OpenGL and GLES
+/// backends) targets with them. Each lacks some built-ins later versions have, such as
+/// `mix` on integer or boolean vectors (GLSL 4.50).
+pub const NAGA_GLSL_VERSIONS: [naga::back::glsl::Version; 2] = [
+    naga::back::glsl::Version::Desktop(430),
+    naga::back::glsl::Version::Embedded {
+        version: 310,
+        is_webgl: false,
+    },
+];
+
+/// naga's GLSL back end on a WGSL include: the include, with an empty compute entry point,
+/// written by naga as each of [`NAGA_GLSL_VERSIONS`] with every function (not only those
+/// the entry point calls) and compiled by glslang, in one run. This is the GLSL a user of
+/// the WGSL include gets on wgpu's OpenGL backend; naga writes it without checking it.
+pub fn naga_glsl_out(include: &str) -> anyhow::Result<()> {
+    use naga::back::glsl;
+    let entry = "unitpack_include_check";
+    let source = format!("{include}\n@compute @workgroup_size(1)\nfn {entry}() {{}}\n");
+    let (module, info) = naga_wgsl_module(&source)?;
+    let pipeline = glsl::PipelineOptions {
+        shader_stage: naga::ShaderStage::Compute,
+        entry_point: entry.into(),
+        multiview: None,
+    };
+    let dir = tempfile::tempdir().context("creating a temporary directory")?;
+    let mut cmd = Command::new(GLSLANG);
+    cmd.args(["-S", "comp"]);
+    for version in NAGA_GLSL_VERSIONS {
+        let options = glsl::Options {
+            version,
+            writer_flags: glsl::WriterFlags::INCLUDE_UNUSED_ITEMS,
+            ..glsl::Options::default()
+        };
+        let mut text = String::new();
+        glsl::Writer::new(
+            &mut text,
+            &module,
+            &info,
+            &options,
+            &pipeline,
+            naga::proc::BoundsCheckPolicies::default(),
+        )
+        .and_then(|mut w| w.write())
+        .map_err(|e| anyhow!("naga's GLSL back end, {version}: {e}"))?;
+        // The file's name says which version a diagnostic is about.
+        let file = dir.path().join(format!(
+            "naga-glsl-{}.comp",
+            version.to_string().replace(' ', "-")
+        ));
+        std::fs::write(&file, text).context("writing naga's GLSL")?;
+        cmd.arg(file);
+    }
+    run_ok(&mut cmd, GLSLANG, "glslang-tools").map(drop)
 }
 
 /// naga: parses GLSL as a compute shader and validates it.
@@ -265,5 +330,5 @@ pub fn naga_glsl(source: &str) -> anyhow::Result<()> {
     let module = naga::front::glsl::Frontend::default()
         .parse(&options, source)
         .map_err(|e| anyhow!("naga GLSL parse error:\n{}", e.emit_to_string(source)))?;
-    validate(&module, "GLSL", source)
+    validate(&module, "GLSL", source).map(drop)
 }

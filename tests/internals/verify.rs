@@ -91,3 +91,39 @@ fn whole_include_checks_uncalled_functions() {
         }
     }
 }
+
+/// A `select` on integer vectors is valid WGSL, but naga writes it as GLSL's `mix(uvec3,
+/// uvec3, bvec3)`, which GLSL 4.30 lacks: the include's naga-GLSL check fails on it, naming
+/// the version, and passes once the select is lane by lane, as the WGSL back end writes it.
+#[test]
+fn naga_glsl_out_needs_lane_wise_integer_selects() {
+    let vector =
+        "fn f(a: vec3<u32>, m: vec3<bool>) -> vec3<u32> { return select(a, a + 1u, m); }\n";
+    let lanes = "fn f(a: vec3<u32>, m: vec3<bool>) -> vec3<u32> {\n    let b = a + 1u;\n    \
+                 return vec3<u32>(select(a.x, b.x, m.x), select(a.y, b.y, m.y), select(a.z, b.z, m.z));\n}\n";
+    let glsl_out = |source: &str| {
+        let checks = whole_include(Lang::Wgsl, source);
+        assert!(
+            checks[0].1.is_ok(),
+            "naga accepts the WGSL: {:?}",
+            checks[0].1
+        );
+        let (path, r) = checks
+            .into_iter()
+            .find(|(p, _)| p.contains("glsl-out"))
+            .expect("a naga GLSL check");
+        (path, r)
+    };
+    let (path, r) = glsl_out(vector);
+    let e = format!("{:#}", r.expect_err(&path));
+    assert!(e.contains("430") && e.contains("mix"), "{path}: {e}");
+    let (path, r) = glsl_out(lanes);
+    assert!(r.is_ok(), "{path}: {r:?}");
+    // The specs whose WGSL had integer vector selects.
+    for spec in ["float16x3", "float32x3", "spherical_lut16p"] {
+        let spec: Spec = spec.parse().expect("spec");
+        let include = render(&[(spec.clone(), None)], Lang::Wgsl, DEFAULT_PREFIX, "test");
+        let (path, r) = glsl_out(&include);
+        assert!(r.is_ok(), "{spec} {path}: {r:?}");
+    }
+}

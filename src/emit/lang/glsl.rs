@@ -160,18 +160,9 @@ impl Backend for Glsl {
         if ty.kind == Kind::F32 {
             return format!("mix({f}, {t}, {m})");
         }
-        let lane = |e: &str, i: usize| {
-            let c = ["x", "y", "z", "w"][i];
-            if e.chars().all(|ch| ch.is_ascii_alphanumeric() || ch == '_') {
-                format!("{e}.{c}")
-            } else {
-                format!("({e}).{c}")
-            }
-        };
-        let lanes: Vec<String> = (0..usize::from(ty.lanes))
-            .map(|i| format!("{} ? {} : {}", lane(m, i), lane(t, i), lane(f, i)))
-            .collect();
-        format!("{}({})", self.ty(ty), lanes.join(", "))
+        super::select_by_lane(&self.ty(ty), ty.lanes, [m, t, f], |[m, t, f]| {
+            format!("{m} ? {t} : {f}")
+        })
     }
     fn bitcast(&self, t: Ty, a: &str) -> String {
         match t.kind {

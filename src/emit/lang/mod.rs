@@ -131,6 +131,33 @@ pub type KernelFn<'a> = (&'a str, Vec<Ty>, Ty);
 /// every function's code under masks.
 pub const KERNEL_SELECT: &str = "unitpack_verify_select";
 
+/// A select of integer or boolean vectors as a vector of `T` built from one scalar select
+/// per lane: `T(sel(m.x, t.x, f.x), …)`, for GLSL before 4.50 and WGSL that naga writes as
+/// such GLSL, where a vector select takes float vectors alone. Each operand appears once per
+/// lane, so the printer names any that is not a name or a literal already.
+pub(crate) fn select_by_lane(
+    ty: &str,
+    lanes: u8,
+    operands: [&str; 3],
+    scalar: impl Fn([&str; 3]) -> String,
+) -> String {
+    let lane = |e: &str, i: usize| {
+        let c = ["x", "y", "z", "w"][i];
+        if e.chars().all(|ch| ch.is_ascii_alphanumeric() || ch == '_') {
+            format!("{e}.{c}")
+        } else {
+            format!("({e}).{c}")
+        }
+    };
+    let lanes: Vec<String> = (0..usize::from(lanes))
+        .map(|i| {
+            let [m, t, f] = operands.map(|e| lane(e, i));
+            scalar([&m, &t, &f])
+        })
+        .collect();
+    format!("{ty}({})", lanes.join(", "))
+}
+
 /// A selecting kernel's runners and the cases of its switch on [`KERNEL_SELECT`], one of
 /// each per function in order: `runner(name, function)` writes the runner `name`, which
 /// applies `function` to item `i`; `case(k, name)` the case that calls it.

@@ -32,11 +32,21 @@ impl Backend for Wgsl {
     fn float_suffix(&self) -> &'static str {
         "f"
     }
-    fn select(&self, _ty: Ty, _mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
-        format!(
-            "select({})",
-            self.arguments(&[f.to_string(), t.to_string(), m.to_string()])
-        )
+    /// `select` on integer or boolean vectors is lane by lane: naga writes a vector
+    /// `select` as GLSL's `mix`, which takes such vectors only from GLSL 4.50 and ES 3.10,
+    /// so the include would not compile as GLSL 4.30 on wgpu's OpenGL backend.
+    fn select(&self, ty: Ty, mask_is_vector: bool, m: &str, t: &str, f: &str) -> String {
+        let select = |[m, t, f]: [&str; 3]| {
+            format!(
+                "select({})",
+                self.arguments(&[f.to_string(), t.to_string(), m.to_string()])
+            )
+        };
+        if mask_is_vector && ty.kind != Kind::F32 {
+            super::select_by_lane(&self.ty(ty), ty.lanes, [m, t, f], select)
+        } else {
+            select([m, t, f])
+        }
     }
     /// WGSL's template-list discovery reads `f(a < b, c > d)` as `f(a<b, c>d)`, a template
     /// list (WGSL §3.9): an argument with a `<` at its top level is bracketed unless it is
