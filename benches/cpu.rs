@@ -8,14 +8,14 @@
 //! `meshopt_decodeFilterOct`, 8- and 16-bit components, through the `meshopt` crate),
 //! measured in the same run on the same vectors, as ratios (above 1: unitpack is faster). meshoptimizer decodes snorm integers to snorm integers in place with
 //! SIMD; unitpack's decode writes f32×3, more work, and the ratio is printed as it stands.
-//! Also the `encode`/`decode` stream filter (`unitpack::cli::transcode`) over in-memory
+//! Also the `encode`/`decode` stream filter (`unitpack::cli::filter`) over in-memory
 //! buffers, in its raw binary format and in text, to show what a pipeline gets end to end.
 //! Run: `cargo bench`.
 
 use std::hint::black_box;
 use std::time::Instant;
 use unitpack::api::{Batch, CpuCodec, Encoder, HemiOct, Oct};
-use unitpack::cli::{Direction, Format, transcode};
+use unitpack::cli::{Direction, Format, filter};
 use unitpack::codecs::{Codec, Spec};
 
 const N: usize = 1 << 20;
@@ -171,7 +171,7 @@ fn stream(name: &str, vs: &[[f32; 3]], format: Format) {
     let mut codes = Vec::new();
     let run = |dir: Direction, input: &[u8], out: &mut Vec<u8>| {
         out.clear();
-        let n = transcode(&spec, dir, format, format, &mut black_box(input), out).unwrap();
+        let n = filter(&spec, dir, format, format, &mut black_box(input), out).unwrap();
         assert_eq!(n as usize, N);
     };
     let enc = rate(|| run(Direction::Encode, &vectors, &mut codes));

@@ -361,3 +361,117 @@ impl Batch {
         self.decode.eval_many(codes, cast_slice_mut(out));
     }
 }
+
+/// Codes moved from one spec to another: decoded by `from`'s decoder and encoded by `to`'s
+/// encoder, as an asset pipeline moves normals between engines or formats. Each new code is
+/// decoded again to measure how far it lands from the vector the old one stood for (the
+/// error the move adds; the old code's own error is not known without the original
+/// vectors).
+///
+/// ```
+/// use unitpack::api::Transcoder;
+///
+/// let t = Transcoder::new("oct16", "oct24p").unwrap();
+/// let mut new = vec![0u32; 2 * t.to_words()];
+/// let error = t.transcode(&[0x0000, 0x7f7f], &mut new);
+/// assert_eq!(error.records, 2);
+/// assert!(error.max < 0.1);
+/// ```
+pub struct Transcoder {
+    from: Batch,
+    to: Batch,
+}
+
+impl Transcoder {
+    /// The move from spec `from` to spec `to`, both as the CLI takes them.
+    pub fn new(from: &str, to: &str) -> Result<Transcoder, SpecError> {
+        Ok(Transcoder {
+            from: Batch::new(from)?,
+            to: Batch::new(to)?,
+        })
+    }
+
+    /// 32-bit words per code read.
+    pub fn from_words(&self) -> usize {
+        self.from.words()
+    }
+
+    /// 32-bit words per code written.
+    pub fn to_words(&self) -> usize {
+        self.to.words()
+    }
+
+    /// Writes the new code of each of `codes` (`from_words()` words each) to `out`
+    /// (`to_words()` each), and returns the angle between each old code's vector and its
+    /// new code's, records numbered from 1.
+    pub fn transcode(&self, codes: &[u32], out: &mut [u32]) -> RoundTrip {
+        let n = codes.len() / self.from_words();
+        let mut vectors = vec![[0f32; 3]; n];
+        self.from.decode(codes, &mut vectors);
+        self.to.encode(&vectors, out);
+        let mut back = vec![[0f32; 3]; n];
+        self.to.decode(out, &mut back);
+        vectors
+            .iter()
+            .zip(&back)
+            .fold(RoundTrip::default(), |r, (a, b)| r.with(*a, *b))
+    }
+}
+
+/// The angles between vectors and their round trips through another code, in degrees:
+/// their count, sum and largest, and the record (from 1) where the largest is. A vector of
+/// zero length, whose angle is undefined, counts as 180°.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RoundTrip {
+    pub records: u64,
+    pub sum: f64,
+    pub max: f64,
+    pub max_at: u64,
+}
+
+impl RoundTrip {
+    /// The mean angle (0 for no records).
+    pub fn mean(&self) -> f64 {
+        if self.records == 0 {
+            0.0
+        } else {
+            self.sum / self.records as f64
+        }
+    }
+
+    /// One more record: the vector `a` and its round trip `b`.
+    pub fn with(self, a: [f32; 3], b: [f32; 3]) -> RoundTrip {
+        let angle = crate::quality::angle_deg(a, b);
+        let angle = if angle.is_nan() { 180.0 } else { angle };
+        let records = self.records + 1;
+        let (max, max_at) = if records == 1 || angle > self.max {
+            (angle, records)
+        } else {
+            (self.max, self.max_at)
+        };
+        RoundTrip {
+            records,
+            sum: self.sum + angle,
+            max,
+            max_at,
+        }
+    }
+
+    /// `self`'s records followed by `later`'s, renumbered after them.
+    pub fn then(self, later: RoundTrip) -> RoundTrip {
+        if later.records > 0 && (self.records == 0 || later.max > self.max) {
+            RoundTrip {
+                records: self.records + later.records,
+                sum: self.sum + later.sum,
+                max: later.max,
+                max_at: self.records + later.max_at,
+            }
+        } else {
+            RoundTrip {
+                records: self.records + later.records,
+                sum: self.sum + later.sum,
+                ..self
+            }
+        }
+    }
+}

@@ -2,8 +2,8 @@
 
 use unitpack::api::{
     Batch, CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
-    Paraboloid, ParaboloidSquare, Snorm3, SphericalZ, StereoScaled, Unorm3, Width, XySignZ,
-    XyStereo, combine_paraboloid_pd,
+    Paraboloid, ParaboloidSquare, RoundTrip, Snorm3, SphericalZ, StereoScaled, Transcoder, Unorm3,
+    Width, XySignZ, XyStereo, combine_paraboloid_pd,
 };
 use unitpack::quality::angle_deg;
 use unitpack::sampling::random_unit_vectors;
@@ -621,4 +621,74 @@ fn unorm3_is_an_rgb8_texel() {
     let v = c.decode(0);
     let third = -1.0 / 3f32.sqrt();
     assert!(v.iter().all(|x| (x - third).abs() < 1e-6), "{v:?}");
+}
+
+/// Every catalogue codec transcodes to and from `oct24p`: the codes written are the
+/// batches' decode then encode, and the reported angles are those between the two
+/// decodes, computed here.
+#[test]
+fn transcoding_is_decode_then_encode_for_every_spec() {
+    let hub = Batch::new("oct24p").unwrap();
+    let vectors = random_unit_vectors(7, 64, true);
+    for spec in unitpack::codecs::Spec::all() {
+        let name = spec.to_string();
+        if spec.info().domain.is_none() {
+            // A packing helper has no decoder to read its codes with.
+            assert!(Transcoder::new(&name, "oct24p").is_err(), "{name}");
+            continue;
+        }
+        let batch = Batch::new(&name).unwrap();
+        for (from, to, f, t) in [
+            (&batch, &hub, name.as_str(), "oct24p"),
+            (&hub, &batch, "oct24p", name.as_str()),
+        ] {
+            let mut codes = vec![0u32; vectors.len() * from.words()];
+            from.encode(&vectors, &mut codes);
+            let tc = Transcoder::new(f, t).unwrap();
+            assert_eq!((tc.from_words(), tc.to_words()), (from.words(), to.words()));
+            let mut got = vec![0u32; vectors.len() * to.words()];
+            let r = tc.transcode(&codes, &mut got);
+            let mut v = vec![[0f32; 3]; vectors.len()];
+            from.decode(&codes, &mut v);
+            let mut want = vec![0u32; got.len()];
+            to.encode(&v, &mut want);
+            assert_eq!(got, want, "{f} -> {t}");
+            let mut back = vec![[0f32; 3]; vectors.len()];
+            to.decode(&got, &mut back);
+            let angles: Vec<f64> = v
+                .iter()
+                .zip(&back)
+                .map(|(a, b)| angle_deg(*a, *b))
+                .collect();
+            let max = angles.iter().cloned().fold(0.0, f64::max);
+            assert_eq!(r.records, vectors.len() as u64, "{f} -> {t}");
+            assert_eq!(r.max.to_bits(), max.to_bits(), "{f} -> {t}");
+            assert_eq!(angles[r.max_at as usize - 1].to_bits(), max.to_bits());
+            assert!(
+                (r.sum - angles.iter().sum::<f64>()).abs() < 1e-9,
+                "{f} -> {t}"
+            );
+        }
+    }
+}
+
+/// Round trips measured in pieces add up to the whole: counts and sums add, the largest
+/// keeps its record number counted from the first piece.
+#[test]
+fn round_trips_concatenate() {
+    let (z, x) = ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let a = RoundTrip::default().with(z, z).with(z, x);
+    assert_eq!((a.records, a.max, a.max_at), (2, 90.0, 2));
+    let b = RoundTrip::default().with(x, x).with(z, [0.0, 0.0, -1.0]);
+    let ab = a.then(b);
+    assert_eq!((ab.records, ab.max, ab.max_at), (4, 180.0, 4));
+    assert_eq!(ab.sum, 270.0);
+    assert_eq!(ab.mean(), 67.5);
+    let ba = b.then(a);
+    assert_eq!((ba.max, ba.max_at), (180.0, 2));
+    assert_eq!(RoundTrip::default().then(a), a);
+    assert_eq!(a.then(RoundTrip::default()), a);
+    // A zero vector's angle is undefined: it counts as the largest there is.
+    let zero = RoundTrip::default().with([0.0; 3], z);
+    assert_eq!(zero.max, 180.0);
 }

@@ -20,11 +20,12 @@ pub mod runtime_dir;
 mod stream;
 mod verify;
 
+use crate::api::RoundTrip;
 use crate::codecs::Spec;
 use crate::emit::{DEFAULT_PREFIX, Lang, validate_prefix};
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use std::io::{BufReader, Write};
+use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
 
 pub use crate::atomic::{AtomicFile, write_atomic, write_atomic_with};
@@ -32,7 +33,7 @@ pub use generate::{generate, generate_with};
 pub use include::gen_text;
 pub use list::{GRAMMAR, list_json, list_text};
 pub use manifest::{HEADER, MANIFEST};
-pub use stream::{Direction, Format, MAX_LINE, transcode};
+pub use stream::{Direction, Format, MAX_LINE, filter, transcode};
 
 /// Help of every SPEC argument: the grammar (src/codecs/spec.rs) with examples.
 const SPEC_HELP: &str = "A codec spec: NAME[BITS][p][:key=value,...]. BITS is the total \
@@ -222,6 +223,19 @@ pub enum Command {
     /// Decode codes read from stdin to vectors, one output line (or record) per input.
     #[command(after_help = STREAM_FORMATS)]
     Decode(StreamArgs),
+    /// Move codes read from stdin to another spec: each decoded by --from and encoded by
+    /// --to, one output line (or record) per input; the angle each vector moved is
+    /// summed up on stderr.
+    #[command(after_help = STREAM_FORMATS)]
+    Transcode {
+        #[arg(long, value_name = "SPEC", help = format!("The spec of the codes read. {SPEC_HELP}"))]
+        from: String,
+        /// The spec of the codes written, in the same grammar.
+        #[arg(long, value_name = "SPEC")]
+        to: String,
+        #[command(flatten)]
+        io: StreamIo,
+    },
     /// Prove emitted code bit-exact: static checks (naga, glslang, spirv-val) and
     /// execution on the Vulkan CPU adapter (lavapipe) through naga, glslang and Slang, on
     /// the OpenGL driver and through the C compilers, compared as raw bits with the model.
@@ -265,6 +279,13 @@ pub enum Command {
 pub struct StreamArgs {
     #[arg(value_name = "SPEC", help = SPEC_HELP)]
     pub spec: String,
+    #[command(flatten)]
+    pub io: StreamIo,
+}
+
+/// Where a stream verb reads and writes, and in which format.
+#[derive(clap::Args)]
+pub struct StreamIo {
     /// Format of input and output (see below).
     #[arg(long, value_enum, default_value = "text")]
     pub format: Format,
@@ -373,8 +394,41 @@ pub fn run(cli: Cli) -> Result<i32> {
             convert::run(&input, &output, dir, force)?;
             Ok(0)
         }
-        Command::Encode(a) => run_stream(&a, Direction::Encode),
-        Command::Decode(a) => run_stream(&a, Direction::Decode),
+        Command::Encode(a) => {
+            let spec = a.spec.parse()?;
+            run_stream(&a.io, |i, o, f| {
+                filter(&spec, Direction::Encode, f.0, f.1, i, o).map(drop)
+            })
+        }
+        Command::Decode(a) => {
+            let spec = a.spec.parse()?;
+            run_stream(&a.io, |i, o, f| {
+                filter(&spec, Direction::Decode, f.0, f.1, i, o).map(drop)
+            })
+        }
+        Command::Transcode { from, to, io } => {
+            let specs: (Spec, Spec) = (from.parse()?, to.parse()?);
+            let mut error = RoundTrip::default();
+            run_stream(&io, |i, o, f| {
+                error = transcode((&specs.0, &specs.1), f.0, f.1, i, o)?;
+                Ok(())
+            })?;
+            if error.records == 0 {
+                eprintln!("no codes moved from {} to {}", specs.0, specs.1);
+            } else {
+                eprintln!(
+                    "{} codes moved from {} to {}: each vector moved by {:.6}° on average, \
+                     at most {:.6}° (record {})",
+                    error.records,
+                    specs.0,
+                    specs.1,
+                    error.mean(),
+                    error.max,
+                    error.max_at
+                );
+            }
+            Ok(0)
+        }
         Command::Verify {
             specs,
             lang,
@@ -425,24 +479,29 @@ fn with_figure_cache(verb: impl FnOnce() -> Result<i32>) -> Result<i32> {
     result
 }
 
-/// `encode`/`decode`: stdin to stdout or to an atomically replaced file.
-fn run_stream(a: &StreamArgs, dir: Direction) -> Result<i32> {
-    let spec: Spec = a.spec.parse()?;
-    let from = a.input_format.unwrap_or(a.format);
-    let to = a.output_format.unwrap_or(a.format);
+/// `encode`/`decode`/`transcode`: stdin to stdout or to an atomically replaced file,
+/// through `run(input, output, (input format, output format))`.
+fn run_stream(
+    a: &StreamIo,
+    mut run: impl FnMut(&mut dyn BufRead, &mut dyn Write, (Format, Format)) -> Result<()>,
+) -> Result<i32> {
+    let formats = (
+        a.input_format.unwrap_or(a.format),
+        a.output_format.unwrap_or(a.format),
+    );
     let stdin = std::io::stdin();
     let mut input = BufReader::with_capacity(64 * 1024, stdin.lock());
     // `--out -` is standard output, as no --out is.
     match a.out.as_deref().filter(|p| !output::is_stdout(p)) {
         Some(path) => {
             let mut file = AtomicFile::create(path, a.force)?;
-            transcode(&spec, dir, from, to, &mut input, &mut file)
+            run(&mut input, &mut file, formats)
                 .map_err(|e| name_output(e, &path.display().to_string()))?;
             file.commit()?;
         }
         None => {
             let mut out = output::stdout();
-            let result = transcode(&spec, dir, from, to, &mut input, &mut out);
+            let result = run(&mut input, &mut out, formats);
             // The output for the lines before a bad one is written either way, as the
             // help says.
             let flushed = out.flush();

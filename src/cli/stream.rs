@@ -1,5 +1,6 @@
-//! `encode` and `decode`: the CPU codec as a stream filter, in bounded memory whatever the
-//! input size (one line, or one block of records, at a time).
+//! `encode`, `decode` and `transcode`: the CPU codec as a stream filter, in bounded memory
+//! whatever the input size (one line, or one block of records, at a time). `transcode`
+//! reads one spec's codes as `decode` does and writes another's as `encode` does.
 //!
 //! Text input: output line N answers input line N. Blank lines and lines whose first
 //! non-blank character is `#` are copied unchanged (with binary output they produce no
@@ -14,6 +15,7 @@
 //! has been written (to stdout) or is discarded (`--out`, see [`crate::atomic`]).
 
 use super::grammar::{self, LineError, quote};
+use crate::api::{RoundTrip, Transcoder};
 use crate::codecs::Spec;
 use crate::codecs::core::function::{Function, Inputs, Role};
 use crate::codecs::toolkit::quant::code_width;
@@ -102,10 +104,54 @@ impl Codec {
             Direction::Decode => self.code_bytes(),
         }
     }
+}
 
-    /// Encodes a vector or decodes a code; `out` receives 3 floats or the code's words.
-    fn eval(&self, input: &[u32], out: &mut [u32]) {
-        (self.f.eval)(input, out);
+/// What a stream computes: how its records are read, how its results are written, and
+/// the computation between.
+trait Records {
+    /// The codec whose input the stream reads: vectors to encode, or codes of its width.
+    fn reads(&self) -> &Codec;
+    /// The codec whose output the stream writes.
+    fn writes(&self) -> &Codec;
+    /// `input`'s records into `out`, one at a time (text) or a `block` on SIMD lanes (the
+    /// same bits).
+    fn compute(&mut self, input: &[u32], out: &mut [u32], block: bool);
+}
+
+impl Records for Codec {
+    fn reads(&self) -> &Codec {
+        self
+    }
+    fn writes(&self) -> &Codec {
+        self
+    }
+    fn compute(&mut self, input: &[u32], out: &mut [u32], block: bool) {
+        if block {
+            self.f.eval_many(input, out);
+        } else {
+            (self.f.eval)(input, out);
+        }
+    }
+}
+
+/// `transcode`: one spec's codes decoded and encoded as another's, each round trip
+/// measured ([`Transcoder`]).
+struct Transcoding {
+    from: Codec,
+    to: Codec,
+    t: Transcoder,
+    error: RoundTrip,
+}
+
+impl Records for Transcoding {
+    fn reads(&self) -> &Codec {
+        &self.from
+    }
+    fn writes(&self) -> &Codec {
+        &self.to
+    }
+    fn compute(&mut self, input: &[u32], out: &mut [u32], _block: bool) {
+        self.error = self.error.then(self.t.transcode(input, out));
     }
 }
 
@@ -147,7 +193,7 @@ fn put(c: &Codec, res: &[u32], to: Format, out: &mut dyn Write) -> std::io::Resu
 
 /// Runs `spec`'s encoder or decoder from `input` to `output`; returns the records done.
 /// A failed write is a `WriteError`.
-pub fn transcode(
+pub fn filter(
     spec: &Spec,
     dir: Direction,
     from: Format,
@@ -155,10 +201,40 @@ pub fn transcode(
     input: &mut dyn BufRead,
     output: &mut dyn Write,
 ) -> Result<u64> {
-    let c = Codec::new(spec, dir)?;
+    let mut c = Codec::new(spec, dir)?;
+    run(&mut c, from, to, input, output)
+}
+
+/// Reads codes of `from_spec` from `input` and writes those of `to_spec` for the same
+/// vectors to `output`; returns the round trips' error ([`RoundTrip`]). A failed write is
+/// a `WriteError`.
+pub fn transcode(
+    (from_spec, to_spec): (&Spec, &Spec),
+    from: Format,
+    to: Format,
+    input: &mut dyn BufRead,
+    output: &mut dyn Write,
+) -> Result<RoundTrip> {
+    let mut t = Transcoding {
+        from: Codec::new(from_spec, Direction::Decode)?,
+        to: Codec::new(to_spec, Direction::Encode)?,
+        t: Transcoder::new(&from_spec.to_string(), &to_spec.to_string())?,
+        error: RoundTrip::default(),
+    };
+    run(&mut t, from, to, input, output)?;
+    Ok(t.error)
+}
+
+fn run(
+    r: &mut dyn Records,
+    from: Format,
+    to: Format,
+    input: &mut dyn BufRead,
+    output: &mut dyn Write,
+) -> Result<u64> {
     match from {
-        Format::Text => text_in(&c, to, input, output),
-        Format::Binary => binary_in(&c, to, input, output),
+        Format::Text => text_in(r, to, input, output),
+        Format::Binary => binary_in(r, to, input, output),
     }
 }
 
@@ -176,7 +252,13 @@ fn read_err(e: std::io::Error) -> anyhow::Error {
     anyhow::Error::new(e).context("cannot read the input")
 }
 
-fn text_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) -> Result<u64> {
+fn text_in(
+    r: &mut dyn Records,
+    to: Format,
+    input: &mut dyn BufRead,
+    out: &mut dyn Write,
+) -> Result<u64> {
+    let (iw, ow) = (r.reads().f.in_words, r.writes().f.out_words);
     let mut buf = Vec::with_capacity(256);
     let mut res = [0u32; 3];
     let (mut n, mut done) = (0u64, 0u64);
@@ -218,6 +300,7 @@ fn text_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) 
             }
             continue;
         }
+        let c = r.reads();
         let bad = |e: LineError| match e {
             LineError::TooWide { bits } => anyhow::anyhow!(
                 "line {n}: {} has bits set above {}'s width of {bits} bits (largest code 0x{:x})",
@@ -234,8 +317,8 @@ fn text_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) 
                 [0, 32, 64].map(|sh| (v >> sh) as u32)
             }
         };
-        c.eval(&words, &mut res);
-        put(c, &res, to, out).map_err(write_err)?;
+        r.compute(&words[..iw], &mut res[..ow], false);
+        put(r.writes(), &res, to, out).map_err(write_err)?;
         done += 1;
     }
     Ok(done)
@@ -255,17 +338,24 @@ fn fill(input: &mut dyn Read, buf: &mut [u8]) -> Result<usize> {
     Ok(got)
 }
 
-fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write) -> Result<u64> {
+fn binary_in(
+    r: &mut dyn Records,
+    to: Format,
+    input: &mut dyn BufRead,
+    out: &mut dyn Write,
+) -> Result<u64> {
+    let c = r.reads();
     let size = c.in_bytes();
-    let (iw, ow) = (c.f.in_words, c.f.out_words);
+    let (iw, ow) = (c.f.in_words, r.writes().f.out_words);
+    let (bits, name, dir, code_words) = (c.bits, c.name.clone(), c.dir, c.code_words);
     let mut block = vec![0u8; size * BLOCK];
     let mut results = vec![0u32; ow * BLOCK];
     let mut words = Vec::with_capacity(3 * BLOCK);
     let mut done = 0u64;
-    let noun = match c.dir {
+    let noun = match dir {
         Direction::Encode => "a vector is 12 bytes, 3×f32",
-        Direction::Decode if c.code_words == 1 => "a code is 4 bytes, u32",
-        Direction::Decode if c.code_words == 2 => "a code is 8 bytes, u64",
+        Direction::Decode if code_words == 1 => "a code is 4 bytes, u32",
+        Direction::Decode if code_words == 2 => "a code is 8 bytes, u64",
         Direction::Decode => "a code is 12 bytes, 3×u32",
     };
     loop {
@@ -278,9 +368,9 @@ fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write
         // Every record before the first bad one is written, then the error names it.
         let too_wide = |i: usize| {
             let w: [u32; 3] = std::array::from_fn(|j| if j < iw { word(i, j) } else { 0 });
-            Some(code_value(&w[..iw])).filter(|v| *v > grammar::max_code(c.bits))
+            Some(code_value(&w[..iw])).filter(|v| *v > grammar::max_code(bits))
         };
-        let bad = match c.dir {
+        let bad = match dir {
             Direction::Decode => (0..records).find_map(|i| too_wide(i).map(|v| (i, v))),
             Direction::Encode => None,
         };
@@ -289,18 +379,18 @@ fn binary_in(c: &Codec, to: Format, input: &mut dyn BufRead, out: &mut dyn Write
         // a time.
         words.clear();
         words.extend((0..good * iw).map(|k| word(k / iw, k % iw)));
-        c.f.eval_many(&words, &mut results[..good * ow]);
+        r.compute(&words, &mut results[..good * ow], true);
         for res in results[..good * ow].chunks_exact(ow) {
-            put(c, res, to, out).map_err(write_err)?;
+            put(r.writes(), res, to, out).map_err(write_err)?;
         }
         done += good as u64;
         if let Some((_, v)) = bad {
             bail!(
                 "record {}: code 0x{v:x} has bits set above {}'s width of {} bits (largest code 0x{:x})",
                 done + 1,
-                c.name,
-                c.bits,
-                grammar::max_code(c.bits)
+                name,
+                bits,
+                grammar::max_code(bits)
             );
         }
         if got % size != 0 {

@@ -100,7 +100,7 @@ fn usage_errors_exit_2() {
 
 #[test]
 fn every_spec_argument_documents_the_grammar() {
-    for verb in ["gen", "encode", "decode", "verify"] {
+    for verb in ["gen", "encode", "decode", "transcode", "verify"] {
         let r = ok(&[verb, "--help"]);
         for s in [
             "NAME[BITS][p][:key=value,...]",
@@ -111,7 +111,7 @@ fn every_spec_argument_documents_the_grammar() {
             assert!(r.stdout.contains(s), "`{verb} --help` lacks {s:?}: {r:?}");
         }
     }
-    for verb in ["encode", "decode"] {
+    for verb in ["encode", "decode", "transcode"] {
         let r = ok(&[verb, "--help"]);
         for s in [
             "x y z",

@@ -15,4 +15,5 @@ mod report;
 mod spec;
 mod stdout;
 mod stream;
+mod transcode;
 mod verify;
