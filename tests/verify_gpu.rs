@@ -241,6 +241,7 @@ fn every_include_is_checked_whole(report: &unitpack::verify::Report) {
             paths,
             [
                 "wgsl/naga",
+                "wgsl/naga glsl-out",
                 "glsl 330/glslang",
                 "glsl es 300/glslang",
                 "hlsl/glslang"

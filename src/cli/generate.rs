@@ -1,5 +1,6 @@
-//! `generate`: the whole catalogue as `DIR/<lang>/<id>.<lang>`, the lookup tables some
-//! specs read as `DIR/lut/<stem>.png` and `.bin`, plus the manifest that lets a later run
+//! `generate`: the whole catalogue as `DIR/<lang>/<id>.<lang>` and as WESL modules
+//! `DIR/wesl/<id>.wesl`, the lookup tables some specs read as `DIR/lut/<stem>.png` and
+//! `.bin`, plus the manifest that lets a later run
 //! prune only what it wrote (see [`super::manifest`]; a table is known by the hash the
 //! manifest records for it, having no header).
 //!
@@ -17,7 +18,7 @@ use super::output;
 use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
 use crate::codecs::core::spec::{Table, TableFormat};
-use crate::emit::{DEFAULT_PREFIX, Lang, render};
+use crate::emit::{DEFAULT_PREFIX, Lang, render, render_wesl};
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeSet;
@@ -26,7 +27,12 @@ use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// Every generated file: relative path → contents. The includes, and the lookup tables
+/// The folder of the WESL modules: a WESL package's `unitpack/` (or a crate's shader
+/// root), where `oct16.wesl` is the module `unitpack::oct16`.
+pub const WESL: &str = "wesl";
+
+/// Every generated file: relative path → contents. The includes, the WESL modules, and
+/// the lookup tables
 /// of the specs that read one (`lut/<stem>.png`, and the same texels as raw bytes in
 /// `lut/<stem>.bin`).
 fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
@@ -53,6 +59,14 @@ fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
                 text.into_bytes(),
             ));
         }
+    }
+    // The WGSL includes again as WESL modules, imported as `unitpack::<stem>`.
+    for (spec, st) in specs.iter().zip(&stats) {
+        let text = render_wesl(spec, *st, "unitpack generate");
+        files.push((
+            PathBuf::from(WESL).join(format!("{}.wesl", spec.id())),
+            text.into_bytes(),
+        ));
     }
     // A precise spec reads its fast spec's tables: each file is written once.
     let mut stems = std::collections::HashSet::new();
@@ -138,7 +152,10 @@ fn plan(out: &Path, progress: &Progress) -> Result<Plan> {
         .with_context(|| format!("cannot read {}", out.join(MANIFEST).display()))?;
     let mut prune = Vec::new();
     let mut kept = Vec::new();
-    let folders = Lang::ALL.iter().map(|l| l.name()).chain([manifest::TABLES]);
+    let folders = Lang::ALL
+        .iter()
+        .map(|l| l.name())
+        .chain([WESL, manifest::TABLES]);
     for folder in folders {
         let dir = out.join(folder);
         let rd = match std::fs::read_dir(&dir) {

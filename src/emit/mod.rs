@@ -107,16 +107,18 @@ pub struct SpecView {
     pub functions: Vec<FnView>,
 }
 
-/// One spec's functions in `lang`, named `{prefix}{namespace}_{name}`.
+/// One spec's functions in `lang`, named `{prefix}{namespace}_{name}`, or by their own
+/// names alone where not `namespaced` (a WESL module, whose path names the spec).
 pub fn spec_view(
     spec: &Spec,
     lang: Lang,
     backend: &dyn Backend,
     prefix: &str,
     stats: Option<ErrorStats>,
+    namespaced: bool,
 ) -> SpecView {
     let e = spec.emitted();
-    let ns = if e.namespace.is_empty() {
+    let ns = if e.namespace.is_empty() || !namespaced {
         String::new()
     } else {
         format!("{}_", e.namespace)
@@ -186,7 +188,7 @@ pub fn render_with(
     let backend = lang.backend(prefix);
     let mut views: Vec<SpecView> = specs
         .iter()
-        .map(|(s, st)| spec_view(s, lang, backend.as_ref(), prefix, *st))
+        .map(|(s, st)| spec_view(s, lang, backend.as_ref(), prefix, *st, true))
         .collect();
     refer_back(&mut views);
     let functions = || views.iter().flat_map(|v| &v.functions);
@@ -201,6 +203,43 @@ pub fn render_with(
             header: &header,
             prefix,
             import_path,
+        },
+    );
+    if !s.ends_with('\n') {
+        s.push('\n');
+    }
+    layout::wrap(&s)
+}
+
+/// One spec's WGSL include as a WESL module (`unitpack/oct16.wesl`, imported as
+/// `unitpack::oct16`): the same functions, text and comments, each named by its own name
+/// alone (`encode`, `decode_float`), since the module path names the spec and WESL's
+/// linker gives every imported declaration a name of its own.
+pub fn render_wesl(spec: &Spec, stats: Option<ErrorStats>, command: &str) -> String {
+    let backend = Lang::Wgsl.backend("");
+    let mut views = vec![spec_view(
+        spec,
+        Lang::Wgsl,
+        backend.as_ref(),
+        "",
+        stats,
+        false,
+    )];
+    refer_back(&mut views);
+    let header = docs::file_header(
+        command,
+        views[0]
+            .functions
+            .iter()
+            .any(|f| f.doc.iter().any(|d| d.starts_with("Portable"))),
+        stats.is_some(),
+    );
+    let mut s = backend.render(
+        &views,
+        &FileOptions {
+            header: &header,
+            prefix: "",
+            import_path: None,
         },
     );
     if !s.ends_with('\n') {

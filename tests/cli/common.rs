@@ -215,6 +215,7 @@ pub fn expected_files() -> BTreeSet<PathBuf> {
         }
     }
     for spec in Spec::all() {
+        s.insert(PathBuf::from("wesl").join(format!("{}.wesl", spec.id())));
         for t in spec.family().tables(&spec) {
             // A texture is written as a PNG too; an integer table as raw words only.
             let exts: &[&str] = match t.format {

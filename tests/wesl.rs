@@ -1,0 +1,254 @@
+//! The WESL modules `generate` writes (`generated/wesl/<id>.wesl`, the module
+//! `unitpack::<id>` of a package): each is its spec's WGSL include with the functions
+//! named by their own names, every one links with the `wesl` crate into WGSL that naga
+//! validates, and a package importing two of them runs on lavapipe bit for bit as the
+//! model computes.
+
+use unitpack::codecs::Spec;
+use unitpack::emit::lang::KernelFn;
+use unitpack::emit::{DEFAULT_PREFIX, Lang, render};
+use unitpack::model::trace::Ty;
+use unitpack::verify::gpu::{Gpu, Shader};
+use unitpack::verify::tools::naga_wgsl;
+use unitpack::verify::{expected, func_types, inputs};
+use wesl::{CompileOptions, VirtualResolver, Wesl};
+
+fn module_text(spec: &Spec) -> String {
+    let path = format!(
+        "{}/generated/wesl/{}.wesl",
+        env!("CARGO_MANIFEST_DIR"),
+        spec.id()
+    );
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// The code of a file as tokens, comments and white space left out: identifiers, numbers
+/// (with their suffixes) and single punctuation characters.
+fn tokens(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for line in text.lines().filter(|l| !l.trim_start().starts_with("//")) {
+        let mut chars = line.chars().peekable();
+        while let Some(c) = chars.next() {
+            if c.is_whitespace() {
+                continue;
+            }
+            let mut t = c.to_string();
+            if c.is_alphanumeric() || c == '_' {
+                while let Some(&d) = chars.peek() {
+                    if !(d.is_alphanumeric() || d == '_' || (c.is_ascii_digit() && d == '.')) {
+                        break;
+                    }
+                    t.push(d);
+                    chars.next();
+                }
+            }
+            out.push(t);
+        }
+    }
+    out
+}
+
+/// Whether two texts are the same code up to names: token for token, where the
+/// identifiers that differ are renamed consistently both ways, each one a prefixed name
+/// of the WGSL include (`unitpack_oct16_round_codes` → `round_codes`) or a local the
+/// printer numbered because its name is now a function's (`round_codes` →
+/// `round_codes2`). Builtins, keywords and literals are the same.
+fn same_up_to_names(wgsl: &str, wesl: &str) -> Result<(), String> {
+    let (a, b) = (tokens(wgsl), tokens(wesl));
+    if a.len() != b.len() {
+        return Err(format!("{} tokens against {}", a.len(), b.len()));
+    }
+    let mut forth = std::collections::HashMap::new();
+    let mut back = std::collections::HashMap::new();
+    let ident = |t: &str| t.starts_with(|c: char| c.is_alphabetic() || c == '_');
+    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+        if x == y && !ident(x) {
+            continue;
+        }
+        let numbered = y.strip_prefix(x.as_str()).is_some_and(|n| {
+            !n.is_empty()
+                && n.trim_start_matches('_')
+                    .chars()
+                    .all(|c| c.is_ascii_digit())
+        });
+        let renamed = ident(x) && ident(y) && (x == y || x.starts_with(DEFAULT_PREFIX) || numbered);
+        let consistent = *forth.entry(x).or_insert(y) == y && *back.entry(y).or_insert(x) == x;
+        if !(renamed && consistent) {
+            return Err(format!("token {k}: {x:?} against {y:?}"));
+        }
+    }
+    Ok(())
+}
+
+/// A spec's functions as a root module calls them: the name of the root's wrapper
+/// (`call_oct16__encode`, which no name the linker gives an imported declaration can
+/// be), the function's own name, its parameter types and result.
+fn functions(spec: &Spec) -> Vec<(String, String, Vec<Ty>, Ty)> {
+    let e = spec.emitted();
+    e.functions
+        .iter()
+        .map(|f| {
+            let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+            (
+                format!("call_{}__{}", spec.id(), f.name),
+                f.name.to_string(),
+                params,
+                ret,
+            )
+        })
+        .collect()
+}
+
+/// A root that imports `specs`' modules and wraps each function of theirs, calling it
+/// through the module path, linked with the `wesl` crate.
+fn link(specs: &[Spec]) -> String {
+    let wgsl = Lang::Wgsl.backend(DEFAULT_PREFIX);
+    let mut resolver = VirtualResolver::new();
+    let mut root = String::new();
+    let mut wrappers = String::new();
+    for spec in specs {
+        let id = spec.id();
+        resolver.add_module(
+            format!("unitpack::{id}").parse().expect("module path"),
+            module_text(spec).into(),
+        );
+        root.push_str(&format!("import unitpack::{id};\n"));
+        for (name, own, params, ret) in functions(spec) {
+            let args: Vec<String> = (0..params.len()).map(|i| format!("a{i}")).collect();
+            let declared: Vec<String> = params
+                .iter()
+                .zip(&args)
+                .map(|(t, a)| format!("{a}: {}", wgsl.ty(*t)))
+                .collect();
+            wrappers.push_str(&format!(
+                "fn {name}({}) -> {} {{ return {id}::{own}({}); }}\n",
+                declared.join(", "),
+                wgsl.ty(ret),
+                args.join(", ")
+            ));
+        }
+    }
+    root.push_str(&wrappers);
+    resolver.add_module("package::main".parse().expect("root path"), root.into());
+    let mut compiler = Wesl::new("").set_custom_resolver(resolver);
+    compiler.set_options(CompileOptions {
+        keep_root: true,
+        ..Default::default()
+    });
+    compiler
+        .compile(&"package::main".parse().expect("root path"))
+        .unwrap_or_else(|e| panic!("{specs:?}: {e}"))
+        .to_string()
+}
+
+/// Every module is its WGSL include with `unitpack_<spec>_` dropped from the names: the
+/// same code up to names, which `verify` runs on every path.
+#[test]
+fn each_module_is_its_wgsl_include_renamed() {
+    for spec in Spec::all() {
+        let wgsl = render(&[(spec.clone(), None)], Lang::Wgsl, DEFAULT_PREFIX, "x");
+        let module = module_text(&spec);
+        assert!(!module.contains(DEFAULT_PREFIX), "{spec}: a prefixed name");
+        same_up_to_names(&wgsl, &module).unwrap_or_else(|e| panic!("{spec}: {e}"));
+    }
+}
+
+/// Every module links alone (its functions all kept by the root's calls) into WGSL
+/// that naga validates.
+#[test]
+fn every_module_links_and_validates() {
+    for spec in Spec::all() {
+        let linked = link(std::slice::from_ref(&spec));
+        naga_wgsl(&linked).unwrap_or_else(|e| panic!("{spec}: {e:#}\n{linked}"));
+    }
+}
+
+/// A package importing two modules (oct16, and float16x3 with its two-word codes and
+/// integer vector selects) links to WGSL whose every function gives the model's bits on
+/// every verify input, run on lavapipe through naga.
+#[test]
+fn two_linked_modules_run_bit_exact() {
+    let specs: Vec<Spec> = ["oct16", "float16x3"]
+        .iter()
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let linked = link(&specs);
+    naga_wgsl(&linked).unwrap_or_else(|e| panic!("{e:#}\n{linked}"));
+    let mut funcs: Vec<(String, Vec<Ty>, Ty)> = Vec::new();
+    let mut models = Vec::new();
+    for spec in &specs {
+        let e = spec.emitted();
+        for ((name, _, params, ret), f) in functions(spec).into_iter().zip(e.functions) {
+            funcs.push((name, params, ret));
+            models.push((spec.to_string(), f));
+        }
+    }
+    let kernel_fns: Vec<KernelFn> = funcs
+        .iter()
+        .map(|(n, p, r)| (n.as_str(), p.clone(), *r))
+        .collect();
+    let kernel = Lang::Wgsl
+        .backend(DEFAULT_PREFIX)
+        .kernel(&linked, &kernel_fns);
+    let gpu = Gpu::shared().expect("lavapipe (Debian package mesa-vulkan-drivers)");
+    let selecting = gpu
+        .selecting(&Shader::Wgsl(&kernel))
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    for (index, (spec, f)) in (0u32..).zip(&models) {
+        let input = inputs::generate(&f.inputs, f.in_words);
+        let want = expected(f, &input);
+        let mut got = Vec::with_capacity(want.len());
+        gpu.run_selected(
+            &selecting,
+            index,
+            &input,
+            f.in_words,
+            f.out_words,
+            &mut |w| got.extend_from_slice(w),
+        )
+        .unwrap_or_else(|e| panic!("{spec} {}: {e:#}", f.name));
+        assert_eq!(got.len(), want.len(), "{spec} {}", f.name);
+        if let Some(k) = (0..want.len()).find(|&k| got[k] != want[k]) {
+            let item = k / f.out_words;
+            panic!(
+                "{spec} {}: item {item} (input {:08x?}) gives {:08x?}, the model {:08x?}",
+                f.name,
+                &input[item * f.in_words..][..f.in_words],
+                &got[item * f.out_words..][..f.out_words],
+                &want[item * f.out_words..][..f.out_words],
+            );
+        }
+    }
+}
+
+/// The README's WESL consumer links against the generated oct16 module, and naga
+/// validates the result.
+#[test]
+fn the_readme_consumer_links() {
+    let readme = std::fs::read_to_string(format!("{}/README.md", env!("CARGO_MANIFEST_DIR")))
+        .expect("README.md");
+    let snippet: String = readme
+        .split("```wesl\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("a wesl block in the README")
+        .to_string();
+    let mut resolver = VirtualResolver::new();
+    let oct16: Spec = "oct16".parse().unwrap();
+    resolver.add_module(
+        "unitpack::oct16".parse().unwrap(),
+        module_text(&oct16).into(),
+    );
+    resolver.add_module("package::main".parse().unwrap(), snippet.into());
+    let mut compiler = Wesl::new("").set_custom_resolver(resolver);
+    compiler.set_options(CompileOptions {
+        keep_root: true,
+        ..Default::default()
+    });
+    let linked = compiler
+        .compile(&"package::main".parse().unwrap())
+        .unwrap_or_else(|e| panic!("{e}"))
+        .to_string();
+    assert!(linked.contains("fn reencode("), "{linked}");
+    naga_wgsl(&linked).unwrap_or_else(|e| panic!("{e:#}\n{linked}"));
+}
