@@ -27,10 +27,6 @@ use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// The folder of the WESL modules: a WESL package's `unitpack/` (or a crate's shader
-/// root), where `oct16.wesl` is the module `unitpack::oct16`.
-pub const WESL: &str = "wesl";
-
 /// Every generated file: relative path → contents. The includes, the WESL modules, and
 /// the lookup tables
 /// of the specs that read one (`lut/<stem>.png`, and the same texels as raw bytes in
@@ -64,7 +60,7 @@ fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
     for (spec, st) in specs.iter().zip(&stats) {
         let text = render_wesl(spec, *st, "unitpack generate");
         files.push((
-            PathBuf::from(WESL).join(format!("{}.wesl", spec.id())),
+            PathBuf::from(manifest::WESL).join(format!("{}.wesl", spec.id())),
             text.into_bytes(),
         ));
     }
@@ -155,7 +151,7 @@ fn plan(out: &Path, progress: &Progress) -> Result<Plan> {
     let folders = Lang::ALL
         .iter()
         .map(|l| l.name())
-        .chain([WESL, manifest::TABLES]);
+        .chain([manifest::WESL, manifest::TABLES]);
     for folder in folders {
         let dir = out.join(folder);
         let rd = match std::fs::read_dir(&dir) {

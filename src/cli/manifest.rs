@@ -27,8 +27,8 @@ const PREAMBLE: &str = "\
 # the contents hash written after its path). Do not edit.
 ";
 
-/// Whether `rel` has a shape `generate` writes: `<lang>/<name>.<ext>` or
-/// `lut/<name>.png|bin`. Anything
+/// Whether `rel` has a shape `generate` writes: `<lang>/<name>.<ext>`,
+/// `wesl/<name>.wesl` or `lut/<name>.png|bin`. Anything
 /// else in a manifest (`../x`, absolute paths) is ignored, so that a damaged or hostile
 /// manifest cannot point `generate` at files outside its folders.
 pub fn is_catalogue_path(rel: &Path) -> bool {
@@ -42,8 +42,13 @@ pub fn is_catalogue_path(rel: &Path) -> bool {
     let ext_is =
         |ext: &str| !file.starts_with('.') && Path::new(file).extension().is_some_and(|e| e == ext);
     Lang::ALL.iter().any(|l| l.name() == dir && ext_is(l.ext()))
+        || dir == WESL && ext_is("wesl")
         || dir == TABLES && TABLE_EXTS.iter().any(|e| ext_is(e))
 }
+
+/// The folder of the WESL modules: a WESL package's `unitpack/` (or a crate's shader
+/// root), where `oct16.wesl` is the module `unitpack::oct16`.
+pub const WESL: &str = "wesl";
 
 /// The folder of the lookup tables, beside the language folders.
 pub const TABLES: &str = "lut";
