@@ -403,7 +403,11 @@ impl Transcoder {
 
     /// Writes the new code of each of `codes` (`from_words()` words each) to `out`
     /// (`to_words()` each), and returns the angle between each old code's vector and its
-    /// new code's, records numbered from 1.
+    /// new code's, records numbered from 1. Bits above the `from` spec's width are
+    /// ignored, as its decoder ignores them (the CLI refuses such codes).
+    ///
+    /// # Panics
+    /// If `codes` is not whole codes or `out` has not room for exactly one new code each.
     pub fn transcode(&self, codes: &[u32], out: &mut [u32]) -> RoundTrip {
         let n = codes.len() / self.from_words();
         let mut vectors = vec![[0f32; 3]; n];

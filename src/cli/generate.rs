@@ -41,8 +41,9 @@ fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
     progress.stage("proving the decoders' error bounds".into());
     crate::decode_bound::prove_all(&specs);
     progress.stage(format!(
-        "rendering {} includes",
-        specs.len() * Lang::ALL.len()
+        "rendering {} includes and {} WESL modules",
+        specs.len() * Lang::ALL.len(),
+        specs.len()
     ));
     let mut files = Vec::new();
     for lang in Lang::ALL {

@@ -135,7 +135,8 @@ impl Records for Codec {
 }
 
 /// `transcode`: one spec's codes decoded and encoded as another's, each round trip
-/// measured ([`Transcoder`]).
+/// measured ([`Transcoder`]). `from` and `to` give the stream its rules for reading
+/// `from`'s codes and writing `to`'s, the transcoder computes.
 struct Transcoding {
     from: Codec,
     to: Codec,

@@ -186,29 +186,19 @@ pub fn render_with(
     import_path: Option<&str>,
 ) -> String {
     let backend = lang.backend(prefix);
-    let mut views: Vec<SpecView> = specs
+    let views: Vec<SpecView> = specs
         .iter()
         .map(|(s, st)| spec_view(s, lang, backend.as_ref(), prefix, *st, true))
         .collect();
-    refer_back(&mut views);
-    let functions = || views.iter().flat_map(|v| &v.functions);
-    let header = docs::file_header(
+    let errors = specs.iter().any(|(_, st)| st.is_some());
+    file(
+        backend.as_ref(),
+        views,
+        errors,
         command,
-        functions().any(|f| f.doc.iter().any(|d| d.starts_with("Portable"))),
-        specs.iter().any(|(_, st)| st.is_some()),
-    );
-    let mut s = backend.render(
-        &views,
-        &FileOptions {
-            header: &header,
-            prefix,
-            import_path,
-        },
-    );
-    if !s.ends_with('\n') {
-        s.push('\n');
-    }
-    layout::wrap(&s)
+        prefix,
+        import_path,
+    )
 }
 
 /// One spec's WGSL include as a WESL module (`unitpack/oct16.wesl`, imported as
@@ -217,7 +207,7 @@ pub fn render_with(
 /// linker gives every imported declaration a name of its own.
 pub fn render_wesl(spec: &Spec, stats: Option<ErrorStats>, command: &str) -> String {
     let backend = Lang::Wgsl.backend("");
-    let mut views = vec![spec_view(
+    let views = vec![spec_view(
         spec,
         Lang::Wgsl,
         backend.as_ref(),
@@ -225,21 +215,32 @@ pub fn render_wesl(spec: &Spec, stats: Option<ErrorStats>, command: &str) -> Str
         stats,
         false,
     )];
+    file(backend.as_ref(), views, stats.is_some(), command, "", None)
+}
+
+/// The whole file of `views`: shared paragraphs referred back, the header, the template,
+/// lines wrapped.
+fn file(
+    backend: &dyn Backend,
+    mut views: Vec<SpecView>,
+    errors: bool,
+    command: &str,
+    prefix: &str,
+    import_path: Option<&str>,
+) -> String {
     refer_back(&mut views);
+    let functions = || views.iter().flat_map(|v| &v.functions);
     let header = docs::file_header(
         command,
-        views[0]
-            .functions
-            .iter()
-            .any(|f| f.doc.iter().any(|d| d.starts_with("Portable"))),
-        stats.is_some(),
+        functions().any(|f| f.doc.iter().any(|d| d.starts_with("Portable"))),
+        errors,
     );
     let mut s = backend.render(
         &views,
         &FileOptions {
             header: &header,
-            prefix: "",
-            import_path: None,
+            prefix,
+            import_path,
         },
     );
     if !s.ends_with('\n') {

@@ -1,7 +1,8 @@
 //! Verification: every emitted function, on every path to the driver, run on
 //! lavapipe over storage-buffer inputs and compared as raw bits with the `f32` model.
-//! Static checks ride along: naga validates WGSL and GLSL, glslang compiles GLSL (also as
-//! `#version 330` and `#version 300 es`) and HLSL (`-Od` and default), spirv-val checks
+//! Static checks ride along: naga validates WGSL and GLSL and writes the WGSL as GLSL 4.30
+//! and ES 3.10 for glslang, glslang compiles GLSL (also as `#version 330` and `#version 300
+//! es`) and HLSL (`-Od` and default), spirv-val checks
 //! every SPIR-V module. Each spec compiles one program per path for all its functions (a
 //! selecting kernel, [`gpu`]'s module docs; a C driver taking the function's index) and
 //! runs it once per function.

@@ -271,7 +271,7 @@ fn naga_wgsl_module(source: &str) -> anyhow::Result<(naga::Module, naga::valid::
 /// compute shaders and the oldest that naga's GLSL back end (wgpu's OpenGL and GLES
 /// backends) targets with them. Each lacks some built-ins later versions have, such as
 /// `mix` on integer or boolean vectors (GLSL 4.50).
-pub const NAGA_GLSL_VERSIONS: [naga::back::glsl::Version; 2] = [
+const NAGA_GLSL_VERSIONS: [naga::back::glsl::Version; 2] = [
     naga::back::glsl::Version::Desktop(430),
     naga::back::glsl::Version::Embedded {
         version: 310,

@@ -206,7 +206,7 @@ pub fn tree(dir: &Path) -> BTreeSet<PathBuf> {
 }
 
 /// The files `generate` must write: `<lang>/<id>.<lang>` for every spec and language,
-/// and the manifest.
+/// `wesl/<id>.wesl` for every spec, the tables and the manifest.
 pub fn expected_files() -> BTreeSet<PathBuf> {
     let mut s = BTreeSet::from([PathBuf::from(".unitpack-manifest")]);
     for lang in Lang::ALL {

@@ -13,13 +13,13 @@ fn every_oct16_code() -> Vec<u8> {
 fn summary(stderr: &str) -> (u64, f64, f64, u64) {
     let line = stderr
         .lines()
-        .find(|l| l.contains("codes moved"))
+        .find(|l| l.contains(" moved from "))
         .unwrap_or_else(|| panic!("no summary in {stderr:?}"));
     let numbers: Vec<f64> = line
         .split(|c: char| !(c.is_ascii_digit() || c == '.'))
         .filter_map(|w| w.parse().ok())
         .collect();
-    // "N codes moved from A to B: … by MEAN° on average, at most MAX° (record K)"; the
+    // "N codes moved from A to B: … by MEAN° on average, at most MAX° (code K)"; the
     // spec names carry their sizes (oct16, oct24p), which are numbers too.
     let n = numbers.len();
     (
@@ -102,6 +102,10 @@ fn transcode_streams_like_decode() {
     assert_eq!(r.code, 0, "{r:?}");
     assert_eq!(r.stdout, "# normals\n0x00000000\n\n");
     assert_eq!(summary(&r.stderr).0, 1);
+    assert!(
+        r.stderr.starts_with("1 code moved from oct16 to oct24p"),
+        "{r:?}"
+    );
     let e = fails_after(
         &["transcode", "--from", "oct16", "--to", "oct24p"],
         "0x0000\n0x1ffff\n",

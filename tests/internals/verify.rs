@@ -120,7 +120,12 @@ fn naga_glsl_out_needs_lane_wise_integer_selects() {
     let (path, r) = glsl_out(lanes);
     assert!(r.is_ok(), "{path}: {r:?}");
     // The specs whose WGSL had integer vector selects.
-    for spec in ["float16x3", "float32x3", "spherical_lut16p"] {
+    for spec in [
+        "float16x3",
+        "float32x3",
+        "spherical_lut16p",
+        "spherical_lut16p:lut=matched",
+    ] {
         let spec: Spec = spec.parse().expect("spec");
         let include = render(&[(spec.clone(), None)], Lang::Wgsl, DEFAULT_PREFIX, "test");
         let (path, r) = glsl_out(&include);
