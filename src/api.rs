@@ -447,35 +447,27 @@ impl RoundTrip {
     pub fn with(self, a: [f32; 3], b: [f32; 3]) -> RoundTrip {
         let angle = crate::quality::angle_deg(a, b);
         let angle = if angle.is_nan() { 180.0 } else { angle };
-        let records = self.records + 1;
-        let (max, max_at) = if records == 1 || angle > self.max {
-            (angle, records)
-        } else {
-            (self.max, self.max_at)
-        };
-        RoundTrip {
-            records,
-            sum: self.sum + angle,
-            max,
-            max_at,
-        }
+        self.then(RoundTrip {
+            records: 1,
+            sum: angle,
+            max: angle,
+            max_at: 1,
+        })
     }
 
-    /// `self`'s records followed by `later`'s, renumbered after them.
+    /// `self`'s records followed by `later`'s, renumbered after them; the first of equal
+    /// largest angles keeps its place.
     pub fn then(self, later: RoundTrip) -> RoundTrip {
-        if later.records > 0 && (self.records == 0 || later.max > self.max) {
-            RoundTrip {
-                records: self.records + later.records,
-                sum: self.sum + later.sum,
-                max: later.max,
-                max_at: self.records + later.max_at,
-            }
-        } else {
-            RoundTrip {
-                records: self.records + later.records,
-                sum: self.sum + later.sum,
-                ..self
-            }
+        let later_max = later.records > 0 && (self.records == 0 || later.max > self.max);
+        RoundTrip {
+            records: self.records + later.records,
+            sum: self.sum + later.sum,
+            max: if later_max { later.max } else { self.max },
+            max_at: if later_max {
+                self.records + later.max_at
+            } else {
+                self.max_at
+            },
         }
     }
 }
