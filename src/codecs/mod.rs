@@ -8,7 +8,7 @@
 //!   a codec is built from;
 //! - one folder per kind of codec: [`octahedral`], [`component`] (per-component),
 //!   [`angular`] (spherical angles and point sets), [`azimuthal`] (hemisphere-to-disk
-//!   projections and their square maps), [`cube_maps`] and [`table`] (table-driven).
+//!   projections and their square maps), [`cube_maps`], [`table`] (table-driven) and [`engine`] (engines' own formats).
 //!
 //! Adding a codec is one new file in its kind's folder (its description, options,
 //! variants and arithmetic, ending in a `pub static FAMILY`) and one line in
@@ -109,6 +109,13 @@ registry! {
     table {
         spherical_lut [FAMILY] => SphericalLut;
         crytek_bfn [FAMILY];
+    }
+    /// Engine formats: the bits an engine's or a format's own encoder stores, read as its
+    /// decoder reads them, in the engine's arithmetic (the lean tier is their only one).
+    engine {
+        meshopt [MESHOPT_OCT8, MESHOPT_OCT16] => MeshoptOct;
+        bevy [FAMILY] => BevyOct;
+        unity [FAMILY] => UnityOct;
     }
 }
 

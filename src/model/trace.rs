@@ -276,6 +276,9 @@ impl Recorder {
 
     fn record(&mut self, op: Op, args: Vec<Ref>, kind: Kind) -> Ref {
         if !args.is_empty() && args.iter().all(|a| self.is_const(*a)) {
+            if let Some(folded) = self.exact_fold(&op, &args, kind) {
+                return self.push(folded, vec![], Ty::scalar(kind));
+            }
             panic!(
                 "constant expression {op:?} on literals only: compute the value in Rust and pass one literal (WGSL would fold it in f64)"
             );
@@ -285,7 +288,12 @@ impl Recorder {
                 "division by a literal: multiply by the reciprocal computed in Rust (HLSL optimisers rewrite x/c as x*(1/c))"
             );
         }
-        if op == Op::Bin(BinOp::Div) && self.is_const(args[0]) {
+        // `1/x` is exempt: what drivers compute for it, `1·rcp(x)`, is `rcp(x)`, which
+        // rounds correctly wherever division does (the engine formats' `1/|v|` and `rcp`).
+        if op == Op::Bin(BinOp::Div)
+            && self.is_const(args[0])
+            && self.literal(args[0]) != Some(Some(1.0))
+        {
             panic!(
                 "a literal divided by a value: drivers compute c/x as c*rcp(x); compute the numerator"
             );
@@ -320,6 +328,58 @@ impl Recorder {
             }
         }
         self.push(op, args, Ty::scalar(kind))
+    }
+
+    /// The scalar literal `r` stands for, as its node (`ConstF` or `ConstU`).
+    fn scalar_literal(&mut self, r: Ref) -> Option<Op> {
+        let n = self.nodes()[r.node as usize].clone();
+        match (&n.op, r.lane) {
+            (Op::ConstF(_) | Op::ConstU(_), _) => Some(n.op),
+            (Op::Construct, Some(l)) => {
+                let arg = n.args[if n.args.len() == 1 { 0 } else { l as usize }];
+                self.scalar_literal(arg)
+            }
+            _ => None,
+        }
+    }
+
+    /// An operation on literals whose result is exact, so the same in f32 and in the f64
+    /// a WGSL compiler folds constants in: integer operations, conversions of integral
+    /// values, and float sums and products that need no rounding (an engine format's
+    /// constant words, packed like any other field). `None` for anything that rounds.
+    fn exact_fold(&mut self, op: &Op, args: &[Ref], kind: Kind) -> Option<Op> {
+        let lits: Option<Vec<Op>> = args.iter().map(|a| self.scalar_literal(*a)).collect();
+        let lits = lits?;
+        let folded = match (op, lits.as_slice(), kind) {
+            (Op::Bin(b), [Op::ConstF(x), Op::ConstF(y)], Kind::F32) => {
+                let (r, exact) = match b {
+                    BinOp::Add => (x + y, f64::from(*x) + f64::from(*y)),
+                    BinOp::Sub => (x - y, f64::from(*x) - f64::from(*y)),
+                    BinOp::Mul => (x * y, f64::from(*x) * f64::from(*y)),
+                    _ => return None,
+                };
+                (f64::from(r) == exact).then_some(Op::ConstF(r))?
+            }
+            (Op::Convert, [Op::ConstF(x)], Kind::U32) => {
+                let integral = x.fract() == 0.0 && (0.0..4_294_967_296.0).contains(x);
+                integral.then_some(Op::ConstU(*x as u32))?
+            }
+            (Op::Convert, [Op::ConstU(x)], Kind::F32) => {
+                (*x < 1 << 24).then_some(Op::ConstF(*x as f32))?
+            }
+            (Op::Shl(n), [Op::ConstU(x)], Kind::U32) => Op::ConstU(x << n),
+            (Op::Shr(n), [Op::ConstU(x)], Kind::U32) => Op::ConstU(x >> n),
+            (Op::Bin(b), [Op::ConstU(x), Op::ConstU(y)], Kind::U32) => Op::ConstU(match b {
+                BinOp::BitAnd => x & y,
+                BinOp::BitOr => x | y,
+                BinOp::Add => x.wrapping_add(*y),
+                BinOp::Sub => x.wrapping_sub(*y),
+                BinOp::Mul => x.wrapping_mul(*y),
+                _ => return None,
+            }),
+            _ => return None,
+        };
+        Some(folded)
     }
 
     /// Turns the lanes of one operand position into a single operand.

@@ -22,6 +22,7 @@ pub struct CodecFamily<C> {
     validate: fn(&Spec) -> Result<(), SpecError>,
     variants: &'static [&'static str],
     helper_doc: fn(&str) -> Option<String>,
+    engine: Option<&'static str>,
 }
 
 impl<C> CodecFamily<C> {
@@ -34,6 +35,7 @@ impl<C> CodecFamily<C> {
             validate: |_| Ok(()),
             variants: &[],
             helper_doc: |_| None,
+            engine: None,
         }
     }
 
@@ -51,6 +53,14 @@ impl<C> CodecFamily<C> {
     /// ([`Family::helper_doc`]).
     pub const fn with_helper_doc(self, helper_doc: fn(&str) -> Option<String>) -> Self {
         CodecFamily { helper_doc, ..self }
+    }
+
+    /// An engine format: the engine whose bits it reproduces ([`Family::engine`]).
+    pub const fn with_engine(self, engine: &'static str) -> Self {
+        CodecFamily {
+            engine: Some(engine),
+            ..self
+        }
     }
 
     /// The codec of `bits` total bits; an invalid size is an error listing the allowed ones.
@@ -78,5 +88,8 @@ impl<C: Codec + 'static> Family for CodecFamily<C> {
     }
     fn helper_doc(&self, name: &str) -> Option<String> {
         (self.helper_doc)(name)
+    }
+    fn engine(&self) -> Option<&'static str> {
+        self.engine
     }
 }

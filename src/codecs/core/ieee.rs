@@ -34,11 +34,20 @@ pub const OPTION: OptDesc = OptDesc {
     kind: OptKind::Choice(&["portable", "ieee"]),
 };
 
-/// Whether the spec asks for the lean tier.
+/// The `guarantee` option of an engine format ([`crate::codecs::engine`]): its encoder is
+/// the engine's own arithmetic, so the lean tier is its only one.
+pub const ENGINE_OPTION: OptDesc = OptDesc {
+    key: "guarantee",
+    help: "ieee (the only tier): the engine's own encoder arithmetic, bit-exact where + - * / sqrt round correctly, denormals are kept and nothing is contracted (the CPU, lavapipe, C with -ffp-contract=off), as where the engine itself encodes",
+    kind: OptKind::Choice(&["ieee"]),
+};
+
+/// Whether the spec asks for the lean tier (an engine format always does).
 pub fn asked(spec: &Spec) -> bool {
-    spec.info()
-        .option_index(OPTION.key)
-        .is_some_and(|i| spec.choice(i) == 1)
+    let info = spec.info();
+    info.option_index(OPTION.key).is_some_and(|i| {
+        matches!(info.options[i].kind, OptKind::Choice(names) if names[spec.choice(i)] == "ieee")
+    })
 }
 
 /// The lean tier is the fast encoder's, in a codec's own packing: the precise search

@@ -19,6 +19,9 @@ pub enum Sizes {
     /// One configuration of this many bits, spelled by the name alone (`snorm11_11_10`,
     /// packing helpers).
     Fixed(u32),
+    /// Bits per field after the name, as the format's own tool spells its quantization
+    /// (`draco_oct10`: Draco's quantization bits), total `b·count`.
+    PerField { count: u32, per: &'static [u32] },
 }
 
 /// One option a family takes: `key=value` in a spec, `_token` in an id.
@@ -174,6 +177,10 @@ impl Info {
                 .map(|b| (format!("{prefix}{b}x{count}"), b * count))
                 .collect(),
             Sizes::Fixed(bits) => vec![(self.name.to_string(), *bits)],
+            Sizes::PerField { count, per } => per
+                .iter()
+                .map(|b| (format!("{}{b}", self.name), b * count))
+                .collect(),
         }
     }
 

@@ -122,7 +122,7 @@ fn sweep_items(q: &[Quant]) -> u32 {
 /// values of the same kind (an f32 field the same in its top 16 bits, zeros below, so
 /// that infinities and zeros occur); packed like [`crate::codecs::core::codec::pack`].
 fn swept(q: &[Quant], k: u32) -> [u32; 3] {
-    const ODD: [u32; 3] = [1, 40_503, 9_973];
+    const ODD: [u32; 4] = [1, 40_503, 9_973, 54_251];
     let offs = field_offsets(q);
     let mut w = [0u32; 3];
     for (i, (f, off)) in q.iter().zip(offs).enumerate() {

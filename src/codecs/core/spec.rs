@@ -190,7 +190,8 @@ pub fn valid_names() -> Vec<String> {
     for f in crate::codecs::FAMILIES {
         let info = f.info();
         match info.sizes {
-            crate::codecs::core::info::Sizes::Total(_) => v.push(info.name.to_string()),
+            crate::codecs::core::info::Sizes::Total(_)
+            | crate::codecs::core::info::Sizes::PerField { .. } => v.push(info.name.to_string()),
             _ => v.extend(info.spellings().into_iter().map(|s| s.0)),
         }
     }
@@ -323,14 +324,17 @@ fn diagnose(head: &str) -> SpecError {
     let Some((info, stem)) = named else {
         return unknown_codec(head);
     };
-    if !matches!(info.sizes, Sizes::Total(_)) {
+    if !matches!(info.sizes, Sizes::Total(_) | Sizes::PerField { .. }) {
         return SpecError::Spelling {
             codec: info.name,
             given: head.to_string(),
             allowed: info.spellings().into_iter().map(|s| s.0).collect(),
         };
     }
-    let allowed: Vec<String> = info.total_bits().iter().map(|b| b.to_string()).collect();
+    let allowed: Vec<String> = match info.sizes {
+        Sizes::PerField { per, .. } => per.iter().map(|b| b.to_string()).collect(),
+        _ => info.total_bits().iter().map(|b| b.to_string()).collect(),
+    };
     let rest = &head[stem.len()..];
     let rest = rest.strip_prefix('_').unwrap_or(rest);
     let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
@@ -416,6 +420,12 @@ pub trait Family: Sync + 'static {
     }
     /// The doc comment of a helper function this family defines, if it has one.
     fn helper_doc(&self, _name: &str) -> Option<String> {
+        None
+    }
+    /// The engine whose stored bits an engine format reproduces ([`crate::codecs::engine`]):
+    /// its degenerate input and its rounding are that engine's, not the catalogue's
+    /// conventions.
+    fn engine(&self) -> Option<&'static str> {
         None
     }
 }

@@ -310,3 +310,29 @@ pub fn field_offsets(quants: &[Quant]) -> [u32; 4] {
     }
     offs
 }
+
+/// C's `round`: halves away from zero (the model's `round` takes them to even). Exact
+/// for every float: `|x| - floor(|x|)` is exact, and at `2^23` and above `x` is integral.
+/// A NaN stays NaN.
+#[inline(always)]
+pub fn round_half_away<F: Float>(x: F) -> F {
+    let a = x.abs();
+    let f = a.floor();
+    let r = f + F::sel((a - f).ge(F::c(0.5)), F::c(1.0), F::c(0.0));
+    F::sel(x.lt(F::c(0.0)), -r, r)
+}
+
+/// C's conversion of a float to an integer (`int(x)`, `(uint)x`): toward zero, kept as a
+/// float. A NaN stays NaN.
+#[inline(always)]
+pub fn truncated<F: Float>(x: F) -> F {
+    let t = x.abs().floor();
+    F::sel(x.lt(F::c(0.0)), -t, t)
+}
+
+/// Whether `x` is not NaN, decided on its bits: a float comparison of `x` with itself may
+/// be folded to true where `precise` is absent.
+#[inline(always)]
+pub fn not_nan<F: Float>(x: F) -> F::B {
+    x.magnitude_bits().lt(F::U::c(0x7f80_0001))
+}
