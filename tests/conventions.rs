@@ -57,10 +57,13 @@ fn oct_folds_on_encode_at_z_le_0_and_on_decode_at_z_lt_0() {
     assert!(v.z < 0.0 && v.x > 0.0 && v.y > 0.0);
 }
 
+/// Every codec but the engine formats, whose degenerate input gets the engine's own code
+/// (their edge policy says which; tests/families/engine.rs holds them to the engines).
 #[test]
 fn degenerate_input_encodes_to_the_documented_code() {
     for (spec, r) in codecs()
         .into_iter()
+        .filter(|s| s.family().engine().is_none())
         .flat_map(|s| [(s.clone(), Role::Encode), (s, Role::EncodeFloat)])
     {
         let e = spec.emitted();

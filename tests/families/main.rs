@@ -4,11 +4,13 @@
 //! all of them.
 
 mod crytek_bfn;
+mod engine;
 mod eqarea_oct;
 mod ieee;
 mod lambert;
 mod latlongd;
 mod oct;
+mod oracles;
 mod sfib;
 mod snorm12x2;
 mod snorm3;

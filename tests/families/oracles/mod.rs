@@ -1,0 +1,7 @@
+//! Ports of engines' octahedral normal codecs, the oracles of the engine formats
+//! (`src/codecs/engine`). Each cites the upstream file and commit it follows; each is
+//! written here, independently of the model it checks.
+
+pub mod bevy;
+pub mod meshopt;
+pub mod unity;
