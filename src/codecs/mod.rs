@@ -116,6 +116,7 @@ registry! {
         meshopt [MESHOPT_OCT8, MESHOPT_OCT16] => MeshoptOct;
         bevy [FAMILY] => BevyOct;
         unity [FAMILY] => UnityOct;
+        draco [FAMILY] => DracoOct;
     }
 }
 

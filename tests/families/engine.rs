@@ -5,7 +5,7 @@
 //! product by the reciprocal and the engine's a quotient. What the model computes here,
 //! every verify path computes bit for bit (tests/verify_gpu.rs).
 
-use crate::oracles::{bevy, meshopt, unity};
+use crate::oracles::{bevy, draco, meshopt, unity};
 use unitpack::codecs::Spec;
 use unitpack::codecs::core::function::{Function, Role};
 
@@ -266,4 +266,38 @@ fn unity_nearest_rounding_lowers_the_error() {
     };
     let (trunc, near) = (mean("unity_oct24"), mean("unity_oct24:rounding=nearest"));
     assert!(near < trunc * 0.75, "nearest {near:e} vs truncate {trunc:e}");
+}
+
+/// Draco's codes for every size, on the seeded and edge vectors (Draco's f64 arithmetic
+/// decides the same code wherever it is exact to `2^-45` of a boundary, so everywhere
+/// here), and its decoder on every code up to 16 bits (N ≤ 8) and a seeded quarter million
+/// above, bit for bit.
+#[test]
+fn draco_matches_draco() {
+    let vs = inputs();
+    for n in [8u32, 10, 12, 14, 16] {
+        let spec = format!("draco_oct{n}");
+        let (enc, dec) = (function(&spec, Role::Encode), function(&spec, Role::Decode));
+        for v in &vs {
+            let [s, t] = draco::encode(*v, n);
+            assert_eq!(run(&enc, &bits(*v))[0], s as u32 | (t as u32) << n, "{spec}: {v:?}");
+        }
+        let max = (1u32 << n) - 2;
+        let mut st: Vec<(u32, u32)> = Vec::new();
+        if n <= 8 {
+            st.extend((0..=max).flat_map(|s| (0..=max).map(move |t| (s, t))));
+        } else {
+            let mut r = 0x9e37_79b9_7f4a_7c15u64;
+            for _ in 0..250_000 {
+                r ^= r << 13;
+                r ^= r >> 7;
+                r ^= r << 17;
+                st.push(((r as u32) % (max + 1), ((r >> 32) as u32) % (max + 1)));
+            }
+        }
+        for (s, t) in st {
+            let want = draco::decode(s as i32, t as i32, n);
+            assert_eq!(run(&dec, &[s | t << n]), bits(want), "{spec}: ({s}, {t})");
+        }
+    }
 }

@@ -3,5 +3,6 @@
 //! written here, independently of the model it checks.
 
 pub mod bevy;
+pub mod draco;
 pub mod meshopt;
 pub mod unity;
