@@ -113,7 +113,9 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
         .iter()
         .enumerate()
         .map(|(k, &(a, b))| {
-            if f.unread.contains(&k) {
+            if let Some(&(_, v)) = f.fixed.iter().find(|x| x.0 == k) {
+                (v, v)
+            } else if f.unread.contains(&k) {
                 (a, a)
             } else {
                 (a, b)
@@ -216,9 +218,10 @@ static CACHE: Memo<u128, Option<Bound>> = Memo::new();
 fn key(module: &Module, f: &Function) -> u128 {
     use std::hash::{Hash, Hasher};
     let text = format!(
-        "{:?} {:?} {}",
+        "{:?} {:?} {:?} {}",
         code_ranges(f),
         f.enclose.as_ref().map(|e| e.whole_field),
+        f.enclose.as_ref().map(|e| &e.fixed),
         module.identity(f.name),
     );
     let half = |prefix: u8| {

@@ -241,7 +241,10 @@ fn trace_refuses_non_portable_arithmetic() {
         !refused(|x| Tf::c(1.0) / x),
         "1/x: drivers compute rcp(x), which rounds as the division does"
     );
-    assert!(refused(|_| Tf::c(0.1) * Tf::c(3.0)), "constant expression that rounds");
+    assert!(
+        refused(|_| Tf::c(0.1) * Tf::c(3.0)),
+        "constant expression that rounds"
+    );
     assert!(
         !refused(|_| Tf::c(2.0) * Tf::c(3.0) + Tf::c(256.0)),
         "an exact constant expression is folded: the same in f32 and f64"

@@ -54,50 +54,51 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 
 // Struct form of unitpack_meshopt_oct8_bits6_decode_float.
 static inline unitpack_vec3 unitpack_meshopt_oct8_bits6_decode_float_v(unitpack_vec4 params) {
-    const float one = params.z == 0.0f ? 1.0f : params.z;
-    const float t1 = params.x / one;
-    const float t2 = params.y / one;
-    const float t3 = 1.0f - fabsf(t1);
-    const float abs_t2 = fabsf(t2);
-    const float t4 = t3 - abs_t2;
-    const float t = t4 < 0.0f ? t4 : 0.0f;
-    const unitpack_vec3 t5 = { t1 >= 0.0f ? -t : t, t2 >= 0.0f ? -t : t, abs_t2 };
-    const unitpack_vec3 v = { t1 - t5.x, t2 - t5.y, t3 - t5.z };
+    const float t1 = fabsf(nearbyintf(params.z * 127.0f));
+    const float one = t1 >= 1.0f ? t1 : 1.0f;
+    const float t2 = nearbyintf(params.x * 127.0f) / one;
+    const float t3 = nearbyintf(params.y * 127.0f) / one;
+    const float t4 = 1.0f - fabsf(t2);
+    const float abs_t3 = fabsf(t3);
+    const float t5 = t4 - abs_t3;
+    const float t = t5 < 0.0f ? t5 : 0.0f;
+    const unitpack_vec3 t6 = { t2 >= 0.0f ? -t : t, t3 >= 0.0f ? -t : t, abs_t3 };
+    const unitpack_vec3 v = { t2 - t6.x, t3 - t6.y, t4 - t6.z };
     const unitpack_vec3 v_sq = { v.x * v.x, v.y * v.y, v.z * v.z };
-    const float t6 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
-    const unitpack_vec3 t7 = { v.x / t6 * 127.0f, v.y / t6 * 127.0f, v.z / t6 * 127.0f };
-    const unitpack_vec3 abs_t7 = { fabsf(t7.x), fabsf(t7.y), fabsf(t7.z) };
-    const unitpack_vec3 floor_abs_t7 = { floorf(abs_t7.x), floorf(abs_t7.y), floorf(abs_t7.z) };
-    const unitpack_vec3 t8 = {
-        floor_abs_t7.x + (abs_t7.x - floor_abs_t7.x >= 0.5f ? 1.0f : 0.0f),
-        floor_abs_t7.y + (abs_t7.y - floor_abs_t7.y >= 0.5f ? 1.0f : 0.0f),
-        floor_abs_t7.z + (abs_t7.z - floor_abs_t7.z >= 0.5f ? 1.0f : 0.0f)
-    };
+    const float t7 = sqrtf(v_sq.x + v_sq.y + v_sq.z);
+    const unitpack_vec3 t8 = { v.x / t7 * 127.0f, v.y / t7 * 127.0f, v.z / t7 * 127.0f };
+    const unitpack_vec3 abs_t8 = { fabsf(t8.x), fabsf(t8.y), fabsf(t8.z) };
+    const unitpack_vec3 floor_abs_t8 = { floorf(abs_t8.x), floorf(abs_t8.y), floorf(abs_t8.z) };
     const unitpack_vec3 t9 = {
-        t7.x < 0.0f ? -t8.x : t8.x,
-        t7.y < 0.0f ? -t8.y : t8.y,
-        t7.z < 0.0f ? -t8.z : t8.z
+        floor_abs_t8.x + (abs_t8.x - floor_abs_t8.x >= 0.5f ? 1.0f : 0.0f),
+        floor_abs_t8.y + (abs_t8.y - floor_abs_t8.y >= 0.5f ? 1.0f : 0.0f),
+        floor_abs_t8.z + (abs_t8.z - floor_abs_t8.z >= 0.5f ? 1.0f : 0.0f)
     };
     const unitpack_vec3 t10 = {
-        (t9.x == 0.0f ? 0.0f : t9.x) * 0.007874016f,
-        (t9.y == 0.0f ? 0.0f : t9.y) * 0.007874016f,
-        (t9.z == 0.0f ? 0.0f : t9.z) * 0.007874016f
+        t8.x < 0.0f ? -t9.x : t9.x,
+        t8.y < 0.0f ? -t9.y : t9.y,
+        t8.z < 0.0f ? -t9.z : t9.z
     };
     const unitpack_vec3 t11 = {
-        t10.x >= (-1.0f) ? t10.x : -1.0f,
-        t10.y >= (-1.0f) ? t10.y : -1.0f,
-        t10.z >= (-1.0f) ? t10.z : -1.0f
+        (t10.x == 0.0f ? 0.0f : t10.x) * 0.007874016f,
+        (t10.y == 0.0f ? 0.0f : t10.y) * 0.007874016f,
+        (t10.z == 0.0f ? 0.0f : t10.z) * 0.007874016f
     };
-    return t11;
+    const unitpack_vec3 t12 = {
+        t11.x >= (-1.0f) ? t11.x : -1.0f,
+        t11.y >= (-1.0f) ? t11.y : -1.0f,
+        t11.z >= (-1.0f) ? t11.z : -1.0f
+    };
+    return t12;
 }
 
 // unitpack_meshopt_oct8_bits6_decode_float: decoder, float form.
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: the extension's reference decoder, read as the snorm vertex fetch reads its output words: a
-//   unit vector to the output's rounding; a zero third word (invalid, unspecified by the extension)
-//   decodes as if it were 1.
-// Portable within a bound (as the header says): each output component is within 7259118492·2^-24
-//   (4.33e2) of what this function computes here, for every code: a bound proven by interval
+//   unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the
+//   extension) is read as its magnitude, at least 1.
+// Portable within a bound (as the header says): each output component is within 175698412·2^-24
+//   (1.05e1) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 static inline void unitpack_meshopt_oct8_bits6_decode_float(const float params[4], float out[3]) {
     const unitpack_vec4 params_v = { params[0], params[1], params[2], params[3] };
@@ -116,15 +117,10 @@ static inline unitpack_vec3 unitpack_meshopt_oct8_bits6_decode_v(uint32_t code) 
         code >> 24u
     };
     const unitpack_vec4 t1_f = { (float)t1.x, (float)t1.y, (float)t1.z, (float)t1.w };
-    const unitpack_vec4 t2 = {
-        t1_f.x > 127.0f ? t1_f.x - 256.0f : t1_f.x,
-        t1_f.y > 127.0f ? t1_f.y - 256.0f : t1_f.y,
-        t1_f.z > 127.0f ? t1_f.z - 256.0f : t1_f.z,
-        t1_f.w > 127.0f ? t1_f.w - 256.0f : t1_f.w
-    };
-    const float one = t2.z == 0.0f ? 1.0f : t2.z;
-    const float t3 = t2.x / one;
-    const float t4 = t2.y / one;
+    const float t2 = fabsf(t1_f.z > 127.0f ? t1_f.z - 256.0f : t1_f.z);
+    const float one = t2 >= 1.0f ? t2 : 1.0f;
+    const float t3 = (t1_f.x > 127.0f ? t1_f.x - 256.0f : t1_f.x) / one;
+    const float t4 = (t1_f.y > 127.0f ? t1_f.y - 256.0f : t1_f.y) / one;
     const float t5 = 1.0f - fabsf(t3);
     const float abs_t4 = fabsf(t4);
     const float t6 = t5 - abs_t4;
@@ -164,8 +160,8 @@ static inline unitpack_vec3 unitpack_meshopt_oct8_bits6_decode_v(uint32_t code) 
 //   complement), bits 16–23: p2 snorm8 (two's complement), bits 24–31: p3 snorm8 (two's
 //   complement)); other bits are ignored.
 // Out: as for unitpack_meshopt_oct8_bits6_decode_float.
-// Portable within a bound (as the header says): each output component is within 7353176712·2^-24
-//   (4.38e2) of what this function computes here, for every code: a bound proven by interval
+// Portable within a bound (as the header says): each output component is within 177547869·2^-24
+//   (1.06e1) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 static inline void unitpack_meshopt_oct8_bits6_decode(uint32_t code, float out[3]) {
     const unitpack_vec3 r = unitpack_meshopt_oct8_bits6_decode_v(code);

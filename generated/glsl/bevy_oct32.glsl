@@ -23,9 +23,9 @@
 #endif
 
 // ---- bevy_oct32: Bevy's compressed-mesh octahedral normal, Snorm16x2, 32 bits, sphere ----
-// Source: Bevy 0.18 (bevyengine/bevy 7517c61, #21926): crates/bevy_mesh/src/vertex.rs
-//   (octahedral_encode_signed, arr_f32_to_snorm16) and crates/bevy_render/src/utils.wgsl
-//   (octahedral_decode_signed).
+// Source: Bevy main at bevyengine/bevy 7517c61 (#21926, merged 2026-06-02; unchanged at 4805ca7):
+//   crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and
+//   crates/bevy_render/src/utils.wgsl (octahedral_decode_signed).
 // Round-trip error over 65536 vectors: mean 0.00130°, sample max 0.00368°; MSE of the components of
 //   n - n' 2.089e-10, PSNR 96.80 dB.
 #ifndef UNITPACK_BEVY_OCT32_GLSL

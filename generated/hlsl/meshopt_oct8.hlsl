@@ -38,37 +38,39 @@
 // unitpack_meshopt_oct8_decode_float: decoder, float form.
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: the extension's reference decoder, read as the snorm vertex fetch reads its output words: a
-//   unit vector to the output's rounding; a zero third word (invalid, unspecified by the extension)
-//   decodes as if it were 1.
-// Portable within a bound (as the header says): each output component is within 7259118492·2^-24
-//   (4.33e2) of what this function computes here, for every code: a bound proven by interval
+//   unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the
+//   extension) is read as its magnitude, at least 1.
+// Portable within a bound (as the header says): each output component is within 264213·2^-24
+//   (1.57e-2) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 float3 unitpack_meshopt_oct8_decode_float(float4 params) {
-    precise float one = params.z == 0.0 ? 1.0 : params.z;
-    precise float t1 = params.x / one;
-    precise float t2 = params.y / one;
-    precise float t3 = 1.0 - abs(t1);
-    precise float abs_t2 = abs(t2);
-    precise float t4 = t3 - abs_t2;
-    precise float t = t4 < 0.0 ? t4 : 0.0;
+    precise float4 t1 = round(params * 127.0);
+    precise float abs_t1_z = abs(t1.z);
+    precise float one = abs_t1_z >= 1.0 ? abs_t1_z : 1.0;
+    precise float t2 = t1.x / one;
+    precise float t3 = t1.y / one;
+    precise float t4 = 1.0 - abs(t2);
+    precise float abs_t3 = abs(t3);
+    precise float t5 = t4 - abs_t3;
+    precise float t = t5 < 0.0 ? t5 : 0.0;
     precise float neg_t = -t;
     precise float neg_t2 = -t;
-    precise float3 v = float3(t1, t2, t3)
-        - float3(t1 >= 0.0 ? neg_t : t, t2 >= 0.0 ? neg_t2 : t, abs_t2);
+    precise float3 v = float3(t2, t3, t4)
+        - float3(t2 >= 0.0 ? neg_t : t, t3 >= 0.0 ? neg_t2 : t, abs_t3);
     precise float3 v_sq = v * v;
-    precise float3 t5 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0;
-    precise float3 abs_t5 = abs(t5);
-    precise float3 floor_abs_t5 = floor(abs_t5);
-    precise float3 t6 = floor_abs_t5
+    precise float3 t6 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0;
+    precise float3 abs_t6 = abs(t6);
+    precise float3 floor_abs_t6 = floor(abs_t6);
+    precise float3 t7 = floor_abs_t6
         + UNITPACK_SELECT(
-            abs_t5 - floor_abs_t5 >= float3(0.5, 0.5, 0.5),
+            abs_t6 - floor_abs_t6 >= float3(0.5, 0.5, 0.5),
             float3(1.0, 1.0, 1.0),
             float3(0.0, 0.0, 0.0)
         );
-    precise float3 t7 = UNITPACK_SELECT(t5 < float3(0.0, 0.0, 0.0), -t6, t6);
-    precise float3 t8 = UNITPACK_SELECT(t7 == float3(0.0, 0.0, 0.0), float3(0.0, 0.0, 0.0), t7)
+    precise float3 t8 = UNITPACK_SELECT(t6 < float3(0.0, 0.0, 0.0), -t7, t7);
+    precise float3 t9 = UNITPACK_SELECT(t8 == float3(0.0, 0.0, 0.0), float3(0.0, 0.0, 0.0), t8)
         * 0.007874016;
-    return UNITPACK_SELECT(t8 >= float3(-1.0, -1.0, -1.0), t8, float3(-1.0, -1.0, -1.0));
+    return UNITPACK_SELECT(t9 >= float3(-1.0, -1.0, -1.0), t9, float3(-1.0, -1.0, -1.0));
 }
 
 // unitpack_meshopt_oct8_decode: decoder.
@@ -76,8 +78,8 @@ float3 unitpack_meshopt_oct8_decode_float(float4 params) {
 //   complement), bits 16–23: p2 snorm8 (two's complement), bits 24–31: p3 snorm8 (two's
 //   complement)); other bits are ignored.
 // Out: as for unitpack_meshopt_oct8_decode_float.
-// Portable within a bound (as the header says): each output component is within 7353176712·2^-24
-//   (4.38e2) of what this function computes here, for every code: a bound proven by interval
+// Portable within a bound (as the header says): each output component is within 528417·2^-24
+//   (3.15e-2) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 float3 unitpack_meshopt_oct8_decode(uint code) {
     uint4 t1 = uint4(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
@@ -87,7 +89,8 @@ float3 unitpack_meshopt_oct8_decode(uint code) {
         t1_f - 256.0,
         t1_f
     );
-    precise float one = t2.z == 0.0 ? 1.0 : t2.z;
+    precise float abs_t2_z = abs(t2.z);
+    precise float one = abs_t2_z >= 1.0 ? abs_t2_z : 1.0;
     precise float t3 = t2.x / one;
     precise float t4 = t2.y / one;
     precise float t5 = 1.0 - abs(t3);

@@ -22,30 +22,32 @@
 // unitpack_meshopt_oct8_bits6_decode_float: decoder, float form.
 // In: parameters in [-1, 1], as a snorm8 fetch returns them.
 // Out: the extension's reference decoder, read as the snorm vertex fetch reads its output words: a
-//   unit vector to the output's rounding; a zero third word (invalid, unspecified by the extension)
-//   decodes as if it were 1.
-// Portable within a bound (as the header says): each output component is within 7259118492·2^-24
-//   (4.33e2) of what this function computes here, for every code: a bound proven by interval
+//   unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the
+//   extension) is read as its magnitude, at least 1.
+// Portable within a bound (as the header says): each output component is within 175698412·2^-24
+//   (1.05e1) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 fn unitpack_meshopt_oct8_bits6_decode_float(params: vec4<f32>) -> vec3<f32> {
-    let one = select(params.z, 1.0f, params.z == 0.0f);
-    let t1 = params.x / one;
-    let t2 = params.y / one;
-    let t3 = 1.0f - abs(t1);
-    let abs_t2 = abs(t2);
-    let t4 = t3 - abs_t2;
-    let t = select(0.0f, t4, t4 < 0.0f);
-    let t5 = vec3<f32>(select(t, -t, t1 >= 0.0f), select(t, -t, t2 >= 0.0f), abs_t2);
-    let v = vec3<f32>(t1, t2, t3) - t5;
+    let t1 = round(params * 127.0f);
+    let abs_t1_z = abs(t1.z);
+    let one = select(1.0f, abs_t1_z, abs_t1_z >= 1.0f);
+    let t2 = t1.x / one;
+    let t3 = t1.y / one;
+    let t4 = 1.0f - abs(t2);
+    let abs_t3 = abs(t3);
+    let t5 = t4 - abs_t3;
+    let t = select(0.0f, t5, t5 < 0.0f);
+    let t6 = vec3<f32>(select(t, -t, t2 >= 0.0f), select(t, -t, t3 >= 0.0f), abs_t3);
+    let v = vec3<f32>(t2, t3, t4) - t6;
     let v_sq = v * v;
-    let t6 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0f;
-    let abs_t6 = abs(t6);
-    let floor_abs_t6 = floor(abs_t6);
-    let t7 = floor_abs_t6
-        + select(vec3<f32>(0.0f), vec3<f32>(1.0f), abs_t6 - floor_abs_t6 >= vec3<f32>(0.5f));
-    let t8 = select(t7, -t7, t6 < vec3<f32>(0.0f));
-    let t9 = select(t8, vec3<f32>(0.0f), t8 == vec3<f32>(0.0f)) * 0.007874016f;
-    return select(vec3<f32>(-1.0f), t9, t9 >= vec3<f32>(-1.0f));
+    let t7 = v / sqrt(v_sq.x + v_sq.y + v_sq.z) * 127.0f;
+    let abs_t7 = abs(t7);
+    let floor_abs_t7 = floor(abs_t7);
+    let t8 = floor_abs_t7
+        + select(vec3<f32>(0.0f), vec3<f32>(1.0f), abs_t7 - floor_abs_t7 >= vec3<f32>(0.5f));
+    let t9 = select(t8, -t8, t7 < vec3<f32>(0.0f));
+    let t10 = select(t9, vec3<f32>(0.0f), t9 == vec3<f32>(0.0f)) * 0.007874016f;
+    return select(vec3<f32>(-1.0f), t10, t10 >= vec3<f32>(-1.0f));
 }
 
 // unitpack_meshopt_oct8_bits6_decode: decoder.
@@ -53,14 +55,15 @@ fn unitpack_meshopt_oct8_bits6_decode_float(params: vec4<f32>) -> vec3<f32> {
 //   complement), bits 16–23: p2 snorm8 (two's complement), bits 24–31: p3 snorm8 (two's
 //   complement)); other bits are ignored.
 // Out: as for unitpack_meshopt_oct8_bits6_decode_float.
-// Portable within a bound (as the header says): each output component is within 7353176712·2^-24
-//   (4.38e2) of what this function computes here, for every code: a bound proven by interval
+// Portable within a bound (as the header says): each output component is within 177547869·2^-24
+//   (1.06e1) of what this function computes here, for every valid code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 fn unitpack_meshopt_oct8_bits6_decode(code: u32) -> vec3<f32> {
     let t1 = vec4<u32>(code & 255u, (code >> 8u) & 255u, (code >> 16u) & 255u, code >> 24u);
     let t1_f = vec4<f32>(t1);
     let t2 = select(t1_f, t1_f - 256.0f, t1_f > vec4<f32>(127.0f));
-    let one = select(t2.z, 1.0f, t2.z == 0.0f);
+    let abs_t2_z = abs(t2.z);
+    let one = select(1.0f, abs_t2_z, abs_t2_z >= 1.0f);
     let t3 = t2.x / one;
     let t4 = t2.y / one;
     let t5 = 1.0f - abs(t3);

@@ -182,11 +182,19 @@ fn encoder_portability(spec: &Spec, portable: bool) -> &'static str {
 fn decoder_portability(e: &Emitted, role: Role) -> Option<String> {
     let f = e.functions.iter().find(|f| f.role == role)?;
     let b = crate::decode_bound::cached(&e.module, f)?;
+    // A format whose valid codes hold a field at one value is proven for those codes.
+    let codes = if f.enclose.as_ref().is_some_and(|x| !x.fixed.is_empty()) {
+        "every valid code"
+    } else {
+        "every code"
+    };
     if b.units == 0.0 {
-        return Some("Portable (as the header says): each output component equals what this function computes here, for every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it).".to_string());
+        return Some(format!(
+            "Portable (as the header says): each output component equals what this function computes here, for {codes}, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack verify --portable prints it)."
+        ));
     }
     Some(format!(
-        "Portable within a bound (as the header says): each output component is within {}·2^-24 ({:.2e}) of what this function computes here, for every code: a bound proven by interval evaluation (unitpack verify --portable prints it).",
+        "Portable within a bound (as the header says): each output component is within {}·2^-24 ({:.2e}) of what this function computes here, for {codes}: a bound proven by interval evaluation (unitpack verify --portable prints it).",
         b.units,
         b.units * crate::decode_bound::UNIT
     ))

@@ -30,12 +30,24 @@ fn inputs() -> Vec<[f32; 3]> {
     let mut v = unitpack::sampling::random_unit_vectors(43, 200_000, false);
     for k in [-20, -3, 5, 20] {
         let s = 2f32.powi(k);
-        v.extend(unitpack::sampling::random_unit_vectors(k as u128 + 100, 2_000, false)
-            .into_iter()
-            .map(|d| d.map(|x| x * s * 1.37)));
+        v.extend(
+            unitpack::sampling::random_unit_vectors(k as u128 + 100, 2_000, false)
+                .into_iter()
+                .map(|d| d.map(|x| x * s * 1.37)),
+        );
     }
     v.extend(unitpack::codecs::core::inputs::edge_vectors());
-    let parts = [0.0f32, -0.0, 0.5, -0.5, 1.0, -1.0, 1e-30, f32::NAN, f32::INFINITY];
+    let parts = [
+        0.0f32,
+        -0.0,
+        0.5,
+        -0.5,
+        1.0,
+        -1.0,
+        1e-30,
+        f32::NAN,
+        f32::INFINITY,
+    ];
     for &x in &parts {
         for &y in &parts {
             for &z in &parts {
@@ -61,12 +73,12 @@ fn meshopt_encoders_write_meshoptimizers_words() {
             }
             let enc = function(&format!("meshopt_oct{word}:bits={k}"), Role::Encode);
             let want: Vec<u64> = if word == 8 {
-                ::meshopt::encode_filter_oct::<u8>(&data, k as i32)
+                ::meshopt::encode_filter_oct::<u8>(&data, k)
                     .iter()
                     .map(|w| u64::from(u32::from_le_bytes(*w)))
                     .collect()
             } else {
-                ::meshopt::encode_filter_oct::<u16>(&data, k as i32)
+                ::meshopt::encode_filter_oct::<u16>(&data, k)
                     .iter()
                     .map(|w| w.iter().rev().fold(0u64, |a, &h| a << 16 | u64::from(h)))
                     .collect()
@@ -74,7 +86,10 @@ fn meshopt_encoders_write_meshoptimizers_words() {
             for (v, want) in vs.iter().zip(want) {
                 let got = run(&enc, &bits(*v));
                 let got = got.iter().rev().fold(0u64, |a, &w| a << 32 | u64::from(w));
-                assert_eq!(got, want, "meshopt_oct{word} K={k}: {v:?} → {got:x} vs {want:x}");
+                assert_eq!(
+                    got, want,
+                    "meshopt_oct{word} K={k}: {v:?} → {got:x} vs {want:x}"
+                );
             }
         }
     }
@@ -101,7 +116,9 @@ fn meshopt_decoders_are_the_extensions_reference() {
             let dec = function(&format!("meshopt_oct{word}:bits={k}"), Role::Decode);
             let m = (1i32 << (k - 1)) - 1;
             let codes: Vec<(i32, i32)> = if k <= 8 {
-                (-m..=m).flat_map(|x| (-m..=m).map(move |y| (x, y))).collect()
+                (-m..=m)
+                    .flat_map(|x| (-m..=m).map(move |y| (x, y)))
+                    .collect()
             } else {
                 (0..250_000)
                     .map(|_| {
@@ -135,17 +152,30 @@ fn meshopt_decoders_are_the_extensions_reference() {
             }
             // meshoptimizer's decoder on the same words.
             let ulp = if word == 8 {
-                let mut data: Vec<[i8; 4]> =
-                    words.iter().map(|&(_, x, y)| [x as i8, y as i8, m as i8, 0]).collect();
+                let mut data: Vec<[i8; 4]> = words
+                    .iter()
+                    .map(|&(_, x, y)| [x as i8, y as i8, m as i8, 0])
+                    .collect();
                 ::meshopt::decode_filter_oct(&mut data);
-                diff(&words, data.iter().map(|d| [d[0].into(), d[1].into(), d[2].into()]))
+                diff(
+                    &words,
+                    data.iter().map(|d| [d[0].into(), d[1].into(), d[2].into()]),
+                )
             } else {
-                let mut data: Vec<[i16; 4]> =
-                    words.iter().map(|&(_, x, y)| [x as i16, y as i16, m as i16, 0]).collect();
+                let mut data: Vec<[i16; 4]> = words
+                    .iter()
+                    .map(|&(_, x, y)| [x as i16, y as i16, m as i16, 0])
+                    .collect();
                 ::meshopt::decode_filter_oct(&mut data);
-                diff(&words, data.iter().map(|d| [d[0].into(), d[1].into(), d[2].into()]))
+                diff(
+                    &words,
+                    data.iter().map(|d| [d[0].into(), d[1].into(), d[2].into()]),
+                )
             };
-            assert!(ulp <= 1, "meshoptimizer's decoder {ulp} units from the reference");
+            assert!(
+                ulp <= 1,
+                "meshoptimizer's decoder {ulp} units from the reference"
+            );
         }
     }
 }
@@ -192,14 +222,21 @@ fn bevy_decoders_are_bevys() {
     for (x, y) in codes {
         let f = [bevy::snorm16_to_f32(x), bevy::snorm16_to_f32(y)];
         let got = run(&decf, &f.map(f32::to_bits));
-        assert_eq!(got, bits(bevy::octahedral_decode_signed(f)), "fetched {f:?}");
+        assert_eq!(
+            got,
+            bits(bevy::octahedral_decode_signed(f)),
+            "fetched {f:?}"
+        );
         let got = run(&dec, &[u32::from(x as u16) | u32::from(y as u16) << 16]);
         let want = bevy::decode([x, y]);
         for i in 0..3 {
             worst = worst.max((f32::from_bits(got[i]) - want[i]).abs());
         }
     }
-    assert!(worst <= 2f32.powi(-22), "packed decode {worst:e} from Bevy's");
+    assert!(
+        worst <= 2f32.powi(-22),
+        "packed decode {worst:e} from Bevy's"
+    );
 }
 
 #[test]
@@ -230,7 +267,10 @@ fn unity_decoders_are_unitys() {
         let b = code.to_le_bytes();
         let want = unity::decode([b[0], b[1], b[2]]);
         let got = run(&dec, &[code]);
-        let (cx, cy) = (code & 0xff | (code >> 16 & 15) << 8, code >> 8 & 0xff | (code >> 20) << 8);
+        let (cx, cy) = (
+            code & 0xff | (code >> 16 & 15) << 8,
+            code >> 8 & 0xff | (code >> 20) << 8,
+        );
         if same_fetch(cx) && same_fetch(cy) {
             assert_eq!(got, bits(want), "code {code:06x}");
             equal += 1;
@@ -258,14 +298,19 @@ fn unity_nearest_rounding_lowers_the_error() {
         vs.iter()
             .map(|v| {
                 let d = run(&dec, &run(&enc, &bits(*v)));
-                let dot: f64 = (0..3).map(|i| f64::from(v[i]) * f64::from(f32::from_bits(d[i]))).sum();
+                let dot: f64 = (0..3)
+                    .map(|i| f64::from(v[i]) * f64::from(f32::from_bits(d[i])))
+                    .sum();
                 dot.clamp(-1.0, 1.0).acos()
             })
             .sum::<f64>()
             / vs.len() as f64
     };
     let (trunc, near) = (mean("unity_oct24"), mean("unity_oct24:rounding=nearest"));
-    assert!(near < trunc * 0.75, "nearest {near:e} vs truncate {trunc:e}");
+    assert!(
+        near < trunc * 0.75,
+        "nearest {near:e} vs truncate {trunc:e}"
+    );
 }
 
 /// Draco's codes for every size, on the seeded and edge vectors (Draco's f64 arithmetic
@@ -280,7 +325,11 @@ fn draco_matches_draco() {
         let (enc, dec) = (function(&spec, Role::Encode), function(&spec, Role::Decode));
         for v in &vs {
             let [s, t] = draco::encode(*v, n);
-            assert_eq!(run(&enc, &bits(*v))[0], s as u32 | (t as u32) << n, "{spec}: {v:?}");
+            assert_eq!(
+                run(&enc, &bits(*v))[0],
+                s as u32 | (t as u32) << n,
+                "{spec}: {v:?}"
+            );
         }
         let max = (1u32 << n) - 2;
         let mut st: Vec<(u32, u32)> = Vec::new();

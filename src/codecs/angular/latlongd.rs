@@ -403,6 +403,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         }),
         whole_field: None,
         unread: &[],
+        fixed: Vec::new(),
     });
     let ring = generic_function!(
         "encode_ring",

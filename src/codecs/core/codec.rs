@@ -142,6 +142,13 @@ pub trait Codec: Send + Sync {
     fn unread_fields(&self) -> &'static [usize] {
         &[]
     }
+    /// Fields every valid code holds at one value, as `(field, code)` (meshoptimizer's
+    /// K-bit 1.0): [`crate::decode_bound`] proves the bound for the valid codes, with the
+    /// field at that value, and the decoder's doc comment says so. A code with another
+    /// value there still decodes finite (tests/conventions.rs), within no stated bound.
+    fn fixed_fields(&self) -> Vec<(usize, i64)> {
+        Vec::new()
+    }
     /// The name of a second packed encoder, if the codec has one (a texel layout that
     /// serves two block formats), which writes [`Codec::alternate_codes`] of the codes.
     fn alternate(&self) -> Option<&'static str> {

@@ -193,6 +193,8 @@ pub struct Enclose {
     pub whole_field: Option<usize>,
     /// Fields the decoder does not read ([`Codec::unread_fields`]): proven at one value.
     pub unread: &'static [usize],
+    /// Fields every valid code holds at one value ([`Codec::fixed_fields`]): proven there.
+    pub fixed: Vec<(usize, i64)>,
 }
 
 /// The traced module and the public functions of one spec.

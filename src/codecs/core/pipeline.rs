@@ -124,15 +124,18 @@ where
     ];
     let whole_field = c.whole_field();
     let unread = c.unread_fields();
+    let fixed = c.fixed_fields();
     functions[0].enclose = Some(Enclose {
         eval: Arc::new(fetch_box),
         whole_field,
         unread,
+        fixed: fixed.clone(),
     });
     functions[1].enclose = Some(Enclose {
         eval: Arc::new(field_box),
         whole_field,
         unread,
+        fixed,
     });
     functions
 }

@@ -30,7 +30,7 @@ pub static FAMILY: CodecFamily<BevyOct> = CodecFamily::new(
         title: "Bevy's compressed-mesh octahedral normal, Snorm16x2",
         sizes: Sizes::Total(&[32]),
         domain: Some(Domain::Sphere),
-        source: "Bevy 0.18 (bevyengine/bevy 7517c61, #21926): crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and crates/bevy_render/src/utils.wgsl (octahedral_decode_signed)",
+        source: "Bevy main at bevyengine/bevy 7517c61 (#21926, merged 2026-06-02; unchanged at 4805ca7): crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and crates/bevy_render/src/utils.wgsl (octahedral_decode_signed)",
         edge_policy: "Bevy's: zero and NaN input encode as +Z (0, 0); infinite input too (its normalize gives NaN); -Z encodes as (-32767, -32767)",
         decode_note: "Bevy's octahedral_decode_signed: a unit vector (to rounding) for every code",
         options: &[ieee::ENGINE_OPTION],

@@ -30,7 +30,7 @@ use std::marker::PhantomData;
 
 const SOURCE: &str = "meshoptimizer 1.3 (src/vertexfilter.cpp, meshopt_encodeFilterOct; meshopt crate 0.7.0) and glTF EXT_meshopt_compression, Appendix B, filter 1 (the reference decoder)";
 const EDGE: &str = "meshoptimizer's: zero input encodes as +Z (0, 0); NaN coordinates become -M (a NaN fails both clamps' comparisons); infinite input gives NaN coordinates, so (-M, -M)";
-const DECODE: &str = "the extension's reference decoder, read as the snorm vertex fetch reads its output words: a unit vector to the output's rounding; a zero third word (invalid, unspecified by the extension) decodes as if it were 1";
+const DECODE: &str = "the extension's reference decoder, read as the snorm vertex fetch reads its output words: a unit vector to the output's rounding; a third word below 1 (invalid, unspecified by the extension) is read as its magnitude, at least 1";
 
 const fn bits_option(word: u32) -> OptDesc {
     OptDesc {
@@ -149,13 +149,13 @@ impl<W> MeshoptOct<W> {
     }
 }
 
-/// The reference decoder on the words `c` (as floats): the direction as the output
-/// words' snorm fetch reads it. `c` may be the integer words or their fetched values
-/// (the float form); only the ratios `x/one`, `y/one` matter.
+/// The reference decoder on the integer words `c` (as floats): the direction as the
+/// output words' snorm fetch reads them. A third word below 1 (invalid) is read as its
+/// magnitude, at least 1, so that every code decodes finite within a proven bound.
 #[inline(always)]
 fn reference_decode<F: Float>(out: Quant, c: V4<F>) -> V3<F> {
     let zero = F::c(0.0);
-    let one = F::sel(c.z.eq(zero), F::c(1.0), c.z).named("one");
+    let one = c.z.abs().at_least(F::c(1.0)).named("one");
     let x = c.x / one;
     let y = c.y / one;
     let z = F::c(1.0) - x.abs() - y.abs();
@@ -203,9 +203,15 @@ impl<W: Words> Codec for MeshoptOct<W> {
             F::c(0.0),
         )
     }
+    /// The fetched words back to integers, then the reference decoder.
     #[inline(always)]
     fn direction<F: Float>(&self, p: V4<F>) -> V3<F> {
-        reference_decode(self.field(), p)
+        let m = F::c(self.field().max_code());
+        let words = p.map(
+            #[inline(always)]
+            |x| (x * m).round(),
+        );
+        reference_decode(self.field(), words)
     }
     #[inline(always)]
     fn decode_codes<F: Float>(&self, codes: V4<F>) -> V3<F> {
@@ -214,6 +220,10 @@ impl<W: Words> Codec for MeshoptOct<W> {
     /// The fourth word is passed through: no decode reads it.
     fn unread_fields(&self) -> &'static [usize] {
         &[3]
+    }
+    /// Every valid code's third word is the K-bit 1.0.
+    fn fixed_fields(&self) -> Vec<(usize, i64)> {
+        vec![(2, self.one() as i64)]
     }
     /// `meshopt_encodeFilterOct` for `(x, y, z, 0)`.
     #[inline(always)]

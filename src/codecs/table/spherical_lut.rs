@@ -490,6 +490,7 @@ fn emitted(spec_id: &str, lut: SphericalLut, precise: bool) -> Emitted {
         }),
         whole_field: None,
         unread: &[],
+        fixed: Vec::new(),
     });
     let atan_lookup: WordsMap = Arc::new(move |t: &[u32]| vec![atan_fetch(lut, t).to_bits()]);
     let fast_cpu = through_table(

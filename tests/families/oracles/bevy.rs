@@ -93,13 +93,8 @@ pub fn octahedral_encode_signed(v: [f32; 3]) -> [f32; 2] {
     let sy = if n[1] > 0.0 { 1.0f32 } else { -1.0f32 };
     // `(1.0 - n.yx().abs()) * sign`
     let wrap = [(1.0 - n[1].abs()) * sx, (1.0 - n[0].abs()) * sy];
-    if n[2] >= 0.0 {
-        [n[0], n[1]]
-    } else {
-        wrap
-    }
+    if n[2] >= 0.0 { [n[0], n[1]] } else { wrap }
 }
-
 
 /// `arr_f32_to_snorm16` for one value: `(v.clamp(-1, 1) * 32767).round() as i16`.
 /// `f32::clamp` passes NaN through, and `NaN as i16` is 0.
@@ -120,7 +115,6 @@ pub fn encode(n: [f32; 3]) -> [i16; 2] {
     [f32_to_snorm16(e[0]), f32_to_snorm16(e[1])]
 }
 
-
 /// WGSL `octahedral_decode_signed`, in the same operation order (and as in
 /// the CPU copy in `vertex.rs`). `normalize` follows glam; on a GPU its
 /// precision is implementation-defined.
@@ -140,6 +134,3 @@ pub fn octahedral_decode_signed(v: [f32; 2]) -> [f32; 3] {
 pub fn decode(code: [i16; 2]) -> [f32; 3] {
     octahedral_decode_signed([snorm16_to_f32(code[0]), snorm16_to_f32(code[1])])
 }
-
-
-

@@ -100,7 +100,8 @@ impl OctahedronToolBox {
         })
     }
 
-    /// `CanonicalizeOctahedralCoords(s, t)`.
+    /// `CanonicalizeOctahedralCoords(s, t)`, its condition written as Draco writes it.
+    #[allow(clippy::nonminimal_bool)]
     pub fn canonicalize_octahedral_coords(&self, s: i32, t: i32) -> (i32, i32) {
         let (mv, c) = (self.max_value, self.center_value);
         let (mut s, mut t) = (s, t);

@@ -77,11 +77,7 @@
 
 /// HLSL `saturate` with D3D semantics: NaN gives 0.
 pub fn saturate(x: f32) -> f32 {
-    if x.is_nan() {
-        0.0
-    } else {
-        x.clamp(0.0, 1.0)
-    }
+    if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
 }
 
 /// `PackNormalOctQuadEncode(float3 n)`: returns octahedral coordinates in [-1, 1].
@@ -111,7 +107,6 @@ pub fn pack_float2_to_888_uint(f: [f32; 2]) -> [u32; 3] {
     let (lx, ly) = (ix & 255, iy & 255);
     [lx, ly, hx | (hy << 4)]
 }
-
 
 /// `PackFloat2To888(float2 f)`: `PackFloat2To888UInt(f) / 255.0`, the float
 /// that the shader writes to an RGB8 UNORM target.
