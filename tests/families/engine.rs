@@ -251,8 +251,8 @@ fn unity_encoder_writes_unitys_bytes() {
 
 /// Every one of the 2^24 codes: the decoder is Unity's, its `/ 4095.0` taken as the
 /// product by the reciprocal HLSL compilers write, so within 2^-20 of the quotient's
-/// decode, and bit-equal where the product and the quotient agree for both codes (about
-/// a quarter of them: the two differ for 2046 of the 4096 codes); the float form reads back the bytes of
+/// decode, and bit-equal where the product and the quotient agree for both codes (over
+/// 2^22 of the codes, asserted); the float form reads back the bytes of
 /// `Unpack888ToFloat2`.
 #[test]
 fn unity_decoders_are_unitys() {

@@ -12,7 +12,7 @@
 //! NaN input encode as +Z, `(0, 0)`). `decode_float` is Bevy's WGSL function on the
 //! fetched coordinates, its `normalize` written as glam's; `decode` fetches the codes as
 //! every decoder here does, `max(c·fl(1/32767), -1)`, which is the Snorm16 fetch's
-//! quotient `c/32767` or an ulp from it (for 768 of the 32 768 magnitudes).
+//! quotient `c/32767` or an ulp from it.
 
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::core::codec_family::CodecFamily;

@@ -10,14 +10,14 @@
 //! `1/4095.5` from `f` where rounding would be within `1/8190` (the question "shouldn't we
 //! round here?" of ScriptableRenderPipeline #883 stands). `rounding=nearest` is the same
 //! format with `i = round(f·4095)`: every byte Unity's decoder reads, half the largest
-//! scalar error (the mean angle drops to 0.71 of Unity's, tests/families/engine.rs). Bytes: `R = ix & 255`, `G = iy & 255`, `B = (ix >> 8) | (iy >> 8) << 4`.
+//! scalar error (the mean angle drops to about 0.71 of Unity's; tests/families/engine.rs
+//! asserts below 0.75). Bytes: `R = ix & 255`, `G = iy & 255`, `B = (ix >> 8) | (iy >> 8) << 4`.
 //!
 //! Unity's HLSL arithmetic, in its order: `rcp(max(|x| + |y| + |z|, 1e-6))` (written as
 //! a division), products, `t = saturate(-z)`, the fold `x + (x ≥ 0 ? t : -t)` (so -Z is
 //! `(1, 1)`), and D3D's `saturate(NaN) = 0` (a NaN input gives the codes of its NaN
 //! coordinates, 0). The decoder's `x / 4095.0` is written as the product by the reciprocal
-//! that HLSL compilers turn it into (a CPU port's quotient is an ulp away for 2046 of the
-//! 4096 codes) and it normalizes as `n·(1/sqrt(n·n))`, where a
+//! that HLSL compilers turn it into (a CPU port's quotient is an ulp away for some codes) and it normalizes as `n·(1/sqrt(n·n))`, where a
 //! GPU's `normalize` is its own.
 
 use crate::codecs::core::codec::{Codec, Domain};
