@@ -602,12 +602,32 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
 /// HLSL (beside an empty entry point) and the GLSL as a GLSL 330 and a GLSL ES 300 fragment
 /// shader. (The C paths compile the whole header into the driver every function runs in.)
 pub fn whole_include(lang: Lang, include: &str) -> Vec<(String, Result<()>)> {
-    match lang {
+    whole_includes(&[(lang, include)])
+        .pop()
+        .expect("the checks of one include")
+}
+
+/// A check of [`whole_includes`]: done, or GLSL sources of one stage for glslang to check,
+/// all of which must compile.
+enum Check {
+    Done(Result<()>),
+    Glsl(&'static str, Vec<(String, String)>),
+}
+
+/// [`whole_include`] of each include, on every core. The GLSL that glslang checks without
+/// SPIR-V (naga's output, the 330 and ES 300 forms) is checked in shared runs
+/// ([`tools::glslang_check_many`]); the HLSL needs SPIR-V, which glslang makes by linking
+/// every file of a run into one module, so each HLSL include has a run of its own.
+pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> {
+    let checks: Vec<Vec<(&str, Check)>> = crate::par::map(items, |&(lang, include)| match lang {
         Lang::Wgsl => vec![
-            ("wgsl/naga".to_string(), tools::naga_wgsl(include)),
+            ("wgsl/naga", Check::Done(tools::naga_wgsl(include))),
             (
-                "wgsl/naga glsl-out".to_string(),
-                tools::naga_glsl_out(include),
+                "wgsl/naga glsl-out",
+                match tools::naga_glsl_sources(include) {
+                    Ok(sources) => Check::Glsl("comp", sources),
+                    Err(e) => Check::Done(Err(e)),
+                },
             ),
         ],
         Lang::Hlsl => {
@@ -618,30 +638,60 @@ pub fn whole_include(lang: Lang, include: &str) -> Vec<(String, Result<()>)> {
                 entry,
             };
             let r = tools::glslang_spirv(&source, input, HlslOpt::Default).map(drop);
-            vec![("hlsl/glslang".to_string(), r)]
+            vec![("hlsl/glslang", Check::Done(r))]
         }
-        Lang::Glsl => glsl_versions(include),
+        Lang::Glsl => {
+            let form = |version: &str, color: &str| {
+                let main = format!("out {color} color;\nvoid main() {{ color = vec4(0.0); }}\n");
+                let text = format!("#version {version}\n{include}\n{main}");
+                Check::Glsl(
+                    "frag",
+                    vec![(format!("glsl-{}", version.replace(' ', "-")), text)],
+                )
+            };
+            vec![
+                ("glsl 330/glslang", form("330", "vec4")),
+                ("glsl es 300/glslang", form("300 es", "highp vec4")),
+            ]
+        }
         Lang::C => vec![],
+    });
+    // Every source glslang is to check, by stage, and the results in the same order.
+    let mut results = HashMap::new();
+    for stage in ["comp", "frag"] {
+        let sources: Vec<(String, String)> = checks
+            .iter()
+            .flatten()
+            .filter_map(|(_, c)| match c {
+                Check::Glsl(s, sources) if *s == stage => Some(sources.iter().cloned()),
+                _ => None,
+            })
+            .flatten()
+            .collect();
+        results.insert(
+            stage,
+            tools::glslang_check_many(stage, &sources).into_iter(),
+        );
     }
-}
-
-/// The include must also compile as a GLSL 330 and a GLSL ES 300 fragment shader.
-fn glsl_versions(include: &str) -> Vec<(String, Result<()>)> {
-    let v330 =
-        format!("#version 330\n{include}\nout vec4 color;\nvoid main() {{ color = vec4(0.0); }}\n");
-    let es = format!(
-        "#version 300 es\n{include}\nout highp vec4 color;\nvoid main() {{ color = vec4(0.0); }}\n"
-    );
-    vec![
-        (
-            "glsl 330/glslang".to_string(),
-            tools::glslang_check(&v330, "frag"),
-        ),
-        (
-            "glsl es 300/glslang".to_string(),
-            tools::glslang_check(&es, "frag"),
-        ),
-    ]
+    checks
+        .into_iter()
+        .map(|of_item| {
+            of_item
+                .into_iter()
+                .map(|(path, check)| {
+                    let r = match check {
+                        Check::Done(r) => r,
+                        Check::Glsl(stage, sources) => {
+                            let of_stage = results.get_mut(stage).expect("checked by stage");
+                            let rs: Vec<Result<()>> = of_stage.take(sources.len()).collect();
+                            rs.into_iter().collect()
+                        }
+                    };
+                    (path.to_string(), r)
+                })
+                .collect()
+        })
+        .collect()
 }
 
 pub fn func_types(f: &Func) -> (Vec<Ty>, Ty) {
@@ -686,6 +736,38 @@ pub fn run_on(
     };
     let emitted: Vec<_> = specs.iter().map(|s| s.emitted()).collect();
     let owners = owners(specs, &emitted);
+    // Each spec's include in each language, and the static checks of every include, ahead
+    // of the workers: glslang checks many includes in one run ([`whole_includes`]).
+    let includes: Vec<Vec<(Lang, String)>> = crate::par::map(specs, |spec| {
+        langs
+            .iter()
+            .map(|&l| {
+                let include = render(
+                    &[(spec.clone(), None)],
+                    l,
+                    DEFAULT_PREFIX,
+                    "unitpack verify",
+                );
+                (l, include)
+            })
+            .collect()
+    });
+    let items: Vec<(Lang, &str)> = includes
+        .iter()
+        .flatten()
+        .map(|(l, include)| (*l, include.as_str()))
+        .collect();
+    let mut checks = whole_includes(&items).into_iter();
+    let checks: Vec<Vec<(String, Option<String>)>> = includes
+        .iter()
+        .map(|of_spec| {
+            (&mut checks)
+                .take(of_spec.len())
+                .flatten()
+                .map(|(path, r)| (path, r.err().map(|e| format!("{e:#}"))))
+                .collect()
+        })
+        .collect();
     let total: usize = emitted
         .iter()
         .map(|e| e.functions.len() * paths.len())
@@ -719,11 +801,14 @@ pub fn run_on(
                     loop {
                         let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                         let Some(spec) = specs.get(i) else { break };
-                        let shared = &owners[i];
-                        done.push((
-                            i,
-                            verify_spec(spec, &emitted[i], shared, langs, &on, &bar, &mut want),
-                        ));
+                        let spec = Verified {
+                            spec,
+                            emitted: &emitted[i],
+                            shared: &owners[i],
+                            includes: &includes[i],
+                            checks: &checks[i],
+                        };
+                        done.push((i, verify_spec(&spec, &on, &bar, &mut want)));
                     }
                     done
                 })
@@ -834,51 +919,45 @@ struct On<'a> {
     keep: usize,
 }
 
+/// One spec as [`verify_spec`] takes it: its emitted functions, the earlier function each
+/// shares its code with ([`owners`]), its include in each language, and the static checks
+/// of those includes (path, error).
+struct Verified<'a> {
+    spec: &'a Spec,
+    emitted: &'a Emitted,
+    shared: &'a [Option<String>],
+    includes: &'a [(Lang, String)],
+    checks: &'a [(String, Option<String>)],
+}
+
 /// Every row of one spec: its whole includes, then each function on each path.
 /// `want_buf` holds each function's expected outputs in turn.
 fn verify_spec(
-    spec: &Spec,
-    e: &Emitted,
-    shared: &[Option<String>],
-    langs: &[Lang],
+    v: &Verified,
     on: &On,
     bar: &indicatif::ProgressBar,
     want_buf: &mut Vec<u32>,
 ) -> Vec<Row> {
+    let (spec, e, shared, includes) = (v.spec, v.emitted, v.shared, v.includes);
     let (paths, gpu, keep) = (on.paths, on.gpu, on.keep);
-    let mut rows = Vec::new();
-    let includes: Vec<(Lang, String)> = langs
-        .iter()
-        .map(|l| {
-            (
-                *l,
-                render(
-                    &[(spec.clone(), None)],
-                    *l,
-                    DEFAULT_PREFIX,
-                    "unitpack verify",
-                ),
-            )
-        })
-        .collect();
     // Every include on its own, whatever its functions share with another spec's: the
     // kernels below compile only the functions they call.
-    for (lang, include) in &includes {
-        for (path, r) in whole_include(*lang, include) {
-            rows.push(Row {
-                spec: spec.to_string(),
-                function: "(whole include)".into(),
-                path,
-                tested: 0,
-                mismatches: 0,
-                first: vec![],
-                error: r.err().map(|e| format!("{e:#}")),
-                same_as: None,
-                largest: None,
-                measured: false,
-            });
-        }
-    }
+    let mut rows: Vec<Row> = v
+        .checks
+        .iter()
+        .map(|(path, error)| Row {
+            spec: spec.to_string(),
+            function: "(whole include)".into(),
+            path: path.clone(),
+            tested: 0,
+            mismatches: 0,
+            first: vec![],
+            error: error.clone(),
+            same_as: None,
+            largest: None,
+            measured: false,
+        })
+        .collect();
     let include = |l: Lang| &includes.iter().find(|(x, _)| *x == l).expect("lang").1;
     let ns = if e.namespace.is_empty() {
         String::new()

@@ -164,11 +164,62 @@ fn describe_cmd(cmd: &Command) -> String {
 /// (`glslangValidator -S <stage> file.<stage>`), e.g. to check that an include also compiles
 /// as `#version 330` or `#version 300 es`. `source` must contain its own `#version` line.
 pub fn glslang_check(source: &str, stage: &'static str) -> anyhow::Result<()> {
-    let src = temp_file(stage, source.as_bytes())?;
-    let mut cmd = Command::new(GLSLANG);
-    cmd.args(["-S", stage]).arg(src.path());
-    run_ok(&mut cmd, GLSLANG, "glslang-tools")?;
-    Ok(())
+    let mut results = glslang_check_many(stage, &[("include".into(), source.into())]);
+    results.pop().expect("one result per source")
+}
+
+/// Files one glslang run checks at most: its start-up, which reads the built-in
+/// declarations of every version and stage it meets, costs more than checking a small
+/// include, so the checks of many includes share a run.
+const CHECKS_PER_RUN: usize = 64;
+
+/// [`glslang_check`] of many sources of one stage, each given with the file name (without
+/// extension) that its diagnostics are to name, in runs of up to [`CHECKS_PER_RUN`] files on
+/// every core. Without `-V` glslang compiles each file on its own, not linking them. A run
+/// that fails is repeated file by file, so that each error holds only its own file's
+/// diagnostics.
+pub fn glslang_check_many(
+    stage: &'static str,
+    sources: &[(String, String)],
+) -> Vec<anyhow::Result<()>> {
+    let written = (|| {
+        let dir = tempfile::tempdir().context("creating a temporary directory")?;
+        let mut files = Vec::new();
+        for (k, (name, text)) in sources.iter().enumerate() {
+            // A folder per source: names may repeat, and a diagnostic names the file.
+            let folder = dir.path().join(k.to_string());
+            let file = folder.join(format!("{name}.{stage}"));
+            std::fs::create_dir(&folder)
+                .and_then(|()| std::fs::write(&file, text))
+                .with_context(|| format!("writing {}", file.display()))?;
+            files.push(file);
+        }
+        anyhow::Ok((dir, files))
+    })();
+    let (_dir, files) = match written {
+        Ok(w) => w,
+        Err(e) => return sources.iter().map(|_| Err(anyhow!("{e:#}"))).collect(),
+    };
+    let runs: Vec<&[std::path::PathBuf]> = files.chunks(CHECKS_PER_RUN).collect();
+    crate::par::map(&runs, |run| -> Vec<anyhow::Result<()>> {
+        let mut cmd = Command::new(GLSLANG);
+        cmd.args(["-S", stage]).args(run.iter());
+        match run_tool(&mut cmd, GLSLANG, "glslang-tools") {
+            Ok(out) if out.status.success() => run.iter().map(|_| Ok(())).collect(),
+            Ok(_) => run
+                .iter()
+                .map(|file| {
+                    let mut cmd = Command::new(GLSLANG);
+                    cmd.args(["-S", stage]).arg(file);
+                    run_ok(&mut cmd, GLSLANG, "glslang-tools").map(drop)
+                })
+                .collect(),
+            Err(e) => run.iter().map(|_| Err(anyhow!("{e:#}"))).collect(),
+        }
+    })
+    .into_iter()
+    .flatten()
+    .collect()
 }
 
 /// `spirv-opt -O` (which inlines every call into the entry point), then `spirv-dis`: the
@@ -281,9 +332,16 @@ const NAGA_GLSL_VERSIONS: [naga::back::glsl::Version; 2] = [
 
 /// naga's GLSL back end on a WGSL include: the include, with an empty compute entry point,
 /// written by naga as each of [`NAGA_GLSL_VERSIONS`] with every function (not only those
-/// the entry point calls) and compiled by glslang, in one run. This is the GLSL a user of
-/// the WGSL include gets on wgpu's OpenGL backend; naga writes it without checking it.
+/// the entry point calls) and compiled by glslang. This is the GLSL a user of the WGSL
+/// include gets on wgpu's OpenGL backend; naga writes it without checking it.
 pub fn naga_glsl_out(include: &str) -> anyhow::Result<()> {
+    let sources = naga_glsl_sources(include)?;
+    glslang_check_many("comp", &sources).into_iter().collect()
+}
+
+/// The compute shaders [`naga_glsl_out`] has glslang check, each named by its version (the
+/// name a diagnostic gives): naga's GLSL of the include for each of [`NAGA_GLSL_VERSIONS`].
+pub fn naga_glsl_sources(include: &str) -> anyhow::Result<Vec<(String, String)>> {
     use naga::back::glsl;
     let entry = "unitpack_include_check";
     let source = format!("{include}\n@compute @workgroup_size(1)\nfn {entry}() {{}}\n");
@@ -293,35 +351,29 @@ pub fn naga_glsl_out(include: &str) -> anyhow::Result<()> {
         entry_point: entry.into(),
         multiview: None,
     };
-    let dir = tempfile::tempdir().context("creating a temporary directory")?;
-    let mut cmd = Command::new(GLSLANG);
-    cmd.args(["-S", "comp"]);
-    for version in NAGA_GLSL_VERSIONS {
-        let options = glsl::Options {
-            version,
-            writer_flags: glsl::WriterFlags::INCLUDE_UNUSED_ITEMS,
-            ..glsl::Options::default()
-        };
-        let mut text = String::new();
-        glsl::Writer::new(
-            &mut text,
-            &module,
-            &info,
-            &options,
-            &pipeline,
-            naga::proc::BoundsCheckPolicies::default(),
-        )
-        .and_then(|mut w| w.write())
-        .map_err(|e| anyhow!("naga's GLSL back end, {version}: {e}"))?;
-        // The file's name says which version a diagnostic is about.
-        let file = dir.path().join(format!(
-            "naga-glsl-{}.comp",
-            version.to_string().replace(' ', "-")
-        ));
-        std::fs::write(&file, text).context("writing naga's GLSL")?;
-        cmd.arg(file);
-    }
-    run_ok(&mut cmd, GLSLANG, "glslang-tools").map(drop)
+    NAGA_GLSL_VERSIONS
+        .into_iter()
+        .map(|version| {
+            let options = glsl::Options {
+                version,
+                writer_flags: glsl::WriterFlags::INCLUDE_UNUSED_ITEMS,
+                ..glsl::Options::default()
+            };
+            let mut text = String::new();
+            glsl::Writer::new(
+                &mut text,
+                &module,
+                &info,
+                &options,
+                &pipeline,
+                naga::proc::BoundsCheckPolicies::default(),
+            )
+            .and_then(|mut w| w.write())
+            .map_err(|e| anyhow!("naga's GLSL back end, {version}: {e}"))?;
+            let name = format!("naga-glsl-{}", version.to_string().replace(' ', "-"));
+            Ok((name, text))
+        })
+        .collect()
 }
 
 /// naga: parses GLSL as a compute shader and validates it.

@@ -92,6 +92,68 @@ fn whole_include_checks_uncalled_functions() {
     }
 }
 
+/// The includes' checks share glslang runs: each error stays with its own include, holding
+/// its own diagnostics only, and every other include passes.
+#[test]
+fn whole_includes_keep_each_error_with_its_include() {
+    let good: Vec<(Lang, String)> = ["oct16", "hemioct24p", "spherical24"]
+        .iter()
+        .flat_map(|s| {
+            let spec: Spec = s.parse().expect("spec");
+            [Lang::Wgsl, Lang::Glsl, Lang::Hlsl].map(|l| {
+                (
+                    l,
+                    render(&[(spec.clone(), None)], l, DEFAULT_PREFIX, "test"),
+                )
+            })
+        })
+        .collect();
+    let mut items: Vec<(Lang, &str)> = good.iter().map(|(l, s)| (*l, s.as_str())).collect();
+    let glsl_a = "precision highp float;\nvec3 f(uint c) { return nope_a(c); }\n";
+    let glsl_b = "precision highp float;\nvec3 f(uint c) { return nope_b(c); }\n";
+    let wgsl = "fn f(a: vec3<u32>, m: vec3<bool>) -> vec3<u32> { return select(a, a + 1u, m); }\n";
+    for (at, item) in [
+        (1, (Lang::Glsl, glsl_a)),
+        (5, (Lang::Wgsl, wgsl)),
+        (9, (Lang::Glsl, glsl_b)),
+    ] {
+        items.insert(at, item);
+    }
+    let checks = whole_includes(&items);
+    assert_eq!(checks.len(), items.len());
+    for (k, ((lang, _), checks)) in items.iter().zip(&checks).enumerate() {
+        let paths: Vec<&str> = checks.iter().map(|(p, _)| p.as_str()).collect();
+        match lang {
+            Lang::Wgsl => assert_eq!(paths, ["wgsl/naga", "wgsl/naga glsl-out"], "{k}"),
+            Lang::Glsl => assert_eq!(paths, ["glsl 330/glslang", "glsl es 300/glslang"], "{k}"),
+            Lang::Hlsl => assert_eq!(paths, ["hlsl/glslang"], "{k}"),
+            Lang::C => assert!(paths.is_empty()),
+        }
+        for (path, r) in checks {
+            let error = r.as_ref().err().map(|e| format!("{e:#}"));
+            match k {
+                1 | 9 => {
+                    let (own, other) = if k == 1 {
+                        ("nope_a", "nope_b")
+                    } else {
+                        ("nope_b", "nope_a")
+                    };
+                    let e = error.unwrap_or_else(|| panic!("{k} {path} passed"));
+                    assert!(e.contains(own) && !e.contains(other), "{k} {path}: {e}");
+                }
+                5 if path.contains("glsl-out") => {
+                    let e = error.unwrap_or_else(|| panic!("{k} {path} passed"));
+                    assert!(
+                        e.contains("naga-glsl-430") && e.contains("mix"),
+                        "{k} {path}: {e}"
+                    );
+                }
+                _ => assert!(error.is_none(), "{k} {path}: {error:?}"),
+            }
+        }
+    }
+}
+
 /// A `select` on integer vectors is valid WGSL, but naga writes it as GLSL's `mix(uvec3,
 /// uvec3, bvec3)`, which GLSL 4.30 lacks: the include's naga-GLSL check fails on it, naming
 /// the version, and passes once the select is lane by lane, as the WGSL back end writes it.
