@@ -683,8 +683,7 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
                         Check::Done(r) => r,
                         Check::Glsl(stage, sources) => {
                             let of_stage = results.get_mut(stage).expect("checked by stage");
-                            let rs: Vec<Result<()>> = of_stage.take(sources.len()).collect();
-                            rs.into_iter().collect()
+                            tools::all_ok(of_stage.take(sources.len()).collect())
                         }
                     };
                     (path.to_string(), r)

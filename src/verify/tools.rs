@@ -336,7 +336,21 @@ const NAGA_GLSL_VERSIONS: [naga::back::glsl::Version; 2] = [
 /// include gets on wgpu's OpenGL backend; naga writes it without checking it.
 pub fn naga_glsl_out(include: &str) -> anyhow::Result<()> {
     let sources = naga_glsl_sources(include)?;
-    glslang_check_many("comp", &sources).into_iter().collect()
+    all_ok(glslang_check_many("comp", &sources))
+}
+
+/// Ok if every check is, else every error: a check of several files reports each one
+/// that fails.
+pub(crate) fn all_ok(checks: Vec<anyhow::Result<()>>) -> anyhow::Result<()> {
+    let errors: Vec<String> = checks
+        .into_iter()
+        .filter_map(|r| r.err().map(|e| format!("{e:#}")))
+        .collect();
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(anyhow!("{}", errors.join("\n")))
+    }
 }
 
 /// The compute shaders [`naga_glsl_out`] has glslang check, each named by its version (the
