@@ -598,7 +598,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
 }
 
 /// The static checks of a whole include: naga validates the WGSL and writes it as GLSL
-/// 4.30 and ES 3.10, which glslang compiles ([`tools::naga_glsl_out`]); glslang compiles the
+/// 4.30 and ES 3.10, which glslang compiles ([`tools::naga_glsl_sources`]); glslang compiles the
 /// HLSL (beside an empty entry point) and the GLSL as a GLSL 330 and a GLSL ES 300 fragment
 /// shader. (The C paths compile the whole header into the driver every function runs in.)
 pub fn whole_include(lang: Lang, include: &str) -> Vec<(String, Result<()>)> {

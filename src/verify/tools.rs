@@ -318,7 +318,7 @@ fn naga_wgsl_module(source: &str) -> anyhow::Result<(naga::Module, naga::valid::
     Ok((module, info))
 }
 
-/// The GLSL versions [`naga_glsl_out`] has naga write: 4.30 and ES 3.10, the first with
+/// The GLSL versions [`naga_glsl_sources`] has naga write: 4.30 and ES 3.10, the first with
 /// compute shaders and the oldest that naga's GLSL back end (wgpu's OpenGL and GLES
 /// backends) targets with them. Each lacks some built-ins later versions have, such as
 /// `mix` on integer or boolean vectors (GLSL 4.50).
@@ -329,15 +329,6 @@ const NAGA_GLSL_VERSIONS: [naga::back::glsl::Version; 2] = [
         is_webgl: false,
     },
 ];
-
-/// naga's GLSL back end on a WGSL include: the include, with an empty compute entry point,
-/// written by naga as each of [`NAGA_GLSL_VERSIONS`] with every function (not only those
-/// the entry point calls) and compiled by glslang. This is the GLSL a user of the WGSL
-/// include gets on wgpu's OpenGL backend; naga writes it without checking it.
-pub fn naga_glsl_out(include: &str) -> anyhow::Result<()> {
-    let sources = naga_glsl_sources(include)?;
-    all_ok(glslang_check_many("comp", &sources))
-}
 
 /// Ok if every check is, else every error: a check of several files reports each one
 /// that fails.
@@ -353,8 +344,11 @@ pub(crate) fn all_ok(checks: Vec<anyhow::Result<()>>) -> anyhow::Result<()> {
     }
 }
 
-/// The compute shaders [`naga_glsl_out`] has glslang check, each named by its version (the
-/// name a diagnostic gives): naga's GLSL of the include for each of [`NAGA_GLSL_VERSIONS`].
+/// naga's GLSL back end on a WGSL include: the include, with an empty compute entry point,
+/// written by naga as each of [`NAGA_GLSL_VERSIONS`] with every function (not only those
+/// the entry point calls), each named by its version (the name a diagnostic gives), for
+/// glslang to check. This is the GLSL a user of the WGSL include gets on wgpu's OpenGL
+/// backend; naga writes it without checking it.
 pub fn naga_glsl_sources(include: &str) -> anyhow::Result<Vec<(String, String)>> {
     use naga::back::glsl;
     let entry = "unitpack_include_check";
