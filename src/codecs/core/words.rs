@@ -158,8 +158,10 @@ const MAX_WORDS: usize = 32;
 
 /// `f` on every item of `input` into `output`, `N` items per group: each group's words
 /// transposed into lanes on the stack, evaluated, and transposed back. A last partial
-/// group repeats its last item in the spare lanes and writes only the real ones. Inlined
-/// into the function compiled for the lanes, so the transposes are too.
+/// group is padded with its last item and only its real items are written. Inlined into
+/// the function compiled for the lanes, so the transposes are too; `f` has one call site,
+/// so its body (inlined, hundreds of lane operations) is compiled once, not once more for
+/// the partial group.
 #[inline(always)]
 fn in_groups<L: LaneIo<N>, A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>(
     f: &impl Fn(A) -> R,
@@ -174,26 +176,29 @@ fn in_groups<L: LaneIo<N>, A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>
     let mut lanes_in = [[0u32; N]; MAX_WORDS];
     let mut lanes_out = [[0u32; N]; MAX_WORDS];
     let (lanes_in, lanes_out) = (&mut lanes_in[..iw], &mut lanes_out[..ow]);
-    let mut src = input.chunks_exact(N * iw);
-    let mut dst = output.chunks_exact_mut(N * ow);
-    for (s, d) in (&mut src).zip(&mut dst) {
+    let items = input.len() / iw;
+    let whole = items / N;
+    let (mut pad_in, mut pad_out) = ([[0u32; MAX_WORDS]; N], [[0u32; MAX_WORDS]; N]);
+    let (pad_in, pad_out) = (pad_in.as_flattened_mut(), pad_out.as_flattened_mut());
+    for g in 0..items.div_ceil(N) {
+        let s = if g < whole {
+            &input[g * N * iw..][..N * iw]
+        } else {
+            let rest = &input[g * N * iw..items * iw];
+            for (k, item) in pad_in[..N * iw].chunks_exact_mut(iw).enumerate() {
+                let from = k.min(rest.len() / iw - 1) * iw;
+                item.copy_from_slice(&rest[from..][..iw]);
+            }
+            &pad_in[..N * iw]
+        };
         to_lanes::<L, N>(s, lanes_in);
         f(A::read(lanes_in)).write(lanes_out);
-        from_lanes::<L, N>(lanes_out, d);
-    }
-    let (s, d) = (src.remainder(), dst.into_remainder());
-    let items = s.len() / iw;
-    if items > 0 {
-        for (j, lane) in lanes_in.iter_mut().enumerate() {
-            for (k, l) in lane.iter_mut().enumerate() {
-                *l = s[k.min(items - 1) * iw + j];
-            }
-        }
-        f(A::read(lanes_in)).write(lanes_out);
-        for (k, item) in d.chunks_exact_mut(ow).enumerate() {
-            for (o, lane) in item.iter_mut().zip(lanes_out.iter()) {
-                *o = lane[k];
-            }
+        if g < whole {
+            from_lanes::<L, N>(lanes_out, &mut output[g * N * ow..][..N * ow]);
+        } else {
+            from_lanes::<L, N>(lanes_out, &mut pad_out[..N * ow]);
+            let d = &mut output[g * N * ow..items * ow];
+            d.copy_from_slice(&pad_out[..d.len()]);
         }
     }
 }
