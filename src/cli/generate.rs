@@ -19,6 +19,7 @@ use crate::atomic::AtomicFile;
 use crate::codecs::Spec;
 use crate::codecs::core::spec::{Table, TableFormat};
 use crate::emit::{DEFAULT_PREFIX, Lang, render, render_wesl};
+use crate::quality::ErrorStats;
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeSet;
@@ -45,26 +46,29 @@ fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
         specs.len() * Lang::ALL.len(),
         specs.len()
     ));
-    let mut files = Vec::new();
-    for lang in Lang::ALL {
-        for (spec, st) in specs.iter().zip(&stats) {
+    // Every include and module on every core, in the order written here.
+    let jobs: Vec<(Option<Lang>, &Spec, &Option<ErrorStats>)> = Lang::ALL
+        .into_iter()
+        .map(Some)
+        .chain([None])
+        .flat_map(|lang| specs.iter().zip(&stats).map(move |(s, st)| (lang, s, st)))
+        .collect();
+    let mut files = crate::par::map(&jobs, |&(lang, spec, st)| match lang {
+        Some(lang) => {
             // The same command `gen` writes, so that running it reproduces the file.
             let cmd = format!("unitpack gen {spec} --lang {lang}");
             let text = render(&[(spec.clone(), *st)], lang, DEFAULT_PREFIX, &cmd);
-            files.push((
+            (
                 PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())),
                 text.into_bytes(),
-            ));
+            )
         }
-    }
-    // The WGSL includes again as WESL modules, imported as `unitpack::<stem>`.
-    for (spec, st) in specs.iter().zip(&stats) {
-        let text = render_wesl(spec, *st, "unitpack generate");
-        files.push((
+        // The WGSL includes again as WESL modules, imported as `unitpack::<stem>`.
+        None => (
             PathBuf::from(manifest::WESL).join(format!("{}.wesl", spec.id())),
-            text.into_bytes(),
-        ));
-    }
+            render_wesl(spec, *st, "unitpack generate").into_bytes(),
+        ),
+    });
     // A precise spec reads its fast spec's tables: each file is written once.
     let mut stems = std::collections::HashSet::new();
     let tables = specs.iter().flat_map(|s| s.family().tables(s));
