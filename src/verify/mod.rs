@@ -789,6 +789,10 @@ pub fn run_on(
         gl,
         keep,
     };
+    // The largest specs first (every code of a 24-bit decoder runs on every path), so
+    // that no large one is left to a single core at the end; the report keeps spec order.
+    let mut order: Vec<usize> = (0..specs.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse(specs[i].bits().min(24)));
     let next = std::sync::atomic::AtomicUsize::new(0);
     let mut per_spec: Vec<(usize, Vec<Row>)> = std::thread::scope(|scope| {
         let workers: Vec<_> = (0..threads.min(specs.len()).max(1))
@@ -798,8 +802,9 @@ pub fn run_on(
                     // The model's outputs of the function at hand, one allocation kept.
                     let mut want = Vec::new();
                     loop {
-                        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                        let Some(spec) = specs.get(i) else { break };
+                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(&i) = order.get(k) else { break };
+                        let spec = &specs[i];
                         let spec = Verified {
                             spec,
                             emitted: &emitted[i],
