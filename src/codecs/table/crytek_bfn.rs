@@ -139,9 +139,9 @@ pub fn fitting_table() -> &'static [u8] {
 
 /// The first odd `k` in 3 … 255 with the least relative rounding error of the texel's
 /// direction scaled by `k/255` (see the module's documentation). Every trial's error is
-/// computed first, in a loop without branches that LLVM runs on SIMD lanes, and the first
-/// least one is then picked: the same bytes as trying each `k` in turn, several times
-/// faster (`unitpack generate` builds the table each run).
+/// computed first, in a loop LLVM runs on SIMD lanes, and the first least one is then
+/// picked: the same bytes as trying each `k` in turn (`unitpack generate` builds the table
+/// each run; docs/design/speed.md).
 fn best_scale(i: usize, j: usize) -> u8 {
     const TRIALS: usize = 127;
     const TWO_52: f64 = 4_503_599_627_370_496.0;
@@ -158,9 +158,10 @@ fn best_scale(i: usize, j: usize) -> u8 {
             .iter()
             .map(|&c| {
                 let p = t * c;
-                // floor of `x` in [0.5, 255.5] without a conversion or libm's floor
-                // (neither runs on SSE2 lanes): `x + 2^52 - 2^52` is `x` rounded to an
-                // integer, one too many where that rounded up.
+                // floor of `x` in [0.5, 255.5] in float arithmetic alone: `as` saturates
+                // (and libm's floor is a call), which kept the loop off the lanes.
+                // `x + 2^52 - 2^52` is `x` rounded to an integer, one too many where
+                // that rounded up.
                 let x = (p * 0.5 + 0.5) * 255.0 + 0.5;
                 let r = (x + TWO_52) - TWO_52;
                 let code = if r > x { r - 1.0 } else { r };
