@@ -277,6 +277,18 @@ pub struct Gpu {
     pipeline_layout: wgpu::PipelineLayout,
     /// Set by the device-lost callback, so later calls fail with the reason instead of hanging.
     lost: Arc<Mutex<Option<String>>>,
+    /// Buffers of finished dispatches, for the next ([`Gpu::dispatch`]).
+    spare: Mutex<Vec<Buffers>>,
+}
+
+/// One dispatch's input, output and readback buffers. A dispatch takes spare ones large
+/// enough rather than new ones: the driver maps fresh memory page by page as it is first
+/// written (docs/design/speed.md). Each chunk clears its output range first, so that
+/// what a kernel does not write reads as zeros, as in a new buffer.
+struct Buffers {
+    input: wgpu::Buffer,
+    output: wgpu::Buffer,
+    readback: wgpu::Buffer,
 }
 
 // Tests share one `Gpu` across threads; keep that guaranteed.
@@ -463,6 +475,7 @@ impl Gpu {
             bind_group_layout,
             pipeline_layout,
             lost,
+            spare: Mutex::new(Vec::new()),
         })
     }
 
@@ -619,27 +632,7 @@ impl Gpu {
         // binds only a prefix so arrayLength() still reports that chunk's size.
         let first = n.min(chunk);
         let bytes = |items: usize, words: usize| (items * words * 4) as u64;
-        let scopes = ErrorScopes::push(&self.device);
-        let input_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("unitpack verify: input"),
-            size: bytes(first, in_words),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let output_buf = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("unitpack verify: output"),
-            size: bytes(first, out_words),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let readback = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("unitpack verify: readback"),
-            size: bytes(first, out_words),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        scopes.check().context("allocating buffers")?;
-
+        let buffers = self.buffers(bytes(first, in_words), bytes(first, out_words))?;
         for (index, items) in input.chunks(chunk * in_words).enumerate() {
             let items_here = items.len() / in_words;
             let start = index * chunk;
@@ -648,7 +641,7 @@ impl Gpu {
                 items,
                 items_here,
                 out_words,
-                [&input_buf, &output_buf, &readback],
+                [&buffers.input, &buffers.output, &buffers.readback],
                 sink,
             )
             .with_context(|| {
@@ -658,7 +651,57 @@ impl Gpu {
                 )
             })?;
         }
+        // Only after a dispatch that went through: a failed one may leave its readback
+        // buffer mapped.
+        self.spare.lock().expect("spare buffers").push(buffers);
         Ok(())
+    }
+
+    /// Spare [`Buffers`] holding at least `in_bytes` and `out_bytes`, or new ones. New
+    /// ones are sized to the next power of two, so that later dispatches find them large
+    /// enough; one that is too small is dropped in their place, which keeps as many as
+    /// there are dispatches at once.
+    fn buffers(&self, in_bytes: u64, out_bytes: u64) -> anyhow::Result<Buffers> {
+        let mut spare = self.spare.lock().expect("spare buffers");
+        if let Some(k) = spare
+            .iter()
+            .position(|b| b.input.size() >= in_bytes && b.output.size() >= out_bytes)
+        {
+            return Ok(spare.swap_remove(k));
+        }
+        let (small_in, small_out) = spare
+            .pop()
+            .map_or((0, 0), |b| (b.input.size(), b.output.size()));
+        drop(spare);
+        let (in_size, out_size) = (
+            in_bytes.max(small_in).next_power_of_two(),
+            out_bytes.max(small_out).next_power_of_two(),
+        );
+        let scopes = ErrorScopes::push(&self.device);
+        let buffer = |label, size, usage| {
+            self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        use wgpu::BufferUsages as U;
+        let buffers = Buffers {
+            input: buffer("unitpack verify: input", in_size, U::STORAGE | U::COPY_DST),
+            output: buffer(
+                "unitpack verify: output",
+                out_size,
+                U::STORAGE | U::COPY_SRC | U::COPY_DST,
+            ),
+            readback: buffer(
+                "unitpack verify: readback",
+                out_size,
+                U::MAP_READ | U::COPY_DST,
+            ),
+        };
+        scopes.check().context("allocating buffers")?;
+        Ok(buffers)
     }
 
     fn run_chunk(
@@ -703,6 +746,9 @@ impl Gpu {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("unitpack verify"),
             });
+        // Zeros, as in a new buffer: a kernel that leaves an output unwritten must not
+        // pass on what an earlier dispatch left there.
+        encoder.clear_buffer(output_buf, 0, Some(out_bytes));
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("unitpack verify"),

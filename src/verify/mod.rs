@@ -353,11 +353,7 @@ pub fn expected(f: &Function, input: &[u32]) -> Vec<u32> {
 fn expected_into(f: &Function, input: &[u32], out: &mut Vec<u32>) {
     out.clear();
     out.resize(input.len() / f.in_words * f.out_words, 0);
-    on_all_cores(input, out, f.in_words, f.out_words, |i, o| {
-        for (o, i) in o.chunks_mut(f.out_words).zip(i.chunks(f.in_words)) {
-            (f.eval)(i, o);
-        }
-    });
+    on_all_cores(input, out, f.in_words, f.out_words, |i, o| (f.eval)(i, o));
 }
 
 /// The outputs of [`Function::eval_many_on`] the given lanes for `input`, on all cores,

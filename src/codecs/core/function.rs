@@ -77,7 +77,10 @@ pub enum Role {
     LutTexel,
 }
 
-/// A model of a function on raw words: one item in, one item out.
+/// A model of a function on raw words: any number of whole items at once (`in_words`
+/// each in, `out_words` out), one after the other. One call over a slice runs the body in
+/// a loop compiled around it, which costs a cheap function (a decoder) a fraction of a
+/// call per item (docs/design/speed.md).
 pub type Eval = Arc<dyn Fn(&[u32], &mut [u32]) + Send + Sync>;
 /// The same on any number of items at once (`in_words` each in, `out_words` out), on SIMD
 /// lanes: groups of four or eight items transposed into lanes, evaluated together and

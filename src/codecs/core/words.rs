@@ -334,7 +334,11 @@ mod per_item {
     pub(super) fn eval<A: Bits + 'static, R: Bits + 'static>(
         f: impl Fn(A) -> R + Send + Sync + 'static,
     ) -> crate::codecs::core::function::Eval {
-        Arc::new(move |i, o| f(A::read(i)).write(o))
+        Arc::new(move |i, o| {
+            for (i, o) in i.chunks_exact(A::WORDS).zip(o.chunks_exact_mut(R::WORDS)) {
+                f(A::read(i)).write(o)
+            }
+        })
     }
 }
 
