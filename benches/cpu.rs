@@ -10,6 +10,7 @@
 //! SIMD; unitpack's decode writes f32×3, more work, and the ratio is printed as it stands.
 //! Also the `encode`/`decode` stream filter (`unitpack::cli::filter`) over in-memory
 //! buffers, in its raw binary format and in text, to show what a pipeline gets end to end.
+//! And the model's reference evaluation, one call per item against one over a slice.
 //! Run: `cargo bench`.
 
 use std::hint::black_box;
@@ -155,6 +156,44 @@ fn main() {
         stream(spec, &vs, Format::Binary);
     }
     stream("oct16", &vs, Format::Text);
+    for (spec, function) in [
+        ("oct24p", "decode"),
+        ("snorm8x3", "decode"),
+        ("oct24p", "encode"),
+    ] {
+        reference(spec, function);
+    }
+}
+
+/// The model's `f32` evaluation (`Function::eval`, from which `verify` takes its expected
+/// values) of `function`, over the first [`N`] of its verify inputs: called once per item
+/// and once for the whole slice, and the ratio (above 1: the whole slice is faster).
+fn reference(spec: &str, function: &str) {
+    let spec: Spec = spec.parse().unwrap();
+    let emitted = spec.emitted();
+    let f = emitted
+        .functions
+        .iter()
+        .find(|f| f.name == function)
+        .unwrap();
+    let input = unitpack::codecs::core::inputs::generate(&f.inputs, f.in_words);
+    let input = &input[..N * f.in_words];
+    let mut out = vec![0u32; N * f.out_words];
+    let per_item = rate(|| {
+        for (i, o) in black_box(input)
+            .chunks_exact(f.in_words)
+            .zip(out.chunks_exact_mut(f.out_words))
+        {
+            (f.eval)(i, o);
+        }
+    });
+    let whole = rate(|| (f.eval)(black_box(input), &mut out));
+    println!(
+        "model {spec} {function:<8} per item {:>6.1} M/s   whole slice {:>6.1} M/s ({:>5.2}×)",
+        per_item / 1e6,
+        whole / 1e6,
+        whole / per_item
+    );
 }
 
 /// Vectors per second through `transcode`, input and output in `format`, each way.
