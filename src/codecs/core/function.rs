@@ -126,10 +126,12 @@ pub struct Function {
     pub inputs: Inputs,
     pub in_words: usize,
     pub out_words: usize,
-    /// The `f32` model on raw bits: one item of `in_words` in, `out_words` out.
+    /// The `f32` model on raw bits: items of `in_words` in, `out_words` out ([`Eval`]).
     pub eval: Eval,
     /// The same generic function evaluated with [`Dev`], which deviates as the
     /// thread's [`crate::model::deviant::with`] says (and equals `eval` when nothing is set).
+    /// Its seeded modes reseed per item at [`crate::model::deviant::begin_item`], so a
+    /// caller that deviates passes one item per call.
     pub eval_dev: Eval,
     /// The same generic function evaluated on four items at once with [`F4`]: what the
     /// CPU batches run without AVX2, bit for bit `eval` on each item.
