@@ -281,14 +281,18 @@ pub struct Gpu {
     spare: Mutex<Vec<Buffers>>,
 }
 
-/// One dispatch's input, output and readback buffers. A dispatch takes spare ones large
-/// enough rather than new ones: the driver maps fresh memory page by page as it is first
-/// written (docs/design/speed.md). Each chunk clears its output range first, so that
-/// what a kernel does not write reads as zeros, as in a new buffer.
+/// One dispatch's input and output buffers, both mapped by the host
+/// (`Features::MAPPABLE_PRIMARY_BUFFERS`): the input written in place, the output read in
+/// place. Through staging buffers every word crossed memory twice more (a copy into the
+/// staging buffer and the driver's copy out of it, the same again for the results), which
+/// on lavapipe, whose device memory is host memory, cost more than a cheap kernel
+/// (docs/design/speed.md). A dispatch takes spare buffers large enough rather than new
+/// ones: the driver maps fresh memory page by page as it is first written. Each chunk
+/// clears its output range first, so that what a kernel does not write reads as zeros, as
+/// in a new buffer.
 struct Buffers {
     input: wgpu::Buffer,
     output: wgpu::Buffer,
-    readback: wgpu::Buffer,
 }
 
 // Tests share one `Gpu` across threads; keep that guaranteed.
@@ -383,11 +387,23 @@ impl Gpu {
         let passthrough = adapter
             .features()
             .contains(wgpu::Features::PASSTHROUGH_SHADERS);
-        let required_features = if passthrough {
-            wgpu::Features::PASSTHROUGH_SHADERS
-        } else {
-            wgpu::Features::empty()
-        };
+        let mut required_features = wgpu::Features::MAPPABLE_PRIMARY_BUFFERS;
+        if passthrough {
+            required_features |= wgpu::Features::PASSTHROUGH_SHADERS;
+        }
+        // Every Vulkan adapter has it (wgpu-hal's Vulkan backend offers it unconditionally);
+        // the dispatches map their storage buffers directly ([`Buffers`]).
+        if !adapter
+            .features()
+            .contains(wgpu::Features::MAPPABLE_PRIMARY_BUFFERS)
+        {
+            bail!(
+                "the Vulkan adapter {:?} (driver {:?}) cannot map storage buffers \
+                 (wgpu's MAPPABLE_PRIMARY_BUFFERS), which the verifier's dispatches need",
+                info.name,
+                info.driver
+            );
+        }
 
         // WebGPU default limits, except that buffer sizes are raised to what the adapter
         // offers: everything else staying at the defaults keeps the kernels honest for real
@@ -533,7 +549,7 @@ impl Gpu {
     }
 
     /// [`Gpu::run`], handing each chunk's output words to `sink`, in order, while the
-    /// readback buffer is mapped, instead of collecting them: a check of 2^24 items then
+    /// output buffer is mapped, instead of collecting them: a check of 2^24 items then
     /// never holds their outputs all at once.
     pub fn run_each(
         &self,
@@ -641,7 +657,7 @@ impl Gpu {
                 items,
                 items_here,
                 out_words,
-                [&buffers.input, &buffers.output, &buffers.readback],
+                [&buffers.input, &buffers.output],
                 sink,
             )
             .with_context(|| {
@@ -651,8 +667,7 @@ impl Gpu {
                 )
             })?;
         }
-        // Only after a dispatch that went through: a failed one may leave its readback
-        // buffer mapped.
+        // Only after a dispatch that went through: a failed one may leave a buffer mapped.
         self.spare.lock().expect("spare buffers").push(buffers);
         Ok(())
     }
@@ -688,16 +703,11 @@ impl Gpu {
         };
         use wgpu::BufferUsages as U;
         let buffers = Buffers {
-            input: buffer("unitpack verify: input", in_size, U::STORAGE | U::COPY_DST),
+            input: buffer("unitpack verify: input", in_size, U::STORAGE | U::MAP_WRITE),
             output: buffer(
                 "unitpack verify: output",
                 out_size,
-                U::STORAGE | U::COPY_SRC | U::COPY_DST,
-            ),
-            readback: buffer(
-                "unitpack verify: readback",
-                out_size,
-                U::MAP_READ | U::COPY_DST,
+                U::STORAGE | U::MAP_READ | U::COPY_DST,
             ),
         };
         scopes.check().context("allocating buffers")?;
@@ -710,15 +720,21 @@ impl Gpu {
         input: &[u32],
         items: usize,
         out_words: usize,
-        [input_buf, output_buf, readback]: [&wgpu::Buffer; 3],
+        [input_buf, output_buf]: [&wgpu::Buffer; 2],
         sink: &mut dyn FnMut(&[u32]),
     ) -> anyhow::Result<()> {
         let in_bytes = std::mem::size_of_val(input) as u64;
         let out_bytes = (items * out_words * 4) as u64;
-        let scopes = ErrorScopes::push(&self.device);
 
-        self.queue
-            .write_buffer(input_buf, 0, bytemuck::cast_slice(input));
+        self.map(input_buf, in_bytes, wgpu::MapMode::Write, None)
+            .context("mapping the input buffer")?;
+        input_buf
+            .get_mapped_range_mut(..in_bytes)
+            .map_err(|e| anyhow!("writing the mapped input buffer: {e}"))?
+            .copy_from_slice(bytemuck::cast_slice(input));
+        input_buf.unmap();
+
+        let scopes = ErrorScopes::push(&self.device);
         let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("unitpack verify"),
             layout: &self.bind_group_layout,
@@ -759,38 +775,55 @@ impl Gpu {
             let groups = items.div_ceil(WORKGROUP_SIZE as usize) as u32;
             pass.dispatch_workgroups(groups, 1, 1);
         }
-        encoder.copy_buffer_to_buffer(output_buf, 0, readback, 0, out_bytes);
         let submission = self.queue.submit([encoder.finish()]);
-
-        let (tx, rx) = mpsc::channel();
-        readback
-            .slice(..out_bytes)
-            .map_async(wgpu::MapMode::Read, move |r| {
-                let _ = tx.send(r);
-            });
         // Validation errors in the recorded work are known now; don't wait on a broken submit.
         scopes.check().context("recording the dispatch")?;
+        self.map(output_buf, out_bytes, wgpu::MapMode::Read, Some(submission))
+            .context("waiting for the dispatch to finish")?;
+        {
+            let view = output_buf
+                .get_mapped_range(..out_bytes)
+                .map_err(|e| anyhow!("reading the mapped output buffer: {e}"))?;
+            sink(bytemuck::cast_slice(&view));
+        }
+        output_buf.unmap();
+        Ok(())
+    }
 
+    /// Maps the first `bytes` of `buffer` for `mode` and waits until it is mapped: after
+    /// `submission`, where given, has finished.
+    fn map(
+        &self,
+        buffer: &wgpu::Buffer,
+        bytes: u64,
+        mode: wgpu::MapMode,
+        submission: Option<wgpu::SubmissionIndex>,
+    ) -> anyhow::Result<()> {
+        let (tx, rx) = mpsc::channel();
+        buffer.slice(..bytes).map_async(mode, move |r| {
+            let _ = tx.send(r);
+        });
+        // A buffer no submission uses maps at the next poll, without waiting for the other
+        // threads' dispatches; should it not, the wait below covers every submission.
+        if submission.is_none() {
+            self.device
+                .poll(wgpu::PollType::Poll)
+                .map_err(|e| anyhow!("{e}"))?;
+            if let Ok(mapped) = rx.try_recv() {
+                return mapped.map_err(|e| anyhow!("{e}"));
+            }
+        }
         let polled = self.device.poll(wgpu::PollType::Wait {
-            submission_index: Some(submission),
+            submission_index: submission,
             timeout: Some(CHUNK_TIMEOUT),
         });
         self.check_lost()?;
-        polled.map_err(|e| anyhow!("waiting for the dispatch to finish: {e}"))?;
-        // The submission is done, so the map callback has run (poll fires callbacks); a
-        // short timeout only guards against a wgpu bug turning into a hang.
-        let mapped = rx
-            .recv_timeout(Duration::from_secs(60))
-            .map_err(|_| anyhow!("the readback buffer was never mapped"))?;
-        mapped.map_err(|e| anyhow!("mapping the readback buffer: {e}"))?;
-        {
-            let view = readback
-                .get_mapped_range(..out_bytes)
-                .map_err(|e| anyhow!("reading the mapped readback buffer: {e}"))?;
-            sink(bytemuck::cast_slice(&view));
-        }
-        readback.unmap();
-        Ok(())
+        polled.map_err(|e| anyhow!("{e}"))?;
+        // Polling fires the callbacks of finished work; a short timeout only guards
+        // against a wgpu bug turning into a hang.
+        rx.recv_timeout(Duration::from_secs(60))
+            .map_err(|_| anyhow!("the buffer was never mapped"))?
+            .map_err(|e| anyhow!("{e}"))
     }
 
     /// Runs a WGSL kernel over the texels of an RGBA8 unorm texture: `texels` (R in the
