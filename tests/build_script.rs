@@ -29,6 +29,10 @@ fn a_build_script_generates_includes_with_the_light_library() {
             // most of its time optimising proc-macro crates).
             "--config",
             "profile.dev.package.\"*\".opt-level=0",
+            // Nor incrementally: a user's crate gets unitpack from a registry, which cargo
+            // never builds incrementally, and the bookkeeping cost this build a tenth.
+            "--config",
+            "profile.dev.incremental=false",
         ])
         .arg("--target-dir")
         .arg(&target)
