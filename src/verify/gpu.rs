@@ -970,20 +970,9 @@ impl Gpu {
         }
         encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, out_bytes);
         let submission = self.queue.submit([encoder.finish()]);
-        let (tx, rx) = mpsc::channel();
-        readback.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
         scopes.check().context("running the texture kernel")?;
-        let polled = self.device.poll(wgpu::PollType::Wait {
-            submission_index: Some(submission),
-            timeout: Some(CHUNK_TIMEOUT),
-        });
-        self.check_lost()?;
-        polled.map_err(|e| anyhow!("waiting for the texture kernel: {e}"))?;
-        rx.recv_timeout(Duration::from_secs(60))
-            .map_err(|_| anyhow!("the readback buffer was never mapped"))?
-            .map_err(|e| anyhow!("mapping the readback buffer: {e}"))?;
+        self.map(&readback, out_bytes, wgpu::MapMode::Read, Some(submission))
+            .context("waiting for the texture kernel")?;
         let out = {
             let view = readback
                 .get_mapped_range(..)
