@@ -408,6 +408,7 @@ fn many_threads_share_one_gpu() {
 #[test]
 fn selecting_kernels_run_the_function_selected() {
     use unitpack::emit::Lang;
+    use unitpack::emit::lang::Returns;
     use unitpack::model::Kind;
     use unitpack::model::trace::Ty;
     let gpu = Gpu::shared().expect("Gpu::shared()");
@@ -415,26 +416,43 @@ fn selecting_kernels_run_the_function_selected() {
         kind: Kind::U32,
         lanes,
     };
-    // f0: x ↦ 2x + 1 (one word to one); f1: (x, y) ↦ (y, x ^ y) (two words to two).
+    // f0: x ↦ 2x + 1 (one word to one); f1: (x, y) ↦ (y, x ^ y) (two words to two); f2:
+    // (x, y) ↦ the struct s2 { a = x + y, b = (y, x) } (two words to three, a struct's
+    // fields stored one after the other).
     let funcs = [
-        ("f0", vec![ty(1)], ty(1)),
-        ("f1", vec![ty(1), ty(1)], ty(2)),
+        ("f0", vec![ty(1)], Returns::one(ty(1))),
+        ("f1", vec![ty(1), ty(1)], Returns::one(ty(2))),
+        (
+            "f2",
+            vec![ty(1), ty(1)],
+            Returns {
+                tys: vec![ty(1), ty(2)],
+                fields: vec!["a", "b"],
+                name: Some("s2".into()),
+            },
+        ),
     ];
     let includes = [
         (
             Lang::Wgsl,
             "fn f0(x: u32) -> u32 { return 2u * x + 1u; }\n\
-             fn f1(x: u32, y: u32) -> vec2<u32> { return vec2<u32>(y, x ^ y); }\n",
+             fn f1(x: u32, y: u32) -> vec2<u32> { return vec2<u32>(y, x ^ y); }\n\
+             struct s2 { a: u32, b: vec2<u32>, }\n\
+             fn f2(x: u32, y: u32) -> s2 { return s2(x + y, vec2<u32>(y, x)); }\n",
         ),
         (
             Lang::Glsl,
             "uint f0(uint x) { return 2u * x + 1u; }\n\
-             uvec2 f1(uint x, uint y) { return uvec2(y, x ^ y); }\n",
+             uvec2 f1(uint x, uint y) { return uvec2(y, x ^ y); }\n\
+             struct s2 { uint a; uvec2 b; };\n\
+             s2 f2(uint x, uint y) { return s2(x + y, uvec2(y, x)); }\n",
         ),
         (
             Lang::Hlsl,
             "uint f0(uint x) { return 2u * x + 1u; }\n\
-             uint2 f1(uint x, uint y) { return uint2(y, x ^ y); }\n",
+             uint2 f1(uint x, uint y) { return uint2(y, x ^ y); }\n\
+             struct s2 { uint a; uint2 b; };\n\
+             s2 f2(uint x, uint y) { s2 r = { x + y, uint2(y, x) }; return r; }\n",
         ),
     ];
     let items = MAX_CHUNK_ITEMS + 77;
@@ -443,6 +461,10 @@ fn selecting_kernels_run_the_function_selected() {
         .collect();
     let want0: Vec<u32> = words[..items].iter().map(|x| 2 * x + 1).collect();
     let want1: Vec<u32> = words.chunks(2).flat_map(|p| [p[1], p[0] ^ p[1]]).collect();
+    let want2: Vec<u32> = words
+        .chunks(2)
+        .flat_map(|p| [p[0].wrapping_add(p[1]), p[1], p[0]])
+        .collect();
     for (lang, include) in includes {
         let kernel = lang.backend("unitpack_").kernel(include, &funcs);
         let mut shaders = Vec::new();
@@ -473,21 +495,28 @@ fn selecting_kernels_run_the_function_selected() {
             let kernel = gpu
                 .selecting(&shader)
                 .unwrap_or_else(|e| panic!("{path}: {e:#}"));
-            let run = |index, input: &[u32], width| {
+            let run = |index, input: &[u32], (iw, ow)| {
                 let mut out = Vec::new();
-                gpu.run_selected(&kernel, index, input, width, width, &mut |w| {
+                gpu.run_selected(&kernel, index, input, iw, ow, &mut |w| {
                     out.extend_from_slice(w)
                 })
                 .unwrap_or_else(|e| panic!("{path}: {e:#}"));
                 out
             };
-            assert!(run(1, &words, 2) == want1, "{path}: f1 over two chunks");
             assert!(
-                run(0, &words[..items], 1) == want0,
+                run(1, &words, (2, 2)) == want1,
+                "{path}: f1 over two chunks"
+            );
+            assert!(
+                run(0, &words[..items], (1, 1)) == want0,
                 "{path}: f0 over two chunks"
             );
-            assert_eq!(run(1, &words[..6], 2), want1[..6], "{path}: f1 again");
-            assert_eq!(run(2, &words[..6], 2), [0; 6], "{path}: no function 2");
+            assert!(
+                run(2, &words, (2, 3)) == want2,
+                "{path}: f2 over two chunks"
+            );
+            assert_eq!(run(1, &words[..6], (2, 2)), want1[..6], "{path}: f1 again");
+            assert_eq!(run(3, &words[..6], (2, 2)), [0; 6], "{path}: no function 3");
         }
     }
 }

@@ -15,10 +15,10 @@ use std::sync::OnceLock;
 
 use unitpack::codecs::Spec;
 use unitpack::emit::docs::file_header;
-use unitpack::emit::lang::FileOptions;
+use unitpack::emit::lang::{FileOptions, Returns};
 use unitpack::emit::printer::{f32_literal, print};
-use unitpack::emit::{DEFAULT_PREFIX, FnView, Lang, SpecView, Wrapper, render};
-use unitpack::model::trace::{Module, Tf, Tu, define, trace_module};
+use unitpack::emit::{DEFAULT_PREFIX, FnView, Lang, SpecView, Wrapper, render, struct_defs};
+use unitpack::model::trace::{Module, Shape, Tf, Tu, define, define_fields, trace_module};
 use unitpack::model::{Bool, Float, Lane, Uint, V2, V3, V4};
 
 /// Whether this run rewrites the stored copies (`UNITPACK_REFRESH` set, not empty).
@@ -499,8 +499,8 @@ fn fold(p: V2<Tf>) -> V2<Tf> {
 /// built lane by lane, a call, selects with scalar and vector masks, conversions both
 /// ways, bitcasts both ways, shifts and masks, boolean logic, negative literals in
 /// operands, literal vectors, constructors from runs of lanes (`vec3(p, z)`,
-/// `vec3(d.yz, w)`), four lanes (C's separate struct guard), and literals at the ends of
-/// the f32 range. Not a codec: its arithmetic only has to be valid.
+/// `vec3(d.yz, w)`), four lanes (C's separate struct guard), literals at the ends of
+/// the f32 range, and two values returned as a struct. Not a codec: its arithmetic only has to be valid.
 fn shapes() -> Module {
     trace_module(|| {
         define("encode", &["v"], |v: V3<Tf>| -> Tu {
@@ -542,6 +542,17 @@ fn shapes() -> Module {
             );
             bytes.to_f() * Tf::c(1.0 / 255.0)
         });
+        // Two values returned as a struct's fields, one of them also a lane's source.
+        let frame = Shape {
+            name: "frame",
+            fields: &["n", "t"],
+        };
+        define_fields("unpack_frame", &["code"], frame, |code: Tu| -> (V3<Tf>, V4<Tf>) {
+            let s = (code.shr(31).to_f() * Tf::c(2.0) - Tf::c(1.0)).named("s");
+            let a = (code & Tu::c(0xffff)).to_f() * Tf::c(1.0 / 65535.0);
+            let n = V3::new(a, Tf::c(0.0), Tf::c(1.0) - a).named("n");
+            (n, V4::new(n.z, n.y, -a, s))
+        });
     })
 }
 
@@ -552,14 +563,22 @@ fn shapes_include(lang: Lang) -> String {
     let backend = lang.backend(prefix);
     let public = |local: &str| format!("{prefix}shapes_{local}");
     let defined = |local: &str| backend.impl_name(&public(local));
-    let functions = shapes()
+    let module = shapes();
+    let functions = module
         .funcs
         .iter()
         .map(|f| {
             let p = print(backend.as_ref(), f, &defined);
             // The helper is not public: C gives it no array-based wrapper.
             let wrapper = (f.name != "fold")
-                .then(|| backend.public_abi(&public(&f.name), &p.name, &f.params, f.ret_ty))
+                .then(|| {
+                    backend.public_abi(
+                        &public(&f.name),
+                        &p.name,
+                        &f.params,
+                        &Returns::of(f, &public("")),
+                    )
+                })
                 .flatten()
                 .map(|(signature, body)| Wrapper {
                     name: public(&f.name),
@@ -584,6 +603,7 @@ fn shapes_include(lang: Lang) -> String {
         guard: format!("MY_SHAPES_{}", lang.ext()).to_ascii_uppercase(),
         title: "shapes: every statement shape the printer writes".into(),
         doc: vec!["Source: the printer's test.".into()],
+        types: struct_defs(backend.as_ref(), &module.funcs, &defined),
         functions,
     };
     let header = file_header("unitpack test: printer shapes", false, false);

@@ -110,6 +110,7 @@ fn slang_routes_hold_what_the_readme_says(report: &unitpack::verify::Report) {
 #[test]
 fn slang_regroups_a_squared_product_the_encoders_no_longer_offer_it() {
     use unitpack::emit::DEFAULT_PREFIX;
+    use unitpack::emit::lang::Returns;
     use unitpack::model::Kind;
     use unitpack::model::trace::Ty;
     use unitpack::verify::gpu::{Adapter, Gpu, Shader};
@@ -144,10 +145,10 @@ fn slang_regroups_a_squared_product_the_encoders_no_longer_offer_it() {
             kind: Kind::F32,
             lanes: 3,
         }],
-        Ty {
+        Returns::one(Ty {
             kind: Kind::U32,
             lanes: 1,
-        },
+        }),
     )];
     let today = Generator::new()
         .spec("snorm11_11_10")
@@ -341,10 +342,10 @@ fn the_opengl_paths_catch_what_mesa_folds_without_precise() {
             kind: Kind::U32,
             lanes: 2,
         }],
-        Ty {
+        unitpack::emit::lang::Returns::one(Ty {
             kind: Kind::F32,
             lanes: 3,
-        },
+        }),
     )];
     let today = Generator::new()
         .spec("float16x3")

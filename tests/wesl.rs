@@ -5,7 +5,7 @@
 //! model computes.
 
 use unitpack::codecs::Spec;
-use unitpack::emit::lang::KernelFn;
+use unitpack::emit::lang::{KernelFn, Returns};
 use unitpack::emit::{DEFAULT_PREFIX, Lang, render};
 use unitpack::model::trace::Ty;
 use unitpack::verify::gpu::{Gpu, Shader};
@@ -83,12 +83,12 @@ fn same_up_to_names(wgsl: &str, wesl: &str) -> Result<(), String> {
 /// A spec's functions as a root module calls them: the name of the root's wrapper
 /// (`call_oct16__encode`, which no name the linker gives an imported declaration can
 /// be), the function's own name, its parameter types and result.
-fn functions(spec: &Spec) -> Vec<(String, String, Vec<Ty>, Ty)> {
+fn functions(spec: &Spec) -> Vec<(String, String, Vec<Ty>, Returns)> {
     let e = spec.emitted();
     e.functions
         .iter()
         .map(|f| {
-            let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+            let (params, ret) = func_types(e.module.func(f.name).expect("traced"), "");
             (
                 format!("call_{}__{}", spec.id(), f.name),
                 f.name.to_string(),
@@ -123,7 +123,7 @@ fn link(specs: &[Spec]) -> String {
             wrappers.push_str(&format!(
                 "fn {name}({}) -> {} {{ return {id}::{own}({}); }}\n",
                 declared.join(", "),
-                wgsl.ty(ret),
+                ret.ty(wgsl.as_ref()),
                 args.join(", ")
             ));
         }
@@ -179,7 +179,7 @@ fn two_linked_modules_run_bit_exact() {
         .collect();
     let linked = link(&specs);
     naga_wgsl(&linked).unwrap_or_else(|e| panic!("{e:#}\n{linked}"));
-    let mut funcs: Vec<(String, Vec<Ty>, Ty)> = Vec::new();
+    let mut funcs: Vec<(String, Vec<Ty>, Returns)> = Vec::new();
     let mut models = Vec::new();
     for spec in &specs {
         let e = spec.emitted();
@@ -190,7 +190,7 @@ fn two_linked_modules_run_bit_exact() {
     }
     let kernel_fns: Vec<KernelFn> = funcs
         .iter()
-        .map(|(n, p, r)| (n.as_str(), p.clone(), *r))
+        .map(|(n, p, r)| (n.as_str(), p.clone(), r.clone()))
         .collect();
     let kernel = Lang::Wgsl
         .backend(DEFAULT_PREFIX)

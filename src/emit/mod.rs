@@ -104,6 +104,9 @@ pub struct SpecView {
     pub title: String,
     /// Paragraphs under the title: what the spec's functions share.
     pub doc: Vec<String>,
+    /// The definitions of the structs its functions return ([`Backend::struct_def`]),
+    /// each once, before the functions.
+    pub types: Vec<String>,
     pub functions: Vec<FnView>,
 }
 
@@ -136,8 +139,9 @@ pub fn spec_view(
                 .iter()
                 .find(|pf| pf.name == f.name)
                 .map(|pf| pf.role);
+            let returns = lang::Returns::of(f, &public(""));
             let wrapper = role
-                .and_then(|_| backend.public_abi(&public(&f.name), &p.name, &f.params, f.ret_ty))
+                .and_then(|_| backend.public_abi(&public(&f.name), &p.name, &f.params, &returns))
                 .map(|(signature, body)| Wrapper {
                     name: public(&f.name),
                     signature,
@@ -159,12 +163,39 @@ pub fn spec_view(
             }
         })
         .collect();
+    let types = struct_defs(backend, &e.module.funcs, &defined);
     SpecView {
         guard: format!("{}{}_{}", prefix, spec.id(), lang.ext()).to_ascii_uppercase(),
         title: docs::spec_title(spec),
         doc: docs::spec_doc(spec, stats),
+        types,
         functions,
     }
+}
+
+/// The definitions of the structs `funcs` return (each once, in order of first use),
+/// named as `defined` names a local name.
+pub fn struct_defs(
+    backend: &dyn Backend,
+    funcs: &[crate::model::trace::Func],
+    defined: &dyn Fn(&str) -> String,
+) -> Vec<String> {
+    let mut types: Vec<String> = Vec::new();
+    for f in funcs {
+        if let Some(shape) = f.shape {
+            let fields: Vec<_> = shape
+                .fields
+                .iter()
+                .copied()
+                .zip(f.ret_tys.iter().copied())
+                .collect();
+            let def = backend.struct_def(&defined(shape.name), &fields);
+            if !types.contains(&def) {
+                types.push(def);
+            }
+        }
+    }
+    types
 }
 
 /// A complete include file for the given specs.

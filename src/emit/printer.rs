@@ -506,7 +506,9 @@ impl Ctx<'_> {
 /// Nodes used as a whole vector: passed to a call or returned.
 fn whole_uses(f: &Func) -> Vec<bool> {
     let mut whole = vec![false; f.nodes.len()];
-    whole[f.ret.node as usize] = f.ret.lane.is_none();
+    for r in &f.rets {
+        whole[r.node as usize] |= r.lane.is_none();
+    }
     for n in &f.nodes {
         if matches!(n.op, Op::Call(_)) {
             for a in n.args.iter().filter(|a| a.lane.is_none()) {
@@ -520,7 +522,7 @@ fn whole_uses(f: &Func) -> Vec<bool> {
 /// Node ids the return value depends on.
 fn live(f: &Func) -> Vec<bool> {
     let mut live = vec![false; f.nodes.len()];
-    let mut stack = vec![f.ret.node as usize];
+    let mut stack: Vec<usize> = f.rets.iter().map(|r| r.node as usize).collect();
     while let Some(i) = stack.pop() {
         if std::mem::replace(&mut live[i], true) {
             continue;
@@ -713,7 +715,9 @@ fn uses(
     for &id in &declared {
         count_markers(&ctx.expr(id), User::Node(id), &mut uses);
     }
-    count_markers(&ctx.r(f.ret), User::Return, &mut uses);
+    for &r in &f.rets {
+        count_markers(&ctx.r(r), User::Return, &mut uses);
+    }
     uses
 }
 
@@ -746,6 +750,7 @@ pub fn print_as(
         temps: 0,
     };
     body.used.extend(RESERVED.iter().map(|w| w.to_string()));
+    body.used.extend(f.shape.map(|s| s.name.to_string()));
     // A value named like a function it calls would hide that function.
     body.used.extend(f.nodes.iter().filter_map(|n| match &n.op {
         Op::Call(c) => Some(fn_name(c)),
@@ -772,10 +777,27 @@ pub fn print_as(
         }
         ctx.declare(id, None, &mut body);
     }
-    if precise {
-        ctx.declare_uncovered(&[f.ret], Some("result"), &mut body);
+    match f.shape {
+        None => {
+            if precise {
+                ctx.declare_uncovered(&f.rets, Some("result"), &mut body);
+            }
+            body.lines.push(format!("return {};", ctx.r(f.rets[0])));
+        }
+        Some(shape) => {
+            let mut values = Vec::new();
+            for (&r, field) in f.rets.iter().zip(shape.fields) {
+                if precise {
+                    ctx.declare_uncovered(&[r], Some(field), &mut body);
+                }
+                values.push(ctx.r(r));
+            }
+            // Where the language builds the struct in a declaration, that declaration
+            // takes the shape's own name, which no value has taken (see `used` above).
+            body.lines
+                .extend(lang.return_struct(&fn_name(shape.name), shape.name, &values));
+        }
     }
-    body.lines.push(format!("return {};", ctx.r(f.ret)));
     Printed {
         name: fn_name(&f.name),
         params: f
@@ -783,7 +805,10 @@ pub fn print_as(
             .iter()
             .map(|(n, t)| (n.clone(), lang.ty(*t)))
             .collect(),
-        ret_ty: lang.ty(f.ret_ty),
+        ret_ty: match f.shape {
+            Some(shape) => fn_name(shape.name),
+            None => lang.ty(f.ret_tys[0]),
+        },
         body: body.lines,
     }
 }

@@ -80,14 +80,26 @@ pub struct Node {
     pub name: Option<&'static str>,
 }
 
-/// One traced function: parameters, body in evaluation order, and the returned value.
+/// The struct a function returns its values in when it returns several (a frame
+/// decoder's normal and tangent): its local name (the emitted one is prefixed like a
+/// function's) and its fields' names, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shape {
+    pub name: &'static str,
+    pub fields: &'static [&'static str],
+}
+
+/// One traced function: parameters, body in evaluation order, and the returned values.
 #[derive(Clone, Debug)]
 pub struct Func {
     pub name: String,
     pub params: Vec<(String, Ty)>,
     pub nodes: Vec<Node>,
-    pub ret: Ref,
-    pub ret_ty: Ty,
+    /// The returned values: one, or the fields of [`Func::shape`] in order.
+    pub rets: Vec<Ref>,
+    pub ret_tys: Vec<Ty>,
+    /// The struct the values are returned in, for a function that returns several.
+    pub shape: Option<Shape>,
     /// Parameters this function multiplies by a literal (directly, or by passing them to
     /// a helper that does): a caller must not pass a literal product there.
     pub scaled_params: Vec<bool>,
@@ -820,7 +832,24 @@ pub fn define<A: Value, R: Value>(name: &str, param_names: &[&str], f: impl FnOn
         return;
     };
     let out = f(A::from_refs(&mut param_refs.into_iter()));
-    end_define(name, param_names, tys, out.refs());
+    end_define(name, param_names, tys, out.refs(), None);
+}
+
+/// [`define`] for a public function that returns several values (a tuple), as the
+/// fields of the struct `shape`, one field per value. Helpers return one value: only
+/// the emitted entry points have a struct, which each language writes its own way.
+pub fn define_fields<A: Value, R: Value>(
+    name: &str,
+    param_names: &[&str],
+    shape: Shape,
+    f: impl FnOnce(A) -> R,
+) {
+    let tys = A::tys();
+    let Some(param_refs) = begin_define(name, &tys) else {
+        return;
+    };
+    let out = f(A::from_refs(&mut param_refs.into_iter()));
+    end_define(name, param_names, tys, out.refs(), Some(shape));
 }
 
 /// Opens the function `name` with parameters of types `tys`, returning their references;
@@ -853,10 +882,17 @@ fn begin_define(name: &str, tys: &[Ty]) -> Option<Vec<Ref>> {
 }
 
 /// Closes the function [`begin_define`] opened, with parameters of types `tys`,
-/// returning `ret`.
+/// returning `ret` (the fields of `shape`, where it has one).
 #[inline(never)]
-fn end_define(name: &str, param_names: &[&str], tys: Vec<Ty>, ret: Vec<Ref>) {
-    assert_eq!(ret.len(), 1, "functions return one value");
+fn end_define(name: &str, param_names: &[&str], tys: Vec<Ty>, ret: Vec<Ref>, shape: Option<Shape>) {
+    match shape {
+        Some(s) => assert_eq!(ret.len(), s.fields.len(), "{name}: one value per field"),
+        None => assert_eq!(
+            ret.len(),
+            1,
+            "{name}: a function without a shape returns one value"
+        ),
+    }
     let params = tys
         .into_iter()
         .enumerate()
@@ -868,8 +904,8 @@ fn end_define(name: &str, param_names: &[&str], tys: Vec<Ty>, ret: Vec<Ref>) {
         })
         .collect();
     with(|r| {
-        let ret_ty = r.ty(ret[0]);
-        let returns_scaled = r.is_scaled(ret[0]);
+        let ret_tys = ret.iter().map(|&v| r.ty(v)).collect();
+        let returns_scaled = ret.iter().any(|&v| r.is_scaled(v));
         let scaled_params = r.scaled.pop().unwrap();
         let nodes = r.stack.pop().unwrap();
         r.memo = r.memo_stack.pop().unwrap();
@@ -877,8 +913,9 @@ fn end_define(name: &str, param_names: &[&str], tys: Vec<Ty>, ret: Vec<Ref>) {
             name: name.to_string(),
             params,
             nodes,
-            ret: ret[0],
-            ret_ty,
+            rets: ret,
+            ret_tys,
+            shape,
             scaled_params,
             returns_scaled,
         });

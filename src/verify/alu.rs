@@ -151,10 +151,16 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
         }
     };
     let include = render(&[(spec.clone(), None)], Lang::Glsl, DEFAULT_PREFIX, "");
-    let name = if e.namespace.is_empty() {
-        format!("{DEFAULT_PREFIX}{function}")
+    let prefix = if e.namespace.is_empty() {
+        DEFAULT_PREFIX.to_string()
     } else {
-        format!("{DEFAULT_PREFIX}{}_{function}", e.namespace)
+        format!("{DEFAULT_PREFIX}{}_", e.namespace)
+    };
+    let name = format!("{prefix}{function}");
+    // Several results arrive as the struct they are returned in, one per item.
+    let tout = match traced.shape {
+        Some(shape) => format!("{prefix}{}", shape.name),
+        None => glsl_type(traced.ret_tys[0]),
     };
     Ok(format!(
         "#version 430\n#define UNITPACK_PRECISE precise\n{include}\n\
@@ -162,7 +168,6 @@ fn shader(spec: &Spec, e: &Emitted, function: &str) -> Result<String> {
          layout(std430, set = 0, binding = 0) readonly buffer In {{ {tin} inp[]; }};\n\
          layout(std430, set = 0, binding = 1) writeonly buffer Out {{ {tout} outp[]; }};\n\
          void main() {{\n    uint i = gl_GlobalInvocationID.x;\n    outp[i] = {name}({args});\n}}\n",
-        tout = glsl_type(traced.ret_ty),
     ))
 }
 

@@ -20,8 +20,8 @@ use crate::codecs::Spec;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::function::first_with_same_code;
 use crate::codecs::core::function::{Function, Inputs, Width};
-use crate::emit::lang::KernelFn;
 use crate::emit::lang::glsl::precise_macro;
+use crate::emit::lang::{KernelFn, Returns};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
 use crate::model::Kind;
 use crate::model::avx2_lanes;
@@ -418,7 +418,8 @@ pub(crate) fn on_all_cores(
 /// chunk: the mismatch count and the first few mismatches, with their inputs.
 pub struct Comparison<'a> {
     f: &'a Function,
-    types: (&'a [Ty], Ty),
+    /// The parameters' types and the kind of the result's words.
+    types: (&'a [Ty], Kind),
     input: &'a [u32],
     want: &'a [u32],
     /// Output words received so far.
@@ -441,7 +442,12 @@ pub struct Outcome {
 }
 
 impl<'a> Comparison<'a> {
-    pub fn new(f: &'a Function, types: (&'a [Ty], Ty), input: &'a [u32], want: &'a [u32]) -> Self {
+    pub fn new(
+        f: &'a Function,
+        types: (&'a [Ty], Kind),
+        input: &'a [u32],
+        want: &'a [u32],
+    ) -> Self {
         Comparison {
             f,
             types,
@@ -457,7 +463,7 @@ impl<'a> Comparison<'a> {
 
     /// Lists up to `keep` mismatches (at least [`FIRST`]) when the outputs are integers.
     pub fn keeping(mut self, keep: usize) -> Self {
-        if self.types.1.kind != Kind::F32 {
+        if self.types.1 != Kind::F32 {
             self.keep = keep.max(FIRST);
         }
         self
@@ -488,9 +494,9 @@ impl<'a> Comparison<'a> {
                     expected: w.to_vec(),
                     actual: g.to_vec(),
                     input_float: self.types.0.iter().all(|t| t.kind == Kind::F32),
-                    output_float: self.types.1.kind == Kind::F32,
+                    output_float: self.types.1 == Kind::F32,
                 };
-                if self.types.1.kind == Kind::F32 {
+                if self.types.1 == Kind::F32 {
                     let d = w
                         .iter()
                         .zip(g)
@@ -689,8 +695,13 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
         .collect()
 }
 
-pub fn func_types(f: &Func) -> (Vec<Ty>, Ty) {
-    (f.params.iter().map(|p| p.1).collect(), f.ret_ty)
+/// A traced function's parameter types and results, its names carrying `prefix`
+/// ([`Returns::of`]).
+pub fn func_types(f: &Func, prefix: &str) -> (Vec<Ty>, Returns) {
+    (
+        f.params.iter().map(|p| p.1).collect(),
+        Returns::of(f, prefix),
+    )
 }
 
 /// Verifies `specs` on every path of `langs`, with a progress bar when `progress`, on the
@@ -972,7 +983,8 @@ fn verify_spec(
         .iter()
         .zip(&names)
         .map(|(f, name)| {
-            let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+            let prefix = format!("{DEFAULT_PREFIX}{ns}");
+            let (params, ret) = func_types(e.module.func(f.name).expect("traced"), &prefix);
             (name.as_str(), params, ret)
         })
         .collect();
@@ -1093,7 +1105,7 @@ fn verify_spec(
                 }
                 None => (input, want),
             };
-            let mut cmp = Comparison::new(f, (params, *ret), input, want).keeping(keep);
+            let mut cmp = Comparison::new(f, (params, ret.kind()), input, want).keeping(keep);
             let result = if path == Path::Lanes {
                 in_chunks(f, input, &mut cmp, |i, o| {
                     lanes(f, Width::Four, i, o);
@@ -1166,7 +1178,7 @@ fn verify_spec(
                 error: None,
                 same_as: None,
                 largest: None,
-                measured: path.regroups() && ret.kind == Kind::F32,
+                measured: path.regroups() && ret.kind() == Kind::F32,
             };
             match result
                 .map_err(|err| format!("{err:#}"))

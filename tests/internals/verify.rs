@@ -12,7 +12,8 @@ fn comparison_finds_mismatches_across_chunks() {
         .iter()
         .find(|f| f.name == "decode")
         .expect("decode");
-    let (params, ret) = func_types(e.module.func(f.name).expect("traced"));
+    let (params, ret) = func_types(e.module.func(f.name).expect("traced"), "");
+    let ret = ret.kind();
     let input: Vec<u32> = (0..100).collect();
     let want = expected(f, &input);
     let mut got = want.clone();

@@ -12,7 +12,14 @@ fn driver_runs_in_process_and_refuses_other_widths() {
     };
     let include =
         "#include <stdint.h>\nstatic inline uint32_t twice(uint32_t x) { return 2u * x; }\n";
-    let source = unitpack::emit::lang::c::driver(include, &[("twice", vec![u32_ty], u32_ty)]);
+    let source = unitpack::emit::lang::c::driver(
+        include,
+        &[(
+            "twice",
+            vec![u32_ty],
+            unitpack::emit::lang::Returns::one(u32_ty),
+        )],
+    );
     for compiler in [Compiler::C, Compiler::Cpp] {
         let program = compile(compiler, &source).expect("the driver compiles");
         let input: Vec<u32> = (0..10_000).collect();

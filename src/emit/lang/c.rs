@@ -10,7 +10,7 @@
 //! no contraction (`-ffp-contract=off`; GCC contracts by default in GNU C modes), SSE
 //! rather than x87 arithmetic (x87's excess precision is not supported).
 
-use super::{Backend, FileOptions, KernelFn, scalar_names};
+use super::{Backend, FileOptions, KernelFn, Returns, scalar_names};
 use crate::emit::SpecView;
 use crate::model::Kind;
 use crate::model::trace::{Ty, UnOp};
@@ -48,7 +48,7 @@ impl C {
         name: &str,
         impl_name: &str,
         params: &[(String, Ty)],
-        ret: Ty,
+        ret: &Returns,
     ) -> (String, Vec<String>) {
         let mut sig = Vec::new();
         let mut body = Vec::new();
@@ -85,6 +85,23 @@ impl C {
             }
         }
         let call = format!("{impl_name}({})", args.join(", "));
+        if let Some(strukt) = &ret.name {
+            // Several values: one output array per field, named after it.
+            body.push(format!("const {} r = {call};", self.impl_name(strukt)));
+            for (t, value) in ret.parts("r") {
+                let field = value.trim_start_matches("r.");
+                sig.push(format!(
+                    "{} {field}[{}]",
+                    self.ty(Ty::scalar(t.kind)),
+                    t.lanes
+                ));
+                for (i, l) in super::LANES.iter().take(t.lanes as usize).enumerate() {
+                    body.push(format!("{field}[{i}] = {value}.{l};"));
+                }
+            }
+            return (format!("void {name}({})", sig.join(", ")), body);
+        }
+        let ret = ret.tys[0];
         let ret_ty = match (ret.kind, ret.lanes) {
             (Kind::U32, 1) => {
                 body.push(format!("return {call};"));
@@ -177,9 +194,23 @@ impl Backend for C {
         name: &str,
         impl_name: &str,
         params: &[(String, Ty)],
-        ret: Ty,
+        ret: &Returns,
     ) -> Option<(String, Vec<String>)> {
         Some(self.array_abi(name, impl_name, params, ret))
+    }
+    fn struct_def(&self, name: &str, fields: &[(&str, Ty)]) -> String {
+        let fields: String = fields
+            .iter()
+            .map(|(f, t)| format!("\n    {} {f};", self.ty(*t)))
+            .collect();
+        format!("typedef struct {{{fields}\n}} {name};")
+    }
+    /// A brace initializer, valid in a declaration in both C99 and C++.
+    fn return_struct(&self, name: &str, local: &str, values: &[String]) -> Vec<String> {
+        vec![
+            format!("const {name} {local} = {{ {} }};", values.join(", ")),
+            format!("return {local};"),
+        ]
     }
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
         let typedefs = |sizes: &[u8]| -> Vec<String> {
@@ -204,7 +235,10 @@ impl Backend for C {
         let uses_four = specs.iter().flat_map(|s| &s.functions).any(|f| {
             let text = |t: &str| four.iter().any(|n| t.contains(n.as_str()));
             text(&f.ret_ty) || f.params.iter().any(|p| text(&p.1)) || f.body.iter().any(|l| text(l))
-        });
+        }) || specs
+            .iter()
+            .flat_map(|s| &s.types)
+            .any(|t| four.iter().any(|n| t.contains(n.as_str())));
         File {
             header: opts.header,
             specs,
@@ -240,7 +274,7 @@ pub fn driver(include: &str, funcs: &[KernelFn]) -> String {
     let mut runners = String::new();
     for (k, (func, params, ret)) in funcs.iter().enumerate() {
         let inw: usize = params.iter().map(|p| p.lanes as usize).sum();
-        let outw = ret.lanes as usize;
+        let outw = ret.words();
         let mut body = vec![];
         let mut args = vec![];
         let mut first = 0;
@@ -266,18 +300,34 @@ pub fn driver(include: &str, funcs: &[KernelFn]) -> String {
             first += n;
         }
         let arg = args.join(", ");
-        match (ret.kind, ret.lanes) {
-            (Kind::U32, 1) => body.push(format!("r[0] = {func}({arg});")),
-            (Kind::U32, 2) => {
-                body.push(format!("const uint64_t c = {func}({arg});"));
-                body.push("r[0] = (uint32_t)c;".into());
-                body.push("r[1] = (uint32_t)(c >> 32);".into());
+        if ret.name.is_some() {
+            // One output array per field, copied out one after the other.
+            let mut outs = Vec::new();
+            let mut word = 0;
+            for (j, t) in ret.tys.iter().enumerate() {
+                body.push(format!("float o{j}[{}];", t.lanes));
+                outs.push(format!("o{j}"));
             }
-            (Kind::U32, _) => body.push(format!("{func}({arg}, r);")),
-            _ => {
-                body.push(format!("float o[{outw}];"));
-                body.push(format!("{func}({arg}, o);"));
-                body.push("memcpy(r, o, sizeof o);".into());
+            body.push(format!("{func}({arg}, {});", outs.join(", ")));
+            for (j, t) in ret.tys.iter().enumerate() {
+                body.push(format!("memcpy(&r[{word}], o{j}, sizeof o{j});"));
+                word += t.lanes as usize;
+            }
+        } else {
+            let ret = ret.tys[0];
+            match (ret.kind, ret.lanes) {
+                (Kind::U32, 1) => body.push(format!("r[0] = {func}({arg});")),
+                (Kind::U32, 2) => {
+                    body.push(format!("const uint64_t c = {func}({arg});"));
+                    body.push("r[0] = (uint32_t)c;".into());
+                    body.push("r[1] = (uint32_t)(c >> 32);".into());
+                }
+                (Kind::U32, _) => body.push(format!("{func}({arg}, r);")),
+                _ => {
+                    body.push(format!("float o[{outw}];"));
+                    body.push(format!("{func}({arg}, o);"));
+                    body.push("memcpy(r, o, sizeof o);".into());
+                }
             }
         }
         let body = body.join("\n        ");
@@ -302,7 +352,7 @@ static void run{k}(const uint32_t *in, uint32_t *out, size_t n) {{
             let inw: usize = params.iter().map(|p| p.lanes as usize).sum();
             format!(
                 "\n    case {k}:\n        if (in_words != {inw} || out_words != {}) return 3;\n        run{k}(in, out, n);\n        return 0;",
-                ret.lanes
+                ret.words()
             )
         })
         .collect();

@@ -42,13 +42,14 @@ impl Glsl {
         let (runners, cases) = selecting_parts(
             funcs,
             |runner, (func, params, ret)| {
-                let outw = ret.lanes;
-                let KernelIo { args, bits, stores } = kernel_io(
+                let outw = ret.words();
+                let KernelIo { args, stores } = kernel_io(
                     self,
                     params,
-                    *ret,
+                    ret,
                     |l, _| format!("uintBitsToFloat({l})"),
-                    "floatBitsToUint(r)",
+                    |v, _| format!("floatBitsToUint({v})"),
+                    |name, t, e| format!("{} {name} = {e};", self.ty(t)),
                 );
                 format!(
                     "
@@ -56,15 +57,10 @@ void {runner}(uint i) {{
     if (i >= uint(output_words.length()) / {outw}u) {{
         return;
     }}
-    {} r = {func}({args});
-    {} rb = {bits};{stores}
+    {} r = {func}({args});{stores}
 }}
 ",
-                    self.ty(*ret),
-                    self.ty(Ty {
-                        kind: Kind::U32,
-                        lanes: ret.lanes
-                    })
+                    ret.ty(self)
                 )
             },
             |k, runner| {
@@ -169,6 +165,13 @@ impl Backend for Glsl {
             Kind::U32 => format!("floatBitsToUint({a})"),
             _ => format!("uintBitsToFloat({a})"),
         }
+    }
+    fn struct_def(&self, name: &str, fields: &[(&str, Ty)]) -> String {
+        let fields: String = fields
+            .iter()
+            .map(|(f, t)| format!("\n    {} {f};", self.ty(*t)))
+            .collect();
+        format!("struct {name} {{{fields}\n}};")
     }
     /// Float results carry the precise macro, so drivers that contract `a*b + c` into an
     /// fma must not do so here where the user defines it as `precise`.

@@ -74,6 +74,20 @@ impl Backend for Hlsl {
         let q = if t.kind == Kind::F32 { "precise " } else { "" };
         format!("{q}{} {name} = {expr};", self.ty(t))
     }
+    fn struct_def(&self, name: &str, fields: &[(&str, Ty)]) -> String {
+        let fields: String = fields
+            .iter()
+            .map(|(f, t)| format!("\n    {} {f};", self.ty(*t)))
+            .collect();
+        format!("struct {name} {{{fields}\n}};")
+    }
+    /// HLSL has no struct constructor: the struct is built in a declaration.
+    fn return_struct(&self, name: &str, local: &str, values: &[String]) -> Vec<String> {
+        vec![
+            format!("{name} {local} = {{ {} }};", values.join(", ")),
+            format!("return {local};"),
+        ]
+    }
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
         File {
             header: opts.header,
@@ -87,13 +101,14 @@ impl Backend for Hlsl {
         let (runners, cases) = selecting_parts(
             funcs,
             |runner, (func, params, ret)| {
-                let outw = ret.lanes;
-                let KernelIo { args, bits, stores } = kernel_io(
+                let outw = ret.words();
+                let KernelIo { args, stores } = kernel_io(
                     self,
                     params,
-                    *ret,
+                    ret,
                     |l, _| format!("asfloat({l})"),
-                    "asuint(r)",
+                    |v, _| format!("asuint({v})"),
+                    |name, t, e| format!("{} {name} = {e};", self.ty(t)),
                 );
                 format!(
                     "
@@ -103,15 +118,10 @@ void {runner}(uint i) {{
     if (i >= count / {outw}u) {{
         return;
     }}
-    {} r = {func}({args});
-    {} rb = {bits};{stores}
+    {} r = {func}({args});{stores}
 }}
 ",
-                    self.ty(*ret),
-                    self.ty(Ty {
-                        kind: Kind::U32,
-                        lanes: ret.lanes
-                    })
+                    ret.ty(self)
                 )
             },
             |k, runner| format!("\n    case {k}u:\n        {runner}(id.x);\n        break;"),

@@ -106,9 +106,17 @@ pub trait Backend {
         _name: &str,
         _impl_name: &str,
         _params: &[(String, Ty)],
-        _ret: Ty,
+        _ret: &Returns,
     ) -> Option<(String, Vec<String>)> {
         None
+    }
+    /// The definition of the struct `name` that a function returning several values
+    /// returns ([`crate::model::trace::Shape`]), with its fields in order.
+    fn struct_def(&self, name: &str, fields: &[(&str, Ty)]) -> String;
+    /// The statements that return `values` as the struct `name`; where the language
+    /// builds it in a declaration, the declared value is called `local`.
+    fn return_struct(&self, name: &str, _local: &str, values: &[String]) -> Vec<String> {
+        vec![format!("return {name}({});", values.join(", "))]
     }
     /// The complete include.
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String;
@@ -122,8 +130,70 @@ pub trait Backend {
     fn kernel(&self, include: &str, funcs: &[KernelFn]) -> String;
 }
 
-/// A function a [`Backend::kernel`] can apply: its name, parameter types and result type.
-pub type KernelFn<'a> = (&'a str, Vec<Ty>, Ty);
+/// What a function returns: one value (`fields` empty), or one value per field of a
+/// struct ([`crate::model::trace::Shape`]), in order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Returns {
+    pub tys: Vec<Ty>,
+    pub fields: Vec<&'static str>,
+    /// The struct's emitted name, where there are fields.
+    pub name: Option<String>,
+}
+
+impl Returns {
+    /// One value of type `t`.
+    pub fn one(t: Ty) -> Returns {
+        Returns {
+            tys: vec![t],
+            fields: Vec::new(),
+            name: None,
+        }
+    }
+
+    /// The returned values of a traced function whose names carry `prefix` (the
+    /// function's and its struct's: `unitpack_qtangent64_`).
+    pub fn of(f: &crate::model::trace::Func, prefix: &str) -> Returns {
+        Returns {
+            tys: f.ret_tys.clone(),
+            fields: f.shape.map_or_else(Vec::new, |s| s.fields.to_vec()),
+            name: f.shape.map(|s| format!("{prefix}{}", s.name)),
+        }
+    }
+
+    /// The result's type in `lang`.
+    pub fn ty(&self, lang: &dyn Backend) -> String {
+        match &self.name {
+            Some(n) => n.clone(),
+            None => lang.ty(self.tys[0]),
+        }
+    }
+
+    /// The kind of every value (a function's values are all floats or all integers).
+    pub fn kind(&self) -> Kind {
+        let k = self.tys[0].kind;
+        assert!(self.tys.iter().all(|t| t.kind == k), "mixed result kinds");
+        k
+    }
+
+    /// The words every item's result takes.
+    pub fn words(&self) -> usize {
+        self.tys.iter().map(|t| t.lanes as usize).sum()
+    }
+
+    /// Each value's type and how it is read from the result `r`: `r` itself, or `r.field`.
+    pub fn parts<'a>(&'a self, r: &'a str) -> impl Iterator<Item = (Ty, String)> + 'a {
+        self.tys
+            .iter()
+            .enumerate()
+            .map(move |(i, &t)| match self.fields.get(i) {
+                Some(f) => (t, format!("{r}.{f}")),
+                None => (t, r.to_string()),
+            })
+    }
+}
+
+/// A function a [`Backend::kernel`] can apply: its name, parameter types and results.
+pub type KernelFn<'a> = (&'a str, Vec<Ty>, Returns);
 
 /// The kernel's selector: specialization constant 0 (WGSL `@id(0) override`), whose value
 /// is the index of the function a pipeline runs. A constant, so that the driver compiles
@@ -189,22 +259,23 @@ pub(crate) const LANES: [&str; 4] = ["x", "y", "z", "w"];
 
 /// The pieces every compute kernel shares: the arguments loaded one after the other from
 /// `input_words` (each bit-cast by `as_float` where it is float), and the statements
-/// storing the result's words `rb` to `output_words`.
+/// storing the words of each value of the result `r` to `output_words`, each bit-cast by
+/// `as_bits` (value, its type) and declared by `declare_bits` (name, type, expression).
 pub(crate) struct KernelIo {
     pub args: String,
-    pub bits: String,
     pub stores: String,
 }
 
 pub(crate) fn kernel_io(
     lang: &dyn Backend,
     params: &[Ty],
-    ret: Ty,
+    ret: &Returns,
     as_float: impl Fn(&str, Ty) -> String,
-    as_bits: &str,
+    as_bits: impl Fn(&str, Ty) -> String,
+    declare_bits: impl Fn(&str, Ty, &str) -> String,
 ) -> KernelIo {
     let inw: usize = params.iter().map(|p| p.lanes as usize).sum();
-    let outw = ret.lanes as usize;
+    let outw = ret.words();
     let mut first = 0;
     let args: Vec<String> = params
         .iter()
@@ -228,23 +299,39 @@ pub(crate) fn kernel_io(
             }
         })
         .collect();
-    let bits = match ret.kind {
-        Kind::F32 => as_bits.to_string(),
-        _ => "r".to_string(),
-    };
-    let stores = (0..outw)
-        .map(|k| {
-            let lane = if outw == 1 {
+    let mut stores = String::new();
+    let mut word = 0;
+    let single = ret.tys.len() == 1;
+    for (j, (t, value)) in ret.parts("r").enumerate() {
+        let rb = if single {
+            "rb".to_string()
+        } else {
+            format!("rb{j}")
+        };
+        let u = Ty {
+            kind: Kind::U32,
+            lanes: t.lanes,
+        };
+        let bits = match t.kind {
+            Kind::F32 => as_bits(&value, t),
+            _ => value,
+        };
+        stores.push_str(&format!("\n    {}", declare_bits(&rb, u, &bits)));
+        for k in 0..t.lanes as usize {
+            let lane = if t.lanes == 1 {
                 String::new()
             } else {
                 format!(".{}", LANES[k])
             };
-            format!("\n    output_words[i * {outw}u + {k}u] = rb{lane};")
-        })
-        .collect();
+            stores.push_str(&format!(
+                "\n    output_words[i * {outw}u + {}u] = {rb}{lane};",
+                word + k
+            ));
+        }
+        word += t.lanes as usize;
+    }
     KernelIo {
         args: args.join(", "),
-        bits,
         stores,
     }
 }

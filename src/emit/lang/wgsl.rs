@@ -71,6 +71,13 @@ impl Backend for Wgsl {
     fn bitcast(&self, t: Ty, a: &str) -> String {
         format!("bitcast<{}>({a})", self.ty(t))
     }
+    fn struct_def(&self, name: &str, fields: &[(&str, Ty)]) -> String {
+        let fields: String = fields
+            .iter()
+            .map(|(f, t)| format!("\n    {f}: {},", self.ty(*t)))
+            .collect();
+        format!("struct {name} {{{fields}\n}}")
+    }
     fn render(&self, specs: &[SpecView], opts: &FileOptions) -> String {
         File {
             header: opts.header,
@@ -84,19 +91,22 @@ impl Backend for Wgsl {
         let (runners, cases) = selecting_parts(
             funcs,
             |runner, (func, params, ret)| {
-                let outw = ret.lanes;
-                let KernelIo { args, bits, stores } = kernel_io(
+                let outw = ret.words();
+                let KernelIo { args, stores } = kernel_io(
                     self,
                     params,
-                    *ret,
-                    |l, param| format!("bitcast<{}>({l})", self.ty(param)),
-                    &format!(
-                        "bitcast<{}>(r)",
-                        self.ty(Ty {
-                            kind: Kind::U32,
-                            lanes: ret.lanes
-                        })
-                    ),
+                    ret,
+                    |l, param| self.bitcast(param, l),
+                    |v, t| {
+                        self.bitcast(
+                            Ty {
+                                kind: Kind::U32,
+                                lanes: t.lanes,
+                            },
+                            v,
+                        )
+                    },
+                    |name, t, e| self.declare(name, t, e),
                 );
                 format!(
                     "
@@ -104,8 +114,7 @@ fn {runner}(i: u32) {{
     if (i >= arrayLength(&output_words) / {outw}u) {{
         return;
     }}
-    let r = {func}({args});
-    let rb = {bits};{stores}
+    let r = {func}({args});{stores}
 }}
 "
                 )
