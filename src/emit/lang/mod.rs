@@ -317,11 +317,11 @@ pub(crate) fn kernel_io(
             _ => value,
         };
         stores.push_str(&format!("\n    {}", declare_bits(&rb, u, &bits)));
-        for k in 0..t.lanes as usize {
+        for (k, l) in LANES.iter().take(t.lanes as usize).enumerate() {
             let lane = if t.lanes == 1 {
                 String::new()
             } else {
-                format!(".{}", LANES[k])
+                format!(".{l}")
             };
             stores.push_str(&format!(
                 "\n    output_words[i * {outw}u + {}u] = {rb}{lane};",
