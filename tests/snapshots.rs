@@ -547,12 +547,17 @@ fn shapes() -> Module {
             name: "frame",
             fields: &["n", "t"],
         };
-        define_fields("unpack_frame", &["code"], frame, |code: Tu| -> (V3<Tf>, V4<Tf>) {
-            let s = (code.shr(31).to_f() * Tf::c(2.0) - Tf::c(1.0)).named("s");
-            let a = (code & Tu::c(0xffff)).to_f() * Tf::c(1.0 / 65535.0);
-            let n = V3::new(a, Tf::c(0.0), Tf::c(1.0) - a).named("n");
-            (n, V4::new(n.z, n.y, -a, s))
-        });
+        define_fields(
+            "unpack_frame",
+            &["code"],
+            frame,
+            |code: Tu| -> (V3<Tf>, V4<Tf>) {
+                let s = (code.shr(31).to_f() * Tf::c(2.0) - Tf::c(1.0)).named("s");
+                let a = (code & Tu::c(0xffff)).to_f() * Tf::c(1.0 / 65535.0);
+                let n = V3::new(a, Tf::c(0.0), Tf::c(1.0) - a).named("n");
+                (n, V4::new(n.z, n.y, -a, s))
+            },
+        );
     })
 }
 

@@ -118,6 +118,11 @@ registry! {
         unity [FAMILY] => UnityOct;
         draco [FAMILY] => DracoOct;
     }
+    /// Tangent frames: a normal, a tangent and the bitangent's sign in one code, decoded
+    /// to the struct `frame` of `n` and `t` (the sign in `t.w`).
+    frames (frame) {
+        qtangent [QTANGENT];
+    }
 }
 
 /// Doc comments of the helpers every codec may call (the precise search, the model's

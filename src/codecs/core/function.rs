@@ -15,6 +15,9 @@ use std::sync::Arc;
 pub enum Inputs {
     /// Seeded random unit vectors plus every edge case (3 words each).
     Vectors,
+    /// Tangent frames: a normal and a tangent with its handedness in `w` (7 words each),
+    /// seeded and edge cases ([`crate::codecs::core::inputs::frames`]).
+    Frames,
     /// Packed codes with the given fields: all of them up to 24 bits, else seeded random ones.
     Codes(Vec<Quant>),
     /// Float parameters as a texture fetch delivers them (`c/M`), for the same codes.

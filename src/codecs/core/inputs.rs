@@ -211,6 +211,7 @@ pub fn float_codes(q: &[Quant]) -> Vec<u32> {
 pub fn generate(inputs: &Inputs, in_words: usize) -> Vec<u32> {
     match inputs {
         Inputs::Vectors => vectors().to_vec(),
+        Inputs::Frames => frames().to_vec(),
         Inputs::Codes(q) => codes(q, in_words),
         Inputs::FloatCodes(q) => float_codes(q),
         Inputs::CodesAndIndex(q, n) => {
@@ -255,5 +256,126 @@ fn vectors() -> &'static [u32] {
         let mut v = edge_vectors();
         v.extend(random_unit_vectors(CODE_SEED, RANDOM_ITEMS, false));
         v.iter().flat_map(|a| a.map(f32::to_bits)).collect()
+    })
+}
+
+/// Random frames: fewer than vectors, since a frame encoder costs several vector encoders.
+pub const RANDOM_FRAMES: usize = 1 << 18;
+const FRAME_SEED: u128 = 0x6672_616d_6573_5f73_6565_645f_756e_6974;
+
+/// Frame edge cases (`[n.x, n.y, n.z, t.x, t.y, t.z, w]`): every pairing of special
+/// normals (axes, -Z, the octahedral fold, zero, NaN, infinite, denormal, non-unit) with
+/// special tangents (axes, parallel and antiparallel to the normal, non-orthogonal,
+/// zero, NaN, infinite) and handedness values (±1, ±0, NaN, ±2, ±infinity).
+pub fn edge_frames() -> Vec<[f32; 7]> {
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    let normals: [[f32; 3]; 12] = [
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+        [1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [h, h, 0.0],
+        [-h, 0.0, -h],
+        [0.0, 0.0, 0.0],
+        [f32::NAN, 0.0, 1.0],
+        [0.0, f32::INFINITY, 0.0],
+        [1e-45, 0.0, 0.0],
+        [0.0, 3.0, 0.0],
+        [0.6, -0.48, 0.64],
+    ];
+    let tangents: [[f32; 3]; 9] = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, -1.0],
+        [h, -h, 0.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 0.0, 0.0],
+        [f32::NAN, 1.0, 0.0],
+        [f32::NEG_INFINITY, 0.0, 0.0],
+        [1e-30, 0.0, 1e-30],
+    ];
+    let ws = [
+        1.0,
+        -1.0,
+        0.0,
+        -0.0,
+        f32::NAN,
+        2.0,
+        -2.0,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+    ];
+    let mut out = Vec::new();
+    for n in normals {
+        let parallel = [n, n.map(|x| -x)];
+        for t in tangents.iter().chain(&parallel) {
+            for w in ws {
+                out.push([n[0], n[1], n[2], t[0], t[1], t[2], w]);
+            }
+        }
+    }
+    out
+}
+
+/// A rotation's frame (tangent = R·x, normal = R·z) with handedness `w`, from the unit
+/// quaternion `q` (x, y, z, w), computed in f64 and rounded once.
+fn frame_of(q: [f64; 4], w: f32) -> [f32; 7] {
+    let [x, y, z, s] = q;
+    let t = [
+        1.0 - 2.0 * (y * y + z * z),
+        2.0 * (x * y + s * z),
+        2.0 * (x * z - s * y),
+    ];
+    let n = [
+        2.0 * (x * z + s * y),
+        2.0 * (y * z - s * x),
+        1.0 - 2.0 * (x * x + y * y),
+    ];
+    [n[0], n[1], n[2], t[0], t[1], t[2]]
+        .map(|v| v as f32)
+        .into_iter()
+        .chain([w])
+        .collect::<Vec<_>>()
+        .try_into()
+        .expect("seven")
+}
+
+/// The edge frames, then seeded ones: orthonormal frames of uniformly random rotations of
+/// both handednesses; the same with the tangent tilted off the normal's plane
+/// (non-orthogonal input, a quarter of them); and rotations within 10^-3 radians of a half
+/// turn, where a quaternion's largest component moves from w to the axis (the
+/// quaternion sign flip).
+pub fn frames() -> &'static [u32] {
+    static FRAMES: std::sync::OnceLock<Vec<u32>> = std::sync::OnceLock::new();
+    FRAMES.get_or_init(|| {
+        let mut rng = Pcg64Mcg::new(FRAME_SEED);
+        let mut gauss = || {
+            let u1 = ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
+            let u2 = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+            (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+        };
+        let mut out = edge_frames();
+        for i in 0..RANDOM_FRAMES {
+            let w = if i % 2 == 0 { 1.0 } else { -1.0 };
+            let mut q = [gauss(), gauss(), gauss(), gauss()];
+            if i % 64 == 1 {
+                // Near a half turn: w small against the axis.
+                let a = [q[0], q[1], q[2]];
+                let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+                let e = 5e-4 * gauss();
+                q = [a[0] / l, a[1] / l, a[2] / l, e];
+            }
+            let l = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+            let mut f = frame_of(q.map(|c| c / l), w);
+            if i % 4 == 3 {
+                // Tilt the tangent towards the normal.
+                let k = 0.3 * gauss();
+                for j in 0..3 {
+                    f[3 + j] += (k * f64::from(f[j])) as f32;
+                }
+            }
+            out.push(f);
+        }
+        out.iter().flat_map(|a| a.map(f32::to_bits)).collect()
     })
 }

@@ -428,6 +428,12 @@ pub trait Family: Sync + 'static {
     fn engine(&self) -> Option<&'static str> {
         None
     }
+    /// Whether the family codes tangent frames ([`crate::codecs::frames`]): its encoders
+    /// take a normal and a tangent, its decoders return the struct `frame`, and the
+    /// normal codecs' error statistics, bounds and choices do not apply.
+    fn frames(&self) -> bool {
+        false
+    }
 }
 
 /// A lookup table a spec's functions read: `width × height` texels of `channels`

@@ -1,0 +1,82 @@
+//! What every tangent-frame codec shares: the frame a decoder returns, the handedness
+//! rule, and the input policy for degenerate frames.
+//!
+//! A frame is a normal `n` and a tangent `t` whose `w` is the bitangent's sign, glTF's
+//! convention: the bitangent is `cross(n, t.xyz)·t.w`. Encoders take `(n, t)`; decoders
+//! return the struct [`FRAME`] of `n` (vec3) and `t` (vec4, `w` = ±1), so that a vertex
+//! shader passes `t` on as a glTF tangent attribute would be.
+
+use crate::model::trace::Shape;
+use crate::model::{Bool, Float, V3};
+
+/// The struct every frame decoder returns: `n` and `t` (with the sign in `w`).
+pub const FRAME: Shape = Shape {
+    name: "frame",
+    fields: &["n", "t"],
+};
+
+/// The handedness of `w`: -1 where `w < 0`, else +1, so that 0, -0 and NaN count as +1
+/// (glTF's default handedness) and the sign survives any other value.
+#[inline(always)]
+pub fn handedness<F: Float>(w: F) -> F {
+    F::sel(w.lt(F::c(0.0)), F::c(-1.0), F::c(1.0))
+}
+
+/// `a × b`, each lane `a.y·b.z - a.z·b.y` and so on, as Filament, Godot and glam write it.
+#[inline(always)]
+pub fn cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
+    V3::new(
+        a.y * b.z - a.z * b.y,
+        a.z * b.x - a.x * b.z,
+        a.x * b.y - a.y * b.x,
+    )
+}
+
+/// `a · b`, summed left to right.
+#[inline(always)]
+pub fn dot<F: Float>(a: V3<F>, b: V3<F>) -> F {
+    a.x * b.x + a.y * b.y + a.z * b.z
+}
+
+/// Whether a squared length is one the frame arithmetic can use: at least `2^-60` (a
+/// tangent orthogonalised against a unit normal keeps a component of at least `2^-30`
+/// off it) and finite. Zero, NaN and infinite lengths are not.
+#[inline(always)]
+pub fn usable<F: Float>(length2: F) -> F::B {
+    length2
+        .ge(F::c(f32::from_bits(0x2180_0000)))
+        .and(length2.le(F::c(f32::MAX)))
+}
+
+/// The normal an encoder works with: `n` itself where its squared length is within
+/// `[2^-20, 2^20]` (every practical input, so an engine's arithmetic sees it unchanged),
+/// else `n` divided by its largest magnitude; +Z where `|x| + |y| + |z|` is below `2^-60`
+/// (zero, denormal), infinite or NaN.
+#[inline(always)]
+pub fn policy_normal<F: Float>(n: V3<F>) -> V3<F> {
+    let a = n.abs();
+    let m = a.x.at_least(a.y).at_least(a.z).named("largest");
+    // The sum carries a NaN or an infinity of any component, which a maximum may drop.
+    let l1 = a.x + a.y + a.z;
+    let valid = l1.ge(F::c(f32::from_bits(0x2180_0000))).and(l1.le(F::c(f32::MAX)));
+    let l2 = n.length_squared();
+    let plain = l2
+        .ge(F::c(f32::from_bits(0x3580_0000)))
+        .and(l2.le(F::c(f32::from_bits(0x4980_0000))));
+    let scaled = n * (F::c(1.0) / F::sel(valid, m, F::c(1.0)));
+    let z = V3::new(F::c(0.0), F::c(0.0), F::c(1.0));
+    V3::sel_all(valid, V3::sel_all(plain, n, scaled), z)
+}
+
+/// The canonical tangent of the normal `n` (any nonzero length): the first vector of
+/// Duff et al.'s orthonormal basis ("Building an Orthonormal Basis, Revisited", JCGT
+/// 2017) of `n/|n|`, `(1 + s·x²·a, s·x·y·a, -s·x)` with `s` = -1 where `z < 0`, else +1,
+/// and `a = -1/(s + z)`. What a zero, NaN, infinite or parallel tangent is replaced by.
+#[inline(always)]
+pub fn canonical_tangent<F: Float>(n: V3<F>) -> V3<F> {
+    let u = n * (F::c(1.0) / n.length_squared().sqrt());
+    let s = F::sel(u.z.lt(F::c(0.0)), F::c(-1.0), F::c(1.0));
+    let a = -(F::c(1.0) / (s + u.z));
+    let sx = s * u.x;
+    V3::new(F::c(1.0) + sx * u.x * a, sx * u.y * a, -sx)
+}

@@ -1,0 +1,242 @@
+//! Filament's quaternion tangent frames: `packTangentFrame` (libs/math/include/math/mat3.h)
+//! stored as SHORT4 by `packSnorm16` (libs/math/include/math/norm.h), as
+//! `SurfaceOrientation::buildWithSuppliedTangents` (libs/geometry/src/SurfaceOrientation.cpp)
+//! builds them from a normal and a glTF tangent, and decoded by `toTangentFrame`
+//! (shaders/src/common_math.glsl) with the bitangent sign of `q.w`
+//! (shaders/src/shading_parameters.fs).
+//!
+//! Every step is Filament's arithmetic, in its order: the bitangent `b = w > 0 ? t × n :
+//! n × t` and the tangent made orthogonal as `w > 0 ? n × b : b × n`; the quaternion of
+//! the matrix with columns `(t, n × t, n)` by `extractQuat` (the trace's sign, then the
+//! largest diagonal element), divided by its length, made positive (`w ≥ 0`), `w` raised
+//! to `bias = 1/32767` with `xyz` scaled by `sqrt(1 - bias²)`, and negated where
+//! `(t × n)·b < 0`, which is where the frame is right-handed (`w > 0`); then
+//! `round(clamp(q, -1, 1)·32767)` with halves away from zero. The input policy of the
+//! frame codecs ([`crate::codecs::frames::frame`]) is applied first: it changes nothing a
+//! Filament user passes (a unit normal, a tangent off it, `w = ±1`), and gives the
+//! degenerate frames Filament leaves undefined (zero or NaN vectors, a tangent parallel
+//! to the normal, `w` of 0 or NaN) a stated frame.
+
+use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::core::ieee;
+use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::spec::{Family, Spec};
+use crate::codecs::core::codec::{dequantize, pack, unpack};
+use crate::codecs::core::words::generic_function;
+use crate::codecs::frames::frame::{
+    FRAME, canonical_tangent, cross, dot, handedness, policy_normal, usable,
+};
+use crate::codecs::toolkit::quant::{Quant, round_half_away};
+use crate::model::num::helper;
+use crate::model::trace::{Tf, Tu, define, define_fields, trace_module};
+use crate::model::{Bool, Float, V2, V3, V4};
+
+/// The stored fields: the quaternion's x, y, z and w as snorm16, in that order.
+const QUANTS: [Quant; 4] = [Quant::Snorm(16); 4];
+
+pub static QTANGENT: QTangent = QTangent {
+    info: Info {
+        name: "qtangent",
+        title: "Filament's quaternion tangent frame, SHORT4",
+        sizes: Sizes::Total(&[64]),
+        domain: None,
+        source: "Filament at google/filament 03c2a90: libs/math/include/math/mat3.h (packTangentFrame), TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame)",
+        edge_policy: "Filament's arithmetic for every frame it defines; w of 0 or NaN counts as +1; a normal with |x| + |y| + |z| below 2^-60 (zero, denormal), NaN or infinite encodes as +Z; a normal of squared length outside [2^-20, 2^20] is first divided by its largest component; a tangent whose orthogonalised squared length is below 2^-60 or not finite (zero, NaN, infinite, parallel to the normal) is replaced by the canonical tangent of Duff et al. (2017)",
+        decode_note: "Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and orthogonal to the quaternion's quantization (a few 2^-15)",
+        options: &[ieee::ENGINE_OPTION],
+    },
+};
+
+/// The qtangent family (one size, 64 bits).
+pub struct QTangent {
+    info: Info,
+}
+
+impl Family for QTangent {
+    fn info(&self) -> &Info {
+        &self.info
+    }
+    /// Filament's encoder is the only one: the codes are Filament's.
+    fn precise(&self) -> bool {
+        false
+    }
+    fn emitted(&self, spec: &Spec) -> Emitted {
+        emitted(spec)
+    }
+    fn engine(&self) -> Option<&'static str> {
+        Some("Filament")
+    }
+    fn frames(&self) -> bool {
+        true
+    }
+}
+
+/// Filament's `extractQuat` of the matrix whose columns are `m` (`m[column][row]`), as
+/// `(x, y, z, w)`: every branch computed, the taken one selected.
+#[inline(always)]
+fn extract_quat<F: Float>(m: [V3<F>; 3]) -> V4<F> {
+    let at = |c: usize, r: usize| m[c].to_array()[r];
+    let half = F::c(0.5);
+    let trace = (at(0, 0) + at(1, 1) + at(2, 2)).named("trace");
+    // A positive trace.
+    // Filament's `0.5/s` for `s = sqrt(a)`, written `1/sqrt(4a)`: the same value, since
+    // scaling by 4 and 2 is exact. Drivers (Mesa's NIR) compute `1/sqrt` as a reciprocal
+    // root, and rewrite `sqrt(a)` beside `1/sqrt(a)` as `a·rsq(a)`, which differs from
+    // the root by an ulp or more: a root of `4a` shares nothing with the root of `a`.
+    let a = trace + F::c(1.0);
+    let s = a.sqrt();
+    let r = F::c(1.0) / (a * F::c(4.0)).sqrt();
+    let by_trace = V4::new(
+        (at(1, 2) - at(2, 1)) * r,
+        (at(2, 0) - at(0, 2)) * r,
+        (at(0, 1) - at(1, 0)) * r,
+        half * s,
+    );
+    // Otherwise from the largest diagonal element `i`, with `j` and `k` the next ones.
+    let by_diagonal = |i: usize| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let a = (at(i, i) - (at(j, j) + at(k, k))) + F::c(1.0);
+        let s = a.sqrt();
+        let r = F::sel(s.eq(F::c(0.0)), s, F::c(1.0) / (a * F::c(4.0)).sqrt());
+        let mut q = [F::c(0.0); 4];
+        q[i] = half * s;
+        q[3] = (at(j, k) - at(k, j)) * r;
+        q[j] = (at(i, j) + at(j, i)) * r;
+        q[k] = (at(i, k) + at(k, i)) * r;
+        V4::from_array(q)
+    };
+    let one = at(1, 1).gt(at(0, 0));
+    let d = F::sel(one, at(1, 1), at(0, 0));
+    let two = at(2, 2).gt(d);
+    let by_diagonal = V4::sel_all(
+        two,
+        by_diagonal(2),
+        V4::sel_all(one, by_diagonal(1), by_diagonal(0)),
+    );
+    V4::sel_all(trace.gt(F::c(0.0)), by_trace, by_diagonal)
+}
+
+/// `packTangentFrame` of the frame `(n, t)` after the input policy: the quaternion
+/// Filament stores, in `[-1, 1]` (`encode_float`).
+#[inline(always)]
+pub fn pack_tangent_frame<F: Float>(n: V3<F>, t: V4<F>) -> V4<F> {
+    let positive = handedness(t.w).gt(F::c(0.0));
+    let n = policy_normal(n).named("n");
+    // SurfaceOrientation's bitangent and orthogonal tangent.
+    let orthogonal = |t: V3<F>| {
+        let b = V3::sel_all(positive, cross(t, n), cross(n, t)).named("b");
+        let t = V3::sel_all(positive, cross(n, b), cross(b, n)).named("t");
+        (b, t)
+    };
+    let (_, first) = orthogonal(V3::new(t.x, t.y, t.z));
+    let t = V3::sel_all(
+        usable(first.length_squared()),
+        V3::new(t.x, t.y, t.z),
+        canonical_tangent(n),
+    );
+    let (b, t) = orthogonal(t);
+    let q = extract_quat([t, cross(n, t), n]).named("q");
+    // normalize: q / length(q), or the identity where the length is 0.
+    let l = q.length_squared().sqrt().named("length");
+    let some = l.eq(F::c(0.0)).not();
+    let q = V4::sel_all(
+        some,
+        q / V4::splat(F::sel(some, l, F::c(1.0))),
+        V4::new(F::c(0.0), F::c(0.0), F::c(0.0), F::c(1.0)),
+    );
+    // positive: w ≥ 0.
+    let q = V4::sel_all(q.w.lt(F::c(0.0)), -q, q).named("q");
+    // w never 0: raised to the bias. Filament then scales xyz by `sqrt(1 - bias²)`
+    // evaluated in f64, which rounds to 1 in f32: xyz is unchanged.
+    let bias = 1.0f32 / 32767.0;
+    assert_eq!((1.0 - f64::from(bias) * f64::from(bias)).sqrt() as f32, 1.0);
+    let q = V4::sel_all(q.w.lt(F::c(bias)), V4::new(q.x, q.y, q.z, F::c(bias)), q);
+    // A reflection ((t × n)·b < 0) makes w negative.
+    V4::sel_all(dot(cross(t, n), b).lt(F::c(0.0)), -q, q)
+}
+
+/// `packSnorm16` of the quaternion, the four words packed (x and y in the first, z and w
+/// in the second, each the low half first).
+#[inline(always)]
+pub fn encode<F: Float>(n: V3<F>, t: V4<F>) -> V2<F::U> {
+    let q = helper!("encode_float" => pack_tangent_frame(n, t));
+    let codes = q.map(
+        #[inline(always)]
+        |x| round_half_away(x.clamped(F::c(-1.0), F::c(1.0)) * F::c(32767.0)),
+    );
+    pack(&QUANTS, codes.named("codes"))
+}
+
+/// Filament's `toTangentFrame(q, n, t)` and the sign of `q.w` as `t.w`, for fetched
+/// quaternion components (`decode_float`). Written as Filament's vector expressions
+/// evaluate lane by lane, without its additions of literal zeros (which change nothing
+/// but the sign of a zero result).
+#[inline(always)]
+pub fn to_tangent_frame<F: Float>(q: V4<F>) -> (V3<F>, V4<F>) {
+    let two = F::c(2.0);
+    let (x2, y2, z2) = ((two * q.x).named("x2"), (two * q.y).named("y2"), (two * q.z).named("z2"));
+    let n = V3::new(
+        x2 * q.z + y2 * q.w,
+        y2 * q.z - x2 * q.w,
+        F::c(1.0) - x2 * q.x - y2 * q.y,
+    );
+    let t = V4::new(
+        F::c(1.0) - y2 * q.y - z2 * q.z,
+        y2 * q.x + z2 * q.w,
+        z2 * q.x - y2 * q.w,
+        handedness(q.w),
+    );
+    (n, t)
+}
+
+/// The packed decoder: the four snorm16 fields fetched (`max(c·fl(1/32767), -1)`), then
+/// [`to_tangent_frame`], written out here (a helper returns one value, a frame two).
+#[inline(always)]
+pub fn decode<F: Float>(code: V2<F::U>) -> (V3<F>, V4<F>) {
+    let q: V4<F> = dequantize(&QUANTS, unpack::<F, V4<F>, V2<F::U>>(&QUANTS, code)).named("q");
+    to_tangent_frame(q)
+}
+
+fn emitted(spec: &Spec) -> Emitted {
+    let module = trace_module(|| {
+        define_fields("decode_float", &["q"], FRAME, |q: V4<Tf>| to_tangent_frame(q));
+        define_fields("decode", &["code"], FRAME, |c: V2<Tu>| decode::<Tf>(c));
+        define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
+            pack_tangent_frame(n, t)
+        });
+        define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| encode(n, t));
+    });
+    let functions = vec![
+        generic_function!(
+            "decode_float",
+            Role::DecodeFloat,
+            Inputs::FloatCodes(QUANTS.to_vec()),
+            <F> [] |q: V4<F>| to_tangent_frame(q)
+        ),
+        generic_function!(
+            "decode",
+            Role::Decode,
+            Inputs::Codes(QUANTS.to_vec()),
+            <F> [] |c: V2<<F as Float>::U>| decode::<F>(c)
+        ),
+        generic_function!(
+            "encode_float",
+            Role::EncodeFloat,
+            Inputs::Frames,
+            <F> [] |f: (V3<F>, V4<F>)| pack_tangent_frame(f.0, f.1)
+        ),
+        generic_function!(
+            "encode",
+            Role::Encode,
+            Inputs::Frames,
+            <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
+        ),
+    ];
+    Emitted {
+        module,
+        functions,
+        namespace: spec.id(),
+        portable_encoder: false,
+        cpu: Vec::new(),
+    }
+}
