@@ -234,6 +234,7 @@ pub fn function_doc(
                 Role::EncodeFloat if spec.precise() => "precise encoder, float form",
                 Role::EncodeFloat => "fast encoder, float form",
                 Role::DecodeFloat => "decoder, float form",
+                Role::Decode => "decoder",
                 _ => "lookup texel",
             };
             let mut d = vec![format!("{}: {what}.", p.name)];

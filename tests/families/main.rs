@@ -11,6 +11,7 @@ mod lambert;
 mod latlongd;
 mod oct;
 mod oracles;
+mod qtangent;
 mod sfib;
 mod snorm12x2;
 mod snorm3;

@@ -66,6 +66,28 @@ impl Family for QTangent {
     fn engine(&self) -> Option<&'static str> {
         Some("Filament")
     }
+    fn function_doc(&self, _spec: &Spec, name: &str) -> Option<Vec<String>> {
+        const CODE: &str = "word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w, each snorm16 (two's complement): Filament's SHORT4 as stored";
+        let input = format!(
+            "In: a normal n and a tangent t whose w is the bitangent's sign (glTF's convention: bitangent = cross(n, t.xyz)·t.w); {}.",
+            self.info.edge_policy
+        );
+        Some(match name {
+            "decode_float" => vec!["In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.".into()],
+            "decode" => vec![
+                format!("In: the packed code, vec2<u32>: {CODE}."),
+                format!("Out: the frame: n, and t with the bitangent's sign (±1) in t.w; {}.", self.info.decode_note),
+            ],
+            "encode_float" => vec![
+                input,
+                "Out: Filament's packTangentFrame quaternion (x, y, z, w) in [-1, 1], unquantized: w ≥ 1/32767 for a right-handed frame (t.w ≥ 0), w ≤ -1/32767 for a reflected one.".into(),
+            ],
+            _ => vec![
+                "In: as for encode_float.".into(),
+                format!("Out: the packed code, vec2<u32>: {CODE}; packSnorm16 of the quaternion, round(clamp(q, -1, 1)·32767) with halves away from zero."),
+            ],
+        })
+    }
     fn frames(&self) -> bool {
         true
     }

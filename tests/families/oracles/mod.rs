@@ -1,8 +1,9 @@
-//! Ports of engines' octahedral normal codecs, the oracles of the engine formats
+//! Ports of engines' normal and tangent-frame codecs, the oracles of the engine formats
 //! (`src/codecs/engine`). Each cites the upstream file and commit it follows; each is
 //! written here, independently of the model it checks.
 
 pub mod bevy;
 pub mod draco;
+pub mod filament;
 pub mod meshopt;
 pub mod unity;
