@@ -319,9 +319,16 @@ pub struct Batch {
 
 impl Batch {
     /// The batch codec of a spec as the CLI takes it (`oct24p`, `oct24:layout=rgb8`).
-    /// A packing helper (no encoder or decoder) is an error.
+    /// A packing helper (no encoder or decoder) is an error, and so is a tangent-frame
+    /// spec, whose encoders take a frame rather than a vector.
     pub fn new(spec: &str) -> Result<Batch, SpecError> {
         let spec: Spec = spec.parse()?;
+        if spec.family().frames() {
+            return Err(SpecError::Invalid(format!(
+                "{} codes tangent frames: a Batch encodes unit vectors",
+                spec.id()
+            )));
+        }
         let e = spec.emitted();
         let take = |role| e.cpu_function(role).cloned();
         match (take(Role::Encode), take(Role::Decode)) {

@@ -121,7 +121,7 @@ pub fn catalogue_table() -> String {
             c.name,
             c.title,
             specs.join(" "),
-            c.domain.map_or("— (helpers)", |d| d.name()),
+            f.takes().unwrap_or("— (helpers)"),
             if f.precise() { "yes" } else { "no" },
             if options.is_empty() {
                 "—".to_string()

@@ -633,7 +633,8 @@ fn transcoding_is_decode_then_encode_for_every_spec() {
     for spec in unitpack::codecs::Spec::all() {
         let name = spec.to_string();
         if spec.info().domain.is_none() {
-            // A packing helper has no decoder to read its codes with.
+            // A packing helper has no decoder to read its codes with; a frame's codes
+            // hold more than a vector.
             assert!(Transcoder::new(&name, "oct24p").is_err(), "{name}");
             continue;
         }

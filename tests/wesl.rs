@@ -123,7 +123,11 @@ fn link(specs: &[Spec]) -> String {
             wrappers.push_str(&format!(
                 "fn {name}({}) -> {} {{ return {id}::{own}({}); }}\n",
                 declared.join(", "),
-                ret.ty(wgsl.as_ref()),
+                // A struct is the module's: named through its path.
+                match &ret.name {
+                    Some(name) => format!("{id}::{name}"),
+                    None => ret.ty(wgsl.as_ref()),
+                },
                 args.join(", ")
             ));
         }

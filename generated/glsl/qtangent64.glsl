@@ -3,6 +3,12 @@
 // Every function computes bit for bit what unitpack's Rust model computes on any implementation
 //   with correctly rounded + - * / sqrt that keeps denormals and does not fuse multiply-adds
 //   (verified on Mesa lavapipe). It uses no fma, no builtin trig and no pack builtins.
+// Portable, below, means: on every implementation that rounds + - * to nearest and keeps the order
+//   of operations (HLSL as emitted, GLSL with its statements made precise as this header says, C
+//   without fast math, Metal with fast math off), whatever latitude it takes with division and
+//   square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero. Not
+//   where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or
+//   under fast math or excess precision.
 // GLSL 450 (Vulkan), 330 and ES 300; no #version line. Under GLSL ES this include sets the default
 //   float and int precision to highp, for the rest of the shader too: bit-exact results need full
 //   precision (declare other defaults after the include if you need them).
@@ -31,9 +37,12 @@ struct unitpack_qtangent64_frame {
 };
 
 // unitpack_qtangent64_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.
 // Out: Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and
 //   orthogonal to the quaternion's quantization (a few 2^-15).
+// Portable within a bound (as the header says): each output component is within 9·2^-24 (5.36e-7)
+//   of what this function computes here, for every code: a bound proven by interval evaluation
+//   (unitpack verify --portable prints it).
 unitpack_qtangent64_frame unitpack_qtangent64_decode_float(vec4 q) {
     UNITPACK_PRECISE float x2 = 2.0 * q.x;
     UNITPACK_PRECISE float y2 = 2.0 * q.y;
@@ -53,11 +62,12 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode_float(vec4 q) {
 }
 
 // unitpack_qtangent64_decode: decoder.
-// In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's
-//   complement), word 1 bits 0–15: p2 snorm16 (two's complement), word 1 bits 16–31: p3 snorm16
-//   (two's complement)); other bits are ignored.
-// Out: Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and
-//   orthogonal to the quaternion's quantization (a few 2^-15).
+// In: the packed code, vec2<u32>: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w,
+//   each snorm16 (two's complement): Filament's SHORT4 as stored.
+// Out: the frame: n, and t with the bitangent's sign (±1) in t.w; Filament's toTangentFrame on the
+//   fetched quaternion, not renormalized: n and t are unit and orthogonal to the quaternion's
+//   quantization (a few 2^-15).
+// Portable as unitpack_qtangent64_decode_float is, within the same bound.
 unitpack_qtangent64_frame unitpack_qtangent64_decode(uvec2 code) {
     UNITPACK_PRECISE vec4 t1 = vec4(
         uvec4(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u)
@@ -82,12 +92,14 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode(uvec2 code) {
 }
 
 // unitpack_qtangent64_encode_float: fast encoder, float form.
-// In: any vector; Filament's arithmetic for every frame it defines; w of 0 or NaN counts as +1; a
-//   normal with |x| + |y| + |z| below 2^-60 (zero, denormal), NaN or infinite encodes as +Z; a
-//   normal of squared length outside [2^-20, 2^20] is first divided by its largest component; a
+// In: a normal n and a tangent t whose w is the bitangent's sign (glTF's convention: bitangent =
+//   cross(n, t.xyz)·t.w); Filament's arithmetic for every frame it defines; w of 0 or NaN counts as
+//   +1; a normal with |x| + |y| + |z| below 2^-60 (zero, denormal), NaN or infinite encodes as +Z;
+//   a normal of squared length outside [2^-20, 2^20] is first divided by its largest component; a
 //   tangent whose orthogonalised squared length is below 2^-60 or not finite (zero, NaN, infinite,
 //   parallel to the normal) is replaced by the canonical tangent of Duff et al. (2017).
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: Filament's packTangentFrame quaternion (x, y, z, w) in [-1, 1], unquantized: w ≥ 1/32767 for
+//   a right-handed frame (t.w ≥ 0), w ≤ -1/32767 for a reflected one.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 vec4 unitpack_qtangent64_encode_float(vec3 n, vec4 t) {
@@ -173,10 +185,10 @@ vec4 unitpack_qtangent64_encode_float(vec3 n, vec4 t) {
 }
 
 // unitpack_qtangent64_encode: fast encoder.
-// In: as for unitpack_qtangent64_encode_float.
-// Out: the packed code, uvec2 (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16
-//   (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement), word 1 bits 16–31: p3
-//   snorm16 (two's complement)).
+// In: as for encode_float.
+// Out: the packed code, vec2<u32>: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w,
+//   each snorm16 (two's complement): Filament's SHORT4 as stored; packSnorm16 of the quaternion,
+//   round(clamp(q, -1, 1)·32767) with halves away from zero.
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
 //   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
 //   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring

@@ -3,6 +3,12 @@
 // Every function computes bit for bit what unitpack's Rust model computes on any implementation
 //   with correctly rounded + - * / sqrt that keeps denormals and does not fuse multiply-adds
 //   (verified on Mesa lavapipe). It uses no fma, no builtin trig and no pack builtins.
+// Portable, below, means: on every implementation that rounds + - * to nearest and keeps the order
+//   of operations (HLSL as emitted, GLSL with its statements made precise as this header says, C
+//   without fast math, Metal with fast math off), whatever latitude it takes with division and
+//   square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero. Not
+//   where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or
+//   under fast math or excess precision.
 
 // ---- qtangent64: Filament's quaternion tangent frame, SHORT4, 64 bits ----
 // Source: Filament at google/filament 03c2a90: libs/math/include/math/mat3.h (packTangentFrame),
@@ -15,9 +21,12 @@ struct unitpack_qtangent64_frame {
 }
 
 // unitpack_qtangent64_decode_float: decoder, float form.
-// In: parameters in [-1, 1], as a snorm16 fetch returns them.
+// In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.
 // Out: Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and
 //   orthogonal to the quaternion's quantization (a few 2^-15).
+// Portable within a bound (as the header says): each output component is within 9·2^-24 (5.36e-7)
+//   of what this function computes here, for every code: a bound proven by interval evaluation
+//   (unitpack verify --portable prints it).
 fn unitpack_qtangent64_decode_float(q: vec4<f32>) -> unitpack_qtangent64_frame {
     let x2 = 2.0f * q.x;
     let y2 = 2.0f * q.y;
@@ -34,11 +43,12 @@ fn unitpack_qtangent64_decode_float(q: vec4<f32>) -> unitpack_qtangent64_frame {
 }
 
 // unitpack_qtangent64_decode: decoder.
-// In: a packed code (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16 (two's
-//   complement), word 1 bits 0–15: p2 snorm16 (two's complement), word 1 bits 16–31: p3 snorm16
-//   (two's complement)); other bits are ignored.
-// Out: Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and
-//   orthogonal to the quaternion's quantization (a few 2^-15).
+// In: the packed code, vec2<u32>: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w,
+//   each snorm16 (two's complement): Filament's SHORT4 as stored.
+// Out: the frame: n, and t with the bitangent's sign (±1) in t.w; Filament's toTangentFrame on the
+//   fetched quaternion, not renormalized: n and t are unit and orthogonal to the quaternion's
+//   quantization (a few 2^-15).
+// Portable as unitpack_qtangent64_decode_float is, within the same bound.
 fn unitpack_qtangent64_decode(code: vec2<u32>) -> unitpack_qtangent64_frame {
     let t1 = vec4<f32>(vec4<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u));
     let t2 = select(t1, t1 - 65536.0f, t1 > vec4<f32>(32767.0f)) * 3.051851e-5f;
@@ -58,12 +68,14 @@ fn unitpack_qtangent64_decode(code: vec2<u32>) -> unitpack_qtangent64_frame {
 }
 
 // unitpack_qtangent64_encode_float: fast encoder, float form.
-// In: any vector; Filament's arithmetic for every frame it defines; w of 0 or NaN counts as +1; a
-//   normal with |x| + |y| + |z| below 2^-60 (zero, denormal), NaN or infinite encodes as +Z; a
-//   normal of squared length outside [2^-20, 2^20] is first divided by its largest component; a
+// In: a normal n and a tangent t whose w is the bitangent's sign (glTF's convention: bitangent =
+//   cross(n, t.xyz)·t.w); Filament's arithmetic for every frame it defines; w of 0 or NaN counts as
+//   +1; a normal with |x| + |y| + |z| below 2^-60 (zero, denormal), NaN or infinite encodes as +Z;
+//   a normal of squared length outside [2^-20, 2^20] is first divided by its largest component; a
 //   tangent whose orthogonalised squared length is below 2^-60 or not finite (zero, NaN, infinite,
 //   parallel to the normal) is replaced by the canonical tangent of Duff et al. (2017).
-// Out: parameters in [-1, 1], unquantized, for a snorm16 render target or vertex format to round.
+// Out: Filament's packTangentFrame quaternion (x, y, z, w) in [-1, 1], unquantized: w ≥ 1/32767 for
+//   a right-handed frame (t.w ≥ 0), w ≤ -1/32767 for a reflected one.
 // Not bit-portable: other implementations may return other floats here (unitpack verify --portable
 //   measures how far); the packed encoder is the portable form.
 fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
@@ -134,10 +146,10 @@ fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
 }
 
 // unitpack_qtangent64_encode: fast encoder.
-// In: as for unitpack_qtangent64_encode_float.
-// Out: the packed code, vec2<u32> (bits 0–15: p0 snorm16 (two's complement), bits 16–31: p1 snorm16
-//   (two's complement), word 1 bits 0–15: p2 snorm16 (two's complement), word 1 bits 16–31: p3
-//   snorm16 (two's complement)).
+// In: as for encode_float.
+// Out: the packed code, vec2<u32>: word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w,
+//   each snorm16 (two's complement): Filament's SHORT4 as stored; packSnorm16 of the quaternion,
+//   round(clamp(q, -1, 1)·32767) with halves away from zero.
 // The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
 //   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
 //   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring

@@ -24,7 +24,7 @@ pub fn list_text() -> String {
     );
     for f in FAMILIES {
         let c = f.info();
-        let domain = c.domain.map_or("-", |d| d.name());
+        let domain = f.takes().unwrap_or("-");
         let precise = if f.precise() { "yes" } else { "no" };
         s.push_str(&format!(
             "{:<w$} {:<11} {:<8} {}\n",
@@ -115,7 +115,7 @@ pub fn list_json() -> String {
             FamilyJson {
                 family: c.name,
                 title: c.title,
-                domain: c.domain.map(|d| d.name()),
+                domain: f.takes(),
                 precise: f.precise(),
                 source: c.source,
                 specs: c

@@ -57,6 +57,16 @@ struct Codec {
 
 impl Codec {
     fn new(spec: &Spec, dir: Direction) -> Result<Codec> {
+        if spec.family().frames() {
+            bail!(
+                "{} codes tangent frames: `unitpack {}` reads and writes unit vectors, one per line; use its generated functions or the CPU API's function evaluations for frames",
+                spec.id(),
+                match dir {
+                    Direction::Encode => "encode",
+                    Direction::Decode => "decode",
+                }
+            );
+        }
         if spec.info().domain.is_none() {
             bail!(
                 "{} is a helper, not a codec: it has no encode/decode",

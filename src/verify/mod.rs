@@ -135,13 +135,12 @@ impl Path {
     pub fn regroups(self) -> bool {
         matches!(self, Path::HlslSlang | Path::HlslSlangO3)
     }
-    /// Whether the path's compiler may contract or regroup float operations the include
-    /// leaves unmarked: the regrouping paths, and OpenGL's own GLSL compiler without
-    /// `precise` (Mesa fuses `a*b + c` there). The lean tier (an engine format's
-    /// arithmetic) promises its bits only where nothing is contracted or reassociated, so
-    /// its codes there are measured, not held.
+    /// Whether the path's compiler contracts float operations the include leaves
+    /// unmarked where no other path's does: OpenGL's own GLSL compiler without `precise`
+    /// (Mesa fuses `a*b + c` there). A family whose lean-tier arithmetic is contracted
+    /// there ([`crate::codecs::Family::contracted`]) is measured there, not held.
     pub fn contracts(self) -> bool {
-        self.regroups() || self == Path::GlslGl
+        self == Path::GlslGl
     }
 }
 
@@ -327,8 +326,8 @@ impl Report {
         if self.rows.iter().any(|r| r.measured && r.mismatches > 0) {
             s.push_str(
                 "\nN~: float outputs on a path that regroups products (Slang's direct SPIR-V at \
-                 its default and -O3), and the lean tier's outputs where a compiler may also \
-                 contract (OpenGL without precise), measured, not held to the model's bits\n",
+                 its default and -O3), and an engine's contracted arithmetic where OpenGL's \
+                 compiler contracts it (without precise), measured, not held to the model's bits\n",
             );
         }
         let shared = self.rows.iter().filter(|r| r.same_as.is_some()).count();
@@ -1189,7 +1188,9 @@ fn verify_spec(
                 same_as: None,
                 largest: None,
                 measured: (path.regroups() && ret.kind() == Kind::F32)
-                    || (path.contracts() && crate::codecs::core::ieee::asked(spec)),
+                    || (path.contracts()
+                        && spec.family().contracted()
+                        && crate::codecs::core::ieee::asked(spec)),
             };
             match result
                 .map_err(|err| format!("{err:#}"))

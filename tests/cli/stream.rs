@@ -422,6 +422,21 @@ fn float32x3_codes_are_three_words() {
     );
 }
 
+/// A tangent-frame spec's codes hold a frame, not a vector: the vector streams refuse it
+/// by name, and so does the CPU API's batch.
+#[test]
+fn frame_specs_are_refused_by_the_vector_streams() {
+    for verb in ["encode", "decode"] {
+        let err = fails(&[verb, "qtangent64"], "0 0 1\n");
+        assert!(
+            err.contains("qtangent64 codes tangent frames"),
+            "{verb}: {err}"
+        );
+    }
+    let batch = unitpack::api::Batch::new("qtangent64");
+    assert!(batch.is_err_and(|e| e.to_string().contains("codes tangent frames")));
+}
+
 #[test]
 fn helpers_have_no_encode_or_decode() {
     for verb in ["encode", "decode"] {

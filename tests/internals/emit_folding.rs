@@ -234,6 +234,9 @@ fn source(spec: &Spec, lang: Lang, style: Style) -> String {
         Lang::Glsl => "#version 450\n#define UNITPACK_PRECISE\n".to_string(),
         _ => String::new(),
     };
+    for def in unitpack::emit::struct_defs(backend.as_ref(), &e.module.funcs, &name) {
+        s += &format!("{def}\n");
+    }
     for f in &e.module.funcs {
         let p: Printed = print_as(backend.as_ref(), f, &name, style);
         let body = p.body.join("\n    ");

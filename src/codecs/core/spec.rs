@@ -434,6 +434,24 @@ pub trait Family: Sync + 'static {
     fn frames(&self) -> bool {
         false
     }
+    /// Whether the family's arithmetic (an engine's, in the lean tier) sums products at
+    /// every step, which a compiler free to contract fuses: OpenGL's GLSL compiler without
+    /// `precise` ([`crate::verify::Path::contracts`]). There its
+    /// outputs are measured, not held; the lean tier promises nothing where operations are
+    /// contracted. Filament's frame arithmetic (cross products, `extractQuat`) does;
+    /// every other family's outputs are held there too.
+    fn contracted(&self) -> bool {
+        false
+    }
+    /// What the family's encoders take, as `list` and the docs name it: its domain
+    /// (`sphere`, `hemisphere`), `frame`, or nothing for packing helpers.
+    fn takes(&self) -> Option<&'static str> {
+        if self.frames() {
+            Some("frame")
+        } else {
+            self.info().domain.map(|d| d.name())
+        }
+    }
 }
 
 /// A lookup table a spec's functions read: `width × height` texels of `channels`
