@@ -95,7 +95,8 @@ impl Family for QTangent {
         true
     }
     /// Cross products and `extractQuat`'s sums of products: Mesa's OpenGL compiler fuses
-    /// them without `precise` (42 of 65536 codes moved on llvmpipe).
+    /// them without `precise` (`unitpack verify qtangent64` on Mesa 22.3.6's llvmpipe: 42
+    /// of 65536 sampled codes moved).
     fn contracted(&self) -> bool {
         true
     }
