@@ -301,11 +301,17 @@ pub fn driver(include: &str, funcs: &[KernelFn]) -> String {
         }
         let arg = args.join(", ");
         if ret.name.is_some() {
-            // One output array per field, copied out one after the other.
+            // One output array per field, of the field's element type as the public
+            // signature declares it, copied out one after the other.
             let mut outs = Vec::new();
             let mut word = 0;
             for (j, t) in ret.tys.iter().enumerate() {
-                body.push(format!("float o{j}[{}];", t.lanes));
+                let element = if t.kind == Kind::U32 {
+                    "uint32_t"
+                } else {
+                    "float"
+                };
+                body.push(format!("{element} o{j}[{}];", t.lanes));
                 outs.push(format!("o{j}"));
             }
             body.push(format!("{func}({arg}, {});", outs.join(", ")));
