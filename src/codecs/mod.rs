@@ -122,6 +122,7 @@ registry! {
     /// to the struct `frame` of `n` and `t` (the sign in `t.w`).
     frames (frame) {
         qtangent [QTANGENT];
+        godot [GODOT];
     }
 }
 

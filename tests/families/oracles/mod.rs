@@ -5,5 +5,6 @@
 pub mod bevy;
 pub mod draco;
 pub mod filament;
+pub mod godot;
 pub mod meshopt;
 pub mod unity;
