@@ -3,6 +3,12 @@
 // Every function computes bit for bit what unitpack's Rust model computes on any implementation
 //   with correctly rounded + - * / sqrt that keeps denormals and does not fuse multiply-adds
 //   (verified on Mesa lavapipe). It uses no fma, no builtin trig and no pack builtins.
+// Portable, below, means: on every implementation that rounds + - * to nearest and keeps the order
+//   of operations (HLSL as emitted, GLSL with its statements made precise as this header says, C
+//   without fast math, Metal with fast math off), whatever latitude it takes with division and
+//   square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero. Not
+//   where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or
+//   under fast math or excess precision.
 // C99 and C++, header-only. Keep the arithmetic as written: compile without -ffast-math and with
 //   -ffp-contract=off (GCC contracts a*b + c into fma by default in GNU C modes), with SSE
 //   arithmetic (x87 excess precision is not supported), in the default rounding mode. No product is
@@ -126,6 +132,9 @@ static inline unitpack_godot_axis_angle_frame_v unitpack_godot_axis_angle_decode
 // Out: Godot's oct_to_vec3 and axis_angle_to_tbn, the angle's sine and cosine from the model's
 //   polynomial: each component within 2^-20 of that decode evaluated exactly on every sampled code;
 //   n and t unit and orthogonal within 2^-20.
+// Portable within a bound (as the header says): each output component is within 101·2^-24 (6.02e-6)
+//   of what this function computes here, for every code: a bound proven by interval evaluation
+//   (unitpack verify --portable prints it).
 static inline void unitpack_godot_axis_angle_decode_float(
     const float f[3],
     float n[3],
@@ -180,6 +189,7 @@ static inline unitpack_godot_axis_angle_frame_v unitpack_godot_axis_angle_decode
 //   axis_angle_to_tbn, the angle's sine and cosine from the model's polynomial: each component
 //   within 2^-20 of that decode evaluated exactly on every sampled code; n and t unit and
 //   orthogonal within 2^-20.
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 static inline void unitpack_godot_axis_angle_decode(uint64_t code, float n[3], float t[4]) {
     const unitpack_uvec2 code_w = { (uint32_t)code, (uint32_t)(code >> 32) };
     const unitpack_godot_axis_angle_frame_v r = unitpack_godot_axis_angle_decode_v(code_w);

@@ -3,6 +3,12 @@
 // Every function computes bit for bit what unitpack's Rust model computes on any implementation
 //   with correctly rounded + - * / sqrt that keeps denormals and does not fuse multiply-adds
 //   (verified on Mesa lavapipe). It uses no fma, no builtin trig and no pack builtins.
+// Portable, below, means: on every implementation that rounds + - * to nearest and keeps the order
+//   of operations (HLSL as emitted, GLSL with its statements made precise as this header says, C
+//   without fast math, Metal with fast math off), whatever latitude it takes with division and
+//   square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero. Not
+//   where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or
+//   under fast math or excess precision.
 // GLSL 450 (Vulkan), 330 and ES 300; no #version line. Under GLSL ES this include sets the default
 //   float and int precision to highp, for the rest of the shader too: bit-exact results need full
 //   precision (declare other defaults after the include if you need them).
@@ -86,6 +92,9 @@ vec2 unitpack_godot_axis_angle_sincos_pi(float a0) {
 // Out: Godot's oct_to_vec3 and axis_angle_to_tbn, the angle's sine and cosine from the model's
 //   polynomial: each component within 2^-20 of that decode evaluated exactly on every sampled code;
 //   n and t unit and orthogonal within 2^-20.
+// Portable within a bound (as the header says): each output component is within 101·2^-24 (6.02e-6)
+//   of what this function computes here, for every code: a bound proven by interval evaluation
+//   (unitpack verify --portable prints it).
 unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode_float(vec3 f) {
     UNITPACK_PRECISE vec2 t1 = f.xy * 2.0 - 1.0;
     UNITPACK_PRECISE vec3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
@@ -115,6 +124,7 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode_float(vec3 f) {
 //   axis_angle_to_tbn, the angle's sine and cosine from the model's polynomial: each component
 //   within 2^-20 of that decode evaluated exactly on every sampled code; n and t unit and
 //   orthogonal within 2^-20.
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uvec2 code) {
     UNITPACK_PRECISE vec3 f = vec3(uvec3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
         * 1.5259022e-5;

@@ -3,6 +3,12 @@
 // Every function computes bit for bit what unitpack's Rust model computes on any implementation
 //   with correctly rounded + - * / sqrt that keeps denormals and does not fuse multiply-adds
 //   (verified on Mesa lavapipe). It uses no fma, no builtin trig and no pack builtins.
+// Portable, below, means: on every implementation that rounds + - * to nearest and keeps the order
+//   of operations (HLSL as emitted, GLSL with its statements made precise as this header says, C
+//   without fast math, Metal with fast math off), whatever latitude it takes with division and
+//   square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero. Not
+//   where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or
+//   under fast math or excess precision.
 // HLSL, Shader Model 5.0 and later, HLSL 2018 and 2021, and Slang. Under Slang, compile to SPIR-V
 //   with -emit-spirv-via-glsl: Slang's direct SPIR-V output drops `precise` (no NoContraction), so
 //   drivers may fuse a*b + c there. Every float operation lies in the initializer of a `precise`
@@ -77,6 +83,9 @@ float2 unitpack_godot_axis_angle_sincos_pi(float a0) {
 // Out: Godot's oct_to_vec3 and axis_angle_to_tbn, the angle's sine and cosine from the model's
 //   polynomial: each component within 2^-20 of that decode evaluated exactly on every sampled code;
 //   n and t unit and orthogonal within 2^-20.
+// Portable within a bound (as the header says): each output component is within 101·2^-24 (6.02e-6)
+//   of what this function computes here, for every code: a bound proven by interval evaluation
+//   (unitpack verify --portable prints it).
 unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode_float(float3 f) {
     precise float2 t1 = f.xy * 2.0 - 1.0;
     precise float3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
@@ -103,6 +112,7 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode_float(float3 f)
 //   axis_angle_to_tbn, the angle's sine and cosine from the model's polynomial: each component
 //   within 2^-20 of that decode evaluated exactly on every sampled code; n and t unit and
 //   orthogonal within 2^-20.
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uint2 code) {
     precise float3 f = float3(uint3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
         * 1.5259022e-5;

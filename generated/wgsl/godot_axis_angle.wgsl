@@ -3,6 +3,12 @@
 // Every function computes bit for bit what unitpack's Rust model computes on any implementation
 //   with correctly rounded + - * / sqrt that keeps denormals and does not fuse multiply-adds
 //   (verified on Mesa lavapipe). It uses no fma, no builtin trig and no pack builtins.
+// Portable, below, means: on every implementation that rounds + - * to nearest and keeps the order
+//   of operations (HLSL as emitted, GLSL with its statements made precise as this header says, C
+//   without fast math, Metal with fast math off), whatever latitude it takes with division and
+//   square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero. Not
+//   where a compiler may reassociate (WGSL, GLSL without precise), on hardware that truncates, or
+//   under fast math or excess precision.
 
 // ---- godot_axis_angle: Godot 4's compressed vertex normal and tangent: octahedral axis and angle,
 //   unorm16×3, 48 bits ----
@@ -56,6 +62,9 @@ fn unitpack_godot_axis_angle_sincos_pi(a0: f32) -> vec2<f32> {
 // Out: Godot's oct_to_vec3 and axis_angle_to_tbn, the angle's sine and cosine from the model's
 //   polynomial: each component within 2^-20 of that decode evaluated exactly on every sampled code;
 //   n and t unit and orthogonal within 2^-20.
+// Portable within a bound (as the header says): each output component is within 101·2^-24 (6.02e-6)
+//   of what this function computes here, for every code: a bound proven by interval evaluation
+//   (unitpack verify --portable prints it).
 fn unitpack_godot_axis_angle_decode_float(f: vec3<f32>) -> unitpack_godot_axis_angle_frame {
     let axis = unitpack_godot_axis_angle_oct_to_vec3(f.xy * 2.0f - 1.0f);
     let turns = abs(f.z * 2.0f - 1.0f);
@@ -81,6 +90,7 @@ fn unitpack_godot_axis_angle_decode_float(f: vec3<f32>) -> unitpack_godot_axis_a
 //   axis_angle_to_tbn, the angle's sine and cosine from the model's polynomial: each component
 //   within 2^-20 of that decode evaluated exactly on every sampled code; n and t unit and
 //   orthogonal within 2^-20.
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 fn unitpack_godot_axis_angle_decode(code: vec2<u32>) -> unitpack_godot_axis_angle_frame {
     let f = vec3<f32>(vec3<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u)) * 1.5259022e-5f;
     let axis = unitpack_godot_axis_angle_oct_to_vec3(f.xy * 2.0f - 1.0f);

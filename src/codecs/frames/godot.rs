@@ -29,7 +29,8 @@
 //! `cos(angle·π)`: the same frame to that precision, and the same bits on every path.
 
 use crate::codecs::core::codec::{dequantize, pack, unpack};
-use crate::codecs::core::function::{Emitted, Inputs, Role};
+use crate::codecs::core::decode_boxes::{field_codes, fetched_range};
+use crate::codecs::core::function::{Emitted, Enclose, Inputs, Role};
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::{Family, Spec};
@@ -40,7 +41,9 @@ use crate::codecs::toolkit::trig::sincos_pi;
 use crate::model::num::helper;
 use crate::model::trace::{Tf, Tu, define, define_fields, trace_module};
 use crate::model::{Bool, Float, Lane, Uint, V2, V3, V4};
+use crate::model::enclosure::Encl;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// The stored fields: the axis's two octahedral coordinates and the angle, unorm16 each.
 const QUANTS: [Quant; 3] = [Quant::Unorm(16); 3];
@@ -129,33 +132,30 @@ const CMP_EPSILON: f64 = 0.00001;
 /// fdlibm's.
 #[inline(always)]
 pub fn fdlibm_acosf<F: Float>(x: F) -> F {
-    const PI_F: f32 = 3.141_592_502_6;
-    const PIO2_HI: f32 = 1.570_796_251_3;
-    const PIO2_LO: f32 = 7.549_789_415_9e-8;
-    const PS: [f32; 6] = [
-        1.666_666_716_3e-1,
-        -3.255_658_149_7e-1,
-        2.012_125_253_7e-1,
-        -4.005_553_573_4e-2,
-        7.915_350_142_9e-4,
-        3.479_330_916_9e-5,
+    // fdlibm's constants, by their bits as its source lists them.
+    const PI_F: f32 = f32::from_bits(0x4049_0fda);
+    const PIO2_HI: f32 = f32::from_bits(0x3fc9_0fda);
+    const PIO2_LO: f32 = f32::from_bits(0x33a2_2168);
+    const PS: [u32; 6] = [
+        0x3e2a_aaab,
+        0xbea6_b090,
+        0x3e4e_0aa8,
+        0xbd24_1146,
+        0x3a4f_7f04,
+        0x3811_ef08,
     ];
-    const QS: [f32; 4] = [
-        -2.403_394_937_5,
-        2.020_945_787_4,
-        -6.882_839_798_9e-1,
-        7.703_815_400_6e-2,
-    ];
+    const QS: [u32; 4] = [0xc019_d139, 0x4001_572d, 0xbf30_3361, 0x3d9d_c62e];
+    let (ps, qs) = (PS.map(f32::from_bits), QS.map(f32::from_bits));
     let one = F::c(1.0);
     // p(z)/q(z), fdlibm's r, with p = z·(pS0 + z·(pS1 + …)) and q = 1 + z·(qS1 + …).
     let ratio = |z: F| {
-        let mut p = F::c(PS[5]);
-        for c in PS[..5].iter().rev() {
+        let mut p = F::c(ps[5]);
+        for c in ps[..5].iter().rev() {
             p = F::c(*c) + z * p;
         }
         let p = z * p;
-        let mut q = F::c(QS[3]);
-        for c in QS[..3].iter().rev() {
+        let mut q = F::c(qs[3]);
+        for c in qs[..3].iter().rev() {
             q = F::c(*c) + z * q;
         }
         p / (one + z * q)
@@ -445,7 +445,7 @@ fn emitted(spec: &Spec) -> Emitted {
         });
         define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| encode(n, t));
     });
-    let functions = vec![
+    let mut functions = vec![
         generic_function!(
             "decode_float",
             Role::DecodeFloat,
@@ -471,6 +471,27 @@ fn emitted(spec: &Spec) -> Emitted {
             <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
         ),
     ];
+    // The decoders over boxes of codes, for their proven bounds (crate::decode_bound).
+    let enclose = |eval: crate::codecs::core::function::BoxEval| Enclose {
+        eval,
+        whole_field: None,
+        unread: &[],
+        fixed: Vec::new(),
+    };
+    let lanes = |(n, t): (V3<Encl>, V4<Encl>)| {
+        let mut v = n.to_array().to_vec();
+        v.extend(t.to_array());
+        v
+    };
+    functions[0].enclose = Some(enclose(Arc::new(move |r: &[(i64, i64)]| {
+        lanes(axis_angle_to_frame(V3::from_array(std::array::from_fn(
+            |i| fetched_range(QUANTS[i], r[i]),
+        ))))
+    })));
+    functions[1].enclose = Some(enclose(Arc::new(move |r: &[(i64, i64)]| {
+        let codes = V3::from_array(std::array::from_fn(|i| field_codes(QUANTS[i], r[i])));
+        lanes(axis_angle_to_frame(dequantize(&QUANTS, codes)))
+    })));
     Emitted {
         module,
         functions,
