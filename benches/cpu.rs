@@ -11,11 +11,15 @@
 //! Also the `encode`/`decode` stream filter (`unitpack::cli::filter`) over in-memory
 //! buffers, in its raw binary format and in text, to show what a pipeline gets end to end.
 //! And the model's reference evaluation, one call per item against one over a slice.
+//! And tangent frames: qtangent64 through `FrameBatch` beside a scalar port of Filament's
+//! `packTangentFrame` and `toTangentFrame` (the oracle `tests/families/oracles/filament.rs`,
+//! one frame at a time as Filament's `SurfaceOrientation` and a CPU decoder run them), on
+//! the same frames in the same run, as ratios (above 1: unitpack is faster).
 //! Run: `cargo bench`.
 
 use std::hint::black_box;
 use std::time::Instant;
-use unitpack::api::{Batch, CpuCodec, Encoder, HemiOct, Oct};
+use unitpack::api::{Batch, CpuCodec, Encoder, Frame, FrameBatch, HemiOct, Oct};
 use unitpack::cli::{Direction, Format, filter};
 use unitpack::codecs::{Codec, Spec};
 
@@ -113,7 +117,70 @@ fn ratios(name: &str, (enc, dec): (f64, f64), (m_enc, m_dec): (f64, f64)) {
     );
 }
 
+#[path = "../tests/families/oracles/filament.rs"]
+mod filament;
+
+/// Frames coded per pass in [`frames`]: 16384 frames (448 KiB, the codes 128 KiB) stay in
+/// the second-level cache, so that the codecs' arithmetic is measured rather than the
+/// memory's bandwidth, which a pass over 2^20 frames (29 MiB each way) reaches.
+const FRAMES: usize = 1 << 14;
+
+/// qtangent64's `FrameBatch` encode and decode rates over the scalar Filament port's, on
+/// the verify inputs' first [`FRAMES`] frames (seeded and edge frames), [`N`] frames per
+/// timed run as `N / FRAMES` passes over them.
+fn frames() {
+    let seeded = unitpack::codecs::core::inputs::frames();
+    let frames: Vec<Frame> = seeded
+        .chunks_exact(7)
+        .take(FRAMES)
+        .map(|x| {
+            let f = |i: usize| f32::from_bits(x[i]);
+            Frame {
+                n: [f(0), f(1), f(2)],
+                t: [f(3), f(4), f(5), f(6)],
+            }
+        })
+        .collect();
+    let b = FrameBatch::new("qtangent64").unwrap();
+    let passes = || 0..N / FRAMES;
+    let mut codes = vec![0u32; FRAMES * b.words()];
+    let enc = rate(|| passes().for_each(|_| b.encode(black_box(&frames), &mut codes)));
+    let mut shorts = vec![[0i16; 4]; FRAMES];
+    let peer_enc = rate(|| {
+        for _ in passes() {
+            for (s, f) in shorts.iter_mut().zip(black_box(&frames)) {
+                *s = filament::encode(f.n, [f.t[0], f.t[1], f.t[2]], f.t[3]);
+            }
+            black_box(&mut shorts);
+        }
+    });
+    let mut back = vec![Frame::default(); FRAMES];
+    let dec = rate(|| passes().for_each(|_| b.decode(black_box(&codes), &mut back)));
+    let peer_dec = rate(|| {
+        for _ in passes() {
+            for (s, f) in black_box(&shorts).iter().zip(&mut back) {
+                let (n, t, sign) = filament::to_tangent_frame(s.map(filament::fetch));
+                *f = Frame {
+                    n,
+                    t: [t[0], t[1], t[2], sign],
+                };
+            }
+            black_box(&mut back);
+        }
+    });
+    println!(
+        "qtangent64 FrameBatch vs scalar Filament: encode {:>5.2}×   decode {:>5.2}×   (ours {:>6.1} / {:>6.1} M/s, Filament {:>6.1} / {:>6.1} M/s)",
+        enc / peer_enc,
+        dec / peer_dec,
+        enc / 1e6,
+        dec / 1e6,
+        peer_enc / 1e6,
+        peer_dec / 1e6
+    );
+}
+
 fn main() {
+    frames();
     let vs = unitpack::sampling::random_unit_vectors(1, N, false);
     let mut norm = vec![[0f32; 3]; N];
     let base = rate(|| {

@@ -320,12 +320,12 @@ pub struct Batch {
 impl Batch {
     /// The batch codec of a spec as the CLI takes it (`oct24p`, `oct24:layout=rgb8`).
     /// A packing helper (no encoder or decoder) is an error, and so is a tangent-frame
-    /// spec, whose encoders take a frame rather than a vector.
+    /// spec, whose encoders take a frame rather than a vector (use [`FrameBatch`]).
     pub fn new(spec: &str) -> Result<Batch, SpecError> {
         let spec: Spec = spec.parse()?;
         if spec.family().frames() {
             return Err(SpecError::Invalid(format!(
-                "{} codes tangent frames: a Batch encodes unit vectors",
+                "{} codes tangent frames: a Batch encodes unit vectors (use FrameBatch)",
                 spec.id()
             )));
         }
@@ -364,6 +364,96 @@ impl Batch {
             codes.len(),
             out.len() * w,
             "Batch::decode: codes must hold words() = {w} words per output vector"
+        );
+        self.decode.eval_many(codes, cast_slice_mut(out));
+    }
+}
+
+/// A tangent frame as a vertex holds it: the normal `n`, and the tangent `t` whose `w` is
+/// the bitangent's sign (glTF's convention: bitangent = `cross(n, t.xyz)·t.w`). 28 bytes,
+/// `n` then `t`: the layout of the frame streams' binary records and of the generated
+/// functions' inputs and outputs, so that [`FrameBatch`] reads and writes slices of it in
+/// place.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Frame {
+    pub n: [f32; 3],
+    pub t: [f32; 4],
+}
+
+// SAFETY: `Frame` is `repr(C)` and holds seven `f32` and nothing else: no padding (28
+// bytes, alignment 4), every bit pattern a valid value, all zeros the zero frame.
+unsafe impl wide::bytemuck::Zeroable for Frame {}
+// SAFETY: as above; it is `Copy` and `'static`.
+unsafe impl wide::bytemuck::Pod for Frame {}
+
+/// A tangent-frame spec's packed encoder and decoder over slices of [`Frame`]
+/// (`qtangent64`, `godot_axis_angle`), as [`Batch`] is a vector spec's: compiled inside
+/// unitpack, eight frames per step on AVX2 lanes where the processor has them, else four
+/// on SSE2 lanes, the same bits as the generated functions. Each spec's input policy (its
+/// `unitpack list` entry) says what degenerate frames encode to.
+///
+/// ```
+/// use unitpack::api::{Frame, FrameBatch};
+///
+/// let q = FrameBatch::new("qtangent64").unwrap();
+/// let frames = [Frame { n: [0.0, 0.0, 1.0], t: [1.0, 0.0, 0.0, -1.0] }];
+/// let mut codes = vec![0u32; frames.len() * q.words()];
+/// q.encode(&frames, &mut codes);
+/// let mut back = [Frame::default()];
+/// q.decode(&codes, &mut back);
+/// assert!((back[0].n[2] - 1.0).abs() < 1e-4 && (back[0].t[0] - 1.0).abs() < 1e-4);
+/// assert_eq!(back[0].t[3], -1.0);
+/// ```
+pub struct FrameBatch {
+    encode: Function,
+    decode: Function,
+}
+
+impl FrameBatch {
+    /// The batch codec of a tangent-frame spec. A vector spec is an error (use [`Batch`]).
+    pub fn new(spec: &str) -> Result<FrameBatch, SpecError> {
+        let spec: Spec = spec.parse()?;
+        if !spec.family().frames() {
+            return Err(SpecError::Invalid(format!(
+                "{} codes unit vectors: a FrameBatch encodes tangent frames (use Batch)",
+                spec.id()
+            )));
+        }
+        let e = spec.emitted();
+        let take = |role| e.cpu_function(role).cloned();
+        match (take(Role::Encode), take(Role::Decode)) {
+            (Some(encode), Some(decode)) => Ok(FrameBatch { encode, decode }),
+            _ => Err(SpecError::Invalid(format!(
+                "{} has no encode/decode",
+                spec.id()
+            ))),
+        }
+    }
+
+    /// 32-bit words per code, first word first (2 for both frame specs).
+    pub fn words(&self) -> usize {
+        self.encode.out_words
+    }
+
+    /// Encodes `frames` into `out`, `words()` words per frame.
+    pub fn encode(&self, frames: &[Frame], out: &mut [u32]) {
+        let w = self.words();
+        assert_eq!(
+            frames.len() * w,
+            out.len(),
+            "FrameBatch::encode: out must hold words() = {w} words per frame"
+        );
+        self.encode.eval_many(cast_slice(frames), out);
+    }
+
+    /// Decodes `codes` (`words()` words each) into `out` (the sign, ±1, in `t[3]`).
+    pub fn decode(&self, codes: &[u32], out: &mut [Frame]) {
+        let w = self.words();
+        assert_eq!(
+            codes.len(),
+            out.len() * w,
+            "FrameBatch::decode: codes must hold words() = {w} words per output frame"
         );
         self.decode.eval_many(codes, cast_slice_mut(out));
     }

@@ -1,9 +1,9 @@
 //! The CPU library: construction errors, slices, and round trips.
 
 use unitpack::api::{
-    Batch, CpuCodec, Cube, Float16x3, Float32x3, HemiEqArea, HemiEqDist, HemiOct, HemiStereo, Oct,
-    Paraboloid, ParaboloidSquare, RoundTrip, Snorm3, SphericalZ, StereoScaled, Transcoder, Unorm3,
-    Width, XySignZ, XyStereo, combine_paraboloid_pd,
+    Batch, CpuCodec, Cube, Float16x3, Float32x3, Frame, FrameBatch, HemiEqArea, HemiEqDist,
+    HemiOct, HemiStereo, Oct, Paraboloid, ParaboloidSquare, RoundTrip, Snorm3, SphericalZ,
+    StereoScaled, Transcoder, Unorm3, Width, XySignZ, XyStereo, combine_paraboloid_pd,
 };
 use unitpack::quality::angle_deg;
 use unitpack::sampling::random_unit_vectors;
@@ -156,6 +156,44 @@ fn batch_refuses_helpers_and_bad_specs() {
     }
     let e = Batch::new("oct17").err().unwrap().to_string();
     assert!(e.contains("16, 20, 22, 24, 32"), "{e}");
+}
+
+/// `FrameBatch` computes the model's bits: every seeded and edge frame (a count that ends
+/// in a partial group of lanes) encoded as the encoder's single calls encode it, and every
+/// resulting code decoded as the decoder's single calls decode it.
+#[test]
+fn frame_batches_compute_the_single_calls_bits() {
+    let input = unitpack::codecs::core::inputs::frames();
+    let frames: Vec<Frame> = input
+        .chunks_exact(7)
+        .map(|x| {
+            let f = |i: usize| f32::from_bits(x[i]);
+            Frame {
+                n: [f(0), f(1), f(2)],
+                t: [f(3), f(4), f(5), f(6)],
+            }
+        })
+        .collect();
+    assert_ne!(frames.len() % 8, 0, "a partial group");
+    for spec in ["qtangent64", "godot_axis_angle"] {
+        let batch = FrameBatch::new(spec).unwrap();
+        let e = spec.parse::<unitpack::codecs::Spec>().unwrap().emitted();
+        let single = |role| e.functions.iter().find(|f| f.role == role).unwrap();
+        let mut codes = vec![0u32; frames.len() * batch.words()];
+        batch.encode(&frames, &mut codes);
+        let mut back = vec![Frame::default(); frames.len()];
+        batch.decode(&codes, &mut back);
+        for ((x, c), b) in input.chunks_exact(7).zip(codes.chunks_exact(2)).zip(&back) {
+            let (mut want, mut frame) = ([0u32; 2], [0u32; 7]);
+            (single(unitpack::codecs::core::function::Role::Encode).eval)(x, &mut want);
+            assert_eq!(c, want, "{spec} encode of {x:x?}");
+            (single(unitpack::codecs::core::function::Role::Decode).eval)(c, &mut frame);
+            let got: Vec<u32> = b.n.iter().chain(&b.t).map(|v| v.to_bits()).collect();
+            assert_eq!(got, frame, "{spec} decode of {c:x?}");
+        }
+    }
+    let e = FrameBatch::new("oct16").err().unwrap().to_string();
+    assert!(e.contains("use Batch"), "{e}");
 }
 
 #[test]

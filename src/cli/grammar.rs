@@ -25,6 +25,7 @@ pub fn quote(s: &str) -> String {
 #[derive(Debug, PartialEq)]
 pub enum LineError {
     Count(usize),
+    FrameCount(usize),
     NotANumber(String),
     OutOfRange(String),
     NotACode,
@@ -35,6 +36,9 @@ impl fmt::Display for LineError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             LineError::Count(n) => write!(f, "expected three numbers `x y z`, found {n}"),
+            LineError::FrameCount(n) => {
+                write!(f, "expected seven numbers `nx ny nz tx ty tz w`, found {n}")
+            }
             LineError::NotANumber(t) => write!(f, "{} is not a number", quote(t)),
             LineError::OutOfRange(t) => write!(
                 f,
@@ -74,16 +78,28 @@ fn parse_f32(t: &str) -> Result<f32, LineError> {
 
 /// Three numbers `x y z`.
 pub fn parse_vector(line: &str) -> Result<[f32; 3], LineError> {
-    let mut v = [0f32; 3];
+    parse_numbers(line).map_err(|n| n.unwrap_or_else(LineError::Count))
+}
+
+/// Seven numbers `nx ny nz tx ty tz w`: a tangent frame's normal, tangent and the
+/// bitangent's sign.
+pub fn parse_frame(line: &str) -> Result<[f32; 7], LineError> {
+    parse_numbers(line).map_err(|n| n.unwrap_or_else(LineError::FrameCount))
+}
+
+/// `N` numbers. The error is a bad number's (`Ok`), or the count of numbers found where
+/// it is not `N` (`Err`).
+fn parse_numbers<const N: usize>(line: &str) -> Result<[f32; N], Result<LineError, usize>> {
+    let mut v = [0f32; N];
     let mut n = 0;
     for t in line.split_ascii_whitespace() {
-        if n < 3 {
-            v[n] = parse_f32(t)?;
+        if n < N {
+            v[n] = parse_f32(t).map_err(Ok)?;
         }
         n += 1;
     }
-    if n != 3 {
-        return Err(LineError::Count(n));
+    if n != N {
+        return Err(Err(n));
     }
     Ok(v)
 }

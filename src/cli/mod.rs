@@ -44,7 +44,9 @@ Case does not matter. `unitpack list` shows every family, size and option";
 const STREAM_FORMATS: &str = "\
 Formats (--format, or --input-format/--output-format for one side):
   text    vectors: one `x y z` line, three f32 numbers (1, -0.5, 1e-3, inf, nan);
-          a finite number beyond the f32 range (1e39) is an error.
+          a finite number beyond the f32 range (1e39) is an error. Tangent-frame
+          specs (qtangent64, godot_axis_angle) read and write frames instead: one
+          `nx ny nz tx ty tz w` line, the normal, the tangent and the bitangent's sign.
           codes: one per line, 0x followed by hex digits (0x7f) or decimal digits (127);
           nothing else (no sign, 0b, 0o or _). A code with bits set above the spec's
           width (oct16: 16 bits) is an error. Codes are written as 0x + one hex digit
@@ -53,10 +55,10 @@ Formats (--format, or --input-format/--output-format for one side):
           Output line N answers input line N: blank lines and lines starting with #
           are copied unchanged. A UTF-8 byte-order mark at the start and \\r\\n line
           ends are accepted; a line may be at most 1 MiB.
-  binary  raw little-endian records: a vector is 12 bytes (3 × f32), a code one
-          little-endian u32 per word: 4 bytes, 8 above 32 bits (snorm16x3, float16x3),
-          12 above 64 (float32x3). Blank and comment lines of text input produce no
-          record.
+  binary  raw little-endian records: a vector is 12 bytes (3 × f32), a frame 28
+          (7 × f32), a code one little-endian u32 per word: 4 bytes, 8 above 32 bits
+          (snorm16x3, float16x3, qtangent64), 12 above 64 (float32x3). Blank and
+          comment lines of text input produce no record.
 
 Errors: the first bad line or record ends the run with a one-line error naming it
 (exit status 2). With --out FILE nothing is written (FILE is replaced atomically, only
@@ -218,10 +220,12 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Encode vectors read from stdin to codes, one output line (or record) per input.
+    /// Encode vectors (or tangent frames) read from stdin to codes, one output line (or
+    /// record) per input.
     #[command(after_help = STREAM_FORMATS)]
     Encode(StreamArgs),
-    /// Decode codes read from stdin to vectors, one output line (or record) per input.
+    /// Decode codes read from stdin to vectors (or tangent frames), one output line (or
+    /// record) per input.
     #[command(after_help = STREAM_FORMATS)]
     Decode(StreamArgs),
     /// Move codes read from stdin to another spec: each decoded by --from and encoded by

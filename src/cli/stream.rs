@@ -7,9 +7,14 @@
 //! record); a UTF-8 byte-order mark at the start is skipped; `\r\n` line ends are
 //! accepted; output lines end in `\n`. Lines longer than [`MAX_LINE`] bytes are an error.
 //!
+//! A tangent-frame spec (`qtangent64`, `godot_axis_angle`) reads and writes frames
+//! instead of vectors: seven numbers `nx ny nz tx ty tz w`, the normal, the tangent and the
+//! bitangent's sign (glTF's convention).
+//!
 //! Binary input and output are raw little-endian records, for pipelines that move many
-//! vectors: a vector is 12 bytes (three `f32`), a code one `u32` per word of the spec: 4
-//! bytes, 8 for specs wider than 32 bits (snorm16x3), 12 above 64 (float32x3).
+//! vectors: a vector is 12 bytes (three `f32`), a frame 28 (seven `f32`), a code one `u32`
+//! per word of the spec: 4 bytes, 8 for specs wider than 32 bits (snorm16x3), 12 above 64
+//! (float32x3).
 //!
 //! The first bad line or record ends the run with an error naming it. Output before it
 //! has been written (to stdout) or is discarded (`--out`, see [`crate::atomic`]).
@@ -53,21 +58,14 @@ struct Codec {
     bits: u32,
     /// 32-bit words per code (1; 2 or 3 above 32 bits).
     code_words: usize,
+    /// Floats per decoded record: 3 for a vector, 7 for a tangent frame (`n`, then `t`
+    /// with the bitangent's sign in `w`).
+    floats: usize,
 }
 
 impl Codec {
     fn new(spec: &Spec, dir: Direction) -> Result<Codec> {
-        if spec.family().frames() {
-            bail!(
-                "{} codes tangent frames: `unitpack {}` reads and writes unit vectors, one per line; use its generated functions or the CPU API's function evaluations for frames",
-                spec.id(),
-                match dir {
-                    Direction::Encode => "encode",
-                    Direction::Decode => "decode",
-                }
-            );
-        }
-        if spec.info().domain.is_none() {
+        if spec.info().domain.is_none() && !spec.family().frames() {
             bail!(
                 "{} is a helper, not a codec: it has no encode/decode",
                 spec.id()
@@ -91,9 +89,9 @@ impl Codec {
         let Some(f) = emitted.cpu_function(role).cloned() else {
             bail!("{} has no {role:?} function", spec.id());
         };
-        let code_words = match dir {
-            Direction::Encode => f.out_words,
-            Direction::Decode => f.in_words,
+        let (code_words, floats) = match dir {
+            Direction::Encode => (f.out_words, f.in_words),
+            Direction::Decode => (f.in_words, f.out_words),
         };
         Ok(Codec {
             f,
@@ -101,6 +99,7 @@ impl Codec {
             dir,
             bits,
             code_words,
+            floats,
         })
     }
 
@@ -110,7 +109,7 @@ impl Codec {
 
     fn in_bytes(&self) -> usize {
         match self.dir {
-            Direction::Encode => 12,
+            Direction::Encode => 4 * self.floats,
             Direction::Decode => self.code_bytes(),
         }
     }
@@ -190,11 +189,14 @@ fn put(c: &Codec, res: &[u32], to: Format, out: &mut dyn Write) -> std::io::Resu
             .iter()
             .try_for_each(|w| out.write_all(&w.to_le_bytes())),
         (Direction::Decode, Format::Text) => {
-            let [x, y, z] = [0, 1, 2].map(|i| f32::from_bits(res[i]));
-            writeln!(out, "{x:?} {y:?} {z:?}")
+            let text: Vec<String> = res[..c.floats]
+                .iter()
+                .map(|&w| format!("{:?}", f32::from_bits(w)))
+                .collect();
+            writeln!(out, "{}", text.join(" "))
         }
         (Direction::Decode, Format::Binary) => {
-            for w in &res[..3] {
+            for w in &res[..c.floats] {
                 out.write_all(&w.to_le_bytes())?;
             }
             Ok(())
@@ -226,6 +228,15 @@ pub fn transcode(
     input: &mut dyn BufRead,
     output: &mut dyn Write,
 ) -> Result<RoundTrip> {
+    if let Some(s) = [from_spec, to_spec]
+        .into_iter()
+        .find(|s| s.family().frames())
+    {
+        bail!(
+            "{} codes tangent frames: `unitpack transcode` moves vector codes",
+            s.id()
+        );
+    }
     let mut t = Transcoding {
         from: Codec::new(from_spec, Direction::Decode)?,
         to: Codec::new(to_spec, Direction::Encode)?,
@@ -271,7 +282,7 @@ fn text_in(
 ) -> Result<u64> {
     let (iw, ow) = (r.reads().f.in_words, r.writes().f.out_words);
     let mut buf = Vec::with_capacity(256);
-    let mut res = [0u32; 3];
+    let mut res = [0u32; 7];
     let (mut n, mut done) = (0u64, 0u64);
     loop {
         buf.clear();
@@ -321,13 +332,20 @@ fn text_in(
             ),
             e => anyhow::anyhow!("line {n}: {e}: {}", quote(line)),
         };
-        let words = match c.dir {
-            Direction::Encode => grammar::parse_vector(line).map_err(bad)?.map(f32::to_bits),
+        let mut words = [0u32; 7];
+        match c.dir {
+            Direction::Encode if c.floats == 7 => {
+                words = grammar::parse_frame(line).map_err(bad)?.map(f32::to_bits);
+            }
+            Direction::Encode => {
+                let v = grammar::parse_vector(line).map_err(bad)?;
+                words[..3].copy_from_slice(&v.map(f32::to_bits));
+            }
             Direction::Decode => {
                 let v = grammar::parse_code(line, c.bits).map_err(bad)?;
-                [0, 32, 64].map(|sh| (v >> sh) as u32)
+                words[..3].copy_from_slice(&[0, 32, 64].map(|sh| (v >> sh) as u32));
             }
-        };
+        }
         r.compute(&words[..iw], &mut res[..ow], false);
         put(r.writes(), &res, to, out).map_err(write_err)?;
         done += 1;
@@ -358,12 +376,14 @@ fn binary_in(
     let c = r.reads();
     let size = c.in_bytes();
     let (iw, ow) = (c.f.in_words, r.writes().f.out_words);
-    let (bits, name, dir, code_words) = (c.bits, c.name.clone(), c.dir, c.code_words);
+    let (bits, name, dir, code_words, floats) =
+        (c.bits, c.name.clone(), c.dir, c.code_words, c.floats);
     let mut block = vec![0u8; size * BLOCK];
     let mut results = vec![0u32; ow * BLOCK];
-    let mut words = Vec::with_capacity(3 * BLOCK);
+    let mut words = Vec::with_capacity(iw * BLOCK);
     let mut done = 0u64;
     let noun = match dir {
+        Direction::Encode if floats == 7 => "a frame is 28 bytes, 7×f32",
         Direction::Encode => "a vector is 12 bytes, 3×f32",
         Direction::Decode if code_words == 1 => "a code is 4 bytes, u32",
         Direction::Decode if code_words == 2 => "a code is 8 bytes, u64",

@@ -33,7 +33,10 @@ fn every_verb_has_help_with_a_description() {
         ("list", "List every codec"),
         ("gen", "Print the include for one or more specs"),
         ("generate", "Write every codec × language"),
-        ("encode", "Encode vectors read from stdin"),
+        (
+            "encode",
+            "Encode vectors (or tangent frames) read from stdin",
+        ),
         ("decode", "Decode codes read from stdin"),
         ("verify", "Prove emitted code bit-exact"),
     ];

@@ -422,19 +422,90 @@ fn float32x3_codes_are_three_words() {
     );
 }
 
-/// A tangent-frame spec's codes hold a frame, not a vector: the vector streams refuse it
-/// by name, and so does the CPU API's batch.
+/// A tangent-frame spec streams frames, seven numbers `nx ny nz tx ty tz w` per line or
+/// 28-byte records: its codes are the CPU API's `FrameBatch` codes (the generated
+/// functions' bits), its decoded frames `FrameBatch`'s, in text and binary alike; a line
+/// of three numbers is an error naming the seven; `Batch` and `FrameBatch` each refuse the
+/// other kind of spec.
 #[test]
-fn frame_specs_are_refused_by_the_vector_streams() {
-    for verb in ["encode", "decode"] {
-        let err = fails(&[verb, "qtangent64"], "0 0 1\n");
+fn frame_specs_stream_frames() {
+    use unitpack::api::Frame;
+    let n = [[0.0f32, 0.0, 1.0], [0.6, 0.0, 0.8], [0.0, -0.28, 0.96]];
+    let t = [
+        [1.0f32, 0.0, 0.0, 1.0],
+        [0.0, 1.0, 0.0, -1.0],
+        [0.8, 0.5, 0.1, 1.0],
+    ];
+    let text: String = n
+        .iter()
+        .zip(&t)
+        .map(|(n, t)| {
+            format!(
+                "{} {} {} {} {} {} {}\n",
+                n[0], n[1], n[2], t[0], t[1], t[2], t[3]
+            )
+        })
+        .collect();
+    let records: Vec<u8> = n
+        .iter()
+        .zip(&t)
+        .flat_map(|(n, t)| n.iter().chain(t).flat_map(|x| x.to_le_bytes()))
+        .collect();
+    for (spec, digits) in [("qtangent64", 16), ("godot_axis_angle", 12)] {
+        let batch = unitpack::api::FrameBatch::new(spec).unwrap();
+        let frames: Vec<Frame> = n.iter().zip(&t).map(|(&n, &t)| Frame { n, t }).collect();
+        let mut codes = vec![0u32; n.len() * batch.words()];
+        batch.encode(&frames, &mut codes);
+        let want: String = codes
+            .chunks(2)
+            .map(|c| format!("0x{:0digits$x}\n", u64::from(c[1]) << 32 | u64::from(c[0])))
+            .collect();
+        let enc = run_stdin(&["encode", spec], &text);
+        assert_eq!((enc.code, &enc.stdout), (0, &want), "{spec}: {enc:?}");
+        let bytes: Vec<u8> = codes.iter().flat_map(|w| w.to_le_bytes()).collect();
+        let r = run_bytes(&["encode", spec, "--format", "binary"], &records);
+        assert_eq!((r.code, &r.out), (0, &bytes), "{spec}: {r:?}");
+        // Decoded: seven floats per frame, n then t with the sign in w.
+        let mut back = vec![Frame::default(); n.len()];
+        batch.decode(&codes, &mut back);
+        let want: String = back
+            .iter()
+            .map(|f| {
+                let v: Vec<String> = f.n.iter().chain(&f.t).map(|x| format!("{x:?}")).collect();
+                v.join(" ") + "\n"
+            })
+            .collect();
+        let dec = run_stdin(&["decode", spec], &enc.stdout);
+        assert_eq!((dec.code, &dec.stdout), (0, &want), "{spec}: {dec:?}");
+        let r = run_bytes(&["decode", spec, "--format", "binary"], &bytes);
+        let floats: Vec<u8> = back
+            .iter()
+            .flat_map(|f| f.n.iter().chain(&f.t).flat_map(|x| x.to_le_bytes()))
+            .collect();
+        assert_eq!((r.code, &r.out), (0, &floats), "{spec}: {r:?}");
+        assert_eq!(
+            back.iter().map(|f| f.t[3]).collect::<Vec<_>>(),
+            [1.0, -1.0, 1.0]
+        );
+        // A vector line is not a frame; a partial record names the frame's size.
+        let err = fails(&["encode", spec], "0 0 1\n");
         assert!(
-            err.contains("qtangent64 codes tangent frames"),
-            "{verb}: {err}"
+            err.contains("expected seven numbers `nx ny nz tx ty tz w`, found 3"),
+            "{spec}: {err}"
+        );
+        let r = run_bytes(
+            &["encode", spec, "--input-format", "binary"],
+            &records[..40],
+        );
+        assert!(
+            r.stderr.contains("a frame is 28 bytes, 7×f32"),
+            "{spec}: {r:?}"
         );
     }
     let batch = unitpack::api::Batch::new("qtangent64");
-    assert!(batch.is_err_and(|e| e.to_string().contains("codes tangent frames")));
+    assert!(batch.is_err_and(|e| e.to_string().contains("use FrameBatch")));
+    let frames = unitpack::api::FrameBatch::new("oct16");
+    assert!(frames.is_err_and(|e| e.to_string().contains("use Batch")));
 }
 
 #[test]

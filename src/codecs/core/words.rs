@@ -205,7 +205,8 @@ fn in_groups<L: LaneIo<N>, A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>
 
 /// One whole group of `N` items (`s`, `N·lanes.len()` words) into lanes. Items of three
 /// words (vectors) take the lanes' own transposes ([`LaneIo::u_from_items3`]), other items
-/// of 1 to 4 words (codes) go through fixed-size arrays ([`to_lanes_of`]).
+/// of 1 to 4 words (codes) and of 7 (tangent frames) go through fixed-size arrays
+/// ([`to_lanes_of`]).
 #[inline(always)]
 fn to_lanes<L: LaneIo<N>, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
     match lanes.len() {
@@ -218,6 +219,7 @@ fn to_lanes<L: LaneIo<N>, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
             }
         }
         4 => to_lanes_of::<4, N>(s, lanes),
+        7 => to_lanes_of::<7, N>(s, lanes),
         w => {
             for (j, lane) in lanes.iter_mut().enumerate() {
                 for (k, l) in lane.iter_mut().enumerate() {
@@ -258,6 +260,7 @@ fn from_lanes<L: LaneIo<N>, const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
             L::u_to_items3([u(0), u(1), u(2)], items);
         }
         4 => from_lanes_of::<4, N>(lanes, d),
+        7 => from_lanes_of::<7, N>(lanes, d),
         w => {
             for (k, item) in d.chunks_exact_mut(w).enumerate() {
                 for (o, lane) in item.iter_mut().zip(lanes) {

@@ -148,17 +148,20 @@ pub fn fdlibm_acosf<F: Float>(x: F) -> F {
     let (ps, qs) = (PS.map(f32::from_bits), QS.map(f32::from_bits));
     let one = F::c(1.0);
     // p(z)/q(z), fdlibm's r, with p = z·(pS0 + z·(pS1 + …)) and q = 1 + z·(qS1 + …).
-    let ratio = |z: F| {
-        let mut p = F::c(ps[5]);
-        for c in ps[..5].iter().rev() {
-            p = F::c(*c) + z * p;
+    let ratio = {
+        #[inline(always)]
+        |z: F| {
+            let mut p = F::c(ps[5]);
+            for c in ps[..5].iter().rev() {
+                p = F::c(*c) + z * p;
+            }
+            let p = z * p;
+            let mut q = F::c(qs[3]);
+            for c in qs[..3].iter().rev() {
+                q = F::c(*c) + z * q;
+            }
+            p / (one + z * q)
         }
-        let p = z * p;
-        let mut q = F::c(qs[3]);
-        for c in qs[..3].iter().rev() {
-            q = F::c(*c) + z * q;
-        }
-        p / (one + z * q)
     };
     let bits = x.magnitude_bits();
     // |x| < 0.5.
@@ -208,9 +211,18 @@ fn normalized<F: Float>(v: V3<F>) -> V3<F> {
 /// radians, Godot's three cases (identity, 180°, general) all computed.
 #[inline(always)]
 fn axis_angle<F: Float>(r: [V3<F>; 3]) -> (V3<F>, F) {
-    let at = |i: usize, j: usize| r[i].to_array()[j];
-    let zero_approx = |x: F| x.abs().lt(F::c(CMP_EPSILON as f32));
-    let below = |x: F, d: f64| x.lt(F::c(up(d)));
+    let at = {
+        #[inline(always)]
+        |i: usize, j: usize| r[i].to_array()[j]
+    };
+    let zero_approx = {
+        #[inline(always)]
+        |x: F| x.abs().lt(F::c(CMP_EPSILON as f32))
+    };
+    let below = {
+        #[inline(always)]
+        |x: F, d: f64| x.lt(F::c(up(d)))
+    };
     let singular = zero_approx(at(0, 1) - at(1, 0))
         .and(zero_approx(at(0, 2) - at(2, 0)))
         .and(zero_approx(at(1, 2) - at(2, 1)));
@@ -223,8 +235,14 @@ fn axis_angle<F: Float>(r: [V3<F>; 3]) -> (V3<F>, F) {
     let trace = (at(0, 0) + at(1, 1) + at(2, 2)).named("trace");
     let identity = diagonal.and(below((trace - F::c(3.0)).abs(), 3.0 * CMP_EPSILON));
     // 180°: the axis from the largest diagonal term.
-    let half = |x: F| (x + F::c(1.0)) * F::c(0.5);
-    let quarter = |a: F, b: F| (a + b) * F::c(0.25);
+    let half = {
+        #[inline(always)]
+        |x: F| (x + F::c(1.0)) * F::c(0.5)
+    };
+    let quarter = {
+        #[inline(always)]
+        |a: F, b: F| (a + b) * F::c(0.25)
+    };
     let (xx, yy, zz) = (half(at(0, 0)), half(at(1, 1)), half(at(2, 2)));
     let (xy, xz, yz) = (
         quarter(at(0, 1), at(1, 0)),
@@ -232,13 +250,20 @@ fn axis_angle<F: Float>(r: [V3<F>; 3]) -> (V3<F>, F) {
         quarter(at(1, 2), at(2, 1)),
     );
     let h = F::c(std::f64::consts::FRAC_1_SQRT_2 as f32);
-    let major = |d: F, a: F, b: F, flat: V3<F>, put: fn(F, F, F) -> V3<F>| {
-        let root = d.sqrt();
-        V3::sel_all(below(d, CMP_EPSILON), flat, put(root, a / root, b / root))
+    // The largest term's root, and the other two divided by it.
+    let major = {
+        #[inline(always)]
+        |d: F, a: F, b: F| {
+            let root = d.sqrt();
+            (below(d, CMP_EPSILON), root, a / root, b / root)
+        }
     };
-    let on_x = major(xx, xy, xz, V3::new(F::c(0.0), h, h), |d, a, b| V3::new(d, a, b));
-    let on_y = major(yy, xy, yz, V3::new(h, F::c(0.0), h), |d, a, b| V3::new(a, d, b));
-    let on_z = major(zz, xz, yz, V3::new(h, h, F::c(0.0)), |d, a, b| V3::new(a, b, d));
+    let (flat, x, y, z) = major(xx, xy, xz);
+    let on_x = V3::sel_all(flat, V3::new(F::c(0.0), h, h), V3::new(x, y, z));
+    let (flat, y, x, z) = major(yy, xy, yz);
+    let on_y = V3::sel_all(flat, V3::new(h, F::c(0.0), h), V3::new(x, y, z));
+    let (flat, z, x, y) = major(zz, xz, yz);
+    let on_z = V3::sel_all(flat, V3::new(h, h, F::c(0.0)), V3::new(x, y, z));
     let half_turn = V3::sel_all(
         xx.gt(yy).and(xx.gt(zz)),
         on_x,
@@ -298,7 +323,10 @@ fn half_turns<F: Float>(theta: F, reflected: F::B) -> F {
     let estimate = (F::c(0.5) + theta * F::c(c1) * sign).named("estimate");
     // The grid, 2^(e - 150) for the estimate's biased exponent e (at least 40: smaller
     // sums are clamped to 0), and ±its inverse.
-    let u = |v: u32| F::U::c(v);
+    let u = {
+        #[inline(always)]
+        |v: u32| F::U::c(v)
+    };
     let e = estimate.magnitude_bits().shr(23).named("exponent");
     let e = F::U::sel(e.lt(u(40)), u(40), e).named("exponent");
     let grid = e.wrapping_sub(u(23)).shl(23).as_float().named("grid");
@@ -331,7 +359,10 @@ fn half_turns<F: Float>(theta: F, reflected: F::B) -> F {
 #[inline(always)]
 fn octahedron_encode<F: Float>(a: V3<F>) -> V2<F> {
     let n = a / V3::splat(a.x.abs() + a.y.abs() + a.z.abs());
-    let sign = |x: F| F::sel(x.ge(F::c(0.0)), F::c(1.0), F::c(-1.0));
+    let sign = {
+        #[inline(always)]
+        |x: F| F::sel(x.ge(F::c(0.0)), F::c(1.0), F::c(-1.0))
+    };
     let folded = V2::new(
         (F::c(1.0) - n.y.abs()) * sign(n.x),
         (F::c(1.0) - n.x.abs()) * sign(n.y),
@@ -348,9 +379,12 @@ fn octahedron_encode<F: Float>(a: V3<F>) -> V2<F> {
 #[inline(always)]
 pub fn axis_angle_fields<F: Float>(n: V3<F>, t: V4<F>) -> V3<F> {
     let n = normalized(policy_normal(n)).named("n");
-    let bitangent = |t: V3<F>| {
-        let t = normalized(t);
-        (t, cross(n, t))
+    let bitangent = {
+        #[inline(always)]
+        |t: V3<F>| {
+            let t = normalized(t);
+            (t, cross(n, t))
+        }
     };
     let (_, b) = bitangent(V3::new(t.x, t.y, t.z));
     let t3 = V3::sel_all(
@@ -388,12 +422,15 @@ pub fn encode<F: Float>(n: V3<F>, t: V4<F>) -> V2<F::U> {
 pub fn oct_to_vec3<F: Float>(e: V2<F>) -> V3<F> {
     let z = F::c(1.0) - e.x.abs() - e.y.abs();
     let t = (-z).at_least(F::c(0.0)).named("t");
-    let sign = |x: F| {
-        F::sel(
-            x.gt(F::c(0.0)),
-            F::c(1.0),
-            F::sel(x.lt(F::c(0.0)), F::c(-1.0), F::c(0.0)),
-        )
+    let sign = {
+        #[inline(always)]
+        |x: F| {
+            F::sel(
+                x.gt(F::c(0.0)),
+                F::c(1.0),
+                F::sel(x.lt(F::c(0.0)), F::c(-1.0), F::c(0.0)),
+            )
+        }
     };
     let v = V3::new(e.x - t * sign(e.x), e.y - t * sign(e.y), z);
     v / V3::splat(v.length_squared().sqrt())

@@ -106,7 +106,10 @@ impl Family for QTangent {
 /// `(x, y, z, w)`: every branch computed, the taken one selected.
 #[inline(always)]
 fn extract_quat<F: Float>(m: [V3<F>; 3]) -> V4<F> {
-    let at = |c: usize, r: usize| m[c].to_array()[r];
+    let at = {
+        #[inline(always)]
+        |c: usize, r: usize| m[c].to_array()[r]
+    };
     let half = F::c(0.5);
     let trace = (at(0, 0) + at(1, 1) + at(2, 2)).named("trace");
     // A positive trace.
@@ -124,17 +127,20 @@ fn extract_quat<F: Float>(m: [V3<F>; 3]) -> V4<F> {
         half * s,
     );
     // Otherwise from the largest diagonal element `i`, with `j` and `k` the next ones.
-    let by_diagonal = |i: usize| {
-        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        let a = (at(i, i) - (at(j, j) + at(k, k))) + F::c(1.0);
-        let s = a.sqrt();
-        let r = F::sel(s.eq(F::c(0.0)), s, F::c(1.0) / (a * F::c(4.0)).sqrt());
-        let mut q = [F::c(0.0); 4];
-        q[i] = half * s;
-        q[3] = (at(j, k) - at(k, j)) * r;
-        q[j] = (at(i, j) + at(j, i)) * r;
-        q[k] = (at(i, k) + at(k, i)) * r;
-        V4::from_array(q)
+    let by_diagonal = {
+        #[inline(always)]
+        |i: usize| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            let a = (at(i, i) - (at(j, j) + at(k, k))) + F::c(1.0);
+            let s = a.sqrt();
+            let r = F::sel(s.eq(F::c(0.0)), s, F::c(1.0) / (a * F::c(4.0)).sqrt());
+            let mut q = [F::c(0.0); 4];
+            q[i] = half * s;
+            q[3] = (at(j, k) - at(k, j)) * r;
+            q[j] = (at(i, j) + at(j, i)) * r;
+            q[k] = (at(i, k) + at(k, i)) * r;
+            V4::from_array(q)
+        }
     };
     let one = at(1, 1).gt(at(0, 0));
     let d = F::sel(one, at(1, 1), at(0, 0));
@@ -154,10 +160,13 @@ pub fn pack_tangent_frame<F: Float>(n: V3<F>, t: V4<F>) -> V4<F> {
     let positive = handedness(t.w).gt(F::c(0.0));
     let n = policy_normal(n).named("n");
     // SurfaceOrientation's bitangent and orthogonal tangent.
-    let orthogonal = |t: V3<F>| {
-        let b = V3::sel_all(positive, cross(t, n), cross(n, t)).named("b");
-        let t = V3::sel_all(positive, cross(n, b), cross(b, n)).named("t");
-        (b, t)
+    let orthogonal = {
+        #[inline(always)]
+        |t: V3<F>| {
+            let b = V3::sel_all(positive, cross(t, n), cross(n, t)).named("b");
+            let t = V3::sel_all(positive, cross(n, b), cross(b, n)).named("t");
+            (b, t)
+        }
     };
     let (_, first) = orthogonal(V3::new(t.x, t.y, t.z));
     let t = V3::sel_all(
