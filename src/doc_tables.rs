@@ -46,6 +46,11 @@ pub const BLOCKS: &[Block] = &[
         test: "figures/tables",
     },
     Block {
+        name: "frame_errors",
+        file: "docs/codecs.md",
+        test: "figures/tables",
+    },
+    Block {
         name: "seed_methods",
         file: "docs/design/families.md",
         test: "figures/tables",
@@ -129,6 +134,42 @@ pub fn catalogue_table() -> String {
                 options.join("; ")
             },
             c.source
+        ));
+    }
+    s
+}
+
+/// The tangent-frame specs' round-trip errors, each beside the octahedral normal, tangent
+/// and sign at no more bits ([`crate::quality::oct_frame_baseline`]).
+pub fn frame_error_table() -> String {
+    let specs: Vec<Spec> = Spec::all()
+        .into_iter()
+        .filter(|s| s.family().frames())
+        .collect();
+    let pair = |[mean, max]: [f64; 2]| format!("{mean:.5} / {max:.5}");
+    let mut s = String::new();
+    for (i, spec) in specs.iter().enumerate() {
+        let f = crate::quality::measure_frames(spec).expect("a frame spec");
+        if i == 0 {
+            s.push_str(&format!(
+                "Over {} seeded orthonormal frames (seed 0x{:032x}), in degrees, mean / sample max (a sample maximum is not a bound); the reference tangent is the input's made orthogonal to the normal, the bitangent `cross(n, t)·sign`.\n\n| spec | bits | normal | tangent | bitangent | handedness flips |\n|---|---|---|---|---|---|\n",
+                f.samples,
+                crate::codecs::core::inputs::FRAME_SEED
+            ));
+        }
+        let ((n, t, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
+        s.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} | {} |\n| {n} + {t} + sign | {bits} | {} | {} | {} | {} |\n",
+            spec.id(),
+            spec.bits(),
+            pair(f.normal),
+            pair(f.tangent),
+            pair(f.bitangent),
+            f.flips,
+            pair(base.normal),
+            pair(base.tangent),
+            pair(base.bitangent),
+            base.flips
         ));
     }
     s

@@ -121,3 +121,185 @@ pub fn export() -> Vec<(StatsKey, Option<ErrorStats>)> {
 pub fn import(stats: impl IntoIterator<Item = (StatsKey, Option<ErrorStats>)>) {
     MEMO.extend(stats);
 }
+
+/// Round-trip errors of a tangent-frame spec over the seeded frames
+/// ([`crate::codecs::core::inputs::frames`], the edge frames left out): the angle in
+/// degrees between each decoded vector and its reference, mean and sample max, for the
+/// normal, the tangent and the bitangent, and how many signs flipped. The references are
+/// the input's: `n` normalized, `t` made orthogonal to it (Gram–Schmidt) and normalized,
+/// the sign `w < 0 ? -1 : +1`, the bitangent `cross(n, t)·sign`; the decoded bitangent is
+/// `cross(n', t')·sign'` (glTF's convention), all in f64.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameStats {
+    pub samples: usize,
+    /// `[mean, sample max]` in degrees.
+    pub normal: [f64; 2],
+    pub tangent: [f64; 2],
+    pub bitangent: [f64; 2],
+    pub flips: usize,
+}
+
+impl FrameStats {
+    /// `normal 0.00123° / 0.00456°, tangent …, bitangent …` (mean / sample max), and the
+    /// flips where `flips` is asked.
+    pub fn summary(&self, flips: bool) -> String {
+        let pair = |[mean, max]: [f64; 2]| format!("{mean:.5}° / {max:.5}°");
+        let mut s = format!(
+            "normal {}, tangent {}, bitangent {}",
+            pair(self.normal),
+            pair(self.tangent),
+            pair(self.bitangent)
+        );
+        if flips {
+            s.push_str(&format!(", handedness flips {}", self.flips));
+        }
+        s
+    }
+}
+
+type F3 = [f64; 3];
+
+fn cross3(a: F3, b: F3) -> F3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit3(a: F3) -> F3 {
+    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    a.map(|c| c / l)
+}
+
+fn angle3(a: F3, b: F3) -> f64 {
+    let (a, b) = (unit3(a), unit3(b));
+    (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
+}
+
+/// The frames the figures are measured on: the seeded orthonormal ones (every fourth
+/// seeded frame, whose tangent is tilted off the normal's plane, left out: a tangent
+/// generator such as MikkTSpace writes it orthogonal, and an encoder that does not make
+/// it so, as Godot's does not, would be measured on input it is not given).
+fn reference_frames() -> Vec<[f32; 7]> {
+    let edges = crate::codecs::core::inputs::edge_frames().len();
+    crate::codecs::core::inputs::frames()[edges * 7..]
+        .chunks_exact(7)
+        .enumerate()
+        .filter(|(i, _)| !crate::codecs::core::inputs::tilted(*i))
+        .map(|(_, x)| std::array::from_fn(|i| f32::from_bits(x[i])))
+        .collect()
+}
+
+/// The statistics of frames decoded from the reference frames `input`, `(n', t', sign')`
+/// each.
+fn frame_stats(input: &[[f32; 7]], decoded: impl Iterator<Item = (F3, F3, f64)>) -> FrameStats {
+    let (mut sum, mut max, mut flips) = ([0f64; 3], [0f64; 3], 0);
+    for (x, (n2, t2, s2)) in input.iter().zip(decoded) {
+        let x = x.map(f64::from);
+        let n = unit3([x[0], x[1], x[2]]);
+        let t = [x[3], x[4], x[5]];
+        let d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+        let t = unit3([t[0] - d * n[0], t[1] - d * n[1], t[2] - d * n[2]]);
+        let s = if x[6] < 0.0 { -1.0 } else { 1.0 };
+        let b = cross3(n, t).map(|c| c * s);
+        let b2 = cross3(n2, t2).map(|c| c * s2);
+        for (k, a) in [angle3(n, n2), angle3(t, t2), angle3(b, b2)]
+            .into_iter()
+            .enumerate()
+        {
+            sum[k] += a;
+            max[k] = max[k].max(a);
+        }
+        flips += usize::from(s2 != s);
+    }
+    let mean = |k: usize| sum[k] / input.len() as f64;
+    FrameStats {
+        samples: input.len(),
+        normal: [mean(0), max[0]],
+        tangent: [mean(1), max[1]],
+        bitangent: [mean(2), max[2]],
+        flips,
+    }
+}
+
+/// [`FrameStats`] of a tangent-frame spec's packed encode → decode (`None` for a vector
+/// spec), measured once per process.
+pub fn measure_frames(spec: &Spec) -> Option<FrameStats> {
+    static MEMO: Memo<String, Option<FrameStats>> = Memo::new();
+    if let Some(s) = MEMO.get(&spec.id()) {
+        return s;
+    }
+    let stats = spec.family().frames().then(|| {
+        let e = spec.emitted();
+        let find = |r: Role| e.cpu_function(r).expect("frame function");
+        let (enc, dec) = (find(Role::Encode), find(Role::Decode));
+        let frames = reference_frames();
+        let input: Vec<u32> = frames.iter().flatten().map(|v| v.to_bits()).collect();
+        let mut codes = vec![0u32; frames.len() * enc.out_words];
+        enc.eval_many(&input, &mut codes);
+        let mut out = vec![0u32; frames.len() * 7];
+        dec.eval_many(&codes, &mut out);
+        frame_stats(
+            &frames,
+            out.chunks_exact(7).map(|o| {
+                let f = |i: usize| f64::from(f32::from_bits(o[i]));
+                ([f(0), f(1), f(2)], [f(3), f(4), f(5)], f(6))
+            }),
+        )
+    });
+    MEMO.extend([(spec.id(), stats)]);
+    stats
+}
+
+/// The comparison a frame spec of `bits` bits is measured against: the normal and the
+/// orthogonalised tangent each in its own octahedral code (`oct` fast, the largest sizes
+/// whose sum leaves a bit for the sign, the normal's the larger) and the sign in one bit.
+/// Returns the specs and their total bits with the [`FrameStats`] of the same frames.
+pub fn oct_frame_baseline(bits: u32) -> ((String, String, u32), FrameStats) {
+    use crate::codecs::Family;
+    let sizes = crate::codecs::octahedral::oct::FAMILY.info().total_bits();
+    let (a, b) = sizes
+        .iter()
+        .flat_map(|&a| sizes.iter().map(move |&b| (a, b)))
+        .filter(|&(a, b)| a >= b && a + b < bits)
+        .max_by_key(|&(a, b)| (a + b, a))
+        .expect("a pair of oct sizes within the budget");
+    let (normal, tangent) = (format!("oct{a}"), format!("oct{b}"));
+    let batch = |s: &str| crate::api::Batch::new(s).expect("an oct spec");
+    let (nb, tb) = (batch(&normal), batch(&tangent));
+    let frames = reference_frames();
+    let round_trip = |b: &crate::api::Batch, vs: Vec<[f32; 3]>| {
+        let mut codes = vec![0u32; vs.len() * b.words()];
+        b.encode(&vs, &mut codes);
+        let mut out = vec![[0f32; 3]; vs.len()];
+        b.decode(&codes, &mut out);
+        out
+    };
+    let n2 = round_trip(&nb, frames.iter().map(|x| [x[0], x[1], x[2]]).collect());
+    // The tangent made orthogonal to the normal and unit, in f64, then rounded.
+    let tangents = frames
+        .iter()
+        .map(|x| {
+            let x = x.map(f64::from);
+            let n = unit3([x[0], x[1], x[2]]);
+            let d = x[3] * n[0] + x[4] * n[1] + x[5] * n[2];
+            unit3([x[3] - d * n[0], x[4] - d * n[1], x[5] - d * n[2]]).map(|c| c as f32)
+        })
+        .collect();
+    let t2 = round_trip(&tb, tangents);
+    let stats = frame_stats(
+        &frames,
+        n2.iter().zip(&t2).zip(&frames).map(|((n, t), x)| {
+            (
+                n.map(f64::from),
+                t.map(f64::from),
+                if x[6] < 0.0 { -1.0 } else { 1.0 },
+            )
+        }),
+    );
+    ((normal, tangent, a + b + 1), stats)
+}

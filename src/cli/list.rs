@@ -37,6 +37,25 @@ pub fn list_text() -> String {
         for o in c.options {
             s.push_str(&format!("{:<w$} option {}\n", "", o.usage()));
         }
+        // A frame spec's figures: its round trip over the seeded frames, and the
+        // octahedral normal, tangent and sign at no more bits.
+        for spec in crate::codecs::Spec::all()
+            .iter()
+            .filter(|s| std::ptr::addr_eq(s.family(), *f))
+        {
+            if let Some(stats) = crate::quality::measure_frames(spec) {
+                let ((n, t, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
+                s.push_str(&format!(
+                    "{:<w$}   {}: over {} seeded orthonormal frames, mean / sample max: {}\n{:<w$}   against {n} + {t} + sign ({bits} bits): {}\n",
+                    "",
+                    spec.id(),
+                    stats.samples,
+                    stats.summary(true),
+                    "",
+                    base.summary(false)
+                ));
+            }
+        }
         let rows: Vec<&Entry> = catalogue
             .specs
             .iter()

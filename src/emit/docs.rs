@@ -41,6 +41,16 @@ const PORTABLE_WHERE: &str = "Portable, below, means: on every implementation th
 /// The paragraphs under a spec's title: its source and its measured error.
 pub fn spec_doc(spec: &Spec, stats: Option<ErrorStats>) -> Vec<String> {
     let mut d = vec![format!("Source: {}.", spec.info().source)];
+    if let Some(f) = crate::quality::measure_frames(spec) {
+        let ((normal, tangent, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
+        d.push(format!(
+            "Round-trip error over {} seeded orthonormal frames (seed 0x{:032x}; the reference tangent made orthogonal to the normal; mean / sample max, not a bound): {}. Against {normal} + {tangent} + sign ({bits} bits): {}.",
+            f.samples,
+            crate::codecs::core::inputs::FRAME_SEED,
+            f.summary(true),
+            base.summary(false)
+        ));
+    }
     d.extend(stats.map(|s| {
         format!(
             "Round-trip error over {} vectors: mean {:.5}°, sample max {:.5}°; MSE of the components of n - n' {:.3e}, PSNR {:.2} dB.",

@@ -13,7 +13,8 @@ use std::collections::BTreeMap;
 use std::sync::OnceLock;
 use unitpack::doc_tables::{
     README_SAMPLES, REFRESH_COMMAND, block, bound_table, catalogue_table, codec_specs, error_table,
-    portability_cost_table, refreshing, replace_block, seed_methods_table, tier_table,
+    frame_error_table, portability_cost_table, refreshing, replace_block, seed_methods_table,
+    tier_table,
 };
 use unitpack::verify::alu::{count, count_all};
 
@@ -94,6 +95,7 @@ fn generated_tables_are_fresh() {
         &[
             ("catalogue", catalogue_table()),
             ("errors", error_table(&stats, &alu)),
+            ("frame_errors", frame_error_table()),
         ],
     );
     check_blocks(

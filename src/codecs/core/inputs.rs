@@ -261,7 +261,7 @@ fn vectors() -> &'static [u32] {
 
 /// Random frames: fewer than vectors, since a frame encoder costs several vector encoders.
 pub const RANDOM_FRAMES: usize = 1 << 18;
-const FRAME_SEED: u128 = 0x6672_616d_6573_5f73_6565_645f_756e_6974;
+pub const FRAME_SEED: u128 = 0x6672_616d_6573_5f73_6565_645f_756e_6974;
 
 /// Frame edge cases (`[n.x, n.y, n.z, t.x, t.y, t.z, w]`): every pairing of special
 /// normals (axes, -Z, the octahedral fold, zero, NaN, infinite, denormal, non-unit) with
@@ -340,6 +340,12 @@ fn frame_of(q: [f64; 4], w: f32) -> [f32; 7] {
         .expect("seven")
 }
 
+/// Whether seeded frame `i` (counted after the edge frames) has its tangent tilted off
+/// the normal's plane: every fourth.
+pub fn tilted(i: usize) -> bool {
+    i % 4 == 3
+}
+
 /// The edge frames, then seeded ones: orthonormal frames of uniformly random rotations of
 /// both handednesses; the same with the tangent tilted off the normal's plane
 /// (non-orthogonal input, a quarter of them); and rotations within 10^-3 radians of a half
@@ -367,7 +373,7 @@ pub fn frames() -> &'static [u32] {
             }
             let l = q.iter().map(|c| c * c).sum::<f64>().sqrt();
             let mut f = frame_of(q.map(|c| c / l), w);
-            if i % 4 == 3 {
+            if tilted(i) {
                 // Tilt the tangent towards the normal.
                 let k = 0.3 * gauss();
                 for j in 0..3 {
