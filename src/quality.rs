@@ -55,20 +55,27 @@ pub fn measure(spec: &Spec, samples: usize) -> Option<ErrorStats> {
     Some(measure_emitted(&e, domain, samples))
 }
 
-pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStats {
+/// `vs` through a codec's packed encoder and decoder, eight or four vectors per step on
+/// the lanes, bit for bit the scalar model (`verify`'s `cpu/8 lanes` and `cpu/4 lanes`
+/// paths): the search encoders cost thousands of operations each.
+fn round_trip(e: &Emitted, vs: &[[f32; 3]]) -> Vec<[f32; 3]> {
     let find = |r: Role| e.cpu_function(r).expect("codec function");
     let (enc, dec) = (find(Role::Encode), find(Role::Decode));
-    let vs = random_unit_vectors(VECTOR_SEED, samples, domain == Domain::Hemisphere);
-    // Eight or four vectors per step on the lanes, bit for bit the scalar model (`verify`'s
-    // `cpu/8 lanes` and `cpu/4 lanes` paths): the search encoders cost thousands of operations each.
     let input: Vec<u32> = vs.iter().flat_map(|v| v.map(f32::to_bits)).collect();
-    let mut codes = vec![0u32; samples * enc.out_words];
+    let mut codes = vec![0u32; vs.len() * enc.out_words];
     enc.eval_many(&input, &mut codes);
-    let mut out = vec![0u32; samples * 3];
+    let mut out = vec![0u32; vs.len() * 3];
     dec.eval_many(&codes, &mut out);
+    out.chunks_exact(3)
+        .map(|o| [o[0], o[1], o[2]].map(f32::from_bits))
+        .collect()
+}
+
+pub fn measure_emitted(e: &Emitted, domain: Domain, samples: usize) -> ErrorStats {
+    let vs = random_unit_vectors(VECTOR_SEED, samples, domain == Domain::Hemisphere);
+    let out = round_trip(e, &vs);
     let (mut sum, mut max, mut squares) = (0f64, 0f64, 0f64);
-    for (v, o) in vs.iter().zip(out.chunks_exact(3)) {
-        let n = [o[0], o[1], o[2]].map(f32::from_bits);
+    for (v, &n) in vs.iter().zip(&out) {
         let a = angle_deg(*v, n);
         sum += a;
         max = max.max(a);
@@ -269,19 +276,12 @@ pub fn oct_frame_baseline(bits: u32) -> ((String, String, u32), FrameStats) {
         .max_by_key(|&(a, b)| (a + b, a))
         .expect("a pair of oct sizes within the budget");
     let (normal, tangent) = (format!("oct{a}"), format!("oct{b}"));
-    let batch = |s: &str| crate::api::Batch::new(s).expect("an oct spec");
-    let (nb, tb) = (batch(&normal), batch(&tangent));
     let frames = reference_frames();
-    let round_trip = |b: &crate::api::Batch, vs: Vec<[f32; 3]>| {
-        let mut codes = vec![0u32; vs.len() * b.words()];
-        b.encode(&vs, &mut codes);
-        let mut out = vec![[0f32; 3]; vs.len()];
-        b.decode(&codes, &mut out);
-        out
-    };
-    let n2 = round_trip(&nb, frames.iter().map(|x| [x[0], x[1], x[2]]).collect());
+    let oct = |spec: &str| spec.parse::<Spec>().expect("an oct spec").emitted();
+    let normals: Vec<[f32; 3]> = frames.iter().map(|x| [x[0], x[1], x[2]]).collect();
+    let n2 = round_trip(&oct(&normal), &normals);
     // The tangent made orthogonal to the normal and unit, in f64, then rounded.
-    let tangents = frames
+    let tangents: Vec<[f32; 3]> = frames
         .iter()
         .map(|x| {
             let x = x.map(f64::from);
@@ -290,7 +290,7 @@ pub fn oct_frame_baseline(bits: u32) -> ((String, String, u32), FrameStats) {
             unit3([x[3] - d * n[0], x[4] - d * n[1], x[5] - d * n[2]]).map(|c| c as f32)
         })
         .collect();
-    let t2 = round_trip(&tb, tangents);
+    let t2 = round_trip(&oct(&tangent), &tangents);
     let stats = frame_stats(
         &frames,
         n2.iter().zip(&t2).zip(&frames).map(|((n, t), x)| {

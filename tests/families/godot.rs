@@ -4,29 +4,14 @@
 //! survives, degenerate input gives the stated frame, decoded frames are orthonormal to a
 //! stated precision.
 
+use crate::frames::{self, f, frame_promises, run};
 use crate::oracles::godot;
-use unitpack::codecs::Spec;
 use unitpack::codecs::core::function::{Function, Role};
 use unitpack::codecs::core::inputs::{codes, frames};
 use unitpack::codecs::toolkit::quant::Quant;
 
 fn function(role: Role) -> Function {
-    let spec: Spec = "godot_axis_angle".parse().unwrap();
-    spec.emitted()
-        .functions
-        .into_iter()
-        .find(|f| f.role == role)
-        .unwrap()
-}
-
-fn run(f: &Function, input: &[u32]) -> Vec<u32> {
-    let mut out = vec![0u32; input.len() / f.in_words * f.out_words];
-    (f.eval)(input, &mut out);
-    out
-}
-
-fn f(w: u32) -> f32 {
-    f32::from_bits(w)
+    frames::function("godot_axis_angle", role)
 }
 
 /// The three stored fields of a code's two words.
@@ -117,48 +102,9 @@ fn decoders_are_godots_axis_angle_to_tbn() {
     assert!(input.len() / 2 > 1_000_000, "{}", input.len() / 2);
 }
 
-/// The decoded sign is the input's handedness (-1 for `w < 0`, else +1) on every seeded
-/// and edge frame; the decoded frame is unit and orthogonal within `2^-20`; degenerate
-/// input decodes to the stated frame.
+/// The frame codecs' promises ([`crate::frames::frame_promises`]), the decoded frame unit
+/// and orthogonal within `2^-20`.
 #[test]
 fn handedness_survives_and_frames_are_orthonormal() {
-    let encode = function(Role::Encode);
-    let decode = function(Role::Decode);
-    let input = frames();
-    let decoded = run(&decode, &run(&encode, input));
-    let tol = 2f32.powi(-20);
-    for (x, d) in input.chunks(7).zip(decoded.chunks(7)) {
-        let d: Vec<f32> = d.iter().map(|&w| f(w)).collect();
-        let w = f(x[6]);
-        let want = if w < 0.0 { -1.0 } else { 1.0 };
-        assert_eq!(
-            d[6],
-            want,
-            "handedness of {:?}",
-            x.iter().map(|&w| f(w)).collect::<Vec<_>>()
-        );
-        let (n, t) = ([d[0], d[1], d[2]], [d[3], d[4], d[5]]);
-        let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        assert!((dot(n, n).sqrt() - 1.0).abs() < tol, "|n| of {d:?}");
-        assert!((dot(t, t).sqrt() - 1.0).abs() < tol, "|t| of {d:?}");
-        assert!(dot(n, t).abs() < tol, "n·t of {d:?}");
-    }
-    // Zero, NaN and denormal normals are +Z; a zero, NaN or parallel tangent is the
-    // canonical tangent, +X for +Z (Duff et al.: (1 + s·x²·a, s·x·y·a, -s·x)).
-    let degenerate: [[f32; 7]; 4] = [
-        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-        [f32::NAN, 0.0, 1.0, f32::NAN, 1.0, 0.0, f32::NAN],
-        [1e-45, 0.0, 0.0, 0.0, 0.0, 5.0, 1.0],
-        [0.0, 0.0, 2.0, 0.0, 0.0, -1.0, -0.0],
-    ];
-    let input: Vec<u32> = degenerate.iter().flatten().map(|v| v.to_bits()).collect();
-    let decoded = run(&decode, &run(&encode, &input));
-    for d in decoded.chunks(7) {
-        let d: Vec<f32> = d.iter().map(|&w| f(w)).collect();
-        let want = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0];
-        assert!(
-            d.iter().zip(want).all(|(d, w)| (d - w).abs() < 1e-4),
-            "{d:?}"
-        );
-    }
+    frame_promises("godot_axis_angle", 2f32.powi(-20));
 }

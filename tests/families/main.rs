@@ -6,6 +6,7 @@
 mod crytek_bfn;
 mod engine;
 mod eqarea_oct;
+mod frames;
 mod godot;
 mod ieee;
 mod lambert;

@@ -3,29 +3,14 @@
 //! decode; and what every frame codec promises: the handedness survives, degenerate input
 //! gives the stated frame, decoded frames are orthonormal to a stated precision.
 
+use crate::frames::{self, f, frame_promises, run};
 use crate::oracles::filament;
-use unitpack::codecs::Spec;
 use unitpack::codecs::core::function::{Function, Role};
 use unitpack::codecs::core::inputs::{codes, frames};
 use unitpack::codecs::toolkit::quant::Quant;
 
 fn function(role: Role) -> Function {
-    let spec: Spec = "qtangent64".parse().unwrap();
-    spec.emitted()
-        .functions
-        .into_iter()
-        .find(|f| f.role == role)
-        .unwrap()
-}
-
-fn run(f: &Function, input: &[u32]) -> Vec<u32> {
-    let mut out = vec![0u32; input.len() / f.in_words * f.out_words];
-    (f.eval)(input, &mut out);
-    out
-}
-
-fn f(w: u32) -> f32 {
-    f32::from_bits(w)
+    frames::function("qtangent64", role)
 }
 
 /// The four stored components of a code's two words.
@@ -120,48 +105,9 @@ fn decoders_are_filaments_to_tangent_frame() {
     }
 }
 
-/// The decoded sign is the input's handedness (-1 for `w < 0`, else +1) on every seeded
-/// and edge frame; the decoded frame is unit and orthogonal within `4·2^-15`; degenerate
-/// input decodes to the stated frame.
+/// The frame codecs' promises ([`crate::frames::frame_promises`]), the decoded frame unit
+/// and orthogonal within `4·2^-15`.
 #[test]
 fn handedness_survives_and_frames_are_orthonormal() {
-    let encode = function(Role::Encode);
-    let decode = function(Role::Decode);
-    let input = frames();
-    let decoded = run(&decode, &run(&encode, input));
-    let tol = 4.0 / 32768.0;
-    for (x, d) in input.chunks(7).zip(decoded.chunks(7)) {
-        let d: Vec<f32> = d.iter().map(|&w| f(w)).collect();
-        let w = f(x[6]);
-        let want = if w < 0.0 { -1.0 } else { 1.0 };
-        assert_eq!(
-            d[6],
-            want,
-            "handedness of {:?}",
-            x.iter().map(|&w| f(w)).collect::<Vec<_>>()
-        );
-        let (n, t) = ([d[0], d[1], d[2]], [d[3], d[4], d[5]]);
-        let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        assert!((dot(n, n).sqrt() - 1.0).abs() < tol, "|n| of {d:?}");
-        assert!((dot(t, t).sqrt() - 1.0).abs() < tol, "|t| of {d:?}");
-        assert!(dot(n, t).abs() < tol, "n·t of {d:?}");
-    }
-    // Zero, NaN and denormal normals are +Z; a zero, NaN or parallel tangent is the
-    // canonical tangent, +X for +Z (Duff et al.: (1 + s·x²·a, s·x·y·a, -s·x)).
-    let degenerate: [[f32; 7]; 4] = [
-        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-        [f32::NAN, 0.0, 1.0, f32::NAN, 1.0, 0.0, f32::NAN],
-        [1e-45, 0.0, 0.0, 0.0, 0.0, 5.0, 1.0],
-        [0.0, 0.0, 2.0, 0.0, 0.0, -1.0, -0.0],
-    ];
-    let input: Vec<u32> = degenerate.iter().flatten().map(|v| v.to_bits()).collect();
-    let decoded = run(&decode, &run(&encode, &input));
-    for d in decoded.chunks(7) {
-        let d: Vec<f32> = d.iter().map(|&w| f(w)).collect();
-        let want = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0];
-        assert!(
-            d.iter().zip(want).all(|(d, w)| (d - w).abs() < 1e-4),
-            "{d:?}"
-        );
-    }
+    frame_promises("qtangent64", 4.0 / 32768.0);
 }

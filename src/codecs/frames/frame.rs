@@ -6,8 +6,15 @@
 //! return the struct [`FRAME`] of `n` (vec3) and `t` (vec4, `w` = ±1), so that a vertex
 //! shader passes `t` on as a glTF tangent attribute would be.
 
-use crate::model::trace::Shape;
-use crate::model::{Bool, Float, V3};
+use crate::codecs::core::codec::{Params, dequantize};
+use crate::codecs::core::decode_boxes::{fetched_range, field_codes};
+use crate::codecs::core::function::{Emitted, Enclose, Function};
+use crate::codecs::core::spec::Spec;
+use crate::codecs::toolkit::quant::Quant;
+use crate::model::enclosure::Encl;
+use crate::model::trace::{Module, Shape};
+use crate::model::{Bool, Float, V3, V4};
+use std::sync::Arc;
 
 /// The struct every frame decoder returns: `n` and `t` (with the sign in `w`).
 pub const FRAME: Shape = Shape {
@@ -79,4 +86,45 @@ pub fn canonical_tangent<F: Float>(n: V3<F>) -> V3<F> {
     let a = -(F::c(1.0) / (s + u.z));
     let sx = s * u.x;
     V3::new(F::c(1.0) + sx * u.x * a, sx * u.y * a, -sx)
+}
+
+/// A frame spec's [`Emitted`]: its traced `module` and `functions`, the first two of which
+/// are the decoders (`decode_float` on the fetched fields, `decode` on the packed code),
+/// given enclosures for their proven bounds ([`crate::decode_bound`]) through `frame`, the
+/// float decoder, over boxes of the `quants` fields. Frame encoders are the engines'
+/// arithmetic, not portable.
+pub fn emitted<P: Params<Encl> + 'static>(
+    spec: &Spec,
+    module: Module,
+    mut functions: Vec<Function>,
+    quants: &'static [Quant],
+    frame: fn(P) -> (V3<Encl>, V4<Encl>),
+) -> Emitted {
+    let lanes = move |p: P| {
+        let (n, t) = frame(p);
+        let mut v = n.to_array().to_vec();
+        v.extend(t.to_array());
+        v
+    };
+    let enclose = |eval: crate::codecs::core::function::BoxEval| {
+        Some(Enclose {
+            eval,
+            whole_field: None,
+            unread: &[],
+            fixed: Vec::new(),
+        })
+    };
+    functions[0].enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
+        lanes(P::build(|i| fetched_range(quants[i], r[i])))
+    }));
+    functions[1].enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
+        lanes(dequantize(quants, P::build(|i| field_codes(quants[i], r[i]))))
+    }));
+    Emitted {
+        module,
+        functions,
+        namespace: spec.id(),
+        portable_encoder: false,
+        cpu: Vec::new(),
+    }
 }

@@ -29,8 +29,7 @@
 //! `cos(angle·π)`: the same frame to that precision, and the same bits on every path.
 
 use crate::codecs::core::codec::{dequantize, pack, unpack};
-use crate::codecs::core::decode_boxes::{field_codes, fetched_range};
-use crate::codecs::core::function::{Emitted, Enclose, Inputs, Role};
+use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::{Family, Spec};
@@ -43,7 +42,6 @@ use crate::model::trace::{Tf, Tu, define, define_fields, trace_module};
 use crate::model::{Bool, Float, Lane, Uint, V2, V3, V4};
 use crate::model::enclosure::Encl;
 use std::f64::consts::PI;
-use std::sync::Arc;
 
 /// The stored fields: the axis's two octahedral coordinates and the angle, unorm16 each.
 const QUANTS: [Quant; 3] = [Quant::Unorm(16); 3];
@@ -482,7 +480,7 @@ fn emitted(spec: &Spec) -> Emitted {
         });
         define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| encode(n, t));
     });
-    let mut functions = vec![
+    let functions = vec![
         generic_function!(
             "decode_float",
             Role::DecodeFloat,
@@ -508,32 +506,7 @@ fn emitted(spec: &Spec) -> Emitted {
             <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
         ),
     ];
-    // The decoders over boxes of codes, for their proven bounds (crate::decode_bound).
-    let enclose = |eval: crate::codecs::core::function::BoxEval| Enclose {
-        eval,
-        whole_field: None,
-        unread: &[],
-        fixed: Vec::new(),
-    };
-    let lanes = |(n, t): (V3<Encl>, V4<Encl>)| {
-        let mut v = n.to_array().to_vec();
-        v.extend(t.to_array());
-        v
-    };
-    functions[0].enclose = Some(enclose(Arc::new(move |r: &[(i64, i64)]| {
-        lanes(axis_angle_to_frame(V3::from_array(std::array::from_fn(
-            |i| fetched_range(QUANTS[i], r[i]),
-        ))))
-    })));
-    functions[1].enclose = Some(enclose(Arc::new(move |r: &[(i64, i64)]| {
-        let codes = V3::from_array(std::array::from_fn(|i| field_codes(QUANTS[i], r[i])));
-        lanes(axis_angle_to_frame(dequantize(&QUANTS, codes)))
-    })));
-    Emitted {
-        module,
-        functions,
-        namespace: spec.id(),
-        portable_encoder: false,
-        cpu: Vec::new(),
-    }
+    crate::codecs::frames::frame::emitted(spec, module, functions, &QUANTS, |p: V3<Encl>| {
+        axis_angle_to_frame(p)
+    })
 }

@@ -17,10 +17,8 @@
 //! degenerate frames Filament leaves undefined (zero or NaN vectors, a tangent parallel
 //! to the normal, `w` of 0 or NaN) a stated frame.
 
-use crate::codecs::core::decode_boxes::{field_codes, fetched_range};
-use crate::codecs::core::function::{Emitted, Enclose, Inputs, Role};
+use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::model::enclosure::Encl;
-use std::sync::Arc;
 use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::{Family, Spec};
@@ -246,7 +244,7 @@ fn emitted(spec: &Spec) -> Emitted {
         });
         define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| encode(n, t));
     });
-    let mut functions = vec![
+    let functions = vec![
         generic_function!(
             "decode_float",
             Role::DecodeFloat,
@@ -272,32 +270,7 @@ fn emitted(spec: &Spec) -> Emitted {
             <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
         ),
     ];
-    // The decoders over boxes of codes, for their proven bounds (crate::decode_bound).
-    let enclose = |eval: crate::codecs::core::function::BoxEval| Enclose {
-        eval,
-        whole_field: None,
-        unread: &[],
-        fixed: Vec::new(),
-    };
-    let lanes = |(n, t): (V3<Encl>, V4<Encl>)| {
-        let mut v = n.to_array().to_vec();
-        v.extend(t.to_array());
-        v
-    };
-    functions[0].enclose = Some(enclose(Arc::new(move |r: &[(i64, i64)]| {
-        lanes(to_tangent_frame(V4::from_array(std::array::from_fn(|i| {
-            fetched_range(QUANTS[i], r[i])
-        }))))
-    })));
-    functions[1].enclose = Some(enclose(Arc::new(move |r: &[(i64, i64)]| {
-        let codes = V4::from_array(std::array::from_fn(|i| field_codes(QUANTS[i], r[i])));
-        lanes(to_tangent_frame(dequantize(&QUANTS, codes)))
-    })));
-    Emitted {
-        module,
-        functions,
-        namespace: spec.id(),
-        portable_encoder: false,
-        cpu: Vec::new(),
-    }
+    crate::codecs::frames::frame::emitted(spec, module, functions, &QUANTS, |p: V4<Encl>| {
+        to_tangent_frame(p)
+    })
 }
