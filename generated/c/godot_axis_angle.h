@@ -49,11 +49,11 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 //   servers/rendering/renderer_rd/shaders/forward_clustered/scene_forward_clustered.glsl at 333f0f9
 //   (oct_to_vec3, axis_angle_to_tbn); fdlibm's acosf (FreeBSD msun e_acosf.c; glibc's through
 //   2.40).
-// Round-trip error over 196608 seeded orthonormal frames (seed 0x6672616d65735f736565645f756e6974;
-//   the reference tangent made orthogonal to the normal; mean / sample max, not a bound): normal
-//   0.00462° / 0.48789°, tangent 0.00433° / 0.47325°, bitangent 0.00435° / 0.35780°, handedness
-//   flips 0. Against oct24 + oct22 + sign (47 bits): normal 0.02089° / 0.05867°, tangent 0.04176° /
-//   0.11746°, bitangent 0.03189° / 0.11525°.
+// Frame round-trip error over 196608 seeded orthonormal frames (seed
+//   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
+//   sample max, not a bound): normal 0.00462° / 0.48789°, tangent 0.00433° / 0.47325°, bitangent
+//   0.00435° / 0.35780°, handedness flips 0. Against oct24 + oct22 + sign (47 bits): normal
+//   0.02089° / 0.05867°, tangent 0.04176° / 0.11746°, bitangent 0.03189° / 0.11525°.
 #ifndef UNITPACK_GODOT_AXIS_ANGLE_H
 #define UNITPACK_GODOT_AXIS_ANGLE_H
 

@@ -45,11 +45,11 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 // Source: Filament at google/filament 03c2a90: libs/math/include/math/mat3.h (packTangentFrame),
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame).
-// Round-trip error over 196608 seeded orthonormal frames (seed 0x6672616d65735f736565645f756e6974;
-//   the reference tangent made orthogonal to the normal; mean / sample max, not a bound): normal
-//   0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent 0.00150° / 0.00431°, handedness
-//   flips 0. Against oct32 + oct24 + sign (57 bits): normal 0.00131° / 0.00365°, tangent 0.02090° /
-//   0.05874°, bitangent 0.01339° / 0.05783°.
+// Frame round-trip error over 196608 seeded orthonormal frames (seed
+//   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
+//   sample max, not a bound): normal 0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent
+//   0.00150° / 0.00431°, handedness flips 0. Against oct32 + oct24 + sign (57 bits): normal
+//   0.00131° / 0.00365°, tangent 0.02090° / 0.05874°, bitangent 0.01339° / 0.05783°.
 #ifndef UNITPACK_QTANGENT64_H
 #define UNITPACK_QTANGENT64_H
 

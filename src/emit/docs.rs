@@ -44,7 +44,7 @@ pub fn spec_doc(spec: &Spec, stats: Option<ErrorStats>) -> Vec<String> {
     if let Some(f) = crate::quality::measure_frames(spec) {
         let ((normal, tangent, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
         d.push(format!(
-            "Round-trip error over {} seeded orthonormal frames (seed 0x{:032x}; the reference tangent made orthogonal to the normal; mean / sample max, not a bound): {}. Against {normal} + {tangent} + sign ({bits} bits): {}.",
+            "Frame round-trip error over {} seeded orthonormal frames (seed 0x{:032x}; the reference tangent made orthogonal to the normal; mean / sample max, not a bound): {}. Against {normal} + {tangent} + sign ({bits} bits): {}.",
             f.samples,
             crate::codecs::core::inputs::FRAME_SEED,
             f.summary(true),
