@@ -27,8 +27,8 @@
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent
-//   0.00150° / 0.00431°, handedness flips 0. Against oct32 + oct24 + sign (57 bits): normal
-//   0.00131° / 0.00365°, tangent 0.02090° / 0.05874°, bitangent 0.01339° / 0.05783°.
+//   0.00150° / 0.00431°, handedness flips 0. Against oct32 + oct30 + sign (63 bits): normal
+//   0.00131° / 0.00365°, tangent 0.00261° / 0.00729°, bitangent 0.00199° / 0.00733°.
 #ifndef UNITPACK_QTANGENT64_GLSL
 #define UNITPACK_QTANGENT64_GLSL
 #ifdef GL_ES

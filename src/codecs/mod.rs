@@ -123,6 +123,7 @@ registry! {
     frames (frame) {
         qtangent [QTANGENT];
         godot [GODOT];
+        tangent_plane [OCTANGLE, DIAMOND];
     }
 }
 

@@ -6,9 +6,9 @@
 //! return the struct [`FRAME`] of `n` (vec3) and `t` (vec4, `w` = ±1), so that a vertex
 //! shader passes `t` on as a glTF tangent attribute would be.
 
-use crate::codecs::core::codec::{Params, dequantize};
+use crate::codecs::core::codec::Params;
 use crate::codecs::core::decode_boxes::{fetched_range, field_codes};
-use crate::codecs::core::function::{Emitted, Enclose, Function};
+use crate::codecs::core::function::{Emitted, Enclose, Function, Role};
 use crate::codecs::core::spec::Spec;
 use crate::codecs::toolkit::quant::Quant;
 use crate::model::enclosure::Encl;
@@ -88,20 +88,21 @@ pub fn canonical_tangent<F: Float>(n: V3<F>) -> V3<F> {
     V3::new(F::c(1.0) + sx * u.x * a, sx * u.y * a, -sx)
 }
 
-/// A frame spec's [`Emitted`]: its traced `module` and `functions`, the first two of which
-/// are the decoders (`decode_float` on the fetched fields, `decode` on the packed code),
-/// given enclosures for their proven bounds ([`crate::decode_bound`]) through `frame`, the
-/// float decoder, over boxes of the `quants` fields. Frame encoders are the engines'
-/// arithmetic, not portable.
+/// A frame spec's [`Emitted`]: its traced `module` and `functions`, whose decoders get
+/// enclosures for their proven bounds ([`crate::decode_bound`]) over boxes of the
+/// `quants` fields: `decode_float` (where the spec has one) through `fetched` on the
+/// fetched values, `decode` through `codes` on the integer codes. `portable`: whether the
+/// packed encoder is decided exactly (the engines' arithmetic is not).
 pub fn emitted<P: Params<Encl> + 'static>(
     spec: &Spec,
     module: Module,
     mut functions: Vec<Function>,
     quants: &'static [Quant],
-    frame: fn(P) -> (V3<Encl>, V4<Encl>),
+    fetched: Option<fn(P) -> (V3<Encl>, V4<Encl>)>,
+    codes: impl Fn(P) -> (V3<Encl>, V4<Encl>) + Send + Sync + 'static,
+    portable: bool,
 ) -> Emitted {
-    let lanes = move |p: P| {
-        let (n, t) = frame(p);
+    let lanes = |(n, t): (V3<Encl>, V4<Encl>)| {
         let mut v = n.to_array().to_vec();
         v.extend(t.to_array());
         v
@@ -114,17 +115,29 @@ pub fn emitted<P: Params<Encl> + 'static>(
             fixed: Vec::new(),
         })
     };
-    functions[0].enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
-        lanes(P::build(|i| fetched_range(quants[i], r[i])))
-    }));
-    functions[1].enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
-        lanes(dequantize(quants, P::build(|i| field_codes(quants[i], r[i]))))
-    }));
+    let mut codes = Some(codes);
+    for f in &mut functions {
+        match f.role {
+            Role::DecodeFloat => {
+                let frame = fetched.expect("a float decoder's enclosure");
+                f.enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
+                    lanes(frame(P::build(|i| fetched_range(quants[i], r[i]))))
+                }));
+            }
+            Role::Decode => {
+                let frame = codes.take().expect("one packed decoder");
+                f.enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
+                    lanes(frame(P::build(|i| field_codes(quants[i], r[i]))))
+                }));
+            }
+            _ => {}
+        }
+    }
     Emitted {
         module,
         functions,
         namespace: spec.id(),
-        portable_encoder: false,
+        portable_encoder: portable,
         cpu: Vec::new(),
     }
 }

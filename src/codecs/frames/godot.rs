@@ -506,7 +506,13 @@ fn emitted(spec: &Spec) -> Emitted {
             <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
         ),
     ];
-    crate::codecs::frames::frame::emitted(spec, module, functions, &QUANTS, |p: V3<Encl>| {
-        axis_angle_to_frame(p)
-    })
+    crate::codecs::frames::frame::emitted(
+        spec,
+        module,
+        functions,
+        &QUANTS,
+        Some(|p: V3<Encl>| axis_angle_to_frame(p)),
+        |c: V3<Encl>| axis_angle_to_frame(dequantize(&QUANTS, c)),
+        false,
+    )
 }

@@ -270,7 +270,13 @@ fn emitted(spec: &Spec) -> Emitted {
             <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
         ),
     ];
-    crate::codecs::frames::frame::emitted(spec, module, functions, &QUANTS, |p: V4<Encl>| {
-        to_tangent_frame(p)
-    })
+    crate::codecs::frames::frame::emitted(
+        spec,
+        module,
+        functions,
+        &QUANTS,
+        Some(|p: V4<Encl>| to_tangent_frame(p)),
+        |c: V4<Encl>| to_tangent_frame(dequantize(&QUANTS, c)),
+        false,
+    )
 }
