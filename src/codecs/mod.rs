@@ -120,10 +120,11 @@ registry! {
     }
     /// Tangent frames: a normal, a tangent and the bitangent's sign in one code, decoded
     /// to the struct `frame` of `n` and `t` (the sign in `t.w`).
-    frames (frame) {
+    frames (frame, tangent_plane) {
         qtangent [QTANGENT];
         godot [GODOT];
-        tangent_plane [OCTANGLE, DIAMOND];
+        octangle [OCTANGLE];
+        diamond [DIAMOND];
     }
 }
 

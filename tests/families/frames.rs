@@ -1,4 +1,4 @@
-//! What every tangent-frame codec promises, checked for each (`qtangent`, `godot`): the
+//! What every tangent-frame codec promises, checked for each (`qtangent`, `godot`, `octangle`, `diamond`): the
 //! handedness survives exactly, decoded frames are unit and orthogonal to the spec's
 //! stated precision, and degenerate input decodes to the stated frame. With the helpers
 //! the frame families' tests share.

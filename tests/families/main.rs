@@ -18,4 +18,5 @@ mod sfib;
 mod snorm12x2;
 mod snorm3;
 mod spherical_lut;
+mod tangent_plane;
 mod texel_layouts;

@@ -19,7 +19,7 @@
 
 use crate::codecs::core::codec::{pack, sign_not_zero, unpack};
 use crate::codecs::core::function::{Emitted, Inputs, Role};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::Info;
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::words::generic_function;
 use crate::codecs::frames::frame::{FRAME, cross, handedness};
@@ -243,6 +243,12 @@ pub struct TangentPlane {
     turn: Turn,
 }
 
+impl TangentPlane {
+    pub const fn new(info: Info, turn: Turn) -> Self {
+        TangentPlane { info, turn }
+    }
+}
+
 /// The fields of each size: the normal's octahedral x and y (snorm), the tangent's turn
 /// (unorm, `k` bits) and the sign (1 bit), first field lowest.
 ///
@@ -289,36 +295,8 @@ fn decode_fields<F: Float>(turn: Turn, q: &[Quant; 4], c: V4<F>) -> (V3<F>, V4<F
     frame_of(V2::new(c.x, c.y), q[0].max_code(), d, c.w)
 }
 
-pub static OCTANGLE: TangentPlane = TangentPlane {
-    info: Info {
-        name: "octangle",
-        title: "octahedral normal and the tangent's angle around a basis of the decoded normal, and the sign",
-        sizes: Sizes::Total(&[32, 48]),
-        domain: None,
-        source: "the normal: octahedral (Meyer et al. 2010, Cigolle et al. 2014); the tangent's basis: Jeremy Ong, \"Tangent spaces and diamond encoding\" (2023)",
-        edge_policy: EDGE_POLICY,
-        decode_note: DECODE_NOTE,
-        options: &[],
-    },
-    turn: Turn::Angle,
-};
-
-pub static DIAMOND: TangentPlane = TangentPlane {
-    info: Info {
-        name: "diamond",
-        title: "octahedral normal and the tangent's diamond-encoded direction around a basis of the decoded normal, and the sign",
-        sizes: Sizes::Total(&[32]),
-        domain: None,
-        source: "Jeremy Ong, \"Tangent spaces and diamond encoding\" (2023): the basis and the diamond; the normal: octahedral (Meyer et al. 2010)",
-        edge_policy: EDGE_POLICY,
-        decode_note: DECODE_NOTE,
-        options: &[],
-    },
-    turn: Turn::Diamond,
-};
-
-const EDGE_POLICY: &str = "the normal's code is oct's (a zero, denormal, NaN or infinite normal encodes as +Z); the tangent is taken in the plane orthogonal to the decoded normal (its projection there, which is Gram–Schmidt against that normal); a tangent whose projection is below 2^-13 of its largest component (zero, NaN, infinite, parallel to the normal) encodes as b1, the basis's first axis (+X for the normal +Z); w < 0 is reflected, any other w (0, NaN) is not";
-const DECODE_NOTE: &str = "n the octahedral point normalized, t its stored direction in the plane normalized: each unit within a few 2^-24 and orthogonal to each other within a few 2^-24";
+pub const EDGE_POLICY: &str = "the normal's code is oct's (a zero, denormal, NaN or infinite normal encodes as +Z); the tangent is taken in the plane orthogonal to the decoded normal (its projection there, which is Gram–Schmidt against that normal); a tangent whose projection is below 2^-13 of its largest component (zero, NaN, infinite, parallel to the normal) encodes as b1, the basis's first axis (+X for the normal +Z); w < 0 is reflected, any other w (0, NaN) is not";
+pub const DECODE_NOTE: &str = "n the octahedral point normalized, t its stored direction in the plane normalized: each unit within a few 2^-24 and orthogonal to each other within a few 2^-24";
 
 impl Family for TangentPlane {
     fn info(&self) -> &Info {
