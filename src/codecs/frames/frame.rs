@@ -88,6 +88,9 @@ pub fn canonical_tangent<F: Float>(n: V3<F>) -> V3<F> {
     V3::new(F::c(1.0) + sx * u.x * a, sx * u.y * a, -sx)
 }
 
+/// A decoded frame's enclosure: `n` and `t`.
+type EnclosedFrame = (V3<Encl>, V4<Encl>);
+
 /// A frame spec's [`Emitted`]: its traced `module` and `functions`, whose decoders get
 /// enclosures for their proven bounds ([`crate::decode_bound`]) over boxes of the
 /// `quants` fields: `decode_float` (where the spec has one) through `fetched` on the
@@ -98,11 +101,11 @@ pub fn emitted<P: Params<Encl> + 'static>(
     module: Module,
     mut functions: Vec<Function>,
     quants: &'static [Quant],
-    fetched: Option<fn(P) -> (V3<Encl>, V4<Encl>)>,
-    codes: impl Fn(P) -> (V3<Encl>, V4<Encl>) + Send + Sync + 'static,
+    fetched: Option<fn(P) -> EnclosedFrame>,
+    codes: impl Fn(P) -> EnclosedFrame + Send + Sync + 'static,
     portable: bool,
 ) -> Emitted {
-    let lanes = |(n, t): (V3<Encl>, V4<Encl>)| {
+    let lanes = |(n, t): EnclosedFrame| {
         let mut v = n.to_array().to_vec();
         v.extend(t.to_array());
         v
