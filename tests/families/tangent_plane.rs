@@ -78,12 +78,8 @@ fn cross(a: D3, b: D3) -> D3 {
 
 /// The fields of a code: oct x, oct y (signed), turn, sign.
 fn fields(l: &Layout, w: &[u32]) -> (i64, i64, u32, u32) {
-    let (lo, hi) = if l.words == 1 {
-        (u64::from(w[0]), 0)
-    } else {
-        (u64::from(w[0]), u64::from(w[1]))
-    };
-    let bits = u64::from(lo) | (u64::from(hi) << 32);
+    let hi = if l.words == 1 { 0 } else { u64::from(w[1]) };
+    let bits = u64::from(w[0]) | (hi << 32);
     let (b, k) = (l.axis, l.turn);
     let field = |at: u32, n: u32| (bits >> at) & ((1u64 << n) - 1);
     let signed = |v: u64| {
