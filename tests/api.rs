@@ -175,7 +175,13 @@ fn frame_batches_compute_the_single_calls_bits() {
         })
         .collect();
     assert_ne!(frames.len() % 8, 0, "a partial group");
-    for spec in ["qtangent64", "godot_axis_angle"] {
+    for spec in [
+        "qtangent64",
+        "godot_axis_angle",
+        "octangle32",
+        "octangle48p",
+        "diamond32",
+    ] {
         let batch = FrameBatch::new(spec).unwrap();
         let e = spec.parse::<unitpack::codecs::Spec>().unwrap().emitted();
         let single = |role| e.functions.iter().find(|f| f.role == role).unwrap();
@@ -183,10 +189,15 @@ fn frame_batches_compute_the_single_calls_bits() {
         batch.encode(&frames, &mut codes);
         let mut back = vec![Frame::default(); frames.len()];
         batch.decode(&codes, &mut back);
-        for ((x, c), b) in input.chunks_exact(7).zip(codes.chunks_exact(2)).zip(&back) {
-            let (mut want, mut frame) = ([0u32; 2], [0u32; 7]);
+        let words = batch.words();
+        for ((x, c), b) in input
+            .chunks_exact(7)
+            .zip(codes.chunks_exact(words))
+            .zip(&back)
+        {
+            let (mut want, mut frame) = (vec![0u32; words], [0u32; 7]);
             (single(unitpack::codecs::core::function::Role::Encode).eval)(x, &mut want);
-            assert_eq!(c, want, "{spec} encode of {x:x?}");
+            assert_eq!(c, &want[..], "{spec} encode of {x:x?}");
             (single(unitpack::codecs::core::function::Role::Decode).eval)(c, &mut frame);
             let got: Vec<u32> = b.n.iter().chain(&b.t).map(|v| v.to_bits()).collect();
             assert_eq!(got, frame, "{spec} decode of {c:x?}");

@@ -451,14 +451,22 @@ fn frame_specs_stream_frames() {
         .zip(&t)
         .flat_map(|(n, t)| n.iter().chain(t).flat_map(|x| x.to_le_bytes()))
         .collect();
-    for (spec, digits) in [("qtangent64", 16), ("godot_axis_angle", 12)] {
+    for (spec, digits) in [
+        ("qtangent64", 16),
+        ("godot_axis_angle", 12),
+        ("octangle32", 8),
+        ("octangle48", 12),
+    ] {
         let batch = unitpack::api::FrameBatch::new(spec).unwrap();
         let frames: Vec<Frame> = n.iter().zip(&t).map(|(&n, &t)| Frame { n, t }).collect();
         let mut codes = vec![0u32; n.len() * batch.words()];
         batch.encode(&frames, &mut codes);
         let want: String = codes
-            .chunks(2)
-            .map(|c| format!("0x{:0digits$x}\n", u64::from(c[1]) << 32 | u64::from(c[0])))
+            .chunks(batch.words())
+            .map(|c| {
+                let hi = c.get(1).map_or(0, |&w| u64::from(w));
+                format!("0x{:0digits$x}\n", hi << 32 | u64::from(c[0]))
+            })
             .collect();
         let enc = run_stdin(&["encode", spec], &text);
         assert_eq!((enc.code, &enc.stdout), (0, &want), "{spec}: {enc:?}");
