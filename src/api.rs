@@ -322,22 +322,12 @@ impl Batch {
     /// A packing helper (no encoder or decoder) is an error, and so is a tangent-frame
     /// spec, whose encoders take a frame rather than a vector (use [`FrameBatch`]).
     pub fn new(spec: &str) -> Result<Batch, SpecError> {
-        let spec: Spec = spec.parse()?;
-        if spec.family().frames() {
-            return Err(SpecError::Invalid(format!(
-                "{} codes tangent frames: a Batch encodes unit vectors (use FrameBatch)",
-                spec.id()
-            )));
-        }
-        let e = spec.emitted();
-        let take = |role| e.cpu_function(role).cloned();
-        match (take(Role::Encode), take(Role::Decode)) {
-            (Some(encode), Some(decode)) => Ok(Batch { encode, decode }),
-            _ => Err(SpecError::Invalid(format!(
-                "{} is a helper, not a codec: it has no encode/decode",
-                spec.id()
-            ))),
-        }
+        let (encode, decode) = coders(
+            spec,
+            false,
+            "codes tangent frames: a Batch encodes unit vectors (use FrameBatch)",
+        )?;
+        Ok(Batch { encode, decode })
     }
 
     /// 32-bit words per code: 1, 2 (`snorm16x3`, `float16x3`) or 3 (`float32x3`), first
@@ -369,6 +359,25 @@ impl Batch {
     }
 }
 
+/// The CPU encoder and decoder of `spec` for [`Batch`] (`frames` false) or [`FrameBatch`]
+/// (`frames` true): a spec of the other kind is an error saying `other` after its id, and
+/// so is a packing helper (no encoder or decoder).
+fn coders(spec: &str, frames: bool, other: &str) -> Result<(Function, Function), SpecError> {
+    let spec: Spec = spec.parse()?;
+    if spec.family().frames() != frames {
+        return Err(SpecError::Invalid(format!("{} {other}", spec.id())));
+    }
+    let e = spec.emitted();
+    let take = |role| e.cpu_function(role).cloned();
+    match (take(Role::Encode), take(Role::Decode)) {
+        (Some(encode), Some(decode)) => Ok((encode, decode)),
+        _ => Err(SpecError::Invalid(format!(
+            "{} is a helper, not a codec: it has no encode/decode",
+            spec.id()
+        ))),
+    }
+}
+
 /// A tangent frame as a vertex holds it: the normal `n`, and the tangent `t` whose `w` is
 /// the bitangent's sign (glTF's convention: bitangent = `cross(n, t.xyz)·t.w`). 28 bytes,
 /// `n` then `t`: the layout of the frame streams' binary records and of the generated
@@ -388,7 +397,7 @@ unsafe impl wide::bytemuck::Zeroable for Frame {}
 unsafe impl wide::bytemuck::Pod for Frame {}
 
 /// A tangent-frame spec's packed encoder and decoder over slices of [`Frame`]
-/// (`qtangent64`, `godot_axis_angle`), as [`Batch`] is a vector spec's: compiled inside
+/// (`qtangent64`, `octangle32`, …), as [`Batch`] is a vector spec's: compiled inside
 /// unitpack, eight frames per step on AVX2 lanes where the processor has them, else four
 /// on SSE2 lanes, the same bits as the generated functions. Each spec's input policy (its
 /// `unitpack list` entry) says what degenerate frames encode to.
@@ -413,25 +422,15 @@ pub struct FrameBatch {
 impl FrameBatch {
     /// The batch codec of a tangent-frame spec. A vector spec is an error (use [`Batch`]).
     pub fn new(spec: &str) -> Result<FrameBatch, SpecError> {
-        let spec: Spec = spec.parse()?;
-        if !spec.family().frames() {
-            return Err(SpecError::Invalid(format!(
-                "{} codes unit vectors: a FrameBatch encodes tangent frames (use Batch)",
-                spec.id()
-            )));
-        }
-        let e = spec.emitted();
-        let take = |role| e.cpu_function(role).cloned();
-        match (take(Role::Encode), take(Role::Decode)) {
-            (Some(encode), Some(decode)) => Ok(FrameBatch { encode, decode }),
-            _ => Err(SpecError::Invalid(format!(
-                "{} has no encode/decode",
-                spec.id()
-            ))),
-        }
+        let (encode, decode) = coders(
+            spec,
+            true,
+            "codes unit vectors: a FrameBatch encodes tangent frames (use Batch)",
+        )?;
+        Ok(FrameBatch { encode, decode })
     }
 
-    /// 32-bit words per code, first word first (2 for both frame specs).
+    /// 32-bit words per code, first word first: 1 (`octangle32`, `diamond32`) or 2.
     pub fn words(&self) -> usize {
         self.encode.out_words
     }

@@ -24,7 +24,7 @@ use std::collections::BinaryHeap;
 pub const UNIT: f64 = 1.0 / 16_777_216.0;
 
 /// Box evaluations allowed per function before the bound is stated as it stands.
-const BUDGET: usize = 600_000;
+pub const BUDGET: usize = 600_000;
 
 /// A proven bound: every output component of every code is within `units · 2^-24` of
 /// the reference on every implementation the guaranteed classes allow.
@@ -155,7 +155,10 @@ pub fn prove(ranges: &[(i64, i64)], f: &Enclose) -> Bound {
         if single(&top.r) {
             best_single = best_single.max(top.dev);
         }
-        if single(&top.r) || units(top.dev) <= units(best_single) || evaluations.get() >= BUDGET {
+        if single(&top.r)
+            || units(top.dev) <= units(best_single)
+            || evaluations.get() >= f.budget.unwrap_or(BUDGET)
+        {
             return Bound {
                 units: units(top.dev),
                 at: top.r,

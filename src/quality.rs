@@ -233,11 +233,26 @@ fn frame_stats(input: &[[f32; 7]], decoded: impl Iterator<Item = (F3, F3, f64)>)
     }
 }
 
+/// Every frame spec's figures this process knows, by id. Only frame specs are entered: a vector spec's `None` costs nothing to work out.
+static FRAME_MEMO: Memo<String, Option<FrameStats>> = Memo::new();
+
+/// Every frame spec's figures this process knows, as [`export`] does the vector specs'.
+pub fn export_frames() -> Vec<(String, Option<FrameStats>)> {
+    FRAME_MEMO.export()
+}
+
+/// Takes frame figures an earlier run of the same build measured ([`export_frames`]).
+pub fn import_frames(stats: impl IntoIterator<Item = (String, Option<FrameStats>)>) {
+    FRAME_MEMO.extend(stats);
+}
+
 /// [`FrameStats`] of a tangent-frame spec's packed encode → decode (`None` for a vector
-/// spec), measured once per process.
+/// spec), measured once per process (or taken from [`import_frames`]).
 pub fn measure_frames(spec: &Spec) -> Option<FrameStats> {
-    static MEMO: Memo<String, Option<FrameStats>> = Memo::new();
-    if let Some(s) = MEMO.get(&spec.id()) {
+    if !spec.family().frames() {
+        return None;
+    }
+    if let Some(s) = FRAME_MEMO.get(&spec.id()) {
         return s;
     }
     let stats = spec.family().frames().then(|| {
@@ -258,7 +273,7 @@ pub fn measure_frames(spec: &Spec) -> Option<FrameStats> {
             }),
         )
     });
-    MEMO.extend([(spec.id(), stats)]);
+    FRAME_MEMO.extend([(spec.id(), stats)]);
     stats
 }
 
@@ -285,7 +300,21 @@ fn oct_round_trip(bits: u32, vs: &[[f32; 3]]) -> Vec<[f32; 3]> {
 /// sizes the catalogue does not list are the same model at that size, see
 /// [`oct_round_trip`]) and the sign in one bit.
 /// Returns the specs and their total bits with the [`FrameStats`] of the same frames.
-pub fn oct_frame_baseline(bits: u32) -> ((String, String, u32), FrameStats) {
+pub fn oct_frame_baseline(bits: u32) -> FrameBaseline {
+    static MEMO: Memo<u32, FrameBaseline> = Memo::new();
+    if let Some(b) = MEMO.get(&bits) {
+        return b;
+    }
+    let b = frame_baseline(bits);
+    MEMO.extend([(bits, b.clone())]);
+    b
+}
+
+/// The specs a frame baseline stands for and their total bits, with its figures.
+pub type FrameBaseline = ((String, String, u32), FrameStats);
+
+/// [`oct_frame_baseline`], measured.
+fn frame_baseline(bits: u32) -> FrameBaseline {
     let (a, b) = (8..=32)
         .step_by(2)
         .flat_map(|a| (8..=a).step_by(2).map(move |b| (a, b)))

@@ -62,6 +62,12 @@ typedef struct {
     unitpack_vec4 t;
 } unitpack_godot_axis_angle_frame_v;
 
+typedef struct {
+    unitpack_vec3 t;
+    unitpack_vec3 b;
+    unitpack_vec3 n;
+} unitpack_godot_axis_angle_tbn_v;
+
 // Helper `oct_to_vec3`.
 
 static inline unitpack_vec3 unitpack_godot_axis_angle_oct_to_vec3_v(unitpack_vec2 a0) {
@@ -205,6 +211,70 @@ static inline void unitpack_godot_axis_angle_decode(uint64_t code, float n[3], f
     t[1] = r.t.y;
     t[2] = r.t.z;
     t[3] = r.t.w;
+}
+
+// Struct form of unitpack_godot_axis_angle_decode_tbn.
+static inline unitpack_godot_axis_angle_tbn_v unitpack_godot_axis_angle_decode_tbn_v(
+    unitpack_uvec2 code
+) {
+    const unitpack_vec3 f = {
+        (float)(code.x & 65535u) * 1.5259022e-5f,
+        (float)(code.x >> 16u) * 1.5259022e-5f,
+        (float)(code.y & 65535u) * 1.5259022e-5f
+    };
+    const unitpack_vec2 t1 = { f.x * 2.0f, f.y * 2.0f };
+    const unitpack_vec2 t2 = { t1.x - 1.0f, t1.y - 1.0f };
+    const unitpack_vec3 axis = unitpack_godot_axis_angle_oct_to_vec3_v(t2);
+    const float t3 = f.z > 0.5f ? 1.0f : -1.0f;
+    const float t4 = f.z * 2.0f;
+    const float turns = fabsf(t4 - 1.0f);
+    const unitpack_vec2 sc = unitpack_godot_axis_angle_sincos_pi_v(turns);
+    const float t5 = 1.0f - sc.y;
+    const unitpack_vec3 omc = { axis.x * t5, axis.y * t5, axis.z * t5 };
+    const unitpack_vec3 sa = { axis.x * sc.x, axis.y * sc.x, axis.z * sc.x };
+    const float t6 = omc.z * axis.x;
+    const float t7 = t6 - sa.y;
+    const float t8 = omc.z * axis.y;
+    const float t9 = t8 + sa.x;
+    const float t10 = omc.z * axis.z;
+    const float t11 = t10 + sc.y;
+    const float t12 = omc.x * axis.x;
+    const float t13 = t12 + sc.y;
+    const float t14 = omc.x * axis.y;
+    const float t15 = t14 - sa.z;
+    const float t16 = omc.x * axis.z;
+    const float t17 = t16 + sa.y;
+    const unitpack_vec3 t18 = { t9 * t17, t11 * t13, t7 * t15 };
+    const unitpack_vec3 t19 = { t11 * t15, t7 * t17, t9 * t13 };
+    const unitpack_vec3 t20 = { (t18.x - t19.x) * t3, (t18.y - t19.y) * t3, (t18.z - t19.z) * t3 };
+    const unitpack_vec3 t21 = { t13, t15, t17 };
+    const unitpack_vec3 t22 = { t7, t9, t11 };
+    const unitpack_godot_axis_angle_tbn_v tbn = { t21, t20, t22 };
+    return tbn;
+}
+
+// unitpack_godot_axis_angle_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
+static inline void unitpack_godot_axis_angle_decode_tbn(
+    uint64_t code,
+    float t[3],
+    float b[3],
+    float n[3]
+) {
+    const unitpack_uvec2 code_w = { (uint32_t)code, (uint32_t)(code >> 32) };
+    const unitpack_godot_axis_angle_tbn_v r = unitpack_godot_axis_angle_decode_tbn_v(code_w);
+    t[0] = r.t.x;
+    t[1] = r.t.y;
+    t[2] = r.t.z;
+    b[0] = r.b.x;
+    b[1] = r.b.y;
+    b[2] = r.b.z;
+    n[0] = r.n.x;
+    n[1] = r.n.y;
+    n[2] = r.n.z;
 }
 
 // Helper `fdlibm_acosf`.

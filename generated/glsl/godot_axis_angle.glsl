@@ -45,6 +45,12 @@ struct unitpack_godot_axis_angle_frame {
     vec4 t;
 };
 
+struct unitpack_godot_axis_angle_tbn {
+    vec3 t;
+    vec3 b;
+    vec3 n;
+};
+
 // Helper `oct_to_vec3`.
 vec3 unitpack_godot_axis_angle_oct_to_vec3(vec2 a0) {
     UNITPACK_PRECISE float t1 = 1.0 - abs(a0.x);
@@ -151,6 +157,32 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uvec2 code) {
         f.z > 0.5 ? 1.0 : -1.0
     );
     return unitpack_godot_axis_angle_frame(n, t);
+}
+
+// unitpack_godot_axis_angle_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
+unitpack_godot_axis_angle_tbn unitpack_godot_axis_angle_decode_tbn(uvec2 code) {
+    UNITPACK_PRECISE vec3 f = vec3(uvec3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
+        * 1.5259022e-5;
+    UNITPACK_PRECISE vec2 t1 = f.xy * 2.0 - 1.0;
+    UNITPACK_PRECISE vec3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
+    UNITPACK_PRECISE float turns = abs(f.z * 2.0 - 1.0);
+    UNITPACK_PRECISE vec2 sc = unitpack_godot_axis_angle_sincos_pi(turns);
+    UNITPACK_PRECISE vec3 omc = axis * (1.0 - sc.y);
+    UNITPACK_PRECISE vec3 sa = axis * sc.xxx;
+    UNITPACK_PRECISE float t2 = omc.z * axis.x - sa.y;
+    UNITPACK_PRECISE float t3 = omc.z * axis.y + sa.x;
+    UNITPACK_PRECISE float t4 = omc.z * axis.z + sc.y;
+    UNITPACK_PRECISE float t5 = omc.x * axis.x + sc.y;
+    UNITPACK_PRECISE float t6 = omc.x * axis.y - sa.z;
+    UNITPACK_PRECISE float t7 = omc.x * axis.z + sa.y;
+    UNITPACK_PRECISE vec3 t8 = vec3(t3, t4, t2) * vec3(t7, t5, t6)
+        - vec3(t4, t2, t3) * vec3(t6, t7, t5);
+    UNITPACK_PRECISE vec3 b = t8 * (f.z > 0.5 ? 1.0 : -1.0);
+    return unitpack_godot_axis_angle_tbn(vec3(t5, t6, t7), b, vec3(t2, t3, t4));
 }
 
 // Helper `fdlibm_acosf`.

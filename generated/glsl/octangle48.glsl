@@ -41,6 +41,12 @@ struct unitpack_octangle48_frame {
     vec4 t;
 };
 
+struct unitpack_octangle48_tbn {
+    vec3 t;
+    vec3 b;
+    vec3 n;
+};
+
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
 vec2 unitpack_octangle48_sincos_pi(float a0) {
     UNITPACK_PRECISE float abs_a0 = abs(a0);
@@ -77,7 +83,7 @@ vec2 unitpack_octangle48_sincos_pi(float a0) {
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; n the octahedral point
 //   normalized, t its stored direction in the plane normalized: each unit within a few 2^-24 and
 //   orthogonal to each other within a few 2^-24.
-// Portable within a bound (as the header says): each output component is within 228·2^-24 (1.36e-5)
+// Portable within a bound (as the header says): each output component is within 621·2^-24 (3.70e-5)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 unitpack_octangle48_frame unitpack_octangle48_decode(uvec2 code) {
@@ -123,6 +129,54 @@ unitpack_octangle48_frame unitpack_octangle48_decode(uvec2 code) {
         fields.w > 0.5 ? -1.0 : 1.0
     );
     return unitpack_octangle48_frame(n, t);
+}
+
+// unitpack_octangle48_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable within a bound (as the header says): as for unitpack_octangle48_decode.
+unitpack_octangle48_tbn unitpack_octangle48_decode_tbn(uvec2 code) {
+    UNITPACK_PRECISE float t1 = float(code.x & 65535u);
+    UNITPACK_PRECISE float t2 = t1 - 65536.0;
+    UNITPACK_PRECISE float t3 = float(code.x >> 16u);
+    UNITPACK_PRECISE float t4 = t3 - 65536.0;
+    UNITPACK_PRECISE vec4 fields = vec4(
+        t1 > 32767.0 ? t2 : t1,
+        t3 > 32767.0 ? t4 : t3,
+        float(code.y & 32767u),
+        float((code.y >> 15u) & 1u)
+    );
+    UNITPACK_PRECISE float t5 = fields.z - 32768.0;
+    UNITPACK_PRECISE float t6 = (fields.z >= 16384.0 ? t5 : fields.z) * 6.1035156e-5;
+    UNITPACK_PRECISE vec2 sc = unitpack_octangle48_sincos_pi(t6);
+    UNITPACK_PRECISE vec2 t7 = mix(
+        vec2(-32767.0),
+        fields.xy,
+        greaterThanEqual(fields.xy, vec2(-32767.0))
+    );
+    UNITPACK_PRECISE vec2 abs_t7 = abs(t7);
+    UNITPACK_PRECISE float pz = 32767.0 - abs_t7.x - abs_t7.y;
+    UNITPACK_PRECISE vec2 t8 = (32767.0 - abs_t7.yx)
+        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(t7, vec2(0.0)));
+    UNITPACK_PRECISE vec3 p = vec3(pz < 0.0 ? t8 : t7, pz);
+    UNITPACK_PRECISE vec3 p_sq = p * p;
+    UNITPACK_PRECISE vec3 n = p * (1.0 / sqrt(p_sq.x + p_sq.y + p_sq.z));
+    UNITPACK_PRECISE float abs_p_y = abs(p.y);
+    UNITPACK_PRECISE float abs_p_z = abs(p.z);
+    bool t9 = abs_p_y > abs_p_z;
+    UNITPACK_PRECISE vec3 t10 = vec3(n.y, -n.x, 0.0);
+    UNITPACK_PRECISE vec3 t11 = vec3(n.z, 0.0, -n.x);
+    UNITPACK_PRECISE vec3 b1 = t9 ? t10 : t11;
+    UNITPACK_PRECISE vec3 b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
+    UNITPACK_PRECISE vec3 w = b1 * sc.yyy + b2 * sc.xxx;
+    UNITPACK_PRECISE float t12 = n.y * n.y + n.x * n.x;
+    UNITPACK_PRECISE float t13 = n.z * n.z + n.x * n.x;
+    UNITPACK_PRECISE float b1_2 = t9 ? t12 : t13;
+    UNITPACK_PRECISE vec2 t14 = sc.yx * sc.yx;
+    UNITPACK_PRECISE vec3 t15 = w * (1.0 / sqrt(b1_2 * (t14.x + t14.y)));
+    UNITPACK_PRECISE vec3 b = (n.yzx * t15.zxy - n.zxy * t15.yzx) * (fields.w > 0.5 ? -1.0 : 1.0);
+    return unitpack_octangle48_tbn(t15, b, n);
 }
 
 // unitpack_octangle48_encode: fast encoder.

@@ -41,11 +41,17 @@ struct unitpack_qtangent64_frame {
     vec4 t;
 };
 
+struct unitpack_qtangent64_tbn {
+    vec3 t;
+    vec3 b;
+    vec3 n;
+};
+
 // unitpack_qtangent64_decode_float: decoder, float form.
 // In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.
 // Out: Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and
 //   orthogonal to the quaternion's quantization (a few 2^-15).
-// Portable within a bound (as the header says): each output component is within 9·2^-24 (5.36e-7)
+// Portable within a bound (as the header says): each output component is within 12·2^-24 (7.15e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 unitpack_qtangent64_frame unitpack_qtangent64_decode_float(vec4 q) {
@@ -94,6 +100,32 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode(uvec2 code) {
         q.w < 0.0 ? -1.0 : 1.0
     );
     return unitpack_qtangent64_frame(n, t);
+}
+
+// unitpack_qtangent64_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable as unitpack_qtangent64_decode_float is, within the same bound.
+unitpack_qtangent64_tbn unitpack_qtangent64_decode_tbn(uvec2 code) {
+    UNITPACK_PRECISE vec4 t1 = vec4(
+        uvec4(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u)
+    );
+    UNITPACK_PRECISE vec4 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec4(32767.0))) * 3.051851e-5;
+    UNITPACK_PRECISE vec4 q = mix(vec4(-1.0), t2, greaterThanEqual(t2, vec4(-1.0)));
+    UNITPACK_PRECISE float x2 = 2.0 * q.x;
+    UNITPACK_PRECISE float y2 = 2.0 * q.y;
+    UNITPACK_PRECISE float z2 = 2.0 * q.z;
+    UNITPACK_PRECISE float t3 = x2 * q.z + y2 * q.w;
+    UNITPACK_PRECISE float t4 = y2 * q.z - x2 * q.w;
+    UNITPACK_PRECISE float t5 = 1.0 - x2 * q.x - y2 * q.y;
+    UNITPACK_PRECISE float t6 = 1.0 - y2 * q.y - z2 * q.z;
+    UNITPACK_PRECISE float t7 = y2 * q.x + z2 * q.w;
+    UNITPACK_PRECISE float t8 = z2 * q.x - y2 * q.w;
+    UNITPACK_PRECISE vec3 t9 = vec3(t4, t5, t3) * vec3(t8, t6, t7)
+        - vec3(t5, t3, t4) * vec3(t7, t8, t6);
+    UNITPACK_PRECISE vec3 b = t9 * (q.w < 0.0 ? -1.0 : 1.0);
+    return unitpack_qtangent64_tbn(vec3(t6, t7, t8), b, vec3(t3, t4, t5));
 }
 
 // unitpack_qtangent64_encode_float: fast encoder, float form.

@@ -45,6 +45,12 @@ struct unitpack_godot_axis_angle_frame {
     float4 t;
 };
 
+struct unitpack_godot_axis_angle_tbn {
+    float3 t;
+    float3 b;
+    float3 n;
+};
+
 // Helper `oct_to_vec3`.
 float3 unitpack_godot_axis_angle_oct_to_vec3(float2 a0) {
     precise float t1 = 1.0 - abs(a0.x);
@@ -136,6 +142,33 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uint2 code) {
     );
     unitpack_godot_axis_angle_frame frame = { n, t };
     return frame;
+}
+
+// unitpack_godot_axis_angle_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
+unitpack_godot_axis_angle_tbn unitpack_godot_axis_angle_decode_tbn(uint2 code) {
+    precise float3 f = float3(uint3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
+        * 1.5259022e-5;
+    precise float2 t1 = f.xy * 2.0 - 1.0;
+    precise float3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
+    precise float turns = abs(f.z * 2.0 - 1.0);
+    precise float2 sc = unitpack_godot_axis_angle_sincos_pi(turns);
+    precise float3 omc = axis * (1.0 - sc.y);
+    precise float3 sa = axis * sc.xxx;
+    precise float t2 = omc.z * axis.x - sa.y;
+    precise float t3 = omc.z * axis.y + sa.x;
+    precise float t4 = omc.z * axis.z + sc.y;
+    precise float t5 = omc.x * axis.x + sc.y;
+    precise float t6 = omc.x * axis.y - sa.z;
+    precise float t7 = omc.x * axis.z + sa.y;
+    precise float3 t8 = float3(t3, t4, t2) * float3(t7, t5, t6)
+        - float3(t4, t2, t3) * float3(t6, t7, t5);
+    precise float3 b = t8 * (f.z > 0.5 ? 1.0 : -1.0);
+    unitpack_godot_axis_angle_tbn tbn = { float3(t5, t6, t7), b, float3(t2, t3, t4) };
+    return tbn;
 }
 
 // Helper `fdlibm_acosf`.

@@ -41,11 +41,17 @@ struct unitpack_qtangent64_frame {
     float4 t;
 };
 
+struct unitpack_qtangent64_tbn {
+    float3 t;
+    float3 b;
+    float3 n;
+};
+
 // unitpack_qtangent64_decode_float: decoder, float form.
 // In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.
 // Out: Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and
 //   orthogonal to the quaternion's quantization (a few 2^-15).
-// Portable within a bound (as the header says): each output component is within 9·2^-24 (5.36e-7)
+// Portable within a bound (as the header says): each output component is within 12·2^-24 (7.15e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 unitpack_qtangent64_frame unitpack_qtangent64_decode_float(float4 q) {
@@ -97,6 +103,42 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode(uint2 code) {
     );
     unitpack_qtangent64_frame frame = { n, t };
     return frame;
+}
+
+// unitpack_qtangent64_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable as unitpack_qtangent64_decode_float is, within the same bound.
+unitpack_qtangent64_tbn unitpack_qtangent64_decode_tbn(uint2 code) {
+    precise float4 t1 = float4(
+        uint4(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u)
+    );
+    precise float4 t2 = UNITPACK_SELECT(
+        t1 > float4(32767.0, 32767.0, 32767.0, 32767.0),
+        t1 - 65536.0,
+        t1
+    )
+        * 3.051851e-5;
+    precise float4 q = UNITPACK_SELECT(
+        t2 >= float4(-1.0, -1.0, -1.0, -1.0),
+        t2,
+        float4(-1.0, -1.0, -1.0, -1.0)
+    );
+    precise float x2 = 2.0 * q.x;
+    precise float y2 = 2.0 * q.y;
+    precise float z2 = 2.0 * q.z;
+    precise float t3 = x2 * q.z + y2 * q.w;
+    precise float t4 = y2 * q.z - x2 * q.w;
+    precise float t5 = 1.0 - x2 * q.x - y2 * q.y;
+    precise float t6 = 1.0 - y2 * q.y - z2 * q.z;
+    precise float t7 = y2 * q.x + z2 * q.w;
+    precise float t8 = z2 * q.x - y2 * q.w;
+    precise float3 t9 = float3(t4, t5, t3) * float3(t8, t6, t7)
+        - float3(t5, t3, t4) * float3(t7, t8, t6);
+    precise float3 b = t9 * (q.w < 0.0 ? -1.0 : 1.0);
+    unitpack_qtangent64_tbn tbn = { float3(t6, t7, t8), b, float3(t3, t4, t5) };
+    return tbn;
 }
 
 // unitpack_qtangent64_encode_float: fast encoder, float form.

@@ -29,6 +29,12 @@ struct unitpack_godot_axis_angle_frame {
     t: vec4<f32>,
 }
 
+struct unitpack_godot_axis_angle_tbn {
+    t: vec3<f32>,
+    b: vec3<f32>,
+    n: vec3<f32>,
+}
+
 // Helper `oct_to_vec3`.
 fn unitpack_godot_axis_angle_oct_to_vec3(a0: vec2<f32>) -> vec3<f32> {
     let t1 = 1.0f - abs(a0.x);
@@ -111,6 +117,33 @@ fn unitpack_godot_axis_angle_decode(code: vec2<u32>) -> unitpack_godot_axis_angl
             omc.x * axis.z + sa.y,
             select(-1.0f, 1.0f, f.z > 0.5f)
         )
+    );
+}
+
+// unitpack_godot_axis_angle_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
+fn unitpack_godot_axis_angle_decode_tbn(code: vec2<u32>) -> unitpack_godot_axis_angle_tbn {
+    let f = vec3<f32>(vec3<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u)) * 1.5259022e-5f;
+    let axis = unitpack_godot_axis_angle_oct_to_vec3(f.xy * 2.0f - 1.0f);
+    let turns = abs(f.z * 2.0f - 1.0f);
+    let sc = unitpack_godot_axis_angle_sincos_pi(turns);
+    let omc = axis * (1.0f - sc.y);
+    let sa = axis * sc.xxx;
+    let t1 = omc.z * axis.x - sa.y;
+    let t2 = omc.z * axis.y + sa.x;
+    let t3 = omc.z * axis.z + sc.y;
+    let t4 = omc.x * axis.x + sc.y;
+    let t5 = omc.x * axis.y - sa.z;
+    let t6 = omc.x * axis.z + sa.y;
+    let t7 = vec3<f32>(t2, t3, t1) * vec3<f32>(t6, t4, t5)
+        - vec3<f32>(t3, t1, t2) * vec3<f32>(t5, t6, t4);
+    return unitpack_godot_axis_angle_tbn(
+        vec3<f32>(t4, t5, t6),
+        t7 * select(-1.0f, 1.0f, f.z > 0.5f),
+        vec3<f32>(t1, t2, t3)
     );
 }
 

@@ -25,6 +25,12 @@ struct unitpack_octangle32_frame {
     t: vec4<f32>,
 }
 
+struct unitpack_octangle32_tbn {
+    t: vec3<f32>,
+    b: vec3<f32>,
+    n: vec3<f32>,
+}
+
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
 fn unitpack_octangle32_sincos_pi(a0: f32) -> vec2<f32> {
     let abs_a0 = abs(a0);
@@ -49,7 +55,7 @@ fn unitpack_octangle32_sincos_pi(a0: f32) -> vec2<f32> {
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; n the octahedral point
 //   normalized, t its stored direction in the plane normalized: each unit within a few 2^-24 and
 //   orthogonal to each other within a few 2^-24.
-// Portable within a bound (as the header says): each output component is within 218·2^-24 (1.30e-5)
+// Portable within a bound (as the header says): each output component is within 584·2^-24 (3.48e-5)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_octangle32_decode(code: u32) -> unitpack_octangle32_frame {
@@ -87,6 +93,51 @@ fn unitpack_octangle32_decode(code: u32) -> unitpack_octangle32_frame {
     return unitpack_octangle32_frame(
         n,
         vec4<f32>(w * (1.0f / sqrt(b1_2 * (t5.x + t5.y))), select(1.0f, -1.0f, fields.w > 0.5f))
+    );
+}
+
+// unitpack_octangle32_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable within a bound (as the header says): as for unitpack_octangle32_decode.
+fn unitpack_octangle32_decode_tbn(code: u32) -> unitpack_octangle32_tbn {
+    let t1 = f32(code & 2047u);
+    let t2 = f32((code >> 11u) & 2047u);
+    let fields = vec4<f32>(
+        select(t1, t1 - 2048.0f, t1 > 1023.0f),
+        select(t2, t2 - 2048.0f, t2 > 1023.0f),
+        f32((code >> 22u) & 511u),
+        f32(code >> 31u)
+    );
+    let sc = unitpack_octangle32_sincos_pi(
+        select(fields.z, fields.z - 512.0f, fields.z >= 256.0f) * 0.00390625f
+    );
+    let t3 = select(vec2<f32>(-1023.0f), fields.xy, fields.xy >= vec2<f32>(-1023.0f));
+    let abs_t3 = abs(t3);
+    let pz = 1023.0f - abs_t3.x - abs_t3.y;
+    let p = vec3<f32>(
+        select(
+            t3,
+            (1023.0f - abs_t3.yx)
+                * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t3 >= vec2<f32>(0.0f)),
+            pz < 0.0f
+        ),
+        pz
+    );
+    let p_sq = p * p;
+    let n = p * (1.0f / sqrt(p_sq.x + p_sq.y + p_sq.z));
+    let t4 = abs(p.y) > abs(p.z);
+    let b1 = select(vec3<f32>(n.z, 0.0f, -n.x), vec3<f32>(n.y, -n.x, 0.0f), t4);
+    let b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
+    let w = b1 * sc.yyy + b2 * sc.xxx;
+    let b1_2 = select(n.z * n.z + n.x * n.x, n.y * n.y + n.x * n.x, t4);
+    let t5 = sc.yx * sc.yx;
+    let t6 = w * (1.0f / sqrt(b1_2 * (t5.x + t5.y)));
+    return unitpack_octangle32_tbn(
+        t6,
+        (n.yzx * t6.zxy - n.zxy * t6.yzx) * select(1.0f, -1.0f, fields.w > 0.5f),
+        n
     );
 }
 

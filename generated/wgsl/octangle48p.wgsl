@@ -25,6 +25,12 @@ struct unitpack_octangle48p_frame {
     t: vec4<f32>,
 }
 
+struct unitpack_octangle48p_tbn {
+    t: vec3<f32>,
+    b: vec3<f32>,
+    n: vec3<f32>,
+}
+
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
 fn unitpack_octangle48p_sincos_pi(a0: f32) -> vec2<f32> {
     let abs_a0 = abs(a0);
@@ -50,7 +56,7 @@ fn unitpack_octangle48p_sincos_pi(a0: f32) -> vec2<f32> {
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; n the octahedral point
 //   normalized, t its stored direction in the plane normalized: each unit within a few 2^-24 and
 //   orthogonal to each other within a few 2^-24.
-// Portable within a bound (as the header says): each output component is within 228·2^-24 (1.36e-5)
+// Portable within a bound (as the header says): each output component is within 621·2^-24 (3.70e-5)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_octangle48p_decode(code: vec2<u32>) -> unitpack_octangle48p_frame {
@@ -88,6 +94,51 @@ fn unitpack_octangle48p_decode(code: vec2<u32>) -> unitpack_octangle48p_frame {
     return unitpack_octangle48p_frame(
         n,
         vec4<f32>(w * (1.0f / sqrt(b1_2 * (t5.x + t5.y))), select(1.0f, -1.0f, fields.w > 0.5f))
+    );
+}
+
+// unitpack_octangle48p_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable within a bound (as the header says): as for unitpack_octangle48p_decode.
+fn unitpack_octangle48p_decode_tbn(code: vec2<u32>) -> unitpack_octangle48p_tbn {
+    let t1 = f32(code.x & 65535u);
+    let t2 = f32(code.x >> 16u);
+    let fields = vec4<f32>(
+        select(t1, t1 - 65536.0f, t1 > 32767.0f),
+        select(t2, t2 - 65536.0f, t2 > 32767.0f),
+        f32(code.y & 32767u),
+        f32((code.y >> 15u) & 1u)
+    );
+    let sc = unitpack_octangle48p_sincos_pi(
+        select(fields.z, fields.z - 32768.0f, fields.z >= 16384.0f) * 6.1035156e-5f
+    );
+    let t3 = select(vec2<f32>(-32767.0f), fields.xy, fields.xy >= vec2<f32>(-32767.0f));
+    let abs_t3 = abs(t3);
+    let pz = 32767.0f - abs_t3.x - abs_t3.y;
+    let p = vec3<f32>(
+        select(
+            t3,
+            (32767.0f - abs_t3.yx)
+                * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t3 >= vec2<f32>(0.0f)),
+            pz < 0.0f
+        ),
+        pz
+    );
+    let p_sq = p * p;
+    let n = p * (1.0f / sqrt(p_sq.x + p_sq.y + p_sq.z));
+    let t4 = abs(p.y) > abs(p.z);
+    let b1 = select(vec3<f32>(n.z, 0.0f, -n.x), vec3<f32>(n.y, -n.x, 0.0f), t4);
+    let b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
+    let w = b1 * sc.yyy + b2 * sc.xxx;
+    let b1_2 = select(n.z * n.z + n.x * n.x, n.y * n.y + n.x * n.x, t4);
+    let t5 = sc.yx * sc.yx;
+    let t6 = w * (1.0f / sqrt(b1_2 * (t5.x + t5.y)));
+    return unitpack_octangle48p_tbn(
+        t6,
+        (n.yzx * t6.zxy - n.zxy * t6.yzx) * select(1.0f, -1.0f, fields.w > 0.5f),
+        n
     );
 }
 

@@ -25,11 +25,17 @@ struct unitpack_qtangent64_frame {
     t: vec4<f32>,
 }
 
+struct unitpack_qtangent64_tbn {
+    t: vec3<f32>,
+    b: vec3<f32>,
+    n: vec3<f32>,
+}
+
 // unitpack_qtangent64_decode_float: decoder, float form.
 // In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.
 // Out: Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and
 //   orthogonal to the quaternion's quantization (a few 2^-15).
-// Portable within a bound (as the header says): each output component is within 9·2^-24 (5.36e-7)
+// Portable within a bound (as the header says): each output component is within 12·2^-24 (7.15e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_qtangent64_decode_float(q: vec4<f32>) -> unitpack_qtangent64_frame {
@@ -69,6 +75,33 @@ fn unitpack_qtangent64_decode(code: vec2<u32>) -> unitpack_qtangent64_frame {
             z2 * q.x - y2 * q.w,
             select(1.0f, -1.0f, q.w < 0.0f)
         )
+    );
+}
+
+// unitpack_qtangent64_decode_tbn: decoder.
+// In: as for decode.
+// Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the
+//   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
+// Portable as unitpack_qtangent64_decode_float is, within the same bound.
+fn unitpack_qtangent64_decode_tbn(code: vec2<u32>) -> unitpack_qtangent64_tbn {
+    let t1 = vec4<f32>(vec4<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u));
+    let t2 = select(t1, t1 - 65536.0f, t1 > vec4<f32>(32767.0f)) * 3.051851e-5f;
+    let q = select(vec4<f32>(-1.0f), t2, t2 >= vec4<f32>(-1.0f));
+    let x2 = 2.0f * q.x;
+    let y2 = 2.0f * q.y;
+    let z2 = 2.0f * q.z;
+    let t3 = x2 * q.z + y2 * q.w;
+    let t4 = y2 * q.z - x2 * q.w;
+    let t5 = 1.0f - x2 * q.x - y2 * q.y;
+    let t6 = 1.0f - y2 * q.y - z2 * q.z;
+    let t7 = y2 * q.x + z2 * q.w;
+    let t8 = z2 * q.x - y2 * q.w;
+    let t9 = vec3<f32>(t4, t5, t3) * vec3<f32>(t8, t6, t7)
+        - vec3<f32>(t5, t3, t4) * vec3<f32>(t7, t8, t6);
+    return unitpack_qtangent64_tbn(
+        vec3<f32>(t6, t7, t8),
+        t9 * select(1.0f, -1.0f, q.w < 0.0f),
+        vec3<f32>(t3, t4, t5)
     );
 }
 

@@ -1,6 +1,6 @@
 //! The figures every include states, kept on disk between runs of `gen` and `generate`:
 //! each decoder's proven bound ([`crate::decode_bound`]) and each spec's error statistics
-//! ([`crate::quality`]). Proving and measuring the whole catalogue is two thirds of a
+//! ([`crate::quality`]), a frame spec's frame figures included. Proving and measuring the whole catalogue is two thirds of a
 //! `generate`; the figures are a function of the program and its math library alone, so
 //! a later run of the same executable can take them as they were.
 //!
@@ -15,7 +15,7 @@
 //! next run's time: the cache never changes what a run prints or writes.
 
 use crate::decode_bound::{self, Bound};
-use crate::quality::{self, ErrorStats, StatsKey};
+use crate::quality::{self, ErrorStats, FrameStats, StatsKey};
 use std::fmt::Write as _;
 use std::hash::Hasher;
 use std::path::PathBuf;
@@ -83,7 +83,7 @@ pub fn math_library() -> Option<PathBuf> {
 pub struct Session {
     path: PathBuf,
     header: String,
-    loaded: (usize, usize),
+    loaded: (usize, usize, usize),
 }
 
 /// Loads the figures an earlier run of this executable saved into this process, and
@@ -91,8 +91,8 @@ pub struct Session {
 /// no cache: no folder, no fingerprint, or a file at the path that is not ours.
 pub fn open() -> Option<Session> {
     let path = path()?;
-    let header = format!("{MAGIC} v2 exe={:016x}", fingerprint()?);
-    let mut loaded = (0, 0);
+    let header = format!("{MAGIC} v3 exe={:016x}", fingerprint()?);
+    let mut loaded = (0, 0, 0);
     match std::fs::symlink_metadata(&path) {
         // Only a plain file can be ours (a FIFO would block the read).
         Ok(m) if !m.is_file() => return None,
@@ -103,9 +103,11 @@ pub fn open() -> Option<Session> {
         Ok(text) if !text.starts_with(MAGIC) => return None,
         Ok(text) => {
             if let Some((bounds, stats)) = parse(&text, &header) {
-                loaded = (bounds.len(), stats.len());
+                let frames = parse_frames(&text);
+                loaded = (bounds.len(), stats.len(), frames.len());
                 decode_bound::import(bounds);
                 quality::import(stats);
+                quality::import_frames(frames);
             }
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
@@ -124,10 +126,12 @@ impl Session {
     /// loaded. A failure is silent: the cache is only ever a saving of time.
     pub fn save(self) {
         let (bounds, stats) = (decode_bound::export(), quality::export());
-        if (bounds.len(), stats.len()) == self.loaded {
+        let frames = quality::export_frames();
+        if (bounds.len(), stats.len(), frames.len()) == self.loaded {
             return;
         }
-        let text = format(&self.header, &bounds, &stats);
+        let mut text = format(&self.header, &bounds, &stats);
+        text.push_str(&format_frames(&frames));
         let _ = crate::atomic::write_atomic(&self.path, text.as_bytes());
     }
 }
@@ -209,8 +213,61 @@ pub fn parse(text: &str, header: &str) -> Option<Parsed> {
                 };
                 stats.push(((spec.to_string(), samples), Some(s)));
             }
+            ["frames", ..] => {}
             _ => return None,
         }
     }
     Some((bounds, stats))
+}
+
+/// The lines of the frame specs' figures ([`quality::measure_frames`]): `frames`, the id,
+/// the sample size, the flips and the six angles' bits (normal, tangent and bitangent,
+/// each mean then sample max).
+pub fn format_frames(frames: &[(String, Option<FrameStats>)]) -> String {
+    let mut t = String::new();
+    for (id, s) in frames {
+        let _ = match s {
+            None => writeln!(t, "frames {id} none"),
+            Some(s) => {
+                let angles: Vec<String> = [s.normal, s.tangent, s.bitangent]
+                    .iter()
+                    .flatten()
+                    .map(|a| format!("{:016x}", a.to_bits()))
+                    .collect();
+                writeln!(
+                    t,
+                    "frames {id} {} {} {}",
+                    s.samples,
+                    s.flips,
+                    angles.join(" ")
+                )
+            }
+        };
+    }
+    t
+}
+
+/// The frame figures of a file [`parse`] accepted: its well-formed `frames` lines.
+pub fn parse_frames(text: &str) -> Vec<(String, Option<FrameStats>)> {
+    let float = |s: &str| u64::from_str_radix(s, 16).ok().map(f64::from_bits);
+    text.lines()
+        .filter_map(|line| {
+            let w: Vec<&str> = line.split(' ').collect();
+            match w[..] {
+                ["frames", id, "none"] => Some((id.to_string(), None)),
+                ["frames", id, samples, flips, ref angles @ ..] if angles.len() == 6 => {
+                    let a: Vec<f64> = angles.iter().map(|x| float(x)).collect::<Option<_>>()?;
+                    let s = FrameStats {
+                        samples: samples.parse().ok()?,
+                        normal: [a[0], a[1]],
+                        tangent: [a[2], a[3]],
+                        bitangent: [a[4], a[5]],
+                        flips: flips.parse().ok()?,
+                    };
+                    Some((id.to_string(), Some(s)))
+                }
+                _ => None,
+            }
+        })
+        .collect()
 }

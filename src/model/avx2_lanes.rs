@@ -148,6 +148,73 @@ impl LaneIo<8> for F8 {
         store(8, avx!(_mm256_permute2f128_ps::<0x30>(r25, r03)));
         store(16, avx!(_mm256_permute2f128_ps::<0x31>(r14, r25)));
     }
+    /// An 8×8 transpose (the seven lanes and a zero one: four unpacks, eight in-lane
+    /// shuffles and eight 128-bit permutes), each item's row stored whole in turn so that
+    /// the next row overwrites the padding word, the last row by a masked store. The
+    /// frame decoders' output moved word by word otherwise, which cost more than the
+    /// decode itself.
+    #[inline(always)]
+    fn u_to_items7(lanes: [U8; 7], items: &mut [[u32; 7]; 8]) {
+        let f = {
+            #[inline(always)]
+            |l: U8| avx!(_mm256_castsi256_ps(l.0))
+        };
+        let r = [
+            f(lanes[0]),
+            f(lanes[1]),
+            f(lanes[2]),
+            f(lanes[3]),
+            f(lanes[4]),
+            f(lanes[5]),
+            f(lanes[6]),
+            avx!(_mm256_setzero_ps()),
+        ];
+        let lo = {
+            #[inline(always)]
+            |a: usize, b: usize| avx!(_mm256_unpacklo_ps(r[a], r[b]))
+        };
+        let hi = {
+            #[inline(always)]
+            |a: usize, b: usize| avx!(_mm256_unpackhi_ps(r[a], r[b]))
+        };
+        // t: pairs of words 0/1, 2/3, 4/5, 6/7 interleaved per item pair.
+        let (t0, t1, t2, t3) = (lo(0, 1), hi(0, 1), lo(2, 3), hi(2, 3));
+        let (t4, t5, t6, t7) = (lo(4, 5), hi(4, 5), lo(6, 7), hi(6, 7));
+        let (u0, u1) = (
+            avx!(_mm256_shuffle_ps::<0x44>(t0, t2)),
+            avx!(_mm256_shuffle_ps::<0xee>(t0, t2)),
+        );
+        let (u2, u3) = (
+            avx!(_mm256_shuffle_ps::<0x44>(t1, t3)),
+            avx!(_mm256_shuffle_ps::<0xee>(t1, t3)),
+        );
+        let (u4, u5) = (
+            avx!(_mm256_shuffle_ps::<0x44>(t4, t6)),
+            avx!(_mm256_shuffle_ps::<0xee>(t4, t6)),
+        );
+        let (u6, u7) = (
+            avx!(_mm256_shuffle_ps::<0x44>(t5, t7)),
+            avx!(_mm256_shuffle_ps::<0xee>(t5, t7)),
+        );
+        let rows = [
+            avx!(_mm256_permute2f128_ps::<0x20>(u0, u4)),
+            avx!(_mm256_permute2f128_ps::<0x20>(u1, u5)),
+            avx!(_mm256_permute2f128_ps::<0x20>(u2, u6)),
+            avx!(_mm256_permute2f128_ps::<0x20>(u3, u7)),
+            avx!(_mm256_permute2f128_ps::<0x31>(u0, u4)),
+            avx!(_mm256_permute2f128_ps::<0x31>(u1, u5)),
+            avx!(_mm256_permute2f128_ps::<0x31>(u2, u6)),
+            avx!(_mm256_permute2f128_ps::<0x31>(u3, u7)),
+        ];
+        let p = items.as_mut_ptr().cast::<f32>();
+        // SAFETY (with `avx!`'s): row `k < 7` writes words `7k..7k + 8`, within the 56
+        // words (`7·6 + 8 = 50`); the last row writes its seven words only.
+        for (k, row) in rows.iter().enumerate().take(7) {
+            avx!(_mm256_storeu_ps(p.add(7 * k), *row));
+        }
+        let seven = avx!(_mm256_setr_epi32(-1, -1, -1, -1, -1, -1, -1, 0));
+        avx!(_mm256_maskstore_ps(p.add(49), seven, rows[7]));
+    }
 }
 
 impl F8 {

@@ -70,6 +70,15 @@ pub trait LaneIo<const N: usize>: Float {
             *item = std::array::from_fn(|j| words[j][k]);
         }
     }
+    /// `N` items of seven words each (a decoded frame: `n`, then `t` with the sign) from
+    /// seven lanes, as [`LaneIo::u_to_items3`].
+    #[inline(always)]
+    fn u_to_items7(lanes: [Self::U; 7], items: &mut [[u32; 7]; N]) {
+        let words = lanes.map(Self::u_words);
+        for (k, item) in items.iter_mut().enumerate() {
+            *item = std::array::from_fn(|j| words[j][k]);
+        }
+    }
 }
 
 /// Every operation of the vocabulary on the lanes `a` and `b` (and on their bits as

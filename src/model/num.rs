@@ -396,6 +396,23 @@ macro_rules! value_eval {
 pub(crate) use value_eval;
 value_eval!(f32, u32, bool);
 
+impl<A: Value, B: Value, C: Value> Value for (A, B, C) {
+    fn tys() -> Vec<Ty> {
+        let mut t = <(A, B)>::tys();
+        t.extend(C::tys());
+        t
+    }
+    fn refs(self) -> Vec<Ref> {
+        let mut r = (self.0, self.1).refs();
+        r.extend(self.2.refs());
+        r
+    }
+    fn from_refs(r: &mut dyn Iterator<Item = Ref>) -> Self {
+        let (a, b) = <(A, B)>::from_refs(r);
+        (a, b, C::from_refs(r))
+    }
+}
+
 impl<A: Value, B: Value> Value for (A, B) {
     fn tys() -> Vec<Ty> {
         let mut t = A::tys();

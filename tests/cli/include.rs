@@ -345,7 +345,7 @@ fn gen_keeps_its_figures_for_the_next_run() {
     let text = std::fs::read_to_string(&file).expect("the first run writes the cache");
     let header = text.lines().next().unwrap().to_string();
     assert!(
-        header.starts_with("unitpack figure cache v2 exe="),
+        header.starts_with("unitpack figure cache v3 exe="),
         "{header}"
     );
     assert!(text.lines().any(|l| l.starts_with("bound ")), "{text}");
@@ -367,11 +367,37 @@ fn gen_keeps_its_figures_for_the_next_run() {
         unwrapped(&plain)
     );
 
+    // A frame spec's frame figures are kept too: one edited there shows in the include.
+    let frame_gen = |cache: &Path| {
+        let mut cmd = unitpack();
+        cmd.env("UNITPACK_CACHE_DIR", cache)
+            .args(["gen", "octangle32", "--lang", "wgsl"]);
+        let r = run_cmd(cmd, b"");
+        assert_eq!(r.code, 0, "{r:?}");
+        r.stdout
+    };
+    let frame_plain = frame_gen(&dir);
+    let with_frames = std::fs::read_to_string(&file).unwrap();
+    let line = with_frames
+        .lines()
+        .find(|l| l.starts_with("frames octangle32 "))
+        .unwrap_or_else(|| panic!("octangle32's frame figures: {with_frames}"));
+    let mut words: Vec<&str> = line.split(' ').collect();
+    words[4] = "4029000000000000"; // a normal mean of 12.5°
+    std::fs::write(&file, with_frames.replace(line, &words.join(" "))).unwrap();
+    let edited = unwrapped(&frame_gen(&dir));
+    assert!(edited.contains("normal 12.50000°"), "{edited}");
+    assert!(
+        unwrapped(&frame_plain).contains("normal 0.04180°"),
+        "{frame_plain}"
+    );
+    std::fs::write(&file, &text).unwrap();
+
     // Another build's file, an older format's, or a damaged one, is not read, and is
     // replaced by this one's.
     for foreign in [
+        text.replacen(&header, "unitpack figure cache v3 exe=0123456789abcdef", 1),
         text.replacen(&header, "unitpack figure cache v2 exe=0123456789abcdef", 1),
-        text.replacen(&header, "unitpack figure cache v1 exe=0123456789abcdef", 1),
         format!("{text}bound zz\n"),
     ] {
         std::fs::write(&file, &foreign).unwrap();

@@ -31,7 +31,8 @@ pub fn f(w: u32) -> f32 {
 /// The decoded sign is the input's handedness (-1 for `w < 0`, else +1) on every seeded
 /// and edge frame; the decoded frame is unit and orthogonal within `tol`; zero, NaN and
 /// denormal normals decode to +Z, and a zero, NaN or parallel tangent to the canonical
-/// tangent, +X for +Z (Duff et al.: (1 + s·x²·a, s·x·y·a, -s·x)).
+/// tangent, +X for +Z (Duff et al.: (1 + s·x²·a, s·x·y·a, -s·x)); `decode_tbn` returns
+/// the same decode's columns `t`, `cross(n, t)·sign` and `n`.
 pub fn frame_promises(spec: &str, tol: f32) {
     let encode = function(spec, Role::Encode);
     let decode = function(spec, Role::Decode);
@@ -52,6 +53,29 @@ pub fn frame_promises(spec: &str, tol: f32) {
         assert!((dot(n, n).sqrt() - 1.0).abs() < tol, "{spec}: |n| of {d:?}");
         assert!((dot(t, t).sqrt() - 1.0).abs() < tol, "{spec}: |t| of {d:?}");
         assert!(dot(n, t).abs() < tol, "{spec}: n·t of {d:?}");
+    }
+    // The TBN decoder: the columns t, cross(n, t)·sign and n of the same decode, bit for
+    // bit (the cross product as the model writes it, lane by lane, in f32).
+    let tbn = spec
+        .parse::<Spec>()
+        .unwrap()
+        .emitted()
+        .functions
+        .into_iter()
+        .find(|f| f.name == "decode_tbn")
+        .unwrap_or_else(|| panic!("{spec}: a decode_tbn"));
+    let codes = run(&encode, input);
+    let (frames, columns) = (run(&decode, &codes), run(&tbn, &codes));
+    for (d, c) in frames.chunks(7).zip(columns.chunks(9)) {
+        let d: Vec<f32> = d.iter().map(|&w| f(w)).collect();
+        let (n, t, w) = ([d[0], d[1], d[2]], [d[3], d[4], d[5]], d[6]);
+        let b = [
+            (n[1] * t[2] - n[2] * t[1]) * w,
+            (n[2] * t[0] - n[0] * t[2]) * w,
+            (n[0] * t[1] - n[1] * t[0]) * w,
+        ];
+        let want: Vec<u32> = t.iter().chain(&b).chain(&n).map(|v| v.to_bits()).collect();
+        assert_eq!(c, &want[..], "{spec}: decode_tbn of {d:?}");
     }
     let degenerate: [[f32; 7]; 4] = [
         [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],

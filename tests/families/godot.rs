@@ -23,23 +23,9 @@ fn fields(w: &[u32]) -> [u16; 3] {
 /// squared length within `[2^-20, 2^20]`, and Godot's own bitangent
 /// `normalize(n) × normalize(t)` of squared length at least `2^-60`.
 fn godot_defines(x: &[f32]) -> bool {
-    let norm = |v: [f32; 3]| {
-        let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-        if l2 == 0.0 {
-            [0.0; 3]
-        } else {
-            let l = l2.sqrt();
-            v.map(|c| c / l)
-        }
-    };
     let (n, t) = ([x[0], x[1], x[2]], [x[3], x[4], x[5]]);
     let l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    let (u, v) = (norm(n), norm(t));
-    let b = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
+    let b = godot::cross(godot::normalized(n), godot::normalized(t));
     let b2 = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
     x.iter().all(|v| v.is_finite())
         && (2f32.powi(-20)..=2f32.powi(20)).contains(&l2)

@@ -404,6 +404,7 @@ fn emitted(spec_id: &str, bits: u32) -> Emitted {
         whole_field: None,
         unread: &[],
         fixed: Vec::new(),
+        budget: None,
     });
     let ring = generic_function!(
         "encode_ring",

@@ -203,6 +203,10 @@ pub struct Enclose {
     pub unread: &'static [usize],
     /// Fields every valid code holds at one value ([`Codec::fixed_fields`]): proven there.
     pub fixed: Vec<(usize, i64)>,
+    /// Box evaluations allowed before the bound is stated as it stands, where not
+    /// [`crate::decode_bound::BUDGET`]: a decoder whose enclosures over boxes stay wider
+    /// than a single code's never stops earlier, so it spends whatever it is given.
+    pub budget: Option<usize>,
 }
 
 /// The traced module and the public functions of one spec.

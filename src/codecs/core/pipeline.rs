@@ -130,12 +130,14 @@ where
         whole_field,
         unread,
         fixed: fixed.clone(),
+        budget: None,
     });
     functions[1].enclose = Some(Enclose {
         eval: Arc::new(field_box),
         whole_field,
         unread,
         fixed,
+        budget: None,
     });
     functions
 }

@@ -119,6 +119,20 @@ impl<W, A: Bits<W>, B: Bits<W>> Bits<W> for (A, B) {
         self.1.write(&mut w[A::WORDS..]);
     }
 }
+/// Three results, one after the other (a TBN decoder's columns).
+impl<W, A: Bits<W>, B: Bits<W>, C: Bits<W>> Bits<W> for (A, B, C) {
+    const WORDS: usize = A::WORDS + B::WORDS + C::WORDS;
+    #[inline(always)]
+    fn read(w: &[W]) -> Self {
+        let (a, b) = <(A, B)>::read(w);
+        (a, b, C::read(&w[A::WORDS + B::WORDS..]))
+    }
+    #[inline(always)]
+    fn write(self, w: &mut [W]) {
+        (self.0, self.1).write(w);
+        self.2.write(&mut w[A::WORDS + B::WORDS..]);
+    }
+}
 impl<W, T: Bits<W> + crate::model::Lane> Bits<W> for V3<T> {
     const WORDS: usize = 3;
     #[inline(always)]
@@ -260,7 +274,14 @@ fn from_lanes<L: LaneIo<N>, const N: usize>(lanes: &[[u32; N]], d: &mut [u32]) {
             L::u_to_items3([u(0), u(1), u(2)], items);
         }
         4 => from_lanes_of::<4, N>(lanes, d),
-        7 => from_lanes_of::<7, N>(lanes, d),
+        7 => {
+            let items = d.as_chunks_mut::<7>().0.try_into().expect("a whole group");
+            let u = {
+                #[inline(always)]
+                |j: usize| L::u_from_words(lanes[j])
+            };
+            L::u_to_items7([u(0), u(1), u(2), u(3), u(4), u(5), u(6)], items);
+        }
         w => {
             for (k, item) in d.chunks_exact_mut(w).enumerate() {
                 for (o, lane) in item.iter_mut().zip(lanes) {

@@ -22,6 +22,29 @@ pub const FRAME: Shape = Shape {
     fields: &["n", "t"],
 };
 
+/// The struct every frame's TBN decoder returns: the columns of the matrix that takes
+/// tangent space to the frame's space, `t`, `b` and `n` (`mat3x3(t, b, n)`).
+pub const TBN: Shape = Shape {
+    name: "tbn",
+    fields: &["t", "b", "n"],
+};
+
+/// The TBN columns of a decoded frame: `t.xyz`, the bitangent `cross(n, t.xyz)·t.w`
+/// (glTF's), and `n`.
+#[inline(always)]
+pub fn tbn<F: Float>((n, t): (V3<F>, V4<F>)) -> (V3<F>, V3<F>, V3<F>) {
+    let t3 = V3::new(t.x, t.y, t.z);
+    (t3, cross(n, t3) * t.w, n)
+}
+
+/// The doc comment of a frame family's `decode_tbn`.
+pub fn tbn_doc() -> Vec<String> {
+    vec![
+        "In: as for decode.".into(),
+        "Out: the TBN matrix's columns t, b, n, for mat3x3(t, b, n) (which takes tangent space to the frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).".into(),
+    ]
+}
+
 /// The handedness of `w`: -1 where `w < 0`, else +1, so that 0, -0 and NaN count as +1
 /// (glTF's default handedness) and the sign survives any other value.
 #[inline(always)]
@@ -88,13 +111,20 @@ pub fn canonical_tangent<F: Float>(n: V3<F>) -> V3<F> {
     V3::new(F::c(1.0) + sx * u.x * a, sx * u.y * a, -sx)
 }
 
+/// Box evaluations for a frame decoder's bound. Its enclosures over boxes of codes stay
+/// wider than a single code's (the basis or quaternion of a box is a union), so the
+/// search never stops before its budget: at a sixth of the default, each decoder's bound
+/// costs a sixth of the time and comes out a little looser.
+const FRAME_BUDGET: usize = 100_000;
+
 /// A decoded frame's enclosure: `n` and `t`.
 type EnclosedFrame = (V3<Encl>, V4<Encl>);
 
 /// A frame spec's [`Emitted`]: its traced `module` and `functions`, whose decoders get
 /// enclosures for their proven bounds ([`crate::decode_bound`]) over boxes of the
 /// `quants` fields: `decode_float` (where the spec has one) through `fetched` on the
-/// fetched values, `decode` through `codes` on the integer codes. `portable`: whether the
+/// fetched values, `decode` and `decode_tbn` (nine outputs, [`tbn`]) through `codes` on
+/// the integer codes. `portable`: whether the
 /// packed encoder is decided exactly (the engines' arithmetic is not).
 pub fn emitted<P: Params<Encl> + 'static>(
     spec: &Spec,
@@ -110,15 +140,21 @@ pub fn emitted<P: Params<Encl> + 'static>(
         v.extend(t.to_array());
         v
     };
+    // A TBN decoder's nine outputs: the frame's columns.
+    let tbn_lanes = |f: EnclosedFrame| {
+        let (t, b, n) = tbn(f);
+        [t, b, n].iter().flat_map(|c| c.to_array()).collect::<Vec<_>>()
+    };
     let enclose = |eval: crate::codecs::core::function::BoxEval| {
         Some(Enclose {
             eval,
             whole_field: None,
             unread: &[],
             fixed: Vec::new(),
+            budget: Some(FRAME_BUDGET),
         })
     };
-    let mut codes = Some(codes);
+    let codes = Arc::new(codes);
     for f in &mut functions {
         match f.role {
             Role::DecodeFloat => {
@@ -128,9 +164,10 @@ pub fn emitted<P: Params<Encl> + 'static>(
                 }));
             }
             Role::Decode => {
-                let frame = codes.take().expect("one packed decoder");
+                let frame = codes.clone();
+                let out = if f.out_words == 9 { tbn_lanes } else { lanes };
                 f.enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
-                    lanes(frame(P::build(|i| field_codes(quants[i], r[i]))))
+                    out(frame(P::build(|i| field_codes(quants[i], r[i]))))
                 }));
             }
             _ => {}

@@ -34,7 +34,9 @@ use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::words::generic_function;
-use crate::codecs::frames::frame::{FRAME, canonical_tangent, cross, handedness, policy_normal, usable};
+use crate::codecs::frames::frame::{
+    FRAME, TBN, canonical_tangent, cross, handedness, policy_normal, tbn, tbn_doc, usable,
+};
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::toolkit::trig::sincos_pi;
 use crate::model::num::helper;
@@ -85,6 +87,7 @@ impl Family for GodotAxisAngle {
             self.info.edge_policy
         );
         Some(match name {
+            "decode_tbn" => tbn_doc(),
             "decode_float" => vec!["In: the axis's octahedral x and y and the angle, each in [0, 1], as unorm16 fetches of the code return them.".into()],
             "decode" => vec![
                 format!("In: the packed code, vec2<u32>: {CODE}."),
@@ -475,6 +478,7 @@ fn emitted(spec: &Spec) -> Emitted {
     let module = trace_module(|| {
         define_fields("decode_float", &["f"], FRAME, |f: V3<Tf>| axis_angle_to_frame(f));
         define_fields("decode", &["code"], FRAME, |c: V2<Tu>| decode::<Tf>(c));
+        define_fields("decode_tbn", &["code"], TBN, |c: V2<Tu>| tbn(decode::<Tf>(c)));
         define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
             axis_angle_fields(n, t)
         });
@@ -492,6 +496,12 @@ fn emitted(spec: &Spec) -> Emitted {
             Role::Decode,
             Inputs::Codes(QUANTS.to_vec()),
             <F> [] |c: V2<<F as Float>::U>| decode::<F>(c)
+        ),
+        generic_function!(
+            "decode_tbn",
+            Role::Decode,
+            Inputs::Codes(QUANTS.to_vec()),
+            <F> [] |c: V2<<F as Float>::U>| tbn(decode::<F>(c))
         ),
         generic_function!(
             "encode_float",

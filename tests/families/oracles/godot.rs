@@ -31,7 +31,8 @@ use std::f64::consts::PI;
 
 type V3 = [f32; 3];
 
-fn cross(u: V3, v: V3) -> V3 {
+/// `u × v` as Godot's `Vector3::cross` computes it.
+pub fn cross(u: V3, v: V3) -> V3 {
     [
         (u[1] * v[2]) - (u[2] * v[1]),
         (u[2] * v[0]) - (u[0] * v[2]),
@@ -39,7 +40,8 @@ fn cross(u: V3, v: V3) -> V3 {
     ]
 }
 
-fn normalized(v: V3) -> V3 {
+/// Godot's `Vector3::normalized`: zero stays zero.
+pub fn normalized(v: V3) -> V3 {
     let l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     if l2 == 0.0 {
         return [0.0; 3];
