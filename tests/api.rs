@@ -179,7 +179,7 @@ fn frame_batches_compute_the_single_calls_bits() {
         "qtangent64",
         "godot_axis_angle",
         "octangle32",
-        "octangle48p",
+        "octangle48",
         "diamond32",
     ] {
         let batch = FrameBatch::new(spec).unwrap();

@@ -17,16 +17,9 @@ struct Layout {
     words: usize,
 }
 
-const LAYOUTS: [Layout; 6] = [
+const LAYOUTS: [Layout; 3] = [
     Layout {
         spec: "octangle32",
-        axis: 11,
-        turn: 9,
-        diamond: false,
-        words: 1,
-    },
-    Layout {
-        spec: "octangle32p",
         axis: 11,
         turn: 9,
         diamond: false,
@@ -40,21 +33,7 @@ const LAYOUTS: [Layout; 6] = [
         words: 2,
     },
     Layout {
-        spec: "octangle48p",
-        axis: 16,
-        turn: 15,
-        diamond: false,
-        words: 2,
-    },
-    Layout {
         spec: "diamond32",
-        axis: 11,
-        turn: 9,
-        diamond: true,
-        words: 1,
-    },
-    Layout {
-        spec: "diamond32p",
         axis: 11,
         turn: 9,
         diamond: true,

@@ -345,6 +345,48 @@ where
     }
 }
 
+/// `then` applied to the outputs of `first`, as one function named `name`: each
+/// evaluation runs `first`'s over its items and `then`'s over the results, which is bit
+/// for bit the composed body (the intermediate values pass through words unchanged). A
+/// function that is another's plus a cheap step (a frame decoder's TBN columns, a
+/// layout's packing of shared fields) is then compiled once, not once more per caller:
+/// each generic body is four instances (`f32`, [`Dev`], [`F4`], [`F8`]) of everything it
+/// inlines. `eval_dev`'s callers pass one item per call, so its deviation sites follow
+/// each other as in the composed body.
+pub(crate) fn chained(
+    name: &'static str,
+    role: Role,
+    inputs: Inputs,
+    first: &Function,
+    then: &Function,
+) -> Function {
+    assert_eq!(first.out_words, then.in_words, "{name}: the steps' words");
+    let (iw, mw) = (first.in_words, first.out_words);
+    let compose = |a: &crate::codecs::core::function::Eval,
+                   b: &crate::codecs::core::function::Eval|
+     -> crate::codecs::core::function::Eval {
+        let (a, b) = (a.clone(), b.clone());
+        Arc::new(move |i: &[u32], o: &mut [u32]| {
+            let mut mid = vec![0u32; i.len() / iw * mw];
+            a(i, &mut mid);
+            b(&mid, o);
+        })
+    };
+    Function {
+        name,
+        role,
+        inputs,
+        in_words: iw,
+        out_words: then.out_words,
+        eval: compose(&first.eval, &then.eval),
+        eval_dev: compose(&first.eval_dev, &then.eval_dev),
+        eval_lanes: compose(&first.eval_lanes, &then.eval_lanes),
+        eval_lanes8: compose(&first.eval_lanes8, &then.eval_lanes8),
+        enclose: None,
+        parts: Vec::new(),
+    }
+}
+
 // The evaluations are built in modules of their own because rustc compiles a generic
 // function's instances, and its closures', in the codegen unit of the module that defines
 // it, and never splits a module's unit: built in `function` itself, every codec's

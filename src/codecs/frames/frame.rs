@@ -8,7 +8,8 @@
 
 use crate::codecs::core::codec::Params;
 use crate::codecs::core::decode_boxes::{fetched_range, field_codes};
-use crate::codecs::core::function::{Emitted, Enclose, Function, Role};
+use crate::codecs::core::function::{Emitted, Enclose, Function, Inputs, Role};
+use crate::codecs::core::words::{chained, generic_function};
 use crate::codecs::core::spec::Spec;
 use crate::codecs::toolkit::quant::Quant;
 use crate::model::enclosure::Encl;
@@ -35,6 +36,18 @@ pub const TBN: Shape = Shape {
 pub fn tbn<F: Float>((n, t): (V3<F>, V4<F>)) -> (V3<F>, V3<F>, V3<F>) {
     let t3 = V3::new(t.x, t.y, t.z);
     (t3, cross(n, t3) * t.w, n)
+}
+
+/// A frame spec's `decode_tbn`: its packed `decode` chained with [`tbn`]
+/// ([`chained`]), so that the decoder's body is not compiled again.
+pub fn tbn_function(decode: &Function) -> Function {
+    let step = generic_function!(
+        "tbn",
+        Role::Decode,
+        Inputs::Frames,
+        <F> [] |f: (V3<F>, V4<F>)| tbn(f)
+    );
+    chained("decode_tbn", Role::Decode, decode.inputs.clone(), decode, &step)
 }
 
 /// The doc comment of a frame family's `decode_tbn`.

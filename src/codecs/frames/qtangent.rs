@@ -25,7 +25,7 @@ use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::codec::{dequantize, pack, unpack};
 use crate::codecs::core::words::generic_function;
 use crate::codecs::frames::frame::{
-    FRAME, TBN, canonical_tangent, cross, dot, handedness, policy_normal, tbn, tbn_doc, usable,
+    FRAME, TBN, canonical_tangent, cross, dot, handedness, policy_normal, tbn, tbn_doc, tbn_function, usable,
 };
 use crate::codecs::toolkit::quant::{Quant, round_half_away};
 use crate::model::num::helper;
@@ -246,7 +246,7 @@ fn emitted(spec: &Spec) -> Emitted {
         });
         define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| encode(n, t));
     });
-    let functions = vec![
+    let mut functions = vec![
         generic_function!(
             "decode_float",
             Role::DecodeFloat,
@@ -258,12 +258,6 @@ fn emitted(spec: &Spec) -> Emitted {
             Role::Decode,
             Inputs::Codes(QUANTS.to_vec()),
             <F> [] |c: V2<<F as Float>::U>| decode::<F>(c)
-        ),
-        generic_function!(
-            "decode_tbn",
-            Role::Decode,
-            Inputs::Codes(QUANTS.to_vec()),
-            <F> [] |c: V2<<F as Float>::U>| tbn(decode::<F>(c))
         ),
         generic_function!(
             "encode_float",
@@ -278,6 +272,7 @@ fn emitted(spec: &Spec) -> Emitted {
             <F> [] |f: (V3<F>, V4<F>)| encode(f.0, f.1)
         ),
     ];
+    functions.push(tbn_function(&functions[1]));
     crate::codecs::frames::frame::emitted(
         spec,
         module,
