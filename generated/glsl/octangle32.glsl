@@ -80,8 +80,8 @@ vec2 unitpack_octangle32_sincos_pi(float a0) {
 //   the sign (bit 31, set where reflected); b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's
 //   octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n.
 // Out: the frame: n, and t with the bitangent's sign (±1) in t.w; n the octahedral point
-//   normalized, t its stored direction in the plane normalized: each unit within a few 2^-24 and
-//   orthogonal to each other within a few 2^-24.
+//   normalized, t its stored direction in the plane normalized: each unit, and orthogonal to each
+//   other, within 4·10^-6.
 // Portable within a bound (as the header says): each output component is within 584·2^-24 (3.48e-5)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).

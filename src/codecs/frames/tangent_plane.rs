@@ -23,9 +23,9 @@ use crate::codecs::core::info::Info;
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::words::{chained, generic_function};
 use crate::codecs::frames::frame::{FRAME, TBN, cross, handedness, tbn, tbn_doc, tbn_function};
-use crate::codecs::octahedral::oct::{oct_codes, oct_nearest_codes};
+use crate::codecs::octahedral::oct::oct_codes;
 use crate::codecs::toolkit::exact::{canonical, snorm_ratio_within, unit_on_grid};
-use crate::codecs::toolkit::fixed_trig::atan2_pi;
+use crate::codecs::toolkit::fixed_trig::{self, atan2_pi};
 use crate::codecs::toolkit::quant::{Code, Quant};
 use crate::codecs::toolkit::trig::sincos_pi;
 use crate::model::enclosure::Encl;
@@ -79,31 +79,32 @@ pub fn first_axis<F: Float>(branch: F::B, n: V3<F>) -> V3<F> {
     .named("b1")
 }
 
-/// `round(a·b·2^-24)`: one rounded product, an exact scaling and a rounding to an
-/// integer, so a function of `a` and `b` alone that no contraction can reach.
+/// `round(a·b·2^-24)` ([`fixed_trig::mul`] at the unit `2^-24`): one rounded product, an
+/// exact scaling and a rounding to an integer, so a function of `a` and `b` alone that no
+/// contraction can reach.
 #[inline(always)]
-fn mul<F: Float>(a: F, b: F) -> F {
-    (a * b * F::c(1.0 / B_UNIT)).round()
+pub fn fixed_mul<F: Float>(a: F, b: F) -> F {
+    fixed_trig::mul(a, b, fixed_trig::FINE)
 }
 
-/// `a·b` of two fixed-point vectors, each product by [`mul`], the integers summed
+/// `a·b` of two fixed-point vectors, each product by [`fixed_mul`], the integers summed
 /// (exactly, every partial sum below `2^24`).
 #[inline(always)]
-fn fixed_dot<F: Float>(a: V3<F>, b: V3<F>) -> F {
-    mul(a.x, b.x) + mul(a.y, b.y) + mul(a.z, b.z)
+pub fn fixed_dot<F: Float>(a: V3<F>, b: V3<F>) -> F {
+    fixed_mul(a.x, b.x) + fixed_mul(a.y, b.y) + fixed_mul(a.z, b.z)
 }
 
-/// `a × b` of two fixed-point vectors, each product by [`mul`].
+/// `a × b` of two fixed-point vectors, each product by [`fixed_mul`].
 #[inline(always)]
-fn fixed_cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
+pub fn fixed_cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
     V3::new(
-        mul(a.y, b.z) - mul(a.z, b.y),
-        mul(a.z, b.x) - mul(a.x, b.z),
-        mul(a.x, b.y) - mul(a.y, b.x),
+        fixed_mul(a.y, b.z) - fixed_mul(a.z, b.y),
+        fixed_mul(a.z, b.x) - fixed_mul(a.x, b.z),
+        fixed_mul(a.x, b.y) - fixed_mul(a.y, b.x),
     )
 }
 
-/// The normal's octahedral codes (`quant` per axis; the nearest ones where `precise`),
+/// The normal's octahedral codes (`quant` per axis, oct's portable fast encoder),
 /// and the tangent's coordinates `(u, v) = (t·b1, t·b2)` in the basis of the decoded
 /// normal, as integers in units of `2^-21` of the tangent scaled to `[2, 4)`, with
 /// whether the tangent has a direction in the plane (see [`DEGENERATE`]).
@@ -114,13 +115,8 @@ fn fixed_cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
 /// scaling, denormals to zero), rounded to `2^-21`. Every quantity is an integer below
 /// `2^24` held in a float, every product rounded to an integer before it is summed.
 #[inline(always)]
-pub fn projection<F: Float>(quant: Quant, precise: bool, n: V3<F>, t: V4<F>) -> (V2<F>, F, F, F::B) {
-    let codes = if precise {
-        oct_nearest_codes(quant, n)
-    } else {
-        oct_codes(quant, n)
-    }
-    .named("normal");
+pub fn projection<F: Float>(quant: Quant, n: V3<F>, t: V4<F>) -> (V2<F>, F, F, F::B) {
+    let codes = oct_codes(quant, n).named("normal");
     let p = oct_point(codes, quant.max_code());
     let (pc, _) = canonical(p);
     let nn = (unit_on_grid(pc) * F::c(B_UNIT)).named("n");
@@ -258,31 +254,26 @@ impl TangentPlane {
 /// normal keeps the finer share: every pixel's shading reads it directly, while a
 /// tangent error turns a normal map's perturbation only by that error times the sine of
 /// the perturbation's tilt. 48 bits are 16 + 16 + 15 + 1, both errors alike.
-fn quants(turn: Turn, bits: u32) -> &'static [Quant; 4] {
-    const OCTANGLE32: [Quant; 4] = [Quant::Snorm(11), Quant::Snorm(11), Quant::Unorm(9), Quant::Unorm(1)];
-    const OCTANGLE48: [Quant; 4] = [Quant::Snorm(16), Quant::Snorm(16), Quant::Unorm(15), Quant::Unorm(1)];
-    const DIAMOND32: [Quant; 4] = [Quant::Snorm(11), Quant::Snorm(11), Quant::Unorm(9), Quant::Unorm(1)];
-    match (turn, bits) {
-        (Turn::Angle, 32) => &OCTANGLE32,
-        (Turn::Angle, _) => &OCTANGLE48,
-        (Turn::Diamond, _) => &DIAMOND32,
-    }
+fn quants(bits: u32) -> &'static [Quant; 4] {
+    const BITS32: [Quant; 4] = [Quant::Snorm(11), Quant::Snorm(11), Quant::Unorm(9), Quant::Unorm(1)];
+    const BITS48: [Quant; 4] = [Quant::Snorm(16), Quant::Snorm(16), Quant::Unorm(15), Quant::Unorm(1)];
+    if bits == 32 { &BITS32 } else { &BITS48 }
 }
 
 /// The fields the packed encoder stores: the normal's octahedral codes and the tangent's
 /// turn from [`projection`], the sign from [`sign_field`].
 #[inline(always)]
-pub fn encode_fields<F: Float>(turn: Turn, q: &[Quant; 4], precise: bool, n: V3<F>, t: V4<F>) -> V4<F> {
+pub fn encode_fields<F: Float>(turn: Turn, q: &[Quant; 4], n: V3<F>, t: V4<F>) -> V4<F> {
     let k = q[2].bits();
-    let (codes, u, v, usable) = projection(q[0], precise, n, t);
+    let (codes, u, v, usable) = projection(q[0], n, t);
     let a = F::sel(usable, turn.code(k, u, v), F::c(turn.canonical(k)));
     V4::new(codes.x, codes.y, a, sign_field(t)).named("codes")
 }
 
 /// The packed encoder: [`encode_fields`], packed.
 #[inline(always)]
-pub fn encode<F: Float, C: Code<F>>(turn: Turn, q: &[Quant; 4], precise: bool, n: V3<F>, t: V4<F>) -> C {
-    pack(q, encode_fields(turn, q, precise, n, t))
+pub fn encode<F: Float, C: Code<F>>(turn: Turn, q: &[Quant; 4], n: V3<F>, t: V4<F>) -> C {
+    pack(q, encode_fields(turn, q, n, t))
 }
 
 /// The packed decoder: the fields unpacked as integers, then [`frame_of`] of the turn's
@@ -301,14 +292,14 @@ pub fn decode_fields<F: Float>(turn: Turn, q: &[Quant; 4], c: V4<F>) -> (V3<F>, 
 }
 
 pub const EDGE_POLICY: &str = "the normal's code is oct's (a zero, denormal, NaN or infinite normal encodes as +Z); the tangent is taken in the plane orthogonal to the decoded normal (its projection there, which is Gram–Schmidt against that normal); a tangent whose projection is below 2^-13 of its largest component (zero, NaN, infinite, parallel to the normal) encodes as b1, the basis's first axis (+X for the normal +Z); w < 0 is reflected, any other w (0, NaN) is not";
-pub const DECODE_NOTE: &str = "n the octahedral point normalized, t its stored direction in the plane normalized: each unit within a few 2^-24 and orthogonal to each other within a few 2^-24";
+pub const DECODE_NOTE: &str = "n the octahedral point normalized, t its stored direction in the plane normalized: each unit, and orthogonal to each other, within 4·10^-6";
 
 impl Family for TangentPlane {
     fn info(&self) -> &Info {
         &self.info
     }
-    /// Not offered yet. The encoder can take oct's precise search for the normal
-    /// ([`projection`]'s `precise`, portable like oct's), which lowers the 32-bit normal's
+    /// Not offered yet. The normal's code could be oct's precise search
+    /// ([`crate::codecs::octahedral::oct::oct_nearest_codes`], portable), which lowers the 32-bit normal's
     /// sample max from 0.118° to 0.078° (the tangent's turn is already the nearest to its
     /// fixed-point direction); three more specs did not fit the test suite's time budget.
     fn precise(&self) -> bool {
@@ -318,7 +309,7 @@ impl Family for TangentPlane {
         emitted(self.turn, spec)
     }
     fn function_doc(&self, spec: &Spec, name: &str) -> Option<Vec<String>> {
-        let q = quants(self.turn, spec.bits());
+        let q = quants(spec.bits());
         let k = q[2].bits();
         let b = q[0].bits();
         let turn = match self.turn {
@@ -353,15 +344,14 @@ impl Family for TangentPlane {
 }
 
 fn emitted(turn: Turn, spec: &Spec) -> Emitted {
-    let q = quants(turn, spec.bits());
-    let precise = spec.precise();
+    let q = quants(spec.bits());
     // The CPU evaluations chain the layout's packing (per code type, cheap) with bodies
     // compiled once for every size ([`chained`]); the traced functions are whole.
     let fields = generic_function!(
         "encode_fields",
         Role::Encode,
         Inputs::Frames,
-        <F> [turn, q, precise] |f: (V3<F>, V4<F>)| encode_fields(turn, &q, precise, f.0, f.1)
+        <F> [turn, q] |f: (V3<F>, V4<F>)| encode_fields(turn, &q, f.0, f.1)
     );
     let frame = generic_function!(
         "frame",
@@ -375,7 +365,7 @@ fn emitted(turn: Turn, spec: &Spec) -> Emitted {
                 define_fields("decode", &["code"], FRAME, |c: $traced| decode::<Tf, $traced>(turn, q, c));
                 define_fields("decode_tbn", &["code"], TBN, |c: $traced| tbn(decode::<Tf, $traced>(turn, q, c)));
                 define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| -> $traced {
-                    encode(turn, q, precise, n, t)
+                    encode(turn, q, n, t)
                 });
             });
             let unpacked = generic_function!(

@@ -30,7 +30,7 @@ fn units<F: Float>(x: f64, one: f64) -> F {
 
 /// `a·b` of two values in units of `1/one`, rounded to a unit.
 #[inline(always)]
-fn mul<F: Float>(a: F, b: F, one: f64) -> F {
+pub(crate) fn mul<F: Float>(a: F, b: F, one: f64) -> F {
     (a * b * F::c((1.0 / one) as f32)).round()
 }
 
