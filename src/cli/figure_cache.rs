@@ -171,6 +171,11 @@ pub fn format(
     t
 }
 
+/// An f64 written as its bits in hex, as every figure in the file is.
+fn float(s: &str) -> Option<f64> {
+    u64::from_str_radix(s, 16).ok().map(f64::from_bits)
+}
+
 type Parsed = (
     Vec<(u128, Option<Bound>)>,
     Vec<(StatsKey, Option<ErrorStats>)>,
@@ -183,7 +188,6 @@ pub fn parse(text: &str, header: &str) -> Option<Parsed> {
         return None;
     }
     let key = |s: &str| u128::from_str_radix(s, 16).ok();
-    let float = |s: &str| u64::from_str_radix(s, 16).ok().map(f64::from_bits);
     let (mut bounds, mut stats) = (Vec::new(), Vec::new());
     for line in lines {
         let w: Vec<&str> = line.split(' ').collect();
@@ -249,7 +253,6 @@ pub fn format_frames(frames: &[(String, Option<FrameStats>)]) -> String {
 
 /// The frame figures of a file [`parse`] accepted: its well-formed `frames` lines.
 pub fn parse_frames(text: &str) -> Vec<(String, Option<FrameStats>)> {
-    let float = |s: &str| u64::from_str_radix(s, 16).ok().map(f64::from_bits);
     text.lines()
         .filter_map(|line| {
             let w: Vec<&str> = line.split(' ').collect();

@@ -123,6 +123,25 @@ impl LaneIo<8> for F8 {
         };
         [u(x), u(y), u(z)]
     }
+    /// Two loads, two in-lane shuffles and two 64-bit permutes: the words of items
+    /// 0, 1, 4, 5 | 2, 3, 6, 7 gathered per half, then the middle quarters swapped.
+    #[inline(always)]
+    fn u_from_items2(items: &[[u32; 2]; 8]) -> [U8; 2] {
+        let p = items.as_ptr().cast::<f32>();
+        // SAFETY (with `avx!`'s): words `0..8` and `8..16` are the 16 words.
+        let (a, b) = (avx!(_mm256_loadu_ps(p)), avx!(_mm256_loadu_ps(p.add(8))));
+        let lane = {
+            #[inline(always)]
+            |l: __m256| {
+                let q = avx!(_mm256_castps_si256(l));
+                U8(avx!(_mm256_permute4x64_epi64::<0b11_01_10_00>(q)))
+            }
+        };
+        [
+            lane(avx!(_mm256_shuffle_ps::<0b10_00_10_00>(a, b))),
+            lane(avx!(_mm256_shuffle_ps::<0b11_01_11_01>(a, b))),
+        ]
+    }
     /// Six in-lane shuffles and three 128-bit permutes, the inverse of
     /// [`LaneIo::u_from_items3`] above.
     #[inline(always)]

@@ -70,6 +70,12 @@ pub trait LaneIo<const N: usize>: Float {
             *item = std::array::from_fn(|j| words[j][k]);
         }
     }
+    /// `N` items of two words each (64-bit codes) as two lanes, as
+    /// [`LaneIo::u_from_items3`].
+    #[inline(always)]
+    fn u_from_items2(items: &[[u32; 2]; N]) -> [Self::U; 2] {
+        std::array::from_fn(|j| Self::u_from_words(std::array::from_fn(|k| items[k][j])))
+    }
     /// `N` items of seven words each (a decoded frame: `n`, then `t` with the sign) from
     /// seven lanes, as [`LaneIo::u_to_items3`].
     #[inline(always)]

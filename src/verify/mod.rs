@@ -1189,7 +1189,7 @@ fn verify_spec(
                 largest: None,
                 measured: (path.regroups() && ret.kind() == Kind::F32)
                     || (path.contracts()
-                        && spec.family().contracted(spec)
+                        && spec.family().contracted()
                         && crate::codecs::core::ieee::asked(spec)),
             };
             match result

@@ -217,15 +217,20 @@ fn in_groups<L: LaneIo<N>, A: Bits<[u32; N]>, R: Bits<[u32; N]>, const N: usize>
     }
 }
 
-/// One whole group of `N` items (`s`, `N·lanes.len()` words) into lanes. Items of three
-/// words (vectors) take the lanes' own transposes ([`LaneIo::u_from_items3`]), other items
-/// of 1 to 4 words (codes) and of 7 (tangent frames) go through fixed-size arrays
-/// ([`to_lanes_of`]).
+/// One whole group of `N` items (`s`, `N·lanes.len()` words) into lanes. Items of two
+/// words (64-bit codes) and three (vectors) take the lanes' own transposes
+/// ([`LaneIo::u_from_items2`], [`LaneIo::u_from_items3`]), other items of 1 to 4 words
+/// (codes) and of 7 (tangent frames) go through fixed-size arrays ([`to_lanes_of`]).
 #[inline(always)]
 fn to_lanes<L: LaneIo<N>, const N: usize>(s: &[u32], lanes: &mut [[u32; N]]) {
     match lanes.len() {
         1 => to_lanes_of::<1, N>(s, lanes),
-        2 => to_lanes_of::<2, N>(s, lanes),
+        2 => {
+            let items = s.as_chunks::<2>().0.try_into().expect("a whole group");
+            for (lane, u) in lanes.iter_mut().zip(L::u_from_items2(items)) {
+                *lane = L::u_words(u);
+            }
+        }
         3 => {
             let items = s.as_chunks::<3>().0.try_into().expect("a whole group");
             for (lane, u) in lanes.iter_mut().zip(L::u_from_items3(items)) {
