@@ -88,7 +88,8 @@ pub trait LaneIo<const N: usize>: Float {
 }
 
 /// Every operation of the vocabulary on the lanes `a` and `b` (and on their bits as
-/// integers), by name, as raw result bits (masks as 0/1): what
+/// integers), and the word moves between items and lanes ([`LaneIo`]'s transposes, which
+/// the AVX2 lanes override with shuffles), by name, as raw result bits (masks as 0/1): what
 /// `tests/internals/model_lanes.rs` compares with the scalar model for each lane type.
 #[inline(always)]
 pub fn operations<L: LaneIo<N>, const N: usize>(
@@ -102,6 +103,29 @@ pub fn operations<L: LaneIo<N>, const N: usize>(
     let (u, v) = (x.to_bits(), y.to_bits());
     let m = |m: L::B| L::u_words(L::U::sel(m, L::U::c(1), L::U::c(0)));
     let f = |v: L| v.words();
+    // The word moves between items and lanes, on items whose words are `u`, `v` and
+    // words made of them, so that a lane or item out of place shows.
+    let (au, bu) = (a.map(f32::to_bits), b.map(f32::to_bits));
+    let words7: [[u32; N]; 7] = [
+        au,
+        bu,
+        std::array::from_fn(|k| au[k] ^ bu[k]),
+        std::array::from_fn(|k| au[k].wrapping_add(bu[k])),
+        std::array::from_fn(|k| au[k].wrapping_sub(bu[k])),
+        std::array::from_fn(|k| au[k].wrapping_mul(bu[k])),
+        au.map(|w| !w),
+    ];
+    let items2: [[u32; 2]; N] = std::array::from_fn(|k| [au[k], bu[k]]);
+    let items3: [[u32; 3]; N] = std::array::from_fn(|k| [0, 1, 2].map(|j| words7[j][k]));
+    let [i2x, i2y] = L::u_from_items2(&items2).map(L::u_words);
+    let [i3x, i3y, i3z] = L::u_from_items3(&items3).map(L::u_words);
+    let mut back3 = [[0; 3]; N];
+    L::u_to_items3([0, 1, 2].map(|j| L::u_from_words(words7[j])), &mut back3);
+    let mut back7 = [[0; 7]; N];
+    L::u_to_items7(words7.map(L::u_from_words), &mut back7);
+    // Word `j` of every item, as lanes.
+    let item3 = |j: usize| -> [u32; N] { std::array::from_fn(|k| back3[k][j]) };
+    let item7 = |j: usize| -> [u32; N] { std::array::from_fn(|k| back7[k][j]) };
     vec![
         ("fadd", f(x + y)),
         ("fsub", f(x - y)),
@@ -133,6 +157,21 @@ pub fn operations<L: LaneIo<N>, const N: usize>(
         ("shr", L::u_words(u.shr(7))),
         ("shl", L::u_words(u.shl(9))),
         ("usel", L::u_words(L::U::sel(u.lt(v), u, v))),
+        ("items2_0", i2x),
+        ("items2_1", i2y),
+        ("items3_0", i3x),
+        ("items3_1", i3y),
+        ("items3_2", i3z),
+        ("to_items3_0", item3(0)),
+        ("to_items3_1", item3(1)),
+        ("to_items3_2", item3(2)),
+        ("to_items7_0", item7(0)),
+        ("to_items7_1", item7(1)),
+        ("to_items7_2", item7(2)),
+        ("to_items7_3", item7(3)),
+        ("to_items7_4", item7(4)),
+        ("to_items7_5", item7(5)),
+        ("to_items7_6", item7(6)),
     ]
 }
 

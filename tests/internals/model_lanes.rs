@@ -66,6 +66,14 @@ fn scalar(what: &str, a: f32, b: f32) -> u32 {
         "shr" => u >> 7,
         "shl" => u << 9,
         "usel" => u32::sel(u < v, u, v),
+        // The word moves: item k's words are u, v, u ^ v, u + v, u - v, u·v and !u.
+        "items2_0" | "items3_0" | "to_items3_0" | "to_items7_0" => u,
+        "items2_1" | "items3_1" | "to_items3_1" | "to_items7_1" => v,
+        "items3_2" | "to_items3_2" | "to_items7_2" => u ^ v,
+        "to_items7_3" => u.wrapping_add(v),
+        "to_items7_4" => u.wrapping_sub(v),
+        "to_items7_5" => u.wrapping_mul(v),
+        "to_items7_6" => !u,
         _ => panic!("no scalar model for {what}"),
     }
 }
@@ -74,7 +82,11 @@ fn scalar(what: &str, a: f32, b: f32) -> u32 {
 /// model value: the compiler may commute `a + b`, and x86 returns the first operand's
 /// NaN. Every other result is compared as raw bits.
 fn check<const N: usize>(lanes: &str, a: [f32; N], b: [f32; N], got: &[(&str, [u32; N])]) {
-    assert_eq!(got.len(), 30, "{lanes}: every operation is checked");
+    assert_eq!(
+        got.len(),
+        45,
+        "{lanes}: every operation and word move is checked"
+    );
     for (what, got) in got {
         for k in 0..N {
             let want = scalar(what, a[k], b[k]);

@@ -38,6 +38,10 @@ pub fn tbn<F: Float>((n, t): (V3<F>, V4<F>)) -> (V3<F>, V3<F>, V3<F>) {
     (t3, cross(n, t3) * t.w, n)
 }
 
+/// The name of every frame spec's TBN decoder ([`tbn_function`]), by which
+/// [`emitted`] gives it the enclosure of the TBN's nine outputs.
+pub const TBN_DECODER: &str = "decode_tbn";
+
 /// A frame spec's `decode_tbn`: its packed `decode` chained with [`tbn`]
 /// ([`chained`]), so that the decoder's body is not compiled again.
 pub fn tbn_function(decode: &Function) -> Function {
@@ -47,7 +51,7 @@ pub fn tbn_function(decode: &Function) -> Function {
         Inputs::Frames,
         <F> [] |f: (V3<F>, V4<F>)| tbn(f)
     );
-    chained("decode_tbn", Role::Decode, decode.inputs.clone(), decode, &step)
+    chained(TBN_DECODER, Role::Decode, decode.inputs.clone(), decode, &step)
 }
 
 /// The doc comment of a frame family's `decode_tbn`.
@@ -178,7 +182,11 @@ pub fn emitted<P: Params<Encl> + 'static>(
             }
             Role::Decode => {
                 let frame = codes.clone();
-                let out = if f.out_words == 9 { tbn_lanes } else { lanes };
+                let out = if f.name == TBN_DECODER {
+                    tbn_lanes
+                } else {
+                    lanes
+                };
                 f.enclose = enclose(Arc::new(move |r: &[(i64, i64)]| {
                     out(frame(P::build(|i| field_codes(quants[i], r[i]))))
                 }));

@@ -35,7 +35,7 @@ use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::words::generic_function;
 use crate::codecs::frames::frame::{
-    FRAME, TBN, canonical_tangent, cross, handedness, policy_normal, tbn, tbn_doc, tbn_function, usable,
+    FRAME, TBN, canonical_tangent, cross, handedness, policy_normal, tbn, TBN_DECODER, tbn_doc, tbn_function, usable,
 };
 use crate::codecs::toolkit::quant::Quant;
 use crate::codecs::toolkit::trig::sincos_pi;
@@ -87,7 +87,7 @@ impl Family for GodotAxisAngle {
             self.info.edge_policy
         );
         Some(match name {
-            "decode_tbn" => tbn_doc(),
+            TBN_DECODER => tbn_doc(),
             "decode_float" => vec!["In: the axis's octahedral x and y and the angle, each in [0, 1], as unorm16 fetches of the code return them.".into()],
             "decode" => vec![
                 format!("In: the packed code, vec2<u32>: {CODE}."),
@@ -478,7 +478,7 @@ fn emitted(spec: &Spec) -> Emitted {
     let module = trace_module(|| {
         define_fields("decode_float", &["f"], FRAME, |f: V3<Tf>| axis_angle_to_frame(f));
         define_fields("decode", &["code"], FRAME, |c: V2<Tu>| decode::<Tf>(c));
-        define_fields("decode_tbn", &["code"], TBN, |c: V2<Tu>| tbn(decode::<Tf>(c)));
+        define_fields(TBN_DECODER, &["code"], TBN, |c: V2<Tu>| tbn(decode::<Tf>(c)));
         define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
             axis_angle_fields(n, t)
         });

@@ -25,7 +25,7 @@ use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::codec::{dequantize, pack, unpack};
 use crate::codecs::core::words::generic_function;
 use crate::codecs::frames::frame::{
-    FRAME, TBN, canonical_tangent, cross, dot, handedness, policy_normal, tbn, tbn_doc, tbn_function, usable,
+    FRAME, TBN, canonical_tangent, cross, dot, handedness, policy_normal, tbn, TBN_DECODER, tbn_doc, tbn_function, usable,
 };
 use crate::codecs::toolkit::quant::{Quant, round_half_away};
 use crate::model::num::helper;
@@ -74,7 +74,7 @@ impl Family for QTangent {
             self.info.edge_policy
         );
         Some(match name {
-            "decode_tbn" => tbn_doc(),
+            TBN_DECODER => tbn_doc(),
             "decode_float" => vec!["In: the quaternion (x, y, z, w) in [-1, 1], as a snorm16 fetch of the code returns it.".into()],
             "decode" => vec![
                 format!("In: the packed code, vec2<u32>: {CODE}."),
@@ -240,7 +240,7 @@ fn emitted(spec: &Spec) -> Emitted {
     let module = trace_module(|| {
         define_fields("decode_float", &["q"], FRAME, |q: V4<Tf>| to_tangent_frame(q));
         define_fields("decode", &["code"], FRAME, |c: V2<Tu>| decode::<Tf>(c));
-        define_fields("decode_tbn", &["code"], TBN, |c: V2<Tu>| tbn(decode::<Tf>(c)));
+        define_fields(TBN_DECODER, &["code"], TBN, |c: V2<Tu>| tbn(decode::<Tf>(c)));
         define("encode_float", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| {
             pack_tangent_frame(n, t)
         });

@@ -22,7 +22,7 @@ use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::codecs::core::info::Info;
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::words::{chained, generic_function};
-use crate::codecs::frames::frame::{FRAME, TBN, cross, handedness, tbn, tbn_doc, tbn_function};
+use crate::codecs::frames::frame::{FRAME, TBN, cross, handedness, tbn, TBN_DECODER, tbn_doc, tbn_function};
 use crate::codecs::octahedral::oct::oct_codes;
 use crate::codecs::toolkit::exact::{canonical, snorm_ratio_within, unit_on_grid};
 use crate::codecs::toolkit::fixed_trig::{self, atan2_pi};
@@ -327,7 +327,7 @@ impl Family for TangentPlane {
         };
         let basis = "b1 = (n.y, -n.x, 0) where |n.y| > |n.z| on the code's octahedral point, else (n.z, 0, -n.x), and b2 = n × b1, of the decoded normal n";
         Some(match name {
-            "decode_tbn" => tbn_doc(),
+            TBN_DECODER => tbn_doc(),
             "decode" => vec![
                 format!("In: the packed code, {ty}: {layout}; {basis}."),
                 format!("Out: the frame: n, and t with the bitangent's sign (±1) in t.w; {}.", self.info.decode_note),
@@ -363,7 +363,7 @@ fn emitted(turn: Turn, spec: &Spec) -> Emitted {
         ($code:ty, $traced:ty) => {{
             let module = trace_module(|| {
                 define_fields("decode", &["code"], FRAME, |c: $traced| decode::<Tf, $traced>(turn, q, c));
-                define_fields("decode_tbn", &["code"], TBN, |c: $traced| tbn(decode::<Tf, $traced>(turn, q, c)));
+                define_fields(TBN_DECODER, &["code"], TBN, |c: $traced| tbn(decode::<Tf, $traced>(turn, q, c)));
                 define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| -> $traced {
                     encode(turn, q, n, t)
                 });
