@@ -19,7 +19,7 @@ pub mod tools;
 use crate::codecs::Spec;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::function::first_with_same_code;
-use crate::codecs::core::function::{Function, Inputs, Width};
+use crate::codecs::core::function::{Eval, Function, Inputs, Width};
 use crate::emit::lang::glsl::precise_macro;
 use crate::emit::lang::{KernelFn, Returns};
 use crate::emit::{DEFAULT_PREFIX, Lang, render};
@@ -30,6 +30,7 @@ use anyhow::Result;
 use gpu::{Adapter, Gpu, Shader};
 use std::collections::HashMap;
 use std::fmt;
+use std::sync::Arc;
 use tools::{GlslangInput, HlslOpt};
 
 /// One way emitted code reaches the driver.
@@ -1063,6 +1064,10 @@ fn verify_spec(
         _ => Vec::new(),
     };
     let mut last_inputs: Option<(Inputs, usize, Vec<u32>)> = None;
+    // The first steps of chained functions ([`Stages`]) evaluated on the inputs drawn
+    // last, with the model that computed them: a step several functions begin with runs
+    // once for all of them.
+    let mut firsts: Vec<(Eval, Vec<u32>)> = Vec::new();
     for (index, f) in e.functions.iter().enumerate() {
         bar.set_message(format!("{spec} {}", f.name));
         if let Some(owner) = &shared[index] {
@@ -1095,9 +1100,39 @@ fn verify_spec(
                 f.in_words,
                 inputs::generate(&f.inputs, f.in_words),
             ));
+            firsts.clear();
         }
         let input: &[u32] = &last_inputs.as_ref().expect("drawn just above").2;
-        expected_into(f, input, want_buf);
+        match &f.stages {
+            Some(s) => {
+                let at = match firsts.iter().position(|(e, _)| Arc::ptr_eq(e, &s.first)) {
+                    Some(at) => at,
+                    None => {
+                        let mut mid = vec![0; input.len() / f.in_words * s.mid_words];
+                        on_all_cores(input, &mut mid, f.in_words, s.mid_words, |i, o| {
+                            (s.first)(i, o)
+                        });
+                        firsts.push((s.first.clone(), mid));
+                        firsts.len() - 1
+                    }
+                };
+                want_buf.clear();
+                want_buf.resize(input.len() / f.in_words * f.out_words, 0);
+                on_all_cores(&firsts[at].1, want_buf, s.mid_words, f.out_words, |i, o| {
+                    (s.then)(i, o)
+                });
+            }
+            None => expected_into(f, input, want_buf),
+        }
+        // A later function that begins with this one finds its outputs.
+        let begins_later = e.functions[index + 1..].iter().any(|g| {
+            g.stages
+                .as_ref()
+                .is_some_and(|s| Arc::ptr_eq(&s.first, &f.eval))
+        });
+        if begins_later && !firsts.iter().any(|(e, _)| Arc::ptr_eq(e, &f.eval)) {
+            firsts.push((f.eval.clone(), want_buf.clone()));
+        }
         let want: &[u32] = want_buf;
         // Each sample size the paths ask for, drawn once.
         let mut samples: Vec<(usize, Sample)> = Vec::new();

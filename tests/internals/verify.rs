@@ -195,3 +195,44 @@ fn naga_glsl_out_needs_lane_wise_integer_selects() {
         assert!(r.is_ok(), "{spec} {path}: {r:?}");
     }
 }
+
+/// A chained function's two steps ([`unitpack::codecs::core::function::Stages`]), which
+/// `verify` evaluates apart so that functions beginning with the same step run it once,
+/// compute its model's bits; a precise spec's encoders all begin with the same search,
+/// and a frame's TBN decoder with its decoder.
+#[test]
+fn chained_steps_compute_their_functions_bits() {
+    use std::sync::Arc;
+    use unitpack::codecs::core::inputs;
+    let (mut staged, mut shared) = (0, 0);
+    for spec in unitpack::doc_tables::codec_specs() {
+        let e = spec.emitted();
+        for f in &e.functions {
+            let Some(s) = &f.stages else { continue };
+            staged += 1;
+            let input = inputs::generate(&f.inputs, f.in_words);
+            let input = &input[..input.len().min(1024 * f.in_words)];
+            let items = input.len() / f.in_words;
+            let mut mid = vec![0; items * s.mid_words];
+            (s.first)(input, &mut mid);
+            let mut got = vec![0; items * f.out_words];
+            (s.then)(&mid, &mut got);
+            assert!(
+                got == expected(f, input),
+                "{spec} {}: its steps differ from its model",
+                f.name
+            );
+        }
+        // A precise spec's encoders begin with one search.
+        let first = |name: &str| {
+            let f = e.functions.iter().find(|f| f.name == name)?;
+            Some(f.stages.as_ref()?.first.clone())
+        };
+        if let (true, Some(a), Some(b)) = (spec.precise(), first("encode"), first("encode_float")) {
+            assert!(Arc::ptr_eq(&a, &b), "{spec}: its encoders search apart");
+            shared += 1;
+        }
+    }
+    assert!(shared >= 100, "only {shared} precise specs search once");
+    assert!(staged > 100, "only {staged} chained functions");
+}

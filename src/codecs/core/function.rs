@@ -148,6 +148,21 @@ pub struct Function {
     /// For a CPU-only [`Emitted::cpu`] function: the emitted functions it chains around
     /// its table fetch, whose costs add up to its own.
     pub parts: Vec<&'static str>,
+    /// For a function made of two steps ([`crate::codecs::core::words::chained`]): the
+    /// steps' `f32` models, so that `verify` runs a first step several functions of a
+    /// spec share (a precise encoder's search, a frame's decoder) once for all of them.
+    pub stages: Option<Stages>,
+}
+
+/// The two steps of a chained [`Function`]'s `f32` model: `eval` is `then` over the
+/// outputs of `first`, bit for bit, since the words between carry the values unchanged.
+/// Two functions begin with the same step exactly when their `first` is the same [`Arc`].
+#[derive(Clone)]
+pub struct Stages {
+    pub first: Eval,
+    /// Words per item between the steps.
+    pub mid_words: usize,
+    pub then: Eval,
 }
 
 impl Function {

@@ -7,7 +7,7 @@ use crate::codecs::core::function::{
     Emitted, Enclose, Eval, Function, Inputs, LanesEval, Role, WordsMap,
 };
 use crate::codecs::core::spec::Spec;
-use crate::codecs::core::words::{Bits, Lanes, Lanes8, generic_function};
+use crate::codecs::core::words::{Bits, Lanes, Lanes8, chained, generic_function};
 use crate::model::Float;
 use crate::model::V3;
 use crate::model::avx2_lanes::F8;
@@ -37,27 +37,31 @@ where
         || trace_codec(&c, precise),
     );
     let mut functions = codec_decoders(&c);
-    functions.extend([
-        generic_function!(
-            "encode_float",
-            Role::EncodeFloat,
-            Inputs::Vectors,
-            <F> [c] |v: V3<F>| encode_float(&c, precise, v)
-        ),
-        generic_function!(
-            "encode",
-            Role::Encode,
-            Inputs::Vectors,
-            <F> [c] |v: V3<F>| encode_packed(&c, precise, v)
-        ),
-    ]);
-    if let Some(name) = c.alternate() {
-        functions.push(generic_function!(
-            name,
-            Role::Encode,
-            Inputs::Vectors,
-            <F> [c] |v: V3<F>| encode_alternate(&c, precise, v)
-        ));
+    if precise {
+        functions.extend(precise_encoders(&c));
+    } else {
+        functions.extend([
+            generic_function!(
+                "encode_float",
+                Role::EncodeFloat,
+                Inputs::Vectors,
+                <F> [c] |v: V3<F>| encode_float(&c, false, v)
+            ),
+            generic_function!(
+                "encode",
+                Role::Encode,
+                Inputs::Vectors,
+                <F> [c] |v: V3<F>| encode_packed(&c, false, v)
+            ),
+        ]);
+        if let Some(name) = c.alternate() {
+            functions.push(generic_function!(
+                name,
+                Role::Encode,
+                Inputs::Vectors,
+                <F> [c] |v: V3<F>| encode_alternate(&c, false, v)
+            ));
+        }
     }
     Emitted {
         module,
@@ -70,6 +74,67 @@ where
         },
         cpu: Vec::new(),
     }
+}
+
+/// A precise spec's `encode_float`, `encode` and alternate encoder: the search
+/// ([`Codec::precise_codes`]) chained with the cheap step each makes of its codes
+/// ([`chained`]), which is bit for bit [`encode_float`], [`encode_packed`] and
+/// [`encode_alternate`] with `precise` set. The search, the costliest body of the
+/// catalogue, is then compiled once per spec rather than once per encoder, and `verify`
+/// runs it once for the three.
+fn precise_encoders<C: Codec + Clone + 'static>(c: &C) -> Vec<Function>
+where
+    C::P<f32>: Bits,
+    C::C<f32>: Bits,
+    C::P<Dev>: Bits,
+    C::C<Dev>: Bits,
+    C::P<F4>: Bits<Lanes>,
+    C::C<F4>: Bits<Lanes>,
+    C::P<F8>: Bits<Lanes8>,
+    C::C<F8>: Bits<Lanes8>,
+{
+    let search = generic_function!(
+        "encode_codes",
+        Role::Encode,
+        Inputs::Vectors,
+        <F> [c] |v: V3<F>| c.precise_codes(v)
+    );
+    let step = |name, role, then: Function| chained(name, role, Inputs::Vectors, &search, &then);
+    let mut functions = vec![
+        step(
+            "encode_float",
+            Role::EncodeFloat,
+            generic_function!(
+                "dequantize",
+                Role::EncodeFloat,
+                Inputs::Vectors,
+                <F> [c] |p: C::P<F>| dequantize(&c.quants(), p)
+            ),
+        ),
+        step(
+            "encode",
+            Role::Encode,
+            generic_function!(
+                "pack",
+                Role::Encode,
+                Inputs::Vectors,
+                <F> [c] |p: C::P<F>| pack::<F, C::P<F>, C::C<F>>(&c.quants(), p)
+            ),
+        ),
+    ];
+    if let Some(name) = c.alternate() {
+        functions.push(step(
+            name,
+            Role::Encode,
+            generic_function!(
+                "pack_alternate",
+                Role::Encode,
+                Inputs::Vectors,
+                <F> [c] |p: C::P<F>| pack::<F, C::P<F>, C::C<F>>(&c.quants(), c.alternate_codes(p))
+            ),
+        ));
+    }
+    functions
 }
 
 /// A codec's `decode_float` and `decode`, with the enclosures their bounds are proven
@@ -237,6 +302,7 @@ pub fn through_table(
         eval_lanes8: lanes.chain(&first.eval_lanes8, &second.eval_lanes8),
         enclose: None,
         parts: vec![first.name, second.name],
+        stages: None,
     }
 }
 

@@ -3,7 +3,7 @@
 //! the adversarial `Dev`, and four or eight SIMD lanes, moving items between memory and
 //! lanes a whole group at a time.
 
-use crate::codecs::core::function::{Function, Inputs, Role};
+use crate::codecs::core::function::{Function, Inputs, Role, Stages};
 use crate::model::avx2_lanes::{self, F8, WIDTH};
 use crate::model::deviant::{Dev, DevU};
 use crate::model::lanes::{F4, LaneIo, U4};
@@ -347,6 +347,7 @@ where
         eval_lanes8: eight::eval(name, f_lanes8),
         enclose: None,
         parts: Vec::new(),
+        stages: None,
     }
 }
 
@@ -372,9 +373,17 @@ pub(crate) fn chained(
      -> crate::codecs::core::function::Eval {
         let (a, b) = (a.clone(), b.clone());
         Arc::new(move |i: &[u32], o: &mut [u32]| {
-            let mut mid = vec![0u32; i.len() / iw * mw];
-            a(i, &mut mid);
-            b(&mid, o);
+            // One item per call (`eval_dev`'s callers, `portability`) stays on the stack.
+            let words = i.len() / iw * mw;
+            let (mut small, mut large) = ([0u32; 64], Vec::new());
+            let mid = if words <= small.len() {
+                &mut small[..words]
+            } else {
+                large.resize(words, 0);
+                &mut large[..]
+            };
+            a(i, mid);
+            b(mid, o);
         })
     };
     Function {
@@ -389,6 +398,11 @@ pub(crate) fn chained(
         eval_lanes8: compose(&first.eval_lanes8, &then.eval_lanes8),
         enclose: None,
         parts: Vec::new(),
+        stages: Some(Stages {
+            first: first.eval.clone(),
+            mid_words: mw,
+            then: then.eval.clone(),
+        }),
     }
 }
 
