@@ -177,6 +177,7 @@ fn frame_batches_compute_the_single_calls_bits() {
     assert_ne!(frames.len() % 8, 0, "a partial group");
     for spec in [
         "qtangent64",
+        "qtangent32",
         "godot_axis_angle",
         "octangle32",
         "octangle48",

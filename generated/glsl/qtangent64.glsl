@@ -20,10 +20,12 @@
 #define UNITPACK_PRECISE
 #endif
 
-// ---- qtangent64: Filament's quaternion tangent frame, SHORT4, 64 bits ----
+// ---- qtangent64: quaternion tangent frame (64 bits: Filament's SHORT4; 32: smallest three), 64
+//   bits ----
 // Source: Filament at google/filament 03c2a90: libs/math/include/math/mat3.h (packTangentFrame),
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
-//   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame).
+//   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
+//   three (the largest component dropped, its index stored).
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent

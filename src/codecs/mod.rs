@@ -120,7 +120,7 @@ registry! {
     }
     /// Tangent frames: a normal, a tangent and the bitangent's sign in one code, decoded
     /// to the struct `frame` of `n` and `t` (the sign in `t.w`).
-    frames (frame, tangent_plane) {
+    frames (frame, smallest_three, tangent_plane) {
         qtangent [QTANGENT];
         godot [GODOT];
         octangle [OCTANGLE];

@@ -1224,7 +1224,7 @@ fn verify_spec(
                 largest: None,
                 measured: (path.regroups() && ret.kind() == Kind::F32)
                     || (path.contracts()
-                        && spec.family().contracted()
+                        && spec.family().contracted(spec)
                         && crate::codecs::core::ieee::asked(spec)),
             };
             match result

@@ -105,7 +105,7 @@ fn encode_and_decode_round_trip_for_every_codec() {
         // The seed's method 3a tables misread its own codes near the poles by several
         // degrees (README, "The first seed's method 3a"; sample max 7.2°), with either encoder.
         // meshoptimizer's words hold K-bit coordinates: its direction has 2K bits.
-        let direction_bits = match spec.family().engine() {
+        let direction_bits = match spec.family().engine(spec) {
             Some("meshoptimizer") => 2 * spec.number(0) as u32,
             _ => spec.bits(),
         };
@@ -453,6 +453,7 @@ fn frame_specs_stream_frames() {
         .collect();
     for (spec, digits) in [
         ("qtangent64", 16),
+        ("qtangent32", 8),
         ("godot_axis_angle", 12),
         ("octangle32", 8),
         ("octangle48", 12),

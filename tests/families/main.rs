@@ -15,6 +15,7 @@ mod oct;
 mod oracles;
 mod qtangent;
 mod sfib;
+mod smallest_three;
 mod snorm12x2;
 mod snorm3;
 mod spherical_lut;

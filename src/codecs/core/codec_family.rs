@@ -89,7 +89,7 @@ impl<C: Codec + 'static> Family for CodecFamily<C> {
     fn helper_doc(&self, name: &str) -> Option<String> {
         (self.helper_doc)(name)
     }
-    fn engine(&self) -> Option<&'static str> {
+    fn engine(&self, _spec: &Spec) -> Option<&'static str> {
         self.engine
     }
 }

@@ -42,10 +42,13 @@ pub const ENGINE_OPTION: OptDesc = OptDesc {
     kind: OptKind::Choice(&["ieee"]),
 };
 
-/// Whether the spec asks for the lean tier (an engine format always does).
+/// Whether the spec asks for the lean tier. An engine's format always does, whether its
+/// family offers the `guarantee` option ([`ENGINE_OPTION`]) or, where the family's other
+/// sizes are not an engine's (`qtangent32` beside Filament's `qtangent64`), not.
 pub fn asked(spec: &Spec) -> bool {
     let info = spec.info();
-    info.option_index(OPTION.key).is_some_and(|i| {
+    spec.family().engine(spec).is_some()
+        || info.option_index(OPTION.key).is_some_and(|i| {
         matches!(info.options[i].kind, OptKind::Choice(names) if names[spec.choice(i)] == "ieee")
     })
 }

@@ -425,7 +425,7 @@ pub trait Family: Sync + 'static {
     /// The engine whose stored bits an engine format reproduces ([`crate::codecs::engine`]):
     /// its degenerate input and its rounding are that engine's, not the catalogue's
     /// conventions.
-    fn engine(&self) -> Option<&'static str> {
+    fn engine(&self, _spec: &Spec) -> Option<&'static str> {
         None
     }
     /// Whether the family codes tangent frames ([`crate::codecs::frames`]): its encoders
@@ -440,7 +440,7 @@ pub trait Family: Sync + 'static {
     /// outputs are measured, not held; the lean tier promises nothing where operations are
     /// contracted. Filament's frame arithmetic (cross products, `extractQuat`) does;
     /// every other family's outputs are held there too.
-    fn contracted(&self) -> bool {
+    fn contracted(&self, _spec: &Spec) -> bool {
         false
     }
     /// What the family's encoders take, as `list` and the docs name it: its domain

@@ -79,6 +79,27 @@ pub fn cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
     )
 }
 
+/// The third and first columns of the rotation matrix of the unit quaternion `q`, `n` and
+/// `t`, as Filament's `toTangentFrame` (shaders/src/common_math.glsl) computes them: written as its vector expressions
+/// evaluate lane by lane, without its additions of literal zeros (which change nothing
+/// but the sign of a zero result).
+#[inline(always)]
+pub fn rotation_columns<F: Float>(q: V4<F>) -> (V3<F>, V3<F>) {
+    let two = F::c(2.0);
+    let (x2, y2, z2) = ((two * q.x).named("x2"), (two * q.y).named("y2"), (two * q.z).named("z2"));
+    let n = V3::new(
+        x2 * q.z + y2 * q.w,
+        y2 * q.z - x2 * q.w,
+        F::c(1.0) - x2 * q.x - y2 * q.y,
+    );
+    let t = V3::new(
+        F::c(1.0) - y2 * q.y - z2 * q.z,
+        y2 * q.x + z2 * q.w,
+        z2 * q.x - y2 * q.w,
+    );
+    (n, t)
+}
+
 /// `a · b`, summed left to right.
 #[inline(always)]
 pub fn dot<F: Float>(a: V3<F>, b: V3<F>) -> F {

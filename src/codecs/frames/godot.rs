@@ -77,7 +77,7 @@ impl Family for GodotAxisAngle {
     fn emitted(&self, spec: &Spec) -> Emitted {
         emitted(spec)
     }
-    fn engine(&self) -> Option<&'static str> {
+    fn engine(&self, _spec: &Spec) -> Option<&'static str> {
         Some("Godot")
     }
     fn function_doc(&self, _spec: &Spec, name: &str) -> Option<Vec<String>> {
@@ -108,7 +108,7 @@ impl Family for GodotAxisAngle {
     }
     /// Cross products, the rotation's sums of products and fdlibm's polynomials: Mesa's
     /// OpenGL compiler fuses them without `precise`.
-    fn contracted(&self) -> bool {
+    fn contracted(&self, _spec: &Spec) -> bool {
         true
     }
 }

@@ -1,4 +1,4 @@
-//! Filament's quaternion tangent frames: `packTangentFrame` (libs/math/include/math/mat3.h)
+//! Quaternion tangent frames. `qtangent64` is Filament's: `packTangentFrame` (libs/math/include/math/mat3.h)
 //! stored as SHORT4 by `packSnorm16` (libs/math/include/math/norm.h), as
 //! `SurfaceOrientation::buildWithSuppliedTangents` (libs/geometry/src/SurfaceOrientation.cpp)
 //! builds them from a normal and a glTF tangent, and decoded by `toTangentFrame`
@@ -16,17 +16,22 @@
 //! Filament user passes (a unit normal, a tangent off it, `w = ±1`), and gives the
 //! degenerate frames Filament leaves undefined (zero or NaN vectors, a tangent parallel
 //! to the normal, `w` of 0 or NaN) a stated frame.
+//!
+//! `qtangent32` is the same rotation in 32 bits, smallest three, with a portable encoder
+//! of its own ([`crate::codecs::frames::smallest_three`]); its decoder ends in the same
+//! rotation columns as Filament's ([`crate::codecs::frames::frame::rotation_columns`]).
 
 use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::model::enclosure::Encl;
-use crate::codecs::core::ieee;
 use crate::codecs::core::info::{Info, Sizes};
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::codec::{dequantize, pack, unpack};
 use crate::codecs::core::words::generic_function;
 use crate::codecs::frames::frame::{
-    FRAME, TBN, canonical_tangent, cross, dot, handedness, policy_normal, tbn, TBN_DECODER, tbn_doc, tbn_function, usable,
+    FRAME, TBN, TBN_DECODER, canonical_tangent, cross, dot, handedness, policy_normal, rotation_columns,
+    tbn, tbn_doc, tbn_function, usable,
 };
+use crate::codecs::frames::smallest_three;
 use crate::codecs::toolkit::quant::{Quant, round_half_away};
 use crate::model::num::helper;
 use crate::model::trace::{Tf, Tu, define, define_fields, trace_module};
@@ -38,17 +43,19 @@ const QUANTS: [Quant; 4] = [Quant::Snorm(16); 4];
 pub static QTANGENT: QTangent = QTangent {
     info: Info {
         name: "qtangent",
-        title: "Filament's quaternion tangent frame, SHORT4",
-        sizes: Sizes::Total(&[64]),
+        title: "quaternion tangent frame (64 bits: Filament's SHORT4; 32: smallest three)",
+        sizes: Sizes::Total(&[32, 64]),
         domain: None,
-        source: "Filament at google/filament 03c2a90: libs/math/include/math/mat3.h (packTangentFrame), TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame)",
+        source: "Filament at google/filament 03c2a90: libs/math/include/math/mat3.h (packTangentFrame), TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest three (the largest component dropped, its index stored)",
         edge_policy: "Filament's arithmetic for every frame it defines; w of 0 or NaN counts as +1; a normal with |x| + |y| + |z| below 2^-60 (zero, denormal), NaN or infinite encodes as +Z; a normal of squared length outside [2^-20, 2^20] is first divided by its largest component; a tangent whose orthogonalised squared length is below 2^-60 or not finite (zero, NaN, infinite, parallel to the normal) is replaced by the canonical tangent of Duff et al. (2017)",
         decode_note: "Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and orthogonal to the quaternion's quantization (a few 2^-15)",
-        options: &[ieee::ENGINE_OPTION],
+        // No `guarantee` option: qtangent64 is Filament's arithmetic (the lean tier,
+        // `ieee::asked` by its engine), qtangent32 portable.
+        options: &[],
     },
 };
 
-/// The qtangent family (one size, 64 bits).
+/// The qtangent family: Filament's 64 bits, and smallest three in 32.
 pub struct QTangent {
     info: Info,
 }
@@ -57,17 +64,26 @@ impl Family for QTangent {
     fn info(&self) -> &Info {
         &self.info
     }
-    /// Filament's encoder is the only one: the codes are Filament's.
+    /// At 64 bits Filament's encoder is the only one: the codes are Filament's. At 32 bits
+    /// not offered yet: a search among the neighbouring codes of the three kept
+    /// components would lower the error; no precise spec fits the suite's time budget.
     fn precise(&self) -> bool {
         false
     }
     fn emitted(&self, spec: &Spec) -> Emitted {
-        emitted(spec)
+        if spec.bits() == 32 {
+            emitted32(spec)
+        } else {
+            emitted(spec)
+        }
     }
-    fn engine(&self) -> Option<&'static str> {
-        Some("Filament")
+    fn engine(&self, spec: &Spec) -> Option<&'static str> {
+        (spec.bits() == 64).then_some("Filament")
     }
-    fn function_doc(&self, _spec: &Spec, name: &str) -> Option<Vec<String>> {
+    fn function_doc(&self, spec: &Spec, name: &str) -> Option<Vec<String>> {
+        if spec.bits() == 32 {
+            return Some(doc32(name));
+        }
         const CODE: &str = "word 0 holds x (bits 0–15) and y (bits 16–31), word 1 z and w, each snorm16 (two's complement): Filament's SHORT4 as stored";
         let input = format!(
             "In: a normal n and a tangent t whose w is the bitangent's sign (glTF's convention: bitangent = cross(n, t.xyz)·t.w); {}.",
@@ -93,11 +109,11 @@ impl Family for QTangent {
     fn frames(&self) -> bool {
         true
     }
-    /// Cross products and `extractQuat`'s sums of products: Mesa's OpenGL compiler fuses
-    /// them without `precise` (`unitpack verify qtangent64` on Mesa 22.3.6's llvmpipe: 42
-    /// of 65536 sampled codes moved).
-    fn contracted(&self) -> bool {
-        true
+    /// Filament's cross products and `extractQuat`'s sums of products: Mesa's OpenGL
+    /// compiler fuses them without `precise` (`unitpack verify qtangent64` on Mesa
+    /// 22.3.6's llvmpipe: 42 of 65536 sampled codes moved). qtangent32's encoder is exact.
+    fn contracted(&self, spec: &Spec) -> bool {
+        spec.bits() == 64
     }
 }
 
@@ -207,26 +223,13 @@ pub fn encode<F: Float>(n: V3<F>, t: V4<F>) -> V2<F::U> {
 }
 
 /// Filament's `toTangentFrame(q, n, t)` and the sign of `q.w` as `t.w`, for fetched
-/// quaternion components (`decode_float`). Written as Filament's vector expressions
-/// evaluate lane by lane, without its additions of literal zeros (which change nothing
-/// but the sign of a zero result).
+/// quaternion components (`decode_float`).
 #[inline(always)]
 pub fn to_tangent_frame<F: Float>(q: V4<F>) -> (V3<F>, V4<F>) {
-    let two = F::c(2.0);
-    let (x2, y2, z2) = ((two * q.x).named("x2"), (two * q.y).named("y2"), (two * q.z).named("z2"));
-    let n = V3::new(
-        x2 * q.z + y2 * q.w,
-        y2 * q.z - x2 * q.w,
-        F::c(1.0) - x2 * q.x - y2 * q.y,
-    );
-    let t = V4::new(
-        F::c(1.0) - y2 * q.y - z2 * q.z,
-        y2 * q.x + z2 * q.w,
-        z2 * q.x - y2 * q.w,
-        handedness(q.w),
-    );
-    (n, t)
+    let (n, t) = rotation_columns(q);
+    (n, V4::new(t.x, t.y, t.z, handedness(q.w)))
 }
+
 
 /// The packed decoder: the four snorm16 fields fetched (`max(c·fl(1/32767), -1)`), then
 /// [`to_tangent_frame`], written out here (a helper returns one value, a frame two).
@@ -281,5 +284,55 @@ fn emitted(spec: &Spec) -> Emitted {
         Some(|p: V4<Encl>| to_tangent_frame(p)),
         |c: V4<Encl>| to_tangent_frame(dequantize(&QUANTS, c)),
         false,
+    )
+}
+
+/// The doc comments of qtangent32's functions.
+fn doc32(name: &str) -> Vec<String> {
+    const CODE: &str = "u32: the three kept components, √2 times each as snorm10 (bits 0–9), snorm10 (bits 10–19) and snorm9 (bits 20–28), in x, y, z, w order; the dropped (largest) component's index, 0–3 for x–w (bits 29–30); the sign (bit 31, set where reflected)";
+    match name {
+        TBN_DECODER => tbn_doc(),
+        "decode" => vec![
+            format!("In: the packed code, {CODE}."),
+            format!("Out: the frame: n, and t with the bitangent's sign (±1) in t.w; {}.", smallest_three::DECODE_NOTE),
+        ],
+        _ => vec![
+            format!("In: a normal n and a tangent t whose w is the bitangent's sign (glTF's convention: bitangent = cross(n, t.xyz)·t.w); {}.", smallest_three::EDGE_POLICY),
+            format!("Out: the packed code, {CODE}: the unit quaternion of the rotation whose columns are (t, n × t, n), with its largest component positive."),
+        ],
+    }
+}
+
+/// qtangent32's functions: `decode`, `decode_tbn` and `encode`, on one-word codes.
+fn emitted32(spec: &Spec) -> Emitted {
+    use smallest_three::{QUANTS, decode, decode_fields, encode};
+    let module = trace_module(|| {
+        define_fields("decode", &["code"], FRAME, |c: Tu| decode::<Tf, Tu>(c));
+        define_fields(TBN_DECODER, &["code"], TBN, |c: Tu| tbn(decode::<Tf, Tu>(c)));
+        define("encode", &["n", "t"], |(n, t): (V3<Tf>, V4<Tf>)| -> Tu { encode(n, t) });
+    });
+    let mut functions = vec![
+        generic_function!(
+            "decode",
+            Role::Decode,
+            Inputs::Codes(QUANTS.to_vec()),
+            <F> [] |c: <F as Float>::U| decode::<F, <F as Float>::U>(c)
+        ),
+        generic_function!(
+            "encode",
+            Role::Encode,
+            Inputs::Frames,
+            <F> [] |f: (V3<F>, V4<F>)| encode::<F, <F as Float>::U>(f.0, f.1)
+        ),
+    ];
+    functions.insert(1, tbn_function(&functions[0]));
+    crate::codecs::frames::frame::emitted(
+        spec,
+        module,
+        functions,
+        &QUANTS,
+        None,
+        |c: V4<Encl>| decode_fields(c),
+        true,
     )
 }

@@ -83,20 +83,20 @@ pub fn first_axis<F: Float>(branch: F::B, n: V3<F>) -> V3<F> {
 /// exact scaling and a rounding to an integer, so a function of `a` and `b` alone that no
 /// contraction can reach.
 #[inline(always)]
-fn fixed_mul<F: Float>(a: F, b: F) -> F {
+pub fn fixed_mul<F: Float>(a: F, b: F) -> F {
     fixed_trig::mul(a, b, fixed_trig::FINE)
 }
 
 /// `a·b` of two fixed-point vectors, each product by [`fixed_mul`], the integers summed
 /// (exactly, every partial sum below `2^24`).
 #[inline(always)]
-fn fixed_dot<F: Float>(a: V3<F>, b: V3<F>) -> F {
+pub fn fixed_dot<F: Float>(a: V3<F>, b: V3<F>) -> F {
     fixed_mul(a.x, b.x) + fixed_mul(a.y, b.y) + fixed_mul(a.z, b.z)
 }
 
 /// `a × b` of two fixed-point vectors, each product by [`fixed_mul`].
 #[inline(always)]
-fn fixed_cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
+pub fn fixed_cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
     V3::new(
         fixed_mul(a.y, b.z) - fixed_mul(a.z, b.y),
         fixed_mul(a.z, b.x) - fixed_mul(a.x, b.z),
