@@ -225,14 +225,20 @@ impl LaneIo<8> for F8 {
             avx!(_mm256_permute2f128_ps::<0x31>(u2, u6)),
             avx!(_mm256_permute2f128_ps::<0x31>(u3, u7)),
         ];
+        // The last item's seven words go out as the group's last eight, behind item 6's
+        // last word: two lane permutes and a blend, where a masked store of seven words
+        // would be a slow microcoded instruction on AMD's processors.
+        let last = avx!(_mm256_blend_ps::<1>(
+            _mm256_permutevar8x32_ps(rows[7], _mm256_setr_epi32(0, 0, 1, 2, 3, 4, 5, 6)),
+            _mm256_permutevar8x32_ps(rows[6], _mm256_set1_epi32(6)),
+        ));
         let p = items.as_mut_ptr().cast::<f32>();
         // SAFETY (with `avx!`'s): row `k < 7` writes words `7k..7k + 8`, within the 56
-        // words (`7·6 + 8 = 50`); the last row writes its seven words only.
+        // words (`7·6 + 8 = 50`), and `last` words 48 to 55, after them.
         for (k, row) in rows.iter().enumerate().take(7) {
             avx!(_mm256_storeu_ps(p.add(7 * k), *row));
         }
-        let seven = avx!(_mm256_setr_epi32(-1, -1, -1, -1, -1, -1, -1, 0));
-        avx!(_mm256_maskstore_ps(p.add(49), seven, rows[7]));
+        avx!(_mm256_storeu_ps(p.add(48), last));
     }
 }
 
@@ -338,6 +344,16 @@ impl Uint for U8 {
     fn shr(self, n: u32) -> Self {
         U8(avx!(_mm256_srl_epi32(self.0, _mm_cvtsi32_si128(n as i32))))
     }
+    /// The field sign-extended by two shifts, then converted (exact: `b ≤ 24`).
+    #[inline(always)]
+    fn signed_field(self, b: u32) -> F8 {
+        assert!(b <= 24, "a field of {b} bits");
+        let n = avx!(_mm_cvtsi32_si128((32 - b) as i32));
+        F8(avx!(_mm256_cvtepi32_ps(_mm256_sra_epi32(
+            _mm256_sll_epi32(self.0, n),
+            n
+        ))))
+    }
     /// `u as f32` (round to nearest, ties to even) for every `u`: a signed conversion
     /// when every lane is below 2^31, else the sum of the exactly converted halves
     /// `hi·2^16 + lo`, rounded once.
@@ -428,6 +444,12 @@ impl Float for F8 {
     #[inline(always)]
     fn sel(m: M8, t: Self, f: Self) -> Self {
         F8(avx!(_mm256_blendv_ps(f.0, t.0, _mm256_castsi256_ps(m.0))))
+    }
+    /// `vmaxps` returns its second operand, `lo`, where `self` is NaN.
+    #[inline(always)]
+    fn at_least_nonzero(self, lo: f32) -> Self {
+        debug_assert!(lo != 0.0 && !lo.is_nan(), "bound {lo}");
+        F8(avx!(_mm256_max_ps(self.0, _mm256_set1_ps(lo))))
     }
     /// `x as u32`, saturating as Rust's conversion does: the signed truncation where
     /// `-1 < x < 2^31` (it gives 0 on `(-1, 0]`), 0 where `x ≤ -1` or NaN; when some lane

@@ -115,7 +115,7 @@ pub fn operations<L: LaneIo<N>, const N: usize>(
         std::array::from_fn(|k| au[k].wrapping_mul(bu[k])),
         au.map(|w| !w),
     ];
-    let items2: [[u32; 2]; N] = std::array::from_fn(|k| [au[k], bu[k]]);
+    let items2: [[u32; 2]; N] = std::array::from_fn(|k| [0, 1].map(|j| words7[j][k]));
     let items3: [[u32; 3]; N] = std::array::from_fn(|k| [0, 1, 2].map(|j| words7[j][k]));
     let [i2x, i2y] = L::u_from_items2(&items2).map(L::u_words);
     let [i3x, i3y, i3z] = L::u_from_items3(&items3).map(L::u_words);

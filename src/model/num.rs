@@ -91,6 +91,16 @@ pub trait Uint:
     /// `self · o` modulo 2^32 (the low word of the product).
     fn wrapping_mul(self, o: Self) -> Self;
     fn lt(self, o: Self) -> Self::B;
+    /// The `b`-bit two's complement field `self` (below `2^b`, `b ≤ 24`) as a float: the
+    /// unsigned value converted, less `2^b` where it is above `2^(b-1) - 1`, both exact,
+    /// as the emitted code computes it. Lanes may sign-extend the integer and convert it
+    /// instead, the same value in fewer instructions.
+    #[inline(always)]
+    fn signed_field(self, b: u32) -> Self::F {
+        let c = self.to_f();
+        let wrapped = c - Self::F::c((1u32 << b) as f32);
+        Self::F::sel(c.gt(Self::F::c(((1u32 << (b - 1)) - 1) as f32)), wrapped, c)
+    }
 }
 
 /// 32-bit IEEE floats with round-to-nearest-even arithmetic.
@@ -139,6 +149,14 @@ pub trait Float:
     #[inline(always)]
     fn at_least(self, lo: Self) -> Self {
         Self::sel(self.ge(lo), self, lo)
+    }
+    /// [`Float::at_least`] of a bound `lo` that is neither zero nor NaN: there it is
+    /// `max(self, lo)` with a NaN `self` giving `lo`, since only a zero bound tells `-0`
+    /// from `+0`. The emitted code keeps the select; lanes may take their `max`
+    /// instruction, which returns its second operand for a NaN.
+    #[inline(always)]
+    fn at_least_nonzero(self, lo: f32) -> Self {
+        self.at_least(Self::c(lo))
     }
     /// `self ≤ hi ? self : hi`: a NaN `self` gives `hi`; on equality `self` is kept.
     #[inline(always)]

@@ -105,7 +105,7 @@ impl Quant {
     #[inline(always)]
     pub fn dequantize<F: Float>(self, c: F) -> F {
         match self {
-            Quant::Snorm(_) => (c * F::c(1.0 / self.max_code())).at_least(F::c(-1.0)),
+            Quant::Snorm(_) => (c * F::c(1.0 / self.max_code())).at_least_nonzero(-1.0),
             Quant::Unorm(_) => c * F::c(1.0 / self.max_code()),
             Quant::Half | Quant::Single => c,
         }
@@ -160,6 +160,7 @@ impl Quant {
     #[inline(always)]
     pub fn from_field<F: Float>(self, u: F::U) -> F {
         match self {
+            Quant::Snorm(b) if b <= 24 => u.signed_field(b),
             Quant::Snorm(b) => {
                 let c = u.to_f();
                 let wrapped = c - F::c((1u64 << b) as f32);
