@@ -66,6 +66,12 @@ fn scalar(what: &str, a: f32, b: f32) -> u32 {
         "shr" => u >> 7,
         "shl" => u << 9,
         "usel" => u32::sel(u < v, u, v),
+        "at_least_nonzero" => (if a >= -1.0 { a } else { -1.0 }).to_bits(),
+        // Two's complement fields, sign-extended by integer shifts.
+        "signed8" => ((((u & 0xff) << 24) as i32 >> 24) as f32).to_bits(),
+        "signed10" => (((u >> 22 << 22) as i32 >> 22) as f32).to_bits(),
+        "signed16" => ((((u & 0xffff) << 16) as i32 >> 16) as f32).to_bits(),
+        "signed24" => (((u >> 8 << 8) as i32 >> 8) as f32).to_bits(),
         // The word moves: item k's words are u, v, u ^ v, u + v, u - v, u·v and !u.
         "items2_0" | "items3_0" | "to_items3_0" | "to_items7_0" => u,
         "items2_1" | "items3_1" | "to_items3_1" | "to_items7_1" => v,
@@ -84,7 +90,7 @@ fn scalar(what: &str, a: f32, b: f32) -> u32 {
 fn check<const N: usize>(lanes: &str, a: [f32; N], b: [f32; N], got: &[(&str, [u32; N])]) {
     assert_eq!(
         got.len(),
-        45,
+        50,
         "{lanes}: every operation and word move is checked"
     );
     for (what, got) in got {
