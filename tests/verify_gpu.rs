@@ -243,9 +243,13 @@ fn every_include_is_checked_whole(report: &unitpack::verify::Report) {
             [
                 "wgsl/naga",
                 "wgsl/naga glsl-out",
+                "wgsl/literals",
                 "glsl 330/glslang",
                 "glsl es 300/glslang",
-                "hlsl/glslang"
+                "glsl/literals",
+                "hlsl/glslang",
+                "hlsl/literals",
+                "c/literals"
             ],
             "{spec}"
         );

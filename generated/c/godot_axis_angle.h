@@ -339,7 +339,7 @@ static inline unitpack_vec3 unitpack_godot_axis_angle_encode_float_v(
     const float t1 = abs_n.x >= abs_n.y ? abs_n.x : abs_n.y;
     const float largest = t1 >= abs_n.z ? t1 : abs_n.z;
     const float t2 = abs_n.x + abs_n.y + abs_n.z;
-    const bool t3 = t2 >= 8.6736174e-19f && t2 <= 3.4028235e38f;
+    const bool t3 = t2 >= 8.6736174e-19f && t2 <= 3.4028234e38f;
     const unitpack_vec3 n_sq = { n.x * n.x, n.y * n.y, n.z * n.z };
     const float t4 = n_sq.x + n_sq.y + n_sq.z;
     const bool t5 = t4 >= 9.536743e-7f && t4 <= 1048576.0f;
@@ -372,7 +372,7 @@ static inline unitpack_vec3 unitpack_godot_axis_angle_encode_float_v(
     const unitpack_vec3 t18 = { t16.x - t17.x, t16.y - t17.y, t16.z - t17.z };
     const unitpack_vec3 t18_sq = { t18.x * t18.x, t18.y * t18.y, t18.z * t18.z };
     const float t19 = t18_sq.x + t18_sq.y + t18_sq.z;
-    const bool t20 = t19 >= 8.6736174e-19f && t19 <= 3.4028235e38f;
+    const bool t20 = t19 >= 8.6736174e-19f && t19 <= 3.4028234e38f;
     const unitpack_vec3 n2_sq = { n2.x * n2.x, n2.y * n2.y, n2.z * n2.z };
     const float t21 = 1.0f / sqrtf(n2_sq.x + n2_sq.y + n2_sq.z);
     const unitpack_vec3 t22 = { n2.x * t21, n2.y * t21, n2.z * t21 };

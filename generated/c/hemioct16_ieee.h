@@ -97,7 +97,7 @@ static inline unitpack_vec2 unitpack_hemioct16_ieee_encode_float_v(unitpack_vec3
     const float t1 = fabsf(v.x) + fabsf(v.y);
     const float l1 = t1 + fabsf(v.z < 0.0f ? 0.0f : v.z);
     const unitpack_vec2 p = { v.x / l1, v.y / l1 };
-    const bool t2 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const bool t2 = l1 > 0.0f && l1 <= 3.4028234e38f && v.z >= (-3.4028234e38f);
     const unitpack_vec2 t3 = { t2 ? p.x + p.y : 0.0f, t2 ? p.x - p.y : 0.0f };
     return t3;
 }

@@ -111,18 +111,18 @@ static inline void unitpack_hemioct16_rxgb_decode(uint32_t code, float out[3]) {
 static inline unitpack_vec4 unitpack_hemioct16_rxgb_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { v.x, v.y, v.z < 0.0f ? 0.0f : v.z };
     const float norm1 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
-    const float fit = norm1 <= 3.4028235e38f
+    const float fit = norm1 <= 3.4028234e38f
         ? (norm1 < 7.888609e-31f ? 1.2676506e30f : 1.0f)
         : 0.25f;
     const unitpack_vec3 w = { t1.x * fit, t1.y * fit, t1.z * fit };
     const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z);
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t2 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const bool t2 = l1 > 0.0f && l1 <= 3.4028234e38f && v.z >= (-3.4028234e38f);
     const unitpack_vec2 p2 = { t2 ? p.x + p.y : 0.0f, t2 ? p.x - p.y : 0.0f };
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     const float largest = t3 >= abs_v.z ? t3 : abs_v.z;
-    const bool t4 = largest > 0.0f && largest <= 3.4028235e38f;
+    const bool t4 = largest > 0.0f && largest <= 3.4028234e38f;
     const float t5 = t4 ? largest : 1.0f;
     const unitpack_vec3 scaled = { v.x / t5, v.y / t5, v.z / t5 };
     const unitpack_vec3 scaled_sq = {
@@ -142,7 +142,7 @@ static inline unitpack_vec4 unitpack_hemioct16_rxgb_encode_float_v(unitpack_vec3
     const unitpack_vec3 abs_t8 = { fabsf(t8.x), fabsf(t8.y), fabsf(t8.z) };
     const float t9 = abs_t8.x >= abs_t8.y ? abs_t8.x : abs_t8.y;
     const float largest2 = t9 >= abs_t8.z ? t9 : abs_t8.z;
-    const bool t10 = largest2 > 0.0f && largest2 <= 3.4028235e38f;
+    const bool t10 = largest2 > 0.0f && largest2 <= 3.4028234e38f;
     const float t11 = t10 ? largest2 : 1.0f;
     const unitpack_vec3 scaled2 = { t8.x / t11, t8.y / t11, t8.z / t11 };
     const unitpack_vec3 scaled2_sq = {

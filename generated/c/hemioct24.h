@@ -96,13 +96,13 @@ static inline void unitpack_hemioct24_decode(uint32_t code, float out[3]) {
 static inline unitpack_vec2 unitpack_hemioct24_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { v.x, v.y, v.z < 0.0f ? 0.0f : v.z };
     const float norm1 = fabsf(t1.x) + fabsf(t1.y) + fabsf(t1.z);
-    const float fit = norm1 <= 3.4028235e38f
+    const float fit = norm1 <= 3.4028234e38f
         ? (norm1 < 7.888609e-31f ? 1.2676506e30f : 1.0f)
         : 0.25f;
     const unitpack_vec3 w = { t1.x * fit, t1.y * fit, t1.z * fit };
     const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z);
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
-    const bool t2 = l1 > 0.0f && l1 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const bool t2 = l1 > 0.0f && l1 <= 3.4028234e38f && v.z >= (-3.4028234e38f);
     const unitpack_vec2 t3 = { t2 ? p.x + p.y : 0.0f, t2 ? p.x - p.y : 0.0f };
     return t3;
 }

@@ -102,7 +102,7 @@ static inline unitpack_vec2 unitpack_oct16_ieee_encode_float_v(unitpack_vec3 v) 
     const float l1 = fabsf(v.x) + fabsf(v.y) + fabsf(v.z);
     const unitpack_vec2 p = { v.x / l1, v.y / l1 };
     const unitpack_vec2 abs_p = { fabsf(p.x), fabsf(p.y) };
-    const bool t1 = abs_p.x + l1 <= 3.4028235e38f;
+    const bool t1 = abs_p.x + l1 <= 3.4028234e38f;
     const bool t2 = v.z <= 0.0f;
     const unitpack_vec2 t3 = {
         t1 ? (t2 ? (1.0f - abs_p.y) * (p.x >= 0.0f ? 1.0f : -1.0f) : p.x) : 0.0f,

@@ -100,12 +100,12 @@ static inline void unitpack_oct22_decode(uint32_t code, float out[3]) {
 // Struct form of unitpack_oct22_encode_float.
 static inline unitpack_vec2 unitpack_oct22_encode_float_v(unitpack_vec3 v) {
     const float norm1 = fabsf(v.x) + fabsf(v.y) + fabsf(v.z);
-    const float fit = norm1 <= 3.4028235e38f
+    const float fit = norm1 <= 3.4028234e38f
         ? (norm1 < 7.888609e-31f ? 1.2676506e30f : 1.0f)
         : 0.25f;
     const unitpack_vec3 w = { v.x * fit, v.y * fit, v.z * fit };
     const float l1 = fabsf(w.x) + fabsf(w.y) + fabsf(w.z);
-    const bool t1 = l1 > 0.0f && l1 <= 3.4028235e38f;
+    const bool t1 = l1 > 0.0f && l1 <= 3.4028234e38f;
     const unitpack_vec2 p = { w.x / l1, w.y / l1 };
     const bool t2 = w.z <= 0.0f;
     const unitpack_vec2 folded = {

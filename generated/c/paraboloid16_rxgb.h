@@ -210,7 +210,7 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_encode_float_v(unitpack_v
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const float t8 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     const float largest3 = t8 >= abs_v.z ? t8 : abs_v.z;
-    const bool t9 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    const bool t9 = largest3 > 0.0f && largest3 <= 3.4028234e38f;
     const float t10 = t9 ? largest3 : 1.0f;
     const unitpack_vec3 scaled3 = { v.x / t10, v.y / t10, v.z / t10 };
     const unitpack_vec3 scaled3_sq = {
@@ -230,7 +230,7 @@ static inline unitpack_vec4 unitpack_paraboloid16_rxgb_encode_float_v(unitpack_v
     const unitpack_vec3 abs_t13 = { fabsf(t13.x), fabsf(t13.y), fabsf(t13.z) };
     const float t14 = abs_t13.x >= abs_t13.y ? abs_t13.x : abs_t13.y;
     const float largest4 = t14 >= abs_t13.z ? t14 : abs_t13.z;
-    const bool t15 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    const bool t15 = largest4 > 0.0f && largest4 <= 3.4028234e38f;
     const float t16 = t15 ? largest4 : 1.0f;
     const unitpack_vec3 scaled4 = { t13.x / t16, t13.y / t16, t13.z / t16 };
     const unitpack_vec3 scaled4_sq = {

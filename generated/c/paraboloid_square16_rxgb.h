@@ -284,7 +284,7 @@ static inline unitpack_vec4 unitpack_paraboloid_square16_rxgb_encode_float_v(uni
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const float t9 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     const float largest3 = t9 >= abs_v.z ? t9 : abs_v.z;
-    const bool t10 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    const bool t10 = largest3 > 0.0f && largest3 <= 3.4028234e38f;
     const float t11 = t10 ? largest3 : 1.0f;
     const unitpack_vec3 scaled3 = { v.x / t11, v.y / t11, v.z / t11 };
     const unitpack_vec3 scaled3_sq = {
@@ -304,7 +304,7 @@ static inline unitpack_vec4 unitpack_paraboloid_square16_rxgb_encode_float_v(uni
     const unitpack_vec3 abs_t14 = { fabsf(t14.x), fabsf(t14.y), fabsf(t14.z) };
     const float t15 = abs_t14.x >= abs_t14.y ? abs_t14.x : abs_t14.y;
     const float largest4 = t15 >= abs_t14.z ? t15 : abs_t14.z;
-    const bool t16 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    const bool t16 = largest4 > 0.0f && largest4 <= 3.4028234e38f;
     const float t17 = t16 ? largest4 : 1.0f;
     const unitpack_vec3 scaled4 = { t14.x / t17, t14.y / t17, t14.z / t17 };
     const unitpack_vec3 scaled4_sq = {

@@ -254,7 +254,7 @@ static inline unitpack_vec4 unitpack_qtangent64_encode_float_v(unitpack_vec3 n, 
     const float t2 = abs_n.x >= abs_n.y ? abs_n.x : abs_n.y;
     const float largest = t2 >= abs_n.z ? t2 : abs_n.z;
     const float t3 = abs_n.x + abs_n.y + abs_n.z;
-    const bool t4 = t3 >= 8.6736174e-19f && t3 <= 3.4028235e38f;
+    const bool t4 = t3 >= 8.6736174e-19f && t3 <= 3.4028234e38f;
     const unitpack_vec3 n_sq = { n.x * n.x, n.y * n.y, n.z * n.z };
     const float t5 = n_sq.x + n_sq.y + n_sq.z;
     const bool t6 = t5 >= 9.536743e-7f && t5 <= 1048576.0f;
@@ -284,7 +284,7 @@ static inline unitpack_vec4 unitpack_qtangent64_encode_float_v(unitpack_vec3 n, 
     };
     const unitpack_vec3 t16_sq = { t16.x * t16.x, t16.y * t16.y, t16.z * t16.z };
     const float t17 = t16_sq.x + t16_sq.y + t16_sq.z;
-    const bool t18 = t17 >= 8.6736174e-19f && t17 <= 3.4028235e38f;
+    const bool t18 = t17 >= 8.6736174e-19f && t17 <= 3.4028234e38f;
     const unitpack_vec3 n2_sq = { n2.x * n2.x, n2.y * n2.y, n2.z * n2.z };
     const float t19 = 1.0f / sqrtf(n2_sq.x + n2_sq.y + n2_sq.z);
     const unitpack_vec3 t20 = { n2.x * t19, n2.y * t19, n2.z * t19 };

@@ -151,7 +151,7 @@ static inline unitpack_vec2 unitpack_spherical_z16_encode_float_v(unitpack_vec3 
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     const float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    const bool t2 = largest > 0.0f && largest <= 3.4028235e38f;
+    const bool t2 = largest > 0.0f && largest <= 3.4028234e38f;
     const float t3 = t2 ? largest : 1.0f;
     const unitpack_vec3 scaled = { v.x / t3, v.y / t3, v.z / t3 };
     const unitpack_vec3 scaled_sq = {

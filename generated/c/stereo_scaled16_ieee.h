@@ -95,7 +95,7 @@ static inline void unitpack_stereo_scaled16_ieee_decode(uint32_t code, float out
 static inline unitpack_vec2 unitpack_stereo_scaled16_ieee_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 v_sq = { v.x * v.x, v.y * v.y, v.z * v.z };
     const float len2 = v_sq.x + v_sq.y + v_sq.z;
-    const bool t1 = len2 > 0.0f && len2 <= 3.4028235e38f;
+    const bool t1 = len2 > 0.0f && len2 <= 3.4028234e38f;
     const float sqrt_len2 = sqrtf(len2);
     const unitpack_vec3 n = { v.x / sqrt_len2, v.y / sqrt_len2, v.z / sqrt_len2 };
     const float t2 = n.z + 1.0f;

@@ -98,7 +98,7 @@ static inline unitpack_vec2 unitpack_xy16_ieee_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 t1 = { v.x, v.y, v.z < 0.0f ? 0.0f : v.z };
     const unitpack_vec3 t1_sq = { t1.x * t1.x, t1.y * t1.y, t1.z * t1.z };
     const float len2 = t1_sq.x + t1_sq.y + t1_sq.z;
-    const bool t2 = len2 > 0.0f && len2 <= 3.4028235e38f && v.z >= (-3.4028235e38f);
+    const bool t2 = len2 > 0.0f && len2 <= 3.4028234e38f && v.z >= (-3.4028234e38f);
     const float sqrt_len2 = sqrtf(len2);
     const unitpack_vec2 p = { v.x / sqrt_len2, v.y / sqrt_len2 };
     const unitpack_vec2 t3 = { t2 ? p.x : 0.0f, t2 ? p.y : 0.0f };

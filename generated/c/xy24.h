@@ -98,7 +98,7 @@ static inline unitpack_vec2 unitpack_xy24_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     const float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    const bool t2 = largest > 0.0f && largest <= 3.4028235e38f;
+    const bool t2 = largest > 0.0f && largest <= 3.4028234e38f;
     const float t3 = t2 ? largest : 1.0f;
     const unitpack_vec3 scaled = { v.x / t3, v.y / t3, v.z / t3 };
     const unitpack_vec3 scaled_sq = {
@@ -118,7 +118,7 @@ static inline unitpack_vec2 unitpack_xy24_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 abs_t6 = { fabsf(t6.x), fabsf(t6.y), fabsf(t6.z) };
     const float t7 = abs_t6.x >= abs_t6.y ? abs_t6.x : abs_t6.y;
     const float largest2 = t7 >= abs_t6.z ? t7 : abs_t6.z;
-    const bool t8 = largest2 > 0.0f && largest2 <= 3.4028235e38f;
+    const bool t8 = largest2 > 0.0f && largest2 <= 3.4028234e38f;
     const float t9 = t8 ? largest2 : 1.0f;
     const unitpack_vec3 scaled2 = { t6.x / t9, t6.y / t9, t6.z / t9 };
     const unitpack_vec3 scaled2_sq = {

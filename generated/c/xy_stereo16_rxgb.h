@@ -202,7 +202,7 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_encode_float_v(unitpack_ve
     const unitpack_vec3 abs_v = { fabsf(v.x), fabsf(v.y), fabsf(v.z) };
     const float t6 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     const float largest3 = t6 >= abs_v.z ? t6 : abs_v.z;
-    const bool t7 = largest3 > 0.0f && largest3 <= 3.4028235e38f;
+    const bool t7 = largest3 > 0.0f && largest3 <= 3.4028234e38f;
     const float t8 = t7 ? largest3 : 1.0f;
     const unitpack_vec3 scaled3 = { v.x / t8, v.y / t8, v.z / t8 };
     const unitpack_vec3 scaled3_sq = {
@@ -222,7 +222,7 @@ static inline unitpack_vec4 unitpack_xy_stereo16_rxgb_encode_float_v(unitpack_ve
     const unitpack_vec3 abs_t11 = { fabsf(t11.x), fabsf(t11.y), fabsf(t11.z) };
     const float t12 = abs_t11.x >= abs_t11.y ? abs_t11.x : abs_t11.y;
     const float largest4 = t12 >= abs_t11.z ? t12 : abs_t11.z;
-    const bool t13 = largest4 > 0.0f && largest4 <= 3.4028235e38f;
+    const bool t13 = largest4 > 0.0f && largest4 <= 3.4028234e38f;
     const float t14 = t13 ? largest4 : 1.0f;
     const unitpack_vec3 scaled4 = { t11.x / t14, t11.y / t14, t11.z / t14 };
     const unitpack_vec3 scaled4_sq = {

@@ -71,8 +71,8 @@ vec2 unitpack_hemioct16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = abs(vec3(v.xy, v.z < 0.0 ? 0.0 : v.z));
     UNITPACK_PRECISE float l1 = t1.x + t1.y + t1.z;
     UNITPACK_PRECISE vec2 p = v.xy / l1;
-    bool t2 = v.z >= (-3.4028235e38);
-    bool t3 = l1 <= 3.4028235e38;
+    bool t2 = v.z >= (-3.4028234e38);
+    bool t3 = l1 <= 3.4028234e38;
     UNITPACK_PRECISE vec2 t4 = vec2(p.x + p.y, p.x - p.y);
     return l1 > 0.0 && t3 && t2 ? t4 : vec2(0.0);
 }

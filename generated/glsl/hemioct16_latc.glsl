@@ -75,13 +75,13 @@ vec4 unitpack_hemioct16_latc_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_t1 = abs(t1);
     UNITPACK_PRECISE float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
     UNITPACK_PRECISE float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
-    UNITPACK_PRECISE float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    UNITPACK_PRECISE float fit = norm1 <= 3.4028234e38 ? t2 : 0.25;
     UNITPACK_PRECISE vec3 w = t1 * fit;
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
     UNITPACK_PRECISE vec2 p = w.xy / l1;
-    bool t3 = v.z >= (-3.4028235e38);
-    bool t4 = l1 <= 3.4028235e38;
+    bool t3 = v.z >= (-3.4028234e38);
+    bool t4 = l1 <= 3.4028234e38;
     UNITPACK_PRECISE vec2 t5 = vec2(p.x + p.y, p.x - p.y);
     UNITPACK_PRECISE vec2 p2 = l1 > 0.0 && t4 && t3 ? t5 : vec2(0.0);
     UNITPACK_PRECISE float t6 = 0.5 + p2.y * 0.5;

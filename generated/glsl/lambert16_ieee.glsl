@@ -67,7 +67,7 @@ vec3 unitpack_lambert16_ieee_decode(uint code) {
 vec2 unitpack_lambert16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE float len2 = v_sq.x + v_sq.y + v_sq.z;
-    bool t1 = len2 <= 3.4028235e38;
+    bool t1 = len2 <= 3.4028234e38;
     UNITPACK_PRECISE vec3 n = v / sqrt(len2);
     UNITPACK_PRECISE float f = sqrt(n.z * 8.0 + 8.0);
     UNITPACK_PRECISE vec2 t2 = n.xy / f + 0.5;

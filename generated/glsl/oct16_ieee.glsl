@@ -75,7 +75,7 @@ vec2 unitpack_oct16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE vec2 t1 = (1.0 - abs_p.yx)
         * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)));
     UNITPACK_PRECISE vec2 t2 = v.z <= 0.0 ? t1 : p;
-    UNITPACK_PRECISE vec2 result = abs_p.x + l1 <= 3.4028235e38 ? t2 : vec2(0.0);
+    UNITPACK_PRECISE vec2 result = abs_p.x + l1 <= 3.4028234e38 ? t2 : vec2(0.0);
     return result;
 }
 

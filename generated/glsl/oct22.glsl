@@ -71,11 +71,11 @@ vec2 unitpack_oct22_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float norm1 = abs_v.x + abs_v.y + abs_v.z;
     UNITPACK_PRECISE float t1 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
-    UNITPACK_PRECISE float fit = norm1 <= 3.4028235e38 ? t1 : 0.25;
+    UNITPACK_PRECISE float fit = norm1 <= 3.4028234e38 ? t1 : 0.25;
     UNITPACK_PRECISE vec3 w = v * fit;
     UNITPACK_PRECISE vec3 abs_w = abs(w);
     UNITPACK_PRECISE float l1 = abs_w.x + abs_w.y + abs_w.z;
-    bool t2 = l1 <= 3.4028235e38;
+    bool t2 = l1 <= 3.4028234e38;
     UNITPACK_PRECISE vec2 p = w.xy / l1;
     UNITPACK_PRECISE vec2 folded = (1.0 - abs(p.yx))
         * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(p, vec2(0.0)));

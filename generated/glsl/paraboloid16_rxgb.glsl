@@ -152,7 +152,7 @@ vec4 unitpack_paraboloid16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest3 = t3 >= abs_v.z ? t3 : abs_v.z;
-    bool t4 = largest3 <= 3.4028235e38;
+    bool t4 = largest3 <= 3.4028234e38;
     bool t5 = largest3 > 0.0 && t4;
     UNITPACK_PRECISE vec3 scaled3 = v / (t5 ? largest3 : 1.0);
     UNITPACK_PRECISE vec3 scaled3_sq = scaled3 * scaled3;
@@ -164,7 +164,7 @@ vec4 unitpack_paraboloid16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_t9 = abs(t9);
     UNITPACK_PRECISE float t10 = abs_t9.x >= abs_t9.y ? abs_t9.x : abs_t9.y;
     UNITPACK_PRECISE float largest4 = t10 >= abs_t9.z ? t10 : abs_t9.z;
-    bool t11 = largest4 <= 3.4028235e38;
+    bool t11 = largest4 <= 3.4028234e38;
     bool t12 = largest4 > 0.0 && t11;
     UNITPACK_PRECISE vec3 scaled4 = t9 / (t12 ? largest4 : 1.0);
     UNITPACK_PRECISE vec3 scaled4_sq = scaled4 * scaled4;

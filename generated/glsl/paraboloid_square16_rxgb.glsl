@@ -216,7 +216,7 @@ vec4 unitpack_paraboloid_square16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t5 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest3 = t5 >= abs_v.z ? t5 : abs_v.z;
-    bool t6 = largest3 <= 3.4028235e38;
+    bool t6 = largest3 <= 3.4028234e38;
     bool t7 = largest3 > 0.0 && t6;
     UNITPACK_PRECISE vec3 scaled3 = v / (t7 ? largest3 : 1.0);
     UNITPACK_PRECISE vec3 scaled3_sq = scaled3 * scaled3;
@@ -228,7 +228,7 @@ vec4 unitpack_paraboloid_square16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_t11 = abs(t11);
     UNITPACK_PRECISE float t12 = abs_t11.x >= abs_t11.y ? abs_t11.x : abs_t11.y;
     UNITPACK_PRECISE float largest4 = t12 >= abs_t11.z ? t12 : abs_t11.z;
-    bool t13 = largest4 <= 3.4028235e38;
+    bool t13 = largest4 <= 3.4028234e38;
     bool t14 = largest4 > 0.0 && t13;
     UNITPACK_PRECISE vec3 scaled4 = t11 / (t14 ? largest4 : 1.0);
     UNITPACK_PRECISE vec3 scaled4_sq = scaled4 * scaled4;

@@ -147,7 +147,7 @@ vec4 unitpack_qtangent64_encode_float(vec3 n, vec4 t) {
     UNITPACK_PRECISE float t2 = abs_n.x >= abs_n.y ? abs_n.x : abs_n.y;
     UNITPACK_PRECISE float largest = t2 >= abs_n.z ? t2 : abs_n.z;
     UNITPACK_PRECISE float t3 = abs_n.x + abs_n.y + abs_n.z;
-    bool t4 = t3 <= 3.4028235e38;
+    bool t4 = t3 <= 3.4028234e38;
     bool t5 = t3 >= 8.6736174e-19 && t4;
     UNITPACK_PRECISE vec3 n_sq = n * n;
     UNITPACK_PRECISE float t6 = n_sq.x + n_sq.y + n_sq.z;
@@ -163,7 +163,7 @@ vec4 unitpack_qtangent64_encode_float(vec3 n, vec4 t) {
     UNITPACK_PRECISE vec3 t14 = t1 ? t12 : t13;
     UNITPACK_PRECISE vec3 t14_sq = t14 * t14;
     UNITPACK_PRECISE float t15 = t14_sq.x + t14_sq.y + t14_sq.z;
-    bool t16 = t15 <= 3.4028235e38;
+    bool t16 = t15 <= 3.4028234e38;
     UNITPACK_PRECISE vec3 n2_sq = n2 * n2;
     UNITPACK_PRECISE vec3 t17 = n2 * (1.0 / sqrt(n2_sq.x + n2_sq.y + n2_sq.z));
     UNITPACK_PRECISE float t18 = t17.z < 0.0 ? -1.0 : 1.0;

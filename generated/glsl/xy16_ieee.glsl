@@ -71,8 +71,8 @@ vec2 unitpack_xy16_ieee_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 t1 = vec3(v.xy, v.z < 0.0 ? 0.0 : v.z);
     UNITPACK_PRECISE vec3 t1_sq = t1 * t1;
     UNITPACK_PRECISE float len2 = t1_sq.x + t1_sq.y + t1_sq.z;
-    bool t2 = v.z >= (-3.4028235e38);
-    bool t3 = len2 <= 3.4028235e38;
+    bool t2 = v.z >= (-3.4028234e38);
+    bool t3 = len2 <= 3.4028234e38;
     UNITPACK_PRECISE vec2 p = v.xy / sqrt(len2);
     return len2 > 0.0 && t3 && t2 ? p : vec2(0.0);
 }

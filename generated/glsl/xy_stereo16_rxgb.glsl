@@ -146,7 +146,7 @@ vec4 unitpack_xy_stereo16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_v = abs(v);
     UNITPACK_PRECISE float t2 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     UNITPACK_PRECISE float largest3 = t2 >= abs_v.z ? t2 : abs_v.z;
-    bool t3 = largest3 <= 3.4028235e38;
+    bool t3 = largest3 <= 3.4028234e38;
     bool t4 = largest3 > 0.0 && t3;
     UNITPACK_PRECISE vec3 scaled3 = v / (t4 ? largest3 : 1.0);
     UNITPACK_PRECISE vec3 scaled3_sq = scaled3 * scaled3;
@@ -158,7 +158,7 @@ vec4 unitpack_xy_stereo16_rxgb_encode_float(vec3 v) {
     UNITPACK_PRECISE vec3 abs_t8 = abs(t8);
     UNITPACK_PRECISE float t9 = abs_t8.x >= abs_t8.y ? abs_t8.x : abs_t8.y;
     UNITPACK_PRECISE float largest4 = t9 >= abs_t8.z ? t9 : abs_t8.z;
-    bool t10 = largest4 <= 3.4028235e38;
+    bool t10 = largest4 <= 3.4028234e38;
     bool t11 = largest4 > 0.0 && t10;
     UNITPACK_PRECISE vec3 scaled4 = t8 / (t11 ? largest4 : 1.0);
     UNITPACK_PRECISE vec3 scaled4_sq = scaled4 * scaled4;

@@ -162,7 +162,7 @@ float3 unitpack_crytek_bfn24_encode_float(float3 v, float fetched) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest <= 3.4028235e38;
+    bool t2 = largest <= 3.4028234e38;
     bool t3 = largest > 0.0 && t2;
     precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;

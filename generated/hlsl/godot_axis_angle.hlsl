@@ -220,7 +220,7 @@ float3 unitpack_godot_axis_angle_encode_float(float3 n, float4 t) {
     precise float t1 = abs_n.x >= abs_n.y ? abs_n.x : abs_n.y;
     precise float largest = t1 >= abs_n.z ? t1 : abs_n.z;
     precise float t2 = abs_n.x + abs_n.y + abs_n.z;
-    bool t3 = t2 <= 3.4028235e38;
+    bool t3 = t2 <= 3.4028234e38;
     bool t4 = t2 >= 8.6736174e-19 && t3;
     precise float3 n_sq = n * n;
     precise float t5 = n_sq.x + n_sq.y + n_sq.z;
@@ -241,7 +241,7 @@ float3 unitpack_godot_axis_angle_encode_float(float3 n, float4 t) {
     precise float3 t18 = n2.yzx * t17.zxy - n2.zxy * t17.yzx;
     precise float3 t18_sq = t18 * t18;
     precise float t19 = t18_sq.x + t18_sq.y + t18_sq.z;
-    bool t20 = t19 <= 3.4028235e38;
+    bool t20 = t19 <= 3.4028234e38;
     precise float3 n2_sq = n2 * n2;
     precise float3 t21 = n2 * (1.0 / sqrt(n2_sq.x + n2_sq.y + n2_sq.z));
     precise float t22 = t21.z < 0.0 ? -1.0 : 1.0;

@@ -75,13 +75,13 @@ float4 unitpack_hemioct16_dxt5nm_encode_float(float3 v) {
     precise float3 abs_t1 = abs(t1);
     precise float norm1 = abs_t1.x + abs_t1.y + abs_t1.z;
     precise float t2 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
-    precise float fit = norm1 <= 3.4028235e38 ? t2 : 0.25;
+    precise float fit = norm1 <= 3.4028234e38 ? t2 : 0.25;
     precise float3 w = t1 * fit;
     precise float3 abs_w = abs(w);
     precise float l1 = abs_w.x + abs_w.y + abs_w.z;
     precise float2 p = w.xy / l1;
-    bool t3 = v.z >= (-3.4028235e38);
-    bool t4 = l1 <= 3.4028235e38;
+    bool t3 = v.z >= (-3.4028234e38);
+    bool t4 = l1 <= 3.4028234e38;
     precise float2 t5 = float2(p.x + p.y, p.x - p.y);
     precise float2 p2 = l1 > 0.0 && t4 && t3 ? t5 : float2(0.0, 0.0);
     precise float4 result = float4(1.0, 0.5 + p2.y * 0.5, 0.0, 0.5 + p2.x * 0.5);

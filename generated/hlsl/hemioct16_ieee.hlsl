@@ -71,8 +71,8 @@ float2 unitpack_hemioct16_ieee_encode_float(float3 v) {
     precise float3 t1 = abs(float3(v.xy, v.z < 0.0 ? 0.0 : v.z));
     precise float l1 = t1.x + t1.y + t1.z;
     precise float2 p = v.xy / l1;
-    bool t2 = v.z >= (-3.4028235e38);
-    bool t3 = l1 <= 3.4028235e38;
+    bool t2 = v.z >= (-3.4028234e38);
+    bool t3 = l1 <= 3.4028234e38;
     precise float2 t4 = float2(p.x + p.y, p.x - p.y);
     return l1 > 0.0 && t3 && t2 ? t4 : float2(0.0, 0.0);
 }

@@ -67,7 +67,7 @@ float3 unitpack_lambert16_ieee_decode(uint code) {
 float2 unitpack_lambert16_ieee_encode_float(float3 v) {
     precise float3 v_sq = v * v;
     precise float len2 = v_sq.x + v_sq.y + v_sq.z;
-    bool t1 = len2 <= 3.4028235e38;
+    bool t1 = len2 <= 3.4028234e38;
     precise float3 n = v / sqrt(len2);
     precise float f = sqrt(n.z * 8.0 + 8.0);
     precise float2 t2 = n.xy / f + 0.5;

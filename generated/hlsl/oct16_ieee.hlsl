@@ -75,7 +75,7 @@ float2 unitpack_oct16_ieee_encode_float(float3 v) {
     precise float2 t1 = (1.0 - abs_p.yx)
         * UNITPACK_SELECT(p >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
     precise float2 t2 = v.z <= 0.0 ? t1 : p;
-    precise float2 result = abs_p.x + l1 <= 3.4028235e38 ? t2 : float2(0.0, 0.0);
+    precise float2 result = abs_p.x + l1 <= 3.4028234e38 ? t2 : float2(0.0, 0.0);
     return result;
 }
 

@@ -72,11 +72,11 @@ float2 unitpack_oct32_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float norm1 = abs_v.x + abs_v.y + abs_v.z;
     precise float t1 = norm1 < 7.888609e-31 ? 1.2676506e30 : 1.0;
-    precise float fit = norm1 <= 3.4028235e38 ? t1 : 0.25;
+    precise float fit = norm1 <= 3.4028234e38 ? t1 : 0.25;
     precise float3 w = v * fit;
     precise float3 abs_w = abs(w);
     precise float l1 = abs_w.x + abs_w.y + abs_w.z;
-    bool t2 = l1 <= 3.4028235e38;
+    bool t2 = l1 <= 3.4028234e38;
     precise float2 p = w.xy / l1;
     precise float2 folded = (1.0 - abs(p.yx))
         * UNITPACK_SELECT(p >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));

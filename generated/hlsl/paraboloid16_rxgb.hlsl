@@ -164,7 +164,7 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t3 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest3 = t3 >= abs_v.z ? t3 : abs_v.z;
-    bool t4 = largest3 <= 3.4028235e38;
+    bool t4 = largest3 <= 3.4028234e38;
     bool t5 = largest3 > 0.0 && t4;
     precise float3 scaled3 = v / (t5 ? largest3 : 1.0);
     precise float3 scaled3_sq = scaled3 * scaled3;
@@ -176,7 +176,7 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float3 abs_t9 = abs(t9);
     precise float t10 = abs_t9.x >= abs_t9.y ? abs_t9.x : abs_t9.y;
     precise float largest4 = t10 >= abs_t9.z ? t10 : abs_t9.z;
-    bool t11 = largest4 <= 3.4028235e38;
+    bool t11 = largest4 <= 3.4028234e38;
     bool t12 = largest4 > 0.0 && t11;
     precise float3 scaled4 = t9 / (t12 ? largest4 : 1.0);
     precise float3 scaled4_sq = scaled4 * scaled4;

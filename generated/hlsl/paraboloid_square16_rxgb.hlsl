@@ -228,7 +228,7 @@ float4 unitpack_paraboloid_square16_rxgb_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t5 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest3 = t5 >= abs_v.z ? t5 : abs_v.z;
-    bool t6 = largest3 <= 3.4028235e38;
+    bool t6 = largest3 <= 3.4028234e38;
     bool t7 = largest3 > 0.0 && t6;
     precise float3 scaled3 = v / (t7 ? largest3 : 1.0);
     precise float3 scaled3_sq = scaled3 * scaled3;
@@ -240,7 +240,7 @@ float4 unitpack_paraboloid_square16_rxgb_encode_float(float3 v) {
     precise float3 abs_t11 = abs(t11);
     precise float t12 = abs_t11.x >= abs_t11.y ? abs_t11.x : abs_t11.y;
     precise float largest4 = t12 >= abs_t11.z ? t12 : abs_t11.z;
-    bool t13 = largest4 <= 3.4028235e38;
+    bool t13 = largest4 <= 3.4028234e38;
     bool t14 = largest4 > 0.0 && t13;
     precise float3 scaled4 = t11 / (t14 ? largest4 : 1.0);
     precise float3 scaled4_sq = scaled4 * scaled4;

@@ -160,7 +160,7 @@ float4 unitpack_qtangent64_encode_float(float3 n, float4 t) {
     precise float t2 = abs_n.x >= abs_n.y ? abs_n.x : abs_n.y;
     precise float largest = t2 >= abs_n.z ? t2 : abs_n.z;
     precise float t3 = abs_n.x + abs_n.y + abs_n.z;
-    bool t4 = t3 <= 3.4028235e38;
+    bool t4 = t3 <= 3.4028234e38;
     bool t5 = t3 >= 8.6736174e-19 && t4;
     precise float3 n_sq = n * n;
     precise float t6 = n_sq.x + n_sq.y + n_sq.z;
@@ -176,7 +176,7 @@ float4 unitpack_qtangent64_encode_float(float3 n, float4 t) {
     precise float3 t14 = t1 ? t12 : t13;
     precise float3 t14_sq = t14 * t14;
     precise float t15 = t14_sq.x + t14_sq.y + t14_sq.z;
-    bool t16 = t15 <= 3.4028235e38;
+    bool t16 = t15 <= 3.4028234e38;
     precise float3 n2_sq = n2 * n2;
     precise float3 t17 = n2 * (1.0 / sqrt(n2_sq.x + n2_sq.y + n2_sq.z));
     precise float t18 = t17.z < 0.0 ? -1.0 : 1.0;

@@ -69,7 +69,7 @@ float3 unitpack_stereo_scaled16_ieee_decode(uint code) {
 float2 unitpack_stereo_scaled16_ieee_encode_float(float3 v) {
     precise float3 v_sq = v * v;
     precise float len2 = v_sq.x + v_sq.y + v_sq.z;
-    bool t1 = len2 <= 3.4028235e38;
+    bool t1 = len2 <= 3.4028234e38;
     precise float3 n = v / sqrt(len2);
     precise float2 enc = n.xy / (n.z + 1.0) * 0.2812623 + 0.5;
     precise float2 t2 = UNITPACK_SELECT(enc >= float2(0.0, 0.0), enc, float2(0.0, 0.0));

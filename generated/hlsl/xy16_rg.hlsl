@@ -74,7 +74,7 @@ float4 unitpack_xy16_rg_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest <= 3.4028235e38;
+    bool t2 = largest <= 3.4028234e38;
     bool t3 = largest > 0.0 && t2;
     precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
@@ -86,7 +86,7 @@ float4 unitpack_xy16_rg_encode_float(float3 v) {
     precise float3 abs_t7 = abs(t7);
     precise float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
     precise float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
-    bool t9 = largest2 <= 3.4028235e38;
+    bool t9 = largest2 <= 3.4028234e38;
     bool t10 = largest2 > 0.0 && t9;
     precise float3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     precise float3 scaled2_sq = scaled2 * scaled2;

@@ -75,7 +75,7 @@ float4 unitpack_xy16_rxgb_encode_float(float3 v) {
     precise float3 abs_v = abs(v);
     precise float t1 = abs_v.x >= abs_v.y ? abs_v.x : abs_v.y;
     precise float largest = t1 >= abs_v.z ? t1 : abs_v.z;
-    bool t2 = largest <= 3.4028235e38;
+    bool t2 = largest <= 3.4028234e38;
     bool t3 = largest > 0.0 && t2;
     precise float3 scaled = v / (t3 ? largest : 1.0);
     precise float3 scaled_sq = scaled * scaled;
@@ -87,7 +87,7 @@ float4 unitpack_xy16_rxgb_encode_float(float3 v) {
     precise float3 abs_t7 = abs(t7);
     precise float t8 = abs_t7.x >= abs_t7.y ? abs_t7.x : abs_t7.y;
     precise float largest2 = t8 >= abs_t7.z ? t8 : abs_t7.z;
-    bool t9 = largest2 <= 3.4028235e38;
+    bool t9 = largest2 <= 3.4028234e38;
     bool t10 = largest2 > 0.0 && t9;
     precise float3 scaled2 = t7 / (t10 ? largest2 : 1.0);
     precise float3 scaled2_sq = scaled2 * scaled2;
@@ -98,7 +98,7 @@ float4 unitpack_xy16_rxgb_encode_float(float3 v) {
     precise float3 abs_v2 = abs(v);
     precise float t14 = abs_v2.x >= abs_v2.y ? abs_v2.x : abs_v2.y;
     precise float largest3 = t14 >= abs_v2.z ? t14 : abs_v2.z;
-    bool t15 = largest3 <= 3.4028235e38;
+    bool t15 = largest3 <= 3.4028234e38;
     bool t16 = largest3 > 0.0 && t15;
     precise float3 scaled3 = v / (t16 ? largest3 : 1.0);
     precise float3 scaled3_sq = scaled3 * scaled3;
@@ -110,7 +110,7 @@ float4 unitpack_xy16_rxgb_encode_float(float3 v) {
     precise float3 abs_t20 = abs(t20);
     precise float t21 = abs_t20.x >= abs_t20.y ? abs_t20.x : abs_t20.y;
     precise float largest4 = t21 >= abs_t20.z ? t21 : abs_t20.z;
-    bool t22 = largest4 <= 3.4028235e38;
+    bool t22 = largest4 <= 3.4028234e38;
     bool t23 = largest4 > 0.0 && t22;
     precise float3 scaled4 = t20 / (t23 ? largest4 : 1.0);
     precise float3 scaled4_sq = scaled4 * scaled4;

@@ -46,24 +46,56 @@ pub const FOLD_OPERATIONS: usize = 6;
 
 const LANE: [char; 4] = ['x', 'y', 'z', 'w'];
 
-/// The shortest decimal that reads back as exactly `v`, both directly and through f64
-/// (compilers that parse literals as double and then narrow must land on the same f32).
+/// The shortest decimal that reads back as exactly `v` by every rule a compiler reads a
+/// float literal with, and never lies above the largest finite f32:
+/// - directly, the exact decimal rounded to the nearest f32;
+/// - through f64 (compilers that parse a literal as double and then narrow it, WGSL's
+///   abstract floats among them, must land on the same f32);
+/// - in range: Rust's shortest round trip of `f32::MAX` is `3.4028235e38`, above
+///   FLT_MAX = 3.40282346638…e38. It rounds to FLT_MAX in IEEE arithmetic, but WGSL makes
+///   an abstract float beyond f32's range a shader-creation error (Tint rejects it), and
+///   GLSL ES compilers (ANGLE) read it as infinity. So a decimal is kept only where its
+///   magnitude is at most FLT_MAX: for ±FLT_MAX that is `3.4028234e38`.
+///
+/// At each precision the candidates are the decimal rounded to nearest and the decimal
+/// truncated toward zero (which never exceeds `|v|`, so it is the in-range one where the
+/// rounded one lies above FLT_MAX). Below FLT_MAX every decimal that reads back as `v` lies
+/// below the midpoint to the next f32, so only ±FLT_MAX can round out of range.
+/// `src/verify/literals.rs` checks every literal of every emitted include by these rules.
 pub fn f32_literal(v: f32) -> String {
     assert!(
         v.is_finite(),
         "non-finite literal {v}: compare against f32::MAX instead"
     );
-    let exact = |s: &str| {
+    // Every f32's decimal expansion ends within 112 significant digits: this is exact.
+    let expansion = format!("{:.120e}", v);
+    let (mantissa, exponent) = expansion.split_once('e').expect("exponential form");
+    let truncated = |p: usize| {
+        // `p` significant digits: the leading one, the point, then `p - 1` more.
+        let digits = &mantissa[..mantissa.find('.').expect("a point") + p];
+        format!("{}e{exponent}", digits.trim_end_matches('.'))
+    };
+    let reads_back = |s: &str| {
         s.parse::<f32>().map(f32::to_bits) == Ok(v.to_bits())
             && s.parse::<f64>().map(|d| (d as f32).to_bits()) == Ok(v.to_bits())
     };
-    let mut s = format!("{v:?}");
-    if !exact(&s) {
-        s = (9..=17)
-            .map(|p| format!("{:.*e}", p - 1, v))
-            .find(|s| exact(s))
-            .expect("f32 round trip");
-    }
+    let debug = format!("{v:?}");
+    let mut s = if reads_back(&debug) && v.abs() < f32::MAX {
+        debug
+    } else {
+        (1..=17)
+            .flat_map(|p| {
+                let rounded = format!("{:.*e}", p - 1, v);
+                let truncated = truncated(p);
+                // The rounded decimal lies above `|v|` only where it differs from the
+                // truncated one; above FLT_MAX only where `|v|` is FLT_MAX.
+                let in_range = v.abs() < f32::MAX || rounded == truncated;
+                [in_range.then_some(rounded), Some(truncated)]
+            })
+            .flatten()
+            .find(|s| reads_back(s))
+            .expect("f32 round trip")
+    };
     if !s.contains(['.', 'e']) {
         s.push_str(".0");
     }

@@ -12,6 +12,7 @@ pub mod gpu;
 /// Lives with the codecs so that the portability report, which needs no GPU, can use it.
 pub use crate::codecs::core::inputs;
 pub mod alu;
+pub mod literals;
 pub mod native;
 pub mod slang;
 pub mod tools;
@@ -641,6 +642,12 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
                     Err(e) => Check::Done(Err(e)),
                 },
             ),
+            // Every float literal read back as each compiler reads it (naga accepts some
+            // that Tint and ANGLE do not).
+            (
+                "wgsl/literals",
+                Check::Done(literals::check(lang, include, None).map(drop)),
+            ),
         ],
         Lang::Hlsl => {
             let entry = "unitpack_include_check";
@@ -650,7 +657,13 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
                 entry,
             };
             let r = tools::glslang_spirv(&source, input, HlslOpt::Default).map(drop);
-            vec![("hlsl/glslang", Check::Done(r))]
+            vec![
+                ("hlsl/glslang", Check::Done(r)),
+                (
+                    "hlsl/literals",
+                    Check::Done(literals::check(lang, include, None).map(drop)),
+                ),
+            ]
         }
         Lang::Glsl => {
             let form = |version: &str, color: &str| {
@@ -664,9 +677,16 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
             vec![
                 ("glsl 330/glslang", form("330", "vec4")),
                 ("glsl es 300/glslang", form("300 es", "highp vec4")),
+                (
+                    "glsl/literals",
+                    Check::Done(literals::check(lang, include, None).map(drop)),
+                ),
             ]
         }
-        Lang::C => vec![],
+        Lang::C => vec![(
+            "c/literals",
+            Check::Done(literals::check(lang, include, None).map(drop)),
+        )],
     });
     // Every source glslang is to check, by stage, and the results in the same order.
     let mut results = HashMap::new();
