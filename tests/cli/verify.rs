@@ -19,9 +19,12 @@ fn verify_oct16_wgsl_on_lavapipe() {
         .filter(|l| l.starts_with("oct16 "))
         .collect();
     assert!(!rows.is_empty(), "{r:?}");
-    // The WGSL path, and the model's own four- and eight-lane paths, which need no language.
+    // The WGSL paths (naga, and the literal read-back of the include), and the model's own
+    // four- and eight-lane paths, which need no language.
+    assert!(rows.iter().any(|l| l.contains("wgsl/literals")), "{r:?}");
     assert!(
         rows.iter().all(|l| l.contains("wgsl/naga")
+            || l.contains("wgsl/literals")
             || l.contains("cpu/4 lanes")
             || l.contains("cpu/8 lanes")),
         "{r:?}"
