@@ -632,61 +632,13 @@ enum Check {
 /// ([`tools::glslang_check_many`]); the HLSL needs SPIR-V, which glslang makes by linking
 /// every file of a run into one module, so each HLSL include has a run of its own.
 pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> {
-    let checks: Vec<Vec<(&str, Check)>> = crate::par::map(items, |&(lang, include)| match lang {
-        Lang::Wgsl => vec![
-            ("wgsl/naga", Check::Done(tools::naga_wgsl(include))),
-            (
-                "wgsl/naga glsl-out",
-                match tools::naga_glsl_sources(include) {
-                    Ok(sources) => Check::Glsl("comp", sources),
-                    Err(e) => Check::Done(Err(e)),
-                },
-            ),
-            // Every float literal read back as each compiler reads it (naga accepts some
-            // that Tint and ANGLE do not).
-            (
-                "wgsl/literals",
-                Check::Done(literals::check(lang, include, None).map(drop)),
-            ),
-        ],
-        Lang::Hlsl => {
-            let entry = "unitpack_include_check";
-            let source = format!("{include}\n[numthreads(1, 1, 1)]\nvoid {entry}() {{}}\n");
-            let input = GlslangInput::Hlsl {
-                stage: "comp",
-                entry,
-            };
-            let r = tools::glslang_spirv(&source, input, HlslOpt::Default).map(drop);
-            vec![
-                ("hlsl/glslang", Check::Done(r)),
-                (
-                    "hlsl/literals",
-                    Check::Done(literals::check(lang, include, None).map(drop)),
-                ),
-            ]
-        }
-        Lang::Glsl => {
-            let form = |version: &str, color: &str| {
-                let main = format!("out {color} color;\nvoid main() {{ color = vec4(0.0); }}\n");
-                let text = format!("#version {version}\n{include}\n{main}");
-                Check::Glsl(
-                    "frag",
-                    vec![(format!("glsl-{}", version.replace(' ', "-")), text)],
-                )
-            };
-            vec![
-                ("glsl 330/glslang", form("330", "vec4")),
-                ("glsl es 300/glslang", form("300 es", "highp vec4")),
-                (
-                    "glsl/literals",
-                    Check::Done(literals::check(lang, include, None).map(drop)),
-                ),
-            ]
-        }
-        Lang::C => vec![(
-            "c/literals",
-            Check::Done(literals::check(lang, include, None).map(drop)),
-        )],
+    let checks: Vec<Vec<(&str, Check)>> = crate::par::map(items, |&(lang, include)| {
+        let mut checks = compiler_checks(lang, include);
+        // Every float literal read back as each compiler reads it (naga and glslang accept
+        // some that Tint and ANGLE do not).
+        let literals = Check::Done(literals::check(lang, include, None).map(drop));
+        checks.push((literal_check_path(lang), literals));
+        checks
     });
     // Every source glslang is to check, by stage, and the results in the same order.
     let mut results = HashMap::new();
@@ -723,6 +675,57 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
                 .collect()
         })
         .collect()
+}
+
+/// The `(whole include)` path of [`literals::check`] in `lang`.
+fn literal_check_path(lang: Lang) -> &'static str {
+    match lang {
+        Lang::Wgsl => "wgsl/literals",
+        Lang::Glsl => "glsl/literals",
+        Lang::Hlsl => "hlsl/literals",
+        Lang::C => "c/literals",
+    }
+}
+
+/// The compilers' checks of one include ([`whole_includes`]).
+fn compiler_checks(lang: Lang, include: &str) -> Vec<(&'static str, Check)> {
+    match lang {
+        Lang::Wgsl => vec![
+            ("wgsl/naga", Check::Done(tools::naga_wgsl(include))),
+            (
+                "wgsl/naga glsl-out",
+                match tools::naga_glsl_sources(include) {
+                    Ok(sources) => Check::Glsl("comp", sources),
+                    Err(e) => Check::Done(Err(e)),
+                },
+            ),
+        ],
+        Lang::Hlsl => {
+            let entry = "unitpack_include_check";
+            let source = format!("{include}\n[numthreads(1, 1, 1)]\nvoid {entry}() {{}}\n");
+            let input = GlslangInput::Hlsl {
+                stage: "comp",
+                entry,
+            };
+            let r = tools::glslang_spirv(&source, input, HlslOpt::Default).map(drop);
+            vec![("hlsl/glslang", Check::Done(r))]
+        }
+        Lang::Glsl => {
+            let form = |version: &str, color: &str| {
+                let main = format!("out {color} color;\nvoid main() {{ color = vec4(0.0); }}\n");
+                let text = format!("#version {version}\n{include}\n{main}");
+                Check::Glsl(
+                    "frag",
+                    vec![(format!("glsl-{}", version.replace(' ', "-")), text)],
+                )
+            };
+            vec![
+                ("glsl 330/glslang", form("330", "vec4")),
+                ("glsl es 300/glslang", form("300 es", "highp vec4")),
+            ]
+        }
+        Lang::C => vec![],
+    }
 }
 
 /// A traced function's parameter types and results, its names carrying `prefix`
