@@ -277,6 +277,12 @@ pub enum Command {
         /// Float outputs list 5 and their largest difference.
         #[arg(long, value_name = "N", default_value_t = crate::verify::FIRST)]
         keep: usize,
+        /// Instead of verifying here, write DIR/index.html: one self-contained page that
+        /// runs the specs' WGSL through WebGPU on the GPU of whatever browser opens it
+        /// (Metal, D3D12, Vulkan) and shows each function's result, with a button to save
+        /// it as `--json` does.
+        #[arg(long, value_name = "DIR")]
+        web: Option<std::path::PathBuf>,
     },
 }
 
@@ -441,12 +447,20 @@ pub fn run(cli: Cli) -> Result<i32> {
             adapter,
             portable,
             keep,
+            web,
         } => {
             let specs = if specs.is_empty() {
                 Spec::all()
             } else {
                 parse_specs(&specs)?
             };
+            if let Some(dir) = web {
+                return with_figure_cache(|| {
+                    let page = crate::verify::web::write(&dir, &specs)?;
+                    output::print(&format!("{}\n", page.display()))?;
+                    Ok(0)
+                });
+            }
             if portable {
                 let report = crate::portability::run(
                     &specs,

@@ -257,6 +257,39 @@ pub enum Adapter {
     /// allow to round, flush and fuse differently (`verify --portable` models those
     /// liberties, alone and together).
     Hardware,
+    /// SwiftShader, the Vulkan implementation Chromium ships (the Debian package
+    /// `chromium` puts its driver in /usr/lib/chromium): what WebGPU and WebGL run on in a
+    /// browser without a GPU. It flushes denormal inputs and results to zero and is
+    /// otherwise correctly rounded and unfused, so packed codes hold and float forms are
+    /// measured where a denormal is involved.
+    #[cfg_attr(feature = "cli", value(name = "swiftshader"))]
+    SwiftShader,
+}
+
+/// SwiftShader's Vulkan driver manifest, as Debian's `chromium` package installs it.
+pub const SWIFTSHADER_ICD: &str = "/usr/lib/chromium/vk_swiftshader_icd.json";
+
+/// Lets the Vulkan loader find SwiftShader beside the system's drivers: it reads
+/// `VK_ADD_DRIVER_FILES` when an instance is created, so this runs before the process's
+/// first instance, whichever adapter that one is for. Set only where the user has not set
+/// it, and only once.
+fn add_swiftshader_driver() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        if std::env::var_os("VK_ADD_DRIVER_FILES").is_none()
+            && std::path::Path::new(SWIFTSHADER_ICD).exists()
+        {
+            // SAFETY: the verifier reads no environment on other threads while its first
+            // Vulkan instance is being opened; glibc keeps earlier environment arrays
+            // alive, so a concurrent reader elsewhere sees the old or the new one.
+            unsafe { std::env::set_var("VK_ADD_DRIVER_FILES", SWIFTSHADER_ICD) };
+        }
+    });
+}
+
+/// Whether a Vulkan adapter is SwiftShader.
+fn is_swiftshader(a: &wgpu::Adapter) -> bool {
+    a.get_info().name.contains("SwiftShader")
 }
 
 /// A wgpu device on the Vulkan CPU adapter (lavapipe), plus the fixed binding layout that
@@ -341,7 +374,8 @@ impl Gpu {
 
     /// The process-wide `Gpu` on the adapter `which` asks for, as [`Gpu::shared`].
     pub fn shared_on(which: Adapter) -> anyhow::Result<&'static Gpu> {
-        static SHARED: [OnceLock<Result<Gpu, String>>; 2] = [OnceLock::new(), OnceLock::new()];
+        static SHARED: [OnceLock<Result<Gpu, String>>; 3] =
+            [OnceLock::new(), OnceLock::new(), OnceLock::new()];
         SHARED[which as usize]
             .get_or_init(|| Gpu::open(which).map_err(|e| format!("{e:#}")))
             .as_ref()
@@ -349,6 +383,7 @@ impl Gpu {
     }
 
     async fn new_async(which: Adapter) -> anyhow::Result<Gpu> {
+        add_swiftshader_driver();
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = wgpu::Backends::VULKAN;
         desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
@@ -357,7 +392,10 @@ impl Gpu {
         let adapters = instance.enumerate_adapters(wgpu::Backends::VULKAN).await;
         let is_cpu = |a: &wgpu::Adapter| a.get_info().device_type == wgpu::DeviceType::Cpu;
         let adapter = match which {
-            Adapter::Cpu => match adapters.iter().position(is_cpu) {
+            Adapter::Cpu => match adapters
+                .iter()
+                .position(|a| is_cpu(a) && !is_swiftshader(a))
+            {
                 Some(i) => adapters.into_iter().nth(i),
                 None => adapters.into_iter().next(),
             }
@@ -380,6 +418,12 @@ impl Gpu {
                     )
                 })?
             }
+            Adapter::SwiftShader => adapters.into_iter().find(is_swiftshader).ok_or_else(|| {
+                anyhow!(
+                    "no SwiftShader Vulkan adapter found: install the Debian package \
+                     `chromium`, which ships its driver ({SWIFTSHADER_ICD})"
+                )
+            })?,
         };
         let info = adapter.get_info();
 

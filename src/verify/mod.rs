@@ -12,10 +12,12 @@ pub mod gpu;
 /// Lives with the codecs so that the portability report, which needs no GPU, can use it.
 pub use crate::codecs::core::inputs;
 pub mod alu;
+pub mod browser;
 pub mod literals;
 pub mod native;
 pub mod slang;
 pub mod tools;
+pub mod web;
 
 use crate::codecs::Spec;
 use crate::codecs::core::function::Emitted;
@@ -67,10 +69,16 @@ pub enum Path {
     /// where the processor has AVX2. Verified whatever the languages asked for; an error
     /// on a processor without AVX2.
     Lanes8,
+    /// The WGSL include through WebGPU in headless Chromium: Tint compiles it, Dawn runs
+    /// it on the browser's adapter (SwiftShader without a GPU) ([`browser`]).
+    WgslTint,
+    /// The GLSL include as GLSL ES 3.00 through WebGL 2 in headless Chromium: ANGLE
+    /// translates it for the browser's GL backend (SwiftShader's Vulkan without a GPU).
+    GlslAngle,
 }
 
 impl Path {
-    pub const ALL: [Path; 15] = [
+    pub const ALL: [Path; 17] = [
         Path::WgslNaga,
         Path::GlslNaga,
         Path::GlslGlslang,
@@ -86,12 +94,18 @@ impl Path {
         Path::CCpp,
         Path::Lanes,
         Path::Lanes8,
+        Path::WgslTint,
+        Path::GlslAngle,
     ];
     /// The emitted language the path runs, if any.
     pub fn lang(self) -> Option<Lang> {
         match self {
-            Path::WgslNaga => Some(Lang::Wgsl),
-            Path::GlslNaga | Path::GlslGlslang | Path::GlslGl | Path::GlslGlPrecise => {
+            Path::WgslNaga | Path::WgslTint => Some(Lang::Wgsl),
+            Path::GlslNaga
+            | Path::GlslGlslang
+            | Path::GlslGl
+            | Path::GlslGlPrecise
+            | Path::GlslAngle => {
                 Some(Lang::Glsl)
             }
             Path::HlslGlslangOd
@@ -106,7 +120,11 @@ impl Path {
     }
     /// Whether the path runs a shader on the Vulkan adapter.
     fn on_vulkan(self) -> bool {
-        self.lang().is_some_and(|l| l != Lang::C) && !self.on_gl()
+        self.lang().is_some_and(|l| l != Lang::C) && !self.on_gl() && !self.in_browser()
+    }
+    /// Whether the path runs in headless Chromium ([`browser`]).
+    pub fn in_browser(self) -> bool {
+        matches!(self, Path::WgslTint | Path::GlslAngle)
     }
     /// Whether the path runs a shader through OpenGL.
     fn on_gl(self) -> bool {
@@ -123,7 +141,9 @@ impl Path {
             | Path::HlslSlangO0
             | Path::HlslSlang
             | Path::HlslSlangO3
-            | Path::HlslSlangViaGlsl => Some(GL_ITEMS),
+            | Path::HlslSlangViaGlsl
+            | Path::WgslTint
+            | Path::GlslAngle => Some(GL_ITEMS),
             Path::CCpp => Some(CPP_ITEMS),
             _ => None,
         }
@@ -164,7 +184,50 @@ impl fmt::Display for Path {
             Path::CCpp => "c/c++ -O2",
             Path::Lanes => "cpu/4 lanes",
             Path::Lanes8 => "cpu/8 lanes",
+            Path::WgslTint => "wgsl/tint",
+            Path::GlslAngle => "glsl/angle",
         })
+    }
+}
+
+/// Where a Vulkan path's module runs: on the run's adapter, or on SwiftShader beside it
+/// (a default run on lavapipe runs every SPIR-V route on both).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Device {
+    Main,
+    SwiftShader,
+}
+
+/// One path on one device: a row's `path` column.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Run {
+    pub path: Path,
+    pub device: Device,
+}
+
+impl Run {
+    /// How many items of each function the run takes ([`Path::sampled`]); SwiftShader
+    /// reads the same module as lavapipe, which runs every item, so it takes a sample.
+    fn sampled(self) -> Option<usize> {
+        match self.device {
+            Device::SwiftShader => Some(GL_ITEMS),
+            Device::Main => self.path.sampled(),
+        }
+    }
+    /// Whether float outputs are measured rather than held: on implementations that flush
+    /// denormals to zero (SwiftShader, and the browsers, which run on it without a GPU or
+    /// on a GPU that may flush), where the model keeps them.
+    fn flushes(self) -> bool {
+        self.device == Device::SwiftShader || self.path.in_browser()
+    }
+}
+
+impl fmt::Display for Run {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.device {
+            Device::Main => write!(f, "{}", self.path),
+            Device::SwiftShader => write!(f, "{} on swiftshader", self.path),
+        }
     }
 }
 
@@ -604,6 +667,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
             Some(spv)
         }
         Path::GlslGl | Path::GlslGlPrecise => unreachable!("compiled by the OpenGL driver"),
+        Path::WgslTint | Path::GlslAngle => unreachable!("compiled in the browser"),
         Path::CC | Path::CCpp | Path::Lanes | Path::Lanes8 => {
             unreachable!("not a shader path")
         }
@@ -767,6 +831,36 @@ pub fn run_on(
     } else {
         None
     };
+    // Beside lavapipe, every SPIR-V route also runs on SwiftShader, what browsers without
+    // a GPU run.
+    let swift = if adapter == Adapter::Cpu && gpu.is_some() {
+        Some(Gpu::shared_on(Adapter::SwiftShader)?)
+    } else {
+        None
+    };
+    let runs: Vec<Run> = paths
+        .iter()
+        .map(|&path| Run {
+            path,
+            device: Device::Main,
+        })
+        .chain(
+            paths
+                .iter()
+                .filter(|p| swift.is_some() && p.on_vulkan())
+                .map(|&path| Run {
+                    path,
+                    device: Device::SwiftShader,
+                }),
+        )
+        .collect();
+    let browser = if paths.iter().any(|p| p.in_browser()) {
+        let b = browser::Browser::start()?;
+        b.adapters()?;
+        Some(b)
+    } else {
+        None
+    };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let gl = if paths.iter().any(|p| p.on_gl()) {
         Some(gl::Gl::shared(adapter == Adapter::Cpu, threads)?)
@@ -809,7 +903,7 @@ pub fn run_on(
         .collect();
     let total: usize = emitted
         .iter()
-        .map(|e| e.functions.len() * paths.len())
+        .map(|e| e.functions.len() * runs.len())
         .sum();
     let bar = if progress {
         indicatif::ProgressBar::new(total as u64)
@@ -824,9 +918,11 @@ pub fn run_on(
     // taking the next spec, and keep the report in spec order. The shader paths share
     // the one device; the model's expected values and the C compilers use the rest.
     let on = On {
-        paths: &paths,
+        runs: &runs,
         gpu,
+        swift,
         gl,
+        browser: browser.as_ref(),
         keep,
     };
     // The largest specs first (every code of a 24-bit decoder runs on every path), so
@@ -867,10 +963,17 @@ pub fn run_on(
     let mut rows: Vec<Row> = per_spec.into_iter().flat_map(|(_, rows)| rows).collect();
     copy_shared_results(&mut rows);
     bar.finish_and_clear();
+    let mut adapter = gpu.map_or("none (C paths only)".into(), |g| {
+        g.adapter_name().to_string()
+    });
+    if let Some(s) = swift {
+        adapter.push_str(&format!(" and {}", s.adapter_name()));
+    }
+    if let Some(b) = &browser {
+        adapter.push_str(&format!("; headless Chromium: {}", b.describe()));
+    }
     Ok(Report {
-        adapter: gpu.map_or("none (C paths only)".into(), |g| {
-            g.adapter_name().to_string()
-        }),
+        adapter,
         driver: gpu.map_or("-".into(), |g| g.driver().to_string()),
         rows,
     })
@@ -933,33 +1036,42 @@ type Sample = (Vec<u32>, Vec<u32>);
 /// The first `items / 2` items and a seeded, evenly spread choice of the others, with
 /// their expected outputs; every item where there are no more.
 fn sample(input: &[u32], want: &[u32], iw: usize, ow: usize, items: usize) -> Sample {
-    let n = input.len() / iw;
-    if n <= items {
-        return (input.to_vec(), want.to_vec());
-    }
-    let head = items / 2;
-    let rest = items - head;
-    let step = (n - head) as f64 / rest as f64;
-    let picks = (0..head).chain((0..rest).map(|k| {
-        // Jittered within each step, so that a field's low bits vary between picks.
-        let jitter = (k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
-        head + (k as f64 * step) as usize + (jitter as usize % step.max(1.0) as usize)
-    }));
     let (mut i, mut o) = (Vec::new(), Vec::new());
-    for k in picks {
-        let k = k.min(n - 1);
+    for k in picks(input.len() / iw, items) {
         i.extend_from_slice(&input[k * iw..][..iw]);
         o.extend_from_slice(&want[k * ow..][..ow]);
     }
     (i, o)
 }
 
+/// The items of `n` that [`sample`] takes: every one where there are at most `items`,
+/// else the first `items / 2` and a seeded, evenly spread choice of the others.
+pub(crate) fn picks(n: usize, items: usize) -> Vec<usize> {
+    if n <= items {
+        return (0..n).collect();
+    }
+    let head = items / 2;
+    let rest = items - head;
+    let step = (n - head) as f64 / rest as f64;
+    (0..head)
+        .chain((0..rest).map(|k| {
+            // Jittered within each step, so that a field's low bits vary between picks.
+            let jitter = (k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+            head + (k as f64 * step) as usize + (jitter as usize % step.max(1.0) as usize)
+        }))
+        .map(|k| k.min(n - 1))
+        .collect()
+}
+
 /// Where a run verifies and what it lists: the paths, the adapter of the shader paths, and
 /// how many mismatches of integer outputs a row keeps.
 struct On<'a> {
-    paths: &'a [Path],
+    runs: &'a [Run],
     gpu: Option<&'a Gpu>,
+    /// SwiftShader, where the Vulkan paths also run.
+    swift: Option<&'a Gpu>,
     gl: Option<&'a gl::Gl>,
+    browser: Option<&'a browser::Browser>,
     keep: usize,
 }
 
@@ -983,7 +1095,12 @@ fn verify_spec(
     want_buf: &mut Vec<u32>,
 ) -> Vec<Row> {
     let (spec, e, shared, includes) = (v.spec, v.emitted, v.shared, v.includes);
-    let (paths, gpu, keep) = (on.paths, on.gpu, on.keep);
+    let (runs, gpu, keep) = (on.runs, on.gpu, on.keep);
+    let paths: Vec<Path> = runs
+        .iter()
+        .filter(|r| r.device == Device::Main)
+        .map(|r| r.path)
+        .collect();
     // Every include on its own, whatever its functions share with another spec's: the
     // kernels below compile only the functions they call.
     let mut rows: Vec<Row> = v
@@ -1045,33 +1162,65 @@ fn verify_spec(
     let own: Vec<usize> = (0..e.functions.len())
         .filter(|&i| shared[i].is_none())
         .collect();
-    let kernels: Vec<(Path, Result<gpu::Selecting, String>)> = match gpu {
-        Some(gpu) if !own.is_empty() => {
-            let funcs: Vec<KernelFn> = own.iter().map(|&i| all[i].clone()).collect();
-            paths
-                .iter()
-                .filter(|p| p.on_vulkan())
-                .map(|&path| {
-                    let lang = path.lang().expect("a shader path");
-                    let kernel = lang.backend(DEFAULT_PREFIX).kernel(include(lang), &funcs);
-                    let module = compile_shader(path, &kernel).and_then(|spv| {
-                        gpu.selecting(&match (&spv, lang) {
-                            (Some(words), _) => Shader::SpirV(words),
-                            (None, Lang::Wgsl) => Shader::Wgsl(&kernel),
-                            (None, _) => Shader::GlslNaga(&kernel),
-                        })
-                    });
-                    (path, module.map_err(|e| format!("{e:#}")))
-                })
-                .collect()
-        }
+    let funcs: Vec<KernelFn> = own.iter().map(|&i| all[i].clone()).collect();
+    // Each language's selecting kernel, written once for every path that compiles it.
+    let kernel_texts: Vec<(Lang, String)> = Lang::ALL
+        .into_iter()
+        .filter(|&l| l != Lang::C && includes.iter().any(|(x, _)| *x == l))
+        .map(|l| (l, l.backend(DEFAULT_PREFIX).kernel(include(l), &funcs)))
+        .collect();
+    let kernel_text = |l: Lang| {
+        &kernel_texts
+            .iter()
+            .find(|(x, _)| *x == l)
+            .expect("a kernel per language")
+            .1
+    };
+    // Each Vulkan path's module, compiled once and made a pipeline source on every device
+    // it runs on.
+    let kernels: Vec<(Run, Result<gpu::Selecting, String>)> = match gpu {
+        Some(gpu) if !own.is_empty() => paths
+            .iter()
+            .filter(|p| p.on_vulkan())
+            .flat_map(|&path| {
+                let lang = path.lang().expect("a shader path");
+                let kernel = kernel_text(lang);
+                let spv = compile_shader(path, kernel).map_err(|e| format!("{e:#}"));
+                runs.iter()
+                    .filter(|r| r.path == path)
+                    .map(|&run| {
+                        let device = match run.device {
+                            Device::Main => gpu,
+                            Device::SwiftShader => on.swift.expect("SwiftShader opened"),
+                        };
+                        let module = spv.clone().and_then(|spv| {
+                            device
+                                .selecting(&match (&spv, lang) {
+                                    (Some(words), _) => Shader::SpirV(words),
+                                    (None, Lang::Wgsl) => Shader::Wgsl(kernel),
+                                    (None, _) => Shader::GlslNaga(kernel),
+                                })
+                                .map_err(|e| format!("{e:#}"))
+                        });
+                        (run, module)
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .collect(),
         _ => Vec::new(),
+    };
+    // The browser compiles a spec's WGSL kernel once (it caches by key); WebGL programs
+    // are one per function.
+    let key_of = |text: &str| {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        text.hash(&mut h);
+        h.finish()
     };
     // The OpenGL paths compile the same functions once per form, as the driver's own
     // GLSL compiler reads them.
     let gl_programs: Vec<(Path, Result<gl::Program, String>)> = match on.gl {
         Some(ctx) if !own.is_empty() => {
-            let funcs: Vec<KernelFn> = own.iter().map(|&i| all[i].clone()).collect();
             let glsl = crate::emit::lang::glsl::Glsl::new(DEFAULT_PREFIX);
             paths
                 .iter()
@@ -1094,11 +1243,11 @@ fn verify_spec(
     for (index, f) in e.functions.iter().enumerate() {
         bar.set_message(format!("{spec} {}", f.name));
         if let Some(owner) = &shared[index] {
-            for &path in paths {
+            for &run in runs {
                 rows.push(Row {
                     spec: spec.to_string(),
                     function: f.name.to_string(),
-                    path: path.to_string(),
+                    path: run.to_string(),
                     tested: 0,
                     mismatches: 0,
                     first: vec![],
@@ -1159,13 +1308,14 @@ fn verify_spec(
         let want: &[u32] = want_buf;
         // Each sample size the paths ask for, drawn once.
         let mut samples: Vec<(usize, Sample)> = Vec::new();
-        for items in paths.iter().filter_map(|p| p.sampled()) {
+        for items in runs.iter().filter_map(|r| r.sampled()) {
             if samples.iter().all(|(n, _)| *n != items) {
                 samples.push((items, sample(input, want, f.in_words, f.out_words, items)));
             }
         }
-        for &path in paths {
-            let (input, want) = match path.sampled() {
+        for &run in runs {
+            let path = run.path;
+            let (input, want) = match run.sampled() {
                 Some(items) => {
                     let (_, (i, w)) = samples.iter().find(|(n, _)| *n == items).expect("drawn");
                     (i.as_slice(), w.as_slice())
@@ -1217,14 +1367,41 @@ fn verify_spec(
                     ),
                     Err(e) => Err(anyhow::anyhow!("{e}")),
                 }
+            } else if path.in_browser() {
+                let selector = own.iter().position(|&i| i == index).expect("run here") as u32;
+                let webgl;
+                let (api, source) = match path {
+                    Path::WgslTint => (browser::Api::WebGpu, kernel_text(Lang::Wgsl)),
+                    _ => {
+                        webgl = crate::emit::lang::glsl::Glsl::new(DEFAULT_PREFIX)
+                            .webgl_kernel(include(Lang::Glsl), &all[index]);
+                        (browser::Api::WebGl, &webgl)
+                    }
+                };
+                let job = browser::Job {
+                    api,
+                    key: key_of(source),
+                    source,
+                    selector,
+                    input,
+                    in_words: f.in_words,
+                    out_words: f.out_words,
+                };
+                on.browser
+                    .expect("a browser for the browser paths")
+                    .run(&job, &mut |got| cmp.take(got))
             } else {
                 let (_, kernel) = kernels
                     .iter()
-                    .find(|(p, _)| *p == path)
+                    .find(|(r, _)| *r == run)
                     .expect("a kernel per shader path");
                 let selector = own.iter().position(|&i| i == index).expect("run here") as u32;
+                let device = match run.device {
+                    Device::Main => gpu.expect("adapter for shader paths"),
+                    Device::SwiftShader => on.swift.expect("SwiftShader opened"),
+                };
                 match kernel {
-                    Ok(kernel) => gpu.expect("adapter for shader paths").run_selected(
+                    Ok(kernel) => device.run_selected(
                         kernel,
                         selector,
                         input,
@@ -1238,14 +1415,16 @@ fn verify_spec(
             let mut row = Row {
                 spec: spec.to_string(),
                 function: f.name.to_string(),
-                path: path.to_string(),
+                path: run.to_string(),
                 tested: input.len() / f.in_words,
                 mismatches: 0,
                 first: vec![],
                 error: None,
                 same_as: None,
                 largest: None,
-                measured: (path.regroups() && ret.kind() == Kind::F32)
+                measured: ((path.regroups() || run.flushes()) && ret.kind() == Kind::F32)
+                    // The lean tier promises its codes only where denormals are kept.
+                    || (run.flushes() && crate::codecs::core::ieee::asked(spec))
                     || (path.contracts()
                         && spec.family().contracted(spec)
                         && crate::codecs::core::ieee::asked(spec)),

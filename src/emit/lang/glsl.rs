@@ -38,6 +38,64 @@ impl Glsl {
         self.selecting_kernel(include, funcs, &Target::OpenGl { precise })
     }
 
+    /// The WebGL 2 form of a kernel, for one function: a GLSL ES 3.00 vertex shader (WebGL
+    /// has no compute shaders) that reads one item's words from the integer attributes
+    /// `unitpack_in_K` at location K, four words each, and writes its output words to the
+    /// flat varyings `unitpack_out_K`, which transform feedback captures
+    /// (`crate::verify::browser`). The include is as a user's: ES 3.00 has no `precise`.
+    pub fn webgl_kernel(&self, include: &str, (func, params, ret): &KernelFn) -> String {
+        let (inw, outw): (usize, usize) = (params.iter().map(|p| p.lanes as usize).sum(), ret.words());
+        let KernelIo { args, stores } = kernel_io(
+            self,
+            params,
+            ret,
+            |l, _| format!("uintBitsToFloat({l})"),
+            |v, _| format!("floatBitsToUint({v})"),
+            |name, t, e| format!("{} {name} = {e};", self.ty(t)),
+        );
+        let vectors = |words: usize| words.div_ceil(4);
+        let attributes: String = (0..vectors(inw))
+            .map(|k| format!("layout(location = {k}) in uvec4 unitpack_in_{k};\n"))
+            .collect();
+        let varyings: String = (0..vectors(outw))
+            .map(|k| format!("flat out uvec4 unitpack_out_{k};\n"))
+            .collect();
+        let loaded: Vec<String> = (0..inw)
+            .map(|k| format!("unitpack_in_{}.{}", k / 4, super::LANES[k % 4]))
+            .collect();
+        let written: String = (0..vectors(outw))
+            .map(|k| {
+                let lanes: Vec<String> = (4 * k..4 * k + 4)
+                    .map(|w| {
+                        if w < outw {
+                            format!("output_words[{w}]")
+                        } else {
+                            "0u".into()
+                        }
+                    })
+                    .collect();
+                format!("\n    unitpack_out_{k} = uvec4({});", lanes.join(", "))
+            })
+            .collect();
+        format!(
+            "#version 300 es
+precision highp float;
+precision highp int;
+{attributes}{varyings}
+{include}
+void main() {{
+    const uint i = 0u;
+    uint input_words[{inw}] = uint[{inw}]({});
+    uint output_words[{outw}];
+    {} r = {func}({args});{stores}{written}
+    gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+}}
+",
+            loaded.join(", "),
+            ret.ty(self)
+        )
+    }
+
     fn selecting_kernel(&self, include: &str, funcs: &[KernelFn], target: &Target) -> String {
         let (runners, cases) = selecting_parts(
             funcs,
