@@ -35,7 +35,8 @@ use std::fmt::Write;
 pub struct Options {
     /// Seeds of the [`Mode::Seeded`] runs.
     pub seeds: Vec<u64>,
-    /// Also run [`Mode::Lowest`] and [`Mode::Highest`].
+    /// Also run [`Mode::Lowest`], [`Mode::Highest`] and [`Mode::Last`] (the deviation
+    /// wherever allowed: under `denorm`, what SwiftShader computes).
     pub worst_ends: bool,
     /// Seeds of the [`Mode::Site`] runs: one choice per operation for every item.
     pub sites: Vec<u64>,
@@ -93,7 +94,7 @@ impl Options {
     pub fn modes(&self) -> Vec<Mode> {
         let mut m: Vec<Mode> = self.seeds.iter().map(|&s| Mode::Seeded(s)).collect();
         if self.worst_ends {
-            m.extend([Mode::Lowest, Mode::Highest]);
+            m.extend([Mode::Lowest, Mode::Highest, Mode::Last]);
         }
         m.extend(self.sites.iter().map(|&s| Mode::Site(s)));
         m

@@ -452,10 +452,10 @@ fn report_counts_changes_and_renders() {
         &opts,
     );
     assert_eq!(r.rows.len(), 4 * 2);
-    assert_eq!(r.modes.len(), 3);
+    assert_eq!(r.modes.len(), 4);
     for row in &r.rows {
         assert!(row.changed <= row.items);
-        assert_eq!(row.by_mode.len(), 3);
+        assert_eq!(row.by_mode.len(), 4);
         assert!(row.by_mode.iter().all(|&n| n <= row.changed));
         assert_eq!(row.max_ulp.is_none(), row.role == Role::Encode);
         assert_eq!(row.example.is_some(), row.changed > 0);
@@ -648,7 +648,8 @@ fn denormal_flushing_gives_no_nan() {
     }
 }
 
-/// One line of a kept hardware run (`tests/data/h100_*.tsv`, `tests/data/h200_*.tsv`): spec, function, input words,
+/// One line of a kept run (`tests/data/h100_*.tsv`, `tests/data/h200_*.tsv`,
+/// `tests/data/swiftshader_flushed_floats.tsv`): spec, function, input words,
 /// the model's output words and the GPU's, and any further columns.
 struct Kept {
     spec: String,
@@ -681,7 +682,7 @@ fn kept(file: &str) -> Vec<Kept> {
         .collect()
 }
 
-/// The H100's and H200's kept items still hold the model's outputs: each line's model column is what
+/// The H100's, H200's and SwiftShader's kept items still hold the model's outputs: each line's model column is what
 /// the function computes today, and the GPU's column differs from it. A model change that
 /// moves one of these outputs makes the data stale, and this says which line.
 #[test]
@@ -692,6 +693,7 @@ fn gpu_items_hold_the_model_outputs() {
         ("h100_gl_precise_changed_codes.tsv", 48),
         ("h200_changed_codes.tsv", 2783),
         ("h200_beyond_bound.tsv", 15),
+        ("swiftshader_flushed_floats.tsv", SWIFTSHADER_LINES),
     ] {
         let items = kept(file);
         assert_eq!(items.len(), lines, "{file}");
@@ -715,6 +717,45 @@ fn gpu_items_hold_the_model_outputs() {
             assert_ne!(k.gpu, k.model, "{file}: {} {}", k.spec, k.function);
         }
     }
+}
+
+/// Lines of `tests/data/swiftshader_flushed_floats.tsv`.
+const SWIFTSHADER_LINES: usize = 2838;
+
+/// `verify --portable`'s denormal class predicts SwiftShader: with the flush taken at
+/// every operation ([`Mode::Last`]: every denormal operand and result is zero, its sign
+/// kept), the model gives, item for item, the float-form outputs SwiftShader changed and
+/// the lean tier's codes it changed
+/// (`tests/data/swiftshader_flushed_floats.tsv`, kept from `wgsl/naga on swiftshader`,
+/// which runs the same module as lavapipe, and checked against the Tint and ANGLE runs).
+#[test]
+fn the_denormal_class_predicts_what_swiftshader_changes() {
+    let items = kept("swiftshader_flushed_floats.tsv");
+    assert_eq!(items.len(), SWIFTSHADER_LINES);
+    let mut emitted = std::collections::HashMap::new();
+    let mut functions = std::collections::BTreeSet::new();
+    for (i, k) in items.iter().enumerate() {
+        let e = emitted
+            .entry(k.spec.clone())
+            .or_insert_with(|| k.spec.parse::<Spec>().expect("a valid spec").emitted());
+        let f = e
+            .functions
+            .iter()
+            .find(|f| f.name == k.function)
+            .expect("kept function");
+        let mut out = vec![0; f.out_words];
+        with(Some(Deviation::new(Class::Denorm, Mode::Last)), || {
+            begin_item(i as u64);
+            (f.eval_dev)(&k.input, &mut out);
+        });
+        assert_eq!(
+            out, k.gpu,
+            "{} {} on {:08x?}: SwiftShader gave {:08x?}, the denormal class {out:08x?}",
+            k.spec, k.function, k.input, k.gpu
+        );
+        functions.insert((k.spec.as_str(), k.function.as_str()));
+    }
+    assert!(functions.len() >= 50, "{} functions", functions.len());
 }
 
 /// The deviation model predicts what the H100 did on the naga paths: per site

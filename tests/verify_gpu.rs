@@ -1,9 +1,12 @@
 //! The whole catalogue on lavapipe: every emitted function on every path (WGSL via naga,
 //! GLSL via naga and glslang, HLSL via glslang with -Od and default optimization and via
-//! Slang's four routes, GLSL on the OpenGL driver, C and C++), and the model's own four-lane evaluation that the CPU batches run, each
-//! compared as raw bits with the f32 model on every code up to 24 bits and 2^20 seeded
-//! vectors plus the edge cases, plus the static checks. With no Vulkan adapter this
-//! fails and names the package to install.
+//! Slang's four routes, GLSL on the OpenGL driver, C and C++), and the model's own four-lane
+//! evaluation that the CPU batches run, each compared as raw bits with the f32 model on
+//! every code up to 24 bits and 2^20 seeded vectors plus the edge cases, plus the static
+//! checks; then the same SPIR-V again on SwiftShader and the includes in headless Chromium
+//! (WGSL through WebGPU's Tint, GLSL ES through WebGL 2's ANGLE), each on a seeded sample
+//! of 2^16 items per function plus the edge cases. With no Vulkan adapter or no Chromium
+//! this fails and names the package to install.
 
 use std::collections::HashMap;
 use unitpack::Generator;
@@ -43,6 +46,139 @@ fn every_function_is_bit_exact_on_every_path() {
     shared_rows_repeat_identical_code(&report);
     sampled_paths_run_their_sample(&report);
     slang_routes_hold_what_the_readme_says(&report);
+    browser_and_swiftshader_paths_hold_what_they_promise(&report);
+    hostile_inputs_encode_as_documented_on_the_new_paths(&report);
+}
+
+/// Zero, NaN and infinite vectors and frames are among the items every sampled path runs
+/// (the sample's first half is the inputs' head, where the edge items stand), so on the
+/// browser and SwiftShader paths every packed code of a hostile input is the model's (the
+/// rows pass), and no float output became NaN or changed an infinity where the model's
+/// did not: no row's largest difference is infinite.
+fn hostile_inputs_encode_as_documented_on_the_new_paths(report: &unitpack::verify::Report) {
+    use unitpack::codecs::core::inputs::{edge_frames, edge_vectors};
+    use unitpack::verify::GL_ITEMS;
+    let edges = edge_vectors();
+    assert!(edges.len() <= GL_ITEMS / 2, "{} edge vectors", edges.len());
+    for hostile in [[0.0, 0.0, 0.0], [f32::NAN; 3], [f32::INFINITY, 0.0, 0.0]] {
+        let bits = hostile.map(f32::to_bits);
+        assert!(
+            edges.iter().any(|v| v.map(f32::to_bits) == bits),
+            "{hostile:?} is an edge vector"
+        );
+    }
+    let frames = edge_frames();
+    assert!(frames.len() <= GL_ITEMS / 2, "{} edge frames", frames.len());
+    assert!(
+        frames.iter().any(|f| f[..3].iter().all(|x| x.is_nan())),
+        "a NaN normal is an edge frame"
+    );
+    let new = |p: &str| p == "wgsl/tint" || p == "glsl/angle" || p.ends_with(" on swiftshader");
+    let rows: Vec<_> = report.rows.iter().filter(|r| new(&r.path)).collect();
+    assert!(rows.len() > 5000, "{} rows on the new paths", rows.len());
+    for r in rows {
+        if let Some(l) = &r.largest {
+            assert!(
+                l.difference.is_finite(),
+                "{} {} on {}: {:?}",
+                r.spec,
+                r.function,
+                r.path,
+                l.at
+            );
+        }
+    }
+}
+
+/// The browser paths (Tint through WebGPU, ANGLE through WebGL 2) and every SPIR-V route
+/// again on SwiftShader run every function a spec owns on their sample; packed codes,
+/// indices and what a code decodes to are the model's bits there, and float forms (float
+/// in, float out), which SwiftShader's flushing of denormals moves, are measured: some of
+/// them do move, and only on denormal or zero items (`tests/portability.rs` holds the
+/// model's `denorm` class to SwiftShader's outputs). The lean tier promises its codes only
+/// where denormals are kept, so its encoders are measured there too.
+fn browser_and_swiftshader_paths_hold_what_they_promise(report: &unitpack::verify::Report) {
+    use unitpack::model::Kind;
+    use unitpack::verify::{GL_ITEMS, Path, func_types};
+    // Each path, and whether its compiler also regroups products (Slang's optimizing
+    // routes), which moves float outputs beyond the denormals.
+    let mut paths: Vec<(String, bool)> = vec![
+        (Path::WgslTint.to_string(), false),
+        (Path::GlslAngle.to_string(), false),
+    ];
+    paths.extend(
+        Path::ALL
+            .into_iter()
+            .filter(|p| p.on_vulkan())
+            .map(|p| (format!("{p} on swiftshader"), p.regroups())),
+    );
+    assert_eq!(paths.len(), 2 + 9, "two browser paths and nine SPIR-V routes");
+    let every: HashMap<(&str, &str), usize> = report
+        .rows
+        .iter()
+        .filter(|r| r.path == Path::CC.to_string())
+        .map(|r| ((r.spec.as_str(), r.function.as_str()), r.tested))
+        .collect();
+    let owned = report
+        .rows
+        .iter()
+        .filter(|r| r.path == "wgsl/naga" && r.function != "(whole include)" && r.same_as.is_none())
+        .count();
+    assert!(owned > 500, "{owned} functions run on their own");
+    let emitted: Vec<(String, _)> = Spec::all()
+        .into_iter()
+        .map(|s| (s.to_string(), s.emitted()))
+        .collect();
+    // Whether each function is a float form, and whether its spec is the lean tier's.
+    let may_move: HashMap<(&str, &str), (bool, bool)> = emitted
+        .iter()
+        .flat_map(|(id, e)| {
+            let spec: Spec = id.parse().expect("a listed spec");
+            let lean = unitpack::codecs::core::ieee::asked(&spec);
+            e.functions.iter().map(move |f| {
+                let (params, ret) = func_types(e.module.func(f.name).expect("traced"), "");
+                let float_form =
+                    ret.kind() == Kind::F32 && params.iter().any(|t| t.kind == Kind::F32);
+                ((id.as_str(), f.name), (float_form, lean))
+            })
+        })
+        .collect();
+    let mut moved = 0;
+    for (path, regroups) in &paths {
+        let rows: Vec<_> = report
+            .rows
+            .iter()
+            .filter(|r| &r.path == path && r.function != "(whole include)" && r.same_as.is_none())
+            .collect();
+        assert_eq!(rows.len(), owned, "{path} runs every function a spec owns");
+        for r in rows {
+            let what = format!("{} {} on {path}", r.spec, r.function);
+            assert!(r.error.is_none(), "{what}: {:?}", r.error);
+            let all = every[&(r.spec.as_str(), r.function.as_str())];
+            assert_eq!(r.tested, all.min(GL_ITEMS), "{what}");
+            let (float_form, lean) = may_move[&(r.spec.as_str(), r.function.as_str())];
+            if !r.measured {
+                assert_eq!(r.mismatches, 0, "{what}: {:?}", r.first);
+            } else {
+                assert!(
+                    float_form || lean,
+                    "{what}: a code or a decoded output is held, not measured"
+                );
+                moved += usize::from(r.mismatches > 0);
+                for m in r.first.iter().filter(|_| !regroups) {
+                    assert!(
+                        m.input
+                            .iter()
+                            .chain(&m.expected)
+                            .chain(&m.actual)
+                            .any(|&w| f32::from_bits(w).is_subnormal() || w & 0x7fff_ffff == 0),
+                        "{what}: a change with no denormal or zero in sight: {m:?}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(moved > 0, "SwiftShader flushes some float output");
 }
 
 /// Through Slang, `-O0` and `-emit-spirv-via-glsl` give the model's bits for every
@@ -92,12 +228,14 @@ fn slang_routes_hold_what_the_readme_says(report: &unitpack::verify::Report) {
             );
         }
     }
-    // The packed encoders are held on every route, measured nowhere.
+    // The packed encoders are held on every route on lavapipe, measured nowhere.
     assert!(
         report
             .rows
             .iter()
-            .filter(|r| r.function == "encode" && r.path.starts_with("hlsl/slang"))
+            .filter(|r| r.function == "encode"
+                && r.path.starts_with("hlsl/slang")
+                && !r.path.ends_with(" on swiftshader"))
             .all(|r| !r.measured && r.mismatches == 0)
     );
 }
@@ -244,9 +382,11 @@ fn every_include_is_checked_whole(report: &unitpack::verify::Report) {
                 "wgsl/naga",
                 "wgsl/naga glsl-out",
                 "wgsl/literals",
+                "wgsl/tint",
                 "glsl 330/glslang",
                 "glsl es 300/glslang",
                 "glsl/literals",
+                "glsl/angle",
                 "hlsl/glslang",
                 "hlsl/literals",
                 "c/literals"

@@ -241,9 +241,11 @@ pub enum Command {
         #[command(flatten)]
         io: StreamIo,
     },
-    /// Prove emitted code bit-exact: static checks (naga, glslang, spirv-val) and
-    /// execution on the Vulkan CPU adapter (lavapipe) through naga, glslang and Slang, on
-    /// the OpenGL driver and through the C compilers, compared as raw bits with the model.
+    /// Prove emitted code bit-exact: static checks (naga, glslang, spirv-val, literals
+    /// read back) and execution on the Vulkan CPU adapter (lavapipe) through naga, glslang
+    /// and Slang, the same SPIR-V on SwiftShader, WGSL through WebGPU (Tint) and GLSL ES
+    /// through WebGL 2 (ANGLE) in headless Chromium, on the OpenGL driver and through the C
+    /// compilers, compared as raw bits with the model.
     Verify {
         /// Specs to verify (default: all).
         #[arg(value_name = "SPEC", help = format!("{SPEC_HELP} (default: every spec)"))]
@@ -266,15 +268,16 @@ pub enum Command {
         /// multiply-adds, denormal flushing, lost signs of zero, excess precision,
         /// reassociation, either-neighbour rounding, contraction into comparisons and
         /// products), one class at a time and fma+reassoc+contract together, with 3
-        /// seeds, 3 per-site choices and both worst-case ends, over 2^14 inputs per
+        /// seeds, 3 per-site choices, both worst-case ends and the deviation taken
+        /// everywhere (denorm: SwiftShader's flushing), over 2^14 inputs per
         /// function. Reports changed outputs per function and
         /// class; exits 1 if any packed code changes under a class the portability
         /// guarantee covers (div, sqrt, fma, denorm, zero).
         #[arg(long)]
         portable: bool,
-        /// List up to N mismatches of each function with integer outputs (codes, indices)
-        /// per path instead of 5, e.g. to keep what a GPU changed as regression data.
-        /// Float outputs list 5 and their largest difference.
+        /// List up to N mismatches of each function per path instead of 5, e.g. to keep
+        /// what a GPU changed as regression data. Float outputs also give their largest
+        /// difference.
         #[arg(long, value_name = "N", default_value_t = crate::verify::FIRST)]
         keep: usize,
         /// Instead of verifying here, write DIR/index.html: one self-contained page that

@@ -12,7 +12,7 @@
 //! and [`Mode::Highest`] always the lowest or highest (in IEEE total order, so `-0 < +0`),
 //! [`Mode::Site`] by a hash of the seed and the operation's place in the function, the same
 //! for every item, as a compiler fuses or regroups an instruction for every input or for
-//! none. A [`Deviation`] takes a set of classes ([`Classes`]) at once: an implementation
+//! none, and [`Mode::Last`] always the deviation (under `denorm`, SwiftShader's flushing). A [`Deviation`] takes a set of classes ([`Classes`]) at once: an implementation
 //! that contracts also regroups, and the changes an NVIDIA H100 made on the paths without
 //! `NoContraction` are reproduced only by `fma`, `reassoc` and `contract` together, per
 //! site (`tests/portability.rs`, over the codes kept in `tests/data/`).
@@ -194,6 +194,12 @@ pub enum Mode {
     /// regroup or approximate it. Where the number of allowed results depends on the
     /// values (a zero quotient has one), the pick is the hash modulo that number.
     Site(u64),
+    /// Always the last allowed result in the order the class lists them, the result as
+    /// computed being first: the deviation taken wherever the class allows one. Under
+    /// `denorm` that is every denormal operand and every denormal result flushed to a zero
+    /// of its sign, which is what SwiftShader does (and with it Chromium's WebGPU and
+    /// WebGL 2 on a machine without a GPU).
+    Last,
 }
 
 impl Mode {
@@ -203,6 +209,7 @@ impl Mode {
             Mode::Lowest => "lowest".into(),
             Mode::Highest => "highest".into(),
             Mode::Site(s) => format!("site {s}"),
+            Mode::Last => "last".into(),
         }
     }
 }
@@ -335,6 +342,7 @@ fn pick(mode: Mode, n: usize, cmp: impl Fn(usize, usize) -> Ordering) -> usize {
         Mode::Site(_) => (site % n as u64) as usize,
         Mode::Lowest => (1..n).fold(0, |m, i| if cmp(i, m).is_lt() { i } else { m }),
         Mode::Highest => (1..n).fold(0, |m, i| if cmp(i, m).is_gt() { i } else { m }),
+        Mode::Last => n - 1,
     }
 }
 

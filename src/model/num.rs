@@ -163,6 +163,16 @@ pub trait Float:
     fn at_most(self, hi: Self) -> Self {
         Self::sel(self.le(hi), self, hi)
     }
+    /// `self` with its sign flipped where `m` holds, as a product with `-1` or `1`: the
+    /// same bits as `m ? -self : self` for every number, zeros included. A decoder's
+    /// hemisphere flip is written this way because a SPIR-V optimizer (spirv-opt, which
+    /// SwiftShader and so the browsers run) rewrites the negation of a difference with a
+    /// constant, `-(1 - q)`, as `q - 1`: `+0` where the model's negation gives `-0`. A
+    /// product with a selected sign is not rewritten.
+    #[inline(always)]
+    fn negated_where(self, m: Self::B) -> Self {
+        self * Self::sel(m, Self::c(-1.0), Self::c(1.0))
+    }
     /// `self` limited to `[lo, hi]` (`lo ≤ hi`): [`Float::at_least`] then
     /// [`Float::at_most`], so a NaN `self` gives `lo`.
     #[inline(always)]

@@ -41,6 +41,26 @@ pub enum Api {
     WebGl,
 }
 
+impl Api {
+    /// The page's name for it.
+    fn name(self) -> &'static str {
+        match self {
+            Api::WebGpu => "webgpu",
+            Api::WebGl => "webgl",
+        }
+    }
+}
+
+/// A whole GLSL include as the GLSL ES 3.00 vertex shader ANGLE compiles for
+/// [`Browser::compile`]: the include and an empty `main`. ANGLE translates every function,
+/// called or not.
+pub fn webgl_include_shader(include: &str) -> String {
+    format!(
+        "#version 300 es\nprecision highp float;\nprecision highp int;\n{include}\n\
+         void main() {{\n    gl_Position = vec4(0.0, 0.0, 0.0, 1.0);\n}}\n"
+    )
+}
+
 /// One function's run in the page.
 pub struct Job<'a> {
     pub api: Api,
@@ -284,6 +304,45 @@ impl Browser {
         if job.in_words == 0 || job.out_words == 0 || job.input.len() % job.in_words != 0 {
             bail!("a job needs whole items of at least one word in and out");
         }
+        let words = self.submit(
+            serde_json::json!({
+                "api": job.api.name(),
+                "key": job.key.to_string(),
+                "source": job.source,
+                "selector": job.selector,
+                "in_words": job.in_words,
+                "out_words": job.out_words,
+            }),
+            job.input,
+        )?;
+        let n = job.input.len() / job.in_words;
+        if words.len() != n * job.out_words {
+            bail!(
+                "the page returned {} words for {} expected",
+                words.len(),
+                n * job.out_words
+            );
+        }
+        sink(&words);
+        Ok(())
+    }
+
+    /// Compiles `source` in the page and runs nothing: a WGSL module through WebGPU
+    /// (Tint's validation), or a GLSL ES 3.00 vertex shader through WebGL 2 (ANGLE), where
+    /// any warning in the info log fails as an error does.
+    pub fn compile(&self, api: Api, source: &str) -> Result<()> {
+        let words = self.submit(
+            serde_json::json!({ "api": api.name(), "compile": true, "source": source }),
+            &[],
+        )?;
+        if !words.is_empty() {
+            bail!("the page returned {} words for a compilation", words.len());
+        }
+        Ok(())
+    }
+
+    /// Queues one job (`header` gains its id) and waits for the page's reply.
+    fn submit(&self, mut header: serde_json::Value, input: &[u32]) -> Result<Vec<u32>> {
         self.adapters()?;
         let (tx, rx) = mpsc::channel();
         let (lock, cv) = &*self.state;
@@ -291,23 +350,15 @@ impl Browser {
             let mut st = lock.lock().expect("state");
             let id = st.next;
             st.next += 1;
-            let header = serde_json::json!({
-                "id": id,
-                "api": match job.api { Api::WebGpu => "webgpu", Api::WebGl => "webgl" },
-                "key": job.key.to_string(),
-                "source": job.source,
-                "selector": job.selector,
-                "in_words": job.in_words,
-                "out_words": job.out_words,
-            })
-            .to_string();
-            let mut body = Vec::with_capacity(8 + header.len() + job.input.len() * 4);
+            header["id"] = id.into();
+            let header = header.to_string();
+            let mut body = Vec::with_capacity(8 + header.len() + input.len() * 4);
             body.extend_from_slice(&(header.len() as u32).to_le_bytes());
             body.extend_from_slice(header.as_bytes());
             while body.len() % 4 != 0 {
                 body.push(b' ');
             }
-            body.extend(job.input.iter().flat_map(|w| w.to_le_bytes()));
+            body.extend(input.iter().flat_map(|w| w.to_le_bytes()));
             st.queue.push_back((id, body));
             st.waiting.insert(id, tx);
             cv.notify_all();
@@ -331,17 +382,7 @@ impl Browser {
                 Err(mpsc::RecvTimeoutError::Disconnected) => bail!("the browser's server stopped"),
             }
         };
-        let words = reply.map_err(|e| anyhow!("{e}"))?;
-        let n = job.input.len() / job.in_words;
-        if words.len() != n * job.out_words {
-            bail!(
-                "the page returned {} words for {} expected",
-                words.len(),
-                n * job.out_words
-            );
-        }
-        sink(&words);
-        Ok(())
+        reply.map_err(|e| anyhow!("{e}"))
     }
 }
 

@@ -119,7 +119,7 @@ impl Path {
         }
     }
     /// Whether the path runs a shader on the Vulkan adapter.
-    fn on_vulkan(self) -> bool {
+    pub fn on_vulkan(self) -> bool {
         self.lang().is_some_and(|l| l != Lang::C) && !self.on_gl() && !self.in_browser()
     }
     /// Whether the path runs in headless Chromium ([`browser`]).
@@ -214,9 +214,9 @@ impl Run {
             Device::Main => self.path.sampled(),
         }
     }
-    /// Whether float outputs are measured rather than held: on implementations that flush
-    /// denormals to zero (SwiftShader, and the browsers, which run on it without a GPU or
-    /// on a GPU that may flush), where the model keeps them.
+    /// Whether the run's implementation flushes denormals to zero (SwiftShader, and the
+    /// browsers, which run on it without a GPU or on a GPU that may flush), where the model
+    /// keeps them: float forms, which take float inputs, are measured there, not held.
     fn flushes(self) -> bool {
         self.device == Device::SwiftShader || self.path.in_browser()
     }
@@ -500,7 +500,7 @@ pub struct Comparison<'a> {
     words: usize,
     count: usize,
     first: Vec<Mismatch>,
-    /// How many mismatches `first` lists for integer outputs.
+    /// How many mismatches `first` lists.
     keep: usize,
     largest: Option<Largest>,
 }
@@ -535,11 +535,9 @@ impl<'a> Comparison<'a> {
         }
     }
 
-    /// Lists up to `keep` mismatches (at least [`FIRST`]) when the outputs are integers.
+    /// Lists up to `keep` mismatches (at least [`FIRST`]).
     pub fn keeping(mut self, keep: usize) -> Self {
-        if self.types.1 != Kind::F32 {
-            self.keep = keep.max(FIRST);
-        }
+        self.keep = keep.max(FIRST);
         self
     }
 
@@ -679,7 +677,7 @@ fn compile_shader(path: Path, kernel: &str) -> Result<Option<Vec<u32>>> {
 /// HLSL (beside an empty entry point) and the GLSL as a GLSL 330 and a GLSL ES 300 fragment
 /// shader. (The C paths compile the whole header into the driver every function runs in.)
 pub fn whole_include(lang: Lang, include: &str) -> Vec<(String, Result<()>)> {
-    whole_includes(&[(lang, include)])
+    whole_includes(&[(lang, include)], None)
         .pop()
         .expect("the checks of one include")
 }
@@ -695,8 +693,15 @@ enum Check {
 /// SPIR-V (naga's output, the 330 and ES 300 forms) is checked in shared runs
 /// ([`tools::glslang_check_many`]); the HLSL needs SPIR-V, which glslang makes by linking
 /// every file of a run into one module, so each HLSL include has a run of its own.
-pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> {
-    let checks: Vec<Vec<(&str, Check)>> = crate::par::map(items, |&(lang, include)| {
+///
+/// With `browser`, Tint also validates each WGSL include and ANGLE compiles each GLSL
+/// include as GLSL ES 3.00, warnings failing ([`browser_check`]): the browser paths run
+/// only the functions a spec owns, and this covers the includes of the others.
+pub fn whole_includes(
+    items: &[(Lang, &str)],
+    browser: Option<&browser::Browser>,
+) -> Vec<Vec<(String, Result<()>)>> {
+    let mut checks: Vec<Vec<(&str, Check)>> = crate::par::map(items, |&(lang, include)| {
         let mut checks = compiler_checks(lang, include);
         // Every float literal read back as each compiler reads it (naga and glslang accept
         // some that Tint and ANGLE do not).
@@ -704,6 +709,14 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
         checks.push((literal_check_path(lang), literals));
         checks
     });
+    // The page compiles one source at a time: ask it from here, in order.
+    if let Some(b) = browser {
+        for (&(lang, include), checks) in items.iter().zip(&mut checks) {
+            if let Some((path, check)) = browser_check(b, lang, include) {
+                checks.push((path, Check::Done(check)));
+            }
+        }
+    }
     // Every source glslang is to check, by stage, and the results in the same order.
     let mut results = HashMap::new();
     for stage in ["comp", "frag"] {
@@ -739,6 +752,23 @@ pub fn whole_includes(items: &[(Lang, &str)]) -> Vec<Vec<(String, Result<()>)>> 
                 .collect()
         })
         .collect()
+}
+
+/// The browser's compilation of a whole include, for the languages it takes: WGSL by
+/// Tint (`wgsl/tint`), GLSL as a GLSL ES 3.00 vertex shader by ANGLE (`glsl/angle`).
+fn browser_check(
+    b: &browser::Browser,
+    lang: Lang,
+    include: &str,
+) -> Option<(&'static str, Result<()>)> {
+    match lang {
+        Lang::Wgsl => Some(("wgsl/tint", b.compile(browser::Api::WebGpu, include))),
+        Lang::Glsl => Some((
+            "glsl/angle",
+            b.compile(browser::Api::WebGl, &browser::webgl_include_shader(include)),
+        )),
+        Lang::Hlsl | Lang::C => None,
+    }
 }
 
 /// The `(whole include)` path of [`literals::check`] in `lang`.
@@ -811,9 +841,9 @@ pub fn run(specs: &[Spec], langs: &[Lang], progress: bool) -> Result<Report> {
 pub const FIRST: usize = 5;
 
 /// [`run`] with the shader paths on the Vulkan adapter `adapter` asks for, listing up to
-/// `keep` mismatches of each function with integer outputs per path (float outputs list
-/// [`FIRST`] and their largest): a hardware run's changed codes are regression data for
-/// the deviation model, while its float outputs differ in the last bits by the million.
+/// `keep` mismatches of each function per path (float outputs also their largest): a
+/// hardware run's changed codes, and SwiftShader's flushed float outputs, are regression
+/// data for the deviation model.
 pub fn run_on(
     specs: &[Spec],
     langs: &[Lang],
@@ -890,7 +920,7 @@ pub fn run_on(
         .flatten()
         .map(|(l, include)| (*l, include.as_str()))
         .collect();
-    let mut checks = whole_includes(&items).into_iter();
+    let mut checks = whole_includes(&items, browser.as_ref()).into_iter();
     let checks: Vec<Vec<(String, Option<String>)>> = includes
         .iter()
         .map(|of_spec| {
@@ -1046,7 +1076,7 @@ fn sample(input: &[u32], want: &[u32], iw: usize, ow: usize, items: usize) -> Sa
 
 /// The items of `n` that [`sample`] takes: every one where there are at most `items`,
 /// else the first `items / 2` and a seeded, evenly spread choice of the others.
-pub(crate) fn picks(n: usize, items: usize) -> Vec<usize> {
+pub fn picks(n: usize, items: usize) -> Vec<usize> {
     if n <= items {
         return (0..n).collect();
     }
@@ -1064,7 +1094,7 @@ pub(crate) fn picks(n: usize, items: usize) -> Vec<usize> {
 }
 
 /// Where a run verifies and what it lists: the paths, the adapter of the shader paths, and
-/// how many mismatches of integer outputs a row keeps.
+/// how many mismatches a row keeps.
 struct On<'a> {
     runs: &'a [Run],
     gpu: Option<&'a Gpu>,
@@ -1422,7 +1452,12 @@ fn verify_spec(
                 error: None,
                 same_as: None,
                 largest: None,
-                measured: ((path.regroups() || run.flushes()) && ret.kind() == Kind::F32)
+                measured: (path.regroups() && ret.kind() == Kind::F32)
+                    // A flushing implementation changes what a float input makes, not what
+                    // a code decodes to: float forms are measured there, decoders held.
+                    || (run.flushes()
+                        && ret.kind() == Kind::F32
+                        && params.iter().any(|t| t.kind == Kind::F32))
                     // The lean tier promises its codes only where denormals are kept.
                     || (run.flushes() && crate::codecs::core::ieee::asked(spec))
                     || (path.contracts()

@@ -249,3 +249,80 @@ fn word_ends(line: &str) -> Vec<usize> {
         .filter(|&i| chars[i - 1] != ' ' && chars.get(i).is_none_or(|&c| c == ' '))
         .collect()
 }
+
+/// The report a `verify --web` page posts once it has run, opened in headless Chromium
+/// (WebGPU on SwiftShader without a GPU).
+fn page_report(page: String) -> serde_json::Value {
+    use unitpack::verify::browser::Browser;
+    let browser = Browser::start_with(page).unwrap_or_else(|e| panic!("{e:#}"));
+    let report = browser
+        .report(std::time::Duration::from_secs(900))
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    serde_json::from_str(&report).unwrap_or_else(|e| panic!("{e}: {report}"))
+}
+
+/// `verify --web DIR` writes one self-contained page. Opened in headless Chromium it runs
+/// every function a spec owns and reports, in `verify --json`'s shape, every packed
+/// function passing (its hashes match) and every float form passing or within its proven
+/// bound, the rest measured (SwiftShader flushes denormals); a page whose oct16 WGSL
+/// include was perturbed (the encoder's rounding boundary moved) reports the encoder
+/// failing, with its first mismatching items.
+#[test]
+fn verify_web_page_passes_in_chromium_and_catches_a_perturbed_include() {
+    use unitpack::codecs::Spec;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("page");
+    let r = ok(&["verify", "--web", out.to_str().unwrap()]);
+    let path = out.join("index.html");
+    assert_eq!(r.stdout.trim(), path.display().to_string(), "{r:?}");
+    let page = std::fs::read_to_string(&path).unwrap();
+    for fetched in ["src=\"http", "href=\"http", "import(", "<link "] {
+        assert!(!page.contains(fetched), "the page fetches something: {fetched}");
+    }
+    let v = page_report(page);
+    let rows = v["rows"].as_array().expect("rows");
+    let owned: usize = Spec::all()
+        .iter()
+        .map(|s| {
+            let e = s.emitted();
+            e.functions.len()
+        })
+        .sum();
+    assert!(rows.len() > 500 && rows.len() <= owned, "{} rows", rows.len());
+    for row in rows {
+        let what = format!("{} {}", row["spec"], row["function"]);
+        assert_eq!(row["passed"], true, "{what}: {row}");
+        assert_eq!(row["error"], serde_json::Value::Null, "{what}");
+        if row["measured"] == true {
+            assert!(row["first_mismatches"][0]["output_float"] == true, "{what}: {row}");
+        }
+    }
+    assert_eq!(v["failed"], 0, "{}", v["adapter"]);
+    assert_eq!(v["passed"], true);
+    assert!(v["adapter"].as_str().unwrap().starts_with("WebGPU: "), "{v}");
+
+    let oct16: Spec = "oct16".parse().unwrap();
+    let perturbed = unitpack::verify::web::page(&[oct16], |_, wgsl| {
+        // The encoder steps a rounded field down where `t2 < (t1 - 0.5f) * l1`: with 0.4
+        // there it also steps down fields that lie within a tenth of the boundary.
+        let at = wgsl.find("0.5f").expect("a rounding offset in oct16's WGSL");
+        format!("{}0.4f{}", &wgsl[..at], &wgsl[at + 4..])
+    });
+    let v = page_report(perturbed);
+    assert_eq!(v["passed"], false, "{v}");
+    let failing: Vec<&serde_json::Value> = v["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["passed"] == false)
+        .collect();
+    assert!(!failing.is_empty(), "{v}");
+    for row in failing {
+        let first = &row["first_mismatches"][0];
+        assert!(
+            first["input"].as_array().is_some_and(|a| !a.is_empty())
+                && first["expected"] != first["actual"],
+            "a failing row names its first mismatch: {row}"
+        );
+    }
+}

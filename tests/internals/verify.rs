@@ -124,7 +124,7 @@ fn whole_includes_keep_each_error_with_its_include() {
     ] {
         items.insert(at, item);
     }
-    let checks = whole_includes(&items);
+    let checks = whole_includes(&items, None);
     assert_eq!(checks.len(), items.len());
     for (k, ((lang, _), checks)) in items.iter().zip(&checks).enumerate() {
         let paths: Vec<&str> = checks.iter().map(|(p, _)| p.as_str()).collect();

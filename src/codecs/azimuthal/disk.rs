@@ -55,10 +55,11 @@ impl<F: Float> Folded<F> {
     }
 }
 
-/// `z` on the hemisphere the bit `h` (0 or 1) names.
+/// `z` on the hemisphere the bit `h` (0 or 1) names ([`Float::negated_where`], so that a
+/// `z` of `1 - q` keeps the model's signed zero on every compiler).
 #[inline(always)]
 pub fn unfold<F: Float>(z: F, h: F) -> F {
-    F::sel(h.gt(F::c(0.5)), -z, z)
+    z.negated_where(h.gt(F::c(0.5)))
 }
 
 /// The disk point of codes `c` in units of `2^-21` ([`crate::codecs::toolkit::fixed_decode`]), for the

@@ -227,7 +227,7 @@ impl Turn {
                 let upper = a.ge(F::c(2.0 * m));
                 let x = (F::sel(upper, F::c(3.0 * m) - a, a - F::c(m)) * F::c(1.0 / m)).named("x");
                 let y = F::c(1.0) - x.abs();
-                V2::new(x, F::sel(upper, y, -y))
+                V2::new(x, y.negated_where(upper.not()))
             }
         }
     }

@@ -149,7 +149,7 @@ impl Codec for EqAreaOct {
         let k = (r * (F::c(2.0) - r2).sqrt()).named("k");
         let xy = cs * k * sign_not_zero(e);
         let z = F::c(1.0) - r2;
-        V3::from_xy(xy, F::sel(south, -z, z))
+        V3::from_xy(xy, z.negated_where(south))
     }
     /// The nearest snorm codes of the first quadrant's point, `round(r·(1 - φ/(π/2))·M)`
     /// and `round(r·φ/(π/2)·M)` (ties up), each decided by

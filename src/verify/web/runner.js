@@ -60,10 +60,10 @@ const unitpack = (() => {
     return m.lineNum ? `${m.lineNum}:${m.linePos} ` : "";
   }
 
-  async function moduleOf(d, job) {
-    if (lastModule.key === job.key) return lastModule;
+  // Tint's verdict on a WGSL module: the module, and its errors or null.
+  async function validate(d, source) {
     d.pushErrorScope("validation");
-    const module = d.createShaderModule({ code: job.source });
+    const module = d.createShaderModule({ code: source });
     const info = await module.getCompilationInfo();
     const scoped = await d.popErrorScope();
     const errors = info.messages
@@ -74,7 +74,12 @@ const unitpack = (() => {
       : scoped
         ? scoped.message
         : null;
-    lastModule = { key: job.key, module, error };
+    return { module, error };
+  }
+
+  async function moduleOf(d, job) {
+    if (lastModule.key === job.key) return lastModule;
+    lastModule = { key: job.key, ...(await validate(d, job.source)) };
     return lastModule;
   }
 
@@ -255,7 +260,21 @@ const unitpack = (() => {
     return d;
   }
 
+  // A compilation only: a WGSL module validated by Tint, or a GLSL ES 3.00 vertex shader
+  // compiled by ANGLE with an empty info log. Returns no words.
+  async function compile(job) {
+    if (job.api === "webgpu") {
+      const m = await validate(await gpu(), job.source);
+      if (m.error) throw new Error("WebGPU (Tint) rejects the WGSL: " + m.error);
+    } else {
+      const g = webgl();
+      g.deleteShader(shader(g, g.VERTEX_SHADER, job.source, "GLSL"));
+    }
+    return new Uint32Array(0);
+  }
+
   function run(job) {
+    if (job.compile) return compile(job);
     return job.api === "webgpu" ? runWebGpu(job) : Promise.resolve().then(() => runWebGl(job));
   }
 
