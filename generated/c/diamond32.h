@@ -76,42 +76,44 @@ static inline unitpack_diamond32_frame_v unitpack_diamond32_decode_v(uint32_t co
     };
     const float t3 = fields.z <= 508.0f ? fields.z : 508.0f;
     const bool t4 = t3 >= 254.0f;
-    const float x = (t4 ? 381.0f - t3 : t3 - 127.0f) * 0.007874016f;
-    const float t5 = 1.0f - fabsf(x);
-    const float t6 = t4 ? t5 : -t5;
-    const unitpack_vec2 t7 = {
+    const float t5 = t4 ? 381.0f - t3 : t3 - 127.0f;
+    const float x = t5 * 0.007874016f;
+    const float t6 = 1.0f - fabsf(x);
+    const float t7 = t4 ? 1.0f : -1.0f;
+    const float t8 = t6 * t7;
+    const unitpack_vec2 t9 = {
         fields.x >= (-1023.0f) ? fields.x : -1023.0f,
         fields.y >= (-1023.0f) ? fields.y : -1023.0f
     };
-    const unitpack_vec2 abs_t7 = { fabsf(t7.x), fabsf(t7.y) };
-    const float pz = 1023.0f - abs_t7.x - abs_t7.y;
-    const bool t8 = pz < 0.0f;
+    const unitpack_vec2 abs_t9 = { fabsf(t9.x), fabsf(t9.y) };
+    const float pz = 1023.0f - abs_t9.x - abs_t9.y;
+    const bool t10 = pz < 0.0f;
     const unitpack_vec3 p = {
-        t8 ? (1023.0f - abs_t7.y) * (t7.x >= 0.0f ? 1.0f : -1.0f) : t7.x,
-        t8 ? (1023.0f - abs_t7.x) * (t7.y >= 0.0f ? 1.0f : -1.0f) : t7.y,
+        t10 ? (1023.0f - abs_t9.y) * (t9.x >= 0.0f ? 1.0f : -1.0f) : t9.x,
+        t10 ? (1023.0f - abs_t9.x) * (t9.y >= 0.0f ? 1.0f : -1.0f) : t9.y,
         pz
     };
     const unitpack_vec3 p_sq = { p.x * p.x, p.y * p.y, p.z * p.z };
-    const float t9 = 1.0f / sqrtf(p_sq.x + p_sq.y + p_sq.z);
-    const unitpack_vec3 n = { p.x * t9, p.y * t9, p.z * t9 };
-    const bool t10 = fabsf(p.y) > fabsf(p.z);
-    const unitpack_vec3 b1 = { t10 ? n.y : n.z, t10 ? -n.x : 0.0f, t10 ? 0.0f : -n.x };
-    const unitpack_vec3 t11 = { n.y * b1.z, n.z * b1.x, n.x * b1.y };
-    const unitpack_vec3 t12 = { n.z * b1.y, n.x * b1.z, n.y * b1.x };
-    const unitpack_vec3 b2 = { t11.x - t12.x, t11.y - t12.y, t11.z - t12.z };
-    const unitpack_vec3 t13 = { b1.x * x, b1.y * x, b1.z * x };
-    const unitpack_vec3 t14 = { b2.x * t6, b2.y * t6, b2.z * t6 };
-    const unitpack_vec3 w = { t13.x + t14.x, t13.y + t14.y, t13.z + t14.z };
+    const float t11 = 1.0f / sqrtf(p_sq.x + p_sq.y + p_sq.z);
+    const unitpack_vec3 n = { p.x * t11, p.y * t11, p.z * t11 };
+    const bool t12 = fabsf(p.y) > fabsf(p.z);
+    const unitpack_vec3 b1 = { t12 ? n.y : n.z, t12 ? -n.x : 0.0f, t12 ? 0.0f : -n.x };
+    const unitpack_vec3 t13 = { n.y * b1.z, n.z * b1.x, n.x * b1.y };
+    const unitpack_vec3 t14 = { n.z * b1.y, n.x * b1.z, n.y * b1.x };
+    const unitpack_vec3 b2 = { t13.x - t14.x, t13.y - t14.y, t13.z - t14.z };
+    const unitpack_vec3 t15 = { b1.x * x, b1.y * x, b1.z * x };
+    const unitpack_vec3 t16 = { b2.x * t8, b2.y * t8, b2.z * t8 };
+    const unitpack_vec3 w = { t15.x + t16.x, t15.y + t16.y, t15.z + t16.z };
     const float n_y_sq = n.y * n.y;
     const float n_x_sq = n.x * n.x;
     const float n_z_sq = n.z * n.z;
     const float n_x_sq2 = n.x * n.x;
-    const float b1_2 = t10 ? n_y_sq + n_x_sq : n_z_sq + n_x_sq2;
-    const unitpack_vec2 t15 = { x, t6 };
-    const unitpack_vec2 t15_sq = { t15.x * t15.x, t15.y * t15.y };
-    const float t16 = 1.0f / sqrtf(b1_2 * (t15_sq.x + t15_sq.y));
-    const unitpack_vec4 t17 = { w.x * t16, w.y * t16, w.z * t16, fields.w > 0.5f ? -1.0f : 1.0f };
-    const unitpack_diamond32_frame_v frame = { n, t17 };
+    const float b1_2 = t12 ? n_y_sq + n_x_sq : n_z_sq + n_x_sq2;
+    const unitpack_vec2 t17 = { t5 * 0.007874016f, t6 * t7 };
+    const unitpack_vec2 t17_sq = { t17.x * t17.x, t17.y * t17.y };
+    const float t18 = 1.0f / sqrtf(b1_2 * (t17_sq.x + t17_sq.y));
+    const unitpack_vec4 t19 = { w.x * t18, w.y * t18, w.z * t18, fields.w > 0.5f ? -1.0f : 1.0f };
+    const unitpack_diamond32_frame_v frame = { n, t19 };
     return frame;
 }
 
@@ -150,50 +152,52 @@ static inline unitpack_diamond32_tbn_v unitpack_diamond32_decode_tbn_v(uint32_t 
     };
     const float t3 = fields.z <= 508.0f ? fields.z : 508.0f;
     const bool t4 = t3 >= 254.0f;
-    const float x = (t4 ? 381.0f - t3 : t3 - 127.0f) * 0.007874016f;
-    const float t5 = 1.0f - fabsf(x);
-    const float t6 = t4 ? t5 : -t5;
-    const unitpack_vec2 t7 = {
+    const float t5 = t4 ? 381.0f - t3 : t3 - 127.0f;
+    const float x = t5 * 0.007874016f;
+    const float t6 = 1.0f - fabsf(x);
+    const float t7 = t4 ? 1.0f : -1.0f;
+    const float t8 = t6 * t7;
+    const unitpack_vec2 t9 = {
         fields.x >= (-1023.0f) ? fields.x : -1023.0f,
         fields.y >= (-1023.0f) ? fields.y : -1023.0f
     };
-    const unitpack_vec2 abs_t7 = { fabsf(t7.x), fabsf(t7.y) };
-    const float pz = 1023.0f - abs_t7.x - abs_t7.y;
-    const bool t8 = pz < 0.0f;
+    const unitpack_vec2 abs_t9 = { fabsf(t9.x), fabsf(t9.y) };
+    const float pz = 1023.0f - abs_t9.x - abs_t9.y;
+    const bool t10 = pz < 0.0f;
     const unitpack_vec3 p = {
-        t8 ? (1023.0f - abs_t7.y) * (t7.x >= 0.0f ? 1.0f : -1.0f) : t7.x,
-        t8 ? (1023.0f - abs_t7.x) * (t7.y >= 0.0f ? 1.0f : -1.0f) : t7.y,
+        t10 ? (1023.0f - abs_t9.y) * (t9.x >= 0.0f ? 1.0f : -1.0f) : t9.x,
+        t10 ? (1023.0f - abs_t9.x) * (t9.y >= 0.0f ? 1.0f : -1.0f) : t9.y,
         pz
     };
     const unitpack_vec3 p_sq = { p.x * p.x, p.y * p.y, p.z * p.z };
-    const float t9 = 1.0f / sqrtf(p_sq.x + p_sq.y + p_sq.z);
-    const unitpack_vec3 n = { p.x * t9, p.y * t9, p.z * t9 };
-    const bool t10 = fabsf(p.y) > fabsf(p.z);
-    const unitpack_vec3 b1 = { t10 ? n.y : n.z, t10 ? -n.x : 0.0f, t10 ? 0.0f : -n.x };
-    const unitpack_vec3 t11 = { n.y * b1.z, n.z * b1.x, n.x * b1.y };
-    const unitpack_vec3 t12 = { n.z * b1.y, n.x * b1.z, n.y * b1.x };
-    const unitpack_vec3 b2 = { t11.x - t12.x, t11.y - t12.y, t11.z - t12.z };
-    const unitpack_vec3 t13 = { b1.x * x, b1.y * x, b1.z * x };
-    const unitpack_vec3 t14 = { b2.x * t6, b2.y * t6, b2.z * t6 };
-    const unitpack_vec3 w = { t13.x + t14.x, t13.y + t14.y, t13.z + t14.z };
+    const float t11 = 1.0f / sqrtf(p_sq.x + p_sq.y + p_sq.z);
+    const unitpack_vec3 n = { p.x * t11, p.y * t11, p.z * t11 };
+    const bool t12 = fabsf(p.y) > fabsf(p.z);
+    const unitpack_vec3 b1 = { t12 ? n.y : n.z, t12 ? -n.x : 0.0f, t12 ? 0.0f : -n.x };
+    const unitpack_vec3 t13 = { n.y * b1.z, n.z * b1.x, n.x * b1.y };
+    const unitpack_vec3 t14 = { n.z * b1.y, n.x * b1.z, n.y * b1.x };
+    const unitpack_vec3 b2 = { t13.x - t14.x, t13.y - t14.y, t13.z - t14.z };
+    const unitpack_vec3 t15 = { b1.x * x, b1.y * x, b1.z * x };
+    const unitpack_vec3 t16 = { b2.x * t8, b2.y * t8, b2.z * t8 };
+    const unitpack_vec3 w = { t15.x + t16.x, t15.y + t16.y, t15.z + t16.z };
     const float n_y_sq = n.y * n.y;
     const float n_x_sq = n.x * n.x;
     const float n_z_sq = n.z * n.z;
     const float n_x_sq2 = n.x * n.x;
-    const float b1_2 = t10 ? n_y_sq + n_x_sq : n_z_sq + n_x_sq2;
-    const unitpack_vec2 t15 = { x, t6 };
-    const unitpack_vec2 t15_sq = { t15.x * t15.x, t15.y * t15.y };
-    const float t16 = 1.0f / sqrtf(b1_2 * (t15_sq.x + t15_sq.y));
-    const unitpack_vec3 t17 = { w.x * t16, w.y * t16, w.z * t16 };
-    const float t18 = fields.w > 0.5f ? -1.0f : 1.0f;
-    const unitpack_vec3 t19 = { n.y * t17.z, n.z * t17.x, n.x * t17.y };
-    const unitpack_vec3 t20 = { n.z * t17.y, n.x * t17.z, n.y * t17.x };
-    const unitpack_vec3 t21 = {
-        (t19.x - t20.x) * t18,
-        (t19.y - t20.y) * t18,
-        (t19.z - t20.z) * t18
+    const float b1_2 = t12 ? n_y_sq + n_x_sq : n_z_sq + n_x_sq2;
+    const unitpack_vec2 t17 = { t5 * 0.007874016f, t6 * t7 };
+    const unitpack_vec2 t17_sq = { t17.x * t17.x, t17.y * t17.y };
+    const float t18 = 1.0f / sqrtf(b1_2 * (t17_sq.x + t17_sq.y));
+    const unitpack_vec3 t19 = { w.x * t18, w.y * t18, w.z * t18 };
+    const float t20 = fields.w > 0.5f ? -1.0f : 1.0f;
+    const unitpack_vec3 t21 = { n.y * t19.z, n.z * t19.x, n.x * t19.y };
+    const unitpack_vec3 t22 = { n.z * t19.y, n.x * t19.z, n.y * t19.x };
+    const unitpack_vec3 t23 = {
+        (t21.x - t22.x) * t20,
+        (t21.y - t22.y) * t20,
+        (t21.z - t22.z) * t20
     };
-    const unitpack_diamond32_tbn_v tbn = { t17, t21, n };
+    const unitpack_diamond32_tbn_v tbn = { t19, t23, n };
     return tbn;
 }
 

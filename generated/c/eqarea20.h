@@ -52,9 +52,8 @@ static inline unitpack_vec3 unitpack_eqarea20_decode_float_v(unitpack_vec3 param
     const float t1 = p_sq.x + p_sq.y;
     const float q = t1 <= 2.0f ? t1 : 2.0f;
     const float g = sqrtf(2.0f - q);
-    const float t2 = 1.0f - q;
-    const unitpack_vec3 t3 = { p.x * g, p.y * g, params.z > 0.5f ? -t2 : t2 };
-    return t3;
+    const unitpack_vec3 t2 = { p.x * g, p.y * g, (1.0f - q) * (params.z > 0.5f ? -1.0f : 1.0f) };
+    return t2;
 }
 
 // unitpack_eqarea20_decode_float: decoder, float form.

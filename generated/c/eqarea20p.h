@@ -52,9 +52,8 @@ static inline unitpack_vec3 unitpack_eqarea20p_decode_float_v(unitpack_vec3 para
     const float t1 = p_sq.x + p_sq.y;
     const float q = t1 <= 2.0f ? t1 : 2.0f;
     const float g = sqrtf(2.0f - q);
-    const float t2 = 1.0f - q;
-    const unitpack_vec3 t3 = { p.x * g, p.y * g, params.z > 0.5f ? -t2 : t2 };
-    return t3;
+    const unitpack_vec3 t2 = { p.x * g, p.y * g, (1.0f - q) * (params.z > 0.5f ? -1.0f : 1.0f) };
+    return t2;
 }
 
 // unitpack_eqarea20p_decode_float: decoder, float form.
@@ -235,13 +234,12 @@ static inline unitpack_vec3 unitpack_eqarea20p_encode_codes_v(unitpack_vec3 v) {
     const float step_down4 = root_step * root_step > t21 ? -1.0f : 0.0f;
     const float step4 = root_next2 * root_next2 <= t21 ? 1.0f : step_down4;
     const float g = root_step + step4;
-    const float t22 = 2097152.0f - q;
-    const unitpack_vec3 t23 = {
+    const unitpack_vec3 t22 = {
         floorf(p.x * g * 9.536743e-7f),
         floorf(p.y * g * 9.536743e-7f),
-        one_if > 0.5f ? -t22 : t22
+        (2097152.0f - q) * (one_if > 0.5f ? -1.0f : 1.0f)
     };
-    const unitpack_vec3 offset = { t23.x - aim.x, t23.y - aim.y, t23.z - aim.z };
+    const unitpack_vec3 offset = { t22.x - aim.x, t22.y - aim.y, t22.z - aim.z };
     const unitpack_uvec3 offset_u = {
         (uint32_t)fabsf(offset.x),
         (uint32_t)fabsf(offset.y),
@@ -264,40 +262,39 @@ static inline unitpack_vec3 unitpack_eqarea20p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
     const uint32_t lo8 = lo7 & 16777215u;
-    const float t24 = (float)hi8 * 16777216.0f;
-    const float dist = t24 + (float)lo8;
+    const float t23 = (float)hi8 * 16777216.0f;
+    const float dist = t23 + (float)lo8;
     const float s_up = base.x + 1.0f;
     const float t_up = base.y + 1.0f;
-    const unitpack_vec2 t25 = { s_up, base.y };
+    const unitpack_vec2 t24 = { s_up, base.y };
     const unitpack_vec2 cand2 = {
-        t25.x <= 1023.0f ? t25.x : 1023.0f,
-        t25.y <= 511.0f ? t25.y : 511.0f
+        t24.x <= 1023.0f ? t24.x : 1023.0f,
+        t24.y <= 511.0f ? t24.y : 511.0f
     };
-    const unitpack_vec2 t26 = { cand2.x * 2.0f, cand2.y * 2.0f };
+    const unitpack_vec2 t25 = { cand2.x * 2.0f, cand2.y * 2.0f };
     const unitpack_vec2 p2 = {
-        floorf((t26.x - 1023.0f) * 2050.002f),
-        floorf((t26.y - 511.0f) * 4104.0156f)
+        floorf((t25.x - 1023.0f) * 2050.002f),
+        floorf((t25.y - 511.0f) * 4104.0156f)
     };
     const float q2 = nearbyintf(p2.x * p2.x * 4.7683716e-7f)
         + nearbyintf(p2.y * p2.y * 4.7683716e-7f);
-    const float t27 = 4194304.0f - q2;
-    const float t28 = (t27 >= 0.0f ? t27 : 0.0f) * 524288.0f;
-    const float root_estimate3 = floorf(sqrtf(t28));
+    const float t26 = 4194304.0f - q2;
+    const float t27 = (t26 >= 0.0f ? t26 : 0.0f) * 524288.0f;
+    const float root_estimate3 = floorf(sqrtf(t27));
     const float root_next3 = root_estimate3 + 1.0f;
-    const float step_down5 = root_estimate3 * root_estimate3 > t28 ? -1.0f : 0.0f;
-    const float step5 = root_next3 * root_next3 <= t28 ? 1.0f : step_down5;
+    const float step_down5 = root_estimate3 * root_estimate3 > t27 ? -1.0f : 0.0f;
+    const float step5 = root_next3 * root_next3 <= t27 ? 1.0f : step_down5;
     const float root_step2 = root_estimate3 + step5;
     const float root_next4 = root_step2 + 1.0f;
-    const float step_down6 = root_step2 * root_step2 > t28 ? -1.0f : 0.0f;
-    const float step6 = root_next4 * root_next4 <= t28 ? 1.0f : step_down6;
+    const float step_down6 = root_step2 * root_step2 > t27 ? -1.0f : 0.0f;
+    const float step6 = root_next4 * root_next4 <= t27 ? 1.0f : step_down6;
     const float g2 = root_step2 + step6;
-    const float t29 = 2097152.0f - q2;
-    const unitpack_vec3 t30 = {
+    const unitpack_vec3 t28 = {
         floorf(p2.x * g2 * 9.536743e-7f),
         floorf(p2.y * g2 * 9.536743e-7f),
-        one_if > 0.5f ? -t29 : t29
+        (2097152.0f - q2) * (one_if > 0.5f ? -1.0f : 1.0f)
     };
-    const unitpack_vec3 offset2 = { t30.x - aim.x, t30.y - aim.y, t30.z - aim.z };
+    const unitpack_vec3 offset2 = { t28.x - aim.x, t28.y - aim.y, t28.z - aim.z };
     const unitpack_uvec3 offset_u2 = {
         (uint32_t)fabsf(offset2.x),
         (uint32_t)fabsf(offset2.y),
@@ -320,41 +317,40 @@ static inline unitpack_vec3 unitpack_eqarea20p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
     const uint32_t lo12 = lo11 & 16777215u;
-    const float t31 = (float)hi12 * 16777216.0f;
-    const float dist2 = t31 + (float)lo12;
-    const bool t32 = s_up <= 1023.0f && base.y <= 511.0f && dist2 < dist;
-    const unitpack_vec2 best = { t32 ? cand2.x : cand.x, t32 ? cand2.y : cand.y };
-    const float best_d = t32 ? dist2 : dist;
-    const unitpack_vec2 t33 = { base.x, t_up };
+    const float t29 = (float)hi12 * 16777216.0f;
+    const float dist2 = t29 + (float)lo12;
+    const bool t30 = s_up <= 1023.0f && base.y <= 511.0f && dist2 < dist;
+    const unitpack_vec2 best = { t30 ? cand2.x : cand.x, t30 ? cand2.y : cand.y };
+    const float best_d = t30 ? dist2 : dist;
+    const unitpack_vec2 t31 = { base.x, t_up };
     const unitpack_vec2 cand3 = {
-        t33.x <= 1023.0f ? t33.x : 1023.0f,
-        t33.y <= 511.0f ? t33.y : 511.0f
+        t31.x <= 1023.0f ? t31.x : 1023.0f,
+        t31.y <= 511.0f ? t31.y : 511.0f
     };
-    const unitpack_vec2 t34 = { cand3.x * 2.0f, cand3.y * 2.0f };
+    const unitpack_vec2 t32 = { cand3.x * 2.0f, cand3.y * 2.0f };
     const unitpack_vec2 p3 = {
-        floorf((t34.x - 1023.0f) * 2050.002f),
-        floorf((t34.y - 511.0f) * 4104.0156f)
+        floorf((t32.x - 1023.0f) * 2050.002f),
+        floorf((t32.y - 511.0f) * 4104.0156f)
     };
     const float q3 = nearbyintf(p3.x * p3.x * 4.7683716e-7f)
         + nearbyintf(p3.y * p3.y * 4.7683716e-7f);
-    const float t35 = 4194304.0f - q3;
-    const float t36 = (t35 >= 0.0f ? t35 : 0.0f) * 524288.0f;
-    const float root_estimate4 = floorf(sqrtf(t36));
+    const float t33 = 4194304.0f - q3;
+    const float t34 = (t33 >= 0.0f ? t33 : 0.0f) * 524288.0f;
+    const float root_estimate4 = floorf(sqrtf(t34));
     const float root_next5 = root_estimate4 + 1.0f;
-    const float step_down7 = root_estimate4 * root_estimate4 > t36 ? -1.0f : 0.0f;
-    const float step7 = root_next5 * root_next5 <= t36 ? 1.0f : step_down7;
+    const float step_down7 = root_estimate4 * root_estimate4 > t34 ? -1.0f : 0.0f;
+    const float step7 = root_next5 * root_next5 <= t34 ? 1.0f : step_down7;
     const float root_step3 = root_estimate4 + step7;
     const float root_next6 = root_step3 + 1.0f;
-    const float step_down8 = root_step3 * root_step3 > t36 ? -1.0f : 0.0f;
-    const float step8 = root_next6 * root_next6 <= t36 ? 1.0f : step_down8;
+    const float step_down8 = root_step3 * root_step3 > t34 ? -1.0f : 0.0f;
+    const float step8 = root_next6 * root_next6 <= t34 ? 1.0f : step_down8;
     const float g3 = root_step3 + step8;
-    const float t37 = 2097152.0f - q3;
-    const unitpack_vec3 t38 = {
+    const unitpack_vec3 t35 = {
         floorf(p3.x * g3 * 9.536743e-7f),
         floorf(p3.y * g3 * 9.536743e-7f),
-        one_if > 0.5f ? -t37 : t37
+        (2097152.0f - q3) * (one_if > 0.5f ? -1.0f : 1.0f)
     };
-    const unitpack_vec3 offset3 = { t38.x - aim.x, t38.y - aim.y, t38.z - aim.z };
+    const unitpack_vec3 offset3 = { t35.x - aim.x, t35.y - aim.y, t35.z - aim.z };
     const unitpack_uvec3 offset_u3 = {
         (uint32_t)fabsf(offset3.x),
         (uint32_t)fabsf(offset3.y),
@@ -377,41 +373,40 @@ static inline unitpack_vec3 unitpack_eqarea20p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
     const uint32_t lo16 = lo15 & 16777215u;
-    const float t39 = (float)hi16 * 16777216.0f;
-    const float dist3 = t39 + (float)lo16;
-    const bool t40 = base.x <= 1023.0f && t_up <= 511.0f && dist3 < best_d;
-    const unitpack_vec2 best2 = { t40 ? cand3.x : best.x, t40 ? cand3.y : best.y };
-    const float best_d2 = t40 ? dist3 : best_d;
-    const unitpack_vec2 t41 = { base.x + 1.0f, base.y + 1.0f };
+    const float t36 = (float)hi16 * 16777216.0f;
+    const float dist3 = t36 + (float)lo16;
+    const bool t37 = base.x <= 1023.0f && t_up <= 511.0f && dist3 < best_d;
+    const unitpack_vec2 best2 = { t37 ? cand3.x : best.x, t37 ? cand3.y : best.y };
+    const float best_d2 = t37 ? dist3 : best_d;
+    const unitpack_vec2 t38 = { base.x + 1.0f, base.y + 1.0f };
     const unitpack_vec2 cand4 = {
-        t41.x <= 1023.0f ? t41.x : 1023.0f,
-        t41.y <= 511.0f ? t41.y : 511.0f
+        t38.x <= 1023.0f ? t38.x : 1023.0f,
+        t38.y <= 511.0f ? t38.y : 511.0f
     };
-    const unitpack_vec2 t42 = { cand4.x * 2.0f, cand4.y * 2.0f };
+    const unitpack_vec2 t39 = { cand4.x * 2.0f, cand4.y * 2.0f };
     const unitpack_vec2 p4 = {
-        floorf((t42.x - 1023.0f) * 2050.002f),
-        floorf((t42.y - 511.0f) * 4104.0156f)
+        floorf((t39.x - 1023.0f) * 2050.002f),
+        floorf((t39.y - 511.0f) * 4104.0156f)
     };
     const float q4 = nearbyintf(p4.x * p4.x * 4.7683716e-7f)
         + nearbyintf(p4.y * p4.y * 4.7683716e-7f);
-    const float t43 = 4194304.0f - q4;
-    const float t44 = (t43 >= 0.0f ? t43 : 0.0f) * 524288.0f;
-    const float root_estimate5 = floorf(sqrtf(t44));
+    const float t40 = 4194304.0f - q4;
+    const float t41 = (t40 >= 0.0f ? t40 : 0.0f) * 524288.0f;
+    const float root_estimate5 = floorf(sqrtf(t41));
     const float root_next7 = root_estimate5 + 1.0f;
-    const float step_down9 = root_estimate5 * root_estimate5 > t44 ? -1.0f : 0.0f;
-    const float step9 = root_next7 * root_next7 <= t44 ? 1.0f : step_down9;
+    const float step_down9 = root_estimate5 * root_estimate5 > t41 ? -1.0f : 0.0f;
+    const float step9 = root_next7 * root_next7 <= t41 ? 1.0f : step_down9;
     const float root_step4 = root_estimate5 + step9;
     const float root_next8 = root_step4 + 1.0f;
-    const float step_down10 = root_step4 * root_step4 > t44 ? -1.0f : 0.0f;
-    const float step10 = root_next8 * root_next8 <= t44 ? 1.0f : step_down10;
+    const float step_down10 = root_step4 * root_step4 > t41 ? -1.0f : 0.0f;
+    const float step10 = root_next8 * root_next8 <= t41 ? 1.0f : step_down10;
     const float g4 = root_step4 + step10;
-    const float t45 = 2097152.0f - q4;
-    const unitpack_vec3 t46 = {
+    const unitpack_vec3 t42 = {
         floorf(p4.x * g4 * 9.536743e-7f),
         floorf(p4.y * g4 * 9.536743e-7f),
-        one_if > 0.5f ? -t45 : t45
+        (2097152.0f - q4) * (one_if > 0.5f ? -1.0f : 1.0f)
     };
-    const unitpack_vec3 offset4 = { t46.x - aim.x, t46.y - aim.y, t46.z - aim.z };
+    const unitpack_vec3 offset4 = { t42.x - aim.x, t42.y - aim.y, t42.z - aim.z };
     const unitpack_uvec3 offset_u4 = {
         (uint32_t)fabsf(offset4.x),
         (uint32_t)fabsf(offset4.y),
@@ -434,12 +429,12 @@ static inline unitpack_vec3 unitpack_eqarea20p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
     const uint32_t lo20 = lo19 & 16777215u;
-    const float t47 = (float)hi20 * 16777216.0f;
-    const float dist4 = t47 + (float)lo20;
-    const bool t48 = s_up <= 1023.0f && t_up <= 511.0f && dist4 < best_d2;
-    const unitpack_vec2 best3 = { t48 ? cand4.x : best2.x, t48 ? cand4.y : best2.y };
-    const unitpack_vec3 t49 = { best3.x, best3.y, one_if };
-    return t49;
+    const float t43 = (float)hi20 * 16777216.0f;
+    const float dist4 = t43 + (float)lo20;
+    const bool t44 = s_up <= 1023.0f && t_up <= 511.0f && dist4 < best_d2;
+    const unitpack_vec2 best3 = { t44 ? cand4.x : best2.x, t44 ? cand4.y : best2.y };
+    const unitpack_vec3 t45 = { best3.x, best3.y, one_if };
+    return t45;
 }
 
 // Struct form of unitpack_eqarea20p_encode_float.

@@ -83,9 +83,12 @@ static inline unitpack_vec3 unitpack_eqarea_concentric24_decode_float_v(unitpack
     const float t4 = disk_sq.x + disk_sq.y;
     const float q = t4 <= 2.0f ? t4 : 2.0f;
     const float g = sqrtf(2.0f - q);
-    const float t5 = 1.0f - q;
-    const unitpack_vec3 t6 = { disk.x * g, disk.y * g, params.z > 0.5f ? -t5 : t5 };
-    return t6;
+    const unitpack_vec3 t5 = {
+        disk.x * g,
+        disk.y * g,
+        (1.0f - q) * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
+    return t5;
 }
 
 // unitpack_eqarea_concentric24_decode_float: decoder, float form.

@@ -56,9 +56,12 @@ static inline unitpack_vec3 unitpack_eqarea_ellipse16_decode_float_v(unitpack_ve
     const float t3 = disk_sq.x + disk_sq.y;
     const float q = t3 <= 2.0f ? t3 : 2.0f;
     const float g = sqrtf(2.0f - q);
-    const float t4 = 1.0f - q;
-    const unitpack_vec3 t5 = { disk.x * g, disk.y * g, params.z > 0.5f ? -t4 : t4 };
-    return t5;
+    const unitpack_vec3 t4 = {
+        disk.x * g,
+        disk.y * g,
+        (1.0f - q) * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
+    return t4;
 }
 
 // unitpack_eqarea_ellipse16_decode_float: decoder, float form.

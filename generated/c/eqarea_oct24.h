@@ -82,13 +82,12 @@ static inline unitpack_vec3 unitpack_eqarea_oct24_decode_float_v(unitpack_vec2 p
     const unitpack_vec2 cs = { t3 ? low.y : high.x, t3 ? low.x : high.y };
     const float r2 = r * r;
     const float k = r * sqrtf(2.0f - r2);
-    const float t4 = 1.0f - r2;
-    const unitpack_vec3 t5 = {
+    const unitpack_vec3 t4 = {
         cs.x * k * (params.x >= 0.0f ? 1.0f : -1.0f),
         cs.y * k * (params.y >= 0.0f ? 1.0f : -1.0f),
-        t1 ? -t4 : t4
+        (1.0f - r2) * (t1 ? -1.0f : 1.0f)
     };
-    return t5;
+    return t4;
 }
 
 // unitpack_eqarea_oct24_decode_float: decoder, float form.

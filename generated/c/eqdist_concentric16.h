@@ -99,7 +99,11 @@ static inline unitpack_vec3 unitpack_eqdist_concentric16_decode_float_v(unitpack
     const float t18 = (t17 + 0.2536695f) * q;
     const float t19 = (t18 + (-1.2337005f)) * q;
     const float cosq = t19 + 1.0f;
-    const unitpack_vec3 t20 = { disk.x * sinc, disk.y * sinc, params.z > 0.5f ? -cosq : cosq };
+    const unitpack_vec3 t20 = {
+        disk.x * sinc,
+        disk.y * sinc,
+        cosq * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
     return t20;
 }
 

@@ -72,7 +72,11 @@ static inline unitpack_vec3 unitpack_eqdist_ellipse32_decode_float_v(unitpack_ve
     const float t17 = (t16 + 0.2536695f) * q;
     const float t18 = (t17 + (-1.2337005f)) * q;
     const float cosq = t18 + 1.0f;
-    const unitpack_vec3 t19 = { disk.x * sinc, disk.y * sinc, params.z > 0.5f ? -cosq : cosq };
+    const unitpack_vec3 t19 = {
+        disk.x * sinc,
+        disk.y * sinc,
+        cosq * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
     return t19;
 }
 

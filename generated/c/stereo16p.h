@@ -51,9 +51,12 @@ static inline unitpack_vec3 unitpack_stereo16p_decode_float_v(unitpack_vec3 para
     const unitpack_vec2 p_sq = { p.x * p.x, p.y * p.y };
     const float q = p_sq.x + p_sq.y;
     const float d = q + 1.0f;
-    const float t1 = (1.0f - q) / d;
-    const unitpack_vec3 t2 = { (p.x + p.x) / d, (p.y + p.y) / d, params.z > 0.5f ? -t1 : t1 };
-    return t2;
+    const unitpack_vec3 t1 = {
+        (p.x + p.x) / d,
+        (p.y + p.y) / d,
+        (1.0f - q) / d * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
+    return t1;
 }
 
 // unitpack_stereo16p_decode_float: decoder, float form.
@@ -224,7 +227,7 @@ static inline unitpack_vec3 unitpack_stereo16p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 offset = {
         t18.x + t20.x - aim.x,
         t18.y + t20.y - aim.y,
-        (one_if > 0.5f ? -ratio : ratio) - aim.z
+        ratio * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u = {
         (uint32_t)fabsf(offset.x),
@@ -284,7 +287,7 @@ static inline unitpack_vec3 unitpack_stereo16p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 offset2 = {
         t27.x + t29.x - aim.x,
         t27.y + t29.y - aim.y,
-        (one_if > 0.5f ? -ratio2 : ratio2) - aim.z
+        ratio2 * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u2 = {
         (uint32_t)fabsf(offset2.x),
@@ -345,7 +348,7 @@ static inline unitpack_vec3 unitpack_stereo16p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 offset3 = {
         t37.x + t39.x - aim.x,
         t37.y + t39.y - aim.y,
-        (one_if > 0.5f ? -ratio3 : ratio3) - aim.z
+        ratio3 * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u3 = {
         (uint32_t)fabsf(offset3.x),
@@ -406,7 +409,7 @@ static inline unitpack_vec3 unitpack_stereo16p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 offset4 = {
         t47.x + t49.x - aim.x,
         t47.y + t49.y - aim.y,
-        (one_if > 0.5f ? -ratio4 : ratio4) - aim.z
+        ratio4 * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u4 = {
         (uint32_t)fabsf(offset4.x),

@@ -51,9 +51,12 @@ static inline unitpack_vec3 unitpack_stereo22_decode_float_v(unitpack_vec3 param
     const unitpack_vec2 p_sq = { p.x * p.x, p.y * p.y };
     const float q = p_sq.x + p_sq.y;
     const float d = q + 1.0f;
-    const float t1 = (1.0f - q) / d;
-    const unitpack_vec3 t2 = { (p.x + p.x) / d, (p.y + p.y) / d, params.z > 0.5f ? -t1 : t1 };
-    return t2;
+    const unitpack_vec3 t1 = {
+        (p.x + p.x) / d,
+        (p.y + p.y) / d,
+        (1.0f - q) / d * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
+    return t1;
 }
 
 // unitpack_stereo22_decode_float: decoder, float form.

@@ -82,13 +82,12 @@ static inline unitpack_vec3 unitpack_stereo_concentric16_decode_float_v(unitpack
     const unitpack_vec2 disk_sq = { disk.x * disk.x, disk.y * disk.y };
     const float q = disk_sq.x + disk_sq.y;
     const float d = q + 1.0f;
-    const float t4 = (1.0f - q) / d;
-    const unitpack_vec3 t5 = {
+    const unitpack_vec3 t4 = {
         (disk.x + disk.x) / d,
         (disk.y + disk.y) / d,
-        params.z > 0.5f ? -t4 : t4
+        (1.0f - q) / d * (params.z > 0.5f ? -1.0f : 1.0f)
     };
-    return t5;
+    return t4;
 }
 
 // unitpack_stereo_concentric16_decode_float: decoder, float form.

@@ -55,13 +55,12 @@ static inline unitpack_vec3 unitpack_stereo_ellipse32_decode_float_v(unitpack_ve
     const unitpack_vec2 disk_sq = { disk.x * disk.x, disk.y * disk.y };
     const float q = disk_sq.x + disk_sq.y;
     const float d = q + 1.0f;
-    const float t3 = (1.0f - q) / d;
-    const unitpack_vec3 t4 = {
+    const unitpack_vec3 t3 = {
         (disk.x + disk.x) / d,
         (disk.y + disk.y) / d,
-        params.z > 0.5f ? -t3 : t3
+        (1.0f - q) / d * (params.z > 0.5f ? -1.0f : 1.0f)
     };
-    return t4;
+    return t3;
 }
 
 // unitpack_stereo_ellipse32_decode_float: decoder, float form.

@@ -50,9 +50,12 @@ static inline unitpack_vec3 unitpack_xy_signz16_decode_float_v(unitpack_vec3 par
     const unitpack_vec2 t1 = { params.x * params.x, params.y * params.y };
     const float t2 = t1.x + t1.y;
     const float d = t2 < 1.0f ? t2 : 1.0f;
-    const float t3 = sqrtf(1.0f - d);
-    const unitpack_vec3 t4 = { params.x, params.y, params.z > 0.5f ? -t3 : t3 };
-    return t4;
+    const unitpack_vec3 t3 = {
+        params.x,
+        params.y,
+        sqrtf(1.0f - d) * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
+    return t3;
 }
 
 // unitpack_xy_signz16_decode_float: decoder, float form.

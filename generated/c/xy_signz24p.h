@@ -50,9 +50,12 @@ static inline unitpack_vec3 unitpack_xy_signz24p_decode_float_v(unitpack_vec3 pa
     const unitpack_vec2 t1 = { params.x * params.x, params.y * params.y };
     const float t2 = t1.x + t1.y;
     const float d = t2 < 1.0f ? t2 : 1.0f;
-    const float t3 = sqrtf(1.0f - d);
-    const unitpack_vec3 t4 = { params.x, params.y, params.z > 0.5f ? -t3 : t3 };
-    return t4;
+    const unitpack_vec3 t3 = {
+        params.x,
+        params.y,
+        sqrtf(1.0f - d) * (params.z > 0.5f ? -1.0f : 1.0f)
+    };
+    return t3;
 }
 
 // unitpack_xy_signz24p_decode_float: decoder, float form.
@@ -222,7 +225,7 @@ static inline unitpack_vec3 unitpack_xy_signz24p_encode_codes_v(unitpack_vec3 v)
     const unitpack_vec3 offset = {
         p.x - aim.x,
         p.y - aim.y,
-        (one_if > 0.5f ? -root2 : root2) - aim.z
+        root2 * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u = {
         (uint32_t)fabsf(offset.x),
@@ -273,7 +276,7 @@ static inline unitpack_vec3 unitpack_xy_signz24p_encode_codes_v(unitpack_vec3 v)
     const unitpack_vec3 offset2 = {
         p2.x - aim.x,
         p2.y - aim.y,
-        (one_if > 0.5f ? -root3 : root3) - aim.z
+        root3 * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u2 = {
         (uint32_t)fabsf(offset2.x),
@@ -325,7 +328,7 @@ static inline unitpack_vec3 unitpack_xy_signz24p_encode_codes_v(unitpack_vec3 v)
     const unitpack_vec3 offset3 = {
         p3.x - aim.x,
         p3.y - aim.y,
-        (one_if > 0.5f ? -root4 : root4) - aim.z
+        root4 * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u3 = {
         (uint32_t)fabsf(offset3.x),
@@ -377,7 +380,7 @@ static inline unitpack_vec3 unitpack_xy_signz24p_encode_codes_v(unitpack_vec3 v)
     const unitpack_vec3 offset4 = {
         p4.x - aim.x,
         p4.y - aim.y,
-        (one_if > 0.5f ? -root5 : root5) - aim.z
+        root5 * (one_if > 0.5f ? -1.0f : 1.0f) - aim.z
     };
     const unitpack_uvec3 offset_u4 = {
         (uint32_t)fabsf(offset4.x),

@@ -74,37 +74,37 @@ unitpack_diamond32_frame unitpack_diamond32_decode(uint code) {
     bool t6 = t5 >= 254.0;
     UNITPACK_PRECISE float t7 = 381.0 - t5;
     UNITPACK_PRECISE float t8 = t5 - 127.0;
-    UNITPACK_PRECISE float x = (t6 ? t7 : t8) * 0.007874016;
-    UNITPACK_PRECISE float t9 = 1.0 - abs(x);
-    UNITPACK_PRECISE float neg_t9 = -t9;
-    UNITPACK_PRECISE float t10 = t6 ? t9 : neg_t9;
-    UNITPACK_PRECISE vec2 t11 = mix(
+    UNITPACK_PRECISE float t9 = t6 ? t7 : t8;
+    UNITPACK_PRECISE float x = t9 * 0.007874016;
+    UNITPACK_PRECISE float t10 = 1.0 - abs(x);
+    UNITPACK_PRECISE float t11 = t6 ? 1.0 : -1.0;
+    UNITPACK_PRECISE vec2 t12 = mix(
         vec2(-1023.0),
         fields.xy,
         greaterThanEqual(fields.xy, vec2(-1023.0))
     );
-    UNITPACK_PRECISE vec2 abs_t11 = abs(t11);
-    UNITPACK_PRECISE float pz = 1023.0 - abs_t11.x - abs_t11.y;
-    UNITPACK_PRECISE vec2 t12 = (1023.0 - abs_t11.yx)
-        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(t11, vec2(0.0)));
-    UNITPACK_PRECISE vec3 p = vec3(pz < 0.0 ? t12 : t11, pz);
+    UNITPACK_PRECISE vec2 abs_t12 = abs(t12);
+    UNITPACK_PRECISE float pz = 1023.0 - abs_t12.x - abs_t12.y;
+    UNITPACK_PRECISE vec2 t13 = (1023.0 - abs_t12.yx)
+        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(t12, vec2(0.0)));
+    UNITPACK_PRECISE vec3 p = vec3(pz < 0.0 ? t13 : t12, pz);
     UNITPACK_PRECISE vec3 p_sq = p * p;
     UNITPACK_PRECISE vec3 n = p * (1.0 / sqrt(p_sq.x + p_sq.y + p_sq.z));
     UNITPACK_PRECISE float abs_p_y = abs(p.y);
     UNITPACK_PRECISE float abs_p_z = abs(p.z);
-    bool t13 = abs_p_y > abs_p_z;
-    UNITPACK_PRECISE vec3 t14 = vec3(n.y, -n.x, 0.0);
-    UNITPACK_PRECISE vec3 t15 = vec3(n.z, 0.0, -n.x);
-    UNITPACK_PRECISE vec3 b1 = t13 ? t14 : t15;
+    bool t14 = abs_p_y > abs_p_z;
+    UNITPACK_PRECISE vec3 t15 = vec3(n.y, -n.x, 0.0);
+    UNITPACK_PRECISE vec3 t16 = vec3(n.z, 0.0, -n.x);
+    UNITPACK_PRECISE vec3 b1 = t14 ? t15 : t16;
     UNITPACK_PRECISE vec3 b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
-    UNITPACK_PRECISE vec3 w = b1 * x + b2 * t10;
-    UNITPACK_PRECISE float t16 = n.y * n.y + n.x * n.x;
-    UNITPACK_PRECISE float t17 = n.z * n.z + n.x * n.x;
-    UNITPACK_PRECISE float b1_2 = t13 ? t16 : t17;
-    UNITPACK_PRECISE vec2 t18 = vec2(x, t10);
-    UNITPACK_PRECISE vec2 t18_sq = t18 * t18;
+    UNITPACK_PRECISE vec3 w = b1 * x + b2 * (t10 * t11);
+    UNITPACK_PRECISE float t17 = n.y * n.y + n.x * n.x;
+    UNITPACK_PRECISE float t18 = n.z * n.z + n.x * n.x;
+    UNITPACK_PRECISE float b1_2 = t14 ? t17 : t18;
+    UNITPACK_PRECISE vec2 t19 = vec2(t9, t10) * vec2(0.007874016, t11);
+    UNITPACK_PRECISE vec2 t19_sq = t19 * t19;
     UNITPACK_PRECISE vec4 t = vec4(
-        w * (1.0 / sqrt(b1_2 * (t18_sq.x + t18_sq.y))),
+        w * (1.0 / sqrt(b1_2 * (t19_sq.x + t19_sq.y))),
         fields.w > 0.5 ? -1.0 : 1.0
     );
     return unitpack_diamond32_frame(n, t);
@@ -130,38 +130,38 @@ unitpack_diamond32_tbn unitpack_diamond32_decode_tbn(uint code) {
     bool t6 = t5 >= 254.0;
     UNITPACK_PRECISE float t7 = 381.0 - t5;
     UNITPACK_PRECISE float t8 = t5 - 127.0;
-    UNITPACK_PRECISE float x = (t6 ? t7 : t8) * 0.007874016;
-    UNITPACK_PRECISE float t9 = 1.0 - abs(x);
-    UNITPACK_PRECISE float neg_t9 = -t9;
-    UNITPACK_PRECISE float t10 = t6 ? t9 : neg_t9;
-    UNITPACK_PRECISE vec2 t11 = mix(
+    UNITPACK_PRECISE float t9 = t6 ? t7 : t8;
+    UNITPACK_PRECISE float x = t9 * 0.007874016;
+    UNITPACK_PRECISE float t10 = 1.0 - abs(x);
+    UNITPACK_PRECISE float t11 = t6 ? 1.0 : -1.0;
+    UNITPACK_PRECISE vec2 t12 = mix(
         vec2(-1023.0),
         fields.xy,
         greaterThanEqual(fields.xy, vec2(-1023.0))
     );
-    UNITPACK_PRECISE vec2 abs_t11 = abs(t11);
-    UNITPACK_PRECISE float pz = 1023.0 - abs_t11.x - abs_t11.y;
-    UNITPACK_PRECISE vec2 t12 = (1023.0 - abs_t11.yx)
-        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(t11, vec2(0.0)));
-    UNITPACK_PRECISE vec3 p = vec3(pz < 0.0 ? t12 : t11, pz);
+    UNITPACK_PRECISE vec2 abs_t12 = abs(t12);
+    UNITPACK_PRECISE float pz = 1023.0 - abs_t12.x - abs_t12.y;
+    UNITPACK_PRECISE vec2 t13 = (1023.0 - abs_t12.yx)
+        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(t12, vec2(0.0)));
+    UNITPACK_PRECISE vec3 p = vec3(pz < 0.0 ? t13 : t12, pz);
     UNITPACK_PRECISE vec3 p_sq = p * p;
     UNITPACK_PRECISE vec3 n = p * (1.0 / sqrt(p_sq.x + p_sq.y + p_sq.z));
     UNITPACK_PRECISE float abs_p_y = abs(p.y);
     UNITPACK_PRECISE float abs_p_z = abs(p.z);
-    bool t13 = abs_p_y > abs_p_z;
-    UNITPACK_PRECISE vec3 t14 = vec3(n.y, -n.x, 0.0);
-    UNITPACK_PRECISE vec3 t15 = vec3(n.z, 0.0, -n.x);
-    UNITPACK_PRECISE vec3 b1 = t13 ? t14 : t15;
+    bool t14 = abs_p_y > abs_p_z;
+    UNITPACK_PRECISE vec3 t15 = vec3(n.y, -n.x, 0.0);
+    UNITPACK_PRECISE vec3 t16 = vec3(n.z, 0.0, -n.x);
+    UNITPACK_PRECISE vec3 b1 = t14 ? t15 : t16;
     UNITPACK_PRECISE vec3 b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
-    UNITPACK_PRECISE vec3 w = b1 * x + b2 * t10;
-    UNITPACK_PRECISE float t16 = n.y * n.y + n.x * n.x;
-    UNITPACK_PRECISE float t17 = n.z * n.z + n.x * n.x;
-    UNITPACK_PRECISE float b1_2 = t13 ? t16 : t17;
-    UNITPACK_PRECISE vec2 t18 = vec2(x, t10);
-    UNITPACK_PRECISE vec2 t18_sq = t18 * t18;
-    UNITPACK_PRECISE vec3 t19 = w * (1.0 / sqrt(b1_2 * (t18_sq.x + t18_sq.y)));
-    UNITPACK_PRECISE vec3 b = (n.yzx * t19.zxy - n.zxy * t19.yzx) * (fields.w > 0.5 ? -1.0 : 1.0);
-    return unitpack_diamond32_tbn(t19, b, n);
+    UNITPACK_PRECISE vec3 w = b1 * x + b2 * (t10 * t11);
+    UNITPACK_PRECISE float t17 = n.y * n.y + n.x * n.x;
+    UNITPACK_PRECISE float t18 = n.z * n.z + n.x * n.x;
+    UNITPACK_PRECISE float b1_2 = t14 ? t17 : t18;
+    UNITPACK_PRECISE vec2 t19 = vec2(t9, t10) * vec2(0.007874016, t11);
+    UNITPACK_PRECISE vec2 t19_sq = t19 * t19;
+    UNITPACK_PRECISE vec3 t20 = w * (1.0 / sqrt(b1_2 * (t19_sq.x + t19_sq.y)));
+    UNITPACK_PRECISE vec3 b = (n.yzx * t20.zxy - n.zxy * t20.yzx) * (fields.w > 0.5 ? -1.0 : 1.0);
+    return unitpack_diamond32_tbn(t20, b, n);
 }
 
 // unitpack_diamond32_encode: fast encoder.

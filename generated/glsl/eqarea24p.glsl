@@ -48,9 +48,7 @@ vec3 unitpack_eqarea24p_decode_float(vec3 params) {
     UNITPACK_PRECISE float t1 = p_sq.x + p_sq.y;
     UNITPACK_PRECISE float q = t1 <= 2.0 ? t1 : 2.0;
     UNITPACK_PRECISE float g = sqrt(2.0 - q);
-    UNITPACK_PRECISE float t2 = 1.0 - q;
-    UNITPACK_PRECISE float neg_t2 = -t2;
-    UNITPACK_PRECISE vec3 result = vec3(p * g, params.z > 0.5 ? neg_t2 : t2);
+    UNITPACK_PRECISE vec3 result = vec3(p * g, (1.0 - q) * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 
@@ -196,10 +194,11 @@ vec3 unitpack_eqarea24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float step_down4 = root_step * root_step > t15 ? -1.0 : 0.0;
     UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t15 ? 1.0 : step_down4;
     UNITPACK_PRECISE float g = root_step + step4;
-    UNITPACK_PRECISE float t16 = 2097152.0 - q;
-    UNITPACK_PRECISE float neg_t16 = -t16;
-    UNITPACK_PRECISE vec3 t17 = vec3(floor(p * g * 9.536743e-7), one_if > 0.5 ? neg_t16 : t16);
-    UNITPACK_PRECISE vec3 offset = t17 - aim;
+    UNITPACK_PRECISE vec3 t16 = vec3(
+        floor(p * g * 9.536743e-7),
+        (2097152.0 - q) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    UNITPACK_PRECISE vec3 offset = t16 - aim;
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
@@ -222,33 +221,34 @@ vec3 unitpack_eqarea24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
     UNITPACK_PRECISE float s_up = base.x + 1.0;
     UNITPACK_PRECISE float t_up = base.y + 1.0;
-    UNITPACK_PRECISE vec2 t18 = vec2(s_up, base.y);
+    UNITPACK_PRECISE vec2 t17 = vec2(s_up, base.y);
     UNITPACK_PRECISE vec2 cand2 = mix(
         vec2(4095.0, 2047.0),
-        t18,
-        lessThanEqual(t18, vec2(4095.0, 2047.0))
+        t17,
+        lessThanEqual(t17, vec2(4095.0, 2047.0))
     );
-    bool t19 = base.y <= 2047.0;
+    bool t18 = base.y <= 2047.0;
     UNITPACK_PRECISE vec2 p2 = floor(
         (cand2 * 2.0 - vec2(4095.0, 2047.0)) * vec2(512.12506, 1024.5002)
     );
     UNITPACK_PRECISE float q2 = roundEven(p2.x * p2.x * 4.7683716e-7)
         + roundEven(p2.y * p2.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t20 = 4194304.0 - q2;
-    UNITPACK_PRECISE float t21 = (t20 >= 0.0 ? t20 : 0.0) * 524288.0;
-    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t21));
+    UNITPACK_PRECISE float t19 = 4194304.0 - q2;
+    UNITPACK_PRECISE float t20 = (t19 >= 0.0 ? t19 : 0.0) * 524288.0;
+    UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t20));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
-    UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t21 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = root_next3 * root_next3 <= t21 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t20 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step5 = root_next3 * root_next3 <= t20 ? 1.0 : step_down5;
     UNITPACK_PRECISE float root_step2 = root_estimate3 + step5;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
-    UNITPACK_PRECISE float step_down6 = root_step2 * root_step2 > t21 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = root_next4 * root_next4 <= t21 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float step_down6 = root_step2 * root_step2 > t20 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step6 = root_next4 * root_next4 <= t20 ? 1.0 : step_down6;
     UNITPACK_PRECISE float g2 = root_step2 + step6;
-    UNITPACK_PRECISE float t22 = 2097152.0 - q2;
-    UNITPACK_PRECISE float neg_t22 = -t22;
-    UNITPACK_PRECISE vec3 t23 = vec3(floor(p2 * g2 * 9.536743e-7), one_if > 0.5 ? neg_t22 : t22);
-    UNITPACK_PRECISE vec3 offset2 = t23 - aim;
+    UNITPACK_PRECISE vec3 t21 = vec3(
+        floor(p2 * g2 * 9.536743e-7),
+        (2097152.0 - q2) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    UNITPACK_PRECISE vec3 offset2 = t21 - aim;
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
     uvec3 offset_u2 = uvec3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
@@ -269,37 +269,38 @@ vec3 unitpack_eqarea24p_encode_codes(vec3 v) {
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t24 = dist2 < dist;
-    bool t25 = s_up <= 4095.0 && t19 && t24;
-    UNITPACK_PRECISE vec2 best = t25 ? cand2 : cand;
-    UNITPACK_PRECISE float best_d = t25 ? dist2 : dist;
-    UNITPACK_PRECISE vec2 t26 = vec2(base.x, t_up);
+    bool t22 = dist2 < dist;
+    bool t23 = s_up <= 4095.0 && t18 && t22;
+    UNITPACK_PRECISE vec2 best = t23 ? cand2 : cand;
+    UNITPACK_PRECISE float best_d = t23 ? dist2 : dist;
+    UNITPACK_PRECISE vec2 t24 = vec2(base.x, t_up);
     UNITPACK_PRECISE vec2 cand3 = mix(
         vec2(4095.0, 2047.0),
-        t26,
-        lessThanEqual(t26, vec2(4095.0, 2047.0))
+        t24,
+        lessThanEqual(t24, vec2(4095.0, 2047.0))
     );
-    bool t27 = t_up <= 2047.0;
+    bool t25 = t_up <= 2047.0;
     UNITPACK_PRECISE vec2 p3 = floor(
         (cand3 * 2.0 - vec2(4095.0, 2047.0)) * vec2(512.12506, 1024.5002)
     );
     UNITPACK_PRECISE float q3 = roundEven(p3.x * p3.x * 4.7683716e-7)
         + roundEven(p3.y * p3.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t28 = 4194304.0 - q3;
-    UNITPACK_PRECISE float t29 = (t28 >= 0.0 ? t28 : 0.0) * 524288.0;
-    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t29));
+    UNITPACK_PRECISE float t26 = 4194304.0 - q3;
+    UNITPACK_PRECISE float t27 = (t26 >= 0.0 ? t26 : 0.0) * 524288.0;
+    UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t27));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
-    UNITPACK_PRECISE float step_down7 = root_estimate4 * root_estimate4 > t29 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step7 = root_next5 * root_next5 <= t29 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float step_down7 = root_estimate4 * root_estimate4 > t27 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step7 = root_next5 * root_next5 <= t27 ? 1.0 : step_down7;
     UNITPACK_PRECISE float root_step3 = root_estimate4 + step7;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
-    UNITPACK_PRECISE float step_down8 = root_step3 * root_step3 > t29 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step8 = root_next6 * root_next6 <= t29 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float step_down8 = root_step3 * root_step3 > t27 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step8 = root_next6 * root_next6 <= t27 ? 1.0 : step_down8;
     UNITPACK_PRECISE float g3 = root_step3 + step8;
-    UNITPACK_PRECISE float t30 = 2097152.0 - q3;
-    UNITPACK_PRECISE float neg_t30 = -t30;
-    UNITPACK_PRECISE vec3 t31 = vec3(floor(p3 * g3 * 9.536743e-7), one_if > 0.5 ? neg_t30 : t30);
-    UNITPACK_PRECISE vec3 offset3 = t31 - aim;
+    UNITPACK_PRECISE vec3 t28 = vec3(
+        floor(p3 * g3 * 9.536743e-7),
+        (2097152.0 - q3) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    UNITPACK_PRECISE vec3 offset3 = t28 - aim;
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
     uvec3 offset_u3 = uvec3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
@@ -320,37 +321,38 @@ vec3 unitpack_eqarea24p_encode_codes(vec3 v) {
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t32 = dist3 < best_d;
-    bool t33 = base.x <= 4095.0 && t27 && t32;
-    UNITPACK_PRECISE vec2 best2 = t33 ? cand3 : best;
-    UNITPACK_PRECISE float best_d2 = t33 ? dist3 : best_d;
-    UNITPACK_PRECISE vec2 t34 = base + 1.0;
+    bool t29 = dist3 < best_d;
+    bool t30 = base.x <= 4095.0 && t25 && t29;
+    UNITPACK_PRECISE vec2 best2 = t30 ? cand3 : best;
+    UNITPACK_PRECISE float best_d2 = t30 ? dist3 : best_d;
+    UNITPACK_PRECISE vec2 t31 = base + 1.0;
     UNITPACK_PRECISE vec2 cand4 = mix(
         vec2(4095.0, 2047.0),
-        t34,
-        lessThanEqual(t34, vec2(4095.0, 2047.0))
+        t31,
+        lessThanEqual(t31, vec2(4095.0, 2047.0))
     );
-    bool t35 = t_up <= 2047.0;
+    bool t32 = t_up <= 2047.0;
     UNITPACK_PRECISE vec2 p4 = floor(
         (cand4 * 2.0 - vec2(4095.0, 2047.0)) * vec2(512.12506, 1024.5002)
     );
     UNITPACK_PRECISE float q4 = roundEven(p4.x * p4.x * 4.7683716e-7)
         + roundEven(p4.y * p4.y * 4.7683716e-7);
-    UNITPACK_PRECISE float t36 = 4194304.0 - q4;
-    UNITPACK_PRECISE float t37 = (t36 >= 0.0 ? t36 : 0.0) * 524288.0;
-    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t37));
+    UNITPACK_PRECISE float t33 = 4194304.0 - q4;
+    UNITPACK_PRECISE float t34 = (t33 >= 0.0 ? t33 : 0.0) * 524288.0;
+    UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t34));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
-    UNITPACK_PRECISE float step_down9 = root_estimate5 * root_estimate5 > t37 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step9 = root_next7 * root_next7 <= t37 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float step_down9 = root_estimate5 * root_estimate5 > t34 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step9 = root_next7 * root_next7 <= t34 ? 1.0 : step_down9;
     UNITPACK_PRECISE float root_step4 = root_estimate5 + step9;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
-    UNITPACK_PRECISE float step_down10 = root_step4 * root_step4 > t37 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step10 = root_next8 * root_next8 <= t37 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float step_down10 = root_step4 * root_step4 > t34 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float step10 = root_next8 * root_next8 <= t34 ? 1.0 : step_down10;
     UNITPACK_PRECISE float g4 = root_step4 + step10;
-    UNITPACK_PRECISE float t38 = 2097152.0 - q4;
-    UNITPACK_PRECISE float neg_t38 = -t38;
-    UNITPACK_PRECISE vec3 t39 = vec3(floor(p4 * g4 * 9.536743e-7), one_if > 0.5 ? neg_t38 : t38);
-    UNITPACK_PRECISE vec3 offset4 = t39 - aim;
+    UNITPACK_PRECISE vec3 t35 = vec3(
+        floor(p4 * g4 * 9.536743e-7),
+        (2097152.0 - q4) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    UNITPACK_PRECISE vec3 offset4 = t35 - aim;
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
     uvec3 offset_u4 = uvec3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;
@@ -371,8 +373,8 @@ vec3 unitpack_eqarea24p_encode_codes(vec3 v) {
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    bool t40 = dist4 < best_d2;
-    UNITPACK_PRECISE vec2 best3 = s_up <= 4095.0 && t35 && t40 ? cand4 : best2;
+    bool t36 = dist4 < best_d2;
+    UNITPACK_PRECISE vec2 best3 = s_up <= 4095.0 && t32 && t36 ? cand4 : best2;
     return vec3(best3, one_if);
 }
 

@@ -74,9 +74,7 @@ vec3 unitpack_eqarea_concentric16_decode_float(vec3 params) {
     UNITPACK_PRECISE float t3 = disk_sq.x + disk_sq.y;
     UNITPACK_PRECISE float q = t3 <= 2.0 ? t3 : 2.0;
     UNITPACK_PRECISE float g = sqrt(2.0 - q);
-    UNITPACK_PRECISE float t4 = 1.0 - q;
-    UNITPACK_PRECISE float neg_t4 = -t4;
-    UNITPACK_PRECISE vec3 result = vec3(disk * g, params.z > 0.5 ? neg_t4 : t4);
+    UNITPACK_PRECISE vec3 result = vec3(disk * g, (1.0 - q) * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 

@@ -70,11 +70,9 @@ vec3 unitpack_eqarea_oct24_decode_float(vec2 params) {
     UNITPACK_PRECISE vec2 cs = b.x >= b.y ? low.yx : high;
     UNITPACK_PRECISE float r2 = r * r;
     UNITPACK_PRECISE float k = r * sqrt(2.0 - r2);
-    UNITPACK_PRECISE float t4 = 1.0 - r2;
-    UNITPACK_PRECISE float neg_t4 = -t4;
     UNITPACK_PRECISE vec3 result = vec3(
         cs * k * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(params, vec2(0.0))),
-        t2 ? neg_t4 : t4
+        (1.0 - r2) * (t2 ? -1.0 : 1.0)
     );
     return result;
 }

@@ -38,7 +38,7 @@ precision highp int;
 // In: parameters in [0, 1], as a unorm16, unorm15, unorm1 fetch returns them.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
-// Portable within a bound (as the header says): each output component is within 14·2^-24 (8.34e-7)
+// Portable within a bound (as the header says): each output component is within 15·2^-24 (8.94e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 vec3 unitpack_eqdist32p_decode_float(vec3 params) {
@@ -59,8 +59,7 @@ vec3 unitpack_eqdist32p_decode_float(vec3 params) {
     UNITPACK_PRECISE float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
         + (-1.2337005);
     UNITPACK_PRECISE float cosq = t4 * q + 1.0;
-    UNITPACK_PRECISE float neg_cosq = -cosq;
-    UNITPACK_PRECISE vec3 result = vec3(p * sinc, params.z > 0.5 ? neg_cosq : cosq);
+    UNITPACK_PRECISE vec3 result = vec3(p * sinc, cosq * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 
@@ -69,7 +68,7 @@ vec3 unitpack_eqdist32p_decode_float(vec3 params) {
 //   bits are ignored.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
-// Portable within a bound (as the header says): each output component is within 54·2^-24 (3.22e-6)
+// Portable within a bound (as the header says): each output component is within 55·2^-24 (3.28e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 vec3 unitpack_eqdist32p_decode(uint code) {
@@ -326,10 +325,9 @@ vec3 unitpack_eqdist32p_encode_codes(vec3 v) {
     )
         + (-5174515.0);
     UNITPACK_PRECISE float cosq = roundEven(t36 * q * 2.3841858e-7) + 2097152.0;
-    UNITPACK_PRECISE float neg_cosq = -cosq;
     UNITPACK_PRECISE vec3 t37 = vec3(
         roundEven(p * sinc * 4.7683716e-7),
-        one_if > 0.5 ? neg_cosq : cosq
+        cosq * (one_if > 0.5 ? -1.0 : 1.0)
     );
     UNITPACK_PRECISE vec3 offset = t37 - aim;
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
@@ -396,10 +394,9 @@ vec3 unitpack_eqdist32p_encode_codes(vec3 v) {
     )
         + (-5174515.0);
     UNITPACK_PRECISE float cosq2 = roundEven(t47 * q2 * 2.3841858e-7) + 2097152.0;
-    UNITPACK_PRECISE float neg_cosq2 = -cosq2;
     UNITPACK_PRECISE vec3 t48 = vec3(
         roundEven(p2 * sinc2 * 4.7683716e-7),
-        one_if > 0.5 ? neg_cosq2 : cosq2
+        cosq2 * (one_if > 0.5 ? -1.0 : 1.0)
     );
     UNITPACK_PRECISE vec3 offset2 = t48 - aim;
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
@@ -468,10 +465,9 @@ vec3 unitpack_eqdist32p_encode_codes(vec3 v) {
     )
         + (-5174515.0);
     UNITPACK_PRECISE float cosq3 = roundEven(t60 * q3 * 2.3841858e-7) + 2097152.0;
-    UNITPACK_PRECISE float neg_cosq3 = -cosq3;
     UNITPACK_PRECISE vec3 t61 = vec3(
         roundEven(p3 * sinc3 * 4.7683716e-7),
-        one_if > 0.5 ? neg_cosq3 : cosq3
+        cosq3 * (one_if > 0.5 ? -1.0 : 1.0)
     );
     UNITPACK_PRECISE vec3 offset3 = t61 - aim;
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
@@ -540,10 +536,9 @@ vec3 unitpack_eqdist32p_encode_codes(vec3 v) {
     )
         + (-5174515.0);
     UNITPACK_PRECISE float cosq4 = roundEven(t73 * q4 * 2.3841858e-7) + 2097152.0;
-    UNITPACK_PRECISE float neg_cosq4 = -cosq4;
     UNITPACK_PRECISE vec3 t74 = vec3(
         roundEven(p4 * sinc4 * 4.7683716e-7),
-        one_if > 0.5 ? neg_cosq4 : cosq4
+        cosq4 * (one_if > 0.5 ? -1.0 : 1.0)
     );
     UNITPACK_PRECISE vec3 offset4 = t74 - aim;
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);

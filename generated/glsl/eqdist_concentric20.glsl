@@ -86,8 +86,7 @@ vec3 unitpack_eqdist_concentric20_decode_float(vec3 params) {
     UNITPACK_PRECISE float t6 = (((t5 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
         + (-1.2337005);
     UNITPACK_PRECISE float cosq = t6 * q + 1.0;
-    UNITPACK_PRECISE float neg_cosq = -cosq;
-    UNITPACK_PRECISE vec3 result = vec3(disk * sinc, params.z > 0.5 ? neg_cosq : cosq);
+    UNITPACK_PRECISE vec3 result = vec3(disk * sinc, cosq * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 

@@ -46,9 +46,7 @@ vec3 unitpack_stereo24_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 p_sq = p * p;
     UNITPACK_PRECISE float q = p_sq.x + p_sq.y;
     UNITPACK_PRECISE float d = q + 1.0;
-    UNITPACK_PRECISE float t1 = (1.0 - q) / d;
-    UNITPACK_PRECISE float neg_t1 = -t1;
-    UNITPACK_PRECISE vec3 result = vec3((p + p) / d, params.z > 0.5 ? neg_t1 : t1);
+    UNITPACK_PRECISE vec3 result = vec3((p + p) / d, (1.0 - q) / d * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 

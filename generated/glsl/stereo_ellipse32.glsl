@@ -48,9 +48,10 @@ vec3 unitpack_stereo_ellipse32_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 disk_sq = disk * disk;
     UNITPACK_PRECISE float q = disk_sq.x + disk_sq.y;
     UNITPACK_PRECISE float d = q + 1.0;
-    UNITPACK_PRECISE float t1 = (1.0 - q) / d;
-    UNITPACK_PRECISE float neg_t1 = -t1;
-    UNITPACK_PRECISE vec3 result = vec3((disk + disk) / d, params.z > 0.5 ? neg_t1 : t1);
+    UNITPACK_PRECISE vec3 result = vec3(
+        (disk + disk) / d,
+        (1.0 - q) / d * (params.z > 0.5 ? -1.0 : 1.0)
+    );
     return result;
 }
 

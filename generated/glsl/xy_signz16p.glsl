@@ -45,9 +45,8 @@ vec3 unitpack_xy_signz16p_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 t1 = params.xy * params.xy;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
     UNITPACK_PRECISE float d = t2 < 1.0 ? t2 : 1.0;
-    UNITPACK_PRECISE float t3 = sqrt(1.0 - d);
-    UNITPACK_PRECISE float neg_t3 = -t3;
-    return vec3(params.xy, params.z > 0.5 ? neg_t3 : t3);
+    UNITPACK_PRECISE vec3 result = vec3(params.xy, sqrt(1.0 - d) * (params.z > 0.5 ? -1.0 : 1.0));
+    return result;
 }
 
 // unitpack_xy_signz16p_decode: decoder.
@@ -178,8 +177,7 @@ vec3 unitpack_xy_signz16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float step_down4 = root_step * root_step > t10 ? -1.0 : 0.0;
     UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t10 ? 1.0 : step_down4;
     UNITPACK_PRECISE float root2 = root_step + step4;
-    UNITPACK_PRECISE float neg_root2 = -root2;
-    UNITPACK_PRECISE vec3 offset = vec3(p, one_if > 0.5 ? neg_root2 : root2) - aim;
+    UNITPACK_PRECISE vec3 offset = vec3(p, root2 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
@@ -224,8 +222,7 @@ vec3 unitpack_xy_signz16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float step_down6 = root_step2 * root_step2 > t14 ? -1.0 : 0.0;
     UNITPACK_PRECISE float step6 = root_next4 * root_next4 <= t14 ? 1.0 : step_down6;
     UNITPACK_PRECISE float root3 = root_step2 + step6;
-    UNITPACK_PRECISE float neg_root3 = -root3;
-    UNITPACK_PRECISE vec3 offset2 = vec3(p2, one_if > 0.5 ? neg_root3 : root3) - aim;
+    UNITPACK_PRECISE vec3 offset2 = vec3(p2, root3 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
     uvec3 offset_u2 = uvec3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
@@ -272,8 +269,7 @@ vec3 unitpack_xy_signz16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float step_down8 = root_step3 * root_step3 > t20 ? -1.0 : 0.0;
     UNITPACK_PRECISE float step8 = root_next6 * root_next6 <= t20 ? 1.0 : step_down8;
     UNITPACK_PRECISE float root4 = root_step3 + step8;
-    UNITPACK_PRECISE float neg_root4 = -root4;
-    UNITPACK_PRECISE vec3 offset3 = vec3(p3, one_if > 0.5 ? neg_root4 : root4) - aim;
+    UNITPACK_PRECISE vec3 offset3 = vec3(p3, root4 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
     uvec3 offset_u3 = uvec3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
@@ -320,8 +316,7 @@ vec3 unitpack_xy_signz16p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float step_down10 = root_step4 * root_step4 > t26 ? -1.0 : 0.0;
     UNITPACK_PRECISE float step10 = root_next8 * root_next8 <= t26 ? 1.0 : step_down10;
     UNITPACK_PRECISE float root5 = root_step4 + step10;
-    UNITPACK_PRECISE float neg_root5 = -root5;
-    UNITPACK_PRECISE vec3 offset4 = vec3(p4, one_if > 0.5 ? neg_root5 : root5) - aim;
+    UNITPACK_PRECISE vec3 offset4 = vec3(p4, root5 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
     uvec3 offset_u4 = uvec3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;

@@ -45,9 +45,8 @@ vec3 unitpack_xy_signz24_decode_float(vec3 params) {
     UNITPACK_PRECISE vec2 t1 = params.xy * params.xy;
     UNITPACK_PRECISE float t2 = t1.x + t1.y;
     UNITPACK_PRECISE float d = t2 < 1.0 ? t2 : 1.0;
-    UNITPACK_PRECISE float t3 = sqrt(1.0 - d);
-    UNITPACK_PRECISE float neg_t3 = -t3;
-    return vec3(params.xy, params.z > 0.5 ? neg_t3 : t3);
+    UNITPACK_PRECISE vec3 result = vec3(params.xy, sqrt(1.0 - d) * (params.z > 0.5 ? -1.0 : 1.0));
+    return result;
 }
 
 // unitpack_xy_signz24_decode: decoder.

@@ -74,37 +74,37 @@ unitpack_diamond32_frame unitpack_diamond32_decode(uint code) {
     bool t6 = t5 >= 254.0;
     precise float t7 = 381.0 - t5;
     precise float t8 = t5 - 127.0;
-    precise float x = (t6 ? t7 : t8) * 0.007874016;
-    precise float t9 = 1.0 - abs(x);
-    precise float neg_t9 = -t9;
-    precise float t10 = t6 ? t9 : neg_t9;
-    precise float2 t11 = UNITPACK_SELECT(
+    precise float t9 = t6 ? t7 : t8;
+    precise float x = t9 * 0.007874016;
+    precise float t10 = 1.0 - abs(x);
+    precise float t11 = t6 ? 1.0 : -1.0;
+    precise float2 t12 = UNITPACK_SELECT(
         fields.xy >= float2(-1023.0, -1023.0),
         fields.xy,
         float2(-1023.0, -1023.0)
     );
-    precise float2 abs_t11 = abs(t11);
-    precise float pz = 1023.0 - abs_t11.x - abs_t11.y;
-    precise float2 t12 = (1023.0 - abs_t11.yx)
-        * UNITPACK_SELECT(t11 >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
-    precise float3 p = float3(pz < 0.0 ? t12 : t11, pz);
+    precise float2 abs_t12 = abs(t12);
+    precise float pz = 1023.0 - abs_t12.x - abs_t12.y;
+    precise float2 t13 = (1023.0 - abs_t12.yx)
+        * UNITPACK_SELECT(t12 >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float3 p = float3(pz < 0.0 ? t13 : t12, pz);
     precise float3 p_sq = p * p;
     precise float3 n = p * (1.0 / sqrt(p_sq.x + p_sq.y + p_sq.z));
     precise float abs_p_y = abs(p.y);
     precise float abs_p_z = abs(p.z);
-    bool t13 = abs_p_y > abs_p_z;
-    precise float3 t14 = float3(n.y, -n.x, 0.0);
-    precise float3 t15 = float3(n.z, 0.0, -n.x);
-    precise float3 b1 = t13 ? t14 : t15;
+    bool t14 = abs_p_y > abs_p_z;
+    precise float3 t15 = float3(n.y, -n.x, 0.0);
+    precise float3 t16 = float3(n.z, 0.0, -n.x);
+    precise float3 b1 = t14 ? t15 : t16;
     precise float3 b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
-    precise float3 w = b1 * x + b2 * t10;
-    precise float t16 = n.y * n.y + n.x * n.x;
-    precise float t17 = n.z * n.z + n.x * n.x;
-    precise float b1_2 = t13 ? t16 : t17;
-    precise float2 t18 = float2(x, t10);
-    precise float2 t18_sq = t18 * t18;
+    precise float3 w = b1 * x + b2 * (t10 * t11);
+    precise float t17 = n.y * n.y + n.x * n.x;
+    precise float t18 = n.z * n.z + n.x * n.x;
+    precise float b1_2 = t14 ? t17 : t18;
+    precise float2 t19 = float2(t9, t10) * float2(0.007874016, t11);
+    precise float2 t19_sq = t19 * t19;
     precise float4 t = float4(
-        w * (1.0 / sqrt(b1_2 * (t18_sq.x + t18_sq.y))),
+        w * (1.0 / sqrt(b1_2 * (t19_sq.x + t19_sq.y))),
         fields.w > 0.5 ? -1.0 : 1.0
     );
     unitpack_diamond32_frame frame = { n, t };
@@ -131,38 +131,38 @@ unitpack_diamond32_tbn unitpack_diamond32_decode_tbn(uint code) {
     bool t6 = t5 >= 254.0;
     precise float t7 = 381.0 - t5;
     precise float t8 = t5 - 127.0;
-    precise float x = (t6 ? t7 : t8) * 0.007874016;
-    precise float t9 = 1.0 - abs(x);
-    precise float neg_t9 = -t9;
-    precise float t10 = t6 ? t9 : neg_t9;
-    precise float2 t11 = UNITPACK_SELECT(
+    precise float t9 = t6 ? t7 : t8;
+    precise float x = t9 * 0.007874016;
+    precise float t10 = 1.0 - abs(x);
+    precise float t11 = t6 ? 1.0 : -1.0;
+    precise float2 t12 = UNITPACK_SELECT(
         fields.xy >= float2(-1023.0, -1023.0),
         fields.xy,
         float2(-1023.0, -1023.0)
     );
-    precise float2 abs_t11 = abs(t11);
-    precise float pz = 1023.0 - abs_t11.x - abs_t11.y;
-    precise float2 t12 = (1023.0 - abs_t11.yx)
-        * UNITPACK_SELECT(t11 >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
-    precise float3 p = float3(pz < 0.0 ? t12 : t11, pz);
+    precise float2 abs_t12 = abs(t12);
+    precise float pz = 1023.0 - abs_t12.x - abs_t12.y;
+    precise float2 t13 = (1023.0 - abs_t12.yx)
+        * UNITPACK_SELECT(t12 >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float3 p = float3(pz < 0.0 ? t13 : t12, pz);
     precise float3 p_sq = p * p;
     precise float3 n = p * (1.0 / sqrt(p_sq.x + p_sq.y + p_sq.z));
     precise float abs_p_y = abs(p.y);
     precise float abs_p_z = abs(p.z);
-    bool t13 = abs_p_y > abs_p_z;
-    precise float3 t14 = float3(n.y, -n.x, 0.0);
-    precise float3 t15 = float3(n.z, 0.0, -n.x);
-    precise float3 b1 = t13 ? t14 : t15;
+    bool t14 = abs_p_y > abs_p_z;
+    precise float3 t15 = float3(n.y, -n.x, 0.0);
+    precise float3 t16 = float3(n.z, 0.0, -n.x);
+    precise float3 b1 = t14 ? t15 : t16;
     precise float3 b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
-    precise float3 w = b1 * x + b2 * t10;
-    precise float t16 = n.y * n.y + n.x * n.x;
-    precise float t17 = n.z * n.z + n.x * n.x;
-    precise float b1_2 = t13 ? t16 : t17;
-    precise float2 t18 = float2(x, t10);
-    precise float2 t18_sq = t18 * t18;
-    precise float3 t19 = w * (1.0 / sqrt(b1_2 * (t18_sq.x + t18_sq.y)));
-    precise float3 b = (n.yzx * t19.zxy - n.zxy * t19.yzx) * (fields.w > 0.5 ? -1.0 : 1.0);
-    unitpack_diamond32_tbn tbn = { t19, b, n };
+    precise float3 w = b1 * x + b2 * (t10 * t11);
+    precise float t17 = n.y * n.y + n.x * n.x;
+    precise float t18 = n.z * n.z + n.x * n.x;
+    precise float b1_2 = t14 ? t17 : t18;
+    precise float2 t19 = float2(t9, t10) * float2(0.007874016, t11);
+    precise float2 t19_sq = t19 * t19;
+    precise float3 t20 = w * (1.0 / sqrt(b1_2 * (t19_sq.x + t19_sq.y)));
+    precise float3 b = (n.yzx * t20.zxy - n.zxy * t20.yzx) * (fields.w > 0.5 ? -1.0 : 1.0);
+    unitpack_diamond32_tbn tbn = { t20, b, n };
     return tbn;
 }
 

@@ -48,9 +48,7 @@ float3 unitpack_eqarea16_decode_float(float3 params) {
     precise float t1 = p_sq.x + p_sq.y;
     precise float q = t1 <= 2.0 ? t1 : 2.0;
     precise float g = sqrt(2.0 - q);
-    precise float t2 = 1.0 - q;
-    precise float neg_t2 = -t2;
-    precise float3 result = float3(p * g, params.z > 0.5 ? neg_t2 : t2);
+    precise float3 result = float3(p * g, (1.0 - q) * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 

@@ -48,9 +48,7 @@ float3 unitpack_eqarea16p_decode_float(float3 params) {
     precise float t1 = p_sq.x + p_sq.y;
     precise float q = t1 <= 2.0 ? t1 : 2.0;
     precise float g = sqrt(2.0 - q);
-    precise float t2 = 1.0 - q;
-    precise float neg_t2 = -t2;
-    precise float3 result = float3(p * g, params.z > 0.5 ? neg_t2 : t2);
+    precise float3 result = float3(p * g, (1.0 - q) * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 
@@ -195,10 +193,11 @@ float3 unitpack_eqarea16p_encode_codes(float3 v) {
     precise float step_down4 = root_step * root_step > t15 ? -1.0 : 0.0;
     precise float step4 = root_next2 * root_next2 <= t15 ? 1.0 : step_down4;
     precise float g = root_step + step4;
-    precise float t16 = 2097152.0 - q;
-    precise float neg_t16 = -t16;
-    precise float3 t17 = float3(floor(p * g * 9.536743e-7), one_if > 0.5 ? neg_t16 : t16);
-    precise float3 offset = t17 - aim;
+    precise float3 t16 = float3(
+        floor(p * g * 9.536743e-7),
+        (2097152.0 - q) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    precise float3 offset = t16 - aim;
     precise float3 abs_offset = abs(offset);
     uint3 offset_u = uint3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
@@ -221,26 +220,27 @@ float3 unitpack_eqarea16p_encode_codes(float3 v) {
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
     precise float s_up = base.x + 1.0;
     precise float t_up = base.y + 1.0;
-    precise float2 t18 = float2(s_up, base.y);
-    precise float2 cand2 = UNITPACK_SELECT(t18 <= float2(255.0, 127.0), t18, float2(255.0, 127.0));
-    bool t19 = base.y <= 127.0;
+    precise float2 t17 = float2(s_up, base.y);
+    precise float2 cand2 = UNITPACK_SELECT(t17 <= float2(255.0, 127.0), t17, float2(255.0, 127.0));
+    bool t18 = base.y <= 127.0;
     precise float2 p2 = floor((cand2 * 2.0 - float2(255.0, 127.0)) * float2(8224.126, 16513.008));
     precise float q2 = round(p2.x * p2.x * 4.7683716e-7) + round(p2.y * p2.y * 4.7683716e-7);
-    precise float t20 = 4194304.0 - q2;
-    precise float t21 = (t20 >= 0.0 ? t20 : 0.0) * 524288.0;
-    precise float root_estimate3 = floor(sqrt(t21));
+    precise float t19 = 4194304.0 - q2;
+    precise float t20 = (t19 >= 0.0 ? t19 : 0.0) * 524288.0;
+    precise float root_estimate3 = floor(sqrt(t20));
     precise float root_next3 = root_estimate3 + 1.0;
-    precise float step_down5 = root_estimate3 * root_estimate3 > t21 ? -1.0 : 0.0;
-    precise float step5 = root_next3 * root_next3 <= t21 ? 1.0 : step_down5;
+    precise float step_down5 = root_estimate3 * root_estimate3 > t20 ? -1.0 : 0.0;
+    precise float step5 = root_next3 * root_next3 <= t20 ? 1.0 : step_down5;
     precise float root_step2 = root_estimate3 + step5;
     precise float root_next4 = root_step2 + 1.0;
-    precise float step_down6 = root_step2 * root_step2 > t21 ? -1.0 : 0.0;
-    precise float step6 = root_next4 * root_next4 <= t21 ? 1.0 : step_down6;
+    precise float step_down6 = root_step2 * root_step2 > t20 ? -1.0 : 0.0;
+    precise float step6 = root_next4 * root_next4 <= t20 ? 1.0 : step_down6;
     precise float g2 = root_step2 + step6;
-    precise float t22 = 2097152.0 - q2;
-    precise float neg_t22 = -t22;
-    precise float3 t23 = float3(floor(p2 * g2 * 9.536743e-7), one_if > 0.5 ? neg_t22 : t22);
-    precise float3 offset2 = t23 - aim;
+    precise float3 t21 = float3(
+        floor(p2 * g2 * 9.536743e-7),
+        (2097152.0 - q2) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    precise float3 offset2 = t21 - aim;
     precise float3 abs_offset2 = abs(offset2);
     uint3 offset_u2 = uint3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
@@ -261,30 +261,31 @@ float3 unitpack_eqarea16p_encode_codes(float3 v) {
     uint hi12 = hi11 + (lo11 >> 24u);
     uint lo12 = lo11 & 16777215u;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
-    bool t24 = dist2 < dist;
-    bool t25 = s_up <= 255.0 && t19 && t24;
-    precise float2 best = t25 ? cand2 : cand;
-    precise float best_d = t25 ? dist2 : dist;
-    precise float2 t26 = float2(base.x, t_up);
-    precise float2 cand3 = UNITPACK_SELECT(t26 <= float2(255.0, 127.0), t26, float2(255.0, 127.0));
-    bool t27 = t_up <= 127.0;
+    bool t22 = dist2 < dist;
+    bool t23 = s_up <= 255.0 && t18 && t22;
+    precise float2 best = t23 ? cand2 : cand;
+    precise float best_d = t23 ? dist2 : dist;
+    precise float2 t24 = float2(base.x, t_up);
+    precise float2 cand3 = UNITPACK_SELECT(t24 <= float2(255.0, 127.0), t24, float2(255.0, 127.0));
+    bool t25 = t_up <= 127.0;
     precise float2 p3 = floor((cand3 * 2.0 - float2(255.0, 127.0)) * float2(8224.126, 16513.008));
     precise float q3 = round(p3.x * p3.x * 4.7683716e-7) + round(p3.y * p3.y * 4.7683716e-7);
-    precise float t28 = 4194304.0 - q3;
-    precise float t29 = (t28 >= 0.0 ? t28 : 0.0) * 524288.0;
-    precise float root_estimate4 = floor(sqrt(t29));
+    precise float t26 = 4194304.0 - q3;
+    precise float t27 = (t26 >= 0.0 ? t26 : 0.0) * 524288.0;
+    precise float root_estimate4 = floor(sqrt(t27));
     precise float root_next5 = root_estimate4 + 1.0;
-    precise float step_down7 = root_estimate4 * root_estimate4 > t29 ? -1.0 : 0.0;
-    precise float step7 = root_next5 * root_next5 <= t29 ? 1.0 : step_down7;
+    precise float step_down7 = root_estimate4 * root_estimate4 > t27 ? -1.0 : 0.0;
+    precise float step7 = root_next5 * root_next5 <= t27 ? 1.0 : step_down7;
     precise float root_step3 = root_estimate4 + step7;
     precise float root_next6 = root_step3 + 1.0;
-    precise float step_down8 = root_step3 * root_step3 > t29 ? -1.0 : 0.0;
-    precise float step8 = root_next6 * root_next6 <= t29 ? 1.0 : step_down8;
+    precise float step_down8 = root_step3 * root_step3 > t27 ? -1.0 : 0.0;
+    precise float step8 = root_next6 * root_next6 <= t27 ? 1.0 : step_down8;
     precise float g3 = root_step3 + step8;
-    precise float t30 = 2097152.0 - q3;
-    precise float neg_t30 = -t30;
-    precise float3 t31 = float3(floor(p3 * g3 * 9.536743e-7), one_if > 0.5 ? neg_t30 : t30);
-    precise float3 offset3 = t31 - aim;
+    precise float3 t28 = float3(
+        floor(p3 * g3 * 9.536743e-7),
+        (2097152.0 - q3) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    precise float3 offset3 = t28 - aim;
     precise float3 abs_offset3 = abs(offset3);
     uint3 offset_u3 = uint3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
@@ -305,30 +306,31 @@ float3 unitpack_eqarea16p_encode_codes(float3 v) {
     uint hi16 = hi15 + (lo15 >> 24u);
     uint lo16 = lo15 & 16777215u;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
-    bool t32 = dist3 < best_d;
-    bool t33 = base.x <= 255.0 && t27 && t32;
-    precise float2 best2 = t33 ? cand3 : best;
-    precise float best_d2 = t33 ? dist3 : best_d;
-    precise float2 t34 = base + 1.0;
-    precise float2 cand4 = UNITPACK_SELECT(t34 <= float2(255.0, 127.0), t34, float2(255.0, 127.0));
-    bool t35 = t_up <= 127.0;
+    bool t29 = dist3 < best_d;
+    bool t30 = base.x <= 255.0 && t25 && t29;
+    precise float2 best2 = t30 ? cand3 : best;
+    precise float best_d2 = t30 ? dist3 : best_d;
+    precise float2 t31 = base + 1.0;
+    precise float2 cand4 = UNITPACK_SELECT(t31 <= float2(255.0, 127.0), t31, float2(255.0, 127.0));
+    bool t32 = t_up <= 127.0;
     precise float2 p4 = floor((cand4 * 2.0 - float2(255.0, 127.0)) * float2(8224.126, 16513.008));
     precise float q4 = round(p4.x * p4.x * 4.7683716e-7) + round(p4.y * p4.y * 4.7683716e-7);
-    precise float t36 = 4194304.0 - q4;
-    precise float t37 = (t36 >= 0.0 ? t36 : 0.0) * 524288.0;
-    precise float root_estimate5 = floor(sqrt(t37));
+    precise float t33 = 4194304.0 - q4;
+    precise float t34 = (t33 >= 0.0 ? t33 : 0.0) * 524288.0;
+    precise float root_estimate5 = floor(sqrt(t34));
     precise float root_next7 = root_estimate5 + 1.0;
-    precise float step_down9 = root_estimate5 * root_estimate5 > t37 ? -1.0 : 0.0;
-    precise float step9 = root_next7 * root_next7 <= t37 ? 1.0 : step_down9;
+    precise float step_down9 = root_estimate5 * root_estimate5 > t34 ? -1.0 : 0.0;
+    precise float step9 = root_next7 * root_next7 <= t34 ? 1.0 : step_down9;
     precise float root_step4 = root_estimate5 + step9;
     precise float root_next8 = root_step4 + 1.0;
-    precise float step_down10 = root_step4 * root_step4 > t37 ? -1.0 : 0.0;
-    precise float step10 = root_next8 * root_next8 <= t37 ? 1.0 : step_down10;
+    precise float step_down10 = root_step4 * root_step4 > t34 ? -1.0 : 0.0;
+    precise float step10 = root_next8 * root_next8 <= t34 ? 1.0 : step_down10;
     precise float g4 = root_step4 + step10;
-    precise float t38 = 2097152.0 - q4;
-    precise float neg_t38 = -t38;
-    precise float3 t39 = float3(floor(p4 * g4 * 9.536743e-7), one_if > 0.5 ? neg_t38 : t38);
-    precise float3 offset4 = t39 - aim;
+    precise float3 t35 = float3(
+        floor(p4 * g4 * 9.536743e-7),
+        (2097152.0 - q4) * (one_if > 0.5 ? -1.0 : 1.0)
+    );
+    precise float3 offset4 = t35 - aim;
     precise float3 abs_offset4 = abs(offset4);
     uint3 offset_u4 = uint3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;
@@ -349,8 +351,8 @@ float3 unitpack_eqarea16p_encode_codes(float3 v) {
     uint hi20 = hi19 + (lo19 >> 24u);
     uint lo20 = lo19 & 16777215u;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
-    bool t40 = dist4 < best_d2;
-    precise float2 best3 = s_up <= 255.0 && t35 && t40 ? cand4 : best2;
+    bool t36 = dist4 < best_d2;
+    precise float2 best3 = s_up <= 255.0 && t32 && t36 ? cand4 : best2;
     return float3(best3, one_if);
 }
 

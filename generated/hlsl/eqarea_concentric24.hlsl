@@ -69,9 +69,7 @@ float3 unitpack_eqarea_concentric24_decode_float(float3 params) {
     precise float t3 = disk_sq.x + disk_sq.y;
     precise float q = t3 <= 2.0 ? t3 : 2.0;
     precise float g = sqrt(2.0 - q);
-    precise float t4 = 1.0 - q;
-    precise float neg_t4 = -t4;
-    precise float3 result = float3(disk * g, params.z > 0.5 ? neg_t4 : t4);
+    precise float3 result = float3(disk * g, (1.0 - q) * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 

@@ -65,11 +65,9 @@ float3 unitpack_eqarea_oct16_decode_float(float2 params) {
     precise float2 cs = b.x >= b.y ? low.yx : high;
     precise float r2 = r * r;
     precise float k = r * sqrt(2.0 - r2);
-    precise float t4 = 1.0 - r2;
-    precise float neg_t4 = -t4;
     precise float3 result = float3(
         cs * k * UNITPACK_SELECT(params >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0)),
-        t2 ? neg_t4 : t4
+        (1.0 - r2) * (t2 ? -1.0 : 1.0)
     );
     return result;
 }

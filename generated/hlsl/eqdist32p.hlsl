@@ -38,7 +38,7 @@
 // In: parameters in [0, 1], as a unorm16, unorm15, unorm1 fetch returns them.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
-// Portable within a bound (as the header says): each output component is within 14·2^-24 (8.34e-7)
+// Portable within a bound (as the header says): each output component is within 15·2^-24 (8.94e-7)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 float3 unitpack_eqdist32p_decode_float(float3 params) {
@@ -59,8 +59,7 @@ float3 unitpack_eqdist32p_decode_float(float3 params) {
     precise float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
         + (-1.2337005);
     precise float cosq = t4 * q + 1.0;
-    precise float neg_cosq = -cosq;
-    precise float3 result = float3(p * sinc, params.z > 0.5 ? neg_cosq : cosq);
+    precise float3 result = float3(p * sinc, cosq * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 
@@ -69,7 +68,7 @@ float3 unitpack_eqdist32p_decode_float(float3 params) {
 //   bits are ignored.
 // Out: decodes are unit length to within the series' rounding (a few ULP); codes outside the disk
 //   decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator).
-// Portable within a bound (as the header says): each output component is within 54·2^-24 (3.22e-6)
+// Portable within a bound (as the header says): each output component is within 55·2^-24 (3.28e-6)
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 float3 unitpack_eqdist32p_decode(uint code) {
@@ -302,8 +301,7 @@ float3 unitpack_eqdist32p_encode_codes(float3 v) {
     precise float t36 = round((round(t35 * 2.3841858e-7) + 2127934.0) * q * 2.3841858e-7)
         + (-5174515.0);
     precise float cosq = round(t36 * q * 2.3841858e-7) + 2097152.0;
-    precise float neg_cosq = -cosq;
-    precise float3 t37 = float3(round(p * sinc * 4.7683716e-7), one_if > 0.5 ? neg_cosq : cosq);
+    precise float3 t37 = float3(round(p * sinc * 4.7683716e-7), cosq * (one_if > 0.5 ? -1.0 : 1.0));
     precise float3 offset = t37 - aim;
     precise float3 abs_offset = abs(offset);
     uint3 offset_u = uint3(abs_offset);
@@ -350,8 +348,10 @@ float3 unitpack_eqdist32p_encode_codes(float3 v) {
     precise float t47 = round((round(t46 * 2.3841858e-7) + 2127934.0) * q2 * 2.3841858e-7)
         + (-5174515.0);
     precise float cosq2 = round(t47 * q2 * 2.3841858e-7) + 2097152.0;
-    precise float neg_cosq2 = -cosq2;
-    precise float3 t48 = float3(round(p2 * sinc2 * 4.7683716e-7), one_if > 0.5 ? neg_cosq2 : cosq2);
+    precise float3 t48 = float3(
+        round(p2 * sinc2 * 4.7683716e-7),
+        cosq2 * (one_if > 0.5 ? -1.0 : 1.0)
+    );
     precise float3 offset2 = t48 - aim;
     precise float3 abs_offset2 = abs(offset2);
     uint3 offset_u2 = uint3(abs_offset2);
@@ -400,8 +400,10 @@ float3 unitpack_eqdist32p_encode_codes(float3 v) {
     precise float t60 = round((round(t59 * 2.3841858e-7) + 2127934.0) * q3 * 2.3841858e-7)
         + (-5174515.0);
     precise float cosq3 = round(t60 * q3 * 2.3841858e-7) + 2097152.0;
-    precise float neg_cosq3 = -cosq3;
-    precise float3 t61 = float3(round(p3 * sinc3 * 4.7683716e-7), one_if > 0.5 ? neg_cosq3 : cosq3);
+    precise float3 t61 = float3(
+        round(p3 * sinc3 * 4.7683716e-7),
+        cosq3 * (one_if > 0.5 ? -1.0 : 1.0)
+    );
     precise float3 offset3 = t61 - aim;
     precise float3 abs_offset3 = abs(offset3);
     uint3 offset_u3 = uint3(abs_offset3);
@@ -450,8 +452,10 @@ float3 unitpack_eqdist32p_encode_codes(float3 v) {
     precise float t73 = round((round(t72 * 2.3841858e-7) + 2127934.0) * q4 * 2.3841858e-7)
         + (-5174515.0);
     precise float cosq4 = round(t73 * q4 * 2.3841858e-7) + 2097152.0;
-    precise float neg_cosq4 = -cosq4;
-    precise float3 t74 = float3(round(p4 * sinc4 * 4.7683716e-7), one_if > 0.5 ? neg_cosq4 : cosq4);
+    precise float3 t74 = float3(
+        round(p4 * sinc4 * 4.7683716e-7),
+        cosq4 * (one_if > 0.5 ? -1.0 : 1.0)
+    );
     precise float3 offset4 = t74 - aim;
     precise float3 abs_offset4 = abs(offset4);
     uint3 offset_u4 = uint3(abs_offset4);

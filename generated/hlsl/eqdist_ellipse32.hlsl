@@ -61,8 +61,7 @@ float3 unitpack_eqdist_ellipse32_decode_float(float3 params) {
     precise float t4 = (((t3 + 0.00091926026) * q + (-0.02086348)) * q + 0.2536695) * q
         + (-1.2337005);
     precise float cosq = t4 * q + 1.0;
-    precise float neg_cosq = -cosq;
-    precise float3 result = float3(disk * sinc, params.z > 0.5 ? neg_cosq : cosq);
+    precise float3 result = float3(disk * sinc, cosq * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 

@@ -46,9 +46,7 @@ float3 unitpack_stereo16p_decode_float(float3 params) {
     precise float2 p_sq = p * p;
     precise float q = p_sq.x + p_sq.y;
     precise float d = q + 1.0;
-    precise float t1 = (1.0 - q) / d;
-    precise float neg_t1 = -t1;
-    precise float3 result = float3((p + p) / d, params.z > 0.5 ? neg_t1 : t1);
+    precise float3 result = float3((p + p) / d, (1.0 - q) / d * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 
@@ -184,8 +182,7 @@ float3 unitpack_stereo16p_encode_codes(float3 v) {
     precise float step_down3 = ratio_estimate * t11 > big ? -1.0 : 0.0;
     precise float step3 = (ratio_estimate + 1.0) * t11 <= big ? 1.0 : step_down3;
     precise float ratio = ratio_estimate + step3;
-    precise float neg_ratio = -ratio;
-    precise float3 offset = float3(t13 + t15, one_if > 0.5 ? neg_ratio : ratio) - aim;
+    precise float3 offset = float3(t13 + t15, ratio * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset = abs(offset);
     uint3 offset_u = uint3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
@@ -228,8 +225,7 @@ float3 unitpack_stereo16p_encode_codes(float3 v) {
     precise float step_down4 = ratio_estimate2 * t19 > big2 ? -1.0 : 0.0;
     precise float step4 = (ratio_estimate2 + 1.0) * t19 <= big2 ? 1.0 : step_down4;
     precise float ratio2 = ratio_estimate2 + step4;
-    precise float neg_ratio2 = -ratio2;
-    precise float3 offset2 = float3(t21 + t23, one_if > 0.5 ? neg_ratio2 : ratio2) - aim;
+    precise float3 offset2 = float3(t21 + t23, ratio2 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset2 = abs(offset2);
     uint3 offset_u2 = uint3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
@@ -274,8 +270,7 @@ float3 unitpack_stereo16p_encode_codes(float3 v) {
     precise float step_down5 = ratio_estimate3 * t29 > big3 ? -1.0 : 0.0;
     precise float step5 = (ratio_estimate3 + 1.0) * t29 <= big3 ? 1.0 : step_down5;
     precise float ratio3 = ratio_estimate3 + step5;
-    precise float neg_ratio3 = -ratio3;
-    precise float3 offset3 = float3(t31 + t33, one_if > 0.5 ? neg_ratio3 : ratio3) - aim;
+    precise float3 offset3 = float3(t31 + t33, ratio3 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset3 = abs(offset3);
     uint3 offset_u3 = uint3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
@@ -320,8 +315,7 @@ float3 unitpack_stereo16p_encode_codes(float3 v) {
     precise float step_down6 = ratio_estimate4 * t39 > big4 ? -1.0 : 0.0;
     precise float step6 = (ratio_estimate4 + 1.0) * t39 <= big4 ? 1.0 : step_down6;
     precise float ratio4 = ratio_estimate4 + step6;
-    precise float neg_ratio4 = -ratio4;
-    precise float3 offset4 = float3(t41 + t43, one_if > 0.5 ? neg_ratio4 : ratio4) - aim;
+    precise float3 offset4 = float3(t41 + t43, ratio4 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset4 = abs(offset4);
     uint3 offset_u4 = uint3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;

@@ -46,9 +46,7 @@ float3 unitpack_stereo22_decode_float(float3 params) {
     precise float2 p_sq = p * p;
     precise float q = p_sq.x + p_sq.y;
     precise float d = q + 1.0;
-    precise float t1 = (1.0 - q) / d;
-    precise float neg_t1 = -t1;
-    precise float3 result = float3((p + p) / d, params.z > 0.5 ? neg_t1 : t1);
+    precise float3 result = float3((p + p) / d, (1.0 - q) / d * (params.z > 0.5 ? -1.0 : 1.0));
     return result;
 }
 

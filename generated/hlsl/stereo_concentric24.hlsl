@@ -68,9 +68,10 @@ float3 unitpack_stereo_concentric24_decode_float(float3 params) {
     precise float2 disk_sq = disk * disk;
     precise float q = disk_sq.x + disk_sq.y;
     precise float d = q + 1.0;
-    precise float t3 = (1.0 - q) / d;
-    precise float neg_t3 = -t3;
-    precise float3 result = float3((disk + disk) / d, params.z > 0.5 ? neg_t3 : t3);
+    precise float3 result = float3(
+        (disk + disk) / d,
+        (1.0 - q) / d * (params.z > 0.5 ? -1.0 : 1.0)
+    );
     return result;
 }
 

@@ -45,9 +45,8 @@ float3 unitpack_xy_signz24_decode_float(float3 params) {
     precise float2 t1 = params.xy * params.xy;
     precise float t2 = t1.x + t1.y;
     precise float d = t2 < 1.0 ? t2 : 1.0;
-    precise float t3 = sqrt(1.0 - d);
-    precise float neg_t3 = -t3;
-    return float3(params.xy, params.z > 0.5 ? neg_t3 : t3);
+    precise float3 result = float3(params.xy, sqrt(1.0 - d) * (params.z > 0.5 ? -1.0 : 1.0));
+    return result;
 }
 
 // unitpack_xy_signz24_decode: decoder.

@@ -45,9 +45,8 @@ float3 unitpack_xy_signz32p_decode_float(float3 params) {
     precise float2 t1 = params.xy * params.xy;
     precise float t2 = t1.x + t1.y;
     precise float d = t2 < 1.0 ? t2 : 1.0;
-    precise float t3 = sqrt(1.0 - d);
-    precise float neg_t3 = -t3;
-    return float3(params.xy, params.z > 0.5 ? neg_t3 : t3);
+    precise float3 result = float3(params.xy, sqrt(1.0 - d) * (params.z > 0.5 ? -1.0 : 1.0));
+    return result;
 }
 
 // unitpack_xy_signz32p_decode: decoder.
@@ -179,8 +178,7 @@ float3 unitpack_xy_signz32p_encode_codes(float3 v) {
     precise float step_down4 = root_step * root_step > t10 ? -1.0 : 0.0;
     precise float step4 = root_next2 * root_next2 <= t10 ? 1.0 : step_down4;
     precise float root2 = root_step + step4;
-    precise float neg_root2 = -root2;
-    precise float3 offset = float3(p, one_if > 0.5 ? neg_root2 : root2) - aim;
+    precise float3 offset = float3(p, root2 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset = abs(offset);
     uint3 offset_u = uint3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
@@ -224,8 +222,7 @@ float3 unitpack_xy_signz32p_encode_codes(float3 v) {
     precise float step_down6 = root_step2 * root_step2 > t14 ? -1.0 : 0.0;
     precise float step6 = root_next4 * root_next4 <= t14 ? 1.0 : step_down6;
     precise float root3 = root_step2 + step6;
-    precise float neg_root3 = -root3;
-    precise float3 offset2 = float3(p2, one_if > 0.5 ? neg_root3 : root3) - aim;
+    precise float3 offset2 = float3(p2, root3 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset2 = abs(offset2);
     uint3 offset_u2 = uint3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
@@ -271,8 +268,7 @@ float3 unitpack_xy_signz32p_encode_codes(float3 v) {
     precise float step_down8 = root_step3 * root_step3 > t20 ? -1.0 : 0.0;
     precise float step8 = root_next6 * root_next6 <= t20 ? 1.0 : step_down8;
     precise float root4 = root_step3 + step8;
-    precise float neg_root4 = -root4;
-    precise float3 offset3 = float3(p3, one_if > 0.5 ? neg_root4 : root4) - aim;
+    precise float3 offset3 = float3(p3, root4 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset3 = abs(offset3);
     uint3 offset_u3 = uint3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
@@ -318,8 +314,7 @@ float3 unitpack_xy_signz32p_encode_codes(float3 v) {
     precise float step_down10 = root_step4 * root_step4 > t26 ? -1.0 : 0.0;
     precise float step10 = root_next8 * root_next8 <= t26 ? 1.0 : step_down10;
     precise float root5 = root_step4 + step10;
-    precise float neg_root5 = -root5;
-    precise float3 offset4 = float3(p4, one_if > 0.5 ? neg_root5 : root5) - aim;
+    precise float3 offset4 = float3(p4, root5 * (one_if > 0.5 ? -1.0 : 1.0)) - aim;
     precise float3 abs_offset4 = abs(offset4);
     uint3 offset_u4 = uint3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;

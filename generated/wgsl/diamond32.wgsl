@@ -54,34 +54,35 @@ fn unitpack_diamond32_decode(code: u32) -> unitpack_diamond32_frame {
     );
     let t3 = select(508.0f, fields.z, fields.z <= 508.0f);
     let t4 = t3 >= 254.0f;
-    let x = select(t3 - 127.0f, 381.0f - t3, t4) * 0.007874016f;
-    let t5 = 1.0f - abs(x);
-    let t6 = select(-t5, t5, t4);
-    let t7 = select(vec2<f32>(-1023.0f), fields.xy, fields.xy >= vec2<f32>(-1023.0f));
-    let abs_t7 = abs(t7);
-    let pz = 1023.0f - abs_t7.x - abs_t7.y;
+    let t5 = select(t3 - 127.0f, 381.0f - t3, t4);
+    let x = t5 * 0.007874016f;
+    let t6 = 1.0f - abs(x);
+    let t7 = select(-1.0f, 1.0f, t4);
+    let t8 = select(vec2<f32>(-1023.0f), fields.xy, fields.xy >= vec2<f32>(-1023.0f));
+    let abs_t8 = abs(t8);
+    let pz = 1023.0f - abs_t8.x - abs_t8.y;
     let p = vec3<f32>(
         select(
-            t7,
-            (1023.0f - abs_t7.yx)
-                * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t7 >= vec2<f32>(0.0f)),
+            t8,
+            (1023.0f - abs_t8.yx)
+                * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t8 >= vec2<f32>(0.0f)),
             pz < 0.0f
         ),
         pz
     );
     let p_sq = p * p;
     let n = p * (1.0f / sqrt(p_sq.x + p_sq.y + p_sq.z));
-    let t8 = abs(p.y) > abs(p.z);
-    let b1 = select(vec3<f32>(n.z, 0.0f, -n.x), vec3<f32>(n.y, -n.x, 0.0f), t8);
+    let t9 = abs(p.y) > abs(p.z);
+    let b1 = select(vec3<f32>(n.z, 0.0f, -n.x), vec3<f32>(n.y, -n.x, 0.0f), t9);
     let b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
-    let w = b1 * x + b2 * t6;
-    let b1_2 = select(n.z * n.z + n.x * n.x, n.y * n.y + n.x * n.x, t8);
-    let t9 = vec2<f32>(x, t6);
-    let t9_sq = t9 * t9;
+    let w = b1 * x + b2 * (t6 * t7);
+    let b1_2 = select(n.z * n.z + n.x * n.x, n.y * n.y + n.x * n.x, t9);
+    let t10 = vec2<f32>(t5, t6) * vec2<f32>(0.007874016f, t7);
+    let t10_sq = t10 * t10;
     return unitpack_diamond32_frame(
         n,
         vec4<f32>(
-            w * (1.0f / sqrt(b1_2 * (t9_sq.x + t9_sq.y))),
+            w * (1.0f / sqrt(b1_2 * (t10_sq.x + t10_sq.y))),
             select(1.0f, -1.0f, fields.w > 0.5f)
         )
     );
@@ -103,34 +104,35 @@ fn unitpack_diamond32_decode_tbn(code: u32) -> unitpack_diamond32_tbn {
     );
     let t3 = select(508.0f, fields.z, fields.z <= 508.0f);
     let t4 = t3 >= 254.0f;
-    let x = select(t3 - 127.0f, 381.0f - t3, t4) * 0.007874016f;
-    let t5 = 1.0f - abs(x);
-    let t6 = select(-t5, t5, t4);
-    let t7 = select(vec2<f32>(-1023.0f), fields.xy, fields.xy >= vec2<f32>(-1023.0f));
-    let abs_t7 = abs(t7);
-    let pz = 1023.0f - abs_t7.x - abs_t7.y;
+    let t5 = select(t3 - 127.0f, 381.0f - t3, t4);
+    let x = t5 * 0.007874016f;
+    let t6 = 1.0f - abs(x);
+    let t7 = select(-1.0f, 1.0f, t4);
+    let t8 = select(vec2<f32>(-1023.0f), fields.xy, fields.xy >= vec2<f32>(-1023.0f));
+    let abs_t8 = abs(t8);
+    let pz = 1023.0f - abs_t8.x - abs_t8.y;
     let p = vec3<f32>(
         select(
-            t7,
-            (1023.0f - abs_t7.yx)
-                * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t7 >= vec2<f32>(0.0f)),
+            t8,
+            (1023.0f - abs_t8.yx)
+                * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), t8 >= vec2<f32>(0.0f)),
             pz < 0.0f
         ),
         pz
     );
     let p_sq = p * p;
     let n = p * (1.0f / sqrt(p_sq.x + p_sq.y + p_sq.z));
-    let t8 = abs(p.y) > abs(p.z);
-    let b1 = select(vec3<f32>(n.z, 0.0f, -n.x), vec3<f32>(n.y, -n.x, 0.0f), t8);
+    let t9 = abs(p.y) > abs(p.z);
+    let b1 = select(vec3<f32>(n.z, 0.0f, -n.x), vec3<f32>(n.y, -n.x, 0.0f), t9);
     let b2 = n.yzx * b1.zxy - n.zxy * b1.yzx;
-    let w = b1 * x + b2 * t6;
-    let b1_2 = select(n.z * n.z + n.x * n.x, n.y * n.y + n.x * n.x, t8);
-    let t9 = vec2<f32>(x, t6);
-    let t9_sq = t9 * t9;
-    let t10 = w * (1.0f / sqrt(b1_2 * (t9_sq.x + t9_sq.y)));
+    let w = b1 * x + b2 * (t6 * t7);
+    let b1_2 = select(n.z * n.z + n.x * n.x, n.y * n.y + n.x * n.x, t9);
+    let t10 = vec2<f32>(t5, t6) * vec2<f32>(0.007874016f, t7);
+    let t10_sq = t10 * t10;
+    let t11 = w * (1.0f / sqrt(b1_2 * (t10_sq.x + t10_sq.y)));
     return unitpack_diamond32_tbn(
-        t10,
-        (n.yzx * t10.zxy - n.zxy * t10.yzx) * select(1.0f, -1.0f, fields.w > 0.5f),
+        t11,
+        (n.yzx * t11.zxy - n.zxy * t11.yzx) * select(1.0f, -1.0f, fields.w > 0.5f),
         n
     );
 }

@@ -32,8 +32,7 @@ fn unitpack_eqarea24p_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = p_sq.x + p_sq.y;
     let q = select(2.0f, t1, t1 <= 2.0f);
     let g = sqrt(2.0f - q);
-    let t2 = 1.0f - q;
-    return vec3<f32>(p * g, select(t2, -t2, params.z > 0.5f));
+    return vec3<f32>(p * g, (1.0f - q) * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_eqarea24p_decode: decoder.
@@ -169,9 +168,11 @@ fn unitpack_eqarea24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down4 = select(0.0f, -1.0f, root_step * root_step > t15);
     let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t15);
     let g = root_step + step4;
-    let t16 = 2097152.0f - q;
-    let t17 = vec3<f32>(floor(p * g * 9.536743e-7f), select(t16, -t16, one_if > 0.5f));
-    let offset = t17 - aim;
+    let t16 = vec3<f32>(
+        floor(p * g * 9.536743e-7f),
+        (2097152.0f - q) * select(1.0f, -1.0f, one_if > 0.5f)
+    );
+    let offset = t16 - aim;
     let offset_u = vec3<u32>(abs(offset));
     let limb1_4 = offset_u.x >> 12u;
     let limb0_4 = offset_u.x & 4095u;
@@ -193,26 +194,28 @@ fn unitpack_eqarea24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
     let s_up = base.x + 1.0f;
     let t_up = base.y + 1.0f;
-    let t18 = vec2<f32>(s_up, base.y);
-    let cand2 = select(vec2<f32>(4095.0f, 2047.0f), t18, t18 <= vec2<f32>(4095.0f, 2047.0f));
+    let t17 = vec2<f32>(s_up, base.y);
+    let cand2 = select(vec2<f32>(4095.0f, 2047.0f), t17, t17 <= vec2<f32>(4095.0f, 2047.0f));
     let p2 = floor(
         (cand2 * 2.0f - vec2<f32>(4095.0f, 2047.0f)) * vec2<f32>(512.12506f, 1024.5002f)
     );
     let q2 = round(p2.x * p2.x * 4.7683716e-7f) + round(p2.y * p2.y * 4.7683716e-7f);
-    let t19 = 4194304.0f - q2;
-    let t20 = select(0.0f, t19, t19 >= 0.0f) * 524288.0f;
-    let root_estimate3 = floor(sqrt(t20));
+    let t18 = 4194304.0f - q2;
+    let t19 = select(0.0f, t18, t18 >= 0.0f) * 524288.0f;
+    let root_estimate3 = floor(sqrt(t19));
     let root_next3 = root_estimate3 + 1.0f;
-    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t20);
-    let step5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t20);
+    let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t19);
+    let step5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t19);
     let root_step2 = root_estimate3 + step5;
     let root_next4 = root_step2 + 1.0f;
-    let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t20);
-    let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t20);
+    let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t19);
+    let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t19);
     let g2 = root_step2 + step6;
-    let t21 = 2097152.0f - q2;
-    let t22 = vec3<f32>(floor(p2 * g2 * 9.536743e-7f), select(t21, -t21, one_if > 0.5f));
-    let offset2 = t22 - aim;
+    let t20 = vec3<f32>(
+        floor(p2 * g2 * 9.536743e-7f),
+        (2097152.0f - q2) * select(1.0f, -1.0f, one_if > 0.5f)
+    );
+    let offset2 = t20 - aim;
     let offset_u2 = vec3<u32>(abs(offset2));
     let limb1_7 = offset_u2.x >> 12u;
     let limb0_7 = offset_u2.x & 4095u;
@@ -232,29 +235,31 @@ fn unitpack_eqarea24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi12 = hi11 + (lo11 >> 24u);
     let lo12 = lo11 & 16777215u;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
-    let t23 = s_up <= 4095.0f && base.y <= 2047.0f && dist2 < dist;
-    let best = select(cand, cand2, t23);
-    let best_d = select(dist, dist2, t23);
-    let t24 = vec2<f32>(base.x, t_up);
-    let cand3 = select(vec2<f32>(4095.0f, 2047.0f), t24, t24 <= vec2<f32>(4095.0f, 2047.0f));
+    let t21 = s_up <= 4095.0f && base.y <= 2047.0f && dist2 < dist;
+    let best = select(cand, cand2, t21);
+    let best_d = select(dist, dist2, t21);
+    let t22 = vec2<f32>(base.x, t_up);
+    let cand3 = select(vec2<f32>(4095.0f, 2047.0f), t22, t22 <= vec2<f32>(4095.0f, 2047.0f));
     let p3 = floor(
         (cand3 * 2.0f - vec2<f32>(4095.0f, 2047.0f)) * vec2<f32>(512.12506f, 1024.5002f)
     );
     let q3 = round(p3.x * p3.x * 4.7683716e-7f) + round(p3.y * p3.y * 4.7683716e-7f);
-    let t25 = 4194304.0f - q3;
-    let t26 = select(0.0f, t25, t25 >= 0.0f) * 524288.0f;
-    let root_estimate4 = floor(sqrt(t26));
+    let t23 = 4194304.0f - q3;
+    let t24 = select(0.0f, t23, t23 >= 0.0f) * 524288.0f;
+    let root_estimate4 = floor(sqrt(t24));
     let root_next5 = root_estimate4 + 1.0f;
-    let step_down7 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t26);
-    let step7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t26);
+    let step_down7 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t24);
+    let step7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t24);
     let root_step3 = root_estimate4 + step7;
     let root_next6 = root_step3 + 1.0f;
-    let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t26);
-    let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t26);
+    let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t24);
+    let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t24);
     let g3 = root_step3 + step8;
-    let t27 = 2097152.0f - q3;
-    let t28 = vec3<f32>(floor(p3 * g3 * 9.536743e-7f), select(t27, -t27, one_if > 0.5f));
-    let offset3 = t28 - aim;
+    let t25 = vec3<f32>(
+        floor(p3 * g3 * 9.536743e-7f),
+        (2097152.0f - q3) * select(1.0f, -1.0f, one_if > 0.5f)
+    );
+    let offset3 = t25 - aim;
     let offset_u3 = vec3<u32>(abs(offset3));
     let limb1_10 = offset_u3.x >> 12u;
     let limb0_10 = offset_u3.x & 4095u;
@@ -274,29 +279,31 @@ fn unitpack_eqarea24p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let hi16 = hi15 + (lo15 >> 24u);
     let lo16 = lo15 & 16777215u;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
-    let t29 = base.x <= 4095.0f && t_up <= 2047.0f && dist3 < best_d;
-    let best2 = select(best, cand3, t29);
-    let best_d2 = select(best_d, dist3, t29);
-    let t30 = base + 1.0f;
-    let cand4 = select(vec2<f32>(4095.0f, 2047.0f), t30, t30 <= vec2<f32>(4095.0f, 2047.0f));
+    let t26 = base.x <= 4095.0f && t_up <= 2047.0f && dist3 < best_d;
+    let best2 = select(best, cand3, t26);
+    let best_d2 = select(best_d, dist3, t26);
+    let t27 = base + 1.0f;
+    let cand4 = select(vec2<f32>(4095.0f, 2047.0f), t27, t27 <= vec2<f32>(4095.0f, 2047.0f));
     let p4 = floor(
         (cand4 * 2.0f - vec2<f32>(4095.0f, 2047.0f)) * vec2<f32>(512.12506f, 1024.5002f)
     );
     let q4 = round(p4.x * p4.x * 4.7683716e-7f) + round(p4.y * p4.y * 4.7683716e-7f);
-    let t31 = 4194304.0f - q4;
-    let t32 = select(0.0f, t31, t31 >= 0.0f) * 524288.0f;
-    let root_estimate5 = floor(sqrt(t32));
+    let t28 = 4194304.0f - q4;
+    let t29 = select(0.0f, t28, t28 >= 0.0f) * 524288.0f;
+    let root_estimate5 = floor(sqrt(t29));
     let root_next7 = root_estimate5 + 1.0f;
-    let step_down9 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t32);
-    let step9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t32);
+    let step_down9 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t29);
+    let step9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t29);
     let root_step4 = root_estimate5 + step9;
     let root_next8 = root_step4 + 1.0f;
-    let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t32);
-    let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t32);
+    let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t29);
+    let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t29);
     let g4 = root_step4 + step10;
-    let t33 = 2097152.0f - q4;
-    let t34 = vec3<f32>(floor(p4 * g4 * 9.536743e-7f), select(t33, -t33, one_if > 0.5f));
-    let offset4 = t34 - aim;
+    let t30 = vec3<f32>(
+        floor(p4 * g4 * 9.536743e-7f),
+        (2097152.0f - q4) * select(1.0f, -1.0f, one_if > 0.5f)
+    );
+    let offset4 = t30 - aim;
     let offset_u4 = vec3<u32>(abs(offset4));
     let limb1_13 = offset_u4.x >> 12u;
     let limb0_13 = offset_u4.x & 4095u;

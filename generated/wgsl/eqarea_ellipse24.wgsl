@@ -33,8 +33,7 @@ fn unitpack_eqarea_ellipse24_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = disk_sq.x + disk_sq.y;
     let q = select(2.0f, t1, t1 <= 2.0f);
     let g = sqrt(2.0f - q);
-    let t2 = 1.0f - q;
-    return vec3<f32>(disk * g, select(t2, -t2, params.z > 0.5f));
+    return vec3<f32>(disk * g, (1.0f - q) * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_eqarea_ellipse24_decode: decoder.

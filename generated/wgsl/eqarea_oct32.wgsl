@@ -46,10 +46,9 @@ fn unitpack_eqarea_oct32_decode_float(params: vec2<f32>) -> vec3<f32> {
     let cs = select(high, low.yx, b.x >= b.y);
     let r2 = r * r;
     let k = r * sqrt(2.0f - r2);
-    let t2 = 1.0f - r2;
     return vec3<f32>(
         cs * k * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), params >= vec2<f32>(0.0f)),
-        select(t2, -t2, t1)
+        (1.0f - r2) * select(1.0f, -1.0f, t1)
     );
 }
 

@@ -39,7 +39,7 @@ fn unitpack_eqdist_ellipse20_decode_float(params: vec3<f32>) -> vec3<f32> {
         * q;
     let t4 = (((t3 + 0.00091926026f) * q + (-0.02086348f)) * q + 0.2536695f) * q + (-1.2337005f);
     let cosq = t4 * q + 1.0f;
-    return vec3<f32>(disk * sinc, select(cosq, -cosq, params.z > 0.5f));
+    return vec3<f32>(disk * sinc, cosq * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_eqdist_ellipse20_decode: decoder.

@@ -30,8 +30,7 @@ fn unitpack_stereo22_decode_float(params: vec3<f32>) -> vec3<f32> {
     let p_sq = p * p;
     let q = p_sq.x + p_sq.y;
     let d = q + 1.0f;
-    let t1 = (1.0f - q) / d;
-    return vec3<f32>((p + p) / d, select(t1, -t1, params.z > 0.5f));
+    return vec3<f32>((p + p) / d, (1.0f - q) / d * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_stereo22_decode: decoder.

@@ -30,8 +30,7 @@ fn unitpack_stereo22p_decode_float(params: vec3<f32>) -> vec3<f32> {
     let p_sq = p * p;
     let q = p_sq.x + p_sq.y;
     let d = q + 1.0f;
-    let t1 = (1.0f - q) / d;
-    return vec3<f32>((p + p) / d, select(t1, -t1, params.z > 0.5f));
+    return vec3<f32>((p + p) / d, (1.0f - q) / d * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_stereo22p_decode: decoder.
@@ -154,7 +153,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down3 = select(0.0f, -1.0f, ratio_estimate * t11 > big);
     let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t11 <= big);
     let ratio = ratio_estimate + step3;
-    let offset = vec3<f32>(t13 + t15, select(ratio, -ratio, one_if > 0.5f)) - aim;
+    let offset = vec3<f32>(t13 + t15, ratio * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u = vec3<u32>(abs(offset));
     let limb1_4 = offset_u.x >> 12u;
     let limb0_4 = offset_u.x & 4095u;
@@ -195,7 +194,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down4 = select(0.0f, -1.0f, ratio_estimate2 * t18 > big2);
     let step4 = select(step_down4, 1.0f, (ratio_estimate2 + 1.0f) * t18 <= big2);
     let ratio2 = ratio_estimate2 + step4;
-    let offset2 = vec3<f32>(t20 + t22, select(ratio2, -ratio2, one_if > 0.5f)) - aim;
+    let offset2 = vec3<f32>(t20 + t22, ratio2 * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u2 = vec3<u32>(abs(offset2));
     let limb1_7 = offset_u2.x >> 12u;
     let limb0_7 = offset_u2.x & 4095u;
@@ -237,7 +236,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down5 = select(0.0f, -1.0f, ratio_estimate3 * t26 > big3);
     let step5 = select(step_down5, 1.0f, (ratio_estimate3 + 1.0f) * t26 <= big3);
     let ratio3 = ratio_estimate3 + step5;
-    let offset3 = vec3<f32>(t28 + t30, select(ratio3, -ratio3, one_if > 0.5f)) - aim;
+    let offset3 = vec3<f32>(t28 + t30, ratio3 * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u3 = vec3<u32>(abs(offset3));
     let limb1_10 = offset_u3.x >> 12u;
     let limb0_10 = offset_u3.x & 4095u;
@@ -279,7 +278,7 @@ fn unitpack_stereo22p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down6 = select(0.0f, -1.0f, ratio_estimate4 * t34 > big4);
     let step6 = select(step_down6, 1.0f, (ratio_estimate4 + 1.0f) * t34 <= big4);
     let ratio4 = ratio_estimate4 + step6;
-    let offset4 = vec3<f32>(t36 + t38, select(ratio4, -ratio4, one_if > 0.5f)) - aim;
+    let offset4 = vec3<f32>(t36 + t38, ratio4 * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u4 = vec3<u32>(abs(offset4));
     let limb1_13 = offset_u4.x >> 12u;
     let limb0_13 = offset_u4.x & 4095u;

@@ -32,8 +32,7 @@ fn unitpack_stereo_ellipse16_decode_float(params: vec3<f32>) -> vec3<f32> {
     let disk_sq = disk * disk;
     let q = disk_sq.x + disk_sq.y;
     let d = q + 1.0f;
-    let t1 = (1.0f - q) / d;
-    return vec3<f32>((disk + disk) / d, select(t1, -t1, params.z > 0.5f));
+    return vec3<f32>((disk + disk) / d, (1.0f - q) / d * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_stereo_ellipse16_decode: decoder.

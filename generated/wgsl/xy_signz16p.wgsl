@@ -29,8 +29,7 @@ fn unitpack_xy_signz16p_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params.xy * params.xy;
     let t2 = t1.x + t1.y;
     let d = select(1.0f, t2, t2 < 1.0f);
-    let t3 = sqrt(1.0f - d);
-    return vec3<f32>(params.xy, select(t3, -t3, params.z > 0.5f));
+    return vec3<f32>(params.xy, sqrt(1.0f - d) * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_xy_signz16p_decode: decoder.
@@ -148,7 +147,7 @@ fn unitpack_xy_signz16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down4 = select(0.0f, -1.0f, root_step * root_step > t10);
     let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t10);
     let root2 = root_step + step4;
-    let offset = vec3<f32>(p, select(root2, -root2, one_if > 0.5f)) - aim;
+    let offset = vec3<f32>(p, root2 * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u = vec3<u32>(abs(offset));
     let limb1_4 = offset_u.x >> 12u;
     let limb0_4 = offset_u.x & 4095u;
@@ -186,7 +185,7 @@ fn unitpack_xy_signz16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t13);
     let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t13);
     let root3 = root_step2 + step6;
-    let offset2 = vec3<f32>(p2, select(root3, -root3, one_if > 0.5f)) - aim;
+    let offset2 = vec3<f32>(p2, root3 * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u2 = vec3<u32>(abs(offset2));
     let limb1_7 = offset_u2.x >> 12u;
     let limb0_7 = offset_u2.x & 4095u;
@@ -225,7 +224,7 @@ fn unitpack_xy_signz16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t17);
     let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t17);
     let root4 = root_step3 + step8;
-    let offset3 = vec3<f32>(p3, select(root4, -root4, one_if > 0.5f)) - aim;
+    let offset3 = vec3<f32>(p3, root4 * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u3 = vec3<u32>(abs(offset3));
     let limb1_10 = offset_u3.x >> 12u;
     let limb0_10 = offset_u3.x & 4095u;
@@ -264,7 +263,7 @@ fn unitpack_xy_signz16p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t21);
     let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t21);
     let root5 = root_step4 + step10;
-    let offset4 = vec3<f32>(p4, select(root5, -root5, one_if > 0.5f)) - aim;
+    let offset4 = vec3<f32>(p4, root5 * select(1.0f, -1.0f, one_if > 0.5f)) - aim;
     let offset_u4 = vec3<u32>(abs(offset4));
     let limb1_13 = offset_u4.x >> 12u;
     let limb0_13 = offset_u4.x & 4095u;

@@ -29,8 +29,7 @@ fn unitpack_xy_signz24_decode_float(params: vec3<f32>) -> vec3<f32> {
     let t1 = params.xy * params.xy;
     let t2 = t1.x + t1.y;
     let d = select(1.0f, t2, t2 < 1.0f);
-    let t3 = sqrt(1.0f - d);
-    return vec3<f32>(params.xy, select(t3, -t3, params.z > 0.5f));
+    return vec3<f32>(params.xy, sqrt(1.0f - d) * select(1.0f, -1.0f, params.z > 0.5f));
 }
 
 // unitpack_xy_signz24_decode: decoder.

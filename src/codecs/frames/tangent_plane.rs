@@ -227,7 +227,9 @@ impl Turn {
                 let upper = a.ge(F::c(2.0 * m));
                 let x = (F::sel(upper, F::c(3.0 * m) - a, a - F::c(m)) * F::c(1.0 / m)).named("x");
                 let y = F::c(1.0) - x.abs();
-                V2::new(x, y.negated_where(upper.not()))
+                // A product with the selected sign, not `sel(upper, y, -y)`: see
+                // [`Float::negated_where`].
+                V2::new(x, y * F::sel(upper, F::c(1.0), F::c(-1.0)))
             }
         }
     }
