@@ -112,7 +112,11 @@ fn browser_and_swiftshader_paths_hold_what_they_promise(report: &unitpack::verif
             .filter(|p| p.on_vulkan())
             .map(|p| (format!("{p} on swiftshader"), p.regroups())),
     );
-    assert_eq!(paths.len(), 2 + 9, "two browser paths and nine SPIR-V routes");
+    assert_eq!(
+        paths.len(),
+        2 + 9,
+        "two browser paths and nine SPIR-V routes"
+    );
     let every: HashMap<(&str, &str), usize> = report
         .rows
         .iter()

@@ -163,12 +163,18 @@ fn each_module_is_its_wgsl_include_renamed() {
 }
 
 /// Every module links alone (its functions all kept by the root's calls) into WGSL
-/// that naga validates.
+/// that naga validates and Tint compiles (WebGPU in headless Chromium).
 #[test]
 fn every_module_links_and_validates() {
+    use unitpack::verify::browser::{Api, Browser};
+    let browser = Browser::start().unwrap_or_else(|e| panic!("{e:#}"));
     for spec in Spec::all() {
         let linked = link(std::slice::from_ref(&spec));
         naga_wgsl(&linked).unwrap_or_else(|e| panic!("{spec}: {e:#}\n{linked}"));
+        // Chrome's WGSL compiler is stricter than naga (an out-of-range literal is an error).
+        browser
+            .compile(Api::WebGpu, &linked)
+            .unwrap_or_else(|e| panic!("{spec}: Tint: {e:#}\n{linked}"));
     }
 }
 

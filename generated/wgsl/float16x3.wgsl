@@ -81,7 +81,7 @@ fn unitpack_float16x3_encode_float(v: vec3<f32>) -> vec3<f32> {
     let abs_v = abs(v);
     let t1 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
     let largest = select(abs_v.z, t1, t1 >= abs_v.z);
-    let t2 = largest > 0.0f && largest <= 3.4028234e38f;
+    let t2 = largest > 0.0f && largest <= bitcast<f32>(0x7f7fffffu);
     let scaled = v / select(1.0f, largest, t2);
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;

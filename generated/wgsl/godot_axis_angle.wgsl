@@ -197,7 +197,7 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
     let t1 = select(abs_n.y, abs_n.x, abs_n.x >= abs_n.y);
     let largest = select(abs_n.z, t1, t1 >= abs_n.z);
     let t2 = abs_n.x + abs_n.y + abs_n.z;
-    let t3 = t2 >= 8.6736174e-19f && t2 <= 3.4028234e38f;
+    let t3 = t2 >= 8.6736174e-19f && t2 <= bitcast<f32>(0x7f7fffffu);
     let n_sq = n * n;
     let t4 = n_sq.x + n_sq.y + n_sq.z;
     let t5 = select(
@@ -223,7 +223,7 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
     let t17 = -(1.0f / (t16 + t15.z));
     let t18 = t16 * t15.x;
     let t19 = vec3<f32>(1.0f + t18 * t15.x * t17, t18 * t15.y * t17, -t18);
-    let t20 = select(t19, t.xyz, t14 >= 8.6736174e-19f && t14 <= 3.4028234e38f);
+    let t20 = select(t19, t.xyz, t14 >= 8.6736174e-19f && t14 <= bitcast<f32>(0x7f7fffffu));
     let t20_sq = t20 * t20;
     let t21 = t20_sq.x + t20_sq.y + t20_sq.z;
     let t22 = t21 == 0.0f;

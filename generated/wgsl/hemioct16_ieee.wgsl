@@ -57,7 +57,7 @@ fn unitpack_hemioct16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
     return select(
         vec2<f32>(0.0f),
         vec2<f32>(p.x + p.y, p.x - p.y),
-        l1 > 0.0f && l1 <= 3.4028234e38f && v.z >= (-3.4028234e38f)
+        l1 > 0.0f && l1 <= bitcast<f32>(0x7f7fffffu) && v.z >= bitcast<f32>(0xff7fffffu)
     );
 }
 

@@ -60,7 +60,7 @@ fn unitpack_hemioct16_rg_encode_float(v: vec3<f32>) -> vec4<f32> {
     let fit = select(
         0.25f,
         select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
-        norm1 <= 3.4028234e38f
+        norm1 <= bitcast<f32>(0x7f7fffffu)
     );
     let w = t1 * fit;
     let abs_w = abs(w);
@@ -69,7 +69,7 @@ fn unitpack_hemioct16_rg_encode_float(v: vec3<f32>) -> vec4<f32> {
     let p2 = select(
         vec2<f32>(0.0f),
         vec2<f32>(p.x + p.y, p.x - p.y),
-        l1 > 0.0f && l1 <= 3.4028234e38f && v.z >= (-3.4028234e38f)
+        l1 > 0.0f && l1 <= bitcast<f32>(0x7f7fffffu) && v.z >= bitcast<f32>(0xff7fffffu)
     );
     return vec4<f32>(0.5f + p2.x * 0.5f, 0.5f + p2.y * 0.5f, 0.0f, 1.0f);
 }

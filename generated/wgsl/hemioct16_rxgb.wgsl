@@ -60,7 +60,7 @@ fn unitpack_hemioct16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let fit = select(
         0.25f,
         select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
-        norm1 <= 3.4028234e38f
+        norm1 <= bitcast<f32>(0x7f7fffffu)
     );
     let w = t1 * fit;
     let abs_w = abs(w);
@@ -69,12 +69,12 @@ fn unitpack_hemioct16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let p2 = select(
         vec2<f32>(0.0f),
         vec2<f32>(p.x + p.y, p.x - p.y),
-        l1 > 0.0f && l1 <= 3.4028234e38f && v.z >= (-3.4028234e38f)
+        l1 > 0.0f && l1 <= bitcast<f32>(0x7f7fffffu) && v.z >= bitcast<f32>(0xff7fffffu)
     );
     let abs_v = abs(v);
     let t2 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
     let largest = select(abs_v.z, t2, t2 >= abs_v.z);
-    let t3 = largest > 0.0f && largest <= 3.4028234e38f;
+    let t3 = largest > 0.0f && largest <= bitcast<f32>(0x7f7fffffu);
     let scaled = v / select(1.0f, largest, t3);
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
@@ -83,7 +83,7 @@ fn unitpack_hemioct16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_t5 = abs(t5);
     let t6 = select(abs_t5.y, abs_t5.x, abs_t5.x >= abs_t5.y);
     let largest2 = select(abs_t5.z, t6, t6 >= abs_t5.z);
-    let t7 = largest2 > 0.0f && largest2 <= 3.4028234e38f;
+    let t7 = largest2 > 0.0f && largest2 <= bitcast<f32>(0x7f7fffffu);
     let scaled2 = t5 / select(1.0f, largest2, t7);
     let scaled2_sq = scaled2 * scaled2;
     let len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;

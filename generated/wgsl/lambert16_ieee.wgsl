@@ -55,7 +55,7 @@ fn unitpack_lambert16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
     return select(
         vec2<f32>(0.5f),
         select(vec2<f32>(1.0f, 0.5f), n.xy / f + 0.5f, f > 0.0f),
-        len2 > 0.0f && len2 <= 3.4028234e38f
+        len2 > 0.0f && len2 <= bitcast<f32>(0x7f7fffffu)
     );
 }
 

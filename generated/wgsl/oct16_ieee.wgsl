@@ -62,7 +62,7 @@ fn unitpack_oct16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
             (1.0f - abs_p.yx) * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), p >= vec2<f32>(0.0f)),
             v.z <= 0.0f
         ),
-        abs_p.x + l1 <= 3.4028234e38f
+        abs_p.x + l1 <= bitcast<f32>(0x7f7fffffu)
     );
 }
 

@@ -56,7 +56,7 @@ fn unitpack_oct20_encode_float(v: vec3<f32>) -> vec2<f32> {
     let fit = select(
         0.25f,
         select(1.0f, 1.2676506e30f, norm1 < 7.888609e-31f),
-        norm1 <= 3.4028234e38f
+        norm1 <= bitcast<f32>(0x7f7fffffu)
     );
     let w = v * fit;
     let abs_w = abs(w);
@@ -67,7 +67,7 @@ fn unitpack_oct20_encode_float(v: vec3<f32>) -> vec2<f32> {
     return select(
         vec2<f32>(0.0f),
         select(p, folded, w.z <= 0.0f),
-        l1 > 0.0f && l1 <= 3.4028234e38f
+        l1 > 0.0f && l1 <= bitcast<f32>(0x7f7fffffu)
     );
 }
 

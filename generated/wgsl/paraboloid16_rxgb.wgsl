@@ -131,7 +131,7 @@ fn unitpack_paraboloid16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_v = abs(v);
     let t3 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
     let largest3 = select(abs_v.z, t3, t3 >= abs_v.z);
-    let t4 = largest3 > 0.0f && largest3 <= 3.4028234e38f;
+    let t4 = largest3 > 0.0f && largest3 <= bitcast<f32>(0x7f7fffffu);
     let scaled3 = v / select(1.0f, largest3, t4);
     let scaled3_sq = scaled3 * scaled3;
     let len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
@@ -140,7 +140,7 @@ fn unitpack_paraboloid16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_t6 = abs(t6);
     let t7 = select(abs_t6.y, abs_t6.x, abs_t6.x >= abs_t6.y);
     let largest4 = select(abs_t6.z, t7, t7 >= abs_t6.z);
-    let t8 = largest4 > 0.0f && largest4 <= 3.4028234e38f;
+    let t8 = largest4 > 0.0f && largest4 <= bitcast<f32>(0x7f7fffffu);
     let scaled4 = t6 / select(1.0f, largest4, t8);
     let scaled4_sq = scaled4 * scaled4;
     let len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;

@@ -187,7 +187,7 @@ fn unitpack_paraboloid_square16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_v = abs(v);
     let t5 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
     let largest3 = select(abs_v.z, t5, t5 >= abs_v.z);
-    let t6 = largest3 > 0.0f && largest3 <= 3.4028234e38f;
+    let t6 = largest3 > 0.0f && largest3 <= bitcast<f32>(0x7f7fffffu);
     let scaled3 = v / select(1.0f, largest3, t6);
     let scaled3_sq = scaled3 * scaled3;
     let len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
@@ -196,7 +196,7 @@ fn unitpack_paraboloid_square16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_t8 = abs(t8);
     let t9 = select(abs_t8.y, abs_t8.x, abs_t8.x >= abs_t8.y);
     let largest4 = select(abs_t8.z, t9, t9 >= abs_t8.z);
-    let t10 = largest4 > 0.0f && largest4 <= 3.4028234e38f;
+    let t10 = largest4 > 0.0f && largest4 <= bitcast<f32>(0x7f7fffffu);
     let scaled4 = t8 / select(1.0f, largest4, t10);
     let scaled4_sq = scaled4 * scaled4;
     let len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;

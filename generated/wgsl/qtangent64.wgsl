@@ -124,7 +124,7 @@ fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
     let t2 = select(abs_n.y, abs_n.x, abs_n.x >= abs_n.y);
     let largest = select(abs_n.z, t2, t2 >= abs_n.z);
     let t3 = abs_n.x + abs_n.y + abs_n.z;
-    let t4 = t3 >= 8.6736174e-19f && t3 <= 3.4028234e38f;
+    let t4 = t3 >= 8.6736174e-19f && t3 <= bitcast<f32>(0x7f7fffffu);
     let n_sq = n * n;
     let t5 = n_sq.x + n_sq.y + n_sq.z;
     let t6 = select(
@@ -143,7 +143,7 @@ fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
     let t11 = -(1.0f / (t10 + t9.z));
     let t12 = t10 * t9.x;
     let t13 = vec3<f32>(1.0f + t12 * t9.x * t11, t12 * t9.y * t11, -t12);
-    let t14 = select(t13, t.xyz, t8 >= 8.6736174e-19f && t8 <= 3.4028234e38f);
+    let t14 = select(t13, t.xyz, t8 >= 8.6736174e-19f && t8 <= bitcast<f32>(0x7f7fffffu));
     let b2 = select(n2.yzx * t14.zxy - n2.zxy * t14.yzx, t14.yzx * n2.zxy - t14.zxy * n2.yzx, t1);
     let t15 = select(b2.yzx * n2.zxy - b2.zxy * n2.yzx, n2.yzx * b2.zxy - n2.zxy * b2.yzx, t1);
     let t16 = n2.y * t15.z - n2.z * t15.y;

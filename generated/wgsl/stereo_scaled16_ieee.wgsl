@@ -58,7 +58,7 @@ fn unitpack_stereo_scaled16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
     return select(
         vec2<f32>(0.5f),
         select(vec2<f32>(1.0f), t1, t1 <= vec2<f32>(1.0f)),
-        len2 > 0.0f && len2 <= 3.4028234e38f
+        len2 > 0.0f && len2 <= bitcast<f32>(0x7f7fffffu)
     );
 }
 

@@ -58,7 +58,7 @@ fn unitpack_xy16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
     return select(
         vec2<f32>(0.0f),
         p,
-        len2 > 0.0f && len2 <= 3.4028234e38f && v.z >= (-3.4028234e38f)
+        len2 > 0.0f && len2 <= bitcast<f32>(0x7f7fffffu) && v.z >= bitcast<f32>(0xff7fffffu)
     );
 }
 

@@ -58,7 +58,7 @@ fn unitpack_xy16_latc_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_v = abs(v);
     let t1 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
     let largest = select(abs_v.z, t1, t1 >= abs_v.z);
-    let t2 = largest > 0.0f && largest <= 3.4028234e38f;
+    let t2 = largest > 0.0f && largest <= bitcast<f32>(0x7f7fffffu);
     let scaled = v / select(1.0f, largest, t2);
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
@@ -67,7 +67,7 @@ fn unitpack_xy16_latc_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_t4 = abs(t4);
     let t5 = select(abs_t4.y, abs_t4.x, abs_t4.x >= abs_t4.y);
     let largest2 = select(abs_t4.z, t5, t5 >= abs_t4.z);
-    let t6 = largest2 > 0.0f && largest2 <= 3.4028234e38f;
+    let t6 = largest2 > 0.0f && largest2 <= bitcast<f32>(0x7f7fffffu);
     let scaled2 = t4 / select(1.0f, largest2, t6);
     let scaled2_sq = scaled2 * scaled2;
     let len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;

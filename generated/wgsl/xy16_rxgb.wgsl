@@ -58,7 +58,7 @@ fn unitpack_xy16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_v = abs(v);
     let t1 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
     let largest = select(abs_v.z, t1, t1 >= abs_v.z);
-    let t2 = largest > 0.0f && largest <= 3.4028234e38f;
+    let t2 = largest > 0.0f && largest <= bitcast<f32>(0x7f7fffffu);
     let scaled = v / select(1.0f, largest, t2);
     let scaled_sq = scaled * scaled;
     let len2 = scaled_sq.x + scaled_sq.y + scaled_sq.z;
@@ -67,7 +67,7 @@ fn unitpack_xy16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_t4 = abs(t4);
     let t5 = select(abs_t4.y, abs_t4.x, abs_t4.x >= abs_t4.y);
     let largest2 = select(abs_t4.z, t5, t5 >= abs_t4.z);
-    let t6 = largest2 > 0.0f && largest2 <= 3.4028234e38f;
+    let t6 = largest2 > 0.0f && largest2 <= bitcast<f32>(0x7f7fffffu);
     let scaled2 = t4 / select(1.0f, largest2, t6);
     let scaled2_sq = scaled2 * scaled2;
     let len2_2 = scaled2_sq.x + scaled2_sq.y + scaled2_sq.z;
@@ -75,7 +75,7 @@ fn unitpack_xy16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_v2 = abs(v);
     let t8 = select(abs_v2.y, abs_v2.x, abs_v2.x >= abs_v2.y);
     let largest3 = select(abs_v2.z, t8, t8 >= abs_v2.z);
-    let t9 = largest3 > 0.0f && largest3 <= 3.4028234e38f;
+    let t9 = largest3 > 0.0f && largest3 <= bitcast<f32>(0x7f7fffffu);
     let scaled3 = v / select(1.0f, largest3, t9);
     let scaled3_sq = scaled3 * scaled3;
     let len2_3 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
@@ -84,7 +84,7 @@ fn unitpack_xy16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_t11 = abs(t11);
     let t12 = select(abs_t11.y, abs_t11.x, abs_t11.x >= abs_t11.y);
     let largest4 = select(abs_t11.z, t12, t12 >= abs_t11.z);
-    let t13 = largest4 > 0.0f && largest4 <= 3.4028234e38f;
+    let t13 = largest4 > 0.0f && largest4 <= bitcast<f32>(0x7f7fffffu);
     let scaled4 = t11 / select(1.0f, largest4, t13);
     let scaled4_sq = scaled4 * scaled4;
     let len2_4 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;

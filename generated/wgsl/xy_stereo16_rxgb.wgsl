@@ -125,7 +125,7 @@ fn unitpack_xy_stereo16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_v = abs(v);
     let t2 = select(abs_v.y, abs_v.x, abs_v.x >= abs_v.y);
     let largest3 = select(abs_v.z, t2, t2 >= abs_v.z);
-    let t3 = largest3 > 0.0f && largest3 <= 3.4028234e38f;
+    let t3 = largest3 > 0.0f && largest3 <= bitcast<f32>(0x7f7fffffu);
     let scaled3 = v / select(1.0f, largest3, t3);
     let scaled3_sq = scaled3 * scaled3;
     let len2_2 = scaled3_sq.x + scaled3_sq.y + scaled3_sq.z;
@@ -134,7 +134,7 @@ fn unitpack_xy_stereo16_rxgb_encode_float(v: vec3<f32>) -> vec4<f32> {
     let abs_t5 = abs(t5);
     let t6 = select(abs_t5.y, abs_t5.x, abs_t5.x >= abs_t5.y);
     let largest4 = select(abs_t5.z, t6, t6 >= abs_t5.z);
-    let t7 = largest4 > 0.0f && largest4 <= 3.4028234e38f;
+    let t7 = largest4 > 0.0f && largest4 <= bitcast<f32>(0x7f7fffffu);
     let scaled4 = t5 / select(1.0f, largest4, t7);
     let scaled4_sq = scaled4 * scaled4;
     let len2_3 = scaled4_sq.x + scaled4_sq.y + scaled4_sq.z;

@@ -439,7 +439,7 @@ impl Ctx<'_> {
         };
         match &n.op {
             Op::Param(i) => self.f.params[*i].0.clone(),
-            Op::ConstF(v) => format!("{}{}", f32_literal(*v), lang.float_suffix()),
+            Op::ConstF(v) => lang.float_constant(*v),
             Op::ConstU(v) => format!("{v}u"),
             Op::Un(UnOp::Neg) => format!("-{}", unary(a(0))),
             Op::Un(UnOp::Not) => format!("!{}", unary(a(0))),

@@ -96,8 +96,8 @@ pub struct Browser {
 }
 
 fn respond(req: tiny_http::Request, status: u16, body: Vec<u8>, ty: &str) {
-    let header = tiny_http::Header::from_bytes(&b"Content-Type"[..], ty.as_bytes())
-        .expect("a valid header");
+    let header =
+        tiny_http::Header::from_bytes(&b"Content-Type"[..], ty.as_bytes()).expect("a valid header");
     let r = tiny_http::Response::from_data(body)
         .with_status_code(status)
         .with_header(header);
@@ -301,7 +301,7 @@ impl Browser {
 
     /// Runs `job` in the page and hands its output words to `sink`.
     pub fn run(&self, job: &Job, sink: &mut dyn FnMut(&[u32])) -> Result<()> {
-        if job.in_words == 0 || job.out_words == 0 || job.input.len() % job.in_words != 0 {
+        if job.in_words == 0 || job.out_words == 0 || !job.input.len().is_multiple_of(job.in_words) {
             bail!("a job needs whole items of at least one word in and out");
         }
         let words = self.submit(
@@ -416,7 +416,12 @@ fn serve(server: &tiny_http::Server, state: &Arc<(Mutex<State>, Condvar)>, page:
             }
         };
         match url.as_str() {
-            "/" => respond(req, 200, page.as_bytes().to_vec(), "text/html; charset=utf-8"),
+            "/" => respond(
+                req,
+                200,
+                page.as_bytes().to_vec(),
+                "text/html; charset=utf-8",
+            ),
             "/report" => {
                 lock.lock().expect("state").report =
                     Some(String::from_utf8_lossy(&body).into_owned());

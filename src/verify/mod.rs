@@ -105,9 +105,7 @@ impl Path {
             | Path::GlslGlslang
             | Path::GlslGl
             | Path::GlslGlPrecise
-            | Path::GlslAngle => {
-                Some(Lang::Glsl)
-            }
+            | Path::GlslAngle => Some(Lang::Glsl),
             Path::HlslGlslangOd
             | Path::HlslGlslangDefault
             | Path::HlslSlangO0
@@ -390,9 +388,11 @@ impl Report {
         }
         if self.rows.iter().any(|r| r.measured && r.mismatches > 0) {
             s.push_str(
-                "\nN~: float outputs on a path that regroups products (Slang's direct SPIR-V at \
-                 its default and -O3), and an engine's contracted arithmetic where OpenGL's \
-                 compiler contracts it (without precise), measured, not held to the model's bits\n",
+                "\nN~: measured, not held to the model's bits: float outputs on a path that \
+                 regroups products (Slang's direct SPIR-V at its default and -O3); float forms, \
+                 and the lean tier's codes, where denormals are flushed (SwiftShader, the \
+                 browsers); an engine's contracted arithmetic where OpenGL's compiler contracts \
+                 it (without precise)\n",
             );
         }
         let shared = self.rows.iter().filter(|r| r.same_as.is_some()).count();
@@ -931,10 +931,7 @@ pub fn run_on(
                 .collect()
         })
         .collect();
-    let total: usize = emitted
-        .iter()
-        .map(|e| e.functions.len() * runs.len())
-        .sum();
+    let total: usize = emitted.iter().map(|e| e.functions.len() * runs.len()).sum();
     let bar = if progress {
         indicatif::ProgressBar::new(total as u64)
     } else {

@@ -82,9 +82,8 @@ fn function_json(
 pub fn page(specs: &[Spec], include: impl Fn(&Spec, String) -> String + Sync) -> String {
     let emitted: Vec<_> = specs.iter().map(|s| s.emitted()).collect();
     let owners = owners(specs, &emitted);
-    let entries: Vec<serde_json::Value> = crate::par::map(
-        &(0..specs.len()).collect::<Vec<_>>(),
-        |&i| {
+    let entries: Vec<serde_json::Value> =
+        crate::par::map(&(0..specs.len()).collect::<Vec<_>>(), |&i| {
             let (spec, e) = (&specs[i], &emitted[i]);
             let ns = if e.namespace.is_empty() {
                 String::new()
@@ -109,7 +108,12 @@ pub fn page(specs: &[Spec], include: impl Fn(&Spec, String) -> String + Sync) ->
                     (name.as_str(), params, ret)
                 })
                 .collect();
-            let text = render(&[(spec.clone(), None)], Lang::Wgsl, DEFAULT_PREFIX, "unitpack verify --web");
+            let text = render(
+                &[(spec.clone(), None)],
+                Lang::Wgsl,
+                DEFAULT_PREFIX,
+                "unitpack verify --web",
+            );
             let text = include(spec, text);
             let kernel = Lang::Wgsl.backend(DEFAULT_PREFIX).kernel(&text, &funcs);
             let functions: Vec<serde_json::Value> = own
@@ -122,8 +126,7 @@ pub fn page(specs: &[Spec], include: impl Fn(&Spec, String) -> String + Sync) ->
                 })
                 .collect();
             serde_json::json!({ "spec": spec.to_string(), "wgsl": kernel, "functions": functions })
-        },
-    );
+        });
     let data = serde_json::json!({
         "generator": format!("unitpack {}", env!("CARGO_PKG_VERSION")),
         "items": WEB_ITEMS,

@@ -277,7 +277,10 @@ fn verify_web_page_passes_in_chromium_and_catches_a_perturbed_include() {
     assert_eq!(r.stdout.trim(), path.display().to_string(), "{r:?}");
     let page = std::fs::read_to_string(&path).unwrap();
     for fetched in ["src=\"http", "href=\"http", "import(", "<link "] {
-        assert!(!page.contains(fetched), "the page fetches something: {fetched}");
+        assert!(
+            !page.contains(fetched),
+            "the page fetches something: {fetched}"
+        );
     }
     let v = page_report(page);
     let rows = v["rows"].as_array().expect("rows");
@@ -288,24 +291,36 @@ fn verify_web_page_passes_in_chromium_and_catches_a_perturbed_include() {
             e.functions.len()
         })
         .sum();
-    assert!(rows.len() > 500 && rows.len() <= owned, "{} rows", rows.len());
+    assert!(
+        rows.len() > 500 && rows.len() <= owned,
+        "{} rows",
+        rows.len()
+    );
     for row in rows {
         let what = format!("{} {}", row["spec"], row["function"]);
         assert_eq!(row["passed"], true, "{what}: {row}");
         assert_eq!(row["error"], serde_json::Value::Null, "{what}");
         if row["measured"] == true {
-            assert!(row["first_mismatches"][0]["output_float"] == true, "{what}: {row}");
+            assert!(
+                row["first_mismatches"][0]["output_float"] == true,
+                "{what}: {row}"
+            );
         }
     }
     assert_eq!(v["failed"], 0, "{}", v["adapter"]);
     assert_eq!(v["passed"], true);
-    assert!(v["adapter"].as_str().unwrap().starts_with("WebGPU: "), "{v}");
+    assert!(
+        v["adapter"].as_str().unwrap().starts_with("WebGPU: "),
+        "{v}"
+    );
 
     let oct16: Spec = "oct16".parse().unwrap();
     let perturbed = unitpack::verify::web::page(&[oct16], |_, wgsl| {
         // The encoder steps a rounded field down where `t2 < (t1 - 0.5f) * l1`: with 0.4
         // there it also steps down fields that lie within a tenth of the boundary.
-        let at = wgsl.find("0.5f").expect("a rounding offset in oct16's WGSL");
+        let at = wgsl
+            .find("0.5f")
+            .expect("a rounding offset in oct16's WGSL");
         format!("{}0.4f{}", &wgsl[..at], &wgsl[at + 4..])
     });
     let v = page_report(perturbed);

@@ -44,7 +44,8 @@ impl Glsl {
     /// flat varyings `unitpack_out_K`, which transform feedback captures
     /// (`crate::verify::browser`). The include is as a user's: ES 3.00 has no `precise`.
     pub fn webgl_kernel(&self, include: &str, (func, params, ret): &KernelFn) -> String {
-        let (inw, outw): (usize, usize) = (params.iter().map(|p| p.lanes as usize).sum(), ret.words());
+        let (inw, outw): (usize, usize) =
+            (params.iter().map(|p| p.lanes as usize).sum(), ret.words());
         let KernelIo { args, stores } = kernel_io(
             self,
             params,

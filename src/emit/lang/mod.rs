@@ -9,6 +9,7 @@ pub mod hlsl;
 pub mod wgsl;
 
 use super::SpecView;
+use crate::emit::printer::f32_literal;
 use crate::model::Kind;
 use crate::model::trace::{BinOp, Op, Ty, UnOp};
 
@@ -28,6 +29,10 @@ pub trait Backend {
     /// Suffix of a float literal (`1.0f` in WGSL and C).
     fn float_suffix(&self) -> &'static str {
         ""
+    }
+    /// The f32 constant `v` as the language writes it: [`f32_literal`] and the suffix.
+    fn float_constant(&self, v: f32) -> String {
+        format!("{}{}", f32_literal(v), self.float_suffix())
     }
     /// The builtin for a unary operation other than `-` and `!`.
     fn unary(&self, op: UnOp) -> &'static str {

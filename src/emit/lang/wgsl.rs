@@ -6,7 +6,7 @@ use super::{
     selecting_parts,
 };
 use crate::emit::SpecView;
-use crate::emit::printer::top_level_tokens;
+use crate::emit::printer::{f32_literal, top_level_tokens};
 use crate::model::Kind;
 use crate::model::trace::Ty;
 use askama::Template;
@@ -31,6 +31,18 @@ impl Backend for Wgsl {
     }
     fn float_suffix(&self) -> &'static str {
         "f"
+    }
+    /// ±FLT_MAX as the bitcast of its bits, every other value as a literal. WESL linkers
+    /// parse a module's literals and print them again: the `wesl` crate prints an f32
+    /// through Rust's shortest round trip, `340282350000000000000000000000000000000f` for
+    /// FLT_MAX, a decimal above it, which Tint rejects as out of range. A bitcast of an
+    /// integer means FLT_MAX to every compiler and survives any reprinting.
+    fn float_constant(&self, v: f32) -> String {
+        if v.abs() == f32::MAX {
+            format!("bitcast<f32>({:#010x}u)", v.to_bits())
+        } else {
+            format!("{}f", f32_literal(v))
+        }
     }
     /// `select` on integer or boolean vectors is lane by lane: naga writes a vector
     /// `select` as GLSL's `mix`, which takes such vectors only from GLSL 4.50 and ES 3.10,
