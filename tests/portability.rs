@@ -682,6 +682,23 @@ fn kept(file: &str) -> Vec<Kept> {
         .collect()
 }
 
+/// Each kept spec's emitted functions, traced once per test.
+type Emitted = std::collections::HashMap<String, unitpack::codecs::core::function::Emitted>;
+
+/// The function a kept line names.
+fn kept_function<'a>(
+    emitted: &'a mut Emitted,
+    k: &Kept,
+) -> &'a unitpack::codecs::core::function::Function {
+    emitted
+        .entry(k.spec.clone())
+        .or_insert_with(|| k.spec.parse::<Spec>().expect("a valid spec").emitted())
+        .functions
+        .iter()
+        .find(|f| f.name == k.function)
+        .unwrap_or_else(|| panic!("{} has no function {}", k.spec, k.function))
+}
+
 /// The H100's, H200's and SwiftShader's kept items still hold the model's outputs: each line's model column is what
 /// the function computes today, and the GPU's column differs from it. A model change that
 /// moves one of these outputs makes the data stale, and this says which line.
@@ -697,16 +714,9 @@ fn gpu_items_hold_the_model_outputs() {
     ] {
         let items = kept(file);
         assert_eq!(items.len(), lines, "{file}");
-        let mut emitted = std::collections::HashMap::new();
+        let mut emitted = Emitted::new();
         for k in &items {
-            let e = emitted
-                .entry(k.spec.clone())
-                .or_insert_with(|| k.spec.parse::<Spec>().expect("a valid spec").emitted());
-            let f = e
-                .functions
-                .iter()
-                .find(|f| f.name == k.function)
-                .unwrap_or_else(|| panic!("{} has no function {}", k.spec, k.function));
+            let f = kept_function(&mut emitted, k);
             let mut out = vec![0; f.out_words];
             (f.eval)(&k.input, &mut out);
             assert_eq!(
@@ -732,17 +742,10 @@ const SWIFTSHADER_LINES: usize = 2838;
 fn the_denormal_class_predicts_what_swiftshader_changes() {
     let items = kept("swiftshader_flushed_floats.tsv");
     assert_eq!(items.len(), SWIFTSHADER_LINES);
-    let mut emitted = std::collections::HashMap::new();
+    let mut emitted = Emitted::new();
     let mut functions = std::collections::BTreeSet::new();
     for (i, k) in items.iter().enumerate() {
-        let e = emitted
-            .entry(k.spec.clone())
-            .or_insert_with(|| k.spec.parse::<Spec>().expect("a valid spec").emitted());
-        let f = e
-            .functions
-            .iter()
-            .find(|f| f.name == k.function)
-            .expect("kept function");
+        let f = kept_function(&mut emitted, k);
         let mut out = vec![0; f.out_words];
         with(Some(Deviation::new(Class::Denorm, Mode::Last)), || {
             begin_item(i as u64);
@@ -769,17 +772,10 @@ fn the_denormal_class_predicts_what_swiftshader_changes() {
 fn per_site_contraction_reproduces_the_h100s_codes() {
     let items = kept("h100_naga_changed_codes.tsv");
     let set = Classes::WITHOUT_NO_CONTRACTION;
-    let mut emitted = std::collections::HashMap::new();
+    let mut emitted = Emitted::new();
     let mut reproduced = std::collections::BTreeMap::<String, usize>::new();
     for (i, k) in items.iter().enumerate() {
-        let e = emitted
-            .entry(k.spec.clone())
-            .or_insert_with(|| k.spec.parse::<Spec>().expect("a valid spec").emitted());
-        let f = e
-            .functions
-            .iter()
-            .find(|f| f.name == k.function)
-            .expect("kept function");
+        let f = kept_function(&mut emitted, k);
         let mut out = vec![0; f.out_words];
         let hit = (0..16).any(|seed| {
             with(Some(Deviation::new(set, Mode::Site(seed))), || {

@@ -117,12 +117,7 @@ fn browser_and_swiftshader_paths_hold_what_they_promise(report: &unitpack::verif
         2 + 9,
         "two browser paths and nine SPIR-V routes"
     );
-    let every: HashMap<(&str, &str), usize> = report
-        .rows
-        .iter()
-        .filter(|r| r.path == Path::CC.to_string())
-        .map(|r| ((r.spec.as_str(), r.function.as_str()), r.tested))
-        .collect();
+    let every = tested_on_c(report);
     let owned = report
         .rows
         .iter()
@@ -327,16 +322,22 @@ fn slang_regroups_a_squared_product_the_encoders_no_longer_offer_it() {
     }
 }
 
+/// Items each function ran on `c/cc -O2`, which runs every item: what a sampled path
+/// takes its sample of.
+fn tested_on_c(report: &unitpack::verify::Report) -> HashMap<(&str, &str), usize> {
+    report
+        .rows
+        .iter()
+        .filter(|r| r.path == unitpack::verify::Path::CC.to_string())
+        .map(|r| ((r.spec.as_str(), r.function.as_str()), r.tested))
+        .collect()
+}
+
 /// The C++ and OpenGL paths run every item of a function with at most their sample's
 /// size, else exactly that many, and the C path runs every item of the same function.
 fn sampled_paths_run_their_sample(report: &unitpack::verify::Report) {
     use unitpack::verify::Path;
-    let every: HashMap<(&str, &str), usize> = report
-        .rows
-        .iter()
-        .filter(|r| r.path == Path::CC.to_string())
-        .map(|r| ((r.spec.as_str(), r.function.as_str()), r.tested))
-        .collect();
+    let every = tested_on_c(report);
     for path in [
         Path::CCpp,
         Path::GlslGl,

@@ -301,7 +301,8 @@ impl Browser {
 
     /// Runs `job` in the page and hands its output words to `sink`.
     pub fn run(&self, job: &Job, sink: &mut dyn FnMut(&[u32])) -> Result<()> {
-        if job.in_words == 0 || job.out_words == 0 || !job.input.len().is_multiple_of(job.in_words) {
+        if job.in_words == 0 || job.out_words == 0 || !job.input.len().is_multiple_of(job.in_words)
+        {
             bail!("a job needs whole items of at least one word in and out");
         }
         let words = self.submit(

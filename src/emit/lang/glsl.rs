@@ -4,7 +4,7 @@
 //! users define as `precise` where the language has it.
 
 use super::{
-    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, kernel_io, scalar_names,
+    Backend, FileOptions, KERNEL_SELECT, KernelFn, KernelIo, Returns, kernel_io, scalar_names,
     selecting_parts,
 };
 use crate::emit::SpecView;
@@ -38,6 +38,19 @@ impl Glsl {
         self.selecting_kernel(include, funcs, &Target::OpenGl { precise })
     }
 
+    /// A kernel's argument reads and output stores, the words reinterpreted by GLSL's
+    /// bit casts: shared by the Vulkan and the WebGL kernels.
+    fn io(&self, params: &[Ty], ret: &Returns) -> KernelIo {
+        kernel_io(
+            self,
+            params,
+            ret,
+            |l, _| format!("uintBitsToFloat({l})"),
+            |v, _| format!("floatBitsToUint({v})"),
+            |name, t, e| format!("{} {name} = {e};", self.ty(t)),
+        )
+    }
+
     /// The WebGL 2 form of a kernel, for one function: a GLSL ES 3.00 vertex shader (WebGL
     /// has no compute shaders) that reads one item's words from the integer attributes
     /// `unitpack_in_K` at location K, four words each, and writes its output words to the
@@ -46,14 +59,7 @@ impl Glsl {
     pub fn webgl_kernel(&self, include: &str, (func, params, ret): &KernelFn) -> String {
         let (inw, outw): (usize, usize) =
             (params.iter().map(|p| p.lanes as usize).sum(), ret.words());
-        let KernelIo { args, stores } = kernel_io(
-            self,
-            params,
-            ret,
-            |l, _| format!("uintBitsToFloat({l})"),
-            |v, _| format!("floatBitsToUint({v})"),
-            |name, t, e| format!("{} {name} = {e};", self.ty(t)),
-        );
+        let KernelIo { args, stores } = self.io(params, ret);
         let vectors = |words: usize| words.div_ceil(4);
         let attributes: String = (0..vectors(inw))
             .map(|k| format!("layout(location = {k}) in uvec4 unitpack_in_{k};\n"))
@@ -102,14 +108,7 @@ void main() {{
             funcs,
             |runner, (func, params, ret)| {
                 let outw = ret.words();
-                let KernelIo { args, stores } = kernel_io(
-                    self,
-                    params,
-                    ret,
-                    |l, _| format!("uintBitsToFloat({l})"),
-                    |v, _| format!("floatBitsToUint({v})"),
-                    |name, t, e| format!("{} {name} = {e};", self.ty(t)),
-                );
+                let KernelIo { args, stores } = self.io(params, ret);
                 format!(
                     "
 void {runner}(uint i) {{
