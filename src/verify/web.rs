@@ -51,6 +51,7 @@ fn function_json(
     selector: usize,
     params_float: bool,
     out_float: bool,
+    lean: bool,
 ) -> serde_json::Value {
     let all = super::inputs::generate(&f.inputs, f.in_words);
     let mut input = Vec::new();
@@ -70,6 +71,7 @@ fn function_json(
         "input_float": params_float,
         "output_float": out_float,
         "bound": bound,
+        "lean": lean,
         "input": b64(&input),
         "expected": if out_float { serde_json::Value::String(b64(&want)) } else { serde_json::Value::Null },
         "head": b64(&want[..head]),
@@ -122,7 +124,14 @@ pub fn page(specs: &[Spec], include: impl Fn(&Spec, String) -> String + Sync) ->
                 .enumerate()
                 .map(|(k, (f, (_, params, ret)))| {
                     let params_float = params.iter().all(|t| t.kind == Kind::F32);
-                    function_json(&e.module, f, k, params_float, ret.kind() == Kind::F32)
+                    function_json(
+                        &e.module,
+                        f,
+                        k,
+                        params_float,
+                        ret.kind() == Kind::F32,
+                        crate::codecs::core::ieee::asked(spec),
+                    )
                 })
                 .collect();
             serde_json::json!({ "spec": spec.to_string(), "wgsl": kernel, "functions": functions })
