@@ -275,23 +275,28 @@ fn trace_refuses_non_portable_arithmetic() {
         x * Tf::c(5.0)
     }
     assert!(
-        refused(|x| Tf::call("h", x * Tf::c(3.0), scales)),
+        refused(|x| Tf::call("h", &[], x * Tf::c(3.0), scales)),
         "literal product passed to a helper that scales it"
     );
     assert!(
-        refused(|x| Tf::call("k", x * Tf::c(3.0), |y: Tf| Tf::call("g", y, scales))),
+        refused(|x| Tf::call("k", &[], x * Tf::c(3.0), |y: Tf| Tf::call(
+            "g",
+            &[],
+            y,
+            scales
+        ))),
         "a helper forwarding its parameter to one that scales it"
     );
     assert!(
-        refused(|x| Tf::call("h", x, |y: Tf| y * Tf::c(3.0)) * Tf::c(5.0)),
+        refused(|x| Tf::call("h", &[], x, |y: Tf| y * Tf::c(3.0)) * Tf::c(5.0)),
         "a helper's literal product scaled again by the caller"
     );
     assert!(
-        !refused(|x| Tf::call("h", x * Tf::c(3.0), |y: Tf| y * Tf::c(4.0))),
+        !refused(|x| Tf::call("h", &[], x * Tf::c(3.0), |y: Tf| y * Tf::c(4.0))),
         "powers of two are exempt across calls too"
     );
     assert!(
-        !refused(|x| Tf::call("h", x * Tf::c(3.0), |y: Tf| y + Tf::c(5.0))),
+        !refused(|x| Tf::call("h", &[], x * Tf::c(3.0), |y: Tf| y + Tf::c(5.0))),
         "a helper that does not scale its parameter"
     );
 }

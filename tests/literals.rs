@@ -1,13 +1,14 @@
 //! Every float literal the emitter writes reads back as the model's f32 on every compiler
 //! (`unitpack::verify::literals`): the includes in `generated/`, the include that Tint
 //! rejected before the printer kept its literals within FLT_MAX, the reading rules on
-//! single literals, and the printer's literal for a seeded sample of f32 values.
+//! single literals, and the printer's literal for a seeded sample of f32 values; integer
+//! masks written in hex.
 
 use std::collections::HashSet;
 use std::path::PathBuf;
 use unitpack::codecs::Spec;
 use unitpack::emit::Lang;
-use unitpack::emit::printer::f32_literal;
+use unitpack::emit::literal::f32_literal;
 use unitpack::verify::literals::{Literal, check, literals, model_literals, read};
 
 fn manifest_dir() -> PathBuf {
@@ -255,4 +256,48 @@ fn printed_literals_read_back_exactly() {
     assert!(read_n > 990_000 && denormals > 1000, "{read_n} {denormals}");
     assert_eq!(f32_literal(f32::MAX), "3.4028234e38");
     assert_eq!(f32_literal(-f32::MAX), "-3.4028234e38");
+}
+
+/// Bit patterns read in hex, counts and offsets in decimal: the printer's rule on chosen
+/// values, and no include in `generated/` spelling a mask in decimal.
+#[test]
+fn masks_are_written_in_hex() {
+    use unitpack::emit::literal::u32_literal;
+    for (v, text) in [
+        (0x7f80_0000, "0x7f800000u"),
+        (0x7f80_0001, "0x7f800001u"),
+        (0x8000_0000, "0x80000000u"),
+        (0xffff, "0xffffu"),
+        (0xff00, "0xff00u"),
+        (0xff_ffff, "0xffffffu"),
+        (0x3ff7ff, "0x3ff7ffu"),
+        (0x100, "0x100u"),
+        (255, "255u"),
+        (127, "127u"),
+        (0, "0u"),
+        (281, "281u"),
+        (1000, "1000u"),
+        (32586, "32586u"),
+    ] {
+        assert_eq!(u32_literal(v), text, "{v}");
+    }
+    let root = manifest_dir().join("generated");
+    let mut files = 0;
+    for dir in ["wgsl", "wesl", "glsl", "hlsl", "c"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            let text = std::fs::read_to_string(&path).unwrap();
+            for decimal in [
+                "2139095040u",
+                "2147483648u",
+                "16777215u",
+                "65535u",
+                "65280u",
+            ] {
+                assert!(!text.contains(decimal), "{}: {decimal}", path.display());
+            }
+            files += 1;
+        }
+    }
+    assert!(files > 1000, "{files} files");
 }

@@ -16,7 +16,8 @@ use std::sync::OnceLock;
 use unitpack::codecs::Spec;
 use unitpack::emit::docs::file_header;
 use unitpack::emit::lang::{FileOptions, Returns};
-use unitpack::emit::printer::{f32_literal, print};
+use unitpack::emit::literal::f32_literal;
+use unitpack::emit::printer::print;
 use unitpack::emit::{DEFAULT_PREFIX, FnView, Lang, SpecView, Wrapper, render, struct_defs};
 use unitpack::model::trace::{Module, Shape, Tf, Tu, define, define_fields, trace_module};
 use unitpack::model::{Bool, Float, Lane, Uint, V2, V3, V4};
@@ -386,6 +387,64 @@ fn the_token_scan_catches_forbidden_calls() {
     );
 }
 
+/// No local or parameter takes a builtin function's name (it would hide the builtin for
+/// the rest of its scope in GLSL and WGSL, and reads as a call) or a bare positional name
+/// (`a0`): every identifier that is not a call names a type, a field, a swizzle or one of
+/// the spec's own values.
+#[test]
+fn no_value_is_named_after_a_builtin() {
+    const BUILTINS: &[&str] = &[
+        "abs",
+        "atan",
+        "atan2",
+        "ceil",
+        "clamp",
+        "cos",
+        "cross",
+        "distance",
+        "dot",
+        "exp",
+        "floor",
+        "fract",
+        "inverse",
+        "length",
+        "lerp",
+        "log",
+        "max",
+        "min",
+        "mix",
+        "normalize",
+        "pow",
+        "reflect",
+        "round",
+        "saturate",
+        "select",
+        "sign",
+        "sin",
+        "smoothstep",
+        "sqrt",
+        "step",
+        "trunc",
+    ];
+    let positional =
+        |n: &str| n.len() > 1 && n.starts_with('a') && n[1..].bytes().all(|b| b.is_ascii_digit());
+    let mut checked = 0;
+    for inc in catalogue() {
+        for (name, is_call) in identifiers(&inc.text) {
+            if is_call {
+                continue;
+            }
+            assert!(
+                !BUILTINS.contains(&name.as_str()) && !positional(&name),
+                "{}: a value named `{name}`",
+                inc.rel().display()
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 100_000, "{checked} identifiers");
+}
+
 #[test]
 fn every_function_name_is_prefixed_and_unique() {
     for inc in catalogue() {
@@ -510,7 +569,7 @@ fn shapes() -> Module {
                 .named("n");
             let l1 = (n.x.abs() + n.y.abs() + n.z.abs()).named("target");
             let p = (V2::new(n.x, n.y) / l1).named("p");
-            let folded = Tf::call("fold", p, fold);
+            let folded = Tf::call("fold", &["p"], p, fold);
             let q = V2::sel_all(n.z.le(Tf::c(-0.0)), folded, p).named("q");
             let q = q.clamped(Tf::c(-1.0), one).named("q");
             let c = ((q * Tf::c(32767.0)).round() + Tf::c(32768.0)).named("c");

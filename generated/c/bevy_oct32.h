@@ -41,6 +41,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // Source: Bevy main at bevyengine/bevy 7517c61 (#21926, merged 2026-06-02; unchanged at 4805ca7):
 //   crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and
 //   crates/bevy_render/src/utils.wgsl (octahedral_decode_signed).
+// Model: src/codecs/engine/bevy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00130°, sample max 0.00368°; MSE of the components of
 //   n - n' 2.089e-10, PSNR 96.80 dB.
 #ifndef UNITPACK_BEVY_OCT32_H
@@ -79,7 +80,7 @@ static inline void unitpack_bevy_oct32_decode_float(const float params[2], float
 
 // Struct form of unitpack_bevy_oct32_decode.
 static inline unitpack_vec3 unitpack_bevy_oct32_decode_v(uint32_t code) {
-    const unitpack_vec2 t1 = { (float)(code & 65535u), (float)(code >> 16u) };
+    const unitpack_vec2 t1 = { (float)(code & 0xffffu), (float)(code >> 16u) };
     const unitpack_vec2 t2 = {
         (t1.x > 32767.0f ? t1.x - 65536.0f : t1.x) * 3.051851e-5f,
         (t1.y > 32767.0f ? t1.y - 65536.0f : t1.y) * 3.051851e-5f
@@ -114,8 +115,8 @@ static inline unitpack_vec2 unitpack_bevy_oct32_encode_float_v(unitpack_vec3 v) 
         t3 ? p.y : (1.0f - fabsf(p.x)) * (p.y > 0.0f ? 1.0f : -1.0f)
     };
     const unitpack_vec2 t5 = {
-        (unitpack_bits_of(t4.x) & 2147483647u) < 2139095041u ? t4.x : 0.0f,
-        (unitpack_bits_of(t4.y) & 2147483647u) < 2139095041u ? t4.y : 0.0f
+        (unitpack_bits_of(t4.x) & 0x7fffffffu) < 0x7f800001u ? t4.x : 0.0f,
+        (unitpack_bits_of(t4.y) & 0x7fffffffu) < 0x7f800001u ? t4.y : 0.0f
     };
     return t5;
 }
@@ -151,7 +152,7 @@ static inline uint32_t unitpack_bevy_oct32_encode_v(unitpack_vec3 v) {
         floor_abs_t2.y + (abs_t2.y - floor_abs_t2.y >= 0.5f ? 1.0f : 0.0f)
     };
     const unitpack_vec2 codes = { t2.x < 0.0f ? -t3.x : t3.x, t2.y < 0.0f ? -t3.y : t3.y };
-    return ((uint32_t)(codes.x + 65536.0f) & 65535u) | ((uint32_t)(codes.y + 65536.0f) << 16u);
+    return ((uint32_t)(codes.x + 65536.0f) & 0xffffu) | ((uint32_t)(codes.y + 65536.0f) << 16u);
 }
 
 // unitpack_bevy_oct32_encode: fast encoder.

@@ -40,6 +40,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // ---- crytek_bfn24: Crytek's best fit normals: RGB8 scaled by a fitting table's length (512×512),
 //   24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2.2 (Kaplanyan 2010, CryENGINE 3).
+// Model: src/codecs/table/crytek_bfn.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.05319°, sample max 0.29854°; MSE of the components of
 //   n - n' 3.777e-7, PSNR 64.23 dB.
 #ifndef UNITPACK_CRYTEK_BFN24_H
@@ -107,7 +108,7 @@ static inline unitpack_uvec2 unitpack_crytek_bfn24_fitting_texel_v(unitpack_vec3
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -131,22 +132,22 @@ static inline unitpack_uvec2 unitpack_crytek_bfn24_fitting_texel_v(unitpack_vec3
     const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t6 = (float)hi4 * 16777216.0f;
     const float len2 = (t6 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
@@ -154,8 +155,8 @@ static inline unitpack_uvec2 unitpack_crytek_bfn24_fitting_texel_v(unitpack_vec3
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -165,22 +166,22 @@ static inline unitpack_uvec2 unitpack_crytek_bfn24_fitting_texel_v(unitpack_vec3
     const float t8 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t8;
     const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t9 = root_k * 4096.0f;
     const float l = (t9 + root_j) * 4.7683716e-7f;
     const float big = t4 * 512.0f;
     const float ratio_estimate = floorf(t4 / l * 512.0f);
     const float step_down3 = ratio_estimate * l > big ? -1.0f : 0.0f;
-    const float step3 = (ratio_estimate + 1.0f) * l <= big ? 1.0f : step_down3;
-    const float ratio = ratio_estimate + step3;
+    const float nudge3 = (ratio_estimate + 1.0f) * l <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + nudge3;
     const bool t10 = t4 > 0.0f;
     const float t11 = t10 ? t4 : 1.0f;
     const float big2 = t5 * 512.0f;
     const float ratio_estimate2 = floorf(t5 / t11 * 512.0f);
     const float step_down4 = ratio_estimate2 * t11 > big2 ? -1.0f : 0.0f;
-    const float step4 = (ratio_estimate2 + 1.0f) * t11 <= big2 ? 1.0f : step_down4;
-    const float ratio2 = ratio_estimate2 + step4;
+    const float nudge4 = (ratio_estimate2 + 1.0f) * t11 <= big2 ? 1.0f : step_down4;
+    const float ratio2 = ratio_estimate2 + nudge4;
     const unitpack_vec2 t12 = { ratio, t10 ? ratio2 : 0.0f };
     const unitpack_uvec2 t13 = {
         (uint32_t)(t12.x <= 511.0f ? t12.x : 511.0f),
@@ -263,7 +264,7 @@ static inline uint32_t unitpack_crytek_bfn24_encode_v(unitpack_vec3 v, float fet
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -283,28 +284,28 @@ static inline uint32_t unitpack_crytek_bfn24_encode_v(unitpack_vec3 v, float fet
     const float big = abs_w2.x * 1048576.0f;
     const float ratio_estimate = floorf(abs_w2.x / t2 * 1048576.0f);
     const float step_down = ratio_estimate * t2 > big ? -1.0f : 0.0f;
-    const float step = (ratio_estimate + 1.0f) * t2 <= big ? 1.0f : step_down;
-    const float ratio = ratio_estimate + step;
+    const float nudge = (ratio_estimate + 1.0f) * t2 <= big ? 1.0f : step_down;
+    const float ratio = ratio_estimate + nudge;
     const uint32_t t4 = (uint32_t)ratio * k_u;
-    const uint32_t t5 = w2.x < 0.0f ? 128u - ((t4 + 2097151u) >> 21u) : 128u + (t4 >> 21u);
+    const uint32_t t5 = w2.x < 0.0f ? 128u - ((t4 + 0x1fffffu) >> 21u) : 128u + (t4 >> 21u);
     const float big2 = abs_w2.y * 1048576.0f;
     const float ratio_estimate2 = floorf(abs_w2.y / t2 * 1048576.0f);
     const float step_down2 = ratio_estimate2 * t2 > big2 ? -1.0f : 0.0f;
-    const float step2 = (ratio_estimate2 + 1.0f) * t2 <= big2 ? 1.0f : step_down2;
-    const float ratio2 = ratio_estimate2 + step2;
+    const float nudge2 = (ratio_estimate2 + 1.0f) * t2 <= big2 ? 1.0f : step_down2;
+    const float ratio2 = ratio_estimate2 + nudge2;
     const uint32_t t6 = (uint32_t)ratio2 * k_u;
-    const uint32_t t7 = w2.y < 0.0f ? 128u - ((t6 + 2097151u) >> 21u) : 128u + (t6 >> 21u);
+    const uint32_t t7 = w2.y < 0.0f ? 128u - ((t6 + 0x1fffffu) >> 21u) : 128u + (t6 >> 21u);
     const float big3 = abs_w2.z * 1048576.0f;
     const float ratio_estimate3 = floorf(abs_w2.z / t2 * 1048576.0f);
     const float step_down3 = ratio_estimate3 * t2 > big3 ? -1.0f : 0.0f;
-    const float step3 = (ratio_estimate3 + 1.0f) * t2 <= big3 ? 1.0f : step_down3;
-    const float ratio3 = ratio_estimate3 + step3;
+    const float nudge3 = (ratio_estimate3 + 1.0f) * t2 <= big3 ? 1.0f : step_down3;
+    const float ratio3 = ratio_estimate3 + nudge3;
     const uint32_t t8 = (uint32_t)ratio3 * k_u;
-    const uint32_t t9 = w2.z < 0.0f ? 128u - ((t8 + 2097151u) >> 21u) : 128u + (t8 >> 21u);
+    const uint32_t t9 = w2.z < 0.0f ? 128u - ((t8 + 0x1fffffu) >> 21u) : 128u + (t8 >> 21u);
     const uint32_t t10 = (uint32_t)(float)t5
         | ((uint32_t)(float)t7 << 8u)
         | ((uint32_t)(float)t9 << 16u);
-    return ok ? t10 : 16744576u;
+    return ok ? t10 : 0xff8080u;
 }
 
 // unitpack_crytek_bfn24_encode: fast encoder.

@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- cube24: cube-map face (3 bits) + unorm×2 coordinates on it, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (cube).
+// Model: src/codecs/cube_maps/cube.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02551°, sample max 0.06122°; MSE of the components of
 //   n - n' 8.091e-8, PSNR 70.92 dB.
 #ifndef UNITPACK_CUBE24_H
@@ -84,8 +85,8 @@ static inline void unitpack_cube24_decode_float(const float params[3], float out
 // Struct form of unitpack_cube24_decode.
 static inline unitpack_vec3 unitpack_cube24_decode_v(uint32_t code) {
     const unitpack_vec3 params = {
-        (float)(code & 2047u) * 0.0004885198f,
-        (float)((code >> 11u) & 1023u) * 0.0009775171f,
+        (float)(code & 0x7ffu) * 0.0004885198f,
+        (float)((code >> 11u) & 0x3ffu) * 0.0009775171f,
         (float)((code >> 21u) & 7u) * 0.14285715f
     };
     const unitpack_vec3 decode_float = unitpack_cube24_decode_float_v(params);
@@ -117,7 +118,7 @@ static inline unitpack_vec3 unitpack_cube24_encode_float_v(unitpack_vec3 v) {
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -162,16 +163,16 @@ static inline void unitpack_cube24_encode_float(const float v[3], float out[3]) 
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
-static inline unitpack_vec3 unitpack_cube24_round_codes_v(unitpack_vec3 a0) {
+static inline unitpack_vec3 unitpack_cube24_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;

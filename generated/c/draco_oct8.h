@@ -42,6 +42,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // Source: Draco 1.5.4+ (google/draco 4723893):
 //   src/draco/compression/attributes/normal_compression_utils.h (OctahedronToolBox), called by
 //   src/draco/attributes/attribute_octahedron_transform.cc.
+// Model: src/codecs/engine/draco.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.33696°, sample max 0.92448°; MSE of the components of
 //   n - n' 1.398e-5, PSNR 48.54 dB.
 #ifndef UNITPACK_DRACO_OCT8_H
@@ -124,212 +125,7 @@ static inline void unitpack_draco_oct8_decode(uint32_t code, float out[3]) {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
-static inline unitpack_vec2 unitpack_draco_oct8_round_codes_v(unitpack_vec3 a0) {
-    const unitpack_vec3 normal = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
-    };
-    const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
-    const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
-    const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
-    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
-    const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
-    const bool sum_below_16 = sum < 16.0f;
-    const bool ok = sum >= 2.0f && sum_below_16;
-    const unitpack_vec3 w = {
-        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
-        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
-        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
-    };
-    const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const bool t1 = ok && fabsf(a0.x) + fabsf(a0.y) + fabsf(a0.z) >= 1.0000001e-6f;
-    const unitpack_vec3 magnitude = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
-    const float l1 = magnitude.x + magnitude.y + magnitude.z;
-    const float fixed2 = magnitude.x * 4096.0f;
-    const float floor_fixed2 = floorf(fixed2);
-    const float fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
-    const float floor_fixed_rest = floorf(fixed_rest);
-    const uint32_t t2 = (uint32_t)floorf((fixed_rest - floor_fixed_rest) * 65536.0f);
-    const uint32_t floor_fixed_rest_u = (uint32_t)floor_fixed_rest;
-    const uint32_t floor_fixed2_u = (uint32_t)floor_fixed2;
-    const float fixed3 = magnitude.y * 4096.0f;
-    const float floor_fixed3 = floorf(fixed3);
-    const float fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
-    const float floor_fixed_rest2 = floorf(fixed_rest2);
-    const uint32_t t3 = (uint32_t)floorf((fixed_rest2 - floor_fixed_rest2) * 65536.0f);
-    const uint32_t floor_fixed_rest2_u = (uint32_t)floor_fixed_rest2;
-    const uint32_t floor_fixed3_u = (uint32_t)floor_fixed3;
-    const float fixed4 = magnitude.z * 4096.0f;
-    const float floor_fixed4 = floorf(fixed4);
-    const float fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
-    const float floor_fixed_rest3 = floorf(fixed_rest3);
-    const uint32_t t4 = t2 + t3 + (uint32_t)floorf((fixed_rest3 - floor_fixed_rest3) * 65536.0f);
-    const uint32_t t5 = floor_fixed_rest_u
-        + floor_fixed_rest2_u
-        + (uint32_t)floor_fixed_rest3
-        + (t4 >> 16u);
-    const uint32_t t6 = floor_fixed2_u + floor_fixed3_u + (uint32_t)floor_fixed4 + (t5 >> 16u);
-    const uint32_t t7 = t4 & 65535u;
-    const uint32_t t8 = t5 & 65535u;
-    const float t9 = nearbyintf(magnitude.x / l1 * 127.0f);
-    const float estimate = t9 <= 127.0f ? t9 : 127.0f;
-    const uint32_t estimate_u = (uint32_t)estimate;
-    const uint32_t t10 = t2 * 254u;
-    const uint32_t t11 = floor_fixed_rest_u * 254u + (t10 >> 16u);
-    const uint32_t t12 = floor_fixed2_u * 254u + (t11 >> 16u);
-    const uint32_t t13 = t10 & 65535u;
-    const uint32_t t14 = t11 & 65535u;
-    const uint32_t t15 = t12 & 65535u;
-    const uint32_t t16 = t12 >> 16u;
-    const uint32_t t17 = estimate_u + estimate_u + 1u;
-    const uint32_t t18 = t7 * t17;
-    const uint32_t t19 = t8 * t17 + (t18 >> 16u);
-    const uint32_t t20 = t6 * t17 + (t19 >> 16u);
-    const uint32_t t21 = t18 & 65535u;
-    const uint32_t t22 = t19 & 65535u;
-    const uint32_t t23 = t20 & 65535u;
-    const uint32_t t24 = t20 >> 16u;
-    const uint32_t t25 = estimate_u + estimate_u - 1u;
-    const uint32_t t26 = t7 * t25;
-    const uint32_t t27 = t8 * t25 + (t26 >> 16u);
-    const uint32_t t28 = t6 * t25 + (t27 >> 16u);
-    const uint32_t t29 = t26 & 65535u;
-    const uint32_t t30 = t27 & 65535u;
-    const uint32_t t31 = t28 & 65535u;
-    const uint32_t t32 = t28 >> 16u;
-    const bool t33 = w2.x < 0.0f;
-    const bool t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || !(t13 < t21));
-    const bool t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
-    const bool t36 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t35);
-    const bool t37 = !(t14 < t22) && !(t22 < t14) && t21 < t13;
-    const bool t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
-    const bool t39 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t38);
-    const bool t40 = ((t24 < t16 || t36) && !t33) || ((t24 < t16 || t39) && t33);
-    const bool t41 = !(t30 < t14) && !(t14 < t30) && t13 < t29;
-    const bool t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
-    const bool t43 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t42);
-    const bool t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || !(t29 < t13));
-    const bool t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
-    const bool t46 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t45);
-    const bool t47 = ((t16 < t32 || t43) && !t33) || ((t16 < t32 || t46) && t33);
-    const float t48 = estimate + (t40 ? 1.0f : 0.0f) - (estimate > 0.0f && t47 ? 1.0f : 0.0f);
-    const float i0 = t33 ? -t48 : t48;
-    const float t49 = nearbyintf(magnitude.y / l1 * 127.0f);
-    const float estimate2 = t49 <= 127.0f ? t49 : 127.0f;
-    const uint32_t estimate2_u = (uint32_t)estimate2;
-    const uint32_t t50 = t3 * 254u;
-    const uint32_t t51 = floor_fixed_rest2_u * 254u + (t50 >> 16u);
-    const uint32_t t52 = floor_fixed3_u * 254u + (t51 >> 16u);
-    const uint32_t t53 = t50 & 65535u;
-    const uint32_t t54 = t51 & 65535u;
-    const uint32_t t55 = t52 & 65535u;
-    const uint32_t t56 = t52 >> 16u;
-    const uint32_t t57 = estimate2_u + estimate2_u + 1u;
-    const uint32_t t58 = t7 * t57;
-    const uint32_t t59 = t8 * t57 + (t58 >> 16u);
-    const uint32_t t60 = t6 * t57 + (t59 >> 16u);
-    const uint32_t t61 = t58 & 65535u;
-    const uint32_t t62 = t59 & 65535u;
-    const uint32_t t63 = t60 & 65535u;
-    const uint32_t t64 = t60 >> 16u;
-    const uint32_t t65 = estimate2_u + estimate2_u - 1u;
-    const uint32_t t66 = t7 * t65;
-    const uint32_t t67 = t8 * t65 + (t66 >> 16u);
-    const uint32_t t68 = t6 * t65 + (t67 >> 16u);
-    const uint32_t t69 = t66 & 65535u;
-    const uint32_t t70 = t67 & 65535u;
-    const uint32_t t71 = t68 & 65535u;
-    const uint32_t t72 = t68 >> 16u;
-    const bool t73 = w2.y < 0.0f;
-    const bool t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || !(t53 < t61));
-    const bool t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
-    const bool t76 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t75);
-    const bool t77 = !(t54 < t62) && !(t62 < t54) && t61 < t53;
-    const bool t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
-    const bool t79 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t78);
-    const bool t80 = ((t64 < t56 || t76) && !t73) || ((t64 < t56 || t79) && t73);
-    const bool t81 = !(t70 < t54) && !(t54 < t70) && t53 < t69;
-    const bool t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
-    const bool t83 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t82);
-    const bool t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || !(t69 < t53));
-    const bool t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
-    const bool t86 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t85);
-    const bool t87 = ((t56 < t72 || t83) && !t73) || ((t56 < t72 || t86) && t73);
-    const float t88 = estimate2 + (t80 ? 1.0f : 0.0f);
-    const float t89 = estimate2 > 0.0f && t87 ? 1.0f : 0.0f;
-    const float t90 = t88 - t89;
-    const float neg_t90 = -t90;
-    const float i1 = t73 ? neg_t90 : t90;
-    const float t91 = 127.0f - fabsf(i0);
-    const float abs_i1 = fabsf(i1);
-    const float i2 = t91 - abs_i1;
-    const float t92 = i1 > 0.0f ? i1 + i2 : i1 - i2;
-    const float t93 = -(i2 < 0.0f ? 0.0f : i2);
-    const bool t94 = i0 >= 0.0f;
-    const unitpack_vec2 t95 = {
-        w2.y < 0.0f ? neg_t90 : t88 - t89,
-        i2 < 0.0f ? 0.0f : t91 - abs_i1
-    };
-    const unitpack_vec2 t96 = { i2 < 0.0f ? t92 : t95.x, a0.z < 0.0f ? t93 : t95.y };
-    const unitpack_vec2 t97 = {
-        i2 < 0.0f ? 0.0f : t91 - abs_i1,
-        w2.y < 0.0f ? neg_t90 : t88 - t89
-    };
-    const unitpack_vec2 t98 = { a0.z < 0.0f ? t93 : t97.x, i2 < 0.0f ? t92 : t97.y };
-    const unitpack_vec2 st = {
-        t94 ? t96.x + 127.0f : (t96.x < 0.0f ? fabsf(t98.x) : 254.0f - fabsf(t98.x)),
-        t94 ? t96.y + 127.0f : (t96.y < 0.0f ? fabsf(t98.y) : 254.0f - fabsf(t98.y))
-    };
-    const bool t99 = (st.x == 0.0f && (st.y == 0.0f || st.y == 254.0f))
-        || (st.x == 254.0f && st.y == 0.0f);
-    const bool t100 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
-    const bool t101 = (st.y == 254.0f && st.x < 127.0f) || (st.y == 0.0f && st.x > 127.0f);
-    const bool t102 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
-    const unitpack_uvec3 t103 = {
-        unitpack_bits_of(a0.x) & 2147483647u,
-        unitpack_bits_of(a0.y) & 2147483647u,
-        unitpack_bits_of(a0.z) & 2147483647u
-    };
-    const bool t104 = !(t103.x < 2139095041u) || !(t103.y < 2139095041u) || !(t103.z < 2139095041u);
-    const bool t105 = (!(t103.x < 2139095040u) && !!(t103.x < 2139095041u))
-        || (!(t103.y < 2139095040u) && !!(t103.y < 2139095041u));
-    const bool t106 = t105 || (!(t103.z < 2139095040u) && !!(t103.z < 2139095041u));
-    const unitpack_vec2 t107 = {
-        t100 ? st.x : (t101 ? 254.0f - st.x : st.x),
-        t102 ? 254.0f - st.y : st.y
-    };
-    const unitpack_vec2 codes = {
-        t1 ? (t99 ? 254.0f : t107.x) : 127.0f,
-        t1 ? (t99 ? 254.0f : t107.y) : (t106 && !t104 ? 254.0f : 127.0f)
-    };
-    return codes;
-}
-
-// Struct form of unitpack_draco_oct8_encode_float.
-static inline unitpack_vec2 unitpack_draco_oct8_encode_float_v(unitpack_vec3 v) {
-    const unitpack_vec2 round_codes = unitpack_draco_oct8_round_codes_v(v);
-    const unitpack_vec2 t1 = { round_codes.x * 0.003921569f, round_codes.y * 0.003921569f };
-    return t1;
-}
-
-// unitpack_draco_oct8_encode_float: fast encoder, float form.
-// In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
-//   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
-//   or y is infinite).
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
-// Not bit-portable: other implementations may return other floats here (unitpack verify --portable
-//   measures how far); the packed encoder is the portable form.
-static inline void unitpack_draco_oct8_encode_float(const float v[3], float out[2]) {
-    const unitpack_vec3 v_v = { v[0], v[1], v[2] };
-    const unitpack_vec2 r = unitpack_draco_oct8_encode_float_v(v_v);
-    out[0] = r.x;
-    out[1] = r.y;
-}
-
-// Struct form of unitpack_draco_oct8_encode.
-static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
+static inline unitpack_vec2 unitpack_draco_oct8_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
         fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
         fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
@@ -338,7 +134,7 @@ static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -376,33 +172,33 @@ static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
         + (uint32_t)floor_fixed_rest3
         + (t4 >> 16u);
     const uint32_t t6 = floor_fixed2_u + floor_fixed3_u + (uint32_t)floor_fixed4 + (t5 >> 16u);
-    const uint32_t t7 = t4 & 65535u;
-    const uint32_t t8 = t5 & 65535u;
+    const uint32_t t7 = t4 & 0xffffu;
+    const uint32_t t8 = t5 & 0xffffu;
     const float t9 = nearbyintf(magnitude.x / l1 * 127.0f);
     const float estimate = t9 <= 127.0f ? t9 : 127.0f;
     const uint32_t estimate_u = (uint32_t)estimate;
     const uint32_t t10 = t2 * 254u;
     const uint32_t t11 = floor_fixed_rest_u * 254u + (t10 >> 16u);
     const uint32_t t12 = floor_fixed2_u * 254u + (t11 >> 16u);
-    const uint32_t t13 = t10 & 65535u;
-    const uint32_t t14 = t11 & 65535u;
-    const uint32_t t15 = t12 & 65535u;
+    const uint32_t t13 = t10 & 0xffffu;
+    const uint32_t t14 = t11 & 0xffffu;
+    const uint32_t t15 = t12 & 0xffffu;
     const uint32_t t16 = t12 >> 16u;
     const uint32_t t17 = estimate_u + estimate_u + 1u;
     const uint32_t t18 = t7 * t17;
     const uint32_t t19 = t8 * t17 + (t18 >> 16u);
     const uint32_t t20 = t6 * t17 + (t19 >> 16u);
-    const uint32_t t21 = t18 & 65535u;
-    const uint32_t t22 = t19 & 65535u;
-    const uint32_t t23 = t20 & 65535u;
+    const uint32_t t21 = t18 & 0xffffu;
+    const uint32_t t22 = t19 & 0xffffu;
+    const uint32_t t23 = t20 & 0xffffu;
     const uint32_t t24 = t20 >> 16u;
     const uint32_t t25 = estimate_u + estimate_u - 1u;
     const uint32_t t26 = t7 * t25;
     const uint32_t t27 = t8 * t25 + (t26 >> 16u);
     const uint32_t t28 = t6 * t25 + (t27 >> 16u);
-    const uint32_t t29 = t26 & 65535u;
-    const uint32_t t30 = t27 & 65535u;
-    const uint32_t t31 = t28 & 65535u;
+    const uint32_t t29 = t26 & 0xffffu;
+    const uint32_t t30 = t27 & 0xffffu;
+    const uint32_t t31 = t28 & 0xffffu;
     const uint32_t t32 = t28 >> 16u;
     const bool t33 = w2.x < 0.0f;
     const bool t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || !(t13 < t21));
@@ -427,25 +223,25 @@ static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
     const uint32_t t50 = t3 * 254u;
     const uint32_t t51 = floor_fixed_rest2_u * 254u + (t50 >> 16u);
     const uint32_t t52 = floor_fixed3_u * 254u + (t51 >> 16u);
-    const uint32_t t53 = t50 & 65535u;
-    const uint32_t t54 = t51 & 65535u;
-    const uint32_t t55 = t52 & 65535u;
+    const uint32_t t53 = t50 & 0xffffu;
+    const uint32_t t54 = t51 & 0xffffu;
+    const uint32_t t55 = t52 & 0xffffu;
     const uint32_t t56 = t52 >> 16u;
     const uint32_t t57 = estimate2_u + estimate2_u + 1u;
     const uint32_t t58 = t7 * t57;
     const uint32_t t59 = t8 * t57 + (t58 >> 16u);
     const uint32_t t60 = t6 * t57 + (t59 >> 16u);
-    const uint32_t t61 = t58 & 65535u;
-    const uint32_t t62 = t59 & 65535u;
-    const uint32_t t63 = t60 & 65535u;
+    const uint32_t t61 = t58 & 0xffffu;
+    const uint32_t t62 = t59 & 0xffffu;
+    const uint32_t t63 = t60 & 0xffffu;
     const uint32_t t64 = t60 >> 16u;
     const uint32_t t65 = estimate2_u + estimate2_u - 1u;
     const uint32_t t66 = t7 * t65;
     const uint32_t t67 = t8 * t65 + (t66 >> 16u);
     const uint32_t t68 = t6 * t65 + (t67 >> 16u);
-    const uint32_t t69 = t66 & 65535u;
-    const uint32_t t70 = t67 & 65535u;
-    const uint32_t t71 = t68 & 65535u;
+    const uint32_t t69 = t66 & 0xffffu;
+    const uint32_t t70 = t67 & 0xffffu;
+    const uint32_t t71 = t68 & 0xffffu;
     const uint32_t t72 = t68 >> 16u;
     const bool t73 = w2.y < 0.0f;
     const bool t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || !(t53 < t61));
@@ -493,14 +289,219 @@ static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
     const bool t101 = (st.y == 254.0f && st.x < 127.0f) || (st.y == 0.0f && st.x > 127.0f);
     const bool t102 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
     const unitpack_uvec3 t103 = {
-        unitpack_bits_of(v.x) & 2147483647u,
-        unitpack_bits_of(v.y) & 2147483647u,
-        unitpack_bits_of(v.z) & 2147483647u
+        unitpack_bits_of(v.x) & 0x7fffffffu,
+        unitpack_bits_of(v.y) & 0x7fffffffu,
+        unitpack_bits_of(v.z) & 0x7fffffffu
     };
-    const bool t104 = !(t103.x < 2139095041u) || !(t103.y < 2139095041u) || !(t103.z < 2139095041u);
-    const bool t105 = (!(t103.x < 2139095040u) && !!(t103.x < 2139095041u))
-        || (!(t103.y < 2139095040u) && !!(t103.y < 2139095041u));
-    const bool t106 = t105 || (!(t103.z < 2139095040u) && !!(t103.z < 2139095041u));
+    const bool t104 = !(t103.x < 0x7f800001u) || !(t103.y < 0x7f800001u) || !(t103.z < 0x7f800001u);
+    const bool t105 = (!(t103.x < 0x7f800000u) && !!(t103.x < 0x7f800001u))
+        || (!(t103.y < 0x7f800000u) && !!(t103.y < 0x7f800001u));
+    const bool t106 = t105 || (!(t103.z < 0x7f800000u) && !!(t103.z < 0x7f800001u));
+    const unitpack_vec2 t107 = {
+        t100 ? st.x : (t101 ? 254.0f - st.x : st.x),
+        t102 ? 254.0f - st.y : st.y
+    };
+    const unitpack_vec2 codes = {
+        t1 ? (t99 ? 254.0f : t107.x) : 127.0f,
+        t1 ? (t99 ? 254.0f : t107.y) : (t106 && !t104 ? 254.0f : 127.0f)
+    };
+    return codes;
+}
+
+// Struct form of unitpack_draco_oct8_encode_float.
+static inline unitpack_vec2 unitpack_draco_oct8_encode_float_v(unitpack_vec3 v) {
+    const unitpack_vec2 round_codes = unitpack_draco_oct8_round_codes_v(v);
+    const unitpack_vec2 t1 = { round_codes.x * 0.003921569f, round_codes.y * 0.003921569f };
+    return t1;
+}
+
+// unitpack_draco_oct8_encode_float: fast encoder, float form.
+// In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
+//   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
+//   or y is infinite).
+// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable
+//   measures how far); the packed encoder is the portable form.
+static inline void unitpack_draco_oct8_encode_float(const float v[3], float out[2]) {
+    const unitpack_vec3 v_v = { v[0], v[1], v[2] };
+    const unitpack_vec2 r = unitpack_draco_oct8_encode_float_v(v_v);
+    out[0] = r.x;
+    out[1] = r.y;
+}
+
+// Struct form of unitpack_draco_oct8_encode.
+static inline uint32_t unitpack_draco_oct8_encode_v(unitpack_vec3 v) {
+    const unitpack_vec3 normal = {
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
+    };
+    const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
+    const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
+    const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
+    const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
+    const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
+    const bool sum_below_16 = sum < 16.0f;
+    const bool ok = sum >= 2.0f && sum_below_16;
+    const unitpack_vec3 w = {
+        fabsf(scaled.x) < 1.8189894e-12f ? 0.0f : scaled.x,
+        fabsf(scaled.y) < 1.8189894e-12f ? 0.0f : scaled.y,
+        fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
+    };
+    const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
+    const bool t1 = ok && fabsf(v.x) + fabsf(v.y) + fabsf(v.z) >= 1.0000001e-6f;
+    const unitpack_vec3 magnitude = { fabsf(w2.x), fabsf(w2.y), fabsf(w2.z) };
+    const float l1 = magnitude.x + magnitude.y + magnitude.z;
+    const float fixed2 = magnitude.x * 4096.0f;
+    const float floor_fixed2 = floorf(fixed2);
+    const float fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
+    const float floor_fixed_rest = floorf(fixed_rest);
+    const uint32_t t2 = (uint32_t)floorf((fixed_rest - floor_fixed_rest) * 65536.0f);
+    const uint32_t floor_fixed_rest_u = (uint32_t)floor_fixed_rest;
+    const uint32_t floor_fixed2_u = (uint32_t)floor_fixed2;
+    const float fixed3 = magnitude.y * 4096.0f;
+    const float floor_fixed3 = floorf(fixed3);
+    const float fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
+    const float floor_fixed_rest2 = floorf(fixed_rest2);
+    const uint32_t t3 = (uint32_t)floorf((fixed_rest2 - floor_fixed_rest2) * 65536.0f);
+    const uint32_t floor_fixed_rest2_u = (uint32_t)floor_fixed_rest2;
+    const uint32_t floor_fixed3_u = (uint32_t)floor_fixed3;
+    const float fixed4 = magnitude.z * 4096.0f;
+    const float floor_fixed4 = floorf(fixed4);
+    const float fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
+    const float floor_fixed_rest3 = floorf(fixed_rest3);
+    const uint32_t t4 = t2 + t3 + (uint32_t)floorf((fixed_rest3 - floor_fixed_rest3) * 65536.0f);
+    const uint32_t t5 = floor_fixed_rest_u
+        + floor_fixed_rest2_u
+        + (uint32_t)floor_fixed_rest3
+        + (t4 >> 16u);
+    const uint32_t t6 = floor_fixed2_u + floor_fixed3_u + (uint32_t)floor_fixed4 + (t5 >> 16u);
+    const uint32_t t7 = t4 & 0xffffu;
+    const uint32_t t8 = t5 & 0xffffu;
+    const float t9 = nearbyintf(magnitude.x / l1 * 127.0f);
+    const float estimate = t9 <= 127.0f ? t9 : 127.0f;
+    const uint32_t estimate_u = (uint32_t)estimate;
+    const uint32_t t10 = t2 * 254u;
+    const uint32_t t11 = floor_fixed_rest_u * 254u + (t10 >> 16u);
+    const uint32_t t12 = floor_fixed2_u * 254u + (t11 >> 16u);
+    const uint32_t t13 = t10 & 0xffffu;
+    const uint32_t t14 = t11 & 0xffffu;
+    const uint32_t t15 = t12 & 0xffffu;
+    const uint32_t t16 = t12 >> 16u;
+    const uint32_t t17 = estimate_u + estimate_u + 1u;
+    const uint32_t t18 = t7 * t17;
+    const uint32_t t19 = t8 * t17 + (t18 >> 16u);
+    const uint32_t t20 = t6 * t17 + (t19 >> 16u);
+    const uint32_t t21 = t18 & 0xffffu;
+    const uint32_t t22 = t19 & 0xffffu;
+    const uint32_t t23 = t20 & 0xffffu;
+    const uint32_t t24 = t20 >> 16u;
+    const uint32_t t25 = estimate_u + estimate_u - 1u;
+    const uint32_t t26 = t7 * t25;
+    const uint32_t t27 = t8 * t25 + (t26 >> 16u);
+    const uint32_t t28 = t6 * t25 + (t27 >> 16u);
+    const uint32_t t29 = t26 & 0xffffu;
+    const uint32_t t30 = t27 & 0xffffu;
+    const uint32_t t31 = t28 & 0xffffu;
+    const uint32_t t32 = t28 >> 16u;
+    const bool t33 = w2.x < 0.0f;
+    const bool t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || !(t13 < t21));
+    const bool t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
+    const bool t36 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t35);
+    const bool t37 = !(t14 < t22) && !(t22 < t14) && t21 < t13;
+    const bool t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
+    const bool t39 = !(t16 < t24) && !(t24 < t16) && (t23 < t15 || t38);
+    const bool t40 = ((t24 < t16 || t36) && !t33) || ((t24 < t16 || t39) && t33);
+    const bool t41 = !(t30 < t14) && !(t14 < t30) && t13 < t29;
+    const bool t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
+    const bool t43 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t42);
+    const bool t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || !(t29 < t13));
+    const bool t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
+    const bool t46 = !(t32 < t16) && !(t16 < t32) && (t15 < t31 || t45);
+    const bool t47 = ((t16 < t32 || t43) && !t33) || ((t16 < t32 || t46) && t33);
+    const float t48 = estimate + (t40 ? 1.0f : 0.0f) - (estimate > 0.0f && t47 ? 1.0f : 0.0f);
+    const float i0 = t33 ? -t48 : t48;
+    const float t49 = nearbyintf(magnitude.y / l1 * 127.0f);
+    const float estimate2 = t49 <= 127.0f ? t49 : 127.0f;
+    const uint32_t estimate2_u = (uint32_t)estimate2;
+    const uint32_t t50 = t3 * 254u;
+    const uint32_t t51 = floor_fixed_rest2_u * 254u + (t50 >> 16u);
+    const uint32_t t52 = floor_fixed3_u * 254u + (t51 >> 16u);
+    const uint32_t t53 = t50 & 0xffffu;
+    const uint32_t t54 = t51 & 0xffffu;
+    const uint32_t t55 = t52 & 0xffffu;
+    const uint32_t t56 = t52 >> 16u;
+    const uint32_t t57 = estimate2_u + estimate2_u + 1u;
+    const uint32_t t58 = t7 * t57;
+    const uint32_t t59 = t8 * t57 + (t58 >> 16u);
+    const uint32_t t60 = t6 * t57 + (t59 >> 16u);
+    const uint32_t t61 = t58 & 0xffffu;
+    const uint32_t t62 = t59 & 0xffffu;
+    const uint32_t t63 = t60 & 0xffffu;
+    const uint32_t t64 = t60 >> 16u;
+    const uint32_t t65 = estimate2_u + estimate2_u - 1u;
+    const uint32_t t66 = t7 * t65;
+    const uint32_t t67 = t8 * t65 + (t66 >> 16u);
+    const uint32_t t68 = t6 * t65 + (t67 >> 16u);
+    const uint32_t t69 = t66 & 0xffffu;
+    const uint32_t t70 = t67 & 0xffffu;
+    const uint32_t t71 = t68 & 0xffffu;
+    const uint32_t t72 = t68 >> 16u;
+    const bool t73 = w2.y < 0.0f;
+    const bool t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || !(t53 < t61));
+    const bool t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
+    const bool t76 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t75);
+    const bool t77 = !(t54 < t62) && !(t62 < t54) && t61 < t53;
+    const bool t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
+    const bool t79 = !(t56 < t64) && !(t64 < t56) && (t63 < t55 || t78);
+    const bool t80 = ((t64 < t56 || t76) && !t73) || ((t64 < t56 || t79) && t73);
+    const bool t81 = !(t70 < t54) && !(t54 < t70) && t53 < t69;
+    const bool t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
+    const bool t83 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t82);
+    const bool t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || !(t69 < t53));
+    const bool t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
+    const bool t86 = !(t72 < t56) && !(t56 < t72) && (t55 < t71 || t85);
+    const bool t87 = ((t56 < t72 || t83) && !t73) || ((t56 < t72 || t86) && t73);
+    const float t88 = estimate2 + (t80 ? 1.0f : 0.0f);
+    const float t89 = estimate2 > 0.0f && t87 ? 1.0f : 0.0f;
+    const float t90 = t88 - t89;
+    const float neg_t90 = -t90;
+    const float i1 = t73 ? neg_t90 : t90;
+    const float t91 = 127.0f - fabsf(i0);
+    const float abs_i1 = fabsf(i1);
+    const float i2 = t91 - abs_i1;
+    const float t92 = i1 > 0.0f ? i1 + i2 : i1 - i2;
+    const float t93 = -(i2 < 0.0f ? 0.0f : i2);
+    const bool t94 = i0 >= 0.0f;
+    const unitpack_vec2 t95 = {
+        w2.y < 0.0f ? neg_t90 : t88 - t89,
+        i2 < 0.0f ? 0.0f : t91 - abs_i1
+    };
+    const unitpack_vec2 t96 = { i2 < 0.0f ? t92 : t95.x, v.z < 0.0f ? t93 : t95.y };
+    const unitpack_vec2 t97 = {
+        i2 < 0.0f ? 0.0f : t91 - abs_i1,
+        w2.y < 0.0f ? neg_t90 : t88 - t89
+    };
+    const unitpack_vec2 t98 = { v.z < 0.0f ? t93 : t97.x, i2 < 0.0f ? t92 : t97.y };
+    const unitpack_vec2 st = {
+        t94 ? t96.x + 127.0f : (t96.x < 0.0f ? fabsf(t98.x) : 254.0f - fabsf(t98.x)),
+        t94 ? t96.y + 127.0f : (t96.y < 0.0f ? fabsf(t98.y) : 254.0f - fabsf(t98.y))
+    };
+    const bool t99 = (st.x == 0.0f && (st.y == 0.0f || st.y == 254.0f))
+        || (st.x == 254.0f && st.y == 0.0f);
+    const bool t100 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
+    const bool t101 = (st.y == 254.0f && st.x < 127.0f) || (st.y == 0.0f && st.x > 127.0f);
+    const bool t102 = (st.x == 0.0f && st.y > 127.0f) || (st.x == 254.0f && st.y < 127.0f);
+    const unitpack_uvec3 t103 = {
+        unitpack_bits_of(v.x) & 0x7fffffffu,
+        unitpack_bits_of(v.y) & 0x7fffffffu,
+        unitpack_bits_of(v.z) & 0x7fffffffu
+    };
+    const bool t104 = !(t103.x < 0x7f800001u) || !(t103.y < 0x7f800001u) || !(t103.z < 0x7f800001u);
+    const bool t105 = (!(t103.x < 0x7f800000u) && !!(t103.x < 0x7f800001u))
+        || (!(t103.y < 0x7f800000u) && !!(t103.y < 0x7f800001u));
+    const bool t106 = t105 || (!(t103.z < 0x7f800000u) && !!(t103.z < 0x7f800001u));
     const unitpack_vec2 t107 = {
         t100 ? st.x : (t101 ? 254.0f - st.x : st.x),
         t102 ? 254.0f - st.y : st.y

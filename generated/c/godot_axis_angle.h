@@ -49,6 +49,7 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 //   servers/rendering/renderer_rd/shaders/forward_clustered/scene_forward_clustered.glsl at 333f0f9
 //   (oct_to_vec3, axis_angle_to_tbn); fdlibm's acosf (FreeBSD msun e_acosf.c; glibc's through
 //   2.40).
+// Model: src/codecs/frames/godot.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00462° / 0.48789°, tangent 0.00433° / 0.47325°, bitangent
@@ -70,17 +71,17 @@ typedef struct {
 
 // Helper `oct_to_vec3`.
 
-static inline unitpack_vec3 unitpack_godot_axis_angle_oct_to_vec3_v(unitpack_vec2 a0) {
-    const float t1 = 1.0f - fabsf(a0.x);
-    const float abs_a0_y = fabsf(a0.y);
-    const float t2 = -(t1 - abs_a0_y);
+static inline unitpack_vec3 unitpack_godot_axis_angle_oct_to_vec3_v(unitpack_vec2 e) {
+    const float t1 = 1.0f - fabsf(e.x);
+    const float abs_e_y = fabsf(e.y);
+    const float t2 = -(t1 - abs_e_y);
     const float t = t2 >= 0.0f ? t2 : 0.0f;
     const unitpack_vec3 t3 = {
-        t * (a0.x > 0.0f ? 1.0f : (a0.x < 0.0f ? -1.0f : 0.0f)),
-        t * (a0.y > 0.0f ? 1.0f : (a0.y < 0.0f ? -1.0f : 0.0f)),
-        abs_a0_y
+        t * (e.x > 0.0f ? 1.0f : (e.x < 0.0f ? -1.0f : 0.0f)),
+        t * (e.y > 0.0f ? 1.0f : (e.y < 0.0f ? -1.0f : 0.0f)),
+        abs_e_y
     };
-    const unitpack_vec3 t4 = { a0.x - t3.x, a0.y - t3.y, t1 - t3.z };
+    const unitpack_vec3 t4 = { e.x - t3.x, e.y - t3.y, t1 - t3.z };
     const unitpack_vec3 t4_sq = { t4.x * t4.x, t4.y * t4.y, t4.z * t4.z };
     const float t5 = sqrtf(t4_sq.x + t4_sq.y + t4_sq.z);
     const unitpack_vec3 t6 = { t4.x / t5, t4.y / t5, t4.z / t5 };
@@ -89,10 +90,10 @@ static inline unitpack_vec3 unitpack_godot_axis_angle_oct_to_vec3_v(unitpack_vec
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
 
-static inline unitpack_vec2 unitpack_godot_axis_angle_sincos_pi_v(float a0) {
-    const float abs_a0 = fabsf(a0);
-    const bool back = abs_a0 > 0.5f;
-    const float b = back ? 1.0f - abs_a0 : abs_a0;
+static inline unitpack_vec2 unitpack_godot_axis_angle_sincos_pi_v(float turns) {
+    const float abs_turns = fabsf(turns);
+    const bool back = abs_turns > 0.5f;
+    const float b = back ? 1.0f - abs_turns : abs_turns;
     const bool swap = b > 0.25f;
     const float c = swap ? 0.5f - b : b;
     const float c2 = c * c;
@@ -108,7 +109,7 @@ static inline unitpack_vec2 unitpack_godot_axis_angle_sincos_pi_v(float a0) {
     const float t9 = (t8 + (-4.934802f)) * c2;
     const float co = t9 + 1.0f;
     const unitpack_vec2 t10 = { swap ? co : s, swap ? s : co };
-    const unitpack_vec2 t11 = { a0 < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
+    const unitpack_vec2 t11 = { turns < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
     return t11;
 }
 
@@ -167,9 +168,9 @@ static inline unitpack_godot_axis_angle_frame_v unitpack_godot_axis_angle_decode
     unitpack_uvec2 code
 ) {
     const unitpack_vec3 f = {
-        (float)(code.x & 65535u) * 1.5259022e-5f,
+        (float)(code.x & 0xffffu) * 1.5259022e-5f,
         (float)(code.x >> 16u) * 1.5259022e-5f,
-        (float)(code.y & 65535u) * 1.5259022e-5f
+        (float)(code.y & 0xffffu) * 1.5259022e-5f
     };
     const unitpack_vec2 t1 = { f.x * 2.0f, f.y * 2.0f };
     const unitpack_vec2 t2 = { t1.x - 1.0f, t1.y - 1.0f };
@@ -218,9 +219,9 @@ static inline unitpack_godot_axis_angle_tbn_v unitpack_godot_axis_angle_decode_t
     unitpack_uvec2 code
 ) {
     const unitpack_vec3 f = {
-        (float)(code.x & 65535u) * 1.5259022e-5f,
+        (float)(code.x & 0xffffu) * 1.5259022e-5f,
         (float)(code.x >> 16u) * 1.5259022e-5f,
-        (float)(code.y & 65535u) * 1.5259022e-5f
+        (float)(code.y & 0xffffu) * 1.5259022e-5f
     };
     const unitpack_vec2 t1 = { f.x * 2.0f, f.y * 2.0f };
     const unitpack_vec2 t2 = { t1.x - 1.0f, t1.y - 1.0f };
@@ -279,20 +280,20 @@ static inline void unitpack_godot_axis_angle_decode_tbn(
 
 // Helper `fdlibm_acosf`.
 
-static inline float unitpack_godot_axis_angle_fdlibm_acosf_v(float a0) {
-    const uint32_t t1 = unitpack_bits_of(a0) & 2147483647u;
-    const float a0_sq = a0 * a0;
-    const float t2 = a0_sq * 3.479331e-5f;
-    const float t3 = a0_sq * (0.000791535f + t2);
-    const float t4 = a0_sq * (-0.040055536f + t3);
-    const float t5 = a0_sq * (0.20121253f + t4);
-    const float t6 = a0_sq * (-0.32556581f + t5);
-    const float t7 = a0_sq * 0.077038154f;
-    const float t8 = a0_sq * (-0.688284f + t7);
-    const float t9 = a0_sq * (2.0209458f + t8);
-    const float t10 = a0_sq * (-2.403395f + t9);
-    const float t11 = a0 * (a0_sq * (0.16666667f + t6) / (1.0f + t10));
-    const float z = (1.0f + a0) * 0.5f;
+static inline float unitpack_godot_axis_angle_fdlibm_acosf_v(float c) {
+    const uint32_t t1 = unitpack_bits_of(c) & 0x7fffffffu;
+    const float c_sq = c * c;
+    const float t2 = c_sq * 3.479331e-5f;
+    const float t3 = c_sq * (0.000791535f + t2);
+    const float t4 = c_sq * (-0.040055536f + t3);
+    const float t5 = c_sq * (0.20121253f + t4);
+    const float t6 = c_sq * (-0.32556581f + t5);
+    const float t7 = c_sq * 0.077038154f;
+    const float t8 = c_sq * (-0.688284f + t7);
+    const float t9 = c_sq * (2.0209458f + t8);
+    const float t10 = c_sq * (-2.403395f + t9);
+    const float t11 = c * (c_sq * (0.16666667f + t6) / (1.0f + t10));
+    const float z = (1.0f + c) * 0.5f;
     const float sqrt_z = sqrtf(z);
     const float t12 = z * 3.479331e-5f;
     const float t13 = z * (0.000791535f + t12);
@@ -305,9 +306,9 @@ static inline float unitpack_godot_axis_angle_fdlibm_acosf_v(float a0) {
     const float t20 = z * (-2.403395f + t19);
     const float t21 = z * (0.16666667f + t16) / (1.0f + t20) * sqrt_z;
     const float t22 = 2.0f * (sqrt_z + (t21 - 7.5497894e-8f));
-    const float z2 = (1.0f - a0) * 0.5f;
+    const float z2 = (1.0f - c) * 0.5f;
     const float sqrt_z2 = sqrtf(z2);
-    const float t23 = unitpack_float_of(unitpack_bits_of(sqrt_z2) & 4294963200u);
+    const float t23 = unitpack_float_of(unitpack_bits_of(sqrt_z2) & 0xfffff000u);
     const float t23_sq = t23 * t23;
     const float t24 = z2 * 3.479331e-5f;
     const float t25 = z2 * (0.000791535f + t24);
@@ -319,14 +320,14 @@ static inline float unitpack_godot_axis_angle_fdlibm_acosf_v(float a0) {
     const float t31 = z2 * (2.0209458f + t30);
     const float t32 = z2 * (-2.403395f + t31);
     const float t33 = z2 * (0.16666667f + t28) / (1.0f + t32) * sqrt_z2;
-    const float t34 = a0 < 0.0f
+    const float t34 = c < 0.0f
         ? 3.1415925f - t22
         : 2.0f * (t23 + (t33 + (z2 - t23_sq) / (sqrt_z2 + t23)));
-    const float t35 = t1 < 1065353217u && !(t1 < 1065353216u)
-        ? (a0 < 0.0f ? 3.1415927f : 0.0f)
+    const float t35 = t1 < 0x3f800001u && !(t1 < 0x3f800000u)
+        ? (c < 0.0f ? 3.1415927f : 0.0f)
         : t34;
-    return t1 < 1056964608u
-        ? (t1 < 587202561u ? 1.5707964f : 1.5707963f - (a0 - (7.5497894e-8f - t11)))
+    return t1 < 0x3f000000u
+        ? (t1 < 0x23000001u ? 1.5707964f : 1.5707963f - (c - (7.5497894e-8f - t11)))
         : t35;
 }
 
@@ -449,17 +450,17 @@ static inline unitpack_vec3 unitpack_godot_axis_angle_encode_float_v(
                 : (t58 > 1.0f ? 0.0f : unitpack_godot_axis_angle_fdlibm_acosf_v(t58))
         );
     const bool t59 = (t.w < 0.0f ? -1.0f : 1.0f) < 0.0f;
-    const float theta_hi = unitpack_float_of(unitpack_bits_of(angle) & 4294963200u);
+    const float theta_hi = unitpack_float_of(unitpack_bits_of(angle) & 0xfffff000u);
     const float theta_lo = angle - theta_hi;
     const float t60 = t59 ? -1.0f : 1.0f;
     const float t61 = angle * 0.15915494f * t60;
     const float estimate = 0.5f + t61;
-    const uint32_t exponent = (unitpack_bits_of(estimate) & 2147483647u) >> 23u;
+    const uint32_t exponent = (unitpack_bits_of(estimate) & 0x7fffffffu) >> 23u;
     const uint32_t exponent2 = exponent < 40u ? 40u : exponent;
     const float grid = unitpack_float_of((exponent2 - 23u) << 23u);
-    const float inverse = unitpack_float_of((277u - exponent2) << 23u);
-    const float scale = inverse * t60;
-    const float term = 0.5f * inverse;
+    const float inv_grid = unitpack_float_of((277u - exponent2) << 23u);
+    const float scale = inv_grid * t60;
+    const float term = 0.5f * inv_grid;
     const float term2 = theta_hi * 0.15911865f * scale;
     const float term3 = theta_hi * 3.6284328e-5f * scale;
     const float term4 = theta_lo * 0.15911865f * scale;
@@ -501,8 +502,8 @@ static inline unitpack_vec3 unitpack_godot_axis_angle_encode_float_v(
     const float t77 = floorf(abs_whole6 * 2.3283064e-10f) * 4294967300.0f;
     const uint32_t t78 = (uint32_t)(abs_whole6 - t77);
     const uint32_t t79 = t73 + (whole5 < 0.0f ? 0u - t75 : t75) + (whole6 < 0.0f ? 0u - t78 : t78);
-    const uint32_t r = t79 + ((t76 + 8388608u) >> 24u);
-    const float v = estimate > 0.0f ? (float)(16777216u < r ? 16777216u : r) * grid : 0.0f;
+    const uint32_t r = t79 + ((t76 + 0x800000u) >> 24u);
+    const float v = estimate > 0.0f ? (float)(0x1000000u < r ? 0x1000000u : r) * grid : 0.0f;
     const float t80 = v >= 0.0f ? v : 0.0f;
     const float t81 = v >= 0.500008f ? v : 0.500008f;
     const float t82 = fabsf(axis.x) + fabsf(axis.y) + fabsf(axis.z);

@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- hemioct16:guarantee=ieee: hemi-octahedral, snorm×2, 16 bits, hemisphere ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.24002°, sample max 0.54445°; MSE of the components of
 //   n - n' 6.995e-6, PSNR 51.55 dB.
 #ifndef UNITPACK_HEMIOCT16_IEEE_H
@@ -127,7 +128,7 @@ static inline uint32_t unitpack_hemioct16_ieee_encode_v(unitpack_vec3 v) {
         nearbyintf((t1.x <= 1.0f ? t1.x : 1.0f) * 127.0f),
         nearbyintf((t1.y <= 1.0f ? t1.y : 1.0f) * 127.0f)
     };
-    return ((uint32_t)(codes.x + 256.0f) & 255u) | (((uint32_t)(codes.y + 256.0f) << 8u) & 65280u);
+    return ((uint32_t)(codes.x + 256.0f) & 255u) | (((uint32_t)(codes.y + 256.0f) << 8u) & 0xff00u);
 }
 
 // unitpack_hemioct16_ieee_encode: fast encoder.

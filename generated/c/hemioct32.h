@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- hemioct32: hemi-octahedral, snorm×2, 32 bits, hemisphere ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00093°, sample max 0.00212°; MSE of the components of
 //   n - n' 1.052e-10, PSNR 99.78 dB.
 #ifndef UNITPACK_HEMIOCT32_H
@@ -70,7 +71,7 @@ static inline void unitpack_hemioct32_decode_float(const float params[2], float 
 
 // Struct form of unitpack_hemioct32_decode.
 static inline unitpack_vec3 unitpack_hemioct32_decode_v(uint32_t code) {
-    const unitpack_vec2 t1 = { (float)(code & 65535u), (float)(code >> 16u) };
+    const unitpack_vec2 t1 = { (float)(code & 0xffffu), (float)(code >> 16u) };
     const unitpack_vec2 t2 = {
         (t1.x > 32767.0f ? t1.x - 65536.0f : t1.x) * 3.051851e-5f,
         (t1.y > 32767.0f ? t1.y - 65536.0f : t1.y) * 3.051851e-5f
@@ -125,16 +126,16 @@ static inline void unitpack_hemioct32_encode_float(const float v[3], float out[2
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
-static inline unitpack_vec2 unitpack_hemioct32_round_codes_v(unitpack_vec3 a0) {
+static inline unitpack_vec2 unitpack_hemioct32_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -169,7 +170,7 @@ static inline unitpack_vec2 unitpack_hemioct32_round_codes_v(unitpack_vec3 a0) {
 // Struct form of unitpack_hemioct32_encode.
 static inline uint32_t unitpack_hemioct32_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 round_codes = unitpack_hemioct32_round_codes_v(v);
-    return ((uint32_t)(round_codes.x + 65536.0f) & 65535u)
+    return ((uint32_t)(round_codes.x + 65536.0f) & 0xffffu)
         | ((uint32_t)(round_codes.y + 65536.0f) << 16u);
 }
 

@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- oct16p: octahedral, snorm×2, 16 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.31481°, sample max 0.62426°; MSE of the components of
 //   n - n' 1.159e-5, PSNR 49.36 dB.
 #ifndef UNITPACK_OCT16P_H
@@ -111,7 +112,7 @@ static inline unitpack_vec2 unitpack_oct16p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -130,8 +131,8 @@ static inline unitpack_vec2 unitpack_oct16p_encode_codes_v(unitpack_vec3 v) {
     const float estimate = floorf(a.x / l1 * 127.0f);
     const float big = a.x * 127.0f;
     const float step_down = big < estimate * l1 ? -1.0f : 0.0f;
-    const float step = big >= (estimate + 1.0f) * l1 ? 1.0f : step_down;
-    const float t1 = estimate + step;
+    const float nudge = big >= (estimate + 1.0f) * l1 ? 1.0f : step_down;
+    const float t1 = estimate + nudge;
     const bool t2 = t1 >= (-127.0f);
     const float t3 = t2 ? t1 : -127.0f;
     const bool t4 = t3 <= 127.0f;
@@ -139,8 +140,8 @@ static inline unitpack_vec2 unitpack_oct16p_encode_codes_v(unitpack_vec3 v) {
     const float estimate2 = floorf(a.y / l1 * 127.0f);
     const float big2 = a.y * 127.0f;
     const float step_down2 = big2 < estimate2 * l1 ? -1.0f : 0.0f;
-    const float step2 = big2 >= (estimate2 + 1.0f) * l1 ? 1.0f : step_down2;
-    const float t5 = estimate2 + step2;
+    const float nudge2 = big2 >= (estimate2 + 1.0f) * l1 ? 1.0f : step_down2;
+    const float t5 = estimate2 + nudge2;
     const float t6 = t5 >= (-127.0f) ? t5 : -127.0f;
     const bool t7 = t6 <= 127.0f;
     const float t8 = t7 ? t6 : 127.0f;
@@ -157,22 +158,22 @@ static inline unitpack_vec2 unitpack_oct16p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t s0_u = (uint32_t)s0;
     const uint32_t t0_u = (uint32_t)t0;
     const uint32_t t13 = (uint32_t)(t12 ? t11 : 0.0f);
-    const unitpack_uvec3 cross = {
+    const unitpack_uvec3 axd = {
         afix.y * (uint32_t)(t12 ? t11 : 0.0f) - afix.z * (uint32_t)(t10 ? t8 : t9),
         afix.z * (uint32_t)(t4 ? t3 : 127.0f) - afix.x * (uint32_t)(t12 ? t11 : 0.0f),
         afix.x * (uint32_t)(t10 ? t8 : t9) - afix.y * (uint32_t)(t4 ? t3 : 127.0f)
     };
-    const uint32_t t14 = cross.x < 2147483648u ? cross.x : 0u - cross.x;
+    const uint32_t t14 = axd.x < 0x80000000u ? axd.x : 0u - axd.x;
     const uint32_t t15 = t14 >> 16u;
-    const uint32_t t16 = cross.y < 2147483648u ? cross.y : 0u - cross.y;
+    const uint32_t t16 = axd.y < 0x80000000u ? axd.y : 0u - axd.y;
     const uint32_t t17 = t16 >> 16u;
-    const uint32_t t18 = cross.z < 2147483648u ? cross.z : 0u - cross.z;
+    const uint32_t t18 = axd.z < 0x80000000u ? axd.z : 0u - axd.z;
     const uint32_t t19 = t18 >> 16u;
     const unitpack_uvec3 t20 = { (t15 * t15) << 3u, (t17 * t17) << 3u, (t19 * t19) << 3u };
     const unitpack_uvec3 t21 = {
-        (t15 * (t14 & 65535u)) >> 12u,
-        (t17 * (t16 & 65535u)) >> 12u,
-        (t19 * (t18 & 65535u)) >> 12u
+        (t15 * (t14 & 0xffffu)) >> 12u,
+        (t17 * (t16 & 0xffffu)) >> 12u,
+        (t19 * (t18 & 0xffffu)) >> 12u
     };
     const float e = (float)(t20.x + t21.x + (t20.y + t21.y) + (t20.z + t21.z));
     const float n = (float)(s0_u * s0_u + t0_u * t0_u + t13 * t13);
@@ -183,22 +184,22 @@ static inline unitpack_vec2 unitpack_oct16p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t s_up_u = (uint32_t)s_up;
     const uint32_t t0_u2 = (uint32_t)t0;
     const uint32_t t23_u = (uint32_t)t23;
-    const unitpack_uvec3 cross2 = {
+    const unitpack_uvec3 axd2 = {
         afix.y * (uint32_t)t23 - afix.z * (uint32_t)t0,
         afix.z * (uint32_t)s_up - afix.x * (uint32_t)t23,
         afix.x * (uint32_t)t0 - afix.y * (uint32_t)s_up
     };
-    const uint32_t t24 = cross2.x < 2147483648u ? cross2.x : 0u - cross2.x;
+    const uint32_t t24 = axd2.x < 0x80000000u ? axd2.x : 0u - axd2.x;
     const uint32_t t25 = t24 >> 16u;
-    const uint32_t t26 = cross2.y < 2147483648u ? cross2.y : 0u - cross2.y;
+    const uint32_t t26 = axd2.y < 0x80000000u ? axd2.y : 0u - axd2.y;
     const uint32_t t27 = t26 >> 16u;
-    const uint32_t t28 = cross2.z < 2147483648u ? cross2.z : 0u - cross2.z;
+    const uint32_t t28 = axd2.z < 0x80000000u ? axd2.z : 0u - axd2.z;
     const uint32_t t29 = t28 >> 16u;
     const unitpack_uvec3 t30 = { (t25 * t25) << 3u, (t27 * t27) << 3u, (t29 * t29) << 3u };
     const unitpack_uvec3 t31 = {
-        (t25 * (t24 & 65535u)) >> 12u,
-        (t27 * (t26 & 65535u)) >> 12u,
-        (t29 * (t28 & 65535u)) >> 12u
+        (t25 * (t24 & 0xffffu)) >> 12u,
+        (t27 * (t26 & 0xffffu)) >> 12u,
+        (t29 * (t28 & 0xffffu)) >> 12u
     };
     const float e2 = (float)(t30.x + t31.x + (t30.y + t31.y) + (t30.z + t31.z));
     const float n2 = (float)(s_up_u * s_up_u + t0_u2 * t0_u2 + t23_u * t23_u);
@@ -214,22 +215,22 @@ static inline unitpack_vec2 unitpack_oct16p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t s0_u2 = (uint32_t)s0;
     const uint32_t t_up_u = (uint32_t)t_up;
     const uint32_t t37_u = (uint32_t)t37;
-    const unitpack_uvec3 cross3 = {
+    const unitpack_uvec3 axd3 = {
         afix.y * (uint32_t)t37 - afix.z * (uint32_t)t_up,
         afix.z * (uint32_t)s0 - afix.x * (uint32_t)t37,
         afix.x * (uint32_t)t_up - afix.y * (uint32_t)s0
     };
-    const uint32_t t38 = cross3.x < 2147483648u ? cross3.x : 0u - cross3.x;
+    const uint32_t t38 = axd3.x < 0x80000000u ? axd3.x : 0u - axd3.x;
     const uint32_t t39 = t38 >> 16u;
-    const uint32_t t40 = cross3.y < 2147483648u ? cross3.y : 0u - cross3.y;
+    const uint32_t t40 = axd3.y < 0x80000000u ? axd3.y : 0u - axd3.y;
     const uint32_t t41 = t40 >> 16u;
-    const uint32_t t42 = cross3.z < 2147483648u ? cross3.z : 0u - cross3.z;
+    const uint32_t t42 = axd3.z < 0x80000000u ? axd3.z : 0u - axd3.z;
     const uint32_t t43 = t42 >> 16u;
     const unitpack_uvec3 t44 = { (t39 * t39) << 3u, (t41 * t41) << 3u, (t43 * t43) << 3u };
     const unitpack_uvec3 t45 = {
-        (t39 * (t38 & 65535u)) >> 12u,
-        (t41 * (t40 & 65535u)) >> 12u,
-        (t43 * (t42 & 65535u)) >> 12u
+        (t39 * (t38 & 0xffffu)) >> 12u,
+        (t41 * (t40 & 0xffffu)) >> 12u,
+        (t43 * (t42 & 0xffffu)) >> 12u
     };
     const float e3 = (float)(t44.x + t45.x + (t44.y + t45.y) + (t44.z + t45.z));
     const float n3 = (float)(s0_u2 * s0_u2 + t_up_u * t_up_u + t37_u * t37_u);
@@ -242,22 +243,22 @@ static inline unitpack_vec2 unitpack_oct16p_encode_codes_v(unitpack_vec3 v) {
     const uint32_t s_up_u2 = (uint32_t)s_up;
     const uint32_t t_up_u2 = (uint32_t)t_up;
     const uint32_t t48_u = (uint32_t)t48;
-    const unitpack_uvec3 cross4 = {
+    const unitpack_uvec3 axd4 = {
         afix.y * (uint32_t)t48 - afix.z * (uint32_t)t_up,
         afix.z * (uint32_t)s_up - afix.x * (uint32_t)t48,
         afix.x * (uint32_t)t_up - afix.y * (uint32_t)s_up
     };
-    const uint32_t t49 = cross4.x < 2147483648u ? cross4.x : 0u - cross4.x;
+    const uint32_t t49 = axd4.x < 0x80000000u ? axd4.x : 0u - axd4.x;
     const uint32_t t50 = t49 >> 16u;
-    const uint32_t t51 = cross4.y < 2147483648u ? cross4.y : 0u - cross4.y;
+    const uint32_t t51 = axd4.y < 0x80000000u ? axd4.y : 0u - axd4.y;
     const uint32_t t52 = t51 >> 16u;
-    const uint32_t t53 = cross4.z < 2147483648u ? cross4.z : 0u - cross4.z;
+    const uint32_t t53 = axd4.z < 0x80000000u ? axd4.z : 0u - axd4.z;
     const uint32_t t54 = t53 >> 16u;
     const unitpack_uvec3 t55 = { (t50 * t50) << 3u, (t52 * t52) << 3u, (t54 * t54) << 3u };
     const unitpack_uvec3 t56 = {
-        (t50 * (t49 & 65535u)) >> 12u,
-        (t52 * (t51 & 65535u)) >> 12u,
-        (t54 * (t53 & 65535u)) >> 12u
+        (t50 * (t49 & 0xffffu)) >> 12u,
+        (t52 * (t51 & 0xffffu)) >> 12u,
+        (t54 * (t53 & 0xffffu)) >> 12u
     };
     const float e4 = (float)(t55.x + t56.x + (t55.y + t56.y) + (t55.z + t56.z));
     const float n4 = (float)(s_up_u2 * s_up_u2 + t_up_u2 * t_up_u2 + t48_u * t48_u);
@@ -297,7 +298,7 @@ static inline void unitpack_oct16p_encode_float(const float v[3], float out[2]) 
 static inline uint32_t unitpack_oct16p_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 encode_codes = unitpack_oct16p_encode_codes_v(v);
     return ((uint32_t)(encode_codes.x + 256.0f) & 255u)
-        | (((uint32_t)(encode_codes.y + 256.0f) << 8u) & 65280u);
+        | (((uint32_t)(encode_codes.y + 256.0f) << 8u) & 0xff00u);
 }
 
 // unitpack_oct16p_encode: precise encoder.

@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- oct24: octahedral, snorm×2, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02081°, sample max 0.05780°; MSE of the components of
 //   n - n' 5.352e-8, PSNR 72.71 dB.
 #ifndef UNITPACK_OCT24_H
@@ -75,7 +76,7 @@ static inline void unitpack_oct24_decode_float(const float params[2], float out[
 
 // Struct form of unitpack_oct24_decode.
 static inline unitpack_vec3 unitpack_oct24_decode_v(uint32_t code) {
-    const unitpack_vec2 t1 = { (float)(code & 4095u), (float)((code >> 12u) & 4095u) };
+    const unitpack_vec2 t1 = { (float)(code & 0xfffu), (float)((code >> 12u) & 0xfffu) };
     const unitpack_vec2 t2 = {
         (t1.x > 2047.0f ? t1.x - 4096.0f : t1.x) * 0.0004885198f,
         (t1.y > 2047.0f ? t1.y - 4096.0f : t1.y) * 0.0004885198f
@@ -135,16 +136,16 @@ static inline void unitpack_oct24_encode_float(const float v[3], float out[2]) {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
-static inline unitpack_vec2 unitpack_oct24_round_codes_v(unitpack_vec3 a0) {
+static inline unitpack_vec2 unitpack_oct24_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -182,8 +183,8 @@ static inline unitpack_vec2 unitpack_oct24_round_codes_v(unitpack_vec3 a0) {
 // Struct form of unitpack_oct24_encode.
 static inline uint32_t unitpack_oct24_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 round_codes = unitpack_oct24_round_codes_v(v);
-    return ((uint32_t)(round_codes.x + 4096.0f) & 4095u)
-        | (((uint32_t)(round_codes.y + 4096.0f) << 12u) & 16773120u);
+    return ((uint32_t)(round_codes.x + 4096.0f) & 0xfffu)
+        | (((uint32_t)(round_codes.y + 4096.0f) << 12u) & 0xfff000u);
 }
 
 // unitpack_oct24_encode: fast encoder.

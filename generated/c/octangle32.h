@@ -45,6 +45,7 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 //   and the sign, 32 bits ----
 // Source: the normal: octahedral (Meyer et al. 2010, Cigolle et al. 2014); the tangent's basis:
 //   Jeremy Ong, "Tangent spaces and diamond encoding" (2023).
+// Model: src/codecs/frames/octangle.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.04180° / 0.11764°, tangent 0.18060° / 0.36412°, bitangent
@@ -66,10 +67,10 @@ typedef struct {
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
 
-static inline unitpack_vec2 unitpack_octangle32_sincos_pi_v(float a0) {
-    const float abs_a0 = fabsf(a0);
-    const bool back = abs_a0 > 0.5f;
-    const float b = back ? 1.0f - abs_a0 : abs_a0;
+static inline unitpack_vec2 unitpack_octangle32_sincos_pi_v(float x) {
+    const float abs_x = fabsf(x);
+    const bool back = abs_x > 0.5f;
+    const float b = back ? 1.0f - abs_x : abs_x;
     const bool swap = b > 0.25f;
     const float c = swap ? 0.5f - b : b;
     const float c2 = c * c;
@@ -85,18 +86,18 @@ static inline unitpack_vec2 unitpack_octangle32_sincos_pi_v(float a0) {
     const float t9 = (t8 + (-4.934802f)) * c2;
     const float co = t9 + 1.0f;
     const unitpack_vec2 t10 = { swap ? co : s, swap ? s : co };
-    const unitpack_vec2 t11 = { a0 < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
+    const unitpack_vec2 t11 = { x < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
     return t11;
 }
 
 // Struct form of unitpack_octangle32_decode.
 static inline unitpack_octangle32_frame_v unitpack_octangle32_decode_v(uint32_t code) {
-    const float t1 = (float)(code & 2047u);
-    const float t2 = (float)((code >> 11u) & 2047u);
+    const float t1 = (float)(code & 0x7ffu);
+    const float t2 = (float)((code >> 11u) & 0x7ffu);
     const unitpack_vec4 fields = {
         t1 > 1023.0f ? t1 - 2048.0f : t1,
         t2 > 1023.0f ? t2 - 2048.0f : t2,
-        (float)((code >> 22u) & 511u),
+        (float)((code >> 22u) & 0x1ffu),
         (float)(code >> 31u)
     };
     const unitpack_vec2 sc = unitpack_octangle32_sincos_pi_v(
@@ -161,12 +162,12 @@ static inline void unitpack_octangle32_decode(uint32_t code, float n[3], float t
 
 // Struct form of unitpack_octangle32_decode_tbn.
 static inline unitpack_octangle32_tbn_v unitpack_octangle32_decode_tbn_v(uint32_t code) {
-    const float t1 = (float)(code & 2047u);
-    const float t2 = (float)((code >> 11u) & 2047u);
+    const float t1 = (float)(code & 0x7ffu);
+    const float t2 = (float)((code >> 11u) & 0x7ffu);
     const unitpack_vec4 fields = {
         t1 > 1023.0f ? t1 - 2048.0f : t1,
         t2 > 1023.0f ? t2 - 2048.0f : t2,
-        (float)((code >> 22u) & 511u),
+        (float)((code >> 22u) & 0x1ffu),
         (float)(code >> 31u)
     };
     const unitpack_vec2 sc = unitpack_octangle32_sincos_pi_v(
@@ -248,7 +249,7 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -301,7 +302,7 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const float larger2 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     const float largest2 = larger2 >= abs_normal3.z ? larger2 : abs_normal3.z;
     const float scale2 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest2) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest2) & 0x7f800000u)
     );
     const unitpack_vec3 scaled2 = { normal3.x * scale2, normal3.y * scale2, normal3.z * scale2 };
     const unitpack_vec3 w2 = {
@@ -315,22 +316,22 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
         (uint32_t)floorf(fabsf(w2.z) * 2097152.0f)
     };
     const uint32_t limb1 = t8.x >> 12u;
-    const uint32_t limb0 = t8.x & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = t8.x & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = t8.y >> 12u;
-    const uint32_t limb0_2 = t8.y & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = t8.y & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = t8.z >> 12u;
-    const uint32_t limb0_3 = t8.z & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = t8.z & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t9 = (float)hi4 * 16777216.0f;
     const float t10 = (t9 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(t10);
@@ -338,8 +339,8 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > t10 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= t10 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= t10 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = t10 - root_h_sq;
@@ -349,20 +350,20 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const float t12 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t12;
     const float step_down2 = root_m0 * root_m0 > t10 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= t10 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= t10 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t13 = root_k * 4096.0f;
-    const float length = (t13 + root_j) * 4.7683716e-7f;
-    const uint32_t t14 = (uint32_t)(length * 2097152.0f);
+    const float norm = (t13 + root_j) * 4.7683716e-7f;
+    const uint32_t t14 = (uint32_t)(norm * 2097152.0f);
     const uint32_t wide = (hi4 << 24u) + lo4;
-    const uint32_t rest = wide - t14 * t14 + 1073741824u;
-    const uint32_t n3 = 1073741824u + t14 < rest
+    const uint32_t rest = wide - t14 * t14 + 0x40000000u;
+    const uint32_t n3 = 0x40000000u + t14 < rest
         ? t14 + 1u
-        : (rest < 1073741824u - t14 + 1u ? t14 - 1u : t14);
-    const uint32_t rest2 = wide - n3 * n3 + 1073741824u;
-    const uint32_t n4 = 1073741824u + n3 < rest2
+        : (rest < 0x40000000u - t14 + 1u ? t14 - 1u : t14);
+    const uint32_t rest2 = wide - n3 * n3 + 0x40000000u;
+    const uint32_t n4 = 0x40000000u + n3 < rest2
         ? n3 + 1u
-        : (rest2 < 1073741824u - n3 + 1u ? n3 - 1u : n3);
+        : (rest2 < 0x40000000u - n3 + 1u ? n3 - 1u : n3);
     const float nf = (float)n4;
     const uint32_t k0 = (uint32_t)nearbyintf((float)t8.x / nf * 16777216.0f);
     const uint32_t r = (t8.x << 24u) - k0 * n4;
@@ -372,9 +373,9 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n = n4 << 1u;
     const uint32_t t18 = t17 >> 12u;
     const float t19 = (float)t18 * 4096.0f;
-    const uint32_t q0 = (uint32_t)floorf((t19 + (float)(t17 & 4095u)) / (nf * 2.0f));
+    const uint32_t q0 = (uint32_t)floorf((t19 + (float)(t17 & 0xfffu)) / (nf * 2.0f));
     const uint32_t rest3 = t17 - q0 * two_n;
-    const bool negative = !(rest3 < 2147483648u);
+    const bool negative = !(rest3 < 0x80000000u);
     const uint32_t k0_2 = (uint32_t)nearbyintf((float)t8.y / nf * 16777216.0f);
     const uint32_t r2 = (t8.y << 24u) - k0_2 * n4;
     const uint32_t t20 = r2 << 1u;
@@ -383,9 +384,9 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n2 = n4 << 1u;
     const uint32_t t23 = t22 >> 12u;
     const float t24 = (float)t23 * 4096.0f;
-    const uint32_t q0_2 = (uint32_t)floorf((t24 + (float)(t22 & 4095u)) / (nf * 2.0f));
+    const uint32_t q0_2 = (uint32_t)floorf((t24 + (float)(t22 & 0xfffu)) / (nf * 2.0f));
     const uint32_t rest4 = t22 - q0_2 * two_n2;
-    const bool negative2 = !(rest4 < 2147483648u);
+    const bool negative2 = !(rest4 < 0x80000000u);
     const uint32_t k0_3 = (uint32_t)nearbyintf((float)t8.z / nf * 16777216.0f);
     const uint32_t r3 = (t8.z << 24u) - k0_3 * n4;
     const uint32_t t25 = r3 << 1u;
@@ -394,9 +395,9 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n3 = n4 << 1u;
     const uint32_t t28 = t27 >> 12u;
     const float t29 = (float)t28 * 4096.0f;
-    const uint32_t q0_3 = (uint32_t)floorf((t29 + (float)(t27 & 4095u)) / (nf * 2.0f));
+    const uint32_t q0_3 = (uint32_t)floorf((t29 + (float)(t27 & 0xfffu)) / (nf * 2.0f));
     const uint32_t rest5 = t27 - q0_3 * two_n3;
-    const bool negative3 = !(rest5 < 2147483648u);
+    const bool negative3 = !(rest5 < 0x80000000u);
     const unitpack_bvec3 t30 = {
         !(rest3 < two_n) && !negative,
         !(rest4 < two_n2) && !negative2,
@@ -404,9 +405,9 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     };
     const unitpack_vec3 t31 = { (float)t18 * 4096.0f, (float)t23 * 4096.0f, (float)t28 * 4096.0f };
     const unitpack_vec3 t32 = {
-        t31.x + (float)((t15 + n4 + t16) & 4095u),
-        t31.y + (float)((t20 + n4 + t21) & 4095u),
-        t31.z + (float)((t25 + n4 + t26) & 4095u)
+        t31.x + (float)((t15 + n4 + t16) & 0xfffu),
+        t31.y + (float)((t20 + n4 + t21) & 0xfffu),
+        t31.z + (float)((t25 + n4 + t26) & 0xfffu)
     };
     const unitpack_uvec3 t33 = {
         (uint32_t)floorf(t32.x / (nf * 2.0f)),
@@ -423,9 +424,9 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     };
     const unitpack_uvec3 t35 = { t34.x - 8u, t34.y - 8u, t34.z - 8u };
     const unitpack_vec3 t36 = {
-        (float)(16777216u < t35.x ? 16777216u : t35.x) * 5.9604645e-8f,
-        (float)(16777216u < t35.y ? 16777216u : t35.y) * 5.9604645e-8f,
-        (float)(16777216u < t35.z ? 16777216u : t35.z) * 5.9604645e-8f
+        (float)(0x1000000u < t35.x ? 0x1000000u : t35.x) * 5.9604645e-8f,
+        (float)(0x1000000u < t35.y ? 0x1000000u : t35.y) * 5.9604645e-8f,
+        (float)(0x1000000u < t35.z ? 0x1000000u : t35.z) * 5.9604645e-8f
     };
     const unitpack_vec3 n5 = {
         (w2.x < 0.0f ? -t36.x : t36.x) * 16777216.0f,
@@ -448,7 +449,7 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const float larger3 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
     const float largest3 = larger3 >= abs_normal4.z ? larger3 : abs_normal4.z;
     const float scale3 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest3) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest3) & 0x7f800000u)
     );
     const unitpack_vec3 scaled3 = { normal4.x * scale3, normal4.y * scale3, normal4.z * scale3 };
     const float sum2 = fabsf(scaled3.x) + fabsf(scaled3.y) + fabsf(scaled3.z);
@@ -479,22 +480,22 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
     const float big = lo5 * 8388608.0f;
     const float ratio_estimate = floorf(lo5 / t41 * 8388608.0f);
     const float step_down3 = ratio_estimate * t41 > big ? -1.0f : 0.0f;
-    const float step3 = (ratio_estimate + 1.0f) * t41 <= big ? 1.0f : step_down3;
-    const float ratio = ratio_estimate + step3;
+    const float nudge3 = (ratio_estimate + 1.0f) * t41 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + nudge3;
     const float step_down4 = ratio * t41 > big ? -1.0f : 0.0f;
-    const float step4 = (ratio + 1.0f) * t41 <= big ? 1.0f : step_down4;
-    const float t42 = ratio + step4;
+    const float nudge4 = (ratio + 1.0f) * t41 <= big ? 1.0f : step_down4;
+    const float t42 = ratio + nudge4;
     const bool far = t42 > 3474675.0f;
     const float t43 = t42 - 8388608.0f;
     const float t44 = t42 + 8388608.0f;
     const float big2 = t43 * 8388608.0f;
     const float ratio_estimate2 = floorf(t43 / t44 * 8388608.0f);
     const float step_down5 = ratio_estimate2 * t44 > big2 ? -1.0f : 0.0f;
-    const float step5 = (ratio_estimate2 + 1.0f) * t44 <= big2 ? 1.0f : step_down5;
-    const float ratio2 = ratio_estimate2 + step5;
+    const float nudge5 = (ratio_estimate2 + 1.0f) * t44 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + nudge5;
     const float step_down6 = ratio2 * t44 > big2 ? -1.0f : 0.0f;
-    const float step6 = (ratio2 + 1.0f) * t44 <= big2 ? 1.0f : step_down6;
-    const float ratio3 = ratio2 + step6;
+    const float nudge6 = (ratio2 + 1.0f) * t44 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + nudge6;
     const float z = far ? ratio3 : t42;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
     const float t45 = nearbyintf(
@@ -528,8 +529,8 @@ static inline uint32_t unitpack_octangle32_encode_v(unitpack_vec3 n, unitpack_ve
         ok2 && fabsf(u) + fabsf(v) >= 256.0f ? angle2 : 0.0f,
         (t.w < 0.0f ? -1.0f : 1.0f) < 0.0f ? 1.0f : 0.0f
     };
-    const uint32_t t51 = ((uint32_t)(codes.x + 2048.0f) & 2047u)
-        | (((uint32_t)(codes.y + 2048.0f) << 11u) & 4192256u);
+    const uint32_t t51 = ((uint32_t)(codes.x + 2048.0f) & 0x7ffu)
+        | (((uint32_t)(codes.y + 2048.0f) << 11u) & 0x3ff800u);
     return t51 | ((uint32_t)codes.z << 22u) | ((uint32_t)codes.w << 31u);
 }
 

@@ -31,6 +31,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- paraboloid_pd: combine a paraboloid normal with a partial-derivative detail normal ----
 // Source: Improved Normal-map Distributions (Insomniac), CombineParaboloidNormalWithPD.
+// Model: src/codecs/azimuthal/paraboloid_pd.rs in unitpack's sources.
 #ifndef UNITPACK_PARABOLOID_PD_H
 #define UNITPACK_PARABOLOID_PD_H
 

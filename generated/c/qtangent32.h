@@ -47,6 +47,7 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.08809° / 0.28436°, tangent 0.09362° / 0.30861°, bitangent
@@ -68,9 +69,9 @@ typedef struct {
 
 // Struct form of unitpack_qtangent32_decode.
 static inline unitpack_qtangent32_frame_v unitpack_qtangent32_decode_v(uint32_t code) {
-    const float t1 = (float)(code & 1023u);
-    const float t2 = (float)((code >> 10u) & 1023u);
-    const float t3 = (float)((code >> 20u) & 511u);
+    const float t1 = (float)(code & 0x3ffu);
+    const float t2 = (float)((code >> 10u) & 0x3ffu);
+    const float t3 = (float)((code >> 20u) & 0x1ffu);
     const unitpack_vec4 fields = {
         t1 > 511.0f ? t1 - 1024.0f : t1,
         t2 > 511.0f ? t2 - 1024.0f : t2,
@@ -137,9 +138,9 @@ static inline void unitpack_qtangent32_decode(uint32_t code, float n[3], float t
 
 // Struct form of unitpack_qtangent32_decode_tbn.
 static inline unitpack_qtangent32_tbn_v unitpack_qtangent32_decode_tbn_v(uint32_t code) {
-    const float t1 = (float)(code & 1023u);
-    const float t2 = (float)((code >> 10u) & 1023u);
-    const float t3 = (float)((code >> 20u) & 511u);
+    const float t1 = (float)(code & 0x3ffu);
+    const float t2 = (float)((code >> 10u) & 0x3ffu);
+    const float t3 = (float)((code >> 20u) & 0x1ffu);
     const unitpack_vec4 fields = {
         t1 > 511.0f ? t1 - 1024.0f : t1,
         t2 > 511.0f ? t2 - 1024.0f : t2,
@@ -230,7 +231,7 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -247,22 +248,22 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
         (uint32_t)floorf(fabsf(w2.z) * 2097152.0f)
     };
     const uint32_t limb1 = t1.x >> 12u;
-    const uint32_t limb0 = t1.x & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = t1.x & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = t1.y >> 12u;
-    const uint32_t limb0_2 = t1.y & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = t1.y & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = t1.z >> 12u;
-    const uint32_t limb0_3 = t1.z & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = t1.z & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t2 = (float)hi4 * 16777216.0f;
     const float t3 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(t3);
@@ -270,8 +271,8 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = t3 - root_h_sq;
@@ -281,20 +282,20 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t5;
     const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t6 = root_k * 4096.0f;
-    const float length = (t6 + root_j) * 4.7683716e-7f;
-    const uint32_t t7 = (uint32_t)(length * 2097152.0f);
+    const float norm = (t6 + root_j) * 4.7683716e-7f;
+    const uint32_t t7 = (uint32_t)(norm * 2097152.0f);
     const uint32_t wide = (hi4 << 24u) + lo4;
-    const uint32_t rest = wide - t7 * t7 + 1073741824u;
-    const uint32_t n2 = 1073741824u + t7 < rest
+    const uint32_t rest = wide - t7 * t7 + 0x40000000u;
+    const uint32_t n2 = 0x40000000u + t7 < rest
         ? t7 + 1u
-        : (rest < 1073741824u - t7 + 1u ? t7 - 1u : t7);
-    const uint32_t rest2 = wide - n2 * n2 + 1073741824u;
-    const uint32_t n3 = 1073741824u + n2 < rest2
+        : (rest < 0x40000000u - t7 + 1u ? t7 - 1u : t7);
+    const uint32_t rest2 = wide - n2 * n2 + 0x40000000u;
+    const uint32_t n3 = 0x40000000u + n2 < rest2
         ? n2 + 1u
-        : (rest2 < 1073741824u - n2 + 1u ? n2 - 1u : n2);
+        : (rest2 < 0x40000000u - n2 + 1u ? n2 - 1u : n2);
     const float nf = (float)n3;
     const uint32_t k0 = (uint32_t)nearbyintf((float)t1.x / nf * 16777216.0f);
     const uint32_t r = (t1.x << 24u) - k0 * n3;
@@ -304,9 +305,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n = n3 << 1u;
     const uint32_t t11 = t10 >> 12u;
     const float t12 = (float)t11 * 4096.0f;
-    const uint32_t q0 = (uint32_t)floorf((t12 + (float)(t10 & 4095u)) / (nf * 2.0f));
+    const uint32_t q0 = (uint32_t)floorf((t12 + (float)(t10 & 0xfffu)) / (nf * 2.0f));
     const uint32_t rest3 = t10 - q0 * two_n;
-    const bool negative = !(rest3 < 2147483648u);
+    const bool negative = !(rest3 < 0x80000000u);
     const uint32_t k0_2 = (uint32_t)nearbyintf((float)t1.y / nf * 16777216.0f);
     const uint32_t r2 = (t1.y << 24u) - k0_2 * n3;
     const uint32_t t13 = r2 << 1u;
@@ -315,9 +316,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n2 = n3 << 1u;
     const uint32_t t16 = t15 >> 12u;
     const float t17 = (float)t16 * 4096.0f;
-    const uint32_t q0_2 = (uint32_t)floorf((t17 + (float)(t15 & 4095u)) / (nf * 2.0f));
+    const uint32_t q0_2 = (uint32_t)floorf((t17 + (float)(t15 & 0xfffu)) / (nf * 2.0f));
     const uint32_t rest4 = t15 - q0_2 * two_n2;
-    const bool negative2 = !(rest4 < 2147483648u);
+    const bool negative2 = !(rest4 < 0x80000000u);
     const uint32_t k0_3 = (uint32_t)nearbyintf((float)t1.z / nf * 16777216.0f);
     const uint32_t r3 = (t1.z << 24u) - k0_3 * n3;
     const uint32_t t18 = r3 << 1u;
@@ -326,9 +327,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n3 = n3 << 1u;
     const uint32_t t21 = t20 >> 12u;
     const float t22 = (float)t21 * 4096.0f;
-    const uint32_t q0_3 = (uint32_t)floorf((t22 + (float)(t20 & 4095u)) / (nf * 2.0f));
+    const uint32_t q0_3 = (uint32_t)floorf((t22 + (float)(t20 & 0xfffu)) / (nf * 2.0f));
     const uint32_t rest5 = t20 - q0_3 * two_n3;
-    const bool negative3 = !(rest5 < 2147483648u);
+    const bool negative3 = !(rest5 < 0x80000000u);
     const unitpack_bvec3 t23 = {
         !(rest3 < two_n) && !negative,
         !(rest4 < two_n2) && !negative2,
@@ -336,9 +337,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     };
     const unitpack_vec3 t24 = { (float)t11 * 4096.0f, (float)t16 * 4096.0f, (float)t21 * 4096.0f };
     const unitpack_vec3 t25 = {
-        t24.x + (float)((t8 + n3 + t9) & 4095u),
-        t24.y + (float)((t13 + n3 + t14) & 4095u),
-        t24.z + (float)((t18 + n3 + t19) & 4095u)
+        t24.x + (float)((t8 + n3 + t9) & 0xfffu),
+        t24.y + (float)((t13 + n3 + t14) & 0xfffu),
+        t24.z + (float)((t18 + n3 + t19) & 0xfffu)
     };
     const unitpack_uvec3 t26 = {
         (uint32_t)floorf(t25.x / (nf * 2.0f)),
@@ -355,9 +356,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     };
     const unitpack_uvec3 t28 = { t27.x - 8u, t27.y - 8u, t27.z - 8u };
     const unitpack_vec3 t29 = {
-        (float)(16777216u < t28.x ? 16777216u : t28.x) * 5.9604645e-8f,
-        (float)(16777216u < t28.y ? 16777216u : t28.y) * 5.9604645e-8f,
-        (float)(16777216u < t28.z ? 16777216u : t28.z) * 5.9604645e-8f
+        (float)(0x1000000u < t28.x ? 0x1000000u : t28.x) * 5.9604645e-8f,
+        (float)(0x1000000u < t28.y ? 0x1000000u : t28.y) * 5.9604645e-8f,
+        (float)(0x1000000u < t28.z ? 0x1000000u : t28.z) * 5.9604645e-8f
     };
     const unitpack_vec3 n4 = {
         (w2.x < 0.0f ? -t29.x : t29.x) * 16777216.0f,
@@ -373,7 +374,7 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     const float scale2 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest2) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest2) & 0x7f800000u)
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
@@ -410,7 +411,7 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     const float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
     const float scale3 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest3) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest3) & 0x7f800000u)
     );
     const unitpack_vec3 scaled3 = { normal3.x * scale3, normal3.y * scale3, normal3.z * scale3 };
     const float sum3 = fabsf(scaled3.x) + fabsf(scaled3.y) + fabsf(scaled3.z);
@@ -428,22 +429,22 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
         (uint32_t)floorf(fabsf(w5.z) * 2097152.0f)
     };
     const uint32_t limb1_4 = t35.x >> 12u;
-    const uint32_t limb0_4 = t35.x & 4095u;
-    const uint32_t cross4 = limb1_4 * limb0_4;
-    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_4 = t35.x & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = t35.y >> 12u;
-    const uint32_t limb0_5 = t35.y & 4095u;
-    const uint32_t cross5 = limb1_5 * limb0_5;
-    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    const uint32_t limb0_5 = t35.y & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t limb1_6 = t35.z >> 12u;
-    const uint32_t limb0_6 = t35.z & 4095u;
-    const uint32_t cross6 = limb1_6 * limb0_6;
-    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_6 = t35.z & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
-    const uint32_t lo8 = lo7 & 16777215u;
+    const uint32_t lo8 = lo7 & 0xffffffu;
     const float t36 = (float)hi8 * 16777216.0f;
     const float t37 = (t36 + (float)lo8) * 2.2737368e-13f;
     const float root_estimate2 = sqrtf(t37);
@@ -451,8 +452,8 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float root_h0_2 = root_k0_2 * 0.001953125f;
     const float root_h1_2 = root_h0_2 + 0.001953125f;
     const float step_down3 = root_h0_2 * root_h0_2 > t37 ? -1.0f : 0.0f;
-    const float step3 = root_h1_2 * root_h1_2 <= t37 ? 1.0f : step_down3;
-    const float root_k2 = root_k0_2 + step3;
+    const float nudge3 = root_h1_2 * root_h1_2 <= t37 ? 1.0f : step_down3;
+    const float root_k2 = root_k0_2 + nudge3;
     const float root_h2 = root_k2 * 0.001953125f;
     const float root_h2_sq = root_h2 * root_h2;
     const float root_rest2 = t37 - root_h2_sq;
@@ -462,20 +463,20 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float t39 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
     const float root_m1_2 = root_h2 + t39;
     const float step_down4 = root_m0_2 * root_m0_2 > t37 ? -1.0f : 0.0f;
-    const float step4 = root_m1_2 * root_m1_2 <= t37 ? 1.0f : step_down4;
-    const float root_j2 = root_j0_2 + step4;
+    const float nudge4 = root_m1_2 * root_m1_2 <= t37 ? 1.0f : step_down4;
+    const float root_j2 = root_j0_2 + nudge4;
     const float t40 = root_k2 * 4096.0f;
-    const float length2 = (t40 + root_j2) * 4.7683716e-7f;
-    const uint32_t t41 = (uint32_t)(length2 * 2097152.0f);
+    const float norm2 = (t40 + root_j2) * 4.7683716e-7f;
+    const uint32_t t41 = (uint32_t)(norm2 * 2097152.0f);
     const uint32_t wide2 = (hi8 << 24u) + lo8;
-    const uint32_t rest6 = wide2 - t41 * t41 + 1073741824u;
-    const uint32_t n5 = 1073741824u + t41 < rest6
+    const uint32_t rest6 = wide2 - t41 * t41 + 0x40000000u;
+    const uint32_t n5 = 0x40000000u + t41 < rest6
         ? t41 + 1u
-        : (rest6 < 1073741824u - t41 + 1u ? t41 - 1u : t41);
-    const uint32_t rest7 = wide2 - n5 * n5 + 1073741824u;
-    const uint32_t n6 = 1073741824u + n5 < rest7
+        : (rest6 < 0x40000000u - t41 + 1u ? t41 - 1u : t41);
+    const uint32_t rest7 = wide2 - n5 * n5 + 0x40000000u;
+    const uint32_t n6 = 0x40000000u + n5 < rest7
         ? n5 + 1u
-        : (rest7 < 1073741824u - n5 + 1u ? n5 - 1u : n5);
+        : (rest7 < 0x40000000u - n5 + 1u ? n5 - 1u : n5);
     const float nf2 = (float)n6;
     const uint32_t k0_4 = (uint32_t)nearbyintf((float)t35.x / nf2 * 16777216.0f);
     const uint32_t r4 = (t35.x << 24u) - k0_4 * n6;
@@ -485,9 +486,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n4 = n6 << 1u;
     const uint32_t t45 = t44 >> 12u;
     const float t46 = (float)t45 * 4096.0f;
-    const uint32_t q0_4 = (uint32_t)floorf((t46 + (float)(t44 & 4095u)) / (nf2 * 2.0f));
+    const uint32_t q0_4 = (uint32_t)floorf((t46 + (float)(t44 & 0xfffu)) / (nf2 * 2.0f));
     const uint32_t rest8 = t44 - q0_4 * two_n4;
-    const bool negative4 = !(rest8 < 2147483648u);
+    const bool negative4 = !(rest8 < 0x80000000u);
     const uint32_t k0_5 = (uint32_t)nearbyintf((float)t35.y / nf2 * 16777216.0f);
     const uint32_t r5 = (t35.y << 24u) - k0_5 * n6;
     const uint32_t t47 = r5 << 1u;
@@ -496,9 +497,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n5 = n6 << 1u;
     const uint32_t t50 = t49 >> 12u;
     const float t51 = (float)t50 * 4096.0f;
-    const uint32_t q0_5 = (uint32_t)floorf((t51 + (float)(t49 & 4095u)) / (nf2 * 2.0f));
+    const uint32_t q0_5 = (uint32_t)floorf((t51 + (float)(t49 & 0xfffu)) / (nf2 * 2.0f));
     const uint32_t rest9 = t49 - q0_5 * two_n5;
-    const bool negative5 = !(rest9 < 2147483648u);
+    const bool negative5 = !(rest9 < 0x80000000u);
     const uint32_t k0_6 = (uint32_t)nearbyintf((float)t35.z / nf2 * 16777216.0f);
     const uint32_t r6 = (t35.z << 24u) - k0_6 * n6;
     const uint32_t t52 = r6 << 1u;
@@ -507,9 +508,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const uint32_t two_n6 = n6 << 1u;
     const uint32_t t55 = t54 >> 12u;
     const float t56 = (float)t55 * 4096.0f;
-    const uint32_t q0_6 = (uint32_t)floorf((t56 + (float)(t54 & 4095u)) / (nf2 * 2.0f));
+    const uint32_t q0_6 = (uint32_t)floorf((t56 + (float)(t54 & 0xfffu)) / (nf2 * 2.0f));
     const uint32_t rest10 = t54 - q0_6 * two_n6;
-    const bool negative6 = !(rest10 < 2147483648u);
+    const bool negative6 = !(rest10 < 0x80000000u);
     const unitpack_bvec3 t57 = {
         !(rest8 < two_n4) && !negative4,
         !(rest9 < two_n5) && !negative5,
@@ -517,9 +518,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     };
     const unitpack_vec3 t58 = { (float)t45 * 4096.0f, (float)t50 * 4096.0f, (float)t55 * 4096.0f };
     const unitpack_vec3 t59 = {
-        t58.x + (float)((t42 + n6 + t43) & 4095u),
-        t58.y + (float)((t47 + n6 + t48) & 4095u),
-        t58.z + (float)((t52 + n6 + t53) & 4095u)
+        t58.x + (float)((t42 + n6 + t43) & 0xfffu),
+        t58.y + (float)((t47 + n6 + t48) & 0xfffu),
+        t58.z + (float)((t52 + n6 + t53) & 0xfffu)
     };
     const unitpack_uvec3 t60 = {
         (uint32_t)floorf(t59.x / (nf2 * 2.0f)),
@@ -536,9 +537,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     };
     const unitpack_uvec3 t62 = { t61.x - 8u, t61.y - 8u, t61.z - 8u };
     const unitpack_vec3 t63 = {
-        (float)(16777216u < t62.x ? 16777216u : t62.x) * 5.9604645e-8f,
-        (float)(16777216u < t62.y ? 16777216u : t62.y) * 5.9604645e-8f,
-        (float)(16777216u < t62.z ? 16777216u : t62.z) * 5.9604645e-8f
+        (float)(0x1000000u < t62.x ? 0x1000000u : t62.x) * 5.9604645e-8f,
+        (float)(0x1000000u < t62.y ? 0x1000000u : t62.y) * 5.9604645e-8f,
+        (float)(0x1000000u < t62.z ? 0x1000000u : t62.z) * 5.9604645e-8f
     };
     const unitpack_vec3 tu = {
         (w5.x < 0.0f ? -t63.x : t63.x) * 16777216.0f,
@@ -595,8 +596,8 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float upper = estimate + 0.5f;
     const float lower = estimate - 0.5f;
     const float step_down5 = estimate > 0.0f && big2 < lower * lower * s ? -1.0f : 0.0f;
-    const float step5 = big2 >= upper * upper * s ? 1.0f : step_down5;
-    const float t78 = estimate + step5;
+    const float nudge5 = big2 >= upper * upper * s ? 1.0f : step_down5;
+    const float t78 = estimate + nudge5;
     const float t79 = t78 >= 0.0f ? t78 : 0.0f;
     const float t80 = t79 <= 511.0f ? t79 : 511.0f;
     const float big3 = fabsf(t75 * 511.0f);
@@ -605,8 +606,8 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float upper2 = estimate2 + 0.5f;
     const float lower2 = estimate2 - 0.5f;
     const float step_down6 = estimate2 > 0.0f && big2_2 < lower2 * lower2 * s ? -1.0f : 0.0f;
-    const float step6 = big2_2 >= upper2 * upper2 * s ? 1.0f : step_down6;
-    const float t81 = estimate2 + step6;
+    const float nudge6 = big2_2 >= upper2 * upper2 * s ? 1.0f : step_down6;
+    const float t81 = estimate2 + nudge6;
     const float t82 = t81 >= 0.0f ? t81 : 0.0f;
     const float t83 = t82 <= 511.0f ? t82 : 511.0f;
     const float big4 = fabsf(t76 * 255.0f);
@@ -615,8 +616,8 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
     const float upper3 = estimate3 + 0.5f;
     const float lower3 = estimate3 - 0.5f;
     const float step_down7 = estimate3 > 0.0f && big2_3 < lower3 * lower3 * s ? -1.0f : 0.0f;
-    const float step7 = big2_3 >= upper3 * upper3 * s ? 1.0f : step_down7;
-    const float t84 = estimate3 + step7;
+    const float nudge7 = big2_3 >= upper3 * upper3 * s ? 1.0f : step_down7;
+    const float t84 = estimate3 + nudge7;
     const float t85 = t84 >= 0.0f ? t84 : 0.0f;
     const float t86 = t85 <= 255.0f ? t85 : 255.0f;
     const unitpack_vec4 codes = {
@@ -625,9 +626,9 @@ static inline uint32_t unitpack_qtangent32_encode_v(unitpack_vec3 n, unitpack_ve
         t76 < 0.0f ? -t86 : t86,
         index3 + t77
     };
-    const uint32_t t87 = ((uint32_t)(codes.x + 1024.0f) & 1023u)
-        | (((uint32_t)(codes.y + 1024.0f) << 10u) & 1047552u);
-    return t87 | (((uint32_t)(codes.z + 512.0f) << 20u) & 535822336u) | ((uint32_t)codes.w << 29u);
+    const uint32_t t87 = ((uint32_t)(codes.x + 1024.0f) & 0x3ffu)
+        | (((uint32_t)(codes.y + 1024.0f) << 10u) & 0xffc00u);
+    return t87 | (((uint32_t)(codes.z + 512.0f) << 20u) & 0x1ff00000u) | ((uint32_t)codes.w << 29u);
 }
 
 // unitpack_qtangent32_encode: fast encoder.

@@ -47,6 +47,7 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent
@@ -111,9 +112,9 @@ static inline void unitpack_qtangent64_decode_float(const float q[4], float n[3]
 // Struct form of unitpack_qtangent64_decode.
 static inline unitpack_qtangent64_frame_v unitpack_qtangent64_decode_v(unitpack_uvec2 code) {
     const unitpack_vec4 t1 = {
-        (float)(code.x & 65535u),
+        (float)(code.x & 0xffffu),
         (float)(code.x >> 16u),
-        (float)(code.y & 65535u),
+        (float)(code.y & 0xffffu),
         (float)(code.y >> 16u)
     };
     const unitpack_vec4 t2 = {
@@ -171,9 +172,9 @@ static inline void unitpack_qtangent64_decode(uint64_t code, float n[3], float t
 // Struct form of unitpack_qtangent64_decode_tbn.
 static inline unitpack_qtangent64_tbn_v unitpack_qtangent64_decode_tbn_v(unitpack_uvec2 code) {
     const unitpack_vec4 t1 = {
-        (float)(code.x & 65535u),
+        (float)(code.x & 0xffffu),
         (float)(code.x >> 16u),
-        (float)(code.y & 65535u),
+        (float)(code.y & 0xffffu),
         (float)(code.y >> 16u)
     };
     const unitpack_vec4 t2 = {
@@ -364,9 +365,9 @@ static inline unitpack_vec4 unitpack_qtangent64_encode_float_v(unitpack_vec3 n, 
         t56 ? t57.w : t55.w
     };
     const unitpack_vec4 q_sq = { q.x * q.x, q.y * q.y, q.z * q.z, q.w * q.w };
-    const float length = sqrtf(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
-    const bool t58 = !(length == 0.0f);
-    const float t59 = t58 ? length : 1.0f;
+    const float norm = sqrtf(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
+    const bool t58 = !(norm == 0.0f);
+    const float t59 = t58 ? norm : 1.0f;
     const unitpack_vec4 t60 = {
         t58 ? q.x / t59 : 0.0f,
         t58 ? q.y / t59 : 0.0f,
@@ -470,8 +471,8 @@ static inline unitpack_uvec2 unitpack_qtangent64_encode_v(unitpack_vec3 n, unitp
         (uint32_t)(codes.w + 65536.0f) << 16u
     };
     const unitpack_uvec2 t5 = {
-        ((uint32_t)(codes.x + 65536.0f) & 65535u) | t4.x,
-        ((uint32_t)(codes.z + 65536.0f) & 65535u) | t4.y
+        ((uint32_t)(codes.x + 65536.0f) & 0xffffu) | t4.x,
+        ((uint32_t)(codes.z + 65536.0f) & 0xffffu) | t4.y
     };
     return t5;
 }

@@ -31,6 +31,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms, 24 bits ----
 // Source: Cigolle et al. 2014 §3.3, Listings 4–5.
+// Model: src/codecs/component/snorm12x2.rs in unitpack's sources.
 #ifndef UNITPACK_SNORM12X2_H
 #define UNITPACK_SNORM12X2_H
 

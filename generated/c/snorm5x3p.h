@@ -40,6 +40,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // ---- snorm5x3p: components as snorm×3, 15 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan
 //   2010).
+// Model: src/codecs/component/snorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.64863°, sample max 2.62770°; MSE of the components of
 //   n - n' 5.699e-5, PSNR 42.44 dB.
 #ifndef UNITPACK_SNORM5X3P_H
@@ -114,34 +115,34 @@ static inline void unitpack_snorm5x3p_decode(uint32_t code, float out[3]) {
 //   fixed-point direction is strictly nearer the input's than the best so far.
 
 static inline unitpack_vec2 unitpack_snorm5x3p_bfn_step_v(
-    unitpack_vec2 a0,
-    float a1,
-    unitpack_vec3 a2,
-    unitpack_vec3 a3
+    unitpack_vec2 best,
+    float t,
+    unitpack_vec3 r,
+    unitpack_vec3 aim
 ) {
     const unitpack_vec3 c = {
-        nearbyintf(a2.x * 4.7683716e-7f * a1),
-        nearbyintf(a2.y * 4.7683716e-7f * a1),
-        nearbyintf(a2.z * 4.7683716e-7f * a1)
+        nearbyintf(r.x * 4.7683716e-7f * t),
+        nearbyintf(r.y * 4.7683716e-7f * t),
+        nearbyintf(r.z * 4.7683716e-7f * t)
     };
     const unitpack_uvec3 c_u = { (uint32_t)c.x, (uint32_t)c.y, (uint32_t)c.z };
     const uint32_t limb1 = c_u.x >> 12u;
-    const uint32_t limb0 = c_u.x & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = c_u.x & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = c_u.y >> 12u;
-    const uint32_t limb0_2 = c_u.y & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = c_u.y & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = c_u.z >> 12u;
-    const uint32_t limb0_3 = c_u.z & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = c_u.z & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t1 = (float)hi4 * 16777216.0f;
     const float t2 = t1 + (float)lo4;
     const uint32_t half_exponent = ((unitpack_bits_of(t2) >> 23u) + 1u) >> 1u;
@@ -153,8 +154,8 @@ static inline unitpack_vec2 unitpack_snorm5x3p_bfn_step_v(
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > t3 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= t3 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = t3 - root_h_sq;
@@ -164,12 +165,12 @@ static inline unitpack_vec2 unitpack_snorm5x3p_bfn_step_v(
     const float t5 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t5;
     const float step_down2 = root_m0 * root_m0 > t3 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= t3 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t6 = root_k * 4096.0f;
     const float root = (t6 + root_j) * 4.7683716e-7f;
     const float t7 = root * root_up;
-    const float l = t7 >= a1 ? t7 : a1;
+    const float l = t7 >= t ? t7 : t;
     const unitpack_vec3 t8 = {
         floorf(c.x / l * 2097152.0f),
         floorf(c.y / l * 2097152.0f),
@@ -182,33 +183,33 @@ static inline unitpack_vec2 unitpack_snorm5x3p_bfn_step_v(
         (t8.z + 1.0f) * l <= t9.z ? 1.0f : (t8.z * l > t9.z ? -1.0f : 0.0f)
     };
     const unitpack_vec3 d = { t8.x + t10.x, t8.y + t10.y, t8.z + t10.z };
-    const unitpack_vec3 offset = { d.x - fabsf(a3.x), d.y - fabsf(a3.y), d.z - fabsf(a3.z) };
+    const unitpack_vec3 offset = { d.x - fabsf(aim.x), d.y - fabsf(aim.y), d.z - fabsf(aim.z) };
     const unitpack_uvec3 offset_u = {
         (uint32_t)fabsf(offset.x),
         (uint32_t)fabsf(offset.y),
         (uint32_t)fabsf(offset.z)
     };
     const uint32_t limb1_4 = offset_u.x >> 12u;
-    const uint32_t limb0_4 = offset_u.x & 4095u;
-    const uint32_t cross4 = limb1_4 * limb0_4;
-    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_4 = offset_u.x & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = offset_u.y >> 12u;
-    const uint32_t limb0_5 = offset_u.y & 4095u;
-    const uint32_t cross5 = limb1_5 * limb0_5;
-    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    const uint32_t limb0_5 = offset_u.y & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t limb1_6 = offset_u.z >> 12u;
-    const uint32_t limb0_6 = offset_u.z & 4095u;
-    const uint32_t cross6 = limb1_6 * limb0_6;
-    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_6 = offset_u.z & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
-    const uint32_t lo8 = lo7 & 16777215u;
+    const uint32_t lo8 = lo7 & 0xffffffu;
     const float t11 = (float)hi8 * 16777216.0f;
     const float dist = t11 + (float)lo8;
-    const bool t12 = dist < a0.y;
-    const unitpack_vec2 t13 = { t12 ? a1 : a0.x, t12 ? dist : a0.y };
+    const bool t12 = dist < best.y;
+    const unitpack_vec2 t13 = { t12 ? t : best.x, t12 ? dist : best.y };
     return t13;
 }
 
@@ -226,7 +227,7 @@ static inline unitpack_vec3 unitpack_snorm5x3p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -244,22 +245,22 @@ static inline unitpack_vec3 unitpack_snorm5x3p_encode_codes_v(unitpack_vec3 v) {
     const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t1 = (float)hi4 * 16777216.0f;
     const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
@@ -267,8 +268,8 @@ static inline unitpack_vec3 unitpack_snorm5x3p_encode_codes_v(unitpack_vec3 v) {
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -278,8 +279,8 @@ static inline unitpack_vec3 unitpack_snorm5x3p_encode_codes_v(unitpack_vec3 v) {
     const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t3;
     const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t4 = root_k * 4096.0f;
     const float root = (t4 + root_j) * 4.7683716e-7f;
     const unitpack_vec3 t5 = {
@@ -369,7 +370,7 @@ static inline uint32_t unitpack_snorm5x3p_encode_v(unitpack_vec3 v) {
     const unitpack_vec3 encode_codes = unitpack_snorm5x3p_encode_codes_v(v);
     const uint32_t t1 = ((uint32_t)(encode_codes.x + 32.0f) & 31u)
         | (((uint32_t)(encode_codes.y + 32.0f) << 5u) & 992u);
-    return t1 | (((uint32_t)(encode_codes.z + 32.0f) << 10u) & 31744u);
+    return t1 | (((uint32_t)(encode_codes.z + 32.0f) << 10u) & 0x7c00u);
 }
 
 // unitpack_snorm5x3p_encode: precise encoder.

@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- spherical24p: spherical coordinates (θ, φ), snorm×2, 24 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 §2.
+// Model: src/codecs/angular/spherical.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02215°, sample max 0.04885°; MSE of the components of
 //   n - n' 6.014e-8, PSNR 72.21 dB.
 #ifndef UNITPACK_SPHERICAL24P_H
@@ -46,10 +47,10 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
 
-static inline unitpack_vec2 unitpack_spherical24p_sincos_pi_v(float a0) {
-    const float abs_a0 = fabsf(a0);
-    const bool back = abs_a0 > 0.5f;
-    const float b = back ? 1.0f - abs_a0 : abs_a0;
+static inline unitpack_vec2 unitpack_spherical24p_sincos_pi_v(float theta) {
+    const float abs_theta = fabsf(theta);
+    const bool back = abs_theta > 0.5f;
+    const float b = back ? 1.0f - abs_theta : abs_theta;
     const bool swap = b > 0.25f;
     const float c = swap ? 0.5f - b : b;
     const float c2 = c * c;
@@ -65,7 +66,7 @@ static inline unitpack_vec2 unitpack_spherical24p_sincos_pi_v(float a0) {
     const float t9 = (t8 + (-4.934802f)) * c2;
     const float co = t9 + 1.0f;
     const unitpack_vec2 t10 = { swap ? co : s, swap ? s : co };
-    const unitpack_vec2 t11 = { a0 < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
+    const unitpack_vec2 t11 = { theta < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
     return t11;
 }
 
@@ -94,7 +95,7 @@ static inline void unitpack_spherical24p_decode_float(const float params[2], flo
 
 // Struct form of unitpack_spherical24p_decode.
 static inline unitpack_vec3 unitpack_spherical24p_decode_v(uint32_t code) {
-    const unitpack_vec2 t1 = { (float)(code & 4095u), (float)((code >> 12u) & 4095u) };
+    const unitpack_vec2 t1 = { (float)(code & 0xfffu), (float)((code >> 12u) & 0xfffu) };
     const unitpack_vec2 t2 = {
         (t1.x > 2047.0f ? t1.x - 4096.0f : t1.x) * 0.0004885198f,
         (t1.y > 2047.0f ? t1.y - 4096.0f : t1.y) * 0.0004885198f
@@ -130,7 +131,7 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -146,17 +147,17 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float fixed_f2 = floorf(fabsf(w2.y) * 2097152.0f);
     const uint32_t fixed3 = (uint32_t)fixed_f2;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t hi3 = hi2 + (lo2 >> 24u);
-    const uint32_t lo3 = lo2 & 16777215u;
+    const uint32_t lo3 = lo2 & 0xffffffu;
     const float t1 = (float)hi3 * 16777216.0f;
     const float rho2 = (t1 + (float)lo3) * 2.2737368e-13f;
     const bool t2 = rho2 > 0.0f;
@@ -170,8 +171,8 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > t4 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= t4 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= t4 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = t4 - root_h_sq;
@@ -181,8 +182,8 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float t6 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t6;
     const float step_down2 = root_m0 * root_m0 > t4 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= t4 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= t4 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t7 = root_k * 4096.0f;
     const float root = (t7 + root_j) * 4.7683716e-7f;
     const float rho = t2 ? root * root_up : 0.0f;
@@ -195,22 +196,22 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float big = lo4 * 8388608.0f;
     const float ratio_estimate = floorf(lo4 / t8 * 8388608.0f);
     const float step_down3 = ratio_estimate * t8 > big ? -1.0f : 0.0f;
-    const float step3 = (ratio_estimate + 1.0f) * t8 <= big ? 1.0f : step_down3;
-    const float ratio = ratio_estimate + step3;
+    const float nudge3 = (ratio_estimate + 1.0f) * t8 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + nudge3;
     const float step_down4 = ratio * t8 > big ? -1.0f : 0.0f;
-    const float step4 = (ratio + 1.0f) * t8 <= big ? 1.0f : step_down4;
-    const float t = ratio + step4;
+    const float nudge4 = (ratio + 1.0f) * t8 <= big ? 1.0f : step_down4;
+    const float t = ratio + nudge4;
     const bool far = t > 3474675.0f;
     const float t9 = t - 8388608.0f;
     const float t10 = t + 8388608.0f;
     const float big2 = t9 * 8388608.0f;
     const float ratio_estimate2 = floorf(t9 / t10 * 8388608.0f);
     const float step_down5 = ratio_estimate2 * t10 > big2 ? -1.0f : 0.0f;
-    const float step5 = (ratio_estimate2 + 1.0f) * t10 <= big2 ? 1.0f : step_down5;
-    const float ratio2 = ratio_estimate2 + step5;
+    const float nudge5 = (ratio_estimate2 + 1.0f) * t10 <= big2 ? 1.0f : step_down5;
+    const float ratio2 = ratio_estimate2 + nudge5;
     const float step_down6 = ratio2 * t10 > big2 ? -1.0f : 0.0f;
-    const float step6 = (ratio2 + 1.0f) * t10 <= big2 ? 1.0f : step_down6;
-    const float ratio3 = ratio2 + step6;
+    const float nudge6 = (ratio2 + 1.0f) * t10 <= big2 ? 1.0f : step_down6;
+    const float ratio3 = ratio2 + nudge6;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
     const float t11 = nearbyintf(
@@ -245,22 +246,22 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float big3 = lo5 * 8388608.0f;
     const float ratio_estimate3 = floorf(lo5 / t16 * 8388608.0f);
     const float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0f : 0.0f;
-    const float step7 = (ratio_estimate3 + 1.0f) * t16 <= big3 ? 1.0f : step_down7;
-    const float ratio4 = ratio_estimate3 + step7;
+    const float nudge7 = (ratio_estimate3 + 1.0f) * t16 <= big3 ? 1.0f : step_down7;
+    const float ratio4 = ratio_estimate3 + nudge7;
     const float step_down8 = ratio4 * t16 > big3 ? -1.0f : 0.0f;
-    const float step8 = (ratio4 + 1.0f) * t16 <= big3 ? 1.0f : step_down8;
-    const float t17 = ratio4 + step8;
+    const float nudge8 = (ratio4 + 1.0f) * t16 <= big3 ? 1.0f : step_down8;
+    const float t17 = ratio4 + nudge8;
     const bool far2 = t17 > 3474675.0f;
     const float t18 = t17 - 8388608.0f;
     const float t19 = t17 + 8388608.0f;
     const float big4 = t18 * 8388608.0f;
     const float ratio_estimate4 = floorf(t18 / t19 * 8388608.0f);
     const float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0f : 0.0f;
-    const float step9 = (ratio_estimate4 + 1.0f) * t19 <= big4 ? 1.0f : step_down9;
-    const float ratio5 = ratio_estimate4 + step9;
+    const float nudge9 = (ratio_estimate4 + 1.0f) * t19 <= big4 ? 1.0f : step_down9;
+    const float ratio5 = ratio_estimate4 + nudge9;
     const float step_down10 = ratio5 * t19 > big4 ? -1.0f : 0.0f;
-    const float step10 = (ratio5 + 1.0f) * t19 <= big4 ? 1.0f : step_down10;
-    const float ratio6 = ratio5 + step10;
+    const float nudge10 = (ratio5 + 1.0f) * t19 <= big4 ? 1.0f : step_down10;
+    const float ratio6 = ratio5 + nudge10;
     const float z3 = far2 ? ratio6 : t17;
     const float z2_2 = nearbyintf(z3 * z3 * 1.1920929e-7f);
     const float t20 = nearbyintf(
@@ -296,22 +297,22 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float fixed_f5 = floorf(fabsf(w2.z) * 2097152.0f);
     const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi6 = 0u + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo6 = 0u + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi6 = 0u + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo6 = 0u + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t limb1_4 = fixed5 >> 12u;
-    const uint32_t limb0_4 = fixed5 & 4095u;
-    const uint32_t cross4 = limb1_4 * limb0_4;
-    const uint32_t hi7 = hi6 + limb1_4 * limb1_4 + (cross4 >> 11u);
-    const uint32_t lo7 = lo6 + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_4 = fixed5 & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi7 = hi6 + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo7 = lo6 + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = fixed6 >> 12u;
-    const uint32_t limb0_5 = fixed6 & 4095u;
-    const uint32_t cross5 = limb1_5 * limb0_5;
-    const uint32_t hi8 = hi7 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    const uint32_t lo8 = lo7 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    const uint32_t limb0_5 = fixed6 & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi8 = hi7 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo8 = lo7 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t hi9 = hi8 + (lo8 >> 24u);
-    const uint32_t lo9 = lo8 & 16777215u;
+    const uint32_t lo9 = lo8 & 0xffffffu;
     const float t26 = (float)hi9 * 16777216.0f;
     const float len2 = (t26 + (float)lo9) * 2.2737368e-13f;
     const float root_estimate2 = sqrtf(len2);
@@ -319,8 +320,8 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float root_h0_2 = root_k0_2 * 0.001953125f;
     const float root_h1_2 = root_h0_2 + 0.001953125f;
     const float step_down11 = root_h0_2 * root_h0_2 > len2 ? -1.0f : 0.0f;
-    const float step11 = root_h1_2 * root_h1_2 <= len2 ? 1.0f : step_down11;
-    const float root_k2 = root_k0_2 + step11;
+    const float nudge11 = root_h1_2 * root_h1_2 <= len2 ? 1.0f : step_down11;
+    const float root_k2 = root_k0_2 + nudge11;
     const float root_h2 = root_k2 * 0.001953125f;
     const float root_h2_sq = root_h2 * root_h2;
     const float root_rest2 = len2 - root_h2_sq;
@@ -330,8 +331,8 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
     const float t28 = (root_j0_2 + 1.0f) * 4.7683716e-7f;
     const float root_m1_2 = root_h2 + t28;
     const float step_down12 = root_m0_2 * root_m0_2 > len2 ? -1.0f : 0.0f;
-    const float step12 = root_m1_2 * root_m1_2 <= len2 ? 1.0f : step_down12;
-    const float root_j2 = root_j0_2 + step12;
+    const float nudge12 = root_m1_2 * root_m1_2 <= len2 ? 1.0f : step_down12;
+    const float root_j2 = root_j0_2 + nudge12;
     const float t29 = root_k2 * 4096.0f;
     const float root2 = (t29 + root_j2) * 4.7683716e-7f;
     const unitpack_vec3 t30 = {
@@ -431,22 +432,22 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
         (uint32_t)fabsf(offset.z)
     };
     const uint32_t limb1_6 = offset_u.x >> 12u;
-    const uint32_t limb0_6 = offset_u.x & 4095u;
-    const uint32_t cross6 = limb1_6 * limb0_6;
-    const uint32_t hi10 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
-    const uint32_t lo10 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_6 = offset_u.x & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi10 = 0u + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo10 = 0u + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t limb1_7 = offset_u.y >> 12u;
-    const uint32_t limb0_7 = offset_u.y & 4095u;
-    const uint32_t cross7 = limb1_7 * limb0_7;
-    const uint32_t hi11 = hi10 + limb1_7 * limb1_7 + (cross7 >> 11u);
-    const uint32_t lo11 = lo10 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    const uint32_t limb0_7 = offset_u.y & 0xfffu;
+    const uint32_t limb_cross7 = limb1_7 * limb0_7;
+    const uint32_t hi11 = hi10 + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    const uint32_t lo11 = lo10 + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     const uint32_t limb1_8 = offset_u.z >> 12u;
-    const uint32_t limb0_8 = offset_u.z & 4095u;
-    const uint32_t cross8 = limb1_8 * limb0_8;
-    const uint32_t hi12 = hi11 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    const uint32_t lo12 = lo11 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    const uint32_t limb0_8 = offset_u.z & 0xfffu;
+    const uint32_t limb_cross8 = limb1_8 * limb0_8;
+    const uint32_t hi12 = hi11 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    const uint32_t lo12 = lo11 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     const uint32_t hi13 = hi12 + (lo12 >> 24u);
-    const uint32_t lo13 = lo12 & 16777215u;
+    const uint32_t lo13 = lo12 & 0xffffffu;
     const float t55 = (float)hi13 * 16777216.0f;
     const float dist = t55 + (float)lo13;
     const float s_up = base.x + 1.0f;
@@ -531,22 +532,22 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
         (uint32_t)fabsf(offset2.z)
     };
     const uint32_t limb1_9 = offset_u2.x >> 12u;
-    const uint32_t limb0_9 = offset_u2.x & 4095u;
-    const uint32_t cross9 = limb1_9 * limb0_9;
-    const uint32_t hi14 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
-    const uint32_t lo14 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    const uint32_t limb0_9 = offset_u2.x & 0xfffu;
+    const uint32_t limb_cross9 = limb1_9 * limb0_9;
+    const uint32_t hi14 = 0u + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    const uint32_t lo14 = 0u + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     const uint32_t limb1_10 = offset_u2.y >> 12u;
-    const uint32_t limb0_10 = offset_u2.y & 4095u;
-    const uint32_t cross10 = limb1_10 * limb0_10;
-    const uint32_t hi15 = hi14 + limb1_10 * limb1_10 + (cross10 >> 11u);
-    const uint32_t lo15 = lo14 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    const uint32_t limb0_10 = offset_u2.y & 0xfffu;
+    const uint32_t limb_cross10 = limb1_10 * limb0_10;
+    const uint32_t hi15 = hi14 + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    const uint32_t lo15 = lo14 + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     const uint32_t limb1_11 = offset_u2.z >> 12u;
-    const uint32_t limb0_11 = offset_u2.z & 4095u;
-    const uint32_t cross11 = limb1_11 * limb0_11;
-    const uint32_t hi16 = hi15 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    const uint32_t lo16 = lo15 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    const uint32_t limb0_11 = offset_u2.z & 0xfffu;
+    const uint32_t limb_cross11 = limb1_11 * limb0_11;
+    const uint32_t hi16 = hi15 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    const uint32_t lo16 = lo15 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     const uint32_t hi17 = hi16 + (lo16 >> 24u);
-    const uint32_t lo17 = lo16 & 16777215u;
+    const uint32_t lo17 = lo16 & 0xffffffu;
     const float t77 = (float)hi17 * 16777216.0f;
     const float dist2 = t77 + (float)lo17;
     const bool t78 = s_up <= 2047.0f && base.y <= 2047.0f && dist2 < dist;
@@ -632,22 +633,22 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
         (uint32_t)fabsf(offset3.z)
     };
     const uint32_t limb1_12 = offset_u3.x >> 12u;
-    const uint32_t limb0_12 = offset_u3.x & 4095u;
-    const uint32_t cross12 = limb1_12 * limb0_12;
-    const uint32_t hi18 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
-    const uint32_t lo18 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    const uint32_t limb0_12 = offset_u3.x & 0xfffu;
+    const uint32_t limb_cross12 = limb1_12 * limb0_12;
+    const uint32_t hi18 = 0u + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    const uint32_t lo18 = 0u + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     const uint32_t limb1_13 = offset_u3.y >> 12u;
-    const uint32_t limb0_13 = offset_u3.y & 4095u;
-    const uint32_t cross13 = limb1_13 * limb0_13;
-    const uint32_t hi19 = hi18 + limb1_13 * limb1_13 + (cross13 >> 11u);
-    const uint32_t lo19 = lo18 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    const uint32_t limb0_13 = offset_u3.y & 0xfffu;
+    const uint32_t limb_cross13 = limb1_13 * limb0_13;
+    const uint32_t hi19 = hi18 + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    const uint32_t lo19 = lo18 + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     const uint32_t limb1_14 = offset_u3.z >> 12u;
-    const uint32_t limb0_14 = offset_u3.z & 4095u;
-    const uint32_t cross14 = limb1_14 * limb0_14;
-    const uint32_t hi20 = hi19 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    const uint32_t lo20 = lo19 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    const uint32_t limb0_14 = offset_u3.z & 0xfffu;
+    const uint32_t limb_cross14 = limb1_14 * limb0_14;
+    const uint32_t hi20 = hi19 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    const uint32_t lo20 = lo19 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     const uint32_t hi21 = hi20 + (lo20 >> 24u);
-    const uint32_t lo21 = lo20 & 16777215u;
+    const uint32_t lo21 = lo20 & 0xffffffu;
     const float t100 = (float)hi21 * 16777216.0f;
     const float dist3 = t100 + (float)lo21;
     const bool t101 = base.x <= 2047.0f && t_up <= 2047.0f && dist3 < best_d;
@@ -733,22 +734,22 @@ static inline unitpack_vec2 unitpack_spherical24p_encode_codes_v(unitpack_vec3 v
         (uint32_t)fabsf(offset4.z)
     };
     const uint32_t limb1_15 = offset_u4.x >> 12u;
-    const uint32_t limb0_15 = offset_u4.x & 4095u;
-    const uint32_t cross15 = limb1_15 * limb0_15;
-    const uint32_t hi22 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
-    const uint32_t lo22 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    const uint32_t limb0_15 = offset_u4.x & 0xfffu;
+    const uint32_t limb_cross15 = limb1_15 * limb0_15;
+    const uint32_t hi22 = 0u + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    const uint32_t lo22 = 0u + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     const uint32_t limb1_16 = offset_u4.y >> 12u;
-    const uint32_t limb0_16 = offset_u4.y & 4095u;
-    const uint32_t cross16 = limb1_16 * limb0_16;
-    const uint32_t hi23 = hi22 + limb1_16 * limb1_16 + (cross16 >> 11u);
-    const uint32_t lo23 = lo22 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
+    const uint32_t limb0_16 = offset_u4.y & 0xfffu;
+    const uint32_t limb_cross16 = limb1_16 * limb0_16;
+    const uint32_t hi23 = hi22 + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    const uint32_t lo23 = lo22 + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     const uint32_t limb1_17 = offset_u4.z >> 12u;
-    const uint32_t limb0_17 = offset_u4.z & 4095u;
-    const uint32_t cross17 = limb1_17 * limb0_17;
-    const uint32_t hi24 = hi23 + limb1_17 * limb1_17 + (cross17 >> 11u);
-    const uint32_t lo24 = lo23 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
+    const uint32_t limb0_17 = offset_u4.z & 0xfffu;
+    const uint32_t limb_cross17 = limb1_17 * limb0_17;
+    const uint32_t hi24 = hi23 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    const uint32_t lo24 = lo23 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     const uint32_t hi25 = hi24 + (lo24 >> 24u);
-    const uint32_t lo25 = lo24 & 16777215u;
+    const uint32_t lo25 = lo24 & 0xffffffu;
     const float t123 = (float)hi25 * 16777216.0f;
     const float dist4 = t123 + (float)lo25;
     const bool t124 = s_up <= 2047.0f && t_up <= 2047.0f && dist4 < best_d2;
@@ -779,8 +780,8 @@ static inline void unitpack_spherical24p_encode_float(const float v[3], float ou
 // Struct form of unitpack_spherical24p_encode.
 static inline uint32_t unitpack_spherical24p_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 encode_codes = unitpack_spherical24p_encode_codes_v(v);
-    return ((uint32_t)(encode_codes.x + 4096.0f) & 4095u)
-        | (((uint32_t)(encode_codes.y + 4096.0f) << 12u) & 16773120u);
+    return ((uint32_t)(encode_codes.x + 4096.0f) & 0xfffu)
+        | (((uint32_t)(encode_codes.y + 4096.0f) << 12u) & 0xfff000u);
 }
 
 // unitpack_spherical24p_encode: precise encoder.

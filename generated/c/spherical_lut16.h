@@ -40,6 +40,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // ---- spherical_lut16: azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16
 //   bits, sphere ----
 // Source: Pranckevičius method 3a.
+// Model: src/codecs/table/spherical_lut.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.83458°, sample max 6.74335°; MSE of the components of
 //   n - n' 9.521e-5, PSNR 40.21 dB.
 #ifndef UNITPACK_SPHERICAL_LUT16_H
@@ -95,7 +96,7 @@ static inline unitpack_uvec2 unitpack_spherical_lut16_atan_texel_v(unitpack_vec3
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -106,17 +107,17 @@ static inline unitpack_uvec2 unitpack_spherical_lut16_atan_texel_v(unitpack_vec3
         fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
+    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 0xfffff000u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
     const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
-    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
+    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 0xfffff000u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
     const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 0xfffff000u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
     const float t3 = (split_hi3 + split_hi3) * split_lo3;
@@ -221,7 +222,7 @@ static inline uint32_t unitpack_spherical_lut16_encode_v(unitpack_vec3 v, float 
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -232,17 +233,17 @@ static inline uint32_t unitpack_spherical_lut16_encode_v(unitpack_vec3 v, float 
         fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
+    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 0xfffff000u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
     const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
-    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
+    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 0xfffff000u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
     const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 0xfffff000u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
     const float t3 = (split_hi3 + split_hi3) * split_lo3;

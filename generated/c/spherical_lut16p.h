@@ -40,6 +40,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // ---- spherical_lut16p: azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16
 //   bits, sphere, precise encoder ----
 // Source: Pranckevičius method 3a.
+// Model: src/codecs/table/spherical_lut.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.37352°, sample max 6.65113°; MSE of the components of
 //   n - n' 2.196e-5, PSNR 46.58 dB.
 #ifndef UNITPACK_SPHERICAL_LUT16P_H
@@ -95,7 +96,7 @@ static inline unitpack_uvec2 unitpack_spherical_lut16p_atan_texel_v(unitpack_vec
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -106,17 +107,17 @@ static inline unitpack_uvec2 unitpack_spherical_lut16p_atan_texel_v(unitpack_vec
         fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
+    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 0xfffff000u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
     const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
-    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
+    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 0xfffff000u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
     const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 0xfffff000u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
     const float t3 = (split_hi3 + split_hi3) * split_lo3;
@@ -182,7 +183,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_fast_v(unitpack_vec3 v, 
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -193,17 +194,17 @@ static inline uint32_t unitpack_spherical_lut16p_encode_fast_v(unitpack_vec3 v, 
         fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const unitpack_vec3 w2 = { ok ? w.x : 0.0f, ok ? w.y : 0.0f, ok ? w.z : 2.0f };
-    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 4294963200u);
+    const float split_hi = unitpack_float_of(unitpack_bits_of(w2.x) & 0xfffff000u);
     const float split_lo = w2.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
     const float t1 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
-    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 4294963200u);
+    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w2.y) & 0xfffff000u);
     const float split_lo2 = w2.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
     const float t2 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 4294963200u);
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(w2.z) & 0xfffff000u);
     const float split_lo3 = w2.z - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
     const float t3 = (split_hi3 + split_hi3) * split_lo3;
@@ -257,7 +258,7 @@ static inline unitpack_uvec2 unitpack_spherical_lut16p_precise_texel_v(uint32_t 
     const uint32_t t4 = (t3 < 1u ? 1u : t3) - 1u;
     const unitpack_uvec2 t5 = {
         ((code & 255u) + (t1 - t2 * 3u) + 255u) & 255u,
-        t4 < 256u ? t4 : 255u
+        t4 < 0x100u ? t4 : 255u
     };
     return t5;
 }
@@ -295,7 +296,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -316,7 +317,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         w2.y < 0.0f ? 0u - t1.y : t1.y,
         w2.z < 0.0f ? 0u - t1.z : t1.z
     };
-    const uint32_t t2 = code & 65535u;
+    const uint32_t t2 = code & 0xffffu;
     const unitpack_vec3 t3 = {
         s4.x >= 0.0f ? s4.x : 0.0f,
         s4.y >= 0.0f ? s4.y : 0.0f,
@@ -328,39 +329,39 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t3.z <= 1.0f ? t3.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t5 = { t4.x + t4.x - 255u, t4.y + t4.y - 255u, t4.z + t4.z - 255u };
-    const unitpack_uvec3 cross = {
+    const unitpack_uvec3 axd = {
         afix.y * t5.z - afix.z * t5.y,
         afix.z * t5.x - afix.x * t5.z,
         afix.x * t5.y - afix.y * t5.x
     };
     const unitpack_uvec3 t6 = {
-        cross.x < 2147483648u ? cross.x : 0u - cross.x,
-        cross.y < 2147483648u ? cross.y : 0u - cross.y,
-        cross.z < 2147483648u ? cross.z : 0u - cross.z
+        axd.x < 0x80000000u ? axd.x : 0u - axd.x,
+        axd.y < 0x80000000u ? axd.y : 0u - axd.y,
+        axd.z < 0x80000000u ? axd.z : 0u - axd.z
     };
     const uint32_t limb1 = t6.x >> 12u;
-    const uint32_t limb0 = t6.x & 4095u;
-    const uint32_t cross2 = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross2 >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0 = t6.x & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = t6.y >> 12u;
-    const uint32_t limb0_2 = t6.y & 4095u;
-    const uint32_t cross3 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross3 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_2 = t6.y & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = t6.z >> 12u;
-    const uint32_t limb0_3 = t6.z & 4095u;
-    const uint32_t cross4 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross4 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_3 = t6.z & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t7 = (float)hi4 * 16777216.0f;
     const float e = t7 + (float)lo4;
     const float n = (float)(t5.x * t5.x + t5.y * t5.y + t5.z * t5.z);
     const uint32_t t8 = ((code >> 8u) & 255u) + 0u;
     const uint32_t t9 = (t8 < 1u ? 1u : t8) - 1u;
-    const uint32_t t10 = (((code & 255u) + 0u + 255u) & 255u) | ((t9 < 256u ? t9 : 255u) << 8u);
+    const uint32_t t10 = (((code & 255u) + 0u + 255u) & 255u) | ((t9 < 0x100u ? t9 : 255u) << 8u);
     const unitpack_vec3 t11 = {
         s0.x >= 0.0f ? s0.x : 0.0f,
         s0.y >= 0.0f ? s0.y : 0.0f,
@@ -372,33 +373,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t11.z <= 1.0f ? t11.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t13 = { t12.x + t12.x - 255u, t12.y + t12.y - 255u, t12.z + t12.z - 255u };
-    const unitpack_uvec3 cross5 = {
+    const unitpack_uvec3 axd2 = {
         afix.y * t13.z - afix.z * t13.y,
         afix.z * t13.x - afix.x * t13.z,
         afix.x * t13.y - afix.y * t13.x
     };
     const unitpack_uvec3 t14 = {
-        cross5.x < 2147483648u ? cross5.x : 0u - cross5.x,
-        cross5.y < 2147483648u ? cross5.y : 0u - cross5.y,
-        cross5.z < 2147483648u ? cross5.z : 0u - cross5.z
+        axd2.x < 0x80000000u ? axd2.x : 0u - axd2.x,
+        axd2.y < 0x80000000u ? axd2.y : 0u - axd2.y,
+        axd2.z < 0x80000000u ? axd2.z : 0u - axd2.z
     };
     const uint32_t limb1_4 = t14.x >> 12u;
-    const uint32_t limb0_4 = t14.x & 4095u;
-    const uint32_t cross6 = limb1_4 * limb0_4;
-    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
-    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_4 = t14.x & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = t14.y >> 12u;
-    const uint32_t limb0_5 = t14.y & 4095u;
-    const uint32_t cross7 = limb1_5 * limb0_5;
-    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
-    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
+    const uint32_t limb0_5 = t14.y & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t limb1_6 = t14.z >> 12u;
-    const uint32_t limb0_6 = t14.z & 4095u;
-    const uint32_t cross8 = limb1_6 * limb0_6;
-    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
-    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
+    const uint32_t limb0_6 = t14.z & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
-    const uint32_t lo8 = lo7 & 16777215u;
+    const uint32_t lo8 = lo7 & 0xffffffu;
     const float t15 = (float)hi8 * 16777216.0f;
     const float e2 = t15 + (float)lo8;
     const float n2 = (float)(t13.x * t13.x + t13.y * t13.y + t13.z * t13.z);
@@ -408,7 +409,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const float best_n = t16 ? n2 : n;
     const uint32_t t17 = ((code >> 8u) & 255u) + 0u;
     const uint32_t t18 = (t17 < 1u ? 1u : t17) - 1u;
-    const uint32_t t19 = (((code & 255u) + 1u + 255u) & 255u) | ((t18 < 256u ? t18 : 255u) << 8u);
+    const uint32_t t19 = (((code & 255u) + 1u + 255u) & 255u) | ((t18 < 0x100u ? t18 : 255u) << 8u);
     const unitpack_vec3 t20 = {
         s1.x >= 0.0f ? s1.x : 0.0f,
         s1.y >= 0.0f ? s1.y : 0.0f,
@@ -420,33 +421,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t20.z <= 1.0f ? t20.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t22 = { t21.x + t21.x - 255u, t21.y + t21.y - 255u, t21.z + t21.z - 255u };
-    const unitpack_uvec3 cross9 = {
+    const unitpack_uvec3 axd3 = {
         afix.y * t22.z - afix.z * t22.y,
         afix.z * t22.x - afix.x * t22.z,
         afix.x * t22.y - afix.y * t22.x
     };
     const unitpack_uvec3 t23 = {
-        cross9.x < 2147483648u ? cross9.x : 0u - cross9.x,
-        cross9.y < 2147483648u ? cross9.y : 0u - cross9.y,
-        cross9.z < 2147483648u ? cross9.z : 0u - cross9.z
+        axd3.x < 0x80000000u ? axd3.x : 0u - axd3.x,
+        axd3.y < 0x80000000u ? axd3.y : 0u - axd3.y,
+        axd3.z < 0x80000000u ? axd3.z : 0u - axd3.z
     };
     const uint32_t limb1_7 = t23.x >> 12u;
-    const uint32_t limb0_7 = t23.x & 4095u;
-    const uint32_t cross10 = limb1_7 * limb0_7;
-    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
-    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
+    const uint32_t limb0_7 = t23.x & 0xfffu;
+    const uint32_t limb_cross7 = limb1_7 * limb0_7;
+    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     const uint32_t limb1_8 = t23.y >> 12u;
-    const uint32_t limb0_8 = t23.y & 4095u;
-    const uint32_t cross11 = limb1_8 * limb0_8;
-    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
-    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
+    const uint32_t limb0_8 = t23.y & 0xfffu;
+    const uint32_t limb_cross8 = limb1_8 * limb0_8;
+    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     const uint32_t limb1_9 = t23.z >> 12u;
-    const uint32_t limb0_9 = t23.z & 4095u;
-    const uint32_t cross12 = limb1_9 * limb0_9;
-    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
-    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
+    const uint32_t limb0_9 = t23.z & 0xfffu;
+    const uint32_t limb_cross9 = limb1_9 * limb0_9;
+    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
-    const uint32_t lo12 = lo11 & 16777215u;
+    const uint32_t lo12 = lo11 & 0xffffffu;
     const float t24 = (float)hi12 * 16777216.0f;
     const float e3 = t24 + (float)lo12;
     const float n3 = (float)(t22.x * t22.x + t22.y * t22.y + t22.z * t22.z);
@@ -456,7 +457,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const float best_n2 = t25 ? n3 : best_n;
     const uint32_t t26 = ((code >> 8u) & 255u) + 0u;
     const uint32_t t27 = (t26 < 1u ? 1u : t26) - 1u;
-    const uint32_t t28 = (((code & 255u) + 2u + 255u) & 255u) | ((t27 < 256u ? t27 : 255u) << 8u);
+    const uint32_t t28 = (((code & 255u) + 2u + 255u) & 255u) | ((t27 < 0x100u ? t27 : 255u) << 8u);
     const unitpack_vec3 t29 = {
         s2.x >= 0.0f ? s2.x : 0.0f,
         s2.y >= 0.0f ? s2.y : 0.0f,
@@ -468,33 +469,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t29.z <= 1.0f ? t29.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t31 = { t30.x + t30.x - 255u, t30.y + t30.y - 255u, t30.z + t30.z - 255u };
-    const unitpack_uvec3 cross13 = {
+    const unitpack_uvec3 axd4 = {
         afix.y * t31.z - afix.z * t31.y,
         afix.z * t31.x - afix.x * t31.z,
         afix.x * t31.y - afix.y * t31.x
     };
     const unitpack_uvec3 t32 = {
-        cross13.x < 2147483648u ? cross13.x : 0u - cross13.x,
-        cross13.y < 2147483648u ? cross13.y : 0u - cross13.y,
-        cross13.z < 2147483648u ? cross13.z : 0u - cross13.z
+        axd4.x < 0x80000000u ? axd4.x : 0u - axd4.x,
+        axd4.y < 0x80000000u ? axd4.y : 0u - axd4.y,
+        axd4.z < 0x80000000u ? axd4.z : 0u - axd4.z
     };
     const uint32_t limb1_10 = t32.x >> 12u;
-    const uint32_t limb0_10 = t32.x & 4095u;
-    const uint32_t cross14 = limb1_10 * limb0_10;
-    const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
-    const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
+    const uint32_t limb0_10 = t32.x & 0xfffu;
+    const uint32_t limb_cross10 = limb1_10 * limb0_10;
+    const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     const uint32_t limb1_11 = t32.y >> 12u;
-    const uint32_t limb0_11 = t32.y & 4095u;
-    const uint32_t cross15 = limb1_11 * limb0_11;
-    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
-    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
+    const uint32_t limb0_11 = t32.y & 0xfffu;
+    const uint32_t limb_cross11 = limb1_11 * limb0_11;
+    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     const uint32_t limb1_12 = t32.z >> 12u;
-    const uint32_t limb0_12 = t32.z & 4095u;
-    const uint32_t cross16 = limb1_12 * limb0_12;
-    const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
-    const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
+    const uint32_t limb0_12 = t32.z & 0xfffu;
+    const uint32_t limb_cross12 = limb1_12 * limb0_12;
+    const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
-    const uint32_t lo16 = lo15 & 16777215u;
+    const uint32_t lo16 = lo15 & 0xffffffu;
     const float t33 = (float)hi16 * 16777216.0f;
     const float e4 = t33 + (float)lo16;
     const float n4 = (float)(t31.x * t31.x + t31.y * t31.y + t31.z * t31.z);
@@ -504,7 +505,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const float best_n3 = t34 ? n4 : best_n2;
     const uint32_t t35 = ((code >> 8u) & 255u) + 1u;
     const uint32_t t36 = (t35 < 1u ? 1u : t35) - 1u;
-    const uint32_t t37 = (((code & 255u) + 0u + 255u) & 255u) | ((t36 < 256u ? t36 : 255u) << 8u);
+    const uint32_t t37 = (((code & 255u) + 0u + 255u) & 255u) | ((t36 < 0x100u ? t36 : 255u) << 8u);
     const unitpack_vec3 t38 = {
         s3.x >= 0.0f ? s3.x : 0.0f,
         s3.y >= 0.0f ? s3.y : 0.0f,
@@ -516,33 +517,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t38.z <= 1.0f ? t38.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t40 = { t39.x + t39.x - 255u, t39.y + t39.y - 255u, t39.z + t39.z - 255u };
-    const unitpack_uvec3 cross17 = {
+    const unitpack_uvec3 axd5 = {
         afix.y * t40.z - afix.z * t40.y,
         afix.z * t40.x - afix.x * t40.z,
         afix.x * t40.y - afix.y * t40.x
     };
     const unitpack_uvec3 t41 = {
-        cross17.x < 2147483648u ? cross17.x : 0u - cross17.x,
-        cross17.y < 2147483648u ? cross17.y : 0u - cross17.y,
-        cross17.z < 2147483648u ? cross17.z : 0u - cross17.z
+        axd5.x < 0x80000000u ? axd5.x : 0u - axd5.x,
+        axd5.y < 0x80000000u ? axd5.y : 0u - axd5.y,
+        axd5.z < 0x80000000u ? axd5.z : 0u - axd5.z
     };
     const uint32_t limb1_13 = t41.x >> 12u;
-    const uint32_t limb0_13 = t41.x & 4095u;
-    const uint32_t cross18 = limb1_13 * limb0_13;
-    const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
-    const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
+    const uint32_t limb0_13 = t41.x & 0xfffu;
+    const uint32_t limb_cross13 = limb1_13 * limb0_13;
+    const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     const uint32_t limb1_14 = t41.y >> 12u;
-    const uint32_t limb0_14 = t41.y & 4095u;
-    const uint32_t cross19 = limb1_14 * limb0_14;
-    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
-    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
+    const uint32_t limb0_14 = t41.y & 0xfffu;
+    const uint32_t limb_cross14 = limb1_14 * limb0_14;
+    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     const uint32_t limb1_15 = t41.z >> 12u;
-    const uint32_t limb0_15 = t41.z & 4095u;
-    const uint32_t cross20 = limb1_15 * limb0_15;
-    const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
-    const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
+    const uint32_t limb0_15 = t41.z & 0xfffu;
+    const uint32_t limb_cross15 = limb1_15 * limb0_15;
+    const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
-    const uint32_t lo20 = lo19 & 16777215u;
+    const uint32_t lo20 = lo19 & 0xffffffu;
     const float t42 = (float)hi20 * 16777216.0f;
     const float e5 = t42 + (float)lo20;
     const float n5 = (float)(t40.x * t40.x + t40.y * t40.y + t40.z * t40.z);
@@ -552,7 +553,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const float best_n4 = t43 ? n5 : best_n3;
     const uint32_t t44 = ((code >> 8u) & 255u) + 1u;
     const uint32_t t45 = (t44 < 1u ? 1u : t44) - 1u;
-    const uint32_t t46 = (((code & 255u) + 2u + 255u) & 255u) | ((t45 < 256u ? t45 : 255u) << 8u);
+    const uint32_t t46 = (((code & 255u) + 2u + 255u) & 255u) | ((t45 < 0x100u ? t45 : 255u) << 8u);
     const unitpack_vec3 t47 = {
         s5.x >= 0.0f ? s5.x : 0.0f,
         s5.y >= 0.0f ? s5.y : 0.0f,
@@ -564,33 +565,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t47.z <= 1.0f ? t47.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t49 = { t48.x + t48.x - 255u, t48.y + t48.y - 255u, t48.z + t48.z - 255u };
-    const unitpack_uvec3 cross21 = {
+    const unitpack_uvec3 axd6 = {
         afix.y * t49.z - afix.z * t49.y,
         afix.z * t49.x - afix.x * t49.z,
         afix.x * t49.y - afix.y * t49.x
     };
     const unitpack_uvec3 t50 = {
-        cross21.x < 2147483648u ? cross21.x : 0u - cross21.x,
-        cross21.y < 2147483648u ? cross21.y : 0u - cross21.y,
-        cross21.z < 2147483648u ? cross21.z : 0u - cross21.z
+        axd6.x < 0x80000000u ? axd6.x : 0u - axd6.x,
+        axd6.y < 0x80000000u ? axd6.y : 0u - axd6.y,
+        axd6.z < 0x80000000u ? axd6.z : 0u - axd6.z
     };
     const uint32_t limb1_16 = t50.x >> 12u;
-    const uint32_t limb0_16 = t50.x & 4095u;
-    const uint32_t cross22 = limb1_16 * limb0_16;
-    const uint32_t hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
-    const uint32_t lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
+    const uint32_t limb0_16 = t50.x & 0xfffu;
+    const uint32_t limb_cross16 = limb1_16 * limb0_16;
+    const uint32_t hi21 = 0u + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    const uint32_t lo21 = 0u + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     const uint32_t limb1_17 = t50.y >> 12u;
-    const uint32_t limb0_17 = t50.y & 4095u;
-    const uint32_t cross23 = limb1_17 * limb0_17;
-    const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
-    const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
+    const uint32_t limb0_17 = t50.y & 0xfffu;
+    const uint32_t limb_cross17 = limb1_17 * limb0_17;
+    const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     const uint32_t limb1_18 = t50.z >> 12u;
-    const uint32_t limb0_18 = t50.z & 4095u;
-    const uint32_t cross24 = limb1_18 * limb0_18;
-    const uint32_t hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
-    const uint32_t lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
+    const uint32_t limb0_18 = t50.z & 0xfffu;
+    const uint32_t limb_cross18 = limb1_18 * limb0_18;
+    const uint32_t hi23 = hi22 + limb1_18 * limb1_18 + (limb_cross18 >> 11u);
+    const uint32_t lo23 = lo22 + limb0_18 * limb0_18 + ((limb_cross18 << 13u) & 0xffffffu);
     const uint32_t hi24 = hi23 + (lo23 >> 24u);
-    const uint32_t lo24 = lo23 & 16777215u;
+    const uint32_t lo24 = lo23 & 0xffffffu;
     const float t51 = (float)hi24 * 16777216.0f;
     const float e6 = t51 + (float)lo24;
     const float n6 = (float)(t49.x * t49.x + t49.y * t49.y + t49.z * t49.z);
@@ -600,7 +601,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const float best_n5 = t52 ? n6 : best_n4;
     const uint32_t t53 = ((code >> 8u) & 255u) + 2u;
     const uint32_t t54 = (t53 < 1u ? 1u : t53) - 1u;
-    const uint32_t t55 = (((code & 255u) + 0u + 255u) & 255u) | ((t54 < 256u ? t54 : 255u) << 8u);
+    const uint32_t t55 = (((code & 255u) + 0u + 255u) & 255u) | ((t54 < 0x100u ? t54 : 255u) << 8u);
     const unitpack_vec3 t56 = {
         s6.x >= 0.0f ? s6.x : 0.0f,
         s6.y >= 0.0f ? s6.y : 0.0f,
@@ -612,33 +613,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t56.z <= 1.0f ? t56.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t58 = { t57.x + t57.x - 255u, t57.y + t57.y - 255u, t57.z + t57.z - 255u };
-    const unitpack_uvec3 cross25 = {
+    const unitpack_uvec3 axd7 = {
         afix.y * t58.z - afix.z * t58.y,
         afix.z * t58.x - afix.x * t58.z,
         afix.x * t58.y - afix.y * t58.x
     };
     const unitpack_uvec3 t59 = {
-        cross25.x < 2147483648u ? cross25.x : 0u - cross25.x,
-        cross25.y < 2147483648u ? cross25.y : 0u - cross25.y,
-        cross25.z < 2147483648u ? cross25.z : 0u - cross25.z
+        axd7.x < 0x80000000u ? axd7.x : 0u - axd7.x,
+        axd7.y < 0x80000000u ? axd7.y : 0u - axd7.y,
+        axd7.z < 0x80000000u ? axd7.z : 0u - axd7.z
     };
     const uint32_t limb1_19 = t59.x >> 12u;
-    const uint32_t limb0_19 = t59.x & 4095u;
-    const uint32_t cross26 = limb1_19 * limb0_19;
-    const uint32_t hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
-    const uint32_t lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
+    const uint32_t limb0_19 = t59.x & 0xfffu;
+    const uint32_t limb_cross19 = limb1_19 * limb0_19;
+    const uint32_t hi25 = 0u + limb1_19 * limb1_19 + (limb_cross19 >> 11u);
+    const uint32_t lo25 = 0u + limb0_19 * limb0_19 + ((limb_cross19 << 13u) & 0xffffffu);
     const uint32_t limb1_20 = t59.y >> 12u;
-    const uint32_t limb0_20 = t59.y & 4095u;
-    const uint32_t cross27 = limb1_20 * limb0_20;
-    const uint32_t hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
-    const uint32_t lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
+    const uint32_t limb0_20 = t59.y & 0xfffu;
+    const uint32_t limb_cross20 = limb1_20 * limb0_20;
+    const uint32_t hi26 = hi25 + limb1_20 * limb1_20 + (limb_cross20 >> 11u);
+    const uint32_t lo26 = lo25 + limb0_20 * limb0_20 + ((limb_cross20 << 13u) & 0xffffffu);
     const uint32_t limb1_21 = t59.z >> 12u;
-    const uint32_t limb0_21 = t59.z & 4095u;
-    const uint32_t cross28 = limb1_21 * limb0_21;
-    const uint32_t hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
-    const uint32_t lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
+    const uint32_t limb0_21 = t59.z & 0xfffu;
+    const uint32_t limb_cross21 = limb1_21 * limb0_21;
+    const uint32_t hi27 = hi26 + limb1_21 * limb1_21 + (limb_cross21 >> 11u);
+    const uint32_t lo27 = lo26 + limb0_21 * limb0_21 + ((limb_cross21 << 13u) & 0xffffffu);
     const uint32_t hi28 = hi27 + (lo27 >> 24u);
-    const uint32_t lo28 = lo27 & 16777215u;
+    const uint32_t lo28 = lo27 & 0xffffffu;
     const float t60 = (float)hi28 * 16777216.0f;
     const float e7 = t60 + (float)lo28;
     const float n7 = (float)(t58.x * t58.x + t58.y * t58.y + t58.z * t58.z);
@@ -648,7 +649,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const float best_n6 = t61 ? n7 : best_n5;
     const uint32_t t62 = ((code >> 8u) & 255u) + 2u;
     const uint32_t t63 = (t62 < 1u ? 1u : t62) - 1u;
-    const uint32_t t64 = (((code & 255u) + 1u + 255u) & 255u) | ((t63 < 256u ? t63 : 255u) << 8u);
+    const uint32_t t64 = (((code & 255u) + 1u + 255u) & 255u) | ((t63 < 0x100u ? t63 : 255u) << 8u);
     const unitpack_vec3 t65 = {
         s7.x >= 0.0f ? s7.x : 0.0f,
         s7.y >= 0.0f ? s7.y : 0.0f,
@@ -660,33 +661,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t65.z <= 1.0f ? t65.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t67 = { t66.x + t66.x - 255u, t66.y + t66.y - 255u, t66.z + t66.z - 255u };
-    const unitpack_uvec3 cross29 = {
+    const unitpack_uvec3 axd8 = {
         afix.y * t67.z - afix.z * t67.y,
         afix.z * t67.x - afix.x * t67.z,
         afix.x * t67.y - afix.y * t67.x
     };
     const unitpack_uvec3 t68 = {
-        cross29.x < 2147483648u ? cross29.x : 0u - cross29.x,
-        cross29.y < 2147483648u ? cross29.y : 0u - cross29.y,
-        cross29.z < 2147483648u ? cross29.z : 0u - cross29.z
+        axd8.x < 0x80000000u ? axd8.x : 0u - axd8.x,
+        axd8.y < 0x80000000u ? axd8.y : 0u - axd8.y,
+        axd8.z < 0x80000000u ? axd8.z : 0u - axd8.z
     };
     const uint32_t limb1_22 = t68.x >> 12u;
-    const uint32_t limb0_22 = t68.x & 4095u;
-    const uint32_t cross30 = limb1_22 * limb0_22;
-    const uint32_t hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
-    const uint32_t lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
+    const uint32_t limb0_22 = t68.x & 0xfffu;
+    const uint32_t limb_cross22 = limb1_22 * limb0_22;
+    const uint32_t hi29 = 0u + limb1_22 * limb1_22 + (limb_cross22 >> 11u);
+    const uint32_t lo29 = 0u + limb0_22 * limb0_22 + ((limb_cross22 << 13u) & 0xffffffu);
     const uint32_t limb1_23 = t68.y >> 12u;
-    const uint32_t limb0_23 = t68.y & 4095u;
-    const uint32_t cross31 = limb1_23 * limb0_23;
-    const uint32_t hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
-    const uint32_t lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
+    const uint32_t limb0_23 = t68.y & 0xfffu;
+    const uint32_t limb_cross23 = limb1_23 * limb0_23;
+    const uint32_t hi30 = hi29 + limb1_23 * limb1_23 + (limb_cross23 >> 11u);
+    const uint32_t lo30 = lo29 + limb0_23 * limb0_23 + ((limb_cross23 << 13u) & 0xffffffu);
     const uint32_t limb1_24 = t68.z >> 12u;
-    const uint32_t limb0_24 = t68.z & 4095u;
-    const uint32_t cross32 = limb1_24 * limb0_24;
-    const uint32_t hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
-    const uint32_t lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
+    const uint32_t limb0_24 = t68.z & 0xfffu;
+    const uint32_t limb_cross24 = limb1_24 * limb0_24;
+    const uint32_t hi31 = hi30 + limb1_24 * limb1_24 + (limb_cross24 >> 11u);
+    const uint32_t lo31 = lo30 + limb0_24 * limb0_24 + ((limb_cross24 << 13u) & 0xffffffu);
     const uint32_t hi32 = hi31 + (lo31 >> 24u);
-    const uint32_t lo32 = lo31 & 16777215u;
+    const uint32_t lo32 = lo31 & 0xffffffu;
     const float t69 = (float)hi32 * 16777216.0f;
     const float e8 = t69 + (float)lo32;
     const float n8 = (float)(t67.x * t67.x + t67.y * t67.y + t67.z * t67.z);
@@ -696,7 +697,7 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
     const float best_n7 = t70 ? n8 : best_n6;
     const uint32_t t71 = ((code >> 8u) & 255u) + 2u;
     const uint32_t t72 = (t71 < 1u ? 1u : t71) - 1u;
-    const uint32_t t73 = (((code & 255u) + 2u + 255u) & 255u) | ((t72 < 256u ? t72 : 255u) << 8u);
+    const uint32_t t73 = (((code & 255u) + 2u + 255u) & 255u) | ((t72 < 0x100u ? t72 : 255u) << 8u);
     const unitpack_vec3 t74 = {
         s8.x >= 0.0f ? s8.x : 0.0f,
         s8.y >= 0.0f ? s8.y : 0.0f,
@@ -708,33 +709,33 @@ static inline uint32_t unitpack_spherical_lut16p_encode_v(
         (uint32_t)nearbyintf((t74.z <= 1.0f ? t74.z : 1.0f) * 255.0f)
     };
     const unitpack_uvec3 t76 = { t75.x + t75.x - 255u, t75.y + t75.y - 255u, t75.z + t75.z - 255u };
-    const unitpack_uvec3 cross33 = {
+    const unitpack_uvec3 axd9 = {
         afix.y * t76.z - afix.z * t76.y,
         afix.z * t76.x - afix.x * t76.z,
         afix.x * t76.y - afix.y * t76.x
     };
     const unitpack_uvec3 t77 = {
-        cross33.x < 2147483648u ? cross33.x : 0u - cross33.x,
-        cross33.y < 2147483648u ? cross33.y : 0u - cross33.y,
-        cross33.z < 2147483648u ? cross33.z : 0u - cross33.z
+        axd9.x < 0x80000000u ? axd9.x : 0u - axd9.x,
+        axd9.y < 0x80000000u ? axd9.y : 0u - axd9.y,
+        axd9.z < 0x80000000u ? axd9.z : 0u - axd9.z
     };
     const uint32_t limb1_25 = t77.x >> 12u;
-    const uint32_t limb0_25 = t77.x & 4095u;
-    const uint32_t cross34 = limb1_25 * limb0_25;
-    const uint32_t hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
-    const uint32_t lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
+    const uint32_t limb0_25 = t77.x & 0xfffu;
+    const uint32_t limb_cross25 = limb1_25 * limb0_25;
+    const uint32_t hi33 = 0u + limb1_25 * limb1_25 + (limb_cross25 >> 11u);
+    const uint32_t lo33 = 0u + limb0_25 * limb0_25 + ((limb_cross25 << 13u) & 0xffffffu);
     const uint32_t limb1_26 = t77.y >> 12u;
-    const uint32_t limb0_26 = t77.y & 4095u;
-    const uint32_t cross35 = limb1_26 * limb0_26;
-    const uint32_t hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
-    const uint32_t lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
+    const uint32_t limb0_26 = t77.y & 0xfffu;
+    const uint32_t limb_cross26 = limb1_26 * limb0_26;
+    const uint32_t hi34 = hi33 + limb1_26 * limb1_26 + (limb_cross26 >> 11u);
+    const uint32_t lo34 = lo33 + limb0_26 * limb0_26 + ((limb_cross26 << 13u) & 0xffffffu);
     const uint32_t limb1_27 = t77.z >> 12u;
-    const uint32_t limb0_27 = t77.z & 4095u;
-    const uint32_t cross36 = limb1_27 * limb0_27;
-    const uint32_t hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
-    const uint32_t lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
+    const uint32_t limb0_27 = t77.z & 0xfffu;
+    const uint32_t limb_cross27 = limb1_27 * limb0_27;
+    const uint32_t hi35 = hi34 + limb1_27 * limb1_27 + (limb_cross27 >> 11u);
+    const uint32_t lo35 = lo34 + limb0_27 * limb0_27 + ((limb_cross27 << 13u) & 0xffffffu);
     const uint32_t hi36 = hi35 + (lo35 >> 24u);
-    const uint32_t lo36 = lo35 & 16777215u;
+    const uint32_t lo36 = lo35 & 0xffffffu;
     const float t78 = (float)hi36 * 16777216.0f;
     const float e9 = t78 + (float)lo36;
     const float n9 = (float)(t76.x * t76.x + t76.y * t76.y + t76.z * t76.z);

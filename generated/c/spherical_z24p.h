@@ -40,6 +40,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // ---- spherical_z24p: azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2, 24 bits, sphere,
 //   precise encoder ----
 // Source: Pranckevičius method 3.
+// Model: src/codecs/angular/spherical_z.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02306°, sample max 0.89168°; MSE of the components of
 //   n - n' 8.460e-8, PSNR 70.73 dB.
 #ifndef UNITPACK_SPHERICAL_Z24P_H
@@ -47,10 +48,10 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
 
-static inline unitpack_vec2 unitpack_spherical_z24p_sincos_pi_v(float a0) {
-    const float abs_a0 = fabsf(a0);
-    const bool back = abs_a0 > 0.5f;
-    const float b = back ? 1.0f - abs_a0 : abs_a0;
+static inline unitpack_vec2 unitpack_spherical_z24p_sincos_pi_v(float x) {
+    const float abs_x = fabsf(x);
+    const bool back = abs_x > 0.5f;
+    const float b = back ? 1.0f - abs_x : abs_x;
     const bool swap = b > 0.25f;
     const float c = swap ? 0.5f - b : b;
     const float c2 = c * c;
@@ -66,7 +67,7 @@ static inline unitpack_vec2 unitpack_spherical_z24p_sincos_pi_v(float a0) {
     const float t9 = (t8 + (-4.934802f)) * c2;
     const float co = t9 + 1.0f;
     const unitpack_vec2 t10 = { swap ? co : s, swap ? s : co };
-    const unitpack_vec2 t11 = { a0 < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
+    const unitpack_vec2 t11 = { x < 0.0f ? -t10.x : t10.x, back ? -t10.y : t10.y };
     return t11;
 }
 
@@ -97,8 +98,8 @@ static inline void unitpack_spherical_z24p_decode_float(const float params[2], f
 // Struct form of unitpack_spherical_z24p_decode.
 static inline unitpack_vec3 unitpack_spherical_z24p_decode_v(uint32_t code) {
     const unitpack_vec2 params = {
-        (float)(code & 4095u) * 0.00024420026f,
-        (float)((code >> 12u) & 4095u) * 0.00024420026f
+        (float)(code & 0xfffu) * 0.00024420026f,
+        (float)((code >> 12u) & 0xfffu) * 0.00024420026f
     };
     const unitpack_vec3 decode_float = unitpack_spherical_z24p_decode_float_v(params);
     return decode_float;
@@ -131,7 +132,7 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -149,22 +150,22 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t1 = (float)hi4 * 16777216.0f;
     const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float abs_w2_x = fabsf(w2.x);
@@ -176,22 +177,22 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float big = lo5 * 8388608.0f;
     const float ratio_estimate = floorf(lo5 / t2 * 8388608.0f);
     const float step_down = ratio_estimate * t2 > big ? -1.0f : 0.0f;
-    const float step = (ratio_estimate + 1.0f) * t2 <= big ? 1.0f : step_down;
-    const float ratio = ratio_estimate + step;
+    const float nudge = (ratio_estimate + 1.0f) * t2 <= big ? 1.0f : step_down;
+    const float ratio = ratio_estimate + nudge;
     const float step_down2 = ratio * t2 > big ? -1.0f : 0.0f;
-    const float step2 = (ratio + 1.0f) * t2 <= big ? 1.0f : step_down2;
-    const float t = ratio + step2;
+    const float nudge2 = (ratio + 1.0f) * t2 <= big ? 1.0f : step_down2;
+    const float t = ratio + nudge2;
     const bool far = t > 3474675.0f;
     const float t3 = t - 8388608.0f;
     const float t4 = t + 8388608.0f;
     const float big2 = t3 * 8388608.0f;
     const float ratio_estimate2 = floorf(t3 / t4 * 8388608.0f);
     const float step_down3 = ratio_estimate2 * t4 > big2 ? -1.0f : 0.0f;
-    const float step3 = (ratio_estimate2 + 1.0f) * t4 <= big2 ? 1.0f : step_down3;
-    const float ratio2 = ratio_estimate2 + step3;
+    const float nudge3 = (ratio_estimate2 + 1.0f) * t4 <= big2 ? 1.0f : step_down3;
+    const float ratio2 = ratio_estimate2 + nudge3;
     const float step_down4 = ratio2 * t4 > big2 ? -1.0f : 0.0f;
-    const float step4 = (ratio2 + 1.0f) * t4 <= big2 ? 1.0f : step_down4;
-    const float ratio3 = ratio2 + step4;
+    const float nudge4 = (ratio2 + 1.0f) * t4 <= big2 ? 1.0f : step_down4;
+    const float ratio3 = ratio2 + nudge4;
     const float z = far ? ratio3 : t;
     const float z2 = nearbyintf(z * z * 1.1920929e-7f);
     const float t5 = nearbyintf(
@@ -242,8 +243,8 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down5 = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step5 = root_h1 * root_h1 <= len2 ? 1.0f : step_down5;
-    const float root_k = root_k0 + step5;
+    const float nudge5 = root_h1 * root_h1 <= len2 ? 1.0f : step_down5;
+    const float root_k = root_k0 + nudge5;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -253,8 +254,8 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float t21 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t21;
     const float step_down6 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step6 = root_m1 * root_m1 <= len2 ? 1.0f : step_down6;
-    const float root_j = root_j0 + step6;
+    const float nudge6 = root_m1 * root_m1 <= len2 ? 1.0f : step_down6;
+    const float root_j = root_j0 + nudge6;
     const float t22 = root_k * 4096.0f;
     const float root = (t22 + root_j) * 4.7683716e-7f;
     const unitpack_vec3 t23 = {
@@ -280,12 +281,12 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float root_estimate2 = floorf(sqrtf(t28));
     const float root_next = root_estimate2 + 1.0f;
     const float step_down7 = root_estimate2 * root_estimate2 > t28 ? -1.0f : 0.0f;
-    const float step7 = root_next * root_next <= t28 ? 1.0f : step_down7;
-    const float root_step = root_estimate2 + step7;
+    const float nudge7 = root_next * root_next <= t28 ? 1.0f : step_down7;
+    const float root_step = root_estimate2 + nudge7;
     const float root_next2 = root_step + 1.0f;
     const float step_down8 = root_step * root_step > t28 ? -1.0f : 0.0f;
-    const float step8 = root_next2 * root_next2 <= t28 ? 1.0f : step_down8;
-    const float r2 = root_step + step8;
+    const float nudge8 = root_next2 * root_next2 <= t28 ? 1.0f : step_down8;
+    const float r2 = root_step + nudge8;
     const float t29 = cand.x * 2.0f;
     const float t30 = floorf((t29 - 4095.0f) * 4097.0005f);
     const float abs_t30 = fabsf(t30);
@@ -326,22 +327,22 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
         (uint32_t)fabsf(offset.z)
     };
     const uint32_t limb1_4 = offset_u.x >> 12u;
-    const uint32_t limb0_4 = offset_u.x & 4095u;
-    const uint32_t cross4 = limb1_4 * limb0_4;
-    const uint32_t hi6 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    const uint32_t lo6 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_4 = offset_u.x & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi6 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo6 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = offset_u.y >> 12u;
-    const uint32_t limb0_5 = offset_u.y & 4095u;
-    const uint32_t cross5 = limb1_5 * limb0_5;
-    const uint32_t hi7 = hi6 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    const uint32_t lo7 = lo6 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    const uint32_t limb0_5 = offset_u.y & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi7 = hi6 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo7 = lo6 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t limb1_6 = offset_u.z >> 12u;
-    const uint32_t limb0_6 = offset_u.z & 4095u;
-    const uint32_t cross6 = limb1_6 * limb0_6;
-    const uint32_t hi8 = hi7 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    const uint32_t lo8 = lo7 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_6 = offset_u.z & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi8 = hi7 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo8 = lo7 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t hi9 = hi8 + (lo8 >> 24u);
-    const uint32_t lo9 = lo8 & 16777215u;
+    const uint32_t lo9 = lo8 & 0xffffffu;
     const float t39 = (float)hi9 * 16777216.0f;
     const float dist = t39 + (float)lo9;
     const float s_up = base.x + 1.0f;
@@ -358,12 +359,12 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float root_estimate3 = floorf(sqrtf(t43));
     const float root_next3 = root_estimate3 + 1.0f;
     const float step_down9 = root_estimate3 * root_estimate3 > t43 ? -1.0f : 0.0f;
-    const float step9 = root_next3 * root_next3 <= t43 ? 1.0f : step_down9;
-    const float root_step2 = root_estimate3 + step9;
+    const float nudge9 = root_next3 * root_next3 <= t43 ? 1.0f : step_down9;
+    const float root_step2 = root_estimate3 + nudge9;
     const float root_next4 = root_step2 + 1.0f;
     const float step_down10 = root_step2 * root_step2 > t43 ? -1.0f : 0.0f;
-    const float step10 = root_next4 * root_next4 <= t43 ? 1.0f : step_down10;
-    const float r3 = root_step2 + step10;
+    const float nudge10 = root_next4 * root_next4 <= t43 ? 1.0f : step_down10;
+    const float r3 = root_step2 + nudge10;
     const float t44 = cand2.x * 2.0f;
     const float t45 = floorf((t44 - 4095.0f) * 4097.0005f);
     const float abs_t45 = fabsf(t45);
@@ -404,22 +405,22 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
         (uint32_t)fabsf(offset2.z)
     };
     const uint32_t limb1_7 = offset_u2.x >> 12u;
-    const uint32_t limb0_7 = offset_u2.x & 4095u;
-    const uint32_t cross7 = limb1_7 * limb0_7;
-    const uint32_t hi10 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    const uint32_t lo10 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    const uint32_t limb0_7 = offset_u2.x & 0xfffu;
+    const uint32_t limb_cross7 = limb1_7 * limb0_7;
+    const uint32_t hi10 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    const uint32_t lo10 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     const uint32_t limb1_8 = offset_u2.y >> 12u;
-    const uint32_t limb0_8 = offset_u2.y & 4095u;
-    const uint32_t cross8 = limb1_8 * limb0_8;
-    const uint32_t hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    const uint32_t lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    const uint32_t limb0_8 = offset_u2.y & 0xfffu;
+    const uint32_t limb_cross8 = limb1_8 * limb0_8;
+    const uint32_t hi11 = hi10 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    const uint32_t lo11 = lo10 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     const uint32_t limb1_9 = offset_u2.z >> 12u;
-    const uint32_t limb0_9 = offset_u2.z & 4095u;
-    const uint32_t cross9 = limb1_9 * limb0_9;
-    const uint32_t hi12 = hi11 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    const uint32_t lo12 = lo11 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    const uint32_t limb0_9 = offset_u2.z & 0xfffu;
+    const uint32_t limb_cross9 = limb1_9 * limb0_9;
+    const uint32_t hi12 = hi11 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    const uint32_t lo12 = lo11 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     const uint32_t hi13 = hi12 + (lo12 >> 24u);
-    const uint32_t lo13 = lo12 & 16777215u;
+    const uint32_t lo13 = lo12 & 0xffffffu;
     const float t54 = (float)hi13 * 16777216.0f;
     const float dist2 = t54 + (float)lo13;
     const bool t55 = s_up <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
@@ -437,12 +438,12 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float root_estimate4 = floorf(sqrtf(t59));
     const float root_next5 = root_estimate4 + 1.0f;
     const float step_down11 = root_estimate4 * root_estimate4 > t59 ? -1.0f : 0.0f;
-    const float step11 = root_next5 * root_next5 <= t59 ? 1.0f : step_down11;
-    const float root_step3 = root_estimate4 + step11;
+    const float nudge11 = root_next5 * root_next5 <= t59 ? 1.0f : step_down11;
+    const float root_step3 = root_estimate4 + nudge11;
     const float root_next6 = root_step3 + 1.0f;
     const float step_down12 = root_step3 * root_step3 > t59 ? -1.0f : 0.0f;
-    const float step12 = root_next6 * root_next6 <= t59 ? 1.0f : step_down12;
-    const float r4 = root_step3 + step12;
+    const float nudge12 = root_next6 * root_next6 <= t59 ? 1.0f : step_down12;
+    const float r4 = root_step3 + nudge12;
     const float t60 = cand3.x * 2.0f;
     const float t61 = floorf((t60 - 4095.0f) * 4097.0005f);
     const float abs_t61 = fabsf(t61);
@@ -483,22 +484,22 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
         (uint32_t)fabsf(offset3.z)
     };
     const uint32_t limb1_10 = offset_u3.x >> 12u;
-    const uint32_t limb0_10 = offset_u3.x & 4095u;
-    const uint32_t cross10 = limb1_10 * limb0_10;
-    const uint32_t hi14 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    const uint32_t lo14 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    const uint32_t limb0_10 = offset_u3.x & 0xfffu;
+    const uint32_t limb_cross10 = limb1_10 * limb0_10;
+    const uint32_t hi14 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    const uint32_t lo14 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     const uint32_t limb1_11 = offset_u3.y >> 12u;
-    const uint32_t limb0_11 = offset_u3.y & 4095u;
-    const uint32_t cross11 = limb1_11 * limb0_11;
-    const uint32_t hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    const uint32_t lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    const uint32_t limb0_11 = offset_u3.y & 0xfffu;
+    const uint32_t limb_cross11 = limb1_11 * limb0_11;
+    const uint32_t hi15 = hi14 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    const uint32_t lo15 = lo14 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     const uint32_t limb1_12 = offset_u3.z >> 12u;
-    const uint32_t limb0_12 = offset_u3.z & 4095u;
-    const uint32_t cross12 = limb1_12 * limb0_12;
-    const uint32_t hi16 = hi15 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    const uint32_t lo16 = lo15 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    const uint32_t limb0_12 = offset_u3.z & 0xfffu;
+    const uint32_t limb_cross12 = limb1_12 * limb0_12;
+    const uint32_t hi16 = hi15 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    const uint32_t lo16 = lo15 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     const uint32_t hi17 = hi16 + (lo16 >> 24u);
-    const uint32_t lo17 = lo16 & 16777215u;
+    const uint32_t lo17 = lo16 & 0xffffffu;
     const float t70 = (float)hi17 * 16777216.0f;
     const float dist3 = t70 + (float)lo17;
     const bool t71 = base.x <= 4095.0f && t_up <= 4095.0f && dist3 < best_d;
@@ -516,12 +517,12 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
     const float root_estimate5 = floorf(sqrtf(t75));
     const float root_next7 = root_estimate5 + 1.0f;
     const float step_down13 = root_estimate5 * root_estimate5 > t75 ? -1.0f : 0.0f;
-    const float step13 = root_next7 * root_next7 <= t75 ? 1.0f : step_down13;
-    const float root_step4 = root_estimate5 + step13;
+    const float nudge13 = root_next7 * root_next7 <= t75 ? 1.0f : step_down13;
+    const float root_step4 = root_estimate5 + nudge13;
     const float root_next8 = root_step4 + 1.0f;
     const float step_down14 = root_step4 * root_step4 > t75 ? -1.0f : 0.0f;
-    const float step14 = root_next8 * root_next8 <= t75 ? 1.0f : step_down14;
-    const float r5 = root_step4 + step14;
+    const float nudge14 = root_next8 * root_next8 <= t75 ? 1.0f : step_down14;
+    const float r5 = root_step4 + nudge14;
     const float t76 = cand4.x * 2.0f;
     const float t77 = floorf((t76 - 4095.0f) * 4097.0005f);
     const float abs_t77 = fabsf(t77);
@@ -562,22 +563,22 @@ static inline unitpack_vec2 unitpack_spherical_z24p_encode_codes_v(unitpack_vec3
         (uint32_t)fabsf(offset4.z)
     };
     const uint32_t limb1_13 = offset_u4.x >> 12u;
-    const uint32_t limb0_13 = offset_u4.x & 4095u;
-    const uint32_t cross13 = limb1_13 * limb0_13;
-    const uint32_t hi18 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    const uint32_t lo18 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    const uint32_t limb0_13 = offset_u4.x & 0xfffu;
+    const uint32_t limb_cross13 = limb1_13 * limb0_13;
+    const uint32_t hi18 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    const uint32_t lo18 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     const uint32_t limb1_14 = offset_u4.y >> 12u;
-    const uint32_t limb0_14 = offset_u4.y & 4095u;
-    const uint32_t cross14 = limb1_14 * limb0_14;
-    const uint32_t hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    const uint32_t lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    const uint32_t limb0_14 = offset_u4.y & 0xfffu;
+    const uint32_t limb_cross14 = limb1_14 * limb0_14;
+    const uint32_t hi19 = hi18 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    const uint32_t lo19 = lo18 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     const uint32_t limb1_15 = offset_u4.z >> 12u;
-    const uint32_t limb0_15 = offset_u4.z & 4095u;
-    const uint32_t cross15 = limb1_15 * limb0_15;
-    const uint32_t hi20 = hi19 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    const uint32_t lo20 = lo19 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    const uint32_t limb0_15 = offset_u4.z & 0xfffu;
+    const uint32_t limb_cross15 = limb1_15 * limb0_15;
+    const uint32_t hi20 = hi19 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    const uint32_t lo20 = lo19 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     const uint32_t hi21 = hi20 + (lo20 >> 24u);
-    const uint32_t lo21 = lo20 & 16777215u;
+    const uint32_t lo21 = lo20 & 0xffffffu;
     const float t86 = (float)hi21 * 16777216.0f;
     const float dist4 = t86 + (float)lo21;
     const bool t87 = s_up <= 4095.0f && t_up <= 4095.0f && dist4 < best_d2;

@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- stereo_scaled16:guarantee=ieee: scaled stereographic, unorm×2, 16 bits, sphere ----
 // Source: Pranckevičius, Compact Normal Storage, method 7.
+// Model: src/codecs/azimuthal/stereo_scaled.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 3.56421°, sample max 53.41578°; MSE of the components
 //   of n - n' 7.684e-3, PSNR 21.14 dB.
 #ifndef UNITPACK_STEREO_SCALED16_IEEE_H

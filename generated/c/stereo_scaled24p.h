@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- stereo_scaled24p: scaled stereographic, unorm×2, 24 bits, sphere, precise encoder ----
 // Source: Pranckevičius, Compact Normal Storage, method 7.
+// Model: src/codecs/azimuthal/stereo_scaled.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 3.28909°, sample max 53.46555°; MSE of the components
 //   of n - n' 7.669e-3, PSNR 21.15 dB.
 #ifndef UNITPACK_STEREO_SCALED24P_H
@@ -71,8 +72,8 @@ static inline void unitpack_stereo_scaled24p_decode_float(const float params[2],
 // Struct form of unitpack_stereo_scaled24p_decode.
 static inline unitpack_vec3 unitpack_stereo_scaled24p_decode_v(uint32_t code) {
     const unitpack_vec2 params = {
-        (float)(code & 4095u) * 0.00024420026f,
-        (float)((code >> 12u) & 4095u) * 0.00024420026f
+        (float)(code & 0xfffu) * 0.00024420026f,
+        (float)((code >> 12u) & 0xfffu) * 0.00024420026f
     };
     const unitpack_vec3 decode_float = unitpack_stereo_scaled24p_decode_float_v(params);
     return decode_float;
@@ -105,7 +106,7 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -123,22 +124,22 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const float fixed_f3 = floorf(fabsf(w2.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t1 = (float)hi4 * 16777216.0f;
     const float len2 = (t1 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
@@ -146,8 +147,8 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -157,8 +158,8 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const float t3 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t3;
     const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t4 = root_k * 4096.0f;
     const float root = (t4 + root_j) * 4.7683716e-7f;
     const bool t5 = w2.z >= 0.0f;
@@ -167,17 +168,17 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const float fixed_f5 = floorf(fabsf(w2.y) * 2097152.0f);
     const uint32_t fixed6 = (uint32_t)fixed_f5;
     const uint32_t limb1_4 = fixed5 >> 12u;
-    const uint32_t limb0_4 = fixed5 & 4095u;
-    const uint32_t cross4 = limb1_4 * limb0_4;
-    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_4 = fixed5 & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = fixed6 >> 12u;
-    const uint32_t limb0_5 = fixed6 & 4095u;
-    const uint32_t cross5 = limb1_5 * limb0_5;
-    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    const uint32_t limb0_5 = fixed6 & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t hi7 = hi6 + (lo6 >> 24u);
-    const uint32_t lo7 = lo6 & 16777215u;
+    const uint32_t lo7 = lo6 & 0xffffffu;
     const float t6 = (float)hi7 * 16777216.0f;
     const float rho2 = (t6 + (float)lo7) * 2.2737368e-13f;
     const float opz_a = t5 ? root + w2.z : rho2;
@@ -227,7 +228,7 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const unitpack_uvec2 t22 = { (uint32_t)fabsf(t.x), (uint32_t)fabsf(t.y) };
     const uint32_t t23 = ((t22.x * t22.x) >> 2u) + ((t22.y * t22.y) >> 2u);
     const float t24 = (float)(t23 >> 12u) * 4096.0f;
-    const float quarter = t24 + (float)(t23 & 4095u);
+    const float quarter = t24 + (float)(t23 & 0xfffu);
     const float den = quarter + 1326572.8f;
     const unitpack_vec3 t25 = { t.x * 1151.7692f, t.y * 1151.7692f, 1326571.8f - quarter };
     const unitpack_vec3 t26 = {
@@ -252,22 +253,22 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset.z)
     };
     const uint32_t limb1_6 = offset_u.x >> 12u;
-    const uint32_t limb0_6 = offset_u.x & 4095u;
-    const uint32_t cross6 = limb1_6 * limb0_6;
-    const uint32_t hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
-    const uint32_t lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_6 = offset_u.x & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi8 = 0u + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo8 = 0u + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t limb1_7 = offset_u.y >> 12u;
-    const uint32_t limb0_7 = offset_u.y & 4095u;
-    const uint32_t cross7 = limb1_7 * limb0_7;
-    const uint32_t hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
-    const uint32_t lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    const uint32_t limb0_7 = offset_u.y & 0xfffu;
+    const uint32_t limb_cross7 = limb1_7 * limb0_7;
+    const uint32_t hi9 = hi8 + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    const uint32_t lo9 = lo8 + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     const uint32_t limb1_8 = offset_u.z >> 12u;
-    const uint32_t limb0_8 = offset_u.z & 4095u;
-    const uint32_t cross8 = limb1_8 * limb0_8;
-    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    const uint32_t limb0_8 = offset_u.z & 0xfffu;
+    const uint32_t limb_cross8 = limb1_8 * limb0_8;
+    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     const uint32_t hi11 = hi10 + (lo10 >> 24u);
-    const uint32_t lo11 = lo10 & 16777215u;
+    const uint32_t lo11 = lo10 & 0xffffffu;
     const float t29 = (float)hi11 * 16777216.0f;
     const float dist = t29 + (float)lo11;
     const float s_up = base.x + 1.0f;
@@ -282,7 +283,7 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const unitpack_uvec2 t33 = { (uint32_t)fabsf(t32.x), (uint32_t)fabsf(t32.y) };
     const uint32_t t34 = ((t33.x * t33.x) >> 2u) + ((t33.y * t33.y) >> 2u);
     const float t35 = (float)(t34 >> 12u) * 4096.0f;
-    const float quarter2 = t35 + (float)(t34 & 4095u);
+    const float quarter2 = t35 + (float)(t34 & 0xfffu);
     const float den2 = quarter2 + 1326572.8f;
     const unitpack_vec3 t36 = { t32.x * 1151.7692f, t32.y * 1151.7692f, 1326571.8f - quarter2 };
     const unitpack_vec3 t37 = {
@@ -307,22 +308,22 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset2.z)
     };
     const uint32_t limb1_9 = offset_u2.x >> 12u;
-    const uint32_t limb0_9 = offset_u2.x & 4095u;
-    const uint32_t cross9 = limb1_9 * limb0_9;
-    const uint32_t hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
-    const uint32_t lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    const uint32_t limb0_9 = offset_u2.x & 0xfffu;
+    const uint32_t limb_cross9 = limb1_9 * limb0_9;
+    const uint32_t hi12 = 0u + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    const uint32_t lo12 = 0u + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     const uint32_t limb1_10 = offset_u2.y >> 12u;
-    const uint32_t limb0_10 = offset_u2.y & 4095u;
-    const uint32_t cross10 = limb1_10 * limb0_10;
-    const uint32_t hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
-    const uint32_t lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    const uint32_t limb0_10 = offset_u2.y & 0xfffu;
+    const uint32_t limb_cross10 = limb1_10 * limb0_10;
+    const uint32_t hi13 = hi12 + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    const uint32_t lo13 = lo12 + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     const uint32_t limb1_11 = offset_u2.z >> 12u;
-    const uint32_t limb0_11 = offset_u2.z & 4095u;
-    const uint32_t cross11 = limb1_11 * limb0_11;
-    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    const uint32_t limb0_11 = offset_u2.z & 0xfffu;
+    const uint32_t limb_cross11 = limb1_11 * limb0_11;
+    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     const uint32_t hi15 = hi14 + (lo14 >> 24u);
-    const uint32_t lo15 = lo14 & 16777215u;
+    const uint32_t lo15 = lo14 & 0xffffffu;
     const float t40 = (float)hi15 * 16777216.0f;
     const float dist2 = t40 + (float)lo15;
     const bool t41 = s_up <= 4095.0f && base.y <= 4095.0f && dist2 < dist;
@@ -338,7 +339,7 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const unitpack_uvec2 t45 = { (uint32_t)fabsf(t44.x), (uint32_t)fabsf(t44.y) };
     const uint32_t t46 = ((t45.x * t45.x) >> 2u) + ((t45.y * t45.y) >> 2u);
     const float t47 = (float)(t46 >> 12u) * 4096.0f;
-    const float quarter3 = t47 + (float)(t46 & 4095u);
+    const float quarter3 = t47 + (float)(t46 & 0xfffu);
     const float den3 = quarter3 + 1326572.8f;
     const unitpack_vec3 t48 = { t44.x * 1151.7692f, t44.y * 1151.7692f, 1326571.8f - quarter3 };
     const unitpack_vec3 t49 = {
@@ -363,22 +364,22 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset3.z)
     };
     const uint32_t limb1_12 = offset_u3.x >> 12u;
-    const uint32_t limb0_12 = offset_u3.x & 4095u;
-    const uint32_t cross12 = limb1_12 * limb0_12;
-    const uint32_t hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
-    const uint32_t lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    const uint32_t limb0_12 = offset_u3.x & 0xfffu;
+    const uint32_t limb_cross12 = limb1_12 * limb0_12;
+    const uint32_t hi16 = 0u + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    const uint32_t lo16 = 0u + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     const uint32_t limb1_13 = offset_u3.y >> 12u;
-    const uint32_t limb0_13 = offset_u3.y & 4095u;
-    const uint32_t cross13 = limb1_13 * limb0_13;
-    const uint32_t hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
-    const uint32_t lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    const uint32_t limb0_13 = offset_u3.y & 0xfffu;
+    const uint32_t limb_cross13 = limb1_13 * limb0_13;
+    const uint32_t hi17 = hi16 + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    const uint32_t lo17 = lo16 + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     const uint32_t limb1_14 = offset_u3.z >> 12u;
-    const uint32_t limb0_14 = offset_u3.z & 4095u;
-    const uint32_t cross14 = limb1_14 * limb0_14;
-    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    const uint32_t limb0_14 = offset_u3.z & 0xfffu;
+    const uint32_t limb_cross14 = limb1_14 * limb0_14;
+    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     const uint32_t hi19 = hi18 + (lo18 >> 24u);
-    const uint32_t lo19 = lo18 & 16777215u;
+    const uint32_t lo19 = lo18 & 0xffffffu;
     const float t52 = (float)hi19 * 16777216.0f;
     const float dist3 = t52 + (float)lo19;
     const bool t53 = base.x <= 4095.0f && t_up <= 4095.0f && dist3 < best_d;
@@ -394,7 +395,7 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
     const unitpack_uvec2 t57 = { (uint32_t)fabsf(t56.x), (uint32_t)fabsf(t56.y) };
     const uint32_t t58 = ((t57.x * t57.x) >> 2u) + ((t57.y * t57.y) >> 2u);
     const float t59 = (float)(t58 >> 12u) * 4096.0f;
-    const float quarter4 = t59 + (float)(t58 & 4095u);
+    const float quarter4 = t59 + (float)(t58 & 0xfffu);
     const float den4 = quarter4 + 1326572.8f;
     const unitpack_vec3 t60 = { t56.x * 1151.7692f, t56.y * 1151.7692f, 1326571.8f - quarter4 };
     const unitpack_vec3 t61 = {
@@ -419,22 +420,22 @@ static inline unitpack_vec2 unitpack_stereo_scaled24p_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset4.z)
     };
     const uint32_t limb1_15 = offset_u4.x >> 12u;
-    const uint32_t limb0_15 = offset_u4.x & 4095u;
-    const uint32_t cross15 = limb1_15 * limb0_15;
-    const uint32_t hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
-    const uint32_t lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    const uint32_t limb0_15 = offset_u4.x & 0xfffu;
+    const uint32_t limb_cross15 = limb1_15 * limb0_15;
+    const uint32_t hi20 = 0u + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    const uint32_t lo20 = 0u + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     const uint32_t limb1_16 = offset_u4.y >> 12u;
-    const uint32_t limb0_16 = offset_u4.y & 4095u;
-    const uint32_t cross16 = limb1_16 * limb0_16;
-    const uint32_t hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
-    const uint32_t lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
+    const uint32_t limb0_16 = offset_u4.y & 0xfffu;
+    const uint32_t limb_cross16 = limb1_16 * limb0_16;
+    const uint32_t hi21 = hi20 + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    const uint32_t lo21 = lo20 + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     const uint32_t limb1_17 = offset_u4.z >> 12u;
-    const uint32_t limb0_17 = offset_u4.z & 4095u;
-    const uint32_t cross17 = limb1_17 * limb0_17;
-    const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
-    const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
+    const uint32_t limb0_17 = offset_u4.z & 0xfffu;
+    const uint32_t limb_cross17 = limb1_17 * limb0_17;
+    const uint32_t hi22 = hi21 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    const uint32_t lo22 = lo21 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     const uint32_t hi23 = hi22 + (lo22 >> 24u);
-    const uint32_t lo23 = lo22 & 16777215u;
+    const uint32_t lo23 = lo22 & 0xffffffu;
     const float t64 = (float)hi23 * 16777216.0f;
     const float dist4 = t64 + (float)lo23;
     const bool t65 = s_up <= 4095.0f && t_up <= 4095.0f && dist4 < best_d2;

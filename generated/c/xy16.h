@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- xy16: x and y stored, z reconstructed, snorm×2, 16 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47519°, sample max 5.56067°; MSE of the components of
 //   n - n' 6.451e-5, PSNR 41.90 dB.
 #ifndef UNITPACK_XY16_H
@@ -153,16 +154,16 @@ static inline void unitpack_xy16_encode_float(const float v[3], float out[2]) {
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
-static inline unitpack_vec2 unitpack_xy16_round_codes_v(unitpack_vec3 a0) {
+static inline unitpack_vec2 unitpack_xy16_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -173,17 +174,17 @@ static inline unitpack_vec2 unitpack_xy16_round_codes_v(unitpack_vec3 a0) {
         fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const float t1 = w.z > 0.0f ? w.z : 0.0f;
-    const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 4294963200u);
+    const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 0xfffff000u);
     const float split_lo = w.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
     const float t2 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
-    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 4294963200u);
+    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 0xfffff000u);
     const float split_lo2 = w.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
     const float t3 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t1) & 4294963200u);
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t1) & 0xfffff000u);
     const float split_lo3 = t1 - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
     const float t4 = (split_hi3 + split_hi3) * split_lo3;
@@ -229,7 +230,7 @@ static inline unitpack_vec2 unitpack_xy16_round_codes_v(unitpack_vec3 a0) {
 static inline uint32_t unitpack_xy16_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 round_codes = unitpack_xy16_round_codes_v(v);
     return ((uint32_t)(round_codes.x + 256.0f) & 255u)
-        | (((uint32_t)(round_codes.y + 256.0f) << 8u) & 65280u);
+        | (((uint32_t)(round_codes.y + 256.0f) << 8u) & 0xff00u);
 }
 
 // unitpack_xy16_encode: fast encoder.

@@ -46,6 +46,7 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 // ---- xy16:layout=rxgb: x and y stored, z reconstructed, in an RGBA8 texel, 16 bits, hemisphere
 //   ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47060°, sample max 5.75338°; MSE of the components of
 //   n - n' 6.284e-5, PSNR 42.02 dB.
 #ifndef UNITPACK_XY16_RXGB_H
@@ -207,16 +208,16 @@ static inline void unitpack_xy16_rxgb_encode_float(const float v[3], float out[4
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
-static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
+static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -227,17 +228,17 @@ static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
         fabsf(scaled.z) < 1.8189894e-12f ? 0.0f : scaled.z
     };
     const float t1 = w.z > 0.0f ? w.z : 0.0f;
-    const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 4294963200u);
+    const float split_hi = unitpack_float_of(unitpack_bits_of(w.x) & 0xfffff000u);
     const float split_lo = w.x - split_hi;
     const float split_hi_sq = split_hi * split_hi;
     const float t2 = (split_hi + split_hi) * split_lo;
     const float split_lo_sq = split_lo * split_lo;
-    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 4294963200u);
+    const float split_hi2 = unitpack_float_of(unitpack_bits_of(w.y) & 0xfffff000u);
     const float split_lo2 = w.y - split_hi2;
     const float split_hi2_sq = split_hi2 * split_hi2;
     const float t3 = (split_hi2 + split_hi2) * split_lo2;
     const float split_lo2_sq = split_lo2 * split_lo2;
-    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t1) & 4294963200u);
+    const float split_hi3 = unitpack_float_of(unitpack_bits_of(t1) & 0xfffff000u);
     const float split_lo3 = t1 - split_hi3;
     const float split_hi3_sq = split_hi3 * split_hi3;
     const float t4 = (split_hi3 + split_hi3) * split_lo3;
@@ -279,15 +280,15 @@ static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
     const bool t17 = ok && len2 > 0.0f;
     const unitpack_vec2 c = { t17 ? t16.x : 128.0f, t17 ? t16.y : 128.0f };
     const unitpack_vec3 normal2 = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
     const unitpack_vec3 abs_normal2 = { fabsf(normal2.x), fabsf(normal2.y), fabsf(normal2.z) };
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     const float scale2 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest2) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest2) & 0x7f800000u)
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
@@ -309,7 +310,7 @@ static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
     const float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     const float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
     const float scale3 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest3) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest3) & 0x7f800000u)
     );
     const unitpack_vec3 scaled3 = { normal3.x * scale3, normal3.y * scale3, normal3.z * scale3 };
     const float sum3 = fabsf(scaled3.x) + fabsf(scaled3.y) + fabsf(scaled3.z);
@@ -321,17 +322,17 @@ static inline unitpack_vec4 unitpack_xy16_rxgb_round_codes_v(unitpack_vec3 a0) {
         fabsf(scaled3.z) < 1.8189894e-12f ? 0.0f : scaled3.z
     };
     const unitpack_vec3 w5 = { ok3 ? w4.x : 0.0f, ok3 ? w4.y : 0.0f, ok3 ? w4.z : 2.0f };
-    const float split_hi4 = unitpack_float_of(unitpack_bits_of(w5.x) & 4294963200u);
+    const float split_hi4 = unitpack_float_of(unitpack_bits_of(w5.x) & 0xfffff000u);
     const float split_lo4 = w5.x - split_hi4;
     const float split_hi4_sq = split_hi4 * split_hi4;
     const float t19 = (split_hi4 + split_hi4) * split_lo4;
     const float split_lo4_sq = split_lo4 * split_lo4;
-    const float split_hi5 = unitpack_float_of(unitpack_bits_of(w5.y) & 4294963200u);
+    const float split_hi5 = unitpack_float_of(unitpack_bits_of(w5.y) & 0xfffff000u);
     const float split_lo5 = w5.y - split_hi5;
     const float split_hi5_sq = split_hi5 * split_hi5;
     const float t20 = (split_hi5 + split_hi5) * split_lo5;
     const float split_lo5_sq = split_lo5 * split_lo5;
-    const float split_hi6 = unitpack_float_of(unitpack_bits_of(w5.z) & 4294963200u);
+    const float split_hi6 = unitpack_float_of(unitpack_bits_of(w5.z) & 0xfffff000u);
     const float split_lo6 = w5.z - split_hi6;
     const float split_hi6_sq = split_hi6 * split_hi6;
     const float t21 = (split_hi6 + split_hi6) * split_lo6;

@@ -39,6 +39,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 
 // ---- xy32p: x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere, precise encoder ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00210°, sample max 0.20253°; MSE of the components of
 //   n - n' 4.836e-9, PSNR 83.16 dB.
 #ifndef UNITPACK_XY32P_H
@@ -70,7 +71,7 @@ static inline void unitpack_xy32p_decode_float(const float params[2], float out[
 
 // Struct form of unitpack_xy32p_decode.
 static inline unitpack_vec3 unitpack_xy32p_decode_v(uint32_t code) {
-    const unitpack_vec2 t1 = { (float)(code & 65535u), (float)(code >> 16u) };
+    const unitpack_vec2 t1 = { (float)(code & 0xffffu), (float)(code >> 16u) };
     const unitpack_vec2 t2 = {
         (t1.x > 32767.0f ? t1.x - 65536.0f : t1.x) * 3.051851e-5f,
         (t1.y > 32767.0f ? t1.y - 65536.0f : t1.y) * 3.051851e-5f
@@ -107,7 +108,7 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -128,7 +129,7 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     const float scale2 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest2) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest2) & 0x7f800000u)
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
@@ -147,22 +148,22 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t2 = (float)hi4 * 16777216.0f;
     const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
@@ -170,8 +171,8 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -181,8 +182,8 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t4;
     const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t5 = root_k * 4096.0f;
     const float root = (t5 + root_j) * 4.7683716e-7f;
     const unitpack_vec2 t6 = { floorf(w4.x / root * 32767.0f), floorf(w4.y / root * 32767.0f) };
@@ -218,19 +219,19 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     };
     const unitpack_uvec2 t14 = { (uint32_t)fabsf(cand.x), (uint32_t)fabsf(cand.y) };
     const uint32_t t15 = t14.x * t14.x + t14.y * t14.y;
-    const uint32_t t16 = t15 < 1073676289u ? 1073676289u - t15 : 0u;
+    const uint32_t t16 = t15 < 0x3fff0001u ? 0x3fff0001u - t15 : 0u;
     const float t17 = (float)(t16 >> 12u) * 4096.0f;
-    const float r = t17 + (float)(t16 & 4095u);
+    const float r = t17 + (float)(t16 & 0xfffu);
     const float t18 = r * 4096.25f;
     const float root_estimate2 = floorf(sqrtf(t18));
     const float root_next = root_estimate2 + 1.0f;
     const float step_down3 = root_estimate2 * root_estimate2 > t18 ? -1.0f : 0.0f;
-    const float step3 = root_next * root_next <= t18 ? 1.0f : step_down3;
-    const float root_step = root_estimate2 + step3;
+    const float nudge3 = root_next * root_next <= t18 ? 1.0f : step_down3;
+    const float root_step = root_estimate2 + nudge3;
     const float root_next2 = root_step + 1.0f;
     const float step_down4 = root_step * root_step > t18 ? -1.0f : 0.0f;
-    const float step4 = root_next2 * root_next2 <= t18 ? 1.0f : step_down4;
-    const float root2 = root_step + step4;
+    const float nudge4 = root_next2 * root_next2 <= t18 ? 1.0f : step_down4;
+    const float root2 = root_step + nudge4;
     const unitpack_vec3 offset = {
         floorf(cand.x * 64.00195f) - aim.x,
         floorf(cand.y * 64.00195f) - aim.y,
@@ -242,22 +243,22 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
         (uint32_t)fabsf(offset.z)
     };
     const uint32_t limb1_4 = offset_u.x >> 12u;
-    const uint32_t limb0_4 = offset_u.x & 4095u;
-    const uint32_t cross4 = limb1_4 * limb0_4;
-    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_4 = offset_u.x & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = offset_u.y >> 12u;
-    const uint32_t limb0_5 = offset_u.y & 4095u;
-    const uint32_t cross5 = limb1_5 * limb0_5;
-    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    const uint32_t limb0_5 = offset_u.y & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t limb1_6 = offset_u.z >> 12u;
-    const uint32_t limb0_6 = offset_u.z & 4095u;
-    const uint32_t cross6 = limb1_6 * limb0_6;
-    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_6 = offset_u.z & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
-    const uint32_t lo8 = lo7 & 16777215u;
+    const uint32_t lo8 = lo7 & 0xffffffu;
     const float t19 = (float)hi8 * 16777216.0f;
     const float dist = t19 + (float)lo8;
     const float s_up = base.x + 1.0f;
@@ -269,19 +270,19 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     };
     const unitpack_uvec2 t21 = { (uint32_t)fabsf(cand2.x), (uint32_t)fabsf(cand2.y) };
     const uint32_t t22 = t21.x * t21.x + t21.y * t21.y;
-    const uint32_t t23 = t22 < 1073676289u ? 1073676289u - t22 : 0u;
+    const uint32_t t23 = t22 < 0x3fff0001u ? 0x3fff0001u - t22 : 0u;
     const float t24 = (float)(t23 >> 12u) * 4096.0f;
-    const float r2 = t24 + (float)(t23 & 4095u);
+    const float r2 = t24 + (float)(t23 & 0xfffu);
     const float t25 = r2 * 4096.25f;
     const float root_estimate3 = floorf(sqrtf(t25));
     const float root_next3 = root_estimate3 + 1.0f;
     const float step_down5 = root_estimate3 * root_estimate3 > t25 ? -1.0f : 0.0f;
-    const float step5 = root_next3 * root_next3 <= t25 ? 1.0f : step_down5;
-    const float root_step2 = root_estimate3 + step5;
+    const float nudge5 = root_next3 * root_next3 <= t25 ? 1.0f : step_down5;
+    const float root_step2 = root_estimate3 + nudge5;
     const float root_next4 = root_step2 + 1.0f;
     const float step_down6 = root_step2 * root_step2 > t25 ? -1.0f : 0.0f;
-    const float step6 = root_next4 * root_next4 <= t25 ? 1.0f : step_down6;
-    const float root3 = root_step2 + step6;
+    const float nudge6 = root_next4 * root_next4 <= t25 ? 1.0f : step_down6;
+    const float root3 = root_step2 + nudge6;
     const unitpack_vec3 offset2 = {
         floorf(cand2.x * 64.00195f) - aim.x,
         floorf(cand2.y * 64.00195f) - aim.y,
@@ -293,22 +294,22 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
         (uint32_t)fabsf(offset2.z)
     };
     const uint32_t limb1_7 = offset_u2.x >> 12u;
-    const uint32_t limb0_7 = offset_u2.x & 4095u;
-    const uint32_t cross7 = limb1_7 * limb0_7;
-    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    const uint32_t limb0_7 = offset_u2.x & 0xfffu;
+    const uint32_t limb_cross7 = limb1_7 * limb0_7;
+    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     const uint32_t limb1_8 = offset_u2.y >> 12u;
-    const uint32_t limb0_8 = offset_u2.y & 4095u;
-    const uint32_t cross8 = limb1_8 * limb0_8;
-    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    const uint32_t limb0_8 = offset_u2.y & 0xfffu;
+    const uint32_t limb_cross8 = limb1_8 * limb0_8;
+    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     const uint32_t limb1_9 = offset_u2.z >> 12u;
-    const uint32_t limb0_9 = offset_u2.z & 4095u;
-    const uint32_t cross9 = limb1_9 * limb0_9;
-    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    const uint32_t limb0_9 = offset_u2.z & 0xfffu;
+    const uint32_t limb_cross9 = limb1_9 * limb0_9;
+    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
-    const uint32_t lo12 = lo11 & 16777215u;
+    const uint32_t lo12 = lo11 & 0xffffffu;
     const float t26 = (float)hi12 * 16777216.0f;
     const float dist2 = t26 + (float)lo12;
     const bool t27 = s_up <= 32767.0f && base.y <= 32767.0f && dist2 < dist;
@@ -321,19 +322,19 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     };
     const unitpack_uvec2 t29 = { (uint32_t)fabsf(cand3.x), (uint32_t)fabsf(cand3.y) };
     const uint32_t t30 = t29.x * t29.x + t29.y * t29.y;
-    const uint32_t t31 = t30 < 1073676289u ? 1073676289u - t30 : 0u;
+    const uint32_t t31 = t30 < 0x3fff0001u ? 0x3fff0001u - t30 : 0u;
     const float t32 = (float)(t31 >> 12u) * 4096.0f;
-    const float r3 = t32 + (float)(t31 & 4095u);
+    const float r3 = t32 + (float)(t31 & 0xfffu);
     const float t33 = r3 * 4096.25f;
     const float root_estimate4 = floorf(sqrtf(t33));
     const float root_next5 = root_estimate4 + 1.0f;
     const float step_down7 = root_estimate4 * root_estimate4 > t33 ? -1.0f : 0.0f;
-    const float step7 = root_next5 * root_next5 <= t33 ? 1.0f : step_down7;
-    const float root_step3 = root_estimate4 + step7;
+    const float nudge7 = root_next5 * root_next5 <= t33 ? 1.0f : step_down7;
+    const float root_step3 = root_estimate4 + nudge7;
     const float root_next6 = root_step3 + 1.0f;
     const float step_down8 = root_step3 * root_step3 > t33 ? -1.0f : 0.0f;
-    const float step8 = root_next6 * root_next6 <= t33 ? 1.0f : step_down8;
-    const float root4 = root_step3 + step8;
+    const float nudge8 = root_next6 * root_next6 <= t33 ? 1.0f : step_down8;
+    const float root4 = root_step3 + nudge8;
     const unitpack_vec3 offset3 = {
         floorf(cand3.x * 64.00195f) - aim.x,
         floorf(cand3.y * 64.00195f) - aim.y,
@@ -345,22 +346,22 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
         (uint32_t)fabsf(offset3.z)
     };
     const uint32_t limb1_10 = offset_u3.x >> 12u;
-    const uint32_t limb0_10 = offset_u3.x & 4095u;
-    const uint32_t cross10 = limb1_10 * limb0_10;
-    const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    const uint32_t limb0_10 = offset_u3.x & 0xfffu;
+    const uint32_t limb_cross10 = limb1_10 * limb0_10;
+    const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     const uint32_t limb1_11 = offset_u3.y >> 12u;
-    const uint32_t limb0_11 = offset_u3.y & 4095u;
-    const uint32_t cross11 = limb1_11 * limb0_11;
-    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    const uint32_t limb0_11 = offset_u3.y & 0xfffu;
+    const uint32_t limb_cross11 = limb1_11 * limb0_11;
+    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     const uint32_t limb1_12 = offset_u3.z >> 12u;
-    const uint32_t limb0_12 = offset_u3.z & 4095u;
-    const uint32_t cross12 = limb1_12 * limb0_12;
-    const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    const uint32_t limb0_12 = offset_u3.z & 0xfffu;
+    const uint32_t limb_cross12 = limb1_12 * limb0_12;
+    const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
-    const uint32_t lo16 = lo15 & 16777215u;
+    const uint32_t lo16 = lo15 & 0xffffffu;
     const float t34 = (float)hi16 * 16777216.0f;
     const float dist3 = t34 + (float)lo16;
     const bool t35 = base.x <= 32767.0f && t_up <= 32767.0f && dist3 < best_d;
@@ -373,19 +374,19 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
     };
     const unitpack_uvec2 t37 = { (uint32_t)fabsf(cand4.x), (uint32_t)fabsf(cand4.y) };
     const uint32_t t38 = t37.x * t37.x + t37.y * t37.y;
-    const uint32_t t39 = t38 < 1073676289u ? 1073676289u - t38 : 0u;
+    const uint32_t t39 = t38 < 0x3fff0001u ? 0x3fff0001u - t38 : 0u;
     const float t40 = (float)(t39 >> 12u) * 4096.0f;
-    const float r4 = t40 + (float)(t39 & 4095u);
+    const float r4 = t40 + (float)(t39 & 0xfffu);
     const float t41 = r4 * 4096.25f;
     const float root_estimate5 = floorf(sqrtf(t41));
     const float root_next7 = root_estimate5 + 1.0f;
     const float step_down9 = root_estimate5 * root_estimate5 > t41 ? -1.0f : 0.0f;
-    const float step9 = root_next7 * root_next7 <= t41 ? 1.0f : step_down9;
-    const float root_step4 = root_estimate5 + step9;
+    const float nudge9 = root_next7 * root_next7 <= t41 ? 1.0f : step_down9;
+    const float root_step4 = root_estimate5 + nudge9;
     const float root_next8 = root_step4 + 1.0f;
     const float step_down10 = root_step4 * root_step4 > t41 ? -1.0f : 0.0f;
-    const float step10 = root_next8 * root_next8 <= t41 ? 1.0f : step_down10;
-    const float root5 = root_step4 + step10;
+    const float nudge10 = root_next8 * root_next8 <= t41 ? 1.0f : step_down10;
+    const float root5 = root_step4 + nudge10;
     const unitpack_vec3 offset4 = {
         floorf(cand4.x * 64.00195f) - aim.x,
         floorf(cand4.y * 64.00195f) - aim.y,
@@ -397,22 +398,22 @@ static inline unitpack_vec2 unitpack_xy32p_encode_codes_v(unitpack_vec3 v) {
         (uint32_t)fabsf(offset4.z)
     };
     const uint32_t limb1_13 = offset_u4.x >> 12u;
-    const uint32_t limb0_13 = offset_u4.x & 4095u;
-    const uint32_t cross13 = limb1_13 * limb0_13;
-    const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    const uint32_t limb0_13 = offset_u4.x & 0xfffu;
+    const uint32_t limb_cross13 = limb1_13 * limb0_13;
+    const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     const uint32_t limb1_14 = offset_u4.y >> 12u;
-    const uint32_t limb0_14 = offset_u4.y & 4095u;
-    const uint32_t cross14 = limb1_14 * limb0_14;
-    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    const uint32_t limb0_14 = offset_u4.y & 0xfffu;
+    const uint32_t limb_cross14 = limb1_14 * limb0_14;
+    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     const uint32_t limb1_15 = offset_u4.z >> 12u;
-    const uint32_t limb0_15 = offset_u4.z & 4095u;
-    const uint32_t cross15 = limb1_15 * limb0_15;
-    const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    const uint32_t limb0_15 = offset_u4.z & 0xfffu;
+    const uint32_t limb_cross15 = limb1_15 * limb0_15;
+    const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
-    const uint32_t lo20 = lo19 & 16777215u;
+    const uint32_t lo20 = lo19 & 0xffffffu;
     const float t42 = (float)hi20 * 16777216.0f;
     const float dist4 = t42 + (float)lo20;
     const bool t43 = s_up <= 32767.0f && t_up <= 32767.0f && dist4 < best_d2;
@@ -446,7 +447,7 @@ static inline void unitpack_xy32p_encode_float(const float v[3], float out[2]) {
 // Struct form of unitpack_xy32p_encode.
 static inline uint32_t unitpack_xy32p_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 encode_codes = unitpack_xy32p_encode_codes_v(v);
-    return ((uint32_t)(encode_codes.x + 65536.0f) & 65535u)
+    return ((uint32_t)(encode_codes.x + 65536.0f) & 0xffffu)
         | ((uint32_t)(encode_codes.y + 65536.0f) << 16u);
 }
 

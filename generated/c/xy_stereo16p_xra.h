@@ -46,6 +46,7 @@ typedef struct { bool x, y, z, w; } unitpack_bvec4;
 // ---- xy_stereo16p:layout=xra: stereographic projection of the +Z hemisphere, (x, y)/(1 + z), in
 //   an RGBA8 texel, 16 bits, hemisphere, precise encoder ----
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
+// Model: src/codecs/azimuthal/xy_stereo.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.25782°, sample max 0.62172°; MSE of the components of
 //   n - n' 7.974e-6, PSNR 50.98 dB.
 #ifndef UNITPACK_XY_STEREO16P_XRA_H
@@ -123,7 +124,7 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -144,7 +145,7 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     const float scale2 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest2) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest2) & 0x7f800000u)
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
@@ -163,22 +164,22 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t2 = (float)hi4 * 16777216.0f;
     const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
@@ -186,8 +187,8 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -197,8 +198,8 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t4;
     const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t5 = root_k * 4096.0f;
     const float root = (t5 + root_j) * 4.7683716e-7f;
     const float a = root + w4.z;
@@ -252,8 +253,8 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float big = t21 * 2097152.0f;
     const float ratio_estimate = floorf(t21 / t16 * 2097152.0f);
     const float step_down3 = ratio_estimate * t16 > big ? -1.0f : 0.0f;
-    const float step3 = (ratio_estimate + 1.0f) * t16 <= big ? 1.0f : step_down3;
-    const float ratio = ratio_estimate + step3;
+    const float nudge3 = (ratio_estimate + 1.0f) * t16 <= big ? 1.0f : step_down3;
+    const float ratio = ratio_estimate + nudge3;
     const unitpack_vec3 offset = { t18.x + t20.x - aim.x, t18.y + t20.y - aim.y, ratio - aim.z };
     const unitpack_uvec3 offset_u = {
         (uint32_t)fabsf(offset.x),
@@ -261,22 +262,22 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset.z)
     };
     const uint32_t limb1_4 = offset_u.x >> 12u;
-    const uint32_t limb0_4 = offset_u.x & 4095u;
-    const uint32_t cross4 = limb1_4 * limb0_4;
-    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    const uint32_t limb0_4 = offset_u.x & 0xfffu;
+    const uint32_t limb_cross4 = limb1_4 * limb0_4;
+    const uint32_t hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    const uint32_t lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     const uint32_t limb1_5 = offset_u.y >> 12u;
-    const uint32_t limb0_5 = offset_u.y & 4095u;
-    const uint32_t cross5 = limb1_5 * limb0_5;
-    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    const uint32_t limb0_5 = offset_u.y & 0xfffu;
+    const uint32_t limb_cross5 = limb1_5 * limb0_5;
+    const uint32_t hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    const uint32_t lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     const uint32_t limb1_6 = offset_u.z >> 12u;
-    const uint32_t limb0_6 = offset_u.z & 4095u;
-    const uint32_t cross6 = limb1_6 * limb0_6;
-    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    const uint32_t limb0_6 = offset_u.z & 0xfffu;
+    const uint32_t limb_cross6 = limb1_6 * limb0_6;
+    const uint32_t hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    const uint32_t lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     const uint32_t hi8 = hi7 + (lo7 >> 24u);
-    const uint32_t lo8 = lo7 & 16777215u;
+    const uint32_t lo8 = lo7 & 0xffffffu;
     const float t22 = (float)hi8 * 16777216.0f;
     const float dist = t22 + (float)lo8;
     const float s_up = base.x + 1.0f;
@@ -307,8 +308,8 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float big2 = t29 * 2097152.0f;
     const float ratio_estimate2 = floorf(t29 / t24 * 2097152.0f);
     const float step_down4 = ratio_estimate2 * t24 > big2 ? -1.0f : 0.0f;
-    const float step4 = (ratio_estimate2 + 1.0f) * t24 <= big2 ? 1.0f : step_down4;
-    const float ratio2 = ratio_estimate2 + step4;
+    const float nudge4 = (ratio_estimate2 + 1.0f) * t24 <= big2 ? 1.0f : step_down4;
+    const float ratio2 = ratio_estimate2 + nudge4;
     const unitpack_vec3 offset2 = { t26.x + t28.x - aim.x, t26.y + t28.y - aim.y, ratio2 - aim.z };
     const unitpack_uvec3 offset_u2 = {
         (uint32_t)fabsf(offset2.x),
@@ -316,22 +317,22 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset2.z)
     };
     const uint32_t limb1_7 = offset_u2.x >> 12u;
-    const uint32_t limb0_7 = offset_u2.x & 4095u;
-    const uint32_t cross7 = limb1_7 * limb0_7;
-    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    const uint32_t limb0_7 = offset_u2.x & 0xfffu;
+    const uint32_t limb_cross7 = limb1_7 * limb0_7;
+    const uint32_t hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    const uint32_t lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     const uint32_t limb1_8 = offset_u2.y >> 12u;
-    const uint32_t limb0_8 = offset_u2.y & 4095u;
-    const uint32_t cross8 = limb1_8 * limb0_8;
-    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    const uint32_t limb0_8 = offset_u2.y & 0xfffu;
+    const uint32_t limb_cross8 = limb1_8 * limb0_8;
+    const uint32_t hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    const uint32_t lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     const uint32_t limb1_9 = offset_u2.z >> 12u;
-    const uint32_t limb0_9 = offset_u2.z & 4095u;
-    const uint32_t cross9 = limb1_9 * limb0_9;
-    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    const uint32_t limb0_9 = offset_u2.z & 0xfffu;
+    const uint32_t limb_cross9 = limb1_9 * limb0_9;
+    const uint32_t hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    const uint32_t lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     const uint32_t hi12 = hi11 + (lo11 >> 24u);
-    const uint32_t lo12 = lo11 & 16777215u;
+    const uint32_t lo12 = lo11 & 0xffffffu;
     const float t30 = (float)hi12 * 16777216.0f;
     const float dist2 = t30 + (float)lo12;
     const bool t31 = s_up <= 255.0f && base.y <= 255.0f && dist2 < dist;
@@ -363,8 +364,8 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float big3 = t38 * 2097152.0f;
     const float ratio_estimate3 = floorf(t38 / t33 * 2097152.0f);
     const float step_down5 = ratio_estimate3 * t33 > big3 ? -1.0f : 0.0f;
-    const float step5 = (ratio_estimate3 + 1.0f) * t33 <= big3 ? 1.0f : step_down5;
-    const float ratio3 = ratio_estimate3 + step5;
+    const float nudge5 = (ratio_estimate3 + 1.0f) * t33 <= big3 ? 1.0f : step_down5;
+    const float ratio3 = ratio_estimate3 + nudge5;
     const unitpack_vec3 offset3 = { t35.x + t37.x - aim.x, t35.y + t37.y - aim.y, ratio3 - aim.z };
     const unitpack_uvec3 offset_u3 = {
         (uint32_t)fabsf(offset3.x),
@@ -372,22 +373,22 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset3.z)
     };
     const uint32_t limb1_10 = offset_u3.x >> 12u;
-    const uint32_t limb0_10 = offset_u3.x & 4095u;
-    const uint32_t cross10 = limb1_10 * limb0_10;
-    const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    const uint32_t limb0_10 = offset_u3.x & 0xfffu;
+    const uint32_t limb_cross10 = limb1_10 * limb0_10;
+    const uint32_t hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    const uint32_t lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     const uint32_t limb1_11 = offset_u3.y >> 12u;
-    const uint32_t limb0_11 = offset_u3.y & 4095u;
-    const uint32_t cross11 = limb1_11 * limb0_11;
-    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    const uint32_t limb0_11 = offset_u3.y & 0xfffu;
+    const uint32_t limb_cross11 = limb1_11 * limb0_11;
+    const uint32_t hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    const uint32_t lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     const uint32_t limb1_12 = offset_u3.z >> 12u;
-    const uint32_t limb0_12 = offset_u3.z & 4095u;
-    const uint32_t cross12 = limb1_12 * limb0_12;
-    const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    const uint32_t limb0_12 = offset_u3.z & 0xfffu;
+    const uint32_t limb_cross12 = limb1_12 * limb0_12;
+    const uint32_t hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    const uint32_t lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     const uint32_t hi16 = hi15 + (lo15 >> 24u);
-    const uint32_t lo16 = lo15 & 16777215u;
+    const uint32_t lo16 = lo15 & 0xffffffu;
     const float t39 = (float)hi16 * 16777216.0f;
     const float dist3 = t39 + (float)lo16;
     const bool t40 = base.x <= 255.0f && t_up <= 255.0f && dist3 < best_d;
@@ -419,8 +420,8 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
     const float big4 = t47 * 2097152.0f;
     const float ratio_estimate4 = floorf(t47 / t42 * 2097152.0f);
     const float step_down6 = ratio_estimate4 * t42 > big4 ? -1.0f : 0.0f;
-    const float step6 = (ratio_estimate4 + 1.0f) * t42 <= big4 ? 1.0f : step_down6;
-    const float ratio4 = ratio_estimate4 + step6;
+    const float nudge6 = (ratio_estimate4 + 1.0f) * t42 <= big4 ? 1.0f : step_down6;
+    const float ratio4 = ratio_estimate4 + nudge6;
     const unitpack_vec3 offset4 = { t44.x + t46.x - aim.x, t44.y + t46.y - aim.y, ratio4 - aim.z };
     const unitpack_uvec3 offset_u4 = {
         (uint32_t)fabsf(offset4.x),
@@ -428,22 +429,22 @@ static inline unitpack_vec4 unitpack_xy_stereo16p_xra_encode_codes_v(unitpack_ve
         (uint32_t)fabsf(offset4.z)
     };
     const uint32_t limb1_13 = offset_u4.x >> 12u;
-    const uint32_t limb0_13 = offset_u4.x & 4095u;
-    const uint32_t cross13 = limb1_13 * limb0_13;
-    const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    const uint32_t limb0_13 = offset_u4.x & 0xfffu;
+    const uint32_t limb_cross13 = limb1_13 * limb0_13;
+    const uint32_t hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    const uint32_t lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     const uint32_t limb1_14 = offset_u4.y >> 12u;
-    const uint32_t limb0_14 = offset_u4.y & 4095u;
-    const uint32_t cross14 = limb1_14 * limb0_14;
-    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    const uint32_t limb0_14 = offset_u4.y & 0xfffu;
+    const uint32_t limb_cross14 = limb1_14 * limb0_14;
+    const uint32_t hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    const uint32_t lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     const uint32_t limb1_15 = offset_u4.z >> 12u;
-    const uint32_t limb0_15 = offset_u4.z & 4095u;
-    const uint32_t cross15 = limb1_15 * limb0_15;
-    const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    const uint32_t limb0_15 = offset_u4.z & 0xfffu;
+    const uint32_t limb_cross15 = limb1_15 * limb0_15;
+    const uint32_t hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    const uint32_t lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     const uint32_t hi20 = hi19 + (lo19 >> 24u);
-    const uint32_t lo20 = lo19 & 16777215u;
+    const uint32_t lo20 = lo19 & 0xffffffu;
     const float t48 = (float)hi20 * 16777216.0f;
     const float dist4 = t48 + (float)lo20;
     const bool t49 = s_up <= 255.0f && t_up <= 255.0f && dist4 < best_d2;

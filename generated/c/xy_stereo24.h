@@ -40,6 +40,7 @@ static inline float unitpack_float_of(uint32_t u) { float x; memcpy(&x, &u, size
 // ---- xy_stereo24: stereographic projection of the +Z hemisphere, (x, y)/(1 + z) as snorm×2, 24
 //   bits, hemisphere ----
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
+// Model: src/codecs/azimuthal/xy_stereo.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01607°, sample max 0.03911°; MSE of the components of
 //   n - n' 3.099e-8, PSNR 75.09 dB.
 #ifndef UNITPACK_XY_STEREO24_H
@@ -75,7 +76,7 @@ static inline void unitpack_xy_stereo24_decode_float(const float params[2], floa
 
 // Struct form of unitpack_xy_stereo24_decode.
 static inline unitpack_vec3 unitpack_xy_stereo24_decode_v(uint32_t code) {
-    const unitpack_vec2 t1 = { (float)(code & 4095u), (float)((code >> 12u) & 4095u) };
+    const unitpack_vec2 t1 = { (float)(code & 0xfffu), (float)((code >> 12u) & 0xfffu) };
     const unitpack_vec2 t2 = {
         (t1.x > 2047.0f ? t1.x - 4096.0f : t1.x) * 0.0004885198f,
         (t1.y > 2047.0f ? t1.y - 4096.0f : t1.y) * 0.0004885198f
@@ -108,7 +109,7 @@ static inline unitpack_vec2 unitpack_xy_stereo24_encode_float_v(unitpack_vec3 v)
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -129,7 +130,7 @@ static inline unitpack_vec2 unitpack_xy_stereo24_encode_float_v(unitpack_vec3 v)
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     const float scale2 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest2) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest2) & 0x7f800000u)
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
@@ -148,22 +149,22 @@ static inline unitpack_vec2 unitpack_xy_stereo24_encode_float_v(unitpack_vec3 v)
     const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t2 = (float)hi4 * 16777216.0f;
     const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
@@ -171,8 +172,8 @@ static inline unitpack_vec2 unitpack_xy_stereo24_encode_float_v(unitpack_vec3 v)
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -182,8 +183,8 @@ static inline unitpack_vec2 unitpack_xy_stereo24_encode_float_v(unitpack_vec3 v)
     const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t4;
     const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t5 = root_k * 4096.0f;
     const float root = (t5 + root_j) * 4.7683716e-7f;
     const float a = root + w4.z;
@@ -208,16 +209,16 @@ static inline void unitpack_xy_stereo24_encode_float(const float v[3], float out
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
 
-static inline unitpack_vec2 unitpack_xy_stereo24_round_codes_v(unitpack_vec3 a0) {
+static inline unitpack_vec2 unitpack_xy_stereo24_round_codes_v(unitpack_vec3 v) {
     const unitpack_vec3 normal = {
-        fabsf(a0.x) < 1.1754944e-38f ? 0.0f : a0.x,
-        fabsf(a0.y) < 1.1754944e-38f ? 0.0f : a0.y,
-        fabsf(a0.z) < 1.1754944e-38f ? 0.0f : a0.z
+        fabsf(v.x) < 1.1754944e-38f ? 0.0f : v.x,
+        fabsf(v.y) < 1.1754944e-38f ? 0.0f : v.y,
+        fabsf(v.z) < 1.1754944e-38f ? 0.0f : v.z
     };
     const unitpack_vec3 abs_normal = { fabsf(normal.x), fabsf(normal.y), fabsf(normal.z) };
     const float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     const float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    const float scale = unitpack_float_of(2139095040u - (unitpack_bits_of(largest) & 2139095040u));
+    const float scale = unitpack_float_of(0x7f800000u - (unitpack_bits_of(largest) & 0x7f800000u));
     const unitpack_vec3 scaled = { normal.x * scale, normal.y * scale, normal.z * scale };
     const float sum = fabsf(scaled.x) + fabsf(scaled.y) + fabsf(scaled.z);
     const bool sum_below_16 = sum < 16.0f;
@@ -238,7 +239,7 @@ static inline unitpack_vec2 unitpack_xy_stereo24_round_codes_v(unitpack_vec3 a0)
     const float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     const float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     const float scale2 = unitpack_float_of(
-        2139095040u - (unitpack_bits_of(largest2) & 2139095040u)
+        0x7f800000u - (unitpack_bits_of(largest2) & 0x7f800000u)
     );
     const unitpack_vec3 scaled2 = { normal2.x * scale2, normal2.y * scale2, normal2.z * scale2 };
     const float sum2 = fabsf(scaled2.x) + fabsf(scaled2.y) + fabsf(scaled2.z);
@@ -257,22 +258,22 @@ static inline unitpack_vec2 unitpack_xy_stereo24_round_codes_v(unitpack_vec3 a0)
     const float fixed_f3 = floorf(fabsf(w4.z) * 2097152.0f);
     const uint32_t fixed4 = (uint32_t)fixed_f3;
     const uint32_t limb1 = fixed2 >> 12u;
-    const uint32_t limb0 = fixed2 & 4095u;
-    const uint32_t cross = limb1 * limb0;
-    const uint32_t hi = 0u + limb1 * limb1 + (cross >> 11u);
-    const uint32_t lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    const uint32_t limb0 = fixed2 & 0xfffu;
+    const uint32_t limb_cross = limb1 * limb0;
+    const uint32_t hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    const uint32_t lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     const uint32_t limb1_2 = fixed3 >> 12u;
-    const uint32_t limb0_2 = fixed3 & 4095u;
-    const uint32_t cross2 = limb1_2 * limb0_2;
-    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    const uint32_t limb0_2 = fixed3 & 0xfffu;
+    const uint32_t limb_cross2 = limb1_2 * limb0_2;
+    const uint32_t hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    const uint32_t lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     const uint32_t limb1_3 = fixed4 >> 12u;
-    const uint32_t limb0_3 = fixed4 & 4095u;
-    const uint32_t cross3 = limb1_3 * limb0_3;
-    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    const uint32_t limb0_3 = fixed4 & 0xfffu;
+    const uint32_t limb_cross3 = limb1_3 * limb0_3;
+    const uint32_t hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    const uint32_t lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     const uint32_t hi4 = hi3 + (lo3 >> 24u);
-    const uint32_t lo4 = lo3 & 16777215u;
+    const uint32_t lo4 = lo3 & 0xffffffu;
     const float t2 = (float)hi4 * 16777216.0f;
     const float len2 = (t2 + (float)lo4) * 2.2737368e-13f;
     const float root_estimate = sqrtf(len2);
@@ -280,8 +281,8 @@ static inline unitpack_vec2 unitpack_xy_stereo24_round_codes_v(unitpack_vec3 a0)
     const float root_h0 = root_k0 * 0.001953125f;
     const float root_h1 = root_h0 + 0.001953125f;
     const float step_down = root_h0 * root_h0 > len2 ? -1.0f : 0.0f;
-    const float step = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
-    const float root_k = root_k0 + step;
+    const float nudge = root_h1 * root_h1 <= len2 ? 1.0f : step_down;
+    const float root_k = root_k0 + nudge;
     const float root_h = root_k * 0.001953125f;
     const float root_h_sq = root_h * root_h;
     const float root_rest = len2 - root_h_sq;
@@ -291,8 +292,8 @@ static inline unitpack_vec2 unitpack_xy_stereo24_round_codes_v(unitpack_vec3 a0)
     const float t4 = (root_j0 + 1.0f) * 4.7683716e-7f;
     const float root_m1 = root_h + t4;
     const float step_down2 = root_m0 * root_m0 > len2 ? -1.0f : 0.0f;
-    const float step2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
-    const float root_j = root_j0 + step2;
+    const float nudge2 = root_m1 * root_m1 <= len2 ? 1.0f : step_down2;
+    const float root_j = root_j0 + nudge2;
     const float t5 = root_k * 4096.0f;
     const float root = (t5 + root_j) * 4.7683716e-7f;
     const float a = root + w4.z;
@@ -320,8 +321,8 @@ static inline unitpack_vec2 unitpack_xy_stereo24_round_codes_v(unitpack_vec3 a0)
 // Struct form of unitpack_xy_stereo24_encode.
 static inline uint32_t unitpack_xy_stereo24_encode_v(unitpack_vec3 v) {
     const unitpack_vec2 round_codes = unitpack_xy_stereo24_round_codes_v(v);
-    return ((uint32_t)(round_codes.x + 4096.0f) & 4095u)
-        | (((uint32_t)(round_codes.y + 4096.0f) << 12u) & 16773120u);
+    return ((uint32_t)(round_codes.x + 4096.0f) & 0xfffu)
+        | (((uint32_t)(round_codes.y + 4096.0f) << 12u) & 0xfff000u);
 }
 
 // unitpack_xy_stereo24_encode: fast encoder.

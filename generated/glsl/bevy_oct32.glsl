@@ -26,6 +26,7 @@
 // Source: Bevy main at bevyengine/bevy 7517c61 (#21926, merged 2026-06-02; unchanged at 4805ca7):
 //   crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and
 //   crates/bevy_render/src/utils.wgsl (octahedral_decode_signed).
+// Model: src/codecs/engine/bevy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00130°, sample max 0.00368°; MSE of the components of
 //   n - n' 2.089e-10, PSNR 96.80 dB.
 #ifndef UNITPACK_BEVY_OCT32_GLSL
@@ -61,7 +62,7 @@ vec3 unitpack_bevy_oct32_decode_float(vec2 params) {
 // Out: Bevy's octahedral_decode_signed: a unit vector (to rounding) for every code.
 // Portable as unitpack_bevy_oct32_decode_float is, within the same bound.
 vec3 unitpack_bevy_oct32_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 65535u, code >> 16u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 0xffffu, code >> 16u));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec2(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_bevy_oct32_decode_float(params);
@@ -84,7 +85,7 @@ vec2 unitpack_bevy_oct32_encode_float(vec3 v) {
     return mix(
         vec2(0.0),
         t2,
-        lessThan(floatBitsToUint(t2) & uvec2(2147483647u), uvec2(2139095041u))
+        lessThan(floatBitsToUint(t2) & uvec2(0x7fffffffu), uvec2(0x7f800001u))
     );
 }
 
@@ -114,7 +115,7 @@ uint unitpack_bevy_oct32_encode(vec3 v) {
     UNITPACK_PRECISE vec2 codes = mix(t3, -t3, lessThan(t2, vec2(0.0)));
     UNITPACK_PRECISE float t4 = codes.x + 65536.0;
     UNITPACK_PRECISE float t5 = codes.y + 65536.0;
-    return (uint(t4) & 65535u) | (uint(t5) << 16u);
+    return (uint(t4) & 0xffffu) | (uint(t5) << 16u);
 }
 
 #endif // UNITPACK_BEVY_OCT32_GLSL

@@ -25,6 +25,7 @@
 // ---- cry3_32p:decoder=optimized: CryEngine 3, unorm×2 (Lambert's codes, the seed's decoders), 32
 //   bits, sphere, precise encoder ----
 // Source: Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009).
+// Model: src/codecs/azimuthal/cry3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00160°, sample max 0.14677°; MSE of the components of
 //   n - n' 5.789e-10, PSNR 92.37 dB.
 #ifndef UNITPACK_CRY3_32P_OPTIMIZED_GLSL
@@ -55,7 +56,7 @@ vec3 unitpack_cry3_32p_optimized_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z.
 // Portable as unitpack_cry3_32p_optimized_decode_float is, within the same bound.
 vec3 unitpack_cry3_32p_optimized_decode(uint code) {
-    UNITPACK_PRECISE vec2 params = vec2(uvec2(code & 65535u, code >> 16u)) * 1.5259022e-5;
+    UNITPACK_PRECISE vec2 params = vec2(uvec2(code & 0xffffu, code >> 16u)) * 1.5259022e-5;
     return unitpack_cry3_32p_optimized_decode_float(params);
 }
 
@@ -69,7 +70,7 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -85,38 +86,38 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     bool t1 = w2.z >= 0.0;
     UNITPACK_PRECISE float t2 = root + w2.z;
@@ -125,17 +126,17 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.y) * 2097152.0);
     uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
-    uint limb0_4 = fixed5 & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = fixed5 & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = fixed6 >> 12u;
-    uint limb0_5 = fixed6 & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = fixed6 & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint hi7 = hi6 + (lo6 >> 24u);
-    uint lo7 = lo6 & 16777215u;
+    uint lo7 = lo6 & 0xffffffu;
     UNITPACK_PRECISE float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
     UNITPACK_PRECISE float opz_a = t1 ? t2 : rho2;
     UNITPACK_PRECISE float t3 = root - w2.z;
@@ -195,19 +196,19 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec2 abs_t = abs(t);
     uvec2 abs_t_u = uvec2(abs_t);
     uint t21 = ((abs_t_u.x * abs_t_u.x) >> 2u) + ((abs_t_u.y * abs_t_u.y) >> 2u);
-    uint t22 = ((1073709055u - t21) << 2u) + 3u;
-    uint t23 = !(1073709055u < t21) ? t22 : 0u;
-    UNITPACK_PRECISE float r = float(t23 >> 12u) * 4096.0 + float(t23 & 4095u);
+    uint t22 = ((0x3fff7fffu - t21) << 2u) + 3u;
+    uint t23 = !(0x3fff7fffu < t21) ? t22 : 0u;
+    UNITPACK_PRECISE float r = float(t23 >> 12u) * 4096.0 + float(t23 & 0xfffu);
     UNITPACK_PRECISE float t24 = r * 256.01563;
     UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t24));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
     UNITPACK_PRECISE float step_down3 = root_estimate2 * root_estimate2 > t24 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = root_next * root_next <= t24 ? 1.0 : step_down3;
-    UNITPACK_PRECISE float root_step = root_estimate2 + step3;
+    UNITPACK_PRECISE float nudge3 = root_next * root_next <= t24 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_step = root_estimate2 + nudge3;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
     UNITPACK_PRECISE float step_down4 = root_step * root_step > t24 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = root_next2 * root_next2 <= t24 ? 1.0 : step_down4;
-    UNITPACK_PRECISE float g = root_step + step4;
+    UNITPACK_PRECISE float nudge4 = root_next2 * root_next2 <= t24 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float g = root_step + nudge4;
     UNITPACK_PRECISE vec3 t25 = vec3(
         floor(t * g * 6.1035156e-5),
         floor(r * 0.0009765923) - 2097152.0
@@ -216,22 +217,22 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_6 = offset_u.x >> 12u;
-    uint limb0_6 = offset_u.x & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi8 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo8 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.x & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi8 = 0u + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo8 = 0u + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint limb1_7 = offset_u.y >> 12u;
-    uint limb0_7 = offset_u.y & 4095u;
-    uint cross7 = limb1_7 * limb0_7;
-    uint hi9 = hi8 + limb1_7 * limb1_7 + (cross7 >> 11u);
-    uint lo9 = lo8 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    uint limb0_7 = offset_u.y & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi9 = hi8 + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo9 = lo8 + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = offset_u.z >> 12u;
-    uint limb0_8 = offset_u.z & 4095u;
-    uint cross8 = limb1_8 * limb0_8;
-    uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    uint limb0_8 = offset_u.z & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint hi11 = hi10 + (lo10 >> 24u);
-    uint lo11 = lo10 & 16777215u;
+    uint lo11 = lo10 & 0xffffffu;
     UNITPACK_PRECISE float dist = float(hi11) * 16777216.0 + float(lo11);
     UNITPACK_PRECISE float s_up = base.x + 1.0;
     UNITPACK_PRECISE float t_up = base.y + 1.0;
@@ -242,19 +243,19 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec2 abs_t28 = abs(t28);
     uvec2 abs_t28_u = uvec2(abs_t28);
     uint t29 = ((abs_t28_u.x * abs_t28_u.x) >> 2u) + ((abs_t28_u.y * abs_t28_u.y) >> 2u);
-    uint t30 = ((1073709055u - t29) << 2u) + 3u;
-    uint t31 = !(1073709055u < t29) ? t30 : 0u;
-    UNITPACK_PRECISE float r2 = float(t31 >> 12u) * 4096.0 + float(t31 & 4095u);
+    uint t30 = ((0x3fff7fffu - t29) << 2u) + 3u;
+    uint t31 = !(0x3fff7fffu < t29) ? t30 : 0u;
+    UNITPACK_PRECISE float r2 = float(t31 >> 12u) * 4096.0 + float(t31 & 0xfffu);
     UNITPACK_PRECISE float t32 = r2 * 256.01563;
     UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t32));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
     UNITPACK_PRECISE float step_down5 = root_estimate3 * root_estimate3 > t32 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = root_next3 * root_next3 <= t32 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + step5;
+    UNITPACK_PRECISE float nudge5 = root_next3 * root_next3 <= t32 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + nudge5;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
     UNITPACK_PRECISE float step_down6 = root_step2 * root_step2 > t32 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = root_next4 * root_next4 <= t32 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float g2 = root_step2 + step6;
+    UNITPACK_PRECISE float nudge6 = root_next4 * root_next4 <= t32 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float g2 = root_step2 + nudge6;
     UNITPACK_PRECISE vec3 t33 = vec3(
         floor(t28 * g2 * 6.1035156e-5),
         floor(r2 * 0.0009765923) - 2097152.0
@@ -263,22 +264,22 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
     uvec3 offset_u2 = uvec3(abs_offset2);
     uint limb1_9 = offset_u2.x >> 12u;
-    uint limb0_9 = offset_u2.x & 4095u;
-    uint cross9 = limb1_9 * limb0_9;
-    uint hi12 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
-    uint lo12 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    uint limb0_9 = offset_u2.x & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi12 = 0u + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo12 = 0u + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint limb1_10 = offset_u2.y >> 12u;
-    uint limb0_10 = offset_u2.y & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi13 = hi12 + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo13 = lo12 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb0_10 = offset_u2.y & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi13 = hi12 + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo13 = lo12 + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = offset_u2.z >> 12u;
-    uint limb0_11 = offset_u2.z & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb0_11 = offset_u2.z & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint hi15 = hi14 + (lo14 >> 24u);
-    uint lo15 = lo14 & 16777215u;
+    uint lo15 = lo14 & 0xffffffu;
     UNITPACK_PRECISE float dist2 = float(hi15) * 16777216.0 + float(lo15);
     bool t34 = dist2 < dist;
     bool t35 = s_up <= 65535.0 && t27 && t34;
@@ -291,19 +292,19 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec2 abs_t38 = abs(t38);
     uvec2 abs_t38_u = uvec2(abs_t38);
     uint t39 = ((abs_t38_u.x * abs_t38_u.x) >> 2u) + ((abs_t38_u.y * abs_t38_u.y) >> 2u);
-    uint t40 = ((1073709055u - t39) << 2u) + 3u;
-    uint t41 = !(1073709055u < t39) ? t40 : 0u;
-    UNITPACK_PRECISE float r3 = float(t41 >> 12u) * 4096.0 + float(t41 & 4095u);
+    uint t40 = ((0x3fff7fffu - t39) << 2u) + 3u;
+    uint t41 = !(0x3fff7fffu < t39) ? t40 : 0u;
+    UNITPACK_PRECISE float r3 = float(t41 >> 12u) * 4096.0 + float(t41 & 0xfffu);
     UNITPACK_PRECISE float t42 = r3 * 256.01563;
     UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t42));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
     UNITPACK_PRECISE float step_down7 = root_estimate4 * root_estimate4 > t42 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step7 = root_next5 * root_next5 <= t42 ? 1.0 : step_down7;
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + step7;
+    UNITPACK_PRECISE float nudge7 = root_next5 * root_next5 <= t42 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + nudge7;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
     UNITPACK_PRECISE float step_down8 = root_step3 * root_step3 > t42 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step8 = root_next6 * root_next6 <= t42 ? 1.0 : step_down8;
-    UNITPACK_PRECISE float g3 = root_step3 + step8;
+    UNITPACK_PRECISE float nudge8 = root_next6 * root_next6 <= t42 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float g3 = root_step3 + nudge8;
     UNITPACK_PRECISE vec3 t43 = vec3(
         floor(t38 * g3 * 6.1035156e-5),
         floor(r3 * 0.0009765923) - 2097152.0
@@ -312,22 +313,22 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
     uvec3 offset_u3 = uvec3(abs_offset3);
     uint limb1_12 = offset_u3.x >> 12u;
-    uint limb0_12 = offset_u3.x & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi16 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo16 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint limb0_12 = offset_u3.x & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi16 = 0u + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo16 = 0u + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint limb1_13 = offset_u3.y >> 12u;
-    uint limb0_13 = offset_u3.y & 4095u;
-    uint cross13 = limb1_13 * limb0_13;
-    uint hi17 = hi16 + limb1_13 * limb1_13 + (cross13 >> 11u);
-    uint lo17 = lo16 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    uint limb0_13 = offset_u3.y & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi17 = hi16 + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo17 = lo16 + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = offset_u3.z >> 12u;
-    uint limb0_14 = offset_u3.z & 4095u;
-    uint cross14 = limb1_14 * limb0_14;
-    uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    uint limb0_14 = offset_u3.z & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint hi19 = hi18 + (lo18 >> 24u);
-    uint lo19 = lo18 & 16777215u;
+    uint lo19 = lo18 & 0xffffffu;
     UNITPACK_PRECISE float dist3 = float(hi19) * 16777216.0 + float(lo19);
     bool t44 = dist3 < best_d;
     bool t45 = base.x <= 65535.0 && t37 && t44;
@@ -340,19 +341,19 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec2 abs_t48 = abs(t48);
     uvec2 abs_t48_u = uvec2(abs_t48);
     uint t49 = ((abs_t48_u.x * abs_t48_u.x) >> 2u) + ((abs_t48_u.y * abs_t48_u.y) >> 2u);
-    uint t50 = ((1073709055u - t49) << 2u) + 3u;
-    uint t51 = !(1073709055u < t49) ? t50 : 0u;
-    UNITPACK_PRECISE float r4 = float(t51 >> 12u) * 4096.0 + float(t51 & 4095u);
+    uint t50 = ((0x3fff7fffu - t49) << 2u) + 3u;
+    uint t51 = !(0x3fff7fffu < t49) ? t50 : 0u;
+    UNITPACK_PRECISE float r4 = float(t51 >> 12u) * 4096.0 + float(t51 & 0xfffu);
     UNITPACK_PRECISE float t52 = r4 * 256.01563;
     UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t52));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
     UNITPACK_PRECISE float step_down9 = root_estimate5 * root_estimate5 > t52 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step9 = root_next7 * root_next7 <= t52 ? 1.0 : step_down9;
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + step9;
+    UNITPACK_PRECISE float nudge9 = root_next7 * root_next7 <= t52 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + nudge9;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
     UNITPACK_PRECISE float step_down10 = root_step4 * root_step4 > t52 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step10 = root_next8 * root_next8 <= t52 ? 1.0 : step_down10;
-    UNITPACK_PRECISE float g4 = root_step4 + step10;
+    UNITPACK_PRECISE float nudge10 = root_next8 * root_next8 <= t52 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float g4 = root_step4 + nudge10;
     UNITPACK_PRECISE vec3 t53 = vec3(
         floor(t48 * g4 * 6.1035156e-5),
         floor(r4 * 0.0009765923) - 2097152.0
@@ -361,22 +362,22 @@ vec2 unitpack_cry3_32p_optimized_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
     uvec3 offset_u4 = uvec3(abs_offset4);
     uint limb1_15 = offset_u4.x >> 12u;
-    uint limb0_15 = offset_u4.x & 4095u;
-    uint cross15 = limb1_15 * limb0_15;
-    uint hi20 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
-    uint lo20 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    uint limb0_15 = offset_u4.x & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi20 = 0u + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo20 = 0u + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint limb1_16 = offset_u4.y >> 12u;
-    uint limb0_16 = offset_u4.y & 4095u;
-    uint cross16 = limb1_16 * limb0_16;
-    uint hi21 = hi20 + limb1_16 * limb1_16 + (cross16 >> 11u);
-    uint lo21 = lo20 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
+    uint limb0_16 = offset_u4.y & 0xfffu;
+    uint limb_cross16 = limb1_16 * limb0_16;
+    uint hi21 = hi20 + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    uint lo21 = lo20 + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     uint limb1_17 = offset_u4.z >> 12u;
-    uint limb0_17 = offset_u4.z & 4095u;
-    uint cross17 = limb1_17 * limb0_17;
-    uint hi22 = hi21 + limb1_17 * limb1_17 + (cross17 >> 11u);
-    uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
+    uint limb0_17 = offset_u4.z & 0xfffu;
+    uint limb_cross17 = limb1_17 * limb0_17;
+    uint hi22 = hi21 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    uint lo22 = lo21 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     uint hi23 = hi22 + (lo22 >> 24u);
-    uint lo23 = lo22 & 16777215u;
+    uint lo23 = lo22 & 0xffffffu;
     UNITPACK_PRECISE float dist4 = float(hi23) * 16777216.0 + float(lo23);
     bool t54 = dist4 < best_d2;
     UNITPACK_PRECISE vec2 best3 = s_up <= 65535.0 && t47 && t54 ? cand4 : best2;

@@ -24,6 +24,7 @@
 
 // ---- cube24: cube-map face (3 bits) + unorm×2 coordinates on it, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (cube).
+// Model: src/codecs/cube_maps/cube.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02551°, sample max 0.06122°; MSE of the components of
 //   n - n' 8.091e-8, PSNR 70.92 dB.
 #ifndef UNITPACK_CUBE24_GLSL
@@ -74,7 +75,7 @@ vec3 unitpack_cube24_decode_float(vec3 params) {
 //   (unitpack verify --portable prints it).
 vec3 unitpack_cube24_decode(uint code) {
     UNITPACK_PRECISE vec3 params = vec3(
-        uvec3(code, code >> 11u, code >> 21u) & uvec3(2047u, 1023u, 7u)
+        uvec3(code, code >> 11u, code >> 21u) & uvec3(0x7ffu, 0x3ffu, 7u)
     )
         * vec3(0.0004885198, 0.0009775171, 0.14285715);
     return unitpack_cube24_decode_float(params);
@@ -93,7 +94,7 @@ vec3 unitpack_cube24_encode_float(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -119,13 +120,13 @@ vec3 unitpack_cube24_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_cube24_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_cube24_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);

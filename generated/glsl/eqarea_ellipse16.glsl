@@ -26,6 +26,7 @@
 //   square + hemisphere bit, unorm×2, 16 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (eqarea+ellipse); Snyder and Mitchell 2001; the elliptical grid
 //   map (Nowell 2005, Fong 2014).
+// Model: src/codecs/azimuthal/disk_square.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.35202°, sample max 0.90849°; MSE of the components of
 //   n - n' 1.527e-5, PSNR 48.16 dB.
 #ifndef UNITPACK_EQAREA_ELLIPSE16_GLSL
@@ -80,7 +81,7 @@ vec3 unitpack_eqarea_ellipse16_encode_float(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -96,38 +97,38 @@ vec3 unitpack_eqarea_ellipse16_encode_float(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     UNITPACK_PRECISE vec2 t1 = w2.xy * w2.xy;
@@ -150,13 +151,13 @@ vec3 unitpack_eqarea_ellipse16_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_eqarea_ellipse16_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -172,38 +173,38 @@ vec3 unitpack_eqarea_ellipse16_round_codes(vec3 a0) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float t1 = root * (root + abs(w2.z));
     bool t2 = w2.x >= 0.0;

@@ -25,6 +25,7 @@
 // ---- eqarea_oct32: equal-area octahedral (Clarberg), snorm×2, 32 bits, sphere ----
 // Source: Clarberg 2008, Fast equal-area mapping of the (hemi)sphere using SIMD (JGT 13(3));
 //   pbrt-v4 EqualAreaSphereToSquare / EqualAreaSquareToSphere.
+// Model: src/codecs/octahedral/eqarea_oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00130°, sample max 0.00355°; MSE of the components of
 //   n - n' 2.073e-10, PSNR 96.83 dB.
 #ifndef UNITPACK_EQAREA_OCT32_GLSL
@@ -36,13 +37,13 @@ precision highp int;
 
 // (sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (|error| ≤
 //   2.5e-7).
-vec2 unitpack_eqarea_oct32_sincos_quarter_pi(float a0) {
-    UNITPACK_PRECISE float c2 = a0 * a0;
+vec2 unitpack_eqarea_oct32_sincos_quarter_pi(float x) {
+    UNITPACK_PRECISE float c2 = x * x;
     UNITPACK_PRECISE float t1 = (
         ((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127)
     )
         * c2;
-    UNITPACK_PRECISE float s = a0 * (t1 + 3.1415927);
+    UNITPACK_PRECISE float s = x * (t1 + 3.1415927);
     UNITPACK_PRECISE float t2 = (
         ((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712
     )
@@ -83,7 +84,7 @@ vec3 unitpack_eqarea_oct32_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector (up to rounding); unfolds where |x| + |y| > 1, as oct.
 // Portable as unitpack_eqarea_oct32_decode_float is, within the same bound.
 vec3 unitpack_eqarea_oct32_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 65535u, code >> 16u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 0xffffu, code >> 16u));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec2(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_eqarea_oct32_decode_float(params);
@@ -91,14 +92,14 @@ vec3 unitpack_eqarea_oct32_decode(uint code) {
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-float unitpack_eqarea_oct32_atan2_pi(float a0, float a1) {
-    UNITPACK_PRECISE float abs_a1 = abs(a1);
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool y_major = abs_a0 > abs_a1;
-    UNITPACK_PRECISE float hi = y_major ? abs_a0 : abs_a1;
+float unitpack_eqarea_oct32_atan2_pi(float x, float x1) {
+    UNITPACK_PRECISE float abs_x1 = abs(x1);
+    UNITPACK_PRECISE float abs_x = abs(x);
+    bool y_major = abs_x > abs_x1;
+    UNITPACK_PRECISE float hi = y_major ? abs_x : abs_x1;
     UNITPACK_PRECISE float up = hi < 7.888609e-31 ? 1.2676506e30 : 1.0;
     UNITPACK_PRECISE float hi2 = hi * up;
-    UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
+    UNITPACK_PRECISE float t = (y_major ? abs_x1 : abs_x) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
     UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
     UNITPACK_PRECISE float z = far ? t1 : t;
@@ -115,9 +116,9 @@ float unitpack_eqarea_oct32_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float t5 = 1.5707964 - r2;
     UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
     UNITPACK_PRECISE float t6 = 3.1415927 - r3;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float r4 = x1 < 0.0 ? t6 : r3;
     UNITPACK_PRECISE float neg_r4 = -r4;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float result = (x < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -133,7 +134,7 @@ vec2 unitpack_eqarea_oct32_encode_float(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -149,38 +150,38 @@ vec2 unitpack_eqarea_oct32_encode_float(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE vec2 t1 = abs(w2.xy);
     UNITPACK_PRECISE vec2 t2 = w2.xy * w2.xy;
@@ -198,13 +199,13 @@ vec2 unitpack_eqarea_oct32_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_eqarea_oct32_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_eqarea_oct32_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -220,55 +221,55 @@ vec2 unitpack_eqarea_oct32_round_codes(vec3 a0) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float fixed_f4 = floor(abs(w2.x) * 2097152.0);
     uint fixed5 = uint(fixed_f4);
     UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.y) * 2097152.0);
     uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
-    uint limb0_4 = fixed5 & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = fixed5 & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = fixed6 >> 12u;
-    uint limb0_5 = fixed6 & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = fixed6 & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint hi7 = hi6 + (lo6 >> 24u);
-    uint lo7 = lo6 & 16777215u;
+    uint lo7 = lo6 & 0xffffffu;
     UNITPACK_PRECISE float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
     UNITPACK_PRECISE float t1 = root * (root + abs(w2.z));
     UNITPACK_PRECISE float r = sqrt(rho2 / t1);
@@ -282,22 +283,22 @@ vec2 unitpack_eqarea_oct32_round_codes(vec3 a0) {
     UNITPACK_PRECISE float big = lo8 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo8 / t3 * 8388608.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate * t3 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge3;
     UNITPACK_PRECISE float step_down4 = ratio * t3 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
-    UNITPACK_PRECISE float t = ratio + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + nudge4;
     bool far = t > 3474675.0;
     UNITPACK_PRECISE float t4 = t - 8388608.0;
     UNITPACK_PRECISE float t5 = t + 8388608.0;
     UNITPACK_PRECISE float big2 = t4 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
     UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t5 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float nudge5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge5;
     UNITPACK_PRECISE float step_down6 = ratio2 * t5 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
+    UNITPACK_PRECISE float nudge6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + nudge6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
     UNITPACK_PRECISE float t6 = roundEven(
@@ -383,7 +384,7 @@ uint unitpack_eqarea_oct32_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_eqarea_oct32_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 65536.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 65536.0;
-    return (uint(t1) & 65535u) | (uint(t2) << 16u);
+    return (uint(t1) & 0xffffu) | (uint(t2) << 16u);
 }
 
 #endif // UNITPACK_EQAREA_OCT32_GLSL

@@ -26,6 +26,7 @@
 //   the square + hemisphere bit, unorm×2, 16 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (eqdist+ellipse); Snyder and Mitchell 2001; the elliptical grid
 //   map (Nowell 2005, Fong 2014).
+// Model: src/codecs/azimuthal/disk_square.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.35586°, sample max 0.78134°; MSE of the components of
 //   n - n' 1.564e-5, PSNR 48.06 dB.
 #ifndef UNITPACK_EQDIST_ELLIPSE16_GLSL
@@ -81,14 +82,14 @@ vec3 unitpack_eqdist_ellipse16_decode(uint code) {
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-float unitpack_eqdist_ellipse16_atan2_pi(float a0, float a1) {
-    UNITPACK_PRECISE float abs_a1 = abs(a1);
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool y_major = abs_a0 > abs_a1;
-    UNITPACK_PRECISE float hi = y_major ? abs_a0 : abs_a1;
+float unitpack_eqdist_ellipse16_atan2_pi(float rho, float x) {
+    UNITPACK_PRECISE float abs_x = abs(x);
+    UNITPACK_PRECISE float abs_rho = abs(rho);
+    bool y_major = abs_rho > abs_x;
+    UNITPACK_PRECISE float hi = y_major ? abs_rho : abs_x;
     UNITPACK_PRECISE float up = hi < 7.888609e-31 ? 1.2676506e30 : 1.0;
     UNITPACK_PRECISE float hi2 = hi * up;
-    UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
+    UNITPACK_PRECISE float t = (y_major ? abs_x : abs_rho) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
     UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
     UNITPACK_PRECISE float z = far ? t1 : t;
@@ -105,9 +106,9 @@ float unitpack_eqdist_ellipse16_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float t5 = 1.5707964 - r2;
     UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
     UNITPACK_PRECISE float t6 = 3.1415927 - r3;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float r4 = x < 0.0 ? t6 : r3;
     UNITPACK_PRECISE float neg_r4 = -r4;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float result = (rho < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -124,7 +125,7 @@ vec3 unitpack_eqdist_ellipse16_encode_float(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -155,13 +156,13 @@ vec3 unitpack_eqdist_ellipse16_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_eqdist_ellipse16_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_eqdist_ellipse16_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -175,17 +176,17 @@ vec3 unitpack_eqdist_ellipse16_round_codes(vec3 a0) {
     UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
     uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint hi3 = hi2 + (lo2 >> 24u);
-    uint lo3 = lo2 & 16777215u;
+    uint lo3 = lo2 & 0xffffffu;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
     bool t1 = rho2 > 0.0;
     UNITPACK_PRECISE float rho2_2 = t1 ? rho2 : 1.0;
@@ -198,16 +199,16 @@ vec3 unitpack_eqdist_ellipse16_round_codes(vec3 a0) {
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float t3 = root * root_up;
     UNITPACK_PRECISE float rho = t1 ? t3 : 0.0;
@@ -221,22 +222,22 @@ vec3 unitpack_eqdist_ellipse16_round_codes(vec3 a0) {
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t4 * 8388608.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate * t4 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate + 1.0) * t4 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge3;
     UNITPACK_PRECISE float step_down4 = ratio * t4 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down4;
-    UNITPACK_PRECISE float t = ratio + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio + 1.0) * t4 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + nudge4;
     bool far = t > 3474675.0;
     UNITPACK_PRECISE float t5 = t - 8388608.0;
     UNITPACK_PRECISE float t6 = t + 8388608.0;
     UNITPACK_PRECISE float big2 = t5 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t5 / t6 * 8388608.0);
     UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t6 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float nudge5 = (ratio_estimate2 + 1.0) * t6 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge5;
     UNITPACK_PRECISE float step_down6 = ratio2 * t6 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
+    UNITPACK_PRECISE float nudge6 = (ratio2 + 1.0) * t6 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + nudge6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
     UNITPACK_PRECISE float t7 = roundEven(

@@ -28,6 +28,7 @@
 //   servers/rendering/renderer_rd/shaders/forward_clustered/scene_forward_clustered.glsl at 333f0f9
 //   (oct_to_vec3, axis_angle_to_tbn); fdlibm's acosf (FreeBSD msun e_acosf.c; glibc's through
 //   2.40).
+// Model: src/codecs/frames/godot.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00462° / 0.48789°, tangent 0.00433° / 0.47325°, bitangent
@@ -52,30 +53,30 @@ struct unitpack_godot_axis_angle_tbn {
 };
 
 // Helper `oct_to_vec3`.
-vec3 unitpack_godot_axis_angle_oct_to_vec3(vec2 a0) {
-    UNITPACK_PRECISE float t1 = 1.0 - abs(a0.x);
-    UNITPACK_PRECISE float abs_a0_y = abs(a0.y);
-    UNITPACK_PRECISE float t2 = -(t1 - abs_a0_y);
+vec3 unitpack_godot_axis_angle_oct_to_vec3(vec2 e) {
+    UNITPACK_PRECISE float t1 = 1.0 - abs(e.x);
+    UNITPACK_PRECISE float abs_e_y = abs(e.y);
+    UNITPACK_PRECISE float t2 = -(t1 - abs_e_y);
     UNITPACK_PRECISE float t = t2 >= 0.0 ? t2 : 0.0;
-    UNITPACK_PRECISE float t3 = a0.x < 0.0 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float t4 = a0.y < 0.0 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float t3 = e.x < 0.0 ? -1.0 : 0.0;
+    UNITPACK_PRECISE float t4 = e.y < 0.0 ? -1.0 : 0.0;
     UNITPACK_PRECISE vec3 t5 = vec3(
-        t * (a0.x > 0.0 ? 1.0 : t3),
-        t * (a0.y > 0.0 ? 1.0 : t4),
-        abs_a0_y
+        t * (e.x > 0.0 ? 1.0 : t3),
+        t * (e.y > 0.0 ? 1.0 : t4),
+        abs_e_y
     );
-    UNITPACK_PRECISE vec3 t6 = vec3(a0, t1) - t5;
+    UNITPACK_PRECISE vec3 t6 = vec3(e, t1) - t5;
     UNITPACK_PRECISE vec3 t6_sq = t6 * t6;
     UNITPACK_PRECISE vec3 result = t6 / sqrt(t6_sq.x + t6_sq.y + t6_sq.z);
     return result;
 }
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-vec2 unitpack_godot_axis_angle_sincos_pi(float a0) {
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
-    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
+vec2 unitpack_godot_axis_angle_sincos_pi(float turns) {
+    UNITPACK_PRECISE float abs_turns = abs(turns);
+    bool back = abs_turns > 0.5;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_turns;
+    UNITPACK_PRECISE float b = back ? t1 : abs_turns;
     bool swap = b > 0.25;
     UNITPACK_PRECISE float t2 = 0.5 - b;
     UNITPACK_PRECISE float c = swap ? t2 : b;
@@ -93,7 +94,7 @@ vec2 unitpack_godot_axis_angle_sincos_pi(float a0) {
     UNITPACK_PRECISE vec2 t5 = vec2(co, s);
     UNITPACK_PRECISE vec2 t6 = vec2(s, co);
     UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
-    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(turns < 0.0, back));
     return result;
 }
 
@@ -137,7 +138,7 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode_float(vec3 f) {
 //   orthogonal within 2^-20.
 // Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uvec2 code) {
-    UNITPACK_PRECISE vec3 f = vec3(uvec3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
+    UNITPACK_PRECISE vec3 f = vec3(uvec3(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu))
         * 1.5259022e-5;
     UNITPACK_PRECISE vec2 t1 = f.xy * 2.0 - 1.0;
     UNITPACK_PRECISE vec3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
@@ -165,7 +166,7 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uvec2 code) {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 unitpack_godot_axis_angle_tbn unitpack_godot_axis_angle_decode_tbn(uvec2 code) {
-    UNITPACK_PRECISE vec3 f = vec3(uvec3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
+    UNITPACK_PRECISE vec3 f = vec3(uvec3(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu))
         * 1.5259022e-5;
     UNITPACK_PRECISE vec2 t1 = f.xy * 2.0 - 1.0;
     UNITPACK_PRECISE vec3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
@@ -186,18 +187,17 @@ unitpack_godot_axis_angle_tbn unitpack_godot_axis_angle_decode_tbn(uvec2 code) {
 }
 
 // Helper `fdlibm_acosf`.
-float unitpack_godot_axis_angle_fdlibm_acosf(float a0) {
-    uint t1 = floatBitsToUint(a0) & 2147483647u;
-    UNITPACK_PRECISE float a0_sq = a0 * a0;
-    UNITPACK_PRECISE float t2 = a0_sq
-        * (0.20121253 + a0_sq * (-0.040055536 + a0_sq * (0.000791535 + a0_sq * 3.479331e-5)));
-    UNITPACK_PRECISE float t3 = a0_sq
-        * (-2.403395 + a0_sq * (2.0209458 + a0_sq * (-0.688284 + a0_sq * 0.077038154)));
-    UNITPACK_PRECISE float t4 = a0
-        * (a0_sq * (0.16666667 + a0_sq * (-0.32556581 + t2)) / (1.0 + t3));
-    UNITPACK_PRECISE float t5 = 1.5707963 - (a0 - (7.5497894e-8 - t4));
-    UNITPACK_PRECISE float t6 = t1 < 587202561u ? 1.5707964 : t5;
-    UNITPACK_PRECISE float z = (1.0 + a0) * 0.5;
+float unitpack_godot_axis_angle_fdlibm_acosf(float c) {
+    uint t1 = floatBitsToUint(c) & 0x7fffffffu;
+    UNITPACK_PRECISE float c_sq = c * c;
+    UNITPACK_PRECISE float t2 = c_sq
+        * (0.20121253 + c_sq * (-0.040055536 + c_sq * (0.000791535 + c_sq * 3.479331e-5)));
+    UNITPACK_PRECISE float t3 = c_sq
+        * (-2.403395 + c_sq * (2.0209458 + c_sq * (-0.688284 + c_sq * 0.077038154)));
+    UNITPACK_PRECISE float t4 = c * (c_sq * (0.16666667 + c_sq * (-0.32556581 + t2)) / (1.0 + t3));
+    UNITPACK_PRECISE float t5 = 1.5707963 - (c - (7.5497894e-8 - t4));
+    UNITPACK_PRECISE float t6 = t1 < 0x23000001u ? 1.5707964 : t5;
+    UNITPACK_PRECISE float z = (1.0 + c) * 0.5;
     UNITPACK_PRECISE float sqrt_z = sqrt(z);
     UNITPACK_PRECISE float t7 = z
         * (0.20121253 + z * (-0.040055536 + z * (0.000791535 + z * 3.479331e-5)));
@@ -205,9 +205,9 @@ float unitpack_godot_axis_angle_fdlibm_acosf(float a0) {
         * (-2.403395 + z * (2.0209458 + z * (-0.688284 + z * 0.077038154)));
     UNITPACK_PRECISE float t9 = z * (0.16666667 + z * (-0.32556581 + t7)) / (1.0 + t8) * sqrt_z;
     UNITPACK_PRECISE float t10 = 3.1415925 - 2.0 * (sqrt_z + (t9 - 7.5497894e-8));
-    UNITPACK_PRECISE float z2 = (1.0 - a0) * 0.5;
+    UNITPACK_PRECISE float z2 = (1.0 - c) * 0.5;
     UNITPACK_PRECISE float sqrt_z2 = sqrt(z2);
-    UNITPACK_PRECISE float t11 = uintBitsToFloat(floatBitsToUint(sqrt_z2) & 4294963200u);
+    UNITPACK_PRECISE float t11 = uintBitsToFloat(floatBitsToUint(sqrt_z2) & 0xfffff000u);
     UNITPACK_PRECISE float t12 = z2
         * (0.20121253 + z2 * (-0.040055536 + z2 * (0.000791535 + z2 * 3.479331e-5)));
     UNITPACK_PRECISE float t13 = z2
@@ -217,11 +217,11 @@ float unitpack_godot_axis_angle_fdlibm_acosf(float a0) {
         / (1.0 + t13)
         * sqrt_z2;
     UNITPACK_PRECISE float t15 = 2.0 * (t11 + (t14 + (z2 - t11 * t11) / (sqrt_z2 + t11)));
-    UNITPACK_PRECISE float t16 = a0 < 0.0 ? 3.1415927 : 0.0;
-    bool t17 = !(t1 < 1065353216u);
-    UNITPACK_PRECISE float t18 = a0 < 0.0 ? t10 : t15;
-    UNITPACK_PRECISE float t19 = t1 < 1065353217u && t17 ? t16 : t18;
-    return t1 < 1056964608u ? t6 : t19;
+    UNITPACK_PRECISE float t16 = c < 0.0 ? 3.1415927 : 0.0;
+    bool t17 = !(t1 < 0x3f800000u);
+    UNITPACK_PRECISE float t18 = c < 0.0 ? t10 : t15;
+    UNITPACK_PRECISE float t19 = t1 < 0x3f800001u && t17 ? t16 : t18;
+    return t1 < 0x3f000000u ? t6 : t19;
 }
 
 // unitpack_godot_axis_angle_encode_float: fast encoder, float form.
@@ -334,16 +334,16 @@ vec3 unitpack_godot_axis_angle_encode_float(vec3 n, vec4 t) {
     UNITPACK_PRECISE float t72 = t49 ? 0.0 : 3.1415927;
     UNITPACK_PRECISE float angle = t40 ? t72 : t70;
     bool t73 = (t.w < 0.0 ? -1.0 : 1.0) < 0.0;
-    UNITPACK_PRECISE float theta_hi = uintBitsToFloat(floatBitsToUint(angle) & 4294963200u);
+    UNITPACK_PRECISE float theta_hi = uintBitsToFloat(floatBitsToUint(angle) & 0xfffff000u);
     UNITPACK_PRECISE float theta_lo = angle - theta_hi;
     UNITPACK_PRECISE float t74 = t73 ? -1.0 : 1.0;
     UNITPACK_PRECISE float estimate = 0.5 + angle * 0.15915494 * t74;
-    uint exponent = (floatBitsToUint(estimate) & 2147483647u) >> 23u;
+    uint exponent = (floatBitsToUint(estimate) & 0x7fffffffu) >> 23u;
     uint exponent2 = exponent < 40u ? 40u : exponent;
     UNITPACK_PRECISE float grid = uintBitsToFloat((exponent2 - 23u) << 23u);
-    UNITPACK_PRECISE float inverse = uintBitsToFloat((277u - exponent2) << 23u);
-    UNITPACK_PRECISE float scale = inverse * t74;
-    UNITPACK_PRECISE float term = 0.5 * inverse;
+    UNITPACK_PRECISE float inv_grid = uintBitsToFloat((277u - exponent2) << 23u);
+    UNITPACK_PRECISE float scale = inv_grid * t74;
+    UNITPACK_PRECISE float term = 0.5 * inv_grid;
     UNITPACK_PRECISE float term2 = theta_hi * 0.15911865 * scale;
     UNITPACK_PRECISE float term3 = theta_hi * 3.6284328e-5 * scale;
     UNITPACK_PRECISE float term4 = theta_lo * 0.15911865 * scale;
@@ -396,8 +396,8 @@ vec3 unitpack_godot_axis_angle_encode_float(vec3 n, vec4 t) {
         + (whole4 < 0.0 ? t89 : t88_u)
         + (whole5 < 0.0 ? t91 : t90_u)
         + (whole6 < 0.0 ? t96 : t95_u);
-    uint r = t97 + ((t94 + 8388608u) >> 24u);
-    UNITPACK_PRECISE float t98 = float(16777216u < r ? 16777216u : r) * grid;
+    uint r = t97 + ((t94 + 0x800000u) >> 24u);
+    UNITPACK_PRECISE float t98 = float(0x1000000u < r ? 0x1000000u : r) * grid;
     UNITPACK_PRECISE float v = estimate > 0.0 ? t98 : 0.0;
     UNITPACK_PRECISE float t99 = v >= 0.0 ? v : 0.0;
     UNITPACK_PRECISE float t100 = t99 <= 0.49999 ? t99 : 0.49999;

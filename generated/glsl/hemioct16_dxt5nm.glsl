@@ -24,6 +24,7 @@
 
 // ---- hemioct16:layout=dxt5nm: hemi-octahedral, in an RGBA8 texel, 16 bits, hemisphere ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.23920°, sample max 0.53974°; MSE of the components of
 //   n - n' 6.941e-6, PSNR 51.59 dB.
 #ifndef UNITPACK_HEMIOCT16_DXT5NM_GLSL
@@ -91,13 +92,13 @@ vec4 unitpack_hemioct16_dxt5nm_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec4 unitpack_hemioct16_dxt5nm_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec4 unitpack_hemioct16_dxt5nm_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);

@@ -24,6 +24,7 @@
 
 // ---- hemioct24p: hemi-octahedral, snorm×2, 24 bits, hemisphere, precise encoder ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01478°, sample max 0.03328°; MSE of the components of
 //   n - n' 2.652e-8, PSNR 75.76 dB.
 #ifndef UNITPACK_HEMIOCT24P_GLSL
@@ -54,7 +55,7 @@ vec3 unitpack_hemioct24p_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct24p_decode_float is, within the same bound.
 vec3 unitpack_hemioct24p_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 12u) & uvec2(4095u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 12u) & uvec2(0xfffu));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 4096.0, greaterThan(t1, vec2(2047.0))) * 0.0004885198;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_hemioct24p_decode_float(params);
@@ -70,7 +71,7 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -88,16 +89,16 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float estimate = floor(t4 / l1 * 2047.0);
     UNITPACK_PRECISE float big = t4 * 2047.0;
     UNITPACK_PRECISE float step_down = big < estimate * l1 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
-    UNITPACK_PRECISE float t5 = estimate + step;
+    UNITPACK_PRECISE float nudge = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
+    UNITPACK_PRECISE float t5 = estimate + nudge;
     UNITPACK_PRECISE float t6 = t5 >= (-2047.0) ? t5 : -2047.0;
     UNITPACK_PRECISE float s0 = t6 <= 2047.0 ? t6 : 2047.0;
     UNITPACK_PRECISE float t7 = a.x - a.y;
     UNITPACK_PRECISE float estimate2 = floor(t7 / l1 * 2047.0);
     UNITPACK_PRECISE float big2 = t7 * 2047.0;
     UNITPACK_PRECISE float step_down2 = big2 < estimate2 * l1 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float t8 = estimate2 + step2;
+    UNITPACK_PRECISE float nudge2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t8 = estimate2 + nudge2;
     UNITPACK_PRECISE float t9 = t8 >= (-2047.0) ? t8 : -2047.0;
     UNITPACK_PRECISE float t0 = t9 <= 2047.0 ? t9 : 2047.0;
     UNITPACK_PRECISE vec3 t10 = floor(a * 4194304.0);
@@ -134,21 +135,21 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t29 = cand.x - cand.y;
     uint t29_u = uint(t29);
     uint t27_u = uint(t27);
-    uvec3 cross = afix.yzx * uvec3(vec3(t27, t28, t29)) - afix.zxy * uvec3(vec3(t29, t27, t28));
-    uint t30 = 0u - cross.x;
-    uint t31 = cross.x < 2147483648u ? cross.x : t30;
+    uvec3 axd = afix.yzx * uvec3(vec3(t27, t28, t29)) - afix.zxy * uvec3(vec3(t29, t27, t28));
+    uint t30 = 0u - axd.x;
+    uint t31 = axd.x < 0x80000000u ? axd.x : t30;
     uint t32 = t31 >> 16u;
-    uint t33 = 0u - cross.y;
-    uint t34 = cross.y < 2147483648u ? cross.y : t33;
+    uint t33 = 0u - axd.y;
+    uint t34 = axd.y < 0x80000000u ? axd.y : t33;
     uint t35 = t34 >> 16u;
-    uint t36 = 0u - cross.z;
-    uint t37 = cross.z < 2147483648u ? cross.z : t36;
+    uint t36 = 0u - axd.z;
+    uint t37 = axd.z < 0x80000000u ? axd.z : t36;
     uint t38 = t37 >> 16u;
     uvec3 t39 = uvec3((t32 * t32) << 3u, (t35 * t35) << 3u, (t38 * t38) << 3u);
     uvec3 t40 = uvec3(
-        (t32 * (t31 & 65535u)) >> 12u,
-        (t35 * (t34 & 65535u)) >> 12u,
-        (t38 * (t37 & 65535u)) >> 12u
+        (t32 * (t31 & 0xffffu)) >> 12u,
+        (t35 * (t34 & 0xffffu)) >> 12u,
+        (t38 * (t37 & 0xffffu)) >> 12u
     );
     uvec3 t41 = t39 + t40;
     UNITPACK_PRECISE float e = float(t41.x + t41.y + t41.z);
@@ -166,21 +167,21 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t48 = cand2.x - cand2.y;
     uint t48_u = uint(t48);
     uint t46_u = uint(t46);
-    uvec3 cross2 = afix.yzx * uvec3(vec3(t46, t47, t48)) - afix.zxy * uvec3(vec3(t48, t46, t47));
-    uint t49 = 0u - cross2.x;
-    uint t50 = cross2.x < 2147483648u ? cross2.x : t49;
+    uvec3 axd2 = afix.yzx * uvec3(vec3(t46, t47, t48)) - afix.zxy * uvec3(vec3(t48, t46, t47));
+    uint t49 = 0u - axd2.x;
+    uint t50 = axd2.x < 0x80000000u ? axd2.x : t49;
     uint t51 = t50 >> 16u;
-    uint t52 = 0u - cross2.y;
-    uint t53 = cross2.y < 2147483648u ? cross2.y : t52;
+    uint t52 = 0u - axd2.y;
+    uint t53 = axd2.y < 0x80000000u ? axd2.y : t52;
     uint t54 = t53 >> 16u;
-    uint t55 = 0u - cross2.z;
-    uint t56 = cross2.z < 2147483648u ? cross2.z : t55;
+    uint t55 = 0u - axd2.z;
+    uint t56 = axd2.z < 0x80000000u ? axd2.z : t55;
     uint t57 = t56 >> 16u;
     uvec3 t58 = uvec3((t51 * t51) << 3u, (t54 * t54) << 3u, (t57 * t57) << 3u);
     uvec3 t59 = uvec3(
-        (t51 * (t50 & 65535u)) >> 12u,
-        (t54 * (t53 & 65535u)) >> 12u,
-        (t57 * (t56 & 65535u)) >> 12u
+        (t51 * (t50 & 0xffffu)) >> 12u,
+        (t54 * (t53 & 0xffffu)) >> 12u,
+        (t57 * (t56 & 0xffffu)) >> 12u
     );
     uvec3 t60 = t58 + t59;
     UNITPACK_PRECISE float e2 = float(t60.x + t60.y + t60.z);
@@ -203,21 +204,21 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t71 = cand3.x - cand3.y;
     uint t71_u = uint(t71);
     uint t69_u = uint(t69);
-    uvec3 cross3 = afix.yzx * uvec3(vec3(t69, t70, t71)) - afix.zxy * uvec3(vec3(t71, t69, t70));
-    uint t72 = 0u - cross3.x;
-    uint t73 = cross3.x < 2147483648u ? cross3.x : t72;
+    uvec3 axd3 = afix.yzx * uvec3(vec3(t69, t70, t71)) - afix.zxy * uvec3(vec3(t71, t69, t70));
+    uint t72 = 0u - axd3.x;
+    uint t73 = axd3.x < 0x80000000u ? axd3.x : t72;
     uint t74 = t73 >> 16u;
-    uint t75 = 0u - cross3.y;
-    uint t76 = cross3.y < 2147483648u ? cross3.y : t75;
+    uint t75 = 0u - axd3.y;
+    uint t76 = axd3.y < 0x80000000u ? axd3.y : t75;
     uint t77 = t76 >> 16u;
-    uint t78 = 0u - cross3.z;
-    uint t79 = cross3.z < 2147483648u ? cross3.z : t78;
+    uint t78 = 0u - axd3.z;
+    uint t79 = axd3.z < 0x80000000u ? axd3.z : t78;
     uint t80 = t79 >> 16u;
     uvec3 t81 = uvec3((t74 * t74) << 3u, (t77 * t77) << 3u, (t80 * t80) << 3u);
     uvec3 t82 = uvec3(
-        (t74 * (t73 & 65535u)) >> 12u,
-        (t77 * (t76 & 65535u)) >> 12u,
-        (t80 * (t79 & 65535u)) >> 12u
+        (t74 * (t73 & 0xffffu)) >> 12u,
+        (t77 * (t76 & 0xffffu)) >> 12u,
+        (t80 * (t79 & 0xffffu)) >> 12u
     );
     uvec3 t83 = t81 + t82;
     UNITPACK_PRECISE float e3 = float(t83.x + t83.y + t83.z);
@@ -240,21 +241,21 @@ vec2 unitpack_hemioct24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float t94 = cand4.x - cand4.y;
     uint t94_u = uint(t94);
     uint t92_u = uint(t92);
-    uvec3 cross4 = afix.yzx * uvec3(vec3(t92, t93, t94)) - afix.zxy * uvec3(vec3(t94, t92, t93));
-    uint t95 = 0u - cross4.x;
-    uint t96 = cross4.x < 2147483648u ? cross4.x : t95;
+    uvec3 axd4 = afix.yzx * uvec3(vec3(t92, t93, t94)) - afix.zxy * uvec3(vec3(t94, t92, t93));
+    uint t95 = 0u - axd4.x;
+    uint t96 = axd4.x < 0x80000000u ? axd4.x : t95;
     uint t97 = t96 >> 16u;
-    uint t98 = 0u - cross4.y;
-    uint t99 = cross4.y < 2147483648u ? cross4.y : t98;
+    uint t98 = 0u - axd4.y;
+    uint t99 = axd4.y < 0x80000000u ? axd4.y : t98;
     uint t100 = t99 >> 16u;
-    uint t101 = 0u - cross4.z;
-    uint t102 = cross4.z < 2147483648u ? cross4.z : t101;
+    uint t101 = 0u - axd4.z;
+    uint t102 = axd4.z < 0x80000000u ? axd4.z : t101;
     uint t103 = t102 >> 16u;
     uvec3 t104 = uvec3((t97 * t97) << 3u, (t100 * t100) << 3u, (t103 * t103) << 3u);
     uvec3 t105 = uvec3(
-        (t97 * (t96 & 65535u)) >> 12u,
-        (t100 * (t99 & 65535u)) >> 12u,
-        (t103 * (t102 & 65535u)) >> 12u
+        (t97 * (t96 & 0xffffu)) >> 12u,
+        (t100 * (t99 & 0xffffu)) >> 12u,
+        (t103 * (t102 & 0xffffu)) >> 12u
     );
     uvec3 t106 = t104 + t105;
     UNITPACK_PRECISE float e4 = float(t106.x + t106.y + t106.z);
@@ -291,7 +292,7 @@ uint unitpack_hemioct24p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 encode_codes = unitpack_hemioct24p_encode_codes(v);
     UNITPACK_PRECISE float t1 = encode_codes.x + 4096.0;
     UNITPACK_PRECISE float t2 = encode_codes.y + 4096.0;
-    return (uint(t1) & 4095u) | ((uint(t2) << 12u) & 16773120u);
+    return (uint(t1) & 0xfffu) | ((uint(t2) << 12u) & 0xfff000u);
 }
 
 #endif // UNITPACK_HEMIOCT24P_GLSL

@@ -24,6 +24,7 @@
 
 // ---- oct16: octahedral, snorm×2, 16 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.33696°, sample max 0.92448°; MSE of the components of
 //   n - n' 1.398e-5, PSNR 48.54 dB.
 #ifndef UNITPACK_OCT16_GLSL
@@ -86,13 +87,13 @@ vec2 unitpack_oct16_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_oct16_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_oct16_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -128,7 +129,7 @@ uint unitpack_oct16_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_oct16_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 256.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 256.0;
-    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 65280u);
+    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 0xff00u);
 }
 
 #endif // UNITPACK_OCT16_GLSL

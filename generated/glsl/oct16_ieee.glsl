@@ -24,6 +24,7 @@
 
 // ---- oct16:guarantee=ieee: octahedral, snorm×2, 16 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.33696°, sample max 0.92448°; MSE of the components of
 //   n - n' 1.398e-5, PSNR 48.54 dB.
 #ifndef UNITPACK_OCT16_IEEE_GLSL
@@ -93,7 +94,7 @@ uint unitpack_oct16_ieee_encode(vec3 v) {
     UNITPACK_PRECISE vec2 codes = roundEven(unitpack_oct16_ieee_encode_float(v) * 127.0);
     UNITPACK_PRECISE float t1 = codes.x + 256.0;
     UNITPACK_PRECISE float t2 = codes.y + 256.0;
-    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 65280u);
+    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 0xff00u);
 }
 
 #endif // UNITPACK_OCT16_IEEE_GLSL

@@ -24,6 +24,7 @@
 
 // ---- oct20: octahedral, snorm×2, 20 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.08351°, sample max 0.23404°; MSE of the components of
 //   n - n' 8.605e-7, PSNR 60.65 dB.
 #ifndef UNITPACK_OCT20_GLSL
@@ -56,7 +57,7 @@ vec3 unitpack_oct20_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable as unitpack_oct20_decode_float is, within the same bound.
 vec3 unitpack_oct20_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 10u) & uvec2(1023u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 10u) & uvec2(0x3ffu));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 1024.0, greaterThan(t1, vec2(511.0))) * 0.0019569471;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_oct20_decode_float(params);
@@ -86,13 +87,13 @@ vec2 unitpack_oct20_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_oct20_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_oct20_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -128,7 +129,7 @@ uint unitpack_oct20_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_oct20_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 1024.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 1024.0;
-    return (uint(t1) & 1023u) | ((uint(t2) << 10u) & 1047552u);
+    return (uint(t1) & 0x3ffu) | ((uint(t2) << 10u) & 0xffc00u);
 }
 
 #endif // UNITPACK_OCT20_GLSL

@@ -24,6 +24,7 @@
 
 // ---- oct22: octahedral, snorm×2, 22 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.04188°, sample max 0.11518°; MSE of the components of
 //   n - n' 2.161e-7, PSNR 66.65 dB.
 #ifndef UNITPACK_OCT22_GLSL
@@ -56,7 +57,7 @@ vec3 unitpack_oct22_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable as unitpack_oct22_decode_float is, within the same bound.
 vec3 unitpack_oct22_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 11u) & uvec2(2047u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 11u) & uvec2(0x7ffu));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 2048.0, greaterThan(t1, vec2(1023.0))) * 0.0009775171;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_oct22_decode_float(params);
@@ -86,13 +87,13 @@ vec2 unitpack_oct22_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_oct22_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_oct22_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -128,7 +129,7 @@ uint unitpack_oct22_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_oct22_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 2048.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 2048.0;
-    return (uint(t1) & 2047u) | ((uint(t2) << 11u) & 4192256u);
+    return (uint(t1) & 0x7ffu) | ((uint(t2) << 11u) & 0x3ff800u);
 }
 
 #endif // UNITPACK_OCT22_GLSL

@@ -24,6 +24,7 @@
 
 // ---- oct24:layout=rgb8: octahedral, snorm×2, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02081°, sample max 0.05780°; MSE of the components of
 //   n - n' 5.352e-8, PSNR 72.71 dB.
 #ifndef UNITPACK_OCT24_RGB8_GLSL
@@ -37,8 +38,8 @@ precision highp int;
 //   in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and
 //   sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the
 //   inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
-vec2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(vec3 a0) {
-    UNITPACK_PRECISE vec3 b = roundEven(a0 * 255.0);
+vec2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(vec3 u) {
+    UNITPACK_PRECISE vec3 b = roundEven(u * 255.0);
     UNITPACK_PRECISE float y16 = b.y * 0.0625;
     UNITPACK_PRECISE float hi = floor(y16);
     UNITPACK_PRECISE vec2 t1 = (vec2(b.x, y16 - hi) * vec2(16.0, 4096.0) + vec2(hi, b.z) - 2047.0)
@@ -47,12 +48,12 @@ vec2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(vec3 a0) {
 }
 
 // oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.
-vec3 unitpack_oct24_rgb8_oct24_decode_float(vec2 a0) {
-    UNITPACK_PRECISE vec2 abs_a0 = abs(a0);
-    UNITPACK_PRECISE float z = 1.0 - abs_a0.x - abs_a0.y;
-    UNITPACK_PRECISE vec2 folded = (1.0 - abs(a0.yx))
-        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(a0, vec2(0.0)));
-    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? folded : a0, z);
+vec3 unitpack_oct24_rgb8_oct24_decode_float(vec2 e) {
+    UNITPACK_PRECISE vec2 abs_e = abs(e);
+    UNITPACK_PRECISE float z = 1.0 - abs_e.x - abs_e.y;
+    UNITPACK_PRECISE vec2 folded = (1.0 - abs(e.yx))
+        * mix(vec2(-1.0), vec2(1.0), greaterThanEqual(e, vec2(0.0)));
+    UNITPACK_PRECISE vec3 v = vec3(z < 0.0 ? folded : e, z);
     UNITPACK_PRECISE vec3 v_sq = v * v;
     UNITPACK_PRECISE vec3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -71,10 +72,10 @@ vec3 unitpack_oct24_rgb8_decode_float(vec3 params) {
 
 // The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey
 //   Listing 5, float-only).
-vec2 unitpack_oct24_rgb8_bytes_to_snorm12x2(vec3 a0) {
-    UNITPACK_PRECISE float y16 = a0.y * 0.0625;
+vec2 unitpack_oct24_rgb8_bytes_to_snorm12x2(vec3 b) {
+    UNITPACK_PRECISE float y16 = b.y * 0.0625;
     UNITPACK_PRECISE float hi = floor(y16);
-    UNITPACK_PRECISE vec2 t1 = (vec2(a0.x, y16 - hi) * vec2(16.0, 4096.0) + vec2(hi, a0.z) - 2047.0)
+    UNITPACK_PRECISE vec2 t1 = (vec2(b.x, y16 - hi) * vec2(16.0, 4096.0) + vec2(hi, b.z) - 2047.0)
         * 0.0004885198;
     return mix(vec2(1.0), t1, lessThanEqual(t1, vec2(1.0)));
 }
@@ -94,13 +95,13 @@ vec3 unitpack_oct24_rgb8_decode(uint code) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_oct24_rgb8_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_oct24_rgb8_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);

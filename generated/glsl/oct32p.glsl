@@ -24,6 +24,7 @@
 
 // ---- oct32p: octahedral, snorm×2, 32 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00122°, sample max 0.00245°; MSE of the components of
 //   n - n' 1.735e-10, PSNR 97.61 dB.
 #ifndef UNITPACK_OCT32P_GLSL
@@ -56,7 +57,7 @@ vec3 unitpack_oct32p_decode_float(vec2 params) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable as unitpack_oct32p_decode_float is, within the same bound.
 vec3 unitpack_oct32p_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 65535u, code >> 16u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 0xffffu, code >> 16u));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec2(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_oct32p_decode_float(params);
@@ -72,7 +73,7 @@ vec2 unitpack_oct32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -86,8 +87,8 @@ vec2 unitpack_oct32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float estimate = floor(a.x / l1 * 32767.0);
     UNITPACK_PRECISE float big = a.x * 32767.0;
     UNITPACK_PRECISE float step_down = big < estimate * l1 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
-    UNITPACK_PRECISE float t1 = estimate + step;
+    UNITPACK_PRECISE float nudge = big >= (estimate + 1.0) * l1 ? 1.0 : step_down;
+    UNITPACK_PRECISE float t1 = estimate + nudge;
     bool t2 = t1 >= (-32767.0);
     UNITPACK_PRECISE float t3 = t2 ? t1 : -32767.0;
     bool t4 = t3 <= 32767.0;
@@ -95,8 +96,8 @@ vec2 unitpack_oct32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float estimate2 = floor(a.y / l1 * 32767.0);
     UNITPACK_PRECISE float big2 = a.y * 32767.0;
     UNITPACK_PRECISE float step_down2 = big2 < estimate2 * l1 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float t5 = estimate2 + step2;
+    UNITPACK_PRECISE float nudge2 = big2 >= (estimate2 + 1.0) * l1 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t5 = estimate2 + nudge2;
     UNITPACK_PRECISE float t6 = t5 >= (-32767.0) ? t5 : -32767.0;
     bool t7 = t6 <= 32767.0;
     UNITPACK_PRECISE float t8 = t7 ? t6 : 32767.0;
@@ -110,23 +111,23 @@ vec2 unitpack_oct32p_encode_codes(vec3 v) {
     uint s0_u = uint(s0);
     uint t0_u = uint(t0);
     uint t14 = uint(t13 ? t12 : 0.0);
-    uvec3 cross = afix.yzx
+    uvec3 axd = afix.yzx
         * uvec3(mix(vec3(0.0, 32767.0, t9), vec3(t12, t3, t8), bvec3(t13, t4, t10)))
         - afix.zxy * uvec3(mix(vec3(t9, 0.0, 32767.0), vec3(t8, t12, t3), bvec3(t10, t13, t4)));
-    uint t15 = 0u - cross.x;
-    uint t16 = cross.x < 2147483648u ? cross.x : t15;
+    uint t15 = 0u - axd.x;
+    uint t16 = axd.x < 0x80000000u ? axd.x : t15;
     uint t17 = t16 >> 16u;
-    uint t18 = 0u - cross.y;
-    uint t19 = cross.y < 2147483648u ? cross.y : t18;
+    uint t18 = 0u - axd.y;
+    uint t19 = axd.y < 0x80000000u ? axd.y : t18;
     uint t20 = t19 >> 16u;
-    uint t21 = 0u - cross.z;
-    uint t22 = cross.z < 2147483648u ? cross.z : t21;
+    uint t21 = 0u - axd.z;
+    uint t22 = axd.z < 0x80000000u ? axd.z : t21;
     uint t23 = t22 >> 16u;
     uvec3 t24 = uvec3((t17 * t17) << 3u, (t20 * t20) << 3u, (t23 * t23) << 3u);
     uvec3 t25 = uvec3(
-        (t17 * (t16 & 65535u)) >> 12u,
-        (t20 * (t19 & 65535u)) >> 12u,
-        (t23 * (t22 & 65535u)) >> 12u
+        (t17 * (t16 & 0xffffu)) >> 12u,
+        (t20 * (t19 & 0xffffu)) >> 12u,
+        (t23 * (t22 & 0xffffu)) >> 12u
     );
     uvec3 t26 = t24 + t25;
     UNITPACK_PRECISE float e = float(t26.x + t26.y + t26.z);
@@ -138,21 +139,21 @@ vec2 unitpack_oct32p_encode_codes(vec3 v) {
     uint s_up_u = uint(s_up);
     uint t0_u2 = uint(t0);
     uint t28_u = uint(t28);
-    uvec3 cross2 = afix.yzx * uvec3(vec3(t28, s_up, t0)) - afix.zxy * uvec3(vec3(t0, t28, s_up));
-    uint t29 = 0u - cross2.x;
-    uint t30 = cross2.x < 2147483648u ? cross2.x : t29;
+    uvec3 axd2 = afix.yzx * uvec3(vec3(t28, s_up, t0)) - afix.zxy * uvec3(vec3(t0, t28, s_up));
+    uint t29 = 0u - axd2.x;
+    uint t30 = axd2.x < 0x80000000u ? axd2.x : t29;
     uint t31 = t30 >> 16u;
-    uint t32 = 0u - cross2.y;
-    uint t33 = cross2.y < 2147483648u ? cross2.y : t32;
+    uint t32 = 0u - axd2.y;
+    uint t33 = axd2.y < 0x80000000u ? axd2.y : t32;
     uint t34 = t33 >> 16u;
-    uint t35 = 0u - cross2.z;
-    uint t36 = cross2.z < 2147483648u ? cross2.z : t35;
+    uint t35 = 0u - axd2.z;
+    uint t36 = axd2.z < 0x80000000u ? axd2.z : t35;
     uint t37 = t36 >> 16u;
     uvec3 t38 = uvec3((t31 * t31) << 3u, (t34 * t34) << 3u, (t37 * t37) << 3u);
     uvec3 t39 = uvec3(
-        (t31 * (t30 & 65535u)) >> 12u,
-        (t34 * (t33 & 65535u)) >> 12u,
-        (t37 * (t36 & 65535u)) >> 12u
+        (t31 * (t30 & 0xffffu)) >> 12u,
+        (t34 * (t33 & 0xffffu)) >> 12u,
+        (t37 * (t36 & 0xffffu)) >> 12u
     );
     uvec3 t40 = t38 + t39;
     UNITPACK_PRECISE float e2 = float(t40.x + t40.y + t40.z);
@@ -174,21 +175,21 @@ vec2 unitpack_oct32p_encode_codes(vec3 v) {
     uint s0_u2 = uint(s0);
     uint t_up_u = uint(t_up);
     uint t51_u = uint(t51);
-    uvec3 cross3 = afix.yzx * uvec3(vec3(t51, s0, t_up)) - afix.zxy * uvec3(vec3(t_up, t51, s0));
-    uint t52 = 0u - cross3.x;
-    uint t53 = cross3.x < 2147483648u ? cross3.x : t52;
+    uvec3 axd3 = afix.yzx * uvec3(vec3(t51, s0, t_up)) - afix.zxy * uvec3(vec3(t_up, t51, s0));
+    uint t52 = 0u - axd3.x;
+    uint t53 = axd3.x < 0x80000000u ? axd3.x : t52;
     uint t54 = t53 >> 16u;
-    uint t55 = 0u - cross3.y;
-    uint t56 = cross3.y < 2147483648u ? cross3.y : t55;
+    uint t55 = 0u - axd3.y;
+    uint t56 = axd3.y < 0x80000000u ? axd3.y : t55;
     uint t57 = t56 >> 16u;
-    uint t58 = 0u - cross3.z;
-    uint t59 = cross3.z < 2147483648u ? cross3.z : t58;
+    uint t58 = 0u - axd3.z;
+    uint t59 = axd3.z < 0x80000000u ? axd3.z : t58;
     uint t60 = t59 >> 16u;
     uvec3 t61 = uvec3((t54 * t54) << 3u, (t57 * t57) << 3u, (t60 * t60) << 3u);
     uvec3 t62 = uvec3(
-        (t54 * (t53 & 65535u)) >> 12u,
-        (t57 * (t56 & 65535u)) >> 12u,
-        (t60 * (t59 & 65535u)) >> 12u
+        (t54 * (t53 & 0xffffu)) >> 12u,
+        (t57 * (t56 & 0xffffu)) >> 12u,
+        (t60 * (t59 & 0xffffu)) >> 12u
     );
     uvec3 t63 = t61 + t62;
     UNITPACK_PRECISE float e3 = float(t63.x + t63.y + t63.z);
@@ -207,22 +208,21 @@ vec2 unitpack_oct32p_encode_codes(vec3 v) {
     uint s_up_u2 = uint(s_up);
     uint t_up_u2 = uint(t_up);
     uint t71_u = uint(t71);
-    uvec3 cross4 = afix.yzx * uvec3(vec3(t71, s_up, t_up))
-        - afix.zxy * uvec3(vec3(t_up, t71, s_up));
-    uint t72 = 0u - cross4.x;
-    uint t73 = cross4.x < 2147483648u ? cross4.x : t72;
+    uvec3 axd4 = afix.yzx * uvec3(vec3(t71, s_up, t_up)) - afix.zxy * uvec3(vec3(t_up, t71, s_up));
+    uint t72 = 0u - axd4.x;
+    uint t73 = axd4.x < 0x80000000u ? axd4.x : t72;
     uint t74 = t73 >> 16u;
-    uint t75 = 0u - cross4.y;
-    uint t76 = cross4.y < 2147483648u ? cross4.y : t75;
+    uint t75 = 0u - axd4.y;
+    uint t76 = axd4.y < 0x80000000u ? axd4.y : t75;
     uint t77 = t76 >> 16u;
-    uint t78 = 0u - cross4.z;
-    uint t79 = cross4.z < 2147483648u ? cross4.z : t78;
+    uint t78 = 0u - axd4.z;
+    uint t79 = axd4.z < 0x80000000u ? axd4.z : t78;
     uint t80 = t79 >> 16u;
     uvec3 t81 = uvec3((t74 * t74) << 3u, (t77 * t77) << 3u, (t80 * t80) << 3u);
     uvec3 t82 = uvec3(
-        (t74 * (t73 & 65535u)) >> 12u,
-        (t77 * (t76 & 65535u)) >> 12u,
-        (t80 * (t79 & 65535u)) >> 12u
+        (t74 * (t73 & 0xffffu)) >> 12u,
+        (t77 * (t76 & 0xffffu)) >> 12u,
+        (t80 * (t79 & 0xffffu)) >> 12u
     );
     uvec3 t83 = t81 + t82;
     UNITPACK_PRECISE float e4 = float(t83.x + t83.y + t83.z);
@@ -260,7 +260,7 @@ uint unitpack_oct32p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 encode_codes = unitpack_oct32p_encode_codes(v);
     UNITPACK_PRECISE float t1 = encode_codes.x + 65536.0;
     UNITPACK_PRECISE float t2 = encode_codes.y + 65536.0;
-    return (uint(t1) & 65535u) | (uint(t2) << 16u);
+    return (uint(t1) & 0xffffu) | (uint(t2) << 16u);
 }
 
 #endif // UNITPACK_OCT32P_GLSL

@@ -24,6 +24,7 @@
 //   and the sign, 48 bits ----
 // Source: the normal: octahedral (Meyer et al. 2010, Cigolle et al. 2014); the tangent's basis:
 //   Jeremy Ong, "Tangent spaces and diamond encoding" (2023).
+// Model: src/codecs/frames/octangle.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00131° / 0.00365°, tangent 0.00299° / 0.00643°, bitangent
@@ -48,11 +49,11 @@ struct unitpack_octangle48_tbn {
 };
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-vec2 unitpack_octangle48_sincos_pi(float a0) {
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
-    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
+vec2 unitpack_octangle48_sincos_pi(float x) {
+    UNITPACK_PRECISE float abs_x = abs(x);
+    bool back = abs_x > 0.5;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_x;
+    UNITPACK_PRECISE float b = back ? t1 : abs_x;
     bool swap = b > 0.25;
     UNITPACK_PRECISE float t2 = 0.5 - b;
     UNITPACK_PRECISE float c = swap ? t2 : b;
@@ -70,7 +71,7 @@ vec2 unitpack_octangle48_sincos_pi(float a0) {
     UNITPACK_PRECISE vec2 t5 = vec2(co, s);
     UNITPACK_PRECISE vec2 t6 = vec2(s, co);
     UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
-    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(x < 0.0, back));
     return result;
 }
 
@@ -87,14 +88,14 @@ vec2 unitpack_octangle48_sincos_pi(float a0) {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 unitpack_octangle48_frame unitpack_octangle48_decode(uvec2 code) {
-    UNITPACK_PRECISE float t1 = float(code.x & 65535u);
+    UNITPACK_PRECISE float t1 = float(code.x & 0xffffu);
     UNITPACK_PRECISE float t2 = t1 - 65536.0;
     UNITPACK_PRECISE float t3 = float(code.x >> 16u);
     UNITPACK_PRECISE float t4 = t3 - 65536.0;
     UNITPACK_PRECISE vec4 fields = vec4(
         t1 > 32767.0 ? t2 : t1,
         t3 > 32767.0 ? t4 : t3,
-        float(code.y & 32767u),
+        float(code.y & 0x7fffu),
         float((code.y >> 15u) & 1u)
     );
     UNITPACK_PRECISE float t5 = fields.z - 32768.0;
@@ -137,14 +138,14 @@ unitpack_octangle48_frame unitpack_octangle48_decode(uvec2 code) {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable within a bound (as the header says): as for unitpack_octangle48_decode.
 unitpack_octangle48_tbn unitpack_octangle48_decode_tbn(uvec2 code) {
-    UNITPACK_PRECISE float t1 = float(code.x & 65535u);
+    UNITPACK_PRECISE float t1 = float(code.x & 0xffffu);
     UNITPACK_PRECISE float t2 = t1 - 65536.0;
     UNITPACK_PRECISE float t3 = float(code.x >> 16u);
     UNITPACK_PRECISE float t4 = t3 - 65536.0;
     UNITPACK_PRECISE vec4 fields = vec4(
         t1 > 32767.0 ? t2 : t1,
         t3 > 32767.0 ? t4 : t3,
-        float(code.y & 32767u),
+        float(code.y & 0x7fffu),
         float((code.y >> 15u) & 1u)
     );
     UNITPACK_PRECISE float t5 = fields.z - 32768.0;
@@ -200,7 +201,7 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -239,59 +240,59 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float larger2 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     UNITPACK_PRECISE float largest2 = larger2 >= abs_normal3.z ? larger2 : abs_normal3.z;
     UNITPACK_PRECISE float scale2 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest2) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest2) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled2 = normal3 * scale2;
     UNITPACK_PRECISE vec3 w2 = mix(scaled2, vec3(0.0), lessThan(abs(scaled2), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 t9 = floor(abs(w2) * 2097152.0);
     uvec3 t9_u = uvec3(t9);
     uint limb1 = t9_u.x >> 12u;
-    uint limb0 = t9_u.x & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = t9_u.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = t9_u.y >> 12u;
-    uint limb0_2 = t9_u.y & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = t9_u.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = t9_u.z >> 12u;
-    uint limb0_3 = t9_u.z & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = t9_u.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float t10 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(t10);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t10 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t10 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= t10 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = t10 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t10 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t10 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
-    UNITPACK_PRECISE float length = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t11 = length * 2097152.0;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= t10 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
+    UNITPACK_PRECISE float norm = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    UNITPACK_PRECISE float t11 = norm * 2097152.0;
     uint t11_u = uint(t11);
     uint wide = (hi4 << 24u) + lo4;
-    uint rest = wide - t11_u * t11_u + 1073741824u;
+    uint rest = wide - t11_u * t11_u + 0x40000000u;
     uint t12 = t11_u + 1u;
     uint t13 = t11_u - 1u;
-    uint t14 = rest < 1073741824u - t11_u + 1u ? t13 : t11_u;
-    uint n3 = 1073741824u + t11_u < rest ? t12 : t14;
-    uint rest2 = wide - n3 * n3 + 1073741824u;
+    uint t14 = rest < 0x40000000u - t11_u + 1u ? t13 : t11_u;
+    uint n3 = 0x40000000u + t11_u < rest ? t12 : t14;
+    uint rest2 = wide - n3 * n3 + 0x40000000u;
     uint t15 = n3 + 1u;
     uint t16 = n3 - 1u;
-    uint t17 = rest2 < 1073741824u - n3 + 1u ? t16 : n3;
-    uint n4 = 1073741824u + n3 < rest2 ? t15 : t17;
+    uint t17 = rest2 < 0x40000000u - n3 + 1u ? t16 : n3;
+    uint n4 = 0x40000000u + n3 < rest2 ? t15 : t17;
     UNITPACK_PRECISE float nf = float(n4);
     UNITPACK_PRECISE float t18 = roundEven(float(t9_u.x) / nf * 16777216.0);
     uint k0 = uint(t18);
@@ -301,11 +302,11 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     uint t21 = t19 + n4 + t20;
     uint two_n = n4 << 1u;
     uint t22 = t21 >> 12u;
-    UNITPACK_PRECISE float t23 = (float(t22) * 4096.0 + float(t21 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float t23 = (float(t22) * 4096.0 + float(t21 & 0xfffu)) / (nf * 2.0);
     UNITPACK_PRECISE float floor_t23 = floor(t23);
     uint q0 = uint(floor_t23);
     uint rest3 = t21 - q0 * two_n;
-    bool negative = !(rest3 < 2147483648u);
+    bool negative = !(rest3 < 0x80000000u);
     bool t24 = !negative;
     UNITPACK_PRECISE float t25 = roundEven(float(t9_u.y) / nf * 16777216.0);
     uint k0_2 = uint(t25);
@@ -315,11 +316,11 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     uint t28 = t26 + n4 + t27;
     uint two_n2 = n4 << 1u;
     uint t29 = t28 >> 12u;
-    UNITPACK_PRECISE float t30 = (float(t29) * 4096.0 + float(t28 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float t30 = (float(t29) * 4096.0 + float(t28 & 0xfffu)) / (nf * 2.0);
     UNITPACK_PRECISE float floor_t30 = floor(t30);
     uint q0_2 = uint(floor_t30);
     uint rest4 = t28 - q0_2 * two_n2;
-    bool negative2 = !(rest4 < 2147483648u);
+    bool negative2 = !(rest4 < 0x80000000u);
     bool t31 = !negative2;
     UNITPACK_PRECISE float t32 = roundEven(float(t9_u.z) / nf * 16777216.0);
     uint k0_3 = uint(t32);
@@ -329,15 +330,15 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     uint t35 = t33 + n4 + t34;
     uint two_n3 = n4 << 1u;
     uint t36 = t35 >> 12u;
-    UNITPACK_PRECISE float t37 = (float(t36) * 4096.0 + float(t35 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float t37 = (float(t36) * 4096.0 + float(t35 & 0xfffu)) / (nf * 2.0);
     UNITPACK_PRECISE float floor_t37 = floor(t37);
     uint q0_3 = uint(floor_t37);
     uint rest5 = t35 - q0_3 * two_n3;
-    bool negative3 = !(rest5 < 2147483648u);
+    bool negative3 = !(rest5 < 0x80000000u);
     bool t38 = !negative3;
     bvec3 t39 = bvec3(!(rest3 < two_n) && t24, !(rest4 < two_n2) && t31, !(rest5 < two_n3) && t38);
     UNITPACK_PRECISE vec3 t40 = vec3(uvec3(t22, t29, t36)) * 4096.0
-        + vec3((uvec3(t19, t26, t33) + n4 + uvec3(t20, t27, t34)) & uvec3(4095u));
+        + vec3((uvec3(t19, t26, t33) + n4 + uvec3(t20, t27, t34)) & uvec3(0xfffu));
     UNITPACK_PRECISE vec3 t41 = floor(t40 / (nf * vec3(2.0)));
     uvec3 t41_u = uvec3(t41);
     uvec3 t42 = t41_u + 1u;
@@ -348,12 +349,12 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     uvec3 t47 = uvec3(t46)
         + uvec3(t39.x ? t42.x : t45.x, t39.y ? t42.y : t45.y, t39.z ? t42.z : t45.z);
     uvec3 t48 = t47 - 8u;
-    bvec3 t49 = lessThan(uvec3(16777216u), t48);
+    bvec3 t49 = lessThan(uvec3(0x1000000u), t48);
     UNITPACK_PRECISE vec3 t50 = vec3(
         uvec3(
-            t49.x ? (uvec3(16777216u)).x : t48.x,
-            t49.y ? (uvec3(16777216u)).y : t48.y,
-            t49.z ? (uvec3(16777216u)).z : t48.z
+            t49.x ? (uvec3(0x1000000u)).x : t48.x,
+            t49.y ? (uvec3(0x1000000u)).y : t48.y,
+            t49.z ? (uvec3(0x1000000u)).z : t48.z
         )
     )
         * 5.9604645e-8;
@@ -372,7 +373,7 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float larger3 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
     UNITPACK_PRECISE float largest3 = larger3 >= abs_normal4.z ? larger3 : abs_normal4.z;
     UNITPACK_PRECISE float scale3 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest3) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest3) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled3 = normal4 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
@@ -398,22 +399,22 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float big = lo5 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo5 / t58 * 8388608.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate * t58 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t58 <= big ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate + 1.0) * t58 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge3;
     UNITPACK_PRECISE float step_down4 = ratio * t58 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t58 <= big ? 1.0 : step_down4;
-    UNITPACK_PRECISE float t59 = ratio + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio + 1.0) * t58 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t59 = ratio + nudge4;
     bool far = t59 > 3474675.0;
     UNITPACK_PRECISE float t60 = t59 - 8388608.0;
     UNITPACK_PRECISE float t61 = t59 + 8388608.0;
     UNITPACK_PRECISE float big2 = t60 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t60 / t61 * 8388608.0);
     UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t61 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t61 <= big2 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float nudge5 = (ratio_estimate2 + 1.0) * t61 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge5;
     UNITPACK_PRECISE float step_down6 = ratio2 * t61 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t61 <= big2 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
+    UNITPACK_PRECISE float nudge6 = (ratio2 + 1.0) * t61 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + nudge6;
     UNITPACK_PRECISE float z = far ? ratio3 : t59;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
     UNITPACK_PRECISE float t62 = roundEven(
@@ -453,7 +454,8 @@ uvec2 unitpack_octangle48_encode(vec3 n, vec4 t) {
     );
     UNITPACK_PRECISE float t72 = codes.x + 65536.0;
     UNITPACK_PRECISE float t73 = codes.y + 65536.0;
-    return uvec2(uint(t72) & 65535u, uint(codes.z)) | uvec2(uint(t73) << 16u, uint(codes.w) << 15u);
+    return uvec2(uint(t72) & 0xffffu, uint(codes.z))
+        | uvec2(uint(t73) << 16u, uint(codes.w) << 15u);
 }
 
 #endif // UNITPACK_OCTANGLE48_GLSL

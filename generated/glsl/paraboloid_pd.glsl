@@ -16,6 +16,7 @@
 
 // ---- paraboloid_pd: combine a paraboloid normal with a partial-derivative detail normal ----
 // Source: Improved Normal-map Distributions (Insomniac), CombineParaboloidNormalWithPD.
+// Model: src/codecs/azimuthal/paraboloid_pd.rs in unitpack's sources.
 #ifndef UNITPACK_PARABOLOID_PD_GLSL
 #define UNITPACK_PARABOLOID_PD_GLSL
 #ifdef GL_ES

@@ -26,6 +26,7 @@
 //   snorm×2, 24 bits, hemisphere ----
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the dual inverted
 //   paraboloid.
+// Model: src/codecs/azimuthal/paraboloid_square.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01459°, sample max 0.03389°; MSE of the components of
 //   n - n' 2.578e-8, PSNR 75.89 dB.
 #ifndef UNITPACK_PARABOLOID_SQUARE24_GLSL
@@ -57,7 +58,7 @@ vec3 unitpack_paraboloid_square24_decode_float(vec2 params) {
 //   horizon.
 // Portable as unitpack_paraboloid_square24_decode_float is, within the same bound.
 vec3 unitpack_paraboloid_square24_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 12u) & uvec2(4095u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 12u) & uvec2(0xfffu));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 4096.0, greaterThan(t1, vec2(2047.0))) * 0.0004885198;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_paraboloid_square24_decode_float(params);
@@ -65,25 +66,25 @@ vec3 unitpack_paraboloid_square24_decode(uint code) {
 
 // One bisection step: `s + h` where the surface at that point is still above the ray (`(1 - t²)(1 -
 //   r²t²)·m ≥ u.z·t`, every product rounded to a unit of 2^-21), else `s`.
-float unitpack_paraboloid_square24_square_step(float a0, float a1, vec3 a2) {
-    UNITPACK_PRECISE float t = a0 + a1;
+float unitpack_paraboloid_square24_square_step(float s, float h, vec3 k) {
+    UNITPACK_PRECISE float t = s + h;
     UNITPACK_PRECISE float t1 = roundEven(t * t * 4.7683716e-7);
     UNITPACK_PRECISE float t2 = (2097152.0 - t1)
-        * (2097152.0 - roundEven(a2.y * t1 * 4.7683716e-7))
+        * (2097152.0 - roundEven(k.y * t1 * 4.7683716e-7))
         * 4.7683716e-7;
     UNITPACK_PRECISE float surface = roundEven(t2);
-    UNITPACK_PRECISE float t3 = roundEven(surface * a2.x * 4.7683716e-7);
-    UNITPACK_PRECISE float t4 = roundEven(a2.z * t * 4.7683716e-7);
+    UNITPACK_PRECISE float t3 = roundEven(surface * k.x * 4.7683716e-7);
+    UNITPACK_PRECISE float t4 = roundEven(k.z * t * 4.7683716e-7);
     bool t5 = t3 >= t4;
     bool t6 = t <= 2097152.0;
-    return t5 && t6 ? t : a0;
+    return t5 && t6 ? t : s;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
 //   fixed-point direction, then 22 bisection steps on the larger coordinate; a function of the
 //   input alone.
-vec2 unitpack_paraboloid_square24_square_point(vec3 a0) {
-    UNITPACK_PRECISE vec2 t1 = abs(a0.xy);
+vec2 unitpack_paraboloid_square24_square_point(vec3 u) {
+    UNITPACK_PRECISE vec2 t1 = abs(u.xy);
     bool t2 = t1.x >= t1.y;
     UNITPACK_PRECISE float t3 = t2 ? t1.x : t1.y;
     UNITPACK_PRECISE float t4 = t2 ? t1.y : t1.x;
@@ -91,9 +92,9 @@ vec2 unitpack_paraboloid_square24_square_point(vec3 a0) {
     UNITPACK_PRECISE float big = t4 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(t4 / t5 * 2097152.0);
     UNITPACK_PRECISE float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
-    UNITPACK_PRECISE float r = ratio_estimate + step;
-    UNITPACK_PRECISE vec3 k = vec3(t3, roundEven(r * r * 4.7683716e-7), a0.z);
+    UNITPACK_PRECISE float nudge = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float r = ratio_estimate + nudge;
+    UNITPACK_PRECISE vec3 k = vec3(t3, roundEven(r * r * 4.7683716e-7), u.z);
     UNITPACK_PRECISE float s = unitpack_paraboloid_square24_square_step(0.0, 2097152.0, k);
     UNITPACK_PRECISE float s2 = unitpack_paraboloid_square24_square_step(s, 1048576.0, k);
     UNITPACK_PRECISE float s3 = unitpack_paraboloid_square24_square_step(s2, 524288.0, k);
@@ -120,7 +121,7 @@ vec2 unitpack_paraboloid_square24_square_point(vec3 a0) {
     UNITPACK_PRECISE vec2 t7 = vec2(s22, t6);
     UNITPACK_PRECISE vec2 t8 = vec2(t6, s22);
     UNITPACK_PRECISE vec2 t9 = t2 ? t7 : t8;
-    UNITPACK_PRECISE vec2 result = mix(t9, -t9, lessThan(a0.xy, vec2(0.0)));
+    UNITPACK_PRECISE vec2 result = mix(t9, -t9, lessThan(u.xy, vec2(0.0)));
     return result;
 }
 
@@ -136,7 +137,7 @@ vec2 unitpack_paraboloid_square24_encode_float(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -151,7 +152,7 @@ vec2 unitpack_paraboloid_square24_encode_float(vec3 v) {
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     UNITPACK_PRECISE float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     UNITPACK_PRECISE float scale2 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest2) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest2) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
@@ -167,38 +168,38 @@ vec2 unitpack_paraboloid_square24_encode_float(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
     UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
@@ -216,13 +217,13 @@ vec2 unitpack_paraboloid_square24_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_paraboloid_square24_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_paraboloid_square24_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -237,7 +238,7 @@ vec2 unitpack_paraboloid_square24_round_codes(vec3 a0) {
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     UNITPACK_PRECISE float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     UNITPACK_PRECISE float scale2 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest2) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest2) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
@@ -253,38 +254,38 @@ vec2 unitpack_paraboloid_square24_round_codes(vec3 a0) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE vec3 t2 = floor(w4 / root * 2097152.0);
     UNITPACK_PRECISE vec3 t3 = w4 * 2097152.0;
@@ -310,7 +311,7 @@ uint unitpack_paraboloid_square24_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_paraboloid_square24_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 4096.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 4096.0;
-    return (uint(t1) & 4095u) | ((uint(t2) << 12u) & 16773120u);
+    return (uint(t1) & 0xfffu) | ((uint(t2) << 12u) & 0xfff000u);
 }
 
 #endif // UNITPACK_PARABOLOID_SQUARE24_GLSL

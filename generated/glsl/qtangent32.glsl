@@ -26,6 +26,7 @@
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.08809° / 0.28436°, tangent 0.09362° / 0.30861°, bitangent
@@ -60,11 +61,11 @@ struct unitpack_qtangent32_tbn {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 unitpack_qtangent32_frame unitpack_qtangent32_decode(uint code) {
-    UNITPACK_PRECISE float t1 = float(code & 1023u);
+    UNITPACK_PRECISE float t1 = float(code & 0x3ffu);
     UNITPACK_PRECISE float t2 = t1 - 1024.0;
-    UNITPACK_PRECISE float t3 = float((code >> 10u) & 1023u);
+    UNITPACK_PRECISE float t3 = float((code >> 10u) & 0x3ffu);
     UNITPACK_PRECISE float t4 = t3 - 1024.0;
-    UNITPACK_PRECISE float t5 = float((code >> 20u) & 511u);
+    UNITPACK_PRECISE float t5 = float((code >> 20u) & 0x1ffu);
     UNITPACK_PRECISE float t6 = t5 - 512.0;
     UNITPACK_PRECISE vec4 fields = vec4(
         t1 > 511.0 ? t2 : t1,
@@ -108,11 +109,11 @@ unitpack_qtangent32_frame unitpack_qtangent32_decode(uint code) {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable within a bound (as the header says): as for unitpack_qtangent32_decode.
 unitpack_qtangent32_tbn unitpack_qtangent32_decode_tbn(uint code) {
-    UNITPACK_PRECISE float t1 = float(code & 1023u);
+    UNITPACK_PRECISE float t1 = float(code & 0x3ffu);
     UNITPACK_PRECISE float t2 = t1 - 1024.0;
-    UNITPACK_PRECISE float t3 = float((code >> 10u) & 1023u);
+    UNITPACK_PRECISE float t3 = float((code >> 10u) & 0x3ffu);
     UNITPACK_PRECISE float t4 = t3 - 1024.0;
-    UNITPACK_PRECISE float t5 = float((code >> 20u) & 511u);
+    UNITPACK_PRECISE float t5 = float((code >> 20u) & 0x1ffu);
     UNITPACK_PRECISE float t6 = t5 - 512.0;
     UNITPACK_PRECISE vec4 fields = vec4(
         t1 > 511.0 ? t2 : t1,
@@ -168,7 +169,7 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -180,52 +181,52 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE vec3 t1 = floor(abs(w2) * 2097152.0);
     uvec3 t1_u = uvec3(t1);
     uint limb1 = t1_u.x >> 12u;
-    uint limb0 = t1_u.x & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = t1_u.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = t1_u.y >> 12u;
-    uint limb0_2 = t1_u.y & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = t1_u.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = t1_u.z >> 12u;
-    uint limb0_3 = t1_u.z & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = t1_u.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float t2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(t2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
-    UNITPACK_PRECISE float length = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    UNITPACK_PRECISE float t3 = length * 2097152.0;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
+    UNITPACK_PRECISE float norm = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    UNITPACK_PRECISE float t3 = norm * 2097152.0;
     uint t3_u = uint(t3);
     uint wide = (hi4 << 24u) + lo4;
-    uint rest = wide - t3_u * t3_u + 1073741824u;
+    uint rest = wide - t3_u * t3_u + 0x40000000u;
     uint t4 = t3_u + 1u;
     uint t5 = t3_u - 1u;
-    uint t6 = rest < 1073741824u - t3_u + 1u ? t5 : t3_u;
-    uint n2 = 1073741824u + t3_u < rest ? t4 : t6;
-    uint rest2 = wide - n2 * n2 + 1073741824u;
+    uint t6 = rest < 0x40000000u - t3_u + 1u ? t5 : t3_u;
+    uint n2 = 0x40000000u + t3_u < rest ? t4 : t6;
+    uint rest2 = wide - n2 * n2 + 0x40000000u;
     uint t7 = n2 + 1u;
     uint t8 = n2 - 1u;
-    uint t9 = rest2 < 1073741824u - n2 + 1u ? t8 : n2;
-    uint n3 = 1073741824u + n2 < rest2 ? t7 : t9;
+    uint t9 = rest2 < 0x40000000u - n2 + 1u ? t8 : n2;
+    uint n3 = 0x40000000u + n2 < rest2 ? t7 : t9;
     UNITPACK_PRECISE float nf = float(n3);
     UNITPACK_PRECISE float t10 = roundEven(float(t1_u.x) / nf * 16777216.0);
     uint k0 = uint(t10);
@@ -235,11 +236,11 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uint t13 = t11 + n3 + t12;
     uint two_n = n3 << 1u;
     uint t14 = t13 >> 12u;
-    UNITPACK_PRECISE float t15 = (float(t14) * 4096.0 + float(t13 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float t15 = (float(t14) * 4096.0 + float(t13 & 0xfffu)) / (nf * 2.0);
     UNITPACK_PRECISE float floor_t15 = floor(t15);
     uint q0 = uint(floor_t15);
     uint rest3 = t13 - q0 * two_n;
-    bool negative = !(rest3 < 2147483648u);
+    bool negative = !(rest3 < 0x80000000u);
     bool t16 = !negative;
     UNITPACK_PRECISE float t17 = roundEven(float(t1_u.y) / nf * 16777216.0);
     uint k0_2 = uint(t17);
@@ -249,11 +250,11 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uint t20 = t18 + n3 + t19;
     uint two_n2 = n3 << 1u;
     uint t21 = t20 >> 12u;
-    UNITPACK_PRECISE float t22 = (float(t21) * 4096.0 + float(t20 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float t22 = (float(t21) * 4096.0 + float(t20 & 0xfffu)) / (nf * 2.0);
     UNITPACK_PRECISE float floor_t22 = floor(t22);
     uint q0_2 = uint(floor_t22);
     uint rest4 = t20 - q0_2 * two_n2;
-    bool negative2 = !(rest4 < 2147483648u);
+    bool negative2 = !(rest4 < 0x80000000u);
     bool t23 = !negative2;
     UNITPACK_PRECISE float t24 = roundEven(float(t1_u.z) / nf * 16777216.0);
     uint k0_3 = uint(t24);
@@ -263,15 +264,15 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uint t27 = t25 + n3 + t26;
     uint two_n3 = n3 << 1u;
     uint t28 = t27 >> 12u;
-    UNITPACK_PRECISE float t29 = (float(t28) * 4096.0 + float(t27 & 4095u)) / (nf * 2.0);
+    UNITPACK_PRECISE float t29 = (float(t28) * 4096.0 + float(t27 & 0xfffu)) / (nf * 2.0);
     UNITPACK_PRECISE float floor_t29 = floor(t29);
     uint q0_3 = uint(floor_t29);
     uint rest5 = t27 - q0_3 * two_n3;
-    bool negative3 = !(rest5 < 2147483648u);
+    bool negative3 = !(rest5 < 0x80000000u);
     bool t30 = !negative3;
     bvec3 t31 = bvec3(!(rest3 < two_n) && t16, !(rest4 < two_n2) && t23, !(rest5 < two_n3) && t30);
     UNITPACK_PRECISE vec3 t32 = vec3(uvec3(t14, t21, t28)) * 4096.0
-        + vec3((uvec3(t11, t18, t25) + n3 + uvec3(t12, t19, t26)) & uvec3(4095u));
+        + vec3((uvec3(t11, t18, t25) + n3 + uvec3(t12, t19, t26)) & uvec3(0xfffu));
     UNITPACK_PRECISE vec3 t33 = floor(t32 / (nf * vec3(2.0)));
     uvec3 t33_u = uvec3(t33);
     uvec3 t34 = t33_u + 1u;
@@ -282,12 +283,12 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uvec3 t39 = uvec3(t38)
         + uvec3(t31.x ? t34.x : t37.x, t31.y ? t34.y : t37.y, t31.z ? t34.z : t37.z);
     uvec3 t40 = t39 - 8u;
-    bvec3 t41 = lessThan(uvec3(16777216u), t40);
+    bvec3 t41 = lessThan(uvec3(0x1000000u), t40);
     UNITPACK_PRECISE vec3 t42 = vec3(
         uvec3(
-            t41.x ? (uvec3(16777216u)).x : t40.x,
-            t41.y ? (uvec3(16777216u)).y : t40.y,
-            t41.z ? (uvec3(16777216u)).z : t40.z
+            t41.x ? (uvec3(0x1000000u)).x : t40.x,
+            t41.y ? (uvec3(0x1000000u)).y : t40.y,
+            t41.z ? (uvec3(0x1000000u)).z : t40.z
         )
     )
         * 5.9604645e-8;
@@ -301,7 +302,7 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     UNITPACK_PRECISE float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     UNITPACK_PRECISE float scale2 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest2) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest2) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
@@ -325,7 +326,7 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     UNITPACK_PRECISE float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
     UNITPACK_PRECISE float scale3 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest3) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest3) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
@@ -337,52 +338,52 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE vec3 t50 = floor(abs(w5) * 2097152.0);
     uvec3 t50_u = uvec3(t50);
     uint limb1_4 = t50_u.x >> 12u;
-    uint limb0_4 = t50_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = t50_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = t50_u.y >> 12u;
-    uint limb0_5 = t50_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = t50_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = t50_u.z >> 12u;
-    uint limb0_6 = t50_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = t50_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     UNITPACK_PRECISE float t51 = (float(hi8) * 16777216.0 + float(lo8)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate2 = sqrt(t51);
     UNITPACK_PRECISE float root_k0_2 = floor(root_estimate2 * 512.0);
     UNITPACK_PRECISE float root_h0_2 = root_k0_2 * 0.001953125;
     UNITPACK_PRECISE float root_h1_2 = root_h0_2 + 0.001953125;
     UNITPACK_PRECISE float step_down3 = root_h0_2 * root_h0_2 > t51 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = root_h1_2 * root_h1_2 <= t51 ? 1.0 : step_down3;
-    UNITPACK_PRECISE float root_k2 = root_k0_2 + step3;
+    UNITPACK_PRECISE float nudge3 = root_h1_2 * root_h1_2 <= t51 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float root_k2 = root_k0_2 + nudge3;
     UNITPACK_PRECISE float root_h2 = root_k2 * 0.001953125;
     UNITPACK_PRECISE float root_rest2 = t51 - root_h2 * root_h2;
     UNITPACK_PRECISE float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     UNITPACK_PRECISE float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down4 = root_m0_2 * root_m0_2 > t51 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = root_m1_2 * root_m1_2 <= t51 ? 1.0 : step_down4;
-    UNITPACK_PRECISE float root_j2 = root_j0_2 + step4;
-    UNITPACK_PRECISE float length2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    UNITPACK_PRECISE float t52 = length2 * 2097152.0;
+    UNITPACK_PRECISE float nudge4 = root_m1_2 * root_m1_2 <= t51 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float root_j2 = root_j0_2 + nudge4;
+    UNITPACK_PRECISE float norm2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
+    UNITPACK_PRECISE float t52 = norm2 * 2097152.0;
     uint t52_u = uint(t52);
     uint wide2 = (hi8 << 24u) + lo8;
-    uint rest6 = wide2 - t52_u * t52_u + 1073741824u;
+    uint rest6 = wide2 - t52_u * t52_u + 0x40000000u;
     uint t53 = t52_u + 1u;
     uint t54 = t52_u - 1u;
-    uint t55 = rest6 < 1073741824u - t52_u + 1u ? t54 : t52_u;
-    uint n5 = 1073741824u + t52_u < rest6 ? t53 : t55;
-    uint rest7 = wide2 - n5 * n5 + 1073741824u;
+    uint t55 = rest6 < 0x40000000u - t52_u + 1u ? t54 : t52_u;
+    uint n5 = 0x40000000u + t52_u < rest6 ? t53 : t55;
+    uint rest7 = wide2 - n5 * n5 + 0x40000000u;
     uint t56 = n5 + 1u;
     uint t57 = n5 - 1u;
-    uint t58 = rest7 < 1073741824u - n5 + 1u ? t57 : n5;
-    uint n6 = 1073741824u + n5 < rest7 ? t56 : t58;
+    uint t58 = rest7 < 0x40000000u - n5 + 1u ? t57 : n5;
+    uint n6 = 0x40000000u + n5 < rest7 ? t56 : t58;
     UNITPACK_PRECISE float nf2 = float(n6);
     UNITPACK_PRECISE float t59 = roundEven(float(t50_u.x) / nf2 * 16777216.0);
     uint k0_4 = uint(t59);
@@ -392,11 +393,11 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uint t62 = t60 + n6 + t61;
     uint two_n4 = n6 << 1u;
     uint t63 = t62 >> 12u;
-    UNITPACK_PRECISE float t64 = (float(t63) * 4096.0 + float(t62 & 4095u)) / (nf2 * 2.0);
+    UNITPACK_PRECISE float t64 = (float(t63) * 4096.0 + float(t62 & 0xfffu)) / (nf2 * 2.0);
     UNITPACK_PRECISE float floor_t64 = floor(t64);
     uint q0_4 = uint(floor_t64);
     uint rest8 = t62 - q0_4 * two_n4;
-    bool negative4 = !(rest8 < 2147483648u);
+    bool negative4 = !(rest8 < 0x80000000u);
     bool t65 = !negative4;
     UNITPACK_PRECISE float t66 = roundEven(float(t50_u.y) / nf2 * 16777216.0);
     uint k0_5 = uint(t66);
@@ -406,11 +407,11 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uint t69 = t67 + n6 + t68;
     uint two_n5 = n6 << 1u;
     uint t70 = t69 >> 12u;
-    UNITPACK_PRECISE float t71 = (float(t70) * 4096.0 + float(t69 & 4095u)) / (nf2 * 2.0);
+    UNITPACK_PRECISE float t71 = (float(t70) * 4096.0 + float(t69 & 0xfffu)) / (nf2 * 2.0);
     UNITPACK_PRECISE float floor_t71 = floor(t71);
     uint q0_5 = uint(floor_t71);
     uint rest9 = t69 - q0_5 * two_n5;
-    bool negative5 = !(rest9 < 2147483648u);
+    bool negative5 = !(rest9 < 0x80000000u);
     bool t72 = !negative5;
     UNITPACK_PRECISE float t73 = roundEven(float(t50_u.z) / nf2 * 16777216.0);
     uint k0_6 = uint(t73);
@@ -420,11 +421,11 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uint t76 = t74 + n6 + t75;
     uint two_n6 = n6 << 1u;
     uint t77 = t76 >> 12u;
-    UNITPACK_PRECISE float t78 = (float(t77) * 4096.0 + float(t76 & 4095u)) / (nf2 * 2.0);
+    UNITPACK_PRECISE float t78 = (float(t77) * 4096.0 + float(t76 & 0xfffu)) / (nf2 * 2.0);
     UNITPACK_PRECISE float floor_t78 = floor(t78);
     uint q0_6 = uint(floor_t78);
     uint rest10 = t76 - q0_6 * two_n6;
-    bool negative6 = !(rest10 < 2147483648u);
+    bool negative6 = !(rest10 < 0x80000000u);
     bool t79 = !negative6;
     bvec3 t80 = bvec3(
         !(rest8 < two_n4) && t65,
@@ -432,7 +433,7 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
         !(rest10 < two_n6) && t79
     );
     UNITPACK_PRECISE vec3 t81 = vec3(uvec3(t63, t70, t77)) * 4096.0
-        + vec3((uvec3(t60, t67, t74) + n6 + uvec3(t61, t68, t75)) & uvec3(4095u));
+        + vec3((uvec3(t60, t67, t74) + n6 + uvec3(t61, t68, t75)) & uvec3(0xfffu));
     UNITPACK_PRECISE vec3 t82 = floor(t81 / (nf2 * vec3(2.0)));
     uvec3 t82_u = uvec3(t82);
     uvec3 t83 = t82_u + 1u;
@@ -443,12 +444,12 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     uvec3 t88 = uvec3(t87)
         + uvec3(t80.x ? t83.x : t86.x, t80.y ? t83.y : t86.y, t80.z ? t83.z : t86.z);
     uvec3 t89 = t88 - 8u;
-    bvec3 t90 = lessThan(uvec3(16777216u), t89);
+    bvec3 t90 = lessThan(uvec3(0x1000000u), t89);
     UNITPACK_PRECISE vec3 t91 = vec3(
         uvec3(
-            t90.x ? (uvec3(16777216u)).x : t89.x,
-            t90.y ? (uvec3(16777216u)).y : t89.y,
-            t90.z ? (uvec3(16777216u)).z : t89.z
+            t90.x ? (uvec3(0x1000000u)).x : t89.x,
+            t90.y ? (uvec3(0x1000000u)).y : t89.y,
+            t90.z ? (uvec3(0x1000000u)).z : t89.z
         )
     )
         * 5.9604645e-8;
@@ -495,8 +496,8 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float t111 = lower * lower * s;
     bool t112 = big2 < t111;
     UNITPACK_PRECISE float step_down5 = estimate > 0.0 && t112 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = big2 >= upper * upper * s ? 1.0 : step_down5;
-    UNITPACK_PRECISE float t113 = estimate + step5;
+    UNITPACK_PRECISE float nudge5 = big2 >= upper * upper * s ? 1.0 : step_down5;
+    UNITPACK_PRECISE float t113 = estimate + nudge5;
     UNITPACK_PRECISE float t114 = t113 >= 0.0 ? t113 : 0.0;
     UNITPACK_PRECISE float t115 = t114 <= 511.0 ? t114 : 511.0;
     UNITPACK_PRECISE float neg_t115 = -t115;
@@ -508,8 +509,8 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float t116 = lower2 * lower2 * s;
     bool t117 = big2_2 < t116;
     UNITPACK_PRECISE float step_down6 = estimate2 > 0.0 && t117 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = big2_2 >= upper2 * upper2 * s ? 1.0 : step_down6;
-    UNITPACK_PRECISE float t118 = estimate2 + step6;
+    UNITPACK_PRECISE float nudge6 = big2_2 >= upper2 * upper2 * s ? 1.0 : step_down6;
+    UNITPACK_PRECISE float t118 = estimate2 + nudge6;
     UNITPACK_PRECISE float t119 = t118 >= 0.0 ? t118 : 0.0;
     UNITPACK_PRECISE float t120 = t119 <= 511.0 ? t119 : 511.0;
     UNITPACK_PRECISE float neg_t120 = -t120;
@@ -521,8 +522,8 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float t121 = lower3 * lower3 * s;
     bool t122 = big2_3 < t121;
     UNITPACK_PRECISE float step_down7 = estimate3 > 0.0 && t122 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step7 = big2_3 >= upper3 * upper3 * s ? 1.0 : step_down7;
-    UNITPACK_PRECISE float t123 = estimate3 + step7;
+    UNITPACK_PRECISE float nudge7 = big2_3 >= upper3 * upper3 * s ? 1.0 : step_down7;
+    UNITPACK_PRECISE float t123 = estimate3 + nudge7;
     UNITPACK_PRECISE float t124 = t123 >= 0.0 ? t123 : 0.0;
     UNITPACK_PRECISE float t125 = t124 <= 255.0 ? t124 : 255.0;
     UNITPACK_PRECISE float neg_t125 = -t125;
@@ -534,9 +535,9 @@ uint unitpack_qtangent32_encode(vec3 n, vec4 t) {
     );
     UNITPACK_PRECISE float t126 = codes.x + 1024.0;
     UNITPACK_PRECISE float t127 = codes.y + 1024.0;
-    uint t128 = (uint(t126) & 1023u) | ((uint(t127) << 10u) & 1047552u);
+    uint t128 = (uint(t126) & 0x3ffu) | ((uint(t127) << 10u) & 0xffc00u);
     UNITPACK_PRECISE float t129 = codes.z + 512.0;
-    return t128 | ((uint(t129) << 20u) & 535822336u) | (uint(codes.w) << 29u);
+    return t128 | ((uint(t129) << 20u) & 0x1ff00000u) | (uint(codes.w) << 29u);
 }
 
 #endif // UNITPACK_QTANGENT32_GLSL

@@ -26,6 +26,7 @@
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent
@@ -83,7 +84,7 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode_float(vec4 q) {
 // Portable as unitpack_qtangent64_decode_float is, within the same bound.
 unitpack_qtangent64_frame unitpack_qtangent64_decode(uvec2 code) {
     UNITPACK_PRECISE vec4 t1 = vec4(
-        uvec4(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u)
+        uvec4(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu, code.y >> 16u)
     );
     UNITPACK_PRECISE vec4 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec4(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec4 q = mix(vec4(-1.0), t2, greaterThanEqual(t2, vec4(-1.0)));
@@ -111,7 +112,7 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode(uvec2 code) {
 // Portable as unitpack_qtangent64_decode_float is, within the same bound.
 unitpack_qtangent64_tbn unitpack_qtangent64_decode_tbn(uvec2 code) {
     UNITPACK_PRECISE vec4 t1 = vec4(
-        uvec4(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u)
+        uvec4(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu, code.y >> 16u)
     );
     UNITPACK_PRECISE vec4 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec4(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec4 q = mix(vec4(-1.0), t2, greaterThanEqual(t2, vec4(-1.0)));
@@ -208,9 +209,9 @@ vec4 unitpack_qtangent64_encode_float(vec3 n, vec4 t) {
         * vec4(t32, t32, t32, sqrt(t31));
     UNITPACK_PRECISE vec4 q = trace > 0.0 ? t48 : t47;
     UNITPACK_PRECISE vec4 q_sq = q * q;
-    UNITPACK_PRECISE float length = sqrt(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
-    bool t49 = !(length == 0.0);
-    UNITPACK_PRECISE vec4 t50 = q / (t49 ? length : 1.0);
+    UNITPACK_PRECISE float norm = sqrt(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
+    bool t49 = !(norm == 0.0);
+    UNITPACK_PRECISE vec4 t50 = q / (t49 ? norm : 1.0);
     UNITPACK_PRECISE vec4 t51 = t49 ? t50 : vec4(0.0, 0.0, 0.0, 1.0);
     UNITPACK_PRECISE vec4 neg_t51 = -t51;
     UNITPACK_PRECISE vec4 q2 = t51.w < 0.0 ? neg_t51 : t51;
@@ -251,7 +252,7 @@ uvec2 unitpack_qtangent64_encode(vec3 n, vec4 t) {
     UNITPACK_PRECISE float t5 = codes.w + 65536.0;
     uvec2 t6 = uvec2(uint(t4) << 16u, uint(t5) << 16u);
     UNITPACK_PRECISE vec2 t7 = codes.xz + 65536.0;
-    return (uvec2(t7) & uvec2(65535u)) | t6;
+    return (uvec2(t7) & uvec2(0xffffu)) | t6;
 }
 
 #endif // UNITPACK_QTANGENT64_GLSL

@@ -25,6 +25,7 @@
 // ---- snorm10x3: components as snorm×3, 30 bits, sphere ----
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan
 //   2010).
+// Model: src/codecs/component/snorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.04230°, sample max 0.09354°; MSE of the components of
 //   n - n' 2.127e-7, PSNR 66.72 dB.
 #ifndef UNITPACK_SNORM10X3_GLSL
@@ -54,7 +55,7 @@ vec3 unitpack_snorm10x3_decode_float(vec3 params) {
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable as unitpack_snorm10x3_decode_float is, within the same bound.
 vec3 unitpack_snorm10x3_decode(uint code) {
-    UNITPACK_PRECISE vec3 t1 = vec3(uvec3(code, code >> 10u, code >> 20u) & uvec3(1023u));
+    UNITPACK_PRECISE vec3 t1 = vec3(uvec3(code, code >> 10u, code >> 20u) & uvec3(0x3ffu));
     UNITPACK_PRECISE vec3 t2 = mix(t1, t1 - 1024.0, greaterThan(t1, vec3(511.0))) * 0.0019569471;
     UNITPACK_PRECISE vec3 params = mix(vec3(-1.0), t2, greaterThanEqual(t2, vec3(-1.0)));
     return unitpack_snorm10x3_decode_float(params);
@@ -82,13 +83,13 @@ vec3 unitpack_snorm10x3_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_snorm10x3_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_snorm10x3_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -96,11 +97,11 @@ vec3 unitpack_snorm10x3_round_codes(vec3 a0) {
     bool sum_below_16 = sum < 16.0;
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w.z - split_hi3;
     UNITPACK_PRECISE float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -154,9 +155,9 @@ uint unitpack_snorm10x3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 round_codes = unitpack_snorm10x3_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 1024.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 1024.0;
-    uint t3 = (uint(t1) & 1023u) | ((uint(t2) << 10u) & 1047552u);
+    uint t3 = (uint(t1) & 0x3ffu) | ((uint(t2) << 10u) & 0xffc00u);
     UNITPACK_PRECISE float t4 = round_codes.z + 1024.0;
-    return t3 | ((uint(t4) << 20u) & 1072693248u);
+    return t3 | ((uint(t4) << 20u) & 0x3ff00000u);
 }
 
 #endif // UNITPACK_SNORM10X3_GLSL

@@ -25,6 +25,7 @@
 // ---- snorm16x3: components as snorm×3, 48 bits, sphere ----
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan
 //   2010).
+// Model: src/codecs/component/snorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00066°, sample max 0.00148°; MSE of the components of
 //   n - n' 5.199e-11, PSNR 102.84 dB.
 #ifndef UNITPACK_SNORM16X3_GLSL
@@ -54,7 +55,7 @@ vec3 unitpack_snorm16x3_decode_float(vec3 params) {
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable as unitpack_snorm16x3_decode_float is, within the same bound.
 vec3 unitpack_snorm16x3_decode(uvec2 code) {
-    UNITPACK_PRECISE vec3 t1 = vec3(uvec3(code.x & 65535u, code.x >> 16u, code.y & 65535u));
+    UNITPACK_PRECISE vec3 t1 = vec3(uvec3(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu));
     UNITPACK_PRECISE vec3 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec3(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec3 params = mix(vec3(-1.0), t2, greaterThanEqual(t2, vec3(-1.0)));
     return unitpack_snorm16x3_decode_float(params);
@@ -82,13 +83,13 @@ vec3 unitpack_snorm16x3_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_snorm16x3_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_snorm16x3_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -96,11 +97,11 @@ vec3 unitpack_snorm16x3_round_codes(vec3 a0) {
     bool sum_below_16 = sum < 16.0;
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w.z - split_hi3;
     UNITPACK_PRECISE float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -154,9 +155,9 @@ uvec2 unitpack_snorm16x3_encode(vec3 v) {
     UNITPACK_PRECISE vec3 round_codes = unitpack_snorm16x3_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 65536.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 65536.0;
-    uint t3 = (uint(t1) & 65535u) | (uint(t2) << 16u);
+    uint t3 = (uint(t1) & 0xffffu) | (uint(t2) << 16u);
     UNITPACK_PRECISE float t4 = round_codes.z + 65536.0;
-    return uvec2(t3, uint(t4) & 65535u);
+    return uvec2(t3, uint(t4) & 0xffffu);
 }
 
 #endif // UNITPACK_SNORM16X3_GLSL

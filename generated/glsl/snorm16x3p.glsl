@@ -25,6 +25,7 @@
 // ---- snorm16x3p: components as snorm×3, 48 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan
 //   2010).
+// Model: src/codecs/component/snorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00009°, sample max 0.00087°; MSE of the components of
 //   n - n' 1.376e-12, PSNR 118.62 dB.
 #ifndef UNITPACK_SNORM16X3P_GLSL
@@ -54,7 +55,7 @@ vec3 unitpack_snorm16x3p_decode_float(vec3 params) {
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable as unitpack_snorm16x3p_decode_float is, within the same bound.
 vec3 unitpack_snorm16x3p_decode(uvec2 code) {
-    UNITPACK_PRECISE vec3 t1 = vec3(uvec3(code.x & 65535u, code.x >> 16u, code.y & 65535u));
+    UNITPACK_PRECISE vec3 t1 = vec3(uvec3(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu));
     UNITPACK_PRECISE vec3 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec3(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec3 params = mix(vec3(-1.0), t2, greaterThanEqual(t2, vec3(-1.0)));
     return unitpack_snorm16x3p_decode_float(params);
@@ -62,26 +63,26 @@ vec3 unitpack_snorm16x3p_decode(uvec2 code) {
 
 // One scale of the Best Fit Normals search: the candidate code for scale `t`, kept if its
 //   fixed-point direction is strictly nearer the input's than the best so far.
-vec2 unitpack_snorm16x3p_bfn_step(vec2 a0, float a1, vec3 a2, vec3 a3) {
-    UNITPACK_PRECISE vec3 c = roundEven(a2 * 4.7683716e-7 * a1);
+vec2 unitpack_snorm16x3p_bfn_step(vec2 best, float t, vec3 r, vec3 aim) {
+    UNITPACK_PRECISE vec3 c = roundEven(r * 4.7683716e-7 * t);
     uvec3 c_u = uvec3(c);
     uint limb1 = c_u.x >> 12u;
-    uint limb0 = c_u.x & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = c_u.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = c_u.y >> 12u;
-    uint limb0_2 = c_u.y & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = c_u.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = c_u.z >> 12u;
-    uint limb0_3 = c_u.z & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = c_u.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float t1 = float(hi4) * 16777216.0 + float(lo4);
     uint half_exponent = ((floatBitsToUint(t1) >> 23u) + 1u) >> 1u;
     UNITPACK_PRECISE float root_down = uintBitsToFloat((257u - (half_exponent << 1u)) << 23u);
@@ -92,19 +93,19 @@ vec2 unitpack_snorm16x3p_bfn_step(vec2 a0, float a1, vec3 a2, vec3 a3) {
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = t2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float t3 = root * root_up;
-    UNITPACK_PRECISE float l = t3 >= a1 ? t3 : a1;
+    UNITPACK_PRECISE float l = t3 >= t ? t3 : t;
     UNITPACK_PRECISE vec3 t4 = floor(c / l * 2097152.0);
     UNITPACK_PRECISE vec3 t5 = c * 2097152.0;
     UNITPACK_PRECISE vec3 t6 = mix(
@@ -113,29 +114,29 @@ vec2 unitpack_snorm16x3p_bfn_step(vec2 a0, float a1, vec3 a2, vec3 a3) {
         lessThanEqual((t4 + 1.0) * l, t5)
     );
     UNITPACK_PRECISE vec3 d = t4 + t6;
-    UNITPACK_PRECISE vec3 offset = d - abs(a3);
+    UNITPACK_PRECISE vec3 offset = d - abs(aim);
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
-    uint limb0_4 = offset_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = offset_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = offset_u.y >> 12u;
-    uint limb0_5 = offset_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = offset_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = offset_u.z >> 12u;
-    uint limb0_6 = offset_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
-    UNITPACK_PRECISE vec2 t7 = vec2(a1, dist);
-    return dist < a0.y ? t7 : a0;
+    UNITPACK_PRECISE vec2 t7 = vec2(t, dist);
+    return dist < best.y ? t7 : best;
 }
 
 // Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales
@@ -148,7 +149,7 @@ vec3 unitpack_snorm16x3p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -164,38 +165,38 @@ vec3 unitpack_snorm16x3p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE vec3 t1 = floor(w2 / root * 2097152.0);
     UNITPACK_PRECISE vec3 t2 = w2 * 2097152.0;
@@ -305,9 +306,9 @@ uvec2 unitpack_snorm16x3p_encode(vec3 v) {
     UNITPACK_PRECISE vec3 encode_codes = unitpack_snorm16x3p_encode_codes(v);
     UNITPACK_PRECISE float t1 = encode_codes.x + 65536.0;
     UNITPACK_PRECISE float t2 = encode_codes.y + 65536.0;
-    uint t3 = (uint(t1) & 65535u) | (uint(t2) << 16u);
+    uint t3 = (uint(t1) & 0xffffu) | (uint(t2) << 16u);
     UNITPACK_PRECISE float t4 = encode_codes.z + 65536.0;
-    return uvec2(t3, uint(t4) & 65535u);
+    return uvec2(t3, uint(t4) & 0xffffu);
 }
 
 #endif // UNITPACK_SNORM16X3P_GLSL

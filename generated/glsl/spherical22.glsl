@@ -24,6 +24,7 @@
 
 // ---- spherical22: spherical coordinates (θ, φ), snorm×2, 22 bits, sphere ----
 // Source: Cigolle et al. 2014 §2.
+// Model: src/codecs/angular/spherical.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.04420°, sample max 0.09789°; MSE of the components of
 //   n - n' 2.396e-7, PSNR 66.20 dB.
 #ifndef UNITPACK_SPHERICAL22_GLSL
@@ -34,11 +35,11 @@ precision highp int;
 #endif
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-vec2 unitpack_spherical22_sincos_pi(float a0) {
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
-    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
+vec2 unitpack_spherical22_sincos_pi(float theta) {
+    UNITPACK_PRECISE float abs_theta = abs(theta);
+    bool back = abs_theta > 0.5;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_theta;
+    UNITPACK_PRECISE float b = back ? t1 : abs_theta;
     bool swap = b > 0.25;
     UNITPACK_PRECISE float t2 = 0.5 - b;
     UNITPACK_PRECISE float c = swap ? t2 : b;
@@ -56,7 +57,7 @@ vec2 unitpack_spherical22_sincos_pi(float a0) {
     UNITPACK_PRECISE vec2 t5 = vec2(co, s);
     UNITPACK_PRECISE vec2 t6 = vec2(s, co);
     UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
-    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(theta < 0.0, back));
     return result;
 }
 
@@ -80,7 +81,7 @@ vec3 unitpack_spherical22_decode_float(vec2 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable as unitpack_spherical22_decode_float is, within the same bound.
 vec3 unitpack_spherical22_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 11u) & uvec2(2047u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 11u) & uvec2(0x7ffu));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 2048.0, greaterThan(t1, vec2(1023.0))) * 0.0009775171;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_spherical22_decode_float(params);
@@ -88,14 +89,14 @@ vec3 unitpack_spherical22_decode(uint code) {
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-float unitpack_spherical22_atan2_pi(float a0, float a1) {
-    UNITPACK_PRECISE float abs_a1 = abs(a1);
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool y_major = abs_a0 > abs_a1;
-    UNITPACK_PRECISE float hi = y_major ? abs_a0 : abs_a1;
+float unitpack_spherical22_atan2_pi(float rho, float x) {
+    UNITPACK_PRECISE float abs_x = abs(x);
+    UNITPACK_PRECISE float abs_rho = abs(rho);
+    bool y_major = abs_rho > abs_x;
+    UNITPACK_PRECISE float hi = y_major ? abs_rho : abs_x;
     UNITPACK_PRECISE float up = hi < 7.888609e-31 ? 1.2676506e30 : 1.0;
     UNITPACK_PRECISE float hi2 = hi * up;
-    UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
+    UNITPACK_PRECISE float t = (y_major ? abs_x : abs_rho) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
     UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
     UNITPACK_PRECISE float z = far ? t1 : t;
@@ -112,9 +113,9 @@ float unitpack_spherical22_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float t5 = 1.5707964 - r2;
     UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
     UNITPACK_PRECISE float t6 = 3.1415927 - r3;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float r4 = x < 0.0 ? t6 : r3;
     UNITPACK_PRECISE float neg_r4 = -r4;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float result = (rho < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -146,13 +147,13 @@ vec2 unitpack_spherical22_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_spherical22_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_spherical22_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -166,17 +167,17 @@ vec2 unitpack_spherical22_round_codes(vec3 a0) {
     UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
     uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint hi3 = hi2 + (lo2 >> 24u);
-    uint lo3 = lo2 & 16777215u;
+    uint lo3 = lo2 & 0xffffffu;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
     bool t1 = rho2 > 0.0;
     UNITPACK_PRECISE float t2 = t1 ? rho2 : 1.0;
@@ -189,16 +190,16 @@ vec2 unitpack_spherical22_round_codes(vec3 a0) {
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = t3 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float t4 = root * root_up;
     UNITPACK_PRECISE float rho = t1 ? t4 : 0.0;
@@ -211,22 +212,22 @@ vec2 unitpack_spherical22_round_codes(vec3 a0) {
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t5 * 8388608.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge3;
     UNITPACK_PRECISE float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
-    UNITPACK_PRECISE float t = ratio + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + nudge4;
     bool far = t > 3474675.0;
     UNITPACK_PRECISE float t6 = t - 8388608.0;
     UNITPACK_PRECISE float t7 = t + 8388608.0;
     UNITPACK_PRECISE float big2 = t6 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
     UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float nudge5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge5;
     UNITPACK_PRECISE float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
+    UNITPACK_PRECISE float nudge6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + nudge6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
     UNITPACK_PRECISE float t8 = roundEven(
@@ -265,22 +266,22 @@ vec2 unitpack_spherical22_round_codes(vec3 a0) {
     UNITPACK_PRECISE float big3 = lo5 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(lo5 / t16 * 8388608.0);
     UNITPACK_PRECISE float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
-    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + step7;
+    UNITPACK_PRECISE float nudge7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + nudge7;
     UNITPACK_PRECISE float step_down8 = ratio4 * t16 > big3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
-    UNITPACK_PRECISE float t17 = ratio4 + step8;
+    UNITPACK_PRECISE float nudge8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float t17 = ratio4 + nudge8;
     bool far2 = t17 > 3474675.0;
     UNITPACK_PRECISE float t18 = t17 - 8388608.0;
     UNITPACK_PRECISE float t19 = t17 + 8388608.0;
     UNITPACK_PRECISE float big4 = t18 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(t18 / t19 * 8388608.0);
     UNITPACK_PRECISE float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
-    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + step9;
+    UNITPACK_PRECISE float nudge9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + nudge9;
     UNITPACK_PRECISE float step_down10 = ratio5 * t19 > big4 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
-    UNITPACK_PRECISE float ratio6 = ratio5 + step10;
+    UNITPACK_PRECISE float nudge10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio6 = ratio5 + nudge10;
     UNITPACK_PRECISE float z3 = far2 ? ratio6 : t17;
     UNITPACK_PRECISE float z2_2 = roundEven(z3 * z3 * 1.1920929e-7);
     UNITPACK_PRECISE float t20 = roundEven(
@@ -325,7 +326,7 @@ uint unitpack_spherical22_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_spherical22_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 2048.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 2048.0;
-    return (uint(t1) & 2047u) | ((uint(t2) << 11u) & 4192256u);
+    return (uint(t1) & 0x7ffu) | ((uint(t2) << 11u) & 0x3ff800u);
 }
 
 #endif // UNITPACK_SPHERICAL22_GLSL

@@ -24,6 +24,7 @@
 
 // ---- spherical22p: spherical coordinates (θ, φ), snorm×2, 22 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 §2.
+// Model: src/codecs/angular/spherical.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.04420°, sample max 0.09789°; MSE of the components of
 //   n - n' 2.396e-7, PSNR 66.20 dB.
 #ifndef UNITPACK_SPHERICAL22P_GLSL
@@ -34,11 +35,11 @@ precision highp int;
 #endif
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-vec2 unitpack_spherical22p_sincos_pi(float a0) {
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
-    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
+vec2 unitpack_spherical22p_sincos_pi(float theta) {
+    UNITPACK_PRECISE float abs_theta = abs(theta);
+    bool back = abs_theta > 0.5;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_theta;
+    UNITPACK_PRECISE float b = back ? t1 : abs_theta;
     bool swap = b > 0.25;
     UNITPACK_PRECISE float t2 = 0.5 - b;
     UNITPACK_PRECISE float c = swap ? t2 : b;
@@ -56,7 +57,7 @@ vec2 unitpack_spherical22p_sincos_pi(float a0) {
     UNITPACK_PRECISE vec2 t5 = vec2(co, s);
     UNITPACK_PRECISE vec2 t6 = vec2(s, co);
     UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
-    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(theta < 0.0, back));
     return result;
 }
 
@@ -80,7 +81,7 @@ vec3 unitpack_spherical22p_decode_float(vec2 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable as unitpack_spherical22p_decode_float is, within the same bound.
 vec3 unitpack_spherical22p_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 11u) & uvec2(2047u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 11u) & uvec2(0x7ffu));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 2048.0, greaterThan(t1, vec2(1023.0))) * 0.0009775171;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_spherical22p_decode_float(params);
@@ -96,7 +97,7 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -110,17 +111,17 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f2 = floor(abs(w2.y) * 2097152.0);
     uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint hi3 = hi2 + (lo2 >> 24u);
-    uint lo3 = lo2 & 16777215u;
+    uint lo3 = lo2 & 0xffffffu;
     UNITPACK_PRECISE float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
     bool t1 = rho2 > 0.0;
     UNITPACK_PRECISE float t2 = t1 ? rho2 : 1.0;
@@ -133,16 +134,16 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = t3 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float t4 = root * root_up;
     UNITPACK_PRECISE float rho = t1 ? t4 : 0.0;
@@ -155,22 +156,22 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big = lo4 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo4 / t5 * 8388608.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge3;
     UNITPACK_PRECISE float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
-    UNITPACK_PRECISE float t = ratio + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    UNITPACK_PRECISE float t = ratio + nudge4;
     bool far = t > 3474675.0;
     UNITPACK_PRECISE float t6 = t - 8388608.0;
     UNITPACK_PRECISE float t7 = t + 8388608.0;
     UNITPACK_PRECISE float big2 = t6 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
     UNITPACK_PRECISE float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step5;
+    UNITPACK_PRECISE float nudge5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge5;
     UNITPACK_PRECISE float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float ratio3 = ratio2 + step6;
+    UNITPACK_PRECISE float nudge6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio3 = ratio2 + nudge6;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
     UNITPACK_PRECISE float t8 = roundEven(
@@ -209,22 +210,22 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big3 = lo5 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(lo5 / t16 * 8388608.0);
     UNITPACK_PRECISE float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
-    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + step7;
+    UNITPACK_PRECISE float nudge7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate3 + nudge7;
     UNITPACK_PRECISE float step_down8 = ratio4 * t16 > big3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
-    UNITPACK_PRECISE float t17 = ratio4 + step8;
+    UNITPACK_PRECISE float nudge8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float t17 = ratio4 + nudge8;
     bool far2 = t17 > 3474675.0;
     UNITPACK_PRECISE float t18 = t17 - 8388608.0;
     UNITPACK_PRECISE float t19 = t17 + 8388608.0;
     UNITPACK_PRECISE float big4 = t18 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(t18 / t19 * 8388608.0);
     UNITPACK_PRECISE float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
-    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + step9;
+    UNITPACK_PRECISE float nudge9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float ratio5 = ratio_estimate4 + nudge9;
     UNITPACK_PRECISE float step_down10 = ratio5 * t19 > big4 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
-    UNITPACK_PRECISE float ratio6 = ratio5 + step10;
+    UNITPACK_PRECISE float nudge10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float ratio6 = ratio5 + nudge10;
     UNITPACK_PRECISE float z3 = far2 ? ratio6 : t17;
     UNITPACK_PRECISE float z2_2 = roundEven(z3 * z3 * 1.1920929e-7);
     UNITPACK_PRECISE float t20 = roundEven(
@@ -263,38 +264,38 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f5 = floor(abs(w2.z) * 2097152.0);
     uint fixed6 = uint(fixed_f5);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi6 = 0u + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo6 = 0u + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi6 = 0u + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo6 = 0u + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint limb1_4 = fixed5 >> 12u;
-    uint limb0_4 = fixed5 & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi7 = hi6 + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo7 = lo6 + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = fixed5 & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi7 = hi6 + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo7 = lo6 + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = fixed6 >> 12u;
-    uint limb0_5 = fixed6 & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi8 = hi7 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo8 = lo7 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = fixed6 & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi8 = hi7 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo8 = lo7 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint hi9 = hi8 + (lo8 >> 24u);
-    uint lo9 = lo8 & 16777215u;
+    uint lo9 = lo8 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi9) * 16777216.0 + float(lo9)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate2 = sqrt(len2);
     UNITPACK_PRECISE float root_k0_2 = floor(root_estimate2 * 512.0);
     UNITPACK_PRECISE float root_h0_2 = root_k0_2 * 0.001953125;
     UNITPACK_PRECISE float root_h1_2 = root_h0_2 + 0.001953125;
     UNITPACK_PRECISE float step_down11 = root_h0_2 * root_h0_2 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step11 = root_h1_2 * root_h1_2 <= len2 ? 1.0 : step_down11;
-    UNITPACK_PRECISE float root_k2 = root_k0_2 + step11;
+    UNITPACK_PRECISE float nudge11 = root_h1_2 * root_h1_2 <= len2 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float root_k2 = root_k0_2 + nudge11;
     UNITPACK_PRECISE float root_h2 = root_k2 * 0.001953125;
     UNITPACK_PRECISE float root_rest2 = len2 - root_h2 * root_h2;
     UNITPACK_PRECISE float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     UNITPACK_PRECISE float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down12 = root_m0_2 * root_m0_2 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step12 = root_m1_2 * root_m1_2 <= len2 ? 1.0 : step_down12;
-    UNITPACK_PRECISE float root_j2 = root_j0_2 + step12;
+    UNITPACK_PRECISE float nudge12 = root_m1_2 * root_m1_2 <= len2 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float root_j2 = root_j0_2 + nudge12;
     UNITPACK_PRECISE float root2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
     UNITPACK_PRECISE vec3 t28 = floor(w2 / root2 * 8388608.0);
     UNITPACK_PRECISE vec3 t29 = w2 * 8388608.0;
@@ -387,22 +388,22 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_6 = offset_u.x >> 12u;
-    uint limb0_6 = offset_u.x & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi10 = 0u + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo10 = 0u + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.x & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi10 = 0u + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo10 = 0u + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint limb1_7 = offset_u.y >> 12u;
-    uint limb0_7 = offset_u.y & 4095u;
-    uint cross7 = limb1_7 * limb0_7;
-    uint hi11 = hi10 + limb1_7 * limb1_7 + (cross7 >> 11u);
-    uint lo11 = lo10 + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    uint limb0_7 = offset_u.y & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi11 = hi10 + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo11 = lo10 + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = offset_u.z >> 12u;
-    uint limb0_8 = offset_u.z & 4095u;
-    uint cross8 = limb1_8 * limb0_8;
-    uint hi12 = hi11 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    uint lo12 = lo11 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    uint limb0_8 = offset_u.z & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi12 = hi11 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo12 = lo11 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint hi13 = hi12 + (lo12 >> 24u);
-    uint lo13 = lo12 & 16777215u;
+    uint lo13 = lo12 & 0xffffffu;
     UNITPACK_PRECISE float dist = float(hi13) * 16777216.0 + float(lo13);
     UNITPACK_PRECISE float s_up = base.x + 1.0;
     UNITPACK_PRECISE float t_up = base.y + 1.0;
@@ -485,22 +486,22 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
     uvec3 offset_u2 = uvec3(abs_offset2);
     uint limb1_9 = offset_u2.x >> 12u;
-    uint limb0_9 = offset_u2.x & 4095u;
-    uint cross9 = limb1_9 * limb0_9;
-    uint hi14 = 0u + limb1_9 * limb1_9 + (cross9 >> 11u);
-    uint lo14 = 0u + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    uint limb0_9 = offset_u2.x & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi14 = 0u + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo14 = 0u + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint limb1_10 = offset_u2.y >> 12u;
-    uint limb0_10 = offset_u2.y & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi15 = hi14 + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo15 = lo14 + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb0_10 = offset_u2.y & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi15 = hi14 + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo15 = lo14 + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = offset_u2.z >> 12u;
-    uint limb0_11 = offset_u2.z & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi16 = hi15 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo16 = lo15 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb0_11 = offset_u2.z & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi16 = hi15 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo16 = lo15 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint hi17 = hi16 + (lo16 >> 24u);
-    uint lo17 = lo16 & 16777215u;
+    uint lo17 = lo16 & 0xffffffu;
     UNITPACK_PRECISE float dist2 = float(hi17) * 16777216.0 + float(lo17);
     bool t83 = dist2 < dist;
     bool t84 = s_up <= 1023.0 && t58 && t83;
@@ -585,22 +586,22 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
     uvec3 offset_u3 = uvec3(abs_offset3);
     uint limb1_12 = offset_u3.x >> 12u;
-    uint limb0_12 = offset_u3.x & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi18 = 0u + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo18 = 0u + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint limb0_12 = offset_u3.x & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi18 = 0u + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo18 = 0u + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint limb1_13 = offset_u3.y >> 12u;
-    uint limb0_13 = offset_u3.y & 4095u;
-    uint cross13 = limb1_13 * limb0_13;
-    uint hi19 = hi18 + limb1_13 * limb1_13 + (cross13 >> 11u);
-    uint lo19 = lo18 + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    uint limb0_13 = offset_u3.y & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi19 = hi18 + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo19 = lo18 + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = offset_u3.z >> 12u;
-    uint limb0_14 = offset_u3.z & 4095u;
-    uint cross14 = limb1_14 * limb0_14;
-    uint hi20 = hi19 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    uint lo20 = lo19 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    uint limb0_14 = offset_u3.z & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi20 = hi19 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo20 = lo19 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint hi21 = hi20 + (lo20 >> 24u);
-    uint lo21 = lo20 & 16777215u;
+    uint lo21 = lo20 & 0xffffffu;
     UNITPACK_PRECISE float dist3 = float(hi21) * 16777216.0 + float(lo21);
     bool t111 = dist3 < best_d;
     bool t112 = base.x <= 1023.0 && t86 && t111;
@@ -685,22 +686,22 @@ vec2 unitpack_spherical22p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
     uvec3 offset_u4 = uvec3(abs_offset4);
     uint limb1_15 = offset_u4.x >> 12u;
-    uint limb0_15 = offset_u4.x & 4095u;
-    uint cross15 = limb1_15 * limb0_15;
-    uint hi22 = 0u + limb1_15 * limb1_15 + (cross15 >> 11u);
-    uint lo22 = 0u + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    uint limb0_15 = offset_u4.x & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi22 = 0u + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo22 = 0u + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint limb1_16 = offset_u4.y >> 12u;
-    uint limb0_16 = offset_u4.y & 4095u;
-    uint cross16 = limb1_16 * limb0_16;
-    uint hi23 = hi22 + limb1_16 * limb1_16 + (cross16 >> 11u);
-    uint lo23 = lo22 + limb0_16 * limb0_16 + ((cross16 << 13u) & 16777215u);
+    uint limb0_16 = offset_u4.y & 0xfffu;
+    uint limb_cross16 = limb1_16 * limb0_16;
+    uint hi23 = hi22 + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    uint lo23 = lo22 + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     uint limb1_17 = offset_u4.z >> 12u;
-    uint limb0_17 = offset_u4.z & 4095u;
-    uint cross17 = limb1_17 * limb0_17;
-    uint hi24 = hi23 + limb1_17 * limb1_17 + (cross17 >> 11u);
-    uint lo24 = lo23 + limb0_17 * limb0_17 + ((cross17 << 13u) & 16777215u);
+    uint limb0_17 = offset_u4.z & 0xfffu;
+    uint limb_cross17 = limb1_17 * limb0_17;
+    uint hi24 = hi23 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    uint lo24 = lo23 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     uint hi25 = hi24 + (lo24 >> 24u);
-    uint lo25 = lo24 & 16777215u;
+    uint lo25 = lo24 & 0xffffffu;
     UNITPACK_PRECISE float dist4 = float(hi25) * 16777216.0 + float(lo25);
     bool t139 = dist4 < best_d2;
     UNITPACK_PRECISE vec2 best3 = s_up <= 1023.0 && t114 && t139 ? cand4 : best2;
@@ -727,7 +728,7 @@ uint unitpack_spherical22p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 encode_codes = unitpack_spherical22p_encode_codes(v);
     UNITPACK_PRECISE float t1 = encode_codes.x + 2048.0;
     UNITPACK_PRECISE float t2 = encode_codes.y + 2048.0;
-    return (uint(t1) & 2047u) | ((uint(t2) << 11u) & 4192256u);
+    return (uint(t1) & 0x7ffu) | ((uint(t2) << 11u) & 0x3ff800u);
 }
 
 #endif // UNITPACK_SPHERICAL22P_GLSL

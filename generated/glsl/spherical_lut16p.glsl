@@ -25,6 +25,7 @@
 // ---- spherical_lut16p: azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16
 //   bits, sphere, precise encoder ----
 // Source: Pranckevičius method 3a.
+// Model: src/codecs/table/spherical_lut.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.37352°, sample max 6.65113°; MSE of the components of
 //   n - n' 2.196e-5, PSNR 46.58 dB.
 #ifndef UNITPACK_SPHERICAL_LUT16P_GLSL
@@ -66,7 +67,7 @@ uvec2 unitpack_spherical_lut16p_atan_texel(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -75,11 +76,11 @@ uvec2 unitpack_spherical_lut16p_atan_texel(vec3 v) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w2.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w2.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w2.z - split_hi3;
     UNITPACK_PRECISE float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -134,7 +135,7 @@ uint unitpack_spherical_lut16p_encode_fast(vec3 v, float fetched) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -143,11 +144,11 @@ uint unitpack_spherical_lut16p_encode_fast(vec3 v, float fetched) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w2.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w2.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w2.z - split_hi3;
     UNITPACK_PRECISE float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -195,7 +196,7 @@ uvec2 unitpack_spherical_lut16p_precise_texel(uint code, uint k) {
     uint t3 = t1 < 3u ? 0u : t2;
     uint t4 = ((code >> 8u) & 255u) + t3;
     uint t5 = (t4 < 1u ? 1u : t4) - 1u;
-    return uvec2(((code & 255u) + (t1 - t3 * 3u) + 255u) & 255u, t5 < 256u ? t5 : 255u);
+    return uvec2(((code & 255u) + (t1 - t3 * 3u) + 255u) & 255u, t5 < 0x100u ? t5 : 255u);
 }
 
 // unitpack_spherical_lut16p_encode: precise encoder.
@@ -226,7 +227,7 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -240,64 +241,64 @@ uint unitpack_spherical_lut16p_encode(
     uvec3 t2_u = uvec3(t2);
     uvec3 t3 = 0u - t2_u;
     uvec3 afix = uvec3(t1.x ? t3.x : t2_u.x, t1.y ? t3.y : t2_u.y, t1.z ? t3.z : t2_u.z);
-    uint t4 = code & 65535u;
+    uint t4 = code & 0xffffu;
     UNITPACK_PRECISE vec3 t5 = mix(vec3(0.0), s4, greaterThanEqual(s4, vec3(0.0)));
     UNITPACK_PRECISE vec3 t6 = roundEven(mix(vec3(1.0), t5, lessThanEqual(t5, vec3(1.0))) * 255.0);
     uvec3 t6_u = uvec3(t6);
     uvec3 t7 = t6_u + t6_u - 255u;
-    uvec3 cross = afix.yzx * t7.zxy - afix.zxy * t7.yzx;
-    bvec3 t8 = lessThan(cross, uvec3(2147483648u));
-    uvec3 t9 = 0u - cross;
-    uvec3 t10 = uvec3(t8.x ? cross.x : t9.x, t8.y ? cross.y : t9.y, t8.z ? cross.z : t9.z);
+    uvec3 axd = afix.yzx * t7.zxy - afix.zxy * t7.yzx;
+    bvec3 t8 = lessThan(axd, uvec3(0x80000000u));
+    uvec3 t9 = 0u - axd;
+    uvec3 t10 = uvec3(t8.x ? axd.x : t9.x, t8.y ? axd.y : t9.y, t8.z ? axd.z : t9.z);
     uint limb1 = t10.x >> 12u;
-    uint limb0 = t10.x & 4095u;
-    uint cross2 = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross2 >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross2 << 13u) & 16777215u);
+    uint limb0 = t10.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = t10.y >> 12u;
-    uint limb0_2 = t10.y & 4095u;
-    uint cross3 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross3 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross3 << 13u) & 16777215u);
+    uint limb0_2 = t10.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = t10.z >> 12u;
-    uint limb0_3 = t10.z & 4095u;
-    uint cross4 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross4 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross4 << 13u) & 16777215u);
+    uint limb0_3 = t10.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float e = float(hi4) * 16777216.0 + float(lo4);
     UNITPACK_PRECISE float n = float(t7.x * t7.x + t7.y * t7.y + t7.z * t7.z);
     uint t11 = ((code >> 8u) & 255u) + 0u;
     uint t12 = (t11 < 1u ? 1u : t11) - 1u;
-    uint t13 = (((code & 255u) + 0u + 255u) & 255u) | ((t12 < 256u ? t12 : 255u) << 8u);
+    uint t13 = (((code & 255u) + 0u + 255u) & 255u) | ((t12 < 0x100u ? t12 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t14 = mix(vec3(0.0), s0, greaterThanEqual(s0, vec3(0.0)));
     UNITPACK_PRECISE vec3 t15 = roundEven(
         mix(vec3(1.0), t14, lessThanEqual(t14, vec3(1.0))) * 255.0
     );
     uvec3 t15_u = uvec3(t15);
     uvec3 t16 = t15_u + t15_u - 255u;
-    uvec3 cross5 = afix.yzx * t16.zxy - afix.zxy * t16.yzx;
-    bvec3 t17 = lessThan(cross5, uvec3(2147483648u));
-    uvec3 t18 = 0u - cross5;
-    uvec3 t19 = uvec3(t17.x ? cross5.x : t18.x, t17.y ? cross5.y : t18.y, t17.z ? cross5.z : t18.z);
+    uvec3 axd2 = afix.yzx * t16.zxy - afix.zxy * t16.yzx;
+    bvec3 t17 = lessThan(axd2, uvec3(0x80000000u));
+    uvec3 t18 = 0u - axd2;
+    uvec3 t19 = uvec3(t17.x ? axd2.x : t18.x, t17.y ? axd2.y : t18.y, t17.z ? axd2.z : t18.z);
     uint limb1_4 = t19.x >> 12u;
-    uint limb0_4 = t19.x & 4095u;
-    uint cross6 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
+    uint limb0_4 = t19.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = t19.y >> 12u;
-    uint limb0_5 = t19.y & 4095u;
-    uint cross7 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
+    uint limb0_5 = t19.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = t19.z >> 12u;
-    uint limb0_6 = t19.z & 4095u;
-    uint cross8 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
+    uint limb0_6 = t19.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     UNITPACK_PRECISE float e2 = float(hi8) * 16777216.0 + float(lo8);
     UNITPACK_PRECISE float n2 = float(t16.x * t16.x + t16.y * t16.y + t16.z * t16.z);
     UNITPACK_PRECISE float t20 = e2 * n;
@@ -308,34 +309,34 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float best_n = t22 ? n2 : n;
     uint t23 = ((code >> 8u) & 255u) + 0u;
     uint t24 = (t23 < 1u ? 1u : t23) - 1u;
-    uint t25 = (((code & 255u) + 1u + 255u) & 255u) | ((t24 < 256u ? t24 : 255u) << 8u);
+    uint t25 = (((code & 255u) + 1u + 255u) & 255u) | ((t24 < 0x100u ? t24 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t26 = mix(vec3(0.0), s1, greaterThanEqual(s1, vec3(0.0)));
     UNITPACK_PRECISE vec3 t27 = roundEven(
         mix(vec3(1.0), t26, lessThanEqual(t26, vec3(1.0))) * 255.0
     );
     uvec3 t27_u = uvec3(t27);
     uvec3 t28 = t27_u + t27_u - 255u;
-    uvec3 cross9 = afix.yzx * t28.zxy - afix.zxy * t28.yzx;
-    bvec3 t29 = lessThan(cross9, uvec3(2147483648u));
-    uvec3 t30 = 0u - cross9;
-    uvec3 t31 = uvec3(t29.x ? cross9.x : t30.x, t29.y ? cross9.y : t30.y, t29.z ? cross9.z : t30.z);
+    uvec3 axd3 = afix.yzx * t28.zxy - afix.zxy * t28.yzx;
+    bvec3 t29 = lessThan(axd3, uvec3(0x80000000u));
+    uvec3 t30 = 0u - axd3;
+    uvec3 t31 = uvec3(t29.x ? axd3.x : t30.x, t29.y ? axd3.y : t30.y, t29.z ? axd3.z : t30.z);
     uint limb1_7 = t31.x >> 12u;
-    uint limb0_7 = t31.x & 4095u;
-    uint cross10 = limb1_7 * limb0_7;
-    uint hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
-    uint lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
+    uint limb0_7 = t31.x & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = t31.y >> 12u;
-    uint limb0_8 = t31.y & 4095u;
-    uint cross11 = limb1_8 * limb0_8;
-    uint hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
-    uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
+    uint limb0_8 = t31.y & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint limb1_9 = t31.z >> 12u;
-    uint limb0_9 = t31.z & 4095u;
-    uint cross12 = limb1_9 * limb0_9;
-    uint hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
-    uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
+    uint limb0_9 = t31.z & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint hi12 = hi11 + (lo11 >> 24u);
-    uint lo12 = lo11 & 16777215u;
+    uint lo12 = lo11 & 0xffffffu;
     UNITPACK_PRECISE float e3 = float(hi12) * 16777216.0 + float(lo12);
     UNITPACK_PRECISE float n3 = float(t28.x * t28.x + t28.y * t28.y + t28.z * t28.z);
     UNITPACK_PRECISE float t32 = e3 * best_n;
@@ -346,38 +347,34 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float best_n2 = t34 ? n3 : best_n;
     uint t35 = ((code >> 8u) & 255u) + 0u;
     uint t36 = (t35 < 1u ? 1u : t35) - 1u;
-    uint t37 = (((code & 255u) + 2u + 255u) & 255u) | ((t36 < 256u ? t36 : 255u) << 8u);
+    uint t37 = (((code & 255u) + 2u + 255u) & 255u) | ((t36 < 0x100u ? t36 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t38 = mix(vec3(0.0), s2, greaterThanEqual(s2, vec3(0.0)));
     UNITPACK_PRECISE vec3 t39 = roundEven(
         mix(vec3(1.0), t38, lessThanEqual(t38, vec3(1.0))) * 255.0
     );
     uvec3 t39_u = uvec3(t39);
     uvec3 t40 = t39_u + t39_u - 255u;
-    uvec3 cross13 = afix.yzx * t40.zxy - afix.zxy * t40.yzx;
-    bvec3 t41 = lessThan(cross13, uvec3(2147483648u));
-    uvec3 t42 = 0u - cross13;
-    uvec3 t43 = uvec3(
-        t41.x ? cross13.x : t42.x,
-        t41.y ? cross13.y : t42.y,
-        t41.z ? cross13.z : t42.z
-    );
+    uvec3 axd4 = afix.yzx * t40.zxy - afix.zxy * t40.yzx;
+    bvec3 t41 = lessThan(axd4, uvec3(0x80000000u));
+    uvec3 t42 = 0u - axd4;
+    uvec3 t43 = uvec3(t41.x ? axd4.x : t42.x, t41.y ? axd4.y : t42.y, t41.z ? axd4.z : t42.z);
     uint limb1_10 = t43.x >> 12u;
-    uint limb0_10 = t43.x & 4095u;
-    uint cross14 = limb1_10 * limb0_10;
-    uint hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
-    uint lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
+    uint limb0_10 = t43.x & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = t43.y >> 12u;
-    uint limb0_11 = t43.y & 4095u;
-    uint cross15 = limb1_11 * limb0_11;
-    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
-    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
+    uint limb0_11 = t43.y & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint limb1_12 = t43.z >> 12u;
-    uint limb0_12 = t43.z & 4095u;
-    uint cross16 = limb1_12 * limb0_12;
-    uint hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
-    uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
+    uint limb0_12 = t43.z & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint hi16 = hi15 + (lo15 >> 24u);
-    uint lo16 = lo15 & 16777215u;
+    uint lo16 = lo15 & 0xffffffu;
     UNITPACK_PRECISE float e4 = float(hi16) * 16777216.0 + float(lo16);
     UNITPACK_PRECISE float n4 = float(t40.x * t40.x + t40.y * t40.y + t40.z * t40.z);
     UNITPACK_PRECISE float t44 = e4 * best_n2;
@@ -388,38 +385,34 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float best_n3 = t46 ? n4 : best_n2;
     uint t47 = ((code >> 8u) & 255u) + 1u;
     uint t48 = (t47 < 1u ? 1u : t47) - 1u;
-    uint t49 = (((code & 255u) + 0u + 255u) & 255u) | ((t48 < 256u ? t48 : 255u) << 8u);
+    uint t49 = (((code & 255u) + 0u + 255u) & 255u) | ((t48 < 0x100u ? t48 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t50 = mix(vec3(0.0), s3, greaterThanEqual(s3, vec3(0.0)));
     UNITPACK_PRECISE vec3 t51 = roundEven(
         mix(vec3(1.0), t50, lessThanEqual(t50, vec3(1.0))) * 255.0
     );
     uvec3 t51_u = uvec3(t51);
     uvec3 t52 = t51_u + t51_u - 255u;
-    uvec3 cross17 = afix.yzx * t52.zxy - afix.zxy * t52.yzx;
-    bvec3 t53 = lessThan(cross17, uvec3(2147483648u));
-    uvec3 t54 = 0u - cross17;
-    uvec3 t55 = uvec3(
-        t53.x ? cross17.x : t54.x,
-        t53.y ? cross17.y : t54.y,
-        t53.z ? cross17.z : t54.z
-    );
+    uvec3 axd5 = afix.yzx * t52.zxy - afix.zxy * t52.yzx;
+    bvec3 t53 = lessThan(axd5, uvec3(0x80000000u));
+    uvec3 t54 = 0u - axd5;
+    uvec3 t55 = uvec3(t53.x ? axd5.x : t54.x, t53.y ? axd5.y : t54.y, t53.z ? axd5.z : t54.z);
     uint limb1_13 = t55.x >> 12u;
-    uint limb0_13 = t55.x & 4095u;
-    uint cross18 = limb1_13 * limb0_13;
-    uint hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
-    uint lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
+    uint limb0_13 = t55.x & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = t55.y >> 12u;
-    uint limb0_14 = t55.y & 4095u;
-    uint cross19 = limb1_14 * limb0_14;
-    uint hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
-    uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
+    uint limb0_14 = t55.y & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint limb1_15 = t55.z >> 12u;
-    uint limb0_15 = t55.z & 4095u;
-    uint cross20 = limb1_15 * limb0_15;
-    uint hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
-    uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
+    uint limb0_15 = t55.z & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint hi20 = hi19 + (lo19 >> 24u);
-    uint lo20 = lo19 & 16777215u;
+    uint lo20 = lo19 & 0xffffffu;
     UNITPACK_PRECISE float e5 = float(hi20) * 16777216.0 + float(lo20);
     UNITPACK_PRECISE float n5 = float(t52.x * t52.x + t52.y * t52.y + t52.z * t52.z);
     UNITPACK_PRECISE float t56 = e5 * best_n3;
@@ -430,38 +423,34 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float best_n4 = t58 ? n5 : best_n3;
     uint t59 = ((code >> 8u) & 255u) + 1u;
     uint t60 = (t59 < 1u ? 1u : t59) - 1u;
-    uint t61 = (((code & 255u) + 2u + 255u) & 255u) | ((t60 < 256u ? t60 : 255u) << 8u);
+    uint t61 = (((code & 255u) + 2u + 255u) & 255u) | ((t60 < 0x100u ? t60 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t62 = mix(vec3(0.0), s5, greaterThanEqual(s5, vec3(0.0)));
     UNITPACK_PRECISE vec3 t63 = roundEven(
         mix(vec3(1.0), t62, lessThanEqual(t62, vec3(1.0))) * 255.0
     );
     uvec3 t63_u = uvec3(t63);
     uvec3 t64 = t63_u + t63_u - 255u;
-    uvec3 cross21 = afix.yzx * t64.zxy - afix.zxy * t64.yzx;
-    bvec3 t65 = lessThan(cross21, uvec3(2147483648u));
-    uvec3 t66 = 0u - cross21;
-    uvec3 t67 = uvec3(
-        t65.x ? cross21.x : t66.x,
-        t65.y ? cross21.y : t66.y,
-        t65.z ? cross21.z : t66.z
-    );
+    uvec3 axd6 = afix.yzx * t64.zxy - afix.zxy * t64.yzx;
+    bvec3 t65 = lessThan(axd6, uvec3(0x80000000u));
+    uvec3 t66 = 0u - axd6;
+    uvec3 t67 = uvec3(t65.x ? axd6.x : t66.x, t65.y ? axd6.y : t66.y, t65.z ? axd6.z : t66.z);
     uint limb1_16 = t67.x >> 12u;
-    uint limb0_16 = t67.x & 4095u;
-    uint cross22 = limb1_16 * limb0_16;
-    uint hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
-    uint lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
+    uint limb0_16 = t67.x & 0xfffu;
+    uint limb_cross16 = limb1_16 * limb0_16;
+    uint hi21 = 0u + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    uint lo21 = 0u + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     uint limb1_17 = t67.y >> 12u;
-    uint limb0_17 = t67.y & 4095u;
-    uint cross23 = limb1_17 * limb0_17;
-    uint hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
-    uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
+    uint limb0_17 = t67.y & 0xfffu;
+    uint limb_cross17 = limb1_17 * limb0_17;
+    uint hi22 = hi21 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    uint lo22 = lo21 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     uint limb1_18 = t67.z >> 12u;
-    uint limb0_18 = t67.z & 4095u;
-    uint cross24 = limb1_18 * limb0_18;
-    uint hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
-    uint lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
+    uint limb0_18 = t67.z & 0xfffu;
+    uint limb_cross18 = limb1_18 * limb0_18;
+    uint hi23 = hi22 + limb1_18 * limb1_18 + (limb_cross18 >> 11u);
+    uint lo23 = lo22 + limb0_18 * limb0_18 + ((limb_cross18 << 13u) & 0xffffffu);
     uint hi24 = hi23 + (lo23 >> 24u);
-    uint lo24 = lo23 & 16777215u;
+    uint lo24 = lo23 & 0xffffffu;
     UNITPACK_PRECISE float e6 = float(hi24) * 16777216.0 + float(lo24);
     UNITPACK_PRECISE float n6 = float(t64.x * t64.x + t64.y * t64.y + t64.z * t64.z);
     UNITPACK_PRECISE float t68 = e6 * best_n4;
@@ -472,38 +461,34 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float best_n5 = t70 ? n6 : best_n4;
     uint t71 = ((code >> 8u) & 255u) + 2u;
     uint t72 = (t71 < 1u ? 1u : t71) - 1u;
-    uint t73 = (((code & 255u) + 0u + 255u) & 255u) | ((t72 < 256u ? t72 : 255u) << 8u);
+    uint t73 = (((code & 255u) + 0u + 255u) & 255u) | ((t72 < 0x100u ? t72 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t74 = mix(vec3(0.0), s6, greaterThanEqual(s6, vec3(0.0)));
     UNITPACK_PRECISE vec3 t75 = roundEven(
         mix(vec3(1.0), t74, lessThanEqual(t74, vec3(1.0))) * 255.0
     );
     uvec3 t75_u = uvec3(t75);
     uvec3 t76 = t75_u + t75_u - 255u;
-    uvec3 cross25 = afix.yzx * t76.zxy - afix.zxy * t76.yzx;
-    bvec3 t77 = lessThan(cross25, uvec3(2147483648u));
-    uvec3 t78 = 0u - cross25;
-    uvec3 t79 = uvec3(
-        t77.x ? cross25.x : t78.x,
-        t77.y ? cross25.y : t78.y,
-        t77.z ? cross25.z : t78.z
-    );
+    uvec3 axd7 = afix.yzx * t76.zxy - afix.zxy * t76.yzx;
+    bvec3 t77 = lessThan(axd7, uvec3(0x80000000u));
+    uvec3 t78 = 0u - axd7;
+    uvec3 t79 = uvec3(t77.x ? axd7.x : t78.x, t77.y ? axd7.y : t78.y, t77.z ? axd7.z : t78.z);
     uint limb1_19 = t79.x >> 12u;
-    uint limb0_19 = t79.x & 4095u;
-    uint cross26 = limb1_19 * limb0_19;
-    uint hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
-    uint lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
+    uint limb0_19 = t79.x & 0xfffu;
+    uint limb_cross19 = limb1_19 * limb0_19;
+    uint hi25 = 0u + limb1_19 * limb1_19 + (limb_cross19 >> 11u);
+    uint lo25 = 0u + limb0_19 * limb0_19 + ((limb_cross19 << 13u) & 0xffffffu);
     uint limb1_20 = t79.y >> 12u;
-    uint limb0_20 = t79.y & 4095u;
-    uint cross27 = limb1_20 * limb0_20;
-    uint hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
-    uint lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
+    uint limb0_20 = t79.y & 0xfffu;
+    uint limb_cross20 = limb1_20 * limb0_20;
+    uint hi26 = hi25 + limb1_20 * limb1_20 + (limb_cross20 >> 11u);
+    uint lo26 = lo25 + limb0_20 * limb0_20 + ((limb_cross20 << 13u) & 0xffffffu);
     uint limb1_21 = t79.z >> 12u;
-    uint limb0_21 = t79.z & 4095u;
-    uint cross28 = limb1_21 * limb0_21;
-    uint hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
-    uint lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
+    uint limb0_21 = t79.z & 0xfffu;
+    uint limb_cross21 = limb1_21 * limb0_21;
+    uint hi27 = hi26 + limb1_21 * limb1_21 + (limb_cross21 >> 11u);
+    uint lo27 = lo26 + limb0_21 * limb0_21 + ((limb_cross21 << 13u) & 0xffffffu);
     uint hi28 = hi27 + (lo27 >> 24u);
-    uint lo28 = lo27 & 16777215u;
+    uint lo28 = lo27 & 0xffffffu;
     UNITPACK_PRECISE float e7 = float(hi28) * 16777216.0 + float(lo28);
     UNITPACK_PRECISE float n7 = float(t76.x * t76.x + t76.y * t76.y + t76.z * t76.z);
     UNITPACK_PRECISE float t80 = e7 * best_n5;
@@ -514,38 +499,34 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float best_n6 = t82 ? n7 : best_n5;
     uint t83 = ((code >> 8u) & 255u) + 2u;
     uint t84 = (t83 < 1u ? 1u : t83) - 1u;
-    uint t85 = (((code & 255u) + 1u + 255u) & 255u) | ((t84 < 256u ? t84 : 255u) << 8u);
+    uint t85 = (((code & 255u) + 1u + 255u) & 255u) | ((t84 < 0x100u ? t84 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t86 = mix(vec3(0.0), s7, greaterThanEqual(s7, vec3(0.0)));
     UNITPACK_PRECISE vec3 t87 = roundEven(
         mix(vec3(1.0), t86, lessThanEqual(t86, vec3(1.0))) * 255.0
     );
     uvec3 t87_u = uvec3(t87);
     uvec3 t88 = t87_u + t87_u - 255u;
-    uvec3 cross29 = afix.yzx * t88.zxy - afix.zxy * t88.yzx;
-    bvec3 t89 = lessThan(cross29, uvec3(2147483648u));
-    uvec3 t90 = 0u - cross29;
-    uvec3 t91 = uvec3(
-        t89.x ? cross29.x : t90.x,
-        t89.y ? cross29.y : t90.y,
-        t89.z ? cross29.z : t90.z
-    );
+    uvec3 axd8 = afix.yzx * t88.zxy - afix.zxy * t88.yzx;
+    bvec3 t89 = lessThan(axd8, uvec3(0x80000000u));
+    uvec3 t90 = 0u - axd8;
+    uvec3 t91 = uvec3(t89.x ? axd8.x : t90.x, t89.y ? axd8.y : t90.y, t89.z ? axd8.z : t90.z);
     uint limb1_22 = t91.x >> 12u;
-    uint limb0_22 = t91.x & 4095u;
-    uint cross30 = limb1_22 * limb0_22;
-    uint hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
-    uint lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
+    uint limb0_22 = t91.x & 0xfffu;
+    uint limb_cross22 = limb1_22 * limb0_22;
+    uint hi29 = 0u + limb1_22 * limb1_22 + (limb_cross22 >> 11u);
+    uint lo29 = 0u + limb0_22 * limb0_22 + ((limb_cross22 << 13u) & 0xffffffu);
     uint limb1_23 = t91.y >> 12u;
-    uint limb0_23 = t91.y & 4095u;
-    uint cross31 = limb1_23 * limb0_23;
-    uint hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
-    uint lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
+    uint limb0_23 = t91.y & 0xfffu;
+    uint limb_cross23 = limb1_23 * limb0_23;
+    uint hi30 = hi29 + limb1_23 * limb1_23 + (limb_cross23 >> 11u);
+    uint lo30 = lo29 + limb0_23 * limb0_23 + ((limb_cross23 << 13u) & 0xffffffu);
     uint limb1_24 = t91.z >> 12u;
-    uint limb0_24 = t91.z & 4095u;
-    uint cross32 = limb1_24 * limb0_24;
-    uint hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
-    uint lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
+    uint limb0_24 = t91.z & 0xfffu;
+    uint limb_cross24 = limb1_24 * limb0_24;
+    uint hi31 = hi30 + limb1_24 * limb1_24 + (limb_cross24 >> 11u);
+    uint lo31 = lo30 + limb0_24 * limb0_24 + ((limb_cross24 << 13u) & 0xffffffu);
     uint hi32 = hi31 + (lo31 >> 24u);
-    uint lo32 = lo31 & 16777215u;
+    uint lo32 = lo31 & 0xffffffu;
     UNITPACK_PRECISE float e8 = float(hi32) * 16777216.0 + float(lo32);
     UNITPACK_PRECISE float n8 = float(t88.x * t88.x + t88.y * t88.y + t88.z * t88.z);
     UNITPACK_PRECISE float t92 = e8 * best_n6;
@@ -556,38 +537,38 @@ uint unitpack_spherical_lut16p_encode(
     UNITPACK_PRECISE float best_n7 = t94 ? n8 : best_n6;
     uint t95 = ((code >> 8u) & 255u) + 2u;
     uint t96 = (t95 < 1u ? 1u : t95) - 1u;
-    uint t97 = (((code & 255u) + 2u + 255u) & 255u) | ((t96 < 256u ? t96 : 255u) << 8u);
+    uint t97 = (((code & 255u) + 2u + 255u) & 255u) | ((t96 < 0x100u ? t96 : 255u) << 8u);
     UNITPACK_PRECISE vec3 t98 = mix(vec3(0.0), s8, greaterThanEqual(s8, vec3(0.0)));
     UNITPACK_PRECISE vec3 t99 = roundEven(
         mix(vec3(1.0), t98, lessThanEqual(t98, vec3(1.0))) * 255.0
     );
     uvec3 t99_u = uvec3(t99);
     uvec3 t100 = t99_u + t99_u - 255u;
-    uvec3 cross33 = afix.yzx * t100.zxy - afix.zxy * t100.yzx;
-    bvec3 t101 = lessThan(cross33, uvec3(2147483648u));
-    uvec3 t102 = 0u - cross33;
+    uvec3 axd9 = afix.yzx * t100.zxy - afix.zxy * t100.yzx;
+    bvec3 t101 = lessThan(axd9, uvec3(0x80000000u));
+    uvec3 t102 = 0u - axd9;
     uvec3 t103 = uvec3(
-        t101.x ? cross33.x : t102.x,
-        t101.y ? cross33.y : t102.y,
-        t101.z ? cross33.z : t102.z
+        t101.x ? axd9.x : t102.x,
+        t101.y ? axd9.y : t102.y,
+        t101.z ? axd9.z : t102.z
     );
     uint limb1_25 = t103.x >> 12u;
-    uint limb0_25 = t103.x & 4095u;
-    uint cross34 = limb1_25 * limb0_25;
-    uint hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
-    uint lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
+    uint limb0_25 = t103.x & 0xfffu;
+    uint limb_cross25 = limb1_25 * limb0_25;
+    uint hi33 = 0u + limb1_25 * limb1_25 + (limb_cross25 >> 11u);
+    uint lo33 = 0u + limb0_25 * limb0_25 + ((limb_cross25 << 13u) & 0xffffffu);
     uint limb1_26 = t103.y >> 12u;
-    uint limb0_26 = t103.y & 4095u;
-    uint cross35 = limb1_26 * limb0_26;
-    uint hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
-    uint lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
+    uint limb0_26 = t103.y & 0xfffu;
+    uint limb_cross26 = limb1_26 * limb0_26;
+    uint hi34 = hi33 + limb1_26 * limb1_26 + (limb_cross26 >> 11u);
+    uint lo34 = lo33 + limb0_26 * limb0_26 + ((limb_cross26 << 13u) & 0xffffffu);
     uint limb1_27 = t103.z >> 12u;
-    uint limb0_27 = t103.z & 4095u;
-    uint cross36 = limb1_27 * limb0_27;
-    uint hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
-    uint lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
+    uint limb0_27 = t103.z & 0xfffu;
+    uint limb_cross27 = limb1_27 * limb0_27;
+    uint hi35 = hi34 + limb1_27 * limb1_27 + (limb_cross27 >> 11u);
+    uint lo35 = lo34 + limb0_27 * limb0_27 + ((limb_cross27 << 13u) & 0xffffffu);
     uint hi36 = hi35 + (lo35 >> 24u);
-    uint lo36 = lo35 & 16777215u;
+    uint lo36 = lo35 & 0xffffffu;
     UNITPACK_PRECISE float e9 = float(hi36) * 16777216.0 + float(lo36);
     UNITPACK_PRECISE float n9 = float(t100.x * t100.x + t100.y * t100.y + t100.z * t100.z);
     UNITPACK_PRECISE float t104 = e9 * best_n7;

@@ -24,6 +24,7 @@
 
 // ---- spherical_z24: azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2, 24 bits, sphere ----
 // Source: Pranckevičius method 3.
+// Model: src/codecs/angular/spherical_z.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02309°, sample max 1.21296°; MSE of the components of
 //   n - n' 9.075e-8, PSNR 70.42 dB.
 #ifndef UNITPACK_SPHERICAL_Z24_GLSL
@@ -34,11 +35,11 @@ precision highp int;
 #endif
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-vec2 unitpack_spherical_z24_sincos_pi(float a0) {
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
-    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
+vec2 unitpack_spherical_z24_sincos_pi(float x) {
+    UNITPACK_PRECISE float abs_x = abs(x);
+    bool back = abs_x > 0.5;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_x;
+    UNITPACK_PRECISE float b = back ? t1 : abs_x;
     bool swap = b > 0.25;
     UNITPACK_PRECISE float t2 = 0.5 - b;
     UNITPACK_PRECISE float c = swap ? t2 : b;
@@ -56,7 +57,7 @@ vec2 unitpack_spherical_z24_sincos_pi(float a0) {
     UNITPACK_PRECISE vec2 t5 = vec2(co, s);
     UNITPACK_PRECISE vec2 t6 = vec2(s, co);
     UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
-    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(x < 0.0, back));
     return result;
 }
 
@@ -82,20 +83,20 @@ vec3 unitpack_spherical_z24_decode_float(vec2 params) {
 //   (8.46e-4) of what this function computes here, for every code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 vec3 unitpack_spherical_z24_decode(uint code) {
-    UNITPACK_PRECISE vec2 params = vec2(uvec2(code, code >> 12u) & uvec2(4095u)) * 0.00024420026;
+    UNITPACK_PRECISE vec2 params = vec2(uvec2(code, code >> 12u) & uvec2(0xfffu)) * 0.00024420026;
     return unitpack_spherical_z24_decode_float(params);
 }
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-float unitpack_spherical_z24_atan2_pi(float a0, float a1) {
-    UNITPACK_PRECISE float abs_a1 = abs(a1);
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool y_major = abs_a0 > abs_a1;
-    UNITPACK_PRECISE float hi = y_major ? abs_a0 : abs_a1;
+float unitpack_spherical_z24_atan2_pi(float x, float x1) {
+    UNITPACK_PRECISE float abs_x1 = abs(x1);
+    UNITPACK_PRECISE float abs_x = abs(x);
+    bool y_major = abs_x > abs_x1;
+    UNITPACK_PRECISE float hi = y_major ? abs_x : abs_x1;
     UNITPACK_PRECISE float up = hi < 7.888609e-31 ? 1.2676506e30 : 1.0;
     UNITPACK_PRECISE float hi2 = hi * up;
-    UNITPACK_PRECISE float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
+    UNITPACK_PRECISE float t = (y_major ? abs_x1 : abs_x) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
     UNITPACK_PRECISE float t1 = (t - 1.0) / (t + 1.0);
     UNITPACK_PRECISE float z = far ? t1 : t;
@@ -112,9 +113,9 @@ float unitpack_spherical_z24_atan2_pi(float a0, float a1) {
     UNITPACK_PRECISE float t5 = 1.5707964 - r2;
     UNITPACK_PRECISE float r3 = y_major ? t5 : r2;
     UNITPACK_PRECISE float t6 = 3.1415927 - r3;
-    UNITPACK_PRECISE float r4 = a1 < 0.0 ? t6 : r3;
+    UNITPACK_PRECISE float r4 = x1 < 0.0 ? t6 : r3;
     UNITPACK_PRECISE float neg_r4 = -r4;
-    UNITPACK_PRECISE float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
+    UNITPACK_PRECISE float result = (x < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -143,13 +144,13 @@ vec2 unitpack_spherical_z24_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_spherical_z24_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_spherical_z24_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -158,11 +159,11 @@ vec2 unitpack_spherical_z24_round_codes(vec3 a0) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w2.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w2.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w2.z - split_hi3;
     UNITPACK_PRECISE float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -181,22 +182,22 @@ vec2 unitpack_spherical_z24_round_codes(vec3 a0) {
     UNITPACK_PRECISE float big = lo * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo / t2 * 8388608.0);
     UNITPACK_PRECISE float step_down = ratio_estimate * t2 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step;
+    UNITPACK_PRECISE float nudge = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge;
     UNITPACK_PRECISE float step_down2 = ratio * t2 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = (ratio + 1.0) * t2 <= big ? 1.0 : step_down2;
-    UNITPACK_PRECISE float t = ratio + step2;
+    UNITPACK_PRECISE float nudge2 = (ratio + 1.0) * t2 <= big ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t = ratio + nudge2;
     bool far = t > 3474675.0;
     UNITPACK_PRECISE float t3 = t - 8388608.0;
     UNITPACK_PRECISE float t4 = t + 8388608.0;
     UNITPACK_PRECISE float big2 = t3 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t3 / t4 * 8388608.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate2 * t4 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate2 + 1.0) * t4 <= big2 ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate2 + 1.0) * t4 <= big2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge3;
     UNITPACK_PRECISE float step_down4 = ratio2 * t4 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio2 + 1.0) * t4 <= big2 ? 1.0 : step_down4;
-    UNITPACK_PRECISE float ratio3 = ratio2 + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio2 + 1.0) * t4 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio3 = ratio2 + nudge4;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
     UNITPACK_PRECISE float t5 = roundEven(

@@ -25,6 +25,7 @@
 // ---- spherical_z32p: azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2, 32 bits, sphere,
 //   precise encoder ----
 // Source: Pranckevičius method 3.
+// Model: src/codecs/angular/spherical_z.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00144°, sample max 0.17260°; MSE of the components of
 //   n - n' 3.519e-10, PSNR 94.54 dB.
 #ifndef UNITPACK_SPHERICAL_Z32P_GLSL
@@ -35,11 +36,11 @@ precision highp int;
 #endif
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-vec2 unitpack_spherical_z32p_sincos_pi(float a0) {
-    UNITPACK_PRECISE float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    UNITPACK_PRECISE float t1 = 1.0 - abs_a0;
-    UNITPACK_PRECISE float b = back ? t1 : abs_a0;
+vec2 unitpack_spherical_z32p_sincos_pi(float x) {
+    UNITPACK_PRECISE float abs_x = abs(x);
+    bool back = abs_x > 0.5;
+    UNITPACK_PRECISE float t1 = 1.0 - abs_x;
+    UNITPACK_PRECISE float b = back ? t1 : abs_x;
     bool swap = b > 0.25;
     UNITPACK_PRECISE float t2 = 0.5 - b;
     UNITPACK_PRECISE float c = swap ? t2 : b;
@@ -57,7 +58,7 @@ vec2 unitpack_spherical_z32p_sincos_pi(float a0) {
     UNITPACK_PRECISE vec2 t5 = vec2(co, s);
     UNITPACK_PRECISE vec2 t6 = vec2(s, co);
     UNITPACK_PRECISE vec2 t7 = swap ? t5 : t6;
-    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(a0 < 0.0, back));
+    UNITPACK_PRECISE vec2 result = mix(t7, -t7, bvec2(x < 0.0, back));
     return result;
 }
 
@@ -83,7 +84,7 @@ vec3 unitpack_spherical_z32p_decode_float(vec2 params) {
 //   (8.46e-4) of what this function computes here, for every code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 vec3 unitpack_spherical_z32p_decode(uint code) {
-    UNITPACK_PRECISE vec2 params = vec2(uvec2(code & 65535u, code >> 16u)) * 1.5259022e-5;
+    UNITPACK_PRECISE vec2 params = vec2(uvec2(code & 0xffffu, code >> 16u)) * 1.5259022e-5;
     return unitpack_spherical_z32p_decode_float(params);
 }
 
@@ -97,7 +98,7 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -113,22 +114,22 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float abs_w2_x = abs(w2.x);
     UNITPACK_PRECISE float abs_w2_y = abs(w2.y);
@@ -139,22 +140,22 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big = lo5 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate = floor(lo5 / t1 * 8388608.0);
     UNITPACK_PRECISE float step_down = ratio_estimate * t1 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step;
+    UNITPACK_PRECISE float nudge = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge;
     UNITPACK_PRECISE float step_down2 = ratio * t1 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
-    UNITPACK_PRECISE float t = ratio + step2;
+    UNITPACK_PRECISE float nudge2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t = ratio + nudge2;
     bool far = t > 3474675.0;
     UNITPACK_PRECISE float t2 = t - 8388608.0;
     UNITPACK_PRECISE float t3 = t + 8388608.0;
     UNITPACK_PRECISE float big2 = t2 * 8388608.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t2 / t3 * 8388608.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate2 * t3 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge3;
     UNITPACK_PRECISE float step_down4 = ratio2 * t3 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
-    UNITPACK_PRECISE float ratio3 = ratio2 + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio3 = ratio2 + nudge4;
     UNITPACK_PRECISE float z = far ? ratio3 : t;
     UNITPACK_PRECISE float z2 = roundEven(z * z * 1.1920929e-7);
     UNITPACK_PRECISE float t4 = roundEven(
@@ -212,16 +213,16 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down5 = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = root_h1 * root_h1 <= len2 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float root_k = root_k0 + step5;
+    UNITPACK_PRECISE float nudge5 = root_h1 * root_h1 <= len2 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge5;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down6 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = root_m1 * root_m1 <= len2 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float root_j = root_j0 + step6;
+    UNITPACK_PRECISE float nudge6 = root_m1 * root_m1 <= len2 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge6;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE vec3 t26 = floor(w2 / root * 2097152.0);
     UNITPACK_PRECISE vec3 t27 = w2 * 2097152.0;
@@ -238,12 +239,12 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float root_estimate2 = floor(sqrt(t30));
     UNITPACK_PRECISE float root_next = root_estimate2 + 1.0;
     UNITPACK_PRECISE float step_down7 = root_estimate2 * root_estimate2 > t30 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step7 = root_next * root_next <= t30 ? 1.0 : step_down7;
-    UNITPACK_PRECISE float root_step = root_estimate2 + step7;
+    UNITPACK_PRECISE float nudge7 = root_next * root_next <= t30 ? 1.0 : step_down7;
+    UNITPACK_PRECISE float root_step = root_estimate2 + nudge7;
     UNITPACK_PRECISE float root_next2 = root_step + 1.0;
     UNITPACK_PRECISE float step_down8 = root_step * root_step > t30 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step8 = root_next2 * root_next2 <= t30 ? 1.0 : step_down8;
-    UNITPACK_PRECISE float r2 = root_step + step8;
+    UNITPACK_PRECISE float nudge8 = root_next2 * root_next2 <= t30 ? 1.0 : step_down8;
+    UNITPACK_PRECISE float r2 = root_step + nudge8;
     UNITPACK_PRECISE float t31 = floor((cand.x * 2.0 - 65535.0) * 256.0039);
     UNITPACK_PRECISE float abs_t31 = abs(t31);
     bool back = abs_t31 > 8388608.0;
@@ -283,22 +284,22 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
-    uint limb0_4 = offset_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi6 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo6 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = offset_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi6 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo6 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = offset_u.y >> 12u;
-    uint limb0_5 = offset_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi7 = hi6 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo7 = lo6 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = offset_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi7 = hi6 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo7 = lo6 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = offset_u.z >> 12u;
-    uint limb0_6 = offset_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi8 = hi7 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo8 = lo7 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi8 = hi7 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo8 = lo7 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi9 = hi8 + (lo8 >> 24u);
-    uint lo9 = lo8 & 16777215u;
+    uint lo9 = lo8 & 0xffffffu;
     UNITPACK_PRECISE float dist = float(hi9) * 16777216.0 + float(lo9);
     UNITPACK_PRECISE float s_up = base.x + 1.0;
     UNITPACK_PRECISE float t_up = base.y + 1.0;
@@ -311,12 +312,12 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float root_estimate3 = floor(sqrt(t47));
     UNITPACK_PRECISE float root_next3 = root_estimate3 + 1.0;
     UNITPACK_PRECISE float step_down9 = root_estimate3 * root_estimate3 > t47 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step9 = root_next3 * root_next3 <= t47 ? 1.0 : step_down9;
-    UNITPACK_PRECISE float root_step2 = root_estimate3 + step9;
+    UNITPACK_PRECISE float nudge9 = root_next3 * root_next3 <= t47 ? 1.0 : step_down9;
+    UNITPACK_PRECISE float root_step2 = root_estimate3 + nudge9;
     UNITPACK_PRECISE float root_next4 = root_step2 + 1.0;
     UNITPACK_PRECISE float step_down10 = root_step2 * root_step2 > t47 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step10 = root_next4 * root_next4 <= t47 ? 1.0 : step_down10;
-    UNITPACK_PRECISE float r3 = root_step2 + step10;
+    UNITPACK_PRECISE float nudge10 = root_next4 * root_next4 <= t47 ? 1.0 : step_down10;
+    UNITPACK_PRECISE float r3 = root_step2 + nudge10;
     UNITPACK_PRECISE float t48 = floor((cand2.x * 2.0 - 65535.0) * 256.0039);
     UNITPACK_PRECISE float abs_t48 = abs(t48);
     bool back2 = abs_t48 > 8388608.0;
@@ -356,22 +357,22 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
     uvec3 offset_u2 = uvec3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
-    uint limb0_7 = offset_u2.x & 4095u;
-    uint cross7 = limb1_7 * limb0_7;
-    uint hi10 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    uint lo10 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    uint limb0_7 = offset_u2.x & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi10 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo10 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = offset_u2.y >> 12u;
-    uint limb0_8 = offset_u2.y & 4095u;
-    uint cross8 = limb1_8 * limb0_8;
-    uint hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    uint lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    uint limb0_8 = offset_u2.y & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi11 = hi10 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo11 = lo10 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint limb1_9 = offset_u2.z >> 12u;
-    uint limb0_9 = offset_u2.z & 4095u;
-    uint cross9 = limb1_9 * limb0_9;
-    uint hi12 = hi11 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    uint lo12 = lo11 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    uint limb0_9 = offset_u2.z & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi12 = hi11 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo12 = lo11 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint hi13 = hi12 + (lo12 >> 24u);
-    uint lo13 = lo12 & 16777215u;
+    uint lo13 = lo12 & 0xffffffu;
     UNITPACK_PRECISE float dist2 = float(hi13) * 16777216.0 + float(lo13);
     bool t61 = dist2 < dist;
     bool t62 = s_up <= 65535.0 && t45 && t61;
@@ -386,12 +387,12 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float root_estimate4 = floor(sqrt(t66));
     UNITPACK_PRECISE float root_next5 = root_estimate4 + 1.0;
     UNITPACK_PRECISE float step_down11 = root_estimate4 * root_estimate4 > t66 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step11 = root_next5 * root_next5 <= t66 ? 1.0 : step_down11;
-    UNITPACK_PRECISE float root_step3 = root_estimate4 + step11;
+    UNITPACK_PRECISE float nudge11 = root_next5 * root_next5 <= t66 ? 1.0 : step_down11;
+    UNITPACK_PRECISE float root_step3 = root_estimate4 + nudge11;
     UNITPACK_PRECISE float root_next6 = root_step3 + 1.0;
     UNITPACK_PRECISE float step_down12 = root_step3 * root_step3 > t66 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step12 = root_next6 * root_next6 <= t66 ? 1.0 : step_down12;
-    UNITPACK_PRECISE float r4 = root_step3 + step12;
+    UNITPACK_PRECISE float nudge12 = root_next6 * root_next6 <= t66 ? 1.0 : step_down12;
+    UNITPACK_PRECISE float r4 = root_step3 + nudge12;
     UNITPACK_PRECISE float t67 = floor((cand3.x * 2.0 - 65535.0) * 256.0039);
     UNITPACK_PRECISE float abs_t67 = abs(t67);
     bool back3 = abs_t67 > 8388608.0;
@@ -431,22 +432,22 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
     uvec3 offset_u3 = uvec3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
-    uint limb0_10 = offset_u3.x & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi14 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo14 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb0_10 = offset_u3.x & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi14 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo14 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = offset_u3.y >> 12u;
-    uint limb0_11 = offset_u3.y & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb0_11 = offset_u3.y & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi15 = hi14 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo15 = lo14 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint limb1_12 = offset_u3.z >> 12u;
-    uint limb0_12 = offset_u3.z & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi16 = hi15 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo16 = lo15 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint limb0_12 = offset_u3.z & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi16 = hi15 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo16 = lo15 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint hi17 = hi16 + (lo16 >> 24u);
-    uint lo17 = lo16 & 16777215u;
+    uint lo17 = lo16 & 0xffffffu;
     UNITPACK_PRECISE float dist3 = float(hi17) * 16777216.0 + float(lo17);
     bool t80 = dist3 < best_d;
     bool t81 = base.x <= 65535.0 && t64 && t80;
@@ -461,12 +462,12 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float root_estimate5 = floor(sqrt(t85));
     UNITPACK_PRECISE float root_next7 = root_estimate5 + 1.0;
     UNITPACK_PRECISE float step_down13 = root_estimate5 * root_estimate5 > t85 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step13 = root_next7 * root_next7 <= t85 ? 1.0 : step_down13;
-    UNITPACK_PRECISE float root_step4 = root_estimate5 + step13;
+    UNITPACK_PRECISE float nudge13 = root_next7 * root_next7 <= t85 ? 1.0 : step_down13;
+    UNITPACK_PRECISE float root_step4 = root_estimate5 + nudge13;
     UNITPACK_PRECISE float root_next8 = root_step4 + 1.0;
     UNITPACK_PRECISE float step_down14 = root_step4 * root_step4 > t85 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step14 = root_next8 * root_next8 <= t85 ? 1.0 : step_down14;
-    UNITPACK_PRECISE float r5 = root_step4 + step14;
+    UNITPACK_PRECISE float nudge14 = root_next8 * root_next8 <= t85 ? 1.0 : step_down14;
+    UNITPACK_PRECISE float r5 = root_step4 + nudge14;
     UNITPACK_PRECISE float t86 = floor((cand4.x * 2.0 - 65535.0) * 256.0039);
     UNITPACK_PRECISE float abs_t86 = abs(t86);
     bool back4 = abs_t86 > 8388608.0;
@@ -506,22 +507,22 @@ vec2 unitpack_spherical_z32p_encode_codes(vec3 v) {
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
     uvec3 offset_u4 = uvec3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;
-    uint limb0_13 = offset_u4.x & 4095u;
-    uint cross13 = limb1_13 * limb0_13;
-    uint hi18 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    uint lo18 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    uint limb0_13 = offset_u4.x & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi18 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo18 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = offset_u4.y >> 12u;
-    uint limb0_14 = offset_u4.y & 4095u;
-    uint cross14 = limb1_14 * limb0_14;
-    uint hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    uint lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    uint limb0_14 = offset_u4.y & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi19 = hi18 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo19 = lo18 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint limb1_15 = offset_u4.z >> 12u;
-    uint limb0_15 = offset_u4.z & 4095u;
-    uint cross15 = limb1_15 * limb0_15;
-    uint hi20 = hi19 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    uint lo20 = lo19 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    uint limb0_15 = offset_u4.z & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi20 = hi19 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo20 = lo19 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint hi21 = hi20 + (lo20 >> 24u);
-    uint lo21 = lo20 & 16777215u;
+    uint lo21 = lo20 & 0xffffffu;
     UNITPACK_PRECISE float dist4 = float(hi21) * 16777216.0 + float(lo21);
     bool t99 = dist4 < best_d2;
     UNITPACK_PRECISE vec2 best3 = s_up <= 65535.0 && t83 && t99 ? cand4 : best2;

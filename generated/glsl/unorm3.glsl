@@ -25,6 +25,7 @@
 // ---- unorm3: components scaled and biased, n·0.5 + 0.5, as unorm8×3 (an RGB8 texel), 24 bits,
 //   sphere ----
 // Source: Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z).
+// Model: src/codecs/component/unorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.16981°, sample max 0.37724°; MSE of the components of
 //   n - n' 3.431e-6, PSNR 54.65 dB.
 #ifndef UNITPACK_UNORM3_GLSL
@@ -83,13 +84,13 @@ vec3 unitpack_unorm3_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_unorm3_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_unorm3_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -98,11 +99,11 @@ vec3 unitpack_unorm3_round_codes(vec3 a0) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w2.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w2.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w2.z - split_hi3;
     UNITPACK_PRECISE float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2

@@ -24,6 +24,7 @@
 
 // ---- xy16: x and y stored, z reconstructed, snorm×2, 16 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47519°, sample max 5.56067°; MSE of the components of
 //   n - n' 6.451e-5, PSNR 41.90 dB.
 #ifndef UNITPACK_XY16_GLSL
@@ -96,13 +97,13 @@ vec2 unitpack_xy16_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_xy16_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_xy16_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -111,11 +112,11 @@ vec2 unitpack_xy16_round_codes(vec3 a0) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float t1 = w.z > 0.0 ? w.z : 0.0;
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(t1) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(t1) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = t1 - split_hi3;
     UNITPACK_PRECISE float t2 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -164,7 +165,7 @@ uint unitpack_xy16_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_xy16_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 256.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 256.0;
-    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 65280u);
+    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 0xff00u);
 }
 
 #endif // UNITPACK_XY16_GLSL

@@ -25,6 +25,7 @@
 // ---- xy16:layout=rxgb: x and y stored, z reconstructed, in an RGBA8 texel, 16 bits, hemisphere
 //   ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47060°, sample max 5.75338°; MSE of the components of
 //   n - n' 6.284e-5, PSNR 42.02 dB.
 #ifndef UNITPACK_XY16_RXGB_GLSL
@@ -129,13 +130,13 @@ vec4 unitpack_xy16_rxgb_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec4 unitpack_xy16_rxgb_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -144,11 +145,11 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float t1 = w.z > 0.0 ? w.z : 0.0;
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(t1) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(t1) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = t1 - split_hi3;
     UNITPACK_PRECISE float t2 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -189,12 +190,12 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
         + mix(vec2(0.0), t12 - 1.0, greaterThan(t5, vec2(0.0)));
     bool t14 = len2 > 0.0;
     UNITPACK_PRECISE vec2 c = ok && t14 ? t13 : vec2(128.0);
-    UNITPACK_PRECISE vec3 normal2 = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+    UNITPACK_PRECISE vec3 normal2 = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal2 = abs(normal2);
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     UNITPACK_PRECISE float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     UNITPACK_PRECISE float scale2 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest2) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest2) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
@@ -209,7 +210,7 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     UNITPACK_PRECISE float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
     UNITPACK_PRECISE float scale3 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest3) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest3) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
@@ -218,11 +219,11 @@ vec4 unitpack_xy16_rxgb_round_codes(vec3 a0) {
     bool ok3 = sum3 >= 2.0 && sum_below_16_3;
     UNITPACK_PRECISE vec3 w4 = mix(scaled3, vec3(0.0), lessThan(abs(scaled3), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w5 = ok3 ? w4 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float split_hi4 = uintBitsToFloat(floatBitsToUint(w5.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi4 = uintBitsToFloat(floatBitsToUint(w5.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo4 = w5.x - split_hi4;
-    UNITPACK_PRECISE float split_hi5 = uintBitsToFloat(floatBitsToUint(w5.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi5 = uintBitsToFloat(floatBitsToUint(w5.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo5 = w5.y - split_hi5;
-    UNITPACK_PRECISE float split_hi6 = uintBitsToFloat(floatBitsToUint(w5.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi6 = uintBitsToFloat(floatBitsToUint(w5.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo6 = w5.z - split_hi6;
     UNITPACK_PRECISE float t16 = (split_hi4 + split_hi4) * split_lo4
         + (split_hi5 + split_hi5) * split_lo5

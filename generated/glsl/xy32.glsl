@@ -24,6 +24,7 @@
 
 // ---- xy32: x and y stored, z reconstructed, snorm×2, 32 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00301°, sample max 0.29708°; MSE of the components of
 //   n - n' 1.502e-8, PSNR 78.23 dB.
 #ifndef UNITPACK_XY32_GLSL
@@ -55,7 +56,7 @@ vec3 unitpack_xy32_decode_float(vec2 params) {
 //   1.
 // Portable as unitpack_xy32_decode_float is, within the same bound.
 vec3 unitpack_xy32_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 65535u, code >> 16u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code & 0xffffu, code >> 16u));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 65536.0, greaterThan(t1, vec2(32767.0))) * 3.051851e-5;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_xy32_decode_float(params);
@@ -96,13 +97,13 @@ vec2 unitpack_xy32_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec2 unitpack_xy32_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec2 unitpack_xy32_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -111,11 +112,11 @@ vec2 unitpack_xy32_round_codes(vec3 a0) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE float t1 = w.z > 0.0 ? w.z : 0.0;
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(t1) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(t1) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = t1 - split_hi3;
     UNITPACK_PRECISE float t2 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -164,7 +165,7 @@ uint unitpack_xy32_encode(vec3 v) {
     UNITPACK_PRECISE vec2 round_codes = unitpack_xy32_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 65536.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 65536.0;
-    return (uint(t1) & 65535u) | (uint(t2) << 16u);
+    return (uint(t1) & 0xffffu) | (uint(t2) << 16u);
 }
 
 #endif // UNITPACK_XY32_GLSL

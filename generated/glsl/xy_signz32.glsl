@@ -25,6 +25,7 @@
 // ---- xy_signz32: x and y stored with the sign of z, z reconstructed, snorm×2 + 1 bit, 32 bits,
 //   sphere ----
 // Source: Pranckevičius method 2.
+// Model: src/codecs/component/xy_signz.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00455°, sample max 0.43438°; MSE of the components of
 //   n - n' 3.074e-8, PSNR 75.12 dB.
 #ifndef UNITPACK_XY_SIGNZ32_GLSL
@@ -56,9 +57,9 @@ vec3 unitpack_xy_signz32_decode_float(vec3 params) {
 //   than 1.
 // Portable as unitpack_xy_signz32_decode_float is, within the same bound.
 vec3 unitpack_xy_signz32_decode(uint code) {
-    UNITPACK_PRECISE float t1 = float(code & 65535u);
+    UNITPACK_PRECISE float t1 = float(code & 0xffffu);
     UNITPACK_PRECISE float t2 = t1 - 65536.0;
-    UNITPACK_PRECISE float t3 = float((code >> 16u) & 32767u);
+    UNITPACK_PRECISE float t3 = float((code >> 16u) & 0x7fffu);
     UNITPACK_PRECISE float t4 = t3 - 32768.0;
     UNITPACK_PRECISE vec3 t5 = vec3(
         t1 > 32767.0 ? t2 : t1,
@@ -101,13 +102,13 @@ vec3 unitpack_xy_signz32_encode_float(vec3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-vec3 unitpack_xy_signz32_round_codes(vec3 a0) {
-    UNITPACK_PRECISE vec3 normal = mix(a0, vec3(0.0), lessThan(abs(a0), vec3(1.1754944e-38)));
+vec3 unitpack_xy_signz32_round_codes(vec3 v) {
+    UNITPACK_PRECISE vec3 normal = mix(v, vec3(0.0), lessThan(abs(v), vec3(1.1754944e-38)));
     UNITPACK_PRECISE vec3 abs_normal = abs(normal);
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -116,11 +117,11 @@ vec3 unitpack_xy_signz32_round_codes(vec3 a0) {
     bool ok = sum >= 2.0 && sum_below_16;
     UNITPACK_PRECISE vec3 w = mix(scaled, vec3(0.0), lessThan(abs(scaled), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w2 = ok ? w : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w2.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w2.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w2.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w2.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w2.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w2.z - split_hi3;
     UNITPACK_PRECISE float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -138,8 +139,8 @@ vec3 unitpack_xy_signz32_round_codes(vec3 a0) {
     UNITPACK_PRECISE float t2 = lower * lower * len2;
     bool t3 = big2 < t2;
     UNITPACK_PRECISE float step_down = estimate > 0.0 && t3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = big2 >= upper * upper * len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float t4 = estimate + step;
+    UNITPACK_PRECISE float nudge = big2 >= upper * upper * len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float t4 = estimate + nudge;
     UNITPACK_PRECISE float t5 = t4 >= 0.0 ? t4 : 0.0;
     UNITPACK_PRECISE float t6 = t5 <= 32767.0 ? t5 : 32767.0;
     UNITPACK_PRECISE float big3 = abs(w2.y * 16383.0);
@@ -150,8 +151,8 @@ vec3 unitpack_xy_signz32_round_codes(vec3 a0) {
     UNITPACK_PRECISE float t7 = lower2 * lower2 * len2;
     bool t8 = big2_2 < t7;
     UNITPACK_PRECISE float step_down2 = estimate2 > 0.0 && t8 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float t9 = estimate2 + step2;
+    UNITPACK_PRECISE float nudge2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float t9 = estimate2 + nudge2;
     UNITPACK_PRECISE float t10 = t9 >= 0.0 ? t9 : 0.0;
     UNITPACK_PRECISE float t11 = t10 <= 16383.0 ? t10 : 16383.0;
     UNITPACK_PRECISE vec3 result = mix(
@@ -173,7 +174,7 @@ uint unitpack_xy_signz32_encode(vec3 v) {
     UNITPACK_PRECISE vec3 round_codes = unitpack_xy_signz32_round_codes(v);
     UNITPACK_PRECISE float t1 = round_codes.x + 65536.0;
     UNITPACK_PRECISE float t2 = round_codes.y + 32768.0;
-    uint t3 = (uint(t1) & 65535u) | ((uint(t2) << 16u) & 2147418112u);
+    uint t3 = (uint(t1) & 0xffffu) | ((uint(t2) << 16u) & 0x7fff0000u);
     return t3 | (uint(round_codes.z) << 31u);
 }
 

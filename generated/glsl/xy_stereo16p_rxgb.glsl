@@ -25,6 +25,7 @@
 // ---- xy_stereo16p:layout=rxgb: stereographic projection of the +Z hemisphere, (x, y)/(1 + z), in
 //   an RGBA8 texel, 16 bits, hemisphere, precise encoder ----
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
+// Model: src/codecs/azimuthal/xy_stereo.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.25782°, sample max 0.62172°; MSE of the components of
 //   n - n' 7.974e-6, PSNR 50.98 dB.
 #ifndef UNITPACK_XY_STEREO16P_RXGB_GLSL
@@ -73,7 +74,7 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -88,7 +89,7 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     UNITPACK_PRECISE float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     UNITPACK_PRECISE float scale2 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest2) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest2) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
@@ -104,38 +105,38 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root + w4.z;
     UNITPACK_PRECISE vec2 t2 = w4.xy * 127.5;
@@ -179,28 +180,28 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big = t16 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(t16 / t11 * 2097152.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate * t11 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t11 <= big ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate + 1.0) * t11 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge3;
     UNITPACK_PRECISE vec3 offset = vec3(t13 + t15, ratio) - aim;
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
-    uint limb0_4 = offset_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = offset_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = offset_u.y >> 12u;
-    uint limb0_5 = offset_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = offset_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = offset_u.z >> 12u;
-    uint limb0_6 = offset_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
     UNITPACK_PRECISE float s_up = base.x + 1.0;
     UNITPACK_PRECISE float t_up = base.y + 1.0;
@@ -223,28 +224,28 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big2 = t24 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t24 / t19 * 2097152.0);
     UNITPACK_PRECISE float step_down4 = ratio_estimate2 * t19 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio_estimate2 + 1.0) * t19 <= big2 ? 1.0 : step_down4;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio_estimate2 + 1.0) * t19 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge4;
     UNITPACK_PRECISE vec3 offset2 = vec3(t21 + t23, ratio2) - aim;
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
     uvec3 offset_u2 = uvec3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
-    uint limb0_7 = offset_u2.x & 4095u;
-    uint cross7 = limb1_7 * limb0_7;
-    uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    uint limb0_7 = offset_u2.x & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = offset_u2.y >> 12u;
-    uint limb0_8 = offset_u2.y & 4095u;
-    uint cross8 = limb1_8 * limb0_8;
-    uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    uint limb0_8 = offset_u2.y & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint limb1_9 = offset_u2.z >> 12u;
-    uint limb0_9 = offset_u2.z & 4095u;
-    uint cross9 = limb1_9 * limb0_9;
-    uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    uint limb0_9 = offset_u2.z & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint hi12 = hi11 + (lo11 >> 24u);
-    uint lo12 = lo11 & 16777215u;
+    uint lo12 = lo11 & 0xffffffu;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
     bool t25 = dist2 < dist;
     bool t26 = s_up <= 255.0 && t18 && t25;
@@ -269,28 +270,28 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big3 = t34 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(t34 / t29 * 2097152.0);
     UNITPACK_PRECISE float step_down5 = ratio_estimate3 * t29 > big3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = (ratio_estimate3 + 1.0) * t29 <= big3 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step5;
+    UNITPACK_PRECISE float nudge5 = (ratio_estimate3 + 1.0) * t29 <= big3 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + nudge5;
     UNITPACK_PRECISE vec3 offset3 = vec3(t31 + t33, ratio3) - aim;
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
     uvec3 offset_u3 = uvec3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
-    uint limb0_10 = offset_u3.x & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb0_10 = offset_u3.x & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = offset_u3.y >> 12u;
-    uint limb0_11 = offset_u3.y & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb0_11 = offset_u3.y & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint limb1_12 = offset_u3.z >> 12u;
-    uint limb0_12 = offset_u3.z & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint limb0_12 = offset_u3.z & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint hi16 = hi15 + (lo15 >> 24u);
-    uint lo16 = lo15 & 16777215u;
+    uint lo16 = lo15 & 0xffffffu;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
     bool t35 = dist3 < best_d;
     bool t36 = base.x <= 255.0 && t28 && t35;
@@ -315,28 +316,28 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big4 = t44 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(t44 / t39 * 2097152.0);
     UNITPACK_PRECISE float step_down6 = ratio_estimate4 * t39 > big4 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = (ratio_estimate4 + 1.0) * t39 <= big4 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step6;
+    UNITPACK_PRECISE float nudge6 = (ratio_estimate4 + 1.0) * t39 <= big4 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + nudge6;
     UNITPACK_PRECISE vec3 offset4 = vec3(t41 + t43, ratio4) - aim;
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
     uvec3 offset_u4 = uvec3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;
-    uint limb0_13 = offset_u4.x & 4095u;
-    uint cross13 = limb1_13 * limb0_13;
-    uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    uint limb0_13 = offset_u4.x & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = offset_u4.y >> 12u;
-    uint limb0_14 = offset_u4.y & 4095u;
-    uint cross14 = limb1_14 * limb0_14;
-    uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    uint limb0_14 = offset_u4.y & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint limb1_15 = offset_u4.z >> 12u;
-    uint limb0_15 = offset_u4.z & 4095u;
-    uint cross15 = limb1_15 * limb0_15;
-    uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    uint limb0_15 = offset_u4.z & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint hi20 = hi19 + (lo19 >> 24u);
-    uint lo20 = lo19 & 16777215u;
+    uint lo20 = lo19 & 0xffffffu;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
     bool t45 = dist4 < best_d2;
     UNITPACK_PRECISE vec2 best3 = s_up <= 255.0 && t38 && t45 ? cand4 : best2;
@@ -346,7 +347,7 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     UNITPACK_PRECISE float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
     UNITPACK_PRECISE float scale3 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest3) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest3) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled3 = normal3 * scale3;
     UNITPACK_PRECISE vec3 abs_scaled3 = abs(scaled3);
@@ -361,7 +362,7 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger4 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
     UNITPACK_PRECISE float largest4 = larger4 >= abs_normal4.z ? larger4 : abs_normal4.z;
     UNITPACK_PRECISE float scale4 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest4) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest4) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled4 = normal4 * scale4;
     UNITPACK_PRECISE vec3 abs_scaled4 = abs(scaled4);
@@ -370,11 +371,11 @@ vec4 unitpack_xy_stereo16p_rxgb_encode_codes(vec3 v) {
     bool ok4 = sum4 >= 2.0 && sum_below_16_4;
     UNITPACK_PRECISE vec3 w7 = mix(scaled4, vec3(0.0), lessThan(abs(scaled4), vec3(1.8189894e-12)));
     UNITPACK_PRECISE vec3 w8 = ok4 ? w7 : vec3(0.0, 0.0, 2.0);
-    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w8.x) & 4294963200u);
+    UNITPACK_PRECISE float split_hi = uintBitsToFloat(floatBitsToUint(w8.x) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo = w8.x - split_hi;
-    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w8.y) & 4294963200u);
+    UNITPACK_PRECISE float split_hi2 = uintBitsToFloat(floatBitsToUint(w8.y) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo2 = w8.y - split_hi2;
-    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w8.z) & 4294963200u);
+    UNITPACK_PRECISE float split_hi3 = uintBitsToFloat(floatBitsToUint(w8.z) & 0xfffff000u);
     UNITPACK_PRECISE float split_lo3 = w8.z - split_hi3;
     UNITPACK_PRECISE float t47 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2

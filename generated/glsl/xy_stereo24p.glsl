@@ -25,6 +25,7 @@
 // ---- xy_stereo24p: stereographic projection of the +Z hemisphere, (x, y)/(1 + z) as snorm×2, 24
 //   bits, hemisphere, precise encoder ----
 // Source: NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001.
+// Model: src/codecs/azimuthal/xy_stereo.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01607°, sample max 0.03911°; MSE of the components of
 //   n - n' 3.099e-8, PSNR 75.09 dB.
 #ifndef UNITPACK_XY_STEREO24P_GLSL
@@ -56,7 +57,7 @@ vec3 unitpack_xy_stereo24p_decode_float(vec2 params) {
 //   below the horizon.
 // Portable as unitpack_xy_stereo24p_decode_float is, within the same bound.
 vec3 unitpack_xy_stereo24p_decode(uint code) {
-    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 12u) & uvec2(4095u));
+    UNITPACK_PRECISE vec2 t1 = vec2(uvec2(code, code >> 12u) & uvec2(0xfffu));
     UNITPACK_PRECISE vec2 t2 = mix(t1, t1 - 4096.0, greaterThan(t1, vec2(2047.0))) * 0.0004885198;
     UNITPACK_PRECISE vec2 params = mix(vec2(-1.0), t2, greaterThanEqual(t2, vec2(-1.0)));
     return unitpack_xy_stereo24p_decode_float(params);
@@ -72,7 +73,7 @@ vec2 unitpack_xy_stereo24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     UNITPACK_PRECISE float largest = larger >= abs_normal.z ? larger : abs_normal.z;
     UNITPACK_PRECISE float scale = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled = normal * scale;
     UNITPACK_PRECISE vec3 abs_scaled = abs(scaled);
@@ -87,7 +88,7 @@ vec2 unitpack_xy_stereo24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     UNITPACK_PRECISE float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
     UNITPACK_PRECISE float scale2 = uintBitsToFloat(
-        2139095040u - (floatBitsToUint(largest2) & 2139095040u)
+        0x7f800000u - (floatBitsToUint(largest2) & 0x7f800000u)
     );
     UNITPACK_PRECISE vec3 scaled2 = normal2 * scale2;
     UNITPACK_PRECISE vec3 abs_scaled2 = abs(scaled2);
@@ -103,38 +104,38 @@ vec2 unitpack_xy_stereo24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float fixed_f3 = floor(abs(w4.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     UNITPACK_PRECISE float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     UNITPACK_PRECISE float root_estimate = sqrt(len2);
     UNITPACK_PRECISE float root_k0 = floor(root_estimate * 512.0);
     UNITPACK_PRECISE float root_h0 = root_k0 * 0.001953125;
     UNITPACK_PRECISE float root_h1 = root_h0 + 0.001953125;
     UNITPACK_PRECISE float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    UNITPACK_PRECISE float root_k = root_k0 + step;
+    UNITPACK_PRECISE float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    UNITPACK_PRECISE float root_k = root_k0 + nudge;
     UNITPACK_PRECISE float root_h = root_k * 0.001953125;
     UNITPACK_PRECISE float root_rest = len2 - root_h * root_h;
     UNITPACK_PRECISE float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     UNITPACK_PRECISE float root_m0 = root_h + root_j0 * 4.7683716e-7;
     UNITPACK_PRECISE float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     UNITPACK_PRECISE float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    UNITPACK_PRECISE float root_j = root_j0 + step2;
+    UNITPACK_PRECISE float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    UNITPACK_PRECISE float root_j = root_j0 + nudge2;
     UNITPACK_PRECISE float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     UNITPACK_PRECISE float a = root + w4.z;
     UNITPACK_PRECISE vec2 t2 = floor(w4.xy / a * 2047.0);
@@ -172,28 +173,28 @@ vec2 unitpack_xy_stereo24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big = t15 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate = floor(t15 / t10 * 2097152.0);
     UNITPACK_PRECISE float step_down3 = ratio_estimate * t10 > big ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step3 = (ratio_estimate + 1.0) * t10 <= big ? 1.0 : step_down3;
-    UNITPACK_PRECISE float ratio = ratio_estimate + step3;
+    UNITPACK_PRECISE float nudge3 = (ratio_estimate + 1.0) * t10 <= big ? 1.0 : step_down3;
+    UNITPACK_PRECISE float ratio = ratio_estimate + nudge3;
     UNITPACK_PRECISE vec3 offset = vec3(t12 + t14, ratio) - aim;
     UNITPACK_PRECISE vec3 abs_offset = abs(offset);
     uvec3 offset_u = uvec3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
-    uint limb0_4 = offset_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = offset_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = offset_u.y >> 12u;
-    uint limb0_5 = offset_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = offset_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = offset_u.z >> 12u;
-    uint limb0_6 = offset_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     UNITPACK_PRECISE float dist = float(hi8) * 16777216.0 + float(lo8);
     UNITPACK_PRECISE float s_up = base.x + 1.0;
     UNITPACK_PRECISE float t_up = base.y + 1.0;
@@ -216,28 +217,28 @@ vec2 unitpack_xy_stereo24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big2 = t23 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate2 = floor(t23 / t18 * 2097152.0);
     UNITPACK_PRECISE float step_down4 = ratio_estimate2 * t18 > big2 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step4 = (ratio_estimate2 + 1.0) * t18 <= big2 ? 1.0 : step_down4;
-    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + step4;
+    UNITPACK_PRECISE float nudge4 = (ratio_estimate2 + 1.0) * t18 <= big2 ? 1.0 : step_down4;
+    UNITPACK_PRECISE float ratio2 = ratio_estimate2 + nudge4;
     UNITPACK_PRECISE vec3 offset2 = vec3(t20 + t22, ratio2) - aim;
     UNITPACK_PRECISE vec3 abs_offset2 = abs(offset2);
     uvec3 offset_u2 = uvec3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
-    uint limb0_7 = offset_u2.x & 4095u;
-    uint cross7 = limb1_7 * limb0_7;
-    uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    uint limb0_7 = offset_u2.x & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = offset_u2.y >> 12u;
-    uint limb0_8 = offset_u2.y & 4095u;
-    uint cross8 = limb1_8 * limb0_8;
-    uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    uint limb0_8 = offset_u2.y & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint limb1_9 = offset_u2.z >> 12u;
-    uint limb0_9 = offset_u2.z & 4095u;
-    uint cross9 = limb1_9 * limb0_9;
-    uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    uint limb0_9 = offset_u2.z & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint hi12 = hi11 + (lo11 >> 24u);
-    uint lo12 = lo11 & 16777215u;
+    uint lo12 = lo11 & 0xffffffu;
     UNITPACK_PRECISE float dist2 = float(hi12) * 16777216.0 + float(lo12);
     bool t24 = dist2 < dist;
     bool t25 = s_up <= 2047.0 && t17 && t24;
@@ -262,28 +263,28 @@ vec2 unitpack_xy_stereo24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big3 = t33 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate3 = floor(t33 / t28 * 2097152.0);
     UNITPACK_PRECISE float step_down5 = ratio_estimate3 * t28 > big3 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step5 = (ratio_estimate3 + 1.0) * t28 <= big3 ? 1.0 : step_down5;
-    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + step5;
+    UNITPACK_PRECISE float nudge5 = (ratio_estimate3 + 1.0) * t28 <= big3 ? 1.0 : step_down5;
+    UNITPACK_PRECISE float ratio3 = ratio_estimate3 + nudge5;
     UNITPACK_PRECISE vec3 offset3 = vec3(t30 + t32, ratio3) - aim;
     UNITPACK_PRECISE vec3 abs_offset3 = abs(offset3);
     uvec3 offset_u3 = uvec3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
-    uint limb0_10 = offset_u3.x & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb0_10 = offset_u3.x & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = offset_u3.y >> 12u;
-    uint limb0_11 = offset_u3.y & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb0_11 = offset_u3.y & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint limb1_12 = offset_u3.z >> 12u;
-    uint limb0_12 = offset_u3.z & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint limb0_12 = offset_u3.z & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint hi16 = hi15 + (lo15 >> 24u);
-    uint lo16 = lo15 & 16777215u;
+    uint lo16 = lo15 & 0xffffffu;
     UNITPACK_PRECISE float dist3 = float(hi16) * 16777216.0 + float(lo16);
     bool t34 = dist3 < best_d;
     bool t35 = base.x <= 2047.0 && t27 && t34;
@@ -308,28 +309,28 @@ vec2 unitpack_xy_stereo24p_encode_codes(vec3 v) {
     UNITPACK_PRECISE float big4 = t43 * 2097152.0;
     UNITPACK_PRECISE float ratio_estimate4 = floor(t43 / t38 * 2097152.0);
     UNITPACK_PRECISE float step_down6 = ratio_estimate4 * t38 > big4 ? -1.0 : 0.0;
-    UNITPACK_PRECISE float step6 = (ratio_estimate4 + 1.0) * t38 <= big4 ? 1.0 : step_down6;
-    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + step6;
+    UNITPACK_PRECISE float nudge6 = (ratio_estimate4 + 1.0) * t38 <= big4 ? 1.0 : step_down6;
+    UNITPACK_PRECISE float ratio4 = ratio_estimate4 + nudge6;
     UNITPACK_PRECISE vec3 offset4 = vec3(t40 + t42, ratio4) - aim;
     UNITPACK_PRECISE vec3 abs_offset4 = abs(offset4);
     uvec3 offset_u4 = uvec3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;
-    uint limb0_13 = offset_u4.x & 4095u;
-    uint cross13 = limb1_13 * limb0_13;
-    uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    uint limb0_13 = offset_u4.x & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = offset_u4.y >> 12u;
-    uint limb0_14 = offset_u4.y & 4095u;
-    uint cross14 = limb1_14 * limb0_14;
-    uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    uint limb0_14 = offset_u4.y & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint limb1_15 = offset_u4.z >> 12u;
-    uint limb0_15 = offset_u4.z & 4095u;
-    uint cross15 = limb1_15 * limb0_15;
-    uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    uint limb0_15 = offset_u4.z & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint hi20 = hi19 + (lo19 >> 24u);
-    uint lo20 = lo19 & 16777215u;
+    uint lo20 = lo19 & 0xffffffu;
     UNITPACK_PRECISE float dist4 = float(hi20) * 16777216.0 + float(lo20);
     bool t44 = dist4 < best_d2;
     UNITPACK_PRECISE vec2 best3 = s_up <= 2047.0 && t37 && t44 ? cand4 : best2;
@@ -358,7 +359,7 @@ uint unitpack_xy_stereo24p_encode(vec3 v) {
     UNITPACK_PRECISE vec2 encode_codes = unitpack_xy_stereo24p_encode_codes(v);
     UNITPACK_PRECISE float t1 = encode_codes.x + 4096.0;
     UNITPACK_PRECISE float t2 = encode_codes.y + 4096.0;
-    return (uint(t1) & 4095u) | ((uint(t2) << 12u) & 16773120u);
+    return (uint(t1) & 0xfffu) | ((uint(t2) << 12u) & 0xfff000u);
 }
 
 #endif // UNITPACK_XY_STEREO24P_GLSL

@@ -30,6 +30,7 @@
 // Source: Bevy main at bevyengine/bevy 7517c61 (#21926, merged 2026-06-02; unchanged at 4805ca7):
 //   crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and
 //   crates/bevy_render/src/utils.wgsl (octahedral_decode_signed).
+// Model: src/codecs/engine/bevy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00130°, sample max 0.00368°; MSE of the components of
 //   n - n' 2.089e-10, PSNR 96.80 dB.
 #ifndef UNITPACK_BEVY_OCT32_HLSL
@@ -61,7 +62,7 @@ float3 unitpack_bevy_oct32_decode_float(float2 params) {
 // Out: Bevy's octahedral_decode_signed: a unit vector (to rounding) for every code.
 // Portable as unitpack_bevy_oct32_decode_float is, within the same bound.
 float3 unitpack_bevy_oct32_decode(uint code) {
-    precise float2 t1 = float2(uint2(code & 65535u, code >> 16u));
+    precise float2 t1 = float2(uint2(code & 0xffffu, code >> 16u));
     precise float2 t2 = UNITPACK_SELECT(t1 > float2(32767.0, 32767.0), t1 - 65536.0, t1)
         * 3.051851e-5;
     precise float2 params = UNITPACK_SELECT(t2 >= float2(-1.0, -1.0), t2, float2(-1.0, -1.0));
@@ -83,7 +84,7 @@ float2 unitpack_bevy_oct32_encode_float(float3 v) {
         * UNITPACK_SELECT(p.xy > float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
     precise float2 t2 = p.z >= 0.0 ? p.xy : t1;
     return UNITPACK_SELECT(
-        (asuint(t2) & uint2(2147483647u, 2147483647u)) < uint2(2139095041u, 2139095041u),
+        (asuint(t2) & uint2(0x7fffffffu, 0x7fffffffu)) < uint2(0x7f800001u, 0x7f800001u),
         t2,
         float2(0.0, 0.0)
     );
@@ -119,7 +120,7 @@ uint unitpack_bevy_oct32_encode(float3 v) {
     precise float2 codes = UNITPACK_SELECT(t2 < float2(0.0, 0.0), -t3, t3);
     precise float t4 = codes.x + 65536.0;
     precise float t5 = codes.y + 65536.0;
-    return (uint(t4) & 65535u) | (uint(t5) << 16u);
+    return (uint(t4) & 0xffffu) | (uint(t5) << 16u);
 }
 
 #endif // UNITPACK_BEVY_OCT32_HLSL

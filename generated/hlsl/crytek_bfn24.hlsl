@@ -29,6 +29,7 @@
 // ---- crytek_bfn24: Crytek's best fit normals: RGB8 scaled by a fitting table's length (512×512),
 //   24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2.2 (Kaplanyan 2010, CryENGINE 3).
+// Model: src/codecs/table/crytek_bfn.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.05319°, sample max 0.29854°; MSE of the components of
 //   n - n' 3.777e-7, PSNR 64.23 dB.
 #ifndef UNITPACK_CRYTEK_BFN24_HLSL
@@ -76,7 +77,7 @@ uint2 unitpack_crytek_bfn24_fitting_texel(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -103,51 +104,51 @@ uint2 unitpack_crytek_bfn24_fitting_texel(float3 v) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float l = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float big = t5 * 512.0;
     precise float ratio_estimate = floor(t5 / l * 512.0);
     precise float step_down3 = ratio_estimate * l > big ? -1.0 : 0.0;
-    precise float step3 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down3;
-    precise float ratio = ratio_estimate + step3;
+    precise float nudge3 = (ratio_estimate + 1.0) * l <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + nudge3;
     bool t8 = t5 > 0.0;
     precise float t9 = t8 ? t5 : 1.0;
     precise float big2 = t7 * 512.0;
     precise float ratio_estimate2 = floor(t7 / t9 * 512.0);
     precise float step_down4 = ratio_estimate2 * t9 > big2 ? -1.0 : 0.0;
-    precise float step4 = (ratio_estimate2 + 1.0) * t9 <= big2 ? 1.0 : step_down4;
-    precise float ratio2 = ratio_estimate2 + step4;
+    precise float nudge4 = (ratio_estimate2 + 1.0) * t9 <= big2 ? 1.0 : step_down4;
+    precise float ratio2 = ratio_estimate2 + nudge4;
     precise float2 t10 = float2(ratio, t8 ? ratio2 : 0.0);
     return uint2(UNITPACK_SELECT(t10 <= float2(511.0, 511.0), t10, float2(511.0, 511.0)));
 }
@@ -193,7 +194,7 @@ uint unitpack_crytek_bfn24_encode(float3 v, float fetched) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -214,30 +215,30 @@ uint unitpack_crytek_bfn24_encode(float3 v, float fetched) {
     precise float big = abs_w2.x * 1048576.0;
     precise float ratio_estimate = floor(abs_w2.x / t2 * 1048576.0);
     precise float step_down = ratio_estimate * t2 > big ? -1.0 : 0.0;
-    precise float step = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
-    precise float ratio = ratio_estimate + step;
+    precise float nudge = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + nudge;
     uint t4 = uint(ratio) * k_u;
     uint t5 = 128u + (t4 >> 21u);
-    uint t6 = 128u - ((t4 + 2097151u) >> 21u);
+    uint t6 = 128u - ((t4 + 0x1fffffu) >> 21u);
     precise float big2 = abs_w2.y * 1048576.0;
     precise float ratio_estimate2 = floor(abs_w2.y / t2 * 1048576.0);
     precise float step_down2 = ratio_estimate2 * t2 > big2 ? -1.0 : 0.0;
-    precise float step2 = (ratio_estimate2 + 1.0) * t2 <= big2 ? 1.0 : step_down2;
-    precise float ratio2 = ratio_estimate2 + step2;
+    precise float nudge2 = (ratio_estimate2 + 1.0) * t2 <= big2 ? 1.0 : step_down2;
+    precise float ratio2 = ratio_estimate2 + nudge2;
     uint t7 = uint(ratio2) * k_u;
     uint t8 = 128u + (t7 >> 21u);
-    uint t9 = 128u - ((t7 + 2097151u) >> 21u);
+    uint t9 = 128u - ((t7 + 0x1fffffu) >> 21u);
     precise float big3 = abs_w2.z * 1048576.0;
     precise float ratio_estimate3 = floor(abs_w2.z / t2 * 1048576.0);
     precise float step_down3 = ratio_estimate3 * t2 > big3 ? -1.0 : 0.0;
-    precise float step3 = (ratio_estimate3 + 1.0) * t2 <= big3 ? 1.0 : step_down3;
-    precise float ratio3 = ratio_estimate3 + step3;
+    precise float nudge3 = (ratio_estimate3 + 1.0) * t2 <= big3 ? 1.0 : step_down3;
+    precise float ratio3 = ratio_estimate3 + nudge3;
     uint t10 = uint(ratio3) * k_u;
     uint t11 = 128u + (t10 >> 21u);
-    uint t12 = 128u - ((t10 + 2097151u) >> 21u);
+    uint t12 = 128u - ((t10 + 0x1fffffu) >> 21u);
     uint t13 = uint(float(w2.x < 0.0 ? t6 : t5)) | (uint(float(w2.y < 0.0 ? t9 : t8)) << 8u);
     uint t14 = t13 | (uint(float(w2.z < 0.0 ? t12 : t11)) << 16u);
-    return ok ? t14 : 16744576u;
+    return ok ? t14 : 0xff8080u;
 }
 
 #endif // UNITPACK_CRYTEK_BFN24_HLSL

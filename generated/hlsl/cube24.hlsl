@@ -28,6 +28,7 @@
 
 // ---- cube24: cube-map face (3 bits) + unorm×2 coordinates on it, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (cube).
+// Model: src/codecs/cube_maps/cube.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02551°, sample max 0.06122°; MSE of the components of
 //   n - n' 8.091e-8, PSNR 70.92 dB.
 #ifndef UNITPACK_CUBE24_HLSL
@@ -73,7 +74,9 @@ float3 unitpack_cube24_decode_float(float3 params) {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 float3 unitpack_cube24_decode(uint code) {
-    precise float3 params = float3(uint3(code, code >> 11u, code >> 21u) & uint3(2047u, 1023u, 7u))
+    precise float3 params = float3(
+        uint3(code, code >> 11u, code >> 21u) & uint3(0x7ffu, 0x3ffu, 7u)
+    )
         * float3(0.0004885198, 0.0009775171, 0.14285715);
     return unitpack_cube24_decode_float(params);
 }
@@ -94,7 +97,7 @@ float3 unitpack_cube24_encode_float(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -123,16 +126,16 @@ float3 unitpack_cube24_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_cube24_round_codes(float3 a0) {
+float3 unitpack_cube24_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;

@@ -28,6 +28,7 @@
 
 // ---- cube32: cube-map face (3 bits) + unorm×2 coordinates on it, 32 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (cube).
+// Model: src/codecs/cube_maps/cube.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00160°, sample max 0.00386°; MSE of the components of
 //   n - n' 3.161e-10, PSNR 95.00 dB.
 #ifndef UNITPACK_CUBE32_HLSL
@@ -71,7 +72,7 @@ float3 unitpack_cube32_decode_float(float3 params) {
 //   decode as +Z and -Z.
 // Portable as unitpack_cube32_decode_float is, within the same bound.
 float3 unitpack_cube32_decode(uint code) {
-    precise float3 params = float3(uint3(code & 32767u, (code >> 15u) & 16383u, code >> 29u))
+    precise float3 params = float3(uint3(code & 0x7fffu, (code >> 15u) & 0x3fffu, code >> 29u))
         * float3(3.051851e-5, 6.103888e-5, 0.14285715);
     return unitpack_cube32_decode_float(params);
 }
@@ -92,7 +93,7 @@ float3 unitpack_cube32_encode_float(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -121,16 +122,16 @@ float3 unitpack_cube32_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_cube32_round_codes(float3 a0) {
+float3 unitpack_cube32_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;

@@ -31,6 +31,7 @@
 // Source: Draco 1.5.4+ (google/draco 4723893):
 //   src/draco/compression/attributes/normal_compression_utils.h (OctahedronToolBox), called by
 //   src/draco/attributes/attribute_octahedron_transform.cc.
+// Model: src/codecs/engine/draco.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.33696°, sample max 0.92448°; MSE of the components of
 //   n - n' 1.398e-5, PSNR 48.54 dB.
 #ifndef UNITPACK_DRACO_OCT8_HLSL
@@ -91,298 +92,7 @@ float3 unitpack_draco_oct8_decode(uint code) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_draco_oct8_round_codes(float3 a0) {
-    precise float3 abs_a0 = abs(a0);
-    precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
-        float3(0.0, 0.0, 0.0),
-        a0
-    );
-    precise float3 abs_normal = abs(normal);
-    precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
-    precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
-    precise float3 scaled = normal * scale;
-    precise float3 abs_scaled = abs(scaled);
-    precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    bool sum_below_16 = sum < 16.0;
-    bool ok = sum >= 2.0 && sum_below_16;
-    precise float3 w = UNITPACK_SELECT(
-        abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
-        float3(0.0, 0.0, 0.0),
-        scaled
-    );
-    precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float t1 = abs_a0.x + abs_a0.y + abs_a0.z;
-    bool t2 = t1 >= 1.0000001e-6;
-    precise float3 magnitude = abs(w2);
-    precise float l1 = magnitude.x + magnitude.y + magnitude.z;
-    precise float fixed2 = magnitude.x * 4096.0;
-    precise float floor_fixed2 = floor(fixed2);
-    precise float fixed_rest = (fixed2 - floor_fixed2) * 65536.0;
-    precise float floor_fixed_rest = floor(fixed_rest);
-    precise float t3 = floor((fixed_rest - floor_fixed_rest) * 65536.0);
-    uint t3_u = uint(t3);
-    uint floor_fixed_rest_u = uint(floor_fixed_rest);
-    uint floor_fixed2_u = uint(floor_fixed2);
-    precise float fixed3 = magnitude.y * 4096.0;
-    precise float floor_fixed3 = floor(fixed3);
-    precise float fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0;
-    precise float floor_fixed_rest2 = floor(fixed_rest2);
-    precise float t4 = floor((fixed_rest2 - floor_fixed_rest2) * 65536.0);
-    uint t4_u = uint(t4);
-    uint floor_fixed_rest2_u = uint(floor_fixed_rest2);
-    uint floor_fixed3_u = uint(floor_fixed3);
-    precise float fixed4 = magnitude.z * 4096.0;
-    precise float floor_fixed4 = floor(fixed4);
-    precise float fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0;
-    precise float floor_fixed_rest3 = floor(fixed_rest3);
-    precise float t5 = floor((fixed_rest3 - floor_fixed_rest3) * 65536.0);
-    uint t6 = t3_u + t4_u + uint(t5);
-    uint t7 = floor_fixed_rest_u + floor_fixed_rest2_u + uint(floor_fixed_rest3) + (t6 >> 16u);
-    uint t8 = floor_fixed2_u + floor_fixed3_u + uint(floor_fixed4) + (t7 >> 16u);
-    uint t9 = t6 & 65535u;
-    uint t10 = t7 & 65535u;
-    precise float t11 = round(magnitude.x / l1 * 127.0);
-    precise float estimate = t11 <= 127.0 ? t11 : 127.0;
-    uint estimate_u = uint(estimate);
-    uint t12 = t3_u * 254u;
-    uint t13 = floor_fixed_rest_u * 254u + (t12 >> 16u);
-    uint t14 = floor_fixed2_u * 254u + (t13 >> 16u);
-    uint t15 = t12 & 65535u;
-    uint t16 = t13 & 65535u;
-    uint t17 = t14 & 65535u;
-    uint t18 = t14 >> 16u;
-    uint t19 = estimate_u + estimate_u + 1u;
-    uint t20 = t9 * t19;
-    uint t21 = t10 * t19 + (t20 >> 16u);
-    uint t22 = t8 * t19 + (t21 >> 16u);
-    uint t23 = t20 & 65535u;
-    uint t24 = t21 & 65535u;
-    uint t25 = t22 & 65535u;
-    uint t26 = t22 >> 16u;
-    uint t27 = estimate_u + estimate_u - 1u;
-    uint t28 = t9 * t27;
-    uint t29 = t10 * t27 + (t28 >> 16u);
-    uint t30 = t8 * t27 + (t29 >> 16u);
-    uint t31 = t28 & 65535u;
-    uint t32 = t29 & 65535u;
-    uint t33 = t30 & 65535u;
-    uint t34 = t30 >> 16u;
-    bool t35 = w2.x < 0.0;
-    bool t36 = !(t15 < t23);
-    bool t37 = t23 < t15 || t36;
-    bool t38 = !(t24 < t16);
-    bool t39 = !(t16 < t24) && t38 && t37;
-    bool t40 = t24 < t16 || t39;
-    bool t41 = !(t25 < t17);
-    bool t42 = !(t17 < t25) && t41 && t40;
-    bool t43 = t25 < t17 || t42;
-    bool t44 = !(t26 < t18);
-    bool t45 = !(t18 < t26) && t44 && t43;
-    bool t46 = !t35;
-    bool t47 = t23 < t15;
-    bool t48 = !(t24 < t16);
-    bool t49 = !(t16 < t24) && t48 && t47;
-    bool t50 = t24 < t16 || t49;
-    bool t51 = !(t25 < t17);
-    bool t52 = !(t17 < t25) && t51 && t50;
-    bool t53 = t25 < t17 || t52;
-    bool t54 = !(t26 < t18);
-    bool t55 = !(t18 < t26) && t54 && t53;
-    bool t56 = (t26 < t18 || t55) && t35;
-    bool t57 = t15 < t31;
-    bool t58 = !(t16 < t32);
-    bool t59 = !(t32 < t16) && t58 && t57;
-    bool t60 = t16 < t32 || t59;
-    bool t61 = !(t17 < t33);
-    bool t62 = !(t33 < t17) && t61 && t60;
-    bool t63 = t17 < t33 || t62;
-    bool t64 = !(t18 < t34);
-    bool t65 = !(t34 < t18) && t64 && t63;
-    bool t66 = !t35;
-    bool t67 = !(t31 < t15);
-    bool t68 = t15 < t31 || t67;
-    bool t69 = !(t16 < t32);
-    bool t70 = !(t32 < t16) && t69 && t68;
-    bool t71 = t16 < t32 || t70;
-    bool t72 = !(t17 < t33);
-    bool t73 = !(t33 < t17) && t72 && t71;
-    bool t74 = t17 < t33 || t73;
-    bool t75 = !(t18 < t34);
-    bool t76 = !(t34 < t18) && t75 && t74;
-    bool t77 = (t18 < t34 || t76) && t35;
-    bool t78 = ((t18 < t34 || t65) && t66) || t77;
-    precise float t79 = estimate
-        + (((t26 < t18 || t45) && t46) || t56 ? 1.0 : 0.0)
-        - (estimate > 0.0 && t78 ? 1.0 : 0.0);
-    precise float neg_t79 = -t79;
-    precise float i0 = t35 ? neg_t79 : t79;
-    precise float t80 = round(magnitude.y / l1 * 127.0);
-    precise float estimate2 = t80 <= 127.0 ? t80 : 127.0;
-    uint estimate2_u = uint(estimate2);
-    uint t81 = t4_u * 254u;
-    uint t82 = floor_fixed_rest2_u * 254u + (t81 >> 16u);
-    uint t83 = floor_fixed3_u * 254u + (t82 >> 16u);
-    uint t84 = t81 & 65535u;
-    uint t85 = t82 & 65535u;
-    uint t86 = t83 & 65535u;
-    uint t87 = t83 >> 16u;
-    uint t88 = estimate2_u + estimate2_u + 1u;
-    uint t89 = t9 * t88;
-    uint t90 = t10 * t88 + (t89 >> 16u);
-    uint t91 = t8 * t88 + (t90 >> 16u);
-    uint t92 = t89 & 65535u;
-    uint t93 = t90 & 65535u;
-    uint t94 = t91 & 65535u;
-    uint t95 = t91 >> 16u;
-    uint t96 = estimate2_u + estimate2_u - 1u;
-    uint t97 = t9 * t96;
-    uint t98 = t10 * t96 + (t97 >> 16u);
-    uint t99 = t8 * t96 + (t98 >> 16u);
-    uint t100 = t97 & 65535u;
-    uint t101 = t98 & 65535u;
-    uint t102 = t99 & 65535u;
-    uint t103 = t99 >> 16u;
-    bool t104 = w2.y < 0.0;
-    bool t105 = !(t84 < t92);
-    bool t106 = t92 < t84 || t105;
-    bool t107 = !(t93 < t85);
-    bool t108 = !(t85 < t93) && t107 && t106;
-    bool t109 = t93 < t85 || t108;
-    bool t110 = !(t94 < t86);
-    bool t111 = !(t86 < t94) && t110 && t109;
-    bool t112 = t94 < t86 || t111;
-    bool t113 = !(t95 < t87);
-    bool t114 = !(t87 < t95) && t113 && t112;
-    bool t115 = !t104;
-    bool t116 = t92 < t84;
-    bool t117 = !(t93 < t85);
-    bool t118 = !(t85 < t93) && t117 && t116;
-    bool t119 = t93 < t85 || t118;
-    bool t120 = !(t94 < t86);
-    bool t121 = !(t86 < t94) && t120 && t119;
-    bool t122 = t94 < t86 || t121;
-    bool t123 = !(t95 < t87);
-    bool t124 = !(t87 < t95) && t123 && t122;
-    bool t125 = (t95 < t87 || t124) && t104;
-    bool t126 = t84 < t100;
-    bool t127 = !(t85 < t101);
-    bool t128 = !(t101 < t85) && t127 && t126;
-    bool t129 = t85 < t101 || t128;
-    bool t130 = !(t86 < t102);
-    bool t131 = !(t102 < t86) && t130 && t129;
-    bool t132 = t86 < t102 || t131;
-    bool t133 = !(t87 < t103);
-    bool t134 = !(t103 < t87) && t133 && t132;
-    bool t135 = !t104;
-    bool t136 = !(t100 < t84);
-    bool t137 = t84 < t100 || t136;
-    bool t138 = !(t85 < t101);
-    bool t139 = !(t101 < t85) && t138 && t137;
-    bool t140 = t85 < t101 || t139;
-    bool t141 = !(t86 < t102);
-    bool t142 = !(t102 < t86) && t141 && t140;
-    bool t143 = t86 < t102 || t142;
-    bool t144 = !(t87 < t103);
-    bool t145 = !(t103 < t87) && t144 && t143;
-    bool t146 = (t87 < t103 || t145) && t104;
-    bool t147 = ((t87 < t103 || t134) && t135) || t146;
-    precise float t148 = estimate2 + (((t95 < t87 || t114) && t115) || t125 ? 1.0 : 0.0);
-    precise float t149 = estimate2 > 0.0 && t147 ? 1.0 : 0.0;
-    precise float t150 = t148 - t149;
-    precise float neg_t150 = -t150;
-    precise float i1 = t104 ? neg_t150 : t150;
-    precise float t151 = 127.0 - abs(i0);
-    precise float abs_i1 = abs(i1);
-    precise float i2 = t151 - abs_i1;
-    precise float t152 = i1 + i2;
-    precise float t153 = i1 - i2;
-    precise float t154 = i1 > 0.0 ? t152 : t153;
-    precise float t155 = -(i2 < 0.0 ? 0.0 : i2);
-    precise float2 t156 = UNITPACK_SELECT(
-        float2(w2.y, i2) < float2(0.0, 0.0),
-        float2(neg_t150, 0.0),
-        float2(t148, t151) - float2(t149, abs_i1)
-    );
-    precise float2 t157 = UNITPACK_SELECT(
-        float2(i2, a0.z) < float2(0.0, 0.0),
-        float2(t154, t155),
-        t156
-    );
-    precise float2 t158 = t157 + 127.0;
-    precise float2 t159 = UNITPACK_SELECT(
-        float2(i2, w2.y) < float2(0.0, 0.0),
-        float2(0.0, neg_t150),
-        float2(t151, t148) - float2(abs_i1, t149)
-    );
-    precise float2 t160 = UNITPACK_SELECT(
-        float2(a0.z, i2) < float2(0.0, 0.0),
-        float2(t155, t154),
-        t159
-    );
-    precise float2 t161 = UNITPACK_SELECT(t157 < float2(0.0, 0.0), abs(t160), 254.0 - abs(t160));
-    precise float2 st = i0 >= 0.0 ? t158 : t161;
-    bool t162 = st.y == 254.0;
-    bool t163 = st.y == 0.0 || t162;
-    bool t164 = st.y == 0.0;
-    bool t165 = st.x == 254.0 && t164;
-    bool t166 = st.y > 127.0;
-    bool t167 = st.y < 127.0;
-    bool t168 = st.x == 254.0 && t167;
-    bool t169 = st.x < 127.0;
-    bool t170 = st.x > 127.0;
-    bool t171 = st.y == 0.0 && t170;
-    precise float t172 = 254.0 - st.x;
-    bool t173 = st.y > 127.0;
-    bool t174 = st.y < 127.0;
-    bool t175 = st.x == 254.0 && t174;
-    uint3 t176 = asuint(a0) & uint3(2147483647u, 2147483647u, 2147483647u);
-    bool t177 = !(t176.y < 2139095041u);
-    bool t178 = !(t176.z < 2139095041u);
-    bool t179 = !!(t176.x < 2139095041u);
-    bool t180 = !!(t176.y < 2139095041u);
-    bool t181 = !(t176.y < 2139095040u) && t180;
-    bool t182 = !!(t176.z < 2139095041u);
-    bool t183 = !(t176.z < 2139095040u) && t182;
-    bool t184 = !(!(t176.x < 2139095041u) || t177 || t178);
-    precise float t185 = ((!(t176.x < 2139095040u) && t179) || t181 || t183) && t184
-        ? 254.0
-        : 127.0;
-    bool2 t186 = bool2((st.x == 0.0 && t166) || t168, (st.x == 0.0 && t173) || t175);
-    precise float2 t187 = UNITPACK_SELECT(
-        t186,
-        float2(st.x, 254.0 - st.y),
-        float2((st.y == 254.0 && t169) || t171 ? t172 : st.x, st.y)
-    );
-    precise float2 t188 = (st.x == 0.0 && t163) || t165 ? float2(254.0, 254.0) : t187;
-    precise float2 t189 = float2(127.0, t185);
-    precise float2 codes = ok && t2 ? t188 : t189;
-    return codes;
-}
-
-// unitpack_draco_oct8_encode_float: fast encoder, float form.
-// In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
-//   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
-//   or y is infinite).
-// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
-// Not bit-portable: other implementations may return other floats here (unitpack verify --portable
-//   measures how far); the packed encoder is the portable form.
-float2 unitpack_draco_oct8_encode_float(float3 v) {
-    precise float2 result = unitpack_draco_oct8_round_codes(v) * 0.003921569;
-    return result;
-}
-
-// unitpack_draco_oct8_encode: fast encoder.
-// In: as for unitpack_draco_oct8_encode_float.
-// Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
-// The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
-//   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
-//   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring
-//   code. Finite input whose norm overflows or underflows in plain arithmetic gets a defined code
-//   that need not be its direction's. The default, guarantee=portable, returns the same code on
-//   every implementation the include's header names.
-uint unitpack_draco_oct8_encode(float3 v) {
+float2 unitpack_draco_oct8_round_codes(float3 v) {
     precise float3 abs_v = abs(v);
     precise float3 normal = UNITPACK_SELECT(
         abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
@@ -392,7 +102,7 @@ uint unitpack_draco_oct8_encode(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -432,33 +142,33 @@ uint unitpack_draco_oct8_encode(float3 v) {
     uint t6 = t3_u + t4_u + uint(t5);
     uint t7 = floor_fixed_rest_u + floor_fixed_rest2_u + uint(floor_fixed_rest3) + (t6 >> 16u);
     uint t8 = floor_fixed2_u + floor_fixed3_u + uint(floor_fixed4) + (t7 >> 16u);
-    uint t9 = t6 & 65535u;
-    uint t10 = t7 & 65535u;
+    uint t9 = t6 & 0xffffu;
+    uint t10 = t7 & 0xffffu;
     precise float t11 = round(magnitude.x / l1 * 127.0);
     precise float estimate = t11 <= 127.0 ? t11 : 127.0;
     uint estimate_u = uint(estimate);
     uint t12 = t3_u * 254u;
     uint t13 = floor_fixed_rest_u * 254u + (t12 >> 16u);
     uint t14 = floor_fixed2_u * 254u + (t13 >> 16u);
-    uint t15 = t12 & 65535u;
-    uint t16 = t13 & 65535u;
-    uint t17 = t14 & 65535u;
+    uint t15 = t12 & 0xffffu;
+    uint t16 = t13 & 0xffffu;
+    uint t17 = t14 & 0xffffu;
     uint t18 = t14 >> 16u;
     uint t19 = estimate_u + estimate_u + 1u;
     uint t20 = t9 * t19;
     uint t21 = t10 * t19 + (t20 >> 16u);
     uint t22 = t8 * t19 + (t21 >> 16u);
-    uint t23 = t20 & 65535u;
-    uint t24 = t21 & 65535u;
-    uint t25 = t22 & 65535u;
+    uint t23 = t20 & 0xffffu;
+    uint t24 = t21 & 0xffffu;
+    uint t25 = t22 & 0xffffu;
     uint t26 = t22 >> 16u;
     uint t27 = estimate_u + estimate_u - 1u;
     uint t28 = t9 * t27;
     uint t29 = t10 * t27 + (t28 >> 16u);
     uint t30 = t8 * t27 + (t29 >> 16u);
-    uint t31 = t28 & 65535u;
-    uint t32 = t29 & 65535u;
-    uint t33 = t30 & 65535u;
+    uint t31 = t28 & 0xffffu;
+    uint t32 = t29 & 0xffffu;
+    uint t33 = t30 & 0xffffu;
     uint t34 = t30 >> 16u;
     bool t35 = w2.x < 0.0;
     bool t36 = !(t15 < t23);
@@ -515,25 +225,25 @@ uint unitpack_draco_oct8_encode(float3 v) {
     uint t81 = t4_u * 254u;
     uint t82 = floor_fixed_rest2_u * 254u + (t81 >> 16u);
     uint t83 = floor_fixed3_u * 254u + (t82 >> 16u);
-    uint t84 = t81 & 65535u;
-    uint t85 = t82 & 65535u;
-    uint t86 = t83 & 65535u;
+    uint t84 = t81 & 0xffffu;
+    uint t85 = t82 & 0xffffu;
+    uint t86 = t83 & 0xffffu;
     uint t87 = t83 >> 16u;
     uint t88 = estimate2_u + estimate2_u + 1u;
     uint t89 = t9 * t88;
     uint t90 = t10 * t88 + (t89 >> 16u);
     uint t91 = t8 * t88 + (t90 >> 16u);
-    uint t92 = t89 & 65535u;
-    uint t93 = t90 & 65535u;
-    uint t94 = t91 & 65535u;
+    uint t92 = t89 & 0xffffu;
+    uint t93 = t90 & 0xffffu;
+    uint t94 = t91 & 0xffffu;
     uint t95 = t91 >> 16u;
     uint t96 = estimate2_u + estimate2_u - 1u;
     uint t97 = t9 * t96;
     uint t98 = t10 * t96 + (t97 >> 16u);
     uint t99 = t8 * t96 + (t98 >> 16u);
-    uint t100 = t97 & 65535u;
-    uint t101 = t98 & 65535u;
-    uint t102 = t99 & 65535u;
+    uint t100 = t97 & 0xffffu;
+    uint t101 = t98 & 0xffffu;
+    uint t102 = t99 & 0xffffu;
     uint t103 = t99 >> 16u;
     bool t104 = w2.y < 0.0;
     bool t105 = !(t84 < t92);
@@ -628,16 +338,307 @@ uint unitpack_draco_oct8_encode(float3 v) {
     bool t173 = st.y > 127.0;
     bool t174 = st.y < 127.0;
     bool t175 = st.x == 254.0 && t174;
-    uint3 t176 = asuint(v) & uint3(2147483647u, 2147483647u, 2147483647u);
-    bool t177 = !(t176.y < 2139095041u);
-    bool t178 = !(t176.z < 2139095041u);
-    bool t179 = !!(t176.x < 2139095041u);
-    bool t180 = !!(t176.y < 2139095041u);
-    bool t181 = !(t176.y < 2139095040u) && t180;
-    bool t182 = !!(t176.z < 2139095041u);
-    bool t183 = !(t176.z < 2139095040u) && t182;
-    bool t184 = !(!(t176.x < 2139095041u) || t177 || t178);
-    precise float t185 = ((!(t176.x < 2139095040u) && t179) || t181 || t183) && t184
+    uint3 t176 = asuint(v) & uint3(0x7fffffffu, 0x7fffffffu, 0x7fffffffu);
+    bool t177 = !(t176.y < 0x7f800001u);
+    bool t178 = !(t176.z < 0x7f800001u);
+    bool t179 = !!(t176.x < 0x7f800001u);
+    bool t180 = !!(t176.y < 0x7f800001u);
+    bool t181 = !(t176.y < 0x7f800000u) && t180;
+    bool t182 = !!(t176.z < 0x7f800001u);
+    bool t183 = !(t176.z < 0x7f800000u) && t182;
+    bool t184 = !(!(t176.x < 0x7f800001u) || t177 || t178);
+    precise float t185 = ((!(t176.x < 0x7f800000u) && t179) || t181 || t183) && t184
+        ? 254.0
+        : 127.0;
+    bool2 t186 = bool2((st.x == 0.0 && t166) || t168, (st.x == 0.0 && t173) || t175);
+    precise float2 t187 = UNITPACK_SELECT(
+        t186,
+        float2(st.x, 254.0 - st.y),
+        float2((st.y == 254.0 && t169) || t171 ? t172 : st.x, st.y)
+    );
+    precise float2 t188 = (st.x == 0.0 && t163) || t165 ? float2(254.0, 254.0) : t187;
+    precise float2 t189 = float2(127.0, t185);
+    precise float2 codes = ok && t2 ? t188 : t189;
+    return codes;
+}
+
+// unitpack_draco_oct8_encode_float: fast encoder, float form.
+// In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
+//   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
+//   or y is infinite).
+// Out: parameters in [0, 1], unquantized, for a unorm8 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable
+//   measures how far); the packed encoder is the portable form.
+float2 unitpack_draco_oct8_encode_float(float3 v) {
+    precise float2 result = unitpack_draco_oct8_round_codes(v) * 0.003921569;
+    return result;
+}
+
+// unitpack_draco_oct8_encode: fast encoder.
+// In: as for unitpack_draco_oct8_encode_float.
+// Out: the packed code, uint (bits 0–7: p0 unorm8, bits 8–15: p1 unorm8).
+// The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
+//   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
+//   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring
+//   code. Finite input whose norm overflows or underflows in plain arithmetic gets a defined code
+//   that need not be its direction's. The default, guarantee=portable, returns the same code on
+//   every implementation the include's header names.
+uint unitpack_draco_oct8_encode(float3 v) {
+    precise float3 abs_v = abs(v);
+    precise float3 normal = UNITPACK_SELECT(
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        float3(0.0, 0.0, 0.0),
+        v
+    );
+    precise float3 abs_normal = abs(normal);
+    precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
+    precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
+    precise float3 scaled = normal * scale;
+    precise float3 abs_scaled = abs(scaled);
+    precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
+    bool sum_below_16 = sum < 16.0;
+    bool ok = sum >= 2.0 && sum_below_16;
+    precise float3 w = UNITPACK_SELECT(
+        abs(scaled) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
+        float3(0.0, 0.0, 0.0),
+        scaled
+    );
+    precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
+    precise float t1 = abs_v.x + abs_v.y + abs_v.z;
+    bool t2 = t1 >= 1.0000001e-6;
+    precise float3 magnitude = abs(w2);
+    precise float l1 = magnitude.x + magnitude.y + magnitude.z;
+    precise float fixed2 = magnitude.x * 4096.0;
+    precise float floor_fixed2 = floor(fixed2);
+    precise float fixed_rest = (fixed2 - floor_fixed2) * 65536.0;
+    precise float floor_fixed_rest = floor(fixed_rest);
+    precise float t3 = floor((fixed_rest - floor_fixed_rest) * 65536.0);
+    uint t3_u = uint(t3);
+    uint floor_fixed_rest_u = uint(floor_fixed_rest);
+    uint floor_fixed2_u = uint(floor_fixed2);
+    precise float fixed3 = magnitude.y * 4096.0;
+    precise float floor_fixed3 = floor(fixed3);
+    precise float fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0;
+    precise float floor_fixed_rest2 = floor(fixed_rest2);
+    precise float t4 = floor((fixed_rest2 - floor_fixed_rest2) * 65536.0);
+    uint t4_u = uint(t4);
+    uint floor_fixed_rest2_u = uint(floor_fixed_rest2);
+    uint floor_fixed3_u = uint(floor_fixed3);
+    precise float fixed4 = magnitude.z * 4096.0;
+    precise float floor_fixed4 = floor(fixed4);
+    precise float fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0;
+    precise float floor_fixed_rest3 = floor(fixed_rest3);
+    precise float t5 = floor((fixed_rest3 - floor_fixed_rest3) * 65536.0);
+    uint t6 = t3_u + t4_u + uint(t5);
+    uint t7 = floor_fixed_rest_u + floor_fixed_rest2_u + uint(floor_fixed_rest3) + (t6 >> 16u);
+    uint t8 = floor_fixed2_u + floor_fixed3_u + uint(floor_fixed4) + (t7 >> 16u);
+    uint t9 = t6 & 0xffffu;
+    uint t10 = t7 & 0xffffu;
+    precise float t11 = round(magnitude.x / l1 * 127.0);
+    precise float estimate = t11 <= 127.0 ? t11 : 127.0;
+    uint estimate_u = uint(estimate);
+    uint t12 = t3_u * 254u;
+    uint t13 = floor_fixed_rest_u * 254u + (t12 >> 16u);
+    uint t14 = floor_fixed2_u * 254u + (t13 >> 16u);
+    uint t15 = t12 & 0xffffu;
+    uint t16 = t13 & 0xffffu;
+    uint t17 = t14 & 0xffffu;
+    uint t18 = t14 >> 16u;
+    uint t19 = estimate_u + estimate_u + 1u;
+    uint t20 = t9 * t19;
+    uint t21 = t10 * t19 + (t20 >> 16u);
+    uint t22 = t8 * t19 + (t21 >> 16u);
+    uint t23 = t20 & 0xffffu;
+    uint t24 = t21 & 0xffffu;
+    uint t25 = t22 & 0xffffu;
+    uint t26 = t22 >> 16u;
+    uint t27 = estimate_u + estimate_u - 1u;
+    uint t28 = t9 * t27;
+    uint t29 = t10 * t27 + (t28 >> 16u);
+    uint t30 = t8 * t27 + (t29 >> 16u);
+    uint t31 = t28 & 0xffffu;
+    uint t32 = t29 & 0xffffu;
+    uint t33 = t30 & 0xffffu;
+    uint t34 = t30 >> 16u;
+    bool t35 = w2.x < 0.0;
+    bool t36 = !(t15 < t23);
+    bool t37 = t23 < t15 || t36;
+    bool t38 = !(t24 < t16);
+    bool t39 = !(t16 < t24) && t38 && t37;
+    bool t40 = t24 < t16 || t39;
+    bool t41 = !(t25 < t17);
+    bool t42 = !(t17 < t25) && t41 && t40;
+    bool t43 = t25 < t17 || t42;
+    bool t44 = !(t26 < t18);
+    bool t45 = !(t18 < t26) && t44 && t43;
+    bool t46 = !t35;
+    bool t47 = t23 < t15;
+    bool t48 = !(t24 < t16);
+    bool t49 = !(t16 < t24) && t48 && t47;
+    bool t50 = t24 < t16 || t49;
+    bool t51 = !(t25 < t17);
+    bool t52 = !(t17 < t25) && t51 && t50;
+    bool t53 = t25 < t17 || t52;
+    bool t54 = !(t26 < t18);
+    bool t55 = !(t18 < t26) && t54 && t53;
+    bool t56 = (t26 < t18 || t55) && t35;
+    bool t57 = t15 < t31;
+    bool t58 = !(t16 < t32);
+    bool t59 = !(t32 < t16) && t58 && t57;
+    bool t60 = t16 < t32 || t59;
+    bool t61 = !(t17 < t33);
+    bool t62 = !(t33 < t17) && t61 && t60;
+    bool t63 = t17 < t33 || t62;
+    bool t64 = !(t18 < t34);
+    bool t65 = !(t34 < t18) && t64 && t63;
+    bool t66 = !t35;
+    bool t67 = !(t31 < t15);
+    bool t68 = t15 < t31 || t67;
+    bool t69 = !(t16 < t32);
+    bool t70 = !(t32 < t16) && t69 && t68;
+    bool t71 = t16 < t32 || t70;
+    bool t72 = !(t17 < t33);
+    bool t73 = !(t33 < t17) && t72 && t71;
+    bool t74 = t17 < t33 || t73;
+    bool t75 = !(t18 < t34);
+    bool t76 = !(t34 < t18) && t75 && t74;
+    bool t77 = (t18 < t34 || t76) && t35;
+    bool t78 = ((t18 < t34 || t65) && t66) || t77;
+    precise float t79 = estimate
+        + (((t26 < t18 || t45) && t46) || t56 ? 1.0 : 0.0)
+        - (estimate > 0.0 && t78 ? 1.0 : 0.0);
+    precise float neg_t79 = -t79;
+    precise float i0 = t35 ? neg_t79 : t79;
+    precise float t80 = round(magnitude.y / l1 * 127.0);
+    precise float estimate2 = t80 <= 127.0 ? t80 : 127.0;
+    uint estimate2_u = uint(estimate2);
+    uint t81 = t4_u * 254u;
+    uint t82 = floor_fixed_rest2_u * 254u + (t81 >> 16u);
+    uint t83 = floor_fixed3_u * 254u + (t82 >> 16u);
+    uint t84 = t81 & 0xffffu;
+    uint t85 = t82 & 0xffffu;
+    uint t86 = t83 & 0xffffu;
+    uint t87 = t83 >> 16u;
+    uint t88 = estimate2_u + estimate2_u + 1u;
+    uint t89 = t9 * t88;
+    uint t90 = t10 * t88 + (t89 >> 16u);
+    uint t91 = t8 * t88 + (t90 >> 16u);
+    uint t92 = t89 & 0xffffu;
+    uint t93 = t90 & 0xffffu;
+    uint t94 = t91 & 0xffffu;
+    uint t95 = t91 >> 16u;
+    uint t96 = estimate2_u + estimate2_u - 1u;
+    uint t97 = t9 * t96;
+    uint t98 = t10 * t96 + (t97 >> 16u);
+    uint t99 = t8 * t96 + (t98 >> 16u);
+    uint t100 = t97 & 0xffffu;
+    uint t101 = t98 & 0xffffu;
+    uint t102 = t99 & 0xffffu;
+    uint t103 = t99 >> 16u;
+    bool t104 = w2.y < 0.0;
+    bool t105 = !(t84 < t92);
+    bool t106 = t92 < t84 || t105;
+    bool t107 = !(t93 < t85);
+    bool t108 = !(t85 < t93) && t107 && t106;
+    bool t109 = t93 < t85 || t108;
+    bool t110 = !(t94 < t86);
+    bool t111 = !(t86 < t94) && t110 && t109;
+    bool t112 = t94 < t86 || t111;
+    bool t113 = !(t95 < t87);
+    bool t114 = !(t87 < t95) && t113 && t112;
+    bool t115 = !t104;
+    bool t116 = t92 < t84;
+    bool t117 = !(t93 < t85);
+    bool t118 = !(t85 < t93) && t117 && t116;
+    bool t119 = t93 < t85 || t118;
+    bool t120 = !(t94 < t86);
+    bool t121 = !(t86 < t94) && t120 && t119;
+    bool t122 = t94 < t86 || t121;
+    bool t123 = !(t95 < t87);
+    bool t124 = !(t87 < t95) && t123 && t122;
+    bool t125 = (t95 < t87 || t124) && t104;
+    bool t126 = t84 < t100;
+    bool t127 = !(t85 < t101);
+    bool t128 = !(t101 < t85) && t127 && t126;
+    bool t129 = t85 < t101 || t128;
+    bool t130 = !(t86 < t102);
+    bool t131 = !(t102 < t86) && t130 && t129;
+    bool t132 = t86 < t102 || t131;
+    bool t133 = !(t87 < t103);
+    bool t134 = !(t103 < t87) && t133 && t132;
+    bool t135 = !t104;
+    bool t136 = !(t100 < t84);
+    bool t137 = t84 < t100 || t136;
+    bool t138 = !(t85 < t101);
+    bool t139 = !(t101 < t85) && t138 && t137;
+    bool t140 = t85 < t101 || t139;
+    bool t141 = !(t86 < t102);
+    bool t142 = !(t102 < t86) && t141 && t140;
+    bool t143 = t86 < t102 || t142;
+    bool t144 = !(t87 < t103);
+    bool t145 = !(t103 < t87) && t144 && t143;
+    bool t146 = (t87 < t103 || t145) && t104;
+    bool t147 = ((t87 < t103 || t134) && t135) || t146;
+    precise float t148 = estimate2 + (((t95 < t87 || t114) && t115) || t125 ? 1.0 : 0.0);
+    precise float t149 = estimate2 > 0.0 && t147 ? 1.0 : 0.0;
+    precise float t150 = t148 - t149;
+    precise float neg_t150 = -t150;
+    precise float i1 = t104 ? neg_t150 : t150;
+    precise float t151 = 127.0 - abs(i0);
+    precise float abs_i1 = abs(i1);
+    precise float i2 = t151 - abs_i1;
+    precise float t152 = i1 + i2;
+    precise float t153 = i1 - i2;
+    precise float t154 = i1 > 0.0 ? t152 : t153;
+    precise float t155 = -(i2 < 0.0 ? 0.0 : i2);
+    precise float2 t156 = UNITPACK_SELECT(
+        float2(w2.y, i2) < float2(0.0, 0.0),
+        float2(neg_t150, 0.0),
+        float2(t148, t151) - float2(t149, abs_i1)
+    );
+    precise float2 t157 = UNITPACK_SELECT(
+        float2(i2, v.z) < float2(0.0, 0.0),
+        float2(t154, t155),
+        t156
+    );
+    precise float2 t158 = t157 + 127.0;
+    precise float2 t159 = UNITPACK_SELECT(
+        float2(i2, w2.y) < float2(0.0, 0.0),
+        float2(0.0, neg_t150),
+        float2(t151, t148) - float2(abs_i1, t149)
+    );
+    precise float2 t160 = UNITPACK_SELECT(
+        float2(v.z, i2) < float2(0.0, 0.0),
+        float2(t155, t154),
+        t159
+    );
+    precise float2 t161 = UNITPACK_SELECT(t157 < float2(0.0, 0.0), abs(t160), 254.0 - abs(t160));
+    precise float2 st = i0 >= 0.0 ? t158 : t161;
+    bool t162 = st.y == 254.0;
+    bool t163 = st.y == 0.0 || t162;
+    bool t164 = st.y == 0.0;
+    bool t165 = st.x == 254.0 && t164;
+    bool t166 = st.y > 127.0;
+    bool t167 = st.y < 127.0;
+    bool t168 = st.x == 254.0 && t167;
+    bool t169 = st.x < 127.0;
+    bool t170 = st.x > 127.0;
+    bool t171 = st.y == 0.0 && t170;
+    precise float t172 = 254.0 - st.x;
+    bool t173 = st.y > 127.0;
+    bool t174 = st.y < 127.0;
+    bool t175 = st.x == 254.0 && t174;
+    uint3 t176 = asuint(v) & uint3(0x7fffffffu, 0x7fffffffu, 0x7fffffffu);
+    bool t177 = !(t176.y < 0x7f800001u);
+    bool t178 = !(t176.z < 0x7f800001u);
+    bool t179 = !!(t176.x < 0x7f800001u);
+    bool t180 = !!(t176.y < 0x7f800001u);
+    bool t181 = !(t176.y < 0x7f800000u) && t180;
+    bool t182 = !!(t176.z < 0x7f800001u);
+    bool t183 = !(t176.z < 0x7f800000u) && t182;
+    bool t184 = !(!(t176.x < 0x7f800001u) || t177 || t178);
+    precise float t185 = ((!(t176.x < 0x7f800000u) && t179) || t181 || t183) && t184
         ? 254.0
         : 127.0;
     bool2 t186 = bool2((st.x == 0.0 && t166) || t168, (st.x == 0.0 && t173) || t175);

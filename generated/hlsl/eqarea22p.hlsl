@@ -29,6 +29,7 @@
 // ---- eqarea22p: Lambert equal-area hemisphere on the unit disk + hemisphere bit, unorm×2, 22
 //   bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
+// Model: src/codecs/azimuthal/eqarea.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.04727°, sample max 0.11155°; MSE of the components of
 //   n - n' 2.701e-7, PSNR 65.68 dB.
 #ifndef UNITPACK_EQAREA22P_HLSL
@@ -62,7 +63,9 @@ float3 unitpack_eqarea22p_decode_float(float3 params) {
 //   (1.42e-3) of what this function computes here, for every code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 float3 unitpack_eqarea22p_decode(uint code) {
-    precise float3 params = float3(uint3(code, code >> 11u, code >> 21u) & uint3(2047u, 1023u, 1u))
+    precise float3 params = float3(
+        uint3(code, code >> 11u, code >> 21u) & uint3(0x7ffu, 0x3ffu, 1u)
+    )
         * float3(0.0004885198, 0.0009775171, 1.0);
     return unitpack_eqarea22p_decode_float(params);
 }
@@ -80,7 +83,7 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -99,38 +102,38 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float la = root * (root + abs(w2.z));
@@ -191,12 +194,12 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float root_estimate2 = floor(sqrt(t15));
     precise float root_next = root_estimate2 + 1.0;
     precise float step_down3 = root_estimate2 * root_estimate2 > t15 ? -1.0 : 0.0;
-    precise float step3 = root_next * root_next <= t15 ? 1.0 : step_down3;
-    precise float root_step = root_estimate2 + step3;
+    precise float nudge3 = root_next * root_next <= t15 ? 1.0 : step_down3;
+    precise float root_step = root_estimate2 + nudge3;
     precise float root_next2 = root_step + 1.0;
     precise float step_down4 = root_step * root_step > t15 ? -1.0 : 0.0;
-    precise float step4 = root_next2 * root_next2 <= t15 ? 1.0 : step_down4;
-    precise float g = root_step + step4;
+    precise float nudge4 = root_next2 * root_next2 <= t15 ? 1.0 : step_down4;
+    precise float g = root_step + nudge4;
     precise float3 t16 = float3(
         floor(p * g * 9.536743e-7),
         (2097152.0 - q) * (one_if > 0.5 ? -1.0 : 1.0)
@@ -205,22 +208,22 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float3 abs_offset = abs(offset);
     uint3 offset_u = uint3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
-    uint limb0_4 = offset_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = offset_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = offset_u.y >> 12u;
-    uint limb0_5 = offset_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = offset_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = offset_u.z >> 12u;
-    uint limb0_6 = offset_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
     precise float s_up = base.x + 1.0;
     precise float t_up = base.y + 1.0;
@@ -238,12 +241,12 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float root_estimate3 = floor(sqrt(t20));
     precise float root_next3 = root_estimate3 + 1.0;
     precise float step_down5 = root_estimate3 * root_estimate3 > t20 ? -1.0 : 0.0;
-    precise float step5 = root_next3 * root_next3 <= t20 ? 1.0 : step_down5;
-    precise float root_step2 = root_estimate3 + step5;
+    precise float nudge5 = root_next3 * root_next3 <= t20 ? 1.0 : step_down5;
+    precise float root_step2 = root_estimate3 + nudge5;
     precise float root_next4 = root_step2 + 1.0;
     precise float step_down6 = root_step2 * root_step2 > t20 ? -1.0 : 0.0;
-    precise float step6 = root_next4 * root_next4 <= t20 ? 1.0 : step_down6;
-    precise float g2 = root_step2 + step6;
+    precise float nudge6 = root_next4 * root_next4 <= t20 ? 1.0 : step_down6;
+    precise float g2 = root_step2 + nudge6;
     precise float3 t21 = float3(
         floor(p2 * g2 * 9.536743e-7),
         (2097152.0 - q2) * (one_if > 0.5 ? -1.0 : 1.0)
@@ -252,22 +255,22 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float3 abs_offset2 = abs(offset2);
     uint3 offset_u2 = uint3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
-    uint limb0_7 = offset_u2.x & 4095u;
-    uint cross7 = limb1_7 * limb0_7;
-    uint hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    uint lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    uint limb0_7 = offset_u2.x & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = offset_u2.y >> 12u;
-    uint limb0_8 = offset_u2.y & 4095u;
-    uint cross8 = limb1_8 * limb0_8;
-    uint hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    uint limb0_8 = offset_u2.y & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint limb1_9 = offset_u2.z >> 12u;
-    uint limb0_9 = offset_u2.z & 4095u;
-    uint cross9 = limb1_9 * limb0_9;
-    uint hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    uint limb0_9 = offset_u2.z & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint hi12 = hi11 + (lo11 >> 24u);
-    uint lo12 = lo11 & 16777215u;
+    uint lo12 = lo11 & 0xffffffu;
     precise float dist2 = float(hi12) * 16777216.0 + float(lo12);
     bool t22 = dist2 < dist;
     bool t23 = s_up <= 2047.0 && t18 && t22;
@@ -287,12 +290,12 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float root_estimate4 = floor(sqrt(t27));
     precise float root_next5 = root_estimate4 + 1.0;
     precise float step_down7 = root_estimate4 * root_estimate4 > t27 ? -1.0 : 0.0;
-    precise float step7 = root_next5 * root_next5 <= t27 ? 1.0 : step_down7;
-    precise float root_step3 = root_estimate4 + step7;
+    precise float nudge7 = root_next5 * root_next5 <= t27 ? 1.0 : step_down7;
+    precise float root_step3 = root_estimate4 + nudge7;
     precise float root_next6 = root_step3 + 1.0;
     precise float step_down8 = root_step3 * root_step3 > t27 ? -1.0 : 0.0;
-    precise float step8 = root_next6 * root_next6 <= t27 ? 1.0 : step_down8;
-    precise float g3 = root_step3 + step8;
+    precise float nudge8 = root_next6 * root_next6 <= t27 ? 1.0 : step_down8;
+    precise float g3 = root_step3 + nudge8;
     precise float3 t28 = float3(
         floor(p3 * g3 * 9.536743e-7),
         (2097152.0 - q3) * (one_if > 0.5 ? -1.0 : 1.0)
@@ -301,22 +304,22 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float3 abs_offset3 = abs(offset3);
     uint3 offset_u3 = uint3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
-    uint limb0_10 = offset_u3.x & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb0_10 = offset_u3.x & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = offset_u3.y >> 12u;
-    uint limb0_11 = offset_u3.y & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb0_11 = offset_u3.y & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint limb1_12 = offset_u3.z >> 12u;
-    uint limb0_12 = offset_u3.z & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint limb0_12 = offset_u3.z & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint hi16 = hi15 + (lo15 >> 24u);
-    uint lo16 = lo15 & 16777215u;
+    uint lo16 = lo15 & 0xffffffu;
     precise float dist3 = float(hi16) * 16777216.0 + float(lo16);
     bool t29 = dist3 < best_d;
     bool t30 = base.x <= 2047.0 && t25 && t29;
@@ -336,12 +339,12 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float root_estimate5 = floor(sqrt(t34));
     precise float root_next7 = root_estimate5 + 1.0;
     precise float step_down9 = root_estimate5 * root_estimate5 > t34 ? -1.0 : 0.0;
-    precise float step9 = root_next7 * root_next7 <= t34 ? 1.0 : step_down9;
-    precise float root_step4 = root_estimate5 + step9;
+    precise float nudge9 = root_next7 * root_next7 <= t34 ? 1.0 : step_down9;
+    precise float root_step4 = root_estimate5 + nudge9;
     precise float root_next8 = root_step4 + 1.0;
     precise float step_down10 = root_step4 * root_step4 > t34 ? -1.0 : 0.0;
-    precise float step10 = root_next8 * root_next8 <= t34 ? 1.0 : step_down10;
-    precise float g4 = root_step4 + step10;
+    precise float nudge10 = root_next8 * root_next8 <= t34 ? 1.0 : step_down10;
+    precise float g4 = root_step4 + nudge10;
     precise float3 t35 = float3(
         floor(p4 * g4 * 9.536743e-7),
         (2097152.0 - q4) * (one_if > 0.5 ? -1.0 : 1.0)
@@ -350,22 +353,22 @@ float3 unitpack_eqarea22p_encode_codes(float3 v) {
     precise float3 abs_offset4 = abs(offset4);
     uint3 offset_u4 = uint3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;
-    uint limb0_13 = offset_u4.x & 4095u;
-    uint cross13 = limb1_13 * limb0_13;
-    uint hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    uint lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    uint limb0_13 = offset_u4.x & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = offset_u4.y >> 12u;
-    uint limb0_14 = offset_u4.y & 4095u;
-    uint cross14 = limb1_14 * limb0_14;
-    uint hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    uint limb0_14 = offset_u4.y & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint limb1_15 = offset_u4.z >> 12u;
-    uint limb0_15 = offset_u4.z & 4095u;
-    uint cross15 = limb1_15 * limb0_15;
-    uint hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    uint limb0_15 = offset_u4.z & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint hi20 = hi19 + (lo19 >> 24u);
-    uint lo20 = lo19 & 16777215u;
+    uint lo20 = lo19 & 0xffffffu;
     precise float dist4 = float(hi20) * 16777216.0 + float(lo20);
     bool t36 = dist4 < best_d2;
     precise float2 best3 = s_up <= 2047.0 && t32 && t36 ? cand4 : best2;

@@ -29,6 +29,7 @@
 // ---- float16x3: components as IEEE floats (float16: RGBA16_FLOAT's first three channels; float32:
 //   RGB32_FLOAT), 48 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 and Table 1 (float×3).
+// Model: src/codecs/component/float3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00605°, sample max 0.02166°; MSE of the components of
 //   n - n' 1.140e-8, PSNR 79.43 dB.
 #ifndef UNITPACK_FLOAT16X3_HLSL
@@ -43,8 +44,8 @@
 //   every code, up to the sign of a zero: a bound of 0 proven by interval evaluation (unitpack
 //   verify --portable prints it).
 float3 unitpack_float16x3_decode_float(float3 params) {
-    uint3 t1 = asuint(params) & uint3(2147483647u, 2147483647u, 2147483647u);
-    bool3 t2 = t1 < uint3(2139095040u, 2139095040u, 2139095040u);
+    uint3 t1 = asuint(params) & uint3(0x7fffffffu, 0x7fffffffu, 0x7fffffffu);
+    bool3 t2 = t1 < uint3(0x7f800000u, 0x7f800000u, 0x7f800000u);
     bool3 t3 = uint3(0u, 0u, 0u) < t1;
     bool t4 = t3.x || t3.y || t3.z;
     return t2.x && t2.y && t2.z && t4 ? params : float3(0.0, 0.0, 1.0);
@@ -56,18 +57,18 @@ float3 unitpack_float16x3_decode_float(float3 params) {
 // Out: as for unitpack_float16x3_decode_float.
 // Portable as unitpack_float16x3_decode_float is, within the same bound.
 float3 unitpack_float16x3_decode(uint2 code) {
-    uint t1 = code.x & 65535u;
+    uint t1 = code.x & 0xffffu;
     uint t2 = code.x >> 16u;
-    uint t3 = code.y & 65535u;
-    uint3 t4 = uint3(t1, t2, t3) & uint3(32767u, 32767u, 32767u);
-    uint3 t5 = uint3((t1 & 32767u) << 13u, (t2 & 32767u) << 13u, (t3 & 32767u) << 13u);
+    uint t3 = code.y & 0xffffu;
+    uint3 t4 = uint3(t1, t2, t3) & uint3(0x7fffu, 0x7fffu, 0x7fffu);
+    uint3 t5 = uint3((t1 & 0x7fffu) << 13u, (t2 & 0x7fffu) << 13u, (t3 & 0x7fffu) << 13u);
     precise float3 t6 = float3(t4) * 5.9604645e-8;
     uint3 t7 = UNITPACK_SELECT(
-        t4 < uint3(31744u, 31744u, 31744u),
-        UNITPACK_SELECT(t4 < uint3(1024u, 1024u, 1024u), asuint(t6), t5 + 939524096u),
-        t5 | uint3(2139095040u, 2139095040u, 2139095040u)
+        t4 < uint3(0x7c00u, 0x7c00u, 0x7c00u),
+        UNITPACK_SELECT(t4 < uint3(0x400u, 0x400u, 0x400u), asuint(t6), t5 + 0x38000000u),
+        t5 | uint3(0x7f800000u, 0x7f800000u, 0x7f800000u)
     );
-    uint3 t8 = uint3((t1 & 32768u) << 16u, (t2 & 32768u) << 16u, (t3 & 32768u) << 16u);
+    uint3 t8 = uint3((t1 & 0x8000u) << 16u, (t2 & 0x8000u) << 16u, (t3 & 0x8000u) << 16u);
     precise float3 params = asfloat(t7 | t8);
     return unitpack_float16x3_decode_float(params);
 }
@@ -96,16 +97,16 @@ float3 unitpack_float16x3_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_float16x3_round_codes(float3 a0) {
+float3 unitpack_float16x3_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -116,11 +117,11 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
         float3(0.0, 0.0, 0.0),
         scaled
     );
-    precise float split_hi = asfloat(asuint(w.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w.x) & 0xfffff000u);
     precise float split_lo = w.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w.y) & 0xfffff000u);
     precise float split_lo2 = w.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w.z) & 0xfffff000u);
     precise float split_lo3 = w.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -132,7 +133,7 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
         + (split_lo * split_lo + split_lo2 * split_lo2 + split_lo3 * split_lo3);
     precise float abs_w_x = abs(w.x);
     precise float half_estimate = abs_w_x / sqrt(len2);
-    uint exponent = (asuint(half_estimate) & 2147483647u) >> 23u;
+    uint exponent = (asuint(half_estimate) & 0x7fffffffu) >> 23u;
     uint exponent2 = exponent < 113u ? 113u : exponent;
     uint exponent3 = 126u < exponent2 ? 126u : exponent2;
     uint t2 = (264u - exponent3) << 23u;
@@ -146,12 +147,12 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
     bool t4 = big2 < t3;
     bool t5 = half_code > 0.0 && t4;
     precise float step_down = t5 ? -1.0 : 0.0;
-    precise float step = big2 >= upper * upper * len2 ? 1.0 : step_down;
-    precise float t6 = half_code + step;
+    precise float nudge = big2 >= upper * upper * len2 ? 1.0 : step_down;
+    precise float t6 = half_code + nudge;
     bool t7 = t6 > 0.0;
     precise float abs_w_y = abs(w.y);
     precise float half_estimate2 = abs_w_y / sqrt(len2);
-    uint exponent4 = (asuint(half_estimate2) & 2147483647u) >> 23u;
+    uint exponent4 = (asuint(half_estimate2) & 0x7fffffffu) >> 23u;
     uint exponent5 = exponent4 < 113u ? 113u : exponent4;
     uint exponent6 = 126u < exponent5 ? 126u : exponent5;
     uint t8 = (264u - exponent6) << 23u;
@@ -165,12 +166,12 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
     bool t10 = big2_2 < t9;
     bool t11 = half_code2 > 0.0 && t10;
     precise float step_down2 = t11 ? -1.0 : 0.0;
-    precise float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
-    precise float t12 = half_code2 + step2;
+    precise float nudge2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
+    precise float t12 = half_code2 + nudge2;
     bool t13 = t12 > 0.0;
     precise float abs_w_z = abs(w.z);
     precise float half_estimate3 = abs_w_z / sqrt(len2);
-    uint exponent7 = (asuint(half_estimate3) & 2147483647u) >> 23u;
+    uint exponent7 = (asuint(half_estimate3) & 0x7fffffffu) >> 23u;
     uint exponent8 = exponent7 < 113u ? 113u : exponent7;
     uint exponent9 = 126u < exponent8 ? 126u : exponent8;
     uint t14 = (264u - exponent9) << 23u;
@@ -184,8 +185,8 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
     bool t16 = big2_3 < t15;
     bool t17 = half_code3 > 0.0 && t16;
     precise float step_down3 = t17 ? -1.0 : 0.0;
-    precise float step3 = big2_3 >= upper3 * upper3 * len2 ? 1.0 : step_down3;
-    precise float t18 = half_code3 + step3;
+    precise float nudge3 = big2_3 >= upper3 * upper3 * len2 ? 1.0 : step_down3;
+    precise float t18 = half_code3 + nudge3;
     bool t19 = t18 > 0.0;
     bool3 t20 = bool3(w.x < 0.0 && t7, w.y < 0.0 && t13, w.z < 0.0 && t19);
     precise float3 abs_w = abs(w);
@@ -213,34 +214,34 @@ float3 unitpack_float16x3_round_codes(float3 a0) {
 uint2 unitpack_float16x3_encode(float3 v) {
     precise float3 round_codes = unitpack_float16x3_round_codes(v);
     uint t1 = asuint(round_codes.x);
-    uint t2 = t1 & 2147483647u;
-    uint t3 = (t2 - 939524096u + 4095u + ((t2 >> 13u) & 1u)) >> 13u;
-    bool t4 = t2 < 947912704u;
+    uint t2 = t1 & 0x7fffffffu;
+    uint t3 = (t2 - 0x38000000u + 0xfffu + ((t2 >> 13u) & 1u)) >> 13u;
+    bool t4 = t2 < 0x38800000u;
     precise float t5 = round(asfloat(t4 ? t2 : 0u) * 16777216.0);
     uint t5_u = uint(t5);
-    uint t6 = 2139095040u < t2 ? 32256u : 31744u;
-    uint t7 = t2 < 1199566848u ? t3 : t6;
-    uint t8 = (t4 ? t5_u : t7) | ((t1 >> 16u) & 32768u);
+    uint t6 = 0x7f800000u < t2 ? 0x7e00u : 0x7c00u;
+    uint t7 = t2 < 0x477ff000u ? t3 : t6;
+    uint t8 = (t4 ? t5_u : t7) | ((t1 >> 16u) & 0x8000u);
     uint t9 = asuint(round_codes.y);
-    uint t10 = t9 & 2147483647u;
-    uint t11 = (t10 - 939524096u + 4095u + ((t10 >> 13u) & 1u)) >> 13u;
-    bool t12 = t10 < 947912704u;
+    uint t10 = t9 & 0x7fffffffu;
+    uint t11 = (t10 - 0x38000000u + 0xfffu + ((t10 >> 13u) & 1u)) >> 13u;
+    bool t12 = t10 < 0x38800000u;
     precise float t13 = round(asfloat(t12 ? t10 : 0u) * 16777216.0);
     uint t13_u = uint(t13);
-    uint t14 = 2139095040u < t10 ? 32256u : 31744u;
-    uint t15 = t10 < 1199566848u ? t11 : t14;
-    uint t16 = (t12 ? t13_u : t15) | ((t9 >> 16u) & 32768u);
-    uint t17 = ((t8 & 32767u) < 1u ? 0u : t8) | (((t16 & 32767u) < 1u ? 0u : t16) << 16u);
+    uint t14 = 0x7f800000u < t10 ? 0x7e00u : 0x7c00u;
+    uint t15 = t10 < 0x477ff000u ? t11 : t14;
+    uint t16 = (t12 ? t13_u : t15) | ((t9 >> 16u) & 0x8000u);
+    uint t17 = ((t8 & 0x7fffu) < 1u ? 0u : t8) | (((t16 & 0x7fffu) < 1u ? 0u : t16) << 16u);
     uint t18 = asuint(round_codes.z);
-    uint t19 = t18 & 2147483647u;
-    uint t20 = (t19 - 939524096u + 4095u + ((t19 >> 13u) & 1u)) >> 13u;
-    bool t21 = t19 < 947912704u;
+    uint t19 = t18 & 0x7fffffffu;
+    uint t20 = (t19 - 0x38000000u + 0xfffu + ((t19 >> 13u) & 1u)) >> 13u;
+    bool t21 = t19 < 0x38800000u;
     precise float t22 = round(asfloat(t21 ? t19 : 0u) * 16777216.0);
     uint t22_u = uint(t22);
-    uint t23 = 2139095040u < t19 ? 32256u : 31744u;
-    uint t24 = t19 < 1199566848u ? t20 : t23;
-    uint t25 = (t21 ? t22_u : t24) | ((t18 >> 16u) & 32768u);
-    return uint2(t17, (t25 & 32767u) < 1u ? 0u : t25);
+    uint t23 = 0x7f800000u < t19 ? 0x7e00u : 0x7c00u;
+    uint t24 = t19 < 0x477ff000u ? t20 : t23;
+    uint t25 = (t21 ? t22_u : t24) | ((t18 >> 16u) & 0x8000u);
+    return uint2(t17, (t25 & 0x7fffu) < 1u ? 0u : t25);
 }
 
 #endif // UNITPACK_FLOAT16X3_HLSL

@@ -32,6 +32,7 @@
 //   servers/rendering/renderer_rd/shaders/forward_clustered/scene_forward_clustered.glsl at 333f0f9
 //   (oct_to_vec3, axis_angle_to_tbn); fdlibm's acosf (FreeBSD msun e_acosf.c; glibc's through
 //   2.40).
+// Model: src/codecs/frames/godot.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00462° / 0.48789°, tangent 0.00433° / 0.47325°, bitangent
@@ -52,26 +53,26 @@ struct unitpack_godot_axis_angle_tbn {
 };
 
 // Helper `oct_to_vec3`.
-float3 unitpack_godot_axis_angle_oct_to_vec3(float2 a0) {
-    precise float t1 = 1.0 - abs(a0.x);
-    precise float abs_a0_y = abs(a0.y);
-    precise float t2 = -(t1 - abs_a0_y);
+float3 unitpack_godot_axis_angle_oct_to_vec3(float2 e) {
+    precise float t1 = 1.0 - abs(e.x);
+    precise float abs_e_y = abs(e.y);
+    precise float t2 = -(t1 - abs_e_y);
     precise float t = t2 >= 0.0 ? t2 : 0.0;
-    precise float t3 = a0.x < 0.0 ? -1.0 : 0.0;
-    precise float t4 = a0.y < 0.0 ? -1.0 : 0.0;
-    precise float3 t5 = float3(t * (a0.x > 0.0 ? 1.0 : t3), t * (a0.y > 0.0 ? 1.0 : t4), abs_a0_y);
-    precise float3 t6 = float3(a0, t1) - t5;
+    precise float t3 = e.x < 0.0 ? -1.0 : 0.0;
+    precise float t4 = e.y < 0.0 ? -1.0 : 0.0;
+    precise float3 t5 = float3(t * (e.x > 0.0 ? 1.0 : t3), t * (e.y > 0.0 ? 1.0 : t4), abs_e_y);
+    precise float3 t6 = float3(e, t1) - t5;
     precise float3 t6_sq = t6 * t6;
     precise float3 result = t6 / sqrt(t6_sq.x + t6_sq.y + t6_sq.z);
     return result;
 }
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-float2 unitpack_godot_axis_angle_sincos_pi(float a0) {
-    precise float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    precise float t1 = 1.0 - abs_a0;
-    precise float b = back ? t1 : abs_a0;
+float2 unitpack_godot_axis_angle_sincos_pi(float turns) {
+    precise float abs_turns = abs(turns);
+    bool back = abs_turns > 0.5;
+    precise float t1 = 1.0 - abs_turns;
+    precise float b = back ? t1 : abs_turns;
     bool swap = b > 0.25;
     precise float t2 = 0.5 - b;
     precise float c = swap ? t2 : b;
@@ -84,7 +85,7 @@ float2 unitpack_godot_axis_angle_sincos_pi(float a0) {
     precise float2 t5 = float2(co, s);
     precise float2 t6 = float2(s, co);
     precise float2 t7 = swap ? t5 : t6;
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
+    precise float2 result = UNITPACK_SELECT(bool2(turns < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -125,7 +126,7 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode_float(float3 f)
 //   orthogonal within 2^-20.
 // Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uint2 code) {
-    precise float3 f = float3(uint3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
+    precise float3 f = float3(uint3(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu))
         * 1.5259022e-5;
     precise float2 t1 = f.xy * 2.0 - 1.0;
     precise float3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
@@ -150,7 +151,7 @@ unitpack_godot_axis_angle_frame unitpack_godot_axis_angle_decode(uint2 code) {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 unitpack_godot_axis_angle_tbn unitpack_godot_axis_angle_decode_tbn(uint2 code) {
-    precise float3 f = float3(uint3(code.x & 65535u, code.x >> 16u, code.y & 65535u))
+    precise float3 f = float3(uint3(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu))
         * 1.5259022e-5;
     precise float2 t1 = f.xy * 2.0 - 1.0;
     precise float3 axis = unitpack_godot_axis_angle_oct_to_vec3(t1);
@@ -172,35 +173,35 @@ unitpack_godot_axis_angle_tbn unitpack_godot_axis_angle_decode_tbn(uint2 code) {
 }
 
 // Helper `fdlibm_acosf`.
-float unitpack_godot_axis_angle_fdlibm_acosf(float a0) {
-    uint t1 = asuint(a0) & 2147483647u;
-    precise float a0_sq = a0 * a0;
-    precise float t2 = a0_sq
-        * (0.20121253 + a0_sq * (-0.040055536 + a0_sq * (0.000791535 + a0_sq * 3.479331e-5)));
-    precise float t3 = a0_sq
-        * (-2.403395 + a0_sq * (2.0209458 + a0_sq * (-0.688284 + a0_sq * 0.077038154)));
-    precise float t4 = a0 * (a0_sq * (0.16666667 + a0_sq * (-0.32556581 + t2)) / (1.0 + t3));
-    precise float t5 = 1.5707963 - (a0 - (7.5497894e-8 - t4));
-    precise float t6 = t1 < 587202561u ? 1.5707964 : t5;
-    precise float z = (1.0 + a0) * 0.5;
+float unitpack_godot_axis_angle_fdlibm_acosf(float c) {
+    uint t1 = asuint(c) & 0x7fffffffu;
+    precise float c_sq = c * c;
+    precise float t2 = c_sq
+        * (0.20121253 + c_sq * (-0.040055536 + c_sq * (0.000791535 + c_sq * 3.479331e-5)));
+    precise float t3 = c_sq
+        * (-2.403395 + c_sq * (2.0209458 + c_sq * (-0.688284 + c_sq * 0.077038154)));
+    precise float t4 = c * (c_sq * (0.16666667 + c_sq * (-0.32556581 + t2)) / (1.0 + t3));
+    precise float t5 = 1.5707963 - (c - (7.5497894e-8 - t4));
+    precise float t6 = t1 < 0x23000001u ? 1.5707964 : t5;
+    precise float z = (1.0 + c) * 0.5;
     precise float sqrt_z = sqrt(z);
     precise float t7 = z * (0.20121253 + z * (-0.040055536 + z * (0.000791535 + z * 3.479331e-5)));
     precise float t8 = z * (-2.403395 + z * (2.0209458 + z * (-0.688284 + z * 0.077038154)));
     precise float t9 = z * (0.16666667 + z * (-0.32556581 + t7)) / (1.0 + t8) * sqrt_z;
     precise float t10 = 3.1415925 - 2.0 * (sqrt_z + (t9 - 7.5497894e-8));
-    precise float z2 = (1.0 - a0) * 0.5;
+    precise float z2 = (1.0 - c) * 0.5;
     precise float sqrt_z2 = sqrt(z2);
-    precise float t11 = asfloat(asuint(sqrt_z2) & 4294963200u);
+    precise float t11 = asfloat(asuint(sqrt_z2) & 0xfffff000u);
     precise float t12 = z2
         * (0.20121253 + z2 * (-0.040055536 + z2 * (0.000791535 + z2 * 3.479331e-5)));
     precise float t13 = z2 * (-2.403395 + z2 * (2.0209458 + z2 * (-0.688284 + z2 * 0.077038154)));
     precise float t14 = z2 * (0.16666667 + z2 * (-0.32556581 + t12)) / (1.0 + t13) * sqrt_z2;
     precise float t15 = 2.0 * (t11 + (t14 + (z2 - t11 * t11) / (sqrt_z2 + t11)));
-    precise float t16 = a0 < 0.0 ? 3.1415927 : 0.0;
-    bool t17 = !(t1 < 1065353216u);
-    precise float t18 = a0 < 0.0 ? t10 : t15;
-    precise float t19 = t1 < 1065353217u && t17 ? t16 : t18;
-    return t1 < 1056964608u ? t6 : t19;
+    precise float t16 = c < 0.0 ? 3.1415927 : 0.0;
+    bool t17 = !(t1 < 0x3f800000u);
+    precise float t18 = c < 0.0 ? t10 : t15;
+    precise float t19 = t1 < 0x3f800001u && t17 ? t16 : t18;
+    return t1 < 0x3f000000u ? t6 : t19;
 }
 
 // unitpack_godot_axis_angle_encode_float: fast encoder, float form.
@@ -313,16 +314,16 @@ float3 unitpack_godot_axis_angle_encode_float(float3 n, float4 t) {
     precise float t72 = t49 ? 0.0 : 3.1415927;
     precise float angle = t40 ? t72 : t70;
     bool t73 = (t.w < 0.0 ? -1.0 : 1.0) < 0.0;
-    precise float theta_hi = asfloat(asuint(angle) & 4294963200u);
+    precise float theta_hi = asfloat(asuint(angle) & 0xfffff000u);
     precise float theta_lo = angle - theta_hi;
     precise float t74 = t73 ? -1.0 : 1.0;
     precise float estimate = 0.5 + angle * 0.15915494 * t74;
-    uint exponent = (asuint(estimate) & 2147483647u) >> 23u;
+    uint exponent = (asuint(estimate) & 0x7fffffffu) >> 23u;
     uint exponent2 = exponent < 40u ? 40u : exponent;
     precise float grid = asfloat((exponent2 - 23u) << 23u);
-    precise float inverse = asfloat((277u - exponent2) << 23u);
-    precise float scale = inverse * t74;
-    precise float term = 0.5 * inverse;
+    precise float inv_grid = asfloat((277u - exponent2) << 23u);
+    precise float scale = inv_grid * t74;
+    precise float term = 0.5 * inv_grid;
     precise float term2 = theta_hi * 0.15911865 * scale;
     precise float term3 = theta_hi * 3.6284328e-5 * scale;
     precise float term4 = theta_lo * 0.15911865 * scale;
@@ -375,8 +376,8 @@ float3 unitpack_godot_axis_angle_encode_float(float3 n, float4 t) {
         + (whole4 < 0.0 ? t89 : t88_u)
         + (whole5 < 0.0 ? t91 : t90_u)
         + (whole6 < 0.0 ? t96 : t95_u);
-    uint r = t97 + ((t94 + 8388608u) >> 24u);
-    precise float t98 = float(16777216u < r ? 16777216u : r) * grid;
+    uint r = t97 + ((t94 + 0x800000u) >> 24u);
+    precise float t98 = float(0x1000000u < r ? 0x1000000u : r) * grid;
     precise float v = estimate > 0.0 ? t98 : 0.0;
     precise float t99 = v >= 0.0 ? v : 0.0;
     precise float t100 = t99 <= 0.49999 ? t99 : 0.49999;

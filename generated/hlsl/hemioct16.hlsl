@@ -28,6 +28,7 @@
 
 // ---- hemioct16: hemi-octahedral, snorm×2, 16 bits, hemisphere ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.24002°, sample max 0.54445°; MSE of the components of
 //   n - n' 6.995e-6, PSNR 51.55 dB.
 #ifndef UNITPACK_HEMIOCT16_HLSL
@@ -86,16 +87,16 @@ float2 unitpack_hemioct16_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_hemioct16_round_codes(float3 a0) {
+float2 unitpack_hemioct16_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -133,7 +134,7 @@ uint unitpack_hemioct16_encode(float3 v) {
     precise float2 round_codes = unitpack_hemioct16_round_codes(v);
     precise float t1 = round_codes.x + 256.0;
     precise float t2 = round_codes.y + 256.0;
-    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 65280u);
+    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 0xff00u);
 }
 
 #endif // UNITPACK_HEMIOCT16_HLSL

@@ -28,6 +28,7 @@
 
 // ---- hemioct16:guarantee=ieee: hemi-octahedral, snorm×2, 16 bits, hemisphere ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.24002°, sample max 0.54445°; MSE of the components of
 //   n - n' 6.995e-6, PSNR 51.55 dB.
 #ifndef UNITPACK_HEMIOCT16_IEEE_HLSL
@@ -99,7 +100,7 @@ uint unitpack_hemioct16_ieee_encode(float3 v) {
     );
     precise float t2 = codes.x + 256.0;
     precise float t3 = codes.y + 256.0;
-    return (uint(t2) & 255u) | ((uint(t3) << 8u) & 65280u);
+    return (uint(t2) & 255u) | ((uint(t3) << 8u) & 0xff00u);
 }
 
 #endif // UNITPACK_HEMIOCT16_IEEE_HLSL

@@ -28,6 +28,7 @@
 
 // ---- hemioct24: hemi-octahedral, snorm×2, 24 bits, hemisphere ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01485°, sample max 0.03358°; MSE of the components of
 //   n - n' 2.680e-8, PSNR 75.72 dB.
 #ifndef UNITPACK_HEMIOCT24_HLSL
@@ -54,7 +55,7 @@ float3 unitpack_hemioct24_decode_float(float2 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct24_decode_float is, within the same bound.
 float3 unitpack_hemioct24_decode(uint code) {
-    precise float2 t1 = float2(uint2(code, code >> 12u) & uint2(4095u, 4095u));
+    precise float2 t1 = float2(uint2(code, code >> 12u) & uint2(0xfffu, 0xfffu));
     precise float2 t2 = UNITPACK_SELECT(t1 > float2(2047.0, 2047.0), t1 - 4096.0, t1)
         * 0.0004885198;
     precise float2 params = UNITPACK_SELECT(t2 >= float2(-1.0, -1.0), t2, float2(-1.0, -1.0));
@@ -87,16 +88,16 @@ float2 unitpack_hemioct24_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_hemioct24_round_codes(float3 a0) {
+float2 unitpack_hemioct24_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -134,7 +135,7 @@ uint unitpack_hemioct24_encode(float3 v) {
     precise float2 round_codes = unitpack_hemioct24_round_codes(v);
     precise float t1 = round_codes.x + 4096.0;
     precise float t2 = round_codes.y + 4096.0;
-    return (uint(t1) & 4095u) | ((uint(t2) << 12u) & 16773120u);
+    return (uint(t1) & 0xfffu) | ((uint(t2) << 12u) & 0xfff000u);
 }
 
 #endif // UNITPACK_HEMIOCT24_HLSL

@@ -28,6 +28,7 @@
 
 // ---- hemioct32: hemi-octahedral, snorm×2, 32 bits, hemisphere ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00093°, sample max 0.00212°; MSE of the components of
 //   n - n' 1.052e-10, PSNR 99.78 dB.
 #ifndef UNITPACK_HEMIOCT32_HLSL
@@ -54,7 +55,7 @@ float3 unitpack_hemioct32_decode_float(float2 params) {
 // Out: every code decodes to a unit vector with z ≥ 0.
 // Portable as unitpack_hemioct32_decode_float is, within the same bound.
 float3 unitpack_hemioct32_decode(uint code) {
-    precise float2 t1 = float2(uint2(code & 65535u, code >> 16u));
+    precise float2 t1 = float2(uint2(code & 0xffffu, code >> 16u));
     precise float2 t2 = UNITPACK_SELECT(t1 > float2(32767.0, 32767.0), t1 - 65536.0, t1)
         * 3.051851e-5;
     precise float2 params = UNITPACK_SELECT(t2 >= float2(-1.0, -1.0), t2, float2(-1.0, -1.0));
@@ -87,16 +88,16 @@ float2 unitpack_hemioct32_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_hemioct32_round_codes(float3 a0) {
+float2 unitpack_hemioct32_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -134,7 +135,7 @@ uint unitpack_hemioct32_encode(float3 v) {
     precise float2 round_codes = unitpack_hemioct32_round_codes(v);
     precise float t1 = round_codes.x + 65536.0;
     precise float t2 = round_codes.y + 65536.0;
-    return (uint(t1) & 65535u) | (uint(t2) << 16u);
+    return (uint(t1) & 0xffffu) | (uint(t2) << 16u);
 }
 
 #endif // UNITPACK_HEMIOCT32_HLSL

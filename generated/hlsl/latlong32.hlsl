@@ -29,17 +29,18 @@
 // ---- latlong32: latitude–longitude patches numbered by ring, 2^h rings × (2^h - 1) azimuths, 32
 //   bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (Smith et al. 2012), fast decoder.
+// Model: src/codecs/angular/latlong.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00138°, sample max 0.00305°; MSE of the components of
 //   n - n' 2.343e-10, PSNR 96.30 dB.
 #ifndef UNITPACK_LATLONG32_HLSL
 #define UNITPACK_LATLONG32_HLSL
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-float2 unitpack_latlong32_sincos_pi(float a0) {
-    precise float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    precise float t1 = 1.0 - abs_a0;
-    precise float b = back ? t1 : abs_a0;
+float2 unitpack_latlong32_sincos_pi(float x) {
+    precise float abs_x = abs(x);
+    bool back = abs_x > 0.5;
+    precise float t1 = 1.0 - abs_x;
+    precise float b = back ? t1 : abs_x;
     bool swap = b > 0.25;
     precise float t2 = 0.5 - b;
     precise float c = swap ? t2 : b;
@@ -52,7 +53,7 @@ float2 unitpack_latlong32_sincos_pi(float a0) {
     precise float2 t5 = float2(co, s);
     precise float2 t6 = float2(s, co);
     precise float2 t7 = swap ? t5 : t6;
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
+    precise float2 result = UNITPACK_SELECT(bool2(x < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -75,20 +76,20 @@ float3 unitpack_latlong32_decode_float(float2 params) {
 // Out: decodes are unit length to within the trig approximations' error (about 2.5e-7).
 // Portable as unitpack_latlong32_decode_float is, within the same bound.
 float3 unitpack_latlong32_decode(uint code) {
-    precise float2 params = float2(uint2(code & 65535u, code >> 16u)) * 1.5259022e-5;
+    precise float2 params = float2(uint2(code & 0xffffu, code >> 16u)) * 1.5259022e-5;
     return unitpack_latlong32_decode_float(params);
 }
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-float unitpack_latlong32_atan2_pi(float a0, float a1) {
-    precise float abs_a1 = abs(a1);
-    precise float abs_a0 = abs(a0);
-    bool y_major = abs_a0 > abs_a1;
-    precise float hi = y_major ? abs_a0 : abs_a1;
+float unitpack_latlong32_atan2_pi(float rho, float x) {
+    precise float abs_x = abs(x);
+    precise float abs_rho = abs(rho);
+    bool y_major = abs_rho > abs_x;
+    precise float hi = y_major ? abs_rho : abs_x;
     precise float up = hi < 7.888609e-31 ? 1.2676506e30 : 1.0;
     precise float hi2 = hi * up;
-    precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
+    precise float t = (y_major ? abs_x : abs_rho) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
     precise float t1 = (t - 1.0) / (t + 1.0);
     precise float z = far ? t1 : t;
@@ -102,9 +103,9 @@ float unitpack_latlong32_atan2_pi(float a0, float a1) {
     precise float t5 = 1.5707964 - r2;
     precise float r3 = y_major ? t5 : r2;
     precise float t6 = 3.1415927 - r3;
-    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float r4 = x < 0.0 ? t6 : r3;
     precise float neg_r4 = -r4;
-    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
+    precise float result = (rho < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -136,16 +137,16 @@ float2 unitpack_latlong32_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_latlong32_round_codes(float3 a0) {
+float2 unitpack_latlong32_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -162,17 +163,17 @@ float2 unitpack_latlong32_round_codes(float3 a0) {
     precise float fixed_f2 = floor(abs(w2.y) * 2097152.0);
     uint fixed3 = uint(fixed_f2);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint hi3 = hi2 + (lo2 >> 24u);
-    uint lo3 = lo2 & 16777215u;
+    uint lo3 = lo2 & 0xffffffu;
     precise float rho2 = (float(hi3) * 16777216.0 + float(lo3)) * 2.2737368e-13;
     bool t1 = rho2 > 0.0;
     precise float t2 = t1 ? rho2 : 1.0;
@@ -185,16 +186,16 @@ float2 unitpack_latlong32_round_codes(float3 a0) {
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t3 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t3 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t3 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t3 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= t3 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float t4 = root * root_up;
     precise float rho = t1 ? t4 : 0.0;
@@ -207,22 +208,22 @@ float2 unitpack_latlong32_round_codes(float3 a0) {
     precise float big = lo4 * 8388608.0;
     precise float ratio_estimate = floor(lo4 / t5 * 8388608.0);
     precise float step_down3 = ratio_estimate * t5 > big ? -1.0 : 0.0;
-    precise float step3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
-    precise float ratio = ratio_estimate + step3;
+    precise float nudge3 = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + nudge3;
     precise float step_down4 = ratio * t5 > big ? -1.0 : 0.0;
-    precise float step4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
-    precise float t = ratio + step4;
+    precise float nudge4 = (ratio + 1.0) * t5 <= big ? 1.0 : step_down4;
+    precise float t = ratio + nudge4;
     bool far = t > 3474675.0;
     precise float t6 = t - 8388608.0;
     precise float t7 = t + 8388608.0;
     precise float big2 = t6 * 8388608.0;
     precise float ratio_estimate2 = floor(t6 / t7 * 8388608.0);
     precise float step_down5 = ratio_estimate2 * t7 > big2 ? -1.0 : 0.0;
-    precise float step5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
-    precise float ratio2 = ratio_estimate2 + step5;
+    precise float nudge5 = (ratio_estimate2 + 1.0) * t7 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + nudge5;
     precise float step_down6 = ratio2 * t7 > big2 ? -1.0 : 0.0;
-    precise float step6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
-    precise float ratio3 = ratio2 + step6;
+    precise float nudge6 = (ratio2 + 1.0) * t7 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + nudge6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
     precise float t8 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
@@ -252,22 +253,22 @@ float2 unitpack_latlong32_round_codes(float3 a0) {
     precise float big3 = lo5 * 8388608.0;
     precise float ratio_estimate3 = floor(lo5 / t16 * 8388608.0);
     precise float step_down7 = ratio_estimate3 * t16 > big3 ? -1.0 : 0.0;
-    precise float step7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
-    precise float ratio4 = ratio_estimate3 + step7;
+    precise float nudge7 = (ratio_estimate3 + 1.0) * t16 <= big3 ? 1.0 : step_down7;
+    precise float ratio4 = ratio_estimate3 + nudge7;
     precise float step_down8 = ratio4 * t16 > big3 ? -1.0 : 0.0;
-    precise float step8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
-    precise float t17 = ratio4 + step8;
+    precise float nudge8 = (ratio4 + 1.0) * t16 <= big3 ? 1.0 : step_down8;
+    precise float t17 = ratio4 + nudge8;
     bool far2 = t17 > 3474675.0;
     precise float t18 = t17 - 8388608.0;
     precise float t19 = t17 + 8388608.0;
     precise float big4 = t18 * 8388608.0;
     precise float ratio_estimate4 = floor(t18 / t19 * 8388608.0);
     precise float step_down9 = ratio_estimate4 * t19 > big4 ? -1.0 : 0.0;
-    precise float step9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
-    precise float ratio5 = ratio_estimate4 + step9;
+    precise float nudge9 = (ratio_estimate4 + 1.0) * t19 <= big4 ? 1.0 : step_down9;
+    precise float ratio5 = ratio_estimate4 + nudge9;
     precise float step_down10 = ratio5 * t19 > big4 ? -1.0 : 0.0;
-    precise float step10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
-    precise float ratio6 = ratio5 + step10;
+    precise float nudge10 = (ratio5 + 1.0) * t19 <= big4 ? 1.0 : step_down10;
+    precise float ratio6 = ratio5 + nudge10;
     precise float z3 = far2 ? ratio6 : t17;
     precise float z2_2 = round(z3 * z3 * 1.1920929e-7);
     precise float t20 = round(

@@ -30,6 +30,7 @@
 //   32 bits, sphere ----
 // Source: meshoptimizer 1.3 (src/vertexfilter.cpp, meshopt_encodeFilterOct; meshopt crate 0.7.0)
 //   and glTF EXT_meshopt_compression, Appendix B, filter 1 (the reference decoder).
+// Model: src/codecs/engine/meshopt.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 1.38359°, sample max 4.04919°; MSE of the components of
 //   n - n' 2.381e-4, PSNR 36.23 dB.
 #ifndef UNITPACK_MESHOPT_OCT8_BITS6_HLSL
@@ -120,15 +121,15 @@ float3 unitpack_meshopt_oct8_bits6_decode(uint code) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float4 unitpack_meshopt_oct8_bits6_round_codes(float3 a0) {
-    precise float3 abs_a0 = abs(a0);
-    precise float nl = abs_a0.x + abs_a0.y + abs_a0.z;
+float4 unitpack_meshopt_oct8_bits6_round_codes(float3 v) {
+    precise float3 abs_v = abs(v);
+    precise float nl = abs_v.x + abs_v.y + abs_v.z;
     bool t1 = nl == 0.0;
     precise float t2 = 1.0 / (t1 ? 1.0 : nl);
     precise float ns = t1 ? 0.0 : t2;
-    precise float nx = a0.x * ns;
-    precise float ny = a0.y * ns;
-    bool t3 = a0.z >= 0.0;
+    precise float nx = v.x * ns;
+    precise float ny = v.y * ns;
+    bool t3 = v.z >= 0.0;
     precise float t4 = (1.0 - abs(ny)) * (nx >= 0.0 ? 1.0 : -1.0);
     precise float t5 = t3 ? nx : t4;
     precise float t6 = (1.0 - abs(nx)) * (ny >= 0.0 ? 1.0 : -1.0);
@@ -194,8 +195,8 @@ uint unitpack_meshopt_oct8_bits6_encode(float3 v) {
     precise float4 codes = float4(t9 < 0.0 ? neg_t10 : t10, t12 < 0.0 ? neg_t13 : t13, 31.0, 0.0);
     precise float t14 = codes.x + 256.0;
     precise float t15 = codes.y + 256.0;
-    uint t16 = (uint(t14) & 255u) | ((uint(t15) << 8u) & 65280u);
-    return t16 | 2031616u | 0u;
+    uint t16 = (uint(t14) & 255u) | ((uint(t15) << 8u) & 0xff00u);
+    return t16 | 0x1f0000u | 0u;
 }
 
 #endif // UNITPACK_MESHOPT_OCT8_BITS6_HLSL

@@ -28,6 +28,7 @@
 
 // ---- oct20: octahedral, snorm×2, 20 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.08351°, sample max 0.23404°; MSE of the components of
 //   n - n' 8.605e-7, PSNR 60.65 dB.
 #ifndef UNITPACK_OCT20_HLSL
@@ -56,7 +57,7 @@ float3 unitpack_oct20_decode_float(float2 params) {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable as unitpack_oct20_decode_float is, within the same bound.
 float3 unitpack_oct20_decode(uint code) {
-    precise float2 t1 = float2(uint2(code, code >> 10u) & uint2(1023u, 1023u));
+    precise float2 t1 = float2(uint2(code, code >> 10u) & uint2(0x3ffu, 0x3ffu));
     precise float2 t2 = UNITPACK_SELECT(t1 > float2(511.0, 511.0), t1 - 1024.0, t1) * 0.0019569471;
     precise float2 params = UNITPACK_SELECT(t2 >= float2(-1.0, -1.0), t2, float2(-1.0, -1.0));
     return unitpack_oct20_decode_float(params);
@@ -86,16 +87,16 @@ float2 unitpack_oct20_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_oct20_round_codes(float3 a0) {
+float2 unitpack_oct20_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -134,7 +135,7 @@ uint unitpack_oct20_encode(float3 v) {
     precise float2 round_codes = unitpack_oct20_round_codes(v);
     precise float t1 = round_codes.x + 1024.0;
     precise float t2 = round_codes.y + 1024.0;
-    return (uint(t1) & 1023u) | ((uint(t2) << 10u) & 1047552u);
+    return (uint(t1) & 0x3ffu) | ((uint(t2) << 10u) & 0xffc00u);
 }
 
 #endif // UNITPACK_OCT20_HLSL

@@ -28,6 +28,7 @@
 
 // ---- oct24:layout=rgb8: octahedral, snorm×2, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02081°, sample max 0.05780°; MSE of the components of
 //   n - n' 5.352e-8, PSNR 72.71 dB.
 #ifndef UNITPACK_OCT24_RGB8_HLSL
@@ -37,8 +38,8 @@
 //   in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and
 //   sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the
 //   inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
-float2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(float3 a0) {
-    precise float3 b = round(a0 * 255.0);
+float2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(float3 u) {
+    precise float3 b = round(u * 255.0);
     precise float y16 = b.y * 0.0625;
     precise float hi = floor(y16);
     precise float2 t1 = (float2(b.x, y16 - hi) * float2(16.0, 4096.0) + float2(hi, b.z) - 2047.0)
@@ -47,12 +48,12 @@ float2 unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(float3 a0) {
 }
 
 // oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.
-float3 unitpack_oct24_rgb8_oct24_decode_float(float2 a0) {
-    precise float2 abs_a0 = abs(a0);
-    precise float z = 1.0 - abs_a0.x - abs_a0.y;
-    precise float2 folded = (1.0 - abs(a0.yx))
-        * UNITPACK_SELECT(a0 >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
-    precise float3 v = float3(z < 0.0 ? folded : a0, z);
+float3 unitpack_oct24_rgb8_oct24_decode_float(float2 e) {
+    precise float2 abs_e = abs(e);
+    precise float z = 1.0 - abs_e.x - abs_e.y;
+    precise float2 folded = (1.0 - abs(e.yx))
+        * UNITPACK_SELECT(e >= float2(0.0, 0.0), float2(1.0, 1.0), float2(-1.0, -1.0));
+    precise float3 v = float3(z < 0.0 ? folded : e, z);
     precise float3 v_sq = v * v;
     precise float3 result = v / sqrt(v_sq.x + v_sq.y + v_sq.z);
     return result;
@@ -71,10 +72,10 @@ float3 unitpack_oct24_rgb8_decode_float(float3 params) {
 
 // The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey
 //   Listing 5, float-only).
-float2 unitpack_oct24_rgb8_bytes_to_snorm12x2(float3 a0) {
-    precise float y16 = a0.y * 0.0625;
+float2 unitpack_oct24_rgb8_bytes_to_snorm12x2(float3 b) {
+    precise float y16 = b.y * 0.0625;
     precise float hi = floor(y16);
-    precise float2 t1 = (float2(a0.x, y16 - hi) * float2(16.0, 4096.0) + float2(hi, a0.z) - 2047.0)
+    precise float2 t1 = (float2(b.x, y16 - hi) * float2(16.0, 4096.0) + float2(hi, b.z) - 2047.0)
         * 0.0004885198;
     return UNITPACK_SELECT(t1 <= float2(1.0, 1.0), t1, float2(1.0, 1.0));
 }
@@ -94,16 +95,16 @@ float3 unitpack_oct24_rgb8_decode(uint code) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_oct24_rgb8_round_codes(float3 a0) {
+float3 unitpack_oct24_rgb8_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;

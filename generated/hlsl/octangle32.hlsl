@@ -28,6 +28,7 @@
 //   and the sign, 32 bits ----
 // Source: the normal: octahedral (Meyer et al. 2010, Cigolle et al. 2014); the tangent's basis:
 //   Jeremy Ong, "Tangent spaces and diamond encoding" (2023).
+// Model: src/codecs/frames/octangle.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.04180° / 0.11764°, tangent 0.18060° / 0.36412°, bitangent
@@ -48,11 +49,11 @@ struct unitpack_octangle32_tbn {
 };
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-float2 unitpack_octangle32_sincos_pi(float a0) {
-    precise float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    precise float t1 = 1.0 - abs_a0;
-    precise float b = back ? t1 : abs_a0;
+float2 unitpack_octangle32_sincos_pi(float x) {
+    precise float abs_x = abs(x);
+    bool back = abs_x > 0.5;
+    precise float t1 = 1.0 - abs_x;
+    precise float b = back ? t1 : abs_x;
     bool swap = b > 0.25;
     precise float t2 = 0.5 - b;
     precise float c = swap ? t2 : b;
@@ -65,7 +66,7 @@ float2 unitpack_octangle32_sincos_pi(float a0) {
     precise float2 t5 = float2(co, s);
     precise float2 t6 = float2(s, co);
     precise float2 t7 = swap ? t5 : t6;
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
+    precise float2 result = UNITPACK_SELECT(bool2(x < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -81,14 +82,14 @@ float2 unitpack_octangle32_sincos_pi(float a0) {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 unitpack_octangle32_frame unitpack_octangle32_decode(uint code) {
-    precise float t1 = float(code & 2047u);
+    precise float t1 = float(code & 0x7ffu);
     precise float t2 = t1 - 2048.0;
-    precise float t3 = float((code >> 11u) & 2047u);
+    precise float t3 = float((code >> 11u) & 0x7ffu);
     precise float t4 = t3 - 2048.0;
     precise float4 fields = float4(
         t1 > 1023.0 ? t2 : t1,
         t3 > 1023.0 ? t4 : t3,
-        float((code >> 22u) & 511u),
+        float((code >> 22u) & 0x1ffu),
         float(code >> 31u)
     );
     precise float t5 = fields.z - 512.0;
@@ -132,14 +133,14 @@ unitpack_octangle32_frame unitpack_octangle32_decode(uint code) {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable within a bound (as the header says): as for unitpack_octangle32_decode.
 unitpack_octangle32_tbn unitpack_octangle32_decode_tbn(uint code) {
-    precise float t1 = float(code & 2047u);
+    precise float t1 = float(code & 0x7ffu);
     precise float t2 = t1 - 2048.0;
-    precise float t3 = float((code >> 11u) & 2047u);
+    precise float t3 = float((code >> 11u) & 0x7ffu);
     precise float t4 = t3 - 2048.0;
     precise float4 fields = float4(
         t1 > 1023.0 ? t2 : t1,
         t3 > 1023.0 ? t4 : t3,
-        float((code >> 22u) & 511u),
+        float((code >> 22u) & 0x1ffu),
         float(code >> 31u)
     );
     precise float t5 = fields.z - 512.0;
@@ -198,7 +199,7 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -243,7 +244,7 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     precise float3 abs_normal3 = abs(normal3);
     precise float larger2 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     precise float largest2 = larger2 >= abs_normal3.z ? larger2 : abs_normal3.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal3 * scale2;
     precise float3 w2 = UNITPACK_SELECT(
         abs(scaled2) < float3(1.8189894e-12, 1.8189894e-12, 1.8189894e-12),
@@ -253,52 +254,52 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     precise float3 t9 = floor(abs(w2) * 2097152.0);
     uint3 t9_u = uint3(t9);
     uint limb1 = t9_u.x >> 12u;
-    uint limb0 = t9_u.x & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = t9_u.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = t9_u.y >> 12u;
-    uint limb0_2 = t9_u.y & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = t9_u.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = t9_u.z >> 12u;
-    uint limb0_3 = t9_u.z & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = t9_u.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float t10 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(t10);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t10 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t10 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t10 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t10 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t10 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t10 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
-    precise float length = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t11 = length * 2097152.0;
+    precise float nudge2 = root_m1 * root_m1 <= t10 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
+    precise float norm = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    precise float t11 = norm * 2097152.0;
     uint t11_u = uint(t11);
     uint wide = (hi4 << 24u) + lo4;
-    uint rest = wide - t11_u * t11_u + 1073741824u;
+    uint rest = wide - t11_u * t11_u + 0x40000000u;
     uint t12 = t11_u + 1u;
     uint t13 = t11_u - 1u;
-    uint t14 = rest < 1073741824u - t11_u + 1u ? t13 : t11_u;
-    uint n3 = 1073741824u + t11_u < rest ? t12 : t14;
-    uint rest2 = wide - n3 * n3 + 1073741824u;
+    uint t14 = rest < 0x40000000u - t11_u + 1u ? t13 : t11_u;
+    uint n3 = 0x40000000u + t11_u < rest ? t12 : t14;
+    uint rest2 = wide - n3 * n3 + 0x40000000u;
     uint t15 = n3 + 1u;
     uint t16 = n3 - 1u;
-    uint t17 = rest2 < 1073741824u - n3 + 1u ? t16 : n3;
-    uint n4 = 1073741824u + n3 < rest2 ? t15 : t17;
+    uint t17 = rest2 < 0x40000000u - n3 + 1u ? t16 : n3;
+    uint n4 = 0x40000000u + n3 < rest2 ? t15 : t17;
     precise float nf = float(n4);
     precise float t18 = round(float(t9_u.x) / nf * 16777216.0);
     uint k0 = uint(t18);
@@ -308,11 +309,11 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     uint t21 = t19 + n4 + t20;
     uint two_n = n4 << 1u;
     uint t22 = t21 >> 12u;
-    precise float t23 = (float(t22) * 4096.0 + float(t21 & 4095u)) / (nf * 2.0);
+    precise float t23 = (float(t22) * 4096.0 + float(t21 & 0xfffu)) / (nf * 2.0);
     precise float floor_t23 = floor(t23);
     uint q0 = uint(floor_t23);
     uint rest3 = t21 - q0 * two_n;
-    bool negative = !(rest3 < 2147483648u);
+    bool negative = !(rest3 < 0x80000000u);
     bool t24 = !negative;
     precise float t25 = round(float(t9_u.y) / nf * 16777216.0);
     uint k0_2 = uint(t25);
@@ -322,11 +323,11 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     uint t28 = t26 + n4 + t27;
     uint two_n2 = n4 << 1u;
     uint t29 = t28 >> 12u;
-    precise float t30 = (float(t29) * 4096.0 + float(t28 & 4095u)) / (nf * 2.0);
+    precise float t30 = (float(t29) * 4096.0 + float(t28 & 0xfffu)) / (nf * 2.0);
     precise float floor_t30 = floor(t30);
     uint q0_2 = uint(floor_t30);
     uint rest4 = t28 - q0_2 * two_n2;
-    bool negative2 = !(rest4 < 2147483648u);
+    bool negative2 = !(rest4 < 0x80000000u);
     bool t31 = !negative2;
     precise float t32 = round(float(t9_u.z) / nf * 16777216.0);
     uint k0_3 = uint(t32);
@@ -336,15 +337,17 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     uint t35 = t33 + n4 + t34;
     uint two_n3 = n4 << 1u;
     uint t36 = t35 >> 12u;
-    precise float t37 = (float(t36) * 4096.0 + float(t35 & 4095u)) / (nf * 2.0);
+    precise float t37 = (float(t36) * 4096.0 + float(t35 & 0xfffu)) / (nf * 2.0);
     precise float floor_t37 = floor(t37);
     uint q0_3 = uint(floor_t37);
     uint rest5 = t35 - q0_3 * two_n3;
-    bool negative3 = !(rest5 < 2147483648u);
+    bool negative3 = !(rest5 < 0x80000000u);
     bool t38 = !negative3;
     bool3 t39 = bool3(!(rest3 < two_n) && t24, !(rest4 < two_n2) && t31, !(rest5 < two_n3) && t38);
     precise float3 t40 = float3(uint3(t22, t29, t36)) * 4096.0
-        + float3((uint3(t19, t26, t33) + n4 + uint3(t20, t27, t34)) & uint3(4095u, 4095u, 4095u));
+        + float3(
+            (uint3(t19, t26, t33) + n4 + uint3(t20, t27, t34)) & uint3(0xfffu, 0xfffu, 0xfffu)
+        );
     precise float3 t41 = floor(t40 / (nf * float3(2.0, 2.0, 2.0)));
     uint3 t41_u = uint3(t41);
     precise float3 t42 = round(float3(t9_u) / nf * 16777216.0);
@@ -357,8 +360,8 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     uint3 t44 = t43 - 8u;
     precise float3 t45 = float3(
         UNITPACK_SELECT(
-            uint3(16777216u, 16777216u, 16777216u) < t44,
-            uint3(16777216u, 16777216u, 16777216u),
+            uint3(0x1000000u, 0x1000000u, 0x1000000u) < t44,
+            uint3(0x1000000u, 0x1000000u, 0x1000000u),
             t44
         )
     )
@@ -377,7 +380,7 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     precise float3 abs_normal4 = abs(normal4);
     precise float larger3 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
     precise float largest3 = larger3 >= abs_normal4.z ? larger3 : abs_normal4.z;
-    precise float scale3 = asfloat(2139095040u - (asuint(largest3) & 2139095040u));
+    precise float scale3 = asfloat(0x7f800000u - (asuint(largest3) & 0x7f800000u));
     precise float3 scaled3 = normal4 * scale3;
     precise float3 abs_scaled3 = abs(scaled3);
     precise float sum2 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
@@ -404,22 +407,22 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     precise float big = lo5 * 8388608.0;
     precise float ratio_estimate = floor(lo5 / t53 * 8388608.0);
     precise float step_down3 = ratio_estimate * t53 > big ? -1.0 : 0.0;
-    precise float step3 = (ratio_estimate + 1.0) * t53 <= big ? 1.0 : step_down3;
-    precise float ratio = ratio_estimate + step3;
+    precise float nudge3 = (ratio_estimate + 1.0) * t53 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + nudge3;
     precise float step_down4 = ratio * t53 > big ? -1.0 : 0.0;
-    precise float step4 = (ratio + 1.0) * t53 <= big ? 1.0 : step_down4;
-    precise float t54 = ratio + step4;
+    precise float nudge4 = (ratio + 1.0) * t53 <= big ? 1.0 : step_down4;
+    precise float t54 = ratio + nudge4;
     bool far = t54 > 3474675.0;
     precise float t55 = t54 - 8388608.0;
     precise float t56 = t54 + 8388608.0;
     precise float big2 = t55 * 8388608.0;
     precise float ratio_estimate2 = floor(t55 / t56 * 8388608.0);
     precise float step_down5 = ratio_estimate2 * t56 > big2 ? -1.0 : 0.0;
-    precise float step5 = (ratio_estimate2 + 1.0) * t56 <= big2 ? 1.0 : step_down5;
-    precise float ratio2 = ratio_estimate2 + step5;
+    precise float nudge5 = (ratio_estimate2 + 1.0) * t56 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + nudge5;
     precise float step_down6 = ratio2 * t56 > big2 ? -1.0 : 0.0;
-    precise float step6 = (ratio2 + 1.0) * t56 <= big2 ? 1.0 : step_down6;
-    precise float ratio3 = ratio2 + step6;
+    precise float nudge6 = (ratio2 + 1.0) * t56 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + nudge6;
     precise float z = far ? ratio3 : t54;
     precise float z2 = round(z * z * 1.1920929e-7);
     precise float t57 = round(
@@ -452,7 +455,7 @@ uint unitpack_octangle32_encode(float3 n, float4 t) {
     );
     precise float t67 = codes.x + 2048.0;
     precise float t68 = codes.y + 2048.0;
-    uint t69 = (uint(t67) & 2047u) | ((uint(t68) << 11u) & 4192256u);
+    uint t69 = (uint(t67) & 0x7ffu) | ((uint(t68) << 11u) & 0x3ff800u);
     return t69 | (uint(codes.z) << 22u) | (uint(codes.w) << 31u);
 }
 

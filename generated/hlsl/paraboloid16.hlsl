@@ -29,6 +29,7 @@
 // ---- paraboloid16: inverted paraboloid z = 1 - (x² + y²) of the +Z hemisphere, snorm×2, 16 bits,
 //   hemisphere ----
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
+// Model: src/codecs/azimuthal/paraboloid.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.26212°, sample max 0.67995°; MSE of the components of
 //   n - n' 8.365e-6, PSNR 50.78 dB.
 #ifndef UNITPACK_PARABOLOID16_HLSL
@@ -78,7 +79,7 @@ float2 unitpack_paraboloid16_encode_float(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -99,7 +100,7 @@ float2 unitpack_paraboloid16_encode_float(float3 v) {
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -119,22 +120,22 @@ float2 unitpack_paraboloid16_encode_float(float3 v) {
     precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
@@ -145,16 +146,16 @@ float2 unitpack_paraboloid16_encode_float(float3 v) {
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
     precise float2 result = w4.xy / a;
@@ -164,16 +165,16 @@ float2 unitpack_paraboloid16_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_paraboloid16_round_codes(float3 a0) {
+float2 unitpack_paraboloid16_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -194,7 +195,7 @@ float2 unitpack_paraboloid16_round_codes(float3 a0) {
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -214,22 +215,22 @@ float2 unitpack_paraboloid16_round_codes(float3 a0) {
     precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
@@ -240,16 +241,16 @@ float2 unitpack_paraboloid16_round_codes(float3 a0) {
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
     precise float2 t3 = abs(w4.xy);
@@ -278,7 +279,7 @@ uint unitpack_paraboloid16_encode(float3 v) {
     precise float2 round_codes = unitpack_paraboloid16_round_codes(v);
     precise float t1 = round_codes.x + 256.0;
     precise float t2 = round_codes.y + 256.0;
-    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 65280u);
+    return (uint(t1) & 255u) | ((uint(t2) << 8u) & 0xff00u);
 }
 
 #endif // UNITPACK_PARABOLOID16_HLSL

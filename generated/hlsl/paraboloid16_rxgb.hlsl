@@ -29,6 +29,7 @@
 // ---- paraboloid16:layout=rxgb: inverted paraboloid z = 1 - (x² + y²) of the +Z hemisphere, in an
 //   RGBA8 texel, 16 bits, hemisphere ----
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
+// Model: src/codecs/azimuthal/paraboloid.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.26255°, sample max 0.66730°; MSE of the components of
 //   n - n' 8.384e-6, PSNR 50.77 dB.
 #ifndef UNITPACK_PARABOLOID16_RXGB_HLSL
@@ -81,7 +82,7 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -102,7 +103,7 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -122,22 +123,22 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
@@ -148,16 +149,16 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
     precise float2 p = w4.xy / a;
@@ -195,16 +196,16 @@ float4 unitpack_paraboloid16_rxgb_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
+float4 unitpack_paraboloid16_rxgb_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -225,7 +226,7 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -245,22 +246,22 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float fixed_f3 = floor(abs(halved.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     uint half_exponent = ((asuint(len2) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
@@ -271,16 +272,16 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float a = root * root_up + halved.z;
     precise float2 t3 = w4.xy * 127.5;
@@ -301,14 +302,14 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float2 t9 = t7 + t8;
     precise float2 c = ok && ok2 ? t9 : float2(128.0, 128.0);
     precise float3 normal3 = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal3 = abs(normal3);
     precise float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     precise float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
-    precise float scale3 = asfloat(2139095040u - (asuint(largest3) & 2139095040u));
+    precise float scale3 = asfloat(0x7f800000u - (asuint(largest3) & 0x7f800000u));
     precise float3 scaled3 = normal3 * scale3;
     precise float3 abs_scaled3 = abs(scaled3);
     precise float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
@@ -329,7 +330,7 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
     precise float3 abs_normal4 = abs(normal4);
     precise float larger4 = abs_normal4.x >= abs_normal4.y ? abs_normal4.x : abs_normal4.y;
     precise float largest4 = larger4 >= abs_normal4.z ? larger4 : abs_normal4.z;
-    precise float scale4 = asfloat(2139095040u - (asuint(largest4) & 2139095040u));
+    precise float scale4 = asfloat(0x7f800000u - (asuint(largest4) & 0x7f800000u));
     precise float3 scaled4 = normal4 * scale4;
     precise float3 abs_scaled4 = abs(scaled4);
     precise float sum4 = abs_scaled4.x + abs_scaled4.y + abs_scaled4.z;
@@ -341,11 +342,11 @@ float4 unitpack_paraboloid16_rxgb_round_codes(float3 a0) {
         scaled4
     );
     precise float3 w8 = ok4 ? w7 : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w8.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w8.x) & 0xfffff000u);
     precise float split_lo = w8.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w8.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w8.y) & 0xfffff000u);
     precise float split_lo2 = w8.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w8.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w8.z) & 0xfffff000u);
     precise float split_lo3 = w8.z - split_hi3;
     precise float t11 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2

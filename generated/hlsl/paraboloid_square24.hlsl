@@ -30,6 +30,7 @@
 //   snorm×2, 24 bits, hemisphere ----
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the dual inverted
 //   paraboloid.
+// Model: src/codecs/azimuthal/paraboloid_square.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01459°, sample max 0.03389°; MSE of the components of
 //   n - n' 2.578e-8, PSNR 75.89 dB.
 #ifndef UNITPACK_PARABOLOID_SQUARE24_HLSL
@@ -57,7 +58,7 @@ float3 unitpack_paraboloid_square24_decode_float(float2 params) {
 //   horizon.
 // Portable as unitpack_paraboloid_square24_decode_float is, within the same bound.
 float3 unitpack_paraboloid_square24_decode(uint code) {
-    precise float2 t1 = float2(uint2(code, code >> 12u) & uint2(4095u, 4095u));
+    precise float2 t1 = float2(uint2(code, code >> 12u) & uint2(0xfffu, 0xfffu));
     precise float2 t2 = UNITPACK_SELECT(t1 > float2(2047.0, 2047.0), t1 - 4096.0, t1)
         * 0.0004885198;
     precise float2 params = UNITPACK_SELECT(t2 >= float2(-1.0, -1.0), t2, float2(-1.0, -1.0));
@@ -66,25 +67,25 @@ float3 unitpack_paraboloid_square24_decode(uint code) {
 
 // One bisection step: `s + h` where the surface at that point is still above the ray (`(1 - t²)(1 -
 //   r²t²)·m ≥ u.z·t`, every product rounded to a unit of 2^-21), else `s`.
-float unitpack_paraboloid_square24_square_step(float a0, float a1, float3 a2) {
-    precise float t = a0 + a1;
+float unitpack_paraboloid_square24_square_step(float s, float h, float3 k) {
+    precise float t = s + h;
     precise float t1 = round(t * t * 4.7683716e-7);
     precise float t2 = (2097152.0 - t1)
-        * (2097152.0 - round(a2.y * t1 * 4.7683716e-7))
+        * (2097152.0 - round(k.y * t1 * 4.7683716e-7))
         * 4.7683716e-7;
     precise float surface = round(t2);
-    precise float t3 = round(surface * a2.x * 4.7683716e-7);
-    precise float t4 = round(a2.z * t * 4.7683716e-7);
+    precise float t3 = round(surface * k.x * 4.7683716e-7);
+    precise float t4 = round(k.z * t * 4.7683716e-7);
     bool t5 = t3 >= t4;
     bool t6 = t <= 2097152.0;
-    return t5 && t6 ? t : a0;
+    return t5 && t6 ? t : s;
 }
 
 // The point where the input's ray meets z = (1 - x²)(1 - y²), in units of 2^-21: the input's
 //   fixed-point direction, then 22 bisection steps on the larger coordinate; a function of the
 //   input alone.
-float2 unitpack_paraboloid_square24_square_point(float3 a0) {
-    precise float2 t1 = abs(a0.xy);
+float2 unitpack_paraboloid_square24_square_point(float3 u) {
+    precise float2 t1 = abs(u.xy);
     bool t2 = t1.x >= t1.y;
     precise float t3 = t2 ? t1.x : t1.y;
     precise float t4 = t2 ? t1.y : t1.x;
@@ -92,9 +93,9 @@ float2 unitpack_paraboloid_square24_square_point(float3 a0) {
     precise float big = t4 * 2097152.0;
     precise float ratio_estimate = floor(t4 / t5 * 2097152.0);
     precise float step_down = ratio_estimate * t5 > big ? -1.0 : 0.0;
-    precise float step = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
-    precise float r = ratio_estimate + step;
-    precise float3 k = float3(t3, round(r * r * 4.7683716e-7), a0.z);
+    precise float nudge = (ratio_estimate + 1.0) * t5 <= big ? 1.0 : step_down;
+    precise float r = ratio_estimate + nudge;
+    precise float3 k = float3(t3, round(r * r * 4.7683716e-7), u.z);
     precise float s = unitpack_paraboloid_square24_square_step(0.0, 2097152.0, k);
     precise float s2 = unitpack_paraboloid_square24_square_step(s, 1048576.0, k);
     precise float s3 = unitpack_paraboloid_square24_square_step(s2, 524288.0, k);
@@ -121,7 +122,7 @@ float2 unitpack_paraboloid_square24_square_point(float3 a0) {
     precise float2 t7 = float2(s22, t6);
     precise float2 t8 = float2(t6, s22);
     precise float2 t9 = t2 ? t7 : t8;
-    precise float2 result = UNITPACK_SELECT(a0.xy < float2(0.0, 0.0), -t9, t9);
+    precise float2 result = UNITPACK_SELECT(u.xy < float2(0.0, 0.0), -t9, t9);
     return result;
 }
 
@@ -140,7 +141,7 @@ float2 unitpack_paraboloid_square24_encode_float(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -161,7 +162,7 @@ float2 unitpack_paraboloid_square24_encode_float(float3 v) {
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -180,38 +181,38 @@ float2 unitpack_paraboloid_square24_encode_float(float3 v) {
     precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float3 t2 = floor(w4 / root * 2097152.0);
     precise float3 t3 = w4 * 2097152.0;
@@ -229,16 +230,16 @@ float2 unitpack_paraboloid_square24_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_paraboloid_square24_round_codes(float3 a0) {
+float2 unitpack_paraboloid_square24_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -259,7 +260,7 @@ float2 unitpack_paraboloid_square24_round_codes(float3 a0) {
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -278,38 +279,38 @@ float2 unitpack_paraboloid_square24_round_codes(float3 a0) {
     precise float fixed_f3 = floor(abs(w4.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float3 t2 = floor(w4 / root * 2097152.0);
     precise float3 t3 = w4 * 2097152.0;
@@ -335,7 +336,7 @@ uint unitpack_paraboloid_square24_encode(float3 v) {
     precise float2 round_codes = unitpack_paraboloid_square24_round_codes(v);
     precise float t1 = round_codes.x + 4096.0;
     precise float t2 = round_codes.y + 4096.0;
-    return (uint(t1) & 4095u) | ((uint(t2) << 12u) & 16773120u);
+    return (uint(t1) & 0xfffu) | ((uint(t2) << 12u) & 0xfff000u);
 }
 
 #endif // UNITPACK_PARABOLOID_SQUARE24_HLSL

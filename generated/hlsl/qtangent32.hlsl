@@ -30,6 +30,7 @@
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.08809° / 0.28436°, tangent 0.09362° / 0.30861°, bitangent
@@ -60,11 +61,11 @@ struct unitpack_qtangent32_tbn {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 unitpack_qtangent32_frame unitpack_qtangent32_decode(uint code) {
-    precise float t1 = float(code & 1023u);
+    precise float t1 = float(code & 0x3ffu);
     precise float t2 = t1 - 1024.0;
-    precise float t3 = float((code >> 10u) & 1023u);
+    precise float t3 = float((code >> 10u) & 0x3ffu);
     precise float t4 = t3 - 1024.0;
-    precise float t5 = float((code >> 20u) & 511u);
+    precise float t5 = float((code >> 20u) & 0x1ffu);
     precise float t6 = t5 - 512.0;
     precise float4 fields = float4(
         t1 > 511.0 ? t2 : t1,
@@ -105,11 +106,11 @@ unitpack_qtangent32_frame unitpack_qtangent32_decode(uint code) {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable within a bound (as the header says): as for unitpack_qtangent32_decode.
 unitpack_qtangent32_tbn unitpack_qtangent32_decode_tbn(uint code) {
-    precise float t1 = float(code & 1023u);
+    precise float t1 = float(code & 0x3ffu);
     precise float t2 = t1 - 1024.0;
-    precise float t3 = float((code >> 10u) & 1023u);
+    precise float t3 = float((code >> 10u) & 0x3ffu);
     precise float t4 = t3 - 1024.0;
-    precise float t5 = float((code >> 20u) & 511u);
+    precise float t5 = float((code >> 20u) & 0x1ffu);
     precise float t6 = t5 - 512.0;
     precise float4 fields = float4(
         t1 > 511.0 ? t2 : t1,
@@ -169,7 +170,7 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -184,52 +185,52 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float3 t1 = floor(abs(w2) * 2097152.0);
     uint3 t1_u = uint3(t1);
     uint limb1 = t1_u.x >> 12u;
-    uint limb0 = t1_u.x & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = t1_u.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = t1_u.y >> 12u;
-    uint limb0_2 = t1_u.y & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = t1_u.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = t1_u.z >> 12u;
-    uint limb0_3 = t1_u.z & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = t1_u.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float t2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(t2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
-    precise float length = (root_k * 4096.0 + root_j) * 4.7683716e-7;
-    precise float t3 = length * 2097152.0;
+    precise float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
+    precise float norm = (root_k * 4096.0 + root_j) * 4.7683716e-7;
+    precise float t3 = norm * 2097152.0;
     uint t3_u = uint(t3);
     uint wide = (hi4 << 24u) + lo4;
-    uint rest = wide - t3_u * t3_u + 1073741824u;
+    uint rest = wide - t3_u * t3_u + 0x40000000u;
     uint t4 = t3_u + 1u;
     uint t5 = t3_u - 1u;
-    uint t6 = rest < 1073741824u - t3_u + 1u ? t5 : t3_u;
-    uint n2 = 1073741824u + t3_u < rest ? t4 : t6;
-    uint rest2 = wide - n2 * n2 + 1073741824u;
+    uint t6 = rest < 0x40000000u - t3_u + 1u ? t5 : t3_u;
+    uint n2 = 0x40000000u + t3_u < rest ? t4 : t6;
+    uint rest2 = wide - n2 * n2 + 0x40000000u;
     uint t7 = n2 + 1u;
     uint t8 = n2 - 1u;
-    uint t9 = rest2 < 1073741824u - n2 + 1u ? t8 : n2;
-    uint n3 = 1073741824u + n2 < rest2 ? t7 : t9;
+    uint t9 = rest2 < 0x40000000u - n2 + 1u ? t8 : n2;
+    uint n3 = 0x40000000u + n2 < rest2 ? t7 : t9;
     precise float nf = float(n3);
     precise float t10 = round(float(t1_u.x) / nf * 16777216.0);
     uint k0 = uint(t10);
@@ -239,11 +240,11 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint t13 = t11 + n3 + t12;
     uint two_n = n3 << 1u;
     uint t14 = t13 >> 12u;
-    precise float t15 = (float(t14) * 4096.0 + float(t13 & 4095u)) / (nf * 2.0);
+    precise float t15 = (float(t14) * 4096.0 + float(t13 & 0xfffu)) / (nf * 2.0);
     precise float floor_t15 = floor(t15);
     uint q0 = uint(floor_t15);
     uint rest3 = t13 - q0 * two_n;
-    bool negative = !(rest3 < 2147483648u);
+    bool negative = !(rest3 < 0x80000000u);
     bool t16 = !negative;
     precise float t17 = round(float(t1_u.y) / nf * 16777216.0);
     uint k0_2 = uint(t17);
@@ -253,11 +254,11 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint t20 = t18 + n3 + t19;
     uint two_n2 = n3 << 1u;
     uint t21 = t20 >> 12u;
-    precise float t22 = (float(t21) * 4096.0 + float(t20 & 4095u)) / (nf * 2.0);
+    precise float t22 = (float(t21) * 4096.0 + float(t20 & 0xfffu)) / (nf * 2.0);
     precise float floor_t22 = floor(t22);
     uint q0_2 = uint(floor_t22);
     uint rest4 = t20 - q0_2 * two_n2;
-    bool negative2 = !(rest4 < 2147483648u);
+    bool negative2 = !(rest4 < 0x80000000u);
     bool t23 = !negative2;
     precise float t24 = round(float(t1_u.z) / nf * 16777216.0);
     uint k0_3 = uint(t24);
@@ -267,15 +268,17 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint t27 = t25 + n3 + t26;
     uint two_n3 = n3 << 1u;
     uint t28 = t27 >> 12u;
-    precise float t29 = (float(t28) * 4096.0 + float(t27 & 4095u)) / (nf * 2.0);
+    precise float t29 = (float(t28) * 4096.0 + float(t27 & 0xfffu)) / (nf * 2.0);
     precise float floor_t29 = floor(t29);
     uint q0_3 = uint(floor_t29);
     uint rest5 = t27 - q0_3 * two_n3;
-    bool negative3 = !(rest5 < 2147483648u);
+    bool negative3 = !(rest5 < 0x80000000u);
     bool t30 = !negative3;
     bool3 t31 = bool3(!(rest3 < two_n) && t16, !(rest4 < two_n2) && t23, !(rest5 < two_n3) && t30);
     precise float3 t32 = float3(uint3(t14, t21, t28)) * 4096.0
-        + float3((uint3(t11, t18, t25) + n3 + uint3(t12, t19, t26)) & uint3(4095u, 4095u, 4095u));
+        + float3(
+            (uint3(t11, t18, t25) + n3 + uint3(t12, t19, t26)) & uint3(0xfffu, 0xfffu, 0xfffu)
+        );
     precise float3 t33 = floor(t32 / (nf * float3(2.0, 2.0, 2.0)));
     uint3 t33_u = uint3(t33);
     precise float3 t34 = round(float3(t1_u) / nf * 16777216.0);
@@ -288,8 +291,8 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint3 t36 = t35 - 8u;
     precise float3 t37 = float3(
         UNITPACK_SELECT(
-            uint3(16777216u, 16777216u, 16777216u) < t36,
-            uint3(16777216u, 16777216u, 16777216u),
+            uint3(0x1000000u, 0x1000000u, 0x1000000u) < t36,
+            uint3(0x1000000u, 0x1000000u, 0x1000000u),
             t36
         )
     )
@@ -303,7 +306,7 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -332,7 +335,7 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float3 abs_normal3 = abs(normal3);
     precise float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     precise float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
-    precise float scale3 = asfloat(2139095040u - (asuint(largest3) & 2139095040u));
+    precise float scale3 = asfloat(0x7f800000u - (asuint(largest3) & 0x7f800000u));
     precise float3 scaled3 = normal3 * scale3;
     precise float3 abs_scaled3 = abs(scaled3);
     precise float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
@@ -347,52 +350,52 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float3 t45 = floor(abs(w5) * 2097152.0);
     uint3 t45_u = uint3(t45);
     uint limb1_4 = t45_u.x >> 12u;
-    uint limb0_4 = t45_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = t45_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = t45_u.y >> 12u;
-    uint limb0_5 = t45_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = t45_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = t45_u.z >> 12u;
-    uint limb0_6 = t45_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = t45_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     precise float t46 = (float(hi8) * 16777216.0 + float(lo8)) * 2.2737368e-13;
     precise float root_estimate2 = sqrt(t46);
     precise float root_k0_2 = floor(root_estimate2 * 512.0);
     precise float root_h0_2 = root_k0_2 * 0.001953125;
     precise float root_h1_2 = root_h0_2 + 0.001953125;
     precise float step_down3 = root_h0_2 * root_h0_2 > t46 ? -1.0 : 0.0;
-    precise float step3 = root_h1_2 * root_h1_2 <= t46 ? 1.0 : step_down3;
-    precise float root_k2 = root_k0_2 + step3;
+    precise float nudge3 = root_h1_2 * root_h1_2 <= t46 ? 1.0 : step_down3;
+    precise float root_k2 = root_k0_2 + nudge3;
     precise float root_h2 = root_k2 * 0.001953125;
     precise float root_rest2 = t46 - root_h2 * root_h2;
     precise float root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0);
     precise float root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7;
     precise float root_m1_2 = root_h2 + (root_j0_2 + 1.0) * 4.7683716e-7;
     precise float step_down4 = root_m0_2 * root_m0_2 > t46 ? -1.0 : 0.0;
-    precise float step4 = root_m1_2 * root_m1_2 <= t46 ? 1.0 : step_down4;
-    precise float root_j2 = root_j0_2 + step4;
-    precise float length2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
-    precise float t47 = length2 * 2097152.0;
+    precise float nudge4 = root_m1_2 * root_m1_2 <= t46 ? 1.0 : step_down4;
+    precise float root_j2 = root_j0_2 + nudge4;
+    precise float norm2 = (root_k2 * 4096.0 + root_j2) * 4.7683716e-7;
+    precise float t47 = norm2 * 2097152.0;
     uint t47_u = uint(t47);
     uint wide2 = (hi8 << 24u) + lo8;
-    uint rest6 = wide2 - t47_u * t47_u + 1073741824u;
+    uint rest6 = wide2 - t47_u * t47_u + 0x40000000u;
     uint t48 = t47_u + 1u;
     uint t49 = t47_u - 1u;
-    uint t50 = rest6 < 1073741824u - t47_u + 1u ? t49 : t47_u;
-    uint n5 = 1073741824u + t47_u < rest6 ? t48 : t50;
-    uint rest7 = wide2 - n5 * n5 + 1073741824u;
+    uint t50 = rest6 < 0x40000000u - t47_u + 1u ? t49 : t47_u;
+    uint n5 = 0x40000000u + t47_u < rest6 ? t48 : t50;
+    uint rest7 = wide2 - n5 * n5 + 0x40000000u;
     uint t51 = n5 + 1u;
     uint t52 = n5 - 1u;
-    uint t53 = rest7 < 1073741824u - n5 + 1u ? t52 : n5;
-    uint n6 = 1073741824u + n5 < rest7 ? t51 : t53;
+    uint t53 = rest7 < 0x40000000u - n5 + 1u ? t52 : n5;
+    uint n6 = 0x40000000u + n5 < rest7 ? t51 : t53;
     precise float nf2 = float(n6);
     precise float t54 = round(float(t45_u.x) / nf2 * 16777216.0);
     uint k0_4 = uint(t54);
@@ -402,11 +405,11 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint t57 = t55 + n6 + t56;
     uint two_n4 = n6 << 1u;
     uint t58 = t57 >> 12u;
-    precise float t59 = (float(t58) * 4096.0 + float(t57 & 4095u)) / (nf2 * 2.0);
+    precise float t59 = (float(t58) * 4096.0 + float(t57 & 0xfffu)) / (nf2 * 2.0);
     precise float floor_t59 = floor(t59);
     uint q0_4 = uint(floor_t59);
     uint rest8 = t57 - q0_4 * two_n4;
-    bool negative4 = !(rest8 < 2147483648u);
+    bool negative4 = !(rest8 < 0x80000000u);
     bool t60 = !negative4;
     precise float t61 = round(float(t45_u.y) / nf2 * 16777216.0);
     uint k0_5 = uint(t61);
@@ -416,11 +419,11 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint t64 = t62 + n6 + t63;
     uint two_n5 = n6 << 1u;
     uint t65 = t64 >> 12u;
-    precise float t66 = (float(t65) * 4096.0 + float(t64 & 4095u)) / (nf2 * 2.0);
+    precise float t66 = (float(t65) * 4096.0 + float(t64 & 0xfffu)) / (nf2 * 2.0);
     precise float floor_t66 = floor(t66);
     uint q0_5 = uint(floor_t66);
     uint rest9 = t64 - q0_5 * two_n5;
-    bool negative5 = !(rest9 < 2147483648u);
+    bool negative5 = !(rest9 < 0x80000000u);
     bool t67 = !negative5;
     precise float t68 = round(float(t45_u.z) / nf2 * 16777216.0);
     uint k0_6 = uint(t68);
@@ -430,11 +433,11 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint t71 = t69 + n6 + t70;
     uint two_n6 = n6 << 1u;
     uint t72 = t71 >> 12u;
-    precise float t73 = (float(t72) * 4096.0 + float(t71 & 4095u)) / (nf2 * 2.0);
+    precise float t73 = (float(t72) * 4096.0 + float(t71 & 0xfffu)) / (nf2 * 2.0);
     precise float floor_t73 = floor(t73);
     uint q0_6 = uint(floor_t73);
     uint rest10 = t71 - q0_6 * two_n6;
-    bool negative6 = !(rest10 < 2147483648u);
+    bool negative6 = !(rest10 < 0x80000000u);
     bool t74 = !negative6;
     bool3 t75 = bool3(
         !(rest8 < two_n4) && t60,
@@ -442,7 +445,9 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
         !(rest10 < two_n6) && t74
     );
     precise float3 t76 = float3(uint3(t58, t65, t72)) * 4096.0
-        + float3((uint3(t55, t62, t69) + n6 + uint3(t56, t63, t70)) & uint3(4095u, 4095u, 4095u));
+        + float3(
+            (uint3(t55, t62, t69) + n6 + uint3(t56, t63, t70)) & uint3(0xfffu, 0xfffu, 0xfffu)
+        );
     precise float3 t77 = floor(t76 / (nf2 * float3(2.0, 2.0, 2.0)));
     uint3 t77_u = uint3(t77);
     precise float3 t78 = round(float3(t45_u) / nf2 * 16777216.0);
@@ -455,8 +460,8 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     uint3 t80 = t79 - 8u;
     precise float3 t81 = float3(
         UNITPACK_SELECT(
-            uint3(16777216u, 16777216u, 16777216u) < t80,
-            uint3(16777216u, 16777216u, 16777216u),
+            uint3(0x1000000u, 0x1000000u, 0x1000000u) < t80,
+            uint3(0x1000000u, 0x1000000u, 0x1000000u),
             t80
         )
     )
@@ -504,8 +509,8 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float t101 = lower * lower * s;
     bool t102 = big2 < t101;
     precise float step_down5 = estimate > 0.0 && t102 ? -1.0 : 0.0;
-    precise float step5 = big2 >= upper * upper * s ? 1.0 : step_down5;
-    precise float t103 = estimate + step5;
+    precise float nudge5 = big2 >= upper * upper * s ? 1.0 : step_down5;
+    precise float t103 = estimate + nudge5;
     precise float t104 = t103 >= 0.0 ? t103 : 0.0;
     precise float t105 = t104 <= 511.0 ? t104 : 511.0;
     precise float neg_t105 = -t105;
@@ -517,8 +522,8 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float t106 = lower2 * lower2 * s;
     bool t107 = big2_2 < t106;
     precise float step_down6 = estimate2 > 0.0 && t107 ? -1.0 : 0.0;
-    precise float step6 = big2_2 >= upper2 * upper2 * s ? 1.0 : step_down6;
-    precise float t108 = estimate2 + step6;
+    precise float nudge6 = big2_2 >= upper2 * upper2 * s ? 1.0 : step_down6;
+    precise float t108 = estimate2 + nudge6;
     precise float t109 = t108 >= 0.0 ? t108 : 0.0;
     precise float t110 = t109 <= 511.0 ? t109 : 511.0;
     precise float neg_t110 = -t110;
@@ -530,8 +535,8 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     precise float t111 = lower3 * lower3 * s;
     bool t112 = big2_3 < t111;
     precise float step_down7 = estimate3 > 0.0 && t112 ? -1.0 : 0.0;
-    precise float step7 = big2_3 >= upper3 * upper3 * s ? 1.0 : step_down7;
-    precise float t113 = estimate3 + step7;
+    precise float nudge7 = big2_3 >= upper3 * upper3 * s ? 1.0 : step_down7;
+    precise float t113 = estimate3 + nudge7;
     precise float t114 = t113 >= 0.0 ? t113 : 0.0;
     precise float t115 = t114 <= 255.0 ? t114 : 255.0;
     precise float neg_t115 = -t115;
@@ -543,9 +548,9 @@ uint unitpack_qtangent32_encode(float3 n, float4 t) {
     );
     precise float t116 = codes.x + 1024.0;
     precise float t117 = codes.y + 1024.0;
-    uint t118 = (uint(t116) & 1023u) | ((uint(t117) << 10u) & 1047552u);
+    uint t118 = (uint(t116) & 0x3ffu) | ((uint(t117) << 10u) & 0xffc00u);
     precise float t119 = codes.z + 512.0;
-    return t118 | ((uint(t119) << 20u) & 535822336u) | (uint(codes.w) << 29u);
+    return t118 | ((uint(t119) << 20u) & 0x1ff00000u) | (uint(codes.w) << 29u);
 }
 
 #endif // UNITPACK_QTANGENT32_HLSL

@@ -30,6 +30,7 @@
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent
@@ -80,7 +81,7 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode_float(float4 q) {
 // Portable as unitpack_qtangent64_decode_float is, within the same bound.
 unitpack_qtangent64_frame unitpack_qtangent64_decode(uint2 code) {
     precise float4 t1 = float4(
-        uint4(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u)
+        uint4(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu, code.y >> 16u)
     );
     precise float4 t2 = UNITPACK_SELECT(
         t1 > float4(32767.0, 32767.0, 32767.0, 32767.0),
@@ -114,7 +115,7 @@ unitpack_qtangent64_frame unitpack_qtangent64_decode(uint2 code) {
 // Portable as unitpack_qtangent64_decode_float is, within the same bound.
 unitpack_qtangent64_tbn unitpack_qtangent64_decode_tbn(uint2 code) {
     precise float4 t1 = float4(
-        uint4(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u)
+        uint4(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu, code.y >> 16u)
     );
     precise float4 t2 = UNITPACK_SELECT(
         t1 > float4(32767.0, 32767.0, 32767.0, 32767.0),
@@ -221,9 +222,9 @@ float4 unitpack_qtangent64_encode_float(float3 n, float4 t) {
         * float4(t32, t32, t32, sqrt(t31));
     precise float4 q = trace > 0.0 ? t48 : t47;
     precise float4 q_sq = q * q;
-    precise float length = sqrt(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
-    bool t49 = !(length == 0.0);
-    precise float4 t50 = q / (t49 ? length : 1.0);
+    precise float norm = sqrt(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
+    bool t49 = !(norm == 0.0);
+    precise float4 t50 = q / (t49 ? norm : 1.0);
     precise float4 t51 = t49 ? t50 : float4(0.0, 0.0, 0.0, 1.0);
     precise float4 neg_t51 = -t51;
     precise float4 q2 = t51.w < 0.0 ? neg_t51 : t51;
@@ -272,7 +273,7 @@ uint2 unitpack_qtangent64_encode(float3 n, float4 t) {
     precise float t5 = codes.w + 65536.0;
     uint2 t6 = uint2(uint(t4) << 16u, uint(t5) << 16u);
     precise float2 t7 = codes.xz + 65536.0;
-    return (uint2(t7) & uint2(65535u, 65535u)) | t6;
+    return (uint2(t7) & uint2(0xffffu, 0xffffu)) | t6;
 }
 
 #endif // UNITPACK_QTANGENT64_HLSL

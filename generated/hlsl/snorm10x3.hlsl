@@ -29,6 +29,7 @@
 // ---- snorm10x3: components as snorm×3, 30 bits, sphere ----
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan
 //   2010).
+// Model: src/codecs/component/snorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.04230°, sample max 0.09354°; MSE of the components of
 //   n - n' 2.127e-7, PSNR 66.72 dB.
 #ifndef UNITPACK_SNORM10X3_HLSL
@@ -54,7 +55,9 @@ float3 unitpack_snorm10x3_decode_float(float3 params) {
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable as unitpack_snorm10x3_decode_float is, within the same bound.
 float3 unitpack_snorm10x3_decode(uint code) {
-    precise float3 t1 = float3(uint3(code, code >> 10u, code >> 20u) & uint3(1023u, 1023u, 1023u));
+    precise float3 t1 = float3(
+        uint3(code, code >> 10u, code >> 20u) & uint3(0x3ffu, 0x3ffu, 0x3ffu)
+    );
     precise float3 t2 = UNITPACK_SELECT(t1 > float3(511.0, 511.0, 511.0), t1 - 1024.0, t1)
         * 0.0019569471;
     precise float3 params = UNITPACK_SELECT(
@@ -87,16 +90,16 @@ float3 unitpack_snorm10x3_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_snorm10x3_round_codes(float3 a0) {
+float3 unitpack_snorm10x3_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -107,11 +110,11 @@ float3 unitpack_snorm10x3_round_codes(float3 a0) {
         float3(0.0, 0.0, 0.0),
         scaled
     );
-    precise float split_hi = asfloat(asuint(w.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w.x) & 0xfffff000u);
     precise float split_lo = w.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w.y) & 0xfffff000u);
     precise float split_lo2 = w.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w.z) & 0xfffff000u);
     precise float split_lo3 = w.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -169,9 +172,9 @@ uint unitpack_snorm10x3_encode(float3 v) {
     precise float3 round_codes = unitpack_snorm10x3_round_codes(v);
     precise float t1 = round_codes.x + 1024.0;
     precise float t2 = round_codes.y + 1024.0;
-    uint t3 = (uint(t1) & 1023u) | ((uint(t2) << 10u) & 1047552u);
+    uint t3 = (uint(t1) & 0x3ffu) | ((uint(t2) << 10u) & 0xffc00u);
     precise float t4 = round_codes.z + 1024.0;
-    return t3 | ((uint(t4) << 20u) & 1072693248u);
+    return t3 | ((uint(t4) << 20u) & 0x3ff00000u);
 }
 
 #endif // UNITPACK_SNORM10X3_HLSL

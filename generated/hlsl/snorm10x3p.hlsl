@@ -29,6 +29,7 @@
 // ---- snorm10x3p: components as snorm×3, 30 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan
 //   2010).
+// Model: src/codecs/component/snorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00608°, sample max 0.06060°; MSE of the components of
 //   n - n' 5.975e-9, PSNR 82.24 dB.
 #ifndef UNITPACK_SNORM10X3P_HLSL
@@ -54,7 +55,9 @@ float3 unitpack_snorm10x3p_decode_float(float3 params) {
 // Out: decode re-normalizes; the all-zero code decodes as +Z.
 // Portable as unitpack_snorm10x3p_decode_float is, within the same bound.
 float3 unitpack_snorm10x3p_decode(uint code) {
-    precise float3 t1 = float3(uint3(code, code >> 10u, code >> 20u) & uint3(1023u, 1023u, 1023u));
+    precise float3 t1 = float3(
+        uint3(code, code >> 10u, code >> 20u) & uint3(0x3ffu, 0x3ffu, 0x3ffu)
+    );
     precise float3 t2 = UNITPACK_SELECT(t1 > float3(511.0, 511.0, 511.0), t1 - 1024.0, t1)
         * 0.0019569471;
     precise float3 params = UNITPACK_SELECT(
@@ -67,26 +70,26 @@ float3 unitpack_snorm10x3p_decode(uint code) {
 
 // One scale of the Best Fit Normals search: the candidate code for scale `t`, kept if its
 //   fixed-point direction is strictly nearer the input's than the best so far.
-float2 unitpack_snorm10x3p_bfn_step(float2 a0, float a1, float3 a2, float3 a3) {
-    precise float3 c = round(a2 * 4.7683716e-7 * a1);
+float2 unitpack_snorm10x3p_bfn_step(float2 best, float t, float3 r, float3 aim) {
+    precise float3 c = round(r * 4.7683716e-7 * t);
     uint3 c_u = uint3(c);
     uint limb1 = c_u.x >> 12u;
-    uint limb0 = c_u.x & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = c_u.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = c_u.y >> 12u;
-    uint limb0_2 = c_u.y & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = c_u.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = c_u.z >> 12u;
-    uint limb0_3 = c_u.z & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = c_u.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float t1 = float(hi4) * 16777216.0 + float(lo4);
     uint half_exponent = ((asuint(t1) >> 23u) + 1u) >> 1u;
     precise float root_down = asfloat((257u - (half_exponent << 1u)) << 23u);
@@ -97,19 +100,19 @@ float2 unitpack_snorm10x3p_bfn_step(float2 a0, float a1, float3 a2, float3 a3) {
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > t2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= t2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = t2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > t2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= t2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float t3 = root * root_up;
-    precise float l = t3 >= a1 ? t3 : a1;
+    precise float l = t3 >= t ? t3 : t;
     precise float3 t4 = floor(c / l * 2097152.0);
     precise float3 t5 = c * 2097152.0;
     precise float3 t6 = UNITPACK_SELECT(
@@ -118,29 +121,29 @@ float2 unitpack_snorm10x3p_bfn_step(float2 a0, float a1, float3 a2, float3 a3) {
         UNITPACK_SELECT(t4 * l > t5, float3(-1.0, -1.0, -1.0), float3(0.0, 0.0, 0.0))
     );
     precise float3 d = t4 + t6;
-    precise float3 offset = d - abs(a3);
+    precise float3 offset = d - abs(aim);
     precise float3 abs_offset = abs(offset);
     uint3 offset_u = uint3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
-    uint limb0_4 = offset_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = offset_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = offset_u.y >> 12u;
-    uint limb0_5 = offset_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = offset_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = offset_u.z >> 12u;
-    uint limb0_6 = offset_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     precise float dist = float(hi8) * 16777216.0 + float(lo8);
-    precise float2 t7 = float2(a1, dist);
-    return dist < a0.y ? t7 : a0;
+    precise float2 t7 = float2(t, dist);
+    return dist < best.y ? t7 : best;
 }
 
 // Best Fit Normals: among the codes whose largest component is one of at most 64 of the scales
@@ -156,7 +159,7 @@ float3 unitpack_snorm10x3p_encode_codes(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -175,38 +178,38 @@ float3 unitpack_snorm10x3p_encode_codes(float3 v) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float3 t1 = floor(w2 / root * 2097152.0);
     precise float3 t2 = w2 * 2097152.0;
@@ -316,9 +319,9 @@ uint unitpack_snorm10x3p_encode(float3 v) {
     precise float3 encode_codes = unitpack_snorm10x3p_encode_codes(v);
     precise float t1 = encode_codes.x + 1024.0;
     precise float t2 = encode_codes.y + 1024.0;
-    uint t3 = (uint(t1) & 1023u) | ((uint(t2) << 10u) & 1047552u);
+    uint t3 = (uint(t1) & 0x3ffu) | ((uint(t2) << 10u) & 0xffc00u);
     precise float t4 = encode_codes.z + 1024.0;
-    return t3 | ((uint(t4) << 20u) & 1072693248u);
+    return t3 | ((uint(t4) << 20u) & 0x3ff00000u);
 }
 
 #endif // UNITPACK_SNORM10X3P_HLSL

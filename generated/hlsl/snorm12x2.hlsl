@@ -20,6 +20,7 @@
 
 // ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms, 24 bits ----
 // Source: Cigolle et al. 2014 §3.3, Listings 4–5.
+// Model: src/codecs/component/snorm12x2.rs in unitpack's sources.
 #ifndef UNITPACK_SNORM12X2_HLSL
 #define UNITPACK_SNORM12X2_HLSL
 

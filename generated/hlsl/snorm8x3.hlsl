@@ -29,6 +29,7 @@
 // ---- snorm8x3: components as snorm×3, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan
 //   2010).
+// Model: src/codecs/component/snorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.17039°, sample max 0.38080°; MSE of the components of
 //   n - n' 3.454e-6, PSNR 54.62 dB.
 #ifndef UNITPACK_SNORM8X3_HLSL
@@ -87,16 +88,16 @@ float3 unitpack_snorm8x3_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_snorm8x3_round_codes(float3 a0) {
+float3 unitpack_snorm8x3_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -107,11 +108,11 @@ float3 unitpack_snorm8x3_round_codes(float3 a0) {
         float3(0.0, 0.0, 0.0),
         scaled
     );
-    precise float split_hi = asfloat(asuint(w.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w.x) & 0xfffff000u);
     precise float split_lo = w.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w.y) & 0xfffff000u);
     precise float split_lo2 = w.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w.z) & 0xfffff000u);
     precise float split_lo3 = w.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -169,9 +170,9 @@ uint unitpack_snorm8x3_encode(float3 v) {
     precise float3 round_codes = unitpack_snorm8x3_round_codes(v);
     precise float t1 = round_codes.x + 256.0;
     precise float t2 = round_codes.y + 256.0;
-    uint t3 = (uint(t1) & 255u) | ((uint(t2) << 8u) & 65280u);
+    uint t3 = (uint(t1) & 255u) | ((uint(t2) << 8u) & 0xff00u);
     precise float t4 = round_codes.z + 256.0;
-    return t3 | ((uint(t4) << 16u) & 16711680u);
+    return t3 | ((uint(t4) << 16u) & 0xff0000u);
 }
 
 #endif // UNITPACK_SNORM8X3_HLSL

@@ -29,6 +29,7 @@
 // ---- spheremap16:decoder=optimized: spheremap transform, unorm×2 (Lambert's codes, the seed's
 //   decoders), 16 bits, sphere ----
 // Source: Pranckevičius, Compact Normal Storage, method 4.
+// Model: src/codecs/azimuthal/spheremap.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.49284°, sample max 11.36750°; MSE of the components
 //   of n - n' 5.306e-5, PSNR 42.75 dB.
 #ifndef UNITPACK_SPHEREMAP16_OPTIMIZED_HLSL
@@ -74,7 +75,7 @@ float2 unitpack_spheremap16_optimized_encode_float(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -93,38 +94,38 @@ float2 unitpack_spheremap16_optimized_encode_float(float3 v) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     bool t1 = w2.z >= 0.0;
     precise float t2 = root + w2.z;
@@ -133,17 +134,17 @@ float2 unitpack_spheremap16_optimized_encode_float(float3 v) {
     precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
     uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
-    uint limb0_4 = fixed5 & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = fixed5 & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = fixed6 >> 12u;
-    uint limb0_5 = fixed6 & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = fixed6 & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint hi7 = hi6 + (lo6 >> 24u);
-    uint lo7 = lo6 & 16777215u;
+    uint lo7 = lo6 & 0xffffffu;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
     precise float opz_a = t1 ? t2 : rho2;
     precise float t3 = root - w2.z;
@@ -157,16 +158,16 @@ float2 unitpack_spheremap16_optimized_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_spheremap16_optimized_round_codes(float3 a0) {
+float2 unitpack_spheremap16_optimized_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -185,38 +186,38 @@ float2 unitpack_spheremap16_optimized_round_codes(float3 a0) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     bool t1 = w2.z >= 0.0;
     precise float t2 = root + w2.z;
@@ -225,17 +226,17 @@ float2 unitpack_spheremap16_optimized_round_codes(float3 a0) {
     precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
     uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
-    uint limb0_4 = fixed5 & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = fixed5 & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = fixed6 >> 12u;
-    uint limb0_5 = fixed6 & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = fixed6 & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint hi7 = hi6 + (lo6 >> 24u);
-    uint lo7 = lo6 & 16777215u;
+    uint lo7 = lo6 & 0xffffffu;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
     precise float opz_a = t1 ? t2 : rho2;
     precise float t3 = root - w2.z;

@@ -29,6 +29,7 @@
 // ---- spherical_lut16: azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16
 //   bits, sphere ----
 // Source: Pranckevičius method 3a.
+// Model: src/codecs/table/spherical_lut.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.83458°, sample max 6.74335°; MSE of the components of
 //   n - n' 9.521e-5, PSNR 40.21 dB.
 #ifndef UNITPACK_SPHERICAL_LUT16_HLSL
@@ -69,7 +70,7 @@ uint2 unitpack_spherical_lut16_atan_texel(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -81,11 +82,11 @@ uint2 unitpack_spherical_lut16_atan_texel(float3 v) {
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w2.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w2.x) & 0xfffff000u);
     precise float split_lo = w2.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w2.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w2.y) & 0xfffff000u);
     precise float split_lo2 = w2.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w2.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w2.z) & 0xfffff000u);
     precise float split_lo3 = w2.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -174,7 +175,7 @@ uint unitpack_spherical_lut16_encode(float3 v, float fetched) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -186,11 +187,11 @@ uint unitpack_spherical_lut16_encode(float3 v, float fetched) {
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w2.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w2.x) & 0xfffff000u);
     precise float split_lo = w2.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w2.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w2.y) & 0xfffff000u);
     precise float split_lo2 = w2.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w2.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w2.z) & 0xfffff000u);
     precise float split_lo3 = w2.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2

@@ -29,6 +29,7 @@
 // ---- spherical_lut16p: azimuth and z through an atan2 and a sin/cos lookup texture (256×256), 16
 //   bits, sphere, precise encoder ----
 // Source: Pranckevičius method 3a.
+// Model: src/codecs/table/spherical_lut.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.37352°, sample max 6.65113°; MSE of the components of
 //   n - n' 2.196e-5, PSNR 46.58 dB.
 #ifndef UNITPACK_SPHERICAL_LUT16P_HLSL
@@ -69,7 +70,7 @@ uint2 unitpack_spherical_lut16p_atan_texel(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -81,11 +82,11 @@ uint2 unitpack_spherical_lut16p_atan_texel(float3 v) {
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w2.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w2.x) & 0xfffff000u);
     precise float split_lo = w2.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w2.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w2.y) & 0xfffff000u);
     precise float split_lo2 = w2.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w2.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w2.z) & 0xfffff000u);
     precise float split_lo3 = w2.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -151,7 +152,7 @@ uint unitpack_spherical_lut16p_encode_fast(float3 v, float fetched) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -163,11 +164,11 @@ uint unitpack_spherical_lut16p_encode_fast(float3 v, float fetched) {
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w2.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w2.x) & 0xfffff000u);
     precise float split_lo = w2.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w2.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w2.y) & 0xfffff000u);
     precise float split_lo2 = w2.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w2.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w2.z) & 0xfffff000u);
     precise float split_lo3 = w2.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -215,7 +216,7 @@ uint2 unitpack_spherical_lut16p_precise_texel(uint code, uint k) {
     uint t3 = t1 < 3u ? 0u : t2;
     uint t4 = ((code >> 8u) & 255u) + t3;
     uint t5 = (t4 < 1u ? 1u : t4) - 1u;
-    return uint2(((code & 255u) + (t1 - t3 * 3u) + 255u) & 255u, t5 < 256u ? t5 : 255u);
+    return uint2(((code & 255u) + (t1 - t3 * 3u) + 255u) & 255u, t5 < 0x100u ? t5 : 255u);
 }
 
 // unitpack_spherical_lut16p_encode: precise encoder.
@@ -249,7 +250,7 @@ uint unitpack_spherical_lut16p_encode(
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -264,70 +265,66 @@ uint unitpack_spherical_lut16p_encode(
     precise float3 t1 = floor(abs(w2) * 4096.0);
     uint3 t1_u = uint3(t1);
     uint3 afix = UNITPACK_SELECT(w2 < float3(0.0, 0.0, 0.0), 0u - t1_u, t1_u);
-    uint t2 = code & 65535u;
+    uint t2 = code & 0xffffu;
     precise float3 t3 = UNITPACK_SELECT(s4 >= float3(0.0, 0.0, 0.0), s4, float3(0.0, 0.0, 0.0));
     precise float3 t4 = round(
         UNITPACK_SELECT(t3 <= float3(1.0, 1.0, 1.0), t3, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t4_u = uint3(t4);
     uint3 t5 = t4_u + t4_u - 255u;
-    uint3 cross = afix.yzx * t5.zxy - afix.zxy * t5.yzx;
-    uint3 t6 = UNITPACK_SELECT(
-        cross < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross,
-        0u - cross
-    );
+    uint3 axd = afix.yzx * t5.zxy - afix.zxy * t5.yzx;
+    uint3 t6 = UNITPACK_SELECT(axd < uint3(0x80000000u, 0x80000000u, 0x80000000u), axd, 0u - axd);
     uint limb1 = t6.x >> 12u;
-    uint limb0 = t6.x & 4095u;
-    uint cross2 = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross2 >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross2 << 13u) & 16777215u);
+    uint limb0 = t6.x & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = t6.y >> 12u;
-    uint limb0_2 = t6.y & 4095u;
-    uint cross3 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross3 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross3 << 13u) & 16777215u);
+    uint limb0_2 = t6.y & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = t6.z >> 12u;
-    uint limb0_3 = t6.z & 4095u;
-    uint cross4 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross4 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross4 << 13u) & 16777215u);
+    uint limb0_3 = t6.z & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float e = float(hi4) * 16777216.0 + float(lo4);
     precise float n = float(t5.x * t5.x + t5.y * t5.y + t5.z * t5.z);
     uint t7 = ((code >> 8u) & 255u) + 0u;
     uint t8 = (t7 < 1u ? 1u : t7) - 1u;
-    uint t9 = (((code & 255u) + 0u + 255u) & 255u) | ((t8 < 256u ? t8 : 255u) << 8u);
+    uint t9 = (((code & 255u) + 0u + 255u) & 255u) | ((t8 < 0x100u ? t8 : 255u) << 8u);
     precise float3 t10 = UNITPACK_SELECT(s0 >= float3(0.0, 0.0, 0.0), s0, float3(0.0, 0.0, 0.0));
     precise float3 t11 = round(
         UNITPACK_SELECT(t10 <= float3(1.0, 1.0, 1.0), t10, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t11_u = uint3(t11);
     uint3 t12 = t11_u + t11_u - 255u;
-    uint3 cross5 = afix.yzx * t12.zxy - afix.zxy * t12.yzx;
+    uint3 axd2 = afix.yzx * t12.zxy - afix.zxy * t12.yzx;
     uint3 t13 = UNITPACK_SELECT(
-        cross5 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross5,
-        0u - cross5
+        axd2 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd2,
+        0u - axd2
     );
     uint limb1_4 = t13.x >> 12u;
-    uint limb0_4 = t13.x & 4095u;
-    uint cross6 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
+    uint limb0_4 = t13.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = t13.y >> 12u;
-    uint limb0_5 = t13.y & 4095u;
-    uint cross7 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
+    uint limb0_5 = t13.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = t13.z >> 12u;
-    uint limb0_6 = t13.z & 4095u;
-    uint cross8 = limb1_6 * limb0_6;
-    uint hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
-    uint lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
+    uint limb0_6 = t13.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi8 = hi7 + (lo7 >> 24u);
-    uint lo8 = lo7 & 16777215u;
+    uint lo8 = lo7 & 0xffffffu;
     precise float e2 = float(hi8) * 16777216.0 + float(lo8);
     precise float n2 = float(t12.x * t12.x + t12.y * t12.y + t12.z * t12.z);
     precise float t14 = e2 * n;
@@ -338,36 +335,36 @@ uint unitpack_spherical_lut16p_encode(
     precise float best_n = t16 ? n2 : n;
     uint t17 = ((code >> 8u) & 255u) + 0u;
     uint t18 = (t17 < 1u ? 1u : t17) - 1u;
-    uint t19 = (((code & 255u) + 1u + 255u) & 255u) | ((t18 < 256u ? t18 : 255u) << 8u);
+    uint t19 = (((code & 255u) + 1u + 255u) & 255u) | ((t18 < 0x100u ? t18 : 255u) << 8u);
     precise float3 t20 = UNITPACK_SELECT(s1 >= float3(0.0, 0.0, 0.0), s1, float3(0.0, 0.0, 0.0));
     precise float3 t21 = round(
         UNITPACK_SELECT(t20 <= float3(1.0, 1.0, 1.0), t20, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t21_u = uint3(t21);
     uint3 t22 = t21_u + t21_u - 255u;
-    uint3 cross9 = afix.yzx * t22.zxy - afix.zxy * t22.yzx;
+    uint3 axd3 = afix.yzx * t22.zxy - afix.zxy * t22.yzx;
     uint3 t23 = UNITPACK_SELECT(
-        cross9 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross9,
-        0u - cross9
+        axd3 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd3,
+        0u - axd3
     );
     uint limb1_7 = t23.x >> 12u;
-    uint limb0_7 = t23.x & 4095u;
-    uint cross10 = limb1_7 * limb0_7;
-    uint hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
-    uint lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
+    uint limb0_7 = t23.x & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = t23.y >> 12u;
-    uint limb0_8 = t23.y & 4095u;
-    uint cross11 = limb1_8 * limb0_8;
-    uint hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
-    uint lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
+    uint limb0_8 = t23.y & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint limb1_9 = t23.z >> 12u;
-    uint limb0_9 = t23.z & 4095u;
-    uint cross12 = limb1_9 * limb0_9;
-    uint hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
-    uint lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
+    uint limb0_9 = t23.z & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint hi12 = hi11 + (lo11 >> 24u);
-    uint lo12 = lo11 & 16777215u;
+    uint lo12 = lo11 & 0xffffffu;
     precise float e3 = float(hi12) * 16777216.0 + float(lo12);
     precise float n3 = float(t22.x * t22.x + t22.y * t22.y + t22.z * t22.z);
     precise float t24 = e3 * best_n;
@@ -378,36 +375,36 @@ uint unitpack_spherical_lut16p_encode(
     precise float best_n2 = t26 ? n3 : best_n;
     uint t27 = ((code >> 8u) & 255u) + 0u;
     uint t28 = (t27 < 1u ? 1u : t27) - 1u;
-    uint t29 = (((code & 255u) + 2u + 255u) & 255u) | ((t28 < 256u ? t28 : 255u) << 8u);
+    uint t29 = (((code & 255u) + 2u + 255u) & 255u) | ((t28 < 0x100u ? t28 : 255u) << 8u);
     precise float3 t30 = UNITPACK_SELECT(s2 >= float3(0.0, 0.0, 0.0), s2, float3(0.0, 0.0, 0.0));
     precise float3 t31 = round(
         UNITPACK_SELECT(t30 <= float3(1.0, 1.0, 1.0), t30, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t31_u = uint3(t31);
     uint3 t32 = t31_u + t31_u - 255u;
-    uint3 cross13 = afix.yzx * t32.zxy - afix.zxy * t32.yzx;
+    uint3 axd4 = afix.yzx * t32.zxy - afix.zxy * t32.yzx;
     uint3 t33 = UNITPACK_SELECT(
-        cross13 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross13,
-        0u - cross13
+        axd4 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd4,
+        0u - axd4
     );
     uint limb1_10 = t33.x >> 12u;
-    uint limb0_10 = t33.x & 4095u;
-    uint cross14 = limb1_10 * limb0_10;
-    uint hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
-    uint lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
+    uint limb0_10 = t33.x & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = t33.y >> 12u;
-    uint limb0_11 = t33.y & 4095u;
-    uint cross15 = limb1_11 * limb0_11;
-    uint hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
-    uint lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
+    uint limb0_11 = t33.y & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint limb1_12 = t33.z >> 12u;
-    uint limb0_12 = t33.z & 4095u;
-    uint cross16 = limb1_12 * limb0_12;
-    uint hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
-    uint lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
+    uint limb0_12 = t33.z & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint hi16 = hi15 + (lo15 >> 24u);
-    uint lo16 = lo15 & 16777215u;
+    uint lo16 = lo15 & 0xffffffu;
     precise float e4 = float(hi16) * 16777216.0 + float(lo16);
     precise float n4 = float(t32.x * t32.x + t32.y * t32.y + t32.z * t32.z);
     precise float t34 = e4 * best_n2;
@@ -418,36 +415,36 @@ uint unitpack_spherical_lut16p_encode(
     precise float best_n3 = t36 ? n4 : best_n2;
     uint t37 = ((code >> 8u) & 255u) + 1u;
     uint t38 = (t37 < 1u ? 1u : t37) - 1u;
-    uint t39 = (((code & 255u) + 0u + 255u) & 255u) | ((t38 < 256u ? t38 : 255u) << 8u);
+    uint t39 = (((code & 255u) + 0u + 255u) & 255u) | ((t38 < 0x100u ? t38 : 255u) << 8u);
     precise float3 t40 = UNITPACK_SELECT(s3 >= float3(0.0, 0.0, 0.0), s3, float3(0.0, 0.0, 0.0));
     precise float3 t41 = round(
         UNITPACK_SELECT(t40 <= float3(1.0, 1.0, 1.0), t40, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t41_u = uint3(t41);
     uint3 t42 = t41_u + t41_u - 255u;
-    uint3 cross17 = afix.yzx * t42.zxy - afix.zxy * t42.yzx;
+    uint3 axd5 = afix.yzx * t42.zxy - afix.zxy * t42.yzx;
     uint3 t43 = UNITPACK_SELECT(
-        cross17 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross17,
-        0u - cross17
+        axd5 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd5,
+        0u - axd5
     );
     uint limb1_13 = t43.x >> 12u;
-    uint limb0_13 = t43.x & 4095u;
-    uint cross18 = limb1_13 * limb0_13;
-    uint hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
-    uint lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
+    uint limb0_13 = t43.x & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = t43.y >> 12u;
-    uint limb0_14 = t43.y & 4095u;
-    uint cross19 = limb1_14 * limb0_14;
-    uint hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
-    uint lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
+    uint limb0_14 = t43.y & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint limb1_15 = t43.z >> 12u;
-    uint limb0_15 = t43.z & 4095u;
-    uint cross20 = limb1_15 * limb0_15;
-    uint hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
-    uint lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
+    uint limb0_15 = t43.z & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint hi20 = hi19 + (lo19 >> 24u);
-    uint lo20 = lo19 & 16777215u;
+    uint lo20 = lo19 & 0xffffffu;
     precise float e5 = float(hi20) * 16777216.0 + float(lo20);
     precise float n5 = float(t42.x * t42.x + t42.y * t42.y + t42.z * t42.z);
     precise float t44 = e5 * best_n3;
@@ -458,36 +455,36 @@ uint unitpack_spherical_lut16p_encode(
     precise float best_n4 = t46 ? n5 : best_n3;
     uint t47 = ((code >> 8u) & 255u) + 1u;
     uint t48 = (t47 < 1u ? 1u : t47) - 1u;
-    uint t49 = (((code & 255u) + 2u + 255u) & 255u) | ((t48 < 256u ? t48 : 255u) << 8u);
+    uint t49 = (((code & 255u) + 2u + 255u) & 255u) | ((t48 < 0x100u ? t48 : 255u) << 8u);
     precise float3 t50 = UNITPACK_SELECT(s5 >= float3(0.0, 0.0, 0.0), s5, float3(0.0, 0.0, 0.0));
     precise float3 t51 = round(
         UNITPACK_SELECT(t50 <= float3(1.0, 1.0, 1.0), t50, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t51_u = uint3(t51);
     uint3 t52 = t51_u + t51_u - 255u;
-    uint3 cross21 = afix.yzx * t52.zxy - afix.zxy * t52.yzx;
+    uint3 axd6 = afix.yzx * t52.zxy - afix.zxy * t52.yzx;
     uint3 t53 = UNITPACK_SELECT(
-        cross21 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross21,
-        0u - cross21
+        axd6 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd6,
+        0u - axd6
     );
     uint limb1_16 = t53.x >> 12u;
-    uint limb0_16 = t53.x & 4095u;
-    uint cross22 = limb1_16 * limb0_16;
-    uint hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
-    uint lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
+    uint limb0_16 = t53.x & 0xfffu;
+    uint limb_cross16 = limb1_16 * limb0_16;
+    uint hi21 = 0u + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    uint lo21 = 0u + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     uint limb1_17 = t53.y >> 12u;
-    uint limb0_17 = t53.y & 4095u;
-    uint cross23 = limb1_17 * limb0_17;
-    uint hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
-    uint lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
+    uint limb0_17 = t53.y & 0xfffu;
+    uint limb_cross17 = limb1_17 * limb0_17;
+    uint hi22 = hi21 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    uint lo22 = lo21 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     uint limb1_18 = t53.z >> 12u;
-    uint limb0_18 = t53.z & 4095u;
-    uint cross24 = limb1_18 * limb0_18;
-    uint hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
-    uint lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
+    uint limb0_18 = t53.z & 0xfffu;
+    uint limb_cross18 = limb1_18 * limb0_18;
+    uint hi23 = hi22 + limb1_18 * limb1_18 + (limb_cross18 >> 11u);
+    uint lo23 = lo22 + limb0_18 * limb0_18 + ((limb_cross18 << 13u) & 0xffffffu);
     uint hi24 = hi23 + (lo23 >> 24u);
-    uint lo24 = lo23 & 16777215u;
+    uint lo24 = lo23 & 0xffffffu;
     precise float e6 = float(hi24) * 16777216.0 + float(lo24);
     precise float n6 = float(t52.x * t52.x + t52.y * t52.y + t52.z * t52.z);
     precise float t54 = e6 * best_n4;
@@ -498,36 +495,36 @@ uint unitpack_spherical_lut16p_encode(
     precise float best_n5 = t56 ? n6 : best_n4;
     uint t57 = ((code >> 8u) & 255u) + 2u;
     uint t58 = (t57 < 1u ? 1u : t57) - 1u;
-    uint t59 = (((code & 255u) + 0u + 255u) & 255u) | ((t58 < 256u ? t58 : 255u) << 8u);
+    uint t59 = (((code & 255u) + 0u + 255u) & 255u) | ((t58 < 0x100u ? t58 : 255u) << 8u);
     precise float3 t60 = UNITPACK_SELECT(s6 >= float3(0.0, 0.0, 0.0), s6, float3(0.0, 0.0, 0.0));
     precise float3 t61 = round(
         UNITPACK_SELECT(t60 <= float3(1.0, 1.0, 1.0), t60, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t61_u = uint3(t61);
     uint3 t62 = t61_u + t61_u - 255u;
-    uint3 cross25 = afix.yzx * t62.zxy - afix.zxy * t62.yzx;
+    uint3 axd7 = afix.yzx * t62.zxy - afix.zxy * t62.yzx;
     uint3 t63 = UNITPACK_SELECT(
-        cross25 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross25,
-        0u - cross25
+        axd7 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd7,
+        0u - axd7
     );
     uint limb1_19 = t63.x >> 12u;
-    uint limb0_19 = t63.x & 4095u;
-    uint cross26 = limb1_19 * limb0_19;
-    uint hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
-    uint lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
+    uint limb0_19 = t63.x & 0xfffu;
+    uint limb_cross19 = limb1_19 * limb0_19;
+    uint hi25 = 0u + limb1_19 * limb1_19 + (limb_cross19 >> 11u);
+    uint lo25 = 0u + limb0_19 * limb0_19 + ((limb_cross19 << 13u) & 0xffffffu);
     uint limb1_20 = t63.y >> 12u;
-    uint limb0_20 = t63.y & 4095u;
-    uint cross27 = limb1_20 * limb0_20;
-    uint hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
-    uint lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
+    uint limb0_20 = t63.y & 0xfffu;
+    uint limb_cross20 = limb1_20 * limb0_20;
+    uint hi26 = hi25 + limb1_20 * limb1_20 + (limb_cross20 >> 11u);
+    uint lo26 = lo25 + limb0_20 * limb0_20 + ((limb_cross20 << 13u) & 0xffffffu);
     uint limb1_21 = t63.z >> 12u;
-    uint limb0_21 = t63.z & 4095u;
-    uint cross28 = limb1_21 * limb0_21;
-    uint hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
-    uint lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
+    uint limb0_21 = t63.z & 0xfffu;
+    uint limb_cross21 = limb1_21 * limb0_21;
+    uint hi27 = hi26 + limb1_21 * limb1_21 + (limb_cross21 >> 11u);
+    uint lo27 = lo26 + limb0_21 * limb0_21 + ((limb_cross21 << 13u) & 0xffffffu);
     uint hi28 = hi27 + (lo27 >> 24u);
-    uint lo28 = lo27 & 16777215u;
+    uint lo28 = lo27 & 0xffffffu;
     precise float e7 = float(hi28) * 16777216.0 + float(lo28);
     precise float n7 = float(t62.x * t62.x + t62.y * t62.y + t62.z * t62.z);
     precise float t64 = e7 * best_n5;
@@ -538,36 +535,36 @@ uint unitpack_spherical_lut16p_encode(
     precise float best_n6 = t66 ? n7 : best_n5;
     uint t67 = ((code >> 8u) & 255u) + 2u;
     uint t68 = (t67 < 1u ? 1u : t67) - 1u;
-    uint t69 = (((code & 255u) + 1u + 255u) & 255u) | ((t68 < 256u ? t68 : 255u) << 8u);
+    uint t69 = (((code & 255u) + 1u + 255u) & 255u) | ((t68 < 0x100u ? t68 : 255u) << 8u);
     precise float3 t70 = UNITPACK_SELECT(s7 >= float3(0.0, 0.0, 0.0), s7, float3(0.0, 0.0, 0.0));
     precise float3 t71 = round(
         UNITPACK_SELECT(t70 <= float3(1.0, 1.0, 1.0), t70, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t71_u = uint3(t71);
     uint3 t72 = t71_u + t71_u - 255u;
-    uint3 cross29 = afix.yzx * t72.zxy - afix.zxy * t72.yzx;
+    uint3 axd8 = afix.yzx * t72.zxy - afix.zxy * t72.yzx;
     uint3 t73 = UNITPACK_SELECT(
-        cross29 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross29,
-        0u - cross29
+        axd8 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd8,
+        0u - axd8
     );
     uint limb1_22 = t73.x >> 12u;
-    uint limb0_22 = t73.x & 4095u;
-    uint cross30 = limb1_22 * limb0_22;
-    uint hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
-    uint lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
+    uint limb0_22 = t73.x & 0xfffu;
+    uint limb_cross22 = limb1_22 * limb0_22;
+    uint hi29 = 0u + limb1_22 * limb1_22 + (limb_cross22 >> 11u);
+    uint lo29 = 0u + limb0_22 * limb0_22 + ((limb_cross22 << 13u) & 0xffffffu);
     uint limb1_23 = t73.y >> 12u;
-    uint limb0_23 = t73.y & 4095u;
-    uint cross31 = limb1_23 * limb0_23;
-    uint hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
-    uint lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
+    uint limb0_23 = t73.y & 0xfffu;
+    uint limb_cross23 = limb1_23 * limb0_23;
+    uint hi30 = hi29 + limb1_23 * limb1_23 + (limb_cross23 >> 11u);
+    uint lo30 = lo29 + limb0_23 * limb0_23 + ((limb_cross23 << 13u) & 0xffffffu);
     uint limb1_24 = t73.z >> 12u;
-    uint limb0_24 = t73.z & 4095u;
-    uint cross32 = limb1_24 * limb0_24;
-    uint hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
-    uint lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
+    uint limb0_24 = t73.z & 0xfffu;
+    uint limb_cross24 = limb1_24 * limb0_24;
+    uint hi31 = hi30 + limb1_24 * limb1_24 + (limb_cross24 >> 11u);
+    uint lo31 = lo30 + limb0_24 * limb0_24 + ((limb_cross24 << 13u) & 0xffffffu);
     uint hi32 = hi31 + (lo31 >> 24u);
-    uint lo32 = lo31 & 16777215u;
+    uint lo32 = lo31 & 0xffffffu;
     precise float e8 = float(hi32) * 16777216.0 + float(lo32);
     precise float n8 = float(t72.x * t72.x + t72.y * t72.y + t72.z * t72.z);
     precise float t74 = e8 * best_n6;
@@ -578,36 +575,36 @@ uint unitpack_spherical_lut16p_encode(
     precise float best_n7 = t76 ? n8 : best_n6;
     uint t77 = ((code >> 8u) & 255u) + 2u;
     uint t78 = (t77 < 1u ? 1u : t77) - 1u;
-    uint t79 = (((code & 255u) + 2u + 255u) & 255u) | ((t78 < 256u ? t78 : 255u) << 8u);
+    uint t79 = (((code & 255u) + 2u + 255u) & 255u) | ((t78 < 0x100u ? t78 : 255u) << 8u);
     precise float3 t80 = UNITPACK_SELECT(s8 >= float3(0.0, 0.0, 0.0), s8, float3(0.0, 0.0, 0.0));
     precise float3 t81 = round(
         UNITPACK_SELECT(t80 <= float3(1.0, 1.0, 1.0), t80, float3(1.0, 1.0, 1.0)) * 255.0
     );
     uint3 t81_u = uint3(t81);
     uint3 t82 = t81_u + t81_u - 255u;
-    uint3 cross33 = afix.yzx * t82.zxy - afix.zxy * t82.yzx;
+    uint3 axd9 = afix.yzx * t82.zxy - afix.zxy * t82.yzx;
     uint3 t83 = UNITPACK_SELECT(
-        cross33 < uint3(2147483648u, 2147483648u, 2147483648u),
-        cross33,
-        0u - cross33
+        axd9 < uint3(0x80000000u, 0x80000000u, 0x80000000u),
+        axd9,
+        0u - axd9
     );
     uint limb1_25 = t83.x >> 12u;
-    uint limb0_25 = t83.x & 4095u;
-    uint cross34 = limb1_25 * limb0_25;
-    uint hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
-    uint lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
+    uint limb0_25 = t83.x & 0xfffu;
+    uint limb_cross25 = limb1_25 * limb0_25;
+    uint hi33 = 0u + limb1_25 * limb1_25 + (limb_cross25 >> 11u);
+    uint lo33 = 0u + limb0_25 * limb0_25 + ((limb_cross25 << 13u) & 0xffffffu);
     uint limb1_26 = t83.y >> 12u;
-    uint limb0_26 = t83.y & 4095u;
-    uint cross35 = limb1_26 * limb0_26;
-    uint hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
-    uint lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
+    uint limb0_26 = t83.y & 0xfffu;
+    uint limb_cross26 = limb1_26 * limb0_26;
+    uint hi34 = hi33 + limb1_26 * limb1_26 + (limb_cross26 >> 11u);
+    uint lo34 = lo33 + limb0_26 * limb0_26 + ((limb_cross26 << 13u) & 0xffffffu);
     uint limb1_27 = t83.z >> 12u;
-    uint limb0_27 = t83.z & 4095u;
-    uint cross36 = limb1_27 * limb0_27;
-    uint hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
-    uint lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
+    uint limb0_27 = t83.z & 0xfffu;
+    uint limb_cross27 = limb1_27 * limb0_27;
+    uint hi35 = hi34 + limb1_27 * limb1_27 + (limb_cross27 >> 11u);
+    uint lo35 = lo34 + limb0_27 * limb0_27 + ((limb_cross27 << 13u) & 0xffffffu);
     uint hi36 = hi35 + (lo35 >> 24u);
-    uint lo36 = lo35 & 16777215u;
+    uint lo36 = lo35 & 0xffffffu;
     precise float e9 = float(hi36) * 16777216.0 + float(lo36);
     precise float n9 = float(t82.x * t82.x + t82.y * t82.y + t82.z * t82.z);
     precise float t84 = e9 * best_n7;

@@ -28,17 +28,18 @@
 
 // ---- spherical_z24: azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2, 24 bits, sphere ----
 // Source: Pranckevičius method 3.
+// Model: src/codecs/angular/spherical_z.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02309°, sample max 1.21296°; MSE of the components of
 //   n - n' 9.075e-8, PSNR 70.42 dB.
 #ifndef UNITPACK_SPHERICAL_Z24_HLSL
 #define UNITPACK_SPHERICAL_Z24_HLSL
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-float2 unitpack_spherical_z24_sincos_pi(float a0) {
-    precise float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    precise float t1 = 1.0 - abs_a0;
-    precise float b = back ? t1 : abs_a0;
+float2 unitpack_spherical_z24_sincos_pi(float x) {
+    precise float abs_x = abs(x);
+    bool back = abs_x > 0.5;
+    precise float t1 = 1.0 - abs_x;
+    precise float b = back ? t1 : abs_x;
     bool swap = b > 0.25;
     precise float t2 = 0.5 - b;
     precise float c = swap ? t2 : b;
@@ -51,7 +52,7 @@ float2 unitpack_spherical_z24_sincos_pi(float a0) {
     precise float2 t5 = float2(co, s);
     precise float2 t6 = float2(s, co);
     precise float2 t7 = swap ? t5 : t6;
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
+    precise float2 result = UNITPACK_SELECT(bool2(x < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -77,20 +78,21 @@ float3 unitpack_spherical_z24_decode_float(float2 params) {
 //   (8.46e-4) of what this function computes here, for every code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 float3 unitpack_spherical_z24_decode(uint code) {
-    precise float2 params = float2(uint2(code, code >> 12u) & uint2(4095u, 4095u)) * 0.00024420026;
+    precise float2 params = float2(uint2(code, code >> 12u) & uint2(0xfffu, 0xfffu))
+        * 0.00024420026;
     return unitpack_spherical_z24_decode_float(params);
 }
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-float unitpack_spherical_z24_atan2_pi(float a0, float a1) {
-    precise float abs_a1 = abs(a1);
-    precise float abs_a0 = abs(a0);
-    bool y_major = abs_a0 > abs_a1;
-    precise float hi = y_major ? abs_a0 : abs_a1;
+float unitpack_spherical_z24_atan2_pi(float x, float x1) {
+    precise float abs_x1 = abs(x1);
+    precise float abs_x = abs(x);
+    bool y_major = abs_x > abs_x1;
+    precise float hi = y_major ? abs_x : abs_x1;
     precise float up = hi < 7.888609e-31 ? 1.2676506e30 : 1.0;
     precise float hi2 = hi * up;
-    precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
+    precise float t = (y_major ? abs_x1 : abs_x) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
     precise float t1 = (t - 1.0) / (t + 1.0);
     precise float z = far ? t1 : t;
@@ -104,9 +106,9 @@ float unitpack_spherical_z24_atan2_pi(float a0, float a1) {
     precise float t5 = 1.5707964 - r2;
     precise float r3 = y_major ? t5 : r2;
     precise float t6 = 3.1415927 - r3;
-    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float r4 = x1 < 0.0 ? t6 : r3;
     precise float neg_r4 = -r4;
-    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
+    precise float result = (x < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -135,16 +137,16 @@ float2 unitpack_spherical_z24_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_spherical_z24_round_codes(float3 a0) {
+float2 unitpack_spherical_z24_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -156,11 +158,11 @@ float2 unitpack_spherical_z24_round_codes(float3 a0) {
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w2.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w2.x) & 0xfffff000u);
     precise float split_lo = w2.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w2.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w2.y) & 0xfffff000u);
     precise float split_lo2 = w2.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w2.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w2.z) & 0xfffff000u);
     precise float split_lo3 = w2.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -179,22 +181,22 @@ float2 unitpack_spherical_z24_round_codes(float3 a0) {
     precise float big = lo * 8388608.0;
     precise float ratio_estimate = floor(lo / t2 * 8388608.0);
     precise float step_down = ratio_estimate * t2 > big ? -1.0 : 0.0;
-    precise float step = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
-    precise float ratio = ratio_estimate + step;
+    precise float nudge = (ratio_estimate + 1.0) * t2 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + nudge;
     precise float step_down2 = ratio * t2 > big ? -1.0 : 0.0;
-    precise float step2 = (ratio + 1.0) * t2 <= big ? 1.0 : step_down2;
-    precise float t = ratio + step2;
+    precise float nudge2 = (ratio + 1.0) * t2 <= big ? 1.0 : step_down2;
+    precise float t = ratio + nudge2;
     bool far = t > 3474675.0;
     precise float t3 = t - 8388608.0;
     precise float t4 = t + 8388608.0;
     precise float big2 = t3 * 8388608.0;
     precise float ratio_estimate2 = floor(t3 / t4 * 8388608.0);
     precise float step_down3 = ratio_estimate2 * t4 > big2 ? -1.0 : 0.0;
-    precise float step3 = (ratio_estimate2 + 1.0) * t4 <= big2 ? 1.0 : step_down3;
-    precise float ratio2 = ratio_estimate2 + step3;
+    precise float nudge3 = (ratio_estimate2 + 1.0) * t4 <= big2 ? 1.0 : step_down3;
+    precise float ratio2 = ratio_estimate2 + nudge3;
     precise float step_down4 = ratio2 * t4 > big2 ? -1.0 : 0.0;
-    precise float step4 = (ratio2 + 1.0) * t4 <= big2 ? 1.0 : step_down4;
-    precise float ratio3 = ratio2 + step4;
+    precise float nudge4 = (ratio2 + 1.0) * t4 <= big2 ? 1.0 : step_down4;
+    precise float ratio3 = ratio2 + nudge4;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
     precise float t5 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);

@@ -29,17 +29,18 @@
 // ---- spherical_z24p: azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2, 24 bits, sphere,
 //   precise encoder ----
 // Source: Pranckevičius method 3.
+// Model: src/codecs/angular/spherical_z.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02306°, sample max 0.89168°; MSE of the components of
 //   n - n' 8.460e-8, PSNR 70.73 dB.
 #ifndef UNITPACK_SPHERICAL_Z24P_HLSL
 #define UNITPACK_SPHERICAL_Z24P_HLSL
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-float2 unitpack_spherical_z24p_sincos_pi(float a0) {
-    precise float abs_a0 = abs(a0);
-    bool back = abs_a0 > 0.5;
-    precise float t1 = 1.0 - abs_a0;
-    precise float b = back ? t1 : abs_a0;
+float2 unitpack_spherical_z24p_sincos_pi(float x) {
+    precise float abs_x = abs(x);
+    bool back = abs_x > 0.5;
+    precise float t1 = 1.0 - abs_x;
+    precise float b = back ? t1 : abs_x;
     bool swap = b > 0.25;
     precise float t2 = 0.5 - b;
     precise float c = swap ? t2 : b;
@@ -52,7 +53,7 @@ float2 unitpack_spherical_z24p_sincos_pi(float a0) {
     precise float2 t5 = float2(co, s);
     precise float2 t6 = float2(s, co);
     precise float2 t7 = swap ? t5 : t6;
-    precise float2 result = UNITPACK_SELECT(bool2(a0 < 0.0, back), -t7, t7);
+    precise float2 result = UNITPACK_SELECT(bool2(x < 0.0, back), -t7, t7);
     return result;
 }
 
@@ -78,7 +79,8 @@ float3 unitpack_spherical_z24p_decode_float(float2 params) {
 //   (8.46e-4) of what this function computes here, for every code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 float3 unitpack_spherical_z24p_decode(uint code) {
-    precise float2 params = float2(uint2(code, code >> 12u) & uint2(4095u, 4095u)) * 0.00024420026;
+    precise float2 params = float2(uint2(code, code >> 12u) & uint2(0xfffu, 0xfffu))
+        * 0.00024420026;
     return unitpack_spherical_z24p_decode_float(params);
 }
 
@@ -95,7 +97,7 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -114,22 +116,22 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float abs_w2_x = abs(w2.x);
     precise float abs_w2_y = abs(w2.y);
@@ -140,22 +142,22 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float big = lo5 * 8388608.0;
     precise float ratio_estimate = floor(lo5 / t1 * 8388608.0);
     precise float step_down = ratio_estimate * t1 > big ? -1.0 : 0.0;
-    precise float step = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
-    precise float ratio = ratio_estimate + step;
+    precise float nudge = (ratio_estimate + 1.0) * t1 <= big ? 1.0 : step_down;
+    precise float ratio = ratio_estimate + nudge;
     precise float step_down2 = ratio * t1 > big ? -1.0 : 0.0;
-    precise float step2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
-    precise float t = ratio + step2;
+    precise float nudge2 = (ratio + 1.0) * t1 <= big ? 1.0 : step_down2;
+    precise float t = ratio + nudge2;
     bool far = t > 3474675.0;
     precise float t2 = t - 8388608.0;
     precise float t3 = t + 8388608.0;
     precise float big2 = t2 * 8388608.0;
     precise float ratio_estimate2 = floor(t2 / t3 * 8388608.0);
     precise float step_down3 = ratio_estimate2 * t3 > big2 ? -1.0 : 0.0;
-    precise float step3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
-    precise float ratio2 = ratio_estimate2 + step3;
+    precise float nudge3 = (ratio_estimate2 + 1.0) * t3 <= big2 ? 1.0 : step_down3;
+    precise float ratio2 = ratio_estimate2 + nudge3;
     precise float step_down4 = ratio2 * t3 > big2 ? -1.0 : 0.0;
-    precise float step4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
-    precise float ratio3 = ratio2 + step4;
+    precise float nudge4 = (ratio2 + 1.0) * t3 <= big2 ? 1.0 : step_down4;
+    precise float ratio3 = ratio2 + nudge4;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
     precise float t4 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);
@@ -204,16 +206,16 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down5 = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step5 = root_h1 * root_h1 <= len2 ? 1.0 : step_down5;
-    precise float root_k = root_k0 + step5;
+    precise float nudge5 = root_h1 * root_h1 <= len2 ? 1.0 : step_down5;
+    precise float root_k = root_k0 + nudge5;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down6 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step6 = root_m1 * root_m1 <= len2 ? 1.0 : step_down6;
-    precise float root_j = root_j0 + step6;
+    precise float nudge6 = root_m1 * root_m1 <= len2 ? 1.0 : step_down6;
+    precise float root_j = root_j0 + nudge6;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float3 t26 = floor(w2 / root * 2097152.0);
     precise float3 t27 = w2 * 2097152.0;
@@ -234,12 +236,12 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float root_estimate2 = floor(sqrt(t30));
     precise float root_next = root_estimate2 + 1.0;
     precise float step_down7 = root_estimate2 * root_estimate2 > t30 ? -1.0 : 0.0;
-    precise float step7 = root_next * root_next <= t30 ? 1.0 : step_down7;
-    precise float root_step = root_estimate2 + step7;
+    precise float nudge7 = root_next * root_next <= t30 ? 1.0 : step_down7;
+    precise float root_step = root_estimate2 + nudge7;
     precise float root_next2 = root_step + 1.0;
     precise float step_down8 = root_step * root_step > t30 ? -1.0 : 0.0;
-    precise float step8 = root_next2 * root_next2 <= t30 ? 1.0 : step_down8;
-    precise float r2 = root_step + step8;
+    precise float nudge8 = root_next2 * root_next2 <= t30 ? 1.0 : step_down8;
+    precise float r2 = root_step + nudge8;
     precise float t31 = floor((cand.x * 2.0 - 4095.0) * 4097.0005);
     precise float abs_t31 = abs(t31);
     bool back = abs_t31 > 8388608.0;
@@ -269,22 +271,22 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float3 abs_offset = abs(offset);
     uint3 offset_u = uint3(abs_offset);
     uint limb1_4 = offset_u.x >> 12u;
-    uint limb0_4 = offset_u.x & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi6 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo6 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = offset_u.x & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi6 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo6 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = offset_u.y >> 12u;
-    uint limb0_5 = offset_u.y & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi7 = hi6 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo7 = lo6 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = offset_u.y & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi7 = hi6 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo7 = lo6 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint limb1_6 = offset_u.z >> 12u;
-    uint limb0_6 = offset_u.z & 4095u;
-    uint cross6 = limb1_6 * limb0_6;
-    uint hi8 = hi7 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    uint lo8 = lo7 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    uint limb0_6 = offset_u.z & 0xfffu;
+    uint limb_cross6 = limb1_6 * limb0_6;
+    uint hi8 = hi7 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    uint lo8 = lo7 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     uint hi9 = hi8 + (lo8 >> 24u);
-    uint lo9 = lo8 & 16777215u;
+    uint lo9 = lo8 & 0xffffffu;
     precise float dist = float(hi9) * 16777216.0 + float(lo9);
     precise float s_up = base.x + 1.0;
     precise float t_up = base.y + 1.0;
@@ -301,12 +303,12 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float root_estimate3 = floor(sqrt(t47));
     precise float root_next3 = root_estimate3 + 1.0;
     precise float step_down9 = root_estimate3 * root_estimate3 > t47 ? -1.0 : 0.0;
-    precise float step9 = root_next3 * root_next3 <= t47 ? 1.0 : step_down9;
-    precise float root_step2 = root_estimate3 + step9;
+    precise float nudge9 = root_next3 * root_next3 <= t47 ? 1.0 : step_down9;
+    precise float root_step2 = root_estimate3 + nudge9;
     precise float root_next4 = root_step2 + 1.0;
     precise float step_down10 = root_step2 * root_step2 > t47 ? -1.0 : 0.0;
-    precise float step10 = root_next4 * root_next4 <= t47 ? 1.0 : step_down10;
-    precise float r3 = root_step2 + step10;
+    precise float nudge10 = root_next4 * root_next4 <= t47 ? 1.0 : step_down10;
+    precise float r3 = root_step2 + nudge10;
     precise float t48 = floor((cand2.x * 2.0 - 4095.0) * 4097.0005);
     precise float abs_t48 = abs(t48);
     bool back2 = abs_t48 > 8388608.0;
@@ -340,22 +342,22 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float3 abs_offset2 = abs(offset2);
     uint3 offset_u2 = uint3(abs_offset2);
     uint limb1_7 = offset_u2.x >> 12u;
-    uint limb0_7 = offset_u2.x & 4095u;
-    uint cross7 = limb1_7 * limb0_7;
-    uint hi10 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    uint lo10 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    uint limb0_7 = offset_u2.x & 0xfffu;
+    uint limb_cross7 = limb1_7 * limb0_7;
+    uint hi10 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    uint lo10 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     uint limb1_8 = offset_u2.y >> 12u;
-    uint limb0_8 = offset_u2.y & 4095u;
-    uint cross8 = limb1_8 * limb0_8;
-    uint hi11 = hi10 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    uint lo11 = lo10 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    uint limb0_8 = offset_u2.y & 0xfffu;
+    uint limb_cross8 = limb1_8 * limb0_8;
+    uint hi11 = hi10 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    uint lo11 = lo10 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     uint limb1_9 = offset_u2.z >> 12u;
-    uint limb0_9 = offset_u2.z & 4095u;
-    uint cross9 = limb1_9 * limb0_9;
-    uint hi12 = hi11 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    uint lo12 = lo11 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    uint limb0_9 = offset_u2.z & 0xfffu;
+    uint limb_cross9 = limb1_9 * limb0_9;
+    uint hi12 = hi11 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    uint lo12 = lo11 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     uint hi13 = hi12 + (lo12 >> 24u);
-    uint lo13 = lo12 & 16777215u;
+    uint lo13 = lo12 & 0xffffffu;
     precise float dist2 = float(hi13) * 16777216.0 + float(lo13);
     bool t61 = dist2 < dist;
     bool t62 = s_up <= 4095.0 && t45 && t61;
@@ -374,12 +376,12 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float root_estimate4 = floor(sqrt(t66));
     precise float root_next5 = root_estimate4 + 1.0;
     precise float step_down11 = root_estimate4 * root_estimate4 > t66 ? -1.0 : 0.0;
-    precise float step11 = root_next5 * root_next5 <= t66 ? 1.0 : step_down11;
-    precise float root_step3 = root_estimate4 + step11;
+    precise float nudge11 = root_next5 * root_next5 <= t66 ? 1.0 : step_down11;
+    precise float root_step3 = root_estimate4 + nudge11;
     precise float root_next6 = root_step3 + 1.0;
     precise float step_down12 = root_step3 * root_step3 > t66 ? -1.0 : 0.0;
-    precise float step12 = root_next6 * root_next6 <= t66 ? 1.0 : step_down12;
-    precise float r4 = root_step3 + step12;
+    precise float nudge12 = root_next6 * root_next6 <= t66 ? 1.0 : step_down12;
+    precise float r4 = root_step3 + nudge12;
     precise float t67 = floor((cand3.x * 2.0 - 4095.0) * 4097.0005);
     precise float abs_t67 = abs(t67);
     bool back3 = abs_t67 > 8388608.0;
@@ -413,22 +415,22 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float3 abs_offset3 = abs(offset3);
     uint3 offset_u3 = uint3(abs_offset3);
     uint limb1_10 = offset_u3.x >> 12u;
-    uint limb0_10 = offset_u3.x & 4095u;
-    uint cross10 = limb1_10 * limb0_10;
-    uint hi14 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    uint lo14 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    uint limb0_10 = offset_u3.x & 0xfffu;
+    uint limb_cross10 = limb1_10 * limb0_10;
+    uint hi14 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    uint lo14 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     uint limb1_11 = offset_u3.y >> 12u;
-    uint limb0_11 = offset_u3.y & 4095u;
-    uint cross11 = limb1_11 * limb0_11;
-    uint hi15 = hi14 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    uint lo15 = lo14 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    uint limb0_11 = offset_u3.y & 0xfffu;
+    uint limb_cross11 = limb1_11 * limb0_11;
+    uint hi15 = hi14 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    uint lo15 = lo14 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     uint limb1_12 = offset_u3.z >> 12u;
-    uint limb0_12 = offset_u3.z & 4095u;
-    uint cross12 = limb1_12 * limb0_12;
-    uint hi16 = hi15 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    uint lo16 = lo15 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    uint limb0_12 = offset_u3.z & 0xfffu;
+    uint limb_cross12 = limb1_12 * limb0_12;
+    uint hi16 = hi15 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    uint lo16 = lo15 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     uint hi17 = hi16 + (lo16 >> 24u);
-    uint lo17 = lo16 & 16777215u;
+    uint lo17 = lo16 & 0xffffffu;
     precise float dist3 = float(hi17) * 16777216.0 + float(lo17);
     bool t80 = dist3 < best_d;
     bool t81 = base.x <= 4095.0 && t64 && t80;
@@ -447,12 +449,12 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float root_estimate5 = floor(sqrt(t85));
     precise float root_next7 = root_estimate5 + 1.0;
     precise float step_down13 = root_estimate5 * root_estimate5 > t85 ? -1.0 : 0.0;
-    precise float step13 = root_next7 * root_next7 <= t85 ? 1.0 : step_down13;
-    precise float root_step4 = root_estimate5 + step13;
+    precise float nudge13 = root_next7 * root_next7 <= t85 ? 1.0 : step_down13;
+    precise float root_step4 = root_estimate5 + nudge13;
     precise float root_next8 = root_step4 + 1.0;
     precise float step_down14 = root_step4 * root_step4 > t85 ? -1.0 : 0.0;
-    precise float step14 = root_next8 * root_next8 <= t85 ? 1.0 : step_down14;
-    precise float r5 = root_step4 + step14;
+    precise float nudge14 = root_next8 * root_next8 <= t85 ? 1.0 : step_down14;
+    precise float r5 = root_step4 + nudge14;
     precise float t86 = floor((cand4.x * 2.0 - 4095.0) * 4097.0005);
     precise float abs_t86 = abs(t86);
     bool back4 = abs_t86 > 8388608.0;
@@ -486,22 +488,22 @@ float2 unitpack_spherical_z24p_encode_codes(float3 v) {
     precise float3 abs_offset4 = abs(offset4);
     uint3 offset_u4 = uint3(abs_offset4);
     uint limb1_13 = offset_u4.x >> 12u;
-    uint limb0_13 = offset_u4.x & 4095u;
-    uint cross13 = limb1_13 * limb0_13;
-    uint hi18 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    uint lo18 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    uint limb0_13 = offset_u4.x & 0xfffu;
+    uint limb_cross13 = limb1_13 * limb0_13;
+    uint hi18 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    uint lo18 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     uint limb1_14 = offset_u4.y >> 12u;
-    uint limb0_14 = offset_u4.y & 4095u;
-    uint cross14 = limb1_14 * limb0_14;
-    uint hi19 = hi18 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    uint lo19 = lo18 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    uint limb0_14 = offset_u4.y & 0xfffu;
+    uint limb_cross14 = limb1_14 * limb0_14;
+    uint hi19 = hi18 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    uint lo19 = lo18 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     uint limb1_15 = offset_u4.z >> 12u;
-    uint limb0_15 = offset_u4.z & 4095u;
-    uint cross15 = limb1_15 * limb0_15;
-    uint hi20 = hi19 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    uint lo20 = lo19 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    uint limb0_15 = offset_u4.z & 0xfffu;
+    uint limb_cross15 = limb1_15 * limb0_15;
+    uint hi20 = hi19 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    uint lo20 = lo19 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     uint hi21 = hi20 + (lo20 >> 24u);
-    uint lo21 = lo20 & 16777215u;
+    uint lo21 = lo20 & 0xffffffu;
     precise float dist4 = float(hi21) * 16777216.0 + float(lo21);
     bool t99 = dist4 < best_d2;
     precise float2 best3 = s_up <= 4095.0 && t83 && t99 ? cand4 : best2;

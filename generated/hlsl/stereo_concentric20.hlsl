@@ -30,6 +30,7 @@
 //   + hemisphere bit, unorm×2, 20 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (stereo+concentric); Snyder and Mitchell 2001; Shirley and Chiu
 //   1997.
+// Model: src/codecs/azimuthal/disk_square.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.09360°, sample max 0.32937°; MSE of the components of
 //   n - n' 1.134e-6, PSNR 59.45 dB.
 #ifndef UNITPACK_STEREO_CONCENTRIC20_HLSL
@@ -37,11 +38,11 @@
 
 // (sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (|error| ≤
 //   2.5e-7).
-float2 unitpack_stereo_concentric20_sincos_quarter_pi(float a0) {
-    precise float c2 = a0 * a0;
+float2 unitpack_stereo_concentric20_sincos_quarter_pi(float x) {
+    precise float c2 = x * x;
     precise float t1 = (((0.082145885 * c2 + (-0.5992645)) * c2 + 2.550164) * c2 + (-5.1677127))
         * c2;
-    precise float s = a0 * (t1 + 3.1415927);
+    precise float s = x * (t1 + 3.1415927);
     precise float t2 = (((-0.02580689 * c2 + 0.23533063) * c2 + (-1.3352628)) * c2 + 4.058712) * c2;
     precise float co = (t2 + (-4.934802)) * c2 + 1.0;
     return float2(s, co);
@@ -82,21 +83,23 @@ float3 unitpack_stereo_concentric20_decode_float(float3 params) {
 //   rounding.
 // Portable as unitpack_stereo_concentric20_decode_float is, within the same bound.
 float3 unitpack_stereo_concentric20_decode(uint code) {
-    precise float3 params = float3(uint3(code, code >> 10u, code >> 19u) & uint3(1023u, 511u, 1u))
+    precise float3 params = float3(
+        uint3(code, code >> 10u, code >> 19u) & uint3(0x3ffu, 0x1ffu, 1u)
+    )
         * float3(0.0009775171, 0.0019569471, 1.0);
     return unitpack_stereo_concentric20_decode_float(params);
 }
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-float unitpack_stereo_concentric20_atan2_pi(float a0, float a1) {
-    precise float abs_a1 = abs(a1);
-    precise float abs_a0 = abs(a0);
-    bool y_major = abs_a0 > abs_a1;
-    precise float hi = y_major ? abs_a0 : abs_a1;
+float unitpack_stereo_concentric20_atan2_pi(float minor, float x) {
+    precise float abs_x = abs(x);
+    precise float abs_minor = abs(minor);
+    bool y_major = abs_minor > abs_x;
+    precise float hi = y_major ? abs_minor : abs_x;
     precise float up = hi < 7.888609e-31 ? 1.2676506e30 : 1.0;
     precise float hi2 = hi * up;
-    precise float t = (y_major ? abs_a1 : abs_a0) * up / (hi2 > 0.0 ? hi2 : 1.0);
+    precise float t = (y_major ? abs_x : abs_minor) * up / (hi2 > 0.0 ? hi2 : 1.0);
     bool far = t > 0.41421357;
     precise float t1 = (t - 1.0) / (t + 1.0);
     precise float z = far ? t1 : t;
@@ -110,9 +113,9 @@ float unitpack_stereo_concentric20_atan2_pi(float a0, float a1) {
     precise float t5 = 1.5707964 - r2;
     precise float r3 = y_major ? t5 : r2;
     precise float t6 = 3.1415927 - r3;
-    precise float r4 = a1 < 0.0 ? t6 : r3;
+    precise float r4 = x < 0.0 ? t6 : r3;
     precise float neg_r4 = -r4;
-    precise float result = (a0 < 0.0 ? neg_r4 : r4) * 0.31830987;
+    precise float result = (minor < 0.0 ? neg_r4 : r4) * 0.31830987;
     return result;
 }
 
@@ -132,7 +135,7 @@ float3 unitpack_stereo_concentric20_encode_float(float3 v) {
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -151,38 +154,38 @@ float3 unitpack_stereo_concentric20_encode_float(float3 v) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
     precise float2 t1 = w2.xy * w2.xy;
@@ -207,16 +210,16 @@ float3 unitpack_stereo_concentric20_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_stereo_concentric20_round_codes(float3 a0) {
+float3 unitpack_stereo_concentric20_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -235,38 +238,38 @@ float3 unitpack_stereo_concentric20_round_codes(float3 a0) {
     precise float fixed_f3 = floor(abs(w2.z) * 2097152.0);
     uint fixed4 = uint(fixed_f3);
     uint limb1 = fixed2 >> 12u;
-    uint limb0 = fixed2 & 4095u;
-    uint cross = limb1 * limb0;
-    uint hi = 0u + limb1 * limb1 + (cross >> 11u);
-    uint lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    uint limb0 = fixed2 & 0xfffu;
+    uint limb_cross = limb1 * limb0;
+    uint hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    uint lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     uint limb1_2 = fixed3 >> 12u;
-    uint limb0_2 = fixed3 & 4095u;
-    uint cross2 = limb1_2 * limb0_2;
-    uint hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    uint lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    uint limb0_2 = fixed3 & 0xfffu;
+    uint limb_cross2 = limb1_2 * limb0_2;
+    uint hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    uint lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     uint limb1_3 = fixed4 >> 12u;
-    uint limb0_3 = fixed4 & 4095u;
-    uint cross3 = limb1_3 * limb0_3;
-    uint hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    uint lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    uint limb0_3 = fixed4 & 0xfffu;
+    uint limb_cross3 = limb1_3 * limb0_3;
+    uint hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    uint lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     uint hi4 = hi3 + (lo3 >> 24u);
-    uint lo4 = lo3 & 16777215u;
+    uint lo4 = lo3 & 0xffffffu;
     precise float len2 = (float(hi4) * 16777216.0 + float(lo4)) * 2.2737368e-13;
     precise float root_estimate = sqrt(len2);
     precise float root_k0 = floor(root_estimate * 512.0);
     precise float root_h0 = root_k0 * 0.001953125;
     precise float root_h1 = root_h0 + 0.001953125;
     precise float step_down = root_h0 * root_h0 > len2 ? -1.0 : 0.0;
-    precise float step = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
-    precise float root_k = root_k0 + step;
+    precise float nudge = root_h1 * root_h1 <= len2 ? 1.0 : step_down;
+    precise float root_k = root_k0 + nudge;
     precise float root_h = root_k * 0.001953125;
     precise float root_rest = len2 - root_h * root_h;
     precise float root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0);
     precise float root_m0 = root_h + root_j0 * 4.7683716e-7;
     precise float root_m1 = root_h + (root_j0 + 1.0) * 4.7683716e-7;
     precise float step_down2 = root_m0 * root_m0 > len2 ? -1.0 : 0.0;
-    precise float step2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
-    precise float root_j = root_j0 + step2;
+    precise float nudge2 = root_m1 * root_m1 <= len2 ? 1.0 : step_down2;
+    precise float root_j = root_j0 + nudge2;
     precise float root = (root_k * 4096.0 + root_j) * 4.7683716e-7;
     precise float t1 = root + abs(w2.z);
     precise float one_if = w2.z < 0.0 ? 1.0 : 0.0;
@@ -275,17 +278,17 @@ float3 unitpack_stereo_concentric20_round_codes(float3 a0) {
     precise float fixed_f5 = floor(abs(w2.y) * 2097152.0);
     uint fixed6 = uint(fixed_f5);
     uint limb1_4 = fixed5 >> 12u;
-    uint limb0_4 = fixed5 & 4095u;
-    uint cross4 = limb1_4 * limb0_4;
-    uint hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    uint lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    uint limb0_4 = fixed5 & 0xfffu;
+    uint limb_cross4 = limb1_4 * limb0_4;
+    uint hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    uint lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     uint limb1_5 = fixed6 >> 12u;
-    uint limb0_5 = fixed6 & 4095u;
-    uint cross5 = limb1_5 * limb0_5;
-    uint hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    uint lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    uint limb0_5 = fixed6 & 0xfffu;
+    uint limb_cross5 = limb1_5 * limb0_5;
+    uint hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    uint lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     uint hi7 = hi6 + (lo6 >> 24u);
-    uint lo7 = lo6 & 16777215u;
+    uint lo7 = lo6 & 0xffffffu;
     precise float rho2 = (float(hi7) * 16777216.0 + float(lo7)) * 2.2737368e-13;
     precise float t1_sq = t1 * t1;
     precise float r = sqrt(rho2 / t1_sq);
@@ -304,22 +307,22 @@ float3 unitpack_stereo_concentric20_round_codes(float3 a0) {
     precise float big = lo8 * 8388608.0;
     precise float ratio_estimate = floor(lo8 / t3 * 8388608.0);
     precise float step_down3 = ratio_estimate * t3 > big ? -1.0 : 0.0;
-    precise float step3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
-    precise float ratio = ratio_estimate + step3;
+    precise float nudge3 = (ratio_estimate + 1.0) * t3 <= big ? 1.0 : step_down3;
+    precise float ratio = ratio_estimate + nudge3;
     precise float step_down4 = ratio * t3 > big ? -1.0 : 0.0;
-    precise float step4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
-    precise float t = ratio + step4;
+    precise float nudge4 = (ratio + 1.0) * t3 <= big ? 1.0 : step_down4;
+    precise float t = ratio + nudge4;
     bool far = t > 3474675.0;
     precise float t4 = t - 8388608.0;
     precise float t5 = t + 8388608.0;
     precise float big2 = t4 * 8388608.0;
     precise float ratio_estimate2 = floor(t4 / t5 * 8388608.0);
     precise float step_down5 = ratio_estimate2 * t5 > big2 ? -1.0 : 0.0;
-    precise float step5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
-    precise float ratio2 = ratio_estimate2 + step5;
+    precise float nudge5 = (ratio_estimate2 + 1.0) * t5 <= big2 ? 1.0 : step_down5;
+    precise float ratio2 = ratio_estimate2 + nudge5;
     precise float step_down6 = ratio2 * t5 > big2 ? -1.0 : 0.0;
-    precise float step6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
-    precise float ratio3 = ratio2 + step6;
+    precise float nudge6 = (ratio2 + 1.0) * t5 <= big2 ? 1.0 : step_down6;
+    precise float ratio3 = ratio2 + nudge6;
     precise float z = far ? ratio3 : t;
     precise float z2 = round(z * z * 1.1920929e-7);
     precise float t6 = round((round(-441506.0 * z2 * 1.1920929e-7) + 493448.0) * z2 * 1.1920929e-7);

@@ -29,6 +29,7 @@
 // ---- unorm3: components scaled and biased, n·0.5 + 0.5, as unorm8×3 (an RGB8 texel), 24 bits,
 //   sphere ----
 // Source: Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z).
+// Model: src/codecs/component/unorm3.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.16981°, sample max 0.37724°; MSE of the components of
 //   n - n' 3.431e-6, PSNR 54.65 dB.
 #ifndef UNITPACK_UNORM3_HLSL
@@ -83,16 +84,16 @@ float3 unitpack_unorm3_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_unorm3_round_codes(float3 a0) {
+float3 unitpack_unorm3_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -104,11 +105,11 @@ float3 unitpack_unorm3_round_codes(float3 a0) {
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w2.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w2.x) & 0xfffff000u);
     precise float split_lo = w2.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w2.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w2.y) & 0xfffff000u);
     precise float split_lo2 = w2.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w2.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w2.z) & 0xfffff000u);
     precise float split_lo3 = w2.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2

@@ -28,6 +28,7 @@
 
 // ---- xy16:guarantee=ieee: x and y stored, z reconstructed, snorm×2, 16 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47519°, sample max 5.56067°; MSE of the components of
 //   n - n' 6.451e-5, PSNR 41.90 dB.
 #ifndef UNITPACK_XY16_IEEE_HLSL
@@ -100,7 +101,7 @@ uint unitpack_xy16_ieee_encode(float3 v) {
     );
     precise float t2 = codes.x + 256.0;
     precise float t3 = codes.y + 256.0;
-    return (uint(t2) & 255u) | ((uint(t3) << 8u) & 65280u);
+    return (uint(t2) & 255u) | ((uint(t3) << 8u) & 0xff00u);
 }
 
 #endif // UNITPACK_XY16_IEEE_HLSL

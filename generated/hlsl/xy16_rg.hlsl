@@ -28,6 +28,7 @@
 
 // ---- xy16:layout=rg: x and y stored, z reconstructed, in an RGBA8 texel, 16 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47060°, sample max 5.75338°; MSE of the components of
 //   n - n' 6.284e-5, PSNR 42.02 dB.
 #ifndef UNITPACK_XY16_RG_HLSL
@@ -101,16 +102,16 @@ float4 unitpack_xy16_rg_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float4 unitpack_xy16_rg_round_codes(float3 a0) {
+float4 unitpack_xy16_rg_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -122,11 +123,11 @@ float4 unitpack_xy16_rg_round_codes(float3 a0) {
         scaled
     );
     precise float t1 = w.z > 0.0 ? w.z : 0.0;
-    precise float split_hi = asfloat(asuint(w.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w.x) & 0xfffff000u);
     precise float split_lo = w.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w.y) & 0xfffff000u);
     precise float split_lo2 = w.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(t1) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(t1) & 0xfffff000u);
     precise float split_lo3 = t1 - split_hi3;
     precise float t2 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2

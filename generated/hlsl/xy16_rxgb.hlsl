@@ -29,6 +29,7 @@
 // ---- xy16:layout=rxgb: x and y stored, z reconstructed, in an RGBA8 texel, 16 bits, hemisphere
 //   ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47060°, sample max 5.75338°; MSE of the components of
 //   n - n' 6.284e-5, PSNR 42.02 dB.
 #ifndef UNITPACK_XY16_RXGB_HLSL
@@ -129,16 +130,16 @@ float4 unitpack_xy16_rxgb_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
+float4 unitpack_xy16_rxgb_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -150,11 +151,11 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
         scaled
     );
     precise float t1 = w.z > 0.0 ? w.z : 0.0;
-    precise float split_hi = asfloat(asuint(w.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w.x) & 0xfffff000u);
     precise float split_lo = w.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w.y) & 0xfffff000u);
     precise float split_lo2 = w.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(t1) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(t1) & 0xfffff000u);
     precise float split_lo3 = t1 - split_hi3;
     precise float t2 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -204,14 +205,14 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
     bool t14 = len2 > 0.0;
     precise float2 c = ok && t14 ? t13 : float2(128.0, 128.0);
     precise float3 normal2 = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal2 = abs(normal2);
     precise float larger2 = abs_normal2.x >= abs_normal2.y ? abs_normal2.x : abs_normal2.y;
     precise float largest2 = larger2 >= abs_normal2.z ? larger2 : abs_normal2.z;
-    precise float scale2 = asfloat(2139095040u - (asuint(largest2) & 2139095040u));
+    precise float scale2 = asfloat(0x7f800000u - (asuint(largest2) & 0x7f800000u));
     precise float3 scaled2 = normal2 * scale2;
     precise float3 abs_scaled2 = abs(scaled2);
     precise float sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -232,7 +233,7 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
     precise float3 abs_normal3 = abs(normal3);
     precise float larger3 = abs_normal3.x >= abs_normal3.y ? abs_normal3.x : abs_normal3.y;
     precise float largest3 = larger3 >= abs_normal3.z ? larger3 : abs_normal3.z;
-    precise float scale3 = asfloat(2139095040u - (asuint(largest3) & 2139095040u));
+    precise float scale3 = asfloat(0x7f800000u - (asuint(largest3) & 0x7f800000u));
     precise float3 scaled3 = normal3 * scale3;
     precise float3 abs_scaled3 = abs(scaled3);
     precise float sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
@@ -244,11 +245,11 @@ float4 unitpack_xy16_rxgb_round_codes(float3 a0) {
         scaled3
     );
     precise float3 w5 = ok3 ? w4 : float3(0.0, 0.0, 2.0);
-    precise float split_hi4 = asfloat(asuint(w5.x) & 4294963200u);
+    precise float split_hi4 = asfloat(asuint(w5.x) & 0xfffff000u);
     precise float split_lo4 = w5.x - split_hi4;
-    precise float split_hi5 = asfloat(asuint(w5.y) & 4294963200u);
+    precise float split_hi5 = asfloat(asuint(w5.y) & 0xfffff000u);
     precise float split_lo5 = w5.y - split_hi5;
-    precise float split_hi6 = asfloat(asuint(w5.z) & 4294963200u);
+    precise float split_hi6 = asfloat(asuint(w5.z) & 0xfffff000u);
     precise float split_lo6 = w5.z - split_hi6;
     precise float t16 = (split_hi4 + split_hi4) * split_lo4
         + (split_hi5 + split_hi5) * split_lo5

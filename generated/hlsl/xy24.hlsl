@@ -28,6 +28,7 @@
 
 // ---- xy24: x and y stored, z reconstructed, snorm×2, 24 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.03888°, sample max 1.33902°; MSE of the components of
 //   n - n' 9.702e-7, PSNR 60.13 dB.
 #ifndef UNITPACK_XY24_HLSL
@@ -55,7 +56,7 @@ float3 unitpack_xy24_decode_float(float2 params) {
 //   1.
 // Portable as unitpack_xy24_decode_float is, within the same bound.
 float3 unitpack_xy24_decode(uint code) {
-    precise float2 t1 = float2(uint2(code, code >> 12u) & uint2(4095u, 4095u));
+    precise float2 t1 = float2(uint2(code, code >> 12u) & uint2(0xfffu, 0xfffu));
     precise float2 t2 = UNITPACK_SELECT(t1 > float2(2047.0, 2047.0), t1 - 4096.0, t1)
         * 0.0004885198;
     precise float2 params = UNITPACK_SELECT(t2 >= float2(-1.0, -1.0), t2, float2(-1.0, -1.0));
@@ -97,16 +98,16 @@ float2 unitpack_xy24_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float2 unitpack_xy24_round_codes(float3 a0) {
+float2 unitpack_xy24_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -118,11 +119,11 @@ float2 unitpack_xy24_round_codes(float3 a0) {
         scaled
     );
     precise float t1 = w.z > 0.0 ? w.z : 0.0;
-    precise float split_hi = asfloat(asuint(w.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w.x) & 0xfffff000u);
     precise float split_lo = w.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w.y) & 0xfffff000u);
     precise float split_lo2 = w.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(t1) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(t1) & 0xfffff000u);
     precise float split_lo3 = t1 - split_hi3;
     precise float t2 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -179,7 +180,7 @@ uint unitpack_xy24_encode(float3 v) {
     precise float2 round_codes = unitpack_xy24_round_codes(v);
     precise float t1 = round_codes.x + 4096.0;
     precise float t2 = round_codes.y + 4096.0;
-    return (uint(t1) & 4095u) | ((uint(t2) << 12u) & 16773120u);
+    return (uint(t1) & 0xfffu) | ((uint(t2) << 12u) & 0xfff000u);
 }
 
 #endif // UNITPACK_XY24_HLSL

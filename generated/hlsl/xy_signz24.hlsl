@@ -29,6 +29,7 @@
 // ---- xy_signz24: x and y stored with the sign of z, z reconstructed, snorm×2 + 1 bit, 24 bits,
 //   sphere ----
 // Source: Pranckevičius method 2.
+// Model: src/codecs/component/xy_signz.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.05757°, sample max 1.78987°; MSE of the components of
 //   n - n' 1.891e-6, PSNR 57.23 dB.
 #ifndef UNITPACK_XY_SIGNZ24_HLSL
@@ -56,9 +57,9 @@ float3 unitpack_xy_signz24_decode_float(float3 params) {
 //   than 1.
 // Portable as unitpack_xy_signz24_decode_float is, within the same bound.
 float3 unitpack_xy_signz24_decode(uint code) {
-    precise float t1 = float(code & 4095u);
+    precise float t1 = float(code & 0xfffu);
     precise float t2 = t1 - 4096.0;
-    precise float t3 = float((code >> 12u) & 2047u);
+    precise float t3 = float((code >> 12u) & 0x7ffu);
     precise float t4 = t3 - 2048.0;
     precise float3 t5 = float3(
         t1 > 2047.0 ? t2 : t1,
@@ -97,16 +98,16 @@ float3 unitpack_xy_signz24_encode_float(float3 v) {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-float3 unitpack_xy_signz24_round_codes(float3 a0) {
+float3 unitpack_xy_signz24_round_codes(float3 v) {
     precise float3 normal = UNITPACK_SELECT(
-        abs(a0) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
+        abs(v) < float3(1.1754944e-38, 1.1754944e-38, 1.1754944e-38),
         float3(0.0, 0.0, 0.0),
-        a0
+        v
     );
     precise float3 abs_normal = abs(normal);
     precise float larger = abs_normal.x >= abs_normal.y ? abs_normal.x : abs_normal.y;
     precise float largest = larger >= abs_normal.z ? larger : abs_normal.z;
-    precise float scale = asfloat(2139095040u - (asuint(largest) & 2139095040u));
+    precise float scale = asfloat(0x7f800000u - (asuint(largest) & 0x7f800000u));
     precise float3 scaled = normal * scale;
     precise float3 abs_scaled = abs(scaled);
     precise float sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -118,11 +119,11 @@ float3 unitpack_xy_signz24_round_codes(float3 a0) {
         scaled
     );
     precise float3 w2 = ok ? w : float3(0.0, 0.0, 2.0);
-    precise float split_hi = asfloat(asuint(w2.x) & 4294963200u);
+    precise float split_hi = asfloat(asuint(w2.x) & 0xfffff000u);
     precise float split_lo = w2.x - split_hi;
-    precise float split_hi2 = asfloat(asuint(w2.y) & 4294963200u);
+    precise float split_hi2 = asfloat(asuint(w2.y) & 0xfffff000u);
     precise float split_lo2 = w2.y - split_hi2;
-    precise float split_hi3 = asfloat(asuint(w2.z) & 4294963200u);
+    precise float split_hi3 = asfloat(asuint(w2.z) & 0xfffff000u);
     precise float split_lo3 = w2.z - split_hi3;
     precise float t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -140,8 +141,8 @@ float3 unitpack_xy_signz24_round_codes(float3 a0) {
     precise float t2 = lower * lower * len2;
     bool t3 = big2 < t2;
     precise float step_down = estimate > 0.0 && t3 ? -1.0 : 0.0;
-    precise float step = big2 >= upper * upper * len2 ? 1.0 : step_down;
-    precise float t4 = estimate + step;
+    precise float nudge = big2 >= upper * upper * len2 ? 1.0 : step_down;
+    precise float t4 = estimate + nudge;
     precise float t5 = t4 >= 0.0 ? t4 : 0.0;
     precise float t6 = t5 <= 2047.0 ? t5 : 2047.0;
     precise float big3 = abs(w2.y * 1023.0);
@@ -152,8 +153,8 @@ float3 unitpack_xy_signz24_round_codes(float3 a0) {
     precise float t7 = lower2 * lower2 * len2;
     bool t8 = big2_2 < t7;
     precise float step_down2 = estimate2 > 0.0 && t8 ? -1.0 : 0.0;
-    precise float step2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
-    precise float t9 = estimate2 + step2;
+    precise float nudge2 = big2_2 >= upper2 * upper2 * len2 ? 1.0 : step_down2;
+    precise float t9 = estimate2 + nudge2;
     precise float t10 = t9 >= 0.0 ? t9 : 0.0;
     precise float t11 = t10 <= 1023.0 ? t10 : 1023.0;
     precise float3 result = UNITPACK_SELECT(
@@ -175,7 +176,7 @@ uint unitpack_xy_signz24_encode(float3 v) {
     precise float3 round_codes = unitpack_xy_signz24_round_codes(v);
     precise float t1 = round_codes.x + 4096.0;
     precise float t2 = round_codes.y + 2048.0;
-    uint t3 = (uint(t1) & 4095u) | ((uint(t2) << 12u) & 8384512u);
+    uint t3 = (uint(t1) & 0xfffu) | ((uint(t2) << 12u) & 0x7ff000u);
     return t3 | (uint(round_codes.z) << 23u);
 }
 

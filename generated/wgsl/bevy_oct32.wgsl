@@ -16,6 +16,7 @@
 // Source: Bevy main at bevyengine/bevy 7517c61 (#21926, merged 2026-06-02; unchanged at 4805ca7):
 //   crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and
 //   crates/bevy_render/src/utils.wgsl (octahedral_decode_signed).
+// Model: src/codecs/engine/bevy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00130°, sample max 0.00368°; MSE of the components of
 //   n - n' 2.089e-10, PSNR 96.80 dB.
 
@@ -41,7 +42,7 @@ fn unitpack_bevy_oct32_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: Bevy's octahedral_decode_signed: a unit vector (to rounding) for every code.
 // Portable as unitpack_bevy_oct32_decode_float is, within the same bound.
 fn unitpack_bevy_oct32_decode(code: u32) -> vec3<f32> {
-    let t1 = vec2<f32>(vec2<u32>(code & 65535u, code >> 16u));
+    let t1 = vec2<f32>(vec2<u32>(code & 0xffffu, code >> 16u));
     let t2 = select(t1, t1 - 65536.0f, t1 > vec2<f32>(32767.0f)) * 3.051851e-5f;
     let params = select(vec2<f32>(-1.0f), t2, t2 >= vec2<f32>(-1.0f));
     return unitpack_bevy_oct32_decode_float(params);
@@ -66,7 +67,7 @@ fn unitpack_bevy_oct32_encode_float(v: vec3<f32>) -> vec2<f32> {
     return select(
         vec2<f32>(0.0f),
         t1,
-        (bitcast<vec2<u32>>(t1) & vec2<u32>(2147483647u)) < vec2<u32>(2139095041u)
+        (bitcast<vec2<u32>>(t1) & vec2<u32>(0x7fffffffu)) < vec2<u32>(0x7f800001u)
     );
 }
 
@@ -90,5 +91,5 @@ fn unitpack_bevy_oct32_encode(v: vec3<f32>) -> u32 {
     let t3 = floor_abs_t2
         + select(vec2<f32>(0.0f), vec2<f32>(1.0f), abs_t2 - floor_abs_t2 >= vec2<f32>(0.5f));
     let codes = select(t3, -t3, t2 < vec2<f32>(0.0f));
-    return (u32(codes.x + 65536.0f) & 65535u) | (u32(codes.y + 65536.0f) << 16u);
+    return (u32(codes.x + 65536.0f) & 0xffffu) | (u32(codes.y + 65536.0f) << 16u);
 }

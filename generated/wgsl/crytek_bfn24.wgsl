@@ -15,6 +15,7 @@
 // ---- crytek_bfn24: Crytek's best fit normals: RGB8 scaled by a fitting table's length (512×512),
 //   24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2.2 (Kaplanyan 2010, CryENGINE 3).
+// Model: src/codecs/table/crytek_bfn.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.05319°, sample max 0.29854°; MSE of the components of
 //   n - n' 3.777e-7, PSNR 64.23 dB.
 
@@ -55,7 +56,7 @@ fn unitpack_crytek_bfn24_fitting_texel(v: vec3<f32>) -> vec2<u32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -76,51 +77,51 @@ fn unitpack_crytek_bfn24_fitting_texel(v: vec3<f32>) -> vec2<u32> {
     let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
     let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
-    let limb0 = fixed2 & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = fixed2 & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = fixed3 >> 12u;
-    let limb0_2 = fixed3 & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = fixed3 & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = fixed4 >> 12u;
-    let limb0_3 = fixed4 & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = fixed4 & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
     let root_k0 = floor(root_estimate * 512.0f);
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + step2;
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + nudge2;
     let l = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let big = t4 * 512.0f;
     let ratio_estimate = floor(t4 / l * 512.0f);
     let step_down3 = select(0.0f, -1.0f, ratio_estimate * l > big);
-    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * l <= big);
-    let ratio = ratio_estimate + step3;
+    let nudge3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * l <= big);
+    let ratio = ratio_estimate + nudge3;
     let t6 = t4 > 0.0f;
     let t7 = select(1.0f, t4, t6);
     let big2 = t5 * 512.0f;
     let ratio_estimate2 = floor(t5 / t7 * 512.0f);
     let step_down4 = select(0.0f, -1.0f, ratio_estimate2 * t7 > big2);
-    let step4 = select(step_down4, 1.0f, (ratio_estimate2 + 1.0f) * t7 <= big2);
-    let ratio2 = ratio_estimate2 + step4;
+    let nudge4 = select(step_down4, 1.0f, (ratio_estimate2 + 1.0f) * t7 <= big2);
+    let ratio2 = ratio_estimate2 + nudge4;
     let t8 = vec2<f32>(ratio, select(0.0f, ratio2, t6));
     return vec2<u32>(select(vec2<f32>(511.0f), t8, t8 <= vec2<f32>(511.0f)));
 }
@@ -158,7 +159,7 @@ fn unitpack_crytek_bfn24_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -175,24 +176,24 @@ fn unitpack_crytek_bfn24_encode(v: vec3<f32>, fetched: f32) -> u32 {
     let big = abs_w2.x * 1048576.0f;
     let ratio_estimate = floor(abs_w2.x / t2 * 1048576.0f);
     let step_down = select(0.0f, -1.0f, ratio_estimate * t2 > big);
-    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t2 <= big);
-    let ratio = ratio_estimate + step;
+    let nudge = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t2 <= big);
+    let ratio = ratio_estimate + nudge;
     let t4 = u32(ratio) * k_u;
-    let t5 = select(128u + (t4 >> 21u), 128u - ((t4 + 2097151u) >> 21u), w2.x < 0.0f);
+    let t5 = select(128u + (t4 >> 21u), 128u - ((t4 + 0x1fffffu) >> 21u), w2.x < 0.0f);
     let big2 = abs_w2.y * 1048576.0f;
     let ratio_estimate2 = floor(abs_w2.y / t2 * 1048576.0f);
     let step_down2 = select(0.0f, -1.0f, ratio_estimate2 * t2 > big2);
-    let step2 = select(step_down2, 1.0f, (ratio_estimate2 + 1.0f) * t2 <= big2);
-    let ratio2 = ratio_estimate2 + step2;
+    let nudge2 = select(step_down2, 1.0f, (ratio_estimate2 + 1.0f) * t2 <= big2);
+    let ratio2 = ratio_estimate2 + nudge2;
     let t6 = u32(ratio2) * k_u;
-    let t7 = select(128u + (t6 >> 21u), 128u - ((t6 + 2097151u) >> 21u), w2.y < 0.0f);
+    let t7 = select(128u + (t6 >> 21u), 128u - ((t6 + 0x1fffffu) >> 21u), w2.y < 0.0f);
     let big3 = abs_w2.z * 1048576.0f;
     let ratio_estimate3 = floor(abs_w2.z / t2 * 1048576.0f);
     let step_down3 = select(0.0f, -1.0f, ratio_estimate3 * t2 > big3);
-    let step3 = select(step_down3, 1.0f, (ratio_estimate3 + 1.0f) * t2 <= big3);
-    let ratio3 = ratio_estimate3 + step3;
+    let nudge3 = select(step_down3, 1.0f, (ratio_estimate3 + 1.0f) * t2 <= big3);
+    let ratio3 = ratio_estimate3 + nudge3;
     let t8 = u32(ratio3) * k_u;
-    let t9 = select(128u + (t8 >> 21u), 128u - ((t8 + 2097151u) >> 21u), w2.z < 0.0f);
+    let t9 = select(128u + (t8 >> 21u), 128u - ((t8 + 0x1fffffu) >> 21u), w2.z < 0.0f);
     let t10 = u32(f32(t5)) | (u32(f32(t7)) << 8u) | (u32(f32(t9)) << 16u);
-    return select(16744576u, t10, ok);
+    return select(0xff8080u, t10, ok);
 }

@@ -14,6 +14,7 @@
 
 // ---- cube32: cube-map face (3 bits) + unorm×2 coordinates on it, 32 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (cube).
+// Model: src/codecs/cube_maps/cube.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00160°, sample max 0.00386°; MSE of the components of
 //   n - n' 3.161e-10, PSNR 95.00 dB.
 
@@ -50,7 +51,7 @@ fn unitpack_cube32_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   decode as +Z and -Z.
 // Portable as unitpack_cube32_decode_float is, within the same bound.
 fn unitpack_cube32_decode(code: u32) -> vec3<f32> {
-    let params = vec3<f32>(vec3<u32>(code & 32767u, (code >> 15u) & 16383u, code >> 29u))
+    let params = vec3<f32>(vec3<u32>(code & 0x7fffu, (code >> 15u) & 0x3fffu, code >> 29u))
         * vec3<f32>(3.051851e-5f, 6.103888e-5f, 0.14285715f);
     return unitpack_cube32_decode_float(params);
 }
@@ -67,7 +68,7 @@ fn unitpack_cube32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -87,12 +88,12 @@ fn unitpack_cube32_encode_float(v: vec3<f32>) -> vec3<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_cube32_round_codes(a0: vec3<f32>) -> vec3<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_cube32_round_codes(v: vec3<f32>) -> vec3<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;

@@ -17,6 +17,7 @@
 // Source: Draco 1.5.4+ (google/draco 4723893):
 //   src/draco/compression/attributes/normal_compression_utils.h (OctahedronToolBox), called by
 //   src/draco/attributes/attribute_octahedron_transform.cc.
+// Model: src/codecs/engine/draco.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.08351°, sample max 0.23404°; MSE of the components of
 //   n - n' 8.604e-7, PSNR 60.65 dB.
 
@@ -47,7 +48,7 @@ fn unitpack_draco_oct10_decode_float(params: vec2<f32>) -> vec3<f32> {
 //   writes.
 // Portable as unitpack_draco_oct10_decode_float is, within the same bound.
 fn unitpack_draco_oct10_decode(code: u32) -> vec3<f32> {
-    let t1 = vec2<f32>(vec2<u32>(code, code >> 10u) & vec2<u32>(1023u)) * 0.0019569471f - 1.0f;
+    let t1 = vec2<f32>(vec2<u32>(code, code >> 10u) & vec2<u32>(0x3ffu)) * 0.0019569471f - 1.0f;
     let t2 = 1.0f - abs(t1.x) - abs(t1.y);
     let neg_t2 = -t2;
     let x_offset = select(neg_t2, 0.0f, neg_t2 < 0.0f);
@@ -63,206 +64,13 @@ fn unitpack_draco_oct10_decode(code: u32) -> vec3<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_draco_oct10_round_codes(a0: vec3<f32>) -> vec2<f32> {
-    let abs_a0 = abs(a0);
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
-    let abs_normal = abs(normal);
-    let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
-    let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
-    let scaled = normal * scale;
-    let abs_scaled = abs(scaled);
-    let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
-    let sum_below_16 = sum < 16.0f;
-    let ok = sum >= 2.0f && sum_below_16;
-    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
-    let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let magnitude = abs(w2);
-    let l1 = magnitude.x + magnitude.y + magnitude.z;
-    let fixed2 = magnitude.x * 4096.0f;
-    let floor_fixed2 = floor(fixed2);
-    let fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
-    let floor_fixed_rest = floor(fixed_rest);
-    let t1 = u32(floor((fixed_rest - floor_fixed_rest) * 65536.0f));
-    let floor_fixed_rest_u = u32(floor_fixed_rest);
-    let floor_fixed2_u = u32(floor_fixed2);
-    let fixed3 = magnitude.y * 4096.0f;
-    let floor_fixed3 = floor(fixed3);
-    let fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
-    let floor_fixed_rest2 = floor(fixed_rest2);
-    let t2 = u32(floor((fixed_rest2 - floor_fixed_rest2) * 65536.0f));
-    let floor_fixed_rest2_u = u32(floor_fixed_rest2);
-    let floor_fixed3_u = u32(floor_fixed3);
-    let fixed4 = magnitude.z * 4096.0f;
-    let floor_fixed4 = floor(fixed4);
-    let fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
-    let floor_fixed_rest3 = floor(fixed_rest3);
-    let t3 = t1 + t2 + u32(floor((fixed_rest3 - floor_fixed_rest3) * 65536.0f));
-    let t4 = floor_fixed_rest_u + floor_fixed_rest2_u + u32(floor_fixed_rest3) + (t3 >> 16u);
-    let t5 = floor_fixed2_u + floor_fixed3_u + u32(floor_fixed4) + (t4 >> 16u);
-    let t6 = t3 & 65535u;
-    let t7 = t4 & 65535u;
-    let t8 = round(magnitude.x / l1 * 511.0f);
-    let estimate = select(511.0f, t8, t8 <= 511.0f);
-    let estimate_u = u32(estimate);
-    let t9 = t1 * 1022u;
-    let t10 = floor_fixed_rest_u * 1022u + (t9 >> 16u);
-    let t11 = floor_fixed2_u * 1022u + (t10 >> 16u);
-    let t12 = t9 & 65535u;
-    let t13 = t10 & 65535u;
-    let t14 = t11 & 65535u;
-    let t15 = t11 >> 16u;
-    let t16 = estimate_u + estimate_u + 1u;
-    let t17 = t6 * t16;
-    let t18 = t7 * t16 + (t17 >> 16u);
-    let t19 = t5 * t16 + (t18 >> 16u);
-    let t20 = t17 & 65535u;
-    let t21 = t18 & 65535u;
-    let t22 = t19 & 65535u;
-    let t23 = t19 >> 16u;
-    let t24 = estimate_u + estimate_u - 1u;
-    let t25 = t6 * t24;
-    let t26 = t7 * t24 + (t25 >> 16u);
-    let t27 = t5 * t24 + (t26 >> 16u);
-    let t28 = t25 & 65535u;
-    let t29 = t26 & 65535u;
-    let t30 = t27 & 65535u;
-    let t31 = t27 >> 16u;
-    let t32 = w2.x < 0.0f;
-    let t33 = !(t13 < t21) && !(t21 < t13) && (t20 < t12 || !(t12 < t20));
-    let t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t33);
-    let t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
-    let t36 = !(t13 < t21) && !(t21 < t13) && t20 < t12;
-    let t37 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t36);
-    let t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
-    let t39 = ((t23 < t15 || t35) && !t32) || ((t23 < t15 || t38) && t32);
-    let t40 = !(t29 < t13) && !(t13 < t29) && t12 < t28;
-    let t41 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t40);
-    let t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
-    let t43 = !(t29 < t13) && !(t13 < t29) && (t12 < t28 || !(t28 < t12));
-    let t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t43);
-    let t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
-    let t46 = ((t15 < t31 || t42) && !t32) || ((t15 < t31 || t45) && t32);
-    let t47 = estimate + select(0.0f, 1.0f, t39) - select(0.0f, 1.0f, estimate > 0.0f && t46);
-    let i0 = select(t47, -t47, t32);
-    let t48 = round(magnitude.y / l1 * 511.0f);
-    let estimate2 = select(511.0f, t48, t48 <= 511.0f);
-    let estimate2_u = u32(estimate2);
-    let t49 = t2 * 1022u;
-    let t50 = floor_fixed_rest2_u * 1022u + (t49 >> 16u);
-    let t51 = floor_fixed3_u * 1022u + (t50 >> 16u);
-    let t52 = t49 & 65535u;
-    let t53 = t50 & 65535u;
-    let t54 = t51 & 65535u;
-    let t55 = t51 >> 16u;
-    let t56 = estimate2_u + estimate2_u + 1u;
-    let t57 = t6 * t56;
-    let t58 = t7 * t56 + (t57 >> 16u);
-    let t59 = t5 * t56 + (t58 >> 16u);
-    let t60 = t57 & 65535u;
-    let t61 = t58 & 65535u;
-    let t62 = t59 & 65535u;
-    let t63 = t59 >> 16u;
-    let t64 = estimate2_u + estimate2_u - 1u;
-    let t65 = t6 * t64;
-    let t66 = t7 * t64 + (t65 >> 16u);
-    let t67 = t5 * t64 + (t66 >> 16u);
-    let t68 = t65 & 65535u;
-    let t69 = t66 & 65535u;
-    let t70 = t67 & 65535u;
-    let t71 = t67 >> 16u;
-    let t72 = w2.y < 0.0f;
-    let t73 = !(t53 < t61) && !(t61 < t53) && (t60 < t52 || !(t52 < t60));
-    let t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t73);
-    let t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
-    let t76 = !(t53 < t61) && !(t61 < t53) && t60 < t52;
-    let t77 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t76);
-    let t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
-    let t79 = ((t63 < t55 || t75) && !t72) || ((t63 < t55 || t78) && t72);
-    let t80 = !(t69 < t53) && !(t53 < t69) && t52 < t68;
-    let t81 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t80);
-    let t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
-    let t83 = !(t69 < t53) && !(t53 < t69) && (t52 < t68 || !(t68 < t52));
-    let t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t83);
-    let t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
-    let t86 = ((t55 < t71 || t82) && !t72) || ((t55 < t71 || t85) && t72);
-    let t87 = estimate2 + select(0.0f, 1.0f, t79);
-    let t88 = select(0.0f, 1.0f, estimate2 > 0.0f && t86);
-    let t89 = t87 - t88;
-    let neg_t89 = -t89;
-    let i1 = select(t89, neg_t89, t72);
-    let t90 = 511.0f - abs(i0);
-    let abs_i1 = abs(i1);
-    let i2 = t90 - abs_i1;
-    let t91 = select(i1 - i2, i1 + i2, i1 > 0.0f);
-    let t92 = -select(i2, 0.0f, i2 < 0.0f);
-    let t93 = select(
-        vec2<f32>(t87, t90) - vec2<f32>(t88, abs_i1),
-        vec2<f32>(neg_t89, 0.0f),
-        vec2<f32>(w2.y, i2) < vec2<f32>(0.0f)
-    );
-    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(i2, a0.z) < vec2<f32>(0.0f));
-    let t95 = select(
-        vec2<f32>(t90, t87) - vec2<f32>(abs_i1, t88),
-        vec2<f32>(0.0f, neg_t89),
-        vec2<f32>(i2, w2.y) < vec2<f32>(0.0f)
-    );
-    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(a0.z, i2) < vec2<f32>(0.0f));
-    let st = select(
-        select(1022.0f - abs(t96), abs(t96), t94 < vec2<f32>(0.0f)),
-        t94 + 511.0f,
-        i0 >= 0.0f
-    );
-    let t97 = (st.x == 0.0f && (st.y == 0.0f || st.y == 1022.0f))
-        || (st.x == 1022.0f && st.y == 0.0f);
-    let t98 = (st.x == 0.0f && st.y > 511.0f) || (st.x == 1022.0f && st.y < 511.0f);
-    let t99 = (st.y == 1022.0f && st.x < 511.0f) || (st.y == 0.0f && st.x > 511.0f);
-    let t100 = (st.x == 0.0f && st.y > 511.0f) || (st.x == 1022.0f && st.y < 511.0f);
-    let t101 = bitcast<vec3<u32>>(a0) & vec3<u32>(2147483647u);
-    let t102 = !(t101.x < 2139095041u) || !(t101.y < 2139095041u) || !(t101.z < 2139095041u);
-    let t103 = (!(t101.x < 2139095040u) && !!(t101.x < 2139095041u))
-        || (!(t101.y < 2139095040u) && !!(t101.y < 2139095041u));
-    let t104 = t103 || (!(t101.z < 2139095040u) && !!(t101.z < 2139095041u));
-    let t105 = select(
-        vec2<f32>(select(st.x, 1022.0f - st.x, t99), st.y),
-        vec2<f32>(st.x, 1022.0f - st.y),
-        vec2<bool>(t98, t100)
-    );
-    let codes = select(
-        vec2<f32>(511.0f, select(511.0f, 1022.0f, t104 && !t102)),
-        select(t105, vec2<f32>(1022.0f), t97),
-        ok && abs_a0.x + abs_a0.y + abs_a0.z >= 1.0000001e-6f
-    );
-    return codes;
-}
-
-// unitpack_draco_oct10_encode_float: fast encoder, float form.
-// In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
-//   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
-//   or y is infinite).
-// Out: parameters in [0, 1], unquantized, for a unorm10 render target or vertex format to round.
-// Not bit-portable: other implementations may return other floats here (unitpack verify --portable
-//   measures how far); the packed encoder is the portable form.
-fn unitpack_draco_oct10_encode_float(v: vec3<f32>) -> vec2<f32> {
-    return unitpack_draco_oct10_round_codes(v) * 0.0009775171f;
-}
-
-// unitpack_draco_oct10_encode: fast encoder.
-// In: as for unitpack_draco_oct10_encode_float.
-// Out: the packed code, u32 (bits 0–9: p0 unorm10, bits 10–19: p1 unorm10).
-// The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
-//   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
-//   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring
-//   code. Finite input whose norm overflows or underflows in plain arithmetic gets a defined code
-//   that need not be its direction's. The default, guarantee=portable, returns the same code on
-//   every implementation the include's header names.
-fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
+fn unitpack_draco_oct10_round_codes(v: vec3<f32>) -> vec2<f32> {
     let abs_v = abs(v);
     let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -293,33 +101,33 @@ fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
     let t3 = t1 + t2 + u32(floor((fixed_rest3 - floor_fixed_rest3) * 65536.0f));
     let t4 = floor_fixed_rest_u + floor_fixed_rest2_u + u32(floor_fixed_rest3) + (t3 >> 16u);
     let t5 = floor_fixed2_u + floor_fixed3_u + u32(floor_fixed4) + (t4 >> 16u);
-    let t6 = t3 & 65535u;
-    let t7 = t4 & 65535u;
+    let t6 = t3 & 0xffffu;
+    let t7 = t4 & 0xffffu;
     let t8 = round(magnitude.x / l1 * 511.0f);
     let estimate = select(511.0f, t8, t8 <= 511.0f);
     let estimate_u = u32(estimate);
     let t9 = t1 * 1022u;
     let t10 = floor_fixed_rest_u * 1022u + (t9 >> 16u);
     let t11 = floor_fixed2_u * 1022u + (t10 >> 16u);
-    let t12 = t9 & 65535u;
-    let t13 = t10 & 65535u;
-    let t14 = t11 & 65535u;
+    let t12 = t9 & 0xffffu;
+    let t13 = t10 & 0xffffu;
+    let t14 = t11 & 0xffffu;
     let t15 = t11 >> 16u;
     let t16 = estimate_u + estimate_u + 1u;
     let t17 = t6 * t16;
     let t18 = t7 * t16 + (t17 >> 16u);
     let t19 = t5 * t16 + (t18 >> 16u);
-    let t20 = t17 & 65535u;
-    let t21 = t18 & 65535u;
-    let t22 = t19 & 65535u;
+    let t20 = t17 & 0xffffu;
+    let t21 = t18 & 0xffffu;
+    let t22 = t19 & 0xffffu;
     let t23 = t19 >> 16u;
     let t24 = estimate_u + estimate_u - 1u;
     let t25 = t6 * t24;
     let t26 = t7 * t24 + (t25 >> 16u);
     let t27 = t5 * t24 + (t26 >> 16u);
-    let t28 = t25 & 65535u;
-    let t29 = t26 & 65535u;
-    let t30 = t27 & 65535u;
+    let t28 = t25 & 0xffffu;
+    let t29 = t26 & 0xffffu;
+    let t30 = t27 & 0xffffu;
     let t31 = t27 >> 16u;
     let t32 = w2.x < 0.0f;
     let t33 = !(t13 < t21) && !(t21 < t13) && (t20 < t12 || !(t12 < t20));
@@ -344,25 +152,25 @@ fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
     let t49 = t2 * 1022u;
     let t50 = floor_fixed_rest2_u * 1022u + (t49 >> 16u);
     let t51 = floor_fixed3_u * 1022u + (t50 >> 16u);
-    let t52 = t49 & 65535u;
-    let t53 = t50 & 65535u;
-    let t54 = t51 & 65535u;
+    let t52 = t49 & 0xffffu;
+    let t53 = t50 & 0xffffu;
+    let t54 = t51 & 0xffffu;
     let t55 = t51 >> 16u;
     let t56 = estimate2_u + estimate2_u + 1u;
     let t57 = t6 * t56;
     let t58 = t7 * t56 + (t57 >> 16u);
     let t59 = t5 * t56 + (t58 >> 16u);
-    let t60 = t57 & 65535u;
-    let t61 = t58 & 65535u;
-    let t62 = t59 & 65535u;
+    let t60 = t57 & 0xffffu;
+    let t61 = t58 & 0xffffu;
+    let t62 = t59 & 0xffffu;
     let t63 = t59 >> 16u;
     let t64 = estimate2_u + estimate2_u - 1u;
     let t65 = t6 * t64;
     let t66 = t7 * t64 + (t65 >> 16u);
     let t67 = t5 * t64 + (t66 >> 16u);
-    let t68 = t65 & 65535u;
-    let t69 = t66 & 65535u;
-    let t70 = t67 & 65535u;
+    let t68 = t65 & 0xffffu;
+    let t69 = t66 & 0xffffu;
+    let t70 = t67 & 0xffffu;
     let t71 = t67 >> 16u;
     let t72 = w2.y < 0.0f;
     let t73 = !(t53 < t61) && !(t61 < t53) && (t60 < t52 || !(t52 < t60));
@@ -411,11 +219,204 @@ fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
     let t98 = (st.x == 0.0f && st.y > 511.0f) || (st.x == 1022.0f && st.y < 511.0f);
     let t99 = (st.y == 1022.0f && st.x < 511.0f) || (st.y == 0.0f && st.x > 511.0f);
     let t100 = (st.x == 0.0f && st.y > 511.0f) || (st.x == 1022.0f && st.y < 511.0f);
-    let t101 = bitcast<vec3<u32>>(v) & vec3<u32>(2147483647u);
-    let t102 = !(t101.x < 2139095041u) || !(t101.y < 2139095041u) || !(t101.z < 2139095041u);
-    let t103 = (!(t101.x < 2139095040u) && !!(t101.x < 2139095041u))
-        || (!(t101.y < 2139095040u) && !!(t101.y < 2139095041u));
-    let t104 = t103 || (!(t101.z < 2139095040u) && !!(t101.z < 2139095041u));
+    let t101 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
+    let t102 = !(t101.x < 0x7f800001u) || !(t101.y < 0x7f800001u) || !(t101.z < 0x7f800001u);
+    let t103 = (!(t101.x < 0x7f800000u) && !!(t101.x < 0x7f800001u))
+        || (!(t101.y < 0x7f800000u) && !!(t101.y < 0x7f800001u));
+    let t104 = t103 || (!(t101.z < 0x7f800000u) && !!(t101.z < 0x7f800001u));
+    let t105 = select(
+        vec2<f32>(select(st.x, 1022.0f - st.x, t99), st.y),
+        vec2<f32>(st.x, 1022.0f - st.y),
+        vec2<bool>(t98, t100)
+    );
+    let codes = select(
+        vec2<f32>(511.0f, select(511.0f, 1022.0f, t104 && !t102)),
+        select(t105, vec2<f32>(1022.0f), t97),
+        ok && abs_v.x + abs_v.y + abs_v.z >= 1.0000001e-6f
+    );
+    return codes;
+}
+
+// unitpack_draco_oct10_encode_float: fast encoder, float form.
+// In: any vector; Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c);
+//   infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x
+//   or y is infinite).
+// Out: parameters in [0, 1], unquantized, for a unorm10 render target or vertex format to round.
+// Not bit-portable: other implementations may return other floats here (unitpack verify --portable
+//   measures how far); the packed encoder is the portable form.
+fn unitpack_draco_oct10_encode_float(v: vec3<f32>) -> vec2<f32> {
+    return unitpack_draco_oct10_round_codes(v) * 0.0009775171f;
+}
+
+// unitpack_draco_oct10_encode: fast encoder.
+// In: as for unitpack_draco_oct10_encode_float.
+// Out: the packed code, u32 (bits 0–9: p0 unorm10, bits 10–19: p1 unorm10).
+// The lean tier (guarantee=ieee), not portable: bit-exact only where + - * / and sqrt round
+//   correctly to nearest, denormals are kept and nothing is contracted or reassociated (lavapipe, C
+//   with -ffp-contract=off and without fast math, the CPU); elsewhere it may return a neighbouring
+//   code. Finite input whose norm overflows or underflows in plain arithmetic gets a defined code
+//   that need not be its direction's. The default, guarantee=portable, returns the same code on
+//   every implementation the include's header names.
+fn unitpack_draco_oct10_encode(v: vec3<f32>) -> u32 {
+    let abs_v = abs(v);
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
+    let abs_normal = abs(normal);
+    let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
+    let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
+    let scaled = normal * scale;
+    let abs_scaled = abs(scaled);
+    let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
+    let sum_below_16 = sum < 16.0f;
+    let ok = sum >= 2.0f && sum_below_16;
+    let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
+    let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
+    let magnitude = abs(w2);
+    let l1 = magnitude.x + magnitude.y + magnitude.z;
+    let fixed2 = magnitude.x * 4096.0f;
+    let floor_fixed2 = floor(fixed2);
+    let fixed_rest = (fixed2 - floor_fixed2) * 65536.0f;
+    let floor_fixed_rest = floor(fixed_rest);
+    let t1 = u32(floor((fixed_rest - floor_fixed_rest) * 65536.0f));
+    let floor_fixed_rest_u = u32(floor_fixed_rest);
+    let floor_fixed2_u = u32(floor_fixed2);
+    let fixed3 = magnitude.y * 4096.0f;
+    let floor_fixed3 = floor(fixed3);
+    let fixed_rest2 = (fixed3 - floor_fixed3) * 65536.0f;
+    let floor_fixed_rest2 = floor(fixed_rest2);
+    let t2 = u32(floor((fixed_rest2 - floor_fixed_rest2) * 65536.0f));
+    let floor_fixed_rest2_u = u32(floor_fixed_rest2);
+    let floor_fixed3_u = u32(floor_fixed3);
+    let fixed4 = magnitude.z * 4096.0f;
+    let floor_fixed4 = floor(fixed4);
+    let fixed_rest3 = (fixed4 - floor_fixed4) * 65536.0f;
+    let floor_fixed_rest3 = floor(fixed_rest3);
+    let t3 = t1 + t2 + u32(floor((fixed_rest3 - floor_fixed_rest3) * 65536.0f));
+    let t4 = floor_fixed_rest_u + floor_fixed_rest2_u + u32(floor_fixed_rest3) + (t3 >> 16u);
+    let t5 = floor_fixed2_u + floor_fixed3_u + u32(floor_fixed4) + (t4 >> 16u);
+    let t6 = t3 & 0xffffu;
+    let t7 = t4 & 0xffffu;
+    let t8 = round(magnitude.x / l1 * 511.0f);
+    let estimate = select(511.0f, t8, t8 <= 511.0f);
+    let estimate_u = u32(estimate);
+    let t9 = t1 * 1022u;
+    let t10 = floor_fixed_rest_u * 1022u + (t9 >> 16u);
+    let t11 = floor_fixed2_u * 1022u + (t10 >> 16u);
+    let t12 = t9 & 0xffffu;
+    let t13 = t10 & 0xffffu;
+    let t14 = t11 & 0xffffu;
+    let t15 = t11 >> 16u;
+    let t16 = estimate_u + estimate_u + 1u;
+    let t17 = t6 * t16;
+    let t18 = t7 * t16 + (t17 >> 16u);
+    let t19 = t5 * t16 + (t18 >> 16u);
+    let t20 = t17 & 0xffffu;
+    let t21 = t18 & 0xffffu;
+    let t22 = t19 & 0xffffu;
+    let t23 = t19 >> 16u;
+    let t24 = estimate_u + estimate_u - 1u;
+    let t25 = t6 * t24;
+    let t26 = t7 * t24 + (t25 >> 16u);
+    let t27 = t5 * t24 + (t26 >> 16u);
+    let t28 = t25 & 0xffffu;
+    let t29 = t26 & 0xffffu;
+    let t30 = t27 & 0xffffu;
+    let t31 = t27 >> 16u;
+    let t32 = w2.x < 0.0f;
+    let t33 = !(t13 < t21) && !(t21 < t13) && (t20 < t12 || !(t12 < t20));
+    let t34 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t33);
+    let t35 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t34);
+    let t36 = !(t13 < t21) && !(t21 < t13) && t20 < t12;
+    let t37 = !(t14 < t22) && !(t22 < t14) && (t21 < t13 || t36);
+    let t38 = !(t15 < t23) && !(t23 < t15) && (t22 < t14 || t37);
+    let t39 = ((t23 < t15 || t35) && !t32) || ((t23 < t15 || t38) && t32);
+    let t40 = !(t29 < t13) && !(t13 < t29) && t12 < t28;
+    let t41 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t40);
+    let t42 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t41);
+    let t43 = !(t29 < t13) && !(t13 < t29) && (t12 < t28 || !(t28 < t12));
+    let t44 = !(t30 < t14) && !(t14 < t30) && (t13 < t29 || t43);
+    let t45 = !(t31 < t15) && !(t15 < t31) && (t14 < t30 || t44);
+    let t46 = ((t15 < t31 || t42) && !t32) || ((t15 < t31 || t45) && t32);
+    let t47 = estimate + select(0.0f, 1.0f, t39) - select(0.0f, 1.0f, estimate > 0.0f && t46);
+    let i0 = select(t47, -t47, t32);
+    let t48 = round(magnitude.y / l1 * 511.0f);
+    let estimate2 = select(511.0f, t48, t48 <= 511.0f);
+    let estimate2_u = u32(estimate2);
+    let t49 = t2 * 1022u;
+    let t50 = floor_fixed_rest2_u * 1022u + (t49 >> 16u);
+    let t51 = floor_fixed3_u * 1022u + (t50 >> 16u);
+    let t52 = t49 & 0xffffu;
+    let t53 = t50 & 0xffffu;
+    let t54 = t51 & 0xffffu;
+    let t55 = t51 >> 16u;
+    let t56 = estimate2_u + estimate2_u + 1u;
+    let t57 = t6 * t56;
+    let t58 = t7 * t56 + (t57 >> 16u);
+    let t59 = t5 * t56 + (t58 >> 16u);
+    let t60 = t57 & 0xffffu;
+    let t61 = t58 & 0xffffu;
+    let t62 = t59 & 0xffffu;
+    let t63 = t59 >> 16u;
+    let t64 = estimate2_u + estimate2_u - 1u;
+    let t65 = t6 * t64;
+    let t66 = t7 * t64 + (t65 >> 16u);
+    let t67 = t5 * t64 + (t66 >> 16u);
+    let t68 = t65 & 0xffffu;
+    let t69 = t66 & 0xffffu;
+    let t70 = t67 & 0xffffu;
+    let t71 = t67 >> 16u;
+    let t72 = w2.y < 0.0f;
+    let t73 = !(t53 < t61) && !(t61 < t53) && (t60 < t52 || !(t52 < t60));
+    let t74 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t73);
+    let t75 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t74);
+    let t76 = !(t53 < t61) && !(t61 < t53) && t60 < t52;
+    let t77 = !(t54 < t62) && !(t62 < t54) && (t61 < t53 || t76);
+    let t78 = !(t55 < t63) && !(t63 < t55) && (t62 < t54 || t77);
+    let t79 = ((t63 < t55 || t75) && !t72) || ((t63 < t55 || t78) && t72);
+    let t80 = !(t69 < t53) && !(t53 < t69) && t52 < t68;
+    let t81 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t80);
+    let t82 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t81);
+    let t83 = !(t69 < t53) && !(t53 < t69) && (t52 < t68 || !(t68 < t52));
+    let t84 = !(t70 < t54) && !(t54 < t70) && (t53 < t69 || t83);
+    let t85 = !(t71 < t55) && !(t55 < t71) && (t54 < t70 || t84);
+    let t86 = ((t55 < t71 || t82) && !t72) || ((t55 < t71 || t85) && t72);
+    let t87 = estimate2 + select(0.0f, 1.0f, t79);
+    let t88 = select(0.0f, 1.0f, estimate2 > 0.0f && t86);
+    let t89 = t87 - t88;
+    let neg_t89 = -t89;
+    let i1 = select(t89, neg_t89, t72);
+    let t90 = 511.0f - abs(i0);
+    let abs_i1 = abs(i1);
+    let i2 = t90 - abs_i1;
+    let t91 = select(i1 - i2, i1 + i2, i1 > 0.0f);
+    let t92 = -select(i2, 0.0f, i2 < 0.0f);
+    let t93 = select(
+        vec2<f32>(t87, t90) - vec2<f32>(t88, abs_i1),
+        vec2<f32>(neg_t89, 0.0f),
+        vec2<f32>(w2.y, i2) < vec2<f32>(0.0f)
+    );
+    let t94 = select(t93, vec2<f32>(t91, t92), vec2<f32>(i2, v.z) < vec2<f32>(0.0f));
+    let t95 = select(
+        vec2<f32>(t90, t87) - vec2<f32>(abs_i1, t88),
+        vec2<f32>(0.0f, neg_t89),
+        vec2<f32>(i2, w2.y) < vec2<f32>(0.0f)
+    );
+    let t96 = select(t95, vec2<f32>(t92, t91), vec2<f32>(v.z, i2) < vec2<f32>(0.0f));
+    let st = select(
+        select(1022.0f - abs(t96), abs(t96), t94 < vec2<f32>(0.0f)),
+        t94 + 511.0f,
+        i0 >= 0.0f
+    );
+    let t97 = (st.x == 0.0f && (st.y == 0.0f || st.y == 1022.0f))
+        || (st.x == 1022.0f && st.y == 0.0f);
+    let t98 = (st.x == 0.0f && st.y > 511.0f) || (st.x == 1022.0f && st.y < 511.0f);
+    let t99 = (st.y == 1022.0f && st.x < 511.0f) || (st.y == 0.0f && st.x > 511.0f);
+    let t100 = (st.x == 0.0f && st.y > 511.0f) || (st.x == 1022.0f && st.y < 511.0f);
+    let t101 = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
+    let t102 = !(t101.x < 0x7f800001u) || !(t101.y < 0x7f800001u) || !(t101.z < 0x7f800001u);
+    let t103 = (!(t101.x < 0x7f800000u) && !!(t101.x < 0x7f800001u))
+        || (!(t101.y < 0x7f800000u) && !!(t101.y < 0x7f800001u));
+    let t104 = t103 || (!(t101.z < 0x7f800000u) && !!(t101.z < 0x7f800001u));
     let t105 = select(
         vec2<f32>(select(st.x, 1022.0f - st.x, t99), st.y),
         vec2<f32>(st.x, 1022.0f - st.y),

@@ -15,6 +15,7 @@
 // ---- eqarea20p: Lambert equal-area hemisphere on the unit disk + hemisphere bit, unorm×2, 20
 //   bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001.
+// Model: src/codecs/azimuthal/eqarea.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.09401°, sample max 0.22105°; MSE of the components of
 //   n - n' 1.069e-6, PSNR 59.71 dB.
 
@@ -45,7 +46,9 @@ fn unitpack_eqarea20p_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   (1.42e-3) of what this function computes here, for every code: a bound proven by interval
 //   evaluation (unitpack verify --portable prints it).
 fn unitpack_eqarea20p_decode(code: u32) -> vec3<f32> {
-    let params = vec3<f32>(vec3<u32>(code, code >> 10u, code >> 19u) & vec3<u32>(1023u, 511u, 1u))
+    let params = vec3<f32>(
+        vec3<u32>(code, code >> 10u, code >> 19u) & vec3<u32>(0x3ffu, 0x1ffu, 1u)
+    )
         * vec3<f32>(0.0009775171f, 0.0019569471f, 1.0f);
     return unitpack_eqarea20p_decode_float(params);
 }
@@ -59,7 +62,7 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -74,38 +77,38 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
     let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
-    let limb0 = fixed2 & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = fixed2 & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = fixed3 >> 12u;
-    let limb0_2 = fixed3 & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = fixed3 & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = fixed4 >> 12u;
-    let limb0_3 = fixed4 & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = fixed4 & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
     let root_k0 = floor(root_estimate * 512.0f);
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + step2;
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let la = root * (root + abs(w2.z));
@@ -162,12 +165,12 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let root_estimate2 = floor(sqrt(t15));
     let root_next = root_estimate2 + 1.0f;
     let step_down3 = select(0.0f, -1.0f, root_estimate2 * root_estimate2 > t15);
-    let step3 = select(step_down3, 1.0f, root_next * root_next <= t15);
-    let root_step = root_estimate2 + step3;
+    let nudge3 = select(step_down3, 1.0f, root_next * root_next <= t15);
+    let root_step = root_estimate2 + nudge3;
     let root_next2 = root_step + 1.0f;
     let step_down4 = select(0.0f, -1.0f, root_step * root_step > t15);
-    let step4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t15);
-    let g = root_step + step4;
+    let nudge4 = select(step_down4, 1.0f, root_next2 * root_next2 <= t15);
+    let g = root_step + nudge4;
     let t16 = vec3<f32>(
         floor(p * g * 9.536743e-7f),
         (2097152.0f - q) * select(1.0f, -1.0f, one_if > 0.5f)
@@ -175,22 +178,22 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let offset = t16 - aim;
     let offset_u = vec3<u32>(abs(offset));
     let limb1_4 = offset_u.x >> 12u;
-    let limb0_4 = offset_u.x & 4095u;
-    let cross4 = limb1_4 * limb0_4;
-    let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    let limb0_4 = offset_u.x & 0xfffu;
+    let limb_cross4 = limb1_4 * limb0_4;
+    let hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    let lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     let limb1_5 = offset_u.y >> 12u;
-    let limb0_5 = offset_u.y & 4095u;
-    let cross5 = limb1_5 * limb0_5;
-    let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    let limb0_5 = offset_u.y & 0xfffu;
+    let limb_cross5 = limb1_5 * limb0_5;
+    let hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    let lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     let limb1_6 = offset_u.z >> 12u;
-    let limb0_6 = offset_u.z & 4095u;
-    let cross6 = limb1_6 * limb0_6;
-    let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    let limb0_6 = offset_u.z & 0xfffu;
+    let limb_cross6 = limb1_6 * limb0_6;
+    let hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    let lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     let hi8 = hi7 + (lo7 >> 24u);
-    let lo8 = lo7 & 16777215u;
+    let lo8 = lo7 & 0xffffffu;
     let dist = f32(hi8) * 16777216.0f + f32(lo8);
     let s_up = base.x + 1.0f;
     let t_up = base.y + 1.0f;
@@ -203,12 +206,12 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let root_estimate3 = floor(sqrt(t19));
     let root_next3 = root_estimate3 + 1.0f;
     let step_down5 = select(0.0f, -1.0f, root_estimate3 * root_estimate3 > t19);
-    let step5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t19);
-    let root_step2 = root_estimate3 + step5;
+    let nudge5 = select(step_down5, 1.0f, root_next3 * root_next3 <= t19);
+    let root_step2 = root_estimate3 + nudge5;
     let root_next4 = root_step2 + 1.0f;
     let step_down6 = select(0.0f, -1.0f, root_step2 * root_step2 > t19);
-    let step6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t19);
-    let g2 = root_step2 + step6;
+    let nudge6 = select(step_down6, 1.0f, root_next4 * root_next4 <= t19);
+    let g2 = root_step2 + nudge6;
     let t20 = vec3<f32>(
         floor(p2 * g2 * 9.536743e-7f),
         (2097152.0f - q2) * select(1.0f, -1.0f, one_if > 0.5f)
@@ -216,22 +219,22 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let offset2 = t20 - aim;
     let offset_u2 = vec3<u32>(abs(offset2));
     let limb1_7 = offset_u2.x >> 12u;
-    let limb0_7 = offset_u2.x & 4095u;
-    let cross7 = limb1_7 * limb0_7;
-    let hi9 = 0u + limb1_7 * limb1_7 + (cross7 >> 11u);
-    let lo9 = 0u + limb0_7 * limb0_7 + ((cross7 << 13u) & 16777215u);
+    let limb0_7 = offset_u2.x & 0xfffu;
+    let limb_cross7 = limb1_7 * limb0_7;
+    let hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    let lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     let limb1_8 = offset_u2.y >> 12u;
-    let limb0_8 = offset_u2.y & 4095u;
-    let cross8 = limb1_8 * limb0_8;
-    let hi10 = hi9 + limb1_8 * limb1_8 + (cross8 >> 11u);
-    let lo10 = lo9 + limb0_8 * limb0_8 + ((cross8 << 13u) & 16777215u);
+    let limb0_8 = offset_u2.y & 0xfffu;
+    let limb_cross8 = limb1_8 * limb0_8;
+    let hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    let lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     let limb1_9 = offset_u2.z >> 12u;
-    let limb0_9 = offset_u2.z & 4095u;
-    let cross9 = limb1_9 * limb0_9;
-    let hi11 = hi10 + limb1_9 * limb1_9 + (cross9 >> 11u);
-    let lo11 = lo10 + limb0_9 * limb0_9 + ((cross9 << 13u) & 16777215u);
+    let limb0_9 = offset_u2.z & 0xfffu;
+    let limb_cross9 = limb1_9 * limb0_9;
+    let hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    let lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     let hi12 = hi11 + (lo11 >> 24u);
-    let lo12 = lo11 & 16777215u;
+    let lo12 = lo11 & 0xffffffu;
     let dist2 = f32(hi12) * 16777216.0f + f32(lo12);
     let t21 = s_up <= 1023.0f && base.y <= 511.0f && dist2 < dist;
     let best = select(cand, cand2, t21);
@@ -245,12 +248,12 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let root_estimate4 = floor(sqrt(t24));
     let root_next5 = root_estimate4 + 1.0f;
     let step_down7 = select(0.0f, -1.0f, root_estimate4 * root_estimate4 > t24);
-    let step7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t24);
-    let root_step3 = root_estimate4 + step7;
+    let nudge7 = select(step_down7, 1.0f, root_next5 * root_next5 <= t24);
+    let root_step3 = root_estimate4 + nudge7;
     let root_next6 = root_step3 + 1.0f;
     let step_down8 = select(0.0f, -1.0f, root_step3 * root_step3 > t24);
-    let step8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t24);
-    let g3 = root_step3 + step8;
+    let nudge8 = select(step_down8, 1.0f, root_next6 * root_next6 <= t24);
+    let g3 = root_step3 + nudge8;
     let t25 = vec3<f32>(
         floor(p3 * g3 * 9.536743e-7f),
         (2097152.0f - q3) * select(1.0f, -1.0f, one_if > 0.5f)
@@ -258,22 +261,22 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let offset3 = t25 - aim;
     let offset_u3 = vec3<u32>(abs(offset3));
     let limb1_10 = offset_u3.x >> 12u;
-    let limb0_10 = offset_u3.x & 4095u;
-    let cross10 = limb1_10 * limb0_10;
-    let hi13 = 0u + limb1_10 * limb1_10 + (cross10 >> 11u);
-    let lo13 = 0u + limb0_10 * limb0_10 + ((cross10 << 13u) & 16777215u);
+    let limb0_10 = offset_u3.x & 0xfffu;
+    let limb_cross10 = limb1_10 * limb0_10;
+    let hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    let lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     let limb1_11 = offset_u3.y >> 12u;
-    let limb0_11 = offset_u3.y & 4095u;
-    let cross11 = limb1_11 * limb0_11;
-    let hi14 = hi13 + limb1_11 * limb1_11 + (cross11 >> 11u);
-    let lo14 = lo13 + limb0_11 * limb0_11 + ((cross11 << 13u) & 16777215u);
+    let limb0_11 = offset_u3.y & 0xfffu;
+    let limb_cross11 = limb1_11 * limb0_11;
+    let hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    let lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     let limb1_12 = offset_u3.z >> 12u;
-    let limb0_12 = offset_u3.z & 4095u;
-    let cross12 = limb1_12 * limb0_12;
-    let hi15 = hi14 + limb1_12 * limb1_12 + (cross12 >> 11u);
-    let lo15 = lo14 + limb0_12 * limb0_12 + ((cross12 << 13u) & 16777215u);
+    let limb0_12 = offset_u3.z & 0xfffu;
+    let limb_cross12 = limb1_12 * limb0_12;
+    let hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    let lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     let hi16 = hi15 + (lo15 >> 24u);
-    let lo16 = lo15 & 16777215u;
+    let lo16 = lo15 & 0xffffffu;
     let dist3 = f32(hi16) * 16777216.0f + f32(lo16);
     let t26 = base.x <= 1023.0f && t_up <= 511.0f && dist3 < best_d;
     let best2 = select(best, cand3, t26);
@@ -287,12 +290,12 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let root_estimate5 = floor(sqrt(t29));
     let root_next7 = root_estimate5 + 1.0f;
     let step_down9 = select(0.0f, -1.0f, root_estimate5 * root_estimate5 > t29);
-    let step9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t29);
-    let root_step4 = root_estimate5 + step9;
+    let nudge9 = select(step_down9, 1.0f, root_next7 * root_next7 <= t29);
+    let root_step4 = root_estimate5 + nudge9;
     let root_next8 = root_step4 + 1.0f;
     let step_down10 = select(0.0f, -1.0f, root_step4 * root_step4 > t29);
-    let step10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t29);
-    let g4 = root_step4 + step10;
+    let nudge10 = select(step_down10, 1.0f, root_next8 * root_next8 <= t29);
+    let g4 = root_step4 + nudge10;
     let t30 = vec3<f32>(
         floor(p4 * g4 * 9.536743e-7f),
         (2097152.0f - q4) * select(1.0f, -1.0f, one_if > 0.5f)
@@ -300,22 +303,22 @@ fn unitpack_eqarea20p_encode_codes(v: vec3<f32>) -> vec3<f32> {
     let offset4 = t30 - aim;
     let offset_u4 = vec3<u32>(abs(offset4));
     let limb1_13 = offset_u4.x >> 12u;
-    let limb0_13 = offset_u4.x & 4095u;
-    let cross13 = limb1_13 * limb0_13;
-    let hi17 = 0u + limb1_13 * limb1_13 + (cross13 >> 11u);
-    let lo17 = 0u + limb0_13 * limb0_13 + ((cross13 << 13u) & 16777215u);
+    let limb0_13 = offset_u4.x & 0xfffu;
+    let limb_cross13 = limb1_13 * limb0_13;
+    let hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    let lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     let limb1_14 = offset_u4.y >> 12u;
-    let limb0_14 = offset_u4.y & 4095u;
-    let cross14 = limb1_14 * limb0_14;
-    let hi18 = hi17 + limb1_14 * limb1_14 + (cross14 >> 11u);
-    let lo18 = lo17 + limb0_14 * limb0_14 + ((cross14 << 13u) & 16777215u);
+    let limb0_14 = offset_u4.y & 0xfffu;
+    let limb_cross14 = limb1_14 * limb0_14;
+    let hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    let lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     let limb1_15 = offset_u4.z >> 12u;
-    let limb0_15 = offset_u4.z & 4095u;
-    let cross15 = limb1_15 * limb0_15;
-    let hi19 = hi18 + limb1_15 * limb1_15 + (cross15 >> 11u);
-    let lo19 = lo18 + limb0_15 * limb0_15 + ((cross15 << 13u) & 16777215u);
+    let limb0_15 = offset_u4.z & 0xfffu;
+    let limb_cross15 = limb1_15 * limb0_15;
+    let hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    let lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     let hi20 = hi19 + (lo19 >> 24u);
-    let lo20 = lo19 & 16777215u;
+    let lo20 = lo19 & 0xffffffu;
     let dist4 = f32(hi20) * 16777216.0f + f32(lo20);
     let best3 = select(best2, cand4, s_up <= 1023.0f && t_up <= 511.0f && dist4 < best_d2);
     return vec3<f32>(best3, one_if);

@@ -16,15 +16,16 @@
 //   square + hemisphere bit, unorm×2, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (eqarea+concentric); Snyder and Mitchell 2001; Shirley and Chiu
 //   1997.
+// Model: src/codecs/azimuthal/disk_square.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02285°, sample max 0.06297°; MSE of the components of
 //   n - n' 6.655e-8, PSNR 71.77 dB.
 
 // (sin(π·t), cos(π·t)) for t in [-1/4, 1/4] from exact operations only, with no branch (|error| ≤
 //   2.5e-7).
-fn unitpack_eqarea_concentric24_sincos_quarter_pi(a0: f32) -> vec2<f32> {
-    let c2 = a0 * a0;
+fn unitpack_eqarea_concentric24_sincos_quarter_pi(x: f32) -> vec2<f32> {
+    let c2 = x * x;
     let t1 = (((0.082145885f * c2 + (-0.5992645f)) * c2 + 2.550164f) * c2 + (-5.1677127f)) * c2;
-    let s = a0 * (t1 + 3.1415927f);
+    let s = x * (t1 + 3.1415927f);
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     return vec2<f32>(s, co);
@@ -60,21 +61,23 @@ fn unitpack_eqarea_concentric24_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   rounding.
 // Portable as unitpack_eqarea_concentric24_decode_float is, within the same bound.
 fn unitpack_eqarea_concentric24_decode(code: u32) -> vec3<f32> {
-    let params = vec3<f32>(vec3<u32>(code, code >> 12u, code >> 23u) & vec3<u32>(4095u, 2047u, 1u))
+    let params = vec3<f32>(
+        vec3<u32>(code, code >> 12u, code >> 23u) & vec3<u32>(0xfffu, 0x7ffu, 1u)
+    )
         * vec3<f32>(0.00024420026f, 0.0004885198f, 1.0f);
     return unitpack_eqarea_concentric24_decode_float(params);
 }
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-fn unitpack_eqarea_concentric24_atan2_pi(a0: f32, a1: f32) -> f32 {
-    let abs_a1 = abs(a1);
-    let abs_a0 = abs(a0);
-    let y_major = abs_a0 > abs_a1;
-    let hi = select(abs_a1, abs_a0, y_major);
+fn unitpack_eqarea_concentric24_atan2_pi(minor: f32, x: f32) -> f32 {
+    let abs_x = abs(x);
+    let abs_minor = abs(minor);
+    let y_major = abs_minor > abs_x;
+    let hi = select(abs_x, abs_minor, y_major);
     let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
     let hi2 = hi * up;
-    let t = select(abs_a0, abs_a1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
+    let t = select(abs_minor, abs_x, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
@@ -83,8 +86,8 @@ fn unitpack_eqarea_concentric24_atan2_pi(a0: f32, a1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
-    return select(r4, -r4, a0 < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, x < 0.0f);
+    return select(r4, -r4, minor < 0.0f) * 0.31830987f;
 }
 
 // unitpack_eqarea_concentric24_encode_float: fast encoder, float form.
@@ -99,7 +102,7 @@ fn unitpack_eqarea_concentric24_encode_float(v: vec3<f32>) -> vec3<f32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -114,38 +117,38 @@ fn unitpack_eqarea_concentric24_encode_float(v: vec3<f32>) -> vec3<f32> {
     let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
     let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
-    let limb0 = fixed2 & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = fixed2 & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = fixed3 >> 12u;
-    let limb0_2 = fixed3 & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = fixed3 & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = fixed4 >> 12u;
-    let limb0_3 = fixed4 & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = fixed4 & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
     let root_k0 = floor(root_estimate * 512.0f);
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + step2;
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let t1 = w2.xy * w2.xy;
@@ -164,12 +167,12 @@ fn unitpack_eqarea_concentric24_encode_float(v: vec3<f32>) -> vec3<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_eqarea_concentric24_round_codes(a0: vec3<f32>) -> vec3<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_eqarea_concentric24_round_codes(v: vec3<f32>) -> vec3<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -184,38 +187,38 @@ fn unitpack_eqarea_concentric24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let fixed_f3 = floor(abs(w2.z) * 2097152.0f);
     let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
-    let limb0 = fixed2 & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = fixed2 & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = fixed3 >> 12u;
-    let limb0_2 = fixed3 & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = fixed3 & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = fixed4 >> 12u;
-    let limb0_3 = fixed4 & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = fixed4 & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(len2);
     let root_k0 = floor(root_estimate * 512.0f);
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > len2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= len2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = len2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > len2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
-    let root_j = root_j0 + step2;
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= len2);
+    let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let one_if = select(0.0f, 1.0f, w2.z < 0.0f);
     let fixed_f4 = floor(abs(w2.x) * 2097152.0f);
@@ -223,17 +226,17 @@ fn unitpack_eqarea_concentric24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let fixed_f5 = floor(abs(w2.y) * 2097152.0f);
     let fixed6 = u32(fixed_f5);
     let limb1_4 = fixed5 >> 12u;
-    let limb0_4 = fixed5 & 4095u;
-    let cross4 = limb1_4 * limb0_4;
-    let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    let limb0_4 = fixed5 & 0xfffu;
+    let limb_cross4 = limb1_4 * limb0_4;
+    let hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    let lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     let limb1_5 = fixed6 >> 12u;
-    let limb0_5 = fixed6 & 4095u;
-    let cross5 = limb1_5 * limb0_5;
-    let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    let limb0_5 = fixed6 & 0xfffu;
+    let limb_cross5 = limb1_5 * limb0_5;
+    let hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    let lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     let hi7 = hi6 + (lo6 >> 24u);
-    let lo7 = lo6 & 16777215u;
+    let lo7 = lo6 & 0xffffffu;
     let rho2 = (f32(hi7) * 16777216.0f + f32(lo7)) * 2.2737368e-13f;
     let t1 = root * (root + abs(w2.z));
     let r = sqrt(rho2 / t1);
@@ -250,22 +253,22 @@ fn unitpack_eqarea_concentric24_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let big = lo8 * 8388608.0f;
     let ratio_estimate = floor(lo8 / t3 * 8388608.0f);
     let step_down3 = select(0.0f, -1.0f, ratio_estimate * t3 > big);
-    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
-    let ratio = ratio_estimate + step3;
+    let nudge3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
+    let ratio = ratio_estimate + nudge3;
     let step_down4 = select(0.0f, -1.0f, ratio * t3 > big);
-    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
-    let t = ratio + step4;
+    let nudge4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
+    let t = ratio + nudge4;
     let far = t > 3474675.0f;
     let t4 = t - 8388608.0f;
     let t5 = t + 8388608.0f;
     let big2 = t4 * 8388608.0f;
     let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
     let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t5 > big2);
-    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
-    let ratio2 = ratio_estimate2 + step5;
+    let nudge5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
+    let ratio2 = ratio_estimate2 + nudge5;
     let step_down6 = select(0.0f, -1.0f, ratio2 * t5 > big2);
-    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
-    let ratio3 = ratio2 + step6;
+    let nudge6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
+    let ratio3 = ratio2 + nudge6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
     let t6 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);

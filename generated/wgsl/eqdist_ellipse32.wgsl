@@ -16,6 +16,7 @@
 //   the square + hemisphere bit, unorm×2, 32 bits, sphere ----
 // Source: Cigolle et al. 2014 §2 (eqdist+ellipse); Snyder and Mitchell 2001; the elliptical grid
 //   map (Nowell 2005, Fong 2014).
+// Model: src/codecs/azimuthal/disk_square.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00138°, sample max 0.00304°; MSE of the components of
 //   n - n' 2.349e-10, PSNR 96.29 dB.
 
@@ -49,21 +50,21 @@ fn unitpack_eqdist_ellipse32_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   rounding.
 // Portable as unitpack_eqdist_ellipse32_decode_float is, within the same bound.
 fn unitpack_eqdist_ellipse32_decode(code: u32) -> vec3<f32> {
-    let params = vec3<f32>(vec3<u32>(code & 65535u, (code >> 16u) & 32767u, code >> 31u))
+    let params = vec3<f32>(vec3<u32>(code & 0xffffu, (code >> 16u) & 0x7fffu, code >> 31u))
         * vec3<f32>(1.5259022e-5f, 3.051851e-5f, 1.0f);
     return unitpack_eqdist_ellipse32_decode_float(params);
 }
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-fn unitpack_eqdist_ellipse32_atan2_pi(a0: f32, a1: f32) -> f32 {
-    let abs_a1 = abs(a1);
-    let abs_a0 = abs(a0);
-    let y_major = abs_a0 > abs_a1;
-    let hi = select(abs_a1, abs_a0, y_major);
+fn unitpack_eqdist_ellipse32_atan2_pi(rho: f32, x: f32) -> f32 {
+    let abs_x = abs(x);
+    let abs_rho = abs(rho);
+    let y_major = abs_rho > abs_x;
+    let hi = select(abs_x, abs_rho, y_major);
     let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
     let hi2 = hi * up;
-    let t = select(abs_a0, abs_a1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
+    let t = select(abs_rho, abs_x, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
@@ -72,8 +73,8 @@ fn unitpack_eqdist_ellipse32_atan2_pi(a0: f32, a1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
-    return select(r4, -r4, a0 < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, x < 0.0f);
+    return select(r4, -r4, rho < 0.0f) * 0.31830987f;
 }
 
 // unitpack_eqdist_ellipse32_encode_float: fast encoder, float form.
@@ -88,7 +89,7 @@ fn unitpack_eqdist_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -115,12 +116,12 @@ fn unitpack_eqdist_ellipse32_encode_float(v: vec3<f32>) -> vec3<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_eqdist_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_eqdist_ellipse32_round_codes(v: vec3<f32>) -> vec3<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -133,17 +134,17 @@ fn unitpack_eqdist_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let fixed_f2 = floor(abs(w2.y) * 2097152.0f);
     let fixed3 = u32(fixed_f2);
     let limb1 = fixed2 >> 12u;
-    let limb0 = fixed2 & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = fixed2 & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = fixed3 >> 12u;
-    let limb0_2 = fixed3 & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = fixed3 & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let hi3 = hi2 + (lo2 >> 24u);
-    let lo3 = lo2 & 16777215u;
+    let lo3 = lo2 & 0xffffffu;
     let rho2 = (f32(hi3) * 16777216.0f + f32(lo3)) * 2.2737368e-13f;
     let t1 = rho2 > 0.0f;
     let rho2_2 = select(1.0f, rho2, t1);
@@ -156,16 +157,16 @@ fn unitpack_eqdist_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + step2;
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let rho = select(0.0f, root * root_up, t1);
     let abs_w2_z = abs(w2.z);
@@ -178,22 +179,22 @@ fn unitpack_eqdist_ellipse32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let big = lo4 * 8388608.0f;
     let ratio_estimate = floor(lo4 / t3 * 8388608.0f);
     let step_down3 = select(0.0f, -1.0f, ratio_estimate * t3 > big);
-    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
-    let ratio = ratio_estimate + step3;
+    let nudge3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t3 <= big);
+    let ratio = ratio_estimate + nudge3;
     let step_down4 = select(0.0f, -1.0f, ratio * t3 > big);
-    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
-    let t = ratio + step4;
+    let nudge4 = select(step_down4, 1.0f, (ratio + 1.0f) * t3 <= big);
+    let t = ratio + nudge4;
     let far = t > 3474675.0f;
     let t4 = t - 8388608.0f;
     let t5 = t + 8388608.0f;
     let big2 = t4 * 8388608.0f;
     let ratio_estimate2 = floor(t4 / t5 * 8388608.0f);
     let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t5 > big2);
-    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
-    let ratio2 = ratio_estimate2 + step5;
+    let nudge5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t5 <= big2);
+    let ratio2 = ratio_estimate2 + nudge5;
     let step_down6 = select(0.0f, -1.0f, ratio2 * t5 > big2);
-    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
-    let ratio3 = ratio2 + step6;
+    let nudge6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t5 <= big2);
+    let ratio3 = ratio2 + nudge6;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
     let t6 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);

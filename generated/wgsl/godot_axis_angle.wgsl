@@ -18,6 +18,7 @@
 //   servers/rendering/renderer_rd/shaders/forward_clustered/scene_forward_clustered.glsl at 333f0f9
 //   (oct_to_vec3, axis_angle_to_tbn); fdlibm's acosf (FreeBSD msun e_acosf.c; glibc's through
 //   2.40).
+// Model: src/codecs/frames/godot.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00462° / 0.48789°, tangent 0.00433° / 0.47325°, bitangent
@@ -36,26 +37,26 @@ struct unitpack_godot_axis_angle_tbn {
 }
 
 // Helper `oct_to_vec3`.
-fn unitpack_godot_axis_angle_oct_to_vec3(a0: vec2<f32>) -> vec3<f32> {
-    let t1 = 1.0f - abs(a0.x);
-    let abs_a0_y = abs(a0.y);
-    let t2 = -(t1 - abs_a0_y);
+fn unitpack_godot_axis_angle_oct_to_vec3(e: vec2<f32>) -> vec3<f32> {
+    let t1 = 1.0f - abs(e.x);
+    let abs_e_y = abs(e.y);
+    let t2 = -(t1 - abs_e_y);
     let t = select(0.0f, t2, t2 >= 0.0f);
     let t3 = vec3<f32>(
-        t * select(select(0.0f, -1.0f, a0.x < 0.0f), 1.0f, a0.x > 0.0f),
-        t * select(select(0.0f, -1.0f, a0.y < 0.0f), 1.0f, a0.y > 0.0f),
-        abs_a0_y
+        t * select(select(0.0f, -1.0f, e.x < 0.0f), 1.0f, e.x > 0.0f),
+        t * select(select(0.0f, -1.0f, e.y < 0.0f), 1.0f, e.y > 0.0f),
+        abs_e_y
     );
-    let t4 = vec3<f32>(a0, t1) - t3;
+    let t4 = vec3<f32>(e, t1) - t3;
     let t4_sq = t4 * t4;
     return t4 / sqrt(t4_sq.x + t4_sq.y + t4_sq.z);
 }
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-fn unitpack_godot_axis_angle_sincos_pi(a0: f32) -> vec2<f32> {
-    let abs_a0 = abs(a0);
-    let back = abs_a0 > 0.5f;
-    let b = select(abs_a0, 1.0f - abs_a0, back);
+fn unitpack_godot_axis_angle_sincos_pi(turns: f32) -> vec2<f32> {
+    let abs_turns = abs(turns);
+    let back = abs_turns > 0.5f;
+    let b = select(abs_turns, 1.0f - abs_turns, back);
     let swap = b > 0.25f;
     let c = select(b, 0.5f - b, swap);
     let c2 = c * c;
@@ -64,7 +65,7 @@ fn unitpack_godot_axis_angle_sincos_pi(a0: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
+    return select(t3, -t3, vec2<bool>((turns < 0.0f), back));
 }
 
 // unitpack_godot_axis_angle_decode_float: decoder, float form.
@@ -103,7 +104,7 @@ fn unitpack_godot_axis_angle_decode_float(f: vec3<f32>) -> unitpack_godot_axis_a
 //   orthogonal within 2^-20.
 // Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 fn unitpack_godot_axis_angle_decode(code: vec2<u32>) -> unitpack_godot_axis_angle_frame {
-    let f = vec3<f32>(vec3<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u)) * 1.5259022e-5f;
+    let f = vec3<f32>(vec3<u32>(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu)) * 1.5259022e-5f;
     let axis = unitpack_godot_axis_angle_oct_to_vec3(f.xy * 2.0f - 1.0f);
     let turns = abs(f.z * 2.0f - 1.0f);
     let sc = unitpack_godot_axis_angle_sincos_pi(turns);
@@ -126,7 +127,7 @@ fn unitpack_godot_axis_angle_decode(code: vec2<u32>) -> unitpack_godot_axis_angl
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable as unitpack_godot_axis_angle_decode_float is, within the same bound.
 fn unitpack_godot_axis_angle_decode_tbn(code: vec2<u32>) -> unitpack_godot_axis_angle_tbn {
-    let f = vec3<f32>(vec3<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u)) * 1.5259022e-5f;
+    let f = vec3<f32>(vec3<u32>(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu)) * 1.5259022e-5f;
     let axis = unitpack_godot_axis_angle_oct_to_vec3(f.xy * 2.0f - 1.0f);
     let turns = abs(f.z * 2.0f - 1.0f);
     let sc = unitpack_godot_axis_angle_sincos_pi(turns);
@@ -148,35 +149,34 @@ fn unitpack_godot_axis_angle_decode_tbn(code: vec2<u32>) -> unitpack_godot_axis_
 }
 
 // Helper `fdlibm_acosf`.
-fn unitpack_godot_axis_angle_fdlibm_acosf(a0: f32) -> f32 {
-    let t1 = bitcast<u32>(a0) & 2147483647u;
-    let a0_sq = a0 * a0;
-    let t2 = a0_sq
-        * (0.20121253f + a0_sq * (-0.040055536f + a0_sq * (0.000791535f + a0_sq * 3.479331e-5f)));
-    let t3 = a0_sq
-        * (-2.403395f + a0_sq * (2.0209458f + a0_sq * (-0.688284f + a0_sq * 0.077038154f)));
-    let t4 = a0 * (a0_sq * (0.16666667f + a0_sq * (-0.32556581f + t2)) / (1.0f + t3));
-    let z = (1.0f + a0) * 0.5f;
+fn unitpack_godot_axis_angle_fdlibm_acosf(c: f32) -> f32 {
+    let t1 = bitcast<u32>(c) & 0x7fffffffu;
+    let c_sq = c * c;
+    let t2 = c_sq
+        * (0.20121253f + c_sq * (-0.040055536f + c_sq * (0.000791535f + c_sq * 3.479331e-5f)));
+    let t3 = c_sq * (-2.403395f + c_sq * (2.0209458f + c_sq * (-0.688284f + c_sq * 0.077038154f)));
+    let t4 = c * (c_sq * (0.16666667f + c_sq * (-0.32556581f + t2)) / (1.0f + t3));
+    let z = (1.0f + c) * 0.5f;
     let sqrt_z = sqrt(z);
     let t5 = z * (0.20121253f + z * (-0.040055536f + z * (0.000791535f + z * 3.479331e-5f)));
     let t6 = z * (-2.403395f + z * (2.0209458f + z * (-0.688284f + z * 0.077038154f)));
     let t7 = z * (0.16666667f + z * (-0.32556581f + t5)) / (1.0f + t6) * sqrt_z;
-    let z2 = (1.0f - a0) * 0.5f;
+    let z2 = (1.0f - c) * 0.5f;
     let sqrt_z2 = sqrt(z2);
-    let t8 = bitcast<f32>(bitcast<u32>(sqrt_z2) & 4294963200u);
+    let t8 = bitcast<f32>(bitcast<u32>(sqrt_z2) & 0xfffff000u);
     let t9 = z2 * (0.20121253f + z2 * (-0.040055536f + z2 * (0.000791535f + z2 * 3.479331e-5f)));
     let t10 = z2 * (-2.403395f + z2 * (2.0209458f + z2 * (-0.688284f + z2 * 0.077038154f)));
     let t11 = z2 * (0.16666667f + z2 * (-0.32556581f + t9)) / (1.0f + t10) * sqrt_z2;
     let t12 = 2.0f * (t8 + (t11 + (z2 - t8 * t8) / (sqrt_z2 + t8)));
     let t13 = select(
-        select(t12, 3.1415925f - 2.0f * (sqrt_z + (t7 - 7.5497894e-8f)), a0 < 0.0f),
-        select(0.0f, 3.1415927f, a0 < 0.0f),
-        t1 < 1065353217u && !(t1 < 1065353216u)
+        select(t12, 3.1415925f - 2.0f * (sqrt_z + (t7 - 7.5497894e-8f)), c < 0.0f),
+        select(0.0f, 3.1415927f, c < 0.0f),
+        t1 < 0x3f800001u && !(t1 < 0x3f800000u)
     );
     return select(
         t13,
-        select(1.5707963f - (a0 - (7.5497894e-8f - t4)), 1.5707964f, t1 < 587202561u),
-        t1 < 1056964608u
+        select(1.5707963f - (c - (7.5497894e-8f - t4)), 1.5707964f, t1 < 0x23000001u),
+        t1 < 0x3f000000u
     );
 }
 
@@ -289,16 +289,16 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
         t28
     );
     let t43 = select(1.0f, -1.0f, t.w < 0.0f) < 0.0f;
-    let theta_hi = bitcast<f32>(bitcast<u32>(angle) & 4294963200u);
+    let theta_hi = bitcast<f32>(bitcast<u32>(angle) & 0xfffff000u);
     let theta_lo = angle - theta_hi;
     let t44 = select(1.0f, -1.0f, t43);
     let estimate = 0.5f + angle * 0.15915494f * t44;
-    let exponent = (bitcast<u32>(estimate) & 2147483647u) >> 23u;
+    let exponent = (bitcast<u32>(estimate) & 0x7fffffffu) >> 23u;
     let exponent2 = select(exponent, 40u, exponent < 40u);
     let grid = bitcast<f32>((exponent2 - 23u) << 23u);
-    let inverse = bitcast<f32>((277u - exponent2) << 23u);
-    let scale = inverse * t44;
-    let term = 0.5f * inverse;
+    let inv_grid = bitcast<f32>((277u - exponent2) << 23u);
+    let scale = inv_grid * t44;
+    let term = 0.5f * inv_grid;
     let term2 = theta_hi * 0.15911865f * scale;
     let term3 = theta_hi * 3.6284328e-5f * scale;
     let term4 = theta_lo * 0.15911865f * scale;
@@ -334,8 +334,8 @@ fn unitpack_godot_axis_angle_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec3<f3
     let abs_whole6 = abs(whole6);
     let t55 = u32(abs_whole6 - floor(abs_whole6 * 2.3283064e-10f) * 4294967300.0f);
     let t56 = t52 + select(t53, 0u - t53, whole5 < 0.0f) + select(t55, 0u - t55, whole6 < 0.0f);
-    let r = t56 + ((t54 + 8388608u) >> 24u);
-    let v = select(0.0f, f32(select(r, 16777216u, 16777216u < r)) * grid, estimate > 0.0f);
+    let r = t56 + ((t54 + 0x800000u) >> 24u);
+    let v = select(0.0f, f32(select(r, 0x1000000u, 0x1000000u < r)) * grid, estimate > 0.0f);
     let t57 = select(0.0f, v, v >= 0.0f);
     let t58 = select(0.500008f, v, v >= 0.500008f);
     let t59 = axis / (abs(axis.x) + abs(axis.y) + abs(axis.z));

@@ -14,6 +14,7 @@
 
 // ---- hemioct16p: hemi-octahedral, snorm×2, 16 bits, hemisphere, precise encoder ----
 // Source: Cigolle et al. 2014, Listing 6 and Table 3.
+// Model: src/codecs/octahedral/hemioct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.23889°, sample max 0.54445°; MSE of the components of
 //   n - n' 6.923e-6, PSNR 51.60 dB.
 
@@ -52,7 +53,7 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -68,16 +69,16 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let estimate = floor(t3 / l1 * 127.0f);
     let big = t3 * 127.0f;
     let step_down = select(0.0f, -1.0f, big < estimate * l1);
-    let step = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
-    let t4 = estimate + step;
+    let nudge = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
+    let t4 = estimate + nudge;
     let t5 = select(-127.0f, t4, t4 >= (-127.0f));
     let s0 = select(127.0f, t5, t5 <= 127.0f);
     let t6 = a.x - a.y;
     let estimate2 = floor(t6 / l1 * 127.0f);
     let big2 = t6 * 127.0f;
     let step_down2 = select(0.0f, -1.0f, big2 < estimate2 * l1);
-    let step2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
-    let t7 = estimate2 + step2;
+    let nudge2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
+    let t7 = estimate2 + nudge2;
     let t8 = select(-127.0f, t7, t7 >= (-127.0f));
     let t0 = select(127.0f, t8, t8 <= 127.0f);
     let afix = vec3<u32>(floor(a * 4194304.0f));
@@ -112,19 +113,19 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t27 = cand.x - cand.y;
     let t27_u = u32(t27);
     let t25_u = u32(t25);
-    let cross = afix.yzx * vec3<u32>(vec3<f32>(t25, t26, t27))
+    let axd = afix.yzx * vec3<u32>(vec3<f32>(t25, t26, t27))
         - afix.zxy * vec3<u32>(vec3<f32>(t27, t25, t26));
-    let t28 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
+    let t28 = select(0u - axd.x, axd.x, axd.x < 0x80000000u);
     let t29 = t28 >> 16u;
-    let t30 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
+    let t30 = select(0u - axd.y, axd.y, axd.y < 0x80000000u);
     let t31 = t30 >> 16u;
-    let t32 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
+    let t32 = select(0u - axd.z, axd.z, axd.z < 0x80000000u);
     let t33 = t32 >> 16u;
     let t34 = vec3<u32>((t29 * t29) << 3u, (t31 * t31) << 3u, (t33 * t33) << 3u);
     let t35 = vec3<u32>(
-        (t29 * (t28 & 65535u)) >> 12u,
-        (t31 * (t30 & 65535u)) >> 12u,
-        (t33 * (t32 & 65535u)) >> 12u
+        (t29 * (t28 & 0xffffu)) >> 12u,
+        (t31 * (t30 & 0xffffu)) >> 12u,
+        (t33 * (t32 & 0xffffu)) >> 12u
     );
     let t36 = t34 + t35;
     let e = f32(t36.x + t36.y + t36.z);
@@ -140,19 +141,19 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t41 = cand2.x - cand2.y;
     let t41_u = u32(t41);
     let t39_u = u32(t39);
-    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t39, t40, t41))
+    let axd2 = afix.yzx * vec3<u32>(vec3<f32>(t39, t40, t41))
         - afix.zxy * vec3<u32>(vec3<f32>(t41, t39, t40));
-    let t42 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
+    let t42 = select(0u - axd2.x, axd2.x, axd2.x < 0x80000000u);
     let t43 = t42 >> 16u;
-    let t44 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
+    let t44 = select(0u - axd2.y, axd2.y, axd2.y < 0x80000000u);
     let t45 = t44 >> 16u;
-    let t46 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
+    let t46 = select(0u - axd2.z, axd2.z, axd2.z < 0x80000000u);
     let t47 = t46 >> 16u;
     let t48 = vec3<u32>((t43 * t43) << 3u, (t45 * t45) << 3u, (t47 * t47) << 3u);
     let t49 = vec3<u32>(
-        (t43 * (t42 & 65535u)) >> 12u,
-        (t45 * (t44 & 65535u)) >> 12u,
-        (t47 * (t46 & 65535u)) >> 12u
+        (t43 * (t42 & 0xffffu)) >> 12u,
+        (t45 * (t44 & 0xffffu)) >> 12u,
+        (t47 * (t46 & 0xffffu)) >> 12u
     );
     let t50 = t48 + t49;
     let e2 = f32(t50.x + t50.y + t50.z);
@@ -170,19 +171,19 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t56 = cand3.x - cand3.y;
     let t56_u = u32(t56);
     let t54_u = u32(t54);
-    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t54, t55, t56))
+    let axd3 = afix.yzx * vec3<u32>(vec3<f32>(t54, t55, t56))
         - afix.zxy * vec3<u32>(vec3<f32>(t56, t54, t55));
-    let t57 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
+    let t57 = select(0u - axd3.x, axd3.x, axd3.x < 0x80000000u);
     let t58 = t57 >> 16u;
-    let t59 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
+    let t59 = select(0u - axd3.y, axd3.y, axd3.y < 0x80000000u);
     let t60 = t59 >> 16u;
-    let t61 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t61 = select(0u - axd3.z, axd3.z, axd3.z < 0x80000000u);
     let t62 = t61 >> 16u;
     let t63 = vec3<u32>((t58 * t58) << 3u, (t60 * t60) << 3u, (t62 * t62) << 3u);
     let t64 = vec3<u32>(
-        (t58 * (t57 & 65535u)) >> 12u,
-        (t60 * (t59 & 65535u)) >> 12u,
-        (t62 * (t61 & 65535u)) >> 12u
+        (t58 * (t57 & 0xffffu)) >> 12u,
+        (t60 * (t59 & 0xffffu)) >> 12u,
+        (t62 * (t61 & 0xffffu)) >> 12u
     );
     let t65 = t63 + t64;
     let e3 = f32(t65.x + t65.y + t65.z);
@@ -200,19 +201,19 @@ fn unitpack_hemioct16p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let t71 = cand4.x - cand4.y;
     let t71_u = u32(t71);
     let t69_u = u32(t69);
-    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t69, t70, t71))
+    let axd4 = afix.yzx * vec3<u32>(vec3<f32>(t69, t70, t71))
         - afix.zxy * vec3<u32>(vec3<f32>(t71, t69, t70));
-    let t72 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
+    let t72 = select(0u - axd4.x, axd4.x, axd4.x < 0x80000000u);
     let t73 = t72 >> 16u;
-    let t74 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
+    let t74 = select(0u - axd4.y, axd4.y, axd4.y < 0x80000000u);
     let t75 = t74 >> 16u;
-    let t76 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
+    let t76 = select(0u - axd4.z, axd4.z, axd4.z < 0x80000000u);
     let t77 = t76 >> 16u;
     let t78 = vec3<u32>((t73 * t73) << 3u, (t75 * t75) << 3u, (t77 * t77) << 3u);
     let t79 = vec3<u32>(
-        (t73 * (t72 & 65535u)) >> 12u,
-        (t75 * (t74 & 65535u)) >> 12u,
-        (t77 * (t76 & 65535u)) >> 12u
+        (t73 * (t72 & 0xffffu)) >> 12u,
+        (t75 * (t74 & 0xffffu)) >> 12u,
+        (t77 * (t76 & 0xffffu)) >> 12u
     );
     let t80 = t78 + t79;
     let e4 = f32(t80.x + t80.y + t80.z);
@@ -242,5 +243,5 @@ fn unitpack_hemioct16p_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   components count as zero.
 fn unitpack_hemioct16p_encode(v: vec3<f32>) -> u32 {
     let encode_codes = unitpack_hemioct16p_encode_codes(v);
-    return (u32(encode_codes.x + 256.0f) & 255u) | ((u32(encode_codes.y + 256.0f) << 8u) & 65280u);
+    return (u32(encode_codes.x + 256.0f) & 255u) | ((u32(encode_codes.y + 256.0f) << 8u) & 0xff00u);
 }

@@ -14,6 +14,7 @@
 
 // ---- lambert16:guarantee=ieee: Lambert azimuthal equal-area, unorm×2, 16 bits, sphere ----
 // Source: Pranckevičius, Compact Normal Storage, method 6.
+// Model: src/codecs/azimuthal/lambert.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.49284°, sample max 11.36750°; MSE of the components
 //   of n - n' 5.306e-5, PSNR 42.75 dB.
 

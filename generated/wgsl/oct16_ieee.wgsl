@@ -14,6 +14,7 @@
 
 // ---- oct16:guarantee=ieee: octahedral, snorm×2, 16 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.33696°, sample max 0.92448°; MSE of the components of
 //   n - n' 1.398e-5, PSNR 48.54 dB.
 
@@ -78,5 +79,5 @@ fn unitpack_oct16_ieee_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   every implementation the include's header names.
 fn unitpack_oct16_ieee_encode(v: vec3<f32>) -> u32 {
     let codes = round(unitpack_oct16_ieee_encode_float(v) * 127.0f);
-    return (u32(codes.x + 256.0f) & 255u) | ((u32(codes.y + 256.0f) << 8u) & 65280u);
+    return (u32(codes.x + 256.0f) & 255u) | ((u32(codes.y + 256.0f) << 8u) & 0xff00u);
 }

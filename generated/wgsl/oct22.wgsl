@@ -14,6 +14,7 @@
 
 // ---- oct22: octahedral, snorm×2, 22 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.04188°, sample max 0.11518°; MSE of the components of
 //   n - n' 2.161e-7, PSNR 66.65 dB.
 
@@ -39,7 +40,7 @@ fn unitpack_oct22_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable as unitpack_oct22_decode_float is, within the same bound.
 fn unitpack_oct22_decode(code: u32) -> vec3<f32> {
-    let t1 = vec2<f32>(vec2<u32>(code, code >> 11u) & vec2<u32>(2047u));
+    let t1 = vec2<f32>(vec2<u32>(code, code >> 11u) & vec2<u32>(0x7ffu));
     let t2 = select(t1, t1 - 2048.0f, t1 > vec2<f32>(1023.0f)) * 0.0009775171f;
     let params = select(vec2<f32>(-1.0f), t2, t2 >= vec2<f32>(-1.0f));
     return unitpack_oct22_decode_float(params);
@@ -74,12 +75,12 @@ fn unitpack_oct22_encode_float(v: vec3<f32>) -> vec2<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_oct22_round_codes(a0: vec3<f32>) -> vec2<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_oct22_round_codes(v: vec3<f32>) -> vec2<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -113,6 +114,6 @@ fn unitpack_oct22_round_codes(a0: vec3<f32>) -> vec2<f32> {
 //   components count as zero.
 fn unitpack_oct22_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_oct22_round_codes(v);
-    return (u32(round_codes.x + 2048.0f) & 2047u)
-        | ((u32(round_codes.y + 2048.0f) << 11u) & 4192256u);
+    return (u32(round_codes.x + 2048.0f) & 0x7ffu)
+        | ((u32(round_codes.y + 2048.0f) << 11u) & 0x3ff800u);
 }

@@ -14,6 +14,7 @@
 
 // ---- oct24: octahedral, snorm×2, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02081°, sample max 0.05780°; MSE of the components of
 //   n - n' 5.352e-8, PSNR 72.71 dB.
 
@@ -39,7 +40,7 @@ fn unitpack_oct24_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable as unitpack_oct24_decode_float is, within the same bound.
 fn unitpack_oct24_decode(code: u32) -> vec3<f32> {
-    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(4095u));
+    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(0xfffu));
     let t2 = select(t1, t1 - 4096.0f, t1 > vec2<f32>(2047.0f)) * 0.0004885198f;
     let params = select(vec2<f32>(-1.0f), t2, t2 >= vec2<f32>(-1.0f));
     return unitpack_oct24_decode_float(params);
@@ -74,12 +75,12 @@ fn unitpack_oct24_encode_float(v: vec3<f32>) -> vec2<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_oct24_round_codes(a0: vec3<f32>) -> vec2<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_oct24_round_codes(v: vec3<f32>) -> vec2<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -113,6 +114,6 @@ fn unitpack_oct24_round_codes(a0: vec3<f32>) -> vec2<f32> {
 //   components count as zero.
 fn unitpack_oct24_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_oct24_round_codes(v);
-    return (u32(round_codes.x + 4096.0f) & 4095u)
-        | ((u32(round_codes.y + 4096.0f) << 12u) & 16773120u);
+    return (u32(round_codes.x + 4096.0f) & 0xfffu)
+        | ((u32(round_codes.y + 4096.0f) << 12u) & 0xfff000u);
 }

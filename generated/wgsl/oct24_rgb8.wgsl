@@ -14,6 +14,7 @@
 
 // ---- oct24:layout=rgb8: octahedral, snorm×2, 24 bits, sphere ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.02081°, sample max 0.05780°; MSE of the components of
 //   n - n' 5.352e-8, PSNR 72.71 dB.
 
@@ -21,8 +22,8 @@
 //   in [-1, 1]. Other implementations: under the division, square root, contraction, denormal and
 //   sign-of-zero latitudes, unitpack verify --portable finds no change over its sample of the
 //   inputs (the float-only pack may differ in the sign of a zero); measured, not proven.
-fn unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
-    let b = round(a0 * 255.0f);
+fn unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(u: vec3<f32>) -> vec2<f32> {
+    let b = round(u * 255.0f);
     let y16 = b.y * 0.0625f;
     let hi = floor(y16);
     let t1 = (vec2<f32>(b.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, b.z) - 2047.0f)
@@ -31,12 +32,12 @@ fn unitpack_oct24_rgb8_unorm8x3_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
 }
 
 // oct24 parameters (snorm12×2 values in [-1, 1]) → unit vector.
-fn unitpack_oct24_rgb8_oct24_decode_float(a0: vec2<f32>) -> vec3<f32> {
-    let abs_a0 = abs(a0);
-    let z = 1.0f - abs_a0.x - abs_a0.y;
-    let folded = (1.0f - abs(a0.yx))
-        * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), a0 >= vec2<f32>(0.0f));
-    let v = vec3<f32>(select(a0, folded, z < 0.0f), z);
+fn unitpack_oct24_rgb8_oct24_decode_float(e: vec2<f32>) -> vec3<f32> {
+    let abs_e = abs(e);
+    let z = 1.0f - abs_e.x - abs_e.y;
+    let folded = (1.0f - abs(e.yx))
+        * select(vec2<f32>(-1.0f), vec2<f32>(1.0f), e >= vec2<f32>(0.0f));
+    let v = vec3<f32>(select(e, folded, z < 0.0f), z);
     let v_sq = v * v;
     return v / sqrt(v_sq.x + v_sq.y + v_sq.z);
 }
@@ -54,10 +55,10 @@ fn unitpack_oct24_rgb8_decode_float(params: vec3<f32>) -> vec3<f32> {
 
 // The three bytes of an RGB8 texel (integral values 0–255) → two snorm12 values in [-1, 1] (survey
 //   Listing 5, float-only).
-fn unitpack_oct24_rgb8_bytes_to_snorm12x2(a0: vec3<f32>) -> vec2<f32> {
-    let y16 = a0.y * 0.0625f;
+fn unitpack_oct24_rgb8_bytes_to_snorm12x2(b: vec3<f32>) -> vec2<f32> {
+    let y16 = b.y * 0.0625f;
     let hi = floor(y16);
-    let t1 = (vec2<f32>(a0.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, a0.z) - 2047.0f)
+    let t1 = (vec2<f32>(b.x, y16 - hi) * vec2<f32>(16.0f, 4096.0f) + vec2<f32>(hi, b.z) - 2047.0f)
         * 0.0004885198f;
     return select(vec2<f32>(1.0f), t1, t1 <= vec2<f32>(1.0f));
 }
@@ -77,12 +78,12 @@ fn unitpack_oct24_rgb8_decode(code: u32) -> vec3<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_oct24_rgb8_round_codes(a0: vec3<f32>) -> vec3<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_oct24_rgb8_round_codes(v: vec3<f32>) -> vec3<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;

@@ -14,6 +14,7 @@
 
 // ---- oct24p: octahedral, snorm×2, 24 bits, sphere, precise encoder ----
 // Source: Cigolle et al. 2014 (JCGT survey) §3.1–3.3.
+// Model: src/codecs/octahedral/oct.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01945°, sample max 0.03900°; MSE of the components of
 //   n - n' 4.439e-8, PSNR 73.53 dB.
 
@@ -39,7 +40,7 @@ fn unitpack_oct24p_decode_float(params: vec2<f32>) -> vec3<f32> {
 // Out: every code decodes to a unit vector (normalized as v / sqrt(v·v)).
 // Portable as unitpack_oct24p_decode_float is, within the same bound.
 fn unitpack_oct24p_decode(code: u32) -> vec3<f32> {
-    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(4095u));
+    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(0xfffu));
     let t2 = select(t1, t1 - 4096.0f, t1 > vec2<f32>(2047.0f)) * 0.0004885198f;
     let params = select(vec2<f32>(-1.0f), t2, t2 >= vec2<f32>(-1.0f));
     return unitpack_oct24p_decode_float(params);
@@ -54,7 +55,7 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -66,8 +67,8 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let estimate = floor(a.x / l1 * 2047.0f);
     let big = a.x * 2047.0f;
     let step_down = select(0.0f, -1.0f, big < estimate * l1);
-    let step = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
-    let t1 = estimate + step;
+    let nudge = select(step_down, 1.0f, big >= (estimate + 1.0f) * l1);
+    let t1 = estimate + nudge;
     let t2 = t1 >= (-2047.0f);
     let t3 = select(-2047.0f, t1, t2);
     let t4 = t3 <= 2047.0f;
@@ -75,8 +76,8 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let estimate2 = floor(a.y / l1 * 2047.0f);
     let big2 = a.y * 2047.0f;
     let step_down2 = select(0.0f, -1.0f, big2 < estimate2 * l1);
-    let step2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
-    let t5 = estimate2 + step2;
+    let nudge2 = select(step_down2, 1.0f, big2 >= (estimate2 + 1.0f) * l1);
+    let t5 = estimate2 + nudge2;
     let t6 = select(-2047.0f, t5, t5 >= (-2047.0f));
     let t7 = t6 <= 2047.0f;
     let t8 = select(2047.0f, t6, t7);
@@ -89,7 +90,7 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let s0_u = u32(s0);
     let t0_u = u32(t0);
     let t13 = u32(select(0.0f, t11, t12));
-    let cross = afix.yzx
+    let axd = afix.yzx
         * vec3<u32>(
             select(vec3<f32>(0.0f, 2047.0f, t9), vec3<f32>(t11, t3, t8), vec3<bool>(t12, t4, t10))
         )
@@ -101,17 +102,17 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
                     vec3<bool>(t10, t12, t4)
                 )
             );
-    let t14 = select(0u - cross.x, cross.x, cross.x < 2147483648u);
+    let t14 = select(0u - axd.x, axd.x, axd.x < 0x80000000u);
     let t15 = t14 >> 16u;
-    let t16 = select(0u - cross.y, cross.y, cross.y < 2147483648u);
+    let t16 = select(0u - axd.y, axd.y, axd.y < 0x80000000u);
     let t17 = t16 >> 16u;
-    let t18 = select(0u - cross.z, cross.z, cross.z < 2147483648u);
+    let t18 = select(0u - axd.z, axd.z, axd.z < 0x80000000u);
     let t19 = t18 >> 16u;
     let t20 = vec3<u32>((t15 * t15) << 3u, (t17 * t17) << 3u, (t19 * t19) << 3u);
     let t21 = vec3<u32>(
-        (t15 * (t14 & 65535u)) >> 12u,
-        (t17 * (t16 & 65535u)) >> 12u,
-        (t19 * (t18 & 65535u)) >> 12u
+        (t15 * (t14 & 0xffffu)) >> 12u,
+        (t17 * (t16 & 0xffffu)) >> 12u,
+        (t19 * (t18 & 0xffffu)) >> 12u
     );
     let t22 = t20 + t21;
     let e = f32(t22.x + t22.y + t22.z);
@@ -123,19 +124,19 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let s_up_u = u32(s_up);
     let t0_u2 = u32(t0);
     let t24_u = u32(t24);
-    let cross2 = afix.yzx * vec3<u32>(vec3<f32>(t24, s_up, t0))
+    let axd2 = afix.yzx * vec3<u32>(vec3<f32>(t24, s_up, t0))
         - afix.zxy * vec3<u32>(vec3<f32>(t0, t24, s_up));
-    let t25 = select(0u - cross2.x, cross2.x, cross2.x < 2147483648u);
+    let t25 = select(0u - axd2.x, axd2.x, axd2.x < 0x80000000u);
     let t26 = t25 >> 16u;
-    let t27 = select(0u - cross2.y, cross2.y, cross2.y < 2147483648u);
+    let t27 = select(0u - axd2.y, axd2.y, axd2.y < 0x80000000u);
     let t28 = t27 >> 16u;
-    let t29 = select(0u - cross2.z, cross2.z, cross2.z < 2147483648u);
+    let t29 = select(0u - axd2.z, axd2.z, axd2.z < 0x80000000u);
     let t30 = t29 >> 16u;
     let t31 = vec3<u32>((t26 * t26) << 3u, (t28 * t28) << 3u, (t30 * t30) << 3u);
     let t32 = vec3<u32>(
-        (t26 * (t25 & 65535u)) >> 12u,
-        (t28 * (t27 & 65535u)) >> 12u,
-        (t30 * (t29 & 65535u)) >> 12u
+        (t26 * (t25 & 0xffffu)) >> 12u,
+        (t28 * (t27 & 0xffffu)) >> 12u,
+        (t30 * (t29 & 0xffffu)) >> 12u
     );
     let t33 = t31 + t32;
     let e2 = f32(t33.x + t33.y + t33.z);
@@ -152,19 +153,19 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let s0_u2 = u32(s0);
     let t_up_u = u32(t_up);
     let t39_u = u32(t39);
-    let cross3 = afix.yzx * vec3<u32>(vec3<f32>(t39, s0, t_up))
+    let axd3 = afix.yzx * vec3<u32>(vec3<f32>(t39, s0, t_up))
         - afix.zxy * vec3<u32>(vec3<f32>(t_up, t39, s0));
-    let t40 = select(0u - cross3.x, cross3.x, cross3.x < 2147483648u);
+    let t40 = select(0u - axd3.x, axd3.x, axd3.x < 0x80000000u);
     let t41 = t40 >> 16u;
-    let t42 = select(0u - cross3.y, cross3.y, cross3.y < 2147483648u);
+    let t42 = select(0u - axd3.y, axd3.y, axd3.y < 0x80000000u);
     let t43 = t42 >> 16u;
-    let t44 = select(0u - cross3.z, cross3.z, cross3.z < 2147483648u);
+    let t44 = select(0u - axd3.z, axd3.z, axd3.z < 0x80000000u);
     let t45 = t44 >> 16u;
     let t46 = vec3<u32>((t41 * t41) << 3u, (t43 * t43) << 3u, (t45 * t45) << 3u);
     let t47 = vec3<u32>(
-        (t41 * (t40 & 65535u)) >> 12u,
-        (t43 * (t42 & 65535u)) >> 12u,
-        (t45 * (t44 & 65535u)) >> 12u
+        (t41 * (t40 & 0xffffu)) >> 12u,
+        (t43 * (t42 & 0xffffu)) >> 12u,
+        (t45 * (t44 & 0xffffu)) >> 12u
     );
     let t48 = t46 + t47;
     let e3 = f32(t48.x + t48.y + t48.z);
@@ -178,19 +179,19 @@ fn unitpack_oct24p_encode_codes(v: vec3<f32>) -> vec2<f32> {
     let s_up_u2 = u32(s_up);
     let t_up_u2 = u32(t_up);
     let t51_u = u32(t51);
-    let cross4 = afix.yzx * vec3<u32>(vec3<f32>(t51, s_up, t_up))
+    let axd4 = afix.yzx * vec3<u32>(vec3<f32>(t51, s_up, t_up))
         - afix.zxy * vec3<u32>(vec3<f32>(t_up, t51, s_up));
-    let t52 = select(0u - cross4.x, cross4.x, cross4.x < 2147483648u);
+    let t52 = select(0u - axd4.x, axd4.x, axd4.x < 0x80000000u);
     let t53 = t52 >> 16u;
-    let t54 = select(0u - cross4.y, cross4.y, cross4.y < 2147483648u);
+    let t54 = select(0u - axd4.y, axd4.y, axd4.y < 0x80000000u);
     let t55 = t54 >> 16u;
-    let t56 = select(0u - cross4.z, cross4.z, cross4.z < 2147483648u);
+    let t56 = select(0u - axd4.z, axd4.z, axd4.z < 0x80000000u);
     let t57 = t56 >> 16u;
     let t58 = vec3<u32>((t53 * t53) << 3u, (t55 * t55) << 3u, (t57 * t57) << 3u);
     let t59 = vec3<u32>(
-        (t53 * (t52 & 65535u)) >> 12u,
-        (t55 * (t54 & 65535u)) >> 12u,
-        (t57 * (t56 & 65535u)) >> 12u
+        (t53 * (t52 & 0xffffu)) >> 12u,
+        (t55 * (t54 & 0xffffu)) >> 12u,
+        (t57 * (t56 & 0xffffu)) >> 12u
     );
     let t60 = t58 + t59;
     let e4 = f32(t60.x + t60.y + t60.z);
@@ -219,6 +220,6 @@ fn unitpack_oct24p_encode_float(v: vec3<f32>) -> vec2<f32> {
 //   components count as zero.
 fn unitpack_oct24p_encode(v: vec3<f32>) -> u32 {
     let encode_codes = unitpack_oct24p_encode_codes(v);
-    return (u32(encode_codes.x + 4096.0f) & 4095u)
-        | ((u32(encode_codes.y + 4096.0f) << 12u) & 16773120u);
+    return (u32(encode_codes.x + 4096.0f) & 0xfffu)
+        | ((u32(encode_codes.y + 4096.0f) << 12u) & 0xfff000u);
 }

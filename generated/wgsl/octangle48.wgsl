@@ -14,6 +14,7 @@
 //   and the sign, 48 bits ----
 // Source: the normal: octahedral (Meyer et al. 2010, Cigolle et al. 2014); the tangent's basis:
 //   Jeremy Ong, "Tangent spaces and diamond encoding" (2023).
+// Model: src/codecs/frames/octangle.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00131° / 0.00365°, tangent 0.00299° / 0.00643°, bitangent
@@ -32,10 +33,10 @@ struct unitpack_octangle48_tbn {
 }
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-fn unitpack_octangle48_sincos_pi(a0: f32) -> vec2<f32> {
-    let abs_a0 = abs(a0);
-    let back = abs_a0 > 0.5f;
-    let b = select(abs_a0, 1.0f - abs_a0, back);
+fn unitpack_octangle48_sincos_pi(x: f32) -> vec2<f32> {
+    let abs_x = abs(x);
+    let back = abs_x > 0.5f;
+    let b = select(abs_x, 1.0f - abs_x, back);
     let swap = b > 0.25f;
     let c = select(b, 0.5f - b, swap);
     let c2 = c * c;
@@ -44,7 +45,7 @@ fn unitpack_octangle48_sincos_pi(a0: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
+    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
 }
 
 // unitpack_octangle48_decode: decoder.
@@ -60,12 +61,12 @@ fn unitpack_octangle48_sincos_pi(a0: f32) -> vec2<f32> {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_octangle48_decode(code: vec2<u32>) -> unitpack_octangle48_frame {
-    let t1 = f32(code.x & 65535u);
+    let t1 = f32(code.x & 0xffffu);
     let t2 = f32(code.x >> 16u);
     let fields = vec4<f32>(
         select(t1, t1 - 65536.0f, t1 > 32767.0f),
         select(t2, t2 - 65536.0f, t2 > 32767.0f),
-        f32(code.y & 32767u),
+        f32(code.y & 0x7fffu),
         f32((code.y >> 15u) & 1u)
     );
     let sc = unitpack_octangle48_sincos_pi(
@@ -103,12 +104,12 @@ fn unitpack_octangle48_decode(code: vec2<u32>) -> unitpack_octangle48_frame {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable within a bound (as the header says): as for unitpack_octangle48_decode.
 fn unitpack_octangle48_decode_tbn(code: vec2<u32>) -> unitpack_octangle48_tbn {
-    let t1 = f32(code.x & 65535u);
+    let t1 = f32(code.x & 0xffffu);
     let t2 = f32(code.x >> 16u);
     let fields = vec4<f32>(
         select(t1, t1 - 65536.0f, t1 > 32767.0f),
         select(t2, t2 - 65536.0f, t2 > 32767.0f),
-        f32(code.y & 32767u),
+        f32(code.y & 0x7fffu),
         f32((code.y >> 15u) & 1u)
     );
     let sc = unitpack_octangle48_sincos_pi(
@@ -162,7 +163,7 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -202,57 +203,57 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let abs_normal3 = abs(normal3);
     let larger2 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
     let largest2 = select(abs_normal3.z, larger2, larger2 >= abs_normal3.z);
-    let scale2 = bitcast<f32>(2139095040u - (bitcast<u32>(largest2) & 2139095040u));
+    let scale2 = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest2) & 0x7f800000u));
     let scaled2 = normal3 * scale2;
     let w2 = select(scaled2, vec3<f32>(0.0f), abs(scaled2) < vec3<f32>(1.8189894e-12f));
     let t6 = vec3<u32>(floor(abs(w2) * 2097152.0f));
     let limb1 = t6.x >> 12u;
-    let limb0 = t6.x & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = t6.x & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = t6.y >> 12u;
-    let limb0_2 = t6.y & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = t6.y & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = t6.z >> 12u;
-    let limb0_3 = t6.z & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = t6.z & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let t7 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(t7);
     let root_k0 = floor(root_estimate * 512.0f);
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t7);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t7);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= t7);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = t7 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t7);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t7);
-    let root_j = root_j0 + step2;
-    let length = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t8 = u32(length * 2097152.0f);
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t7);
+    let root_j = root_j0 + nudge2;
+    let norm = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
+    let t8 = u32(norm * 2097152.0f);
     let wide = (hi4 << 24u) + lo4;
-    let rest = wide - t8 * t8 + 1073741824u;
+    let rest = wide - t8 * t8 + 0x40000000u;
     let n3 = select(
-        select(t8, t8 - 1u, rest < 1073741824u - t8 + 1u),
+        select(t8, t8 - 1u, rest < 0x40000000u - t8 + 1u),
         t8 + 1u,
-        1073741824u + t8 < rest
+        0x40000000u + t8 < rest
     );
-    let rest2 = wide - n3 * n3 + 1073741824u;
+    let rest2 = wide - n3 * n3 + 0x40000000u;
     let n4 = select(
-        select(n3, n3 - 1u, rest2 < 1073741824u - n3 + 1u),
+        select(n3, n3 - 1u, rest2 < 0x40000000u - n3 + 1u),
         n3 + 1u,
-        1073741824u + n3 < rest2
+        0x40000000u + n3 < rest2
     );
     let nf = f32(n4);
     let k0 = u32(round(f32(t6.x) / nf * 16777216.0f));
@@ -262,10 +263,10 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let t11 = t9 + n4 + t10;
     let two_n = n4 << 1u;
     let t12 = t11 >> 12u;
-    let t13 = (f32(t12) * 4096.0f + f32(t11 & 4095u)) / (nf * 2.0f);
+    let t13 = (f32(t12) * 4096.0f + f32(t11 & 0xfffu)) / (nf * 2.0f);
     let q0 = u32(floor(t13));
     let rest3 = t11 - q0 * two_n;
-    let negative = !(rest3 < 2147483648u);
+    let negative = !(rest3 < 0x80000000u);
     let k0_2 = u32(round(f32(t6.y) / nf * 16777216.0f));
     let r2 = (t6.y << 24u) - k0_2 * n4;
     let t14 = r2 << 1u;
@@ -273,10 +274,10 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let t16 = t14 + n4 + t15;
     let two_n2 = n4 << 1u;
     let t17 = t16 >> 12u;
-    let t18 = (f32(t17) * 4096.0f + f32(t16 & 4095u)) / (nf * 2.0f);
+    let t18 = (f32(t17) * 4096.0f + f32(t16 & 0xfffu)) / (nf * 2.0f);
     let q0_2 = u32(floor(t18));
     let rest4 = t16 - q0_2 * two_n2;
-    let negative2 = !(rest4 < 2147483648u);
+    let negative2 = !(rest4 < 0x80000000u);
     let k0_3 = u32(round(f32(t6.z) / nf * 16777216.0f));
     let r3 = (t6.z << 24u) - k0_3 * n4;
     let t19 = r3 << 1u;
@@ -284,17 +285,17 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let t21 = t19 + n4 + t20;
     let two_n3 = n4 << 1u;
     let t22 = t21 >> 12u;
-    let t23 = (f32(t22) * 4096.0f + f32(t21 & 4095u)) / (nf * 2.0f);
+    let t23 = (f32(t22) * 4096.0f + f32(t21 & 0xfffu)) / (nf * 2.0f);
     let q0_3 = u32(floor(t23));
     let rest5 = t21 - q0_3 * two_n3;
-    let negative3 = !(rest5 < 2147483648u);
+    let negative3 = !(rest5 < 0x80000000u);
     let t24 = vec3<bool>(
         !(rest3 < two_n) && !negative,
         !(rest4 < two_n2) && !negative2,
         !(rest5 < two_n3) && !negative3
     );
     let t25 = vec3<f32>(vec3<u32>(t12, t17, t22)) * 4096.0f
-        + vec3<f32>((vec3<u32>(t9, t14, t19) + n4 + vec3<u32>(t10, t15, t20)) & vec3<u32>(4095u));
+        + vec3<f32>((vec3<u32>(t9, t14, t19) + n4 + vec3<u32>(t10, t15, t20)) & vec3<u32>(0xfffu));
     let t26 = vec3<u32>(floor(t25 / (nf * vec3<f32>(2.0f))));
     let t27 = t26 + 1u;
     let t28 = vec3<bool>(negative, negative2, negative3);
@@ -311,12 +312,12 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
             select(t30.z, t27.z, t24.z)
         );
     let t32 = t31 - 8u;
-    let t33 = vec3<u32>(16777216u) < t32;
+    let t33 = vec3<u32>(0x1000000u) < t32;
     let t34 = vec3<f32>(
         vec3<u32>(
-            select(t32.x, (vec3<u32>(16777216u)).x, t33.x),
-            select(t32.y, (vec3<u32>(16777216u)).y, t33.y),
-            select(t32.z, (vec3<u32>(16777216u)).z, t33.z)
+            select(t32.x, (vec3<u32>(0x1000000u)).x, t33.x),
+            select(t32.y, (vec3<u32>(0x1000000u)).y, t33.y),
+            select(t32.z, (vec3<u32>(0x1000000u)).z, t33.z)
         )
     )
         * 5.9604645e-8f;
@@ -331,7 +332,7 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let abs_normal4 = abs(normal4);
     let larger3 = select(abs_normal4.y, abs_normal4.x, abs_normal4.x >= abs_normal4.y);
     let largest3 = select(abs_normal4.z, larger3, larger3 >= abs_normal4.z);
-    let scale3 = bitcast<f32>(2139095040u - (bitcast<u32>(largest3) & 2139095040u));
+    let scale3 = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest3) & 0x7f800000u));
     let scaled3 = normal4 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum2 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
@@ -352,22 +353,22 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
     let big = lo5 * 8388608.0f;
     let ratio_estimate = floor(lo5 / t38 * 8388608.0f);
     let step_down3 = select(0.0f, -1.0f, ratio_estimate * t38 > big);
-    let step3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t38 <= big);
-    let ratio = ratio_estimate + step3;
+    let nudge3 = select(step_down3, 1.0f, (ratio_estimate + 1.0f) * t38 <= big);
+    let ratio = ratio_estimate + nudge3;
     let step_down4 = select(0.0f, -1.0f, ratio * t38 > big);
-    let step4 = select(step_down4, 1.0f, (ratio + 1.0f) * t38 <= big);
-    let t39 = ratio + step4;
+    let nudge4 = select(step_down4, 1.0f, (ratio + 1.0f) * t38 <= big);
+    let t39 = ratio + nudge4;
     let far = t39 > 3474675.0f;
     let t40 = t39 - 8388608.0f;
     let t41 = t39 + 8388608.0f;
     let big2 = t40 * 8388608.0f;
     let ratio_estimate2 = floor(t40 / t41 * 8388608.0f);
     let step_down5 = select(0.0f, -1.0f, ratio_estimate2 * t41 > big2);
-    let step5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t41 <= big2);
-    let ratio2 = ratio_estimate2 + step5;
+    let nudge5 = select(step_down5, 1.0f, (ratio_estimate2 + 1.0f) * t41 <= big2);
+    let ratio2 = ratio_estimate2 + nudge5;
     let step_down6 = select(0.0f, -1.0f, ratio2 * t41 > big2);
-    let step6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t41 <= big2);
-    let ratio3 = ratio2 + step6;
+    let nudge6 = select(step_down6, 1.0f, (ratio2 + 1.0f) * t41 <= big2);
+    let ratio3 = ratio2 + nudge6;
     let z = select(t39, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
     let t42 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);
@@ -388,6 +389,6 @@ fn unitpack_octangle48_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
         select(0.0f, angle2, ok2 && abs(u) + abs(v) >= 256.0f),
         select(0.0f, 1.0f, select(1.0f, -1.0f, t.w < 0.0f) < 0.0f)
     );
-    return vec2<u32>(u32(codes.x + 65536.0f) & 65535u, u32(codes.z))
+    return vec2<u32>(u32(codes.x + 65536.0f) & 0xffffu, u32(codes.z))
         | vec2<u32>(u32(codes.y + 65536.0f) << 16u, u32(codes.w) << 15u);
 }

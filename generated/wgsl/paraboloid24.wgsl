@@ -15,6 +15,7 @@
 // ---- paraboloid24: inverted paraboloid z = 1 - (x² + y²) of the +Z hemisphere, snorm×2, 24 bits,
 //   hemisphere ----
 // Source: Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid.
+// Model: src/codecs/azimuthal/paraboloid.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.01636°, sample max 0.04112°; MSE of the components of
 //   n - n' 3.244e-8, PSNR 74.89 dB.
 
@@ -40,7 +41,7 @@ fn unitpack_paraboloid24_decode_float(params: vec2<f32>) -> vec3<f32> {
 //   the horizon.
 // Portable as unitpack_paraboloid24_decode_float is, within the same bound.
 fn unitpack_paraboloid24_decode(code: u32) -> vec3<f32> {
-    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(4095u));
+    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(0xfffu));
     let t2 = select(t1, t1 - 4096.0f, t1 > vec2<f32>(2047.0f)) * 0.0004885198f;
     let params = select(vec2<f32>(-1.0f), t2, t2 >= vec2<f32>(-1.0f));
     return unitpack_paraboloid24_decode_float(params);
@@ -57,7 +58,7 @@ fn unitpack_paraboloid24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -70,7 +71,7 @@ fn unitpack_paraboloid24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
-    let scale2 = bitcast<f32>(2139095040u - (bitcast<u32>(largest2) & 2139095040u));
+    let scale2 = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest2) & 0x7f800000u));
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -86,22 +87,22 @@ fn unitpack_paraboloid24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
     let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
-    let limb0 = fixed2 & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = fixed2 & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = fixed3 >> 12u;
-    let limb0_2 = fixed3 & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = fixed3 & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = fixed4 >> 12u;
-    let limb0_3 = fixed4 & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = fixed4 & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let half_exponent = ((bitcast<u32>(len2) >> 23u) + 1u) >> 1u;
     let root_down = bitcast<f32>((257u - (half_exponent << 1u)) << 23u);
@@ -112,16 +113,16 @@ fn unitpack_paraboloid24_encode_float(v: vec3<f32>) -> vec2<f32> {
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + step2;
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
     return w4.xy / a;
@@ -130,12 +131,12 @@ fn unitpack_paraboloid24_encode_float(v: vec3<f32>) -> vec2<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_paraboloid24_round_codes(a0: vec3<f32>) -> vec2<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_paraboloid24_round_codes(v: vec3<f32>) -> vec2<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -148,7 +149,7 @@ fn unitpack_paraboloid24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
-    let scale2 = bitcast<f32>(2139095040u - (bitcast<u32>(largest2) & 2139095040u));
+    let scale2 = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest2) & 0x7f800000u));
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -164,22 +165,22 @@ fn unitpack_paraboloid24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let fixed_f3 = floor(abs(halved.z) * 2097152.0f);
     let fixed4 = u32(fixed_f3);
     let limb1 = fixed2 >> 12u;
-    let limb0 = fixed2 & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = fixed2 & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = fixed3 >> 12u;
-    let limb0_2 = fixed3 & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = fixed3 & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = fixed4 >> 12u;
-    let limb0_3 = fixed4 & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = fixed4 & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let len2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let half_exponent = ((bitcast<u32>(len2) >> 23u) + 1u) >> 1u;
     let root_down = bitcast<f32>((257u - (half_exponent << 1u)) << 23u);
@@ -190,16 +191,16 @@ fn unitpack_paraboloid24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + step2;
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + nudge2;
     let root = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
     let a = root * root_up + halved.z;
     let t3 = abs(w4.xy);
@@ -225,6 +226,6 @@ fn unitpack_paraboloid24_round_codes(a0: vec3<f32>) -> vec2<f32> {
 //   components count as zero.
 fn unitpack_paraboloid24_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_paraboloid24_round_codes(v);
-    return (u32(round_codes.x + 4096.0f) & 4095u)
-        | ((u32(round_codes.y + 4096.0f) << 12u) & 16773120u);
+    return (u32(round_codes.x + 4096.0f) & 0xfffu)
+        | ((u32(round_codes.y + 4096.0f) << 12u) & 0xfff000u);
 }

@@ -6,6 +6,7 @@
 
 // ---- paraboloid_pd: combine a paraboloid normal with a partial-derivative detail normal ----
 // Source: Improved Normal-map Distributions (Insomniac), CombineParaboloidNormalWithPD.
+// Model: src/codecs/azimuthal/paraboloid_pd.rs in unitpack's sources.
 
 // The second seed's CombineParaboloidNormalWithPD: `pn` a paraboloid point (the float form of
 //   paraboloid's parameters), `pd` a detail normal's partial derivatives; returns normalize(pn -

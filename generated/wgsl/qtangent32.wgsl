@@ -16,6 +16,7 @@
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.08809° / 0.28436°, tangent 0.09362° / 0.30861°, bitangent
@@ -44,9 +45,9 @@ struct unitpack_qtangent32_tbn {
 //   of what this function computes here, for every code: a bound proven by interval evaluation
 //   (unitpack verify --portable prints it).
 fn unitpack_qtangent32_decode(code: u32) -> unitpack_qtangent32_frame {
-    let t1 = f32(code & 1023u);
-    let t2 = f32((code >> 10u) & 1023u);
-    let t3 = f32((code >> 20u) & 511u);
+    let t1 = f32(code & 0x3ffu);
+    let t2 = f32((code >> 10u) & 0x3ffu);
+    let t3 = f32((code >> 20u) & 0x1ffu);
     let fields = vec4<f32>(
         select(t1, t1 - 1024.0f, t1 > 511.0f),
         select(t2, t2 - 1024.0f, t2 > 511.0f),
@@ -90,9 +91,9 @@ fn unitpack_qtangent32_decode(code: u32) -> unitpack_qtangent32_frame {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable within a bound (as the header says): as for unitpack_qtangent32_decode.
 fn unitpack_qtangent32_decode_tbn(code: u32) -> unitpack_qtangent32_tbn {
-    let t1 = f32(code & 1023u);
-    let t2 = f32((code >> 10u) & 1023u);
-    let t3 = f32((code >> 20u) & 511u);
+    let t1 = f32(code & 0x3ffu);
+    let t2 = f32((code >> 10u) & 0x3ffu);
+    let t3 = f32((code >> 20u) & 0x1ffu);
     let fields = vec4<f32>(
         select(t1, t1 - 1024.0f, t1 > 511.0f),
         select(t2, t2 - 1024.0f, t2 > 511.0f),
@@ -153,7 +154,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -163,52 +164,52 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
     let t1 = vec3<u32>(floor(abs(w2) * 2097152.0f));
     let limb1 = t1.x >> 12u;
-    let limb0 = t1.x & 4095u;
-    let cross = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross << 13u) & 16777215u);
+    let limb0 = t1.x & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = t1.y >> 12u;
-    let limb0_2 = t1.y & 4095u;
-    let cross2 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross2 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross2 << 13u) & 16777215u);
+    let limb0_2 = t1.y & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = t1.z >> 12u;
-    let limb0_3 = t1.z & 4095u;
-    let cross3 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross3 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross3 << 13u) & 16777215u);
+    let limb0_3 = t1.z & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let t2 = (f32(hi4) * 16777216.0f + f32(lo4)) * 2.2737368e-13f;
     let root_estimate = sqrt(t2);
     let root_k0 = floor(root_estimate * 512.0f);
     let root_h0 = root_k0 * 0.001953125f;
     let root_h1 = root_h0 + 0.001953125f;
     let step_down = select(0.0f, -1.0f, root_h0 * root_h0 > t2);
-    let step = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
-    let root_k = root_k0 + step;
+    let nudge = select(step_down, 1.0f, root_h1 * root_h1 <= t2);
+    let root_k = root_k0 + nudge;
     let root_h = root_k * 0.001953125f;
     let root_rest = t2 - root_h * root_h;
     let root_j0 = floor(root_rest / (root_h + root_estimate) * 2097152.0f);
     let root_m0 = root_h + root_j0 * 4.7683716e-7f;
     let root_m1 = root_h + (root_j0 + 1.0f) * 4.7683716e-7f;
     let step_down2 = select(0.0f, -1.0f, root_m0 * root_m0 > t2);
-    let step2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
-    let root_j = root_j0 + step2;
-    let length = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
-    let t3 = u32(length * 2097152.0f);
+    let nudge2 = select(step_down2, 1.0f, root_m1 * root_m1 <= t2);
+    let root_j = root_j0 + nudge2;
+    let norm = (root_k * 4096.0f + root_j) * 4.7683716e-7f;
+    let t3 = u32(norm * 2097152.0f);
     let wide = (hi4 << 24u) + lo4;
-    let rest = wide - t3 * t3 + 1073741824u;
+    let rest = wide - t3 * t3 + 0x40000000u;
     let n2 = select(
-        select(t3, t3 - 1u, rest < 1073741824u - t3 + 1u),
+        select(t3, t3 - 1u, rest < 0x40000000u - t3 + 1u),
         t3 + 1u,
-        1073741824u + t3 < rest
+        0x40000000u + t3 < rest
     );
-    let rest2 = wide - n2 * n2 + 1073741824u;
+    let rest2 = wide - n2 * n2 + 0x40000000u;
     let n3 = select(
-        select(n2, n2 - 1u, rest2 < 1073741824u - n2 + 1u),
+        select(n2, n2 - 1u, rest2 < 0x40000000u - n2 + 1u),
         n2 + 1u,
-        1073741824u + n2 < rest2
+        0x40000000u + n2 < rest2
     );
     let nf = f32(n3);
     let k0 = u32(round(f32(t1.x) / nf * 16777216.0f));
@@ -218,10 +219,10 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t6 = t4 + n3 + t5;
     let two_n = n3 << 1u;
     let t7 = t6 >> 12u;
-    let t8 = (f32(t7) * 4096.0f + f32(t6 & 4095u)) / (nf * 2.0f);
+    let t8 = (f32(t7) * 4096.0f + f32(t6 & 0xfffu)) / (nf * 2.0f);
     let q0 = u32(floor(t8));
     let rest3 = t6 - q0 * two_n;
-    let negative = !(rest3 < 2147483648u);
+    let negative = !(rest3 < 0x80000000u);
     let k0_2 = u32(round(f32(t1.y) / nf * 16777216.0f));
     let r2 = (t1.y << 24u) - k0_2 * n3;
     let t9 = r2 << 1u;
@@ -229,10 +230,10 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t11 = t9 + n3 + t10;
     let two_n2 = n3 << 1u;
     let t12 = t11 >> 12u;
-    let t13 = (f32(t12) * 4096.0f + f32(t11 & 4095u)) / (nf * 2.0f);
+    let t13 = (f32(t12) * 4096.0f + f32(t11 & 0xfffu)) / (nf * 2.0f);
     let q0_2 = u32(floor(t13));
     let rest4 = t11 - q0_2 * two_n2;
-    let negative2 = !(rest4 < 2147483648u);
+    let negative2 = !(rest4 < 0x80000000u);
     let k0_3 = u32(round(f32(t1.z) / nf * 16777216.0f));
     let r3 = (t1.z << 24u) - k0_3 * n3;
     let t14 = r3 << 1u;
@@ -240,17 +241,17 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t16 = t14 + n3 + t15;
     let two_n3 = n3 << 1u;
     let t17 = t16 >> 12u;
-    let t18 = (f32(t17) * 4096.0f + f32(t16 & 4095u)) / (nf * 2.0f);
+    let t18 = (f32(t17) * 4096.0f + f32(t16 & 0xfffu)) / (nf * 2.0f);
     let q0_3 = u32(floor(t18));
     let rest5 = t16 - q0_3 * two_n3;
-    let negative3 = !(rest5 < 2147483648u);
+    let negative3 = !(rest5 < 0x80000000u);
     let t19 = vec3<bool>(
         !(rest3 < two_n) && !negative,
         !(rest4 < two_n2) && !negative2,
         !(rest5 < two_n3) && !negative3
     );
     let t20 = vec3<f32>(vec3<u32>(t7, t12, t17)) * 4096.0f
-        + vec3<f32>((vec3<u32>(t4, t9, t14) + n3 + vec3<u32>(t5, t10, t15)) & vec3<u32>(4095u));
+        + vec3<f32>((vec3<u32>(t4, t9, t14) + n3 + vec3<u32>(t5, t10, t15)) & vec3<u32>(0xfffu));
     let t21 = vec3<u32>(floor(t20 / (nf * vec3<f32>(2.0f))));
     let t22 = t21 + 1u;
     let t23 = vec3<bool>(negative, negative2, negative3);
@@ -267,12 +268,12 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
             select(t25.z, t22.z, t19.z)
         );
     let t27 = t26 - 8u;
-    let t28 = vec3<u32>(16777216u) < t27;
+    let t28 = vec3<u32>(0x1000000u) < t27;
     let t29 = vec3<f32>(
         vec3<u32>(
-            select(t27.x, (vec3<u32>(16777216u)).x, t28.x),
-            select(t27.y, (vec3<u32>(16777216u)).y, t28.y),
-            select(t27.z, (vec3<u32>(16777216u)).z, t28.z)
+            select(t27.x, (vec3<u32>(0x1000000u)).x, t28.x),
+            select(t27.y, (vec3<u32>(0x1000000u)).y, t28.y),
+            select(t27.z, (vec3<u32>(0x1000000u)).z, t28.z)
         )
     )
         * 5.9604645e-8f;
@@ -281,7 +282,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let abs_normal2 = abs(normal2);
     let larger2 = select(abs_normal2.y, abs_normal2.x, abs_normal2.x >= abs_normal2.y);
     let largest2 = select(abs_normal2.z, larger2, larger2 >= abs_normal2.z);
-    let scale2 = bitcast<f32>(2139095040u - (bitcast<u32>(largest2) & 2139095040u));
+    let scale2 = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest2) & 0x7f800000u));
     let scaled2 = normal2 * scale2;
     let abs_scaled2 = abs(scaled2);
     let sum2 = abs_scaled2.x + abs_scaled2.y + abs_scaled2.z;
@@ -303,7 +304,7 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let abs_normal3 = abs(normal3);
     let larger3 = select(abs_normal3.y, abs_normal3.x, abs_normal3.x >= abs_normal3.y);
     let largest3 = select(abs_normal3.z, larger3, larger3 >= abs_normal3.z);
-    let scale3 = bitcast<f32>(2139095040u - (bitcast<u32>(largest3) & 2139095040u));
+    let scale3 = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest3) & 0x7f800000u));
     let scaled3 = normal3 * scale3;
     let abs_scaled3 = abs(scaled3);
     let sum3 = abs_scaled3.x + abs_scaled3.y + abs_scaled3.z;
@@ -313,52 +314,52 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let w5 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w4, ok3);
     let t34 = vec3<u32>(floor(abs(w5) * 2097152.0f));
     let limb1_4 = t34.x >> 12u;
-    let limb0_4 = t34.x & 4095u;
-    let cross4 = limb1_4 * limb0_4;
-    let hi5 = 0u + limb1_4 * limb1_4 + (cross4 >> 11u);
-    let lo5 = 0u + limb0_4 * limb0_4 + ((cross4 << 13u) & 16777215u);
+    let limb0_4 = t34.x & 0xfffu;
+    let limb_cross4 = limb1_4 * limb0_4;
+    let hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    let lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     let limb1_5 = t34.y >> 12u;
-    let limb0_5 = t34.y & 4095u;
-    let cross5 = limb1_5 * limb0_5;
-    let hi6 = hi5 + limb1_5 * limb1_5 + (cross5 >> 11u);
-    let lo6 = lo5 + limb0_5 * limb0_5 + ((cross5 << 13u) & 16777215u);
+    let limb0_5 = t34.y & 0xfffu;
+    let limb_cross5 = limb1_5 * limb0_5;
+    let hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    let lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     let limb1_6 = t34.z >> 12u;
-    let limb0_6 = t34.z & 4095u;
-    let cross6 = limb1_6 * limb0_6;
-    let hi7 = hi6 + limb1_6 * limb1_6 + (cross6 >> 11u);
-    let lo7 = lo6 + limb0_6 * limb0_6 + ((cross6 << 13u) & 16777215u);
+    let limb0_6 = t34.z & 0xfffu;
+    let limb_cross6 = limb1_6 * limb0_6;
+    let hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    let lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     let hi8 = hi7 + (lo7 >> 24u);
-    let lo8 = lo7 & 16777215u;
+    let lo8 = lo7 & 0xffffffu;
     let t35 = (f32(hi8) * 16777216.0f + f32(lo8)) * 2.2737368e-13f;
     let root_estimate2 = sqrt(t35);
     let root_k0_2 = floor(root_estimate2 * 512.0f);
     let root_h0_2 = root_k0_2 * 0.001953125f;
     let root_h1_2 = root_h0_2 + 0.001953125f;
     let step_down3 = select(0.0f, -1.0f, root_h0_2 * root_h0_2 > t35);
-    let step3 = select(step_down3, 1.0f, root_h1_2 * root_h1_2 <= t35);
-    let root_k2 = root_k0_2 + step3;
+    let nudge3 = select(step_down3, 1.0f, root_h1_2 * root_h1_2 <= t35);
+    let root_k2 = root_k0_2 + nudge3;
     let root_h2 = root_k2 * 0.001953125f;
     let root_rest2 = t35 - root_h2 * root_h2;
     let root_j0_2 = floor(root_rest2 / (root_h2 + root_estimate2) * 2097152.0f);
     let root_m0_2 = root_h2 + root_j0_2 * 4.7683716e-7f;
     let root_m1_2 = root_h2 + (root_j0_2 + 1.0f) * 4.7683716e-7f;
     let step_down4 = select(0.0f, -1.0f, root_m0_2 * root_m0_2 > t35);
-    let step4 = select(step_down4, 1.0f, root_m1_2 * root_m1_2 <= t35);
-    let root_j2 = root_j0_2 + step4;
-    let length2 = (root_k2 * 4096.0f + root_j2) * 4.7683716e-7f;
-    let t36 = u32(length2 * 2097152.0f);
+    let nudge4 = select(step_down4, 1.0f, root_m1_2 * root_m1_2 <= t35);
+    let root_j2 = root_j0_2 + nudge4;
+    let norm2 = (root_k2 * 4096.0f + root_j2) * 4.7683716e-7f;
+    let t36 = u32(norm2 * 2097152.0f);
     let wide2 = (hi8 << 24u) + lo8;
-    let rest6 = wide2 - t36 * t36 + 1073741824u;
+    let rest6 = wide2 - t36 * t36 + 0x40000000u;
     let n5 = select(
-        select(t36, t36 - 1u, rest6 < 1073741824u - t36 + 1u),
+        select(t36, t36 - 1u, rest6 < 0x40000000u - t36 + 1u),
         t36 + 1u,
-        1073741824u + t36 < rest6
+        0x40000000u + t36 < rest6
     );
-    let rest7 = wide2 - n5 * n5 + 1073741824u;
+    let rest7 = wide2 - n5 * n5 + 0x40000000u;
     let n6 = select(
-        select(n5, n5 - 1u, rest7 < 1073741824u - n5 + 1u),
+        select(n5, n5 - 1u, rest7 < 0x40000000u - n5 + 1u),
         n5 + 1u,
-        1073741824u + n5 < rest7
+        0x40000000u + n5 < rest7
     );
     let nf2 = f32(n6);
     let k0_4 = u32(round(f32(t34.x) / nf2 * 16777216.0f));
@@ -368,10 +369,10 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t39 = t37 + n6 + t38;
     let two_n4 = n6 << 1u;
     let t40 = t39 >> 12u;
-    let t41 = (f32(t40) * 4096.0f + f32(t39 & 4095u)) / (nf2 * 2.0f);
+    let t41 = (f32(t40) * 4096.0f + f32(t39 & 0xfffu)) / (nf2 * 2.0f);
     let q0_4 = u32(floor(t41));
     let rest8 = t39 - q0_4 * two_n4;
-    let negative4 = !(rest8 < 2147483648u);
+    let negative4 = !(rest8 < 0x80000000u);
     let k0_5 = u32(round(f32(t34.y) / nf2 * 16777216.0f));
     let r5 = (t34.y << 24u) - k0_5 * n6;
     let t42 = r5 << 1u;
@@ -379,10 +380,10 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t44 = t42 + n6 + t43;
     let two_n5 = n6 << 1u;
     let t45 = t44 >> 12u;
-    let t46 = (f32(t45) * 4096.0f + f32(t44 & 4095u)) / (nf2 * 2.0f);
+    let t46 = (f32(t45) * 4096.0f + f32(t44 & 0xfffu)) / (nf2 * 2.0f);
     let q0_5 = u32(floor(t46));
     let rest9 = t44 - q0_5 * two_n5;
-    let negative5 = !(rest9 < 2147483648u);
+    let negative5 = !(rest9 < 0x80000000u);
     let k0_6 = u32(round(f32(t34.z) / nf2 * 16777216.0f));
     let r6 = (t34.z << 24u) - k0_6 * n6;
     let t47 = r6 << 1u;
@@ -390,17 +391,17 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let t49 = t47 + n6 + t48;
     let two_n6 = n6 << 1u;
     let t50 = t49 >> 12u;
-    let t51 = (f32(t50) * 4096.0f + f32(t49 & 4095u)) / (nf2 * 2.0f);
+    let t51 = (f32(t50) * 4096.0f + f32(t49 & 0xfffu)) / (nf2 * 2.0f);
     let q0_6 = u32(floor(t51));
     let rest10 = t49 - q0_6 * two_n6;
-    let negative6 = !(rest10 < 2147483648u);
+    let negative6 = !(rest10 < 0x80000000u);
     let t52 = vec3<bool>(
         !(rest8 < two_n4) && !negative4,
         !(rest9 < two_n5) && !negative5,
         !(rest10 < two_n6) && !negative6
     );
     let t53 = vec3<f32>(vec3<u32>(t40, t45, t50)) * 4096.0f
-        + vec3<f32>((vec3<u32>(t37, t42, t47) + n6 + vec3<u32>(t38, t43, t48)) & vec3<u32>(4095u));
+        + vec3<f32>((vec3<u32>(t37, t42, t47) + n6 + vec3<u32>(t38, t43, t48)) & vec3<u32>(0xfffu));
     let t54 = vec3<u32>(floor(t53 / (nf2 * vec3<f32>(2.0f))));
     let t55 = t54 + 1u;
     let t56 = vec3<bool>(negative4, negative5, negative6);
@@ -417,12 +418,12 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
             select(t58.z, t55.z, t52.z)
         );
     let t60 = t59 - 8u;
-    let t61 = vec3<u32>(16777216u) < t60;
+    let t61 = vec3<u32>(0x1000000u) < t60;
     let t62 = vec3<f32>(
         vec3<u32>(
-            select(t60.x, (vec3<u32>(16777216u)).x, t61.x),
-            select(t60.y, (vec3<u32>(16777216u)).y, t61.y),
-            select(t60.z, (vec3<u32>(16777216u)).z, t61.z)
+            select(t60.x, (vec3<u32>(0x1000000u)).x, t61.x),
+            select(t60.y, (vec3<u32>(0x1000000u)).y, t61.y),
+            select(t60.z, (vec3<u32>(0x1000000u)).z, t61.z)
         )
     )
         * 5.9604645e-8f;
@@ -460,8 +461,8 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let upper = estimate + 0.5f;
     let lower = estimate - 0.5f;
     let step_down5 = select(0.0f, -1.0f, estimate > 0.0f && big2 < lower * lower * s);
-    let step5 = select(step_down5, 1.0f, big2 >= upper * upper * s);
-    let t76 = estimate + step5;
+    let nudge5 = select(step_down5, 1.0f, big2 >= upper * upper * s);
+    let t76 = estimate + nudge5;
     let t77 = select(0.0f, t76, t76 >= 0.0f);
     let t78 = select(511.0f, t77, t77 <= 511.0f);
     let big3 = abs(t74 * 511.0f);
@@ -470,8 +471,8 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let upper2 = estimate2 + 0.5f;
     let lower2 = estimate2 - 0.5f;
     let step_down6 = select(0.0f, -1.0f, estimate2 > 0.0f && big2_2 < lower2 * lower2 * s);
-    let step6 = select(step_down6, 1.0f, big2_2 >= upper2 * upper2 * s);
-    let t79 = estimate2 + step6;
+    let nudge6 = select(step_down6, 1.0f, big2_2 >= upper2 * upper2 * s);
+    let t79 = estimate2 + nudge6;
     let t80 = select(0.0f, t79, t79 >= 0.0f);
     let t81 = select(511.0f, t80, t80 <= 511.0f);
     let big4 = abs(t75 * 255.0f);
@@ -480,8 +481,8 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
     let upper3 = estimate3 + 0.5f;
     let lower3 = estimate3 - 0.5f;
     let step_down7 = select(0.0f, -1.0f, estimate3 > 0.0f && big2_3 < lower3 * lower3 * s);
-    let step7 = select(step_down7, 1.0f, big2_3 >= upper3 * upper3 * s);
-    let t82 = estimate3 + step7;
+    let nudge7 = select(step_down7, 1.0f, big2_3 >= upper3 * upper3 * s);
+    let t82 = estimate3 + nudge7;
     let t83 = select(0.0f, t82, t82 >= 0.0f);
     let t84 = select(255.0f, t83, t83 <= 255.0f);
     let codes = vec4<f32>(
@@ -490,6 +491,6 @@ fn unitpack_qtangent32_encode(n: vec3<f32>, t: vec4<f32>) -> u32 {
         select(t84, -t84, t75 < 0.0f),
         index3 + 4.0f * select(0.0f, 1.0f, select(1.0f, -1.0f, t.w < 0.0f) < 0.0f)
     );
-    let t85 = (u32(codes.x + 1024.0f) & 1023u) | ((u32(codes.y + 1024.0f) << 10u) & 1047552u);
-    return t85 | ((u32(codes.z + 512.0f) << 20u) & 535822336u) | (u32(codes.w) << 29u);
+    let t85 = (u32(codes.x + 1024.0f) & 0x3ffu) | ((u32(codes.y + 1024.0f) << 10u) & 0xffc00u);
+    return t85 | ((u32(codes.z + 512.0f) << 20u) & 0x1ff00000u) | (u32(codes.w) << 29u);
 }

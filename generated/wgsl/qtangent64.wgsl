@@ -16,6 +16,7 @@
 //   TMatHelpers.h (extractQuat), norm.h (packSnorm16), libs/geometry/src/SurfaceOrientation.cpp
 //   (buildWithSuppliedTangents), shaders/src/common_math.glsl (toTangentFrame); 32 bits: smallest
 //   three (the largest component dropped, its index stored).
+// Model: src/codecs/frames/qtangent.rs in unitpack's sources.
 // Frame round-trip error over 196608 seeded orthonormal frames (seed
 //   0x6672616d65735f736565645f756e6974; the reference tangent made orthogonal to the normal; mean /
 //   sample max, not a bound): normal 0.00151° / 0.00394°, tangent 0.00151° / 0.00397°, bitangent
@@ -63,7 +64,7 @@ fn unitpack_qtangent64_decode_float(q: vec4<f32>) -> unitpack_qtangent64_frame {
 //   quantization (a few 2^-15).
 // Portable as unitpack_qtangent64_decode_float is, within the same bound.
 fn unitpack_qtangent64_decode(code: vec2<u32>) -> unitpack_qtangent64_frame {
-    let t1 = vec4<f32>(vec4<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u));
+    let t1 = vec4<f32>(vec4<u32>(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu, code.y >> 16u));
     let t2 = select(t1, t1 - 65536.0f, t1 > vec4<f32>(32767.0f)) * 3.051851e-5f;
     let q = select(vec4<f32>(-1.0f), t2, t2 >= vec4<f32>(-1.0f));
     let x2 = 2.0f * q.x;
@@ -86,7 +87,7 @@ fn unitpack_qtangent64_decode(code: vec2<u32>) -> unitpack_qtangent64_frame {
 //   frame's space): t and n as decode returns them, b = cross(n, t.xyz)·t.w (glTF's bitangent).
 // Portable as unitpack_qtangent64_decode_float is, within the same bound.
 fn unitpack_qtangent64_decode_tbn(code: vec2<u32>) -> unitpack_qtangent64_tbn {
-    let t1 = vec4<f32>(vec4<u32>(code.x & 65535u, code.x >> 16u, code.y & 65535u, code.y >> 16u));
+    let t1 = vec4<f32>(vec4<u32>(code.x & 0xffffu, code.x >> 16u, code.y & 0xffffu, code.y >> 16u));
     let t2 = select(t1, t1 - 65536.0f, t1 > vec4<f32>(32767.0f)) * 3.051851e-5f;
     let q = select(vec4<f32>(-1.0f), t2, t2 >= vec4<f32>(-1.0f));
     let x2 = 2.0f * q.x;
@@ -176,9 +177,9 @@ fn unitpack_qtangent64_encode_float(n: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
         * vec4<f32>(t20, t20, t20, sqrt(t19));
     let q = select(t29, t30, trace > 0.0f);
     let q_sq = q * q;
-    let length = sqrt(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
-    let t31 = !(length == 0.0f);
-    let t32 = select(vec4<f32>(0.0f, 0.0f, 0.0f, 1.0f), q / select(1.0f, length, t31), t31);
+    let norm = sqrt(q_sq.x + q_sq.y + q_sq.z + q_sq.w);
+    let t31 = !(norm == 0.0f);
+    let t32 = select(vec4<f32>(0.0f, 0.0f, 0.0f, 1.0f), q / select(1.0f, norm, t31), t31);
     let q2 = select(t32, -t32, t32.w < 0.0f);
     let t33 = select(q2, vec4<f32>(q2.xyz, 3.051851e-5f), q2.w < 3.051851e-5f);
     let t34 = (t15.y * n2.z - t15.z * n2.y) * b2.x + (t15.z * n2.x - t15.x * n2.z) * b2.y;
@@ -206,5 +207,5 @@ fn unitpack_qtangent64_encode(n: vec3<f32>, t: vec4<f32>) -> vec2<u32> {
         + select(vec4<f32>(0.0f), vec4<f32>(1.0f), abs_t2 - floor_abs_t2 >= vec4<f32>(0.5f));
     let codes = select(t3, -t3, t2 < vec4<f32>(0.0f));
     let t4 = vec2<u32>(u32(codes.y + 65536.0f) << 16u, u32(codes.w + 65536.0f) << 16u);
-    return (vec2<u32>(codes.xz + 65536.0f) & vec2<u32>(65535u)) | t4;
+    return (vec2<u32>(codes.xz + 65536.0f) & vec2<u32>(0xffffu)) | t4;
 }

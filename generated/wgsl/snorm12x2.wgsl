@@ -6,6 +6,7 @@
 
 // ---- snorm12x2: snorm12×2 ↔ unorm8×3 packing helpers, integer and float-only forms, 24 bits ----
 // Source: Cigolle et al. 2014 §3.3, Listings 4–5.
+// Model: src/codecs/component/snorm12x2.rs in unitpack's sources.
 
 // Float-only pack of two snorm12 values into three unorm8 values (survey Listing 5). Other
 //   implementations: under the division, square root, contraction, denormal and sign-of-zero

@@ -15,6 +15,7 @@
 // ---- spherical_lut16p:lut=matched: azimuth and z through an atan2 and a sin/cos lookup texture
 //   (256×256), 16 bits, sphere, precise encoder ----
 // Source: Pranckevičius method 3a.
+// Model: src/codecs/table/spherical_lut.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.36910°, sample max 3.64272°; MSE of the components of
 //   n - n' 2.026e-5, PSNR 46.93 dB.
 
@@ -48,7 +49,7 @@ fn unitpack_spherical_lut16p_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -56,11 +57,11 @@ fn unitpack_spherical_lut16p_matched_atan_texel(v: vec3<f32>) -> vec2<u32> {
     let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
+    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
-    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 4294963200u);
+    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 0xfffff000u);
     let split_lo2 = w2.y - split_hi2;
-    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 4294963200u);
+    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 0xfffff000u);
     let split_lo3 = w2.z - split_hi3;
     let t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -122,7 +123,7 @@ fn unitpack_spherical_lut16p_matched_encode_fast(v: vec3<f32>, fetched: f32) -> 
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -130,11 +131,11 @@ fn unitpack_spherical_lut16p_matched_encode_fast(v: vec3<f32>, fetched: f32) -> 
     let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
+    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
-    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 4294963200u);
+    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 0xfffff000u);
     let split_lo2 = w2.y - split_hi2;
-    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 4294963200u);
+    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 0xfffff000u);
     let split_lo3 = w2.z - split_hi3;
     let t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -183,7 +184,7 @@ fn unitpack_spherical_lut16p_matched_precise_texel(code: u32, k: u32) -> vec2<u3
     let t2 = select(select(2u, 1u, t1 < 6u), 0u, t1 < 3u);
     let t3 = ((code >> 8u) & 255u) + t2;
     let t4 = select(t3, 1u, t3 < 1u) - 1u;
-    return vec2<u32>(((code & 255u) + (t1 - t2 * 3u) + 255u) & 255u, select(255u, t4, t4 < 256u));
+    return vec2<u32>(((code & 255u) + (t1 - t2 * 3u) + 255u) & 255u, select(255u, t4, t4 < 0x100u));
 }
 
 // unitpack_spherical_lut16p_matched_encode: precise encoder.
@@ -213,7 +214,7 @@ fn unitpack_spherical_lut16p_matched_encode(
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -229,68 +230,68 @@ fn unitpack_spherical_lut16p_matched_encode(
         select(t2.y, t3.y, t1.y),
         select(t2.z, t3.z, t1.z)
     );
-    let t4 = code & 65535u;
+    let t4 = code & 0xffffu;
     let t5 = select(vec3<f32>(0.0f), s4, s4 >= vec3<f32>(0.0f));
     let t6 = vec3<u32>(round(select(vec3<f32>(1.0f), t5, t5 <= vec3<f32>(1.0f)) * 255.0f));
     let t7 = t6 + t6 - 255u;
-    let cross = afix.yzx * t7.zxy - afix.zxy * t7.yzx;
-    let t8 = cross < vec3<u32>(2147483648u);
-    let t9 = 0u - cross;
+    let axd = afix.yzx * t7.zxy - afix.zxy * t7.yzx;
+    let t8 = axd < vec3<u32>(0x80000000u);
+    let t9 = 0u - axd;
     let t10 = vec3<u32>(
-        select(t9.x, cross.x, t8.x),
-        select(t9.y, cross.y, t8.y),
-        select(t9.z, cross.z, t8.z)
+        select(t9.x, axd.x, t8.x),
+        select(t9.y, axd.y, t8.y),
+        select(t9.z, axd.z, t8.z)
     );
     let limb1 = t10.x >> 12u;
-    let limb0 = t10.x & 4095u;
-    let cross2 = limb1 * limb0;
-    let hi = 0u + limb1 * limb1 + (cross2 >> 11u);
-    let lo = 0u + limb0 * limb0 + ((cross2 << 13u) & 16777215u);
+    let limb0 = t10.x & 0xfffu;
+    let limb_cross = limb1 * limb0;
+    let hi = 0u + limb1 * limb1 + (limb_cross >> 11u);
+    let lo = 0u + limb0 * limb0 + ((limb_cross << 13u) & 0xffffffu);
     let limb1_2 = t10.y >> 12u;
-    let limb0_2 = t10.y & 4095u;
-    let cross3 = limb1_2 * limb0_2;
-    let hi2 = hi + limb1_2 * limb1_2 + (cross3 >> 11u);
-    let lo2 = lo + limb0_2 * limb0_2 + ((cross3 << 13u) & 16777215u);
+    let limb0_2 = t10.y & 0xfffu;
+    let limb_cross2 = limb1_2 * limb0_2;
+    let hi2 = hi + limb1_2 * limb1_2 + (limb_cross2 >> 11u);
+    let lo2 = lo + limb0_2 * limb0_2 + ((limb_cross2 << 13u) & 0xffffffu);
     let limb1_3 = t10.z >> 12u;
-    let limb0_3 = t10.z & 4095u;
-    let cross4 = limb1_3 * limb0_3;
-    let hi3 = hi2 + limb1_3 * limb1_3 + (cross4 >> 11u);
-    let lo3 = lo2 + limb0_3 * limb0_3 + ((cross4 << 13u) & 16777215u);
+    let limb0_3 = t10.z & 0xfffu;
+    let limb_cross3 = limb1_3 * limb0_3;
+    let hi3 = hi2 + limb1_3 * limb1_3 + (limb_cross3 >> 11u);
+    let lo3 = lo2 + limb0_3 * limb0_3 + ((limb_cross3 << 13u) & 0xffffffu);
     let hi4 = hi3 + (lo3 >> 24u);
-    let lo4 = lo3 & 16777215u;
+    let lo4 = lo3 & 0xffffffu;
     let e = f32(hi4) * 16777216.0f + f32(lo4);
     let n = f32(t7.x * t7.x + t7.y * t7.y + t7.z * t7.z);
     let t11 = ((code >> 8u) & 255u) + 0u;
     let t12 = select(t11, 1u, t11 < 1u) - 1u;
-    let t13 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t12, t12 < 256u) << 8u);
+    let t13 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t12, t12 < 0x100u) << 8u);
     let t14 = select(vec3<f32>(0.0f), s0, s0 >= vec3<f32>(0.0f));
     let t15 = vec3<u32>(round(select(vec3<f32>(1.0f), t14, t14 <= vec3<f32>(1.0f)) * 255.0f));
     let t16 = t15 + t15 - 255u;
-    let cross5 = afix.yzx * t16.zxy - afix.zxy * t16.yzx;
-    let t17 = cross5 < vec3<u32>(2147483648u);
-    let t18 = 0u - cross5;
+    let axd2 = afix.yzx * t16.zxy - afix.zxy * t16.yzx;
+    let t17 = axd2 < vec3<u32>(0x80000000u);
+    let t18 = 0u - axd2;
     let t19 = vec3<u32>(
-        select(t18.x, cross5.x, t17.x),
-        select(t18.y, cross5.y, t17.y),
-        select(t18.z, cross5.z, t17.z)
+        select(t18.x, axd2.x, t17.x),
+        select(t18.y, axd2.y, t17.y),
+        select(t18.z, axd2.z, t17.z)
     );
     let limb1_4 = t19.x >> 12u;
-    let limb0_4 = t19.x & 4095u;
-    let cross6 = limb1_4 * limb0_4;
-    let hi5 = 0u + limb1_4 * limb1_4 + (cross6 >> 11u);
-    let lo5 = 0u + limb0_4 * limb0_4 + ((cross6 << 13u) & 16777215u);
+    let limb0_4 = t19.x & 0xfffu;
+    let limb_cross4 = limb1_4 * limb0_4;
+    let hi5 = 0u + limb1_4 * limb1_4 + (limb_cross4 >> 11u);
+    let lo5 = 0u + limb0_4 * limb0_4 + ((limb_cross4 << 13u) & 0xffffffu);
     let limb1_5 = t19.y >> 12u;
-    let limb0_5 = t19.y & 4095u;
-    let cross7 = limb1_5 * limb0_5;
-    let hi6 = hi5 + limb1_5 * limb1_5 + (cross7 >> 11u);
-    let lo6 = lo5 + limb0_5 * limb0_5 + ((cross7 << 13u) & 16777215u);
+    let limb0_5 = t19.y & 0xfffu;
+    let limb_cross5 = limb1_5 * limb0_5;
+    let hi6 = hi5 + limb1_5 * limb1_5 + (limb_cross5 >> 11u);
+    let lo6 = lo5 + limb0_5 * limb0_5 + ((limb_cross5 << 13u) & 0xffffffu);
     let limb1_6 = t19.z >> 12u;
-    let limb0_6 = t19.z & 4095u;
-    let cross8 = limb1_6 * limb0_6;
-    let hi7 = hi6 + limb1_6 * limb1_6 + (cross8 >> 11u);
-    let lo7 = lo6 + limb0_6 * limb0_6 + ((cross8 << 13u) & 16777215u);
+    let limb0_6 = t19.z & 0xfffu;
+    let limb_cross6 = limb1_6 * limb0_6;
+    let hi7 = hi6 + limb1_6 * limb1_6 + (limb_cross6 >> 11u);
+    let lo7 = lo6 + limb0_6 * limb0_6 + ((limb_cross6 << 13u) & 0xffffffu);
     let hi8 = hi7 + (lo7 >> 24u);
-    let lo8 = lo7 & 16777215u;
+    let lo8 = lo7 & 0xffffffu;
     let e2 = f32(hi8) * 16777216.0f + f32(lo8);
     let n2 = f32(t16.x * t16.x + t16.y * t16.y + t16.z * t16.z);
     let t20 = e2 * n < e * n2;
@@ -299,35 +300,35 @@ fn unitpack_spherical_lut16p_matched_encode(
     let best_n = select(n, n2, t20);
     let t21 = ((code >> 8u) & 255u) + 0u;
     let t22 = select(t21, 1u, t21 < 1u) - 1u;
-    let t23 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t22, t22 < 256u) << 8u);
+    let t23 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t22, t22 < 0x100u) << 8u);
     let t24 = select(vec3<f32>(0.0f), s1, s1 >= vec3<f32>(0.0f));
     let t25 = vec3<u32>(round(select(vec3<f32>(1.0f), t24, t24 <= vec3<f32>(1.0f)) * 255.0f));
     let t26 = t25 + t25 - 255u;
-    let cross9 = afix.yzx * t26.zxy - afix.zxy * t26.yzx;
-    let t27 = cross9 < vec3<u32>(2147483648u);
-    let t28 = 0u - cross9;
+    let axd3 = afix.yzx * t26.zxy - afix.zxy * t26.yzx;
+    let t27 = axd3 < vec3<u32>(0x80000000u);
+    let t28 = 0u - axd3;
     let t29 = vec3<u32>(
-        select(t28.x, cross9.x, t27.x),
-        select(t28.y, cross9.y, t27.y),
-        select(t28.z, cross9.z, t27.z)
+        select(t28.x, axd3.x, t27.x),
+        select(t28.y, axd3.y, t27.y),
+        select(t28.z, axd3.z, t27.z)
     );
     let limb1_7 = t29.x >> 12u;
-    let limb0_7 = t29.x & 4095u;
-    let cross10 = limb1_7 * limb0_7;
-    let hi9 = 0u + limb1_7 * limb1_7 + (cross10 >> 11u);
-    let lo9 = 0u + limb0_7 * limb0_7 + ((cross10 << 13u) & 16777215u);
+    let limb0_7 = t29.x & 0xfffu;
+    let limb_cross7 = limb1_7 * limb0_7;
+    let hi9 = 0u + limb1_7 * limb1_7 + (limb_cross7 >> 11u);
+    let lo9 = 0u + limb0_7 * limb0_7 + ((limb_cross7 << 13u) & 0xffffffu);
     let limb1_8 = t29.y >> 12u;
-    let limb0_8 = t29.y & 4095u;
-    let cross11 = limb1_8 * limb0_8;
-    let hi10 = hi9 + limb1_8 * limb1_8 + (cross11 >> 11u);
-    let lo10 = lo9 + limb0_8 * limb0_8 + ((cross11 << 13u) & 16777215u);
+    let limb0_8 = t29.y & 0xfffu;
+    let limb_cross8 = limb1_8 * limb0_8;
+    let hi10 = hi9 + limb1_8 * limb1_8 + (limb_cross8 >> 11u);
+    let lo10 = lo9 + limb0_8 * limb0_8 + ((limb_cross8 << 13u) & 0xffffffu);
     let limb1_9 = t29.z >> 12u;
-    let limb0_9 = t29.z & 4095u;
-    let cross12 = limb1_9 * limb0_9;
-    let hi11 = hi10 + limb1_9 * limb1_9 + (cross12 >> 11u);
-    let lo11 = lo10 + limb0_9 * limb0_9 + ((cross12 << 13u) & 16777215u);
+    let limb0_9 = t29.z & 0xfffu;
+    let limb_cross9 = limb1_9 * limb0_9;
+    let hi11 = hi10 + limb1_9 * limb1_9 + (limb_cross9 >> 11u);
+    let lo11 = lo10 + limb0_9 * limb0_9 + ((limb_cross9 << 13u) & 0xffffffu);
     let hi12 = hi11 + (lo11 >> 24u);
-    let lo12 = lo11 & 16777215u;
+    let lo12 = lo11 & 0xffffffu;
     let e3 = f32(hi12) * 16777216.0f + f32(lo12);
     let n3 = f32(t26.x * t26.x + t26.y * t26.y + t26.z * t26.z);
     let t30 = e3 * best_n < best_e * n3;
@@ -336,35 +337,35 @@ fn unitpack_spherical_lut16p_matched_encode(
     let best_n2 = select(best_n, n3, t30);
     let t31 = ((code >> 8u) & 255u) + 0u;
     let t32 = select(t31, 1u, t31 < 1u) - 1u;
-    let t33 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t32, t32 < 256u) << 8u);
+    let t33 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t32, t32 < 0x100u) << 8u);
     let t34 = select(vec3<f32>(0.0f), s2, s2 >= vec3<f32>(0.0f));
     let t35 = vec3<u32>(round(select(vec3<f32>(1.0f), t34, t34 <= vec3<f32>(1.0f)) * 255.0f));
     let t36 = t35 + t35 - 255u;
-    let cross13 = afix.yzx * t36.zxy - afix.zxy * t36.yzx;
-    let t37 = cross13 < vec3<u32>(2147483648u);
-    let t38 = 0u - cross13;
+    let axd4 = afix.yzx * t36.zxy - afix.zxy * t36.yzx;
+    let t37 = axd4 < vec3<u32>(0x80000000u);
+    let t38 = 0u - axd4;
     let t39 = vec3<u32>(
-        select(t38.x, cross13.x, t37.x),
-        select(t38.y, cross13.y, t37.y),
-        select(t38.z, cross13.z, t37.z)
+        select(t38.x, axd4.x, t37.x),
+        select(t38.y, axd4.y, t37.y),
+        select(t38.z, axd4.z, t37.z)
     );
     let limb1_10 = t39.x >> 12u;
-    let limb0_10 = t39.x & 4095u;
-    let cross14 = limb1_10 * limb0_10;
-    let hi13 = 0u + limb1_10 * limb1_10 + (cross14 >> 11u);
-    let lo13 = 0u + limb0_10 * limb0_10 + ((cross14 << 13u) & 16777215u);
+    let limb0_10 = t39.x & 0xfffu;
+    let limb_cross10 = limb1_10 * limb0_10;
+    let hi13 = 0u + limb1_10 * limb1_10 + (limb_cross10 >> 11u);
+    let lo13 = 0u + limb0_10 * limb0_10 + ((limb_cross10 << 13u) & 0xffffffu);
     let limb1_11 = t39.y >> 12u;
-    let limb0_11 = t39.y & 4095u;
-    let cross15 = limb1_11 * limb0_11;
-    let hi14 = hi13 + limb1_11 * limb1_11 + (cross15 >> 11u);
-    let lo14 = lo13 + limb0_11 * limb0_11 + ((cross15 << 13u) & 16777215u);
+    let limb0_11 = t39.y & 0xfffu;
+    let limb_cross11 = limb1_11 * limb0_11;
+    let hi14 = hi13 + limb1_11 * limb1_11 + (limb_cross11 >> 11u);
+    let lo14 = lo13 + limb0_11 * limb0_11 + ((limb_cross11 << 13u) & 0xffffffu);
     let limb1_12 = t39.z >> 12u;
-    let limb0_12 = t39.z & 4095u;
-    let cross16 = limb1_12 * limb0_12;
-    let hi15 = hi14 + limb1_12 * limb1_12 + (cross16 >> 11u);
-    let lo15 = lo14 + limb0_12 * limb0_12 + ((cross16 << 13u) & 16777215u);
+    let limb0_12 = t39.z & 0xfffu;
+    let limb_cross12 = limb1_12 * limb0_12;
+    let hi15 = hi14 + limb1_12 * limb1_12 + (limb_cross12 >> 11u);
+    let lo15 = lo14 + limb0_12 * limb0_12 + ((limb_cross12 << 13u) & 0xffffffu);
     let hi16 = hi15 + (lo15 >> 24u);
-    let lo16 = lo15 & 16777215u;
+    let lo16 = lo15 & 0xffffffu;
     let e4 = f32(hi16) * 16777216.0f + f32(lo16);
     let n4 = f32(t36.x * t36.x + t36.y * t36.y + t36.z * t36.z);
     let t40 = e4 * best_n2 < best_e2 * n4;
@@ -373,35 +374,35 @@ fn unitpack_spherical_lut16p_matched_encode(
     let best_n3 = select(best_n2, n4, t40);
     let t41 = ((code >> 8u) & 255u) + 1u;
     let t42 = select(t41, 1u, t41 < 1u) - 1u;
-    let t43 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t42, t42 < 256u) << 8u);
+    let t43 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t42, t42 < 0x100u) << 8u);
     let t44 = select(vec3<f32>(0.0f), s3, s3 >= vec3<f32>(0.0f));
     let t45 = vec3<u32>(round(select(vec3<f32>(1.0f), t44, t44 <= vec3<f32>(1.0f)) * 255.0f));
     let t46 = t45 + t45 - 255u;
-    let cross17 = afix.yzx * t46.zxy - afix.zxy * t46.yzx;
-    let t47 = cross17 < vec3<u32>(2147483648u);
-    let t48 = 0u - cross17;
+    let axd5 = afix.yzx * t46.zxy - afix.zxy * t46.yzx;
+    let t47 = axd5 < vec3<u32>(0x80000000u);
+    let t48 = 0u - axd5;
     let t49 = vec3<u32>(
-        select(t48.x, cross17.x, t47.x),
-        select(t48.y, cross17.y, t47.y),
-        select(t48.z, cross17.z, t47.z)
+        select(t48.x, axd5.x, t47.x),
+        select(t48.y, axd5.y, t47.y),
+        select(t48.z, axd5.z, t47.z)
     );
     let limb1_13 = t49.x >> 12u;
-    let limb0_13 = t49.x & 4095u;
-    let cross18 = limb1_13 * limb0_13;
-    let hi17 = 0u + limb1_13 * limb1_13 + (cross18 >> 11u);
-    let lo17 = 0u + limb0_13 * limb0_13 + ((cross18 << 13u) & 16777215u);
+    let limb0_13 = t49.x & 0xfffu;
+    let limb_cross13 = limb1_13 * limb0_13;
+    let hi17 = 0u + limb1_13 * limb1_13 + (limb_cross13 >> 11u);
+    let lo17 = 0u + limb0_13 * limb0_13 + ((limb_cross13 << 13u) & 0xffffffu);
     let limb1_14 = t49.y >> 12u;
-    let limb0_14 = t49.y & 4095u;
-    let cross19 = limb1_14 * limb0_14;
-    let hi18 = hi17 + limb1_14 * limb1_14 + (cross19 >> 11u);
-    let lo18 = lo17 + limb0_14 * limb0_14 + ((cross19 << 13u) & 16777215u);
+    let limb0_14 = t49.y & 0xfffu;
+    let limb_cross14 = limb1_14 * limb0_14;
+    let hi18 = hi17 + limb1_14 * limb1_14 + (limb_cross14 >> 11u);
+    let lo18 = lo17 + limb0_14 * limb0_14 + ((limb_cross14 << 13u) & 0xffffffu);
     let limb1_15 = t49.z >> 12u;
-    let limb0_15 = t49.z & 4095u;
-    let cross20 = limb1_15 * limb0_15;
-    let hi19 = hi18 + limb1_15 * limb1_15 + (cross20 >> 11u);
-    let lo19 = lo18 + limb0_15 * limb0_15 + ((cross20 << 13u) & 16777215u);
+    let limb0_15 = t49.z & 0xfffu;
+    let limb_cross15 = limb1_15 * limb0_15;
+    let hi19 = hi18 + limb1_15 * limb1_15 + (limb_cross15 >> 11u);
+    let lo19 = lo18 + limb0_15 * limb0_15 + ((limb_cross15 << 13u) & 0xffffffu);
     let hi20 = hi19 + (lo19 >> 24u);
-    let lo20 = lo19 & 16777215u;
+    let lo20 = lo19 & 0xffffffu;
     let e5 = f32(hi20) * 16777216.0f + f32(lo20);
     let n5 = f32(t46.x * t46.x + t46.y * t46.y + t46.z * t46.z);
     let t50 = e5 * best_n3 < best_e3 * n5;
@@ -410,35 +411,35 @@ fn unitpack_spherical_lut16p_matched_encode(
     let best_n4 = select(best_n3, n5, t50);
     let t51 = ((code >> 8u) & 255u) + 1u;
     let t52 = select(t51, 1u, t51 < 1u) - 1u;
-    let t53 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t52, t52 < 256u) << 8u);
+    let t53 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t52, t52 < 0x100u) << 8u);
     let t54 = select(vec3<f32>(0.0f), s5, s5 >= vec3<f32>(0.0f));
     let t55 = vec3<u32>(round(select(vec3<f32>(1.0f), t54, t54 <= vec3<f32>(1.0f)) * 255.0f));
     let t56 = t55 + t55 - 255u;
-    let cross21 = afix.yzx * t56.zxy - afix.zxy * t56.yzx;
-    let t57 = cross21 < vec3<u32>(2147483648u);
-    let t58 = 0u - cross21;
+    let axd6 = afix.yzx * t56.zxy - afix.zxy * t56.yzx;
+    let t57 = axd6 < vec3<u32>(0x80000000u);
+    let t58 = 0u - axd6;
     let t59 = vec3<u32>(
-        select(t58.x, cross21.x, t57.x),
-        select(t58.y, cross21.y, t57.y),
-        select(t58.z, cross21.z, t57.z)
+        select(t58.x, axd6.x, t57.x),
+        select(t58.y, axd6.y, t57.y),
+        select(t58.z, axd6.z, t57.z)
     );
     let limb1_16 = t59.x >> 12u;
-    let limb0_16 = t59.x & 4095u;
-    let cross22 = limb1_16 * limb0_16;
-    let hi21 = 0u + limb1_16 * limb1_16 + (cross22 >> 11u);
-    let lo21 = 0u + limb0_16 * limb0_16 + ((cross22 << 13u) & 16777215u);
+    let limb0_16 = t59.x & 0xfffu;
+    let limb_cross16 = limb1_16 * limb0_16;
+    let hi21 = 0u + limb1_16 * limb1_16 + (limb_cross16 >> 11u);
+    let lo21 = 0u + limb0_16 * limb0_16 + ((limb_cross16 << 13u) & 0xffffffu);
     let limb1_17 = t59.y >> 12u;
-    let limb0_17 = t59.y & 4095u;
-    let cross23 = limb1_17 * limb0_17;
-    let hi22 = hi21 + limb1_17 * limb1_17 + (cross23 >> 11u);
-    let lo22 = lo21 + limb0_17 * limb0_17 + ((cross23 << 13u) & 16777215u);
+    let limb0_17 = t59.y & 0xfffu;
+    let limb_cross17 = limb1_17 * limb0_17;
+    let hi22 = hi21 + limb1_17 * limb1_17 + (limb_cross17 >> 11u);
+    let lo22 = lo21 + limb0_17 * limb0_17 + ((limb_cross17 << 13u) & 0xffffffu);
     let limb1_18 = t59.z >> 12u;
-    let limb0_18 = t59.z & 4095u;
-    let cross24 = limb1_18 * limb0_18;
-    let hi23 = hi22 + limb1_18 * limb1_18 + (cross24 >> 11u);
-    let lo23 = lo22 + limb0_18 * limb0_18 + ((cross24 << 13u) & 16777215u);
+    let limb0_18 = t59.z & 0xfffu;
+    let limb_cross18 = limb1_18 * limb0_18;
+    let hi23 = hi22 + limb1_18 * limb1_18 + (limb_cross18 >> 11u);
+    let lo23 = lo22 + limb0_18 * limb0_18 + ((limb_cross18 << 13u) & 0xffffffu);
     let hi24 = hi23 + (lo23 >> 24u);
-    let lo24 = lo23 & 16777215u;
+    let lo24 = lo23 & 0xffffffu;
     let e6 = f32(hi24) * 16777216.0f + f32(lo24);
     let n6 = f32(t56.x * t56.x + t56.y * t56.y + t56.z * t56.z);
     let t60 = e6 * best_n4 < best_e4 * n6;
@@ -447,35 +448,35 @@ fn unitpack_spherical_lut16p_matched_encode(
     let best_n5 = select(best_n4, n6, t60);
     let t61 = ((code >> 8u) & 255u) + 2u;
     let t62 = select(t61, 1u, t61 < 1u) - 1u;
-    let t63 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t62, t62 < 256u) << 8u);
+    let t63 = (((code & 255u) + 0u + 255u) & 255u) | (select(255u, t62, t62 < 0x100u) << 8u);
     let t64 = select(vec3<f32>(0.0f), s6, s6 >= vec3<f32>(0.0f));
     let t65 = vec3<u32>(round(select(vec3<f32>(1.0f), t64, t64 <= vec3<f32>(1.0f)) * 255.0f));
     let t66 = t65 + t65 - 255u;
-    let cross25 = afix.yzx * t66.zxy - afix.zxy * t66.yzx;
-    let t67 = cross25 < vec3<u32>(2147483648u);
-    let t68 = 0u - cross25;
+    let axd7 = afix.yzx * t66.zxy - afix.zxy * t66.yzx;
+    let t67 = axd7 < vec3<u32>(0x80000000u);
+    let t68 = 0u - axd7;
     let t69 = vec3<u32>(
-        select(t68.x, cross25.x, t67.x),
-        select(t68.y, cross25.y, t67.y),
-        select(t68.z, cross25.z, t67.z)
+        select(t68.x, axd7.x, t67.x),
+        select(t68.y, axd7.y, t67.y),
+        select(t68.z, axd7.z, t67.z)
     );
     let limb1_19 = t69.x >> 12u;
-    let limb0_19 = t69.x & 4095u;
-    let cross26 = limb1_19 * limb0_19;
-    let hi25 = 0u + limb1_19 * limb1_19 + (cross26 >> 11u);
-    let lo25 = 0u + limb0_19 * limb0_19 + ((cross26 << 13u) & 16777215u);
+    let limb0_19 = t69.x & 0xfffu;
+    let limb_cross19 = limb1_19 * limb0_19;
+    let hi25 = 0u + limb1_19 * limb1_19 + (limb_cross19 >> 11u);
+    let lo25 = 0u + limb0_19 * limb0_19 + ((limb_cross19 << 13u) & 0xffffffu);
     let limb1_20 = t69.y >> 12u;
-    let limb0_20 = t69.y & 4095u;
-    let cross27 = limb1_20 * limb0_20;
-    let hi26 = hi25 + limb1_20 * limb1_20 + (cross27 >> 11u);
-    let lo26 = lo25 + limb0_20 * limb0_20 + ((cross27 << 13u) & 16777215u);
+    let limb0_20 = t69.y & 0xfffu;
+    let limb_cross20 = limb1_20 * limb0_20;
+    let hi26 = hi25 + limb1_20 * limb1_20 + (limb_cross20 >> 11u);
+    let lo26 = lo25 + limb0_20 * limb0_20 + ((limb_cross20 << 13u) & 0xffffffu);
     let limb1_21 = t69.z >> 12u;
-    let limb0_21 = t69.z & 4095u;
-    let cross28 = limb1_21 * limb0_21;
-    let hi27 = hi26 + limb1_21 * limb1_21 + (cross28 >> 11u);
-    let lo27 = lo26 + limb0_21 * limb0_21 + ((cross28 << 13u) & 16777215u);
+    let limb0_21 = t69.z & 0xfffu;
+    let limb_cross21 = limb1_21 * limb0_21;
+    let hi27 = hi26 + limb1_21 * limb1_21 + (limb_cross21 >> 11u);
+    let lo27 = lo26 + limb0_21 * limb0_21 + ((limb_cross21 << 13u) & 0xffffffu);
     let hi28 = hi27 + (lo27 >> 24u);
-    let lo28 = lo27 & 16777215u;
+    let lo28 = lo27 & 0xffffffu;
     let e7 = f32(hi28) * 16777216.0f + f32(lo28);
     let n7 = f32(t66.x * t66.x + t66.y * t66.y + t66.z * t66.z);
     let t70 = e7 * best_n5 < best_e5 * n7;
@@ -484,35 +485,35 @@ fn unitpack_spherical_lut16p_matched_encode(
     let best_n6 = select(best_n5, n7, t70);
     let t71 = ((code >> 8u) & 255u) + 2u;
     let t72 = select(t71, 1u, t71 < 1u) - 1u;
-    let t73 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t72, t72 < 256u) << 8u);
+    let t73 = (((code & 255u) + 1u + 255u) & 255u) | (select(255u, t72, t72 < 0x100u) << 8u);
     let t74 = select(vec3<f32>(0.0f), s7, s7 >= vec3<f32>(0.0f));
     let t75 = vec3<u32>(round(select(vec3<f32>(1.0f), t74, t74 <= vec3<f32>(1.0f)) * 255.0f));
     let t76 = t75 + t75 - 255u;
-    let cross29 = afix.yzx * t76.zxy - afix.zxy * t76.yzx;
-    let t77 = cross29 < vec3<u32>(2147483648u);
-    let t78 = 0u - cross29;
+    let axd8 = afix.yzx * t76.zxy - afix.zxy * t76.yzx;
+    let t77 = axd8 < vec3<u32>(0x80000000u);
+    let t78 = 0u - axd8;
     let t79 = vec3<u32>(
-        select(t78.x, cross29.x, t77.x),
-        select(t78.y, cross29.y, t77.y),
-        select(t78.z, cross29.z, t77.z)
+        select(t78.x, axd8.x, t77.x),
+        select(t78.y, axd8.y, t77.y),
+        select(t78.z, axd8.z, t77.z)
     );
     let limb1_22 = t79.x >> 12u;
-    let limb0_22 = t79.x & 4095u;
-    let cross30 = limb1_22 * limb0_22;
-    let hi29 = 0u + limb1_22 * limb1_22 + (cross30 >> 11u);
-    let lo29 = 0u + limb0_22 * limb0_22 + ((cross30 << 13u) & 16777215u);
+    let limb0_22 = t79.x & 0xfffu;
+    let limb_cross22 = limb1_22 * limb0_22;
+    let hi29 = 0u + limb1_22 * limb1_22 + (limb_cross22 >> 11u);
+    let lo29 = 0u + limb0_22 * limb0_22 + ((limb_cross22 << 13u) & 0xffffffu);
     let limb1_23 = t79.y >> 12u;
-    let limb0_23 = t79.y & 4095u;
-    let cross31 = limb1_23 * limb0_23;
-    let hi30 = hi29 + limb1_23 * limb1_23 + (cross31 >> 11u);
-    let lo30 = lo29 + limb0_23 * limb0_23 + ((cross31 << 13u) & 16777215u);
+    let limb0_23 = t79.y & 0xfffu;
+    let limb_cross23 = limb1_23 * limb0_23;
+    let hi30 = hi29 + limb1_23 * limb1_23 + (limb_cross23 >> 11u);
+    let lo30 = lo29 + limb0_23 * limb0_23 + ((limb_cross23 << 13u) & 0xffffffu);
     let limb1_24 = t79.z >> 12u;
-    let limb0_24 = t79.z & 4095u;
-    let cross32 = limb1_24 * limb0_24;
-    let hi31 = hi30 + limb1_24 * limb1_24 + (cross32 >> 11u);
-    let lo31 = lo30 + limb0_24 * limb0_24 + ((cross32 << 13u) & 16777215u);
+    let limb0_24 = t79.z & 0xfffu;
+    let limb_cross24 = limb1_24 * limb0_24;
+    let hi31 = hi30 + limb1_24 * limb1_24 + (limb_cross24 >> 11u);
+    let lo31 = lo30 + limb0_24 * limb0_24 + ((limb_cross24 << 13u) & 0xffffffu);
     let hi32 = hi31 + (lo31 >> 24u);
-    let lo32 = lo31 & 16777215u;
+    let lo32 = lo31 & 0xffffffu;
     let e8 = f32(hi32) * 16777216.0f + f32(lo32);
     let n8 = f32(t76.x * t76.x + t76.y * t76.y + t76.z * t76.z);
     let t80 = e8 * best_n6 < best_e6 * n8;
@@ -521,35 +522,35 @@ fn unitpack_spherical_lut16p_matched_encode(
     let best_n7 = select(best_n6, n8, t80);
     let t81 = ((code >> 8u) & 255u) + 2u;
     let t82 = select(t81, 1u, t81 < 1u) - 1u;
-    let t83 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t82, t82 < 256u) << 8u);
+    let t83 = (((code & 255u) + 2u + 255u) & 255u) | (select(255u, t82, t82 < 0x100u) << 8u);
     let t84 = select(vec3<f32>(0.0f), s8, s8 >= vec3<f32>(0.0f));
     let t85 = vec3<u32>(round(select(vec3<f32>(1.0f), t84, t84 <= vec3<f32>(1.0f)) * 255.0f));
     let t86 = t85 + t85 - 255u;
-    let cross33 = afix.yzx * t86.zxy - afix.zxy * t86.yzx;
-    let t87 = cross33 < vec3<u32>(2147483648u);
-    let t88 = 0u - cross33;
+    let axd9 = afix.yzx * t86.zxy - afix.zxy * t86.yzx;
+    let t87 = axd9 < vec3<u32>(0x80000000u);
+    let t88 = 0u - axd9;
     let t89 = vec3<u32>(
-        select(t88.x, cross33.x, t87.x),
-        select(t88.y, cross33.y, t87.y),
-        select(t88.z, cross33.z, t87.z)
+        select(t88.x, axd9.x, t87.x),
+        select(t88.y, axd9.y, t87.y),
+        select(t88.z, axd9.z, t87.z)
     );
     let limb1_25 = t89.x >> 12u;
-    let limb0_25 = t89.x & 4095u;
-    let cross34 = limb1_25 * limb0_25;
-    let hi33 = 0u + limb1_25 * limb1_25 + (cross34 >> 11u);
-    let lo33 = 0u + limb0_25 * limb0_25 + ((cross34 << 13u) & 16777215u);
+    let limb0_25 = t89.x & 0xfffu;
+    let limb_cross25 = limb1_25 * limb0_25;
+    let hi33 = 0u + limb1_25 * limb1_25 + (limb_cross25 >> 11u);
+    let lo33 = 0u + limb0_25 * limb0_25 + ((limb_cross25 << 13u) & 0xffffffu);
     let limb1_26 = t89.y >> 12u;
-    let limb0_26 = t89.y & 4095u;
-    let cross35 = limb1_26 * limb0_26;
-    let hi34 = hi33 + limb1_26 * limb1_26 + (cross35 >> 11u);
-    let lo34 = lo33 + limb0_26 * limb0_26 + ((cross35 << 13u) & 16777215u);
+    let limb0_26 = t89.y & 0xfffu;
+    let limb_cross26 = limb1_26 * limb0_26;
+    let hi34 = hi33 + limb1_26 * limb1_26 + (limb_cross26 >> 11u);
+    let lo34 = lo33 + limb0_26 * limb0_26 + ((limb_cross26 << 13u) & 0xffffffu);
     let limb1_27 = t89.z >> 12u;
-    let limb0_27 = t89.z & 4095u;
-    let cross36 = limb1_27 * limb0_27;
-    let hi35 = hi34 + limb1_27 * limb1_27 + (cross36 >> 11u);
-    let lo35 = lo34 + limb0_27 * limb0_27 + ((cross36 << 13u) & 16777215u);
+    let limb0_27 = t89.z & 0xfffu;
+    let limb_cross27 = limb1_27 * limb0_27;
+    let hi35 = hi34 + limb1_27 * limb1_27 + (limb_cross27 >> 11u);
+    let lo35 = lo34 + limb0_27 * limb0_27 + ((limb_cross27 << 13u) & 0xffffffu);
     let hi36 = hi35 + (lo35 >> 24u);
-    let lo36 = lo35 & 16777215u;
+    let lo36 = lo35 & 0xffffffu;
     let e9 = f32(hi36) * 16777216.0f + f32(lo36);
     let n9 = f32(t86.x * t86.x + t86.y * t86.y + t86.z * t86.z);
     let best8 = select(best7, t83, e9 * best_n7 < best_e7 * n9);

@@ -14,14 +14,15 @@
 
 // ---- spherical_z16: azimuth and z, (atan2(y, x)/π, z)·0.5 + 0.5 as unorm×2, 16 bits, sphere ----
 // Source: Pranckevičius method 3.
+// Model: src/codecs/angular/spherical_z.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.37252°, sample max 5.07470°; MSE of the components of
 //   n - n' 2.173e-5, PSNR 46.63 dB.
 
 // (sin(π·t), cos(π·t)) for t in [-1, 1] from exact operations only (|error| ≤ 2.5e-7).
-fn unitpack_spherical_z16_sincos_pi(a0: f32) -> vec2<f32> {
-    let abs_a0 = abs(a0);
-    let back = abs_a0 > 0.5f;
-    let b = select(abs_a0, 1.0f - abs_a0, back);
+fn unitpack_spherical_z16_sincos_pi(x: f32) -> vec2<f32> {
+    let abs_x = abs(x);
+    let back = abs_x > 0.5f;
+    let b = select(abs_x, 1.0f - abs_x, back);
     let swap = b > 0.25f;
     let c = select(b, 0.5f - b, swap);
     let c2 = c * c;
@@ -30,7 +31,7 @@ fn unitpack_spherical_z16_sincos_pi(a0: f32) -> vec2<f32> {
     let t2 = (((-0.02580689f * c2 + 0.23533063f) * c2 + (-1.3352628f)) * c2 + 4.058712f) * c2;
     let co = (t2 + (-4.934802f)) * c2 + 1.0f;
     let t3 = select(vec2<f32>(s, co), vec2<f32>(co, s), swap);
-    return select(t3, -t3, vec2<bool>((a0 < 0.0f), back));
+    return select(t3, -t3, vec2<bool>((x < 0.0f), back));
 }
 
 // unitpack_spherical_z16_decode_float: decoder, float form.
@@ -60,14 +61,14 @@ fn unitpack_spherical_z16_decode(code: u32) -> vec3<f32> {
 
 // atan2(y, x) / π in [-1, 1] from exact operations only (|error| ≤ 2e-7); signed zeros count as
 //   positive.
-fn unitpack_spherical_z16_atan2_pi(a0: f32, a1: f32) -> f32 {
-    let abs_a1 = abs(a1);
-    let abs_a0 = abs(a0);
-    let y_major = abs_a0 > abs_a1;
-    let hi = select(abs_a1, abs_a0, y_major);
+fn unitpack_spherical_z16_atan2_pi(x: f32, x1: f32) -> f32 {
+    let abs_x1 = abs(x1);
+    let abs_x = abs(x);
+    let y_major = abs_x > abs_x1;
+    let hi = select(abs_x1, abs_x, y_major);
     let up = select(1.0f, 1.2676506e30f, hi < 7.888609e-31f);
     let hi2 = hi * up;
-    let t = select(abs_a0, abs_a1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
+    let t = select(abs_x, abs_x1, y_major) * up / select(1.0f, hi2, hi2 > 0.0f);
     let far = t > 0.41421357f;
     let z = select(t, (t - 1.0f) / (t + 1.0f), far);
     let z2 = z * z;
@@ -76,8 +77,8 @@ fn unitpack_spherical_z16_atan2_pi(a0: f32, a1: f32) -> f32 {
     let r = z * ((t2 * z2 + (-0.33333334f)) * z2 + 1.0f);
     let r2 = select(r, r + 0.7853982f, far);
     let r3 = select(r2, 1.5707964f - r2, y_major);
-    let r4 = select(r3, 3.1415927f - r3, a1 < 0.0f);
-    return select(r4, -r4, a0 < 0.0f) * 0.31830987f;
+    let r4 = select(r3, 3.1415927f - r3, x1 < 0.0f);
+    return select(r4, -r4, x < 0.0f) * 0.31830987f;
 }
 
 // unitpack_spherical_z16_encode_float: fast encoder, float form.
@@ -101,12 +102,12 @@ fn unitpack_spherical_z16_encode_float(v: vec3<f32>) -> vec2<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_spherical_z16_round_codes(a0: vec3<f32>) -> vec2<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_spherical_z16_round_codes(v: vec3<f32>) -> vec2<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -114,11 +115,11 @@ fn unitpack_spherical_z16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
+    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
-    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 4294963200u);
+    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 0xfffff000u);
     let split_lo2 = w2.y - split_hi2;
-    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 4294963200u);
+    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 0xfffff000u);
     let split_lo3 = w2.z - split_hi3;
     let t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -137,22 +138,22 @@ fn unitpack_spherical_z16_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let big = lo * 8388608.0f;
     let ratio_estimate = floor(lo / t2 * 8388608.0f);
     let step_down = select(0.0f, -1.0f, ratio_estimate * t2 > big);
-    let step = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t2 <= big);
-    let ratio = ratio_estimate + step;
+    let nudge = select(step_down, 1.0f, (ratio_estimate + 1.0f) * t2 <= big);
+    let ratio = ratio_estimate + nudge;
     let step_down2 = select(0.0f, -1.0f, ratio * t2 > big);
-    let step2 = select(step_down2, 1.0f, (ratio + 1.0f) * t2 <= big);
-    let t = ratio + step2;
+    let nudge2 = select(step_down2, 1.0f, (ratio + 1.0f) * t2 <= big);
+    let t = ratio + nudge2;
     let far = t > 3474675.0f;
     let t3 = t - 8388608.0f;
     let t4 = t + 8388608.0f;
     let big2 = t3 * 8388608.0f;
     let ratio_estimate2 = floor(t3 / t4 * 8388608.0f);
     let step_down3 = select(0.0f, -1.0f, ratio_estimate2 * t4 > big2);
-    let step3 = select(step_down3, 1.0f, (ratio_estimate2 + 1.0f) * t4 <= big2);
-    let ratio2 = ratio_estimate2 + step3;
+    let nudge3 = select(step_down3, 1.0f, (ratio_estimate2 + 1.0f) * t4 <= big2);
+    let ratio2 = ratio_estimate2 + nudge3;
     let step_down4 = select(0.0f, -1.0f, ratio2 * t4 > big2);
-    let step4 = select(step_down4, 1.0f, (ratio2 + 1.0f) * t4 <= big2);
-    let ratio3 = ratio2 + step4;
+    let nudge4 = select(step_down4, 1.0f, (ratio2 + 1.0f) * t4 <= big2);
+    let ratio3 = ratio2 + nudge4;
     let z = select(t, ratio3, far);
     let z2 = round(z * z * 1.1920929e-7f);
     let t5 = round((round(-441506.0f * z2 * 1.1920929e-7f) + 493448.0f) * z2 * 1.1920929e-7f);

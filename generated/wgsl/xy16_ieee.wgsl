@@ -14,6 +14,7 @@
 
 // ---- xy16:guarantee=ieee: x and y stored, z reconstructed, snorm×2, 16 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.47519°, sample max 5.56067°; MSE of the components of
 //   n - n' 6.451e-5, PSNR 41.90 dB.
 
@@ -77,5 +78,5 @@ fn unitpack_xy16_ieee_encode(v: vec3<f32>) -> u32 {
     let encode_float = unitpack_xy16_ieee_encode_float(v);
     let t1 = select(vec2<f32>(-1.0f), encode_float, encode_float >= vec2<f32>(-1.0f));
     let codes = round(select(vec2<f32>(1.0f), t1, t1 <= vec2<f32>(1.0f)) * 127.0f);
-    return (u32(codes.x + 256.0f) & 255u) | ((u32(codes.y + 256.0f) << 8u) & 65280u);
+    return (u32(codes.x + 256.0f) & 255u) | ((u32(codes.y + 256.0f) << 8u) & 0xff00u);
 }

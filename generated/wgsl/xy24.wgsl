@@ -14,6 +14,7 @@
 
 // ---- xy24: x and y stored, z reconstructed, snorm×2, 24 bits, hemisphere ----
 // Source: Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes.
+// Model: src/codecs/component/xy.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.03888°, sample max 1.33902°; MSE of the components of
 //   n - n' 9.702e-7, PSNR 60.13 dB.
 
@@ -38,7 +39,7 @@ fn unitpack_xy24_decode_float(params: vec2<f32>) -> vec3<f32> {
 //   1.
 // Portable as unitpack_xy24_decode_float is, within the same bound.
 fn unitpack_xy24_decode(code: u32) -> vec3<f32> {
-    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(4095u));
+    let t1 = vec2<f32>(vec2<u32>(code, code >> 12u) & vec2<u32>(0xfffu));
     let t2 = select(t1, t1 - 4096.0f, t1 > vec2<f32>(2047.0f)) * 0.0004885198f;
     let params = select(vec2<f32>(-1.0f), t2, t2 >= vec2<f32>(-1.0f));
     return unitpack_xy24_decode_float(params);
@@ -73,12 +74,12 @@ fn unitpack_xy24_encode_float(v: vec3<f32>) -> vec2<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_xy24_round_codes(a0: vec3<f32>) -> vec2<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_xy24_round_codes(v: vec3<f32>) -> vec2<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -86,11 +87,11 @@ fn unitpack_xy24_round_codes(a0: vec3<f32>) -> vec2<f32> {
     let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let t1 = select(0.0f, w.z, w.z > 0.0f);
-    let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 4294963200u);
+    let split_hi = bitcast<f32>(bitcast<u32>(w.x) & 0xfffff000u);
     let split_lo = w.x - split_hi;
-    let split_hi2 = bitcast<f32>(bitcast<u32>(w.y) & 4294963200u);
+    let split_hi2 = bitcast<f32>(bitcast<u32>(w.y) & 0xfffff000u);
     let split_lo2 = w.y - split_hi2;
-    let split_hi3 = bitcast<f32>(bitcast<u32>(t1) & 4294963200u);
+    let split_hi3 = bitcast<f32>(bitcast<u32>(t1) & 0xfffff000u);
     let split_lo3 = t1 - split_hi3;
     let t2 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -135,6 +136,6 @@ fn unitpack_xy24_round_codes(a0: vec3<f32>) -> vec2<f32> {
 //   components count as zero.
 fn unitpack_xy24_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_xy24_round_codes(v);
-    return (u32(round_codes.x + 4096.0f) & 4095u)
-        | ((u32(round_codes.y + 4096.0f) << 12u) & 16773120u);
+    return (u32(round_codes.x + 4096.0f) & 0xfffu)
+        | ((u32(round_codes.y + 4096.0f) << 12u) & 0xfff000u);
 }

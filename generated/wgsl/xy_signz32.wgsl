@@ -15,6 +15,7 @@
 // ---- xy_signz32: x and y stored with the sign of z, z reconstructed, snorm×2 + 1 bit, 32 bits,
 //   sphere ----
 // Source: Pranckevičius method 2.
+// Model: src/codecs/component/xy_signz.rs in unitpack's sources.
 // Round-trip error over 65536 vectors: mean 0.00455°, sample max 0.43438°; MSE of the components of
 //   n - n' 3.074e-8, PSNR 75.12 dB.
 
@@ -39,8 +40,8 @@ fn unitpack_xy_signz32_decode_float(params: vec3<f32>) -> vec3<f32> {
 //   than 1.
 // Portable as unitpack_xy_signz32_decode_float is, within the same bound.
 fn unitpack_xy_signz32_decode(code: u32) -> vec3<f32> {
-    let t1 = f32(code & 65535u);
-    let t2 = f32((code >> 16u) & 32767u);
+    let t1 = f32(code & 0xffffu);
+    let t2 = f32((code >> 16u) & 0x7fffu);
     let t3 = vec3<f32>(
         select(t1, t1 - 65536.0f, t1 > 32767.0f),
         select(t2, t2 - 32768.0f, t2 > 16383.0f),
@@ -79,12 +80,12 @@ fn unitpack_xy_signz32_encode_float(v: vec3<f32>) -> vec3<f32> {
 // The nearest integer codes (as floats; bytes of them for the rgb8 layout), each decided by
 //   comparing correctly rounded products, never a quotient or a root, so division and square root
 //   error, contraction, denormal flushing and lost signs of zero cannot change them.
-fn unitpack_xy_signz32_round_codes(a0: vec3<f32>) -> vec3<f32> {
-    let normal = select(a0, vec3<f32>(0.0f), abs(a0) < vec3<f32>(1.1754944e-38f));
+fn unitpack_xy_signz32_round_codes(v: vec3<f32>) -> vec3<f32> {
+    let normal = select(v, vec3<f32>(0.0f), abs(v) < vec3<f32>(1.1754944e-38f));
     let abs_normal = abs(normal);
     let larger = select(abs_normal.y, abs_normal.x, abs_normal.x >= abs_normal.y);
     let largest = select(abs_normal.z, larger, larger >= abs_normal.z);
-    let scale = bitcast<f32>(2139095040u - (bitcast<u32>(largest) & 2139095040u));
+    let scale = bitcast<f32>(0x7f800000u - (bitcast<u32>(largest) & 0x7f800000u));
     let scaled = normal * scale;
     let abs_scaled = abs(scaled);
     let sum = abs_scaled.x + abs_scaled.y + abs_scaled.z;
@@ -92,11 +93,11 @@ fn unitpack_xy_signz32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let ok = sum >= 2.0f && sum_below_16;
     let w = select(scaled, vec3<f32>(0.0f), abs(scaled) < vec3<f32>(1.8189894e-12f));
     let w2 = select(vec3<f32>(0.0f, 0.0f, 2.0f), w, ok);
-    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 4294963200u);
+    let split_hi = bitcast<f32>(bitcast<u32>(w2.x) & 0xfffff000u);
     let split_lo = w2.x - split_hi;
-    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 4294963200u);
+    let split_hi2 = bitcast<f32>(bitcast<u32>(w2.y) & 0xfffff000u);
     let split_lo2 = w2.y - split_hi2;
-    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 4294963200u);
+    let split_hi3 = bitcast<f32>(bitcast<u32>(w2.z) & 0xfffff000u);
     let split_lo3 = w2.z - split_hi3;
     let t1 = (split_hi + split_hi) * split_lo
         + (split_hi2 + split_hi2) * split_lo2
@@ -112,8 +113,8 @@ fn unitpack_xy_signz32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let upper = estimate + 0.5f;
     let lower = estimate - 0.5f;
     let step_down = select(0.0f, -1.0f, estimate > 0.0f && big2 < lower * lower * len2);
-    let step = select(step_down, 1.0f, big2 >= upper * upper * len2);
-    let t2 = estimate + step;
+    let nudge = select(step_down, 1.0f, big2 >= upper * upper * len2);
+    let t2 = estimate + nudge;
     let t3 = select(0.0f, t2, t2 >= 0.0f);
     let t4 = select(32767.0f, t3, t3 <= 32767.0f);
     let big3 = abs(w2.y * 16383.0f);
@@ -122,8 +123,8 @@ fn unitpack_xy_signz32_round_codes(a0: vec3<f32>) -> vec3<f32> {
     let upper2 = estimate2 + 0.5f;
     let lower2 = estimate2 - 0.5f;
     let step_down2 = select(0.0f, -1.0f, estimate2 > 0.0f && big2_2 < lower2 * lower2 * len2);
-    let step2 = select(step_down2, 1.0f, big2_2 >= upper2 * upper2 * len2);
-    let t5 = estimate2 + step2;
+    let nudge2 = select(step_down2, 1.0f, big2_2 >= upper2 * upper2 * len2);
+    let t5 = estimate2 + nudge2;
     let t6 = select(0.0f, t5, t5 >= 0.0f);
     let t7 = select(16383.0f, t6, t6 <= 16383.0f);
     return select(vec3<f32>(t4, t7, 0.0f), vec3<f32>(-t4, -t7, 1.0f), w2 < vec3<f32>(0.0f));
@@ -138,7 +139,7 @@ fn unitpack_xy_signz32_round_codes(a0: vec3<f32>) -> vec3<f32> {
 //   components count as zero.
 fn unitpack_xy_signz32_encode(v: vec3<f32>) -> u32 {
     let round_codes = unitpack_xy_signz32_round_codes(v);
-    let t1 = (u32(round_codes.x + 65536.0f) & 65535u)
-        | ((u32(round_codes.y + 32768.0f) << 16u) & 2147418112u);
+    let t1 = (u32(round_codes.x + 65536.0f) & 0xffffu)
+        | ((u32(round_codes.y + 32768.0f) << 16u) & 0x7fff0000u);
     return t1 | (u32(round_codes.z) << 31u);
 }

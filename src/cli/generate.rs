@@ -69,6 +69,7 @@ fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
             render_wesl(spec, *st, "unitpack generate").into_bytes(),
         ),
     });
+    files.push((PathBuf::from(manifest::INDEX), index(&specs).into_bytes()));
     // A precise spec reads its fast spec's tables: each file is written once.
     let mut stems = std::collections::HashSet::new();
     let tables = specs.iter().flat_map(|s| s.family().tables(s));
@@ -80,6 +81,56 @@ fn catalogue_files(progress: &Progress) -> Result<Vec<(PathBuf, Vec<u8>)>> {
         files.push((dir.join(format!("{}.bin", table.stem)), table.bytes));
     }
     Ok(files)
+}
+
+/// `README.md` of the output folder: every spec with its family, bits, what it encodes,
+/// model file, and its file in each language, so that a reader of the folder finds the
+/// include for a spec without knowing the naming rule.
+fn index(specs: &[Spec]) -> String {
+    let mut s = format!(
+        "{}\n\n# unitpack's generated includes\n\n\
+         One include per spec and language (`<lang>/<spec>.<ext>`), the WGSL again as a WESL \
+         module (`wesl/<spec>.wesl`, imported as `unitpack::<spec>`), and the lookup tables \
+         some specs read (`lut/`). `unitpack list` describes every family and option; each \
+         include's header says what its functions guarantee.\n\n\
+         | spec | family | bits | encodes | WGSL | GLSL | HLSL | C | WESL | tables |\n\
+         |---|---|---:|---|---|---|---|---|---|---|\n",
+        manifest::INDEX_HEADER
+    );
+    for spec in specs {
+        let id = spec.id();
+        let family = spec.family();
+        let files: Vec<String> = Lang::ALL
+            .iter()
+            .map(|l| {
+                format!(
+                    "[{id}.{ext}]({dir}/{id}.{ext})",
+                    dir = l.name(),
+                    ext = l.ext()
+                )
+            })
+            .chain([format!("[{id}.wesl]({}/{id}.wesl)", manifest::WESL)])
+            .collect();
+        let tables: Vec<String> = family
+            .tables(spec)
+            .iter()
+            .map(|t| format!("`{}/{}.bin`", manifest::TABLES, t.stem))
+            .collect();
+        let _ = writeln!(
+            s,
+            "| `{spec}` | {} | {} | {} | {} | {} |",
+            family.info().name,
+            spec.bits(),
+            family.takes().unwrap_or("-"),
+            files.join(" | "),
+            if tables.is_empty() {
+                "-".to_string()
+            } else {
+                tables.join(", ")
+            }
+        );
+    }
+    s
 }
 
 /// A table as an 8-bit grayscale or RGBA PNG (deterministic for a given encoder version).
@@ -122,7 +173,10 @@ fn state_of(out: &Path, rel: &Path, text: &[u8], recorded: Option<u64>) -> Resul
     let ours = if manifest::is_table_path(rel) {
         recorded.is_some_and(|h| manifest::hash(&cur) == h)
     } else {
-        rel == Path::new(MANIFEST) || cur.starts_with(HEADER.as_bytes())
+        rel == Path::new(MANIFEST)
+            || cur.starts_with(HEADER.as_bytes())
+            || rel == Path::new(manifest::INDEX)
+                && cur.starts_with(manifest::INDEX_HEADER.as_bytes())
     };
     Ok(if cur == text {
         State::Current

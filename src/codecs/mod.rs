@@ -46,6 +46,11 @@ macro_rules! registry {
         )*
         /// Every codec family, in the order `list` shows them.
         pub static FAMILIES: &[&dyn Family] = &[$($($(&$kind::$module::$family),+),*),*];
+        /// The file that models each of [`FAMILIES`], relative to the crate's root.
+        static SOURCES: &[&str] = &[$($($({
+            let _ = stringify!($family);
+            concat!("src/codecs/", stringify!($kind), "/", stringify!($module), ".rs")
+        }),+),*),*];
         /// The codec types the CPU API offers.
         pub mod cpu {
             $($($(pub use super::$kind::$module::{$($cpu),+};)?)*)*
@@ -126,6 +131,16 @@ registry! {
         octangle [OCTANGLE];
         diamond [DIAMOND];
     }
+}
+
+/// The file that models `family`, relative to the crate's root (the emitted includes name
+/// it, so that a reader of the shader code finds the model it is proven against).
+pub fn source_file(family: &dyn Family) -> &'static str {
+    let at = FAMILIES
+        .iter()
+        .position(|f| f.info().name == family.info().name)
+        .expect("a registered family");
+    SOURCES[at]
 }
 
 /// Doc comments of the helpers every codec may call (the precise search, the model's

@@ -38,9 +38,16 @@ pub fn file_header(command: &str, portable: bool, errors: bool) -> Vec<String> {
 /// Where a function marked "Portable" keeps its guarantee.
 const PORTABLE_WHERE: &str = "Portable, below, means: on every implementation that rounds + - * to nearest and keeps the order of operations (HLSL as emitted, GLSL with its statements made precise as this header says, C without fast math, Metal with fast math off), whatever latitude it takes with division and square root (within their ULP bounds), contraction of a*b + c, denormals and signs of zero.";
 
-/// The paragraphs under a spec's title: its source and its measured error.
+/// The paragraphs under a spec's title: its source, the file of its model and its measured
+/// error.
 pub fn spec_doc(spec: &Spec, stats: Option<ErrorStats>) -> Vec<String> {
-    let mut d = vec![format!("Source: {}.", spec.info().source)];
+    let mut d = vec![
+        format!("Source: {}.", spec.info().source),
+        format!(
+            "Model: {} in unitpack's sources.",
+            crate::codecs::source_file(spec.family())
+        ),
+    ];
     if let Some(f) = crate::quality::measure_frames(spec) {
         let ((normal, tangent, bits), base) = crate::quality::oct_frame_baseline(spec.bits());
         d.push(format!(

@@ -6,6 +6,7 @@
 pub mod docs;
 pub mod lang;
 pub mod layout;
+pub mod literal;
 pub mod printer;
 
 use crate::codecs::Spec;

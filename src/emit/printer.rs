@@ -46,62 +46,6 @@ pub const FOLD_OPERATIONS: usize = 6;
 
 const LANE: [char; 4] = ['x', 'y', 'z', 'w'];
 
-/// The shortest decimal that reads back as exactly `v` by every rule a compiler reads a
-/// float literal with, and never lies above the largest finite f32:
-/// - directly, the exact decimal rounded to the nearest f32;
-/// - through f64 (compilers that parse a literal as double and then narrow it, WGSL's
-///   abstract floats among them, must land on the same f32);
-/// - in range: Rust's shortest round trip of `f32::MAX` is `3.4028235e38`, above
-///   FLT_MAX = 3.40282346638…e38. It rounds to FLT_MAX in IEEE arithmetic, but WGSL makes
-///   an abstract float beyond f32's range a shader-creation error (Tint rejects it), and
-///   GLSL ES compilers (ANGLE) read it as infinity. So a decimal is kept only where its
-///   magnitude is at most FLT_MAX: for ±FLT_MAX that is `3.4028234e38`.
-///
-/// At each precision the candidates are the decimal rounded to nearest and the decimal
-/// truncated toward zero (which never exceeds `|v|`, so it is the in-range one where the
-/// rounded one lies above FLT_MAX). Below FLT_MAX every decimal that reads back as `v` lies
-/// below the midpoint to the next f32, so only ±FLT_MAX can round out of range.
-/// `src/verify/literals.rs` checks every literal of every emitted include by these rules.
-pub fn f32_literal(v: f32) -> String {
-    assert!(
-        v.is_finite(),
-        "non-finite literal {v}: compare against f32::MAX instead"
-    );
-    // Every f32's decimal expansion ends within 112 significant digits: this is exact.
-    let expansion = format!("{:.120e}", v);
-    let (mantissa, exponent) = expansion.split_once('e').expect("exponential form");
-    let truncated = |p: usize| {
-        // `p` significant digits: the leading one, the point, then `p - 1` more.
-        let digits = &mantissa[..mantissa.find('.').expect("a point") + p];
-        format!("{}e{exponent}", digits.trim_end_matches('.'))
-    };
-    let reads_back = |s: &str| {
-        s.parse::<f32>().map(f32::to_bits) == Ok(v.to_bits())
-            && s.parse::<f64>().map(|d| (d as f32).to_bits()) == Ok(v.to_bits())
-    };
-    let debug = format!("{v:?}");
-    let mut s = if reads_back(&debug) && v.abs() < f32::MAX {
-        debug
-    } else {
-        (1..=17)
-            .flat_map(|p| {
-                let rounded = format!("{:.*e}", p - 1, v);
-                let truncated = truncated(p);
-                // The rounded decimal lies above `|v|` only where it differs from the
-                // truncated one; above FLT_MAX only where `|v|` is FLT_MAX.
-                let in_range = v.abs() < f32::MAX || rounded == truncated;
-                [in_range.then_some(rounded), Some(truncated)]
-            })
-            .flatten()
-            .find(|s| reads_back(s))
-            .expect("f32 round trip")
-    };
-    if !s.contains(['.', 'e']) {
-        s.push_str(".0");
-    }
-    s
-}
-
 fn lanes_str(l: &[u8]) -> String {
     l.iter().map(|i| LANE[*i as usize]).collect()
 }
@@ -440,7 +384,7 @@ impl Ctx<'_> {
         match &n.op {
             Op::Param(i) => self.f.params[*i].0.clone(),
             Op::ConstF(v) => lang.float_constant(*v),
-            Op::ConstU(v) => format!("{v}u"),
+            Op::ConstU(v) => super::literal::u32_literal(*v),
             Op::Un(UnOp::Neg) => format!("-{}", unary(a(0))),
             Op::Un(UnOp::Not) => format!("!{}", unary(a(0))),
             Op::Un(u) => format!("{}({})", lang.unary(*u), a(0)),
@@ -613,6 +557,65 @@ const RESERVED: &[&str] = &[
     "volatile",
 ];
 
+/// Builtin functions of the languages (and of C's `<math.h>`) that a value's name could
+/// plausibly be: a local of that name hides the function for the rest of its scope in
+/// GLSL and WGSL, and reads as a call to a programmer in any language.
+const BUILTINS: &[&str] = &[
+    "abs",
+    "acos",
+    "all",
+    "any",
+    "asin",
+    "atan",
+    "atan2",
+    "bitcast",
+    "ceil",
+    "clamp",
+    "cos",
+    "cross",
+    "degrees",
+    "determinant",
+    "distance",
+    "dot",
+    "exp",
+    "exp2",
+    "faceforward",
+    "floor",
+    "fma",
+    "fmod",
+    "fract",
+    "frexp",
+    "inverse",
+    "ldexp",
+    "length",
+    "lerp",
+    "log",
+    "log2",
+    "mad",
+    "max",
+    "min",
+    "mix",
+    "modf",
+    "normalize",
+    "pow",
+    "radians",
+    "rcp",
+    "reflect",
+    "refract",
+    "round",
+    "rsqrt",
+    "saturate",
+    "select",
+    "sign",
+    "sin",
+    "smoothstep",
+    "sqrt",
+    "step",
+    "tan",
+    "transpose",
+    "trunc",
+];
+
 /// Statements being written: the body so far and the names taken.
 struct Body {
     lines: Vec<String>,
@@ -781,7 +784,8 @@ pub fn print_as(
         used: f.params.iter().map(|p| p.0.clone()).collect(),
         temps: 0,
     };
-    body.used.extend(RESERVED.iter().map(|w| w.to_string()));
+    body.used
+        .extend(RESERVED.iter().chain(BUILTINS).map(|w| w.to_string()));
     body.used.extend(f.shape.map(|s| s.name.to_string()));
     // A value named like a function it calls would hide that function.
     body.used.extend(f.nodes.iter().filter_map(|n| match &n.op {

@@ -180,11 +180,17 @@ pub trait Float:
         self.at_least(lo).at_most(hi)
     }
     /// Calls a helper function. Evaluating, that is just `f(a)`; tracing, the helper is
-    /// traced once into its own shader function and the call site prints a call.
+    /// traced once into its own shader function, its parameters named `params` (where an
+    /// argument's text is no identifier, after its type), and the call site prints a call.
     /// [`helper!`] writes the common call, a model function of up to four arguments
     /// named after itself.
     #[inline(always)]
-    fn call<A: Value, R: Value>(_name: &'static str, a: A, f: impl FnOnce(A) -> R) -> R {
+    fn call<A: Value, R: Value>(
+        _name: &'static str,
+        _params: &[&'static str],
+        a: A,
+        f: impl FnOnce(A) -> R,
+    ) -> R {
         f(a)
     }
 }
@@ -193,7 +199,8 @@ pub trait Float:
 /// ([`Float::call`]), named after it, with its arguments packed as the helper's one
 /// argument and unpacked again:
 ///
-/// - `helper!(atan2_pi(y, x))` is `F::call("atan2_pi", (y, x), |(y, x)| atan2_pi(y, x))`;
+/// - `helper!(atan2_pi(y, x))` is
+///   `F::call("atan2_pi", &["y", "x"], (y, x), |(y, x)| atan2_pi(y, x))`;
 /// - `helper!(self.fixed_point(i))` calls a method, named after the method;
 /// - `helper!("fixed_sincos_pi" => fixed_trig::sincos_pi(t))` names the helper where
 ///   the function's name is taken or is a path.
@@ -214,17 +221,30 @@ macro_rules! helper {
         $crate::model::num::helper!(@call stringify!($f), [$f], $($a),+)
     };
     (@call $name:expr, [$($f:tt)+], $a:expr) => {
-        F::call($name, $a, #[inline(always)] |a| $($f)+(a))
+        F::call($name, &[stringify!($a)], $a, #[inline(always)] |a| $($f)+(a))
     };
     (@call $name:expr, [$($f:tt)+], $a:expr, $b:expr) => {
-        F::call($name, ($a, $b), #[inline(always)] |(a, b)| $($f)+(a, b))
+        F::call(
+            $name,
+            &[stringify!($a), stringify!($b)],
+            ($a, $b),
+            #[inline(always)]
+            |(a, b)| $($f)+(a, b),
+        )
     };
     (@call $name:expr, [$($f:tt)+], $a:expr, $b:expr, $c:expr) => {
-        F::call($name, ($a, ($b, $c)), #[inline(always)] |(a, (b, c))| $($f)+(a, b, c))
+        F::call(
+            $name,
+            &[stringify!($a), stringify!($b), stringify!($c)],
+            ($a, ($b, $c)),
+            #[inline(always)]
+            |(a, (b, c))| $($f)+(a, b, c),
+        )
     };
     (@call $name:expr, [$($f:tt)+], $a:expr, $b:expr, $c:expr, $d:expr) => {
         F::call(
             $name,
+            &[stringify!($a), stringify!($b), stringify!($c), stringify!($d)],
             ($a, ($b, ($c, $d))),
             #[inline(always)]
             |(a, (b, (c, d)))| $($f)+(a, b, c, d),

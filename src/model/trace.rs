@@ -769,11 +769,29 @@ impl Float for Tf {
     fn to_bits(self) -> Tu {
         rec(Op::Bitcast, &[self.0], Kind::U32)
     }
-    fn call<A: Value, R: Value>(name: &'static str, a: A, f: impl FnOnce(A) -> R) -> R {
-        define(name, &[], f);
+    fn call<A: Value, R: Value>(
+        name: &'static str,
+        params: &[&'static str],
+        a: A,
+        f: impl FnOnce(A) -> R,
+    ) -> R {
+        define(name, &helper_params(params), f);
         let r = record_call(name, a.refs(), R::tys());
         R::from_refs(&mut std::iter::once(r))
     }
+}
+
+/// A helper's parameter names from its arguments' text: an identifier is kept (`v` for
+/// `helper!(round_codes(v))`), an expression (`x * 2.0`, `self.k`) leaves the name to
+/// [`define`]'s default (empty here).
+fn helper_params(args: &[&'static str]) -> Vec<&'static str> {
+    let identifier = |s: &str| {
+        s.starts_with(|c: char| c.is_ascii_alphabetic())
+            && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    };
+    args.iter()
+        .map(|&a| if identifier(a) { a } else { "" })
+        .collect()
 }
 
 /// Records a call of the helper `name` on `args`, returning a value of type `rty`:
@@ -821,7 +839,8 @@ value_vec!(V3, 3);
 value_vec!(V4, 4);
 
 /// Traces `f` into a function called `name` (once per module; later calls are no-ops).
-/// `param_names` name the parameters in order; missing names default to `a0`, `a1`, ...
+/// `param_names` name the parameters in order; a missing or empty name is the type's
+/// (`x`, `v`, `word`, `words`, `mask`), numbered where two share it.
 ///
 /// Only the conversions between values and references are generic: every codec function
 /// and helper instantiates this once per closure, and the recording around it
@@ -893,16 +912,33 @@ fn end_define(name: &str, param_names: &[&str], tys: Vec<Ty>, ret: Vec<Ref>, sha
             "{name}: a function without a shape returns one value"
         ),
     }
-    let params = tys
-        .into_iter()
-        .enumerate()
-        .map(|(i, t)| {
-            let name = param_names
-                .get(i)
-                .map_or_else(|| format!("a{i}"), |s| s.to_string());
-            (name, t)
-        })
-        .collect();
+    let mut params: Vec<(String, Ty)> = Vec::new();
+    for (i, t) in tys.into_iter().enumerate() {
+        let given = param_names.get(i).filter(|s| !s.is_empty());
+        let name = match given {
+            Some(s) => s.to_string(),
+            // Named after the type, numbered where two share it.
+            None => {
+                let base = match (t.kind, t.lanes) {
+                    (Kind::F32, 1) => "x",
+                    (Kind::F32, _) => "v",
+                    (Kind::U32, 1) => "word",
+                    (Kind::U32, _) => "words",
+                    (Kind::Bool, _) => "mask",
+                };
+                let taken =
+                    |n: &str| params.iter().any(|(p, _)| p == n) || param_names.contains(&n);
+                let mut name = base.to_string();
+                let mut k = 1;
+                while taken(&name) {
+                    name = format!("{base}{k}");
+                    k += 1;
+                }
+                name
+            }
+        };
+        params.push((name, t));
+    }
     with(|r| {
         let ret_tys = ret.iter().map(|&v| r.ty(v)).collect();
         let returns_scaled = ret.iter().any(|&v| r.is_scaled(v));

@@ -17,7 +17,7 @@
 //! by comparing the literal's exact decimal digits with FLT_MAX's exact expansion (an f64
 //! cannot tell `3.4028235e38` from a decimal slightly below FLT_MAX), the rounding with
 //! Rust's correctly rounded parsers (hex floats with an exact binary rounding). The printer
-//! writes its literals by the same rules ([`crate::emit::printer::f32_literal`]).
+//! writes its literals by the same rules ([`crate::emit::literal::f32_literal`]).
 
 use crate::codecs::Spec;
 use crate::emit::Lang;

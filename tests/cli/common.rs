@@ -208,7 +208,10 @@ pub fn tree(dir: &Path) -> BTreeSet<PathBuf> {
 /// The files `generate` must write: `<lang>/<id>.<lang>` for every spec and language,
 /// `wesl/<id>.wesl` for every spec, the tables and the manifest.
 pub fn expected_files() -> BTreeSet<PathBuf> {
-    let mut s = BTreeSet::from([PathBuf::from(".unitpack-manifest")]);
+    let mut s = BTreeSet::from([
+        PathBuf::from(".unitpack-manifest"),
+        PathBuf::from("README.md"),
+    ]);
     for lang in Lang::ALL {
         for spec in Spec::all() {
             s.insert(PathBuf::from(lang.name()).join(format!("{}.{}", spec.id(), lang.ext())));

@@ -1,3 +1,4 @@
+use unitpack::emit::literal::f32_literal;
 use unitpack::emit::printer::*;
 
 /// A value named after a reserved word is printed under another name.

@@ -211,6 +211,7 @@ pub fn precise_search<F: Float, C: Codec + ?Sized>(
             let params = dequantize(&q, c);
             F::call(
                 decode_name,
+                &["params"],
                 params,
                 #[inline(always)]
                 |p| codec.direction(p),

@@ -331,7 +331,7 @@ fn half_turns<F: Float>(theta: F, reflected: F::B) -> F {
     let e = estimate.magnitude_bits().shr(23).named("exponent");
     let e = F::U::sel(e.lt(u(40)), u(40), e).named("exponent");
     let grid = e.wrapping_sub(u(23)).shl(23).as_float().named("grid");
-    let inverse = u(277).wrapping_sub(e).shl(23).as_float().named("inverse");
+    let inverse = u(277).wrapping_sub(e).shl(23).as_float().named("inv_grid");
     let scale = (inverse * sign).named("scale");
     let terms = [
         F::c(0.5) * inverse,

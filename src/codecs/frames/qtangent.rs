@@ -192,7 +192,7 @@ pub fn pack_tangent_frame<F: Float>(n: V3<F>, t: V4<F>) -> V4<F> {
     let (b, t) = orthogonal(t);
     let q = extract_quat([t, cross(n, t), n]).named("q");
     // normalize: q / length(q), or the identity where the length is 0.
-    let l = q.length_squared().sqrt().named("length");
+    let l = q.length_squared().sqrt().named("norm");
     let some = l.eq(F::c(0.0)).not();
     let q = V4::sel_all(
         some,

@@ -176,7 +176,7 @@ pub fn square_sum_parts<F: Float, const N: usize>(a: [F::U; N]) -> (F::U, F::U) 
     let (mut hi, mut lo) = (F::U::c(0), F::U::c(0));
     for a in a {
         let (a1, a0) = (a.shr(12).named("limb1"), (a & limb).named("limb0"));
-        let cross = a1.wrapping_mul(a0).named("cross");
+        let cross = a1.wrapping_mul(a0).named("limb_cross");
         hi = (hi + a1.wrapping_mul(a1) + cross.shr(11)).named("hi");
         lo = (lo + a0.wrapping_mul(a0) + (cross.shl(13) & low24)).named("lo");
     }
@@ -212,7 +212,7 @@ pub fn fixed_length2<F: Float>(w: V3<F>) -> F {
 /// out one ULP long about half the time.
 #[inline(always)]
 pub fn rounded_root<F: Float>(s: F, parts: (F::U, F::U)) -> F::U {
-    let n0 = (root(s).named("length") * F::c(FIXED_SCALE)).to_u();
+    let n0 = (root(s).named("norm") * F::c(FIXED_SCALE)).to_u();
     settled_root::<F>(n0, parts)
 }
 
@@ -759,7 +759,7 @@ fn corrected<F: Float>(q: Quant, estimate: F, up: F::B, down: F::B) -> F {
 #[inline(always)]
 fn stepped<F: Float>(estimate: F, up: F::B, down: F::B) -> F {
     let step_down = F::sel(down, F::c(-1.0), F::c(0.0)).named("step_down");
-    estimate + F::sel(up, F::c(1.0), step_down).named("step")
+    estimate + F::sel(up, F::c(1.0), step_down).named("nudge")
 }
 
 /// `c` with the sign of `n`; a zero `n` gives `c` (which is then 0).

@@ -117,7 +117,7 @@ fn cross<U: Uint>(a: V3<U>, d: V3<U>) -> V3<U> {
         a.z.wrapping_mul(d.x).wrapping_sub(a.x.wrapping_mul(d.z)),
         a.x.wrapping_mul(d.y).wrapping_sub(a.y.wrapping_mul(d.x)),
     )
-    .named("cross")
+    .named("axd")
 }
 
 /// A deterministic measure of how near a candidate is, for [`nearest`].

@@ -9,7 +9,7 @@ pub mod hlsl;
 pub mod wgsl;
 
 use super::SpecView;
-use crate::emit::printer::f32_literal;
+use crate::emit::literal::f32_literal;
 use crate::model::Kind;
 use crate::model::trace::{BinOp, Op, Ty, UnOp};
 

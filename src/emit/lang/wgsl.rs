@@ -6,7 +6,8 @@ use super::{
     selecting_parts,
 };
 use crate::emit::SpecView;
-use crate::emit::printer::{f32_literal, top_level_tokens};
+use crate::emit::literal::f32_literal;
+use crate::emit::printer::top_level_tokens;
 use crate::model::Kind;
 use crate::model::trace::Ty;
 use askama::Template;
