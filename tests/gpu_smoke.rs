@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 
-use unitpack::verify::gpu::{Gpu, MAX_CHUNK_ITEMS, Shader};
+use unitpack::verify::gpu::{Adapter, Gpu, MAX_CHUNK_ITEMS, Shader, with_selector};
 use unitpack::verify::tools::{
     GlslangInput, HlslOpt, glslang_spirv, naga_glsl, naga_wgsl, spirv_val,
 };
@@ -412,6 +412,7 @@ fn selecting_kernels_run_the_function_selected() {
     use unitpack::model::Kind;
     use unitpack::model::trace::Ty;
     let gpu = Gpu::shared().expect("Gpu::shared()");
+    let swiftshader = Gpu::shared_on(Adapter::SwiftShader).expect("SwiftShader");
     let ty = |lanes| Ty {
         kind: Kind::U32,
         lanes,
@@ -491,9 +492,31 @@ fn selecting_kernels_run_the_function_selected() {
                 shaders.push(("hlsl/glslang", Shader::SpirV(&hlsl_spv)));
             }
         }
-        for (path, shader) in shaders {
+        for ((path, shader), gpu) in shaders.iter().flat_map(|s| [(s, gpu), (s, swiftshader)]) {
+            let path = format!("{path} on {}", gpu.adapter_name());
+            if let Shader::SpirV(words) = shader {
+                // The selector frozen into a constant: still a valid module, no
+                // specialization constant left.
+                let frozen = with_selector(words, 2).unwrap_or_else(|e| panic!("{path}: {e:#}"));
+                spirv_val(&frozen).unwrap_or_else(|e| panic!("{path}, selector frozen: {e:#}"));
+                let opcodes = |w: &[u32]| {
+                    let (mut at, mut ops) = (5, Vec::new());
+                    while at < w.len() {
+                        ops.push(w[at] & 0xffff);
+                        at += (w[at] >> 16).max(1) as usize;
+                    }
+                    ops
+                };
+                let count = |w: &[u32], op: u32| opcodes(w).iter().filter(|&&o| o == op).count();
+                // OpSpecConstant (50) became OpConstant (43); the SpecId decoration
+                // (an OpDecorate, 71) is gone.
+                assert_eq!(count(words, 50), 1, "{path}: one specialization constant");
+                assert_eq!(count(&frozen, 50), 0, "{path}: none once frozen");
+                assert_eq!(count(&frozen, 43), count(words, 43) + 1, "{path}");
+                assert_eq!(count(&frozen, 71), count(words, 71) - 1, "{path}");
+            }
             let kernel = gpu
-                .selecting(&shader)
+                .selecting(shader)
                 .unwrap_or_else(|e| panic!("{path}: {e:#}"));
             let run = |index, input: &[u32], (iw, ow)| {
                 let mut out = Vec::new();

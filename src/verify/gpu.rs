@@ -24,9 +24,9 @@
 //! function's runner, which bounds-checks with its own `OUT_WORDS` as above.
 //! [`Gpu::selecting`] parses and validates the module once; [`Gpu::run_selected`] builds
 //! the pipeline of one function: with the pipeline constant set (naga paths) or, since
-//! passthrough SPIR-V takes no specialization info, with the constant's default set in a
-//! copy of the words. Either way the driver sees a constant and compiles that function's
-//! case alone; a selector read at run time would have a CPU driver run every case under
+//! passthrough SPIR-V takes no specialization info, with the selector made a plain
+//! constant in a copy of the words. Either way the driver sees a constant and compiles
+//! that function's case alone; a selector read at run time would have a CPU driver run every case under
 //! masks. (`crate::emit::lang::Backend::kernel` writes these kernels; `tests/gpu_smoke.rs`
 //! runs one on every path.)
 //!
@@ -197,15 +197,20 @@ pub struct Selecting {
 enum SelectingModule {
     /// A naga module: the selector is set as a pipeline constant.
     Naga(wgpu::ShaderModule),
-    /// Passthrough SPIR-V, which takes no pipeline constants: the selector's default is
-    /// set in a copy of the words ([`with_selector`]) for each function.
+    /// Passthrough SPIR-V, which takes no pipeline constants: the selector is made a
+    /// constant in a copy of the words ([`with_selector`]) for each function.
     SpirV(Vec<u32>),
 }
 
-/// `words` with the default value of specialization constant 0 (the selecting kernel's
-/// selector) set to `value`. The passthrough path gives the driver no specialization
-/// info, so it specializes the module with the defaults: the copy selects `value`.
-fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
+/// `words` with specialization constant 0 (the selecting kernel's selector) made the
+/// plain constant `value`: its `OpSpecConstant` an `OpConstant`, its `SpecId` decoration
+/// gone. The passthrough path gives the driver no specialization info, so the selector
+/// would be its default anyway; as a constant, every driver drops the other functions
+/// before it compiles. SwiftShader optimizes a module before it folds specialization
+/// constants, so with the selector left a specialization constant it compiled every
+/// function of the spec into each pipeline: three times the time, the same bits.
+pub fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
+    const OP_CONSTANT: u32 = 43;
     const OP_SPEC_CONSTANT: u32 = 50;
     const OP_DECORATE: u32 = 71;
     const SPEC_ID: u32 = 1;
@@ -224,15 +229,15 @@ fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
     };
     let starts = instructions(words)?;
     let op = |at: usize| (words[at] & 0xffff, (words[at] >> 16) as usize);
-    let id = starts
+    let decoration = *starts
         .iter()
         .find(|&&at| {
             let (code, count) = op(at);
             code == OP_DECORATE && count == 4 && words[at + 2] == SPEC_ID && words[at + 3] == 0
         })
-        .map(|&at| words[at + 1])
         .ok_or_else(|| anyhow!("the SPIR-V has no specialization constant 0 (the selector)"))?;
-    let constant = starts
+    let id = words[decoration + 1];
+    let constant = *starts
         .iter()
         .find(|&&at| {
             let (code, count) = op(at);
@@ -240,7 +245,10 @@ fn with_selector(words: &[u32], value: u32) -> anyhow::Result<Vec<u32>> {
         })
         .ok_or_else(|| anyhow!("specialization constant 0 is not a 32-bit OpSpecConstant"))?;
     let mut out = words.to_vec();
+    out[constant] = (4 << 16) | OP_CONSTANT;
     out[constant + 3] = value;
+    // Removed last: decorations precede constants, so this moves the constant's words.
+    out.drain(decoration..decoration + 4);
     Ok(out)
 }
 
