@@ -99,7 +99,7 @@ fn every_size_spelling_is_unambiguous() {
 
 #[test]
 fn names_ending_in_a_digit_take_an_underscore_before_their_size() {
-    use unitpack::codecs::core::info::Info;
+    use unitpack::codecs::core::info::{FloatForm, Info};
     let info = Info {
         name: "cry3",
         title: "",
@@ -108,6 +108,7 @@ fn names_ending_in_a_digit_take_an_underscore_before_their_size() {
         source: "",
         edge_policy: "",
         decode_note: "",
+        float_form: FloatForm::Absent,
         options: &[],
     };
     let s: Vec<String> = info.spellings().into_iter().map(|s| s.0).collect();

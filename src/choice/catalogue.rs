@@ -171,7 +171,11 @@ pub fn compute(specs: &[Spec], stats: &[Option<ErrorStats>], alu: &[[u32; 4]]) -
                     portable,
                     bounds,
                     formats,
-                    not_filterable: filtering::not_filterable(spec).map(str::to_string),
+                    not_filterable: spec
+                        .family()
+                        .float_form(spec)
+                        .unfilterable()
+                        .map(str::to_string),
                     filtering,
                 }
             },

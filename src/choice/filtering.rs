@@ -71,41 +71,6 @@ impl Filtering {
     }
 }
 
-/// Why a spec's float form is not filterable whatever the figures say: its channels are
-/// not continuous parameters, so a filter mixes bits, not directions.
-pub fn not_filterable(spec: &crate::codecs::Spec) -> Option<&'static str> {
-    match spec.info().name {
-        "sfib" | "latlong" | "latlongd" => {
-            Some("its float form holds a point's index, split into channels")
-        }
-        "oct" if spec.to_string().contains("layout=rgb8") => {
-            Some("its float form splits two 12-bit fields across three bytes")
-        }
-        _ => None,
-    }
-}
-
-/// Where a family's float form is discontinuous, for the report's line about pairs that
-/// err by more than their separation.
-pub fn seam_location(family: &str) -> &'static str {
-    match family {
-        "oct" | "eqarea_oct" => {
-            "the octahedral fold, where the lower hemisphere's triangles meet at the square's edges"
-        }
-        "hemioct" => "the rim of the hemisphere, where the square's edges meet",
-        "cube" | "warpedcube" => "the cube's face boundaries, where the face index changes",
-        "spherical" | "spherical_z" | "spherical_lut" | "latlong" | "latlongd" => {
-            "the azimuth's wrap at ±180° and the poles"
-        }
-        "sfib" => "everywhere: neighbouring points have unrelated indices",
-        "xy_signz" | "stereo" | "eqarea" | "eqdist" | "stereo_concentric" | "eqarea_concentric"
-        | "eqdist_concentric" | "stereo_ellipse" | "eqarea_ellipse" | "eqdist_ellipse" => {
-            "the equator, where the hemisphere bit flips"
-        }
-        _ => "where the parameters jump",
-    }
-}
-
 fn uniform(rng: &mut Pcg64Mcg) -> f64 {
     // 53 random bits in [0, 1).
     (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)

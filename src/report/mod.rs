@@ -200,8 +200,8 @@ fn filter_rows(kind: &str, stats: &[FilterStats]) -> Vec<String> {
 
 /// Where a spec's float form breaks, when pairs of neighbours 1° apart err by more than
 /// their separation.
-fn seam(e: &Entry) -> String {
-    let Some(f) = &e.filtering else {
+fn seam(e: &Entry, spec: &Spec) -> String {
+    let (Some(f), Some(at)) = (&e.filtering, spec.family().float_form(spec).seam()) else {
         return String::new();
     };
     let Some(near) = f
@@ -218,7 +218,7 @@ fn seam(e: &Entry) -> String {
         "{:.2}% of pairs {}° apart err by more than 1° when filtered: {}.",
         near.over_1deg * 100.0,
         near.separation,
-        filtering::seam_location(&e.family)
+        at
     )
 }
 
@@ -325,7 +325,7 @@ pub fn render(catalogue: &Catalogue, progress: &(dyn Fn() + Sync)) -> Result<Fil
                 histogram,
                 not_filterable: e.not_filterable.clone(),
                 filtering,
-                seam: seam(e),
+                seam: seam(e, spec),
                 signatures: signatures(spec),
             });
     }

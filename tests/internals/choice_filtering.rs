@@ -118,10 +118,30 @@ fn every_codec_with_a_float_form_has_filtering_figures() {
 fn index_codes_are_labelled_not_filterable() {
     for spec in ["sfib16", "latlong16", "latlongd24", "oct24:layout=rgb8"] {
         let s: Spec = spec.parse().unwrap();
-        assert!(filtering::not_filterable(&s).is_some(), "{spec}");
+        assert!(s.family().float_form(&s).unfilterable().is_some(), "{spec}");
     }
     for spec in ["oct16", "xy16", "hemioct16p:layout=rg"] {
         let s: Spec = spec.parse().unwrap();
-        assert!(filtering::not_filterable(&s).is_none(), "{spec}");
+        assert!(s.family().float_form(&s).unfilterable().is_none(), "{spec}");
+    }
+}
+
+/// Every family states its float form: a codec of directions has one, with a seam in
+/// words (where its parameters jump, or that they do not); packing helpers and tangent
+/// frames have none that a texture filters.
+#[test]
+fn every_family_states_its_float_form() {
+    use unitpack::codecs::core::info::FloatForm;
+    for f in unitpack::codecs::FAMILIES {
+        let info = f.info();
+        let form = info.float_form;
+        if info.domain.is_some() && !f.frames() {
+            let seam = form
+                .seam()
+                .unwrap_or_else(|| panic!("{}: no float form", info.name));
+            assert!(seam.len() > 10, "{}: {seam:?}", info.name);
+        } else {
+            assert_eq!(form, FloatForm::Absent, "{}", info.name);
+        }
     }
 }

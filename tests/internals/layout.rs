@@ -45,33 +45,7 @@ fn module_of(file: &Path) -> Vec<String> {
 
 /// The text without comments, string and char literals (a doc link is no dependency).
 fn code_only(text: &str) -> String {
-    let b = text.as_bytes();
-    let mut out = String::with_capacity(b.len());
-    let mut i = 0;
-    while i < b.len() {
-        if b[i..].starts_with(b"//") {
-            while i < b.len() && b[i] != b'\n' {
-                i += 1;
-            }
-        } else if b[i..].starts_with(b"/*") {
-            i += 2;
-            while i + 1 < b.len() && !b[i..].starts_with(b"*/") {
-                i += 1;
-            }
-            i += 2;
-        } else if b[i] == b'"' {
-            i += 1;
-            while i < b.len() && b[i] != b'"' {
-                i += if b[i] == b'\\' { 2 } else { 1 };
-            }
-            i += 1;
-            out.push_str("\"\"");
-        } else {
-            out.push(b[i] as char);
-            i += 1;
-        }
-    }
-    out
+    scan(text).0
 }
 
 fn ident(c: char) -> bool {
@@ -295,4 +269,86 @@ fn codecs_top_holds_the_registry_and_folders_and_families_are_named_after_their_
             "no file src/codecs/<kind>/{name}.rs for the family {name}"
         );
     }
+}
+
+/// The string literals of `text` outside comments, each with the code just before it.
+fn literals(text: &str) -> Vec<(String, String)> {
+    scan(text).1
+}
+
+/// `text` without comments and with every string literal emptied, and the literals
+/// (outside comments), each with the 24 bytes of code before it. A char literal is
+/// skipped whole ('"' among them); a lifetime has no closing quote.
+fn scan(text: &str) -> (String, Vec<(String, String)>) {
+    let b = text.as_bytes();
+    let (mut code, mut literals, mut i) = (String::with_capacity(b.len()), Vec::new(), 0);
+    let lossy = |r: std::ops::Range<usize>| String::from_utf8_lossy(&b[r]).into_owned();
+    while i < b.len() {
+        if b[i..].starts_with(b"//") {
+            while i < b.len() && b[i] != b'\n' {
+                i += 1;
+            }
+        } else if b[i..].starts_with(b"/*") {
+            i += 2;
+            while i + 1 < b.len() && !b[i..].starts_with(b"*/") {
+                i += 1;
+            }
+            i += 2;
+        } else if b[i] == b'\'' && i + 2 < b.len() && (b[i + 2] == b'\'' || b[i + 1] == b'\\') {
+            let end = if b[i + 1] == b'\\' { i + 4 } else { i + 3 };
+            code.push_str(&lossy(i..end.min(b.len())));
+            i = end;
+        } else if b[i] == b'"' {
+            let start = i + 1;
+            i += 1;
+            while i < b.len() && b[i] != b'"' {
+                i += if b[i] == b'\\' { 2 } else { 1 };
+            }
+            literals.push((
+                lossy(start.saturating_sub(24)..start - 1),
+                lossy(start..i.min(b.len())),
+            ));
+            i += 1;
+            code.push_str("\"\"");
+        } else {
+            let n = text[i..].chars().next().map_or(1, char::len_utf8);
+            code.push_str(&text[i..i + n]);
+            i += n;
+        }
+    }
+    (code, literals)
+}
+
+/// Every fact about a family (its seam, whether its float form filters, its baseline)
+/// lives in the family's own file: no other file spells a family's name as a string,
+/// where a match on it would silently miss a new family. A traced value's name
+/// (`.named("xy")`) is not a family's.
+#[test]
+fn no_family_name_is_a_string_literal_outside_its_own_file() {
+    let sample = literals("let a = \"oct\"; // \"hemioct\"\nf(\"x\".named(\"xy\"), '\"');");
+    let texts: Vec<&str> = sample.iter().map(|(_, l)| l.as_str()).collect();
+    assert_eq!(texts, ["oct", "x", "xy"], "no comment, no char literal");
+    assert!(sample[2].0.ends_with(".named(") && !sample[0].0.ends_with(".named("));
+    let mut files = Vec::new();
+    rust_files(&src(), &mut files);
+    let names: BTreeSet<&str> = unitpack::codecs::FAMILIES
+        .iter()
+        .map(|f| f.info().name)
+        .collect();
+    let mut found = Vec::new();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        for (before, literal) in literals(&text) {
+            // disk_square.rs defines its six families through a macro.
+            let own = text.contains(&format!("name: \"{literal}\""))
+                || file.ends_with("azimuthal/disk_square.rs");
+            if names.contains(literal.as_str()) && !own && !before.ends_with(".named(") {
+                found.push(format!("{}: \"{literal}\"", file.display()));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "family names outside their files: {found:#?}"
+    );
 }

@@ -24,7 +24,7 @@
 use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::canonical_or_z;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_trig;
 use crate::codecs::core::pipeline::codec_functions;
@@ -43,6 +43,10 @@ pub static FAMILY: CodecFamily<Latlong> = CodecFamily::new(
         source: "Cigolle et al. 2014 §2 (Smith et al. 2012), fast decoder",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (ring 0)",
         decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+        float_form: FloatForm::Unfilterable {
+        why: FloatForm::INDEX_SPLIT,
+        seam: seam::AZIMUTH_WRAP,
+    },
         options: &[],
     },
     |bits| Latlong { bits },

@@ -49,7 +49,7 @@
 use crate::model::num::helper;
 use crate::codecs::core::codec::{Domain, unpack};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_ratio, float_of, root_of};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::{Family, Table, TableFormat};
 use crate::codecs::toolkit::fixed_trig::{self, ONE};
 use crate::codecs::core::decode_boxes::fetched_range;
@@ -77,6 +77,10 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 §2.3 (Smith et al. 2012), precise decoder",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as code 0 (+Z), whatever was fetched",
     decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+    float_form: FloatForm::Unfilterable {
+    why: FloatForm::INDEX_SPLIT,
+    seam: seam::AZIMUTH_WRAP,
+},
     options: &[],
 };
 

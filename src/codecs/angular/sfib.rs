@@ -40,7 +40,7 @@
 
 use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
@@ -61,6 +61,10 @@ pub static FAMILY: CodecFamily<Sfib> = CodecFamily::new(
         source: "Keinert et al. 2015 (Spherical Fibonacci Mapping), beyond the survey",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (index 0); the encoder returns the nearest point to within 2^-18 (checked by brute force)",
         decode_note: "every code decodes to a unit vector to within the trig approximations' error (about 2.5e-7)",
+        float_form: FloatForm::Unfilterable {
+        why: FloatForm::INDEX_SPLIT,
+        seam: "everywhere: neighbouring points have unrelated indices",
+    },
         options: &[],
     },
     |bits| Sfib { bits },

@@ -11,7 +11,7 @@ use crate::codecs::toolkit::fixed_trig::{self, FINE, ONE};
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::codecs::toolkit::trig::{atan2_pi, sincos_pi};
 use crate::model::{Float, V2, V3};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::SpecError;
@@ -25,6 +25,7 @@ pub static FAMILY: CodecFamily<Spherical> = CodecFamily::new(
         source: "Cigolle et al. 2014 §2",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
         decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+        float_form: FloatForm::Continuous { seam: seam::AZIMUTH_WRAP },
         options: &[],
     },
     |bits| Spherical { bits },

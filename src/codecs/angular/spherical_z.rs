@@ -7,7 +7,7 @@
 use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_root, length2, root, unorm_sqrt_ratio};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{fixed_square, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use crate::codecs::toolkit::fixed_trig;
@@ -26,6 +26,7 @@ pub static FAMILY: CodecFamily<SphericalZ> = CodecFamily::new(
         source: "Pranckevičius method 3",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
         decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7)",
+        float_form: FloatForm::Continuous { seam: seam::AZIMUTH_WRAP },
         options: &[],
     },
     |bits| SphericalZ { bits },

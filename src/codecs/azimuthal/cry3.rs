@@ -10,7 +10,7 @@
 //! shared codes.
 
 use crate::codecs::core::codec::Domain;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
 use crate::codecs::core::pipeline::codec_functions;
@@ -28,6 +28,7 @@ pub static FAMILY: CodecFamily<Cry3> = CodecFamily::new(
         source: "Pranckevičius, Compact Normal Storage, method 5 (Mittring 2009)",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
         decode_note: "every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z",
+        float_form: FloatForm::Continuous { seam: seam::RIM_IS_MINUS_Z },
         options: &[DECODER_OPTION],
     },
     |bits| WithDecoder {

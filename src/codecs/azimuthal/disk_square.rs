@@ -10,7 +10,7 @@ use super::eqarea::HemiEqArea;
 use super::eqdist::HemiEqDist;
 use super::stereo::HemiStereo;
 use crate::codecs::core::codec::{Codec, Domain};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
@@ -65,6 +65,7 @@ macro_rules! disk_square {
                               as +Z; the equator (z = 0) is on the +Z side",
                 decode_note: "every code lies on the disk, so every code decodes within its \
                               hemisphere, unit length up to rounding",
+                float_form: FloatForm::Continuous { seam: seam::HEMISPHERE_BIT },
                 options: &[],
             },
             precise: <$cpu as Codec>::EXACT_SEARCH,

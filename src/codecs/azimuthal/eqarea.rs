@@ -9,7 +9,7 @@ use crate::codecs::azimuthal::disk::{
     nearest_disk_codes, unfold,
 };
 use crate::codecs::toolkit::exact::{fixed_length2_xy, fixed_root, unorm_sqrt_ratio};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, fixed, search_doc};
 use crate::codecs::core::pipeline::codec_functions;
@@ -26,6 +26,7 @@ pub static FAMILY: CodecFamily<HemiEqArea> = CodecFamily::new(
         source: "Cigolle et al. 2014 §2 (eqarea); Snyder and Mitchell 2001",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
         decode_note: "every code decodes to a unit vector (up to rounding); codes outside the disk decode by the same formula (beyond the equator of their hemisphere, the square's corners at its opposite pole)",
+        float_form: FloatForm::Continuous { seam: seam::HEMISPHERE_BIT },
         options: &[],
     },
     |bits| HemiEqArea { bits },

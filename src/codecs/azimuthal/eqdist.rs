@@ -16,7 +16,7 @@ use crate::codecs::azimuthal::disk::{
     nearest_disk_codes, unfold,
 };
 use crate::codecs::toolkit::exact::{decided, fixed_length2_xy, past_root_ratio, root_of};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, search_doc};
 use crate::codecs::toolkit::fixed_trig;
@@ -35,6 +35,7 @@ pub static FAMILY: CodecFamily<HemiEqDist> = CodecFamily::new(
         source: "Cigolle et al. 2014 §2 (eqdist); Snyder and Mitchell 2001",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) is on the +Z side",
         decode_note: "decodes are unit length to within the series' rounding (a few ULP); codes outside the disk decode by the same formula (up to 127° from their hemisphere's pole, beyond its equator)",
+        float_form: FloatForm::Continuous { seam: seam::HEMISPHERE_BIT },
         options: &[],
     },
     |bits| HemiEqDist { bits },

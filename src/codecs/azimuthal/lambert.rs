@@ -9,7 +9,7 @@ use crate::codecs::toolkit::fixed_decode::{
 };
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::model::{Bool, Float, Uint, V2, V3};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::core::pipeline::codec_functions;
@@ -24,6 +24,7 @@ pub static FAMILY: CodecFamily<Lambert> = CodecFamily::new(
         source: "Pranckevičius, Compact Normal Storage, method 6",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
         decode_note: "every code decodes to a unit vector; codes outside the disk decode as -Z",
+        float_form: FloatForm::Continuous { seam: seam::RIM_IS_MINUS_Z },
         options: &[ieee::OPTION],
     },
     |bits| Lambert { bits },

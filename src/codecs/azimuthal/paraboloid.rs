@@ -14,7 +14,7 @@ use crate::codecs::toolkit::exact::{
     canonical_or_z, fixed_length2, fixed_ratio, fixed_root, floor_ratio_code, ratio_code, root,
     root_of,
 };
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{
@@ -33,6 +33,7 @@ pub static FAMILY: CodecFamily<Paraboloid> = CodecFamily::new(
         source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the inverted paraboloid",
         edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
         decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode on the horizon",
+        float_form: FloatForm::Continuous { seam: seam::NONE_IN_HEMISPHERE },
         options: &[texel::OPTION],
     },
     |bits| Paraboloid { bits },

@@ -9,7 +9,7 @@
 //! the decoder's `1 - saturate(p·p)`), so the emitted code is the one the seed's users
 //! know; with `pd = 0` it is the paraboloid decode up to that rounding.
 
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::codecs::core::words::generic_function;
@@ -30,6 +30,7 @@ static INFO: Info = Info {
     source: "Improved Normal-map Distributions (Insomniac), CombineParaboloidNormalWithPD",
     edge_policy: "any finite input; the paraboloid point may lie outside the unit disk (its height is then 0)",
     decode_note: "a unit vector (up to rounding) for any finite input",
+    float_form: FloatForm::Absent,
     options: &[],
 };
 

@@ -18,7 +18,7 @@
 use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain, above_horizon};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{
@@ -37,6 +37,7 @@ pub static FAMILY: CodecFamily<ParaboloidSquare> = CodecFamily::new(
         source: "Improved Normal-map Distributions (Insomniac, after Mike Day), the dual inverted paraboloid",
         edge_policy: "input is projected onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
         decode_note: "every code decodes to a unit vector (up to rounding); the square's edges decode on the horizon",
+        float_form: FloatForm::Continuous { seam: seam::NONE_IN_HEMISPHERE },
         options: &[texel::OPTION],
     },
     |bits| ParaboloidSquare { bits },

@@ -10,7 +10,7 @@
 //! encoder formulas against each other and the shared codes.
 
 use crate::codecs::core::codec::Domain;
-use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
+use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
 use crate::codecs::core::pipeline::codec_functions;
@@ -37,6 +37,7 @@ pub static FAMILY: CodecFamily<Spheremap> = CodecFamily::new(
         source: "Pranckevičius, Compact Normal Storage, method 4",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; -Z encodes as (1, 0.5)",
         decode_note: "every code decodes to a unit vector up to rounding; codes outside the disk decode as -Z",
+        float_form: FloatForm::Continuous { seam: seam::RIM_IS_MINUS_Z },
         options: &[DECODER_OPTION],
     },
     |bits| WithDecoder {

@@ -9,7 +9,7 @@ use crate::codecs::toolkit::exact::{OnePlusZ, decided, fixed_ratio, float_of, on
 use crate::codecs::toolkit::fixed_decode::{BITS, fixed_target, nearest_decoded, odd_square_quarter, search_doc};
 use crate::codecs::toolkit::quant::{Quant, Quants};
 use crate::model::{Bool, Float, V2, V3};
-use crate::codecs::core::info::{Info, OptDesc, OptKind, OptVal, Sizes};
+use crate::codecs::core::info::{Info, OptDesc, OptKind, OptVal, Sizes, FloatForm};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::core::pipeline::codec_functions;
@@ -24,6 +24,9 @@ pub static FAMILY: CodecFamily<StereoScaled> = CodecFamily::new(
         source: "Pranckevičius, Compact Normal Storage, method 7",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; directions beyond 2·atan(scale) from +Z clamp to the square's edge; -Z, where the projection is undefined, encodes as (0, 0), the corner nearest it",
         decode_note: "every code decodes to a unit vector (up to rounding)",
+        float_form: FloatForm::Continuous {
+        seam: "around -Z, beyond 2·atan(scale) from +Z, where the parameters are clamped to the square's edge",
+    },
         options: &[SCALE_OPTION, ieee::OPTION],
     },
     |bits| StereoScaled { bits, scale: DEFAULT_SCALE },

@@ -8,7 +8,7 @@
 
 use crate::codecs::core::codec::{Codec, Domain, above_horizon};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, floor_ratio_code, ratio_code, root};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
 use crate::codecs::toolkit::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
@@ -25,6 +25,7 @@ pub static FAMILY: CodecFamily<XyStereo> = CodecFamily::new(
         source: "NVIDIA normal-map notes (alternative projections); Snyder and Mitchell 2001",
         edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN, infinite and -Z input encode as +Z",
         decode_note: "every code decodes to a unit vector (up to rounding); codes outside the unit disk decode below the horizon",
+        float_form: FloatForm::Continuous { seam: seam::NONE_IN_HEMISPHERE },
         options: &[texel::OPTION],
     },
     |bits| XyStereo { bits },

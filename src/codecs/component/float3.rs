@@ -9,7 +9,7 @@
 
 use crate::codecs::core::codec::{Codec, Domain, unit_or_z};
 use crate::codecs::toolkit::exact::{canonical, canonical_or_z, half_sqrt_ratio, length2, unit_on_grid};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
@@ -33,6 +33,7 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 §2 and Table 1 (float×3)",
     edge_policy: "input is normalized first, then each component is rounded to the nearest f16 (float32x3: to the 2^-24 grid, from the input on a 2^-21 grid of its largest component's binade); a component that rounds to zero is +0; zero, NaN and infinite input encode as +Z",
     decode_note: "the three stored floats, exactly, without normalizing (unit length to within 2^-11 for float16 codes the encoder writes, 2^-21 for float32); a code with an infinite or NaN component, or with every component zero, decodes as +Z; a denormal float32 component is read as +0",
+    float_form: FloatForm::Continuous { seam: seam::NONE_PER_COMPONENT },
     options: &[],
 };
 

@@ -2,7 +2,7 @@
 //! three fields of one 32-bit word, x in the lowest bits (bits 0–10 x, 11–21 y, 22–31 z).
 
 use crate::codecs::core::codec::Domain;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
@@ -21,6 +21,7 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 §2 and Table 1",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decode re-normalizes; the all-zero code decodes as +Z",
+    float_form: FloatForm::Continuous { seam: seam::NONE_PER_COMPONENT },
     options: &[],
 };
 

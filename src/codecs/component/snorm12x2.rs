@@ -5,7 +5,7 @@
 //! forms bit-equal on all 2^24 inputs. The unpack ends in `(s - 2047)·(1/2047)` rather than
 //! the listing's `s·(1/2047) - 1`, which misses zero by an ulp.
 
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::codecs::core::words::generic_function;
@@ -26,6 +26,7 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 §3.3, Listings 4–5",
     edge_policy: "parameters are clamped to [-1, 1]",
     decode_note: "unpack returns values in [-1, 1]",
+    float_form: FloatForm::Absent,
     options: &[],
 };
 

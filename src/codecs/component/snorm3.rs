@@ -23,7 +23,7 @@ use crate::codecs::toolkit::fixed_decode::{BITS, ONE, distance, fixed_target};
 use crate::codecs::toolkit::quant::{Code, Quant, Quants};
 use crate::model::{Float, V2, V3};
 use std::marker::PhantomData;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::pipeline::codec_functions;
@@ -45,6 +45,7 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 §2; Pranckevičius, baseline; precise: Best Fit Normals (Kaplanyan 2010)",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
     decode_note: "decode re-normalizes; the all-zero code decodes as +Z",
+    float_form: FloatForm::Continuous { seam: seam::NONE_PER_COMPONENT },
     options: &[],
 };
 

@@ -5,7 +5,7 @@
 
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{canonical_or_z, length2, unorm_sqrt_ratio};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::toolkit::quant::{Quant, Quants};
@@ -20,6 +20,7 @@ pub static FAMILY: CodecFamily<Unorm3> = CodecFamily::new(
         source: "Pranckevičius, Compact Normal Storage, baseline (store X&Y&Z)",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z",
         decode_note: "decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector",
+        float_form: FloatForm::Continuous { seam: seam::NONE_PER_COMPONENT },
         options: &[],
     },
     |_| Unorm3,

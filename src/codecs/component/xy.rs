@@ -9,7 +9,7 @@ use crate::codecs::toolkit::exact::{
 use crate::codecs::toolkit::fixed_decode::{BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, zero_code};
 use crate::model::{Bool, Float, Uint, V2, V3};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
@@ -24,6 +24,7 @@ pub static FAMILY: CodecFamily<Xy> = CodecFamily::new(
         source: "Pranckevičius method 1; Cigolle et al. XYOnly; NVIDIA normal-map notes",
         edge_policy: "input is normalized onto the +Z hemisphere first (z ← max(z, +0)); zero, NaN and infinite input encode as +Z",
         decode_note: "z = sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, 0), longer than 1",
+        float_form: FloatForm::Continuous { seam: seam::NONE_IN_HEMISPHERE },
         options: &[texel::OPTION, ieee::OPTION],
     },
     |bits| Xy { bits },

@@ -12,7 +12,7 @@ use crate::codecs::toolkit::exact::{
     canonical_or_z, fixed_length2, fixed_root, floor_ratio, length2, one_if, root,
     snorm_sqrt_ratio,
 };
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_target, nearest_decoded, search_doc};
 use crate::codecs::core::pipeline::codec_functions;
@@ -29,6 +29,7 @@ pub static FAMILY: CodecFamily<XySignZ> = CodecFamily::new(
         source: "Pranckevičius method 2",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; the equator (z = 0) and -0 are on the +Z side",
         decode_note: "z = ±sqrt(1 - saturate(x²+y²)); codes outside the unit disk decode to (x, y, ±0), longer than 1",
+        float_form: FloatForm::Continuous { seam: seam::HEMISPHERE_BIT },
         options: &[],
     },
     |bits| XySignZ { bits },

@@ -155,7 +155,67 @@ pub struct Info {
     pub edge_policy: &'static str,
     /// What the decoder returns (unit length or not).
     pub decode_note: &'static str,
+    /// What a texture unit's filter or a resolve may do with the float form.
+    pub float_form: FloatForm,
     pub options: &'static [OptDesc],
+}
+
+/// What linear filtering and multisample resolves may do with a family's float form
+/// (`decode_float`'s input, as a texture stores it): `choose --filterable` and the
+/// report's filtering lines read it. Every family states it, so a new family cannot fall
+/// back on someone else's answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FloatForm {
+    /// Continuous parameters, which a filter mixes into a direction between its
+    /// neighbours' except at `seam` (where on the sphere the parameters jump).
+    Continuous { seam: &'static str },
+    /// Parameters a filter must not mix, `why` (an index split into channels); they jump
+    /// at `seam`.
+    Unfilterable {
+        why: &'static str,
+        seam: &'static str,
+    },
+    /// No texel of directions: packing helpers and tangent frames.
+    Absent,
+}
+
+impl FloatForm {
+    /// Why an index code's float form does not filter.
+    pub const INDEX_SPLIT: &str = "its float form holds a point's index, split into channels";
+    /// Where the parameters jump, if there is a float form.
+    pub fn seam(self) -> Option<&'static str> {
+        match self {
+            FloatForm::Continuous { seam } | FloatForm::Unfilterable { seam, .. } => Some(seam),
+            FloatForm::Absent => None,
+        }
+    }
+    /// Why a filter must not mix the float form, if it must not.
+    pub fn unfilterable(self) -> Option<&'static str> {
+        match self {
+            FloatForm::Unfilterable { why, .. } => Some(why),
+            FloatForm::Continuous { .. } | FloatForm::Absent => None,
+        }
+    }
+}
+
+/// The seams that several families' maps share ([`FloatForm::Continuous`]).
+pub mod seam {
+    /// Octahedral maps of the sphere.
+    pub const OCTAHEDRAL_FOLD: &str =
+        "the octahedral fold, where the lower hemisphere's triangles meet at the square's edges";
+    /// Hemisphere maps with a bit for the sign of z.
+    pub const HEMISPHERE_BIT: &str = "the equator, where the hemisphere bit flips";
+    /// Azimuth and polar angle (or z).
+    pub const AZIMUTH_WRAP: &str = "the azimuth's wrap at ±180° and the poles";
+    /// Cube maps.
+    pub const CUBE_FACES: &str = "the cube's face boundaries, where the face index changes";
+    /// Sphere-to-disk maps that send -Z to the disk's rim (Lambert's and its kin).
+    pub const RIM_IS_MINUS_Z: &str = "around -Z, which the disk's whole rim stands for";
+    /// Maps of the +Z hemisphere alone.
+    pub const NONE_IN_HEMISPHERE: &str =
+        "nowhere inside the hemisphere: the parameters are continuous up to its rim";
+    /// Components stored one by one.
+    pub const NONE_PER_COMPONENT: &str = "nowhere: each component is continuous";
 }
 
 impl Info {

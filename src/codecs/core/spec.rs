@@ -15,7 +15,7 @@
 
 pub use crate::codecs::core::error::SpecError;
 use crate::codecs::core::function::Emitted;
-use crate::codecs::core::info::{Info, OptVal};
+use crate::codecs::core::info::{FloatForm, Info, OptVal};
 use std::fmt;
 use std::hash::{Hash, Hasher};
 
@@ -442,6 +442,11 @@ pub trait Family: Sync + 'static {
     /// every other family's outputs are held there too.
     fn contracted(&self, _spec: &Spec) -> bool {
         false
+    }
+    /// What a filter or a resolve may do with the spec's float form: the family's
+    /// [`Info::float_form`], unless an option changes how the texel holds it.
+    fn float_form(&self, _spec: &Spec) -> FloatForm {
+        self.info().float_form
     }
     /// What the family's encoders take, as `list` and the docs name it: its domain
     /// (`sphere`, `hemisphere`), `frame`, or nothing for packing helpers.

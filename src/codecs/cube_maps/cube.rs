@@ -19,7 +19,7 @@
 use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, fixed_root, root, unorm_ratio};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{fixed_length2_2d, BITS, ONE, fixed, fixed_square_point, fixed_target, nearest_decoded, search_doc};
 use crate::codecs::toolkit::fixed_trig;
@@ -38,6 +38,7 @@ pub static FAMILY: CodecFamily<Cube> = CodecFamily::new(
         source: "Cigolle et al. 2014 §2 (cube)",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; ties between components go to z, then y",
         decode_note: "every code decodes to a unit vector (up to rounding); faces 6 and 7 are never written and decode as +Z and -Z",
+        float_form: FloatForm::Continuous { seam: seam::CUBE_FACES },
         options: &[],
     },
     |bits| Cube::of(bits, false),

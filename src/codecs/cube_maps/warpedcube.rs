@@ -4,7 +4,7 @@
 
 use crate::codecs::core::codec::Domain;
 use crate::codecs::cube_maps::cube::Cube;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_decode::{BITS, search_doc};
 use crate::codecs::core::pipeline::codec_functions;
@@ -18,6 +18,7 @@ pub static FAMILY: CodecFamily<Cube> = CodecFamily::new(
         source: "Cigolle et al. 2014 §2 (warpedcube; ISO/IEC 2005); the equi-angular warp",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; ties between components go to z, then y",
         decode_note: "decodes are unit length to within the trig approximations' error (about 2.5e-7); faces 6 and 7 are never written and decode as +Z and -Z",
+        float_form: FloatForm::Continuous { seam: seam::CUBE_FACES },
         options: &[],
     },
     |bits| Cube::of(bits, true),

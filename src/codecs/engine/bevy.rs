@@ -17,7 +17,7 @@
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::quant::{Quant, Quants, not_nan, round_half_away};
@@ -33,6 +33,7 @@ pub static FAMILY: CodecFamily<BevyOct> = CodecFamily::new(
         source: "Bevy main at bevyengine/bevy 7517c61 (#21926, merged 2026-06-02; unchanged at 4805ca7): crates/bevy_mesh/src/vertex.rs (octahedral_encode_signed, arr_f32_to_snorm16) and crates/bevy_render/src/utils.wgsl (octahedral_decode_signed)",
         edge_policy: "Bevy's: zero and NaN input encode as +Z (0, 0); infinite input too (its normalize gives NaN); -Z encodes as (-32767, -32767)",
         decode_note: "Bevy's octahedral_decode_signed: a unit vector (to rounding) for every code",
+        float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
         options: &[ieee::ENGINE_OPTION],
     },
     |_| BevyOct,

@@ -30,7 +30,7 @@
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::SpecError;
 use crate::codecs::toolkit::exact::canonical_or_z;
@@ -50,6 +50,7 @@ pub static FAMILY: CodecFamily<DracoOct> = CodecFamily::new(
         source: "Draco 1.5.4+ (google/draco 4723893): src/draco/compression/attributes/normal_compression_utils.h (OctahedronToolBox), called by src/draco/attributes/attribute_octahedron_transform.cc",
         edge_policy: "Draco's: NaN input and input whose L1 norm is at most 1e-6 encode as +X, (c, c); infinite input as +Z, (c, 2c), as Draco's f64 arithmetic gives (its cast is undefined where x or y is infinite)",
         decode_note: "QuantizedOctahedralCoordsToUnitVector: a unit vector (to rounding) for every code Draco writes",
+        float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
         options: &[ieee::ENGINE_OPTION],
     },
     |bits| DracoOct { n: bits / 2 },

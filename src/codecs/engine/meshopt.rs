@@ -20,7 +20,7 @@ use crate::codecs::component::snorm3::{OneWord, TwoWords, Words};
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
-use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
+use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::{Spec, SpecError};
 use crate::codecs::toolkit::quant::{Quant, Quants, round_half_away, truncated};
@@ -53,6 +53,7 @@ pub static MESHOPT_OCT8: CodecFamily<MeshoptOct<OneWord>> = CodecFamily::new(
         source: SOURCE,
         edge_policy: EDGE,
         decode_note: DECODE,
+        float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
         options: &[bits_option(8), ieee::ENGINE_OPTION],
     },
     |_| MeshoptOct::new_unchecked(8),
@@ -71,6 +72,7 @@ pub static MESHOPT_OCT16: CodecFamily<MeshoptOct<TwoWords>> = CodecFamily::new(
         source: SOURCE,
         edge_policy: EDGE,
         decode_note: DECODE,
+        float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
         options: &[bits_option(16), ieee::ENGINE_OPTION],
     },
     |_| MeshoptOct::new_unchecked(16),

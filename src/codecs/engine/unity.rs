@@ -23,7 +23,7 @@
 use crate::codecs::core::codec::{Codec, Domain};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
-use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
+use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
 use crate::codecs::core::pipeline::codec_functions;
 use crate::codecs::core::spec::{Spec, SpecError};
 use crate::codecs::engine::bevy::glam_normalize;
@@ -47,6 +47,7 @@ pub static FAMILY: CodecFamily<UnityOct> = CodecFamily::new(
         source: "Unity SRP Core (Unity-Technologies/Graphics cdc941e): ShaderLibrary/Packing.hlsl (PackNormalOctQuadEncode, PackFloat2To888, Unpack888ToFloat2, UnpackNormalOctQuadEncode), as URP's GBufferCommon.hlsl chains them",
         edge_policy: "Unity's: zero input encodes as +Z (bytes ff ff 77); -Z folds to the positive corner (ff ff ff); NaN coordinates become 0 (saturate(NaN) = 0 in D3D), so an all-NaN input gives bytes 00 00 00",
         decode_note: "UnpackNormalOctQuadEncode: a unit vector (to rounding) for every code",
+        float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
         options: &[ROUNDING, ieee::ENGINE_OPTION],
     },
     |_| UnityOct { nearest: false },

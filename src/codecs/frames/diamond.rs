@@ -4,7 +4,7 @@
 //! in one bit: 32 bits, 11 + 11 + 9 + 1. The shared arithmetic is in
 //! [`crate::codecs::frames::tangent_plane`].
 
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::frames::tangent_plane::{DECODE_NOTE, EDGE_POLICY, TangentPlane, Turn};
 
 pub static DIAMOND: TangentPlane = TangentPlane::new(
@@ -16,6 +16,7 @@ pub static DIAMOND: TangentPlane = TangentPlane::new(
         source: "Jeremy Ong, \"Tangent spaces and diamond encoding\" (2023): the basis and the diamond; the normal: octahedral (Meyer et al. 2010)",
         edge_policy: EDGE_POLICY,
         decode_note: DECODE_NOTE,
+        float_form: FloatForm::Absent,
         options: &[],
     },
     Turn::Diamond,

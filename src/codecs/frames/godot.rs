@@ -31,7 +31,7 @@
 use crate::codecs::core::codec::{dequantize, pack, unpack};
 use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::codecs::core::ieee;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::words::generic_function;
 use crate::codecs::frames::frame::{
@@ -57,6 +57,7 @@ pub static GODOT: GodotAxisAngle = GodotAxisAngle {
         source: "Godot 4 at godotengine/godot: servers/rendering_server.cpp at 000e39d (_get_axis_angle, _surface_set_data), core/math/basis.cpp at 2fcd40f (get_axis_angle), core/math/vector3.cpp at 9a46de9 (octahedron_encode), core/math/math_funcs.h at 46f79eb (acos, is_zero_approx), servers/rendering/renderer_rd/shaders/forward_clustered/scene_forward_clustered.glsl at 333f0f9 (oct_to_vec3, axis_angle_to_tbn); fdlibm's acosf (FreeBSD msun e_acosf.c; glibc's through 2.40)",
         edge_policy: "Godot's arithmetic for every frame it defines, the tangent not made orthogonal; w < 0 is reflected, any other w (0, NaN) is not; a normal with |x| + |y| + |z| below 2^-60 (zero, denormal), NaN or infinite encodes as +Z; a normal of squared length outside [2^-20, 2^20] is first divided by its largest component; a tangent whose bitangent normalize(n) × normalize(t) has squared length below 2^-60 or not finite (zero, NaN, infinite, parallel to the normal) is replaced by the canonical tangent of Duff et al. (2017)",
         decode_note: "Godot's oct_to_vec3 and axis_angle_to_tbn, the angle's sine and cosine from the model's polynomial: each component within 2^-20 of that decode evaluated exactly on every sampled code; n and t unit and orthogonal within 2^-20",
+        float_form: FloatForm::Absent,
         options: &[ieee::ENGINE_OPTION],
     },
 };

@@ -4,7 +4,7 @@
 //! the shared arithmetic and the layouts' reasons are in
 //! [`crate::codecs::frames::tangent_plane`].
 
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::frames::tangent_plane::{DECODE_NOTE, EDGE_POLICY, TangentPlane, Turn};
 
 pub static OCTANGLE: TangentPlane = TangentPlane::new(
@@ -16,6 +16,7 @@ pub static OCTANGLE: TangentPlane = TangentPlane::new(
         source: "the normal: octahedral (Meyer et al. 2010, Cigolle et al. 2014); the tangent's basis: Jeremy Ong, \"Tangent spaces and diamond encoding\" (2023)",
         edge_policy: EDGE_POLICY,
         decode_note: DECODE_NOTE,
+        float_form: FloatForm::Absent,
         options: &[],
     },
     Turn::Angle,

@@ -23,7 +23,7 @@
 
 use crate::codecs::core::function::{Emitted, Inputs, Role};
 use crate::model::enclosure::Encl;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Spec};
 use crate::codecs::core::codec::{dequantize, pack, unpack};
 use crate::codecs::core::words::generic_function;
@@ -51,6 +51,7 @@ pub static QTANGENT: QTangent = QTangent {
         decode_note: "Filament's toTangentFrame on the fetched quaternion, not renormalized: n and t are unit and orthogonal to the quaternion's quantization (a few 2^-15)",
         // No `guarantee` option: qtangent64 is Filament's arithmetic (the lean tier,
         // `ieee::asked` by its engine), qtangent32 portable.
+        float_form: FloatForm::Absent,
         options: &[],
     },
 };

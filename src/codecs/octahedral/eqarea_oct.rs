@@ -26,7 +26,7 @@ use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain, sign_not_zero};
 use crate::codecs::azimuthal::disk::{DiskProjection, Folded};
 use crate::codecs::toolkit::exact::decided;
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm, seam};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::toolkit::fixed_trig;
 use crate::codecs::core::pipeline::codec_functions;
@@ -45,6 +45,7 @@ pub static FAMILY: CodecFamily<EqAreaOct> = CodecFamily::new(
         source: "Clarberg 2008, Fast equal-area mapping of the (hemi)sphere using SIMD (JGT 13(3)); pbrt-v4 EqualAreaSphereToSquare / EqualAreaSquareToSphere",
         edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z; folds on encode when z <= 0, as oct",
         decode_note: "every code decodes to a unit vector (up to rounding); unfolds where |x| + |y| > 1, as oct",
+        float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
         options: &[],
     },
     |bits| EqAreaOct { bits },

@@ -7,7 +7,7 @@ use crate::codecs::toolkit::lattice::{Closeness, fixed, nearest, search_doc};
 use crate::codecs::toolkit::quant::{Quant, Quants, signed_code, unsigned_code, zero_code};
 use crate::codecs::octahedral::oct::fit_l1;
 use crate::model::{Bool, Float, V2, V3};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::codec_family::CodecFamily;
 use crate::codecs::core::ieee;
 use crate::codecs::toolkit::texel::{self, TexelCodec, texel_variants};
@@ -22,6 +22,7 @@ pub static FAMILY: CodecFamily<HemiOct> = CodecFamily::new(
         source: "Cigolle et al. 2014, Listing 6 and Table 3",
         edge_policy: "input below the horizon is projected onto it (z ← max(z, +0)); zero, NaN and infinite input and -Z encode as +Z (the packed encoders also where x and y are below 2^-40 of |z|, within about 2^-39.5 rad of -Z, where encode_float already sees the horizon)",
         decode_note: "every code decodes to a unit vector with z ≥ 0",
+        float_form: FloatForm::Continuous { seam: "the rim of the hemisphere, where the square's edges meet" },
         options: &[texel::OPTION, ieee::OPTION],
     },
     |bits| HemiOct { bits },

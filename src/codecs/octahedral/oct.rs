@@ -4,7 +4,7 @@
 use crate::model::num::helper;
 use crate::codecs::core::codec::{Codec, Domain, sign_not_zero};
 use crate::codecs::toolkit::exact::{canonical, floor_ratio, snorm_ratio_within};
-use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
+use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::Family;
 use crate::codecs::core::function::Emitted;
 use crate::codecs::core::ieee;
@@ -27,6 +27,7 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 (JCGT survey) §3.1–3.3",
     edge_policy: "input need not be unit length; zero, NaN and infinite input encode as +Z",
     decode_note: "every code decodes to a unit vector (normalized as v / sqrt(v·v))",
+    float_form: FloatForm::Continuous { seam: seam::OCTAHEDRAL_FOLD },
     options: &[
         OptDesc {
             key: "layout",
@@ -47,6 +48,16 @@ impl Family for OctFamily {
     }
     fn precise(&self) -> bool {
         Oct::EXACT_SEARCH && Oct24Rgb8::EXACT_SEARCH
+    }
+    fn float_form(&self, spec: &Spec) -> FloatForm {
+        if spec.choice(LAYOUT) == RGB8 {
+            FloatForm::Unfilterable {
+                why: "its float form splits two 12-bit fields across three bytes",
+                seam: seam::OCTAHEDRAL_FOLD,
+            }
+        } else {
+            INFO.float_form
+        }
     }
     fn validate(&self, spec: &Spec) -> Result<(), SpecError> {
         if spec.choice(LAYOUT) == RGB8 && spec.bits() != 24 {

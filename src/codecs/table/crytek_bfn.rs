@@ -43,7 +43,7 @@
 
 use crate::codecs::core::codec::{Domain, pack};
 use crate::codecs::toolkit::exact::{canonical_or_z, fixed_length2, fixed_ratio, root};
-use crate::codecs::core::info::{Info, Sizes};
+use crate::codecs::core::info::{Info, Sizes, FloatForm};
 use crate::codecs::core::spec::{Family, Table, TableFormat};
 use crate::codecs::core::function::{Emitted, Extra, Inputs, Role, WordsMap};
 use crate::codecs::core::pipeline::{codec_decoders, through_table, trace_decoders};
@@ -82,6 +82,9 @@ static INFO: Info = Info {
     source: "Cigolle et al. 2014 §2.2 (Kaplanyan 2010, CryENGINE 3)",
     edge_policy: "zero, NaN and infinite input encode as +Z at the scale 1, (128, 128, 255), whatever was fetched",
     decode_note: "decode re-normalizes (v / sqrt(v·v)); every code decodes to a unit vector",
+    float_form: FloatForm::Continuous {
+    seam: "nowhere: every stored vector points along its direction (its fitted length only shifts the filter's weights)",
+},
     options: &[],
 };
 

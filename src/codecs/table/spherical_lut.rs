@@ -66,7 +66,7 @@
 use crate::model::num::helper;
 use crate::codecs::core::codec::Domain;
 use crate::codecs::toolkit::exact::{canonical_or_z, decided, length2, past_root_ratio, unorm_sqrt_ratio};
-use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes};
+use crate::codecs::core::info::{Info, OptDesc, OptKind, Sizes, FloatForm, seam};
 use crate::codecs::core::spec::{Family, Table, TableFormat};
 use crate::codecs::core::decode_boxes::fetched_range;
 use crate::codecs::core::function::{Emitted, Enclose, Extra, Function, Inputs, Role, WordsMap};
@@ -104,6 +104,7 @@ static INFO: Info = Info {
     source: "Pranckevičius method 3a",
     edge_policy: "input is normalized first; zero, NaN and infinite input encode as +Z (atan texel (128, 128); the precise encoder keeps that code)",
     decode_note: "the sin/cos table's texel·2 - 1, not renormalized: unit length to within the table's rounding (each component within 1/255)",
+    float_form: FloatForm::Continuous { seam: seam::AZIMUTH_WRAP },
     options: OPTIONS,
 };
 
