@@ -321,7 +321,10 @@ fn frame_baseline(bits: u32) -> FrameBaseline {
         .filter(|&(a, b)| a + b < bits)
         .max_by_key(|&(a, b)| (a + b, b))
         .expect("a pair of oct sizes within the budget");
-    let (normal, tangent) = (format!("oct{a}"), format!("oct{b}"));
+    // The specs as `oct_round_trip` models them: the oct family's, at these sizes.
+    use crate::codecs::core::spec::Family;
+    let oct = crate::codecs::octahedral::oct::FAMILY.info().name;
+    let (normal, tangent) = (format!("{oct}{a}"), format!("{oct}{b}"));
     let frames = reference_frames();
     let normals: Vec<[f32; 3]> = frames.iter().map(|x| [x[0], x[1], x[2]]).collect();
     let n2 = oct_round_trip(a, &normals);
